@@ -1,0 +1,109 @@
+// VariantKey naming, parsing and DOF validity.
+#include "variant.hpp"
+
+#include <stdexcept>
+#include <vector>
+
+namespace hubbeam {
+
+namespace {
+
+template <class E, std::size_t N>
+bool lookup(std::string_view word, const std::pair<E, const char*> (&table)[N], E& out)
+{
+    for (const auto& [value, text] : table)
+        if (word == text) {
+            out = value;
+            return true;
+        }
+    return false;
+}
+
+template <class E, std::size_t N>
+std::string name_of(E value, const std::pair<E, const char*> (&table)[N])
+{
+    for (const auto& [v, text] : table)
+        if (v == value) return text;
+    throw std::logic_error("unnamed enum value");
+}
+
+const std::pair<Method, const char*> methods[] = {
+    {Method::amm, "amm"}, {Method::fem, "fem"}, {Method::bim, "bim"}, {Method::bsim, "bsim"}};
+const std::pair<Order, const char*> orders[] = {{Order::zero, "zero"}, {Order::first, "first"}, {Order::full, "full"}};
+const std::pair<Drive, const char*> drives[] = {{Drive::prescribed, "prescribed"}, {Drive::torque, "torque"}};
+const std::pair<SplineBasis, const char*> splines[] = {{SplineBasis::paper, "paper"}, {SplineBasis::open, "open"}};
+
+}  // namespace
+
+std::string to_string(Method v) { return name_of(v, methods); }
+std::string to_string(Order v) { return name_of(v, orders); }
+std::string to_string(Drive v) { return name_of(v, drives); }
+std::string to_string(SplineBasis v) { return name_of(v, splines); }
+bool parse(std::string_view w, Method& v) { return lookup(w, methods, v); }
+bool parse(std::string_view w, Order& v) { return lookup(w, orders, v); }
+bool parse(std::string_view w, Drive& v) { return lookup(w, drives, v); }
+bool parse(std::string_view w, SplineBasis& v) { return lookup(w, splines, v); }
+
+std::string VariantKey::name() const
+{
+    std::string s = to_string(method) + "_nx" + std::to_string(nx) + "_ny" + std::to_string(ny) + "_" +
+                    to_string(drive) + "_" + to_string(order);
+    if (method == Method::bsim && spline == SplineBasis::open) s += "_open";
+    return s;
+}
+
+VariantKey VariantKey::parse(std::string_view name)
+{
+    std::vector<std::string> parts;
+    std::string cur;
+    for (char ch : name) {
+        if (ch == '_') {
+            parts.push_back(cur);
+            cur.clear();
+        } else {
+            cur += ch;
+        }
+    }
+    parts.push_back(cur);
+    VariantKey k;
+    const auto bad = [&] { return std::invalid_argument("not a variant name: '" + std::string(name) + "'"); };
+    if (parts.size() < 5 || parts.size() > 6) throw bad();
+    if (!hubbeam::parse(parts[0], k.method) || !hubbeam::parse(parts[3], k.drive) ||
+        !hubbeam::parse(parts[4], k.order))
+        throw bad();
+    if (parts[1].size() < 3 || parts[1].rfind("nx", 0) != 0 || parts[2].size() < 3 || parts[2].rfind("ny", 0) != 0)
+        throw bad();
+    try {
+        k.nx = std::stoi(parts[1].substr(2));
+        k.ny = std::stoi(parts[2].substr(2));
+    } catch (const std::exception&) {
+        throw bad();
+    }
+    if (parts.size() == 6) {
+        if (k.method != Method::bsim || parts[5] != "open") throw bad();
+        k.spline = SplineBasis::open;
+    }
+    return k;
+}
+
+std::string VariantKey::dof_problem() const
+{
+    if (nx < 0) return "nx must be >= 0";
+    if (ny < 1) return "ny must be >= 1";
+    switch (method) {
+    case Method::fem:
+        if (ny % 2 != 0) return "FEM needs an even ny (a deflection and a slope per node), got " + std::to_string(ny);
+        break;
+    case Method::bsim:
+        if (spline == SplineBasis::paper && ny < 4)
+            return "BSIM with the paper's basis (eq. 41) needs ny >= 4 (n >= 3 intervals), got " + std::to_string(ny) +
+                   "; spline_basis = \"open\" takes ny >= 2";
+        if (spline == SplineBasis::open && ny < 2) return "BSIM needs ny >= 2, got " + std::to_string(ny);
+        if (nx != 0 && nx < 3) return "BSIM needs nx = 0 or nx >= 3 (n_x + 2 with n_x >= 1), got " + std::to_string(nx);
+        break;
+    default: break;
+    }
+    return {};
+}
+
+}  // namespace hubbeam
