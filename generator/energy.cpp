@@ -1,0 +1,153 @@
+// Energies by substitution of the discretized fields into the field-level energy densities and
+// term-by-term integration over the beam.
+#include "energy.hpp"
+
+#include <map>
+#include <stdexcept>
+#include <string>
+
+namespace hubbeam::gen {
+
+using namespace GiNaC;
+
+namespace {
+
+std::vector<symbol> numbered(const std::string& stem, int n, const std::string& suffix = "")
+{
+    std::vector<symbol> v;
+    for (int i = 1; i <= n; ++i) v.emplace_back(stem + std::to_string(i) + suffix);
+    return v;
+}
+
+/// A field at one abscissa, expanded in the coordinates: sum of coef * prod(factors)(xi).
+struct Term {
+    ex coef;
+    std::vector<Factor> factors;
+};
+using Expansion = std::vector<Term>;
+
+/// Integrates an energy density over the beam: int_0^L density dx with x = L xi and every field symbol
+/// replaced by its expansion in shape functions.
+class DensityIntegrator {
+public:
+    DensityIntegrator(const Symbols& s, const FieldSymbols& f, const VariantKey& key, ShapeIntegrals& integrals)
+        : s_(s), f_(f), integrals_(integrals)
+    {
+        using K = Factor::Kind;
+        const ex inv_L = 1 / s.L;
+        for (int i = 0; i < key.nx; ++i) {
+            fields_[f.ux1].push_back({s.A[i], {{K::axial, i, 0, 0}}});
+            fields_[f.ux1_dot].push_back({s.A_dot[i], {{K::axial, i, 0, 0}}});
+            fields_[f.ux1_x].push_back({s.A[i] * inv_L, {{K::axial, i, 0, 1}}});
+        }
+        for (int j = 0; j < key.ny; ++j) {
+            fields_[f.uy].push_back({s.B[j], {{K::transverse, j, 0, 0}}});
+            fields_[f.uy_dot].push_back({s.B_dot[j], {{K::transverse, j, 0, 0}}});
+            fields_[f.uy_xx].push_back({s.B[j] * pow(inv_L, 2), {{K::transverse, j, 0, 2}}});
+            // u_x2 = -1/2 B^T H(x) B with H in x units = H_xi / L; its rate is -B^T H B_dot (H symmetric).
+            for (int k = 0; k < key.ny; ++k) {
+                fields_[f.ux2].push_back({-s.B[j] * s.B[k] * inv_L / 2, {{K::coupling, j, k, 0}}});
+                fields_[f.ux2_dot].push_back({-s.B[j] * s.B_dot[k] * inv_L, {{K::coupling, j, k, 0}}});
+            }
+        }
+        fields_[f.ux1];  // present (possibly empty) so that nx = 0 makes its terms vanish
+        fields_[f.ux1_dot];
+        fields_[f.ux1_x];
+    }
+
+    ex operator()(const ex& density)
+    {
+        const symbol xi("xi");
+        const ex d = density.subs(f_.X == s_.a + s_.L * xi).expand();
+        exvector sum;
+        for (const ex& term : is_a<add>(d) ? d : lst{d}) {
+            ex coef = 1;
+            int xi_power = 0;
+            std::vector<const Expansion*> occurrences;
+            for (const ex& factor : is_a<mul>(term) ? term : lst{term}) {
+                const ex base = is_a<power>(factor) ? factor.op(0) : factor;
+                const int n = is_a<power>(factor) ? ex_to<numeric>(factor.op(1)).to_int() : 1;
+                if (base.is_equal(xi)) {
+                    xi_power += n;
+                } else if (auto it = fields_.find(base); it != fields_.end()) {
+                    for (int r = 0; r < n; ++r) occurrences.push_back(&it->second);
+                } else {
+                    coef *= factor;
+                }
+            }
+            // Cartesian product of the occurring fields' expansions.
+            std::vector<Term> products{{1, {}}};
+            for (const Expansion* e : occurrences) {
+                std::vector<Term> next;
+                for (const Term& p : products)
+                    for (const Term& t : *e) {
+                        Term n{p.coef * t.coef, p.factors};
+                        n.factors.insert(n.factors.end(), t.factors.begin(), t.factors.end());
+                        next.push_back(std::move(n));
+                    }
+                products = std::move(next);
+            }
+            for (const Term& p : products) {
+                const numeric value = integrals_.integrate(p.factors, xi_power);
+                if (!value.is_zero()) sum.push_back(coef * p.coef * value);
+            }
+        }
+        return (s_.L * add(sum)).expand();  // dx = L dxi
+    }
+
+private:
+    const Symbols& s_;
+    const FieldSymbols& f_;
+    ShapeIntegrals& integrals_;
+    std::map<ex, Expansion, ex_is_less> fields_;
+};
+
+}  // namespace
+
+Symbols::Symbols(const VariantKey& key)
+    : A(numbered("A", key.nx)), B(numbered("B", key.ny)), A_dot(numbered("A", key.nx, "_dot")),
+      B_dot(numbered("B", key.ny, "_dot"))
+{
+    if (key.drive == Drive::torque) {
+        q.push_back(theta);
+        qd.push_back(theta_dot);
+    }
+    q.insert(q.end(), A.begin(), A.end());
+    q.insert(q.end(), B.begin(), B.end());
+    qd.insert(qd.end(), A_dot.begin(), A_dot.end());
+    qd.insert(qd.end(), B_dot.begin(), B_dot.end());
+}
+
+ex velocity_squared(Order order, const FieldSymbols& f, const ex& w)
+{
+    // p = (X + u_x, u_y) in the turning frame; |r_dot|^2 = w^2 |p|^2 + 2 w (p_x p_y' - p_y p_x') + |p'|^2.
+    const bool shortening = order != Order::zero;
+    const ex ux = f.ux1 + (shortening ? ex(f.ux2) : ex(0));
+    const ex ux_dot = f.ux1_dot + (shortening ? ex(f.ux2_dot) : ex(0));
+    const ex px = f.X + ux, py = f.uy;
+    ex v2 = pow(w, 2) * (pow(px, 2) + pow(py, 2)) + 2 * w * (px * f.uy_dot - py * ux_dot) + pow(ux_dot, 2) +
+            pow(f.uy_dot, 2);
+    if (order == Order::full) return v2.expand();
+    // Keep terms up to 2nd order in the deformation: u_x1, u_y and rates 1st order, u_x2 and its rate 2nd.
+    const symbol eps("eps");
+    v2 = v2.subs(lst{f.ux1 == eps * f.ux1, f.uy == eps * f.uy, f.ux1_dot == eps * f.ux1_dot,
+                     f.uy_dot == eps * f.uy_dot, f.ux2 == pow(eps, 2) * f.ux2, f.ux2_dot == pow(eps, 2) * f.ux2_dot})
+             .expand();
+    ex kept = 0;
+    for (int k = 0; k <= 2; ++k) kept += v2.coeff(eps, k);
+    return kept;
+}
+
+Energies derive_energies(const VariantKey& key, const Symbols& s)
+{
+    if (const std::string why = key.dof_problem(); !why.empty()) throw std::invalid_argument(key.name() + ": " + why);
+    ShapeIntegrals integrals(key.axial_basis(), key.transverse_basis());
+    const FieldSymbols f;
+    DensityIntegrator integrate(s, f, key, integrals);
+    const ex v2 = velocity_squared(key.order, f, s.theta_dot);
+    const ex T = s.J_oh * pow(s.theta_dot, 2) / 2 + s.m * integrate(v2) / 2;
+    const ex U = integrate(s.ES * pow(f.ux1_x, 2) + s.EI * pow(f.uy_xx, 2)) / 2;
+    return {T.expand(), U.expand()};
+}
+
+}  // namespace hubbeam::gen

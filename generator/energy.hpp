@@ -1,0 +1,43 @@
+// Stage "energy": T and U of MODEL.md sections 2-3 as GiNaC expressions in the generalized coordinates,
+// rates and physical parameters, for any method (through ShapeIntegrals) and model order.
+#pragma once
+
+#include <vector>
+
+#include <ginac/ginac.h>
+
+#include "integrals.hpp"
+#include "variant.hpp"
+
+namespace hubbeam::gen {
+
+/// Every symbol a variant's equations can contain, named as in MODEL.md and in the emitted code.
+struct Symbols {
+    // Physical parameters; m = rho S, EI and ES are formed from p = (L, rho, S, I, E, a, J_oh).
+    GiNaC::symbol L{"L"}, m{"m"}, EI{"EI"}, ES{"ES"}, a{"a"}, J_oh{"J_oh"};
+    // The drive u = (tau, theta_dot, theta_ddot).
+    GiNaC::symbol tau{"tau"}, theta_dot{"theta_dot"}, theta_ddot{"theta_ddot"};
+    GiNaC::symbol theta{"theta"};
+    std::vector<GiNaC::symbol> A, B, A_dot, B_dot;
+    // The variant's coordinates and rates: (theta, A, B) for a torque variant, (A, B) for a prescribed one.
+    std::vector<GiNaC::symbol> q, qd;
+
+    explicit Symbols(const VariantKey& key);
+};
+
+struct Energies {
+    GiNaC::ex T, U;
+};
+
+/// |r_dot|^2 of MODEL.md section 2 in terms of field symbols, truncated to the model order (section 3).
+/// Exposed for tests; the fields are X = a + x, u_x1, u_y, u_x2 and their rates.
+struct FieldSymbols {
+    GiNaC::symbol X{"X"}, ux1{"u_x1"}, uy{"u_y"}, ux2{"u_x2"}, ux1_dot{"u_x1_dot"}, uy_dot{"u_y_dot"},
+        ux2_dot{"u_x2_dot"}, ux1_x{"u_x1_x"}, uy_xx{"u_y_xx"};
+};
+GiNaC::ex velocity_squared(Order order, const FieldSymbols& f, const GiNaC::ex& theta_dot);
+
+/// T = 1/2 J_oh theta_dot^2 + 1/2 int m |r_dot|^2 dx and U = 1/2 int (ES u_x1'^2 + EI u_y''^2) dx.
+Energies derive_energies(const VariantKey& key, const Symbols& s);
+
+}  // namespace hubbeam::gen

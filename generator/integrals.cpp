@@ -1,0 +1,177 @@
+// Shape-function integrals: exact piecewise-polynomial integration with GiNaC rationals, or composite
+// Gauss-Legendre quadrature for the transcendental AMM modes.
+#include "integrals.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "basis/quadrature.hpp"
+
+namespace hubbeam::gen {
+
+using namespace GiNaC;
+
+namespace {
+
+std::string ex_to_string(const ex& e)
+{
+    std::ostringstream s;
+    s << e;
+    return s.str();
+}
+
+/// int_lo^hi p(xi) dxi for a polynomial p.
+numeric integrate_polynomial(const ex& p, const symbol& xi, const numeric& lo, const numeric& hi)
+{
+    const ex e = p.expand();
+    numeric sum = 0;
+    for (int k = e.ldegree(xi); k <= e.degree(xi); ++k) {
+        const ex c = e.coeff(xi, k);
+        if (c.is_zero()) continue;
+        if (!is_a<numeric>(c)) throw std::logic_error("integrals: non-numeric coefficient " + ex_to_string(c));
+        sum += ex_to<numeric>(c) * (hi.power(k + 1) - lo.power(k + 1)) / (k + 1);
+    }
+    return sum;
+}
+
+}  // namespace
+
+ShapeIntegrals::ShapeIntegrals(FieldBasis axial, FieldBasis transverse)
+    : axial_(std::move(axial)), transverse_(std::move(transverse)),
+      exact_(axial_.polynomial() && transverse_.polynomial())
+{
+    if (exact_) {
+        for (const FieldBasis* b : {&axial_, &transverse_}) {
+            if (b->size() == 0) continue;
+            for (int k = 0; k <= b->intervals(); ++k) breaks_.push_back(numeric(k, b->intervals()));
+        }
+        std::sort(breaks_.begin(), breaks_.end(), [](const numeric& a, const numeric& b) { return a < b; });
+        breaks_.erase(std::unique(breaks_.begin(), breaks_.end(), [](const numeric& a, const numeric& b) { return a == b; }),
+                      breaks_.end());
+        if (breaks_.empty()) breaks_ = {0, 1};
+    } else {
+        // Panels narrow enough for the highest mode (about n/2 waves on [0,1]) and 20 points each:
+        // converged to round-off (checked against orthonormality in the tests).
+        const int panels = 8 + 4 * std::max(axial_.size(), transverse_.size());
+        const QuadratureRule rule = gauss_legendre(20);
+        for (int p = 0; p < panels; ++p)
+            for (std::size_t g = 0; g < rule.nodes.size(); ++g) {
+                nodes_.push_back((p + rule.nodes[g]) / panels);
+                weights_.push_back(rule.weights[g] / panels);
+            }
+    }
+}
+
+const FieldBasis& ShapeIntegrals::basis(const Factor& f) const
+{
+    return f.kind == Factor::Kind::axial ? axial_ : transverse_;
+}
+
+numeric ShapeIntegrals::integrate(std::vector<Factor> factors, int power)
+{
+    std::sort(factors.begin(), factors.end());
+    auto key = std::make_pair(factors, power);
+    if (auto it = cache_.find(key); it != cache_.end()) return it->second;
+    const numeric r = exact_ ? exact(factors, power) : quadrature(factors, power);
+    cache_.emplace(std::move(key), r);
+    return r;
+}
+
+ex ShapeIntegrals::piece(const Factor& f, const numeric& lo, const numeric& hi)
+{
+    const FieldBasis& b = basis(f);
+    const int k = b.interval_of(((lo + hi) / 2).to_double());
+    auto key = std::make_pair(f, k);
+    if (auto it = pieces_.find(key); it != pieces_.end()) return it->second;
+    ex p;
+    if (f.kind != Factor::Kind::coupling) {
+        p = b.piece<ex>(f.i, k, xi_).diff(xi_, f.deriv).expand();
+    } else {
+        // H_ij on interval k: its value at the interval start plus the running integral inside it.
+        numeric start = 0;
+        const int n = b.intervals();
+        for (int s = 0; s < k; ++s) {
+            const ex prod = b.piece<ex>(f.i, s, xi_).diff(xi_) * b.piece<ex>(f.j, s, xi_).diff(xi_);
+            start += integrate_polynomial(prod, xi_, numeric(s, n), numeric(s + 1, n));
+        }
+        const ex prod = (b.piece<ex>(f.i, k, xi_).diff(xi_) * b.piece<ex>(f.j, k, xi_).diff(xi_)).expand();
+        ex running = 0;
+        const numeric x0(k, n);
+        for (int d = prod.ldegree(xi_); d <= prod.degree(xi_); ++d) {
+            const ex c = prod.coeff(xi_, d);
+            running += c * (pow(xi_, d + 1) - pow(x0, d + 1)) / (d + 1);
+        }
+        p = (start + running).expand();
+    }
+    pieces_.emplace(std::move(key), p);
+    return p;
+}
+
+numeric ShapeIntegrals::exact(const std::vector<Factor>& factors, int power)
+{
+    numeric sum = 0;
+    for (std::size_t s = 0; s + 1 < breaks_.size(); ++s) {
+        ex prod = pow(xi_, power);
+        for (const Factor& f : factors) {
+            const ex p = piece(f, breaks_[s], breaks_[s + 1]);
+            if (p.is_zero()) {
+                prod = 0;
+                break;
+            }
+            prod = (prod * p).expand();
+        }
+        if (!prod.is_zero()) sum += integrate_polynomial(prod, xi_, breaks_[s], breaks_[s + 1]);
+    }
+    return sum;
+}
+
+const std::vector<double>& ShapeIntegrals::values(const Factor& f)
+{
+    if (auto it = node_values_.find(f); it != node_values_.end()) return it->second;
+    std::vector<double> v(nodes_.size());
+    if (f.kind != Factor::Kind::coupling) {
+        const FieldBasis& b = basis(f);
+        for (std::size_t q = 0; q < nodes_.size(); ++q) {
+            const Jet<double> j = b.at(f.i, nodes_[q]);
+            v[q] = f.deriv == 0 ? j.v : f.deriv == 1 ? j.d1 : j.d2;
+        }
+    } else {
+        // H_ij at each node: whole panels so far plus a Gauss rule on [panel start, node].
+        const QuadratureRule rule = gauss_legendre(20);
+        const int per_panel = static_cast<int>(rule.nodes.size());
+        const int panels = static_cast<int>(nodes_.size()) / per_panel;
+        auto slope_product = [&](double x) { return transverse_.at(f.i, x).d1 * transverse_.at(f.j, x).d1; };
+        double whole = 0.0;
+        for (int p = 0; p < panels; ++p) {
+            const double a = static_cast<double>(p) / panels;
+            for (int g = 0; g < per_panel; ++g) {
+                const std::size_t q = static_cast<std::size_t>(p * per_panel + g);
+                const double width = nodes_[q] - a;
+                double part = 0.0;
+                for (int r = 0; r < per_panel; ++r) part += rule.weights[r] * width * slope_product(a + rule.nodes[r] * width);
+                v[q] = whole + part;
+            }
+            double full = 0.0;
+            for (int r = 0; r < per_panel; ++r) full += rule.weights[r] / panels * slope_product(a + rule.nodes[r] / panels);
+            whole += full;
+        }
+    }
+    return node_values_.emplace(f, std::move(v)).first->second;
+}
+
+numeric ShapeIntegrals::quadrature(const std::vector<Factor>& factors, int power)
+{
+    std::vector<const std::vector<double>*> columns;
+    for (const Factor& f : factors) columns.push_back(&values(f));
+    double sum = 0.0;
+    for (std::size_t q = 0; q < nodes_.size(); ++q) {
+        double term = weights_[q] * std::pow(nodes_[q], power);
+        for (const auto* c : columns) term *= (*c)[q];
+        sum += term;
+    }
+    return numeric(sum);
+}
+
+}  // namespace hubbeam::gen

@@ -1,0 +1,49 @@
+// Stage "integrals": pure-number integrals over xi in [0,1] of products of shape functions, their
+// derivatives and the coupling shape function H, exact rationals for polynomial bases and converged
+// Gauss-Legendre quadrature for AMM.
+#pragma once
+
+#include <map>
+#include <utility>
+#include <vector>
+
+#include <ginac/ginac.h>
+
+#include "basis/basis.hpp"
+
+namespace hubbeam::gen {
+
+/// One factor of an integrand: d^deriv phi_i / dxi^deriv of a field, or the coupling function
+/// H_ij(xi) = int_0^xi phi_yi' phi_yj' dxi' (xi units; MODEL.md section 2).
+struct Factor {
+    enum class Kind { axial, transverse, coupling } kind;
+    int i = 0, j = 0;
+    int deriv = 0;
+    auto operator<=>(const Factor&) const = default;
+};
+
+class ShapeIntegrals {
+public:
+    ShapeIntegrals(FieldBasis axial, FieldBasis transverse);
+
+    /// int_0^1 xi^power * prod(factors) dxi: exact when both bases are polynomial.
+    GiNaC::numeric integrate(std::vector<Factor> factors, int power);
+
+private:
+    GiNaC::numeric exact(const std::vector<Factor>& factors, int power);
+    GiNaC::numeric quadrature(const std::vector<Factor>& factors, int power);
+    GiNaC::ex piece(const Factor& f, const GiNaC::numeric& lo, const GiNaC::numeric& hi);
+    const std::vector<double>& values(const Factor& f);
+    const FieldBasis& basis(const Factor& f) const;
+
+    FieldBasis axial_, transverse_;
+    bool exact_;
+    GiNaC::symbol xi_{"xi"};
+    std::vector<GiNaC::numeric> breaks_;  // common refinement of both fields' intervals
+    std::map<std::pair<Factor, int>, GiNaC::ex> pieces_;            // (factor, field interval) -> polynomial
+    std::map<std::pair<std::vector<Factor>, int>, GiNaC::numeric> cache_;
+    std::vector<double> nodes_, weights_;  // composite rule (quadrature path)
+    std::map<Factor, std::vector<double>> node_values_;
+};
+
+}  // namespace hubbeam::gen

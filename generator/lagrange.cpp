@@ -1,0 +1,34 @@
+// Lagrange's equations: d/dt(dT/dqd) - dT/dq + dU/dq = force, written as M qdd = Q.
+#include "lagrange.hpp"
+
+namespace hubbeam::gen {
+
+using namespace GiNaC;
+
+Equations lagrange(const ex& T, const ex& U, const Coordinates& c)
+{
+    const std::size_t n = c.q.size();
+    Equations e;
+    e.M.resize(n * n);
+    e.Q.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const ex p = T.diff(c.qd[i]);  // generalized momentum
+        for (std::size_t j = 0; j < n; ++j) e.M[i * n + j] = p.diff(c.qd[j]).expand();
+        ex Q = c.force[i] + T.diff(c.q[i]) - U.diff(c.q[i]);
+        for (std::size_t j = 0; j < n; ++j) Q -= p.diff(c.q[j]) * c.qd[j];
+        for (const auto& [u, u_dot] : c.driven) Q -= p.diff(u) * u_dot;
+        e.Q[i] = Q.expand();
+    }
+    const symbol lambda("lambda");
+    exmap scale;
+    for (const symbol& v : c.qd) scale[v] = lambda * v;
+    const ex Tl = T.subs(scale).expand();
+    e.T2 = Tl.coeff(lambda, 2);
+    e.T1 = Tl.coeff(lambda, 1);
+    e.T0 = Tl.coeff(lambda, 0);
+    e.U = U;
+    e.momentum = T.diff(c.spin).expand();
+    return e;
+}
+
+}  // namespace hubbeam::gen

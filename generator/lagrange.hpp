@@ -1,0 +1,32 @@
+// Stage "lagrange": Lagrange's equations of the second kind by symbolic differentiation of T and U.
+#pragma once
+
+#include <utility>
+#include <vector>
+
+#include <ginac/ginac.h>
+
+namespace hubbeam::gen {
+
+struct Coordinates {
+    std::vector<GiNaC::symbol> q, qd;
+    /// Inputs that T depends on and whose time derivative is known, e.g. (theta_dot, theta_ddot) under a
+    /// prescribed rotation: d/dt of dT/dqd then gains d2T/dqd du * u_dot.
+    std::vector<std::pair<GiNaC::symbol, GiNaC::symbol>> driven;
+    /// Generalized force on each coordinate (tau on theta, zero on A and B).
+    std::vector<GiNaC::ex> force;
+    /// The hub rate, for the angular momentum dT/dtheta_dot.
+    GiNaC::symbol spin;
+};
+
+/// M qdd = Q, with T split by degree in qd and the angular momentum.
+struct Equations {
+    std::vector<GiNaC::ex> M;  // nq x nq, row-major: d2T/dqd_i dqd_j
+    std::vector<GiNaC::ex> Q;  // force + dT/dq - sum_j d2T/dqd dq_j qd_j - sum d2T/dqd du u_dot - dU/dq
+    GiNaC::ex T2, T1, T0, U;
+    GiNaC::ex momentum;
+};
+
+Equations lagrange(const GiNaC::ex& T, const GiNaC::ex& U, const Coordinates& c);
+
+}  // namespace hubbeam::gen

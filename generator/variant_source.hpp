@@ -1,0 +1,18 @@
+// Stage "specialise + emit" for one variant: from a VariantKey to the complete C++ source of its kernels
+// and its table row; and the registry of all generated variants.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "variant.hpp"
+
+namespace hubbeam::gen {
+
+/// The generated source file for one variant (banner, kernels, table row).
+std::string variant_source(const VariantKey& key);
+
+/// The registry source listing the named variants.
+std::string registry_source(const std::vector<std::string>& names);
+
+}  // namespace hubbeam::gen
