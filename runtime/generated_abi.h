@@ -1,0 +1,29 @@
+/* The binary interface between generated kernels and the runtime: one signature for every kernel and one
+ * table row per variant. Generated code includes this header and nothing else of the project. */
+#pragma once
+
+namespace hubbeam::generated {
+
+/* out = f(c, u, q, qd). c: the variant's coefficients (from its coefficients kernel, once per parameter set);
+ * u = (tau, theta_dot, theta_ddot): the drive, of which a torque variant reads tau and a prescribed variant
+ * theta_dot, theta_ddot; q, qd: generalized coordinates and rates of the variant. */
+using Kernel = void (*)(const double* c, const double* u, const double* q, const double* qd, double* out);
+/* c = f(p), p = (L, rho, S, I, E, a, J_oh) in SI units. */
+using CoefficientsKernel = void (*)(const double* p, double* c);
+
+struct Variant {
+    const char* name;         /* VariantKey::name(), e.g. "bim_nx4_ny4_torque_first" */
+    int nq;                   /* number of generalized coordinates */
+    int ncoeff;               /* length of c */
+    bool mass_constant;       /* M does not depend on q: factor it once */
+    CoefficientsKernel coefficients;
+    Kernel mass;              /* M[nq*nq], row-major, M = d2T/dqd2 */
+    Kernel forces;            /* Q[nq]: tau e_theta + dT/dq - d(dT/dqd)/dt|_(qdd=0) - dU/dq */
+    Kernel energy;            /* E[4] = (T2, T1, T0, U), T split by degree in qd */
+    Kernel momentum;          /* h[1] = dT/dtheta_dot */
+};
+
+extern const Variant* const variants[];
+extern const int variant_count;
+
+}  // namespace hubbeam::generated

@@ -1,0 +1,120 @@
+// FirstOrderSystem: mass solve per evaluation (or one factorization for a constant M) and GSL glue.
+#include "integrate.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Dense>
+#include <gsl/gsl_errno.h>
+
+namespace hubbeam {
+
+namespace {
+
+struct StepperInfo {
+    const char* name;
+    const gsl_odeiv2_step_type* const* type;
+    bool jacobian;
+};
+
+const StepperInfo steppers[] = {
+    {"msadams", &gsl_odeiv2_step_msadams, false}, {"rk8pd", &gsl_odeiv2_step_rk8pd, false},
+    {"rkck", &gsl_odeiv2_step_rkck, false},       {"rkf45", &gsl_odeiv2_step_rkf45, false},
+    {"rk4", &gsl_odeiv2_step_rk4, false},         {"rk2", &gsl_odeiv2_step_rk2, false},
+    {"msbdf", &gsl_odeiv2_step_msbdf, true},      {"bsimp", &gsl_odeiv2_step_bsimp, true},
+    {"rk4imp", &gsl_odeiv2_step_rk4imp, true},    {"rk2imp", &gsl_odeiv2_step_rk2imp, true},
+    {"rk1imp", &gsl_odeiv2_step_rk1imp, true},
+};
+
+int gsl_rhs(double t, const double y[], double dydt[], void* self)
+{
+    return static_cast<FirstOrderSystem*>(self)->rhs(t, y, dydt);
+}
+
+int gsl_jacobian(double t, const double y[], double* dfdy, double dfdt[], void* self)
+{
+    return static_cast<FirstOrderSystem*>(self)->jacobian(t, y, dfdy, dfdt);
+}
+
+}  // namespace
+
+const gsl_odeiv2_step_type* step_type(const std::string& name, bool* needs_jacobian)
+{
+    for (const StepperInfo& s : steppers)
+        if (name == s.name) {
+            if (needs_jacobian) *needs_jacobian = s.jacobian;
+            return *s.type;
+        }
+    return nullptr;
+}
+
+struct FirstOrderSystem::Work {
+    Eigen::MatrixXd M;
+    Eigen::VectorXd Q, qdd;
+    Eigen::LLT<Eigen::MatrixXd> llt;
+    bool factored_once = false;
+    std::vector<double> y_plus, y_minus, f_plus, f_minus;
+};
+
+FirstOrderSystem::FirstOrderSystem(const Model& model, const Motion& motion)
+    : model_(model), motion_(motion), n_(model.nq()), work_(std::make_unique<Work>())
+{
+    work_->M.resize(n_, n_);
+    work_->Q.resize(n_);
+    work_->qdd.resize(n_);
+    sys_ = {gsl_rhs, gsl_jacobian, static_cast<std::size_t>(2 * n_), this};
+}
+
+FirstOrderSystem::~FirstOrderSystem() = default;
+
+int FirstOrderSystem::rhs(double t, const double* y, double* dydt)
+{
+    ++evaluations_;
+    Work& w = *work_;
+    const HubInput u = motion_.at(t);
+    const double* q = y;
+    const double* qd = y + n_;
+    if (!w.factored_once) {
+        // Eigen is column-major and the kernel writes row-major: M is symmetric, so the transpose is M.
+        model_.mass(u, q, w.M.data());
+        w.llt.compute(w.M);
+        if (w.llt.info() != Eigen::Success) return GSL_EBADFUNC;
+        w.factored_once = model_.mass_is_constant();
+    }
+    model_.forces(u, q, qd, w.Q.data());
+    w.qdd = w.llt.solve(w.Q);
+    for (int i = 0; i < n_; ++i) {
+        dydt[i] = qd[i];
+        dydt[n_ + i] = w.qdd[i];
+        if (!std::isfinite(dydt[n_ + i])) return GSL_EBADFUNC;
+    }
+    return GSL_SUCCESS;
+}
+
+int FirstOrderSystem::jacobian(double t, const double* y, double* dfdy, double* dfdt)
+{
+    Work& w = *work_;
+    const int m = size();
+    w.y_plus.assign(y, y + m);
+    w.y_minus.assign(y, y + m);
+    w.f_plus.resize(m);
+    w.f_minus.resize(m);
+    const double scale = std::cbrt(std::numeric_limits<double>::epsilon());
+    for (int j = 0; j < m; ++j) {
+        const double h = scale * std::max(std::abs(y[j]), 1e-3);
+        w.y_plus[j] = y[j] + h;
+        w.y_minus[j] = y[j] - h;
+        if (int s = rhs(t, w.y_plus.data(), w.f_plus.data()); s != GSL_SUCCESS) return s;
+        if (int s = rhs(t, w.y_minus.data(), w.f_minus.data()); s != GSL_SUCCESS) return s;
+        for (int i = 0; i < m; ++i) dfdy[i * m + j] = (w.f_plus[i] - w.f_minus[i]) / (2.0 * h);
+        w.y_plus[j] = w.y_minus[j] = y[j];
+    }
+    const double ht = scale * std::max(std::abs(t), 1.0);
+    if (int s = rhs(t + ht, y, w.f_plus.data()); s != GSL_SUCCESS) return s;
+    if (int s = rhs(t - ht, y, w.f_minus.data()); s != GSL_SUCCESS) return s;
+    for (int i = 0; i < m; ++i) dfdt[i] = (w.f_plus[i] - w.f_minus[i]) / (2.0 * ht);
+    return GSL_SUCCESS;
+}
+
+}  // namespace hubbeam

@@ -1,0 +1,49 @@
+// Spin-up and torque profiles of MODEL.md section 6.
+#include "motion.hpp"
+
+#include <cmath>
+#include <numbers>
+
+namespace hubbeam {
+
+namespace {
+constexpr double two_pi = 2.0 * std::numbers::pi;
+}
+
+HubInput Motion::at(double t) const
+{
+    HubInput u;
+    if (kind == Kind::spin_up) {
+        if (t <= spin_time) {
+            u.theta_dot = omega0 * (t / spin_time - std::sin(two_pi * t / spin_time) / two_pi);
+            u.theta_ddot = omega0 / spin_time * (1.0 - std::cos(two_pi * t / spin_time));
+        } else {
+            u.theta_dot = omega0;
+        }
+    } else if (t <= torque_time) {
+        u.tau = tau0 * std::sin(two_pi * t / torque_time);
+    }
+    return u;
+}
+
+double Motion::theta(double t) const
+{
+    if (kind != Kind::spin_up) return 0.0;
+    if (t <= spin_time)
+        return omega0 * (t * t / (2.0 * spin_time) + spin_time * (std::cos(two_pi * t / spin_time) - 1.0) / (two_pi * two_pi));
+    return omega0 * (t - spin_time / 2.0);
+}
+
+double Motion::torque_impulse(double t) const
+{
+    if (kind != Kind::torque) return 0.0;
+    const double tt = t < torque_time ? t : torque_time;
+    return tau0 * torque_time / two_pi * (1.0 - std::cos(two_pi * tt / torque_time));
+}
+
+std::vector<double> Motion::breakpoints() const
+{
+    return {kind == Kind::spin_up ? spin_time : torque_time};
+}
+
+}  // namespace hubbeam

@@ -1,0 +1,42 @@
+// simulate(): one scene integrated from rest, rows handed to a sink at exact multiples of dt_out. The
+// library entry point under the command line.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "scene.hpp"
+
+namespace hubbeam {
+
+/// One output row. Columns: t, theta, theta_dot, tip_uy, tip_ux1, tip_ux, then kinetic, potential,
+/// momentum (dT/dtheta_dot).
+struct Row {
+    double t, theta, theta_dot, tip_uy, tip_ux1, tip_ux, kinetic, potential, momentum;
+};
+/// CSV header matching Row.
+inline const char* row_header() { return "t,theta,theta_dot,tip_uy,tip_ux1,tip_ux,kinetic,potential,momentum"; }
+
+struct RunSummary {
+    std::string variant;  // VariantKey::name()
+    std::string source;   // "generated" or "assembled"
+    bool completed = false;
+    std::string failure;  // why the run stopped early (empty if completed)
+    double t_reached = 0.0;
+    double max_abs_tip_uy = 0.0;
+    long steps = 0;
+    long rhs_evals = 0;
+    double wall_seconds = 0.0;
+};
+
+using RowSink = std::function<void(const Row&)>;
+
+/// Integrates the scene; every row reaches sink before the next step is taken, so a failed run keeps all
+/// rows up to the failure. Does not throw for numerical failure: see RunSummary::completed.
+RunSummary simulate(const Scene& scene, const RowSink& sink);
+
+/// The GSL odeiv2 step type names simulate() accepts.
+std::vector<std::string> stepper_names();
+
+}  // namespace hubbeam
