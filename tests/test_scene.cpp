@@ -1,0 +1,348 @@
+// Scene files: the paper's four load cases in cases/ parse to the values MODEL.md section 6 states, and bad
+// input stops in load_scene() with one line naming the file, the key and what was expected.
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "scene.hpp"
+
+using namespace hubbeam;
+
+namespace {
+
+std::string case_path(const std::string& name)
+{
+    return std::string(HUBBEAM_SOURCE_DIR) + "/cases/" + name;
+}
+
+/// Checks the beam of MODEL.md section 6 and the discretization and solver every paper case shares.
+void check_paper_common(const Scene& s)
+{
+    CHECK(s.parameters.L == 8.0);
+    CHECK(s.parameters.rho == 2.7667e3);
+    CHECK(s.parameters.S == 7.2968e-5);
+    CHECK(s.parameters.I == 8.2189e-9);
+    CHECK(s.parameters.E == 6.8952e10);
+    CHECK(s.parameters.a == 0.0);
+    CHECK(s.variant.method == Method::amm);
+    CHECK(s.variant.nx == 4);
+    CHECK(s.variant.ny == 4);
+    CHECK(s.variant.order == Order::first);
+    CHECK(s.source == ModelSource::automatic);
+    CHECK(s.solver.stepper == "msadams");
+    CHECK(s.solver.rtol == 1e-8);
+    CHECK(s.solver.atol == 1e-10);
+    CHECK(s.output.t_end == 30.0);
+    CHECK(s.output.dt_out == 0.01);
+    CHECK(s.output.file.empty());
+}
+
+/// A scratch directory, removed with everything in it at the end of the test.
+struct TempDir {
+    std::filesystem::path path;
+    TempDir()
+    {
+        path = std::filesystem::temp_directory_path() / ("hubbeam-test-scene-" + std::to_string(::getpid()));
+        std::filesystem::create_directories(path);
+    }
+    ~TempDir()
+    {
+        std::error_code ec;
+        std::filesystem::remove_all(path, ec);
+    }
+    std::string write(const std::string& name, const std::string& text) const
+    {
+        const std::string file = (path / name).string();
+        std::ofstream(file) << text;
+        return file;
+    }
+};
+
+// A small valid scene; the bad inputs below are edits of it.
+const std::string good_scene = R"([beam]
+length = 8.0
+density = 2.7667e3
+area = 7.2968e-5
+second_moment = 8.2189e-9
+youngs_modulus = 6.8952e10
+
+[motion]
+kind = "spin-up"
+omega0 = 4.0
+duration = 15.0
+
+[discretization]
+method = "amm"
+ny = 4
+nx = 0
+
+[output]
+t_end = 30.0
+)";
+
+/// good_scene with the first occurrence of from replaced by to (which must occur).
+std::string edited(const std::string& from, const std::string& to)
+{
+    std::string s = good_scene;
+    const auto at = s.find(from);
+    REQUIRE(at != std::string::npos);
+    return s.replace(at, from.size(), to);
+}
+
+/// The SceneError message of loading text, which must be one line opening with the file's name.
+std::string error_of(const TempDir& dir, const std::string& text)
+{
+    const std::string file = dir.write("scene.toml", text);
+    try {
+        load_scene(file);
+    } catch (const SceneError& e) {
+        const std::string message = e.what();
+        INFO(message);
+        CHECK(message.find('\n') == std::string::npos);
+        CHECK(message.rfind(file + ":", 0) == 0);
+        return message;
+    }
+    FAIL("no SceneError for:\n" << text);
+    return {};
+}
+
+}  // namespace
+
+TEST_CASE("the load cases of the paper in cases/ parse to MODEL.md section 6", "[scene]")
+{
+    SECTION("spin-up, Omega0 = 4")
+    {
+        const Scene s = load_scene(case_path("spinup_omega4.toml"));
+        check_paper_common(s);
+        CHECK(s.motion.kind == Motion::Kind::spin_up);
+        CHECK(s.motion.omega0 == 4.0);
+        CHECK(s.motion.spin_time == 15.0);
+        CHECK(s.variant.drive == Drive::prescribed);
+        CHECK(s.path == case_path("spinup_omega4.toml"));
+    }
+    SECTION("spin-up, Omega0 = 10")
+    {
+        const Scene s = load_scene(case_path("spinup_omega10.toml"));
+        check_paper_common(s);
+        CHECK(s.motion.kind == Motion::Kind::spin_up);
+        CHECK(s.motion.omega0 == 10.0);
+        CHECK(s.motion.spin_time == 15.0);
+        CHECK(s.variant.drive == Drive::prescribed);
+    }
+    SECTION("hub torque, tau0 = 1")
+    {
+        const Scene s = load_scene(case_path("torque_tau1.toml"));
+        check_paper_common(s);
+        CHECK(s.motion.kind == Motion::Kind::torque);
+        CHECK(s.motion.tau0 == 1.0);
+        CHECK(s.motion.torque_time == 10.0);
+        CHECK(s.parameters.J_oh == 30.0);
+        CHECK(s.variant.drive == Drive::torque);
+    }
+    SECTION("hub torque, tau0 = 10")
+    {
+        const Scene s = load_scene(case_path("torque_tau10.toml"));
+        check_paper_common(s);
+        CHECK(s.motion.kind == Motion::Kind::torque);
+        CHECK(s.motion.tau0 == 10.0);
+        CHECK(s.motion.torque_time == 10.0);
+        CHECK(s.parameters.J_oh == 30.0);
+        CHECK(s.variant.drive == Drive::torque);
+    }
+}
+
+TEST_CASE("optional scene keys take their documented defaults", "[scene]")
+{
+    const TempDir dir;
+    const Scene s = load_scene(dir.write("minimal.toml", edited("length = 8.0", "length = 8")));
+    CHECK(s.parameters.L == 8.0);  // a TOML integer is a number
+    CHECK(s.parameters.a == 0.0);
+    CHECK(s.parameters.J_oh == 30.0);
+    CHECK(s.variant.spline == SplineBasis::paper);
+    CHECK(s.variant.order == Order::first);
+    CHECK(s.source == ModelSource::automatic);
+    CHECK(s.solver.stepper == "msadams");
+    CHECK(s.solver.rtol == 1e-8);
+    CHECK(s.solver.atol == 1e-10);
+    CHECK(s.solver.h0 == 1e-4);
+    CHECK(s.output.dt_out == 0.01);
+    CHECK(s.output.file.empty());
+
+    const Scene t = load_scene(dir.write("full.toml", good_scene + R"(
+[hub]
+radius = 0.5
+inertia = 12
+
+[model]
+order = "zero"
+source = "assembled"
+
+[solver]
+stepper = "rk8pd"
+rtol = 1e-6
+atol = 1e-9
+h0 = 1e-3
+)"));
+    CHECK(t.parameters.a == 0.5);
+    CHECK(t.parameters.J_oh == 12.0);
+    CHECK(t.variant.order == Order::zero);
+    CHECK(t.source == ModelSource::assembled);
+    CHECK(t.solver.stepper == "rk8pd");
+    CHECK(t.solver.rtol == 1e-6);
+    CHECK(t.solver.atol == 1e-9);
+    CHECK(t.solver.h0 == 1e-3);
+
+    const Scene u = load_scene(dir.write("open.toml", edited("method = \"amm\"\nny = 4",
+                                                             "method = \"bsim\"\n"
+                                                             "spline_basis = \"open\"\nny = 3")));
+    CHECK(u.variant.method == Method::bsim);
+    CHECK(u.variant.spline == SplineBasis::open);
+    CHECK(u.variant.ny == 3);
+}
+
+TEST_CASE("bad scene input throws SceneError naming the file and the key", "[scene]")
+{
+    const TempDir dir;
+    const auto names = [&](const std::string& text, const std::string& key, const std::string& detail) {
+        const std::string message = error_of(dir, text);
+        INFO(message);
+        CHECK(message.find(": " + key + ": ") != std::string::npos);
+        CHECK(message.find(detail) != std::string::npos);
+    };
+
+    SECTION("missing key")
+    {
+        names(edited("length = 8.0\n", ""), "beam.length", "missing");
+    }
+    SECTION("missing table")
+    {
+        names(edited("[output]\nt_end = 30.0\n", ""), "output", "missing");
+    }
+    SECTION("mistyped key")
+    {
+        names(edited("length = 8.0", "lenght = 8.0"), "beam.lenght", "unknown key");
+    }
+    SECTION("unknown table")
+    {
+        names(good_scene + "[extras]\nx = 1\n", "extras", "unknown table");
+    }
+    SECTION("key of the other motion kind")
+    {
+        names(edited("omega0 = 4.0", "tau0 = 4.0"), "motion.tau0", "unknown key");
+    }
+    SECTION("non-positive length")
+    {
+        names(edited("length = 8.0", "length = 0"), "beam.length", "> 0");
+    }
+    SECTION("negative length")
+    {
+        names(edited("length = 8.0", "length = -8.0"), "beam.length", "got -8");
+    }
+    SECTION("non-positive density")
+    {
+        names(edited("density = 2.7667e3", "density = -1"), "beam.density", "> 0");
+    }
+    SECTION("non-positive Young's modulus")
+    {
+        names(edited("youngs_modulus = 6.8952e10", "youngs_modulus = 0.0"), "beam.youngs_modulus", "> 0");
+    }
+    SECTION("non-positive second moment")
+    {
+        names(edited("second_moment = 8.2189e-9", "second_moment = -8.2189e-9"), "beam.second_moment", "> 0");
+    }
+    SECTION("not a number")
+    {
+        names(edited("area = 7.2968e-5", "area = nan"), "beam.area", "got nan");
+    }
+    SECTION("unknown method")
+    {
+        names(edited("method = \"amm\"", "method = \"xfem\""), "discretization.method", "\"fem\"");
+    }
+    SECTION("odd ny for FEM")
+    {
+        names(edited("method = \"amm\"\nny = 4", "method = \"fem\"\nny = 3"), "discretization.ny", "even");
+    }
+    SECTION("ny = 3 for BSIM with the paper's basis")
+    {
+        names(edited("method = \"amm\"\nny = 4", "method = \"bsim\"\nny = 3"), "discretization.ny", "ny >= 4");
+    }
+    SECTION("nx = 1 for BSIM")
+    {
+        names(edited("method = \"amm\"\nny = 4\nnx = 0", "method = \"bsim\"\nny = 4\nnx = 1"), "discretization.nx",
+              "nx = 0 or nx >= 3");
+    }
+    SECTION("ny = 0")
+    {
+        names(edited("ny = 4", "ny = 0"), "discretization.ny", "integer >= 1");
+    }
+    SECTION("wrong type: string for a number")
+    {
+        names(edited("length = 8.0", "length = \"8.0\""), "beam.length", "got a string \"8.0\"");
+    }
+    SECTION("wrong type: float for a DOF count")
+    {
+        names(edited("ny = 4", "ny = 4.0"), "discretization.ny", "float");
+    }
+    SECTION("wrong type: table for a key")
+    {
+        names(edited("t_end = 30.0", "t_end = { x = 1 }"), "output.t_end", "got a table");
+    }
+    SECTION("wrong type: key for a table")
+    {
+        names("beam = 8.0\n" + good_scene.substr(good_scene.find("[motion]")), "beam", "got a float 8");
+    }
+    SECTION("unknown motion kind")
+    {
+        names(edited("\"spin-up\"", "\"spinup\""), "motion.kind", "\"spin-up\"");
+    }
+    SECTION("torque without hub inertia")
+    {
+        names(edited("kind = \"spin-up\"\nomega0 = 4.0", "kind = \"torque\"\ntau0 = 1.0"), "hub.inertia", "missing");
+    }
+    SECTION("unknown stepper")
+    {
+        names(good_scene + "[solver]\nstepper = \"euler\"\n", "solver.stepper", "msadams");
+    }
+    SECTION("non-positive tolerance")
+    {
+        names(good_scene + "[solver]\nrtol = 0\n", "solver.rtol", "> 0");
+    }
+    SECTION("output interval beyond the end time")
+    {
+        names(edited("t_end = 30.0", "t_end = 1.0\ndt_out = 2.0"), "output.dt_out", "<= output.t_end");
+    }
+    SECTION("unknown model order")
+    {
+        names(good_scene + "[model]\norder = \"second\"\n", "model.order", "\"first\"");
+    }
+    SECTION("TOML syntax error: line and column")
+    {
+        const std::string message = error_of(dir, edited("length = 8.0", "length = = 8.0"));
+        const std::string file = (dir.path / "scene.toml").string();
+        CHECK(message.rfind(file + ":2:", 0) == 0);
+    }
+    SECTION("missing file")
+    {
+        const std::string file = (dir.path / "no-such-scene.toml").string();
+        CHECK_THROWS_WITH(load_scene(file), file + ": cannot open");
+    }
+}
+
+TEST_CASE("validate() re-checks a scene changed after loading", "[scene]")
+{
+    Scene s = load_scene(case_path("spinup_omega4.toml"));
+    REQUIRE_NOTHROW(validate(s));
+    s.variant.method = Method::fem;
+    s.variant.ny = 3;
+    CHECK_THROWS_WITH(validate(s), Catch::Contains("discretization.ny: FEM needs an even ny"));
+    s.variant.ny = 4;
+    REQUIRE_NOTHROW(validate(s));
+    s.output.dt_out = 0.0;
+    CHECK_THROWS_AS(validate(s), SceneError);
+    s.output.dt_out = 0.01;
+    s.solver.stepper = "euler";
+    CHECK_THROWS_WITH(validate(s), Catch::Contains("solver.stepper"));
+}
