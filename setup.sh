@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# One-step set-up for a fresh Debian 12 machine (as root): installs what is missing, builds, then
+#   ./setup.sh run [SCENE.toml] [hubbeam run options...]   runs a scene (default cases/spinup_omega4.toml)
+#   ./setup.sh test                                         runs the whole test suite through ctest
+set -euo pipefail
+cd "$(dirname "$0")"
+
+# GiNaC (symbolic derivation), Eigen (linear algebra), GSL (odeiv2 integrators), Catch2 (tests), toml++
+# (scene files), CLI11 (command line); cmake, ninja and g++ to build.
+packages=(build-essential cmake ninja-build pkg-config libginac-dev libeigen3-dev libgsl-dev catch2
+          libtomlplusplus-dev libcli11-dev)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}"
+  apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+cmake --preset release >/dev/null
+cmake --build --preset release
+
+mode=${1:-run}
+shift || true
+case "$mode" in
+  run)
+    scene=cases/spinup_omega4.toml
+    if (($#)) && [[ $1 != -* ]]; then scene=$1; shift; fi
+    mkdir -p out
+    exec build/hubbeam run "$scene" -o "out/$(basename "${scene%.toml}").csv" "$@"
+    ;;
+  test)
+    exec ctest --preset release
+    ;;
+  *)
+    echo "usage: ./setup.sh run [SCENE.toml] [options] | ./setup.sh test" >&2
+    exit 2
+    ;;
+esac

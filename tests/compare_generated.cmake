@@ -1,0 +1,15 @@
+# Fails when a generated source of this build differs from the committed copy in generated/.
+foreach(f IN LISTS FILES)
+  get_filename_component(name ${f} NAME)
+  execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${f} ${SRC_DIR}/${name} RESULT_VARIABLE differs)
+  if(differs)
+    message(FATAL_ERROR "generated/${name} is not what the generator emits now: "
+                        "run `cmake --build build --target regenerate` and commit generated/")
+  endif()
+endforeach()
+file(GLOB committed ${SRC_DIR}/*.cpp)
+list(LENGTH committed n_committed)
+list(LENGTH FILES n_built)
+if(NOT n_committed EQUAL n_built)
+  message(FATAL_ERROR "generated/ holds ${n_committed} sources, the build emits ${n_built}: regenerate")
+endif()

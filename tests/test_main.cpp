@@ -1,0 +1,3 @@
+// Catch2's main, in its own translation unit so that test files recompile quickly.
+#define CATCH_CONFIG_MAIN
+#include <catch2/catch.hpp>
