@@ -1,0 +1,79 @@
+// BeamFields: u_y, u_x1, u_x, EI u_y'' and ES u_x1' from the shape functions (MODEL.md section 5 outputs).
+#include "fields.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "assembled.hpp"
+
+namespace hubbeam {
+
+BeamFields::BeamFields(const VariantKey& key, const Parameters& p)
+    : axial_(key.axial_basis()), transverse_(key.transverse_basis()), L_(p.L), EI_(p.E * p.I), ES_(p.E * p.S)
+{
+    BeamMatrices c = assemble_matrices(key, p);
+    Phi_x_L_ = std::move(c.Phi_x_L);
+    Phi_y_L_ = std::move(c.Phi_y_L);
+    H_L_ = std::move(c.H_L);
+}
+
+BeamFields::Tip BeamFields::tip(const double* A, const double* B) const
+{
+    Tip t{0.0, 0.0, 0.0};
+    if (A && axial_.size() > 0) t.ux1 = Phi_x_L_.dot(Eigen::Map<const Eigen::VectorXd>(A, axial_.size()));
+    if (B) {
+        const Eigen::Map<const Eigen::VectorXd> b(B, transverse_.size());
+        t.uy = Phi_y_L_.dot(b);
+        t.ux = t.ux1 - 0.5 * b.dot(H_L_.lazyProduct(b));  // u_x2(L) = -1/2 B^T H(L) B
+    } else {
+        t.ux = t.ux1;
+    }
+    return t;
+}
+
+double BeamFields::xi_of(double x) const
+{
+    if (!(x >= -1e-12 * L_ && x <= L_ * (1.0 + 1e-12)))
+        throw std::out_of_range("beam abscissa x = " + std::to_string(x) + " outside [0, L]");
+    return std::clamp(x / L_, 0.0, 1.0);
+}
+
+double BeamFields::uy(const double* B, double x) const
+{
+    const double xi = xi_of(x);
+    double s = 0.0;
+    if (B)
+        for (int i = 0; i < transverse_.size(); ++i) s += transverse_.at(i, xi).v * B[i];
+    return s;
+}
+
+double BeamFields::ux1(const double* A, double x) const
+{
+    const double xi = xi_of(x);
+    double s = 0.0;
+    if (A)
+        for (int i = 0; i < axial_.size(); ++i) s += axial_.at(i, xi).v * A[i];
+    return s;
+}
+
+double BeamFields::bending_moment(const double* B, double x) const
+{
+    const double xi = xi_of(x);
+    double s = 0.0;
+    if (B)
+        for (int i = 0; i < transverse_.size(); ++i) s += transverse_.at(i, xi).d2 * B[i];
+    return EI_ * s / (L_ * L_);  // d2/dx2 = (1/L^2) d2/dxi2
+}
+
+double BeamFields::axial_force(const double* A, double x) const
+{
+    const double xi = xi_of(x);
+    double s = 0.0;
+    if (A)
+        for (int i = 0; i < axial_.size(); ++i) s += axial_.at(i, xi).d1 * A[i];
+    return ES_ * s / L_;  // d/dx = (1/L) d/dxi
+}
+
+}  // namespace hubbeam
