@@ -1,6 +1,5 @@
 // The generator's stages on their own: the strict printer (golden strings), the kinematics of each model
 // order against MODEL.md section 3, and the shape-function integrals against closed forms.
-#define CATCH_CONFIG_MAIN
 #include <catch2/catch.hpp>
 
 #include "emit.hpp"
