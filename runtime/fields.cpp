@@ -40,40 +40,34 @@ double BeamFields::xi_of(double x) const
     return std::clamp(x / L_, 0.0, 1.0);
 }
 
-double BeamFields::uy(const double* B, double x) const
+namespace {
+
+/// d^deriv/dxi^deriv of sum_i phi_i(xi) c_i; zero when the coordinates are absent.
+double combination(const FieldBasis& basis, const double* c, double xi, int deriv)
 {
-    const double xi = xi_of(x);
     double s = 0.0;
-    if (B)
-        for (int i = 0; i < transverse_.size(); ++i) s += transverse_.at(i, xi).v * B[i];
+    if (c)
+        for (int i = 0; i < basis.size(); ++i) {
+            const Jet<double> phi = basis.at(i, xi);
+            s += (deriv == 0 ? phi.v : deriv == 1 ? phi.d1 : phi.d2) * c[i];
+        }
     return s;
 }
 
-double BeamFields::ux1(const double* A, double x) const
-{
-    const double xi = xi_of(x);
-    double s = 0.0;
-    if (A)
-        for (int i = 0; i < axial_.size(); ++i) s += axial_.at(i, xi).v * A[i];
-    return s;
-}
+}  // namespace
+
+double BeamFields::uy(const double* B, double x) const { return combination(transverse_, B, xi_of(x), 0); }
+
+double BeamFields::ux1(const double* A, double x) const { return combination(axial_, A, xi_of(x), 0); }
 
 double BeamFields::bending_moment(const double* B, double x) const
 {
-    const double xi = xi_of(x);
-    double s = 0.0;
-    if (B)
-        for (int i = 0; i < transverse_.size(); ++i) s += transverse_.at(i, xi).d2 * B[i];
-    return EI_ * s / (L_ * L_);  // d2/dx2 = (1/L^2) d2/dxi2
+    return EI_ * combination(transverse_, B, xi_of(x), 2) / (L_ * L_);  // d2/dx2 = (1/L^2) d2/dxi2
 }
 
 double BeamFields::axial_force(const double* A, double x) const
 {
-    const double xi = xi_of(x);
-    double s = 0.0;
-    if (A)
-        for (int i = 0; i < axial_.size(); ++i) s += axial_.at(i, xi).d1 * A[i];
-    return ES_ * s / L_;  // d/dx = (1/L) d/dxi
+    return ES_ * combination(axial_, A, xi_of(x), 1) / L_;  // d/dx = (1/L) d/dxi
 }
 
 }  // namespace hubbeam
