@@ -58,7 +58,7 @@ std::string csv_line(const Row& row)
     std::string s;
     s.reserve(200);
     const double columns[] = {row.t,      row.theta,   row.theta_dot, row.tip_uy,  row.tip_ux1,
-                              row.tip_ux, row.kinetic, row.potential, row.momentum};
+                              row.tip_ux, row.kinetic, row.potential, row.momentum, row.jacobi};
     for (std::size_t i = 0; i < std::size(columns); ++i) {
         if (i) s += ',';
         append_number(s, columns[i]);

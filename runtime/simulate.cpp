@@ -67,7 +67,7 @@ RunSummary simulate(const Scene& scene, const RowSink& sink)
         const BeamFields::Tip tip = fields.tip(A, q + key.first_b());
         const Energy e = model->energy(u, q, qd);
         Row r{t,       torque ? q[0] : motion.theta(t), torque ? qd[0] : u.theta_dot, tip.uy, tip.ux1, tip.ux,
-              e.kinetic(), e.U, model->momentum(u, q, qd)};
+              e.kinetic(), e.U, model->momentum(u, q, qd), e.T2 - e.T0 + e.U};
         summary.max_abs_tip_uy = std::max(summary.max_abs_tip_uy, std::abs(r.tip_uy));
         return r;
     };

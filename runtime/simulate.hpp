@@ -11,12 +11,17 @@
 namespace hubbeam {
 
 /// One output row. Columns: t, theta, theta_dot, tip_uy, tip_ux1, tip_ux, then kinetic, potential,
-/// momentum (dT/dtheta_dot).
+/// momentum (dT/dtheta_dot) and the Jacobi integral T2 - T0 + U (T split by degree in the coordinates' rates),
+/// which is constant whenever the drive is steady: at constant prescribed spin, and, where theta is a
+/// coordinate, with zero torque (then it is the total energy T + U).
 struct Row {
-    double t, theta, theta_dot, tip_uy, tip_ux1, tip_ux, kinetic, potential, momentum;
+    double t, theta, theta_dot, tip_uy, tip_ux1, tip_ux, kinetic, potential, momentum, jacobi;
 };
 /// CSV header matching Row.
-inline const char* row_header() { return "t,theta,theta_dot,tip_uy,tip_ux1,tip_ux,kinetic,potential,momentum"; }
+inline const char* row_header()
+{
+    return "t,theta,theta_dot,tip_uy,tip_ux1,tip_ux,kinetic,potential,momentum,jacobi";
+}
 
 struct RunSummary {
     std::string variant;  // VariantKey::name()
