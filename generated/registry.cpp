@@ -24,6 +24,8 @@ extern const Variant bsim_nx0_ny4_torque_first;
 extern const Variant bsim_nx4_ny4_torque_first;
 extern const Variant bsim_nx0_ny4_prescribed_first_open;
 extern const Variant bsim_nx0_ny4_torque_first_open;
+extern const Variant amm_nx0_ny4_prescribed_zero;
+extern const Variant bim_nx4_ny4_torque_zero;
 
 const Variant* const variants[] = {
     &amm_nx0_ny4_prescribed_first,
@@ -44,7 +46,9 @@ const Variant* const variants[] = {
     &bsim_nx4_ny4_torque_first,
     &bsim_nx0_ny4_prescribed_first_open,
     &bsim_nx0_ny4_torque_first_open,
+    &amm_nx0_ny4_prescribed_zero,
+    &bim_nx4_ny4_torque_zero,
 };
-const int variant_count = 18;
+const int variant_count = 20;
 
 }  // namespace hubbeam::generated
