@@ -21,6 +21,30 @@ struct DriverDeleter {
     void operator()(gsl_odeiv2_driver* d) const { gsl_odeiv2_driver_free(d); }
 };
 
+/// Output time i * dt. A decimal dt = n / 10^d gives (i n) / 10^d, a quotient of exact integers and so the
+/// double nearest the decimal multiple (0.35, not 0.35000000000000003); other dt give i * dt.
+class OutputClock {
+public:
+    explicit OutputClock(double dt) : dt_(dt)
+    {
+        for (int d = 0; d <= 9; ++d, scale_ *= 10.0) {
+            const double n = std::round(dt * scale_);
+            if (n >= 1.0 && std::abs(n - dt * scale_) <= 1e-9 * n) {
+                n_ = n;
+                return;
+            }
+        }
+    }
+    double operator()(long i) const
+    {
+        const double in = static_cast<double>(i) * n_;
+        return n_ > 0.0 && in < 0x1p53 ? in / scale_ : static_cast<double>(i) * dt_;
+    }
+
+private:
+    double dt_, scale_ = 1.0, n_ = 0.0;
+};
+
 std::string at_time(double t)
 {
     std::ostringstream s;
@@ -87,10 +111,11 @@ RunSummary simulate(const Scene& scene, const RowSink& sink)
 
     sink(row_at(0.0));
     const double dt = scene.output.dt_out;
+    const OutputClock clock(dt);
     const long rows = static_cast<long>(std::floor(scene.output.t_end / dt * (1.0 + 1e-12)));
     std::vector<double> breaks;
     for (double b : motion.breakpoints())
-        if (b > 0.0 && b < rows * dt) breaks.push_back(b);
+        if (b > 0.0 && b < clock(rows)) breaks.push_back(b);
     std::sort(breaks.begin(), breaks.end());
     auto next_break = breaks.begin();
 
@@ -106,7 +131,7 @@ RunSummary simulate(const Scene& scene, const RowSink& sink)
         return {};
     };
     for (long i = 1; i <= rows; ++i) {
-        const double ti = static_cast<double>(i) * dt;
+        const double ti = clock(i);
         for (; next_break != breaks.end() && *next_break <= ti * (1.0 + 1e-12); ++next_break) {
             if (*next_break < ti * (1.0 - 1e-12))
                 if (std::string failure = advance(*next_break); !failure.empty()) return finish(failure);
