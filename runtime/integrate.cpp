@@ -1,6 +1,8 @@
 // FirstOrderSystem: mass solve per evaluation (or one factorization for a constant M) and GSL glue.
 #include "integrate.hpp"
 
+#include "simulate.hpp"
+
 #include <cmath>
 #include <limits>
 
@@ -19,10 +21,10 @@ struct StepperInfo {
 };
 
 const StepperInfo steppers[] = {
-    {"msadams", &gsl_odeiv2_step_msadams, false}, {"rk8pd", &gsl_odeiv2_step_rk8pd, false},
-    {"rkck", &gsl_odeiv2_step_rkck, false},       {"rkf45", &gsl_odeiv2_step_rkf45, false},
-    {"rk4", &gsl_odeiv2_step_rk4, false},         {"rk2", &gsl_odeiv2_step_rk2, false},
-    {"msbdf", &gsl_odeiv2_step_msbdf, true},      {"bsimp", &gsl_odeiv2_step_bsimp, true},
+    {"msadams", &gsl_odeiv2_step_msadams, false}, {"msbdf", &gsl_odeiv2_step_msbdf, true},
+    {"rk8pd", &gsl_odeiv2_step_rk8pd, false},     {"rkck", &gsl_odeiv2_step_rkck, false},
+    {"rkf45", &gsl_odeiv2_step_rkf45, false},     {"rk4", &gsl_odeiv2_step_rk4, false},
+    {"rk2", &gsl_odeiv2_step_rk2, false},         {"bsimp", &gsl_odeiv2_step_bsimp, true},
     {"rk4imp", &gsl_odeiv2_step_rk4imp, true},    {"rk2imp", &gsl_odeiv2_step_rk2imp, true},
     {"rk1imp", &gsl_odeiv2_step_rk1imp, true},
 };
@@ -38,6 +40,13 @@ int gsl_jacobian(double t, const double y[], double* dfdy, double dfdt[], void* 
 }
 
 }  // namespace
+
+std::vector<std::string> stepper_names()
+{
+    std::vector<std::string> names;
+    for (const StepperInfo& s : steppers) names.emplace_back(s.name);
+    return names;
+}
 
 const gsl_odeiv2_step_type* step_type(const std::string& name, bool* needs_jacobian)
 {

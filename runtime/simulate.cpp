@@ -54,11 +54,6 @@ std::string at_time(double t)
 
 }  // namespace
 
-std::vector<std::string> stepper_names()
-{
-    return {"msadams", "msbdf", "rk8pd", "rkck", "rkf45", "rk4", "rk2", "bsimp", "rk4imp", "rk2imp", "rk1imp"};
-}
-
 RunSummary simulate(const Scene& scene, const RowSink& sink)
 {
     const auto start = std::chrono::steady_clock::now();
