@@ -52,15 +52,9 @@ ShapeIntegrals::ShapeIntegrals(FieldBasis axial, FieldBasis transverse)
                       breaks_.end());
         if (breaks_.empty()) breaks_ = {0, 1};
     } else {
-        // Panels narrow enough for the highest mode (about n/2 waves on [0,1]) and 20 points each:
-        // converged to round-off (checked against orthonormality in the tests).
-        const int panels = 8 + 4 * std::max(axial_.size(), transverse_.size());
-        const QuadratureRule rule = gauss_legendre(20);
-        for (int p = 0; p < panels; ++p)
-            for (std::size_t g = 0; g < rule.nodes.size(); ++g) {
-                nodes_.push_back((p + rule.nodes[g]) / panels);
-                weights_.push_back(rule.weights[g] / panels);
-            }
+        const QuadratureRule rule = transcendental_rule(std::max(axial_.size(), transverse_.size()));
+        nodes_ = rule.nodes;
+        weights_ = rule.weights;
     }
 }
 
@@ -139,8 +133,8 @@ const std::vector<double>& ShapeIntegrals::values(const Factor& f)
         }
     } else {
         // H_ij at each node: whole panels so far plus a Gauss rule on [panel start, node].
-        const QuadratureRule rule = gauss_legendre(20);
-        const int per_panel = static_cast<int>(rule.nodes.size());
+        const QuadratureRule rule = gauss_legendre(transcendental_points);
+        const int per_panel = transcendental_points;
         const int panels = static_cast<int>(nodes_.size()) / per_panel;
         auto slope_product = [&](double x) { return transverse_.at(f.i, x).d1 * transverse_.at(f.j, x).d1; };
         double whole = 0.0;

@@ -49,31 +49,14 @@ MatrixXd weighted_gram(const MatrixXd& P, const VectorXd& w)
 
 QuadratureRule beam_quadrature(const FieldBasis& a, const FieldBasis& b)
 {
+    if (!a.polynomial() || !b.polynomial()) return transcendental_rule(std::max(a.size(), b.size()));
     std::vector<double> cuts{0.0, 1.0};
-    int points;
-    if (a.polynomial() && b.polynomial()) {
-        for (const FieldBasis* f : {&a, &b})
-            for (int k = 1; k < f->intervals(); ++k) cuts.push_back(static_cast<double>(k) / f->intervals());
-        // The integrands are products of two pieces times at most a quadratic in xi: degree <= 2 max + 2.
-        points = std::max(piece_degree(a), piece_degree(b)) + 2;  // exact to degree 2 max + 3
-    } else {
-        const int panels = 8 + 4 * std::max(a.size(), b.size());
-        for (int k = 1; k < panels; ++k) cuts.push_back(static_cast<double>(k) / panels);
-        points = 20;
-    }
+    for (const FieldBasis* f : {&a, &b})
+        for (int k = 1; k < f->intervals(); ++k) cuts.push_back(static_cast<double>(k) / f->intervals());
     std::sort(cuts.begin(), cuts.end());
     cuts.erase(std::unique(cuts.begin(), cuts.end(), [](double u, double v) { return v - u < 1e-14; }), cuts.end());
-
-    const QuadratureRule g = gauss_legendre(points);
-    QuadratureRule rule;
-    for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
-        const double lo = cuts[k], width = cuts[k + 1] - cuts[k];
-        for (int j = 0; j < points; ++j) {
-            rule.nodes.push_back(lo + width * g.nodes[j]);
-            rule.weights.push_back(width * g.weights[j]);
-        }
-    }
-    return rule;
+    // The integrands are products of two pieces times at most a quadratic in xi: degree <= 2 max + 2.
+    return composite_gauss_legendre(cuts, std::max(piece_degree(a), piece_degree(b)) + 2);  // exact to 2 max + 3
 }
 
 BeamMatrices assemble_matrices(const VariantKey& key, const Parameters& p)

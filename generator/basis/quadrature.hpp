@@ -41,4 +41,35 @@ inline QuadratureRule gauss_legendre(int n)
     return rule;
 }
 
+/// Gauss-Legendre with `points` nodes on every interval between consecutive cuts (sorted, from 0 to 1).
+inline QuadratureRule composite_gauss_legendre(const std::vector<double>& cuts, int points)
+{
+    const QuadratureRule g = gauss_legendre(points);
+    QuadratureRule rule;
+    for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+        const double lo = cuts[k], width = cuts[k + 1] - cuts[k];
+        for (int j = 0; j < points; ++j) {
+            rule.nodes.push_back(lo + width * g.nodes[j]);
+            rule.weights.push_back(width * g.weights[j]);
+        }
+    }
+    return rule;
+}
+
+/// Points per panel of the rule for transcendental (AMM) integrands.
+constexpr int transcendental_points = 20;
+
+/// Equal panels for AMM integrands up to mode n: narrow enough for the highest mode (about n/2 waves on
+/// [0, 1]) that 20 points per panel converge to round-off (checked against orthonormality in the tests).
+inline int transcendental_panels(int n) { return 8 + 4 * n; }
+
+/// The composite rule for AMM integrands up to mode n.
+inline QuadratureRule transcendental_rule(int n)
+{
+    const int panels = transcendental_panels(n);
+    std::vector<double> cuts;
+    for (int k = 0; k <= panels; ++k) cuts.push_back(static_cast<double>(k) / panels);
+    return composite_gauss_legendre(cuts, transcendental_points);
+}
+
 }  // namespace hubbeam
