@@ -11,6 +11,9 @@ namespace hubbeam {
 
 namespace {
 
+const WordTable<ModelSource, 3> sources = {
+    {ModelSource::automatic, "auto"}, {ModelSource::generated, "generated"}, {ModelSource::assembled, "assembled"}};
+
 class GeneratedModel final : public Model {
 public:
     GeneratedModel(const VariantKey& key, const generated::Variant& v, const Parameters& p)
@@ -53,6 +56,10 @@ private:
 };
 
 }  // namespace
+
+std::string to_string(ModelSource v) { return word_of(v, sources); }
+bool parse(std::string_view w, ModelSource& v) { return parse_word(w, sources, v); }
+template <> std::vector<std::string> words<ModelSource>() { return all_words(sources); }
 
 std::unique_ptr<Model> make_generated_model(const VariantKey& key, const Parameters& p)
 {

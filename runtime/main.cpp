@@ -44,16 +44,16 @@ void add_run_options(CLI::App& sub, RunOptions& o)
 {
     sub.add_option("scene", o.scene, "Scene file (TOML; format in README.md, examples in cases/)")->required();
     sub.add_option("--method", o.method, "Discretization (overrides discretization.method)")
-        ->check(CLI::IsMember({"amm", "fem", "bim", "bsim"}));
+        ->check(CLI::IsMember(words<Method>()));
     sub.add_option("--nx", o.nx, "Axial DOF count Nx (overrides discretization.nx)");
     sub.add_option("--ny", o.ny, "Transverse DOF count Ny (overrides discretization.ny)");
     sub.add_option("--order", o.order, "Model order of MODEL.md section 3 (overrides model.order)")
-        ->check(CLI::IsMember({"zero", "first", "full"}));
+        ->check(CLI::IsMember(words<Order>()));
     sub.add_option("--spline-basis", o.spline_basis,
                    "BSIM transverse basis: paper (eq. 41) or open knots (overrides discretization.spline_basis)")
-        ->check(CLI::IsMember({"paper", "open"}));
+        ->check(CLI::IsMember(words<SplineBasis>()));
     sub.add_option("--source", o.source, "Generated kernels, hand-assembled matrices, or auto (overrides model.source)")
-        ->check(CLI::IsMember({"auto", "generated", "assembled"}));
+        ->check(CLI::IsMember(words<ModelSource>()));
     sub.add_option("--stepper", o.stepper, "GSL odeiv2 stepper (overrides solver.stepper)")
         ->check(CLI::IsMember(stepper_names()));
     sub.add_option("--rtol", o.rtol, "Relative tolerance, > 0 (overrides solver.rtol)");
@@ -76,10 +76,7 @@ void apply_overrides(const CLI::App& sub, const RunOptions& o, Scene& scene)
     if (given("--ny")) key.ny = o.ny;
     if (given("--order")) parse(o.order, key.order);
     if (given("--spline-basis")) parse(o.spline_basis, key.spline);
-    if (given("--source"))
-        scene.source = o.source == "generated"   ? ModelSource::generated
-                       : o.source == "assembled" ? ModelSource::assembled
-                                                 : ModelSource::automatic;
+    if (given("--source")) parse(o.source, scene.source);
     if (given("--stepper")) scene.solver.stepper = o.stepper;
     if (given("--rtol")) scene.solver.rtol = o.rtol;
     if (given("--atol")) scene.solver.atol = o.atol;

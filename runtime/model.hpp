@@ -29,6 +29,10 @@ struct Energy {
 };
 
 enum class ModelSource { automatic, generated, assembled };
+/// Words "auto", "generated", "assembled" (scene key model.source, option --source).
+std::string to_string(ModelSource);
+bool parse(std::string_view, ModelSource&);
+template <> std::vector<std::string> words<ModelSource>();
 
 class Model {
 public:

@@ -198,19 +198,6 @@ bool parse_kind(std::string_view w, Motion::Kind& k)
     return true;
 }
 
-bool parse_source(std::string_view w, ModelSource& s)
-{
-    if (w == "auto")
-        s = ModelSource::automatic;
-    else if (w == "generated")
-        s = ModelSource::generated;
-    else if (w == "assembled")
-        s = ModelSource::assembled;
-    else
-        return false;
-    return true;
-}
-
 template <class E>
 bool parse_enum(std::string_view w, E& e)
 {
@@ -309,18 +296,18 @@ Scene load_scene(const std::string& path)
     const Section disc(path, root, "discretization");
     disc.only({"method", "ny", "nx", "spline_basis"});
     VariantKey& key = scene.variant;
-    key.method = disc.required_word<Method>("method", {"amm", "fem", "bim", "bsim"}, parse_enum<Method>);
+    key.method = disc.required_word<Method>("method", words<Method>(), parse_enum<Method>);
     key.ny = disc.required_integer("ny", expect_ny);
     key.nx = disc.required_integer("nx", expect_nx);
     key.spline =
-        disc.word<SplineBasis>("spline_basis", {"paper", "open"}, parse_enum<SplineBasis>).value_or(SplineBasis::paper);
+        disc.word<SplineBasis>("spline_basis", words<SplineBasis>(), parse_enum<SplineBasis>).value_or(SplineBasis::paper);
     key.drive = m.drive();
 
     // [model]: MODEL.md section 3; whether the build can run an order is make_model's call.
     const Section model(path, root, "model");
     model.only({"order", "source"});
-    key.order = model.word<Order>("order", {"zero", "first", "full"}, parse_enum<Order>).value_or(Order::first);
-    scene.source = model.word<ModelSource>("source", {"auto", "generated", "assembled"}, parse_source)
+    key.order = model.word<Order>("order", words<Order>(), parse_enum<Order>).value_or(Order::first);
+    scene.source = model.word<ModelSource>("source", words<ModelSource>(), parse_enum<ModelSource>)
                        .value_or(ModelSource::automatic);
 
     // [solver]

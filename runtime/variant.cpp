@@ -8,41 +8,26 @@ namespace hubbeam {
 
 namespace {
 
-template <class E, std::size_t N>
-bool lookup(std::string_view word, const std::pair<E, const char*> (&table)[N], E& out)
-{
-    for (const auto& [value, text] : table)
-        if (word == text) {
-            out = value;
-            return true;
-        }
-    return false;
-}
-
-template <class E, std::size_t N>
-std::string name_of(E value, const std::pair<E, const char*> (&table)[N])
-{
-    for (const auto& [v, text] : table)
-        if (v == value) return text;
-    throw std::logic_error("unnamed enum value");
-}
-
-const std::pair<Method, const char*> methods[] = {
+const WordTable<Method, 4> methods = {
     {Method::amm, "amm"}, {Method::fem, "fem"}, {Method::bim, "bim"}, {Method::bsim, "bsim"}};
-const std::pair<Order, const char*> orders[] = {{Order::zero, "zero"}, {Order::first, "first"}, {Order::full, "full"}};
-const std::pair<Drive, const char*> drives[] = {{Drive::prescribed, "prescribed"}, {Drive::torque, "torque"}};
-const std::pair<SplineBasis, const char*> splines[] = {{SplineBasis::paper, "paper"}, {SplineBasis::open, "open"}};
+const WordTable<Order, 3> orders = {{Order::zero, "zero"}, {Order::first, "first"}, {Order::full, "full"}};
+const WordTable<Drive, 2> drives = {{Drive::prescribed, "prescribed"}, {Drive::torque, "torque"}};
+const WordTable<SplineBasis, 2> splines = {{SplineBasis::paper, "paper"}, {SplineBasis::open, "open"}};
 
 }  // namespace
 
-std::string to_string(Method v) { return name_of(v, methods); }
-std::string to_string(Order v) { return name_of(v, orders); }
-std::string to_string(Drive v) { return name_of(v, drives); }
-std::string to_string(SplineBasis v) { return name_of(v, splines); }
-bool parse(std::string_view w, Method& v) { return lookup(w, methods, v); }
-bool parse(std::string_view w, Order& v) { return lookup(w, orders, v); }
-bool parse(std::string_view w, Drive& v) { return lookup(w, drives, v); }
-bool parse(std::string_view w, SplineBasis& v) { return lookup(w, splines, v); }
+std::string to_string(Method v) { return word_of(v, methods); }
+std::string to_string(Order v) { return word_of(v, orders); }
+std::string to_string(Drive v) { return word_of(v, drives); }
+std::string to_string(SplineBasis v) { return word_of(v, splines); }
+bool parse(std::string_view w, Method& v) { return parse_word(w, methods, v); }
+bool parse(std::string_view w, Order& v) { return parse_word(w, orders, v); }
+bool parse(std::string_view w, Drive& v) { return parse_word(w, drives, v); }
+bool parse(std::string_view w, SplineBasis& v) { return parse_word(w, splines, v); }
+template <> std::vector<std::string> words<Method>() { return all_words(methods); }
+template <> std::vector<std::string> words<Order>() { return all_words(orders); }
+template <> std::vector<std::string> words<Drive>() { return all_words(drives); }
+template <> std::vector<std::string> words<SplineBasis>() { return all_words(splines); }
 
 std::string VariantKey::name() const
 {

@@ -4,6 +4,8 @@
 
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 #include "basis/basis.hpp"
 
@@ -40,6 +42,46 @@ struct VariantKey {
 
     bool operator==(const VariantKey&) const = default;
 };
+
+/// An enum's words in scene files and on the command line: one table per enum serves parsing, printing
+/// and the lists of allowed words in messages and --help.
+template <class E, std::size_t N>
+using WordTable = std::pair<E, const char*>[N];
+
+template <class E, std::size_t N>
+bool parse_word(std::string_view word, const WordTable<E, N>& table, E& out)
+{
+    for (const auto& [value, text] : table)
+        if (word == text) {
+            out = value;
+            return true;
+        }
+    return false;
+}
+
+template <class E, std::size_t N>
+std::string word_of(E value, const WordTable<E, N>& table)
+{
+    for (const auto& [v, text] : table)
+        if (v == value) return text;
+    return "?";
+}
+
+template <class E, std::size_t N>
+std::vector<std::string> all_words(const WordTable<E, N>& table)
+{
+    std::vector<std::string> words;
+    for (const auto& entry : table) words.emplace_back(entry.second);
+    return words;
+}
+
+/// Every word of enum E, in table order (e.g. words<Method>() = amm, fem, bim, bsim).
+template <class E>
+std::vector<std::string> words();
+template <> std::vector<std::string> words<Method>();
+template <> std::vector<std::string> words<Order>();
+template <> std::vector<std::string> words<Drive>();
+template <> std::vector<std::string> words<SplineBasis>();
 
 std::string to_string(Method);
 std::string to_string(Order);
