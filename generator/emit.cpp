@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <set>
 #include <sstream>
 
 namespace hubbeam::gen {
@@ -165,19 +166,24 @@ EmittedCode emit_kernels(const std::string& prefix, int nq, const std::vector<In
     std::vector<std::string> coeff_text;
     std::vector<int> params_used(parameters.size());
     EmittedCode code;
-    std::ostringstream bodies;
+    // Kernel functions wait for the coefficient count, which their shape comments state.
+    struct Body {
+        const KernelSpec* spec;
+        std::string function;
+    };
+    std::vector<Body> bodies;
 
     for (const KernelSpec& k : kernels) {
         // For each output: var monomial -> coefficient as (number, parameter monomial) terms.
         std::vector<std::map<std::vector<int>, std::vector<std::pair<numeric, std::vector<int>>>>> outputs;
-        std::map<std::vector<int>, bool> monomials;  // variable monomials used by this kernel
+        std::set<std::vector<int>> monomials;  // variable monomials used by this kernel
         bool constant = true;
         for (const ex& v : k.values) {
             auto& grouped = outputs.emplace_back();
             for (PolyTerm& t : decompose(v)) {
                 grouped[t.ve].emplace_back(t.coeff, t.pe);
                 if (degree(t.ve) > 0) {
-                    monomials[t.ve] = true;
+                    monomials.insert(t.ve);
                     constant = false;
                 }
             }
@@ -207,8 +213,7 @@ EmittedCode emit_kernels(const std::string& prefix, int nq, const std::vector<In
             lines.push_back("    const double " + name + " = " + a + "*" + b + ";\n");
             return names[e] = name;
         };
-        std::vector<std::vector<int>> ordered;
-        for (const auto& [e, used] : monomials) ordered.push_back(e);
+        std::vector<std::vector<int>> ordered(monomials.begin(), monomials.end());
         std::sort(ordered.begin(), ordered.end(), reads_before);
         for (const auto& e : ordered) ensure(ensure, e);
 
@@ -235,7 +240,7 @@ EmittedCode emit_kernels(const std::string& prefix, int nq, const std::vector<In
                 for (const auto& [c, pe] : coeff_terms) {
                     for (std::size_t j = 0; j < pe.size(); ++j) params_used[j] |= pe[j] != 0;
                     const std::string num = product(pe, pnames, true), den = product(pe, pnames, false);
-                    std::string m = num.empty() ? "" : num;
+                    std::string m = num;
                     if (!den.empty()) m = (m.empty() ? "1.0" : m) + "/(" + den + ")";
                     parts.emplace_back(c, m);
                 }
@@ -249,20 +254,21 @@ EmittedCode emit_kernels(const std::string& prefix, int nq, const std::vector<In
             out_lines << "    out[" << i << "] = " << signed_sum(terms) << ";\n";
         }
 
-        bodies << "\n/* " << k.name << ":(c[@NC@],u[3],q[" << nq << "],qd[" << nq << "])->(" << k.out << ") " << k.doc << " */\n";
-        bodies << "void " << prefix << "_" << k.name
-               << "(const double* c, const double* u, const double* q, const double* qd, double* out)\n{\n";
+        std::ostringstream f;
+        f << "void " << prefix << "_" << k.name
+          << "(const double* c, const double* u, const double* q, const double* qd, double* out)\n{\n";
         std::string reads;
         for (std::size_t v = 0; v < variables.size(); ++v)
             if (var_used[v]) reads += "    const double " + vnames[v] + " = " + variables[v].read + ";\n";
         for (const char* arr : {"c", "u", "q", "qd"}) {
             const std::string a = arr;
             const bool used = a == "c" ? uses_c : reads.find(" = " + a + "[") != std::string::npos;
-            if (!used) bodies << "    (void)" << a << ";\n";
+            if (!used) f << "    (void)" << a << ";\n";
         }
-        bodies << reads;
-        for (const std::string& l : lines) bodies << l;
-        bodies << out_lines.str() << "}\n";
+        f << reads;
+        for (const std::string& l : lines) f << l;
+        f << out_lines.str() << "}\n";
+        bodies.push_back({&k, f.str()});
     }
 
     std::ostringstream text;
@@ -278,10 +284,11 @@ EmittedCode emit_kernels(const std::string& prefix, int nq, const std::vector<In
     if (!any) text << "    (void)p;\n";
     if (coeff_text.empty()) text << "    (void)c;\n";
     for (std::size_t i = 0; i < coeff_text.size(); ++i) text << "    c[" << i << "] = " << coeff_text[i] << ";\n";
-    std::string kernel_text = bodies.str();
-    const std::string nc = std::to_string(coeff_text.size());
-    for (std::size_t at; (at = kernel_text.find("@NC@")) != std::string::npos;) kernel_text.replace(at, 4, nc);
-    text << "}\n" << kernel_text;
+    text << "}\n";
+    for (const Body& b : bodies)
+        text << "\n/* " << b.spec->name << ":(c[" << coeff_text.size() << "],u[3],q[" << nq << "],qd[" << nq << "])->("
+             << b.spec->out << ") " << b.spec->doc << " */\n"
+             << b.function;
     code.text = text.str();
     code.ncoeff = static_cast<int>(coeff_text.size());
     return code;
