@@ -95,6 +95,17 @@ const Discretization discretizations[] = {{"AMM", Method::amm, SplineBasis::pape
                                           {"BSIM paper", Method::bsim, SplineBasis::paper, 4},
                                           {"BSIM open", Method::bsim, SplineBasis::open, 4}};
 
+/// Every variant of d the assembled path serves: both drives, nx in {0, 4}, orders zero and first.
+std::vector<VariantKey> assembled_variants(const Discretization& d)
+{
+    std::vector<VariantKey> keys;
+    for (Drive drive : {Drive::prescribed, Drive::torque})
+        for (int nx : {0, 4})
+            for (Order order : {Order::zero, Order::first})
+                keys.push_back(make_key(d.method, nx, d.ny, drive, order, d.spline));
+    return keys;
+}
+
 /// A random but physically sized state: displacements of centimetres (axial: millimetres), rates of order one.
 struct State {
     HubInput u;
@@ -386,20 +397,17 @@ TEST_CASE("assembled mass matrix is symmetric positive definite", "[assembled]")
     for (const Discretization& d : discretizations) {
         SECTION(d.name)
         {
-            for (Drive drive : {Drive::prescribed, Drive::torque})
-                for (int nx : {0, 4})
-                    for (Order order : {Order::zero, Order::first}) {
-                        const VariantKey key = make_key(d.method, nx, d.ny, drive, order, d.spline);
-                        INFO(key.name());
-                        const auto model = make_assembled_model(key, p);
-                        for (int trial = 0; trial < 5; ++trial) {
-                            const MatrixXd M = mass_of(*model, random_state(key, rng));
-                            CHECK(M == M.transpose());
-                            Eigen::SelfAdjointEigenSolver<MatrixXd> es(M, Eigen::EigenvaluesOnly);
-                            CHECK(es.eigenvalues()(0) > 0.0);
-                            CHECK(Eigen::LLT<MatrixXd>(M).info() == Eigen::Success);
-                        }
-                    }
+            for (const VariantKey& key : assembled_variants(d)) {
+                INFO(key.name());
+                const auto model = make_assembled_model(key, p);
+                for (int trial = 0; trial < 5; ++trial) {
+                    const MatrixXd M = mass_of(*model, random_state(key, rng));
+                    CHECK(M == M.transpose());
+                    Eigen::SelfAdjointEigenSolver<MatrixXd> es(M, Eigen::EigenvaluesOnly);
+                    CHECK(es.eigenvalues()(0) > 0.0);
+                    CHECK(Eigen::LLT<MatrixXd>(M).info() == Eigen::Success);
+                }
+            }
         }
     }
 }
@@ -517,18 +525,15 @@ TEST_CASE("forces follow from the energy by Lagrange's equations", "[assembled]"
     for (const Discretization& d : discretizations) {
         SECTION(d.name)
         {
-            for (Drive drive : {Drive::prescribed, Drive::torque})
-                for (int nx : {0, 4})
-                    for (Order order : {Order::zero, Order::first}) {
-                        const VariantKey key = make_key(d.method, nx, d.ny, drive, order, d.spline);
-                        INFO(key.name());
-                        const auto model = make_assembled_model(key, p);
-                        for (int trial = 0; trial < 3; ++trial) {
-                            const State s = random_state(key, rng);
-                            const VectorXd Q = forces_of(*model, s), Q_ref = lagrange_forces(*model, s);
-                            CHECK((Q - Q_ref).lpNorm<Eigen::Infinity>() <= 1e-9 * Q_ref.lpNorm<Eigen::Infinity>());
-                        }
-                    }
+            for (const VariantKey& key : assembled_variants(d)) {
+                INFO(key.name());
+                const auto model = make_assembled_model(key, p);
+                for (int trial = 0; trial < 3; ++trial) {
+                    const State s = random_state(key, rng);
+                    const VectorXd Q = forces_of(*model, s), Q_ref = lagrange_forces(*model, s);
+                    CHECK((Q - Q_ref).lpNorm<Eigen::Infinity>() <= 1e-9 * Q_ref.lpNorm<Eigen::Infinity>());
+                }
+            }
         }
     }
 }
