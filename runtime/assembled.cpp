@@ -18,20 +18,6 @@ using ConstVector = Eigen::Map<const VectorXd>;
 using Vector = Eigen::Map<VectorXd>;
 using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-/// Degree of a polynomial basis's pieces (MODEL.md section 4); 0 for an empty basis.
-int piece_degree(const FieldBasis& f)
-{
-    if (f.size() == 0) return 0;
-    const bool tr = f.field() == Field::transverse;
-    switch (f.method()) {
-    case Method::fem: return tr ? 3 : 1;
-    case Method::bim: return tr ? f.size() + 1 : f.size();
-    case Method::bsim: return 3;
-    case Method::amm: break;
-    }
-    throw std::logic_error("piece_degree: not a polynomial basis");
-}
-
 /// P^T diag(w) Q: the quadrature of int p(xi)^T w(xi) q(xi) dxi from values at the nodes (one row per node).
 MatrixXd weighted_product(const MatrixXd& P, const VectorXd& w, const MatrixXd& Q)
 {
@@ -47,24 +33,12 @@ MatrixXd weighted_gram(const MatrixXd& P, const VectorXd& w)
 
 }  // namespace
 
-QuadratureRule beam_quadrature(const FieldBasis& a, const FieldBasis& b)
-{
-    if (!a.polynomial() || !b.polynomial()) return transcendental_rule(std::max(a.size(), b.size()));
-    std::vector<double> cuts{0.0, 1.0};
-    for (const FieldBasis* f : {&a, &b})
-        for (int k = 1; k < f->intervals(); ++k) cuts.push_back(static_cast<double>(k) / f->intervals());
-    std::sort(cuts.begin(), cuts.end());
-    cuts.erase(std::unique(cuts.begin(), cuts.end(), [](double u, double v) { return v - u < 1e-14; }), cuts.end());
-    // The integrands are products of two pieces times at most a quadratic in xi: degree <= 2 max + 2.
-    return composite_gauss_legendre(cuts, std::max(piece_degree(a), piece_degree(b)) + 2);  // exact to 2 max + 3
-}
-
 BeamMatrices assemble_matrices(const VariantKey& key, const Parameters& p)
 {
     if (const std::string problem = key.dof_problem(); !problem.empty()) throw std::invalid_argument(problem);
     const FieldBasis axial = key.axial_basis(), transverse = key.transverse_basis();
     const int nx = key.nx, ny = key.ny;
-    const QuadratureRule rule = beam_quadrature(axial, transverse);
+    const QuadratureRule rule = product_rule(axial, transverse);
     const int nn = static_cast<int>(rule.nodes.size());
 
     // Shape functions and their xi-derivatives at the nodes (one row per node).
@@ -104,11 +78,6 @@ BeamMatrices assemble_matrices(const VariantKey& key, const Parameters& p)
     b.C = weighted_gram(Y1, w_C);
     b.D = weighted_gram(Y1, w_D);
     b.G = a * b.C + b.D;
-    b.H_L = weighted_gram(Y1, w) / L;
-    b.Phi_x_L.resize(nx);
-    b.Phi_y_L.resize(ny);
-    for (int i = 0; i < nx; ++i) b.Phi_x_L(i) = axial.at(i, 1.0).v;
-    for (int i = 0; i < ny; ++i) b.Phi_y_L(i) = transverse.at(i, 1.0).v;
     return b;
 }
 

@@ -1,16 +1,16 @@
-// The hand-assembled path: MODEL.md section 5's constant coefficient matrices by Gauss-Legendre quadrature
-// over the shape functions, and the Model built from them (orders zero and first; make_assembled_model in
-// model.hpp is its entry point for make_model).
+// The hand-assembled path: docs/model.md section 5's constant coefficient matrices by Gauss-Legendre
+// quadrature over the shape functions, and the Model built from them (orders zero and first).
 #pragma once
+
+#include <memory>
 
 #include <Eigen/Dense>
 
-#include "basis/quadrature.hpp"
 #include "model.hpp"
 
 namespace hubbeam {
 
-/// MODEL.md section 5's coefficient matrices in SI units ('= d/dx), with what the tip outputs need.
+/// docs/model.md section 5's coefficient matrices in SI units ('= d/dx).
 struct BeamMatrices {
     double J_ob = 0.0;          // int m (a+x)^2 dx
     Eigen::RowVectorXd S_x;     // 1 x Nx, int m (a+x) Phi_x dx
@@ -23,18 +23,13 @@ struct BeamMatrices {
     Eigen::MatrixXd C;          // Ny x Ny, int m H(x) dx = int m (L-x) Phi_y'^T Phi_y' dx
     Eigen::MatrixXd D;          // Ny x Ny, int m x H(x) dx = int m (L^2-x^2)/2 Phi_y'^T Phi_y' dx
     Eigen::MatrixXd G;          // Ny x Ny, a C + D: geometric stiffness per unit theta_dot^2
-    Eigen::MatrixXd H_L;        // Ny x Ny, H(L) = int_0^L Phi_y'^T Phi_y' dx
-    Eigen::RowVectorXd Phi_x_L; // 1 x Nx, Phi_x(L)
-    Eigen::RowVectorXd Phi_y_L; // 1 x Ny, Phi_y(L)
 };
-
-/// Nodes and weights on xi in [0, 1] for integrals of products of members of a and b (and their derivatives)
-/// times polynomials of degree <= 2 in xi: Gauss-Legendre on every interval of the common refinement of both
-/// bases' intervals, exact for polynomial bases; for AMM a composite rule converged to round-off.
-QuadratureRule beam_quadrature(const FieldBasis& a, const FieldBasis& b);
 
 /// MODEL.md section 5's coefficient matrices of a variant (order and drive do not matter); symmetric ones are
 /// exactly symmetric. Throws std::invalid_argument if the variant's DOF counts are invalid for its method.
 BeamMatrices assemble_matrices(const VariantKey& key, const Parameters& p);
+
+/// docs/model.md section 5 assembled numerically; orders zero and first only (throws std::invalid_argument).
+std::unique_ptr<Model> make_assembled_model(const VariantKey& key, const Parameters& p);
 
 }  // namespace hubbeam

@@ -1,22 +1,25 @@
-// BeamFields: u_y, u_x1, u_x, EI u_y'' and ES u_x1' from the shape functions (MODEL.md section 5 outputs).
+// BeamFields: u_y, u_x1, u_x, EI u_y'' and ES u_x1' from the shape functions (docs/model.md section 5 outputs).
 #include "fields.hpp"
 
 #include <algorithm>
 #include <stdexcept>
 #include <string>
-#include <utility>
-
-#include "assembled.hpp"
 
 namespace hubbeam {
 
 BeamFields::BeamFields(const VariantKey& key, const Parameters& p)
-    : axial_(key.axial_basis()), transverse_(key.transverse_basis()), L_(p.L), EI_(p.E * p.I), ES_(p.E * p.S)
+    : axial_(key.axial_basis()), transverse_(key.transverse_basis()), L_(p.L), EI_(p.E * p.I), ES_(p.E * p.S),
+      Phi_x_L_(axial_.size()), Phi_y_L_(transverse_.size()), H_L_(Eigen::MatrixXd::Zero(transverse_.size(), transverse_.size()))
 {
-    BeamMatrices c = assemble_matrices(key, p);
-    Phi_x_L_ = std::move(c.Phi_x_L);
-    Phi_y_L_ = std::move(c.Phi_y_L);
-    H_L_ = std::move(c.H_L);
+    for (int i = 0; i < axial_.size(); ++i) Phi_x_L_(i) = axial_.at(i, 1.0).v;
+    for (int i = 0; i < transverse_.size(); ++i) Phi_y_L_(i) = transverse_.at(i, 1.0).v;
+    // H(L) = int_0^L Phi_y'^T Phi_y' dx = (1/L) int_0^1 (dPhi_y/dxi)^T (dPhi_y/dxi) dxi.
+    const QuadratureRule rule = product_rule(transverse_, transverse_);
+    Eigen::RowVectorXd slope(transverse_.size());
+    for (std::size_t r = 0; r < rule.nodes.size(); ++r) {
+        for (int i = 0; i < transverse_.size(); ++i) slope(i) = transverse_.at(i, rule.nodes[r]).d1;
+        H_L_.noalias() += (rule.weights[r] / L_) * slope.transpose() * slope;
+    }
 }
 
 BeamFields::Tip BeamFields::tip(const double* A, const double* B) const

@@ -12,7 +12,7 @@ namespace hubbeam {
 /// nx = 0); x is in metres, 0 <= x <= L (std::out_of_range otherwise).
 class BeamFields {
 public:
-    /// The shape functions of key's variant and H(L), for parameters p.
+    /// The shape functions of key's variant, their tip values and H(L), for parameters p.
     BeamFields(const VariantKey& key, const Parameters& p);
 
     /// Tip displacements: u_y(L), u_x1(L) and u_x(L) = u_x1(L) - 1/2 B^T H(L) B.
@@ -24,6 +24,11 @@ public:
 
     /// Transverse deflection u_y(x) = Phi_y(x) B.
     double uy(const double* B, double x) const;
+    /// Phi_x(L) (1 x Nx), Phi_y(L) (1 x Ny) and H(L) = int_0^L Phi_y'^T Phi_y' dx (Ny x Ny).
+    const Eigen::RowVectorXd& Phi_x_L() const { return Phi_x_L_; }
+    const Eigen::RowVectorXd& Phi_y_L() const { return Phi_y_L_; }
+    const Eigen::MatrixXd& H_L() const { return H_L_; }
+
     /// Axial stretch displacement u_x1(x) = Phi_x(x) A.
     double ux1(const double* A, double x) const;
     /// Bending moment EI u_y''(x).

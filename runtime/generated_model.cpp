@@ -1,26 +1,19 @@
-// Model selection: the generated kernels of a variant compiled into this build, or the hand-assembled
-// fallback for variants that were not generated.
-#include <stdexcept>
-#include <string>
-#include <vector>
+// GeneratedModel: a Model that calls one variant's generated kernels through the table row of
+// generated_abi.h, with the parameter-only coefficients computed once.
+#include "generated_model.hpp"
 
 #include "generated_abi.h"
-#include "model.hpp"
 
 namespace hubbeam {
 
 namespace {
-
-const WordTable<ModelSource, 3> sources = {
-    {ModelSource::automatic, "auto"}, {ModelSource::generated, "generated"}, {ModelSource::assembled, "assembled"}};
 
 class GeneratedModel final : public Model {
 public:
     GeneratedModel(const VariantKey& key, const generated::Variant& v, const Parameters& p)
         : Model(key), v_(v), c_(static_cast<std::size_t>(v.ncoeff))
     {
-        const auto packed = p.packed();
-        v_.coefficients(packed.data(), c_.data());
+        v_.coefficients(p.packed().data(), c_.data());
     }
 
     const char* source() const override { return "generated"; }
@@ -47,8 +40,7 @@ public:
 private:
     void call(generated::Kernel k, const HubInput& u, const double* q, const double* qd, double* out) const
     {
-        const double uu[3] = {u.tau, u.theta_dot, u.theta_ddot};
-        k(c_.data(), uu, q, qd, out);
+        k(c_.data(), u.packed().data(), q, qd, out);
     }
 
     const generated::Variant& v_;
@@ -56,10 +48,6 @@ private:
 };
 
 }  // namespace
-
-std::string to_string(ModelSource v) { return word_of(v, sources); }
-bool parse(std::string_view w, ModelSource& v) { return parse_word(w, sources, v); }
-template <> std::vector<std::string> words<ModelSource>() { return all_words(sources); }
 
 std::unique_ptr<Model> make_generated_model(const VariantKey& key, const Parameters& p)
 {
@@ -71,17 +59,12 @@ std::unique_ptr<Model> make_generated_model(const VariantKey& key, const Paramet
     return nullptr;
 }
 
-std::unique_ptr<Model> make_model(const VariantKey& key, const Parameters& p, ModelSource source)
+std::vector<std::string> generated_variant_names()
 {
-    if (const std::string why = key.dof_problem(); !why.empty()) throw std::invalid_argument(why);
-    if (source != ModelSource::assembled) {
-        if (auto m = make_generated_model(key, p)) return m;
-        if (source == ModelSource::generated)
-            throw std::invalid_argument("variant " + key.name() +
-                                        " is not generated in this build: add it to generator/variants.txt, "
-                                        "or use the hand-assembled model (source = \"assembled\")");
-    }
-    return make_assembled_model(key, p);
+    std::vector<std::string> names;
+    for (int i = 0; i < generated::variant_count; ++i)
+        if (generated::variants[i] != nullptr) names.emplace_back(generated::variants[i]->name);
+    return names;
 }
 
 }  // namespace hubbeam

@@ -1,8 +1,6 @@
 // FirstOrderSystem: mass solve per evaluation (or one factorization for a constant M) and GSL glue.
 #include "integrate.hpp"
 
-#include "simulate.hpp"
-
 #include <cmath>
 #include <limits>
 
@@ -17,16 +15,13 @@ namespace {
 struct StepperInfo {
     const char* name;
     const gsl_odeiv2_step_type* const* type;
-    bool jacobian;
 };
 
 const StepperInfo steppers[] = {
-    {"msadams", &gsl_odeiv2_step_msadams, false}, {"msbdf", &gsl_odeiv2_step_msbdf, true},
-    {"rk8pd", &gsl_odeiv2_step_rk8pd, false},     {"rkck", &gsl_odeiv2_step_rkck, false},
-    {"rkf45", &gsl_odeiv2_step_rkf45, false},     {"rk4", &gsl_odeiv2_step_rk4, false},
-    {"rk2", &gsl_odeiv2_step_rk2, false},         {"bsimp", &gsl_odeiv2_step_bsimp, true},
-    {"rk4imp", &gsl_odeiv2_step_rk4imp, true},    {"rk2imp", &gsl_odeiv2_step_rk2imp, true},
-    {"rk1imp", &gsl_odeiv2_step_rk1imp, true},
+    {"msadams", &gsl_odeiv2_step_msadams}, {"msbdf", &gsl_odeiv2_step_msbdf},   {"rk8pd", &gsl_odeiv2_step_rk8pd},
+    {"rkck", &gsl_odeiv2_step_rkck},       {"rkf45", &gsl_odeiv2_step_rkf45},   {"rk4", &gsl_odeiv2_step_rk4},
+    {"rk2", &gsl_odeiv2_step_rk2},         {"bsimp", &gsl_odeiv2_step_bsimp},   {"rk4imp", &gsl_odeiv2_step_rk4imp},
+    {"rk2imp", &gsl_odeiv2_step_rk2imp},   {"rk1imp", &gsl_odeiv2_step_rk1imp},
 };
 
 int gsl_rhs(double t, const double y[], double dydt[], void* self)
@@ -48,13 +43,10 @@ std::vector<std::string> stepper_names()
     return names;
 }
 
-const gsl_odeiv2_step_type* step_type(const std::string& name, bool* needs_jacobian)
+const gsl_odeiv2_step_type* step_type(const std::string& name)
 {
     for (const StepperInfo& s : steppers)
-        if (name == s.name) {
-            if (needs_jacobian) *needs_jacobian = s.jacobian;
-            return *s.type;
-        }
+        if (name == s.name) return *s.type;
     return nullptr;
 }
 

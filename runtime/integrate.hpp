@@ -13,8 +13,10 @@
 
 namespace hubbeam {
 
-/// The GSL step type of a name ("msadams", "rk8pd", ...), or nullptr; needs_jacobian set for the implicit ones.
-const gsl_odeiv2_step_type* step_type(const std::string& name, bool* needs_jacobian = nullptr);
+/// The GSL odeiv2 step type names the integrator accepts ("msadams", "rk8pd", ...), in table order.
+std::vector<std::string> stepper_names();
+/// The GSL step type of a name from stepper_names(), or nullptr.
+const gsl_odeiv2_step_type* step_type(const std::string& name);
 
 /// dy/dt = (qd, M(q)^-1 Q(t, q, qd)) for one model and hub motion; counts its evaluations.
 class FirstOrderSystem {

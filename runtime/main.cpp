@@ -18,7 +18,8 @@
 #include <utility>
 #include <vector>
 
-#include "generated_abi.h"
+#include "generated_model.hpp"
+#include "integrate.hpp"
 #include "output.hpp"
 #include "scene.hpp"
 #include "simulate.hpp"
@@ -175,7 +176,7 @@ int run(const CLI::App& sub, const RunOptions& o)
 /// hubbeam variants: the variants generated into this build, one name a line.
 int list_variants()
 {
-    for (int i = 0; i < generated::variant_count; ++i) std::cout << generated::variants[i]->name << "\n";
+    for (const std::string& name : generated_variant_names()) std::cout << name << "\n";
     return exit_ok;
 }
 

@@ -3,7 +3,8 @@
 
 #include <vector>
 
-#include "model.hpp"
+#include "interface.hpp"
+#include "variant.hpp"
 
 namespace hubbeam {
 

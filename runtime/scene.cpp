@@ -16,7 +16,7 @@
 #include <string_view>
 #include <vector>
 
-#include "simulate.hpp"
+#include "integrate.hpp"
 
 namespace hubbeam {
 
@@ -50,13 +50,6 @@ std::string format_number(double v)
     char buf[32];
     const auto res = std::to_chars(buf, buf + sizeof buf, v);
     return std::string(buf, res.ptr);
-}
-
-std::string joined(const std::vector<std::string>& words, const char* quote = "")
-{
-    std::string s;
-    for (std::size_t i = 0; i < words.size(); ++i) s += (i ? ", " : "") + std::string(quote) + words[i] + quote;
-    return s;
 }
 
 /// A TOML value as the "got ..." part of a message, on one line.

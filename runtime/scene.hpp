@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "model.hpp"
+#include "make_model.hpp"
 #include "motion.hpp"
 #include "variant.hpp"
 

@@ -12,6 +12,7 @@
 
 #include "fields.hpp"
 #include "integrate.hpp"
+#include "make_model.hpp"
 
 namespace hubbeam {
 

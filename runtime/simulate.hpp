@@ -41,7 +41,4 @@ using RowSink = std::function<void(const Row&)>;
 /// rows up to the failure. Does not throw for numerical failure: see RunSummary::completed.
 RunSummary simulate(const Scene& scene, const RowSink& sink);
 
-/// The GSL odeiv2 step type names simulate() accepts (the table in integrate.cpp).
-std::vector<std::string> stepper_names();
-
 }  // namespace hubbeam

@@ -1,17 +1,18 @@
 // VariantKey: what a model is specialised on (method, DOF counts, order, drive, spline basis), its
-// canonical name (which names generated kernels) and the DOF counts each method can take.
+// canonical name (which names generated kernels), the DOF counts each method can take, and the words of
+// its enums.
 #pragma once
 
 #include <string>
 #include <string_view>
-#include <utility>
 #include <vector>
 
 #include "basis/basis.hpp"
+#include "words.hpp"
 
 namespace hubbeam {
 
-/// Model order of MODEL.md section 3.
+/// Model order of docs/model.md section 3.
 enum class Order { zero, first, full };
 /// Prescribed hub rotation theta(t) (no hub equation) or applied hub torque tau(t) (theta is a coordinate).
 enum class Drive { prescribed, torque };
@@ -43,44 +44,11 @@ struct VariantKey {
     bool operator==(const VariantKey&) const = default;
 };
 
-/// An enum's words in scene files and on the command line: one table per enum serves parsing, printing
-/// and the lists of allowed words in messages and --help.
-template <class E, std::size_t N>
-using WordTable = std::pair<E, const char*>[N];
-
-template <class E, std::size_t N>
-bool parse_word(std::string_view word, const WordTable<E, N>& table, E& out)
-{
-    for (const auto& [value, text] : table)
-        if (word == text) {
-            out = value;
-            return true;
-        }
-    return false;
-}
-
-template <class E, std::size_t N>
-std::string word_of(E value, const WordTable<E, N>& table)
-{
-    for (const auto& [v, text] : table)
-        if (v == value) return text;
-    return "?";
-}
-
-template <class E, std::size_t N>
-std::vector<std::string> all_words(const WordTable<E, N>& table)
-{
-    std::vector<std::string> words;
-    for (const auto& entry : table) words.emplace_back(entry.second);
-    return words;
-}
-
 /// Every word of enum E, in table order (e.g. words<Method>() = amm, fem, bim, bsim).
 template <class E>
 std::vector<std::string> words();
 template <> std::vector<std::string> words<Method>();
 template <> std::vector<std::string> words<Order>();
-template <> std::vector<std::string> words<Drive>();
 template <> std::vector<std::string> words<SplineBasis>();
 
 std::string to_string(Method);

@@ -2,6 +2,7 @@
 // basis functions for the generator (exact, symbolic) and the runtime (numeric values and derivatives).
 #pragma once
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -11,6 +12,7 @@
 #include "bsim.hpp"
 #include "fem.hpp"
 #include "jet.hpp"
+#include "quadrature.hpp"
 
 namespace hubbeam {
 
@@ -47,6 +49,20 @@ public:
     }
     bool polynomial() const { return method_ != Method::amm; }
 
+    /// Degree of the polynomial pieces (docs/model.md section 4); 0 for an empty basis. Not for AMM.
+    int degree() const
+    {
+        if (count_ == 0) return 0;
+        const bool tr = field_ == Field::transverse;
+        switch (method_) {
+        case Method::fem: return tr ? 3 : 1;
+        case Method::bim: return tr ? count_ + 1 : count_;
+        case Method::bsim: return 3;
+        case Method::amm: break;
+        }
+        throw std::logic_error("FieldBasis::degree: not a polynomial basis");
+    }
+
     /// The interval holding xi (the last one for xi = 1).
     int interval_of(double xi) const
     {
@@ -81,5 +97,21 @@ private:
     SplineBasis spline_;
     std::vector<amm::Mode> modes_;
 };
+
+/// Nodes and weights on xi in [0, 1] for integrals of products of two members of a and b (and their
+/// derivatives) times a polynomial of degree <= 2 in xi: Gauss-Legendre on every interval of the common
+/// refinement of both bases' intervals, exact for polynomial bases; for AMM a composite rule converged to
+/// round-off.
+inline QuadratureRule product_rule(const FieldBasis& a, const FieldBasis& b)
+{
+    if (!a.polynomial() || !b.polynomial()) return transcendental_rule(std::max(a.size(), b.size()));
+    std::vector<double> cuts{0.0, 1.0};
+    for (const FieldBasis* f : {&a, &b})
+        for (int k = 1; k < f->intervals(); ++k) cuts.push_back(static_cast<double>(k) / f->intervals());
+    std::sort(cuts.begin(), cuts.end());
+    cuts.erase(std::unique(cuts.begin(), cuts.end(), [](double u, double v) { return v - u < 1e-14; }), cuts.end());
+    // Two pieces times at most a quadratic in xi: degree <= 2 max + 2, and n points are exact to 2n - 1.
+    return composite_gauss_legendre(cuts, std::max(a.degree(), b.degree()) + 2);
+}
 
 }  // namespace hubbeam

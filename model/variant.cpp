@@ -26,7 +26,6 @@ bool parse(std::string_view w, Drive& v) { return parse_word(w, drives, v); }
 bool parse(std::string_view w, SplineBasis& v) { return parse_word(w, splines, v); }
 template <> std::vector<std::string> words<Method>() { return all_words(methods); }
 template <> std::vector<std::string> words<Order>() { return all_words(orders); }
-template <> std::vector<std::string> words<Drive>() { return all_words(drives); }
 template <> std::vector<std::string> words<SplineBasis>() { return all_words(splines); }
 
 std::string VariantKey::name() const

@@ -1,0 +1,59 @@
+// The numbers every variant's kernels take at run time, defined once: the packed physical parameters p and
+// the drive u. The generator prints its reads and comments from these tables, the runtime packs from them.
+#pragma once
+
+#include <array>
+#include <cstddef>
+
+namespace hubbeam {
+
+/// Index of each physical parameter in the packed vector p (SI units; docs/model.md section 1).
+enum class Param : std::size_t { L, rho, S, I, E, a, J_oh };
+inline constexpr std::size_t param_count = 7;
+/// Names of p's entries in the order of Param, as they read in docs/model.md and in generated code.
+inline constexpr std::array<const char*, param_count> param_names = {"L", "rho", "S", "I", "E", "a", "J_oh"};
+
+/// Index of each drive value in u: a torque variant reads tau, a prescribed variant theta_dot, theta_ddot.
+enum class Input : std::size_t { tau, theta_dot, theta_ddot };
+inline constexpr std::size_t input_count = 3;
+inline constexpr std::array<const char*, input_count> input_names = {"tau", "theta_dot", "theta_ddot"};
+
+constexpr std::size_t index(Param p) { return static_cast<std::size_t>(p); }
+constexpr std::size_t index(Input u) { return static_cast<std::size_t>(u); }
+
+/// Physical parameters (SI): beam length, density, cross-section, second moment, Young's modulus, hub
+/// radius, hub inertia. The defaults are the beam of Kane, Ryan & Banerjee (docs/model.md section 6).
+struct Parameters {
+    double L = 8.0, rho = 2.7667e3, S = 7.2968e-5, I = 8.2189e-9, E = 6.8952e10, a = 0.0, J_oh = 30.0;
+
+    /// p, indexed by Param.
+    std::array<double, param_count> packed() const
+    {
+        std::array<double, param_count> p{};
+        p[index(Param::L)] = L;
+        p[index(Param::rho)] = rho;
+        p[index(Param::S)] = S;
+        p[index(Param::I)] = I;
+        p[index(Param::E)] = E;
+        p[index(Param::a)] = a;
+        p[index(Param::J_oh)] = J_oh;
+        return p;
+    }
+};
+
+/// The drive at one instant.
+struct HubInput {
+    double tau = 0.0, theta_dot = 0.0, theta_ddot = 0.0;
+
+    /// u, indexed by Input.
+    std::array<double, input_count> packed() const
+    {
+        std::array<double, input_count> u{};
+        u[index(Input::tau)] = tau;
+        u[index(Input::theta_dot)] = theta_dot;
+        u[index(Input::theta_ddot)] = theta_ddot;
+        return u;
+    }
+};
+
+}  // namespace hubbeam
