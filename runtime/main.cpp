@@ -1,9 +1,8 @@
 // hubbeam: the command line. A thin layer over the library: parse the options (CLI11, so that --help comes
-// from the same definitions), load the scene, apply the overrides, run simulate() into a CSV file, print the
+// from the same definitions), load the scene with the overrides, run a Simulation into a CSV file, print the
 // summary.
 //
-//   hubbeam run SCENE.toml [--method M] [--nx N] [--ny N] [--order O] [--spline-basis B] [--source S]
-//                          [--stepper NAME] [--rtol X] [--atol X] [--h0 X] [--t-end T] [--dt-out H] [-o FILE]
+//   hubbeam run SCENE.toml [--method M] [--nx N] [--ny N] ... [-o FILE]   (options: scene_keys() in scene.cpp)
 //   hubbeam variants
 //
 // Exit codes: 0 success; 1 the simulation stopped early (rows so far kept); 2 bad input (nothing computed).
@@ -15,7 +14,6 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "generated_model.hpp"
@@ -32,112 +30,72 @@ constexpr int exit_ok = 0;
 constexpr int exit_stopped = 1;
 constexpr int exit_bad_input = 2;
 
-/// Values of the `run` options; each is applied only if it was given.
+/// The `run` options: one per scene key that has an option (scene_keys()), plus the scene file.
 struct RunOptions {
     std::string scene;
-    std::string method, order, spline_basis, source, stepper, output;
-    int nx = 0, ny = 0;
-    double rtol = 0, atol = 0, h0 = 0, t_end = 0, dt_out = 0;
+    std::vector<std::string> values = std::vector<std::string>(scene_keys().size());
 };
 
-/// Declares the `run` options on sub; the help text of each is its documentation.
+/// The option's name in messages: the first of CLI11's names ("-o" of "-o,--output").
+std::string option_name(const SceneKey& k)
+{
+    const std::string names = k.option;
+    return names.substr(0, names.find(','));
+}
+
+/// Declares the `run` options on sub from the scene key table; the help text of each is its documentation.
 void add_run_options(CLI::App& sub, RunOptions& o)
 {
     sub.add_option("scene", o.scene, "Scene file (TOML; format in README.md, examples in cases/)")->required();
-    sub.add_option("--method", o.method, "Discretization (overrides discretization.method)")
-        ->check(CLI::IsMember(words<Method>()));
-    sub.add_option("--nx", o.nx, "Axial DOF count Nx (overrides discretization.nx)");
-    sub.add_option("--ny", o.ny, "Transverse DOF count Ny (overrides discretization.ny)");
-    sub.add_option("--order", o.order, "Model order of MODEL.md section 3 (overrides model.order)")
-        ->check(CLI::IsMember(words<Order>()));
-    sub.add_option("--spline-basis", o.spline_basis,
-                   "BSIM transverse basis: paper (eq. 41) or open knots (overrides discretization.spline_basis)")
-        ->check(CLI::IsMember(words<SplineBasis>()));
-    sub.add_option("--source", o.source, "Generated kernels, hand-assembled matrices, or auto (overrides model.source)")
-        ->check(CLI::IsMember(words<ModelSource>()));
-    sub.add_option("--stepper", o.stepper, "GSL odeiv2 stepper (overrides solver.stepper)")
-        ->check(CLI::IsMember(stepper_names()));
-    sub.add_option("--rtol", o.rtol, "Relative tolerance, > 0 (overrides solver.rtol)");
-    sub.add_option("--atol", o.atol, "Absolute tolerance, > 0 (overrides solver.atol)");
-    sub.add_option("--h0", o.h0, "First trial step in s, > 0 (overrides solver.h0)");
-    sub.add_option("--t-end", o.t_end, "End time in s, > 0 (overrides output.t_end)");
-    sub.add_option("--dt-out", o.dt_out, "Output interval in s: rows at exact multiples (overrides output.dt_out)");
-    sub.add_option("-o,--output", o.output,
-                   "CSV file to write (overrides output.file; default: the scene's name with .csv, in the current "
-                   "directory)");
+    static const char* const type_names[] = {"X", "N", "WORD", "FILE"};  // by SceneKey::Kind
+    const std::vector<SceneKey>& keys = scene_keys();
+    for (std::size_t i = 0; i < keys.size(); ++i)
+        if (keys[i].option)
+            sub.add_option(keys[i].option, o.values[i], std::string("Sets ") + keys[i].name + ": " + keys[i].expected)
+                ->type_name(type_names[static_cast<int>(keys[i].kind)]);
 }
 
-/// Applies the options that were given to scene.
-void apply_overrides(const CLI::App& sub, const RunOptions& o, Scene& scene)
+/// The options that were given, as overrides of their scene keys.
+Overrides given_overrides(const CLI::App& sub, const RunOptions& o)
 {
-    const auto given = [&](const char* name) { return sub.get_option(name)->count() > 0; };
-    VariantKey& key = scene.variant;
-    if (given("--method")) parse(o.method, key.method);
-    if (given("--nx")) key.nx = o.nx;
-    if (given("--ny")) key.ny = o.ny;
-    if (given("--order")) parse(o.order, key.order);
-    if (given("--spline-basis")) parse(o.spline_basis, key.spline);
-    if (given("--source")) parse(o.source, scene.source);
-    if (given("--stepper")) scene.solver.stepper = o.stepper;
-    if (given("--rtol")) scene.solver.rtol = o.rtol;
-    if (given("--atol")) scene.solver.atol = o.atol;
-    if (given("--h0")) scene.solver.h0 = o.h0;
-    if (given("--t-end")) scene.output.t_end = o.t_end;
-    if (given("--dt-out")) scene.output.dt_out = o.dt_out;
-    if (given("-o")) scene.output.file = o.output;
-    if (scene.output.file.empty()) scene.output.file = std::filesystem::path(scene.path).stem().string() + ".csv";
+    Overrides overrides;
+    const std::vector<SceneKey>& keys = scene_keys();
+    for (std::size_t i = 0; i < keys.size(); ++i)
+        if (keys[i].option && sub.get_option(option_name(keys[i]))->count() > 0)
+            overrides.emplace_back(keys[i].name, o.values[i]);
+    return overrides;
 }
 
-/// validate() after the overrides; its message names the scene key, which becomes the option that set it
-/// ("--ny: FEM needs an even ny ...") or is prefixed by an option it conflicts with ("--method: discretization.ny:
-/// ..."); a value from the file alone keeps the file's name.
-void validate_overridden(const CLI::App& sub, const Scene& scene)
+/// A scene problem as the user should read it: against the option when an option set the key
+/// ("--ny: FEM needs an even ny ..."), else against the file and key.
+std::string message_for(const SceneError& e, const Overrides& overrides)
 {
-    try {
-        validate(scene);
-    } catch (const SceneError& e) {
-        static const std::vector<std::pair<std::string, std::vector<const char*>>> options_of = {
-            {"discretization.ny", {"--ny", "--method", "--spline-basis"}},
-            {"discretization.nx", {"--nx", "--method"}},
-            {"solver.stepper", {"--stepper"}},
-            {"solver.rtol", {"--rtol"}},
-            {"solver.atol", {"--atol"}},
-            {"solver.h0", {"--h0"}},
-            {"output.t_end", {"--t-end"}},
-            {"output.dt_out", {"--dt-out", "--t-end"}},
-        };
-        const std::string message = e.what();
-        const std::string prefix = scene.path + ": ";
-        if (message.rfind(prefix, 0) != 0) throw;
-        const std::string rest = message.substr(prefix.size());
-        const std::size_t colon = rest.find(": ");
-        if (colon == std::string::npos) throw;
-        for (const auto& [key, options] : options_of) {
-            if (rest.compare(0, colon, key) != 0) continue;
-            for (const char* option : options) {
-                if (sub.get_option(option)->count() == 0) continue;
-                // The key's own option replaces it; a conflicting option keeps it: "--method: discretization.ny: ...".
-                if (option == options.front()) throw SceneError(option + rest.substr(colon));
-                throw SceneError(option + (": " + rest));
-            }
-        }
-        throw;
-    }
+    for (const auto& [name, value] : overrides)
+        if (name == e.key) return option_name(scene_key(name)) + ": " + e.problem();
+    return e.what();
 }
 
 /// hubbeam run: returns the exit code.
 int run(const CLI::App& sub, const RunOptions& o)
 {
+    const Overrides overrides = given_overrides(sub, o);
     Scene scene;
     try {
-        scene = load_scene(o.scene);
-        apply_overrides(sub, o, scene);
-        validate_overridden(sub, scene);
+        scene = load_scene(o.scene, overrides);
     } catch (const SceneError& e) {
-        std::cerr << e.what() << "\n";
+        std::cerr << message_for(e, overrides) << "\n";
         return exit_bad_input;
     }
+    if (scene.output.file.empty()) scene.output.file = std::filesystem::path(scene.path).stem().string() + ".csv";
 
+    // Everything that can refuse the run does so before the output file is touched.
+    std::unique_ptr<Simulation> simulation;
+    try {
+        simulation = std::make_unique<Simulation>(scene);
+    } catch (const std::invalid_argument& e) {
+        std::cerr << scene.path << ": " << e.what() << "\n";
+        return exit_bad_input;
+    }
     std::unique_ptr<CsvWriter> csv;
     try {
         csv = std::make_unique<CsvWriter>(scene.output.file);
@@ -146,20 +104,7 @@ int run(const CLI::App& sub, const RunOptions& o)
         return exit_bad_input;
     }
 
-    RunSummary summary;
-    try {
-        summary = simulate(scene, csv->sink());
-    } catch (const std::invalid_argument& e) {
-        // Model selection refused the variant (e.g. an order this build cannot run): nothing was computed.
-        const bool empty = csv->rows() == 0;
-        const std::string path = csv->path();
-        csv.reset();
-        std::error_code ignored;
-        if (empty && std::filesystem::is_regular_file(path, ignored)) std::filesystem::remove(path, ignored);
-        std::cerr << scene.path << ": " << e.what() << "\n";
-        return empty ? exit_bad_input : exit_stopped;
-    }
-
+    const RunSummary summary = simulation->run(csv->sink());
     std::cout << format_summary(summary, scene);
     if (!csv->ok()) {
         std::cerr << csv->path() << ": write failed after " << csv->rows() << " rows\n";

@@ -1,33 +1,14 @@
 // CSV rows and the run summary.
 #include "output.hpp"
 
+#include "shortest.hpp"
+
 #include <cerrno>
-#include <charconv>
 #include <cstring>
 #include <sstream>
 #include <stdexcept>
 
 namespace hubbeam {
-
-namespace {
-
-/// Shortest text that reads back as the same double (full precision without trailing noise: 0.03, not
-/// 0.029999999999999999).
-void append_number(std::string& s, double v)
-{
-    char buf[32];
-    const auto res = std::to_chars(buf, buf + sizeof buf, v);
-    s.append(buf, res.ptr);
-}
-
-std::string number(double v)
-{
-    std::string s;
-    append_number(s, v);
-    return s;
-}
-
-}  // namespace
 
 CsvWriter::CsvWriter(const std::string& path) : path_(path)
 {
@@ -45,7 +26,7 @@ void CsvWriter::write(const Row& row)
 {
     const std::string line = csv_line(row) + '\n';
     if (std::fwrite(line.data(), 1, line.size(), file_) != line.size() || std::fflush(file_) != 0) ok_ = false;
-    ++rows_;
+    else ++rows_;
 }
 
 RowSink CsvWriter::sink()
@@ -61,7 +42,7 @@ std::string csv_line(const Row& row)
                               row.tip_ux, row.kinetic, row.potential, row.momentum, row.jacobi};
     for (std::size_t i = 0; i < std::size(columns); ++i) {
         if (i) s += ',';
-        append_number(s, columns[i]);
+        append_shortest(s, columns[i]);
     }
     return s;
 }
@@ -72,14 +53,14 @@ std::string format_summary(const RunSummary& r, const Scene& scene)
     const Motion& m = scene.motion;
     out << "scene       " << scene.path;
     if (m.kind == Motion::Kind::spin_up)
-        out << " (spin-up to Omega0 = " << number(m.omega0) << " rad/s in T_s = " << number(m.spin_time) << " s)\n";
+        out << " (spin-up to Omega0 = " << shortest(m.omega0) << " rad/s in T_s = " << shortest(m.spin_time) << " s)\n";
     else
-        out << " (hub torque tau0 = " << number(m.tau0) << " N m for T_t = " << number(m.torque_time) << " s)\n";
+        out << " (hub torque tau0 = " << shortest(m.tau0) << " N m for T_t = " << shortest(m.torque_time) << " s)\n";
     out << "variant     " << r.variant << " (" << r.source << ")\n";
-    out << "stepper     " << scene.solver.stepper << ", rtol " << number(scene.solver.rtol) << ", atol "
-        << number(scene.solver.atol) << ", h0 " << number(scene.solver.h0) << " s\n";
-    out << "time        0 to " << number(r.t_reached) << " s of " << number(scene.output.t_end) << " s, rows every "
-        << number(scene.output.dt_out) << " s";
+    out << "stepper     " << scene.solver.stepper << ", rtol " << shortest(scene.solver.rtol) << ", atol "
+        << shortest(scene.solver.atol) << ", h0 " << shortest(scene.solver.h0) << " s\n";
+    out << "time        0 to " << shortest(r.t_reached) << " s of " << shortest(scene.output.t_end) << " s, rows every "
+        << shortest(scene.output.dt_out) << " s";
     if (!scene.output.file.empty()) out << " in " << scene.output.file;
     out << "\n";
     char buf[32];
@@ -89,7 +70,7 @@ std::string format_summary(const RunSummary& r, const Scene& scene)
     out << "RHS evals   " << r.rhs_evals << "\n";
     std::snprintf(buf, sizeof buf, "%.3f", r.wall_seconds);
     out << "wall time   " << buf << " s\n";
-    if (!r.completed) out << "STOPPED     at t = " << number(r.t_reached) << " s: " << r.failure << "\n";
+    if (!r.completed) out << "STOPPED     at t = " << shortest(r.t_reached) << " s: " << r.failure << "\n";
     return out.str();
 }
 

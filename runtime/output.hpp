@@ -22,13 +22,12 @@ public:
 
     /// Appends one row. A write error is remembered (see ok()) instead of thrown through the integrator.
     void write(const Row& row);
-    void operator()(const Row& row) { write(row); }
     /// This writer as a RowSink for simulate(); the writer must outlive the returned function.
     RowSink sink();
 
     /// False once a write or flush failed (disk full, ...).
     bool ok() const { return ok_; }
-    /// Rows written after the header.
+    /// Rows written after the header (a row whose write failed is not counted).
     long rows() const { return rows_; }
     const std::string& path() const { return path_; }
 

@@ -1,5 +1,6 @@
-// Scene files: TOML read with toml++, every key checked for presence, type and range, every unknown key
-// rejected. The format is documented in README.md ("Scene files"); the symbols are those of MODEL.md.
+// Scene files: TOML read with toml++, overrides set on the parsed table, every key checked for presence,
+// type and range against one table of keys, every unknown key rejected. The format is documented in
+// README.md ("Scene files"); the symbols are those of docs/model.md.
 #include "scene.hpp"
 
 #include <toml++/toml.h>
@@ -10,92 +11,96 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <initializer_list>
 #include <optional>
 #include <sstream>
 #include <string_view>
-#include <vector>
 
 #include "integrate.hpp"
+#include "shortest.hpp"
 
 namespace hubbeam {
 
 namespace {
 
-// What each checked key must hold: the "expected ..." part of every message about it, shared by the
-// type checks of load_scene() and the range checks of validate().
-constexpr const char* expect_length = "a number > 0 (L, m)";
-constexpr const char* expect_density = "a number > 0 (rho, kg/m^3)";
-constexpr const char* expect_area = "a number > 0 (S, m^2)";
-constexpr const char* expect_second_moment = "a number > 0 (I, m^4)";
-constexpr const char* expect_youngs = "a number > 0 (E, Pa)";
-constexpr const char* expect_radius = "a number >= 0 (a, m)";
-constexpr const char* expect_inertia = "a number > 0 (J_oh, kg m^2)";
-constexpr const char* expect_omega0 = "a finite number (Omega0, rad/s)";
-constexpr const char* expect_tau0 = "a finite number (tau0, N m)";
-constexpr const char* expect_spin_time = "a number > 0 (T_s, s)";
-constexpr const char* expect_torque_time = "a number > 0 (T_t, s)";
-constexpr const char* expect_nx = "an integer >= 0 (Nx)";
-constexpr const char* expect_ny = "an integer >= 1 (Ny)";
-constexpr const char* expect_rtol = "a number > 0 (relative tolerance)";
-constexpr const char* expect_atol = "a number > 0 (absolute tolerance)";
-constexpr const char* expect_h0 = "a number > 0 (first trial step, s)";
-constexpr const char* expect_t_end = "a number > 0 (end time, s)";
-constexpr const char* expect_dt_out = "a number > 0 and <= output.t_end (output interval, s)";
 constexpr const char* missing = "nothing (the key is missing)";
 
-/// Shortest text that reads back as the same double.
-std::string format_number(double v)
+std::vector<std::string> motion_kinds() { return {"spin-up", "torque"}; }
+
+bool parse_kind(std::string_view w, Motion::Kind& k)
 {
-    char buf[32];
-    const auto res = std::to_chars(buf, buf + sizeof buf, v);
-    return std::string(buf, res.ptr);
+    if (w == "spin-up") k = Motion::Kind::spin_up;
+    else if (w == "torque") k = Motion::Kind::torque;
+    else return false;
+    return true;
 }
+
+std::string one_of(const std::vector<std::string>& words) { return "one of " + joined(words, "\""); }
+
+std::vector<SceneKey> make_scene_keys()
+{
+    using K = SceneKey::Kind;
+    return {
+        {"beam.length", nullptr, K::number, "a number > 0 (L, m)"},
+        {"beam.density", nullptr, K::number, "a number > 0 (rho, kg/m^3)"},
+        {"beam.area", nullptr, K::number, "a number > 0 (S, m^2)"},
+        {"beam.second_moment", nullptr, K::number, "a number > 0 (I, m^4)"},
+        {"beam.youngs_modulus", nullptr, K::number, "a number > 0 (E, Pa)"},
+        {"hub.radius", nullptr, K::number, "a number >= 0 (a, m)"},
+        {"hub.inertia", nullptr, K::number, "a number > 0 (J_oh, kg m^2)"},
+        {"motion.kind", nullptr, K::word, one_of(motion_kinds())},
+        {"motion.omega0", nullptr, K::number, "a finite number (Omega0, rad/s)"},
+        {"motion.tau0", nullptr, K::number, "a finite number (tau0, N m)"},
+        {"motion.duration", nullptr, K::number, "a number > 0 (T_s or T_t, s)"},
+        {"discretization.method", "--method", K::word, one_of(words<Method>())},
+        {"discretization.ny", "--ny", K::integer, "an integer >= 1 (Ny)"},
+        {"discretization.nx", "--nx", K::integer, "an integer >= 0 (Nx)"},
+        {"discretization.spline_basis", "--spline-basis", K::word, one_of(words<SplineBasis>())},
+        {"model.order", "--order", K::word, one_of(words<Order>())},
+        {"model.source", "--source", K::word, one_of(words<ModelSource>())},
+        {"solver.stepper", "--stepper", K::word, one_of(stepper_names())},
+        {"solver.rtol", "--rtol", K::number, "a number > 0 (relative tolerance)"},
+        {"solver.atol", "--atol", K::number, "a number > 0 (absolute tolerance)"},
+        {"solver.h0", "--h0", K::number, "a number > 0 (first trial step, s)"},
+        {"output.t_end", "--t-end", K::number, "a number > 0 (end time, s)"},
+        {"output.dt_out", "--dt-out", K::number, "a number > 0 and <= output.t_end (output interval, s)"},
+        {"output.file", "-o,--output", K::text, "a file name"},
+    };
+}
+
+const std::string& expected(const std::string& key) { return scene_key(key).expected; }
 
 /// A TOML value as the "got ..." part of a message, on one line.
 std::string describe(const toml::node& n)
 {
     switch (n.type()) {
-        case toml::node_type::string: {
-            std::string s(n.as_string()->get());
-            if (s.size() > 40) s = s.substr(0, 40) + "...";
-            for (char& ch : s)
-                if (static_cast<unsigned char>(ch) < 0x20) ch = '?';
-            return "a string \"" + s + "\"";
-        }
-        case toml::node_type::integer:
-            return "an integer " + std::to_string(n.as_integer()->get());
-        case toml::node_type::floating_point:
-            return "a float " + format_number(n.as_floating_point()->get());
-        case toml::node_type::boolean:
-            return std::string("a boolean ") + (n.as_boolean()->get() ? "true" : "false");
-        case toml::node_type::array:
-            return "an array";
-        case toml::node_type::table:
-            return "a table";
-        case toml::node_type::date:
-            return "a date";
-        case toml::node_type::time:
-            return "a time";
-        case toml::node_type::date_time:
-            return "a date-time";
-        default:
-            return "a value";
+    case toml::node_type::string: {
+        std::string s(n.as_string()->get());
+        if (s.size() > 40) s = s.substr(0, 40) + "...";
+        for (char& ch : s)
+            if (static_cast<unsigned char>(ch) < 0x20) ch = '?';
+        return "a string \"" + s + "\"";
+    }
+    case toml::node_type::integer: return "an integer " + std::to_string(n.as_integer()->get());
+    case toml::node_type::floating_point: return "a float " + shortest(n.as_floating_point()->get());
+    case toml::node_type::boolean: return std::string("a boolean ") + (n.as_boolean()->get() ? "true" : "false");
+    case toml::node_type::array: return "an array";
+    case toml::node_type::table: return "a table";
+    case toml::node_type::date: return "a date";
+    case toml::node_type::time: return "a time";
+    case toml::node_type::date_time: return "a date-time";
+    default: return "a value";
     }
 }
 
-std::string file_label(const std::string& path)
-{
-    return path.empty() ? std::string("<scene>") : path;
-}
+std::string file_label(const std::string& path) { return path.empty() ? std::string("<scene>") : path; }
 
 [[noreturn]] void fail(const std::string& file, const std::string& key, const std::string& expected,
                        const std::string& got)
 {
-    throw SceneError(file_label(file) + ": " + key + ": expected " + expected + ", got " + got);
+    throw SceneError(file, key, expected, got);
 }
 
-/// One table of the scene file ([beam], [hub], ...), absent tables read as empty.
+/// One table of the scene file ([beam], [hub], ...); an absent table reads as empty.
 class Section {
 public:
     Section(const std::string& file, const toml::table& root, std::string name) : file_(file), name_(std::move(name))
@@ -103,7 +108,6 @@ public:
         if (const toml::node* n = root.get(name_)) table_ = n->as_table();
     }
 
-    bool present() const { return table_ != nullptr; }
     std::string path(std::string_view key) const { return name_ + "." + std::string(key); }
     const toml::node* get(std::string_view key) const { return table_ ? table_->get(key) : nullptr; }
 
@@ -119,59 +123,54 @@ public:
     }
 
     /// A number (TOML integer or float), or nullopt if the key is absent.
-    std::optional<double> number(std::string_view key, const char* expected) const
+    std::optional<double> number(std::string_view key) const
     {
         const toml::node* n = get(key);
         if (!n) return std::nullopt;
         if (const auto* i = n->as_integer()) return static_cast<double>(i->get());
         if (const auto* f = n->as_floating_point()) return f->get();
-        fail(file_, path(key), expected, describe(*n));
+        fail(file_, path(key), expected(path(key)), describe(*n));
     }
-    double number(std::string_view key, const char* expected, double fallback) const
+    double number(std::string_view key, double fallback) const { return number(key).value_or(fallback); }
+    double required_number(std::string_view key, const std::string& why = "") const
     {
-        return number(key, expected).value_or(fallback);
-    }
-    double required_number(std::string_view key, const char* expected, const std::string& why = "") const
-    {
-        if (const auto v = number(key, expected)) return *v;
-        fail(file_, path(key), expected + why, missing);
+        if (const auto v = number(key)) return *v;
+        fail(file_, path(key), expected(path(key)) + why, missing);
     }
 
     /// A TOML integer that fits an int (floats such as 4.0 are rejected: a DOF count is a count).
-    int required_integer(std::string_view key, const char* expected) const
+    int required_integer(std::string_view key) const
     {
         const toml::node* n = get(key);
-        if (!n) fail(file_, path(key), expected, missing);
+        if (!n) fail(file_, path(key), expected(path(key)), missing);
         const auto* i = n->as_integer();
-        if (!i) fail(file_, path(key), expected, describe(*n));
-        if (i->get() < INT_MIN || i->get() > INT_MAX) fail(file_, path(key), expected, describe(*n));
+        if (!i || i->get() < INT_MIN || i->get() > INT_MAX) fail(file_, path(key), expected(path(key)), describe(*n));
         return static_cast<int>(i->get());
     }
 
-    std::optional<std::string> string(std::string_view key, const std::string& expected) const
+    std::optional<std::string> string(std::string_view key) const
     {
         const toml::node* n = get(key);
         if (!n) return std::nullopt;
         if (const auto* s = n->as_string()) return s->get();
-        fail(file_, path(key), expected, describe(*n));
+        fail(file_, path(key), expected(path(key)), describe(*n));
     }
 
-    /// One of a fixed set of words; parse_word turns it into the value.
+    /// One of a fixed set of words, turned into its value by parse_word.
     template <class T, class F>
-    std::optional<T> word(std::string_view key, const std::vector<std::string>& words, F parse_word) const
+    std::optional<T> word(std::string_view key, F parse_word) const
     {
-        const std::string expected = "one of " + joined(words, "\"");
-        const auto s = string(key, expected);
+        const auto s = string(key);
         if (!s) return std::nullopt;
         T value{};
-        if (!parse_word(*s, value)) fail(file_, path(key), expected, describe(*get(key)));
+        if (!parse_word(*s, value)) fail(file_, path(key), expected(path(key)), describe(*get(key)));
         return value;
     }
     template <class T, class F>
-    T required_word(std::string_view key, const std::vector<std::string>& words, F parse_word) const
+    T required_word(std::string_view key, F parse_word) const
     {
-        if (const auto v = word<T>(key, words, parse_word)) return *v;
-        fail(file_, path(key), "one of " + joined(words, "\""), missing);
+        if (const auto v = word<T>(key, parse_word)) return *v;
+        fail(file_, path(key), expected(path(key)), missing);
     }
 
 private:
@@ -179,17 +178,6 @@ private:
     std::string name_;
     const toml::table* table_ = nullptr;
 };
-
-bool parse_kind(std::string_view w, Motion::Kind& k)
-{
-    if (w == "spin-up")
-        k = Motion::Kind::spin_up;
-    else if (w == "torque")
-        k = Motion::Kind::torque;
-    else
-        return false;
-    return true;
-}
 
 template <class E>
 bool parse_enum(std::string_view w, E& e)
@@ -200,12 +188,12 @@ bool parse_enum(std::string_view w, E& e)
 std::string read_file(const std::string& path)
 {
     std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) throw SceneError(file_label(path) + ": cannot open");
+    if (std::filesystem::is_directory(path, ec)) throw SceneError::with_detail(path, "", "cannot open");
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw SceneError(file_label(path) + ": cannot open");
+    if (!in) throw SceneError::with_detail(path, "", "cannot open");
     std::ostringstream text;
     text << in.rdbuf();
-    if (in.bad()) throw SceneError(file_label(path) + ": cannot open");
+    if (in.bad()) throw SceneError::with_detail(path, "", "cannot open");
     return text.str();
 }
 
@@ -217,26 +205,94 @@ toml::table parse_toml(const std::string& path)
     } catch (const toml::parse_error& e) {
         std::string description(e.description());
         std::replace(description.begin(), description.end(), '\n', ' ');
-        throw SceneError(file_label(path) + ":" + std::to_string(e.source().begin.line) + ":" +
-                         std::to_string(e.source().begin.column) + ": " + description);
+        throw SceneError::with_detail(path + ":" + std::to_string(e.source().begin.line) + ":" +
+                                          std::to_string(e.source().begin.column),
+                                      "", description);
+    }
+}
+
+/// The override's text as the TOML value its key holds; a text that is not of the key's kind is an error
+/// naming the key.
+void set_override(toml::table& root, const std::string& file, const std::string& name,
+                                         const std::string& text)
+{
+    const SceneKey& key = scene_key(name);
+    const std::size_t dot = name.find('.');
+    const std::string table = name.substr(0, dot), leaf = name.substr(dot + 1);
+    if (!root.contains(table) || !root[table].is_table()) root.insert_or_assign(table, toml::table{});
+    toml::table& t = *root[table].as_table();
+    const auto bad = [&] { fail(file, name, key.expected, "\"" + text + "\""); };
+    switch (key.kind) {
+    case SceneKey::Kind::integer: {
+        long long v = 0;
+        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+        if (ec != std::errc() || end != text.data() + text.size()) bad();
+        t.insert_or_assign(leaf, v);
+        break;
+    }
+    case SceneKey::Kind::number: {
+        double v = 0.0;
+        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+        if (ec != std::errc() || end != text.data() + text.size()) bad();
+        t.insert_or_assign(leaf, v);
+        break;
+    }
+    case SceneKey::Kind::word:
+    case SceneKey::Kind::text: t.insert_or_assign(leaf, text); break;
     }
 }
 
 // Range checks of validate(), naming the key.
-void check_positive(const Scene& s, double v, const char* key, const char* expected)
+void check_positive(const Scene& s, double v, const char* key)
 {
-    if (!(v > 0.0) || !std::isfinite(v)) fail(s.path, key, expected, format_number(v));
+    if (!(v > 0.0) || !std::isfinite(v)) fail(s.path, key, expected(key), shortest(v));
 }
-void check_finite(const Scene& s, double v, const char* key, const char* expected)
+void check_finite(const Scene& s, double v, const char* key)
 {
-    if (!std::isfinite(v)) fail(s.path, key, expected, format_number(v));
+    if (!std::isfinite(v)) fail(s.path, key, expected(key), shortest(v));
 }
 
 }  // namespace
 
-Scene load_scene(const std::string& path)
+SceneError::SceneError(std::string file_, std::string key_, std::string expected_, std::string got_,
+                       std::string detail_)
+    : std::runtime_error(file_label(file_) + ": " + (key_.empty() ? "" : key_ + ": ") +
+                         (detail_.empty() ? "expected " + expected_ + ", got " + got_ : detail_)),
+      file(std::move(file_)), key(std::move(key_)), expected(std::move(expected_)), got(std::move(got_)),
+      detail(std::move(detail_))
 {
-    const toml::table root = parse_toml(path);
+}
+
+SceneError::SceneError(std::string file_, std::string key_, std::string expected_, std::string got_)
+    : SceneError(std::move(file_), std::move(key_), std::move(expected_), std::move(got_), "")
+{
+}
+
+SceneError SceneError::with_detail(std::string file, std::string key, std::string detail)
+{
+    return SceneError(std::move(file), std::move(key), "", "", std::move(detail));
+}
+
+std::string SceneError::problem() const { return detail.empty() ? "expected " + expected + ", got " + got : detail; }
+
+const std::vector<SceneKey>& scene_keys()
+{
+    static const std::vector<SceneKey> keys = make_scene_keys();
+    return keys;
+}
+
+const SceneKey& scene_key(const std::string& name)
+{
+    for (const SceneKey& k : scene_keys())
+        if (name == k.name) return k;
+    throw std::logic_error("no scene key " + name);
+}
+
+Scene load_scene(const std::string& path, const Overrides& overrides)
+{
+    toml::table root = parse_toml(path);
+    for (const auto& [name, text] : overrides) set_override(root, path, name, text);
+
     const std::vector<std::string> tables = {"beam", "hub", "motion", "discretization", "model", "solver", "output"};
     for (auto&& [k, v] : root) {
         const bool known = std::find(tables.begin(), tables.end(), k.str()) != tables.end();
@@ -252,73 +308,69 @@ Scene load_scene(const std::string& path)
     Scene scene;
     scene.path = path;
 
-    // [beam]: MODEL.md section 1.
+    // [beam]: docs/model.md section 1.
     const Section beam(path, root, "beam");
     beam.only({"length", "density", "area", "second_moment", "youngs_modulus"});
     Parameters& p = scene.parameters;
-    p.L = beam.required_number("length", expect_length);
-    p.rho = beam.required_number("density", expect_density);
-    p.S = beam.required_number("area", expect_area);
-    p.I = beam.required_number("second_moment", expect_second_moment);
-    p.E = beam.required_number("youngs_modulus", expect_youngs);
+    p.L = beam.required_number("length");
+    p.rho = beam.required_number("density");
+    p.S = beam.required_number("area");
+    p.I = beam.required_number("second_moment");
+    p.E = beam.required_number("youngs_modulus");
 
     // [motion]: paper eq. 58 (spin-up) or eq. 59 (torque).
     const Section motion(path, root, "motion");
     Motion& m = scene.motion;
-    m.kind = motion.required_word<Motion::Kind>("kind", {"spin-up", "torque"}, parse_kind);
+    m.kind = motion.required_word<Motion::Kind>("kind", parse_kind);
     if (m.kind == Motion::Kind::spin_up) {
         motion.only({"kind", "omega0", "duration"}, " (the keys of kind = \"spin-up\")");
-        m.omega0 = motion.required_number("omega0", expect_omega0);
-        m.spin_time = motion.required_number("duration", expect_spin_time);
+        m.omega0 = motion.required_number("omega0");
+        m.spin_time = motion.required_number("duration");
     } else {
         motion.only({"kind", "tau0", "duration"}, " (the keys of kind = \"torque\")");
-        m.tau0 = motion.required_number("tau0", expect_tau0);
-        m.torque_time = motion.required_number("duration", expect_torque_time);
+        m.tau0 = motion.required_number("tau0");
+        m.torque_time = motion.required_number("duration");
     }
 
     // [hub]: the hub inertia only enters the torque case, where theta is a coordinate.
     const Section hub(path, root, "hub");
     hub.only({"radius", "inertia"});
-    p.a = hub.number("radius", expect_radius, 0.0);
-    if (m.kind == Motion::Kind::torque)
-        p.J_oh = hub.required_number("inertia", expect_inertia, ", required for kind = \"torque\"");
-    else
-        p.J_oh = hub.number("inertia", expect_inertia, 30.0);
+    p.a = hub.number("radius", p.a);
+    if (m.kind == Motion::Kind::torque) p.J_oh = hub.required_number("inertia", ", required for kind = \"torque\"");
+    else p.J_oh = hub.number("inertia", p.J_oh);
 
-    // [discretization]: MODEL.md section 4.
+    // [discretization]: docs/model.md section 4.
     const Section disc(path, root, "discretization");
     disc.only({"method", "ny", "nx", "spline_basis"});
     VariantKey& key = scene.variant;
-    key.method = disc.required_word<Method>("method", words<Method>(), parse_enum<Method>);
-    key.ny = disc.required_integer("ny", expect_ny);
-    key.nx = disc.required_integer("nx", expect_nx);
-    key.spline =
-        disc.word<SplineBasis>("spline_basis", words<SplineBasis>(), parse_enum<SplineBasis>).value_or(SplineBasis::paper);
+    key.method = disc.required_word<Method>("method", parse_enum<Method>);
+    key.ny = disc.required_integer("ny");
+    key.nx = disc.required_integer("nx");
+    key.spline = disc.word<SplineBasis>("spline_basis", parse_enum<SplineBasis>).value_or(key.spline);
     key.drive = m.drive();
 
-    // [model]: MODEL.md section 3; whether the build can run an order is make_model's call.
+    // [model]: docs/model.md section 3; whether the build can run an order is make_model's call.
     const Section model(path, root, "model");
     model.only({"order", "source"});
-    key.order = model.word<Order>("order", words<Order>(), parse_enum<Order>).value_or(Order::first);
-    scene.source = model.word<ModelSource>("source", words<ModelSource>(), parse_enum<ModelSource>)
-                       .value_or(ModelSource::automatic);
+    key.order = model.word<Order>("order", parse_enum<Order>).value_or(key.order);
+    scene.source = model.word<ModelSource>("source", parse_enum<ModelSource>).value_or(scene.source);
 
     // [solver]
     const Section solver(path, root, "solver");
     solver.only({"stepper", "rtol", "atol", "h0"});
     SolverOptions& so = scene.solver;
-    so.stepper = solver.string("stepper", "one of " + joined(stepper_names(), "\"")).value_or(so.stepper);
-    so.rtol = solver.number("rtol", expect_rtol, so.rtol);
-    so.atol = solver.number("atol", expect_atol, so.atol);
-    so.h0 = solver.number("h0", expect_h0, so.h0);
+    so.stepper = solver.string("stepper").value_or(so.stepper);
+    so.rtol = solver.number("rtol", so.rtol);
+    so.atol = solver.number("atol", so.atol);
+    so.h0 = solver.number("h0", so.h0);
 
     // [output]
     const Section output(path, root, "output");
     output.only({"t_end", "dt_out", "file"});
     OutputOptions& out = scene.output;
-    out.t_end = output.required_number("t_end", expect_t_end);
-    out.dt_out = output.number("dt_out", expect_dt_out, 0.01);
-    out.file = output.string("file", "a file name").value_or("");
+    out.t_end = output.required_number("t_end");
+    out.dt_out = output.number("dt_out", out.dt_out);
+    out.file = output.string("file").value_or(out.file);
 
     validate(scene);
     return scene;
@@ -327,44 +379,43 @@ Scene load_scene(const std::string& path)
 void validate(const Scene& s)
 {
     const Parameters& p = s.parameters;
-    check_positive(s, p.L, "beam.length", expect_length);
-    check_positive(s, p.rho, "beam.density", expect_density);
-    check_positive(s, p.S, "beam.area", expect_area);
-    check_positive(s, p.I, "beam.second_moment", expect_second_moment);
-    check_positive(s, p.E, "beam.youngs_modulus", expect_youngs);
-    if (!(p.a >= 0.0) || !std::isfinite(p.a)) fail(s.path, "hub.radius", expect_radius, format_number(p.a));
-    check_positive(s, p.J_oh, "hub.inertia", expect_inertia);
+    check_positive(s, p.L, "beam.length");
+    check_positive(s, p.rho, "beam.density");
+    check_positive(s, p.S, "beam.area");
+    check_positive(s, p.I, "beam.second_moment");
+    check_positive(s, p.E, "beam.youngs_modulus");
+    if (!(p.a >= 0.0) || !std::isfinite(p.a)) fail(s.path, "hub.radius", expected("hub.radius"), shortest(p.a));
+    check_positive(s, p.J_oh, "hub.inertia");
 
     if (s.motion.kind == Motion::Kind::spin_up) {
-        check_finite(s, s.motion.omega0, "motion.omega0", expect_omega0);
-        check_positive(s, s.motion.spin_time, "motion.duration", expect_spin_time);
+        check_finite(s, s.motion.omega0, "motion.omega0");
+        check_positive(s, s.motion.spin_time, "motion.duration");
     } else {
-        check_finite(s, s.motion.tau0, "motion.tau0", expect_tau0);
-        check_positive(s, s.motion.torque_time, "motion.duration", expect_torque_time);
+        check_finite(s, s.motion.tau0, "motion.tau0");
+        check_positive(s, s.motion.torque_time, "motion.duration");
     }
 
     // DOF counts: a problem that persists with nx = 0 is about ny.
     const VariantKey& key = s.variant;
-    if (key.ny < 1) fail(s.path, "discretization.ny", expect_ny, std::to_string(key.ny));
-    if (key.nx < 0) fail(s.path, "discretization.nx", expect_nx, std::to_string(key.nx));
+    if (key.ny < 1) fail(s.path, "discretization.ny", expected("discretization.ny"), std::to_string(key.ny));
+    if (key.nx < 0) fail(s.path, "discretization.nx", expected("discretization.nx"), std::to_string(key.nx));
     if (const std::string problem = key.dof_problem(); !problem.empty()) {
         VariantKey without_axial = key;
         without_axial.nx = 0;
         const char* name = without_axial.dof_problem().empty() ? "discretization.nx" : "discretization.ny";
-        throw SceneError(file_label(s.path) + ": " + name + ": " + problem);
+        throw SceneError::with_detail(s.path, name, problem);
     }
 
-    const std::vector<std::string> steppers = stepper_names();
-    if (std::find(steppers.begin(), steppers.end(), s.solver.stepper) == steppers.end())
-        fail(s.path, "solver.stepper", "one of " + joined(steppers, "\""), "\"" + s.solver.stepper + "\"");
-    check_positive(s, s.solver.rtol, "solver.rtol", expect_rtol);
-    check_positive(s, s.solver.atol, "solver.atol", expect_atol);
-    check_positive(s, s.solver.h0, "solver.h0", expect_h0);
+    if (step_type(s.solver.stepper) == nullptr)
+        fail(s.path, "solver.stepper", expected("solver.stepper"), "\"" + s.solver.stepper + "\"");
+    check_positive(s, s.solver.rtol, "solver.rtol");
+    check_positive(s, s.solver.atol, "solver.atol");
+    check_positive(s, s.solver.h0, "solver.h0");
 
-    check_positive(s, s.output.t_end, "output.t_end", expect_t_end);
+    check_positive(s, s.output.t_end, "output.t_end");
     if (!(s.output.dt_out > 0.0) || !(s.output.dt_out <= s.output.t_end))
-        fail(s.path, "output.dt_out", expect_dt_out,
-             format_number(s.output.dt_out) + " with t_end = " + format_number(s.output.t_end));
+        fail(s.path, "output.dt_out", expected("output.dt_out"),
+             shortest(s.output.dt_out) + " with t_end = " + shortest(s.output.t_end));
 }
 
 }  // namespace hubbeam

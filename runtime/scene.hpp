@@ -1,8 +1,11 @@
-// Scene: everything one simulation needs, read and validated from a TOML file (format in README.md).
+// Scene: everything one simulation needs, read and validated from a TOML file (format in README.md), with
+// command-line overrides applied to the file's keys before anything is checked.
 #pragma once
 
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "make_model.hpp"
 #include "motion.hpp"
@@ -33,15 +36,39 @@ struct Scene {
     OutputOptions output;
 };
 
-/// Bad scene input: what() is one line "FILE: KEY: expected ..., got ...".
+/// Bad scene input, as data: the file, the key ("discretization.ny"; empty when the file itself is the
+/// problem) and what was wrong, either as expected/got or as a sentence (detail).
 struct SceneError : std::runtime_error {
-    using std::runtime_error::runtime_error;
+    std::string file, key, expected, got, detail;
+
+    SceneError(std::string file, std::string key, std::string expected, std::string got);
+    /// A problem stated as a sentence ("FEM needs an even ny ..."); key may be empty.
+    static SceneError with_detail(std::string file, std::string key, std::string detail);
+    /// "expected E, got G", or the detail.
+    std::string problem() const;
+
+private:
+    SceneError(std::string file, std::string key, std::string expected, std::string got, std::string detail);
 };
 
-/// Reads and validates a scene file; throws SceneError before any computation.
-Scene load_scene(const std::string& path);
-/// Re-checks a scene after command-line overrides (DOF counts, tolerances, times); throws SceneError with
-/// the option or key named.
+/// A scene key: its dotted name, what it must hold, and the command-line option that sets it (or null).
+/// One table of these serves reading, validation, messages, the command line and its --help.
+struct SceneKey {
+    const char* name;    // "discretization.ny"
+    const char* option;  // "--ny", or nullptr; CLI11's form ("-o,--output"): messages use the first name
+    enum class Kind { number, integer, word, text } kind;
+    std::string expected;  // "an integer >= 1 (Ny)", or for words "one of \"amm\", \"fem\", ..."
+};
+const std::vector<SceneKey>& scene_keys();
+/// The entry of a dotted key name; throws std::logic_error for a name not in the table.
+const SceneKey& scene_key(const std::string& name);
+
+/// Key name -> value as typed on the command line, e.g. {"discretization.ny", "8"}.
+using Overrides = std::vector<std::pair<std::string, std::string>>;
+
+/// Reads a scene file, sets the overridden keys, then validates it; throws SceneError before any computation.
+Scene load_scene(const std::string& path, const Overrides& overrides = {});
+/// Re-checks a scene changed in code (ranges, DOF counts, tolerances, times); throws SceneError naming the key.
 void validate(const Scene& scene);
 
 }  // namespace hubbeam

@@ -1,11 +1,10 @@
-// simulate(): drives GSL's odeiv2 driver from output time to output time (and through the drive's
+// Simulation: drives GSL's odeiv2 driver from output time to output time (and through the drive's
 // breakpoints), turning states into rows, and stops with a message when the solution goes bad.
 #include "simulate.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <memory>
 #include <sstream>
 
 #include <gsl/gsl_errno.h>
@@ -18,8 +17,25 @@ namespace hubbeam {
 
 namespace {
 
+// Times are compared relative to their size: an output time and a breakpoint closer than this are one
+// instant, and t_end / dt_out within this of an integer counts as that integer.
+constexpr double same_instant = 1e-12;
+
 struct DriverDeleter {
     void operator()(gsl_odeiv2_driver* d) const { gsl_odeiv2_driver_free(d); }
+};
+
+/// GSL's error handler off for one scope (GSL's default aborts the process; odeiv2 failures must come
+/// back as status codes), restored afterwards so that the caller's handler is left as it was.
+class QuietGsl {
+public:
+    QuietGsl() : previous_(gsl_set_error_handler_off()) {}
+    ~QuietGsl() { gsl_set_error_handler(previous_); }
+    QuietGsl(const QuietGsl&) = delete;
+    QuietGsl& operator=(const QuietGsl&) = delete;
+
+private:
+    gsl_error_handler_t* previous_;
 };
 
 /// Output time i * dt. A decimal dt = n / 10^d gives (i n) / 10^d, a quotient of exact integers and so the
@@ -53,50 +69,77 @@ std::string at_time(double t)
     return s.str();
 }
 
+/// The message for a failed driver step, or empty for success.
+std::string step_failure(int status, double t)
+{
+    if (status == GSL_SUCCESS) return {};
+    if (status == GSL_EBADFUNC)
+        return "unstable: the equations became singular or non-finite" + at_time(t) +
+               " (mass matrix not positive definite or accelerations overflowed)";
+    return std::string("integration failed") + at_time(t) + ": " + gsl_strerror(status) +
+           " (try a smaller rtol/atol or a stiff stepper such as msbdf)";
+}
+
+/// The drive's breakpoints inside (0, t_last), in order.
+std::vector<double> breaks_before(const Motion& motion, double t_last)
+{
+    std::vector<double> breaks;
+    for (double b : motion.breakpoints())
+        if (b > 0.0 && b < t_last) breaks.push_back(b);
+    std::sort(breaks.begin(), breaks.end());
+    return breaks;
+}
+
 }  // namespace
 
-RunSummary simulate(const Scene& scene, const RowSink& sink)
+Simulation::Simulation(const Scene& scene) : scene_(scene)
 {
-    const auto start = std::chrono::steady_clock::now();
     VariantKey key = scene.variant;
     key.drive = scene.motion.drive();
-    const std::unique_ptr<Model> model = make_model(key, scene.parameters, scene.source);
-    const BeamFields fields(key, scene.parameters);
+    model_ = make_model(key, scene.parameters, scene.source);
+}
+
+Simulation::~Simulation() = default;
+
+RunSummary Simulation::run(const RowSink& sink)
+{
+    const auto start = std::chrono::steady_clock::now();
+    const QuietGsl quiet;
+    const Model& model = *model_;
+    const VariantKey& key = model.key();
+    const Motion& motion = scene_.motion;
+    const BeamFields fields(key, scene_.parameters);
     RunSummary summary;
     summary.variant = key.name();
-    summary.source = model->source();
+    summary.source = model.source();
 
-    FirstOrderSystem system(*model, scene.motion);
-    const gsl_odeiv2_step_type* type = step_type(scene.solver.stepper);
-    if (type == nullptr) throw std::invalid_argument("unknown stepper '" + scene.solver.stepper + "'");
-    std::unique_ptr<gsl_odeiv2_driver, DriverDeleter> driver(gsl_odeiv2_driver_alloc_y_new(
-        system.gsl(), type, scene.solver.h0, scene.solver.atol, scene.solver.rtol));
-    gsl_set_error_handler_off();  // failures come back as status codes and become RunSummary::failure
+    FirstOrderSystem system(model, motion);
+    const gsl_odeiv2_step_type* type = step_type(scene_.solver.stepper);
+    if (type == nullptr) throw std::invalid_argument("unknown stepper '" + scene_.solver.stepper + "'");
+    const std::unique_ptr<gsl_odeiv2_driver, DriverDeleter> driver(gsl_odeiv2_driver_alloc_y_new(
+        system.gsl(), type, scene_.solver.h0, scene_.solver.atol, scene_.solver.rtol));
+    if (!driver) throw std::runtime_error("GSL could not allocate the " + scene_.solver.stepper + " driver");
 
-    const int n = model->nq();
+    const int n = model.nq();
     const bool torque = key.drive == Drive::torque;
     std::vector<double> y(static_cast<std::size_t>(2 * n), 0.0);
-    const Motion& motion = scene.motion;
-    const double L = scene.parameters.L;
+    double t = 0.0;
+    long steps = 0;
 
-    auto row_at = [&](double t) {
+    auto row_at = [&](double ti) {
         const double* q = y.data();
         const double* qd = y.data() + n;
-        const HubInput u = motion.at(t);
-        const double* A = key.nx > 0 ? q + key.first_a() : nullptr;
-        const BeamFields::Tip tip = fields.tip(A, q + key.first_b());
-        const Energy e = model->energy(u, q, qd);
-        Row r{t,       torque ? q[0] : motion.theta(t), torque ? qd[0] : u.theta_dot, tip.uy, tip.ux1, tip.ux,
-              e.kinetic(), e.U, model->momentum(u, q, qd), e.T2 - e.T0 + e.U};
+        const HubInput u = motion.at(ti);
+        const BeamFields::Tip tip = fields.tip(key.nx > 0 ? q + key.first_a() : nullptr, q + key.first_b());
+        const Energy e = model.energy(u, q, qd);
+        const double theta = torque ? q[0] : motion.theta(ti), theta_dot = torque ? qd[0] : u.theta_dot;
+        const Row r{ti, theta, theta_dot, tip.uy, tip.ux1, tip.ux, e.kinetic(), e.U, model.momentum(u, q, qd),
+                    e.T2 - e.T0 + e.U};
         summary.max_abs_tip_uy = std::max(summary.max_abs_tip_uy, std::abs(r.tip_uy));
         return r;
     };
-
-    double t = 0.0;
-    long steps = 0;
     auto finish = [&](const std::string& failure) {
-        steps += static_cast<long>(driver->e->count);
-        summary.steps = steps;
+        summary.steps = steps + static_cast<long>(driver->e->count);
         summary.rhs_evals = system.evaluations();
         summary.completed = failure.empty();
         summary.failure = failure;
@@ -104,47 +147,36 @@ RunSummary simulate(const Scene& scene, const RowSink& sink)
         summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         return summary;
     };
+    auto advance = [&](double t1) { return step_failure(gsl_odeiv2_driver_apply(driver.get(), &t, t1, y.data()), t); };
+    // At a breakpoint the drive's derivatives jump: the step history is discarded there.
+    auto restart = [&] {
+        steps += static_cast<long>(driver->e->count);
+        gsl_odeiv2_driver_reset(driver.get());
+    };
 
     sink(row_at(0.0));
-    const double dt = scene.output.dt_out;
-    const OutputClock clock(dt);
-    const long rows = static_cast<long>(std::floor(scene.output.t_end / dt * (1.0 + 1e-12)));
-    std::vector<double> breaks;
-    for (double b : motion.breakpoints())
-        if (b > 0.0 && b < clock(rows)) breaks.push_back(b);
-    std::sort(breaks.begin(), breaks.end());
+    const OutputClock clock(scene_.output.dt_out);
+    const long rows = static_cast<long>(std::floor(scene_.output.t_end / scene_.output.dt_out * (1.0 + same_instant)));
+    const std::vector<double> breaks = breaks_before(motion, clock(rows));
     auto next_break = breaks.begin();
-
-    // Advances to t1; at a breakpoint the multistep history is discarded, since the drive's derivatives jump.
-    auto advance = [&](double t1) -> std::string {
-        const int status = gsl_odeiv2_driver_apply(driver.get(), &t, t1, y.data());
-        if (status == GSL_EBADFUNC)
-            return "unstable: the equations became singular or non-finite" + at_time(t) +
-                   " (mass matrix not positive definite or accelerations overflowed)";
-        if (status != GSL_SUCCESS)
-            return std::string("integration failed") + at_time(t) + ": " + gsl_strerror(status) +
-                   " (try a smaller rtol/atol or a stiff stepper such as msbdf)";
-        return {};
-    };
     for (long i = 1; i <= rows; ++i) {
         const double ti = clock(i);
-        for (; next_break != breaks.end() && *next_break <= ti * (1.0 + 1e-12); ++next_break) {
-            if (*next_break < ti * (1.0 - 1e-12))
-                if (std::string failure = advance(*next_break); !failure.empty()) return finish(failure);
-            if (std::abs(*next_break - ti) <= 1e-12 * ti)
-                if (std::string failure = advance(ti); !failure.empty()) return finish(failure);
-            steps += static_cast<long>(driver->e->count);
-            gsl_odeiv2_driver_reset(driver.get());
+        for (; next_break != breaks.end() && *next_break <= ti * (1.0 + same_instant); ++next_break) {
+            const double tb = std::abs(*next_break - ti) <= same_instant * ti ? ti : *next_break;
+            if (std::string failure = advance(tb); !failure.empty()) return finish(failure);
+            restart();
         }
         if (t < ti)
             if (std::string failure = advance(ti); !failure.empty()) return finish(failure);
         const Row r = row_at(ti);
         sink(r);
-        if (!std::isfinite(r.tip_uy) || std::abs(r.tip_uy) > L)
+        if (!std::isfinite(r.tip_uy) || std::abs(r.tip_uy) > scene_.parameters.L)
             return finish("unstable: tip deflection " + std::to_string(r.tip_uy) + " m exceeds the beam length" +
                           at_time(ti) + "; the small-deformation model no longer holds");
     }
     return finish({});
 }
+
+RunSummary simulate(const Scene& scene, const RowSink& sink) { return Simulation(scene).run(sink); }
 
 }  // namespace hubbeam

@@ -1,8 +1,9 @@
-// simulate(): one scene integrated from rest, rows handed to a sink at exact multiples of dt_out. The
+// Simulation: one scene integrated from rest, rows handed to a sink at exact multiples of dt_out. The
 // library entry point under the command line.
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -37,8 +38,30 @@ struct RunSummary {
 
 using RowSink = std::function<void(const Row&)>;
 
-/// Integrates the scene; every row reaches sink before the next step is taken, so a failed run keeps all
-/// rows up to the failure. Does not throw for numerical failure: see RunSummary::completed.
+class Model;
+
+/// One run of a scene, in two steps so that everything that can refuse the scene (no model serves its
+/// variant) does so before the caller creates any output.
+class Simulation {
+public:
+    /// Chooses the model; throws std::invalid_argument if none can serve the scene's variant.
+    explicit Simulation(const Scene& scene);
+    ~Simulation();
+    Simulation(const Simulation&) = delete;
+    Simulation& operator=(const Simulation&) = delete;
+
+    const Model& model() const { return *model_; }
+
+    /// Integrates from rest; every row reaches sink before the next step is taken, so a failed run keeps all
+    /// rows up to the failure. Does not throw for numerical failure: see RunSummary::completed.
+    RunSummary run(const RowSink& sink);
+
+private:
+    const Scene& scene_;
+    std::unique_ptr<Model> model_;
+};
+
+/// Simulation(scene).run(sink).
 RunSummary simulate(const Scene& scene, const RowSink& sink);
 
 }  // namespace hubbeam
