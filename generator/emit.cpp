@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -154,143 +155,210 @@ bool EmittedCode::constant(const std::string& kernel) const
     return std::find(constant_kernels.begin(), constant_kernels.end(), kernel) != constant_kernels.end();
 }
 
-EmittedCode emit_kernels(const std::string& prefix, int nq, const std::vector<Input>& parameters,
-                         const std::vector<Input>& variables, const std::vector<KernelSpec>& kernels)
+namespace {
+
+/// A coefficient: a sum of number * parameter monomial (exponents over the parameter inputs).
+using Coefficient = std::vector<std::pair<numeric, std::vector<int>>>;
+/// One output as a polynomial in the state: state monomial (exponents over the state inputs) -> coefficient.
+using Output = std::map<std::vector<int>, Coefficient>;
+
+/// Stage "decompose": each output of a kernel as a polynomial in the state with parameter coefficients.
+std::vector<Output> decompose_outputs(const Decomposer& decompose, const std::vector<ex>& values)
 {
-    const Decomposer decompose(parameters, variables);
-    std::vector<std::string> pnames, vnames;
-    for (const Input& p : parameters) pnames.push_back(p.symbol.get_name());
-    for (const Input& v : variables) vnames.push_back(v.symbol.get_name());
+    std::vector<Output> outputs;
+    for (const ex& v : values) {
+        Output& grouped = outputs.emplace_back();
+        for (PolyTerm& t : decompose(v)) grouped[t.ve].emplace_back(t.coeff, t.pe);
+    }
+    return outputs;
+}
 
-    std::map<std::string, int> coeff_index;  // printed coefficient -> c[k]
-    std::vector<std::string> coeff_text;
-    std::vector<int> params_used(parameters.size());
-    EmittedCode code;
-    // Kernel functions wait for the coefficient count, which their shape comments state.
-    struct Body {
-        const KernelSpec* spec;
-        std::string function;
+/// Stage "plan monomials": every state monomial a kernel uses, formed once as a const temporary from its
+/// prefixes (drop one factor of the last variable): B1_B2 = B1*B2, then theta_dot_B1_B2 reuses B1_B2.
+struct MonomialPlan {
+    std::map<std::vector<int>, std::string> names;  // monomial -> the variable or temporary holding it
+    std::vector<std::string> lines;                 // the temporaries' definitions, in reading order
+    std::vector<bool> variable_used;
+};
+
+MonomialPlan plan_monomials(const std::vector<Output>& outputs, const std::vector<std::string>& vnames)
+{
+    MonomialPlan plan;
+    plan.variable_used.assign(vnames.size(), false);
+    std::set<std::vector<int>> monomials;
+    for (const Output& o : outputs)
+        for (const auto& entry : o)
+            if (degree(entry.first) > 0) monomials.insert(entry.first);
+    auto ensure = [&](auto&& self, const std::vector<int>& e) -> std::string {
+        if (auto it = plan.names.find(e); it != plan.names.end()) return it->second;
+        std::size_t last = e.size();
+        while (e[--last] == 0) {
+        }
+        if (degree(e) == 1) {
+            plan.variable_used[last] = true;
+            return plan.names[e] = vnames[last];
+        }
+        std::vector<int> rest = e;
+        --rest[last];
+        std::vector<int> single(e.size());
+        single[last] = 1;
+        const std::string a = self(self, rest), b = self(self, single);
+        const std::string name = monomial_name(e, vnames);
+        plan.lines.push_back("    const double " + name + " = " + a + "*" + b + ";\n");
+        return plan.names[e] = name;
     };
-    std::vector<Body> bodies;
+    std::vector<std::vector<int>> ordered(monomials.begin(), monomials.end());
+    std::sort(ordered.begin(), ordered.end(), reads_before);
+    for (const auto& e : ordered) ensure(ensure, e);
+    return plan;
+}
 
-    for (const KernelSpec& k : kernels) {
-        // For each output: var monomial -> coefficient as (number, parameter monomial) terms.
-        std::vector<std::map<std::vector<int>, std::vector<std::pair<numeric, std::vector<int>>>>> outputs;
-        std::set<std::vector<int>> monomials;  // variable monomials used by this kernel
-        bool constant = true;
-        for (const ex& v : k.values) {
-            auto& grouped = outputs.emplace_back();
-            for (PolyTerm& t : decompose(v)) {
-                grouped[t.ve].emplace_back(t.coeff, t.pe);
-                if (degree(t.ve) > 0) {
-                    monomials.insert(t.ve);
-                    constant = false;
-                }
-            }
-        }
-        if (constant) code.constant_kernels.push_back(k.name);
-
-        // Monomials are built from their prefixes (drop one factor of the last variable) so that each
-        // product is formed once: B1_B2 = B1*B2, then theta_dot_B1_B2 = ... reuses what exists.
-        std::map<std::vector<int>, std::string> names;  // emitted monomial -> temporary name
-        std::vector<std::string> lines;
-        std::vector<bool> var_used(variables.size());
-        auto ensure = [&](auto&& self, const std::vector<int>& e) -> std::string {
-            if (auto it = names.find(e); it != names.end()) return it->second;
-            std::size_t last = e.size();
-            while (e[--last] == 0) {
-            }
-            if (degree(e) == 1) {
-                var_used[last] = true;
-                return names[e] = vnames[last];
-            }
-            std::vector<int> rest = e;
-            --rest[last];
-            std::vector<int> single(e.size());
-            single[last] = 1;
-            const std::string a = self(self, rest), b = self(self, single);
-            const std::string name = monomial_name(e, vnames);
-            lines.push_back("    const double " + name + " = " + a + "*" + b + ";\n");
-            return names[e] = name;
-        };
-        std::vector<std::vector<int>> ordered(monomials.begin(), monomials.end());
-        std::sort(ordered.begin(), ordered.end(), reads_before);
-        for (const auto& e : ordered) ensure(ensure, e);
-
-        std::ostringstream out_lines;
-        bool uses_c = false;
-        for (std::size_t i = 0; i < outputs.size(); ++i) {
-            std::vector<std::pair<numeric, std::string>> terms;
-            std::vector<std::vector<int>> order;
-            for (const auto& entry : outputs[i]) order.push_back(entry.first);
-            std::sort(order.begin(), order.end(), reads_before);
-            for (const std::vector<int>& ve : order) {
-                auto& coeff_terms = outputs[i][ve];
-                std::sort(coeff_terms.begin(), coeff_terms.end(),
-                          [](const auto& x, const auto& y) { return x.second < y.second; });
-                const std::string mono = degree(ve) == 0 ? "" : names.at(ve);
-                const bool pure_number = coeff_terms.size() == 1 &&
-                                         std::all_of(coeff_terms[0].second.begin(), coeff_terms[0].second.end(),
-                                                     [](int x) { return x == 0; });
-                if (pure_number) {
-                    terms.emplace_back(coeff_terms[0].first, mono);
-                    continue;
-                }
-                std::vector<std::pair<numeric, std::string>> parts;
-                for (const auto& [c, pe] : coeff_terms) {
-                    for (std::size_t j = 0; j < pe.size(); ++j) params_used[j] |= pe[j] != 0;
-                    const std::string num = product(pe, pnames, true), den = product(pe, pnames, false);
-                    std::string m = num;
-                    if (!den.empty()) m = (m.empty() ? "1.0" : m) + "/(" + den + ")";
-                    parts.emplace_back(c, m);
-                }
-                const std::string text = signed_sum(parts);
-                auto [it, added] = coeff_index.emplace(text, static_cast<int>(coeff_text.size()));
-                if (added) coeff_text.push_back(text);
-                const std::string ck = "c[" + std::to_string(it->second) + "]";
-                terms.emplace_back(1, mono.empty() ? ck : ck + "*" + mono);
-                uses_c = true;
-            }
-            out_lines << "    out[" << i << "] = " << signed_sum(terms) << ";\n";
-        }
-
-        std::ostringstream f;
-        f << "void " << prefix << "_" << k.name
-          << "(const double* c, const double* u, const double* q, const double* qd, double* out)\n{\n";
-        std::string reads;
-        for (std::size_t v = 0; v < variables.size(); ++v)
-            if (var_used[v]) reads += "    const double " + vnames[v] + " = " + variables[v].read + ";\n";
-        for (const char* arr : {"c", "u", "q", "qd"}) {
-            const std::string a = arr;
-            const bool used = a == "c" ? uses_c : reads.find(" = " + a + "[") != std::string::npos;
-            if (!used) f << "    (void)" << a << ";\n";
-        }
-        f << reads;
-        for (const std::string& l : lines) f << l;
-        f << out_lines.str() << "}\n";
-        bodies.push_back({&k, f.str()});
+/// Stage "pool coefficients": every coefficient that is not a pure number becomes one entry c[k] of the
+/// coefficients kernel, shared by all kernels of the variant (equal text, one entry).
+class CoefficientPool {
+public:
+    explicit CoefficientPool(std::vector<std::string> pnames)
+        : pnames_(std::move(pnames)), params_used_(pnames_.size())
+    {
     }
 
+    /// The pure number of a coefficient without parameters, or nullopt.
+    static std::optional<numeric> pure_number(const Coefficient& c)
+    {
+        if (c.size() != 1 || std::any_of(c[0].second.begin(), c[0].second.end(), [](int x) { return x != 0; }))
+            return std::nullopt;
+        return c[0].first;
+    }
+
+    /// "c[k]" for the coefficient, adding it to the pool if it is new.
+    std::string reference(Coefficient c)
+    {
+        std::sort(c.begin(), c.end(), [](const auto& x, const auto& y) { return x.second < y.second; });
+        std::vector<std::pair<numeric, std::string>> parts;
+        for (const auto& [number, pe] : c) {
+            for (std::size_t j = 0; j < pe.size(); ++j) params_used_[j] = params_used_[j] || pe[j] != 0;
+            const std::string num = product(pe, pnames_, true), den = product(pe, pnames_, false);
+            std::string m = num;
+            if (!den.empty()) m = (m.empty() ? "1.0" : m) + "/(" + den + ")";
+            parts.emplace_back(number, m);
+        }
+        const std::string text = signed_sum(parts);
+        auto [it, added] = index_.emplace(text, static_cast<int>(texts_.size()));
+        if (added) texts_.push_back(text);
+        return "c[" + std::to_string(it->second) + "]";
+    }
+
+    const std::vector<std::string>& texts() const { return texts_; }
+    bool parameter_used(std::size_t j) const { return params_used_[j]; }
+
+private:
+    std::vector<std::string> pnames_;
+    std::vector<bool> params_used_;
+    std::map<std::string, int> index_;
+    std::vector<std::string> texts_;
+};
+
+/// Stage "print": "out[i] = ...;" for each output, monomials in reading order.
+std::string print_outputs(const std::vector<Output>& outputs, const MonomialPlan& plan, CoefficientPool& pool,
+                          bool& uses_c)
+{
+    std::ostringstream lines;
+    for (std::size_t i = 0; i < outputs.size(); ++i) {
+        std::vector<std::vector<int>> order;
+        for (const auto& entry : outputs[i]) order.push_back(entry.first);
+        std::sort(order.begin(), order.end(), reads_before);
+        std::vector<std::pair<numeric, std::string>> terms;
+        for (const std::vector<int>& ve : order) {
+            const Coefficient& c = outputs[i].at(ve);
+            const std::string mono = degree(ve) == 0 ? "" : plan.names.at(ve);
+            if (const auto number = CoefficientPool::pure_number(c)) {
+                terms.emplace_back(*number, mono);
+                continue;
+            }
+            const std::string ck = pool.reference(c);
+            terms.emplace_back(1, mono.empty() ? ck : ck + "*" + mono);
+            uses_c = true;
+        }
+        lines << "    out[" << i << "] = " << signed_sum(terms) << ";\n";
+    }
+    return lines.str();
+}
+
+/// The function of one kernel: reads of the state it uses, its monomials, its outputs.
+std::string print_kernel(const std::string& prefix, const KernelSpec& k, const Signature& sig, const MonomialPlan& plan,
+                         const std::string& outputs, bool uses_c)
+{
+    std::ostringstream f;
+    f << "void " << prefix << "_" << k.name << "(const double* c";
+    for (const Array& a : sig.state) f << ", const double* " << a.name;
+    f << ", double* out)\n{\n";
+    std::string reads;
+    for (std::size_t v = 0; v < sig.state_inputs.size(); ++v)
+        if (plan.variable_used[v])
+            reads += "    const double " + sig.state_inputs[v].symbol.get_name() + " = " + sig.state_inputs[v].read + ";\n";
+    if (!uses_c) f << "    (void)c;\n";
+    for (const Array& a : sig.state)
+        if (reads.find(" = " + a.name + "[") == std::string::npos) f << "    (void)" << a.name << ";\n";
+    f << reads;
+    for (const std::string& l : plan.lines) f << l;
+    f << outputs << "}\n";
+    return f.str();
+}
+
+/// The coefficients kernel: c[k] from the parameters, once per parameter set.
+std::string print_coefficients(const std::string& prefix, const Signature& sig, const CoefficientPool& pool)
+{
+    const Array& p = sig.parameters;
     std::ostringstream text;
-    text << "\n/* coefficients:(p[7])->(c[" << coeff_text.size()
-         << "]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */\n";
-    text << "void " << prefix << "_coefficients(const double* p, double* c)\n{\n";
+    text << "\n/* coefficients:(" << p.name << "[" << p.size << "])->(c[" << pool.texts().size() << "]) " << p.doc
+         << "; once per parameter set */\n";
+    text << "void " << prefix << "_coefficients(const double* " << p.name << ", double* c)\n{\n";
     bool any = false;
-    for (std::size_t j = 0; j < parameters.size(); ++j)
-        if (params_used[j]) {
-            text << "    const double " << pnames[j] << " = " << parameters[j].read << ";\n";
+    for (std::size_t j = 0; j < sig.parameter_inputs.size(); ++j)
+        if (pool.parameter_used(j)) {
+            text << "    const double " << sig.parameter_inputs[j].symbol.get_name() << " = " << sig.parameter_inputs[j].read
+                 << ";\n";
             any = true;
         }
-    if (!any) text << "    (void)p;\n";
-    if (coeff_text.empty()) text << "    (void)c;\n";
-    for (std::size_t i = 0; i < coeff_text.size(); ++i) text << "    c[" << i << "] = " << coeff_text[i] << ";\n";
+    if (!any) text << "    (void)" << p.name << ";\n";
+    if (pool.texts().empty()) text << "    (void)c;\n";
+    for (std::size_t i = 0; i < pool.texts().size(); ++i) text << "    c[" << i << "] = " << pool.texts()[i] << ";\n";
     text << "}\n";
-    for (const Body& b : bodies)
-        text << "\n/* " << b.spec->name << ":(c[" << coeff_text.size() << "],u[3],q[" << nq << "],qd[" << nq << "])->("
-             << b.spec->out << ") " << b.spec->doc << " */\n"
-             << b.function;
+    return text.str();
+}
+
+std::vector<std::string> names_of(const std::vector<Input>& inputs)
+{
+    std::vector<std::string> names;
+    for (const Input& i : inputs) names.push_back(i.symbol.get_name());
+    return names;
+}
+
+}  // namespace
+
+EmittedCode emit_kernels(const std::string& prefix, const Signature& sig, const std::vector<KernelSpec>& kernels)
+{
+    const Decomposer decompose(sig.parameter_inputs, sig.state_inputs);
+    CoefficientPool pool(names_of(sig.parameter_inputs));
+    EmittedCode code;
+    std::vector<std::string> bodies;  // printed after the coefficients kernel, whose size they state
+    for (const KernelSpec& k : kernels) {
+        const std::vector<Output> outputs = decompose_outputs(decompose, k.values);
+        const MonomialPlan plan = plan_monomials(outputs, names_of(sig.state_inputs));
+        if (plan.names.empty()) code.constant_kernels.push_back(k.name);
+        bool uses_c = false;
+        const std::string lines = print_outputs(outputs, plan, pool, uses_c);
+        bodies.push_back(print_kernel(prefix, k, sig, plan, lines, uses_c));
+    }
+    std::ostringstream text;
+    text << print_coefficients(prefix, sig, pool);
+    for (std::size_t i = 0; i < kernels.size(); ++i) {
+        text << "\n/* " << kernels[i].name << ":(c[" << pool.texts().size() << "]";
+        for (const Array& a : sig.state) text << "," << a.name << "[" << a.size << "]";
+        text << ")->(" << kernels[i].out << ") " << kernels[i].doc << " */\n" << bodies[i];
+    }
     code.text = text.str();
-    code.ncoeff = static_cast<int>(coeff_text.size());
+    code.ncoeff = static_cast<int>(pool.texts().size());
     return code;
 }
 

@@ -39,11 +39,24 @@ struct EmittedCode {
     std::vector<std::string> constant_kernels;
 };
 
-/// Emits `<prefix>_coefficients(p, c)` and `<prefix>_<kernel>(c, u, q, qd, out)` for each kernel.
-/// parameters: read from p (their `read` may combine entries, e.g. "p[1] * p[2]" for m = rho S);
-/// variables: read from u, q, qd.
-EmittedCode emit_kernels(const std::string& prefix, int nq, const std::vector<Input>& parameters,
-                         const std::vector<Input>& variables, const std::vector<KernelSpec>& kernels);
+/// An argument array of the kernels, as the shape comments state it: name, length and, optionally, what its
+/// entries are (e.g. {"p", 7, "p = (L, rho, S, I, E, a, J_oh)"}).
+struct Array {
+    std::string name;
+    int size = 0;
+    std::string doc;
+};
+
+/// The caller's names for everything the kernels read: the emitter knows no physics.
+struct Signature {
+    Array parameters;             // read once, by the coefficients kernel
+    std::vector<Array> state;     // read by every other kernel, in argument order after c (e.g. u, q, qd)
+    std::vector<Input> parameter_inputs;  // symbols read from the parameter array ("p[1] * p[2]" may combine)
+    std::vector<Input> state_inputs;      // symbols read from the state arrays
+};
+
+/// Emits `<prefix>_coefficients(p, c)` and `<prefix>_<kernel>(c, state..., out)` for each kernel.
+EmittedCode emit_kernels(const std::string& prefix, const Signature& signature, const std::vector<KernelSpec>& kernels);
 
 /// The C literal for a number: round-trip precision, always a double literal ("2.0", "0.1", "-1e-05").
 std::string c_number(const GiNaC::numeric& x);

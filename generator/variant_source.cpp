@@ -1,9 +1,11 @@
 // Derivation of one variant end to end: energies, Lagrange's equations, the run-time inputs, and the file.
 #include "variant_source.hpp"
 
+#include <array>
 #include <sstream>
 
 #include "emit.hpp"
+#include "interface.hpp"
 #include "energy.hpp"
 #include "lagrange.hpp"
 
@@ -16,6 +18,19 @@ namespace hubbeam::gen {
 using namespace GiNaC;
 
 namespace {
+
+/// "(L, rho, ...)" from a name table.
+template <std::size_t N>
+std::string tuple(const std::array<const char*, N>& names)
+{
+    std::string t;
+    for (const char* n : names) t += (t.empty() ? "(" : ", ") + std::string(n);
+    return t + ")";
+}
+
+/// How generated code reads one entry of p or u.
+std::string read(Param p) { return "p[" + std::to_string(index(p)) + "]"; }
+std::string read(DriveValue u) { return "u[" + std::to_string(index(u)) + "]"; }
 
 std::string range(const std::string& stem, int n, const std::string& suffix = "")
 {
@@ -38,9 +53,11 @@ std::string banner(const VariantKey& key)
       << "// Variant: method=" << to_string(key.method) << " Nx=" << key.nx << " Ny=" << key.ny
       << " order=" << to_string(key.order) << " drive=" << to_string(key.drive);
     if (key.method == Method::bsim) b << " spline_basis=" << to_string(key.spline);
-    b << "\n// q = (" << coords << "), qd = d/dt q; u = (tau, theta_dot, theta_ddot), of which this variant reads "
-      << (torque ? "tau" : "theta_dot, theta_ddot") << ";\n"
-      << "// p = (L, rho, S, I, E, a, J_oh) in SI units. Slope coordinates (FEM, BSIM) are d/dxi = L d/dx.\n"
+    b << "\n// q = (" << coords << "), qd = d/dt q; u = " << tuple(drive_value_names) << ", of which this variant reads "
+      << (torque ? drive_value_names[index(DriveValue::tau)]
+                 : std::string(drive_value_names[index(DriveValue::theta_dot)]) + ", " + drive_value_names[index(DriveValue::theta_ddot)])
+      << ";\n"
+      << "// p = " << tuple(param_names) << " in SI units. Slope coordinates (FEM, BSIM) are d/dxi = L d/dx.\n"
       << "// Derived symbolically from T and U (MODEL.md sections 2-3) by Lagrange's equations of the second kind.\n";
     return b.str();
 }
@@ -62,16 +79,25 @@ std::string variant_source(const VariantKey& key)
     else c.driven.emplace_back(s.theta_dot, s.theta_ddot);
     const Equations eq = lagrange(en.T, en.U, c);
 
-    const std::vector<Input> parameters = {{s.L, "p[0]"},         {s.m, "p[1] * p[2]"}, {s.EI, "p[4] * p[3]"},
-                                           {s.ES, "p[4] * p[2]"}, {s.a, "p[5]"},        {s.J_oh, "p[6]"}};
-    std::vector<Input> variables;
-    if (torque) variables.push_back({s.tau, "u[0]"});
-    else variables.insert(variables.end(), {{s.theta_dot, "u[1]"}, {s.theta_ddot, "u[2]"}});
-    for (std::size_t i = 0; i < s.q.size(); ++i) variables.push_back({s.q[i], "q[" + std::to_string(i) + "]"});
-    for (std::size_t i = 0; i < s.qd.size(); ++i) variables.push_back({s.qd[i], "qd[" + std::to_string(i) + "]"});
-
     const int nq = key.nq();
     const std::string n2 = std::to_string(nq * nq), n1 = std::to_string(nq);
+    Signature sig;
+    sig.parameters = {"p", static_cast<int>(param_count), "p = " + tuple(param_names)};
+    sig.state = {{"u", static_cast<int>(drive_value_count), ""}, {"q", nq, ""}, {"qd", nq, ""}};
+    // m = rho S, EI and ES are formed from p once, in the coefficients kernel.
+    sig.parameter_inputs = {{s.L, read(Param::L)},
+                            {s.m, read(Param::rho) + " * " + read(Param::S)},
+                            {s.EI, read(Param::E) + " * " + read(Param::I)},
+                            {s.ES, read(Param::E) + " * " + read(Param::S)},
+                            {s.a, read(Param::a)},
+                            {s.J_oh, read(Param::J_oh)}};
+    if (torque) sig.state_inputs.push_back({s.tau, read(DriveValue::tau)});
+    else
+        sig.state_inputs.insert(sig.state_inputs.end(), {{s.theta_dot, read(DriveValue::theta_dot)},
+                                                         {s.theta_ddot, read(DriveValue::theta_ddot)}});
+    for (std::size_t i = 0; i < s.q.size(); ++i) sig.state_inputs.push_back({s.q[i], "q[" + std::to_string(i) + "]"});
+    for (std::size_t i = 0; i < s.qd.size(); ++i) sig.state_inputs.push_back({s.qd[i], "qd[" + std::to_string(i) + "]"});
+
     const std::vector<KernelSpec> kernels = {
         {"mass", "M[" + n2 + "]", "row-major; M = d2T/dqd2", eq.M},
         {"forces", "Q[" + n1 + "]", "Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq", eq.Q},
@@ -79,7 +105,7 @@ std::string variant_source(const VariantKey& key)
         {"momentum", "h[1]", "h = dT/dtheta_dot, angular momentum about the hub axis", {eq.momentum}},
     };
     const std::string name = key.name();
-    const EmittedCode code = emit_kernels(name, nq, parameters, variables, kernels);
+    const EmittedCode code = emit_kernels(name, sig, kernels);
 
     std::ostringstream f;
     f << banner(key) << "\n#include \"generated_abi.h\"\n\nnamespace hubbeam::generated {\n\nnamespace {\n"

@@ -14,12 +14,12 @@ inline constexpr std::size_t param_count = 7;
 inline constexpr std::array<const char*, param_count> param_names = {"L", "rho", "S", "I", "E", "a", "J_oh"};
 
 /// Index of each drive value in u: a torque variant reads tau, a prescribed variant theta_dot, theta_ddot.
-enum class Input : std::size_t { tau, theta_dot, theta_ddot };
-inline constexpr std::size_t input_count = 3;
-inline constexpr std::array<const char*, input_count> input_names = {"tau", "theta_dot", "theta_ddot"};
+enum class DriveValue : std::size_t { tau, theta_dot, theta_ddot };
+inline constexpr std::size_t drive_value_count = 3;
+inline constexpr std::array<const char*, drive_value_count> drive_value_names = {"tau", "theta_dot", "theta_ddot"};
 
 constexpr std::size_t index(Param p) { return static_cast<std::size_t>(p); }
-constexpr std::size_t index(Input u) { return static_cast<std::size_t>(u); }
+constexpr std::size_t index(DriveValue u) { return static_cast<std::size_t>(u); }
 
 /// Physical parameters (SI): beam length, density, cross-section, second moment, Young's modulus, hub
 /// radius, hub inertia. The defaults are the beam of Kane, Ryan & Banerjee (docs/model.md section 6).
@@ -45,13 +45,13 @@ struct Parameters {
 struct HubInput {
     double tau = 0.0, theta_dot = 0.0, theta_ddot = 0.0;
 
-    /// u, indexed by Input.
-    std::array<double, input_count> packed() const
+    /// u, indexed by DriveValue.
+    std::array<double, drive_value_count> packed() const
     {
-        std::array<double, input_count> u{};
-        u[index(Input::tau)] = tau;
-        u[index(Input::theta_dot)] = theta_dot;
-        u[index(Input::theta_ddot)] = theta_ddot;
+        std::array<double, drive_value_count> u{};
+        u[index(DriveValue::tau)] = tau;
+        u[index(DriveValue::theta_dot)] = theta_dot;
+        u[index(DriveValue::theta_ddot)] = theta_ddot;
         return u;
     }
 };
