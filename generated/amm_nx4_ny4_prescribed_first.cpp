@@ -4,7 +4,7 @@
 // Variant: method=amm Nx=4 Ny=4 order=first drive=prescribed
 // q = (A1..A4, B1..B4), qd = d/dt q; u = (tau, theta_dot, theta_ddot), of which this variant reads theta_dot, theta_ddot;
 // p = (L, rho, S, I, E, a, J_oh) in SI units. Slope coordinates (FEM, BSIM) are d/dxi = L d/dx.
-// Derived symbolically from T and U (MODEL.md sections 2-3) by Lagrange's equations of the second kind.
+// Derived symbolically from T and U (docs/model.md sections 2-3) by Lagrange's equations of the second kind.
 
 #include "generated_abi.h"
 

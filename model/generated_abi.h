@@ -5,10 +5,10 @@
 namespace hubbeam::generated {
 
 /* out = f(c, u, q, qd). c: the variant's coefficients (from its coefficients kernel, once per parameter set);
- * u = (tau, theta_dot, theta_ddot): the drive, of which a torque variant reads tau and a prescribed variant
- * theta_dot, theta_ddot; q, qd: generalized coordinates and rates of the variant. */
+ * u: the drive, indexed by DriveValue of model/interface.hpp (a torque variant reads tau, a prescribed variant
+ * theta_dot and theta_ddot); q, qd: generalized coordinates and rates of the variant. */
 using Kernel = void (*)(const double* c, const double* u, const double* q, const double* qd, double* out);
-/* c = f(p), p = (L, rho, S, I, E, a, J_oh) in SI units. */
+/* c = f(p), p: the physical parameters in SI units, indexed by Param of model/interface.hpp. */
 using CoefficientsKernel = void (*)(const double* p, double* c);
 
 struct Variant {

@@ -1,4 +1,4 @@
-// MODEL.md section 5 assembled numerically: coefficient matrices by quadrature, then M(q) and Q(q, qd) of
+// docs/model.md section 5 assembled numerically: coefficient matrices by quadrature, then M(q) and Q(q, qd) of
 // Lagrange's equations for orders first and zero, in torque form q = (theta, A, B) or prescribed form q = (A, B).
 #include "assembled.hpp"
 
@@ -58,7 +58,7 @@ BeamMatrices assemble_matrices(const VariantKey& key, const Parameters& p)
         }
     }
 
-    // MODEL.md section 5's integrals in xi: x = L xi, dx = L dxi, Phi' = (1/L) dPhi/dxi, Phi'' = (1/L^2) d2Phi/dxi2.
+    // docs/model.md section 5's integrals in xi: x = L xi, dx = L dxi, Phi' = (1/L) dPhi/dxi, Phi'' = (1/L^2) d2Phi/dxi2.
     const double L = p.L, a = p.a, m = p.rho * p.S, EI = p.E * p.I, ES = p.E * p.S;
     const Eigen::ArrayXd xi = Eigen::Map<const Eigen::ArrayXd>(rule.nodes.data(), nn);
     const VectorXd w = Eigen::Map<const VectorXd>(rule.weights.data(), nn);
@@ -83,7 +83,7 @@ BeamMatrices assemble_matrices(const VariantKey& key, const Parameters& p)
 
 namespace {
 
-/// MODEL.md section 5's M and Q from the constant matrices; `zero` order uses M2 in place of M2 - G.
+/// docs/model.md section 5's M and Q from the constant matrices; `zero` order uses M2 in place of M2 - G.
 class AssembledModel final : public Model {
 public:
     AssembledModel(const VariantKey& key, const Parameters& p)
@@ -159,7 +159,7 @@ public:
         const double theta_dot = torque ? qd[0] : u.theta_dot;
         const ConstVector A(q + o, nx_), B(q + o + nx_, ny_), A_dot(qd + o, nx_), B_dot(qd + o + nx_, ny_);
 
-        // T of MODEL.md section 5, by degree in the flexible rates.
+        // T of docs/model.md section 5, by degree in the flexible rates.
         const double flexible = 0.5 * A_dot.dot(c_.M1.lazyProduct(A_dot)) + 0.5 * B_dot.dot(c_.M2.lazyProduct(B_dot));
         const double coupling = theta_dot * gyroscopic(A, B, A_dot, B_dot);
         const double spin = 0.5 * M11(A, B) * theta_dot * theta_dot;

@@ -25,7 +25,7 @@ struct BeamMatrices {
     Eigen::MatrixXd G;          // Ny x Ny, a C + D: geometric stiffness per unit theta_dot^2
 };
 
-/// MODEL.md section 5's coefficient matrices of a variant (order and drive do not matter); symmetric ones are
+/// docs/model.md section 5's coefficient matrices of a variant (order and drive do not matter); symmetric ones are
 /// exactly symmetric. Throws std::invalid_argument if the variant's DOF counts are invalid for its method.
 BeamMatrices assemble_matrices(const VariantKey& key, const Parameters& p);
 

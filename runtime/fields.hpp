@@ -1,4 +1,4 @@
-// Displacements and stress resultants of the beam from the generalized coordinates (MODEL.md section 5,
+// Displacements and stress resultants of the beam from the generalized coordinates (docs/model.md section 5,
 // "Useful outputs"): at the tip, and along the beam at any abscissa x.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Spin-up and torque profiles of MODEL.md section 6.
+// Spin-up and torque profiles of docs/model.md section 6.
 #include "motion.hpp"
 
 #include <cmath>

@@ -5,6 +5,8 @@
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <set>
 #include <string>
 
 #include "scene.hpp"
@@ -345,4 +347,61 @@ TEST_CASE("validate() re-checks a scene changed after loading", "[scene]")
     s.output.dt_out = 0.01;
     s.solver.stepper = "euler";
     CHECK_THROWS_WITH(validate(s), Catch::Contains("solver.stepper"));
+}
+
+TEST_CASE("README.md documents exactly the scene keys and options of scene_keys()", "[scene]")
+{
+    // The key table in scene.cpp is the one definition; the README's two tables must follow it.
+    std::ifstream in(std::string(HUBBEAM_SOURCE_DIR) + "/README.md");
+    REQUIRE(in);
+    std::set<std::string> documented_keys;
+    std::map<std::string, std::string> documented_options;  // option -> the line that documents it
+    for (std::string line; std::getline(in, line);) {
+        if (line.rfind("| `", 0) != 0) continue;
+        const std::string first = line.substr(3, line.find('`', 3) - 3);
+        if (first.find('.') != std::string::npos) documented_keys.insert(first);
+        if (first.rfind("-", 0) == 0) documented_options[first.substr(0, first.find(' '))] = line;
+    }
+    std::set<std::string> keys;
+    for (const SceneKey& k : scene_keys()) {
+        keys.insert(k.name);
+        if (!k.option) continue;
+        const std::string option = std::string(k.option).substr(0, std::string(k.option).find(','));
+        INFO(option);
+        REQUIRE(documented_options.count(option) == 1);
+        CHECK(documented_options[option].find(std::string("`") + k.name + "`") != std::string::npos);
+        documented_options.erase(option);
+    }
+    CHECK(documented_keys == keys);
+    CHECK(documented_options.empty());
+}
+
+TEST_CASE("overrides set keys before validation; SceneError carries file, key, expected and got", "[scene]")
+{
+    const std::string file = case_path("spinup_omega4.toml");
+    const Scene s = load_scene(file, {{"discretization.method", "fem"}, {"discretization.ny", "8"},
+                                      {"solver.rtol", "1e-6"}, {"output.file", "x.csv"}});
+    CHECK(s.variant.method == Method::fem);
+    CHECK(s.variant.ny == 8);
+    CHECK(s.solver.rtol == 1e-6);
+    CHECK(s.output.file == "x.csv");
+    try {
+        load_scene(file, {{"discretization.ny", "4.5"}});
+        FAIL("a non-integer ny was accepted");
+    } catch (const SceneError& e) {
+        CHECK(e.file == file);
+        CHECK(e.key == "discretization.ny");
+        CHECK(e.expected == "an integer >= 1 (Ny)");
+        CHECK(e.got == "\"4.5\"");
+        CHECK(e.problem() == "expected an integer >= 1 (Ny), got \"4.5\"");
+    }
+    try {
+        load_scene(file, {{"discretization.method", "fem"}, {"discretization.ny", "3"}});
+        FAIL("an odd FEM ny was accepted");
+    } catch (const SceneError& e) {
+        CHECK(e.key == "discretization.ny");
+        CHECK(e.detail == "FEM needs an even ny (a deflection and a slope per node), got 3");
+        CHECK(e.problem() == e.detail);
+        CHECK(std::string(e.what()) == file + ": discretization.ny: " + e.detail);
+    }
 }

@@ -1,4 +1,4 @@
-// AMM: assumed modes of the clamped-free beam (MODEL.md section 4), axial sines and transverse bending
+// AMM: assumed modes of the clamped-free beam (docs/model.md section 4), axial sines and transverse bending
 // modes in the cancellation-free form, as functions of xi = x/L.
 #pragma once
 

@@ -19,10 +19,10 @@ namespace hubbeam {
 enum class Method { amm, fem, bim, bsim };
 enum class Field { axial, transverse };
 /// Construction of BSIM's transverse basis; both span the same space. The axial field always uses the
-/// open-knot basis: the paper's axial basis is in error (MODEL.md section 8) and eq. 41 needs n >= 3.
+/// open-knot basis: the paper's axial basis is in error (docs/model.md section 8) and eq. 41 needs n >= 3.
 enum class SplineBasis { paper, open };
 
-/// Phi_x or Phi_y of MODEL.md section 4 as functions of xi in [0, 1], given piece by piece.
+/// Phi_x or Phi_y of docs/model.md section 4 as functions of xi in [0, 1], given piece by piece.
 class FieldBasis {
 public:
     FieldBasis(Method method, Field field, int count, SplineBasis spline = SplineBasis::paper)

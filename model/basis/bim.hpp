@@ -1,4 +1,4 @@
-// BIM: Bernstein polynomials J_{m,i}(xi) = C(m,i) xi^i (1-xi)^(m-i) (MODEL.md section 4, paper eq. 29).
+// BIM: Bernstein polynomials J_{m,i}(xi) = C(m,i) xi^i (1-xi)^(m-i) (docs/model.md section 4, paper eq. 29).
 #pragma once
 
 #include "common.hpp"

@@ -1,4 +1,4 @@
-// BSIM: cubic B-splines on n uniform intervals of xi (MODEL.md section 4), in two constructions of the
+// BSIM: cubic B-splines on n uniform intervals of xi (docs/model.md section 4), in two constructions of the
 // same spline space: the paper's combination of uniform splines (eq. 41-43) and the clamped open-knot
 // (Cox-de Boor) basis. Each function is returned as its polynomial piece on interval k.
 #pragma once

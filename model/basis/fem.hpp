@@ -1,4 +1,4 @@
-// FEM: Hermite cubic (transverse) and linear (axial) elements on a uniform mesh (MODEL.md section 4),
+// FEM: Hermite cubic (transverse) and linear (axial) elements on a uniform mesh (docs/model.md section 4),
 // root node removed; one polynomial piece per element, in xi = x/L.
 #pragma once
 
