@@ -1,4 +1,4 @@
-// Stage "energy": T and U of MODEL.md sections 2-3 as GiNaC expressions in the generalized coordinates,
+// Stage "energy": T and U of docs/model.md sections 2-3 as GiNaC expressions in the generalized coordinates,
 // rates and physical parameters, for any method (through ShapeIntegrals) and model order.
 #pragma once
 
@@ -11,7 +11,7 @@
 
 namespace hubbeam::gen {
 
-/// Every symbol a variant's equations can contain, named as in MODEL.md and in the emitted code.
+/// Every symbol a variant's equations can contain, named as in docs/model.md and in the emitted code.
 struct Symbols {
     // Physical parameters; m = rho S, EI and ES are formed from p = (L, rho, S, I, E, a, J_oh).
     GiNaC::symbol L{"L"}, m{"m"}, EI{"EI"}, ES{"ES"}, a{"a"}, J_oh{"J_oh"};
@@ -29,7 +29,7 @@ struct Energies {
     GiNaC::ex T, U;
 };
 
-/// |r_dot|^2 of MODEL.md section 2 in terms of field symbols, truncated to the model order (section 3).
+/// |r_dot|^2 of docs/model.md section 2 in terms of field symbols, truncated to the model order (section 3).
 /// Exposed for tests; the fields are X = a + x, u_x1, u_y, u_x2 and their rates.
 struct FieldSymbols {
     GiNaC::symbol X{"X"}, ux1{"u_x1"}, uy{"u_y"}, ux2{"u_x2"}, ux1_dot{"u_x1_dot"}, uy_dot{"u_y_dot"},

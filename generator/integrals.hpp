@@ -14,7 +14,7 @@
 namespace hubbeam::gen {
 
 /// One factor of an integrand: d^deriv phi_i / dxi^deriv of a field, or the coupling function
-/// H_ij(xi) = int_0^xi phi_yi' phi_yj' dxi' (xi units; MODEL.md section 2).
+/// H_ij(xi) = int_0^xi phi_yi' phi_yj' dxi' (xi units; docs/model.md section 2).
 struct Factor {
     enum class Kind { axial, transverse, coupling } kind;
     int i = 0, j = 0;

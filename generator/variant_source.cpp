@@ -58,7 +58,7 @@ std::string banner(const VariantKey& key)
                  : std::string(drive_value_names[index(DriveValue::theta_dot)]) + ", " + drive_value_names[index(DriveValue::theta_ddot)])
       << ";\n"
       << "// p = " << tuple(param_names) << " in SI units. Slope coordinates (FEM, BSIM) are d/dxi = L d/dx.\n"
-      << "// Derived symbolically from T and U (MODEL.md sections 2-3) by Lagrange's equations of the second kind.\n";
+      << "// Derived symbolically from T and U (docs/model.md sections 2-3) by Lagrange's equations of the second kind.\n";
     return b.str();
 }
 
