@@ -1,4 +1,4 @@
-// Shape functions of MODEL.md section 4: the clamped root, the two BSIM constructions spanning one space
+// Shape functions of docs/model.md section 4: the clamped root, the two BSIM constructions spanning one space
 // (paper eq. 41-43), the AMM roots and modes, and the smoothness of the piecewise bases at their breakpoints.
 #include <catch2/catch.hpp>
 
@@ -63,7 +63,7 @@ double fit_residual(const Eigen::MatrixXd& O, const Eigen::MatrixXd& P)
     return (O * c - P).norm() / P.norm();
 }
 
-/// The textbook clamped-free mode cos - cosh + g (sin - sinh) (MODEL.md section 4), accurate for small b.
+/// The textbook clamped-free mode cos - cosh + g (sin - sinh) (docs/model.md section 4), accurate for small b.
 double textbook_mode(double b, double xi)
 {
     const double g = -(std::cos(b) + std::cosh(b)) / (std::sin(b) + std::sinh(b));

@@ -1,4 +1,4 @@
-// Generated kernels against the hand-assembled MODEL.md section 5 at random states (an independent path:
+// Generated kernels against the hand-assembled docs/model.md section 5 at random states (an independent path:
 // symbolic differentiation of the energies vs. the transcribed matrix equations), for every variant in
 // this build; and the mass matrix's symmetry and definiteness.
 #include <catch2/catch.hpp>

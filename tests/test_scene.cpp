@@ -1,4 +1,4 @@
-// Scene files: the paper's four load cases in cases/ parse to the values MODEL.md section 6 states, and bad
+// Scene files: the paper's four load cases in cases/ parse to the values docs/model.md section 6 states, and bad
 // input stops in load_scene() with one line naming the file, the key and what was expected.
 #include <unistd.h>
 
@@ -20,7 +20,7 @@ std::string case_path(const std::string& name)
     return std::string(HUBBEAM_SOURCE_DIR) + "/cases/" + name;
 }
 
-/// Checks the beam of MODEL.md section 6 and the discretization and solver every paper case shares.
+/// Checks the beam of docs/model.md section 6 and the discretization and solver every paper case shares.
 void check_paper_common(const Scene& s)
 {
     CHECK(s.parameters.L == 8.0);
@@ -113,7 +113,7 @@ std::string error_of(const TempDir& dir, const std::string& text)
 
 }  // namespace
 
-TEST_CASE("the load cases of the paper in cases/ parse to MODEL.md section 6", "[scene]")
+TEST_CASE("the load cases of the paper in cases/ parse to docs/model.md section 6", "[scene]")
 {
     SECTION("spin-up, Omega0 = 4")
     {
@@ -376,7 +376,7 @@ TEST_CASE("README.md documents exactly the scene keys and options of scene_keys(
     CHECK(documented_options.empty());
 }
 
-TEST_CASE("overrides set keys before validation; SceneError carries file, key, expected and got", "[scene]")
+TEST_CASE("overrides set keys before validation, and SceneError carries file, key, expected and got", "[scene]")
 {
     const std::string file = case_path("spinup_omega4.toml");
     const Scene s = load_scene(file, {{"discretization.method", "fem"}, {"discretization.ny", "8"},

@@ -1,5 +1,5 @@
 // The generator's stages on their own: the strict printer (golden strings), the kinematics of each model
-// order against MODEL.md section 3, and the shape-function integrals against closed forms.
+// order against docs/model.md section 3, and the shape-function integrals against closed forms.
 #include <catch2/catch.hpp>
 
 #include "emit.hpp"
@@ -22,12 +22,12 @@ TEST_CASE("numbers print as round-trip double literals", "[emit]")
 TEST_CASE("kernels: coefficients hoisted, monomials formed once, one write per output", "[emit]")
 {
     const symbol k("k"), L("L"), x("x"), y("y");
-    const std::vector<Input> params = {{k, "p[0]"}, {L, "p[1]"}};
-    const std::vector<Input> vars = {{x, "q[0]"}, {y, "qd[0]"}};
+    const Signature sig{{"p", 2, "p = (k, L)"}, {{"u", 3, ""}, {"q", 1, ""}, {"qd", 1, ""}}, {{k, "p[0]"}, {L, "p[1]"}},
+                        {{x, "q[0]"}, {y, "qd[0]"}}};
     const std::vector<KernelSpec> kernels = {
         {"f", "out[3]", "test", {k * pow(x, 2) * y + 3 * x - k / pow(L, 2), ex(2), 0}},
         {"g", "out[1]", "test", {k / pow(L, 2) - k * x * x * y}}};
-    const EmittedCode code = emit_kernels("t", 1, params, vars, kernels);
+    const EmittedCode code = emit_kernels("t", sig, kernels);
     CHECK(code.ncoeff == 4);  // deduplicated by text, not up to sign
     CHECK(code.constant("f") == false);
     const std::string expected_f =
@@ -51,9 +51,8 @@ TEST_CASE("kernels: coefficients hoisted, monomials formed once, one write per o
 TEST_CASE("the printer refuses what it cannot print exactly", "[emit]")
 {
     const symbol x("x"), k("k");
-    const std::vector<Input> params = {{k, "p[0]"}};
-    const std::vector<Input> vars = {{x, "q[0]"}};
-    auto emit = [&](const ex& e) { return emit_kernels("t", 1, params, vars, {{"f", "out[1]", "", {e}}}); };
+    const Signature sig{{"p", 1, ""}, {{"q", 1, ""}}, {{k, "p[0]"}}, {{x, "q[0]"}}};
+    auto emit = [&](const ex& e) { return emit_kernels("t", sig, {{"f", "out[1]", "", {e}}}); };
     CHECK_THROWS_AS(emit(sin(x)), EmitError);
     CHECK_THROWS_AS(emit(sqrt(x)), EmitError);
     CHECK_THROWS_AS(emit(1 / x), EmitError);
@@ -61,19 +60,51 @@ TEST_CASE("the printer refuses what it cannot print exactly", "[emit]")
     CHECK_NOTHROW(emit(k * x + 1 / k));
 }
 
-TEST_CASE("|r_dot|^2 per model order matches MODEL.md section 3", "[energy]")
+TEST_CASE("|r_dot|^2 per model order matches docs/model.md section 3", "[energy]")
 {
+    // The reference is derived here, not transcribed: r = Theta(theta) (X + u_x, u_y) (docs/model.md section 2,
+    // paper eqs. 4-5), differentiated in time by GiNaC through the chain rule, d/dt = sum_k qdot_k d/dq_k over
+    // q = (theta, u_x1, u_y, u_x2) with rates (w, u_x1_dot, u_y_dot, u_x2_dot); X = a + x is fixed.
     const FieldSymbols f;
-    const symbol w("w");
-    const ex X = f.X, u1 = f.ux1, u2 = f.ux2, uy = f.uy, u1d = f.ux1_dot, u2d = f.ux2_dot, uyd = f.uy_dot;
-    const ex first = pow(w, 2) * (pow(X, 2) + 2 * X * (u1 + u2) + pow(u1, 2) + pow(uy, 2)) +
-                     2 * w * ((X + u1) * uyd - uy * u1d) + pow(u1d, 2) + pow(uyd, 2);
-    CHECK((velocity_squared(Order::first, f, w) - first).expand().is_zero());
-    CHECK((velocity_squared(Order::zero, f, w) - first.subs(u2 == 0)).expand().is_zero());
-    const ex ux = u1 + u2, uxd = u1d + u2d;
-    const ex full = pow(w, 2) * (pow(X + ux, 2) + pow(uy, 2)) + 2 * w * ((X + ux) * uyd - uy * uxd) + pow(uxd, 2) +
-                    pow(uyd, 2);
-    CHECK((velocity_squared(Order::full, f, w) - full).expand().is_zero());
+    const symbol theta("theta"), w("w");
+    const ex ux = f.ux1 + f.ux2;
+    const ex px = f.X + ux, py = f.uy;
+    const ex c = cos(theta), s = sin(theta);
+    const ex r[2] = {c * px - s * py, s * px + c * py};
+    const std::pair<symbol, ex> rates[] = {{theta, w}, {f.ux1, f.ux1_dot}, {f.uy, f.uy_dot}, {f.ux2, f.ux2_dot}};
+    ex r_dot[2];
+    for (int i = 0; i < 2; ++i) {
+        r_dot[i] = 0;
+        for (const auto& [coordinate, rate] : rates) r_dot[i] += r[i].diff(coordinate) * rate;
+    }
+    // |r_dot|^2 with cos^2 theta + sin^2 theta = 1 applied: what remains must be free of theta.
+    const ex v2_full = (pow(r_dot[0], 2) + pow(r_dot[1], 2))
+                           .expand()
+                           .subs(pow(s, 2) == 1 - pow(c, 2), subs_options::algebraic)
+                           .expand();
+    REQUIRE_FALSE(v2_full.has(theta));
+    INFO("|r_dot|^2 = " << v2_full);
+
+    // Order `first` keeps degrees 0..2 in the deformation, u_x1, u_y and their rates counting 1, u_x2 and its
+    // rate 2 (docs/model.md section 3).
+    const symbol eps("eps");
+    const ex scaled = v2_full
+                          .subs(lst{f.ux1 == eps * f.ux1, f.uy == eps * f.uy, f.ux1_dot == eps * f.ux1_dot,
+                                    f.uy_dot == eps * f.uy_dot, f.ux2 == pow(eps, 2) * f.ux2,
+                                    f.ux2_dot == pow(eps, 2) * f.ux2_dot})
+                          .expand();
+    ex v2_first = 0;
+    for (int k = 0; k <= 2; ++k) v2_first += scaled.coeff(eps, k);
+    // Order `zero`: `first` without the foreshortening.
+    const ex v2_zero = v2_first.subs(lst{f.ux2 == 0, f.ux2_dot == 0});
+    // The truncation drops something (the terms section 3 lists), and the foreshortening reaches `first` only
+    // through the centrifugal term 2 w^2 X u_x2.
+    REQUIRE_FALSE((v2_full - v2_first).expand().is_zero());
+    CHECK((v2_first - v2_zero - 2 * pow(w, 2) * f.X * f.ux2).expand().is_zero());
+
+    CHECK((velocity_squared(Order::full, f, w) - v2_full).expand().is_zero());
+    CHECK((velocity_squared(Order::first, f, w) - v2_first).expand().is_zero());
+    CHECK((velocity_squared(Order::zero, f, w) - v2_zero).expand().is_zero());
 }
 
 TEST_CASE("exact integrals equal closed forms", "[integrals]")
