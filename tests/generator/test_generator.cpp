@@ -10,6 +10,16 @@ using namespace GiNaC;
 using namespace hubbeam;
 using namespace hubbeam::gen;
 
+namespace {
+
+/// The runtime's argument layout (c, u, q, qd) around the test's inputs, one entry each.
+Signature signature(const std::vector<Input>& params, const std::vector<Input>& vars)
+{
+    return {{"p", static_cast<int>(params.size()), ""}, {{"u", 1, ""}, {"q", 1, ""}, {"qd", 1, ""}}, params, vars};
+}
+
+}  // namespace
+
 TEST_CASE("numbers print as round-trip double literals", "[emit]")
 {
     CHECK(c_number(numeric(2)) == "2.0");
@@ -27,7 +37,7 @@ TEST_CASE("kernels: coefficients hoisted, monomials formed once, one write per o
     const std::vector<KernelSpec> kernels = {
         {"f", "out[3]", "test", {k * pow(x, 2) * y + 3 * x - k / pow(L, 2), ex(2), 0}},
         {"g", "out[1]", "test", {k / pow(L, 2) - k * x * x * y}}};
-    const EmittedCode code = emit_kernels("t", 1, params, vars, kernels);
+    const EmittedCode code = emit_kernels("t", signature(params, vars), kernels);
     CHECK(code.ncoeff == 4);  // deduplicated by text, not up to sign
     CHECK(code.constant("f") == false);
     const std::string expected_f =
@@ -53,7 +63,7 @@ TEST_CASE("the printer refuses what it cannot print exactly", "[emit]")
     const symbol x("x"), k("k");
     const std::vector<Input> params = {{k, "p[0]"}};
     const std::vector<Input> vars = {{x, "q[0]"}};
-    auto emit = [&](const ex& e) { return emit_kernels("t", 1, params, vars, {{"f", "out[1]", "", {e}}}); };
+    auto emit = [&](const ex& e) { return emit_kernels("t", signature(params, vars), {{"f", "out[1]", "", {e}}}); };
     CHECK_THROWS_AS(emit(sin(x)), EmitError);
     CHECK_THROWS_AS(emit(sqrt(x)), EmitError);
     CHECK_THROWS_AS(emit(1 / x), EmitError);
