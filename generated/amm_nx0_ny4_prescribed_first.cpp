@@ -5,6 +5,8 @@
 // q = (B1..B4), qd = d/dt q; u = (tau, theta_dot, theta_ddot), of which this variant reads theta_dot, theta_ddot;
 // p = (L, rho, S, I, E, a, J_oh) in SI units. Slope coordinates (FEM, BSIM) are d/dxi = L d/dx.
 // Derived symbolically from T and U (docs/model.md sections 2-3) by Lagrange's equations of the second kind.
+// For implicit integrators, derivatives of the same M and Q: forces_q = dQ/dq, forces_qd = dQ/dqd, forces_u =
+// dQ/du; M is constant, so there is no mass_q_product.
 
 #include "generated_abi.h"
 
@@ -12,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[62]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[66]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void amm_nx0_ny4_prescribed_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -82,9 +84,13 @@ void amm_nx0_ny4_prescribed_first_coefficients(const double* p, double* c)
     c[59] = -3.7801094160643145*m*a - 0.33881576952304443*L*m;
     c[60] = 7.286769224587888*m*a + 5.823702223235339*L*m;
     c[61] = -16.676579566391283*m*a - 6.548544128042627*L*m;
+    c[62] = -3.1417563799885007*m*a - 0.3866727482165102*L*m;
+    c[63] = -17.294285387122414*m*a - 10.956449728152158*L*m;
+    c[64] = -49.90422661633818*m*a - 33.71903975972198*L*m;
+    c[65] = -102.91821015122056*m*a - 70.11077665782084*L*m;
 }
 
-/* mass:(c[62],u[3],q[4],qd[4])->(M[16]) row-major; M = d2T/dqd2 */
+/* mass:(c[66],u[3],q[4],qd[4])->(M[16]) row-major; M = d2T/dqd2 */
 void amm_nx0_ny4_prescribed_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -108,7 +114,7 @@ void amm_nx0_ny4_prescribed_first_mass(const double* c, const double* u, const d
     out[15] = c[8];
 }
 
-/* forces:(c[62],u[3],q[4],qd[4])->(Q[4]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[66],u[3],q[4],qd[4])->(Q[4]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void amm_nx0_ny4_prescribed_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)qd;
@@ -129,7 +135,7 @@ void amm_nx0_ny4_prescribed_first_forces(const double* c, const double* u, const
     out[3] = c[30]*theta_ddot + c[13]*B1 + c[21]*B2 + c[27]*B3 + c[31]*B4 + c[17]*theta_dotsq_B1 + c[24]*theta_dotsq_B2 + c[29]*theta_dotsq_B3 + c[32]*theta_dotsq_B4;
 }
 
-/* energy:(c[62],u[3],q[4],qd[4])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[66],u[3],q[4],qd[4])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void amm_nx0_ny4_prescribed_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -186,7 +192,7 @@ void amm_nx0_ny4_prescribed_first_energy(const double* c, const double* u, const
     out[3] = c[45]*B1sq + c[46]*B1_B2 + c[47]*B1_B3 + c[48]*B1_B4 + c[49]*B2sq + c[50]*B2_B3 + c[51]*B2_B4 + c[52]*B3sq + c[53]*B3_B4 + c[54]*B4sq;
 }
 
-/* momentum:(c[62],u[3],q[4],qd[4])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[66],u[3],q[4],qd[4])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void amm_nx0_ny4_prescribed_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -215,9 +221,87 @@ void amm_nx0_ny4_prescribed_first_momentum(const double* c, const double* u, con
     out[0] = c[55]*theta_dot + c[36]*B1_dot + c[37]*B2_dot + c[38]*B3_dot + c[39]*B4_dot + c[14]*theta_dot_B1sq + c[56]*theta_dot_B1_B2 + c[57]*theta_dot_B1_B3 + c[58]*theta_dot_B1_B4 + c[22]*theta_dot_B2sq + c[59]*theta_dot_B2_B3 + c[60]*theta_dot_B2_B4 + c[28]*theta_dot_B3sq + c[61]*theta_dot_B3_B4 + c[32]*theta_dot_B4sq;
 }
 
+/* forces_q:(c[66],u[3],q[4],qd[4])->(dQdq[16]) row-major; out[i*4+k] = dQ_i/dq_k */
+void amm_nx0_ny4_prescribed_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)q;
+    (void)qd;
+    const double theta_dot = u[1];
+    const double theta_dotsq = theta_dot*theta_dot;
+    out[0] = c[10] + c[14]*theta_dotsq;
+    out[1] = c[11] + c[15]*theta_dotsq;
+    out[2] = c[12] + c[16]*theta_dotsq;
+    out[3] = c[13] + c[17]*theta_dotsq;
+    out[4] = c[11] + c[15]*theta_dotsq;
+    out[5] = c[19] + c[22]*theta_dotsq;
+    out[6] = c[20] + c[23]*theta_dotsq;
+    out[7] = c[21] + c[24]*theta_dotsq;
+    out[8] = c[12] + c[16]*theta_dotsq;
+    out[9] = c[20] + c[23]*theta_dotsq;
+    out[10] = c[26] + c[28]*theta_dotsq;
+    out[11] = c[27] + c[29]*theta_dotsq;
+    out[12] = c[13] + c[17]*theta_dotsq;
+    out[13] = c[21] + c[24]*theta_dotsq;
+    out[14] = c[27] + c[29]*theta_dotsq;
+    out[15] = c[31] + c[32]*theta_dotsq;
+}
+
+/* forces_qd:(c[66],u[3],q[4],qd[4])->(dQdqd[16]) row-major; out[i*4+k] = dQ_i/dqd_k */
+void amm_nx0_ny4_prescribed_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)c;
+    (void)u;
+    (void)q;
+    (void)qd;
+    out[0] = 0.0;
+    out[1] = 0.0;
+    out[2] = 0.0;
+    out[3] = 0.0;
+    out[4] = 0.0;
+    out[5] = 0.0;
+    out[6] = 0.0;
+    out[7] = 0.0;
+    out[8] = 0.0;
+    out[9] = 0.0;
+    out[10] = 0.0;
+    out[11] = 0.0;
+    out[12] = 0.0;
+    out[13] = 0.0;
+    out[14] = 0.0;
+    out[15] = 0.0;
+}
+
+/* forces_u:(c[66],u[3],q[4],qd[4])->(dQdu[12]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
+void amm_nx0_ny4_prescribed_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)qd;
+    const double theta_dot = u[1];
+    const double B1 = q[0];
+    const double B2 = q[1];
+    const double B3 = q[2];
+    const double B4 = q[3];
+    const double theta_dot_B1 = theta_dot*B1;
+    const double theta_dot_B2 = theta_dot*B2;
+    const double theta_dot_B3 = theta_dot*B3;
+    const double theta_dot_B4 = theta_dot*B4;
+    out[0] = 0.0;
+    out[1] = c[62]*theta_dot_B1 + c[56]*theta_dot_B2 + c[57]*theta_dot_B3 + c[58]*theta_dot_B4;
+    out[2] = c[9];
+    out[3] = 0.0;
+    out[4] = c[56]*theta_dot_B1 + c[63]*theta_dot_B2 + c[59]*theta_dot_B3 + c[60]*theta_dot_B4;
+    out[5] = c[18];
+    out[6] = 0.0;
+    out[7] = c[57]*theta_dot_B1 + c[59]*theta_dot_B2 + c[64]*theta_dot_B3 + c[61]*theta_dot_B4;
+    out[8] = c[25];
+    out[9] = 0.0;
+    out[10] = c[58]*theta_dot_B1 + c[60]*theta_dot_B2 + c[61]*theta_dot_B3 + c[65]*theta_dot_B4;
+    out[11] = c[30];
+}
+
 }  // namespace
 
-extern const Variant amm_nx0_ny4_prescribed_first = {"amm_nx0_ny4_prescribed_first", 4, 62, true, amm_nx0_ny4_prescribed_first_coefficients,
-    amm_nx0_ny4_prescribed_first_mass, amm_nx0_ny4_prescribed_first_forces, amm_nx0_ny4_prescribed_first_energy, amm_nx0_ny4_prescribed_first_momentum};
+extern const Variant amm_nx0_ny4_prescribed_first = {"amm_nx0_ny4_prescribed_first", 4, 66, true, amm_nx0_ny4_prescribed_first_coefficients,
+    amm_nx0_ny4_prescribed_first_mass, amm_nx0_ny4_prescribed_first_forces, amm_nx0_ny4_prescribed_first_energy, amm_nx0_ny4_prescribed_first_momentum,
+    amm_nx0_ny4_prescribed_first_forces_q, amm_nx0_ny4_prescribed_first_forces_qd, nullptr, amm_nx0_ny4_prescribed_first_forces_u};
 
 }  // namespace hubbeam::generated

@@ -5,6 +5,8 @@
 // q = (B1..B4), qd = d/dt q; u = (tau, theta_dot, theta_ddot), of which this variant reads theta_dot, theta_ddot;
 // p = (L, rho, S, I, E, a, J_oh) in SI units. Slope coordinates (FEM, BSIM) are d/dxi = L d/dx.
 // Derived symbolically from T and U (docs/model.md sections 2-3) by Lagrange's equations of the second kind.
+// For implicit integrators, derivatives of the same M and Q: forces_q = dQ/dq, forces_qd = dQ/dqd, forces_u =
+// dQ/du; M is constant, so there is no mass_q_product.
 
 #include "generated_abi.h"
 
@@ -12,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[48]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[51]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void amm_nx0_ny4_prescribed_zero_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -68,9 +70,12 @@ void amm_nx0_ny4_prescribed_zero_coefficients(const double* p, double* c)
     c[45] = -3.0270924655795284e-16*L*m;
     c[46] = -2.246466901389965e-16*L*m;
     c[47] = -5.78096598369271e-16*L*m;
+    c[48] = 1.9999999999999998*L*m;
+    c[49] = 2.0*L*m;
+    c[50] = 2.000000000000001*L*m;
 }
 
-/* mass:(c[48],u[3],q[4],qd[4])->(M[16]) row-major; M = d2T/dqd2 */
+/* mass:(c[51],u[3],q[4],qd[4])->(M[16]) row-major; M = d2T/dqd2 */
 void amm_nx0_ny4_prescribed_zero_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -94,7 +99,7 @@ void amm_nx0_ny4_prescribed_zero_mass(const double* c, const double* u, const do
     out[15] = c[8];
 }
 
-/* forces:(c[48],u[3],q[4],qd[4])->(Q[4]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[51],u[3],q[4],qd[4])->(Q[4]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void amm_nx0_ny4_prescribed_zero_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)qd;
@@ -115,7 +120,7 @@ void amm_nx0_ny4_prescribed_zero_forces(const double* c, const double* u, const 
     out[3] = c[21]*theta_ddot + c[13]*B1 + c[17]*B2 + c[20]*B3 + c[22]*B4 + c[3]*theta_dotsq_B1 + c[6]*theta_dotsq_B2 + c[7]*theta_dotsq_B3 + c[8]*theta_dotsq_B4;
 }
 
-/* energy:(c[48],u[3],q[4],qd[4])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[51],u[3],q[4],qd[4])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void amm_nx0_ny4_prescribed_zero_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -172,7 +177,7 @@ void amm_nx0_ny4_prescribed_zero_energy(const double* c, const double* u, const 
     out[3] = c[31]*B1sq + c[32]*B1_B2 + c[33]*B1_B3 + c[34]*B1_B4 + c[35]*B2sq + c[36]*B2_B3 + c[37]*B2_B4 + c[38]*B3sq + c[39]*B3_B4 + c[40]*B4sq;
 }
 
-/* momentum:(c[48],u[3],q[4],qd[4])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[51],u[3],q[4],qd[4])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void amm_nx0_ny4_prescribed_zero_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -201,9 +206,87 @@ void amm_nx0_ny4_prescribed_zero_momentum(const double* c, const double* u, cons
     out[0] = c[41]*theta_dot + c[26]*B1_dot + c[27]*B2_dot + c[28]*B3_dot + c[29]*B4_dot + c[0]*theta_dot_B1sq + c[42]*theta_dot_B1_B2 + c[43]*theta_dot_B1_B3 + c[44]*theta_dot_B1_B4 + c[4]*theta_dot_B2sq + c[45]*theta_dot_B2_B3 + c[46]*theta_dot_B2_B4 + c[4]*theta_dot_B3sq + c[47]*theta_dot_B3_B4 + c[8]*theta_dot_B4sq;
 }
 
+/* forces_q:(c[51],u[3],q[4],qd[4])->(dQdq[16]) row-major; out[i*4+k] = dQ_i/dq_k */
+void amm_nx0_ny4_prescribed_zero_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)q;
+    (void)qd;
+    const double theta_dot = u[1];
+    const double theta_dotsq = theta_dot*theta_dot;
+    out[0] = c[10] + c[0]*theta_dotsq;
+    out[1] = c[11] + c[1]*theta_dotsq;
+    out[2] = c[12] + c[2]*theta_dotsq;
+    out[3] = c[13] + c[3]*theta_dotsq;
+    out[4] = c[11] + c[1]*theta_dotsq;
+    out[5] = c[15] + c[4]*theta_dotsq;
+    out[6] = c[16] + c[5]*theta_dotsq;
+    out[7] = c[17] + c[6]*theta_dotsq;
+    out[8] = c[12] + c[2]*theta_dotsq;
+    out[9] = c[16] + c[5]*theta_dotsq;
+    out[10] = c[19] + c[4]*theta_dotsq;
+    out[11] = c[20] + c[7]*theta_dotsq;
+    out[12] = c[13] + c[3]*theta_dotsq;
+    out[13] = c[17] + c[6]*theta_dotsq;
+    out[14] = c[20] + c[7]*theta_dotsq;
+    out[15] = c[22] + c[8]*theta_dotsq;
+}
+
+/* forces_qd:(c[51],u[3],q[4],qd[4])->(dQdqd[16]) row-major; out[i*4+k] = dQ_i/dqd_k */
+void amm_nx0_ny4_prescribed_zero_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)c;
+    (void)u;
+    (void)q;
+    (void)qd;
+    out[0] = 0.0;
+    out[1] = 0.0;
+    out[2] = 0.0;
+    out[3] = 0.0;
+    out[4] = 0.0;
+    out[5] = 0.0;
+    out[6] = 0.0;
+    out[7] = 0.0;
+    out[8] = 0.0;
+    out[9] = 0.0;
+    out[10] = 0.0;
+    out[11] = 0.0;
+    out[12] = 0.0;
+    out[13] = 0.0;
+    out[14] = 0.0;
+    out[15] = 0.0;
+}
+
+/* forces_u:(c[51],u[3],q[4],qd[4])->(dQdu[12]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
+void amm_nx0_ny4_prescribed_zero_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)qd;
+    const double theta_dot = u[1];
+    const double B1 = q[0];
+    const double B2 = q[1];
+    const double B3 = q[2];
+    const double B4 = q[3];
+    const double theta_dot_B1 = theta_dot*B1;
+    const double theta_dot_B2 = theta_dot*B2;
+    const double theta_dot_B3 = theta_dot*B3;
+    const double theta_dot_B4 = theta_dot*B4;
+    out[0] = 0.0;
+    out[1] = c[48]*theta_dot_B1 + c[42]*theta_dot_B2 + c[43]*theta_dot_B3 + c[44]*theta_dot_B4;
+    out[2] = c[9];
+    out[3] = 0.0;
+    out[4] = c[42]*theta_dot_B1 + c[49]*theta_dot_B2 + c[45]*theta_dot_B3 + c[46]*theta_dot_B4;
+    out[5] = c[14];
+    out[6] = 0.0;
+    out[7] = c[43]*theta_dot_B1 + c[45]*theta_dot_B2 + c[49]*theta_dot_B3 + c[47]*theta_dot_B4;
+    out[8] = c[18];
+    out[9] = 0.0;
+    out[10] = c[44]*theta_dot_B1 + c[46]*theta_dot_B2 + c[47]*theta_dot_B3 + c[50]*theta_dot_B4;
+    out[11] = c[21];
+}
+
 }  // namespace
 
-extern const Variant amm_nx0_ny4_prescribed_zero = {"amm_nx0_ny4_prescribed_zero", 4, 48, true, amm_nx0_ny4_prescribed_zero_coefficients,
-    amm_nx0_ny4_prescribed_zero_mass, amm_nx0_ny4_prescribed_zero_forces, amm_nx0_ny4_prescribed_zero_energy, amm_nx0_ny4_prescribed_zero_momentum};
+extern const Variant amm_nx0_ny4_prescribed_zero = {"amm_nx0_ny4_prescribed_zero", 4, 51, true, amm_nx0_ny4_prescribed_zero_coefficients,
+    amm_nx0_ny4_prescribed_zero_mass, amm_nx0_ny4_prescribed_zero_forces, amm_nx0_ny4_prescribed_zero_energy, amm_nx0_ny4_prescribed_zero_momentum,
+    amm_nx0_ny4_prescribed_zero_forces_q, amm_nx0_ny4_prescribed_zero_forces_qd, nullptr, amm_nx0_ny4_prescribed_zero_forces_u};
 
 }  // namespace hubbeam::generated

@@ -5,6 +5,8 @@
 // q = (theta, B1..B4), qd = d/dt q; u = (tau, theta_dot, theta_ddot), of which this variant reads tau;
 // p = (L, rho, S, I, E, a, J_oh) in SI units. Slope coordinates (FEM, BSIM) are d/dxi = L d/dx.
 // Derived symbolically from T and U (docs/model.md sections 2-3) by Lagrange's equations of the second kind.
+// For implicit integrators, derivatives of the same M and Q: forces_q = dQ/dq, forces_qd = dQ/dqd, forces_u =
+// dQ/du, mass_q_product = (dM/dq) v.
 
 #include "generated_abi.h"
 
@@ -12,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[68]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[72]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void amm_nx0_ny4_torque_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -88,9 +90,13 @@ void amm_nx0_ny4_torque_first_coefficients(const double* p, double* c)
     c[65] = 1903.2731331957266*EI/(L*L*L);
     c[66] = 2.0398863447420677e-12*EI/(L*L*L);
     c[67] = 7308.636652559391*EI/(L*L*L);
+    c[68] = -3.1417563799885007*m*a - 0.3866727482165102*L*m;
+    c[69] = -17.294285387122414*m*a - 10.956449728152158*L*m;
+    c[70] = -49.90422661633818*m*a - 33.71903975972198*L*m;
+    c[71] = -102.91821015122056*m*a - 70.11077665782084*L*m;
 }
 
-/* mass:(c[68],u[3],q[5],qd[5])->(M[25]) row-major; M = d2T/dqd2 */
+/* mass:(c[72],u[3],q[5],qd[5])->(M[25]) row-major; M = d2T/dqd2 */
 void amm_nx0_ny4_torque_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -136,7 +142,7 @@ void amm_nx0_ny4_torque_first_mass(const double* c, const double* u, const doubl
     out[24] = c[23];
 }
 
-/* forces:(c[68],u[3],q[5],qd[5])->(Q[5]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[72],u[3],q[5],qd[5])->(Q[5]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void amm_nx0_ny4_torque_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
@@ -180,7 +186,7 @@ void amm_nx0_ny4_torque_first_forces(const double* c, const double* u, const dou
     out[4] = c[37]*B1 + c[43]*B2 + c[47]*B3 + c[49]*B4 + c[40]*B1_theta_dotsq + c[45]*B2_theta_dotsq + c[48]*B3_theta_dotsq + c[10]*B4_theta_dotsq;
 }
 
-/* energy:(c[68],u[3],q[5],qd[5])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[72],u[3],q[5],qd[5])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void amm_nx0_ny4_torque_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -244,7 +250,7 @@ void amm_nx0_ny4_torque_first_energy(const double* c, const double* u, const dou
     out[3] = c[58]*B1sq + c[59]*B1_B2 + c[60]*B1_B3 + c[61]*B1_B4 + c[62]*B2sq + c[63]*B2_B3 + c[64]*B2_B4 + c[65]*B3sq + c[66]*B3_B4 + c[67]*B4sq;
 }
 
-/* momentum:(c[68],u[3],q[5],qd[5])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[72],u[3],q[5],qd[5])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void amm_nx0_ny4_torque_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -280,9 +286,176 @@ void amm_nx0_ny4_torque_first_momentum(const double* c, const double* u, const d
     out[0] = c[0]*theta_dot + c[11]*B1_dot + c[12]*B2_dot + c[13]*B3_dot + c[14]*B4_dot + c[1]*B1sq_theta_dot + c[2]*B1_B2_theta_dot + c[3]*B1_B3_theta_dot + c[4]*B1_B4_theta_dot + c[5]*B2sq_theta_dot + c[6]*B2_B3_theta_dot + c[7]*B2_B4_theta_dot + c[8]*B3sq_theta_dot + c[9]*B3_B4_theta_dot + c[10]*B4sq_theta_dot;
 }
 
+/* forces_q:(c[72],u[3],q[5],qd[5])->(dQdq[25]) row-major; out[i*5+k] = dQ_i/dq_k */
+void amm_nx0_ny4_torque_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)q;
+    const double theta_dot = qd[0];
+    const double B1_dot = qd[1];
+    const double B2_dot = qd[2];
+    const double B3_dot = qd[3];
+    const double B4_dot = qd[4];
+    const double theta_dotsq = theta_dot*theta_dot;
+    const double theta_dot_B1_dot = theta_dot*B1_dot;
+    const double theta_dot_B2_dot = theta_dot*B2_dot;
+    const double theta_dot_B3_dot = theta_dot*B3_dot;
+    const double theta_dot_B4_dot = theta_dot*B4_dot;
+    out[0] = 0.0;
+    out[1] = c[24]*theta_dot_B1_dot + c[25]*theta_dot_B2_dot + c[26]*theta_dot_B3_dot + c[27]*theta_dot_B4_dot;
+    out[2] = c[25]*theta_dot_B1_dot + c[28]*theta_dot_B2_dot + c[29]*theta_dot_B3_dot + c[30]*theta_dot_B4_dot;
+    out[3] = c[26]*theta_dot_B1_dot + c[29]*theta_dot_B2_dot + c[31]*theta_dot_B3_dot + c[32]*theta_dot_B4_dot;
+    out[4] = c[27]*theta_dot_B1_dot + c[30]*theta_dot_B2_dot + c[32]*theta_dot_B3_dot + c[33]*theta_dot_B4_dot;
+    out[5] = 0.0;
+    out[6] = c[34] + c[1]*theta_dotsq;
+    out[7] = c[35] + c[38]*theta_dotsq;
+    out[8] = c[36] + c[39]*theta_dotsq;
+    out[9] = c[37] + c[40]*theta_dotsq;
+    out[10] = 0.0;
+    out[11] = c[35] + c[38]*theta_dotsq;
+    out[12] = c[41] + c[5]*theta_dotsq;
+    out[13] = c[42] + c[44]*theta_dotsq;
+    out[14] = c[43] + c[45]*theta_dotsq;
+    out[15] = 0.0;
+    out[16] = c[36] + c[39]*theta_dotsq;
+    out[17] = c[42] + c[44]*theta_dotsq;
+    out[18] = c[46] + c[8]*theta_dotsq;
+    out[19] = c[47] + c[48]*theta_dotsq;
+    out[20] = 0.0;
+    out[21] = c[37] + c[40]*theta_dotsq;
+    out[22] = c[43] + c[45]*theta_dotsq;
+    out[23] = c[47] + c[48]*theta_dotsq;
+    out[24] = c[49] + c[10]*theta_dotsq;
+}
+
+/* forces_qd:(c[72],u[3],q[5],qd[5])->(dQdqd[25]) row-major; out[i*5+k] = dQ_i/dqd_k */
+void amm_nx0_ny4_torque_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    const double B1 = q[1];
+    const double B2 = q[2];
+    const double B3 = q[3];
+    const double B4 = q[4];
+    const double theta_dot = qd[0];
+    const double B1_dot = qd[1];
+    const double B2_dot = qd[2];
+    const double B3_dot = qd[3];
+    const double B4_dot = qd[4];
+    const double B1_theta_dot = B1*theta_dot;
+    const double B1_B1_dot = B1*B1_dot;
+    const double B1_B2_dot = B1*B2_dot;
+    const double B1_B3_dot = B1*B3_dot;
+    const double B1_B4_dot = B1*B4_dot;
+    const double B2_theta_dot = B2*theta_dot;
+    const double B2_B1_dot = B2*B1_dot;
+    const double B2_B2_dot = B2*B2_dot;
+    const double B2_B3_dot = B2*B3_dot;
+    const double B2_B4_dot = B2*B4_dot;
+    const double B3_theta_dot = B3*theta_dot;
+    const double B3_B1_dot = B3*B1_dot;
+    const double B3_B2_dot = B3*B2_dot;
+    const double B3_B3_dot = B3*B3_dot;
+    const double B3_B4_dot = B3*B4_dot;
+    const double B4_theta_dot = B4*theta_dot;
+    const double B4_B1_dot = B4*B1_dot;
+    const double B4_B2_dot = B4*B2_dot;
+    const double B4_B3_dot = B4*B3_dot;
+    const double B4_B4_dot = B4*B4_dot;
+    out[0] = c[24]*B1_B1_dot + c[25]*B1_B2_dot + c[26]*B1_B3_dot + c[27]*B1_B4_dot + c[25]*B2_B1_dot + c[28]*B2_B2_dot + c[29]*B2_B3_dot + c[30]*B2_B4_dot + c[26]*B3_B1_dot + c[29]*B3_B2_dot + c[31]*B3_B3_dot + c[32]*B3_B4_dot + c[27]*B4_B1_dot + c[30]*B4_B2_dot + c[32]*B4_B3_dot + c[33]*B4_B4_dot;
+    out[1] = c[24]*B1_theta_dot + c[25]*B2_theta_dot + c[26]*B3_theta_dot + c[27]*B4_theta_dot;
+    out[2] = c[25]*B1_theta_dot + c[28]*B2_theta_dot + c[29]*B3_theta_dot + c[30]*B4_theta_dot;
+    out[3] = c[26]*B1_theta_dot + c[29]*B2_theta_dot + c[31]*B3_theta_dot + c[32]*B4_theta_dot;
+    out[4] = c[27]*B1_theta_dot + c[30]*B2_theta_dot + c[32]*B3_theta_dot + c[33]*B4_theta_dot;
+    out[5] = c[68]*B1_theta_dot + c[2]*B2_theta_dot + c[3]*B3_theta_dot + c[4]*B4_theta_dot;
+    out[6] = 0.0;
+    out[7] = 0.0;
+    out[8] = 0.0;
+    out[9] = 0.0;
+    out[10] = c[2]*B1_theta_dot + c[69]*B2_theta_dot + c[6]*B3_theta_dot + c[7]*B4_theta_dot;
+    out[11] = 0.0;
+    out[12] = 0.0;
+    out[13] = 0.0;
+    out[14] = 0.0;
+    out[15] = c[3]*B1_theta_dot + c[6]*B2_theta_dot + c[70]*B3_theta_dot + c[9]*B4_theta_dot;
+    out[16] = 0.0;
+    out[17] = 0.0;
+    out[18] = 0.0;
+    out[19] = 0.0;
+    out[20] = c[4]*B1_theta_dot + c[7]*B2_theta_dot + c[9]*B3_theta_dot + c[71]*B4_theta_dot;
+    out[21] = 0.0;
+    out[22] = 0.0;
+    out[23] = 0.0;
+    out[24] = 0.0;
+}
+
+/* forces_u:(c[72],u[3],q[5],qd[5])->(dQdu[15]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
+void amm_nx0_ny4_torque_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)c;
+    (void)u;
+    (void)q;
+    (void)qd;
+    out[0] = 1.0;
+    out[1] = 0.0;
+    out[2] = 0.0;
+    out[3] = 0.0;
+    out[4] = 0.0;
+    out[5] = 0.0;
+    out[6] = 0.0;
+    out[7] = 0.0;
+    out[8] = 0.0;
+    out[9] = 0.0;
+    out[10] = 0.0;
+    out[11] = 0.0;
+    out[12] = 0.0;
+    out[13] = 0.0;
+    out[14] = 0.0;
+}
+
+/* mass_q_product:(c[72],u[3],q[5],qd[5])->(dMv[25]) row-major; v in the qd slot; out[i*5+k] = sum_j dM_ij/dq_k v_j */
+void amm_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    const double B1 = q[1];
+    const double B2 = q[2];
+    const double B3 = q[3];
+    const double B4 = q[4];
+    const double theta_dot = qd[0];
+    const double B1_theta_dot = B1*theta_dot;
+    const double B2_theta_dot = B2*theta_dot;
+    const double B3_theta_dot = B3*theta_dot;
+    const double B4_theta_dot = B4*theta_dot;
+    out[0] = 0.0;
+    out[1] = c[68]*B1_theta_dot + c[2]*B2_theta_dot + c[3]*B3_theta_dot + c[4]*B4_theta_dot;
+    out[2] = c[2]*B1_theta_dot + c[69]*B2_theta_dot + c[6]*B3_theta_dot + c[7]*B4_theta_dot;
+    out[3] = c[3]*B1_theta_dot + c[6]*B2_theta_dot + c[70]*B3_theta_dot + c[9]*B4_theta_dot;
+    out[4] = c[4]*B1_theta_dot + c[7]*B2_theta_dot + c[9]*B3_theta_dot + c[71]*B4_theta_dot;
+    out[5] = 0.0;
+    out[6] = 0.0;
+    out[7] = 0.0;
+    out[8] = 0.0;
+    out[9] = 0.0;
+    out[10] = 0.0;
+    out[11] = 0.0;
+    out[12] = 0.0;
+    out[13] = 0.0;
+    out[14] = 0.0;
+    out[15] = 0.0;
+    out[16] = 0.0;
+    out[17] = 0.0;
+    out[18] = 0.0;
+    out[19] = 0.0;
+    out[20] = 0.0;
+    out[21] = 0.0;
+    out[22] = 0.0;
+    out[23] = 0.0;
+    out[24] = 0.0;
+}
+
 }  // namespace
 
-extern const Variant amm_nx0_ny4_torque_first = {"amm_nx0_ny4_torque_first", 5, 68, false, amm_nx0_ny4_torque_first_coefficients,
-    amm_nx0_ny4_torque_first_mass, amm_nx0_ny4_torque_first_forces, amm_nx0_ny4_torque_first_energy, amm_nx0_ny4_torque_first_momentum};
+extern const Variant amm_nx0_ny4_torque_first = {"amm_nx0_ny4_torque_first", 5, 72, false, amm_nx0_ny4_torque_first_coefficients,
+    amm_nx0_ny4_torque_first_mass, amm_nx0_ny4_torque_first_forces, amm_nx0_ny4_torque_first_energy, amm_nx0_ny4_torque_first_momentum,
+    amm_nx0_ny4_torque_first_forces_q, amm_nx0_ny4_torque_first_forces_qd, amm_nx0_ny4_torque_first_mass_q_product, amm_nx0_ny4_torque_first_forces_u};
 
 }  // namespace hubbeam::generated

@@ -5,6 +5,8 @@
 // q = (A1..A4, B1..B4), qd = d/dt q; u = (tau, theta_dot, theta_ddot), of which this variant reads theta_dot, theta_ddot;
 // p = (L, rho, S, I, E, a, J_oh) in SI units. Slope coordinates (FEM, BSIM) are d/dxi = L d/dx.
 // Derived symbolically from T and U (docs/model.md sections 2-3) by Lagrange's equations of the second kind.
+// For implicit integrators, derivatives of the same M and Q: forces_q = dQ/dq, forces_qd = dQ/dqd, forces_u =
+// dQ/du; M is constant, so there is no mass_q_product.
 
 #include "generated_abi.h"
 
@@ -12,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[172]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[178]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void amm_nx4_ny4_prescribed_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -193,9 +195,15 @@ void amm_nx4_ny4_prescribed_first_coefficients(const double* p, double* c)
     c[169] = -3.7801094160643145*m*a - 0.33881576952304443*L*m;
     c[170] = 7.286769224587888*m*a + 5.823702223235339*L*m;
     c[171] = -16.676579566391283*m*a - 6.548544128042627*L*m;
+    c[172] = 1.0000000000000002*L*m;
+    c[173] = 0.9999999999999997*L*m;
+    c[174] = -3.1417563799885007*m*a - 0.3866727482165102*L*m;
+    c[175] = -17.294285387122414*m*a - 10.956449728152158*L*m;
+    c[176] = -49.90422661633818*m*a - 33.71903975972198*L*m;
+    c[177] = -102.91821015122056*m*a - 70.11077665782084*L*m;
 }
 
-/* mass:(c[172],u[3],q[8],qd[8])->(M[64]) row-major; M = d2T/dqd2 */
+/* mass:(c[178],u[3],q[8],qd[8])->(M[64]) row-major; M = d2T/dqd2 */
 void amm_nx4_ny4_prescribed_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -267,7 +275,7 @@ void amm_nx4_ny4_prescribed_first_mass(const double* c, const double* u, const d
     out[63] = c[18];
 }
 
-/* forces:(c[172],u[3],q[8],qd[8])->(Q[8]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[178],u[3],q[8],qd[8])->(Q[8]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void amm_nx4_ny4_prescribed_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -323,7 +331,7 @@ void amm_nx4_ny4_prescribed_first_forces(const double* c, const double* u, const
     out[7] = c[110]*theta_ddot + c[69]*B1 + c[85]*B2 + c[99]*B3 + c[111]*B4 + c[112]*theta_dot_A1_dot + c[113]*theta_dot_A2_dot + c[114]*theta_dot_A3_dot + c[115]*theta_dot_A4_dot + c[116]*theta_ddot_A1 + c[117]*theta_ddot_A2 + c[118]*theta_ddot_A3 + c[119]*theta_ddot_A4 + c[81]*theta_dotsq_B1 + c[96]*theta_dotsq_B2 + c[109]*theta_dotsq_B3 + c[120]*theta_dotsq_B4;
 }
 
-/* energy:(c[172],u[3],q[8],qd[8])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[178],u[3],q[8],qd[8])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void amm_nx4_ny4_prescribed_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -462,7 +470,7 @@ void amm_nx4_ny4_prescribed_first_energy(const double* c, const double* u, const
     out[3] = c[135]*A1sq + c[136]*A1_A2 + c[137]*A1_A3 + c[138]*A1_A4 + c[139]*A2sq + c[140]*A2_A3 + c[141]*A2_A4 + c[142]*A3sq + c[143]*A3_A4 + c[144]*A4sq + c[145]*B1sq + c[146]*B1_B2 + c[147]*B1_B3 + c[148]*B1_B4 + c[149]*B2sq + c[150]*B2_B3 + c[151]*B2_B4 + c[152]*B3sq + c[153]*B3_B4 + c[154]*B4sq;
 }
 
-/* momentum:(c[172],u[3],q[8],qd[8])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[178],u[3],q[8],qd[8])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void amm_nx4_ny4_prescribed_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -545,9 +553,210 @@ void amm_nx4_ny4_prescribed_first_momentum(const double* c, const double* u, con
     out[0] = c[155]*theta_dot + c[126]*B1_dot + c[127]*B2_dot + c[128]*B3_dot + c[129]*B4_dot + c[156]*theta_dot_A1 + c[157]*theta_dot_A2 + c[158]*theta_dot_A3 + c[159]*theta_dot_A4 + c[28]*A1_B1_dot + c[29]*A1_B2_dot + c[30]*A1_B3_dot + c[31]*A1_B4_dot + c[40]*A2_B1_dot + c[41]*A2_B2_dot + c[42]*A2_B3_dot + c[43]*A2_B4_dot + c[51]*A3_B1_dot + c[52]*A3_B2_dot + c[53]*A3_B3_dot + c[54]*A3_B4_dot + c[61]*A4_B1_dot + c[62]*A4_B2_dot + c[63]*A4_B3_dot + c[64]*A4_B4_dot + c[74]*B1_A1_dot + c[75]*B1_A2_dot + c[76]*B1_A3_dot + c[77]*B1_A4_dot + c[90]*B2_A1_dot + c[91]*B2_A2_dot + c[92]*B2_A3_dot + c[93]*B2_A4_dot + c[104]*B3_A1_dot + c[105]*B3_A2_dot + c[106]*B3_A3_dot + c[107]*B3_A4_dot + c[116]*B4_A1_dot + c[117]*B4_A2_dot + c[118]*B4_A3_dot + c[119]*B4_A4_dot + c[0]*theta_dot_A1sq + c[160]*theta_dot_A1_A2 + c[161]*theta_dot_A1_A3 + c[162]*theta_dot_A1_A4 + c[4]*theta_dot_A2sq + c[163]*theta_dot_A2_A3 + c[164]*theta_dot_A2_A4 + c[7]*theta_dot_A3sq + c[165]*theta_dot_A3_A4 + c[9]*theta_dot_A4sq + c[78]*theta_dot_B1sq + c[166]*theta_dot_B1_B2 + c[167]*theta_dot_B1_B3 + c[168]*theta_dot_B1_B4 + c[94]*theta_dot_B2sq + c[169]*theta_dot_B2_B3 + c[170]*theta_dot_B2_B4 + c[108]*theta_dot_B3sq + c[171]*theta_dot_B3_B4 + c[120]*theta_dot_B4sq;
 }
 
+/* forces_q:(c[178],u[3],q[8],qd[8])->(dQdq[64]) row-major; out[i*8+k] = dQ_i/dq_k */
+void amm_nx4_ny4_prescribed_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)q;
+    (void)qd;
+    const double theta_dot = u[1];
+    const double theta_ddot = u[2];
+    const double theta_dotsq = theta_dot*theta_dot;
+    out[0] = c[19] + c[0]*theta_dotsq;
+    out[1] = c[20] + c[1]*theta_dotsq;
+    out[2] = c[21] + c[2]*theta_dotsq;
+    out[3] = c[22] + c[3]*theta_dotsq;
+    out[4] = c[28]*theta_ddot;
+    out[5] = c[29]*theta_ddot;
+    out[6] = c[30]*theta_ddot;
+    out[7] = c[31]*theta_ddot;
+    out[8] = c[20] + c[1]*theta_dotsq;
+    out[9] = c[32] + c[4]*theta_dotsq;
+    out[10] = c[33] + c[5]*theta_dotsq;
+    out[11] = c[34] + c[6]*theta_dotsq;
+    out[12] = c[40]*theta_ddot;
+    out[13] = c[41]*theta_ddot;
+    out[14] = c[42]*theta_ddot;
+    out[15] = c[43]*theta_ddot;
+    out[16] = c[21] + c[2]*theta_dotsq;
+    out[17] = c[33] + c[5]*theta_dotsq;
+    out[18] = c[44] + c[7]*theta_dotsq;
+    out[19] = c[45] + c[8]*theta_dotsq;
+    out[20] = c[51]*theta_ddot;
+    out[21] = c[52]*theta_ddot;
+    out[22] = c[53]*theta_ddot;
+    out[23] = c[54]*theta_ddot;
+    out[24] = c[22] + c[3]*theta_dotsq;
+    out[25] = c[34] + c[6]*theta_dotsq;
+    out[26] = c[45] + c[8]*theta_dotsq;
+    out[27] = c[55] + c[9]*theta_dotsq;
+    out[28] = c[61]*theta_ddot;
+    out[29] = c[62]*theta_ddot;
+    out[30] = c[63]*theta_ddot;
+    out[31] = c[64]*theta_ddot;
+    out[32] = c[74]*theta_ddot;
+    out[33] = c[75]*theta_ddot;
+    out[34] = c[76]*theta_ddot;
+    out[35] = c[77]*theta_ddot;
+    out[36] = c[66] + c[78]*theta_dotsq;
+    out[37] = c[67] + c[79]*theta_dotsq;
+    out[38] = c[68] + c[80]*theta_dotsq;
+    out[39] = c[69] + c[81]*theta_dotsq;
+    out[40] = c[90]*theta_ddot;
+    out[41] = c[91]*theta_ddot;
+    out[42] = c[92]*theta_ddot;
+    out[43] = c[93]*theta_ddot;
+    out[44] = c[67] + c[79]*theta_dotsq;
+    out[45] = c[83] + c[94]*theta_dotsq;
+    out[46] = c[84] + c[95]*theta_dotsq;
+    out[47] = c[85] + c[96]*theta_dotsq;
+    out[48] = c[104]*theta_ddot;
+    out[49] = c[105]*theta_ddot;
+    out[50] = c[106]*theta_ddot;
+    out[51] = c[107]*theta_ddot;
+    out[52] = c[68] + c[80]*theta_dotsq;
+    out[53] = c[84] + c[95]*theta_dotsq;
+    out[54] = c[98] + c[108]*theta_dotsq;
+    out[55] = c[99] + c[109]*theta_dotsq;
+    out[56] = c[116]*theta_ddot;
+    out[57] = c[117]*theta_ddot;
+    out[58] = c[118]*theta_ddot;
+    out[59] = c[119]*theta_ddot;
+    out[60] = c[69] + c[81]*theta_dotsq;
+    out[61] = c[85] + c[96]*theta_dotsq;
+    out[62] = c[99] + c[109]*theta_dotsq;
+    out[63] = c[111] + c[120]*theta_dotsq;
+}
+
+/* forces_qd:(c[178],u[3],q[8],qd[8])->(dQdqd[64]) row-major; out[i*8+k] = dQ_i/dqd_k */
+void amm_nx4_ny4_prescribed_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)q;
+    (void)qd;
+    const double theta_dot = u[1];
+    out[0] = 0.0;
+    out[1] = 0.0;
+    out[2] = 0.0;
+    out[3] = 0.0;
+    out[4] = c[24]*theta_dot;
+    out[5] = c[25]*theta_dot;
+    out[6] = c[26]*theta_dot;
+    out[7] = c[27]*theta_dot;
+    out[8] = 0.0;
+    out[9] = 0.0;
+    out[10] = 0.0;
+    out[11] = 0.0;
+    out[12] = c[36]*theta_dot;
+    out[13] = c[37]*theta_dot;
+    out[14] = c[38]*theta_dot;
+    out[15] = c[39]*theta_dot;
+    out[16] = 0.0;
+    out[17] = 0.0;
+    out[18] = 0.0;
+    out[19] = 0.0;
+    out[20] = c[47]*theta_dot;
+    out[21] = c[48]*theta_dot;
+    out[22] = c[49]*theta_dot;
+    out[23] = c[50]*theta_dot;
+    out[24] = 0.0;
+    out[25] = 0.0;
+    out[26] = 0.0;
+    out[27] = 0.0;
+    out[28] = c[57]*theta_dot;
+    out[29] = c[58]*theta_dot;
+    out[30] = c[59]*theta_dot;
+    out[31] = c[60]*theta_dot;
+    out[32] = c[70]*theta_dot;
+    out[33] = c[71]*theta_dot;
+    out[34] = c[72]*theta_dot;
+    out[35] = c[73]*theta_dot;
+    out[36] = 0.0;
+    out[37] = 0.0;
+    out[38] = 0.0;
+    out[39] = 0.0;
+    out[40] = c[86]*theta_dot;
+    out[41] = c[87]*theta_dot;
+    out[42] = c[88]*theta_dot;
+    out[43] = c[89]*theta_dot;
+    out[44] = 0.0;
+    out[45] = 0.0;
+    out[46] = 0.0;
+    out[47] = 0.0;
+    out[48] = c[100]*theta_dot;
+    out[49] = c[101]*theta_dot;
+    out[50] = c[102]*theta_dot;
+    out[51] = c[103]*theta_dot;
+    out[52] = 0.0;
+    out[53] = 0.0;
+    out[54] = 0.0;
+    out[55] = 0.0;
+    out[56] = c[112]*theta_dot;
+    out[57] = c[113]*theta_dot;
+    out[58] = c[114]*theta_dot;
+    out[59] = c[115]*theta_dot;
+    out[60] = 0.0;
+    out[61] = 0.0;
+    out[62] = 0.0;
+    out[63] = 0.0;
+}
+
+/* forces_u:(c[178],u[3],q[8],qd[8])->(dQdu[24]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
+void amm_nx4_ny4_prescribed_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    const double theta_dot = u[1];
+    const double A1 = q[0];
+    const double A2 = q[1];
+    const double A3 = q[2];
+    const double A4 = q[3];
+    const double B1 = q[4];
+    const double B2 = q[5];
+    const double B3 = q[6];
+    const double B4 = q[7];
+    const double A1_dot = qd[0];
+    const double A2_dot = qd[1];
+    const double A3_dot = qd[2];
+    const double A4_dot = qd[3];
+    const double B1_dot = qd[4];
+    const double B2_dot = qd[5];
+    const double B3_dot = qd[6];
+    const double B4_dot = qd[7];
+    const double theta_dot_A1 = theta_dot*A1;
+    const double theta_dot_A2 = theta_dot*A2;
+    const double theta_dot_A3 = theta_dot*A3;
+    const double theta_dot_A4 = theta_dot*A4;
+    const double theta_dot_B1 = theta_dot*B1;
+    const double theta_dot_B2 = theta_dot*B2;
+    const double theta_dot_B3 = theta_dot*B3;
+    const double theta_dot_B4 = theta_dot*B4;
+    out[0] = 0.0;
+    out[1] = c[156]*theta_dot + c[24]*B1_dot + c[25]*B2_dot + c[26]*B3_dot + c[27]*B4_dot + c[172]*theta_dot_A1 + c[160]*theta_dot_A2 + c[161]*theta_dot_A3 + c[162]*theta_dot_A4;
+    out[2] = c[28]*B1 + c[29]*B2 + c[30]*B3 + c[31]*B4;
+    out[3] = 0.0;
+    out[4] = c[157]*theta_dot + c[36]*B1_dot + c[37]*B2_dot + c[38]*B3_dot + c[39]*B4_dot + c[160]*theta_dot_A1 + c[173]*theta_dot_A2 + c[163]*theta_dot_A3 + c[164]*theta_dot_A4;
+    out[5] = c[40]*B1 + c[41]*B2 + c[42]*B3 + c[43]*B4;
+    out[6] = 0.0;
+    out[7] = c[158]*theta_dot + c[47]*B1_dot + c[48]*B2_dot + c[49]*B3_dot + c[50]*B4_dot + c[161]*theta_dot_A1 + c[163]*theta_dot_A2 + c[18]*theta_dot_A3 + c[165]*theta_dot_A4;
+    out[8] = c[51]*B1 + c[52]*B2 + c[53]*B3 + c[54]*B4;
+    out[9] = 0.0;
+    out[10] = c[159]*theta_dot + c[57]*B1_dot + c[58]*B2_dot + c[59]*B3_dot + c[60]*B4_dot + c[162]*theta_dot_A1 + c[164]*theta_dot_A2 + c[165]*theta_dot_A3 + c[14]*theta_dot_A4;
+    out[11] = c[61]*B1 + c[62]*B2 + c[63]*B3 + c[64]*B4;
+    out[12] = 0.0;
+    out[13] = c[70]*A1_dot + c[71]*A2_dot + c[72]*A3_dot + c[73]*A4_dot + c[174]*theta_dot_B1 + c[166]*theta_dot_B2 + c[167]*theta_dot_B3 + c[168]*theta_dot_B4;
+    out[14] = c[65] + c[74]*A1 + c[75]*A2 + c[76]*A3 + c[77]*A4;
+    out[15] = 0.0;
+    out[16] = c[86]*A1_dot + c[87]*A2_dot + c[88]*A3_dot + c[89]*A4_dot + c[166]*theta_dot_B1 + c[175]*theta_dot_B2 + c[169]*theta_dot_B3 + c[170]*theta_dot_B4;
+    out[17] = c[82] + c[90]*A1 + c[91]*A2 + c[92]*A3 + c[93]*A4;
+    out[18] = 0.0;
+    out[19] = c[100]*A1_dot + c[101]*A2_dot + c[102]*A3_dot + c[103]*A4_dot + c[167]*theta_dot_B1 + c[169]*theta_dot_B2 + c[176]*theta_dot_B3 + c[171]*theta_dot_B4;
+    out[20] = c[97] + c[104]*A1 + c[105]*A2 + c[106]*A3 + c[107]*A4;
+    out[21] = 0.0;
+    out[22] = c[112]*A1_dot + c[113]*A2_dot + c[114]*A3_dot + c[115]*A4_dot + c[168]*theta_dot_B1 + c[170]*theta_dot_B2 + c[171]*theta_dot_B3 + c[177]*theta_dot_B4;
+    out[23] = c[110] + c[116]*A1 + c[117]*A2 + c[118]*A3 + c[119]*A4;
+}
+
 }  // namespace
 
-extern const Variant amm_nx4_ny4_prescribed_first = {"amm_nx4_ny4_prescribed_first", 8, 172, true, amm_nx4_ny4_prescribed_first_coefficients,
-    amm_nx4_ny4_prescribed_first_mass, amm_nx4_ny4_prescribed_first_forces, amm_nx4_ny4_prescribed_first_energy, amm_nx4_ny4_prescribed_first_momentum};
+extern const Variant amm_nx4_ny4_prescribed_first = {"amm_nx4_ny4_prescribed_first", 8, 178, true, amm_nx4_ny4_prescribed_first_coefficients,
+    amm_nx4_ny4_prescribed_first_mass, amm_nx4_ny4_prescribed_first_forces, amm_nx4_ny4_prescribed_first_energy, amm_nx4_ny4_prescribed_first_momentum,
+    amm_nx4_ny4_prescribed_first_forces_q, amm_nx4_ny4_prescribed_first_forces_qd, nullptr, amm_nx4_ny4_prescribed_first_forces_u};
 
 }  // namespace hubbeam::generated

@@ -5,6 +5,8 @@
 // q = (theta, A1..A4, B1..B4), qd = d/dt q; u = (tau, theta_dot, theta_ddot), of which this variant reads tau;
 // p = (L, rho, S, I, E, a, J_oh) in SI units. Slope coordinates (FEM, BSIM) are d/dxi = L d/dx.
 // Derived symbolically from T and U (docs/model.md sections 2-3) by Lagrange's equations of the second kind.
+// For implicit integrators, derivatives of the same M and Q: forces_q = dQ/dq, forces_qd = dQ/dqd, forces_u =
+// dQ/du, mass_q_product = (dM/dq) v.
 
 #include "generated_abi.h"
 
@@ -12,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[192]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[198]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void amm_nx4_ny4_torque_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -213,9 +215,15 @@ void amm_nx4_ny4_torque_first_coefficients(const double* p, double* c)
     c[189] = 1903.2731331957266*EI/(L*L*L);
     c[190] = 2.0398863447420677e-12*EI/(L*L*L);
     c[191] = 7308.636652559391*EI/(L*L*L);
+    c[192] = 1.0000000000000002*L*m;
+    c[193] = 0.9999999999999997*L*m;
+    c[194] = -3.1417563799885007*m*a - 0.3866727482165102*L*m;
+    c[195] = -17.294285387122414*m*a - 10.956449728152158*L*m;
+    c[196] = -49.90422661633818*m*a - 33.71903975972198*L*m;
+    c[197] = -102.91821015122056*m*a - 70.11077665782084*L*m;
 }
 
-/* mass:(c[192],u[3],q[9],qd[9])->(M[81]) row-major; M = d2T/dqd2 */
+/* mass:(c[198],u[3],q[9],qd[9])->(M[81]) row-major; M = d2T/dqd2 */
 void amm_nx4_ny4_torque_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -331,7 +339,7 @@ void amm_nx4_ny4_torque_first_mass(const double* c, const double* u, const doubl
     out[80] = c[75];
 }
 
-/* forces:(c[192],u[3],q[9],qd[9])->(Q[9]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[198],u[3],q[9],qd[9])->(Q[9]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void amm_nx4_ny4_torque_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
@@ -420,7 +428,7 @@ void amm_nx4_ny4_torque_first_forces(const double* c, const double* u, const dou
     out[8] = c[133]*B1 + c[143]*B2 + c[151]*B3 + c[157]*B4 + c[158]*theta_dot_A1_dot + c[159]*theta_dot_A2_dot + c[160]*theta_dot_A3_dot + c[161]*theta_dot_A4_dot + c[140]*B1_theta_dotsq + c[149]*B2_theta_dotsq + c[156]*B3_theta_dotsq + c[24]*B4_theta_dotsq;
 }
 
-/* energy:(c[192],u[3],q[9],qd[9])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[198],u[3],q[9],qd[9])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void amm_nx4_ny4_torque_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -576,7 +584,7 @@ void amm_nx4_ny4_torque_first_energy(const double* c, const double* u, const dou
     out[3] = c[172]*A1sq + c[173]*A1_A2 + c[174]*A1_A3 + c[175]*A1_A4 + c[176]*A2sq + c[177]*A2_A3 + c[178]*A2_A4 + c[179]*A3sq + c[180]*A3_A4 + c[181]*A4sq + c[182]*B1sq + c[183]*B1_B2 + c[184]*B1_B3 + c[185]*B1_B4 + c[186]*B2sq + c[187]*B2_B3 + c[188]*B2_B4 + c[189]*B3sq + c[190]*B3_B4 + c[191]*B4sq;
 }
 
-/* momentum:(c[192],u[3],q[9],qd[9])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[198],u[3],q[9],qd[9])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void amm_nx4_ny4_torque_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -676,9 +684,408 @@ void amm_nx4_ny4_torque_first_momentum(const double* c, const double* u, const d
     out[0] = c[0]*theta_dot + c[41]*B1_dot + c[46]*B2_dot + c[51]*B3_dot + c[56]*B4_dot + c[1]*A1_theta_dot + c[42]*A1_B1_dot + c[47]*A1_B2_dot + c[52]*A1_B3_dot + c[57]*A1_B4_dot + c[2]*A2_theta_dot + c[43]*A2_B1_dot + c[48]*A2_B2_dot + c[53]*A2_B3_dot + c[58]*A2_B4_dot + c[3]*A3_theta_dot + c[44]*A3_B1_dot + c[49]*A3_B2_dot + c[54]*A3_B3_dot + c[59]*A3_B4_dot + c[4]*A4_theta_dot + c[45]*A4_B1_dot + c[50]*A4_B2_dot + c[55]*A4_B3_dot + c[60]*A4_B4_dot + c[25]*B1_A1_dot + c[29]*B1_A2_dot + c[33]*B1_A3_dot + c[37]*B1_A4_dot + c[26]*B2_A1_dot + c[30]*B2_A2_dot + c[34]*B2_A3_dot + c[38]*B2_A4_dot + c[27]*B3_A1_dot + c[31]*B3_A2_dot + c[35]*B3_A3_dot + c[39]*B3_A4_dot + c[28]*B4_A1_dot + c[32]*B4_A2_dot + c[36]*B4_A3_dot + c[40]*B4_A4_dot + c[5]*A1sq_theta_dot + c[6]*A1_A2_theta_dot + c[7]*A1_A3_theta_dot + c[8]*A1_A4_theta_dot + c[9]*A2sq_theta_dot + c[10]*A2_A3_theta_dot + c[11]*A2_A4_theta_dot + c[12]*A3sq_theta_dot + c[13]*A3_A4_theta_dot + c[14]*A4sq_theta_dot + c[15]*B1sq_theta_dot + c[16]*B1_B2_theta_dot + c[17]*B1_B3_theta_dot + c[18]*B1_B4_theta_dot + c[19]*B2sq_theta_dot + c[20]*B2_B3_theta_dot + c[21]*B2_B4_theta_dot + c[22]*B3sq_theta_dot + c[23]*B3_B4_theta_dot + c[24]*B4sq_theta_dot;
 }
 
+/* forces_q:(c[198],u[3],q[9],qd[9])->(dQdq[81]) row-major; out[i*9+k] = dQ_i/dq_k */
+void amm_nx4_ny4_torque_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)q;
+    const double theta_dot = qd[0];
+    const double A1_dot = qd[1];
+    const double A2_dot = qd[2];
+    const double A3_dot = qd[3];
+    const double A4_dot = qd[4];
+    const double B1_dot = qd[5];
+    const double B2_dot = qd[6];
+    const double B3_dot = qd[7];
+    const double B4_dot = qd[8];
+    const double theta_dotsq = theta_dot*theta_dot;
+    const double theta_dot_A1_dot = theta_dot*A1_dot;
+    const double theta_dot_A2_dot = theta_dot*A2_dot;
+    const double theta_dot_A3_dot = theta_dot*A3_dot;
+    const double theta_dot_A4_dot = theta_dot*A4_dot;
+    const double theta_dot_B1_dot = theta_dot*B1_dot;
+    const double theta_dot_B2_dot = theta_dot*B2_dot;
+    const double theta_dot_B3_dot = theta_dot*B3_dot;
+    const double theta_dot_B4_dot = theta_dot*B4_dot;
+    out[0] = 0.0;
+    out[1] = c[80]*theta_dot_A1_dot + c[81]*theta_dot_A2_dot + c[82]*theta_dot_A3_dot + c[83]*theta_dot_A4_dot;
+    out[2] = c[81]*theta_dot_A1_dot + c[84]*theta_dot_A2_dot + c[85]*theta_dot_A3_dot + c[86]*theta_dot_A4_dot;
+    out[3] = c[82]*theta_dot_A1_dot + c[85]*theta_dot_A2_dot + c[87]*theta_dot_A3_dot + c[88]*theta_dot_A4_dot;
+    out[4] = c[83]*theta_dot_A1_dot + c[86]*theta_dot_A2_dot + c[88]*theta_dot_A3_dot + c[89]*theta_dot_A4_dot;
+    out[5] = c[90]*theta_dot_B1_dot + c[91]*theta_dot_B2_dot + c[92]*theta_dot_B3_dot + c[93]*theta_dot_B4_dot;
+    out[6] = c[91]*theta_dot_B1_dot + c[94]*theta_dot_B2_dot + c[95]*theta_dot_B3_dot + c[96]*theta_dot_B4_dot;
+    out[7] = c[92]*theta_dot_B1_dot + c[95]*theta_dot_B2_dot + c[97]*theta_dot_B3_dot + c[98]*theta_dot_B4_dot;
+    out[8] = c[93]*theta_dot_B1_dot + c[96]*theta_dot_B2_dot + c[98]*theta_dot_B3_dot + c[99]*theta_dot_B4_dot;
+    out[9] = 0.0;
+    out[10] = c[100] + c[5]*theta_dotsq;
+    out[11] = c[101] + c[61]*theta_dotsq;
+    out[12] = c[102] + c[62]*theta_dotsq;
+    out[13] = c[103] + c[63]*theta_dotsq;
+    out[14] = 0.0;
+    out[15] = 0.0;
+    out[16] = 0.0;
+    out[17] = 0.0;
+    out[18] = 0.0;
+    out[19] = c[101] + c[61]*theta_dotsq;
+    out[20] = c[109] + c[9]*theta_dotsq;
+    out[21] = c[110] + c[64]*theta_dotsq;
+    out[22] = c[111] + c[65]*theta_dotsq;
+    out[23] = 0.0;
+    out[24] = 0.0;
+    out[25] = 0.0;
+    out[26] = 0.0;
+    out[27] = 0.0;
+    out[28] = c[102] + c[62]*theta_dotsq;
+    out[29] = c[110] + c[64]*theta_dotsq;
+    out[30] = c[117] + c[12]*theta_dotsq;
+    out[31] = c[118] + c[66]*theta_dotsq;
+    out[32] = 0.0;
+    out[33] = 0.0;
+    out[34] = 0.0;
+    out[35] = 0.0;
+    out[36] = 0.0;
+    out[37] = c[103] + c[63]*theta_dotsq;
+    out[38] = c[111] + c[65]*theta_dotsq;
+    out[39] = c[118] + c[66]*theta_dotsq;
+    out[40] = c[124] + c[14]*theta_dotsq;
+    out[41] = 0.0;
+    out[42] = 0.0;
+    out[43] = 0.0;
+    out[44] = 0.0;
+    out[45] = 0.0;
+    out[46] = 0.0;
+    out[47] = 0.0;
+    out[48] = 0.0;
+    out[49] = 0.0;
+    out[50] = c[130] + c[15]*theta_dotsq;
+    out[51] = c[131] + c[138]*theta_dotsq;
+    out[52] = c[132] + c[139]*theta_dotsq;
+    out[53] = c[133] + c[140]*theta_dotsq;
+    out[54] = 0.0;
+    out[55] = 0.0;
+    out[56] = 0.0;
+    out[57] = 0.0;
+    out[58] = 0.0;
+    out[59] = c[131] + c[138]*theta_dotsq;
+    out[60] = c[141] + c[19]*theta_dotsq;
+    out[61] = c[142] + c[148]*theta_dotsq;
+    out[62] = c[143] + c[149]*theta_dotsq;
+    out[63] = 0.0;
+    out[64] = 0.0;
+    out[65] = 0.0;
+    out[66] = 0.0;
+    out[67] = 0.0;
+    out[68] = c[132] + c[139]*theta_dotsq;
+    out[69] = c[142] + c[148]*theta_dotsq;
+    out[70] = c[150] + c[22]*theta_dotsq;
+    out[71] = c[151] + c[156]*theta_dotsq;
+    out[72] = 0.0;
+    out[73] = 0.0;
+    out[74] = 0.0;
+    out[75] = 0.0;
+    out[76] = 0.0;
+    out[77] = c[133] + c[140]*theta_dotsq;
+    out[78] = c[143] + c[149]*theta_dotsq;
+    out[79] = c[151] + c[156]*theta_dotsq;
+    out[80] = c[157] + c[24]*theta_dotsq;
+}
+
+/* forces_qd:(c[198],u[3],q[9],qd[9])->(dQdqd[81]) row-major; out[i*9+k] = dQ_i/dqd_k */
+void amm_nx4_ny4_torque_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    const double A1 = q[1];
+    const double A2 = q[2];
+    const double A3 = q[3];
+    const double A4 = q[4];
+    const double B1 = q[5];
+    const double B2 = q[6];
+    const double B3 = q[7];
+    const double B4 = q[8];
+    const double theta_dot = qd[0];
+    const double A1_dot = qd[1];
+    const double A2_dot = qd[2];
+    const double A3_dot = qd[3];
+    const double A4_dot = qd[4];
+    const double B1_dot = qd[5];
+    const double B2_dot = qd[6];
+    const double B3_dot = qd[7];
+    const double B4_dot = qd[8];
+    const double A1_theta_dot = A1*theta_dot;
+    const double A1_A1_dot = A1*A1_dot;
+    const double A1_A2_dot = A1*A2_dot;
+    const double A1_A3_dot = A1*A3_dot;
+    const double A1_A4_dot = A1*A4_dot;
+    const double A2_theta_dot = A2*theta_dot;
+    const double A2_A1_dot = A2*A1_dot;
+    const double A2_A2_dot = A2*A2_dot;
+    const double A2_A3_dot = A2*A3_dot;
+    const double A2_A4_dot = A2*A4_dot;
+    const double A3_theta_dot = A3*theta_dot;
+    const double A3_A1_dot = A3*A1_dot;
+    const double A3_A2_dot = A3*A2_dot;
+    const double A3_A3_dot = A3*A3_dot;
+    const double A3_A4_dot = A3*A4_dot;
+    const double A4_theta_dot = A4*theta_dot;
+    const double A4_A1_dot = A4*A1_dot;
+    const double A4_A2_dot = A4*A2_dot;
+    const double A4_A3_dot = A4*A3_dot;
+    const double A4_A4_dot = A4*A4_dot;
+    const double B1_theta_dot = B1*theta_dot;
+    const double B1_B1_dot = B1*B1_dot;
+    const double B1_B2_dot = B1*B2_dot;
+    const double B1_B3_dot = B1*B3_dot;
+    const double B1_B4_dot = B1*B4_dot;
+    const double B2_theta_dot = B2*theta_dot;
+    const double B2_B1_dot = B2*B1_dot;
+    const double B2_B2_dot = B2*B2_dot;
+    const double B2_B3_dot = B2*B3_dot;
+    const double B2_B4_dot = B2*B4_dot;
+    const double B3_theta_dot = B3*theta_dot;
+    const double B3_B1_dot = B3*B1_dot;
+    const double B3_B2_dot = B3*B2_dot;
+    const double B3_B3_dot = B3*B3_dot;
+    const double B3_B4_dot = B3*B4_dot;
+    const double B4_theta_dot = B4*theta_dot;
+    const double B4_B1_dot = B4*B1_dot;
+    const double B4_B2_dot = B4*B2_dot;
+    const double B4_B3_dot = B4*B3_dot;
+    const double B4_B4_dot = B4*B4_dot;
+    out[0] = c[76]*A1_dot + c[77]*A2_dot + c[78]*A3_dot + c[79]*A4_dot + c[80]*A1_A1_dot + c[81]*A1_A2_dot + c[82]*A1_A3_dot + c[83]*A1_A4_dot + c[81]*A2_A1_dot + c[84]*A2_A2_dot + c[85]*A2_A3_dot + c[86]*A2_A4_dot + c[82]*A3_A1_dot + c[85]*A3_A2_dot + c[87]*A3_A3_dot + c[88]*A3_A4_dot + c[83]*A4_A1_dot + c[86]*A4_A2_dot + c[88]*A4_A3_dot + c[89]*A4_A4_dot + c[90]*B1_B1_dot + c[91]*B1_B2_dot + c[92]*B1_B3_dot + c[93]*B1_B4_dot + c[91]*B2_B1_dot + c[94]*B2_B2_dot + c[95]*B2_B3_dot + c[96]*B2_B4_dot + c[92]*B3_B1_dot + c[95]*B3_B2_dot + c[97]*B3_B3_dot + c[98]*B3_B4_dot + c[93]*B4_B1_dot + c[96]*B4_B2_dot + c[98]*B4_B3_dot + c[99]*B4_B4_dot;
+    out[1] = c[76]*theta_dot + c[80]*A1_theta_dot + c[81]*A2_theta_dot + c[82]*A3_theta_dot + c[83]*A4_theta_dot;
+    out[2] = c[77]*theta_dot + c[81]*A1_theta_dot + c[84]*A2_theta_dot + c[85]*A3_theta_dot + c[86]*A4_theta_dot;
+    out[3] = c[78]*theta_dot + c[82]*A1_theta_dot + c[85]*A2_theta_dot + c[87]*A3_theta_dot + c[88]*A4_theta_dot;
+    out[4] = c[79]*theta_dot + c[83]*A1_theta_dot + c[86]*A2_theta_dot + c[88]*A3_theta_dot + c[89]*A4_theta_dot;
+    out[5] = c[90]*B1_theta_dot + c[91]*B2_theta_dot + c[92]*B3_theta_dot + c[93]*B4_theta_dot;
+    out[6] = c[91]*B1_theta_dot + c[94]*B2_theta_dot + c[95]*B3_theta_dot + c[96]*B4_theta_dot;
+    out[7] = c[92]*B1_theta_dot + c[95]*B2_theta_dot + c[97]*B3_theta_dot + c[98]*B4_theta_dot;
+    out[8] = c[93]*B1_theta_dot + c[96]*B2_theta_dot + c[98]*B3_theta_dot + c[99]*B4_theta_dot;
+    out[9] = c[1]*theta_dot + c[105]*B1_dot + c[106]*B2_dot + c[107]*B3_dot + c[108]*B4_dot + c[192]*A1_theta_dot + c[6]*A2_theta_dot + c[7]*A3_theta_dot + c[8]*A4_theta_dot;
+    out[10] = 0.0;
+    out[11] = 0.0;
+    out[12] = 0.0;
+    out[13] = 0.0;
+    out[14] = c[105]*theta_dot;
+    out[15] = c[106]*theta_dot;
+    out[16] = c[107]*theta_dot;
+    out[17] = c[108]*theta_dot;
+    out[18] = c[2]*theta_dot + c[113]*B1_dot + c[114]*B2_dot + c[115]*B3_dot + c[116]*B4_dot + c[6]*A1_theta_dot + c[193]*A2_theta_dot + c[10]*A3_theta_dot + c[11]*A4_theta_dot;
+    out[19] = 0.0;
+    out[20] = 0.0;
+    out[21] = 0.0;
+    out[22] = 0.0;
+    out[23] = c[113]*theta_dot;
+    out[24] = c[114]*theta_dot;
+    out[25] = c[115]*theta_dot;
+    out[26] = c[116]*theta_dot;
+    out[27] = c[3]*theta_dot + c[120]*B1_dot + c[121]*B2_dot + c[122]*B3_dot + c[123]*B4_dot + c[7]*A1_theta_dot + c[10]*A2_theta_dot + c[75]*A3_theta_dot + c[13]*A4_theta_dot;
+    out[28] = 0.0;
+    out[29] = 0.0;
+    out[30] = 0.0;
+    out[31] = 0.0;
+    out[32] = c[120]*theta_dot;
+    out[33] = c[121]*theta_dot;
+    out[34] = c[122]*theta_dot;
+    out[35] = c[123]*theta_dot;
+    out[36] = c[4]*theta_dot + c[126]*B1_dot + c[127]*B2_dot + c[128]*B3_dot + c[129]*B4_dot + c[8]*A1_theta_dot + c[11]*A2_theta_dot + c[13]*A3_theta_dot + c[71]*A4_theta_dot;
+    out[37] = 0.0;
+    out[38] = 0.0;
+    out[39] = 0.0;
+    out[40] = 0.0;
+    out[41] = c[126]*theta_dot;
+    out[42] = c[127]*theta_dot;
+    out[43] = c[128]*theta_dot;
+    out[44] = c[129]*theta_dot;
+    out[45] = c[134]*A1_dot + c[135]*A2_dot + c[136]*A3_dot + c[137]*A4_dot + c[194]*B1_theta_dot + c[16]*B2_theta_dot + c[17]*B3_theta_dot + c[18]*B4_theta_dot;
+    out[46] = c[134]*theta_dot;
+    out[47] = c[135]*theta_dot;
+    out[48] = c[136]*theta_dot;
+    out[49] = c[137]*theta_dot;
+    out[50] = 0.0;
+    out[51] = 0.0;
+    out[52] = 0.0;
+    out[53] = 0.0;
+    out[54] = c[144]*A1_dot + c[145]*A2_dot + c[146]*A3_dot + c[147]*A4_dot + c[16]*B1_theta_dot + c[195]*B2_theta_dot + c[20]*B3_theta_dot + c[21]*B4_theta_dot;
+    out[55] = c[144]*theta_dot;
+    out[56] = c[145]*theta_dot;
+    out[57] = c[146]*theta_dot;
+    out[58] = c[147]*theta_dot;
+    out[59] = 0.0;
+    out[60] = 0.0;
+    out[61] = 0.0;
+    out[62] = 0.0;
+    out[63] = c[152]*A1_dot + c[153]*A2_dot + c[154]*A3_dot + c[155]*A4_dot + c[17]*B1_theta_dot + c[20]*B2_theta_dot + c[196]*B3_theta_dot + c[23]*B4_theta_dot;
+    out[64] = c[152]*theta_dot;
+    out[65] = c[153]*theta_dot;
+    out[66] = c[154]*theta_dot;
+    out[67] = c[155]*theta_dot;
+    out[68] = 0.0;
+    out[69] = 0.0;
+    out[70] = 0.0;
+    out[71] = 0.0;
+    out[72] = c[158]*A1_dot + c[159]*A2_dot + c[160]*A3_dot + c[161]*A4_dot + c[18]*B1_theta_dot + c[21]*B2_theta_dot + c[23]*B3_theta_dot + c[197]*B4_theta_dot;
+    out[73] = c[158]*theta_dot;
+    out[74] = c[159]*theta_dot;
+    out[75] = c[160]*theta_dot;
+    out[76] = c[161]*theta_dot;
+    out[77] = 0.0;
+    out[78] = 0.0;
+    out[79] = 0.0;
+    out[80] = 0.0;
+}
+
+/* forces_u:(c[198],u[3],q[9],qd[9])->(dQdu[27]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
+void amm_nx4_ny4_torque_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)c;
+    (void)u;
+    (void)q;
+    (void)qd;
+    out[0] = 1.0;
+    out[1] = 0.0;
+    out[2] = 0.0;
+    out[3] = 0.0;
+    out[4] = 0.0;
+    out[5] = 0.0;
+    out[6] = 0.0;
+    out[7] = 0.0;
+    out[8] = 0.0;
+    out[9] = 0.0;
+    out[10] = 0.0;
+    out[11] = 0.0;
+    out[12] = 0.0;
+    out[13] = 0.0;
+    out[14] = 0.0;
+    out[15] = 0.0;
+    out[16] = 0.0;
+    out[17] = 0.0;
+    out[18] = 0.0;
+    out[19] = 0.0;
+    out[20] = 0.0;
+    out[21] = 0.0;
+    out[22] = 0.0;
+    out[23] = 0.0;
+    out[24] = 0.0;
+    out[25] = 0.0;
+    out[26] = 0.0;
+}
+
+/* mass_q_product:(c[198],u[3],q[9],qd[9])->(dMv[81]) row-major; v in the qd slot; out[i*9+k] = sum_j dM_ij/dq_k v_j */
+void amm_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    const double A1 = q[1];
+    const double A2 = q[2];
+    const double A3 = q[3];
+    const double A4 = q[4];
+    const double B1 = q[5];
+    const double B2 = q[6];
+    const double B3 = q[7];
+    const double B4 = q[8];
+    const double theta_dot = qd[0];
+    const double A1_dot = qd[1];
+    const double A2_dot = qd[2];
+    const double A3_dot = qd[3];
+    const double A4_dot = qd[4];
+    const double B1_dot = qd[5];
+    const double B2_dot = qd[6];
+    const double B3_dot = qd[7];
+    const double B4_dot = qd[8];
+    const double A1_theta_dot = A1*theta_dot;
+    const double A2_theta_dot = A2*theta_dot;
+    const double A3_theta_dot = A3*theta_dot;
+    const double A4_theta_dot = A4*theta_dot;
+    const double B1_theta_dot = B1*theta_dot;
+    const double B2_theta_dot = B2*theta_dot;
+    const double B3_theta_dot = B3*theta_dot;
+    const double B4_theta_dot = B4*theta_dot;
+    out[0] = 0.0;
+    out[1] = c[1]*theta_dot + c[42]*B1_dot + c[47]*B2_dot + c[52]*B3_dot + c[57]*B4_dot + c[192]*A1_theta_dot + c[6]*A2_theta_dot + c[7]*A3_theta_dot + c[8]*A4_theta_dot;
+    out[2] = c[2]*theta_dot + c[43]*B1_dot + c[48]*B2_dot + c[53]*B3_dot + c[58]*B4_dot + c[6]*A1_theta_dot + c[193]*A2_theta_dot + c[10]*A3_theta_dot + c[11]*A4_theta_dot;
+    out[3] = c[3]*theta_dot + c[44]*B1_dot + c[49]*B2_dot + c[54]*B3_dot + c[59]*B4_dot + c[7]*A1_theta_dot + c[10]*A2_theta_dot + c[75]*A3_theta_dot + c[13]*A4_theta_dot;
+    out[4] = c[4]*theta_dot + c[45]*B1_dot + c[50]*B2_dot + c[55]*B3_dot + c[60]*B4_dot + c[8]*A1_theta_dot + c[11]*A2_theta_dot + c[13]*A3_theta_dot + c[71]*A4_theta_dot;
+    out[5] = c[25]*A1_dot + c[29]*A2_dot + c[33]*A3_dot + c[37]*A4_dot + c[194]*B1_theta_dot + c[16]*B2_theta_dot + c[17]*B3_theta_dot + c[18]*B4_theta_dot;
+    out[6] = c[26]*A1_dot + c[30]*A2_dot + c[34]*A3_dot + c[38]*A4_dot + c[16]*B1_theta_dot + c[195]*B2_theta_dot + c[20]*B3_theta_dot + c[21]*B4_theta_dot;
+    out[7] = c[27]*A1_dot + c[31]*A2_dot + c[35]*A3_dot + c[39]*A4_dot + c[17]*B1_theta_dot + c[20]*B2_theta_dot + c[196]*B3_theta_dot + c[23]*B4_theta_dot;
+    out[8] = c[28]*A1_dot + c[32]*A2_dot + c[36]*A3_dot + c[40]*A4_dot + c[18]*B1_theta_dot + c[21]*B2_theta_dot + c[23]*B3_theta_dot + c[197]*B4_theta_dot;
+    out[9] = 0.0;
+    out[10] = 0.0;
+    out[11] = 0.0;
+    out[12] = 0.0;
+    out[13] = 0.0;
+    out[14] = c[25]*theta_dot;
+    out[15] = c[26]*theta_dot;
+    out[16] = c[27]*theta_dot;
+    out[17] = c[28]*theta_dot;
+    out[18] = 0.0;
+    out[19] = 0.0;
+    out[20] = 0.0;
+    out[21] = 0.0;
+    out[22] = 0.0;
+    out[23] = c[29]*theta_dot;
+    out[24] = c[30]*theta_dot;
+    out[25] = c[31]*theta_dot;
+    out[26] = c[32]*theta_dot;
+    out[27] = 0.0;
+    out[28] = 0.0;
+    out[29] = 0.0;
+    out[30] = 0.0;
+    out[31] = 0.0;
+    out[32] = c[33]*theta_dot;
+    out[33] = c[34]*theta_dot;
+    out[34] = c[35]*theta_dot;
+    out[35] = c[36]*theta_dot;
+    out[36] = 0.0;
+    out[37] = 0.0;
+    out[38] = 0.0;
+    out[39] = 0.0;
+    out[40] = 0.0;
+    out[41] = c[37]*theta_dot;
+    out[42] = c[38]*theta_dot;
+    out[43] = c[39]*theta_dot;
+    out[44] = c[40]*theta_dot;
+    out[45] = 0.0;
+    out[46] = c[42]*theta_dot;
+    out[47] = c[43]*theta_dot;
+    out[48] = c[44]*theta_dot;
+    out[49] = c[45]*theta_dot;
+    out[50] = 0.0;
+    out[51] = 0.0;
+    out[52] = 0.0;
+    out[53] = 0.0;
+    out[54] = 0.0;
+    out[55] = c[47]*theta_dot;
+    out[56] = c[48]*theta_dot;
+    out[57] = c[49]*theta_dot;
+    out[58] = c[50]*theta_dot;
+    out[59] = 0.0;
+    out[60] = 0.0;
+    out[61] = 0.0;
+    out[62] = 0.0;
+    out[63] = 0.0;
+    out[64] = c[52]*theta_dot;
+    out[65] = c[53]*theta_dot;
+    out[66] = c[54]*theta_dot;
+    out[67] = c[55]*theta_dot;
+    out[68] = 0.0;
+    out[69] = 0.0;
+    out[70] = 0.0;
+    out[71] = 0.0;
+    out[72] = 0.0;
+    out[73] = c[57]*theta_dot;
+    out[74] = c[58]*theta_dot;
+    out[75] = c[59]*theta_dot;
+    out[76] = c[60]*theta_dot;
+    out[77] = 0.0;
+    out[78] = 0.0;
+    out[79] = 0.0;
+    out[80] = 0.0;
+}
+
 }  // namespace
 
-extern const Variant amm_nx4_ny4_torque_first = {"amm_nx4_ny4_torque_first", 9, 192, false, amm_nx4_ny4_torque_first_coefficients,
-    amm_nx4_ny4_torque_first_mass, amm_nx4_ny4_torque_first_forces, amm_nx4_ny4_torque_first_energy, amm_nx4_ny4_torque_first_momentum};
+extern const Variant amm_nx4_ny4_torque_first = {"amm_nx4_ny4_torque_first", 9, 198, false, amm_nx4_ny4_torque_first_coefficients,
+    amm_nx4_ny4_torque_first_mass, amm_nx4_ny4_torque_first_forces, amm_nx4_ny4_torque_first_energy, amm_nx4_ny4_torque_first_momentum,
+    amm_nx4_ny4_torque_first_forces_q, amm_nx4_ny4_torque_first_forces_qd, amm_nx4_ny4_torque_first_mass_q_product, amm_nx4_ny4_torque_first_forces_u};
 
 }  // namespace hubbeam::generated

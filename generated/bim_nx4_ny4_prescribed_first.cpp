@@ -5,6 +5,8 @@
 // q = (A1..A4, B1..B4), qd = d/dt q; u = (tau, theta_dot, theta_ddot), of which this variant reads theta_dot, theta_ddot;
 // p = (L, rho, S, I, E, a, J_oh) in SI units. Slope coordinates (FEM, BSIM) are d/dxi = L d/dx.
 // Derived symbolically from T and U (docs/model.md sections 2-3) by Lagrange's equations of the second kind.
+// For implicit integrators, derivatives of the same M and Q: forces_q = dQ/dq, forces_qd = dQ/dqd, forces_u =
+// dQ/du; M is constant, so there is no mass_q_product.
 
 #include "generated_abi.h"
 
@@ -12,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[121]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[128]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void bim_nx4_ny4_prescribed_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -142,9 +144,16 @@ void bim_nx4_ny4_prescribed_first_coefficients(const double* p, double* c)
     c[118] = -0.1984126984126984*m*a - 0.06854256854256854*L*m;
     c[119] = 0.1984126984126984*m*a + 0.227994227994228*L*m;
     c[120] = 0.11616161616161616*L*m;
+    c[121] = 0.12698412698412698*L*m;
+    c[122] = 0.11428571428571428*L*m;
+    c[123] = 0.2222222222222222*L*m;
+    c[124] = -0.7936507936507936*m*a - 0.4184704184704185*L*m;
+    c[125] = -0.47619047619047616*m*a - 0.2597402597402597*L*m;
+    c[126] = -0.3968253968253968*m*a - 0.22366522366522368*L*m;
+    c[127] = -0.5555555555555556*m*a - 0.32323232323232326*L*m;
 }
 
-/* mass:(c[121],u[3],q[8],qd[8])->(M[64]) row-major; M = d2T/dqd2 */
+/* mass:(c[128],u[3],q[8],qd[8])->(M[64]) row-major; M = d2T/dqd2 */
 void bim_nx4_ny4_prescribed_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -216,7 +225,7 @@ void bim_nx4_ny4_prescribed_first_mass(const double* c, const double* u, const d
     out[63] = c[16];
 }
 
-/* forces:(c[121],u[3],q[8],qd[8])->(Q[8]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[128],u[3],q[8],qd[8])->(Q[8]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void bim_nx4_ny4_prescribed_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -272,7 +281,7 @@ void bim_nx4_ny4_prescribed_first_forces(const double* c, const double* u, const
     out[7] = c[76]*theta_ddot + c[48]*B1 + c[61]*B2 + c[69]*B3 + c[77]*B4 + c[78]*theta_dot_A1_dot + c[79]*theta_dot_A2_dot + c[80]*theta_dot_A3_dot + c[81]*theta_dot_A4_dot + c[82]*theta_ddot_A1 + c[83]*theta_ddot_A2 + c[84]*theta_ddot_A3 + c[85]*theta_ddot_A4 + c[58]*theta_dotsq_B1 + c[66]*theta_dotsq_B2 + c[75]*theta_dotsq_B3 + c[86]*theta_dotsq_B4;
 }
 
-/* energy:(c[121],u[3],q[8],qd[8])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[128],u[3],q[8],qd[8])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void bim_nx4_ny4_prescribed_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -411,7 +420,7 @@ void bim_nx4_ny4_prescribed_first_energy(const double* c, const double* u, const
     out[3] = c[28]*A1sq + c[20]*A1_A2 + c[98]*A1_A3 + c[18]*A1_A4 + c[20]*A2sq + c[20]*A2_A3 + c[27]*A2_A4 + c[28]*A3sq + c[99]*A3_A4 + c[34]*A4sq + c[100]*B1sq + c[101]*B1_B2 + c[102]*B1_B3 + c[103]*B1_B4 + c[100]*B2sq + c[104]*B2_B3 + c[105]*B2_B4 + c[106]*B3sq + c[107]*B3_B4 + c[108]*B4sq;
 }
 
-/* momentum:(c[121],u[3],q[8],qd[8])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[128],u[3],q[8],qd[8])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void bim_nx4_ny4_prescribed_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -494,9 +503,210 @@ void bim_nx4_ny4_prescribed_first_momentum(const double* c, const double* u, con
     out[0] = c[109]*theta_dot + c[89]*B1_dot + c[90]*B2_dot + c[91]*B3_dot + c[92]*B4_dot + c[110]*theta_dot_A1 + c[111]*theta_dot_A2 + c[112]*theta_dot_A3 + c[113]*theta_dot_A4 + c[1]*A1_B1_dot + c[23]*A1_B2_dot + c[25]*A1_B3_dot + c[26]*A1_B4_dot + c[1]*A2_B1_dot + c[1]*A2_B2_dot + c[32]*A2_B3_dot + c[33]*A2_B4_dot + c[23]*A3_B1_dot + c[1]*A3_B2_dot + c[6]*A3_B3_dot + c[37]*A3_B4_dot + c[41]*A4_B1_dot + c[42]*A4_B2_dot + c[6]*A4_B3_dot + c[43]*A4_B4_dot + c[52]*B1_A1_dot + c[52]*B1_A2_dot + c[53]*B1_A3_dot + c[54]*B1_A4_dot + c[53]*B2_A1_dot + c[52]*B2_A2_dot + c[52]*B2_A3_dot + c[63]*B2_A4_dot + c[72]*B3_A1_dot + c[73]*B3_A2_dot + c[62]*B3_A3_dot + c[62]*B3_A4_dot + c[82]*B4_A1_dot + c[83]*B4_A2_dot + c[84]*B4_A3_dot + c[85]*B4_A4_dot + c[0]*theta_dot_A1sq + c[22]*theta_dot_A1_A2 + c[114]*theta_dot_A1_A3 + c[25]*theta_dot_A1_A4 + c[4]*theta_dot_A2sq + c[22]*theta_dot_A2_A3 + c[1]*theta_dot_A2_A4 + c[0]*theta_dot_A3sq + c[7]*theta_dot_A3_A4 + c[7]*theta_dot_A4sq + c[55]*theta_dot_B1sq + c[115]*theta_dot_B1_B2 + c[116]*theta_dot_B1_B3 + c[117]*theta_dot_B1_B4 + c[64]*theta_dot_B2sq + c[118]*theta_dot_B2_B3 + c[119]*theta_dot_B2_B4 + c[74]*theta_dot_B3sq + c[120]*theta_dot_B3_B4 + c[86]*theta_dot_B4sq;
 }
 
+/* forces_q:(c[128],u[3],q[8],qd[8])->(dQdq[64]) row-major; out[i*8+k] = dQ_i/dq_k */
+void bim_nx4_ny4_prescribed_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)q;
+    (void)qd;
+    const double theta_dot = u[1];
+    const double theta_ddot = u[2];
+    const double theta_dotsq = theta_dot*theta_dot;
+    out[0] = c[17] + c[0]*theta_dotsq;
+    out[1] = c[18] + c[1]*theta_dotsq;
+    out[2] = c[19] + c[2]*theta_dotsq;
+    out[3] = c[20] + c[3]*theta_dotsq;
+    out[4] = c[1]*theta_ddot;
+    out[5] = c[23]*theta_ddot;
+    out[6] = c[25]*theta_ddot;
+    out[7] = c[26]*theta_ddot;
+    out[8] = c[18] + c[1]*theta_dotsq;
+    out[9] = c[27] + c[4]*theta_dotsq;
+    out[10] = c[18] + c[1]*theta_dotsq;
+    out[11] = c[28] + c[5]*theta_dotsq;
+    out[12] = c[1]*theta_ddot;
+    out[13] = c[1]*theta_ddot;
+    out[14] = c[32]*theta_ddot;
+    out[15] = c[33]*theta_ddot;
+    out[16] = c[19] + c[2]*theta_dotsq;
+    out[17] = c[18] + c[1]*theta_dotsq;
+    out[18] = c[17] + c[0]*theta_dotsq;
+    out[19] = c[34] + c[6]*theta_dotsq;
+    out[20] = c[23]*theta_ddot;
+    out[21] = c[1]*theta_ddot;
+    out[22] = c[6]*theta_ddot;
+    out[23] = c[37]*theta_ddot;
+    out[24] = c[20] + c[3]*theta_dotsq;
+    out[25] = c[28] + c[5]*theta_dotsq;
+    out[26] = c[34] + c[6]*theta_dotsq;
+    out[27] = c[38] + c[7]*theta_dotsq;
+    out[28] = c[41]*theta_ddot;
+    out[29] = c[42]*theta_ddot;
+    out[30] = c[6]*theta_ddot;
+    out[31] = c[43]*theta_ddot;
+    out[32] = c[52]*theta_ddot;
+    out[33] = c[52]*theta_ddot;
+    out[34] = c[53]*theta_ddot;
+    out[35] = c[54]*theta_ddot;
+    out[36] = c[45] + c[55]*theta_dotsq;
+    out[37] = c[46] + c[56]*theta_dotsq;
+    out[38] = c[47] + c[57]*theta_dotsq;
+    out[39] = c[48] + c[58]*theta_dotsq;
+    out[40] = c[53]*theta_ddot;
+    out[41] = c[52]*theta_ddot;
+    out[42] = c[52]*theta_ddot;
+    out[43] = c[63]*theta_ddot;
+    out[44] = c[46] + c[56]*theta_dotsq;
+    out[45] = c[45] + c[64]*theta_dotsq;
+    out[46] = c[60] + c[65]*theta_dotsq;
+    out[47] = c[61] + c[66]*theta_dotsq;
+    out[48] = c[72]*theta_ddot;
+    out[49] = c[73]*theta_ddot;
+    out[50] = c[62]*theta_ddot;
+    out[51] = c[62]*theta_ddot;
+    out[52] = c[47] + c[57]*theta_dotsq;
+    out[53] = c[60] + c[65]*theta_dotsq;
+    out[54] = c[68] + c[74]*theta_dotsq;
+    out[55] = c[69] + c[75]*theta_dotsq;
+    out[56] = c[82]*theta_ddot;
+    out[57] = c[83]*theta_ddot;
+    out[58] = c[84]*theta_ddot;
+    out[59] = c[85]*theta_ddot;
+    out[60] = c[48] + c[58]*theta_dotsq;
+    out[61] = c[61] + c[66]*theta_dotsq;
+    out[62] = c[69] + c[75]*theta_dotsq;
+    out[63] = c[77] + c[86]*theta_dotsq;
+}
+
+/* forces_qd:(c[128],u[3],q[8],qd[8])->(dQdqd[64]) row-major; out[i*8+k] = dQ_i/dqd_k */
+void bim_nx4_ny4_prescribed_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)q;
+    (void)qd;
+    const double theta_dot = u[1];
+    out[0] = 0.0;
+    out[1] = 0.0;
+    out[2] = 0.0;
+    out[3] = 0.0;
+    out[4] = c[22]*theta_dot;
+    out[5] = c[0]*theta_dot;
+    out[6] = c[23]*theta_dot;
+    out[7] = c[24]*theta_dot;
+    out[8] = 0.0;
+    out[9] = 0.0;
+    out[10] = 0.0;
+    out[11] = 0.0;
+    out[12] = c[22]*theta_dot;
+    out[13] = c[22]*theta_dot;
+    out[14] = c[30]*theta_dot;
+    out[15] = c[31]*theta_dot;
+    out[16] = 0.0;
+    out[17] = 0.0;
+    out[18] = 0.0;
+    out[19] = 0.0;
+    out[20] = c[0]*theta_dot;
+    out[21] = c[22]*theta_dot;
+    out[22] = c[7]*theta_dot;
+    out[23] = c[36]*theta_dot;
+    out[24] = 0.0;
+    out[25] = 0.0;
+    out[26] = 0.0;
+    out[27] = 0.0;
+    out[28] = c[5]*theta_dot;
+    out[29] = c[6]*theta_dot;
+    out[30] = c[7]*theta_dot;
+    out[31] = c[40]*theta_dot;
+    out[32] = c[49]*theta_dot;
+    out[33] = c[49]*theta_dot;
+    out[34] = c[50]*theta_dot;
+    out[35] = c[51]*theta_dot;
+    out[36] = 0.0;
+    out[37] = 0.0;
+    out[38] = 0.0;
+    out[39] = 0.0;
+    out[40] = c[50]*theta_dot;
+    out[41] = c[49]*theta_dot;
+    out[42] = c[49]*theta_dot;
+    out[43] = c[62]*theta_dot;
+    out[44] = 0.0;
+    out[45] = 0.0;
+    out[46] = 0.0;
+    out[47] = 0.0;
+    out[48] = c[53]*theta_dot;
+    out[49] = c[70]*theta_dot;
+    out[50] = c[71]*theta_dot;
+    out[51] = c[71]*theta_dot;
+    out[52] = 0.0;
+    out[53] = 0.0;
+    out[54] = 0.0;
+    out[55] = 0.0;
+    out[56] = c[78]*theta_dot;
+    out[57] = c[79]*theta_dot;
+    out[58] = c[80]*theta_dot;
+    out[59] = c[81]*theta_dot;
+    out[60] = 0.0;
+    out[61] = 0.0;
+    out[62] = 0.0;
+    out[63] = 0.0;
+}
+
+/* forces_u:(c[128],u[3],q[8],qd[8])->(dQdu[24]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
+void bim_nx4_ny4_prescribed_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    const double theta_dot = u[1];
+    const double A1 = q[0];
+    const double A2 = q[1];
+    const double A3 = q[2];
+    const double A4 = q[3];
+    const double B1 = q[4];
+    const double B2 = q[5];
+    const double B3 = q[6];
+    const double B4 = q[7];
+    const double A1_dot = qd[0];
+    const double A2_dot = qd[1];
+    const double A3_dot = qd[2];
+    const double A4_dot = qd[3];
+    const double B1_dot = qd[4];
+    const double B2_dot = qd[5];
+    const double B3_dot = qd[6];
+    const double B4_dot = qd[7];
+    const double theta_dot_A1 = theta_dot*A1;
+    const double theta_dot_A2 = theta_dot*A2;
+    const double theta_dot_A3 = theta_dot*A3;
+    const double theta_dot_A4 = theta_dot*A4;
+    const double theta_dot_B1 = theta_dot*B1;
+    const double theta_dot_B2 = theta_dot*B2;
+    const double theta_dot_B3 = theta_dot*B3;
+    const double theta_dot_B4 = theta_dot*B4;
+    out[0] = 0.0;
+    out[1] = c[110]*theta_dot + c[22]*B1_dot + c[0]*B2_dot + c[23]*B3_dot + c[24]*B4_dot + c[121]*theta_dot_A1 + c[22]*theta_dot_A2 + c[114]*theta_dot_A3 + c[25]*theta_dot_A4;
+    out[2] = c[1]*B1 + c[23]*B2 + c[25]*B3 + c[26]*B4;
+    out[3] = 0.0;
+    out[4] = c[111]*theta_dot + c[22]*B1_dot + c[22]*B2_dot + c[30]*B3_dot + c[31]*B4_dot + c[22]*theta_dot_A1 + c[122]*theta_dot_A2 + c[22]*theta_dot_A3 + c[1]*theta_dot_A4;
+    out[5] = c[1]*B1 + c[1]*B2 + c[32]*B3 + c[33]*B4;
+    out[6] = 0.0;
+    out[7] = c[112]*theta_dot + c[0]*B1_dot + c[22]*B2_dot + c[7]*B3_dot + c[36]*B4_dot + c[114]*theta_dot_A1 + c[22]*theta_dot_A2 + c[121]*theta_dot_A3 + c[7]*theta_dot_A4;
+    out[8] = c[23]*B1 + c[1]*B2 + c[6]*B3 + c[37]*B4;
+    out[9] = 0.0;
+    out[10] = c[113]*theta_dot + c[5]*B1_dot + c[6]*B2_dot + c[7]*B3_dot + c[40]*B4_dot + c[25]*theta_dot_A1 + c[1]*theta_dot_A2 + c[7]*theta_dot_A3 + c[123]*theta_dot_A4;
+    out[11] = c[41]*B1 + c[42]*B2 + c[6]*B3 + c[43]*B4;
+    out[12] = 0.0;
+    out[13] = c[49]*A1_dot + c[49]*A2_dot + c[50]*A3_dot + c[51]*A4_dot + c[124]*theta_dot_B1 + c[115]*theta_dot_B2 + c[116]*theta_dot_B3 + c[117]*theta_dot_B4;
+    out[14] = c[44] + c[52]*A1 + c[52]*A2 + c[53]*A3 + c[54]*A4;
+    out[15] = 0.0;
+    out[16] = c[50]*A1_dot + c[49]*A2_dot + c[49]*A3_dot + c[62]*A4_dot + c[115]*theta_dot_B1 + c[125]*theta_dot_B2 + c[118]*theta_dot_B3 + c[119]*theta_dot_B4;
+    out[17] = c[59] + c[53]*A1 + c[52]*A2 + c[52]*A3 + c[63]*A4;
+    out[18] = 0.0;
+    out[19] = c[53]*A1_dot + c[70]*A2_dot + c[71]*A3_dot + c[71]*A4_dot + c[116]*theta_dot_B1 + c[118]*theta_dot_B2 + c[126]*theta_dot_B3 + c[120]*theta_dot_B4;
+    out[20] = c[67] + c[72]*A1 + c[73]*A2 + c[62]*A3 + c[62]*A4;
+    out[21] = 0.0;
+    out[22] = c[78]*A1_dot + c[79]*A2_dot + c[80]*A3_dot + c[81]*A4_dot + c[117]*theta_dot_B1 + c[119]*theta_dot_B2 + c[120]*theta_dot_B3 + c[127]*theta_dot_B4;
+    out[23] = c[76] + c[82]*A1 + c[83]*A2 + c[84]*A3 + c[85]*A4;
+}
+
 }  // namespace
 
-extern const Variant bim_nx4_ny4_prescribed_first = {"bim_nx4_ny4_prescribed_first", 8, 121, true, bim_nx4_ny4_prescribed_first_coefficients,
-    bim_nx4_ny4_prescribed_first_mass, bim_nx4_ny4_prescribed_first_forces, bim_nx4_ny4_prescribed_first_energy, bim_nx4_ny4_prescribed_first_momentum};
+extern const Variant bim_nx4_ny4_prescribed_first = {"bim_nx4_ny4_prescribed_first", 8, 128, true, bim_nx4_ny4_prescribed_first_coefficients,
+    bim_nx4_ny4_prescribed_first_mass, bim_nx4_ny4_prescribed_first_forces, bim_nx4_ny4_prescribed_first_energy, bim_nx4_ny4_prescribed_first_momentum,
+    bim_nx4_ny4_prescribed_first_forces_q, bim_nx4_ny4_prescribed_first_forces_qd, nullptr, bim_nx4_ny4_prescribed_first_forces_u};
 
 }  // namespace hubbeam::generated

@@ -5,6 +5,8 @@
 // q = (theta, A1..A4, B1..B4), qd = d/dt q; u = (tau, theta_dot, theta_ddot), of which this variant reads tau;
 // p = (L, rho, S, I, E, a, J_oh) in SI units. Slope coordinates (FEM, BSIM) are d/dxi = L d/dx.
 // Derived symbolically from T and U (docs/model.md sections 2-3) by Lagrange's equations of the second kind.
+// For implicit integrators, derivatives of the same M and Q: forces_q = dQ/dq, forces_qd = dQ/dqd, forces_u =
+// dQ/du, mass_q_product = (dM/dq) v.
 
 #include "generated_abi.h"
 
@@ -12,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[135]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[142]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void bim_nx4_ny4_torque_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -156,9 +158,16 @@ void bim_nx4_ny4_torque_first_coefficients(const double* p, double* c)
     c[132] = 74.28571428571429*EI/(L*L*L);
     c[133] = -85.71428571428571*EI/(L*L*L);
     c[134] = 28.571428571428573*EI/(L*L*L);
+    c[135] = 0.12698412698412698*L*m;
+    c[136] = 0.11428571428571428*L*m;
+    c[137] = 0.2222222222222222*L*m;
+    c[138] = -0.7936507936507936*m*a - 0.4184704184704185*L*m;
+    c[139] = -0.47619047619047616*m*a - 0.2597402597402597*L*m;
+    c[140] = -0.3968253968253968*m*a - 0.22366522366522368*L*m;
+    c[141] = -0.5555555555555556*m*a - 0.32323232323232326*L*m;
 }
 
-/* mass:(c[135],u[3],q[9],qd[9])->(M[81]) row-major; M = d2T/dqd2 */
+/* mass:(c[142],u[3],q[9],qd[9])->(M[81]) row-major; M = d2T/dqd2 */
 void bim_nx4_ny4_torque_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -274,7 +283,7 @@ void bim_nx4_ny4_torque_first_mass(const double* c, const double* u, const doubl
     out[80] = c[57];
 }
 
-/* forces:(c[135],u[3],q[9],qd[9])->(Q[9]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[142],u[3],q[9],qd[9])->(Q[9]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void bim_nx4_ny4_torque_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
@@ -363,7 +372,7 @@ void bim_nx4_ny4_torque_first_forces(const double* c, const double* u, const dou
     out[8] = c[98]*B1 + c[105]*B2 + c[109]*B3 + c[112]*B4 + c[113]*theta_dot_A1_dot + c[114]*theta_dot_A2_dot + c[115]*theta_dot_A3_dot + c[116]*theta_dot_A4_dot + c[103]*B1_theta_dotsq + c[107]*B2_theta_dotsq + c[111]*B3_theta_dotsq + c[21]*B4_theta_dotsq;
 }
 
-/* energy:(c[135],u[3],q[9],qd[9])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[142],u[3],q[9],qd[9])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void bim_nx4_ny4_torque_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -519,7 +528,7 @@ void bim_nx4_ny4_torque_first_energy(const double* c, const double* u, const dou
     out[3] = c[85]*A1sq + c[81]*A1_A2 + c[124]*A1_A3 + c[79]*A1_A4 + c[81]*A2sq + c[81]*A2_A3 + c[84]*A2_A4 + c[85]*A3sq + c[125]*A3_A4 + c[89]*A4sq + c[126]*B1sq + c[127]*B1_B2 + c[128]*B1_B3 + c[129]*B1_B4 + c[126]*B2sq + c[130]*B2_B3 + c[131]*B2_B4 + c[132]*B3sq + c[133]*B3_B4 + c[134]*B4sq;
 }
 
-/* momentum:(c[135],u[3],q[9],qd[9])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[142],u[3],q[9],qd[9])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void bim_nx4_ny4_torque_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -619,9 +628,408 @@ void bim_nx4_ny4_torque_first_momentum(const double* c, const double* u, const d
     out[0] = c[0]*theta_dot + c[33]*B1_dot + c[36]*B2_dot + c[38]*B3_dot + c[41]*B4_dot + c[1]*A1_theta_dot + c[10]*A1_B1_dot + c[34]*A1_B2_dot + c[8]*A1_B3_dot + c[42]*A1_B4_dot + c[2]*A2_theta_dot + c[10]*A2_B1_dot + c[10]*A2_B2_dot + c[39]*A2_B3_dot + c[43]*A2_B4_dot + c[3]*A3_theta_dot + c[34]*A3_B1_dot + c[10]*A3_B2_dot + c[40]*A3_B3_dot + c[44]*A3_B4_dot + c[4]*A4_theta_dot + c[35]*A4_B1_dot + c[37]*A4_B2_dot + c[40]*A4_B3_dot + c[45]*A4_B4_dot + c[22]*B1_A1_dot + c[22]*B1_A2_dot + c[23]*B1_A3_dot + c[30]*B1_A4_dot + c[23]*B2_A1_dot + c[22]*B2_A2_dot + c[22]*B2_A3_dot + c[31]*B2_A4_dot + c[24]*B3_A1_dot + c[26]*B3_A2_dot + c[28]*B3_A3_dot + c[28]*B3_A4_dot + c[25]*B4_A1_dot + c[27]*B4_A2_dot + c[29]*B4_A3_dot + c[32]*B4_A4_dot + c[5]*A1sq_theta_dot + c[6]*A1_A2_theta_dot + c[7]*A1_A3_theta_dot + c[8]*A1_A4_theta_dot + c[9]*A2sq_theta_dot + c[6]*A2_A3_theta_dot + c[10]*A2_A4_theta_dot + c[5]*A3sq_theta_dot + c[11]*A3_A4_theta_dot + c[11]*A4sq_theta_dot + c[12]*B1sq_theta_dot + c[13]*B1_B2_theta_dot + c[14]*B1_B3_theta_dot + c[15]*B1_B4_theta_dot + c[16]*B2sq_theta_dot + c[17]*B2_B3_theta_dot + c[18]*B2_B4_theta_dot + c[19]*B3sq_theta_dot + c[20]*B3_B4_theta_dot + c[21]*B4sq_theta_dot;
 }
 
+/* forces_q:(c[142],u[3],q[9],qd[9])->(dQdq[81]) row-major; out[i*9+k] = dQ_i/dq_k */
+void bim_nx4_ny4_torque_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)q;
+    const double theta_dot = qd[0];
+    const double A1_dot = qd[1];
+    const double A2_dot = qd[2];
+    const double A3_dot = qd[3];
+    const double A4_dot = qd[4];
+    const double B1_dot = qd[5];
+    const double B2_dot = qd[6];
+    const double B3_dot = qd[7];
+    const double B4_dot = qd[8];
+    const double theta_dotsq = theta_dot*theta_dot;
+    const double theta_dot_A1_dot = theta_dot*A1_dot;
+    const double theta_dot_A2_dot = theta_dot*A2_dot;
+    const double theta_dot_A3_dot = theta_dot*A3_dot;
+    const double theta_dot_A4_dot = theta_dot*A4_dot;
+    const double theta_dot_B1_dot = theta_dot*B1_dot;
+    const double theta_dot_B2_dot = theta_dot*B2_dot;
+    const double theta_dot_B3_dot = theta_dot*B3_dot;
+    const double theta_dot_B4_dot = theta_dot*B4_dot;
+    out[0] = 0.0;
+    out[1] = c[62]*theta_dot_A1_dot + c[63]*theta_dot_A2_dot + c[64]*theta_dot_A3_dot + c[24]*theta_dot_A4_dot;
+    out[2] = c[63]*theta_dot_A1_dot + c[65]*theta_dot_A2_dot + c[63]*theta_dot_A3_dot + c[22]*theta_dot_A4_dot;
+    out[3] = c[64]*theta_dot_A1_dot + c[63]*theta_dot_A2_dot + c[62]*theta_dot_A3_dot + c[66]*theta_dot_A4_dot;
+    out[4] = c[24]*theta_dot_A1_dot + c[22]*theta_dot_A2_dot + c[66]*theta_dot_A3_dot + c[67]*theta_dot_A4_dot;
+    out[5] = c[68]*theta_dot_B1_dot + c[69]*theta_dot_B2_dot + c[70]*theta_dot_B3_dot + c[71]*theta_dot_B4_dot;
+    out[6] = c[69]*theta_dot_B1_dot + c[72]*theta_dot_B2_dot + c[73]*theta_dot_B3_dot + c[74]*theta_dot_B4_dot;
+    out[7] = c[70]*theta_dot_B1_dot + c[73]*theta_dot_B2_dot + c[75]*theta_dot_B3_dot + c[76]*theta_dot_B4_dot;
+    out[8] = c[71]*theta_dot_B1_dot + c[74]*theta_dot_B2_dot + c[76]*theta_dot_B3_dot + c[77]*theta_dot_B4_dot;
+    out[9] = 0.0;
+    out[10] = c[78] + c[5]*theta_dotsq;
+    out[11] = c[79] + c[10]*theta_dotsq;
+    out[12] = c[80] + c[46]*theta_dotsq;
+    out[13] = c[81] + c[47]*theta_dotsq;
+    out[14] = 0.0;
+    out[15] = 0.0;
+    out[16] = 0.0;
+    out[17] = 0.0;
+    out[18] = 0.0;
+    out[19] = c[79] + c[10]*theta_dotsq;
+    out[20] = c[84] + c[9]*theta_dotsq;
+    out[21] = c[79] + c[10]*theta_dotsq;
+    out[22] = c[85] + c[48]*theta_dotsq;
+    out[23] = 0.0;
+    out[24] = 0.0;
+    out[25] = 0.0;
+    out[26] = 0.0;
+    out[27] = 0.0;
+    out[28] = c[80] + c[46]*theta_dotsq;
+    out[29] = c[79] + c[10]*theta_dotsq;
+    out[30] = c[78] + c[5]*theta_dotsq;
+    out[31] = c[89] + c[40]*theta_dotsq;
+    out[32] = 0.0;
+    out[33] = 0.0;
+    out[34] = 0.0;
+    out[35] = 0.0;
+    out[36] = 0.0;
+    out[37] = c[81] + c[47]*theta_dotsq;
+    out[38] = c[85] + c[48]*theta_dotsq;
+    out[39] = c[89] + c[40]*theta_dotsq;
+    out[40] = c[92] + c[11]*theta_dotsq;
+    out[41] = 0.0;
+    out[42] = 0.0;
+    out[43] = 0.0;
+    out[44] = 0.0;
+    out[45] = 0.0;
+    out[46] = 0.0;
+    out[47] = 0.0;
+    out[48] = 0.0;
+    out[49] = 0.0;
+    out[50] = c[95] + c[12]*theta_dotsq;
+    out[51] = c[96] + c[101]*theta_dotsq;
+    out[52] = c[97] + c[102]*theta_dotsq;
+    out[53] = c[98] + c[103]*theta_dotsq;
+    out[54] = 0.0;
+    out[55] = 0.0;
+    out[56] = 0.0;
+    out[57] = 0.0;
+    out[58] = 0.0;
+    out[59] = c[96] + c[101]*theta_dotsq;
+    out[60] = c[95] + c[16]*theta_dotsq;
+    out[61] = c[104] + c[106]*theta_dotsq;
+    out[62] = c[105] + c[107]*theta_dotsq;
+    out[63] = 0.0;
+    out[64] = 0.0;
+    out[65] = 0.0;
+    out[66] = 0.0;
+    out[67] = 0.0;
+    out[68] = c[97] + c[102]*theta_dotsq;
+    out[69] = c[104] + c[106]*theta_dotsq;
+    out[70] = c[108] + c[19]*theta_dotsq;
+    out[71] = c[109] + c[111]*theta_dotsq;
+    out[72] = 0.0;
+    out[73] = 0.0;
+    out[74] = 0.0;
+    out[75] = 0.0;
+    out[76] = 0.0;
+    out[77] = c[98] + c[103]*theta_dotsq;
+    out[78] = c[105] + c[107]*theta_dotsq;
+    out[79] = c[109] + c[111]*theta_dotsq;
+    out[80] = c[112] + c[21]*theta_dotsq;
+}
+
+/* forces_qd:(c[142],u[3],q[9],qd[9])->(dQdqd[81]) row-major; out[i*9+k] = dQ_i/dqd_k */
+void bim_nx4_ny4_torque_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    const double A1 = q[1];
+    const double A2 = q[2];
+    const double A3 = q[3];
+    const double A4 = q[4];
+    const double B1 = q[5];
+    const double B2 = q[6];
+    const double B3 = q[7];
+    const double B4 = q[8];
+    const double theta_dot = qd[0];
+    const double A1_dot = qd[1];
+    const double A2_dot = qd[2];
+    const double A3_dot = qd[3];
+    const double A4_dot = qd[4];
+    const double B1_dot = qd[5];
+    const double B2_dot = qd[6];
+    const double B3_dot = qd[7];
+    const double B4_dot = qd[8];
+    const double A1_theta_dot = A1*theta_dot;
+    const double A1_A1_dot = A1*A1_dot;
+    const double A1_A2_dot = A1*A2_dot;
+    const double A1_A3_dot = A1*A3_dot;
+    const double A1_A4_dot = A1*A4_dot;
+    const double A2_theta_dot = A2*theta_dot;
+    const double A2_A1_dot = A2*A1_dot;
+    const double A2_A2_dot = A2*A2_dot;
+    const double A2_A3_dot = A2*A3_dot;
+    const double A2_A4_dot = A2*A4_dot;
+    const double A3_theta_dot = A3*theta_dot;
+    const double A3_A1_dot = A3*A1_dot;
+    const double A3_A2_dot = A3*A2_dot;
+    const double A3_A3_dot = A3*A3_dot;
+    const double A3_A4_dot = A3*A4_dot;
+    const double A4_theta_dot = A4*theta_dot;
+    const double A4_A1_dot = A4*A1_dot;
+    const double A4_A2_dot = A4*A2_dot;
+    const double A4_A3_dot = A4*A3_dot;
+    const double A4_A4_dot = A4*A4_dot;
+    const double B1_theta_dot = B1*theta_dot;
+    const double B1_B1_dot = B1*B1_dot;
+    const double B1_B2_dot = B1*B2_dot;
+    const double B1_B3_dot = B1*B3_dot;
+    const double B1_B4_dot = B1*B4_dot;
+    const double B2_theta_dot = B2*theta_dot;
+    const double B2_B1_dot = B2*B1_dot;
+    const double B2_B2_dot = B2*B2_dot;
+    const double B2_B3_dot = B2*B3_dot;
+    const double B2_B4_dot = B2*B4_dot;
+    const double B3_theta_dot = B3*theta_dot;
+    const double B3_B1_dot = B3*B1_dot;
+    const double B3_B2_dot = B3*B2_dot;
+    const double B3_B3_dot = B3*B3_dot;
+    const double B3_B4_dot = B3*B4_dot;
+    const double B4_theta_dot = B4*theta_dot;
+    const double B4_B1_dot = B4*B1_dot;
+    const double B4_B2_dot = B4*B2_dot;
+    const double B4_B3_dot = B4*B3_dot;
+    const double B4_B4_dot = B4*B4_dot;
+    out[0] = c[58]*A1_dot + c[59]*A2_dot + c[60]*A3_dot + c[61]*A4_dot + c[62]*A1_A1_dot + c[63]*A1_A2_dot + c[64]*A1_A3_dot + c[24]*A1_A4_dot + c[63]*A2_A1_dot + c[65]*A2_A2_dot + c[63]*A2_A3_dot + c[22]*A2_A4_dot + c[64]*A3_A1_dot + c[63]*A3_A2_dot + c[62]*A3_A3_dot + c[66]*A3_A4_dot + c[24]*A4_A1_dot + c[22]*A4_A2_dot + c[66]*A4_A3_dot + c[67]*A4_A4_dot + c[68]*B1_B1_dot + c[69]*B1_B2_dot + c[70]*B1_B3_dot + c[71]*B1_B4_dot + c[69]*B2_B1_dot + c[72]*B2_B2_dot + c[73]*B2_B3_dot + c[74]*B2_B4_dot + c[70]*B3_B1_dot + c[73]*B3_B2_dot + c[75]*B3_B3_dot + c[76]*B3_B4_dot + c[71]*B4_B1_dot + c[74]*B4_B2_dot + c[76]*B4_B3_dot + c[77]*B4_B4_dot;
+    out[1] = c[58]*theta_dot + c[62]*A1_theta_dot + c[63]*A2_theta_dot + c[64]*A3_theta_dot + c[24]*A4_theta_dot;
+    out[2] = c[59]*theta_dot + c[63]*A1_theta_dot + c[65]*A2_theta_dot + c[63]*A3_theta_dot + c[22]*A4_theta_dot;
+    out[3] = c[60]*theta_dot + c[64]*A1_theta_dot + c[63]*A2_theta_dot + c[62]*A3_theta_dot + c[66]*A4_theta_dot;
+    out[4] = c[61]*theta_dot + c[24]*A1_theta_dot + c[22]*A2_theta_dot + c[66]*A3_theta_dot + c[67]*A4_theta_dot;
+    out[5] = c[68]*B1_theta_dot + c[69]*B2_theta_dot + c[70]*B3_theta_dot + c[71]*B4_theta_dot;
+    out[6] = c[69]*B1_theta_dot + c[72]*B2_theta_dot + c[73]*B3_theta_dot + c[74]*B4_theta_dot;
+    out[7] = c[70]*B1_theta_dot + c[73]*B2_theta_dot + c[75]*B3_theta_dot + c[76]*B4_theta_dot;
+    out[8] = c[71]*B1_theta_dot + c[74]*B2_theta_dot + c[76]*B3_theta_dot + c[77]*B4_theta_dot;
+    out[9] = c[1]*theta_dot + c[6]*B1_dot + c[5]*B2_dot + c[34]*B3_dot + c[83]*B4_dot + c[135]*A1_theta_dot + c[6]*A2_theta_dot + c[7]*A3_theta_dot + c[8]*A4_theta_dot;
+    out[10] = 0.0;
+    out[11] = 0.0;
+    out[12] = 0.0;
+    out[13] = 0.0;
+    out[14] = c[6]*theta_dot;
+    out[15] = c[5]*theta_dot;
+    out[16] = c[34]*theta_dot;
+    out[17] = c[83]*theta_dot;
+    out[18] = c[2]*theta_dot + c[6]*B1_dot + c[6]*B2_dot + c[87]*B3_dot + c[88]*B4_dot + c[6]*A1_theta_dot + c[136]*A2_theta_dot + c[6]*A3_theta_dot + c[10]*A4_theta_dot;
+    out[19] = 0.0;
+    out[20] = 0.0;
+    out[21] = 0.0;
+    out[22] = 0.0;
+    out[23] = c[6]*theta_dot;
+    out[24] = c[6]*theta_dot;
+    out[25] = c[87]*theta_dot;
+    out[26] = c[88]*theta_dot;
+    out[27] = c[3]*theta_dot + c[5]*B1_dot + c[6]*B2_dot + c[11]*B3_dot + c[91]*B4_dot + c[7]*A1_theta_dot + c[6]*A2_theta_dot + c[135]*A3_theta_dot + c[11]*A4_theta_dot;
+    out[28] = 0.0;
+    out[29] = 0.0;
+    out[30] = 0.0;
+    out[31] = 0.0;
+    out[32] = c[5]*theta_dot;
+    out[33] = c[6]*theta_dot;
+    out[34] = c[11]*theta_dot;
+    out[35] = c[91]*theta_dot;
+    out[36] = c[4]*theta_dot + c[48]*B1_dot + c[40]*B2_dot + c[11]*B3_dot + c[94]*B4_dot + c[8]*A1_theta_dot + c[10]*A2_theta_dot + c[11]*A3_theta_dot + c[137]*A4_theta_dot;
+    out[37] = 0.0;
+    out[38] = 0.0;
+    out[39] = 0.0;
+    out[40] = 0.0;
+    out[41] = c[48]*theta_dot;
+    out[42] = c[40]*theta_dot;
+    out[43] = c[11]*theta_dot;
+    out[44] = c[94]*theta_dot;
+    out[45] = c[63]*A1_dot + c[63]*A2_dot + c[99]*A3_dot + c[100]*A4_dot + c[138]*B1_theta_dot + c[13]*B2_theta_dot + c[14]*B3_theta_dot + c[15]*B4_theta_dot;
+    out[46] = c[63]*theta_dot;
+    out[47] = c[63]*theta_dot;
+    out[48] = c[99]*theta_dot;
+    out[49] = c[100]*theta_dot;
+    out[50] = 0.0;
+    out[51] = 0.0;
+    out[52] = 0.0;
+    out[53] = 0.0;
+    out[54] = c[99]*A1_dot + c[63]*A2_dot + c[63]*A3_dot + c[28]*A4_dot + c[13]*B1_theta_dot + c[139]*B2_theta_dot + c[17]*B3_theta_dot + c[18]*B4_theta_dot;
+    out[55] = c[99]*theta_dot;
+    out[56] = c[63]*theta_dot;
+    out[57] = c[63]*theta_dot;
+    out[58] = c[28]*theta_dot;
+    out[59] = 0.0;
+    out[60] = 0.0;
+    out[61] = 0.0;
+    out[62] = 0.0;
+    out[63] = c[23]*A1_dot + c[110]*A2_dot + c[66]*A3_dot + c[66]*A4_dot + c[14]*B1_theta_dot + c[17]*B2_theta_dot + c[140]*B3_theta_dot + c[20]*B4_theta_dot;
+    out[64] = c[23]*theta_dot;
+    out[65] = c[110]*theta_dot;
+    out[66] = c[66]*theta_dot;
+    out[67] = c[66]*theta_dot;
+    out[68] = 0.0;
+    out[69] = 0.0;
+    out[70] = 0.0;
+    out[71] = 0.0;
+    out[72] = c[113]*A1_dot + c[114]*A2_dot + c[115]*A3_dot + c[116]*A4_dot + c[15]*B1_theta_dot + c[18]*B2_theta_dot + c[20]*B3_theta_dot + c[141]*B4_theta_dot;
+    out[73] = c[113]*theta_dot;
+    out[74] = c[114]*theta_dot;
+    out[75] = c[115]*theta_dot;
+    out[76] = c[116]*theta_dot;
+    out[77] = 0.0;
+    out[78] = 0.0;
+    out[79] = 0.0;
+    out[80] = 0.0;
+}
+
+/* forces_u:(c[142],u[3],q[9],qd[9])->(dQdu[27]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
+void bim_nx4_ny4_torque_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)c;
+    (void)u;
+    (void)q;
+    (void)qd;
+    out[0] = 1.0;
+    out[1] = 0.0;
+    out[2] = 0.0;
+    out[3] = 0.0;
+    out[4] = 0.0;
+    out[5] = 0.0;
+    out[6] = 0.0;
+    out[7] = 0.0;
+    out[8] = 0.0;
+    out[9] = 0.0;
+    out[10] = 0.0;
+    out[11] = 0.0;
+    out[12] = 0.0;
+    out[13] = 0.0;
+    out[14] = 0.0;
+    out[15] = 0.0;
+    out[16] = 0.0;
+    out[17] = 0.0;
+    out[18] = 0.0;
+    out[19] = 0.0;
+    out[20] = 0.0;
+    out[21] = 0.0;
+    out[22] = 0.0;
+    out[23] = 0.0;
+    out[24] = 0.0;
+    out[25] = 0.0;
+    out[26] = 0.0;
+}
+
+/* mass_q_product:(c[142],u[3],q[9],qd[9])->(dMv[81]) row-major; v in the qd slot; out[i*9+k] = sum_j dM_ij/dq_k v_j */
+void bim_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    const double A1 = q[1];
+    const double A2 = q[2];
+    const double A3 = q[3];
+    const double A4 = q[4];
+    const double B1 = q[5];
+    const double B2 = q[6];
+    const double B3 = q[7];
+    const double B4 = q[8];
+    const double theta_dot = qd[0];
+    const double A1_dot = qd[1];
+    const double A2_dot = qd[2];
+    const double A3_dot = qd[3];
+    const double A4_dot = qd[4];
+    const double B1_dot = qd[5];
+    const double B2_dot = qd[6];
+    const double B3_dot = qd[7];
+    const double B4_dot = qd[8];
+    const double A1_theta_dot = A1*theta_dot;
+    const double A2_theta_dot = A2*theta_dot;
+    const double A3_theta_dot = A3*theta_dot;
+    const double A4_theta_dot = A4*theta_dot;
+    const double B1_theta_dot = B1*theta_dot;
+    const double B2_theta_dot = B2*theta_dot;
+    const double B3_theta_dot = B3*theta_dot;
+    const double B4_theta_dot = B4*theta_dot;
+    out[0] = 0.0;
+    out[1] = c[1]*theta_dot + c[10]*B1_dot + c[34]*B2_dot + c[8]*B3_dot + c[42]*B4_dot + c[135]*A1_theta_dot + c[6]*A2_theta_dot + c[7]*A3_theta_dot + c[8]*A4_theta_dot;
+    out[2] = c[2]*theta_dot + c[10]*B1_dot + c[10]*B2_dot + c[39]*B3_dot + c[43]*B4_dot + c[6]*A1_theta_dot + c[136]*A2_theta_dot + c[6]*A3_theta_dot + c[10]*A4_theta_dot;
+    out[3] = c[3]*theta_dot + c[34]*B1_dot + c[10]*B2_dot + c[40]*B3_dot + c[44]*B4_dot + c[7]*A1_theta_dot + c[6]*A2_theta_dot + c[135]*A3_theta_dot + c[11]*A4_theta_dot;
+    out[4] = c[4]*theta_dot + c[35]*B1_dot + c[37]*B2_dot + c[40]*B3_dot + c[45]*B4_dot + c[8]*A1_theta_dot + c[10]*A2_theta_dot + c[11]*A3_theta_dot + c[137]*A4_theta_dot;
+    out[5] = c[22]*A1_dot + c[22]*A2_dot + c[23]*A3_dot + c[30]*A4_dot + c[138]*B1_theta_dot + c[13]*B2_theta_dot + c[14]*B3_theta_dot + c[15]*B4_theta_dot;
+    out[6] = c[23]*A1_dot + c[22]*A2_dot + c[22]*A3_dot + c[31]*A4_dot + c[13]*B1_theta_dot + c[139]*B2_theta_dot + c[17]*B3_theta_dot + c[18]*B4_theta_dot;
+    out[7] = c[24]*A1_dot + c[26]*A2_dot + c[28]*A3_dot + c[28]*A4_dot + c[14]*B1_theta_dot + c[17]*B2_theta_dot + c[140]*B3_theta_dot + c[20]*B4_theta_dot;
+    out[8] = c[25]*A1_dot + c[27]*A2_dot + c[29]*A3_dot + c[32]*A4_dot + c[15]*B1_theta_dot + c[18]*B2_theta_dot + c[20]*B3_theta_dot + c[141]*B4_theta_dot;
+    out[9] = 0.0;
+    out[10] = 0.0;
+    out[11] = 0.0;
+    out[12] = 0.0;
+    out[13] = 0.0;
+    out[14] = c[22]*theta_dot;
+    out[15] = c[23]*theta_dot;
+    out[16] = c[24]*theta_dot;
+    out[17] = c[25]*theta_dot;
+    out[18] = 0.0;
+    out[19] = 0.0;
+    out[20] = 0.0;
+    out[21] = 0.0;
+    out[22] = 0.0;
+    out[23] = c[22]*theta_dot;
+    out[24] = c[22]*theta_dot;
+    out[25] = c[26]*theta_dot;
+    out[26] = c[27]*theta_dot;
+    out[27] = 0.0;
+    out[28] = 0.0;
+    out[29] = 0.0;
+    out[30] = 0.0;
+    out[31] = 0.0;
+    out[32] = c[23]*theta_dot;
+    out[33] = c[22]*theta_dot;
+    out[34] = c[28]*theta_dot;
+    out[35] = c[29]*theta_dot;
+    out[36] = 0.0;
+    out[37] = 0.0;
+    out[38] = 0.0;
+    out[39] = 0.0;
+    out[40] = 0.0;
+    out[41] = c[30]*theta_dot;
+    out[42] = c[31]*theta_dot;
+    out[43] = c[28]*theta_dot;
+    out[44] = c[32]*theta_dot;
+    out[45] = 0.0;
+    out[46] = c[10]*theta_dot;
+    out[47] = c[10]*theta_dot;
+    out[48] = c[34]*theta_dot;
+    out[49] = c[35]*theta_dot;
+    out[50] = 0.0;
+    out[51] = 0.0;
+    out[52] = 0.0;
+    out[53] = 0.0;
+    out[54] = 0.0;
+    out[55] = c[34]*theta_dot;
+    out[56] = c[10]*theta_dot;
+    out[57] = c[10]*theta_dot;
+    out[58] = c[37]*theta_dot;
+    out[59] = 0.0;
+    out[60] = 0.0;
+    out[61] = 0.0;
+    out[62] = 0.0;
+    out[63] = 0.0;
+    out[64] = c[8]*theta_dot;
+    out[65] = c[39]*theta_dot;
+    out[66] = c[40]*theta_dot;
+    out[67] = c[40]*theta_dot;
+    out[68] = 0.0;
+    out[69] = 0.0;
+    out[70] = 0.0;
+    out[71] = 0.0;
+    out[72] = 0.0;
+    out[73] = c[42]*theta_dot;
+    out[74] = c[43]*theta_dot;
+    out[75] = c[44]*theta_dot;
+    out[76] = c[45]*theta_dot;
+    out[77] = 0.0;
+    out[78] = 0.0;
+    out[79] = 0.0;
+    out[80] = 0.0;
+}
+
 }  // namespace
 
-extern const Variant bim_nx4_ny4_torque_first = {"bim_nx4_ny4_torque_first", 9, 135, false, bim_nx4_ny4_torque_first_coefficients,
-    bim_nx4_ny4_torque_first_mass, bim_nx4_ny4_torque_first_forces, bim_nx4_ny4_torque_first_energy, bim_nx4_ny4_torque_first_momentum};
+extern const Variant bim_nx4_ny4_torque_first = {"bim_nx4_ny4_torque_first", 9, 142, false, bim_nx4_ny4_torque_first_coefficients,
+    bim_nx4_ny4_torque_first_mass, bim_nx4_ny4_torque_first_forces, bim_nx4_ny4_torque_first_energy, bim_nx4_ny4_torque_first_momentum,
+    bim_nx4_ny4_torque_first_forces_q, bim_nx4_ny4_torque_first_forces_qd, bim_nx4_ny4_torque_first_mass_q_product, bim_nx4_ny4_torque_first_forces_u};
 
 }  // namespace hubbeam::generated

@@ -5,6 +5,8 @@
 // q = (B1..B4), qd = d/dt q; u = (tau, theta_dot, theta_ddot), of which this variant reads theta_dot, theta_ddot;
 // p = (L, rho, S, I, E, a, J_oh) in SI units. Slope coordinates (FEM, BSIM) are d/dxi = L d/dx.
 // Derived symbolically from T and U (docs/model.md sections 2-3) by Lagrange's equations of the second kind.
+// For implicit integrators, derivatives of the same M and Q: forces_q = dQ/dq, forces_qd = dQ/dqd, forces_u =
+// dQ/du; M is constant, so there is no mass_q_product.
 
 #include "generated_abi.h"
 
@@ -12,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[58]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[62]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void bsim_nx0_ny4_prescribed_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -78,9 +80,13 @@ void bsim_nx0_ny4_prescribed_first_coefficients(const double* p, double* c)
     c[55] = 0.4125*m*a + 0.5051587301587301*L*m;
     c[56] = -0.009722222222222222*m*a - 0.021296296296296296*L*m;
     c[57] = 0.075*m*a + 0.03941798941798942*L*m;
+    c[58] = -2.625*m*a - 1.4642857142857142*L*m;
+    c[59] = -1.425*m*a - 0.8642857142857143*L*m;
+    c[60] = -1.05*m*a - 0.5476190476190477*L*m;
+    c[61] = -0.011111111111111112*m*a - 0.0078777189888301*L*m;
 }
 
-/* mass:(c[58],u[3],q[4],qd[4])->(M[16]) row-major; M = d2T/dqd2 */
+/* mass:(c[62],u[3],q[4],qd[4])->(M[16]) row-major; M = d2T/dqd2 */
 void bsim_nx0_ny4_prescribed_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -104,7 +110,7 @@ void bsim_nx0_ny4_prescribed_first_mass(const double* c, const double* u, const 
     out[15] = c[8];
 }
 
-/* forces:(c[58],u[3],q[4],qd[4])->(Q[4]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[62],u[3],q[4],qd[4])->(Q[4]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void bsim_nx0_ny4_prescribed_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)qd;
@@ -125,7 +131,7 @@ void bsim_nx0_ny4_prescribed_first_forces(const double* c, const double* u, cons
     out[3] = c[29]*theta_ddot + c[13]*B1 + c[20]*B2 + c[26]*B3 + c[30]*B4 + c[17]*theta_dotsq_B1 + c[23]*theta_dotsq_B2 + c[28]*theta_dotsq_B3 + c[31]*theta_dotsq_B4;
 }
 
-/* energy:(c[58],u[3],q[4],qd[4])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[62],u[3],q[4],qd[4])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void bsim_nx0_ny4_prescribed_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -182,7 +188,7 @@ void bsim_nx0_ny4_prescribed_first_energy(const double* c, const double* u, cons
     out[3] = c[44]*B1sq + c[45]*B1_B2 + c[13]*B1_B3 + c[12]*B1_B4 + c[44]*B2sq + c[46]*B2_B3 + c[47]*B2_B4 + c[48]*B3sq + c[49]*B3_B4 + c[50]*B4sq;
 }
 
-/* momentum:(c[58],u[3],q[4],qd[4])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[62],u[3],q[4],qd[4])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void bsim_nx0_ny4_prescribed_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -211,9 +217,87 @@ void bsim_nx0_ny4_prescribed_first_momentum(const double* c, const double* u, co
     out[0] = c[51]*theta_dot + c[35]*B1_dot + c[36]*B2_dot + c[37]*B3_dot + c[38]*B4_dot + c[14]*theta_dot_B1sq + c[52]*theta_dot_B1_B2 + c[53]*theta_dot_B1_B3 + c[54]*theta_dot_B1_B4 + c[21]*theta_dot_B2sq + c[55]*theta_dot_B2_B3 + c[56]*theta_dot_B2_B4 + c[27]*theta_dot_B3sq + c[57]*theta_dot_B3_B4 + c[31]*theta_dot_B4sq;
 }
 
+/* forces_q:(c[62],u[3],q[4],qd[4])->(dQdq[16]) row-major; out[i*4+k] = dQ_i/dq_k */
+void bsim_nx0_ny4_prescribed_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)q;
+    (void)qd;
+    const double theta_dot = u[1];
+    const double theta_dotsq = theta_dot*theta_dot;
+    out[0] = c[10] + c[14]*theta_dotsq;
+    out[1] = c[11] + c[15]*theta_dotsq;
+    out[2] = c[12] + c[16]*theta_dotsq;
+    out[3] = c[13] + c[17]*theta_dotsq;
+    out[4] = c[11] + c[15]*theta_dotsq;
+    out[5] = c[10] + c[21]*theta_dotsq;
+    out[6] = c[19] + c[22]*theta_dotsq;
+    out[7] = c[20] + c[23]*theta_dotsq;
+    out[8] = c[12] + c[16]*theta_dotsq;
+    out[9] = c[19] + c[22]*theta_dotsq;
+    out[10] = c[25] + c[27]*theta_dotsq;
+    out[11] = c[26] + c[28]*theta_dotsq;
+    out[12] = c[13] + c[17]*theta_dotsq;
+    out[13] = c[20] + c[23]*theta_dotsq;
+    out[14] = c[26] + c[28]*theta_dotsq;
+    out[15] = c[30] + c[31]*theta_dotsq;
+}
+
+/* forces_qd:(c[62],u[3],q[4],qd[4])->(dQdqd[16]) row-major; out[i*4+k] = dQ_i/dqd_k */
+void bsim_nx0_ny4_prescribed_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)c;
+    (void)u;
+    (void)q;
+    (void)qd;
+    out[0] = 0.0;
+    out[1] = 0.0;
+    out[2] = 0.0;
+    out[3] = 0.0;
+    out[4] = 0.0;
+    out[5] = 0.0;
+    out[6] = 0.0;
+    out[7] = 0.0;
+    out[8] = 0.0;
+    out[9] = 0.0;
+    out[10] = 0.0;
+    out[11] = 0.0;
+    out[12] = 0.0;
+    out[13] = 0.0;
+    out[14] = 0.0;
+    out[15] = 0.0;
+}
+
+/* forces_u:(c[62],u[3],q[4],qd[4])->(dQdu[12]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
+void bsim_nx0_ny4_prescribed_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)qd;
+    const double theta_dot = u[1];
+    const double B1 = q[0];
+    const double B2 = q[1];
+    const double B3 = q[2];
+    const double B4 = q[3];
+    const double theta_dot_B1 = theta_dot*B1;
+    const double theta_dot_B2 = theta_dot*B2;
+    const double theta_dot_B3 = theta_dot*B3;
+    const double theta_dot_B4 = theta_dot*B4;
+    out[0] = 0.0;
+    out[1] = c[58]*theta_dot_B1 + c[52]*theta_dot_B2 + c[53]*theta_dot_B3 + c[54]*theta_dot_B4;
+    out[2] = c[9];
+    out[3] = 0.0;
+    out[4] = c[52]*theta_dot_B1 + c[59]*theta_dot_B2 + c[55]*theta_dot_B3 + c[56]*theta_dot_B4;
+    out[5] = c[18];
+    out[6] = 0.0;
+    out[7] = c[53]*theta_dot_B1 + c[55]*theta_dot_B2 + c[60]*theta_dot_B3 + c[57]*theta_dot_B4;
+    out[8] = c[24];
+    out[9] = 0.0;
+    out[10] = c[54]*theta_dot_B1 + c[56]*theta_dot_B2 + c[57]*theta_dot_B3 + c[61]*theta_dot_B4;
+    out[11] = c[29];
+}
+
 }  // namespace
 
-extern const Variant bsim_nx0_ny4_prescribed_first = {"bsim_nx0_ny4_prescribed_first", 4, 58, true, bsim_nx0_ny4_prescribed_first_coefficients,
-    bsim_nx0_ny4_prescribed_first_mass, bsim_nx0_ny4_prescribed_first_forces, bsim_nx0_ny4_prescribed_first_energy, bsim_nx0_ny4_prescribed_first_momentum};
+extern const Variant bsim_nx0_ny4_prescribed_first = {"bsim_nx0_ny4_prescribed_first", 4, 62, true, bsim_nx0_ny4_prescribed_first_coefficients,
+    bsim_nx0_ny4_prescribed_first_mass, bsim_nx0_ny4_prescribed_first_forces, bsim_nx0_ny4_prescribed_first_energy, bsim_nx0_ny4_prescribed_first_momentum,
+    bsim_nx0_ny4_prescribed_first_forces_q, bsim_nx0_ny4_prescribed_first_forces_qd, nullptr, bsim_nx0_ny4_prescribed_first_forces_u};
 
 }  // namespace hubbeam::generated

@@ -5,6 +5,8 @@
 // q = (theta, B1..B4), qd = d/dt q; u = (tau, theta_dot, theta_ddot), of which this variant reads tau;
 // p = (L, rho, S, I, E, a, J_oh) in SI units. Slope coordinates (FEM, BSIM) are d/dxi = L d/dx.
 // Derived symbolically from T and U (docs/model.md sections 2-3) by Lagrange's equations of the second kind.
+// For implicit integrators, derivatives of the same M and Q: forces_q = dQ/dq, forces_qd = dQ/dqd, forces_u =
+// dQ/du, mass_q_product = (dM/dq) v.
 
 #include "generated_abi.h"
 
@@ -12,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[64]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[68]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void bsim_nx0_ny4_torque_first_open_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -84,9 +86,13 @@ void bsim_nx0_ny4_torque_first_open_coefficients(const double* p, double* c)
     c[61] = 324.0*EI/(L*L*L);
     c[62] = -445.5*EI/(L*L*L);
     c[63] = 162.0*EI/(L*L*L);
+    c[64] = -2.625*m*a - 1.4642857142857142*L*m;
+    c[65] = -1.425*m*a - 0.8642857142857143*L*m;
+    c[66] = -0.9*m*a - 0.638095238095238*L*m;
+    c[67] = -0.6*m*a - 0.47619047619047616*L*m;
 }
 
-/* mass:(c[64],u[3],q[5],qd[5])->(M[25]) row-major; M = d2T/dqd2 */
+/* mass:(c[68],u[3],q[5],qd[5])->(M[25]) row-major; M = d2T/dqd2 */
 void bsim_nx0_ny4_torque_first_open_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -132,7 +138,7 @@ void bsim_nx0_ny4_torque_first_open_mass(const double* c, const double* u, const
     out[24] = c[23];
 }
 
-/* forces:(c[64],u[3],q[5],qd[5])->(Q[5]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[68],u[3],q[5],qd[5])->(Q[5]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void bsim_nx0_ny4_torque_first_open_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
@@ -176,7 +182,7 @@ void bsim_nx0_ny4_torque_first_open_forces(const double* c, const double* u, con
     out[4] = c[36]*B1 + c[41]*B2 + c[45]*B3 + c[47]*B4 + c[39]*B1_theta_dotsq + c[43]*B2_theta_dotsq + c[46]*B3_theta_dotsq + c[10]*B4_theta_dotsq;
 }
 
-/* energy:(c[64],u[3],q[5],qd[5])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[68],u[3],q[5],qd[5])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void bsim_nx0_ny4_torque_first_open_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -240,7 +246,7 @@ void bsim_nx0_ny4_torque_first_open_energy(const double* c, const double* u, con
     out[3] = c[56]*B1sq + c[57]*B1_B2 + c[57]*B1_B3 + c[58]*B1_B4 + c[56]*B2sq + c[59]*B2_B3 + c[60]*B2_B4 + c[61]*B3sq + c[62]*B3_B4 + c[63]*B4sq;
 }
 
-/* momentum:(c[64],u[3],q[5],qd[5])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[68],u[3],q[5],qd[5])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void bsim_nx0_ny4_torque_first_open_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -276,9 +282,176 @@ void bsim_nx0_ny4_torque_first_open_momentum(const double* c, const double* u, c
     out[0] = c[0]*theta_dot + c[11]*B1_dot + c[12]*B2_dot + c[13]*B3_dot + c[14]*B4_dot + c[1]*B1sq_theta_dot + c[2]*B1_B2_theta_dot + c[3]*B1_B3_theta_dot + c[4]*B1_B4_theta_dot + c[5]*B2sq_theta_dot + c[6]*B2_B3_theta_dot + c[7]*B2_B4_theta_dot + c[8]*B3sq_theta_dot + c[9]*B3_B4_theta_dot + c[10]*B4sq_theta_dot;
 }
 
+/* forces_q:(c[68],u[3],q[5],qd[5])->(dQdq[25]) row-major; out[i*5+k] = dQ_i/dq_k */
+void bsim_nx0_ny4_torque_first_open_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)q;
+    const double theta_dot = qd[0];
+    const double B1_dot = qd[1];
+    const double B2_dot = qd[2];
+    const double B3_dot = qd[3];
+    const double B4_dot = qd[4];
+    const double theta_dotsq = theta_dot*theta_dot;
+    const double theta_dot_B1_dot = theta_dot*B1_dot;
+    const double theta_dot_B2_dot = theta_dot*B2_dot;
+    const double theta_dot_B3_dot = theta_dot*B3_dot;
+    const double theta_dot_B4_dot = theta_dot*B4_dot;
+    out[0] = 0.0;
+    out[1] = c[24]*theta_dot_B1_dot + c[25]*theta_dot_B2_dot + c[26]*theta_dot_B3_dot + c[27]*theta_dot_B4_dot;
+    out[2] = c[25]*theta_dot_B1_dot + c[28]*theta_dot_B2_dot + c[29]*theta_dot_B3_dot + c[30]*theta_dot_B4_dot;
+    out[3] = c[26]*theta_dot_B1_dot + c[29]*theta_dot_B2_dot + c[31]*theta_dot_B3_dot + c[32]*theta_dot_B4_dot;
+    out[4] = c[27]*theta_dot_B1_dot + c[30]*theta_dot_B2_dot + c[32]*theta_dot_B3_dot + c[33]*theta_dot_B4_dot;
+    out[5] = 0.0;
+    out[6] = c[34] + c[1]*theta_dotsq;
+    out[7] = c[35] + c[37]*theta_dotsq;
+    out[8] = c[35] + c[38]*theta_dotsq;
+    out[9] = c[36] + c[39]*theta_dotsq;
+    out[10] = 0.0;
+    out[11] = c[35] + c[37]*theta_dotsq;
+    out[12] = c[34] + c[5]*theta_dotsq;
+    out[13] = c[40] + c[42]*theta_dotsq;
+    out[14] = c[41] + c[43]*theta_dotsq;
+    out[15] = 0.0;
+    out[16] = c[35] + c[38]*theta_dotsq;
+    out[17] = c[40] + c[42]*theta_dotsq;
+    out[18] = c[44] + c[8]*theta_dotsq;
+    out[19] = c[45] + c[46]*theta_dotsq;
+    out[20] = 0.0;
+    out[21] = c[36] + c[39]*theta_dotsq;
+    out[22] = c[41] + c[43]*theta_dotsq;
+    out[23] = c[45] + c[46]*theta_dotsq;
+    out[24] = c[47] + c[10]*theta_dotsq;
+}
+
+/* forces_qd:(c[68],u[3],q[5],qd[5])->(dQdqd[25]) row-major; out[i*5+k] = dQ_i/dqd_k */
+void bsim_nx0_ny4_torque_first_open_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    const double B1 = q[1];
+    const double B2 = q[2];
+    const double B3 = q[3];
+    const double B4 = q[4];
+    const double theta_dot = qd[0];
+    const double B1_dot = qd[1];
+    const double B2_dot = qd[2];
+    const double B3_dot = qd[3];
+    const double B4_dot = qd[4];
+    const double B1_theta_dot = B1*theta_dot;
+    const double B1_B1_dot = B1*B1_dot;
+    const double B1_B2_dot = B1*B2_dot;
+    const double B1_B3_dot = B1*B3_dot;
+    const double B1_B4_dot = B1*B4_dot;
+    const double B2_theta_dot = B2*theta_dot;
+    const double B2_B1_dot = B2*B1_dot;
+    const double B2_B2_dot = B2*B2_dot;
+    const double B2_B3_dot = B2*B3_dot;
+    const double B2_B4_dot = B2*B4_dot;
+    const double B3_theta_dot = B3*theta_dot;
+    const double B3_B1_dot = B3*B1_dot;
+    const double B3_B2_dot = B3*B2_dot;
+    const double B3_B3_dot = B3*B3_dot;
+    const double B3_B4_dot = B3*B4_dot;
+    const double B4_theta_dot = B4*theta_dot;
+    const double B4_B1_dot = B4*B1_dot;
+    const double B4_B2_dot = B4*B2_dot;
+    const double B4_B3_dot = B4*B3_dot;
+    const double B4_B4_dot = B4*B4_dot;
+    out[0] = c[24]*B1_B1_dot + c[25]*B1_B2_dot + c[26]*B1_B3_dot + c[27]*B1_B4_dot + c[25]*B2_B1_dot + c[28]*B2_B2_dot + c[29]*B2_B3_dot + c[30]*B2_B4_dot + c[26]*B3_B1_dot + c[29]*B3_B2_dot + c[31]*B3_B3_dot + c[32]*B3_B4_dot + c[27]*B4_B1_dot + c[30]*B4_B2_dot + c[32]*B4_B3_dot + c[33]*B4_B4_dot;
+    out[1] = c[24]*B1_theta_dot + c[25]*B2_theta_dot + c[26]*B3_theta_dot + c[27]*B4_theta_dot;
+    out[2] = c[25]*B1_theta_dot + c[28]*B2_theta_dot + c[29]*B3_theta_dot + c[30]*B4_theta_dot;
+    out[3] = c[26]*B1_theta_dot + c[29]*B2_theta_dot + c[31]*B3_theta_dot + c[32]*B4_theta_dot;
+    out[4] = c[27]*B1_theta_dot + c[30]*B2_theta_dot + c[32]*B3_theta_dot + c[33]*B4_theta_dot;
+    out[5] = c[64]*B1_theta_dot + c[2]*B2_theta_dot + c[3]*B3_theta_dot + c[4]*B4_theta_dot;
+    out[6] = 0.0;
+    out[7] = 0.0;
+    out[8] = 0.0;
+    out[9] = 0.0;
+    out[10] = c[2]*B1_theta_dot + c[65]*B2_theta_dot + c[6]*B3_theta_dot + c[7]*B4_theta_dot;
+    out[11] = 0.0;
+    out[12] = 0.0;
+    out[13] = 0.0;
+    out[14] = 0.0;
+    out[15] = c[3]*B1_theta_dot + c[6]*B2_theta_dot + c[66]*B3_theta_dot + c[9]*B4_theta_dot;
+    out[16] = 0.0;
+    out[17] = 0.0;
+    out[18] = 0.0;
+    out[19] = 0.0;
+    out[20] = c[4]*B1_theta_dot + c[7]*B2_theta_dot + c[9]*B3_theta_dot + c[67]*B4_theta_dot;
+    out[21] = 0.0;
+    out[22] = 0.0;
+    out[23] = 0.0;
+    out[24] = 0.0;
+}
+
+/* forces_u:(c[68],u[3],q[5],qd[5])->(dQdu[15]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
+void bsim_nx0_ny4_torque_first_open_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)c;
+    (void)u;
+    (void)q;
+    (void)qd;
+    out[0] = 1.0;
+    out[1] = 0.0;
+    out[2] = 0.0;
+    out[3] = 0.0;
+    out[4] = 0.0;
+    out[5] = 0.0;
+    out[6] = 0.0;
+    out[7] = 0.0;
+    out[8] = 0.0;
+    out[9] = 0.0;
+    out[10] = 0.0;
+    out[11] = 0.0;
+    out[12] = 0.0;
+    out[13] = 0.0;
+    out[14] = 0.0;
+}
+
+/* mass_q_product:(c[68],u[3],q[5],qd[5])->(dMv[25]) row-major; v in the qd slot; out[i*5+k] = sum_j dM_ij/dq_k v_j */
+void bsim_nx0_ny4_torque_first_open_mass_q_product(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    const double B1 = q[1];
+    const double B2 = q[2];
+    const double B3 = q[3];
+    const double B4 = q[4];
+    const double theta_dot = qd[0];
+    const double B1_theta_dot = B1*theta_dot;
+    const double B2_theta_dot = B2*theta_dot;
+    const double B3_theta_dot = B3*theta_dot;
+    const double B4_theta_dot = B4*theta_dot;
+    out[0] = 0.0;
+    out[1] = c[64]*B1_theta_dot + c[2]*B2_theta_dot + c[3]*B3_theta_dot + c[4]*B4_theta_dot;
+    out[2] = c[2]*B1_theta_dot + c[65]*B2_theta_dot + c[6]*B3_theta_dot + c[7]*B4_theta_dot;
+    out[3] = c[3]*B1_theta_dot + c[6]*B2_theta_dot + c[66]*B3_theta_dot + c[9]*B4_theta_dot;
+    out[4] = c[4]*B1_theta_dot + c[7]*B2_theta_dot + c[9]*B3_theta_dot + c[67]*B4_theta_dot;
+    out[5] = 0.0;
+    out[6] = 0.0;
+    out[7] = 0.0;
+    out[8] = 0.0;
+    out[9] = 0.0;
+    out[10] = 0.0;
+    out[11] = 0.0;
+    out[12] = 0.0;
+    out[13] = 0.0;
+    out[14] = 0.0;
+    out[15] = 0.0;
+    out[16] = 0.0;
+    out[17] = 0.0;
+    out[18] = 0.0;
+    out[19] = 0.0;
+    out[20] = 0.0;
+    out[21] = 0.0;
+    out[22] = 0.0;
+    out[23] = 0.0;
+    out[24] = 0.0;
+}
+
 }  // namespace
 
-extern const Variant bsim_nx0_ny4_torque_first_open = {"bsim_nx0_ny4_torque_first_open", 5, 64, false, bsim_nx0_ny4_torque_first_open_coefficients,
-    bsim_nx0_ny4_torque_first_open_mass, bsim_nx0_ny4_torque_first_open_forces, bsim_nx0_ny4_torque_first_open_energy, bsim_nx0_ny4_torque_first_open_momentum};
+extern const Variant bsim_nx0_ny4_torque_first_open = {"bsim_nx0_ny4_torque_first_open", 5, 68, false, bsim_nx0_ny4_torque_first_open_coefficients,
+    bsim_nx0_ny4_torque_first_open_mass, bsim_nx0_ny4_torque_first_open_forces, bsim_nx0_ny4_torque_first_open_energy, bsim_nx0_ny4_torque_first_open_momentum,
+    bsim_nx0_ny4_torque_first_open_forces_q, bsim_nx0_ny4_torque_first_open_forces_qd, bsim_nx0_ny4_torque_first_open_mass_q_product, bsim_nx0_ny4_torque_first_open_forces_u};
 
 }  // namespace hubbeam::generated

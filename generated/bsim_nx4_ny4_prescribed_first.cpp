@@ -5,6 +5,8 @@
 // q = (A1..A4, B1..B4), qd = d/dt q; u = (tau, theta_dot, theta_ddot), of which this variant reads theta_dot, theta_ddot;
 // p = (L, rho, S, I, E, a, J_oh) in SI units. Slope coordinates (FEM, BSIM) are d/dxi = L d/dx.
 // Derived symbolically from T and U (docs/model.md sections 2-3) by Lagrange's equations of the second kind.
+// For implicit integrators, derivatives of the same M and Q: forces_q = dQ/dq, forces_qd = dQ/dqd, forces_u =
+// dQ/du; M is constant, so there is no mass_q_product.
 
 #include "generated_abi.h"
 
@@ -12,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[149]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[156]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void bsim_nx4_ny4_prescribed_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -170,9 +172,16 @@ void bsim_nx4_ny4_prescribed_first_coefficients(const double* p, double* c)
     c[146] = 0.4125*m*a + 0.5051587301587301*L*m;
     c[147] = -0.009722222222222222*m*a - 0.021296296296296296*L*m;
     c[148] = 0.075*m*a + 0.03941798941798942*L*m;
+    c[149] = 0.22142857142857142*L*m;
+    c[150] = 0.18571428571428572*L*m;
+    c[151] = 0.14285714285714285*L*m;
+    c[152] = -2.625*m*a - 1.4642857142857142*L*m;
+    c[153] = -1.425*m*a - 0.8642857142857143*L*m;
+    c[154] = -1.05*m*a - 0.5476190476190477*L*m;
+    c[155] = -0.011111111111111112*m*a - 0.0078777189888301*L*m;
 }
 
-/* mass:(c[149],u[3],q[8],qd[8])->(M[64]) row-major; M = d2T/dqd2 */
+/* mass:(c[156],u[3],q[8],qd[8])->(M[64]) row-major; M = d2T/dqd2 */
 void bsim_nx4_ny4_prescribed_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -244,7 +253,7 @@ void bsim_nx4_ny4_prescribed_first_mass(const double* c, const double* u, const 
     out[63] = c[16];
 }
 
-/* forces:(c[149],u[3],q[8],qd[8])->(Q[8]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[156],u[3],q[8],qd[8])->(Q[8]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void bsim_nx4_ny4_prescribed_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -300,7 +309,7 @@ void bsim_nx4_ny4_prescribed_first_forces(const double* c, const double* u, cons
     out[7] = c[93]*theta_ddot + c[59]*B1 + c[74]*B2 + c[82]*B3 + c[94]*B4 + c[95]*theta_dot_A1_dot + c[96]*theta_dot_A2_dot + c[97]*theta_dot_A3_dot + c[98]*theta_dot_A4_dot + c[99]*theta_ddot_A1 + c[100]*theta_ddot_A2 + c[101]*theta_ddot_A3 + c[102]*theta_ddot_A4 + c[71]*theta_dotsq_B1 + c[79]*theta_dotsq_B2 + c[92]*theta_dotsq_B3 + c[103]*theta_dotsq_B4;
 }
 
-/* energy:(c[149],u[3],q[8],qd[8])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[156],u[3],q[8],qd[8])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void bsim_nx4_ny4_prescribed_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -439,7 +448,7 @@ void bsim_nx4_ny4_prescribed_first_energy(const double* c, const double* u, cons
     out[3] = c[119]*A1sq + c[120]*A1_A2 + c[121]*A1_A3 + c[122]*A1_A4 + c[19]*A2sq + c[120]*A2_A3 + c[123]*A2_A4 + c[119]*A3sq + c[124]*A3_A4 + c[125]*A4sq + c[126]*B1sq + c[127]*B1_B2 + c[59]*B1_B3 + c[58]*B1_B4 + c[126]*B2sq + c[128]*B2_B3 + c[129]*B2_B4 + c[130]*B3sq + c[131]*B3_B4 + c[132]*B4sq;
 }
 
-/* momentum:(c[149],u[3],q[8],qd[8])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[156],u[3],q[8],qd[8])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void bsim_nx4_ny4_prescribed_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -522,9 +531,210 @@ void bsim_nx4_ny4_prescribed_first_momentum(const double* c, const double* u, co
     out[0] = c[133]*theta_dot + c[110]*B1_dot + c[111]*B2_dot + c[112]*B3_dot + c[113]*B4_dot + c[134]*theta_dot_A1 + c[135]*theta_dot_A2 + c[136]*theta_dot_A3 + c[137]*theta_dot_A4 + c[26]*A1_B1_dot + c[27]*A1_B2_dot + c[28]*A1_B3_dot + c[29]*A1_B4_dot + c[36]*A2_B1_dot + c[36]*A2_B2_dot + c[37]*A2_B3_dot + c[38]*A2_B4_dot + c[27]*A3_B1_dot + c[26]*A3_B2_dot + c[43]*A3_B3_dot + c[44]*A3_B4_dot + c[51]*A4_B1_dot + c[52]*A4_B2_dot + c[53]*A4_B3_dot + c[54]*A4_B4_dot + c[64]*B1_A1_dot + c[65]*B1_A2_dot + c[66]*B1_A3_dot + c[67]*B1_A4_dot + c[66]*B2_A1_dot + c[65]*B2_A2_dot + c[64]*B2_A3_dot + c[76]*B2_A4_dot + c[87]*B3_A1_dot + c[88]*B3_A2_dot + c[89]*B3_A3_dot + c[90]*B3_A4_dot + c[99]*B4_A1_dot + c[100]*B4_A2_dot + c[101]*B4_A3_dot + c[102]*B4_A4_dot + c[0]*theta_dot_A1sq + c[138]*theta_dot_A1_A2 + c[139]*theta_dot_A1_A3 + c[140]*theta_dot_A1_A4 + c[4]*theta_dot_A2sq + c[138]*theta_dot_A2_A3 + c[141]*theta_dot_A2_A4 + c[0]*theta_dot_A3sq + c[142]*theta_dot_A3_A4 + c[7]*theta_dot_A4sq + c[68]*theta_dot_B1sq + c[143]*theta_dot_B1_B2 + c[144]*theta_dot_B1_B3 + c[145]*theta_dot_B1_B4 + c[77]*theta_dot_B2sq + c[146]*theta_dot_B2_B3 + c[147]*theta_dot_B2_B4 + c[91]*theta_dot_B3sq + c[148]*theta_dot_B3_B4 + c[103]*theta_dot_B4sq;
 }
 
+/* forces_q:(c[156],u[3],q[8],qd[8])->(dQdq[64]) row-major; out[i*8+k] = dQ_i/dq_k */
+void bsim_nx4_ny4_prescribed_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)q;
+    (void)qd;
+    const double theta_dot = u[1];
+    const double theta_ddot = u[2];
+    const double theta_dotsq = theta_dot*theta_dot;
+    out[0] = c[17] + c[0]*theta_dotsq;
+    out[1] = c[18] + c[1]*theta_dotsq;
+    out[2] = c[19] + c[2]*theta_dotsq;
+    out[3] = c[20] + c[3]*theta_dotsq;
+    out[4] = c[26]*theta_ddot;
+    out[5] = c[27]*theta_ddot;
+    out[6] = c[28]*theta_ddot;
+    out[7] = c[29]*theta_ddot;
+    out[8] = c[18] + c[1]*theta_dotsq;
+    out[9] = c[30] + c[4]*theta_dotsq;
+    out[10] = c[18] + c[1]*theta_dotsq;
+    out[11] = c[31] + c[5]*theta_dotsq;
+    out[12] = c[36]*theta_ddot;
+    out[13] = c[36]*theta_ddot;
+    out[14] = c[37]*theta_ddot;
+    out[15] = c[38]*theta_ddot;
+    out[16] = c[19] + c[2]*theta_dotsq;
+    out[17] = c[18] + c[1]*theta_dotsq;
+    out[18] = c[17] + c[0]*theta_dotsq;
+    out[19] = c[39] + c[6]*theta_dotsq;
+    out[20] = c[27]*theta_ddot;
+    out[21] = c[26]*theta_ddot;
+    out[22] = c[43]*theta_ddot;
+    out[23] = c[44]*theta_ddot;
+    out[24] = c[20] + c[3]*theta_dotsq;
+    out[25] = c[31] + c[5]*theta_dotsq;
+    out[26] = c[39] + c[6]*theta_dotsq;
+    out[27] = c[45] + c[7]*theta_dotsq;
+    out[28] = c[51]*theta_ddot;
+    out[29] = c[52]*theta_ddot;
+    out[30] = c[53]*theta_ddot;
+    out[31] = c[54]*theta_ddot;
+    out[32] = c[64]*theta_ddot;
+    out[33] = c[65]*theta_ddot;
+    out[34] = c[66]*theta_ddot;
+    out[35] = c[67]*theta_ddot;
+    out[36] = c[56] + c[68]*theta_dotsq;
+    out[37] = c[57] + c[69]*theta_dotsq;
+    out[38] = c[58] + c[70]*theta_dotsq;
+    out[39] = c[59] + c[71]*theta_dotsq;
+    out[40] = c[66]*theta_ddot;
+    out[41] = c[65]*theta_ddot;
+    out[42] = c[64]*theta_ddot;
+    out[43] = c[76]*theta_ddot;
+    out[44] = c[57] + c[69]*theta_dotsq;
+    out[45] = c[56] + c[77]*theta_dotsq;
+    out[46] = c[73] + c[78]*theta_dotsq;
+    out[47] = c[74] + c[79]*theta_dotsq;
+    out[48] = c[87]*theta_ddot;
+    out[49] = c[88]*theta_ddot;
+    out[50] = c[89]*theta_ddot;
+    out[51] = c[90]*theta_ddot;
+    out[52] = c[58] + c[70]*theta_dotsq;
+    out[53] = c[73] + c[78]*theta_dotsq;
+    out[54] = c[81] + c[91]*theta_dotsq;
+    out[55] = c[82] + c[92]*theta_dotsq;
+    out[56] = c[99]*theta_ddot;
+    out[57] = c[100]*theta_ddot;
+    out[58] = c[101]*theta_ddot;
+    out[59] = c[102]*theta_ddot;
+    out[60] = c[59] + c[71]*theta_dotsq;
+    out[61] = c[74] + c[79]*theta_dotsq;
+    out[62] = c[82] + c[92]*theta_dotsq;
+    out[63] = c[94] + c[103]*theta_dotsq;
+}
+
+/* forces_qd:(c[156],u[3],q[8],qd[8])->(dQdqd[64]) row-major; out[i*8+k] = dQ_i/dqd_k */
+void bsim_nx4_ny4_prescribed_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)q;
+    (void)qd;
+    const double theta_dot = u[1];
+    out[0] = 0.0;
+    out[1] = 0.0;
+    out[2] = 0.0;
+    out[3] = 0.0;
+    out[4] = c[22]*theta_dot;
+    out[5] = c[23]*theta_dot;
+    out[6] = c[24]*theta_dot;
+    out[7] = c[25]*theta_dot;
+    out[8] = 0.0;
+    out[9] = 0.0;
+    out[10] = 0.0;
+    out[11] = 0.0;
+    out[12] = c[33]*theta_dot;
+    out[13] = c[33]*theta_dot;
+    out[14] = c[34]*theta_dot;
+    out[15] = c[35]*theta_dot;
+    out[16] = 0.0;
+    out[17] = 0.0;
+    out[18] = 0.0;
+    out[19] = 0.0;
+    out[20] = c[23]*theta_dot;
+    out[21] = c[22]*theta_dot;
+    out[22] = c[41]*theta_dot;
+    out[23] = c[42]*theta_dot;
+    out[24] = 0.0;
+    out[25] = 0.0;
+    out[26] = 0.0;
+    out[27] = 0.0;
+    out[28] = c[47]*theta_dot;
+    out[29] = c[48]*theta_dot;
+    out[30] = c[49]*theta_dot;
+    out[31] = c[50]*theta_dot;
+    out[32] = c[60]*theta_dot;
+    out[33] = c[61]*theta_dot;
+    out[34] = c[62]*theta_dot;
+    out[35] = c[63]*theta_dot;
+    out[36] = 0.0;
+    out[37] = 0.0;
+    out[38] = 0.0;
+    out[39] = 0.0;
+    out[40] = c[62]*theta_dot;
+    out[41] = c[61]*theta_dot;
+    out[42] = c[60]*theta_dot;
+    out[43] = c[75]*theta_dot;
+    out[44] = 0.0;
+    out[45] = 0.0;
+    out[46] = 0.0;
+    out[47] = 0.0;
+    out[48] = c[83]*theta_dot;
+    out[49] = c[84]*theta_dot;
+    out[50] = c[85]*theta_dot;
+    out[51] = c[86]*theta_dot;
+    out[52] = 0.0;
+    out[53] = 0.0;
+    out[54] = 0.0;
+    out[55] = 0.0;
+    out[56] = c[95]*theta_dot;
+    out[57] = c[96]*theta_dot;
+    out[58] = c[97]*theta_dot;
+    out[59] = c[98]*theta_dot;
+    out[60] = 0.0;
+    out[61] = 0.0;
+    out[62] = 0.0;
+    out[63] = 0.0;
+}
+
+/* forces_u:(c[156],u[3],q[8],qd[8])->(dQdu[24]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
+void bsim_nx4_ny4_prescribed_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    const double theta_dot = u[1];
+    const double A1 = q[0];
+    const double A2 = q[1];
+    const double A3 = q[2];
+    const double A4 = q[3];
+    const double B1 = q[4];
+    const double B2 = q[5];
+    const double B3 = q[6];
+    const double B4 = q[7];
+    const double A1_dot = qd[0];
+    const double A2_dot = qd[1];
+    const double A3_dot = qd[2];
+    const double A4_dot = qd[3];
+    const double B1_dot = qd[4];
+    const double B2_dot = qd[5];
+    const double B3_dot = qd[6];
+    const double B4_dot = qd[7];
+    const double theta_dot_A1 = theta_dot*A1;
+    const double theta_dot_A2 = theta_dot*A2;
+    const double theta_dot_A3 = theta_dot*A3;
+    const double theta_dot_A4 = theta_dot*A4;
+    const double theta_dot_B1 = theta_dot*B1;
+    const double theta_dot_B2 = theta_dot*B2;
+    const double theta_dot_B3 = theta_dot*B3;
+    const double theta_dot_B4 = theta_dot*B4;
+    out[0] = 0.0;
+    out[1] = c[134]*theta_dot + c[22]*B1_dot + c[23]*B2_dot + c[24]*B3_dot + c[25]*B4_dot + c[149]*theta_dot_A1 + c[138]*theta_dot_A2 + c[139]*theta_dot_A3 + c[140]*theta_dot_A4;
+    out[2] = c[26]*B1 + c[27]*B2 + c[28]*B3 + c[29]*B4;
+    out[3] = 0.0;
+    out[4] = c[135]*theta_dot + c[33]*B1_dot + c[33]*B2_dot + c[34]*B3_dot + c[35]*B4_dot + c[138]*theta_dot_A1 + c[150]*theta_dot_A2 + c[138]*theta_dot_A3 + c[141]*theta_dot_A4;
+    out[5] = c[36]*B1 + c[36]*B2 + c[37]*B3 + c[38]*B4;
+    out[6] = 0.0;
+    out[7] = c[136]*theta_dot + c[23]*B1_dot + c[22]*B2_dot + c[41]*B3_dot + c[42]*B4_dot + c[139]*theta_dot_A1 + c[138]*theta_dot_A2 + c[149]*theta_dot_A3 + c[142]*theta_dot_A4;
+    out[8] = c[27]*B1 + c[26]*B2 + c[43]*B3 + c[44]*B4;
+    out[9] = 0.0;
+    out[10] = c[137]*theta_dot + c[47]*B1_dot + c[48]*B2_dot + c[49]*B3_dot + c[50]*B4_dot + c[140]*theta_dot_A1 + c[141]*theta_dot_A2 + c[142]*theta_dot_A3 + c[151]*theta_dot_A4;
+    out[11] = c[51]*B1 + c[52]*B2 + c[53]*B3 + c[54]*B4;
+    out[12] = 0.0;
+    out[13] = c[60]*A1_dot + c[61]*A2_dot + c[62]*A3_dot + c[63]*A4_dot + c[152]*theta_dot_B1 + c[143]*theta_dot_B2 + c[144]*theta_dot_B3 + c[145]*theta_dot_B4;
+    out[14] = c[55] + c[64]*A1 + c[65]*A2 + c[66]*A3 + c[67]*A4;
+    out[15] = 0.0;
+    out[16] = c[62]*A1_dot + c[61]*A2_dot + c[60]*A3_dot + c[75]*A4_dot + c[143]*theta_dot_B1 + c[153]*theta_dot_B2 + c[146]*theta_dot_B3 + c[147]*theta_dot_B4;
+    out[17] = c[72] + c[66]*A1 + c[65]*A2 + c[64]*A3 + c[76]*A4;
+    out[18] = 0.0;
+    out[19] = c[83]*A1_dot + c[84]*A2_dot + c[85]*A3_dot + c[86]*A4_dot + c[144]*theta_dot_B1 + c[146]*theta_dot_B2 + c[154]*theta_dot_B3 + c[148]*theta_dot_B4;
+    out[20] = c[80] + c[87]*A1 + c[88]*A2 + c[89]*A3 + c[90]*A4;
+    out[21] = 0.0;
+    out[22] = c[95]*A1_dot + c[96]*A2_dot + c[97]*A3_dot + c[98]*A4_dot + c[145]*theta_dot_B1 + c[147]*theta_dot_B2 + c[148]*theta_dot_B3 + c[155]*theta_dot_B4;
+    out[23] = c[93] + c[99]*A1 + c[100]*A2 + c[101]*A3 + c[102]*A4;
+}
+
 }  // namespace
 
-extern const Variant bsim_nx4_ny4_prescribed_first = {"bsim_nx4_ny4_prescribed_first", 8, 149, true, bsim_nx4_ny4_prescribed_first_coefficients,
-    bsim_nx4_ny4_prescribed_first_mass, bsim_nx4_ny4_prescribed_first_forces, bsim_nx4_ny4_prescribed_first_energy, bsim_nx4_ny4_prescribed_first_momentum};
+extern const Variant bsim_nx4_ny4_prescribed_first = {"bsim_nx4_ny4_prescribed_first", 8, 156, true, bsim_nx4_ny4_prescribed_first_coefficients,
+    bsim_nx4_ny4_prescribed_first_mass, bsim_nx4_ny4_prescribed_first_forces, bsim_nx4_ny4_prescribed_first_energy, bsim_nx4_ny4_prescribed_first_momentum,
+    bsim_nx4_ny4_prescribed_first_forces_q, bsim_nx4_ny4_prescribed_first_forces_qd, nullptr, bsim_nx4_ny4_prescribed_first_forces_u};
 
 }  // namespace hubbeam::generated

@@ -5,6 +5,8 @@
 // q = (B1..B4), qd = d/dt q; u = (tau, theta_dot, theta_ddot), of which this variant reads theta_dot, theta_ddot;
 // p = (L, rho, S, I, E, a, J_oh) in SI units. Slope coordinates (FEM, BSIM) are d/dxi = L d/dx.
 // Derived symbolically from T and U (docs/model.md sections 2-3) by Lagrange's equations of the second kind.
+// For implicit integrators, derivatives of the same M and Q: forces_q = dQ/dq, forces_qd = dQ/dqd, forces_u =
+// dQ/du; M is constant, so there is no mass_q_product.
 
 #include "generated_abi.h"
 
@@ -12,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[52]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[56]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void fem_nx0_ny4_prescribed_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -72,9 +74,13 @@ void fem_nx0_ny4_prescribed_first_coefficients(const double* p, double* c)
     c[49] = 0.02261904761904762*L*m;
     c[50] = 0.008333333333333333*m*a + 0.004761904761904762*L*m;
     c[51] = 0.1*m*a + 0.055952380952380955*L*m;
+    c[52] = -4.8*m*a - 2.5142857142857142*L*m;
+    c[53] = -0.13333333333333333*m*a - 0.09047619047619047*L*m;
+    c[54] = -1.2*m*a - 0.6571428571428571*L*m;
+    c[55] = -0.016666666666666666*m*a - 0.011904761904761904*L*m;
 }
 
-/* mass:(c[52],u[3],q[4],qd[4])->(M[16]) row-major; M = d2T/dqd2 */
+/* mass:(c[56],u[3],q[4],qd[4])->(M[16]) row-major; M = d2T/dqd2 */
 void fem_nx0_ny4_prescribed_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -98,7 +104,7 @@ void fem_nx0_ny4_prescribed_first_mass(const double* c, const double* u, const d
     out[15] = c[8];
 }
 
-/* forces:(c[52],u[3],q[4],qd[4])->(Q[4]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[56],u[3],q[4],qd[4])->(Q[4]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void fem_nx0_ny4_prescribed_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)qd;
@@ -119,7 +125,7 @@ void fem_nx0_ny4_prescribed_first_forces(const double* c, const double* u, const
     out[3] = c[28]*theta_ddot + c[12]*B1 + c[20]*B2 + c[19]*B3 + c[29]*B4 + c[16]*theta_dotsq_B1 + c[23]*theta_dotsq_B2 + c[27]*theta_dotsq_B3 + c[30]*theta_dotsq_B4;
 }
 
-/* energy:(c[52],u[3],q[4],qd[4])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[56],u[3],q[4],qd[4])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void fem_nx0_ny4_prescribed_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -174,7 +180,7 @@ void fem_nx0_ny4_prescribed_first_energy(const double* c, const double* u, const
     out[3] = c[11]*B1sq + c[25]*B1_B3 + c[19]*B1_B4 + c[42]*B2sq + c[12]*B2_B3 + c[43]*B2_B4 + c[44]*B3sq + c[12]*B3_B4 + c[43]*B4sq;
 }
 
-/* momentum:(c[52],u[3],q[4],qd[4])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[56],u[3],q[4],qd[4])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void fem_nx0_ny4_prescribed_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -203,9 +209,87 @@ void fem_nx0_ny4_prescribed_first_momentum(const double* c, const double* u, con
     out[0] = c[45]*theta_dot + c[33]*B1_dot + c[34]*B2_dot + c[35]*B3_dot + c[36]*B4_dot + c[13]*theta_dot_B1sq + c[46]*theta_dot_B1_B2 + c[47]*theta_dot_B1_B3 + c[48]*theta_dot_B1_B4 + c[21]*theta_dot_B2sq + c[49]*theta_dot_B2_B3 + c[50]*theta_dot_B2_B4 + c[26]*theta_dot_B3sq + c[51]*theta_dot_B3_B4 + c[30]*theta_dot_B4sq;
 }
 
+/* forces_q:(c[56],u[3],q[4],qd[4])->(dQdq[16]) row-major; out[i*4+k] = dQ_i/dq_k */
+void fem_nx0_ny4_prescribed_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)q;
+    (void)qd;
+    const double theta_dot = u[1];
+    const double theta_dotsq = theta_dot*theta_dot;
+    out[0] = c[10] + c[13]*theta_dotsq;
+    out[1] = c[14]*theta_dotsq;
+    out[2] = c[11] + c[15]*theta_dotsq;
+    out[3] = c[12] + c[16]*theta_dotsq;
+    out[4] = c[14]*theta_dotsq;
+    out[5] = c[18] + c[21]*theta_dotsq;
+    out[6] = c[19] + c[22]*theta_dotsq;
+    out[7] = c[20] + c[23]*theta_dotsq;
+    out[8] = c[11] + c[15]*theta_dotsq;
+    out[9] = c[19] + c[22]*theta_dotsq;
+    out[10] = c[25] + c[26]*theta_dotsq;
+    out[11] = c[19] + c[27]*theta_dotsq;
+    out[12] = c[12] + c[16]*theta_dotsq;
+    out[13] = c[20] + c[23]*theta_dotsq;
+    out[14] = c[19] + c[27]*theta_dotsq;
+    out[15] = c[29] + c[30]*theta_dotsq;
+}
+
+/* forces_qd:(c[56],u[3],q[4],qd[4])->(dQdqd[16]) row-major; out[i*4+k] = dQ_i/dqd_k */
+void fem_nx0_ny4_prescribed_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)c;
+    (void)u;
+    (void)q;
+    (void)qd;
+    out[0] = 0.0;
+    out[1] = 0.0;
+    out[2] = 0.0;
+    out[3] = 0.0;
+    out[4] = 0.0;
+    out[5] = 0.0;
+    out[6] = 0.0;
+    out[7] = 0.0;
+    out[8] = 0.0;
+    out[9] = 0.0;
+    out[10] = 0.0;
+    out[11] = 0.0;
+    out[12] = 0.0;
+    out[13] = 0.0;
+    out[14] = 0.0;
+    out[15] = 0.0;
+}
+
+/* forces_u:(c[56],u[3],q[4],qd[4])->(dQdu[12]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
+void fem_nx0_ny4_prescribed_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)qd;
+    const double theta_dot = u[1];
+    const double B1 = q[0];
+    const double B2 = q[1];
+    const double B3 = q[2];
+    const double B4 = q[3];
+    const double theta_dot_B1 = theta_dot*B1;
+    const double theta_dot_B2 = theta_dot*B2;
+    const double theta_dot_B3 = theta_dot*B3;
+    const double theta_dot_B4 = theta_dot*B4;
+    out[0] = 0.0;
+    out[1] = c[52]*theta_dot_B1 + c[46]*theta_dot_B2 + c[47]*theta_dot_B3 + c[48]*theta_dot_B4;
+    out[2] = c[9];
+    out[3] = 0.0;
+    out[4] = c[46]*theta_dot_B1 + c[53]*theta_dot_B2 + c[49]*theta_dot_B3 + c[50]*theta_dot_B4;
+    out[5] = c[17];
+    out[6] = 0.0;
+    out[7] = c[47]*theta_dot_B1 + c[49]*theta_dot_B2 + c[54]*theta_dot_B3 + c[51]*theta_dot_B4;
+    out[8] = c[24];
+    out[9] = 0.0;
+    out[10] = c[48]*theta_dot_B1 + c[50]*theta_dot_B2 + c[51]*theta_dot_B3 + c[55]*theta_dot_B4;
+    out[11] = c[28];
+}
+
 }  // namespace
 
-extern const Variant fem_nx0_ny4_prescribed_first = {"fem_nx0_ny4_prescribed_first", 4, 52, true, fem_nx0_ny4_prescribed_first_coefficients,
-    fem_nx0_ny4_prescribed_first_mass, fem_nx0_ny4_prescribed_first_forces, fem_nx0_ny4_prescribed_first_energy, fem_nx0_ny4_prescribed_first_momentum};
+extern const Variant fem_nx0_ny4_prescribed_first = {"fem_nx0_ny4_prescribed_first", 4, 56, true, fem_nx0_ny4_prescribed_first_coefficients,
+    fem_nx0_ny4_prescribed_first_mass, fem_nx0_ny4_prescribed_first_forces, fem_nx0_ny4_prescribed_first_energy, fem_nx0_ny4_prescribed_first_momentum,
+    fem_nx0_ny4_prescribed_first_forces_q, fem_nx0_ny4_prescribed_first_forces_qd, nullptr, fem_nx0_ny4_prescribed_first_forces_u};
 
 }  // namespace hubbeam::generated

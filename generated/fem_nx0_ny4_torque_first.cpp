@@ -5,6 +5,8 @@
 // q = (theta, B1..B4), qd = d/dt q; u = (tau, theta_dot, theta_ddot), of which this variant reads tau;
 // p = (L, rho, S, I, E, a, J_oh) in SI units. Slope coordinates (FEM, BSIM) are d/dxi = L d/dx.
 // Derived symbolically from T and U (docs/model.md sections 2-3) by Lagrange's equations of the second kind.
+// For implicit integrators, derivatives of the same M and Q: forces_q = dQ/dq, forces_qd = dQ/dqd, forces_u =
+// dQ/du, mass_q_product = (dM/dq) v.
 
 #include "generated_abi.h"
 
@@ -12,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[58]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[62]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void fem_nx0_ny4_torque_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -78,9 +80,13 @@ void fem_nx0_ny4_torque_first_coefficients(const double* p, double* c)
     c[55] = 8.0*EI/(L*L*L);
     c[56] = 4.0*EI/(L*L*L);
     c[57] = 48.0*EI/(L*L*L);
+    c[58] = -4.8*m*a - 2.5142857142857142*L*m;
+    c[59] = -0.13333333333333333*m*a - 0.09047619047619047*L*m;
+    c[60] = -1.2*m*a - 0.6571428571428571*L*m;
+    c[61] = -0.016666666666666666*m*a - 0.011904761904761904*L*m;
 }
 
-/* mass:(c[58],u[3],q[5],qd[5])->(M[25]) row-major; M = d2T/dqd2 */
+/* mass:(c[62],u[3],q[5],qd[5])->(M[25]) row-major; M = d2T/dqd2 */
 void fem_nx0_ny4_torque_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -126,7 +132,7 @@ void fem_nx0_ny4_torque_first_mass(const double* c, const double* u, const doubl
     out[24] = c[23];
 }
 
-/* forces:(c[58],u[3],q[5],qd[5])->(Q[5]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[62],u[3],q[5],qd[5])->(Q[5]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void fem_nx0_ny4_torque_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
@@ -170,7 +176,7 @@ void fem_nx0_ny4_torque_first_forces(const double* c, const double* u, const dou
     out[4] = c[36]*B1 + c[42]*B2 + c[41]*B3 + c[47]*B4 + c[39]*B1_theta_dotsq + c[44]*B2_theta_dotsq + c[46]*B3_theta_dotsq + c[10]*B4_theta_dotsq;
 }
 
-/* energy:(c[58],u[3],q[5],qd[5])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[62],u[3],q[5],qd[5])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void fem_nx0_ny4_torque_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -233,7 +239,7 @@ void fem_nx0_ny4_torque_first_energy(const double* c, const double* u, const dou
     out[3] = c[35]*B1sq + c[45]*B1_B3 + c[41]*B1_B4 + c[55]*B2sq + c[36]*B2_B3 + c[56]*B2_B4 + c[57]*B3sq + c[36]*B3_B4 + c[56]*B4sq;
 }
 
-/* momentum:(c[58],u[3],q[5],qd[5])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[62],u[3],q[5],qd[5])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void fem_nx0_ny4_torque_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -269,9 +275,176 @@ void fem_nx0_ny4_torque_first_momentum(const double* c, const double* u, const d
     out[0] = c[0]*theta_dot + c[11]*B1_dot + c[12]*B2_dot + c[13]*B3_dot + c[14]*B4_dot + c[1]*B1sq_theta_dot + c[2]*B1_B2_theta_dot + c[3]*B1_B3_theta_dot + c[4]*B1_B4_theta_dot + c[5]*B2sq_theta_dot + c[6]*B2_B3_theta_dot + c[7]*B2_B4_theta_dot + c[8]*B3sq_theta_dot + c[9]*B3_B4_theta_dot + c[10]*B4sq_theta_dot;
 }
 
+/* forces_q:(c[62],u[3],q[5],qd[5])->(dQdq[25]) row-major; out[i*5+k] = dQ_i/dq_k */
+void fem_nx0_ny4_torque_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)q;
+    const double theta_dot = qd[0];
+    const double B1_dot = qd[1];
+    const double B2_dot = qd[2];
+    const double B3_dot = qd[3];
+    const double B4_dot = qd[4];
+    const double theta_dotsq = theta_dot*theta_dot;
+    const double theta_dot_B1_dot = theta_dot*B1_dot;
+    const double theta_dot_B2_dot = theta_dot*B2_dot;
+    const double theta_dot_B3_dot = theta_dot*B3_dot;
+    const double theta_dot_B4_dot = theta_dot*B4_dot;
+    out[0] = 0.0;
+    out[1] = c[24]*theta_dot_B1_dot + c[25]*theta_dot_B2_dot + c[26]*theta_dot_B3_dot + c[27]*theta_dot_B4_dot;
+    out[2] = c[25]*theta_dot_B1_dot + c[28]*theta_dot_B2_dot + c[29]*theta_dot_B3_dot + c[30]*theta_dot_B4_dot;
+    out[3] = c[26]*theta_dot_B1_dot + c[29]*theta_dot_B2_dot + c[31]*theta_dot_B3_dot + c[32]*theta_dot_B4_dot;
+    out[4] = c[27]*theta_dot_B1_dot + c[30]*theta_dot_B2_dot + c[32]*theta_dot_B3_dot + c[33]*theta_dot_B4_dot;
+    out[5] = 0.0;
+    out[6] = c[34] + c[1]*theta_dotsq;
+    out[7] = c[37]*theta_dotsq;
+    out[8] = c[35] + c[38]*theta_dotsq;
+    out[9] = c[36] + c[39]*theta_dotsq;
+    out[10] = 0.0;
+    out[11] = c[37]*theta_dotsq;
+    out[12] = c[40] + c[5]*theta_dotsq;
+    out[13] = c[41] + c[43]*theta_dotsq;
+    out[14] = c[42] + c[44]*theta_dotsq;
+    out[15] = 0.0;
+    out[16] = c[35] + c[38]*theta_dotsq;
+    out[17] = c[41] + c[43]*theta_dotsq;
+    out[18] = c[45] + c[8]*theta_dotsq;
+    out[19] = c[41] + c[46]*theta_dotsq;
+    out[20] = 0.0;
+    out[21] = c[36] + c[39]*theta_dotsq;
+    out[22] = c[42] + c[44]*theta_dotsq;
+    out[23] = c[41] + c[46]*theta_dotsq;
+    out[24] = c[47] + c[10]*theta_dotsq;
+}
+
+/* forces_qd:(c[62],u[3],q[5],qd[5])->(dQdqd[25]) row-major; out[i*5+k] = dQ_i/dqd_k */
+void fem_nx0_ny4_torque_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    const double B1 = q[1];
+    const double B2 = q[2];
+    const double B3 = q[3];
+    const double B4 = q[4];
+    const double theta_dot = qd[0];
+    const double B1_dot = qd[1];
+    const double B2_dot = qd[2];
+    const double B3_dot = qd[3];
+    const double B4_dot = qd[4];
+    const double B1_theta_dot = B1*theta_dot;
+    const double B1_B1_dot = B1*B1_dot;
+    const double B1_B2_dot = B1*B2_dot;
+    const double B1_B3_dot = B1*B3_dot;
+    const double B1_B4_dot = B1*B4_dot;
+    const double B2_theta_dot = B2*theta_dot;
+    const double B2_B1_dot = B2*B1_dot;
+    const double B2_B2_dot = B2*B2_dot;
+    const double B2_B3_dot = B2*B3_dot;
+    const double B2_B4_dot = B2*B4_dot;
+    const double B3_theta_dot = B3*theta_dot;
+    const double B3_B1_dot = B3*B1_dot;
+    const double B3_B2_dot = B3*B2_dot;
+    const double B3_B3_dot = B3*B3_dot;
+    const double B3_B4_dot = B3*B4_dot;
+    const double B4_theta_dot = B4*theta_dot;
+    const double B4_B1_dot = B4*B1_dot;
+    const double B4_B2_dot = B4*B2_dot;
+    const double B4_B3_dot = B4*B3_dot;
+    const double B4_B4_dot = B4*B4_dot;
+    out[0] = c[24]*B1_B1_dot + c[25]*B1_B2_dot + c[26]*B1_B3_dot + c[27]*B1_B4_dot + c[25]*B2_B1_dot + c[28]*B2_B2_dot + c[29]*B2_B3_dot + c[30]*B2_B4_dot + c[26]*B3_B1_dot + c[29]*B3_B2_dot + c[31]*B3_B3_dot + c[32]*B3_B4_dot + c[27]*B4_B1_dot + c[30]*B4_B2_dot + c[32]*B4_B3_dot + c[33]*B4_B4_dot;
+    out[1] = c[24]*B1_theta_dot + c[25]*B2_theta_dot + c[26]*B3_theta_dot + c[27]*B4_theta_dot;
+    out[2] = c[25]*B1_theta_dot + c[28]*B2_theta_dot + c[29]*B3_theta_dot + c[30]*B4_theta_dot;
+    out[3] = c[26]*B1_theta_dot + c[29]*B2_theta_dot + c[31]*B3_theta_dot + c[32]*B4_theta_dot;
+    out[4] = c[27]*B1_theta_dot + c[30]*B2_theta_dot + c[32]*B3_theta_dot + c[33]*B4_theta_dot;
+    out[5] = c[58]*B1_theta_dot + c[2]*B2_theta_dot + c[3]*B3_theta_dot + c[4]*B4_theta_dot;
+    out[6] = 0.0;
+    out[7] = 0.0;
+    out[8] = 0.0;
+    out[9] = 0.0;
+    out[10] = c[2]*B1_theta_dot + c[59]*B2_theta_dot + c[6]*B3_theta_dot + c[7]*B4_theta_dot;
+    out[11] = 0.0;
+    out[12] = 0.0;
+    out[13] = 0.0;
+    out[14] = 0.0;
+    out[15] = c[3]*B1_theta_dot + c[6]*B2_theta_dot + c[60]*B3_theta_dot + c[9]*B4_theta_dot;
+    out[16] = 0.0;
+    out[17] = 0.0;
+    out[18] = 0.0;
+    out[19] = 0.0;
+    out[20] = c[4]*B1_theta_dot + c[7]*B2_theta_dot + c[9]*B3_theta_dot + c[61]*B4_theta_dot;
+    out[21] = 0.0;
+    out[22] = 0.0;
+    out[23] = 0.0;
+    out[24] = 0.0;
+}
+
+/* forces_u:(c[62],u[3],q[5],qd[5])->(dQdu[15]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
+void fem_nx0_ny4_torque_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)c;
+    (void)u;
+    (void)q;
+    (void)qd;
+    out[0] = 1.0;
+    out[1] = 0.0;
+    out[2] = 0.0;
+    out[3] = 0.0;
+    out[4] = 0.0;
+    out[5] = 0.0;
+    out[6] = 0.0;
+    out[7] = 0.0;
+    out[8] = 0.0;
+    out[9] = 0.0;
+    out[10] = 0.0;
+    out[11] = 0.0;
+    out[12] = 0.0;
+    out[13] = 0.0;
+    out[14] = 0.0;
+}
+
+/* mass_q_product:(c[62],u[3],q[5],qd[5])->(dMv[25]) row-major; v in the qd slot; out[i*5+k] = sum_j dM_ij/dq_k v_j */
+void fem_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    const double B1 = q[1];
+    const double B2 = q[2];
+    const double B3 = q[3];
+    const double B4 = q[4];
+    const double theta_dot = qd[0];
+    const double B1_theta_dot = B1*theta_dot;
+    const double B2_theta_dot = B2*theta_dot;
+    const double B3_theta_dot = B3*theta_dot;
+    const double B4_theta_dot = B4*theta_dot;
+    out[0] = 0.0;
+    out[1] = c[58]*B1_theta_dot + c[2]*B2_theta_dot + c[3]*B3_theta_dot + c[4]*B4_theta_dot;
+    out[2] = c[2]*B1_theta_dot + c[59]*B2_theta_dot + c[6]*B3_theta_dot + c[7]*B4_theta_dot;
+    out[3] = c[3]*B1_theta_dot + c[6]*B2_theta_dot + c[60]*B3_theta_dot + c[9]*B4_theta_dot;
+    out[4] = c[4]*B1_theta_dot + c[7]*B2_theta_dot + c[9]*B3_theta_dot + c[61]*B4_theta_dot;
+    out[5] = 0.0;
+    out[6] = 0.0;
+    out[7] = 0.0;
+    out[8] = 0.0;
+    out[9] = 0.0;
+    out[10] = 0.0;
+    out[11] = 0.0;
+    out[12] = 0.0;
+    out[13] = 0.0;
+    out[14] = 0.0;
+    out[15] = 0.0;
+    out[16] = 0.0;
+    out[17] = 0.0;
+    out[18] = 0.0;
+    out[19] = 0.0;
+    out[20] = 0.0;
+    out[21] = 0.0;
+    out[22] = 0.0;
+    out[23] = 0.0;
+    out[24] = 0.0;
+}
+
 }  // namespace
 
-extern const Variant fem_nx0_ny4_torque_first = {"fem_nx0_ny4_torque_first", 5, 58, false, fem_nx0_ny4_torque_first_coefficients,
-    fem_nx0_ny4_torque_first_mass, fem_nx0_ny4_torque_first_forces, fem_nx0_ny4_torque_first_energy, fem_nx0_ny4_torque_first_momentum};
+extern const Variant fem_nx0_ny4_torque_first = {"fem_nx0_ny4_torque_first", 5, 62, false, fem_nx0_ny4_torque_first_coefficients,
+    fem_nx0_ny4_torque_first_mass, fem_nx0_ny4_torque_first_forces, fem_nx0_ny4_torque_first_energy, fem_nx0_ny4_torque_first_momentum,
+    fem_nx0_ny4_torque_first_forces_q, fem_nx0_ny4_torque_first_forces_qd, fem_nx0_ny4_torque_first_mass_q_product, fem_nx0_ny4_torque_first_forces_u};
 
 }  // namespace hubbeam::generated

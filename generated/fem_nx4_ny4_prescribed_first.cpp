@@ -5,6 +5,8 @@
 // q = (A1..A4, B1..B4), qd = d/dt q; u = (tau, theta_dot, theta_ddot), of which this variant reads theta_dot, theta_ddot;
 // p = (L, rho, S, I, E, a, J_oh) in SI units. Slope coordinates (FEM, BSIM) are d/dxi = L d/dx.
 // Derived symbolically from T and U (docs/model.md sections 2-3) by Lagrange's equations of the second kind.
+// For implicit integrators, derivatives of the same M and Q: forces_q = dQ/dq, forces_qd = dQ/dqd, forces_u =
+// dQ/du; M is constant, so there is no mass_q_product.
 
 #include "generated_abi.h"
 
@@ -12,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[92]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[97]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void fem_nx4_ny4_prescribed_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -113,9 +115,14 @@ void fem_nx4_ny4_prescribed_first_coefficients(const double* p, double* c)
     c[89] = 0.02261904761904762*L*m;
     c[90] = 0.008333333333333333*m*a + 0.004761904761904762*L*m;
     c[91] = 0.1*m*a + 0.055952380952380955*L*m;
+    c[92] = 0.3333333333333333*L*m;
+    c[93] = -4.8*m*a - 2.5142857142857142*L*m;
+    c[94] = -0.13333333333333333*m*a - 0.09047619047619047*L*m;
+    c[95] = -1.2*m*a - 0.6571428571428571*L*m;
+    c[96] = -0.016666666666666666*m*a - 0.011904761904761904*L*m;
 }
 
-/* mass:(c[92],u[3],q[8],qd[8])->(M[64]) row-major; M = d2T/dqd2 */
+/* mass:(c[97],u[3],q[8],qd[8])->(M[64]) row-major; M = d2T/dqd2 */
 void fem_nx4_ny4_prescribed_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -187,7 +194,7 @@ void fem_nx4_ny4_prescribed_first_mass(const double* c, const double* u, const d
     out[63] = c[11];
 }
 
-/* forces:(c[92],u[3],q[8],qd[8])->(Q[8]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[97],u[3],q[8],qd[8])->(Q[8]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void fem_nx4_ny4_prescribed_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -243,7 +250,7 @@ void fem_nx4_ny4_prescribed_first_forces(const double* c, const double* u, const
     out[7] = c[62]*theta_ddot + c[39]*B1 + c[53]*B2 + c[52]*B3 + c[63]*B4 + c[31]*theta_dot_A2_dot + c[27]*theta_dot_A3_dot + c[64]*theta_dot_A4_dot + c[33]*theta_ddot_A2 + c[28]*theta_ddot_A3 + c[65]*theta_ddot_A4 + c[49]*theta_dotsq_B1 + c[56]*theta_dotsq_B2 + c[61]*theta_dotsq_B3 + c[66]*theta_dotsq_B4;
 }
 
-/* energy:(c[92],u[3],q[8],qd[8])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[97],u[3],q[8],qd[8])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void fem_nx4_ny4_prescribed_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -365,7 +372,7 @@ void fem_nx4_ny4_prescribed_first_energy(const double* c, const double* u, const
     out[3] = c[13]*A1sq + c[29]*A1_A2 + c[13]*A2sq + c[29]*A2_A3 + c[13]*A3sq + c[29]*A3_A4 + c[78]*A4sq + c[38]*B1sq + c[58]*B1_B3 + c[52]*B1_B4 + c[79]*B2sq + c[39]*B2_B3 + c[80]*B2_B4 + c[81]*B3sq + c[39]*B3_B4 + c[80]*B4sq;
 }
 
-/* momentum:(c[92],u[3],q[8],qd[8])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[97],u[3],q[8],qd[8])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void fem_nx4_ny4_prescribed_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -439,9 +446,210 @@ void fem_nx4_ny4_prescribed_first_momentum(const double* c, const double* u, con
     out[0] = c[82]*theta_dot + c[69]*B1_dot + c[70]*B2_dot + c[71]*B3_dot + c[72]*B4_dot + c[83]*theta_dot_A1 + c[69]*theta_dot_A2 + c[84]*theta_dot_A3 + c[85]*theta_dot_A4 + c[17]*A1_B1_dot + c[18]*A1_B2_dot + c[23]*A2_B1_dot + c[24]*A2_B3_dot + c[25]*A2_B4_dot + c[17]*A3_B1_dot + c[28]*A3_B2_dot + c[17]*A3_B3_dot + c[18]*A3_B4_dot + c[24]*A4_B1_dot + c[33]*A4_B2_dot + c[34]*A4_B3_dot + c[35]*A4_B4_dot + c[43]*B1_A1_dot + c[44]*B1_A2_dot + c[43]*B1_A3_dot + c[45]*B1_A4_dot + c[28]*B2_A1_dot + c[18]*B2_A3_dot + c[25]*B2_A4_dot + c[45]*B3_A2_dot + c[43]*B3_A3_dot + c[59]*B3_A4_dot + c[33]*B4_A2_dot + c[28]*B4_A3_dot + c[65]*B4_A4_dot + c[0]*theta_dot_A1sq + c[2]*theta_dot_A1_A2 + c[0]*theta_dot_A2sq + c[2]*theta_dot_A2_A3 + c[0]*theta_dot_A3sq + c[2]*theta_dot_A3_A4 + c[2]*theta_dot_A4sq + c[46]*theta_dot_B1sq + c[86]*theta_dot_B1_B2 + c[87]*theta_dot_B1_B3 + c[88]*theta_dot_B1_B4 + c[54]*theta_dot_B2sq + c[89]*theta_dot_B2_B3 + c[90]*theta_dot_B2_B4 + c[60]*theta_dot_B3sq + c[91]*theta_dot_B3_B4 + c[66]*theta_dot_B4sq;
 }
 
+/* forces_q:(c[97],u[3],q[8],qd[8])->(dQdq[64]) row-major; out[i*8+k] = dQ_i/dq_k */
+void fem_nx4_ny4_prescribed_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)q;
+    (void)qd;
+    const double theta_dot = u[1];
+    const double theta_ddot = u[2];
+    const double theta_dotsq = theta_dot*theta_dot;
+    out[0] = c[12] + c[0]*theta_dotsq;
+    out[1] = c[13] + c[1]*theta_dotsq;
+    out[2] = 0.0;
+    out[3] = 0.0;
+    out[4] = c[17]*theta_ddot;
+    out[5] = c[18]*theta_ddot;
+    out[6] = 0.0;
+    out[7] = 0.0;
+    out[8] = c[13] + c[1]*theta_dotsq;
+    out[9] = c[12] + c[0]*theta_dotsq;
+    out[10] = c[13] + c[1]*theta_dotsq;
+    out[11] = 0.0;
+    out[12] = c[23]*theta_ddot;
+    out[13] = 0.0;
+    out[14] = c[24]*theta_ddot;
+    out[15] = c[25]*theta_ddot;
+    out[16] = 0.0;
+    out[17] = c[13] + c[1]*theta_dotsq;
+    out[18] = c[12] + c[0]*theta_dotsq;
+    out[19] = c[13] + c[1]*theta_dotsq;
+    out[20] = c[17]*theta_ddot;
+    out[21] = c[28]*theta_ddot;
+    out[22] = c[17]*theta_ddot;
+    out[23] = c[18]*theta_ddot;
+    out[24] = 0.0;
+    out[25] = 0.0;
+    out[26] = c[13] + c[1]*theta_dotsq;
+    out[27] = c[29] + c[2]*theta_dotsq;
+    out[28] = c[24]*theta_ddot;
+    out[29] = c[33]*theta_ddot;
+    out[30] = c[34]*theta_ddot;
+    out[31] = c[35]*theta_ddot;
+    out[32] = c[43]*theta_ddot;
+    out[33] = c[44]*theta_ddot;
+    out[34] = c[43]*theta_ddot;
+    out[35] = c[45]*theta_ddot;
+    out[36] = c[37] + c[46]*theta_dotsq;
+    out[37] = c[47]*theta_dotsq;
+    out[38] = c[38] + c[48]*theta_dotsq;
+    out[39] = c[39] + c[49]*theta_dotsq;
+    out[40] = c[28]*theta_ddot;
+    out[41] = 0.0;
+    out[42] = c[18]*theta_ddot;
+    out[43] = c[25]*theta_ddot;
+    out[44] = c[47]*theta_dotsq;
+    out[45] = c[51] + c[54]*theta_dotsq;
+    out[46] = c[52] + c[55]*theta_dotsq;
+    out[47] = c[53] + c[56]*theta_dotsq;
+    out[48] = 0.0;
+    out[49] = c[45]*theta_ddot;
+    out[50] = c[43]*theta_ddot;
+    out[51] = c[59]*theta_ddot;
+    out[52] = c[38] + c[48]*theta_dotsq;
+    out[53] = c[52] + c[55]*theta_dotsq;
+    out[54] = c[58] + c[60]*theta_dotsq;
+    out[55] = c[52] + c[61]*theta_dotsq;
+    out[56] = 0.0;
+    out[57] = c[33]*theta_ddot;
+    out[58] = c[28]*theta_ddot;
+    out[59] = c[65]*theta_ddot;
+    out[60] = c[39] + c[49]*theta_dotsq;
+    out[61] = c[53] + c[56]*theta_dotsq;
+    out[62] = c[52] + c[61]*theta_dotsq;
+    out[63] = c[63] + c[66]*theta_dotsq;
+}
+
+/* forces_qd:(c[97],u[3],q[8],qd[8])->(dQdqd[64]) row-major; out[i*8+k] = dQ_i/dqd_k */
+void fem_nx4_ny4_prescribed_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)q;
+    (void)qd;
+    const double theta_dot = u[1];
+    out[0] = 0.0;
+    out[1] = 0.0;
+    out[2] = 0.0;
+    out[3] = 0.0;
+    out[4] = c[15]*theta_dot;
+    out[5] = c[16]*theta_dot;
+    out[6] = 0.0;
+    out[7] = 0.0;
+    out[8] = 0.0;
+    out[9] = 0.0;
+    out[10] = 0.0;
+    out[11] = 0.0;
+    out[12] = c[20]*theta_dot;
+    out[13] = 0.0;
+    out[14] = c[21]*theta_dot;
+    out[15] = c[22]*theta_dot;
+    out[16] = 0.0;
+    out[17] = 0.0;
+    out[18] = 0.0;
+    out[19] = 0.0;
+    out[20] = c[15]*theta_dot;
+    out[21] = c[27]*theta_dot;
+    out[22] = c[15]*theta_dot;
+    out[23] = c[16]*theta_dot;
+    out[24] = 0.0;
+    out[25] = 0.0;
+    out[26] = 0.0;
+    out[27] = 0.0;
+    out[28] = c[21]*theta_dot;
+    out[29] = c[31]*theta_dot;
+    out[30] = c[23]*theta_dot;
+    out[31] = c[32]*theta_dot;
+    out[32] = c[40]*theta_dot;
+    out[33] = c[41]*theta_dot;
+    out[34] = c[40]*theta_dot;
+    out[35] = c[42]*theta_dot;
+    out[36] = 0.0;
+    out[37] = 0.0;
+    out[38] = 0.0;
+    out[39] = 0.0;
+    out[40] = c[27]*theta_dot;
+    out[41] = 0.0;
+    out[42] = c[16]*theta_dot;
+    out[43] = c[22]*theta_dot;
+    out[44] = 0.0;
+    out[45] = 0.0;
+    out[46] = 0.0;
+    out[47] = 0.0;
+    out[48] = 0.0;
+    out[49] = c[42]*theta_dot;
+    out[50] = c[40]*theta_dot;
+    out[51] = c[44]*theta_dot;
+    out[52] = 0.0;
+    out[53] = 0.0;
+    out[54] = 0.0;
+    out[55] = 0.0;
+    out[56] = 0.0;
+    out[57] = c[31]*theta_dot;
+    out[58] = c[27]*theta_dot;
+    out[59] = c[64]*theta_dot;
+    out[60] = 0.0;
+    out[61] = 0.0;
+    out[62] = 0.0;
+    out[63] = 0.0;
+}
+
+/* forces_u:(c[97],u[3],q[8],qd[8])->(dQdu[24]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
+void fem_nx4_ny4_prescribed_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    const double theta_dot = u[1];
+    const double A1 = q[0];
+    const double A2 = q[1];
+    const double A3 = q[2];
+    const double A4 = q[3];
+    const double B1 = q[4];
+    const double B2 = q[5];
+    const double B3 = q[6];
+    const double B4 = q[7];
+    const double A1_dot = qd[0];
+    const double A2_dot = qd[1];
+    const double A3_dot = qd[2];
+    const double A4_dot = qd[3];
+    const double B1_dot = qd[4];
+    const double B2_dot = qd[5];
+    const double B3_dot = qd[6];
+    const double B4_dot = qd[7];
+    const double theta_dot_A1 = theta_dot*A1;
+    const double theta_dot_A2 = theta_dot*A2;
+    const double theta_dot_A3 = theta_dot*A3;
+    const double theta_dot_A4 = theta_dot*A4;
+    const double theta_dot_B1 = theta_dot*B1;
+    const double theta_dot_B2 = theta_dot*B2;
+    const double theta_dot_B3 = theta_dot*B3;
+    const double theta_dot_B4 = theta_dot*B4;
+    out[0] = 0.0;
+    out[1] = c[83]*theta_dot + c[15]*B1_dot + c[16]*B2_dot + c[92]*theta_dot_A1 + c[2]*theta_dot_A2;
+    out[2] = c[17]*B1 + c[18]*B2;
+    out[3] = 0.0;
+    out[4] = c[69]*theta_dot + c[20]*B1_dot + c[21]*B3_dot + c[22]*B4_dot + c[2]*theta_dot_A1 + c[92]*theta_dot_A2 + c[2]*theta_dot_A3;
+    out[5] = c[23]*B1 + c[24]*B3 + c[25]*B4;
+    out[6] = 0.0;
+    out[7] = c[84]*theta_dot + c[15]*B1_dot + c[27]*B2_dot + c[15]*B3_dot + c[16]*B4_dot + c[2]*theta_dot_A2 + c[92]*theta_dot_A3 + c[2]*theta_dot_A4;
+    out[8] = c[17]*B1 + c[28]*B2 + c[17]*B3 + c[18]*B4;
+    out[9] = 0.0;
+    out[10] = c[85]*theta_dot + c[21]*B1_dot + c[31]*B2_dot + c[23]*B3_dot + c[32]*B4_dot + c[2]*theta_dot_A3 + c[0]*theta_dot_A4;
+    out[11] = c[24]*B1 + c[33]*B2 + c[34]*B3 + c[35]*B4;
+    out[12] = 0.0;
+    out[13] = c[40]*A1_dot + c[41]*A2_dot + c[40]*A3_dot + c[42]*A4_dot + c[93]*theta_dot_B1 + c[86]*theta_dot_B2 + c[87]*theta_dot_B3 + c[88]*theta_dot_B4;
+    out[14] = c[36] + c[43]*A1 + c[44]*A2 + c[43]*A3 + c[45]*A4;
+    out[15] = 0.0;
+    out[16] = c[27]*A1_dot + c[16]*A3_dot + c[22]*A4_dot + c[86]*theta_dot_B1 + c[94]*theta_dot_B2 + c[89]*theta_dot_B3 + c[90]*theta_dot_B4;
+    out[17] = c[50] + c[28]*A1 + c[18]*A3 + c[25]*A4;
+    out[18] = 0.0;
+    out[19] = c[42]*A2_dot + c[40]*A3_dot + c[44]*A4_dot + c[87]*theta_dot_B1 + c[89]*theta_dot_B2 + c[95]*theta_dot_B3 + c[91]*theta_dot_B4;
+    out[20] = c[57] + c[45]*A2 + c[43]*A3 + c[59]*A4;
+    out[21] = 0.0;
+    out[22] = c[31]*A2_dot + c[27]*A3_dot + c[64]*A4_dot + c[88]*theta_dot_B1 + c[90]*theta_dot_B2 + c[91]*theta_dot_B3 + c[96]*theta_dot_B4;
+    out[23] = c[62] + c[33]*A2 + c[28]*A3 + c[65]*A4;
+}
+
 }  // namespace
 
-extern const Variant fem_nx4_ny4_prescribed_first = {"fem_nx4_ny4_prescribed_first", 8, 92, true, fem_nx4_ny4_prescribed_first_coefficients,
-    fem_nx4_ny4_prescribed_first_mass, fem_nx4_ny4_prescribed_first_forces, fem_nx4_ny4_prescribed_first_energy, fem_nx4_ny4_prescribed_first_momentum};
+extern const Variant fem_nx4_ny4_prescribed_first = {"fem_nx4_ny4_prescribed_first", 8, 97, true, fem_nx4_ny4_prescribed_first_coefficients,
+    fem_nx4_ny4_prescribed_first_mass, fem_nx4_ny4_prescribed_first_forces, fem_nx4_ny4_prescribed_first_energy, fem_nx4_ny4_prescribed_first_momentum,
+    fem_nx4_ny4_prescribed_first_forces_q, fem_nx4_ny4_prescribed_first_forces_qd, nullptr, fem_nx4_ny4_prescribed_first_forces_u};
 
 }  // namespace hubbeam::generated

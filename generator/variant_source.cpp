@@ -3,6 +3,7 @@
 
 #include <array>
 #include <sstream>
+#include <stdexcept>
 
 #include "emit.hpp"
 #include "interface.hpp"
@@ -39,7 +40,7 @@ std::string range(const std::string& stem, int n, const std::string& suffix = ""
     return stem + "1" + suffix + ".." + stem + std::to_string(n) + suffix;
 }
 
-std::string banner(const VariantKey& key)
+std::string banner(const VariantKey& key, bool mass_varies)
 {
     const bool torque = key.drive == Drive::torque;
     std::string coords;
@@ -58,8 +59,50 @@ std::string banner(const VariantKey& key)
                  : std::string(drive_value_names[index(DriveValue::theta_dot)]) + ", " + drive_value_names[index(DriveValue::theta_ddot)])
       << ";\n"
       << "// p = " << tuple(param_names) << " in SI units. Slope coordinates (FEM, BSIM) are d/dxi = L d/dx.\n"
-      << "// Derived symbolically from T and U (docs/model.md sections 2-3) by Lagrange's equations of the second kind.\n";
+      << "// Derived symbolically from T and U (docs/model.md sections 2-3) by Lagrange's equations of the second kind.\n"
+      << "// For implicit integrators, derivatives of the same M and Q: forces_q = dQ/dq, forces_qd = dQ/dqd, forces_u =\n"
+      << "// dQ/du" << (mass_varies ? ", mass_q_product = (dM/dq) v.\n" : "; M is constant, so there is no mass_q_product.\n");
     return b.str();
+}
+
+/// The derivatives of M qdd = Q that an implicit integrator's Jacobian needs (docs/model.md section 5.1),
+/// by symbolic differentiation of the same eq.M and eq.Q the other kernels print.
+struct JacobianPieces {
+    std::vector<ex> forces_q, forces_qd, forces_u, mass_q_product;  // row-major, see the kernels' shape comments
+    bool mass_varies = false;                                        // some dM_ij/dq_k is not zero
+};
+
+JacobianPieces jacobian_pieces(const Equations& eq, const Symbols& s, bool torque)
+{
+    const std::size_t n = s.q.size();
+    JacobianPieces j;
+    j.forces_q.resize(n * n);
+    j.forces_qd.resize(n * n);
+    j.mass_q_product.resize(n * n);
+    j.forces_u.assign(n * drive_value_count, 0);
+    for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t k = 0; k < n; ++k) {
+            j.forces_q[i * n + k] = eq.Q[i].diff(s.q[k]).expand();
+            j.forces_qd[i * n + k] = eq.Q[i].diff(s.qd[k]).expand();
+            // v is read from the qd slot, so the rates' symbols stand for v here.
+            ex dMv = 0;
+            for (std::size_t c = 0; c < n; ++c) dMv += eq.M[i * n + c].diff(s.q[k]) * s.qd[c];
+            j.mass_q_product[i * n + k] = dMv.expand();
+            j.mass_varies = j.mass_varies || !j.mass_q_product[i * n + k].is_zero();
+        }
+    // dQ/du only for the drive values the variant reads: under torque theta_dot is the rate qd[0], not an input.
+    std::vector<std::pair<DriveValue, symbol>> inputs;
+    if (torque) inputs.emplace_back(DriveValue::tau, s.tau);
+    else inputs.insert(inputs.end(), {{DriveValue::theta_dot, s.theta_dot}, {DriveValue::theta_ddot, s.theta_ddot}});
+    for (std::size_t i = 0; i < n; ++i)
+        for (const auto& [u, sym] : inputs) j.forces_u[i * drive_value_count + index(u)] = eq.Q[i].diff(sym).expand();
+    // The runtime's dfdt = M^-1 dQ/du du/dt assumes M does not depend on the drive or on the rates.
+    for (const ex& Mij : eq.M) {
+        bool depends = Mij.has(s.tau) || Mij.has(s.theta_dot) || Mij.has(s.theta_ddot);
+        for (const symbol& v : s.qd) depends = depends || Mij.has(v);
+        if (depends) throw std::logic_error("lagrange: M depends on the rates or the drive; the Jacobian assumes not");
+    }
+    return j;
 }
 
 }  // namespace
@@ -98,21 +141,33 @@ std::string variant_source(const VariantKey& key)
     for (std::size_t i = 0; i < s.q.size(); ++i) sig.state_inputs.push_back({s.q[i], "q[" + std::to_string(i) + "]"});
     for (std::size_t i = 0; i < s.qd.size(); ++i) sig.state_inputs.push_back({s.qd[i], "qd[" + std::to_string(i) + "]"});
 
-    const std::vector<KernelSpec> kernels = {
+    const JacobianPieces jac = jacobian_pieces(eq, s, torque);
+    const std::string nu = std::to_string(nq * static_cast<int>(drive_value_count));
+    std::vector<KernelSpec> kernels = {
         {"mass", "M[" + n2 + "]", "row-major; M = d2T/dqd2", eq.M},
         {"forces", "Q[" + n1 + "]", "Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq", eq.Q},
         {"energy", "E[4]", "E = (T2, T1, T0, U), T split by degree in qd", {eq.T2, eq.T1, eq.T0, eq.U}},
         {"momentum", "h[1]", "h = dT/dtheta_dot, angular momentum about the hub axis", {eq.momentum}},
+        {"forces_q", "dQdq[" + n2 + "]", "row-major; out[i*" + n1 + "+k] = dQ_i/dq_k", jac.forces_q},
+        {"forces_qd", "dQdqd[" + n2 + "]", "row-major; out[i*" + n1 + "+k] = dQ_i/dqd_k", jac.forces_qd},
+        {"forces_u", "dQdu[" + nu + "]", "row-major; out[i*3+j] = dQ_i/du_j, u = " + tuple(drive_value_names),
+         jac.forces_u},
     };
+    // A constant M has dM/dq = 0: no kernel, a null pointer in the table row, and the runtime skips the term.
+    if (jac.mass_varies)
+        kernels.push_back({"mass_q_product", "dMv[" + n2 + "]",
+                           "row-major; v in the qd slot; out[i*" + n1 + "+k] = sum_j dM_ij/dq_k v_j", jac.mass_q_product});
     const std::string name = key.name();
     const EmittedCode code = emit_kernels(name, sig, kernels);
 
     std::ostringstream f;
-    f << banner(key) << "\n#include \"generated_abi.h\"\n\nnamespace hubbeam::generated {\n\nnamespace {\n"
+    f << banner(key, jac.mass_varies) << "\n#include \"generated_abi.h\"\n\nnamespace hubbeam::generated {\n\nnamespace {\n"
       << code.text << "\n}  // namespace\n\n"
       << "extern const Variant " << name << " = {\"" << name << "\", " << nq << ", " << code.ncoeff << ", "
       << (code.constant("mass") ? "true" : "false") << ", " << name << "_coefficients,\n    " << name << "_mass, "
-      << name << "_forces, " << name << "_energy, " << name << "_momentum};\n\n}  // namespace hubbeam::generated\n";
+      << name << "_forces, " << name << "_energy, " << name << "_momentum,\n    " << name << "_forces_q, " << name
+      << "_forces_qd, " << (jac.mass_varies ? name + "_mass_q_product" : std::string("nullptr")) << ", " << name
+      << "_forces_u};\n\n}  // namespace hubbeam::generated\n";
     return f.str();
 }
 

@@ -21,6 +21,13 @@ struct Variant {
     Kernel forces;            /* Q[nq]: tau e_theta + dT/dq - d(dT/dqd)/dt|_(qdd=0) - dU/dq */
     Kernel energy;            /* E[4] = (T2, T1, T0, U), T split by degree in qd */
     Kernel momentum;          /* h[1] = dT/dtheta_dot */
+    /* The Jacobian pieces for implicit integrators, derivatives of the M and Q above (docs/model.md section 5.1). */
+    Kernel forces_q;          /* dQdq[nq*nq], row-major: out[i*nq+k] = dQ_i/dq_k */
+    Kernel forces_qd;         /* dQdqd[nq*nq], row-major: out[i*nq+k] = dQ_i/dqd_k */
+    Kernel mass_q_product;    /* dMv[nq*nq], row-major, v passed in the qd slot: out[i*nq+k] = sum_j dM_ij/dq_k v_j;
+                               * a null pointer when M is constant (then dM/dq = 0) */
+    Kernel forces_u;          /* dQdu[nq*3], row-major: out[i*3+j] = dQ_i/du_j, u indexed by DriveValue; columns of
+                               * drive values the variant does not read are zero */
 };
 
 extern const Variant* const variants[];

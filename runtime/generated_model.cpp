@@ -2,6 +2,8 @@
 // generated_abi.h, with the parameter-only coefficients computed once.
 #include "generated_model.hpp"
 
+#include <algorithm>
+
 #include "generated_abi.h"
 
 namespace hubbeam {
@@ -35,6 +37,21 @@ public:
         double h;
         call(v_.momentum, u, q, qd, &h);
         return h;
+    }
+
+    bool has_jacobian() const override { return true; }
+    void force_derivatives(const HubInput& u, const double* q, const double* qd, double* dQdq, double* dQdqd,
+                           double* dQdu) const override
+    {
+        call(v_.forces_q, u, q, qd, dQdq);
+        call(v_.forces_qd, u, q, qd, dQdqd);
+        call(v_.forces_u, u, q, qd, dQdu);
+    }
+    void mass_q_product(const HubInput& u, const double* q, const double* v, double* dMv) const override
+    {
+        // The generator emits no kernel for a constant M (dM/dq = 0).
+        if (v_.mass_q_product == nullptr) std::fill_n(dMv, nq() * nq(), 0.0);
+        else call(v_.mass_q_product, u, q, v, dMv);
     }
 
 private:

@@ -29,9 +29,15 @@ public:
     int size() const { return 2 * n_; }
     /// GSL status: GSL_SUCCESS, or GSL_EBADFUNC when M is not positive definite or the result is not finite.
     int rhs(double t, const double* y, double* dydt);
-    /// Central-difference Jacobian (row-major, as GSL wants) for the implicit steppers.
+    /// Jacobian for the implicit steppers (row-major, as GSL wants): dfdy (2nq x 2nq) and dfdt (2nq) from the
+    /// model's exact derivatives when it has them, else finite_difference_jacobian.
     int jacobian(double t, const double* y, double* dfdy, double* dfdt);
+    /// Central differences of rhs: the fallback for models without derivatives, and the tests' oracle.
+    int finite_difference_jacobian(double t, const double* y, double* dfdy, double* dfdt);
+    /// Evaluations of rhs, including those a finite-difference Jacobian makes.
     long evaluations() const { return evaluations_; }
+    /// Jacobians formed (either way).
+    long jacobian_evaluations() const { return jacobian_evaluations_; }
     gsl_odeiv2_system* gsl() { return &sys_; }
 
 private:
@@ -39,7 +45,12 @@ private:
     const Model& model_;
     const Motion& motion_;
     int n_;
+    /// M(q) factored into work_->llt (once only, for a constant M).
+    int factor_mass(const HubInput& u, const double* q);
+    int exact_jacobian(double t, const double* y, double* dfdy, double* dfdt);
+
     long evaluations_ = 0;
+    long jacobian_evaluations_ = 0;
     std::unique_ptr<Work> work_;
     gsl_odeiv2_system sys_;
 };

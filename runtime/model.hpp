@@ -3,6 +3,9 @@
 // section 5 (assembled.hpp); make_model.hpp chooses between them.
 #pragma once
 
+#include <stdexcept>
+#include <string>
+
 #include "interface.hpp"
 #include "variant.hpp"
 
@@ -31,11 +34,31 @@ public:
     /// Angular momentum about the axis, dT/dtheta_dot.
     virtual double momentum(const HubInput& u, const double* q, const double* qd) const = 0;
 
+    /// True when the model supplies the exact derivatives below (generated kernels); otherwise the integrator
+    /// falls back to a finite-difference Jacobian.
+    virtual bool has_jacobian() const { return false; }
+    /// The derivatives of Q, each row-major: dQdq[i*nq+k] = dQ_i/dq_k, dQdqd[i*nq+k] = dQ_i/dqd_k and
+    /// dQdu[i*3+j] = dQ_i/du_j with u indexed by DriveValue (docs/model.md section 5.1). Only if has_jacobian().
+    virtual void force_derivatives(const HubInput& u, const double* q, const double* qd, double* dQdq, double* dQdqd,
+                                   double* dQdu) const;
+    /// dMv[i*nq+k] = sum_j dM_ij/dq_k v_j, row-major; all zeros when mass_is_constant(). Only if has_jacobian().
+    virtual void mass_q_product(const HubInput& u, const double* q, const double* v, double* dMv) const;
+
 protected:
     explicit Model(const VariantKey& key) : key_(key) {}
 
 private:
     VariantKey key_;
 };
+
+inline void Model::force_derivatives(const HubInput&, const double*, const double*, double*, double*, double*) const
+{
+    throw std::logic_error(std::string(source()) + " model has no Jacobian");
+}
+
+inline void Model::mass_q_product(const HubInput&, const double*, const double*, double*) const
+{
+    throw std::logic_error(std::string(source()) + " model has no Jacobian");
+}
 
 }  // namespace hubbeam

@@ -26,6 +26,24 @@ HubInput Motion::at(double t) const
     return u;
 }
 
+HubInput Motion::rate(double t) const
+{
+    // Same branches as at(t): the profile's pieces are differentiated separately (the breakpoints restart the
+    // integrator, so it never differentiates across them).
+    HubInput r;
+    if (kind == Kind::spin_up) {
+        if (t <= spin_time) {
+            const double w = two_pi / spin_time;
+            r.theta_dot = omega0 / spin_time * (1.0 - std::cos(w * t));  // = theta_ddot
+            r.theta_ddot = omega0 / spin_time * w * std::sin(w * t);
+        }
+    } else if (t <= torque_time) {
+        const double w = two_pi / torque_time;
+        r.tau = tau0 * w * std::cos(w * t);
+    }
+    return r;
+}
+
 double Motion::theta(double t) const
 {
     if (kind != Kind::spin_up) return 0.0;

@@ -19,6 +19,9 @@ struct Motion {
     Drive drive() const { return kind == Kind::spin_up ? Drive::prescribed : Drive::torque; }
     /// u = (tau, theta_dot, theta_ddot) at t.
     HubInput at(double t) const;
+    /// du/dt = (dtau/dt, theta_ddot, dtheta_ddot/dt) at t, for the time derivative of the implicit steppers'
+    /// Jacobian (dfdt); differentiated by hand from docs/model.md section 6, eqs. 58 and 59.
+    HubInput rate(double t) const;
     /// Prescribed theta(t) (spin-up only; 0 for torque).
     double theta(double t) const;
     /// int_0^t tau dt (torque only; 0 for spin-up).
