@@ -217,7 +217,8 @@ TEST_CASE("the finite-difference Jacobian of the first-order system", "[dynamics
 {
     // The implicit steppers (msbdf, bsimp, rk*imp) need df/dy and df/dt of y' = f(t, y) = (qd, M^-1 Q)
     // (docs/model.md section 5), row-major as GSL wants. A wrong one does not change msbdf's response, only
-    // its cost, so it is checked here directly, against references formed without FirstOrderSystem::jacobian.
+    // its cost, so it is checked here directly, against references formed without it. It is the fallback for
+    // models without generated derivatives and the oracle of test_jacobian.cpp.
     using Eigen::MatrixXd;
     using Eigen::VectorXd;
     using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
@@ -247,7 +248,7 @@ TEST_CASE("the finite-difference Jacobian of the first-order system", "[dynamics
         }
         RowMajor J(m, m);
         VectorXd dfdt(m);
-        REQUIRE(system.jacobian(c.t, y.data(), J.data(), dfdt.data()) == 0);
+        REQUIRE(system.finite_difference_jacobian(c.t, y.data(), J.data(), dfdt.data()) == 0);
 
         // d(qd)/dq = 0 and d(qd)/dqd = I.
         CHECK(J.topLeftCorner(n, n).lpNorm<Eigen::Infinity>() < 1e-9);
