@@ -90,7 +90,7 @@ void amm_nx0_ny4_prescribed_first_coefficients(const double* p, double* c)
     c[65] = -102.91821015122056*m*a - 70.11077665782084*L*m;
 }
 
-/* mass:(c[66],u[3],q[4],qd[4])->(M[16]) row-major; M = d2T/dqd2 */
+/* mass:(c[66],u[3],q[4],qd[4])->(M[16]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void amm_nx0_ny4_prescribed_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -100,17 +100,11 @@ void amm_nx0_ny4_prescribed_first_mass(const double* c, const double* u, const d
     out[1] = c[1];
     out[2] = c[2];
     out[3] = c[3];
-    out[4] = c[1];
     out[5] = c[4];
     out[6] = c[5];
     out[7] = c[6];
-    out[8] = c[2];
-    out[9] = c[5];
     out[10] = c[4];
     out[11] = c[7];
-    out[12] = c[3];
-    out[13] = c[6];
-    out[14] = c[7];
     out[15] = c[8];
 }
 
@@ -133,6 +127,77 @@ void amm_nx0_ny4_prescribed_first_forces(const double* c, const double* u, const
     out[1] = c[18]*theta_ddot + c[11]*B1 + c[19]*B2 + c[20]*B3 + c[21]*B4 + c[15]*theta_dotsq_B1 + c[22]*theta_dotsq_B2 + c[23]*theta_dotsq_B3 + c[24]*theta_dotsq_B4;
     out[2] = c[25]*theta_ddot + c[12]*B1 + c[20]*B2 + c[26]*B3 + c[27]*B4 + c[16]*theta_dotsq_B1 + c[23]*theta_dotsq_B2 + c[28]*theta_dotsq_B3 + c[29]*theta_dotsq_B4;
     out[3] = c[30]*theta_ddot + c[13]*B1 + c[21]*B2 + c[27]*B3 + c[31]*B4 + c[17]*theta_dotsq_B1 + c[24]*theta_dotsq_B2 + c[29]*theta_dotsq_B3 + c[32]*theta_dotsq_B4;
+}
+
+/* forces_terms:(c[66],u[3],q[4],qd[4])->(m[9]) the state monomials of Q: Q = F m */
+void amm_nx0_ny4_prescribed_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)c;
+    (void)qd;
+    const double theta_dot = u[1];
+    const double theta_ddot = u[2];
+    const double B1 = q[0];
+    const double B2 = q[1];
+    const double B3 = q[2];
+    const double B4 = q[3];
+    const double theta_dotsq = theta_dot*theta_dot;
+    const double theta_dotsq_B1 = theta_dotsq*B1;
+    const double theta_dotsq_B2 = theta_dotsq*B2;
+    const double theta_dotsq_B3 = theta_dotsq*B3;
+    const double theta_dotsq_B4 = theta_dotsq*B4;
+    out[0] = theta_ddot;
+    out[1] = B1;
+    out[2] = B2;
+    out[3] = B3;
+    out[4] = B4;
+    out[5] = theta_dotsq_B1;
+    out[6] = theta_dotsq_B2;
+    out[7] = theta_dotsq_B3;
+    out[8] = theta_dotsq_B4;
+}
+
+/* forces_matrix:(c[66],u[3],q[4],qd[4])->(F[4*9]) row-major, state-free: Q = F m; nonzero entries only */
+void amm_nx0_ny4_prescribed_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)q;
+    (void)qd;
+    out[0] = c[9];
+    out[1] = c[10];
+    out[2] = c[11];
+    out[3] = c[12];
+    out[4] = c[13];
+    out[5] = c[14];
+    out[6] = c[15];
+    out[7] = c[16];
+    out[8] = c[17];
+    out[9] = c[18];
+    out[10] = c[11];
+    out[11] = c[19];
+    out[12] = c[20];
+    out[13] = c[21];
+    out[14] = c[15];
+    out[15] = c[22];
+    out[16] = c[23];
+    out[17] = c[24];
+    out[18] = c[25];
+    out[19] = c[12];
+    out[20] = c[20];
+    out[21] = c[26];
+    out[22] = c[27];
+    out[23] = c[16];
+    out[24] = c[23];
+    out[25] = c[28];
+    out[26] = c[29];
+    out[27] = c[30];
+    out[28] = c[13];
+    out[29] = c[21];
+    out[30] = c[27];
+    out[31] = c[31];
+    out[32] = c[17];
+    out[33] = c[24];
+    out[34] = c[29];
+    out[35] = c[32];
 }
 
 /* energy:(c[66],u[3],q[4],qd[4])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
@@ -300,8 +365,9 @@ void amm_nx0_ny4_prescribed_first_forces_u(const double* c, const double* u, con
 
 }  // namespace
 
-extern const Variant amm_nx0_ny4_prescribed_first = {"amm_nx0_ny4_prescribed_first", 4, 66, true, amm_nx0_ny4_prescribed_first_coefficients,
-    amm_nx0_ny4_prescribed_first_mass, amm_nx0_ny4_prescribed_first_forces, amm_nx0_ny4_prescribed_first_energy, amm_nx0_ny4_prescribed_first_momentum,
-    amm_nx0_ny4_prescribed_first_forces_q, amm_nx0_ny4_prescribed_first_forces_qd, nullptr, amm_nx0_ny4_prescribed_first_forces_u};
+extern const Variant amm_nx0_ny4_prescribed_first = {"amm_nx0_ny4_prescribed_first", 4, 66, 9,
+    "cccccccccccccccc",
+    amm_nx0_ny4_prescribed_first_coefficients, amm_nx0_ny4_prescribed_first_mass, nullptr, amm_nx0_ny4_prescribed_first_forces, amm_nx0_ny4_prescribed_first_forces_terms, amm_nx0_ny4_prescribed_first_forces_matrix,
+    amm_nx0_ny4_prescribed_first_energy, amm_nx0_ny4_prescribed_first_momentum, amm_nx0_ny4_prescribed_first_forces_q, amm_nx0_ny4_prescribed_first_forces_qd, nullptr, amm_nx0_ny4_prescribed_first_forces_u};
 
 }  // namespace hubbeam::generated

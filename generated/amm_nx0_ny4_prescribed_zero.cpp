@@ -75,7 +75,7 @@ void amm_nx0_ny4_prescribed_zero_coefficients(const double* p, double* c)
     c[50] = 2.000000000000001*L*m;
 }
 
-/* mass:(c[51],u[3],q[4],qd[4])->(M[16]) row-major; M = d2T/dqd2 */
+/* mass:(c[51],u[3],q[4],qd[4])->(M[16]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void amm_nx0_ny4_prescribed_zero_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -85,17 +85,11 @@ void amm_nx0_ny4_prescribed_zero_mass(const double* c, const double* u, const do
     out[1] = c[1];
     out[2] = c[2];
     out[3] = c[3];
-    out[4] = c[1];
     out[5] = c[4];
     out[6] = c[5];
     out[7] = c[6];
-    out[8] = c[2];
-    out[9] = c[5];
     out[10] = c[4];
     out[11] = c[7];
-    out[12] = c[3];
-    out[13] = c[6];
-    out[14] = c[7];
     out[15] = c[8];
 }
 
@@ -118,6 +112,77 @@ void amm_nx0_ny4_prescribed_zero_forces(const double* c, const double* u, const 
     out[1] = c[14]*theta_ddot + c[11]*B1 + c[15]*B2 + c[16]*B3 + c[17]*B4 + c[1]*theta_dotsq_B1 + c[4]*theta_dotsq_B2 + c[5]*theta_dotsq_B3 + c[6]*theta_dotsq_B4;
     out[2] = c[18]*theta_ddot + c[12]*B1 + c[16]*B2 + c[19]*B3 + c[20]*B4 + c[2]*theta_dotsq_B1 + c[5]*theta_dotsq_B2 + c[4]*theta_dotsq_B3 + c[7]*theta_dotsq_B4;
     out[3] = c[21]*theta_ddot + c[13]*B1 + c[17]*B2 + c[20]*B3 + c[22]*B4 + c[3]*theta_dotsq_B1 + c[6]*theta_dotsq_B2 + c[7]*theta_dotsq_B3 + c[8]*theta_dotsq_B4;
+}
+
+/* forces_terms:(c[51],u[3],q[4],qd[4])->(m[9]) the state monomials of Q: Q = F m */
+void amm_nx0_ny4_prescribed_zero_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)c;
+    (void)qd;
+    const double theta_dot = u[1];
+    const double theta_ddot = u[2];
+    const double B1 = q[0];
+    const double B2 = q[1];
+    const double B3 = q[2];
+    const double B4 = q[3];
+    const double theta_dotsq = theta_dot*theta_dot;
+    const double theta_dotsq_B1 = theta_dotsq*B1;
+    const double theta_dotsq_B2 = theta_dotsq*B2;
+    const double theta_dotsq_B3 = theta_dotsq*B3;
+    const double theta_dotsq_B4 = theta_dotsq*B4;
+    out[0] = theta_ddot;
+    out[1] = B1;
+    out[2] = B2;
+    out[3] = B3;
+    out[4] = B4;
+    out[5] = theta_dotsq_B1;
+    out[6] = theta_dotsq_B2;
+    out[7] = theta_dotsq_B3;
+    out[8] = theta_dotsq_B4;
+}
+
+/* forces_matrix:(c[51],u[3],q[4],qd[4])->(F[4*9]) row-major, state-free: Q = F m; nonzero entries only */
+void amm_nx0_ny4_prescribed_zero_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)q;
+    (void)qd;
+    out[0] = c[9];
+    out[1] = c[10];
+    out[2] = c[11];
+    out[3] = c[12];
+    out[4] = c[13];
+    out[5] = c[0];
+    out[6] = c[1];
+    out[7] = c[2];
+    out[8] = c[3];
+    out[9] = c[14];
+    out[10] = c[11];
+    out[11] = c[15];
+    out[12] = c[16];
+    out[13] = c[17];
+    out[14] = c[1];
+    out[15] = c[4];
+    out[16] = c[5];
+    out[17] = c[6];
+    out[18] = c[18];
+    out[19] = c[12];
+    out[20] = c[16];
+    out[21] = c[19];
+    out[22] = c[20];
+    out[23] = c[2];
+    out[24] = c[5];
+    out[25] = c[4];
+    out[26] = c[7];
+    out[27] = c[21];
+    out[28] = c[13];
+    out[29] = c[17];
+    out[30] = c[20];
+    out[31] = c[22];
+    out[32] = c[3];
+    out[33] = c[6];
+    out[34] = c[7];
+    out[35] = c[8];
 }
 
 /* energy:(c[51],u[3],q[4],qd[4])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
@@ -285,8 +350,9 @@ void amm_nx0_ny4_prescribed_zero_forces_u(const double* c, const double* u, cons
 
 }  // namespace
 
-extern const Variant amm_nx0_ny4_prescribed_zero = {"amm_nx0_ny4_prescribed_zero", 4, 51, true, amm_nx0_ny4_prescribed_zero_coefficients,
-    amm_nx0_ny4_prescribed_zero_mass, amm_nx0_ny4_prescribed_zero_forces, amm_nx0_ny4_prescribed_zero_energy, amm_nx0_ny4_prescribed_zero_momentum,
-    amm_nx0_ny4_prescribed_zero_forces_q, amm_nx0_ny4_prescribed_zero_forces_qd, nullptr, amm_nx0_ny4_prescribed_zero_forces_u};
+extern const Variant amm_nx0_ny4_prescribed_zero = {"amm_nx0_ny4_prescribed_zero", 4, 51, 9,
+    "cccccccccccccccc",
+    amm_nx0_ny4_prescribed_zero_coefficients, amm_nx0_ny4_prescribed_zero_mass, nullptr, amm_nx0_ny4_prescribed_zero_forces, amm_nx0_ny4_prescribed_zero_forces_terms, amm_nx0_ny4_prescribed_zero_forces_matrix,
+    amm_nx0_ny4_prescribed_zero_energy, amm_nx0_ny4_prescribed_zero_momentum, amm_nx0_ny4_prescribed_zero_forces_q, amm_nx0_ny4_prescribed_zero_forces_qd, nullptr, amm_nx0_ny4_prescribed_zero_forces_u};
 
 }  // namespace hubbeam::generated

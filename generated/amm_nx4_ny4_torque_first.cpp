@@ -223,7 +223,7 @@ void amm_nx4_ny4_torque_first_coefficients(const double* p, double* c)
     c[197] = -102.91821015122056*m*a - 70.11077665782084*L*m;
 }
 
-/* mass:(c[198],u[3],q[9],qd[9])->(M[81]) row-major; M = d2T/dqd2 */
+/* mass:(c[198],u[3],q[9],qd[9])->(M[81]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void amm_nx4_ny4_torque_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -265,77 +265,25 @@ void amm_nx4_ny4_torque_first_mass(const double* c, const double* u, const doubl
     out[6] = c[46] + c[47]*A1 + c[48]*A2 + c[49]*A3 + c[50]*A4;
     out[7] = c[51] + c[52]*A1 + c[53]*A2 + c[54]*A3 + c[55]*A4;
     out[8] = c[56] + c[57]*A1 + c[58]*A2 + c[59]*A3 + c[60]*A4;
-    out[9] = c[25]*B1 + c[26]*B2 + c[27]*B3 + c[28]*B4;
     out[10] = c[5];
     out[11] = c[61];
     out[12] = c[62];
     out[13] = c[63];
-    out[14] = 0.0;
-    out[15] = 0.0;
-    out[16] = 0.0;
-    out[17] = 0.0;
-    out[18] = c[29]*B1 + c[30]*B2 + c[31]*B3 + c[32]*B4;
-    out[19] = c[61];
     out[20] = c[9];
     out[21] = c[64];
     out[22] = c[65];
-    out[23] = 0.0;
-    out[24] = 0.0;
-    out[25] = 0.0;
-    out[26] = 0.0;
-    out[27] = c[33]*B1 + c[34]*B2 + c[35]*B3 + c[36]*B4;
-    out[28] = c[62];
-    out[29] = c[64];
     out[30] = c[12];
     out[31] = c[66];
-    out[32] = 0.0;
-    out[33] = 0.0;
-    out[34] = 0.0;
-    out[35] = 0.0;
-    out[36] = c[37]*B1 + c[38]*B2 + c[39]*B3 + c[40]*B4;
-    out[37] = c[63];
-    out[38] = c[65];
-    out[39] = c[66];
     out[40] = c[14];
-    out[41] = 0.0;
-    out[42] = 0.0;
-    out[43] = 0.0;
-    out[44] = 0.0;
-    out[45] = c[41] + c[42]*A1 + c[43]*A2 + c[44]*A3 + c[45]*A4;
-    out[46] = 0.0;
-    out[47] = 0.0;
-    out[48] = 0.0;
-    out[49] = 0.0;
     out[50] = c[67];
     out[51] = c[68];
     out[52] = c[69];
     out[53] = c[70];
-    out[54] = c[46] + c[47]*A1 + c[48]*A2 + c[49]*A3 + c[50]*A4;
-    out[55] = 0.0;
-    out[56] = 0.0;
-    out[57] = 0.0;
-    out[58] = 0.0;
-    out[59] = c[68];
     out[60] = c[71];
     out[61] = c[72];
     out[62] = c[73];
-    out[63] = c[51] + c[52]*A1 + c[53]*A2 + c[54]*A3 + c[55]*A4;
-    out[64] = 0.0;
-    out[65] = 0.0;
-    out[66] = 0.0;
-    out[67] = 0.0;
-    out[68] = c[69];
-    out[69] = c[72];
     out[70] = c[71];
     out[71] = c[74];
-    out[72] = c[56] + c[57]*A1 + c[58]*A2 + c[59]*A3 + c[60]*A4;
-    out[73] = 0.0;
-    out[74] = 0.0;
-    out[75] = 0.0;
-    out[76] = 0.0;
-    out[77] = c[70];
-    out[78] = c[73];
-    out[79] = c[74];
     out[80] = c[75];
 }
 
@@ -426,6 +374,290 @@ void amm_nx4_ny4_torque_first_forces(const double* c, const double* u, const dou
     out[6] = c[131]*B1 + c[141]*B2 + c[142]*B3 + c[143]*B4 + c[144]*theta_dot_A1_dot + c[145]*theta_dot_A2_dot + c[146]*theta_dot_A3_dot + c[147]*theta_dot_A4_dot + c[138]*B1_theta_dotsq + c[19]*B2_theta_dotsq + c[148]*B3_theta_dotsq + c[149]*B4_theta_dotsq;
     out[7] = c[132]*B1 + c[142]*B2 + c[150]*B3 + c[151]*B4 + c[152]*theta_dot_A1_dot + c[153]*theta_dot_A2_dot + c[154]*theta_dot_A3_dot + c[155]*theta_dot_A4_dot + c[139]*B1_theta_dotsq + c[148]*B2_theta_dotsq + c[22]*B3_theta_dotsq + c[156]*B4_theta_dotsq;
     out[8] = c[133]*B1 + c[143]*B2 + c[151]*B3 + c[157]*B4 + c[158]*theta_dot_A1_dot + c[159]*theta_dot_A2_dot + c[160]*theta_dot_A3_dot + c[161]*theta_dot_A4_dot + c[140]*B1_theta_dotsq + c[149]*B2_theta_dotsq + c[156]*B3_theta_dotsq + c[24]*B4_theta_dotsq;
+}
+
+/* forces_terms:(c[198],u[3],q[9],qd[9])->(m[58]) the state monomials of Q: Q = F m */
+void amm_nx4_ny4_torque_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)c;
+    const double tau = u[0];
+    const double A1 = q[1];
+    const double A2 = q[2];
+    const double A3 = q[3];
+    const double A4 = q[4];
+    const double B1 = q[5];
+    const double B2 = q[6];
+    const double B3 = q[7];
+    const double B4 = q[8];
+    const double theta_dot = qd[0];
+    const double A1_dot = qd[1];
+    const double A2_dot = qd[2];
+    const double A3_dot = qd[3];
+    const double A4_dot = qd[4];
+    const double B1_dot = qd[5];
+    const double B2_dot = qd[6];
+    const double B3_dot = qd[7];
+    const double B4_dot = qd[8];
+    const double theta_dotsq = theta_dot*theta_dot;
+    const double theta_dot_A1_dot = theta_dot*A1_dot;
+    const double theta_dot_A2_dot = theta_dot*A2_dot;
+    const double theta_dot_A3_dot = theta_dot*A3_dot;
+    const double theta_dot_A4_dot = theta_dot*A4_dot;
+    const double theta_dot_B1_dot = theta_dot*B1_dot;
+    const double theta_dot_B2_dot = theta_dot*B2_dot;
+    const double theta_dot_B3_dot = theta_dot*B3_dot;
+    const double theta_dot_B4_dot = theta_dot*B4_dot;
+    const double A1_theta_dot = A1*theta_dot;
+    const double A1_theta_dotsq = A1_theta_dot*theta_dot;
+    const double A1_theta_dot_A1_dot = A1_theta_dot*A1_dot;
+    const double A1_theta_dot_A2_dot = A1_theta_dot*A2_dot;
+    const double A1_theta_dot_A3_dot = A1_theta_dot*A3_dot;
+    const double A1_theta_dot_A4_dot = A1_theta_dot*A4_dot;
+    const double A2_theta_dot = A2*theta_dot;
+    const double A2_theta_dotsq = A2_theta_dot*theta_dot;
+    const double A2_theta_dot_A1_dot = A2_theta_dot*A1_dot;
+    const double A2_theta_dot_A2_dot = A2_theta_dot*A2_dot;
+    const double A2_theta_dot_A3_dot = A2_theta_dot*A3_dot;
+    const double A2_theta_dot_A4_dot = A2_theta_dot*A4_dot;
+    const double A3_theta_dot = A3*theta_dot;
+    const double A3_theta_dotsq = A3_theta_dot*theta_dot;
+    const double A3_theta_dot_A1_dot = A3_theta_dot*A1_dot;
+    const double A3_theta_dot_A2_dot = A3_theta_dot*A2_dot;
+    const double A3_theta_dot_A3_dot = A3_theta_dot*A3_dot;
+    const double A3_theta_dot_A4_dot = A3_theta_dot*A4_dot;
+    const double A4_theta_dot = A4*theta_dot;
+    const double A4_theta_dotsq = A4_theta_dot*theta_dot;
+    const double A4_theta_dot_A1_dot = A4_theta_dot*A1_dot;
+    const double A4_theta_dot_A2_dot = A4_theta_dot*A2_dot;
+    const double A4_theta_dot_A3_dot = A4_theta_dot*A3_dot;
+    const double A4_theta_dot_A4_dot = A4_theta_dot*A4_dot;
+    const double B1_theta_dot = B1*theta_dot;
+    const double B1_theta_dotsq = B1_theta_dot*theta_dot;
+    const double B1_theta_dot_B1_dot = B1_theta_dot*B1_dot;
+    const double B1_theta_dot_B2_dot = B1_theta_dot*B2_dot;
+    const double B1_theta_dot_B3_dot = B1_theta_dot*B3_dot;
+    const double B1_theta_dot_B4_dot = B1_theta_dot*B4_dot;
+    const double B2_theta_dot = B2*theta_dot;
+    const double B2_theta_dotsq = B2_theta_dot*theta_dot;
+    const double B2_theta_dot_B1_dot = B2_theta_dot*B1_dot;
+    const double B2_theta_dot_B2_dot = B2_theta_dot*B2_dot;
+    const double B2_theta_dot_B3_dot = B2_theta_dot*B3_dot;
+    const double B2_theta_dot_B4_dot = B2_theta_dot*B4_dot;
+    const double B3_theta_dot = B3*theta_dot;
+    const double B3_theta_dotsq = B3_theta_dot*theta_dot;
+    const double B3_theta_dot_B1_dot = B3_theta_dot*B1_dot;
+    const double B3_theta_dot_B2_dot = B3_theta_dot*B2_dot;
+    const double B3_theta_dot_B3_dot = B3_theta_dot*B3_dot;
+    const double B3_theta_dot_B4_dot = B3_theta_dot*B4_dot;
+    const double B4_theta_dot = B4*theta_dot;
+    const double B4_theta_dotsq = B4_theta_dot*theta_dot;
+    const double B4_theta_dot_B1_dot = B4_theta_dot*B1_dot;
+    const double B4_theta_dot_B2_dot = B4_theta_dot*B2_dot;
+    const double B4_theta_dot_B3_dot = B4_theta_dot*B3_dot;
+    const double B4_theta_dot_B4_dot = B4_theta_dot*B4_dot;
+    out[0] = tau;
+    out[1] = A1;
+    out[2] = A2;
+    out[3] = A3;
+    out[4] = A4;
+    out[5] = B1;
+    out[6] = B2;
+    out[7] = B3;
+    out[8] = B4;
+    out[9] = theta_dotsq;
+    out[10] = theta_dot_A1_dot;
+    out[11] = theta_dot_A2_dot;
+    out[12] = theta_dot_A3_dot;
+    out[13] = theta_dot_A4_dot;
+    out[14] = theta_dot_B1_dot;
+    out[15] = theta_dot_B2_dot;
+    out[16] = theta_dot_B3_dot;
+    out[17] = theta_dot_B4_dot;
+    out[18] = A1_theta_dotsq;
+    out[19] = A1_theta_dot_A1_dot;
+    out[20] = A1_theta_dot_A2_dot;
+    out[21] = A1_theta_dot_A3_dot;
+    out[22] = A1_theta_dot_A4_dot;
+    out[23] = A2_theta_dotsq;
+    out[24] = A2_theta_dot_A1_dot;
+    out[25] = A2_theta_dot_A2_dot;
+    out[26] = A2_theta_dot_A3_dot;
+    out[27] = A2_theta_dot_A4_dot;
+    out[28] = A3_theta_dotsq;
+    out[29] = A3_theta_dot_A1_dot;
+    out[30] = A3_theta_dot_A2_dot;
+    out[31] = A3_theta_dot_A3_dot;
+    out[32] = A3_theta_dot_A4_dot;
+    out[33] = A4_theta_dotsq;
+    out[34] = A4_theta_dot_A1_dot;
+    out[35] = A4_theta_dot_A2_dot;
+    out[36] = A4_theta_dot_A3_dot;
+    out[37] = A4_theta_dot_A4_dot;
+    out[38] = B1_theta_dotsq;
+    out[39] = B1_theta_dot_B1_dot;
+    out[40] = B1_theta_dot_B2_dot;
+    out[41] = B1_theta_dot_B3_dot;
+    out[42] = B1_theta_dot_B4_dot;
+    out[43] = B2_theta_dotsq;
+    out[44] = B2_theta_dot_B1_dot;
+    out[45] = B2_theta_dot_B2_dot;
+    out[46] = B2_theta_dot_B3_dot;
+    out[47] = B2_theta_dot_B4_dot;
+    out[48] = B3_theta_dotsq;
+    out[49] = B3_theta_dot_B1_dot;
+    out[50] = B3_theta_dot_B2_dot;
+    out[51] = B3_theta_dot_B3_dot;
+    out[52] = B3_theta_dot_B4_dot;
+    out[53] = B4_theta_dotsq;
+    out[54] = B4_theta_dot_B1_dot;
+    out[55] = B4_theta_dot_B2_dot;
+    out[56] = B4_theta_dot_B3_dot;
+    out[57] = B4_theta_dot_B4_dot;
+}
+
+/* forces_matrix:(c[198],u[3],q[9],qd[9])->(F[9*58]) row-major, state-free: Q = F m; nonzero entries only */
+void amm_nx4_ny4_torque_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)q;
+    (void)qd;
+    out[0] = 1.0;
+    out[10] = c[76];
+    out[11] = c[77];
+    out[12] = c[78];
+    out[13] = c[79];
+    out[19] = c[80];
+    out[20] = c[81];
+    out[21] = c[82];
+    out[22] = c[83];
+    out[24] = c[81];
+    out[25] = c[84];
+    out[26] = c[85];
+    out[27] = c[86];
+    out[29] = c[82];
+    out[30] = c[85];
+    out[31] = c[87];
+    out[32] = c[88];
+    out[34] = c[83];
+    out[35] = c[86];
+    out[36] = c[88];
+    out[37] = c[89];
+    out[39] = c[90];
+    out[40] = c[91];
+    out[41] = c[92];
+    out[42] = c[93];
+    out[44] = c[91];
+    out[45] = c[94];
+    out[46] = c[95];
+    out[47] = c[96];
+    out[49] = c[92];
+    out[50] = c[95];
+    out[51] = c[97];
+    out[52] = c[98];
+    out[54] = c[93];
+    out[55] = c[96];
+    out[56] = c[98];
+    out[57] = c[99];
+    out[59] = c[100];
+    out[60] = c[101];
+    out[61] = c[102];
+    out[62] = c[103];
+    out[67] = c[104];
+    out[72] = c[105];
+    out[73] = c[106];
+    out[74] = c[107];
+    out[75] = c[108];
+    out[76] = c[5];
+    out[81] = c[61];
+    out[86] = c[62];
+    out[91] = c[63];
+    out[117] = c[101];
+    out[118] = c[109];
+    out[119] = c[110];
+    out[120] = c[111];
+    out[125] = c[112];
+    out[130] = c[113];
+    out[131] = c[114];
+    out[132] = c[115];
+    out[133] = c[116];
+    out[134] = c[61];
+    out[139] = c[9];
+    out[144] = c[64];
+    out[149] = c[65];
+    out[175] = c[102];
+    out[176] = c[110];
+    out[177] = c[117];
+    out[178] = c[118];
+    out[183] = c[119];
+    out[188] = c[120];
+    out[189] = c[121];
+    out[190] = c[122];
+    out[191] = c[123];
+    out[192] = c[62];
+    out[197] = c[64];
+    out[202] = c[12];
+    out[207] = c[66];
+    out[233] = c[103];
+    out[234] = c[111];
+    out[235] = c[118];
+    out[236] = c[124];
+    out[241] = c[125];
+    out[246] = c[126];
+    out[247] = c[127];
+    out[248] = c[128];
+    out[249] = c[129];
+    out[250] = c[63];
+    out[255] = c[65];
+    out[260] = c[66];
+    out[265] = c[14];
+    out[295] = c[130];
+    out[296] = c[131];
+    out[297] = c[132];
+    out[298] = c[133];
+    out[300] = c[134];
+    out[301] = c[135];
+    out[302] = c[136];
+    out[303] = c[137];
+    out[328] = c[15];
+    out[333] = c[138];
+    out[338] = c[139];
+    out[343] = c[140];
+    out[353] = c[131];
+    out[354] = c[141];
+    out[355] = c[142];
+    out[356] = c[143];
+    out[358] = c[144];
+    out[359] = c[145];
+    out[360] = c[146];
+    out[361] = c[147];
+    out[386] = c[138];
+    out[391] = c[19];
+    out[396] = c[148];
+    out[401] = c[149];
+    out[411] = c[132];
+    out[412] = c[142];
+    out[413] = c[150];
+    out[414] = c[151];
+    out[416] = c[152];
+    out[417] = c[153];
+    out[418] = c[154];
+    out[419] = c[155];
+    out[444] = c[139];
+    out[449] = c[148];
+    out[454] = c[22];
+    out[459] = c[156];
+    out[469] = c[133];
+    out[470] = c[143];
+    out[471] = c[151];
+    out[472] = c[157];
+    out[474] = c[158];
+    out[475] = c[159];
+    out[476] = c[160];
+    out[477] = c[161];
+    out[502] = c[140];
+    out[507] = c[149];
+    out[512] = c[156];
+    out[517] = c[24];
 }
 
 /* energy:(c[198],u[3],q[9],qd[9])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
@@ -970,6 +1202,50 @@ void amm_nx4_ny4_torque_first_forces_u(const double* c, const double* u, const d
     out[26] = 0.0;
 }
 
+/* mass_varying:(c[198],u[3],q[9],qd[9])->(M[81]) as mass, the entries that depend on q only */
+void amm_nx4_ny4_torque_first_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)qd;
+    const double A1 = q[1];
+    const double A2 = q[2];
+    const double A3 = q[3];
+    const double A4 = q[4];
+    const double B1 = q[5];
+    const double B2 = q[6];
+    const double B3 = q[7];
+    const double B4 = q[8];
+    const double A1sq = A1*A1;
+    const double A1_A2 = A1*A2;
+    const double A1_A3 = A1*A3;
+    const double A1_A4 = A1*A4;
+    const double A2sq = A2*A2;
+    const double A2_A3 = A2*A3;
+    const double A2_A4 = A2*A4;
+    const double A3sq = A3*A3;
+    const double A3_A4 = A3*A4;
+    const double A4sq = A4*A4;
+    const double B1sq = B1*B1;
+    const double B1_B2 = B1*B2;
+    const double B1_B3 = B1*B3;
+    const double B1_B4 = B1*B4;
+    const double B2sq = B2*B2;
+    const double B2_B3 = B2*B3;
+    const double B2_B4 = B2*B4;
+    const double B3sq = B3*B3;
+    const double B3_B4 = B3*B4;
+    const double B4sq = B4*B4;
+    out[0] = c[0] + c[1]*A1 + c[2]*A2 + c[3]*A3 + c[4]*A4 + c[5]*A1sq + c[6]*A1_A2 + c[7]*A1_A3 + c[8]*A1_A4 + c[9]*A2sq + c[10]*A2_A3 + c[11]*A2_A4 + c[12]*A3sq + c[13]*A3_A4 + c[14]*A4sq + c[15]*B1sq + c[16]*B1_B2 + c[17]*B1_B3 + c[18]*B1_B4 + c[19]*B2sq + c[20]*B2_B3 + c[21]*B2_B4 + c[22]*B3sq + c[23]*B3_B4 + c[24]*B4sq;
+    out[1] = c[25]*B1 + c[26]*B2 + c[27]*B3 + c[28]*B4;
+    out[2] = c[29]*B1 + c[30]*B2 + c[31]*B3 + c[32]*B4;
+    out[3] = c[33]*B1 + c[34]*B2 + c[35]*B3 + c[36]*B4;
+    out[4] = c[37]*B1 + c[38]*B2 + c[39]*B3 + c[40]*B4;
+    out[5] = c[41] + c[42]*A1 + c[43]*A2 + c[44]*A3 + c[45]*A4;
+    out[6] = c[46] + c[47]*A1 + c[48]*A2 + c[49]*A3 + c[50]*A4;
+    out[7] = c[51] + c[52]*A1 + c[53]*A2 + c[54]*A3 + c[55]*A4;
+    out[8] = c[56] + c[57]*A1 + c[58]*A2 + c[59]*A3 + c[60]*A4;
+}
+
 /* mass_q_product:(c[198],u[3],q[9],qd[9])->(dMv[81]) row-major; v in the qd slot; out[i*9+k] = sum_j dM_ij/dq_k v_j */
 void amm_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
@@ -1084,8 +1360,9 @@ void amm_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, c
 
 }  // namespace
 
-extern const Variant amm_nx4_ny4_torque_first = {"amm_nx4_ny4_torque_first", 9, 198, false, amm_nx4_ny4_torque_first_coefficients,
-    amm_nx4_ny4_torque_first_mass, amm_nx4_ny4_torque_first_forces, amm_nx4_ny4_torque_first_energy, amm_nx4_ny4_torque_first_momentum,
-    amm_nx4_ny4_torque_first_forces_q, amm_nx4_ny4_torque_first_forces_qd, amm_nx4_ny4_torque_first_mass_q_product, amm_nx4_ny4_torque_first_forces_u};
+extern const Variant amm_nx4_ny4_torque_first = {"amm_nx4_ny4_torque_first", 9, 198, 58,
+    "vvvvvvvvvvcccc0000vcccc0000vcccc0000vcccc0000v0000ccccv0000ccccv0000ccccv0000cccc",
+    amm_nx4_ny4_torque_first_coefficients, amm_nx4_ny4_torque_first_mass, amm_nx4_ny4_torque_first_mass_varying, amm_nx4_ny4_torque_first_forces, amm_nx4_ny4_torque_first_forces_terms, amm_nx4_ny4_torque_first_forces_matrix,
+    amm_nx4_ny4_torque_first_energy, amm_nx4_ny4_torque_first_momentum, amm_nx4_ny4_torque_first_forces_q, amm_nx4_ny4_torque_first_forces_qd, amm_nx4_ny4_torque_first_mass_q_product, amm_nx4_ny4_torque_first_forces_u};
 
 }  // namespace hubbeam::generated

@@ -92,7 +92,7 @@ void bsim_nx0_ny4_torque_first_open_coefficients(const double* p, double* c)
     c[67] = -0.6*m*a - 0.47619047619047616*L*m;
 }
 
-/* mass:(c[68],u[3],q[5],qd[5])->(M[25]) row-major; M = d2T/dqd2 */
+/* mass:(c[68],u[3],q[5],qd[5])->(M[25]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void bsim_nx0_ny4_torque_first_open_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -116,25 +116,15 @@ void bsim_nx0_ny4_torque_first_open_mass(const double* c, const double* u, const
     out[2] = c[12];
     out[3] = c[13];
     out[4] = c[14];
-    out[5] = c[11];
     out[6] = c[15];
     out[7] = c[16];
     out[8] = c[17];
     out[9] = c[18];
-    out[10] = c[12];
-    out[11] = c[16];
     out[12] = c[15];
     out[13] = c[19];
     out[14] = c[20];
-    out[15] = c[13];
-    out[16] = c[17];
-    out[17] = c[19];
     out[18] = c[21];
     out[19] = c[22];
-    out[20] = c[14];
-    out[21] = c[18];
-    out[22] = c[20];
-    out[23] = c[22];
     out[24] = c[23];
 }
 
@@ -180,6 +170,128 @@ void bsim_nx0_ny4_torque_first_open_forces(const double* c, const double* u, con
     out[2] = c[35]*B1 + c[34]*B2 + c[40]*B3 + c[41]*B4 + c[37]*B1_theta_dotsq + c[5]*B2_theta_dotsq + c[42]*B3_theta_dotsq + c[43]*B4_theta_dotsq;
     out[3] = c[35]*B1 + c[40]*B2 + c[44]*B3 + c[45]*B4 + c[38]*B1_theta_dotsq + c[42]*B2_theta_dotsq + c[8]*B3_theta_dotsq + c[46]*B4_theta_dotsq;
     out[4] = c[36]*B1 + c[41]*B2 + c[45]*B3 + c[47]*B4 + c[39]*B1_theta_dotsq + c[43]*B2_theta_dotsq + c[46]*B3_theta_dotsq + c[10]*B4_theta_dotsq;
+}
+
+/* forces_terms:(c[68],u[3],q[5],qd[5])->(m[25]) the state monomials of Q: Q = F m */
+void bsim_nx0_ny4_torque_first_open_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)c;
+    const double tau = u[0];
+    const double B1 = q[1];
+    const double B2 = q[2];
+    const double B3 = q[3];
+    const double B4 = q[4];
+    const double theta_dot = qd[0];
+    const double B1_dot = qd[1];
+    const double B2_dot = qd[2];
+    const double B3_dot = qd[3];
+    const double B4_dot = qd[4];
+    const double B1_theta_dot = B1*theta_dot;
+    const double B1_theta_dotsq = B1_theta_dot*theta_dot;
+    const double B1_theta_dot_B1_dot = B1_theta_dot*B1_dot;
+    const double B1_theta_dot_B2_dot = B1_theta_dot*B2_dot;
+    const double B1_theta_dot_B3_dot = B1_theta_dot*B3_dot;
+    const double B1_theta_dot_B4_dot = B1_theta_dot*B4_dot;
+    const double B2_theta_dot = B2*theta_dot;
+    const double B2_theta_dotsq = B2_theta_dot*theta_dot;
+    const double B2_theta_dot_B1_dot = B2_theta_dot*B1_dot;
+    const double B2_theta_dot_B2_dot = B2_theta_dot*B2_dot;
+    const double B2_theta_dot_B3_dot = B2_theta_dot*B3_dot;
+    const double B2_theta_dot_B4_dot = B2_theta_dot*B4_dot;
+    const double B3_theta_dot = B3*theta_dot;
+    const double B3_theta_dotsq = B3_theta_dot*theta_dot;
+    const double B3_theta_dot_B1_dot = B3_theta_dot*B1_dot;
+    const double B3_theta_dot_B2_dot = B3_theta_dot*B2_dot;
+    const double B3_theta_dot_B3_dot = B3_theta_dot*B3_dot;
+    const double B3_theta_dot_B4_dot = B3_theta_dot*B4_dot;
+    const double B4_theta_dot = B4*theta_dot;
+    const double B4_theta_dotsq = B4_theta_dot*theta_dot;
+    const double B4_theta_dot_B1_dot = B4_theta_dot*B1_dot;
+    const double B4_theta_dot_B2_dot = B4_theta_dot*B2_dot;
+    const double B4_theta_dot_B3_dot = B4_theta_dot*B3_dot;
+    const double B4_theta_dot_B4_dot = B4_theta_dot*B4_dot;
+    out[0] = tau;
+    out[1] = B1;
+    out[2] = B2;
+    out[3] = B3;
+    out[4] = B4;
+    out[5] = B1_theta_dotsq;
+    out[6] = B1_theta_dot_B1_dot;
+    out[7] = B1_theta_dot_B2_dot;
+    out[8] = B1_theta_dot_B3_dot;
+    out[9] = B1_theta_dot_B4_dot;
+    out[10] = B2_theta_dotsq;
+    out[11] = B2_theta_dot_B1_dot;
+    out[12] = B2_theta_dot_B2_dot;
+    out[13] = B2_theta_dot_B3_dot;
+    out[14] = B2_theta_dot_B4_dot;
+    out[15] = B3_theta_dotsq;
+    out[16] = B3_theta_dot_B1_dot;
+    out[17] = B3_theta_dot_B2_dot;
+    out[18] = B3_theta_dot_B3_dot;
+    out[19] = B3_theta_dot_B4_dot;
+    out[20] = B4_theta_dotsq;
+    out[21] = B4_theta_dot_B1_dot;
+    out[22] = B4_theta_dot_B2_dot;
+    out[23] = B4_theta_dot_B3_dot;
+    out[24] = B4_theta_dot_B4_dot;
+}
+
+/* forces_matrix:(c[68],u[3],q[5],qd[5])->(F[5*25]) row-major, state-free: Q = F m; nonzero entries only */
+void bsim_nx0_ny4_torque_first_open_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)q;
+    (void)qd;
+    out[0] = 1.0;
+    out[6] = c[24];
+    out[7] = c[25];
+    out[8] = c[26];
+    out[9] = c[27];
+    out[11] = c[25];
+    out[12] = c[28];
+    out[13] = c[29];
+    out[14] = c[30];
+    out[16] = c[26];
+    out[17] = c[29];
+    out[18] = c[31];
+    out[19] = c[32];
+    out[21] = c[27];
+    out[22] = c[30];
+    out[23] = c[32];
+    out[24] = c[33];
+    out[26] = c[34];
+    out[27] = c[35];
+    out[28] = c[35];
+    out[29] = c[36];
+    out[30] = c[1];
+    out[35] = c[37];
+    out[40] = c[38];
+    out[45] = c[39];
+    out[51] = c[35];
+    out[52] = c[34];
+    out[53] = c[40];
+    out[54] = c[41];
+    out[55] = c[37];
+    out[60] = c[5];
+    out[65] = c[42];
+    out[70] = c[43];
+    out[76] = c[35];
+    out[77] = c[40];
+    out[78] = c[44];
+    out[79] = c[45];
+    out[80] = c[38];
+    out[85] = c[42];
+    out[90] = c[8];
+    out[95] = c[46];
+    out[101] = c[36];
+    out[102] = c[41];
+    out[103] = c[45];
+    out[104] = c[47];
+    out[105] = c[39];
+    out[110] = c[43];
+    out[115] = c[46];
+    out[120] = c[10];
 }
 
 /* energy:(c[68],u[3],q[5],qd[5])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
@@ -408,6 +520,28 @@ void bsim_nx0_ny4_torque_first_open_forces_u(const double* c, const double* u, c
     out[14] = 0.0;
 }
 
+/* mass_varying:(c[68],u[3],q[5],qd[5])->(M[25]) as mass, the entries that depend on q only */
+void bsim_nx0_ny4_torque_first_open_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)qd;
+    const double B1 = q[1];
+    const double B2 = q[2];
+    const double B3 = q[3];
+    const double B4 = q[4];
+    const double B1sq = B1*B1;
+    const double B1_B2 = B1*B2;
+    const double B1_B3 = B1*B3;
+    const double B1_B4 = B1*B4;
+    const double B2sq = B2*B2;
+    const double B2_B3 = B2*B3;
+    const double B2_B4 = B2*B4;
+    const double B3sq = B3*B3;
+    const double B3_B4 = B3*B4;
+    const double B4sq = B4*B4;
+    out[0] = c[0] + c[1]*B1sq + c[2]*B1_B2 + c[3]*B1_B3 + c[4]*B1_B4 + c[5]*B2sq + c[6]*B2_B3 + c[7]*B2_B4 + c[8]*B3sq + c[9]*B3_B4 + c[10]*B4sq;
+}
+
 /* mass_q_product:(c[68],u[3],q[5],qd[5])->(dMv[25]) row-major; v in the qd slot; out[i*5+k] = sum_j dM_ij/dq_k v_j */
 void bsim_nx0_ny4_torque_first_open_mass_q_product(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
@@ -450,8 +584,9 @@ void bsim_nx0_ny4_torque_first_open_mass_q_product(const double* c, const double
 
 }  // namespace
 
-extern const Variant bsim_nx0_ny4_torque_first_open = {"bsim_nx0_ny4_torque_first_open", 5, 68, false, bsim_nx0_ny4_torque_first_open_coefficients,
-    bsim_nx0_ny4_torque_first_open_mass, bsim_nx0_ny4_torque_first_open_forces, bsim_nx0_ny4_torque_first_open_energy, bsim_nx0_ny4_torque_first_open_momentum,
-    bsim_nx0_ny4_torque_first_open_forces_q, bsim_nx0_ny4_torque_first_open_forces_qd, bsim_nx0_ny4_torque_first_open_mass_q_product, bsim_nx0_ny4_torque_first_open_forces_u};
+extern const Variant bsim_nx0_ny4_torque_first_open = {"bsim_nx0_ny4_torque_first_open", 5, 68, 25,
+    "vcccccccccccccccccccccccc",
+    bsim_nx0_ny4_torque_first_open_coefficients, bsim_nx0_ny4_torque_first_open_mass, bsim_nx0_ny4_torque_first_open_mass_varying, bsim_nx0_ny4_torque_first_open_forces, bsim_nx0_ny4_torque_first_open_forces_terms, bsim_nx0_ny4_torque_first_open_forces_matrix,
+    bsim_nx0_ny4_torque_first_open_energy, bsim_nx0_ny4_torque_first_open_momentum, bsim_nx0_ny4_torque_first_open_forces_q, bsim_nx0_ny4_torque_first_open_forces_qd, bsim_nx0_ny4_torque_first_open_mass_q_product, bsim_nx0_ny4_torque_first_open_forces_u};
 
 }  // namespace hubbeam::generated

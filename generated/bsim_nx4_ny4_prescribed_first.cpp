@@ -181,7 +181,7 @@ void bsim_nx4_ny4_prescribed_first_coefficients(const double* p, double* c)
     c[155] = -0.011111111111111112*m*a - 0.0078777189888301*L*m;
 }
 
-/* mass:(c[156],u[3],q[8],qd[8])->(M[64]) row-major; M = d2T/dqd2 */
+/* mass:(c[156],u[3],q[8],qd[8])->(M[64]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void bsim_nx4_ny4_prescribed_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -191,65 +191,21 @@ void bsim_nx4_ny4_prescribed_first_mass(const double* c, const double* u, const 
     out[1] = c[1];
     out[2] = c[2];
     out[3] = c[3];
-    out[4] = 0.0;
-    out[5] = 0.0;
-    out[6] = 0.0;
-    out[7] = 0.0;
-    out[8] = c[1];
     out[9] = c[4];
     out[10] = c[1];
     out[11] = c[5];
-    out[12] = 0.0;
-    out[13] = 0.0;
-    out[14] = 0.0;
-    out[15] = 0.0;
-    out[16] = c[2];
-    out[17] = c[1];
     out[18] = c[0];
     out[19] = c[6];
-    out[20] = 0.0;
-    out[21] = 0.0;
-    out[22] = 0.0;
-    out[23] = 0.0;
-    out[24] = c[3];
-    out[25] = c[5];
-    out[26] = c[6];
     out[27] = c[7];
-    out[28] = 0.0;
-    out[29] = 0.0;
-    out[30] = 0.0;
-    out[31] = 0.0;
-    out[32] = 0.0;
-    out[33] = 0.0;
-    out[34] = 0.0;
-    out[35] = 0.0;
     out[36] = c[8];
     out[37] = c[9];
     out[38] = c[10];
     out[39] = c[11];
-    out[40] = 0.0;
-    out[41] = 0.0;
-    out[42] = 0.0;
-    out[43] = 0.0;
-    out[44] = c[9];
     out[45] = c[8];
     out[46] = c[12];
     out[47] = c[13];
-    out[48] = 0.0;
-    out[49] = 0.0;
-    out[50] = 0.0;
-    out[51] = 0.0;
-    out[52] = c[10];
-    out[53] = c[12];
     out[54] = c[14];
     out[55] = c[15];
-    out[56] = 0.0;
-    out[57] = 0.0;
-    out[58] = 0.0;
-    out[59] = 0.0;
-    out[60] = c[11];
-    out[61] = c[13];
-    out[62] = c[15];
     out[63] = c[16];
 }
 
@@ -307,6 +263,233 @@ void bsim_nx4_ny4_prescribed_first_forces(const double* c, const double* u, cons
     out[5] = c[72]*theta_ddot + c[57]*B1 + c[56]*B2 + c[73]*B3 + c[74]*B4 + c[62]*theta_dot_A1_dot + c[61]*theta_dot_A2_dot + c[60]*theta_dot_A3_dot + c[75]*theta_dot_A4_dot + c[66]*theta_ddot_A1 + c[65]*theta_ddot_A2 + c[64]*theta_ddot_A3 + c[76]*theta_ddot_A4 + c[69]*theta_dotsq_B1 + c[77]*theta_dotsq_B2 + c[78]*theta_dotsq_B3 + c[79]*theta_dotsq_B4;
     out[6] = c[80]*theta_ddot + c[58]*B1 + c[73]*B2 + c[81]*B3 + c[82]*B4 + c[83]*theta_dot_A1_dot + c[84]*theta_dot_A2_dot + c[85]*theta_dot_A3_dot + c[86]*theta_dot_A4_dot + c[87]*theta_ddot_A1 + c[88]*theta_ddot_A2 + c[89]*theta_ddot_A3 + c[90]*theta_ddot_A4 + c[70]*theta_dotsq_B1 + c[78]*theta_dotsq_B2 + c[91]*theta_dotsq_B3 + c[92]*theta_dotsq_B4;
     out[7] = c[93]*theta_ddot + c[59]*B1 + c[74]*B2 + c[82]*B3 + c[94]*B4 + c[95]*theta_dot_A1_dot + c[96]*theta_dot_A2_dot + c[97]*theta_dot_A3_dot + c[98]*theta_dot_A4_dot + c[99]*theta_ddot_A1 + c[100]*theta_ddot_A2 + c[101]*theta_ddot_A3 + c[102]*theta_ddot_A4 + c[71]*theta_dotsq_B1 + c[79]*theta_dotsq_B2 + c[92]*theta_dotsq_B3 + c[103]*theta_dotsq_B4;
+}
+
+/* forces_terms:(c[156],u[3],q[8],qd[8])->(m[34]) the state monomials of Q: Q = F m */
+void bsim_nx4_ny4_prescribed_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)c;
+    const double theta_dot = u[1];
+    const double theta_ddot = u[2];
+    const double A1 = q[0];
+    const double A2 = q[1];
+    const double A3 = q[2];
+    const double A4 = q[3];
+    const double B1 = q[4];
+    const double B2 = q[5];
+    const double B3 = q[6];
+    const double B4 = q[7];
+    const double A1_dot = qd[0];
+    const double A2_dot = qd[1];
+    const double A3_dot = qd[2];
+    const double A4_dot = qd[3];
+    const double B1_dot = qd[4];
+    const double B2_dot = qd[5];
+    const double B3_dot = qd[6];
+    const double B4_dot = qd[7];
+    const double theta_dotsq = theta_dot*theta_dot;
+    const double theta_dot_A1_dot = theta_dot*A1_dot;
+    const double theta_dot_A2_dot = theta_dot*A2_dot;
+    const double theta_dot_A3_dot = theta_dot*A3_dot;
+    const double theta_dot_A4_dot = theta_dot*A4_dot;
+    const double theta_dot_B1_dot = theta_dot*B1_dot;
+    const double theta_dot_B2_dot = theta_dot*B2_dot;
+    const double theta_dot_B3_dot = theta_dot*B3_dot;
+    const double theta_dot_B4_dot = theta_dot*B4_dot;
+    const double theta_ddot_A1 = theta_ddot*A1;
+    const double theta_ddot_A2 = theta_ddot*A2;
+    const double theta_ddot_A3 = theta_ddot*A3;
+    const double theta_ddot_A4 = theta_ddot*A4;
+    const double theta_ddot_B1 = theta_ddot*B1;
+    const double theta_ddot_B2 = theta_ddot*B2;
+    const double theta_ddot_B3 = theta_ddot*B3;
+    const double theta_ddot_B4 = theta_ddot*B4;
+    const double theta_dotsq_A1 = theta_dotsq*A1;
+    const double theta_dotsq_A2 = theta_dotsq*A2;
+    const double theta_dotsq_A3 = theta_dotsq*A3;
+    const double theta_dotsq_A4 = theta_dotsq*A4;
+    const double theta_dotsq_B1 = theta_dotsq*B1;
+    const double theta_dotsq_B2 = theta_dotsq*B2;
+    const double theta_dotsq_B3 = theta_dotsq*B3;
+    const double theta_dotsq_B4 = theta_dotsq*B4;
+    out[0] = theta_ddot;
+    out[1] = A1;
+    out[2] = A2;
+    out[3] = A3;
+    out[4] = A4;
+    out[5] = B1;
+    out[6] = B2;
+    out[7] = B3;
+    out[8] = B4;
+    out[9] = theta_dotsq;
+    out[10] = theta_dot_A1_dot;
+    out[11] = theta_dot_A2_dot;
+    out[12] = theta_dot_A3_dot;
+    out[13] = theta_dot_A4_dot;
+    out[14] = theta_dot_B1_dot;
+    out[15] = theta_dot_B2_dot;
+    out[16] = theta_dot_B3_dot;
+    out[17] = theta_dot_B4_dot;
+    out[18] = theta_ddot_A1;
+    out[19] = theta_ddot_A2;
+    out[20] = theta_ddot_A3;
+    out[21] = theta_ddot_A4;
+    out[22] = theta_ddot_B1;
+    out[23] = theta_ddot_B2;
+    out[24] = theta_ddot_B3;
+    out[25] = theta_ddot_B4;
+    out[26] = theta_dotsq_A1;
+    out[27] = theta_dotsq_A2;
+    out[28] = theta_dotsq_A3;
+    out[29] = theta_dotsq_A4;
+    out[30] = theta_dotsq_B1;
+    out[31] = theta_dotsq_B2;
+    out[32] = theta_dotsq_B3;
+    out[33] = theta_dotsq_B4;
+}
+
+/* forces_matrix:(c[156],u[3],q[8],qd[8])->(F[8*34]) row-major, state-free: Q = F m; nonzero entries only */
+void bsim_nx4_ny4_prescribed_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)q;
+    (void)qd;
+    out[1] = c[17];
+    out[2] = c[18];
+    out[3] = c[19];
+    out[4] = c[20];
+    out[9] = c[21];
+    out[14] = c[22];
+    out[15] = c[23];
+    out[16] = c[24];
+    out[17] = c[25];
+    out[22] = c[26];
+    out[23] = c[27];
+    out[24] = c[28];
+    out[25] = c[29];
+    out[26] = c[0];
+    out[27] = c[1];
+    out[28] = c[2];
+    out[29] = c[3];
+    out[35] = c[18];
+    out[36] = c[30];
+    out[37] = c[18];
+    out[38] = c[31];
+    out[43] = c[32];
+    out[48] = c[33];
+    out[49] = c[33];
+    out[50] = c[34];
+    out[51] = c[35];
+    out[56] = c[36];
+    out[57] = c[36];
+    out[58] = c[37];
+    out[59] = c[38];
+    out[60] = c[1];
+    out[61] = c[4];
+    out[62] = c[1];
+    out[63] = c[5];
+    out[69] = c[19];
+    out[70] = c[18];
+    out[71] = c[17];
+    out[72] = c[39];
+    out[77] = c[40];
+    out[82] = c[23];
+    out[83] = c[22];
+    out[84] = c[41];
+    out[85] = c[42];
+    out[90] = c[27];
+    out[91] = c[26];
+    out[92] = c[43];
+    out[93] = c[44];
+    out[94] = c[2];
+    out[95] = c[1];
+    out[96] = c[0];
+    out[97] = c[6];
+    out[103] = c[20];
+    out[104] = c[31];
+    out[105] = c[39];
+    out[106] = c[45];
+    out[111] = c[46];
+    out[116] = c[47];
+    out[117] = c[48];
+    out[118] = c[49];
+    out[119] = c[50];
+    out[124] = c[51];
+    out[125] = c[52];
+    out[126] = c[53];
+    out[127] = c[54];
+    out[128] = c[3];
+    out[129] = c[5];
+    out[130] = c[6];
+    out[131] = c[7];
+    out[136] = c[55];
+    out[141] = c[56];
+    out[142] = c[57];
+    out[143] = c[58];
+    out[144] = c[59];
+    out[146] = c[60];
+    out[147] = c[61];
+    out[148] = c[62];
+    out[149] = c[63];
+    out[154] = c[64];
+    out[155] = c[65];
+    out[156] = c[66];
+    out[157] = c[67];
+    out[166] = c[68];
+    out[167] = c[69];
+    out[168] = c[70];
+    out[169] = c[71];
+    out[170] = c[72];
+    out[175] = c[57];
+    out[176] = c[56];
+    out[177] = c[73];
+    out[178] = c[74];
+    out[180] = c[62];
+    out[181] = c[61];
+    out[182] = c[60];
+    out[183] = c[75];
+    out[188] = c[66];
+    out[189] = c[65];
+    out[190] = c[64];
+    out[191] = c[76];
+    out[200] = c[69];
+    out[201] = c[77];
+    out[202] = c[78];
+    out[203] = c[79];
+    out[204] = c[80];
+    out[209] = c[58];
+    out[210] = c[73];
+    out[211] = c[81];
+    out[212] = c[82];
+    out[214] = c[83];
+    out[215] = c[84];
+    out[216] = c[85];
+    out[217] = c[86];
+    out[222] = c[87];
+    out[223] = c[88];
+    out[224] = c[89];
+    out[225] = c[90];
+    out[234] = c[70];
+    out[235] = c[78];
+    out[236] = c[91];
+    out[237] = c[92];
+    out[238] = c[93];
+    out[243] = c[59];
+    out[244] = c[74];
+    out[245] = c[82];
+    out[246] = c[94];
+    out[248] = c[95];
+    out[249] = c[96];
+    out[250] = c[97];
+    out[251] = c[98];
+    out[256] = c[99];
+    out[257] = c[100];
+    out[258] = c[101];
+    out[259] = c[102];
+    out[268] = c[71];
+    out[269] = c[79];
+    out[270] = c[92];
+    out[271] = c[103];
 }
 
 /* energy:(c[156],u[3],q[8],qd[8])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
@@ -733,8 +916,9 @@ void bsim_nx4_ny4_prescribed_first_forces_u(const double* c, const double* u, co
 
 }  // namespace
 
-extern const Variant bsim_nx4_ny4_prescribed_first = {"bsim_nx4_ny4_prescribed_first", 8, 156, true, bsim_nx4_ny4_prescribed_first_coefficients,
-    bsim_nx4_ny4_prescribed_first_mass, bsim_nx4_ny4_prescribed_first_forces, bsim_nx4_ny4_prescribed_first_energy, bsim_nx4_ny4_prescribed_first_momentum,
-    bsim_nx4_ny4_prescribed_first_forces_q, bsim_nx4_ny4_prescribed_first_forces_qd, nullptr, bsim_nx4_ny4_prescribed_first_forces_u};
+extern const Variant bsim_nx4_ny4_prescribed_first = {"bsim_nx4_ny4_prescribed_first", 8, 156, 34,
+    "cccc0000cccc0000cccc0000cccc00000000cccc0000cccc0000cccc0000cccc",
+    bsim_nx4_ny4_prescribed_first_coefficients, bsim_nx4_ny4_prescribed_first_mass, nullptr, bsim_nx4_ny4_prescribed_first_forces, bsim_nx4_ny4_prescribed_first_forces_terms, bsim_nx4_ny4_prescribed_first_forces_matrix,
+    bsim_nx4_ny4_prescribed_first_energy, bsim_nx4_ny4_prescribed_first_momentum, bsim_nx4_ny4_prescribed_first_forces_q, bsim_nx4_ny4_prescribed_first_forces_qd, nullptr, bsim_nx4_ny4_prescribed_first_forces_u};
 
 }  // namespace hubbeam::generated

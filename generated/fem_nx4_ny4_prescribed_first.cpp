@@ -122,7 +122,7 @@ void fem_nx4_ny4_prescribed_first_coefficients(const double* p, double* c)
     c[96] = -0.016666666666666666*m*a - 0.011904761904761904*L*m;
 }
 
-/* mass:(c[97],u[3],q[8],qd[8])->(M[64]) row-major; M = d2T/dqd2 */
+/* mass:(c[97],u[3],q[8],qd[8])->(M[64]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void fem_nx4_ny4_prescribed_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -130,67 +130,19 @@ void fem_nx4_ny4_prescribed_first_mass(const double* c, const double* u, const d
     (void)qd;
     out[0] = c[0];
     out[1] = c[1];
-    out[2] = 0.0;
-    out[3] = 0.0;
-    out[4] = 0.0;
-    out[5] = 0.0;
-    out[6] = 0.0;
-    out[7] = 0.0;
-    out[8] = c[1];
     out[9] = c[0];
     out[10] = c[1];
-    out[11] = 0.0;
-    out[12] = 0.0;
-    out[13] = 0.0;
-    out[14] = 0.0;
-    out[15] = 0.0;
-    out[16] = 0.0;
-    out[17] = c[1];
     out[18] = c[0];
     out[19] = c[1];
-    out[20] = 0.0;
-    out[21] = 0.0;
-    out[22] = 0.0;
-    out[23] = 0.0;
-    out[24] = 0.0;
-    out[25] = 0.0;
-    out[26] = c[1];
     out[27] = c[2];
-    out[28] = 0.0;
-    out[29] = 0.0;
-    out[30] = 0.0;
-    out[31] = 0.0;
-    out[32] = 0.0;
-    out[33] = 0.0;
-    out[34] = 0.0;
-    out[35] = 0.0;
     out[36] = c[3];
-    out[37] = 0.0;
     out[38] = c[4];
     out[39] = c[5];
-    out[40] = 0.0;
-    out[41] = 0.0;
-    out[42] = 0.0;
-    out[43] = 0.0;
-    out[44] = 0.0;
     out[45] = c[6];
     out[46] = c[7];
     out[47] = c[8];
-    out[48] = 0.0;
-    out[49] = 0.0;
-    out[50] = 0.0;
-    out[51] = 0.0;
-    out[52] = c[4];
-    out[53] = c[7];
     out[54] = c[9];
     out[55] = c[10];
-    out[56] = 0.0;
-    out[57] = 0.0;
-    out[58] = 0.0;
-    out[59] = 0.0;
-    out[60] = c[5];
-    out[61] = c[8];
-    out[62] = c[10];
     out[63] = c[11];
 }
 
@@ -248,6 +200,207 @@ void fem_nx4_ny4_prescribed_first_forces(const double* c, const double* u, const
     out[5] = c[50]*theta_ddot + c[51]*B2 + c[52]*B3 + c[53]*B4 + c[27]*theta_dot_A1_dot + c[16]*theta_dot_A3_dot + c[22]*theta_dot_A4_dot + c[28]*theta_ddot_A1 + c[18]*theta_ddot_A3 + c[25]*theta_ddot_A4 + c[47]*theta_dotsq_B1 + c[54]*theta_dotsq_B2 + c[55]*theta_dotsq_B3 + c[56]*theta_dotsq_B4;
     out[6] = c[57]*theta_ddot + c[38]*B1 + c[52]*B2 + c[58]*B3 + c[52]*B4 + c[42]*theta_dot_A2_dot + c[40]*theta_dot_A3_dot + c[44]*theta_dot_A4_dot + c[45]*theta_ddot_A2 + c[43]*theta_ddot_A3 + c[59]*theta_ddot_A4 + c[48]*theta_dotsq_B1 + c[55]*theta_dotsq_B2 + c[60]*theta_dotsq_B3 + c[61]*theta_dotsq_B4;
     out[7] = c[62]*theta_ddot + c[39]*B1 + c[53]*B2 + c[52]*B3 + c[63]*B4 + c[31]*theta_dot_A2_dot + c[27]*theta_dot_A3_dot + c[64]*theta_dot_A4_dot + c[33]*theta_ddot_A2 + c[28]*theta_ddot_A3 + c[65]*theta_ddot_A4 + c[49]*theta_dotsq_B1 + c[56]*theta_dotsq_B2 + c[61]*theta_dotsq_B3 + c[66]*theta_dotsq_B4;
+}
+
+/* forces_terms:(c[97],u[3],q[8],qd[8])->(m[34]) the state monomials of Q: Q = F m */
+void fem_nx4_ny4_prescribed_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)c;
+    const double theta_dot = u[1];
+    const double theta_ddot = u[2];
+    const double A1 = q[0];
+    const double A2 = q[1];
+    const double A3 = q[2];
+    const double A4 = q[3];
+    const double B1 = q[4];
+    const double B2 = q[5];
+    const double B3 = q[6];
+    const double B4 = q[7];
+    const double A1_dot = qd[0];
+    const double A2_dot = qd[1];
+    const double A3_dot = qd[2];
+    const double A4_dot = qd[3];
+    const double B1_dot = qd[4];
+    const double B2_dot = qd[5];
+    const double B3_dot = qd[6];
+    const double B4_dot = qd[7];
+    const double theta_dotsq = theta_dot*theta_dot;
+    const double theta_dot_A1_dot = theta_dot*A1_dot;
+    const double theta_dot_A2_dot = theta_dot*A2_dot;
+    const double theta_dot_A3_dot = theta_dot*A3_dot;
+    const double theta_dot_A4_dot = theta_dot*A4_dot;
+    const double theta_dot_B1_dot = theta_dot*B1_dot;
+    const double theta_dot_B2_dot = theta_dot*B2_dot;
+    const double theta_dot_B3_dot = theta_dot*B3_dot;
+    const double theta_dot_B4_dot = theta_dot*B4_dot;
+    const double theta_ddot_A1 = theta_ddot*A1;
+    const double theta_ddot_A2 = theta_ddot*A2;
+    const double theta_ddot_A3 = theta_ddot*A3;
+    const double theta_ddot_A4 = theta_ddot*A4;
+    const double theta_ddot_B1 = theta_ddot*B1;
+    const double theta_ddot_B2 = theta_ddot*B2;
+    const double theta_ddot_B3 = theta_ddot*B3;
+    const double theta_ddot_B4 = theta_ddot*B4;
+    const double theta_dotsq_A1 = theta_dotsq*A1;
+    const double theta_dotsq_A2 = theta_dotsq*A2;
+    const double theta_dotsq_A3 = theta_dotsq*A3;
+    const double theta_dotsq_A4 = theta_dotsq*A4;
+    const double theta_dotsq_B1 = theta_dotsq*B1;
+    const double theta_dotsq_B2 = theta_dotsq*B2;
+    const double theta_dotsq_B3 = theta_dotsq*B3;
+    const double theta_dotsq_B4 = theta_dotsq*B4;
+    out[0] = theta_ddot;
+    out[1] = A1;
+    out[2] = A2;
+    out[3] = A3;
+    out[4] = A4;
+    out[5] = B1;
+    out[6] = B2;
+    out[7] = B3;
+    out[8] = B4;
+    out[9] = theta_dotsq;
+    out[10] = theta_dot_A1_dot;
+    out[11] = theta_dot_A2_dot;
+    out[12] = theta_dot_A3_dot;
+    out[13] = theta_dot_A4_dot;
+    out[14] = theta_dot_B1_dot;
+    out[15] = theta_dot_B2_dot;
+    out[16] = theta_dot_B3_dot;
+    out[17] = theta_dot_B4_dot;
+    out[18] = theta_ddot_A1;
+    out[19] = theta_ddot_A2;
+    out[20] = theta_ddot_A3;
+    out[21] = theta_ddot_A4;
+    out[22] = theta_ddot_B1;
+    out[23] = theta_ddot_B2;
+    out[24] = theta_ddot_B3;
+    out[25] = theta_ddot_B4;
+    out[26] = theta_dotsq_A1;
+    out[27] = theta_dotsq_A2;
+    out[28] = theta_dotsq_A3;
+    out[29] = theta_dotsq_A4;
+    out[30] = theta_dotsq_B1;
+    out[31] = theta_dotsq_B2;
+    out[32] = theta_dotsq_B3;
+    out[33] = theta_dotsq_B4;
+}
+
+/* forces_matrix:(c[97],u[3],q[8],qd[8])->(F[8*34]) row-major, state-free: Q = F m; nonzero entries only */
+void fem_nx4_ny4_prescribed_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)q;
+    (void)qd;
+    out[1] = c[12];
+    out[2] = c[13];
+    out[9] = c[14];
+    out[14] = c[15];
+    out[15] = c[16];
+    out[22] = c[17];
+    out[23] = c[18];
+    out[26] = c[0];
+    out[27] = c[1];
+    out[35] = c[13];
+    out[36] = c[12];
+    out[37] = c[13];
+    out[43] = c[19];
+    out[48] = c[20];
+    out[50] = c[21];
+    out[51] = c[22];
+    out[56] = c[23];
+    out[58] = c[24];
+    out[59] = c[25];
+    out[60] = c[1];
+    out[61] = c[0];
+    out[62] = c[1];
+    out[70] = c[13];
+    out[71] = c[12];
+    out[72] = c[13];
+    out[77] = c[26];
+    out[82] = c[15];
+    out[83] = c[27];
+    out[84] = c[15];
+    out[85] = c[16];
+    out[90] = c[17];
+    out[91] = c[28];
+    out[92] = c[17];
+    out[93] = c[18];
+    out[95] = c[1];
+    out[96] = c[0];
+    out[97] = c[1];
+    out[105] = c[13];
+    out[106] = c[29];
+    out[111] = c[30];
+    out[116] = c[21];
+    out[117] = c[31];
+    out[118] = c[23];
+    out[119] = c[32];
+    out[124] = c[24];
+    out[125] = c[33];
+    out[126] = c[34];
+    out[127] = c[35];
+    out[130] = c[1];
+    out[131] = c[2];
+    out[136] = c[36];
+    out[141] = c[37];
+    out[143] = c[38];
+    out[144] = c[39];
+    out[146] = c[40];
+    out[147] = c[41];
+    out[148] = c[40];
+    out[149] = c[42];
+    out[154] = c[43];
+    out[155] = c[44];
+    out[156] = c[43];
+    out[157] = c[45];
+    out[166] = c[46];
+    out[167] = c[47];
+    out[168] = c[48];
+    out[169] = c[49];
+    out[170] = c[50];
+    out[176] = c[51];
+    out[177] = c[52];
+    out[178] = c[53];
+    out[180] = c[27];
+    out[182] = c[16];
+    out[183] = c[22];
+    out[188] = c[28];
+    out[190] = c[18];
+    out[191] = c[25];
+    out[200] = c[47];
+    out[201] = c[54];
+    out[202] = c[55];
+    out[203] = c[56];
+    out[204] = c[57];
+    out[209] = c[38];
+    out[210] = c[52];
+    out[211] = c[58];
+    out[212] = c[52];
+    out[215] = c[42];
+    out[216] = c[40];
+    out[217] = c[44];
+    out[223] = c[45];
+    out[224] = c[43];
+    out[225] = c[59];
+    out[234] = c[48];
+    out[235] = c[55];
+    out[236] = c[60];
+    out[237] = c[61];
+    out[238] = c[62];
+    out[243] = c[39];
+    out[244] = c[53];
+    out[245] = c[52];
+    out[246] = c[63];
+    out[249] = c[31];
+    out[250] = c[27];
+    out[251] = c[64];
+    out[257] = c[33];
+    out[258] = c[28];
+    out[259] = c[65];
+    out[268] = c[49];
+    out[269] = c[56];
+    out[270] = c[61];
+    out[271] = c[66];
 }
 
 /* energy:(c[97],u[3],q[8],qd[8])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
@@ -648,8 +801,9 @@ void fem_nx4_ny4_prescribed_first_forces_u(const double* c, const double* u, con
 
 }  // namespace
 
-extern const Variant fem_nx4_ny4_prescribed_first = {"fem_nx4_ny4_prescribed_first", 8, 97, true, fem_nx4_ny4_prescribed_first_coefficients,
-    fem_nx4_ny4_prescribed_first_mass, fem_nx4_ny4_prescribed_first_forces, fem_nx4_ny4_prescribed_first_energy, fem_nx4_ny4_prescribed_first_momentum,
-    fem_nx4_ny4_prescribed_first_forces_q, fem_nx4_ny4_prescribed_first_forces_qd, nullptr, fem_nx4_ny4_prescribed_first_forces_u};
+extern const Variant fem_nx4_ny4_prescribed_first = {"fem_nx4_ny4_prescribed_first", 8, 97, 34,
+    "cc000000ccc000000ccc000000cc00000000c0cc00000ccc0000cccc0000cccc",
+    fem_nx4_ny4_prescribed_first_coefficients, fem_nx4_ny4_prescribed_first_mass, nullptr, fem_nx4_ny4_prescribed_first_forces, fem_nx4_ny4_prescribed_first_forces_terms, fem_nx4_ny4_prescribed_first_forces_matrix,
+    fem_nx4_ny4_prescribed_first_energy, fem_nx4_ny4_prescribed_first_momentum, fem_nx4_ny4_prescribed_first_forces_q, fem_nx4_ny4_prescribed_first_forces_qd, nullptr, fem_nx4_ny4_prescribed_first_forces_u};
 
 }  // namespace hubbeam::generated

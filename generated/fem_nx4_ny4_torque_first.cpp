@@ -135,7 +135,7 @@ void fem_nx4_ny4_torque_first_coefficients(const double* p, double* c)
     c[109] = -0.016666666666666666*m*a - 0.011904761904761904*L*m;
 }
 
-/* mass:(c[110],u[3],q[9],qd[9])->(M[81]) row-major; M = d2T/dqd2 */
+/* mass:(c[110],u[3],q[9],qd[9])->(M[81]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void fem_nx4_ny4_torque_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -174,77 +174,21 @@ void fem_nx4_ny4_torque_first_mass(const double* c, const double* u, const doubl
     out[6] = c[29] + c[22]*A1 + c[18]*A3 + c[21]*A4;
     out[7] = c[30] + c[28]*A2 + c[26]*A3 + c[31]*A4;
     out[8] = c[32] + c[23]*A2 + c[22]*A3 + c[33]*A4;
-    out[9] = c[17]*B1 + c[18]*B2;
     out[10] = c[5];
     out[11] = c[34];
-    out[12] = 0.0;
-    out[13] = 0.0;
-    out[14] = 0.0;
-    out[15] = 0.0;
-    out[16] = 0.0;
-    out[17] = 0.0;
-    out[18] = c[19]*B1 + c[20]*B3 + c[21]*B4;
-    out[19] = c[34];
     out[20] = c[5];
     out[21] = c[34];
-    out[22] = 0.0;
-    out[23] = 0.0;
-    out[24] = 0.0;
-    out[25] = 0.0;
-    out[26] = 0.0;
-    out[27] = c[17]*B1 + c[22]*B2 + c[17]*B3 + c[18]*B4;
-    out[28] = 0.0;
-    out[29] = c[34];
     out[30] = c[5];
     out[31] = c[34];
-    out[32] = 0.0;
-    out[33] = 0.0;
-    out[34] = 0.0;
-    out[35] = 0.0;
-    out[36] = c[20]*B1 + c[23]*B2 + c[24]*B3 + c[25]*B4;
-    out[37] = 0.0;
-    out[38] = 0.0;
-    out[39] = c[34];
     out[40] = c[6];
-    out[41] = 0.0;
-    out[42] = 0.0;
-    out[43] = 0.0;
-    out[44] = 0.0;
-    out[45] = c[2] + c[26]*A1 + c[27]*A2 + c[26]*A3 + c[28]*A4;
-    out[46] = 0.0;
-    out[47] = 0.0;
-    out[48] = 0.0;
-    out[49] = 0.0;
     out[50] = c[35];
-    out[51] = 0.0;
     out[52] = c[36];
     out[53] = c[37];
-    out[54] = c[29] + c[22]*A1 + c[18]*A3 + c[21]*A4;
-    out[55] = 0.0;
-    out[56] = 0.0;
-    out[57] = 0.0;
-    out[58] = 0.0;
-    out[59] = 0.0;
     out[60] = c[38];
     out[61] = c[39];
     out[62] = c[40];
-    out[63] = c[30] + c[28]*A2 + c[26]*A3 + c[31]*A4;
-    out[64] = 0.0;
-    out[65] = 0.0;
-    out[66] = 0.0;
-    out[67] = 0.0;
-    out[68] = c[36];
-    out[69] = c[39];
     out[70] = c[41];
     out[71] = c[42];
-    out[72] = c[32] + c[23]*A2 + c[22]*A3 + c[33]*A4;
-    out[73] = 0.0;
-    out[74] = 0.0;
-    out[75] = 0.0;
-    out[76] = 0.0;
-    out[77] = c[37];
-    out[78] = c[40];
-    out[79] = c[42];
     out[80] = c[43];
 }
 
@@ -329,6 +273,252 @@ void fem_nx4_ny4_torque_first_forces(const double* c, const double* u, const dou
     out[6] = c[85]*B2 + c[86]*B3 + c[87]*B4 + c[71]*theta_dot_A1_dot + c[65]*theta_dot_A3_dot + c[69]*theta_dot_A4_dot + c[82]*B1_theta_dotsq + c[11]*B2_theta_dotsq + c[88]*B3_theta_dotsq + c[89]*B4_theta_dotsq;
     out[7] = c[77]*B1 + c[86]*B2 + c[90]*B3 + c[86]*B4 + c[81]*theta_dot_A2_dot + c[79]*theta_dot_A3_dot + c[19]*theta_dot_A4_dot + c[83]*B1_theta_dotsq + c[88]*B2_theta_dotsq + c[14]*B3_theta_dotsq + c[91]*B4_theta_dotsq;
     out[8] = c[78]*B1 + c[87]*B2 + c[86]*B3 + c[92]*B4 + c[74]*theta_dot_A2_dot + c[71]*theta_dot_A3_dot + c[93]*theta_dot_A4_dot + c[84]*B1_theta_dotsq + c[89]*B2_theta_dotsq + c[91]*B3_theta_dotsq + c[16]*B4_theta_dotsq;
+}
+
+/* forces_terms:(c[110],u[3],q[9],qd[9])->(m[52]) the state monomials of Q: Q = F m */
+void fem_nx4_ny4_torque_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)c;
+    const double tau = u[0];
+    const double A1 = q[1];
+    const double A2 = q[2];
+    const double A3 = q[3];
+    const double A4 = q[4];
+    const double B1 = q[5];
+    const double B2 = q[6];
+    const double B3 = q[7];
+    const double B4 = q[8];
+    const double theta_dot = qd[0];
+    const double A1_dot = qd[1];
+    const double A2_dot = qd[2];
+    const double A3_dot = qd[3];
+    const double A4_dot = qd[4];
+    const double B1_dot = qd[5];
+    const double B2_dot = qd[6];
+    const double B3_dot = qd[7];
+    const double B4_dot = qd[8];
+    const double theta_dotsq = theta_dot*theta_dot;
+    const double theta_dot_A1_dot = theta_dot*A1_dot;
+    const double theta_dot_A2_dot = theta_dot*A2_dot;
+    const double theta_dot_A3_dot = theta_dot*A3_dot;
+    const double theta_dot_A4_dot = theta_dot*A4_dot;
+    const double theta_dot_B1_dot = theta_dot*B1_dot;
+    const double theta_dot_B2_dot = theta_dot*B2_dot;
+    const double theta_dot_B3_dot = theta_dot*B3_dot;
+    const double theta_dot_B4_dot = theta_dot*B4_dot;
+    const double A1_theta_dot = A1*theta_dot;
+    const double A1_theta_dotsq = A1_theta_dot*theta_dot;
+    const double A1_theta_dot_A1_dot = A1_theta_dot*A1_dot;
+    const double A1_theta_dot_A2_dot = A1_theta_dot*A2_dot;
+    const double A2_theta_dot = A2*theta_dot;
+    const double A2_theta_dotsq = A2_theta_dot*theta_dot;
+    const double A2_theta_dot_A1_dot = A2_theta_dot*A1_dot;
+    const double A2_theta_dot_A2_dot = A2_theta_dot*A2_dot;
+    const double A2_theta_dot_A3_dot = A2_theta_dot*A3_dot;
+    const double A3_theta_dot = A3*theta_dot;
+    const double A3_theta_dotsq = A3_theta_dot*theta_dot;
+    const double A3_theta_dot_A2_dot = A3_theta_dot*A2_dot;
+    const double A3_theta_dot_A3_dot = A3_theta_dot*A3_dot;
+    const double A3_theta_dot_A4_dot = A3_theta_dot*A4_dot;
+    const double A4_theta_dot = A4*theta_dot;
+    const double A4_theta_dotsq = A4_theta_dot*theta_dot;
+    const double A4_theta_dot_A3_dot = A4_theta_dot*A3_dot;
+    const double A4_theta_dot_A4_dot = A4_theta_dot*A4_dot;
+    const double B1_theta_dot = B1*theta_dot;
+    const double B1_theta_dotsq = B1_theta_dot*theta_dot;
+    const double B1_theta_dot_B1_dot = B1_theta_dot*B1_dot;
+    const double B1_theta_dot_B2_dot = B1_theta_dot*B2_dot;
+    const double B1_theta_dot_B3_dot = B1_theta_dot*B3_dot;
+    const double B1_theta_dot_B4_dot = B1_theta_dot*B4_dot;
+    const double B2_theta_dot = B2*theta_dot;
+    const double B2_theta_dotsq = B2_theta_dot*theta_dot;
+    const double B2_theta_dot_B1_dot = B2_theta_dot*B1_dot;
+    const double B2_theta_dot_B2_dot = B2_theta_dot*B2_dot;
+    const double B2_theta_dot_B3_dot = B2_theta_dot*B3_dot;
+    const double B2_theta_dot_B4_dot = B2_theta_dot*B4_dot;
+    const double B3_theta_dot = B3*theta_dot;
+    const double B3_theta_dotsq = B3_theta_dot*theta_dot;
+    const double B3_theta_dot_B1_dot = B3_theta_dot*B1_dot;
+    const double B3_theta_dot_B2_dot = B3_theta_dot*B2_dot;
+    const double B3_theta_dot_B3_dot = B3_theta_dot*B3_dot;
+    const double B3_theta_dot_B4_dot = B3_theta_dot*B4_dot;
+    const double B4_theta_dot = B4*theta_dot;
+    const double B4_theta_dotsq = B4_theta_dot*theta_dot;
+    const double B4_theta_dot_B1_dot = B4_theta_dot*B1_dot;
+    const double B4_theta_dot_B2_dot = B4_theta_dot*B2_dot;
+    const double B4_theta_dot_B3_dot = B4_theta_dot*B3_dot;
+    const double B4_theta_dot_B4_dot = B4_theta_dot*B4_dot;
+    out[0] = tau;
+    out[1] = A1;
+    out[2] = A2;
+    out[3] = A3;
+    out[4] = A4;
+    out[5] = B1;
+    out[6] = B2;
+    out[7] = B3;
+    out[8] = B4;
+    out[9] = theta_dotsq;
+    out[10] = theta_dot_A1_dot;
+    out[11] = theta_dot_A2_dot;
+    out[12] = theta_dot_A3_dot;
+    out[13] = theta_dot_A4_dot;
+    out[14] = theta_dot_B1_dot;
+    out[15] = theta_dot_B2_dot;
+    out[16] = theta_dot_B3_dot;
+    out[17] = theta_dot_B4_dot;
+    out[18] = A1_theta_dotsq;
+    out[19] = A1_theta_dot_A1_dot;
+    out[20] = A1_theta_dot_A2_dot;
+    out[21] = A2_theta_dotsq;
+    out[22] = A2_theta_dot_A1_dot;
+    out[23] = A2_theta_dot_A2_dot;
+    out[24] = A2_theta_dot_A3_dot;
+    out[25] = A3_theta_dotsq;
+    out[26] = A3_theta_dot_A2_dot;
+    out[27] = A3_theta_dot_A3_dot;
+    out[28] = A3_theta_dot_A4_dot;
+    out[29] = A4_theta_dotsq;
+    out[30] = A4_theta_dot_A3_dot;
+    out[31] = A4_theta_dot_A4_dot;
+    out[32] = B1_theta_dotsq;
+    out[33] = B1_theta_dot_B1_dot;
+    out[34] = B1_theta_dot_B2_dot;
+    out[35] = B1_theta_dot_B3_dot;
+    out[36] = B1_theta_dot_B4_dot;
+    out[37] = B2_theta_dotsq;
+    out[38] = B2_theta_dot_B1_dot;
+    out[39] = B2_theta_dot_B2_dot;
+    out[40] = B2_theta_dot_B3_dot;
+    out[41] = B2_theta_dot_B4_dot;
+    out[42] = B3_theta_dotsq;
+    out[43] = B3_theta_dot_B1_dot;
+    out[44] = B3_theta_dot_B2_dot;
+    out[45] = B3_theta_dot_B3_dot;
+    out[46] = B3_theta_dot_B4_dot;
+    out[47] = B4_theta_dotsq;
+    out[48] = B4_theta_dot_B1_dot;
+    out[49] = B4_theta_dot_B2_dot;
+    out[50] = B4_theta_dot_B3_dot;
+    out[51] = B4_theta_dot_B4_dot;
+}
+
+/* forces_matrix:(c[110],u[3],q[9],qd[9])->(F[9*52]) row-major, state-free: Q = F m; nonzero entries only */
+void fem_nx4_ny4_torque_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)q;
+    (void)qd;
+    out[0] = 1.0;
+    out[10] = c[44];
+    out[11] = c[45];
+    out[12] = c[46];
+    out[13] = c[47];
+    out[19] = c[48];
+    out[20] = c[49];
+    out[22] = c[49];
+    out[23] = c[48];
+    out[24] = c[49];
+    out[26] = c[49];
+    out[27] = c[48];
+    out[28] = c[49];
+    out[30] = c[49];
+    out[31] = c[50];
+    out[33] = c[51];
+    out[34] = c[52];
+    out[35] = c[53];
+    out[36] = c[54];
+    out[38] = c[52];
+    out[39] = c[55];
+    out[40] = c[56];
+    out[41] = c[57];
+    out[43] = c[53];
+    out[44] = c[56];
+    out[45] = c[58];
+    out[46] = c[59];
+    out[48] = c[54];
+    out[49] = c[57];
+    out[50] = c[59];
+    out[51] = c[60];
+    out[53] = c[61];
+    out[54] = c[62];
+    out[61] = c[63];
+    out[66] = c[64];
+    out[67] = c[65];
+    out[70] = c[5];
+    out[73] = c[34];
+    out[105] = c[62];
+    out[106] = c[61];
+    out[107] = c[62];
+    out[113] = c[66];
+    out[118] = c[67];
+    out[120] = c[68];
+    out[121] = c[69];
+    out[122] = c[34];
+    out[125] = c[5];
+    out[129] = c[34];
+    out[158] = c[62];
+    out[159] = c[61];
+    out[160] = c[62];
+    out[165] = c[70];
+    out[170] = c[64];
+    out[171] = c[71];
+    out[172] = c[64];
+    out[173] = c[65];
+    out[177] = c[34];
+    out[181] = c[5];
+    out[185] = c[34];
+    out[211] = c[62];
+    out[212] = c[72];
+    out[217] = c[73];
+    out[222] = c[68];
+    out[223] = c[74];
+    out[224] = c[27];
+    out[225] = c[75];
+    out[233] = c[34];
+    out[237] = c[6];
+    out[265] = c[76];
+    out[267] = c[77];
+    out[268] = c[78];
+    out[270] = c[79];
+    out[271] = c[80];
+    out[272] = c[79];
+    out[273] = c[81];
+    out[292] = c[7];
+    out[297] = c[82];
+    out[302] = c[83];
+    out[307] = c[84];
+    out[318] = c[85];
+    out[319] = c[86];
+    out[320] = c[87];
+    out[322] = c[71];
+    out[324] = c[65];
+    out[325] = c[69];
+    out[344] = c[82];
+    out[349] = c[11];
+    out[354] = c[88];
+    out[359] = c[89];
+    out[369] = c[77];
+    out[370] = c[86];
+    out[371] = c[90];
+    out[372] = c[86];
+    out[375] = c[81];
+    out[376] = c[79];
+    out[377] = c[19];
+    out[396] = c[83];
+    out[401] = c[88];
+    out[406] = c[14];
+    out[411] = c[91];
+    out[421] = c[78];
+    out[422] = c[87];
+    out[423] = c[86];
+    out[424] = c[92];
+    out[427] = c[74];
+    out[428] = c[71];
+    out[429] = c[93];
+    out[448] = c[84];
+    out[453] = c[89];
+    out[458] = c[91];
+    out[463] = c[16];
 }
 
 /* energy:(c[110],u[3],q[9],qd[9])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
@@ -836,6 +1026,47 @@ void fem_nx4_ny4_torque_first_forces_u(const double* c, const double* u, const d
     out[26] = 0.0;
 }
 
+/* mass_varying:(c[110],u[3],q[9],qd[9])->(M[81]) as mass, the entries that depend on q only */
+void fem_nx4_ny4_torque_first_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)qd;
+    const double A1 = q[1];
+    const double A2 = q[2];
+    const double A3 = q[3];
+    const double A4 = q[4];
+    const double B1 = q[5];
+    const double B2 = q[6];
+    const double B3 = q[7];
+    const double B4 = q[8];
+    const double A1sq = A1*A1;
+    const double A1_A2 = A1*A2;
+    const double A2sq = A2*A2;
+    const double A2_A3 = A2*A3;
+    const double A3sq = A3*A3;
+    const double A3_A4 = A3*A4;
+    const double A4sq = A4*A4;
+    const double B1sq = B1*B1;
+    const double B1_B2 = B1*B2;
+    const double B1_B3 = B1*B3;
+    const double B1_B4 = B1*B4;
+    const double B2sq = B2*B2;
+    const double B2_B3 = B2*B3;
+    const double B2_B4 = B2*B4;
+    const double B3sq = B3*B3;
+    const double B3_B4 = B3*B4;
+    const double B4sq = B4*B4;
+    out[0] = c[0] + c[1]*A1 + c[2]*A2 + c[3]*A3 + c[4]*A4 + c[5]*A1sq + c[6]*A1_A2 + c[5]*A2sq + c[6]*A2_A3 + c[5]*A3sq + c[6]*A3_A4 + c[6]*A4sq + c[7]*B1sq + c[8]*B1_B2 + c[9]*B1_B3 + c[10]*B1_B4 + c[11]*B2sq + c[12]*B2_B3 + c[13]*B2_B4 + c[14]*B3sq + c[15]*B3_B4 + c[16]*B4sq;
+    out[1] = c[17]*B1 + c[18]*B2;
+    out[2] = c[19]*B1 + c[20]*B3 + c[21]*B4;
+    out[3] = c[17]*B1 + c[22]*B2 + c[17]*B3 + c[18]*B4;
+    out[4] = c[20]*B1 + c[23]*B2 + c[24]*B3 + c[25]*B4;
+    out[5] = c[2] + c[26]*A1 + c[27]*A2 + c[26]*A3 + c[28]*A4;
+    out[6] = c[29] + c[22]*A1 + c[18]*A3 + c[21]*A4;
+    out[7] = c[30] + c[28]*A2 + c[26]*A3 + c[31]*A4;
+    out[8] = c[32] + c[23]*A2 + c[22]*A3 + c[33]*A4;
+}
+
 /* mass_q_product:(c[110],u[3],q[9],qd[9])->(dMv[81]) row-major; v in the qd slot; out[i*9+k] = sum_j dM_ij/dq_k v_j */
 void fem_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
@@ -950,8 +1181,9 @@ void fem_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, c
 
 }  // namespace
 
-extern const Variant fem_nx4_ny4_torque_first = {"fem_nx4_ny4_torque_first", 9, 110, false, fem_nx4_ny4_torque_first_coefficients,
-    fem_nx4_ny4_torque_first_mass, fem_nx4_ny4_torque_first_forces, fem_nx4_ny4_torque_first_energy, fem_nx4_ny4_torque_first_momentum,
-    fem_nx4_ny4_torque_first_forces_q, fem_nx4_ny4_torque_first_forces_qd, fem_nx4_ny4_torque_first_mass_q_product, fem_nx4_ny4_torque_first_forces_u};
+extern const Variant fem_nx4_ny4_torque_first = {"fem_nx4_ny4_torque_first", 9, 110, 52,
+    "vvvvvvvvvvcc000000vccc00000v0ccc0000v00cc0000v0000c0ccv00000cccv0000ccccv0000cccc",
+    fem_nx4_ny4_torque_first_coefficients, fem_nx4_ny4_torque_first_mass, fem_nx4_ny4_torque_first_mass_varying, fem_nx4_ny4_torque_first_forces, fem_nx4_ny4_torque_first_forces_terms, fem_nx4_ny4_torque_first_forces_matrix,
+    fem_nx4_ny4_torque_first_energy, fem_nx4_ny4_torque_first_momentum, fem_nx4_ny4_torque_first_forces_q, fem_nx4_ny4_torque_first_forces_qd, fem_nx4_ny4_torque_first_mass_q_product, fem_nx4_ny4_torque_first_forces_u};
 
 }  // namespace hubbeam::generated

@@ -258,9 +258,9 @@ private:
     std::vector<std::string> texts_;
 };
 
-/// Stage "print": "out[i] = ...;" for each output, monomials in reading order.
-std::string print_outputs(const std::vector<Output>& outputs, const MonomialPlan& plan, CoefficientPool& pool,
-                          bool& uses_c)
+/// Stage "print": "out[slot] = ...;" for each output, monomials in reading order.
+std::string print_outputs(const std::vector<Output>& outputs, const std::vector<int>& slots, const MonomialPlan& plan,
+                          CoefficientPool& pool, bool& uses_c)
 {
     std::ostringstream lines;
     for (std::size_t i = 0; i < outputs.size(); ++i) {
@@ -279,7 +279,7 @@ std::string print_outputs(const std::vector<Output>& outputs, const MonomialPlan
             terms.emplace_back(1, mono.empty() ? ck : ck + "*" + mono);
             uses_c = true;
         }
-        lines << "    out[" << i << "] = " << signed_sum(terms) << ";\n";
+        lines << "    out[" << (slots.empty() ? static_cast<int>(i) : slots[i]) << "] = " << signed_sum(terms) << ";\n";
     }
     return lines.str();
 }
@@ -347,7 +347,10 @@ EmittedCode emit_kernels(const std::string& prefix, const Signature& sig, const 
         const MonomialPlan plan = plan_monomials(outputs, names_of(sig.state_inputs));
         if (plan.names.empty()) code.constant_kernels.push_back(k.name);
         bool uses_c = false;
-        const std::string lines = print_outputs(outputs, plan, pool, uses_c);
+        if (!k.slots.empty() && k.slots.size() != k.values.size())
+            throw EmitError("emit: kernel " + k.name + " has " + std::to_string(k.values.size()) + " values but " +
+                            std::to_string(k.slots.size()) + " slots");
+        const std::string lines = print_outputs(outputs, k.slots, plan, pool, uses_c);
         bodies.push_back(print_kernel(prefix, k, sig, plan, lines, uses_c));
     }
     std::ostringstream text;

@@ -24,12 +24,13 @@ struct Input {
     std::string read;
 };
 
-/// One kernel: out[i] = values[i], documented by a shape comment.
+/// One kernel: out[slots[i]] = values[i] (out[i] when slots is empty), documented by a shape comment.
 struct KernelSpec {
     std::string name;  // suffix, e.g. "mass"
     std::string out;   // e.g. "M[81]"
     std::string doc;   // e.g. "row-major, M = d2T/dqd2"
     std::vector<GiNaC::ex> values;
+    std::vector<int> slots = {};  // for a kernel that writes only some entries of out
 };
 
 struct EmittedCode {
@@ -53,6 +54,13 @@ struct Signature {
     std::vector<Array> state;     // read by every other kernel, in argument order after c (e.g. u, q, qd)
     std::vector<Input> parameter_inputs;  // symbols read from the parameter array ("p[1] * p[2]" may combine)
     std::vector<Input> state_inputs;      // symbols read from the state arrays
+
+    std::vector<GiNaC::symbol> state_inputs_symbols() const
+    {
+        std::vector<GiNaC::symbol> s;
+        for (const Input& i : state_inputs) s.push_back(i.symbol);
+        return s;
+    }
 };
 
 /// Emits `<prefix>_coefficients(p, c)` and `<prefix>_<kernel>(c, state..., out)` for each kernel.

@@ -9,6 +9,7 @@
 #include "interface.hpp"
 #include "energy.hpp"
 #include "lagrange.hpp"
+#include "structure.hpp"
 
 #ifndef HUBBEAM_VERSION
 #define HUBBEAM_VERSION "dev"
@@ -69,7 +70,6 @@ std::string banner(const VariantKey& key, bool mass_varies)
 /// by symbolic differentiation of the same eq.M and eq.Q the other kernels print.
 struct JacobianPieces {
     std::vector<ex> forces_q, forces_qd, forces_u, mass_q_product;  // row-major, see the kernels' shape comments
-    bool mass_varies = false;                                        // some dM_ij/dq_k is not zero
 };
 
 JacobianPieces jacobian_pieces(const Equations& eq, const Symbols& s, bool torque)
@@ -88,7 +88,6 @@ JacobianPieces jacobian_pieces(const Equations& eq, const Symbols& s, bool torqu
             ex dMv = 0;
             for (std::size_t c = 0; c < n; ++c) dMv += eq.M[i * n + c].diff(s.q[k]) * s.qd[c];
             j.mass_q_product[i * n + k] = dMv.expand();
-            j.mass_varies = j.mass_varies || !j.mass_q_product[i * n + k].is_zero();
         }
     // dQ/du only for the drive values the variant reads: under torque theta_dot is the rate qd[0], not an input.
     std::vector<std::pair<DriveValue, symbol>> inputs;
@@ -142,10 +141,37 @@ std::string variant_source(const VariantKey& key)
     for (std::size_t i = 0; i < s.qd.size(); ++i) sig.state_inputs.push_back({s.qd[i], "qd[" + std::to_string(i) + "]"});
 
     const JacobianPieces jac = jacobian_pieces(eq, s, torque);
+    const std::string pattern = mass_pattern(eq.M, s.q);
+    // M is symmetric: its upper triangle is emitted, structural zeros are not, and the state-dependent entries
+    // get a kernel of their own for runtimes that keep the constant ones.
+    KernelSpec mass{"mass", "M[" + n2 + "]", "row-major; M = d2T/dqd2, upper triangle, nonzero entries only", {}};
+    KernelSpec mass_varying{"mass_varying", "M[" + n2 + "]", "as mass, the entries that depend on q only", {}};
+    for (int i = 0; i < nq; ++i)
+        for (int j = i; j < nq; ++j) {
+            const char kind = pattern[static_cast<std::size_t>(i * nq + j)];
+            if (kind == '0') continue;
+            for (KernelSpec* k : {&mass, &mass_varying})
+                if (k == &mass || kind == 'v') {
+                    k->values.push_back(eq.M[static_cast<std::size_t>(i * nq + j)]);
+                    k->slots.push_back(i * nq + j);
+                }
+        }
+    const bool mass_varies = !mass_varying.values.empty();
+    const TermMatrix terms = term_matrix(eq.Q, sig.state_inputs_symbols());
+    const std::string nk = std::to_string(terms.terms.size());
+    KernelSpec force_matrix{"forces_matrix", "F[" + std::to_string(nq) + "*" + nk + "]",
+                            "row-major, state-free: Q = F m; nonzero entries only", {}};
+    for (std::size_t i = 0; i < terms.matrix.size(); ++i)
+        if (!terms.matrix[i].is_zero()) {
+            force_matrix.values.push_back(terms.matrix[i]);
+            force_matrix.slots.push_back(static_cast<int>(i));
+        }
     const std::string nu = std::to_string(nq * static_cast<int>(drive_value_count));
     std::vector<KernelSpec> kernels = {
-        {"mass", "M[" + n2 + "]", "row-major; M = d2T/dqd2", eq.M},
+        mass,
         {"forces", "Q[" + n1 + "]", "Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq", eq.Q},
+        {"forces_terms", "m[" + nk + "]", "the state monomials of Q: Q = F m", terms.terms},
+        force_matrix,
         {"energy", "E[4]", "E = (T2, T1, T0, U), T split by degree in qd", {eq.T2, eq.T1, eq.T0, eq.U}},
         {"momentum", "h[1]", "h = dT/dtheta_dot, angular momentum about the hub axis", {eq.momentum}},
         {"forces_q", "dQdq[" + n2 + "]", "row-major; out[i*" + n1 + "+k] = dQ_i/dq_k", jac.forces_q},
@@ -153,21 +179,24 @@ std::string variant_source(const VariantKey& key)
         {"forces_u", "dQdu[" + nu + "]", "row-major; out[i*3+j] = dQ_i/du_j, u = " + tuple(drive_value_names),
          jac.forces_u},
     };
-    // A constant M has dM/dq = 0: no kernel, a null pointer in the table row, and the runtime skips the term.
-    if (jac.mass_varies)
+    // A constant M has dM/dq = 0: no kernels, null pointers in the table row, and the runtime skips the terms.
+    if (mass_varies) {
+        kernels.push_back(mass_varying);
         kernels.push_back({"mass_q_product", "dMv[" + n2 + "]",
                            "row-major; v in the qd slot; out[i*" + n1 + "+k] = sum_j dM_ij/dq_k v_j", jac.mass_q_product});
+    }
     const std::string name = key.name();
     const EmittedCode code = emit_kernels(name, sig, kernels);
+    const auto optional = [&](const char* kernel) { return mass_varies ? name + "_" + kernel : std::string("nullptr"); };
 
     std::ostringstream f;
-    f << banner(key, jac.mass_varies) << "\n#include \"generated_abi.h\"\n\nnamespace hubbeam::generated {\n\nnamespace {\n"
+    f << banner(key, mass_varies) << "\n#include \"generated_abi.h\"\n\nnamespace hubbeam::generated {\n\nnamespace {\n"
       << code.text << "\n}  // namespace\n\n"
-      << "extern const Variant " << name << " = {\"" << name << "\", " << nq << ", " << code.ncoeff << ", "
-      << (code.constant("mass") ? "true" : "false") << ", " << name << "_coefficients,\n    " << name << "_mass, "
-      << name << "_forces, " << name << "_energy, " << name << "_momentum,\n    " << name << "_forces_q, " << name
-      << "_forces_qd, " << (jac.mass_varies ? name + "_mass_q_product" : std::string("nullptr")) << ", " << name
-      << "_forces_u};\n\n}  // namespace hubbeam::generated\n";
+      << "extern const Variant " << name << " = {\"" << name << "\", " << nq << ", " << code.ncoeff << ", " << nk
+      << ",\n    \"" << pattern << "\",\n    " << name << "_coefficients, " << name << "_mass, "
+      << optional("mass_varying") << ", " << name << "_forces, " << name << "_forces_terms, " << name
+      << "_forces_matrix,\n    " << name << "_energy, " << name << "_momentum, " << name << "_forces_q, " << name
+      << "_forces_qd, " << optional("mass_q_product") << ", " << name << "_forces_u};\n\n}  // namespace hubbeam::generated\n";
     return f.str();
 }
 

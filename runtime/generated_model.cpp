@@ -3,6 +3,8 @@
 #include "generated_model.hpp"
 
 #include <algorithm>
+#include <string>
+#include <utility>
 
 #include "generated_abi.h"
 
@@ -13,15 +15,46 @@ namespace {
 class GeneratedModel final : public Model {
 public:
     GeneratedModel(const VariantKey& key, const generated::Variant& v, const Parameters& p)
-        : Model(key), v_(v), c_(static_cast<std::size_t>(v.ncoeff))
+        : Model(key), v_(v), c_(static_cast<std::size_t>(v.ncoeff)), pattern_(v.mass_pattern)
     {
         v_.coefficients(p.packed().data(), c_.data());
+        // The kernels write M's upper triangle: these lower entries are mirrored from it.
+        const int n = v.nq;
+        for (int i = 0; i < n; ++i)
+            for (int j = i + 1; j < n; ++j) {
+                const char kind = pattern_[static_cast<std::size_t>(i * n + j)];
+                if (kind != '0') mirrored_.push_back({i * n + j, j * n + i});
+                if (kind == 'v') mirrored_varying_.push_back({i * n + j, j * n + i});
+            }
     }
 
     const char* source() const override { return "generated"; }
-    bool mass_is_constant() const override { return v_.mass_constant; }
+    bool mass_is_constant() const override { return pattern_.find('v') == std::string::npos; }
+    std::string mass_pattern() const override { return pattern_; }
 
-    void mass(const HubInput& u, const double* q, double* M) const override { call(v_.mass, u, q, q, M); }
+    void mass(const HubInput& u, const double* q, double* M) const override
+    {
+        std::fill_n(M, nq() * nq(), 0.0);
+        call(v_.mass, u, q, q, M);
+        for (const auto& [upper, lower] : mirrored_) M[lower] = M[upper];
+    }
+    void mass_varying(const HubInput& u, const double* q, double* M) const override
+    {
+        if (v_.mass_varying == nullptr) return;
+        call(v_.mass_varying, u, q, q, M);
+        for (const auto& [upper, lower] : mirrored_varying_) M[lower] = M[upper];
+    }
+    int force_terms() const override { return v_.nterms; }
+    void forces_terms(const HubInput& u, const double* q, const double* qd, double* m) const override
+    {
+        call(v_.forces_terms, u, q, qd, m);
+    }
+    void forces_matrix(double* F) const override
+    {
+        const HubInput none;
+        std::fill_n(F, nq() * v_.nterms, 0.0);
+        call(v_.forces_matrix, none, nullptr, nullptr, F);
+    }
     void forces(const HubInput& u, const double* q, const double* qd, double* Q) const override
     {
         call(v_.forces, u, q, qd, Q);
@@ -62,6 +95,8 @@ private:
 
     const generated::Variant& v_;
     std::vector<double> c_;
+    std::string pattern_;
+    std::vector<std::pair<int, int>> mirrored_, mirrored_varying_;  // (upper, lower) entry pairs of M
 };
 
 }  // namespace

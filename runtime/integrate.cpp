@@ -1,9 +1,14 @@
-// FirstOrderSystem: mass solve per evaluation (or one factorization for a constant M) and GSL glue.
+// FirstOrderSystem: accelerations through the mass solver the model's structure allows (or M^-1 folded into
+// the forces for a constant M), exact or finite-difference Jacobians, and GSL glue.
 #include "integrate.hpp"
 
+#include "mass_solver.hpp"
+
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Dense>
@@ -52,58 +57,155 @@ const gsl_odeiv2_step_type* step_type(const std::string& name)
 }
 
 struct FirstOrderSystem::Work {
-    Eigen::MatrixXd M;
-    Eigen::VectorXd Q, qdd;
-    Eigen::LLT<Eigen::MatrixXd> llt;
-    bool factored_once = false;
+    using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+    std::unique_ptr<MassSolver> solver;
+    // Constant M with Q = F m: W = M^-1 F once, so that a right-hand side is qdd = W m, one pass of
+    // multiply-adds (docs/model.md section 5.3: the prescribed-rotation M is constant). Dense (column-major)
+    // or, where W is mostly zeros, by rows: row i holds W_value[W_start[i] .. W_start[i+1]) in W_column.
+    Eigen::MatrixXd W;
+    std::vector<int> W_start, W_column;
+    std::vector<double> W_value;
+    bool folded() const { return W.size() > 0 || !W_start.empty(); }
+    Eigen::VectorXd m;
+    Eigen::VectorXd qdd;
     std::vector<double> y_plus, y_minus, f_plus, f_minus;
     // Exact Jacobian: row-major like the kernels (RowMajor maps them as written).
-    using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
     RowMatrix dQdq, dQdqd, dQdu, dMv;
 };
+
+namespace {
+
+/// y = W x for a column-major W with N rows: the row count fixed at compile time so that each column's
+/// update is unrolled and vectorized.
+template <int N>
+void multiply_fixed(const double* W, const double* x, Eigen::Index columns, double* y)
+{
+    double sum[N] = {};
+    for (Eigen::Index k = 0; k < columns; ++k, W += N)
+        for (int i = 0; i < N; ++i) sum[i] += W[i] * x[k];
+    for (int i = 0; i < N; ++i) y[i] = sum[i];
+}
+
+/// y = W x. At the sizes of the paper's cases (4 x 9 for the Ny = 4 spin-up) Eigen's dynamic-size product
+/// costs several times the multiply-adds themselves.
+void multiply(const Eigen::MatrixXd& W, const Eigen::VectorXd& x, Eigen::VectorXd& y)
+{
+    const auto K = W.cols();
+    switch (W.rows()) {
+    case 1: return multiply_fixed<1>(W.data(), x.data(), K, y.data());
+    case 2: return multiply_fixed<2>(W.data(), x.data(), K, y.data());
+    case 3: return multiply_fixed<3>(W.data(), x.data(), K, y.data());
+    case 4: return multiply_fixed<4>(W.data(), x.data(), K, y.data());
+    case 5: return multiply_fixed<5>(W.data(), x.data(), K, y.data());
+    case 6: return multiply_fixed<6>(W.data(), x.data(), K, y.data());
+    case 7: return multiply_fixed<7>(W.data(), x.data(), K, y.data());
+    case 8: return multiply_fixed<8>(W.data(), x.data(), K, y.data());
+    default: y.noalias() = W * x;
+    }
+}
+
+/// Nonzero entries of a row-major matrix.
+long nonzeros(const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>& A)
+{
+    return static_cast<long>((A.array() != 0.0).count());
+}
+
+}  // namespace
 
 FirstOrderSystem::FirstOrderSystem(const Model& model, const Motion& motion)
     : model_(model), motion_(motion), n_(model.nq()), work_(std::make_unique<Work>())
 {
-    work_->M.resize(n_, n_);
-    work_->Q.resize(n_);
-    work_->qdd.resize(n_);
-    work_->dQdq.resize(n_, n_);
-    work_->dQdqd.resize(n_, n_);
-    work_->dQdu.resize(n_, static_cast<Eigen::Index>(drive_value_count));
-    work_->dMv.resize(n_, n_);
+    Work& w = *work_;
+    w.solver = MassSolver::make(model);
+    w.qdd.resize(n_);
+    w.dQdq.resize(n_, n_);
+    w.dQdqd.resize(n_, n_);
+    w.dQdu.resize(n_, static_cast<Eigen::Index>(drive_value_count));
+    w.dMv.resize(n_, n_);
+    const int K = model.force_terms();
+    if (model.mass_is_constant() && K > 0) {
+        Work::RowMatrix F(n_, K);
+        model.forces_matrix(F.data());
+        const std::vector<double> rest(static_cast<std::size_t>(n_), 0.0);
+        if (!w.solver->prepare(motion.at(0.0), rest.data()))
+            throw std::invalid_argument("the mass matrix of " + model.key().name() + " is not positive definite");
+        Eigen::MatrixXd W = F;  // column-major: the solver takes columns
+        w.solver->solve(W.data(), K);
+        // Folding pays while W's nonzeros cost no more than the forces' own terms plus a dense solve. W keeps
+        // the block structure of M and F (the axial and transverse blocks of the prescribed M), so a sparse W
+        // is stored by rows.
+        const long nnz = static_cast<long>((W.array() != 0.0).count());
+        if (nnz <= nonzeros(F) + static_cast<long>(n_) * n_) {
+            w.m.resize(K);
+            if (4 * nnz >= 3L * n_ * K) {
+                w.W = std::move(W);
+            } else {
+                w.W_start.push_back(0);
+                for (int i = 0; i < n_; ++i) {
+                    for (int k = 0; k < K; ++k)
+                        if (W(i, k) != 0.0) {
+                            w.W_column.push_back(k);
+                            w.W_value.push_back(W(i, k));
+                        }
+                    w.W_start.push_back(static_cast<int>(w.W_value.size()));
+                }
+            }
+        }
+    }
     sys_ = {gsl_rhs, gsl_jacobian, static_cast<std::size_t>(2 * n_), this};
 }
 
 FirstOrderSystem::~FirstOrderSystem() = default;
 
+const HubInput& FirstOrderSystem::drive_at(double t)
+{
+    // Multistep and implicit steppers evaluate several times at one t (predictor, corrector, Jacobian): the
+    // drive's sines are computed once per distinct t.
+    if (t != drive_t_) {
+        drive_ = motion_.at(t);
+        drive_t_ = t;
+    }
+    return drive_;
+}
+
+std::string FirstOrderSystem::linear_algebra() const
+{
+    const Work& w = *work_;
+    if (w.folded())
+        return "M^-1 folded into the forces once (" + std::to_string(n_) + " x " + std::to_string(w.m.size()) +
+               (w.W.size() > 0 ? ", dense" : ", " + std::to_string(w.W_value.size()) + " nonzeros") + ")";
+    return w.solver->describe();
+}
+
 int FirstOrderSystem::rhs(double t, const double* y, double* dydt)
 {
     ++evaluations_;
     Work& w = *work_;
-    const HubInput u = motion_.at(t);
+    const HubInput u = drive_at(t);
     const double* q = y;
     const double* qd = y + n_;
-    if (int s = factor_mass(u, q); s != GSL_SUCCESS) return s;
-    model_.forces(u, q, qd, w.Q.data());
-    w.qdd = w.llt.solve(w.Q);
+    if (w.folded()) {
+        model_.forces_terms(u, q, qd, w.m.data());
+        if (w.W.size() > 0) {
+            multiply(w.W, w.m, w.qdd);
+        } else {
+            for (int i = 0; i < n_; ++i) {
+                double sum = 0.0;
+                for (int e = w.W_start[static_cast<std::size_t>(i)]; e < w.W_start[static_cast<std::size_t>(i) + 1]; ++e)
+                    sum += w.W_value[static_cast<std::size_t>(e)] * w.m[w.W_column[static_cast<std::size_t>(e)]];
+                w.qdd[i] = sum;
+            }
+        }
+    } else {
+        if (!w.solver->prepare(u, q)) return GSL_EBADFUNC;
+        model_.forces(u, q, qd, w.qdd.data());
+        w.solver->solve(w.qdd.data());
+    }
     for (int i = 0; i < n_; ++i) {
         dydt[i] = qd[i];
         dydt[n_ + i] = w.qdd[i];
         if (!std::isfinite(dydt[n_ + i])) return GSL_EBADFUNC;
     }
-    return GSL_SUCCESS;
-}
-
-int FirstOrderSystem::factor_mass(const HubInput& u, const double* q)
-{
-    Work& w = *work_;
-    if (w.factored_once) return GSL_SUCCESS;
-    // Eigen is column-major and the kernel writes row-major: M is symmetric, so the transpose is M.
-    model_.mass(u, q, w.M.data());
-    w.llt.compute(w.M);
-    if (w.llt.info() != Eigen::Success) return GSL_EBADFUNC;
-    w.factored_once = model_.mass_is_constant();
     return GSL_SUCCESS;
 }
 
@@ -119,22 +221,24 @@ int FirstOrderSystem::exact_jacobian(double t, const double* y, double* dfdy, do
     // M qdd = Q: M dqdd/dq = dQ/dq - (dM/dq) qdd, M dqdd/dqd = dQ/dqd, M dqdd/dt = dQ/du du/dt (M depends on
     // neither u nor qd; the generator checks). So dfdy = [[0, I], [M^-1 (dQ/dq - (dM/dq) qdd), M^-1 dQ/dqd]].
     Work& w = *work_;
-    const HubInput u = motion_.at(t);
+    const HubInput u = drive_at(t);
     const double* q = y;
     const double* qd = y + n_;
-    if (int s = factor_mass(u, q); s != GSL_SUCCESS) return s;
-    model_.forces(u, q, qd, w.Q.data());
-    w.qdd = w.llt.solve(w.Q);
+    if (!w.solver->prepare(u, q)) return GSL_EBADFUNC;
+    model_.forces(u, q, qd, w.qdd.data());
+    w.solver->solve(w.qdd.data());
     model_.force_derivatives(u, q, qd, w.dQdq.data(), w.dQdqd.data(), w.dQdu.data());
     if (!model_.mass_is_constant()) {
         model_.mass_q_product(u, q, w.qdd.data(), w.dMv.data());
         w.dQdq -= w.dMv;
     }
-    const Eigen::MatrixXd lower_q = w.llt.solve(Eigen::MatrixXd(w.dQdq));
-    const Eigen::MatrixXd lower_qd = w.llt.solve(Eigen::MatrixXd(w.dQdqd));
+    Eigen::MatrixXd lower_q = w.dQdq, lower_qd = w.dQdqd;  // column-major copies, solved in place
+    w.solver->solve(lower_q.data(), n_);
+    w.solver->solve(lower_qd.data(), n_);
     const std::array<double, drive_value_count> du = motion_.rate(t).packed();
     const Eigen::VectorXd dudt = Eigen::Map<const Eigen::VectorXd>(du.data(), static_cast<Eigen::Index>(du.size()));
-    const Eigen::VectorXd lower_t = w.llt.solve(w.dQdu * dudt);
+    Eigen::VectorXd lower_t = w.dQdu * dudt;
+    w.solver->solve(lower_t.data());
     const int m = size();
     for (int i = 0; i < n_; ++i) {
         for (int j = 0; j < n_; ++j) {

@@ -1,7 +1,8 @@
-// Integrator adapter: the equations of a Model as a first-order system y = (q, qd) for GSL odeiv2, with
-// the mass matrix factored once when it is constant.
+// Integrator adapter: the equations of a Model as a first-order system y = (q, qd) for GSL odeiv2, with the
+// linear algebra chosen from the model's structure (mass_solver.hpp).
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -39,16 +40,20 @@ public:
     /// Jacobians formed (either way).
     long jacobian_evaluations() const { return jacobian_evaluations_; }
     gsl_odeiv2_system* gsl() { return &sys_; }
+    /// How accelerations are computed, for the summary: folded M^-1, or which mass solver.
+    std::string linear_algebra() const;
 
 private:
     struct Work;
     const Model& model_;
     const Motion& motion_;
     int n_;
-    /// M(q) factored into work_->llt (once only, for a constant M).
-    int factor_mass(const HubInput& u, const double* q);
     int exact_jacobian(double t, const double* y, double* dfdy, double* dfdt);
+    /// motion_.at(t), remembered for the last t.
+    const HubInput& drive_at(double t);
 
+    double drive_t_ = std::numeric_limits<double>::quiet_NaN();
+    HubInput drive_;
     long evaluations_ = 0;
     long jacobian_evaluations_ = 0;
     std::unique_ptr<Work> work_;

@@ -28,6 +28,17 @@ public:
     virtual bool mass_is_constant() const = 0;
     /// M(q), nq x nq row-major.
     virtual void mass(const HubInput& u, const double* q, double* M) const = 0;
+    /// M's structure, row-major, one character per entry: '0' zero, 'c' constant, 'v' depends on q. The
+    /// integrator chooses its linear algebra from it; by default every entry is 'c' or every entry 'v'.
+    virtual std::string mass_pattern() const { return std::string(nq() * nq(), mass_is_constant() ? 'c' : 'v'); }
+    /// Writes the entries of M(q) that the pattern marks 'v', in both triangles, and leaves the others.
+    virtual void mass_varying(const HubInput& u, const double* q, double* M) const { mass(u, q, M); }
+    /// K > 0 when Q = F m with F (nq x K) fixed for the run and m K monomials of the state; 0 otherwise.
+    virtual int force_terms() const { return 0; }
+    /// m[K] of Q = F m (only if force_terms() > 0).
+    virtual void forces_terms(const HubInput& u, const double* q, const double* qd, double* m) const;
+    /// F[nq*K] of Q = F m, row-major (only if force_terms() > 0).
+    virtual void forces_matrix(double* F) const;
     /// Q(t, q, qd) such that M qdd = Q.
     virtual void forces(const HubInput& u, const double* q, const double* qd, double* Q) const = 0;
     virtual Energy energy(const HubInput& u, const double* q, const double* qd) const = 0;
@@ -50,6 +61,16 @@ protected:
 private:
     VariantKey key_;
 };
+
+inline void Model::forces_terms(const HubInput&, const double*, const double*, double*) const
+{
+    throw std::logic_error(std::string(source()) + " model has no term form of its forces");
+}
+
+inline void Model::forces_matrix(double*) const
+{
+    throw std::logic_error(std::string(source()) + " model has no term form of its forces");
+}
 
 inline void Model::force_derivatives(const HubInput&, const double*, const double*, double*, double*, double*) const
 {

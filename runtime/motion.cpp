@@ -3,20 +3,36 @@
 
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 namespace hubbeam {
 
 namespace {
+
 constexpr double two_pi = 2.0 * std::numbers::pi;
+
+/// sin x and cos x: one glibc call where there is one (the drive is evaluated at every right-hand side).
+std::pair<double, double> sin_cos(double x)
+{
+#if defined(__GLIBC__)
+    double s, c;
+    ::sincos(x, &s, &c);
+    return {s, c};
+#else
+    return {std::sin(x), std::cos(x)};
+#endif
 }
+
+}  // namespace
 
 HubInput Motion::at(double t) const
 {
     HubInput u;
     if (kind == Kind::spin_up) {
         if (t <= spin_time) {
-            u.theta_dot = omega0 * (t / spin_time - std::sin(two_pi * t / spin_time) / two_pi);
-            u.theta_ddot = omega0 / spin_time * (1.0 - std::cos(two_pi * t / spin_time));
+            const auto [s, c] = sin_cos(two_pi * t / spin_time);
+            u.theta_dot = omega0 * (t / spin_time - s / two_pi);
+            u.theta_ddot = omega0 / spin_time * (1.0 - c);
         } else {
             u.theta_dot = omega0;
         }

@@ -57,6 +57,7 @@ std::string format_summary(const RunSummary& r, const Scene& scene)
     else
         out << " (hub torque tau0 = " << shortest(m.tau0) << " N m for T_t = " << shortest(m.torque_time) << " s)\n";
     out << "variant     " << r.variant << " (" << r.source << ")\n";
+    out << "algebra     " << r.algebra << "\n";
     out << "stepper     " << scene.solver.stepper << ", rtol " << shortest(scene.solver.rtol) << ", atol "
         << shortest(scene.solver.atol) << ", h0 " << shortest(scene.solver.h0) << " s\n";
     out << "time        0 to " << shortest(r.t_reached) << " s of " << shortest(scene.output.t_end) << " s, rows every "

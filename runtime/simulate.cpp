@@ -114,6 +114,7 @@ RunSummary Simulation::run(const RowSink& sink)
     summary.source = model.source();
 
     FirstOrderSystem system(model, motion);
+    summary.algebra = system.linear_algebra();
     const gsl_odeiv2_step_type* type = step_type(scene_.solver.stepper);
     if (type == nullptr) throw std::invalid_argument("unknown stepper '" + scene_.solver.stepper + "'");
     const std::unique_ptr<gsl_odeiv2_driver, DriverDeleter> driver(gsl_odeiv2_driver_alloc_y_new(

@@ -27,6 +27,7 @@ inline const char* row_header()
 struct RunSummary {
     std::string variant;  // VariantKey::name()
     std::string source;   // "generated" or "assembled"
+    std::string algebra;  // how accelerations are computed (FirstOrderSystem::linear_algebra())
     bool completed = false;
     std::string failure;  // why the run stopped early (empty if completed)
     double t_reached = 0.0;

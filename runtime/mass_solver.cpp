@@ -1,0 +1,310 @@
+// The three mass solvers and the choice between them from the mass pattern.
+#include "mass_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <vector>
+
+#include <Eigen/Dense>
+#include <gsl/gsl_linalg.h>
+#include <gsl/gsl_matrix.h>
+
+namespace hubbeam {
+
+namespace {
+
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+/// The largest |i - j| of a nonzero entry of the square submatrix of M (row-major pattern of size n) on idx.
+int bandwidth(const std::string& pattern, int n, const std::vector<int>& idx)
+{
+    int p = 0;
+    const int m = static_cast<int>(idx.size());
+    for (int i = 0; i < m; ++i)
+        for (int j = i + 1; j < m; ++j)
+            if (pattern[static_cast<std::size_t>(idx[i] * n + idx[j])] != '0') p = std::max(p, j - i);
+    return p;
+}
+
+/// Cholesky factorization A = L L^T of a small dense matrix in plain loops. Eigen's LLT costs about 470
+/// instructions to solve a 4 x 4 system through its dynamic-size machinery, several times the arithmetic;
+/// the mass matrices here are small and solved millions of times.
+class SmallCholesky {
+public:
+    /// Factors the n x n matrix a(i, j); false when it is not positive definite.
+    template <class Access>
+    bool factor(int n, Access a)
+    {
+        n_ = n;
+        L_.assign(static_cast<std::size_t>(n) * n, 0.0);
+        inv_diag_.resize(static_cast<std::size_t>(n));
+        for (int j = 0; j < n; ++j) {
+            double d = a(j, j);
+            for (int k = 0; k < j; ++k) d -= L(j, k) * L(j, k);
+            if (!(d > 0.0)) return false;
+            const double ljj = std::sqrt(d);
+            L(j, j) = ljj;
+            inv_diag_[static_cast<std::size_t>(j)] = 1.0 / ljj;
+            for (int i = j + 1; i < n; ++i) {
+                double s = a(i, j);
+                for (int k = 0; k < j; ++k) s -= L(i, k) * L(j, k);
+                L(i, j) = s / ljj;
+            }
+        }
+        return true;
+    }
+    /// b := A^-1 b.
+    void solve(double* b) const
+    {
+        for (int i = 0; i < n_; ++i) {  // L y = b
+            double s = b[i];
+            for (int k = 0; k < i; ++k) s -= L(i, k) * b[k];
+            b[i] = s * inv_diag_[static_cast<std::size_t>(i)];
+        }
+        for (int i = n_ - 1; i >= 0; --i) {  // L^T x = y
+            double s = b[i];
+            for (int k = i + 1; k < n_; ++k) s -= L(k, i) * b[k];
+            b[i] = s * inv_diag_[static_cast<std::size_t>(i)];
+        }
+    }
+
+private:
+    double& L(int i, int j) { return L_[static_cast<std::size_t>(i) * n_ + j]; }
+    double L(int i, int j) const { return L_[static_cast<std::size_t>(i) * n_ + j]; }
+    int n_ = 0;
+    std::vector<double> L_, inv_diag_;
+};
+
+/// A constant symmetric positive definite matrix factored once: the factorization and its solve.
+class ConstantFactor {
+public:
+    virtual ~ConstantFactor() = default;
+    /// False when A is not positive definite.
+    virtual bool factor(const MatrixXd& A) = 0;
+    /// b := A^-1 b, b of A's size.
+    virtual void solve(double* b) const = 0;
+    virtual std::string describe() const = 0;
+};
+
+class DenseFactor final : public ConstantFactor {
+public:
+    bool factor(const MatrixXd& A) override
+    {
+        return llt_.factor(static_cast<int>(A.rows()), [&](int i, int j) { return A(i, j); });
+    }
+    void solve(double* b) const override { llt_.solve(b); }
+    std::string describe() const override { return "dense Cholesky"; }
+
+private:
+    SmallCholesky llt_;
+};
+
+/// GSL's banded Cholesky: the FEM and B-spline mass matrices have bandwidth 3 (or 1) whatever their size.
+class BandedFactor final : public ConstantFactor {
+public:
+    explicit BandedFactor(int p) : p_(p) {}
+    ~BandedFactor() override
+    {
+        if (band_) gsl_matrix_free(band_);
+    }
+    bool factor(const MatrixXd& A) override
+    {
+        const auto n = static_cast<std::size_t>(A.rows());
+        band_ = gsl_matrix_calloc(n, static_cast<std::size_t>(p_) + 1);
+        // GSL's symmetric band storage: row i holds A(i, i), A(i+1, i), ..., A(i+p, i).
+        for (std::size_t i = 0; i < n; ++i)
+            for (std::size_t j = 0; j <= static_cast<std::size_t>(p_) && i + j < n; ++j)
+                gsl_matrix_set(band_, i, j, A(static_cast<Eigen::Index>(i + j), static_cast<Eigen::Index>(i)));
+        return gsl_linalg_cholesky_band_decomp(band_) == GSL_SUCCESS;
+    }
+    void solve(double* b) const override
+    {
+        gsl_vector_view x = gsl_vector_view_array(b, band_->size1);
+        gsl_linalg_cholesky_band_svx(band_, &x.vector);
+    }
+    std::string describe() const override { return "banded Cholesky (bandwidth " + std::to_string(p_) + ")"; }
+
+private:
+    int p_;
+    gsl_matrix* band_ = nullptr;
+};
+
+/// Banded when that saves work: at most a third of the matrix inside the band.
+std::unique_ptr<ConstantFactor> constant_factor(const std::string& pattern, int n, const std::vector<int>& idx)
+{
+    const int p = bandwidth(pattern, n, idx);
+    if (3 * (p + 1) <= static_cast<int>(idx.size())) return std::make_unique<BandedFactor>(p);
+    return std::make_unique<DenseFactor>();
+}
+
+/// M(q) as the model writes it (row-major, symmetric, so read as column-major it is the same matrix).
+class Evaluated {
+public:
+    explicit Evaluated(const Model& model) : model_(model), M_(model.nq(), model.nq()) {}
+    const MatrixXd& full(const HubInput& u, const double* q)
+    {
+        model_.mass(u, q, M_.data());
+        return M_;
+    }
+    const MatrixXd& varying(const HubInput& u, const double* q)
+    {
+        model_.mass_varying(u, q, M_.data());
+        return M_;
+    }
+    const MatrixXd& matrix() const { return M_; }
+
+private:
+    const Model& model_;
+    MatrixXd M_;
+};
+
+/// M constant: factored at the first prepare(), dense or banded.
+class ConstantSolver final : public MassSolver {
+public:
+    ConstantSolver(const Model& model, std::unique_ptr<ConstantFactor> factor)
+        : mass_(model), factor_(std::move(factor)), n_(model.nq())
+    {
+    }
+    bool prepare(const HubInput& u, const double* q) override
+    {
+        if (factored_) return true;
+        return factored_ = factor_->factor(mass_.full(u, q));
+    }
+    void solve(double* b, int columns) const override
+    {
+        for (int k = 0; k < columns; ++k) factor_->solve(b + static_cast<std::ptrdiff_t>(k) * n_);
+    }
+    std::string describe() const override { return factor_->describe() + " of a constant M, factored once"; }
+
+private:
+    Evaluated mass_;
+    std::unique_ptr<ConstantFactor> factor_;
+    int n_;
+    bool factored_ = false;
+};
+
+/// M depends on q everywhere: a dense Cholesky factorization at every prepare().
+class DenseSolver final : public MassSolver {
+public:
+    explicit DenseSolver(const Model& model) : mass_(model), n_(model.nq()) {}
+    bool prepare(const HubInput& u, const double* q) override
+    {
+        const MatrixXd& M = mass_.full(u, q);
+        return llt_.factor(n_, [&](int i, int j) { return M(i, j); });
+    }
+    void solve(double* b, int columns) const override
+    {
+        for (int k = 0; k < columns; ++k) llt_.solve(b + static_cast<std::ptrdiff_t>(k) * n_);
+    }
+    std::string describe() const override { return "dense Cholesky of M(q) at every evaluation"; }
+
+private:
+    Evaluated mass_;
+    int n_;
+    SmallCholesky llt_;
+};
+
+/// Only the rows and columns R depend on q (under hub torque, the hub's): with C the rest,
+///   [M_RR M_RC; M_CR M_CC] [x_R; x_C] = [b_R; b_C],  M_CC constant, factored once;
+///   X = M_CC^-1 M_CR, S = M_RR - M_RC X (r x r), x_R = S^-1 (b_R - M_RC M_CC^-1 b_C), x_C = M_CC^-1 b_C - X x_R.
+class SchurSolver final : public MassSolver {
+public:
+    SchurSolver(const Model& model, std::vector<int> R, std::vector<int> C, std::unique_ptr<ConstantFactor> block)
+        : mass_(model), R_(std::move(R)), C_(std::move(C)), block_(std::move(block)),
+          X_(static_cast<Eigen::Index>(C_.size()), static_cast<Eigen::Index>(R_.size())),
+          z_(static_cast<Eigen::Index>(C_.size())), x_R_(static_cast<Eigen::Index>(R_.size()))
+    {
+    }
+    bool prepare(const HubInput& u, const double* q) override
+    {
+        const MatrixXd& M = factored_ ? mass_.varying(u, q) : mass_.full(u, q);
+        const auto r = static_cast<Eigen::Index>(R_.size()), c = static_cast<Eigen::Index>(C_.size());
+        if (!factored_) {
+            MatrixXd block(c, c);
+            for (Eigen::Index i = 0; i < c; ++i)
+                for (Eigen::Index j = 0; j < c; ++j) block(i, j) = M(C_[i], C_[j]);
+            if (!block_->factor(block)) return false;
+            factored_ = true;
+        }
+        for (Eigen::Index k = 0; k < r; ++k) {
+            for (Eigen::Index i = 0; i < c; ++i) X_(i, k) = M(C_[i], R_[k]);
+            block_->solve(X_.col(k).data());
+        }
+        return schur_.factor(static_cast<int>(r), [&](int i, int j) {
+            double s = M(R_[i], R_[j]);
+            for (Eigen::Index k = 0; k < c; ++k) s -= M(R_[i], C_[k]) * X_(k, j);
+            return s;
+        });
+    }
+    void solve(double* b, int columns) const override
+    {
+        const MatrixXd& M = mass_.matrix();
+        const auto r = static_cast<Eigen::Index>(R_.size()), c = static_cast<Eigen::Index>(C_.size());
+        for (int col = 0; col < columns; ++col) {
+            double* x = b + static_cast<std::ptrdiff_t>(col) * (r + c);
+            for (Eigen::Index i = 0; i < c; ++i) z_(i) = x[C_[i]];
+            block_->solve(z_.data());
+            for (Eigen::Index i = 0; i < r; ++i) {
+                double s = x[R_[i]];
+                for (Eigen::Index k = 0; k < c; ++k) s -= M(R_[i], C_[k]) * z_(k);
+                x_R_(i) = s;
+            }
+            schur_.solve(x_R_.data());
+            for (Eigen::Index i = 0; i < r; ++i) x[R_[i]] = x_R_(i);
+            for (Eigen::Index i = 0; i < c; ++i) x[C_[i]] = z_(i) - X_.row(i).dot(x_R_);
+        }
+    }
+    std::string describe() const override
+    {
+        return "Schur complement over " + std::to_string(R_.size()) + " varying row(s), " + block_->describe() +
+               " of the constant block, factored once";
+    }
+
+private:
+    Evaluated mass_;
+    std::vector<int> R_, C_;
+    std::unique_ptr<ConstantFactor> block_;
+    MatrixXd X_;
+    mutable VectorXd z_, x_R_;
+    SmallCholesky schur_;
+    bool factored_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<MassSolver> MassSolver::make(const Model& model)
+{
+    const int n = model.nq();
+    const std::string pattern = model.mass_pattern();
+    const auto varies = [&](int i, int j) { return pattern[static_cast<std::size_t>(i * n + j)] == 'v'; };
+    // R: rows (and columns) that together hold every varying entry, so that the block on the rest is constant.
+    // A varying diagonal entry forces its row in; the remaining entries are covered greedily, the row with the
+    // most uncovered entries first (under hub torque R = {theta}, whose row holds every varying entry).
+    std::vector<bool> in_R(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i) in_R[static_cast<std::size_t>(i)] = varies(i, i);
+    for (;;) {
+        int best = -1, best_count = 0;
+        for (int i = 0; i < n; ++i) {
+            if (in_R[static_cast<std::size_t>(i)]) continue;
+            int count = 0;
+            for (int j = 0; j < n; ++j) count += varies(i, j) && !in_R[static_cast<std::size_t>(j)];
+            if (count > best_count) best = i, best_count = count;
+        }
+        if (best < 0) break;
+        in_R[static_cast<std::size_t>(best)] = true;
+    }
+    std::vector<int> R, C;
+    for (int i = 0; i < n; ++i) (in_R[static_cast<std::size_t>(i)] ? R : C).push_back(i);
+    if (R.empty()) return std::make_unique<ConstantSolver>(model, constant_factor(pattern, n, C));
+    // Eliminating r varying rows costs about r solves with the constant block per evaluation: worth it while
+    // r is small against n (a dense factorization costs n^3/6).
+    if (!C.empty() && 4 * R.size() <= C.size()) {
+        auto block = constant_factor(pattern, n, C);
+        return std::make_unique<SchurSolver>(model, std::move(R), std::move(C), std::move(block));
+    }
+    return std::make_unique<DenseSolver>(model);
+}
+
+}  // namespace hubbeam
