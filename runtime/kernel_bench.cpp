@@ -181,12 +181,14 @@ bool measure(const VariantKey& key, ModelSource source, int samples, KernelBench
     const std::vector<double> y = bench_state(key);
     const int m = system.size();
     std::vector<double> dydt(static_cast<std::size_t>(m)), dfdy(static_cast<std::size_t>(m) * m), dfdt(dydt);
-    if (system.rhs(d.t, y.data(), dydt.data()) != 0 || system.jacobian(d.t, y.data(), dfdy.data(), dfdt.data()) != 0)
-        throw std::runtime_error(key.name() + " (" + model->source() + "): the model fails at the benchmark state");
-
     row.key = key;
     row.source = model->source();
     row.exact_jacobian = model->has_jacobian();
+    // A model that cannot evaluate here (e.g. M numerically indefinite) would time an early return: report it.
+    if (system.rhs(d.t, y.data(), dydt.data()) != 0 || system.jacobian(d.t, y.data(), dfdy.data(), dfdt.data()) != 0) {
+        row.failure = "M is not positive definite (Cholesky fails) or a result is not finite at the benchmark state";
+        return true;
+    }
     row.rhs = time_calls(
         [&] {
             system.rhs(d.t, y.data(), dydt.data());
@@ -236,16 +238,20 @@ void print_line(std::ostream& out, const VariantKey& key, const KernelBenchRow* 
 {
     const auto cells = [&](const KernelBenchRow* r, const CallTiming KernelBenchRow::*which) {
         if (r == nullptr) return pad_left("-", w_ns) + "  " + pad_right("", w_spread);
+        if (!r->failure.empty()) return pad_left("fails", w_ns) + "  " + pad_right("", w_spread);
         return pad_left(ns_text((r->*which).median), w_ns) + "  " + pad_right(spread_text(r->*which), w_spread);
     };
     char ratio[32] = "-";
-    if (gen != nullptr) std::snprintf(ratio, sizeof ratio, "%.2f", as.rhs.median / gen->rhs.median);
-    out << pad_right(to_string(key.method), 7) << pad_right(to_string(key.drive), 11)
+    if (gen != nullptr && gen->failure.empty() && as.failure.empty()) std::snprintf(ratio, sizeof ratio, "%.2f", as.rhs.median / gen->rhs.median);
+    std::ostringstream line;
+    line << pad_right(to_string(key.method), 7) << pad_right(to_string(key.drive), 11)
         << pad_left(std::to_string(key.nx), 4) << pad_left(std::to_string(key.ny), 4)
         << pad_left(std::to_string(key.nq()), 4) << "  " << cells(gen, &KernelBenchRow::rhs)
         << cells(&as, &KernelBenchRow::rhs) << pad_left(ratio, 8) << "  " << cells(gen, &KernelBenchRow::jacobian)
-        << pad_left(ns_text(as.jacobian.median), w_ns) << "  " << spread_text(as.jacobian) << "\n";
-    out.flush();
+        << cells(&as, &KernelBenchRow::jacobian);
+    std::string text = line.str();
+    text.erase(text.find_last_not_of(' ') + 1);
+    out << text << "\n" << std::flush;
 }
 
 void write_csv_row(std::ostream& csv, const KernelBenchRow& r)
@@ -312,7 +318,7 @@ std::vector<KernelBenchRow> run_kernel_bench(const KernelBenchOptions& options, 
     print_header(out);
 
     std::vector<KernelBenchRow> rows;
-    std::vector<std::string> skipped;
+    std::vector<std::string> skipped, failed;
     bool any_capped = false;
     for (const Method method : options.methods)
         for (const Drive drive : options.drives)
@@ -335,6 +341,10 @@ std::vector<KernelBenchRow> run_kernel_bench(const KernelBenchOptions& options, 
                     print_line(out, key, has_gen ? &gen : nullptr, as);
                     for (const KernelBenchRow* r : {has_gen ? &gen : nullptr, &as}) {
                         if (r == nullptr) continue;
+                        if (!r->failure.empty()) {
+                            failed.push_back(key.name() + " (" + r->source + "): " + r->failure);
+                            continue;
+                        }
                         any_capped = any_capped || r->rhs.capped || r->jacobian.capped;
                         if (csv.is_open()) write_csv_row(csv, *r);
                         rows.push_back(*r);
@@ -347,6 +357,7 @@ std::vector<KernelBenchRow> run_kernel_bench(const KernelBenchOptions& options, 
         out << "* a single call took over " << slow_call_seconds * 1e3 << " ms: timed one call at a time, at most "
             << capped_samples << " samples.\n";
     for (const std::string& s : skipped) out << "skipped " << s << "\n";
+    for (const std::string& s : failed) out << "fails " << s << "\n";
     if (csv.is_open()) {
         csv.flush();
         if (!csv) throw std::runtime_error(options.output + ": write failed");

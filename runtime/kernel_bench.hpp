@@ -59,11 +59,12 @@ struct KernelBenchRow {
     std::string source;  // "generated" or "assembled"
     CallTiming rhs, jacobian;
     bool exact_jacobian = false;  // false: the finite-difference fallback
+    std::string failure;          // non-empty: the model fails at the benchmark state, nothing was timed
 };
 
 /// Runs the grid, printing an aligned table to out as rows are measured (skipped variants and capped timings
-/// noted below it) and writing the CSV if options.output is set. Throws std::runtime_error if the CSV cannot be
-/// created (before anything is timed) or a model fails at the benchmark state.
+/// and models that fail at the benchmark state noted below it) and writing the CSV (timed rows) if options.output
+/// is set. Throws KernelOptionError if the CSV cannot be created (before anything is timed).
 std::vector<KernelBenchRow> run_kernel_bench(const KernelBenchOptions& options, std::ostream& out);
 
 }  // namespace hubbeam
