@@ -111,8 +111,8 @@ std::vector<double> bench_state(const VariantKey& key)
     const int n = key.nq();
     std::vector<double> y(2 * static_cast<std::size_t>(n));
     if (key.drive == Drive::torque) {
-        y[0] = 1.0;      // theta
-        y[n] = 1.0;      // theta_dot
+        y[0] = 1.0;  // theta
+        y[n] = 1.0;  // theta_dot
     }
     for (int i = 0; i < key.nx; ++i) {
         y[key.first_a() + i] = 1e-4 / (i + 1);
@@ -217,8 +217,14 @@ std::string spread_text(const CallTiming& t)
     return ns_text(t.min) + "-" + ns_text(t.max) + (t.capped ? " *" : "");
 }
 
-std::string pad_left(const std::string& s, std::size_t w) { return std::string(w > s.size() ? w - s.size() : 0, ' ') + s; }
-std::string pad_right(const std::string& s, std::size_t w) { return s + std::string(w > s.size() ? w - s.size() : 0, ' '); }
+std::string pad_left(const std::string& s, std::size_t w)
+{
+    return std::string(w > s.size() ? w - s.size() : 0, ' ') + s;
+}
+std::string pad_right(const std::string& s, std::size_t w)
+{
+    return s + std::string(w > s.size() ? w - s.size() : 0, ' ');
+}
 
 // Fixed widths, so that rows can be printed as they are measured: a long grid shows its progress.
 constexpr std::size_t w_ns = 10, w_spread = 20;
@@ -242,13 +248,14 @@ void print_line(std::ostream& out, const VariantKey& key, const KernelBenchRow* 
         return pad_left(ns_text((r->*which).median), w_ns) + "  " + pad_right(spread_text(r->*which), w_spread);
     };
     char ratio[32] = "-";
-    if (gen != nullptr && gen->failure.empty() && as.failure.empty()) std::snprintf(ratio, sizeof ratio, "%.2f", as.rhs.median / gen->rhs.median);
+    if (gen != nullptr && gen->failure.empty() && as.failure.empty())
+        std::snprintf(ratio, sizeof ratio, "%.2f", as.rhs.median / gen->rhs.median);
     std::ostringstream line;
     line << pad_right(to_string(key.method), 7) << pad_right(to_string(key.drive), 11)
-        << pad_left(std::to_string(key.nx), 4) << pad_left(std::to_string(key.ny), 4)
-        << pad_left(std::to_string(key.nq()), 4) << "  " << cells(gen, &KernelBenchRow::rhs)
-        << cells(&as, &KernelBenchRow::rhs) << pad_left(ratio, 8) << "  " << cells(gen, &KernelBenchRow::jacobian)
-        << cells(&as, &KernelBenchRow::jacobian);
+         << pad_left(std::to_string(key.nx), 4) << pad_left(std::to_string(key.ny), 4)
+         << pad_left(std::to_string(key.nq()), 4) << "  " << cells(gen, &KernelBenchRow::rhs)
+         << cells(&as, &KernelBenchRow::rhs) << pad_left(ratio, 8) << "  " << cells(gen, &KernelBenchRow::jacobian)
+         << cells(&as, &KernelBenchRow::jacobian);
     std::string text = line.str();
     text.erase(text.find_last_not_of(' ') + 1);
     out << text << "\n" << std::flush;
@@ -257,10 +264,9 @@ void print_line(std::ostream& out, const VariantKey& key, const KernelBenchRow* 
 void write_csv_row(std::ostream& csv, const KernelBenchRow& r)
 {
     char buf[256];
-    std::snprintf(buf, sizeof buf, "%s,%s,%d,%d,%d,%s,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f\n",
-                  to_string(r.key.method).c_str(), to_string(r.key.drive).c_str(), r.key.nx, r.key.ny, r.key.nq(),
-                  r.source.c_str(), r.rhs.median, r.rhs.min, r.rhs.max, r.jacobian.median, r.jacobian.min,
-                  r.jacobian.max);
+    std::snprintf(buf, sizeof buf, "%s,%s,%d,%d,%d,%s,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f\n", to_string(r.key.method).c_str(),
+                  to_string(r.key.drive).c_str(), r.key.nx, r.key.ny, r.key.nq(), r.source.c_str(), r.rhs.median,
+                  r.rhs.min, r.rhs.max, r.jacobian.median, r.jacobian.min, r.jacobian.max);
     csv << buf;
 }
 
@@ -285,12 +291,15 @@ KernelBenchOptions parse_kernel_options(const KernelArgs& args)
         if (!parse(s, v)) bad("--drives", "a comma-separated list of prescribed, torque", s);
         add_unique(o.drives, v);
     }
-    if (args.nx_equal_ny) o.nx = {nx_equal_ny};
-    else if (args.nx0) o.nx = {0};
+    if (args.nx_equal_ny)
+        o.nx = {nx_equal_ny};
+    else if (args.nx0)
+        o.nx = {0};
     else
         for (const std::string& s : split(args.nx)) {
             int v = 0;
-            if (s == "ny") v = nx_equal_ny;
+            if (s == "ny")
+                v = nx_equal_ny;
             else if (!parse_int(s, 0, max_dof, v))
                 bad("--nx", "a comma-separated list of integers from 0 to " + std::to_string(max_dof) + " or ny", s);
             add_unique(o.nx, v);
@@ -306,7 +315,8 @@ std::vector<KernelBenchRow> run_kernel_bench(const KernelBenchOptions& options, 
     std::ofstream csv;
     if (!options.output.empty()) {
         csv.open(options.output);
-        if (!csv) throw KernelOptionError("-o: cannot open " + options.output + " for writing: " + std::strerror(errno));
+        if (!csv)
+            throw KernelOptionError("-o: cannot open " + options.output + " for writing: " + std::strerror(errno));
         csv << "method,drive,nx,ny,nq,source,ns_rhs,ns_rhs_min,ns_rhs_max,ns_jac,ns_jac_min,ns_jac_max\n";
     }
 
