@@ -4,6 +4,7 @@
 //
 //   hubbeam run SCENE.toml [--method M] [--nx N] [--ny N] ... [-o FILE]   (options: scene_keys() in scene.cpp)
 //   hubbeam variants
+//   hubbeam kernels [--ny LIST] [--methods LIST] [--drives LIST] [--nx LIST] [--samples N] [-o FILE]
 //
 // Exit codes: 0 success; 1 the simulation stopped early (rows so far kept); 2 bad input (nothing computed).
 #include <CLI/CLI.hpp>
@@ -18,6 +19,7 @@
 
 #include "generated_model.hpp"
 #include "integrate.hpp"
+#include "kernel_bench.hpp"
 #include "output.hpp"
 #include "scene.hpp"
 #include "simulate.hpp"
@@ -125,6 +127,36 @@ int list_variants()
     return exit_ok;
 }
 
+/// Declares the `kernels` options; all are taken as text and checked by parse_kernel_options, so that every bad
+/// value is reported as "--option: expected ..., got ...".
+void add_kernel_options(CLI::App& sub, KernelArgs& a)
+{
+    sub.add_option("--ny", a.ny, "Ny values, comma-separated (default " + a.ny + ")")->type_name("LIST");
+    sub.add_option("--methods", a.methods, "Methods, comma-separated (default " + a.methods + ")")->type_name("LIST");
+    sub.add_option("--drives", a.drives, "Drives, comma-separated (default " + a.drives + ")")->type_name("LIST");
+    CLI::Option* nx = sub.add_option("--nx", a.nx, "Nx values, comma-separated; 'ny' is Nx = Ny (default " + a.nx + ")")
+                          ->type_name("LIST");
+    CLI::Option* equal = sub.add_flag("--nx-equal-ny", a.nx_equal_ny, "Only Nx = Ny (same as --nx ny)");
+    CLI::Option* zero = sub.add_flag("--nx0", a.nx0, "Only Nx = 0 (same as --nx 0)");
+    nx->excludes(equal)->excludes(zero);
+    equal->excludes(zero);
+    sub.add_option("--samples", a.samples, "Timed samples per measurement, median reported (default 7)")
+        ->type_name("N");
+    sub.add_option("-o,--output", a.output, "Also write the results as CSV to FILE")->type_name("FILE");
+}
+
+/// hubbeam kernels: returns the exit code.
+int kernels(const KernelArgs& args)
+{
+    try {
+        run_kernel_bench(parse_kernel_options(args), std::cout);
+    } catch (const KernelOptionError& e) {
+        std::cerr << e.what() << "\n";
+        return exit_bad_input;
+    }
+    return exit_ok;
+}
+
 }  // namespace
 
 int main(int argc, char** argv)
@@ -141,6 +173,11 @@ int main(int argc, char** argv)
         "far kept), 2 bad input (one line on stderr, nothing computed).");
     add_run_options(*run_cmd, options);
     CLI::App* variants_cmd = app.add_subcommand("variants", "List the variants generated into this build");
+    KernelArgs kernel_args;
+    CLI::App* kernels_cmd = app.add_subcommand(
+        "kernels", "Time the right-hand side and Jacobian per call, generated kernels against the assembled path");
+    kernels_cmd->footer("Prints a table (ns per call); exit code 2 for a bad option value.");
+    add_kernel_options(*kernels_cmd, kernel_args);
 
     try {
         app.parse(argc, argv);
@@ -153,6 +190,7 @@ int main(int argc, char** argv)
     try {
         if (run_cmd->parsed()) return run(*run_cmd, options);
         if (variants_cmd->parsed()) return list_variants();
+        if (kernels_cmd->parsed()) return kernels(kernel_args);
     } catch (const std::exception& e) {
         std::cerr << "hubbeam: " << e.what() << "\n";
         return exit_stopped;

@@ -1,0 +1,379 @@
+// hubbeam kernels: times FirstOrderSystem::rhs and ::jacobian at one fixed state, per variant and model source.
+#include "kernel_bench.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <memory>
+#include <ostream>
+#include <sstream>
+#include <string_view>
+
+#include "integrate.hpp"
+#include "make_model.hpp"
+#include "motion.hpp"
+
+namespace hubbeam {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// A sample long enough that steady_clock's resolution and the loop overhead vanish, short enough that the
+// default grid (about 160 timings of 7 samples) finishes in well under a minute.
+constexpr double sample_seconds = 0.020;
+// Above this a call is timed alone, a few times: the finite-difference Jacobian of the assembled path at
+// nq ~ 65 is thousands of right-hand sides, and 7 samples of 20 ms would not hold it anyway.
+constexpr double slow_call_seconds = 0.010;
+constexpr int capped_samples = 3;
+// Upper bound on DOF counts: beyond it one assembled finite-difference Jacobian takes seconds, and a typo
+// (--ny 400) would look like a hang.
+constexpr int max_dof = 128;
+
+// Every timed result ends up here, so the compiler must make every call (the outputs are read).
+volatile double sink = 0.0;
+
+std::vector<std::string> split(std::string_view text)
+{
+    std::vector<std::string> items;
+    std::size_t start = 0;
+    while (true) {
+        const std::size_t comma = text.find(',', start);
+        items.emplace_back(text.substr(start, comma == std::string_view::npos ? comma : comma - start));
+        if (comma == std::string_view::npos) return items;
+        start = comma + 1;
+    }
+}
+
+[[noreturn]] void bad(const std::string& option, const std::string& expected, const std::string& got)
+{
+    throw KernelOptionError(option + ": expected " + expected + ", got " + (got.empty() ? "an empty item" : got));
+}
+
+/// A whole item as an integer in [lo, hi], or false.
+bool parse_int(const std::string& s, int lo, int hi, int& v)
+{
+    if (s.empty()) return false;
+    std::size_t used = 0;
+    try {
+        v = std::stoi(s, &used);
+    } catch (const std::exception&) {
+        return false;
+    }
+    return used == s.size() && v >= lo && v <= hi;
+}
+
+template <class T>
+void add_unique(std::vector<T>& v, const T& x)
+{
+    if (std::find(v.begin(), v.end(), x) == v.end()) v.push_back(x);
+}
+
+std::string join(const std::vector<std::string>& words)
+{
+    std::string s;
+    for (const std::string& w : words) s += (s.empty() ? "" : ", ") + w;
+    return s;
+}
+
+/// The drive of a benchmark row, at an instant mid-way through it: the spin-up still accelerating (theta_ddot
+/// != 0, so the prescribed forces have every term), the torque pulse still on.
+struct BenchDrive {
+    Motion motion;
+    double t;
+};
+
+BenchDrive bench_drive(Drive d)
+{
+    BenchDrive b;
+    if (d == Drive::prescribed) {
+        b.motion.kind = Motion::Kind::spin_up;
+        b.motion.omega0 = 4.0;
+        b.motion.spin_time = 15.0;
+        b.t = 6.3;
+    } else {
+        b.motion.kind = Motion::Kind::torque;
+        b.motion.tau0 = 10.0;
+        b.motion.torque_time = 10.0;
+        b.t = 3.1;
+    }
+    return b;
+}
+
+/// y = (q, qd) of a deflected, moving beam. The values do not change the operation count; they only have to
+/// be a valid state (M positive definite, finite results) of the size a real run sees.
+std::vector<double> bench_state(const VariantKey& key)
+{
+    const int n = key.nq();
+    std::vector<double> y(2 * static_cast<std::size_t>(n));
+    if (key.drive == Drive::torque) {
+        y[0] = 1.0;  // theta
+        y[n] = 1.0;  // theta_dot
+    }
+    for (int i = 0; i < key.nx; ++i) {
+        y[key.first_a() + i] = 1e-4 / (i + 1);
+        y[n + key.first_a() + i] = 1e-3 / (i + 1);  // axial rates: the axial field is stiff, its rates small
+    }
+    for (int i = 0; i < key.ny; ++i) {
+        y[key.first_b() + i] = 0.1 / (i + 1);
+        y[n + key.first_b() + i] = 1.0 / (i + 1);
+    }
+    return y;
+}
+
+/// Seconds for reps calls; call() returns one number of each result, summed into the sink.
+template <class Call>
+double seconds_for(Call& call, long reps)
+{
+    double acc = 0.0;
+    const Clock::time_point start = Clock::now();
+    for (long i = 0; i < reps; ++i) acc += call();
+    const Clock::time_point stop = Clock::now();
+    sink = sink + acc;
+    return std::chrono::duration<double>(stop - start).count();
+}
+
+/// Calibrates the repetitions to ~sample_seconds per sample, then the median and range of samples samples.
+template <class Call>
+CallTiming time_calls(Call call, int samples)
+{
+    CallTiming t;
+    seconds_for(call, 1);  // warm-up: caches, first-touch pages, the one-time factorization of a constant M
+    const double one = seconds_for(call, 1);
+    if (one > slow_call_seconds) {
+        t.capped = true;
+        t.repetitions = 1;
+        samples = std::min(samples, capped_samples);
+    } else {
+        long reps = 1;
+        double s = 0.0;
+        while ((s = seconds_for(call, reps)) < sample_seconds / 8) reps *= 2;  // at least 2.5 ms to scale from
+        t.repetitions = std::max(1L, std::lround(static_cast<double>(reps) * sample_seconds / s));
+    }
+    std::vector<double> ns(static_cast<std::size_t>(samples));
+    for (double& x : ns) x = seconds_for(call, t.repetitions) / static_cast<double>(t.repetitions) * 1e9;
+    std::sort(ns.begin(), ns.end());
+    const std::size_t m = ns.size() / 2;
+    t.median = ns.size() % 2 ? ns[m] : 0.5 * (ns[m - 1] + ns[m]);
+    t.min = ns.front();
+    t.max = ns.back();
+    t.samples = samples;
+    return t;
+}
+
+/// Times the model of key from source into row; false when the build has no generated model of key.
+bool measure(const VariantKey& key, ModelSource source, int samples, KernelBenchRow& row)
+{
+    const Parameters p;  // the paper's beam (docs/model.md section 6)
+    std::unique_ptr<Model> model;
+    try {
+        model = make_model(key, p, source);
+    } catch (const std::invalid_argument&) {
+        if (source == ModelSource::generated) return false;  // not generated into this build: the "-" cells
+        throw;
+    }
+    const BenchDrive d = bench_drive(key.drive);
+    FirstOrderSystem system(*model, d.motion);
+    const std::vector<double> y = bench_state(key);
+    const int m = system.size();
+    std::vector<double> dydt(static_cast<std::size_t>(m)), dfdy(static_cast<std::size_t>(m) * m), dfdt(dydt);
+    row.key = key;
+    row.source = model->source();
+    row.exact_jacobian = model->has_jacobian();
+    // A model that cannot evaluate here (e.g. M numerically indefinite) would time an early return: report it.
+    if (system.rhs(d.t, y.data(), dydt.data()) != 0 || system.jacobian(d.t, y.data(), dfdy.data(), dfdt.data()) != 0) {
+        row.failure = "M is not positive definite (Cholesky fails) or a result is not finite at the benchmark state";
+        return true;
+    }
+    row.rhs = time_calls(
+        [&] {
+            system.rhs(d.t, y.data(), dydt.data());
+            return dydt[m - 1];
+        },
+        samples);
+    row.jacobian = time_calls(
+        [&] {
+            system.jacobian(d.t, y.data(), dfdy.data(), dfdt.data());
+            return dfdy[static_cast<std::size_t>(m) * m - 1];
+        },
+        samples);
+    return true;
+}
+
+/// ns for the table: integers from 100 up, one decimal below (the fast generated right-hand sides).
+std::string ns_text(double ns)
+{
+    char buf[32];
+    std::snprintf(buf, sizeof buf, ns >= 100.0 ? "%.0f" : "%.1f", ns);
+    return buf;
+}
+
+std::string spread_text(const CallTiming& t)
+{
+    return ns_text(t.min) + "-" + ns_text(t.max) + (t.capped ? " *" : "");
+}
+
+std::string pad_left(const std::string& s, std::size_t w)
+{
+    return std::string(w > s.size() ? w - s.size() : 0, ' ') + s;
+}
+std::string pad_right(const std::string& s, std::size_t w)
+{
+    return s + std::string(w > s.size() ? w - s.size() : 0, ' ');
+}
+
+// Fixed widths, so that rows can be printed as they are measured: a long grid shows its progress.
+constexpr std::size_t w_ns = 10, w_spread = 20;
+
+/// The table's two header lines.
+void print_header(std::ostream& out)
+{
+    out << pad_right("method", 7) << pad_right("drive", 11) << pad_left("nx", 4) << pad_left("ny", 4)
+        << pad_left("nq", 4) << "  " << pad_left("rhs gen", w_ns) << "  " << pad_right("(min-max)", w_spread)
+        << pad_left("rhs asm", w_ns) << "  " << pad_right("(min-max)", w_spread) << pad_left("asm/gen", 8) << "  "
+        << pad_left("jac gen", w_ns) << "  " << pad_right("(min-max)", w_spread) << pad_left("jac asm", w_ns) << "  "
+        << "(min-max)\n";
+}
+
+/// One table line per variant: the generated row (or "-") beside the assembled one.
+void print_line(std::ostream& out, const VariantKey& key, const KernelBenchRow* gen, const KernelBenchRow& as)
+{
+    const auto cells = [&](const KernelBenchRow* r, const CallTiming KernelBenchRow::*which) {
+        if (r == nullptr) return pad_left("-", w_ns) + "  " + pad_right("", w_spread);
+        if (!r->failure.empty()) return pad_left("fails", w_ns) + "  " + pad_right("", w_spread);
+        return pad_left(ns_text((r->*which).median), w_ns) + "  " + pad_right(spread_text(r->*which), w_spread);
+    };
+    char ratio[32] = "-";
+    if (gen != nullptr && gen->failure.empty() && as.failure.empty())
+        std::snprintf(ratio, sizeof ratio, "%.2f", as.rhs.median / gen->rhs.median);
+    std::ostringstream line;
+    line << pad_right(to_string(key.method), 7) << pad_right(to_string(key.drive), 11)
+         << pad_left(std::to_string(key.nx), 4) << pad_left(std::to_string(key.ny), 4)
+         << pad_left(std::to_string(key.nq()), 4) << "  " << cells(gen, &KernelBenchRow::rhs)
+         << cells(&as, &KernelBenchRow::rhs) << pad_left(ratio, 8) << "  " << cells(gen, &KernelBenchRow::jacobian)
+         << cells(&as, &KernelBenchRow::jacobian);
+    std::string text = line.str();
+    text.erase(text.find_last_not_of(' ') + 1);
+    out << text << "\n" << std::flush;
+}
+
+void write_csv_row(std::ostream& csv, const KernelBenchRow& r)
+{
+    char buf[256];
+    std::snprintf(buf, sizeof buf, "%s,%s,%d,%d,%d,%s,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f\n", to_string(r.key.method).c_str(),
+                  to_string(r.key.drive).c_str(), r.key.nx, r.key.ny, r.key.nq(), r.source.c_str(), r.rhs.median,
+                  r.rhs.min, r.rhs.max, r.jacobian.median, r.jacobian.min, r.jacobian.max);
+    csv << buf;
+}
+
+}  // namespace
+
+KernelBenchOptions parse_kernel_options(const KernelArgs& args)
+{
+    KernelBenchOptions o;
+    const std::string dofs = "from 1 to " + std::to_string(max_dof);
+    for (const std::string& s : split(args.ny)) {
+        int v = 0;
+        if (!parse_int(s, 1, max_dof, v)) bad("--ny", "a comma-separated list of integers " + dofs, s);
+        add_unique(o.ny, v);
+    }
+    for (const std::string& s : split(args.methods)) {
+        Method v{};
+        if (!parse(s, v)) bad("--methods", "a comma-separated list of " + join(words<Method>()), s);
+        add_unique(o.methods, v);
+    }
+    for (const std::string& s : split(args.drives)) {
+        Drive v{};
+        if (!parse(s, v)) bad("--drives", "a comma-separated list of prescribed, torque", s);
+        add_unique(o.drives, v);
+    }
+    if (args.nx_equal_ny)
+        o.nx = {nx_equal_ny};
+    else if (args.nx0)
+        o.nx = {0};
+    else
+        for (const std::string& s : split(args.nx)) {
+            int v = 0;
+            if (s == "ny")
+                v = nx_equal_ny;
+            else if (!parse_int(s, 0, max_dof, v))
+                bad("--nx", "a comma-separated list of integers from 0 to " + std::to_string(max_dof) + " or ny", s);
+            add_unique(o.nx, v);
+        }
+    if (!parse_int(args.samples, 1, 1000, o.samples)) bad("--samples", "an integer from 1 to 1000", args.samples);
+    o.output = args.output;
+    return o;
+}
+
+std::vector<KernelBenchRow> run_kernel_bench(const KernelBenchOptions& options, std::ostream& out)
+{
+    // The CSV is created first so that a bad path costs nothing.
+    std::ofstream csv;
+    if (!options.output.empty()) {
+        csv.open(options.output);
+        if (!csv)
+            throw KernelOptionError("-o: cannot open " + options.output + " for writing: " + std::strerror(errno));
+        csv << "method,drive,nx,ny,nq,source,ns_rhs,ns_rhs_min,ns_rhs_max,ns_jac,ns_jac_min,ns_jac_max\n";
+    }
+
+    out << "ns per call: median of " << options.samples << " samples of ~" << sample_seconds * 1e3
+        << " ms each, (min-max) over the samples; order first.\n"
+           "rhs = FirstOrderSystem::rhs (M factored once when it is constant, as in a run); jac = "
+           "FirstOrderSystem::jacobian\n(generated: the exact derivative kernels; assembled: central differences, "
+           "4 nq + 2 right-hand sides).\n\n";
+    print_header(out);
+
+    std::vector<KernelBenchRow> rows;
+    std::vector<std::string> skipped, failed;
+    bool any_capped = false;
+    for (const Method method : options.methods)
+        for (const Drive drive : options.drives)
+            for (const int ny : options.ny) {
+                std::vector<int> nxs;
+                for (const int nx : options.nx) add_unique(nxs, nx == nx_equal_ny ? ny : nx);
+                for (const int nx : nxs) {
+                    VariantKey key;
+                    key.method = method;
+                    key.drive = drive;
+                    key.nx = nx;
+                    key.ny = ny;
+                    if (const std::string why = key.dof_problem(); !why.empty()) {
+                        skipped.push_back(key.name() + ": " + why);
+                        continue;
+                    }
+                    KernelBenchRow gen, as;
+                    const bool has_gen = measure(key, ModelSource::generated, options.samples, gen);
+                    measure(key, ModelSource::assembled, options.samples, as);
+                    print_line(out, key, has_gen ? &gen : nullptr, as);
+                    for (const KernelBenchRow* r : {has_gen ? &gen : nullptr, &as}) {
+                        if (r == nullptr) continue;
+                        if (!r->failure.empty()) {
+                            failed.push_back(key.name() + " (" + r->source + "): " + r->failure);
+                            continue;
+                        }
+                        any_capped = any_capped || r->rhs.capped || r->jacobian.capped;
+                        if (csv.is_open()) write_csv_row(csv, *r);
+                        rows.push_back(*r);
+                    }
+                }
+            }
+
+    out << "\nasm/gen = assembled rhs / generated rhs; \"-\": the variant is not generated into this build.\n";
+    if (any_capped)
+        out << "* a single call took over " << slow_call_seconds * 1e3 << " ms: timed one call at a time, at most "
+            << capped_samples << " samples.\n";
+    for (const std::string& s : skipped) out << "skipped " << s << "\n";
+    for (const std::string& s : failed) out << "fails " << s << "\n";
+    if (csv.is_open()) {
+        csv.flush();
+        if (!csv) throw std::runtime_error(options.output + ": write failed");
+        out << "CSV: " << options.output << "\n";
+    }
+    return rows;
+}
+
+}  // namespace hubbeam
