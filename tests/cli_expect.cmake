@@ -12,7 +12,11 @@
 #                                                             and no temporary file is left beside the CSV
 string(REPLACE "|" ";" ARGS "${ARGS}")
 if(DEFINED CSV)
-  file(REMOVE ${CSV})
+  # and the temporary files an earlier, killed run may have left (the check below is for this run's)
+  get_filename_component(dir ${CSV} DIRECTORY)
+  get_filename_component(name ${CSV} NAME)
+  file(GLOB stale ${dir}/.${name}.tmp-*)
+  file(REMOVE ${CSV} ${stale})
 endif()
 if(DEFINED KEEP_FILE)
   file(WRITE ${KEEP_FILE} "old contents\n")
