@@ -6,8 +6,10 @@
 //   hubbeam variants
 //   hubbeam kernels [--ny LIST] [--methods LIST] [--drives LIST] [--nx LIST] [--samples N] [-o FILE]
 //
-// Exit codes: 0 success; 1 the simulation stopped early (rows so far kept); 2 bad input (nothing computed).
+// Exit codes: 0 success; 1 the simulation stopped early (rows so far kept); 2 bad input (nothing computed);
+// 130 / 143 interrupted by SIGINT / SIGTERM (rows so far kept).
 #include <CLI/CLI.hpp>
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -24,6 +26,8 @@
 #include "scene.hpp"
 #include "simulate.hpp"
 
+#include <signal.h>
+
 namespace {
 
 using namespace hubbeam;
@@ -31,6 +35,40 @@ using namespace hubbeam;
 constexpr int exit_ok = 0;
 constexpr int exit_stopped = 1;
 constexpr int exit_bad_input = 2;
+constexpr int exit_signal_base = 128;  // the shell's convention: 128 + the signal's number (130, 143)
+
+constexpr const char* interrupted = "interrupted by signal";
+
+/// The signal that asked the run to stop, 0 if none: the handler only sets it, the integration loop reads it
+/// between rows (through the StopRequest), so the file is finished outside the handler.
+volatile std::sig_atomic_t stop_signal = 0;
+
+/// SIGINT / SIGTERM handler. A second signal while the first is being honoured kills at once (the default
+/// action), for a user who does not want to wait for the next row; the temporary file is then left behind.
+extern "C" void on_stop_signal(int sig)
+{
+    if (stop_signal != 0) {
+        ::signal(sig, SIG_DFL);  // both async-signal-safe; sig is blocked until the handler returns
+        ::raise(sig);
+        return;
+    }
+    stop_signal = sig;
+}
+
+/// Routes SIGINT and SIGTERM to on_stop_signal, except a signal the parent set to be ignored (a shell's
+/// background job ignores SIGINT, and should go on doing so).
+void catch_stop_signals()
+{
+    struct sigaction action {};
+    action.sa_handler = on_stop_signal;
+    sigemptyset(&action.sa_mask);
+    action.sa_flags = SA_RESTART;
+    for (const int sig : {SIGINT, SIGTERM}) {
+        struct sigaction previous {};
+        if (::sigaction(sig, nullptr, &previous) == 0 && previous.sa_handler == SIG_IGN) continue;
+        ::sigaction(sig, &action, nullptr);
+    }
+}
 
 /// The `run` options: one per scene key that has an option (scene_keys()), plus the scene file.
 struct RunOptions {
@@ -98,6 +136,9 @@ int run(const CLI::App& sub, const RunOptions& o)
         std::cerr << scene.path << ": " << e.what() << "\n";
         return exit_bad_input;
     }
+    // Caught before the temporary file exists: from here on a signal ends the run on a whole row and the file
+    // is still put in place. (Before, the default action ends the process with nothing created.)
+    catch_stop_signals();
     std::unique_ptr<CsvWriter> csv;
     try {
         csv = std::make_unique<CsvWriter>(scene.output.file);
@@ -106,16 +147,23 @@ int run(const CLI::App& sub, const RunOptions& o)
         return exit_bad_input;
     }
 
-    const RunSummary summary = simulation->run(csv->sink());
+    // An exception out of run() unwinds through ~CsvWriter, which finishes the file the same way.
+    const StopRequest stop = [&csv]() -> const char* {
+        if (stop_signal != 0) return interrupted;
+        if (!csv->ok()) return "the output could not be written";  // no use computing rows that cannot be kept
+        return nullptr;
+    };
+    const RunSummary summary = simulation->run(csv->sink(), stop);
+    csv->finish();
     std::cout << format_summary(summary, scene);
     if (!csv->ok()) {
-        std::cerr << csv->path() << ": write failed after " << csv->rows() << " rows\n";
+        std::cerr << csv->error() << "\n";
         return exit_stopped;
     }
     if (!summary.completed) {
         std::cerr << "hubbeam: stopped at t = " << summary.t_reached << " s: " << summary.failure << " (" << csv->rows()
                   << " rows kept in " << csv->path() << ")\n";
-        return exit_stopped;
+        return summary.failure == interrupted ? exit_signal_base + stop_signal : exit_stopped;
     }
     return exit_ok;
 }
@@ -163,14 +211,16 @@ int main(int argc, char** argv)
 {
     CLI::App app{
         "hubbeam: rotating flexible hub-beam simulator (equations derived by GiNaC, integrated by GSL).\n"
-        "Exit codes: 0 success, 1 simulation stopped early (rows so far kept), 2 bad input."};
+        "Exit codes: 0 success, 1 simulation stopped early (rows so far kept), 2 bad input, 130/143 interrupted\n"
+        "by SIGINT/SIGTERM (rows so far kept)."};
     app.require_subcommand(1);
 
     RunOptions options;
     CLI::App* run_cmd = app.add_subcommand("run", "Simulate a scene file and write its response as CSV");
     run_cmd->footer(
         "Options override the scene's keys. Exit codes: 0 success, 1 simulation stopped early (rows so "
-        "far kept), 2 bad input (one line on stderr, nothing computed).");
+        "far kept), 2 bad input (one line on stderr, nothing computed), 130/143 interrupted by SIGINT/SIGTERM "
+        "(rows so far kept). The CSV is written to DIR/.NAME.tmp-PID and renamed over FILE when the run ends.");
     add_run_options(*run_cmd, options);
     CLI::App* variants_cmd = app.add_subcommand("variants", "List the variants generated into this build");
     KernelArgs kernel_args;

@@ -101,7 +101,7 @@ Simulation::Simulation(const Scene& scene) : scene_(scene)
 
 Simulation::~Simulation() = default;
 
-RunSummary Simulation::run(const RowSink& sink)
+RunSummary Simulation::run(const RowSink& sink, const StopRequest& stop)
 {
     const auto start = std::chrono::steady_clock::now();
     const QuietGsl quiet;
@@ -161,6 +161,7 @@ RunSummary Simulation::run(const RowSink& sink)
     const std::vector<double> breaks = breaks_before(motion, clock(rows));
     auto next_break = breaks.begin();
     for (long i = 1; i <= rows; ++i) {
+        if (const char* why = stop ? stop() : nullptr) return finish(why);
         const double ti = clock(i);
         for (; next_break != breaks.end() && *next_break <= ti * (1.0 + same_instant); ++next_break) {
             const double tb = std::abs(*next_break - ti) <= same_instant * ti ? ti : *next_break;

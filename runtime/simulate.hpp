@@ -38,6 +38,9 @@ struct RunSummary {
 };
 
 using RowSink = std::function<void(const Row&)>;
+/// Asked between output rows whether the run should stop (a signal, a failed output): the reason, which becomes
+/// RunSummary::failure, or nullptr to go on. Called from the integrating thread, so it needs no locking.
+using StopRequest = std::function<const char*()>;
 
 class Model;
 
@@ -54,8 +57,9 @@ public:
     const Model& model() const { return *model_; }
 
     /// Integrates from rest; every row reaches sink before the next step is taken, so a failed run keeps all
-    /// rows up to the failure. Does not throw for numerical failure: see RunSummary::completed.
-    RunSummary run(const RowSink& sink);
+    /// rows up to the failure. Before each step to the next row it asks stop (if given), so an interrupted
+    /// run ends on a whole row. Does not throw for numerical failure: see RunSummary::completed.
+    RunSummary run(const RowSink& sink, const StopRequest& stop = {});
 
 private:
     const Scene& scene_;

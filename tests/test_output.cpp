@@ -1,0 +1,153 @@
+// CsvWriter: rows buffered and written in chunks at most 0.1 s apart, into a temporary file renamed over the
+// target at the end (by finish() or the destructor); and Simulation::run stopping between rows when asked.
+#include <catch2/catch.hpp>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <thread>
+
+#include <unistd.h>
+
+#include "output.hpp"
+#include "scene.hpp"
+#include "simulate.hpp"
+
+using namespace hubbeam;
+namespace fs = std::filesystem;
+
+namespace {
+
+/// A fresh directory for one test case, removed with everything in it afterwards.
+struct ScratchDir {
+    fs::path dir = fs::temp_directory_path() / ("hubbeam_test_output_" + std::to_string(::getpid()));
+    ScratchDir()
+    {
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+    }
+    ~ScratchDir() { fs::remove_all(dir); }
+    std::string operator/(const std::string& name) const { return (dir / name).string(); }
+};
+
+std::string contents(const std::string& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+void put(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
+
+Row row_at(double t) { return {t, 2 * t, 3.0, -t, 1e-300, 0.1, 0.3, 1e20, -0.0, 12345.678}; }
+
+/// What the file should hold after the header and these rows.
+std::string expected(std::initializer_list<double> times)
+{
+    std::string s = std::string(row_header()) + "\n";
+    for (double t : times) s += csv_line(row_at(t)) + "\n";
+    return s;
+}
+
+}  // namespace
+
+TEST_CASE("CsvWriter leaves the old file until finish(), then replaces it whole", "[output]")
+{
+    const ScratchDir scratch;
+    const std::string target = scratch / "out.csv";
+    put(target, "old contents\n");
+    CsvWriter csv(target);
+    csv.write(row_at(0.0));
+    csv.write(row_at(0.5));
+    // The rows live in the temporary file, next to the target and named after it and this process.
+    CHECK(csv.writing_path() == scratch / (".out.csv.tmp-" + std::to_string(::getpid())));
+    CHECK(fs::exists(csv.writing_path()));
+    CHECK(contents(target) == "old contents\n");
+    REQUIRE(csv.finish());
+    CHECK(contents(target) == expected({0.0, 0.5}));
+    CHECK(csv.rows() == 2);
+    CHECK_FALSE(fs::exists(csv.writing_path()));
+    CHECK(std::distance(fs::directory_iterator(scratch.dir), fs::directory_iterator()) == 1);
+}
+
+TEST_CASE("CsvWriter buffers rows and writes them at the latest 0.1 s after the previous chunk", "[output]")
+{
+    const ScratchDir scratch;
+    CsvWriter csv(scratch / "out.csv");
+    const std::string header = expected({});
+    CHECK(contents(csv.writing_path()) == header);  // written at once: an unwritable output shows at row 0
+    csv.write(row_at(0.0));
+    CHECK(contents(csv.writing_path()) == header);  // buffered, not a write per row
+    std::this_thread::sleep_for(std::chrono::milliseconds(150));
+    csv.write(row_at(1.0));
+    CHECK(contents(csv.writing_path()) == expected({0.0, 1.0}));
+}
+
+TEST_CASE("CsvWriter: two writers of one path do not mix their rows", "[output]")
+{
+    const ScratchDir scratch;
+    const std::string target = scratch / "out.csv";
+    CsvWriter first(target), second(target);
+    CHECK(first.writing_path() != second.writing_path());
+    for (int i = 0; i < 3000; ++i) {  // several chunks each
+        first.write(row_at(i));
+        second.write(row_at(-i));
+    }
+    REQUIRE(second.finish());
+    REQUIRE(first.finish());
+    std::string all = expected({});
+    for (int i = 0; i < 3000; ++i) all += csv_line(row_at(i)) + "\n";
+    CHECK(contents(target) == all);  // the last to finish, whole
+    CHECK(std::distance(fs::directory_iterator(scratch.dir), fs::directory_iterator()) == 1);
+}
+
+TEST_CASE("CsvWriter puts the file in place when destroyed without finish() (a run ended by an exception)",
+          "[output]")
+{
+    const ScratchDir scratch;
+    const std::string target = scratch / "out.csv";
+    {
+        CsvWriter csv(target);
+        csv.write(row_at(0.25));
+    }
+    CHECK(contents(target) == expected({0.25}));
+}
+
+TEST_CASE("CsvWriter writes each number in its shortest round-trip form", "[output]")
+{
+    const ScratchDir scratch;
+    const std::string target = scratch / "out.csv";
+    const double big = std::numeric_limits<double>::max(), tiny = std::numeric_limits<double>::denorm_min();
+    {
+        CsvWriter csv(target);
+        csv.write({0.03, -big, tiny, -0.0, 1.0 / 3.0, 1e21, 100.0, -1e-7, 0.1 + 0.2, 7.0});
+    }
+    CHECK(contents(target) == std::string(row_header()) + "\n" +
+                                  "0.03,-1.7976931348623157e+308,5e-324,-0,0.3333333333333333,1e+21,100,-1e-07,"
+                                  "0.30000000000000004,7\n");
+}
+
+TEST_CASE("CsvWriter refuses a target it cannot create, leaving nothing behind", "[output]")
+{
+    const ScratchDir scratch;
+    const std::string target = scratch / "no_such_dir/out.csv";
+    CHECK_THROWS_WITH(CsvWriter(target), Catch::StartsWith(target + ": cannot open for writing: No such file"));
+    CHECK(std::distance(fs::directory_iterator(scratch.dir), fs::directory_iterator()) == 0);
+}
+
+TEST_CASE("Simulation::run stops between rows when its StopRequest asks", "[output]")
+{
+    const Scene scene = load_scene(HUBBEAM_SOURCE_DIR "/cases/spinup_omega4.toml", {{"output.t_end", "1"}});
+    std::vector<Row> rows;
+    const RunSummary summary =
+        Simulation(scene).run([&](const Row& r) { rows.push_back(r); },
+                              [&]() -> const char* { return rows.size() == 5 ? "asked to stop" : nullptr; });
+    CHECK_FALSE(summary.completed);
+    CHECK(summary.failure == "asked to stop");
+    REQUIRE(rows.size() == 5);
+    CHECK(summary.t_reached == rows.back().t);
+}
