@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[72]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[54]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void amm_nx0_ny4_torque_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -24,79 +24,61 @@ void amm_nx0_ny4_torque_first_coefficients(const double* p, double* c)
     const double J_oh = p[6];
     c[0] = J_oh + 1.0000000000000042*L*m*a*a + 0.9999999999999994*L*L*m*a + 0.33333333333333326*L*L*L*m;
     c[1] = -1.5708781899942503*m*a - 0.1933363741082551*L*m;
-    c[2] = 0.8446407782182334*m*a + 1.3717105668948544*L*m;
-    c[3] = 2.1441696682118656*m*a + 1.5847584406191648*L*m;
-    c[4] = 1.7462754392825846*m*a + 1.092826547007657*L*m;
+    c[2] = 0.8446407782182334*m*a + 1.371710566894855*L*m;
+    c[3] = 2.1441696682118656*m*a + 1.5847584406191646*L*m;
+    c[4] = 1.7462754392825846*m*a + 1.0928265470076575*L*m;
     c[5] = -8.647142693561207*m*a - 5.478224864076079*L*m;
-    c[6] = -3.7801094160643145*m*a - 0.33881576952304443*L*m;
+    c[6] = -3.7801094160643145*m*a - 0.33881576952304415*L*m;
     c[7] = 7.286769224587888*m*a + 5.823702223235339*L*m;
     c[8] = -24.95211330816909*m*a - 16.85951987986099*L*m;
-    c[9] = -16.676579566391283*m*a - 6.548544128042627*L*m;
+    c[9] = -16.676579566391283*m*a - 6.548544128042626*L*m;
     c[10] = -51.45910507561028*m*a - 35.05538832891042*L*m;
     c[11] = -0.7829917560396262*L*m*a - 0.5688257437099108*L*L*m;
     c[12] = -0.43393589511071945*L*m*a - 0.09076678688638677*L*L*m;
     c[13] = -0.2544252968661058*L*m*a - 0.032416374369744407*L*L*m;
     c[14] = -0.18189802163704866*L*m*a - 0.016542335020850608*L*L*m;
     c[15] = 0.9999999999999999*L*m;
-    c[16] = -3.3263322651855276e-16*L*m;
-    c[17] = 1.2771901591879242e-16*L*m;
-    c[18] = -1.7433970933566911e-16*L*m;
-    c[19] = L*m;
-    c[20] = -1.5135462327897642e-16*L*m;
-    c[21] = -1.1232334506949826e-16*L*m;
-    c[22] = -2.890482991846355e-16*L*m;
-    c[23] = 1.0000000000000004*L*m;
-    c[24] = 3.1417563799885007*m*a + 0.3866727482165102*L*m;
-    c[25] = -0.8446407782182334*m*a - 1.3717105668948544*L*m;
-    c[26] = -2.1441696682118656*m*a - 1.5847584406191648*L*m;
-    c[27] = -1.7462754392825846*m*a - 1.092826547007657*L*m;
-    c[28] = 17.294285387122414*m*a + 10.956449728152158*L*m;
-    c[29] = 3.7801094160643145*m*a + 0.33881576952304443*L*m;
-    c[30] = -7.286769224587888*m*a - 5.823702223235339*L*m;
-    c[31] = 49.90422661633818*m*a + 33.71903975972198*L*m;
-    c[32] = 16.676579566391283*m*a + 6.548544128042627*L*m;
-    c[33] = 102.91821015122056*m*a + 70.11077665782084*L*m;
-    c[34] = -12.362363368326184*EI/(L*L*L);
-    c[35] = 1.666699942190724e-14*EI/(L*L*L);
-    c[36] = -1.393797238223742e-14*EI/(L*L*L);
-    c[37] = 7.158524320830205e-14*EI/(L*L*L);
-    c[38] = 0.4223203891091167*m*a + 0.6858552834474272*L*m;
-    c[39] = 1.0720848341059328*m*a + 0.7923792203095824*L*m;
-    c[40] = 0.8731377196412923*m*a + 0.5464132735038285*L*m;
-    c[41] = -485.51881851337123*EI/(L*L*L);
-    c[42] = 1.2978656596016949e-13*EI/(L*L*L);
-    c[43] = 8.647541500030368e-13*EI/(L*L*L);
-    c[44] = -1.8900547080321572*m*a - 0.16940788476152221*L*m;
-    c[45] = 3.643384612293944*m*a + 2.9118511116176693*L*m;
-    c[46] = -3806.546266391453*EI/(L*L*L);
-    c[47] = -2.0398863447420677e-12*EI/(L*L*L);
-    c[48] = -8.338289783195641*m*a - 3.2742720640213134*L*m;
-    c[49] = -14617.273305118782*EI/(L*L*L);
-    c[50] = 0.5*J_oh + 0.5000000000000021*L*m*a*a + 0.4999999999999997*L*L*m*a + 0.16666666666666663*L*L*L*m;
-    c[51] = 0.49999999999999994*L*m;
-    c[52] = 0.5*L*m;
-    c[53] = 0.5000000000000002*L*m;
-    c[54] = -0.7854390949971252*m*a - 0.09666818705412755*L*m;
-    c[55] = -4.323571346780604*m*a - 2.7391124320380396*L*m;
-    c[56] = -12.476056654084545*m*a - 8.429759939930495*L*m;
-    c[57] = -25.72955253780514*m*a - 17.52769416445521*L*m;
-    c[58] = 6.181181684163092*EI/(L*L*L);
-    c[59] = -1.666699942190724e-14*EI/(L*L*L);
-    c[60] = 1.393797238223742e-14*EI/(L*L*L);
-    c[61] = -7.158524320830205e-14*EI/(L*L*L);
-    c[62] = 242.75940925668561*EI/(L*L*L);
-    c[63] = -1.2978656596016949e-13*EI/(L*L*L);
-    c[64] = -8.647541500030368e-13*EI/(L*L*L);
-    c[65] = 1903.2731331957266*EI/(L*L*L);
-    c[66] = 2.0398863447420677e-12*EI/(L*L*L);
-    c[67] = 7308.636652559391*EI/(L*L*L);
-    c[68] = -3.1417563799885007*m*a - 0.3866727482165102*L*m;
-    c[69] = -17.294285387122414*m*a - 10.956449728152158*L*m;
-    c[70] = -49.90422661633818*m*a - 33.71903975972198*L*m;
-    c[71] = -102.91821015122056*m*a - 70.11077665782084*L*m;
+    c[16] = L*m;
+    c[17] = 1.0000000000000004*L*m;
+    c[18] = 3.1417563799885007*m*a + 0.3866727482165102*L*m;
+    c[19] = -0.8446407782182334*m*a - 1.371710566894855*L*m;
+    c[20] = -2.1441696682118656*m*a - 1.5847584406191646*L*m;
+    c[21] = -1.7462754392825846*m*a - 1.0928265470076575*L*m;
+    c[22] = 17.294285387122414*m*a + 10.956449728152158*L*m;
+    c[23] = 3.7801094160643145*m*a + 0.33881576952304415*L*m;
+    c[24] = -7.286769224587888*m*a - 5.823702223235339*L*m;
+    c[25] = 49.90422661633818*m*a + 33.71903975972198*L*m;
+    c[26] = 16.676579566391283*m*a + 6.548544128042626*L*m;
+    c[27] = 102.91821015122056*m*a + 70.11077665782084*L*m;
+    c[28] = -12.362363368326184*EI/(L*L*L);
+    c[29] = 0.4223203891091167*m*a + 0.6858552834474275*L*m;
+    c[30] = 1.0720848341059328*m*a + 0.7923792203095823*L*m;
+    c[31] = 0.8731377196412923*m*a + 0.5464132735038287*L*m;
+    c[32] = -485.51881851337123*EI/(L*L*L);
+    c[33] = -1.8900547080321572*m*a - 0.16940788476152208*L*m;
+    c[34] = 3.643384612293944*m*a + 2.9118511116176693*L*m;
+    c[35] = -3806.546266391453*EI/(L*L*L);
+    c[36] = -8.338289783195641*m*a - 3.274272064021313*L*m;
+    c[37] = -14617.273305118782*EI/(L*L*L);
+    c[38] = 0.5*J_oh + 0.5000000000000021*L*m*a*a + 0.4999999999999997*L*L*m*a + 0.16666666666666663*L*L*L*m;
+    c[39] = 0.49999999999999994*L*m;
+    c[40] = 0.5*L*m;
+    c[41] = 0.5000000000000002*L*m;
+    c[42] = -0.7854390949971252*m*a - 0.09666818705412755*L*m;
+    c[43] = -4.323571346780604*m*a - 2.7391124320380396*L*m;
+    c[44] = -12.476056654084545*m*a - 8.429759939930495*L*m;
+    c[45] = -25.72955253780514*m*a - 17.52769416445521*L*m;
+    c[46] = 6.181181684163092*EI/(L*L*L);
+    c[47] = 242.75940925668561*EI/(L*L*L);
+    c[48] = 1903.2731331957266*EI/(L*L*L);
+    c[49] = 7308.636652559391*EI/(L*L*L);
+    c[50] = -3.1417563799885007*m*a - 0.3866727482165102*L*m;
+    c[51] = -17.294285387122414*m*a - 10.956449728152158*L*m;
+    c[52] = -49.90422661633818*m*a - 33.71903975972198*L*m;
+    c[53] = -102.91821015122056*m*a - 70.11077665782084*L*m;
 }
 
-/* mass:(c[72],u[3],q[5],qd[5])->(M[25]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[54],u[3],q[5],qd[5])->(M[25]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void amm_nx0_ny4_torque_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -121,18 +103,12 @@ void amm_nx0_ny4_torque_first_mass(const double* c, const double* u, const doubl
     out[3] = c[13];
     out[4] = c[14];
     out[6] = c[15];
-    out[7] = c[16];
-    out[8] = c[17];
-    out[9] = c[18];
-    out[12] = c[19];
-    out[13] = c[20];
-    out[14] = c[21];
-    out[18] = c[19];
-    out[19] = c[22];
-    out[24] = c[23];
+    out[12] = c[16];
+    out[18] = c[16];
+    out[24] = c[17];
 }
 
-/* forces:(c[72],u[3],q[5],qd[5])->(Q[5]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[54],u[3],q[5],qd[5])->(Q[5]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void amm_nx0_ny4_torque_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
@@ -169,14 +145,14 @@ void amm_nx0_ny4_torque_first_forces(const double* c, const double* u, const dou
     const double B4_theta_dot_B2_dot = B4_theta_dot*B2_dot;
     const double B4_theta_dot_B3_dot = B4_theta_dot*B3_dot;
     const double B4_theta_dot_B4_dot = B4_theta_dot*B4_dot;
-    out[0] = tau + c[24]*B1_theta_dot_B1_dot + c[25]*B1_theta_dot_B2_dot + c[26]*B1_theta_dot_B3_dot + c[27]*B1_theta_dot_B4_dot + c[25]*B2_theta_dot_B1_dot + c[28]*B2_theta_dot_B2_dot + c[29]*B2_theta_dot_B3_dot + c[30]*B2_theta_dot_B4_dot + c[26]*B3_theta_dot_B1_dot + c[29]*B3_theta_dot_B2_dot + c[31]*B3_theta_dot_B3_dot + c[32]*B3_theta_dot_B4_dot + c[27]*B4_theta_dot_B1_dot + c[30]*B4_theta_dot_B2_dot + c[32]*B4_theta_dot_B3_dot + c[33]*B4_theta_dot_B4_dot;
-    out[1] = c[34]*B1 + c[35]*B2 + c[36]*B3 + c[37]*B4 + c[1]*B1_theta_dotsq + c[38]*B2_theta_dotsq + c[39]*B3_theta_dotsq + c[40]*B4_theta_dotsq;
-    out[2] = c[35]*B1 + c[41]*B2 + c[42]*B3 + c[43]*B4 + c[38]*B1_theta_dotsq + c[5]*B2_theta_dotsq + c[44]*B3_theta_dotsq + c[45]*B4_theta_dotsq;
-    out[3] = c[36]*B1 + c[42]*B2 + c[46]*B3 + c[47]*B4 + c[39]*B1_theta_dotsq + c[44]*B2_theta_dotsq + c[8]*B3_theta_dotsq + c[48]*B4_theta_dotsq;
-    out[4] = c[37]*B1 + c[43]*B2 + c[47]*B3 + c[49]*B4 + c[40]*B1_theta_dotsq + c[45]*B2_theta_dotsq + c[48]*B3_theta_dotsq + c[10]*B4_theta_dotsq;
+    out[0] = tau + c[18]*B1_theta_dot_B1_dot + c[19]*B1_theta_dot_B2_dot + c[20]*B1_theta_dot_B3_dot + c[21]*B1_theta_dot_B4_dot + c[19]*B2_theta_dot_B1_dot + c[22]*B2_theta_dot_B2_dot + c[23]*B2_theta_dot_B3_dot + c[24]*B2_theta_dot_B4_dot + c[20]*B3_theta_dot_B1_dot + c[23]*B3_theta_dot_B2_dot + c[25]*B3_theta_dot_B3_dot + c[26]*B3_theta_dot_B4_dot + c[21]*B4_theta_dot_B1_dot + c[24]*B4_theta_dot_B2_dot + c[26]*B4_theta_dot_B3_dot + c[27]*B4_theta_dot_B4_dot;
+    out[1] = c[28]*B1 + c[1]*B1_theta_dotsq + c[29]*B2_theta_dotsq + c[30]*B3_theta_dotsq + c[31]*B4_theta_dotsq;
+    out[2] = c[32]*B2 + c[29]*B1_theta_dotsq + c[5]*B2_theta_dotsq + c[33]*B3_theta_dotsq + c[34]*B4_theta_dotsq;
+    out[3] = c[35]*B3 + c[30]*B1_theta_dotsq + c[33]*B2_theta_dotsq + c[8]*B3_theta_dotsq + c[36]*B4_theta_dotsq;
+    out[4] = c[37]*B4 + c[31]*B1_theta_dotsq + c[34]*B2_theta_dotsq + c[36]*B3_theta_dotsq + c[10]*B4_theta_dotsq;
 }
 
-/* forces_terms:(c[72],u[3],q[5],qd[5])->(m[25]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[54],u[3],q[5],qd[5])->(m[25]) the state monomials of Q: Q = F m */
 void amm_nx0_ny4_torque_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -241,64 +217,52 @@ void amm_nx0_ny4_torque_first_forces_terms(const double* c, const double* u, con
     out[24] = B4_theta_dot_B4_dot;
 }
 
-/* forces_matrix:(c[72],u[3],q[5],qd[5])->(F[5*25]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[54],u[3],q[5],qd[5])->(F[5*25]) row-major, state-free: Q = F m; nonzero entries only */
 void amm_nx0_ny4_torque_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)q;
     (void)qd;
     out[0] = 1.0;
-    out[6] = c[24];
-    out[7] = c[25];
-    out[8] = c[26];
-    out[9] = c[27];
-    out[11] = c[25];
-    out[12] = c[28];
-    out[13] = c[29];
-    out[14] = c[30];
-    out[16] = c[26];
-    out[17] = c[29];
-    out[18] = c[31];
-    out[19] = c[32];
-    out[21] = c[27];
-    out[22] = c[30];
-    out[23] = c[32];
-    out[24] = c[33];
-    out[26] = c[34];
-    out[27] = c[35];
-    out[28] = c[36];
-    out[29] = c[37];
+    out[6] = c[18];
+    out[7] = c[19];
+    out[8] = c[20];
+    out[9] = c[21];
+    out[11] = c[19];
+    out[12] = c[22];
+    out[13] = c[23];
+    out[14] = c[24];
+    out[16] = c[20];
+    out[17] = c[23];
+    out[18] = c[25];
+    out[19] = c[26];
+    out[21] = c[21];
+    out[22] = c[24];
+    out[23] = c[26];
+    out[24] = c[27];
+    out[26] = c[28];
     out[30] = c[1];
-    out[35] = c[38];
-    out[40] = c[39];
-    out[45] = c[40];
-    out[51] = c[35];
-    out[52] = c[41];
-    out[53] = c[42];
-    out[54] = c[43];
-    out[55] = c[38];
+    out[35] = c[29];
+    out[40] = c[30];
+    out[45] = c[31];
+    out[52] = c[32];
+    out[55] = c[29];
     out[60] = c[5];
-    out[65] = c[44];
-    out[70] = c[45];
-    out[76] = c[36];
-    out[77] = c[42];
-    out[78] = c[46];
-    out[79] = c[47];
-    out[80] = c[39];
-    out[85] = c[44];
+    out[65] = c[33];
+    out[70] = c[34];
+    out[78] = c[35];
+    out[80] = c[30];
+    out[85] = c[33];
     out[90] = c[8];
-    out[95] = c[48];
-    out[101] = c[37];
-    out[102] = c[43];
-    out[103] = c[47];
-    out[104] = c[49];
-    out[105] = c[40];
-    out[110] = c[45];
-    out[115] = c[48];
+    out[95] = c[36];
+    out[104] = c[37];
+    out[105] = c[31];
+    out[110] = c[34];
+    out[115] = c[36];
     out[120] = c[10];
 }
 
-/* energy:(c[72],u[3],q[5],qd[5])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[54],u[3],q[5],qd[5])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void amm_nx0_ny4_torque_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -312,14 +276,8 @@ void amm_nx0_ny4_torque_first_energy(const double* c, const double* u, const dou
     const double B3_dot = qd[3];
     const double B4_dot = qd[4];
     const double B1sq = B1*B1;
-    const double B1_B2 = B1*B2;
-    const double B1_B3 = B1*B3;
-    const double B1_B4 = B1*B4;
     const double B2sq = B2*B2;
-    const double B2_B3 = B2*B3;
-    const double B2_B4 = B2*B4;
     const double B3sq = B3*B3;
-    const double B3_B4 = B3*B4;
     const double B4sq = B4*B4;
     const double theta_dotsq = theta_dot*theta_dot;
     const double theta_dot_B1_dot = theta_dot*B1_dot;
@@ -327,42 +285,42 @@ void amm_nx0_ny4_torque_first_energy(const double* c, const double* u, const dou
     const double theta_dot_B3_dot = theta_dot*B3_dot;
     const double theta_dot_B4_dot = theta_dot*B4_dot;
     const double B1_dotsq = B1_dot*B1_dot;
-    const double B1_dot_B2_dot = B1_dot*B2_dot;
-    const double B1_dot_B3_dot = B1_dot*B3_dot;
-    const double B1_dot_B4_dot = B1_dot*B4_dot;
     const double B2_dotsq = B2_dot*B2_dot;
-    const double B2_dot_B3_dot = B2_dot*B3_dot;
-    const double B2_dot_B4_dot = B2_dot*B4_dot;
     const double B3_dotsq = B3_dot*B3_dot;
-    const double B3_dot_B4_dot = B3_dot*B4_dot;
     const double B4_dotsq = B4_dot*B4_dot;
     const double B1sq_theta_dot = B1sq*theta_dot;
     const double B1sq_theta_dotsq = B1sq_theta_dot*theta_dot;
+    const double B1_B2 = B1*B2;
     const double B1_B2_theta_dot = B1_B2*theta_dot;
     const double B1_B2_theta_dotsq = B1_B2_theta_dot*theta_dot;
+    const double B1_B3 = B1*B3;
     const double B1_B3_theta_dot = B1_B3*theta_dot;
     const double B1_B3_theta_dotsq = B1_B3_theta_dot*theta_dot;
+    const double B1_B4 = B1*B4;
     const double B1_B4_theta_dot = B1_B4*theta_dot;
     const double B1_B4_theta_dotsq = B1_B4_theta_dot*theta_dot;
     const double B2sq_theta_dot = B2sq*theta_dot;
     const double B2sq_theta_dotsq = B2sq_theta_dot*theta_dot;
+    const double B2_B3 = B2*B3;
     const double B2_B3_theta_dot = B2_B3*theta_dot;
     const double B2_B3_theta_dotsq = B2_B3_theta_dot*theta_dot;
+    const double B2_B4 = B2*B4;
     const double B2_B4_theta_dot = B2_B4*theta_dot;
     const double B2_B4_theta_dotsq = B2_B4_theta_dot*theta_dot;
     const double B3sq_theta_dot = B3sq*theta_dot;
     const double B3sq_theta_dotsq = B3sq_theta_dot*theta_dot;
+    const double B3_B4 = B3*B4;
     const double B3_B4_theta_dot = B3_B4*theta_dot;
     const double B3_B4_theta_dotsq = B3_B4_theta_dot*theta_dot;
     const double B4sq_theta_dot = B4sq*theta_dot;
     const double B4sq_theta_dotsq = B4sq_theta_dot*theta_dot;
-    out[0] = c[50]*theta_dotsq + c[11]*theta_dot_B1_dot + c[12]*theta_dot_B2_dot + c[13]*theta_dot_B3_dot + c[14]*theta_dot_B4_dot + c[51]*B1_dotsq + c[16]*B1_dot_B2_dot + c[17]*B1_dot_B3_dot + c[18]*B1_dot_B4_dot + c[52]*B2_dotsq + c[20]*B2_dot_B3_dot + c[21]*B2_dot_B4_dot + c[52]*B3_dotsq + c[22]*B3_dot_B4_dot + c[53]*B4_dotsq + c[54]*B1sq_theta_dotsq + c[38]*B1_B2_theta_dotsq + c[39]*B1_B3_theta_dotsq + c[40]*B1_B4_theta_dotsq + c[55]*B2sq_theta_dotsq + c[44]*B2_B3_theta_dotsq + c[45]*B2_B4_theta_dotsq + c[56]*B3sq_theta_dotsq + c[48]*B3_B4_theta_dotsq + c[57]*B4sq_theta_dotsq;
+    out[0] = c[38]*theta_dotsq + c[11]*theta_dot_B1_dot + c[12]*theta_dot_B2_dot + c[13]*theta_dot_B3_dot + c[14]*theta_dot_B4_dot + c[39]*B1_dotsq + c[40]*B2_dotsq + c[40]*B3_dotsq + c[41]*B4_dotsq + c[42]*B1sq_theta_dotsq + c[29]*B1_B2_theta_dotsq + c[30]*B1_B3_theta_dotsq + c[31]*B1_B4_theta_dotsq + c[43]*B2sq_theta_dotsq + c[33]*B2_B3_theta_dotsq + c[34]*B2_B4_theta_dotsq + c[44]*B3sq_theta_dotsq + c[36]*B3_B4_theta_dotsq + c[45]*B4sq_theta_dotsq;
     out[1] = 0.0;
     out[2] = 0.0;
-    out[3] = c[58]*B1sq + c[59]*B1_B2 + c[60]*B1_B3 + c[61]*B1_B4 + c[62]*B2sq + c[63]*B2_B3 + c[64]*B2_B4 + c[65]*B3sq + c[66]*B3_B4 + c[67]*B4sq;
+    out[3] = c[46]*B1sq + c[47]*B2sq + c[48]*B3sq + c[49]*B4sq;
 }
 
-/* momentum:(c[72],u[3],q[5],qd[5])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[54],u[3],q[5],qd[5])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void amm_nx0_ny4_torque_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -398,7 +356,7 @@ void amm_nx0_ny4_torque_first_momentum(const double* c, const double* u, const d
     out[0] = c[0]*theta_dot + c[11]*B1_dot + c[12]*B2_dot + c[13]*B3_dot + c[14]*B4_dot + c[1]*B1sq_theta_dot + c[2]*B1_B2_theta_dot + c[3]*B1_B3_theta_dot + c[4]*B1_B4_theta_dot + c[5]*B2sq_theta_dot + c[6]*B2_B3_theta_dot + c[7]*B2_B4_theta_dot + c[8]*B3sq_theta_dot + c[9]*B3_B4_theta_dot + c[10]*B4sq_theta_dot;
 }
 
-/* forces_q:(c[72],u[3],q[5],qd[5])->(dQdq[25]) row-major; out[i*5+k] = dQ_i/dq_k */
+/* forces_q:(c[54],u[3],q[5],qd[5])->(dQdq[25]) row-major; out[i*5+k] = dQ_i/dq_k */
 void amm_nx0_ny4_torque_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -414,33 +372,33 @@ void amm_nx0_ny4_torque_first_forces_q(const double* c, const double* u, const d
     const double theta_dot_B3_dot = theta_dot*B3_dot;
     const double theta_dot_B4_dot = theta_dot*B4_dot;
     out[0] = 0.0;
-    out[1] = c[24]*theta_dot_B1_dot + c[25]*theta_dot_B2_dot + c[26]*theta_dot_B3_dot + c[27]*theta_dot_B4_dot;
-    out[2] = c[25]*theta_dot_B1_dot + c[28]*theta_dot_B2_dot + c[29]*theta_dot_B3_dot + c[30]*theta_dot_B4_dot;
-    out[3] = c[26]*theta_dot_B1_dot + c[29]*theta_dot_B2_dot + c[31]*theta_dot_B3_dot + c[32]*theta_dot_B4_dot;
-    out[4] = c[27]*theta_dot_B1_dot + c[30]*theta_dot_B2_dot + c[32]*theta_dot_B3_dot + c[33]*theta_dot_B4_dot;
+    out[1] = c[18]*theta_dot_B1_dot + c[19]*theta_dot_B2_dot + c[20]*theta_dot_B3_dot + c[21]*theta_dot_B4_dot;
+    out[2] = c[19]*theta_dot_B1_dot + c[22]*theta_dot_B2_dot + c[23]*theta_dot_B3_dot + c[24]*theta_dot_B4_dot;
+    out[3] = c[20]*theta_dot_B1_dot + c[23]*theta_dot_B2_dot + c[25]*theta_dot_B3_dot + c[26]*theta_dot_B4_dot;
+    out[4] = c[21]*theta_dot_B1_dot + c[24]*theta_dot_B2_dot + c[26]*theta_dot_B3_dot + c[27]*theta_dot_B4_dot;
     out[5] = 0.0;
-    out[6] = c[34] + c[1]*theta_dotsq;
-    out[7] = c[35] + c[38]*theta_dotsq;
-    out[8] = c[36] + c[39]*theta_dotsq;
-    out[9] = c[37] + c[40]*theta_dotsq;
+    out[6] = c[28] + c[1]*theta_dotsq;
+    out[7] = c[29]*theta_dotsq;
+    out[8] = c[30]*theta_dotsq;
+    out[9] = c[31]*theta_dotsq;
     out[10] = 0.0;
-    out[11] = c[35] + c[38]*theta_dotsq;
-    out[12] = c[41] + c[5]*theta_dotsq;
-    out[13] = c[42] + c[44]*theta_dotsq;
-    out[14] = c[43] + c[45]*theta_dotsq;
+    out[11] = c[29]*theta_dotsq;
+    out[12] = c[32] + c[5]*theta_dotsq;
+    out[13] = c[33]*theta_dotsq;
+    out[14] = c[34]*theta_dotsq;
     out[15] = 0.0;
-    out[16] = c[36] + c[39]*theta_dotsq;
-    out[17] = c[42] + c[44]*theta_dotsq;
-    out[18] = c[46] + c[8]*theta_dotsq;
-    out[19] = c[47] + c[48]*theta_dotsq;
+    out[16] = c[30]*theta_dotsq;
+    out[17] = c[33]*theta_dotsq;
+    out[18] = c[35] + c[8]*theta_dotsq;
+    out[19] = c[36]*theta_dotsq;
     out[20] = 0.0;
-    out[21] = c[37] + c[40]*theta_dotsq;
-    out[22] = c[43] + c[45]*theta_dotsq;
-    out[23] = c[47] + c[48]*theta_dotsq;
-    out[24] = c[49] + c[10]*theta_dotsq;
+    out[21] = c[31]*theta_dotsq;
+    out[22] = c[34]*theta_dotsq;
+    out[23] = c[36]*theta_dotsq;
+    out[24] = c[37] + c[10]*theta_dotsq;
 }
 
-/* forces_qd:(c[72],u[3],q[5],qd[5])->(dQdqd[25]) row-major; out[i*5+k] = dQ_i/dqd_k */
+/* forces_qd:(c[54],u[3],q[5],qd[5])->(dQdqd[25]) row-major; out[i*5+k] = dQ_i/dqd_k */
 void amm_nx0_ny4_torque_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -473,34 +431,34 @@ void amm_nx0_ny4_torque_first_forces_qd(const double* c, const double* u, const 
     const double B4_B2_dot = B4*B2_dot;
     const double B4_B3_dot = B4*B3_dot;
     const double B4_B4_dot = B4*B4_dot;
-    out[0] = c[24]*B1_B1_dot + c[25]*B1_B2_dot + c[26]*B1_B3_dot + c[27]*B1_B4_dot + c[25]*B2_B1_dot + c[28]*B2_B2_dot + c[29]*B2_B3_dot + c[30]*B2_B4_dot + c[26]*B3_B1_dot + c[29]*B3_B2_dot + c[31]*B3_B3_dot + c[32]*B3_B4_dot + c[27]*B4_B1_dot + c[30]*B4_B2_dot + c[32]*B4_B3_dot + c[33]*B4_B4_dot;
-    out[1] = c[24]*B1_theta_dot + c[25]*B2_theta_dot + c[26]*B3_theta_dot + c[27]*B4_theta_dot;
-    out[2] = c[25]*B1_theta_dot + c[28]*B2_theta_dot + c[29]*B3_theta_dot + c[30]*B4_theta_dot;
-    out[3] = c[26]*B1_theta_dot + c[29]*B2_theta_dot + c[31]*B3_theta_dot + c[32]*B4_theta_dot;
-    out[4] = c[27]*B1_theta_dot + c[30]*B2_theta_dot + c[32]*B3_theta_dot + c[33]*B4_theta_dot;
-    out[5] = c[68]*B1_theta_dot + c[2]*B2_theta_dot + c[3]*B3_theta_dot + c[4]*B4_theta_dot;
+    out[0] = c[18]*B1_B1_dot + c[19]*B1_B2_dot + c[20]*B1_B3_dot + c[21]*B1_B4_dot + c[19]*B2_B1_dot + c[22]*B2_B2_dot + c[23]*B2_B3_dot + c[24]*B2_B4_dot + c[20]*B3_B1_dot + c[23]*B3_B2_dot + c[25]*B3_B3_dot + c[26]*B3_B4_dot + c[21]*B4_B1_dot + c[24]*B4_B2_dot + c[26]*B4_B3_dot + c[27]*B4_B4_dot;
+    out[1] = c[18]*B1_theta_dot + c[19]*B2_theta_dot + c[20]*B3_theta_dot + c[21]*B4_theta_dot;
+    out[2] = c[19]*B1_theta_dot + c[22]*B2_theta_dot + c[23]*B3_theta_dot + c[24]*B4_theta_dot;
+    out[3] = c[20]*B1_theta_dot + c[23]*B2_theta_dot + c[25]*B3_theta_dot + c[26]*B4_theta_dot;
+    out[4] = c[21]*B1_theta_dot + c[24]*B2_theta_dot + c[26]*B3_theta_dot + c[27]*B4_theta_dot;
+    out[5] = c[50]*B1_theta_dot + c[2]*B2_theta_dot + c[3]*B3_theta_dot + c[4]*B4_theta_dot;
     out[6] = 0.0;
     out[7] = 0.0;
     out[8] = 0.0;
     out[9] = 0.0;
-    out[10] = c[2]*B1_theta_dot + c[69]*B2_theta_dot + c[6]*B3_theta_dot + c[7]*B4_theta_dot;
+    out[10] = c[2]*B1_theta_dot + c[51]*B2_theta_dot + c[6]*B3_theta_dot + c[7]*B4_theta_dot;
     out[11] = 0.0;
     out[12] = 0.0;
     out[13] = 0.0;
     out[14] = 0.0;
-    out[15] = c[3]*B1_theta_dot + c[6]*B2_theta_dot + c[70]*B3_theta_dot + c[9]*B4_theta_dot;
+    out[15] = c[3]*B1_theta_dot + c[6]*B2_theta_dot + c[52]*B3_theta_dot + c[9]*B4_theta_dot;
     out[16] = 0.0;
     out[17] = 0.0;
     out[18] = 0.0;
     out[19] = 0.0;
-    out[20] = c[4]*B1_theta_dot + c[7]*B2_theta_dot + c[9]*B3_theta_dot + c[71]*B4_theta_dot;
+    out[20] = c[4]*B1_theta_dot + c[7]*B2_theta_dot + c[9]*B3_theta_dot + c[53]*B4_theta_dot;
     out[21] = 0.0;
     out[22] = 0.0;
     out[23] = 0.0;
     out[24] = 0.0;
 }
 
-/* forces_u:(c[72],u[3],q[5],qd[5])->(dQdu[15]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
+/* forces_u:(c[54],u[3],q[5],qd[5])->(dQdu[15]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
 void amm_nx0_ny4_torque_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -524,7 +482,7 @@ void amm_nx0_ny4_torque_first_forces_u(const double* c, const double* u, const d
     out[14] = 0.0;
 }
 
-/* mass_varying:(c[72],u[3],q[5],qd[5])->(M[25]) as mass, the entries that depend on q only */
+/* mass_varying:(c[54],u[3],q[5],qd[5])->(M[25]) as mass, the entries that depend on q only */
 void amm_nx0_ny4_torque_first_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -546,7 +504,7 @@ void amm_nx0_ny4_torque_first_mass_varying(const double* c, const double* u, con
     out[0] = c[0] + c[1]*B1sq + c[2]*B1_B2 + c[3]*B1_B3 + c[4]*B1_B4 + c[5]*B2sq + c[6]*B2_B3 + c[7]*B2_B4 + c[8]*B3sq + c[9]*B3_B4 + c[10]*B4sq;
 }
 
-/* mass_q_product:(c[72],u[3],q[5],qd[5])->(dMv[25]) row-major; v in the qd slot; out[i*5+k] = sum_j dM_ij/dq_k v_j */
+/* mass_q_product:(c[54],u[3],q[5],qd[5])->(dMv[25]) row-major; v in the qd slot; out[i*5+k] = sum_j dM_ij/dq_k v_j */
 void amm_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -560,10 +518,10 @@ void amm_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, c
     const double B3_theta_dot = B3*theta_dot;
     const double B4_theta_dot = B4*theta_dot;
     out[0] = 0.0;
-    out[1] = c[68]*B1_theta_dot + c[2]*B2_theta_dot + c[3]*B3_theta_dot + c[4]*B4_theta_dot;
-    out[2] = c[2]*B1_theta_dot + c[69]*B2_theta_dot + c[6]*B3_theta_dot + c[7]*B4_theta_dot;
-    out[3] = c[3]*B1_theta_dot + c[6]*B2_theta_dot + c[70]*B3_theta_dot + c[9]*B4_theta_dot;
-    out[4] = c[4]*B1_theta_dot + c[7]*B2_theta_dot + c[9]*B3_theta_dot + c[71]*B4_theta_dot;
+    out[1] = c[50]*B1_theta_dot + c[2]*B2_theta_dot + c[3]*B3_theta_dot + c[4]*B4_theta_dot;
+    out[2] = c[2]*B1_theta_dot + c[51]*B2_theta_dot + c[6]*B3_theta_dot + c[7]*B4_theta_dot;
+    out[3] = c[3]*B1_theta_dot + c[6]*B2_theta_dot + c[52]*B3_theta_dot + c[9]*B4_theta_dot;
+    out[4] = c[4]*B1_theta_dot + c[7]*B2_theta_dot + c[9]*B3_theta_dot + c[53]*B4_theta_dot;
     out[5] = 0.0;
     out[6] = 0.0;
     out[7] = 0.0;
@@ -588,8 +546,8 @@ void amm_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, c
 
 }  // namespace
 
-extern const Variant amm_nx0_ny4_torque_first = {"amm_nx0_ny4_torque_first", 5, 72, 25,
-    "vcccccccccccccccccccccccc",
+extern const Variant amm_nx0_ny4_torque_first = {"amm_nx0_ny4_torque_first", 5, 54, 25,
+    "vcccccc000c0c00c00c0c000c",
     amm_nx0_ny4_torque_first_coefficients, amm_nx0_ny4_torque_first_mass, amm_nx0_ny4_torque_first_mass_varying, amm_nx0_ny4_torque_first_forces, amm_nx0_ny4_torque_first_forces_terms, amm_nx0_ny4_torque_first_forces_matrix,
     amm_nx0_ny4_torque_first_energy, amm_nx0_ny4_torque_first_momentum, amm_nx0_ny4_torque_first_forces_q, amm_nx0_ny4_torque_first_forces_qd, amm_nx0_ny4_torque_first_mass_q_product, amm_nx0_ny4_torque_first_forces_u};
 

@@ -159,12 +159,16 @@ numeric ShapeIntegrals::quadrature(const std::vector<Factor>& factors, int power
 {
     std::vector<const std::vector<double>*> columns;
     for (const Factor& f : factors) columns.push_back(&values(f));
-    double sum = 0.0;
+    double sum = 0.0, magnitude = 0.0;
     for (std::size_t q = 0; q < nodes_.size(); ++q) {
         double term = weights_[q] * std::pow(nodes_[q], power);
         for (const auto* c : columns) term *= (*c)[q];
         sum += term;
+        magnitude += std::abs(term);
     }
+    // An integral that cancels to round-off of its integrand's own size is zero (orthogonal modes): emitted
+    // as 1e-17, it would be a coefficient and make M look dense.
+    if (std::abs(sum) <= cancellation_bound * magnitude) return 0;
     return numeric(sum);
 }
 

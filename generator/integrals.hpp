@@ -22,6 +22,12 @@ struct Factor {
     auto operator<=>(const Factor&) const = default;
 };
 
+/// A quadrature result below this fraction of the integral of the integrand's absolute value is taken as an
+/// exact zero: the composite rule's round-off is a few hundred ulps of that magnitude, while every integral
+/// that is not zero by orthogonality is a sizeable fraction of it. Polynomial bases are integrated exactly
+/// and need no bound.
+constexpr double cancellation_bound = 1e-13;
+
 class ShapeIntegrals {
 public:
     ShapeIntegrals(FieldBasis axial, FieldBasis transverse);
