@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[48]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[44]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void amm_nx0_ny4_prescribed_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -26,53 +26,49 @@ void amm_nx0_ny4_prescribed_first_coefficients(const double* p, double* c)
     c[1] = L*m;
     c[2] = 1.0000000000000004*L*m;
     c[3] = 0.7829917560396262*L*m*a + 0.5688257437099108*L*L*m;
-    c[4] = -12.362363368326184*EI/(L*L*L);
-    c[5] = -1.5708781899942503*m*a - 0.1933363741082551*L*m;
+    c[4] = 12.362363368326184*EI/(L*L*L);
+    c[5] = 1.5708781899942503*m*a + 0.1933363741082551*L*m;
     c[6] = 0.4223203891091167*m*a + 0.6858552834474275*L*m;
     c[7] = 1.0720848341059328*m*a + 0.7923792203095823*L*m;
     c[8] = 0.8731377196412923*m*a + 0.5464132735038287*L*m;
     c[9] = 0.43393589511071945*L*m*a + 0.09076678688638677*L*L*m;
-    c[10] = -485.51881851337123*EI/(L*L*L);
-    c[11] = -8.647142693561207*m*a - 5.478224864076079*L*m;
-    c[12] = -1.8900547080321572*m*a - 0.16940788476152208*L*m;
+    c[10] = 485.51881851337123*EI/(L*L*L);
+    c[11] = 8.647142693561207*m*a + 5.478224864076079*L*m;
+    c[12] = 1.8900547080321572*m*a + 0.16940788476152208*L*m;
     c[13] = 3.643384612293944*m*a + 2.9118511116176693*L*m;
     c[14] = 0.2544252968661058*L*m*a + 0.032416374369744407*L*L*m;
-    c[15] = -3806.546266391453*EI/(L*L*L);
-    c[16] = -24.95211330816909*m*a - 16.85951987986099*L*m;
-    c[17] = -8.338289783195641*m*a - 3.274272064021313*L*m;
+    c[15] = 3806.546266391453*EI/(L*L*L);
+    c[16] = 24.95211330816909*m*a + 16.85951987986099*L*m;
+    c[17] = 8.338289783195641*m*a + 3.274272064021313*L*m;
     c[18] = 0.18189802163704866*L*m*a + 0.016542335020850608*L*L*m;
-    c[19] = -14617.273305118782*EI/(L*L*L);
-    c[20] = -51.45910507561028*m*a - 35.05538832891042*L*m;
+    c[19] = 14617.273305118782*EI/(L*L*L);
+    c[20] = 51.45910507561028*m*a + 35.05538832891042*L*m;
     c[21] = 0.49999999999999994*L*m;
     c[22] = 0.5*L*m;
     c[23] = 0.5000000000000002*L*m;
-    c[24] = -0.7829917560396262*L*m*a - 0.5688257437099108*L*L*m;
-    c[25] = -0.43393589511071945*L*m*a - 0.09076678688638677*L*L*m;
-    c[26] = -0.2544252968661058*L*m*a - 0.032416374369744407*L*L*m;
-    c[27] = -0.18189802163704866*L*m*a - 0.016542335020850608*L*L*m;
-    c[28] = 0.5*J_oh + 0.5000000000000021*L*m*a*a + 0.4999999999999997*L*L*m*a + 0.16666666666666663*L*L*L*m;
-    c[29] = -0.7854390949971252*m*a - 0.09666818705412755*L*m;
-    c[30] = -4.323571346780604*m*a - 2.7391124320380396*L*m;
-    c[31] = -12.476056654084545*m*a - 8.429759939930495*L*m;
-    c[32] = -25.72955253780514*m*a - 17.52769416445521*L*m;
-    c[33] = 6.181181684163092*EI/(L*L*L);
-    c[34] = 242.75940925668561*EI/(L*L*L);
-    c[35] = 1903.2731331957266*EI/(L*L*L);
-    c[36] = 7308.636652559391*EI/(L*L*L);
-    c[37] = J_oh + 1.0000000000000042*L*m*a*a + 0.9999999999999994*L*L*m*a + 0.33333333333333326*L*L*L*m;
-    c[38] = 0.8446407782182334*m*a + 1.371710566894855*L*m;
-    c[39] = 2.1441696682118656*m*a + 1.5847584406191646*L*m;
-    c[40] = 1.7462754392825846*m*a + 1.0928265470076575*L*m;
-    c[41] = -3.7801094160643145*m*a - 0.33881576952304415*L*m;
-    c[42] = 7.286769224587888*m*a + 5.823702223235339*L*m;
-    c[43] = -16.676579566391283*m*a - 6.548544128042626*L*m;
-    c[44] = -3.1417563799885007*m*a - 0.3866727482165102*L*m;
-    c[45] = -17.294285387122414*m*a - 10.956449728152158*L*m;
-    c[46] = -49.90422661633818*m*a - 33.71903975972198*L*m;
-    c[47] = -102.91821015122056*m*a - 70.11077665782084*L*m;
+    c[24] = 0.5*J_oh + 0.5000000000000021*L*m*a*a + 0.4999999999999997*L*L*m*a + 0.16666666666666663*L*L*L*m;
+    c[25] = 0.7854390949971252*m*a + 0.09666818705412755*L*m;
+    c[26] = 4.323571346780604*m*a + 2.7391124320380396*L*m;
+    c[27] = 12.476056654084545*m*a + 8.429759939930495*L*m;
+    c[28] = 25.72955253780514*m*a + 17.52769416445521*L*m;
+    c[29] = 6.181181684163092*EI/(L*L*L);
+    c[30] = 242.75940925668561*EI/(L*L*L);
+    c[31] = 1903.2731331957266*EI/(L*L*L);
+    c[32] = 7308.636652559391*EI/(L*L*L);
+    c[33] = J_oh + 1.0000000000000042*L*m*a*a + 0.9999999999999994*L*L*m*a + 0.33333333333333326*L*L*L*m;
+    c[34] = 0.8446407782182334*m*a + 1.371710566894855*L*m;
+    c[35] = 2.1441696682118656*m*a + 1.5847584406191646*L*m;
+    c[36] = 1.7462754392825846*m*a + 1.0928265470076575*L*m;
+    c[37] = 3.7801094160643145*m*a + 0.33881576952304415*L*m;
+    c[38] = 7.286769224587888*m*a + 5.823702223235339*L*m;
+    c[39] = 16.676579566391283*m*a + 6.548544128042626*L*m;
+    c[40] = 3.1417563799885007*m*a + 0.3866727482165102*L*m;
+    c[41] = 17.294285387122414*m*a + 10.956449728152158*L*m;
+    c[42] = 49.90422661633818*m*a + 33.71903975972198*L*m;
+    c[43] = 102.91821015122056*m*a + 70.11077665782084*L*m;
 }
 
-/* mass:(c[48],u[3],q[4],qd[4])->(M[16]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[44],u[3],q[4],qd[4])->(M[16]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void amm_nx0_ny4_prescribed_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -84,7 +80,7 @@ void amm_nx0_ny4_prescribed_first_mass(const double* c, const double* u, const d
     out[15] = c[2];
 }
 
-/* forces:(c[48],u[3],q[4],qd[4])->(Q[4]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[44],u[3],q[4],qd[4])->(Q[4]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void amm_nx0_ny4_prescribed_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)qd;
@@ -99,13 +95,13 @@ void amm_nx0_ny4_prescribed_first_forces(const double* c, const double* u, const
     const double theta_dotsq_B2 = theta_dotsq*B2;
     const double theta_dotsq_B3 = theta_dotsq*B3;
     const double theta_dotsq_B4 = theta_dotsq*B4;
-    out[0] = c[3]*theta_ddot + c[4]*B1 + c[5]*theta_dotsq_B1 + c[6]*theta_dotsq_B2 + c[7]*theta_dotsq_B3 + c[8]*theta_dotsq_B4;
-    out[1] = c[9]*theta_ddot + c[10]*B2 + c[6]*theta_dotsq_B1 + c[11]*theta_dotsq_B2 + c[12]*theta_dotsq_B3 + c[13]*theta_dotsq_B4;
-    out[2] = c[14]*theta_ddot + c[15]*B3 + c[7]*theta_dotsq_B1 + c[12]*theta_dotsq_B2 + c[16]*theta_dotsq_B3 + c[17]*theta_dotsq_B4;
-    out[3] = c[18]*theta_ddot + c[19]*B4 + c[8]*theta_dotsq_B1 + c[13]*theta_dotsq_B2 + c[17]*theta_dotsq_B3 + c[20]*theta_dotsq_B4;
+    out[0] = c[3]*theta_ddot - c[4]*B1 - c[5]*theta_dotsq_B1 + c[6]*theta_dotsq_B2 + c[7]*theta_dotsq_B3 + c[8]*theta_dotsq_B4;
+    out[1] = c[9]*theta_ddot - c[10]*B2 + c[6]*theta_dotsq_B1 - c[11]*theta_dotsq_B2 - c[12]*theta_dotsq_B3 + c[13]*theta_dotsq_B4;
+    out[2] = c[14]*theta_ddot - c[15]*B3 + c[7]*theta_dotsq_B1 - c[12]*theta_dotsq_B2 - c[16]*theta_dotsq_B3 - c[17]*theta_dotsq_B4;
+    out[3] = c[18]*theta_ddot - c[19]*B4 + c[8]*theta_dotsq_B1 + c[13]*theta_dotsq_B2 - c[17]*theta_dotsq_B3 - c[20]*theta_dotsq_B4;
 }
 
-/* forces_terms:(c[48],u[3],q[4],qd[4])->(m[9]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[44],u[3],q[4],qd[4])->(m[9]) the state monomials of Q: Q = F m */
 void amm_nx0_ny4_prescribed_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -132,39 +128,39 @@ void amm_nx0_ny4_prescribed_first_forces_terms(const double* c, const double* u,
     out[8] = theta_dotsq_B4;
 }
 
-/* forces_matrix:(c[48],u[3],q[4],qd[4])->(F[4*9]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[44],u[3],q[4],qd[4])->(F[4*9]) row-major, state-free: Q = F m; nonzero entries only */
 void amm_nx0_ny4_prescribed_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)q;
     (void)qd;
     out[0] = c[3];
-    out[1] = c[4];
-    out[5] = c[5];
+    out[1] = -c[4];
+    out[5] = -c[5];
     out[6] = c[6];
     out[7] = c[7];
     out[8] = c[8];
     out[9] = c[9];
-    out[11] = c[10];
+    out[11] = -c[10];
     out[14] = c[6];
-    out[15] = c[11];
-    out[16] = c[12];
+    out[15] = -c[11];
+    out[16] = -c[12];
     out[17] = c[13];
     out[18] = c[14];
-    out[21] = c[15];
+    out[21] = -c[15];
     out[23] = c[7];
-    out[24] = c[12];
-    out[25] = c[16];
-    out[26] = c[17];
+    out[24] = -c[12];
+    out[25] = -c[16];
+    out[26] = -c[17];
     out[27] = c[18];
-    out[31] = c[19];
+    out[31] = -c[19];
     out[32] = c[8];
     out[33] = c[13];
-    out[34] = c[17];
-    out[35] = c[20];
+    out[34] = -c[17];
+    out[35] = -c[20];
 }
 
-/* energy:(c[48],u[3],q[4],qd[4])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[44],u[3],q[4],qd[4])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void amm_nx0_ny4_prescribed_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -204,12 +200,12 @@ void amm_nx0_ny4_prescribed_first_energy(const double* c, const double* u, const
     const double theta_dotsq_B4 = theta_dotsq*B4;
     const double theta_dotsq_B4sq = theta_dotsq_B4*B4;
     out[0] = c[21]*B1_dotsq + c[22]*B2_dotsq + c[22]*B3_dotsq + c[23]*B4_dotsq;
-    out[1] = c[24]*theta_dot_B1_dot + c[25]*theta_dot_B2_dot + c[26]*theta_dot_B3_dot + c[27]*theta_dot_B4_dot;
-    out[2] = c[28]*theta_dotsq + c[29]*theta_dotsq_B1sq + c[6]*theta_dotsq_B1_B2 + c[7]*theta_dotsq_B1_B3 + c[8]*theta_dotsq_B1_B4 + c[30]*theta_dotsq_B2sq + c[12]*theta_dotsq_B2_B3 + c[13]*theta_dotsq_B2_B4 + c[31]*theta_dotsq_B3sq + c[17]*theta_dotsq_B3_B4 + c[32]*theta_dotsq_B4sq;
-    out[3] = c[33]*B1sq + c[34]*B2sq + c[35]*B3sq + c[36]*B4sq;
+    out[1] = -c[3]*theta_dot_B1_dot - c[9]*theta_dot_B2_dot - c[14]*theta_dot_B3_dot - c[18]*theta_dot_B4_dot;
+    out[2] = c[24]*theta_dotsq - c[25]*theta_dotsq_B1sq + c[6]*theta_dotsq_B1_B2 + c[7]*theta_dotsq_B1_B3 + c[8]*theta_dotsq_B1_B4 - c[26]*theta_dotsq_B2sq - c[12]*theta_dotsq_B2_B3 + c[13]*theta_dotsq_B2_B4 - c[27]*theta_dotsq_B3sq - c[17]*theta_dotsq_B3_B4 - c[28]*theta_dotsq_B4sq;
+    out[3] = c[29]*B1sq + c[30]*B2sq + c[31]*B3sq + c[32]*B4sq;
 }
 
-/* momentum:(c[48],u[3],q[4],qd[4])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[44],u[3],q[4],qd[4])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void amm_nx0_ny4_prescribed_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -235,35 +231,35 @@ void amm_nx0_ny4_prescribed_first_momentum(const double* c, const double* u, con
     const double theta_dot_B3_B4 = theta_dot_B3*B4;
     const double theta_dot_B4 = theta_dot*B4;
     const double theta_dot_B4sq = theta_dot_B4*B4;
-    out[0] = c[37]*theta_dot + c[24]*B1_dot + c[25]*B2_dot + c[26]*B3_dot + c[27]*B4_dot + c[5]*theta_dot_B1sq + c[38]*theta_dot_B1_B2 + c[39]*theta_dot_B1_B3 + c[40]*theta_dot_B1_B4 + c[11]*theta_dot_B2sq + c[41]*theta_dot_B2_B3 + c[42]*theta_dot_B2_B4 + c[16]*theta_dot_B3sq + c[43]*theta_dot_B3_B4 + c[20]*theta_dot_B4sq;
+    out[0] = c[33]*theta_dot - c[3]*B1_dot - c[9]*B2_dot - c[14]*B3_dot - c[18]*B4_dot - c[5]*theta_dot_B1sq + c[34]*theta_dot_B1_B2 + c[35]*theta_dot_B1_B3 + c[36]*theta_dot_B1_B4 - c[11]*theta_dot_B2sq - c[37]*theta_dot_B2_B3 + c[38]*theta_dot_B2_B4 - c[16]*theta_dot_B3sq - c[39]*theta_dot_B3_B4 - c[20]*theta_dot_B4sq;
 }
 
-/* forces_q:(c[48],u[3],q[4],qd[4])->(dQdq[16]) row-major; out[i*4+k] = dQ_i/dq_k */
+/* forces_q:(c[44],u[3],q[4],qd[4])->(dQdq[16]) row-major; out[i*4+k] = dQ_i/dq_k */
 void amm_nx0_ny4_prescribed_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)q;
     (void)qd;
     const double theta_dot = u[1];
     const double theta_dotsq = theta_dot*theta_dot;
-    out[0] = c[4] + c[5]*theta_dotsq;
+    out[0] = -c[4] - c[5]*theta_dotsq;
     out[1] = c[6]*theta_dotsq;
     out[2] = c[7]*theta_dotsq;
     out[3] = c[8]*theta_dotsq;
     out[4] = c[6]*theta_dotsq;
-    out[5] = c[10] + c[11]*theta_dotsq;
-    out[6] = c[12]*theta_dotsq;
+    out[5] = -c[10] - c[11]*theta_dotsq;
+    out[6] = -c[12]*theta_dotsq;
     out[7] = c[13]*theta_dotsq;
     out[8] = c[7]*theta_dotsq;
-    out[9] = c[12]*theta_dotsq;
-    out[10] = c[15] + c[16]*theta_dotsq;
-    out[11] = c[17]*theta_dotsq;
+    out[9] = -c[12]*theta_dotsq;
+    out[10] = -c[15] - c[16]*theta_dotsq;
+    out[11] = -c[17]*theta_dotsq;
     out[12] = c[8]*theta_dotsq;
     out[13] = c[13]*theta_dotsq;
-    out[14] = c[17]*theta_dotsq;
-    out[15] = c[19] + c[20]*theta_dotsq;
+    out[14] = -c[17]*theta_dotsq;
+    out[15] = -c[19] - c[20]*theta_dotsq;
 }
 
-/* forces_qd:(c[48],u[3],q[4],qd[4])->(dQdqd[16]) row-major; out[i*4+k] = dQ_i/dqd_k */
+/* forces_qd:(c[44],u[3],q[4],qd[4])->(dQdqd[16]) row-major; out[i*4+k] = dQ_i/dqd_k */
 void amm_nx0_ny4_prescribed_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -288,7 +284,7 @@ void amm_nx0_ny4_prescribed_first_forces_qd(const double* c, const double* u, co
     out[15] = 0.0;
 }
 
-/* forces_u:(c[48],u[3],q[4],qd[4])->(dQdu[12]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
+/* forces_u:(c[44],u[3],q[4],qd[4])->(dQdu[12]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
 void amm_nx0_ny4_prescribed_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)qd;
@@ -302,22 +298,22 @@ void amm_nx0_ny4_prescribed_first_forces_u(const double* c, const double* u, con
     const double theta_dot_B3 = theta_dot*B3;
     const double theta_dot_B4 = theta_dot*B4;
     out[0] = 0.0;
-    out[1] = c[44]*theta_dot_B1 + c[38]*theta_dot_B2 + c[39]*theta_dot_B3 + c[40]*theta_dot_B4;
+    out[1] = -c[40]*theta_dot_B1 + c[34]*theta_dot_B2 + c[35]*theta_dot_B3 + c[36]*theta_dot_B4;
     out[2] = c[3];
     out[3] = 0.0;
-    out[4] = c[38]*theta_dot_B1 + c[45]*theta_dot_B2 + c[41]*theta_dot_B3 + c[42]*theta_dot_B4;
+    out[4] = c[34]*theta_dot_B1 - c[41]*theta_dot_B2 - c[37]*theta_dot_B3 + c[38]*theta_dot_B4;
     out[5] = c[9];
     out[6] = 0.0;
-    out[7] = c[39]*theta_dot_B1 + c[41]*theta_dot_B2 + c[46]*theta_dot_B3 + c[43]*theta_dot_B4;
+    out[7] = c[35]*theta_dot_B1 - c[37]*theta_dot_B2 - c[42]*theta_dot_B3 - c[39]*theta_dot_B4;
     out[8] = c[14];
     out[9] = 0.0;
-    out[10] = c[40]*theta_dot_B1 + c[42]*theta_dot_B2 + c[43]*theta_dot_B3 + c[47]*theta_dot_B4;
+    out[10] = c[36]*theta_dot_B1 + c[38]*theta_dot_B2 - c[39]*theta_dot_B3 - c[43]*theta_dot_B4;
     out[11] = c[18];
 }
 
 }  // namespace
 
-extern const Variant amm_nx0_ny4_prescribed_first = {"amm_nx0_ny4_prescribed_first", 4, 48, 9,
+extern const Variant amm_nx0_ny4_prescribed_first = {"amm_nx0_ny4_prescribed_first", 4, 44, 9,
     "c0000c0000c0000c",
     amm_nx0_ny4_prescribed_first_coefficients, amm_nx0_ny4_prescribed_first_mass, nullptr, amm_nx0_ny4_prescribed_first_forces, amm_nx0_ny4_prescribed_first_forces_terms, amm_nx0_ny4_prescribed_first_forces_matrix,
     amm_nx0_ny4_prescribed_first_energy, amm_nx0_ny4_prescribed_first_momentum, amm_nx0_ny4_prescribed_first_forces_q, amm_nx0_ny4_prescribed_first_forces_qd, nullptr, amm_nx0_ny4_prescribed_first_forces_u};

@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[27]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[23]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void amm_nx0_ny4_prescribed_zero_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -26,32 +26,28 @@ void amm_nx0_ny4_prescribed_zero_coefficients(const double* p, double* c)
     c[1] = L*m;
     c[2] = 1.0000000000000004*L*m;
     c[3] = 0.7829917560396262*L*m*a + 0.5688257437099108*L*L*m;
-    c[4] = -12.362363368326184*EI/(L*L*L);
+    c[4] = 12.362363368326184*EI/(L*L*L);
     c[5] = 0.43393589511071945*L*m*a + 0.09076678688638677*L*L*m;
-    c[6] = -485.51881851337123*EI/(L*L*L);
+    c[6] = 485.51881851337123*EI/(L*L*L);
     c[7] = 0.2544252968661058*L*m*a + 0.032416374369744407*L*L*m;
-    c[8] = -3806.546266391453*EI/(L*L*L);
+    c[8] = 3806.546266391453*EI/(L*L*L);
     c[9] = 0.18189802163704866*L*m*a + 0.016542335020850608*L*L*m;
-    c[10] = -14617.273305118782*EI/(L*L*L);
+    c[10] = 14617.273305118782*EI/(L*L*L);
     c[11] = 0.49999999999999994*L*m;
     c[12] = 0.5*L*m;
     c[13] = 0.5000000000000002*L*m;
-    c[14] = -0.7829917560396262*L*m*a - 0.5688257437099108*L*L*m;
-    c[15] = -0.43393589511071945*L*m*a - 0.09076678688638677*L*L*m;
-    c[16] = -0.2544252968661058*L*m*a - 0.032416374369744407*L*L*m;
-    c[17] = -0.18189802163704866*L*m*a - 0.016542335020850608*L*L*m;
-    c[18] = 0.5*J_oh + 0.5000000000000021*L*m*a*a + 0.4999999999999997*L*L*m*a + 0.16666666666666663*L*L*L*m;
-    c[19] = 6.181181684163092*EI/(L*L*L);
-    c[20] = 242.75940925668561*EI/(L*L*L);
-    c[21] = 1903.2731331957266*EI/(L*L*L);
-    c[22] = 7308.636652559391*EI/(L*L*L);
-    c[23] = J_oh + 1.0000000000000042*L*m*a*a + 0.9999999999999994*L*L*m*a + 0.33333333333333326*L*L*L*m;
-    c[24] = 1.9999999999999998*L*m;
-    c[25] = 2.0*L*m;
-    c[26] = 2.000000000000001*L*m;
+    c[14] = 0.5*J_oh + 0.5000000000000021*L*m*a*a + 0.4999999999999997*L*L*m*a + 0.16666666666666663*L*L*L*m;
+    c[15] = 6.181181684163092*EI/(L*L*L);
+    c[16] = 242.75940925668561*EI/(L*L*L);
+    c[17] = 1903.2731331957266*EI/(L*L*L);
+    c[18] = 7308.636652559391*EI/(L*L*L);
+    c[19] = J_oh + 1.0000000000000042*L*m*a*a + 0.9999999999999994*L*L*m*a + 0.33333333333333326*L*L*L*m;
+    c[20] = 1.9999999999999998*L*m;
+    c[21] = 2.0*L*m;
+    c[22] = 2.000000000000001*L*m;
 }
 
-/* mass:(c[27],u[3],q[4],qd[4])->(M[16]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[23],u[3],q[4],qd[4])->(M[16]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void amm_nx0_ny4_prescribed_zero_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -63,7 +59,7 @@ void amm_nx0_ny4_prescribed_zero_mass(const double* c, const double* u, const do
     out[15] = c[2];
 }
 
-/* forces:(c[27],u[3],q[4],qd[4])->(Q[4]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[23],u[3],q[4],qd[4])->(Q[4]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void amm_nx0_ny4_prescribed_zero_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)qd;
@@ -78,13 +74,13 @@ void amm_nx0_ny4_prescribed_zero_forces(const double* c, const double* u, const 
     const double theta_dotsq_B2 = theta_dotsq*B2;
     const double theta_dotsq_B3 = theta_dotsq*B3;
     const double theta_dotsq_B4 = theta_dotsq*B4;
-    out[0] = c[3]*theta_ddot + c[4]*B1 + c[0]*theta_dotsq_B1;
-    out[1] = c[5]*theta_ddot + c[6]*B2 + c[1]*theta_dotsq_B2;
-    out[2] = c[7]*theta_ddot + c[8]*B3 + c[1]*theta_dotsq_B3;
-    out[3] = c[9]*theta_ddot + c[10]*B4 + c[2]*theta_dotsq_B4;
+    out[0] = c[3]*theta_ddot - c[4]*B1 + c[0]*theta_dotsq_B1;
+    out[1] = c[5]*theta_ddot - c[6]*B2 + c[1]*theta_dotsq_B2;
+    out[2] = c[7]*theta_ddot - c[8]*B3 + c[1]*theta_dotsq_B3;
+    out[3] = c[9]*theta_ddot - c[10]*B4 + c[2]*theta_dotsq_B4;
 }
 
-/* forces_terms:(c[27],u[3],q[4],qd[4])->(m[9]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[23],u[3],q[4],qd[4])->(m[9]) the state monomials of Q: Q = F m */
 void amm_nx0_ny4_prescribed_zero_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -111,27 +107,27 @@ void amm_nx0_ny4_prescribed_zero_forces_terms(const double* c, const double* u, 
     out[8] = theta_dotsq_B4;
 }
 
-/* forces_matrix:(c[27],u[3],q[4],qd[4])->(F[4*9]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[23],u[3],q[4],qd[4])->(F[4*9]) row-major, state-free: Q = F m; nonzero entries only */
 void amm_nx0_ny4_prescribed_zero_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)q;
     (void)qd;
     out[0] = c[3];
-    out[1] = c[4];
+    out[1] = -c[4];
     out[5] = c[0];
     out[9] = c[5];
-    out[11] = c[6];
+    out[11] = -c[6];
     out[15] = c[1];
     out[18] = c[7];
-    out[21] = c[8];
+    out[21] = -c[8];
     out[25] = c[1];
     out[27] = c[9];
-    out[31] = c[10];
+    out[31] = -c[10];
     out[35] = c[2];
 }
 
-/* energy:(c[27],u[3],q[4],qd[4])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[23],u[3],q[4],qd[4])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void amm_nx0_ny4_prescribed_zero_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -165,12 +161,12 @@ void amm_nx0_ny4_prescribed_zero_energy(const double* c, const double* u, const 
     const double theta_dotsq_B4 = theta_dotsq*B4;
     const double theta_dotsq_B4sq = theta_dotsq_B4*B4;
     out[0] = c[11]*B1_dotsq + c[12]*B2_dotsq + c[12]*B3_dotsq + c[13]*B4_dotsq;
-    out[1] = c[14]*theta_dot_B1_dot + c[15]*theta_dot_B2_dot + c[16]*theta_dot_B3_dot + c[17]*theta_dot_B4_dot;
-    out[2] = c[18]*theta_dotsq + c[11]*theta_dotsq_B1sq + c[12]*theta_dotsq_B2sq + c[12]*theta_dotsq_B3sq + c[13]*theta_dotsq_B4sq;
-    out[3] = c[19]*B1sq + c[20]*B2sq + c[21]*B3sq + c[22]*B4sq;
+    out[1] = -c[3]*theta_dot_B1_dot - c[5]*theta_dot_B2_dot - c[7]*theta_dot_B3_dot - c[9]*theta_dot_B4_dot;
+    out[2] = c[14]*theta_dotsq + c[11]*theta_dotsq_B1sq + c[12]*theta_dotsq_B2sq + c[12]*theta_dotsq_B3sq + c[13]*theta_dotsq_B4sq;
+    out[3] = c[15]*B1sq + c[16]*B2sq + c[17]*B3sq + c[18]*B4sq;
 }
 
-/* momentum:(c[27],u[3],q[4],qd[4])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[23],u[3],q[4],qd[4])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void amm_nx0_ny4_prescribed_zero_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -190,35 +186,35 @@ void amm_nx0_ny4_prescribed_zero_momentum(const double* c, const double* u, cons
     const double theta_dot_B3sq = theta_dot_B3*B3;
     const double theta_dot_B4 = theta_dot*B4;
     const double theta_dot_B4sq = theta_dot_B4*B4;
-    out[0] = c[23]*theta_dot + c[14]*B1_dot + c[15]*B2_dot + c[16]*B3_dot + c[17]*B4_dot + c[0]*theta_dot_B1sq + c[1]*theta_dot_B2sq + c[1]*theta_dot_B3sq + c[2]*theta_dot_B4sq;
+    out[0] = c[19]*theta_dot - c[3]*B1_dot - c[5]*B2_dot - c[7]*B3_dot - c[9]*B4_dot + c[0]*theta_dot_B1sq + c[1]*theta_dot_B2sq + c[1]*theta_dot_B3sq + c[2]*theta_dot_B4sq;
 }
 
-/* forces_q:(c[27],u[3],q[4],qd[4])->(dQdq[16]) row-major; out[i*4+k] = dQ_i/dq_k */
+/* forces_q:(c[23],u[3],q[4],qd[4])->(dQdq[16]) row-major; out[i*4+k] = dQ_i/dq_k */
 void amm_nx0_ny4_prescribed_zero_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)q;
     (void)qd;
     const double theta_dot = u[1];
     const double theta_dotsq = theta_dot*theta_dot;
-    out[0] = c[4] + c[0]*theta_dotsq;
+    out[0] = -c[4] + c[0]*theta_dotsq;
     out[1] = 0.0;
     out[2] = 0.0;
     out[3] = 0.0;
     out[4] = 0.0;
-    out[5] = c[6] + c[1]*theta_dotsq;
+    out[5] = -c[6] + c[1]*theta_dotsq;
     out[6] = 0.0;
     out[7] = 0.0;
     out[8] = 0.0;
     out[9] = 0.0;
-    out[10] = c[8] + c[1]*theta_dotsq;
+    out[10] = -c[8] + c[1]*theta_dotsq;
     out[11] = 0.0;
     out[12] = 0.0;
     out[13] = 0.0;
     out[14] = 0.0;
-    out[15] = c[10] + c[2]*theta_dotsq;
+    out[15] = -c[10] + c[2]*theta_dotsq;
 }
 
-/* forces_qd:(c[27],u[3],q[4],qd[4])->(dQdqd[16]) row-major; out[i*4+k] = dQ_i/dqd_k */
+/* forces_qd:(c[23],u[3],q[4],qd[4])->(dQdqd[16]) row-major; out[i*4+k] = dQ_i/dqd_k */
 void amm_nx0_ny4_prescribed_zero_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -243,7 +239,7 @@ void amm_nx0_ny4_prescribed_zero_forces_qd(const double* c, const double* u, con
     out[15] = 0.0;
 }
 
-/* forces_u:(c[27],u[3],q[4],qd[4])->(dQdu[12]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
+/* forces_u:(c[23],u[3],q[4],qd[4])->(dQdu[12]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
 void amm_nx0_ny4_prescribed_zero_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)qd;
@@ -257,22 +253,22 @@ void amm_nx0_ny4_prescribed_zero_forces_u(const double* c, const double* u, cons
     const double theta_dot_B3 = theta_dot*B3;
     const double theta_dot_B4 = theta_dot*B4;
     out[0] = 0.0;
-    out[1] = c[24]*theta_dot_B1;
+    out[1] = c[20]*theta_dot_B1;
     out[2] = c[3];
     out[3] = 0.0;
-    out[4] = c[25]*theta_dot_B2;
+    out[4] = c[21]*theta_dot_B2;
     out[5] = c[5];
     out[6] = 0.0;
-    out[7] = c[25]*theta_dot_B3;
+    out[7] = c[21]*theta_dot_B3;
     out[8] = c[7];
     out[9] = 0.0;
-    out[10] = c[26]*theta_dot_B4;
+    out[10] = c[22]*theta_dot_B4;
     out[11] = c[9];
 }
 
 }  // namespace
 
-extern const Variant amm_nx0_ny4_prescribed_zero = {"amm_nx0_ny4_prescribed_zero", 4, 27, 9,
+extern const Variant amm_nx0_ny4_prescribed_zero = {"amm_nx0_ny4_prescribed_zero", 4, 23, 9,
     "c0000c0000c0000c",
     amm_nx0_ny4_prescribed_zero_coefficients, amm_nx0_ny4_prescribed_zero_mass, nullptr, amm_nx0_ny4_prescribed_zero_forces, amm_nx0_ny4_prescribed_zero_forces_terms, amm_nx0_ny4_prescribed_zero_forces_matrix,
     amm_nx0_ny4_prescribed_zero_energy, amm_nx0_ny4_prescribed_zero_momentum, amm_nx0_ny4_prescribed_zero_forces_q, amm_nx0_ny4_prescribed_zero_forces_qd, nullptr, amm_nx0_ny4_prescribed_zero_forces_u};

@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[54]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[44]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void amm_nx0_ny4_torque_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -23,62 +23,52 @@ void amm_nx0_ny4_torque_first_coefficients(const double* p, double* c)
     const double a = p[5];
     const double J_oh = p[6];
     c[0] = J_oh + 1.0000000000000042*L*m*a*a + 0.9999999999999994*L*L*m*a + 0.33333333333333326*L*L*L*m;
-    c[1] = -1.5708781899942503*m*a - 0.1933363741082551*L*m;
+    c[1] = 1.5708781899942503*m*a + 0.1933363741082551*L*m;
     c[2] = 0.8446407782182334*m*a + 1.371710566894855*L*m;
     c[3] = 2.1441696682118656*m*a + 1.5847584406191646*L*m;
     c[4] = 1.7462754392825846*m*a + 1.0928265470076575*L*m;
-    c[5] = -8.647142693561207*m*a - 5.478224864076079*L*m;
-    c[6] = -3.7801094160643145*m*a - 0.33881576952304415*L*m;
+    c[5] = 8.647142693561207*m*a + 5.478224864076079*L*m;
+    c[6] = 3.7801094160643145*m*a + 0.33881576952304415*L*m;
     c[7] = 7.286769224587888*m*a + 5.823702223235339*L*m;
-    c[8] = -24.95211330816909*m*a - 16.85951987986099*L*m;
-    c[9] = -16.676579566391283*m*a - 6.548544128042626*L*m;
-    c[10] = -51.45910507561028*m*a - 35.05538832891042*L*m;
-    c[11] = -0.7829917560396262*L*m*a - 0.5688257437099108*L*L*m;
-    c[12] = -0.43393589511071945*L*m*a - 0.09076678688638677*L*L*m;
-    c[13] = -0.2544252968661058*L*m*a - 0.032416374369744407*L*L*m;
-    c[14] = -0.18189802163704866*L*m*a - 0.016542335020850608*L*L*m;
+    c[8] = 24.95211330816909*m*a + 16.85951987986099*L*m;
+    c[9] = 16.676579566391283*m*a + 6.548544128042626*L*m;
+    c[10] = 51.45910507561028*m*a + 35.05538832891042*L*m;
+    c[11] = 0.7829917560396262*L*m*a + 0.5688257437099108*L*L*m;
+    c[12] = 0.43393589511071945*L*m*a + 0.09076678688638677*L*L*m;
+    c[13] = 0.2544252968661058*L*m*a + 0.032416374369744407*L*L*m;
+    c[14] = 0.18189802163704866*L*m*a + 0.016542335020850608*L*L*m;
     c[15] = 0.9999999999999999*L*m;
     c[16] = L*m;
     c[17] = 1.0000000000000004*L*m;
     c[18] = 3.1417563799885007*m*a + 0.3866727482165102*L*m;
-    c[19] = -0.8446407782182334*m*a - 1.371710566894855*L*m;
-    c[20] = -2.1441696682118656*m*a - 1.5847584406191646*L*m;
-    c[21] = -1.7462754392825846*m*a - 1.0928265470076575*L*m;
-    c[22] = 17.294285387122414*m*a + 10.956449728152158*L*m;
-    c[23] = 3.7801094160643145*m*a + 0.33881576952304415*L*m;
-    c[24] = -7.286769224587888*m*a - 5.823702223235339*L*m;
-    c[25] = 49.90422661633818*m*a + 33.71903975972198*L*m;
-    c[26] = 16.676579566391283*m*a + 6.548544128042626*L*m;
-    c[27] = 102.91821015122056*m*a + 70.11077665782084*L*m;
-    c[28] = -12.362363368326184*EI/(L*L*L);
-    c[29] = 0.4223203891091167*m*a + 0.6858552834474275*L*m;
-    c[30] = 1.0720848341059328*m*a + 0.7923792203095823*L*m;
-    c[31] = 0.8731377196412923*m*a + 0.5464132735038287*L*m;
-    c[32] = -485.51881851337123*EI/(L*L*L);
-    c[33] = -1.8900547080321572*m*a - 0.16940788476152208*L*m;
-    c[34] = 3.643384612293944*m*a + 2.9118511116176693*L*m;
-    c[35] = -3806.546266391453*EI/(L*L*L);
-    c[36] = -8.338289783195641*m*a - 3.274272064021313*L*m;
-    c[37] = -14617.273305118782*EI/(L*L*L);
-    c[38] = 0.5*J_oh + 0.5000000000000021*L*m*a*a + 0.4999999999999997*L*L*m*a + 0.16666666666666663*L*L*L*m;
-    c[39] = 0.49999999999999994*L*m;
-    c[40] = 0.5*L*m;
-    c[41] = 0.5000000000000002*L*m;
-    c[42] = -0.7854390949971252*m*a - 0.09666818705412755*L*m;
-    c[43] = -4.323571346780604*m*a - 2.7391124320380396*L*m;
-    c[44] = -12.476056654084545*m*a - 8.429759939930495*L*m;
-    c[45] = -25.72955253780514*m*a - 17.52769416445521*L*m;
-    c[46] = 6.181181684163092*EI/(L*L*L);
-    c[47] = 242.75940925668561*EI/(L*L*L);
-    c[48] = 1903.2731331957266*EI/(L*L*L);
-    c[49] = 7308.636652559391*EI/(L*L*L);
-    c[50] = -3.1417563799885007*m*a - 0.3866727482165102*L*m;
-    c[51] = -17.294285387122414*m*a - 10.956449728152158*L*m;
-    c[52] = -49.90422661633818*m*a - 33.71903975972198*L*m;
-    c[53] = -102.91821015122056*m*a - 70.11077665782084*L*m;
+    c[19] = 17.294285387122414*m*a + 10.956449728152158*L*m;
+    c[20] = 49.90422661633818*m*a + 33.71903975972198*L*m;
+    c[21] = 102.91821015122056*m*a + 70.11077665782084*L*m;
+    c[22] = 12.362363368326184*EI/(L*L*L);
+    c[23] = 0.4223203891091167*m*a + 0.6858552834474275*L*m;
+    c[24] = 1.0720848341059328*m*a + 0.7923792203095823*L*m;
+    c[25] = 0.8731377196412923*m*a + 0.5464132735038287*L*m;
+    c[26] = 485.51881851337123*EI/(L*L*L);
+    c[27] = 1.8900547080321572*m*a + 0.16940788476152208*L*m;
+    c[28] = 3.643384612293944*m*a + 2.9118511116176693*L*m;
+    c[29] = 3806.546266391453*EI/(L*L*L);
+    c[30] = 8.338289783195641*m*a + 3.274272064021313*L*m;
+    c[31] = 14617.273305118782*EI/(L*L*L);
+    c[32] = 0.5*J_oh + 0.5000000000000021*L*m*a*a + 0.4999999999999997*L*L*m*a + 0.16666666666666663*L*L*L*m;
+    c[33] = 0.49999999999999994*L*m;
+    c[34] = 0.5*L*m;
+    c[35] = 0.5000000000000002*L*m;
+    c[36] = 0.7854390949971252*m*a + 0.09666818705412755*L*m;
+    c[37] = 4.323571346780604*m*a + 2.7391124320380396*L*m;
+    c[38] = 12.476056654084545*m*a + 8.429759939930495*L*m;
+    c[39] = 25.72955253780514*m*a + 17.52769416445521*L*m;
+    c[40] = 6.181181684163092*EI/(L*L*L);
+    c[41] = 242.75940925668561*EI/(L*L*L);
+    c[42] = 1903.2731331957266*EI/(L*L*L);
+    c[43] = 7308.636652559391*EI/(L*L*L);
 }
 
-/* mass:(c[54],u[3],q[5],qd[5])->(M[25]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[44],u[3],q[5],qd[5])->(M[25]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void amm_nx0_ny4_torque_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -97,18 +87,18 @@ void amm_nx0_ny4_torque_first_mass(const double* c, const double* u, const doubl
     const double B3sq = B3*B3;
     const double B3_B4 = B3*B4;
     const double B4sq = B4*B4;
-    out[0] = c[0] + c[1]*B1sq + c[2]*B1_B2 + c[3]*B1_B3 + c[4]*B1_B4 + c[5]*B2sq + c[6]*B2_B3 + c[7]*B2_B4 + c[8]*B3sq + c[9]*B3_B4 + c[10]*B4sq;
-    out[1] = c[11];
-    out[2] = c[12];
-    out[3] = c[13];
-    out[4] = c[14];
+    out[0] = c[0] - c[1]*B1sq + c[2]*B1_B2 + c[3]*B1_B3 + c[4]*B1_B4 - c[5]*B2sq - c[6]*B2_B3 + c[7]*B2_B4 - c[8]*B3sq - c[9]*B3_B4 - c[10]*B4sq;
+    out[1] = -c[11];
+    out[2] = -c[12];
+    out[3] = -c[13];
+    out[4] = -c[14];
     out[6] = c[15];
     out[12] = c[16];
     out[18] = c[16];
     out[24] = c[17];
 }
 
-/* forces:(c[54],u[3],q[5],qd[5])->(Q[5]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[44],u[3],q[5],qd[5])->(Q[5]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void amm_nx0_ny4_torque_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
@@ -145,14 +135,14 @@ void amm_nx0_ny4_torque_first_forces(const double* c, const double* u, const dou
     const double B4_theta_dot_B2_dot = B4_theta_dot*B2_dot;
     const double B4_theta_dot_B3_dot = B4_theta_dot*B3_dot;
     const double B4_theta_dot_B4_dot = B4_theta_dot*B4_dot;
-    out[0] = tau + c[18]*B1_theta_dot_B1_dot + c[19]*B1_theta_dot_B2_dot + c[20]*B1_theta_dot_B3_dot + c[21]*B1_theta_dot_B4_dot + c[19]*B2_theta_dot_B1_dot + c[22]*B2_theta_dot_B2_dot + c[23]*B2_theta_dot_B3_dot + c[24]*B2_theta_dot_B4_dot + c[20]*B3_theta_dot_B1_dot + c[23]*B3_theta_dot_B2_dot + c[25]*B3_theta_dot_B3_dot + c[26]*B3_theta_dot_B4_dot + c[21]*B4_theta_dot_B1_dot + c[24]*B4_theta_dot_B2_dot + c[26]*B4_theta_dot_B3_dot + c[27]*B4_theta_dot_B4_dot;
-    out[1] = c[28]*B1 + c[1]*B1_theta_dotsq + c[29]*B2_theta_dotsq + c[30]*B3_theta_dotsq + c[31]*B4_theta_dotsq;
-    out[2] = c[32]*B2 + c[29]*B1_theta_dotsq + c[5]*B2_theta_dotsq + c[33]*B3_theta_dotsq + c[34]*B4_theta_dotsq;
-    out[3] = c[35]*B3 + c[30]*B1_theta_dotsq + c[33]*B2_theta_dotsq + c[8]*B3_theta_dotsq + c[36]*B4_theta_dotsq;
-    out[4] = c[37]*B4 + c[31]*B1_theta_dotsq + c[34]*B2_theta_dotsq + c[36]*B3_theta_dotsq + c[10]*B4_theta_dotsq;
+    out[0] = tau + c[18]*B1_theta_dot_B1_dot - c[2]*B1_theta_dot_B2_dot - c[3]*B1_theta_dot_B3_dot - c[4]*B1_theta_dot_B4_dot - c[2]*B2_theta_dot_B1_dot + c[19]*B2_theta_dot_B2_dot + c[6]*B2_theta_dot_B3_dot - c[7]*B2_theta_dot_B4_dot - c[3]*B3_theta_dot_B1_dot + c[6]*B3_theta_dot_B2_dot + c[20]*B3_theta_dot_B3_dot + c[9]*B3_theta_dot_B4_dot - c[4]*B4_theta_dot_B1_dot - c[7]*B4_theta_dot_B2_dot + c[9]*B4_theta_dot_B3_dot + c[21]*B4_theta_dot_B4_dot;
+    out[1] = -c[22]*B1 - c[1]*B1_theta_dotsq + c[23]*B2_theta_dotsq + c[24]*B3_theta_dotsq + c[25]*B4_theta_dotsq;
+    out[2] = -c[26]*B2 + c[23]*B1_theta_dotsq - c[5]*B2_theta_dotsq - c[27]*B3_theta_dotsq + c[28]*B4_theta_dotsq;
+    out[3] = -c[29]*B3 + c[24]*B1_theta_dotsq - c[27]*B2_theta_dotsq - c[8]*B3_theta_dotsq - c[30]*B4_theta_dotsq;
+    out[4] = -c[31]*B4 + c[25]*B1_theta_dotsq + c[28]*B2_theta_dotsq - c[30]*B3_theta_dotsq - c[10]*B4_theta_dotsq;
 }
 
-/* forces_terms:(c[54],u[3],q[5],qd[5])->(m[25]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[44],u[3],q[5],qd[5])->(m[25]) the state monomials of Q: Q = F m */
 void amm_nx0_ny4_torque_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -217,7 +207,7 @@ void amm_nx0_ny4_torque_first_forces_terms(const double* c, const double* u, con
     out[24] = B4_theta_dot_B4_dot;
 }
 
-/* forces_matrix:(c[54],u[3],q[5],qd[5])->(F[5*25]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[44],u[3],q[5],qd[5])->(F[5*25]) row-major, state-free: Q = F m; nonzero entries only */
 void amm_nx0_ny4_torque_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -225,44 +215,44 @@ void amm_nx0_ny4_torque_first_forces_matrix(const double* c, const double* u, co
     (void)qd;
     out[0] = 1.0;
     out[6] = c[18];
-    out[7] = c[19];
-    out[8] = c[20];
-    out[9] = c[21];
-    out[11] = c[19];
-    out[12] = c[22];
-    out[13] = c[23];
-    out[14] = c[24];
-    out[16] = c[20];
-    out[17] = c[23];
-    out[18] = c[25];
-    out[19] = c[26];
-    out[21] = c[21];
-    out[22] = c[24];
-    out[23] = c[26];
-    out[24] = c[27];
-    out[26] = c[28];
-    out[30] = c[1];
-    out[35] = c[29];
-    out[40] = c[30];
-    out[45] = c[31];
-    out[52] = c[32];
-    out[55] = c[29];
-    out[60] = c[5];
-    out[65] = c[33];
-    out[70] = c[34];
-    out[78] = c[35];
-    out[80] = c[30];
-    out[85] = c[33];
-    out[90] = c[8];
-    out[95] = c[36];
-    out[104] = c[37];
-    out[105] = c[31];
-    out[110] = c[34];
-    out[115] = c[36];
-    out[120] = c[10];
+    out[7] = -c[2];
+    out[8] = -c[3];
+    out[9] = -c[4];
+    out[11] = -c[2];
+    out[12] = c[19];
+    out[13] = c[6];
+    out[14] = -c[7];
+    out[16] = -c[3];
+    out[17] = c[6];
+    out[18] = c[20];
+    out[19] = c[9];
+    out[21] = -c[4];
+    out[22] = -c[7];
+    out[23] = c[9];
+    out[24] = c[21];
+    out[26] = -c[22];
+    out[30] = -c[1];
+    out[35] = c[23];
+    out[40] = c[24];
+    out[45] = c[25];
+    out[52] = -c[26];
+    out[55] = c[23];
+    out[60] = -c[5];
+    out[65] = -c[27];
+    out[70] = c[28];
+    out[78] = -c[29];
+    out[80] = c[24];
+    out[85] = -c[27];
+    out[90] = -c[8];
+    out[95] = -c[30];
+    out[104] = -c[31];
+    out[105] = c[25];
+    out[110] = c[28];
+    out[115] = -c[30];
+    out[120] = -c[10];
 }
 
-/* energy:(c[54],u[3],q[5],qd[5])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[44],u[3],q[5],qd[5])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void amm_nx0_ny4_torque_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -314,13 +304,13 @@ void amm_nx0_ny4_torque_first_energy(const double* c, const double* u, const dou
     const double B3_B4_theta_dotsq = B3_B4_theta_dot*theta_dot;
     const double B4sq_theta_dot = B4sq*theta_dot;
     const double B4sq_theta_dotsq = B4sq_theta_dot*theta_dot;
-    out[0] = c[38]*theta_dotsq + c[11]*theta_dot_B1_dot + c[12]*theta_dot_B2_dot + c[13]*theta_dot_B3_dot + c[14]*theta_dot_B4_dot + c[39]*B1_dotsq + c[40]*B2_dotsq + c[40]*B3_dotsq + c[41]*B4_dotsq + c[42]*B1sq_theta_dotsq + c[29]*B1_B2_theta_dotsq + c[30]*B1_B3_theta_dotsq + c[31]*B1_B4_theta_dotsq + c[43]*B2sq_theta_dotsq + c[33]*B2_B3_theta_dotsq + c[34]*B2_B4_theta_dotsq + c[44]*B3sq_theta_dotsq + c[36]*B3_B4_theta_dotsq + c[45]*B4sq_theta_dotsq;
+    out[0] = c[32]*theta_dotsq - c[11]*theta_dot_B1_dot - c[12]*theta_dot_B2_dot - c[13]*theta_dot_B3_dot - c[14]*theta_dot_B4_dot + c[33]*B1_dotsq + c[34]*B2_dotsq + c[34]*B3_dotsq + c[35]*B4_dotsq - c[36]*B1sq_theta_dotsq + c[23]*B1_B2_theta_dotsq + c[24]*B1_B3_theta_dotsq + c[25]*B1_B4_theta_dotsq - c[37]*B2sq_theta_dotsq - c[27]*B2_B3_theta_dotsq + c[28]*B2_B4_theta_dotsq - c[38]*B3sq_theta_dotsq - c[30]*B3_B4_theta_dotsq - c[39]*B4sq_theta_dotsq;
     out[1] = 0.0;
     out[2] = 0.0;
-    out[3] = c[46]*B1sq + c[47]*B2sq + c[48]*B3sq + c[49]*B4sq;
+    out[3] = c[40]*B1sq + c[41]*B2sq + c[42]*B3sq + c[43]*B4sq;
 }
 
-/* momentum:(c[54],u[3],q[5],qd[5])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[44],u[3],q[5],qd[5])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void amm_nx0_ny4_torque_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -353,10 +343,10 @@ void amm_nx0_ny4_torque_first_momentum(const double* c, const double* u, const d
     const double B3_B4_theta_dot = B3_B4*theta_dot;
     const double B4sq = B4*B4;
     const double B4sq_theta_dot = B4sq*theta_dot;
-    out[0] = c[0]*theta_dot + c[11]*B1_dot + c[12]*B2_dot + c[13]*B3_dot + c[14]*B4_dot + c[1]*B1sq_theta_dot + c[2]*B1_B2_theta_dot + c[3]*B1_B3_theta_dot + c[4]*B1_B4_theta_dot + c[5]*B2sq_theta_dot + c[6]*B2_B3_theta_dot + c[7]*B2_B4_theta_dot + c[8]*B3sq_theta_dot + c[9]*B3_B4_theta_dot + c[10]*B4sq_theta_dot;
+    out[0] = c[0]*theta_dot - c[11]*B1_dot - c[12]*B2_dot - c[13]*B3_dot - c[14]*B4_dot - c[1]*B1sq_theta_dot + c[2]*B1_B2_theta_dot + c[3]*B1_B3_theta_dot + c[4]*B1_B4_theta_dot - c[5]*B2sq_theta_dot - c[6]*B2_B3_theta_dot + c[7]*B2_B4_theta_dot - c[8]*B3sq_theta_dot - c[9]*B3_B4_theta_dot - c[10]*B4sq_theta_dot;
 }
 
-/* forces_q:(c[54],u[3],q[5],qd[5])->(dQdq[25]) row-major; out[i*5+k] = dQ_i/dq_k */
+/* forces_q:(c[44],u[3],q[5],qd[5])->(dQdq[25]) row-major; out[i*5+k] = dQ_i/dq_k */
 void amm_nx0_ny4_torque_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -372,33 +362,33 @@ void amm_nx0_ny4_torque_first_forces_q(const double* c, const double* u, const d
     const double theta_dot_B3_dot = theta_dot*B3_dot;
     const double theta_dot_B4_dot = theta_dot*B4_dot;
     out[0] = 0.0;
-    out[1] = c[18]*theta_dot_B1_dot + c[19]*theta_dot_B2_dot + c[20]*theta_dot_B3_dot + c[21]*theta_dot_B4_dot;
-    out[2] = c[19]*theta_dot_B1_dot + c[22]*theta_dot_B2_dot + c[23]*theta_dot_B3_dot + c[24]*theta_dot_B4_dot;
-    out[3] = c[20]*theta_dot_B1_dot + c[23]*theta_dot_B2_dot + c[25]*theta_dot_B3_dot + c[26]*theta_dot_B4_dot;
-    out[4] = c[21]*theta_dot_B1_dot + c[24]*theta_dot_B2_dot + c[26]*theta_dot_B3_dot + c[27]*theta_dot_B4_dot;
+    out[1] = c[18]*theta_dot_B1_dot - c[2]*theta_dot_B2_dot - c[3]*theta_dot_B3_dot - c[4]*theta_dot_B4_dot;
+    out[2] = -c[2]*theta_dot_B1_dot + c[19]*theta_dot_B2_dot + c[6]*theta_dot_B3_dot - c[7]*theta_dot_B4_dot;
+    out[3] = -c[3]*theta_dot_B1_dot + c[6]*theta_dot_B2_dot + c[20]*theta_dot_B3_dot + c[9]*theta_dot_B4_dot;
+    out[4] = -c[4]*theta_dot_B1_dot - c[7]*theta_dot_B2_dot + c[9]*theta_dot_B3_dot + c[21]*theta_dot_B4_dot;
     out[5] = 0.0;
-    out[6] = c[28] + c[1]*theta_dotsq;
-    out[7] = c[29]*theta_dotsq;
-    out[8] = c[30]*theta_dotsq;
-    out[9] = c[31]*theta_dotsq;
+    out[6] = -c[22] - c[1]*theta_dotsq;
+    out[7] = c[23]*theta_dotsq;
+    out[8] = c[24]*theta_dotsq;
+    out[9] = c[25]*theta_dotsq;
     out[10] = 0.0;
-    out[11] = c[29]*theta_dotsq;
-    out[12] = c[32] + c[5]*theta_dotsq;
-    out[13] = c[33]*theta_dotsq;
-    out[14] = c[34]*theta_dotsq;
+    out[11] = c[23]*theta_dotsq;
+    out[12] = -c[26] - c[5]*theta_dotsq;
+    out[13] = -c[27]*theta_dotsq;
+    out[14] = c[28]*theta_dotsq;
     out[15] = 0.0;
-    out[16] = c[30]*theta_dotsq;
-    out[17] = c[33]*theta_dotsq;
-    out[18] = c[35] + c[8]*theta_dotsq;
-    out[19] = c[36]*theta_dotsq;
+    out[16] = c[24]*theta_dotsq;
+    out[17] = -c[27]*theta_dotsq;
+    out[18] = -c[29] - c[8]*theta_dotsq;
+    out[19] = -c[30]*theta_dotsq;
     out[20] = 0.0;
-    out[21] = c[31]*theta_dotsq;
-    out[22] = c[34]*theta_dotsq;
-    out[23] = c[36]*theta_dotsq;
-    out[24] = c[37] + c[10]*theta_dotsq;
+    out[21] = c[25]*theta_dotsq;
+    out[22] = c[28]*theta_dotsq;
+    out[23] = -c[30]*theta_dotsq;
+    out[24] = -c[31] - c[10]*theta_dotsq;
 }
 
-/* forces_qd:(c[54],u[3],q[5],qd[5])->(dQdqd[25]) row-major; out[i*5+k] = dQ_i/dqd_k */
+/* forces_qd:(c[44],u[3],q[5],qd[5])->(dQdqd[25]) row-major; out[i*5+k] = dQ_i/dqd_k */
 void amm_nx0_ny4_torque_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -431,34 +421,34 @@ void amm_nx0_ny4_torque_first_forces_qd(const double* c, const double* u, const 
     const double B4_B2_dot = B4*B2_dot;
     const double B4_B3_dot = B4*B3_dot;
     const double B4_B4_dot = B4*B4_dot;
-    out[0] = c[18]*B1_B1_dot + c[19]*B1_B2_dot + c[20]*B1_B3_dot + c[21]*B1_B4_dot + c[19]*B2_B1_dot + c[22]*B2_B2_dot + c[23]*B2_B3_dot + c[24]*B2_B4_dot + c[20]*B3_B1_dot + c[23]*B3_B2_dot + c[25]*B3_B3_dot + c[26]*B3_B4_dot + c[21]*B4_B1_dot + c[24]*B4_B2_dot + c[26]*B4_B3_dot + c[27]*B4_B4_dot;
-    out[1] = c[18]*B1_theta_dot + c[19]*B2_theta_dot + c[20]*B3_theta_dot + c[21]*B4_theta_dot;
-    out[2] = c[19]*B1_theta_dot + c[22]*B2_theta_dot + c[23]*B3_theta_dot + c[24]*B4_theta_dot;
-    out[3] = c[20]*B1_theta_dot + c[23]*B2_theta_dot + c[25]*B3_theta_dot + c[26]*B4_theta_dot;
-    out[4] = c[21]*B1_theta_dot + c[24]*B2_theta_dot + c[26]*B3_theta_dot + c[27]*B4_theta_dot;
-    out[5] = c[50]*B1_theta_dot + c[2]*B2_theta_dot + c[3]*B3_theta_dot + c[4]*B4_theta_dot;
+    out[0] = c[18]*B1_B1_dot - c[2]*B1_B2_dot - c[3]*B1_B3_dot - c[4]*B1_B4_dot - c[2]*B2_B1_dot + c[19]*B2_B2_dot + c[6]*B2_B3_dot - c[7]*B2_B4_dot - c[3]*B3_B1_dot + c[6]*B3_B2_dot + c[20]*B3_B3_dot + c[9]*B3_B4_dot - c[4]*B4_B1_dot - c[7]*B4_B2_dot + c[9]*B4_B3_dot + c[21]*B4_B4_dot;
+    out[1] = c[18]*B1_theta_dot - c[2]*B2_theta_dot - c[3]*B3_theta_dot - c[4]*B4_theta_dot;
+    out[2] = -c[2]*B1_theta_dot + c[19]*B2_theta_dot + c[6]*B3_theta_dot - c[7]*B4_theta_dot;
+    out[3] = -c[3]*B1_theta_dot + c[6]*B2_theta_dot + c[20]*B3_theta_dot + c[9]*B4_theta_dot;
+    out[4] = -c[4]*B1_theta_dot - c[7]*B2_theta_dot + c[9]*B3_theta_dot + c[21]*B4_theta_dot;
+    out[5] = -c[18]*B1_theta_dot + c[2]*B2_theta_dot + c[3]*B3_theta_dot + c[4]*B4_theta_dot;
     out[6] = 0.0;
     out[7] = 0.0;
     out[8] = 0.0;
     out[9] = 0.0;
-    out[10] = c[2]*B1_theta_dot + c[51]*B2_theta_dot + c[6]*B3_theta_dot + c[7]*B4_theta_dot;
+    out[10] = c[2]*B1_theta_dot - c[19]*B2_theta_dot - c[6]*B3_theta_dot + c[7]*B4_theta_dot;
     out[11] = 0.0;
     out[12] = 0.0;
     out[13] = 0.0;
     out[14] = 0.0;
-    out[15] = c[3]*B1_theta_dot + c[6]*B2_theta_dot + c[52]*B3_theta_dot + c[9]*B4_theta_dot;
+    out[15] = c[3]*B1_theta_dot - c[6]*B2_theta_dot - c[20]*B3_theta_dot - c[9]*B4_theta_dot;
     out[16] = 0.0;
     out[17] = 0.0;
     out[18] = 0.0;
     out[19] = 0.0;
-    out[20] = c[4]*B1_theta_dot + c[7]*B2_theta_dot + c[9]*B3_theta_dot + c[53]*B4_theta_dot;
+    out[20] = c[4]*B1_theta_dot + c[7]*B2_theta_dot - c[9]*B3_theta_dot - c[21]*B4_theta_dot;
     out[21] = 0.0;
     out[22] = 0.0;
     out[23] = 0.0;
     out[24] = 0.0;
 }
 
-/* forces_u:(c[54],u[3],q[5],qd[5])->(dQdu[15]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
+/* forces_u:(c[44],u[3],q[5],qd[5])->(dQdu[15]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
 void amm_nx0_ny4_torque_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -482,7 +472,7 @@ void amm_nx0_ny4_torque_first_forces_u(const double* c, const double* u, const d
     out[14] = 0.0;
 }
 
-/* mass_varying:(c[54],u[3],q[5],qd[5])->(M[25]) as mass, the entries that depend on q only */
+/* mass_varying:(c[44],u[3],q[5],qd[5])->(M[25]) as mass, the entries that depend on q only */
 void amm_nx0_ny4_torque_first_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -501,10 +491,10 @@ void amm_nx0_ny4_torque_first_mass_varying(const double* c, const double* u, con
     const double B3sq = B3*B3;
     const double B3_B4 = B3*B4;
     const double B4sq = B4*B4;
-    out[0] = c[0] + c[1]*B1sq + c[2]*B1_B2 + c[3]*B1_B3 + c[4]*B1_B4 + c[5]*B2sq + c[6]*B2_B3 + c[7]*B2_B4 + c[8]*B3sq + c[9]*B3_B4 + c[10]*B4sq;
+    out[0] = c[0] - c[1]*B1sq + c[2]*B1_B2 + c[3]*B1_B3 + c[4]*B1_B4 - c[5]*B2sq - c[6]*B2_B3 + c[7]*B2_B4 - c[8]*B3sq - c[9]*B3_B4 - c[10]*B4sq;
 }
 
-/* mass_q_product:(c[54],u[3],q[5],qd[5])->(dMv[25]) row-major; v in the qd slot; out[i*5+k] = sum_j dM_ij/dq_k v_j */
+/* mass_q_product:(c[44],u[3],q[5],qd[5])->(dMv[25]) row-major; v in the qd slot; out[i*5+k] = sum_j dM_ij/dq_k v_j */
 void amm_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -518,10 +508,10 @@ void amm_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, c
     const double B3_theta_dot = B3*theta_dot;
     const double B4_theta_dot = B4*theta_dot;
     out[0] = 0.0;
-    out[1] = c[50]*B1_theta_dot + c[2]*B2_theta_dot + c[3]*B3_theta_dot + c[4]*B4_theta_dot;
-    out[2] = c[2]*B1_theta_dot + c[51]*B2_theta_dot + c[6]*B3_theta_dot + c[7]*B4_theta_dot;
-    out[3] = c[3]*B1_theta_dot + c[6]*B2_theta_dot + c[52]*B3_theta_dot + c[9]*B4_theta_dot;
-    out[4] = c[4]*B1_theta_dot + c[7]*B2_theta_dot + c[9]*B3_theta_dot + c[53]*B4_theta_dot;
+    out[1] = -c[18]*B1_theta_dot + c[2]*B2_theta_dot + c[3]*B3_theta_dot + c[4]*B4_theta_dot;
+    out[2] = c[2]*B1_theta_dot - c[19]*B2_theta_dot - c[6]*B3_theta_dot + c[7]*B4_theta_dot;
+    out[3] = c[3]*B1_theta_dot - c[6]*B2_theta_dot - c[20]*B3_theta_dot - c[9]*B4_theta_dot;
+    out[4] = c[4]*B1_theta_dot + c[7]*B2_theta_dot - c[9]*B3_theta_dot - c[21]*B4_theta_dot;
     out[5] = 0.0;
     out[6] = 0.0;
     out[7] = 0.0;
@@ -546,7 +536,7 @@ void amm_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, c
 
 }  // namespace
 
-extern const Variant amm_nx0_ny4_torque_first = {"amm_nx0_ny4_torque_first", 5, 54, 25,
+extern const Variant amm_nx0_ny4_torque_first = {"amm_nx0_ny4_torque_first", 5, 44, 25,
     "vcccccc000c0c00c00c0c000c",
     amm_nx0_ny4_torque_first_coefficients, amm_nx0_ny4_torque_first_mass, amm_nx0_ny4_torque_first_mass_varying, amm_nx0_ny4_torque_first_forces, amm_nx0_ny4_torque_first_forces_terms, amm_nx0_ny4_torque_first_forces_matrix,
     amm_nx0_ny4_torque_first_energy, amm_nx0_ny4_torque_first_momentum, amm_nx0_ny4_torque_first_forces_q, amm_nx0_ny4_torque_first_forces_qd, amm_nx0_ny4_torque_first_mass_q_product, amm_nx0_ny4_torque_first_forces_u};

@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[150]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[100]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void amm_nx4_ny4_torque_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -32,150 +32,100 @@ void amm_nx4_ny4_torque_first_coefficients(const double* p, double* c)
     c[6] = 0.49999999999999983*L*m;
     c[7] = 0.5000000000000002*L*m;
     c[8] = 0.5*L*m;
-    c[9] = -1.5708781899942503*m*a - 0.1933363741082551*L*m;
+    c[9] = 1.5708781899942503*m*a + 0.1933363741082551*L*m;
     c[10] = 0.8446407782182334*m*a + 1.371710566894855*L*m;
     c[11] = 2.1441696682118656*m*a + 1.5847584406191646*L*m;
     c[12] = 1.7462754392825846*m*a + 1.0928265470076575*L*m;
-    c[13] = -8.647142693561207*m*a - 5.478224864076079*L*m;
-    c[14] = -3.7801094160643145*m*a - 0.33881576952304415*L*m;
+    c[13] = 8.647142693561207*m*a + 5.478224864076079*L*m;
+    c[14] = 3.7801094160643145*m*a + 0.33881576952304415*L*m;
     c[15] = 7.286769224587888*m*a + 5.823702223235339*L*m;
-    c[16] = -24.95211330816909*m*a - 16.85951987986099*L*m;
-    c[17] = -16.676579566391283*m*a - 6.548544128042626*L*m;
-    c[18] = -51.45910507561028*m*a - 35.05538832891042*L*m;
+    c[16] = 24.95211330816909*m*a + 16.85951987986099*L*m;
+    c[17] = 16.676579566391283*m*a + 6.548544128042626*L*m;
+    c[18] = 51.45910507561028*m*a + 35.05538832891042*L*m;
     c[19] = 0.6778618667868109*L*m;
     c[20] = 0.1935954099345871*L*m;
     c[21] = 0.04080979002594644*L*m;
     c[22] = 0.029709240111422567*L*m;
-    c[23] = -0.19608643718855187*L*m;
+    c[23] = 0.19608643718855187*L*m;
     c[24] = 0.61191759758283*L*m;
     c[25] = 0.2806976217797322*L*m;
     c[26] = 0.046099087853231316*L*m;
     c[27] = 0.030213493090520294*L*m;
-    c[28] = -0.28194462097267586*L*m;
+    c[28] = 0.28194462097267586*L*m;
     c[29] = 0.5634402958015017*L*m;
     c[30] = 0.3011116699023933*L*m;
-    c[31] = -0.028083877920934208*L*m;
+    c[31] = 0.028083877920934208*L*m;
     c[32] = 0.047513232753139935*L*m;
-    c[33] = -0.30105172330069563*L*m;
+    c[33] = 0.30105172330069563*L*m;
     c[34] = 0.5454820615023581*L*m;
-    c[35] = -0.7829917560396262*L*m*a - 0.5688257437099108*L*L*m;
-    c[36] = -0.6778618667868109*L*m;
-    c[37] = 0.19608643718855187*L*m;
-    c[38] = -0.030213493090520294*L*m;
-    c[39] = 0.028083877920934208*L*m;
-    c[40] = -0.43393589511071945*L*m*a - 0.09076678688638677*L*L*m;
-    c[41] = -0.1935954099345871*L*m;
-    c[42] = -0.61191759758283*L*m;
-    c[43] = 0.28194462097267586*L*m;
-    c[44] = -0.047513232753139935*L*m;
-    c[45] = -0.2544252968661058*L*m*a - 0.032416374369744407*L*L*m;
-    c[46] = -0.04080979002594644*L*m;
-    c[47] = -0.2806976217797322*L*m;
-    c[48] = -0.5634402958015017*L*m;
-    c[49] = 0.30105172330069563*L*m;
-    c[50] = -0.18189802163704866*L*m*a - 0.016542335020850608*L*L*m;
-    c[51] = -0.029709240111422567*L*m;
-    c[52] = -0.046099087853231316*L*m;
-    c[53] = -0.3011116699023933*L*m;
-    c[54] = -0.5454820615023581*L*m;
-    c[55] = 0.9999999999999999*L*m;
-    c[56] = L*m;
-    c[57] = 1.0000000000000004*L*m;
-    c[58] = -1.2732395447351639*L*m*a - 0.8105694691387022*L*L*m;
-    c[59] = -0.42441318157838775*L*m*a + 0.09006327434874473*L*L*m;
-    c[60] = -0.25464790894703226*L*m*a - 0.032422778765547916*L*L*m;
-    c[61] = -0.1818913635335945*L*m*a + 0.016542234064055084*L*L*m;
-    c[62] = -1.0000000000000002*L*m;
-    c[63] = -0.9999999999999997*L*m;
-    c[64] = -1.0000000000000004*L*m;
-    c[65] = -L*m;
-    c[66] = 3.1417563799885007*m*a + 0.3866727482165102*L*m;
-    c[67] = -0.8446407782182334*m*a - 1.371710566894855*L*m;
-    c[68] = -2.1441696682118656*m*a - 1.5847584406191646*L*m;
-    c[69] = -1.7462754392825846*m*a - 1.0928265470076575*L*m;
-    c[70] = 17.294285387122414*m*a + 10.956449728152158*L*m;
-    c[71] = 3.7801094160643145*m*a + 0.33881576952304415*L*m;
-    c[72] = -7.286769224587888*m*a - 5.823702223235339*L*m;
-    c[73] = 49.90422661633818*m*a + 33.71903975972198*L*m;
-    c[74] = 16.676579566391283*m*a + 6.548544128042626*L*m;
-    c[75] = 102.91821015122056*m*a + 70.11077665782084*L*m;
-    c[76] = -1.23370055013617*ES/(L);
-    c[77] = 0.6366197723675819*L*m*a + 0.4052847345693511*L*L*m;
-    c[78] = -1.3557237335736219*L*m;
-    c[79] = -0.3871908198691742*L*m;
-    c[80] = -0.08161958005189288*L*m;
-    c[81] = -0.059418480222845134*L*m;
-    c[82] = -11.103304951225526*ES/(L);
-    c[83] = 0.21220659078919388*L*m*a - 0.04503163717437236*L*L*m;
-    c[84] = 0.39217287437710374*L*m;
-    c[85] = -1.22383519516566*L*m;
-    c[86] = -0.5613952435594644*L*m;
-    c[87] = -0.09219817570646263*L*m;
-    c[88] = -30.842513753404265*ES/(L);
-    c[89] = 0.12732395447351613*L*m*a + 0.016211389382773958*L*L*m;
-    c[90] = -0.06042698618104059*L*m;
-    c[91] = 0.5638892419453517*L*m;
-    c[92] = -1.1268805916030034*L*m;
-    c[93] = -0.6022233398047866*L*m;
-    c[94] = -60.45132695667233*ES/(L);
-    c[95] = 0.09094568176679725*L*m*a - 0.008271117032027542*L*L*m;
-    c[96] = 0.056167755841868415*L*m;
-    c[97] = -0.09502646550627987*L*m;
-    c[98] = 0.6021034466013913*L*m;
-    c[99] = -1.0909641230047162*L*m;
-    c[100] = -12.362363368326184*EI/(L*L*L);
-    c[101] = 1.3557237335736219*L*m;
-    c[102] = -0.39217287437710374*L*m;
-    c[103] = 0.06042698618104059*L*m;
-    c[104] = -0.056167755841868415*L*m;
-    c[105] = 0.4223203891091167*m*a + 0.6858552834474275*L*m;
-    c[106] = 1.0720848341059328*m*a + 0.7923792203095823*L*m;
-    c[107] = 0.8731377196412923*m*a + 0.5464132735038287*L*m;
-    c[108] = -485.51881851337123*EI/(L*L*L);
-    c[109] = 0.3871908198691742*L*m;
-    c[110] = 1.22383519516566*L*m;
-    c[111] = -0.5638892419453517*L*m;
-    c[112] = 0.09502646550627987*L*m;
-    c[113] = -1.8900547080321572*m*a - 0.16940788476152208*L*m;
-    c[114] = 3.643384612293944*m*a + 2.9118511116176693*L*m;
-    c[115] = -3806.546266391453*EI/(L*L*L);
-    c[116] = 0.08161958005189288*L*m;
-    c[117] = 0.5613952435594644*L*m;
-    c[118] = 1.1268805916030034*L*m;
-    c[119] = -0.6021034466013913*L*m;
-    c[120] = -8.338289783195641*m*a - 3.274272064021313*L*m;
-    c[121] = -14617.273305118782*EI/(L*L*L);
-    c[122] = 0.059418480222845134*L*m;
-    c[123] = 0.09219817570646263*L*m;
-    c[124] = 0.6022233398047866*L*m;
-    c[125] = 1.0909641230047162*L*m;
-    c[126] = 0.5*J_oh + 0.5000000000000021*L*m*a*a + 0.4999999999999997*L*L*m*a + 0.16666666666666663*L*L*L*m;
-    c[127] = 0.25000000000000006*L*m;
-    c[128] = 0.24999999999999992*L*m;
-    c[129] = 0.2500000000000001*L*m;
-    c[130] = 0.25*L*m;
-    c[131] = 0.49999999999999994*L*m;
-    c[132] = -0.7854390949971252*m*a - 0.09666818705412755*L*m;
-    c[133] = -4.323571346780604*m*a - 2.7391124320380396*L*m;
-    c[134] = -12.476056654084545*m*a - 8.429759939930495*L*m;
-    c[135] = -25.72955253780514*m*a - 17.52769416445521*L*m;
-    c[136] = 0.616850275068085*ES/(L);
-    c[137] = 5.551652475612763*ES/(L);
-    c[138] = 15.421256876702133*ES/(L);
-    c[139] = 30.225663478336166*ES/(L);
-    c[140] = 6.181181684163092*EI/(L*L*L);
-    c[141] = 242.75940925668561*EI/(L*L*L);
-    c[142] = 1903.2731331957266*EI/(L*L*L);
-    c[143] = 7308.636652559391*EI/(L*L*L);
-    c[144] = 1.0000000000000002*L*m;
-    c[145] = 0.9999999999999997*L*m;
-    c[146] = -3.1417563799885007*m*a - 0.3866727482165102*L*m;
-    c[147] = -17.294285387122414*m*a - 10.956449728152158*L*m;
-    c[148] = -49.90422661633818*m*a - 33.71903975972198*L*m;
-    c[149] = -102.91821015122056*m*a - 70.11077665782084*L*m;
+    c[35] = 0.7829917560396262*L*m*a + 0.5688257437099108*L*L*m;
+    c[36] = 0.43393589511071945*L*m*a + 0.09076678688638677*L*L*m;
+    c[37] = 0.2544252968661058*L*m*a + 0.032416374369744407*L*L*m;
+    c[38] = 0.18189802163704866*L*m*a + 0.016542335020850608*L*L*m;
+    c[39] = 0.9999999999999999*L*m;
+    c[40] = L*m;
+    c[41] = 1.0000000000000004*L*m;
+    c[42] = 1.0000000000000002*L*m;
+    c[43] = 0.9999999999999997*L*m;
+    c[44] = 3.1417563799885007*m*a + 0.3866727482165102*L*m;
+    c[45] = 17.294285387122414*m*a + 10.956449728152158*L*m;
+    c[46] = 49.90422661633818*m*a + 33.71903975972198*L*m;
+    c[47] = 102.91821015122056*m*a + 70.11077665782084*L*m;
+    c[48] = 1.23370055013617*ES/(L);
+    c[49] = 0.6366197723675819*L*m*a + 0.4052847345693511*L*L*m;
+    c[50] = 1.3557237335736219*L*m;
+    c[51] = 0.3871908198691742*L*m;
+    c[52] = 0.08161958005189288*L*m;
+    c[53] = 0.059418480222845134*L*m;
+    c[54] = 11.103304951225526*ES/(L);
+    c[55] = 0.21220659078919388*L*m*a - 0.04503163717437236*L*L*m;
+    c[56] = 0.39217287437710374*L*m;
+    c[57] = 1.22383519516566*L*m;
+    c[58] = 0.5613952435594644*L*m;
+    c[59] = 0.09219817570646263*L*m;
+    c[60] = 30.842513753404265*ES/(L);
+    c[61] = 0.12732395447351613*L*m*a + 0.016211389382773958*L*L*m;
+    c[62] = 0.06042698618104059*L*m;
+    c[63] = 0.5638892419453517*L*m;
+    c[64] = 1.1268805916030034*L*m;
+    c[65] = 0.6022233398047866*L*m;
+    c[66] = 60.45132695667233*ES/(L);
+    c[67] = 0.09094568176679725*L*m*a - 0.008271117032027542*L*L*m;
+    c[68] = 0.056167755841868415*L*m;
+    c[69] = 0.09502646550627987*L*m;
+    c[70] = 0.6021034466013913*L*m;
+    c[71] = 1.0909641230047162*L*m;
+    c[72] = 12.362363368326184*EI/(L*L*L);
+    c[73] = 0.4223203891091167*m*a + 0.6858552834474275*L*m;
+    c[74] = 1.0720848341059328*m*a + 0.7923792203095823*L*m;
+    c[75] = 0.8731377196412923*m*a + 0.5464132735038287*L*m;
+    c[76] = 485.51881851337123*EI/(L*L*L);
+    c[77] = 1.8900547080321572*m*a + 0.16940788476152208*L*m;
+    c[78] = 3.643384612293944*m*a + 2.9118511116176693*L*m;
+    c[79] = 3806.546266391453*EI/(L*L*L);
+    c[80] = 8.338289783195641*m*a + 3.274272064021313*L*m;
+    c[81] = 14617.273305118782*EI/(L*L*L);
+    c[82] = 0.5*J_oh + 0.5000000000000021*L*m*a*a + 0.4999999999999997*L*L*m*a + 0.16666666666666663*L*L*L*m;
+    c[83] = 0.25000000000000006*L*m;
+    c[84] = 0.24999999999999992*L*m;
+    c[85] = 0.2500000000000001*L*m;
+    c[86] = 0.25*L*m;
+    c[87] = 0.49999999999999994*L*m;
+    c[88] = 0.7854390949971252*m*a + 0.09666818705412755*L*m;
+    c[89] = 4.323571346780604*m*a + 2.7391124320380396*L*m;
+    c[90] = 12.476056654084545*m*a + 8.429759939930495*L*m;
+    c[91] = 25.72955253780514*m*a + 17.52769416445521*L*m;
+    c[92] = 0.616850275068085*ES/(L);
+    c[93] = 5.551652475612763*ES/(L);
+    c[94] = 15.421256876702133*ES/(L);
+    c[95] = 30.225663478336166*ES/(L);
+    c[96] = 6.181181684163092*EI/(L*L*L);
+    c[97] = 242.75940925668561*EI/(L*L*L);
+    c[98] = 1903.2731331957266*EI/(L*L*L);
+    c[99] = 7308.636652559391*EI/(L*L*L);
 }
 
-/* mass:(c[150],u[3],q[9],qd[9])->(M[81]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[100],u[3],q[9],qd[9])->(M[81]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void amm_nx4_ny4_torque_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -202,26 +152,26 @@ void amm_nx4_ny4_torque_first_mass(const double* c, const double* u, const doubl
     const double B3sq = B3*B3;
     const double B3_B4 = B3*B4;
     const double B4sq = B4*B4;
-    out[0] = c[0] + c[1]*A1 + c[2]*A2 + c[3]*A3 + c[4]*A4 + c[5]*A1sq + c[6]*A2sq + c[7]*A3sq + c[8]*A4sq + c[9]*B1sq + c[10]*B1_B2 + c[11]*B1_B3 + c[12]*B1_B4 + c[13]*B2sq + c[14]*B2_B3 + c[15]*B2_B4 + c[16]*B3sq + c[17]*B3_B4 + c[18]*B4sq;
+    out[0] = c[0] + c[1]*A1 + c[2]*A2 + c[3]*A3 + c[4]*A4 + c[5]*A1sq + c[6]*A2sq + c[7]*A3sq + c[8]*A4sq - c[9]*B1sq + c[10]*B1_B2 + c[11]*B1_B3 + c[12]*B1_B4 - c[13]*B2sq - c[14]*B2_B3 + c[15]*B2_B4 - c[16]*B3sq - c[17]*B3_B4 - c[18]*B4sq;
     out[1] = c[19]*B1 + c[20]*B2 + c[21]*B3 + c[22]*B4;
-    out[2] = c[23]*B1 + c[24]*B2 + c[25]*B3 + c[26]*B4;
-    out[3] = c[27]*B1 + c[28]*B2 + c[29]*B3 + c[30]*B4;
-    out[4] = c[31]*B1 + c[32]*B2 + c[33]*B3 + c[34]*B4;
-    out[5] = c[35] + c[36]*A1 + c[37]*A2 + c[38]*A3 + c[39]*A4;
-    out[6] = c[40] + c[41]*A1 + c[42]*A2 + c[43]*A3 + c[44]*A4;
-    out[7] = c[45] + c[46]*A1 + c[47]*A2 + c[48]*A3 + c[49]*A4;
-    out[8] = c[50] + c[51]*A1 + c[52]*A2 + c[53]*A3 + c[54]*A4;
+    out[2] = -c[23]*B1 + c[24]*B2 + c[25]*B3 + c[26]*B4;
+    out[3] = c[27]*B1 - c[28]*B2 + c[29]*B3 + c[30]*B4;
+    out[4] = -c[31]*B1 + c[32]*B2 - c[33]*B3 + c[34]*B4;
+    out[5] = -c[35] - c[19]*A1 + c[23]*A2 - c[27]*A3 + c[31]*A4;
+    out[6] = -c[36] - c[20]*A1 - c[24]*A2 + c[28]*A3 - c[32]*A4;
+    out[7] = -c[37] - c[21]*A1 - c[25]*A2 - c[29]*A3 + c[33]*A4;
+    out[8] = -c[38] - c[22]*A1 - c[26]*A2 - c[30]*A3 - c[34]*A4;
     out[10] = c[5];
     out[20] = c[6];
     out[30] = c[7];
     out[40] = c[8];
-    out[50] = c[55];
-    out[60] = c[56];
-    out[70] = c[56];
-    out[80] = c[57];
+    out[50] = c[39];
+    out[60] = c[40];
+    out[70] = c[40];
+    out[80] = c[41];
 }
 
-/* forces:(c[150],u[3],q[9],qd[9])->(Q[9]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[100],u[3],q[9],qd[9])->(Q[9]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void amm_nx4_ny4_torque_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
@@ -287,18 +237,18 @@ void amm_nx4_ny4_torque_first_forces(const double* c, const double* u, const dou
     const double B4_theta_dot_B2_dot = B4_theta_dot*B2_dot;
     const double B4_theta_dot_B3_dot = B4_theta_dot*B3_dot;
     const double B4_theta_dot_B4_dot = B4_theta_dot*B4_dot;
-    out[0] = tau + c[58]*theta_dot_A1_dot + c[59]*theta_dot_A2_dot + c[60]*theta_dot_A3_dot + c[61]*theta_dot_A4_dot + c[62]*A1_theta_dot_A1_dot + c[63]*A2_theta_dot_A2_dot + c[64]*A3_theta_dot_A3_dot + c[65]*A4_theta_dot_A4_dot + c[66]*B1_theta_dot_B1_dot + c[67]*B1_theta_dot_B2_dot + c[68]*B1_theta_dot_B3_dot + c[69]*B1_theta_dot_B4_dot + c[67]*B2_theta_dot_B1_dot + c[70]*B2_theta_dot_B2_dot + c[71]*B2_theta_dot_B3_dot + c[72]*B2_theta_dot_B4_dot + c[68]*B3_theta_dot_B1_dot + c[71]*B3_theta_dot_B2_dot + c[73]*B3_theta_dot_B3_dot + c[74]*B3_theta_dot_B4_dot + c[69]*B4_theta_dot_B1_dot + c[72]*B4_theta_dot_B2_dot + c[74]*B4_theta_dot_B3_dot + c[75]*B4_theta_dot_B4_dot;
-    out[1] = c[76]*A1 + c[77]*theta_dotsq + c[78]*theta_dot_B1_dot + c[79]*theta_dot_B2_dot + c[80]*theta_dot_B3_dot + c[81]*theta_dot_B4_dot + c[5]*A1_theta_dotsq;
-    out[2] = c[82]*A2 + c[83]*theta_dotsq + c[84]*theta_dot_B1_dot + c[85]*theta_dot_B2_dot + c[86]*theta_dot_B3_dot + c[87]*theta_dot_B4_dot + c[6]*A2_theta_dotsq;
-    out[3] = c[88]*A3 + c[89]*theta_dotsq + c[90]*theta_dot_B1_dot + c[91]*theta_dot_B2_dot + c[92]*theta_dot_B3_dot + c[93]*theta_dot_B4_dot + c[7]*A3_theta_dotsq;
-    out[4] = c[94]*A4 + c[95]*theta_dotsq + c[96]*theta_dot_B1_dot + c[97]*theta_dot_B2_dot + c[98]*theta_dot_B3_dot + c[99]*theta_dot_B4_dot + c[8]*A4_theta_dotsq;
-    out[5] = c[100]*B1 + c[101]*theta_dot_A1_dot + c[102]*theta_dot_A2_dot + c[103]*theta_dot_A3_dot + c[104]*theta_dot_A4_dot + c[9]*B1_theta_dotsq + c[105]*B2_theta_dotsq + c[106]*B3_theta_dotsq + c[107]*B4_theta_dotsq;
-    out[6] = c[108]*B2 + c[109]*theta_dot_A1_dot + c[110]*theta_dot_A2_dot + c[111]*theta_dot_A3_dot + c[112]*theta_dot_A4_dot + c[105]*B1_theta_dotsq + c[13]*B2_theta_dotsq + c[113]*B3_theta_dotsq + c[114]*B4_theta_dotsq;
-    out[7] = c[115]*B3 + c[116]*theta_dot_A1_dot + c[117]*theta_dot_A2_dot + c[118]*theta_dot_A3_dot + c[119]*theta_dot_A4_dot + c[106]*B1_theta_dotsq + c[113]*B2_theta_dotsq + c[16]*B3_theta_dotsq + c[120]*B4_theta_dotsq;
-    out[8] = c[121]*B4 + c[122]*theta_dot_A1_dot + c[123]*theta_dot_A2_dot + c[124]*theta_dot_A3_dot + c[125]*theta_dot_A4_dot + c[107]*B1_theta_dotsq + c[114]*B2_theta_dotsq + c[120]*B3_theta_dotsq + c[18]*B4_theta_dotsq;
+    out[0] = tau - c[1]*theta_dot_A1_dot - c[2]*theta_dot_A2_dot - c[3]*theta_dot_A3_dot - c[4]*theta_dot_A4_dot - c[42]*A1_theta_dot_A1_dot - c[43]*A2_theta_dot_A2_dot - c[41]*A3_theta_dot_A3_dot - c[40]*A4_theta_dot_A4_dot + c[44]*B1_theta_dot_B1_dot - c[10]*B1_theta_dot_B2_dot - c[11]*B1_theta_dot_B3_dot - c[12]*B1_theta_dot_B4_dot - c[10]*B2_theta_dot_B1_dot + c[45]*B2_theta_dot_B2_dot + c[14]*B2_theta_dot_B3_dot - c[15]*B2_theta_dot_B4_dot - c[11]*B3_theta_dot_B1_dot + c[14]*B3_theta_dot_B2_dot + c[46]*B3_theta_dot_B3_dot + c[17]*B3_theta_dot_B4_dot - c[12]*B4_theta_dot_B1_dot - c[15]*B4_theta_dot_B2_dot + c[17]*B4_theta_dot_B3_dot + c[47]*B4_theta_dot_B4_dot;
+    out[1] = -c[48]*A1 + c[49]*theta_dotsq - c[50]*theta_dot_B1_dot - c[51]*theta_dot_B2_dot - c[52]*theta_dot_B3_dot - c[53]*theta_dot_B4_dot + c[5]*A1_theta_dotsq;
+    out[2] = -c[54]*A2 + c[55]*theta_dotsq + c[56]*theta_dot_B1_dot - c[57]*theta_dot_B2_dot - c[58]*theta_dot_B3_dot - c[59]*theta_dot_B4_dot + c[6]*A2_theta_dotsq;
+    out[3] = -c[60]*A3 + c[61]*theta_dotsq - c[62]*theta_dot_B1_dot + c[63]*theta_dot_B2_dot - c[64]*theta_dot_B3_dot - c[65]*theta_dot_B4_dot + c[7]*A3_theta_dotsq;
+    out[4] = -c[66]*A4 + c[67]*theta_dotsq + c[68]*theta_dot_B1_dot - c[69]*theta_dot_B2_dot + c[70]*theta_dot_B3_dot - c[71]*theta_dot_B4_dot + c[8]*A4_theta_dotsq;
+    out[5] = -c[72]*B1 + c[50]*theta_dot_A1_dot - c[56]*theta_dot_A2_dot + c[62]*theta_dot_A3_dot - c[68]*theta_dot_A4_dot - c[9]*B1_theta_dotsq + c[73]*B2_theta_dotsq + c[74]*B3_theta_dotsq + c[75]*B4_theta_dotsq;
+    out[6] = -c[76]*B2 + c[51]*theta_dot_A1_dot + c[57]*theta_dot_A2_dot - c[63]*theta_dot_A3_dot + c[69]*theta_dot_A4_dot + c[73]*B1_theta_dotsq - c[13]*B2_theta_dotsq - c[77]*B3_theta_dotsq + c[78]*B4_theta_dotsq;
+    out[7] = -c[79]*B3 + c[52]*theta_dot_A1_dot + c[58]*theta_dot_A2_dot + c[64]*theta_dot_A3_dot - c[70]*theta_dot_A4_dot + c[74]*B1_theta_dotsq - c[77]*B2_theta_dotsq - c[16]*B3_theta_dotsq - c[80]*B4_theta_dotsq;
+    out[8] = -c[81]*B4 + c[53]*theta_dot_A1_dot + c[59]*theta_dot_A2_dot + c[65]*theta_dot_A3_dot + c[71]*theta_dot_A4_dot + c[75]*B1_theta_dotsq + c[78]*B2_theta_dotsq - c[80]*B3_theta_dotsq - c[18]*B4_theta_dotsq;
 }
 
-/* forces_terms:(c[150],u[3],q[9],qd[9])->(m[46]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[100],u[3],q[9],qd[9])->(m[46]) the state monomials of Q: Q = F m */
 void amm_nx4_ny4_torque_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -413,104 +363,104 @@ void amm_nx4_ny4_torque_first_forces_terms(const double* c, const double* u, con
     out[45] = B4_theta_dot_B4_dot;
 }
 
-/* forces_matrix:(c[150],u[3],q[9],qd[9])->(F[9*46]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[100],u[3],q[9],qd[9])->(F[9*46]) row-major, state-free: Q = F m; nonzero entries only */
 void amm_nx4_ny4_torque_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)q;
     (void)qd;
     out[0] = 1.0;
-    out[10] = c[58];
-    out[11] = c[59];
-    out[12] = c[60];
-    out[13] = c[61];
-    out[19] = c[62];
-    out[21] = c[63];
-    out[23] = c[64];
-    out[25] = c[65];
-    out[27] = c[66];
-    out[28] = c[67];
-    out[29] = c[68];
-    out[30] = c[69];
-    out[32] = c[67];
-    out[33] = c[70];
-    out[34] = c[71];
-    out[35] = c[72];
-    out[37] = c[68];
-    out[38] = c[71];
-    out[39] = c[73];
-    out[40] = c[74];
-    out[42] = c[69];
-    out[43] = c[72];
-    out[44] = c[74];
-    out[45] = c[75];
-    out[47] = c[76];
-    out[55] = c[77];
-    out[60] = c[78];
-    out[61] = c[79];
-    out[62] = c[80];
-    out[63] = c[81];
+    out[10] = -c[1];
+    out[11] = -c[2];
+    out[12] = -c[3];
+    out[13] = -c[4];
+    out[19] = -c[42];
+    out[21] = -c[43];
+    out[23] = -c[41];
+    out[25] = -c[40];
+    out[27] = c[44];
+    out[28] = -c[10];
+    out[29] = -c[11];
+    out[30] = -c[12];
+    out[32] = -c[10];
+    out[33] = c[45];
+    out[34] = c[14];
+    out[35] = -c[15];
+    out[37] = -c[11];
+    out[38] = c[14];
+    out[39] = c[46];
+    out[40] = c[17];
+    out[42] = -c[12];
+    out[43] = -c[15];
+    out[44] = c[17];
+    out[45] = c[47];
+    out[47] = -c[48];
+    out[55] = c[49];
+    out[60] = -c[50];
+    out[61] = -c[51];
+    out[62] = -c[52];
+    out[63] = -c[53];
     out[64] = c[5];
-    out[94] = c[82];
-    out[101] = c[83];
-    out[106] = c[84];
-    out[107] = c[85];
-    out[108] = c[86];
-    out[109] = c[87];
+    out[94] = -c[54];
+    out[101] = c[55];
+    out[106] = c[56];
+    out[107] = -c[57];
+    out[108] = -c[58];
+    out[109] = -c[59];
     out[112] = c[6];
-    out[141] = c[88];
-    out[147] = c[89];
-    out[152] = c[90];
-    out[153] = c[91];
-    out[154] = c[92];
-    out[155] = c[93];
+    out[141] = -c[60];
+    out[147] = c[61];
+    out[152] = -c[62];
+    out[153] = c[63];
+    out[154] = -c[64];
+    out[155] = -c[65];
     out[160] = c[7];
-    out[188] = c[94];
-    out[193] = c[95];
-    out[198] = c[96];
-    out[199] = c[97];
-    out[200] = c[98];
-    out[201] = c[99];
+    out[188] = -c[66];
+    out[193] = c[67];
+    out[198] = c[68];
+    out[199] = -c[69];
+    out[200] = c[70];
+    out[201] = -c[71];
     out[208] = c[8];
-    out[235] = c[100];
-    out[240] = c[101];
-    out[241] = c[102];
-    out[242] = c[103];
-    out[243] = c[104];
-    out[256] = c[9];
-    out[261] = c[105];
-    out[266] = c[106];
-    out[271] = c[107];
-    out[282] = c[108];
-    out[286] = c[109];
-    out[287] = c[110];
-    out[288] = c[111];
-    out[289] = c[112];
-    out[302] = c[105];
-    out[307] = c[13];
-    out[312] = c[113];
-    out[317] = c[114];
-    out[329] = c[115];
-    out[332] = c[116];
-    out[333] = c[117];
-    out[334] = c[118];
-    out[335] = c[119];
-    out[348] = c[106];
-    out[353] = c[113];
-    out[358] = c[16];
-    out[363] = c[120];
-    out[376] = c[121];
-    out[378] = c[122];
-    out[379] = c[123];
-    out[380] = c[124];
-    out[381] = c[125];
-    out[394] = c[107];
-    out[399] = c[114];
-    out[404] = c[120];
-    out[409] = c[18];
+    out[235] = -c[72];
+    out[240] = c[50];
+    out[241] = -c[56];
+    out[242] = c[62];
+    out[243] = -c[68];
+    out[256] = -c[9];
+    out[261] = c[73];
+    out[266] = c[74];
+    out[271] = c[75];
+    out[282] = -c[76];
+    out[286] = c[51];
+    out[287] = c[57];
+    out[288] = -c[63];
+    out[289] = c[69];
+    out[302] = c[73];
+    out[307] = -c[13];
+    out[312] = -c[77];
+    out[317] = c[78];
+    out[329] = -c[79];
+    out[332] = c[52];
+    out[333] = c[58];
+    out[334] = c[64];
+    out[335] = -c[70];
+    out[348] = c[74];
+    out[353] = -c[77];
+    out[358] = -c[16];
+    out[363] = -c[80];
+    out[376] = -c[81];
+    out[378] = c[53];
+    out[379] = c[59];
+    out[380] = c[65];
+    out[381] = c[71];
+    out[394] = c[75];
+    out[399] = c[78];
+    out[404] = -c[80];
+    out[409] = -c[18];
 }
 
-/* energy:(c[150],u[3],q[9],qd[9])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[100],u[3],q[9],qd[9])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void amm_nx4_ny4_torque_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -630,13 +580,13 @@ void amm_nx4_ny4_torque_first_energy(const double* c, const double* u, const dou
     const double B3_B4_theta_dotsq = B3_B4_theta_dot*theta_dot;
     const double B4sq_theta_dot = B4sq*theta_dot;
     const double B4sq_theta_dotsq = B4sq_theta_dot*theta_dot;
-    out[0] = c[126]*theta_dotsq + c[35]*theta_dot_B1_dot + c[40]*theta_dot_B2_dot + c[45]*theta_dot_B3_dot + c[50]*theta_dot_B4_dot + c[127]*A1_dotsq + c[128]*A2_dotsq + c[129]*A3_dotsq + c[130]*A4_dotsq + c[131]*B1_dotsq + c[8]*B2_dotsq + c[8]*B3_dotsq + c[7]*B4_dotsq + c[77]*A1_theta_dotsq + c[36]*A1_theta_dot_B1_dot + c[41]*A1_theta_dot_B2_dot + c[46]*A1_theta_dot_B3_dot + c[51]*A1_theta_dot_B4_dot + c[83]*A2_theta_dotsq + c[37]*A2_theta_dot_B1_dot + c[42]*A2_theta_dot_B2_dot + c[47]*A2_theta_dot_B3_dot + c[52]*A2_theta_dot_B4_dot + c[89]*A3_theta_dotsq + c[38]*A3_theta_dot_B1_dot + c[43]*A3_theta_dot_B2_dot + c[48]*A3_theta_dot_B3_dot + c[53]*A3_theta_dot_B4_dot + c[95]*A4_theta_dotsq + c[39]*A4_theta_dot_B1_dot + c[44]*A4_theta_dot_B2_dot + c[49]*A4_theta_dot_B3_dot + c[54]*A4_theta_dot_B4_dot + c[19]*B1_theta_dot_A1_dot + c[23]*B1_theta_dot_A2_dot + c[27]*B1_theta_dot_A3_dot + c[31]*B1_theta_dot_A4_dot + c[20]*B2_theta_dot_A1_dot + c[24]*B2_theta_dot_A2_dot + c[28]*B2_theta_dot_A3_dot + c[32]*B2_theta_dot_A4_dot + c[21]*B3_theta_dot_A1_dot + c[25]*B3_theta_dot_A2_dot + c[29]*B3_theta_dot_A3_dot + c[33]*B3_theta_dot_A4_dot + c[22]*B4_theta_dot_A1_dot + c[26]*B4_theta_dot_A2_dot + c[30]*B4_theta_dot_A3_dot + c[34]*B4_theta_dot_A4_dot + c[127]*A1sq_theta_dotsq + c[128]*A2sq_theta_dotsq + c[129]*A3sq_theta_dotsq + c[130]*A4sq_theta_dotsq + c[132]*B1sq_theta_dotsq + c[105]*B1_B2_theta_dotsq + c[106]*B1_B3_theta_dotsq + c[107]*B1_B4_theta_dotsq + c[133]*B2sq_theta_dotsq + c[113]*B2_B3_theta_dotsq + c[114]*B2_B4_theta_dotsq + c[134]*B3sq_theta_dotsq + c[120]*B3_B4_theta_dotsq + c[135]*B4sq_theta_dotsq;
+    out[0] = c[82]*theta_dotsq - c[35]*theta_dot_B1_dot - c[36]*theta_dot_B2_dot - c[37]*theta_dot_B3_dot - c[38]*theta_dot_B4_dot + c[83]*A1_dotsq + c[84]*A2_dotsq + c[85]*A3_dotsq + c[86]*A4_dotsq + c[87]*B1_dotsq + c[8]*B2_dotsq + c[8]*B3_dotsq + c[7]*B4_dotsq + c[49]*A1_theta_dotsq - c[19]*A1_theta_dot_B1_dot - c[20]*A1_theta_dot_B2_dot - c[21]*A1_theta_dot_B3_dot - c[22]*A1_theta_dot_B4_dot + c[55]*A2_theta_dotsq + c[23]*A2_theta_dot_B1_dot - c[24]*A2_theta_dot_B2_dot - c[25]*A2_theta_dot_B3_dot - c[26]*A2_theta_dot_B4_dot + c[61]*A3_theta_dotsq - c[27]*A3_theta_dot_B1_dot + c[28]*A3_theta_dot_B2_dot - c[29]*A3_theta_dot_B3_dot - c[30]*A3_theta_dot_B4_dot + c[67]*A4_theta_dotsq + c[31]*A4_theta_dot_B1_dot - c[32]*A4_theta_dot_B2_dot + c[33]*A4_theta_dot_B3_dot - c[34]*A4_theta_dot_B4_dot + c[19]*B1_theta_dot_A1_dot - c[23]*B1_theta_dot_A2_dot + c[27]*B1_theta_dot_A3_dot - c[31]*B1_theta_dot_A4_dot + c[20]*B2_theta_dot_A1_dot + c[24]*B2_theta_dot_A2_dot - c[28]*B2_theta_dot_A3_dot + c[32]*B2_theta_dot_A4_dot + c[21]*B3_theta_dot_A1_dot + c[25]*B3_theta_dot_A2_dot + c[29]*B3_theta_dot_A3_dot - c[33]*B3_theta_dot_A4_dot + c[22]*B4_theta_dot_A1_dot + c[26]*B4_theta_dot_A2_dot + c[30]*B4_theta_dot_A3_dot + c[34]*B4_theta_dot_A4_dot + c[83]*A1sq_theta_dotsq + c[84]*A2sq_theta_dotsq + c[85]*A3sq_theta_dotsq + c[86]*A4sq_theta_dotsq - c[88]*B1sq_theta_dotsq + c[73]*B1_B2_theta_dotsq + c[74]*B1_B3_theta_dotsq + c[75]*B1_B4_theta_dotsq - c[89]*B2sq_theta_dotsq - c[77]*B2_B3_theta_dotsq + c[78]*B2_B4_theta_dotsq - c[90]*B3sq_theta_dotsq - c[80]*B3_B4_theta_dotsq - c[91]*B4sq_theta_dotsq;
     out[1] = 0.0;
     out[2] = 0.0;
-    out[3] = c[136]*A1sq + c[137]*A2sq + c[138]*A3sq + c[139]*A4sq + c[140]*B1sq + c[141]*B2sq + c[142]*B3sq + c[143]*B4sq;
+    out[3] = c[92]*A1sq + c[93]*A2sq + c[94]*A3sq + c[95]*A4sq + c[96]*B1sq + c[97]*B2sq + c[98]*B3sq + c[99]*B4sq;
 }
 
-/* momentum:(c[150],u[3],q[9],qd[9])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[100],u[3],q[9],qd[9])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void amm_nx4_ny4_torque_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -721,10 +671,10 @@ void amm_nx4_ny4_torque_first_momentum(const double* c, const double* u, const d
     const double B3_B4_theta_dot = B3_B4*theta_dot;
     const double B4sq = B4*B4;
     const double B4sq_theta_dot = B4sq*theta_dot;
-    out[0] = c[0]*theta_dot + c[35]*B1_dot + c[40]*B2_dot + c[45]*B3_dot + c[50]*B4_dot + c[1]*A1_theta_dot + c[36]*A1_B1_dot + c[41]*A1_B2_dot + c[46]*A1_B3_dot + c[51]*A1_B4_dot + c[2]*A2_theta_dot + c[37]*A2_B1_dot + c[42]*A2_B2_dot + c[47]*A2_B3_dot + c[52]*A2_B4_dot + c[3]*A3_theta_dot + c[38]*A3_B1_dot + c[43]*A3_B2_dot + c[48]*A3_B3_dot + c[53]*A3_B4_dot + c[4]*A4_theta_dot + c[39]*A4_B1_dot + c[44]*A4_B2_dot + c[49]*A4_B3_dot + c[54]*A4_B4_dot + c[19]*B1_A1_dot + c[23]*B1_A2_dot + c[27]*B1_A3_dot + c[31]*B1_A4_dot + c[20]*B2_A1_dot + c[24]*B2_A2_dot + c[28]*B2_A3_dot + c[32]*B2_A4_dot + c[21]*B3_A1_dot + c[25]*B3_A2_dot + c[29]*B3_A3_dot + c[33]*B3_A4_dot + c[22]*B4_A1_dot + c[26]*B4_A2_dot + c[30]*B4_A3_dot + c[34]*B4_A4_dot + c[5]*A1sq_theta_dot + c[6]*A2sq_theta_dot + c[7]*A3sq_theta_dot + c[8]*A4sq_theta_dot + c[9]*B1sq_theta_dot + c[10]*B1_B2_theta_dot + c[11]*B1_B3_theta_dot + c[12]*B1_B4_theta_dot + c[13]*B2sq_theta_dot + c[14]*B2_B3_theta_dot + c[15]*B2_B4_theta_dot + c[16]*B3sq_theta_dot + c[17]*B3_B4_theta_dot + c[18]*B4sq_theta_dot;
+    out[0] = c[0]*theta_dot - c[35]*B1_dot - c[36]*B2_dot - c[37]*B3_dot - c[38]*B4_dot + c[1]*A1_theta_dot - c[19]*A1_B1_dot - c[20]*A1_B2_dot - c[21]*A1_B3_dot - c[22]*A1_B4_dot + c[2]*A2_theta_dot + c[23]*A2_B1_dot - c[24]*A2_B2_dot - c[25]*A2_B3_dot - c[26]*A2_B4_dot + c[3]*A3_theta_dot - c[27]*A3_B1_dot + c[28]*A3_B2_dot - c[29]*A3_B3_dot - c[30]*A3_B4_dot + c[4]*A4_theta_dot + c[31]*A4_B1_dot - c[32]*A4_B2_dot + c[33]*A4_B3_dot - c[34]*A4_B4_dot + c[19]*B1_A1_dot - c[23]*B1_A2_dot + c[27]*B1_A3_dot - c[31]*B1_A4_dot + c[20]*B2_A1_dot + c[24]*B2_A2_dot - c[28]*B2_A3_dot + c[32]*B2_A4_dot + c[21]*B3_A1_dot + c[25]*B3_A2_dot + c[29]*B3_A3_dot - c[33]*B3_A4_dot + c[22]*B4_A1_dot + c[26]*B4_A2_dot + c[30]*B4_A3_dot + c[34]*B4_A4_dot + c[5]*A1sq_theta_dot + c[6]*A2sq_theta_dot + c[7]*A3sq_theta_dot + c[8]*A4sq_theta_dot - c[9]*B1sq_theta_dot + c[10]*B1_B2_theta_dot + c[11]*B1_B3_theta_dot + c[12]*B1_B4_theta_dot - c[13]*B2sq_theta_dot - c[14]*B2_B3_theta_dot + c[15]*B2_B4_theta_dot - c[16]*B3sq_theta_dot - c[17]*B3_B4_theta_dot - c[18]*B4sq_theta_dot;
 }
 
-/* forces_q:(c[150],u[3],q[9],qd[9])->(dQdq[81]) row-major; out[i*9+k] = dQ_i/dq_k */
+/* forces_q:(c[100],u[3],q[9],qd[9])->(dQdq[81]) row-major; out[i*9+k] = dQ_i/dq_k */
 void amm_nx4_ny4_torque_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -748,16 +698,16 @@ void amm_nx4_ny4_torque_first_forces_q(const double* c, const double* u, const d
     const double theta_dot_B3_dot = theta_dot*B3_dot;
     const double theta_dot_B4_dot = theta_dot*B4_dot;
     out[0] = 0.0;
-    out[1] = c[62]*theta_dot_A1_dot;
-    out[2] = c[63]*theta_dot_A2_dot;
-    out[3] = c[64]*theta_dot_A3_dot;
-    out[4] = c[65]*theta_dot_A4_dot;
-    out[5] = c[66]*theta_dot_B1_dot + c[67]*theta_dot_B2_dot + c[68]*theta_dot_B3_dot + c[69]*theta_dot_B4_dot;
-    out[6] = c[67]*theta_dot_B1_dot + c[70]*theta_dot_B2_dot + c[71]*theta_dot_B3_dot + c[72]*theta_dot_B4_dot;
-    out[7] = c[68]*theta_dot_B1_dot + c[71]*theta_dot_B2_dot + c[73]*theta_dot_B3_dot + c[74]*theta_dot_B4_dot;
-    out[8] = c[69]*theta_dot_B1_dot + c[72]*theta_dot_B2_dot + c[74]*theta_dot_B3_dot + c[75]*theta_dot_B4_dot;
+    out[1] = -c[42]*theta_dot_A1_dot;
+    out[2] = -c[43]*theta_dot_A2_dot;
+    out[3] = -c[41]*theta_dot_A3_dot;
+    out[4] = -c[40]*theta_dot_A4_dot;
+    out[5] = c[44]*theta_dot_B1_dot - c[10]*theta_dot_B2_dot - c[11]*theta_dot_B3_dot - c[12]*theta_dot_B4_dot;
+    out[6] = -c[10]*theta_dot_B1_dot + c[45]*theta_dot_B2_dot + c[14]*theta_dot_B3_dot - c[15]*theta_dot_B4_dot;
+    out[7] = -c[11]*theta_dot_B1_dot + c[14]*theta_dot_B2_dot + c[46]*theta_dot_B3_dot + c[17]*theta_dot_B4_dot;
+    out[8] = -c[12]*theta_dot_B1_dot - c[15]*theta_dot_B2_dot + c[17]*theta_dot_B3_dot + c[47]*theta_dot_B4_dot;
     out[9] = 0.0;
-    out[10] = c[76] + c[5]*theta_dotsq;
+    out[10] = -c[48] + c[5]*theta_dotsq;
     out[11] = 0.0;
     out[12] = 0.0;
     out[13] = 0.0;
@@ -767,7 +717,7 @@ void amm_nx4_ny4_torque_first_forces_q(const double* c, const double* u, const d
     out[17] = 0.0;
     out[18] = 0.0;
     out[19] = 0.0;
-    out[20] = c[82] + c[6]*theta_dotsq;
+    out[20] = -c[54] + c[6]*theta_dotsq;
     out[21] = 0.0;
     out[22] = 0.0;
     out[23] = 0.0;
@@ -777,7 +727,7 @@ void amm_nx4_ny4_torque_first_forces_q(const double* c, const double* u, const d
     out[27] = 0.0;
     out[28] = 0.0;
     out[29] = 0.0;
-    out[30] = c[88] + c[7]*theta_dotsq;
+    out[30] = -c[60] + c[7]*theta_dotsq;
     out[31] = 0.0;
     out[32] = 0.0;
     out[33] = 0.0;
@@ -787,7 +737,7 @@ void amm_nx4_ny4_torque_first_forces_q(const double* c, const double* u, const d
     out[37] = 0.0;
     out[38] = 0.0;
     out[39] = 0.0;
-    out[40] = c[94] + c[8]*theta_dotsq;
+    out[40] = -c[66] + c[8]*theta_dotsq;
     out[41] = 0.0;
     out[42] = 0.0;
     out[43] = 0.0;
@@ -797,40 +747,40 @@ void amm_nx4_ny4_torque_first_forces_q(const double* c, const double* u, const d
     out[47] = 0.0;
     out[48] = 0.0;
     out[49] = 0.0;
-    out[50] = c[100] + c[9]*theta_dotsq;
-    out[51] = c[105]*theta_dotsq;
-    out[52] = c[106]*theta_dotsq;
-    out[53] = c[107]*theta_dotsq;
+    out[50] = -c[72] - c[9]*theta_dotsq;
+    out[51] = c[73]*theta_dotsq;
+    out[52] = c[74]*theta_dotsq;
+    out[53] = c[75]*theta_dotsq;
     out[54] = 0.0;
     out[55] = 0.0;
     out[56] = 0.0;
     out[57] = 0.0;
     out[58] = 0.0;
-    out[59] = c[105]*theta_dotsq;
-    out[60] = c[108] + c[13]*theta_dotsq;
-    out[61] = c[113]*theta_dotsq;
-    out[62] = c[114]*theta_dotsq;
+    out[59] = c[73]*theta_dotsq;
+    out[60] = -c[76] - c[13]*theta_dotsq;
+    out[61] = -c[77]*theta_dotsq;
+    out[62] = c[78]*theta_dotsq;
     out[63] = 0.0;
     out[64] = 0.0;
     out[65] = 0.0;
     out[66] = 0.0;
     out[67] = 0.0;
-    out[68] = c[106]*theta_dotsq;
-    out[69] = c[113]*theta_dotsq;
-    out[70] = c[115] + c[16]*theta_dotsq;
-    out[71] = c[120]*theta_dotsq;
+    out[68] = c[74]*theta_dotsq;
+    out[69] = -c[77]*theta_dotsq;
+    out[70] = -c[79] - c[16]*theta_dotsq;
+    out[71] = -c[80]*theta_dotsq;
     out[72] = 0.0;
     out[73] = 0.0;
     out[74] = 0.0;
     out[75] = 0.0;
     out[76] = 0.0;
-    out[77] = c[107]*theta_dotsq;
-    out[78] = c[114]*theta_dotsq;
-    out[79] = c[120]*theta_dotsq;
-    out[80] = c[121] + c[18]*theta_dotsq;
+    out[77] = c[75]*theta_dotsq;
+    out[78] = c[78]*theta_dotsq;
+    out[79] = -c[80]*theta_dotsq;
+    out[80] = -c[81] - c[18]*theta_dotsq;
 }
 
-/* forces_qd:(c[150],u[3],q[9],qd[9])->(dQdqd[81]) row-major; out[i*9+k] = dQ_i/dqd_k */
+/* forces_qd:(c[100],u[3],q[9],qd[9])->(dQdqd[81]) row-major; out[i*9+k] = dQ_i/dqd_k */
 void amm_nx4_ny4_torque_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -879,90 +829,90 @@ void amm_nx4_ny4_torque_first_forces_qd(const double* c, const double* u, const 
     const double B4_B2_dot = B4*B2_dot;
     const double B4_B3_dot = B4*B3_dot;
     const double B4_B4_dot = B4*B4_dot;
-    out[0] = c[58]*A1_dot + c[59]*A2_dot + c[60]*A3_dot + c[61]*A4_dot + c[62]*A1_A1_dot + c[63]*A2_A2_dot + c[64]*A3_A3_dot + c[65]*A4_A4_dot + c[66]*B1_B1_dot + c[67]*B1_B2_dot + c[68]*B1_B3_dot + c[69]*B1_B4_dot + c[67]*B2_B1_dot + c[70]*B2_B2_dot + c[71]*B2_B3_dot + c[72]*B2_B4_dot + c[68]*B3_B1_dot + c[71]*B3_B2_dot + c[73]*B3_B3_dot + c[74]*B3_B4_dot + c[69]*B4_B1_dot + c[72]*B4_B2_dot + c[74]*B4_B3_dot + c[75]*B4_B4_dot;
-    out[1] = c[58]*theta_dot + c[62]*A1_theta_dot;
-    out[2] = c[59]*theta_dot + c[63]*A2_theta_dot;
-    out[3] = c[60]*theta_dot + c[64]*A3_theta_dot;
-    out[4] = c[61]*theta_dot + c[65]*A4_theta_dot;
-    out[5] = c[66]*B1_theta_dot + c[67]*B2_theta_dot + c[68]*B3_theta_dot + c[69]*B4_theta_dot;
-    out[6] = c[67]*B1_theta_dot + c[70]*B2_theta_dot + c[71]*B3_theta_dot + c[72]*B4_theta_dot;
-    out[7] = c[68]*B1_theta_dot + c[71]*B2_theta_dot + c[73]*B3_theta_dot + c[74]*B4_theta_dot;
-    out[8] = c[69]*B1_theta_dot + c[72]*B2_theta_dot + c[74]*B3_theta_dot + c[75]*B4_theta_dot;
-    out[9] = c[1]*theta_dot + c[78]*B1_dot + c[79]*B2_dot + c[80]*B3_dot + c[81]*B4_dot + c[144]*A1_theta_dot;
+    out[0] = -c[1]*A1_dot - c[2]*A2_dot - c[3]*A3_dot - c[4]*A4_dot - c[42]*A1_A1_dot - c[43]*A2_A2_dot - c[41]*A3_A3_dot - c[40]*A4_A4_dot + c[44]*B1_B1_dot - c[10]*B1_B2_dot - c[11]*B1_B3_dot - c[12]*B1_B4_dot - c[10]*B2_B1_dot + c[45]*B2_B2_dot + c[14]*B2_B3_dot - c[15]*B2_B4_dot - c[11]*B3_B1_dot + c[14]*B3_B2_dot + c[46]*B3_B3_dot + c[17]*B3_B4_dot - c[12]*B4_B1_dot - c[15]*B4_B2_dot + c[17]*B4_B3_dot + c[47]*B4_B4_dot;
+    out[1] = -c[1]*theta_dot - c[42]*A1_theta_dot;
+    out[2] = -c[2]*theta_dot - c[43]*A2_theta_dot;
+    out[3] = -c[3]*theta_dot - c[41]*A3_theta_dot;
+    out[4] = -c[4]*theta_dot - c[40]*A4_theta_dot;
+    out[5] = c[44]*B1_theta_dot - c[10]*B2_theta_dot - c[11]*B3_theta_dot - c[12]*B4_theta_dot;
+    out[6] = -c[10]*B1_theta_dot + c[45]*B2_theta_dot + c[14]*B3_theta_dot - c[15]*B4_theta_dot;
+    out[7] = -c[11]*B1_theta_dot + c[14]*B2_theta_dot + c[46]*B3_theta_dot + c[17]*B4_theta_dot;
+    out[8] = -c[12]*B1_theta_dot - c[15]*B2_theta_dot + c[17]*B3_theta_dot + c[47]*B4_theta_dot;
+    out[9] = c[1]*theta_dot - c[50]*B1_dot - c[51]*B2_dot - c[52]*B3_dot - c[53]*B4_dot + c[42]*A1_theta_dot;
     out[10] = 0.0;
     out[11] = 0.0;
     out[12] = 0.0;
     out[13] = 0.0;
-    out[14] = c[78]*theta_dot;
-    out[15] = c[79]*theta_dot;
-    out[16] = c[80]*theta_dot;
-    out[17] = c[81]*theta_dot;
-    out[18] = c[2]*theta_dot + c[84]*B1_dot + c[85]*B2_dot + c[86]*B3_dot + c[87]*B4_dot + c[145]*A2_theta_dot;
+    out[14] = -c[50]*theta_dot;
+    out[15] = -c[51]*theta_dot;
+    out[16] = -c[52]*theta_dot;
+    out[17] = -c[53]*theta_dot;
+    out[18] = c[2]*theta_dot + c[56]*B1_dot - c[57]*B2_dot - c[58]*B3_dot - c[59]*B4_dot + c[43]*A2_theta_dot;
     out[19] = 0.0;
     out[20] = 0.0;
     out[21] = 0.0;
     out[22] = 0.0;
-    out[23] = c[84]*theta_dot;
-    out[24] = c[85]*theta_dot;
-    out[25] = c[86]*theta_dot;
-    out[26] = c[87]*theta_dot;
-    out[27] = c[3]*theta_dot + c[90]*B1_dot + c[91]*B2_dot + c[92]*B3_dot + c[93]*B4_dot + c[57]*A3_theta_dot;
+    out[23] = c[56]*theta_dot;
+    out[24] = -c[57]*theta_dot;
+    out[25] = -c[58]*theta_dot;
+    out[26] = -c[59]*theta_dot;
+    out[27] = c[3]*theta_dot - c[62]*B1_dot + c[63]*B2_dot - c[64]*B3_dot - c[65]*B4_dot + c[41]*A3_theta_dot;
     out[28] = 0.0;
     out[29] = 0.0;
     out[30] = 0.0;
     out[31] = 0.0;
-    out[32] = c[90]*theta_dot;
-    out[33] = c[91]*theta_dot;
-    out[34] = c[92]*theta_dot;
-    out[35] = c[93]*theta_dot;
-    out[36] = c[4]*theta_dot + c[96]*B1_dot + c[97]*B2_dot + c[98]*B3_dot + c[99]*B4_dot + c[56]*A4_theta_dot;
+    out[32] = -c[62]*theta_dot;
+    out[33] = c[63]*theta_dot;
+    out[34] = -c[64]*theta_dot;
+    out[35] = -c[65]*theta_dot;
+    out[36] = c[4]*theta_dot + c[68]*B1_dot - c[69]*B2_dot + c[70]*B3_dot - c[71]*B4_dot + c[40]*A4_theta_dot;
     out[37] = 0.0;
     out[38] = 0.0;
     out[39] = 0.0;
     out[40] = 0.0;
-    out[41] = c[96]*theta_dot;
-    out[42] = c[97]*theta_dot;
-    out[43] = c[98]*theta_dot;
-    out[44] = c[99]*theta_dot;
-    out[45] = c[101]*A1_dot + c[102]*A2_dot + c[103]*A3_dot + c[104]*A4_dot + c[146]*B1_theta_dot + c[10]*B2_theta_dot + c[11]*B3_theta_dot + c[12]*B4_theta_dot;
-    out[46] = c[101]*theta_dot;
-    out[47] = c[102]*theta_dot;
-    out[48] = c[103]*theta_dot;
-    out[49] = c[104]*theta_dot;
+    out[41] = c[68]*theta_dot;
+    out[42] = -c[69]*theta_dot;
+    out[43] = c[70]*theta_dot;
+    out[44] = -c[71]*theta_dot;
+    out[45] = c[50]*A1_dot - c[56]*A2_dot + c[62]*A3_dot - c[68]*A4_dot - c[44]*B1_theta_dot + c[10]*B2_theta_dot + c[11]*B3_theta_dot + c[12]*B4_theta_dot;
+    out[46] = c[50]*theta_dot;
+    out[47] = -c[56]*theta_dot;
+    out[48] = c[62]*theta_dot;
+    out[49] = -c[68]*theta_dot;
     out[50] = 0.0;
     out[51] = 0.0;
     out[52] = 0.0;
     out[53] = 0.0;
-    out[54] = c[109]*A1_dot + c[110]*A2_dot + c[111]*A3_dot + c[112]*A4_dot + c[10]*B1_theta_dot + c[147]*B2_theta_dot + c[14]*B3_theta_dot + c[15]*B4_theta_dot;
-    out[55] = c[109]*theta_dot;
-    out[56] = c[110]*theta_dot;
-    out[57] = c[111]*theta_dot;
-    out[58] = c[112]*theta_dot;
+    out[54] = c[51]*A1_dot + c[57]*A2_dot - c[63]*A3_dot + c[69]*A4_dot + c[10]*B1_theta_dot - c[45]*B2_theta_dot - c[14]*B3_theta_dot + c[15]*B4_theta_dot;
+    out[55] = c[51]*theta_dot;
+    out[56] = c[57]*theta_dot;
+    out[57] = -c[63]*theta_dot;
+    out[58] = c[69]*theta_dot;
     out[59] = 0.0;
     out[60] = 0.0;
     out[61] = 0.0;
     out[62] = 0.0;
-    out[63] = c[116]*A1_dot + c[117]*A2_dot + c[118]*A3_dot + c[119]*A4_dot + c[11]*B1_theta_dot + c[14]*B2_theta_dot + c[148]*B3_theta_dot + c[17]*B4_theta_dot;
-    out[64] = c[116]*theta_dot;
-    out[65] = c[117]*theta_dot;
-    out[66] = c[118]*theta_dot;
-    out[67] = c[119]*theta_dot;
+    out[63] = c[52]*A1_dot + c[58]*A2_dot + c[64]*A3_dot - c[70]*A4_dot + c[11]*B1_theta_dot - c[14]*B2_theta_dot - c[46]*B3_theta_dot - c[17]*B4_theta_dot;
+    out[64] = c[52]*theta_dot;
+    out[65] = c[58]*theta_dot;
+    out[66] = c[64]*theta_dot;
+    out[67] = -c[70]*theta_dot;
     out[68] = 0.0;
     out[69] = 0.0;
     out[70] = 0.0;
     out[71] = 0.0;
-    out[72] = c[122]*A1_dot + c[123]*A2_dot + c[124]*A3_dot + c[125]*A4_dot + c[12]*B1_theta_dot + c[15]*B2_theta_dot + c[17]*B3_theta_dot + c[149]*B4_theta_dot;
-    out[73] = c[122]*theta_dot;
-    out[74] = c[123]*theta_dot;
-    out[75] = c[124]*theta_dot;
-    out[76] = c[125]*theta_dot;
+    out[72] = c[53]*A1_dot + c[59]*A2_dot + c[65]*A3_dot + c[71]*A4_dot + c[12]*B1_theta_dot + c[15]*B2_theta_dot - c[17]*B3_theta_dot - c[47]*B4_theta_dot;
+    out[73] = c[53]*theta_dot;
+    out[74] = c[59]*theta_dot;
+    out[75] = c[65]*theta_dot;
+    out[76] = c[71]*theta_dot;
     out[77] = 0.0;
     out[78] = 0.0;
     out[79] = 0.0;
     out[80] = 0.0;
 }
 
-/* forces_u:(c[150],u[3],q[9],qd[9])->(dQdu[27]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
+/* forces_u:(c[100],u[3],q[9],qd[9])->(dQdu[27]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
 void amm_nx4_ny4_torque_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -998,7 +948,7 @@ void amm_nx4_ny4_torque_first_forces_u(const double* c, const double* u, const d
     out[26] = 0.0;
 }
 
-/* mass_varying:(c[150],u[3],q[9],qd[9])->(M[81]) as mass, the entries that depend on q only */
+/* mass_varying:(c[100],u[3],q[9],qd[9])->(M[81]) as mass, the entries that depend on q only */
 void amm_nx4_ny4_torque_first_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -1025,18 +975,18 @@ void amm_nx4_ny4_torque_first_mass_varying(const double* c, const double* u, con
     const double B3sq = B3*B3;
     const double B3_B4 = B3*B4;
     const double B4sq = B4*B4;
-    out[0] = c[0] + c[1]*A1 + c[2]*A2 + c[3]*A3 + c[4]*A4 + c[5]*A1sq + c[6]*A2sq + c[7]*A3sq + c[8]*A4sq + c[9]*B1sq + c[10]*B1_B2 + c[11]*B1_B3 + c[12]*B1_B4 + c[13]*B2sq + c[14]*B2_B3 + c[15]*B2_B4 + c[16]*B3sq + c[17]*B3_B4 + c[18]*B4sq;
+    out[0] = c[0] + c[1]*A1 + c[2]*A2 + c[3]*A3 + c[4]*A4 + c[5]*A1sq + c[6]*A2sq + c[7]*A3sq + c[8]*A4sq - c[9]*B1sq + c[10]*B1_B2 + c[11]*B1_B3 + c[12]*B1_B4 - c[13]*B2sq - c[14]*B2_B3 + c[15]*B2_B4 - c[16]*B3sq - c[17]*B3_B4 - c[18]*B4sq;
     out[1] = c[19]*B1 + c[20]*B2 + c[21]*B3 + c[22]*B4;
-    out[2] = c[23]*B1 + c[24]*B2 + c[25]*B3 + c[26]*B4;
-    out[3] = c[27]*B1 + c[28]*B2 + c[29]*B3 + c[30]*B4;
-    out[4] = c[31]*B1 + c[32]*B2 + c[33]*B3 + c[34]*B4;
-    out[5] = c[35] + c[36]*A1 + c[37]*A2 + c[38]*A3 + c[39]*A4;
-    out[6] = c[40] + c[41]*A1 + c[42]*A2 + c[43]*A3 + c[44]*A4;
-    out[7] = c[45] + c[46]*A1 + c[47]*A2 + c[48]*A3 + c[49]*A4;
-    out[8] = c[50] + c[51]*A1 + c[52]*A2 + c[53]*A3 + c[54]*A4;
+    out[2] = -c[23]*B1 + c[24]*B2 + c[25]*B3 + c[26]*B4;
+    out[3] = c[27]*B1 - c[28]*B2 + c[29]*B3 + c[30]*B4;
+    out[4] = -c[31]*B1 + c[32]*B2 - c[33]*B3 + c[34]*B4;
+    out[5] = -c[35] - c[19]*A1 + c[23]*A2 - c[27]*A3 + c[31]*A4;
+    out[6] = -c[36] - c[20]*A1 - c[24]*A2 + c[28]*A3 - c[32]*A4;
+    out[7] = -c[37] - c[21]*A1 - c[25]*A2 - c[29]*A3 + c[33]*A4;
+    out[8] = -c[38] - c[22]*A1 - c[26]*A2 - c[30]*A3 - c[34]*A4;
 }
 
-/* mass_q_product:(c[150],u[3],q[9],qd[9])->(dMv[81]) row-major; v in the qd slot; out[i*9+k] = sum_j dM_ij/dq_k v_j */
+/* mass_q_product:(c[100],u[3],q[9],qd[9])->(dMv[81]) row-major; v in the qd slot; out[i*9+k] = sum_j dM_ij/dq_k v_j */
 void amm_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -1066,14 +1016,14 @@ void amm_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, c
     const double B3_theta_dot = B3*theta_dot;
     const double B4_theta_dot = B4*theta_dot;
     out[0] = 0.0;
-    out[1] = c[1]*theta_dot + c[36]*B1_dot + c[41]*B2_dot + c[46]*B3_dot + c[51]*B4_dot + c[144]*A1_theta_dot;
-    out[2] = c[2]*theta_dot + c[37]*B1_dot + c[42]*B2_dot + c[47]*B3_dot + c[52]*B4_dot + c[145]*A2_theta_dot;
-    out[3] = c[3]*theta_dot + c[38]*B1_dot + c[43]*B2_dot + c[48]*B3_dot + c[53]*B4_dot + c[57]*A3_theta_dot;
-    out[4] = c[4]*theta_dot + c[39]*B1_dot + c[44]*B2_dot + c[49]*B3_dot + c[54]*B4_dot + c[56]*A4_theta_dot;
-    out[5] = c[19]*A1_dot + c[23]*A2_dot + c[27]*A3_dot + c[31]*A4_dot + c[146]*B1_theta_dot + c[10]*B2_theta_dot + c[11]*B3_theta_dot + c[12]*B4_theta_dot;
-    out[6] = c[20]*A1_dot + c[24]*A2_dot + c[28]*A3_dot + c[32]*A4_dot + c[10]*B1_theta_dot + c[147]*B2_theta_dot + c[14]*B3_theta_dot + c[15]*B4_theta_dot;
-    out[7] = c[21]*A1_dot + c[25]*A2_dot + c[29]*A3_dot + c[33]*A4_dot + c[11]*B1_theta_dot + c[14]*B2_theta_dot + c[148]*B3_theta_dot + c[17]*B4_theta_dot;
-    out[8] = c[22]*A1_dot + c[26]*A2_dot + c[30]*A3_dot + c[34]*A4_dot + c[12]*B1_theta_dot + c[15]*B2_theta_dot + c[17]*B3_theta_dot + c[149]*B4_theta_dot;
+    out[1] = c[1]*theta_dot - c[19]*B1_dot - c[20]*B2_dot - c[21]*B3_dot - c[22]*B4_dot + c[42]*A1_theta_dot;
+    out[2] = c[2]*theta_dot + c[23]*B1_dot - c[24]*B2_dot - c[25]*B3_dot - c[26]*B4_dot + c[43]*A2_theta_dot;
+    out[3] = c[3]*theta_dot - c[27]*B1_dot + c[28]*B2_dot - c[29]*B3_dot - c[30]*B4_dot + c[41]*A3_theta_dot;
+    out[4] = c[4]*theta_dot + c[31]*B1_dot - c[32]*B2_dot + c[33]*B3_dot - c[34]*B4_dot + c[40]*A4_theta_dot;
+    out[5] = c[19]*A1_dot - c[23]*A2_dot + c[27]*A3_dot - c[31]*A4_dot - c[44]*B1_theta_dot + c[10]*B2_theta_dot + c[11]*B3_theta_dot + c[12]*B4_theta_dot;
+    out[6] = c[20]*A1_dot + c[24]*A2_dot - c[28]*A3_dot + c[32]*A4_dot + c[10]*B1_theta_dot - c[45]*B2_theta_dot - c[14]*B3_theta_dot + c[15]*B4_theta_dot;
+    out[7] = c[21]*A1_dot + c[25]*A2_dot + c[29]*A3_dot - c[33]*A4_dot + c[11]*B1_theta_dot - c[14]*B2_theta_dot - c[46]*B3_theta_dot - c[17]*B4_theta_dot;
+    out[8] = c[22]*A1_dot + c[26]*A2_dot + c[30]*A3_dot + c[34]*A4_dot + c[12]*B1_theta_dot + c[15]*B2_theta_dot - c[17]*B3_theta_dot - c[47]*B4_theta_dot;
     out[9] = 0.0;
     out[10] = 0.0;
     out[11] = 0.0;
@@ -1088,7 +1038,7 @@ void amm_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, c
     out[20] = 0.0;
     out[21] = 0.0;
     out[22] = 0.0;
-    out[23] = c[23]*theta_dot;
+    out[23] = -c[23]*theta_dot;
     out[24] = c[24]*theta_dot;
     out[25] = c[25]*theta_dot;
     out[26] = c[26]*theta_dot;
@@ -1098,7 +1048,7 @@ void amm_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, c
     out[30] = 0.0;
     out[31] = 0.0;
     out[32] = c[27]*theta_dot;
-    out[33] = c[28]*theta_dot;
+    out[33] = -c[28]*theta_dot;
     out[34] = c[29]*theta_dot;
     out[35] = c[30]*theta_dot;
     out[36] = 0.0;
@@ -1106,42 +1056,42 @@ void amm_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, c
     out[38] = 0.0;
     out[39] = 0.0;
     out[40] = 0.0;
-    out[41] = c[31]*theta_dot;
+    out[41] = -c[31]*theta_dot;
     out[42] = c[32]*theta_dot;
-    out[43] = c[33]*theta_dot;
+    out[43] = -c[33]*theta_dot;
     out[44] = c[34]*theta_dot;
     out[45] = 0.0;
-    out[46] = c[36]*theta_dot;
-    out[47] = c[37]*theta_dot;
-    out[48] = c[38]*theta_dot;
-    out[49] = c[39]*theta_dot;
+    out[46] = -c[19]*theta_dot;
+    out[47] = c[23]*theta_dot;
+    out[48] = -c[27]*theta_dot;
+    out[49] = c[31]*theta_dot;
     out[50] = 0.0;
     out[51] = 0.0;
     out[52] = 0.0;
     out[53] = 0.0;
     out[54] = 0.0;
-    out[55] = c[41]*theta_dot;
-    out[56] = c[42]*theta_dot;
-    out[57] = c[43]*theta_dot;
-    out[58] = c[44]*theta_dot;
+    out[55] = -c[20]*theta_dot;
+    out[56] = -c[24]*theta_dot;
+    out[57] = c[28]*theta_dot;
+    out[58] = -c[32]*theta_dot;
     out[59] = 0.0;
     out[60] = 0.0;
     out[61] = 0.0;
     out[62] = 0.0;
     out[63] = 0.0;
-    out[64] = c[46]*theta_dot;
-    out[65] = c[47]*theta_dot;
-    out[66] = c[48]*theta_dot;
-    out[67] = c[49]*theta_dot;
+    out[64] = -c[21]*theta_dot;
+    out[65] = -c[25]*theta_dot;
+    out[66] = -c[29]*theta_dot;
+    out[67] = c[33]*theta_dot;
     out[68] = 0.0;
     out[69] = 0.0;
     out[70] = 0.0;
     out[71] = 0.0;
     out[72] = 0.0;
-    out[73] = c[51]*theta_dot;
-    out[74] = c[52]*theta_dot;
-    out[75] = c[53]*theta_dot;
-    out[76] = c[54]*theta_dot;
+    out[73] = -c[22]*theta_dot;
+    out[74] = -c[26]*theta_dot;
+    out[75] = -c[30]*theta_dot;
+    out[76] = -c[34]*theta_dot;
     out[77] = 0.0;
     out[78] = 0.0;
     out[79] = 0.0;
@@ -1150,7 +1100,7 @@ void amm_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, c
 
 }  // namespace
 
-extern const Variant amm_nx4_ny4_torque_first = {"amm_nx4_ny4_torque_first", 9, 150, 46,
+extern const Variant amm_nx4_ny4_torque_first = {"amm_nx4_ny4_torque_first", 9, 100, 46,
     "vvvvvvvvvvc0000000v0c000000v00c00000v000c0000v0000c000v00000c00v000000c0v0000000c",
     amm_nx4_ny4_torque_first_coefficients, amm_nx4_ny4_torque_first_mass, amm_nx4_ny4_torque_first_mass_varying, amm_nx4_ny4_torque_first_forces, amm_nx4_ny4_torque_first_forces_terms, amm_nx4_ny4_torque_first_forces_matrix,
     amm_nx4_ny4_torque_first_energy, amm_nx4_ny4_torque_first_momentum, amm_nx4_ny4_torque_first_forces_q, amm_nx4_ny4_torque_first_forces_qd, amm_nx4_ny4_torque_first_mass_q_product, amm_nx4_ny4_torque_first_forces_u};

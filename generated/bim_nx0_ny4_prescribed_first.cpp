@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[62]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[52]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void bim_nx0_ny4_prescribed_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -31,62 +31,52 @@ void bim_nx0_ny4_prescribed_first_coefficients(const double* p, double* c)
     c[6] = 0.050505050505050504*L*m;
     c[7] = 0.045454545454545456*L*m;
     c[8] = 0.09090909090909091*L*m;
-    c[9] = -0.16666666666666666*L*m*a - 0.07142857142857142*L*L*m;
-    c[10] = -34.285714285714285*EI/(L*L*L);
-    c[11] = -5.714285714285714*EI/(L*L*L);
+    c[9] = 0.16666666666666666*L*m*a + 0.07142857142857142*L*L*m;
+    c[10] = 34.285714285714285*EI/(L*L*L);
+    c[11] = 5.714285714285714*EI/(L*L*L);
     c[12] = 22.857142857142858*EI/(L*L*L);
-    c[13] = -8.571428571428571*EI/(L*L*L);
-    c[14] = -0.3968253968253968*m*a - 0.20923520923520925*L*m;
-    c[15] = -0.15873015873015872*m*a - 0.06854256854256854*L*m;
+    c[13] = 8.571428571428571*EI/(L*L*L);
+    c[14] = 0.3968253968253968*m*a + 0.20923520923520925*L*m;
+    c[15] = 0.15873015873015872*m*a + 0.06854256854256854*L*m;
     c[16] = 0.05952380952380952*m*a + 0.07395382395382395*L*m;
     c[17] = 0.0992063492063492*m*a + 0.09235209235209235*L*m;
-    c[18] = -0.16666666666666666*L*m*a - 0.09523809523809523*L*L*m;
+    c[18] = 0.16666666666666666*L*m*a + 0.09523809523809523*L*L*m;
     c[19] = 37.142857142857146*EI/(L*L*L);
-    c[20] = -11.428571428571429*EI/(L*L*L);
-    c[21] = -0.23809523809523808*m*a - 0.12987012987012986*L*m;
-    c[22] = -0.0992063492063492*m*a - 0.03427128427128427*L*m;
+    c[20] = 11.428571428571429*EI/(L*L*L);
+    c[21] = 0.23809523809523808*m*a + 0.12987012987012986*L*m;
+    c[22] = 0.0992063492063492*m*a + 0.03427128427128427*L*m;
     c[23] = 0.0992063492063492*m*a + 0.113997113997114*L*m;
-    c[24] = -0.16666666666666666*L*m*a - 0.11904761904761904*L*L*m;
-    c[25] = -148.57142857142858*EI/(L*L*L);
+    c[24] = 0.16666666666666666*L*m*a + 0.11904761904761904*L*L*m;
+    c[25] = 148.57142857142858*EI/(L*L*L);
     c[26] = 85.71428571428571*EI/(L*L*L);
-    c[27] = -0.1984126984126984*m*a - 0.11183261183261184*L*m;
+    c[27] = 0.1984126984126984*m*a + 0.11183261183261184*L*m;
     c[28] = 0.05808080808080808*L*m;
-    c[29] = -0.16666666666666666*L*m*a - 0.14285714285714285*L*L*m;
-    c[30] = -57.142857142857146*EI/(L*L*L);
-    c[31] = -0.2777777777777778*m*a - 0.16161616161616163*L*m;
+    c[29] = 0.16666666666666666*L*m*a + 0.14285714285714285*L*L*m;
+    c[30] = 57.142857142857146*EI/(L*L*L);
+    c[31] = 0.2777777777777778*m*a + 0.16161616161616163*L*m;
     c[32] = 0.025252525252525252*L*m;
-    c[33] = 0.16666666666666666*L*m*a + 0.07142857142857142*L*L*m;
-    c[34] = 0.16666666666666666*L*m*a + 0.09523809523809523*L*L*m;
-    c[35] = 0.16666666666666666*L*m*a + 0.11904761904761904*L*L*m;
-    c[36] = 0.16666666666666666*L*m*a + 0.14285714285714285*L*L*m;
-    c[37] = 0.5*J_oh + 0.5*L*m*a*a + 0.5*L*L*m*a + 0.16666666666666666*L*L*L*m;
-    c[38] = -0.1984126984126984*m*a - 0.10461760461760462*L*m;
-    c[39] = -0.11904761904761904*m*a - 0.06493506493506493*L*m;
-    c[40] = -0.0992063492063492*m*a - 0.05591630591630592*L*m;
-    c[41] = -0.1388888888888889*m*a - 0.08080808080808081*L*m;
-    c[42] = 17.142857142857142*EI/(L*L*L);
-    c[43] = 5.714285714285714*EI/(L*L*L);
-    c[44] = -22.857142857142858*EI/(L*L*L);
-    c[45] = 8.571428571428571*EI/(L*L*L);
-    c[46] = -37.142857142857146*EI/(L*L*L);
-    c[47] = 11.428571428571429*EI/(L*L*L);
-    c[48] = 74.28571428571429*EI/(L*L*L);
-    c[49] = -85.71428571428571*EI/(L*L*L);
-    c[50] = 28.571428571428573*EI/(L*L*L);
-    c[51] = J_oh + L*m*a*a + L*L*m*a + 0.3333333333333333*L*L*L*m;
-    c[52] = -0.31746031746031744*m*a - 0.1370851370851371*L*m;
-    c[53] = 0.11904761904761904*m*a + 0.1479076479076479*L*m;
-    c[54] = 0.1984126984126984*m*a + 0.1847041847041847*L*m;
-    c[55] = -0.1984126984126984*m*a - 0.06854256854256854*L*m;
-    c[56] = 0.1984126984126984*m*a + 0.227994227994228*L*m;
-    c[57] = 0.11616161616161616*L*m;
-    c[58] = -0.7936507936507936*m*a - 0.4184704184704185*L*m;
-    c[59] = -0.47619047619047616*m*a - 0.2597402597402597*L*m;
-    c[60] = -0.3968253968253968*m*a - 0.22366522366522368*L*m;
-    c[61] = -0.5555555555555556*m*a - 0.32323232323232326*L*m;
+    c[33] = 0.5*J_oh + 0.5*L*m*a*a + 0.5*L*L*m*a + 0.16666666666666666*L*L*L*m;
+    c[34] = 0.1984126984126984*m*a + 0.10461760461760462*L*m;
+    c[35] = 0.11904761904761904*m*a + 0.06493506493506493*L*m;
+    c[36] = 0.0992063492063492*m*a + 0.05591630591630592*L*m;
+    c[37] = 0.1388888888888889*m*a + 0.08080808080808081*L*m;
+    c[38] = 17.142857142857142*EI/(L*L*L);
+    c[39] = 74.28571428571429*EI/(L*L*L);
+    c[40] = 28.571428571428573*EI/(L*L*L);
+    c[41] = J_oh + L*m*a*a + L*L*m*a + 0.3333333333333333*L*L*L*m;
+    c[42] = 0.31746031746031744*m*a + 0.1370851370851371*L*m;
+    c[43] = 0.11904761904761904*m*a + 0.1479076479076479*L*m;
+    c[44] = 0.1984126984126984*m*a + 0.1847041847041847*L*m;
+    c[45] = 0.1984126984126984*m*a + 0.06854256854256854*L*m;
+    c[46] = 0.1984126984126984*m*a + 0.227994227994228*L*m;
+    c[47] = 0.11616161616161616*L*m;
+    c[48] = 0.7936507936507936*m*a + 0.4184704184704185*L*m;
+    c[49] = 0.47619047619047616*m*a + 0.2597402597402597*L*m;
+    c[50] = 0.3968253968253968*m*a + 0.22366522366522368*L*m;
+    c[51] = 0.5555555555555556*m*a + 0.32323232323232326*L*m;
 }
 
-/* mass:(c[62],u[3],q[4],qd[4])->(M[16]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[52],u[3],q[4],qd[4])->(M[16]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void bim_nx0_ny4_prescribed_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -104,7 +94,7 @@ void bim_nx0_ny4_prescribed_first_mass(const double* c, const double* u, const d
     out[15] = c[8];
 }
 
-/* forces:(c[62],u[3],q[4],qd[4])->(Q[4]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[52],u[3],q[4],qd[4])->(Q[4]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void bim_nx0_ny4_prescribed_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)qd;
@@ -119,13 +109,13 @@ void bim_nx0_ny4_prescribed_first_forces(const double* c, const double* u, const
     const double theta_dotsq_B2 = theta_dotsq*B2;
     const double theta_dotsq_B3 = theta_dotsq*B3;
     const double theta_dotsq_B4 = theta_dotsq*B4;
-    out[0] = c[9]*theta_ddot + c[10]*B1 + c[11]*B2 + c[12]*B3 + c[13]*B4 + c[14]*theta_dotsq_B1 + c[15]*theta_dotsq_B2 + c[16]*theta_dotsq_B3 + c[17]*theta_dotsq_B4;
-    out[1] = c[18]*theta_ddot + c[11]*B1 + c[10]*B2 + c[19]*B3 + c[20]*B4 + c[15]*theta_dotsq_B1 + c[21]*theta_dotsq_B2 + c[22]*theta_dotsq_B3 + c[23]*theta_dotsq_B4;
-    out[2] = c[24]*theta_ddot + c[12]*B1 + c[19]*B2 + c[25]*B3 + c[26]*B4 + c[16]*theta_dotsq_B1 + c[22]*theta_dotsq_B2 + c[27]*theta_dotsq_B3 + c[28]*theta_dotsq_B4;
-    out[3] = c[29]*theta_ddot + c[13]*B1 + c[20]*B2 + c[26]*B3 + c[30]*B4 + c[17]*theta_dotsq_B1 + c[23]*theta_dotsq_B2 + c[28]*theta_dotsq_B3 + c[31]*theta_dotsq_B4;
+    out[0] = -c[9]*theta_ddot - c[10]*B1 - c[11]*B2 + c[12]*B3 - c[13]*B4 - c[14]*theta_dotsq_B1 - c[15]*theta_dotsq_B2 + c[16]*theta_dotsq_B3 + c[17]*theta_dotsq_B4;
+    out[1] = -c[18]*theta_ddot - c[11]*B1 - c[10]*B2 + c[19]*B3 - c[20]*B4 - c[15]*theta_dotsq_B1 - c[21]*theta_dotsq_B2 - c[22]*theta_dotsq_B3 + c[23]*theta_dotsq_B4;
+    out[2] = -c[24]*theta_ddot + c[12]*B1 + c[19]*B2 - c[25]*B3 + c[26]*B4 + c[16]*theta_dotsq_B1 - c[22]*theta_dotsq_B2 - c[27]*theta_dotsq_B3 + c[28]*theta_dotsq_B4;
+    out[3] = -c[29]*theta_ddot - c[13]*B1 - c[20]*B2 + c[26]*B3 - c[30]*B4 + c[17]*theta_dotsq_B1 + c[23]*theta_dotsq_B2 + c[28]*theta_dotsq_B3 - c[31]*theta_dotsq_B4;
 }
 
-/* forces_terms:(c[62],u[3],q[4],qd[4])->(m[9]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[52],u[3],q[4],qd[4])->(m[9]) the state monomials of Q: Q = F m */
 void bim_nx0_ny4_prescribed_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -152,51 +142,51 @@ void bim_nx0_ny4_prescribed_first_forces_terms(const double* c, const double* u,
     out[8] = theta_dotsq_B4;
 }
 
-/* forces_matrix:(c[62],u[3],q[4],qd[4])->(F[4*9]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[52],u[3],q[4],qd[4])->(F[4*9]) row-major, state-free: Q = F m; nonzero entries only */
 void bim_nx0_ny4_prescribed_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)q;
     (void)qd;
-    out[0] = c[9];
-    out[1] = c[10];
-    out[2] = c[11];
+    out[0] = -c[9];
+    out[1] = -c[10];
+    out[2] = -c[11];
     out[3] = c[12];
-    out[4] = c[13];
-    out[5] = c[14];
-    out[6] = c[15];
+    out[4] = -c[13];
+    out[5] = -c[14];
+    out[6] = -c[15];
     out[7] = c[16];
     out[8] = c[17];
-    out[9] = c[18];
-    out[10] = c[11];
-    out[11] = c[10];
+    out[9] = -c[18];
+    out[10] = -c[11];
+    out[11] = -c[10];
     out[12] = c[19];
-    out[13] = c[20];
-    out[14] = c[15];
-    out[15] = c[21];
-    out[16] = c[22];
+    out[13] = -c[20];
+    out[14] = -c[15];
+    out[15] = -c[21];
+    out[16] = -c[22];
     out[17] = c[23];
-    out[18] = c[24];
+    out[18] = -c[24];
     out[19] = c[12];
     out[20] = c[19];
-    out[21] = c[25];
+    out[21] = -c[25];
     out[22] = c[26];
     out[23] = c[16];
-    out[24] = c[22];
-    out[25] = c[27];
+    out[24] = -c[22];
+    out[25] = -c[27];
     out[26] = c[28];
-    out[27] = c[29];
-    out[28] = c[13];
-    out[29] = c[20];
+    out[27] = -c[29];
+    out[28] = -c[13];
+    out[29] = -c[20];
     out[30] = c[26];
-    out[31] = c[30];
+    out[31] = -c[30];
     out[32] = c[17];
     out[33] = c[23];
     out[34] = c[28];
-    out[35] = c[31];
+    out[35] = -c[31];
 }
 
-/* energy:(c[62],u[3],q[4],qd[4])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[52],u[3],q[4],qd[4])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void bim_nx0_ny4_prescribed_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -248,12 +238,12 @@ void bim_nx0_ny4_prescribed_first_energy(const double* c, const double* u, const
     const double theta_dotsq_B4 = theta_dotsq*B4;
     const double theta_dotsq_B4sq = theta_dotsq_B4*B4;
     out[0] = c[2]*B1_dotsq + c[1]*B1_dot_B2_dot + c[2]*B1_dot_B3_dot + c[3]*B1_dot_B4_dot + c[2]*B2_dotsq + c[4]*B2_dot_B3_dot + c[5]*B2_dot_B4_dot + c[32]*B3_dotsq + c[7]*B3_dot_B4_dot + c[7]*B4_dotsq;
-    out[1] = c[33]*theta_dot_B1_dot + c[34]*theta_dot_B2_dot + c[35]*theta_dot_B3_dot + c[36]*theta_dot_B4_dot;
-    out[2] = c[37]*theta_dotsq + c[38]*theta_dotsq_B1sq + c[15]*theta_dotsq_B1_B2 + c[16]*theta_dotsq_B1_B3 + c[17]*theta_dotsq_B1_B4 + c[39]*theta_dotsq_B2sq + c[22]*theta_dotsq_B2_B3 + c[23]*theta_dotsq_B2_B4 + c[40]*theta_dotsq_B3sq + c[28]*theta_dotsq_B3_B4 + c[41]*theta_dotsq_B4sq;
-    out[3] = c[42]*B1sq + c[43]*B1_B2 + c[44]*B1_B3 + c[45]*B1_B4 + c[42]*B2sq + c[46]*B2_B3 + c[47]*B2_B4 + c[48]*B3sq + c[49]*B3_B4 + c[50]*B4sq;
+    out[1] = c[9]*theta_dot_B1_dot + c[18]*theta_dot_B2_dot + c[24]*theta_dot_B3_dot + c[29]*theta_dot_B4_dot;
+    out[2] = c[33]*theta_dotsq - c[34]*theta_dotsq_B1sq - c[15]*theta_dotsq_B1_B2 + c[16]*theta_dotsq_B1_B3 + c[17]*theta_dotsq_B1_B4 - c[35]*theta_dotsq_B2sq - c[22]*theta_dotsq_B2_B3 + c[23]*theta_dotsq_B2_B4 - c[36]*theta_dotsq_B3sq + c[28]*theta_dotsq_B3_B4 - c[37]*theta_dotsq_B4sq;
+    out[3] = c[38]*B1sq + c[11]*B1_B2 - c[12]*B1_B3 + c[13]*B1_B4 + c[38]*B2sq - c[19]*B2_B3 + c[20]*B2_B4 + c[39]*B3sq - c[26]*B3_B4 + c[40]*B4sq;
 }
 
-/* momentum:(c[62],u[3],q[4],qd[4])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[52],u[3],q[4],qd[4])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void bim_nx0_ny4_prescribed_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -279,35 +269,35 @@ void bim_nx0_ny4_prescribed_first_momentum(const double* c, const double* u, con
     const double theta_dot_B3_B4 = theta_dot_B3*B4;
     const double theta_dot_B4 = theta_dot*B4;
     const double theta_dot_B4sq = theta_dot_B4*B4;
-    out[0] = c[51]*theta_dot + c[33]*B1_dot + c[34]*B2_dot + c[35]*B3_dot + c[36]*B4_dot + c[14]*theta_dot_B1sq + c[52]*theta_dot_B1_B2 + c[53]*theta_dot_B1_B3 + c[54]*theta_dot_B1_B4 + c[21]*theta_dot_B2sq + c[55]*theta_dot_B2_B3 + c[56]*theta_dot_B2_B4 + c[27]*theta_dot_B3sq + c[57]*theta_dot_B3_B4 + c[31]*theta_dot_B4sq;
+    out[0] = c[41]*theta_dot + c[9]*B1_dot + c[18]*B2_dot + c[24]*B3_dot + c[29]*B4_dot - c[14]*theta_dot_B1sq - c[42]*theta_dot_B1_B2 + c[43]*theta_dot_B1_B3 + c[44]*theta_dot_B1_B4 - c[21]*theta_dot_B2sq - c[45]*theta_dot_B2_B3 + c[46]*theta_dot_B2_B4 - c[27]*theta_dot_B3sq + c[47]*theta_dot_B3_B4 - c[31]*theta_dot_B4sq;
 }
 
-/* forces_q:(c[62],u[3],q[4],qd[4])->(dQdq[16]) row-major; out[i*4+k] = dQ_i/dq_k */
+/* forces_q:(c[52],u[3],q[4],qd[4])->(dQdq[16]) row-major; out[i*4+k] = dQ_i/dq_k */
 void bim_nx0_ny4_prescribed_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)q;
     (void)qd;
     const double theta_dot = u[1];
     const double theta_dotsq = theta_dot*theta_dot;
-    out[0] = c[10] + c[14]*theta_dotsq;
-    out[1] = c[11] + c[15]*theta_dotsq;
+    out[0] = -c[10] - c[14]*theta_dotsq;
+    out[1] = -c[11] - c[15]*theta_dotsq;
     out[2] = c[12] + c[16]*theta_dotsq;
-    out[3] = c[13] + c[17]*theta_dotsq;
-    out[4] = c[11] + c[15]*theta_dotsq;
-    out[5] = c[10] + c[21]*theta_dotsq;
-    out[6] = c[19] + c[22]*theta_dotsq;
-    out[7] = c[20] + c[23]*theta_dotsq;
+    out[3] = -c[13] + c[17]*theta_dotsq;
+    out[4] = -c[11] - c[15]*theta_dotsq;
+    out[5] = -c[10] - c[21]*theta_dotsq;
+    out[6] = c[19] - c[22]*theta_dotsq;
+    out[7] = -c[20] + c[23]*theta_dotsq;
     out[8] = c[12] + c[16]*theta_dotsq;
-    out[9] = c[19] + c[22]*theta_dotsq;
-    out[10] = c[25] + c[27]*theta_dotsq;
+    out[9] = c[19] - c[22]*theta_dotsq;
+    out[10] = -c[25] - c[27]*theta_dotsq;
     out[11] = c[26] + c[28]*theta_dotsq;
-    out[12] = c[13] + c[17]*theta_dotsq;
-    out[13] = c[20] + c[23]*theta_dotsq;
+    out[12] = -c[13] + c[17]*theta_dotsq;
+    out[13] = -c[20] + c[23]*theta_dotsq;
     out[14] = c[26] + c[28]*theta_dotsq;
-    out[15] = c[30] + c[31]*theta_dotsq;
+    out[15] = -c[30] - c[31]*theta_dotsq;
 }
 
-/* forces_qd:(c[62],u[3],q[4],qd[4])->(dQdqd[16]) row-major; out[i*4+k] = dQ_i/dqd_k */
+/* forces_qd:(c[52],u[3],q[4],qd[4])->(dQdqd[16]) row-major; out[i*4+k] = dQ_i/dqd_k */
 void bim_nx0_ny4_prescribed_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -332,7 +322,7 @@ void bim_nx0_ny4_prescribed_first_forces_qd(const double* c, const double* u, co
     out[15] = 0.0;
 }
 
-/* forces_u:(c[62],u[3],q[4],qd[4])->(dQdu[12]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
+/* forces_u:(c[52],u[3],q[4],qd[4])->(dQdu[12]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
 void bim_nx0_ny4_prescribed_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)qd;
@@ -346,22 +336,22 @@ void bim_nx0_ny4_prescribed_first_forces_u(const double* c, const double* u, con
     const double theta_dot_B3 = theta_dot*B3;
     const double theta_dot_B4 = theta_dot*B4;
     out[0] = 0.0;
-    out[1] = c[58]*theta_dot_B1 + c[52]*theta_dot_B2 + c[53]*theta_dot_B3 + c[54]*theta_dot_B4;
-    out[2] = c[9];
+    out[1] = -c[48]*theta_dot_B1 - c[42]*theta_dot_B2 + c[43]*theta_dot_B3 + c[44]*theta_dot_B4;
+    out[2] = -c[9];
     out[3] = 0.0;
-    out[4] = c[52]*theta_dot_B1 + c[59]*theta_dot_B2 + c[55]*theta_dot_B3 + c[56]*theta_dot_B4;
-    out[5] = c[18];
+    out[4] = -c[42]*theta_dot_B1 - c[49]*theta_dot_B2 - c[45]*theta_dot_B3 + c[46]*theta_dot_B4;
+    out[5] = -c[18];
     out[6] = 0.0;
-    out[7] = c[53]*theta_dot_B1 + c[55]*theta_dot_B2 + c[60]*theta_dot_B3 + c[57]*theta_dot_B4;
-    out[8] = c[24];
+    out[7] = c[43]*theta_dot_B1 - c[45]*theta_dot_B2 - c[50]*theta_dot_B3 + c[47]*theta_dot_B4;
+    out[8] = -c[24];
     out[9] = 0.0;
-    out[10] = c[54]*theta_dot_B1 + c[56]*theta_dot_B2 + c[57]*theta_dot_B3 + c[61]*theta_dot_B4;
-    out[11] = c[29];
+    out[10] = c[44]*theta_dot_B1 + c[46]*theta_dot_B2 + c[47]*theta_dot_B3 - c[51]*theta_dot_B4;
+    out[11] = -c[29];
 }
 
 }  // namespace
 
-extern const Variant bim_nx0_ny4_prescribed_first = {"bim_nx0_ny4_prescribed_first", 4, 62, 9,
+extern const Variant bim_nx0_ny4_prescribed_first = {"bim_nx0_ny4_prescribed_first", 4, 52, 9,
     "cccccccccccccccc",
     bim_nx0_ny4_prescribed_first_coefficients, bim_nx0_ny4_prescribed_first_mass, nullptr, bim_nx0_ny4_prescribed_first_forces, bim_nx0_ny4_prescribed_first_forces_terms, bim_nx0_ny4_prescribed_first_forces_matrix,
     bim_nx0_ny4_prescribed_first_energy, bim_nx0_ny4_prescribed_first_momentum, bim_nx0_ny4_prescribed_first_forces_q, bim_nx0_ny4_prescribed_first_forces_qd, nullptr, bim_nx0_ny4_prescribed_first_forces_u};

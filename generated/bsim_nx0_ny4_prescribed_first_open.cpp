@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[62]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[52]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void bsim_nx0_ny4_prescribed_first_open_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -31,62 +31,52 @@ void bsim_nx0_ny4_prescribed_first_open_coefficients(const double* p, double* c)
     c[6] = 0.07380952380952381*L*m;
     c[7] = 0.029166666666666667*L*m;
     c[8] = 0.047619047619047616*L*m;
-    c[9] = -0.25*L*m*a - 0.1*L*L*m;
-    c[10] = -121.5*EI/(L*L*L);
+    c[9] = 0.25*L*m*a + 0.1*L*L*m;
+    c[10] = 121.5*EI/(L*L*L);
     c[11] = 30.375*EI/(L*L*L);
-    c[12] = -27.0*EI/(L*L*L);
-    c[13] = -1.3125*m*a - 0.7321428571428571*L*m;
-    c[14] = -0.084375*m*a + 0.029464285714285714*L*m;
+    c[12] = 27.0*EI/(L*L*L);
+    c[13] = 1.3125*m*a + 0.7321428571428571*L*m;
+    c[14] = 0.084375*m*a - 0.029464285714285714*L*m;
     c[15] = 0.265625*m*a + 0.22708333333333333*L*m;
     c[16] = 0.025*m*a + 0.023015873015873017*L*m;
-    c[17] = -0.25*L*m*a - 0.15*L*L*m;
+    c[17] = 0.25*L*m*a + 0.15*L*L*m;
     c[18] = 182.25*EI/(L*L*L);
-    c[19] = -94.5*EI/(L*L*L);
-    c[20] = -0.7125*m*a - 0.43214285714285716*L*m;
+    c[19] = 94.5*EI/(L*L*L);
+    c[20] = 0.7125*m*a + 0.43214285714285716*L*m;
     c[21] = 0.04375*m*a + 0.09583333333333334*L*m;
     c[22] = 0.1625*m*a + 0.15674603174603174*L*m;
-    c[23] = -0.16666666666666666*L*m*a - 0.13333333333333333*L*L*m;
-    c[24] = -648.0*EI/(L*L*L);
+    c[23] = 0.16666666666666666*L*m*a + 0.13333333333333333*L*L*m;
+    c[24] = 648.0*EI/(L*L*L);
     c[25] = 445.5*EI/(L*L*L);
-    c[26] = -0.45*m*a - 0.319047619047619*L*m;
+    c[26] = 0.45*m*a + 0.319047619047619*L*m;
     c[27] = 0.1125*m*a + 0.14166666666666666*L*m;
-    c[28] = -0.08333333333333333*L*m*a - 0.07777777777777778*L*L*m;
-    c[29] = -324.0*EI/(L*L*L);
-    c[30] = -0.3*m*a - 0.23809523809523808*L*m;
+    c[28] = 0.08333333333333333*L*m*a + 0.07777777777777778*L*L*m;
+    c[29] = 324.0*EI/(L*L*L);
+    c[30] = 0.3*m*a + 0.23809523809523808*L*m;
     c[31] = 0.054464285714285715*L*m;
     c[32] = 0.036904761904761905*L*m;
     c[33] = 0.023809523809523808*L*m;
-    c[34] = 0.25*L*m*a + 0.1*L*L*m;
-    c[35] = 0.25*L*m*a + 0.15*L*L*m;
-    c[36] = 0.16666666666666666*L*m*a + 0.13333333333333333*L*L*m;
-    c[37] = 0.08333333333333333*L*m*a + 0.07777777777777778*L*L*m;
-    c[38] = 0.5*J_oh + 0.5*L*m*a*a + 0.5*L*L*m*a + 0.16666666666666666*L*L*L*m;
-    c[39] = -0.65625*m*a - 0.36607142857142855*L*m;
-    c[40] = -0.35625*m*a - 0.21607142857142858*L*m;
-    c[41] = -0.225*m*a - 0.1595238095238095*L*m;
-    c[42] = -0.15*m*a - 0.11904761904761904*L*m;
-    c[43] = 60.75*EI/(L*L*L);
-    c[44] = -30.375*EI/(L*L*L);
-    c[45] = 27.0*EI/(L*L*L);
-    c[46] = -182.25*EI/(L*L*L);
-    c[47] = 94.5*EI/(L*L*L);
-    c[48] = 324.0*EI/(L*L*L);
-    c[49] = -445.5*EI/(L*L*L);
-    c[50] = 162.0*EI/(L*L*L);
-    c[51] = J_oh + L*m*a*a + L*L*m*a + 0.3333333333333333*L*L*L*m;
-    c[52] = -0.16875*m*a + 0.05892857142857143*L*m;
-    c[53] = 0.53125*m*a + 0.45416666666666666*L*m;
-    c[54] = 0.05*m*a + 0.046031746031746035*L*m;
-    c[55] = 0.0875*m*a + 0.19166666666666668*L*m;
-    c[56] = 0.325*m*a + 0.3134920634920635*L*m;
-    c[57] = 0.225*m*a + 0.2833333333333333*L*m;
-    c[58] = -2.625*m*a - 1.4642857142857142*L*m;
-    c[59] = -1.425*m*a - 0.8642857142857143*L*m;
-    c[60] = -0.9*m*a - 0.638095238095238*L*m;
-    c[61] = -0.6*m*a - 0.47619047619047616*L*m;
+    c[34] = 0.5*J_oh + 0.5*L*m*a*a + 0.5*L*L*m*a + 0.16666666666666666*L*L*L*m;
+    c[35] = 0.65625*m*a + 0.36607142857142855*L*m;
+    c[36] = 0.35625*m*a + 0.21607142857142858*L*m;
+    c[37] = 0.225*m*a + 0.1595238095238095*L*m;
+    c[38] = 0.15*m*a + 0.11904761904761904*L*m;
+    c[39] = 60.75*EI/(L*L*L);
+    c[40] = 162.0*EI/(L*L*L);
+    c[41] = J_oh + L*m*a*a + L*L*m*a + 0.3333333333333333*L*L*L*m;
+    c[42] = 0.16875*m*a - 0.05892857142857143*L*m;
+    c[43] = 0.53125*m*a + 0.45416666666666666*L*m;
+    c[44] = 0.05*m*a + 0.046031746031746035*L*m;
+    c[45] = 0.0875*m*a + 0.19166666666666668*L*m;
+    c[46] = 0.325*m*a + 0.3134920634920635*L*m;
+    c[47] = 0.225*m*a + 0.2833333333333333*L*m;
+    c[48] = 2.625*m*a + 1.4642857142857142*L*m;
+    c[49] = 1.425*m*a + 0.8642857142857143*L*m;
+    c[50] = 0.9*m*a + 0.638095238095238*L*m;
+    c[51] = 0.6*m*a + 0.47619047619047616*L*m;
 }
 
-/* mass:(c[62],u[3],q[4],qd[4])->(M[16]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[52],u[3],q[4],qd[4])->(M[16]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void bsim_nx0_ny4_prescribed_first_open_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -104,7 +94,7 @@ void bsim_nx0_ny4_prescribed_first_open_mass(const double* c, const double* u, c
     out[15] = c[8];
 }
 
-/* forces:(c[62],u[3],q[4],qd[4])->(Q[4]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[52],u[3],q[4],qd[4])->(Q[4]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void bsim_nx0_ny4_prescribed_first_open_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)qd;
@@ -119,13 +109,13 @@ void bsim_nx0_ny4_prescribed_first_open_forces(const double* c, const double* u,
     const double theta_dotsq_B2 = theta_dotsq*B2;
     const double theta_dotsq_B3 = theta_dotsq*B3;
     const double theta_dotsq_B4 = theta_dotsq*B4;
-    out[0] = c[9]*theta_ddot + c[10]*B1 + c[11]*B2 + c[11]*B3 + c[12]*B4 + c[13]*theta_dotsq_B1 + c[14]*theta_dotsq_B2 + c[15]*theta_dotsq_B3 + c[16]*theta_dotsq_B4;
-    out[1] = c[17]*theta_ddot + c[11]*B1 + c[10]*B2 + c[18]*B3 + c[19]*B4 + c[14]*theta_dotsq_B1 + c[20]*theta_dotsq_B2 + c[21]*theta_dotsq_B3 + c[22]*theta_dotsq_B4;
-    out[2] = c[23]*theta_ddot + c[11]*B1 + c[18]*B2 + c[24]*B3 + c[25]*B4 + c[15]*theta_dotsq_B1 + c[21]*theta_dotsq_B2 + c[26]*theta_dotsq_B3 + c[27]*theta_dotsq_B4;
-    out[3] = c[28]*theta_ddot + c[12]*B1 + c[19]*B2 + c[25]*B3 + c[29]*B4 + c[16]*theta_dotsq_B1 + c[22]*theta_dotsq_B2 + c[27]*theta_dotsq_B3 + c[30]*theta_dotsq_B4;
+    out[0] = -c[9]*theta_ddot - c[10]*B1 + c[11]*B2 + c[11]*B3 - c[12]*B4 - c[13]*theta_dotsq_B1 - c[14]*theta_dotsq_B2 + c[15]*theta_dotsq_B3 + c[16]*theta_dotsq_B4;
+    out[1] = -c[17]*theta_ddot + c[11]*B1 - c[10]*B2 + c[18]*B3 - c[19]*B4 - c[14]*theta_dotsq_B1 - c[20]*theta_dotsq_B2 + c[21]*theta_dotsq_B3 + c[22]*theta_dotsq_B4;
+    out[2] = -c[23]*theta_ddot + c[11]*B1 + c[18]*B2 - c[24]*B3 + c[25]*B4 + c[15]*theta_dotsq_B1 + c[21]*theta_dotsq_B2 - c[26]*theta_dotsq_B3 + c[27]*theta_dotsq_B4;
+    out[3] = -c[28]*theta_ddot - c[12]*B1 - c[19]*B2 + c[25]*B3 - c[29]*B4 + c[16]*theta_dotsq_B1 + c[22]*theta_dotsq_B2 + c[27]*theta_dotsq_B3 - c[30]*theta_dotsq_B4;
 }
 
-/* forces_terms:(c[62],u[3],q[4],qd[4])->(m[9]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[52],u[3],q[4],qd[4])->(m[9]) the state monomials of Q: Q = F m */
 void bsim_nx0_ny4_prescribed_first_open_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -152,51 +142,51 @@ void bsim_nx0_ny4_prescribed_first_open_forces_terms(const double* c, const doub
     out[8] = theta_dotsq_B4;
 }
 
-/* forces_matrix:(c[62],u[3],q[4],qd[4])->(F[4*9]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[52],u[3],q[4],qd[4])->(F[4*9]) row-major, state-free: Q = F m; nonzero entries only */
 void bsim_nx0_ny4_prescribed_first_open_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)q;
     (void)qd;
-    out[0] = c[9];
-    out[1] = c[10];
+    out[0] = -c[9];
+    out[1] = -c[10];
     out[2] = c[11];
     out[3] = c[11];
-    out[4] = c[12];
-    out[5] = c[13];
-    out[6] = c[14];
+    out[4] = -c[12];
+    out[5] = -c[13];
+    out[6] = -c[14];
     out[7] = c[15];
     out[8] = c[16];
-    out[9] = c[17];
+    out[9] = -c[17];
     out[10] = c[11];
-    out[11] = c[10];
+    out[11] = -c[10];
     out[12] = c[18];
-    out[13] = c[19];
-    out[14] = c[14];
-    out[15] = c[20];
+    out[13] = -c[19];
+    out[14] = -c[14];
+    out[15] = -c[20];
     out[16] = c[21];
     out[17] = c[22];
-    out[18] = c[23];
+    out[18] = -c[23];
     out[19] = c[11];
     out[20] = c[18];
-    out[21] = c[24];
+    out[21] = -c[24];
     out[22] = c[25];
     out[23] = c[15];
     out[24] = c[21];
-    out[25] = c[26];
+    out[25] = -c[26];
     out[26] = c[27];
-    out[27] = c[28];
-    out[28] = c[12];
-    out[29] = c[19];
+    out[27] = -c[28];
+    out[28] = -c[12];
+    out[29] = -c[19];
     out[30] = c[25];
-    out[31] = c[29];
+    out[31] = -c[29];
     out[32] = c[16];
     out[33] = c[22];
     out[34] = c[27];
-    out[35] = c[30];
+    out[35] = -c[30];
 }
 
-/* energy:(c[62],u[3],q[4],qd[4])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[52],u[3],q[4],qd[4])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void bsim_nx0_ny4_prescribed_first_open_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -248,12 +238,12 @@ void bsim_nx0_ny4_prescribed_first_open_energy(const double* c, const double* u,
     const double theta_dotsq_B4 = theta_dotsq*B4;
     const double theta_dotsq_B4sq = theta_dotsq_B4*B4;
     out[0] = c[31]*B1_dotsq + c[1]*B1_dot_B2_dot + c[2]*B1_dot_B3_dot + c[3]*B1_dot_B4_dot + c[31]*B2_dotsq + c[4]*B2_dot_B3_dot + c[5]*B2_dot_B4_dot + c[32]*B3_dotsq + c[7]*B3_dot_B4_dot + c[33]*B4_dotsq;
-    out[1] = c[34]*theta_dot_B1_dot + c[35]*theta_dot_B2_dot + c[36]*theta_dot_B3_dot + c[37]*theta_dot_B4_dot;
-    out[2] = c[38]*theta_dotsq + c[39]*theta_dotsq_B1sq + c[14]*theta_dotsq_B1_B2 + c[15]*theta_dotsq_B1_B3 + c[16]*theta_dotsq_B1_B4 + c[40]*theta_dotsq_B2sq + c[21]*theta_dotsq_B2_B3 + c[22]*theta_dotsq_B2_B4 + c[41]*theta_dotsq_B3sq + c[27]*theta_dotsq_B3_B4 + c[42]*theta_dotsq_B4sq;
-    out[3] = c[43]*B1sq + c[44]*B1_B2 + c[44]*B1_B3 + c[45]*B1_B4 + c[43]*B2sq + c[46]*B2_B3 + c[47]*B2_B4 + c[48]*B3sq + c[49]*B3_B4 + c[50]*B4sq;
+    out[1] = c[9]*theta_dot_B1_dot + c[17]*theta_dot_B2_dot + c[23]*theta_dot_B3_dot + c[28]*theta_dot_B4_dot;
+    out[2] = c[34]*theta_dotsq - c[35]*theta_dotsq_B1sq - c[14]*theta_dotsq_B1_B2 + c[15]*theta_dotsq_B1_B3 + c[16]*theta_dotsq_B1_B4 - c[36]*theta_dotsq_B2sq + c[21]*theta_dotsq_B2_B3 + c[22]*theta_dotsq_B2_B4 - c[37]*theta_dotsq_B3sq + c[27]*theta_dotsq_B3_B4 - c[38]*theta_dotsq_B4sq;
+    out[3] = c[39]*B1sq - c[11]*B1_B2 - c[11]*B1_B3 + c[12]*B1_B4 + c[39]*B2sq - c[18]*B2_B3 + c[19]*B2_B4 + c[29]*B3sq - c[25]*B3_B4 + c[40]*B4sq;
 }
 
-/* momentum:(c[62],u[3],q[4],qd[4])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[52],u[3],q[4],qd[4])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void bsim_nx0_ny4_prescribed_first_open_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -279,35 +269,35 @@ void bsim_nx0_ny4_prescribed_first_open_momentum(const double* c, const double* 
     const double theta_dot_B3_B4 = theta_dot_B3*B4;
     const double theta_dot_B4 = theta_dot*B4;
     const double theta_dot_B4sq = theta_dot_B4*B4;
-    out[0] = c[51]*theta_dot + c[34]*B1_dot + c[35]*B2_dot + c[36]*B3_dot + c[37]*B4_dot + c[13]*theta_dot_B1sq + c[52]*theta_dot_B1_B2 + c[53]*theta_dot_B1_B3 + c[54]*theta_dot_B1_B4 + c[20]*theta_dot_B2sq + c[55]*theta_dot_B2_B3 + c[56]*theta_dot_B2_B4 + c[26]*theta_dot_B3sq + c[57]*theta_dot_B3_B4 + c[30]*theta_dot_B4sq;
+    out[0] = c[41]*theta_dot + c[9]*B1_dot + c[17]*B2_dot + c[23]*B3_dot + c[28]*B4_dot - c[13]*theta_dot_B1sq - c[42]*theta_dot_B1_B2 + c[43]*theta_dot_B1_B3 + c[44]*theta_dot_B1_B4 - c[20]*theta_dot_B2sq + c[45]*theta_dot_B2_B3 + c[46]*theta_dot_B2_B4 - c[26]*theta_dot_B3sq + c[47]*theta_dot_B3_B4 - c[30]*theta_dot_B4sq;
 }
 
-/* forces_q:(c[62],u[3],q[4],qd[4])->(dQdq[16]) row-major; out[i*4+k] = dQ_i/dq_k */
+/* forces_q:(c[52],u[3],q[4],qd[4])->(dQdq[16]) row-major; out[i*4+k] = dQ_i/dq_k */
 void bsim_nx0_ny4_prescribed_first_open_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)q;
     (void)qd;
     const double theta_dot = u[1];
     const double theta_dotsq = theta_dot*theta_dot;
-    out[0] = c[10] + c[13]*theta_dotsq;
-    out[1] = c[11] + c[14]*theta_dotsq;
+    out[0] = -c[10] - c[13]*theta_dotsq;
+    out[1] = c[11] - c[14]*theta_dotsq;
     out[2] = c[11] + c[15]*theta_dotsq;
-    out[3] = c[12] + c[16]*theta_dotsq;
-    out[4] = c[11] + c[14]*theta_dotsq;
-    out[5] = c[10] + c[20]*theta_dotsq;
+    out[3] = -c[12] + c[16]*theta_dotsq;
+    out[4] = c[11] - c[14]*theta_dotsq;
+    out[5] = -c[10] - c[20]*theta_dotsq;
     out[6] = c[18] + c[21]*theta_dotsq;
-    out[7] = c[19] + c[22]*theta_dotsq;
+    out[7] = -c[19] + c[22]*theta_dotsq;
     out[8] = c[11] + c[15]*theta_dotsq;
     out[9] = c[18] + c[21]*theta_dotsq;
-    out[10] = c[24] + c[26]*theta_dotsq;
+    out[10] = -c[24] - c[26]*theta_dotsq;
     out[11] = c[25] + c[27]*theta_dotsq;
-    out[12] = c[12] + c[16]*theta_dotsq;
-    out[13] = c[19] + c[22]*theta_dotsq;
+    out[12] = -c[12] + c[16]*theta_dotsq;
+    out[13] = -c[19] + c[22]*theta_dotsq;
     out[14] = c[25] + c[27]*theta_dotsq;
-    out[15] = c[29] + c[30]*theta_dotsq;
+    out[15] = -c[29] - c[30]*theta_dotsq;
 }
 
-/* forces_qd:(c[62],u[3],q[4],qd[4])->(dQdqd[16]) row-major; out[i*4+k] = dQ_i/dqd_k */
+/* forces_qd:(c[52],u[3],q[4],qd[4])->(dQdqd[16]) row-major; out[i*4+k] = dQ_i/dqd_k */
 void bsim_nx0_ny4_prescribed_first_open_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -332,7 +322,7 @@ void bsim_nx0_ny4_prescribed_first_open_forces_qd(const double* c, const double*
     out[15] = 0.0;
 }
 
-/* forces_u:(c[62],u[3],q[4],qd[4])->(dQdu[12]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
+/* forces_u:(c[52],u[3],q[4],qd[4])->(dQdu[12]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
 void bsim_nx0_ny4_prescribed_first_open_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)qd;
@@ -346,22 +336,22 @@ void bsim_nx0_ny4_prescribed_first_open_forces_u(const double* c, const double* 
     const double theta_dot_B3 = theta_dot*B3;
     const double theta_dot_B4 = theta_dot*B4;
     out[0] = 0.0;
-    out[1] = c[58]*theta_dot_B1 + c[52]*theta_dot_B2 + c[53]*theta_dot_B3 + c[54]*theta_dot_B4;
-    out[2] = c[9];
+    out[1] = -c[48]*theta_dot_B1 - c[42]*theta_dot_B2 + c[43]*theta_dot_B3 + c[44]*theta_dot_B4;
+    out[2] = -c[9];
     out[3] = 0.0;
-    out[4] = c[52]*theta_dot_B1 + c[59]*theta_dot_B2 + c[55]*theta_dot_B3 + c[56]*theta_dot_B4;
-    out[5] = c[17];
+    out[4] = -c[42]*theta_dot_B1 - c[49]*theta_dot_B2 + c[45]*theta_dot_B3 + c[46]*theta_dot_B4;
+    out[5] = -c[17];
     out[6] = 0.0;
-    out[7] = c[53]*theta_dot_B1 + c[55]*theta_dot_B2 + c[60]*theta_dot_B3 + c[57]*theta_dot_B4;
-    out[8] = c[23];
+    out[7] = c[43]*theta_dot_B1 + c[45]*theta_dot_B2 - c[50]*theta_dot_B3 + c[47]*theta_dot_B4;
+    out[8] = -c[23];
     out[9] = 0.0;
-    out[10] = c[54]*theta_dot_B1 + c[56]*theta_dot_B2 + c[57]*theta_dot_B3 + c[61]*theta_dot_B4;
-    out[11] = c[28];
+    out[10] = c[44]*theta_dot_B1 + c[46]*theta_dot_B2 + c[47]*theta_dot_B3 - c[51]*theta_dot_B4;
+    out[11] = -c[28];
 }
 
 }  // namespace
 
-extern const Variant bsim_nx0_ny4_prescribed_first_open = {"bsim_nx0_ny4_prescribed_first_open", 4, 62, 9,
+extern const Variant bsim_nx0_ny4_prescribed_first_open = {"bsim_nx0_ny4_prescribed_first_open", 4, 52, 9,
     "cccccccccccccccc",
     bsim_nx0_ny4_prescribed_first_open_coefficients, bsim_nx0_ny4_prescribed_first_open_mass, nullptr, bsim_nx0_ny4_prescribed_first_open_forces, bsim_nx0_ny4_prescribed_first_open_forces_terms, bsim_nx0_ny4_prescribed_first_open_forces_matrix,
     bsim_nx0_ny4_prescribed_first_open_energy, bsim_nx0_ny4_prescribed_first_open_momentum, bsim_nx0_ny4_prescribed_first_open_forces_q, bsim_nx0_ny4_prescribed_first_open_forces_qd, nullptr, bsim_nx0_ny4_prescribed_first_open_forces_u};

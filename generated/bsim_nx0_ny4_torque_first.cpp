@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[68]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[53]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void bsim_nx0_ny4_torque_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -23,76 +23,61 @@ void bsim_nx0_ny4_torque_first_coefficients(const double* p, double* c)
     const double a = p[5];
     const double J_oh = p[6];
     c[0] = J_oh + L*m*a*a + L*L*m*a + 0.3333333333333333*L*L*L*m;
-    c[1] = -1.3125*m*a - 0.7321428571428571*L*m;
-    c[2] = -0.16875*m*a + 0.05892857142857143*L*m;
+    c[1] = 1.3125*m*a + 0.7321428571428571*L*m;
+    c[2] = 0.16875*m*a - 0.05892857142857143*L*m;
     c[3] = 0.58125*m*a + 0.5001984126984127*L*m;
-    c[4] = -0.059027777777777776*m*a - 0.050462962962962966*L*m;
-    c[5] = -0.7125*m*a - 0.43214285714285716*L*m;
+    c[4] = 0.059027777777777776*m*a + 0.050462962962962966*L*m;
+    c[5] = 0.7125*m*a + 0.43214285714285716*L*m;
     c[6] = 0.4125*m*a + 0.5051587301587301*L*m;
-    c[7] = -0.009722222222222222*m*a - 0.021296296296296296*L*m;
-    c[8] = -0.525*m*a - 0.27380952380952384*L*m;
+    c[7] = 0.009722222222222222*m*a + 0.021296296296296296*L*m;
+    c[8] = 0.525*m*a + 0.27380952380952384*L*m;
     c[9] = 0.075*m*a + 0.03941798941798942*L*m;
-    c[10] = -0.005555555555555556*m*a - 0.00393885949441505*L*m;
+    c[10] = 0.005555555555555556*m*a + 0.00393885949441505*L*m;
     c[11] = 0.25*L*m*a + 0.1*L*L*m;
     c[12] = 0.25*L*m*a + 0.15*L*L*m;
     c[13] = 0.25*L*m*a + 0.2111111111111111*L*L*m;
-    c[14] = -0.018518518518518517*L*m*a - 0.014814814814814815*L*L*m;
+    c[14] = 0.018518518518518517*L*m*a + 0.014814814814814815*L*L*m;
     c[15] = 0.10892857142857143*L*m;
     c[16] = 0.07098214285714285*L*m;
     c[17] = 0.01185515873015873*L*m;
-    c[18] = -0.0012731481481481483*L*m;
+    c[18] = 0.0012731481481481483*L*m;
     c[19] = 0.058234126984126985*L*m;
-    c[20] = -0.005787037037037037*L*m;
+    c[20] = 0.005787037037037037*L*m;
     c[21] = 0.17976190476190476*L*m;
-    c[22] = -0.011441798941798942*L*m;
+    c[22] = 0.011441798941798942*L*m;
     c[23] = 0.0009112286890064668*L*m;
     c[24] = 2.625*m*a + 1.4642857142857142*L*m;
-    c[25] = 0.16875*m*a - 0.05892857142857143*L*m;
-    c[26] = -0.58125*m*a - 0.5001984126984127*L*m;
-    c[27] = 0.059027777777777776*m*a + 0.050462962962962966*L*m;
-    c[28] = 1.425*m*a + 0.8642857142857143*L*m;
-    c[29] = -0.4125*m*a - 0.5051587301587301*L*m;
-    c[30] = 0.009722222222222222*m*a + 0.021296296296296296*L*m;
-    c[31] = 1.05*m*a + 0.5476190476190477*L*m;
-    c[32] = -0.075*m*a - 0.03941798941798942*L*m;
-    c[33] = 0.011111111111111112*m*a + 0.0078777189888301*L*m;
-    c[34] = -121.5*EI/(L*L*L);
-    c[35] = 30.375*EI/(L*L*L);
-    c[36] = 3.375*EI/(L*L*L);
-    c[37] = -3.375*EI/(L*L*L);
-    c[38] = -0.084375*m*a + 0.029464285714285714*L*m;
-    c[39] = 0.290625*m*a + 0.25009920634920635*L*m;
-    c[40] = -0.029513888888888888*m*a - 0.025231481481481483*L*m;
-    c[41] = 87.75*EI/(L*L*L);
-    c[42] = -20.25*EI/(L*L*L);
-    c[43] = 0.20625*m*a + 0.25257936507936507*L*m;
-    c[44] = -0.004861111111111111*m*a - 0.010648148148148148*L*m;
-    c[45] = -81.0*EI/(L*L*L);
-    c[46] = 22.5*EI/(L*L*L);
-    c[47] = 0.0375*m*a + 0.01970899470899471*L*m;
-    c[48] = -8.0*EI/(L*L*L);
-    c[49] = 0.5*J_oh + 0.5*L*m*a*a + 0.5*L*L*m*a + 0.16666666666666666*L*L*L*m;
-    c[50] = 0.054464285714285715*L*m;
-    c[51] = 0.08988095238095238*L*m;
-    c[52] = 0.0004556143445032334*L*m;
-    c[53] = -0.65625*m*a - 0.36607142857142855*L*m;
-    c[54] = -0.35625*m*a - 0.21607142857142858*L*m;
-    c[55] = -0.2625*m*a - 0.13690476190476192*L*m;
-    c[56] = -0.002777777777777778*m*a - 0.001969429747207525*L*m;
-    c[57] = 60.75*EI/(L*L*L);
-    c[58] = -30.375*EI/(L*L*L);
-    c[59] = -87.75*EI/(L*L*L);
-    c[60] = 20.25*EI/(L*L*L);
-    c[61] = 40.5*EI/(L*L*L);
-    c[62] = -22.5*EI/(L*L*L);
-    c[63] = 4.0*EI/(L*L*L);
-    c[64] = -2.625*m*a - 1.4642857142857142*L*m;
-    c[65] = -1.425*m*a - 0.8642857142857143*L*m;
-    c[66] = -1.05*m*a - 0.5476190476190477*L*m;
-    c[67] = -0.011111111111111112*m*a - 0.0078777189888301*L*m;
+    c[25] = 1.425*m*a + 0.8642857142857143*L*m;
+    c[26] = 1.05*m*a + 0.5476190476190477*L*m;
+    c[27] = 0.011111111111111112*m*a + 0.0078777189888301*L*m;
+    c[28] = 121.5*EI/(L*L*L);
+    c[29] = 30.375*EI/(L*L*L);
+    c[30] = 3.375*EI/(L*L*L);
+    c[31] = 0.084375*m*a - 0.029464285714285714*L*m;
+    c[32] = 0.290625*m*a + 0.25009920634920635*L*m;
+    c[33] = 0.029513888888888888*m*a + 0.025231481481481483*L*m;
+    c[34] = 87.75*EI/(L*L*L);
+    c[35] = 20.25*EI/(L*L*L);
+    c[36] = 0.20625*m*a + 0.25257936507936507*L*m;
+    c[37] = 0.004861111111111111*m*a + 0.010648148148148148*L*m;
+    c[38] = 81.0*EI/(L*L*L);
+    c[39] = 22.5*EI/(L*L*L);
+    c[40] = 0.0375*m*a + 0.01970899470899471*L*m;
+    c[41] = 8.0*EI/(L*L*L);
+    c[42] = 0.5*J_oh + 0.5*L*m*a*a + 0.5*L*L*m*a + 0.16666666666666666*L*L*L*m;
+    c[43] = 0.054464285714285715*L*m;
+    c[44] = 0.08988095238095238*L*m;
+    c[45] = 0.0004556143445032334*L*m;
+    c[46] = 0.65625*m*a + 0.36607142857142855*L*m;
+    c[47] = 0.35625*m*a + 0.21607142857142858*L*m;
+    c[48] = 0.2625*m*a + 0.13690476190476192*L*m;
+    c[49] = 0.002777777777777778*m*a + 0.001969429747207525*L*m;
+    c[50] = 60.75*EI/(L*L*L);
+    c[51] = 40.5*EI/(L*L*L);
+    c[52] = 4.0*EI/(L*L*L);
 }
 
-/* mass:(c[68],u[3],q[5],qd[5])->(M[25]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[53],u[3],q[5],qd[5])->(M[25]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void bsim_nx0_ny4_torque_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -111,24 +96,24 @@ void bsim_nx0_ny4_torque_first_mass(const double* c, const double* u, const doub
     const double B3sq = B3*B3;
     const double B3_B4 = B3*B4;
     const double B4sq = B4*B4;
-    out[0] = c[0] + c[1]*B1sq + c[2]*B1_B2 + c[3]*B1_B3 + c[4]*B1_B4 + c[5]*B2sq + c[6]*B2_B3 + c[7]*B2_B4 + c[8]*B3sq + c[9]*B3_B4 + c[10]*B4sq;
+    out[0] = c[0] - c[1]*B1sq - c[2]*B1_B2 + c[3]*B1_B3 - c[4]*B1_B4 - c[5]*B2sq + c[6]*B2_B3 - c[7]*B2_B4 - c[8]*B3sq + c[9]*B3_B4 - c[10]*B4sq;
     out[1] = c[11];
     out[2] = c[12];
     out[3] = c[13];
-    out[4] = c[14];
+    out[4] = -c[14];
     out[6] = c[15];
     out[7] = c[16];
     out[8] = c[17];
-    out[9] = c[18];
+    out[9] = -c[18];
     out[12] = c[15];
     out[13] = c[19];
-    out[14] = c[20];
+    out[14] = -c[20];
     out[18] = c[21];
-    out[19] = c[22];
+    out[19] = -c[22];
     out[24] = c[23];
 }
 
-/* forces:(c[68],u[3],q[5],qd[5])->(Q[5]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[53],u[3],q[5],qd[5])->(Q[5]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void bsim_nx0_ny4_torque_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
@@ -165,14 +150,14 @@ void bsim_nx0_ny4_torque_first_forces(const double* c, const double* u, const do
     const double B4_theta_dot_B2_dot = B4_theta_dot*B2_dot;
     const double B4_theta_dot_B3_dot = B4_theta_dot*B3_dot;
     const double B4_theta_dot_B4_dot = B4_theta_dot*B4_dot;
-    out[0] = tau + c[24]*B1_theta_dot_B1_dot + c[25]*B1_theta_dot_B2_dot + c[26]*B1_theta_dot_B3_dot + c[27]*B1_theta_dot_B4_dot + c[25]*B2_theta_dot_B1_dot + c[28]*B2_theta_dot_B2_dot + c[29]*B2_theta_dot_B3_dot + c[30]*B2_theta_dot_B4_dot + c[26]*B3_theta_dot_B1_dot + c[29]*B3_theta_dot_B2_dot + c[31]*B3_theta_dot_B3_dot + c[32]*B3_theta_dot_B4_dot + c[27]*B4_theta_dot_B1_dot + c[30]*B4_theta_dot_B2_dot + c[32]*B4_theta_dot_B3_dot + c[33]*B4_theta_dot_B4_dot;
-    out[1] = c[34]*B1 + c[35]*B2 + c[36]*B3 + c[37]*B4 + c[1]*B1_theta_dotsq + c[38]*B2_theta_dotsq + c[39]*B3_theta_dotsq + c[40]*B4_theta_dotsq;
-    out[2] = c[35]*B1 + c[34]*B2 + c[41]*B3 + c[42]*B4 + c[38]*B1_theta_dotsq + c[5]*B2_theta_dotsq + c[43]*B3_theta_dotsq + c[44]*B4_theta_dotsq;
-    out[3] = c[36]*B1 + c[41]*B2 + c[45]*B3 + c[46]*B4 + c[39]*B1_theta_dotsq + c[43]*B2_theta_dotsq + c[8]*B3_theta_dotsq + c[47]*B4_theta_dotsq;
-    out[4] = c[37]*B1 + c[42]*B2 + c[46]*B3 + c[48]*B4 + c[40]*B1_theta_dotsq + c[44]*B2_theta_dotsq + c[47]*B3_theta_dotsq + c[10]*B4_theta_dotsq;
+    out[0] = tau + c[24]*B1_theta_dot_B1_dot + c[2]*B1_theta_dot_B2_dot - c[3]*B1_theta_dot_B3_dot + c[4]*B1_theta_dot_B4_dot + c[2]*B2_theta_dot_B1_dot + c[25]*B2_theta_dot_B2_dot - c[6]*B2_theta_dot_B3_dot + c[7]*B2_theta_dot_B4_dot - c[3]*B3_theta_dot_B1_dot - c[6]*B3_theta_dot_B2_dot + c[26]*B3_theta_dot_B3_dot - c[9]*B3_theta_dot_B4_dot + c[4]*B4_theta_dot_B1_dot + c[7]*B4_theta_dot_B2_dot - c[9]*B4_theta_dot_B3_dot + c[27]*B4_theta_dot_B4_dot;
+    out[1] = -c[28]*B1 + c[29]*B2 + c[30]*B3 - c[30]*B4 - c[1]*B1_theta_dotsq - c[31]*B2_theta_dotsq + c[32]*B3_theta_dotsq - c[33]*B4_theta_dotsq;
+    out[2] = c[29]*B1 - c[28]*B2 + c[34]*B3 - c[35]*B4 - c[31]*B1_theta_dotsq - c[5]*B2_theta_dotsq + c[36]*B3_theta_dotsq - c[37]*B4_theta_dotsq;
+    out[3] = c[30]*B1 + c[34]*B2 - c[38]*B3 + c[39]*B4 + c[32]*B1_theta_dotsq + c[36]*B2_theta_dotsq - c[8]*B3_theta_dotsq + c[40]*B4_theta_dotsq;
+    out[4] = -c[30]*B1 - c[35]*B2 + c[39]*B3 - c[41]*B4 - c[33]*B1_theta_dotsq - c[37]*B2_theta_dotsq + c[40]*B3_theta_dotsq - c[10]*B4_theta_dotsq;
 }
 
-/* forces_terms:(c[68],u[3],q[5],qd[5])->(m[25]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[53],u[3],q[5],qd[5])->(m[25]) the state monomials of Q: Q = F m */
 void bsim_nx0_ny4_torque_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -237,7 +222,7 @@ void bsim_nx0_ny4_torque_first_forces_terms(const double* c, const double* u, co
     out[24] = B4_theta_dot_B4_dot;
 }
 
-/* forces_matrix:(c[68],u[3],q[5],qd[5])->(F[5*25]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[53],u[3],q[5],qd[5])->(F[5*25]) row-major, state-free: Q = F m; nonzero entries only */
 void bsim_nx0_ny4_torque_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -245,56 +230,56 @@ void bsim_nx0_ny4_torque_first_forces_matrix(const double* c, const double* u, c
     (void)qd;
     out[0] = 1.0;
     out[6] = c[24];
-    out[7] = c[25];
-    out[8] = c[26];
-    out[9] = c[27];
-    out[11] = c[25];
-    out[12] = c[28];
-    out[13] = c[29];
-    out[14] = c[30];
-    out[16] = c[26];
-    out[17] = c[29];
-    out[18] = c[31];
-    out[19] = c[32];
-    out[21] = c[27];
-    out[22] = c[30];
-    out[23] = c[32];
-    out[24] = c[33];
-    out[26] = c[34];
-    out[27] = c[35];
-    out[28] = c[36];
-    out[29] = c[37];
-    out[30] = c[1];
-    out[35] = c[38];
-    out[40] = c[39];
-    out[45] = c[40];
-    out[51] = c[35];
-    out[52] = c[34];
-    out[53] = c[41];
-    out[54] = c[42];
-    out[55] = c[38];
-    out[60] = c[5];
-    out[65] = c[43];
-    out[70] = c[44];
-    out[76] = c[36];
-    out[77] = c[41];
-    out[78] = c[45];
-    out[79] = c[46];
-    out[80] = c[39];
-    out[85] = c[43];
-    out[90] = c[8];
-    out[95] = c[47];
-    out[101] = c[37];
-    out[102] = c[42];
-    out[103] = c[46];
-    out[104] = c[48];
-    out[105] = c[40];
-    out[110] = c[44];
-    out[115] = c[47];
-    out[120] = c[10];
+    out[7] = c[2];
+    out[8] = -c[3];
+    out[9] = c[4];
+    out[11] = c[2];
+    out[12] = c[25];
+    out[13] = -c[6];
+    out[14] = c[7];
+    out[16] = -c[3];
+    out[17] = -c[6];
+    out[18] = c[26];
+    out[19] = -c[9];
+    out[21] = c[4];
+    out[22] = c[7];
+    out[23] = -c[9];
+    out[24] = c[27];
+    out[26] = -c[28];
+    out[27] = c[29];
+    out[28] = c[30];
+    out[29] = -c[30];
+    out[30] = -c[1];
+    out[35] = -c[31];
+    out[40] = c[32];
+    out[45] = -c[33];
+    out[51] = c[29];
+    out[52] = -c[28];
+    out[53] = c[34];
+    out[54] = -c[35];
+    out[55] = -c[31];
+    out[60] = -c[5];
+    out[65] = c[36];
+    out[70] = -c[37];
+    out[76] = c[30];
+    out[77] = c[34];
+    out[78] = -c[38];
+    out[79] = c[39];
+    out[80] = c[32];
+    out[85] = c[36];
+    out[90] = -c[8];
+    out[95] = c[40];
+    out[101] = -c[30];
+    out[102] = -c[35];
+    out[103] = c[39];
+    out[104] = -c[41];
+    out[105] = -c[33];
+    out[110] = -c[37];
+    out[115] = c[40];
+    out[120] = -c[10];
 }
 
-/* energy:(c[68],u[3],q[5],qd[5])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[53],u[3],q[5],qd[5])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void bsim_nx0_ny4_torque_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -352,13 +337,13 @@ void bsim_nx0_ny4_torque_first_energy(const double* c, const double* u, const do
     const double B3_B4_theta_dotsq = B3_B4_theta_dot*theta_dot;
     const double B4sq_theta_dot = B4sq*theta_dot;
     const double B4sq_theta_dotsq = B4sq_theta_dot*theta_dot;
-    out[0] = c[49]*theta_dotsq + c[11]*theta_dot_B1_dot + c[12]*theta_dot_B2_dot + c[13]*theta_dot_B3_dot + c[14]*theta_dot_B4_dot + c[50]*B1_dotsq + c[16]*B1_dot_B2_dot + c[17]*B1_dot_B3_dot + c[18]*B1_dot_B4_dot + c[50]*B2_dotsq + c[19]*B2_dot_B3_dot + c[20]*B2_dot_B4_dot + c[51]*B3_dotsq + c[22]*B3_dot_B4_dot + c[52]*B4_dotsq + c[53]*B1sq_theta_dotsq + c[38]*B1_B2_theta_dotsq + c[39]*B1_B3_theta_dotsq + c[40]*B1_B4_theta_dotsq + c[54]*B2sq_theta_dotsq + c[43]*B2_B3_theta_dotsq + c[44]*B2_B4_theta_dotsq + c[55]*B3sq_theta_dotsq + c[47]*B3_B4_theta_dotsq + c[56]*B4sq_theta_dotsq;
+    out[0] = c[42]*theta_dotsq + c[11]*theta_dot_B1_dot + c[12]*theta_dot_B2_dot + c[13]*theta_dot_B3_dot - c[14]*theta_dot_B4_dot + c[43]*B1_dotsq + c[16]*B1_dot_B2_dot + c[17]*B1_dot_B3_dot - c[18]*B1_dot_B4_dot + c[43]*B2_dotsq + c[19]*B2_dot_B3_dot - c[20]*B2_dot_B4_dot + c[44]*B3_dotsq - c[22]*B3_dot_B4_dot + c[45]*B4_dotsq - c[46]*B1sq_theta_dotsq - c[31]*B1_B2_theta_dotsq + c[32]*B1_B3_theta_dotsq - c[33]*B1_B4_theta_dotsq - c[47]*B2sq_theta_dotsq + c[36]*B2_B3_theta_dotsq - c[37]*B2_B4_theta_dotsq - c[48]*B3sq_theta_dotsq + c[40]*B3_B4_theta_dotsq - c[49]*B4sq_theta_dotsq;
     out[1] = 0.0;
     out[2] = 0.0;
-    out[3] = c[57]*B1sq + c[58]*B1_B2 + c[37]*B1_B3 + c[36]*B1_B4 + c[57]*B2sq + c[59]*B2_B3 + c[60]*B2_B4 + c[61]*B3sq + c[62]*B3_B4 + c[63]*B4sq;
+    out[3] = c[50]*B1sq - c[29]*B1_B2 - c[30]*B1_B3 + c[30]*B1_B4 + c[50]*B2sq - c[34]*B2_B3 + c[35]*B2_B4 + c[51]*B3sq - c[39]*B3_B4 + c[52]*B4sq;
 }
 
-/* momentum:(c[68],u[3],q[5],qd[5])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[53],u[3],q[5],qd[5])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void bsim_nx0_ny4_torque_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -391,10 +376,10 @@ void bsim_nx0_ny4_torque_first_momentum(const double* c, const double* u, const 
     const double B3_B4_theta_dot = B3_B4*theta_dot;
     const double B4sq = B4*B4;
     const double B4sq_theta_dot = B4sq*theta_dot;
-    out[0] = c[0]*theta_dot + c[11]*B1_dot + c[12]*B2_dot + c[13]*B3_dot + c[14]*B4_dot + c[1]*B1sq_theta_dot + c[2]*B1_B2_theta_dot + c[3]*B1_B3_theta_dot + c[4]*B1_B4_theta_dot + c[5]*B2sq_theta_dot + c[6]*B2_B3_theta_dot + c[7]*B2_B4_theta_dot + c[8]*B3sq_theta_dot + c[9]*B3_B4_theta_dot + c[10]*B4sq_theta_dot;
+    out[0] = c[0]*theta_dot + c[11]*B1_dot + c[12]*B2_dot + c[13]*B3_dot - c[14]*B4_dot - c[1]*B1sq_theta_dot - c[2]*B1_B2_theta_dot + c[3]*B1_B3_theta_dot - c[4]*B1_B4_theta_dot - c[5]*B2sq_theta_dot + c[6]*B2_B3_theta_dot - c[7]*B2_B4_theta_dot - c[8]*B3sq_theta_dot + c[9]*B3_B4_theta_dot - c[10]*B4sq_theta_dot;
 }
 
-/* forces_q:(c[68],u[3],q[5],qd[5])->(dQdq[25]) row-major; out[i*5+k] = dQ_i/dq_k */
+/* forces_q:(c[53],u[3],q[5],qd[5])->(dQdq[25]) row-major; out[i*5+k] = dQ_i/dq_k */
 void bsim_nx0_ny4_torque_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -410,33 +395,33 @@ void bsim_nx0_ny4_torque_first_forces_q(const double* c, const double* u, const 
     const double theta_dot_B3_dot = theta_dot*B3_dot;
     const double theta_dot_B4_dot = theta_dot*B4_dot;
     out[0] = 0.0;
-    out[1] = c[24]*theta_dot_B1_dot + c[25]*theta_dot_B2_dot + c[26]*theta_dot_B3_dot + c[27]*theta_dot_B4_dot;
-    out[2] = c[25]*theta_dot_B1_dot + c[28]*theta_dot_B2_dot + c[29]*theta_dot_B3_dot + c[30]*theta_dot_B4_dot;
-    out[3] = c[26]*theta_dot_B1_dot + c[29]*theta_dot_B2_dot + c[31]*theta_dot_B3_dot + c[32]*theta_dot_B4_dot;
-    out[4] = c[27]*theta_dot_B1_dot + c[30]*theta_dot_B2_dot + c[32]*theta_dot_B3_dot + c[33]*theta_dot_B4_dot;
+    out[1] = c[24]*theta_dot_B1_dot + c[2]*theta_dot_B2_dot - c[3]*theta_dot_B3_dot + c[4]*theta_dot_B4_dot;
+    out[2] = c[2]*theta_dot_B1_dot + c[25]*theta_dot_B2_dot - c[6]*theta_dot_B3_dot + c[7]*theta_dot_B4_dot;
+    out[3] = -c[3]*theta_dot_B1_dot - c[6]*theta_dot_B2_dot + c[26]*theta_dot_B3_dot - c[9]*theta_dot_B4_dot;
+    out[4] = c[4]*theta_dot_B1_dot + c[7]*theta_dot_B2_dot - c[9]*theta_dot_B3_dot + c[27]*theta_dot_B4_dot;
     out[5] = 0.0;
-    out[6] = c[34] + c[1]*theta_dotsq;
-    out[7] = c[35] + c[38]*theta_dotsq;
-    out[8] = c[36] + c[39]*theta_dotsq;
-    out[9] = c[37] + c[40]*theta_dotsq;
+    out[6] = -c[28] - c[1]*theta_dotsq;
+    out[7] = c[29] - c[31]*theta_dotsq;
+    out[8] = c[30] + c[32]*theta_dotsq;
+    out[9] = -c[30] - c[33]*theta_dotsq;
     out[10] = 0.0;
-    out[11] = c[35] + c[38]*theta_dotsq;
-    out[12] = c[34] + c[5]*theta_dotsq;
-    out[13] = c[41] + c[43]*theta_dotsq;
-    out[14] = c[42] + c[44]*theta_dotsq;
+    out[11] = c[29] - c[31]*theta_dotsq;
+    out[12] = -c[28] - c[5]*theta_dotsq;
+    out[13] = c[34] + c[36]*theta_dotsq;
+    out[14] = -c[35] - c[37]*theta_dotsq;
     out[15] = 0.0;
-    out[16] = c[36] + c[39]*theta_dotsq;
-    out[17] = c[41] + c[43]*theta_dotsq;
-    out[18] = c[45] + c[8]*theta_dotsq;
-    out[19] = c[46] + c[47]*theta_dotsq;
+    out[16] = c[30] + c[32]*theta_dotsq;
+    out[17] = c[34] + c[36]*theta_dotsq;
+    out[18] = -c[38] - c[8]*theta_dotsq;
+    out[19] = c[39] + c[40]*theta_dotsq;
     out[20] = 0.0;
-    out[21] = c[37] + c[40]*theta_dotsq;
-    out[22] = c[42] + c[44]*theta_dotsq;
-    out[23] = c[46] + c[47]*theta_dotsq;
-    out[24] = c[48] + c[10]*theta_dotsq;
+    out[21] = -c[30] - c[33]*theta_dotsq;
+    out[22] = -c[35] - c[37]*theta_dotsq;
+    out[23] = c[39] + c[40]*theta_dotsq;
+    out[24] = -c[41] - c[10]*theta_dotsq;
 }
 
-/* forces_qd:(c[68],u[3],q[5],qd[5])->(dQdqd[25]) row-major; out[i*5+k] = dQ_i/dqd_k */
+/* forces_qd:(c[53],u[3],q[5],qd[5])->(dQdqd[25]) row-major; out[i*5+k] = dQ_i/dqd_k */
 void bsim_nx0_ny4_torque_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -469,34 +454,34 @@ void bsim_nx0_ny4_torque_first_forces_qd(const double* c, const double* u, const
     const double B4_B2_dot = B4*B2_dot;
     const double B4_B3_dot = B4*B3_dot;
     const double B4_B4_dot = B4*B4_dot;
-    out[0] = c[24]*B1_B1_dot + c[25]*B1_B2_dot + c[26]*B1_B3_dot + c[27]*B1_B4_dot + c[25]*B2_B1_dot + c[28]*B2_B2_dot + c[29]*B2_B3_dot + c[30]*B2_B4_dot + c[26]*B3_B1_dot + c[29]*B3_B2_dot + c[31]*B3_B3_dot + c[32]*B3_B4_dot + c[27]*B4_B1_dot + c[30]*B4_B2_dot + c[32]*B4_B3_dot + c[33]*B4_B4_dot;
-    out[1] = c[24]*B1_theta_dot + c[25]*B2_theta_dot + c[26]*B3_theta_dot + c[27]*B4_theta_dot;
-    out[2] = c[25]*B1_theta_dot + c[28]*B2_theta_dot + c[29]*B3_theta_dot + c[30]*B4_theta_dot;
-    out[3] = c[26]*B1_theta_dot + c[29]*B2_theta_dot + c[31]*B3_theta_dot + c[32]*B4_theta_dot;
-    out[4] = c[27]*B1_theta_dot + c[30]*B2_theta_dot + c[32]*B3_theta_dot + c[33]*B4_theta_dot;
-    out[5] = c[64]*B1_theta_dot + c[2]*B2_theta_dot + c[3]*B3_theta_dot + c[4]*B4_theta_dot;
+    out[0] = c[24]*B1_B1_dot + c[2]*B1_B2_dot - c[3]*B1_B3_dot + c[4]*B1_B4_dot + c[2]*B2_B1_dot + c[25]*B2_B2_dot - c[6]*B2_B3_dot + c[7]*B2_B4_dot - c[3]*B3_B1_dot - c[6]*B3_B2_dot + c[26]*B3_B3_dot - c[9]*B3_B4_dot + c[4]*B4_B1_dot + c[7]*B4_B2_dot - c[9]*B4_B3_dot + c[27]*B4_B4_dot;
+    out[1] = c[24]*B1_theta_dot + c[2]*B2_theta_dot - c[3]*B3_theta_dot + c[4]*B4_theta_dot;
+    out[2] = c[2]*B1_theta_dot + c[25]*B2_theta_dot - c[6]*B3_theta_dot + c[7]*B4_theta_dot;
+    out[3] = -c[3]*B1_theta_dot - c[6]*B2_theta_dot + c[26]*B3_theta_dot - c[9]*B4_theta_dot;
+    out[4] = c[4]*B1_theta_dot + c[7]*B2_theta_dot - c[9]*B3_theta_dot + c[27]*B4_theta_dot;
+    out[5] = -c[24]*B1_theta_dot - c[2]*B2_theta_dot + c[3]*B3_theta_dot - c[4]*B4_theta_dot;
     out[6] = 0.0;
     out[7] = 0.0;
     out[8] = 0.0;
     out[9] = 0.0;
-    out[10] = c[2]*B1_theta_dot + c[65]*B2_theta_dot + c[6]*B3_theta_dot + c[7]*B4_theta_dot;
+    out[10] = -c[2]*B1_theta_dot - c[25]*B2_theta_dot + c[6]*B3_theta_dot - c[7]*B4_theta_dot;
     out[11] = 0.0;
     out[12] = 0.0;
     out[13] = 0.0;
     out[14] = 0.0;
-    out[15] = c[3]*B1_theta_dot + c[6]*B2_theta_dot + c[66]*B3_theta_dot + c[9]*B4_theta_dot;
+    out[15] = c[3]*B1_theta_dot + c[6]*B2_theta_dot - c[26]*B3_theta_dot + c[9]*B4_theta_dot;
     out[16] = 0.0;
     out[17] = 0.0;
     out[18] = 0.0;
     out[19] = 0.0;
-    out[20] = c[4]*B1_theta_dot + c[7]*B2_theta_dot + c[9]*B3_theta_dot + c[67]*B4_theta_dot;
+    out[20] = -c[4]*B1_theta_dot - c[7]*B2_theta_dot + c[9]*B3_theta_dot - c[27]*B4_theta_dot;
     out[21] = 0.0;
     out[22] = 0.0;
     out[23] = 0.0;
     out[24] = 0.0;
 }
 
-/* forces_u:(c[68],u[3],q[5],qd[5])->(dQdu[15]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
+/* forces_u:(c[53],u[3],q[5],qd[5])->(dQdu[15]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
 void bsim_nx0_ny4_torque_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -520,7 +505,7 @@ void bsim_nx0_ny4_torque_first_forces_u(const double* c, const double* u, const 
     out[14] = 0.0;
 }
 
-/* mass_varying:(c[68],u[3],q[5],qd[5])->(M[25]) as mass, the entries that depend on q only */
+/* mass_varying:(c[53],u[3],q[5],qd[5])->(M[25]) as mass, the entries that depend on q only */
 void bsim_nx0_ny4_torque_first_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -539,10 +524,10 @@ void bsim_nx0_ny4_torque_first_mass_varying(const double* c, const double* u, co
     const double B3sq = B3*B3;
     const double B3_B4 = B3*B4;
     const double B4sq = B4*B4;
-    out[0] = c[0] + c[1]*B1sq + c[2]*B1_B2 + c[3]*B1_B3 + c[4]*B1_B4 + c[5]*B2sq + c[6]*B2_B3 + c[7]*B2_B4 + c[8]*B3sq + c[9]*B3_B4 + c[10]*B4sq;
+    out[0] = c[0] - c[1]*B1sq - c[2]*B1_B2 + c[3]*B1_B3 - c[4]*B1_B4 - c[5]*B2sq + c[6]*B2_B3 - c[7]*B2_B4 - c[8]*B3sq + c[9]*B3_B4 - c[10]*B4sq;
 }
 
-/* mass_q_product:(c[68],u[3],q[5],qd[5])->(dMv[25]) row-major; v in the qd slot; out[i*5+k] = sum_j dM_ij/dq_k v_j */
+/* mass_q_product:(c[53],u[3],q[5],qd[5])->(dMv[25]) row-major; v in the qd slot; out[i*5+k] = sum_j dM_ij/dq_k v_j */
 void bsim_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -556,10 +541,10 @@ void bsim_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, 
     const double B3_theta_dot = B3*theta_dot;
     const double B4_theta_dot = B4*theta_dot;
     out[0] = 0.0;
-    out[1] = c[64]*B1_theta_dot + c[2]*B2_theta_dot + c[3]*B3_theta_dot + c[4]*B4_theta_dot;
-    out[2] = c[2]*B1_theta_dot + c[65]*B2_theta_dot + c[6]*B3_theta_dot + c[7]*B4_theta_dot;
-    out[3] = c[3]*B1_theta_dot + c[6]*B2_theta_dot + c[66]*B3_theta_dot + c[9]*B4_theta_dot;
-    out[4] = c[4]*B1_theta_dot + c[7]*B2_theta_dot + c[9]*B3_theta_dot + c[67]*B4_theta_dot;
+    out[1] = -c[24]*B1_theta_dot - c[2]*B2_theta_dot + c[3]*B3_theta_dot - c[4]*B4_theta_dot;
+    out[2] = -c[2]*B1_theta_dot - c[25]*B2_theta_dot + c[6]*B3_theta_dot - c[7]*B4_theta_dot;
+    out[3] = c[3]*B1_theta_dot + c[6]*B2_theta_dot - c[26]*B3_theta_dot + c[9]*B4_theta_dot;
+    out[4] = -c[4]*B1_theta_dot - c[7]*B2_theta_dot + c[9]*B3_theta_dot - c[27]*B4_theta_dot;
     out[5] = 0.0;
     out[6] = 0.0;
     out[7] = 0.0;
@@ -584,7 +569,7 @@ void bsim_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, 
 
 }  // namespace
 
-extern const Variant bsim_nx0_ny4_torque_first = {"bsim_nx0_ny4_torque_first", 5, 68, 25,
+extern const Variant bsim_nx0_ny4_torque_first = {"bsim_nx0_ny4_torque_first", 5, 53, 25,
     "vcccccccccccccccccccccccc",
     bsim_nx0_ny4_torque_first_coefficients, bsim_nx0_ny4_torque_first_mass, bsim_nx0_ny4_torque_first_mass_varying, bsim_nx0_ny4_torque_first_forces, bsim_nx0_ny4_torque_first_forces_terms, bsim_nx0_ny4_torque_first_forces_matrix,
     bsim_nx0_ny4_torque_first_energy, bsim_nx0_ny4_torque_first_momentum, bsim_nx0_ny4_torque_first_forces_q, bsim_nx0_ny4_torque_first_forces_qd, bsim_nx0_ny4_torque_first_mass_q_product, bsim_nx0_ny4_torque_first_forces_u};

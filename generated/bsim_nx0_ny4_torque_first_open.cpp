@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[68]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[52]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void bsim_nx0_ny4_torque_first_open_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -23,16 +23,16 @@ void bsim_nx0_ny4_torque_first_open_coefficients(const double* p, double* c)
     const double a = p[5];
     const double J_oh = p[6];
     c[0] = J_oh + L*m*a*a + L*L*m*a + 0.3333333333333333*L*L*L*m;
-    c[1] = -1.3125*m*a - 0.7321428571428571*L*m;
-    c[2] = -0.16875*m*a + 0.05892857142857143*L*m;
+    c[1] = 1.3125*m*a + 0.7321428571428571*L*m;
+    c[2] = 0.16875*m*a - 0.05892857142857143*L*m;
     c[3] = 0.53125*m*a + 0.45416666666666666*L*m;
     c[4] = 0.05*m*a + 0.046031746031746035*L*m;
-    c[5] = -0.7125*m*a - 0.43214285714285716*L*m;
+    c[5] = 0.7125*m*a + 0.43214285714285716*L*m;
     c[6] = 0.0875*m*a + 0.19166666666666668*L*m;
     c[7] = 0.325*m*a + 0.3134920634920635*L*m;
-    c[8] = -0.45*m*a - 0.319047619047619*L*m;
+    c[8] = 0.45*m*a + 0.319047619047619*L*m;
     c[9] = 0.225*m*a + 0.2833333333333333*L*m;
-    c[10] = -0.3*m*a - 0.23809523809523808*L*m;
+    c[10] = 0.3*m*a + 0.23809523809523808*L*m;
     c[11] = 0.25*L*m*a + 0.1*L*L*m;
     c[12] = 0.25*L*m*a + 0.15*L*L*m;
     c[13] = 0.16666666666666666*L*m*a + 0.13333333333333333*L*L*m;
@@ -47,52 +47,36 @@ void bsim_nx0_ny4_torque_first_open_coefficients(const double* p, double* c)
     c[22] = 0.029166666666666667*L*m;
     c[23] = 0.047619047619047616*L*m;
     c[24] = 2.625*m*a + 1.4642857142857142*L*m;
-    c[25] = 0.16875*m*a - 0.05892857142857143*L*m;
-    c[26] = -0.53125*m*a - 0.45416666666666666*L*m;
-    c[27] = -0.05*m*a - 0.046031746031746035*L*m;
-    c[28] = 1.425*m*a + 0.8642857142857143*L*m;
-    c[29] = -0.0875*m*a - 0.19166666666666668*L*m;
-    c[30] = -0.325*m*a - 0.3134920634920635*L*m;
-    c[31] = 0.9*m*a + 0.638095238095238*L*m;
-    c[32] = -0.225*m*a - 0.2833333333333333*L*m;
-    c[33] = 0.6*m*a + 0.47619047619047616*L*m;
-    c[34] = -121.5*EI/(L*L*L);
-    c[35] = 30.375*EI/(L*L*L);
-    c[36] = -27.0*EI/(L*L*L);
-    c[37] = -0.084375*m*a + 0.029464285714285714*L*m;
-    c[38] = 0.265625*m*a + 0.22708333333333333*L*m;
-    c[39] = 0.025*m*a + 0.023015873015873017*L*m;
-    c[40] = 182.25*EI/(L*L*L);
-    c[41] = -94.5*EI/(L*L*L);
-    c[42] = 0.04375*m*a + 0.09583333333333334*L*m;
-    c[43] = 0.1625*m*a + 0.15674603174603174*L*m;
-    c[44] = -648.0*EI/(L*L*L);
-    c[45] = 445.5*EI/(L*L*L);
-    c[46] = 0.1125*m*a + 0.14166666666666666*L*m;
-    c[47] = -324.0*EI/(L*L*L);
-    c[48] = 0.5*J_oh + 0.5*L*m*a*a + 0.5*L*L*m*a + 0.16666666666666666*L*L*L*m;
-    c[49] = 0.054464285714285715*L*m;
-    c[50] = 0.036904761904761905*L*m;
-    c[51] = 0.023809523809523808*L*m;
-    c[52] = -0.65625*m*a - 0.36607142857142855*L*m;
-    c[53] = -0.35625*m*a - 0.21607142857142858*L*m;
-    c[54] = -0.225*m*a - 0.1595238095238095*L*m;
-    c[55] = -0.15*m*a - 0.11904761904761904*L*m;
-    c[56] = 60.75*EI/(L*L*L);
-    c[57] = -30.375*EI/(L*L*L);
-    c[58] = 27.0*EI/(L*L*L);
-    c[59] = -182.25*EI/(L*L*L);
-    c[60] = 94.5*EI/(L*L*L);
-    c[61] = 324.0*EI/(L*L*L);
-    c[62] = -445.5*EI/(L*L*L);
-    c[63] = 162.0*EI/(L*L*L);
-    c[64] = -2.625*m*a - 1.4642857142857142*L*m;
-    c[65] = -1.425*m*a - 0.8642857142857143*L*m;
-    c[66] = -0.9*m*a - 0.638095238095238*L*m;
-    c[67] = -0.6*m*a - 0.47619047619047616*L*m;
+    c[25] = 1.425*m*a + 0.8642857142857143*L*m;
+    c[26] = 0.9*m*a + 0.638095238095238*L*m;
+    c[27] = 0.6*m*a + 0.47619047619047616*L*m;
+    c[28] = 121.5*EI/(L*L*L);
+    c[29] = 30.375*EI/(L*L*L);
+    c[30] = 27.0*EI/(L*L*L);
+    c[31] = 0.084375*m*a - 0.029464285714285714*L*m;
+    c[32] = 0.265625*m*a + 0.22708333333333333*L*m;
+    c[33] = 0.025*m*a + 0.023015873015873017*L*m;
+    c[34] = 182.25*EI/(L*L*L);
+    c[35] = 94.5*EI/(L*L*L);
+    c[36] = 0.04375*m*a + 0.09583333333333334*L*m;
+    c[37] = 0.1625*m*a + 0.15674603174603174*L*m;
+    c[38] = 648.0*EI/(L*L*L);
+    c[39] = 445.5*EI/(L*L*L);
+    c[40] = 0.1125*m*a + 0.14166666666666666*L*m;
+    c[41] = 324.0*EI/(L*L*L);
+    c[42] = 0.5*J_oh + 0.5*L*m*a*a + 0.5*L*L*m*a + 0.16666666666666666*L*L*L*m;
+    c[43] = 0.054464285714285715*L*m;
+    c[44] = 0.036904761904761905*L*m;
+    c[45] = 0.023809523809523808*L*m;
+    c[46] = 0.65625*m*a + 0.36607142857142855*L*m;
+    c[47] = 0.35625*m*a + 0.21607142857142858*L*m;
+    c[48] = 0.225*m*a + 0.1595238095238095*L*m;
+    c[49] = 0.15*m*a + 0.11904761904761904*L*m;
+    c[50] = 60.75*EI/(L*L*L);
+    c[51] = 162.0*EI/(L*L*L);
 }
 
-/* mass:(c[68],u[3],q[5],qd[5])->(M[25]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[52],u[3],q[5],qd[5])->(M[25]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void bsim_nx0_ny4_torque_first_open_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -111,7 +95,7 @@ void bsim_nx0_ny4_torque_first_open_mass(const double* c, const double* u, const
     const double B3sq = B3*B3;
     const double B3_B4 = B3*B4;
     const double B4sq = B4*B4;
-    out[0] = c[0] + c[1]*B1sq + c[2]*B1_B2 + c[3]*B1_B3 + c[4]*B1_B4 + c[5]*B2sq + c[6]*B2_B3 + c[7]*B2_B4 + c[8]*B3sq + c[9]*B3_B4 + c[10]*B4sq;
+    out[0] = c[0] - c[1]*B1sq - c[2]*B1_B2 + c[3]*B1_B3 + c[4]*B1_B4 - c[5]*B2sq + c[6]*B2_B3 + c[7]*B2_B4 - c[8]*B3sq + c[9]*B3_B4 - c[10]*B4sq;
     out[1] = c[11];
     out[2] = c[12];
     out[3] = c[13];
@@ -128,7 +112,7 @@ void bsim_nx0_ny4_torque_first_open_mass(const double* c, const double* u, const
     out[24] = c[23];
 }
 
-/* forces:(c[68],u[3],q[5],qd[5])->(Q[5]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[52],u[3],q[5],qd[5])->(Q[5]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void bsim_nx0_ny4_torque_first_open_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
@@ -165,14 +149,14 @@ void bsim_nx0_ny4_torque_first_open_forces(const double* c, const double* u, con
     const double B4_theta_dot_B2_dot = B4_theta_dot*B2_dot;
     const double B4_theta_dot_B3_dot = B4_theta_dot*B3_dot;
     const double B4_theta_dot_B4_dot = B4_theta_dot*B4_dot;
-    out[0] = tau + c[24]*B1_theta_dot_B1_dot + c[25]*B1_theta_dot_B2_dot + c[26]*B1_theta_dot_B3_dot + c[27]*B1_theta_dot_B4_dot + c[25]*B2_theta_dot_B1_dot + c[28]*B2_theta_dot_B2_dot + c[29]*B2_theta_dot_B3_dot + c[30]*B2_theta_dot_B4_dot + c[26]*B3_theta_dot_B1_dot + c[29]*B3_theta_dot_B2_dot + c[31]*B3_theta_dot_B3_dot + c[32]*B3_theta_dot_B4_dot + c[27]*B4_theta_dot_B1_dot + c[30]*B4_theta_dot_B2_dot + c[32]*B4_theta_dot_B3_dot + c[33]*B4_theta_dot_B4_dot;
-    out[1] = c[34]*B1 + c[35]*B2 + c[35]*B3 + c[36]*B4 + c[1]*B1_theta_dotsq + c[37]*B2_theta_dotsq + c[38]*B3_theta_dotsq + c[39]*B4_theta_dotsq;
-    out[2] = c[35]*B1 + c[34]*B2 + c[40]*B3 + c[41]*B4 + c[37]*B1_theta_dotsq + c[5]*B2_theta_dotsq + c[42]*B3_theta_dotsq + c[43]*B4_theta_dotsq;
-    out[3] = c[35]*B1 + c[40]*B2 + c[44]*B3 + c[45]*B4 + c[38]*B1_theta_dotsq + c[42]*B2_theta_dotsq + c[8]*B3_theta_dotsq + c[46]*B4_theta_dotsq;
-    out[4] = c[36]*B1 + c[41]*B2 + c[45]*B3 + c[47]*B4 + c[39]*B1_theta_dotsq + c[43]*B2_theta_dotsq + c[46]*B3_theta_dotsq + c[10]*B4_theta_dotsq;
+    out[0] = tau + c[24]*B1_theta_dot_B1_dot + c[2]*B1_theta_dot_B2_dot - c[3]*B1_theta_dot_B3_dot - c[4]*B1_theta_dot_B4_dot + c[2]*B2_theta_dot_B1_dot + c[25]*B2_theta_dot_B2_dot - c[6]*B2_theta_dot_B3_dot - c[7]*B2_theta_dot_B4_dot - c[3]*B3_theta_dot_B1_dot - c[6]*B3_theta_dot_B2_dot + c[26]*B3_theta_dot_B3_dot - c[9]*B3_theta_dot_B4_dot - c[4]*B4_theta_dot_B1_dot - c[7]*B4_theta_dot_B2_dot - c[9]*B4_theta_dot_B3_dot + c[27]*B4_theta_dot_B4_dot;
+    out[1] = -c[28]*B1 + c[29]*B2 + c[29]*B3 - c[30]*B4 - c[1]*B1_theta_dotsq - c[31]*B2_theta_dotsq + c[32]*B3_theta_dotsq + c[33]*B4_theta_dotsq;
+    out[2] = c[29]*B1 - c[28]*B2 + c[34]*B3 - c[35]*B4 - c[31]*B1_theta_dotsq - c[5]*B2_theta_dotsq + c[36]*B3_theta_dotsq + c[37]*B4_theta_dotsq;
+    out[3] = c[29]*B1 + c[34]*B2 - c[38]*B3 + c[39]*B4 + c[32]*B1_theta_dotsq + c[36]*B2_theta_dotsq - c[8]*B3_theta_dotsq + c[40]*B4_theta_dotsq;
+    out[4] = -c[30]*B1 - c[35]*B2 + c[39]*B3 - c[41]*B4 + c[33]*B1_theta_dotsq + c[37]*B2_theta_dotsq + c[40]*B3_theta_dotsq - c[10]*B4_theta_dotsq;
 }
 
-/* forces_terms:(c[68],u[3],q[5],qd[5])->(m[25]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[52],u[3],q[5],qd[5])->(m[25]) the state monomials of Q: Q = F m */
 void bsim_nx0_ny4_torque_first_open_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -237,7 +221,7 @@ void bsim_nx0_ny4_torque_first_open_forces_terms(const double* c, const double* 
     out[24] = B4_theta_dot_B4_dot;
 }
 
-/* forces_matrix:(c[68],u[3],q[5],qd[5])->(F[5*25]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[52],u[3],q[5],qd[5])->(F[5*25]) row-major, state-free: Q = F m; nonzero entries only */
 void bsim_nx0_ny4_torque_first_open_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -245,56 +229,56 @@ void bsim_nx0_ny4_torque_first_open_forces_matrix(const double* c, const double*
     (void)qd;
     out[0] = 1.0;
     out[6] = c[24];
-    out[7] = c[25];
-    out[8] = c[26];
-    out[9] = c[27];
-    out[11] = c[25];
-    out[12] = c[28];
-    out[13] = c[29];
-    out[14] = c[30];
-    out[16] = c[26];
-    out[17] = c[29];
-    out[18] = c[31];
-    out[19] = c[32];
-    out[21] = c[27];
-    out[22] = c[30];
-    out[23] = c[32];
-    out[24] = c[33];
-    out[26] = c[34];
-    out[27] = c[35];
-    out[28] = c[35];
-    out[29] = c[36];
-    out[30] = c[1];
-    out[35] = c[37];
-    out[40] = c[38];
-    out[45] = c[39];
-    out[51] = c[35];
-    out[52] = c[34];
-    out[53] = c[40];
-    out[54] = c[41];
-    out[55] = c[37];
-    out[60] = c[5];
-    out[65] = c[42];
-    out[70] = c[43];
-    out[76] = c[35];
-    out[77] = c[40];
-    out[78] = c[44];
-    out[79] = c[45];
-    out[80] = c[38];
-    out[85] = c[42];
-    out[90] = c[8];
-    out[95] = c[46];
-    out[101] = c[36];
-    out[102] = c[41];
-    out[103] = c[45];
-    out[104] = c[47];
-    out[105] = c[39];
-    out[110] = c[43];
-    out[115] = c[46];
-    out[120] = c[10];
+    out[7] = c[2];
+    out[8] = -c[3];
+    out[9] = -c[4];
+    out[11] = c[2];
+    out[12] = c[25];
+    out[13] = -c[6];
+    out[14] = -c[7];
+    out[16] = -c[3];
+    out[17] = -c[6];
+    out[18] = c[26];
+    out[19] = -c[9];
+    out[21] = -c[4];
+    out[22] = -c[7];
+    out[23] = -c[9];
+    out[24] = c[27];
+    out[26] = -c[28];
+    out[27] = c[29];
+    out[28] = c[29];
+    out[29] = -c[30];
+    out[30] = -c[1];
+    out[35] = -c[31];
+    out[40] = c[32];
+    out[45] = c[33];
+    out[51] = c[29];
+    out[52] = -c[28];
+    out[53] = c[34];
+    out[54] = -c[35];
+    out[55] = -c[31];
+    out[60] = -c[5];
+    out[65] = c[36];
+    out[70] = c[37];
+    out[76] = c[29];
+    out[77] = c[34];
+    out[78] = -c[38];
+    out[79] = c[39];
+    out[80] = c[32];
+    out[85] = c[36];
+    out[90] = -c[8];
+    out[95] = c[40];
+    out[101] = -c[30];
+    out[102] = -c[35];
+    out[103] = c[39];
+    out[104] = -c[41];
+    out[105] = c[33];
+    out[110] = c[37];
+    out[115] = c[40];
+    out[120] = -c[10];
 }
 
-/* energy:(c[68],u[3],q[5],qd[5])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[52],u[3],q[5],qd[5])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void bsim_nx0_ny4_torque_first_open_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -352,13 +336,13 @@ void bsim_nx0_ny4_torque_first_open_energy(const double* c, const double* u, con
     const double B3_B4_theta_dotsq = B3_B4_theta_dot*theta_dot;
     const double B4sq_theta_dot = B4sq*theta_dot;
     const double B4sq_theta_dotsq = B4sq_theta_dot*theta_dot;
-    out[0] = c[48]*theta_dotsq + c[11]*theta_dot_B1_dot + c[12]*theta_dot_B2_dot + c[13]*theta_dot_B3_dot + c[14]*theta_dot_B4_dot + c[49]*B1_dotsq + c[16]*B1_dot_B2_dot + c[17]*B1_dot_B3_dot + c[18]*B1_dot_B4_dot + c[49]*B2_dotsq + c[19]*B2_dot_B3_dot + c[20]*B2_dot_B4_dot + c[50]*B3_dotsq + c[22]*B3_dot_B4_dot + c[51]*B4_dotsq + c[52]*B1sq_theta_dotsq + c[37]*B1_B2_theta_dotsq + c[38]*B1_B3_theta_dotsq + c[39]*B1_B4_theta_dotsq + c[53]*B2sq_theta_dotsq + c[42]*B2_B3_theta_dotsq + c[43]*B2_B4_theta_dotsq + c[54]*B3sq_theta_dotsq + c[46]*B3_B4_theta_dotsq + c[55]*B4sq_theta_dotsq;
+    out[0] = c[42]*theta_dotsq + c[11]*theta_dot_B1_dot + c[12]*theta_dot_B2_dot + c[13]*theta_dot_B3_dot + c[14]*theta_dot_B4_dot + c[43]*B1_dotsq + c[16]*B1_dot_B2_dot + c[17]*B1_dot_B3_dot + c[18]*B1_dot_B4_dot + c[43]*B2_dotsq + c[19]*B2_dot_B3_dot + c[20]*B2_dot_B4_dot + c[44]*B3_dotsq + c[22]*B3_dot_B4_dot + c[45]*B4_dotsq - c[46]*B1sq_theta_dotsq - c[31]*B1_B2_theta_dotsq + c[32]*B1_B3_theta_dotsq + c[33]*B1_B4_theta_dotsq - c[47]*B2sq_theta_dotsq + c[36]*B2_B3_theta_dotsq + c[37]*B2_B4_theta_dotsq - c[48]*B3sq_theta_dotsq + c[40]*B3_B4_theta_dotsq - c[49]*B4sq_theta_dotsq;
     out[1] = 0.0;
     out[2] = 0.0;
-    out[3] = c[56]*B1sq + c[57]*B1_B2 + c[57]*B1_B3 + c[58]*B1_B4 + c[56]*B2sq + c[59]*B2_B3 + c[60]*B2_B4 + c[61]*B3sq + c[62]*B3_B4 + c[63]*B4sq;
+    out[3] = c[50]*B1sq - c[29]*B1_B2 - c[29]*B1_B3 + c[30]*B1_B4 + c[50]*B2sq - c[34]*B2_B3 + c[35]*B2_B4 + c[41]*B3sq - c[39]*B3_B4 + c[51]*B4sq;
 }
 
-/* momentum:(c[68],u[3],q[5],qd[5])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[52],u[3],q[5],qd[5])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void bsim_nx0_ny4_torque_first_open_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -391,10 +375,10 @@ void bsim_nx0_ny4_torque_first_open_momentum(const double* c, const double* u, c
     const double B3_B4_theta_dot = B3_B4*theta_dot;
     const double B4sq = B4*B4;
     const double B4sq_theta_dot = B4sq*theta_dot;
-    out[0] = c[0]*theta_dot + c[11]*B1_dot + c[12]*B2_dot + c[13]*B3_dot + c[14]*B4_dot + c[1]*B1sq_theta_dot + c[2]*B1_B2_theta_dot + c[3]*B1_B3_theta_dot + c[4]*B1_B4_theta_dot + c[5]*B2sq_theta_dot + c[6]*B2_B3_theta_dot + c[7]*B2_B4_theta_dot + c[8]*B3sq_theta_dot + c[9]*B3_B4_theta_dot + c[10]*B4sq_theta_dot;
+    out[0] = c[0]*theta_dot + c[11]*B1_dot + c[12]*B2_dot + c[13]*B3_dot + c[14]*B4_dot - c[1]*B1sq_theta_dot - c[2]*B1_B2_theta_dot + c[3]*B1_B3_theta_dot + c[4]*B1_B4_theta_dot - c[5]*B2sq_theta_dot + c[6]*B2_B3_theta_dot + c[7]*B2_B4_theta_dot - c[8]*B3sq_theta_dot + c[9]*B3_B4_theta_dot - c[10]*B4sq_theta_dot;
 }
 
-/* forces_q:(c[68],u[3],q[5],qd[5])->(dQdq[25]) row-major; out[i*5+k] = dQ_i/dq_k */
+/* forces_q:(c[52],u[3],q[5],qd[5])->(dQdq[25]) row-major; out[i*5+k] = dQ_i/dq_k */
 void bsim_nx0_ny4_torque_first_open_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -410,33 +394,33 @@ void bsim_nx0_ny4_torque_first_open_forces_q(const double* c, const double* u, c
     const double theta_dot_B3_dot = theta_dot*B3_dot;
     const double theta_dot_B4_dot = theta_dot*B4_dot;
     out[0] = 0.0;
-    out[1] = c[24]*theta_dot_B1_dot + c[25]*theta_dot_B2_dot + c[26]*theta_dot_B3_dot + c[27]*theta_dot_B4_dot;
-    out[2] = c[25]*theta_dot_B1_dot + c[28]*theta_dot_B2_dot + c[29]*theta_dot_B3_dot + c[30]*theta_dot_B4_dot;
-    out[3] = c[26]*theta_dot_B1_dot + c[29]*theta_dot_B2_dot + c[31]*theta_dot_B3_dot + c[32]*theta_dot_B4_dot;
-    out[4] = c[27]*theta_dot_B1_dot + c[30]*theta_dot_B2_dot + c[32]*theta_dot_B3_dot + c[33]*theta_dot_B4_dot;
+    out[1] = c[24]*theta_dot_B1_dot + c[2]*theta_dot_B2_dot - c[3]*theta_dot_B3_dot - c[4]*theta_dot_B4_dot;
+    out[2] = c[2]*theta_dot_B1_dot + c[25]*theta_dot_B2_dot - c[6]*theta_dot_B3_dot - c[7]*theta_dot_B4_dot;
+    out[3] = -c[3]*theta_dot_B1_dot - c[6]*theta_dot_B2_dot + c[26]*theta_dot_B3_dot - c[9]*theta_dot_B4_dot;
+    out[4] = -c[4]*theta_dot_B1_dot - c[7]*theta_dot_B2_dot - c[9]*theta_dot_B3_dot + c[27]*theta_dot_B4_dot;
     out[5] = 0.0;
-    out[6] = c[34] + c[1]*theta_dotsq;
-    out[7] = c[35] + c[37]*theta_dotsq;
-    out[8] = c[35] + c[38]*theta_dotsq;
-    out[9] = c[36] + c[39]*theta_dotsq;
+    out[6] = -c[28] - c[1]*theta_dotsq;
+    out[7] = c[29] - c[31]*theta_dotsq;
+    out[8] = c[29] + c[32]*theta_dotsq;
+    out[9] = -c[30] + c[33]*theta_dotsq;
     out[10] = 0.0;
-    out[11] = c[35] + c[37]*theta_dotsq;
-    out[12] = c[34] + c[5]*theta_dotsq;
-    out[13] = c[40] + c[42]*theta_dotsq;
-    out[14] = c[41] + c[43]*theta_dotsq;
+    out[11] = c[29] - c[31]*theta_dotsq;
+    out[12] = -c[28] - c[5]*theta_dotsq;
+    out[13] = c[34] + c[36]*theta_dotsq;
+    out[14] = -c[35] + c[37]*theta_dotsq;
     out[15] = 0.0;
-    out[16] = c[35] + c[38]*theta_dotsq;
-    out[17] = c[40] + c[42]*theta_dotsq;
-    out[18] = c[44] + c[8]*theta_dotsq;
-    out[19] = c[45] + c[46]*theta_dotsq;
+    out[16] = c[29] + c[32]*theta_dotsq;
+    out[17] = c[34] + c[36]*theta_dotsq;
+    out[18] = -c[38] - c[8]*theta_dotsq;
+    out[19] = c[39] + c[40]*theta_dotsq;
     out[20] = 0.0;
-    out[21] = c[36] + c[39]*theta_dotsq;
-    out[22] = c[41] + c[43]*theta_dotsq;
-    out[23] = c[45] + c[46]*theta_dotsq;
-    out[24] = c[47] + c[10]*theta_dotsq;
+    out[21] = -c[30] + c[33]*theta_dotsq;
+    out[22] = -c[35] + c[37]*theta_dotsq;
+    out[23] = c[39] + c[40]*theta_dotsq;
+    out[24] = -c[41] - c[10]*theta_dotsq;
 }
 
-/* forces_qd:(c[68],u[3],q[5],qd[5])->(dQdqd[25]) row-major; out[i*5+k] = dQ_i/dqd_k */
+/* forces_qd:(c[52],u[3],q[5],qd[5])->(dQdqd[25]) row-major; out[i*5+k] = dQ_i/dqd_k */
 void bsim_nx0_ny4_torque_first_open_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -469,34 +453,34 @@ void bsim_nx0_ny4_torque_first_open_forces_qd(const double* c, const double* u, 
     const double B4_B2_dot = B4*B2_dot;
     const double B4_B3_dot = B4*B3_dot;
     const double B4_B4_dot = B4*B4_dot;
-    out[0] = c[24]*B1_B1_dot + c[25]*B1_B2_dot + c[26]*B1_B3_dot + c[27]*B1_B4_dot + c[25]*B2_B1_dot + c[28]*B2_B2_dot + c[29]*B2_B3_dot + c[30]*B2_B4_dot + c[26]*B3_B1_dot + c[29]*B3_B2_dot + c[31]*B3_B3_dot + c[32]*B3_B4_dot + c[27]*B4_B1_dot + c[30]*B4_B2_dot + c[32]*B4_B3_dot + c[33]*B4_B4_dot;
-    out[1] = c[24]*B1_theta_dot + c[25]*B2_theta_dot + c[26]*B3_theta_dot + c[27]*B4_theta_dot;
-    out[2] = c[25]*B1_theta_dot + c[28]*B2_theta_dot + c[29]*B3_theta_dot + c[30]*B4_theta_dot;
-    out[3] = c[26]*B1_theta_dot + c[29]*B2_theta_dot + c[31]*B3_theta_dot + c[32]*B4_theta_dot;
-    out[4] = c[27]*B1_theta_dot + c[30]*B2_theta_dot + c[32]*B3_theta_dot + c[33]*B4_theta_dot;
-    out[5] = c[64]*B1_theta_dot + c[2]*B2_theta_dot + c[3]*B3_theta_dot + c[4]*B4_theta_dot;
+    out[0] = c[24]*B1_B1_dot + c[2]*B1_B2_dot - c[3]*B1_B3_dot - c[4]*B1_B4_dot + c[2]*B2_B1_dot + c[25]*B2_B2_dot - c[6]*B2_B3_dot - c[7]*B2_B4_dot - c[3]*B3_B1_dot - c[6]*B3_B2_dot + c[26]*B3_B3_dot - c[9]*B3_B4_dot - c[4]*B4_B1_dot - c[7]*B4_B2_dot - c[9]*B4_B3_dot + c[27]*B4_B4_dot;
+    out[1] = c[24]*B1_theta_dot + c[2]*B2_theta_dot - c[3]*B3_theta_dot - c[4]*B4_theta_dot;
+    out[2] = c[2]*B1_theta_dot + c[25]*B2_theta_dot - c[6]*B3_theta_dot - c[7]*B4_theta_dot;
+    out[3] = -c[3]*B1_theta_dot - c[6]*B2_theta_dot + c[26]*B3_theta_dot - c[9]*B4_theta_dot;
+    out[4] = -c[4]*B1_theta_dot - c[7]*B2_theta_dot - c[9]*B3_theta_dot + c[27]*B4_theta_dot;
+    out[5] = -c[24]*B1_theta_dot - c[2]*B2_theta_dot + c[3]*B3_theta_dot + c[4]*B4_theta_dot;
     out[6] = 0.0;
     out[7] = 0.0;
     out[8] = 0.0;
     out[9] = 0.0;
-    out[10] = c[2]*B1_theta_dot + c[65]*B2_theta_dot + c[6]*B3_theta_dot + c[7]*B4_theta_dot;
+    out[10] = -c[2]*B1_theta_dot - c[25]*B2_theta_dot + c[6]*B3_theta_dot + c[7]*B4_theta_dot;
     out[11] = 0.0;
     out[12] = 0.0;
     out[13] = 0.0;
     out[14] = 0.0;
-    out[15] = c[3]*B1_theta_dot + c[6]*B2_theta_dot + c[66]*B3_theta_dot + c[9]*B4_theta_dot;
+    out[15] = c[3]*B1_theta_dot + c[6]*B2_theta_dot - c[26]*B3_theta_dot + c[9]*B4_theta_dot;
     out[16] = 0.0;
     out[17] = 0.0;
     out[18] = 0.0;
     out[19] = 0.0;
-    out[20] = c[4]*B1_theta_dot + c[7]*B2_theta_dot + c[9]*B3_theta_dot + c[67]*B4_theta_dot;
+    out[20] = c[4]*B1_theta_dot + c[7]*B2_theta_dot + c[9]*B3_theta_dot - c[27]*B4_theta_dot;
     out[21] = 0.0;
     out[22] = 0.0;
     out[23] = 0.0;
     out[24] = 0.0;
 }
 
-/* forces_u:(c[68],u[3],q[5],qd[5])->(dQdu[15]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
+/* forces_u:(c[52],u[3],q[5],qd[5])->(dQdu[15]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
 void bsim_nx0_ny4_torque_first_open_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -520,7 +504,7 @@ void bsim_nx0_ny4_torque_first_open_forces_u(const double* c, const double* u, c
     out[14] = 0.0;
 }
 
-/* mass_varying:(c[68],u[3],q[5],qd[5])->(M[25]) as mass, the entries that depend on q only */
+/* mass_varying:(c[52],u[3],q[5],qd[5])->(M[25]) as mass, the entries that depend on q only */
 void bsim_nx0_ny4_torque_first_open_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -539,10 +523,10 @@ void bsim_nx0_ny4_torque_first_open_mass_varying(const double* c, const double* 
     const double B3sq = B3*B3;
     const double B3_B4 = B3*B4;
     const double B4sq = B4*B4;
-    out[0] = c[0] + c[1]*B1sq + c[2]*B1_B2 + c[3]*B1_B3 + c[4]*B1_B4 + c[5]*B2sq + c[6]*B2_B3 + c[7]*B2_B4 + c[8]*B3sq + c[9]*B3_B4 + c[10]*B4sq;
+    out[0] = c[0] - c[1]*B1sq - c[2]*B1_B2 + c[3]*B1_B3 + c[4]*B1_B4 - c[5]*B2sq + c[6]*B2_B3 + c[7]*B2_B4 - c[8]*B3sq + c[9]*B3_B4 - c[10]*B4sq;
 }
 
-/* mass_q_product:(c[68],u[3],q[5],qd[5])->(dMv[25]) row-major; v in the qd slot; out[i*5+k] = sum_j dM_ij/dq_k v_j */
+/* mass_q_product:(c[52],u[3],q[5],qd[5])->(dMv[25]) row-major; v in the qd slot; out[i*5+k] = sum_j dM_ij/dq_k v_j */
 void bsim_nx0_ny4_torque_first_open_mass_q_product(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -556,10 +540,10 @@ void bsim_nx0_ny4_torque_first_open_mass_q_product(const double* c, const double
     const double B3_theta_dot = B3*theta_dot;
     const double B4_theta_dot = B4*theta_dot;
     out[0] = 0.0;
-    out[1] = c[64]*B1_theta_dot + c[2]*B2_theta_dot + c[3]*B3_theta_dot + c[4]*B4_theta_dot;
-    out[2] = c[2]*B1_theta_dot + c[65]*B2_theta_dot + c[6]*B3_theta_dot + c[7]*B4_theta_dot;
-    out[3] = c[3]*B1_theta_dot + c[6]*B2_theta_dot + c[66]*B3_theta_dot + c[9]*B4_theta_dot;
-    out[4] = c[4]*B1_theta_dot + c[7]*B2_theta_dot + c[9]*B3_theta_dot + c[67]*B4_theta_dot;
+    out[1] = -c[24]*B1_theta_dot - c[2]*B2_theta_dot + c[3]*B3_theta_dot + c[4]*B4_theta_dot;
+    out[2] = -c[2]*B1_theta_dot - c[25]*B2_theta_dot + c[6]*B3_theta_dot + c[7]*B4_theta_dot;
+    out[3] = c[3]*B1_theta_dot + c[6]*B2_theta_dot - c[26]*B3_theta_dot + c[9]*B4_theta_dot;
+    out[4] = c[4]*B1_theta_dot + c[7]*B2_theta_dot + c[9]*B3_theta_dot - c[27]*B4_theta_dot;
     out[5] = 0.0;
     out[6] = 0.0;
     out[7] = 0.0;
@@ -584,7 +568,7 @@ void bsim_nx0_ny4_torque_first_open_mass_q_product(const double* c, const double
 
 }  // namespace
 
-extern const Variant bsim_nx0_ny4_torque_first_open = {"bsim_nx0_ny4_torque_first_open", 5, 68, 25,
+extern const Variant bsim_nx0_ny4_torque_first_open = {"bsim_nx0_ny4_torque_first_open", 5, 52, 25,
     "vcccccccccccccccccccccccc",
     bsim_nx0_ny4_torque_first_open_coefficients, bsim_nx0_ny4_torque_first_open_mass, bsim_nx0_ny4_torque_first_open_mass_varying, bsim_nx0_ny4_torque_first_open_forces, bsim_nx0_ny4_torque_first_open_forces_terms, bsim_nx0_ny4_torque_first_open_forces_matrix,
     bsim_nx0_ny4_torque_first_open_energy, bsim_nx0_ny4_torque_first_open_momentum, bsim_nx0_ny4_torque_first_open_forces_q, bsim_nx0_ny4_torque_first_open_forces_qd, bsim_nx0_ny4_torque_first_open_mass_q_product, bsim_nx0_ny4_torque_first_open_forces_u};

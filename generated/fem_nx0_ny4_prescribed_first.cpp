@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[56]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[47]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void fem_nx0_ny4_prescribed_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -24,63 +24,54 @@ void fem_nx0_ny4_prescribed_first_coefficients(const double* p, double* c)
     const double J_oh = p[6];
     c[0] = 0.37142857142857144*L*m;
     c[1] = 0.06428571428571428*L*m;
-    c[2] = -0.007738095238095238*L*m;
+    c[2] = 0.007738095238095238*L*m;
     c[3] = 0.002380952380952381*L*m;
-    c[4] = 0.007738095238095238*L*m;
-    c[5] = -0.0008928571428571428*L*m;
-    c[6] = 0.18571428571428572*L*m;
-    c[7] = -0.013095238095238096*L*m;
-    c[8] = 0.0011904761904761906*L*m;
-    c[9] = -0.5*L*m*a - 0.25*L*L*m;
-    c[10] = -192.0*EI/(L*L*L);
-    c[11] = 96.0*EI/(L*L*L);
-    c[12] = -24.0*EI/(L*L*L);
-    c[13] = -2.4*m*a - 1.2571428571428571*L*m;
-    c[14] = 0.1*m*a + 0.05*L*m;
-    c[15] = 0.6*m*a + 0.5785714285714286*L*m;
-    c[16] = -0.05*m*a - 0.04880952380952381*L*m;
-    c[17] = -0.008333333333333333*L*L*m;
-    c[18] = -16.0*EI/(L*L*L);
-    c[19] = 24.0*EI/(L*L*L);
-    c[20] = -4.0*EI/(L*L*L);
-    c[21] = -0.06666666666666667*m*a - 0.04523809523809524*L*m;
-    c[22] = 0.01130952380952381*L*m;
-    c[23] = 0.004166666666666667*m*a + 0.002380952380952381*L*m;
-    c[24] = -0.25*L*m*a - 0.2125*L*L*m;
-    c[25] = -96.0*EI/(L*L*L);
-    c[26] = -0.6*m*a - 0.32857142857142857*L*m;
-    c[27] = 0.05*m*a + 0.027976190476190477*L*m;
-    c[28] = 0.020833333333333332*L*m*a + 0.016666666666666666*L*L*m;
-    c[29] = -8.0*EI/(L*L*L);
-    c[30] = -0.008333333333333333*m*a - 0.005952380952380952*L*m;
-    c[31] = 0.09285714285714286*L*m;
-    c[32] = 0.0005952380952380953*L*m;
-    c[33] = 0.5*L*m*a + 0.25*L*L*m;
-    c[34] = 0.008333333333333333*L*L*m;
-    c[35] = 0.25*L*m*a + 0.2125*L*L*m;
-    c[36] = -0.020833333333333332*L*m*a - 0.016666666666666666*L*L*m;
-    c[37] = 0.5*J_oh + 0.5*L*m*a*a + 0.5*L*L*m*a + 0.16666666666666666*L*L*L*m;
-    c[38] = -1.2*m*a - 0.6285714285714286*L*m;
-    c[39] = -0.03333333333333333*m*a - 0.02261904761904762*L*m;
-    c[40] = -0.3*m*a - 0.16428571428571428*L*m;
-    c[41] = -0.004166666666666667*m*a - 0.002976190476190476*L*m;
-    c[42] = 8.0*EI/(L*L*L);
-    c[43] = 4.0*EI/(L*L*L);
-    c[44] = 48.0*EI/(L*L*L);
-    c[45] = J_oh + L*m*a*a + L*L*m*a + 0.3333333333333333*L*L*L*m;
-    c[46] = 0.2*m*a + 0.1*L*m;
-    c[47] = 1.2*m*a + 1.1571428571428573*L*m;
-    c[48] = -0.1*m*a - 0.09761904761904762*L*m;
-    c[49] = 0.02261904761904762*L*m;
-    c[50] = 0.008333333333333333*m*a + 0.004761904761904762*L*m;
-    c[51] = 0.1*m*a + 0.055952380952380955*L*m;
-    c[52] = -4.8*m*a - 2.5142857142857142*L*m;
-    c[53] = -0.13333333333333333*m*a - 0.09047619047619047*L*m;
-    c[54] = -1.2*m*a - 0.6571428571428571*L*m;
-    c[55] = -0.016666666666666666*m*a - 0.011904761904761904*L*m;
+    c[4] = 0.0008928571428571428*L*m;
+    c[5] = 0.18571428571428572*L*m;
+    c[6] = 0.013095238095238096*L*m;
+    c[7] = 0.0011904761904761906*L*m;
+    c[8] = 0.5*L*m*a + 0.25*L*L*m;
+    c[9] = 192.0*EI/(L*L*L);
+    c[10] = 96.0*EI/(L*L*L);
+    c[11] = 24.0*EI/(L*L*L);
+    c[12] = 2.4*m*a + 1.2571428571428571*L*m;
+    c[13] = 0.1*m*a + 0.05*L*m;
+    c[14] = 0.6*m*a + 0.5785714285714286*L*m;
+    c[15] = 0.05*m*a + 0.04880952380952381*L*m;
+    c[16] = 0.008333333333333333*L*L*m;
+    c[17] = 16.0*EI/(L*L*L);
+    c[18] = 4.0*EI/(L*L*L);
+    c[19] = 0.06666666666666667*m*a + 0.04523809523809524*L*m;
+    c[20] = 0.01130952380952381*L*m;
+    c[21] = 0.004166666666666667*m*a + 0.002380952380952381*L*m;
+    c[22] = 0.25*L*m*a + 0.2125*L*L*m;
+    c[23] = 0.6*m*a + 0.32857142857142857*L*m;
+    c[24] = 0.05*m*a + 0.027976190476190477*L*m;
+    c[25] = 0.020833333333333332*L*m*a + 0.016666666666666666*L*L*m;
+    c[26] = 8.0*EI/(L*L*L);
+    c[27] = 0.008333333333333333*m*a + 0.005952380952380952*L*m;
+    c[28] = 0.09285714285714286*L*m;
+    c[29] = 0.0005952380952380953*L*m;
+    c[30] = 0.5*J_oh + 0.5*L*m*a*a + 0.5*L*L*m*a + 0.16666666666666666*L*L*L*m;
+    c[31] = 1.2*m*a + 0.6285714285714286*L*m;
+    c[32] = 0.03333333333333333*m*a + 0.02261904761904762*L*m;
+    c[33] = 0.3*m*a + 0.16428571428571428*L*m;
+    c[34] = 0.004166666666666667*m*a + 0.002976190476190476*L*m;
+    c[35] = 48.0*EI/(L*L*L);
+    c[36] = J_oh + L*m*a*a + L*L*m*a + 0.3333333333333333*L*L*L*m;
+    c[37] = 0.2*m*a + 0.1*L*m;
+    c[38] = 1.2*m*a + 1.1571428571428573*L*m;
+    c[39] = 0.1*m*a + 0.09761904761904762*L*m;
+    c[40] = 0.02261904761904762*L*m;
+    c[41] = 0.008333333333333333*m*a + 0.004761904761904762*L*m;
+    c[42] = 0.1*m*a + 0.055952380952380955*L*m;
+    c[43] = 4.8*m*a + 2.5142857142857142*L*m;
+    c[44] = 0.13333333333333333*m*a + 0.09047619047619047*L*m;
+    c[45] = 1.2*m*a + 0.6571428571428571*L*m;
+    c[46] = 0.016666666666666666*m*a + 0.011904761904761904*L*m;
 }
 
-/* mass:(c[56],u[3],q[4],qd[4])->(M[16]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[47],u[3],q[4],qd[4])->(M[16]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void fem_nx0_ny4_prescribed_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -88,16 +79,16 @@ void fem_nx0_ny4_prescribed_first_mass(const double* c, const double* u, const d
     (void)qd;
     out[0] = c[0];
     out[2] = c[1];
-    out[3] = c[2];
+    out[3] = -c[2];
     out[5] = c[3];
-    out[6] = c[4];
-    out[7] = c[5];
-    out[10] = c[6];
-    out[11] = c[7];
-    out[15] = c[8];
+    out[6] = c[2];
+    out[7] = -c[4];
+    out[10] = c[5];
+    out[11] = -c[6];
+    out[15] = c[7];
 }
 
-/* forces:(c[56],u[3],q[4],qd[4])->(Q[4]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[47],u[3],q[4],qd[4])->(Q[4]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void fem_nx0_ny4_prescribed_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)qd;
@@ -112,13 +103,13 @@ void fem_nx0_ny4_prescribed_first_forces(const double* c, const double* u, const
     const double theta_dotsq_B2 = theta_dotsq*B2;
     const double theta_dotsq_B3 = theta_dotsq*B3;
     const double theta_dotsq_B4 = theta_dotsq*B4;
-    out[0] = c[9]*theta_ddot + c[10]*B1 + c[11]*B3 + c[12]*B4 + c[13]*theta_dotsq_B1 + c[14]*theta_dotsq_B2 + c[15]*theta_dotsq_B3 + c[16]*theta_dotsq_B4;
-    out[1] = c[17]*theta_ddot + c[18]*B2 + c[19]*B3 + c[20]*B4 + c[14]*theta_dotsq_B1 + c[21]*theta_dotsq_B2 + c[22]*theta_dotsq_B3 + c[23]*theta_dotsq_B4;
-    out[2] = c[24]*theta_ddot + c[11]*B1 + c[19]*B2 + c[25]*B3 + c[19]*B4 + c[15]*theta_dotsq_B1 + c[22]*theta_dotsq_B2 + c[26]*theta_dotsq_B3 + c[27]*theta_dotsq_B4;
-    out[3] = c[28]*theta_ddot + c[12]*B1 + c[20]*B2 + c[19]*B3 + c[29]*B4 + c[16]*theta_dotsq_B1 + c[23]*theta_dotsq_B2 + c[27]*theta_dotsq_B3 + c[30]*theta_dotsq_B4;
+    out[0] = -c[8]*theta_ddot - c[9]*B1 + c[10]*B3 - c[11]*B4 - c[12]*theta_dotsq_B1 + c[13]*theta_dotsq_B2 + c[14]*theta_dotsq_B3 - c[15]*theta_dotsq_B4;
+    out[1] = -c[16]*theta_ddot - c[17]*B2 + c[11]*B3 - c[18]*B4 + c[13]*theta_dotsq_B1 - c[19]*theta_dotsq_B2 + c[20]*theta_dotsq_B3 + c[21]*theta_dotsq_B4;
+    out[2] = -c[22]*theta_ddot + c[10]*B1 + c[11]*B2 - c[10]*B3 + c[11]*B4 + c[14]*theta_dotsq_B1 + c[20]*theta_dotsq_B2 - c[23]*theta_dotsq_B3 + c[24]*theta_dotsq_B4;
+    out[3] = c[25]*theta_ddot - c[11]*B1 - c[18]*B2 + c[11]*B3 - c[26]*B4 - c[15]*theta_dotsq_B1 + c[21]*theta_dotsq_B2 + c[24]*theta_dotsq_B3 - c[27]*theta_dotsq_B4;
 }
 
-/* forces_terms:(c[56],u[3],q[4],qd[4])->(m[9]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[47],u[3],q[4],qd[4])->(m[9]) the state monomials of Q: Q = F m */
 void fem_nx0_ny4_prescribed_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -145,49 +136,49 @@ void fem_nx0_ny4_prescribed_first_forces_terms(const double* c, const double* u,
     out[8] = theta_dotsq_B4;
 }
 
-/* forces_matrix:(c[56],u[3],q[4],qd[4])->(F[4*9]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[47],u[3],q[4],qd[4])->(F[4*9]) row-major, state-free: Q = F m; nonzero entries only */
 void fem_nx0_ny4_prescribed_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)q;
     (void)qd;
-    out[0] = c[9];
-    out[1] = c[10];
-    out[3] = c[11];
-    out[4] = c[12];
-    out[5] = c[13];
-    out[6] = c[14];
-    out[7] = c[15];
-    out[8] = c[16];
-    out[9] = c[17];
-    out[11] = c[18];
-    out[12] = c[19];
-    out[13] = c[20];
-    out[14] = c[14];
-    out[15] = c[21];
-    out[16] = c[22];
-    out[17] = c[23];
-    out[18] = c[24];
-    out[19] = c[11];
-    out[20] = c[19];
-    out[21] = c[25];
-    out[22] = c[19];
-    out[23] = c[15];
-    out[24] = c[22];
-    out[25] = c[26];
-    out[26] = c[27];
-    out[27] = c[28];
-    out[28] = c[12];
-    out[29] = c[20];
-    out[30] = c[19];
-    out[31] = c[29];
-    out[32] = c[16];
-    out[33] = c[23];
-    out[34] = c[27];
-    out[35] = c[30];
+    out[0] = -c[8];
+    out[1] = -c[9];
+    out[3] = c[10];
+    out[4] = -c[11];
+    out[5] = -c[12];
+    out[6] = c[13];
+    out[7] = c[14];
+    out[8] = -c[15];
+    out[9] = -c[16];
+    out[11] = -c[17];
+    out[12] = c[11];
+    out[13] = -c[18];
+    out[14] = c[13];
+    out[15] = -c[19];
+    out[16] = c[20];
+    out[17] = c[21];
+    out[18] = -c[22];
+    out[19] = c[10];
+    out[20] = c[11];
+    out[21] = -c[10];
+    out[22] = c[11];
+    out[23] = c[14];
+    out[24] = c[20];
+    out[25] = -c[23];
+    out[26] = c[24];
+    out[27] = c[25];
+    out[28] = -c[11];
+    out[29] = -c[18];
+    out[30] = c[11];
+    out[31] = -c[26];
+    out[32] = -c[15];
+    out[33] = c[21];
+    out[34] = c[24];
+    out[35] = -c[27];
 }
 
-/* energy:(c[56],u[3],q[4],qd[4])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[47],u[3],q[4],qd[4])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void fem_nx0_ny4_prescribed_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -236,13 +227,13 @@ void fem_nx0_ny4_prescribed_first_energy(const double* c, const double* u, const
     const double theta_dotsq_B3_B4 = theta_dotsq_B3*B4;
     const double theta_dotsq_B4 = theta_dotsq*B4;
     const double theta_dotsq_B4sq = theta_dotsq_B4*B4;
-    out[0] = c[6]*B1_dotsq + c[1]*B1_dot_B3_dot + c[2]*B1_dot_B4_dot + c[8]*B2_dotsq + c[4]*B2_dot_B3_dot + c[5]*B2_dot_B4_dot + c[31]*B3_dotsq + c[7]*B3_dot_B4_dot + c[32]*B4_dotsq;
-    out[1] = c[33]*theta_dot_B1_dot + c[34]*theta_dot_B2_dot + c[35]*theta_dot_B3_dot + c[36]*theta_dot_B4_dot;
-    out[2] = c[37]*theta_dotsq + c[38]*theta_dotsq_B1sq + c[14]*theta_dotsq_B1_B2 + c[15]*theta_dotsq_B1_B3 + c[16]*theta_dotsq_B1_B4 + c[39]*theta_dotsq_B2sq + c[22]*theta_dotsq_B2_B3 + c[23]*theta_dotsq_B2_B4 + c[40]*theta_dotsq_B3sq + c[27]*theta_dotsq_B3_B4 + c[41]*theta_dotsq_B4sq;
-    out[3] = c[11]*B1sq + c[25]*B1_B3 + c[19]*B1_B4 + c[42]*B2sq + c[12]*B2_B3 + c[43]*B2_B4 + c[44]*B3sq + c[12]*B3_B4 + c[43]*B4sq;
+    out[0] = c[5]*B1_dotsq + c[1]*B1_dot_B3_dot - c[2]*B1_dot_B4_dot + c[7]*B2_dotsq + c[2]*B2_dot_B3_dot - c[4]*B2_dot_B4_dot + c[28]*B3_dotsq - c[6]*B3_dot_B4_dot + c[29]*B4_dotsq;
+    out[1] = c[8]*theta_dot_B1_dot + c[16]*theta_dot_B2_dot + c[22]*theta_dot_B3_dot - c[25]*theta_dot_B4_dot;
+    out[2] = c[30]*theta_dotsq - c[31]*theta_dotsq_B1sq + c[13]*theta_dotsq_B1_B2 + c[14]*theta_dotsq_B1_B3 - c[15]*theta_dotsq_B1_B4 - c[32]*theta_dotsq_B2sq + c[20]*theta_dotsq_B2_B3 + c[21]*theta_dotsq_B2_B4 - c[33]*theta_dotsq_B3sq + c[24]*theta_dotsq_B3_B4 - c[34]*theta_dotsq_B4sq;
+    out[3] = c[10]*B1sq - c[10]*B1_B3 + c[11]*B1_B4 + c[26]*B2sq - c[11]*B2_B3 + c[18]*B2_B4 + c[35]*B3sq - c[11]*B3_B4 + c[18]*B4sq;
 }
 
-/* momentum:(c[56],u[3],q[4],qd[4])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[47],u[3],q[4],qd[4])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void fem_nx0_ny4_prescribed_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -268,35 +259,35 @@ void fem_nx0_ny4_prescribed_first_momentum(const double* c, const double* u, con
     const double theta_dot_B3_B4 = theta_dot_B3*B4;
     const double theta_dot_B4 = theta_dot*B4;
     const double theta_dot_B4sq = theta_dot_B4*B4;
-    out[0] = c[45]*theta_dot + c[33]*B1_dot + c[34]*B2_dot + c[35]*B3_dot + c[36]*B4_dot + c[13]*theta_dot_B1sq + c[46]*theta_dot_B1_B2 + c[47]*theta_dot_B1_B3 + c[48]*theta_dot_B1_B4 + c[21]*theta_dot_B2sq + c[49]*theta_dot_B2_B3 + c[50]*theta_dot_B2_B4 + c[26]*theta_dot_B3sq + c[51]*theta_dot_B3_B4 + c[30]*theta_dot_B4sq;
+    out[0] = c[36]*theta_dot + c[8]*B1_dot + c[16]*B2_dot + c[22]*B3_dot - c[25]*B4_dot - c[12]*theta_dot_B1sq + c[37]*theta_dot_B1_B2 + c[38]*theta_dot_B1_B3 - c[39]*theta_dot_B1_B4 - c[19]*theta_dot_B2sq + c[40]*theta_dot_B2_B3 + c[41]*theta_dot_B2_B4 - c[23]*theta_dot_B3sq + c[42]*theta_dot_B3_B4 - c[27]*theta_dot_B4sq;
 }
 
-/* forces_q:(c[56],u[3],q[4],qd[4])->(dQdq[16]) row-major; out[i*4+k] = dQ_i/dq_k */
+/* forces_q:(c[47],u[3],q[4],qd[4])->(dQdq[16]) row-major; out[i*4+k] = dQ_i/dq_k */
 void fem_nx0_ny4_prescribed_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)q;
     (void)qd;
     const double theta_dot = u[1];
     const double theta_dotsq = theta_dot*theta_dot;
-    out[0] = c[10] + c[13]*theta_dotsq;
-    out[1] = c[14]*theta_dotsq;
-    out[2] = c[11] + c[15]*theta_dotsq;
-    out[3] = c[12] + c[16]*theta_dotsq;
-    out[4] = c[14]*theta_dotsq;
-    out[5] = c[18] + c[21]*theta_dotsq;
-    out[6] = c[19] + c[22]*theta_dotsq;
-    out[7] = c[20] + c[23]*theta_dotsq;
-    out[8] = c[11] + c[15]*theta_dotsq;
-    out[9] = c[19] + c[22]*theta_dotsq;
-    out[10] = c[25] + c[26]*theta_dotsq;
-    out[11] = c[19] + c[27]*theta_dotsq;
-    out[12] = c[12] + c[16]*theta_dotsq;
-    out[13] = c[20] + c[23]*theta_dotsq;
-    out[14] = c[19] + c[27]*theta_dotsq;
-    out[15] = c[29] + c[30]*theta_dotsq;
+    out[0] = -c[9] - c[12]*theta_dotsq;
+    out[1] = c[13]*theta_dotsq;
+    out[2] = c[10] + c[14]*theta_dotsq;
+    out[3] = -c[11] - c[15]*theta_dotsq;
+    out[4] = c[13]*theta_dotsq;
+    out[5] = -c[17] - c[19]*theta_dotsq;
+    out[6] = c[11] + c[20]*theta_dotsq;
+    out[7] = -c[18] + c[21]*theta_dotsq;
+    out[8] = c[10] + c[14]*theta_dotsq;
+    out[9] = c[11] + c[20]*theta_dotsq;
+    out[10] = -c[10] - c[23]*theta_dotsq;
+    out[11] = c[11] + c[24]*theta_dotsq;
+    out[12] = -c[11] - c[15]*theta_dotsq;
+    out[13] = -c[18] + c[21]*theta_dotsq;
+    out[14] = c[11] + c[24]*theta_dotsq;
+    out[15] = -c[26] - c[27]*theta_dotsq;
 }
 
-/* forces_qd:(c[56],u[3],q[4],qd[4])->(dQdqd[16]) row-major; out[i*4+k] = dQ_i/dqd_k */
+/* forces_qd:(c[47],u[3],q[4],qd[4])->(dQdqd[16]) row-major; out[i*4+k] = dQ_i/dqd_k */
 void fem_nx0_ny4_prescribed_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -321,7 +312,7 @@ void fem_nx0_ny4_prescribed_first_forces_qd(const double* c, const double* u, co
     out[15] = 0.0;
 }
 
-/* forces_u:(c[56],u[3],q[4],qd[4])->(dQdu[12]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
+/* forces_u:(c[47],u[3],q[4],qd[4])->(dQdu[12]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
 void fem_nx0_ny4_prescribed_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)qd;
@@ -335,22 +326,22 @@ void fem_nx0_ny4_prescribed_first_forces_u(const double* c, const double* u, con
     const double theta_dot_B3 = theta_dot*B3;
     const double theta_dot_B4 = theta_dot*B4;
     out[0] = 0.0;
-    out[1] = c[52]*theta_dot_B1 + c[46]*theta_dot_B2 + c[47]*theta_dot_B3 + c[48]*theta_dot_B4;
-    out[2] = c[9];
+    out[1] = -c[43]*theta_dot_B1 + c[37]*theta_dot_B2 + c[38]*theta_dot_B3 - c[39]*theta_dot_B4;
+    out[2] = -c[8];
     out[3] = 0.0;
-    out[4] = c[46]*theta_dot_B1 + c[53]*theta_dot_B2 + c[49]*theta_dot_B3 + c[50]*theta_dot_B4;
-    out[5] = c[17];
+    out[4] = c[37]*theta_dot_B1 - c[44]*theta_dot_B2 + c[40]*theta_dot_B3 + c[41]*theta_dot_B4;
+    out[5] = -c[16];
     out[6] = 0.0;
-    out[7] = c[47]*theta_dot_B1 + c[49]*theta_dot_B2 + c[54]*theta_dot_B3 + c[51]*theta_dot_B4;
-    out[8] = c[24];
+    out[7] = c[38]*theta_dot_B1 + c[40]*theta_dot_B2 - c[45]*theta_dot_B3 + c[42]*theta_dot_B4;
+    out[8] = -c[22];
     out[9] = 0.0;
-    out[10] = c[48]*theta_dot_B1 + c[50]*theta_dot_B2 + c[51]*theta_dot_B3 + c[55]*theta_dot_B4;
-    out[11] = c[28];
+    out[10] = -c[39]*theta_dot_B1 + c[41]*theta_dot_B2 + c[42]*theta_dot_B3 - c[46]*theta_dot_B4;
+    out[11] = c[25];
 }
 
 }  // namespace
 
-extern const Variant fem_nx0_ny4_prescribed_first = {"fem_nx0_ny4_prescribed_first", 4, 56, 9,
+extern const Variant fem_nx0_ny4_prescribed_first = {"fem_nx0_ny4_prescribed_first", 4, 47, 9,
     "c0cc0ccccccccccc",
     fem_nx0_ny4_prescribed_first_coefficients, fem_nx0_ny4_prescribed_first_mass, nullptr, fem_nx0_ny4_prescribed_first_forces, fem_nx0_ny4_prescribed_first_forces_terms, fem_nx0_ny4_prescribed_first_forces_matrix,
     fem_nx0_ny4_prescribed_first_energy, fem_nx0_ny4_prescribed_first_momentum, fem_nx0_ny4_prescribed_first_forces_q, fem_nx0_ny4_prescribed_first_forces_qd, nullptr, fem_nx0_ny4_prescribed_first_forces_u};

@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[62]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[47]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void fem_nx0_ny4_torque_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -23,70 +23,55 @@ void fem_nx0_ny4_torque_first_coefficients(const double* p, double* c)
     const double a = p[5];
     const double J_oh = p[6];
     c[0] = J_oh + L*m*a*a + L*L*m*a + 0.3333333333333333*L*L*L*m;
-    c[1] = -2.4*m*a - 1.2571428571428571*L*m;
+    c[1] = 2.4*m*a + 1.2571428571428571*L*m;
     c[2] = 0.2*m*a + 0.1*L*m;
     c[3] = 1.2*m*a + 1.1571428571428573*L*m;
-    c[4] = -0.1*m*a - 0.09761904761904762*L*m;
-    c[5] = -0.06666666666666667*m*a - 0.04523809523809524*L*m;
+    c[4] = 0.1*m*a + 0.09761904761904762*L*m;
+    c[5] = 0.06666666666666667*m*a + 0.04523809523809524*L*m;
     c[6] = 0.02261904761904762*L*m;
     c[7] = 0.008333333333333333*m*a + 0.004761904761904762*L*m;
-    c[8] = -0.6*m*a - 0.32857142857142857*L*m;
+    c[8] = 0.6*m*a + 0.32857142857142857*L*m;
     c[9] = 0.1*m*a + 0.055952380952380955*L*m;
-    c[10] = -0.008333333333333333*m*a - 0.005952380952380952*L*m;
+    c[10] = 0.008333333333333333*m*a + 0.005952380952380952*L*m;
     c[11] = 0.5*L*m*a + 0.25*L*L*m;
     c[12] = 0.008333333333333333*L*L*m;
     c[13] = 0.25*L*m*a + 0.2125*L*L*m;
-    c[14] = -0.020833333333333332*L*m*a - 0.016666666666666666*L*L*m;
+    c[14] = 0.020833333333333332*L*m*a + 0.016666666666666666*L*L*m;
     c[15] = 0.37142857142857144*L*m;
     c[16] = 0.06428571428571428*L*m;
-    c[17] = -0.007738095238095238*L*m;
+    c[17] = 0.007738095238095238*L*m;
     c[18] = 0.002380952380952381*L*m;
-    c[19] = 0.007738095238095238*L*m;
-    c[20] = -0.0008928571428571428*L*m;
-    c[21] = 0.18571428571428572*L*m;
-    c[22] = -0.013095238095238096*L*m;
-    c[23] = 0.0011904761904761906*L*m;
-    c[24] = 4.8*m*a + 2.5142857142857142*L*m;
-    c[25] = -0.2*m*a - 0.1*L*m;
-    c[26] = -1.2*m*a - 1.1571428571428573*L*m;
-    c[27] = 0.1*m*a + 0.09761904761904762*L*m;
-    c[28] = 0.13333333333333333*m*a + 0.09047619047619047*L*m;
-    c[29] = -0.02261904761904762*L*m;
-    c[30] = -0.008333333333333333*m*a - 0.004761904761904762*L*m;
-    c[31] = 1.2*m*a + 0.6571428571428571*L*m;
-    c[32] = -0.1*m*a - 0.055952380952380955*L*m;
-    c[33] = 0.016666666666666666*m*a + 0.011904761904761904*L*m;
-    c[34] = -192.0*EI/(L*L*L);
-    c[35] = 96.0*EI/(L*L*L);
-    c[36] = -24.0*EI/(L*L*L);
-    c[37] = 0.1*m*a + 0.05*L*m;
-    c[38] = 0.6*m*a + 0.5785714285714286*L*m;
-    c[39] = -0.05*m*a - 0.04880952380952381*L*m;
-    c[40] = -16.0*EI/(L*L*L);
-    c[41] = 24.0*EI/(L*L*L);
-    c[42] = -4.0*EI/(L*L*L);
-    c[43] = 0.01130952380952381*L*m;
-    c[44] = 0.004166666666666667*m*a + 0.002380952380952381*L*m;
-    c[45] = -96.0*EI/(L*L*L);
-    c[46] = 0.05*m*a + 0.027976190476190477*L*m;
-    c[47] = -8.0*EI/(L*L*L);
-    c[48] = 0.5*J_oh + 0.5*L*m*a*a + 0.5*L*L*m*a + 0.16666666666666666*L*L*L*m;
-    c[49] = 0.09285714285714286*L*m;
-    c[50] = 0.0005952380952380953*L*m;
-    c[51] = -1.2*m*a - 0.6285714285714286*L*m;
-    c[52] = -0.03333333333333333*m*a - 0.02261904761904762*L*m;
-    c[53] = -0.3*m*a - 0.16428571428571428*L*m;
-    c[54] = -0.004166666666666667*m*a - 0.002976190476190476*L*m;
-    c[55] = 8.0*EI/(L*L*L);
-    c[56] = 4.0*EI/(L*L*L);
-    c[57] = 48.0*EI/(L*L*L);
-    c[58] = -4.8*m*a - 2.5142857142857142*L*m;
-    c[59] = -0.13333333333333333*m*a - 0.09047619047619047*L*m;
-    c[60] = -1.2*m*a - 0.6571428571428571*L*m;
-    c[61] = -0.016666666666666666*m*a - 0.011904761904761904*L*m;
+    c[19] = 0.0008928571428571428*L*m;
+    c[20] = 0.18571428571428572*L*m;
+    c[21] = 0.013095238095238096*L*m;
+    c[22] = 0.0011904761904761906*L*m;
+    c[23] = 4.8*m*a + 2.5142857142857142*L*m;
+    c[24] = 0.13333333333333333*m*a + 0.09047619047619047*L*m;
+    c[25] = 1.2*m*a + 0.6571428571428571*L*m;
+    c[26] = 0.016666666666666666*m*a + 0.011904761904761904*L*m;
+    c[27] = 192.0*EI/(L*L*L);
+    c[28] = 96.0*EI/(L*L*L);
+    c[29] = 24.0*EI/(L*L*L);
+    c[30] = 0.1*m*a + 0.05*L*m;
+    c[31] = 0.6*m*a + 0.5785714285714286*L*m;
+    c[32] = 0.05*m*a + 0.04880952380952381*L*m;
+    c[33] = 16.0*EI/(L*L*L);
+    c[34] = 4.0*EI/(L*L*L);
+    c[35] = 0.01130952380952381*L*m;
+    c[36] = 0.004166666666666667*m*a + 0.002380952380952381*L*m;
+    c[37] = 0.05*m*a + 0.027976190476190477*L*m;
+    c[38] = 8.0*EI/(L*L*L);
+    c[39] = 0.5*J_oh + 0.5*L*m*a*a + 0.5*L*L*m*a + 0.16666666666666666*L*L*L*m;
+    c[40] = 0.09285714285714286*L*m;
+    c[41] = 0.0005952380952380953*L*m;
+    c[42] = 1.2*m*a + 0.6285714285714286*L*m;
+    c[43] = 0.03333333333333333*m*a + 0.02261904761904762*L*m;
+    c[44] = 0.3*m*a + 0.16428571428571428*L*m;
+    c[45] = 0.004166666666666667*m*a + 0.002976190476190476*L*m;
+    c[46] = 48.0*EI/(L*L*L);
 }
 
-/* mass:(c[62],u[3],q[5],qd[5])->(M[25]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[47],u[3],q[5],qd[5])->(M[25]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void fem_nx0_ny4_torque_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -105,23 +90,23 @@ void fem_nx0_ny4_torque_first_mass(const double* c, const double* u, const doubl
     const double B3sq = B3*B3;
     const double B3_B4 = B3*B4;
     const double B4sq = B4*B4;
-    out[0] = c[0] + c[1]*B1sq + c[2]*B1_B2 + c[3]*B1_B3 + c[4]*B1_B4 + c[5]*B2sq + c[6]*B2_B3 + c[7]*B2_B4 + c[8]*B3sq + c[9]*B3_B4 + c[10]*B4sq;
+    out[0] = c[0] - c[1]*B1sq + c[2]*B1_B2 + c[3]*B1_B3 - c[4]*B1_B4 - c[5]*B2sq + c[6]*B2_B3 + c[7]*B2_B4 - c[8]*B3sq + c[9]*B3_B4 - c[10]*B4sq;
     out[1] = c[11];
     out[2] = c[12];
     out[3] = c[13];
-    out[4] = c[14];
+    out[4] = -c[14];
     out[6] = c[15];
     out[8] = c[16];
-    out[9] = c[17];
+    out[9] = -c[17];
     out[12] = c[18];
-    out[13] = c[19];
-    out[14] = c[20];
-    out[18] = c[21];
-    out[19] = c[22];
-    out[24] = c[23];
+    out[13] = c[17];
+    out[14] = -c[19];
+    out[18] = c[20];
+    out[19] = -c[21];
+    out[24] = c[22];
 }
 
-/* forces:(c[62],u[3],q[5],qd[5])->(Q[5]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[47],u[3],q[5],qd[5])->(Q[5]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void fem_nx0_ny4_torque_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
@@ -158,14 +143,14 @@ void fem_nx0_ny4_torque_first_forces(const double* c, const double* u, const dou
     const double B4_theta_dot_B2_dot = B4_theta_dot*B2_dot;
     const double B4_theta_dot_B3_dot = B4_theta_dot*B3_dot;
     const double B4_theta_dot_B4_dot = B4_theta_dot*B4_dot;
-    out[0] = tau + c[24]*B1_theta_dot_B1_dot + c[25]*B1_theta_dot_B2_dot + c[26]*B1_theta_dot_B3_dot + c[27]*B1_theta_dot_B4_dot + c[25]*B2_theta_dot_B1_dot + c[28]*B2_theta_dot_B2_dot + c[29]*B2_theta_dot_B3_dot + c[30]*B2_theta_dot_B4_dot + c[26]*B3_theta_dot_B1_dot + c[29]*B3_theta_dot_B2_dot + c[31]*B3_theta_dot_B3_dot + c[32]*B3_theta_dot_B4_dot + c[27]*B4_theta_dot_B1_dot + c[30]*B4_theta_dot_B2_dot + c[32]*B4_theta_dot_B3_dot + c[33]*B4_theta_dot_B4_dot;
-    out[1] = c[34]*B1 + c[35]*B3 + c[36]*B4 + c[1]*B1_theta_dotsq + c[37]*B2_theta_dotsq + c[38]*B3_theta_dotsq + c[39]*B4_theta_dotsq;
-    out[2] = c[40]*B2 + c[41]*B3 + c[42]*B4 + c[37]*B1_theta_dotsq + c[5]*B2_theta_dotsq + c[43]*B3_theta_dotsq + c[44]*B4_theta_dotsq;
-    out[3] = c[35]*B1 + c[41]*B2 + c[45]*B3 + c[41]*B4 + c[38]*B1_theta_dotsq + c[43]*B2_theta_dotsq + c[8]*B3_theta_dotsq + c[46]*B4_theta_dotsq;
-    out[4] = c[36]*B1 + c[42]*B2 + c[41]*B3 + c[47]*B4 + c[39]*B1_theta_dotsq + c[44]*B2_theta_dotsq + c[46]*B3_theta_dotsq + c[10]*B4_theta_dotsq;
+    out[0] = tau + c[23]*B1_theta_dot_B1_dot - c[2]*B1_theta_dot_B2_dot - c[3]*B1_theta_dot_B3_dot + c[4]*B1_theta_dot_B4_dot - c[2]*B2_theta_dot_B1_dot + c[24]*B2_theta_dot_B2_dot - c[6]*B2_theta_dot_B3_dot - c[7]*B2_theta_dot_B4_dot - c[3]*B3_theta_dot_B1_dot - c[6]*B3_theta_dot_B2_dot + c[25]*B3_theta_dot_B3_dot - c[9]*B3_theta_dot_B4_dot + c[4]*B4_theta_dot_B1_dot - c[7]*B4_theta_dot_B2_dot - c[9]*B4_theta_dot_B3_dot + c[26]*B4_theta_dot_B4_dot;
+    out[1] = -c[27]*B1 + c[28]*B3 - c[29]*B4 - c[1]*B1_theta_dotsq + c[30]*B2_theta_dotsq + c[31]*B3_theta_dotsq - c[32]*B4_theta_dotsq;
+    out[2] = -c[33]*B2 + c[29]*B3 - c[34]*B4 + c[30]*B1_theta_dotsq - c[5]*B2_theta_dotsq + c[35]*B3_theta_dotsq + c[36]*B4_theta_dotsq;
+    out[3] = c[28]*B1 + c[29]*B2 - c[28]*B3 + c[29]*B4 + c[31]*B1_theta_dotsq + c[35]*B2_theta_dotsq - c[8]*B3_theta_dotsq + c[37]*B4_theta_dotsq;
+    out[4] = -c[29]*B1 - c[34]*B2 + c[29]*B3 - c[38]*B4 - c[32]*B1_theta_dotsq + c[36]*B2_theta_dotsq + c[37]*B3_theta_dotsq - c[10]*B4_theta_dotsq;
 }
 
-/* forces_terms:(c[62],u[3],q[5],qd[5])->(m[25]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[47],u[3],q[5],qd[5])->(m[25]) the state monomials of Q: Q = F m */
 void fem_nx0_ny4_torque_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -230,62 +215,62 @@ void fem_nx0_ny4_torque_first_forces_terms(const double* c, const double* u, con
     out[24] = B4_theta_dot_B4_dot;
 }
 
-/* forces_matrix:(c[62],u[3],q[5],qd[5])->(F[5*25]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[47],u[3],q[5],qd[5])->(F[5*25]) row-major, state-free: Q = F m; nonzero entries only */
 void fem_nx0_ny4_torque_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)q;
     (void)qd;
     out[0] = 1.0;
-    out[6] = c[24];
-    out[7] = c[25];
-    out[8] = c[26];
-    out[9] = c[27];
-    out[11] = c[25];
-    out[12] = c[28];
-    out[13] = c[29];
-    out[14] = c[30];
-    out[16] = c[26];
-    out[17] = c[29];
-    out[18] = c[31];
-    out[19] = c[32];
-    out[21] = c[27];
-    out[22] = c[30];
-    out[23] = c[32];
-    out[24] = c[33];
-    out[26] = c[34];
-    out[28] = c[35];
-    out[29] = c[36];
-    out[30] = c[1];
-    out[35] = c[37];
-    out[40] = c[38];
-    out[45] = c[39];
-    out[52] = c[40];
-    out[53] = c[41];
-    out[54] = c[42];
-    out[55] = c[37];
-    out[60] = c[5];
-    out[65] = c[43];
-    out[70] = c[44];
-    out[76] = c[35];
-    out[77] = c[41];
-    out[78] = c[45];
-    out[79] = c[41];
-    out[80] = c[38];
-    out[85] = c[43];
-    out[90] = c[8];
-    out[95] = c[46];
-    out[101] = c[36];
-    out[102] = c[42];
-    out[103] = c[41];
-    out[104] = c[47];
-    out[105] = c[39];
-    out[110] = c[44];
-    out[115] = c[46];
-    out[120] = c[10];
+    out[6] = c[23];
+    out[7] = -c[2];
+    out[8] = -c[3];
+    out[9] = c[4];
+    out[11] = -c[2];
+    out[12] = c[24];
+    out[13] = -c[6];
+    out[14] = -c[7];
+    out[16] = -c[3];
+    out[17] = -c[6];
+    out[18] = c[25];
+    out[19] = -c[9];
+    out[21] = c[4];
+    out[22] = -c[7];
+    out[23] = -c[9];
+    out[24] = c[26];
+    out[26] = -c[27];
+    out[28] = c[28];
+    out[29] = -c[29];
+    out[30] = -c[1];
+    out[35] = c[30];
+    out[40] = c[31];
+    out[45] = -c[32];
+    out[52] = -c[33];
+    out[53] = c[29];
+    out[54] = -c[34];
+    out[55] = c[30];
+    out[60] = -c[5];
+    out[65] = c[35];
+    out[70] = c[36];
+    out[76] = c[28];
+    out[77] = c[29];
+    out[78] = -c[28];
+    out[79] = c[29];
+    out[80] = c[31];
+    out[85] = c[35];
+    out[90] = -c[8];
+    out[95] = c[37];
+    out[101] = -c[29];
+    out[102] = -c[34];
+    out[103] = c[29];
+    out[104] = -c[38];
+    out[105] = -c[32];
+    out[110] = c[36];
+    out[115] = c[37];
+    out[120] = -c[10];
 }
 
-/* energy:(c[62],u[3],q[5],qd[5])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[47],u[3],q[5],qd[5])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void fem_nx0_ny4_torque_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -342,13 +327,13 @@ void fem_nx0_ny4_torque_first_energy(const double* c, const double* u, const dou
     const double B3_B4_theta_dotsq = B3_B4_theta_dot*theta_dot;
     const double B4sq_theta_dot = B4sq*theta_dot;
     const double B4sq_theta_dotsq = B4sq_theta_dot*theta_dot;
-    out[0] = c[48]*theta_dotsq + c[11]*theta_dot_B1_dot + c[12]*theta_dot_B2_dot + c[13]*theta_dot_B3_dot + c[14]*theta_dot_B4_dot + c[21]*B1_dotsq + c[16]*B1_dot_B3_dot + c[17]*B1_dot_B4_dot + c[23]*B2_dotsq + c[19]*B2_dot_B3_dot + c[20]*B2_dot_B4_dot + c[49]*B3_dotsq + c[22]*B3_dot_B4_dot + c[50]*B4_dotsq + c[51]*B1sq_theta_dotsq + c[37]*B1_B2_theta_dotsq + c[38]*B1_B3_theta_dotsq + c[39]*B1_B4_theta_dotsq + c[52]*B2sq_theta_dotsq + c[43]*B2_B3_theta_dotsq + c[44]*B2_B4_theta_dotsq + c[53]*B3sq_theta_dotsq + c[46]*B3_B4_theta_dotsq + c[54]*B4sq_theta_dotsq;
+    out[0] = c[39]*theta_dotsq + c[11]*theta_dot_B1_dot + c[12]*theta_dot_B2_dot + c[13]*theta_dot_B3_dot - c[14]*theta_dot_B4_dot + c[20]*B1_dotsq + c[16]*B1_dot_B3_dot - c[17]*B1_dot_B4_dot + c[22]*B2_dotsq + c[17]*B2_dot_B3_dot - c[19]*B2_dot_B4_dot + c[40]*B3_dotsq - c[21]*B3_dot_B4_dot + c[41]*B4_dotsq - c[42]*B1sq_theta_dotsq + c[30]*B1_B2_theta_dotsq + c[31]*B1_B3_theta_dotsq - c[32]*B1_B4_theta_dotsq - c[43]*B2sq_theta_dotsq + c[35]*B2_B3_theta_dotsq + c[36]*B2_B4_theta_dotsq - c[44]*B3sq_theta_dotsq + c[37]*B3_B4_theta_dotsq - c[45]*B4sq_theta_dotsq;
     out[1] = 0.0;
     out[2] = 0.0;
-    out[3] = c[35]*B1sq + c[45]*B1_B3 + c[41]*B1_B4 + c[55]*B2sq + c[36]*B2_B3 + c[56]*B2_B4 + c[57]*B3sq + c[36]*B3_B4 + c[56]*B4sq;
+    out[3] = c[28]*B1sq - c[28]*B1_B3 + c[29]*B1_B4 + c[38]*B2sq - c[29]*B2_B3 + c[34]*B2_B4 + c[46]*B3sq - c[29]*B3_B4 + c[34]*B4sq;
 }
 
-/* momentum:(c[62],u[3],q[5],qd[5])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[47],u[3],q[5],qd[5])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void fem_nx0_ny4_torque_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -381,10 +366,10 @@ void fem_nx0_ny4_torque_first_momentum(const double* c, const double* u, const d
     const double B3_B4_theta_dot = B3_B4*theta_dot;
     const double B4sq = B4*B4;
     const double B4sq_theta_dot = B4sq*theta_dot;
-    out[0] = c[0]*theta_dot + c[11]*B1_dot + c[12]*B2_dot + c[13]*B3_dot + c[14]*B4_dot + c[1]*B1sq_theta_dot + c[2]*B1_B2_theta_dot + c[3]*B1_B3_theta_dot + c[4]*B1_B4_theta_dot + c[5]*B2sq_theta_dot + c[6]*B2_B3_theta_dot + c[7]*B2_B4_theta_dot + c[8]*B3sq_theta_dot + c[9]*B3_B4_theta_dot + c[10]*B4sq_theta_dot;
+    out[0] = c[0]*theta_dot + c[11]*B1_dot + c[12]*B2_dot + c[13]*B3_dot - c[14]*B4_dot - c[1]*B1sq_theta_dot + c[2]*B1_B2_theta_dot + c[3]*B1_B3_theta_dot - c[4]*B1_B4_theta_dot - c[5]*B2sq_theta_dot + c[6]*B2_B3_theta_dot + c[7]*B2_B4_theta_dot - c[8]*B3sq_theta_dot + c[9]*B3_B4_theta_dot - c[10]*B4sq_theta_dot;
 }
 
-/* forces_q:(c[62],u[3],q[5],qd[5])->(dQdq[25]) row-major; out[i*5+k] = dQ_i/dq_k */
+/* forces_q:(c[47],u[3],q[5],qd[5])->(dQdq[25]) row-major; out[i*5+k] = dQ_i/dq_k */
 void fem_nx0_ny4_torque_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -400,33 +385,33 @@ void fem_nx0_ny4_torque_first_forces_q(const double* c, const double* u, const d
     const double theta_dot_B3_dot = theta_dot*B3_dot;
     const double theta_dot_B4_dot = theta_dot*B4_dot;
     out[0] = 0.0;
-    out[1] = c[24]*theta_dot_B1_dot + c[25]*theta_dot_B2_dot + c[26]*theta_dot_B3_dot + c[27]*theta_dot_B4_dot;
-    out[2] = c[25]*theta_dot_B1_dot + c[28]*theta_dot_B2_dot + c[29]*theta_dot_B3_dot + c[30]*theta_dot_B4_dot;
-    out[3] = c[26]*theta_dot_B1_dot + c[29]*theta_dot_B2_dot + c[31]*theta_dot_B3_dot + c[32]*theta_dot_B4_dot;
-    out[4] = c[27]*theta_dot_B1_dot + c[30]*theta_dot_B2_dot + c[32]*theta_dot_B3_dot + c[33]*theta_dot_B4_dot;
+    out[1] = c[23]*theta_dot_B1_dot - c[2]*theta_dot_B2_dot - c[3]*theta_dot_B3_dot + c[4]*theta_dot_B4_dot;
+    out[2] = -c[2]*theta_dot_B1_dot + c[24]*theta_dot_B2_dot - c[6]*theta_dot_B3_dot - c[7]*theta_dot_B4_dot;
+    out[3] = -c[3]*theta_dot_B1_dot - c[6]*theta_dot_B2_dot + c[25]*theta_dot_B3_dot - c[9]*theta_dot_B4_dot;
+    out[4] = c[4]*theta_dot_B1_dot - c[7]*theta_dot_B2_dot - c[9]*theta_dot_B3_dot + c[26]*theta_dot_B4_dot;
     out[5] = 0.0;
-    out[6] = c[34] + c[1]*theta_dotsq;
-    out[7] = c[37]*theta_dotsq;
-    out[8] = c[35] + c[38]*theta_dotsq;
-    out[9] = c[36] + c[39]*theta_dotsq;
+    out[6] = -c[27] - c[1]*theta_dotsq;
+    out[7] = c[30]*theta_dotsq;
+    out[8] = c[28] + c[31]*theta_dotsq;
+    out[9] = -c[29] - c[32]*theta_dotsq;
     out[10] = 0.0;
-    out[11] = c[37]*theta_dotsq;
-    out[12] = c[40] + c[5]*theta_dotsq;
-    out[13] = c[41] + c[43]*theta_dotsq;
-    out[14] = c[42] + c[44]*theta_dotsq;
+    out[11] = c[30]*theta_dotsq;
+    out[12] = -c[33] - c[5]*theta_dotsq;
+    out[13] = c[29] + c[35]*theta_dotsq;
+    out[14] = -c[34] + c[36]*theta_dotsq;
     out[15] = 0.0;
-    out[16] = c[35] + c[38]*theta_dotsq;
-    out[17] = c[41] + c[43]*theta_dotsq;
-    out[18] = c[45] + c[8]*theta_dotsq;
-    out[19] = c[41] + c[46]*theta_dotsq;
+    out[16] = c[28] + c[31]*theta_dotsq;
+    out[17] = c[29] + c[35]*theta_dotsq;
+    out[18] = -c[28] - c[8]*theta_dotsq;
+    out[19] = c[29] + c[37]*theta_dotsq;
     out[20] = 0.0;
-    out[21] = c[36] + c[39]*theta_dotsq;
-    out[22] = c[42] + c[44]*theta_dotsq;
-    out[23] = c[41] + c[46]*theta_dotsq;
-    out[24] = c[47] + c[10]*theta_dotsq;
+    out[21] = -c[29] - c[32]*theta_dotsq;
+    out[22] = -c[34] + c[36]*theta_dotsq;
+    out[23] = c[29] + c[37]*theta_dotsq;
+    out[24] = -c[38] - c[10]*theta_dotsq;
 }
 
-/* forces_qd:(c[62],u[3],q[5],qd[5])->(dQdqd[25]) row-major; out[i*5+k] = dQ_i/dqd_k */
+/* forces_qd:(c[47],u[3],q[5],qd[5])->(dQdqd[25]) row-major; out[i*5+k] = dQ_i/dqd_k */
 void fem_nx0_ny4_torque_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -459,34 +444,34 @@ void fem_nx0_ny4_torque_first_forces_qd(const double* c, const double* u, const 
     const double B4_B2_dot = B4*B2_dot;
     const double B4_B3_dot = B4*B3_dot;
     const double B4_B4_dot = B4*B4_dot;
-    out[0] = c[24]*B1_B1_dot + c[25]*B1_B2_dot + c[26]*B1_B3_dot + c[27]*B1_B4_dot + c[25]*B2_B1_dot + c[28]*B2_B2_dot + c[29]*B2_B3_dot + c[30]*B2_B4_dot + c[26]*B3_B1_dot + c[29]*B3_B2_dot + c[31]*B3_B3_dot + c[32]*B3_B4_dot + c[27]*B4_B1_dot + c[30]*B4_B2_dot + c[32]*B4_B3_dot + c[33]*B4_B4_dot;
-    out[1] = c[24]*B1_theta_dot + c[25]*B2_theta_dot + c[26]*B3_theta_dot + c[27]*B4_theta_dot;
-    out[2] = c[25]*B1_theta_dot + c[28]*B2_theta_dot + c[29]*B3_theta_dot + c[30]*B4_theta_dot;
-    out[3] = c[26]*B1_theta_dot + c[29]*B2_theta_dot + c[31]*B3_theta_dot + c[32]*B4_theta_dot;
-    out[4] = c[27]*B1_theta_dot + c[30]*B2_theta_dot + c[32]*B3_theta_dot + c[33]*B4_theta_dot;
-    out[5] = c[58]*B1_theta_dot + c[2]*B2_theta_dot + c[3]*B3_theta_dot + c[4]*B4_theta_dot;
+    out[0] = c[23]*B1_B1_dot - c[2]*B1_B2_dot - c[3]*B1_B3_dot + c[4]*B1_B4_dot - c[2]*B2_B1_dot + c[24]*B2_B2_dot - c[6]*B2_B3_dot - c[7]*B2_B4_dot - c[3]*B3_B1_dot - c[6]*B3_B2_dot + c[25]*B3_B3_dot - c[9]*B3_B4_dot + c[4]*B4_B1_dot - c[7]*B4_B2_dot - c[9]*B4_B3_dot + c[26]*B4_B4_dot;
+    out[1] = c[23]*B1_theta_dot - c[2]*B2_theta_dot - c[3]*B3_theta_dot + c[4]*B4_theta_dot;
+    out[2] = -c[2]*B1_theta_dot + c[24]*B2_theta_dot - c[6]*B3_theta_dot - c[7]*B4_theta_dot;
+    out[3] = -c[3]*B1_theta_dot - c[6]*B2_theta_dot + c[25]*B3_theta_dot - c[9]*B4_theta_dot;
+    out[4] = c[4]*B1_theta_dot - c[7]*B2_theta_dot - c[9]*B3_theta_dot + c[26]*B4_theta_dot;
+    out[5] = -c[23]*B1_theta_dot + c[2]*B2_theta_dot + c[3]*B3_theta_dot - c[4]*B4_theta_dot;
     out[6] = 0.0;
     out[7] = 0.0;
     out[8] = 0.0;
     out[9] = 0.0;
-    out[10] = c[2]*B1_theta_dot + c[59]*B2_theta_dot + c[6]*B3_theta_dot + c[7]*B4_theta_dot;
+    out[10] = c[2]*B1_theta_dot - c[24]*B2_theta_dot + c[6]*B3_theta_dot + c[7]*B4_theta_dot;
     out[11] = 0.0;
     out[12] = 0.0;
     out[13] = 0.0;
     out[14] = 0.0;
-    out[15] = c[3]*B1_theta_dot + c[6]*B2_theta_dot + c[60]*B3_theta_dot + c[9]*B4_theta_dot;
+    out[15] = c[3]*B1_theta_dot + c[6]*B2_theta_dot - c[25]*B3_theta_dot + c[9]*B4_theta_dot;
     out[16] = 0.0;
     out[17] = 0.0;
     out[18] = 0.0;
     out[19] = 0.0;
-    out[20] = c[4]*B1_theta_dot + c[7]*B2_theta_dot + c[9]*B3_theta_dot + c[61]*B4_theta_dot;
+    out[20] = -c[4]*B1_theta_dot + c[7]*B2_theta_dot + c[9]*B3_theta_dot - c[26]*B4_theta_dot;
     out[21] = 0.0;
     out[22] = 0.0;
     out[23] = 0.0;
     out[24] = 0.0;
 }
 
-/* forces_u:(c[62],u[3],q[5],qd[5])->(dQdu[15]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
+/* forces_u:(c[47],u[3],q[5],qd[5])->(dQdu[15]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
 void fem_nx0_ny4_torque_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -510,7 +495,7 @@ void fem_nx0_ny4_torque_first_forces_u(const double* c, const double* u, const d
     out[14] = 0.0;
 }
 
-/* mass_varying:(c[62],u[3],q[5],qd[5])->(M[25]) as mass, the entries that depend on q only */
+/* mass_varying:(c[47],u[3],q[5],qd[5])->(M[25]) as mass, the entries that depend on q only */
 void fem_nx0_ny4_torque_first_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -529,10 +514,10 @@ void fem_nx0_ny4_torque_first_mass_varying(const double* c, const double* u, con
     const double B3sq = B3*B3;
     const double B3_B4 = B3*B4;
     const double B4sq = B4*B4;
-    out[0] = c[0] + c[1]*B1sq + c[2]*B1_B2 + c[3]*B1_B3 + c[4]*B1_B4 + c[5]*B2sq + c[6]*B2_B3 + c[7]*B2_B4 + c[8]*B3sq + c[9]*B3_B4 + c[10]*B4sq;
+    out[0] = c[0] - c[1]*B1sq + c[2]*B1_B2 + c[3]*B1_B3 - c[4]*B1_B4 - c[5]*B2sq + c[6]*B2_B3 + c[7]*B2_B4 - c[8]*B3sq + c[9]*B3_B4 - c[10]*B4sq;
 }
 
-/* mass_q_product:(c[62],u[3],q[5],qd[5])->(dMv[25]) row-major; v in the qd slot; out[i*5+k] = sum_j dM_ij/dq_k v_j */
+/* mass_q_product:(c[47],u[3],q[5],qd[5])->(dMv[25]) row-major; v in the qd slot; out[i*5+k] = sum_j dM_ij/dq_k v_j */
 void fem_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -546,10 +531,10 @@ void fem_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, c
     const double B3_theta_dot = B3*theta_dot;
     const double B4_theta_dot = B4*theta_dot;
     out[0] = 0.0;
-    out[1] = c[58]*B1_theta_dot + c[2]*B2_theta_dot + c[3]*B3_theta_dot + c[4]*B4_theta_dot;
-    out[2] = c[2]*B1_theta_dot + c[59]*B2_theta_dot + c[6]*B3_theta_dot + c[7]*B4_theta_dot;
-    out[3] = c[3]*B1_theta_dot + c[6]*B2_theta_dot + c[60]*B3_theta_dot + c[9]*B4_theta_dot;
-    out[4] = c[4]*B1_theta_dot + c[7]*B2_theta_dot + c[9]*B3_theta_dot + c[61]*B4_theta_dot;
+    out[1] = -c[23]*B1_theta_dot + c[2]*B2_theta_dot + c[3]*B3_theta_dot - c[4]*B4_theta_dot;
+    out[2] = c[2]*B1_theta_dot - c[24]*B2_theta_dot + c[6]*B3_theta_dot + c[7]*B4_theta_dot;
+    out[3] = c[3]*B1_theta_dot + c[6]*B2_theta_dot - c[25]*B3_theta_dot + c[9]*B4_theta_dot;
+    out[4] = -c[4]*B1_theta_dot + c[7]*B2_theta_dot + c[9]*B3_theta_dot - c[26]*B4_theta_dot;
     out[5] = 0.0;
     out[6] = 0.0;
     out[7] = 0.0;
@@ -574,7 +559,7 @@ void fem_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, c
 
 }  // namespace
 
-extern const Variant fem_nx0_ny4_torque_first = {"fem_nx0_ny4_torque_first", 5, 62, 25,
+extern const Variant fem_nx0_ny4_torque_first = {"fem_nx0_ny4_torque_first", 5, 47, 25,
     "vcccccc0ccc0ccccccccccccc",
     fem_nx0_ny4_torque_first_coefficients, fem_nx0_ny4_torque_first_mass, fem_nx0_ny4_torque_first_mass_varying, fem_nx0_ny4_torque_first_forces, fem_nx0_ny4_torque_first_forces_terms, fem_nx0_ny4_torque_first_forces_matrix,
     fem_nx0_ny4_torque_first_energy, fem_nx0_ny4_torque_first_momentum, fem_nx0_ny4_torque_first_forces_q, fem_nx0_ny4_torque_first_forces_qd, fem_nx0_ny4_torque_first_mass_q_product, fem_nx0_ny4_torque_first_forces_u};

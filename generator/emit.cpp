@@ -230,22 +230,24 @@ public:
         return c[0].first;
     }
 
-    /// "c[k]" for the coefficient, adding it to the pool if it is new.
-    std::string reference(Coefficient c)
+    /// The coefficient as sign * c[k], adding c[k] to the pool if it is new. A coefficient and its negative
+    /// share one entry: the entry holds the form whose first term is positive.
+    std::pair<int, std::string> reference(Coefficient c)
     {
         std::sort(c.begin(), c.end(), [](const auto& x, const auto& y) { return x.second < y.second; });
+        const int sign = c.front().first < 0 ? -1 : 1;
         std::vector<std::pair<numeric, std::string>> parts;
         for (const auto& [number, pe] : c) {
             for (std::size_t j = 0; j < pe.size(); ++j) params_used_[j] = params_used_[j] || pe[j] != 0;
             const std::string num = product(pe, pnames_, true), den = product(pe, pnames_, false);
             std::string m = num;
             if (!den.empty()) m = (m.empty() ? "1.0" : m) + "/(" + den + ")";
-            parts.emplace_back(number, m);
+            parts.emplace_back(sign * number, m);
         }
         const std::string text = signed_sum(parts);
         auto [it, added] = index_.emplace(text, static_cast<int>(texts_.size()));
         if (added) texts_.push_back(text);
-        return "c[" + std::to_string(it->second) + "]";
+        return {sign, "c[" + std::to_string(it->second) + "]"};
     }
 
     const std::vector<std::string>& texts() const { return texts_; }
@@ -275,8 +277,8 @@ std::string print_outputs(const std::vector<Output>& outputs, const std::vector<
                 terms.emplace_back(*number, mono);
                 continue;
             }
-            const std::string ck = pool.reference(c);
-            terms.emplace_back(1, mono.empty() ? ck : ck + "*" + mono);
+            const auto [sign, ck] = pool.reference(c);
+            terms.emplace_back(sign, mono.empty() ? ck : ck + "*" + mono);
             uses_c = true;
         }
         lines << "    out[" << (slots.empty() ? static_cast<int>(i) : slots[i]) << "] = " << signed_sum(terms) << ";\n";
