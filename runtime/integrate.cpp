@@ -137,7 +137,7 @@ FirstOrderSystem::FirstOrderSystem(const Model& model, const Motion& motion)
         const long nnz = static_cast<long>((W.array() != 0.0).count());
         if (nnz <= nonzeros(F) + static_cast<long>(n_) * n_) {
             w.m.resize(K);
-            if (4 * nnz >= 3L * n_ * K) {
+            if (2 * nnz >= static_cast<long>(n_) * K) {  // by rows only when that skips most of W
                 w.W = std::move(W);
             } else {
                 w.W_start.push_back(0);
