@@ -8,8 +8,11 @@
 
 #include "generated_model.hpp"
 #include "make_model.hpp"
+#include "random_state.hpp"
 
 using namespace hubbeam;
+using test::random_state;
+using test::State;
 
 namespace {
 
@@ -17,25 +20,6 @@ namespace {
 double relative_error(const Eigen::VectorXd& a, const Eigen::VectorXd& b)
 {
     return (a - b).lpNorm<Eigen::Infinity>() / std::max(b.lpNorm<Eigen::Infinity>(), 1e-300);
-}
-
-struct State {
-    Eigen::VectorXd q, qd;
-    HubInput u;
-};
-
-/// A random state of the size deformations reach in the paper's cases (B ~ 0.1 m, A ~ 1 mm).
-State random_state(const VariantKey& key, std::mt19937& rng)
-{
-    std::uniform_real_distribution<double> r(-1.0, 1.0);
-    State s{Eigen::VectorXd(key.nq()), Eigen::VectorXd(key.nq()), {0.7 * r(rng), 3.0 * r(rng), 0.5 * r(rng)}};
-    for (int i = 0; i < key.nq(); ++i) {
-        const bool axial = i >= key.first_a() && i < key.first_b();
-        const double size = i < key.first_a() ? 2.0 : axial ? 1e-3 : 0.1;
-        s.q[i] = size * r(rng);
-        s.qd[i] = 3.0 * size * r(rng);
-    }
-    return s;
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 
 #include "generated_model.hpp"
 #include "integrate.hpp"
+#include "random_state.hpp"
 #include "make_model.hpp"
 
 using namespace hubbeam;
@@ -23,19 +24,12 @@ double relative_error(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b)
     return (a - b).lpNorm<Eigen::Infinity>() / std::max(b.lpNorm<Eigen::Infinity>(), 1e-300);
 }
 
-/// A random y = (q, qd) of the size deformations reach in the paper's cases (B ~ 0.1 m, A ~ 1 mm, theta ~ 2),
-/// as random_state in test_generated.cpp.
+/// y = (q, qd) of a random state (random_state.hpp).
 Eigen::VectorXd random_y(const VariantKey& key, std::mt19937& rng)
 {
-    std::uniform_real_distribution<double> r(-1.0, 1.0);
-    const int n = key.nq();
-    Eigen::VectorXd y(2 * n);
-    for (int i = 0; i < n; ++i) {
-        const bool axial = i >= key.first_a() && i < key.first_b();
-        const double size = i < key.first_a() ? 2.0 : axial ? 1e-3 : 0.1;
-        y[i] = size * r(rng);
-        y[n + i] = 3.0 * size * r(rng);
-    }
+    const test::State s = test::random_state(key, rng);
+    Eigen::VectorXd y(2 * key.nq());
+    y << s.q, s.qd;
     return y;
 }
 

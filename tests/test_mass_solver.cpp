@@ -12,6 +12,7 @@
 #include "integrate.hpp"
 #include "make_model.hpp"
 #include "mass_solver.hpp"
+#include "random_state.hpp"
 
 using namespace hubbeam;
 using Eigen::MatrixXd;
@@ -19,17 +20,12 @@ using Eigen::VectorXd;
 
 namespace {
 
-/// A random state of the size the paper's cases reach (theta ~ 2, A ~ 1e-3 m, B ~ 0.1 m), rates alike.
+/// q and qd of a random state (random_state.hpp).
 void random_state(const VariantKey& key, std::mt19937& rng, VectorXd& q, VectorXd& qd)
 {
-    std::uniform_real_distribution<double> r(-1.0, 1.0);
-    q.resize(key.nq());
-    qd.resize(key.nq());
-    for (int i = 0; i < key.nq(); ++i) {
-        const double size = i < key.first_a() ? 2.0 : i < key.first_b() ? 1e-3 : 0.1;
-        q[i] = size * r(rng);
-        qd[i] = 3.0 * size * r(rng);
-    }
+    const test::State s = test::random_state(key, rng);
+    q = s.q;
+    qd = s.qd;
 }
 
 MatrixXd mass_of(const Model& model, const HubInput& u, const VectorXd& q)

@@ -1,0 +1,32 @@
+// A random state of the size deformations reach in the paper's cases, shared by the tests that compare two
+// computations of the same quantity at random states.
+#pragma once
+
+#include <Eigen/Dense>
+#include <random>
+
+#include "interface.hpp"
+#include "variant.hpp"
+
+namespace hubbeam::test {
+
+struct State {
+    Eigen::VectorXd q, qd;
+    HubInput u;
+};
+
+/// theta ~ 2 rad, A ~ 1 mm, B ~ 0.1 m, rates three times that per second; a random drive.
+inline State random_state(const VariantKey& key, std::mt19937& rng)
+{
+    std::uniform_real_distribution<double> r(-1.0, 1.0);
+    State s{Eigen::VectorXd(key.nq()), Eigen::VectorXd(key.nq()), {0.7 * r(rng), 3.0 * r(rng), 0.5 * r(rng)}};
+    for (int i = 0; i < key.nq(); ++i) {
+        const bool axial = i >= key.first_a() && i < key.first_b();
+        const double size = i < key.first_a() ? 2.0 : axial ? 1e-3 : 0.1;
+        s.q[i] = size * r(rng);
+        s.qd[i] = 3.0 * size * r(rng);
+    }
+    return s;
+}
+
+}  // namespace hubbeam::test
