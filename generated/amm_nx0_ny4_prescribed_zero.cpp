@@ -189,7 +189,7 @@ void amm_nx0_ny4_prescribed_zero_momentum(const double* c, const double* u, cons
     out[0] = c[19]*theta_dot - c[3]*B1_dot - c[5]*B2_dot - c[7]*B3_dot - c[9]*B4_dot + c[0]*theta_dot_B1sq + c[1]*theta_dot_B2sq + c[1]*theta_dot_B3sq + c[2]*theta_dot_B4sq;
 }
 
-/* forces_q:(c[23],u[3],q[4],qd[4])->(dQdq[16]) row-major; out[i*4+k] = dQ_i/dq_k */
+/* forces_q:(c[23],u[3],q[4],qd[4])->(dQdq[16]) row-major; out[i*4+k] = dQ_i/dq_k; nonzero entries only */
 void amm_nx0_ny4_prescribed_zero_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)q;
@@ -197,49 +197,22 @@ void amm_nx0_ny4_prescribed_zero_forces_q(const double* c, const double* u, cons
     const double theta_dot = u[1];
     const double theta_dotsq = theta_dot*theta_dot;
     out[0] = -c[4] + c[0]*theta_dotsq;
-    out[1] = 0.0;
-    out[2] = 0.0;
-    out[3] = 0.0;
-    out[4] = 0.0;
     out[5] = -c[6] + c[1]*theta_dotsq;
-    out[6] = 0.0;
-    out[7] = 0.0;
-    out[8] = 0.0;
-    out[9] = 0.0;
     out[10] = -c[8] + c[1]*theta_dotsq;
-    out[11] = 0.0;
-    out[12] = 0.0;
-    out[13] = 0.0;
-    out[14] = 0.0;
     out[15] = -c[10] + c[2]*theta_dotsq;
 }
 
-/* forces_qd:(c[23],u[3],q[4],qd[4])->(dQdqd[16]) row-major; out[i*4+k] = dQ_i/dqd_k */
+/* forces_qd:(c[23],u[3],q[4],qd[4])->(dQdqd[16]) row-major; out[i*4+k] = dQ_i/dqd_k; nonzero entries only */
 void amm_nx0_ny4_prescribed_zero_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
+    (void)out;  // every entry is zero
     (void)u;
     (void)q;
     (void)qd;
-    out[0] = 0.0;
-    out[1] = 0.0;
-    out[2] = 0.0;
-    out[3] = 0.0;
-    out[4] = 0.0;
-    out[5] = 0.0;
-    out[6] = 0.0;
-    out[7] = 0.0;
-    out[8] = 0.0;
-    out[9] = 0.0;
-    out[10] = 0.0;
-    out[11] = 0.0;
-    out[12] = 0.0;
-    out[13] = 0.0;
-    out[14] = 0.0;
-    out[15] = 0.0;
 }
 
-/* forces_u:(c[23],u[3],q[4],qd[4])->(dQdu[12]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
+/* forces_u:(c[23],u[3],q[4],qd[4])->(dQdu[12]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
 void amm_nx0_ny4_prescribed_zero_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)qd;
@@ -252,16 +225,12 @@ void amm_nx0_ny4_prescribed_zero_forces_u(const double* c, const double* u, cons
     const double theta_dot_B2 = theta_dot*B2;
     const double theta_dot_B3 = theta_dot*B3;
     const double theta_dot_B4 = theta_dot*B4;
-    out[0] = 0.0;
     out[1] = c[20]*theta_dot_B1;
     out[2] = c[3];
-    out[3] = 0.0;
     out[4] = c[21]*theta_dot_B2;
     out[5] = c[5];
-    out[6] = 0.0;
     out[7] = c[21]*theta_dot_B3;
     out[8] = c[7];
-    out[9] = 0.0;
     out[10] = c[22]*theta_dot_B4;
     out[11] = c[9];
 }

@@ -574,7 +574,7 @@ void amm_nx4_ny4_prescribed_first_momentum(const double* c, const double* u, con
     out[0] = c[83]*theta_dot - c[47]*B1_dot - c[53]*B2_dot - c[58]*B3_dot - c[62]*B4_dot + c[84]*theta_dot_A1 + c[85]*theta_dot_A2 + c[86]*theta_dot_A3 + c[87]*theta_dot_A4 - c[13]*A1_B1_dot - c[14]*A1_B2_dot - c[15]*A1_B3_dot - c[16]*A1_B4_dot + c[23]*A2_B1_dot - c[24]*A2_B2_dot - c[25]*A2_B3_dot - c[26]*A2_B4_dot - c[33]*A3_B1_dot + c[34]*A3_B2_dot - c[35]*A3_B3_dot - c[36]*A3_B4_dot + c[43]*A4_B1_dot - c[44]*A4_B2_dot + c[45]*A4_B3_dot - c[46]*A4_B4_dot + c[13]*B1_A1_dot - c[23]*B1_A2_dot + c[33]*B1_A3_dot - c[43]*B1_A4_dot + c[14]*B2_A1_dot + c[24]*B2_A2_dot - c[34]*B2_A3_dot + c[44]*B2_A4_dot + c[15]*B3_A1_dot + c[25]*B3_A2_dot + c[35]*B3_A3_dot - c[45]*B3_A4_dot + c[16]*B4_A1_dot + c[26]*B4_A2_dot + c[36]*B4_A3_dot + c[46]*B4_A4_dot + c[0]*theta_dot_A1sq + c[1]*theta_dot_A2sq + c[2]*theta_dot_A3sq + c[3]*theta_dot_A4sq - c[49]*theta_dot_B1sq + c[88]*theta_dot_B1_B2 + c[89]*theta_dot_B1_B3 + c[90]*theta_dot_B1_B4 - c[55]*theta_dot_B2sq - c[91]*theta_dot_B2_B3 + c[92]*theta_dot_B2_B4 - c[60]*theta_dot_B3sq - c[93]*theta_dot_B3_B4 - c[64]*theta_dot_B4sq;
 }
 
-/* forces_q:(c[100],u[3],q[8],qd[8])->(dQdq[64]) row-major; out[i*8+k] = dQ_i/dq_k */
+/* forces_q:(c[100],u[3],q[8],qd[8])->(dQdq[64]) row-major; out[i*8+k] = dQ_i/dq_k; nonzero entries only */
 void amm_nx4_ny4_prescribed_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)q;
@@ -583,32 +583,20 @@ void amm_nx4_ny4_prescribed_first_forces_q(const double* c, const double* u, con
     const double theta_ddot = u[2];
     const double theta_dotsq = theta_dot*theta_dot;
     out[0] = -c[7] + c[0]*theta_dotsq;
-    out[1] = 0.0;
-    out[2] = 0.0;
-    out[3] = 0.0;
     out[4] = -c[13]*theta_ddot;
     out[5] = -c[14]*theta_ddot;
     out[6] = -c[15]*theta_ddot;
     out[7] = -c[16]*theta_ddot;
-    out[8] = 0.0;
     out[9] = -c[17] + c[1]*theta_dotsq;
-    out[10] = 0.0;
-    out[11] = 0.0;
     out[12] = c[23]*theta_ddot;
     out[13] = -c[24]*theta_ddot;
     out[14] = -c[25]*theta_ddot;
     out[15] = -c[26]*theta_ddot;
-    out[16] = 0.0;
-    out[17] = 0.0;
     out[18] = -c[27] + c[2]*theta_dotsq;
-    out[19] = 0.0;
     out[20] = -c[33]*theta_ddot;
     out[21] = c[34]*theta_ddot;
     out[22] = -c[35]*theta_ddot;
     out[23] = -c[36]*theta_ddot;
-    out[24] = 0.0;
-    out[25] = 0.0;
-    out[26] = 0.0;
     out[27] = -c[37] + c[3]*theta_dotsq;
     out[28] = c[43]*theta_ddot;
     out[29] = -c[44]*theta_ddot;
@@ -648,40 +636,24 @@ void amm_nx4_ny4_prescribed_first_forces_q(const double* c, const double* u, con
     out[63] = -c[63] - c[64]*theta_dotsq;
 }
 
-/* forces_qd:(c[100],u[3],q[8],qd[8])->(dQdqd[64]) row-major; out[i*8+k] = dQ_i/dqd_k */
+/* forces_qd:(c[100],u[3],q[8],qd[8])->(dQdqd[64]) row-major; out[i*8+k] = dQ_i/dqd_k; nonzero entries only */
 void amm_nx4_ny4_prescribed_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)q;
     (void)qd;
     const double theta_dot = u[1];
-    out[0] = 0.0;
-    out[1] = 0.0;
-    out[2] = 0.0;
-    out[3] = 0.0;
     out[4] = -c[9]*theta_dot;
     out[5] = -c[10]*theta_dot;
     out[6] = -c[11]*theta_dot;
     out[7] = -c[12]*theta_dot;
-    out[8] = 0.0;
-    out[9] = 0.0;
-    out[10] = 0.0;
-    out[11] = 0.0;
     out[12] = c[19]*theta_dot;
     out[13] = -c[20]*theta_dot;
     out[14] = -c[21]*theta_dot;
     out[15] = -c[22]*theta_dot;
-    out[16] = 0.0;
-    out[17] = 0.0;
-    out[18] = 0.0;
-    out[19] = 0.0;
     out[20] = -c[29]*theta_dot;
     out[21] = c[30]*theta_dot;
     out[22] = -c[31]*theta_dot;
     out[23] = -c[32]*theta_dot;
-    out[24] = 0.0;
-    out[25] = 0.0;
-    out[26] = 0.0;
-    out[27] = 0.0;
     out[28] = c[39]*theta_dot;
     out[29] = -c[40]*theta_dot;
     out[30] = c[41]*theta_dot;
@@ -690,37 +662,21 @@ void amm_nx4_ny4_prescribed_first_forces_qd(const double* c, const double* u, co
     out[33] = -c[19]*theta_dot;
     out[34] = c[29]*theta_dot;
     out[35] = -c[39]*theta_dot;
-    out[36] = 0.0;
-    out[37] = 0.0;
-    out[38] = 0.0;
-    out[39] = 0.0;
     out[40] = c[10]*theta_dot;
     out[41] = c[20]*theta_dot;
     out[42] = -c[30]*theta_dot;
     out[43] = c[40]*theta_dot;
-    out[44] = 0.0;
-    out[45] = 0.0;
-    out[46] = 0.0;
-    out[47] = 0.0;
     out[48] = c[11]*theta_dot;
     out[49] = c[21]*theta_dot;
     out[50] = c[31]*theta_dot;
     out[51] = -c[41]*theta_dot;
-    out[52] = 0.0;
-    out[53] = 0.0;
-    out[54] = 0.0;
-    out[55] = 0.0;
     out[56] = c[12]*theta_dot;
     out[57] = c[22]*theta_dot;
     out[58] = c[32]*theta_dot;
     out[59] = c[42]*theta_dot;
-    out[60] = 0.0;
-    out[61] = 0.0;
-    out[62] = 0.0;
-    out[63] = 0.0;
 }
 
-/* forces_u:(c[100],u[3],q[8],qd[8])->(dQdu[24]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
+/* forces_u:(c[100],u[3],q[8],qd[8])->(dQdu[24]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
 void amm_nx4_ny4_prescribed_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -748,28 +704,20 @@ void amm_nx4_ny4_prescribed_first_forces_u(const double* c, const double* u, con
     const double theta_dot_B2 = theta_dot*B2;
     const double theta_dot_B3 = theta_dot*B3;
     const double theta_dot_B4 = theta_dot*B4;
-    out[0] = 0.0;
     out[1] = c[84]*theta_dot - c[9]*B1_dot - c[10]*B2_dot - c[11]*B3_dot - c[12]*B4_dot + c[94]*theta_dot_A1;
     out[2] = -c[13]*B1 - c[14]*B2 - c[15]*B3 - c[16]*B4;
-    out[3] = 0.0;
     out[4] = c[85]*theta_dot + c[19]*B1_dot - c[20]*B2_dot - c[21]*B3_dot - c[22]*B4_dot + c[95]*theta_dot_A2;
     out[5] = c[23]*B1 - c[24]*B2 - c[25]*B3 - c[26]*B4;
-    out[6] = 0.0;
     out[7] = c[86]*theta_dot - c[29]*B1_dot + c[30]*B2_dot - c[31]*B3_dot - c[32]*B4_dot + c[6]*theta_dot_A3;
     out[8] = -c[33]*B1 + c[34]*B2 - c[35]*B3 - c[36]*B4;
-    out[9] = 0.0;
     out[10] = c[87]*theta_dot + c[39]*B1_dot - c[40]*B2_dot + c[41]*B3_dot - c[42]*B4_dot + c[5]*theta_dot_A4;
     out[11] = c[43]*B1 - c[44]*B2 + c[45]*B3 - c[46]*B4;
-    out[12] = 0.0;
     out[13] = c[9]*A1_dot - c[19]*A2_dot + c[29]*A3_dot - c[39]*A4_dot - c[96]*theta_dot_B1 + c[88]*theta_dot_B2 + c[89]*theta_dot_B3 + c[90]*theta_dot_B4;
     out[14] = c[47] + c[13]*A1 - c[23]*A2 + c[33]*A3 - c[43]*A4;
-    out[15] = 0.0;
     out[16] = c[10]*A1_dot + c[20]*A2_dot - c[30]*A3_dot + c[40]*A4_dot + c[88]*theta_dot_B1 - c[97]*theta_dot_B2 - c[91]*theta_dot_B3 + c[92]*theta_dot_B4;
     out[17] = c[53] + c[14]*A1 + c[24]*A2 - c[34]*A3 + c[44]*A4;
-    out[18] = 0.0;
     out[19] = c[11]*A1_dot + c[21]*A2_dot + c[31]*A3_dot - c[41]*A4_dot + c[89]*theta_dot_B1 - c[91]*theta_dot_B2 - c[98]*theta_dot_B3 - c[93]*theta_dot_B4;
     out[20] = c[58] + c[15]*A1 + c[25]*A2 + c[35]*A3 - c[45]*A4;
-    out[21] = 0.0;
     out[22] = c[12]*A1_dot + c[22]*A2_dot + c[32]*A3_dot + c[42]*A4_dot + c[90]*theta_dot_B1 + c[92]*theta_dot_B2 - c[93]*theta_dot_B3 - c[99]*theta_dot_B4;
     out[23] = c[62] + c[16]*A1 + c[26]*A2 + c[36]*A3 + c[46]*A4;
 }

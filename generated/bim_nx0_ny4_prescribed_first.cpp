@@ -272,7 +272,7 @@ void bim_nx0_ny4_prescribed_first_momentum(const double* c, const double* u, con
     out[0] = c[41]*theta_dot + c[9]*B1_dot + c[18]*B2_dot + c[24]*B3_dot + c[29]*B4_dot - c[14]*theta_dot_B1sq - c[42]*theta_dot_B1_B2 + c[43]*theta_dot_B1_B3 + c[44]*theta_dot_B1_B4 - c[21]*theta_dot_B2sq - c[45]*theta_dot_B2_B3 + c[46]*theta_dot_B2_B4 - c[27]*theta_dot_B3sq + c[47]*theta_dot_B3_B4 - c[31]*theta_dot_B4sq;
 }
 
-/* forces_q:(c[52],u[3],q[4],qd[4])->(dQdq[16]) row-major; out[i*4+k] = dQ_i/dq_k */
+/* forces_q:(c[52],u[3],q[4],qd[4])->(dQdq[16]) row-major; out[i*4+k] = dQ_i/dq_k; nonzero entries only */
 void bim_nx0_ny4_prescribed_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)q;
@@ -297,32 +297,17 @@ void bim_nx0_ny4_prescribed_first_forces_q(const double* c, const double* u, con
     out[15] = -c[30] - c[31]*theta_dotsq;
 }
 
-/* forces_qd:(c[52],u[3],q[4],qd[4])->(dQdqd[16]) row-major; out[i*4+k] = dQ_i/dqd_k */
+/* forces_qd:(c[52],u[3],q[4],qd[4])->(dQdqd[16]) row-major; out[i*4+k] = dQ_i/dqd_k; nonzero entries only */
 void bim_nx0_ny4_prescribed_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
+    (void)out;  // every entry is zero
     (void)u;
     (void)q;
     (void)qd;
-    out[0] = 0.0;
-    out[1] = 0.0;
-    out[2] = 0.0;
-    out[3] = 0.0;
-    out[4] = 0.0;
-    out[5] = 0.0;
-    out[6] = 0.0;
-    out[7] = 0.0;
-    out[8] = 0.0;
-    out[9] = 0.0;
-    out[10] = 0.0;
-    out[11] = 0.0;
-    out[12] = 0.0;
-    out[13] = 0.0;
-    out[14] = 0.0;
-    out[15] = 0.0;
 }
 
-/* forces_u:(c[52],u[3],q[4],qd[4])->(dQdu[12]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
+/* forces_u:(c[52],u[3],q[4],qd[4])->(dQdu[12]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
 void bim_nx0_ny4_prescribed_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)qd;
@@ -335,16 +320,12 @@ void bim_nx0_ny4_prescribed_first_forces_u(const double* c, const double* u, con
     const double theta_dot_B2 = theta_dot*B2;
     const double theta_dot_B3 = theta_dot*B3;
     const double theta_dot_B4 = theta_dot*B4;
-    out[0] = 0.0;
     out[1] = -c[48]*theta_dot_B1 - c[42]*theta_dot_B2 + c[43]*theta_dot_B3 + c[44]*theta_dot_B4;
     out[2] = -c[9];
-    out[3] = 0.0;
     out[4] = -c[42]*theta_dot_B1 - c[49]*theta_dot_B2 - c[45]*theta_dot_B3 + c[46]*theta_dot_B4;
     out[5] = -c[18];
-    out[6] = 0.0;
     out[7] = c[43]*theta_dot_B1 - c[45]*theta_dot_B2 - c[50]*theta_dot_B3 + c[47]*theta_dot_B4;
     out[8] = -c[24];
-    out[9] = 0.0;
     out[10] = c[44]*theta_dot_B1 + c[46]*theta_dot_B2 + c[47]*theta_dot_B3 - c[51]*theta_dot_B4;
     out[11] = -c[29];
 }

@@ -378,7 +378,7 @@ void bim_nx0_ny4_torque_first_momentum(const double* c, const double* u, const d
     out[0] = c[0]*theta_dot + c[11]*B1_dot + c[12]*B2_dot + c[13]*B3_dot + c[14]*B4_dot - c[1]*B1sq_theta_dot - c[2]*B1_B2_theta_dot + c[3]*B1_B3_theta_dot + c[4]*B1_B4_theta_dot - c[5]*B2sq_theta_dot - c[6]*B2_B3_theta_dot + c[7]*B2_B4_theta_dot - c[8]*B3sq_theta_dot + c[9]*B3_B4_theta_dot - c[10]*B4sq_theta_dot;
 }
 
-/* forces_q:(c[52],u[3],q[5],qd[5])->(dQdq[25]) row-major; out[i*5+k] = dQ_i/dq_k */
+/* forces_q:(c[52],u[3],q[5],qd[5])->(dQdq[25]) row-major; out[i*5+k] = dQ_i/dq_k; nonzero entries only */
 void bim_nx0_ny4_torque_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -393,34 +393,29 @@ void bim_nx0_ny4_torque_first_forces_q(const double* c, const double* u, const d
     const double theta_dot_B2_dot = theta_dot*B2_dot;
     const double theta_dot_B3_dot = theta_dot*B3_dot;
     const double theta_dot_B4_dot = theta_dot*B4_dot;
-    out[0] = 0.0;
     out[1] = c[24]*theta_dot_B1_dot + c[2]*theta_dot_B2_dot - c[3]*theta_dot_B3_dot - c[4]*theta_dot_B4_dot;
     out[2] = c[2]*theta_dot_B1_dot + c[25]*theta_dot_B2_dot + c[6]*theta_dot_B3_dot - c[7]*theta_dot_B4_dot;
     out[3] = -c[3]*theta_dot_B1_dot + c[6]*theta_dot_B2_dot + c[26]*theta_dot_B3_dot - c[9]*theta_dot_B4_dot;
     out[4] = -c[4]*theta_dot_B1_dot - c[7]*theta_dot_B2_dot - c[9]*theta_dot_B3_dot + c[27]*theta_dot_B4_dot;
-    out[5] = 0.0;
     out[6] = -c[28] - c[1]*theta_dotsq;
     out[7] = -c[29] - c[32]*theta_dotsq;
     out[8] = c[30] + c[33]*theta_dotsq;
     out[9] = -c[31] + c[34]*theta_dotsq;
-    out[10] = 0.0;
     out[11] = -c[29] - c[32]*theta_dotsq;
     out[12] = -c[28] - c[5]*theta_dotsq;
     out[13] = c[35] - c[37]*theta_dotsq;
     out[14] = -c[36] + c[38]*theta_dotsq;
-    out[15] = 0.0;
     out[16] = c[30] + c[33]*theta_dotsq;
     out[17] = c[35] - c[37]*theta_dotsq;
     out[18] = -c[39] - c[8]*theta_dotsq;
     out[19] = c[40] + c[41]*theta_dotsq;
-    out[20] = 0.0;
     out[21] = -c[31] + c[34]*theta_dotsq;
     out[22] = -c[36] + c[38]*theta_dotsq;
     out[23] = c[40] + c[41]*theta_dotsq;
     out[24] = -c[42] - c[10]*theta_dotsq;
 }
 
-/* forces_qd:(c[52],u[3],q[5],qd[5])->(dQdqd[25]) row-major; out[i*5+k] = dQ_i/dqd_k */
+/* forces_qd:(c[52],u[3],q[5],qd[5])->(dQdqd[25]) row-major; out[i*5+k] = dQ_i/dqd_k; nonzero entries only */
 void bim_nx0_ny4_torque_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -459,28 +454,12 @@ void bim_nx0_ny4_torque_first_forces_qd(const double* c, const double* u, const 
     out[3] = -c[3]*B1_theta_dot + c[6]*B2_theta_dot + c[26]*B3_theta_dot - c[9]*B4_theta_dot;
     out[4] = -c[4]*B1_theta_dot - c[7]*B2_theta_dot - c[9]*B3_theta_dot + c[27]*B4_theta_dot;
     out[5] = -c[24]*B1_theta_dot - c[2]*B2_theta_dot + c[3]*B3_theta_dot + c[4]*B4_theta_dot;
-    out[6] = 0.0;
-    out[7] = 0.0;
-    out[8] = 0.0;
-    out[9] = 0.0;
     out[10] = -c[2]*B1_theta_dot - c[25]*B2_theta_dot - c[6]*B3_theta_dot + c[7]*B4_theta_dot;
-    out[11] = 0.0;
-    out[12] = 0.0;
-    out[13] = 0.0;
-    out[14] = 0.0;
     out[15] = c[3]*B1_theta_dot - c[6]*B2_theta_dot - c[26]*B3_theta_dot + c[9]*B4_theta_dot;
-    out[16] = 0.0;
-    out[17] = 0.0;
-    out[18] = 0.0;
-    out[19] = 0.0;
     out[20] = c[4]*B1_theta_dot + c[7]*B2_theta_dot + c[9]*B3_theta_dot - c[27]*B4_theta_dot;
-    out[21] = 0.0;
-    out[22] = 0.0;
-    out[23] = 0.0;
-    out[24] = 0.0;
 }
 
-/* forces_u:(c[52],u[3],q[5],qd[5])->(dQdu[15]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
+/* forces_u:(c[52],u[3],q[5],qd[5])->(dQdu[15]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
 void bim_nx0_ny4_torque_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -488,20 +467,6 @@ void bim_nx0_ny4_torque_first_forces_u(const double* c, const double* u, const d
     (void)q;
     (void)qd;
     out[0] = 1.0;
-    out[1] = 0.0;
-    out[2] = 0.0;
-    out[3] = 0.0;
-    out[4] = 0.0;
-    out[5] = 0.0;
-    out[6] = 0.0;
-    out[7] = 0.0;
-    out[8] = 0.0;
-    out[9] = 0.0;
-    out[10] = 0.0;
-    out[11] = 0.0;
-    out[12] = 0.0;
-    out[13] = 0.0;
-    out[14] = 0.0;
 }
 
 /* mass_varying:(c[52],u[3],q[5],qd[5])->(M[25]) as mass, the entries that depend on q only */
@@ -526,7 +491,7 @@ void bim_nx0_ny4_torque_first_mass_varying(const double* c, const double* u, con
     out[0] = c[0] - c[1]*B1sq - c[2]*B1_B2 + c[3]*B1_B3 + c[4]*B1_B4 - c[5]*B2sq - c[6]*B2_B3 + c[7]*B2_B4 - c[8]*B3sq + c[9]*B3_B4 - c[10]*B4sq;
 }
 
-/* mass_q_product:(c[52],u[3],q[5],qd[5])->(dMv[25]) row-major; v in the qd slot; out[i*5+k] = sum_j dM_ij/dq_k v_j */
+/* mass_q_product:(c[52],u[3],q[5],qd[5])->(dMv[25]) row-major; v in the qd slot; out[i*5+k] = sum_j dM_ij/dq_k v_j; nonzero entries only */
 void bim_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -539,31 +504,10 @@ void bim_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, c
     const double B2_theta_dot = B2*theta_dot;
     const double B3_theta_dot = B3*theta_dot;
     const double B4_theta_dot = B4*theta_dot;
-    out[0] = 0.0;
     out[1] = -c[24]*B1_theta_dot - c[2]*B2_theta_dot + c[3]*B3_theta_dot + c[4]*B4_theta_dot;
     out[2] = -c[2]*B1_theta_dot - c[25]*B2_theta_dot - c[6]*B3_theta_dot + c[7]*B4_theta_dot;
     out[3] = c[3]*B1_theta_dot - c[6]*B2_theta_dot - c[26]*B3_theta_dot + c[9]*B4_theta_dot;
     out[4] = c[4]*B1_theta_dot + c[7]*B2_theta_dot + c[9]*B3_theta_dot - c[27]*B4_theta_dot;
-    out[5] = 0.0;
-    out[6] = 0.0;
-    out[7] = 0.0;
-    out[8] = 0.0;
-    out[9] = 0.0;
-    out[10] = 0.0;
-    out[11] = 0.0;
-    out[12] = 0.0;
-    out[13] = 0.0;
-    out[14] = 0.0;
-    out[15] = 0.0;
-    out[16] = 0.0;
-    out[17] = 0.0;
-    out[18] = 0.0;
-    out[19] = 0.0;
-    out[20] = 0.0;
-    out[21] = 0.0;
-    out[22] = 0.0;
-    out[23] = 0.0;
-    out[24] = 0.0;
 }
 
 }  // namespace

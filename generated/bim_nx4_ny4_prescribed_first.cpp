@@ -652,7 +652,7 @@ void bim_nx4_ny4_prescribed_first_momentum(const double* c, const double* u, con
     out[0] = c[75]*theta_dot + c[42]*B1_dot + c[51]*B2_dot + c[57]*B3_dot + c[62]*B4_dot + c[76]*theta_dot_A1 + c[77]*theta_dot_A2 + c[78]*theta_dot_A3 + c[79]*theta_dot_A4 + c[1]*A1_B1_dot + c[22]*A1_B2_dot + c[24]*A1_B3_dot + c[25]*A1_B4_dot + c[1]*A2_B1_dot + c[1]*A2_B2_dot + c[30]*A2_B3_dot + c[31]*A2_B4_dot + c[22]*A3_B1_dot + c[1]*A3_B2_dot + c[6]*A3_B3_dot + c[35]*A3_B4_dot + c[39]*A4_B1_dot + c[40]*A4_B2_dot + c[6]*A4_B3_dot + c[41]*A4_B4_dot - c[1]*B1_A1_dot - c[1]*B1_A2_dot - c[22]*B1_A3_dot - c[39]*B1_A4_dot - c[22]*B2_A1_dot - c[1]*B2_A2_dot - c[1]*B2_A3_dot - c[40]*B2_A4_dot - c[24]*B3_A1_dot - c[30]*B3_A2_dot - c[6]*B3_A3_dot - c[6]*B3_A4_dot - c[25]*B4_A1_dot - c[31]*B4_A2_dot - c[35]*B4_A3_dot - c[41]*B4_A4_dot + c[0]*theta_dot_A1sq + c[21]*theta_dot_A1_A2 + c[80]*theta_dot_A1_A3 + c[24]*theta_dot_A1_A4 + c[4]*theta_dot_A2sq + c[21]*theta_dot_A2_A3 + c[1]*theta_dot_A2_A4 + c[0]*theta_dot_A3sq + c[7]*theta_dot_A3_A4 + c[7]*theta_dot_A4sq - c[47]*theta_dot_B1sq - c[81]*theta_dot_B1_B2 + c[82]*theta_dot_B1_B3 + c[83]*theta_dot_B1_B4 - c[54]*theta_dot_B2sq - c[84]*theta_dot_B2_B3 + c[85]*theta_dot_B2_B4 - c[60]*theta_dot_B3sq + c[86]*theta_dot_B3_B4 - c[64]*theta_dot_B4sq;
 }
 
-/* forces_q:(c[94],u[3],q[8],qd[8])->(dQdq[64]) row-major; out[i*8+k] = dQ_i/dq_k */
+/* forces_q:(c[94],u[3],q[8],qd[8])->(dQdq[64]) row-major; out[i*8+k] = dQ_i/dq_k; nonzero entries only */
 void bim_nx4_ny4_prescribed_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)q;
@@ -726,40 +726,24 @@ void bim_nx4_ny4_prescribed_first_forces_q(const double* c, const double* u, con
     out[63] = -c[63] - c[64]*theta_dotsq;
 }
 
-/* forces_qd:(c[94],u[3],q[8],qd[8])->(dQdqd[64]) row-major; out[i*8+k] = dQ_i/dqd_k */
+/* forces_qd:(c[94],u[3],q[8],qd[8])->(dQdqd[64]) row-major; out[i*8+k] = dQ_i/dqd_k; nonzero entries only */
 void bim_nx4_ny4_prescribed_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)q;
     (void)qd;
     const double theta_dot = u[1];
-    out[0] = 0.0;
-    out[1] = 0.0;
-    out[2] = 0.0;
-    out[3] = 0.0;
     out[4] = c[21]*theta_dot;
     out[5] = c[0]*theta_dot;
     out[6] = c[22]*theta_dot;
     out[7] = c[23]*theta_dot;
-    out[8] = 0.0;
-    out[9] = 0.0;
-    out[10] = 0.0;
-    out[11] = 0.0;
     out[12] = c[21]*theta_dot;
     out[13] = c[21]*theta_dot;
     out[14] = c[28]*theta_dot;
     out[15] = c[29]*theta_dot;
-    out[16] = 0.0;
-    out[17] = 0.0;
-    out[18] = 0.0;
-    out[19] = 0.0;
     out[20] = c[0]*theta_dot;
     out[21] = c[21]*theta_dot;
     out[22] = c[7]*theta_dot;
     out[23] = c[34]*theta_dot;
-    out[24] = 0.0;
-    out[25] = 0.0;
-    out[26] = 0.0;
-    out[27] = 0.0;
     out[28] = c[5]*theta_dot;
     out[29] = c[6]*theta_dot;
     out[30] = c[7]*theta_dot;
@@ -768,37 +752,21 @@ void bim_nx4_ny4_prescribed_first_forces_qd(const double* c, const double* u, co
     out[33] = -c[21]*theta_dot;
     out[34] = -c[0]*theta_dot;
     out[35] = -c[5]*theta_dot;
-    out[36] = 0.0;
-    out[37] = 0.0;
-    out[38] = 0.0;
-    out[39] = 0.0;
     out[40] = -c[0]*theta_dot;
     out[41] = -c[21]*theta_dot;
     out[42] = -c[21]*theta_dot;
     out[43] = -c[6]*theta_dot;
-    out[44] = 0.0;
-    out[45] = 0.0;
-    out[46] = 0.0;
-    out[47] = 0.0;
     out[48] = -c[22]*theta_dot;
     out[49] = -c[28]*theta_dot;
     out[50] = -c[7]*theta_dot;
     out[51] = -c[7]*theta_dot;
-    out[52] = 0.0;
-    out[53] = 0.0;
-    out[54] = 0.0;
-    out[55] = 0.0;
     out[56] = -c[23]*theta_dot;
     out[57] = -c[29]*theta_dot;
     out[58] = -c[34]*theta_dot;
     out[59] = -c[38]*theta_dot;
-    out[60] = 0.0;
-    out[61] = 0.0;
-    out[62] = 0.0;
-    out[63] = 0.0;
 }
 
-/* forces_u:(c[94],u[3],q[8],qd[8])->(dQdu[24]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
+/* forces_u:(c[94],u[3],q[8],qd[8])->(dQdu[24]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
 void bim_nx4_ny4_prescribed_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -826,28 +794,20 @@ void bim_nx4_ny4_prescribed_first_forces_u(const double* c, const double* u, con
     const double theta_dot_B2 = theta_dot*B2;
     const double theta_dot_B3 = theta_dot*B3;
     const double theta_dot_B4 = theta_dot*B4;
-    out[0] = 0.0;
     out[1] = c[76]*theta_dot + c[21]*B1_dot + c[0]*B2_dot + c[22]*B3_dot + c[23]*B4_dot + c[87]*theta_dot_A1 + c[21]*theta_dot_A2 + c[80]*theta_dot_A3 + c[24]*theta_dot_A4;
     out[2] = c[1]*B1 + c[22]*B2 + c[24]*B3 + c[25]*B4;
-    out[3] = 0.0;
     out[4] = c[77]*theta_dot + c[21]*B1_dot + c[21]*B2_dot + c[28]*B3_dot + c[29]*B4_dot + c[21]*theta_dot_A1 + c[88]*theta_dot_A2 + c[21]*theta_dot_A3 + c[1]*theta_dot_A4;
     out[5] = c[1]*B1 + c[1]*B2 + c[30]*B3 + c[31]*B4;
-    out[6] = 0.0;
     out[7] = c[78]*theta_dot + c[0]*B1_dot + c[21]*B2_dot + c[7]*B3_dot + c[34]*B4_dot + c[80]*theta_dot_A1 + c[21]*theta_dot_A2 + c[87]*theta_dot_A3 + c[7]*theta_dot_A4;
     out[8] = c[22]*B1 + c[1]*B2 + c[6]*B3 + c[35]*B4;
-    out[9] = 0.0;
     out[10] = c[79]*theta_dot + c[5]*B1_dot + c[6]*B2_dot + c[7]*B3_dot + c[38]*B4_dot + c[24]*theta_dot_A1 + c[1]*theta_dot_A2 + c[7]*theta_dot_A3 + c[89]*theta_dot_A4;
     out[11] = c[39]*B1 + c[40]*B2 + c[6]*B3 + c[41]*B4;
-    out[12] = 0.0;
     out[13] = -c[21]*A1_dot - c[21]*A2_dot - c[0]*A3_dot - c[5]*A4_dot - c[90]*theta_dot_B1 - c[81]*theta_dot_B2 + c[82]*theta_dot_B3 + c[83]*theta_dot_B4;
     out[14] = -c[42] - c[1]*A1 - c[1]*A2 - c[22]*A3 - c[39]*A4;
-    out[15] = 0.0;
     out[16] = -c[0]*A1_dot - c[21]*A2_dot - c[21]*A3_dot - c[6]*A4_dot - c[81]*theta_dot_B1 - c[91]*theta_dot_B2 - c[84]*theta_dot_B3 + c[85]*theta_dot_B4;
     out[17] = -c[51] - c[22]*A1 - c[1]*A2 - c[1]*A3 - c[40]*A4;
-    out[18] = 0.0;
     out[19] = -c[22]*A1_dot - c[28]*A2_dot - c[7]*A3_dot - c[7]*A4_dot + c[82]*theta_dot_B1 - c[84]*theta_dot_B2 - c[92]*theta_dot_B3 + c[86]*theta_dot_B4;
     out[20] = -c[57] - c[24]*A1 - c[30]*A2 - c[6]*A3 - c[6]*A4;
-    out[21] = 0.0;
     out[22] = -c[23]*A1_dot - c[29]*A2_dot - c[34]*A3_dot - c[38]*A4_dot + c[83]*theta_dot_B1 + c[85]*theta_dot_B2 + c[86]*theta_dot_B3 - c[93]*theta_dot_B4;
     out[23] = -c[62] - c[25]*A1 - c[31]*A2 - c[35]*A3 - c[41]*A4;
 }

@@ -674,7 +674,7 @@ void bsim_nx4_ny4_prescribed_first_momentum(const double* c, const double* u, co
     out[0] = c[93]*theta_dot + c[55]*B1_dot + c[63]*B2_dot + c[69]*B3_dot - c[74]*B4_dot + c[94]*theta_dot_A1 + c[95]*theta_dot_A2 + c[96]*theta_dot_A3 + c[97]*theta_dot_A4 + c[26]*A1_B1_dot + c[27]*A1_B2_dot + c[28]*A1_B3_dot - c[29]*A1_B4_dot + c[36]*A2_B1_dot + c[36]*A2_B2_dot + c[37]*A2_B3_dot - c[38]*A2_B4_dot + c[27]*A3_B1_dot + c[26]*A3_B2_dot + c[43]*A3_B3_dot - c[44]*A3_B4_dot + c[51]*A4_B1_dot + c[52]*A4_B2_dot + c[53]*A4_B3_dot - c[54]*A4_B4_dot - c[26]*B1_A1_dot - c[36]*B1_A2_dot - c[27]*B1_A3_dot - c[51]*B1_A4_dot - c[27]*B2_A1_dot - c[36]*B2_A2_dot - c[26]*B2_A3_dot - c[52]*B2_A4_dot - c[28]*B3_A1_dot - c[37]*B3_A2_dot - c[43]*B3_A3_dot - c[53]*B3_A4_dot + c[29]*B4_A1_dot + c[38]*B4_A2_dot + c[44]*B4_A3_dot + c[54]*B4_A4_dot + c[0]*theta_dot_A1sq + c[98]*theta_dot_A1_A2 + c[99]*theta_dot_A1_A3 + c[100]*theta_dot_A1_A4 + c[4]*theta_dot_A2sq + c[98]*theta_dot_A2_A3 + c[101]*theta_dot_A2_A4 + c[0]*theta_dot_A3sq + c[102]*theta_dot_A3_A4 + c[7]*theta_dot_A4sq - c[59]*theta_dot_B1sq - c[103]*theta_dot_B1_B2 + c[104]*theta_dot_B1_B3 - c[105]*theta_dot_B1_B4 - c[66]*theta_dot_B2sq + c[106]*theta_dot_B2_B3 - c[107]*theta_dot_B2_B4 - c[72]*theta_dot_B3sq + c[108]*theta_dot_B3_B4 - c[76]*theta_dot_B4sq;
 }
 
-/* forces_q:(c[116],u[3],q[8],qd[8])->(dQdq[64]) row-major; out[i*8+k] = dQ_i/dq_k */
+/* forces_q:(c[116],u[3],q[8],qd[8])->(dQdq[64]) row-major; out[i*8+k] = dQ_i/dq_k; nonzero entries only */
 void bsim_nx4_ny4_prescribed_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)q;
@@ -748,40 +748,24 @@ void bsim_nx4_ny4_prescribed_first_forces_q(const double* c, const double* u, co
     out[63] = -c[75] - c[76]*theta_dotsq;
 }
 
-/* forces_qd:(c[116],u[3],q[8],qd[8])->(dQdqd[64]) row-major; out[i*8+k] = dQ_i/dqd_k */
+/* forces_qd:(c[116],u[3],q[8],qd[8])->(dQdqd[64]) row-major; out[i*8+k] = dQ_i/dqd_k; nonzero entries only */
 void bsim_nx4_ny4_prescribed_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)q;
     (void)qd;
     const double theta_dot = u[1];
-    out[0] = 0.0;
-    out[1] = 0.0;
-    out[2] = 0.0;
-    out[3] = 0.0;
     out[4] = c[22]*theta_dot;
     out[5] = c[23]*theta_dot;
     out[6] = c[24]*theta_dot;
     out[7] = -c[25]*theta_dot;
-    out[8] = 0.0;
-    out[9] = 0.0;
-    out[10] = 0.0;
-    out[11] = 0.0;
     out[12] = c[33]*theta_dot;
     out[13] = c[33]*theta_dot;
     out[14] = c[34]*theta_dot;
     out[15] = -c[35]*theta_dot;
-    out[16] = 0.0;
-    out[17] = 0.0;
-    out[18] = 0.0;
-    out[19] = 0.0;
     out[20] = c[23]*theta_dot;
     out[21] = c[22]*theta_dot;
     out[22] = c[41]*theta_dot;
     out[23] = -c[42]*theta_dot;
-    out[24] = 0.0;
-    out[25] = 0.0;
-    out[26] = 0.0;
-    out[27] = 0.0;
     out[28] = c[47]*theta_dot;
     out[29] = c[48]*theta_dot;
     out[30] = c[49]*theta_dot;
@@ -790,37 +774,21 @@ void bsim_nx4_ny4_prescribed_first_forces_qd(const double* c, const double* u, c
     out[33] = -c[33]*theta_dot;
     out[34] = -c[23]*theta_dot;
     out[35] = -c[47]*theta_dot;
-    out[36] = 0.0;
-    out[37] = 0.0;
-    out[38] = 0.0;
-    out[39] = 0.0;
     out[40] = -c[23]*theta_dot;
     out[41] = -c[33]*theta_dot;
     out[42] = -c[22]*theta_dot;
     out[43] = -c[48]*theta_dot;
-    out[44] = 0.0;
-    out[45] = 0.0;
-    out[46] = 0.0;
-    out[47] = 0.0;
     out[48] = -c[24]*theta_dot;
     out[49] = -c[34]*theta_dot;
     out[50] = -c[41]*theta_dot;
     out[51] = -c[49]*theta_dot;
-    out[52] = 0.0;
-    out[53] = 0.0;
-    out[54] = 0.0;
-    out[55] = 0.0;
     out[56] = c[25]*theta_dot;
     out[57] = c[35]*theta_dot;
     out[58] = c[42]*theta_dot;
     out[59] = c[50]*theta_dot;
-    out[60] = 0.0;
-    out[61] = 0.0;
-    out[62] = 0.0;
-    out[63] = 0.0;
 }
 
-/* forces_u:(c[116],u[3],q[8],qd[8])->(dQdu[24]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
+/* forces_u:(c[116],u[3],q[8],qd[8])->(dQdu[24]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
 void bsim_nx4_ny4_prescribed_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -848,28 +816,20 @@ void bsim_nx4_ny4_prescribed_first_forces_u(const double* c, const double* u, co
     const double theta_dot_B2 = theta_dot*B2;
     const double theta_dot_B3 = theta_dot*B3;
     const double theta_dot_B4 = theta_dot*B4;
-    out[0] = 0.0;
     out[1] = c[94]*theta_dot + c[22]*B1_dot + c[23]*B2_dot + c[24]*B3_dot - c[25]*B4_dot + c[109]*theta_dot_A1 + c[98]*theta_dot_A2 + c[99]*theta_dot_A3 + c[100]*theta_dot_A4;
     out[2] = c[26]*B1 + c[27]*B2 + c[28]*B3 - c[29]*B4;
-    out[3] = 0.0;
     out[4] = c[95]*theta_dot + c[33]*B1_dot + c[33]*B2_dot + c[34]*B3_dot - c[35]*B4_dot + c[98]*theta_dot_A1 + c[110]*theta_dot_A2 + c[98]*theta_dot_A3 + c[101]*theta_dot_A4;
     out[5] = c[36]*B1 + c[36]*B2 + c[37]*B3 - c[38]*B4;
-    out[6] = 0.0;
     out[7] = c[96]*theta_dot + c[23]*B1_dot + c[22]*B2_dot + c[41]*B3_dot - c[42]*B4_dot + c[99]*theta_dot_A1 + c[98]*theta_dot_A2 + c[109]*theta_dot_A3 + c[102]*theta_dot_A4;
     out[8] = c[27]*B1 + c[26]*B2 + c[43]*B3 - c[44]*B4;
-    out[9] = 0.0;
     out[10] = c[97]*theta_dot + c[47]*B1_dot + c[48]*B2_dot + c[49]*B3_dot - c[50]*B4_dot + c[100]*theta_dot_A1 + c[101]*theta_dot_A2 + c[102]*theta_dot_A3 + c[111]*theta_dot_A4;
     out[11] = c[51]*B1 + c[52]*B2 + c[53]*B3 - c[54]*B4;
-    out[12] = 0.0;
     out[13] = -c[22]*A1_dot - c[33]*A2_dot - c[23]*A3_dot - c[47]*A4_dot - c[112]*theta_dot_B1 - c[103]*theta_dot_B2 + c[104]*theta_dot_B3 - c[105]*theta_dot_B4;
     out[14] = -c[55] - c[26]*A1 - c[36]*A2 - c[27]*A3 - c[51]*A4;
-    out[15] = 0.0;
     out[16] = -c[23]*A1_dot - c[33]*A2_dot - c[22]*A3_dot - c[48]*A4_dot - c[103]*theta_dot_B1 - c[113]*theta_dot_B2 + c[106]*theta_dot_B3 - c[107]*theta_dot_B4;
     out[17] = -c[63] - c[27]*A1 - c[36]*A2 - c[26]*A3 - c[52]*A4;
-    out[18] = 0.0;
     out[19] = -c[24]*A1_dot - c[34]*A2_dot - c[41]*A3_dot - c[49]*A4_dot + c[104]*theta_dot_B1 + c[106]*theta_dot_B2 - c[114]*theta_dot_B3 + c[108]*theta_dot_B4;
     out[20] = -c[69] - c[28]*A1 - c[37]*A2 - c[43]*A3 - c[53]*A4;
-    out[21] = 0.0;
     out[22] = c[25]*A1_dot + c[35]*A2_dot + c[42]*A3_dot + c[50]*A4_dot - c[105]*theta_dot_B1 - c[107]*theta_dot_B2 + c[108]*theta_dot_B3 - c[115]*theta_dot_B4;
     out[23] = c[74] + c[29]*A1 + c[38]*A2 + c[44]*A3 + c[54]*A4;
 }

@@ -262,7 +262,7 @@ void fem_nx0_ny4_prescribed_first_momentum(const double* c, const double* u, con
     out[0] = c[36]*theta_dot + c[8]*B1_dot + c[16]*B2_dot + c[22]*B3_dot - c[25]*B4_dot - c[12]*theta_dot_B1sq + c[37]*theta_dot_B1_B2 + c[38]*theta_dot_B1_B3 - c[39]*theta_dot_B1_B4 - c[19]*theta_dot_B2sq + c[40]*theta_dot_B2_B3 + c[41]*theta_dot_B2_B4 - c[23]*theta_dot_B3sq + c[42]*theta_dot_B3_B4 - c[27]*theta_dot_B4sq;
 }
 
-/* forces_q:(c[47],u[3],q[4],qd[4])->(dQdq[16]) row-major; out[i*4+k] = dQ_i/dq_k */
+/* forces_q:(c[47],u[3],q[4],qd[4])->(dQdq[16]) row-major; out[i*4+k] = dQ_i/dq_k; nonzero entries only */
 void fem_nx0_ny4_prescribed_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)q;
@@ -287,32 +287,17 @@ void fem_nx0_ny4_prescribed_first_forces_q(const double* c, const double* u, con
     out[15] = -c[26] - c[27]*theta_dotsq;
 }
 
-/* forces_qd:(c[47],u[3],q[4],qd[4])->(dQdqd[16]) row-major; out[i*4+k] = dQ_i/dqd_k */
+/* forces_qd:(c[47],u[3],q[4],qd[4])->(dQdqd[16]) row-major; out[i*4+k] = dQ_i/dqd_k; nonzero entries only */
 void fem_nx0_ny4_prescribed_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
+    (void)out;  // every entry is zero
     (void)u;
     (void)q;
     (void)qd;
-    out[0] = 0.0;
-    out[1] = 0.0;
-    out[2] = 0.0;
-    out[3] = 0.0;
-    out[4] = 0.0;
-    out[5] = 0.0;
-    out[6] = 0.0;
-    out[7] = 0.0;
-    out[8] = 0.0;
-    out[9] = 0.0;
-    out[10] = 0.0;
-    out[11] = 0.0;
-    out[12] = 0.0;
-    out[13] = 0.0;
-    out[14] = 0.0;
-    out[15] = 0.0;
 }
 
-/* forces_u:(c[47],u[3],q[4],qd[4])->(dQdu[12]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
+/* forces_u:(c[47],u[3],q[4],qd[4])->(dQdu[12]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
 void fem_nx0_ny4_prescribed_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)qd;
@@ -325,16 +310,12 @@ void fem_nx0_ny4_prescribed_first_forces_u(const double* c, const double* u, con
     const double theta_dot_B2 = theta_dot*B2;
     const double theta_dot_B3 = theta_dot*B3;
     const double theta_dot_B4 = theta_dot*B4;
-    out[0] = 0.0;
     out[1] = -c[43]*theta_dot_B1 + c[37]*theta_dot_B2 + c[38]*theta_dot_B3 - c[39]*theta_dot_B4;
     out[2] = -c[8];
-    out[3] = 0.0;
     out[4] = c[37]*theta_dot_B1 - c[44]*theta_dot_B2 + c[40]*theta_dot_B3 + c[41]*theta_dot_B4;
     out[5] = -c[16];
-    out[6] = 0.0;
     out[7] = c[38]*theta_dot_B1 + c[40]*theta_dot_B2 - c[45]*theta_dot_B3 + c[42]*theta_dot_B4;
     out[8] = -c[22];
-    out[9] = 0.0;
     out[10] = -c[39]*theta_dot_B1 + c[41]*theta_dot_B2 + c[42]*theta_dot_B3 - c[46]*theta_dot_B4;
     out[11] = c[25];
 }

@@ -369,7 +369,7 @@ void fem_nx0_ny4_torque_first_momentum(const double* c, const double* u, const d
     out[0] = c[0]*theta_dot + c[11]*B1_dot + c[12]*B2_dot + c[13]*B3_dot - c[14]*B4_dot - c[1]*B1sq_theta_dot + c[2]*B1_B2_theta_dot + c[3]*B1_B3_theta_dot - c[4]*B1_B4_theta_dot - c[5]*B2sq_theta_dot + c[6]*B2_B3_theta_dot + c[7]*B2_B4_theta_dot - c[8]*B3sq_theta_dot + c[9]*B3_B4_theta_dot - c[10]*B4sq_theta_dot;
 }
 
-/* forces_q:(c[47],u[3],q[5],qd[5])->(dQdq[25]) row-major; out[i*5+k] = dQ_i/dq_k */
+/* forces_q:(c[47],u[3],q[5],qd[5])->(dQdq[25]) row-major; out[i*5+k] = dQ_i/dq_k; nonzero entries only */
 void fem_nx0_ny4_torque_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -384,34 +384,29 @@ void fem_nx0_ny4_torque_first_forces_q(const double* c, const double* u, const d
     const double theta_dot_B2_dot = theta_dot*B2_dot;
     const double theta_dot_B3_dot = theta_dot*B3_dot;
     const double theta_dot_B4_dot = theta_dot*B4_dot;
-    out[0] = 0.0;
     out[1] = c[23]*theta_dot_B1_dot - c[2]*theta_dot_B2_dot - c[3]*theta_dot_B3_dot + c[4]*theta_dot_B4_dot;
     out[2] = -c[2]*theta_dot_B1_dot + c[24]*theta_dot_B2_dot - c[6]*theta_dot_B3_dot - c[7]*theta_dot_B4_dot;
     out[3] = -c[3]*theta_dot_B1_dot - c[6]*theta_dot_B2_dot + c[25]*theta_dot_B3_dot - c[9]*theta_dot_B4_dot;
     out[4] = c[4]*theta_dot_B1_dot - c[7]*theta_dot_B2_dot - c[9]*theta_dot_B3_dot + c[26]*theta_dot_B4_dot;
-    out[5] = 0.0;
     out[6] = -c[27] - c[1]*theta_dotsq;
     out[7] = c[30]*theta_dotsq;
     out[8] = c[28] + c[31]*theta_dotsq;
     out[9] = -c[29] - c[32]*theta_dotsq;
-    out[10] = 0.0;
     out[11] = c[30]*theta_dotsq;
     out[12] = -c[33] - c[5]*theta_dotsq;
     out[13] = c[29] + c[35]*theta_dotsq;
     out[14] = -c[34] + c[36]*theta_dotsq;
-    out[15] = 0.0;
     out[16] = c[28] + c[31]*theta_dotsq;
     out[17] = c[29] + c[35]*theta_dotsq;
     out[18] = -c[28] - c[8]*theta_dotsq;
     out[19] = c[29] + c[37]*theta_dotsq;
-    out[20] = 0.0;
     out[21] = -c[29] - c[32]*theta_dotsq;
     out[22] = -c[34] + c[36]*theta_dotsq;
     out[23] = c[29] + c[37]*theta_dotsq;
     out[24] = -c[38] - c[10]*theta_dotsq;
 }
 
-/* forces_qd:(c[47],u[3],q[5],qd[5])->(dQdqd[25]) row-major; out[i*5+k] = dQ_i/dqd_k */
+/* forces_qd:(c[47],u[3],q[5],qd[5])->(dQdqd[25]) row-major; out[i*5+k] = dQ_i/dqd_k; nonzero entries only */
 void fem_nx0_ny4_torque_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -450,28 +445,12 @@ void fem_nx0_ny4_torque_first_forces_qd(const double* c, const double* u, const 
     out[3] = -c[3]*B1_theta_dot - c[6]*B2_theta_dot + c[25]*B3_theta_dot - c[9]*B4_theta_dot;
     out[4] = c[4]*B1_theta_dot - c[7]*B2_theta_dot - c[9]*B3_theta_dot + c[26]*B4_theta_dot;
     out[5] = -c[23]*B1_theta_dot + c[2]*B2_theta_dot + c[3]*B3_theta_dot - c[4]*B4_theta_dot;
-    out[6] = 0.0;
-    out[7] = 0.0;
-    out[8] = 0.0;
-    out[9] = 0.0;
     out[10] = c[2]*B1_theta_dot - c[24]*B2_theta_dot + c[6]*B3_theta_dot + c[7]*B4_theta_dot;
-    out[11] = 0.0;
-    out[12] = 0.0;
-    out[13] = 0.0;
-    out[14] = 0.0;
     out[15] = c[3]*B1_theta_dot + c[6]*B2_theta_dot - c[25]*B3_theta_dot + c[9]*B4_theta_dot;
-    out[16] = 0.0;
-    out[17] = 0.0;
-    out[18] = 0.0;
-    out[19] = 0.0;
     out[20] = -c[4]*B1_theta_dot + c[7]*B2_theta_dot + c[9]*B3_theta_dot - c[26]*B4_theta_dot;
-    out[21] = 0.0;
-    out[22] = 0.0;
-    out[23] = 0.0;
-    out[24] = 0.0;
 }
 
-/* forces_u:(c[47],u[3],q[5],qd[5])->(dQdu[15]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
+/* forces_u:(c[47],u[3],q[5],qd[5])->(dQdu[15]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
 void fem_nx0_ny4_torque_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -479,20 +458,6 @@ void fem_nx0_ny4_torque_first_forces_u(const double* c, const double* u, const d
     (void)q;
     (void)qd;
     out[0] = 1.0;
-    out[1] = 0.0;
-    out[2] = 0.0;
-    out[3] = 0.0;
-    out[4] = 0.0;
-    out[5] = 0.0;
-    out[6] = 0.0;
-    out[7] = 0.0;
-    out[8] = 0.0;
-    out[9] = 0.0;
-    out[10] = 0.0;
-    out[11] = 0.0;
-    out[12] = 0.0;
-    out[13] = 0.0;
-    out[14] = 0.0;
 }
 
 /* mass_varying:(c[47],u[3],q[5],qd[5])->(M[25]) as mass, the entries that depend on q only */
@@ -517,7 +482,7 @@ void fem_nx0_ny4_torque_first_mass_varying(const double* c, const double* u, con
     out[0] = c[0] - c[1]*B1sq + c[2]*B1_B2 + c[3]*B1_B3 - c[4]*B1_B4 - c[5]*B2sq + c[6]*B2_B3 + c[7]*B2_B4 - c[8]*B3sq + c[9]*B3_B4 - c[10]*B4sq;
 }
 
-/* mass_q_product:(c[47],u[3],q[5],qd[5])->(dMv[25]) row-major; v in the qd slot; out[i*5+k] = sum_j dM_ij/dq_k v_j */
+/* mass_q_product:(c[47],u[3],q[5],qd[5])->(dMv[25]) row-major; v in the qd slot; out[i*5+k] = sum_j dM_ij/dq_k v_j; nonzero entries only */
 void fem_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -530,31 +495,10 @@ void fem_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, c
     const double B2_theta_dot = B2*theta_dot;
     const double B3_theta_dot = B3*theta_dot;
     const double B4_theta_dot = B4*theta_dot;
-    out[0] = 0.0;
     out[1] = -c[23]*B1_theta_dot + c[2]*B2_theta_dot + c[3]*B3_theta_dot - c[4]*B4_theta_dot;
     out[2] = c[2]*B1_theta_dot - c[24]*B2_theta_dot + c[6]*B3_theta_dot + c[7]*B4_theta_dot;
     out[3] = c[3]*B1_theta_dot + c[6]*B2_theta_dot - c[25]*B3_theta_dot + c[9]*B4_theta_dot;
     out[4] = -c[4]*B1_theta_dot + c[7]*B2_theta_dot + c[9]*B3_theta_dot - c[26]*B4_theta_dot;
-    out[5] = 0.0;
-    out[6] = 0.0;
-    out[7] = 0.0;
-    out[8] = 0.0;
-    out[9] = 0.0;
-    out[10] = 0.0;
-    out[11] = 0.0;
-    out[12] = 0.0;
-    out[13] = 0.0;
-    out[14] = 0.0;
-    out[15] = 0.0;
-    out[16] = 0.0;
-    out[17] = 0.0;
-    out[18] = 0.0;
-    out[19] = 0.0;
-    out[20] = 0.0;
-    out[21] = 0.0;
-    out[22] = 0.0;
-    out[23] = 0.0;
-    out[24] = 0.0;
 }
 
 }  // namespace

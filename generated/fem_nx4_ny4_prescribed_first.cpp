@@ -576,7 +576,7 @@ void fem_nx4_ny4_prescribed_first_momentum(const double* c, const double* u, con
     out[0] = c[59]*theta_dot + c[30]*B1_dot + c[38]*B2_dot + c[44]*B3_dot - c[47]*B4_dot + c[60]*theta_dot_A1 + c[30]*theta_dot_A2 + c[61]*theta_dot_A3 + c[62]*theta_dot_A4 + c[16]*A1_B1_dot - c[17]*A1_B2_dot + c[22]*A2_B1_dot + c[23]*A2_B3_dot - c[24]*A2_B4_dot + c[16]*A3_B1_dot + c[17]*A3_B2_dot + c[16]*A3_B3_dot - c[17]*A3_B4_dot + c[23]*A4_B1_dot + c[24]*A4_B2_dot + c[28]*A4_B3_dot - c[29]*A4_B4_dot - c[16]*B1_A1_dot - c[22]*B1_A2_dot - c[16]*B1_A3_dot - c[23]*B1_A4_dot + c[17]*B2_A1_dot - c[17]*B2_A3_dot - c[24]*B2_A4_dot - c[23]*B3_A2_dot - c[16]*B3_A3_dot - c[28]*B3_A4_dot + c[24]*B4_A2_dot + c[17]*B4_A3_dot + c[29]*B4_A4_dot + c[0]*theta_dot_A1sq + c[2]*theta_dot_A1_A2 + c[0]*theta_dot_A2sq + c[2]*theta_dot_A2_A3 + c[0]*theta_dot_A3sq + c[2]*theta_dot_A3_A4 + c[2]*theta_dot_A4sq - c[34]*theta_dot_B1sq + c[63]*theta_dot_B1_B2 + c[64]*theta_dot_B1_B3 - c[65]*theta_dot_B1_B4 - c[41]*theta_dot_B2sq + c[66]*theta_dot_B2_B3 + c[67]*theta_dot_B2_B4 - c[45]*theta_dot_B3sq + c[68]*theta_dot_B3_B4 - c[49]*theta_dot_B4sq;
 }
 
-/* forces_q:(c[74],u[3],q[8],qd[8])->(dQdq[64]) row-major; out[i*8+k] = dQ_i/dq_k */
+/* forces_q:(c[74],u[3],q[8],qd[8])->(dQdq[64]) row-major; out[i*8+k] = dQ_i/dq_k; nonzero entries only */
 void fem_nx4_ny4_prescribed_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)q;
@@ -586,21 +586,14 @@ void fem_nx4_ny4_prescribed_first_forces_q(const double* c, const double* u, con
     const double theta_dotsq = theta_dot*theta_dot;
     out[0] = -c[11] + c[0]*theta_dotsq;
     out[1] = c[12] + c[1]*theta_dotsq;
-    out[2] = 0.0;
-    out[3] = 0.0;
     out[4] = c[16]*theta_ddot;
     out[5] = -c[17]*theta_ddot;
-    out[6] = 0.0;
-    out[7] = 0.0;
     out[8] = c[12] + c[1]*theta_dotsq;
     out[9] = -c[11] + c[0]*theta_dotsq;
     out[10] = c[12] + c[1]*theta_dotsq;
-    out[11] = 0.0;
     out[12] = c[22]*theta_ddot;
-    out[13] = 0.0;
     out[14] = c[23]*theta_ddot;
     out[15] = -c[24]*theta_ddot;
-    out[16] = 0.0;
     out[17] = c[12] + c[1]*theta_dotsq;
     out[18] = -c[11] + c[0]*theta_dotsq;
     out[19] = c[12] + c[1]*theta_dotsq;
@@ -608,8 +601,6 @@ void fem_nx4_ny4_prescribed_first_forces_q(const double* c, const double* u, con
     out[21] = c[17]*theta_ddot;
     out[22] = c[16]*theta_ddot;
     out[23] = -c[17]*theta_ddot;
-    out[24] = 0.0;
-    out[25] = 0.0;
     out[26] = c[12] + c[1]*theta_dotsq;
     out[27] = -c[12] + c[2]*theta_dotsq;
     out[28] = c[23]*theta_ddot;
@@ -625,14 +616,12 @@ void fem_nx4_ny4_prescribed_first_forces_q(const double* c, const double* u, con
     out[38] = c[32] + c[36]*theta_dotsq;
     out[39] = -c[33] - c[37]*theta_dotsq;
     out[40] = c[17]*theta_ddot;
-    out[41] = 0.0;
     out[42] = -c[17]*theta_ddot;
     out[43] = -c[24]*theta_ddot;
     out[44] = c[35]*theta_dotsq;
     out[45] = -c[39] - c[41]*theta_dotsq;
     out[46] = c[33] + c[42]*theta_dotsq;
     out[47] = -c[40] + c[43]*theta_dotsq;
-    out[48] = 0.0;
     out[49] = -c[23]*theta_ddot;
     out[50] = -c[16]*theta_ddot;
     out[51] = -c[28]*theta_ddot;
@@ -640,7 +629,6 @@ void fem_nx4_ny4_prescribed_first_forces_q(const double* c, const double* u, con
     out[53] = c[33] + c[42]*theta_dotsq;
     out[54] = -c[32] - c[45]*theta_dotsq;
     out[55] = c[33] + c[46]*theta_dotsq;
-    out[56] = 0.0;
     out[57] = c[24]*theta_ddot;
     out[58] = c[17]*theta_ddot;
     out[59] = c[29]*theta_ddot;
@@ -650,40 +638,21 @@ void fem_nx4_ny4_prescribed_first_forces_q(const double* c, const double* u, con
     out[63] = -c[48] - c[49]*theta_dotsq;
 }
 
-/* forces_qd:(c[74],u[3],q[8],qd[8])->(dQdqd[64]) row-major; out[i*8+k] = dQ_i/dqd_k */
+/* forces_qd:(c[74],u[3],q[8],qd[8])->(dQdqd[64]) row-major; out[i*8+k] = dQ_i/dqd_k; nonzero entries only */
 void fem_nx4_ny4_prescribed_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)q;
     (void)qd;
     const double theta_dot = u[1];
-    out[0] = 0.0;
-    out[1] = 0.0;
-    out[2] = 0.0;
-    out[3] = 0.0;
     out[4] = c[14]*theta_dot;
     out[5] = -c[15]*theta_dot;
-    out[6] = 0.0;
-    out[7] = 0.0;
-    out[8] = 0.0;
-    out[9] = 0.0;
-    out[10] = 0.0;
-    out[11] = 0.0;
     out[12] = c[19]*theta_dot;
-    out[13] = 0.0;
     out[14] = c[20]*theta_dot;
     out[15] = -c[21]*theta_dot;
-    out[16] = 0.0;
-    out[17] = 0.0;
-    out[18] = 0.0;
-    out[19] = 0.0;
     out[20] = c[14]*theta_dot;
     out[21] = c[15]*theta_dot;
     out[22] = c[14]*theta_dot;
     out[23] = -c[15]*theta_dot;
-    out[24] = 0.0;
-    out[25] = 0.0;
-    out[26] = 0.0;
-    out[27] = 0.0;
     out[28] = c[20]*theta_dot;
     out[29] = c[21]*theta_dot;
     out[30] = c[22]*theta_dot;
@@ -692,37 +661,18 @@ void fem_nx4_ny4_prescribed_first_forces_qd(const double* c, const double* u, co
     out[33] = -c[19]*theta_dot;
     out[34] = -c[14]*theta_dot;
     out[35] = -c[20]*theta_dot;
-    out[36] = 0.0;
-    out[37] = 0.0;
-    out[38] = 0.0;
-    out[39] = 0.0;
     out[40] = c[15]*theta_dot;
-    out[41] = 0.0;
     out[42] = -c[15]*theta_dot;
     out[43] = -c[21]*theta_dot;
-    out[44] = 0.0;
-    out[45] = 0.0;
-    out[46] = 0.0;
-    out[47] = 0.0;
-    out[48] = 0.0;
     out[49] = -c[20]*theta_dot;
     out[50] = -c[14]*theta_dot;
     out[51] = -c[22]*theta_dot;
-    out[52] = 0.0;
-    out[53] = 0.0;
-    out[54] = 0.0;
-    out[55] = 0.0;
-    out[56] = 0.0;
     out[57] = c[21]*theta_dot;
     out[58] = c[15]*theta_dot;
     out[59] = c[27]*theta_dot;
-    out[60] = 0.0;
-    out[61] = 0.0;
-    out[62] = 0.0;
-    out[63] = 0.0;
 }
 
-/* forces_u:(c[74],u[3],q[8],qd[8])->(dQdu[24]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
+/* forces_u:(c[74],u[3],q[8],qd[8])->(dQdu[24]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
 void fem_nx4_ny4_prescribed_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -750,28 +700,20 @@ void fem_nx4_ny4_prescribed_first_forces_u(const double* c, const double* u, con
     const double theta_dot_B2 = theta_dot*B2;
     const double theta_dot_B3 = theta_dot*B3;
     const double theta_dot_B4 = theta_dot*B4;
-    out[0] = 0.0;
     out[1] = c[60]*theta_dot + c[14]*B1_dot - c[15]*B2_dot + c[69]*theta_dot_A1 + c[2]*theta_dot_A2;
     out[2] = c[16]*B1 - c[17]*B2;
-    out[3] = 0.0;
     out[4] = c[30]*theta_dot + c[19]*B1_dot + c[20]*B3_dot - c[21]*B4_dot + c[2]*theta_dot_A1 + c[69]*theta_dot_A2 + c[2]*theta_dot_A3;
     out[5] = c[22]*B1 + c[23]*B3 - c[24]*B4;
-    out[6] = 0.0;
     out[7] = c[61]*theta_dot + c[14]*B1_dot + c[15]*B2_dot + c[14]*B3_dot - c[15]*B4_dot + c[2]*theta_dot_A2 + c[69]*theta_dot_A3 + c[2]*theta_dot_A4;
     out[8] = c[16]*B1 + c[17]*B2 + c[16]*B3 - c[17]*B4;
-    out[9] = 0.0;
     out[10] = c[62]*theta_dot + c[20]*B1_dot + c[21]*B2_dot + c[22]*B3_dot - c[27]*B4_dot + c[2]*theta_dot_A3 + c[0]*theta_dot_A4;
     out[11] = c[23]*B1 + c[24]*B2 + c[28]*B3 - c[29]*B4;
-    out[12] = 0.0;
     out[13] = -c[14]*A1_dot - c[19]*A2_dot - c[14]*A3_dot - c[20]*A4_dot - c[70]*theta_dot_B1 + c[63]*theta_dot_B2 + c[64]*theta_dot_B3 - c[65]*theta_dot_B4;
     out[14] = -c[30] - c[16]*A1 - c[22]*A2 - c[16]*A3 - c[23]*A4;
-    out[15] = 0.0;
     out[16] = c[15]*A1_dot - c[15]*A3_dot - c[21]*A4_dot + c[63]*theta_dot_B1 - c[71]*theta_dot_B2 + c[66]*theta_dot_B3 + c[67]*theta_dot_B4;
     out[17] = -c[38] + c[17]*A1 - c[17]*A3 - c[24]*A4;
-    out[18] = 0.0;
     out[19] = -c[20]*A2_dot - c[14]*A3_dot - c[22]*A4_dot + c[64]*theta_dot_B1 + c[66]*theta_dot_B2 - c[72]*theta_dot_B3 + c[68]*theta_dot_B4;
     out[20] = -c[44] - c[23]*A2 - c[16]*A3 - c[28]*A4;
-    out[21] = 0.0;
     out[22] = c[21]*A2_dot + c[15]*A3_dot + c[27]*A4_dot - c[65]*theta_dot_B1 + c[67]*theta_dot_B2 + c[68]*theta_dot_B3 - c[73]*theta_dot_B4;
     out[23] = c[47] + c[24]*A2 + c[17]*A3 + c[29]*A4;
 }

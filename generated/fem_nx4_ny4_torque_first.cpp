@@ -710,7 +710,7 @@ void fem_nx4_ny4_torque_first_momentum(const double* c, const double* u, const d
     out[0] = c[0]*theta_dot + c[2]*B1_dot + c[24]*B2_dot + c[25]*B3_dot - c[26]*B4_dot + c[1]*A1_theta_dot + c[17]*A1_B1_dot - c[18]*A1_B2_dot + c[2]*A2_theta_dot + c[19]*A2_B1_dot + c[20]*A2_B3_dot - c[21]*A2_B4_dot + c[3]*A3_theta_dot + c[17]*A3_B1_dot + c[18]*A3_B2_dot + c[17]*A3_B3_dot - c[18]*A3_B4_dot + c[4]*A4_theta_dot + c[20]*A4_B1_dot + c[21]*A4_B2_dot + c[22]*A4_B3_dot - c[23]*A4_B4_dot - c[17]*B1_A1_dot - c[19]*B1_A2_dot - c[17]*B1_A3_dot - c[20]*B1_A4_dot + c[18]*B2_A1_dot - c[18]*B2_A3_dot - c[21]*B2_A4_dot - c[20]*B3_A2_dot - c[17]*B3_A3_dot - c[22]*B3_A4_dot + c[21]*B4_A2_dot + c[18]*B4_A3_dot + c[23]*B4_A4_dot + c[5]*A1sq_theta_dot + c[6]*A1_A2_theta_dot + c[5]*A2sq_theta_dot + c[6]*A2_A3_theta_dot + c[5]*A3sq_theta_dot + c[6]*A3_A4_theta_dot + c[6]*A4sq_theta_dot - c[7]*B1sq_theta_dot + c[8]*B1_B2_theta_dot + c[9]*B1_B3_theta_dot - c[10]*B1_B4_theta_dot - c[11]*B2sq_theta_dot + c[12]*B2_B3_theta_dot + c[13]*B2_B4_theta_dot - c[14]*B3sq_theta_dot + c[15]*B3_B4_theta_dot - c[16]*B4sq_theta_dot;
 }
 
-/* forces_q:(c[74],u[3],q[9],qd[9])->(dQdq[81]) row-major; out[i*9+k] = dQ_i/dq_k */
+/* forces_q:(c[74],u[3],q[9],qd[9])->(dQdq[81]) row-major; out[i*9+k] = dQ_i/dq_k; nonzero entries only */
 void fem_nx4_ny4_torque_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -733,7 +733,6 @@ void fem_nx4_ny4_torque_first_forces_q(const double* c, const double* u, const d
     const double theta_dot_B2_dot = theta_dot*B2_dot;
     const double theta_dot_B3_dot = theta_dot*B3_dot;
     const double theta_dot_B4_dot = theta_dot*B4_dot;
-    out[0] = 0.0;
     out[1] = -c[36]*theta_dot_A1_dot - c[6]*theta_dot_A2_dot;
     out[2] = -c[6]*theta_dot_A1_dot - c[36]*theta_dot_A2_dot - c[6]*theta_dot_A3_dot;
     out[3] = -c[6]*theta_dot_A2_dot - c[36]*theta_dot_A3_dot - c[6]*theta_dot_A4_dot;
@@ -742,81 +741,35 @@ void fem_nx4_ny4_torque_first_forces_q(const double* c, const double* u, const d
     out[6] = -c[8]*theta_dot_B1_dot + c[38]*theta_dot_B2_dot - c[12]*theta_dot_B3_dot - c[13]*theta_dot_B4_dot;
     out[7] = -c[9]*theta_dot_B1_dot - c[12]*theta_dot_B2_dot + c[39]*theta_dot_B3_dot - c[15]*theta_dot_B4_dot;
     out[8] = c[10]*theta_dot_B1_dot - c[13]*theta_dot_B2_dot - c[15]*theta_dot_B3_dot + c[40]*theta_dot_B4_dot;
-    out[9] = 0.0;
     out[10] = -c[41] + c[5]*theta_dotsq;
     out[11] = c[42] + c[27]*theta_dotsq;
-    out[12] = 0.0;
-    out[13] = 0.0;
-    out[14] = 0.0;
-    out[15] = 0.0;
-    out[16] = 0.0;
-    out[17] = 0.0;
-    out[18] = 0.0;
     out[19] = c[42] + c[27]*theta_dotsq;
     out[20] = -c[41] + c[5]*theta_dotsq;
     out[21] = c[42] + c[27]*theta_dotsq;
-    out[22] = 0.0;
-    out[23] = 0.0;
-    out[24] = 0.0;
-    out[25] = 0.0;
-    out[26] = 0.0;
-    out[27] = 0.0;
-    out[28] = 0.0;
     out[29] = c[42] + c[27]*theta_dotsq;
     out[30] = -c[41] + c[5]*theta_dotsq;
     out[31] = c[42] + c[27]*theta_dotsq;
-    out[32] = 0.0;
-    out[33] = 0.0;
-    out[34] = 0.0;
-    out[35] = 0.0;
-    out[36] = 0.0;
-    out[37] = 0.0;
-    out[38] = 0.0;
     out[39] = c[42] + c[27]*theta_dotsq;
     out[40] = -c[42] + c[6]*theta_dotsq;
-    out[41] = 0.0;
-    out[42] = 0.0;
-    out[43] = 0.0;
-    out[44] = 0.0;
-    out[45] = 0.0;
-    out[46] = 0.0;
-    out[47] = 0.0;
-    out[48] = 0.0;
-    out[49] = 0.0;
     out[50] = -c[53] - c[7]*theta_dotsq;
     out[51] = c[56]*theta_dotsq;
     out[52] = c[54] + c[57]*theta_dotsq;
     out[53] = -c[55] - c[58]*theta_dotsq;
-    out[54] = 0.0;
-    out[55] = 0.0;
-    out[56] = 0.0;
-    out[57] = 0.0;
-    out[58] = 0.0;
     out[59] = c[56]*theta_dotsq;
     out[60] = -c[59] - c[11]*theta_dotsq;
     out[61] = c[55] + c[61]*theta_dotsq;
     out[62] = -c[60] + c[62]*theta_dotsq;
-    out[63] = 0.0;
-    out[64] = 0.0;
-    out[65] = 0.0;
-    out[66] = 0.0;
-    out[67] = 0.0;
     out[68] = c[54] + c[57]*theta_dotsq;
     out[69] = c[55] + c[61]*theta_dotsq;
     out[70] = -c[54] - c[14]*theta_dotsq;
     out[71] = c[55] + c[63]*theta_dotsq;
-    out[72] = 0.0;
-    out[73] = 0.0;
-    out[74] = 0.0;
-    out[75] = 0.0;
-    out[76] = 0.0;
     out[77] = -c[55] - c[58]*theta_dotsq;
     out[78] = -c[60] + c[62]*theta_dotsq;
     out[79] = c[55] + c[63]*theta_dotsq;
     out[80] = -c[64] - c[16]*theta_dotsq;
 }
 
-/* forces_qd:(c[74],u[3],q[9],qd[9])->(dQdqd[81]) row-major; out[i*9+k] = dQ_i/dqd_k */
+/* forces_qd:(c[74],u[3],q[9],qd[9])->(dQdqd[81]) row-major; out[i*9+k] = dQ_i/dqd_k; nonzero entries only */
 void fem_nx4_ny4_torque_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -881,37 +834,18 @@ void fem_nx4_ny4_torque_first_forces_qd(const double* c, const double* u, const 
     out[7] = -c[9]*B1_theta_dot - c[12]*B2_theta_dot + c[39]*B3_theta_dot - c[15]*B4_theta_dot;
     out[8] = c[10]*B1_theta_dot - c[13]*B2_theta_dot - c[15]*B3_theta_dot + c[40]*B4_theta_dot;
     out[9] = c[1]*theta_dot + c[44]*B1_dot - c[45]*B2_dot + c[36]*A1_theta_dot + c[6]*A2_theta_dot;
-    out[10] = 0.0;
-    out[11] = 0.0;
-    out[12] = 0.0;
-    out[13] = 0.0;
     out[14] = c[44]*theta_dot;
     out[15] = -c[45]*theta_dot;
-    out[16] = 0.0;
-    out[17] = 0.0;
     out[18] = c[2]*theta_dot + c[47]*B1_dot + c[48]*B3_dot - c[49]*B4_dot + c[6]*A1_theta_dot + c[36]*A2_theta_dot + c[6]*A3_theta_dot;
-    out[19] = 0.0;
-    out[20] = 0.0;
-    out[21] = 0.0;
-    out[22] = 0.0;
     out[23] = c[47]*theta_dot;
-    out[24] = 0.0;
     out[25] = c[48]*theta_dot;
     out[26] = -c[49]*theta_dot;
     out[27] = c[3]*theta_dot + c[44]*B1_dot + c[45]*B2_dot + c[44]*B3_dot - c[45]*B4_dot + c[6]*A2_theta_dot + c[36]*A3_theta_dot + c[6]*A4_theta_dot;
-    out[28] = 0.0;
-    out[29] = 0.0;
-    out[30] = 0.0;
-    out[31] = 0.0;
     out[32] = c[44]*theta_dot;
     out[33] = c[45]*theta_dot;
     out[34] = c[44]*theta_dot;
     out[35] = -c[45]*theta_dot;
     out[36] = c[4]*theta_dot + c[48]*B1_dot + c[49]*B2_dot + c[19]*B3_dot - c[52]*B4_dot + c[6]*A3_theta_dot + c[5]*A4_theta_dot;
-    out[37] = 0.0;
-    out[38] = 0.0;
-    out[39] = 0.0;
-    out[40] = 0.0;
     out[41] = c[48]*theta_dot;
     out[42] = c[49]*theta_dot;
     out[43] = c[19]*theta_dot;
@@ -921,40 +855,21 @@ void fem_nx4_ny4_torque_first_forces_qd(const double* c, const double* u, const 
     out[47] = -c[47]*theta_dot;
     out[48] = -c[44]*theta_dot;
     out[49] = -c[48]*theta_dot;
-    out[50] = 0.0;
-    out[51] = 0.0;
-    out[52] = 0.0;
-    out[53] = 0.0;
     out[54] = c[45]*A1_dot - c[45]*A3_dot - c[49]*A4_dot + c[8]*B1_theta_dot - c[38]*B2_theta_dot + c[12]*B3_theta_dot + c[13]*B4_theta_dot;
     out[55] = c[45]*theta_dot;
-    out[56] = 0.0;
     out[57] = -c[45]*theta_dot;
     out[58] = -c[49]*theta_dot;
-    out[59] = 0.0;
-    out[60] = 0.0;
-    out[61] = 0.0;
-    out[62] = 0.0;
     out[63] = -c[48]*A2_dot - c[44]*A3_dot - c[19]*A4_dot + c[9]*B1_theta_dot + c[12]*B2_theta_dot - c[39]*B3_theta_dot + c[15]*B4_theta_dot;
-    out[64] = 0.0;
     out[65] = -c[48]*theta_dot;
     out[66] = -c[44]*theta_dot;
     out[67] = -c[19]*theta_dot;
-    out[68] = 0.0;
-    out[69] = 0.0;
-    out[70] = 0.0;
-    out[71] = 0.0;
     out[72] = c[49]*A2_dot + c[45]*A3_dot + c[52]*A4_dot - c[10]*B1_theta_dot + c[13]*B2_theta_dot + c[15]*B3_theta_dot - c[40]*B4_theta_dot;
-    out[73] = 0.0;
     out[74] = c[49]*theta_dot;
     out[75] = c[45]*theta_dot;
     out[76] = c[52]*theta_dot;
-    out[77] = 0.0;
-    out[78] = 0.0;
-    out[79] = 0.0;
-    out[80] = 0.0;
 }
 
-/* forces_u:(c[74],u[3],q[9],qd[9])->(dQdu[27]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot) */
+/* forces_u:(c[74],u[3],q[9],qd[9])->(dQdu[27]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
 void fem_nx4_ny4_torque_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -962,32 +877,6 @@ void fem_nx4_ny4_torque_first_forces_u(const double* c, const double* u, const d
     (void)q;
     (void)qd;
     out[0] = 1.0;
-    out[1] = 0.0;
-    out[2] = 0.0;
-    out[3] = 0.0;
-    out[4] = 0.0;
-    out[5] = 0.0;
-    out[6] = 0.0;
-    out[7] = 0.0;
-    out[8] = 0.0;
-    out[9] = 0.0;
-    out[10] = 0.0;
-    out[11] = 0.0;
-    out[12] = 0.0;
-    out[13] = 0.0;
-    out[14] = 0.0;
-    out[15] = 0.0;
-    out[16] = 0.0;
-    out[17] = 0.0;
-    out[18] = 0.0;
-    out[19] = 0.0;
-    out[20] = 0.0;
-    out[21] = 0.0;
-    out[22] = 0.0;
-    out[23] = 0.0;
-    out[24] = 0.0;
-    out[25] = 0.0;
-    out[26] = 0.0;
 }
 
 /* mass_varying:(c[74],u[3],q[9],qd[9])->(M[81]) as mass, the entries that depend on q only */
@@ -1031,7 +920,7 @@ void fem_nx4_ny4_torque_first_mass_varying(const double* c, const double* u, con
     out[8] = -c[26] - c[21]*A2 - c[18]*A3 - c[23]*A4;
 }
 
-/* mass_q_product:(c[74],u[3],q[9],qd[9])->(dMv[81]) row-major; v in the qd slot; out[i*9+k] = sum_j dM_ij/dq_k v_j */
+/* mass_q_product:(c[74],u[3],q[9],qd[9])->(dMv[81]) row-major; v in the qd slot; out[i*9+k] = sum_j dM_ij/dq_k v_j; nonzero entries only */
 void fem_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -1060,7 +949,6 @@ void fem_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, c
     const double B2_theta_dot = B2*theta_dot;
     const double B3_theta_dot = B3*theta_dot;
     const double B4_theta_dot = B4*theta_dot;
-    out[0] = 0.0;
     out[1] = c[1]*theta_dot + c[17]*B1_dot - c[18]*B2_dot + c[36]*A1_theta_dot + c[6]*A2_theta_dot;
     out[2] = c[2]*theta_dot + c[19]*B1_dot + c[20]*B3_dot - c[21]*B4_dot + c[6]*A1_theta_dot + c[36]*A2_theta_dot + c[6]*A3_theta_dot;
     out[3] = c[3]*theta_dot + c[17]*B1_dot + c[18]*B2_dot + c[17]*B3_dot - c[18]*B4_dot + c[6]*A2_theta_dot + c[36]*A3_theta_dot + c[6]*A4_theta_dot;
@@ -1069,78 +957,32 @@ void fem_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, c
     out[6] = c[18]*A1_dot - c[18]*A3_dot - c[21]*A4_dot + c[8]*B1_theta_dot - c[38]*B2_theta_dot + c[12]*B3_theta_dot + c[13]*B4_theta_dot;
     out[7] = -c[20]*A2_dot - c[17]*A3_dot - c[22]*A4_dot + c[9]*B1_theta_dot + c[12]*B2_theta_dot - c[39]*B3_theta_dot + c[15]*B4_theta_dot;
     out[8] = c[21]*A2_dot + c[18]*A3_dot + c[23]*A4_dot - c[10]*B1_theta_dot + c[13]*B2_theta_dot + c[15]*B3_theta_dot - c[40]*B4_theta_dot;
-    out[9] = 0.0;
-    out[10] = 0.0;
-    out[11] = 0.0;
-    out[12] = 0.0;
-    out[13] = 0.0;
     out[14] = -c[17]*theta_dot;
     out[15] = c[18]*theta_dot;
-    out[16] = 0.0;
-    out[17] = 0.0;
-    out[18] = 0.0;
-    out[19] = 0.0;
-    out[20] = 0.0;
-    out[21] = 0.0;
-    out[22] = 0.0;
     out[23] = -c[19]*theta_dot;
-    out[24] = 0.0;
     out[25] = -c[20]*theta_dot;
     out[26] = c[21]*theta_dot;
-    out[27] = 0.0;
-    out[28] = 0.0;
-    out[29] = 0.0;
-    out[30] = 0.0;
-    out[31] = 0.0;
     out[32] = -c[17]*theta_dot;
     out[33] = -c[18]*theta_dot;
     out[34] = -c[17]*theta_dot;
     out[35] = c[18]*theta_dot;
-    out[36] = 0.0;
-    out[37] = 0.0;
-    out[38] = 0.0;
-    out[39] = 0.0;
-    out[40] = 0.0;
     out[41] = -c[20]*theta_dot;
     out[42] = -c[21]*theta_dot;
     out[43] = -c[22]*theta_dot;
     out[44] = c[23]*theta_dot;
-    out[45] = 0.0;
     out[46] = c[17]*theta_dot;
     out[47] = c[19]*theta_dot;
     out[48] = c[17]*theta_dot;
     out[49] = c[20]*theta_dot;
-    out[50] = 0.0;
-    out[51] = 0.0;
-    out[52] = 0.0;
-    out[53] = 0.0;
-    out[54] = 0.0;
     out[55] = -c[18]*theta_dot;
-    out[56] = 0.0;
     out[57] = c[18]*theta_dot;
     out[58] = c[21]*theta_dot;
-    out[59] = 0.0;
-    out[60] = 0.0;
-    out[61] = 0.0;
-    out[62] = 0.0;
-    out[63] = 0.0;
-    out[64] = 0.0;
     out[65] = c[20]*theta_dot;
     out[66] = c[17]*theta_dot;
     out[67] = c[22]*theta_dot;
-    out[68] = 0.0;
-    out[69] = 0.0;
-    out[70] = 0.0;
-    out[71] = 0.0;
-    out[72] = 0.0;
-    out[73] = 0.0;
     out[74] = -c[21]*theta_dot;
     out[75] = -c[18]*theta_dot;
     out[76] = -c[23]*theta_dot;
-    out[77] = 0.0;
-    out[78] = 0.0;
-    out[79] = 0.0;
-    out[80] = 0.0;
 }
 
 }  // namespace

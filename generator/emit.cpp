@@ -299,6 +299,7 @@ std::string print_kernel(const std::string& prefix, const KernelSpec& k, const S
         if (plan.variable_used[v])
             reads += "    const double " + sig.state_inputs[v].symbol.get_name() + " = " + sig.state_inputs[v].read + ";\n";
     if (!uses_c) f << "    (void)c;\n";
+    if (outputs.empty()) f << "    (void)out;  // every entry is zero\n";
     for (const Array& a : sig.state)
         if (reads.find(" = " + a.name + "[") == std::string::npos) f << "    (void)" << a.name << ";\n";
     f << reads;

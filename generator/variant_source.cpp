@@ -72,6 +72,18 @@ struct JacobianPieces {
     std::vector<ex> forces_q, forces_qd, forces_u, mass_q_product;  // row-major, see the kernels' shape comments
 };
 
+/// A kernel that writes only the nonzero values (the runtime zero-fills its output first).
+KernelSpec sparse_kernel(std::string name, std::string out, std::string doc, const std::vector<ex>& values)
+{
+    KernelSpec k{std::move(name), std::move(out), std::move(doc) + "; nonzero entries only", {}};
+    for (std::size_t i = 0; i < values.size(); ++i)
+        if (!values[i].is_zero()) {
+            k.values.push_back(values[i]);
+            k.slots.push_back(static_cast<int>(i));
+        }
+    return k;
+}
+
 JacobianPieces jacobian_pieces(const Equations& eq, const Symbols& s, bool torque)
 {
     const std::size_t n = s.q.size();
@@ -174,16 +186,17 @@ std::string variant_source(const VariantKey& key)
         force_matrix,
         {"energy", "E[4]", "E = (T2, T1, T0, U), T split by degree in qd", {eq.T2, eq.T1, eq.T0, eq.U}},
         {"momentum", "h[1]", "h = dT/dtheta_dot, angular momentum about the hub axis", {eq.momentum}},
-        {"forces_q", "dQdq[" + n2 + "]", "row-major; out[i*" + n1 + "+k] = dQ_i/dq_k", jac.forces_q},
-        {"forces_qd", "dQdqd[" + n2 + "]", "row-major; out[i*" + n1 + "+k] = dQ_i/dqd_k", jac.forces_qd},
-        {"forces_u", "dQdu[" + nu + "]", "row-major; out[i*3+j] = dQ_i/du_j, u = " + tuple(drive_value_names),
-         jac.forces_u},
+        sparse_kernel("forces_q", "dQdq[" + n2 + "]", "row-major; out[i*" + n1 + "+k] = dQ_i/dq_k", jac.forces_q),
+        sparse_kernel("forces_qd", "dQdqd[" + n2 + "]", "row-major; out[i*" + n1 + "+k] = dQ_i/dqd_k", jac.forces_qd),
+        sparse_kernel("forces_u", "dQdu[" + nu + "]", "row-major; out[i*3+j] = dQ_i/du_j, u = " + tuple(drive_value_names),
+                      jac.forces_u),
     };
     // A constant M has dM/dq = 0: no kernels, null pointers in the table row, and the runtime skips the terms.
     if (mass_varies) {
         kernels.push_back(mass_varying);
-        kernels.push_back({"mass_q_product", "dMv[" + n2 + "]",
-                           "row-major; v in the qd slot; out[i*" + n1 + "+k] = sum_j dM_ij/dq_k v_j", jac.mass_q_product});
+        kernels.push_back(sparse_kernel("mass_q_product", "dMv[" + n2 + "]",
+                                        "row-major; v in the qd slot; out[i*" + n1 + "+k] = sum_j dM_ij/dq_k v_j",
+                                        jac.mass_q_product));
     }
     const std::string name = key.name();
     const EmittedCode code = emit_kernels(name, sig, kernels);

@@ -25,7 +25,8 @@ struct Variant {
     Kernel forces_matrix;     /* F[nq*nterms], row-major, free of the state: Q = F m */
     Kernel energy;            /* E[4] = (T2, T1, T0, U), T split by degree in qd */
     Kernel momentum;          /* h[1] = dT/dtheta_dot */
-    /* The Jacobian pieces for implicit integrators, derivatives of the M and Q above (docs/model.md section 5.1). */
+    /* The Jacobian pieces for implicit integrators, derivatives of the M and Q above (docs/model.md section 5.1);
+     * each writes its nonzero entries only, the caller zero-fills. */
     Kernel forces_q;          /* dQdq[nq*nq], row-major: out[i*nq+k] = dQ_i/dq_k */
     Kernel forces_qd;         /* dQdqd[nq*nq], row-major: out[i*nq+k] = dQ_i/dqd_k */
     Kernel mass_q_product;    /* dMv[nq*nq], row-major, v passed in the qd slot: out[i*nq+k] = sum_j dM_ij/dq_k v_j;

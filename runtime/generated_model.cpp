@@ -76,6 +76,10 @@ public:
     void force_derivatives(const HubInput& u, const double* q, const double* qd, double* dQdq, double* dQdqd,
                            double* dQdu) const override
     {
+        // The kernels write their nonzero entries only.
+        std::fill_n(dQdq, nq() * nq(), 0.0);
+        std::fill_n(dQdqd, nq() * nq(), 0.0);
+        std::fill_n(dQdu, nq() * static_cast<int>(drive_value_count), 0.0);
         call(v_.forces_q, u, q, qd, dQdq);
         call(v_.forces_qd, u, q, qd, dQdqd);
         call(v_.forces_u, u, q, qd, dQdu);
@@ -83,8 +87,8 @@ public:
     void mass_q_product(const HubInput& u, const double* q, const double* v, double* dMv) const override
     {
         // The generator emits no kernel for a constant M (dM/dq = 0).
-        if (v_.mass_q_product == nullptr) std::fill_n(dMv, nq() * nq(), 0.0);
-        else call(v_.mass_q_product, u, q, v, dMv);
+        std::fill_n(dMv, nq() * nq(), 0.0);
+        if (v_.mass_q_product != nullptr) call(v_.mass_q_product, u, q, v, dMv);
     }
 
 private:
