@@ -26,6 +26,12 @@ extern const Variant bsim_nx0_ny4_prescribed_first_open;
 extern const Variant bsim_nx0_ny4_torque_first_open;
 extern const Variant amm_nx0_ny4_prescribed_zero;
 extern const Variant bim_nx4_ny4_torque_zero;
+extern const Variant fem_nx8_ny8_prescribed_first;
+extern const Variant fem_nx8_ny8_torque_first;
+extern const Variant fem_nx16_ny16_prescribed_first;
+extern const Variant fem_nx16_ny16_torque_first;
+extern const Variant fem_nx32_ny32_prescribed_first;
+extern const Variant fem_nx32_ny32_torque_first;
 
 const Variant* const variants[] = {
     &amm_nx0_ny4_prescribed_first,
@@ -48,7 +54,13 @@ const Variant* const variants[] = {
     &bsim_nx0_ny4_torque_first_open,
     &amm_nx0_ny4_prescribed_zero,
     &bim_nx4_ny4_torque_zero,
+    &fem_nx8_ny8_prescribed_first,
+    &fem_nx8_ny8_torque_first,
+    &fem_nx16_ny16_prescribed_first,
+    &fem_nx16_ny16_torque_first,
+    &fem_nx32_ny32_prescribed_first,
+    &fem_nx32_ny32_torque_first,
 };
-const int variant_count = 20;
+const int variant_count = 26;
 
 }  // namespace hubbeam::generated

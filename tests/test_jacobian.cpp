@@ -45,13 +45,14 @@ Motion motion_for(Drive drive)
 
 /// The reference for the columns of dfdy in qd and for dfdt, where the runtime's central differences
 /// (h = eps^(1/3) |y|) lose about eps |qdd| / h to rounding: the axial rows of an nx > 0 variant have |qdd| ~ 1e5
-/// (stiff stretch, docs/model.md section 7) against entries ~ 10, i.e. relative errors up to 1e-4 in the
+/// and more (stiff stretch, docs/model.md section 7) against entries ~ 10, i.e. relative errors up to 1e-4 in the
 /// oracle itself. Central differences of a quadratic are exact for any step, and Q is quadratic in qd (T is
 /// quadratic in the rates, docs/model.md section 3; M does not depend on qd), so the qd columns take h = 1.
-/// f depends on t only through the drive: Richardson-extrapolated central differences with h = 1e-2 (error
-/// O(h^4 (2 pi/T)^4) ~ 1e-9 relative, rounding ~ eps |qdd| / h ~ 1e-8 relative).
-void rate_and_time_reference(FirstOrderSystem& sys, double t, const Eigen::VectorXd& y, RowMatrix& J,
-                             Eigen::VectorXd& dfdt)
+/// f depends on t only through the drive u, and Q is at most quadratic in u (tau and theta_ddot enter linearly,
+/// theta_dot quadratically): dfdt = M^-1 (Q(u + r) - Q(u - r)) / 2 along the drive's rate r = du/dt exactly,
+/// with M^-1 by a dense LU of the model's M. (The rate itself is checked against Motion::at below.)
+void rate_and_time_reference(FirstOrderSystem& sys, const Model& model, const Motion& motion, double t,
+                             const Eigen::VectorXd& y, RowMatrix& J, Eigen::VectorXd& dfdt)
 {
     const int m = sys.size(), n = m / 2;
     Eigen::VectorXd yp = y, ym = y, fp(m), fm(m);
@@ -64,13 +65,16 @@ void rate_and_time_reference(FirstOrderSystem& sys, double t, const Eigen::Vecto
         J.col(j) = (fp - fm) / (2.0 * h);
         yp[j] = ym[j] = y[j];
     }
-    auto central = [&](double h) {
-        REQUIRE(sys.rhs(t + h, y.data(), fp.data()) == GSL_SUCCESS);
-        REQUIRE(sys.rhs(t - h, y.data(), fm.data()) == GSL_SUCCESS);
-        return Eigen::VectorXd((fp - fm) / (2.0 * h));
-    };
-    const double h = 1e-2;
-    dfdt = (4.0 * central(h / 2.0) - central(h)) / 3.0;
+    const HubInput u = motion.at(t), r = motion.rate(t);
+    const HubInput up{u.tau + r.tau, u.theta_dot + r.theta_dot, u.theta_ddot + r.theta_ddot};
+    const HubInput down{u.tau - r.tau, u.theta_dot - r.theta_dot, u.theta_ddot - r.theta_ddot};
+    Eigen::VectorXd Qp(n), Qm(n);
+    model.forces(up, y.data(), y.data() + n, Qp.data());
+    model.forces(down, y.data(), y.data() + n, Qm.data());
+    Eigen::MatrixXd M(n, n);
+    model.mass(u, y.data(), M.data());
+    dfdt.head(n).setZero();
+    dfdt.tail(n) = M.partialPivLu().solve(Eigen::VectorXd((Qp - Qm) / 2.0));
 }
 
 /// The four nq x nq blocks of a row-major 2nq x 2nq Jacobian, as (row block, column block).
@@ -104,7 +108,7 @@ TEST_CASE("generated Jacobian equals central differences of the right-hand side"
                 REQUIRE(sys.jacobian(t, y.data(), J.data(), dfdt.data()) == GSL_SUCCESS);
                 REQUIRE(sys.finite_difference_jacobian(t, y.data(), Jfd.data(), dfdt_fd.data()) == GSL_SUCCESS);
                 CHECK(dfdt_fd.head(n).lpNorm<Eigen::Infinity>() == 0.0);
-                rate_and_time_reference(sys, t, y, Jfd, dfdt_fd);
+                rate_and_time_reference(sys, *model, motion, t, y, Jfd, dfdt_fd);
                 INFO("t = " << t << ", trial " << trial);
                 // d qd / dq is exactly zero in both; the other blocks to 1e-7 of their size (the kernels are exact
                 // to round-off; the q columns are the runtime's central differences, accurate to ~1e-9 here).
