@@ -42,6 +42,16 @@ int gsl_jacobian(double t, const double y[], double* dfdy, double dfdt[], void* 
 
 }  // namespace
 
+namespace {
+
+const WordTable<Axial, 2> axial_words = {{Axial::dynamic, "dynamic"}, {Axial::quasi_static, "quasi-static"}};
+
+}  // namespace
+
+std::string to_string(Axial v) { return word_of(v, axial_words); }
+bool parse(std::string_view w, Axial& v) { return parse_word(w, axial_words, v); }
+template <> std::vector<std::string> words<Axial>() { return all_words(axial_words); }
+
 std::vector<std::string> stepper_names()
 {
     std::vector<std::string> names;
@@ -69,6 +79,12 @@ struct FirstOrderSystem::Work {
     Eigen::VectorXd m;
     Eigen::VectorXd qdd;
     std::vector<double> y_plus, y_minus, f_plus, f_minus;
+    // Quasi-static axial coordinates: the full q, qd of the last evaluation, A's last solution (the next
+    // Newton start), Q, and the factorization of M without the axial rows.
+    std::vector<double> q, qd;
+    Eigen::VectorXd A, Q;
+    Eigen::LLT<Eigen::MatrixXd> reduced_llt;
+    bool reduced_factored = false;
     // Exact Jacobian: row-major like the kernels (RowMajor maps them as written).
     RowMatrix dQdq, dQdqd, dQdu, dMv;
 };
@@ -112,9 +128,14 @@ long nonzeros(const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen:
 
 }  // namespace
 
-FirstOrderSystem::FirstOrderSystem(const Model& model, const Motion& motion)
-    : model_(model), motion_(motion), n_(model.nq()), work_(std::make_unique<Work>())
+FirstOrderSystem::FirstOrderSystem(const Model& model, const Motion& motion, Axial axial)
+    : model_(model), motion_(motion), n_(model.nq()), axial_(axial), work_(std::make_unique<Work>())
 {
+    const VariantKey& key = model.key();
+    if (axial_ == Axial::quasi_static && key.nx == 0)
+        throw std::invalid_argument("quasi-static axial coordinates need axial coordinates (nx > 0)");
+    for (int i = 0; i < n_; ++i)
+        if (axial_ == Axial::dynamic || i < key.first_a() || i >= key.first_b()) kept_.push_back(i);
     Work& w = *work_;
     w.solver = MassSolver::make(model);
     w.qdd.resize(n_);
@@ -123,7 +144,7 @@ FirstOrderSystem::FirstOrderSystem(const Model& model, const Motion& motion)
     w.dQdu.resize(n_, static_cast<Eigen::Index>(drive_value_count));
     w.dMv.resize(n_, n_);
     const int K = model.force_terms();
-    if (model.mass_is_constant() && K > 0) {
+    if (axial_ == Axial::dynamic && model.mass_is_constant() && K > 0) {
         Work::RowMatrix F(n_, K);
         model.forces_matrix(F.data());
         const std::vector<double> rest(static_cast<std::size_t>(n_), 0.0);
@@ -152,7 +173,13 @@ FirstOrderSystem::FirstOrderSystem(const Model& model, const Motion& motion)
             }
         }
     }
-    sys_ = {gsl_rhs, gsl_jacobian, static_cast<std::size_t>(2 * n_), this};
+    if (axial_ == Axial::quasi_static) {
+        w.q.assign(static_cast<std::size_t>(n_), 0.0);
+        w.qd.assign(static_cast<std::size_t>(n_), 0.0);
+        w.Q.resize(n_);
+        w.A = Eigen::VectorXd::Zero(key.nx);
+    }
+    sys_ = {gsl_rhs, gsl_jacobian, static_cast<std::size_t>(size()), this};
 }
 
 FirstOrderSystem::~FirstOrderSystem() = default;
@@ -171,6 +198,8 @@ const HubInput& FirstOrderSystem::drive_at(double t)
 std::string FirstOrderSystem::linear_algebra() const
 {
     const Work& w = *work_;
+    if (axial_ == Axial::quasi_static)
+        return "quasi-static axial coordinates (A by Newton on the axial rows), dense Cholesky of M without them";
     if (w.folded())
         return "M^-1 folded into the forces once (" + std::to_string(n_) + " x " + std::to_string(w.m.size()) +
                (w.W.size() > 0 ? ", dense" : ", " + std::to_string(w.W_value.size()) + " nonzeros") + ")";
@@ -180,6 +209,7 @@ std::string FirstOrderSystem::linear_algebra() const
 int FirstOrderSystem::rhs(double t, const double* y, double* dydt)
 {
     ++evaluations_;
+    if (axial_ == Axial::quasi_static) return quasi_static_rhs(t, y, dydt);
     Work& w = *work_;
     const HubInput u = drive_at(t);
     const double* q = y;
@@ -212,7 +242,91 @@ int FirstOrderSystem::rhs(double t, const double* y, double* dydt)
 int FirstOrderSystem::jacobian(double t, const double* y, double* dfdy, double* dfdt)
 {
     ++jacobian_evaluations_;
-    return model_.has_jacobian() ? exact_jacobian(t, y, dfdy, dfdt) : finite_difference_jacobian(t, y, dfdy, dfdt);
+    const bool exact = model_.has_jacobian() && axial_ == Axial::dynamic;
+    return exact ? exact_jacobian(t, y, dfdy, dfdt) : finite_difference_jacobian(t, y, dfdy, dfdt);
+}
+
+bool FirstOrderSystem::solve_axial(const HubInput& u, const double* y, double* q, double* qd)
+{
+    Work& w = *work_;
+    const VariantKey& key = model_.key();
+    const int r = static_cast<int>(kept_.size()), a = key.first_a(), nx = key.nx;
+    for (int i = 0; i < r; ++i) {
+        q[kept_[static_cast<std::size_t>(i)]] = y[i];
+        qd[kept_[static_cast<std::size_t>(i)]] = y[r + i];
+    }
+    for (int k = 0; k < nx; ++k) {
+        q[a + k] = w.A[k];
+        qd[a + k] = 0.0;
+    }
+    // Newton on the axial rows Q_A(A) = 0 (linear in A at orders zero and first: one step, and one to confirm).
+    // Every acceleration term leaves the axial rows: under torque theta_ddot is on the mass side already, under
+    // a prescribed rotation the generator moved it into Q, so it is zeroed there.
+    HubInput ua = u;
+    ua.theta_ddot = 0.0;
+    Eigen::MatrixXd J(nx, nx);
+    for (int iteration = 0; iteration < 20; ++iteration) {
+        model_.forces(ua, q, qd, w.Q.data());
+        if (model_.has_jacobian()) {
+            model_.force_derivatives(ua, q, qd, w.dQdq.data(), w.dQdqd.data(), w.dQdu.data());
+            J = w.dQdq.block(a, a, nx, nx);
+        } else {
+            for (int k = 0; k < nx; ++k) {
+                const double h = 1e-6 * std::max(std::abs(q[a + k]), 1e-3);
+                q[a + k] += h;
+                Eigen::VectorXd Qh(n_);
+                model_.forces(ua, q, qd, Qh.data());
+                q[a + k] -= h;
+                J.col(k) = (Qh.segment(a, nx) - w.Q.segment(a, nx)) / h;
+            }
+        }
+        const Eigen::VectorXd step = J.partialPivLu().solve(-w.Q.segment(a, nx));
+        if (!step.allFinite()) return false;
+        w.A += step;
+        for (int k = 0; k < nx; ++k) q[a + k] = w.A[k];
+        if (step.lpNorm<Eigen::Infinity>() <= 1e-14 * w.A.lpNorm<Eigen::Infinity>() + 1e-300) {
+            model_.forces(u, q, qd, w.Q.data());
+            return true;
+        }
+    }
+    return false;
+}
+
+void FirstOrderSystem::full_state(double t, const double* y, double* q, double* qd)
+{
+    if (axial_ == Axial::dynamic) {
+        std::copy(y, y + n_, q);
+        std::copy(y + n_, y + 2 * n_, qd);
+        return;
+    }
+    solve_axial(drive_at(t), y, q, qd);
+}
+
+int FirstOrderSystem::quasi_static_rhs(double t, const double* y, double* dydt)
+{
+    // The rows of theta and B with A_ddot = 0: M_rr qdd_r = Q_r (docs/model.md section 9).
+    Work& w = *work_;
+    const HubInput& u = drive_at(t);
+    if (!solve_axial(u, y, w.q.data(), w.qd.data())) return GSL_EBADFUNC;
+    const int r = static_cast<int>(kept_.size());
+    if (!w.reduced_factored) {
+        Eigen::MatrixXd M(n_, n_), Mr(r, r);
+        model_.mass(u, w.q.data(), M.data());
+        for (int i = 0; i < r; ++i)
+            for (int j = 0; j < r; ++j) Mr(i, j) = M(kept_[static_cast<std::size_t>(i)], kept_[static_cast<std::size_t>(j)]);
+        w.reduced_llt.compute(Mr);
+        if (w.reduced_llt.info() != Eigen::Success) return GSL_EBADFUNC;
+        w.reduced_factored = model_.mass_is_constant();
+    }
+    Eigen::VectorXd Qr(r);
+    for (int i = 0; i < r; ++i) Qr[i] = w.Q[kept_[static_cast<std::size_t>(i)]];
+    const Eigen::VectorXd qdd = w.reduced_llt.solve(Qr);
+    for (int i = 0; i < r; ++i) {
+        dydt[i] = y[r + i];
+        dydt[r + i] = qdd[i];
+        if (!std::isfinite(qdd[i])) return GSL_EBADFUNC;
+    }
+    return GSL_SUCCESS;
 }
 
 int FirstOrderSystem::exact_jacobian(double t, const double* y, double* dfdy, double* dfdt)

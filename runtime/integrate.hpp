@@ -5,6 +5,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <gsl/gsl_odeiv2.h>
@@ -19,15 +20,30 @@ std::vector<std::string> stepper_names();
 /// The GSL step type of a name from stepper_names(), or nullptr.
 const gsl_odeiv2_step_type* step_type(const std::string& name);
 
-/// dy/dt = (qd, M(q)^-1 Q(t, q, qd)) for one model and hub motion; counts its evaluations.
+/// How the axial coordinates A move: with their own inertia (the model as derived), or quasi-statically,
+/// following the axial equations' equilibrium at every instant (docs/model.md section 9).
+enum class Axial { dynamic, quasi_static };
+/// Words "dynamic", "quasi-static" (scene key model.axial, option --axial).
+std::string to_string(Axial);
+bool parse(std::string_view, Axial&);
+template <> std::vector<std::string> words<Axial>();
+
+/// dy/dt = (qd, M(q)^-1 Q(t, q, qd)) for one model and hub motion; counts its evaluations. With quasi-static
+/// axial coordinates y holds only theta (torque) and B with their rates: A solves the axial rows of
+/// Lagrange's equations with A_dot = A_ddot = 0 (and the hub acceleration's axial term dropped) at every
+/// evaluation, and the remaining rows are M_rr qdd_r = Q_r: the stiff axial modes are gone, the centrifugal
+/// stretch and its coupling to bending stay.
 class FirstOrderSystem {
 public:
-    FirstOrderSystem(const Model& model, const Motion& motion);
+    FirstOrderSystem(const Model& model, const Motion& motion, Axial axial = Axial::dynamic);
     ~FirstOrderSystem();
     FirstOrderSystem(const FirstOrderSystem&) = delete;
     FirstOrderSystem& operator=(const FirstOrderSystem&) = delete;
 
-    int size() const { return 2 * n_; }
+    int size() const { return 2 * static_cast<int>(kept_.size()); }
+    /// The model's full q and qd (nq each) of a state y at time t: y itself for dynamic axial coordinates;
+    /// with quasi-static ones, A solved from the axial equations and A_dot = 0.
+    void full_state(double t, const double* y, double* q, double* qd);
     /// GSL status: GSL_SUCCESS, or GSL_EBADFUNC when M is not positive definite or the result is not finite.
     int rhs(double t, const double* y, double* dydt);
     /// Jacobian for the implicit steppers (row-major, as GSL wants): dfdy (2nq x 2nq) and dfdt (2nq) from the
@@ -48,7 +64,12 @@ private:
     const Model& model_;
     const Motion& motion_;
     int n_;
+    Axial axial_;
+    std::vector<int> kept_;  // the model's coordinates that are states of y (all of them unless quasi-static)
     int exact_jacobian(double t, const double* y, double* dfdy, double* dfdt);
+    int quasi_static_rhs(double t, const double* y, double* dydt);
+    /// With quasi-static axial coordinates: q, qd (full) from y, A by Newton on Q_A = 0; false if it fails.
+    bool solve_axial(const HubInput& u, const double* y, double* q, double* qd);
     /// motion_.at(t), remembered for the last t.
     const HubInput& drive_at(double t);
 

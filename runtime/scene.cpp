@@ -57,6 +57,7 @@ std::vector<SceneKey> make_scene_keys()
         {"discretization.spline_basis", "--spline-basis", K::word, one_of(words<SplineBasis>())},
         {"model.order", "--order", K::word, one_of(words<Order>())},
         {"model.source", "--source", K::word, one_of(words<ModelSource>())},
+        {"model.axial", "--axial", K::word, one_of(words<Axial>())},
         {"solver.stepper", "--stepper", K::word, one_of(stepper_names())},
         {"solver.rtol", "--rtol", K::number, "a number > 0 (relative tolerance)"},
         {"solver.atol", "--atol", K::number, "a number > 0 (absolute tolerance)"},
@@ -351,9 +352,10 @@ Scene load_scene(const std::string& path, const Overrides& overrides)
 
     // [model]: docs/model.md section 3; whether the build can run an order is make_model's call.
     const Section model(path, root, "model");
-    model.only({"order", "source"});
+    model.only({"order", "source", "axial"});
     key.order = model.word<Order>("order", parse_enum<Order>).value_or(key.order);
     scene.source = model.word<ModelSource>("source", parse_enum<ModelSource>).value_or(scene.source);
+    scene.axial = model.word<Axial>("axial", parse_enum<Axial>).value_or(scene.axial);
 
     // [solver]
     const Section solver(path, root, "solver");
@@ -405,6 +407,10 @@ void validate(const Scene& s)
         const char* name = without_axial.dof_problem().empty() ? "discretization.nx" : "discretization.ny";
         throw SceneError::with_detail(s.path, name, problem);
     }
+
+    if (s.axial == Axial::quasi_static && key.nx == 0)
+        fail(s.path, "model.axial", "\"dynamic\" for a scene without axial coordinates (quasi-static needs nx > 0)",
+             "\"quasi-static\"");
 
     if (step_type(s.solver.stepper) == nullptr)
         fail(s.path, "solver.stepper", expected("solver.stepper"), "\"" + s.solver.stepper + "\"");

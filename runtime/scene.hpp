@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "integrate.hpp"
 #include "make_model.hpp"
 #include "motion.hpp"
 #include "variant.hpp"
@@ -32,6 +33,7 @@ struct Scene {
     Motion motion;
     VariantKey variant;  // drive follows motion
     ModelSource source = ModelSource::automatic;
+    Axial axial = Axial::dynamic;  // quasi-static: A follows the axial equilibrium (integrate.hpp)
     SolverOptions solver;
     OutputOptions output;
 };

@@ -113,7 +113,7 @@ RunSummary Simulation::run(const RowSink& sink, const StopRequest& stop)
     summary.variant = key.name();
     summary.source = model.source();
 
-    FirstOrderSystem system(model, motion);
+    FirstOrderSystem system(model, motion, scene_.axial);
     summary.algebra = system.linear_algebra();
     const gsl_odeiv2_step_type* type = step_type(scene_.solver.stepper);
     if (type == nullptr) throw std::invalid_argument("unknown stepper '" + scene_.solver.stepper + "'");
@@ -123,13 +123,15 @@ RunSummary Simulation::run(const RowSink& sink, const StopRequest& stop)
 
     const int n = model.nq();
     const bool torque = key.drive == Drive::torque;
-    std::vector<double> y(static_cast<std::size_t>(2 * n), 0.0);
+    std::vector<double> y(static_cast<std::size_t>(system.size()), 0.0);
+    std::vector<double> q_full(static_cast<std::size_t>(n)), qd_full(static_cast<std::size_t>(n));
     double t = 0.0;
     long steps = 0;
 
     auto row_at = [&](double ti) {
-        const double* q = y.data();
-        const double* qd = y.data() + n;
+        system.full_state(ti, y.data(), q_full.data(), qd_full.data());
+        const double* q = q_full.data();
+        const double* qd = qd_full.data();
         const HubInput u = motion.at(ti);
         const BeamFields::Tip tip = fields.tip(key.nx > 0 ? q + key.first_a() : nullptr, q + key.first_b());
         const Energy e = model.energy(u, q, qd);

@@ -5,7 +5,7 @@
 #   -DCSV=path -DHEADER=line -DMIN_ROWS=n -DLAST_T=t          the CSV's header, data rows and final time
 #   -DNO_FILE=path                                            this path must not exist afterwards
 #   -DKEEP_FILE=path                                          holds "old contents" before and must after
-#   -DSIGNAL=TERM|INT                                         sent 0.5 s after the start (GNU timeout)
+#   -DSIGNAL=TERM|INT                                         sent once the run writes rows (send_signal.sh)
 #   -DFSIZE_BLOCKS=n                                          files larger than n blocks cannot be written
 #   -DWHOLE_ROWS=ON -DMAX_ROWS=n                              every line has the header's fields and ends in a
 #                                                             newline, row k is at t = k * 0.01, at most n rows,
@@ -23,9 +23,7 @@ if(DEFINED KEEP_FILE)
 endif()
 set(launcher "")
 if(DEFINED SIGNAL)
-  # --preserve-status: hubbeam's own exit code, not timeout's 124; -k: a run that ignores the signal is killed
-  # (and fails the test) instead of running for minutes.
-  set(launcher timeout --preserve-status -k 20 -s ${SIGNAL} 0.5)
+  set(launcher sh ${CMAKE_CURRENT_LIST_DIR}/send_signal.sh ${SIGNAL} ${CSV})
 elseif(DEFINED FSIZE_BLOCKS)
   # A write beyond the limit fails with EFBIG, as on a full disk (SIGXFSZ ignored, else it kills the process).
   # (newlines, not ';', between the shell's commands: a ';' would split the CMake list)
