@@ -265,6 +265,7 @@ bool FirstOrderSystem::solve_axial(const HubInput& u, const double* y, double* q
     HubInput ua = u;
     ua.theta_ddot = 0.0;
     Eigen::MatrixXd J(nx, nx);
+    double previous = 0.0;
     for (int iteration = 0; iteration < 20; ++iteration) {
         model_.forces(ua, q, qd, w.Q.data());
         if (model_.has_jacobian()) {
@@ -284,7 +285,12 @@ bool FirstOrderSystem::solve_axial(const HubInput& u, const double* y, double* q
         if (!step.allFinite()) return false;
         w.A += step;
         for (int k = 0; k < nx; ++k) q[a + k] = w.A[k];
-        if (step.lpNorm<Eigen::Infinity>() <= 1e-14 * w.A.lpNorm<Eigen::Infinity>() + 1e-300) {
+        // Converged at 1e-12 relative, or once the steps stop shrinking at round-off (a few ulps of A times
+        // the condition of the axial stiffness).
+        const double size = step.lpNorm<Eigen::Infinity>(), scale = w.A.lpNorm<Eigen::Infinity>();
+        const bool stalled = iteration > 0 && size >= 0.5 * previous && size <= 1e-8 * scale;
+        previous = size;
+        if (size <= 1e-12 * scale || size == 0.0 || stalled) {
             model_.forces(u, q, qd, w.Q.data());
             return true;
         }
