@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[44]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[54]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void amm_nx0_ny4_prescribed_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -62,13 +62,23 @@ void amm_nx0_ny4_prescribed_first_coefficients(const double* p, double* c)
     c[37] = 3.7801094160643145*m*a + 0.33881576952304415*L*m;
     c[38] = 7.286769224587888*m*a + 5.823702223235339*L*m;
     c[39] = 16.676579566391283*m*a + 6.548544128042626*L*m;
-    c[40] = 3.1417563799885007*m*a + 0.3866727482165102*L*m;
-    c[41] = 17.294285387122414*m*a + 10.956449728152158*L*m;
-    c[42] = 49.90422661633818*m*a + 33.71903975972198*L*m;
-    c[43] = 102.91821015122056*m*a + 70.11077665782084*L*m;
+    c[40] = 2.3238891593393207*1.0/(L);
+    c[41] = 7.3798752696619845*1.0/(L);
+    c[42] = 3.9415154871266065*1.0/(L);
+    c[43] = 6.59338841823299*1.0/(L);
+    c[44] = 16.208699513984463*1.0/(L);
+    c[45] = 22.352444439886856*1.0/(L);
+    c[46] = 13.582471389900336*1.0/(L);
+    c[47] = 38.64944540114812*1.0/(L);
+    c[48] = 35.64826964878872*1.0/(L);
+    c[49] = 71.45092441765324*1.0/(L);
+    c[50] = 3.1417563799885007*m*a + 0.3866727482165102*L*m;
+    c[51] = 17.294285387122414*m*a + 10.956449728152158*L*m;
+    c[52] = 49.90422661633818*m*a + 33.71903975972198*L*m;
+    c[53] = 102.91821015122056*m*a + 70.11077665782084*L*m;
 }
 
-/* mass:(c[44],u[3],q[4],qd[4])->(M[16]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[54],u[3],q[4],qd[4])->(M[16]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void amm_nx0_ny4_prescribed_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -80,7 +90,7 @@ void amm_nx0_ny4_prescribed_first_mass(const double* c, const double* u, const d
     out[15] = c[2];
 }
 
-/* forces:(c[44],u[3],q[4],qd[4])->(Q[4]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[54],u[3],q[4],qd[4])->(Q[4]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void amm_nx0_ny4_prescribed_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)qd;
@@ -101,7 +111,7 @@ void amm_nx0_ny4_prescribed_first_forces(const double* c, const double* u, const
     out[3] = c[18]*theta_ddot - c[19]*B4 + c[8]*theta_dotsq_B1 + c[13]*theta_dotsq_B2 - c[17]*theta_dotsq_B3 - c[20]*theta_dotsq_B4;
 }
 
-/* forces_terms:(c[44],u[3],q[4],qd[4])->(m[9]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[54],u[3],q[4],qd[4])->(m[9]) the state monomials of Q: Q = F m */
 void amm_nx0_ny4_prescribed_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -128,7 +138,7 @@ void amm_nx0_ny4_prescribed_first_forces_terms(const double* c, const double* u,
     out[8] = theta_dotsq_B4;
 }
 
-/* forces_matrix:(c[44],u[3],q[4],qd[4])->(F[4*9]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[54],u[3],q[4],qd[4])->(F[4*9]) row-major, state-free: Q = F m; nonzero entries only */
 void amm_nx0_ny4_prescribed_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -160,7 +170,7 @@ void amm_nx0_ny4_prescribed_first_forces_matrix(const double* c, const double* u
     out[35] = -c[20];
 }
 
-/* energy:(c[44],u[3],q[4],qd[4])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[54],u[3],q[4],qd[4])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void amm_nx0_ny4_prescribed_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -205,7 +215,7 @@ void amm_nx0_ny4_prescribed_first_energy(const double* c, const double* u, const
     out[3] = c[29]*B1sq + c[30]*B2sq + c[31]*B3sq + c[32]*B4sq;
 }
 
-/* momentum:(c[44],u[3],q[4],qd[4])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[54],u[3],q[4],qd[4])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void amm_nx0_ny4_prescribed_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -234,7 +244,31 @@ void amm_nx0_ny4_prescribed_first_momentum(const double* c, const double* u, con
     out[0] = c[33]*theta_dot - c[3]*B1_dot - c[9]*B2_dot - c[14]*B3_dot - c[18]*B4_dot - c[5]*theta_dot_B1sq + c[34]*theta_dot_B1_B2 + c[35]*theta_dot_B1_B3 + c[36]*theta_dot_B1_B4 - c[11]*theta_dot_B2sq - c[37]*theta_dot_B2_B3 + c[38]*theta_dot_B2_B4 - c[16]*theta_dot_B3sq - c[39]*theta_dot_B3_B4 - c[20]*theta_dot_B4sq;
 }
 
-/* forces_q:(c[44],u[3],q[4],qd[4])->(dQdq[16]) row-major; out[i*4+k] = dQ_i/dq_k; nonzero entries only */
+/* tip:(c[54],u[3],q[4],qd[4])->(tip[3]) tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B */
+void amm_nx0_ny4_prescribed_first_tip(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)qd;
+    const double B1 = q[0];
+    const double B2 = q[1];
+    const double B3 = q[2];
+    const double B4 = q[3];
+    const double B1sq = B1*B1;
+    const double B1_B2 = B1*B2;
+    const double B1_B3 = B1*B3;
+    const double B1_B4 = B1*B4;
+    const double B2sq = B2*B2;
+    const double B2_B3 = B2*B3;
+    const double B2_B4 = B2*B4;
+    const double B3sq = B3*B3;
+    const double B3_B4 = B3*B4;
+    const double B4sq = B4*B4;
+    out[0] = -1.9999999999999998*B1 + 2.0*B2 - 2.0*B3 + 1.9999999999999998*B4;
+    out[1] = 0.0;
+    out[2] = -c[40]*B1sq + c[41]*B1_B2 - c[42]*B1_B3 + c[43]*B1_B4 - c[44]*B2sq + c[45]*B2_B3 - c[46]*B2_B4 - c[47]*B3sq + c[48]*B3_B4 - c[49]*B4sq;
+}
+
+/* forces_q:(c[54],u[3],q[4],qd[4])->(dQdq[16]) row-major; out[i*4+k] = dQ_i/dq_k; nonzero entries only */
 void amm_nx0_ny4_prescribed_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)q;
@@ -259,7 +293,7 @@ void amm_nx0_ny4_prescribed_first_forces_q(const double* c, const double* u, con
     out[15] = -c[19] - c[20]*theta_dotsq;
 }
 
-/* forces_qd:(c[44],u[3],q[4],qd[4])->(dQdqd[16]) row-major; out[i*4+k] = dQ_i/dqd_k; nonzero entries only */
+/* forces_qd:(c[54],u[3],q[4],qd[4])->(dQdqd[16]) row-major; out[i*4+k] = dQ_i/dqd_k; nonzero entries only */
 void amm_nx0_ny4_prescribed_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -269,7 +303,7 @@ void amm_nx0_ny4_prescribed_first_forces_qd(const double* c, const double* u, co
     (void)qd;
 }
 
-/* forces_u:(c[44],u[3],q[4],qd[4])->(dQdu[12]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
+/* forces_u:(c[54],u[3],q[4],qd[4])->(dQdu[12]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
 void amm_nx0_ny4_prescribed_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)qd;
@@ -282,21 +316,21 @@ void amm_nx0_ny4_prescribed_first_forces_u(const double* c, const double* u, con
     const double theta_dot_B2 = theta_dot*B2;
     const double theta_dot_B3 = theta_dot*B3;
     const double theta_dot_B4 = theta_dot*B4;
-    out[1] = -c[40]*theta_dot_B1 + c[34]*theta_dot_B2 + c[35]*theta_dot_B3 + c[36]*theta_dot_B4;
+    out[1] = -c[50]*theta_dot_B1 + c[34]*theta_dot_B2 + c[35]*theta_dot_B3 + c[36]*theta_dot_B4;
     out[2] = c[3];
-    out[4] = c[34]*theta_dot_B1 - c[41]*theta_dot_B2 - c[37]*theta_dot_B3 + c[38]*theta_dot_B4;
+    out[4] = c[34]*theta_dot_B1 - c[51]*theta_dot_B2 - c[37]*theta_dot_B3 + c[38]*theta_dot_B4;
     out[5] = c[9];
-    out[7] = c[35]*theta_dot_B1 - c[37]*theta_dot_B2 - c[42]*theta_dot_B3 - c[39]*theta_dot_B4;
+    out[7] = c[35]*theta_dot_B1 - c[37]*theta_dot_B2 - c[52]*theta_dot_B3 - c[39]*theta_dot_B4;
     out[8] = c[14];
-    out[10] = c[36]*theta_dot_B1 + c[38]*theta_dot_B2 - c[39]*theta_dot_B3 - c[43]*theta_dot_B4;
+    out[10] = c[36]*theta_dot_B1 + c[38]*theta_dot_B2 - c[39]*theta_dot_B3 - c[53]*theta_dot_B4;
     out[11] = c[18];
 }
 
 }  // namespace
 
-extern const Variant amm_nx0_ny4_prescribed_first = {"amm_nx0_ny4_prescribed_first", 4, 44, 9,
+extern const Variant amm_nx0_ny4_prescribed_first = {"amm_nx0_ny4_prescribed_first", 4, 54, 9,
     "c0000c0000c0000c",
     amm_nx0_ny4_prescribed_first_coefficients, amm_nx0_ny4_prescribed_first_mass, nullptr, amm_nx0_ny4_prescribed_first_forces, amm_nx0_ny4_prescribed_first_forces_terms, amm_nx0_ny4_prescribed_first_forces_matrix,
-    amm_nx0_ny4_prescribed_first_energy, amm_nx0_ny4_prescribed_first_momentum, amm_nx0_ny4_prescribed_first_forces_q, amm_nx0_ny4_prescribed_first_forces_qd, nullptr, amm_nx0_ny4_prescribed_first_forces_u};
+    amm_nx0_ny4_prescribed_first_energy, amm_nx0_ny4_prescribed_first_momentum, amm_nx0_ny4_prescribed_first_forces_q, amm_nx0_ny4_prescribed_first_forces_qd, nullptr, amm_nx0_ny4_prescribed_first_forces_u, amm_nx0_ny4_prescribed_first_tip};
 
 }  // namespace hubbeam::generated

@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[44]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[54]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void amm_nx0_ny4_torque_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -66,9 +66,19 @@ void amm_nx0_ny4_torque_first_coefficients(const double* p, double* c)
     c[41] = 242.75940925668561*EI/(L*L*L);
     c[42] = 1903.2731331957266*EI/(L*L*L);
     c[43] = 7308.636652559391*EI/(L*L*L);
+    c[44] = 2.3238891593393207*1.0/(L);
+    c[45] = 7.3798752696619845*1.0/(L);
+    c[46] = 3.9415154871266065*1.0/(L);
+    c[47] = 6.59338841823299*1.0/(L);
+    c[48] = 16.208699513984463*1.0/(L);
+    c[49] = 22.352444439886856*1.0/(L);
+    c[50] = 13.582471389900336*1.0/(L);
+    c[51] = 38.64944540114812*1.0/(L);
+    c[52] = 35.64826964878872*1.0/(L);
+    c[53] = 71.45092441765324*1.0/(L);
 }
 
-/* mass:(c[44],u[3],q[5],qd[5])->(M[25]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[54],u[3],q[5],qd[5])->(M[25]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void amm_nx0_ny4_torque_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -98,7 +108,7 @@ void amm_nx0_ny4_torque_first_mass(const double* c, const double* u, const doubl
     out[24] = c[17];
 }
 
-/* forces:(c[44],u[3],q[5],qd[5])->(Q[5]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[54],u[3],q[5],qd[5])->(Q[5]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void amm_nx0_ny4_torque_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
@@ -142,7 +152,7 @@ void amm_nx0_ny4_torque_first_forces(const double* c, const double* u, const dou
     out[4] = -c[31]*B4 + c[25]*B1_theta_dotsq + c[28]*B2_theta_dotsq - c[30]*B3_theta_dotsq - c[10]*B4_theta_dotsq;
 }
 
-/* forces_terms:(c[44],u[3],q[5],qd[5])->(m[25]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[54],u[3],q[5],qd[5])->(m[25]) the state monomials of Q: Q = F m */
 void amm_nx0_ny4_torque_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -207,7 +217,7 @@ void amm_nx0_ny4_torque_first_forces_terms(const double* c, const double* u, con
     out[24] = B4_theta_dot_B4_dot;
 }
 
-/* forces_matrix:(c[44],u[3],q[5],qd[5])->(F[5*25]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[54],u[3],q[5],qd[5])->(F[5*25]) row-major, state-free: Q = F m; nonzero entries only */
 void amm_nx0_ny4_torque_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -252,7 +262,7 @@ void amm_nx0_ny4_torque_first_forces_matrix(const double* c, const double* u, co
     out[120] = -c[10];
 }
 
-/* energy:(c[44],u[3],q[5],qd[5])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[54],u[3],q[5],qd[5])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void amm_nx0_ny4_torque_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -310,7 +320,7 @@ void amm_nx0_ny4_torque_first_energy(const double* c, const double* u, const dou
     out[3] = c[40]*B1sq + c[41]*B2sq + c[42]*B3sq + c[43]*B4sq;
 }
 
-/* momentum:(c[44],u[3],q[5],qd[5])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[54],u[3],q[5],qd[5])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void amm_nx0_ny4_torque_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -346,7 +356,31 @@ void amm_nx0_ny4_torque_first_momentum(const double* c, const double* u, const d
     out[0] = c[0]*theta_dot - c[11]*B1_dot - c[12]*B2_dot - c[13]*B3_dot - c[14]*B4_dot - c[1]*B1sq_theta_dot + c[2]*B1_B2_theta_dot + c[3]*B1_B3_theta_dot + c[4]*B1_B4_theta_dot - c[5]*B2sq_theta_dot - c[6]*B2_B3_theta_dot + c[7]*B2_B4_theta_dot - c[8]*B3sq_theta_dot - c[9]*B3_B4_theta_dot - c[10]*B4sq_theta_dot;
 }
 
-/* forces_q:(c[44],u[3],q[5],qd[5])->(dQdq[25]) row-major; out[i*5+k] = dQ_i/dq_k; nonzero entries only */
+/* tip:(c[54],u[3],q[5],qd[5])->(tip[3]) tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B */
+void amm_nx0_ny4_torque_first_tip(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)qd;
+    const double B1 = q[1];
+    const double B2 = q[2];
+    const double B3 = q[3];
+    const double B4 = q[4];
+    const double B1sq = B1*B1;
+    const double B1_B2 = B1*B2;
+    const double B1_B3 = B1*B3;
+    const double B1_B4 = B1*B4;
+    const double B2sq = B2*B2;
+    const double B2_B3 = B2*B3;
+    const double B2_B4 = B2*B4;
+    const double B3sq = B3*B3;
+    const double B3_B4 = B3*B4;
+    const double B4sq = B4*B4;
+    out[0] = -1.9999999999999998*B1 + 2.0*B2 - 2.0*B3 + 1.9999999999999998*B4;
+    out[1] = 0.0;
+    out[2] = -c[44]*B1sq + c[45]*B1_B2 - c[46]*B1_B3 + c[47]*B1_B4 - c[48]*B2sq + c[49]*B2_B3 - c[50]*B2_B4 - c[51]*B3sq + c[52]*B3_B4 - c[53]*B4sq;
+}
+
+/* forces_q:(c[54],u[3],q[5],qd[5])->(dQdq[25]) row-major; out[i*5+k] = dQ_i/dq_k; nonzero entries only */
 void amm_nx0_ny4_torque_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -383,7 +417,7 @@ void amm_nx0_ny4_torque_first_forces_q(const double* c, const double* u, const d
     out[24] = -c[31] - c[10]*theta_dotsq;
 }
 
-/* forces_qd:(c[44],u[3],q[5],qd[5])->(dQdqd[25]) row-major; out[i*5+k] = dQ_i/dqd_k; nonzero entries only */
+/* forces_qd:(c[54],u[3],q[5],qd[5])->(dQdqd[25]) row-major; out[i*5+k] = dQ_i/dqd_k; nonzero entries only */
 void amm_nx0_ny4_torque_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -427,7 +461,7 @@ void amm_nx0_ny4_torque_first_forces_qd(const double* c, const double* u, const 
     out[20] = c[4]*B1_theta_dot + c[7]*B2_theta_dot - c[9]*B3_theta_dot - c[21]*B4_theta_dot;
 }
 
-/* forces_u:(c[44],u[3],q[5],qd[5])->(dQdu[15]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
+/* forces_u:(c[54],u[3],q[5],qd[5])->(dQdu[15]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
 void amm_nx0_ny4_torque_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -437,7 +471,7 @@ void amm_nx0_ny4_torque_first_forces_u(const double* c, const double* u, const d
     out[0] = 1.0;
 }
 
-/* mass_varying:(c[44],u[3],q[5],qd[5])->(M[25]) as mass, the entries that depend on q only */
+/* mass_varying:(c[54],u[3],q[5],qd[5])->(M[25]) as mass, the entries that depend on q only */
 void amm_nx0_ny4_torque_first_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -459,7 +493,7 @@ void amm_nx0_ny4_torque_first_mass_varying(const double* c, const double* u, con
     out[0] = c[0] - c[1]*B1sq + c[2]*B1_B2 + c[3]*B1_B3 + c[4]*B1_B4 - c[5]*B2sq - c[6]*B2_B3 + c[7]*B2_B4 - c[8]*B3sq - c[9]*B3_B4 - c[10]*B4sq;
 }
 
-/* mass_q_product:(c[44],u[3],q[5],qd[5])->(dMv[25]) row-major; v in the qd slot; out[i*5+k] = sum_j dM_ij/dq_k v_j; nonzero entries only */
+/* mass_q_product:(c[54],u[3],q[5],qd[5])->(dMv[25]) row-major; v in the qd slot; out[i*5+k] = sum_j dM_ij/dq_k v_j; nonzero entries only */
 void amm_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -480,9 +514,9 @@ void amm_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, c
 
 }  // namespace
 
-extern const Variant amm_nx0_ny4_torque_first = {"amm_nx0_ny4_torque_first", 5, 44, 25,
+extern const Variant amm_nx0_ny4_torque_first = {"amm_nx0_ny4_torque_first", 5, 54, 25,
     "vcccccc000c0c00c00c0c000c",
     amm_nx0_ny4_torque_first_coefficients, amm_nx0_ny4_torque_first_mass, amm_nx0_ny4_torque_first_mass_varying, amm_nx0_ny4_torque_first_forces, amm_nx0_ny4_torque_first_forces_terms, amm_nx0_ny4_torque_first_forces_matrix,
-    amm_nx0_ny4_torque_first_energy, amm_nx0_ny4_torque_first_momentum, amm_nx0_ny4_torque_first_forces_q, amm_nx0_ny4_torque_first_forces_qd, amm_nx0_ny4_torque_first_mass_q_product, amm_nx0_ny4_torque_first_forces_u};
+    amm_nx0_ny4_torque_first_energy, amm_nx0_ny4_torque_first_momentum, amm_nx0_ny4_torque_first_forces_q, amm_nx0_ny4_torque_first_forces_qd, amm_nx0_ny4_torque_first_mass_q_product, amm_nx0_ny4_torque_first_forces_u, amm_nx0_ny4_torque_first_tip};
 
 }  // namespace hubbeam::generated

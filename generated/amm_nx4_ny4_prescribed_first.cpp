@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[100]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[110]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void amm_nx4_ny4_prescribed_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -117,15 +117,25 @@ void amm_nx4_ny4_prescribed_first_coefficients(const double* p, double* c)
     c[91] = 3.7801094160643145*m*a + 0.33881576952304415*L*m;
     c[92] = 7.286769224587888*m*a + 5.823702223235339*L*m;
     c[93] = 16.676579566391283*m*a + 6.548544128042626*L*m;
-    c[94] = 1.0000000000000002*L*m;
-    c[95] = 0.9999999999999997*L*m;
-    c[96] = 3.1417563799885007*m*a + 0.3866727482165102*L*m;
-    c[97] = 17.294285387122414*m*a + 10.956449728152158*L*m;
-    c[98] = 49.90422661633818*m*a + 33.71903975972198*L*m;
-    c[99] = 102.91821015122056*m*a + 70.11077665782084*L*m;
+    c[94] = 2.3238891593393207*1.0/(L);
+    c[95] = 7.3798752696619845*1.0/(L);
+    c[96] = 3.9415154871266065*1.0/(L);
+    c[97] = 6.59338841823299*1.0/(L);
+    c[98] = 16.208699513984463*1.0/(L);
+    c[99] = 22.352444439886856*1.0/(L);
+    c[100] = 13.582471389900336*1.0/(L);
+    c[101] = 38.64944540114812*1.0/(L);
+    c[102] = 35.64826964878872*1.0/(L);
+    c[103] = 71.45092441765324*1.0/(L);
+    c[104] = 1.0000000000000002*L*m;
+    c[105] = 0.9999999999999997*L*m;
+    c[106] = 3.1417563799885007*m*a + 0.3866727482165102*L*m;
+    c[107] = 17.294285387122414*m*a + 10.956449728152158*L*m;
+    c[108] = 49.90422661633818*m*a + 33.71903975972198*L*m;
+    c[109] = 102.91821015122056*m*a + 70.11077665782084*L*m;
 }
 
-/* mass:(c[100],u[3],q[8],qd[8])->(M[64]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[110],u[3],q[8],qd[8])->(M[64]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void amm_nx4_ny4_prescribed_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -141,7 +151,7 @@ void amm_nx4_ny4_prescribed_first_mass(const double* c, const double* u, const d
     out[63] = c[6];
 }
 
-/* forces:(c[100],u[3],q[8],qd[8])->(Q[8]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[110],u[3],q[8],qd[8])->(Q[8]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void amm_nx4_ny4_prescribed_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -197,7 +207,7 @@ void amm_nx4_ny4_prescribed_first_forces(const double* c, const double* u, const
     out[7] = c[62]*theta_ddot - c[63]*B4 + c[12]*theta_dot_A1_dot + c[22]*theta_dot_A2_dot + c[32]*theta_dot_A3_dot + c[42]*theta_dot_A4_dot + c[16]*theta_ddot_A1 + c[26]*theta_ddot_A2 + c[36]*theta_ddot_A3 + c[46]*theta_ddot_A4 + c[52]*theta_dotsq_B1 + c[57]*theta_dotsq_B2 - c[61]*theta_dotsq_B3 - c[64]*theta_dotsq_B4;
 }
 
-/* forces_terms:(c[100],u[3],q[8],qd[8])->(m[34]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[110],u[3],q[8],qd[8])->(m[34]) the state monomials of Q: Q = F m */
 void amm_nx4_ny4_prescribed_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -280,7 +290,7 @@ void amm_nx4_ny4_prescribed_first_forces_terms(const double* c, const double* u,
     out[33] = theta_dotsq_B4;
 }
 
-/* forces_matrix:(c[100],u[3],q[8],qd[8])->(F[8*34]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[110],u[3],q[8],qd[8])->(F[8*34]) row-major, state-free: Q = F m; nonzero entries only */
 void amm_nx4_ny4_prescribed_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -388,7 +398,7 @@ void amm_nx4_ny4_prescribed_first_forces_matrix(const double* c, const double* u
     out[271] = -c[64];
 }
 
-/* energy:(c[100],u[3],q[8],qd[8])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[110],u[3],q[8],qd[8])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void amm_nx4_ny4_prescribed_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -497,7 +507,7 @@ void amm_nx4_ny4_prescribed_first_energy(const double* c, const double* u, const
     out[3] = c[75]*A1sq + c[76]*A2sq + c[77]*A3sq + c[78]*A4sq + c[79]*B1sq + c[80]*B2sq + c[81]*B3sq + c[82]*B4sq;
 }
 
-/* momentum:(c[100],u[3],q[8],qd[8])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[110],u[3],q[8],qd[8])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void amm_nx4_ny4_prescribed_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -574,7 +584,35 @@ void amm_nx4_ny4_prescribed_first_momentum(const double* c, const double* u, con
     out[0] = c[83]*theta_dot - c[47]*B1_dot - c[53]*B2_dot - c[58]*B3_dot - c[62]*B4_dot + c[84]*theta_dot_A1 + c[85]*theta_dot_A2 + c[86]*theta_dot_A3 + c[87]*theta_dot_A4 - c[13]*A1_B1_dot - c[14]*A1_B2_dot - c[15]*A1_B3_dot - c[16]*A1_B4_dot + c[23]*A2_B1_dot - c[24]*A2_B2_dot - c[25]*A2_B3_dot - c[26]*A2_B4_dot - c[33]*A3_B1_dot + c[34]*A3_B2_dot - c[35]*A3_B3_dot - c[36]*A3_B4_dot + c[43]*A4_B1_dot - c[44]*A4_B2_dot + c[45]*A4_B3_dot - c[46]*A4_B4_dot + c[13]*B1_A1_dot - c[23]*B1_A2_dot + c[33]*B1_A3_dot - c[43]*B1_A4_dot + c[14]*B2_A1_dot + c[24]*B2_A2_dot - c[34]*B2_A3_dot + c[44]*B2_A4_dot + c[15]*B3_A1_dot + c[25]*B3_A2_dot + c[35]*B3_A3_dot - c[45]*B3_A4_dot + c[16]*B4_A1_dot + c[26]*B4_A2_dot + c[36]*B4_A3_dot + c[46]*B4_A4_dot + c[0]*theta_dot_A1sq + c[1]*theta_dot_A2sq + c[2]*theta_dot_A3sq + c[3]*theta_dot_A4sq - c[49]*theta_dot_B1sq + c[88]*theta_dot_B1_B2 + c[89]*theta_dot_B1_B3 + c[90]*theta_dot_B1_B4 - c[55]*theta_dot_B2sq - c[91]*theta_dot_B2_B3 + c[92]*theta_dot_B2_B4 - c[60]*theta_dot_B3sq - c[93]*theta_dot_B3_B4 - c[64]*theta_dot_B4sq;
 }
 
-/* forces_q:(c[100],u[3],q[8],qd[8])->(dQdq[64]) row-major; out[i*8+k] = dQ_i/dq_k; nonzero entries only */
+/* tip:(c[110],u[3],q[8],qd[8])->(tip[3]) tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B */
+void amm_nx4_ny4_prescribed_first_tip(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)qd;
+    const double A1 = q[0];
+    const double A2 = q[1];
+    const double A3 = q[2];
+    const double A4 = q[3];
+    const double B1 = q[4];
+    const double B2 = q[5];
+    const double B3 = q[6];
+    const double B4 = q[7];
+    const double B1sq = B1*B1;
+    const double B1_B2 = B1*B2;
+    const double B1_B3 = B1*B3;
+    const double B1_B4 = B1*B4;
+    const double B2sq = B2*B2;
+    const double B2_B3 = B2*B3;
+    const double B2_B4 = B2*B4;
+    const double B3sq = B3*B3;
+    const double B3_B4 = B3*B4;
+    const double B4sq = B4*B4;
+    out[0] = -1.9999999999999998*B1 + 2.0*B2 - 2.0*B3 + 1.9999999999999998*B4;
+    out[1] = A1 - A2 + A3 - A4;
+    out[2] = A1 - A2 + A3 - A4 - c[94]*B1sq + c[95]*B1_B2 - c[96]*B1_B3 + c[97]*B1_B4 - c[98]*B2sq + c[99]*B2_B3 - c[100]*B2_B4 - c[101]*B3sq + c[102]*B3_B4 - c[103]*B4sq;
+}
+
+/* forces_q:(c[110],u[3],q[8],qd[8])->(dQdq[64]) row-major; out[i*8+k] = dQ_i/dq_k; nonzero entries only */
 void amm_nx4_ny4_prescribed_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)q;
@@ -636,7 +674,7 @@ void amm_nx4_ny4_prescribed_first_forces_q(const double* c, const double* u, con
     out[63] = -c[63] - c[64]*theta_dotsq;
 }
 
-/* forces_qd:(c[100],u[3],q[8],qd[8])->(dQdqd[64]) row-major; out[i*8+k] = dQ_i/dqd_k; nonzero entries only */
+/* forces_qd:(c[110],u[3],q[8],qd[8])->(dQdqd[64]) row-major; out[i*8+k] = dQ_i/dqd_k; nonzero entries only */
 void amm_nx4_ny4_prescribed_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)q;
@@ -676,7 +714,7 @@ void amm_nx4_ny4_prescribed_first_forces_qd(const double* c, const double* u, co
     out[59] = c[42]*theta_dot;
 }
 
-/* forces_u:(c[100],u[3],q[8],qd[8])->(dQdu[24]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
+/* forces_u:(c[110],u[3],q[8],qd[8])->(dQdu[24]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
 void amm_nx4_ny4_prescribed_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -704,29 +742,29 @@ void amm_nx4_ny4_prescribed_first_forces_u(const double* c, const double* u, con
     const double theta_dot_B2 = theta_dot*B2;
     const double theta_dot_B3 = theta_dot*B3;
     const double theta_dot_B4 = theta_dot*B4;
-    out[1] = c[84]*theta_dot - c[9]*B1_dot - c[10]*B2_dot - c[11]*B3_dot - c[12]*B4_dot + c[94]*theta_dot_A1;
+    out[1] = c[84]*theta_dot - c[9]*B1_dot - c[10]*B2_dot - c[11]*B3_dot - c[12]*B4_dot + c[104]*theta_dot_A1;
     out[2] = -c[13]*B1 - c[14]*B2 - c[15]*B3 - c[16]*B4;
-    out[4] = c[85]*theta_dot + c[19]*B1_dot - c[20]*B2_dot - c[21]*B3_dot - c[22]*B4_dot + c[95]*theta_dot_A2;
+    out[4] = c[85]*theta_dot + c[19]*B1_dot - c[20]*B2_dot - c[21]*B3_dot - c[22]*B4_dot + c[105]*theta_dot_A2;
     out[5] = c[23]*B1 - c[24]*B2 - c[25]*B3 - c[26]*B4;
     out[7] = c[86]*theta_dot - c[29]*B1_dot + c[30]*B2_dot - c[31]*B3_dot - c[32]*B4_dot + c[6]*theta_dot_A3;
     out[8] = -c[33]*B1 + c[34]*B2 - c[35]*B3 - c[36]*B4;
     out[10] = c[87]*theta_dot + c[39]*B1_dot - c[40]*B2_dot + c[41]*B3_dot - c[42]*B4_dot + c[5]*theta_dot_A4;
     out[11] = c[43]*B1 - c[44]*B2 + c[45]*B3 - c[46]*B4;
-    out[13] = c[9]*A1_dot - c[19]*A2_dot + c[29]*A3_dot - c[39]*A4_dot - c[96]*theta_dot_B1 + c[88]*theta_dot_B2 + c[89]*theta_dot_B3 + c[90]*theta_dot_B4;
+    out[13] = c[9]*A1_dot - c[19]*A2_dot + c[29]*A3_dot - c[39]*A4_dot - c[106]*theta_dot_B1 + c[88]*theta_dot_B2 + c[89]*theta_dot_B3 + c[90]*theta_dot_B4;
     out[14] = c[47] + c[13]*A1 - c[23]*A2 + c[33]*A3 - c[43]*A4;
-    out[16] = c[10]*A1_dot + c[20]*A2_dot - c[30]*A3_dot + c[40]*A4_dot + c[88]*theta_dot_B1 - c[97]*theta_dot_B2 - c[91]*theta_dot_B3 + c[92]*theta_dot_B4;
+    out[16] = c[10]*A1_dot + c[20]*A2_dot - c[30]*A3_dot + c[40]*A4_dot + c[88]*theta_dot_B1 - c[107]*theta_dot_B2 - c[91]*theta_dot_B3 + c[92]*theta_dot_B4;
     out[17] = c[53] + c[14]*A1 + c[24]*A2 - c[34]*A3 + c[44]*A4;
-    out[19] = c[11]*A1_dot + c[21]*A2_dot + c[31]*A3_dot - c[41]*A4_dot + c[89]*theta_dot_B1 - c[91]*theta_dot_B2 - c[98]*theta_dot_B3 - c[93]*theta_dot_B4;
+    out[19] = c[11]*A1_dot + c[21]*A2_dot + c[31]*A3_dot - c[41]*A4_dot + c[89]*theta_dot_B1 - c[91]*theta_dot_B2 - c[108]*theta_dot_B3 - c[93]*theta_dot_B4;
     out[20] = c[58] + c[15]*A1 + c[25]*A2 + c[35]*A3 - c[45]*A4;
-    out[22] = c[12]*A1_dot + c[22]*A2_dot + c[32]*A3_dot + c[42]*A4_dot + c[90]*theta_dot_B1 + c[92]*theta_dot_B2 - c[93]*theta_dot_B3 - c[99]*theta_dot_B4;
+    out[22] = c[12]*A1_dot + c[22]*A2_dot + c[32]*A3_dot + c[42]*A4_dot + c[90]*theta_dot_B1 + c[92]*theta_dot_B2 - c[93]*theta_dot_B3 - c[109]*theta_dot_B4;
     out[23] = c[62] + c[16]*A1 + c[26]*A2 + c[36]*A3 + c[46]*A4;
 }
 
 }  // namespace
 
-extern const Variant amm_nx4_ny4_prescribed_first = {"amm_nx4_ny4_prescribed_first", 8, 100, 34,
+extern const Variant amm_nx4_ny4_prescribed_first = {"amm_nx4_ny4_prescribed_first", 8, 110, 34,
     "c00000000c00000000c00000000c00000000c00000000c00000000c00000000c",
     amm_nx4_ny4_prescribed_first_coefficients, amm_nx4_ny4_prescribed_first_mass, nullptr, amm_nx4_ny4_prescribed_first_forces, amm_nx4_ny4_prescribed_first_forces_terms, amm_nx4_ny4_prescribed_first_forces_matrix,
-    amm_nx4_ny4_prescribed_first_energy, amm_nx4_ny4_prescribed_first_momentum, amm_nx4_ny4_prescribed_first_forces_q, amm_nx4_ny4_prescribed_first_forces_qd, nullptr, amm_nx4_ny4_prescribed_first_forces_u};
+    amm_nx4_ny4_prescribed_first_energy, amm_nx4_ny4_prescribed_first_momentum, amm_nx4_ny4_prescribed_first_forces_q, amm_nx4_ny4_prescribed_first_forces_qd, nullptr, amm_nx4_ny4_prescribed_first_forces_u, amm_nx4_ny4_prescribed_first_tip};
 
 }  // namespace hubbeam::generated

@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[100]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[110]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void amm_nx4_ny4_torque_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -123,9 +123,19 @@ void amm_nx4_ny4_torque_first_coefficients(const double* p, double* c)
     c[97] = 242.75940925668561*EI/(L*L*L);
     c[98] = 1903.2731331957266*EI/(L*L*L);
     c[99] = 7308.636652559391*EI/(L*L*L);
+    c[100] = 2.3238891593393207*1.0/(L);
+    c[101] = 7.3798752696619845*1.0/(L);
+    c[102] = 3.9415154871266065*1.0/(L);
+    c[103] = 6.59338841823299*1.0/(L);
+    c[104] = 16.208699513984463*1.0/(L);
+    c[105] = 22.352444439886856*1.0/(L);
+    c[106] = 13.582471389900336*1.0/(L);
+    c[107] = 38.64944540114812*1.0/(L);
+    c[108] = 35.64826964878872*1.0/(L);
+    c[109] = 71.45092441765324*1.0/(L);
 }
 
-/* mass:(c[100],u[3],q[9],qd[9])->(M[81]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[110],u[3],q[9],qd[9])->(M[81]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void amm_nx4_ny4_torque_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -171,7 +181,7 @@ void amm_nx4_ny4_torque_first_mass(const double* c, const double* u, const doubl
     out[80] = c[41];
 }
 
-/* forces:(c[100],u[3],q[9],qd[9])->(Q[9]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[110],u[3],q[9],qd[9])->(Q[9]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void amm_nx4_ny4_torque_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
@@ -248,7 +258,7 @@ void amm_nx4_ny4_torque_first_forces(const double* c, const double* u, const dou
     out[8] = -c[81]*B4 + c[53]*theta_dot_A1_dot + c[59]*theta_dot_A2_dot + c[65]*theta_dot_A3_dot + c[71]*theta_dot_A4_dot + c[75]*B1_theta_dotsq + c[78]*B2_theta_dotsq - c[80]*B3_theta_dotsq - c[18]*B4_theta_dotsq;
 }
 
-/* forces_terms:(c[100],u[3],q[9],qd[9])->(m[46]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[110],u[3],q[9],qd[9])->(m[46]) the state monomials of Q: Q = F m */
 void amm_nx4_ny4_torque_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -363,7 +373,7 @@ void amm_nx4_ny4_torque_first_forces_terms(const double* c, const double* u, con
     out[45] = B4_theta_dot_B4_dot;
 }
 
-/* forces_matrix:(c[100],u[3],q[9],qd[9])->(F[9*46]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[110],u[3],q[9],qd[9])->(F[9*46]) row-major, state-free: Q = F m; nonzero entries only */
 void amm_nx4_ny4_torque_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -460,7 +470,7 @@ void amm_nx4_ny4_torque_first_forces_matrix(const double* c, const double* u, co
     out[409] = -c[18];
 }
 
-/* energy:(c[100],u[3],q[9],qd[9])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[110],u[3],q[9],qd[9])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void amm_nx4_ny4_torque_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -586,7 +596,7 @@ void amm_nx4_ny4_torque_first_energy(const double* c, const double* u, const dou
     out[3] = c[92]*A1sq + c[93]*A2sq + c[94]*A3sq + c[95]*A4sq + c[96]*B1sq + c[97]*B2sq + c[98]*B3sq + c[99]*B4sq;
 }
 
-/* momentum:(c[100],u[3],q[9],qd[9])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[110],u[3],q[9],qd[9])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void amm_nx4_ny4_torque_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -674,7 +684,35 @@ void amm_nx4_ny4_torque_first_momentum(const double* c, const double* u, const d
     out[0] = c[0]*theta_dot - c[35]*B1_dot - c[36]*B2_dot - c[37]*B3_dot - c[38]*B4_dot + c[1]*A1_theta_dot - c[19]*A1_B1_dot - c[20]*A1_B2_dot - c[21]*A1_B3_dot - c[22]*A1_B4_dot + c[2]*A2_theta_dot + c[23]*A2_B1_dot - c[24]*A2_B2_dot - c[25]*A2_B3_dot - c[26]*A2_B4_dot + c[3]*A3_theta_dot - c[27]*A3_B1_dot + c[28]*A3_B2_dot - c[29]*A3_B3_dot - c[30]*A3_B4_dot + c[4]*A4_theta_dot + c[31]*A4_B1_dot - c[32]*A4_B2_dot + c[33]*A4_B3_dot - c[34]*A4_B4_dot + c[19]*B1_A1_dot - c[23]*B1_A2_dot + c[27]*B1_A3_dot - c[31]*B1_A4_dot + c[20]*B2_A1_dot + c[24]*B2_A2_dot - c[28]*B2_A3_dot + c[32]*B2_A4_dot + c[21]*B3_A1_dot + c[25]*B3_A2_dot + c[29]*B3_A3_dot - c[33]*B3_A4_dot + c[22]*B4_A1_dot + c[26]*B4_A2_dot + c[30]*B4_A3_dot + c[34]*B4_A4_dot + c[5]*A1sq_theta_dot + c[6]*A2sq_theta_dot + c[7]*A3sq_theta_dot + c[8]*A4sq_theta_dot - c[9]*B1sq_theta_dot + c[10]*B1_B2_theta_dot + c[11]*B1_B3_theta_dot + c[12]*B1_B4_theta_dot - c[13]*B2sq_theta_dot - c[14]*B2_B3_theta_dot + c[15]*B2_B4_theta_dot - c[16]*B3sq_theta_dot - c[17]*B3_B4_theta_dot - c[18]*B4sq_theta_dot;
 }
 
-/* forces_q:(c[100],u[3],q[9],qd[9])->(dQdq[81]) row-major; out[i*9+k] = dQ_i/dq_k; nonzero entries only */
+/* tip:(c[110],u[3],q[9],qd[9])->(tip[3]) tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B */
+void amm_nx4_ny4_torque_first_tip(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)qd;
+    const double A1 = q[1];
+    const double A2 = q[2];
+    const double A3 = q[3];
+    const double A4 = q[4];
+    const double B1 = q[5];
+    const double B2 = q[6];
+    const double B3 = q[7];
+    const double B4 = q[8];
+    const double B1sq = B1*B1;
+    const double B1_B2 = B1*B2;
+    const double B1_B3 = B1*B3;
+    const double B1_B4 = B1*B4;
+    const double B2sq = B2*B2;
+    const double B2_B3 = B2*B3;
+    const double B2_B4 = B2*B4;
+    const double B3sq = B3*B3;
+    const double B3_B4 = B3*B4;
+    const double B4sq = B4*B4;
+    out[0] = -1.9999999999999998*B1 + 2.0*B2 - 2.0*B3 + 1.9999999999999998*B4;
+    out[1] = A1 - A2 + A3 - A4;
+    out[2] = A1 - A2 + A3 - A4 - c[100]*B1sq + c[101]*B1_B2 - c[102]*B1_B3 + c[103]*B1_B4 - c[104]*B2sq + c[105]*B2_B3 - c[106]*B2_B4 - c[107]*B3sq + c[108]*B3_B4 - c[109]*B4sq;
+}
+
+/* forces_q:(c[110],u[3],q[9],qd[9])->(dQdq[81]) row-major; out[i*9+k] = dQ_i/dq_k; nonzero entries only */
 void amm_nx4_ny4_torque_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -727,7 +765,7 @@ void amm_nx4_ny4_torque_first_forces_q(const double* c, const double* u, const d
     out[80] = -c[81] - c[18]*theta_dotsq;
 }
 
-/* forces_qd:(c[100],u[3],q[9],qd[9])->(dQdqd[81]) row-major; out[i*9+k] = dQ_i/dqd_k; nonzero entries only */
+/* forces_qd:(c[110],u[3],q[9],qd[9])->(dQdqd[81]) row-major; out[i*9+k] = dQ_i/dqd_k; nonzero entries only */
 void amm_nx4_ny4_torque_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -827,7 +865,7 @@ void amm_nx4_ny4_torque_first_forces_qd(const double* c, const double* u, const 
     out[76] = c[71]*theta_dot;
 }
 
-/* forces_u:(c[100],u[3],q[9],qd[9])->(dQdu[27]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
+/* forces_u:(c[110],u[3],q[9],qd[9])->(dQdu[27]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
 void amm_nx4_ny4_torque_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -837,7 +875,7 @@ void amm_nx4_ny4_torque_first_forces_u(const double* c, const double* u, const d
     out[0] = 1.0;
 }
 
-/* mass_varying:(c[100],u[3],q[9],qd[9])->(M[81]) as mass, the entries that depend on q only */
+/* mass_varying:(c[110],u[3],q[9],qd[9])->(M[81]) as mass, the entries that depend on q only */
 void amm_nx4_ny4_torque_first_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -875,7 +913,7 @@ void amm_nx4_ny4_torque_first_mass_varying(const double* c, const double* u, con
     out[8] = -c[38] - c[22]*A1 - c[26]*A2 - c[30]*A3 - c[34]*A4;
 }
 
-/* mass_q_product:(c[100],u[3],q[9],qd[9])->(dMv[81]) row-major; v in the qd slot; out[i*9+k] = sum_j dM_ij/dq_k v_j; nonzero entries only */
+/* mass_q_product:(c[110],u[3],q[9],qd[9])->(dMv[81]) row-major; v in the qd slot; out[i*9+k] = sum_j dM_ij/dq_k v_j; nonzero entries only */
 void amm_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -948,9 +986,9 @@ void amm_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, c
 
 }  // namespace
 
-extern const Variant amm_nx4_ny4_torque_first = {"amm_nx4_ny4_torque_first", 9, 100, 46,
+extern const Variant amm_nx4_ny4_torque_first = {"amm_nx4_ny4_torque_first", 9, 110, 46,
     "vvvvvvvvvvc0000000v0c000000v00c00000v000c0000v0000c000v00000c00v000000c0v0000000c",
     amm_nx4_ny4_torque_first_coefficients, amm_nx4_ny4_torque_first_mass, amm_nx4_ny4_torque_first_mass_varying, amm_nx4_ny4_torque_first_forces, amm_nx4_ny4_torque_first_forces_terms, amm_nx4_ny4_torque_first_forces_matrix,
-    amm_nx4_ny4_torque_first_energy, amm_nx4_ny4_torque_first_momentum, amm_nx4_ny4_torque_first_forces_q, amm_nx4_ny4_torque_first_forces_qd, amm_nx4_ny4_torque_first_mass_q_product, amm_nx4_ny4_torque_first_forces_u};
+    amm_nx4_ny4_torque_first_energy, amm_nx4_ny4_torque_first_momentum, amm_nx4_ny4_torque_first_forces_q, amm_nx4_ny4_torque_first_forces_qd, amm_nx4_ny4_torque_first_mass_q_product, amm_nx4_ny4_torque_first_forces_u, amm_nx4_ny4_torque_first_tip};
 
 }  // namespace hubbeam::generated

@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[52]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[57]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void bim_nx0_ny4_prescribed_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -70,13 +70,18 @@ void bim_nx0_ny4_prescribed_first_coefficients(const double* p, double* c)
     c[45] = 0.1984126984126984*m*a + 0.06854256854256854*L*m;
     c[46] = 0.1984126984126984*m*a + 0.227994227994228*L*m;
     c[47] = 0.11616161616161616*L*m;
-    c[48] = 0.7936507936507936*m*a + 0.4184704184704185*L*m;
-    c[49] = 0.47619047619047616*m*a + 0.2597402597402597*L*m;
-    c[50] = 0.3968253968253968*m*a + 0.22366522366522368*L*m;
-    c[51] = 0.5555555555555556*m*a + 0.32323232323232326*L*m;
+    c[48] = 0.31746031746031744*1.0/(L);
+    c[49] = 0.15873015873015872*1.0/(L);
+    c[50] = 0.3968253968253968*1.0/(L);
+    c[51] = 0.7936507936507936*1.0/(L);
+    c[52] = 1.3888888888888888*1.0/(L);
+    c[53] = 0.7936507936507936*m*a + 0.4184704184704185*L*m;
+    c[54] = 0.47619047619047616*m*a + 0.2597402597402597*L*m;
+    c[55] = 0.3968253968253968*m*a + 0.22366522366522368*L*m;
+    c[56] = 0.5555555555555556*m*a + 0.32323232323232326*L*m;
 }
 
-/* mass:(c[52],u[3],q[4],qd[4])->(M[16]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[57],u[3],q[4],qd[4])->(M[16]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void bim_nx0_ny4_prescribed_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -94,7 +99,7 @@ void bim_nx0_ny4_prescribed_first_mass(const double* c, const double* u, const d
     out[15] = c[8];
 }
 
-/* forces:(c[52],u[3],q[4],qd[4])->(Q[4]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[57],u[3],q[4],qd[4])->(Q[4]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void bim_nx0_ny4_prescribed_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)qd;
@@ -115,7 +120,7 @@ void bim_nx0_ny4_prescribed_first_forces(const double* c, const double* u, const
     out[3] = -c[29]*theta_ddot - c[13]*B1 - c[20]*B2 + c[26]*B3 - c[30]*B4 + c[17]*theta_dotsq_B1 + c[23]*theta_dotsq_B2 + c[28]*theta_dotsq_B3 - c[31]*theta_dotsq_B4;
 }
 
-/* forces_terms:(c[52],u[3],q[4],qd[4])->(m[9]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[57],u[3],q[4],qd[4])->(m[9]) the state monomials of Q: Q = F m */
 void bim_nx0_ny4_prescribed_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -142,7 +147,7 @@ void bim_nx0_ny4_prescribed_first_forces_terms(const double* c, const double* u,
     out[8] = theta_dotsq_B4;
 }
 
-/* forces_matrix:(c[52],u[3],q[4],qd[4])->(F[4*9]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[57],u[3],q[4],qd[4])->(F[4*9]) row-major, state-free: Q = F m; nonzero entries only */
 void bim_nx0_ny4_prescribed_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -186,7 +191,7 @@ void bim_nx0_ny4_prescribed_first_forces_matrix(const double* c, const double* u
     out[35] = -c[31];
 }
 
-/* energy:(c[52],u[3],q[4],qd[4])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[57],u[3],q[4],qd[4])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void bim_nx0_ny4_prescribed_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -243,7 +248,7 @@ void bim_nx0_ny4_prescribed_first_energy(const double* c, const double* u, const
     out[3] = c[38]*B1sq + c[11]*B1_B2 - c[12]*B1_B3 + c[13]*B1_B4 + c[38]*B2sq - c[19]*B2_B3 + c[20]*B2_B4 + c[39]*B3sq - c[26]*B3_B4 + c[40]*B4sq;
 }
 
-/* momentum:(c[52],u[3],q[4],qd[4])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[57],u[3],q[4],qd[4])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void bim_nx0_ny4_prescribed_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -272,7 +277,31 @@ void bim_nx0_ny4_prescribed_first_momentum(const double* c, const double* u, con
     out[0] = c[41]*theta_dot + c[9]*B1_dot + c[18]*B2_dot + c[24]*B3_dot + c[29]*B4_dot - c[14]*theta_dot_B1sq - c[42]*theta_dot_B1_B2 + c[43]*theta_dot_B1_B3 + c[44]*theta_dot_B1_B4 - c[21]*theta_dot_B2sq - c[45]*theta_dot_B2_B3 + c[46]*theta_dot_B2_B4 - c[27]*theta_dot_B3sq + c[47]*theta_dot_B3_B4 - c[31]*theta_dot_B4sq;
 }
 
-/* forces_q:(c[52],u[3],q[4],qd[4])->(dQdq[16]) row-major; out[i*4+k] = dQ_i/dq_k; nonzero entries only */
+/* tip:(c[57],u[3],q[4],qd[4])->(tip[3]) tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B */
+void bim_nx0_ny4_prescribed_first_tip(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)qd;
+    const double B1 = q[0];
+    const double B2 = q[1];
+    const double B3 = q[2];
+    const double B4 = q[3];
+    const double B1sq = B1*B1;
+    const double B1_B2 = B1*B2;
+    const double B1_B3 = B1*B3;
+    const double B1_B4 = B1*B4;
+    const double B2sq = B2*B2;
+    const double B2_B3 = B2*B3;
+    const double B2_B4 = B2*B4;
+    const double B3sq = B3*B3;
+    const double B3_B4 = B3*B4;
+    const double B4sq = B4*B4;
+    out[0] = B4;
+    out[1] = 0.0;
+    out[2] = -c[48]*B1sq - c[48]*B1_B2 + c[49]*B1_B3 + c[50]*B1_B4 - c[48]*B2sq - c[50]*B2_B3 + c[51]*B2_B4 - c[51]*B3sq + c[52]*B3_B4 - c[52]*B4sq;
+}
+
+/* forces_q:(c[57],u[3],q[4],qd[4])->(dQdq[16]) row-major; out[i*4+k] = dQ_i/dq_k; nonzero entries only */
 void bim_nx0_ny4_prescribed_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)q;
@@ -297,7 +326,7 @@ void bim_nx0_ny4_prescribed_first_forces_q(const double* c, const double* u, con
     out[15] = -c[30] - c[31]*theta_dotsq;
 }
 
-/* forces_qd:(c[52],u[3],q[4],qd[4])->(dQdqd[16]) row-major; out[i*4+k] = dQ_i/dqd_k; nonzero entries only */
+/* forces_qd:(c[57],u[3],q[4],qd[4])->(dQdqd[16]) row-major; out[i*4+k] = dQ_i/dqd_k; nonzero entries only */
 void bim_nx0_ny4_prescribed_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -307,7 +336,7 @@ void bim_nx0_ny4_prescribed_first_forces_qd(const double* c, const double* u, co
     (void)qd;
 }
 
-/* forces_u:(c[52],u[3],q[4],qd[4])->(dQdu[12]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
+/* forces_u:(c[57],u[3],q[4],qd[4])->(dQdu[12]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
 void bim_nx0_ny4_prescribed_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)qd;
@@ -320,21 +349,21 @@ void bim_nx0_ny4_prescribed_first_forces_u(const double* c, const double* u, con
     const double theta_dot_B2 = theta_dot*B2;
     const double theta_dot_B3 = theta_dot*B3;
     const double theta_dot_B4 = theta_dot*B4;
-    out[1] = -c[48]*theta_dot_B1 - c[42]*theta_dot_B2 + c[43]*theta_dot_B3 + c[44]*theta_dot_B4;
+    out[1] = -c[53]*theta_dot_B1 - c[42]*theta_dot_B2 + c[43]*theta_dot_B3 + c[44]*theta_dot_B4;
     out[2] = -c[9];
-    out[4] = -c[42]*theta_dot_B1 - c[49]*theta_dot_B2 - c[45]*theta_dot_B3 + c[46]*theta_dot_B4;
+    out[4] = -c[42]*theta_dot_B1 - c[54]*theta_dot_B2 - c[45]*theta_dot_B3 + c[46]*theta_dot_B4;
     out[5] = -c[18];
-    out[7] = c[43]*theta_dot_B1 - c[45]*theta_dot_B2 - c[50]*theta_dot_B3 + c[47]*theta_dot_B4;
+    out[7] = c[43]*theta_dot_B1 - c[45]*theta_dot_B2 - c[55]*theta_dot_B3 + c[47]*theta_dot_B4;
     out[8] = -c[24];
-    out[10] = c[44]*theta_dot_B1 + c[46]*theta_dot_B2 + c[47]*theta_dot_B3 - c[51]*theta_dot_B4;
+    out[10] = c[44]*theta_dot_B1 + c[46]*theta_dot_B2 + c[47]*theta_dot_B3 - c[56]*theta_dot_B4;
     out[11] = -c[29];
 }
 
 }  // namespace
 
-extern const Variant bim_nx0_ny4_prescribed_first = {"bim_nx0_ny4_prescribed_first", 4, 52, 9,
+extern const Variant bim_nx0_ny4_prescribed_first = {"bim_nx0_ny4_prescribed_first", 4, 57, 9,
     "cccccccccccccccc",
     bim_nx0_ny4_prescribed_first_coefficients, bim_nx0_ny4_prescribed_first_mass, nullptr, bim_nx0_ny4_prescribed_first_forces, bim_nx0_ny4_prescribed_first_forces_terms, bim_nx0_ny4_prescribed_first_forces_matrix,
-    bim_nx0_ny4_prescribed_first_energy, bim_nx0_ny4_prescribed_first_momentum, bim_nx0_ny4_prescribed_first_forces_q, bim_nx0_ny4_prescribed_first_forces_qd, nullptr, bim_nx0_ny4_prescribed_first_forces_u};
+    bim_nx0_ny4_prescribed_first_energy, bim_nx0_ny4_prescribed_first_momentum, bim_nx0_ny4_prescribed_first_forces_q, bim_nx0_ny4_prescribed_first_forces_qd, nullptr, bim_nx0_ny4_prescribed_first_forces_u, bim_nx0_ny4_prescribed_first_tip};
 
 }  // namespace hubbeam::generated

@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[52]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[57]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void bim_nx0_ny4_torque_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -74,9 +74,14 @@ void bim_nx0_ny4_torque_first_coefficients(const double* p, double* c)
     c[49] = 17.142857142857142*EI/(L*L*L);
     c[50] = 74.28571428571429*EI/(L*L*L);
     c[51] = 28.571428571428573*EI/(L*L*L);
+    c[52] = 0.31746031746031744*1.0/(L);
+    c[53] = 0.15873015873015872*1.0/(L);
+    c[54] = 0.3968253968253968*1.0/(L);
+    c[55] = 0.7936507936507936*1.0/(L);
+    c[56] = 1.3888888888888888*1.0/(L);
 }
 
-/* mass:(c[52],u[3],q[5],qd[5])->(M[25]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[57],u[3],q[5],qd[5])->(M[25]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void bim_nx0_ny4_torque_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -112,7 +117,7 @@ void bim_nx0_ny4_torque_first_mass(const double* c, const double* u, const doubl
     out[24] = c[23];
 }
 
-/* forces:(c[52],u[3],q[5],qd[5])->(Q[5]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[57],u[3],q[5],qd[5])->(Q[5]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void bim_nx0_ny4_torque_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
@@ -156,7 +161,7 @@ void bim_nx0_ny4_torque_first_forces(const double* c, const double* u, const dou
     out[4] = -c[31]*B1 - c[36]*B2 + c[40]*B3 - c[42]*B4 + c[34]*B1_theta_dotsq + c[38]*B2_theta_dotsq + c[41]*B3_theta_dotsq - c[10]*B4_theta_dotsq;
 }
 
-/* forces_terms:(c[52],u[3],q[5],qd[5])->(m[25]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[57],u[3],q[5],qd[5])->(m[25]) the state monomials of Q: Q = F m */
 void bim_nx0_ny4_torque_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -221,7 +226,7 @@ void bim_nx0_ny4_torque_first_forces_terms(const double* c, const double* u, con
     out[24] = B4_theta_dot_B4_dot;
 }
 
-/* forces_matrix:(c[52],u[3],q[5],qd[5])->(F[5*25]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[57],u[3],q[5],qd[5])->(F[5*25]) row-major, state-free: Q = F m; nonzero entries only */
 void bim_nx0_ny4_torque_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -278,7 +283,7 @@ void bim_nx0_ny4_torque_first_forces_matrix(const double* c, const double* u, co
     out[120] = -c[10];
 }
 
-/* energy:(c[52],u[3],q[5],qd[5])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[57],u[3],q[5],qd[5])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void bim_nx0_ny4_torque_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -342,7 +347,7 @@ void bim_nx0_ny4_torque_first_energy(const double* c, const double* u, const dou
     out[3] = c[49]*B1sq + c[29]*B1_B2 - c[30]*B1_B3 + c[31]*B1_B4 + c[49]*B2sq - c[35]*B2_B3 + c[36]*B2_B4 + c[50]*B3sq - c[40]*B3_B4 + c[51]*B4sq;
 }
 
-/* momentum:(c[52],u[3],q[5],qd[5])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[57],u[3],q[5],qd[5])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void bim_nx0_ny4_torque_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -378,7 +383,31 @@ void bim_nx0_ny4_torque_first_momentum(const double* c, const double* u, const d
     out[0] = c[0]*theta_dot + c[11]*B1_dot + c[12]*B2_dot + c[13]*B3_dot + c[14]*B4_dot - c[1]*B1sq_theta_dot - c[2]*B1_B2_theta_dot + c[3]*B1_B3_theta_dot + c[4]*B1_B4_theta_dot - c[5]*B2sq_theta_dot - c[6]*B2_B3_theta_dot + c[7]*B2_B4_theta_dot - c[8]*B3sq_theta_dot + c[9]*B3_B4_theta_dot - c[10]*B4sq_theta_dot;
 }
 
-/* forces_q:(c[52],u[3],q[5],qd[5])->(dQdq[25]) row-major; out[i*5+k] = dQ_i/dq_k; nonzero entries only */
+/* tip:(c[57],u[3],q[5],qd[5])->(tip[3]) tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B */
+void bim_nx0_ny4_torque_first_tip(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)qd;
+    const double B1 = q[1];
+    const double B2 = q[2];
+    const double B3 = q[3];
+    const double B4 = q[4];
+    const double B1sq = B1*B1;
+    const double B1_B2 = B1*B2;
+    const double B1_B3 = B1*B3;
+    const double B1_B4 = B1*B4;
+    const double B2sq = B2*B2;
+    const double B2_B3 = B2*B3;
+    const double B2_B4 = B2*B4;
+    const double B3sq = B3*B3;
+    const double B3_B4 = B3*B4;
+    const double B4sq = B4*B4;
+    out[0] = B4;
+    out[1] = 0.0;
+    out[2] = -c[52]*B1sq - c[52]*B1_B2 + c[53]*B1_B3 + c[54]*B1_B4 - c[52]*B2sq - c[54]*B2_B3 + c[55]*B2_B4 - c[55]*B3sq + c[56]*B3_B4 - c[56]*B4sq;
+}
+
+/* forces_q:(c[57],u[3],q[5],qd[5])->(dQdq[25]) row-major; out[i*5+k] = dQ_i/dq_k; nonzero entries only */
 void bim_nx0_ny4_torque_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -415,7 +444,7 @@ void bim_nx0_ny4_torque_first_forces_q(const double* c, const double* u, const d
     out[24] = -c[42] - c[10]*theta_dotsq;
 }
 
-/* forces_qd:(c[52],u[3],q[5],qd[5])->(dQdqd[25]) row-major; out[i*5+k] = dQ_i/dqd_k; nonzero entries only */
+/* forces_qd:(c[57],u[3],q[5],qd[5])->(dQdqd[25]) row-major; out[i*5+k] = dQ_i/dqd_k; nonzero entries only */
 void bim_nx0_ny4_torque_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -459,7 +488,7 @@ void bim_nx0_ny4_torque_first_forces_qd(const double* c, const double* u, const 
     out[20] = c[4]*B1_theta_dot + c[7]*B2_theta_dot + c[9]*B3_theta_dot - c[27]*B4_theta_dot;
 }
 
-/* forces_u:(c[52],u[3],q[5],qd[5])->(dQdu[15]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
+/* forces_u:(c[57],u[3],q[5],qd[5])->(dQdu[15]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
 void bim_nx0_ny4_torque_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -469,7 +498,7 @@ void bim_nx0_ny4_torque_first_forces_u(const double* c, const double* u, const d
     out[0] = 1.0;
 }
 
-/* mass_varying:(c[52],u[3],q[5],qd[5])->(M[25]) as mass, the entries that depend on q only */
+/* mass_varying:(c[57],u[3],q[5],qd[5])->(M[25]) as mass, the entries that depend on q only */
 void bim_nx0_ny4_torque_first_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -491,7 +520,7 @@ void bim_nx0_ny4_torque_first_mass_varying(const double* c, const double* u, con
     out[0] = c[0] - c[1]*B1sq - c[2]*B1_B2 + c[3]*B1_B3 + c[4]*B1_B4 - c[5]*B2sq - c[6]*B2_B3 + c[7]*B2_B4 - c[8]*B3sq + c[9]*B3_B4 - c[10]*B4sq;
 }
 
-/* mass_q_product:(c[52],u[3],q[5],qd[5])->(dMv[25]) row-major; v in the qd slot; out[i*5+k] = sum_j dM_ij/dq_k v_j; nonzero entries only */
+/* mass_q_product:(c[57],u[3],q[5],qd[5])->(dMv[25]) row-major; v in the qd slot; out[i*5+k] = sum_j dM_ij/dq_k v_j; nonzero entries only */
 void bim_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -512,9 +541,9 @@ void bim_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, c
 
 }  // namespace
 
-extern const Variant bim_nx0_ny4_torque_first = {"bim_nx0_ny4_torque_first", 5, 52, 25,
+extern const Variant bim_nx0_ny4_torque_first = {"bim_nx0_ny4_torque_first", 5, 57, 25,
     "vcccccccccccccccccccccccc",
     bim_nx0_ny4_torque_first_coefficients, bim_nx0_ny4_torque_first_mass, bim_nx0_ny4_torque_first_mass_varying, bim_nx0_ny4_torque_first_forces, bim_nx0_ny4_torque_first_forces_terms, bim_nx0_ny4_torque_first_forces_matrix,
-    bim_nx0_ny4_torque_first_energy, bim_nx0_ny4_torque_first_momentum, bim_nx0_ny4_torque_first_forces_q, bim_nx0_ny4_torque_first_forces_qd, bim_nx0_ny4_torque_first_mass_q_product, bim_nx0_ny4_torque_first_forces_u};
+    bim_nx0_ny4_torque_first_energy, bim_nx0_ny4_torque_first_momentum, bim_nx0_ny4_torque_first_forces_q, bim_nx0_ny4_torque_first_forces_qd, bim_nx0_ny4_torque_first_mass_q_product, bim_nx0_ny4_torque_first_forces_u, bim_nx0_ny4_torque_first_tip};
 
 }  // namespace hubbeam::generated

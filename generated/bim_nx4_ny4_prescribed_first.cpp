@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[94]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[99]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void bim_nx4_ny4_prescribed_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -110,16 +110,21 @@ void bim_nx4_ny4_prescribed_first_coefficients(const double* p, double* c)
     c[84] = 0.1984126984126984*m*a + 0.06854256854256854*L*m;
     c[85] = 0.1984126984126984*m*a + 0.227994227994228*L*m;
     c[86] = 0.11616161616161616*L*m;
-    c[87] = 0.12698412698412698*L*m;
-    c[88] = 0.11428571428571428*L*m;
-    c[89] = 0.2222222222222222*L*m;
-    c[90] = 0.7936507936507936*m*a + 0.4184704184704185*L*m;
-    c[91] = 0.47619047619047616*m*a + 0.2597402597402597*L*m;
-    c[92] = 0.3968253968253968*m*a + 0.22366522366522368*L*m;
-    c[93] = 0.5555555555555556*m*a + 0.32323232323232326*L*m;
+    c[87] = 0.31746031746031744*1.0/(L);
+    c[88] = 0.15873015873015872*1.0/(L);
+    c[89] = 0.3968253968253968*1.0/(L);
+    c[90] = 0.7936507936507936*1.0/(L);
+    c[91] = 1.3888888888888888*1.0/(L);
+    c[92] = 0.12698412698412698*L*m;
+    c[93] = 0.11428571428571428*L*m;
+    c[94] = 0.2222222222222222*L*m;
+    c[95] = 0.7936507936507936*m*a + 0.4184704184704185*L*m;
+    c[96] = 0.47619047619047616*m*a + 0.2597402597402597*L*m;
+    c[97] = 0.3968253968253968*m*a + 0.22366522366522368*L*m;
+    c[98] = 0.5555555555555556*m*a + 0.32323232323232326*L*m;
 }
 
-/* mass:(c[94],u[3],q[8],qd[8])->(M[64]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[99],u[3],q[8],qd[8])->(M[64]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void bim_nx4_ny4_prescribed_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -147,7 +152,7 @@ void bim_nx4_ny4_prescribed_first_mass(const double* c, const double* u, const d
     out[63] = c[16];
 }
 
-/* forces:(c[94],u[3],q[8],qd[8])->(Q[8]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[99],u[3],q[8],qd[8])->(Q[8]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void bim_nx4_ny4_prescribed_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -203,7 +208,7 @@ void bim_nx4_ny4_prescribed_first_forces(const double* c, const double* u, const
     out[7] = -c[62]*theta_ddot - c[46]*B1 - c[53]*B2 + c[59]*B3 - c[63]*B4 - c[23]*theta_dot_A1_dot - c[29]*theta_dot_A2_dot - c[34]*theta_dot_A3_dot - c[38]*theta_dot_A4_dot - c[25]*theta_ddot_A1 - c[31]*theta_ddot_A2 - c[35]*theta_ddot_A3 - c[41]*theta_ddot_A4 + c[50]*theta_dotsq_B1 + c[56]*theta_dotsq_B2 + c[61]*theta_dotsq_B3 - c[64]*theta_dotsq_B4;
 }
 
-/* forces_terms:(c[94],u[3],q[8],qd[8])->(m[34]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[99],u[3],q[8],qd[8])->(m[34]) the state monomials of Q: Q = F m */
 void bim_nx4_ny4_prescribed_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -286,7 +291,7 @@ void bim_nx4_ny4_prescribed_first_forces_terms(const double* c, const double* u,
     out[33] = theta_dotsq_B4;
 }
 
-/* forces_matrix:(c[94],u[3],q[8],qd[8])->(F[8*34]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[99],u[3],q[8],qd[8])->(F[8*34]) row-major, state-free: Q = F m; nonzero entries only */
 void bim_nx4_ny4_prescribed_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -430,7 +435,7 @@ void bim_nx4_ny4_prescribed_first_forces_matrix(const double* c, const double* u
     out[271] = -c[64];
 }
 
-/* energy:(c[94],u[3],q[8],qd[8])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[99],u[3],q[8],qd[8])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void bim_nx4_ny4_prescribed_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -569,7 +574,7 @@ void bim_nx4_ny4_prescribed_first_energy(const double* c, const double* u, const
     out[3] = c[26]*A1sq + c[18]*A1_A2 - c[19]*A1_A3 - c[18]*A1_A4 + c[18]*A2sq + c[18]*A2_A3 - c[26]*A2_A4 + c[26]*A3sq - c[32]*A3_A4 + c[32]*A4sq + c[72]*B1sq + c[44]*B1_B2 - c[45]*B1_B3 + c[46]*B1_B4 + c[72]*B2sq - c[52]*B2_B3 + c[53]*B2_B4 + c[73]*B3sq - c[59]*B3_B4 + c[74]*B4sq;
 }
 
-/* momentum:(c[94],u[3],q[8],qd[8])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[99],u[3],q[8],qd[8])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void bim_nx4_ny4_prescribed_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -652,7 +657,32 @@ void bim_nx4_ny4_prescribed_first_momentum(const double* c, const double* u, con
     out[0] = c[75]*theta_dot + c[42]*B1_dot + c[51]*B2_dot + c[57]*B3_dot + c[62]*B4_dot + c[76]*theta_dot_A1 + c[77]*theta_dot_A2 + c[78]*theta_dot_A3 + c[79]*theta_dot_A4 + c[1]*A1_B1_dot + c[22]*A1_B2_dot + c[24]*A1_B3_dot + c[25]*A1_B4_dot + c[1]*A2_B1_dot + c[1]*A2_B2_dot + c[30]*A2_B3_dot + c[31]*A2_B4_dot + c[22]*A3_B1_dot + c[1]*A3_B2_dot + c[6]*A3_B3_dot + c[35]*A3_B4_dot + c[39]*A4_B1_dot + c[40]*A4_B2_dot + c[6]*A4_B3_dot + c[41]*A4_B4_dot - c[1]*B1_A1_dot - c[1]*B1_A2_dot - c[22]*B1_A3_dot - c[39]*B1_A4_dot - c[22]*B2_A1_dot - c[1]*B2_A2_dot - c[1]*B2_A3_dot - c[40]*B2_A4_dot - c[24]*B3_A1_dot - c[30]*B3_A2_dot - c[6]*B3_A3_dot - c[6]*B3_A4_dot - c[25]*B4_A1_dot - c[31]*B4_A2_dot - c[35]*B4_A3_dot - c[41]*B4_A4_dot + c[0]*theta_dot_A1sq + c[21]*theta_dot_A1_A2 + c[80]*theta_dot_A1_A3 + c[24]*theta_dot_A1_A4 + c[4]*theta_dot_A2sq + c[21]*theta_dot_A2_A3 + c[1]*theta_dot_A2_A4 + c[0]*theta_dot_A3sq + c[7]*theta_dot_A3_A4 + c[7]*theta_dot_A4sq - c[47]*theta_dot_B1sq - c[81]*theta_dot_B1_B2 + c[82]*theta_dot_B1_B3 + c[83]*theta_dot_B1_B4 - c[54]*theta_dot_B2sq - c[84]*theta_dot_B2_B3 + c[85]*theta_dot_B2_B4 - c[60]*theta_dot_B3sq + c[86]*theta_dot_B3_B4 - c[64]*theta_dot_B4sq;
 }
 
-/* forces_q:(c[94],u[3],q[8],qd[8])->(dQdq[64]) row-major; out[i*8+k] = dQ_i/dq_k; nonzero entries only */
+/* tip:(c[99],u[3],q[8],qd[8])->(tip[3]) tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B */
+void bim_nx4_ny4_prescribed_first_tip(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)qd;
+    const double A4 = q[3];
+    const double B1 = q[4];
+    const double B2 = q[5];
+    const double B3 = q[6];
+    const double B4 = q[7];
+    const double B1sq = B1*B1;
+    const double B1_B2 = B1*B2;
+    const double B1_B3 = B1*B3;
+    const double B1_B4 = B1*B4;
+    const double B2sq = B2*B2;
+    const double B2_B3 = B2*B3;
+    const double B2_B4 = B2*B4;
+    const double B3sq = B3*B3;
+    const double B3_B4 = B3*B4;
+    const double B4sq = B4*B4;
+    out[0] = B4;
+    out[1] = A4;
+    out[2] = A4 - c[87]*B1sq - c[87]*B1_B2 + c[88]*B1_B3 + c[89]*B1_B4 - c[87]*B2sq - c[89]*B2_B3 + c[90]*B2_B4 - c[90]*B3sq + c[91]*B3_B4 - c[91]*B4sq;
+}
+
+/* forces_q:(c[99],u[3],q[8],qd[8])->(dQdq[64]) row-major; out[i*8+k] = dQ_i/dq_k; nonzero entries only */
 void bim_nx4_ny4_prescribed_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)q;
@@ -726,7 +756,7 @@ void bim_nx4_ny4_prescribed_first_forces_q(const double* c, const double* u, con
     out[63] = -c[63] - c[64]*theta_dotsq;
 }
 
-/* forces_qd:(c[94],u[3],q[8],qd[8])->(dQdqd[64]) row-major; out[i*8+k] = dQ_i/dqd_k; nonzero entries only */
+/* forces_qd:(c[99],u[3],q[8],qd[8])->(dQdqd[64]) row-major; out[i*8+k] = dQ_i/dqd_k; nonzero entries only */
 void bim_nx4_ny4_prescribed_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)q;
@@ -766,7 +796,7 @@ void bim_nx4_ny4_prescribed_first_forces_qd(const double* c, const double* u, co
     out[59] = -c[38]*theta_dot;
 }
 
-/* forces_u:(c[94],u[3],q[8],qd[8])->(dQdu[24]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
+/* forces_u:(c[99],u[3],q[8],qd[8])->(dQdu[24]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
 void bim_nx4_ny4_prescribed_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -794,29 +824,29 @@ void bim_nx4_ny4_prescribed_first_forces_u(const double* c, const double* u, con
     const double theta_dot_B2 = theta_dot*B2;
     const double theta_dot_B3 = theta_dot*B3;
     const double theta_dot_B4 = theta_dot*B4;
-    out[1] = c[76]*theta_dot + c[21]*B1_dot + c[0]*B2_dot + c[22]*B3_dot + c[23]*B4_dot + c[87]*theta_dot_A1 + c[21]*theta_dot_A2 + c[80]*theta_dot_A3 + c[24]*theta_dot_A4;
+    out[1] = c[76]*theta_dot + c[21]*B1_dot + c[0]*B2_dot + c[22]*B3_dot + c[23]*B4_dot + c[92]*theta_dot_A1 + c[21]*theta_dot_A2 + c[80]*theta_dot_A3 + c[24]*theta_dot_A4;
     out[2] = c[1]*B1 + c[22]*B2 + c[24]*B3 + c[25]*B4;
-    out[4] = c[77]*theta_dot + c[21]*B1_dot + c[21]*B2_dot + c[28]*B3_dot + c[29]*B4_dot + c[21]*theta_dot_A1 + c[88]*theta_dot_A2 + c[21]*theta_dot_A3 + c[1]*theta_dot_A4;
+    out[4] = c[77]*theta_dot + c[21]*B1_dot + c[21]*B2_dot + c[28]*B3_dot + c[29]*B4_dot + c[21]*theta_dot_A1 + c[93]*theta_dot_A2 + c[21]*theta_dot_A3 + c[1]*theta_dot_A4;
     out[5] = c[1]*B1 + c[1]*B2 + c[30]*B3 + c[31]*B4;
-    out[7] = c[78]*theta_dot + c[0]*B1_dot + c[21]*B2_dot + c[7]*B3_dot + c[34]*B4_dot + c[80]*theta_dot_A1 + c[21]*theta_dot_A2 + c[87]*theta_dot_A3 + c[7]*theta_dot_A4;
+    out[7] = c[78]*theta_dot + c[0]*B1_dot + c[21]*B2_dot + c[7]*B3_dot + c[34]*B4_dot + c[80]*theta_dot_A1 + c[21]*theta_dot_A2 + c[92]*theta_dot_A3 + c[7]*theta_dot_A4;
     out[8] = c[22]*B1 + c[1]*B2 + c[6]*B3 + c[35]*B4;
-    out[10] = c[79]*theta_dot + c[5]*B1_dot + c[6]*B2_dot + c[7]*B3_dot + c[38]*B4_dot + c[24]*theta_dot_A1 + c[1]*theta_dot_A2 + c[7]*theta_dot_A3 + c[89]*theta_dot_A4;
+    out[10] = c[79]*theta_dot + c[5]*B1_dot + c[6]*B2_dot + c[7]*B3_dot + c[38]*B4_dot + c[24]*theta_dot_A1 + c[1]*theta_dot_A2 + c[7]*theta_dot_A3 + c[94]*theta_dot_A4;
     out[11] = c[39]*B1 + c[40]*B2 + c[6]*B3 + c[41]*B4;
-    out[13] = -c[21]*A1_dot - c[21]*A2_dot - c[0]*A3_dot - c[5]*A4_dot - c[90]*theta_dot_B1 - c[81]*theta_dot_B2 + c[82]*theta_dot_B3 + c[83]*theta_dot_B4;
+    out[13] = -c[21]*A1_dot - c[21]*A2_dot - c[0]*A3_dot - c[5]*A4_dot - c[95]*theta_dot_B1 - c[81]*theta_dot_B2 + c[82]*theta_dot_B3 + c[83]*theta_dot_B4;
     out[14] = -c[42] - c[1]*A1 - c[1]*A2 - c[22]*A3 - c[39]*A4;
-    out[16] = -c[0]*A1_dot - c[21]*A2_dot - c[21]*A3_dot - c[6]*A4_dot - c[81]*theta_dot_B1 - c[91]*theta_dot_B2 - c[84]*theta_dot_B3 + c[85]*theta_dot_B4;
+    out[16] = -c[0]*A1_dot - c[21]*A2_dot - c[21]*A3_dot - c[6]*A4_dot - c[81]*theta_dot_B1 - c[96]*theta_dot_B2 - c[84]*theta_dot_B3 + c[85]*theta_dot_B4;
     out[17] = -c[51] - c[22]*A1 - c[1]*A2 - c[1]*A3 - c[40]*A4;
-    out[19] = -c[22]*A1_dot - c[28]*A2_dot - c[7]*A3_dot - c[7]*A4_dot + c[82]*theta_dot_B1 - c[84]*theta_dot_B2 - c[92]*theta_dot_B3 + c[86]*theta_dot_B4;
+    out[19] = -c[22]*A1_dot - c[28]*A2_dot - c[7]*A3_dot - c[7]*A4_dot + c[82]*theta_dot_B1 - c[84]*theta_dot_B2 - c[97]*theta_dot_B3 + c[86]*theta_dot_B4;
     out[20] = -c[57] - c[24]*A1 - c[30]*A2 - c[6]*A3 - c[6]*A4;
-    out[22] = -c[23]*A1_dot - c[29]*A2_dot - c[34]*A3_dot - c[38]*A4_dot + c[83]*theta_dot_B1 + c[85]*theta_dot_B2 + c[86]*theta_dot_B3 - c[93]*theta_dot_B4;
+    out[22] = -c[23]*A1_dot - c[29]*A2_dot - c[34]*A3_dot - c[38]*A4_dot + c[83]*theta_dot_B1 + c[85]*theta_dot_B2 + c[86]*theta_dot_B3 - c[98]*theta_dot_B4;
     out[23] = -c[62] - c[25]*A1 - c[31]*A2 - c[35]*A3 - c[41]*A4;
 }
 
 }  // namespace
 
-extern const Variant bim_nx4_ny4_prescribed_first = {"bim_nx4_ny4_prescribed_first", 8, 94, 34,
+extern const Variant bim_nx4_ny4_prescribed_first = {"bim_nx4_ny4_prescribed_first", 8, 99, 34,
     "cccc0000cccc0000cccc0000cccc00000000cccc0000cccc0000cccc0000cccc",
     bim_nx4_ny4_prescribed_first_coefficients, bim_nx4_ny4_prescribed_first_mass, nullptr, bim_nx4_ny4_prescribed_first_forces, bim_nx4_ny4_prescribed_first_forces_terms, bim_nx4_ny4_prescribed_first_forces_matrix,
-    bim_nx4_ny4_prescribed_first_energy, bim_nx4_ny4_prescribed_first_momentum, bim_nx4_ny4_prescribed_first_forces_q, bim_nx4_ny4_prescribed_first_forces_qd, nullptr, bim_nx4_ny4_prescribed_first_forces_u};
+    bim_nx4_ny4_prescribed_first_energy, bim_nx4_ny4_prescribed_first_momentum, bim_nx4_ny4_prescribed_first_forces_q, bim_nx4_ny4_prescribed_first_forces_qd, nullptr, bim_nx4_ny4_prescribed_first_forces_u, bim_nx4_ny4_prescribed_first_tip};
 
 }  // namespace hubbeam::generated

@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[94]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[99]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void bim_nx4_ny4_torque_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -117,9 +117,14 @@ void bim_nx4_ny4_torque_first_coefficients(const double* p, double* c)
     c[91] = 17.142857142857142*EI/(L*L*L);
     c[92] = 74.28571428571429*EI/(L*L*L);
     c[93] = 28.571428571428573*EI/(L*L*L);
+    c[94] = 0.31746031746031744*1.0/(L);
+    c[95] = 0.15873015873015872*1.0/(L);
+    c[96] = 0.3968253968253968*1.0/(L);
+    c[97] = 0.7936507936507936*1.0/(L);
+    c[98] = 1.3888888888888888*1.0/(L);
 }
 
-/* mass:(c[94],u[3],q[9],qd[9])->(M[81]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[99],u[3],q[9],qd[9])->(M[81]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void bim_nx4_ny4_torque_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -183,7 +188,7 @@ void bim_nx4_ny4_torque_first_mass(const double* c, const double* u, const doubl
     out[80] = c[46];
 }
 
-/* forces:(c[94],u[3],q[9],qd[9])->(Q[9]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[99],u[3],q[9],qd[9])->(Q[9]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void bim_nx4_ny4_torque_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
@@ -272,7 +277,7 @@ void bim_nx4_ny4_torque_first_forces(const double* c, const double* u, const dou
     out[8] = -c[72]*B1 - c[77]*B2 + c[81]*B3 - c[83]*B4 - c[58]*theta_dot_A1_dot - c[62]*theta_dot_A2_dot - c[65]*theta_dot_A3_dot - c[68]*theta_dot_A4_dot + c[75]*B1_theta_dotsq + c[79]*B2_theta_dotsq + c[82]*B3_theta_dotsq - c[21]*B4_theta_dotsq;
 }
 
-/* forces_terms:(c[94],u[3],q[9],qd[9])->(m[58]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[99],u[3],q[9],qd[9])->(m[58]) the state monomials of Q: Q = F m */
 void bim_nx4_ny4_torque_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -411,7 +416,7 @@ void bim_nx4_ny4_torque_first_forces_terms(const double* c, const double* u, con
     out[57] = B4_theta_dot_B4_dot;
 }
 
-/* forces_matrix:(c[94],u[3],q[9],qd[9])->(F[9*58]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[99],u[3],q[9],qd[9])->(F[9*58]) row-major, state-free: Q = F m; nonzero entries only */
 void bim_nx4_ny4_torque_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -556,7 +561,7 @@ void bim_nx4_ny4_torque_first_forces_matrix(const double* c, const double* u, co
     out[517] = -c[21];
 }
 
-/* energy:(c[94],u[3],q[9],qd[9])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[99],u[3],q[9],qd[9])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void bim_nx4_ny4_torque_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -712,7 +717,7 @@ void bim_nx4_ny4_torque_first_energy(const double* c, const double* u, const dou
     out[3] = c[59]*A1sq + c[55]*A1_A2 - c[56]*A1_A3 - c[55]*A1_A4 + c[55]*A2sq + c[55]*A2_A3 - c[59]*A2_A4 + c[59]*A3sq - c[63]*A3_A4 + c[63]*A4sq + c[91]*B1sq + c[70]*B1_B2 - c[71]*B1_B3 + c[72]*B1_B4 + c[91]*B2sq - c[76]*B2_B3 + c[77]*B2_B4 + c[92]*B3sq - c[81]*B3_B4 + c[93]*B4sq;
 }
 
-/* momentum:(c[94],u[3],q[9],qd[9])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[99],u[3],q[9],qd[9])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void bim_nx4_ny4_torque_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -812,7 +817,32 @@ void bim_nx4_ny4_torque_first_momentum(const double* c, const double* u, const d
     out[0] = c[0]*theta_dot + c[31]*B1_dot + c[32]*B2_dot + c[33]*B3_dot + c[34]*B4_dot + c[1]*A1_theta_dot + c[10]*A1_B1_dot + c[22]*A1_B2_dot + c[8]*A1_B3_dot + c[23]*A1_B4_dot + c[2]*A2_theta_dot + c[10]*A2_B1_dot + c[10]*A2_B2_dot + c[24]*A2_B3_dot + c[25]*A2_B4_dot + c[3]*A3_theta_dot + c[22]*A3_B1_dot + c[10]*A3_B2_dot + c[26]*A3_B3_dot + c[27]*A3_B4_dot + c[4]*A4_theta_dot + c[28]*A4_B1_dot + c[29]*A4_B2_dot + c[26]*A4_B3_dot + c[30]*A4_B4_dot - c[10]*B1_A1_dot - c[10]*B1_A2_dot - c[22]*B1_A3_dot - c[28]*B1_A4_dot - c[22]*B2_A1_dot - c[10]*B2_A2_dot - c[10]*B2_A3_dot - c[29]*B2_A4_dot - c[8]*B3_A1_dot - c[24]*B3_A2_dot - c[26]*B3_A3_dot - c[26]*B3_A4_dot - c[23]*B4_A1_dot - c[25]*B4_A2_dot - c[27]*B4_A3_dot - c[30]*B4_A4_dot + c[5]*A1sq_theta_dot + c[6]*A1_A2_theta_dot + c[7]*A1_A3_theta_dot + c[8]*A1_A4_theta_dot + c[9]*A2sq_theta_dot + c[6]*A2_A3_theta_dot + c[10]*A2_A4_theta_dot + c[5]*A3sq_theta_dot + c[11]*A3_A4_theta_dot + c[11]*A4sq_theta_dot - c[12]*B1sq_theta_dot - c[13]*B1_B2_theta_dot + c[14]*B1_B3_theta_dot + c[15]*B1_B4_theta_dot - c[16]*B2sq_theta_dot - c[17]*B2_B3_theta_dot + c[18]*B2_B4_theta_dot - c[19]*B3sq_theta_dot + c[20]*B3_B4_theta_dot - c[21]*B4sq_theta_dot;
 }
 
-/* forces_q:(c[94],u[3],q[9],qd[9])->(dQdq[81]) row-major; out[i*9+k] = dQ_i/dq_k; nonzero entries only */
+/* tip:(c[99],u[3],q[9],qd[9])->(tip[3]) tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B */
+void bim_nx4_ny4_torque_first_tip(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)qd;
+    const double A4 = q[4];
+    const double B1 = q[5];
+    const double B2 = q[6];
+    const double B3 = q[7];
+    const double B4 = q[8];
+    const double B1sq = B1*B1;
+    const double B1_B2 = B1*B2;
+    const double B1_B3 = B1*B3;
+    const double B1_B4 = B1*B4;
+    const double B2sq = B2*B2;
+    const double B2_B3 = B2*B3;
+    const double B2_B4 = B2*B4;
+    const double B3sq = B3*B3;
+    const double B3_B4 = B3*B4;
+    const double B4sq = B4*B4;
+    out[0] = B4;
+    out[1] = A4;
+    out[2] = A4 - c[94]*B1sq - c[94]*B1_B2 + c[95]*B1_B3 + c[96]*B1_B4 - c[94]*B2sq - c[96]*B2_B3 + c[97]*B2_B4 - c[97]*B3sq + c[98]*B3_B4 - c[98]*B4sq;
+}
+
+/* forces_q:(c[99],u[3],q[9],qd[9])->(dQdq[81]) row-major; out[i*9+k] = dQ_i/dq_k; nonzero entries only */
 void bim_nx4_ny4_torque_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -877,7 +907,7 @@ void bim_nx4_ny4_torque_first_forces_q(const double* c, const double* u, const d
     out[80] = -c[83] - c[21]*theta_dotsq;
 }
 
-/* forces_qd:(c[94],u[3],q[9],qd[9])->(dQdqd[81]) row-major; out[i*9+k] = dQ_i/dqd_k; nonzero entries only */
+/* forces_qd:(c[99],u[3],q[9],qd[9])->(dQdqd[81]) row-major; out[i*9+k] = dQ_i/dqd_k; nonzero entries only */
 void bim_nx4_ny4_torque_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -989,7 +1019,7 @@ void bim_nx4_ny4_torque_first_forces_qd(const double* c, const double* u, const 
     out[76] = -c[68]*theta_dot;
 }
 
-/* forces_u:(c[94],u[3],q[9],qd[9])->(dQdu[27]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
+/* forces_u:(c[99],u[3],q[9],qd[9])->(dQdu[27]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
 void bim_nx4_ny4_torque_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -999,7 +1029,7 @@ void bim_nx4_ny4_torque_first_forces_u(const double* c, const double* u, const d
     out[0] = 1.0;
 }
 
-/* mass_varying:(c[94],u[3],q[9],qd[9])->(M[81]) as mass, the entries that depend on q only */
+/* mass_varying:(c[99],u[3],q[9],qd[9])->(M[81]) as mass, the entries that depend on q only */
 void bim_nx4_ny4_torque_first_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -1043,7 +1073,7 @@ void bim_nx4_ny4_torque_first_mass_varying(const double* c, const double* u, con
     out[8] = c[34] + c[23]*A1 + c[25]*A2 + c[27]*A3 + c[30]*A4;
 }
 
-/* mass_q_product:(c[94],u[3],q[9],qd[9])->(dMv[81]) row-major; v in the qd slot; out[i*9+k] = sum_j dM_ij/dq_k v_j; nonzero entries only */
+/* mass_q_product:(c[99],u[3],q[9],qd[9])->(dMv[81]) row-major; v in the qd slot; out[i*9+k] = sum_j dM_ij/dq_k v_j; nonzero entries only */
 void bim_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -1116,9 +1146,9 @@ void bim_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, c
 
 }  // namespace
 
-extern const Variant bim_nx4_ny4_torque_first = {"bim_nx4_ny4_torque_first", 9, 94, 58,
+extern const Variant bim_nx4_ny4_torque_first = {"bim_nx4_ny4_torque_first", 9, 99, 58,
     "vvvvvvvvvvcccc0000vcccc0000vcccc0000vcccc0000v0000ccccv0000ccccv0000ccccv0000cccc",
     bim_nx4_ny4_torque_first_coefficients, bim_nx4_ny4_torque_first_mass, bim_nx4_ny4_torque_first_mass_varying, bim_nx4_ny4_torque_first_forces, bim_nx4_ny4_torque_first_forces_terms, bim_nx4_ny4_torque_first_forces_matrix,
-    bim_nx4_ny4_torque_first_energy, bim_nx4_ny4_torque_first_momentum, bim_nx4_ny4_torque_first_forces_q, bim_nx4_ny4_torque_first_forces_qd, bim_nx4_ny4_torque_first_mass_q_product, bim_nx4_ny4_torque_first_forces_u};
+    bim_nx4_ny4_torque_first_energy, bim_nx4_ny4_torque_first_momentum, bim_nx4_ny4_torque_first_forces_q, bim_nx4_ny4_torque_first_forces_qd, bim_nx4_ny4_torque_first_mass_q_product, bim_nx4_ny4_torque_first_forces_u, bim_nx4_ny4_torque_first_tip};
 
 }  // namespace hubbeam::generated

@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[53]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[62]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void bsim_nx0_ny4_prescribed_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -71,13 +71,22 @@ void bsim_nx0_ny4_prescribed_first_coefficients(const double* p, double* c)
     c[46] = 0.4125*m*a + 0.5051587301587301*L*m;
     c[47] = 0.009722222222222222*m*a + 0.021296296296296296*L*m;
     c[48] = 0.075*m*a + 0.03941798941798942*L*m;
-    c[49] = 2.625*m*a + 1.4642857142857142*L*m;
-    c[50] = 1.425*m*a + 0.8642857142857143*L*m;
-    c[51] = 1.05*m*a + 0.5476190476190477*L*m;
-    c[52] = 0.011111111111111112*m*a + 0.0078777189888301*L*m;
+    c[49] = 1.0125*1.0/(L);
+    c[50] = 0.16875*1.0/(L);
+    c[51] = 0.88125*1.0/(L);
+    c[52] = 0.08125*1.0/(L);
+    c[53] = 1.3125*1.0/(L);
+    c[54] = 0.0125*1.0/(L);
+    c[55] = 1.125*1.0/(L);
+    c[56] = 0.075*1.0/(L);
+    c[57] = 0.027777777777777776*1.0/(L);
+    c[58] = 2.625*m*a + 1.4642857142857142*L*m;
+    c[59] = 1.425*m*a + 0.8642857142857143*L*m;
+    c[60] = 1.05*m*a + 0.5476190476190477*L*m;
+    c[61] = 0.011111111111111112*m*a + 0.0078777189888301*L*m;
 }
 
-/* mass:(c[53],u[3],q[4],qd[4])->(M[16]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[62],u[3],q[4],qd[4])->(M[16]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void bsim_nx0_ny4_prescribed_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -95,7 +104,7 @@ void bsim_nx0_ny4_prescribed_first_mass(const double* c, const double* u, const 
     out[15] = c[8];
 }
 
-/* forces:(c[53],u[3],q[4],qd[4])->(Q[4]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[62],u[3],q[4],qd[4])->(Q[4]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void bsim_nx0_ny4_prescribed_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)qd;
@@ -116,7 +125,7 @@ void bsim_nx0_ny4_prescribed_first_forces(const double* c, const double* u, cons
     out[3] = c[28]*theta_ddot - c[12]*B1 - c[19]*B2 + c[25]*B3 - c[29]*B4 - c[16]*theta_dotsq_B1 - c[22]*theta_dotsq_B2 + c[27]*theta_dotsq_B3 - c[30]*theta_dotsq_B4;
 }
 
-/* forces_terms:(c[53],u[3],q[4],qd[4])->(m[9]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[62],u[3],q[4],qd[4])->(m[9]) the state monomials of Q: Q = F m */
 void bsim_nx0_ny4_prescribed_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -143,7 +152,7 @@ void bsim_nx0_ny4_prescribed_first_forces_terms(const double* c, const double* u
     out[8] = theta_dotsq_B4;
 }
 
-/* forces_matrix:(c[53],u[3],q[4],qd[4])->(F[4*9]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[62],u[3],q[4],qd[4])->(F[4*9]) row-major, state-free: Q = F m; nonzero entries only */
 void bsim_nx0_ny4_prescribed_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -187,7 +196,7 @@ void bsim_nx0_ny4_prescribed_first_forces_matrix(const double* c, const double* 
     out[35] = -c[30];
 }
 
-/* energy:(c[53],u[3],q[4],qd[4])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[62],u[3],q[4],qd[4])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void bsim_nx0_ny4_prescribed_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -244,7 +253,7 @@ void bsim_nx0_ny4_prescribed_first_energy(const double* c, const double* u, cons
     out[3] = c[39]*B1sq - c[11]*B1_B2 - c[12]*B1_B3 + c[12]*B1_B4 + c[39]*B2sq - c[18]*B2_B3 + c[19]*B2_B4 + c[40]*B3sq - c[25]*B3_B4 + c[41]*B4sq;
 }
 
-/* momentum:(c[53],u[3],q[4],qd[4])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[62],u[3],q[4],qd[4])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void bsim_nx0_ny4_prescribed_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -273,7 +282,31 @@ void bsim_nx0_ny4_prescribed_first_momentum(const double* c, const double* u, co
     out[0] = c[42]*theta_dot + c[9]*B1_dot + c[17]*B2_dot + c[23]*B3_dot - c[28]*B4_dot - c[13]*theta_dot_B1sq - c[43]*theta_dot_B1_B2 + c[44]*theta_dot_B1_B3 - c[45]*theta_dot_B1_B4 - c[20]*theta_dot_B2sq + c[46]*theta_dot_B2_B3 - c[47]*theta_dot_B2_B4 - c[26]*theta_dot_B3sq + c[48]*theta_dot_B3_B4 - c[30]*theta_dot_B4sq;
 }
 
-/* forces_q:(c[53],u[3],q[4],qd[4])->(dQdq[16]) row-major; out[i*4+k] = dQ_i/dq_k; nonzero entries only */
+/* tip:(c[62],u[3],q[4],qd[4])->(tip[3]) tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B */
+void bsim_nx0_ny4_prescribed_first_tip(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)qd;
+    const double B1 = q[0];
+    const double B2 = q[1];
+    const double B3 = q[2];
+    const double B4 = q[3];
+    const double B1sq = B1*B1;
+    const double B1_B2 = B1*B2;
+    const double B1_B3 = B1*B3;
+    const double B1_B4 = B1*B4;
+    const double B2sq = B2*B2;
+    const double B2_B3 = B2*B3;
+    const double B2_B4 = B2*B4;
+    const double B3sq = B3*B3;
+    const double B3_B4 = B3*B4;
+    const double B4sq = B4*B4;
+    out[0] = B3;
+    out[1] = 0.0;
+    out[2] = -c[49]*B1sq - c[50]*B1_B2 + c[51]*B1_B3 - c[52]*B1_B4 - c[49]*B2sq + c[53]*B2_B3 + c[54]*B2_B4 - c[55]*B3sq + c[56]*B3_B4 - c[57]*B4sq;
+}
+
+/* forces_q:(c[62],u[3],q[4],qd[4])->(dQdq[16]) row-major; out[i*4+k] = dQ_i/dq_k; nonzero entries only */
 void bsim_nx0_ny4_prescribed_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)q;
@@ -298,7 +331,7 @@ void bsim_nx0_ny4_prescribed_first_forces_q(const double* c, const double* u, co
     out[15] = -c[29] - c[30]*theta_dotsq;
 }
 
-/* forces_qd:(c[53],u[3],q[4],qd[4])->(dQdqd[16]) row-major; out[i*4+k] = dQ_i/dqd_k; nonzero entries only */
+/* forces_qd:(c[62],u[3],q[4],qd[4])->(dQdqd[16]) row-major; out[i*4+k] = dQ_i/dqd_k; nonzero entries only */
 void bsim_nx0_ny4_prescribed_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -308,7 +341,7 @@ void bsim_nx0_ny4_prescribed_first_forces_qd(const double* c, const double* u, c
     (void)qd;
 }
 
-/* forces_u:(c[53],u[3],q[4],qd[4])->(dQdu[12]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
+/* forces_u:(c[62],u[3],q[4],qd[4])->(dQdu[12]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
 void bsim_nx0_ny4_prescribed_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)qd;
@@ -321,21 +354,21 @@ void bsim_nx0_ny4_prescribed_first_forces_u(const double* c, const double* u, co
     const double theta_dot_B2 = theta_dot*B2;
     const double theta_dot_B3 = theta_dot*B3;
     const double theta_dot_B4 = theta_dot*B4;
-    out[1] = -c[49]*theta_dot_B1 - c[43]*theta_dot_B2 + c[44]*theta_dot_B3 - c[45]*theta_dot_B4;
+    out[1] = -c[58]*theta_dot_B1 - c[43]*theta_dot_B2 + c[44]*theta_dot_B3 - c[45]*theta_dot_B4;
     out[2] = -c[9];
-    out[4] = -c[43]*theta_dot_B1 - c[50]*theta_dot_B2 + c[46]*theta_dot_B3 - c[47]*theta_dot_B4;
+    out[4] = -c[43]*theta_dot_B1 - c[59]*theta_dot_B2 + c[46]*theta_dot_B3 - c[47]*theta_dot_B4;
     out[5] = -c[17];
-    out[7] = c[44]*theta_dot_B1 + c[46]*theta_dot_B2 - c[51]*theta_dot_B3 + c[48]*theta_dot_B4;
+    out[7] = c[44]*theta_dot_B1 + c[46]*theta_dot_B2 - c[60]*theta_dot_B3 + c[48]*theta_dot_B4;
     out[8] = -c[23];
-    out[10] = -c[45]*theta_dot_B1 - c[47]*theta_dot_B2 + c[48]*theta_dot_B3 - c[52]*theta_dot_B4;
+    out[10] = -c[45]*theta_dot_B1 - c[47]*theta_dot_B2 + c[48]*theta_dot_B3 - c[61]*theta_dot_B4;
     out[11] = c[28];
 }
 
 }  // namespace
 
-extern const Variant bsim_nx0_ny4_prescribed_first = {"bsim_nx0_ny4_prescribed_first", 4, 53, 9,
+extern const Variant bsim_nx0_ny4_prescribed_first = {"bsim_nx0_ny4_prescribed_first", 4, 62, 9,
     "cccccccccccccccc",
     bsim_nx0_ny4_prescribed_first_coefficients, bsim_nx0_ny4_prescribed_first_mass, nullptr, bsim_nx0_ny4_prescribed_first_forces, bsim_nx0_ny4_prescribed_first_forces_terms, bsim_nx0_ny4_prescribed_first_forces_matrix,
-    bsim_nx0_ny4_prescribed_first_energy, bsim_nx0_ny4_prescribed_first_momentum, bsim_nx0_ny4_prescribed_first_forces_q, bsim_nx0_ny4_prescribed_first_forces_qd, nullptr, bsim_nx0_ny4_prescribed_first_forces_u};
+    bsim_nx0_ny4_prescribed_first_energy, bsim_nx0_ny4_prescribed_first_momentum, bsim_nx0_ny4_prescribed_first_forces_q, bsim_nx0_ny4_prescribed_first_forces_qd, nullptr, bsim_nx0_ny4_prescribed_first_forces_u, bsim_nx0_ny4_prescribed_first_tip};
 
 }  // namespace hubbeam::generated

@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[52]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[61]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void bsim_nx0_ny4_prescribed_first_open_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -70,13 +70,22 @@ void bsim_nx0_ny4_prescribed_first_open_coefficients(const double* p, double* c)
     c[45] = 0.0875*m*a + 0.19166666666666668*L*m;
     c[46] = 0.325*m*a + 0.3134920634920635*L*m;
     c[47] = 0.225*m*a + 0.2833333333333333*L*m;
-    c[48] = 2.625*m*a + 1.4642857142857142*L*m;
-    c[49] = 1.425*m*a + 0.8642857142857143*L*m;
-    c[50] = 0.9*m*a + 0.638095238095238*L*m;
-    c[51] = 0.6*m*a + 0.47619047619047616*L*m;
+    c[48] = 1.0125*1.0/(L);
+    c[49] = 0.16875*1.0/(L);
+    c[50] = 0.73125*1.0/(L);
+    c[51] = 0.15*1.0/(L);
+    c[52] = 0.1125*1.0/(L);
+    c[53] = 1.425*1.0/(L);
+    c[54] = 2.25*1.0/(L);
+    c[55] = 3.825*1.0/(L);
+    c[56] = 2.7*1.0/(L);
+    c[57] = 2.625*m*a + 1.4642857142857142*L*m;
+    c[58] = 1.425*m*a + 0.8642857142857143*L*m;
+    c[59] = 0.9*m*a + 0.638095238095238*L*m;
+    c[60] = 0.6*m*a + 0.47619047619047616*L*m;
 }
 
-/* mass:(c[52],u[3],q[4],qd[4])->(M[16]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[61],u[3],q[4],qd[4])->(M[16]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void bsim_nx0_ny4_prescribed_first_open_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -94,7 +103,7 @@ void bsim_nx0_ny4_prescribed_first_open_mass(const double* c, const double* u, c
     out[15] = c[8];
 }
 
-/* forces:(c[52],u[3],q[4],qd[4])->(Q[4]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[61],u[3],q[4],qd[4])->(Q[4]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void bsim_nx0_ny4_prescribed_first_open_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)qd;
@@ -115,7 +124,7 @@ void bsim_nx0_ny4_prescribed_first_open_forces(const double* c, const double* u,
     out[3] = -c[28]*theta_ddot - c[12]*B1 - c[19]*B2 + c[25]*B3 - c[29]*B4 + c[16]*theta_dotsq_B1 + c[22]*theta_dotsq_B2 + c[27]*theta_dotsq_B3 - c[30]*theta_dotsq_B4;
 }
 
-/* forces_terms:(c[52],u[3],q[4],qd[4])->(m[9]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[61],u[3],q[4],qd[4])->(m[9]) the state monomials of Q: Q = F m */
 void bsim_nx0_ny4_prescribed_first_open_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -142,7 +151,7 @@ void bsim_nx0_ny4_prescribed_first_open_forces_terms(const double* c, const doub
     out[8] = theta_dotsq_B4;
 }
 
-/* forces_matrix:(c[52],u[3],q[4],qd[4])->(F[4*9]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[61],u[3],q[4],qd[4])->(F[4*9]) row-major, state-free: Q = F m; nonzero entries only */
 void bsim_nx0_ny4_prescribed_first_open_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -186,7 +195,7 @@ void bsim_nx0_ny4_prescribed_first_open_forces_matrix(const double* c, const dou
     out[35] = -c[30];
 }
 
-/* energy:(c[52],u[3],q[4],qd[4])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[61],u[3],q[4],qd[4])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void bsim_nx0_ny4_prescribed_first_open_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -243,7 +252,7 @@ void bsim_nx0_ny4_prescribed_first_open_energy(const double* c, const double* u,
     out[3] = c[39]*B1sq - c[11]*B1_B2 - c[11]*B1_B3 + c[12]*B1_B4 + c[39]*B2sq - c[18]*B2_B3 + c[19]*B2_B4 + c[29]*B3sq - c[25]*B3_B4 + c[40]*B4sq;
 }
 
-/* momentum:(c[52],u[3],q[4],qd[4])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[61],u[3],q[4],qd[4])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void bsim_nx0_ny4_prescribed_first_open_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -272,7 +281,31 @@ void bsim_nx0_ny4_prescribed_first_open_momentum(const double* c, const double* 
     out[0] = c[41]*theta_dot + c[9]*B1_dot + c[17]*B2_dot + c[23]*B3_dot + c[28]*B4_dot - c[13]*theta_dot_B1sq - c[42]*theta_dot_B1_B2 + c[43]*theta_dot_B1_B3 + c[44]*theta_dot_B1_B4 - c[20]*theta_dot_B2sq + c[45]*theta_dot_B2_B3 + c[46]*theta_dot_B2_B4 - c[26]*theta_dot_B3sq + c[47]*theta_dot_B3_B4 - c[30]*theta_dot_B4sq;
 }
 
-/* forces_q:(c[52],u[3],q[4],qd[4])->(dQdq[16]) row-major; out[i*4+k] = dQ_i/dq_k; nonzero entries only */
+/* tip:(c[61],u[3],q[4],qd[4])->(tip[3]) tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B */
+void bsim_nx0_ny4_prescribed_first_open_tip(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)qd;
+    const double B1 = q[0];
+    const double B2 = q[1];
+    const double B3 = q[2];
+    const double B4 = q[3];
+    const double B1sq = B1*B1;
+    const double B1_B2 = B1*B2;
+    const double B1_B3 = B1*B3;
+    const double B1_B4 = B1*B4;
+    const double B2sq = B2*B2;
+    const double B2_B3 = B2*B3;
+    const double B2_B4 = B2*B4;
+    const double B3sq = B3*B3;
+    const double B3_B4 = B3*B4;
+    const double B4sq = B4*B4;
+    out[0] = B4;
+    out[1] = 0.0;
+    out[2] = -c[48]*B1sq - c[49]*B1_B2 + c[50]*B1_B3 + c[51]*B1_B4 - c[48]*B2sq - c[52]*B2_B3 + c[53]*B2_B4 - c[54]*B3sq + c[55]*B3_B4 - c[56]*B4sq;
+}
+
+/* forces_q:(c[61],u[3],q[4],qd[4])->(dQdq[16]) row-major; out[i*4+k] = dQ_i/dq_k; nonzero entries only */
 void bsim_nx0_ny4_prescribed_first_open_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)q;
@@ -297,7 +330,7 @@ void bsim_nx0_ny4_prescribed_first_open_forces_q(const double* c, const double* 
     out[15] = -c[29] - c[30]*theta_dotsq;
 }
 
-/* forces_qd:(c[52],u[3],q[4],qd[4])->(dQdqd[16]) row-major; out[i*4+k] = dQ_i/dqd_k; nonzero entries only */
+/* forces_qd:(c[61],u[3],q[4],qd[4])->(dQdqd[16]) row-major; out[i*4+k] = dQ_i/dqd_k; nonzero entries only */
 void bsim_nx0_ny4_prescribed_first_open_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -307,7 +340,7 @@ void bsim_nx0_ny4_prescribed_first_open_forces_qd(const double* c, const double*
     (void)qd;
 }
 
-/* forces_u:(c[52],u[3],q[4],qd[4])->(dQdu[12]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
+/* forces_u:(c[61],u[3],q[4],qd[4])->(dQdu[12]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
 void bsim_nx0_ny4_prescribed_first_open_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)qd;
@@ -320,21 +353,21 @@ void bsim_nx0_ny4_prescribed_first_open_forces_u(const double* c, const double* 
     const double theta_dot_B2 = theta_dot*B2;
     const double theta_dot_B3 = theta_dot*B3;
     const double theta_dot_B4 = theta_dot*B4;
-    out[1] = -c[48]*theta_dot_B1 - c[42]*theta_dot_B2 + c[43]*theta_dot_B3 + c[44]*theta_dot_B4;
+    out[1] = -c[57]*theta_dot_B1 - c[42]*theta_dot_B2 + c[43]*theta_dot_B3 + c[44]*theta_dot_B4;
     out[2] = -c[9];
-    out[4] = -c[42]*theta_dot_B1 - c[49]*theta_dot_B2 + c[45]*theta_dot_B3 + c[46]*theta_dot_B4;
+    out[4] = -c[42]*theta_dot_B1 - c[58]*theta_dot_B2 + c[45]*theta_dot_B3 + c[46]*theta_dot_B4;
     out[5] = -c[17];
-    out[7] = c[43]*theta_dot_B1 + c[45]*theta_dot_B2 - c[50]*theta_dot_B3 + c[47]*theta_dot_B4;
+    out[7] = c[43]*theta_dot_B1 + c[45]*theta_dot_B2 - c[59]*theta_dot_B3 + c[47]*theta_dot_B4;
     out[8] = -c[23];
-    out[10] = c[44]*theta_dot_B1 + c[46]*theta_dot_B2 + c[47]*theta_dot_B3 - c[51]*theta_dot_B4;
+    out[10] = c[44]*theta_dot_B1 + c[46]*theta_dot_B2 + c[47]*theta_dot_B3 - c[60]*theta_dot_B4;
     out[11] = -c[28];
 }
 
 }  // namespace
 
-extern const Variant bsim_nx0_ny4_prescribed_first_open = {"bsim_nx0_ny4_prescribed_first_open", 4, 52, 9,
+extern const Variant bsim_nx0_ny4_prescribed_first_open = {"bsim_nx0_ny4_prescribed_first_open", 4, 61, 9,
     "cccccccccccccccc",
     bsim_nx0_ny4_prescribed_first_open_coefficients, bsim_nx0_ny4_prescribed_first_open_mass, nullptr, bsim_nx0_ny4_prescribed_first_open_forces, bsim_nx0_ny4_prescribed_first_open_forces_terms, bsim_nx0_ny4_prescribed_first_open_forces_matrix,
-    bsim_nx0_ny4_prescribed_first_open_energy, bsim_nx0_ny4_prescribed_first_open_momentum, bsim_nx0_ny4_prescribed_first_open_forces_q, bsim_nx0_ny4_prescribed_first_open_forces_qd, nullptr, bsim_nx0_ny4_prescribed_first_open_forces_u};
+    bsim_nx0_ny4_prescribed_first_open_energy, bsim_nx0_ny4_prescribed_first_open_momentum, bsim_nx0_ny4_prescribed_first_open_forces_q, bsim_nx0_ny4_prescribed_first_open_forces_qd, nullptr, bsim_nx0_ny4_prescribed_first_open_forces_u, bsim_nx0_ny4_prescribed_first_open_tip};
 
 }  // namespace hubbeam::generated

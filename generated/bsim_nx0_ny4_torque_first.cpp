@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[53]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[62]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void bsim_nx0_ny4_torque_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -75,9 +75,18 @@ void bsim_nx0_ny4_torque_first_coefficients(const double* p, double* c)
     c[50] = 60.75*EI/(L*L*L);
     c[51] = 40.5*EI/(L*L*L);
     c[52] = 4.0*EI/(L*L*L);
+    c[53] = 1.0125*1.0/(L);
+    c[54] = 0.16875*1.0/(L);
+    c[55] = 0.88125*1.0/(L);
+    c[56] = 0.08125*1.0/(L);
+    c[57] = 1.3125*1.0/(L);
+    c[58] = 0.0125*1.0/(L);
+    c[59] = 1.125*1.0/(L);
+    c[60] = 0.075*1.0/(L);
+    c[61] = 0.027777777777777776*1.0/(L);
 }
 
-/* mass:(c[53],u[3],q[5],qd[5])->(M[25]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[62],u[3],q[5],qd[5])->(M[25]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void bsim_nx0_ny4_torque_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -113,7 +122,7 @@ void bsim_nx0_ny4_torque_first_mass(const double* c, const double* u, const doub
     out[24] = c[23];
 }
 
-/* forces:(c[53],u[3],q[5],qd[5])->(Q[5]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[62],u[3],q[5],qd[5])->(Q[5]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void bsim_nx0_ny4_torque_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
@@ -157,7 +166,7 @@ void bsim_nx0_ny4_torque_first_forces(const double* c, const double* u, const do
     out[4] = -c[30]*B1 - c[35]*B2 + c[39]*B3 - c[41]*B4 - c[33]*B1_theta_dotsq - c[37]*B2_theta_dotsq + c[40]*B3_theta_dotsq - c[10]*B4_theta_dotsq;
 }
 
-/* forces_terms:(c[53],u[3],q[5],qd[5])->(m[25]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[62],u[3],q[5],qd[5])->(m[25]) the state monomials of Q: Q = F m */
 void bsim_nx0_ny4_torque_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -222,7 +231,7 @@ void bsim_nx0_ny4_torque_first_forces_terms(const double* c, const double* u, co
     out[24] = B4_theta_dot_B4_dot;
 }
 
-/* forces_matrix:(c[53],u[3],q[5],qd[5])->(F[5*25]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[62],u[3],q[5],qd[5])->(F[5*25]) row-major, state-free: Q = F m; nonzero entries only */
 void bsim_nx0_ny4_torque_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -279,7 +288,7 @@ void bsim_nx0_ny4_torque_first_forces_matrix(const double* c, const double* u, c
     out[120] = -c[10];
 }
 
-/* energy:(c[53],u[3],q[5],qd[5])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[62],u[3],q[5],qd[5])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void bsim_nx0_ny4_torque_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -343,7 +352,7 @@ void bsim_nx0_ny4_torque_first_energy(const double* c, const double* u, const do
     out[3] = c[50]*B1sq - c[29]*B1_B2 - c[30]*B1_B3 + c[30]*B1_B4 + c[50]*B2sq - c[34]*B2_B3 + c[35]*B2_B4 + c[51]*B3sq - c[39]*B3_B4 + c[52]*B4sq;
 }
 
-/* momentum:(c[53],u[3],q[5],qd[5])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[62],u[3],q[5],qd[5])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void bsim_nx0_ny4_torque_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -379,7 +388,31 @@ void bsim_nx0_ny4_torque_first_momentum(const double* c, const double* u, const 
     out[0] = c[0]*theta_dot + c[11]*B1_dot + c[12]*B2_dot + c[13]*B3_dot - c[14]*B4_dot - c[1]*B1sq_theta_dot - c[2]*B1_B2_theta_dot + c[3]*B1_B3_theta_dot - c[4]*B1_B4_theta_dot - c[5]*B2sq_theta_dot + c[6]*B2_B3_theta_dot - c[7]*B2_B4_theta_dot - c[8]*B3sq_theta_dot + c[9]*B3_B4_theta_dot - c[10]*B4sq_theta_dot;
 }
 
-/* forces_q:(c[53],u[3],q[5],qd[5])->(dQdq[25]) row-major; out[i*5+k] = dQ_i/dq_k; nonzero entries only */
+/* tip:(c[62],u[3],q[5],qd[5])->(tip[3]) tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B */
+void bsim_nx0_ny4_torque_first_tip(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)qd;
+    const double B1 = q[1];
+    const double B2 = q[2];
+    const double B3 = q[3];
+    const double B4 = q[4];
+    const double B1sq = B1*B1;
+    const double B1_B2 = B1*B2;
+    const double B1_B3 = B1*B3;
+    const double B1_B4 = B1*B4;
+    const double B2sq = B2*B2;
+    const double B2_B3 = B2*B3;
+    const double B2_B4 = B2*B4;
+    const double B3sq = B3*B3;
+    const double B3_B4 = B3*B4;
+    const double B4sq = B4*B4;
+    out[0] = B3;
+    out[1] = 0.0;
+    out[2] = -c[53]*B1sq - c[54]*B1_B2 + c[55]*B1_B3 - c[56]*B1_B4 - c[53]*B2sq + c[57]*B2_B3 + c[58]*B2_B4 - c[59]*B3sq + c[60]*B3_B4 - c[61]*B4sq;
+}
+
+/* forces_q:(c[62],u[3],q[5],qd[5])->(dQdq[25]) row-major; out[i*5+k] = dQ_i/dq_k; nonzero entries only */
 void bsim_nx0_ny4_torque_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -416,7 +449,7 @@ void bsim_nx0_ny4_torque_first_forces_q(const double* c, const double* u, const 
     out[24] = -c[41] - c[10]*theta_dotsq;
 }
 
-/* forces_qd:(c[53],u[3],q[5],qd[5])->(dQdqd[25]) row-major; out[i*5+k] = dQ_i/dqd_k; nonzero entries only */
+/* forces_qd:(c[62],u[3],q[5],qd[5])->(dQdqd[25]) row-major; out[i*5+k] = dQ_i/dqd_k; nonzero entries only */
 void bsim_nx0_ny4_torque_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -460,7 +493,7 @@ void bsim_nx0_ny4_torque_first_forces_qd(const double* c, const double* u, const
     out[20] = -c[4]*B1_theta_dot - c[7]*B2_theta_dot + c[9]*B3_theta_dot - c[27]*B4_theta_dot;
 }
 
-/* forces_u:(c[53],u[3],q[5],qd[5])->(dQdu[15]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
+/* forces_u:(c[62],u[3],q[5],qd[5])->(dQdu[15]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
 void bsim_nx0_ny4_torque_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -470,7 +503,7 @@ void bsim_nx0_ny4_torque_first_forces_u(const double* c, const double* u, const 
     out[0] = 1.0;
 }
 
-/* mass_varying:(c[53],u[3],q[5],qd[5])->(M[25]) as mass, the entries that depend on q only */
+/* mass_varying:(c[62],u[3],q[5],qd[5])->(M[25]) as mass, the entries that depend on q only */
 void bsim_nx0_ny4_torque_first_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -492,7 +525,7 @@ void bsim_nx0_ny4_torque_first_mass_varying(const double* c, const double* u, co
     out[0] = c[0] - c[1]*B1sq - c[2]*B1_B2 + c[3]*B1_B3 - c[4]*B1_B4 - c[5]*B2sq + c[6]*B2_B3 - c[7]*B2_B4 - c[8]*B3sq + c[9]*B3_B4 - c[10]*B4sq;
 }
 
-/* mass_q_product:(c[53],u[3],q[5],qd[5])->(dMv[25]) row-major; v in the qd slot; out[i*5+k] = sum_j dM_ij/dq_k v_j; nonzero entries only */
+/* mass_q_product:(c[62],u[3],q[5],qd[5])->(dMv[25]) row-major; v in the qd slot; out[i*5+k] = sum_j dM_ij/dq_k v_j; nonzero entries only */
 void bsim_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -513,9 +546,9 @@ void bsim_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, 
 
 }  // namespace
 
-extern const Variant bsim_nx0_ny4_torque_first = {"bsim_nx0_ny4_torque_first", 5, 53, 25,
+extern const Variant bsim_nx0_ny4_torque_first = {"bsim_nx0_ny4_torque_first", 5, 62, 25,
     "vcccccccccccccccccccccccc",
     bsim_nx0_ny4_torque_first_coefficients, bsim_nx0_ny4_torque_first_mass, bsim_nx0_ny4_torque_first_mass_varying, bsim_nx0_ny4_torque_first_forces, bsim_nx0_ny4_torque_first_forces_terms, bsim_nx0_ny4_torque_first_forces_matrix,
-    bsim_nx0_ny4_torque_first_energy, bsim_nx0_ny4_torque_first_momentum, bsim_nx0_ny4_torque_first_forces_q, bsim_nx0_ny4_torque_first_forces_qd, bsim_nx0_ny4_torque_first_mass_q_product, bsim_nx0_ny4_torque_first_forces_u};
+    bsim_nx0_ny4_torque_first_energy, bsim_nx0_ny4_torque_first_momentum, bsim_nx0_ny4_torque_first_forces_q, bsim_nx0_ny4_torque_first_forces_qd, bsim_nx0_ny4_torque_first_mass_q_product, bsim_nx0_ny4_torque_first_forces_u, bsim_nx0_ny4_torque_first_tip};
 
 }  // namespace hubbeam::generated

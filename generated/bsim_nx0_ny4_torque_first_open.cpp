@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[52]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[61]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void bsim_nx0_ny4_torque_first_open_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -74,9 +74,18 @@ void bsim_nx0_ny4_torque_first_open_coefficients(const double* p, double* c)
     c[49] = 0.15*m*a + 0.11904761904761904*L*m;
     c[50] = 60.75*EI/(L*L*L);
     c[51] = 162.0*EI/(L*L*L);
+    c[52] = 1.0125*1.0/(L);
+    c[53] = 0.16875*1.0/(L);
+    c[54] = 0.73125*1.0/(L);
+    c[55] = 0.15*1.0/(L);
+    c[56] = 0.1125*1.0/(L);
+    c[57] = 1.425*1.0/(L);
+    c[58] = 2.25*1.0/(L);
+    c[59] = 3.825*1.0/(L);
+    c[60] = 2.7*1.0/(L);
 }
 
-/* mass:(c[52],u[3],q[5],qd[5])->(M[25]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[61],u[3],q[5],qd[5])->(M[25]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void bsim_nx0_ny4_torque_first_open_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -112,7 +121,7 @@ void bsim_nx0_ny4_torque_first_open_mass(const double* c, const double* u, const
     out[24] = c[23];
 }
 
-/* forces:(c[52],u[3],q[5],qd[5])->(Q[5]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[61],u[3],q[5],qd[5])->(Q[5]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void bsim_nx0_ny4_torque_first_open_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
@@ -156,7 +165,7 @@ void bsim_nx0_ny4_torque_first_open_forces(const double* c, const double* u, con
     out[4] = -c[30]*B1 - c[35]*B2 + c[39]*B3 - c[41]*B4 + c[33]*B1_theta_dotsq + c[37]*B2_theta_dotsq + c[40]*B3_theta_dotsq - c[10]*B4_theta_dotsq;
 }
 
-/* forces_terms:(c[52],u[3],q[5],qd[5])->(m[25]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[61],u[3],q[5],qd[5])->(m[25]) the state monomials of Q: Q = F m */
 void bsim_nx0_ny4_torque_first_open_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -221,7 +230,7 @@ void bsim_nx0_ny4_torque_first_open_forces_terms(const double* c, const double* 
     out[24] = B4_theta_dot_B4_dot;
 }
 
-/* forces_matrix:(c[52],u[3],q[5],qd[5])->(F[5*25]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[61],u[3],q[5],qd[5])->(F[5*25]) row-major, state-free: Q = F m; nonzero entries only */
 void bsim_nx0_ny4_torque_first_open_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -278,7 +287,7 @@ void bsim_nx0_ny4_torque_first_open_forces_matrix(const double* c, const double*
     out[120] = -c[10];
 }
 
-/* energy:(c[52],u[3],q[5],qd[5])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[61],u[3],q[5],qd[5])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void bsim_nx0_ny4_torque_first_open_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -342,7 +351,7 @@ void bsim_nx0_ny4_torque_first_open_energy(const double* c, const double* u, con
     out[3] = c[50]*B1sq - c[29]*B1_B2 - c[29]*B1_B3 + c[30]*B1_B4 + c[50]*B2sq - c[34]*B2_B3 + c[35]*B2_B4 + c[41]*B3sq - c[39]*B3_B4 + c[51]*B4sq;
 }
 
-/* momentum:(c[52],u[3],q[5],qd[5])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[61],u[3],q[5],qd[5])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void bsim_nx0_ny4_torque_first_open_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -378,7 +387,31 @@ void bsim_nx0_ny4_torque_first_open_momentum(const double* c, const double* u, c
     out[0] = c[0]*theta_dot + c[11]*B1_dot + c[12]*B2_dot + c[13]*B3_dot + c[14]*B4_dot - c[1]*B1sq_theta_dot - c[2]*B1_B2_theta_dot + c[3]*B1_B3_theta_dot + c[4]*B1_B4_theta_dot - c[5]*B2sq_theta_dot + c[6]*B2_B3_theta_dot + c[7]*B2_B4_theta_dot - c[8]*B3sq_theta_dot + c[9]*B3_B4_theta_dot - c[10]*B4sq_theta_dot;
 }
 
-/* forces_q:(c[52],u[3],q[5],qd[5])->(dQdq[25]) row-major; out[i*5+k] = dQ_i/dq_k; nonzero entries only */
+/* tip:(c[61],u[3],q[5],qd[5])->(tip[3]) tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B */
+void bsim_nx0_ny4_torque_first_open_tip(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)qd;
+    const double B1 = q[1];
+    const double B2 = q[2];
+    const double B3 = q[3];
+    const double B4 = q[4];
+    const double B1sq = B1*B1;
+    const double B1_B2 = B1*B2;
+    const double B1_B3 = B1*B3;
+    const double B1_B4 = B1*B4;
+    const double B2sq = B2*B2;
+    const double B2_B3 = B2*B3;
+    const double B2_B4 = B2*B4;
+    const double B3sq = B3*B3;
+    const double B3_B4 = B3*B4;
+    const double B4sq = B4*B4;
+    out[0] = B4;
+    out[1] = 0.0;
+    out[2] = -c[52]*B1sq - c[53]*B1_B2 + c[54]*B1_B3 + c[55]*B1_B4 - c[52]*B2sq - c[56]*B2_B3 + c[57]*B2_B4 - c[58]*B3sq + c[59]*B3_B4 - c[60]*B4sq;
+}
+
+/* forces_q:(c[61],u[3],q[5],qd[5])->(dQdq[25]) row-major; out[i*5+k] = dQ_i/dq_k; nonzero entries only */
 void bsim_nx0_ny4_torque_first_open_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -415,7 +448,7 @@ void bsim_nx0_ny4_torque_first_open_forces_q(const double* c, const double* u, c
     out[24] = -c[41] - c[10]*theta_dotsq;
 }
 
-/* forces_qd:(c[52],u[3],q[5],qd[5])->(dQdqd[25]) row-major; out[i*5+k] = dQ_i/dqd_k; nonzero entries only */
+/* forces_qd:(c[61],u[3],q[5],qd[5])->(dQdqd[25]) row-major; out[i*5+k] = dQ_i/dqd_k; nonzero entries only */
 void bsim_nx0_ny4_torque_first_open_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -459,7 +492,7 @@ void bsim_nx0_ny4_torque_first_open_forces_qd(const double* c, const double* u, 
     out[20] = c[4]*B1_theta_dot + c[7]*B2_theta_dot + c[9]*B3_theta_dot - c[27]*B4_theta_dot;
 }
 
-/* forces_u:(c[52],u[3],q[5],qd[5])->(dQdu[15]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
+/* forces_u:(c[61],u[3],q[5],qd[5])->(dQdu[15]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
 void bsim_nx0_ny4_torque_first_open_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -469,7 +502,7 @@ void bsim_nx0_ny4_torque_first_open_forces_u(const double* c, const double* u, c
     out[0] = 1.0;
 }
 
-/* mass_varying:(c[52],u[3],q[5],qd[5])->(M[25]) as mass, the entries that depend on q only */
+/* mass_varying:(c[61],u[3],q[5],qd[5])->(M[25]) as mass, the entries that depend on q only */
 void bsim_nx0_ny4_torque_first_open_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -491,7 +524,7 @@ void bsim_nx0_ny4_torque_first_open_mass_varying(const double* c, const double* 
     out[0] = c[0] - c[1]*B1sq - c[2]*B1_B2 + c[3]*B1_B3 + c[4]*B1_B4 - c[5]*B2sq + c[6]*B2_B3 + c[7]*B2_B4 - c[8]*B3sq + c[9]*B3_B4 - c[10]*B4sq;
 }
 
-/* mass_q_product:(c[52],u[3],q[5],qd[5])->(dMv[25]) row-major; v in the qd slot; out[i*5+k] = sum_j dM_ij/dq_k v_j; nonzero entries only */
+/* mass_q_product:(c[61],u[3],q[5],qd[5])->(dMv[25]) row-major; v in the qd slot; out[i*5+k] = sum_j dM_ij/dq_k v_j; nonzero entries only */
 void bsim_nx0_ny4_torque_first_open_mass_q_product(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -512,9 +545,9 @@ void bsim_nx0_ny4_torque_first_open_mass_q_product(const double* c, const double
 
 }  // namespace
 
-extern const Variant bsim_nx0_ny4_torque_first_open = {"bsim_nx0_ny4_torque_first_open", 5, 52, 25,
+extern const Variant bsim_nx0_ny4_torque_first_open = {"bsim_nx0_ny4_torque_first_open", 5, 61, 25,
     "vcccccccccccccccccccccccc",
     bsim_nx0_ny4_torque_first_open_coefficients, bsim_nx0_ny4_torque_first_open_mass, bsim_nx0_ny4_torque_first_open_mass_varying, bsim_nx0_ny4_torque_first_open_forces, bsim_nx0_ny4_torque_first_open_forces_terms, bsim_nx0_ny4_torque_first_open_forces_matrix,
-    bsim_nx0_ny4_torque_first_open_energy, bsim_nx0_ny4_torque_first_open_momentum, bsim_nx0_ny4_torque_first_open_forces_q, bsim_nx0_ny4_torque_first_open_forces_qd, bsim_nx0_ny4_torque_first_open_mass_q_product, bsim_nx0_ny4_torque_first_open_forces_u};
+    bsim_nx0_ny4_torque_first_open_energy, bsim_nx0_ny4_torque_first_open_momentum, bsim_nx0_ny4_torque_first_open_forces_q, bsim_nx0_ny4_torque_first_open_forces_qd, bsim_nx0_ny4_torque_first_open_mass_q_product, bsim_nx0_ny4_torque_first_open_forces_u, bsim_nx0_ny4_torque_first_open_tip};
 
 }  // namespace hubbeam::generated

@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[116]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[125]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void bsim_nx4_ny4_prescribed_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -132,16 +132,25 @@ void bsim_nx4_ny4_prescribed_first_coefficients(const double* p, double* c)
     c[106] = 0.4125*m*a + 0.5051587301587301*L*m;
     c[107] = 0.009722222222222222*m*a + 0.021296296296296296*L*m;
     c[108] = 0.075*m*a + 0.03941798941798942*L*m;
-    c[109] = 0.22142857142857142*L*m;
-    c[110] = 0.18571428571428572*L*m;
-    c[111] = 0.14285714285714285*L*m;
-    c[112] = 2.625*m*a + 1.4642857142857142*L*m;
-    c[113] = 1.425*m*a + 0.8642857142857143*L*m;
-    c[114] = 1.05*m*a + 0.5476190476190477*L*m;
-    c[115] = 0.011111111111111112*m*a + 0.0078777189888301*L*m;
+    c[109] = 1.0125*1.0/(L);
+    c[110] = 0.16875*1.0/(L);
+    c[111] = 0.88125*1.0/(L);
+    c[112] = 0.08125*1.0/(L);
+    c[113] = 1.3125*1.0/(L);
+    c[114] = 0.0125*1.0/(L);
+    c[115] = 1.125*1.0/(L);
+    c[116] = 0.075*1.0/(L);
+    c[117] = 0.027777777777777776*1.0/(L);
+    c[118] = 0.22142857142857142*L*m;
+    c[119] = 0.18571428571428572*L*m;
+    c[120] = 0.14285714285714285*L*m;
+    c[121] = 2.625*m*a + 1.4642857142857142*L*m;
+    c[122] = 1.425*m*a + 0.8642857142857143*L*m;
+    c[123] = 1.05*m*a + 0.5476190476190477*L*m;
+    c[124] = 0.011111111111111112*m*a + 0.0078777189888301*L*m;
 }
 
-/* mass:(c[116],u[3],q[8],qd[8])->(M[64]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[125],u[3],q[8],qd[8])->(M[64]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void bsim_nx4_ny4_prescribed_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -169,7 +178,7 @@ void bsim_nx4_ny4_prescribed_first_mass(const double* c, const double* u, const 
     out[63] = c[16];
 }
 
-/* forces:(c[116],u[3],q[8],qd[8])->(Q[8]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[125],u[3],q[8],qd[8])->(Q[8]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void bsim_nx4_ny4_prescribed_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -225,7 +234,7 @@ void bsim_nx4_ny4_prescribed_first_forces(const double* c, const double* u, cons
     out[7] = c[74]*theta_ddot - c[58]*B1 - c[65]*B2 + c[71]*B3 - c[75]*B4 + c[25]*theta_dot_A1_dot + c[35]*theta_dot_A2_dot + c[42]*theta_dot_A3_dot + c[50]*theta_dot_A4_dot + c[29]*theta_ddot_A1 + c[38]*theta_ddot_A2 + c[44]*theta_ddot_A3 + c[54]*theta_ddot_A4 - c[62]*theta_dotsq_B1 - c[68]*theta_dotsq_B2 + c[73]*theta_dotsq_B3 - c[76]*theta_dotsq_B4;
 }
 
-/* forces_terms:(c[116],u[3],q[8],qd[8])->(m[34]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[125],u[3],q[8],qd[8])->(m[34]) the state monomials of Q: Q = F m */
 void bsim_nx4_ny4_prescribed_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -308,7 +317,7 @@ void bsim_nx4_ny4_prescribed_first_forces_terms(const double* c, const double* u
     out[33] = theta_dotsq_B4;
 }
 
-/* forces_matrix:(c[116],u[3],q[8],qd[8])->(F[8*34]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[125],u[3],q[8],qd[8])->(F[8*34]) row-major, state-free: Q = F m; nonzero entries only */
 void bsim_nx4_ny4_prescribed_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -452,7 +461,7 @@ void bsim_nx4_ny4_prescribed_first_forces_matrix(const double* c, const double* 
     out[271] = -c[76];
 }
 
-/* energy:(c[116],u[3],q[8],qd[8])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[125],u[3],q[8],qd[8])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void bsim_nx4_ny4_prescribed_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -591,7 +600,7 @@ void bsim_nx4_ny4_prescribed_first_energy(const double* c, const double* u, cons
     out[3] = c[88]*A1sq + c[18]*A1_A2 - c[19]*A1_A3 - c[20]*A1_A4 + c[19]*A2sq + c[18]*A2_A3 - c[31]*A2_A4 + c[88]*A3sq - c[39]*A3_A4 + c[89]*A4sq + c[90]*B1sq - c[57]*B1_B2 - c[58]*B1_B3 + c[58]*B1_B4 + c[90]*B2sq - c[64]*B2_B3 + c[65]*B2_B4 + c[91]*B3sq - c[71]*B3_B4 + c[92]*B4sq;
 }
 
-/* momentum:(c[116],u[3],q[8],qd[8])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[125],u[3],q[8],qd[8])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void bsim_nx4_ny4_prescribed_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -674,7 +683,32 @@ void bsim_nx4_ny4_prescribed_first_momentum(const double* c, const double* u, co
     out[0] = c[93]*theta_dot + c[55]*B1_dot + c[63]*B2_dot + c[69]*B3_dot - c[74]*B4_dot + c[94]*theta_dot_A1 + c[95]*theta_dot_A2 + c[96]*theta_dot_A3 + c[97]*theta_dot_A4 + c[26]*A1_B1_dot + c[27]*A1_B2_dot + c[28]*A1_B3_dot - c[29]*A1_B4_dot + c[36]*A2_B1_dot + c[36]*A2_B2_dot + c[37]*A2_B3_dot - c[38]*A2_B4_dot + c[27]*A3_B1_dot + c[26]*A3_B2_dot + c[43]*A3_B3_dot - c[44]*A3_B4_dot + c[51]*A4_B1_dot + c[52]*A4_B2_dot + c[53]*A4_B3_dot - c[54]*A4_B4_dot - c[26]*B1_A1_dot - c[36]*B1_A2_dot - c[27]*B1_A3_dot - c[51]*B1_A4_dot - c[27]*B2_A1_dot - c[36]*B2_A2_dot - c[26]*B2_A3_dot - c[52]*B2_A4_dot - c[28]*B3_A1_dot - c[37]*B3_A2_dot - c[43]*B3_A3_dot - c[53]*B3_A4_dot + c[29]*B4_A1_dot + c[38]*B4_A2_dot + c[44]*B4_A3_dot + c[54]*B4_A4_dot + c[0]*theta_dot_A1sq + c[98]*theta_dot_A1_A2 + c[99]*theta_dot_A1_A3 + c[100]*theta_dot_A1_A4 + c[4]*theta_dot_A2sq + c[98]*theta_dot_A2_A3 + c[101]*theta_dot_A2_A4 + c[0]*theta_dot_A3sq + c[102]*theta_dot_A3_A4 + c[7]*theta_dot_A4sq - c[59]*theta_dot_B1sq - c[103]*theta_dot_B1_B2 + c[104]*theta_dot_B1_B3 - c[105]*theta_dot_B1_B4 - c[66]*theta_dot_B2sq + c[106]*theta_dot_B2_B3 - c[107]*theta_dot_B2_B4 - c[72]*theta_dot_B3sq + c[108]*theta_dot_B3_B4 - c[76]*theta_dot_B4sq;
 }
 
-/* forces_q:(c[116],u[3],q[8],qd[8])->(dQdq[64]) row-major; out[i*8+k] = dQ_i/dq_k; nonzero entries only */
+/* tip:(c[125],u[3],q[8],qd[8])->(tip[3]) tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B */
+void bsim_nx4_ny4_prescribed_first_tip(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)qd;
+    const double A4 = q[3];
+    const double B1 = q[4];
+    const double B2 = q[5];
+    const double B3 = q[6];
+    const double B4 = q[7];
+    const double B1sq = B1*B1;
+    const double B1_B2 = B1*B2;
+    const double B1_B3 = B1*B3;
+    const double B1_B4 = B1*B4;
+    const double B2sq = B2*B2;
+    const double B2_B3 = B2*B3;
+    const double B2_B4 = B2*B4;
+    const double B3sq = B3*B3;
+    const double B3_B4 = B3*B4;
+    const double B4sq = B4*B4;
+    out[0] = B3;
+    out[1] = A4;
+    out[2] = A4 - c[109]*B1sq - c[110]*B1_B2 + c[111]*B1_B3 - c[112]*B1_B4 - c[109]*B2sq + c[113]*B2_B3 + c[114]*B2_B4 - c[115]*B3sq + c[116]*B3_B4 - c[117]*B4sq;
+}
+
+/* forces_q:(c[125],u[3],q[8],qd[8])->(dQdq[64]) row-major; out[i*8+k] = dQ_i/dq_k; nonzero entries only */
 void bsim_nx4_ny4_prescribed_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)q;
@@ -748,7 +782,7 @@ void bsim_nx4_ny4_prescribed_first_forces_q(const double* c, const double* u, co
     out[63] = -c[75] - c[76]*theta_dotsq;
 }
 
-/* forces_qd:(c[116],u[3],q[8],qd[8])->(dQdqd[64]) row-major; out[i*8+k] = dQ_i/dqd_k; nonzero entries only */
+/* forces_qd:(c[125],u[3],q[8],qd[8])->(dQdqd[64]) row-major; out[i*8+k] = dQ_i/dqd_k; nonzero entries only */
 void bsim_nx4_ny4_prescribed_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)q;
@@ -788,7 +822,7 @@ void bsim_nx4_ny4_prescribed_first_forces_qd(const double* c, const double* u, c
     out[59] = c[50]*theta_dot;
 }
 
-/* forces_u:(c[116],u[3],q[8],qd[8])->(dQdu[24]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
+/* forces_u:(c[125],u[3],q[8],qd[8])->(dQdu[24]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
 void bsim_nx4_ny4_prescribed_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -816,29 +850,29 @@ void bsim_nx4_ny4_prescribed_first_forces_u(const double* c, const double* u, co
     const double theta_dot_B2 = theta_dot*B2;
     const double theta_dot_B3 = theta_dot*B3;
     const double theta_dot_B4 = theta_dot*B4;
-    out[1] = c[94]*theta_dot + c[22]*B1_dot + c[23]*B2_dot + c[24]*B3_dot - c[25]*B4_dot + c[109]*theta_dot_A1 + c[98]*theta_dot_A2 + c[99]*theta_dot_A3 + c[100]*theta_dot_A4;
+    out[1] = c[94]*theta_dot + c[22]*B1_dot + c[23]*B2_dot + c[24]*B3_dot - c[25]*B4_dot + c[118]*theta_dot_A1 + c[98]*theta_dot_A2 + c[99]*theta_dot_A3 + c[100]*theta_dot_A4;
     out[2] = c[26]*B1 + c[27]*B2 + c[28]*B3 - c[29]*B4;
-    out[4] = c[95]*theta_dot + c[33]*B1_dot + c[33]*B2_dot + c[34]*B3_dot - c[35]*B4_dot + c[98]*theta_dot_A1 + c[110]*theta_dot_A2 + c[98]*theta_dot_A3 + c[101]*theta_dot_A4;
+    out[4] = c[95]*theta_dot + c[33]*B1_dot + c[33]*B2_dot + c[34]*B3_dot - c[35]*B4_dot + c[98]*theta_dot_A1 + c[119]*theta_dot_A2 + c[98]*theta_dot_A3 + c[101]*theta_dot_A4;
     out[5] = c[36]*B1 + c[36]*B2 + c[37]*B3 - c[38]*B4;
-    out[7] = c[96]*theta_dot + c[23]*B1_dot + c[22]*B2_dot + c[41]*B3_dot - c[42]*B4_dot + c[99]*theta_dot_A1 + c[98]*theta_dot_A2 + c[109]*theta_dot_A3 + c[102]*theta_dot_A4;
+    out[7] = c[96]*theta_dot + c[23]*B1_dot + c[22]*B2_dot + c[41]*B3_dot - c[42]*B4_dot + c[99]*theta_dot_A1 + c[98]*theta_dot_A2 + c[118]*theta_dot_A3 + c[102]*theta_dot_A4;
     out[8] = c[27]*B1 + c[26]*B2 + c[43]*B3 - c[44]*B4;
-    out[10] = c[97]*theta_dot + c[47]*B1_dot + c[48]*B2_dot + c[49]*B3_dot - c[50]*B4_dot + c[100]*theta_dot_A1 + c[101]*theta_dot_A2 + c[102]*theta_dot_A3 + c[111]*theta_dot_A4;
+    out[10] = c[97]*theta_dot + c[47]*B1_dot + c[48]*B2_dot + c[49]*B3_dot - c[50]*B4_dot + c[100]*theta_dot_A1 + c[101]*theta_dot_A2 + c[102]*theta_dot_A3 + c[120]*theta_dot_A4;
     out[11] = c[51]*B1 + c[52]*B2 + c[53]*B3 - c[54]*B4;
-    out[13] = -c[22]*A1_dot - c[33]*A2_dot - c[23]*A3_dot - c[47]*A4_dot - c[112]*theta_dot_B1 - c[103]*theta_dot_B2 + c[104]*theta_dot_B3 - c[105]*theta_dot_B4;
+    out[13] = -c[22]*A1_dot - c[33]*A2_dot - c[23]*A3_dot - c[47]*A4_dot - c[121]*theta_dot_B1 - c[103]*theta_dot_B2 + c[104]*theta_dot_B3 - c[105]*theta_dot_B4;
     out[14] = -c[55] - c[26]*A1 - c[36]*A2 - c[27]*A3 - c[51]*A4;
-    out[16] = -c[23]*A1_dot - c[33]*A2_dot - c[22]*A3_dot - c[48]*A4_dot - c[103]*theta_dot_B1 - c[113]*theta_dot_B2 + c[106]*theta_dot_B3 - c[107]*theta_dot_B4;
+    out[16] = -c[23]*A1_dot - c[33]*A2_dot - c[22]*A3_dot - c[48]*A4_dot - c[103]*theta_dot_B1 - c[122]*theta_dot_B2 + c[106]*theta_dot_B3 - c[107]*theta_dot_B4;
     out[17] = -c[63] - c[27]*A1 - c[36]*A2 - c[26]*A3 - c[52]*A4;
-    out[19] = -c[24]*A1_dot - c[34]*A2_dot - c[41]*A3_dot - c[49]*A4_dot + c[104]*theta_dot_B1 + c[106]*theta_dot_B2 - c[114]*theta_dot_B3 + c[108]*theta_dot_B4;
+    out[19] = -c[24]*A1_dot - c[34]*A2_dot - c[41]*A3_dot - c[49]*A4_dot + c[104]*theta_dot_B1 + c[106]*theta_dot_B2 - c[123]*theta_dot_B3 + c[108]*theta_dot_B4;
     out[20] = -c[69] - c[28]*A1 - c[37]*A2 - c[43]*A3 - c[53]*A4;
-    out[22] = c[25]*A1_dot + c[35]*A2_dot + c[42]*A3_dot + c[50]*A4_dot - c[105]*theta_dot_B1 - c[107]*theta_dot_B2 + c[108]*theta_dot_B3 - c[115]*theta_dot_B4;
+    out[22] = c[25]*A1_dot + c[35]*A2_dot + c[42]*A3_dot + c[50]*A4_dot - c[105]*theta_dot_B1 - c[107]*theta_dot_B2 + c[108]*theta_dot_B3 - c[124]*theta_dot_B4;
     out[23] = c[74] + c[29]*A1 + c[38]*A2 + c[44]*A3 + c[54]*A4;
 }
 
 }  // namespace
 
-extern const Variant bsim_nx4_ny4_prescribed_first = {"bsim_nx4_ny4_prescribed_first", 8, 116, 34,
+extern const Variant bsim_nx4_ny4_prescribed_first = {"bsim_nx4_ny4_prescribed_first", 8, 125, 34,
     "cccc0000cccc0000cccc0000cccc00000000cccc0000cccc0000cccc0000cccc",
     bsim_nx4_ny4_prescribed_first_coefficients, bsim_nx4_ny4_prescribed_first_mass, nullptr, bsim_nx4_ny4_prescribed_first_forces, bsim_nx4_ny4_prescribed_first_forces_terms, bsim_nx4_ny4_prescribed_first_forces_matrix,
-    bsim_nx4_ny4_prescribed_first_energy, bsim_nx4_ny4_prescribed_first_momentum, bsim_nx4_ny4_prescribed_first_forces_q, bsim_nx4_ny4_prescribed_first_forces_qd, nullptr, bsim_nx4_ny4_prescribed_first_forces_u};
+    bsim_nx4_ny4_prescribed_first_energy, bsim_nx4_ny4_prescribed_first_momentum, bsim_nx4_ny4_prescribed_first_forces_q, bsim_nx4_ny4_prescribed_first_forces_qd, nullptr, bsim_nx4_ny4_prescribed_first_forces_u, bsim_nx4_ny4_prescribed_first_tip};
 
 }  // namespace hubbeam::generated

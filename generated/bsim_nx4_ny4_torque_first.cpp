@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[116]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[125]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void bsim_nx4_ny4_torque_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -139,9 +139,18 @@ void bsim_nx4_ny4_torque_first_coefficients(const double* p, double* c)
     c[113] = 60.75*EI/(L*L*L);
     c[114] = 40.5*EI/(L*L*L);
     c[115] = 4.0*EI/(L*L*L);
+    c[116] = 1.0125*1.0/(L);
+    c[117] = 0.16875*1.0/(L);
+    c[118] = 0.88125*1.0/(L);
+    c[119] = 0.08125*1.0/(L);
+    c[120] = 1.3125*1.0/(L);
+    c[121] = 0.0125*1.0/(L);
+    c[122] = 1.125*1.0/(L);
+    c[123] = 0.075*1.0/(L);
+    c[124] = 0.027777777777777776*1.0/(L);
 }
 
-/* mass:(c[116],u[3],q[9],qd[9])->(M[81]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[125],u[3],q[9],qd[9])->(M[81]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void bsim_nx4_ny4_torque_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -205,7 +214,7 @@ void bsim_nx4_ny4_torque_first_mass(const double* c, const double* u, const doub
     out[80] = c[53];
 }
 
-/* forces:(c[116],u[3],q[9],qd[9])->(Q[9]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[125],u[3],q[9],qd[9])->(Q[9]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void bsim_nx4_ny4_torque_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
@@ -294,7 +303,7 @@ void bsim_nx4_ny4_torque_first_forces(const double* c, const double* u, const do
     out[8] = -c[88]*B1 - c[93]*B2 + c[97]*B3 - c[99]*B4 + c[69]*theta_dot_A1_dot + c[75]*theta_dot_A2_dot + c[79]*theta_dot_A3_dot + c[85]*theta_dot_A4_dot - c[91]*B1_theta_dotsq - c[95]*B2_theta_dotsq + c[98]*B3_theta_dotsq - c[22]*B4_theta_dotsq;
 }
 
-/* forces_terms:(c[116],u[3],q[9],qd[9])->(m[58]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[125],u[3],q[9],qd[9])->(m[58]) the state monomials of Q: Q = F m */
 void bsim_nx4_ny4_torque_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -433,7 +442,7 @@ void bsim_nx4_ny4_torque_first_forces_terms(const double* c, const double* u, co
     out[57] = B4_theta_dot_B4_dot;
 }
 
-/* forces_matrix:(c[116],u[3],q[9],qd[9])->(F[9*58]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[125],u[3],q[9],qd[9])->(F[9*58]) row-major, state-free: Q = F m; nonzero entries only */
 void bsim_nx4_ny4_torque_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -578,7 +587,7 @@ void bsim_nx4_ny4_torque_first_forces_matrix(const double* c, const double* u, c
     out[517] = -c[22];
 }
 
-/* energy:(c[116],u[3],q[9],qd[9])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[125],u[3],q[9],qd[9])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void bsim_nx4_ny4_torque_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -734,7 +743,7 @@ void bsim_nx4_ny4_torque_first_energy(const double* c, const double* u, const do
     out[3] = c[111]*A1sq + c[62]*A1_A2 - c[63]*A1_A3 - c[64]*A1_A4 + c[63]*A2sq + c[62]*A2_A3 - c[71]*A2_A4 + c[111]*A3sq - c[76]*A3_A4 + c[112]*A4sq + c[113]*B1sq - c[87]*B1_B2 - c[88]*B1_B3 + c[88]*B1_B4 + c[113]*B2sq - c[92]*B2_B3 + c[93]*B2_B4 + c[114]*B3sq - c[97]*B3_B4 + c[115]*B4sq;
 }
 
-/* momentum:(c[116],u[3],q[9],qd[9])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[125],u[3],q[9],qd[9])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void bsim_nx4_ny4_torque_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -834,7 +843,32 @@ void bsim_nx4_ny4_torque_first_momentum(const double* c, const double* u, const 
     out[0] = c[0]*theta_dot + c[36]*B1_dot + c[37]*B2_dot + c[38]*B3_dot - c[39]*B4_dot + c[1]*A1_theta_dot + c[23]*A1_B1_dot + c[24]*A1_B2_dot + c[25]*A1_B3_dot - c[26]*A1_B4_dot + c[2]*A2_theta_dot + c[27]*A2_B1_dot + c[27]*A2_B2_dot + c[28]*A2_B3_dot - c[29]*A2_B4_dot + c[3]*A3_theta_dot + c[24]*A3_B1_dot + c[23]*A3_B2_dot + c[30]*A3_B3_dot - c[31]*A3_B4_dot + c[4]*A4_theta_dot + c[32]*A4_B1_dot + c[33]*A4_B2_dot + c[34]*A4_B3_dot - c[35]*A4_B4_dot - c[23]*B1_A1_dot - c[27]*B1_A2_dot - c[24]*B1_A3_dot - c[32]*B1_A4_dot - c[24]*B2_A1_dot - c[27]*B2_A2_dot - c[23]*B2_A3_dot - c[33]*B2_A4_dot - c[25]*B3_A1_dot - c[28]*B3_A2_dot - c[30]*B3_A3_dot - c[34]*B3_A4_dot + c[26]*B4_A1_dot + c[29]*B4_A2_dot + c[31]*B4_A3_dot + c[35]*B4_A4_dot + c[5]*A1sq_theta_dot + c[6]*A1_A2_theta_dot + c[7]*A1_A3_theta_dot + c[8]*A1_A4_theta_dot + c[9]*A2sq_theta_dot + c[6]*A2_A3_theta_dot + c[10]*A2_A4_theta_dot + c[5]*A3sq_theta_dot + c[11]*A3_A4_theta_dot + c[12]*A4sq_theta_dot - c[13]*B1sq_theta_dot - c[14]*B1_B2_theta_dot + c[15]*B1_B3_theta_dot - c[16]*B1_B4_theta_dot - c[17]*B2sq_theta_dot + c[18]*B2_B3_theta_dot - c[19]*B2_B4_theta_dot - c[20]*B3sq_theta_dot + c[21]*B3_B4_theta_dot - c[22]*B4sq_theta_dot;
 }
 
-/* forces_q:(c[116],u[3],q[9],qd[9])->(dQdq[81]) row-major; out[i*9+k] = dQ_i/dq_k; nonzero entries only */
+/* tip:(c[125],u[3],q[9],qd[9])->(tip[3]) tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B */
+void bsim_nx4_ny4_torque_first_tip(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)qd;
+    const double A4 = q[4];
+    const double B1 = q[5];
+    const double B2 = q[6];
+    const double B3 = q[7];
+    const double B4 = q[8];
+    const double B1sq = B1*B1;
+    const double B1_B2 = B1*B2;
+    const double B1_B3 = B1*B3;
+    const double B1_B4 = B1*B4;
+    const double B2sq = B2*B2;
+    const double B2_B3 = B2*B3;
+    const double B2_B4 = B2*B4;
+    const double B3sq = B3*B3;
+    const double B3_B4 = B3*B4;
+    const double B4sq = B4*B4;
+    out[0] = B3;
+    out[1] = A4;
+    out[2] = A4 - c[116]*B1sq - c[117]*B1_B2 + c[118]*B1_B3 - c[119]*B1_B4 - c[116]*B2sq + c[120]*B2_B3 + c[121]*B2_B4 - c[122]*B3sq + c[123]*B3_B4 - c[124]*B4sq;
+}
+
+/* forces_q:(c[125],u[3],q[9],qd[9])->(dQdq[81]) row-major; out[i*9+k] = dQ_i/dq_k; nonzero entries only */
 void bsim_nx4_ny4_torque_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -899,7 +933,7 @@ void bsim_nx4_ny4_torque_first_forces_q(const double* c, const double* u, const 
     out[80] = -c[99] - c[22]*theta_dotsq;
 }
 
-/* forces_qd:(c[116],u[3],q[9],qd[9])->(dQdqd[81]) row-major; out[i*9+k] = dQ_i/dqd_k; nonzero entries only */
+/* forces_qd:(c[125],u[3],q[9],qd[9])->(dQdqd[81]) row-major; out[i*9+k] = dQ_i/dqd_k; nonzero entries only */
 void bsim_nx4_ny4_torque_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -1011,7 +1045,7 @@ void bsim_nx4_ny4_torque_first_forces_qd(const double* c, const double* u, const
     out[76] = c[85]*theta_dot;
 }
 
-/* forces_u:(c[116],u[3],q[9],qd[9])->(dQdu[27]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
+/* forces_u:(c[125],u[3],q[9],qd[9])->(dQdu[27]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
 void bsim_nx4_ny4_torque_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -1021,7 +1055,7 @@ void bsim_nx4_ny4_torque_first_forces_u(const double* c, const double* u, const 
     out[0] = 1.0;
 }
 
-/* mass_varying:(c[116],u[3],q[9],qd[9])->(M[81]) as mass, the entries that depend on q only */
+/* mass_varying:(c[125],u[3],q[9],qd[9])->(M[81]) as mass, the entries that depend on q only */
 void bsim_nx4_ny4_torque_first_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -1065,7 +1099,7 @@ void bsim_nx4_ny4_torque_first_mass_varying(const double* c, const double* u, co
     out[8] = -c[39] - c[26]*A1 - c[29]*A2 - c[31]*A3 - c[35]*A4;
 }
 
-/* mass_q_product:(c[116],u[3],q[9],qd[9])->(dMv[81]) row-major; v in the qd slot; out[i*9+k] = sum_j dM_ij/dq_k v_j; nonzero entries only */
+/* mass_q_product:(c[125],u[3],q[9],qd[9])->(dMv[81]) row-major; v in the qd slot; out[i*9+k] = sum_j dM_ij/dq_k v_j; nonzero entries only */
 void bsim_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -1138,9 +1172,9 @@ void bsim_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, 
 
 }  // namespace
 
-extern const Variant bsim_nx4_ny4_torque_first = {"bsim_nx4_ny4_torque_first", 9, 116, 58,
+extern const Variant bsim_nx4_ny4_torque_first = {"bsim_nx4_ny4_torque_first", 9, 125, 58,
     "vvvvvvvvvvcccc0000vcccc0000vcccc0000vcccc0000v0000ccccv0000ccccv0000ccccv0000cccc",
     bsim_nx4_ny4_torque_first_coefficients, bsim_nx4_ny4_torque_first_mass, bsim_nx4_ny4_torque_first_mass_varying, bsim_nx4_ny4_torque_first_forces, bsim_nx4_ny4_torque_first_forces_terms, bsim_nx4_ny4_torque_first_forces_matrix,
-    bsim_nx4_ny4_torque_first_energy, bsim_nx4_ny4_torque_first_momentum, bsim_nx4_ny4_torque_first_forces_q, bsim_nx4_ny4_torque_first_forces_qd, bsim_nx4_ny4_torque_first_mass_q_product, bsim_nx4_ny4_torque_first_forces_u};
+    bsim_nx4_ny4_torque_first_energy, bsim_nx4_ny4_torque_first_momentum, bsim_nx4_ny4_torque_first_forces_q, bsim_nx4_ny4_torque_first_forces_qd, bsim_nx4_ny4_torque_first_mass_q_product, bsim_nx4_ny4_torque_first_forces_u, bsim_nx4_ny4_torque_first_tip};
 
 }  // namespace hubbeam::generated

@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[47]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[53]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void fem_nx0_ny4_prescribed_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -65,13 +65,19 @@ void fem_nx0_ny4_prescribed_first_coefficients(const double* p, double* c)
     c[40] = 0.02261904761904762*L*m;
     c[41] = 0.008333333333333333*m*a + 0.004761904761904762*L*m;
     c[42] = 0.1*m*a + 0.055952380952380955*L*m;
-    c[43] = 4.8*m*a + 2.5142857142857142*L*m;
-    c[44] = 0.13333333333333333*m*a + 0.09047619047619047*L*m;
-    c[45] = 1.2*m*a + 0.6571428571428571*L*m;
-    c[46] = 0.016666666666666666*m*a + 0.011904761904761904*L*m;
+    c[43] = 2.4*1.0/(L);
+    c[44] = 0.1*1.0/(L);
+    c[45] = 0.06666666666666667*1.0/(L);
+    c[46] = 0.016666666666666666*1.0/(L);
+    c[47] = 1.2*1.0/(L);
+    c[48] = 0.03333333333333333*1.0/(L);
+    c[49] = 4.8*m*a + 2.5142857142857142*L*m;
+    c[50] = 0.13333333333333333*m*a + 0.09047619047619047*L*m;
+    c[51] = 1.2*m*a + 0.6571428571428571*L*m;
+    c[52] = 0.016666666666666666*m*a + 0.011904761904761904*L*m;
 }
 
-/* mass:(c[47],u[3],q[4],qd[4])->(M[16]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[53],u[3],q[4],qd[4])->(M[16]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void fem_nx0_ny4_prescribed_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -88,7 +94,7 @@ void fem_nx0_ny4_prescribed_first_mass(const double* c, const double* u, const d
     out[15] = c[7];
 }
 
-/* forces:(c[47],u[3],q[4],qd[4])->(Q[4]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[53],u[3],q[4],qd[4])->(Q[4]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void fem_nx0_ny4_prescribed_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)qd;
@@ -109,7 +115,7 @@ void fem_nx0_ny4_prescribed_first_forces(const double* c, const double* u, const
     out[3] = c[25]*theta_ddot - c[11]*B1 - c[18]*B2 + c[11]*B3 - c[26]*B4 - c[15]*theta_dotsq_B1 + c[21]*theta_dotsq_B2 + c[24]*theta_dotsq_B3 - c[27]*theta_dotsq_B4;
 }
 
-/* forces_terms:(c[47],u[3],q[4],qd[4])->(m[9]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[53],u[3],q[4],qd[4])->(m[9]) the state monomials of Q: Q = F m */
 void fem_nx0_ny4_prescribed_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -136,7 +142,7 @@ void fem_nx0_ny4_prescribed_first_forces_terms(const double* c, const double* u,
     out[8] = theta_dotsq_B4;
 }
 
-/* forces_matrix:(c[47],u[3],q[4],qd[4])->(F[4*9]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[53],u[3],q[4],qd[4])->(F[4*9]) row-major, state-free: Q = F m; nonzero entries only */
 void fem_nx0_ny4_prescribed_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -178,7 +184,7 @@ void fem_nx0_ny4_prescribed_first_forces_matrix(const double* c, const double* u
     out[35] = -c[27];
 }
 
-/* energy:(c[47],u[3],q[4],qd[4])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[53],u[3],q[4],qd[4])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void fem_nx0_ny4_prescribed_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -233,7 +239,7 @@ void fem_nx0_ny4_prescribed_first_energy(const double* c, const double* u, const
     out[3] = c[10]*B1sq - c[10]*B1_B3 + c[11]*B1_B4 + c[26]*B2sq - c[11]*B2_B3 + c[18]*B2_B4 + c[35]*B3sq - c[11]*B3_B4 + c[18]*B4sq;
 }
 
-/* momentum:(c[47],u[3],q[4],qd[4])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[53],u[3],q[4],qd[4])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void fem_nx0_ny4_prescribed_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -262,7 +268,30 @@ void fem_nx0_ny4_prescribed_first_momentum(const double* c, const double* u, con
     out[0] = c[36]*theta_dot + c[8]*B1_dot + c[16]*B2_dot + c[22]*B3_dot - c[25]*B4_dot - c[12]*theta_dot_B1sq + c[37]*theta_dot_B1_B2 + c[38]*theta_dot_B1_B3 - c[39]*theta_dot_B1_B4 - c[19]*theta_dot_B2sq + c[40]*theta_dot_B2_B3 + c[41]*theta_dot_B2_B4 - c[23]*theta_dot_B3sq + c[42]*theta_dot_B3_B4 - c[27]*theta_dot_B4sq;
 }
 
-/* forces_q:(c[47],u[3],q[4],qd[4])->(dQdq[16]) row-major; out[i*4+k] = dQ_i/dq_k; nonzero entries only */
+/* tip:(c[53],u[3],q[4],qd[4])->(tip[3]) tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B */
+void fem_nx0_ny4_prescribed_first_tip(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)qd;
+    const double B1 = q[0];
+    const double B2 = q[1];
+    const double B3 = q[2];
+    const double B4 = q[3];
+    const double B1sq = B1*B1;
+    const double B1_B3 = B1*B3;
+    const double B1_B4 = B1*B4;
+    const double B2sq = B2*B2;
+    const double B2_B3 = B2*B3;
+    const double B2_B4 = B2*B4;
+    const double B3sq = B3*B3;
+    const double B3_B4 = B3*B4;
+    const double B4sq = B4*B4;
+    out[0] = B3;
+    out[1] = 0.0;
+    out[2] = -c[43]*B1sq + c[43]*B1_B3 - c[44]*B1_B4 - c[45]*B2sq + c[44]*B2_B3 + c[46]*B2_B4 - c[47]*B3sq + c[44]*B3_B4 - c[48]*B4sq;
+}
+
+/* forces_q:(c[53],u[3],q[4],qd[4])->(dQdq[16]) row-major; out[i*4+k] = dQ_i/dq_k; nonzero entries only */
 void fem_nx0_ny4_prescribed_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)q;
@@ -287,7 +316,7 @@ void fem_nx0_ny4_prescribed_first_forces_q(const double* c, const double* u, con
     out[15] = -c[26] - c[27]*theta_dotsq;
 }
 
-/* forces_qd:(c[47],u[3],q[4],qd[4])->(dQdqd[16]) row-major; out[i*4+k] = dQ_i/dqd_k; nonzero entries only */
+/* forces_qd:(c[53],u[3],q[4],qd[4])->(dQdqd[16]) row-major; out[i*4+k] = dQ_i/dqd_k; nonzero entries only */
 void fem_nx0_ny4_prescribed_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -297,7 +326,7 @@ void fem_nx0_ny4_prescribed_first_forces_qd(const double* c, const double* u, co
     (void)qd;
 }
 
-/* forces_u:(c[47],u[3],q[4],qd[4])->(dQdu[12]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
+/* forces_u:(c[53],u[3],q[4],qd[4])->(dQdu[12]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
 void fem_nx0_ny4_prescribed_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)qd;
@@ -310,21 +339,21 @@ void fem_nx0_ny4_prescribed_first_forces_u(const double* c, const double* u, con
     const double theta_dot_B2 = theta_dot*B2;
     const double theta_dot_B3 = theta_dot*B3;
     const double theta_dot_B4 = theta_dot*B4;
-    out[1] = -c[43]*theta_dot_B1 + c[37]*theta_dot_B2 + c[38]*theta_dot_B3 - c[39]*theta_dot_B4;
+    out[1] = -c[49]*theta_dot_B1 + c[37]*theta_dot_B2 + c[38]*theta_dot_B3 - c[39]*theta_dot_B4;
     out[2] = -c[8];
-    out[4] = c[37]*theta_dot_B1 - c[44]*theta_dot_B2 + c[40]*theta_dot_B3 + c[41]*theta_dot_B4;
+    out[4] = c[37]*theta_dot_B1 - c[50]*theta_dot_B2 + c[40]*theta_dot_B3 + c[41]*theta_dot_B4;
     out[5] = -c[16];
-    out[7] = c[38]*theta_dot_B1 + c[40]*theta_dot_B2 - c[45]*theta_dot_B3 + c[42]*theta_dot_B4;
+    out[7] = c[38]*theta_dot_B1 + c[40]*theta_dot_B2 - c[51]*theta_dot_B3 + c[42]*theta_dot_B4;
     out[8] = -c[22];
-    out[10] = -c[39]*theta_dot_B1 + c[41]*theta_dot_B2 + c[42]*theta_dot_B3 - c[46]*theta_dot_B4;
+    out[10] = -c[39]*theta_dot_B1 + c[41]*theta_dot_B2 + c[42]*theta_dot_B3 - c[52]*theta_dot_B4;
     out[11] = c[25];
 }
 
 }  // namespace
 
-extern const Variant fem_nx0_ny4_prescribed_first = {"fem_nx0_ny4_prescribed_first", 4, 47, 9,
+extern const Variant fem_nx0_ny4_prescribed_first = {"fem_nx0_ny4_prescribed_first", 4, 53, 9,
     "c0cc0ccccccccccc",
     fem_nx0_ny4_prescribed_first_coefficients, fem_nx0_ny4_prescribed_first_mass, nullptr, fem_nx0_ny4_prescribed_first_forces, fem_nx0_ny4_prescribed_first_forces_terms, fem_nx0_ny4_prescribed_first_forces_matrix,
-    fem_nx0_ny4_prescribed_first_energy, fem_nx0_ny4_prescribed_first_momentum, fem_nx0_ny4_prescribed_first_forces_q, fem_nx0_ny4_prescribed_first_forces_qd, nullptr, fem_nx0_ny4_prescribed_first_forces_u};
+    fem_nx0_ny4_prescribed_first_energy, fem_nx0_ny4_prescribed_first_momentum, fem_nx0_ny4_prescribed_first_forces_q, fem_nx0_ny4_prescribed_first_forces_qd, nullptr, fem_nx0_ny4_prescribed_first_forces_u, fem_nx0_ny4_prescribed_first_tip};
 
 }  // namespace hubbeam::generated

@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[47]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[53]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void fem_nx0_ny4_torque_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -69,9 +69,15 @@ void fem_nx0_ny4_torque_first_coefficients(const double* p, double* c)
     c[44] = 0.3*m*a + 0.16428571428571428*L*m;
     c[45] = 0.004166666666666667*m*a + 0.002976190476190476*L*m;
     c[46] = 48.0*EI/(L*L*L);
+    c[47] = 2.4*1.0/(L);
+    c[48] = 0.1*1.0/(L);
+    c[49] = 0.06666666666666667*1.0/(L);
+    c[50] = 0.016666666666666666*1.0/(L);
+    c[51] = 1.2*1.0/(L);
+    c[52] = 0.03333333333333333*1.0/(L);
 }
 
-/* mass:(c[47],u[3],q[5],qd[5])->(M[25]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[53],u[3],q[5],qd[5])->(M[25]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void fem_nx0_ny4_torque_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -106,7 +112,7 @@ void fem_nx0_ny4_torque_first_mass(const double* c, const double* u, const doubl
     out[24] = c[22];
 }
 
-/* forces:(c[47],u[3],q[5],qd[5])->(Q[5]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[53],u[3],q[5],qd[5])->(Q[5]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void fem_nx0_ny4_torque_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
@@ -150,7 +156,7 @@ void fem_nx0_ny4_torque_first_forces(const double* c, const double* u, const dou
     out[4] = -c[29]*B1 - c[34]*B2 + c[29]*B3 - c[38]*B4 - c[32]*B1_theta_dotsq + c[36]*B2_theta_dotsq + c[37]*B3_theta_dotsq - c[10]*B4_theta_dotsq;
 }
 
-/* forces_terms:(c[47],u[3],q[5],qd[5])->(m[25]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[53],u[3],q[5],qd[5])->(m[25]) the state monomials of Q: Q = F m */
 void fem_nx0_ny4_torque_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -215,7 +221,7 @@ void fem_nx0_ny4_torque_first_forces_terms(const double* c, const double* u, con
     out[24] = B4_theta_dot_B4_dot;
 }
 
-/* forces_matrix:(c[47],u[3],q[5],qd[5])->(F[5*25]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[53],u[3],q[5],qd[5])->(F[5*25]) row-major, state-free: Q = F m; nonzero entries only */
 void fem_nx0_ny4_torque_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -270,7 +276,7 @@ void fem_nx0_ny4_torque_first_forces_matrix(const double* c, const double* u, co
     out[120] = -c[10];
 }
 
-/* energy:(c[47],u[3],q[5],qd[5])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[53],u[3],q[5],qd[5])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void fem_nx0_ny4_torque_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -333,7 +339,7 @@ void fem_nx0_ny4_torque_first_energy(const double* c, const double* u, const dou
     out[3] = c[28]*B1sq - c[28]*B1_B3 + c[29]*B1_B4 + c[38]*B2sq - c[29]*B2_B3 + c[34]*B2_B4 + c[46]*B3sq - c[29]*B3_B4 + c[34]*B4sq;
 }
 
-/* momentum:(c[47],u[3],q[5],qd[5])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[53],u[3],q[5],qd[5])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void fem_nx0_ny4_torque_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -369,7 +375,30 @@ void fem_nx0_ny4_torque_first_momentum(const double* c, const double* u, const d
     out[0] = c[0]*theta_dot + c[11]*B1_dot + c[12]*B2_dot + c[13]*B3_dot - c[14]*B4_dot - c[1]*B1sq_theta_dot + c[2]*B1_B2_theta_dot + c[3]*B1_B3_theta_dot - c[4]*B1_B4_theta_dot - c[5]*B2sq_theta_dot + c[6]*B2_B3_theta_dot + c[7]*B2_B4_theta_dot - c[8]*B3sq_theta_dot + c[9]*B3_B4_theta_dot - c[10]*B4sq_theta_dot;
 }
 
-/* forces_q:(c[47],u[3],q[5],qd[5])->(dQdq[25]) row-major; out[i*5+k] = dQ_i/dq_k; nonzero entries only */
+/* tip:(c[53],u[3],q[5],qd[5])->(tip[3]) tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B */
+void fem_nx0_ny4_torque_first_tip(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)qd;
+    const double B1 = q[1];
+    const double B2 = q[2];
+    const double B3 = q[3];
+    const double B4 = q[4];
+    const double B1sq = B1*B1;
+    const double B1_B3 = B1*B3;
+    const double B1_B4 = B1*B4;
+    const double B2sq = B2*B2;
+    const double B2_B3 = B2*B3;
+    const double B2_B4 = B2*B4;
+    const double B3sq = B3*B3;
+    const double B3_B4 = B3*B4;
+    const double B4sq = B4*B4;
+    out[0] = B3;
+    out[1] = 0.0;
+    out[2] = -c[47]*B1sq + c[47]*B1_B3 - c[48]*B1_B4 - c[49]*B2sq + c[48]*B2_B3 + c[50]*B2_B4 - c[51]*B3sq + c[48]*B3_B4 - c[52]*B4sq;
+}
+
+/* forces_q:(c[53],u[3],q[5],qd[5])->(dQdq[25]) row-major; out[i*5+k] = dQ_i/dq_k; nonzero entries only */
 void fem_nx0_ny4_torque_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -406,7 +435,7 @@ void fem_nx0_ny4_torque_first_forces_q(const double* c, const double* u, const d
     out[24] = -c[38] - c[10]*theta_dotsq;
 }
 
-/* forces_qd:(c[47],u[3],q[5],qd[5])->(dQdqd[25]) row-major; out[i*5+k] = dQ_i/dqd_k; nonzero entries only */
+/* forces_qd:(c[53],u[3],q[5],qd[5])->(dQdqd[25]) row-major; out[i*5+k] = dQ_i/dqd_k; nonzero entries only */
 void fem_nx0_ny4_torque_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -450,7 +479,7 @@ void fem_nx0_ny4_torque_first_forces_qd(const double* c, const double* u, const 
     out[20] = -c[4]*B1_theta_dot + c[7]*B2_theta_dot + c[9]*B3_theta_dot - c[26]*B4_theta_dot;
 }
 
-/* forces_u:(c[47],u[3],q[5],qd[5])->(dQdu[15]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
+/* forces_u:(c[53],u[3],q[5],qd[5])->(dQdu[15]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
 void fem_nx0_ny4_torque_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -460,7 +489,7 @@ void fem_nx0_ny4_torque_first_forces_u(const double* c, const double* u, const d
     out[0] = 1.0;
 }
 
-/* mass_varying:(c[47],u[3],q[5],qd[5])->(M[25]) as mass, the entries that depend on q only */
+/* mass_varying:(c[53],u[3],q[5],qd[5])->(M[25]) as mass, the entries that depend on q only */
 void fem_nx0_ny4_torque_first_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -482,7 +511,7 @@ void fem_nx0_ny4_torque_first_mass_varying(const double* c, const double* u, con
     out[0] = c[0] - c[1]*B1sq + c[2]*B1_B2 + c[3]*B1_B3 - c[4]*B1_B4 - c[5]*B2sq + c[6]*B2_B3 + c[7]*B2_B4 - c[8]*B3sq + c[9]*B3_B4 - c[10]*B4sq;
 }
 
-/* mass_q_product:(c[47],u[3],q[5],qd[5])->(dMv[25]) row-major; v in the qd slot; out[i*5+k] = sum_j dM_ij/dq_k v_j; nonzero entries only */
+/* mass_q_product:(c[53],u[3],q[5],qd[5])->(dMv[25]) row-major; v in the qd slot; out[i*5+k] = sum_j dM_ij/dq_k v_j; nonzero entries only */
 void fem_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -503,9 +532,9 @@ void fem_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, c
 
 }  // namespace
 
-extern const Variant fem_nx0_ny4_torque_first = {"fem_nx0_ny4_torque_first", 5, 47, 25,
+extern const Variant fem_nx0_ny4_torque_first = {"fem_nx0_ny4_torque_first", 5, 53, 25,
     "vcccccc0ccc0ccccccccccccc",
     fem_nx0_ny4_torque_first_coefficients, fem_nx0_ny4_torque_first_mass, fem_nx0_ny4_torque_first_mass_varying, fem_nx0_ny4_torque_first_forces, fem_nx0_ny4_torque_first_forces_terms, fem_nx0_ny4_torque_first_forces_matrix,
-    fem_nx0_ny4_torque_first_energy, fem_nx0_ny4_torque_first_momentum, fem_nx0_ny4_torque_first_forces_q, fem_nx0_ny4_torque_first_forces_qd, fem_nx0_ny4_torque_first_mass_q_product, fem_nx0_ny4_torque_first_forces_u};
+    fem_nx0_ny4_torque_first_energy, fem_nx0_ny4_torque_first_momentum, fem_nx0_ny4_torque_first_forces_q, fem_nx0_ny4_torque_first_forces_qd, fem_nx0_ny4_torque_first_mass_q_product, fem_nx0_ny4_torque_first_forces_u, fem_nx0_ny4_torque_first_tip};
 
 }  // namespace hubbeam::generated

@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[182]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[188]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void fem_nx16_ny16_prescribed_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -188,26 +188,32 @@ void fem_nx16_ny16_prescribed_first_coefficients(const double* p, double* c)
     c[162] = 0.0014136904761904762*L*m;
     c[163] = 0.0005208333333333333*m*a + 0.0004650297619047619*L*m;
     c[164] = 0.025*m*a + 0.02224702380952381*L*m;
-    c[165] = 0.08333333333333333*L*m;
-    c[166] = 33.6*m*a + 18.62857142857143*L*m;
-    c[167] = 0.058333333333333334*m*a + 0.03266369047619048*L*m;
-    c[168] = 28.8*m*a + 17.728571428571428*L*m;
-    c[169] = 0.05*m*a + 0.031101190476190477*L*m;
-    c[170] = 24.0*m*a + 16.228571428571428*L*m;
-    c[171] = 0.041666666666666664*m*a + 0.02849702380952381*L*m;
-    c[172] = 19.2*m*a + 14.128571428571428*L*m;
-    c[173] = 0.03333333333333333*m*a + 0.024851190476190475*L*m;
-    c[174] = 14.4*m*a + 11.428571428571429*L*m;
-    c[175] = 0.025*m*a + 0.020163690476190477*L*m;
-    c[176] = 9.6*m*a + 8.128571428571428*L*m;
-    c[177] = 0.016666666666666666*m*a + 0.01443452380952381*L*m;
-    c[178] = 4.8*m*a + 4.228571428571429*L*m;
-    c[179] = 0.008333333333333333*m*a + 0.007663690476190476*L*m;
-    c[180] = 1.2*m*a + 1.0642857142857143*L*m;
-    c[181] = 0.0010416666666666667*m*a + 0.0009672619047619048*L*m;
+    c[165] = 9.6*1.0/(L);
+    c[166] = 0.1*1.0/(L);
+    c[167] = 0.016666666666666666*1.0/(L);
+    c[168] = 0.004166666666666667*1.0/(L);
+    c[169] = 4.8*1.0/(L);
+    c[170] = 0.008333333333333333*1.0/(L);
+    c[171] = 0.08333333333333333*L*m;
+    c[172] = 33.6*m*a + 18.62857142857143*L*m;
+    c[173] = 0.058333333333333334*m*a + 0.03266369047619048*L*m;
+    c[174] = 28.8*m*a + 17.728571428571428*L*m;
+    c[175] = 0.05*m*a + 0.031101190476190477*L*m;
+    c[176] = 24.0*m*a + 16.228571428571428*L*m;
+    c[177] = 0.041666666666666664*m*a + 0.02849702380952381*L*m;
+    c[178] = 19.2*m*a + 14.128571428571428*L*m;
+    c[179] = 0.03333333333333333*m*a + 0.024851190476190475*L*m;
+    c[180] = 14.4*m*a + 11.428571428571429*L*m;
+    c[181] = 0.025*m*a + 0.020163690476190477*L*m;
+    c[182] = 9.6*m*a + 8.128571428571428*L*m;
+    c[183] = 0.016666666666666666*m*a + 0.01443452380952381*L*m;
+    c[184] = 4.8*m*a + 4.228571428571429*L*m;
+    c[185] = 0.008333333333333333*m*a + 0.007663690476190476*L*m;
+    c[186] = 1.2*m*a + 1.0642857142857143*L*m;
+    c[187] = 0.0010416666666666667*m*a + 0.0009672619047619048*L*m;
 }
 
-/* mass:(c[182],u[3],q[32],qd[32])->(M[1024]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[188],u[3],q[32],qd[32])->(M[1024]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void fem_nx16_ny16_prescribed_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -291,7 +297,7 @@ void fem_nx16_ny16_prescribed_first_mass(const double* c, const double* u, const
     out[1023] = c[10];
 }
 
-/* forces:(c[182],u[3],q[32],qd[32])->(Q[32]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[188],u[3],q[32],qd[32])->(Q[32]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void fem_nx16_ny16_prescribed_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -491,7 +497,7 @@ void fem_nx16_ny16_prescribed_first_forces(const double* c, const double* u, con
     out[31] = c[101]*theta_ddot - c[45]*B13 - c[52]*B14 + c[45]*B15 - c[102]*B16 + c[21]*theta_dot_A14_dot + c[15]*theta_dot_A15_dot + c[39]*theta_dot_A16_dot + c[24]*theta_ddot_A14 + c[17]*theta_ddot_A15 + c[41]*theta_ddot_A16 - c[89]*theta_dotsq_B13 + c[97]*theta_dotsq_B14 + c[100]*theta_dotsq_B15 - c[103]*theta_dotsq_B16;
 }
 
-/* forces_terms:(c[182],u[3],q[32],qd[32])->(m[130]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[188],u[3],q[32],qd[32])->(m[130]) the state monomials of Q: Q = F m */
 void fem_nx16_ny16_prescribed_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -790,7 +796,7 @@ void fem_nx16_ny16_prescribed_first_forces_terms(const double* c, const double* 
     out[129] = theta_dotsq_B16;
 }
 
-/* forces_matrix:(c[182],u[3],q[32],qd[32])->(F[32*130]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[188],u[3],q[32],qd[32])->(F[32*130]) row-major, state-free: Q = F m; nonzero entries only */
 void fem_nx16_ny16_prescribed_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -1352,7 +1358,7 @@ void fem_nx16_ny16_prescribed_first_forces_matrix(const double* c, const double*
     out[4159] = -c[103];
 }
 
-/* energy:(c[182],u[3],q[32],qd[32])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[188],u[3],q[32],qd[32])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void fem_nx16_ny16_prescribed_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -1876,7 +1882,7 @@ void fem_nx16_ny16_prescribed_first_energy(const double* c, const double* u, con
     out[3] = c[12]*A1sq - c[12]*A1_A2 + c[12]*A2sq - c[12]*A2_A3 + c[12]*A3sq - c[12]*A3_A4 + c[12]*A4sq - c[12]*A4_A5 + c[12]*A5sq - c[12]*A5_A6 + c[12]*A6sq - c[12]*A6_A7 + c[12]*A7sq - c[12]*A7_A8 + c[12]*A8sq - c[12]*A8_A9 + c[12]*A9sq - c[12]*A9_A10 + c[12]*A10sq - c[12]*A10_A11 + c[12]*A11sq - c[12]*A11_A12 + c[12]*A12sq - c[12]*A12_A13 + c[12]*A13sq - c[12]*A13_A14 + c[12]*A14sq - c[12]*A14_A15 + c[12]*A15sq - c[12]*A15_A16 + c[123]*A16sq + c[44]*B1sq - c[44]*B1_B3 + c[45]*B1_B4 + c[102]*B2sq - c[45]*B2_B3 + c[52]*B2_B4 + c[44]*B3sq - c[44]*B3_B5 + c[45]*B3_B6 + c[102]*B4sq - c[45]*B4_B5 + c[52]*B4_B6 + c[44]*B5sq - c[44]*B5_B7 + c[45]*B5_B8 + c[102]*B6sq - c[45]*B6_B7 + c[52]*B6_B8 + c[44]*B7sq - c[44]*B7_B9 + c[45]*B7_B10 + c[102]*B8sq - c[45]*B8_B9 + c[52]*B8_B10 + c[44]*B9sq - c[44]*B9_B11 + c[45]*B9_B12 + c[102]*B10sq - c[45]*B10_B11 + c[52]*B10_B12 + c[44]*B11sq - c[44]*B11_B13 + c[45]*B11_B14 + c[102]*B12sq - c[45]*B12_B13 + c[52]*B12_B14 + c[44]*B13sq - c[44]*B13_B15 + c[45]*B13_B16 + c[102]*B14sq - c[45]*B14_B15 + c[52]*B14_B16 + c[124]*B15sq - c[45]*B15_B16 + c[52]*B16sq;
 }
 
-/* momentum:(c[182],u[3],q[32],qd[32])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[188],u[3],q[32],qd[32])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void fem_nx16_ny16_prescribed_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -2196,7 +2202,79 @@ void fem_nx16_ny16_prescribed_first_momentum(const double* c, const double* u, c
     out[0] = c[125]*theta_dot + c[42]*B1_dot + c[50]*B2_dot + c[56]*B3_dot + c[50]*B4_dot + c[63]*B5_dot + c[50]*B6_dot + c[70]*B7_dot + c[50]*B8_dot + c[77]*B9_dot + c[50]*B10_dot + c[84]*B11_dot + c[50]*B12_dot + c[91]*B13_dot + c[50]*B14_dot + c[98]*B15_dot - c[101]*B16_dot + c[126]*theta_dot_A1 + c[42]*theta_dot_A2 + c[127]*theta_dot_A3 + c[56]*theta_dot_A4 + c[128]*theta_dot_A5 + c[63]*theta_dot_A6 + c[129]*theta_dot_A7 + c[70]*theta_dot_A8 + c[130]*theta_dot_A9 + c[77]*theta_dot_A10 + c[131]*theta_dot_A11 + c[84]*theta_dot_A12 + c[132]*theta_dot_A13 + c[91]*theta_dot_A14 + c[133]*theta_dot_A15 + c[134]*theta_dot_A16 + c[16]*A1_B1_dot - c[17]*A1_B2_dot + c[22]*A2_B1_dot + c[23]*A2_B3_dot - c[24]*A2_B4_dot + c[16]*A3_B1_dot + c[17]*A3_B2_dot + c[16]*A3_B3_dot - c[17]*A3_B4_dot + c[23]*A4_B1_dot + c[24]*A4_B2_dot + c[22]*A4_B3_dot + c[23]*A4_B5_dot - c[24]*A4_B6_dot + c[16]*A5_B3_dot + c[17]*A5_B4_dot + c[16]*A5_B5_dot - c[17]*A5_B6_dot + c[23]*A6_B3_dot + c[24]*A6_B4_dot + c[22]*A6_B5_dot + c[23]*A6_B7_dot - c[24]*A6_B8_dot + c[16]*A7_B5_dot + c[17]*A7_B6_dot + c[16]*A7_B7_dot - c[17]*A7_B8_dot + c[23]*A8_B5_dot + c[24]*A8_B6_dot + c[22]*A8_B7_dot + c[23]*A8_B9_dot - c[24]*A8_B10_dot + c[16]*A9_B7_dot + c[17]*A9_B8_dot + c[16]*A9_B9_dot - c[17]*A9_B10_dot + c[23]*A10_B7_dot + c[24]*A10_B8_dot + c[22]*A10_B9_dot + c[23]*A10_B11_dot - c[24]*A10_B12_dot + c[16]*A11_B9_dot + c[17]*A11_B10_dot + c[16]*A11_B11_dot - c[17]*A11_B12_dot + c[23]*A12_B9_dot + c[24]*A12_B10_dot + c[22]*A12_B11_dot + c[23]*A12_B13_dot - c[24]*A12_B14_dot + c[16]*A13_B11_dot + c[17]*A13_B12_dot + c[16]*A13_B13_dot - c[17]*A13_B14_dot + c[23]*A14_B11_dot + c[24]*A14_B12_dot + c[22]*A14_B13_dot + c[23]*A14_B15_dot - c[24]*A14_B16_dot + c[16]*A15_B13_dot + c[17]*A15_B14_dot + c[16]*A15_B15_dot - c[17]*A15_B16_dot + c[23]*A16_B13_dot + c[24]*A16_B14_dot + c[40]*A16_B15_dot - c[41]*A16_B16_dot - c[16]*B1_A1_dot - c[22]*B1_A2_dot - c[16]*B1_A3_dot - c[23]*B1_A4_dot + c[17]*B2_A1_dot - c[17]*B2_A3_dot - c[24]*B2_A4_dot - c[23]*B3_A2_dot - c[16]*B3_A3_dot - c[22]*B3_A4_dot - c[16]*B3_A5_dot - c[23]*B3_A6_dot + c[24]*B4_A2_dot + c[17]*B4_A3_dot - c[17]*B4_A5_dot - c[24]*B4_A6_dot - c[23]*B5_A4_dot - c[16]*B5_A5_dot - c[22]*B5_A6_dot - c[16]*B5_A7_dot - c[23]*B5_A8_dot + c[24]*B6_A4_dot + c[17]*B6_A5_dot - c[17]*B6_A7_dot - c[24]*B6_A8_dot - c[23]*B7_A6_dot - c[16]*B7_A7_dot - c[22]*B7_A8_dot - c[16]*B7_A9_dot - c[23]*B7_A10_dot + c[24]*B8_A6_dot + c[17]*B8_A7_dot - c[17]*B8_A9_dot - c[24]*B8_A10_dot - c[23]*B9_A8_dot - c[16]*B9_A9_dot - c[22]*B9_A10_dot - c[16]*B9_A11_dot - c[23]*B9_A12_dot + c[24]*B10_A8_dot + c[17]*B10_A9_dot - c[17]*B10_A11_dot - c[24]*B10_A12_dot - c[23]*B11_A10_dot - c[16]*B11_A11_dot - c[22]*B11_A12_dot - c[16]*B11_A13_dot - c[23]*B11_A14_dot + c[24]*B12_A10_dot + c[17]*B12_A11_dot - c[17]*B12_A13_dot - c[24]*B12_A14_dot - c[23]*B13_A12_dot - c[16]*B13_A13_dot - c[22]*B13_A14_dot - c[16]*B13_A15_dot - c[23]*B13_A16_dot + c[24]*B14_A12_dot + c[17]*B14_A13_dot - c[17]*B14_A15_dot - c[24]*B14_A16_dot - c[23]*B15_A14_dot - c[16]*B15_A15_dot - c[40]*B15_A16_dot + c[24]*B16_A14_dot + c[17]*B16_A15_dot + c[41]*B16_A16_dot + c[0]*theta_dot_A1sq + c[2]*theta_dot_A1_A2 + c[0]*theta_dot_A2sq + c[2]*theta_dot_A2_A3 + c[0]*theta_dot_A3sq + c[2]*theta_dot_A3_A4 + c[0]*theta_dot_A4sq + c[2]*theta_dot_A4_A5 + c[0]*theta_dot_A5sq + c[2]*theta_dot_A5_A6 + c[0]*theta_dot_A6sq + c[2]*theta_dot_A6_A7 + c[0]*theta_dot_A7sq + c[2]*theta_dot_A7_A8 + c[0]*theta_dot_A8sq + c[2]*theta_dot_A8_A9 + c[0]*theta_dot_A9sq + c[2]*theta_dot_A9_A10 + c[0]*theta_dot_A10sq + c[2]*theta_dot_A10_A11 + c[0]*theta_dot_A11sq + c[2]*theta_dot_A11_A12 + c[0]*theta_dot_A12sq + c[2]*theta_dot_A12_A13 + c[0]*theta_dot_A13sq + c[2]*theta_dot_A13_A14 + c[0]*theta_dot_A14sq + c[2]*theta_dot_A14_A15 + c[0]*theta_dot_A15sq + c[2]*theta_dot_A15_A16 + c[2]*theta_dot_A16sq - c[46]*theta_dot_B1sq + c[135]*theta_dot_B1_B2 + c[136]*theta_dot_B1_B3 - c[137]*theta_dot_B1_B4 - c[53]*theta_dot_B2sq + c[138]*theta_dot_B2_B3 + c[139]*theta_dot_B2_B4 - c[57]*theta_dot_B3sq + c[140]*theta_dot_B3_B4 + c[141]*theta_dot_B3_B5 - c[138]*theta_dot_B3_B6 - c[60]*theta_dot_B4sq + c[142]*theta_dot_B4_B5 + c[143]*theta_dot_B4_B6 - c[64]*theta_dot_B5sq + c[144]*theta_dot_B5_B6 + c[145]*theta_dot_B5_B7 - c[142]*theta_dot_B5_B8 - c[67]*theta_dot_B6sq + c[146]*theta_dot_B6_B7 + c[147]*theta_dot_B6_B8 - c[71]*theta_dot_B7sq + c[148]*theta_dot_B7_B8 + c[149]*theta_dot_B7_B9 - c[146]*theta_dot_B7_B10 - c[74]*theta_dot_B8sq + c[150]*theta_dot_B8_B9 + c[151]*theta_dot_B8_B10 - c[78]*theta_dot_B9sq + c[152]*theta_dot_B9_B10 + c[153]*theta_dot_B9_B11 - c[150]*theta_dot_B9_B12 - c[81]*theta_dot_B10sq + c[154]*theta_dot_B10_B11 + c[155]*theta_dot_B10_B12 - c[85]*theta_dot_B11sq + c[156]*theta_dot_B11_B12 + c[157]*theta_dot_B11_B13 - c[154]*theta_dot_B11_B14 - c[88]*theta_dot_B12sq + c[158]*theta_dot_B12_B13 + c[159]*theta_dot_B12_B14 - c[92]*theta_dot_B13sq + c[160]*theta_dot_B13_B14 + c[161]*theta_dot_B13_B15 - c[158]*theta_dot_B13_B16 - c[95]*theta_dot_B14sq + c[162]*theta_dot_B14_B15 + c[163]*theta_dot_B14_B16 - c[99]*theta_dot_B15sq + c[164]*theta_dot_B15_B16 - c[103]*theta_dot_B16sq;
 }
 
-/* forces_q:(c[182],u[3],q[32],qd[32])->(dQdq[1024]) row-major; out[i*32+k] = dQ_i/dq_k; nonzero entries only */
+/* tip:(c[188],u[3],q[32],qd[32])->(tip[3]) tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B */
+void fem_nx16_ny16_prescribed_first_tip(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)qd;
+    const double A16 = q[15];
+    const double B1 = q[16];
+    const double B2 = q[17];
+    const double B3 = q[18];
+    const double B4 = q[19];
+    const double B5 = q[20];
+    const double B6 = q[21];
+    const double B7 = q[22];
+    const double B8 = q[23];
+    const double B9 = q[24];
+    const double B10 = q[25];
+    const double B11 = q[26];
+    const double B12 = q[27];
+    const double B13 = q[28];
+    const double B14 = q[29];
+    const double B15 = q[30];
+    const double B16 = q[31];
+    const double B1sq = B1*B1;
+    const double B1_B3 = B1*B3;
+    const double B1_B4 = B1*B4;
+    const double B2sq = B2*B2;
+    const double B2_B3 = B2*B3;
+    const double B2_B4 = B2*B4;
+    const double B3sq = B3*B3;
+    const double B3_B5 = B3*B5;
+    const double B3_B6 = B3*B6;
+    const double B4sq = B4*B4;
+    const double B4_B5 = B4*B5;
+    const double B4_B6 = B4*B6;
+    const double B5sq = B5*B5;
+    const double B5_B7 = B5*B7;
+    const double B5_B8 = B5*B8;
+    const double B6sq = B6*B6;
+    const double B6_B7 = B6*B7;
+    const double B6_B8 = B6*B8;
+    const double B7sq = B7*B7;
+    const double B7_B9 = B7*B9;
+    const double B7_B10 = B7*B10;
+    const double B8sq = B8*B8;
+    const double B8_B9 = B8*B9;
+    const double B8_B10 = B8*B10;
+    const double B9sq = B9*B9;
+    const double B9_B11 = B9*B11;
+    const double B9_B12 = B9*B12;
+    const double B10sq = B10*B10;
+    const double B10_B11 = B10*B11;
+    const double B10_B12 = B10*B12;
+    const double B11sq = B11*B11;
+    const double B11_B13 = B11*B13;
+    const double B11_B14 = B11*B14;
+    const double B12sq = B12*B12;
+    const double B12_B13 = B12*B13;
+    const double B12_B14 = B12*B14;
+    const double B13sq = B13*B13;
+    const double B13_B15 = B13*B15;
+    const double B13_B16 = B13*B16;
+    const double B14sq = B14*B14;
+    const double B14_B15 = B14*B15;
+    const double B14_B16 = B14*B16;
+    const double B15sq = B15*B15;
+    const double B15_B16 = B15*B16;
+    const double B16sq = B16*B16;
+    out[0] = B15;
+    out[1] = A16;
+    out[2] = A16 - c[165]*B1sq + c[165]*B1_B3 - c[166]*B1_B4 - c[167]*B2sq + c[166]*B2_B3 + c[168]*B2_B4 - c[165]*B3sq + c[165]*B3_B5 - c[166]*B3_B6 - c[167]*B4sq + c[166]*B4_B5 + c[168]*B4_B6 - c[165]*B5sq + c[165]*B5_B7 - c[166]*B5_B8 - c[167]*B6sq + c[166]*B6_B7 + c[168]*B6_B8 - c[165]*B7sq + c[165]*B7_B9 - c[166]*B7_B10 - c[167]*B8sq + c[166]*B8_B9 + c[168]*B8_B10 - c[165]*B9sq + c[165]*B9_B11 - c[166]*B9_B12 - c[167]*B10sq + c[166]*B10_B11 + c[168]*B10_B12 - c[165]*B11sq + c[165]*B11_B13 - c[166]*B11_B14 - c[167]*B12sq + c[166]*B12_B13 + c[168]*B12_B14 - c[165]*B13sq + c[165]*B13_B15 - c[166]*B13_B16 - c[167]*B14sq + c[166]*B14_B15 + c[168]*B14_B16 - c[169]*B15sq + c[166]*B15_B16 - c[170]*B16sq;
+}
+
+/* forces_q:(c[188],u[3],q[32],qd[32])->(dQdq[1024]) row-major; out[i*32+k] = dQ_i/dq_k; nonzero entries only */
 void fem_nx16_ny16_prescribed_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)q;
@@ -2474,7 +2552,7 @@ void fem_nx16_ny16_prescribed_first_forces_q(const double* c, const double* u, c
     out[1023] = -c[102] - c[103]*theta_dotsq;
 }
 
-/* forces_qd:(c[182],u[3],q[32],qd[32])->(dQdqd[1024]) row-major; out[i*32+k] = dQ_i/dqd_k; nonzero entries only */
+/* forces_qd:(c[188],u[3],q[32],qd[32])->(dQdqd[1024]) row-major; out[i*32+k] = dQ_i/dqd_k; nonzero entries only */
 void fem_nx16_ny16_prescribed_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)q;
@@ -2616,7 +2694,7 @@ void fem_nx16_ny16_prescribed_first_forces_qd(const double* c, const double* u, 
     out[1007] = c[39]*theta_dot;
 }
 
-/* forces_u:(c[182],u[3],q[32],qd[32])->(dQdu[96]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
+/* forces_u:(c[188],u[3],q[32],qd[32])->(dQdu[96]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
 void fem_nx16_ny16_prescribed_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -2716,77 +2794,77 @@ void fem_nx16_ny16_prescribed_first_forces_u(const double* c, const double* u, c
     const double theta_dot_B14 = theta_dot*B14;
     const double theta_dot_B15 = theta_dot*B15;
     const double theta_dot_B16 = theta_dot*B16;
-    out[1] = c[126]*theta_dot + c[14]*B1_dot - c[15]*B2_dot + c[165]*theta_dot_A1 + c[2]*theta_dot_A2;
+    out[1] = c[126]*theta_dot + c[14]*B1_dot - c[15]*B2_dot + c[171]*theta_dot_A1 + c[2]*theta_dot_A2;
     out[2] = c[16]*B1 - c[17]*B2;
-    out[4] = c[42]*theta_dot + c[19]*B1_dot + c[20]*B3_dot - c[21]*B4_dot + c[2]*theta_dot_A1 + c[165]*theta_dot_A2 + c[2]*theta_dot_A3;
+    out[4] = c[42]*theta_dot + c[19]*B1_dot + c[20]*B3_dot - c[21]*B4_dot + c[2]*theta_dot_A1 + c[171]*theta_dot_A2 + c[2]*theta_dot_A3;
     out[5] = c[22]*B1 + c[23]*B3 - c[24]*B4;
-    out[7] = c[127]*theta_dot + c[14]*B1_dot + c[15]*B2_dot + c[14]*B3_dot - c[15]*B4_dot + c[2]*theta_dot_A2 + c[165]*theta_dot_A3 + c[2]*theta_dot_A4;
+    out[7] = c[127]*theta_dot + c[14]*B1_dot + c[15]*B2_dot + c[14]*B3_dot - c[15]*B4_dot + c[2]*theta_dot_A2 + c[171]*theta_dot_A3 + c[2]*theta_dot_A4;
     out[8] = c[16]*B1 + c[17]*B2 + c[16]*B3 - c[17]*B4;
-    out[10] = c[56]*theta_dot + c[20]*B1_dot + c[21]*B2_dot + c[19]*B3_dot + c[20]*B5_dot - c[21]*B6_dot + c[2]*theta_dot_A3 + c[165]*theta_dot_A4 + c[2]*theta_dot_A5;
+    out[10] = c[56]*theta_dot + c[20]*B1_dot + c[21]*B2_dot + c[19]*B3_dot + c[20]*B5_dot - c[21]*B6_dot + c[2]*theta_dot_A3 + c[171]*theta_dot_A4 + c[2]*theta_dot_A5;
     out[11] = c[23]*B1 + c[24]*B2 + c[22]*B3 + c[23]*B5 - c[24]*B6;
-    out[13] = c[128]*theta_dot + c[14]*B3_dot + c[15]*B4_dot + c[14]*B5_dot - c[15]*B6_dot + c[2]*theta_dot_A4 + c[165]*theta_dot_A5 + c[2]*theta_dot_A6;
+    out[13] = c[128]*theta_dot + c[14]*B3_dot + c[15]*B4_dot + c[14]*B5_dot - c[15]*B6_dot + c[2]*theta_dot_A4 + c[171]*theta_dot_A5 + c[2]*theta_dot_A6;
     out[14] = c[16]*B3 + c[17]*B4 + c[16]*B5 - c[17]*B6;
-    out[16] = c[63]*theta_dot + c[20]*B3_dot + c[21]*B4_dot + c[19]*B5_dot + c[20]*B7_dot - c[21]*B8_dot + c[2]*theta_dot_A5 + c[165]*theta_dot_A6 + c[2]*theta_dot_A7;
+    out[16] = c[63]*theta_dot + c[20]*B3_dot + c[21]*B4_dot + c[19]*B5_dot + c[20]*B7_dot - c[21]*B8_dot + c[2]*theta_dot_A5 + c[171]*theta_dot_A6 + c[2]*theta_dot_A7;
     out[17] = c[23]*B3 + c[24]*B4 + c[22]*B5 + c[23]*B7 - c[24]*B8;
-    out[19] = c[129]*theta_dot + c[14]*B5_dot + c[15]*B6_dot + c[14]*B7_dot - c[15]*B8_dot + c[2]*theta_dot_A6 + c[165]*theta_dot_A7 + c[2]*theta_dot_A8;
+    out[19] = c[129]*theta_dot + c[14]*B5_dot + c[15]*B6_dot + c[14]*B7_dot - c[15]*B8_dot + c[2]*theta_dot_A6 + c[171]*theta_dot_A7 + c[2]*theta_dot_A8;
     out[20] = c[16]*B5 + c[17]*B6 + c[16]*B7 - c[17]*B8;
-    out[22] = c[70]*theta_dot + c[20]*B5_dot + c[21]*B6_dot + c[19]*B7_dot + c[20]*B9_dot - c[21]*B10_dot + c[2]*theta_dot_A7 + c[165]*theta_dot_A8 + c[2]*theta_dot_A9;
+    out[22] = c[70]*theta_dot + c[20]*B5_dot + c[21]*B6_dot + c[19]*B7_dot + c[20]*B9_dot - c[21]*B10_dot + c[2]*theta_dot_A7 + c[171]*theta_dot_A8 + c[2]*theta_dot_A9;
     out[23] = c[23]*B5 + c[24]*B6 + c[22]*B7 + c[23]*B9 - c[24]*B10;
-    out[25] = c[130]*theta_dot + c[14]*B7_dot + c[15]*B8_dot + c[14]*B9_dot - c[15]*B10_dot + c[2]*theta_dot_A8 + c[165]*theta_dot_A9 + c[2]*theta_dot_A10;
+    out[25] = c[130]*theta_dot + c[14]*B7_dot + c[15]*B8_dot + c[14]*B9_dot - c[15]*B10_dot + c[2]*theta_dot_A8 + c[171]*theta_dot_A9 + c[2]*theta_dot_A10;
     out[26] = c[16]*B7 + c[17]*B8 + c[16]*B9 - c[17]*B10;
-    out[28] = c[77]*theta_dot + c[20]*B7_dot + c[21]*B8_dot + c[19]*B9_dot + c[20]*B11_dot - c[21]*B12_dot + c[2]*theta_dot_A9 + c[165]*theta_dot_A10 + c[2]*theta_dot_A11;
+    out[28] = c[77]*theta_dot + c[20]*B7_dot + c[21]*B8_dot + c[19]*B9_dot + c[20]*B11_dot - c[21]*B12_dot + c[2]*theta_dot_A9 + c[171]*theta_dot_A10 + c[2]*theta_dot_A11;
     out[29] = c[23]*B7 + c[24]*B8 + c[22]*B9 + c[23]*B11 - c[24]*B12;
-    out[31] = c[131]*theta_dot + c[14]*B9_dot + c[15]*B10_dot + c[14]*B11_dot - c[15]*B12_dot + c[2]*theta_dot_A10 + c[165]*theta_dot_A11 + c[2]*theta_dot_A12;
+    out[31] = c[131]*theta_dot + c[14]*B9_dot + c[15]*B10_dot + c[14]*B11_dot - c[15]*B12_dot + c[2]*theta_dot_A10 + c[171]*theta_dot_A11 + c[2]*theta_dot_A12;
     out[32] = c[16]*B9 + c[17]*B10 + c[16]*B11 - c[17]*B12;
-    out[34] = c[84]*theta_dot + c[20]*B9_dot + c[21]*B10_dot + c[19]*B11_dot + c[20]*B13_dot - c[21]*B14_dot + c[2]*theta_dot_A11 + c[165]*theta_dot_A12 + c[2]*theta_dot_A13;
+    out[34] = c[84]*theta_dot + c[20]*B9_dot + c[21]*B10_dot + c[19]*B11_dot + c[20]*B13_dot - c[21]*B14_dot + c[2]*theta_dot_A11 + c[171]*theta_dot_A12 + c[2]*theta_dot_A13;
     out[35] = c[23]*B9 + c[24]*B10 + c[22]*B11 + c[23]*B13 - c[24]*B14;
-    out[37] = c[132]*theta_dot + c[14]*B11_dot + c[15]*B12_dot + c[14]*B13_dot - c[15]*B14_dot + c[2]*theta_dot_A12 + c[165]*theta_dot_A13 + c[2]*theta_dot_A14;
+    out[37] = c[132]*theta_dot + c[14]*B11_dot + c[15]*B12_dot + c[14]*B13_dot - c[15]*B14_dot + c[2]*theta_dot_A12 + c[171]*theta_dot_A13 + c[2]*theta_dot_A14;
     out[38] = c[16]*B11 + c[17]*B12 + c[16]*B13 - c[17]*B14;
-    out[40] = c[91]*theta_dot + c[20]*B11_dot + c[21]*B12_dot + c[19]*B13_dot + c[20]*B15_dot - c[21]*B16_dot + c[2]*theta_dot_A13 + c[165]*theta_dot_A14 + c[2]*theta_dot_A15;
+    out[40] = c[91]*theta_dot + c[20]*B11_dot + c[21]*B12_dot + c[19]*B13_dot + c[20]*B15_dot - c[21]*B16_dot + c[2]*theta_dot_A13 + c[171]*theta_dot_A14 + c[2]*theta_dot_A15;
     out[41] = c[23]*B11 + c[24]*B12 + c[22]*B13 + c[23]*B15 - c[24]*B16;
-    out[43] = c[133]*theta_dot + c[14]*B13_dot + c[15]*B14_dot + c[14]*B15_dot - c[15]*B16_dot + c[2]*theta_dot_A14 + c[165]*theta_dot_A15 + c[2]*theta_dot_A16;
+    out[43] = c[133]*theta_dot + c[14]*B13_dot + c[15]*B14_dot + c[14]*B15_dot - c[15]*B16_dot + c[2]*theta_dot_A14 + c[171]*theta_dot_A15 + c[2]*theta_dot_A16;
     out[44] = c[16]*B13 + c[17]*B14 + c[16]*B15 - c[17]*B16;
     out[46] = c[134]*theta_dot + c[20]*B13_dot + c[21]*B14_dot + c[22]*B15_dot - c[39]*B16_dot + c[2]*theta_dot_A15 + c[0]*theta_dot_A16;
     out[47] = c[23]*B13 + c[24]*B14 + c[40]*B15 - c[41]*B16;
-    out[49] = -c[14]*A1_dot - c[19]*A2_dot - c[14]*A3_dot - c[20]*A4_dot - c[166]*theta_dot_B1 + c[135]*theta_dot_B2 + c[136]*theta_dot_B3 - c[137]*theta_dot_B4;
+    out[49] = -c[14]*A1_dot - c[19]*A2_dot - c[14]*A3_dot - c[20]*A4_dot - c[172]*theta_dot_B1 + c[135]*theta_dot_B2 + c[136]*theta_dot_B3 - c[137]*theta_dot_B4;
     out[50] = -c[42] - c[16]*A1 - c[22]*A2 - c[16]*A3 - c[23]*A4;
-    out[52] = c[15]*A1_dot - c[15]*A3_dot - c[21]*A4_dot + c[135]*theta_dot_B1 - c[167]*theta_dot_B2 + c[138]*theta_dot_B3 + c[139]*theta_dot_B4;
+    out[52] = c[15]*A1_dot - c[15]*A3_dot - c[21]*A4_dot + c[135]*theta_dot_B1 - c[173]*theta_dot_B2 + c[138]*theta_dot_B3 + c[139]*theta_dot_B4;
     out[53] = -c[50] + c[17]*A1 - c[17]*A3 - c[24]*A4;
-    out[55] = -c[20]*A2_dot - c[14]*A3_dot - c[19]*A4_dot - c[14]*A5_dot - c[20]*A6_dot + c[136]*theta_dot_B1 + c[138]*theta_dot_B2 - c[168]*theta_dot_B3 + c[140]*theta_dot_B4 + c[141]*theta_dot_B5 - c[138]*theta_dot_B6;
+    out[55] = -c[20]*A2_dot - c[14]*A3_dot - c[19]*A4_dot - c[14]*A5_dot - c[20]*A6_dot + c[136]*theta_dot_B1 + c[138]*theta_dot_B2 - c[174]*theta_dot_B3 + c[140]*theta_dot_B4 + c[141]*theta_dot_B5 - c[138]*theta_dot_B6;
     out[56] = -c[56] - c[23]*A2 - c[16]*A3 - c[22]*A4 - c[16]*A5 - c[23]*A6;
-    out[58] = c[21]*A2_dot + c[15]*A3_dot - c[15]*A5_dot - c[21]*A6_dot - c[137]*theta_dot_B1 + c[139]*theta_dot_B2 + c[140]*theta_dot_B3 - c[169]*theta_dot_B4 + c[142]*theta_dot_B5 + c[143]*theta_dot_B6;
+    out[58] = c[21]*A2_dot + c[15]*A3_dot - c[15]*A5_dot - c[21]*A6_dot - c[137]*theta_dot_B1 + c[139]*theta_dot_B2 + c[140]*theta_dot_B3 - c[175]*theta_dot_B4 + c[142]*theta_dot_B5 + c[143]*theta_dot_B6;
     out[59] = -c[50] + c[24]*A2 + c[17]*A3 - c[17]*A5 - c[24]*A6;
-    out[61] = -c[20]*A4_dot - c[14]*A5_dot - c[19]*A6_dot - c[14]*A7_dot - c[20]*A8_dot + c[141]*theta_dot_B3 + c[142]*theta_dot_B4 - c[170]*theta_dot_B5 + c[144]*theta_dot_B6 + c[145]*theta_dot_B7 - c[142]*theta_dot_B8;
+    out[61] = -c[20]*A4_dot - c[14]*A5_dot - c[19]*A6_dot - c[14]*A7_dot - c[20]*A8_dot + c[141]*theta_dot_B3 + c[142]*theta_dot_B4 - c[176]*theta_dot_B5 + c[144]*theta_dot_B6 + c[145]*theta_dot_B7 - c[142]*theta_dot_B8;
     out[62] = -c[63] - c[23]*A4 - c[16]*A5 - c[22]*A6 - c[16]*A7 - c[23]*A8;
-    out[64] = c[21]*A4_dot + c[15]*A5_dot - c[15]*A7_dot - c[21]*A8_dot - c[138]*theta_dot_B3 + c[143]*theta_dot_B4 + c[144]*theta_dot_B5 - c[171]*theta_dot_B6 + c[146]*theta_dot_B7 + c[147]*theta_dot_B8;
+    out[64] = c[21]*A4_dot + c[15]*A5_dot - c[15]*A7_dot - c[21]*A8_dot - c[138]*theta_dot_B3 + c[143]*theta_dot_B4 + c[144]*theta_dot_B5 - c[177]*theta_dot_B6 + c[146]*theta_dot_B7 + c[147]*theta_dot_B8;
     out[65] = -c[50] + c[24]*A4 + c[17]*A5 - c[17]*A7 - c[24]*A8;
-    out[67] = -c[20]*A6_dot - c[14]*A7_dot - c[19]*A8_dot - c[14]*A9_dot - c[20]*A10_dot + c[145]*theta_dot_B5 + c[146]*theta_dot_B6 - c[172]*theta_dot_B7 + c[148]*theta_dot_B8 + c[149]*theta_dot_B9 - c[146]*theta_dot_B10;
+    out[67] = -c[20]*A6_dot - c[14]*A7_dot - c[19]*A8_dot - c[14]*A9_dot - c[20]*A10_dot + c[145]*theta_dot_B5 + c[146]*theta_dot_B6 - c[178]*theta_dot_B7 + c[148]*theta_dot_B8 + c[149]*theta_dot_B9 - c[146]*theta_dot_B10;
     out[68] = -c[70] - c[23]*A6 - c[16]*A7 - c[22]*A8 - c[16]*A9 - c[23]*A10;
-    out[70] = c[21]*A6_dot + c[15]*A7_dot - c[15]*A9_dot - c[21]*A10_dot - c[142]*theta_dot_B5 + c[147]*theta_dot_B6 + c[148]*theta_dot_B7 - c[173]*theta_dot_B8 + c[150]*theta_dot_B9 + c[151]*theta_dot_B10;
+    out[70] = c[21]*A6_dot + c[15]*A7_dot - c[15]*A9_dot - c[21]*A10_dot - c[142]*theta_dot_B5 + c[147]*theta_dot_B6 + c[148]*theta_dot_B7 - c[179]*theta_dot_B8 + c[150]*theta_dot_B9 + c[151]*theta_dot_B10;
     out[71] = -c[50] + c[24]*A6 + c[17]*A7 - c[17]*A9 - c[24]*A10;
-    out[73] = -c[20]*A8_dot - c[14]*A9_dot - c[19]*A10_dot - c[14]*A11_dot - c[20]*A12_dot + c[149]*theta_dot_B7 + c[150]*theta_dot_B8 - c[174]*theta_dot_B9 + c[152]*theta_dot_B10 + c[153]*theta_dot_B11 - c[150]*theta_dot_B12;
+    out[73] = -c[20]*A8_dot - c[14]*A9_dot - c[19]*A10_dot - c[14]*A11_dot - c[20]*A12_dot + c[149]*theta_dot_B7 + c[150]*theta_dot_B8 - c[180]*theta_dot_B9 + c[152]*theta_dot_B10 + c[153]*theta_dot_B11 - c[150]*theta_dot_B12;
     out[74] = -c[77] - c[23]*A8 - c[16]*A9 - c[22]*A10 - c[16]*A11 - c[23]*A12;
-    out[76] = c[21]*A8_dot + c[15]*A9_dot - c[15]*A11_dot - c[21]*A12_dot - c[146]*theta_dot_B7 + c[151]*theta_dot_B8 + c[152]*theta_dot_B9 - c[175]*theta_dot_B10 + c[154]*theta_dot_B11 + c[155]*theta_dot_B12;
+    out[76] = c[21]*A8_dot + c[15]*A9_dot - c[15]*A11_dot - c[21]*A12_dot - c[146]*theta_dot_B7 + c[151]*theta_dot_B8 + c[152]*theta_dot_B9 - c[181]*theta_dot_B10 + c[154]*theta_dot_B11 + c[155]*theta_dot_B12;
     out[77] = -c[50] + c[24]*A8 + c[17]*A9 - c[17]*A11 - c[24]*A12;
-    out[79] = -c[20]*A10_dot - c[14]*A11_dot - c[19]*A12_dot - c[14]*A13_dot - c[20]*A14_dot + c[153]*theta_dot_B9 + c[154]*theta_dot_B10 - c[176]*theta_dot_B11 + c[156]*theta_dot_B12 + c[157]*theta_dot_B13 - c[154]*theta_dot_B14;
+    out[79] = -c[20]*A10_dot - c[14]*A11_dot - c[19]*A12_dot - c[14]*A13_dot - c[20]*A14_dot + c[153]*theta_dot_B9 + c[154]*theta_dot_B10 - c[182]*theta_dot_B11 + c[156]*theta_dot_B12 + c[157]*theta_dot_B13 - c[154]*theta_dot_B14;
     out[80] = -c[84] - c[23]*A10 - c[16]*A11 - c[22]*A12 - c[16]*A13 - c[23]*A14;
-    out[82] = c[21]*A10_dot + c[15]*A11_dot - c[15]*A13_dot - c[21]*A14_dot - c[150]*theta_dot_B9 + c[155]*theta_dot_B10 + c[156]*theta_dot_B11 - c[177]*theta_dot_B12 + c[158]*theta_dot_B13 + c[159]*theta_dot_B14;
+    out[82] = c[21]*A10_dot + c[15]*A11_dot - c[15]*A13_dot - c[21]*A14_dot - c[150]*theta_dot_B9 + c[155]*theta_dot_B10 + c[156]*theta_dot_B11 - c[183]*theta_dot_B12 + c[158]*theta_dot_B13 + c[159]*theta_dot_B14;
     out[83] = -c[50] + c[24]*A10 + c[17]*A11 - c[17]*A13 - c[24]*A14;
-    out[85] = -c[20]*A12_dot - c[14]*A13_dot - c[19]*A14_dot - c[14]*A15_dot - c[20]*A16_dot + c[157]*theta_dot_B11 + c[158]*theta_dot_B12 - c[178]*theta_dot_B13 + c[160]*theta_dot_B14 + c[161]*theta_dot_B15 - c[158]*theta_dot_B16;
+    out[85] = -c[20]*A12_dot - c[14]*A13_dot - c[19]*A14_dot - c[14]*A15_dot - c[20]*A16_dot + c[157]*theta_dot_B11 + c[158]*theta_dot_B12 - c[184]*theta_dot_B13 + c[160]*theta_dot_B14 + c[161]*theta_dot_B15 - c[158]*theta_dot_B16;
     out[86] = -c[91] - c[23]*A12 - c[16]*A13 - c[22]*A14 - c[16]*A15 - c[23]*A16;
-    out[88] = c[21]*A12_dot + c[15]*A13_dot - c[15]*A15_dot - c[21]*A16_dot - c[154]*theta_dot_B11 + c[159]*theta_dot_B12 + c[160]*theta_dot_B13 - c[179]*theta_dot_B14 + c[162]*theta_dot_B15 + c[163]*theta_dot_B16;
+    out[88] = c[21]*A12_dot + c[15]*A13_dot - c[15]*A15_dot - c[21]*A16_dot - c[154]*theta_dot_B11 + c[159]*theta_dot_B12 + c[160]*theta_dot_B13 - c[185]*theta_dot_B14 + c[162]*theta_dot_B15 + c[163]*theta_dot_B16;
     out[89] = -c[50] + c[24]*A12 + c[17]*A13 - c[17]*A15 - c[24]*A16;
-    out[91] = -c[20]*A14_dot - c[14]*A15_dot - c[22]*A16_dot + c[161]*theta_dot_B13 + c[162]*theta_dot_B14 - c[180]*theta_dot_B15 + c[164]*theta_dot_B16;
+    out[91] = -c[20]*A14_dot - c[14]*A15_dot - c[22]*A16_dot + c[161]*theta_dot_B13 + c[162]*theta_dot_B14 - c[186]*theta_dot_B15 + c[164]*theta_dot_B16;
     out[92] = -c[98] - c[23]*A14 - c[16]*A15 - c[40]*A16;
-    out[94] = c[21]*A14_dot + c[15]*A15_dot + c[39]*A16_dot - c[158]*theta_dot_B13 + c[163]*theta_dot_B14 + c[164]*theta_dot_B15 - c[181]*theta_dot_B16;
+    out[94] = c[21]*A14_dot + c[15]*A15_dot + c[39]*A16_dot - c[158]*theta_dot_B13 + c[163]*theta_dot_B14 + c[164]*theta_dot_B15 - c[187]*theta_dot_B16;
     out[95] = c[101] + c[24]*A14 + c[17]*A15 + c[41]*A16;
 }
 
 }  // namespace
 
-extern const Variant fem_nx16_ny16_prescribed_first = {"fem_nx16_ny16_prescribed_first", 32, 182, 130,
+extern const Variant fem_nx16_ny16_prescribed_first = {"fem_nx16_ny16_prescribed_first", 32, 188, 130,
     "cc000000000000000000000000000000ccc000000000000000000000000000000ccc000000000000000000000000000000ccc000000000000000000000000000000ccc000000000000000000000000000000ccc000000000000000000000000000000ccc000000000000000000000000000000ccc000000000000000000000000000000ccc000000000000000000000000000000ccc000000000000000000000000000000ccc000000000000000000000000000000ccc000000000000000000000000000000ccc000000000000000000000000000000ccc000000000000000000000000000000ccc000000000000000000000000000000cc00000000000000000000000000000000c0cc00000000000000000000000000000ccc0000000000000000000000000000ccc0cc00000000000000000000000000cc0ccc0000000000000000000000000000ccc0cc00000000000000000000000000cc0ccc0000000000000000000000000000ccc0cc00000000000000000000000000cc0ccc0000000000000000000000000000ccc0cc00000000000000000000000000cc0ccc0000000000000000000000000000ccc0cc00000000000000000000000000cc0ccc0000000000000000000000000000ccc0cc00000000000000000000000000cc0ccc0000000000000000000000000000cccc0000000000000000000000000000cccc",
     fem_nx16_ny16_prescribed_first_coefficients, fem_nx16_ny16_prescribed_first_mass, nullptr, fem_nx16_ny16_prescribed_first_forces, fem_nx16_ny16_prescribed_first_forces_terms, fem_nx16_ny16_prescribed_first_forces_matrix,
-    fem_nx16_ny16_prescribed_first_energy, fem_nx16_ny16_prescribed_first_momentum, fem_nx16_ny16_prescribed_first_forces_q, fem_nx16_ny16_prescribed_first_forces_qd, nullptr, fem_nx16_ny16_prescribed_first_forces_u};
+    fem_nx16_ny16_prescribed_first_energy, fem_nx16_ny16_prescribed_first_momentum, fem_nx16_ny16_prescribed_first_forces_q, fem_nx16_ny16_prescribed_first_forces_qd, nullptr, fem_nx16_ny16_prescribed_first_forces_u, fem_nx16_ny16_prescribed_first_tip};
 
 }  // namespace hubbeam::generated

@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[182]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[188]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void fem_nx16_ny16_torque_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -205,9 +205,15 @@ void fem_nx16_ny16_torque_first_coefficients(const double* p, double* c)
     c[179] = 0.00026041666666666666*m*a + 0.0002418154761904762*L*m;
     c[180] = 8.0*ES/(L);
     c[181] = 3072.0*EI/(L*L*L);
+    c[182] = 9.6*1.0/(L);
+    c[183] = 0.1*1.0/(L);
+    c[184] = 0.016666666666666666*1.0/(L);
+    c[185] = 0.004166666666666667*1.0/(L);
+    c[186] = 4.8*1.0/(L);
+    c[187] = 0.008333333333333333*1.0/(L);
 }
 
-/* mass:(c[182],u[3],q[33],qd[33])->(M[1089]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[188],u[3],q[33],qd[33])->(M[1089]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void fem_nx16_ny16_torque_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -438,7 +444,7 @@ void fem_nx16_ny16_torque_first_mass(const double* c, const double* u, const dou
     out[1088] = c[83];
 }
 
-/* forces:(c[182],u[3],q[33],qd[33])->(Q[33]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[188],u[3],q[33],qd[33])->(Q[33]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void fem_nx16_ny16_torque_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
@@ -773,7 +779,7 @@ void fem_nx16_ny16_torque_first_forces(const double* c, const double* u, const d
     out[32] = -c[127]*B13 - c[132]*B14 + c[127]*B15 - c[160]*B16 + c[109]*theta_dot_A14_dot + c[105]*theta_dot_A15_dot + c[124]*theta_dot_A16_dot - c[153]*B13_theta_dotsq + c[158]*B14_theta_dotsq + c[159]*B15_theta_dotsq - c[64]*B16_theta_dotsq;
 }
 
-/* forces_terms:(c[182],u[3],q[33],qd[33])->(m[232]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[188],u[3],q[33],qd[33])->(m[232]) the state monomials of Q: Q = F m */
 void fem_nx16_ny16_torque_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -1308,7 +1314,7 @@ void fem_nx16_ny16_torque_first_forces_terms(const double* c, const double* u, c
     out[231] = B16_theta_dot_B16_dot;
 }
 
-/* forces_matrix:(c[182],u[3],q[33],qd[33])->(F[33*232]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[188],u[3],q[33],qd[33])->(F[33*232]) row-major, state-free: Q = F m; nonzero entries only */
 void fem_nx16_ny16_torque_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -1871,7 +1877,7 @@ void fem_nx16_ny16_torque_first_forces_matrix(const double* c, const double* u, 
     out[7651] = -c[64];
 }
 
-/* energy:(c[182],u[3],q[33],qd[33])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[188],u[3],q[33],qd[33])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void fem_nx16_ny16_torque_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -2470,7 +2476,7 @@ void fem_nx16_ny16_torque_first_energy(const double* c, const double* u, const d
     out[3] = c[102]*A1sq - c[102]*A1_A2 + c[102]*A2sq - c[102]*A2_A3 + c[102]*A3sq - c[102]*A3_A4 + c[102]*A4sq - c[102]*A4_A5 + c[102]*A5sq - c[102]*A5_A6 + c[102]*A6sq - c[102]*A6_A7 + c[102]*A7sq - c[102]*A7_A8 + c[102]*A8sq - c[102]*A8_A9 + c[102]*A9sq - c[102]*A9_A10 + c[102]*A10sq - c[102]*A10_A11 + c[102]*A11sq - c[102]*A11_A12 + c[102]*A12sq - c[102]*A12_A13 + c[102]*A13sq - c[102]*A13_A14 + c[102]*A14sq - c[102]*A14_A15 + c[102]*A15sq - c[102]*A15_A16 + c[180]*A16sq + c[126]*B1sq - c[126]*B1_B3 + c[127]*B1_B4 + c[160]*B2sq - c[127]*B2_B3 + c[132]*B2_B4 + c[126]*B3sq - c[126]*B3_B5 + c[127]*B3_B6 + c[160]*B4sq - c[127]*B4_B5 + c[132]*B4_B6 + c[126]*B5sq - c[126]*B5_B7 + c[127]*B5_B8 + c[160]*B6sq - c[127]*B6_B7 + c[132]*B6_B8 + c[126]*B7sq - c[126]*B7_B9 + c[127]*B7_B10 + c[160]*B8sq - c[127]*B8_B9 + c[132]*B8_B10 + c[126]*B9sq - c[126]*B9_B11 + c[127]*B9_B12 + c[160]*B10sq - c[127]*B10_B11 + c[132]*B10_B12 + c[126]*B11sq - c[126]*B11_B13 + c[127]*B11_B14 + c[160]*B12sq - c[127]*B12_B13 + c[132]*B12_B14 + c[126]*B13sq - c[126]*B13_B15 + c[127]*B13_B16 + c[160]*B14sq - c[127]*B14_B15 + c[132]*B14_B16 + c[181]*B15sq - c[127]*B15_B16 + c[132]*B16sq;
 }
 
-/* momentum:(c[182],u[3],q[33],qd[33])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[188],u[3],q[33],qd[33])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void fem_nx16_ny16_torque_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -2858,7 +2864,79 @@ void fem_nx16_ny16_torque_first_momentum(const double* c, const double* u, const
     out[0] = c[0]*theta_dot + c[2]*B1_dot + c[72]*B2_dot + c[4]*B3_dot + c[72]*B4_dot + c[6]*B5_dot + c[72]*B6_dot + c[8]*B7_dot + c[72]*B8_dot + c[10]*B9_dot + c[72]*B10_dot + c[12]*B11_dot + c[72]*B12_dot + c[14]*B13_dot + c[72]*B14_dot + c[73]*B15_dot - c[74]*B16_dot + c[1]*A1_theta_dot + c[65]*A1_B1_dot - c[66]*A1_B2_dot + c[2]*A2_theta_dot + c[67]*A2_B1_dot + c[68]*A2_B3_dot - c[69]*A2_B4_dot + c[3]*A3_theta_dot + c[65]*A3_B1_dot + c[66]*A3_B2_dot + c[65]*A3_B3_dot - c[66]*A3_B4_dot + c[4]*A4_theta_dot + c[68]*A4_B1_dot + c[69]*A4_B2_dot + c[67]*A4_B3_dot + c[68]*A4_B5_dot - c[69]*A4_B6_dot + c[5]*A5_theta_dot + c[65]*A5_B3_dot + c[66]*A5_B4_dot + c[65]*A5_B5_dot - c[66]*A5_B6_dot + c[6]*A6_theta_dot + c[68]*A6_B3_dot + c[69]*A6_B4_dot + c[67]*A6_B5_dot + c[68]*A6_B7_dot - c[69]*A6_B8_dot + c[7]*A7_theta_dot + c[65]*A7_B5_dot + c[66]*A7_B6_dot + c[65]*A7_B7_dot - c[66]*A7_B8_dot + c[8]*A8_theta_dot + c[68]*A8_B5_dot + c[69]*A8_B6_dot + c[67]*A8_B7_dot + c[68]*A8_B9_dot - c[69]*A8_B10_dot + c[9]*A9_theta_dot + c[65]*A9_B7_dot + c[66]*A9_B8_dot + c[65]*A9_B9_dot - c[66]*A9_B10_dot + c[10]*A10_theta_dot + c[68]*A10_B7_dot + c[69]*A10_B8_dot + c[67]*A10_B9_dot + c[68]*A10_B11_dot - c[69]*A10_B12_dot + c[11]*A11_theta_dot + c[65]*A11_B9_dot + c[66]*A11_B10_dot + c[65]*A11_B11_dot - c[66]*A11_B12_dot + c[12]*A12_theta_dot + c[68]*A12_B9_dot + c[69]*A12_B10_dot + c[67]*A12_B11_dot + c[68]*A12_B13_dot - c[69]*A12_B14_dot + c[13]*A13_theta_dot + c[65]*A13_B11_dot + c[66]*A13_B12_dot + c[65]*A13_B13_dot - c[66]*A13_B14_dot + c[14]*A14_theta_dot + c[68]*A14_B11_dot + c[69]*A14_B12_dot + c[67]*A14_B13_dot + c[68]*A14_B15_dot - c[69]*A14_B16_dot + c[15]*A15_theta_dot + c[65]*A15_B13_dot + c[66]*A15_B14_dot + c[65]*A15_B15_dot - c[66]*A15_B16_dot + c[16]*A16_theta_dot + c[68]*A16_B13_dot + c[69]*A16_B14_dot + c[70]*A16_B15_dot - c[71]*A16_B16_dot - c[65]*B1_A1_dot - c[67]*B1_A2_dot - c[65]*B1_A3_dot - c[68]*B1_A4_dot + c[66]*B2_A1_dot - c[66]*B2_A3_dot - c[69]*B2_A4_dot - c[68]*B3_A2_dot - c[65]*B3_A3_dot - c[67]*B3_A4_dot - c[65]*B3_A5_dot - c[68]*B3_A6_dot + c[69]*B4_A2_dot + c[66]*B4_A3_dot - c[66]*B4_A5_dot - c[69]*B4_A6_dot - c[68]*B5_A4_dot - c[65]*B5_A5_dot - c[67]*B5_A6_dot - c[65]*B5_A7_dot - c[68]*B5_A8_dot + c[69]*B6_A4_dot + c[66]*B6_A5_dot - c[66]*B6_A7_dot - c[69]*B6_A8_dot - c[68]*B7_A6_dot - c[65]*B7_A7_dot - c[67]*B7_A8_dot - c[65]*B7_A9_dot - c[68]*B7_A10_dot + c[69]*B8_A6_dot + c[66]*B8_A7_dot - c[66]*B8_A9_dot - c[69]*B8_A10_dot - c[68]*B9_A8_dot - c[65]*B9_A9_dot - c[67]*B9_A10_dot - c[65]*B9_A11_dot - c[68]*B9_A12_dot + c[69]*B10_A8_dot + c[66]*B10_A9_dot - c[66]*B10_A11_dot - c[69]*B10_A12_dot - c[68]*B11_A10_dot - c[65]*B11_A11_dot - c[67]*B11_A12_dot - c[65]*B11_A13_dot - c[68]*B11_A14_dot + c[69]*B12_A10_dot + c[66]*B12_A11_dot - c[66]*B12_A13_dot - c[69]*B12_A14_dot - c[68]*B13_A12_dot - c[65]*B13_A13_dot - c[67]*B13_A14_dot - c[65]*B13_A15_dot - c[68]*B13_A16_dot + c[69]*B14_A12_dot + c[66]*B14_A13_dot - c[66]*B14_A15_dot - c[69]*B14_A16_dot - c[68]*B15_A14_dot - c[65]*B15_A15_dot - c[70]*B15_A16_dot + c[69]*B16_A14_dot + c[66]*B16_A15_dot + c[71]*B16_A16_dot + c[17]*A1sq_theta_dot + c[18]*A1_A2_theta_dot + c[17]*A2sq_theta_dot + c[18]*A2_A3_theta_dot + c[17]*A3sq_theta_dot + c[18]*A3_A4_theta_dot + c[17]*A4sq_theta_dot + c[18]*A4_A5_theta_dot + c[17]*A5sq_theta_dot + c[18]*A5_A6_theta_dot + c[17]*A6sq_theta_dot + c[18]*A6_A7_theta_dot + c[17]*A7sq_theta_dot + c[18]*A7_A8_theta_dot + c[17]*A8sq_theta_dot + c[18]*A8_A9_theta_dot + c[17]*A9sq_theta_dot + c[18]*A9_A10_theta_dot + c[17]*A10sq_theta_dot + c[18]*A10_A11_theta_dot + c[17]*A11sq_theta_dot + c[18]*A11_A12_theta_dot + c[17]*A12sq_theta_dot + c[18]*A12_A13_theta_dot + c[17]*A13sq_theta_dot + c[18]*A13_A14_theta_dot + c[17]*A14sq_theta_dot + c[18]*A14_A15_theta_dot + c[17]*A15sq_theta_dot + c[18]*A15_A16_theta_dot + c[18]*A16sq_theta_dot - c[19]*B1sq_theta_dot + c[20]*B1_B2_theta_dot + c[21]*B1_B3_theta_dot - c[22]*B1_B4_theta_dot - c[23]*B2sq_theta_dot + c[24]*B2_B3_theta_dot + c[25]*B2_B4_theta_dot - c[26]*B3sq_theta_dot + c[27]*B3_B4_theta_dot + c[28]*B3_B5_theta_dot - c[24]*B3_B6_theta_dot - c[29]*B4sq_theta_dot + c[30]*B4_B5_theta_dot + c[31]*B4_B6_theta_dot - c[32]*B5sq_theta_dot + c[33]*B5_B6_theta_dot + c[34]*B5_B7_theta_dot - c[30]*B5_B8_theta_dot - c[35]*B6sq_theta_dot + c[36]*B6_B7_theta_dot + c[37]*B6_B8_theta_dot - c[38]*B7sq_theta_dot + c[39]*B7_B8_theta_dot + c[40]*B7_B9_theta_dot - c[36]*B7_B10_theta_dot - c[41]*B8sq_theta_dot + c[42]*B8_B9_theta_dot + c[43]*B8_B10_theta_dot - c[44]*B9sq_theta_dot + c[45]*B9_B10_theta_dot + c[46]*B9_B11_theta_dot - c[42]*B9_B12_theta_dot - c[47]*B10sq_theta_dot + c[48]*B10_B11_theta_dot + c[49]*B10_B12_theta_dot - c[50]*B11sq_theta_dot + c[51]*B11_B12_theta_dot + c[52]*B11_B13_theta_dot - c[48]*B11_B14_theta_dot - c[53]*B12sq_theta_dot + c[54]*B12_B13_theta_dot + c[55]*B12_B14_theta_dot - c[56]*B13sq_theta_dot + c[57]*B13_B14_theta_dot + c[58]*B13_B15_theta_dot - c[54]*B13_B16_theta_dot - c[59]*B14sq_theta_dot + c[60]*B14_B15_theta_dot + c[61]*B14_B16_theta_dot - c[62]*B15sq_theta_dot + c[63]*B15_B16_theta_dot - c[64]*B16sq_theta_dot;
 }
 
-/* forces_q:(c[182],u[3],q[33],qd[33])->(dQdq[1089]) row-major; out[i*33+k] = dQ_i/dq_k; nonzero entries only */
+/* tip:(c[188],u[3],q[33],qd[33])->(tip[3]) tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B */
+void fem_nx16_ny16_torque_first_tip(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)qd;
+    const double A16 = q[16];
+    const double B1 = q[17];
+    const double B2 = q[18];
+    const double B3 = q[19];
+    const double B4 = q[20];
+    const double B5 = q[21];
+    const double B6 = q[22];
+    const double B7 = q[23];
+    const double B8 = q[24];
+    const double B9 = q[25];
+    const double B10 = q[26];
+    const double B11 = q[27];
+    const double B12 = q[28];
+    const double B13 = q[29];
+    const double B14 = q[30];
+    const double B15 = q[31];
+    const double B16 = q[32];
+    const double B1sq = B1*B1;
+    const double B1_B3 = B1*B3;
+    const double B1_B4 = B1*B4;
+    const double B2sq = B2*B2;
+    const double B2_B3 = B2*B3;
+    const double B2_B4 = B2*B4;
+    const double B3sq = B3*B3;
+    const double B3_B5 = B3*B5;
+    const double B3_B6 = B3*B6;
+    const double B4sq = B4*B4;
+    const double B4_B5 = B4*B5;
+    const double B4_B6 = B4*B6;
+    const double B5sq = B5*B5;
+    const double B5_B7 = B5*B7;
+    const double B5_B8 = B5*B8;
+    const double B6sq = B6*B6;
+    const double B6_B7 = B6*B7;
+    const double B6_B8 = B6*B8;
+    const double B7sq = B7*B7;
+    const double B7_B9 = B7*B9;
+    const double B7_B10 = B7*B10;
+    const double B8sq = B8*B8;
+    const double B8_B9 = B8*B9;
+    const double B8_B10 = B8*B10;
+    const double B9sq = B9*B9;
+    const double B9_B11 = B9*B11;
+    const double B9_B12 = B9*B12;
+    const double B10sq = B10*B10;
+    const double B10_B11 = B10*B11;
+    const double B10_B12 = B10*B12;
+    const double B11sq = B11*B11;
+    const double B11_B13 = B11*B13;
+    const double B11_B14 = B11*B14;
+    const double B12sq = B12*B12;
+    const double B12_B13 = B12*B13;
+    const double B12_B14 = B12*B14;
+    const double B13sq = B13*B13;
+    const double B13_B15 = B13*B15;
+    const double B13_B16 = B13*B16;
+    const double B14sq = B14*B14;
+    const double B14_B15 = B14*B15;
+    const double B14_B16 = B14*B16;
+    const double B15sq = B15*B15;
+    const double B15_B16 = B15*B16;
+    const double B16sq = B16*B16;
+    out[0] = B15;
+    out[1] = A16;
+    out[2] = A16 - c[182]*B1sq + c[182]*B1_B3 - c[183]*B1_B4 - c[184]*B2sq + c[183]*B2_B3 + c[185]*B2_B4 - c[182]*B3sq + c[182]*B3_B5 - c[183]*B3_B6 - c[184]*B4sq + c[183]*B4_B5 + c[185]*B4_B6 - c[182]*B5sq + c[182]*B5_B7 - c[183]*B5_B8 - c[184]*B6sq + c[183]*B6_B7 + c[185]*B6_B8 - c[182]*B7sq + c[182]*B7_B9 - c[183]*B7_B10 - c[184]*B8sq + c[183]*B8_B9 + c[185]*B8_B10 - c[182]*B9sq + c[182]*B9_B11 - c[183]*B9_B12 - c[184]*B10sq + c[183]*B10_B11 + c[185]*B10_B12 - c[182]*B11sq + c[182]*B11_B13 - c[183]*B11_B14 - c[184]*B12sq + c[183]*B12_B13 + c[185]*B12_B14 - c[182]*B13sq + c[182]*B13_B15 - c[183]*B13_B16 - c[184]*B14sq + c[183]*B14_B15 + c[185]*B14_B16 - c[186]*B15sq + c[183]*B15_B16 - c[187]*B16sq;
+}
+
+/* forces_q:(c[188],u[3],q[33],qd[33])->(dQdq[1089]) row-major; out[i*33+k] = dQ_i/dq_k; nonzero entries only */
 void fem_nx16_ny16_torque_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -3097,7 +3175,7 @@ void fem_nx16_ny16_torque_first_forces_q(const double* c, const double* u, const
     out[1088] = -c[160] - c[64]*theta_dotsq;
 }
 
-/* forces_qd:(c[182],u[3],q[33],qd[33])->(dQdqd[1089]) row-major; out[i*33+k] = dQ_i/dqd_k; nonzero entries only */
+/* forces_qd:(c[188],u[3],q[33],qd[33])->(dQdqd[1089]) row-major; out[i*33+k] = dQ_i/dqd_k; nonzero entries only */
 void fem_nx16_ny16_torque_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -3533,7 +3611,7 @@ void fem_nx16_ny16_torque_first_forces_qd(const double* c, const double* u, cons
     out[1072] = c[124]*theta_dot;
 }
 
-/* forces_u:(c[182],u[3],q[33],qd[33])->(dQdu[99]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
+/* forces_u:(c[188],u[3],q[33],qd[33])->(dQdu[99]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
 void fem_nx16_ny16_torque_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -3543,7 +3621,7 @@ void fem_nx16_ny16_torque_first_forces_u(const double* c, const double* u, const
     out[0] = 1.0;
 }
 
-/* mass_varying:(c[182],u[3],q[33],qd[33])->(M[1089]) as mass, the entries that depend on q only */
+/* mass_varying:(c[188],u[3],q[33],qd[33])->(M[1089]) as mass, the entries that depend on q only */
 void fem_nx16_ny16_torque_first_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -3698,7 +3776,7 @@ void fem_nx16_ny16_torque_first_mass_varying(const double* c, const double* u, c
     out[32] = -c[74] - c[69]*A14 - c[66]*A15 - c[71]*A16;
 }
 
-/* mass_q_product:(c[182],u[3],q[33],qd[33])->(dMv[1089]) row-major; v in the qd slot; out[i*33+k] = sum_j dM_ij/dq_k v_j; nonzero entries only */
+/* mass_q_product:(c[188],u[3],q[33],qd[33])->(dMv[1089]) row-major; v in the qd slot; out[i*33+k] = sum_j dM_ij/dq_k v_j; nonzero entries only */
 void fem_nx16_ny16_torque_first_mass_q_product(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -3969,9 +4047,9 @@ void fem_nx16_ny16_torque_first_mass_q_product(const double* c, const double* u,
 
 }  // namespace
 
-extern const Variant fem_nx16_ny16_torque_first = {"fem_nx16_ny16_torque_first", 33, 182, 232,
+extern const Variant fem_nx16_ny16_torque_first = {"fem_nx16_ny16_torque_first", 33, 188, 232,
     "vvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvcc000000000000000000000000000000vccc00000000000000000000000000000v0ccc0000000000000000000000000000v00ccc000000000000000000000000000v000ccc00000000000000000000000000v0000ccc0000000000000000000000000v00000ccc000000000000000000000000v000000ccc00000000000000000000000v0000000ccc0000000000000000000000v00000000ccc000000000000000000000v000000000ccc00000000000000000000v0000000000ccc0000000000000000000v00000000000ccc000000000000000000v000000000000ccc00000000000000000v0000000000000ccc0000000000000000v00000000000000cc0000000000000000v0000000000000000c0cc000000000000v00000000000000000ccc000000000000v0000000000000000ccc0cc0000000000v0000000000000000cc0ccc0000000000v000000000000000000ccc0cc00000000v000000000000000000cc0ccc00000000v00000000000000000000ccc0cc000000v00000000000000000000cc0ccc000000v0000000000000000000000ccc0cc0000v0000000000000000000000cc0ccc0000v000000000000000000000000ccc0cc00v000000000000000000000000cc0ccc00v00000000000000000000000000ccc0ccv00000000000000000000000000cc0cccv0000000000000000000000000000ccccv0000000000000000000000000000cccc",
     fem_nx16_ny16_torque_first_coefficients, fem_nx16_ny16_torque_first_mass, fem_nx16_ny16_torque_first_mass_varying, fem_nx16_ny16_torque_first_forces, fem_nx16_ny16_torque_first_forces_terms, fem_nx16_ny16_torque_first_forces_matrix,
-    fem_nx16_ny16_torque_first_energy, fem_nx16_ny16_torque_first_momentum, fem_nx16_ny16_torque_first_forces_q, fem_nx16_ny16_torque_first_forces_qd, fem_nx16_ny16_torque_first_mass_q_product, fem_nx16_ny16_torque_first_forces_u};
+    fem_nx16_ny16_torque_first_energy, fem_nx16_ny16_torque_first_momentum, fem_nx16_ny16_torque_first_forces_q, fem_nx16_ny16_torque_first_forces_qd, fem_nx16_ny16_torque_first_mass_q_product, fem_nx16_ny16_torque_first_forces_u, fem_nx16_ny16_torque_first_tip};
 
 }  // namespace hubbeam::generated

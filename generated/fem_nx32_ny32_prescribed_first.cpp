@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[326]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[332]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void fem_nx32_ny32_prescribed_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -316,42 +316,48 @@ void fem_nx32_ny32_prescribed_first_coefficients(const double* p, double* c)
     c[290] = 0.00035342261904761904*L*m;
     c[291] = 0.00013020833333333333*m*a + 0.0001232328869047619*L*m;
     c[292] = 0.0125*m*a + 0.011811755952380952*L*m;
-    c[293] = 0.041666666666666664*L*m;
-    c[294] = 72.0*m*a + 38.114285714285714*L*m;
-    c[295] = 0.03125*m*a + 0.01658296130952381*L*m;
-    c[296] = 67.2*m*a + 37.66428571428571*L*m;
-    c[297] = 0.029166666666666667*m*a + 0.01638764880952381*L*m;
-    c[298] = 62.4*m*a + 36.91428571428571*L*m;
-    c[299] = 0.027083333333333334*m*a + 0.016062127976190475*L*m;
-    c[300] = 57.6*m*a + 35.864285714285714*L*m;
-    c[301] = 0.025*m*a + 0.01560639880952381*L*m;
-    c[302] = 52.8*m*a + 34.51428571428571*L*m;
-    c[303] = 0.022916666666666665*m*a + 0.01502046130952381*L*m;
-    c[304] = 48.0*m*a + 32.864285714285714*L*m;
-    c[305] = 0.020833333333333332*m*a + 0.014304315476190476*L*m;
-    c[306] = 43.2*m*a + 30.914285714285715*L*m;
-    c[307] = 0.01875*m*a + 0.01345796130952381*L*m;
-    c[308] = 38.4*m*a + 28.664285714285715*L*m;
-    c[309] = 0.016666666666666666*m*a + 0.01248139880952381*L*m;
-    c[310] = 33.6*m*a + 26.114285714285714*L*m;
-    c[311] = 0.014583333333333334*m*a + 0.011374627976190476*L*m;
-    c[312] = 28.8*m*a + 23.264285714285716*L*m;
-    c[313] = 0.0125*m*a + 0.01013764880952381*L*m;
-    c[314] = 24.0*m*a + 20.114285714285714*L*m;
-    c[315] = 0.010416666666666666*m*a + 0.00877046130952381*L*m;
-    c[316] = 19.2*m*a + 16.664285714285715*L*m;
-    c[317] = 0.008333333333333333*m*a + 0.007273065476190476*L*m;
-    c[318] = 14.4*m*a + 12.914285714285715*L*m;
-    c[319] = 0.00625*m*a + 0.005645461309523809*L*m;
-    c[320] = 9.6*m*a + 8.864285714285714*L*m;
-    c[321] = 0.004166666666666667*m*a + 0.0038876488095238096*L*m;
-    c[322] = 4.8*m*a + 4.514285714285714*L*m;
-    c[323] = 0.0020833333333333333*m*a + 0.001999627976190476*L*m;
-    c[324] = 1.2*m*a + 1.1321428571428571*L*m;
-    c[325] = 0.00026041666666666666*m*a + 0.0002511160714285714*L*m;
+    c[293] = 19.2*1.0/(L);
+    c[294] = 0.1*1.0/(L);
+    c[295] = 0.008333333333333333*1.0/(L);
+    c[296] = 0.0020833333333333333*1.0/(L);
+    c[297] = 9.6*1.0/(L);
+    c[298] = 0.004166666666666667*1.0/(L);
+    c[299] = 0.041666666666666664*L*m;
+    c[300] = 72.0*m*a + 38.114285714285714*L*m;
+    c[301] = 0.03125*m*a + 0.01658296130952381*L*m;
+    c[302] = 67.2*m*a + 37.66428571428571*L*m;
+    c[303] = 0.029166666666666667*m*a + 0.01638764880952381*L*m;
+    c[304] = 62.4*m*a + 36.91428571428571*L*m;
+    c[305] = 0.027083333333333334*m*a + 0.016062127976190475*L*m;
+    c[306] = 57.6*m*a + 35.864285714285714*L*m;
+    c[307] = 0.025*m*a + 0.01560639880952381*L*m;
+    c[308] = 52.8*m*a + 34.51428571428571*L*m;
+    c[309] = 0.022916666666666665*m*a + 0.01502046130952381*L*m;
+    c[310] = 48.0*m*a + 32.864285714285714*L*m;
+    c[311] = 0.020833333333333332*m*a + 0.014304315476190476*L*m;
+    c[312] = 43.2*m*a + 30.914285714285715*L*m;
+    c[313] = 0.01875*m*a + 0.01345796130952381*L*m;
+    c[314] = 38.4*m*a + 28.664285714285715*L*m;
+    c[315] = 0.016666666666666666*m*a + 0.01248139880952381*L*m;
+    c[316] = 33.6*m*a + 26.114285714285714*L*m;
+    c[317] = 0.014583333333333334*m*a + 0.011374627976190476*L*m;
+    c[318] = 28.8*m*a + 23.264285714285716*L*m;
+    c[319] = 0.0125*m*a + 0.01013764880952381*L*m;
+    c[320] = 24.0*m*a + 20.114285714285714*L*m;
+    c[321] = 0.010416666666666666*m*a + 0.00877046130952381*L*m;
+    c[322] = 19.2*m*a + 16.664285714285715*L*m;
+    c[323] = 0.008333333333333333*m*a + 0.007273065476190476*L*m;
+    c[324] = 14.4*m*a + 12.914285714285715*L*m;
+    c[325] = 0.00625*m*a + 0.005645461309523809*L*m;
+    c[326] = 9.6*m*a + 8.864285714285714*L*m;
+    c[327] = 0.004166666666666667*m*a + 0.0038876488095238096*L*m;
+    c[328] = 4.8*m*a + 4.514285714285714*L*m;
+    c[329] = 0.0020833333333333333*m*a + 0.001999627976190476*L*m;
+    c[330] = 1.2*m*a + 1.1321428571428571*L*m;
+    c[331] = 0.00026041666666666666*m*a + 0.0002511160714285714*L*m;
 }
 
-/* mass:(c[326],u[3],q[64],qd[64])->(M[4096]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[332],u[3],q[64],qd[64])->(M[4096]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void fem_nx32_ny32_prescribed_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -515,7 +521,7 @@ void fem_nx32_ny32_prescribed_first_mass(const double* c, const double* u, const
     out[4095] = c[10];
 }
 
-/* forces:(c[326],u[3],q[64],qd[64])->(Q[64]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[332],u[3],q[64],qd[64])->(Q[64]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void fem_nx32_ny32_prescribed_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -907,7 +913,7 @@ void fem_nx32_ny32_prescribed_first_forces(const double* c, const double* u, con
     out[63] = c[173]*theta_ddot - c[61]*B29 - c[68]*B30 + c[61]*B31 - c[174]*B32 + c[21]*theta_dot_A30_dot + c[15]*theta_dot_A31_dot + c[55]*theta_dot_A32_dot + c[24]*theta_ddot_A30 + c[17]*theta_ddot_A31 + c[57]*theta_ddot_A32 - c[161]*theta_dotsq_B29 + c[169]*theta_dotsq_B30 + c[172]*theta_dotsq_B31 - c[175]*theta_dotsq_B32;
 }
 
-/* forces_terms:(c[326],u[3],q[64],qd[64])->(m[258]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[332],u[3],q[64],qd[64])->(m[258]) the state monomials of Q: Q = F m */
 void fem_nx32_ny32_prescribed_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -1494,7 +1500,7 @@ void fem_nx32_ny32_prescribed_first_forces_terms(const double* c, const double* 
     out[257] = theta_dotsq_B32;
 }
 
-/* forces_matrix:(c[326],u[3],q[64],qd[64])->(F[64*258]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[332],u[3],q[64],qd[64])->(F[64*258]) row-major, state-free: Q = F m; nonzero entries only */
 void fem_nx32_ny32_prescribed_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -2648,7 +2654,7 @@ void fem_nx32_ny32_prescribed_first_forces_matrix(const double* c, const double*
     out[16511] = -c[175];
 }
 
-/* energy:(c[326],u[3],q[64],qd[64])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[332],u[3],q[64],qd[64])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void fem_nx32_ny32_prescribed_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -3708,7 +3714,7 @@ void fem_nx32_ny32_prescribed_first_energy(const double* c, const double* u, con
     out[3] = c[12]*A1sq - c[12]*A1_A2 + c[12]*A2sq - c[12]*A2_A3 + c[12]*A3sq - c[12]*A3_A4 + c[12]*A4sq - c[12]*A4_A5 + c[12]*A5sq - c[12]*A5_A6 + c[12]*A6sq - c[12]*A6_A7 + c[12]*A7sq - c[12]*A7_A8 + c[12]*A8sq - c[12]*A8_A9 + c[12]*A9sq - c[12]*A9_A10 + c[12]*A10sq - c[12]*A10_A11 + c[12]*A11sq - c[12]*A11_A12 + c[12]*A12sq - c[12]*A12_A13 + c[12]*A13sq - c[12]*A13_A14 + c[12]*A14sq - c[12]*A14_A15 + c[12]*A15sq - c[12]*A15_A16 + c[12]*A16sq - c[12]*A16_A17 + c[12]*A17sq - c[12]*A17_A18 + c[12]*A18sq - c[12]*A18_A19 + c[12]*A19sq - c[12]*A19_A20 + c[12]*A20sq - c[12]*A20_A21 + c[12]*A21sq - c[12]*A21_A22 + c[12]*A22sq - c[12]*A22_A23 + c[12]*A23sq - c[12]*A23_A24 + c[12]*A24sq - c[12]*A24_A25 + c[12]*A25sq - c[12]*A25_A26 + c[12]*A26sq - c[12]*A26_A27 + c[12]*A27sq - c[12]*A27_A28 + c[12]*A28sq - c[12]*A28_A29 + c[12]*A29sq - c[12]*A29_A30 + c[12]*A30sq - c[12]*A30_A31 + c[12]*A31sq - c[12]*A31_A32 + c[211]*A32sq + c[60]*B1sq - c[60]*B1_B3 + c[61]*B1_B4 + c[174]*B2sq - c[61]*B2_B3 + c[68]*B2_B4 + c[60]*B3sq - c[60]*B3_B5 + c[61]*B3_B6 + c[174]*B4sq - c[61]*B4_B5 + c[68]*B4_B6 + c[60]*B5sq - c[60]*B5_B7 + c[61]*B5_B8 + c[174]*B6sq - c[61]*B6_B7 + c[68]*B6_B8 + c[60]*B7sq - c[60]*B7_B9 + c[61]*B7_B10 + c[174]*B8sq - c[61]*B8_B9 + c[68]*B8_B10 + c[60]*B9sq - c[60]*B9_B11 + c[61]*B9_B12 + c[174]*B10sq - c[61]*B10_B11 + c[68]*B10_B12 + c[60]*B11sq - c[60]*B11_B13 + c[61]*B11_B14 + c[174]*B12sq - c[61]*B12_B13 + c[68]*B12_B14 + c[60]*B13sq - c[60]*B13_B15 + c[61]*B13_B16 + c[174]*B14sq - c[61]*B14_B15 + c[68]*B14_B16 + c[60]*B15sq - c[60]*B15_B17 + c[61]*B15_B18 + c[174]*B16sq - c[61]*B16_B17 + c[68]*B16_B18 + c[60]*B17sq - c[60]*B17_B19 + c[61]*B17_B20 + c[174]*B18sq - c[61]*B18_B19 + c[68]*B18_B20 + c[60]*B19sq - c[60]*B19_B21 + c[61]*B19_B22 + c[174]*B20sq - c[61]*B20_B21 + c[68]*B20_B22 + c[60]*B21sq - c[60]*B21_B23 + c[61]*B21_B24 + c[174]*B22sq - c[61]*B22_B23 + c[68]*B22_B24 + c[60]*B23sq - c[60]*B23_B25 + c[61]*B23_B26 + c[174]*B24sq - c[61]*B24_B25 + c[68]*B24_B26 + c[60]*B25sq - c[60]*B25_B27 + c[61]*B25_B28 + c[174]*B26sq - c[61]*B26_B27 + c[68]*B26_B28 + c[60]*B27sq - c[60]*B27_B29 + c[61]*B27_B30 + c[174]*B28sq - c[61]*B28_B29 + c[68]*B28_B30 + c[60]*B29sq - c[60]*B29_B31 + c[61]*B29_B32 + c[174]*B30sq - c[61]*B30_B31 + c[68]*B30_B32 + c[212]*B31sq - c[61]*B31_B32 + c[68]*B32sq;
 }
 
-/* momentum:(c[326],u[3],q[64],qd[64])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[332],u[3],q[64],qd[64])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void fem_nx32_ny32_prescribed_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -4356,7 +4362,143 @@ void fem_nx32_ny32_prescribed_first_momentum(const double* c, const double* u, c
     out[0] = c[213]*theta_dot + c[58]*B1_dot + c[66]*B2_dot + c[72]*B3_dot + c[66]*B4_dot + c[79]*B5_dot + c[66]*B6_dot + c[86]*B7_dot + c[66]*B8_dot + c[93]*B9_dot + c[66]*B10_dot + c[100]*B11_dot + c[66]*B12_dot + c[107]*B13_dot + c[66]*B14_dot + c[114]*B15_dot + c[66]*B16_dot + c[121]*B17_dot + c[66]*B18_dot + c[128]*B19_dot + c[66]*B20_dot + c[135]*B21_dot + c[66]*B22_dot + c[142]*B23_dot + c[66]*B24_dot + c[149]*B25_dot + c[66]*B26_dot + c[156]*B27_dot + c[66]*B28_dot + c[163]*B29_dot + c[66]*B30_dot + c[170]*B31_dot - c[173]*B32_dot + c[214]*theta_dot_A1 + c[58]*theta_dot_A2 + c[215]*theta_dot_A3 + c[72]*theta_dot_A4 + c[216]*theta_dot_A5 + c[79]*theta_dot_A6 + c[217]*theta_dot_A7 + c[86]*theta_dot_A8 + c[218]*theta_dot_A9 + c[93]*theta_dot_A10 + c[219]*theta_dot_A11 + c[100]*theta_dot_A12 + c[220]*theta_dot_A13 + c[107]*theta_dot_A14 + c[221]*theta_dot_A15 + c[114]*theta_dot_A16 + c[222]*theta_dot_A17 + c[121]*theta_dot_A18 + c[223]*theta_dot_A19 + c[128]*theta_dot_A20 + c[224]*theta_dot_A21 + c[135]*theta_dot_A22 + c[225]*theta_dot_A23 + c[142]*theta_dot_A24 + c[226]*theta_dot_A25 + c[149]*theta_dot_A26 + c[227]*theta_dot_A27 + c[156]*theta_dot_A28 + c[228]*theta_dot_A29 + c[163]*theta_dot_A30 + c[229]*theta_dot_A31 + c[230]*theta_dot_A32 + c[16]*A1_B1_dot - c[17]*A1_B2_dot + c[22]*A2_B1_dot + c[23]*A2_B3_dot - c[24]*A2_B4_dot + c[16]*A3_B1_dot + c[17]*A3_B2_dot + c[16]*A3_B3_dot - c[17]*A3_B4_dot + c[23]*A4_B1_dot + c[24]*A4_B2_dot + c[22]*A4_B3_dot + c[23]*A4_B5_dot - c[24]*A4_B6_dot + c[16]*A5_B3_dot + c[17]*A5_B4_dot + c[16]*A5_B5_dot - c[17]*A5_B6_dot + c[23]*A6_B3_dot + c[24]*A6_B4_dot + c[22]*A6_B5_dot + c[23]*A6_B7_dot - c[24]*A6_B8_dot + c[16]*A7_B5_dot + c[17]*A7_B6_dot + c[16]*A7_B7_dot - c[17]*A7_B8_dot + c[23]*A8_B5_dot + c[24]*A8_B6_dot + c[22]*A8_B7_dot + c[23]*A8_B9_dot - c[24]*A8_B10_dot + c[16]*A9_B7_dot + c[17]*A9_B8_dot + c[16]*A9_B9_dot - c[17]*A9_B10_dot + c[23]*A10_B7_dot + c[24]*A10_B8_dot + c[22]*A10_B9_dot + c[23]*A10_B11_dot - c[24]*A10_B12_dot + c[16]*A11_B9_dot + c[17]*A11_B10_dot + c[16]*A11_B11_dot - c[17]*A11_B12_dot + c[23]*A12_B9_dot + c[24]*A12_B10_dot + c[22]*A12_B11_dot + c[23]*A12_B13_dot - c[24]*A12_B14_dot + c[16]*A13_B11_dot + c[17]*A13_B12_dot + c[16]*A13_B13_dot - c[17]*A13_B14_dot + c[23]*A14_B11_dot + c[24]*A14_B12_dot + c[22]*A14_B13_dot + c[23]*A14_B15_dot - c[24]*A14_B16_dot + c[16]*A15_B13_dot + c[17]*A15_B14_dot + c[16]*A15_B15_dot - c[17]*A15_B16_dot + c[23]*A16_B13_dot + c[24]*A16_B14_dot + c[22]*A16_B15_dot + c[23]*A16_B17_dot - c[24]*A16_B18_dot + c[16]*A17_B15_dot + c[17]*A17_B16_dot + c[16]*A17_B17_dot - c[17]*A17_B18_dot + c[23]*A18_B15_dot + c[24]*A18_B16_dot + c[22]*A18_B17_dot + c[23]*A18_B19_dot - c[24]*A18_B20_dot + c[16]*A19_B17_dot + c[17]*A19_B18_dot + c[16]*A19_B19_dot - c[17]*A19_B20_dot + c[23]*A20_B17_dot + c[24]*A20_B18_dot + c[22]*A20_B19_dot + c[23]*A20_B21_dot - c[24]*A20_B22_dot + c[16]*A21_B19_dot + c[17]*A21_B20_dot + c[16]*A21_B21_dot - c[17]*A21_B22_dot + c[23]*A22_B19_dot + c[24]*A22_B20_dot + c[22]*A22_B21_dot + c[23]*A22_B23_dot - c[24]*A22_B24_dot + c[16]*A23_B21_dot + c[17]*A23_B22_dot + c[16]*A23_B23_dot - c[17]*A23_B24_dot + c[23]*A24_B21_dot + c[24]*A24_B22_dot + c[22]*A24_B23_dot + c[23]*A24_B25_dot - c[24]*A24_B26_dot + c[16]*A25_B23_dot + c[17]*A25_B24_dot + c[16]*A25_B25_dot - c[17]*A25_B26_dot + c[23]*A26_B23_dot + c[24]*A26_B24_dot + c[22]*A26_B25_dot + c[23]*A26_B27_dot - c[24]*A26_B28_dot + c[16]*A27_B25_dot + c[17]*A27_B26_dot + c[16]*A27_B27_dot - c[17]*A27_B28_dot + c[23]*A28_B25_dot + c[24]*A28_B26_dot + c[22]*A28_B27_dot + c[23]*A28_B29_dot - c[24]*A28_B30_dot + c[16]*A29_B27_dot + c[17]*A29_B28_dot + c[16]*A29_B29_dot - c[17]*A29_B30_dot + c[23]*A30_B27_dot + c[24]*A30_B28_dot + c[22]*A30_B29_dot + c[23]*A30_B31_dot - c[24]*A30_B32_dot + c[16]*A31_B29_dot + c[17]*A31_B30_dot + c[16]*A31_B31_dot - c[17]*A31_B32_dot + c[23]*A32_B29_dot + c[24]*A32_B30_dot + c[56]*A32_B31_dot - c[57]*A32_B32_dot - c[16]*B1_A1_dot - c[22]*B1_A2_dot - c[16]*B1_A3_dot - c[23]*B1_A4_dot + c[17]*B2_A1_dot - c[17]*B2_A3_dot - c[24]*B2_A4_dot - c[23]*B3_A2_dot - c[16]*B3_A3_dot - c[22]*B3_A4_dot - c[16]*B3_A5_dot - c[23]*B3_A6_dot + c[24]*B4_A2_dot + c[17]*B4_A3_dot - c[17]*B4_A5_dot - c[24]*B4_A6_dot - c[23]*B5_A4_dot - c[16]*B5_A5_dot - c[22]*B5_A6_dot - c[16]*B5_A7_dot - c[23]*B5_A8_dot + c[24]*B6_A4_dot + c[17]*B6_A5_dot - c[17]*B6_A7_dot - c[24]*B6_A8_dot - c[23]*B7_A6_dot - c[16]*B7_A7_dot - c[22]*B7_A8_dot - c[16]*B7_A9_dot - c[23]*B7_A10_dot + c[24]*B8_A6_dot + c[17]*B8_A7_dot - c[17]*B8_A9_dot - c[24]*B8_A10_dot - c[23]*B9_A8_dot - c[16]*B9_A9_dot - c[22]*B9_A10_dot - c[16]*B9_A11_dot - c[23]*B9_A12_dot + c[24]*B10_A8_dot + c[17]*B10_A9_dot - c[17]*B10_A11_dot - c[24]*B10_A12_dot - c[23]*B11_A10_dot - c[16]*B11_A11_dot - c[22]*B11_A12_dot - c[16]*B11_A13_dot - c[23]*B11_A14_dot + c[24]*B12_A10_dot + c[17]*B12_A11_dot - c[17]*B12_A13_dot - c[24]*B12_A14_dot - c[23]*B13_A12_dot - c[16]*B13_A13_dot - c[22]*B13_A14_dot - c[16]*B13_A15_dot - c[23]*B13_A16_dot + c[24]*B14_A12_dot + c[17]*B14_A13_dot - c[17]*B14_A15_dot - c[24]*B14_A16_dot - c[23]*B15_A14_dot - c[16]*B15_A15_dot - c[22]*B15_A16_dot - c[16]*B15_A17_dot - c[23]*B15_A18_dot + c[24]*B16_A14_dot + c[17]*B16_A15_dot - c[17]*B16_A17_dot - c[24]*B16_A18_dot - c[23]*B17_A16_dot - c[16]*B17_A17_dot - c[22]*B17_A18_dot - c[16]*B17_A19_dot - c[23]*B17_A20_dot + c[24]*B18_A16_dot + c[17]*B18_A17_dot - c[17]*B18_A19_dot - c[24]*B18_A20_dot - c[23]*B19_A18_dot - c[16]*B19_A19_dot - c[22]*B19_A20_dot - c[16]*B19_A21_dot - c[23]*B19_A22_dot + c[24]*B20_A18_dot + c[17]*B20_A19_dot - c[17]*B20_A21_dot - c[24]*B20_A22_dot - c[23]*B21_A20_dot - c[16]*B21_A21_dot - c[22]*B21_A22_dot - c[16]*B21_A23_dot - c[23]*B21_A24_dot + c[24]*B22_A20_dot + c[17]*B22_A21_dot - c[17]*B22_A23_dot - c[24]*B22_A24_dot - c[23]*B23_A22_dot - c[16]*B23_A23_dot - c[22]*B23_A24_dot - c[16]*B23_A25_dot - c[23]*B23_A26_dot + c[24]*B24_A22_dot + c[17]*B24_A23_dot - c[17]*B24_A25_dot - c[24]*B24_A26_dot - c[23]*B25_A24_dot - c[16]*B25_A25_dot - c[22]*B25_A26_dot - c[16]*B25_A27_dot - c[23]*B25_A28_dot + c[24]*B26_A24_dot + c[17]*B26_A25_dot - c[17]*B26_A27_dot - c[24]*B26_A28_dot - c[23]*B27_A26_dot - c[16]*B27_A27_dot - c[22]*B27_A28_dot - c[16]*B27_A29_dot - c[23]*B27_A30_dot + c[24]*B28_A26_dot + c[17]*B28_A27_dot - c[17]*B28_A29_dot - c[24]*B28_A30_dot - c[23]*B29_A28_dot - c[16]*B29_A29_dot - c[22]*B29_A30_dot - c[16]*B29_A31_dot - c[23]*B29_A32_dot + c[24]*B30_A28_dot + c[17]*B30_A29_dot - c[17]*B30_A31_dot - c[24]*B30_A32_dot - c[23]*B31_A30_dot - c[16]*B31_A31_dot - c[56]*B31_A32_dot + c[24]*B32_A30_dot + c[17]*B32_A31_dot + c[57]*B32_A32_dot + c[0]*theta_dot_A1sq + c[2]*theta_dot_A1_A2 + c[0]*theta_dot_A2sq + c[2]*theta_dot_A2_A3 + c[0]*theta_dot_A3sq + c[2]*theta_dot_A3_A4 + c[0]*theta_dot_A4sq + c[2]*theta_dot_A4_A5 + c[0]*theta_dot_A5sq + c[2]*theta_dot_A5_A6 + c[0]*theta_dot_A6sq + c[2]*theta_dot_A6_A7 + c[0]*theta_dot_A7sq + c[2]*theta_dot_A7_A8 + c[0]*theta_dot_A8sq + c[2]*theta_dot_A8_A9 + c[0]*theta_dot_A9sq + c[2]*theta_dot_A9_A10 + c[0]*theta_dot_A10sq + c[2]*theta_dot_A10_A11 + c[0]*theta_dot_A11sq + c[2]*theta_dot_A11_A12 + c[0]*theta_dot_A12sq + c[2]*theta_dot_A12_A13 + c[0]*theta_dot_A13sq + c[2]*theta_dot_A13_A14 + c[0]*theta_dot_A14sq + c[2]*theta_dot_A14_A15 + c[0]*theta_dot_A15sq + c[2]*theta_dot_A15_A16 + c[0]*theta_dot_A16sq + c[2]*theta_dot_A16_A17 + c[0]*theta_dot_A17sq + c[2]*theta_dot_A17_A18 + c[0]*theta_dot_A18sq + c[2]*theta_dot_A18_A19 + c[0]*theta_dot_A19sq + c[2]*theta_dot_A19_A20 + c[0]*theta_dot_A20sq + c[2]*theta_dot_A20_A21 + c[0]*theta_dot_A21sq + c[2]*theta_dot_A21_A22 + c[0]*theta_dot_A22sq + c[2]*theta_dot_A22_A23 + c[0]*theta_dot_A23sq + c[2]*theta_dot_A23_A24 + c[0]*theta_dot_A24sq + c[2]*theta_dot_A24_A25 + c[0]*theta_dot_A25sq + c[2]*theta_dot_A25_A26 + c[0]*theta_dot_A26sq + c[2]*theta_dot_A26_A27 + c[0]*theta_dot_A27sq + c[2]*theta_dot_A27_A28 + c[0]*theta_dot_A28sq + c[2]*theta_dot_A28_A29 + c[0]*theta_dot_A29sq + c[2]*theta_dot_A29_A30 + c[0]*theta_dot_A30sq + c[2]*theta_dot_A30_A31 + c[0]*theta_dot_A31sq + c[2]*theta_dot_A31_A32 + c[2]*theta_dot_A32sq - c[62]*theta_dot_B1sq + c[231]*theta_dot_B1_B2 + c[232]*theta_dot_B1_B3 - c[233]*theta_dot_B1_B4 - c[69]*theta_dot_B2sq + c[234]*theta_dot_B2_B3 + c[235]*theta_dot_B2_B4 - c[73]*theta_dot_B3sq + c[236]*theta_dot_B3_B4 + c[237]*theta_dot_B3_B5 - c[234]*theta_dot_B3_B6 - c[76]*theta_dot_B4sq + c[238]*theta_dot_B4_B5 + c[239]*theta_dot_B4_B6 - c[80]*theta_dot_B5sq + c[240]*theta_dot_B5_B6 + c[241]*theta_dot_B5_B7 - c[238]*theta_dot_B5_B8 - c[83]*theta_dot_B6sq + c[242]*theta_dot_B6_B7 + c[243]*theta_dot_B6_B8 - c[87]*theta_dot_B7sq + c[244]*theta_dot_B7_B8 + c[245]*theta_dot_B7_B9 - c[242]*theta_dot_B7_B10 - c[90]*theta_dot_B8sq + c[246]*theta_dot_B8_B9 + c[247]*theta_dot_B8_B10 - c[94]*theta_dot_B9sq + c[248]*theta_dot_B9_B10 + c[249]*theta_dot_B9_B11 - c[246]*theta_dot_B9_B12 - c[97]*theta_dot_B10sq + c[250]*theta_dot_B10_B11 + c[251]*theta_dot_B10_B12 - c[101]*theta_dot_B11sq + c[252]*theta_dot_B11_B12 + c[253]*theta_dot_B11_B13 - c[250]*theta_dot_B11_B14 - c[104]*theta_dot_B12sq + c[254]*theta_dot_B12_B13 + c[255]*theta_dot_B12_B14 - c[108]*theta_dot_B13sq + c[256]*theta_dot_B13_B14 + c[257]*theta_dot_B13_B15 - c[254]*theta_dot_B13_B16 - c[111]*theta_dot_B14sq + c[258]*theta_dot_B14_B15 + c[259]*theta_dot_B14_B16 - c[115]*theta_dot_B15sq + c[260]*theta_dot_B15_B16 + c[261]*theta_dot_B15_B17 - c[258]*theta_dot_B15_B18 - c[118]*theta_dot_B16sq + c[262]*theta_dot_B16_B17 + c[263]*theta_dot_B16_B18 - c[122]*theta_dot_B17sq + c[264]*theta_dot_B17_B18 + c[265]*theta_dot_B17_B19 - c[262]*theta_dot_B17_B20 - c[125]*theta_dot_B18sq + c[266]*theta_dot_B18_B19 + c[267]*theta_dot_B18_B20 - c[129]*theta_dot_B19sq + c[268]*theta_dot_B19_B20 + c[269]*theta_dot_B19_B21 - c[266]*theta_dot_B19_B22 - c[132]*theta_dot_B20sq + c[270]*theta_dot_B20_B21 + c[271]*theta_dot_B20_B22 - c[136]*theta_dot_B21sq + c[272]*theta_dot_B21_B22 + c[273]*theta_dot_B21_B23 - c[270]*theta_dot_B21_B24 - c[139]*theta_dot_B22sq + c[274]*theta_dot_B22_B23 + c[275]*theta_dot_B22_B24 - c[143]*theta_dot_B23sq + c[276]*theta_dot_B23_B24 + c[277]*theta_dot_B23_B25 - c[274]*theta_dot_B23_B26 - c[146]*theta_dot_B24sq + c[278]*theta_dot_B24_B25 + c[279]*theta_dot_B24_B26 - c[150]*theta_dot_B25sq + c[280]*theta_dot_B25_B26 + c[281]*theta_dot_B25_B27 - c[278]*theta_dot_B25_B28 - c[153]*theta_dot_B26sq + c[282]*theta_dot_B26_B27 + c[283]*theta_dot_B26_B28 - c[157]*theta_dot_B27sq + c[284]*theta_dot_B27_B28 + c[285]*theta_dot_B27_B29 - c[282]*theta_dot_B27_B30 - c[160]*theta_dot_B28sq + c[286]*theta_dot_B28_B29 + c[287]*theta_dot_B28_B30 - c[164]*theta_dot_B29sq + c[288]*theta_dot_B29_B30 + c[289]*theta_dot_B29_B31 - c[286]*theta_dot_B29_B32 - c[167]*theta_dot_B30sq + c[290]*theta_dot_B30_B31 + c[291]*theta_dot_B30_B32 - c[171]*theta_dot_B31sq + c[292]*theta_dot_B31_B32 - c[175]*theta_dot_B32sq;
 }
 
-/* forces_q:(c[326],u[3],q[64],qd[64])->(dQdq[4096]) row-major; out[i*64+k] = dQ_i/dq_k; nonzero entries only */
+/* tip:(c[332],u[3],q[64],qd[64])->(tip[3]) tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B */
+void fem_nx32_ny32_prescribed_first_tip(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)qd;
+    const double A32 = q[31];
+    const double B1 = q[32];
+    const double B2 = q[33];
+    const double B3 = q[34];
+    const double B4 = q[35];
+    const double B5 = q[36];
+    const double B6 = q[37];
+    const double B7 = q[38];
+    const double B8 = q[39];
+    const double B9 = q[40];
+    const double B10 = q[41];
+    const double B11 = q[42];
+    const double B12 = q[43];
+    const double B13 = q[44];
+    const double B14 = q[45];
+    const double B15 = q[46];
+    const double B16 = q[47];
+    const double B17 = q[48];
+    const double B18 = q[49];
+    const double B19 = q[50];
+    const double B20 = q[51];
+    const double B21 = q[52];
+    const double B22 = q[53];
+    const double B23 = q[54];
+    const double B24 = q[55];
+    const double B25 = q[56];
+    const double B26 = q[57];
+    const double B27 = q[58];
+    const double B28 = q[59];
+    const double B29 = q[60];
+    const double B30 = q[61];
+    const double B31 = q[62];
+    const double B32 = q[63];
+    const double B1sq = B1*B1;
+    const double B1_B3 = B1*B3;
+    const double B1_B4 = B1*B4;
+    const double B2sq = B2*B2;
+    const double B2_B3 = B2*B3;
+    const double B2_B4 = B2*B4;
+    const double B3sq = B3*B3;
+    const double B3_B5 = B3*B5;
+    const double B3_B6 = B3*B6;
+    const double B4sq = B4*B4;
+    const double B4_B5 = B4*B5;
+    const double B4_B6 = B4*B6;
+    const double B5sq = B5*B5;
+    const double B5_B7 = B5*B7;
+    const double B5_B8 = B5*B8;
+    const double B6sq = B6*B6;
+    const double B6_B7 = B6*B7;
+    const double B6_B8 = B6*B8;
+    const double B7sq = B7*B7;
+    const double B7_B9 = B7*B9;
+    const double B7_B10 = B7*B10;
+    const double B8sq = B8*B8;
+    const double B8_B9 = B8*B9;
+    const double B8_B10 = B8*B10;
+    const double B9sq = B9*B9;
+    const double B9_B11 = B9*B11;
+    const double B9_B12 = B9*B12;
+    const double B10sq = B10*B10;
+    const double B10_B11 = B10*B11;
+    const double B10_B12 = B10*B12;
+    const double B11sq = B11*B11;
+    const double B11_B13 = B11*B13;
+    const double B11_B14 = B11*B14;
+    const double B12sq = B12*B12;
+    const double B12_B13 = B12*B13;
+    const double B12_B14 = B12*B14;
+    const double B13sq = B13*B13;
+    const double B13_B15 = B13*B15;
+    const double B13_B16 = B13*B16;
+    const double B14sq = B14*B14;
+    const double B14_B15 = B14*B15;
+    const double B14_B16 = B14*B16;
+    const double B15sq = B15*B15;
+    const double B15_B17 = B15*B17;
+    const double B15_B18 = B15*B18;
+    const double B16sq = B16*B16;
+    const double B16_B17 = B16*B17;
+    const double B16_B18 = B16*B18;
+    const double B17sq = B17*B17;
+    const double B17_B19 = B17*B19;
+    const double B17_B20 = B17*B20;
+    const double B18sq = B18*B18;
+    const double B18_B19 = B18*B19;
+    const double B18_B20 = B18*B20;
+    const double B19sq = B19*B19;
+    const double B19_B21 = B19*B21;
+    const double B19_B22 = B19*B22;
+    const double B20sq = B20*B20;
+    const double B20_B21 = B20*B21;
+    const double B20_B22 = B20*B22;
+    const double B21sq = B21*B21;
+    const double B21_B23 = B21*B23;
+    const double B21_B24 = B21*B24;
+    const double B22sq = B22*B22;
+    const double B22_B23 = B22*B23;
+    const double B22_B24 = B22*B24;
+    const double B23sq = B23*B23;
+    const double B23_B25 = B23*B25;
+    const double B23_B26 = B23*B26;
+    const double B24sq = B24*B24;
+    const double B24_B25 = B24*B25;
+    const double B24_B26 = B24*B26;
+    const double B25sq = B25*B25;
+    const double B25_B27 = B25*B27;
+    const double B25_B28 = B25*B28;
+    const double B26sq = B26*B26;
+    const double B26_B27 = B26*B27;
+    const double B26_B28 = B26*B28;
+    const double B27sq = B27*B27;
+    const double B27_B29 = B27*B29;
+    const double B27_B30 = B27*B30;
+    const double B28sq = B28*B28;
+    const double B28_B29 = B28*B29;
+    const double B28_B30 = B28*B30;
+    const double B29sq = B29*B29;
+    const double B29_B31 = B29*B31;
+    const double B29_B32 = B29*B32;
+    const double B30sq = B30*B30;
+    const double B30_B31 = B30*B31;
+    const double B30_B32 = B30*B32;
+    const double B31sq = B31*B31;
+    const double B31_B32 = B31*B32;
+    const double B32sq = B32*B32;
+    out[0] = B31;
+    out[1] = A32;
+    out[2] = A32 - c[293]*B1sq + c[293]*B1_B3 - c[294]*B1_B4 - c[295]*B2sq + c[294]*B2_B3 + c[296]*B2_B4 - c[293]*B3sq + c[293]*B3_B5 - c[294]*B3_B6 - c[295]*B4sq + c[294]*B4_B5 + c[296]*B4_B6 - c[293]*B5sq + c[293]*B5_B7 - c[294]*B5_B8 - c[295]*B6sq + c[294]*B6_B7 + c[296]*B6_B8 - c[293]*B7sq + c[293]*B7_B9 - c[294]*B7_B10 - c[295]*B8sq + c[294]*B8_B9 + c[296]*B8_B10 - c[293]*B9sq + c[293]*B9_B11 - c[294]*B9_B12 - c[295]*B10sq + c[294]*B10_B11 + c[296]*B10_B12 - c[293]*B11sq + c[293]*B11_B13 - c[294]*B11_B14 - c[295]*B12sq + c[294]*B12_B13 + c[296]*B12_B14 - c[293]*B13sq + c[293]*B13_B15 - c[294]*B13_B16 - c[295]*B14sq + c[294]*B14_B15 + c[296]*B14_B16 - c[293]*B15sq + c[293]*B15_B17 - c[294]*B15_B18 - c[295]*B16sq + c[294]*B16_B17 + c[296]*B16_B18 - c[293]*B17sq + c[293]*B17_B19 - c[294]*B17_B20 - c[295]*B18sq + c[294]*B18_B19 + c[296]*B18_B20 - c[293]*B19sq + c[293]*B19_B21 - c[294]*B19_B22 - c[295]*B20sq + c[294]*B20_B21 + c[296]*B20_B22 - c[293]*B21sq + c[293]*B21_B23 - c[294]*B21_B24 - c[295]*B22sq + c[294]*B22_B23 + c[296]*B22_B24 - c[293]*B23sq + c[293]*B23_B25 - c[294]*B23_B26 - c[295]*B24sq + c[294]*B24_B25 + c[296]*B24_B26 - c[293]*B25sq + c[293]*B25_B27 - c[294]*B25_B28 - c[295]*B26sq + c[294]*B26_B27 + c[296]*B26_B28 - c[293]*B27sq + c[293]*B27_B29 - c[294]*B27_B30 - c[295]*B28sq + c[294]*B28_B29 + c[296]*B28_B30 - c[293]*B29sq + c[293]*B29_B31 - c[294]*B29_B32 - c[295]*B30sq + c[294]*B30_B31 + c[296]*B30_B32 - c[297]*B31sq + c[294]*B31_B32 - c[298]*B32sq;
+}
+
+/* forces_q:(c[332],u[3],q[64],qd[64])->(dQdq[4096]) row-major; out[i*64+k] = dQ_i/dq_k; nonzero entries only */
 void fem_nx32_ny32_prescribed_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)q;
@@ -4922,7 +5064,7 @@ void fem_nx32_ny32_prescribed_first_forces_q(const double* c, const double* u, c
     out[4095] = -c[174] - c[175]*theta_dotsq;
 }
 
-/* forces_qd:(c[326],u[3],q[64],qd[64])->(dQdqd[4096]) row-major; out[i*64+k] = dQ_i/dqd_k; nonzero entries only */
+/* forces_qd:(c[332],u[3],q[64],qd[64])->(dQdqd[4096]) row-major; out[i*64+k] = dQ_i/dqd_k; nonzero entries only */
 void fem_nx32_ny32_prescribed_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)q;
@@ -5208,7 +5350,7 @@ void fem_nx32_ny32_prescribed_first_forces_qd(const double* c, const double* u, 
     out[4063] = c[55]*theta_dot;
 }
 
-/* forces_u:(c[326],u[3],q[64],qd[64])->(dQdu[192]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
+/* forces_u:(c[332],u[3],q[64],qd[64])->(dQdu[192]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
 void fem_nx32_ny32_prescribed_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -5404,141 +5546,141 @@ void fem_nx32_ny32_prescribed_first_forces_u(const double* c, const double* u, c
     const double theta_dot_B30 = theta_dot*B30;
     const double theta_dot_B31 = theta_dot*B31;
     const double theta_dot_B32 = theta_dot*B32;
-    out[1] = c[214]*theta_dot + c[14]*B1_dot - c[15]*B2_dot + c[293]*theta_dot_A1 + c[2]*theta_dot_A2;
+    out[1] = c[214]*theta_dot + c[14]*B1_dot - c[15]*B2_dot + c[299]*theta_dot_A1 + c[2]*theta_dot_A2;
     out[2] = c[16]*B1 - c[17]*B2;
-    out[4] = c[58]*theta_dot + c[19]*B1_dot + c[20]*B3_dot - c[21]*B4_dot + c[2]*theta_dot_A1 + c[293]*theta_dot_A2 + c[2]*theta_dot_A3;
+    out[4] = c[58]*theta_dot + c[19]*B1_dot + c[20]*B3_dot - c[21]*B4_dot + c[2]*theta_dot_A1 + c[299]*theta_dot_A2 + c[2]*theta_dot_A3;
     out[5] = c[22]*B1 + c[23]*B3 - c[24]*B4;
-    out[7] = c[215]*theta_dot + c[14]*B1_dot + c[15]*B2_dot + c[14]*B3_dot - c[15]*B4_dot + c[2]*theta_dot_A2 + c[293]*theta_dot_A3 + c[2]*theta_dot_A4;
+    out[7] = c[215]*theta_dot + c[14]*B1_dot + c[15]*B2_dot + c[14]*B3_dot - c[15]*B4_dot + c[2]*theta_dot_A2 + c[299]*theta_dot_A3 + c[2]*theta_dot_A4;
     out[8] = c[16]*B1 + c[17]*B2 + c[16]*B3 - c[17]*B4;
-    out[10] = c[72]*theta_dot + c[20]*B1_dot + c[21]*B2_dot + c[19]*B3_dot + c[20]*B5_dot - c[21]*B6_dot + c[2]*theta_dot_A3 + c[293]*theta_dot_A4 + c[2]*theta_dot_A5;
+    out[10] = c[72]*theta_dot + c[20]*B1_dot + c[21]*B2_dot + c[19]*B3_dot + c[20]*B5_dot - c[21]*B6_dot + c[2]*theta_dot_A3 + c[299]*theta_dot_A4 + c[2]*theta_dot_A5;
     out[11] = c[23]*B1 + c[24]*B2 + c[22]*B3 + c[23]*B5 - c[24]*B6;
-    out[13] = c[216]*theta_dot + c[14]*B3_dot + c[15]*B4_dot + c[14]*B5_dot - c[15]*B6_dot + c[2]*theta_dot_A4 + c[293]*theta_dot_A5 + c[2]*theta_dot_A6;
+    out[13] = c[216]*theta_dot + c[14]*B3_dot + c[15]*B4_dot + c[14]*B5_dot - c[15]*B6_dot + c[2]*theta_dot_A4 + c[299]*theta_dot_A5 + c[2]*theta_dot_A6;
     out[14] = c[16]*B3 + c[17]*B4 + c[16]*B5 - c[17]*B6;
-    out[16] = c[79]*theta_dot + c[20]*B3_dot + c[21]*B4_dot + c[19]*B5_dot + c[20]*B7_dot - c[21]*B8_dot + c[2]*theta_dot_A5 + c[293]*theta_dot_A6 + c[2]*theta_dot_A7;
+    out[16] = c[79]*theta_dot + c[20]*B3_dot + c[21]*B4_dot + c[19]*B5_dot + c[20]*B7_dot - c[21]*B8_dot + c[2]*theta_dot_A5 + c[299]*theta_dot_A6 + c[2]*theta_dot_A7;
     out[17] = c[23]*B3 + c[24]*B4 + c[22]*B5 + c[23]*B7 - c[24]*B8;
-    out[19] = c[217]*theta_dot + c[14]*B5_dot + c[15]*B6_dot + c[14]*B7_dot - c[15]*B8_dot + c[2]*theta_dot_A6 + c[293]*theta_dot_A7 + c[2]*theta_dot_A8;
+    out[19] = c[217]*theta_dot + c[14]*B5_dot + c[15]*B6_dot + c[14]*B7_dot - c[15]*B8_dot + c[2]*theta_dot_A6 + c[299]*theta_dot_A7 + c[2]*theta_dot_A8;
     out[20] = c[16]*B5 + c[17]*B6 + c[16]*B7 - c[17]*B8;
-    out[22] = c[86]*theta_dot + c[20]*B5_dot + c[21]*B6_dot + c[19]*B7_dot + c[20]*B9_dot - c[21]*B10_dot + c[2]*theta_dot_A7 + c[293]*theta_dot_A8 + c[2]*theta_dot_A9;
+    out[22] = c[86]*theta_dot + c[20]*B5_dot + c[21]*B6_dot + c[19]*B7_dot + c[20]*B9_dot - c[21]*B10_dot + c[2]*theta_dot_A7 + c[299]*theta_dot_A8 + c[2]*theta_dot_A9;
     out[23] = c[23]*B5 + c[24]*B6 + c[22]*B7 + c[23]*B9 - c[24]*B10;
-    out[25] = c[218]*theta_dot + c[14]*B7_dot + c[15]*B8_dot + c[14]*B9_dot - c[15]*B10_dot + c[2]*theta_dot_A8 + c[293]*theta_dot_A9 + c[2]*theta_dot_A10;
+    out[25] = c[218]*theta_dot + c[14]*B7_dot + c[15]*B8_dot + c[14]*B9_dot - c[15]*B10_dot + c[2]*theta_dot_A8 + c[299]*theta_dot_A9 + c[2]*theta_dot_A10;
     out[26] = c[16]*B7 + c[17]*B8 + c[16]*B9 - c[17]*B10;
-    out[28] = c[93]*theta_dot + c[20]*B7_dot + c[21]*B8_dot + c[19]*B9_dot + c[20]*B11_dot - c[21]*B12_dot + c[2]*theta_dot_A9 + c[293]*theta_dot_A10 + c[2]*theta_dot_A11;
+    out[28] = c[93]*theta_dot + c[20]*B7_dot + c[21]*B8_dot + c[19]*B9_dot + c[20]*B11_dot - c[21]*B12_dot + c[2]*theta_dot_A9 + c[299]*theta_dot_A10 + c[2]*theta_dot_A11;
     out[29] = c[23]*B7 + c[24]*B8 + c[22]*B9 + c[23]*B11 - c[24]*B12;
-    out[31] = c[219]*theta_dot + c[14]*B9_dot + c[15]*B10_dot + c[14]*B11_dot - c[15]*B12_dot + c[2]*theta_dot_A10 + c[293]*theta_dot_A11 + c[2]*theta_dot_A12;
+    out[31] = c[219]*theta_dot + c[14]*B9_dot + c[15]*B10_dot + c[14]*B11_dot - c[15]*B12_dot + c[2]*theta_dot_A10 + c[299]*theta_dot_A11 + c[2]*theta_dot_A12;
     out[32] = c[16]*B9 + c[17]*B10 + c[16]*B11 - c[17]*B12;
-    out[34] = c[100]*theta_dot + c[20]*B9_dot + c[21]*B10_dot + c[19]*B11_dot + c[20]*B13_dot - c[21]*B14_dot + c[2]*theta_dot_A11 + c[293]*theta_dot_A12 + c[2]*theta_dot_A13;
+    out[34] = c[100]*theta_dot + c[20]*B9_dot + c[21]*B10_dot + c[19]*B11_dot + c[20]*B13_dot - c[21]*B14_dot + c[2]*theta_dot_A11 + c[299]*theta_dot_A12 + c[2]*theta_dot_A13;
     out[35] = c[23]*B9 + c[24]*B10 + c[22]*B11 + c[23]*B13 - c[24]*B14;
-    out[37] = c[220]*theta_dot + c[14]*B11_dot + c[15]*B12_dot + c[14]*B13_dot - c[15]*B14_dot + c[2]*theta_dot_A12 + c[293]*theta_dot_A13 + c[2]*theta_dot_A14;
+    out[37] = c[220]*theta_dot + c[14]*B11_dot + c[15]*B12_dot + c[14]*B13_dot - c[15]*B14_dot + c[2]*theta_dot_A12 + c[299]*theta_dot_A13 + c[2]*theta_dot_A14;
     out[38] = c[16]*B11 + c[17]*B12 + c[16]*B13 - c[17]*B14;
-    out[40] = c[107]*theta_dot + c[20]*B11_dot + c[21]*B12_dot + c[19]*B13_dot + c[20]*B15_dot - c[21]*B16_dot + c[2]*theta_dot_A13 + c[293]*theta_dot_A14 + c[2]*theta_dot_A15;
+    out[40] = c[107]*theta_dot + c[20]*B11_dot + c[21]*B12_dot + c[19]*B13_dot + c[20]*B15_dot - c[21]*B16_dot + c[2]*theta_dot_A13 + c[299]*theta_dot_A14 + c[2]*theta_dot_A15;
     out[41] = c[23]*B11 + c[24]*B12 + c[22]*B13 + c[23]*B15 - c[24]*B16;
-    out[43] = c[221]*theta_dot + c[14]*B13_dot + c[15]*B14_dot + c[14]*B15_dot - c[15]*B16_dot + c[2]*theta_dot_A14 + c[293]*theta_dot_A15 + c[2]*theta_dot_A16;
+    out[43] = c[221]*theta_dot + c[14]*B13_dot + c[15]*B14_dot + c[14]*B15_dot - c[15]*B16_dot + c[2]*theta_dot_A14 + c[299]*theta_dot_A15 + c[2]*theta_dot_A16;
     out[44] = c[16]*B13 + c[17]*B14 + c[16]*B15 - c[17]*B16;
-    out[46] = c[114]*theta_dot + c[20]*B13_dot + c[21]*B14_dot + c[19]*B15_dot + c[20]*B17_dot - c[21]*B18_dot + c[2]*theta_dot_A15 + c[293]*theta_dot_A16 + c[2]*theta_dot_A17;
+    out[46] = c[114]*theta_dot + c[20]*B13_dot + c[21]*B14_dot + c[19]*B15_dot + c[20]*B17_dot - c[21]*B18_dot + c[2]*theta_dot_A15 + c[299]*theta_dot_A16 + c[2]*theta_dot_A17;
     out[47] = c[23]*B13 + c[24]*B14 + c[22]*B15 + c[23]*B17 - c[24]*B18;
-    out[49] = c[222]*theta_dot + c[14]*B15_dot + c[15]*B16_dot + c[14]*B17_dot - c[15]*B18_dot + c[2]*theta_dot_A16 + c[293]*theta_dot_A17 + c[2]*theta_dot_A18;
+    out[49] = c[222]*theta_dot + c[14]*B15_dot + c[15]*B16_dot + c[14]*B17_dot - c[15]*B18_dot + c[2]*theta_dot_A16 + c[299]*theta_dot_A17 + c[2]*theta_dot_A18;
     out[50] = c[16]*B15 + c[17]*B16 + c[16]*B17 - c[17]*B18;
-    out[52] = c[121]*theta_dot + c[20]*B15_dot + c[21]*B16_dot + c[19]*B17_dot + c[20]*B19_dot - c[21]*B20_dot + c[2]*theta_dot_A17 + c[293]*theta_dot_A18 + c[2]*theta_dot_A19;
+    out[52] = c[121]*theta_dot + c[20]*B15_dot + c[21]*B16_dot + c[19]*B17_dot + c[20]*B19_dot - c[21]*B20_dot + c[2]*theta_dot_A17 + c[299]*theta_dot_A18 + c[2]*theta_dot_A19;
     out[53] = c[23]*B15 + c[24]*B16 + c[22]*B17 + c[23]*B19 - c[24]*B20;
-    out[55] = c[223]*theta_dot + c[14]*B17_dot + c[15]*B18_dot + c[14]*B19_dot - c[15]*B20_dot + c[2]*theta_dot_A18 + c[293]*theta_dot_A19 + c[2]*theta_dot_A20;
+    out[55] = c[223]*theta_dot + c[14]*B17_dot + c[15]*B18_dot + c[14]*B19_dot - c[15]*B20_dot + c[2]*theta_dot_A18 + c[299]*theta_dot_A19 + c[2]*theta_dot_A20;
     out[56] = c[16]*B17 + c[17]*B18 + c[16]*B19 - c[17]*B20;
-    out[58] = c[128]*theta_dot + c[20]*B17_dot + c[21]*B18_dot + c[19]*B19_dot + c[20]*B21_dot - c[21]*B22_dot + c[2]*theta_dot_A19 + c[293]*theta_dot_A20 + c[2]*theta_dot_A21;
+    out[58] = c[128]*theta_dot + c[20]*B17_dot + c[21]*B18_dot + c[19]*B19_dot + c[20]*B21_dot - c[21]*B22_dot + c[2]*theta_dot_A19 + c[299]*theta_dot_A20 + c[2]*theta_dot_A21;
     out[59] = c[23]*B17 + c[24]*B18 + c[22]*B19 + c[23]*B21 - c[24]*B22;
-    out[61] = c[224]*theta_dot + c[14]*B19_dot + c[15]*B20_dot + c[14]*B21_dot - c[15]*B22_dot + c[2]*theta_dot_A20 + c[293]*theta_dot_A21 + c[2]*theta_dot_A22;
+    out[61] = c[224]*theta_dot + c[14]*B19_dot + c[15]*B20_dot + c[14]*B21_dot - c[15]*B22_dot + c[2]*theta_dot_A20 + c[299]*theta_dot_A21 + c[2]*theta_dot_A22;
     out[62] = c[16]*B19 + c[17]*B20 + c[16]*B21 - c[17]*B22;
-    out[64] = c[135]*theta_dot + c[20]*B19_dot + c[21]*B20_dot + c[19]*B21_dot + c[20]*B23_dot - c[21]*B24_dot + c[2]*theta_dot_A21 + c[293]*theta_dot_A22 + c[2]*theta_dot_A23;
+    out[64] = c[135]*theta_dot + c[20]*B19_dot + c[21]*B20_dot + c[19]*B21_dot + c[20]*B23_dot - c[21]*B24_dot + c[2]*theta_dot_A21 + c[299]*theta_dot_A22 + c[2]*theta_dot_A23;
     out[65] = c[23]*B19 + c[24]*B20 + c[22]*B21 + c[23]*B23 - c[24]*B24;
-    out[67] = c[225]*theta_dot + c[14]*B21_dot + c[15]*B22_dot + c[14]*B23_dot - c[15]*B24_dot + c[2]*theta_dot_A22 + c[293]*theta_dot_A23 + c[2]*theta_dot_A24;
+    out[67] = c[225]*theta_dot + c[14]*B21_dot + c[15]*B22_dot + c[14]*B23_dot - c[15]*B24_dot + c[2]*theta_dot_A22 + c[299]*theta_dot_A23 + c[2]*theta_dot_A24;
     out[68] = c[16]*B21 + c[17]*B22 + c[16]*B23 - c[17]*B24;
-    out[70] = c[142]*theta_dot + c[20]*B21_dot + c[21]*B22_dot + c[19]*B23_dot + c[20]*B25_dot - c[21]*B26_dot + c[2]*theta_dot_A23 + c[293]*theta_dot_A24 + c[2]*theta_dot_A25;
+    out[70] = c[142]*theta_dot + c[20]*B21_dot + c[21]*B22_dot + c[19]*B23_dot + c[20]*B25_dot - c[21]*B26_dot + c[2]*theta_dot_A23 + c[299]*theta_dot_A24 + c[2]*theta_dot_A25;
     out[71] = c[23]*B21 + c[24]*B22 + c[22]*B23 + c[23]*B25 - c[24]*B26;
-    out[73] = c[226]*theta_dot + c[14]*B23_dot + c[15]*B24_dot + c[14]*B25_dot - c[15]*B26_dot + c[2]*theta_dot_A24 + c[293]*theta_dot_A25 + c[2]*theta_dot_A26;
+    out[73] = c[226]*theta_dot + c[14]*B23_dot + c[15]*B24_dot + c[14]*B25_dot - c[15]*B26_dot + c[2]*theta_dot_A24 + c[299]*theta_dot_A25 + c[2]*theta_dot_A26;
     out[74] = c[16]*B23 + c[17]*B24 + c[16]*B25 - c[17]*B26;
-    out[76] = c[149]*theta_dot + c[20]*B23_dot + c[21]*B24_dot + c[19]*B25_dot + c[20]*B27_dot - c[21]*B28_dot + c[2]*theta_dot_A25 + c[293]*theta_dot_A26 + c[2]*theta_dot_A27;
+    out[76] = c[149]*theta_dot + c[20]*B23_dot + c[21]*B24_dot + c[19]*B25_dot + c[20]*B27_dot - c[21]*B28_dot + c[2]*theta_dot_A25 + c[299]*theta_dot_A26 + c[2]*theta_dot_A27;
     out[77] = c[23]*B23 + c[24]*B24 + c[22]*B25 + c[23]*B27 - c[24]*B28;
-    out[79] = c[227]*theta_dot + c[14]*B25_dot + c[15]*B26_dot + c[14]*B27_dot - c[15]*B28_dot + c[2]*theta_dot_A26 + c[293]*theta_dot_A27 + c[2]*theta_dot_A28;
+    out[79] = c[227]*theta_dot + c[14]*B25_dot + c[15]*B26_dot + c[14]*B27_dot - c[15]*B28_dot + c[2]*theta_dot_A26 + c[299]*theta_dot_A27 + c[2]*theta_dot_A28;
     out[80] = c[16]*B25 + c[17]*B26 + c[16]*B27 - c[17]*B28;
-    out[82] = c[156]*theta_dot + c[20]*B25_dot + c[21]*B26_dot + c[19]*B27_dot + c[20]*B29_dot - c[21]*B30_dot + c[2]*theta_dot_A27 + c[293]*theta_dot_A28 + c[2]*theta_dot_A29;
+    out[82] = c[156]*theta_dot + c[20]*B25_dot + c[21]*B26_dot + c[19]*B27_dot + c[20]*B29_dot - c[21]*B30_dot + c[2]*theta_dot_A27 + c[299]*theta_dot_A28 + c[2]*theta_dot_A29;
     out[83] = c[23]*B25 + c[24]*B26 + c[22]*B27 + c[23]*B29 - c[24]*B30;
-    out[85] = c[228]*theta_dot + c[14]*B27_dot + c[15]*B28_dot + c[14]*B29_dot - c[15]*B30_dot + c[2]*theta_dot_A28 + c[293]*theta_dot_A29 + c[2]*theta_dot_A30;
+    out[85] = c[228]*theta_dot + c[14]*B27_dot + c[15]*B28_dot + c[14]*B29_dot - c[15]*B30_dot + c[2]*theta_dot_A28 + c[299]*theta_dot_A29 + c[2]*theta_dot_A30;
     out[86] = c[16]*B27 + c[17]*B28 + c[16]*B29 - c[17]*B30;
-    out[88] = c[163]*theta_dot + c[20]*B27_dot + c[21]*B28_dot + c[19]*B29_dot + c[20]*B31_dot - c[21]*B32_dot + c[2]*theta_dot_A29 + c[293]*theta_dot_A30 + c[2]*theta_dot_A31;
+    out[88] = c[163]*theta_dot + c[20]*B27_dot + c[21]*B28_dot + c[19]*B29_dot + c[20]*B31_dot - c[21]*B32_dot + c[2]*theta_dot_A29 + c[299]*theta_dot_A30 + c[2]*theta_dot_A31;
     out[89] = c[23]*B27 + c[24]*B28 + c[22]*B29 + c[23]*B31 - c[24]*B32;
-    out[91] = c[229]*theta_dot + c[14]*B29_dot + c[15]*B30_dot + c[14]*B31_dot - c[15]*B32_dot + c[2]*theta_dot_A30 + c[293]*theta_dot_A31 + c[2]*theta_dot_A32;
+    out[91] = c[229]*theta_dot + c[14]*B29_dot + c[15]*B30_dot + c[14]*B31_dot - c[15]*B32_dot + c[2]*theta_dot_A30 + c[299]*theta_dot_A31 + c[2]*theta_dot_A32;
     out[92] = c[16]*B29 + c[17]*B30 + c[16]*B31 - c[17]*B32;
     out[94] = c[230]*theta_dot + c[20]*B29_dot + c[21]*B30_dot + c[22]*B31_dot - c[55]*B32_dot + c[2]*theta_dot_A31 + c[0]*theta_dot_A32;
     out[95] = c[23]*B29 + c[24]*B30 + c[56]*B31 - c[57]*B32;
-    out[97] = -c[14]*A1_dot - c[19]*A2_dot - c[14]*A3_dot - c[20]*A4_dot - c[294]*theta_dot_B1 + c[231]*theta_dot_B2 + c[232]*theta_dot_B3 - c[233]*theta_dot_B4;
+    out[97] = -c[14]*A1_dot - c[19]*A2_dot - c[14]*A3_dot - c[20]*A4_dot - c[300]*theta_dot_B1 + c[231]*theta_dot_B2 + c[232]*theta_dot_B3 - c[233]*theta_dot_B4;
     out[98] = -c[58] - c[16]*A1 - c[22]*A2 - c[16]*A3 - c[23]*A4;
-    out[100] = c[15]*A1_dot - c[15]*A3_dot - c[21]*A4_dot + c[231]*theta_dot_B1 - c[295]*theta_dot_B2 + c[234]*theta_dot_B3 + c[235]*theta_dot_B4;
+    out[100] = c[15]*A1_dot - c[15]*A3_dot - c[21]*A4_dot + c[231]*theta_dot_B1 - c[301]*theta_dot_B2 + c[234]*theta_dot_B3 + c[235]*theta_dot_B4;
     out[101] = -c[66] + c[17]*A1 - c[17]*A3 - c[24]*A4;
-    out[103] = -c[20]*A2_dot - c[14]*A3_dot - c[19]*A4_dot - c[14]*A5_dot - c[20]*A6_dot + c[232]*theta_dot_B1 + c[234]*theta_dot_B2 - c[296]*theta_dot_B3 + c[236]*theta_dot_B4 + c[237]*theta_dot_B5 - c[234]*theta_dot_B6;
+    out[103] = -c[20]*A2_dot - c[14]*A3_dot - c[19]*A4_dot - c[14]*A5_dot - c[20]*A6_dot + c[232]*theta_dot_B1 + c[234]*theta_dot_B2 - c[302]*theta_dot_B3 + c[236]*theta_dot_B4 + c[237]*theta_dot_B5 - c[234]*theta_dot_B6;
     out[104] = -c[72] - c[23]*A2 - c[16]*A3 - c[22]*A4 - c[16]*A5 - c[23]*A6;
-    out[106] = c[21]*A2_dot + c[15]*A3_dot - c[15]*A5_dot - c[21]*A6_dot - c[233]*theta_dot_B1 + c[235]*theta_dot_B2 + c[236]*theta_dot_B3 - c[297]*theta_dot_B4 + c[238]*theta_dot_B5 + c[239]*theta_dot_B6;
+    out[106] = c[21]*A2_dot + c[15]*A3_dot - c[15]*A5_dot - c[21]*A6_dot - c[233]*theta_dot_B1 + c[235]*theta_dot_B2 + c[236]*theta_dot_B3 - c[303]*theta_dot_B4 + c[238]*theta_dot_B5 + c[239]*theta_dot_B6;
     out[107] = -c[66] + c[24]*A2 + c[17]*A3 - c[17]*A5 - c[24]*A6;
-    out[109] = -c[20]*A4_dot - c[14]*A5_dot - c[19]*A6_dot - c[14]*A7_dot - c[20]*A8_dot + c[237]*theta_dot_B3 + c[238]*theta_dot_B4 - c[298]*theta_dot_B5 + c[240]*theta_dot_B6 + c[241]*theta_dot_B7 - c[238]*theta_dot_B8;
+    out[109] = -c[20]*A4_dot - c[14]*A5_dot - c[19]*A6_dot - c[14]*A7_dot - c[20]*A8_dot + c[237]*theta_dot_B3 + c[238]*theta_dot_B4 - c[304]*theta_dot_B5 + c[240]*theta_dot_B6 + c[241]*theta_dot_B7 - c[238]*theta_dot_B8;
     out[110] = -c[79] - c[23]*A4 - c[16]*A5 - c[22]*A6 - c[16]*A7 - c[23]*A8;
-    out[112] = c[21]*A4_dot + c[15]*A5_dot - c[15]*A7_dot - c[21]*A8_dot - c[234]*theta_dot_B3 + c[239]*theta_dot_B4 + c[240]*theta_dot_B5 - c[299]*theta_dot_B6 + c[242]*theta_dot_B7 + c[243]*theta_dot_B8;
+    out[112] = c[21]*A4_dot + c[15]*A5_dot - c[15]*A7_dot - c[21]*A8_dot - c[234]*theta_dot_B3 + c[239]*theta_dot_B4 + c[240]*theta_dot_B5 - c[305]*theta_dot_B6 + c[242]*theta_dot_B7 + c[243]*theta_dot_B8;
     out[113] = -c[66] + c[24]*A4 + c[17]*A5 - c[17]*A7 - c[24]*A8;
-    out[115] = -c[20]*A6_dot - c[14]*A7_dot - c[19]*A8_dot - c[14]*A9_dot - c[20]*A10_dot + c[241]*theta_dot_B5 + c[242]*theta_dot_B6 - c[300]*theta_dot_B7 + c[244]*theta_dot_B8 + c[245]*theta_dot_B9 - c[242]*theta_dot_B10;
+    out[115] = -c[20]*A6_dot - c[14]*A7_dot - c[19]*A8_dot - c[14]*A9_dot - c[20]*A10_dot + c[241]*theta_dot_B5 + c[242]*theta_dot_B6 - c[306]*theta_dot_B7 + c[244]*theta_dot_B8 + c[245]*theta_dot_B9 - c[242]*theta_dot_B10;
     out[116] = -c[86] - c[23]*A6 - c[16]*A7 - c[22]*A8 - c[16]*A9 - c[23]*A10;
-    out[118] = c[21]*A6_dot + c[15]*A7_dot - c[15]*A9_dot - c[21]*A10_dot - c[238]*theta_dot_B5 + c[243]*theta_dot_B6 + c[244]*theta_dot_B7 - c[301]*theta_dot_B8 + c[246]*theta_dot_B9 + c[247]*theta_dot_B10;
+    out[118] = c[21]*A6_dot + c[15]*A7_dot - c[15]*A9_dot - c[21]*A10_dot - c[238]*theta_dot_B5 + c[243]*theta_dot_B6 + c[244]*theta_dot_B7 - c[307]*theta_dot_B8 + c[246]*theta_dot_B9 + c[247]*theta_dot_B10;
     out[119] = -c[66] + c[24]*A6 + c[17]*A7 - c[17]*A9 - c[24]*A10;
-    out[121] = -c[20]*A8_dot - c[14]*A9_dot - c[19]*A10_dot - c[14]*A11_dot - c[20]*A12_dot + c[245]*theta_dot_B7 + c[246]*theta_dot_B8 - c[302]*theta_dot_B9 + c[248]*theta_dot_B10 + c[249]*theta_dot_B11 - c[246]*theta_dot_B12;
+    out[121] = -c[20]*A8_dot - c[14]*A9_dot - c[19]*A10_dot - c[14]*A11_dot - c[20]*A12_dot + c[245]*theta_dot_B7 + c[246]*theta_dot_B8 - c[308]*theta_dot_B9 + c[248]*theta_dot_B10 + c[249]*theta_dot_B11 - c[246]*theta_dot_B12;
     out[122] = -c[93] - c[23]*A8 - c[16]*A9 - c[22]*A10 - c[16]*A11 - c[23]*A12;
-    out[124] = c[21]*A8_dot + c[15]*A9_dot - c[15]*A11_dot - c[21]*A12_dot - c[242]*theta_dot_B7 + c[247]*theta_dot_B8 + c[248]*theta_dot_B9 - c[303]*theta_dot_B10 + c[250]*theta_dot_B11 + c[251]*theta_dot_B12;
+    out[124] = c[21]*A8_dot + c[15]*A9_dot - c[15]*A11_dot - c[21]*A12_dot - c[242]*theta_dot_B7 + c[247]*theta_dot_B8 + c[248]*theta_dot_B9 - c[309]*theta_dot_B10 + c[250]*theta_dot_B11 + c[251]*theta_dot_B12;
     out[125] = -c[66] + c[24]*A8 + c[17]*A9 - c[17]*A11 - c[24]*A12;
-    out[127] = -c[20]*A10_dot - c[14]*A11_dot - c[19]*A12_dot - c[14]*A13_dot - c[20]*A14_dot + c[249]*theta_dot_B9 + c[250]*theta_dot_B10 - c[304]*theta_dot_B11 + c[252]*theta_dot_B12 + c[253]*theta_dot_B13 - c[250]*theta_dot_B14;
+    out[127] = -c[20]*A10_dot - c[14]*A11_dot - c[19]*A12_dot - c[14]*A13_dot - c[20]*A14_dot + c[249]*theta_dot_B9 + c[250]*theta_dot_B10 - c[310]*theta_dot_B11 + c[252]*theta_dot_B12 + c[253]*theta_dot_B13 - c[250]*theta_dot_B14;
     out[128] = -c[100] - c[23]*A10 - c[16]*A11 - c[22]*A12 - c[16]*A13 - c[23]*A14;
-    out[130] = c[21]*A10_dot + c[15]*A11_dot - c[15]*A13_dot - c[21]*A14_dot - c[246]*theta_dot_B9 + c[251]*theta_dot_B10 + c[252]*theta_dot_B11 - c[305]*theta_dot_B12 + c[254]*theta_dot_B13 + c[255]*theta_dot_B14;
+    out[130] = c[21]*A10_dot + c[15]*A11_dot - c[15]*A13_dot - c[21]*A14_dot - c[246]*theta_dot_B9 + c[251]*theta_dot_B10 + c[252]*theta_dot_B11 - c[311]*theta_dot_B12 + c[254]*theta_dot_B13 + c[255]*theta_dot_B14;
     out[131] = -c[66] + c[24]*A10 + c[17]*A11 - c[17]*A13 - c[24]*A14;
-    out[133] = -c[20]*A12_dot - c[14]*A13_dot - c[19]*A14_dot - c[14]*A15_dot - c[20]*A16_dot + c[253]*theta_dot_B11 + c[254]*theta_dot_B12 - c[306]*theta_dot_B13 + c[256]*theta_dot_B14 + c[257]*theta_dot_B15 - c[254]*theta_dot_B16;
+    out[133] = -c[20]*A12_dot - c[14]*A13_dot - c[19]*A14_dot - c[14]*A15_dot - c[20]*A16_dot + c[253]*theta_dot_B11 + c[254]*theta_dot_B12 - c[312]*theta_dot_B13 + c[256]*theta_dot_B14 + c[257]*theta_dot_B15 - c[254]*theta_dot_B16;
     out[134] = -c[107] - c[23]*A12 - c[16]*A13 - c[22]*A14 - c[16]*A15 - c[23]*A16;
-    out[136] = c[21]*A12_dot + c[15]*A13_dot - c[15]*A15_dot - c[21]*A16_dot - c[250]*theta_dot_B11 + c[255]*theta_dot_B12 + c[256]*theta_dot_B13 - c[307]*theta_dot_B14 + c[258]*theta_dot_B15 + c[259]*theta_dot_B16;
+    out[136] = c[21]*A12_dot + c[15]*A13_dot - c[15]*A15_dot - c[21]*A16_dot - c[250]*theta_dot_B11 + c[255]*theta_dot_B12 + c[256]*theta_dot_B13 - c[313]*theta_dot_B14 + c[258]*theta_dot_B15 + c[259]*theta_dot_B16;
     out[137] = -c[66] + c[24]*A12 + c[17]*A13 - c[17]*A15 - c[24]*A16;
-    out[139] = -c[20]*A14_dot - c[14]*A15_dot - c[19]*A16_dot - c[14]*A17_dot - c[20]*A18_dot + c[257]*theta_dot_B13 + c[258]*theta_dot_B14 - c[308]*theta_dot_B15 + c[260]*theta_dot_B16 + c[261]*theta_dot_B17 - c[258]*theta_dot_B18;
+    out[139] = -c[20]*A14_dot - c[14]*A15_dot - c[19]*A16_dot - c[14]*A17_dot - c[20]*A18_dot + c[257]*theta_dot_B13 + c[258]*theta_dot_B14 - c[314]*theta_dot_B15 + c[260]*theta_dot_B16 + c[261]*theta_dot_B17 - c[258]*theta_dot_B18;
     out[140] = -c[114] - c[23]*A14 - c[16]*A15 - c[22]*A16 - c[16]*A17 - c[23]*A18;
-    out[142] = c[21]*A14_dot + c[15]*A15_dot - c[15]*A17_dot - c[21]*A18_dot - c[254]*theta_dot_B13 + c[259]*theta_dot_B14 + c[260]*theta_dot_B15 - c[309]*theta_dot_B16 + c[262]*theta_dot_B17 + c[263]*theta_dot_B18;
+    out[142] = c[21]*A14_dot + c[15]*A15_dot - c[15]*A17_dot - c[21]*A18_dot - c[254]*theta_dot_B13 + c[259]*theta_dot_B14 + c[260]*theta_dot_B15 - c[315]*theta_dot_B16 + c[262]*theta_dot_B17 + c[263]*theta_dot_B18;
     out[143] = -c[66] + c[24]*A14 + c[17]*A15 - c[17]*A17 - c[24]*A18;
-    out[145] = -c[20]*A16_dot - c[14]*A17_dot - c[19]*A18_dot - c[14]*A19_dot - c[20]*A20_dot + c[261]*theta_dot_B15 + c[262]*theta_dot_B16 - c[310]*theta_dot_B17 + c[264]*theta_dot_B18 + c[265]*theta_dot_B19 - c[262]*theta_dot_B20;
+    out[145] = -c[20]*A16_dot - c[14]*A17_dot - c[19]*A18_dot - c[14]*A19_dot - c[20]*A20_dot + c[261]*theta_dot_B15 + c[262]*theta_dot_B16 - c[316]*theta_dot_B17 + c[264]*theta_dot_B18 + c[265]*theta_dot_B19 - c[262]*theta_dot_B20;
     out[146] = -c[121] - c[23]*A16 - c[16]*A17 - c[22]*A18 - c[16]*A19 - c[23]*A20;
-    out[148] = c[21]*A16_dot + c[15]*A17_dot - c[15]*A19_dot - c[21]*A20_dot - c[258]*theta_dot_B15 + c[263]*theta_dot_B16 + c[264]*theta_dot_B17 - c[311]*theta_dot_B18 + c[266]*theta_dot_B19 + c[267]*theta_dot_B20;
+    out[148] = c[21]*A16_dot + c[15]*A17_dot - c[15]*A19_dot - c[21]*A20_dot - c[258]*theta_dot_B15 + c[263]*theta_dot_B16 + c[264]*theta_dot_B17 - c[317]*theta_dot_B18 + c[266]*theta_dot_B19 + c[267]*theta_dot_B20;
     out[149] = -c[66] + c[24]*A16 + c[17]*A17 - c[17]*A19 - c[24]*A20;
-    out[151] = -c[20]*A18_dot - c[14]*A19_dot - c[19]*A20_dot - c[14]*A21_dot - c[20]*A22_dot + c[265]*theta_dot_B17 + c[266]*theta_dot_B18 - c[312]*theta_dot_B19 + c[268]*theta_dot_B20 + c[269]*theta_dot_B21 - c[266]*theta_dot_B22;
+    out[151] = -c[20]*A18_dot - c[14]*A19_dot - c[19]*A20_dot - c[14]*A21_dot - c[20]*A22_dot + c[265]*theta_dot_B17 + c[266]*theta_dot_B18 - c[318]*theta_dot_B19 + c[268]*theta_dot_B20 + c[269]*theta_dot_B21 - c[266]*theta_dot_B22;
     out[152] = -c[128] - c[23]*A18 - c[16]*A19 - c[22]*A20 - c[16]*A21 - c[23]*A22;
-    out[154] = c[21]*A18_dot + c[15]*A19_dot - c[15]*A21_dot - c[21]*A22_dot - c[262]*theta_dot_B17 + c[267]*theta_dot_B18 + c[268]*theta_dot_B19 - c[313]*theta_dot_B20 + c[270]*theta_dot_B21 + c[271]*theta_dot_B22;
+    out[154] = c[21]*A18_dot + c[15]*A19_dot - c[15]*A21_dot - c[21]*A22_dot - c[262]*theta_dot_B17 + c[267]*theta_dot_B18 + c[268]*theta_dot_B19 - c[319]*theta_dot_B20 + c[270]*theta_dot_B21 + c[271]*theta_dot_B22;
     out[155] = -c[66] + c[24]*A18 + c[17]*A19 - c[17]*A21 - c[24]*A22;
-    out[157] = -c[20]*A20_dot - c[14]*A21_dot - c[19]*A22_dot - c[14]*A23_dot - c[20]*A24_dot + c[269]*theta_dot_B19 + c[270]*theta_dot_B20 - c[314]*theta_dot_B21 + c[272]*theta_dot_B22 + c[273]*theta_dot_B23 - c[270]*theta_dot_B24;
+    out[157] = -c[20]*A20_dot - c[14]*A21_dot - c[19]*A22_dot - c[14]*A23_dot - c[20]*A24_dot + c[269]*theta_dot_B19 + c[270]*theta_dot_B20 - c[320]*theta_dot_B21 + c[272]*theta_dot_B22 + c[273]*theta_dot_B23 - c[270]*theta_dot_B24;
     out[158] = -c[135] - c[23]*A20 - c[16]*A21 - c[22]*A22 - c[16]*A23 - c[23]*A24;
-    out[160] = c[21]*A20_dot + c[15]*A21_dot - c[15]*A23_dot - c[21]*A24_dot - c[266]*theta_dot_B19 + c[271]*theta_dot_B20 + c[272]*theta_dot_B21 - c[315]*theta_dot_B22 + c[274]*theta_dot_B23 + c[275]*theta_dot_B24;
+    out[160] = c[21]*A20_dot + c[15]*A21_dot - c[15]*A23_dot - c[21]*A24_dot - c[266]*theta_dot_B19 + c[271]*theta_dot_B20 + c[272]*theta_dot_B21 - c[321]*theta_dot_B22 + c[274]*theta_dot_B23 + c[275]*theta_dot_B24;
     out[161] = -c[66] + c[24]*A20 + c[17]*A21 - c[17]*A23 - c[24]*A24;
-    out[163] = -c[20]*A22_dot - c[14]*A23_dot - c[19]*A24_dot - c[14]*A25_dot - c[20]*A26_dot + c[273]*theta_dot_B21 + c[274]*theta_dot_B22 - c[316]*theta_dot_B23 + c[276]*theta_dot_B24 + c[277]*theta_dot_B25 - c[274]*theta_dot_B26;
+    out[163] = -c[20]*A22_dot - c[14]*A23_dot - c[19]*A24_dot - c[14]*A25_dot - c[20]*A26_dot + c[273]*theta_dot_B21 + c[274]*theta_dot_B22 - c[322]*theta_dot_B23 + c[276]*theta_dot_B24 + c[277]*theta_dot_B25 - c[274]*theta_dot_B26;
     out[164] = -c[142] - c[23]*A22 - c[16]*A23 - c[22]*A24 - c[16]*A25 - c[23]*A26;
-    out[166] = c[21]*A22_dot + c[15]*A23_dot - c[15]*A25_dot - c[21]*A26_dot - c[270]*theta_dot_B21 + c[275]*theta_dot_B22 + c[276]*theta_dot_B23 - c[317]*theta_dot_B24 + c[278]*theta_dot_B25 + c[279]*theta_dot_B26;
+    out[166] = c[21]*A22_dot + c[15]*A23_dot - c[15]*A25_dot - c[21]*A26_dot - c[270]*theta_dot_B21 + c[275]*theta_dot_B22 + c[276]*theta_dot_B23 - c[323]*theta_dot_B24 + c[278]*theta_dot_B25 + c[279]*theta_dot_B26;
     out[167] = -c[66] + c[24]*A22 + c[17]*A23 - c[17]*A25 - c[24]*A26;
-    out[169] = -c[20]*A24_dot - c[14]*A25_dot - c[19]*A26_dot - c[14]*A27_dot - c[20]*A28_dot + c[277]*theta_dot_B23 + c[278]*theta_dot_B24 - c[318]*theta_dot_B25 + c[280]*theta_dot_B26 + c[281]*theta_dot_B27 - c[278]*theta_dot_B28;
+    out[169] = -c[20]*A24_dot - c[14]*A25_dot - c[19]*A26_dot - c[14]*A27_dot - c[20]*A28_dot + c[277]*theta_dot_B23 + c[278]*theta_dot_B24 - c[324]*theta_dot_B25 + c[280]*theta_dot_B26 + c[281]*theta_dot_B27 - c[278]*theta_dot_B28;
     out[170] = -c[149] - c[23]*A24 - c[16]*A25 - c[22]*A26 - c[16]*A27 - c[23]*A28;
-    out[172] = c[21]*A24_dot + c[15]*A25_dot - c[15]*A27_dot - c[21]*A28_dot - c[274]*theta_dot_B23 + c[279]*theta_dot_B24 + c[280]*theta_dot_B25 - c[319]*theta_dot_B26 + c[282]*theta_dot_B27 + c[283]*theta_dot_B28;
+    out[172] = c[21]*A24_dot + c[15]*A25_dot - c[15]*A27_dot - c[21]*A28_dot - c[274]*theta_dot_B23 + c[279]*theta_dot_B24 + c[280]*theta_dot_B25 - c[325]*theta_dot_B26 + c[282]*theta_dot_B27 + c[283]*theta_dot_B28;
     out[173] = -c[66] + c[24]*A24 + c[17]*A25 - c[17]*A27 - c[24]*A28;
-    out[175] = -c[20]*A26_dot - c[14]*A27_dot - c[19]*A28_dot - c[14]*A29_dot - c[20]*A30_dot + c[281]*theta_dot_B25 + c[282]*theta_dot_B26 - c[320]*theta_dot_B27 + c[284]*theta_dot_B28 + c[285]*theta_dot_B29 - c[282]*theta_dot_B30;
+    out[175] = -c[20]*A26_dot - c[14]*A27_dot - c[19]*A28_dot - c[14]*A29_dot - c[20]*A30_dot + c[281]*theta_dot_B25 + c[282]*theta_dot_B26 - c[326]*theta_dot_B27 + c[284]*theta_dot_B28 + c[285]*theta_dot_B29 - c[282]*theta_dot_B30;
     out[176] = -c[156] - c[23]*A26 - c[16]*A27 - c[22]*A28 - c[16]*A29 - c[23]*A30;
-    out[178] = c[21]*A26_dot + c[15]*A27_dot - c[15]*A29_dot - c[21]*A30_dot - c[278]*theta_dot_B25 + c[283]*theta_dot_B26 + c[284]*theta_dot_B27 - c[321]*theta_dot_B28 + c[286]*theta_dot_B29 + c[287]*theta_dot_B30;
+    out[178] = c[21]*A26_dot + c[15]*A27_dot - c[15]*A29_dot - c[21]*A30_dot - c[278]*theta_dot_B25 + c[283]*theta_dot_B26 + c[284]*theta_dot_B27 - c[327]*theta_dot_B28 + c[286]*theta_dot_B29 + c[287]*theta_dot_B30;
     out[179] = -c[66] + c[24]*A26 + c[17]*A27 - c[17]*A29 - c[24]*A30;
-    out[181] = -c[20]*A28_dot - c[14]*A29_dot - c[19]*A30_dot - c[14]*A31_dot - c[20]*A32_dot + c[285]*theta_dot_B27 + c[286]*theta_dot_B28 - c[322]*theta_dot_B29 + c[288]*theta_dot_B30 + c[289]*theta_dot_B31 - c[286]*theta_dot_B32;
+    out[181] = -c[20]*A28_dot - c[14]*A29_dot - c[19]*A30_dot - c[14]*A31_dot - c[20]*A32_dot + c[285]*theta_dot_B27 + c[286]*theta_dot_B28 - c[328]*theta_dot_B29 + c[288]*theta_dot_B30 + c[289]*theta_dot_B31 - c[286]*theta_dot_B32;
     out[182] = -c[163] - c[23]*A28 - c[16]*A29 - c[22]*A30 - c[16]*A31 - c[23]*A32;
-    out[184] = c[21]*A28_dot + c[15]*A29_dot - c[15]*A31_dot - c[21]*A32_dot - c[282]*theta_dot_B27 + c[287]*theta_dot_B28 + c[288]*theta_dot_B29 - c[323]*theta_dot_B30 + c[290]*theta_dot_B31 + c[291]*theta_dot_B32;
+    out[184] = c[21]*A28_dot + c[15]*A29_dot - c[15]*A31_dot - c[21]*A32_dot - c[282]*theta_dot_B27 + c[287]*theta_dot_B28 + c[288]*theta_dot_B29 - c[329]*theta_dot_B30 + c[290]*theta_dot_B31 + c[291]*theta_dot_B32;
     out[185] = -c[66] + c[24]*A28 + c[17]*A29 - c[17]*A31 - c[24]*A32;
-    out[187] = -c[20]*A30_dot - c[14]*A31_dot - c[22]*A32_dot + c[289]*theta_dot_B29 + c[290]*theta_dot_B30 - c[324]*theta_dot_B31 + c[292]*theta_dot_B32;
+    out[187] = -c[20]*A30_dot - c[14]*A31_dot - c[22]*A32_dot + c[289]*theta_dot_B29 + c[290]*theta_dot_B30 - c[330]*theta_dot_B31 + c[292]*theta_dot_B32;
     out[188] = -c[170] - c[23]*A30 - c[16]*A31 - c[56]*A32;
-    out[190] = c[21]*A30_dot + c[15]*A31_dot + c[55]*A32_dot - c[286]*theta_dot_B29 + c[291]*theta_dot_B30 + c[292]*theta_dot_B31 - c[325]*theta_dot_B32;
+    out[190] = c[21]*A30_dot + c[15]*A31_dot + c[55]*A32_dot - c[286]*theta_dot_B29 + c[291]*theta_dot_B30 + c[292]*theta_dot_B31 - c[331]*theta_dot_B32;
     out[191] = c[173] + c[24]*A30 + c[17]*A31 + c[57]*A32;
 }
 
 }  // namespace
 
-extern const Variant fem_nx32_ny32_prescribed_first = {"fem_nx32_ny32_prescribed_first", 64, 326, 258,
+extern const Variant fem_nx32_ny32_prescribed_first = {"fem_nx32_ny32_prescribed_first", 64, 332, 258,
     "cc00000000000000000000000000000000000000000000000000000000000000ccc00000000000000000000000000000000000000000000000000000000000000ccc00000000000000000000000000000000000000000000000000000000000000ccc00000000000000000000000000000000000000000000000000000000000000ccc00000000000000000000000000000000000000000000000000000000000000ccc00000000000000000000000000000000000000000000000000000000000000ccc00000000000000000000000000000000000000000000000000000000000000ccc00000000000000000000000000000000000000000000000000000000000000ccc00000000000000000000000000000000000000000000000000000000000000ccc00000000000000000000000000000000000000000000000000000000000000ccc00000000000000000000000000000000000000000000000000000000000000ccc00000000000000000000000000000000000000000000000000000000000000ccc00000000000000000000000000000000000000000000000000000000000000ccc00000000000000000000000000000000000000000000000000000000000000ccc00000000000000000000000000000000000000000000000000000000000000ccc00000000000000000000000000000000000000000000000000000000000000ccc00000000000000000000000000000000000000000000000000000000000000ccc00000000000000000000000000000000000000000000000000000000000000ccc00000000000000000000000000000000000000000000000000000000000000ccc00000000000000000000000000000000000000000000000000000000000000ccc00000000000000000000000000000000000000000000000000000000000000ccc00000000000000000000000000000000000000000000000000000000000000ccc00000000000000000000000000000000000000000000000000000000000000ccc00000000000000000000000000000000000000000000000000000000000000ccc00000000000000000000000000000000000000000000000000000000000000ccc00000000000000000000000000000000000000000000000000000000000000ccc00000000000000000000000000000000000000000000000000000000000000ccc00000000000000000000000000000000000000000000000000000000000000ccc00000000000000000000000000000000000000000000000000000000000000ccc00000000000000000000000000000000000000000000000000000000000000ccc00000000000000000000000000000000000000000000000000000000000000cc0000000000000000000000000000000000000000000000000000000000000000c0cc0000000000000000000000000000000000000000000000000000000000000ccc000000000000000000000000000000000000000000000000000000000000ccc0cc0000000000000000000000000000000000000000000000000000000000cc0ccc000000000000000000000000000000000000000000000000000000000000ccc0cc0000000000000000000000000000000000000000000000000000000000cc0ccc000000000000000000000000000000000000000000000000000000000000ccc0cc0000000000000000000000000000000000000000000000000000000000cc0ccc000000000000000000000000000000000000000000000000000000000000ccc0cc0000000000000000000000000000000000000000000000000000000000cc0ccc000000000000000000000000000000000000000000000000000000000000ccc0cc0000000000000000000000000000000000000000000000000000000000cc0ccc000000000000000000000000000000000000000000000000000000000000ccc0cc0000000000000000000000000000000000000000000000000000000000cc0ccc000000000000000000000000000000000000000000000000000000000000ccc0cc0000000000000000000000000000000000000000000000000000000000cc0ccc000000000000000000000000000000000000000000000000000000000000ccc0cc0000000000000000000000000000000000000000000000000000000000cc0ccc000000000000000000000000000000000000000000000000000000000000ccc0cc0000000000000000000000000000000000000000000000000000000000cc0ccc000000000000000000000000000000000000000000000000000000000000ccc0cc0000000000000000000000000000000000000000000000000000000000cc0ccc000000000000000000000000000000000000000000000000000000000000ccc0cc0000000000000000000000000000000000000000000000000000000000cc0ccc000000000000000000000000000000000000000000000000000000000000ccc0cc0000000000000000000000000000000000000000000000000000000000cc0ccc000000000000000000000000000000000000000000000000000000000000ccc0cc0000000000000000000000000000000000000000000000000000000000cc0ccc000000000000000000000000000000000000000000000000000000000000ccc0cc0000000000000000000000000000000000000000000000000000000000cc0ccc000000000000000000000000000000000000000000000000000000000000cccc000000000000000000000000000000000000000000000000000000000000cccc",
     fem_nx32_ny32_prescribed_first_coefficients, fem_nx32_ny32_prescribed_first_mass, nullptr, fem_nx32_ny32_prescribed_first_forces, fem_nx32_ny32_prescribed_first_forces_terms, fem_nx32_ny32_prescribed_first_forces_matrix,
-    fem_nx32_ny32_prescribed_first_energy, fem_nx32_ny32_prescribed_first_momentum, fem_nx32_ny32_prescribed_first_forces_q, fem_nx32_ny32_prescribed_first_forces_qd, nullptr, fem_nx32_ny32_prescribed_first_forces_u};
+    fem_nx32_ny32_prescribed_first_energy, fem_nx32_ny32_prescribed_first_momentum, fem_nx32_ny32_prescribed_first_forces_q, fem_nx32_ny32_prescribed_first_forces_qd, nullptr, fem_nx32_ny32_prescribed_first_forces_u, fem_nx32_ny32_prescribed_first_tip};
 
 }  // namespace hubbeam::generated

@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[326]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[332]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void fem_nx32_ny32_torque_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -349,9 +349,15 @@ void fem_nx32_ny32_torque_first_coefficients(const double* p, double* c)
     c[323] = 6.510416666666667e-05*m*a + 6.277901785714285e-05*L*m;
     c[324] = 16.0*ES/(L);
     c[325] = 24576.0*EI/(L*L*L);
+    c[326] = 19.2*1.0/(L);
+    c[327] = 0.1*1.0/(L);
+    c[328] = 0.008333333333333333*1.0/(L);
+    c[329] = 0.0020833333333333333*1.0/(L);
+    c[330] = 9.6*1.0/(L);
+    c[331] = 0.004166666666666667*1.0/(L);
 }
 
-/* mass:(c[326],u[3],q[65],qd[65])->(M[4225]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[332],u[3],q[65],qd[65])->(M[4225]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void fem_nx32_ny32_torque_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -814,7 +820,7 @@ void fem_nx32_ny32_torque_first_mass(const double* c, const double* u, const dou
     out[4224] = c[147];
 }
 
-/* forces:(c[326],u[3],q[65],qd[65])->(Q[65]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[332],u[3],q[65],qd[65])->(Q[65]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void fem_nx32_ny32_torque_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
@@ -1485,7 +1491,7 @@ void fem_nx32_ny32_torque_first_forces(const double* c, const double* u, const d
     out[64] = -c[223]*B29 - c[228]*B30 + c[223]*B31 - c[288]*B32 + c[189]*theta_dot_A30_dot + c[185]*theta_dot_A31_dot + c[220]*theta_dot_A32_dot - c[281]*B29_theta_dotsq + c[286]*B30_theta_dotsq + c[287]*B31_theta_dotsq - c[128]*B32_theta_dotsq;
 }
 
-/* forces_terms:(c[326],u[3],q[65],qd[65])->(m[472]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[332],u[3],q[65],qd[65])->(m[472]) the state monomials of Q: Q = F m */
 void fem_nx32_ny32_torque_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -2564,7 +2570,7 @@ void fem_nx32_ny32_torque_first_forces_terms(const double* c, const double* u, c
     out[471] = B32_theta_dot_B32_dot;
 }
 
-/* forces_matrix:(c[326],u[3],q[65],qd[65])->(F[65*472]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[332],u[3],q[65],qd[65])->(F[65*472]) row-major, state-free: Q = F m; nonzero entries only */
 void fem_nx32_ny32_torque_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -3719,7 +3725,7 @@ void fem_nx32_ny32_torque_first_forces_matrix(const double* c, const double* u, 
     out[30675] = -c[128];
 }
 
-/* energy:(c[326],u[3],q[65],qd[65])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[332],u[3],q[65],qd[65])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void fem_nx32_ny32_torque_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -4934,7 +4940,7 @@ void fem_nx32_ny32_torque_first_energy(const double* c, const double* u, const d
     out[3] = c[182]*A1sq - c[182]*A1_A2 + c[182]*A2sq - c[182]*A2_A3 + c[182]*A3sq - c[182]*A3_A4 + c[182]*A4sq - c[182]*A4_A5 + c[182]*A5sq - c[182]*A5_A6 + c[182]*A6sq - c[182]*A6_A7 + c[182]*A7sq - c[182]*A7_A8 + c[182]*A8sq - c[182]*A8_A9 + c[182]*A9sq - c[182]*A9_A10 + c[182]*A10sq - c[182]*A10_A11 + c[182]*A11sq - c[182]*A11_A12 + c[182]*A12sq - c[182]*A12_A13 + c[182]*A13sq - c[182]*A13_A14 + c[182]*A14sq - c[182]*A14_A15 + c[182]*A15sq - c[182]*A15_A16 + c[182]*A16sq - c[182]*A16_A17 + c[182]*A17sq - c[182]*A17_A18 + c[182]*A18sq - c[182]*A18_A19 + c[182]*A19sq - c[182]*A19_A20 + c[182]*A20sq - c[182]*A20_A21 + c[182]*A21sq - c[182]*A21_A22 + c[182]*A22sq - c[182]*A22_A23 + c[182]*A23sq - c[182]*A23_A24 + c[182]*A24sq - c[182]*A24_A25 + c[182]*A25sq - c[182]*A25_A26 + c[182]*A26sq - c[182]*A26_A27 + c[182]*A27sq - c[182]*A27_A28 + c[182]*A28sq - c[182]*A28_A29 + c[182]*A29sq - c[182]*A29_A30 + c[182]*A30sq - c[182]*A30_A31 + c[182]*A31sq - c[182]*A31_A32 + c[324]*A32sq + c[222]*B1sq - c[222]*B1_B3 + c[223]*B1_B4 + c[288]*B2sq - c[223]*B2_B3 + c[228]*B2_B4 + c[222]*B3sq - c[222]*B3_B5 + c[223]*B3_B6 + c[288]*B4sq - c[223]*B4_B5 + c[228]*B4_B6 + c[222]*B5sq - c[222]*B5_B7 + c[223]*B5_B8 + c[288]*B6sq - c[223]*B6_B7 + c[228]*B6_B8 + c[222]*B7sq - c[222]*B7_B9 + c[223]*B7_B10 + c[288]*B8sq - c[223]*B8_B9 + c[228]*B8_B10 + c[222]*B9sq - c[222]*B9_B11 + c[223]*B9_B12 + c[288]*B10sq - c[223]*B10_B11 + c[228]*B10_B12 + c[222]*B11sq - c[222]*B11_B13 + c[223]*B11_B14 + c[288]*B12sq - c[223]*B12_B13 + c[228]*B12_B14 + c[222]*B13sq - c[222]*B13_B15 + c[223]*B13_B16 + c[288]*B14sq - c[223]*B14_B15 + c[228]*B14_B16 + c[222]*B15sq - c[222]*B15_B17 + c[223]*B15_B18 + c[288]*B16sq - c[223]*B16_B17 + c[228]*B16_B18 + c[222]*B17sq - c[222]*B17_B19 + c[223]*B17_B20 + c[288]*B18sq - c[223]*B18_B19 + c[228]*B18_B20 + c[222]*B19sq - c[222]*B19_B21 + c[223]*B19_B22 + c[288]*B20sq - c[223]*B20_B21 + c[228]*B20_B22 + c[222]*B21sq - c[222]*B21_B23 + c[223]*B21_B24 + c[288]*B22sq - c[223]*B22_B23 + c[228]*B22_B24 + c[222]*B23sq - c[222]*B23_B25 + c[223]*B23_B26 + c[288]*B24sq - c[223]*B24_B25 + c[228]*B24_B26 + c[222]*B25sq - c[222]*B25_B27 + c[223]*B25_B28 + c[288]*B26sq - c[223]*B26_B27 + c[228]*B26_B28 + c[222]*B27sq - c[222]*B27_B29 + c[223]*B27_B30 + c[288]*B28sq - c[223]*B28_B29 + c[228]*B28_B30 + c[222]*B29sq - c[222]*B29_B31 + c[223]*B29_B32 + c[288]*B30sq - c[223]*B30_B31 + c[228]*B30_B32 + c[325]*B31sq - c[223]*B31_B32 + c[228]*B32sq;
 }
 
-/* momentum:(c[326],u[3],q[65],qd[65])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[332],u[3],q[65],qd[65])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void fem_nx32_ny32_torque_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -5722,7 +5728,143 @@ void fem_nx32_ny32_torque_first_momentum(const double* c, const double* u, const
     out[0] = c[0]*theta_dot + c[2]*B1_dot + c[136]*B2_dot + c[4]*B3_dot + c[136]*B4_dot + c[6]*B5_dot + c[136]*B6_dot + c[8]*B7_dot + c[136]*B8_dot + c[10]*B9_dot + c[136]*B10_dot + c[12]*B11_dot + c[136]*B12_dot + c[14]*B13_dot + c[136]*B14_dot + c[16]*B15_dot + c[136]*B16_dot + c[18]*B17_dot + c[136]*B18_dot + c[20]*B19_dot + c[136]*B20_dot + c[22]*B21_dot + c[136]*B22_dot + c[24]*B23_dot + c[136]*B24_dot + c[26]*B25_dot + c[136]*B26_dot + c[28]*B27_dot + c[136]*B28_dot + c[30]*B29_dot + c[136]*B30_dot + c[137]*B31_dot - c[138]*B32_dot + c[1]*A1_theta_dot + c[129]*A1_B1_dot - c[130]*A1_B2_dot + c[2]*A2_theta_dot + c[131]*A2_B1_dot + c[132]*A2_B3_dot - c[133]*A2_B4_dot + c[3]*A3_theta_dot + c[129]*A3_B1_dot + c[130]*A3_B2_dot + c[129]*A3_B3_dot - c[130]*A3_B4_dot + c[4]*A4_theta_dot + c[132]*A4_B1_dot + c[133]*A4_B2_dot + c[131]*A4_B3_dot + c[132]*A4_B5_dot - c[133]*A4_B6_dot + c[5]*A5_theta_dot + c[129]*A5_B3_dot + c[130]*A5_B4_dot + c[129]*A5_B5_dot - c[130]*A5_B6_dot + c[6]*A6_theta_dot + c[132]*A6_B3_dot + c[133]*A6_B4_dot + c[131]*A6_B5_dot + c[132]*A6_B7_dot - c[133]*A6_B8_dot + c[7]*A7_theta_dot + c[129]*A7_B5_dot + c[130]*A7_B6_dot + c[129]*A7_B7_dot - c[130]*A7_B8_dot + c[8]*A8_theta_dot + c[132]*A8_B5_dot + c[133]*A8_B6_dot + c[131]*A8_B7_dot + c[132]*A8_B9_dot - c[133]*A8_B10_dot + c[9]*A9_theta_dot + c[129]*A9_B7_dot + c[130]*A9_B8_dot + c[129]*A9_B9_dot - c[130]*A9_B10_dot + c[10]*A10_theta_dot + c[132]*A10_B7_dot + c[133]*A10_B8_dot + c[131]*A10_B9_dot + c[132]*A10_B11_dot - c[133]*A10_B12_dot + c[11]*A11_theta_dot + c[129]*A11_B9_dot + c[130]*A11_B10_dot + c[129]*A11_B11_dot - c[130]*A11_B12_dot + c[12]*A12_theta_dot + c[132]*A12_B9_dot + c[133]*A12_B10_dot + c[131]*A12_B11_dot + c[132]*A12_B13_dot - c[133]*A12_B14_dot + c[13]*A13_theta_dot + c[129]*A13_B11_dot + c[130]*A13_B12_dot + c[129]*A13_B13_dot - c[130]*A13_B14_dot + c[14]*A14_theta_dot + c[132]*A14_B11_dot + c[133]*A14_B12_dot + c[131]*A14_B13_dot + c[132]*A14_B15_dot - c[133]*A14_B16_dot + c[15]*A15_theta_dot + c[129]*A15_B13_dot + c[130]*A15_B14_dot + c[129]*A15_B15_dot - c[130]*A15_B16_dot + c[16]*A16_theta_dot + c[132]*A16_B13_dot + c[133]*A16_B14_dot + c[131]*A16_B15_dot + c[132]*A16_B17_dot - c[133]*A16_B18_dot + c[17]*A17_theta_dot + c[129]*A17_B15_dot + c[130]*A17_B16_dot + c[129]*A17_B17_dot - c[130]*A17_B18_dot + c[18]*A18_theta_dot + c[132]*A18_B15_dot + c[133]*A18_B16_dot + c[131]*A18_B17_dot + c[132]*A18_B19_dot - c[133]*A18_B20_dot + c[19]*A19_theta_dot + c[129]*A19_B17_dot + c[130]*A19_B18_dot + c[129]*A19_B19_dot - c[130]*A19_B20_dot + c[20]*A20_theta_dot + c[132]*A20_B17_dot + c[133]*A20_B18_dot + c[131]*A20_B19_dot + c[132]*A20_B21_dot - c[133]*A20_B22_dot + c[21]*A21_theta_dot + c[129]*A21_B19_dot + c[130]*A21_B20_dot + c[129]*A21_B21_dot - c[130]*A21_B22_dot + c[22]*A22_theta_dot + c[132]*A22_B19_dot + c[133]*A22_B20_dot + c[131]*A22_B21_dot + c[132]*A22_B23_dot - c[133]*A22_B24_dot + c[23]*A23_theta_dot + c[129]*A23_B21_dot + c[130]*A23_B22_dot + c[129]*A23_B23_dot - c[130]*A23_B24_dot + c[24]*A24_theta_dot + c[132]*A24_B21_dot + c[133]*A24_B22_dot + c[131]*A24_B23_dot + c[132]*A24_B25_dot - c[133]*A24_B26_dot + c[25]*A25_theta_dot + c[129]*A25_B23_dot + c[130]*A25_B24_dot + c[129]*A25_B25_dot - c[130]*A25_B26_dot + c[26]*A26_theta_dot + c[132]*A26_B23_dot + c[133]*A26_B24_dot + c[131]*A26_B25_dot + c[132]*A26_B27_dot - c[133]*A26_B28_dot + c[27]*A27_theta_dot + c[129]*A27_B25_dot + c[130]*A27_B26_dot + c[129]*A27_B27_dot - c[130]*A27_B28_dot + c[28]*A28_theta_dot + c[132]*A28_B25_dot + c[133]*A28_B26_dot + c[131]*A28_B27_dot + c[132]*A28_B29_dot - c[133]*A28_B30_dot + c[29]*A29_theta_dot + c[129]*A29_B27_dot + c[130]*A29_B28_dot + c[129]*A29_B29_dot - c[130]*A29_B30_dot + c[30]*A30_theta_dot + c[132]*A30_B27_dot + c[133]*A30_B28_dot + c[131]*A30_B29_dot + c[132]*A30_B31_dot - c[133]*A30_B32_dot + c[31]*A31_theta_dot + c[129]*A31_B29_dot + c[130]*A31_B30_dot + c[129]*A31_B31_dot - c[130]*A31_B32_dot + c[32]*A32_theta_dot + c[132]*A32_B29_dot + c[133]*A32_B30_dot + c[134]*A32_B31_dot - c[135]*A32_B32_dot - c[129]*B1_A1_dot - c[131]*B1_A2_dot - c[129]*B1_A3_dot - c[132]*B1_A4_dot + c[130]*B2_A1_dot - c[130]*B2_A3_dot - c[133]*B2_A4_dot - c[132]*B3_A2_dot - c[129]*B3_A3_dot - c[131]*B3_A4_dot - c[129]*B3_A5_dot - c[132]*B3_A6_dot + c[133]*B4_A2_dot + c[130]*B4_A3_dot - c[130]*B4_A5_dot - c[133]*B4_A6_dot - c[132]*B5_A4_dot - c[129]*B5_A5_dot - c[131]*B5_A6_dot - c[129]*B5_A7_dot - c[132]*B5_A8_dot + c[133]*B6_A4_dot + c[130]*B6_A5_dot - c[130]*B6_A7_dot - c[133]*B6_A8_dot - c[132]*B7_A6_dot - c[129]*B7_A7_dot - c[131]*B7_A8_dot - c[129]*B7_A9_dot - c[132]*B7_A10_dot + c[133]*B8_A6_dot + c[130]*B8_A7_dot - c[130]*B8_A9_dot - c[133]*B8_A10_dot - c[132]*B9_A8_dot - c[129]*B9_A9_dot - c[131]*B9_A10_dot - c[129]*B9_A11_dot - c[132]*B9_A12_dot + c[133]*B10_A8_dot + c[130]*B10_A9_dot - c[130]*B10_A11_dot - c[133]*B10_A12_dot - c[132]*B11_A10_dot - c[129]*B11_A11_dot - c[131]*B11_A12_dot - c[129]*B11_A13_dot - c[132]*B11_A14_dot + c[133]*B12_A10_dot + c[130]*B12_A11_dot - c[130]*B12_A13_dot - c[133]*B12_A14_dot - c[132]*B13_A12_dot - c[129]*B13_A13_dot - c[131]*B13_A14_dot - c[129]*B13_A15_dot - c[132]*B13_A16_dot + c[133]*B14_A12_dot + c[130]*B14_A13_dot - c[130]*B14_A15_dot - c[133]*B14_A16_dot - c[132]*B15_A14_dot - c[129]*B15_A15_dot - c[131]*B15_A16_dot - c[129]*B15_A17_dot - c[132]*B15_A18_dot + c[133]*B16_A14_dot + c[130]*B16_A15_dot - c[130]*B16_A17_dot - c[133]*B16_A18_dot - c[132]*B17_A16_dot - c[129]*B17_A17_dot - c[131]*B17_A18_dot - c[129]*B17_A19_dot - c[132]*B17_A20_dot + c[133]*B18_A16_dot + c[130]*B18_A17_dot - c[130]*B18_A19_dot - c[133]*B18_A20_dot - c[132]*B19_A18_dot - c[129]*B19_A19_dot - c[131]*B19_A20_dot - c[129]*B19_A21_dot - c[132]*B19_A22_dot + c[133]*B20_A18_dot + c[130]*B20_A19_dot - c[130]*B20_A21_dot - c[133]*B20_A22_dot - c[132]*B21_A20_dot - c[129]*B21_A21_dot - c[131]*B21_A22_dot - c[129]*B21_A23_dot - c[132]*B21_A24_dot + c[133]*B22_A20_dot + c[130]*B22_A21_dot - c[130]*B22_A23_dot - c[133]*B22_A24_dot - c[132]*B23_A22_dot - c[129]*B23_A23_dot - c[131]*B23_A24_dot - c[129]*B23_A25_dot - c[132]*B23_A26_dot + c[133]*B24_A22_dot + c[130]*B24_A23_dot - c[130]*B24_A25_dot - c[133]*B24_A26_dot - c[132]*B25_A24_dot - c[129]*B25_A25_dot - c[131]*B25_A26_dot - c[129]*B25_A27_dot - c[132]*B25_A28_dot + c[133]*B26_A24_dot + c[130]*B26_A25_dot - c[130]*B26_A27_dot - c[133]*B26_A28_dot - c[132]*B27_A26_dot - c[129]*B27_A27_dot - c[131]*B27_A28_dot - c[129]*B27_A29_dot - c[132]*B27_A30_dot + c[133]*B28_A26_dot + c[130]*B28_A27_dot - c[130]*B28_A29_dot - c[133]*B28_A30_dot - c[132]*B29_A28_dot - c[129]*B29_A29_dot - c[131]*B29_A30_dot - c[129]*B29_A31_dot - c[132]*B29_A32_dot + c[133]*B30_A28_dot + c[130]*B30_A29_dot - c[130]*B30_A31_dot - c[133]*B30_A32_dot - c[132]*B31_A30_dot - c[129]*B31_A31_dot - c[134]*B31_A32_dot + c[133]*B32_A30_dot + c[130]*B32_A31_dot + c[135]*B32_A32_dot + c[33]*A1sq_theta_dot + c[34]*A1_A2_theta_dot + c[33]*A2sq_theta_dot + c[34]*A2_A3_theta_dot + c[33]*A3sq_theta_dot + c[34]*A3_A4_theta_dot + c[33]*A4sq_theta_dot + c[34]*A4_A5_theta_dot + c[33]*A5sq_theta_dot + c[34]*A5_A6_theta_dot + c[33]*A6sq_theta_dot + c[34]*A6_A7_theta_dot + c[33]*A7sq_theta_dot + c[34]*A7_A8_theta_dot + c[33]*A8sq_theta_dot + c[34]*A8_A9_theta_dot + c[33]*A9sq_theta_dot + c[34]*A9_A10_theta_dot + c[33]*A10sq_theta_dot + c[34]*A10_A11_theta_dot + c[33]*A11sq_theta_dot + c[34]*A11_A12_theta_dot + c[33]*A12sq_theta_dot + c[34]*A12_A13_theta_dot + c[33]*A13sq_theta_dot + c[34]*A13_A14_theta_dot + c[33]*A14sq_theta_dot + c[34]*A14_A15_theta_dot + c[33]*A15sq_theta_dot + c[34]*A15_A16_theta_dot + c[33]*A16sq_theta_dot + c[34]*A16_A17_theta_dot + c[33]*A17sq_theta_dot + c[34]*A17_A18_theta_dot + c[33]*A18sq_theta_dot + c[34]*A18_A19_theta_dot + c[33]*A19sq_theta_dot + c[34]*A19_A20_theta_dot + c[33]*A20sq_theta_dot + c[34]*A20_A21_theta_dot + c[33]*A21sq_theta_dot + c[34]*A21_A22_theta_dot + c[33]*A22sq_theta_dot + c[34]*A22_A23_theta_dot + c[33]*A23sq_theta_dot + c[34]*A23_A24_theta_dot + c[33]*A24sq_theta_dot + c[34]*A24_A25_theta_dot + c[33]*A25sq_theta_dot + c[34]*A25_A26_theta_dot + c[33]*A26sq_theta_dot + c[34]*A26_A27_theta_dot + c[33]*A27sq_theta_dot + c[34]*A27_A28_theta_dot + c[33]*A28sq_theta_dot + c[34]*A28_A29_theta_dot + c[33]*A29sq_theta_dot + c[34]*A29_A30_theta_dot + c[33]*A30sq_theta_dot + c[34]*A30_A31_theta_dot + c[33]*A31sq_theta_dot + c[34]*A31_A32_theta_dot + c[34]*A32sq_theta_dot - c[35]*B1sq_theta_dot + c[36]*B1_B2_theta_dot + c[37]*B1_B3_theta_dot - c[38]*B1_B4_theta_dot - c[39]*B2sq_theta_dot + c[40]*B2_B3_theta_dot + c[41]*B2_B4_theta_dot - c[42]*B3sq_theta_dot + c[43]*B3_B4_theta_dot + c[44]*B3_B5_theta_dot - c[40]*B3_B6_theta_dot - c[45]*B4sq_theta_dot + c[46]*B4_B5_theta_dot + c[47]*B4_B6_theta_dot - c[48]*B5sq_theta_dot + c[49]*B5_B6_theta_dot + c[50]*B5_B7_theta_dot - c[46]*B5_B8_theta_dot - c[51]*B6sq_theta_dot + c[52]*B6_B7_theta_dot + c[53]*B6_B8_theta_dot - c[54]*B7sq_theta_dot + c[55]*B7_B8_theta_dot + c[56]*B7_B9_theta_dot - c[52]*B7_B10_theta_dot - c[57]*B8sq_theta_dot + c[58]*B8_B9_theta_dot + c[59]*B8_B10_theta_dot - c[60]*B9sq_theta_dot + c[61]*B9_B10_theta_dot + c[62]*B9_B11_theta_dot - c[58]*B9_B12_theta_dot - c[63]*B10sq_theta_dot + c[64]*B10_B11_theta_dot + c[65]*B10_B12_theta_dot - c[66]*B11sq_theta_dot + c[67]*B11_B12_theta_dot + c[68]*B11_B13_theta_dot - c[64]*B11_B14_theta_dot - c[69]*B12sq_theta_dot + c[70]*B12_B13_theta_dot + c[71]*B12_B14_theta_dot - c[72]*B13sq_theta_dot + c[73]*B13_B14_theta_dot + c[74]*B13_B15_theta_dot - c[70]*B13_B16_theta_dot - c[75]*B14sq_theta_dot + c[76]*B14_B15_theta_dot + c[77]*B14_B16_theta_dot - c[78]*B15sq_theta_dot + c[79]*B15_B16_theta_dot + c[80]*B15_B17_theta_dot - c[76]*B15_B18_theta_dot - c[81]*B16sq_theta_dot + c[82]*B16_B17_theta_dot + c[83]*B16_B18_theta_dot - c[84]*B17sq_theta_dot + c[85]*B17_B18_theta_dot + c[86]*B17_B19_theta_dot - c[82]*B17_B20_theta_dot - c[87]*B18sq_theta_dot + c[88]*B18_B19_theta_dot + c[89]*B18_B20_theta_dot - c[90]*B19sq_theta_dot + c[91]*B19_B20_theta_dot + c[92]*B19_B21_theta_dot - c[88]*B19_B22_theta_dot - c[93]*B20sq_theta_dot + c[94]*B20_B21_theta_dot + c[95]*B20_B22_theta_dot - c[96]*B21sq_theta_dot + c[97]*B21_B22_theta_dot + c[98]*B21_B23_theta_dot - c[94]*B21_B24_theta_dot - c[99]*B22sq_theta_dot + c[100]*B22_B23_theta_dot + c[101]*B22_B24_theta_dot - c[102]*B23sq_theta_dot + c[103]*B23_B24_theta_dot + c[104]*B23_B25_theta_dot - c[100]*B23_B26_theta_dot - c[105]*B24sq_theta_dot + c[106]*B24_B25_theta_dot + c[107]*B24_B26_theta_dot - c[108]*B25sq_theta_dot + c[109]*B25_B26_theta_dot + c[110]*B25_B27_theta_dot - c[106]*B25_B28_theta_dot - c[111]*B26sq_theta_dot + c[112]*B26_B27_theta_dot + c[113]*B26_B28_theta_dot - c[114]*B27sq_theta_dot + c[115]*B27_B28_theta_dot + c[116]*B27_B29_theta_dot - c[112]*B27_B30_theta_dot - c[117]*B28sq_theta_dot + c[118]*B28_B29_theta_dot + c[119]*B28_B30_theta_dot - c[120]*B29sq_theta_dot + c[121]*B29_B30_theta_dot + c[122]*B29_B31_theta_dot - c[118]*B29_B32_theta_dot - c[123]*B30sq_theta_dot + c[124]*B30_B31_theta_dot + c[125]*B30_B32_theta_dot - c[126]*B31sq_theta_dot + c[127]*B31_B32_theta_dot - c[128]*B32sq_theta_dot;
 }
 
-/* forces_q:(c[326],u[3],q[65],qd[65])->(dQdq[4225]) row-major; out[i*65+k] = dQ_i/dq_k; nonzero entries only */
+/* tip:(c[332],u[3],q[65],qd[65])->(tip[3]) tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B */
+void fem_nx32_ny32_torque_first_tip(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)qd;
+    const double A32 = q[32];
+    const double B1 = q[33];
+    const double B2 = q[34];
+    const double B3 = q[35];
+    const double B4 = q[36];
+    const double B5 = q[37];
+    const double B6 = q[38];
+    const double B7 = q[39];
+    const double B8 = q[40];
+    const double B9 = q[41];
+    const double B10 = q[42];
+    const double B11 = q[43];
+    const double B12 = q[44];
+    const double B13 = q[45];
+    const double B14 = q[46];
+    const double B15 = q[47];
+    const double B16 = q[48];
+    const double B17 = q[49];
+    const double B18 = q[50];
+    const double B19 = q[51];
+    const double B20 = q[52];
+    const double B21 = q[53];
+    const double B22 = q[54];
+    const double B23 = q[55];
+    const double B24 = q[56];
+    const double B25 = q[57];
+    const double B26 = q[58];
+    const double B27 = q[59];
+    const double B28 = q[60];
+    const double B29 = q[61];
+    const double B30 = q[62];
+    const double B31 = q[63];
+    const double B32 = q[64];
+    const double B1sq = B1*B1;
+    const double B1_B3 = B1*B3;
+    const double B1_B4 = B1*B4;
+    const double B2sq = B2*B2;
+    const double B2_B3 = B2*B3;
+    const double B2_B4 = B2*B4;
+    const double B3sq = B3*B3;
+    const double B3_B5 = B3*B5;
+    const double B3_B6 = B3*B6;
+    const double B4sq = B4*B4;
+    const double B4_B5 = B4*B5;
+    const double B4_B6 = B4*B6;
+    const double B5sq = B5*B5;
+    const double B5_B7 = B5*B7;
+    const double B5_B8 = B5*B8;
+    const double B6sq = B6*B6;
+    const double B6_B7 = B6*B7;
+    const double B6_B8 = B6*B8;
+    const double B7sq = B7*B7;
+    const double B7_B9 = B7*B9;
+    const double B7_B10 = B7*B10;
+    const double B8sq = B8*B8;
+    const double B8_B9 = B8*B9;
+    const double B8_B10 = B8*B10;
+    const double B9sq = B9*B9;
+    const double B9_B11 = B9*B11;
+    const double B9_B12 = B9*B12;
+    const double B10sq = B10*B10;
+    const double B10_B11 = B10*B11;
+    const double B10_B12 = B10*B12;
+    const double B11sq = B11*B11;
+    const double B11_B13 = B11*B13;
+    const double B11_B14 = B11*B14;
+    const double B12sq = B12*B12;
+    const double B12_B13 = B12*B13;
+    const double B12_B14 = B12*B14;
+    const double B13sq = B13*B13;
+    const double B13_B15 = B13*B15;
+    const double B13_B16 = B13*B16;
+    const double B14sq = B14*B14;
+    const double B14_B15 = B14*B15;
+    const double B14_B16 = B14*B16;
+    const double B15sq = B15*B15;
+    const double B15_B17 = B15*B17;
+    const double B15_B18 = B15*B18;
+    const double B16sq = B16*B16;
+    const double B16_B17 = B16*B17;
+    const double B16_B18 = B16*B18;
+    const double B17sq = B17*B17;
+    const double B17_B19 = B17*B19;
+    const double B17_B20 = B17*B20;
+    const double B18sq = B18*B18;
+    const double B18_B19 = B18*B19;
+    const double B18_B20 = B18*B20;
+    const double B19sq = B19*B19;
+    const double B19_B21 = B19*B21;
+    const double B19_B22 = B19*B22;
+    const double B20sq = B20*B20;
+    const double B20_B21 = B20*B21;
+    const double B20_B22 = B20*B22;
+    const double B21sq = B21*B21;
+    const double B21_B23 = B21*B23;
+    const double B21_B24 = B21*B24;
+    const double B22sq = B22*B22;
+    const double B22_B23 = B22*B23;
+    const double B22_B24 = B22*B24;
+    const double B23sq = B23*B23;
+    const double B23_B25 = B23*B25;
+    const double B23_B26 = B23*B26;
+    const double B24sq = B24*B24;
+    const double B24_B25 = B24*B25;
+    const double B24_B26 = B24*B26;
+    const double B25sq = B25*B25;
+    const double B25_B27 = B25*B27;
+    const double B25_B28 = B25*B28;
+    const double B26sq = B26*B26;
+    const double B26_B27 = B26*B27;
+    const double B26_B28 = B26*B28;
+    const double B27sq = B27*B27;
+    const double B27_B29 = B27*B29;
+    const double B27_B30 = B27*B30;
+    const double B28sq = B28*B28;
+    const double B28_B29 = B28*B29;
+    const double B28_B30 = B28*B30;
+    const double B29sq = B29*B29;
+    const double B29_B31 = B29*B31;
+    const double B29_B32 = B29*B32;
+    const double B30sq = B30*B30;
+    const double B30_B31 = B30*B31;
+    const double B30_B32 = B30*B32;
+    const double B31sq = B31*B31;
+    const double B31_B32 = B31*B32;
+    const double B32sq = B32*B32;
+    out[0] = B31;
+    out[1] = A32;
+    out[2] = A32 - c[326]*B1sq + c[326]*B1_B3 - c[327]*B1_B4 - c[328]*B2sq + c[327]*B2_B3 + c[329]*B2_B4 - c[326]*B3sq + c[326]*B3_B5 - c[327]*B3_B6 - c[328]*B4sq + c[327]*B4_B5 + c[329]*B4_B6 - c[326]*B5sq + c[326]*B5_B7 - c[327]*B5_B8 - c[328]*B6sq + c[327]*B6_B7 + c[329]*B6_B8 - c[326]*B7sq + c[326]*B7_B9 - c[327]*B7_B10 - c[328]*B8sq + c[327]*B8_B9 + c[329]*B8_B10 - c[326]*B9sq + c[326]*B9_B11 - c[327]*B9_B12 - c[328]*B10sq + c[327]*B10_B11 + c[329]*B10_B12 - c[326]*B11sq + c[326]*B11_B13 - c[327]*B11_B14 - c[328]*B12sq + c[327]*B12_B13 + c[329]*B12_B14 - c[326]*B13sq + c[326]*B13_B15 - c[327]*B13_B16 - c[328]*B14sq + c[327]*B14_B15 + c[329]*B14_B16 - c[326]*B15sq + c[326]*B15_B17 - c[327]*B15_B18 - c[328]*B16sq + c[327]*B16_B17 + c[329]*B16_B18 - c[326]*B17sq + c[326]*B17_B19 - c[327]*B17_B20 - c[328]*B18sq + c[327]*B18_B19 + c[329]*B18_B20 - c[326]*B19sq + c[326]*B19_B21 - c[327]*B19_B22 - c[328]*B20sq + c[327]*B20_B21 + c[329]*B20_B22 - c[326]*B21sq + c[326]*B21_B23 - c[327]*B21_B24 - c[328]*B22sq + c[327]*B22_B23 + c[329]*B22_B24 - c[326]*B23sq + c[326]*B23_B25 - c[327]*B23_B26 - c[328]*B24sq + c[327]*B24_B25 + c[329]*B24_B26 - c[326]*B25sq + c[326]*B25_B27 - c[327]*B25_B28 - c[328]*B26sq + c[327]*B26_B27 + c[329]*B26_B28 - c[326]*B27sq + c[326]*B27_B29 - c[327]*B27_B30 - c[328]*B28sq + c[327]*B28_B29 + c[329]*B28_B30 - c[326]*B29sq + c[326]*B29_B31 - c[327]*B29_B32 - c[328]*B30sq + c[327]*B30_B31 + c[329]*B30_B32 - c[330]*B31sq + c[327]*B31_B32 - c[331]*B32sq;
+}
+
+/* forces_q:(c[332],u[3],q[65],qd[65])->(dQdq[4225]) row-major; out[i*65+k] = dQ_i/dq_k; nonzero entries only */
 void fem_nx32_ny32_torque_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -6201,7 +6343,7 @@ void fem_nx32_ny32_torque_first_forces_q(const double* c, const double* u, const
     out[4224] = -c[288] - c[128]*theta_dotsq;
 }
 
-/* forces_qd:(c[326],u[3],q[65],qd[65])->(dQdqd[4225]) row-major; out[i*65+k] = dQ_i/dqd_k; nonzero entries only */
+/* forces_qd:(c[332],u[3],q[65],qd[65])->(dQdqd[4225]) row-major; out[i*65+k] = dQ_i/dqd_k; nonzero entries only */
 void fem_nx32_ny32_torque_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -7085,7 +7227,7 @@ void fem_nx32_ny32_torque_first_forces_qd(const double* c, const double* u, cons
     out[4192] = c[220]*theta_dot;
 }
 
-/* forces_u:(c[326],u[3],q[65],qd[65])->(dQdu[195]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
+/* forces_u:(c[332],u[3],q[65],qd[65])->(dQdu[195]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
 void fem_nx32_ny32_torque_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -7095,7 +7237,7 @@ void fem_nx32_ny32_torque_first_forces_u(const double* c, const double* u, const
     out[0] = 1.0;
 }
 
-/* mass_varying:(c[326],u[3],q[65],qd[65])->(M[4225]) as mass, the entries that depend on q only */
+/* mass_varying:(c[332],u[3],q[65],qd[65])->(M[4225]) as mass, the entries that depend on q only */
 void fem_nx32_ny32_torque_first_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -7402,7 +7544,7 @@ void fem_nx32_ny32_torque_first_mass_varying(const double* c, const double* u, c
     out[64] = -c[138] - c[133]*A30 - c[130]*A31 - c[135]*A32;
 }
 
-/* mass_q_product:(c[326],u[3],q[65],qd[65])->(dMv[4225]) row-major; v in the qd slot; out[i*65+k] = sum_j dM_ij/dq_k v_j; nonzero entries only */
+/* mass_q_product:(c[332],u[3],q[65],qd[65])->(dMv[4225]) row-major; v in the qd slot; out[i*65+k] = sum_j dM_ij/dq_k v_j; nonzero entries only */
 void fem_nx32_ny32_torque_first_mass_q_product(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -7945,9 +8087,9 @@ void fem_nx32_ny32_torque_first_mass_q_product(const double* c, const double* u,
 
 }  // namespace
 
-extern const Variant fem_nx32_ny32_torque_first = {"fem_nx32_ny32_torque_first", 65, 326, 472,
+extern const Variant fem_nx32_ny32_torque_first = {"fem_nx32_ny32_torque_first", 65, 332, 472,
     "vvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvcc00000000000000000000000000000000000000000000000000000000000000vccc0000000000000000000000000000000000000000000000000000000000000v0ccc000000000000000000000000000000000000000000000000000000000000v00ccc00000000000000000000000000000000000000000000000000000000000v000ccc0000000000000000000000000000000000000000000000000000000000v0000ccc000000000000000000000000000000000000000000000000000000000v00000ccc00000000000000000000000000000000000000000000000000000000v000000ccc0000000000000000000000000000000000000000000000000000000v0000000ccc000000000000000000000000000000000000000000000000000000v00000000ccc00000000000000000000000000000000000000000000000000000v000000000ccc0000000000000000000000000000000000000000000000000000v0000000000ccc000000000000000000000000000000000000000000000000000v00000000000ccc00000000000000000000000000000000000000000000000000v000000000000ccc0000000000000000000000000000000000000000000000000v0000000000000ccc000000000000000000000000000000000000000000000000v00000000000000ccc00000000000000000000000000000000000000000000000v000000000000000ccc0000000000000000000000000000000000000000000000v0000000000000000ccc000000000000000000000000000000000000000000000v00000000000000000ccc00000000000000000000000000000000000000000000v000000000000000000ccc0000000000000000000000000000000000000000000v0000000000000000000ccc000000000000000000000000000000000000000000v00000000000000000000ccc00000000000000000000000000000000000000000v000000000000000000000ccc0000000000000000000000000000000000000000v0000000000000000000000ccc000000000000000000000000000000000000000v00000000000000000000000ccc00000000000000000000000000000000000000v000000000000000000000000ccc0000000000000000000000000000000000000v0000000000000000000000000ccc000000000000000000000000000000000000v00000000000000000000000000ccc00000000000000000000000000000000000v000000000000000000000000000ccc0000000000000000000000000000000000v0000000000000000000000000000ccc000000000000000000000000000000000v00000000000000000000000000000ccc00000000000000000000000000000000v000000000000000000000000000000cc00000000000000000000000000000000v00000000000000000000000000000000c0cc0000000000000000000000000000v000000000000000000000000000000000ccc0000000000000000000000000000v00000000000000000000000000000000ccc0cc00000000000000000000000000v00000000000000000000000000000000cc0ccc00000000000000000000000000v0000000000000000000000000000000000ccc0cc000000000000000000000000v0000000000000000000000000000000000cc0ccc000000000000000000000000v000000000000000000000000000000000000ccc0cc0000000000000000000000v000000000000000000000000000000000000cc0ccc0000000000000000000000v00000000000000000000000000000000000000ccc0cc00000000000000000000v00000000000000000000000000000000000000cc0ccc00000000000000000000v0000000000000000000000000000000000000000ccc0cc000000000000000000v0000000000000000000000000000000000000000cc0ccc000000000000000000v000000000000000000000000000000000000000000ccc0cc0000000000000000v000000000000000000000000000000000000000000cc0ccc0000000000000000v00000000000000000000000000000000000000000000ccc0cc00000000000000v00000000000000000000000000000000000000000000cc0ccc00000000000000v0000000000000000000000000000000000000000000000ccc0cc000000000000v0000000000000000000000000000000000000000000000cc0ccc000000000000v000000000000000000000000000000000000000000000000ccc0cc0000000000v000000000000000000000000000000000000000000000000cc0ccc0000000000v00000000000000000000000000000000000000000000000000ccc0cc00000000v00000000000000000000000000000000000000000000000000cc0ccc00000000v0000000000000000000000000000000000000000000000000000ccc0cc000000v0000000000000000000000000000000000000000000000000000cc0ccc000000v000000000000000000000000000000000000000000000000000000ccc0cc0000v000000000000000000000000000000000000000000000000000000cc0ccc0000v00000000000000000000000000000000000000000000000000000000ccc0cc00v00000000000000000000000000000000000000000000000000000000cc0ccc00v0000000000000000000000000000000000000000000000000000000000ccc0ccv0000000000000000000000000000000000000000000000000000000000cc0cccv000000000000000000000000000000000000000000000000000000000000ccccv000000000000000000000000000000000000000000000000000000000000cccc",
     fem_nx32_ny32_torque_first_coefficients, fem_nx32_ny32_torque_first_mass, fem_nx32_ny32_torque_first_mass_varying, fem_nx32_ny32_torque_first_forces, fem_nx32_ny32_torque_first_forces_terms, fem_nx32_ny32_torque_first_forces_matrix,
-    fem_nx32_ny32_torque_first_energy, fem_nx32_ny32_torque_first_momentum, fem_nx32_ny32_torque_first_forces_q, fem_nx32_ny32_torque_first_forces_qd, fem_nx32_ny32_torque_first_mass_q_product, fem_nx32_ny32_torque_first_forces_u};
+    fem_nx32_ny32_torque_first_energy, fem_nx32_ny32_torque_first_momentum, fem_nx32_ny32_torque_first_forces_q, fem_nx32_ny32_torque_first_forces_qd, fem_nx32_ny32_torque_first_mass_q_product, fem_nx32_ny32_torque_first_forces_u, fem_nx32_ny32_torque_first_tip};
 
 }  // namespace hubbeam::generated

@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[74]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[80]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void fem_nx4_ny4_prescribed_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -92,14 +92,20 @@ void fem_nx4_ny4_prescribed_first_coefficients(const double* p, double* c)
     c[66] = 0.02261904761904762*L*m;
     c[67] = 0.008333333333333333*m*a + 0.004761904761904762*L*m;
     c[68] = 0.1*m*a + 0.055952380952380955*L*m;
-    c[69] = 0.3333333333333333*L*m;
-    c[70] = 4.8*m*a + 2.5142857142857142*L*m;
-    c[71] = 0.13333333333333333*m*a + 0.09047619047619047*L*m;
-    c[72] = 1.2*m*a + 0.6571428571428571*L*m;
-    c[73] = 0.016666666666666666*m*a + 0.011904761904761904*L*m;
+    c[69] = 2.4*1.0/(L);
+    c[70] = 0.1*1.0/(L);
+    c[71] = 0.06666666666666667*1.0/(L);
+    c[72] = 0.016666666666666666*1.0/(L);
+    c[73] = 1.2*1.0/(L);
+    c[74] = 0.03333333333333333*1.0/(L);
+    c[75] = 0.3333333333333333*L*m;
+    c[76] = 4.8*m*a + 2.5142857142857142*L*m;
+    c[77] = 0.13333333333333333*m*a + 0.09047619047619047*L*m;
+    c[78] = 1.2*m*a + 0.6571428571428571*L*m;
+    c[79] = 0.016666666666666666*m*a + 0.011904761904761904*L*m;
 }
 
-/* mass:(c[74],u[3],q[8],qd[8])->(M[64]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[80],u[3],q[8],qd[8])->(M[64]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void fem_nx4_ny4_prescribed_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -123,7 +129,7 @@ void fem_nx4_ny4_prescribed_first_mass(const double* c, const double* u, const d
     out[63] = c[10];
 }
 
-/* forces:(c[74],u[3],q[8],qd[8])->(Q[8]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[80],u[3],q[8],qd[8])->(Q[8]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void fem_nx4_ny4_prescribed_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -179,7 +185,7 @@ void fem_nx4_ny4_prescribed_first_forces(const double* c, const double* u, const
     out[7] = c[47]*theta_ddot - c[33]*B1 - c[40]*B2 + c[33]*B3 - c[48]*B4 + c[21]*theta_dot_A2_dot + c[15]*theta_dot_A3_dot + c[27]*theta_dot_A4_dot + c[24]*theta_ddot_A2 + c[17]*theta_ddot_A3 + c[29]*theta_ddot_A4 - c[37]*theta_dotsq_B1 + c[43]*theta_dotsq_B2 + c[46]*theta_dotsq_B3 - c[49]*theta_dotsq_B4;
 }
 
-/* forces_terms:(c[74],u[3],q[8],qd[8])->(m[34]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[80],u[3],q[8],qd[8])->(m[34]) the state monomials of Q: Q = F m */
 void fem_nx4_ny4_prescribed_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -262,7 +268,7 @@ void fem_nx4_ny4_prescribed_first_forces_terms(const double* c, const double* u,
     out[33] = theta_dotsq_B4;
 }
 
-/* forces_matrix:(c[74],u[3],q[8],qd[8])->(F[8*34]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[80],u[3],q[8],qd[8])->(F[8*34]) row-major, state-free: Q = F m; nonzero entries only */
 void fem_nx4_ny4_prescribed_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -380,7 +386,7 @@ void fem_nx4_ny4_prescribed_first_forces_matrix(const double* c, const double* u
     out[271] = -c[49];
 }
 
-/* energy:(c[74],u[3],q[8],qd[8])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[80],u[3],q[8],qd[8])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void fem_nx4_ny4_prescribed_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -502,7 +508,7 @@ void fem_nx4_ny4_prescribed_first_energy(const double* c, const double* u, const
     out[3] = c[12]*A1sq - c[12]*A1_A2 + c[12]*A2sq - c[12]*A2_A3 + c[12]*A3sq - c[12]*A3_A4 + c[57]*A4sq + c[32]*B1sq - c[32]*B1_B3 + c[33]*B1_B4 + c[48]*B2sq - c[33]*B2_B3 + c[40]*B2_B4 + c[58]*B3sq - c[33]*B3_B4 + c[40]*B4sq;
 }
 
-/* momentum:(c[74],u[3],q[8],qd[8])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[80],u[3],q[8],qd[8])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void fem_nx4_ny4_prescribed_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -576,7 +582,31 @@ void fem_nx4_ny4_prescribed_first_momentum(const double* c, const double* u, con
     out[0] = c[59]*theta_dot + c[30]*B1_dot + c[38]*B2_dot + c[44]*B3_dot - c[47]*B4_dot + c[60]*theta_dot_A1 + c[30]*theta_dot_A2 + c[61]*theta_dot_A3 + c[62]*theta_dot_A4 + c[16]*A1_B1_dot - c[17]*A1_B2_dot + c[22]*A2_B1_dot + c[23]*A2_B3_dot - c[24]*A2_B4_dot + c[16]*A3_B1_dot + c[17]*A3_B2_dot + c[16]*A3_B3_dot - c[17]*A3_B4_dot + c[23]*A4_B1_dot + c[24]*A4_B2_dot + c[28]*A4_B3_dot - c[29]*A4_B4_dot - c[16]*B1_A1_dot - c[22]*B1_A2_dot - c[16]*B1_A3_dot - c[23]*B1_A4_dot + c[17]*B2_A1_dot - c[17]*B2_A3_dot - c[24]*B2_A4_dot - c[23]*B3_A2_dot - c[16]*B3_A3_dot - c[28]*B3_A4_dot + c[24]*B4_A2_dot + c[17]*B4_A3_dot + c[29]*B4_A4_dot + c[0]*theta_dot_A1sq + c[2]*theta_dot_A1_A2 + c[0]*theta_dot_A2sq + c[2]*theta_dot_A2_A3 + c[0]*theta_dot_A3sq + c[2]*theta_dot_A3_A4 + c[2]*theta_dot_A4sq - c[34]*theta_dot_B1sq + c[63]*theta_dot_B1_B2 + c[64]*theta_dot_B1_B3 - c[65]*theta_dot_B1_B4 - c[41]*theta_dot_B2sq + c[66]*theta_dot_B2_B3 + c[67]*theta_dot_B2_B4 - c[45]*theta_dot_B3sq + c[68]*theta_dot_B3_B4 - c[49]*theta_dot_B4sq;
 }
 
-/* forces_q:(c[74],u[3],q[8],qd[8])->(dQdq[64]) row-major; out[i*8+k] = dQ_i/dq_k; nonzero entries only */
+/* tip:(c[80],u[3],q[8],qd[8])->(tip[3]) tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B */
+void fem_nx4_ny4_prescribed_first_tip(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)qd;
+    const double A4 = q[3];
+    const double B1 = q[4];
+    const double B2 = q[5];
+    const double B3 = q[6];
+    const double B4 = q[7];
+    const double B1sq = B1*B1;
+    const double B1_B3 = B1*B3;
+    const double B1_B4 = B1*B4;
+    const double B2sq = B2*B2;
+    const double B2_B3 = B2*B3;
+    const double B2_B4 = B2*B4;
+    const double B3sq = B3*B3;
+    const double B3_B4 = B3*B4;
+    const double B4sq = B4*B4;
+    out[0] = B3;
+    out[1] = A4;
+    out[2] = A4 - c[69]*B1sq + c[69]*B1_B3 - c[70]*B1_B4 - c[71]*B2sq + c[70]*B2_B3 + c[72]*B2_B4 - c[73]*B3sq + c[70]*B3_B4 - c[74]*B4sq;
+}
+
+/* forces_q:(c[80],u[3],q[8],qd[8])->(dQdq[64]) row-major; out[i*8+k] = dQ_i/dq_k; nonzero entries only */
 void fem_nx4_ny4_prescribed_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)q;
@@ -638,7 +668,7 @@ void fem_nx4_ny4_prescribed_first_forces_q(const double* c, const double* u, con
     out[63] = -c[48] - c[49]*theta_dotsq;
 }
 
-/* forces_qd:(c[74],u[3],q[8],qd[8])->(dQdqd[64]) row-major; out[i*8+k] = dQ_i/dqd_k; nonzero entries only */
+/* forces_qd:(c[80],u[3],q[8],qd[8])->(dQdqd[64]) row-major; out[i*8+k] = dQ_i/dqd_k; nonzero entries only */
 void fem_nx4_ny4_prescribed_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)q;
@@ -672,7 +702,7 @@ void fem_nx4_ny4_prescribed_first_forces_qd(const double* c, const double* u, co
     out[59] = c[27]*theta_dot;
 }
 
-/* forces_u:(c[74],u[3],q[8],qd[8])->(dQdu[24]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
+/* forces_u:(c[80],u[3],q[8],qd[8])->(dQdu[24]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
 void fem_nx4_ny4_prescribed_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -700,29 +730,29 @@ void fem_nx4_ny4_prescribed_first_forces_u(const double* c, const double* u, con
     const double theta_dot_B2 = theta_dot*B2;
     const double theta_dot_B3 = theta_dot*B3;
     const double theta_dot_B4 = theta_dot*B4;
-    out[1] = c[60]*theta_dot + c[14]*B1_dot - c[15]*B2_dot + c[69]*theta_dot_A1 + c[2]*theta_dot_A2;
+    out[1] = c[60]*theta_dot + c[14]*B1_dot - c[15]*B2_dot + c[75]*theta_dot_A1 + c[2]*theta_dot_A2;
     out[2] = c[16]*B1 - c[17]*B2;
-    out[4] = c[30]*theta_dot + c[19]*B1_dot + c[20]*B3_dot - c[21]*B4_dot + c[2]*theta_dot_A1 + c[69]*theta_dot_A2 + c[2]*theta_dot_A3;
+    out[4] = c[30]*theta_dot + c[19]*B1_dot + c[20]*B3_dot - c[21]*B4_dot + c[2]*theta_dot_A1 + c[75]*theta_dot_A2 + c[2]*theta_dot_A3;
     out[5] = c[22]*B1 + c[23]*B3 - c[24]*B4;
-    out[7] = c[61]*theta_dot + c[14]*B1_dot + c[15]*B2_dot + c[14]*B3_dot - c[15]*B4_dot + c[2]*theta_dot_A2 + c[69]*theta_dot_A3 + c[2]*theta_dot_A4;
+    out[7] = c[61]*theta_dot + c[14]*B1_dot + c[15]*B2_dot + c[14]*B3_dot - c[15]*B4_dot + c[2]*theta_dot_A2 + c[75]*theta_dot_A3 + c[2]*theta_dot_A4;
     out[8] = c[16]*B1 + c[17]*B2 + c[16]*B3 - c[17]*B4;
     out[10] = c[62]*theta_dot + c[20]*B1_dot + c[21]*B2_dot + c[22]*B3_dot - c[27]*B4_dot + c[2]*theta_dot_A3 + c[0]*theta_dot_A4;
     out[11] = c[23]*B1 + c[24]*B2 + c[28]*B3 - c[29]*B4;
-    out[13] = -c[14]*A1_dot - c[19]*A2_dot - c[14]*A3_dot - c[20]*A4_dot - c[70]*theta_dot_B1 + c[63]*theta_dot_B2 + c[64]*theta_dot_B3 - c[65]*theta_dot_B4;
+    out[13] = -c[14]*A1_dot - c[19]*A2_dot - c[14]*A3_dot - c[20]*A4_dot - c[76]*theta_dot_B1 + c[63]*theta_dot_B2 + c[64]*theta_dot_B3 - c[65]*theta_dot_B4;
     out[14] = -c[30] - c[16]*A1 - c[22]*A2 - c[16]*A3 - c[23]*A4;
-    out[16] = c[15]*A1_dot - c[15]*A3_dot - c[21]*A4_dot + c[63]*theta_dot_B1 - c[71]*theta_dot_B2 + c[66]*theta_dot_B3 + c[67]*theta_dot_B4;
+    out[16] = c[15]*A1_dot - c[15]*A3_dot - c[21]*A4_dot + c[63]*theta_dot_B1 - c[77]*theta_dot_B2 + c[66]*theta_dot_B3 + c[67]*theta_dot_B4;
     out[17] = -c[38] + c[17]*A1 - c[17]*A3 - c[24]*A4;
-    out[19] = -c[20]*A2_dot - c[14]*A3_dot - c[22]*A4_dot + c[64]*theta_dot_B1 + c[66]*theta_dot_B2 - c[72]*theta_dot_B3 + c[68]*theta_dot_B4;
+    out[19] = -c[20]*A2_dot - c[14]*A3_dot - c[22]*A4_dot + c[64]*theta_dot_B1 + c[66]*theta_dot_B2 - c[78]*theta_dot_B3 + c[68]*theta_dot_B4;
     out[20] = -c[44] - c[23]*A2 - c[16]*A3 - c[28]*A4;
-    out[22] = c[21]*A2_dot + c[15]*A3_dot + c[27]*A4_dot - c[65]*theta_dot_B1 + c[67]*theta_dot_B2 + c[68]*theta_dot_B3 - c[73]*theta_dot_B4;
+    out[22] = c[21]*A2_dot + c[15]*A3_dot + c[27]*A4_dot - c[65]*theta_dot_B1 + c[67]*theta_dot_B2 + c[68]*theta_dot_B3 - c[79]*theta_dot_B4;
     out[23] = c[47] + c[24]*A2 + c[17]*A3 + c[29]*A4;
 }
 
 }  // namespace
 
-extern const Variant fem_nx4_ny4_prescribed_first = {"fem_nx4_ny4_prescribed_first", 8, 74, 34,
+extern const Variant fem_nx4_ny4_prescribed_first = {"fem_nx4_ny4_prescribed_first", 8, 80, 34,
     "cc000000ccc000000ccc000000cc00000000c0cc00000ccc0000cccc0000cccc",
     fem_nx4_ny4_prescribed_first_coefficients, fem_nx4_ny4_prescribed_first_mass, nullptr, fem_nx4_ny4_prescribed_first_forces, fem_nx4_ny4_prescribed_first_forces_terms, fem_nx4_ny4_prescribed_first_forces_matrix,
-    fem_nx4_ny4_prescribed_first_energy, fem_nx4_ny4_prescribed_first_momentum, fem_nx4_ny4_prescribed_first_forces_q, fem_nx4_ny4_prescribed_first_forces_qd, nullptr, fem_nx4_ny4_prescribed_first_forces_u};
+    fem_nx4_ny4_prescribed_first_energy, fem_nx4_ny4_prescribed_first_momentum, fem_nx4_ny4_prescribed_first_forces_q, fem_nx4_ny4_prescribed_first_forces_qd, nullptr, fem_nx4_ny4_prescribed_first_forces_u, fem_nx4_ny4_prescribed_first_tip};
 
 }  // namespace hubbeam::generated

@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[74]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[80]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void fem_nx4_ny4_torque_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -97,9 +97,15 @@ void fem_nx4_ny4_torque_first_coefficients(const double* p, double* c)
     c[71] = 0.004166666666666667*m*a + 0.002976190476190476*L*m;
     c[72] = 2.0*ES/(L);
     c[73] = 48.0*EI/(L*L*L);
+    c[74] = 2.4*1.0/(L);
+    c[75] = 0.1*1.0/(L);
+    c[76] = 0.06666666666666667*1.0/(L);
+    c[77] = 0.016666666666666666*1.0/(L);
+    c[78] = 1.2*1.0/(L);
+    c[79] = 0.03333333333333333*1.0/(L);
 }
 
-/* mass:(c[74],u[3],q[9],qd[9])->(M[81]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[80],u[3],q[9],qd[9])->(M[81]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void fem_nx4_ny4_torque_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -156,7 +162,7 @@ void fem_nx4_ny4_torque_first_mass(const double* c, const double* u, const doubl
     out[80] = c[35];
 }
 
-/* forces:(c[74],u[3],q[9],qd[9])->(Q[9]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[80],u[3],q[9],qd[9])->(Q[9]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void fem_nx4_ny4_torque_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
@@ -239,7 +245,7 @@ void fem_nx4_ny4_torque_first_forces(const double* c, const double* u, const dou
     out[8] = -c[55]*B1 - c[60]*B2 + c[55]*B3 - c[64]*B4 + c[49]*theta_dot_A2_dot + c[45]*theta_dot_A3_dot + c[52]*theta_dot_A4_dot - c[58]*B1_theta_dotsq + c[62]*B2_theta_dotsq + c[63]*B3_theta_dotsq - c[16]*B4_theta_dotsq;
 }
 
-/* forces_terms:(c[74],u[3],q[9],qd[9])->(m[52]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[80],u[3],q[9],qd[9])->(m[52]) the state monomials of Q: Q = F m */
 void fem_nx4_ny4_torque_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -366,7 +372,7 @@ void fem_nx4_ny4_torque_first_forces_terms(const double* c, const double* u, con
     out[51] = B4_theta_dot_B4_dot;
 }
 
-/* forces_matrix:(c[74],u[3],q[9],qd[9])->(F[9*52]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[80],u[3],q[9],qd[9])->(F[9*52]) row-major, state-free: Q = F m; nonzero entries only */
 void fem_nx4_ny4_torque_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -485,7 +491,7 @@ void fem_nx4_ny4_torque_first_forces_matrix(const double* c, const double* u, co
     out[463] = -c[16];
 }
 
-/* energy:(c[74],u[3],q[9],qd[9])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[80],u[3],q[9],qd[9])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void fem_nx4_ny4_torque_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -622,7 +628,7 @@ void fem_nx4_ny4_torque_first_energy(const double* c, const double* u, const dou
     out[3] = c[42]*A1sq - c[42]*A1_A2 + c[42]*A2sq - c[42]*A2_A3 + c[42]*A3sq - c[42]*A3_A4 + c[72]*A4sq + c[54]*B1sq - c[54]*B1_B3 + c[55]*B1_B4 + c[64]*B2sq - c[55]*B2_B3 + c[60]*B2_B4 + c[73]*B3sq - c[55]*B3_B4 + c[60]*B4sq;
 }
 
-/* momentum:(c[74],u[3],q[9],qd[9])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[80],u[3],q[9],qd[9])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void fem_nx4_ny4_torque_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -710,7 +716,31 @@ void fem_nx4_ny4_torque_first_momentum(const double* c, const double* u, const d
     out[0] = c[0]*theta_dot + c[2]*B1_dot + c[24]*B2_dot + c[25]*B3_dot - c[26]*B4_dot + c[1]*A1_theta_dot + c[17]*A1_B1_dot - c[18]*A1_B2_dot + c[2]*A2_theta_dot + c[19]*A2_B1_dot + c[20]*A2_B3_dot - c[21]*A2_B4_dot + c[3]*A3_theta_dot + c[17]*A3_B1_dot + c[18]*A3_B2_dot + c[17]*A3_B3_dot - c[18]*A3_B4_dot + c[4]*A4_theta_dot + c[20]*A4_B1_dot + c[21]*A4_B2_dot + c[22]*A4_B3_dot - c[23]*A4_B4_dot - c[17]*B1_A1_dot - c[19]*B1_A2_dot - c[17]*B1_A3_dot - c[20]*B1_A4_dot + c[18]*B2_A1_dot - c[18]*B2_A3_dot - c[21]*B2_A4_dot - c[20]*B3_A2_dot - c[17]*B3_A3_dot - c[22]*B3_A4_dot + c[21]*B4_A2_dot + c[18]*B4_A3_dot + c[23]*B4_A4_dot + c[5]*A1sq_theta_dot + c[6]*A1_A2_theta_dot + c[5]*A2sq_theta_dot + c[6]*A2_A3_theta_dot + c[5]*A3sq_theta_dot + c[6]*A3_A4_theta_dot + c[6]*A4sq_theta_dot - c[7]*B1sq_theta_dot + c[8]*B1_B2_theta_dot + c[9]*B1_B3_theta_dot - c[10]*B1_B4_theta_dot - c[11]*B2sq_theta_dot + c[12]*B2_B3_theta_dot + c[13]*B2_B4_theta_dot - c[14]*B3sq_theta_dot + c[15]*B3_B4_theta_dot - c[16]*B4sq_theta_dot;
 }
 
-/* forces_q:(c[74],u[3],q[9],qd[9])->(dQdq[81]) row-major; out[i*9+k] = dQ_i/dq_k; nonzero entries only */
+/* tip:(c[80],u[3],q[9],qd[9])->(tip[3]) tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B */
+void fem_nx4_ny4_torque_first_tip(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)qd;
+    const double A4 = q[4];
+    const double B1 = q[5];
+    const double B2 = q[6];
+    const double B3 = q[7];
+    const double B4 = q[8];
+    const double B1sq = B1*B1;
+    const double B1_B3 = B1*B3;
+    const double B1_B4 = B1*B4;
+    const double B2sq = B2*B2;
+    const double B2_B3 = B2*B3;
+    const double B2_B4 = B2*B4;
+    const double B3sq = B3*B3;
+    const double B3_B4 = B3*B4;
+    const double B4sq = B4*B4;
+    out[0] = B3;
+    out[1] = A4;
+    out[2] = A4 - c[74]*B1sq + c[74]*B1_B3 - c[75]*B1_B4 - c[76]*B2sq + c[75]*B2_B3 + c[77]*B2_B4 - c[78]*B3sq + c[75]*B3_B4 - c[79]*B4sq;
+}
+
+/* forces_q:(c[80],u[3],q[9],qd[9])->(dQdq[81]) row-major; out[i*9+k] = dQ_i/dq_k; nonzero entries only */
 void fem_nx4_ny4_torque_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -769,7 +799,7 @@ void fem_nx4_ny4_torque_first_forces_q(const double* c, const double* u, const d
     out[80] = -c[64] - c[16]*theta_dotsq;
 }
 
-/* forces_qd:(c[74],u[3],q[9],qd[9])->(dQdqd[81]) row-major; out[i*9+k] = dQ_i/dqd_k; nonzero entries only */
+/* forces_qd:(c[80],u[3],q[9],qd[9])->(dQdqd[81]) row-major; out[i*9+k] = dQ_i/dqd_k; nonzero entries only */
 void fem_nx4_ny4_torque_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -869,7 +899,7 @@ void fem_nx4_ny4_torque_first_forces_qd(const double* c, const double* u, const 
     out[76] = c[52]*theta_dot;
 }
 
-/* forces_u:(c[74],u[3],q[9],qd[9])->(dQdu[27]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
+/* forces_u:(c[80],u[3],q[9],qd[9])->(dQdu[27]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
 void fem_nx4_ny4_torque_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -879,7 +909,7 @@ void fem_nx4_ny4_torque_first_forces_u(const double* c, const double* u, const d
     out[0] = 1.0;
 }
 
-/* mass_varying:(c[74],u[3],q[9],qd[9])->(M[81]) as mass, the entries that depend on q only */
+/* mass_varying:(c[80],u[3],q[9],qd[9])->(M[81]) as mass, the entries that depend on q only */
 void fem_nx4_ny4_torque_first_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -920,7 +950,7 @@ void fem_nx4_ny4_torque_first_mass_varying(const double* c, const double* u, con
     out[8] = -c[26] - c[21]*A2 - c[18]*A3 - c[23]*A4;
 }
 
-/* mass_q_product:(c[74],u[3],q[9],qd[9])->(dMv[81]) row-major; v in the qd slot; out[i*9+k] = sum_j dM_ij/dq_k v_j; nonzero entries only */
+/* mass_q_product:(c[80],u[3],q[9],qd[9])->(dMv[81]) row-major; v in the qd slot; out[i*9+k] = sum_j dM_ij/dq_k v_j; nonzero entries only */
 void fem_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -987,9 +1017,9 @@ void fem_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, c
 
 }  // namespace
 
-extern const Variant fem_nx4_ny4_torque_first = {"fem_nx4_ny4_torque_first", 9, 74, 52,
+extern const Variant fem_nx4_ny4_torque_first = {"fem_nx4_ny4_torque_first", 9, 80, 52,
     "vvvvvvvvvvcc000000vccc00000v0ccc0000v00cc0000v0000c0ccv00000cccv0000ccccv0000cccc",
     fem_nx4_ny4_torque_first_coefficients, fem_nx4_ny4_torque_first_mass, fem_nx4_ny4_torque_first_mass_varying, fem_nx4_ny4_torque_first_forces, fem_nx4_ny4_torque_first_forces_terms, fem_nx4_ny4_torque_first_forces_matrix,
-    fem_nx4_ny4_torque_first_energy, fem_nx4_ny4_torque_first_momentum, fem_nx4_ny4_torque_first_forces_q, fem_nx4_ny4_torque_first_forces_qd, fem_nx4_ny4_torque_first_mass_q_product, fem_nx4_ny4_torque_first_forces_u};
+    fem_nx4_ny4_torque_first_energy, fem_nx4_ny4_torque_first_momentum, fem_nx4_ny4_torque_first_forces_q, fem_nx4_ny4_torque_first_forces_qd, fem_nx4_ny4_torque_first_mass_q_product, fem_nx4_ny4_torque_first_forces_u, fem_nx4_ny4_torque_first_tip};
 
 }  // namespace hubbeam::generated

@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[110]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[116]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void fem_nx8_ny8_prescribed_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -124,18 +124,24 @@ void fem_nx8_ny8_prescribed_first_coefficients(const double* p, double* c)
     c[98] = 0.005654761904761905*L*m;
     c[99] = 0.0020833333333333333*m*a + 0.001636904761904762*L*m;
     c[100] = 0.05*m*a + 0.03898809523809524*L*m;
-    c[101] = 0.16666666666666666*L*m;
-    c[102] = 14.4*m*a + 8.457142857142857*L*m;
-    c[103] = 0.1*m*a + 0.06130952380952381*L*m;
-    c[104] = 9.6*m*a + 6.6571428571428575*L*m;
-    c[105] = 0.06666666666666667*m*a + 0.04880952380952381*L*m;
-    c[106] = 4.8*m*a + 3.657142857142857*L*m;
-    c[107] = 0.03333333333333333*m*a + 0.027976190476190477*L*m;
-    c[108] = 1.2*m*a + 0.9285714285714286*L*m;
-    c[109] = 0.004166666666666667*m*a + 0.0035714285714285713*L*m;
+    c[101] = 4.8*1.0/(L);
+    c[102] = 0.1*1.0/(L);
+    c[103] = 0.03333333333333333*1.0/(L);
+    c[104] = 0.008333333333333333*1.0/(L);
+    c[105] = 2.4*1.0/(L);
+    c[106] = 0.016666666666666666*1.0/(L);
+    c[107] = 0.16666666666666666*L*m;
+    c[108] = 14.4*m*a + 8.457142857142857*L*m;
+    c[109] = 0.1*m*a + 0.06130952380952381*L*m;
+    c[110] = 9.6*m*a + 6.6571428571428575*L*m;
+    c[111] = 0.06666666666666667*m*a + 0.04880952380952381*L*m;
+    c[112] = 4.8*m*a + 3.657142857142857*L*m;
+    c[113] = 0.03333333333333333*m*a + 0.027976190476190477*L*m;
+    c[114] = 1.2*m*a + 0.9285714285714286*L*m;
+    c[115] = 0.004166666666666667*m*a + 0.0035714285714285713*L*m;
 }
 
-/* mass:(c[110],u[3],q[16],qd[16])->(M[256]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[116],u[3],q[16],qd[16])->(M[256]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void fem_nx8_ny8_prescribed_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -179,7 +185,7 @@ void fem_nx8_ny8_prescribed_first_mass(const double* c, const double* u, const d
     out[255] = c[10];
 }
 
-/* forces:(c[110],u[3],q[16],qd[16])->(Q[16]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[116],u[3],q[16],qd[16])->(Q[16]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void fem_nx8_ny8_prescribed_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -283,7 +289,7 @@ void fem_nx8_ny8_prescribed_first_forces(const double* c, const double* u, const
     out[15] = c[65]*theta_ddot - c[37]*B5 - c[44]*B6 + c[37]*B7 - c[66]*B8 + c[21]*theta_dot_A6_dot + c[15]*theta_dot_A7_dot + c[31]*theta_dot_A8_dot + c[24]*theta_ddot_A6 + c[17]*theta_ddot_A7 + c[33]*theta_ddot_A8 - c[53]*theta_dotsq_B5 + c[61]*theta_dotsq_B6 + c[64]*theta_dotsq_B7 - c[67]*theta_dotsq_B8;
 }
 
-/* forces_terms:(c[110],u[3],q[16],qd[16])->(m[66]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[116],u[3],q[16],qd[16])->(m[66]) the state monomials of Q: Q = F m */
 void fem_nx8_ny8_prescribed_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -438,7 +444,7 @@ void fem_nx8_ny8_prescribed_first_forces_terms(const double* c, const double* u,
     out[65] = theta_dotsq_B8;
 }
 
-/* forces_matrix:(c[110],u[3],q[16],qd[16])->(F[16*66]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[116],u[3],q[16],qd[16])->(F[16*66]) row-major, state-free: Q = F m; nonzero entries only */
 void fem_nx8_ny8_prescribed_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -704,7 +710,7 @@ void fem_nx8_ny8_prescribed_first_forces_matrix(const double* c, const double* u
     out[1055] = -c[67];
 }
 
-/* energy:(c[110],u[3],q[16],qd[16])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[116],u[3],q[16],qd[16])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void fem_nx8_ny8_prescribed_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -960,7 +966,7 @@ void fem_nx8_ny8_prescribed_first_energy(const double* c, const double* u, const
     out[3] = c[12]*A1sq - c[12]*A1_A2 + c[12]*A2sq - c[12]*A2_A3 + c[12]*A3sq - c[12]*A3_A4 + c[12]*A4sq - c[12]*A4_A5 + c[12]*A5sq - c[12]*A5_A6 + c[12]*A6sq - c[12]*A6_A7 + c[12]*A7sq - c[12]*A7_A8 + c[79]*A8sq + c[36]*B1sq - c[36]*B1_B3 + c[37]*B1_B4 + c[66]*B2sq - c[37]*B2_B3 + c[44]*B2_B4 + c[36]*B3sq - c[36]*B3_B5 + c[37]*B3_B6 + c[66]*B4sq - c[37]*B4_B5 + c[44]*B4_B6 + c[36]*B5sq - c[36]*B5_B7 + c[37]*B5_B8 + c[66]*B6sq - c[37]*B6_B7 + c[44]*B6_B8 + c[80]*B7sq - c[37]*B7_B8 + c[44]*B8sq;
 }
 
-/* momentum:(c[110],u[3],q[16],qd[16])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[116],u[3],q[16],qd[16])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void fem_nx8_ny8_prescribed_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -1116,7 +1122,47 @@ void fem_nx8_ny8_prescribed_first_momentum(const double* c, const double* u, con
     out[0] = c[81]*theta_dot + c[34]*B1_dot + c[42]*B2_dot + c[48]*B3_dot + c[42]*B4_dot + c[55]*B5_dot + c[42]*B6_dot + c[62]*B7_dot - c[65]*B8_dot + c[82]*theta_dot_A1 + c[34]*theta_dot_A2 + c[83]*theta_dot_A3 + c[48]*theta_dot_A4 + c[84]*theta_dot_A5 + c[55]*theta_dot_A6 + c[85]*theta_dot_A7 + c[86]*theta_dot_A8 + c[16]*A1_B1_dot - c[17]*A1_B2_dot + c[22]*A2_B1_dot + c[23]*A2_B3_dot - c[24]*A2_B4_dot + c[16]*A3_B1_dot + c[17]*A3_B2_dot + c[16]*A3_B3_dot - c[17]*A3_B4_dot + c[23]*A4_B1_dot + c[24]*A4_B2_dot + c[22]*A4_B3_dot + c[23]*A4_B5_dot - c[24]*A4_B6_dot + c[16]*A5_B3_dot + c[17]*A5_B4_dot + c[16]*A5_B5_dot - c[17]*A5_B6_dot + c[23]*A6_B3_dot + c[24]*A6_B4_dot + c[22]*A6_B5_dot + c[23]*A6_B7_dot - c[24]*A6_B8_dot + c[16]*A7_B5_dot + c[17]*A7_B6_dot + c[16]*A7_B7_dot - c[17]*A7_B8_dot + c[23]*A8_B5_dot + c[24]*A8_B6_dot + c[32]*A8_B7_dot - c[33]*A8_B8_dot - c[16]*B1_A1_dot - c[22]*B1_A2_dot - c[16]*B1_A3_dot - c[23]*B1_A4_dot + c[17]*B2_A1_dot - c[17]*B2_A3_dot - c[24]*B2_A4_dot - c[23]*B3_A2_dot - c[16]*B3_A3_dot - c[22]*B3_A4_dot - c[16]*B3_A5_dot - c[23]*B3_A6_dot + c[24]*B4_A2_dot + c[17]*B4_A3_dot - c[17]*B4_A5_dot - c[24]*B4_A6_dot - c[23]*B5_A4_dot - c[16]*B5_A5_dot - c[22]*B5_A6_dot - c[16]*B5_A7_dot - c[23]*B5_A8_dot + c[24]*B6_A4_dot + c[17]*B6_A5_dot - c[17]*B6_A7_dot - c[24]*B6_A8_dot - c[23]*B7_A6_dot - c[16]*B7_A7_dot - c[32]*B7_A8_dot + c[24]*B8_A6_dot + c[17]*B8_A7_dot + c[33]*B8_A8_dot + c[0]*theta_dot_A1sq + c[2]*theta_dot_A1_A2 + c[0]*theta_dot_A2sq + c[2]*theta_dot_A2_A3 + c[0]*theta_dot_A3sq + c[2]*theta_dot_A3_A4 + c[0]*theta_dot_A4sq + c[2]*theta_dot_A4_A5 + c[0]*theta_dot_A5sq + c[2]*theta_dot_A5_A6 + c[0]*theta_dot_A6sq + c[2]*theta_dot_A6_A7 + c[0]*theta_dot_A7sq + c[2]*theta_dot_A7_A8 + c[2]*theta_dot_A8sq - c[38]*theta_dot_B1sq + c[87]*theta_dot_B1_B2 + c[88]*theta_dot_B1_B3 - c[89]*theta_dot_B1_B4 - c[45]*theta_dot_B2sq + c[90]*theta_dot_B2_B3 + c[91]*theta_dot_B2_B4 - c[49]*theta_dot_B3sq + c[92]*theta_dot_B3_B4 + c[93]*theta_dot_B3_B5 - c[90]*theta_dot_B3_B6 - c[52]*theta_dot_B4sq + c[94]*theta_dot_B4_B5 + c[95]*theta_dot_B4_B6 - c[56]*theta_dot_B5sq + c[96]*theta_dot_B5_B6 + c[97]*theta_dot_B5_B7 - c[94]*theta_dot_B5_B8 - c[59]*theta_dot_B6sq + c[98]*theta_dot_B6_B7 + c[99]*theta_dot_B6_B8 - c[63]*theta_dot_B7sq + c[100]*theta_dot_B7_B8 - c[67]*theta_dot_B8sq;
 }
 
-/* forces_q:(c[110],u[3],q[16],qd[16])->(dQdq[256]) row-major; out[i*16+k] = dQ_i/dq_k; nonzero entries only */
+/* tip:(c[116],u[3],q[16],qd[16])->(tip[3]) tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B */
+void fem_nx8_ny8_prescribed_first_tip(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)qd;
+    const double A8 = q[7];
+    const double B1 = q[8];
+    const double B2 = q[9];
+    const double B3 = q[10];
+    const double B4 = q[11];
+    const double B5 = q[12];
+    const double B6 = q[13];
+    const double B7 = q[14];
+    const double B8 = q[15];
+    const double B1sq = B1*B1;
+    const double B1_B3 = B1*B3;
+    const double B1_B4 = B1*B4;
+    const double B2sq = B2*B2;
+    const double B2_B3 = B2*B3;
+    const double B2_B4 = B2*B4;
+    const double B3sq = B3*B3;
+    const double B3_B5 = B3*B5;
+    const double B3_B6 = B3*B6;
+    const double B4sq = B4*B4;
+    const double B4_B5 = B4*B5;
+    const double B4_B6 = B4*B6;
+    const double B5sq = B5*B5;
+    const double B5_B7 = B5*B7;
+    const double B5_B8 = B5*B8;
+    const double B6sq = B6*B6;
+    const double B6_B7 = B6*B7;
+    const double B6_B8 = B6*B8;
+    const double B7sq = B7*B7;
+    const double B7_B8 = B7*B8;
+    const double B8sq = B8*B8;
+    out[0] = B7;
+    out[1] = A8;
+    out[2] = A8 - c[101]*B1sq + c[101]*B1_B3 - c[102]*B1_B4 - c[103]*B2sq + c[102]*B2_B3 + c[104]*B2_B4 - c[101]*B3sq + c[101]*B3_B5 - c[102]*B3_B6 - c[103]*B4sq + c[102]*B4_B5 + c[104]*B4_B6 - c[101]*B5sq + c[101]*B5_B7 - c[102]*B5_B8 - c[103]*B6sq + c[102]*B6_B7 + c[104]*B6_B8 - c[105]*B7sq + c[102]*B7_B8 - c[106]*B8sq;
+}
+
+/* forces_q:(c[116],u[3],q[16],qd[16])->(dQdq[256]) row-major; out[i*16+k] = dQ_i/dq_k; nonzero entries only */
 void fem_nx8_ny8_prescribed_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)q;
@@ -1250,7 +1296,7 @@ void fem_nx8_ny8_prescribed_first_forces_q(const double* c, const double* u, con
     out[255] = -c[66] - c[67]*theta_dotsq;
 }
 
-/* forces_qd:(c[110],u[3],q[16],qd[16])->(dQdqd[256]) row-major; out[i*16+k] = dQ_i/dqd_k; nonzero entries only */
+/* forces_qd:(c[116],u[3],q[16],qd[16])->(dQdqd[256]) row-major; out[i*16+k] = dQ_i/dqd_k; nonzero entries only */
 void fem_nx8_ny8_prescribed_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)q;
@@ -1320,7 +1366,7 @@ void fem_nx8_ny8_prescribed_first_forces_qd(const double* c, const double* u, co
     out[247] = c[31]*theta_dot;
 }
 
-/* forces_u:(c[110],u[3],q[16],qd[16])->(dQdu[48]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
+/* forces_u:(c[116],u[3],q[16],qd[16])->(dQdu[48]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
 void fem_nx8_ny8_prescribed_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -1372,45 +1418,45 @@ void fem_nx8_ny8_prescribed_first_forces_u(const double* c, const double* u, con
     const double theta_dot_B6 = theta_dot*B6;
     const double theta_dot_B7 = theta_dot*B7;
     const double theta_dot_B8 = theta_dot*B8;
-    out[1] = c[82]*theta_dot + c[14]*B1_dot - c[15]*B2_dot + c[101]*theta_dot_A1 + c[2]*theta_dot_A2;
+    out[1] = c[82]*theta_dot + c[14]*B1_dot - c[15]*B2_dot + c[107]*theta_dot_A1 + c[2]*theta_dot_A2;
     out[2] = c[16]*B1 - c[17]*B2;
-    out[4] = c[34]*theta_dot + c[19]*B1_dot + c[20]*B3_dot - c[21]*B4_dot + c[2]*theta_dot_A1 + c[101]*theta_dot_A2 + c[2]*theta_dot_A3;
+    out[4] = c[34]*theta_dot + c[19]*B1_dot + c[20]*B3_dot - c[21]*B4_dot + c[2]*theta_dot_A1 + c[107]*theta_dot_A2 + c[2]*theta_dot_A3;
     out[5] = c[22]*B1 + c[23]*B3 - c[24]*B4;
-    out[7] = c[83]*theta_dot + c[14]*B1_dot + c[15]*B2_dot + c[14]*B3_dot - c[15]*B4_dot + c[2]*theta_dot_A2 + c[101]*theta_dot_A3 + c[2]*theta_dot_A4;
+    out[7] = c[83]*theta_dot + c[14]*B1_dot + c[15]*B2_dot + c[14]*B3_dot - c[15]*B4_dot + c[2]*theta_dot_A2 + c[107]*theta_dot_A3 + c[2]*theta_dot_A4;
     out[8] = c[16]*B1 + c[17]*B2 + c[16]*B3 - c[17]*B4;
-    out[10] = c[48]*theta_dot + c[20]*B1_dot + c[21]*B2_dot + c[19]*B3_dot + c[20]*B5_dot - c[21]*B6_dot + c[2]*theta_dot_A3 + c[101]*theta_dot_A4 + c[2]*theta_dot_A5;
+    out[10] = c[48]*theta_dot + c[20]*B1_dot + c[21]*B2_dot + c[19]*B3_dot + c[20]*B5_dot - c[21]*B6_dot + c[2]*theta_dot_A3 + c[107]*theta_dot_A4 + c[2]*theta_dot_A5;
     out[11] = c[23]*B1 + c[24]*B2 + c[22]*B3 + c[23]*B5 - c[24]*B6;
-    out[13] = c[84]*theta_dot + c[14]*B3_dot + c[15]*B4_dot + c[14]*B5_dot - c[15]*B6_dot + c[2]*theta_dot_A4 + c[101]*theta_dot_A5 + c[2]*theta_dot_A6;
+    out[13] = c[84]*theta_dot + c[14]*B3_dot + c[15]*B4_dot + c[14]*B5_dot - c[15]*B6_dot + c[2]*theta_dot_A4 + c[107]*theta_dot_A5 + c[2]*theta_dot_A6;
     out[14] = c[16]*B3 + c[17]*B4 + c[16]*B5 - c[17]*B6;
-    out[16] = c[55]*theta_dot + c[20]*B3_dot + c[21]*B4_dot + c[19]*B5_dot + c[20]*B7_dot - c[21]*B8_dot + c[2]*theta_dot_A5 + c[101]*theta_dot_A6 + c[2]*theta_dot_A7;
+    out[16] = c[55]*theta_dot + c[20]*B3_dot + c[21]*B4_dot + c[19]*B5_dot + c[20]*B7_dot - c[21]*B8_dot + c[2]*theta_dot_A5 + c[107]*theta_dot_A6 + c[2]*theta_dot_A7;
     out[17] = c[23]*B3 + c[24]*B4 + c[22]*B5 + c[23]*B7 - c[24]*B8;
-    out[19] = c[85]*theta_dot + c[14]*B5_dot + c[15]*B6_dot + c[14]*B7_dot - c[15]*B8_dot + c[2]*theta_dot_A6 + c[101]*theta_dot_A7 + c[2]*theta_dot_A8;
+    out[19] = c[85]*theta_dot + c[14]*B5_dot + c[15]*B6_dot + c[14]*B7_dot - c[15]*B8_dot + c[2]*theta_dot_A6 + c[107]*theta_dot_A7 + c[2]*theta_dot_A8;
     out[20] = c[16]*B5 + c[17]*B6 + c[16]*B7 - c[17]*B8;
     out[22] = c[86]*theta_dot + c[20]*B5_dot + c[21]*B6_dot + c[22]*B7_dot - c[31]*B8_dot + c[2]*theta_dot_A7 + c[0]*theta_dot_A8;
     out[23] = c[23]*B5 + c[24]*B6 + c[32]*B7 - c[33]*B8;
-    out[25] = -c[14]*A1_dot - c[19]*A2_dot - c[14]*A3_dot - c[20]*A4_dot - c[102]*theta_dot_B1 + c[87]*theta_dot_B2 + c[88]*theta_dot_B3 - c[89]*theta_dot_B4;
+    out[25] = -c[14]*A1_dot - c[19]*A2_dot - c[14]*A3_dot - c[20]*A4_dot - c[108]*theta_dot_B1 + c[87]*theta_dot_B2 + c[88]*theta_dot_B3 - c[89]*theta_dot_B4;
     out[26] = -c[34] - c[16]*A1 - c[22]*A2 - c[16]*A3 - c[23]*A4;
-    out[28] = c[15]*A1_dot - c[15]*A3_dot - c[21]*A4_dot + c[87]*theta_dot_B1 - c[103]*theta_dot_B2 + c[90]*theta_dot_B3 + c[91]*theta_dot_B4;
+    out[28] = c[15]*A1_dot - c[15]*A3_dot - c[21]*A4_dot + c[87]*theta_dot_B1 - c[109]*theta_dot_B2 + c[90]*theta_dot_B3 + c[91]*theta_dot_B4;
     out[29] = -c[42] + c[17]*A1 - c[17]*A3 - c[24]*A4;
-    out[31] = -c[20]*A2_dot - c[14]*A3_dot - c[19]*A4_dot - c[14]*A5_dot - c[20]*A6_dot + c[88]*theta_dot_B1 + c[90]*theta_dot_B2 - c[104]*theta_dot_B3 + c[92]*theta_dot_B4 + c[93]*theta_dot_B5 - c[90]*theta_dot_B6;
+    out[31] = -c[20]*A2_dot - c[14]*A3_dot - c[19]*A4_dot - c[14]*A5_dot - c[20]*A6_dot + c[88]*theta_dot_B1 + c[90]*theta_dot_B2 - c[110]*theta_dot_B3 + c[92]*theta_dot_B4 + c[93]*theta_dot_B5 - c[90]*theta_dot_B6;
     out[32] = -c[48] - c[23]*A2 - c[16]*A3 - c[22]*A4 - c[16]*A5 - c[23]*A6;
-    out[34] = c[21]*A2_dot + c[15]*A3_dot - c[15]*A5_dot - c[21]*A6_dot - c[89]*theta_dot_B1 + c[91]*theta_dot_B2 + c[92]*theta_dot_B3 - c[105]*theta_dot_B4 + c[94]*theta_dot_B5 + c[95]*theta_dot_B6;
+    out[34] = c[21]*A2_dot + c[15]*A3_dot - c[15]*A5_dot - c[21]*A6_dot - c[89]*theta_dot_B1 + c[91]*theta_dot_B2 + c[92]*theta_dot_B3 - c[111]*theta_dot_B4 + c[94]*theta_dot_B5 + c[95]*theta_dot_B6;
     out[35] = -c[42] + c[24]*A2 + c[17]*A3 - c[17]*A5 - c[24]*A6;
-    out[37] = -c[20]*A4_dot - c[14]*A5_dot - c[19]*A6_dot - c[14]*A7_dot - c[20]*A8_dot + c[93]*theta_dot_B3 + c[94]*theta_dot_B4 - c[106]*theta_dot_B5 + c[96]*theta_dot_B6 + c[97]*theta_dot_B7 - c[94]*theta_dot_B8;
+    out[37] = -c[20]*A4_dot - c[14]*A5_dot - c[19]*A6_dot - c[14]*A7_dot - c[20]*A8_dot + c[93]*theta_dot_B3 + c[94]*theta_dot_B4 - c[112]*theta_dot_B5 + c[96]*theta_dot_B6 + c[97]*theta_dot_B7 - c[94]*theta_dot_B8;
     out[38] = -c[55] - c[23]*A4 - c[16]*A5 - c[22]*A6 - c[16]*A7 - c[23]*A8;
-    out[40] = c[21]*A4_dot + c[15]*A5_dot - c[15]*A7_dot - c[21]*A8_dot - c[90]*theta_dot_B3 + c[95]*theta_dot_B4 + c[96]*theta_dot_B5 - c[107]*theta_dot_B6 + c[98]*theta_dot_B7 + c[99]*theta_dot_B8;
+    out[40] = c[21]*A4_dot + c[15]*A5_dot - c[15]*A7_dot - c[21]*A8_dot - c[90]*theta_dot_B3 + c[95]*theta_dot_B4 + c[96]*theta_dot_B5 - c[113]*theta_dot_B6 + c[98]*theta_dot_B7 + c[99]*theta_dot_B8;
     out[41] = -c[42] + c[24]*A4 + c[17]*A5 - c[17]*A7 - c[24]*A8;
-    out[43] = -c[20]*A6_dot - c[14]*A7_dot - c[22]*A8_dot + c[97]*theta_dot_B5 + c[98]*theta_dot_B6 - c[108]*theta_dot_B7 + c[100]*theta_dot_B8;
+    out[43] = -c[20]*A6_dot - c[14]*A7_dot - c[22]*A8_dot + c[97]*theta_dot_B5 + c[98]*theta_dot_B6 - c[114]*theta_dot_B7 + c[100]*theta_dot_B8;
     out[44] = -c[62] - c[23]*A6 - c[16]*A7 - c[32]*A8;
-    out[46] = c[21]*A6_dot + c[15]*A7_dot + c[31]*A8_dot - c[94]*theta_dot_B5 + c[99]*theta_dot_B6 + c[100]*theta_dot_B7 - c[109]*theta_dot_B8;
+    out[46] = c[21]*A6_dot + c[15]*A7_dot + c[31]*A8_dot - c[94]*theta_dot_B5 + c[99]*theta_dot_B6 + c[100]*theta_dot_B7 - c[115]*theta_dot_B8;
     out[47] = c[65] + c[24]*A6 + c[17]*A7 + c[33]*A8;
 }
 
 }  // namespace
 
-extern const Variant fem_nx8_ny8_prescribed_first = {"fem_nx8_ny8_prescribed_first", 16, 110, 66,
+extern const Variant fem_nx8_ny8_prescribed_first = {"fem_nx8_ny8_prescribed_first", 16, 116, 66,
     "cc00000000000000ccc00000000000000ccc00000000000000ccc00000000000000ccc00000000000000ccc00000000000000ccc00000000000000cc0000000000000000c0cc0000000000000ccc000000000000ccc0cc0000000000cc0ccc000000000000ccc0cc0000000000cc0ccc000000000000cccc000000000000cccc",
     fem_nx8_ny8_prescribed_first_coefficients, fem_nx8_ny8_prescribed_first_mass, nullptr, fem_nx8_ny8_prescribed_first_forces, fem_nx8_ny8_prescribed_first_forces_terms, fem_nx8_ny8_prescribed_first_forces_matrix,
-    fem_nx8_ny8_prescribed_first_energy, fem_nx8_ny8_prescribed_first_momentum, fem_nx8_ny8_prescribed_first_forces_q, fem_nx8_ny8_prescribed_first_forces_qd, nullptr, fem_nx8_ny8_prescribed_first_forces_u};
+    fem_nx8_ny8_prescribed_first_energy, fem_nx8_ny8_prescribed_first_momentum, fem_nx8_ny8_prescribed_first_forces_q, fem_nx8_ny8_prescribed_first_forces_qd, nullptr, fem_nx8_ny8_prescribed_first_forces_u, fem_nx8_ny8_prescribed_first_tip};
 
 }  // namespace hubbeam::generated

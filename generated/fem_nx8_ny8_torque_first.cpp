@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[110]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[116]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void fem_nx8_ny8_torque_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -133,9 +133,15 @@ void fem_nx8_ny8_torque_first_coefficients(const double* p, double* c)
     c[107] = 0.0010416666666666667*m*a + 0.0008928571428571428*L*m;
     c[108] = 4.0*ES/(L);
     c[109] = 384.0*EI/(L*L*L);
+    c[110] = 4.8*1.0/(L);
+    c[111] = 0.1*1.0/(L);
+    c[112] = 0.03333333333333333*1.0/(L);
+    c[113] = 0.008333333333333333*1.0/(L);
+    c[114] = 2.4*1.0/(L);
+    c[115] = 0.016666666666666666*1.0/(L);
 }
 
-/* mass:(c[110],u[3],q[17],qd[17])->(M[289]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[116],u[3],q[17],qd[17])->(M[289]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void fem_nx8_ny8_torque_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -250,7 +256,7 @@ void fem_nx8_ny8_torque_first_mass(const double* c, const double* u, const doubl
     out[288] = c[51];
 }
 
-/* forces:(c[110],u[3],q[17],qd[17])->(Q[17]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[116],u[3],q[17],qd[17])->(Q[17]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void fem_nx8_ny8_torque_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
@@ -417,7 +423,7 @@ void fem_nx8_ny8_torque_first_forces(const double* c, const double* u, const dou
     out[16] = -c[79]*B5 - c[84]*B6 + c[79]*B7 - c[96]*B8 + c[69]*theta_dot_A6_dot + c[65]*theta_dot_A7_dot + c[76]*theta_dot_A8_dot - c[89]*B5_theta_dotsq + c[94]*B6_theta_dotsq + c[95]*B7_theta_dotsq - c[32]*B8_theta_dotsq;
 }
 
-/* forces_terms:(c[110],u[3],q[17],qd[17])->(m[112]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[116],u[3],q[17],qd[17])->(m[112]) the state monomials of Q: Q = F m */
 void fem_nx8_ny8_torque_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -680,7 +686,7 @@ void fem_nx8_ny8_torque_first_forces_terms(const double* c, const double* u, con
     out[111] = B8_theta_dot_B8_dot;
 }
 
-/* forces_matrix:(c[110],u[3],q[17],qd[17])->(F[17*112]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[116],u[3],q[17],qd[17])->(F[17*112]) row-major, state-free: Q = F m; nonzero entries only */
 void fem_nx8_ny8_torque_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -947,7 +953,7 @@ void fem_nx8_ny8_torque_first_forces_matrix(const double* c, const double* u, co
     out[1899] = -c[32];
 }
 
-/* energy:(c[110],u[3],q[17],qd[17])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[116],u[3],q[17],qd[17])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void fem_nx8_ny8_torque_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -1238,7 +1244,7 @@ void fem_nx8_ny8_torque_first_energy(const double* c, const double* u, const dou
     out[3] = c[62]*A1sq - c[62]*A1_A2 + c[62]*A2sq - c[62]*A2_A3 + c[62]*A3sq - c[62]*A3_A4 + c[62]*A4sq - c[62]*A4_A5 + c[62]*A5sq - c[62]*A5_A6 + c[62]*A6sq - c[62]*A6_A7 + c[62]*A7sq - c[62]*A7_A8 + c[108]*A8sq + c[78]*B1sq - c[78]*B1_B3 + c[79]*B1_B4 + c[96]*B2sq - c[79]*B2_B3 + c[84]*B2_B4 + c[78]*B3sq - c[78]*B3_B5 + c[79]*B3_B6 + c[96]*B4sq - c[79]*B4_B5 + c[84]*B4_B6 + c[78]*B5sq - c[78]*B5_B7 + c[79]*B5_B8 + c[96]*B6sq - c[79]*B6_B7 + c[84]*B6_B8 + c[109]*B7sq - c[79]*B7_B8 + c[84]*B8sq;
 }
 
-/* momentum:(c[110],u[3],q[17],qd[17])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[116],u[3],q[17],qd[17])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void fem_nx8_ny8_torque_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -1426,7 +1432,47 @@ void fem_nx8_ny8_torque_first_momentum(const double* c, const double* u, const d
     out[0] = c[0]*theta_dot + c[2]*B1_dot + c[40]*B2_dot + c[4]*B3_dot + c[40]*B4_dot + c[6]*B5_dot + c[40]*B6_dot + c[41]*B7_dot - c[42]*B8_dot + c[1]*A1_theta_dot + c[33]*A1_B1_dot - c[34]*A1_B2_dot + c[2]*A2_theta_dot + c[35]*A2_B1_dot + c[36]*A2_B3_dot - c[37]*A2_B4_dot + c[3]*A3_theta_dot + c[33]*A3_B1_dot + c[34]*A3_B2_dot + c[33]*A3_B3_dot - c[34]*A3_B4_dot + c[4]*A4_theta_dot + c[36]*A4_B1_dot + c[37]*A4_B2_dot + c[35]*A4_B3_dot + c[36]*A4_B5_dot - c[37]*A4_B6_dot + c[5]*A5_theta_dot + c[33]*A5_B3_dot + c[34]*A5_B4_dot + c[33]*A5_B5_dot - c[34]*A5_B6_dot + c[6]*A6_theta_dot + c[36]*A6_B3_dot + c[37]*A6_B4_dot + c[35]*A6_B5_dot + c[36]*A6_B7_dot - c[37]*A6_B8_dot + c[7]*A7_theta_dot + c[33]*A7_B5_dot + c[34]*A7_B6_dot + c[33]*A7_B7_dot - c[34]*A7_B8_dot + c[8]*A8_theta_dot + c[36]*A8_B5_dot + c[37]*A8_B6_dot + c[38]*A8_B7_dot - c[39]*A8_B8_dot - c[33]*B1_A1_dot - c[35]*B1_A2_dot - c[33]*B1_A3_dot - c[36]*B1_A4_dot + c[34]*B2_A1_dot - c[34]*B2_A3_dot - c[37]*B2_A4_dot - c[36]*B3_A2_dot - c[33]*B3_A3_dot - c[35]*B3_A4_dot - c[33]*B3_A5_dot - c[36]*B3_A6_dot + c[37]*B4_A2_dot + c[34]*B4_A3_dot - c[34]*B4_A5_dot - c[37]*B4_A6_dot - c[36]*B5_A4_dot - c[33]*B5_A5_dot - c[35]*B5_A6_dot - c[33]*B5_A7_dot - c[36]*B5_A8_dot + c[37]*B6_A4_dot + c[34]*B6_A5_dot - c[34]*B6_A7_dot - c[37]*B6_A8_dot - c[36]*B7_A6_dot - c[33]*B7_A7_dot - c[38]*B7_A8_dot + c[37]*B8_A6_dot + c[34]*B8_A7_dot + c[39]*B8_A8_dot + c[9]*A1sq_theta_dot + c[10]*A1_A2_theta_dot + c[9]*A2sq_theta_dot + c[10]*A2_A3_theta_dot + c[9]*A3sq_theta_dot + c[10]*A3_A4_theta_dot + c[9]*A4sq_theta_dot + c[10]*A4_A5_theta_dot + c[9]*A5sq_theta_dot + c[10]*A5_A6_theta_dot + c[9]*A6sq_theta_dot + c[10]*A6_A7_theta_dot + c[9]*A7sq_theta_dot + c[10]*A7_A8_theta_dot + c[10]*A8sq_theta_dot - c[11]*B1sq_theta_dot + c[12]*B1_B2_theta_dot + c[13]*B1_B3_theta_dot - c[14]*B1_B4_theta_dot - c[15]*B2sq_theta_dot + c[16]*B2_B3_theta_dot + c[17]*B2_B4_theta_dot - c[18]*B3sq_theta_dot + c[19]*B3_B4_theta_dot + c[20]*B3_B5_theta_dot - c[16]*B3_B6_theta_dot - c[21]*B4sq_theta_dot + c[22]*B4_B5_theta_dot + c[23]*B4_B6_theta_dot - c[24]*B5sq_theta_dot + c[25]*B5_B6_theta_dot + c[26]*B5_B7_theta_dot - c[22]*B5_B8_theta_dot - c[27]*B6sq_theta_dot + c[28]*B6_B7_theta_dot + c[29]*B6_B8_theta_dot - c[30]*B7sq_theta_dot + c[31]*B7_B8_theta_dot - c[32]*B8sq_theta_dot;
 }
 
-/* forces_q:(c[110],u[3],q[17],qd[17])->(dQdq[289]) row-major; out[i*17+k] = dQ_i/dq_k; nonzero entries only */
+/* tip:(c[116],u[3],q[17],qd[17])->(tip[3]) tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B */
+void fem_nx8_ny8_torque_first_tip(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)qd;
+    const double A8 = q[8];
+    const double B1 = q[9];
+    const double B2 = q[10];
+    const double B3 = q[11];
+    const double B4 = q[12];
+    const double B5 = q[13];
+    const double B6 = q[14];
+    const double B7 = q[15];
+    const double B8 = q[16];
+    const double B1sq = B1*B1;
+    const double B1_B3 = B1*B3;
+    const double B1_B4 = B1*B4;
+    const double B2sq = B2*B2;
+    const double B2_B3 = B2*B3;
+    const double B2_B4 = B2*B4;
+    const double B3sq = B3*B3;
+    const double B3_B5 = B3*B5;
+    const double B3_B6 = B3*B6;
+    const double B4sq = B4*B4;
+    const double B4_B5 = B4*B5;
+    const double B4_B6 = B4*B6;
+    const double B5sq = B5*B5;
+    const double B5_B7 = B5*B7;
+    const double B5_B8 = B5*B8;
+    const double B6sq = B6*B6;
+    const double B6_B7 = B6*B7;
+    const double B6_B8 = B6*B8;
+    const double B7sq = B7*B7;
+    const double B7_B8 = B7*B8;
+    const double B8sq = B8*B8;
+    out[0] = B7;
+    out[1] = A8;
+    out[2] = A8 - c[110]*B1sq + c[110]*B1_B3 - c[111]*B1_B4 - c[112]*B2sq + c[111]*B2_B3 + c[113]*B2_B4 - c[110]*B3sq + c[110]*B3_B5 - c[111]*B3_B6 - c[112]*B4sq + c[111]*B4_B5 + c[113]*B4_B6 - c[110]*B5sq + c[110]*B5_B7 - c[111]*B5_B8 - c[112]*B6sq + c[111]*B6_B7 + c[113]*B6_B8 - c[114]*B7sq + c[111]*B7_B8 - c[115]*B8sq;
+}
+
+/* forces_q:(c[116],u[3],q[17],qd[17])->(dQdq[289]) row-major; out[i*17+k] = dQ_i/dq_k; nonzero entries only */
 void fem_nx8_ny8_torque_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -1545,7 +1591,7 @@ void fem_nx8_ny8_torque_first_forces_q(const double* c, const double* u, const d
     out[288] = -c[96] - c[32]*theta_dotsq;
 }
 
-/* forces_qd:(c[110],u[3],q[17],qd[17])->(dQdqd[289]) row-major; out[i*17+k] = dQ_i/dqd_k; nonzero entries only */
+/* forces_qd:(c[116],u[3],q[17],qd[17])->(dQdqd[289]) row-major; out[i*17+k] = dQ_i/dqd_k; nonzero entries only */
 void fem_nx8_ny8_torque_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -1757,7 +1803,7 @@ void fem_nx8_ny8_torque_first_forces_qd(const double* c, const double* u, const 
     out[280] = c[76]*theta_dot;
 }
 
-/* forces_u:(c[110],u[3],q[17],qd[17])->(dQdu[51]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
+/* forces_u:(c[116],u[3],q[17],qd[17])->(dQdu[51]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
 void fem_nx8_ny8_torque_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -1767,7 +1813,7 @@ void fem_nx8_ny8_torque_first_forces_u(const double* c, const double* u, const d
     out[0] = 1.0;
 }
 
-/* mass_varying:(c[110],u[3],q[17],qd[17])->(M[289]) as mass, the entries that depend on q only */
+/* mass_varying:(c[116],u[3],q[17],qd[17])->(M[289]) as mass, the entries that depend on q only */
 void fem_nx8_ny8_torque_first_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -1846,7 +1892,7 @@ void fem_nx8_ny8_torque_first_mass_varying(const double* c, const double* u, con
     out[16] = -c[42] - c[37]*A6 - c[34]*A7 - c[39]*A8;
 }
 
-/* mass_q_product:(c[110],u[3],q[17],qd[17])->(dMv[289]) row-major; v in the qd slot; out[i*17+k] = sum_j dM_ij/dq_k v_j; nonzero entries only */
+/* mass_q_product:(c[116],u[3],q[17],qd[17])->(dMv[289]) row-major; v in the qd slot; out[i*17+k] = sum_j dM_ij/dq_k v_j; nonzero entries only */
 void fem_nx8_ny8_torque_first_mass_q_product(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -1981,9 +2027,9 @@ void fem_nx8_ny8_torque_first_mass_q_product(const double* c, const double* u, c
 
 }  // namespace
 
-extern const Variant fem_nx8_ny8_torque_first = {"fem_nx8_ny8_torque_first", 17, 110, 112,
+extern const Variant fem_nx8_ny8_torque_first = {"fem_nx8_ny8_torque_first", 17, 116, 112,
     "vvvvvvvvvvvvvvvvvvcc00000000000000vccc0000000000000v0ccc000000000000v00ccc00000000000v000ccc0000000000v0000ccc000000000v00000ccc00000000v000000cc00000000v00000000c0cc0000v000000000ccc0000v00000000ccc0cc00v00000000cc0ccc00v0000000000ccc0ccv0000000000cc0cccv000000000000ccccv000000000000cccc",
     fem_nx8_ny8_torque_first_coefficients, fem_nx8_ny8_torque_first_mass, fem_nx8_ny8_torque_first_mass_varying, fem_nx8_ny8_torque_first_forces, fem_nx8_ny8_torque_first_forces_terms, fem_nx8_ny8_torque_first_forces_matrix,
-    fem_nx8_ny8_torque_first_energy, fem_nx8_ny8_torque_first_momentum, fem_nx8_ny8_torque_first_forces_q, fem_nx8_ny8_torque_first_forces_qd, fem_nx8_ny8_torque_first_mass_q_product, fem_nx8_ny8_torque_first_forces_u};
+    fem_nx8_ny8_torque_first_energy, fem_nx8_ny8_torque_first_momentum, fem_nx8_ny8_torque_first_forces_q, fem_nx8_ny8_torque_first_forces_qd, fem_nx8_ny8_torque_first_mass_q_product, fem_nx8_ny8_torque_first_forces_u, fem_nx8_ny8_torque_first_tip};
 
 }  // namespace hubbeam::generated

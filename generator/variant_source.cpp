@@ -84,6 +84,24 @@ KernelSpec sparse_kernel(std::string name, std::string out, std::string doc, con
     return k;
 }
 
+/// The tip displacements (docs/model.md section 5.4) u_y(L) = Phi_y(1) B, u_x1(L) = Phi_x(1) A and
+/// u_x(L) = u_x1(L) - 1/2 B^T H(L) B with H(L) = H_xi(1) / L: the shape values and integrals as numbers, so
+/// that the runtime needs no shape functions or quadrature for its rows.
+std::vector<ex> tip_displacements(const VariantKey& key, const Symbols& s)
+{
+    const FieldBasis axial = key.axial_basis(), transverse = key.transverse_basis();
+    ShapeIntegrals integrals(axial, transverse);
+    ex uy = 0, ux1 = 0, ux2 = 0;
+    for (int j = 0; j < key.ny; ++j) uy += numeric(transverse.at(j, 1.0).v) * s.B[static_cast<std::size_t>(j)];
+    for (int i = 0; i < key.nx; ++i) ux1 += numeric(axial.at(i, 1.0).v) * s.A[static_cast<std::size_t>(i)];
+    using K = Factor::Kind;
+    for (int j = 0; j < key.ny; ++j)
+        for (int k = 0; k < key.ny; ++k)
+            ux2 -= integrals.integrate({{K::transverse, j, 0, 1}, {K::transverse, k, 0, 1}}, 0) *
+                   s.B[static_cast<std::size_t>(j)] * s.B[static_cast<std::size_t>(k)] / (2 * s.L);
+    return {uy, ux1, (ux1 + ux2).expand()};
+}
+
 JacobianPieces jacobian_pieces(const Equations& eq, const Symbols& s, bool torque)
 {
     const std::size_t n = s.q.size();
@@ -186,6 +204,7 @@ std::string variant_source(const VariantKey& key)
         force_matrix,
         {"energy", "E[4]", "E = (T2, T1, T0, U), T split by degree in qd", {eq.T2, eq.T1, eq.T0, eq.U}},
         {"momentum", "h[1]", "h = dT/dtheta_dot, angular momentum about the hub axis", {eq.momentum}},
+        {"tip", "tip[3]", "tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B", tip_displacements(key, s)},
         sparse_kernel("forces_q", "dQdq[" + n2 + "]", "row-major; out[i*" + n1 + "+k] = dQ_i/dq_k", jac.forces_q),
         sparse_kernel("forces_qd", "dQdqd[" + n2 + "]", "row-major; out[i*" + n1 + "+k] = dQ_i/dqd_k", jac.forces_qd),
         sparse_kernel("forces_u", "dQdu[" + nu + "]", "row-major; out[i*3+j] = dQ_i/du_j, u = " + tuple(drive_value_names),
@@ -209,7 +228,7 @@ std::string variant_source(const VariantKey& key)
       << ",\n    \"" << pattern << "\",\n    " << name << "_coefficients, " << name << "_mass, "
       << optional("mass_varying") << ", " << name << "_forces, " << name << "_forces_terms, " << name
       << "_forces_matrix,\n    " << name << "_energy, " << name << "_momentum, " << name << "_forces_q, " << name
-      << "_forces_qd, " << optional("mass_q_product") << ", " << name << "_forces_u};\n\n}  // namespace hubbeam::generated\n";
+      << "_forces_qd, " << optional("mass_q_product") << ", " << name << "_forces_u, " << name << "_tip};\n\n}  // namespace hubbeam::generated\n";
     return f.str();
 }
 

@@ -33,6 +33,7 @@ struct Variant {
                                * a null pointer when M is constant (then dM/dq = 0) */
     Kernel forces_u;          /* dQdu[nq*3], row-major: out[i*3+j] = dQ_i/du_j, u indexed by DriveValue; columns of
                                * drive values the variant does not read are zero */
+    Kernel tip;               /* tip[3] = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B */
 };
 
 extern const Variant* const variants[];

@@ -2,6 +2,8 @@
 // Lagrange's equations for orders first and zero, in torque form q = (theta, A, B) or prescribed form q = (A, B).
 #include "assembled.hpp"
 
+#include "fields.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -87,7 +89,7 @@ namespace {
 class AssembledModel final : public Model {
 public:
     AssembledModel(const VariantKey& key, const Parameters& p)
-        : Model(key), c_(assemble_matrices(key, p)), nx_(key.nx), ny_(key.ny), J_o_(p.J_oh + c_.J_ob)
+        : Model(key), c_(assemble_matrices(key, p)), fields_(key, p), nx_(key.nx), ny_(key.ny), J_o_(p.J_oh + c_.J_ob)
     {
         M2_G_ = key.order == Order::zero ? c_.M2 : MatrixXd(c_.M2 - c_.G);
         S_x_T_ = c_.S_x.transpose();
@@ -190,6 +192,11 @@ public:
         return e;
     }
 
+    Tip tip(const double* q) const override
+    {
+        return fields_.tip(nx_ > 0 ? q + key().first_a() : nullptr, q + key().first_b());
+    }
+
     double momentum(const HubInput& u, const double* q, const double* qd) const override
     {
         const int o = key().first_a();
@@ -213,6 +220,7 @@ private:
     }
 
     BeamMatrices c_;
+    BeamFields fields_;
     int nx_, ny_;
     double J_o_;                  // J_oh + J_ob
     MatrixXd M2_G_;               // M2 - G (first order) or M2 (zero order)

@@ -22,9 +22,9 @@ BeamFields::BeamFields(const VariantKey& key, const Parameters& p)
     }
 }
 
-BeamFields::Tip BeamFields::tip(const double* A, const double* B) const
+Tip BeamFields::tip(const double* A, const double* B) const
 {
-    Tip t{0.0, 0.0, 0.0};
+    Tip t;
     if (A && axial_.size() > 0) t.ux1 = Phi_x_L_.dot(Eigen::Map<const Eigen::VectorXd>(A, axial_.size()));
     if (B) {
         const Eigen::Map<const Eigen::VectorXd> b(B, transverse_.size());

@@ -15,10 +15,6 @@ public:
     /// The shape functions of key's variant, their tip values and H(L), for parameters p.
     BeamFields(const VariantKey& key, const Parameters& p);
 
-    /// Tip displacements: u_y(L), u_x1(L) and u_x(L) = u_x1(L) - 1/2 B^T H(L) B.
-    struct Tip {
-        double uy, ux1, ux;
-    };
     /// Tip displacements at coordinates A, B.
     Tip tip(const double* A, const double* B) const;
 

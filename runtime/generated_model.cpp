@@ -72,6 +72,13 @@ public:
         return h;
     }
 
+    Tip tip(const double* q) const override
+    {
+        double t[3];
+        call(v_.tip, HubInput{}, q, q, t);
+        return {t[0], t[1], t[2]};
+    }
+
     bool has_jacobian() const override { return true; }
     void force_derivatives(const HubInput& u, const double* q, const double* qd, double* dQdq, double* dQdqd,
                            double* dQdu) const override

@@ -17,6 +17,11 @@ struct Energy {
     double kinetic() const { return T2 + T1 + T0; }
 };
 
+/// Tip displacements u_y(L), u_x1(L) and u_x(L) = u_x1(L) - 1/2 B^T H(L) B (docs/model.md section 5.4).
+struct Tip {
+    double uy = 0.0, ux1 = 0.0, ux = 0.0;
+};
+
 class Model {
 public:
     virtual ~Model() = default;
@@ -44,6 +49,8 @@ public:
     virtual Energy energy(const HubInput& u, const double* q, const double* qd) const = 0;
     /// Angular momentum about the axis, dT/dtheta_dot.
     virtual double momentum(const HubInput& u, const double* q, const double* qd) const = 0;
+    /// The tip's displacements at coordinates q.
+    virtual Tip tip(const double* q) const = 0;
 
     /// True when the model supplies the exact derivatives below (generated kernels); otherwise the integrator
     /// falls back to a finite-difference Jacobian.

@@ -9,7 +9,6 @@
 
 #include <gsl/gsl_errno.h>
 
-#include "fields.hpp"
 #include "integrate.hpp"
 #include "make_model.hpp"
 
@@ -108,7 +107,6 @@ RunSummary Simulation::run(const RowSink& sink, const StopRequest& stop)
     const Model& model = *model_;
     const VariantKey& key = model.key();
     const Motion& motion = scene_.motion;
-    const BeamFields fields(key, scene_.parameters);
     RunSummary summary;
     summary.variant = key.name();
     summary.source = model.source();
@@ -133,7 +131,7 @@ RunSummary Simulation::run(const RowSink& sink, const StopRequest& stop)
         const double* q = q_full.data();
         const double* qd = qd_full.data();
         const HubInput u = motion.at(ti);
-        const BeamFields::Tip tip = fields.tip(key.nx > 0 ? q + key.first_a() : nullptr, q + key.first_b());
+        const Tip tip = model.tip(q);
         const Energy e = model.energy(u, q, qd);
         const double theta = torque ? q[0] : motion.theta(ti), theta_dot = torque ? qd[0] : u.theta_dot;
         const Row r{ti, theta, theta_dot, tip.uy, tip.ux1, tip.ux, e.kinetic(), e.U, model.momentum(u, q, qd),

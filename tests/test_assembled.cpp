@@ -611,7 +611,7 @@ TEST_CASE("beam fields under static tip loads", "[fields][physics]")
                 CHECK(fields.ux1(A.data(), x) == Approx(F * x / ES).margin(1e-10 * F * L / ES));
                 CHECK(fields.axial_force(A.data(), x) == Approx(F).epsilon(1e-9));
             }
-            const BeamFields::Tip tip = fields.tip(A.data(), B.data());
+            const Tip tip = fields.tip(A.data(), B.data());
             CHECK(tip.uy == Approx(P * L * L * L / (3 * EI)).epsilon(1e-10));
             CHECK(tip.ux1 == Approx(F * L / ES).epsilon(1e-10));
             CHECK(tip.ux == Approx(F * L / ES + ux2_tip).epsilon(1e-10));
@@ -637,7 +637,7 @@ TEST_CASE("beam fields under static tip loads", "[fields][physics]")
         const VariantKey key = make_key(Method::fem, 0, 4);
         const BeamFields fields(key, p);
         const double B[4] = {0.01, 0.002, 0.03, 0.004};
-        const BeamFields::Tip tip = fields.tip(nullptr, B);
+        const Tip tip = fields.tip(nullptr, B);
         CHECK(tip.ux1 == 0.0);
         CHECK(tip.ux < 0.0);
         CHECK(tip.uy == Approx(0.03).epsilon(1e-14));  // the tip node's deflection DOF

@@ -57,6 +57,10 @@ TEST_CASE("generated kernels equal the hand-assembled equations", "[generated]")
                 const Energy ea = asm_->energy(s.u, s.q.data(), s.qd.data());
                 const Eigen::Vector4d vg(eg.T2, eg.T1, eg.T0, eg.U), va(ea.T2, ea.T1, ea.T0, ea.U);
                 CHECK(relative_error(vg, va) < 1e-12);
+                // Tip displacements: generated shape values and H(1) against the runtime's shape functions and
+                // quadrature (BeamFields).
+                const Tip tg = gen->tip(s.q.data()), ta = asm_->tip(s.q.data());
+                CHECK(relative_error(Eigen::Vector3d(tg.uy, tg.ux1, tg.ux), Eigen::Vector3d(ta.uy, ta.ux1, ta.ux)) < 1e-12);
                 const double hg = gen->momentum(s.u, s.q.data(), s.qd.data());
                 const double ha = asm_->momentum(s.u, s.q.data(), s.qd.data());
                 CHECK(std::abs(hg - ha) <= 1e-12 * std::abs(ha));
