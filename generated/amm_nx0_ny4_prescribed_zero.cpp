@@ -269,11 +269,32 @@ void amm_nx0_ny4_prescribed_zero_forces_u(const double* c, const double* u, cons
     out[11] = c[9];
 }
 
+/* forces_folded:(c[33],u[3],q[4],qd[4])->(qdd[4]) qdd = W m, W = M^-1 F (4 x 9, row-major) passed in the c slot */
+void amm_nx0_ny4_prescribed_zero_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)qd;
+    const double theta_dot = u[1];
+    const double theta_ddot = u[2];
+    const double B1 = q[0];
+    const double B2 = q[1];
+    const double B3 = q[2];
+    const double B4 = q[3];
+    const double theta_dotsq = theta_dot*theta_dot;
+    const double theta_dotsq_B1 = theta_dotsq*B1;
+    const double theta_dotsq_B2 = theta_dotsq*B2;
+    const double theta_dotsq_B3 = theta_dotsq*B3;
+    const double theta_dotsq_B4 = theta_dotsq*B4;
+    out[0] = c[0]*theta_ddot + c[1]*B1 + c[2]*B2 + c[3]*B3 + c[4]*B4 + c[5]*theta_dotsq_B1 + c[6]*theta_dotsq_B2 + c[7]*theta_dotsq_B3 + c[8]*theta_dotsq_B4;
+    out[1] = c[9]*theta_ddot + c[10]*B1 + c[11]*B2 + c[12]*B3 + c[13]*B4 + c[14]*theta_dotsq_B1 + c[15]*theta_dotsq_B2 + c[16]*theta_dotsq_B3 + c[17]*theta_dotsq_B4;
+    out[2] = c[18]*theta_ddot + c[19]*B1 + c[20]*B2 + c[21]*B3 + c[22]*B4 + c[23]*theta_dotsq_B1 + c[24]*theta_dotsq_B2 + c[25]*theta_dotsq_B3 + c[26]*theta_dotsq_B4;
+    out[3] = c[27]*theta_ddot + c[28]*B1 + c[29]*B2 + c[30]*B3 + c[31]*B4 + c[32]*theta_dotsq_B1 + c[33]*theta_dotsq_B2 + c[34]*theta_dotsq_B3 + c[35]*theta_dotsq_B4;
+}
+
 }  // namespace
 
 extern const Variant amm_nx0_ny4_prescribed_zero = {"amm_nx0_ny4_prescribed_zero", 4, 33, 9,
     "c0000c0000c0000c",
     amm_nx0_ny4_prescribed_zero_coefficients, amm_nx0_ny4_prescribed_zero_mass, nullptr, amm_nx0_ny4_prescribed_zero_forces, amm_nx0_ny4_prescribed_zero_forces_terms, amm_nx0_ny4_prescribed_zero_forces_matrix,
-    amm_nx0_ny4_prescribed_zero_energy, amm_nx0_ny4_prescribed_zero_momentum, amm_nx0_ny4_prescribed_zero_forces_q, amm_nx0_ny4_prescribed_zero_forces_qd, nullptr, amm_nx0_ny4_prescribed_zero_forces_u, amm_nx0_ny4_prescribed_zero_tip};
+    amm_nx0_ny4_prescribed_zero_energy, amm_nx0_ny4_prescribed_zero_momentum, amm_nx0_ny4_prescribed_zero_forces_q, amm_nx0_ny4_prescribed_zero_forces_qd, nullptr, amm_nx0_ny4_prescribed_zero_forces_u, amm_nx0_ny4_prescribed_zero_tip, amm_nx0_ny4_prescribed_zero_forces_folded};
 
 }  // namespace hubbeam::generated

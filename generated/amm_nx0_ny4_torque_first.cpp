@@ -517,6 +517,6 @@ void amm_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, c
 extern const Variant amm_nx0_ny4_torque_first = {"amm_nx0_ny4_torque_first", 5, 54, 25,
     "vcccccc000c0c00c00c0c000c",
     amm_nx0_ny4_torque_first_coefficients, amm_nx0_ny4_torque_first_mass, amm_nx0_ny4_torque_first_mass_varying, amm_nx0_ny4_torque_first_forces, amm_nx0_ny4_torque_first_forces_terms, amm_nx0_ny4_torque_first_forces_matrix,
-    amm_nx0_ny4_torque_first_energy, amm_nx0_ny4_torque_first_momentum, amm_nx0_ny4_torque_first_forces_q, amm_nx0_ny4_torque_first_forces_qd, amm_nx0_ny4_torque_first_mass_q_product, amm_nx0_ny4_torque_first_forces_u, amm_nx0_ny4_torque_first_tip};
+    amm_nx0_ny4_torque_first_energy, amm_nx0_ny4_torque_first_momentum, amm_nx0_ny4_torque_first_forces_q, amm_nx0_ny4_torque_first_forces_qd, amm_nx0_ny4_torque_first_mass_q_product, amm_nx0_ny4_torque_first_forces_u, amm_nx0_ny4_torque_first_tip, nullptr};
 
 }  // namespace hubbeam::generated

@@ -989,6 +989,6 @@ void amm_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, c
 extern const Variant amm_nx4_ny4_torque_first = {"amm_nx4_ny4_torque_first", 9, 110, 46,
     "vvvvvvvvvvc0000000v0c000000v00c00000v000c0000v0000c000v00000c00v000000c0v0000000c",
     amm_nx4_ny4_torque_first_coefficients, amm_nx4_ny4_torque_first_mass, amm_nx4_ny4_torque_first_mass_varying, amm_nx4_ny4_torque_first_forces, amm_nx4_ny4_torque_first_forces_terms, amm_nx4_ny4_torque_first_forces_matrix,
-    amm_nx4_ny4_torque_first_energy, amm_nx4_ny4_torque_first_momentum, amm_nx4_ny4_torque_first_forces_q, amm_nx4_ny4_torque_first_forces_qd, amm_nx4_ny4_torque_first_mass_q_product, amm_nx4_ny4_torque_first_forces_u, amm_nx4_ny4_torque_first_tip};
+    amm_nx4_ny4_torque_first_energy, amm_nx4_ny4_torque_first_momentum, amm_nx4_ny4_torque_first_forces_q, amm_nx4_ny4_torque_first_forces_qd, amm_nx4_ny4_torque_first_mass_q_product, amm_nx4_ny4_torque_first_forces_u, amm_nx4_ny4_torque_first_tip, nullptr};
 
 }  // namespace hubbeam::generated

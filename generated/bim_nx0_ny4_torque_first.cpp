@@ -544,6 +544,6 @@ void bim_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, c
 extern const Variant bim_nx0_ny4_torque_first = {"bim_nx0_ny4_torque_first", 5, 57, 25,
     "vcccccccccccccccccccccccc",
     bim_nx0_ny4_torque_first_coefficients, bim_nx0_ny4_torque_first_mass, bim_nx0_ny4_torque_first_mass_varying, bim_nx0_ny4_torque_first_forces, bim_nx0_ny4_torque_first_forces_terms, bim_nx0_ny4_torque_first_forces_matrix,
-    bim_nx0_ny4_torque_first_energy, bim_nx0_ny4_torque_first_momentum, bim_nx0_ny4_torque_first_forces_q, bim_nx0_ny4_torque_first_forces_qd, bim_nx0_ny4_torque_first_mass_q_product, bim_nx0_ny4_torque_first_forces_u, bim_nx0_ny4_torque_first_tip};
+    bim_nx0_ny4_torque_first_energy, bim_nx0_ny4_torque_first_momentum, bim_nx0_ny4_torque_first_forces_q, bim_nx0_ny4_torque_first_forces_qd, bim_nx0_ny4_torque_first_mass_q_product, bim_nx0_ny4_torque_first_forces_u, bim_nx0_ny4_torque_first_tip, nullptr};
 
 }  // namespace hubbeam::generated

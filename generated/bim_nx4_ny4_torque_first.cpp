@@ -1149,6 +1149,6 @@ void bim_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, c
 extern const Variant bim_nx4_ny4_torque_first = {"bim_nx4_ny4_torque_first", 9, 99, 58,
     "vvvvvvvvvvcccc0000vcccc0000vcccc0000vcccc0000v0000ccccv0000ccccv0000ccccv0000cccc",
     bim_nx4_ny4_torque_first_coefficients, bim_nx4_ny4_torque_first_mass, bim_nx4_ny4_torque_first_mass_varying, bim_nx4_ny4_torque_first_forces, bim_nx4_ny4_torque_first_forces_terms, bim_nx4_ny4_torque_first_forces_matrix,
-    bim_nx4_ny4_torque_first_energy, bim_nx4_ny4_torque_first_momentum, bim_nx4_ny4_torque_first_forces_q, bim_nx4_ny4_torque_first_forces_qd, bim_nx4_ny4_torque_first_mass_q_product, bim_nx4_ny4_torque_first_forces_u, bim_nx4_ny4_torque_first_tip};
+    bim_nx4_ny4_torque_first_energy, bim_nx4_ny4_torque_first_momentum, bim_nx4_ny4_torque_first_forces_q, bim_nx4_ny4_torque_first_forces_qd, bim_nx4_ny4_torque_first_mass_q_product, bim_nx4_ny4_torque_first_forces_u, bim_nx4_ny4_torque_first_tip, nullptr};
 
 }  // namespace hubbeam::generated

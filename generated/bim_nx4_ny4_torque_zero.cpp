@@ -1132,6 +1132,6 @@ void bim_nx4_ny4_torque_zero_mass_q_product(const double* c, const double* u, co
 extern const Variant bim_nx4_ny4_torque_zero = {"bim_nx4_ny4_torque_zero", 9, 82, 58,
     "vvvvvvvvvvcccc0000vcccc0000vcccc0000vcccc0000v0000ccccv0000ccccv0000ccccv0000cccc",
     bim_nx4_ny4_torque_zero_coefficients, bim_nx4_ny4_torque_zero_mass, bim_nx4_ny4_torque_zero_mass_varying, bim_nx4_ny4_torque_zero_forces, bim_nx4_ny4_torque_zero_forces_terms, bim_nx4_ny4_torque_zero_forces_matrix,
-    bim_nx4_ny4_torque_zero_energy, bim_nx4_ny4_torque_zero_momentum, bim_nx4_ny4_torque_zero_forces_q, bim_nx4_ny4_torque_zero_forces_qd, bim_nx4_ny4_torque_zero_mass_q_product, bim_nx4_ny4_torque_zero_forces_u, bim_nx4_ny4_torque_zero_tip};
+    bim_nx4_ny4_torque_zero_energy, bim_nx4_ny4_torque_zero_momentum, bim_nx4_ny4_torque_zero_forces_q, bim_nx4_ny4_torque_zero_forces_qd, bim_nx4_ny4_torque_zero_mass_q_product, bim_nx4_ny4_torque_zero_forces_u, bim_nx4_ny4_torque_zero_tip, nullptr};
 
 }  // namespace hubbeam::generated

@@ -549,6 +549,6 @@ void bsim_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, 
 extern const Variant bsim_nx0_ny4_torque_first = {"bsim_nx0_ny4_torque_first", 5, 62, 25,
     "vcccccccccccccccccccccccc",
     bsim_nx0_ny4_torque_first_coefficients, bsim_nx0_ny4_torque_first_mass, bsim_nx0_ny4_torque_first_mass_varying, bsim_nx0_ny4_torque_first_forces, bsim_nx0_ny4_torque_first_forces_terms, bsim_nx0_ny4_torque_first_forces_matrix,
-    bsim_nx0_ny4_torque_first_energy, bsim_nx0_ny4_torque_first_momentum, bsim_nx0_ny4_torque_first_forces_q, bsim_nx0_ny4_torque_first_forces_qd, bsim_nx0_ny4_torque_first_mass_q_product, bsim_nx0_ny4_torque_first_forces_u, bsim_nx0_ny4_torque_first_tip};
+    bsim_nx0_ny4_torque_first_energy, bsim_nx0_ny4_torque_first_momentum, bsim_nx0_ny4_torque_first_forces_q, bsim_nx0_ny4_torque_first_forces_qd, bsim_nx0_ny4_torque_first_mass_q_product, bsim_nx0_ny4_torque_first_forces_u, bsim_nx0_ny4_torque_first_tip, nullptr};
 
 }  // namespace hubbeam::generated

@@ -548,6 +548,6 @@ void bsim_nx0_ny4_torque_first_open_mass_q_product(const double* c, const double
 extern const Variant bsim_nx0_ny4_torque_first_open = {"bsim_nx0_ny4_torque_first_open", 5, 61, 25,
     "vcccccccccccccccccccccccc",
     bsim_nx0_ny4_torque_first_open_coefficients, bsim_nx0_ny4_torque_first_open_mass, bsim_nx0_ny4_torque_first_open_mass_varying, bsim_nx0_ny4_torque_first_open_forces, bsim_nx0_ny4_torque_first_open_forces_terms, bsim_nx0_ny4_torque_first_open_forces_matrix,
-    bsim_nx0_ny4_torque_first_open_energy, bsim_nx0_ny4_torque_first_open_momentum, bsim_nx0_ny4_torque_first_open_forces_q, bsim_nx0_ny4_torque_first_open_forces_qd, bsim_nx0_ny4_torque_first_open_mass_q_product, bsim_nx0_ny4_torque_first_open_forces_u, bsim_nx0_ny4_torque_first_open_tip};
+    bsim_nx0_ny4_torque_first_open_energy, bsim_nx0_ny4_torque_first_open_momentum, bsim_nx0_ny4_torque_first_open_forces_q, bsim_nx0_ny4_torque_first_open_forces_qd, bsim_nx0_ny4_torque_first_open_mass_q_product, bsim_nx0_ny4_torque_first_open_forces_u, bsim_nx0_ny4_torque_first_open_tip, nullptr};
 
 }  // namespace hubbeam::generated

@@ -1175,6 +1175,6 @@ void bsim_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, 
 extern const Variant bsim_nx4_ny4_torque_first = {"bsim_nx4_ny4_torque_first", 9, 125, 58,
     "vvvvvvvvvvcccc0000vcccc0000vcccc0000vcccc0000v0000ccccv0000ccccv0000ccccv0000cccc",
     bsim_nx4_ny4_torque_first_coefficients, bsim_nx4_ny4_torque_first_mass, bsim_nx4_ny4_torque_first_mass_varying, bsim_nx4_ny4_torque_first_forces, bsim_nx4_ny4_torque_first_forces_terms, bsim_nx4_ny4_torque_first_forces_matrix,
-    bsim_nx4_ny4_torque_first_energy, bsim_nx4_ny4_torque_first_momentum, bsim_nx4_ny4_torque_first_forces_q, bsim_nx4_ny4_torque_first_forces_qd, bsim_nx4_ny4_torque_first_mass_q_product, bsim_nx4_ny4_torque_first_forces_u, bsim_nx4_ny4_torque_first_tip};
+    bsim_nx4_ny4_torque_first_energy, bsim_nx4_ny4_torque_first_momentum, bsim_nx4_ny4_torque_first_forces_q, bsim_nx4_ny4_torque_first_forces_qd, bsim_nx4_ny4_torque_first_mass_q_product, bsim_nx4_ny4_torque_first_forces_u, bsim_nx4_ny4_torque_first_tip, nullptr};
 
 }  // namespace hubbeam::generated

@@ -535,6 +535,6 @@ void fem_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, c
 extern const Variant fem_nx0_ny4_torque_first = {"fem_nx0_ny4_torque_first", 5, 53, 25,
     "vcccccc0ccc0ccccccccccccc",
     fem_nx0_ny4_torque_first_coefficients, fem_nx0_ny4_torque_first_mass, fem_nx0_ny4_torque_first_mass_varying, fem_nx0_ny4_torque_first_forces, fem_nx0_ny4_torque_first_forces_terms, fem_nx0_ny4_torque_first_forces_matrix,
-    fem_nx0_ny4_torque_first_energy, fem_nx0_ny4_torque_first_momentum, fem_nx0_ny4_torque_first_forces_q, fem_nx0_ny4_torque_first_forces_qd, fem_nx0_ny4_torque_first_mass_q_product, fem_nx0_ny4_torque_first_forces_u, fem_nx0_ny4_torque_first_tip};
+    fem_nx0_ny4_torque_first_energy, fem_nx0_ny4_torque_first_momentum, fem_nx0_ny4_torque_first_forces_q, fem_nx0_ny4_torque_first_forces_qd, fem_nx0_ny4_torque_first_mass_q_product, fem_nx0_ny4_torque_first_forces_u, fem_nx0_ny4_torque_first_tip, nullptr};
 
 }  // namespace hubbeam::generated

@@ -1457,6 +1457,6 @@ void fem_nx8_ny8_prescribed_first_forces_u(const double* c, const double* u, con
 extern const Variant fem_nx8_ny8_prescribed_first = {"fem_nx8_ny8_prescribed_first", 16, 116, 66,
     "cc00000000000000ccc00000000000000ccc00000000000000ccc00000000000000ccc00000000000000ccc00000000000000ccc00000000000000cc0000000000000000c0cc0000000000000ccc000000000000ccc0cc0000000000cc0ccc000000000000ccc0cc0000000000cc0ccc000000000000cccc000000000000cccc",
     fem_nx8_ny8_prescribed_first_coefficients, fem_nx8_ny8_prescribed_first_mass, nullptr, fem_nx8_ny8_prescribed_first_forces, fem_nx8_ny8_prescribed_first_forces_terms, fem_nx8_ny8_prescribed_first_forces_matrix,
-    fem_nx8_ny8_prescribed_first_energy, fem_nx8_ny8_prescribed_first_momentum, fem_nx8_ny8_prescribed_first_forces_q, fem_nx8_ny8_prescribed_first_forces_qd, nullptr, fem_nx8_ny8_prescribed_first_forces_u, fem_nx8_ny8_prescribed_first_tip};
+    fem_nx8_ny8_prescribed_first_energy, fem_nx8_ny8_prescribed_first_momentum, fem_nx8_ny8_prescribed_first_forces_q, fem_nx8_ny8_prescribed_first_forces_qd, nullptr, fem_nx8_ny8_prescribed_first_forces_u, fem_nx8_ny8_prescribed_first_tip, nullptr};
 
 }  // namespace hubbeam::generated

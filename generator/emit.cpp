@@ -286,6 +286,28 @@ std::string print_outputs(const std::vector<Output>& outputs, const std::vector<
     return lines.str();
 }
 
+/// Stage "print" of a matrix-times-monomials kernel: out[i] = sum_k c[i*K + k] m_k, every m_k a monomial with
+/// coefficient 1 (KernelSpec::rows).
+std::string print_matrix_product(const std::vector<Output>& monomials, int rows, const MonomialPlan& plan, bool& uses_c)
+{
+    std::vector<std::string> names;
+    for (const Output& m : monomials) {
+        if (m.size() != 1 || CoefficientPool::pure_number(m.begin()->second) != numeric(1))
+            throw EmitError("emit: a matrix-times-monomials kernel takes monomials with coefficient 1");
+        names.push_back(degree(m.begin()->first) == 0 ? "1.0" : plan.names.at(m.begin()->first));
+    }
+    const std::size_t K = names.size();
+    std::ostringstream lines;
+    for (int i = 0; i < rows; ++i) {
+        lines << "    out[" << i << "] =";
+        for (std::size_t k = 0; k < K; ++k)
+            lines << (k ? " + " : " ") << "c[" << static_cast<std::size_t>(i) * K + k << "]*" << names[k];
+        lines << (K == 0 ? " 0.0;\n" : ";\n");
+    }
+    uses_c = K > 0;
+    return lines.str();
+}
+
 /// The function of one kernel: reads of the state it uses, its monomials, its outputs.
 std::string print_kernel(const std::string& prefix, const KernelSpec& k, const Signature& sig, const MonomialPlan& plan,
                          const std::string& outputs, bool uses_c)
@@ -353,7 +375,8 @@ EmittedCode emit_kernels(const std::string& prefix, const Signature& sig, const 
         if (!k.slots.empty() && k.slots.size() != k.values.size())
             throw EmitError("emit: kernel " + k.name + " has " + std::to_string(k.values.size()) + " values but " +
                             std::to_string(k.slots.size()) + " slots");
-        const std::string lines = print_outputs(outputs, k.slots, plan, pool, uses_c);
+        const std::string lines = k.rows > 0 ? print_matrix_product(outputs, k.rows, plan, uses_c)
+                                             : print_outputs(outputs, k.slots, plan, pool, uses_c);
         bodies.push_back(print_kernel(prefix, k, sig, plan, lines, uses_c));
     }
     std::ostringstream text;

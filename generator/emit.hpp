@@ -31,6 +31,10 @@ struct KernelSpec {
     std::string doc;   // e.g. "row-major, M = d2T/dqd2"
     std::vector<GiNaC::ex> values;
     std::vector<int> slots = {};  // for a kernel that writes only some entries of out
+    /// > 0: a matrix-times-monomials kernel. values are K monomials m_k of the state, and the kernel writes
+    /// out[i] = sum_k c[i*K + k] m_k for i < rows, reading its c argument as that row-major matrix (a runtime
+    /// product such as M^-1 F) instead of the coefficient pool.
+    int rows = 0;
 };
 
 struct EmittedCode {

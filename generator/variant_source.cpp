@@ -210,6 +210,15 @@ std::string variant_source(const VariantKey& key)
         sparse_kernel("forces_u", "dQdu[" + nu + "]", "row-major; out[i*3+j] = dQ_i/du_j, u = " + tuple(drive_value_names),
                       jac.forces_u),
     };
+    // A constant M is folded into W = M^-1 F by the runtime; this kernel evaluates W m with W's entries at fixed
+    // places, unrolled, up to a size where unrolling stops paying (the runtime then loops).
+    const bool folded = !mass_varies && nq * static_cast<int>(terms.terms.size()) <= 512;
+    if (folded) {
+        KernelSpec f{"forces_folded", "qdd[" + n1 + "]",
+                     "qdd = W m, W = M^-1 F (" + n1 + " x " + nk + ", row-major) passed in the c slot", terms.terms};
+        f.rows = nq;
+        kernels.push_back(f);
+    }
     // A constant M has dM/dq = 0: no kernels, null pointers in the table row, and the runtime skips the terms.
     if (mass_varies) {
         kernels.push_back(mass_varying);
@@ -228,7 +237,8 @@ std::string variant_source(const VariantKey& key)
       << ",\n    \"" << pattern << "\",\n    " << name << "_coefficients, " << name << "_mass, "
       << optional("mass_varying") << ", " << name << "_forces, " << name << "_forces_terms, " << name
       << "_forces_matrix,\n    " << name << "_energy, " << name << "_momentum, " << name << "_forces_q, " << name
-      << "_forces_qd, " << optional("mass_q_product") << ", " << name << "_forces_u, " << name << "_tip};\n\n}  // namespace hubbeam::generated\n";
+      << "_forces_qd, " << optional("mass_q_product") << ", " << name << "_forces_u, " << name << "_tip, "
+      << (folded ? name + "_forces_folded" : std::string("nullptr")) << "};\n\n}  // namespace hubbeam::generated\n";
     return f.str();
 }
 

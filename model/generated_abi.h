@@ -34,6 +34,8 @@ struct Variant {
     Kernel forces_u;          /* dQdu[nq*3], row-major: out[i*3+j] = dQ_i/du_j, u indexed by DriveValue; columns of
                                * drive values the variant does not read are zero */
     Kernel tip;               /* tip[3] = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B */
+    Kernel forces_folded;     /* qdd[nq] = W m with W = M^-1 F (nq x nterms, row-major) in the c slot; only for a
+                               * constant M of moderate size, else a null pointer */
 };
 
 extern const Variant* const variants[];

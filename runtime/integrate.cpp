@@ -73,6 +73,7 @@ struct FirstOrderSystem::Work {
     // multiply-adds (docs/model.md section 5.3: the prescribed-rotation M is constant). Dense (column-major)
     // or, where W is mostly zeros, by rows: row i holds W_value[W_start[i] .. W_start[i+1]) in W_column.
     Eigen::MatrixXd W;
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> W_rows;  // for the generated kernel
     std::vector<int> W_start, W_column;
     std::vector<double> W_value;
     bool folded() const { return W.size() > 0 || !W_start.empty(); }
@@ -159,6 +160,7 @@ FirstOrderSystem::FirstOrderSystem(const Model& model, const Motion& motion, Axi
         if (nnz <= nonzeros(F) + static_cast<long>(n_) * n_) {
             w.m.resize(K);
             if (2 * nnz >= static_cast<long>(n_) * K) {  // by rows only when that skips most of W
+                if (model.has_forces_folded()) w.W_rows = W;
                 w.W = std::move(W);
             } else {
                 w.W_start.push_back(0);
@@ -202,7 +204,10 @@ std::string FirstOrderSystem::linear_algebra() const
         return "quasi-static axial coordinates (A by Newton on the axial rows), dense Cholesky of M without them";
     if (w.folded())
         return "M^-1 folded into the forces once (" + std::to_string(n_) + " x " + std::to_string(w.m.size()) +
-               (w.W.size() > 0 ? ", dense" : ", " + std::to_string(w.W_value.size()) + " nonzeros") + ")";
+               (w.W_rows.size() > 0 ? ", dense, by the generated kernel"
+                : w.W.size() > 0  ? ", dense"
+                                  : ", " + std::to_string(w.W_value.size()) + " nonzeros") +
+               ")";
     return w.solver->describe();
 }
 
@@ -214,7 +219,9 @@ int FirstOrderSystem::rhs(double t, const double* y, double* dydt)
     const HubInput u = drive_at(t);
     const double* q = y;
     const double* qd = y + n_;
-    if (w.folded()) {
+    if (w.W_rows.size() > 0) {
+        model_.forces_folded(w.W_rows.data(), u, q, qd, w.qdd.data());
+    } else if (w.folded()) {
         model_.forces_terms(u, q, qd, w.m.data());
         if (w.W.size() > 0) {
             multiply(w.W, w.m, w.qdd);
