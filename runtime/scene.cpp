@@ -214,13 +214,13 @@ toml::table parse_toml(const std::string& path)
 
 /// The override's text as the TOML value its key holds; a text that is not of the key's kind is an error
 /// naming the key.
-void set_override(toml::table& root, const std::string& file, const std::string& name,
-                                         const std::string& text)
+void set_override(toml::table& root, const std::string& file, const std::string& name, const std::string& text)
 {
     const SceneKey& key = scene_key(name);
     const std::size_t dot = name.find('.');
     const std::string table = name.substr(0, dot), leaf = name.substr(dot + 1);
-    if (!root.contains(table) || !root[table].is_table()) root.insert_or_assign(table, toml::table{});
+    if (!root.contains(table)) root.insert_or_assign(table, toml::table{});
+    if (!root[table].is_table()) return;  // the file's own error ("expected a table") is reported as it is
     toml::table& t = *root[table].as_table();
     const auto bad = [&] { fail(file, name, key.expected, "\"" + text + "\""); };
     switch (key.kind) {
