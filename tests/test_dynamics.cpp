@@ -12,36 +12,16 @@
 
 #include "integrate.hpp"
 #include "make_model.hpp"
+#include "runs.hpp"
 #include "simulate.hpp"
 
 using namespace hubbeam;
+using test::paper_scene;
+using test::run;
+using test::spin_up;
+using test::torque;
 
 namespace {
-
-Scene paper_scene(Method method, int nx, int ny, Motion motion)
-{
-    Scene s;
-    s.path = "test";
-    s.motion = motion;
-    s.variant.method = method;
-    s.variant.nx = nx;
-    s.variant.ny = ny;
-    s.solver.rtol = 1e-10;
-    s.solver.atol = 1e-12;
-    return s;
-}
-
-Motion spin_up(double omega0) { return {Motion::Kind::spin_up, omega0, 15.0, 0.0, 10.0}; }
-Motion torque(double tau0) { return {Motion::Kind::torque, 0.0, 15.0, tau0, 10.0}; }
-
-std::vector<Row> run(const Scene& s)
-{
-    std::vector<Row> rows;
-    const RunSummary summary = simulate(s, [&](const Row& r) { rows.push_back(r); });
-    INFO(summary.failure);
-    REQUIRE(summary.completed);
-    return rows;
-}
 
 /// Frequency (Hz) and half peak-to-peak amplitude of tip_uy after t0, from upward zero crossings of the
 /// signal about its mean, located by linear interpolation.

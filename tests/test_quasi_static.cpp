@@ -9,35 +9,22 @@
 #include "fields.hpp"
 #include "integrate.hpp"
 #include "make_model.hpp"
+#include "runs.hpp"
 #include "simulate.hpp"
 
 using namespace hubbeam;
+using test::run;
 
 namespace {
 
+/// test::paper_scene with the axial model chosen, 20 s, rows every 0.05 s.
 Scene paper_scene(Method method, int nx, int ny, Motion motion, Axial axial)
 {
-    Scene s;
-    s.path = "test";
-    s.motion = motion;
-    s.variant.method = method;
-    s.variant.nx = nx;
-    s.variant.ny = ny;
+    Scene s = test::paper_scene(method, nx, ny, motion);
     s.axial = axial;
-    s.solver.rtol = 1e-10;
-    s.solver.atol = 1e-12;
     s.output.t_end = 20.0;
     s.output.dt_out = 0.05;
     return s;
-}
-
-std::vector<Row> run(const Scene& s)
-{
-    std::vector<Row> rows;
-    const RunSummary summary = simulate(s, [&](const Row& r) { rows.push_back(r); });
-    INFO(summary.failure);
-    REQUIRE(summary.completed);
-    return rows;
 }
 
 }  // namespace

@@ -1,0 +1,41 @@
+// The paper's beam in a scene built in code, and a run of it collected into rows: shared by the tests that
+// integrate end to end.
+#pragma once
+
+#include <catch2/catch.hpp>
+#include <vector>
+
+#include "simulate.hpp"
+
+namespace hubbeam::test {
+
+/// The paper's beam (docs/model.md section 6, the Scene defaults) with a discretization and a drive, at
+/// rtol 1e-10, atol 1e-12.
+inline Scene paper_scene(Method method, int nx, int ny, Motion motion)
+{
+    Scene s;
+    s.path = "test";
+    s.motion = motion;
+    s.variant.method = method;
+    s.variant.nx = nx;
+    s.variant.ny = ny;
+    s.solver.rtol = 1e-10;
+    s.solver.atol = 1e-12;
+    return s;
+}
+
+/// Paper eq. 58 to Omega0 in T_s = 15 s, and eq. 59 with tau0 over T_t = 10 s.
+inline Motion spin_up(double omega0) { return {Motion::Kind::spin_up, omega0, 15.0, 0.0, 10.0}; }
+inline Motion torque(double tau0) { return {Motion::Kind::torque, 0.0, 15.0, tau0, 10.0}; }
+
+/// The rows of a run that must complete.
+inline std::vector<Row> run(const Scene& s)
+{
+    std::vector<Row> rows;
+    const RunSummary summary = simulate(s, [&](const Row& r) { rows.push_back(r); });
+    INFO(summary.failure);
+    REQUIRE(summary.completed);
+    return rows;
+}
+
+}  // namespace hubbeam::test
