@@ -73,13 +73,6 @@ void add_unique(std::vector<T>& v, const T& x)
     if (std::find(v.begin(), v.end(), x) == v.end()) v.push_back(x);
 }
 
-std::string join(const std::vector<std::string>& words)
-{
-    std::string s;
-    for (const std::string& w : words) s += (s.empty() ? "" : ", ") + w;
-    return s;
-}
-
 /// The drive of a benchmark row, at an instant mid-way through it: the spin-up still accelerating (theta_ddot
 /// != 0, so the prescribed forces have every term), the torque pulse still on.
 struct BenchDrive {
@@ -287,7 +280,7 @@ KernelBenchOptions parse_kernel_options(const KernelArgs& args)
     }
     for (const std::string& s : split(args.methods)) {
         Method v{};
-        if (!parse(s, v)) bad("--methods", "a comma-separated list of " + join(words<Method>()), s);
+        if (!parse(s, v)) bad("--methods", "a comma-separated list of " + joined(words<Method>()), s);
         add_unique(o.methods, v);
     }
     for (const std::string& s : split(args.drives)) {
