@@ -76,7 +76,7 @@ struct FirstOrderSystem::Work {
     Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> W_rows;  // for the generated kernel
     std::vector<int> W_start, W_column;
     std::vector<double> W_value;
-    bool folded() const { return W.size() > 0 || !W_start.empty(); }
+    bool folded() const { return W.size() > 0 || W_rows.size() > 0 || !W_start.empty(); }
     Eigen::VectorXd m;
     Eigen::VectorXd qdd;
     std::vector<double> y_plus, y_minus, f_plus, f_minus;
@@ -121,6 +121,17 @@ void multiply(const Eigen::MatrixXd& W, const Eigen::VectorXd& x, Eigen::VectorX
     }
 }
 
+/// dy/dt = (qd, qdd) of n coordinates; GSL_EBADFUNC when an acceleration is not finite.
+int store_derivative(const double* qd, const double* qdd, int n, double* dydt)
+{
+    for (int i = 0; i < n; ++i) {
+        dydt[i] = qd[i];
+        dydt[n + i] = qdd[i];
+        if (!std::isfinite(qdd[i])) return GSL_EBADFUNC;
+    }
+    return GSL_SUCCESS;
+}
+
 /// Nonzero entries of a row-major matrix.
 long nonzeros(const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>& A)
 {
@@ -161,7 +172,7 @@ FirstOrderSystem::FirstOrderSystem(const Model& model, const Motion& motion, Axi
             w.m.resize(K);
             if (2 * nnz >= static_cast<long>(n_) * K) {  // by rows only when that skips most of W
                 if (model.has_forces_folded()) w.W_rows = W;
-                w.W = std::move(W);
+                else w.W = std::move(W);
             } else {
                 w.W_start.push_back(0);
                 for (int i = 0; i < n_; ++i) {
@@ -238,12 +249,7 @@ int FirstOrderSystem::rhs(double t, const double* y, double* dydt)
         model_.forces(u, q, qd, w.qdd.data());
         w.solver->solve(w.qdd.data());
     }
-    for (int i = 0; i < n_; ++i) {
-        dydt[i] = qd[i];
-        dydt[n_ + i] = w.qdd[i];
-        if (!std::isfinite(dydt[n_ + i])) return GSL_EBADFUNC;
-    }
-    return GSL_SUCCESS;
+    return store_derivative(qd, w.qdd.data(), n_, dydt);
 }
 
 int FirstOrderSystem::jacobian(double t, const double* y, double* dfdy, double* dfdt)
@@ -334,12 +340,7 @@ int FirstOrderSystem::quasi_static_rhs(double t, const double* y, double* dydt)
     Eigen::VectorXd Qr(r);
     for (int i = 0; i < r; ++i) Qr[i] = w.Q[kept_[static_cast<std::size_t>(i)]];
     const Eigen::VectorXd qdd = w.reduced_llt.solve(Qr);
-    for (int i = 0; i < r; ++i) {
-        dydt[i] = y[r + i];
-        dydt[r + i] = qdd[i];
-        if (!std::isfinite(qdd[i])) return GSL_EBADFUNC;
-    }
-    return GSL_SUCCESS;
+    return store_derivative(y + r, qdd.data(), r, dydt);
 }
 
 int FirstOrderSystem::exact_jacobian(double t, const double* y, double* dfdy, double* dfdt)
