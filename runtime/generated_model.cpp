@@ -50,12 +50,11 @@ public:
         call(v_.forces_terms, u, q, qd, m);
     }
     bool has_forces_folded() const override { return v_.forces_folded != nullptr; }
-    bool forces_folded(const double* W, const HubInput& u, const double* q, const double* qd,
+    void forces_folded(const double* W, const HubInput& u, const double* q, const double* qd,
                        double* qdd) const override
     {
-        if (v_.forces_folded == nullptr) return false;
-        v_.forces_folded(W, u.packed().data(), q, qd, qdd);
-        return true;
+        if (v_.forces_folded == nullptr) Model::forces_folded(W, u, q, qd, qdd);  // throws
+        else v_.forces_folded(W, u.packed().data(), q, qd, qdd);
     }
     void forces_matrix(double* F) const override
     {

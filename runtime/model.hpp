@@ -44,15 +44,12 @@ public:
     virtual void forces_terms(const HubInput& u, const double* q, const double* qd, double* m) const;
     /// F[nq*K] of Q = F m, row-major (only if force_terms() > 0).
     virtual void forces_matrix(double* F) const;
-    /// qdd = W m for a row-major W (nq x K) by a kernel with W's entries at fixed places; false (and nothing
-    /// written) where the model has none.
-    virtual bool forces_folded(const double* /*W*/, const HubInput&, const double* /*q*/, const double* /*qd*/,
-                               double* /*qdd*/) const
-    {
-        return false;
-    }
     /// Whether forces_folded() computes.
     virtual bool has_forces_folded() const { return false; }
+    /// qdd = W m for a row-major W (nq x K) by a kernel with W's entries at fixed places (only if
+    /// has_forces_folded()).
+    virtual void forces_folded(const double* W, const HubInput& u, const double* q, const double* qd,
+                               double* qdd) const;
     /// Q(t, q, qd) such that M qdd = Q.
     virtual void forces(const HubInput& u, const double* q, const double* qd, double* Q) const = 0;
     virtual Energy energy(const HubInput& u, const double* q, const double* qd) const = 0;
@@ -86,6 +83,11 @@ inline void Model::forces_terms(const HubInput&, const double*, const double*, d
 inline void Model::forces_matrix(double*) const
 {
     throw std::logic_error(std::string(source()) + " model has no term form of its forces");
+}
+
+inline void Model::forces_folded(const double*, const HubInput&, const double*, const double*, double*) const
+{
+    throw std::logic_error(std::string(source()) + " model has no folded forces kernel");
 }
 
 inline void Model::force_derivatives(const HubInput&, const double*, const double*, double*, double*, double*) const
