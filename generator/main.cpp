@@ -1,5 +1,7 @@
-// hubbeam-gen: derives the named variants symbolically and writes one C++ source per variant plus the
-// registry into the output folder. Usage: hubbeam-gen --out DIR VARIANT...
+// hubbeam-gen: derives the named variants symbolically and writes one C++ source per variant, plus either the
+// registry that compiles them into the hubbeam build or, with --module, an entry point per source for loading
+// it as a shared object (the runtime's on-demand variants, runtime/on_demand.hpp).
+#include <CLI/CLI.hpp>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -22,28 +24,55 @@ void write(const std::filesystem::path& path, const std::string& text)
 
 int main(int argc, char** argv)
 {
-    std::filesystem::path out = ".";
+    CLI::App app{"hubbeam-gen: derives the rotating hub-beam's equations of motion with GiNaC (Lagrange's equations of\n"
+                 "T and U, docs/model.md) and emits C++ kernels for the named variants."};
+    std::string out = ".";
+    bool module = false, quiet = false;
     std::vector<std::string> names;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        if (a == "--out" && i + 1 < argc) out = argv[++i];
-        else if (a == "--help" || a == "-h") {
-            std::cout << "usage: hubbeam-gen --out DIR VARIANT...\n"
-                         "  VARIANT: method_nxN_nyN_drive_order[_open], e.g. bim_nx4_ny4_torque_first\n";
-            return 0;
-        } else names.push_back(a);
+    app.add_option("--out", out, "Folder for the sources (created if missing; default: the current folder)")
+        ->type_name("DIR");
+    app.add_flag("--module", module,
+                 "Write each source with an entry point `hubbeam_variant()` for a shared object, and no registry");
+    app.add_flag("-q,--quiet", quiet, "Print nothing on success");
+    app.add_option("variants", names,
+                   "Variant names METHOD_nxN_nyN_DRIVE_ORDER[_open]: METHOD amm|fem|bim|bsim, Nx axial and Ny "
+                   "transverse coordinates, DRIVE prescribed|torque, ORDER zero|first|full, _open for BSIM's open "
+                   "uniform basis; e.g. bim_nx4_ny4_torque_first")
+        ->required()
+        ->type_name("VARIANT");
+    app.footer("Writes DIR/VARIANT.cpp for each variant and DIR/registry.cpp (without --module). Exit codes: 0 "
+               "success, 1 a variant could not be derived or written, 2 bad arguments (one line on stderr).");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        if (e.get_exit_code() == 0) return app.exit(e);  // --help
+        std::cerr << "hubbeam-gen: " << e.what() << "\n";
+        return 2;
+    }
+    std::vector<hubbeam::VariantKey> keys;
+    for (const std::string& name : names) {
+        try {
+            keys.push_back(hubbeam::VariantKey::parse(name));
+            if (keys.back().name() != name)
+                throw std::invalid_argument("variant '" + name + "' is spelled " + keys.back().name());
+            if (const std::string why = keys.back().dof_problem(); !why.empty())
+                throw std::invalid_argument("variant '" + name + "': " + why);
+        } catch (const std::invalid_argument& e) {
+            std::cerr << "hubbeam-gen: " << e.what() << "\n";
+            return 2;
+        }
     }
     try {
         std::filesystem::create_directories(out);
-        for (const std::string& name : names) {
+        for (const hubbeam::VariantKey& key : keys) {
             const auto start = std::chrono::steady_clock::now();
-            const hubbeam::VariantKey key = hubbeam::VariantKey::parse(name);
-            if (key.name() != name) throw std::invalid_argument("variant '" + name + "' is spelled " + key.name());
-            write(out / (name + ".cpp"), hubbeam::gen::variant_source(key));
+            std::string text = hubbeam::gen::variant_source(key);
+            if (module) text += hubbeam::gen::module_entry_source(key.name());
+            write(std::filesystem::path(out) / (key.name() + ".cpp"), text);
             const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            std::cout << "hubbeam-gen: " << name << " (" << s << " s)\n";
+            if (!quiet) std::cout << "hubbeam-gen: " << key.name() << " (" << s << " s)\n";
         }
-        write(out / "registry.cpp", hubbeam::gen::registry_source(names));
+        if (!module) write(std::filesystem::path(out) / "registry.cpp", hubbeam::gen::registry_source(names));
     } catch (const std::exception& e) {
         std::cerr << "hubbeam-gen: " << e.what() << "\n";
         return 1;

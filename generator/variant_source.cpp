@@ -242,6 +242,14 @@ std::string variant_source(const VariantKey& key)
     return f.str();
 }
 
+std::string module_entry_source(const std::string& name)
+{
+    return "\n// The entry point of this source built as a shared object (an on-demand variant).\n"
+           "extern \"C\" const hubbeam::generated::Variant* hubbeam_variant();\n"
+           "extern \"C\" const hubbeam::generated::Variant* hubbeam_variant() { return &hubbeam::generated::" +
+           name + "; }\n";
+}
+
 std::string registry_source(const std::vector<std::string>& names)
 {
     std::ostringstream f;

@@ -12,6 +12,9 @@ namespace hubbeam::gen {
 /// The generated source file for one variant (banner, kernels, table row).
 std::string variant_source(const VariantKey& key);
 
+/// The entry point of a variant's source built as a shared object: extern "C" hubbeam_variant() returns its row.
+std::string module_entry_source(const std::string& name);
+
 /// The registry source listing the named variants.
 std::string registry_source(const std::vector<std::string>& names);
 

@@ -50,21 +50,29 @@ VariantKey VariantKey::parse(std::string_view name)
     }
     parts.push_back(cur);
     VariantKey k;
-    const auto bad = [&] { return std::invalid_argument("not a variant name: '" + std::string(name) + "'"); };
-    if (parts.size() < 5 || parts.size() > 6) throw bad();
-    if (!hubbeam::parse(parts[0], k.method) || !hubbeam::parse(parts[3], k.drive) ||
-        !hubbeam::parse(parts[4], k.order))
-        throw bad();
-    if (parts[1].size() < 3 || parts[1].rfind("nx", 0) != 0 || parts[2].size() < 3 || parts[2].rfind("ny", 0) != 0)
-        throw bad();
-    try {
-        k.nx = std::stoi(parts[1].substr(2));
-        k.ny = std::stoi(parts[2].substr(2));
-    } catch (const std::exception&) {
-        throw bad();
-    }
+    const auto bad = [&](const std::string& what) {
+        return std::invalid_argument("not a variant name: '" + std::string(name) + "': " + what +
+                                     " (expected METHOD_nxN_nyN_DRIVE_ORDER[_open], e.g. bim_nx4_ny4_torque_first)");
+    };
+    const auto one_of = [](const std::vector<std::string>& ws) {
+        std::string s;
+        for (const std::string& w : ws) s += (s.empty() ? "" : ", ") + w;
+        return s;
+    };
+    if (parts.size() < 5 || parts.size() > 6) throw bad(std::to_string(parts.size()) + " parts separated by '_'");
+    if (!hubbeam::parse(parts[0], k.method)) throw bad("method '" + parts[0] + "' is not one of " + one_of(words<Method>()));
+    if (!hubbeam::parse(parts[3], k.drive)) throw bad("drive '" + parts[3] + "' is not one of prescribed, torque");
+    if (!hubbeam::parse(parts[4], k.order)) throw bad("order '" + parts[4] + "' is not one of " + one_of(words<Order>()));
+    const auto count = [&](const std::string& part, const char* stem, int& n) {
+        if (part.size() < 3 || part.rfind(stem, 0) != 0 || part.find_first_not_of("0123456789", 2) != std::string::npos ||
+            part.size() > 2 + 9)
+            throw bad("'" + part + "' is not " + stem + " followed by a count");
+        n = std::stoi(part.substr(2));
+    };
+    count(parts[1], "nx", k.nx);
+    count(parts[2], "ny", k.ny);
     if (parts.size() == 6) {
-        if (k.method != Method::bsim || parts[5] != "open") throw bad();
+        if (k.method != Method::bsim || parts[5] != "open") throw bad("'" + parts[5] + "': only bsim takes the suffix _open");
         k.spline = SplineBasis::open;
     }
     return k;

@@ -119,14 +119,22 @@ private:
 
 }  // namespace
 
-std::unique_ptr<Model> make_generated_model(const VariantKey& key, const Parameters& p)
+const generated::Variant* built_in_variant(const VariantKey& key)
 {
     const std::string name = key.name();
     for (int i = 0; i < generated::variant_count; ++i) {
         const generated::Variant* v = generated::variants[i];
-        if (v != nullptr && name == v->name) return std::make_unique<GeneratedModel>(key, *v, p);
+        if (v != nullptr && name == v->name) return v;
     }
     return nullptr;
+}
+
+std::unique_ptr<Model> make_generated_model(const VariantKey& key, const generated::Variant& v, const Parameters& p,
+                                            std::string origin)
+{
+    auto m = std::make_unique<GeneratedModel>(key, v, p);
+    m->set_origin(std::move(origin));
+    return m;
 }
 
 std::vector<std::string> generated_variant_names()

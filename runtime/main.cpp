@@ -3,7 +3,7 @@
 // summary.
 //
 //   hubbeam run SCENE.toml [--method M] [--nx N] [--ny N] ... [-o FILE]   (options: scene_keys() in scene.cpp)
-//   hubbeam variants
+//   hubbeam variants                                   (built in, cached, and how others run)
 //   hubbeam kernels [--ny LIST] [--methods LIST] [--drives LIST] [--nx LIST] [--samples N] [-o FILE]
 //
 // Exit codes: 0 success; 1 the simulation stopped early (rows so far kept); 2 bad input (nothing computed);
@@ -22,6 +22,7 @@
 #include "generated_model.hpp"
 #include "integrate.hpp"
 #include "kernel_bench.hpp"
+#include "on_demand.hpp"
 #include "output.hpp"
 #include "scene.hpp"
 #include "simulate.hpp"
@@ -131,9 +132,14 @@ int run(const CLI::App& sub, const RunOptions& o)
     // Everything that can refuse the run does so before the output file is touched.
     std::unique_ptr<Simulation> simulation;
     try {
-        simulation = std::make_unique<Simulation>(scene);
+        simulation = std::make_unique<Simulation>(scene, [](const std::string& note) {
+            std::cerr << "hubbeam: " << note << "\n";
+        });
     } catch (const std::invalid_argument& e) {
         std::cerr << scene.path << ": " << e.what() << "\n";
+        return exit_bad_input;
+    } catch (const CompileError& e) {
+        std::cerr << "hubbeam: " << e.what() << "\n";
         return exit_bad_input;
     }
     // Caught before the temporary file exists: from here on a signal ends the run on a whole row and the file
@@ -168,10 +174,18 @@ int run(const CLI::App& sub, const RunOptions& o)
     return exit_ok;
 }
 
-/// hubbeam variants: the variants generated into this build, one name a line.
+/// hubbeam variants: the variants built in and cached, one a line with where it comes from, then how any other
+/// variant would run.
 int list_variants()
 {
-    for (const std::string& name : generated_variant_names()) std::cout << name << "\n";
+    for (const std::string& name : generated_variant_names()) std::cout << "built in  " << name << "\n";
+    for (const std::string& name : cached_variant_names()) std::cout << "cached    " << name << "\n";
+    std::cout << "cache: " << variant_cache_dir().string() << " (clear with: rm -r " << variant_cache_root().string()
+              << ")\n";
+    if (const std::string why = on_demand_problem(); why.empty())
+        std::cout << "other variants: generated and compiled on first use with " << on_demand_compiler() << "\n";
+    else
+        std::cout << "other variants: hand-assembled (" << why << "); order full cannot run\n";
     return exit_ok;
 }
 
@@ -222,7 +236,8 @@ int main(int argc, char** argv)
         "far kept), 2 bad input (one line on stderr, nothing computed), 130/143 interrupted by SIGINT/SIGTERM "
         "(rows so far kept). The CSV is written to DIR/.NAME.tmp-PID and renamed over FILE when the run ends.");
     add_run_options(*run_cmd, options);
-    CLI::App* variants_cmd = app.add_subcommand("variants", "List the variants generated into this build");
+    CLI::App* variants_cmd =
+        app.add_subcommand("variants", "List the variants built in and cached, and how any other variant runs");
     KernelArgs kernel_args;
     CLI::App* kernels_cmd = app.add_subcommand(
         "kernels", "Time the right-hand side and Jacobian per call, generated kernels against the assembled path");

@@ -1,10 +1,13 @@
 // Model selection between the generated variants of this build and the hand-assembled fallback.
 #include "make_model.hpp"
 
+#include <chrono>
+#include <cstdio>
 #include <stdexcept>
 
 #include "assembled.hpp"
 #include "generated_model.hpp"
+#include "on_demand.hpp"
 
 namespace hubbeam {
 
@@ -19,17 +22,31 @@ std::string to_string(ModelSource v) { return word_of(v, sources); }
 bool parse(std::string_view w, ModelSource& v) { return parse_word(w, sources, v); }
 template <> std::vector<std::string> words<ModelSource>() { return all_words(sources); }
 
-std::unique_ptr<Model> make_model(const VariantKey& key, const Parameters& p, ModelSource source)
+std::unique_ptr<Model> make_model(const VariantKey& key, const Parameters& p, ModelSource source, const ModelNote& note)
 {
     if (const std::string why = key.dof_problem(); !why.empty()) throw std::invalid_argument(why);
-    if (source != ModelSource::assembled) {
-        if (auto m = make_generated_model(key, p)) return m;
+    if (source == ModelSource::assembled) return make_assembled_model(key, p);
+    if (const generated::Variant* v = built_in_variant(key)) return make_generated_model(key, *v, p, "built in");
+    if (const generated::Variant* v = load_cached_variant(key)) return make_generated_model(key, *v, p, "cached");
+    if (const std::string why = on_demand_problem(); !why.empty()) {
         if (source == ModelSource::generated)
-            throw std::invalid_argument("variant " + key.name() +
-                                        " is not generated in this build: add it to generator/variants.txt, "
-                                        "or use the hand-assembled model (source = \"assembled\")");
+            throw std::invalid_argument("variant " + key.name() + " is not built in and cannot be compiled on demand: " +
+                                        why + "; or use the hand-assembled model (source = \"assembled\")");
+        if (key.order == Order::full)
+            throw std::invalid_argument("order full has no hand-assembled form, and variant " + key.name() +
+                                        " cannot be compiled on demand: " + why);
+        auto m = make_assembled_model(key, p);
+        const std::string fallback = "hand-assembled, " + why;
+        if (note) note("variant " + key.name() + " runs on the hand-assembled path: " + why);
+        m->set_origin(fallback);
+        return m;
     }
-    return make_assembled_model(key, p);
+    const auto start = std::chrono::steady_clock::now();
+    const generated::Variant* v = compile_variant(key, note);
+    char took[64];
+    std::snprintf(took, sizeof took, "compiled now in %.1f s",
+                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    return make_generated_model(key, *v, p, took);
 }
 
 }  // namespace hubbeam

@@ -1,7 +1,8 @@
-// Model selection: which implementation serves a variant (generated kernels of this build, or the
-// hand-assembled docs/model.md section 5), as a scene's model.source asks.
+// Model selection: which implementation serves a variant (generated kernels: built in, cached or compiled on
+// demand; or the hand-assembled docs/model.md section 5), as a scene's model.source asks.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -17,8 +18,12 @@ std::string to_string(ModelSource);
 bool parse(std::string_view, ModelSource&);
 template <> std::vector<std::string> words<ModelSource>();
 
-/// automatic: generated if available, else assembled. Throws std::invalid_argument if none can serve.
+/// Told one line about slow or surprising choices (an on-demand compilation, a fallback to the assembled path).
+using ModelNote = std::function<void(const std::string&)>;
+
+/// generated: built in, else cached, else compiled now (on_demand.hpp); automatic: the same, else (no compiler)
+/// assembled, with a note. Throws std::invalid_argument if none can serve, CompileError if a compilation failed.
 std::unique_ptr<Model> make_model(const VariantKey& key, const Parameters& p,
-                                  ModelSource source = ModelSource::automatic);
+                                  ModelSource source = ModelSource::automatic, const ModelNote& note = {});
 
 }  // namespace hubbeam

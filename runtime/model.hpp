@@ -5,6 +5,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "interface.hpp"
 #include "variant.hpp"
@@ -29,6 +30,10 @@ public:
     int nq() const { return key_.nq(); }
     /// "generated" or "assembled".
     virtual const char* source() const = 0;
+    /// Where a generated model's kernels come from ("built in", "cached", "compiled now in 2.1 s"), or why
+    /// an automatic choice fell back to the assembled path; empty if there is nothing to say.
+    const std::string& origin() const { return origin_; }
+    void set_origin(std::string origin) { origin_ = std::move(origin); }
     /// True when M does not depend on q (prescribed rotation, first and zero order): factor it once.
     virtual bool mass_is_constant() const = 0;
     /// M(q), nq x nq row-major.
@@ -73,6 +78,7 @@ protected:
 
 private:
     VariantKey key_;
+    std::string origin_;
 };
 
 inline void Model::forces_terms(const HubInput&, const double*, const double*, double*) const

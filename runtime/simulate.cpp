@@ -91,11 +91,11 @@ std::vector<double> breaks_before(const Motion& motion, double t_last)
 
 }  // namespace
 
-Simulation::Simulation(const Scene& scene) : scene_(scene)
+Simulation::Simulation(const Scene& scene, const std::function<void(const std::string&)>& note) : scene_(scene)
 {
     VariantKey key = scene.variant;
     key.drive = scene.motion.drive();
-    model_ = make_model(key, scene.parameters, scene.source);
+    model_ = make_model(key, scene.parameters, scene.source, note);
 }
 
 Simulation::~Simulation() = default;
@@ -110,6 +110,7 @@ RunSummary Simulation::run(const RowSink& sink, const StopRequest& stop)
     RunSummary summary;
     summary.variant = key.name();
     summary.source = model.source();
+    if (!model.origin().empty()) summary.source += ", " + model.origin();
 
     FirstOrderSystem system(model, motion, scene_.axial);
     summary.algebra = system.linear_algebra();

@@ -26,7 +26,7 @@ inline const char* row_header()
 
 struct RunSummary {
     std::string variant;  // VariantKey::name()
-    std::string source;   // "generated" or "assembled"
+    std::string source;   // "generated" or "assembled", then where from ("generated, cached")
     std::string algebra;  // how accelerations are computed (FirstOrderSystem::linear_algebra())
     bool completed = false;
     std::string failure;  // why the run stopped early (empty if completed)
@@ -48,8 +48,9 @@ class Model;
 /// variant) does so before the caller creates any output.
 class Simulation {
 public:
-    /// Chooses the model; throws std::invalid_argument if none can serve the scene's variant.
-    explicit Simulation(const Scene& scene);
+    /// Chooses the model (make_model, which tells note about an on-demand compilation or a fallback); throws
+    /// std::invalid_argument if none can serve the scene's variant, CompileError if compiling it failed.
+    explicit Simulation(const Scene& scene, const std::function<void(const std::string&)>& note = {});
     ~Simulation();
     Simulation(const Simulation&) = delete;
     Simulation& operator=(const Simulation&) = delete;

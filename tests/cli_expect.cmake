@@ -2,6 +2,8 @@
 # stderr, and the CSV it leaves behind.
 #   -DHUBBEAM=exe -DARGS="run|scene.toml|..." -DEXIT=N       required (arguments separated by |)
 #   -DSTDERR=regex                                            stderr must match
+#   -DSTDOUT=regex                                            stdout must match
+#   -DEMPTY_DIR=path                                          this folder holds no file afterwards (recursively)
 #   -DCSV=path -DHEADER=line -DMIN_ROWS=n -DLAST_T=t          the CSV's header, data rows and final time
 #   -DNO_FILE=path                                            this path must not exist afterwards
 #   -DKEEP_FILE=path                                          holds "old contents" before and must after
@@ -35,6 +37,17 @@ if(NOT code STREQUAL EXIT)
 endif()
 if(DEFINED STDERR AND NOT err MATCHES "${STDERR}")
   message(FATAL_ERROR "hubbeam ${ARGS}: stderr should match '${STDERR}', got: ${err}")
+endif()
+if(DEFINED STDOUT AND NOT out MATCHES "${STDOUT}")
+  message(FATAL_ERROR "hubbeam ${ARGS}: stdout should match '${STDOUT}', got: ${out}")
+endif()
+if(DEFINED EMPTY_DIR)
+  file(GLOB_RECURSE left LIST_DIRECTORIES true ${EMPTY_DIR}/*)
+  foreach(f IN LISTS left)
+    if(NOT IS_DIRECTORY ${f})
+      message(FATAL_ERROR "hubbeam ${ARGS}: ${f} should not exist")
+    endif()
+  endforeach()
 endif()
 if(DEFINED NO_FILE AND EXISTS ${NO_FILE})
   message(FATAL_ERROR "hubbeam ${ARGS}: ${NO_FILE} should not exist")
