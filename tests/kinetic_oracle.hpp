@@ -1,0 +1,202 @@
+// The equations of motion of any order-full variant by a route that shares nothing with the generator's
+// expansion: T and U by quadrature of the beam's position r = R(theta) (a + x + u_x, u_y) along the beam, with
+// the foreshortening u_x2(x) = -1/2 int_0^x (u_y')^2 as a nested quadrature, and Lagrange's equations by
+// numerical differentiation that is exact to round-off (central differences in the rates, in which T is
+// quadratic; complex steps in the coordinates).
+#pragma once
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <complex>
+#include <vector>
+
+#include "basis/basis.hpp"
+#include "interface.hpp"
+#include "variant.hpp"
+
+namespace hubbeam::test {
+
+class KineticOracle {
+public:
+    KineticOracle(const VariantKey& key, const Parameters& p)
+        : key_(key), p_(p), axial_(key.axial_basis()), transverse_(key.transverse_basis())
+    {
+        // Outer rule: Gauss on every polynomial piece, with points enough for |r_dot|^2 of degree about
+        // 4 * degree (u_x2 squared); AMM: the converged composite rule.
+        const FieldBasis& t = transverse_;
+        const QuadratureRule outer = t.polynomial() ? pieces_rule(0.0, 1.0, 2 * std::max(t.degree(), axial_.degree()) + 4)
+                                                    : transcendental_rule(key.ny + key.nx);
+        for (std::size_t g = 0; g < outer.nodes.size(); ++g) {
+            Node n;
+            n.xi = outer.nodes[g];
+            n.weight = outer.weights[g];
+            for (int i = 0; i < key.nx; ++i) {
+                const Jet<double> j = axial_.at(i, n.xi);
+                n.ax.push_back(j.v);
+                n.ax_d1.push_back(j.d1);
+            }
+            for (int j = 0; j < key.ny; ++j) {
+                const Jet<double> y = transverse_.at(j, n.xi);
+                n.tr.push_back(y.v);
+                n.tr_d2.push_back(y.d2);
+            }
+            // Inner rule on [0, xi] for int (u_y')^2: (u_y')^2 has degree 2 (degree - 1).
+            const QuadratureRule inner =
+                t.polynomial() ? pieces_rule(0.0, n.xi, t.degree() + 1) : scaled(transcendental_rule(key.ny), n.xi);
+            for (std::size_t k = 0; k < inner.nodes.size(); ++k) {
+                n.inner_weight.push_back(inner.weights[k]);
+                for (int j = 0; j < key.ny; ++j) n.inner_slope.push_back(transverse_.at(j, inner.nodes[k]).d1);
+            }
+            nodes_.push_back(std::move(n));
+        }
+    }
+
+    /// T at coordinates q, rates qd and (prescribed drive) hub rate theta_dot, any scalar type.
+    template <class S> S kinetic(const S* q, const S* qd, const S& theta_dot_prescribed) const
+    {
+        const bool torque = key_.drive == Drive::torque;
+        const S theta = torque ? q[0] : S(0.3);  // the energy does not depend on theta; any angle serves
+        const S w = torque ? qd[0] : theta_dot_prescribed;
+        const S c = std::cos(theta), s = std::sin(theta);
+        const double L = p_.L, m = p_.rho * p_.S;
+        const S* A = q + key_.first_a();
+        const S* B = q + key_.first_b();
+        const S* A_dot = qd + key_.first_a();
+        const S* B_dot = qd + key_.first_b();
+        S sum = 0.0;
+        for (const Node& n : nodes_) {
+            S ux1 = 0.0, ux1_dot = 0.0, uy = 0.0, uy_dot = 0.0;
+            for (int i = 0; i < key_.nx; ++i) {
+                ux1 += A[i] * n.ax[i];
+                ux1_dot += A_dot[i] * n.ax[i];
+            }
+            for (int j = 0; j < key_.ny; ++j) {
+                uy += B[j] * n.tr[j];
+                uy_dot += B_dot[j] * n.tr[j];
+            }
+            // u_x2 = -1/2 int_0^x (du_y/dx)^2 dx' = -1/(2L) int_0^xi (du_y/dxi)^2 dxi', and its time derivative.
+            S ux2 = 0.0, ux2_dot = 0.0;
+            for (std::size_t k = 0; k < n.inner_weight.size(); ++k) {
+                S slope = 0.0, slope_dot = 0.0;
+                for (int j = 0; j < key_.ny; ++j) {
+                    slope += B[j] * n.inner_slope[k * key_.ny + j];
+                    slope_dot += B_dot[j] * n.inner_slope[k * key_.ny + j];
+                }
+                ux2 -= n.inner_weight[k] * slope * slope / (2.0 * L);
+                ux2_dot -= n.inner_weight[k] * slope * slope_dot / L;
+            }
+            // r = R(theta) p with p = (a + x + u_x, u_y); r_dot = w R'(theta) p + R(theta) p_dot.
+            const S px = p_.a + L * n.xi + ux1 + ux2, py = uy;
+            const S px_dot = ux1_dot + ux2_dot, py_dot = uy_dot;
+            const S rx_dot = w * (-s * px - c * py) + (c * px_dot - s * py_dot);
+            const S ry_dot = w * (c * px - s * py) + (s * px_dot + c * py_dot);
+            sum += n.weight * m * (rx_dot * rx_dot + ry_dot * ry_dot);
+        }
+        return 0.5 * p_.J_oh * w * w + 0.5 * L * sum;
+    }
+
+    /// U = 1/2 int (ES u_x1'^2 + EI u_y''^2) dx.
+    template <class S> S potential(const S* q) const
+    {
+        const double L = p_.L, ES = p_.E * p_.S, EI = p_.E * p_.I;
+        S sum = 0.0;
+        for (const Node& n : nodes_) {
+            S strain = 0.0, curvature = 0.0;
+            for (int i = 0; i < key_.nx; ++i) strain += q[key_.first_a() + i] * n.ax_d1[i] / L;
+            for (int j = 0; j < key_.ny; ++j) curvature += q[key_.first_b() + j] * n.tr_d2[j] / (L * L);
+            sum += n.weight * (ES * strain * strain + EI * curvature * curvature);
+        }
+        return 0.5 * L * sum;
+    }
+
+    /// M = d2T/dqd2: second central differences, exact since T is quadratic in the rates.
+    Eigen::MatrixXd mass(const Eigen::VectorXd& q, const HubInput& u) const
+    {
+        const int n = key_.nq();
+        Eigen::MatrixXd M(n, n);
+        const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
+        for (int i = 0; i < n; ++i)
+            for (int j = 0; j < n; ++j) {
+                const auto T = [&](double si, double sj) {
+                    Eigen::VectorXd v = zero;
+                    v[i] += si;
+                    v[j] += sj;
+                    return kinetic<double>(q.data(), v.data(), u.theta_dot);
+                };
+                M(i, j) = (T(1, 1) - T(1, -1) - T(-1, 1) + T(-1, -1)) / 4.0;
+            }
+        return M;
+    }
+
+    /// Q = tau e_theta + dT/dq - (d2T/dqd dq) qd - (d2T/dqd dtheta_dot) theta_ddot - dU/dq.
+    Eigen::VectorXd forces(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const HubInput& u) const
+    {
+        using C = std::complex<double>;
+        const int n = key_.nq();
+        const double h = 1e-30;  // complex step: no subtraction, so any small step is exact to round-off
+        const auto complexify = [](const Eigen::VectorXd& v) { return Eigen::VectorXcd(v.cast<C>()); };
+        // dT/dqd_i as a function of (q, qd, theta_dot), by a central difference exact for a quadratic.
+        const auto momentum = [&](int i, const Eigen::VectorXcd& qc, const C& w) {
+            Eigen::VectorXcd plus = complexify(qd), minus = complexify(qd);
+            plus[i] += 1.0;
+            minus[i] -= 1.0;
+            return (kinetic<C>(qc.data(), plus.data(), w) - kinetic<C>(qc.data(), minus.data(), w)) / 2.0;
+        };
+        Eigen::VectorXd Q(n);
+        for (int i = 0; i < n; ++i) {
+            Eigen::VectorXcd qi = complexify(q);
+            qi[i] += C(0.0, h);
+            const Eigen::VectorXcd qdc = complexify(qd);
+            const double dT_dq = kinetic<C>(qi.data(), qdc.data(), C(u.theta_dot)).imag() / h;
+            const double dU_dq = potential<C>(qi.data()).imag() / h;
+            // (d/dq of dT/dqd_i) along qd: one complex step in the direction qd.
+            Eigen::VectorXcd along = complexify(q);
+            for (int k = 0; k < n; ++k) along[k] += C(0.0, h * qd[k]);
+            double Q_i = dT_dq - momentum(i, along, C(u.theta_dot)).imag() / h - dU_dq;
+            if (key_.drive == Drive::torque) {
+                if (i == 0) Q_i += u.tau;
+            } else {
+                Q_i -= momentum(i, complexify(q), C(u.theta_dot, h)).imag() / h * u.theta_ddot;
+            }
+            Q[i] = Q_i;
+        }
+        return Q;
+    }
+
+private:
+    struct Node {
+        double xi, weight;
+        std::vector<double> ax, ax_d1, tr, tr_d2;
+        std::vector<double> inner_weight, inner_slope;  // slope of function j at inner node k: [k * ny + j]
+    };
+
+    /// Gauss with `points` nodes on each piece of [lo, hi] between the bases' interval ends.
+    QuadratureRule pieces_rule(double lo, double hi, int points) const
+    {
+        std::vector<double> cuts{lo, hi};
+        for (const FieldBasis* f : {&axial_, &transverse_})
+            for (int k = 1; k < f->intervals(); ++k) {
+                const double c = static_cast<double>(k) / f->intervals();
+                if (c > lo && c < hi) cuts.push_back(c);
+            }
+        std::sort(cuts.begin(), cuts.end());
+        cuts.erase(std::unique(cuts.begin(), cuts.end(), [](double a, double b) { return b - a < 1e-14; }), cuts.end());
+        if (cuts.size() < 2) return {};
+        return composite_gauss_legendre(cuts, points);
+    }
+
+    /// A rule on [0, 1] mapped onto [0, hi].
+    static QuadratureRule scaled(QuadratureRule r, double hi)
+    {
+        for (double& x : r.nodes) x *= hi;
+        for (double& w : r.weights) w *= hi;
+        return r;
+    }
+
+    VariantKey key_;
+    Parameters p_;
+    FieldBasis axial_, transverse_;
+    std::vector<Node> nodes_;
+};
+
+}  // namespace hubbeam::test
