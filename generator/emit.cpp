@@ -250,6 +250,14 @@ public:
         return {sign, "c[" + std::to_string(it->second) + "]"};
     }
 
+    /// The entry holding the number 1 (tables scale it by a term's pure-number coefficient).
+    int one()
+    {
+        auto [it, added] = index_.emplace("1.0", static_cast<int>(texts_.size()));
+        if (added) texts_.push_back("1.0");
+        return it->second;
+    }
+
     const std::vector<std::string>& texts() const { return texts_; }
     bool parameter_used(std::size_t j) const { return params_used_[j]; }
 
@@ -308,6 +316,94 @@ std::string print_matrix_product(const std::vector<Output>& monomials, int rows,
     return lines.str();
 }
 
+/// Number of terms of a kernel's outputs (what unrolled code would print).
+std::size_t term_count(const std::vector<Output>& outputs)
+{
+    std::size_t n = 0;
+    for (const Output& o : outputs) n += o.size();
+    return n;
+}
+
+/// Stage "print" in table form: the kernel's monomials m[k] built by the chain m[k] = m[a] * v[b] from m[0] = 1,
+/// then out[slot] += scale * c[coef] * m[mono] for each term.
+std::string print_tables(const std::string& prefix, const KernelSpec& k, const Signature& sig,
+                         const std::vector<Output>& outputs, CoefficientPool& pool)
+{
+    // Monomials in reading order, each after its prefix (one factor of its last variable fewer).
+    std::set<std::vector<int>> all;
+    for (const Output& o : outputs)
+        for (const auto& entry : o)
+            for (std::vector<int> e = entry.first; degree(e) > 0;) {
+                if (!all.insert(e).second) break;
+                std::size_t last = e.size();
+                while (e[--last] == 0) {
+                }
+                --e[last];
+            }
+    std::vector<std::vector<int>> ordered(all.begin(), all.end());
+    std::sort(ordered.begin(), ordered.end(), reads_before);
+    std::map<std::vector<int>, int> index{{std::vector<int>(sig.state_inputs.size()), 0}};
+    std::ostringstream chain;
+    for (const std::vector<int>& e : ordered) {
+        std::size_t last = e.size();
+        while (e[--last] == 0) {
+        }
+        std::vector<int> rest = e;
+        --rest[last];
+        chain << "        {" << index.at(rest) << ", " << last << "},\n";
+        index.emplace(e, static_cast<int>(index.size()));
+    }
+    std::ostringstream terms;
+    std::size_t nterms = 0;
+    for (std::size_t i = 0; i < outputs.size(); ++i) {
+        const int slot = k.slots.empty() ? static_cast<int>(i) : k.slots[i];
+        std::vector<std::vector<int>> order;
+        for (const auto& entry : outputs[i]) order.push_back(entry.first);
+        std::sort(order.begin(), order.end(), reads_before);
+        for (const std::vector<int>& ve : order) {
+            const Coefficient& c = outputs[i].at(ve);
+            numeric scale = 1;
+            int coef = 0;
+            if (const auto number = CoefficientPool::pure_number(c)) {
+                scale = *number;
+                coef = pool.one();
+            } else {
+                const auto [sign, ck] = pool.reference(c);
+                scale = sign;
+                coef = std::stoi(ck.substr(2));  // "c[k]"
+            }
+            terms << "        {" << slot << ", " << coef << ", " << index.at(ve) << ", " << c_number(scale) << "},\n";
+            ++nterms;
+        }
+    }
+    std::ostringstream f;
+    f << "void " << prefix << "_" << k.name << "(const double* c";
+    for (const Array& a : sig.state) f << ", const double* " << a.name;
+    f << ", double* out)\n{\n";
+    f << "    // Table form (" << nterms << " terms, " << ordered.size() << " monomials): m[0] = 1, m[k + 1] = m[chain[k][0]] * "
+      << "v[chain[k][1]];\n    // out[t.slot] += t.scale * c[t.coef] * m[t.mono] for each term t.\n";
+    f << "    struct Term {\n        int slot, coef, mono;\n        double scale;\n    };\n";
+    if (!ordered.empty()) f << "    static const int chain[][2] = {\n" << chain.str() << "    };\n";
+    if (nterms > 0) f << "    static const Term terms[] = {\n" << terms.str() << "    };\n";
+    if (ordered.empty()) {  // a state-free kernel reads no state (its callers may pass null pointers)
+        for (const Array& a : sig.state) f << "    (void)" << a.name << ";\n";
+        f << "    const double m[1] = {1.0};\n";
+    } else {
+        f << "    const double v[] = {";
+        for (std::size_t v = 0; v < sig.state_inputs.size(); ++v) f << (v ? ", " : "") << sig.state_inputs[v].read;
+        f << "};\n";
+        f << "    static thread_local double m[" << ordered.size() + 1 << "];\n    m[0] = 1.0;\n";
+        f << "    for (int k = 0; k < " << ordered.size() << "; ++k) m[k + 1] = m[chain[k][0]] * v[chain[k][1]];\n";
+    }
+    for (std::size_t i = 0; i < outputs.size(); ++i)
+        f << "    out[" << (k.slots.empty() ? static_cast<int>(i) : k.slots[i]) << "] = 0.0;\n";
+    if (nterms > 0) f << "    for (const Term& t : terms) out[t.slot] += t.scale * c[t.coef] * m[t.mono];\n";
+    else f << "    (void)c;\n    (void)m;\n";
+    if (outputs.empty()) f << "    (void)out;  // every entry is zero\n";
+    f << "}\n";
+    return f.str();
+}
+
 /// The function of one kernel: reads of the state it uses, its monomials, its outputs.
 std::string print_kernel(const std::string& prefix, const KernelSpec& k, const Signature& sig, const MonomialPlan& plan,
                          const std::string& outputs, bool uses_c)
@@ -361,20 +457,33 @@ std::vector<std::string> names_of(const std::vector<Input>& inputs)
 
 }  // namespace
 
-EmittedCode emit_kernels(const std::string& prefix, const Signature& sig, const std::vector<KernelSpec>& kernels)
+EmittedCode emit_kernels(const std::string& prefix, const Signature& sig, const std::vector<KernelSpec>& kernels,
+                         const EmitOptions& options)
 {
+    using Form = EmitOptions::Form;
     const Decomposer decompose(sig.parameter_inputs, sig.state_inputs);
     CoefficientPool pool(names_of(sig.parameter_inputs));
     EmittedCode code;
     std::vector<std::string> bodies;  // printed after the coefficients kernel, whose size they state
     for (const KernelSpec& k : kernels) {
         const std::vector<Output> outputs = decompose_outputs(decompose, k.values);
-        const MonomialPlan plan = plan_monomials(outputs, names_of(sig.state_inputs));
-        if (plan.names.empty()) code.constant_kernels.push_back(k.name);
-        bool uses_c = false;
         if (!k.slots.empty() && k.slots.size() != k.values.size())
             throw EmitError("emit: kernel " + k.name + " has " + std::to_string(k.values.size()) + " values but " +
                             std::to_string(k.slots.size()) + " slots");
+        const bool tables = k.rows == 0 && (options.form == Form::tables ||
+                                            (options.form == Form::automatic &&
+                                             term_count(outputs) > static_cast<std::size_t>(options.table_threshold)));
+        if (tables) {
+            bool constant = true;
+            for (const Output& o : outputs)
+                for (const auto& entry : o) constant = constant && degree(entry.first) == 0;
+            if (constant) code.constant_kernels.push_back(k.name);
+            bodies.push_back(print_tables(prefix, k, sig, outputs, pool));
+            continue;
+        }
+        const MonomialPlan plan = plan_monomials(outputs, names_of(sig.state_inputs));
+        if (plan.names.empty()) code.constant_kernels.push_back(k.name);
+        bool uses_c = false;
         const std::string lines = k.rows > 0 ? print_matrix_product(outputs, k.rows, plan, uses_c)
                                              : print_outputs(outputs, k.slots, plan, pool, uses_c);
         bodies.push_back(print_kernel(prefix, k, sig, plan, lines, uses_c));

@@ -67,8 +67,18 @@ struct Signature {
     }
 };
 
+/// How a kernel's sum of terms is printed. Unrolled: one statement per output, every monomial a named temporary:
+/// the fastest code, but compile time grows faster than the term count. Tables: the monomials and the terms as
+/// constant integer tables walked by two short loops: compile time and code size linear in the terms, at about
+/// twice the run time per term. Automatic: tables for kernels above table_threshold terms.
+struct EmitOptions {
+    enum class Form { automatic, unrolled, tables } form = Form::automatic;
+    int table_threshold = 3000;
+};
+
 /// Emits `<prefix>_coefficients(p, c)` and `<prefix>_<kernel>(c, state..., out)` for each kernel.
-EmittedCode emit_kernels(const std::string& prefix, const Signature& signature, const std::vector<KernelSpec>& kernels);
+EmittedCode emit_kernels(const std::string& prefix, const Signature& signature, const std::vector<KernelSpec>& kernels,
+                         const EmitOptions& options = {});
 
 /// The C literal for a number: round-trip precision, always a double literal ("2.0", "0.1", "-1e-05").
 std::string c_number(const GiNaC::numeric& x);

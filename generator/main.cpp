@@ -28,12 +28,24 @@ int main(int argc, char** argv)
                  "T and U, docs/model.md) and emits C++ kernels for the named variants."};
     std::string out = ".";
     bool module = false, quiet = false;
+    std::string form = "auto";
     std::vector<std::string> names;
     app.add_option("--out", out, "Folder for the sources (created if missing; default: the current folder)")
         ->type_name("DIR");
     app.add_flag("--module", module,
                  "Write each source with an entry point `hubbeam_variant()` for a shared object, and no registry");
     app.add_flag("-q,--quiet", quiet, "Print nothing on success");
+    hubbeam::gen::EmitOptions options;
+    app.add_option("--form", form,
+                   "How kernels are printed: unrolled (fastest code), tables (constant tables and loops: compile time "
+                   "linear in the terms), or auto: tables for kernels of more than --table-threshold terms "
+                   "(default auto)")
+        ->check(CLI::IsMember({"auto", "unrolled", "tables"}))
+        ->type_name("FORM");
+    app.add_option("--table-threshold", options.table_threshold, "Terms above which auto prints a kernel as tables "
+                                                                   "(default 3000)")
+        ->check(CLI::PositiveNumber)
+        ->type_name("N");
     app.add_option("variants", names,
                    "Variant names METHOD_nxN_nyN_DRIVE_ORDER[_open]: METHOD amm|fem|bim|bsim, Nx axial and Ny "
                    "transverse coordinates, DRIVE prescribed|torque, ORDER zero|first|full, _open for BSIM's open "
@@ -49,6 +61,8 @@ int main(int argc, char** argv)
         std::cerr << "hubbeam-gen: " << e.what() << "\n";
         return 2;
     }
+    using Form = hubbeam::gen::EmitOptions::Form;
+    options.form = form == "tables" ? Form::tables : form == "unrolled" ? Form::unrolled : Form::automatic;
     std::vector<hubbeam::VariantKey> keys;
     for (const std::string& name : names) {
         try {
@@ -66,7 +80,7 @@ int main(int argc, char** argv)
         std::filesystem::create_directories(out);
         for (const hubbeam::VariantKey& key : keys) {
             const auto start = std::chrono::steady_clock::now();
-            std::string text = hubbeam::gen::variant_source(key);
+            std::string text = hubbeam::gen::variant_source(key, options);
             if (module) text += hubbeam::gen::module_entry_source(key.name());
             write(std::filesystem::path(out) / (key.name() + ".cpp"), text);
             const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -136,7 +136,7 @@ JacobianPieces jacobian_pieces(const Equations& eq, const Symbols& s, bool torqu
 
 }  // namespace
 
-std::string variant_source(const VariantKey& key)
+std::string variant_source(const VariantKey& key, const EmitOptions& options)
 {
     const Symbols s(key);
     const Energies en = derive_energies(key, s);
@@ -227,7 +227,7 @@ std::string variant_source(const VariantKey& key)
                                         jac.mass_q_product));
     }
     const std::string name = key.name();
-    const EmittedCode code = emit_kernels(name, sig, kernels);
+    const EmittedCode code = emit_kernels(name, sig, kernels, options);
     const auto optional = [&](const char* kernel) { return mass_varies ? name + "_" + kernel : std::string("nullptr"); };
 
     std::ostringstream f;
@@ -245,7 +245,7 @@ std::string variant_source(const VariantKey& key)
 std::string module_entry_source(const std::string& name)
 {
     return "\n// The entry point of this source built as a shared object (an on-demand variant).\n"
-           "extern \"C\" const hubbeam::generated::Variant* hubbeam_variant();\n"
+           "extern \"C\" __attribute__((visibility(\"default\"))) const hubbeam::generated::Variant* hubbeam_variant();\n"
            "extern \"C\" const hubbeam::generated::Variant* hubbeam_variant() { return &hubbeam::generated::" +
            name + "; }\n";
 }

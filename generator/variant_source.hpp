@@ -5,12 +5,13 @@
 #include <string>
 #include <vector>
 
+#include "emit.hpp"
 #include "variant.hpp"
 
 namespace hubbeam::gen {
 
 /// The generated source file for one variant (banner, kernels, table row).
-std::string variant_source(const VariantKey& key);
+std::string variant_source(const VariantKey& key, const EmitOptions& options = {});
 
 /// The entry point of a variant's source built as a shared object: extern "C" hubbeam_variant() returns its row.
 std::string module_entry_source(const std::string& name);

@@ -36,7 +36,8 @@ namespace fs = std::filesystem;
 namespace {
 
 /// Flags for on-demand objects: the same language as the build, optimised, position-independent.
-const std::vector<std::string> compile_flags = {"-std=c++20", "-O2", "-fPIC", "-shared"};
+/// (Hidden symbols: the object exports its entry point only, so two objects never bind to each other's kernels.)
+const std::vector<std::string> compile_flags = {"-std=c++20", "-O2", "-fPIC", "-shared", "-fvisibility=hidden"};
 
 std::string env(const char* name)
 {
@@ -198,6 +199,31 @@ const generated::Variant* load_cached_variant(const VariantKey& key)
     return l.variants[key.name()] = open_object(key, object);
 }
 
+namespace {
+
+/// Runs the generator and the compiler for key in work (which must exist); returns the object's path. where names
+/// the folder in messages.
+fs::path build_object(const VariantKey& key, const fs::path& work, const std::vector<std::string>& generator_options,
+                      const fs::path& where)
+{
+    const std::string name = key.name();
+    const fs::path log = work / "log.txt";
+    std::vector<std::string> gen = {generator_path(), "--module", "--quiet", "--out", work.string()};
+    gen.insert(gen.end(), generator_options.begin(), generator_options.end());
+    gen.push_back(name);
+    if (run_logged(gen, log) != 0)
+        throw CompileError("generating " + name + " failed: " + first_error(log) + " (cache: " + where.string() + ")");
+    std::vector<std::string> cc = compiler_command();
+    cc.insert(cc.end(), compile_flags.begin(), compile_flags.end());
+    const fs::path object = work / (name + ".so");
+    cc.insert(cc.end(), {"-I", HUBBEAM_ABI_DIR, (work / (name + ".cpp")).string(), "-o", object.string()});
+    if (run_logged(cc, log) != 0)
+        throw CompileError("compiling " + name + " failed: " + first_error(log) + " (cache: " + where.string() + ")");
+    return object;
+}
+
+}  // namespace
+
 const generated::Variant* compile_variant(const VariantKey& key, const std::function<void(const std::string&)>& note)
 {
     if (const generated::Variant* v = load_cached_variant(key)) return v;  // another run may have made it
@@ -214,20 +240,20 @@ const generated::Variant* compile_variant(const VariantKey& key, const std::func
     fs::remove_all(work.path, ec);
     fs::create_directories(work.path, ec);
     if (ec) throw CompileError("cannot create " + work.path.string() + ": " + ec.message());
-    const fs::path log = work.path / "log.txt";
-    if (run_logged({generator_path(), "--module", "--out", work.path.string(), name}, log) != 0)
-        throw CompileError("generating " + name + " failed: " + first_error(log) + " (cache: " + dir.string() + ")");
-    std::vector<std::string> cc = compiler_command();
-    cc.insert(cc.end(), compile_flags.begin(), compile_flags.end());
-    const fs::path object = work.path / (name + ".so");
-    cc.insert(cc.end(), {"-I", HUBBEAM_ABI_DIR, (work.path / (name + ".cpp")).string(), "-o", object.string()});
-    if (run_logged(cc, log) != 0)
-        throw CompileError("compiling " + name + " failed: " + first_error(log) + " (cache: " + dir.string() + ")");
+    const fs::path object = build_object(key, work.path, {}, dir);
     // rename() replaces atomically: a racing run that finished first is overwritten by an equal object, and a
     // reader opens either whole file.
     fs::rename(object, object_path(key), ec);
     if (ec) throw CompileError("cannot move " + object.string() + " into the cache: " + ec.message());
     return load_cached_variant(key);
+}
+
+const generated::Variant* compile_variant_in(const VariantKey& key, const fs::path& dir,
+                                             const std::vector<std::string>& generator_options)
+{
+    if (const std::string why = on_demand_problem(); !why.empty()) throw CompileError(why);
+    fs::create_directories(dir);
+    return open_object(key, build_object(key, dir, generator_options, dir));
 }
 
 std::vector<std::string> cached_variant_names()

@@ -43,6 +43,11 @@ const generated::Variant* load_cached_variant(const VariantKey& key);
 const generated::Variant* compile_variant(const VariantKey& key,
                                           const std::function<void(const std::string&)>& note = {});
 
+/// Generates key with extra hubbeam-gen options (e.g. {"--form", "tables"}) and compiles and loads it in dir, outside
+/// the cache: for tests that compare the generator's printing forms. Throws CompileError.
+const generated::Variant* compile_variant_in(const VariantKey& key, const std::filesystem::path& dir,
+                                             const std::vector<std::string>& generator_options);
+
 /// The variants in this version's cache, sorted.
 std::vector<std::string> cached_variant_names();
 
