@@ -246,7 +246,11 @@ public:
         }
         const std::string text = signed_sum(parts);
         auto [it, added] = index_.emplace(text, static_cast<int>(texts_.size()));
-        if (added) texts_.push_back(text);
+        if (added) {
+            texts_.push_back(text);
+            for (auto& term : c) term.first *= sign;
+            entries_.push_back(std::move(c));
+        }
         return {sign, "c[" + std::to_string(it->second) + "]"};
     }
 
@@ -254,11 +258,17 @@ public:
     int one()
     {
         auto [it, added] = index_.emplace("1.0", static_cast<int>(texts_.size()));
-        if (added) texts_.push_back("1.0");
+        if (added) {
+            texts_.push_back("1.0");
+            entries_.push_back({{numeric(1), std::vector<int>(pnames_.size())}});
+        }
         return it->second;
     }
 
     const std::vector<std::string>& texts() const { return texts_; }
+    /// Entry k as a sum of number * parameter monomial (texts()[k] printed).
+    const std::vector<Coefficient>& entries() const { return entries_; }
+    const std::vector<std::string>& parameter_names() const { return pnames_; }
     bool parameter_used(std::size_t j) const { return params_used_[j]; }
 
 private:
@@ -266,6 +276,7 @@ private:
     std::vector<bool> params_used_;
     std::map<std::string, int> index_;
     std::vector<std::string> texts_;
+    std::vector<Coefficient> entries_;
 };
 
 /// Stage "print": "out[slot] = ...;" for each output, monomials in reading order.
@@ -395,8 +406,13 @@ std::string print_tables(const std::string& prefix, const KernelSpec& k, const S
         f << "    static thread_local double m[" << ordered.size() + 1 << "];\n    m[0] = 1.0;\n";
         f << "    for (int k = 0; k < " << ordered.size() << "; ++k) m[k + 1] = m[chain[k][0]] * v[chain[k][1]];\n";
     }
-    for (std::size_t i = 0; i < outputs.size(); ++i)
-        f << "    out[" << (k.slots.empty() ? static_cast<int>(i) : k.slots[i]) << "] = 0.0;\n";
+    // The written entries are zeroed by a loop too: thousands of separate stores cost the compiler seconds.
+    if (!outputs.empty()) {
+        f << "    static const int written[] = {";
+        for (std::size_t i = 0; i < outputs.size(); ++i)
+            f << (i == 0 ? "" : i % 16 == 0 ? ",\n        " : ", ") << (k.slots.empty() ? static_cast<int>(i) : k.slots[i]);
+        f << "};\n    for (const int slot : written) out[slot] = 0.0;\n";
+    }
     if (nterms > 0) f << "    for (const Term& t : terms) out[t.slot] += t.scale * c[t.coef] * m[t.mono];\n";
     else f << "    (void)c;\n    (void)m;\n";
     if (outputs.empty()) f << "    (void)out;  // every entry is zero\n";
@@ -427,7 +443,7 @@ std::string print_kernel(const std::string& prefix, const KernelSpec& k, const S
 }
 
 /// The coefficients kernel: c[k] from the parameters, once per parameter set.
-std::string print_coefficients(const std::string& prefix, const Signature& sig, const CoefficientPool& pool)
+std::string print_coefficients(const std::string& prefix, const Signature& sig, const CoefficientPool& pool, bool tables)
 {
     const Array& p = sig.parameters;
     std::ostringstream text;
@@ -443,7 +459,33 @@ std::string print_coefficients(const std::string& prefix, const Signature& sig, 
         }
     if (!any) text << "    (void)" << p.name << ";\n";
     if (pool.texts().empty()) text << "    (void)c;\n";
-    for (std::size_t i = 0; i < pool.texts().size(); ++i) text << "    c[" << i << "] = " << pool.texts()[i] << ";\n";
+    if (tables) {
+        // The distinct parameter monomials pm[j], unrolled (a few), then c[k] += number * pm[j] from a table.
+        std::map<std::vector<int>, int> monomials;
+        std::ostringstream terms;
+        std::size_t nterms = 0;
+        for (std::size_t k = 0; k < pool.entries().size(); ++k)
+            for (const auto& [number, pe] : pool.entries()[k]) {
+                const int j = monomials.emplace(pe, static_cast<int>(monomials.size())).first->second;
+                terms << "        {" << k << ", " << j << ", " << c_number(number) << "},\n";
+                ++nterms;
+            }
+        std::vector<std::string> pm(monomials.size());
+        for (const auto& [pe, j] : monomials) {
+            const std::string num = product(pe, pool.parameter_names(), true),
+                              den = product(pe, pool.parameter_names(), false);
+            pm[static_cast<std::size_t>(j)] = (num.empty() ? "1.0" : num) + (den.empty() ? "" : "/(" + den + ")");
+        }
+        text << "    // Table form (" << nterms << " terms): c[t.entry] += t.number * pm[t.monomial] for each term t.\n";
+        text << "    const double pm[] = {";
+        for (std::size_t j = 0; j < pm.size(); ++j) text << (j ? ", " : "") << pm[j];
+        text << "};\n    struct Term {\n        int entry, monomial;\n        double number;\n    };\n";
+        text << "    static const Term terms[] = {\n" << terms.str() << "    };\n";
+        text << "    for (int k = 0; k < " << pool.texts().size() << "; ++k) c[k] = 0.0;\n";
+        text << "    for (const Term& t : terms) c[t.entry] += t.number * pm[t.monomial];\n";
+    } else {
+        for (std::size_t i = 0; i < pool.texts().size(); ++i) text << "    c[" << i << "] = " << pool.texts()[i] << ";\n";
+    }
     text << "}\n";
     return text.str();
 }
@@ -489,7 +531,13 @@ EmittedCode emit_kernels(const std::string& prefix, const Signature& sig, const 
         bodies.push_back(print_kernel(prefix, k, sig, plan, lines, uses_c));
     }
     std::ostringstream text;
-    text << print_coefficients(prefix, sig, pool);
+    std::size_t coefficient_terms = 0;
+    for (const Coefficient& c : pool.entries()) coefficient_terms += c.size();
+    const bool coefficient_tables =
+        !pool.texts().empty() && (options.form == Form::tables ||
+                                  (options.form == Form::automatic &&
+                                   coefficient_terms > static_cast<std::size_t>(options.table_threshold)));
+    text << print_coefficients(prefix, sig, pool, coefficient_tables);
     for (std::size_t i = 0; i < kernels.size(); ++i) {
         text << "\n/* " << kernels[i].name << ":(c[" << pool.texts().size() << "]";
         for (const Array& a : sig.state) text << "," << a.name << "[" << a.size << "]";
