@@ -335,8 +335,9 @@ std::size_t term_count(const std::vector<Output>& outputs)
     return n;
 }
 
-/// Stage "print" in table form: the kernel's monomials m[k] built by the chain m[k] = m[a] * v[b] from m[0] = 1,
-/// then out[slot] += scale * c[coef] * m[mono] for each term.
+/// Stage "print" in table form: the kernel's monomials m[k] built by the chain m[k + 1] = m[a] * v[b] from
+/// m[0] = 1, then each written entry as a sum over its run of terms (scale * c[coef] * m[mono]), accumulated in a
+/// register: rows of a sparse matrix in compressed form.
 std::string print_tables(const std::string& prefix, const KernelSpec& k, const Signature& sig,
                          const std::vector<Output>& outputs, CoefficientPool& pool)
 {
@@ -364,10 +365,12 @@ std::string print_tables(const std::string& prefix, const KernelSpec& k, const S
         chain << "        {" << index.at(rest) << ", " << last << "},\n";
         index.emplace(e, static_cast<int>(index.size()));
     }
-    std::ostringstream terms;
+    std::ostringstream terms, first, written;
     std::size_t nterms = 0;
     for (std::size_t i = 0; i < outputs.size(); ++i) {
-        const int slot = k.slots.empty() ? static_cast<int>(i) : k.slots[i];
+        const char* sep = i == 0 ? "" : i % 16 == 0 ? ",\n        " : ", ";
+        written << sep << (k.slots.empty() ? static_cast<int>(i) : k.slots[i]);
+        first << sep << nterms;
         std::vector<std::vector<int>> order;
         for (const auto& entry : outputs[i]) order.push_back(entry.first);
         std::sort(order.begin(), order.end(), reads_before);
@@ -383,40 +386,43 @@ std::string print_tables(const std::string& prefix, const KernelSpec& k, const S
                 scale = sign;
                 coef = std::stoi(ck.substr(2));  // "c[k]"
             }
-            terms << "        {" << slot << ", " << coef << ", " << index.at(ve) << ", " << c_number(scale) << "},\n";
+            terms << "        {" << coef << ", " << index.at(ve) << ", " << c_number(scale) << "},\n";
             ++nterms;
         }
     }
+    first << (outputs.empty() ? "" : ", ") << nterms;
+    // Up to 64 KB of monomials on the stack; beyond, one buffer per thread.
+    const std::size_t nm = ordered.size() + 1;
     std::ostringstream f;
     f << "void " << prefix << "_" << k.name << "(const double* c";
     for (const Array& a : sig.state) f << ", const double* " << a.name;
     f << ", double* out)\n{\n";
-    f << "    // Table form (" << nterms << " terms, " << ordered.size() << " monomials): m[0] = 1, m[k + 1] = m[chain[k][0]] * "
-      << "v[chain[k][1]];\n    // out[t.slot] += t.scale * c[t.coef] * m[t.mono] for each term t.\n";
-    f << "    struct Term {\n        int slot, coef, mono;\n        double scale;\n    };\n";
-    if (!ordered.empty()) f << "    static const int chain[][2] = {\n" << chain.str() << "    };\n";
-    if (nterms > 0) f << "    static const Term terms[] = {\n" << terms.str() << "    };\n";
+    f << "    // Table form (" << nterms << " terms, " << ordered.size()
+      << " monomials): m[0] = 1, m[k + 1] = m[chain[k][0]] * v[chain[k][1]];\n"
+      << "    // out[written[i]] = sum of t.scale * c[t.coef] * m[t.mono] over terms[first[i]] .. terms[first[i + 1] - 1].\n";
     if (ordered.empty()) {  // a state-free kernel reads no state (its callers may pass null pointers)
         for (const Array& a : sig.state) f << "    (void)" << a.name << ";\n";
         f << "    const double m[1] = {1.0};\n";
     } else {
+        f << "    static const int chain[][2] = {\n" << chain.str() << "    };\n";
         f << "    const double v[] = {";
         for (std::size_t v = 0; v < sig.state_inputs.size(); ++v) f << (v ? ", " : "") << sig.state_inputs[v].read;
         f << "};\n";
-        f << "    static thread_local double m[" << ordered.size() + 1 << "];\n    m[0] = 1.0;\n";
+        f << "    " << (nm > 8192 ? "static thread_local " : "") << "double m[" << nm << "];\n    m[0] = 1.0;\n";
         f << "    for (int k = 0; k < " << ordered.size() << "; ++k) m[k + 1] = m[chain[k][0]] * v[chain[k][1]];\n";
     }
-    // The written entries are zeroed by a loop too: thousands of separate stores cost the compiler seconds.
-    if (!outputs.empty()) {
-        f << "    static const int written[] = {";
-        for (std::size_t i = 0; i < outputs.size(); ++i)
-            f << (i == 0 ? "" : i % 16 == 0 ? ",\n        " : ", ") << (k.slots.empty() ? static_cast<int>(i) : k.slots[i]);
-        f << "};\n    for (const int slot : written) out[slot] = 0.0;\n";
+    if (outputs.empty()) {
+        f << "    (void)c;\n    (void)m;\n    (void)out;  // every entry is zero\n}\n";
+        return f.str();
     }
-    if (nterms > 0) f << "    for (const Term& t : terms) out[t.slot] += t.scale * c[t.coef] * m[t.mono];\n";
-    else f << "    (void)c;\n    (void)m;\n";
-    if (outputs.empty()) f << "    (void)out;  // every entry is zero\n";
-    f << "}\n";
+    f << "    struct Term {\n        int coef, mono;\n        double scale;\n    };\n";
+    if (nterms > 0) f << "    static const Term terms[] = {\n" << terms.str() << "    };\n";
+    else f << "    static const Term terms[1] = {};  // no term: every written entry is zero\n    (void)m;\n";
+    f << "    static const int written[] = {" << written.str() << "};\n";
+    f << "    static const int first[] = {" << first.str() << "};\n";
+    f << "    for (int i = 0; i < " << outputs.size() << "; ++i) {\n        double sum = 0.0;\n"
+      << "        for (int t = first[i]; t < first[i + 1]; ++t) sum += terms[t].scale * c[terms[t].coef] * m[terms[t].mono];\n"
+      << "        out[written[i]] = sum;\n    }\n}\n";
     return f.str();
 }
 

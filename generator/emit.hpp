@@ -73,7 +73,7 @@ struct Signature {
 /// twice the run time per term. Automatic: tables for kernels above table_threshold terms.
 struct EmitOptions {
     enum class Form { automatic, unrolled, tables } form = Form::automatic;
-    int table_threshold = 3000;
+    int table_threshold = 1000;
 };
 
 /// Emits `<prefix>_coefficients(p, c)` and `<prefix>_<kernel>(c, state..., out)` for each kernel.

@@ -43,7 +43,7 @@ int main(int argc, char** argv)
         ->check(CLI::IsMember({"auto", "unrolled", "tables"}))
         ->type_name("FORM");
     app.add_option("--table-threshold", options.table_threshold, "Terms above which auto prints a kernel as tables "
-                                                                   "(default 3000)")
+                                                                   "(default 1000)")
         ->check(CLI::PositiveNumber)
         ->type_name("N");
     app.add_option("variants", names,
