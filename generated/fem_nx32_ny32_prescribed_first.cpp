@@ -524,393 +524,1438 @@ void fem_nx32_ny32_prescribed_first_mass(const double* c, const double* u, const
 /* forces:(c[332],u[3],q[64],qd[64])->(Q[64]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void fem_nx32_ny32_prescribed_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
-    const double theta_dot = u[1];
-    const double theta_ddot = u[2];
-    const double A1 = q[0];
-    const double A2 = q[1];
-    const double A3 = q[2];
-    const double A4 = q[3];
-    const double A5 = q[4];
-    const double A6 = q[5];
-    const double A7 = q[6];
-    const double A8 = q[7];
-    const double A9 = q[8];
-    const double A10 = q[9];
-    const double A11 = q[10];
-    const double A12 = q[11];
-    const double A13 = q[12];
-    const double A14 = q[13];
-    const double A15 = q[14];
-    const double A16 = q[15];
-    const double A17 = q[16];
-    const double A18 = q[17];
-    const double A19 = q[18];
-    const double A20 = q[19];
-    const double A21 = q[20];
-    const double A22 = q[21];
-    const double A23 = q[22];
-    const double A24 = q[23];
-    const double A25 = q[24];
-    const double A26 = q[25];
-    const double A27 = q[26];
-    const double A28 = q[27];
-    const double A29 = q[28];
-    const double A30 = q[29];
-    const double A31 = q[30];
-    const double A32 = q[31];
-    const double B1 = q[32];
-    const double B2 = q[33];
-    const double B3 = q[34];
-    const double B4 = q[35];
-    const double B5 = q[36];
-    const double B6 = q[37];
-    const double B7 = q[38];
-    const double B8 = q[39];
-    const double B9 = q[40];
-    const double B10 = q[41];
-    const double B11 = q[42];
-    const double B12 = q[43];
-    const double B13 = q[44];
-    const double B14 = q[45];
-    const double B15 = q[46];
-    const double B16 = q[47];
-    const double B17 = q[48];
-    const double B18 = q[49];
-    const double B19 = q[50];
-    const double B20 = q[51];
-    const double B21 = q[52];
-    const double B22 = q[53];
-    const double B23 = q[54];
-    const double B24 = q[55];
-    const double B25 = q[56];
-    const double B26 = q[57];
-    const double B27 = q[58];
-    const double B28 = q[59];
-    const double B29 = q[60];
-    const double B30 = q[61];
-    const double B31 = q[62];
-    const double B32 = q[63];
-    const double A1_dot = qd[0];
-    const double A2_dot = qd[1];
-    const double A3_dot = qd[2];
-    const double A4_dot = qd[3];
-    const double A5_dot = qd[4];
-    const double A6_dot = qd[5];
-    const double A7_dot = qd[6];
-    const double A8_dot = qd[7];
-    const double A9_dot = qd[8];
-    const double A10_dot = qd[9];
-    const double A11_dot = qd[10];
-    const double A12_dot = qd[11];
-    const double A13_dot = qd[12];
-    const double A14_dot = qd[13];
-    const double A15_dot = qd[14];
-    const double A16_dot = qd[15];
-    const double A17_dot = qd[16];
-    const double A18_dot = qd[17];
-    const double A19_dot = qd[18];
-    const double A20_dot = qd[19];
-    const double A21_dot = qd[20];
-    const double A22_dot = qd[21];
-    const double A23_dot = qd[22];
-    const double A24_dot = qd[23];
-    const double A25_dot = qd[24];
-    const double A26_dot = qd[25];
-    const double A27_dot = qd[26];
-    const double A28_dot = qd[27];
-    const double A29_dot = qd[28];
-    const double A30_dot = qd[29];
-    const double A31_dot = qd[30];
-    const double A32_dot = qd[31];
-    const double B1_dot = qd[32];
-    const double B2_dot = qd[33];
-    const double B3_dot = qd[34];
-    const double B4_dot = qd[35];
-    const double B5_dot = qd[36];
-    const double B6_dot = qd[37];
-    const double B7_dot = qd[38];
-    const double B8_dot = qd[39];
-    const double B9_dot = qd[40];
-    const double B10_dot = qd[41];
-    const double B11_dot = qd[42];
-    const double B12_dot = qd[43];
-    const double B13_dot = qd[44];
-    const double B14_dot = qd[45];
-    const double B15_dot = qd[46];
-    const double B16_dot = qd[47];
-    const double B17_dot = qd[48];
-    const double B18_dot = qd[49];
-    const double B19_dot = qd[50];
-    const double B20_dot = qd[51];
-    const double B21_dot = qd[52];
-    const double B22_dot = qd[53];
-    const double B23_dot = qd[54];
-    const double B24_dot = qd[55];
-    const double B25_dot = qd[56];
-    const double B26_dot = qd[57];
-    const double B27_dot = qd[58];
-    const double B28_dot = qd[59];
-    const double B29_dot = qd[60];
-    const double B30_dot = qd[61];
-    const double B31_dot = qd[62];
-    const double B32_dot = qd[63];
-    const double theta_dotsq = theta_dot*theta_dot;
-    const double theta_dot_A1_dot = theta_dot*A1_dot;
-    const double theta_dot_A2_dot = theta_dot*A2_dot;
-    const double theta_dot_A3_dot = theta_dot*A3_dot;
-    const double theta_dot_A4_dot = theta_dot*A4_dot;
-    const double theta_dot_A5_dot = theta_dot*A5_dot;
-    const double theta_dot_A6_dot = theta_dot*A6_dot;
-    const double theta_dot_A7_dot = theta_dot*A7_dot;
-    const double theta_dot_A8_dot = theta_dot*A8_dot;
-    const double theta_dot_A9_dot = theta_dot*A9_dot;
-    const double theta_dot_A10_dot = theta_dot*A10_dot;
-    const double theta_dot_A11_dot = theta_dot*A11_dot;
-    const double theta_dot_A12_dot = theta_dot*A12_dot;
-    const double theta_dot_A13_dot = theta_dot*A13_dot;
-    const double theta_dot_A14_dot = theta_dot*A14_dot;
-    const double theta_dot_A15_dot = theta_dot*A15_dot;
-    const double theta_dot_A16_dot = theta_dot*A16_dot;
-    const double theta_dot_A17_dot = theta_dot*A17_dot;
-    const double theta_dot_A18_dot = theta_dot*A18_dot;
-    const double theta_dot_A19_dot = theta_dot*A19_dot;
-    const double theta_dot_A20_dot = theta_dot*A20_dot;
-    const double theta_dot_A21_dot = theta_dot*A21_dot;
-    const double theta_dot_A22_dot = theta_dot*A22_dot;
-    const double theta_dot_A23_dot = theta_dot*A23_dot;
-    const double theta_dot_A24_dot = theta_dot*A24_dot;
-    const double theta_dot_A25_dot = theta_dot*A25_dot;
-    const double theta_dot_A26_dot = theta_dot*A26_dot;
-    const double theta_dot_A27_dot = theta_dot*A27_dot;
-    const double theta_dot_A28_dot = theta_dot*A28_dot;
-    const double theta_dot_A29_dot = theta_dot*A29_dot;
-    const double theta_dot_A30_dot = theta_dot*A30_dot;
-    const double theta_dot_A31_dot = theta_dot*A31_dot;
-    const double theta_dot_A32_dot = theta_dot*A32_dot;
-    const double theta_dot_B1_dot = theta_dot*B1_dot;
-    const double theta_dot_B2_dot = theta_dot*B2_dot;
-    const double theta_dot_B3_dot = theta_dot*B3_dot;
-    const double theta_dot_B4_dot = theta_dot*B4_dot;
-    const double theta_dot_B5_dot = theta_dot*B5_dot;
-    const double theta_dot_B6_dot = theta_dot*B6_dot;
-    const double theta_dot_B7_dot = theta_dot*B7_dot;
-    const double theta_dot_B8_dot = theta_dot*B8_dot;
-    const double theta_dot_B9_dot = theta_dot*B9_dot;
-    const double theta_dot_B10_dot = theta_dot*B10_dot;
-    const double theta_dot_B11_dot = theta_dot*B11_dot;
-    const double theta_dot_B12_dot = theta_dot*B12_dot;
-    const double theta_dot_B13_dot = theta_dot*B13_dot;
-    const double theta_dot_B14_dot = theta_dot*B14_dot;
-    const double theta_dot_B15_dot = theta_dot*B15_dot;
-    const double theta_dot_B16_dot = theta_dot*B16_dot;
-    const double theta_dot_B17_dot = theta_dot*B17_dot;
-    const double theta_dot_B18_dot = theta_dot*B18_dot;
-    const double theta_dot_B19_dot = theta_dot*B19_dot;
-    const double theta_dot_B20_dot = theta_dot*B20_dot;
-    const double theta_dot_B21_dot = theta_dot*B21_dot;
-    const double theta_dot_B22_dot = theta_dot*B22_dot;
-    const double theta_dot_B23_dot = theta_dot*B23_dot;
-    const double theta_dot_B24_dot = theta_dot*B24_dot;
-    const double theta_dot_B25_dot = theta_dot*B25_dot;
-    const double theta_dot_B26_dot = theta_dot*B26_dot;
-    const double theta_dot_B27_dot = theta_dot*B27_dot;
-    const double theta_dot_B28_dot = theta_dot*B28_dot;
-    const double theta_dot_B29_dot = theta_dot*B29_dot;
-    const double theta_dot_B30_dot = theta_dot*B30_dot;
-    const double theta_dot_B31_dot = theta_dot*B31_dot;
-    const double theta_dot_B32_dot = theta_dot*B32_dot;
-    const double theta_ddot_A1 = theta_ddot*A1;
-    const double theta_ddot_A2 = theta_ddot*A2;
-    const double theta_ddot_A3 = theta_ddot*A3;
-    const double theta_ddot_A4 = theta_ddot*A4;
-    const double theta_ddot_A5 = theta_ddot*A5;
-    const double theta_ddot_A6 = theta_ddot*A6;
-    const double theta_ddot_A7 = theta_ddot*A7;
-    const double theta_ddot_A8 = theta_ddot*A8;
-    const double theta_ddot_A9 = theta_ddot*A9;
-    const double theta_ddot_A10 = theta_ddot*A10;
-    const double theta_ddot_A11 = theta_ddot*A11;
-    const double theta_ddot_A12 = theta_ddot*A12;
-    const double theta_ddot_A13 = theta_ddot*A13;
-    const double theta_ddot_A14 = theta_ddot*A14;
-    const double theta_ddot_A15 = theta_ddot*A15;
-    const double theta_ddot_A16 = theta_ddot*A16;
-    const double theta_ddot_A17 = theta_ddot*A17;
-    const double theta_ddot_A18 = theta_ddot*A18;
-    const double theta_ddot_A19 = theta_ddot*A19;
-    const double theta_ddot_A20 = theta_ddot*A20;
-    const double theta_ddot_A21 = theta_ddot*A21;
-    const double theta_ddot_A22 = theta_ddot*A22;
-    const double theta_ddot_A23 = theta_ddot*A23;
-    const double theta_ddot_A24 = theta_ddot*A24;
-    const double theta_ddot_A25 = theta_ddot*A25;
-    const double theta_ddot_A26 = theta_ddot*A26;
-    const double theta_ddot_A27 = theta_ddot*A27;
-    const double theta_ddot_A28 = theta_ddot*A28;
-    const double theta_ddot_A29 = theta_ddot*A29;
-    const double theta_ddot_A30 = theta_ddot*A30;
-    const double theta_ddot_A31 = theta_ddot*A31;
-    const double theta_ddot_A32 = theta_ddot*A32;
-    const double theta_ddot_B1 = theta_ddot*B1;
-    const double theta_ddot_B2 = theta_ddot*B2;
-    const double theta_ddot_B3 = theta_ddot*B3;
-    const double theta_ddot_B4 = theta_ddot*B4;
-    const double theta_ddot_B5 = theta_ddot*B5;
-    const double theta_ddot_B6 = theta_ddot*B6;
-    const double theta_ddot_B7 = theta_ddot*B7;
-    const double theta_ddot_B8 = theta_ddot*B8;
-    const double theta_ddot_B9 = theta_ddot*B9;
-    const double theta_ddot_B10 = theta_ddot*B10;
-    const double theta_ddot_B11 = theta_ddot*B11;
-    const double theta_ddot_B12 = theta_ddot*B12;
-    const double theta_ddot_B13 = theta_ddot*B13;
-    const double theta_ddot_B14 = theta_ddot*B14;
-    const double theta_ddot_B15 = theta_ddot*B15;
-    const double theta_ddot_B16 = theta_ddot*B16;
-    const double theta_ddot_B17 = theta_ddot*B17;
-    const double theta_ddot_B18 = theta_ddot*B18;
-    const double theta_ddot_B19 = theta_ddot*B19;
-    const double theta_ddot_B20 = theta_ddot*B20;
-    const double theta_ddot_B21 = theta_ddot*B21;
-    const double theta_ddot_B22 = theta_ddot*B22;
-    const double theta_ddot_B23 = theta_ddot*B23;
-    const double theta_ddot_B24 = theta_ddot*B24;
-    const double theta_ddot_B25 = theta_ddot*B25;
-    const double theta_ddot_B26 = theta_ddot*B26;
-    const double theta_ddot_B27 = theta_ddot*B27;
-    const double theta_ddot_B28 = theta_ddot*B28;
-    const double theta_ddot_B29 = theta_ddot*B29;
-    const double theta_ddot_B30 = theta_ddot*B30;
-    const double theta_ddot_B31 = theta_ddot*B31;
-    const double theta_ddot_B32 = theta_ddot*B32;
-    const double theta_dotsq_A1 = theta_dotsq*A1;
-    const double theta_dotsq_A2 = theta_dotsq*A2;
-    const double theta_dotsq_A3 = theta_dotsq*A3;
-    const double theta_dotsq_A4 = theta_dotsq*A4;
-    const double theta_dotsq_A5 = theta_dotsq*A5;
-    const double theta_dotsq_A6 = theta_dotsq*A6;
-    const double theta_dotsq_A7 = theta_dotsq*A7;
-    const double theta_dotsq_A8 = theta_dotsq*A8;
-    const double theta_dotsq_A9 = theta_dotsq*A9;
-    const double theta_dotsq_A10 = theta_dotsq*A10;
-    const double theta_dotsq_A11 = theta_dotsq*A11;
-    const double theta_dotsq_A12 = theta_dotsq*A12;
-    const double theta_dotsq_A13 = theta_dotsq*A13;
-    const double theta_dotsq_A14 = theta_dotsq*A14;
-    const double theta_dotsq_A15 = theta_dotsq*A15;
-    const double theta_dotsq_A16 = theta_dotsq*A16;
-    const double theta_dotsq_A17 = theta_dotsq*A17;
-    const double theta_dotsq_A18 = theta_dotsq*A18;
-    const double theta_dotsq_A19 = theta_dotsq*A19;
-    const double theta_dotsq_A20 = theta_dotsq*A20;
-    const double theta_dotsq_A21 = theta_dotsq*A21;
-    const double theta_dotsq_A22 = theta_dotsq*A22;
-    const double theta_dotsq_A23 = theta_dotsq*A23;
-    const double theta_dotsq_A24 = theta_dotsq*A24;
-    const double theta_dotsq_A25 = theta_dotsq*A25;
-    const double theta_dotsq_A26 = theta_dotsq*A26;
-    const double theta_dotsq_A27 = theta_dotsq*A27;
-    const double theta_dotsq_A28 = theta_dotsq*A28;
-    const double theta_dotsq_A29 = theta_dotsq*A29;
-    const double theta_dotsq_A30 = theta_dotsq*A30;
-    const double theta_dotsq_A31 = theta_dotsq*A31;
-    const double theta_dotsq_A32 = theta_dotsq*A32;
-    const double theta_dotsq_B1 = theta_dotsq*B1;
-    const double theta_dotsq_B2 = theta_dotsq*B2;
-    const double theta_dotsq_B3 = theta_dotsq*B3;
-    const double theta_dotsq_B4 = theta_dotsq*B4;
-    const double theta_dotsq_B5 = theta_dotsq*B5;
-    const double theta_dotsq_B6 = theta_dotsq*B6;
-    const double theta_dotsq_B7 = theta_dotsq*B7;
-    const double theta_dotsq_B8 = theta_dotsq*B8;
-    const double theta_dotsq_B9 = theta_dotsq*B9;
-    const double theta_dotsq_B10 = theta_dotsq*B10;
-    const double theta_dotsq_B11 = theta_dotsq*B11;
-    const double theta_dotsq_B12 = theta_dotsq*B12;
-    const double theta_dotsq_B13 = theta_dotsq*B13;
-    const double theta_dotsq_B14 = theta_dotsq*B14;
-    const double theta_dotsq_B15 = theta_dotsq*B15;
-    const double theta_dotsq_B16 = theta_dotsq*B16;
-    const double theta_dotsq_B17 = theta_dotsq*B17;
-    const double theta_dotsq_B18 = theta_dotsq*B18;
-    const double theta_dotsq_B19 = theta_dotsq*B19;
-    const double theta_dotsq_B20 = theta_dotsq*B20;
-    const double theta_dotsq_B21 = theta_dotsq*B21;
-    const double theta_dotsq_B22 = theta_dotsq*B22;
-    const double theta_dotsq_B23 = theta_dotsq*B23;
-    const double theta_dotsq_B24 = theta_dotsq*B24;
-    const double theta_dotsq_B25 = theta_dotsq*B25;
-    const double theta_dotsq_B26 = theta_dotsq*B26;
-    const double theta_dotsq_B27 = theta_dotsq*B27;
-    const double theta_dotsq_B28 = theta_dotsq*B28;
-    const double theta_dotsq_B29 = theta_dotsq*B29;
-    const double theta_dotsq_B30 = theta_dotsq*B30;
-    const double theta_dotsq_B31 = theta_dotsq*B31;
-    const double theta_dotsq_B32 = theta_dotsq*B32;
-    out[0] = -c[11]*A1 + c[12]*A2 + c[13]*theta_dotsq + c[14]*theta_dot_B1_dot - c[15]*theta_dot_B2_dot + c[16]*theta_ddot_B1 - c[17]*theta_ddot_B2 + c[0]*theta_dotsq_A1 + c[1]*theta_dotsq_A2;
-    out[1] = c[12]*A1 - c[11]*A2 + c[12]*A3 + c[18]*theta_dotsq + c[19]*theta_dot_B1_dot + c[20]*theta_dot_B3_dot - c[21]*theta_dot_B4_dot + c[22]*theta_ddot_B1 + c[23]*theta_ddot_B3 - c[24]*theta_ddot_B4 + c[1]*theta_dotsq_A1 + c[0]*theta_dotsq_A2 + c[1]*theta_dotsq_A3;
-    out[2] = c[12]*A2 - c[11]*A3 + c[12]*A4 + c[25]*theta_dotsq + c[14]*theta_dot_B1_dot + c[15]*theta_dot_B2_dot + c[14]*theta_dot_B3_dot - c[15]*theta_dot_B4_dot + c[16]*theta_ddot_B1 + c[17]*theta_ddot_B2 + c[16]*theta_ddot_B3 - c[17]*theta_ddot_B4 + c[1]*theta_dotsq_A2 + c[0]*theta_dotsq_A3 + c[1]*theta_dotsq_A4;
-    out[3] = c[12]*A3 - c[11]*A4 + c[12]*A5 + c[26]*theta_dotsq + c[20]*theta_dot_B1_dot + c[21]*theta_dot_B2_dot + c[19]*theta_dot_B3_dot + c[20]*theta_dot_B5_dot - c[21]*theta_dot_B6_dot + c[23]*theta_ddot_B1 + c[24]*theta_ddot_B2 + c[22]*theta_ddot_B3 + c[23]*theta_ddot_B5 - c[24]*theta_ddot_B6 + c[1]*theta_dotsq_A3 + c[0]*theta_dotsq_A4 + c[1]*theta_dotsq_A5;
-    out[4] = c[12]*A4 - c[11]*A5 + c[12]*A6 + c[27]*theta_dotsq + c[14]*theta_dot_B3_dot + c[15]*theta_dot_B4_dot + c[14]*theta_dot_B5_dot - c[15]*theta_dot_B6_dot + c[16]*theta_ddot_B3 + c[17]*theta_ddot_B4 + c[16]*theta_ddot_B5 - c[17]*theta_ddot_B6 + c[1]*theta_dotsq_A4 + c[0]*theta_dotsq_A5 + c[1]*theta_dotsq_A6;
-    out[5] = c[12]*A5 - c[11]*A6 + c[12]*A7 + c[28]*theta_dotsq + c[20]*theta_dot_B3_dot + c[21]*theta_dot_B4_dot + c[19]*theta_dot_B5_dot + c[20]*theta_dot_B7_dot - c[21]*theta_dot_B8_dot + c[23]*theta_ddot_B3 + c[24]*theta_ddot_B4 + c[22]*theta_ddot_B5 + c[23]*theta_ddot_B7 - c[24]*theta_ddot_B8 + c[1]*theta_dotsq_A5 + c[0]*theta_dotsq_A6 + c[1]*theta_dotsq_A7;
-    out[6] = c[12]*A6 - c[11]*A7 + c[12]*A8 + c[29]*theta_dotsq + c[14]*theta_dot_B5_dot + c[15]*theta_dot_B6_dot + c[14]*theta_dot_B7_dot - c[15]*theta_dot_B8_dot + c[16]*theta_ddot_B5 + c[17]*theta_ddot_B6 + c[16]*theta_ddot_B7 - c[17]*theta_ddot_B8 + c[1]*theta_dotsq_A6 + c[0]*theta_dotsq_A7 + c[1]*theta_dotsq_A8;
-    out[7] = c[12]*A7 - c[11]*A8 + c[12]*A9 + c[30]*theta_dotsq + c[20]*theta_dot_B5_dot + c[21]*theta_dot_B6_dot + c[19]*theta_dot_B7_dot + c[20]*theta_dot_B9_dot - c[21]*theta_dot_B10_dot + c[23]*theta_ddot_B5 + c[24]*theta_ddot_B6 + c[22]*theta_ddot_B7 + c[23]*theta_ddot_B9 - c[24]*theta_ddot_B10 + c[1]*theta_dotsq_A7 + c[0]*theta_dotsq_A8 + c[1]*theta_dotsq_A9;
-    out[8] = c[12]*A8 - c[11]*A9 + c[12]*A10 + c[31]*theta_dotsq + c[14]*theta_dot_B7_dot + c[15]*theta_dot_B8_dot + c[14]*theta_dot_B9_dot - c[15]*theta_dot_B10_dot + c[16]*theta_ddot_B7 + c[17]*theta_ddot_B8 + c[16]*theta_ddot_B9 - c[17]*theta_ddot_B10 + c[1]*theta_dotsq_A8 + c[0]*theta_dotsq_A9 + c[1]*theta_dotsq_A10;
-    out[9] = c[12]*A9 - c[11]*A10 + c[12]*A11 + c[32]*theta_dotsq + c[20]*theta_dot_B7_dot + c[21]*theta_dot_B8_dot + c[19]*theta_dot_B9_dot + c[20]*theta_dot_B11_dot - c[21]*theta_dot_B12_dot + c[23]*theta_ddot_B7 + c[24]*theta_ddot_B8 + c[22]*theta_ddot_B9 + c[23]*theta_ddot_B11 - c[24]*theta_ddot_B12 + c[1]*theta_dotsq_A9 + c[0]*theta_dotsq_A10 + c[1]*theta_dotsq_A11;
-    out[10] = c[12]*A10 - c[11]*A11 + c[12]*A12 + c[33]*theta_dotsq + c[14]*theta_dot_B9_dot + c[15]*theta_dot_B10_dot + c[14]*theta_dot_B11_dot - c[15]*theta_dot_B12_dot + c[16]*theta_ddot_B9 + c[17]*theta_ddot_B10 + c[16]*theta_ddot_B11 - c[17]*theta_ddot_B12 + c[1]*theta_dotsq_A10 + c[0]*theta_dotsq_A11 + c[1]*theta_dotsq_A12;
-    out[11] = c[12]*A11 - c[11]*A12 + c[12]*A13 + c[34]*theta_dotsq + c[20]*theta_dot_B9_dot + c[21]*theta_dot_B10_dot + c[19]*theta_dot_B11_dot + c[20]*theta_dot_B13_dot - c[21]*theta_dot_B14_dot + c[23]*theta_ddot_B9 + c[24]*theta_ddot_B10 + c[22]*theta_ddot_B11 + c[23]*theta_ddot_B13 - c[24]*theta_ddot_B14 + c[1]*theta_dotsq_A11 + c[0]*theta_dotsq_A12 + c[1]*theta_dotsq_A13;
-    out[12] = c[12]*A12 - c[11]*A13 + c[12]*A14 + c[35]*theta_dotsq + c[14]*theta_dot_B11_dot + c[15]*theta_dot_B12_dot + c[14]*theta_dot_B13_dot - c[15]*theta_dot_B14_dot + c[16]*theta_ddot_B11 + c[17]*theta_ddot_B12 + c[16]*theta_ddot_B13 - c[17]*theta_ddot_B14 + c[1]*theta_dotsq_A12 + c[0]*theta_dotsq_A13 + c[1]*theta_dotsq_A14;
-    out[13] = c[12]*A13 - c[11]*A14 + c[12]*A15 + c[36]*theta_dotsq + c[20]*theta_dot_B11_dot + c[21]*theta_dot_B12_dot + c[19]*theta_dot_B13_dot + c[20]*theta_dot_B15_dot - c[21]*theta_dot_B16_dot + c[23]*theta_ddot_B11 + c[24]*theta_ddot_B12 + c[22]*theta_ddot_B13 + c[23]*theta_ddot_B15 - c[24]*theta_ddot_B16 + c[1]*theta_dotsq_A13 + c[0]*theta_dotsq_A14 + c[1]*theta_dotsq_A15;
-    out[14] = c[12]*A14 - c[11]*A15 + c[12]*A16 + c[37]*theta_dotsq + c[14]*theta_dot_B13_dot + c[15]*theta_dot_B14_dot + c[14]*theta_dot_B15_dot - c[15]*theta_dot_B16_dot + c[16]*theta_ddot_B13 + c[17]*theta_ddot_B14 + c[16]*theta_ddot_B15 - c[17]*theta_ddot_B16 + c[1]*theta_dotsq_A14 + c[0]*theta_dotsq_A15 + c[1]*theta_dotsq_A16;
-    out[15] = c[12]*A15 - c[11]*A16 + c[12]*A17 + c[38]*theta_dotsq + c[20]*theta_dot_B13_dot + c[21]*theta_dot_B14_dot + c[19]*theta_dot_B15_dot + c[20]*theta_dot_B17_dot - c[21]*theta_dot_B18_dot + c[23]*theta_ddot_B13 + c[24]*theta_ddot_B14 + c[22]*theta_ddot_B15 + c[23]*theta_ddot_B17 - c[24]*theta_ddot_B18 + c[1]*theta_dotsq_A15 + c[0]*theta_dotsq_A16 + c[1]*theta_dotsq_A17;
-    out[16] = c[12]*A16 - c[11]*A17 + c[12]*A18 + c[39]*theta_dotsq + c[14]*theta_dot_B15_dot + c[15]*theta_dot_B16_dot + c[14]*theta_dot_B17_dot - c[15]*theta_dot_B18_dot + c[16]*theta_ddot_B15 + c[17]*theta_ddot_B16 + c[16]*theta_ddot_B17 - c[17]*theta_ddot_B18 + c[1]*theta_dotsq_A16 + c[0]*theta_dotsq_A17 + c[1]*theta_dotsq_A18;
-    out[17] = c[12]*A17 - c[11]*A18 + c[12]*A19 + c[40]*theta_dotsq + c[20]*theta_dot_B15_dot + c[21]*theta_dot_B16_dot + c[19]*theta_dot_B17_dot + c[20]*theta_dot_B19_dot - c[21]*theta_dot_B20_dot + c[23]*theta_ddot_B15 + c[24]*theta_ddot_B16 + c[22]*theta_ddot_B17 + c[23]*theta_ddot_B19 - c[24]*theta_ddot_B20 + c[1]*theta_dotsq_A17 + c[0]*theta_dotsq_A18 + c[1]*theta_dotsq_A19;
-    out[18] = c[12]*A18 - c[11]*A19 + c[12]*A20 + c[41]*theta_dotsq + c[14]*theta_dot_B17_dot + c[15]*theta_dot_B18_dot + c[14]*theta_dot_B19_dot - c[15]*theta_dot_B20_dot + c[16]*theta_ddot_B17 + c[17]*theta_ddot_B18 + c[16]*theta_ddot_B19 - c[17]*theta_ddot_B20 + c[1]*theta_dotsq_A18 + c[0]*theta_dotsq_A19 + c[1]*theta_dotsq_A20;
-    out[19] = c[12]*A19 - c[11]*A20 + c[12]*A21 + c[42]*theta_dotsq + c[20]*theta_dot_B17_dot + c[21]*theta_dot_B18_dot + c[19]*theta_dot_B19_dot + c[20]*theta_dot_B21_dot - c[21]*theta_dot_B22_dot + c[23]*theta_ddot_B17 + c[24]*theta_ddot_B18 + c[22]*theta_ddot_B19 + c[23]*theta_ddot_B21 - c[24]*theta_ddot_B22 + c[1]*theta_dotsq_A19 + c[0]*theta_dotsq_A20 + c[1]*theta_dotsq_A21;
-    out[20] = c[12]*A20 - c[11]*A21 + c[12]*A22 + c[43]*theta_dotsq + c[14]*theta_dot_B19_dot + c[15]*theta_dot_B20_dot + c[14]*theta_dot_B21_dot - c[15]*theta_dot_B22_dot + c[16]*theta_ddot_B19 + c[17]*theta_ddot_B20 + c[16]*theta_ddot_B21 - c[17]*theta_ddot_B22 + c[1]*theta_dotsq_A20 + c[0]*theta_dotsq_A21 + c[1]*theta_dotsq_A22;
-    out[21] = c[12]*A21 - c[11]*A22 + c[12]*A23 + c[44]*theta_dotsq + c[20]*theta_dot_B19_dot + c[21]*theta_dot_B20_dot + c[19]*theta_dot_B21_dot + c[20]*theta_dot_B23_dot - c[21]*theta_dot_B24_dot + c[23]*theta_ddot_B19 + c[24]*theta_ddot_B20 + c[22]*theta_ddot_B21 + c[23]*theta_ddot_B23 - c[24]*theta_ddot_B24 + c[1]*theta_dotsq_A21 + c[0]*theta_dotsq_A22 + c[1]*theta_dotsq_A23;
-    out[22] = c[12]*A22 - c[11]*A23 + c[12]*A24 + c[45]*theta_dotsq + c[14]*theta_dot_B21_dot + c[15]*theta_dot_B22_dot + c[14]*theta_dot_B23_dot - c[15]*theta_dot_B24_dot + c[16]*theta_ddot_B21 + c[17]*theta_ddot_B22 + c[16]*theta_ddot_B23 - c[17]*theta_ddot_B24 + c[1]*theta_dotsq_A22 + c[0]*theta_dotsq_A23 + c[1]*theta_dotsq_A24;
-    out[23] = c[12]*A23 - c[11]*A24 + c[12]*A25 + c[46]*theta_dotsq + c[20]*theta_dot_B21_dot + c[21]*theta_dot_B22_dot + c[19]*theta_dot_B23_dot + c[20]*theta_dot_B25_dot - c[21]*theta_dot_B26_dot + c[23]*theta_ddot_B21 + c[24]*theta_ddot_B22 + c[22]*theta_ddot_B23 + c[23]*theta_ddot_B25 - c[24]*theta_ddot_B26 + c[1]*theta_dotsq_A23 + c[0]*theta_dotsq_A24 + c[1]*theta_dotsq_A25;
-    out[24] = c[12]*A24 - c[11]*A25 + c[12]*A26 + c[47]*theta_dotsq + c[14]*theta_dot_B23_dot + c[15]*theta_dot_B24_dot + c[14]*theta_dot_B25_dot - c[15]*theta_dot_B26_dot + c[16]*theta_ddot_B23 + c[17]*theta_ddot_B24 + c[16]*theta_ddot_B25 - c[17]*theta_ddot_B26 + c[1]*theta_dotsq_A24 + c[0]*theta_dotsq_A25 + c[1]*theta_dotsq_A26;
-    out[25] = c[12]*A25 - c[11]*A26 + c[12]*A27 + c[48]*theta_dotsq + c[20]*theta_dot_B23_dot + c[21]*theta_dot_B24_dot + c[19]*theta_dot_B25_dot + c[20]*theta_dot_B27_dot - c[21]*theta_dot_B28_dot + c[23]*theta_ddot_B23 + c[24]*theta_ddot_B24 + c[22]*theta_ddot_B25 + c[23]*theta_ddot_B27 - c[24]*theta_ddot_B28 + c[1]*theta_dotsq_A25 + c[0]*theta_dotsq_A26 + c[1]*theta_dotsq_A27;
-    out[26] = c[12]*A26 - c[11]*A27 + c[12]*A28 + c[49]*theta_dotsq + c[14]*theta_dot_B25_dot + c[15]*theta_dot_B26_dot + c[14]*theta_dot_B27_dot - c[15]*theta_dot_B28_dot + c[16]*theta_ddot_B25 + c[17]*theta_ddot_B26 + c[16]*theta_ddot_B27 - c[17]*theta_ddot_B28 + c[1]*theta_dotsq_A26 + c[0]*theta_dotsq_A27 + c[1]*theta_dotsq_A28;
-    out[27] = c[12]*A27 - c[11]*A28 + c[12]*A29 + c[50]*theta_dotsq + c[20]*theta_dot_B25_dot + c[21]*theta_dot_B26_dot + c[19]*theta_dot_B27_dot + c[20]*theta_dot_B29_dot - c[21]*theta_dot_B30_dot + c[23]*theta_ddot_B25 + c[24]*theta_ddot_B26 + c[22]*theta_ddot_B27 + c[23]*theta_ddot_B29 - c[24]*theta_ddot_B30 + c[1]*theta_dotsq_A27 + c[0]*theta_dotsq_A28 + c[1]*theta_dotsq_A29;
-    out[28] = c[12]*A28 - c[11]*A29 + c[12]*A30 + c[51]*theta_dotsq + c[14]*theta_dot_B27_dot + c[15]*theta_dot_B28_dot + c[14]*theta_dot_B29_dot - c[15]*theta_dot_B30_dot + c[16]*theta_ddot_B27 + c[17]*theta_ddot_B28 + c[16]*theta_ddot_B29 - c[17]*theta_ddot_B30 + c[1]*theta_dotsq_A28 + c[0]*theta_dotsq_A29 + c[1]*theta_dotsq_A30;
-    out[29] = c[12]*A29 - c[11]*A30 + c[12]*A31 + c[52]*theta_dotsq + c[20]*theta_dot_B27_dot + c[21]*theta_dot_B28_dot + c[19]*theta_dot_B29_dot + c[20]*theta_dot_B31_dot - c[21]*theta_dot_B32_dot + c[23]*theta_ddot_B27 + c[24]*theta_ddot_B28 + c[22]*theta_ddot_B29 + c[23]*theta_ddot_B31 - c[24]*theta_ddot_B32 + c[1]*theta_dotsq_A29 + c[0]*theta_dotsq_A30 + c[1]*theta_dotsq_A31;
-    out[30] = c[12]*A30 - c[11]*A31 + c[12]*A32 + c[53]*theta_dotsq + c[14]*theta_dot_B29_dot + c[15]*theta_dot_B30_dot + c[14]*theta_dot_B31_dot - c[15]*theta_dot_B32_dot + c[16]*theta_ddot_B29 + c[17]*theta_ddot_B30 + c[16]*theta_ddot_B31 - c[17]*theta_ddot_B32 + c[1]*theta_dotsq_A30 + c[0]*theta_dotsq_A31 + c[1]*theta_dotsq_A32;
-    out[31] = c[12]*A31 - c[12]*A32 + c[54]*theta_dotsq + c[20]*theta_dot_B29_dot + c[21]*theta_dot_B30_dot + c[22]*theta_dot_B31_dot - c[55]*theta_dot_B32_dot + c[23]*theta_ddot_B29 + c[24]*theta_ddot_B30 + c[56]*theta_ddot_B31 - c[57]*theta_ddot_B32 + c[1]*theta_dotsq_A31 + c[2]*theta_dotsq_A32;
-    out[32] = -c[58]*theta_ddot - c[59]*B1 + c[60]*B3 - c[61]*B4 - c[14]*theta_dot_A1_dot - c[19]*theta_dot_A2_dot - c[14]*theta_dot_A3_dot - c[20]*theta_dot_A4_dot - c[16]*theta_ddot_A1 - c[22]*theta_ddot_A2 - c[16]*theta_ddot_A3 - c[23]*theta_ddot_A4 - c[62]*theta_dotsq_B1 + c[63]*theta_dotsq_B2 + c[64]*theta_dotsq_B3 - c[65]*theta_dotsq_B4;
-    out[33] = -c[66]*theta_ddot - c[67]*B2 + c[61]*B3 - c[68]*B4 + c[15]*theta_dot_A1_dot - c[15]*theta_dot_A3_dot - c[21]*theta_dot_A4_dot + c[17]*theta_ddot_A1 - c[17]*theta_ddot_A3 - c[24]*theta_ddot_A4 + c[63]*theta_dotsq_B1 - c[69]*theta_dotsq_B2 + c[70]*theta_dotsq_B3 + c[71]*theta_dotsq_B4;
-    out[34] = -c[72]*theta_ddot + c[60]*B1 + c[61]*B2 - c[59]*B3 + c[60]*B5 - c[61]*B6 - c[20]*theta_dot_A2_dot - c[14]*theta_dot_A3_dot - c[19]*theta_dot_A4_dot - c[14]*theta_dot_A5_dot - c[20]*theta_dot_A6_dot - c[23]*theta_ddot_A2 - c[16]*theta_ddot_A3 - c[22]*theta_ddot_A4 - c[16]*theta_ddot_A5 - c[23]*theta_ddot_A6 + c[64]*theta_dotsq_B1 + c[70]*theta_dotsq_B2 - c[73]*theta_dotsq_B3 + c[74]*theta_dotsq_B4 + c[75]*theta_dotsq_B5 - c[70]*theta_dotsq_B6;
-    out[35] = -c[66]*theta_ddot - c[61]*B1 - c[68]*B2 - c[67]*B4 + c[61]*B5 - c[68]*B6 + c[21]*theta_dot_A2_dot + c[15]*theta_dot_A3_dot - c[15]*theta_dot_A5_dot - c[21]*theta_dot_A6_dot + c[24]*theta_ddot_A2 + c[17]*theta_ddot_A3 - c[17]*theta_ddot_A5 - c[24]*theta_ddot_A6 - c[65]*theta_dotsq_B1 + c[71]*theta_dotsq_B2 + c[74]*theta_dotsq_B3 - c[76]*theta_dotsq_B4 + c[77]*theta_dotsq_B5 + c[78]*theta_dotsq_B6;
-    out[36] = -c[79]*theta_ddot + c[60]*B3 + c[61]*B4 - c[59]*B5 + c[60]*B7 - c[61]*B8 - c[20]*theta_dot_A4_dot - c[14]*theta_dot_A5_dot - c[19]*theta_dot_A6_dot - c[14]*theta_dot_A7_dot - c[20]*theta_dot_A8_dot - c[23]*theta_ddot_A4 - c[16]*theta_ddot_A5 - c[22]*theta_ddot_A6 - c[16]*theta_ddot_A7 - c[23]*theta_ddot_A8 + c[75]*theta_dotsq_B3 + c[77]*theta_dotsq_B4 - c[80]*theta_dotsq_B5 + c[81]*theta_dotsq_B6 + c[82]*theta_dotsq_B7 - c[77]*theta_dotsq_B8;
-    out[37] = -c[66]*theta_ddot - c[61]*B3 - c[68]*B4 - c[67]*B6 + c[61]*B7 - c[68]*B8 + c[21]*theta_dot_A4_dot + c[15]*theta_dot_A5_dot - c[15]*theta_dot_A7_dot - c[21]*theta_dot_A8_dot + c[24]*theta_ddot_A4 + c[17]*theta_ddot_A5 - c[17]*theta_ddot_A7 - c[24]*theta_ddot_A8 - c[70]*theta_dotsq_B3 + c[78]*theta_dotsq_B4 + c[81]*theta_dotsq_B5 - c[83]*theta_dotsq_B6 + c[84]*theta_dotsq_B7 + c[85]*theta_dotsq_B8;
-    out[38] = -c[86]*theta_ddot + c[60]*B5 + c[61]*B6 - c[59]*B7 + c[60]*B9 - c[61]*B10 - c[20]*theta_dot_A6_dot - c[14]*theta_dot_A7_dot - c[19]*theta_dot_A8_dot - c[14]*theta_dot_A9_dot - c[20]*theta_dot_A10_dot - c[23]*theta_ddot_A6 - c[16]*theta_ddot_A7 - c[22]*theta_ddot_A8 - c[16]*theta_ddot_A9 - c[23]*theta_ddot_A10 + c[82]*theta_dotsq_B5 + c[84]*theta_dotsq_B6 - c[87]*theta_dotsq_B7 + c[88]*theta_dotsq_B8 + c[89]*theta_dotsq_B9 - c[84]*theta_dotsq_B10;
-    out[39] = -c[66]*theta_ddot - c[61]*B5 - c[68]*B6 - c[67]*B8 + c[61]*B9 - c[68]*B10 + c[21]*theta_dot_A6_dot + c[15]*theta_dot_A7_dot - c[15]*theta_dot_A9_dot - c[21]*theta_dot_A10_dot + c[24]*theta_ddot_A6 + c[17]*theta_ddot_A7 - c[17]*theta_ddot_A9 - c[24]*theta_ddot_A10 - c[77]*theta_dotsq_B5 + c[85]*theta_dotsq_B6 + c[88]*theta_dotsq_B7 - c[90]*theta_dotsq_B8 + c[91]*theta_dotsq_B9 + c[92]*theta_dotsq_B10;
-    out[40] = -c[93]*theta_ddot + c[60]*B7 + c[61]*B8 - c[59]*B9 + c[60]*B11 - c[61]*B12 - c[20]*theta_dot_A8_dot - c[14]*theta_dot_A9_dot - c[19]*theta_dot_A10_dot - c[14]*theta_dot_A11_dot - c[20]*theta_dot_A12_dot - c[23]*theta_ddot_A8 - c[16]*theta_ddot_A9 - c[22]*theta_ddot_A10 - c[16]*theta_ddot_A11 - c[23]*theta_ddot_A12 + c[89]*theta_dotsq_B7 + c[91]*theta_dotsq_B8 - c[94]*theta_dotsq_B9 + c[95]*theta_dotsq_B10 + c[96]*theta_dotsq_B11 - c[91]*theta_dotsq_B12;
-    out[41] = -c[66]*theta_ddot - c[61]*B7 - c[68]*B8 - c[67]*B10 + c[61]*B11 - c[68]*B12 + c[21]*theta_dot_A8_dot + c[15]*theta_dot_A9_dot - c[15]*theta_dot_A11_dot - c[21]*theta_dot_A12_dot + c[24]*theta_ddot_A8 + c[17]*theta_ddot_A9 - c[17]*theta_ddot_A11 - c[24]*theta_ddot_A12 - c[84]*theta_dotsq_B7 + c[92]*theta_dotsq_B8 + c[95]*theta_dotsq_B9 - c[97]*theta_dotsq_B10 + c[98]*theta_dotsq_B11 + c[99]*theta_dotsq_B12;
-    out[42] = -c[100]*theta_ddot + c[60]*B9 + c[61]*B10 - c[59]*B11 + c[60]*B13 - c[61]*B14 - c[20]*theta_dot_A10_dot - c[14]*theta_dot_A11_dot - c[19]*theta_dot_A12_dot - c[14]*theta_dot_A13_dot - c[20]*theta_dot_A14_dot - c[23]*theta_ddot_A10 - c[16]*theta_ddot_A11 - c[22]*theta_ddot_A12 - c[16]*theta_ddot_A13 - c[23]*theta_ddot_A14 + c[96]*theta_dotsq_B9 + c[98]*theta_dotsq_B10 - c[101]*theta_dotsq_B11 + c[102]*theta_dotsq_B12 + c[103]*theta_dotsq_B13 - c[98]*theta_dotsq_B14;
-    out[43] = -c[66]*theta_ddot - c[61]*B9 - c[68]*B10 - c[67]*B12 + c[61]*B13 - c[68]*B14 + c[21]*theta_dot_A10_dot + c[15]*theta_dot_A11_dot - c[15]*theta_dot_A13_dot - c[21]*theta_dot_A14_dot + c[24]*theta_ddot_A10 + c[17]*theta_ddot_A11 - c[17]*theta_ddot_A13 - c[24]*theta_ddot_A14 - c[91]*theta_dotsq_B9 + c[99]*theta_dotsq_B10 + c[102]*theta_dotsq_B11 - c[104]*theta_dotsq_B12 + c[105]*theta_dotsq_B13 + c[106]*theta_dotsq_B14;
-    out[44] = -c[107]*theta_ddot + c[60]*B11 + c[61]*B12 - c[59]*B13 + c[60]*B15 - c[61]*B16 - c[20]*theta_dot_A12_dot - c[14]*theta_dot_A13_dot - c[19]*theta_dot_A14_dot - c[14]*theta_dot_A15_dot - c[20]*theta_dot_A16_dot - c[23]*theta_ddot_A12 - c[16]*theta_ddot_A13 - c[22]*theta_ddot_A14 - c[16]*theta_ddot_A15 - c[23]*theta_ddot_A16 + c[103]*theta_dotsq_B11 + c[105]*theta_dotsq_B12 - c[108]*theta_dotsq_B13 + c[109]*theta_dotsq_B14 + c[110]*theta_dotsq_B15 - c[105]*theta_dotsq_B16;
-    out[45] = -c[66]*theta_ddot - c[61]*B11 - c[68]*B12 - c[67]*B14 + c[61]*B15 - c[68]*B16 + c[21]*theta_dot_A12_dot + c[15]*theta_dot_A13_dot - c[15]*theta_dot_A15_dot - c[21]*theta_dot_A16_dot + c[24]*theta_ddot_A12 + c[17]*theta_ddot_A13 - c[17]*theta_ddot_A15 - c[24]*theta_ddot_A16 - c[98]*theta_dotsq_B11 + c[106]*theta_dotsq_B12 + c[109]*theta_dotsq_B13 - c[111]*theta_dotsq_B14 + c[112]*theta_dotsq_B15 + c[113]*theta_dotsq_B16;
-    out[46] = -c[114]*theta_ddot + c[60]*B13 + c[61]*B14 - c[59]*B15 + c[60]*B17 - c[61]*B18 - c[20]*theta_dot_A14_dot - c[14]*theta_dot_A15_dot - c[19]*theta_dot_A16_dot - c[14]*theta_dot_A17_dot - c[20]*theta_dot_A18_dot - c[23]*theta_ddot_A14 - c[16]*theta_ddot_A15 - c[22]*theta_ddot_A16 - c[16]*theta_ddot_A17 - c[23]*theta_ddot_A18 + c[110]*theta_dotsq_B13 + c[112]*theta_dotsq_B14 - c[115]*theta_dotsq_B15 + c[116]*theta_dotsq_B16 + c[117]*theta_dotsq_B17 - c[112]*theta_dotsq_B18;
-    out[47] = -c[66]*theta_ddot - c[61]*B13 - c[68]*B14 - c[67]*B16 + c[61]*B17 - c[68]*B18 + c[21]*theta_dot_A14_dot + c[15]*theta_dot_A15_dot - c[15]*theta_dot_A17_dot - c[21]*theta_dot_A18_dot + c[24]*theta_ddot_A14 + c[17]*theta_ddot_A15 - c[17]*theta_ddot_A17 - c[24]*theta_ddot_A18 - c[105]*theta_dotsq_B13 + c[113]*theta_dotsq_B14 + c[116]*theta_dotsq_B15 - c[118]*theta_dotsq_B16 + c[119]*theta_dotsq_B17 + c[120]*theta_dotsq_B18;
-    out[48] = -c[121]*theta_ddot + c[60]*B15 + c[61]*B16 - c[59]*B17 + c[60]*B19 - c[61]*B20 - c[20]*theta_dot_A16_dot - c[14]*theta_dot_A17_dot - c[19]*theta_dot_A18_dot - c[14]*theta_dot_A19_dot - c[20]*theta_dot_A20_dot - c[23]*theta_ddot_A16 - c[16]*theta_ddot_A17 - c[22]*theta_ddot_A18 - c[16]*theta_ddot_A19 - c[23]*theta_ddot_A20 + c[117]*theta_dotsq_B15 + c[119]*theta_dotsq_B16 - c[122]*theta_dotsq_B17 + c[123]*theta_dotsq_B18 + c[124]*theta_dotsq_B19 - c[119]*theta_dotsq_B20;
-    out[49] = -c[66]*theta_ddot - c[61]*B15 - c[68]*B16 - c[67]*B18 + c[61]*B19 - c[68]*B20 + c[21]*theta_dot_A16_dot + c[15]*theta_dot_A17_dot - c[15]*theta_dot_A19_dot - c[21]*theta_dot_A20_dot + c[24]*theta_ddot_A16 + c[17]*theta_ddot_A17 - c[17]*theta_ddot_A19 - c[24]*theta_ddot_A20 - c[112]*theta_dotsq_B15 + c[120]*theta_dotsq_B16 + c[123]*theta_dotsq_B17 - c[125]*theta_dotsq_B18 + c[126]*theta_dotsq_B19 + c[127]*theta_dotsq_B20;
-    out[50] = -c[128]*theta_ddot + c[60]*B17 + c[61]*B18 - c[59]*B19 + c[60]*B21 - c[61]*B22 - c[20]*theta_dot_A18_dot - c[14]*theta_dot_A19_dot - c[19]*theta_dot_A20_dot - c[14]*theta_dot_A21_dot - c[20]*theta_dot_A22_dot - c[23]*theta_ddot_A18 - c[16]*theta_ddot_A19 - c[22]*theta_ddot_A20 - c[16]*theta_ddot_A21 - c[23]*theta_ddot_A22 + c[124]*theta_dotsq_B17 + c[126]*theta_dotsq_B18 - c[129]*theta_dotsq_B19 + c[130]*theta_dotsq_B20 + c[131]*theta_dotsq_B21 - c[126]*theta_dotsq_B22;
-    out[51] = -c[66]*theta_ddot - c[61]*B17 - c[68]*B18 - c[67]*B20 + c[61]*B21 - c[68]*B22 + c[21]*theta_dot_A18_dot + c[15]*theta_dot_A19_dot - c[15]*theta_dot_A21_dot - c[21]*theta_dot_A22_dot + c[24]*theta_ddot_A18 + c[17]*theta_ddot_A19 - c[17]*theta_ddot_A21 - c[24]*theta_ddot_A22 - c[119]*theta_dotsq_B17 + c[127]*theta_dotsq_B18 + c[130]*theta_dotsq_B19 - c[132]*theta_dotsq_B20 + c[133]*theta_dotsq_B21 + c[134]*theta_dotsq_B22;
-    out[52] = -c[135]*theta_ddot + c[60]*B19 + c[61]*B20 - c[59]*B21 + c[60]*B23 - c[61]*B24 - c[20]*theta_dot_A20_dot - c[14]*theta_dot_A21_dot - c[19]*theta_dot_A22_dot - c[14]*theta_dot_A23_dot - c[20]*theta_dot_A24_dot - c[23]*theta_ddot_A20 - c[16]*theta_ddot_A21 - c[22]*theta_ddot_A22 - c[16]*theta_ddot_A23 - c[23]*theta_ddot_A24 + c[131]*theta_dotsq_B19 + c[133]*theta_dotsq_B20 - c[136]*theta_dotsq_B21 + c[137]*theta_dotsq_B22 + c[138]*theta_dotsq_B23 - c[133]*theta_dotsq_B24;
-    out[53] = -c[66]*theta_ddot - c[61]*B19 - c[68]*B20 - c[67]*B22 + c[61]*B23 - c[68]*B24 + c[21]*theta_dot_A20_dot + c[15]*theta_dot_A21_dot - c[15]*theta_dot_A23_dot - c[21]*theta_dot_A24_dot + c[24]*theta_ddot_A20 + c[17]*theta_ddot_A21 - c[17]*theta_ddot_A23 - c[24]*theta_ddot_A24 - c[126]*theta_dotsq_B19 + c[134]*theta_dotsq_B20 + c[137]*theta_dotsq_B21 - c[139]*theta_dotsq_B22 + c[140]*theta_dotsq_B23 + c[141]*theta_dotsq_B24;
-    out[54] = -c[142]*theta_ddot + c[60]*B21 + c[61]*B22 - c[59]*B23 + c[60]*B25 - c[61]*B26 - c[20]*theta_dot_A22_dot - c[14]*theta_dot_A23_dot - c[19]*theta_dot_A24_dot - c[14]*theta_dot_A25_dot - c[20]*theta_dot_A26_dot - c[23]*theta_ddot_A22 - c[16]*theta_ddot_A23 - c[22]*theta_ddot_A24 - c[16]*theta_ddot_A25 - c[23]*theta_ddot_A26 + c[138]*theta_dotsq_B21 + c[140]*theta_dotsq_B22 - c[143]*theta_dotsq_B23 + c[144]*theta_dotsq_B24 + c[145]*theta_dotsq_B25 - c[140]*theta_dotsq_B26;
-    out[55] = -c[66]*theta_ddot - c[61]*B21 - c[68]*B22 - c[67]*B24 + c[61]*B25 - c[68]*B26 + c[21]*theta_dot_A22_dot + c[15]*theta_dot_A23_dot - c[15]*theta_dot_A25_dot - c[21]*theta_dot_A26_dot + c[24]*theta_ddot_A22 + c[17]*theta_ddot_A23 - c[17]*theta_ddot_A25 - c[24]*theta_ddot_A26 - c[133]*theta_dotsq_B21 + c[141]*theta_dotsq_B22 + c[144]*theta_dotsq_B23 - c[146]*theta_dotsq_B24 + c[147]*theta_dotsq_B25 + c[148]*theta_dotsq_B26;
-    out[56] = -c[149]*theta_ddot + c[60]*B23 + c[61]*B24 - c[59]*B25 + c[60]*B27 - c[61]*B28 - c[20]*theta_dot_A24_dot - c[14]*theta_dot_A25_dot - c[19]*theta_dot_A26_dot - c[14]*theta_dot_A27_dot - c[20]*theta_dot_A28_dot - c[23]*theta_ddot_A24 - c[16]*theta_ddot_A25 - c[22]*theta_ddot_A26 - c[16]*theta_ddot_A27 - c[23]*theta_ddot_A28 + c[145]*theta_dotsq_B23 + c[147]*theta_dotsq_B24 - c[150]*theta_dotsq_B25 + c[151]*theta_dotsq_B26 + c[152]*theta_dotsq_B27 - c[147]*theta_dotsq_B28;
-    out[57] = -c[66]*theta_ddot - c[61]*B23 - c[68]*B24 - c[67]*B26 + c[61]*B27 - c[68]*B28 + c[21]*theta_dot_A24_dot + c[15]*theta_dot_A25_dot - c[15]*theta_dot_A27_dot - c[21]*theta_dot_A28_dot + c[24]*theta_ddot_A24 + c[17]*theta_ddot_A25 - c[17]*theta_ddot_A27 - c[24]*theta_ddot_A28 - c[140]*theta_dotsq_B23 + c[148]*theta_dotsq_B24 + c[151]*theta_dotsq_B25 - c[153]*theta_dotsq_B26 + c[154]*theta_dotsq_B27 + c[155]*theta_dotsq_B28;
-    out[58] = -c[156]*theta_ddot + c[60]*B25 + c[61]*B26 - c[59]*B27 + c[60]*B29 - c[61]*B30 - c[20]*theta_dot_A26_dot - c[14]*theta_dot_A27_dot - c[19]*theta_dot_A28_dot - c[14]*theta_dot_A29_dot - c[20]*theta_dot_A30_dot - c[23]*theta_ddot_A26 - c[16]*theta_ddot_A27 - c[22]*theta_ddot_A28 - c[16]*theta_ddot_A29 - c[23]*theta_ddot_A30 + c[152]*theta_dotsq_B25 + c[154]*theta_dotsq_B26 - c[157]*theta_dotsq_B27 + c[158]*theta_dotsq_B28 + c[159]*theta_dotsq_B29 - c[154]*theta_dotsq_B30;
-    out[59] = -c[66]*theta_ddot - c[61]*B25 - c[68]*B26 - c[67]*B28 + c[61]*B29 - c[68]*B30 + c[21]*theta_dot_A26_dot + c[15]*theta_dot_A27_dot - c[15]*theta_dot_A29_dot - c[21]*theta_dot_A30_dot + c[24]*theta_ddot_A26 + c[17]*theta_ddot_A27 - c[17]*theta_ddot_A29 - c[24]*theta_ddot_A30 - c[147]*theta_dotsq_B25 + c[155]*theta_dotsq_B26 + c[158]*theta_dotsq_B27 - c[160]*theta_dotsq_B28 + c[161]*theta_dotsq_B29 + c[162]*theta_dotsq_B30;
-    out[60] = -c[163]*theta_ddot + c[60]*B27 + c[61]*B28 - c[59]*B29 + c[60]*B31 - c[61]*B32 - c[20]*theta_dot_A28_dot - c[14]*theta_dot_A29_dot - c[19]*theta_dot_A30_dot - c[14]*theta_dot_A31_dot - c[20]*theta_dot_A32_dot - c[23]*theta_ddot_A28 - c[16]*theta_ddot_A29 - c[22]*theta_ddot_A30 - c[16]*theta_ddot_A31 - c[23]*theta_ddot_A32 + c[159]*theta_dotsq_B27 + c[161]*theta_dotsq_B28 - c[164]*theta_dotsq_B29 + c[165]*theta_dotsq_B30 + c[166]*theta_dotsq_B31 - c[161]*theta_dotsq_B32;
-    out[61] = -c[66]*theta_ddot - c[61]*B27 - c[68]*B28 - c[67]*B30 + c[61]*B31 - c[68]*B32 + c[21]*theta_dot_A28_dot + c[15]*theta_dot_A29_dot - c[15]*theta_dot_A31_dot - c[21]*theta_dot_A32_dot + c[24]*theta_ddot_A28 + c[17]*theta_ddot_A29 - c[17]*theta_ddot_A31 - c[24]*theta_ddot_A32 - c[154]*theta_dotsq_B27 + c[162]*theta_dotsq_B28 + c[165]*theta_dotsq_B29 - c[167]*theta_dotsq_B30 + c[168]*theta_dotsq_B31 + c[169]*theta_dotsq_B32;
-    out[62] = -c[170]*theta_ddot + c[60]*B29 + c[61]*B30 - c[60]*B31 + c[61]*B32 - c[20]*theta_dot_A30_dot - c[14]*theta_dot_A31_dot - c[22]*theta_dot_A32_dot - c[23]*theta_ddot_A30 - c[16]*theta_ddot_A31 - c[56]*theta_ddot_A32 + c[166]*theta_dotsq_B29 + c[168]*theta_dotsq_B30 - c[171]*theta_dotsq_B31 + c[172]*theta_dotsq_B32;
-    out[63] = c[173]*theta_ddot - c[61]*B29 - c[68]*B30 + c[61]*B31 - c[174]*B32 + c[21]*theta_dot_A30_dot + c[15]*theta_dot_A31_dot + c[55]*theta_dot_A32_dot + c[24]*theta_ddot_A30 + c[17]*theta_ddot_A31 + c[57]*theta_ddot_A32 - c[161]*theta_dotsq_B29 + c[169]*theta_dotsq_B30 + c[172]*theta_dotsq_B31 - c[175]*theta_dotsq_B32;
+    // Table form (1146 terms, 259 monomials): m[0] = 1, m[k + 1] = m[chain[k][0]] * v[chain[k][1]];
+    // out[written[i]] = sum of t.scale * c[t.coef] * m[t.mono] over terms[first[i]] .. terms[first[i + 1] - 1].
+    static const int chain[][2] = {
+        {0, 0},
+        {0, 1},
+        {0, 2},
+        {0, 3},
+        {0, 4},
+        {0, 5},
+        {0, 6},
+        {0, 7},
+        {0, 8},
+        {0, 9},
+        {0, 10},
+        {0, 11},
+        {0, 12},
+        {0, 13},
+        {0, 14},
+        {0, 15},
+        {0, 16},
+        {0, 17},
+        {0, 18},
+        {0, 19},
+        {0, 20},
+        {0, 21},
+        {0, 22},
+        {0, 23},
+        {0, 24},
+        {0, 25},
+        {0, 26},
+        {0, 27},
+        {0, 28},
+        {0, 29},
+        {0, 30},
+        {0, 31},
+        {0, 32},
+        {0, 33},
+        {0, 34},
+        {0, 35},
+        {0, 36},
+        {0, 37},
+        {0, 38},
+        {0, 39},
+        {0, 40},
+        {0, 41},
+        {0, 42},
+        {0, 43},
+        {0, 44},
+        {0, 45},
+        {0, 46},
+        {0, 47},
+        {0, 48},
+        {0, 49},
+        {0, 50},
+        {0, 51},
+        {0, 52},
+        {0, 53},
+        {0, 54},
+        {0, 55},
+        {0, 56},
+        {0, 57},
+        {0, 58},
+        {0, 59},
+        {0, 60},
+        {0, 61},
+        {0, 62},
+        {0, 63},
+        {0, 64},
+        {0, 65},
+        {1, 0},
+        {1, 66},
+        {1, 67},
+        {1, 68},
+        {1, 69},
+        {1, 70},
+        {1, 71},
+        {1, 72},
+        {1, 73},
+        {1, 74},
+        {1, 75},
+        {1, 76},
+        {1, 77},
+        {1, 78},
+        {1, 79},
+        {1, 80},
+        {1, 81},
+        {1, 82},
+        {1, 83},
+        {1, 84},
+        {1, 85},
+        {1, 86},
+        {1, 87},
+        {1, 88},
+        {1, 89},
+        {1, 90},
+        {1, 91},
+        {1, 92},
+        {1, 93},
+        {1, 94},
+        {1, 95},
+        {1, 96},
+        {1, 97},
+        {1, 98},
+        {1, 99},
+        {1, 100},
+        {1, 101},
+        {1, 102},
+        {1, 103},
+        {1, 104},
+        {1, 105},
+        {1, 106},
+        {1, 107},
+        {1, 108},
+        {1, 109},
+        {1, 110},
+        {1, 111},
+        {1, 112},
+        {1, 113},
+        {1, 114},
+        {1, 115},
+        {1, 116},
+        {1, 117},
+        {1, 118},
+        {1, 119},
+        {1, 120},
+        {1, 121},
+        {1, 122},
+        {1, 123},
+        {1, 124},
+        {1, 125},
+        {1, 126},
+        {1, 127},
+        {1, 128},
+        {1, 129},
+        {2, 2},
+        {2, 3},
+        {2, 4},
+        {2, 5},
+        {2, 6},
+        {2, 7},
+        {2, 8},
+        {2, 9},
+        {2, 10},
+        {2, 11},
+        {2, 12},
+        {2, 13},
+        {2, 14},
+        {2, 15},
+        {2, 16},
+        {2, 17},
+        {2, 18},
+        {2, 19},
+        {2, 20},
+        {2, 21},
+        {2, 22},
+        {2, 23},
+        {2, 24},
+        {2, 25},
+        {2, 26},
+        {2, 27},
+        {2, 28},
+        {2, 29},
+        {2, 30},
+        {2, 31},
+        {2, 32},
+        {2, 33},
+        {2, 34},
+        {2, 35},
+        {2, 36},
+        {2, 37},
+        {2, 38},
+        {2, 39},
+        {2, 40},
+        {2, 41},
+        {2, 42},
+        {2, 43},
+        {2, 44},
+        {2, 45},
+        {2, 46},
+        {2, 47},
+        {2, 48},
+        {2, 49},
+        {2, 50},
+        {2, 51},
+        {2, 52},
+        {2, 53},
+        {2, 54},
+        {2, 55},
+        {2, 56},
+        {2, 57},
+        {2, 58},
+        {2, 59},
+        {2, 60},
+        {2, 61},
+        {2, 62},
+        {2, 63},
+        {2, 64},
+        {2, 65},
+        {67, 2},
+        {67, 3},
+        {67, 4},
+        {67, 5},
+        {67, 6},
+        {67, 7},
+        {67, 8},
+        {67, 9},
+        {67, 10},
+        {67, 11},
+        {67, 12},
+        {67, 13},
+        {67, 14},
+        {67, 15},
+        {67, 16},
+        {67, 17},
+        {67, 18},
+        {67, 19},
+        {67, 20},
+        {67, 21},
+        {67, 22},
+        {67, 23},
+        {67, 24},
+        {67, 25},
+        {67, 26},
+        {67, 27},
+        {67, 28},
+        {67, 29},
+        {67, 30},
+        {67, 31},
+        {67, 32},
+        {67, 33},
+        {67, 34},
+        {67, 35},
+        {67, 36},
+        {67, 37},
+        {67, 38},
+        {67, 39},
+        {67, 40},
+        {67, 41},
+        {67, 42},
+        {67, 43},
+        {67, 44},
+        {67, 45},
+        {67, 46},
+        {67, 47},
+        {67, 48},
+        {67, 49},
+        {67, 50},
+        {67, 51},
+        {67, 52},
+        {67, 53},
+        {67, 54},
+        {67, 55},
+        {67, 56},
+        {67, 57},
+        {67, 58},
+        {67, 59},
+        {67, 60},
+        {67, 61},
+        {67, 62},
+        {67, 63},
+        {67, 64},
+        {67, 65},
+    };
+    const double v[] = {u[1], u[2], q[0], q[1], q[2], q[3], q[4], q[5], q[6], q[7], q[8], q[9], q[10], q[11], q[12], q[13], q[14], q[15], q[16], q[17], q[18], q[19], q[20], q[21], q[22], q[23], q[24], q[25], q[26], q[27], q[28], q[29], q[30], q[31], q[32], q[33], q[34], q[35], q[36], q[37], q[38], q[39], q[40], q[41], q[42], q[43], q[44], q[45], q[46], q[47], q[48], q[49], q[50], q[51], q[52], q[53], q[54], q[55], q[56], q[57], q[58], q[59], q[60], q[61], q[62], q[63], qd[0], qd[1], qd[2], qd[3], qd[4], qd[5], qd[6], qd[7], qd[8], qd[9], qd[10], qd[11], qd[12], qd[13], qd[14], qd[15], qd[16], qd[17], qd[18], qd[19], qd[20], qd[21], qd[22], qd[23], qd[24], qd[25], qd[26], qd[27], qd[28], qd[29], qd[30], qd[31], qd[32], qd[33], qd[34], qd[35], qd[36], qd[37], qd[38], qd[39], qd[40], qd[41], qd[42], qd[43], qd[44], qd[45], qd[46], qd[47], qd[48], qd[49], qd[50], qd[51], qd[52], qd[53], qd[54], qd[55], qd[56], qd[57], qd[58], qd[59], qd[60], qd[61], qd[62], qd[63]};
+    double m[260];
+    m[0] = 1.0;
+    for (int k = 0; k < 259; ++k) m[k + 1] = m[chain[k][0]] * v[chain[k][1]];
+    struct Term {
+        int coef, mono;
+        double scale;
+    };
+    static const Term terms[] = {
+        {11, 3, -1.0},
+        {12, 4, 1.0},
+        {13, 67, 1.0},
+        {14, 100, 1.0},
+        {15, 101, -1.0},
+        {16, 164, 1.0},
+        {17, 165, -1.0},
+        {0, 196, 1.0},
+        {1, 197, 1.0},
+        {12, 3, 1.0},
+        {11, 4, -1.0},
+        {12, 5, 1.0},
+        {18, 67, 1.0},
+        {19, 100, 1.0},
+        {20, 102, 1.0},
+        {21, 103, -1.0},
+        {22, 164, 1.0},
+        {23, 166, 1.0},
+        {24, 167, -1.0},
+        {1, 196, 1.0},
+        {0, 197, 1.0},
+        {1, 198, 1.0},
+        {12, 4, 1.0},
+        {11, 5, -1.0},
+        {12, 6, 1.0},
+        {25, 67, 1.0},
+        {14, 100, 1.0},
+        {15, 101, 1.0},
+        {14, 102, 1.0},
+        {15, 103, -1.0},
+        {16, 164, 1.0},
+        {17, 165, 1.0},
+        {16, 166, 1.0},
+        {17, 167, -1.0},
+        {1, 197, 1.0},
+        {0, 198, 1.0},
+        {1, 199, 1.0},
+        {12, 5, 1.0},
+        {11, 6, -1.0},
+        {12, 7, 1.0},
+        {26, 67, 1.0},
+        {20, 100, 1.0},
+        {21, 101, 1.0},
+        {19, 102, 1.0},
+        {20, 104, 1.0},
+        {21, 105, -1.0},
+        {23, 164, 1.0},
+        {24, 165, 1.0},
+        {22, 166, 1.0},
+        {23, 168, 1.0},
+        {24, 169, -1.0},
+        {1, 198, 1.0},
+        {0, 199, 1.0},
+        {1, 200, 1.0},
+        {12, 6, 1.0},
+        {11, 7, -1.0},
+        {12, 8, 1.0},
+        {27, 67, 1.0},
+        {14, 102, 1.0},
+        {15, 103, 1.0},
+        {14, 104, 1.0},
+        {15, 105, -1.0},
+        {16, 166, 1.0},
+        {17, 167, 1.0},
+        {16, 168, 1.0},
+        {17, 169, -1.0},
+        {1, 199, 1.0},
+        {0, 200, 1.0},
+        {1, 201, 1.0},
+        {12, 7, 1.0},
+        {11, 8, -1.0},
+        {12, 9, 1.0},
+        {28, 67, 1.0},
+        {20, 102, 1.0},
+        {21, 103, 1.0},
+        {19, 104, 1.0},
+        {20, 106, 1.0},
+        {21, 107, -1.0},
+        {23, 166, 1.0},
+        {24, 167, 1.0},
+        {22, 168, 1.0},
+        {23, 170, 1.0},
+        {24, 171, -1.0},
+        {1, 200, 1.0},
+        {0, 201, 1.0},
+        {1, 202, 1.0},
+        {12, 8, 1.0},
+        {11, 9, -1.0},
+        {12, 10, 1.0},
+        {29, 67, 1.0},
+        {14, 104, 1.0},
+        {15, 105, 1.0},
+        {14, 106, 1.0},
+        {15, 107, -1.0},
+        {16, 168, 1.0},
+        {17, 169, 1.0},
+        {16, 170, 1.0},
+        {17, 171, -1.0},
+        {1, 201, 1.0},
+        {0, 202, 1.0},
+        {1, 203, 1.0},
+        {12, 9, 1.0},
+        {11, 10, -1.0},
+        {12, 11, 1.0},
+        {30, 67, 1.0},
+        {20, 104, 1.0},
+        {21, 105, 1.0},
+        {19, 106, 1.0},
+        {20, 108, 1.0},
+        {21, 109, -1.0},
+        {23, 168, 1.0},
+        {24, 169, 1.0},
+        {22, 170, 1.0},
+        {23, 172, 1.0},
+        {24, 173, -1.0},
+        {1, 202, 1.0},
+        {0, 203, 1.0},
+        {1, 204, 1.0},
+        {12, 10, 1.0},
+        {11, 11, -1.0},
+        {12, 12, 1.0},
+        {31, 67, 1.0},
+        {14, 106, 1.0},
+        {15, 107, 1.0},
+        {14, 108, 1.0},
+        {15, 109, -1.0},
+        {16, 170, 1.0},
+        {17, 171, 1.0},
+        {16, 172, 1.0},
+        {17, 173, -1.0},
+        {1, 203, 1.0},
+        {0, 204, 1.0},
+        {1, 205, 1.0},
+        {12, 11, 1.0},
+        {11, 12, -1.0},
+        {12, 13, 1.0},
+        {32, 67, 1.0},
+        {20, 106, 1.0},
+        {21, 107, 1.0},
+        {19, 108, 1.0},
+        {20, 110, 1.0},
+        {21, 111, -1.0},
+        {23, 170, 1.0},
+        {24, 171, 1.0},
+        {22, 172, 1.0},
+        {23, 174, 1.0},
+        {24, 175, -1.0},
+        {1, 204, 1.0},
+        {0, 205, 1.0},
+        {1, 206, 1.0},
+        {12, 12, 1.0},
+        {11, 13, -1.0},
+        {12, 14, 1.0},
+        {33, 67, 1.0},
+        {14, 108, 1.0},
+        {15, 109, 1.0},
+        {14, 110, 1.0},
+        {15, 111, -1.0},
+        {16, 172, 1.0},
+        {17, 173, 1.0},
+        {16, 174, 1.0},
+        {17, 175, -1.0},
+        {1, 205, 1.0},
+        {0, 206, 1.0},
+        {1, 207, 1.0},
+        {12, 13, 1.0},
+        {11, 14, -1.0},
+        {12, 15, 1.0},
+        {34, 67, 1.0},
+        {20, 108, 1.0},
+        {21, 109, 1.0},
+        {19, 110, 1.0},
+        {20, 112, 1.0},
+        {21, 113, -1.0},
+        {23, 172, 1.0},
+        {24, 173, 1.0},
+        {22, 174, 1.0},
+        {23, 176, 1.0},
+        {24, 177, -1.0},
+        {1, 206, 1.0},
+        {0, 207, 1.0},
+        {1, 208, 1.0},
+        {12, 14, 1.0},
+        {11, 15, -1.0},
+        {12, 16, 1.0},
+        {35, 67, 1.0},
+        {14, 110, 1.0},
+        {15, 111, 1.0},
+        {14, 112, 1.0},
+        {15, 113, -1.0},
+        {16, 174, 1.0},
+        {17, 175, 1.0},
+        {16, 176, 1.0},
+        {17, 177, -1.0},
+        {1, 207, 1.0},
+        {0, 208, 1.0},
+        {1, 209, 1.0},
+        {12, 15, 1.0},
+        {11, 16, -1.0},
+        {12, 17, 1.0},
+        {36, 67, 1.0},
+        {20, 110, 1.0},
+        {21, 111, 1.0},
+        {19, 112, 1.0},
+        {20, 114, 1.0},
+        {21, 115, -1.0},
+        {23, 174, 1.0},
+        {24, 175, 1.0},
+        {22, 176, 1.0},
+        {23, 178, 1.0},
+        {24, 179, -1.0},
+        {1, 208, 1.0},
+        {0, 209, 1.0},
+        {1, 210, 1.0},
+        {12, 16, 1.0},
+        {11, 17, -1.0},
+        {12, 18, 1.0},
+        {37, 67, 1.0},
+        {14, 112, 1.0},
+        {15, 113, 1.0},
+        {14, 114, 1.0},
+        {15, 115, -1.0},
+        {16, 176, 1.0},
+        {17, 177, 1.0},
+        {16, 178, 1.0},
+        {17, 179, -1.0},
+        {1, 209, 1.0},
+        {0, 210, 1.0},
+        {1, 211, 1.0},
+        {12, 17, 1.0},
+        {11, 18, -1.0},
+        {12, 19, 1.0},
+        {38, 67, 1.0},
+        {20, 112, 1.0},
+        {21, 113, 1.0},
+        {19, 114, 1.0},
+        {20, 116, 1.0},
+        {21, 117, -1.0},
+        {23, 176, 1.0},
+        {24, 177, 1.0},
+        {22, 178, 1.0},
+        {23, 180, 1.0},
+        {24, 181, -1.0},
+        {1, 210, 1.0},
+        {0, 211, 1.0},
+        {1, 212, 1.0},
+        {12, 18, 1.0},
+        {11, 19, -1.0},
+        {12, 20, 1.0},
+        {39, 67, 1.0},
+        {14, 114, 1.0},
+        {15, 115, 1.0},
+        {14, 116, 1.0},
+        {15, 117, -1.0},
+        {16, 178, 1.0},
+        {17, 179, 1.0},
+        {16, 180, 1.0},
+        {17, 181, -1.0},
+        {1, 211, 1.0},
+        {0, 212, 1.0},
+        {1, 213, 1.0},
+        {12, 19, 1.0},
+        {11, 20, -1.0},
+        {12, 21, 1.0},
+        {40, 67, 1.0},
+        {20, 114, 1.0},
+        {21, 115, 1.0},
+        {19, 116, 1.0},
+        {20, 118, 1.0},
+        {21, 119, -1.0},
+        {23, 178, 1.0},
+        {24, 179, 1.0},
+        {22, 180, 1.0},
+        {23, 182, 1.0},
+        {24, 183, -1.0},
+        {1, 212, 1.0},
+        {0, 213, 1.0},
+        {1, 214, 1.0},
+        {12, 20, 1.0},
+        {11, 21, -1.0},
+        {12, 22, 1.0},
+        {41, 67, 1.0},
+        {14, 116, 1.0},
+        {15, 117, 1.0},
+        {14, 118, 1.0},
+        {15, 119, -1.0},
+        {16, 180, 1.0},
+        {17, 181, 1.0},
+        {16, 182, 1.0},
+        {17, 183, -1.0},
+        {1, 213, 1.0},
+        {0, 214, 1.0},
+        {1, 215, 1.0},
+        {12, 21, 1.0},
+        {11, 22, -1.0},
+        {12, 23, 1.0},
+        {42, 67, 1.0},
+        {20, 116, 1.0},
+        {21, 117, 1.0},
+        {19, 118, 1.0},
+        {20, 120, 1.0},
+        {21, 121, -1.0},
+        {23, 180, 1.0},
+        {24, 181, 1.0},
+        {22, 182, 1.0},
+        {23, 184, 1.0},
+        {24, 185, -1.0},
+        {1, 214, 1.0},
+        {0, 215, 1.0},
+        {1, 216, 1.0},
+        {12, 22, 1.0},
+        {11, 23, -1.0},
+        {12, 24, 1.0},
+        {43, 67, 1.0},
+        {14, 118, 1.0},
+        {15, 119, 1.0},
+        {14, 120, 1.0},
+        {15, 121, -1.0},
+        {16, 182, 1.0},
+        {17, 183, 1.0},
+        {16, 184, 1.0},
+        {17, 185, -1.0},
+        {1, 215, 1.0},
+        {0, 216, 1.0},
+        {1, 217, 1.0},
+        {12, 23, 1.0},
+        {11, 24, -1.0},
+        {12, 25, 1.0},
+        {44, 67, 1.0},
+        {20, 118, 1.0},
+        {21, 119, 1.0},
+        {19, 120, 1.0},
+        {20, 122, 1.0},
+        {21, 123, -1.0},
+        {23, 182, 1.0},
+        {24, 183, 1.0},
+        {22, 184, 1.0},
+        {23, 186, 1.0},
+        {24, 187, -1.0},
+        {1, 216, 1.0},
+        {0, 217, 1.0},
+        {1, 218, 1.0},
+        {12, 24, 1.0},
+        {11, 25, -1.0},
+        {12, 26, 1.0},
+        {45, 67, 1.0},
+        {14, 120, 1.0},
+        {15, 121, 1.0},
+        {14, 122, 1.0},
+        {15, 123, -1.0},
+        {16, 184, 1.0},
+        {17, 185, 1.0},
+        {16, 186, 1.0},
+        {17, 187, -1.0},
+        {1, 217, 1.0},
+        {0, 218, 1.0},
+        {1, 219, 1.0},
+        {12, 25, 1.0},
+        {11, 26, -1.0},
+        {12, 27, 1.0},
+        {46, 67, 1.0},
+        {20, 120, 1.0},
+        {21, 121, 1.0},
+        {19, 122, 1.0},
+        {20, 124, 1.0},
+        {21, 125, -1.0},
+        {23, 184, 1.0},
+        {24, 185, 1.0},
+        {22, 186, 1.0},
+        {23, 188, 1.0},
+        {24, 189, -1.0},
+        {1, 218, 1.0},
+        {0, 219, 1.0},
+        {1, 220, 1.0},
+        {12, 26, 1.0},
+        {11, 27, -1.0},
+        {12, 28, 1.0},
+        {47, 67, 1.0},
+        {14, 122, 1.0},
+        {15, 123, 1.0},
+        {14, 124, 1.0},
+        {15, 125, -1.0},
+        {16, 186, 1.0},
+        {17, 187, 1.0},
+        {16, 188, 1.0},
+        {17, 189, -1.0},
+        {1, 219, 1.0},
+        {0, 220, 1.0},
+        {1, 221, 1.0},
+        {12, 27, 1.0},
+        {11, 28, -1.0},
+        {12, 29, 1.0},
+        {48, 67, 1.0},
+        {20, 122, 1.0},
+        {21, 123, 1.0},
+        {19, 124, 1.0},
+        {20, 126, 1.0},
+        {21, 127, -1.0},
+        {23, 186, 1.0},
+        {24, 187, 1.0},
+        {22, 188, 1.0},
+        {23, 190, 1.0},
+        {24, 191, -1.0},
+        {1, 220, 1.0},
+        {0, 221, 1.0},
+        {1, 222, 1.0},
+        {12, 28, 1.0},
+        {11, 29, -1.0},
+        {12, 30, 1.0},
+        {49, 67, 1.0},
+        {14, 124, 1.0},
+        {15, 125, 1.0},
+        {14, 126, 1.0},
+        {15, 127, -1.0},
+        {16, 188, 1.0},
+        {17, 189, 1.0},
+        {16, 190, 1.0},
+        {17, 191, -1.0},
+        {1, 221, 1.0},
+        {0, 222, 1.0},
+        {1, 223, 1.0},
+        {12, 29, 1.0},
+        {11, 30, -1.0},
+        {12, 31, 1.0},
+        {50, 67, 1.0},
+        {20, 124, 1.0},
+        {21, 125, 1.0},
+        {19, 126, 1.0},
+        {20, 128, 1.0},
+        {21, 129, -1.0},
+        {23, 188, 1.0},
+        {24, 189, 1.0},
+        {22, 190, 1.0},
+        {23, 192, 1.0},
+        {24, 193, -1.0},
+        {1, 222, 1.0},
+        {0, 223, 1.0},
+        {1, 224, 1.0},
+        {12, 30, 1.0},
+        {11, 31, -1.0},
+        {12, 32, 1.0},
+        {51, 67, 1.0},
+        {14, 126, 1.0},
+        {15, 127, 1.0},
+        {14, 128, 1.0},
+        {15, 129, -1.0},
+        {16, 190, 1.0},
+        {17, 191, 1.0},
+        {16, 192, 1.0},
+        {17, 193, -1.0},
+        {1, 223, 1.0},
+        {0, 224, 1.0},
+        {1, 225, 1.0},
+        {12, 31, 1.0},
+        {11, 32, -1.0},
+        {12, 33, 1.0},
+        {52, 67, 1.0},
+        {20, 126, 1.0},
+        {21, 127, 1.0},
+        {19, 128, 1.0},
+        {20, 130, 1.0},
+        {21, 131, -1.0},
+        {23, 190, 1.0},
+        {24, 191, 1.0},
+        {22, 192, 1.0},
+        {23, 194, 1.0},
+        {24, 195, -1.0},
+        {1, 224, 1.0},
+        {0, 225, 1.0},
+        {1, 226, 1.0},
+        {12, 32, 1.0},
+        {11, 33, -1.0},
+        {12, 34, 1.0},
+        {53, 67, 1.0},
+        {14, 128, 1.0},
+        {15, 129, 1.0},
+        {14, 130, 1.0},
+        {15, 131, -1.0},
+        {16, 192, 1.0},
+        {17, 193, 1.0},
+        {16, 194, 1.0},
+        {17, 195, -1.0},
+        {1, 225, 1.0},
+        {0, 226, 1.0},
+        {1, 227, 1.0},
+        {12, 33, 1.0},
+        {12, 34, -1.0},
+        {54, 67, 1.0},
+        {20, 128, 1.0},
+        {21, 129, 1.0},
+        {22, 130, 1.0},
+        {55, 131, -1.0},
+        {23, 192, 1.0},
+        {24, 193, 1.0},
+        {56, 194, 1.0},
+        {57, 195, -1.0},
+        {1, 226, 1.0},
+        {2, 227, 1.0},
+        {58, 2, -1.0},
+        {59, 35, -1.0},
+        {60, 37, 1.0},
+        {61, 38, -1.0},
+        {14, 68, -1.0},
+        {19, 69, -1.0},
+        {14, 70, -1.0},
+        {20, 71, -1.0},
+        {16, 132, -1.0},
+        {22, 133, -1.0},
+        {16, 134, -1.0},
+        {23, 135, -1.0},
+        {62, 228, -1.0},
+        {63, 229, 1.0},
+        {64, 230, 1.0},
+        {65, 231, -1.0},
+        {66, 2, -1.0},
+        {67, 36, -1.0},
+        {61, 37, 1.0},
+        {68, 38, -1.0},
+        {15, 68, 1.0},
+        {15, 70, -1.0},
+        {21, 71, -1.0},
+        {17, 132, 1.0},
+        {17, 134, -1.0},
+        {24, 135, -1.0},
+        {63, 228, 1.0},
+        {69, 229, -1.0},
+        {70, 230, 1.0},
+        {71, 231, 1.0},
+        {72, 2, -1.0},
+        {60, 35, 1.0},
+        {61, 36, 1.0},
+        {59, 37, -1.0},
+        {60, 39, 1.0},
+        {61, 40, -1.0},
+        {20, 69, -1.0},
+        {14, 70, -1.0},
+        {19, 71, -1.0},
+        {14, 72, -1.0},
+        {20, 73, -1.0},
+        {23, 133, -1.0},
+        {16, 134, -1.0},
+        {22, 135, -1.0},
+        {16, 136, -1.0},
+        {23, 137, -1.0},
+        {64, 228, 1.0},
+        {70, 229, 1.0},
+        {73, 230, -1.0},
+        {74, 231, 1.0},
+        {75, 232, 1.0},
+        {70, 233, -1.0},
+        {66, 2, -1.0},
+        {61, 35, -1.0},
+        {68, 36, -1.0},
+        {67, 38, -1.0},
+        {61, 39, 1.0},
+        {68, 40, -1.0},
+        {21, 69, 1.0},
+        {15, 70, 1.0},
+        {15, 72, -1.0},
+        {21, 73, -1.0},
+        {24, 133, 1.0},
+        {17, 134, 1.0},
+        {17, 136, -1.0},
+        {24, 137, -1.0},
+        {65, 228, -1.0},
+        {71, 229, 1.0},
+        {74, 230, 1.0},
+        {76, 231, -1.0},
+        {77, 232, 1.0},
+        {78, 233, 1.0},
+        {79, 2, -1.0},
+        {60, 37, 1.0},
+        {61, 38, 1.0},
+        {59, 39, -1.0},
+        {60, 41, 1.0},
+        {61, 42, -1.0},
+        {20, 71, -1.0},
+        {14, 72, -1.0},
+        {19, 73, -1.0},
+        {14, 74, -1.0},
+        {20, 75, -1.0},
+        {23, 135, -1.0},
+        {16, 136, -1.0},
+        {22, 137, -1.0},
+        {16, 138, -1.0},
+        {23, 139, -1.0},
+        {75, 230, 1.0},
+        {77, 231, 1.0},
+        {80, 232, -1.0},
+        {81, 233, 1.0},
+        {82, 234, 1.0},
+        {77, 235, -1.0},
+        {66, 2, -1.0},
+        {61, 37, -1.0},
+        {68, 38, -1.0},
+        {67, 40, -1.0},
+        {61, 41, 1.0},
+        {68, 42, -1.0},
+        {21, 71, 1.0},
+        {15, 72, 1.0},
+        {15, 74, -1.0},
+        {21, 75, -1.0},
+        {24, 135, 1.0},
+        {17, 136, 1.0},
+        {17, 138, -1.0},
+        {24, 139, -1.0},
+        {70, 230, -1.0},
+        {78, 231, 1.0},
+        {81, 232, 1.0},
+        {83, 233, -1.0},
+        {84, 234, 1.0},
+        {85, 235, 1.0},
+        {86, 2, -1.0},
+        {60, 39, 1.0},
+        {61, 40, 1.0},
+        {59, 41, -1.0},
+        {60, 43, 1.0},
+        {61, 44, -1.0},
+        {20, 73, -1.0},
+        {14, 74, -1.0},
+        {19, 75, -1.0},
+        {14, 76, -1.0},
+        {20, 77, -1.0},
+        {23, 137, -1.0},
+        {16, 138, -1.0},
+        {22, 139, -1.0},
+        {16, 140, -1.0},
+        {23, 141, -1.0},
+        {82, 232, 1.0},
+        {84, 233, 1.0},
+        {87, 234, -1.0},
+        {88, 235, 1.0},
+        {89, 236, 1.0},
+        {84, 237, -1.0},
+        {66, 2, -1.0},
+        {61, 39, -1.0},
+        {68, 40, -1.0},
+        {67, 42, -1.0},
+        {61, 43, 1.0},
+        {68, 44, -1.0},
+        {21, 73, 1.0},
+        {15, 74, 1.0},
+        {15, 76, -1.0},
+        {21, 77, -1.0},
+        {24, 137, 1.0},
+        {17, 138, 1.0},
+        {17, 140, -1.0},
+        {24, 141, -1.0},
+        {77, 232, -1.0},
+        {85, 233, 1.0},
+        {88, 234, 1.0},
+        {90, 235, -1.0},
+        {91, 236, 1.0},
+        {92, 237, 1.0},
+        {93, 2, -1.0},
+        {60, 41, 1.0},
+        {61, 42, 1.0},
+        {59, 43, -1.0},
+        {60, 45, 1.0},
+        {61, 46, -1.0},
+        {20, 75, -1.0},
+        {14, 76, -1.0},
+        {19, 77, -1.0},
+        {14, 78, -1.0},
+        {20, 79, -1.0},
+        {23, 139, -1.0},
+        {16, 140, -1.0},
+        {22, 141, -1.0},
+        {16, 142, -1.0},
+        {23, 143, -1.0},
+        {89, 234, 1.0},
+        {91, 235, 1.0},
+        {94, 236, -1.0},
+        {95, 237, 1.0},
+        {96, 238, 1.0},
+        {91, 239, -1.0},
+        {66, 2, -1.0},
+        {61, 41, -1.0},
+        {68, 42, -1.0},
+        {67, 44, -1.0},
+        {61, 45, 1.0},
+        {68, 46, -1.0},
+        {21, 75, 1.0},
+        {15, 76, 1.0},
+        {15, 78, -1.0},
+        {21, 79, -1.0},
+        {24, 139, 1.0},
+        {17, 140, 1.0},
+        {17, 142, -1.0},
+        {24, 143, -1.0},
+        {84, 234, -1.0},
+        {92, 235, 1.0},
+        {95, 236, 1.0},
+        {97, 237, -1.0},
+        {98, 238, 1.0},
+        {99, 239, 1.0},
+        {100, 2, -1.0},
+        {60, 43, 1.0},
+        {61, 44, 1.0},
+        {59, 45, -1.0},
+        {60, 47, 1.0},
+        {61, 48, -1.0},
+        {20, 77, -1.0},
+        {14, 78, -1.0},
+        {19, 79, -1.0},
+        {14, 80, -1.0},
+        {20, 81, -1.0},
+        {23, 141, -1.0},
+        {16, 142, -1.0},
+        {22, 143, -1.0},
+        {16, 144, -1.0},
+        {23, 145, -1.0},
+        {96, 236, 1.0},
+        {98, 237, 1.0},
+        {101, 238, -1.0},
+        {102, 239, 1.0},
+        {103, 240, 1.0},
+        {98, 241, -1.0},
+        {66, 2, -1.0},
+        {61, 43, -1.0},
+        {68, 44, -1.0},
+        {67, 46, -1.0},
+        {61, 47, 1.0},
+        {68, 48, -1.0},
+        {21, 77, 1.0},
+        {15, 78, 1.0},
+        {15, 80, -1.0},
+        {21, 81, -1.0},
+        {24, 141, 1.0},
+        {17, 142, 1.0},
+        {17, 144, -1.0},
+        {24, 145, -1.0},
+        {91, 236, -1.0},
+        {99, 237, 1.0},
+        {102, 238, 1.0},
+        {104, 239, -1.0},
+        {105, 240, 1.0},
+        {106, 241, 1.0},
+        {107, 2, -1.0},
+        {60, 45, 1.0},
+        {61, 46, 1.0},
+        {59, 47, -1.0},
+        {60, 49, 1.0},
+        {61, 50, -1.0},
+        {20, 79, -1.0},
+        {14, 80, -1.0},
+        {19, 81, -1.0},
+        {14, 82, -1.0},
+        {20, 83, -1.0},
+        {23, 143, -1.0},
+        {16, 144, -1.0},
+        {22, 145, -1.0},
+        {16, 146, -1.0},
+        {23, 147, -1.0},
+        {103, 238, 1.0},
+        {105, 239, 1.0},
+        {108, 240, -1.0},
+        {109, 241, 1.0},
+        {110, 242, 1.0},
+        {105, 243, -1.0},
+        {66, 2, -1.0},
+        {61, 45, -1.0},
+        {68, 46, -1.0},
+        {67, 48, -1.0},
+        {61, 49, 1.0},
+        {68, 50, -1.0},
+        {21, 79, 1.0},
+        {15, 80, 1.0},
+        {15, 82, -1.0},
+        {21, 83, -1.0},
+        {24, 143, 1.0},
+        {17, 144, 1.0},
+        {17, 146, -1.0},
+        {24, 147, -1.0},
+        {98, 238, -1.0},
+        {106, 239, 1.0},
+        {109, 240, 1.0},
+        {111, 241, -1.0},
+        {112, 242, 1.0},
+        {113, 243, 1.0},
+        {114, 2, -1.0},
+        {60, 47, 1.0},
+        {61, 48, 1.0},
+        {59, 49, -1.0},
+        {60, 51, 1.0},
+        {61, 52, -1.0},
+        {20, 81, -1.0},
+        {14, 82, -1.0},
+        {19, 83, -1.0},
+        {14, 84, -1.0},
+        {20, 85, -1.0},
+        {23, 145, -1.0},
+        {16, 146, -1.0},
+        {22, 147, -1.0},
+        {16, 148, -1.0},
+        {23, 149, -1.0},
+        {110, 240, 1.0},
+        {112, 241, 1.0},
+        {115, 242, -1.0},
+        {116, 243, 1.0},
+        {117, 244, 1.0},
+        {112, 245, -1.0},
+        {66, 2, -1.0},
+        {61, 47, -1.0},
+        {68, 48, -1.0},
+        {67, 50, -1.0},
+        {61, 51, 1.0},
+        {68, 52, -1.0},
+        {21, 81, 1.0},
+        {15, 82, 1.0},
+        {15, 84, -1.0},
+        {21, 85, -1.0},
+        {24, 145, 1.0},
+        {17, 146, 1.0},
+        {17, 148, -1.0},
+        {24, 149, -1.0},
+        {105, 240, -1.0},
+        {113, 241, 1.0},
+        {116, 242, 1.0},
+        {118, 243, -1.0},
+        {119, 244, 1.0},
+        {120, 245, 1.0},
+        {121, 2, -1.0},
+        {60, 49, 1.0},
+        {61, 50, 1.0},
+        {59, 51, -1.0},
+        {60, 53, 1.0},
+        {61, 54, -1.0},
+        {20, 83, -1.0},
+        {14, 84, -1.0},
+        {19, 85, -1.0},
+        {14, 86, -1.0},
+        {20, 87, -1.0},
+        {23, 147, -1.0},
+        {16, 148, -1.0},
+        {22, 149, -1.0},
+        {16, 150, -1.0},
+        {23, 151, -1.0},
+        {117, 242, 1.0},
+        {119, 243, 1.0},
+        {122, 244, -1.0},
+        {123, 245, 1.0},
+        {124, 246, 1.0},
+        {119, 247, -1.0},
+        {66, 2, -1.0},
+        {61, 49, -1.0},
+        {68, 50, -1.0},
+        {67, 52, -1.0},
+        {61, 53, 1.0},
+        {68, 54, -1.0},
+        {21, 83, 1.0},
+        {15, 84, 1.0},
+        {15, 86, -1.0},
+        {21, 87, -1.0},
+        {24, 147, 1.0},
+        {17, 148, 1.0},
+        {17, 150, -1.0},
+        {24, 151, -1.0},
+        {112, 242, -1.0},
+        {120, 243, 1.0},
+        {123, 244, 1.0},
+        {125, 245, -1.0},
+        {126, 246, 1.0},
+        {127, 247, 1.0},
+        {128, 2, -1.0},
+        {60, 51, 1.0},
+        {61, 52, 1.0},
+        {59, 53, -1.0},
+        {60, 55, 1.0},
+        {61, 56, -1.0},
+        {20, 85, -1.0},
+        {14, 86, -1.0},
+        {19, 87, -1.0},
+        {14, 88, -1.0},
+        {20, 89, -1.0},
+        {23, 149, -1.0},
+        {16, 150, -1.0},
+        {22, 151, -1.0},
+        {16, 152, -1.0},
+        {23, 153, -1.0},
+        {124, 244, 1.0},
+        {126, 245, 1.0},
+        {129, 246, -1.0},
+        {130, 247, 1.0},
+        {131, 248, 1.0},
+        {126, 249, -1.0},
+        {66, 2, -1.0},
+        {61, 51, -1.0},
+        {68, 52, -1.0},
+        {67, 54, -1.0},
+        {61, 55, 1.0},
+        {68, 56, -1.0},
+        {21, 85, 1.0},
+        {15, 86, 1.0},
+        {15, 88, -1.0},
+        {21, 89, -1.0},
+        {24, 149, 1.0},
+        {17, 150, 1.0},
+        {17, 152, -1.0},
+        {24, 153, -1.0},
+        {119, 244, -1.0},
+        {127, 245, 1.0},
+        {130, 246, 1.0},
+        {132, 247, -1.0},
+        {133, 248, 1.0},
+        {134, 249, 1.0},
+        {135, 2, -1.0},
+        {60, 53, 1.0},
+        {61, 54, 1.0},
+        {59, 55, -1.0},
+        {60, 57, 1.0},
+        {61, 58, -1.0},
+        {20, 87, -1.0},
+        {14, 88, -1.0},
+        {19, 89, -1.0},
+        {14, 90, -1.0},
+        {20, 91, -1.0},
+        {23, 151, -1.0},
+        {16, 152, -1.0},
+        {22, 153, -1.0},
+        {16, 154, -1.0},
+        {23, 155, -1.0},
+        {131, 246, 1.0},
+        {133, 247, 1.0},
+        {136, 248, -1.0},
+        {137, 249, 1.0},
+        {138, 250, 1.0},
+        {133, 251, -1.0},
+        {66, 2, -1.0},
+        {61, 53, -1.0},
+        {68, 54, -1.0},
+        {67, 56, -1.0},
+        {61, 57, 1.0},
+        {68, 58, -1.0},
+        {21, 87, 1.0},
+        {15, 88, 1.0},
+        {15, 90, -1.0},
+        {21, 91, -1.0},
+        {24, 151, 1.0},
+        {17, 152, 1.0},
+        {17, 154, -1.0},
+        {24, 155, -1.0},
+        {126, 246, -1.0},
+        {134, 247, 1.0},
+        {137, 248, 1.0},
+        {139, 249, -1.0},
+        {140, 250, 1.0},
+        {141, 251, 1.0},
+        {142, 2, -1.0},
+        {60, 55, 1.0},
+        {61, 56, 1.0},
+        {59, 57, -1.0},
+        {60, 59, 1.0},
+        {61, 60, -1.0},
+        {20, 89, -1.0},
+        {14, 90, -1.0},
+        {19, 91, -1.0},
+        {14, 92, -1.0},
+        {20, 93, -1.0},
+        {23, 153, -1.0},
+        {16, 154, -1.0},
+        {22, 155, -1.0},
+        {16, 156, -1.0},
+        {23, 157, -1.0},
+        {138, 248, 1.0},
+        {140, 249, 1.0},
+        {143, 250, -1.0},
+        {144, 251, 1.0},
+        {145, 252, 1.0},
+        {140, 253, -1.0},
+        {66, 2, -1.0},
+        {61, 55, -1.0},
+        {68, 56, -1.0},
+        {67, 58, -1.0},
+        {61, 59, 1.0},
+        {68, 60, -1.0},
+        {21, 89, 1.0},
+        {15, 90, 1.0},
+        {15, 92, -1.0},
+        {21, 93, -1.0},
+        {24, 153, 1.0},
+        {17, 154, 1.0},
+        {17, 156, -1.0},
+        {24, 157, -1.0},
+        {133, 248, -1.0},
+        {141, 249, 1.0},
+        {144, 250, 1.0},
+        {146, 251, -1.0},
+        {147, 252, 1.0},
+        {148, 253, 1.0},
+        {149, 2, -1.0},
+        {60, 57, 1.0},
+        {61, 58, 1.0},
+        {59, 59, -1.0},
+        {60, 61, 1.0},
+        {61, 62, -1.0},
+        {20, 91, -1.0},
+        {14, 92, -1.0},
+        {19, 93, -1.0},
+        {14, 94, -1.0},
+        {20, 95, -1.0},
+        {23, 155, -1.0},
+        {16, 156, -1.0},
+        {22, 157, -1.0},
+        {16, 158, -1.0},
+        {23, 159, -1.0},
+        {145, 250, 1.0},
+        {147, 251, 1.0},
+        {150, 252, -1.0},
+        {151, 253, 1.0},
+        {152, 254, 1.0},
+        {147, 255, -1.0},
+        {66, 2, -1.0},
+        {61, 57, -1.0},
+        {68, 58, -1.0},
+        {67, 60, -1.0},
+        {61, 61, 1.0},
+        {68, 62, -1.0},
+        {21, 91, 1.0},
+        {15, 92, 1.0},
+        {15, 94, -1.0},
+        {21, 95, -1.0},
+        {24, 155, 1.0},
+        {17, 156, 1.0},
+        {17, 158, -1.0},
+        {24, 159, -1.0},
+        {140, 250, -1.0},
+        {148, 251, 1.0},
+        {151, 252, 1.0},
+        {153, 253, -1.0},
+        {154, 254, 1.0},
+        {155, 255, 1.0},
+        {156, 2, -1.0},
+        {60, 59, 1.0},
+        {61, 60, 1.0},
+        {59, 61, -1.0},
+        {60, 63, 1.0},
+        {61, 64, -1.0},
+        {20, 93, -1.0},
+        {14, 94, -1.0},
+        {19, 95, -1.0},
+        {14, 96, -1.0},
+        {20, 97, -1.0},
+        {23, 157, -1.0},
+        {16, 158, -1.0},
+        {22, 159, -1.0},
+        {16, 160, -1.0},
+        {23, 161, -1.0},
+        {152, 252, 1.0},
+        {154, 253, 1.0},
+        {157, 254, -1.0},
+        {158, 255, 1.0},
+        {159, 256, 1.0},
+        {154, 257, -1.0},
+        {66, 2, -1.0},
+        {61, 59, -1.0},
+        {68, 60, -1.0},
+        {67, 62, -1.0},
+        {61, 63, 1.0},
+        {68, 64, -1.0},
+        {21, 93, 1.0},
+        {15, 94, 1.0},
+        {15, 96, -1.0},
+        {21, 97, -1.0},
+        {24, 157, 1.0},
+        {17, 158, 1.0},
+        {17, 160, -1.0},
+        {24, 161, -1.0},
+        {147, 252, -1.0},
+        {155, 253, 1.0},
+        {158, 254, 1.0},
+        {160, 255, -1.0},
+        {161, 256, 1.0},
+        {162, 257, 1.0},
+        {163, 2, -1.0},
+        {60, 61, 1.0},
+        {61, 62, 1.0},
+        {59, 63, -1.0},
+        {60, 65, 1.0},
+        {61, 66, -1.0},
+        {20, 95, -1.0},
+        {14, 96, -1.0},
+        {19, 97, -1.0},
+        {14, 98, -1.0},
+        {20, 99, -1.0},
+        {23, 159, -1.0},
+        {16, 160, -1.0},
+        {22, 161, -1.0},
+        {16, 162, -1.0},
+        {23, 163, -1.0},
+        {159, 254, 1.0},
+        {161, 255, 1.0},
+        {164, 256, -1.0},
+        {165, 257, 1.0},
+        {166, 258, 1.0},
+        {161, 259, -1.0},
+        {66, 2, -1.0},
+        {61, 61, -1.0},
+        {68, 62, -1.0},
+        {67, 64, -1.0},
+        {61, 65, 1.0},
+        {68, 66, -1.0},
+        {21, 95, 1.0},
+        {15, 96, 1.0},
+        {15, 98, -1.0},
+        {21, 99, -1.0},
+        {24, 159, 1.0},
+        {17, 160, 1.0},
+        {17, 162, -1.0},
+        {24, 163, -1.0},
+        {154, 254, -1.0},
+        {162, 255, 1.0},
+        {165, 256, 1.0},
+        {167, 257, -1.0},
+        {168, 258, 1.0},
+        {169, 259, 1.0},
+        {170, 2, -1.0},
+        {60, 63, 1.0},
+        {61, 64, 1.0},
+        {60, 65, -1.0},
+        {61, 66, 1.0},
+        {20, 97, -1.0},
+        {14, 98, -1.0},
+        {22, 99, -1.0},
+        {23, 161, -1.0},
+        {16, 162, -1.0},
+        {56, 163, -1.0},
+        {166, 256, 1.0},
+        {168, 257, 1.0},
+        {171, 258, -1.0},
+        {172, 259, 1.0},
+        {173, 2, 1.0},
+        {61, 63, -1.0},
+        {68, 64, -1.0},
+        {61, 65, 1.0},
+        {174, 66, -1.0},
+        {21, 97, 1.0},
+        {15, 98, 1.0},
+        {55, 99, 1.0},
+        {24, 161, 1.0},
+        {17, 162, 1.0},
+        {57, 163, 1.0},
+        {161, 256, -1.0},
+        {169, 257, 1.0},
+        {172, 258, 1.0},
+        {175, 259, -1.0},
+    };
+    static const int written[] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15,
+        16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31,
+        32, 33, 34, 35, 36, 37, 38, 39, 40, 41, 42, 43, 44, 45, 46, 47,
+        48, 49, 50, 51, 52, 53, 54, 55, 56, 57, 58, 59, 60, 61, 62, 63};
+    static const int first[] = {0, 9, 22, 37, 54, 69, 86, 101, 118, 133, 150, 165, 182, 197, 214, 229,
+        246, 261, 278, 293, 310, 325, 342, 357, 374, 389, 406, 421, 438, 453, 470, 485,
+        498, 514, 528, 550, 570, 592, 612, 634, 654, 676, 696, 718, 738, 760, 780, 802,
+        822, 844, 864, 886, 906, 928, 948, 970, 990, 1012, 1032, 1054, 1074, 1096, 1116, 1131, 1146};
+    for (int i = 0; i < 64; ++i) {
+        double sum = 0.0;
+        for (int t = first[i]; t < first[i + 1]; ++t) sum += terms[t].scale * c[terms[t].coef] * m[terms[t].mono];
+        out[written[i]] = sum;
+    }
 }
 
 /* forces_terms:(c[332],u[3],q[64],qd[64])->(m[258]) the state monomials of Q: Q = F m */
@@ -1503,1155 +2548,1313 @@ void fem_nx32_ny32_prescribed_first_forces_terms(const double* c, const double* 
 /* forces_matrix:(c[332],u[3],q[64],qd[64])->(F[64*258]) row-major, state-free: Q = F m; nonzero entries only */
 void fem_nx32_ny32_prescribed_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
+    // Table form (1146 terms, 0 monomials): m[0] = 1, m[k + 1] = m[chain[k][0]] * v[chain[k][1]];
+    // out[written[i]] = sum of t.scale * c[t.coef] * m[t.mono] over terms[first[i]] .. terms[first[i + 1] - 1].
     (void)u;
     (void)q;
     (void)qd;
-    out[1] = -c[11];
-    out[2] = c[12];
-    out[65] = c[13];
-    out[98] = c[14];
-    out[99] = -c[15];
-    out[162] = c[16];
-    out[163] = -c[17];
-    out[194] = c[0];
-    out[195] = c[1];
-    out[259] = c[12];
-    out[260] = -c[11];
-    out[261] = c[12];
-    out[323] = c[18];
-    out[356] = c[19];
-    out[358] = c[20];
-    out[359] = -c[21];
-    out[420] = c[22];
-    out[422] = c[23];
-    out[423] = -c[24];
-    out[452] = c[1];
-    out[453] = c[0];
-    out[454] = c[1];
-    out[518] = c[12];
-    out[519] = -c[11];
-    out[520] = c[12];
-    out[581] = c[25];
-    out[614] = c[14];
-    out[615] = c[15];
-    out[616] = c[14];
-    out[617] = -c[15];
-    out[678] = c[16];
-    out[679] = c[17];
-    out[680] = c[16];
-    out[681] = -c[17];
-    out[711] = c[1];
-    out[712] = c[0];
-    out[713] = c[1];
-    out[777] = c[12];
-    out[778] = -c[11];
-    out[779] = c[12];
-    out[839] = c[26];
-    out[872] = c[20];
-    out[873] = c[21];
-    out[874] = c[19];
-    out[876] = c[20];
-    out[877] = -c[21];
-    out[936] = c[23];
-    out[937] = c[24];
-    out[938] = c[22];
-    out[940] = c[23];
-    out[941] = -c[24];
-    out[970] = c[1];
-    out[971] = c[0];
-    out[972] = c[1];
-    out[1036] = c[12];
-    out[1037] = -c[11];
-    out[1038] = c[12];
-    out[1097] = c[27];
-    out[1132] = c[14];
-    out[1133] = c[15];
-    out[1134] = c[14];
-    out[1135] = -c[15];
-    out[1196] = c[16];
-    out[1197] = c[17];
-    out[1198] = c[16];
-    out[1199] = -c[17];
-    out[1229] = c[1];
-    out[1230] = c[0];
-    out[1231] = c[1];
-    out[1295] = c[12];
-    out[1296] = -c[11];
-    out[1297] = c[12];
-    out[1355] = c[28];
-    out[1390] = c[20];
-    out[1391] = c[21];
-    out[1392] = c[19];
-    out[1394] = c[20];
-    out[1395] = -c[21];
-    out[1454] = c[23];
-    out[1455] = c[24];
-    out[1456] = c[22];
-    out[1458] = c[23];
-    out[1459] = -c[24];
-    out[1488] = c[1];
-    out[1489] = c[0];
-    out[1490] = c[1];
-    out[1554] = c[12];
-    out[1555] = -c[11];
-    out[1556] = c[12];
-    out[1613] = c[29];
-    out[1650] = c[14];
-    out[1651] = c[15];
-    out[1652] = c[14];
-    out[1653] = -c[15];
-    out[1714] = c[16];
-    out[1715] = c[17];
-    out[1716] = c[16];
-    out[1717] = -c[17];
-    out[1747] = c[1];
-    out[1748] = c[0];
-    out[1749] = c[1];
-    out[1813] = c[12];
-    out[1814] = -c[11];
-    out[1815] = c[12];
-    out[1871] = c[30];
-    out[1908] = c[20];
-    out[1909] = c[21];
-    out[1910] = c[19];
-    out[1912] = c[20];
-    out[1913] = -c[21];
-    out[1972] = c[23];
-    out[1973] = c[24];
-    out[1974] = c[22];
-    out[1976] = c[23];
-    out[1977] = -c[24];
-    out[2006] = c[1];
-    out[2007] = c[0];
-    out[2008] = c[1];
-    out[2072] = c[12];
-    out[2073] = -c[11];
-    out[2074] = c[12];
-    out[2129] = c[31];
-    out[2168] = c[14];
-    out[2169] = c[15];
-    out[2170] = c[14];
-    out[2171] = -c[15];
-    out[2232] = c[16];
-    out[2233] = c[17];
-    out[2234] = c[16];
-    out[2235] = -c[17];
-    out[2265] = c[1];
-    out[2266] = c[0];
-    out[2267] = c[1];
-    out[2331] = c[12];
-    out[2332] = -c[11];
-    out[2333] = c[12];
-    out[2387] = c[32];
-    out[2426] = c[20];
-    out[2427] = c[21];
-    out[2428] = c[19];
-    out[2430] = c[20];
-    out[2431] = -c[21];
-    out[2490] = c[23];
-    out[2491] = c[24];
-    out[2492] = c[22];
-    out[2494] = c[23];
-    out[2495] = -c[24];
-    out[2524] = c[1];
-    out[2525] = c[0];
-    out[2526] = c[1];
-    out[2590] = c[12];
-    out[2591] = -c[11];
-    out[2592] = c[12];
-    out[2645] = c[33];
-    out[2686] = c[14];
-    out[2687] = c[15];
-    out[2688] = c[14];
-    out[2689] = -c[15];
-    out[2750] = c[16];
-    out[2751] = c[17];
-    out[2752] = c[16];
-    out[2753] = -c[17];
-    out[2783] = c[1];
-    out[2784] = c[0];
-    out[2785] = c[1];
-    out[2849] = c[12];
-    out[2850] = -c[11];
-    out[2851] = c[12];
-    out[2903] = c[34];
-    out[2944] = c[20];
-    out[2945] = c[21];
-    out[2946] = c[19];
-    out[2948] = c[20];
-    out[2949] = -c[21];
-    out[3008] = c[23];
-    out[3009] = c[24];
-    out[3010] = c[22];
-    out[3012] = c[23];
-    out[3013] = -c[24];
-    out[3042] = c[1];
-    out[3043] = c[0];
-    out[3044] = c[1];
-    out[3108] = c[12];
-    out[3109] = -c[11];
-    out[3110] = c[12];
-    out[3161] = c[35];
-    out[3204] = c[14];
-    out[3205] = c[15];
-    out[3206] = c[14];
-    out[3207] = -c[15];
-    out[3268] = c[16];
-    out[3269] = c[17];
-    out[3270] = c[16];
-    out[3271] = -c[17];
-    out[3301] = c[1];
-    out[3302] = c[0];
-    out[3303] = c[1];
-    out[3367] = c[12];
-    out[3368] = -c[11];
-    out[3369] = c[12];
-    out[3419] = c[36];
-    out[3462] = c[20];
-    out[3463] = c[21];
-    out[3464] = c[19];
-    out[3466] = c[20];
-    out[3467] = -c[21];
-    out[3526] = c[23];
-    out[3527] = c[24];
-    out[3528] = c[22];
-    out[3530] = c[23];
-    out[3531] = -c[24];
-    out[3560] = c[1];
-    out[3561] = c[0];
-    out[3562] = c[1];
-    out[3626] = c[12];
-    out[3627] = -c[11];
-    out[3628] = c[12];
-    out[3677] = c[37];
-    out[3722] = c[14];
-    out[3723] = c[15];
-    out[3724] = c[14];
-    out[3725] = -c[15];
-    out[3786] = c[16];
-    out[3787] = c[17];
-    out[3788] = c[16];
-    out[3789] = -c[17];
-    out[3819] = c[1];
-    out[3820] = c[0];
-    out[3821] = c[1];
-    out[3885] = c[12];
-    out[3886] = -c[11];
-    out[3887] = c[12];
-    out[3935] = c[38];
-    out[3980] = c[20];
-    out[3981] = c[21];
-    out[3982] = c[19];
-    out[3984] = c[20];
-    out[3985] = -c[21];
-    out[4044] = c[23];
-    out[4045] = c[24];
-    out[4046] = c[22];
-    out[4048] = c[23];
-    out[4049] = -c[24];
-    out[4078] = c[1];
-    out[4079] = c[0];
-    out[4080] = c[1];
-    out[4144] = c[12];
-    out[4145] = -c[11];
-    out[4146] = c[12];
-    out[4193] = c[39];
-    out[4240] = c[14];
-    out[4241] = c[15];
-    out[4242] = c[14];
-    out[4243] = -c[15];
-    out[4304] = c[16];
-    out[4305] = c[17];
-    out[4306] = c[16];
-    out[4307] = -c[17];
-    out[4337] = c[1];
-    out[4338] = c[0];
-    out[4339] = c[1];
-    out[4403] = c[12];
-    out[4404] = -c[11];
-    out[4405] = c[12];
-    out[4451] = c[40];
-    out[4498] = c[20];
-    out[4499] = c[21];
-    out[4500] = c[19];
-    out[4502] = c[20];
-    out[4503] = -c[21];
-    out[4562] = c[23];
-    out[4563] = c[24];
-    out[4564] = c[22];
-    out[4566] = c[23];
-    out[4567] = -c[24];
-    out[4596] = c[1];
-    out[4597] = c[0];
-    out[4598] = c[1];
-    out[4662] = c[12];
-    out[4663] = -c[11];
-    out[4664] = c[12];
-    out[4709] = c[41];
-    out[4758] = c[14];
-    out[4759] = c[15];
-    out[4760] = c[14];
-    out[4761] = -c[15];
-    out[4822] = c[16];
-    out[4823] = c[17];
-    out[4824] = c[16];
-    out[4825] = -c[17];
-    out[4855] = c[1];
-    out[4856] = c[0];
-    out[4857] = c[1];
-    out[4921] = c[12];
-    out[4922] = -c[11];
-    out[4923] = c[12];
-    out[4967] = c[42];
-    out[5016] = c[20];
-    out[5017] = c[21];
-    out[5018] = c[19];
-    out[5020] = c[20];
-    out[5021] = -c[21];
-    out[5080] = c[23];
-    out[5081] = c[24];
-    out[5082] = c[22];
-    out[5084] = c[23];
-    out[5085] = -c[24];
-    out[5114] = c[1];
-    out[5115] = c[0];
-    out[5116] = c[1];
-    out[5180] = c[12];
-    out[5181] = -c[11];
-    out[5182] = c[12];
-    out[5225] = c[43];
-    out[5276] = c[14];
-    out[5277] = c[15];
-    out[5278] = c[14];
-    out[5279] = -c[15];
-    out[5340] = c[16];
-    out[5341] = c[17];
-    out[5342] = c[16];
-    out[5343] = -c[17];
-    out[5373] = c[1];
-    out[5374] = c[0];
-    out[5375] = c[1];
-    out[5439] = c[12];
-    out[5440] = -c[11];
-    out[5441] = c[12];
-    out[5483] = c[44];
-    out[5534] = c[20];
-    out[5535] = c[21];
-    out[5536] = c[19];
-    out[5538] = c[20];
-    out[5539] = -c[21];
-    out[5598] = c[23];
-    out[5599] = c[24];
-    out[5600] = c[22];
-    out[5602] = c[23];
-    out[5603] = -c[24];
-    out[5632] = c[1];
-    out[5633] = c[0];
-    out[5634] = c[1];
-    out[5698] = c[12];
-    out[5699] = -c[11];
-    out[5700] = c[12];
-    out[5741] = c[45];
-    out[5794] = c[14];
-    out[5795] = c[15];
-    out[5796] = c[14];
-    out[5797] = -c[15];
-    out[5858] = c[16];
-    out[5859] = c[17];
-    out[5860] = c[16];
-    out[5861] = -c[17];
-    out[5891] = c[1];
-    out[5892] = c[0];
-    out[5893] = c[1];
-    out[5957] = c[12];
-    out[5958] = -c[11];
-    out[5959] = c[12];
-    out[5999] = c[46];
-    out[6052] = c[20];
-    out[6053] = c[21];
-    out[6054] = c[19];
-    out[6056] = c[20];
-    out[6057] = -c[21];
-    out[6116] = c[23];
-    out[6117] = c[24];
-    out[6118] = c[22];
-    out[6120] = c[23];
-    out[6121] = -c[24];
-    out[6150] = c[1];
-    out[6151] = c[0];
-    out[6152] = c[1];
-    out[6216] = c[12];
-    out[6217] = -c[11];
-    out[6218] = c[12];
-    out[6257] = c[47];
-    out[6312] = c[14];
-    out[6313] = c[15];
-    out[6314] = c[14];
-    out[6315] = -c[15];
-    out[6376] = c[16];
-    out[6377] = c[17];
-    out[6378] = c[16];
-    out[6379] = -c[17];
-    out[6409] = c[1];
-    out[6410] = c[0];
-    out[6411] = c[1];
-    out[6475] = c[12];
-    out[6476] = -c[11];
-    out[6477] = c[12];
-    out[6515] = c[48];
-    out[6570] = c[20];
-    out[6571] = c[21];
-    out[6572] = c[19];
-    out[6574] = c[20];
-    out[6575] = -c[21];
-    out[6634] = c[23];
-    out[6635] = c[24];
-    out[6636] = c[22];
-    out[6638] = c[23];
-    out[6639] = -c[24];
-    out[6668] = c[1];
-    out[6669] = c[0];
-    out[6670] = c[1];
-    out[6734] = c[12];
-    out[6735] = -c[11];
-    out[6736] = c[12];
-    out[6773] = c[49];
-    out[6830] = c[14];
-    out[6831] = c[15];
-    out[6832] = c[14];
-    out[6833] = -c[15];
-    out[6894] = c[16];
-    out[6895] = c[17];
-    out[6896] = c[16];
-    out[6897] = -c[17];
-    out[6927] = c[1];
-    out[6928] = c[0];
-    out[6929] = c[1];
-    out[6993] = c[12];
-    out[6994] = -c[11];
-    out[6995] = c[12];
-    out[7031] = c[50];
-    out[7088] = c[20];
-    out[7089] = c[21];
-    out[7090] = c[19];
-    out[7092] = c[20];
-    out[7093] = -c[21];
-    out[7152] = c[23];
-    out[7153] = c[24];
-    out[7154] = c[22];
-    out[7156] = c[23];
-    out[7157] = -c[24];
-    out[7186] = c[1];
-    out[7187] = c[0];
-    out[7188] = c[1];
-    out[7252] = c[12];
-    out[7253] = -c[11];
-    out[7254] = c[12];
-    out[7289] = c[51];
-    out[7348] = c[14];
-    out[7349] = c[15];
-    out[7350] = c[14];
-    out[7351] = -c[15];
-    out[7412] = c[16];
-    out[7413] = c[17];
-    out[7414] = c[16];
-    out[7415] = -c[17];
-    out[7445] = c[1];
-    out[7446] = c[0];
-    out[7447] = c[1];
-    out[7511] = c[12];
-    out[7512] = -c[11];
-    out[7513] = c[12];
-    out[7547] = c[52];
-    out[7606] = c[20];
-    out[7607] = c[21];
-    out[7608] = c[19];
-    out[7610] = c[20];
-    out[7611] = -c[21];
-    out[7670] = c[23];
-    out[7671] = c[24];
-    out[7672] = c[22];
-    out[7674] = c[23];
-    out[7675] = -c[24];
-    out[7704] = c[1];
-    out[7705] = c[0];
-    out[7706] = c[1];
-    out[7770] = c[12];
-    out[7771] = -c[11];
-    out[7772] = c[12];
-    out[7805] = c[53];
-    out[7866] = c[14];
-    out[7867] = c[15];
-    out[7868] = c[14];
-    out[7869] = -c[15];
-    out[7930] = c[16];
-    out[7931] = c[17];
-    out[7932] = c[16];
-    out[7933] = -c[17];
-    out[7963] = c[1];
-    out[7964] = c[0];
-    out[7965] = c[1];
-    out[8029] = c[12];
-    out[8030] = -c[12];
-    out[8063] = c[54];
-    out[8124] = c[20];
-    out[8125] = c[21];
-    out[8126] = c[22];
-    out[8127] = -c[55];
-    out[8188] = c[23];
-    out[8189] = c[24];
-    out[8190] = c[56];
-    out[8191] = -c[57];
-    out[8222] = c[1];
-    out[8223] = c[2];
-    out[8256] = -c[58];
-    out[8289] = -c[59];
-    out[8291] = c[60];
-    out[8292] = -c[61];
-    out[8322] = -c[14];
-    out[8323] = -c[19];
-    out[8324] = -c[14];
-    out[8325] = -c[20];
-    out[8386] = -c[16];
-    out[8387] = -c[22];
-    out[8388] = -c[16];
-    out[8389] = -c[23];
-    out[8482] = -c[62];
-    out[8483] = c[63];
-    out[8484] = c[64];
-    out[8485] = -c[65];
-    out[8514] = -c[66];
-    out[8548] = -c[67];
-    out[8549] = c[61];
-    out[8550] = -c[68];
-    out[8580] = c[15];
-    out[8582] = -c[15];
-    out[8583] = -c[21];
-    out[8644] = c[17];
-    out[8646] = -c[17];
-    out[8647] = -c[24];
-    out[8740] = c[63];
-    out[8741] = -c[69];
-    out[8742] = c[70];
-    out[8743] = c[71];
-    out[8772] = -c[72];
-    out[8805] = c[60];
-    out[8806] = c[61];
-    out[8807] = -c[59];
-    out[8809] = c[60];
-    out[8810] = -c[61];
-    out[8839] = -c[20];
-    out[8840] = -c[14];
-    out[8841] = -c[19];
-    out[8842] = -c[14];
-    out[8843] = -c[20];
-    out[8903] = -c[23];
-    out[8904] = -c[16];
-    out[8905] = -c[22];
-    out[8906] = -c[16];
-    out[8907] = -c[23];
-    out[8998] = c[64];
-    out[8999] = c[70];
-    out[9000] = -c[73];
-    out[9001] = c[74];
-    out[9002] = c[75];
-    out[9003] = -c[70];
-    out[9030] = -c[66];
-    out[9063] = -c[61];
-    out[9064] = -c[68];
-    out[9066] = -c[67];
-    out[9067] = c[61];
-    out[9068] = -c[68];
-    out[9097] = c[21];
-    out[9098] = c[15];
-    out[9100] = -c[15];
-    out[9101] = -c[21];
-    out[9161] = c[24];
-    out[9162] = c[17];
-    out[9164] = -c[17];
-    out[9165] = -c[24];
-    out[9256] = -c[65];
-    out[9257] = c[71];
-    out[9258] = c[74];
-    out[9259] = -c[76];
-    out[9260] = c[77];
-    out[9261] = c[78];
-    out[9288] = -c[79];
-    out[9323] = c[60];
-    out[9324] = c[61];
-    out[9325] = -c[59];
-    out[9327] = c[60];
-    out[9328] = -c[61];
-    out[9357] = -c[20];
-    out[9358] = -c[14];
-    out[9359] = -c[19];
-    out[9360] = -c[14];
-    out[9361] = -c[20];
-    out[9421] = -c[23];
-    out[9422] = -c[16];
-    out[9423] = -c[22];
-    out[9424] = -c[16];
-    out[9425] = -c[23];
-    out[9516] = c[75];
-    out[9517] = c[77];
-    out[9518] = -c[80];
-    out[9519] = c[81];
-    out[9520] = c[82];
-    out[9521] = -c[77];
-    out[9546] = -c[66];
-    out[9581] = -c[61];
-    out[9582] = -c[68];
-    out[9584] = -c[67];
-    out[9585] = c[61];
-    out[9586] = -c[68];
-    out[9615] = c[21];
-    out[9616] = c[15];
-    out[9618] = -c[15];
-    out[9619] = -c[21];
-    out[9679] = c[24];
-    out[9680] = c[17];
-    out[9682] = -c[17];
-    out[9683] = -c[24];
-    out[9774] = -c[70];
-    out[9775] = c[78];
-    out[9776] = c[81];
-    out[9777] = -c[83];
-    out[9778] = c[84];
-    out[9779] = c[85];
-    out[9804] = -c[86];
-    out[9841] = c[60];
-    out[9842] = c[61];
-    out[9843] = -c[59];
-    out[9845] = c[60];
-    out[9846] = -c[61];
-    out[9875] = -c[20];
-    out[9876] = -c[14];
-    out[9877] = -c[19];
-    out[9878] = -c[14];
-    out[9879] = -c[20];
-    out[9939] = -c[23];
-    out[9940] = -c[16];
-    out[9941] = -c[22];
-    out[9942] = -c[16];
-    out[9943] = -c[23];
-    out[10034] = c[82];
-    out[10035] = c[84];
-    out[10036] = -c[87];
-    out[10037] = c[88];
-    out[10038] = c[89];
-    out[10039] = -c[84];
-    out[10062] = -c[66];
-    out[10099] = -c[61];
-    out[10100] = -c[68];
-    out[10102] = -c[67];
-    out[10103] = c[61];
-    out[10104] = -c[68];
-    out[10133] = c[21];
-    out[10134] = c[15];
-    out[10136] = -c[15];
-    out[10137] = -c[21];
-    out[10197] = c[24];
-    out[10198] = c[17];
-    out[10200] = -c[17];
-    out[10201] = -c[24];
-    out[10292] = -c[77];
-    out[10293] = c[85];
-    out[10294] = c[88];
-    out[10295] = -c[90];
-    out[10296] = c[91];
-    out[10297] = c[92];
-    out[10320] = -c[93];
-    out[10359] = c[60];
-    out[10360] = c[61];
-    out[10361] = -c[59];
-    out[10363] = c[60];
-    out[10364] = -c[61];
-    out[10393] = -c[20];
-    out[10394] = -c[14];
-    out[10395] = -c[19];
-    out[10396] = -c[14];
-    out[10397] = -c[20];
-    out[10457] = -c[23];
-    out[10458] = -c[16];
-    out[10459] = -c[22];
-    out[10460] = -c[16];
-    out[10461] = -c[23];
-    out[10552] = c[89];
-    out[10553] = c[91];
-    out[10554] = -c[94];
-    out[10555] = c[95];
-    out[10556] = c[96];
-    out[10557] = -c[91];
-    out[10578] = -c[66];
-    out[10617] = -c[61];
-    out[10618] = -c[68];
-    out[10620] = -c[67];
-    out[10621] = c[61];
-    out[10622] = -c[68];
-    out[10651] = c[21];
-    out[10652] = c[15];
-    out[10654] = -c[15];
-    out[10655] = -c[21];
-    out[10715] = c[24];
-    out[10716] = c[17];
-    out[10718] = -c[17];
-    out[10719] = -c[24];
-    out[10810] = -c[84];
-    out[10811] = c[92];
-    out[10812] = c[95];
-    out[10813] = -c[97];
-    out[10814] = c[98];
-    out[10815] = c[99];
-    out[10836] = -c[100];
-    out[10877] = c[60];
-    out[10878] = c[61];
-    out[10879] = -c[59];
-    out[10881] = c[60];
-    out[10882] = -c[61];
-    out[10911] = -c[20];
-    out[10912] = -c[14];
-    out[10913] = -c[19];
-    out[10914] = -c[14];
-    out[10915] = -c[20];
-    out[10975] = -c[23];
-    out[10976] = -c[16];
-    out[10977] = -c[22];
-    out[10978] = -c[16];
-    out[10979] = -c[23];
-    out[11070] = c[96];
-    out[11071] = c[98];
-    out[11072] = -c[101];
-    out[11073] = c[102];
-    out[11074] = c[103];
-    out[11075] = -c[98];
-    out[11094] = -c[66];
-    out[11135] = -c[61];
-    out[11136] = -c[68];
-    out[11138] = -c[67];
-    out[11139] = c[61];
-    out[11140] = -c[68];
-    out[11169] = c[21];
-    out[11170] = c[15];
-    out[11172] = -c[15];
-    out[11173] = -c[21];
-    out[11233] = c[24];
-    out[11234] = c[17];
-    out[11236] = -c[17];
-    out[11237] = -c[24];
-    out[11328] = -c[91];
-    out[11329] = c[99];
-    out[11330] = c[102];
-    out[11331] = -c[104];
-    out[11332] = c[105];
-    out[11333] = c[106];
-    out[11352] = -c[107];
-    out[11395] = c[60];
-    out[11396] = c[61];
-    out[11397] = -c[59];
-    out[11399] = c[60];
-    out[11400] = -c[61];
-    out[11429] = -c[20];
-    out[11430] = -c[14];
-    out[11431] = -c[19];
-    out[11432] = -c[14];
-    out[11433] = -c[20];
-    out[11493] = -c[23];
-    out[11494] = -c[16];
-    out[11495] = -c[22];
-    out[11496] = -c[16];
-    out[11497] = -c[23];
-    out[11588] = c[103];
-    out[11589] = c[105];
-    out[11590] = -c[108];
-    out[11591] = c[109];
-    out[11592] = c[110];
-    out[11593] = -c[105];
-    out[11610] = -c[66];
-    out[11653] = -c[61];
-    out[11654] = -c[68];
-    out[11656] = -c[67];
-    out[11657] = c[61];
-    out[11658] = -c[68];
-    out[11687] = c[21];
-    out[11688] = c[15];
-    out[11690] = -c[15];
-    out[11691] = -c[21];
-    out[11751] = c[24];
-    out[11752] = c[17];
-    out[11754] = -c[17];
-    out[11755] = -c[24];
-    out[11846] = -c[98];
-    out[11847] = c[106];
-    out[11848] = c[109];
-    out[11849] = -c[111];
-    out[11850] = c[112];
-    out[11851] = c[113];
-    out[11868] = -c[114];
-    out[11913] = c[60];
-    out[11914] = c[61];
-    out[11915] = -c[59];
-    out[11917] = c[60];
-    out[11918] = -c[61];
-    out[11947] = -c[20];
-    out[11948] = -c[14];
-    out[11949] = -c[19];
-    out[11950] = -c[14];
-    out[11951] = -c[20];
-    out[12011] = -c[23];
-    out[12012] = -c[16];
-    out[12013] = -c[22];
-    out[12014] = -c[16];
-    out[12015] = -c[23];
-    out[12106] = c[110];
-    out[12107] = c[112];
-    out[12108] = -c[115];
-    out[12109] = c[116];
-    out[12110] = c[117];
-    out[12111] = -c[112];
-    out[12126] = -c[66];
-    out[12171] = -c[61];
-    out[12172] = -c[68];
-    out[12174] = -c[67];
-    out[12175] = c[61];
-    out[12176] = -c[68];
-    out[12205] = c[21];
-    out[12206] = c[15];
-    out[12208] = -c[15];
-    out[12209] = -c[21];
-    out[12269] = c[24];
-    out[12270] = c[17];
-    out[12272] = -c[17];
-    out[12273] = -c[24];
-    out[12364] = -c[105];
-    out[12365] = c[113];
-    out[12366] = c[116];
-    out[12367] = -c[118];
-    out[12368] = c[119];
-    out[12369] = c[120];
-    out[12384] = -c[121];
-    out[12431] = c[60];
-    out[12432] = c[61];
-    out[12433] = -c[59];
-    out[12435] = c[60];
-    out[12436] = -c[61];
-    out[12465] = -c[20];
-    out[12466] = -c[14];
-    out[12467] = -c[19];
-    out[12468] = -c[14];
-    out[12469] = -c[20];
-    out[12529] = -c[23];
-    out[12530] = -c[16];
-    out[12531] = -c[22];
-    out[12532] = -c[16];
-    out[12533] = -c[23];
-    out[12624] = c[117];
-    out[12625] = c[119];
-    out[12626] = -c[122];
-    out[12627] = c[123];
-    out[12628] = c[124];
-    out[12629] = -c[119];
-    out[12642] = -c[66];
-    out[12689] = -c[61];
-    out[12690] = -c[68];
-    out[12692] = -c[67];
-    out[12693] = c[61];
-    out[12694] = -c[68];
-    out[12723] = c[21];
-    out[12724] = c[15];
-    out[12726] = -c[15];
-    out[12727] = -c[21];
-    out[12787] = c[24];
-    out[12788] = c[17];
-    out[12790] = -c[17];
-    out[12791] = -c[24];
-    out[12882] = -c[112];
-    out[12883] = c[120];
-    out[12884] = c[123];
-    out[12885] = -c[125];
-    out[12886] = c[126];
-    out[12887] = c[127];
-    out[12900] = -c[128];
-    out[12949] = c[60];
-    out[12950] = c[61];
-    out[12951] = -c[59];
-    out[12953] = c[60];
-    out[12954] = -c[61];
-    out[12983] = -c[20];
-    out[12984] = -c[14];
-    out[12985] = -c[19];
-    out[12986] = -c[14];
-    out[12987] = -c[20];
-    out[13047] = -c[23];
-    out[13048] = -c[16];
-    out[13049] = -c[22];
-    out[13050] = -c[16];
-    out[13051] = -c[23];
-    out[13142] = c[124];
-    out[13143] = c[126];
-    out[13144] = -c[129];
-    out[13145] = c[130];
-    out[13146] = c[131];
-    out[13147] = -c[126];
-    out[13158] = -c[66];
-    out[13207] = -c[61];
-    out[13208] = -c[68];
-    out[13210] = -c[67];
-    out[13211] = c[61];
-    out[13212] = -c[68];
-    out[13241] = c[21];
-    out[13242] = c[15];
-    out[13244] = -c[15];
-    out[13245] = -c[21];
-    out[13305] = c[24];
-    out[13306] = c[17];
-    out[13308] = -c[17];
-    out[13309] = -c[24];
-    out[13400] = -c[119];
-    out[13401] = c[127];
-    out[13402] = c[130];
-    out[13403] = -c[132];
-    out[13404] = c[133];
-    out[13405] = c[134];
-    out[13416] = -c[135];
-    out[13467] = c[60];
-    out[13468] = c[61];
-    out[13469] = -c[59];
-    out[13471] = c[60];
-    out[13472] = -c[61];
-    out[13501] = -c[20];
-    out[13502] = -c[14];
-    out[13503] = -c[19];
-    out[13504] = -c[14];
-    out[13505] = -c[20];
-    out[13565] = -c[23];
-    out[13566] = -c[16];
-    out[13567] = -c[22];
-    out[13568] = -c[16];
-    out[13569] = -c[23];
-    out[13660] = c[131];
-    out[13661] = c[133];
-    out[13662] = -c[136];
-    out[13663] = c[137];
-    out[13664] = c[138];
-    out[13665] = -c[133];
-    out[13674] = -c[66];
-    out[13725] = -c[61];
-    out[13726] = -c[68];
-    out[13728] = -c[67];
-    out[13729] = c[61];
-    out[13730] = -c[68];
-    out[13759] = c[21];
-    out[13760] = c[15];
-    out[13762] = -c[15];
-    out[13763] = -c[21];
-    out[13823] = c[24];
-    out[13824] = c[17];
-    out[13826] = -c[17];
-    out[13827] = -c[24];
-    out[13918] = -c[126];
-    out[13919] = c[134];
-    out[13920] = c[137];
-    out[13921] = -c[139];
-    out[13922] = c[140];
-    out[13923] = c[141];
-    out[13932] = -c[142];
-    out[13985] = c[60];
-    out[13986] = c[61];
-    out[13987] = -c[59];
-    out[13989] = c[60];
-    out[13990] = -c[61];
-    out[14019] = -c[20];
-    out[14020] = -c[14];
-    out[14021] = -c[19];
-    out[14022] = -c[14];
-    out[14023] = -c[20];
-    out[14083] = -c[23];
-    out[14084] = -c[16];
-    out[14085] = -c[22];
-    out[14086] = -c[16];
-    out[14087] = -c[23];
-    out[14178] = c[138];
-    out[14179] = c[140];
-    out[14180] = -c[143];
-    out[14181] = c[144];
-    out[14182] = c[145];
-    out[14183] = -c[140];
-    out[14190] = -c[66];
-    out[14243] = -c[61];
-    out[14244] = -c[68];
-    out[14246] = -c[67];
-    out[14247] = c[61];
-    out[14248] = -c[68];
-    out[14277] = c[21];
-    out[14278] = c[15];
-    out[14280] = -c[15];
-    out[14281] = -c[21];
-    out[14341] = c[24];
-    out[14342] = c[17];
-    out[14344] = -c[17];
-    out[14345] = -c[24];
-    out[14436] = -c[133];
-    out[14437] = c[141];
-    out[14438] = c[144];
-    out[14439] = -c[146];
-    out[14440] = c[147];
-    out[14441] = c[148];
-    out[14448] = -c[149];
-    out[14503] = c[60];
-    out[14504] = c[61];
-    out[14505] = -c[59];
-    out[14507] = c[60];
-    out[14508] = -c[61];
-    out[14537] = -c[20];
-    out[14538] = -c[14];
-    out[14539] = -c[19];
-    out[14540] = -c[14];
-    out[14541] = -c[20];
-    out[14601] = -c[23];
-    out[14602] = -c[16];
-    out[14603] = -c[22];
-    out[14604] = -c[16];
-    out[14605] = -c[23];
-    out[14696] = c[145];
-    out[14697] = c[147];
-    out[14698] = -c[150];
-    out[14699] = c[151];
-    out[14700] = c[152];
-    out[14701] = -c[147];
-    out[14706] = -c[66];
-    out[14761] = -c[61];
-    out[14762] = -c[68];
-    out[14764] = -c[67];
-    out[14765] = c[61];
-    out[14766] = -c[68];
-    out[14795] = c[21];
-    out[14796] = c[15];
-    out[14798] = -c[15];
-    out[14799] = -c[21];
-    out[14859] = c[24];
-    out[14860] = c[17];
-    out[14862] = -c[17];
-    out[14863] = -c[24];
-    out[14954] = -c[140];
-    out[14955] = c[148];
-    out[14956] = c[151];
-    out[14957] = -c[153];
-    out[14958] = c[154];
-    out[14959] = c[155];
-    out[14964] = -c[156];
-    out[15021] = c[60];
-    out[15022] = c[61];
-    out[15023] = -c[59];
-    out[15025] = c[60];
-    out[15026] = -c[61];
-    out[15055] = -c[20];
-    out[15056] = -c[14];
-    out[15057] = -c[19];
-    out[15058] = -c[14];
-    out[15059] = -c[20];
-    out[15119] = -c[23];
-    out[15120] = -c[16];
-    out[15121] = -c[22];
-    out[15122] = -c[16];
-    out[15123] = -c[23];
-    out[15214] = c[152];
-    out[15215] = c[154];
-    out[15216] = -c[157];
-    out[15217] = c[158];
-    out[15218] = c[159];
-    out[15219] = -c[154];
-    out[15222] = -c[66];
-    out[15279] = -c[61];
-    out[15280] = -c[68];
-    out[15282] = -c[67];
-    out[15283] = c[61];
-    out[15284] = -c[68];
-    out[15313] = c[21];
-    out[15314] = c[15];
-    out[15316] = -c[15];
-    out[15317] = -c[21];
-    out[15377] = c[24];
-    out[15378] = c[17];
-    out[15380] = -c[17];
-    out[15381] = -c[24];
-    out[15472] = -c[147];
-    out[15473] = c[155];
-    out[15474] = c[158];
-    out[15475] = -c[160];
-    out[15476] = c[161];
-    out[15477] = c[162];
-    out[15480] = -c[163];
-    out[15539] = c[60];
-    out[15540] = c[61];
-    out[15541] = -c[59];
-    out[15543] = c[60];
-    out[15544] = -c[61];
-    out[15573] = -c[20];
-    out[15574] = -c[14];
-    out[15575] = -c[19];
-    out[15576] = -c[14];
-    out[15577] = -c[20];
-    out[15637] = -c[23];
-    out[15638] = -c[16];
-    out[15639] = -c[22];
-    out[15640] = -c[16];
-    out[15641] = -c[23];
-    out[15732] = c[159];
-    out[15733] = c[161];
-    out[15734] = -c[164];
-    out[15735] = c[165];
-    out[15736] = c[166];
-    out[15737] = -c[161];
-    out[15738] = -c[66];
-    out[15797] = -c[61];
-    out[15798] = -c[68];
-    out[15800] = -c[67];
-    out[15801] = c[61];
-    out[15802] = -c[68];
-    out[15831] = c[21];
-    out[15832] = c[15];
-    out[15834] = -c[15];
-    out[15835] = -c[21];
-    out[15895] = c[24];
-    out[15896] = c[17];
-    out[15898] = -c[17];
-    out[15899] = -c[24];
-    out[15990] = -c[154];
-    out[15991] = c[162];
-    out[15992] = c[165];
-    out[15993] = -c[167];
-    out[15994] = c[168];
-    out[15995] = c[169];
-    out[15996] = -c[170];
-    out[16057] = c[60];
-    out[16058] = c[61];
-    out[16059] = -c[60];
-    out[16060] = c[61];
-    out[16091] = -c[20];
-    out[16092] = -c[14];
-    out[16093] = -c[22];
-    out[16155] = -c[23];
-    out[16156] = -c[16];
-    out[16157] = -c[56];
-    out[16250] = c[166];
-    out[16251] = c[168];
-    out[16252] = -c[171];
-    out[16253] = c[172];
-    out[16254] = c[173];
-    out[16315] = -c[61];
-    out[16316] = -c[68];
-    out[16317] = c[61];
-    out[16318] = -c[174];
-    out[16349] = c[21];
-    out[16350] = c[15];
-    out[16351] = c[55];
-    out[16413] = c[24];
-    out[16414] = c[17];
-    out[16415] = c[57];
-    out[16508] = -c[161];
-    out[16509] = c[169];
-    out[16510] = c[172];
-    out[16511] = -c[175];
+    const double m[1] = {1.0};
+    struct Term {
+        int coef, mono;
+        double scale;
+    };
+    static const Term terms[] = {
+        {11, 0, -1.0},
+        {12, 0, 1.0},
+        {13, 0, 1.0},
+        {14, 0, 1.0},
+        {15, 0, -1.0},
+        {16, 0, 1.0},
+        {17, 0, -1.0},
+        {0, 0, 1.0},
+        {1, 0, 1.0},
+        {12, 0, 1.0},
+        {11, 0, -1.0},
+        {12, 0, 1.0},
+        {18, 0, 1.0},
+        {19, 0, 1.0},
+        {20, 0, 1.0},
+        {21, 0, -1.0},
+        {22, 0, 1.0},
+        {23, 0, 1.0},
+        {24, 0, -1.0},
+        {1, 0, 1.0},
+        {0, 0, 1.0},
+        {1, 0, 1.0},
+        {12, 0, 1.0},
+        {11, 0, -1.0},
+        {12, 0, 1.0},
+        {25, 0, 1.0},
+        {14, 0, 1.0},
+        {15, 0, 1.0},
+        {14, 0, 1.0},
+        {15, 0, -1.0},
+        {16, 0, 1.0},
+        {17, 0, 1.0},
+        {16, 0, 1.0},
+        {17, 0, -1.0},
+        {1, 0, 1.0},
+        {0, 0, 1.0},
+        {1, 0, 1.0},
+        {12, 0, 1.0},
+        {11, 0, -1.0},
+        {12, 0, 1.0},
+        {26, 0, 1.0},
+        {20, 0, 1.0},
+        {21, 0, 1.0},
+        {19, 0, 1.0},
+        {20, 0, 1.0},
+        {21, 0, -1.0},
+        {23, 0, 1.0},
+        {24, 0, 1.0},
+        {22, 0, 1.0},
+        {23, 0, 1.0},
+        {24, 0, -1.0},
+        {1, 0, 1.0},
+        {0, 0, 1.0},
+        {1, 0, 1.0},
+        {12, 0, 1.0},
+        {11, 0, -1.0},
+        {12, 0, 1.0},
+        {27, 0, 1.0},
+        {14, 0, 1.0},
+        {15, 0, 1.0},
+        {14, 0, 1.0},
+        {15, 0, -1.0},
+        {16, 0, 1.0},
+        {17, 0, 1.0},
+        {16, 0, 1.0},
+        {17, 0, -1.0},
+        {1, 0, 1.0},
+        {0, 0, 1.0},
+        {1, 0, 1.0},
+        {12, 0, 1.0},
+        {11, 0, -1.0},
+        {12, 0, 1.0},
+        {28, 0, 1.0},
+        {20, 0, 1.0},
+        {21, 0, 1.0},
+        {19, 0, 1.0},
+        {20, 0, 1.0},
+        {21, 0, -1.0},
+        {23, 0, 1.0},
+        {24, 0, 1.0},
+        {22, 0, 1.0},
+        {23, 0, 1.0},
+        {24, 0, -1.0},
+        {1, 0, 1.0},
+        {0, 0, 1.0},
+        {1, 0, 1.0},
+        {12, 0, 1.0},
+        {11, 0, -1.0},
+        {12, 0, 1.0},
+        {29, 0, 1.0},
+        {14, 0, 1.0},
+        {15, 0, 1.0},
+        {14, 0, 1.0},
+        {15, 0, -1.0},
+        {16, 0, 1.0},
+        {17, 0, 1.0},
+        {16, 0, 1.0},
+        {17, 0, -1.0},
+        {1, 0, 1.0},
+        {0, 0, 1.0},
+        {1, 0, 1.0},
+        {12, 0, 1.0},
+        {11, 0, -1.0},
+        {12, 0, 1.0},
+        {30, 0, 1.0},
+        {20, 0, 1.0},
+        {21, 0, 1.0},
+        {19, 0, 1.0},
+        {20, 0, 1.0},
+        {21, 0, -1.0},
+        {23, 0, 1.0},
+        {24, 0, 1.0},
+        {22, 0, 1.0},
+        {23, 0, 1.0},
+        {24, 0, -1.0},
+        {1, 0, 1.0},
+        {0, 0, 1.0},
+        {1, 0, 1.0},
+        {12, 0, 1.0},
+        {11, 0, -1.0},
+        {12, 0, 1.0},
+        {31, 0, 1.0},
+        {14, 0, 1.0},
+        {15, 0, 1.0},
+        {14, 0, 1.0},
+        {15, 0, -1.0},
+        {16, 0, 1.0},
+        {17, 0, 1.0},
+        {16, 0, 1.0},
+        {17, 0, -1.0},
+        {1, 0, 1.0},
+        {0, 0, 1.0},
+        {1, 0, 1.0},
+        {12, 0, 1.0},
+        {11, 0, -1.0},
+        {12, 0, 1.0},
+        {32, 0, 1.0},
+        {20, 0, 1.0},
+        {21, 0, 1.0},
+        {19, 0, 1.0},
+        {20, 0, 1.0},
+        {21, 0, -1.0},
+        {23, 0, 1.0},
+        {24, 0, 1.0},
+        {22, 0, 1.0},
+        {23, 0, 1.0},
+        {24, 0, -1.0},
+        {1, 0, 1.0},
+        {0, 0, 1.0},
+        {1, 0, 1.0},
+        {12, 0, 1.0},
+        {11, 0, -1.0},
+        {12, 0, 1.0},
+        {33, 0, 1.0},
+        {14, 0, 1.0},
+        {15, 0, 1.0},
+        {14, 0, 1.0},
+        {15, 0, -1.0},
+        {16, 0, 1.0},
+        {17, 0, 1.0},
+        {16, 0, 1.0},
+        {17, 0, -1.0},
+        {1, 0, 1.0},
+        {0, 0, 1.0},
+        {1, 0, 1.0},
+        {12, 0, 1.0},
+        {11, 0, -1.0},
+        {12, 0, 1.0},
+        {34, 0, 1.0},
+        {20, 0, 1.0},
+        {21, 0, 1.0},
+        {19, 0, 1.0},
+        {20, 0, 1.0},
+        {21, 0, -1.0},
+        {23, 0, 1.0},
+        {24, 0, 1.0},
+        {22, 0, 1.0},
+        {23, 0, 1.0},
+        {24, 0, -1.0},
+        {1, 0, 1.0},
+        {0, 0, 1.0},
+        {1, 0, 1.0},
+        {12, 0, 1.0},
+        {11, 0, -1.0},
+        {12, 0, 1.0},
+        {35, 0, 1.0},
+        {14, 0, 1.0},
+        {15, 0, 1.0},
+        {14, 0, 1.0},
+        {15, 0, -1.0},
+        {16, 0, 1.0},
+        {17, 0, 1.0},
+        {16, 0, 1.0},
+        {17, 0, -1.0},
+        {1, 0, 1.0},
+        {0, 0, 1.0},
+        {1, 0, 1.0},
+        {12, 0, 1.0},
+        {11, 0, -1.0},
+        {12, 0, 1.0},
+        {36, 0, 1.0},
+        {20, 0, 1.0},
+        {21, 0, 1.0},
+        {19, 0, 1.0},
+        {20, 0, 1.0},
+        {21, 0, -1.0},
+        {23, 0, 1.0},
+        {24, 0, 1.0},
+        {22, 0, 1.0},
+        {23, 0, 1.0},
+        {24, 0, -1.0},
+        {1, 0, 1.0},
+        {0, 0, 1.0},
+        {1, 0, 1.0},
+        {12, 0, 1.0},
+        {11, 0, -1.0},
+        {12, 0, 1.0},
+        {37, 0, 1.0},
+        {14, 0, 1.0},
+        {15, 0, 1.0},
+        {14, 0, 1.0},
+        {15, 0, -1.0},
+        {16, 0, 1.0},
+        {17, 0, 1.0},
+        {16, 0, 1.0},
+        {17, 0, -1.0},
+        {1, 0, 1.0},
+        {0, 0, 1.0},
+        {1, 0, 1.0},
+        {12, 0, 1.0},
+        {11, 0, -1.0},
+        {12, 0, 1.0},
+        {38, 0, 1.0},
+        {20, 0, 1.0},
+        {21, 0, 1.0},
+        {19, 0, 1.0},
+        {20, 0, 1.0},
+        {21, 0, -1.0},
+        {23, 0, 1.0},
+        {24, 0, 1.0},
+        {22, 0, 1.0},
+        {23, 0, 1.0},
+        {24, 0, -1.0},
+        {1, 0, 1.0},
+        {0, 0, 1.0},
+        {1, 0, 1.0},
+        {12, 0, 1.0},
+        {11, 0, -1.0},
+        {12, 0, 1.0},
+        {39, 0, 1.0},
+        {14, 0, 1.0},
+        {15, 0, 1.0},
+        {14, 0, 1.0},
+        {15, 0, -1.0},
+        {16, 0, 1.0},
+        {17, 0, 1.0},
+        {16, 0, 1.0},
+        {17, 0, -1.0},
+        {1, 0, 1.0},
+        {0, 0, 1.0},
+        {1, 0, 1.0},
+        {12, 0, 1.0},
+        {11, 0, -1.0},
+        {12, 0, 1.0},
+        {40, 0, 1.0},
+        {20, 0, 1.0},
+        {21, 0, 1.0},
+        {19, 0, 1.0},
+        {20, 0, 1.0},
+        {21, 0, -1.0},
+        {23, 0, 1.0},
+        {24, 0, 1.0},
+        {22, 0, 1.0},
+        {23, 0, 1.0},
+        {24, 0, -1.0},
+        {1, 0, 1.0},
+        {0, 0, 1.0},
+        {1, 0, 1.0},
+        {12, 0, 1.0},
+        {11, 0, -1.0},
+        {12, 0, 1.0},
+        {41, 0, 1.0},
+        {14, 0, 1.0},
+        {15, 0, 1.0},
+        {14, 0, 1.0},
+        {15, 0, -1.0},
+        {16, 0, 1.0},
+        {17, 0, 1.0},
+        {16, 0, 1.0},
+        {17, 0, -1.0},
+        {1, 0, 1.0},
+        {0, 0, 1.0},
+        {1, 0, 1.0},
+        {12, 0, 1.0},
+        {11, 0, -1.0},
+        {12, 0, 1.0},
+        {42, 0, 1.0},
+        {20, 0, 1.0},
+        {21, 0, 1.0},
+        {19, 0, 1.0},
+        {20, 0, 1.0},
+        {21, 0, -1.0},
+        {23, 0, 1.0},
+        {24, 0, 1.0},
+        {22, 0, 1.0},
+        {23, 0, 1.0},
+        {24, 0, -1.0},
+        {1, 0, 1.0},
+        {0, 0, 1.0},
+        {1, 0, 1.0},
+        {12, 0, 1.0},
+        {11, 0, -1.0},
+        {12, 0, 1.0},
+        {43, 0, 1.0},
+        {14, 0, 1.0},
+        {15, 0, 1.0},
+        {14, 0, 1.0},
+        {15, 0, -1.0},
+        {16, 0, 1.0},
+        {17, 0, 1.0},
+        {16, 0, 1.0},
+        {17, 0, -1.0},
+        {1, 0, 1.0},
+        {0, 0, 1.0},
+        {1, 0, 1.0},
+        {12, 0, 1.0},
+        {11, 0, -1.0},
+        {12, 0, 1.0},
+        {44, 0, 1.0},
+        {20, 0, 1.0},
+        {21, 0, 1.0},
+        {19, 0, 1.0},
+        {20, 0, 1.0},
+        {21, 0, -1.0},
+        {23, 0, 1.0},
+        {24, 0, 1.0},
+        {22, 0, 1.0},
+        {23, 0, 1.0},
+        {24, 0, -1.0},
+        {1, 0, 1.0},
+        {0, 0, 1.0},
+        {1, 0, 1.0},
+        {12, 0, 1.0},
+        {11, 0, -1.0},
+        {12, 0, 1.0},
+        {45, 0, 1.0},
+        {14, 0, 1.0},
+        {15, 0, 1.0},
+        {14, 0, 1.0},
+        {15, 0, -1.0},
+        {16, 0, 1.0},
+        {17, 0, 1.0},
+        {16, 0, 1.0},
+        {17, 0, -1.0},
+        {1, 0, 1.0},
+        {0, 0, 1.0},
+        {1, 0, 1.0},
+        {12, 0, 1.0},
+        {11, 0, -1.0},
+        {12, 0, 1.0},
+        {46, 0, 1.0},
+        {20, 0, 1.0},
+        {21, 0, 1.0},
+        {19, 0, 1.0},
+        {20, 0, 1.0},
+        {21, 0, -1.0},
+        {23, 0, 1.0},
+        {24, 0, 1.0},
+        {22, 0, 1.0},
+        {23, 0, 1.0},
+        {24, 0, -1.0},
+        {1, 0, 1.0},
+        {0, 0, 1.0},
+        {1, 0, 1.0},
+        {12, 0, 1.0},
+        {11, 0, -1.0},
+        {12, 0, 1.0},
+        {47, 0, 1.0},
+        {14, 0, 1.0},
+        {15, 0, 1.0},
+        {14, 0, 1.0},
+        {15, 0, -1.0},
+        {16, 0, 1.0},
+        {17, 0, 1.0},
+        {16, 0, 1.0},
+        {17, 0, -1.0},
+        {1, 0, 1.0},
+        {0, 0, 1.0},
+        {1, 0, 1.0},
+        {12, 0, 1.0},
+        {11, 0, -1.0},
+        {12, 0, 1.0},
+        {48, 0, 1.0},
+        {20, 0, 1.0},
+        {21, 0, 1.0},
+        {19, 0, 1.0},
+        {20, 0, 1.0},
+        {21, 0, -1.0},
+        {23, 0, 1.0},
+        {24, 0, 1.0},
+        {22, 0, 1.0},
+        {23, 0, 1.0},
+        {24, 0, -1.0},
+        {1, 0, 1.0},
+        {0, 0, 1.0},
+        {1, 0, 1.0},
+        {12, 0, 1.0},
+        {11, 0, -1.0},
+        {12, 0, 1.0},
+        {49, 0, 1.0},
+        {14, 0, 1.0},
+        {15, 0, 1.0},
+        {14, 0, 1.0},
+        {15, 0, -1.0},
+        {16, 0, 1.0},
+        {17, 0, 1.0},
+        {16, 0, 1.0},
+        {17, 0, -1.0},
+        {1, 0, 1.0},
+        {0, 0, 1.0},
+        {1, 0, 1.0},
+        {12, 0, 1.0},
+        {11, 0, -1.0},
+        {12, 0, 1.0},
+        {50, 0, 1.0},
+        {20, 0, 1.0},
+        {21, 0, 1.0},
+        {19, 0, 1.0},
+        {20, 0, 1.0},
+        {21, 0, -1.0},
+        {23, 0, 1.0},
+        {24, 0, 1.0},
+        {22, 0, 1.0},
+        {23, 0, 1.0},
+        {24, 0, -1.0},
+        {1, 0, 1.0},
+        {0, 0, 1.0},
+        {1, 0, 1.0},
+        {12, 0, 1.0},
+        {11, 0, -1.0},
+        {12, 0, 1.0},
+        {51, 0, 1.0},
+        {14, 0, 1.0},
+        {15, 0, 1.0},
+        {14, 0, 1.0},
+        {15, 0, -1.0},
+        {16, 0, 1.0},
+        {17, 0, 1.0},
+        {16, 0, 1.0},
+        {17, 0, -1.0},
+        {1, 0, 1.0},
+        {0, 0, 1.0},
+        {1, 0, 1.0},
+        {12, 0, 1.0},
+        {11, 0, -1.0},
+        {12, 0, 1.0},
+        {52, 0, 1.0},
+        {20, 0, 1.0},
+        {21, 0, 1.0},
+        {19, 0, 1.0},
+        {20, 0, 1.0},
+        {21, 0, -1.0},
+        {23, 0, 1.0},
+        {24, 0, 1.0},
+        {22, 0, 1.0},
+        {23, 0, 1.0},
+        {24, 0, -1.0},
+        {1, 0, 1.0},
+        {0, 0, 1.0},
+        {1, 0, 1.0},
+        {12, 0, 1.0},
+        {11, 0, -1.0},
+        {12, 0, 1.0},
+        {53, 0, 1.0},
+        {14, 0, 1.0},
+        {15, 0, 1.0},
+        {14, 0, 1.0},
+        {15, 0, -1.0},
+        {16, 0, 1.0},
+        {17, 0, 1.0},
+        {16, 0, 1.0},
+        {17, 0, -1.0},
+        {1, 0, 1.0},
+        {0, 0, 1.0},
+        {1, 0, 1.0},
+        {12, 0, 1.0},
+        {12, 0, -1.0},
+        {54, 0, 1.0},
+        {20, 0, 1.0},
+        {21, 0, 1.0},
+        {22, 0, 1.0},
+        {55, 0, -1.0},
+        {23, 0, 1.0},
+        {24, 0, 1.0},
+        {56, 0, 1.0},
+        {57, 0, -1.0},
+        {1, 0, 1.0},
+        {2, 0, 1.0},
+        {58, 0, -1.0},
+        {59, 0, -1.0},
+        {60, 0, 1.0},
+        {61, 0, -1.0},
+        {14, 0, -1.0},
+        {19, 0, -1.0},
+        {14, 0, -1.0},
+        {20, 0, -1.0},
+        {16, 0, -1.0},
+        {22, 0, -1.0},
+        {16, 0, -1.0},
+        {23, 0, -1.0},
+        {62, 0, -1.0},
+        {63, 0, 1.0},
+        {64, 0, 1.0},
+        {65, 0, -1.0},
+        {66, 0, -1.0},
+        {67, 0, -1.0},
+        {61, 0, 1.0},
+        {68, 0, -1.0},
+        {15, 0, 1.0},
+        {15, 0, -1.0},
+        {21, 0, -1.0},
+        {17, 0, 1.0},
+        {17, 0, -1.0},
+        {24, 0, -1.0},
+        {63, 0, 1.0},
+        {69, 0, -1.0},
+        {70, 0, 1.0},
+        {71, 0, 1.0},
+        {72, 0, -1.0},
+        {60, 0, 1.0},
+        {61, 0, 1.0},
+        {59, 0, -1.0},
+        {60, 0, 1.0},
+        {61, 0, -1.0},
+        {20, 0, -1.0},
+        {14, 0, -1.0},
+        {19, 0, -1.0},
+        {14, 0, -1.0},
+        {20, 0, -1.0},
+        {23, 0, -1.0},
+        {16, 0, -1.0},
+        {22, 0, -1.0},
+        {16, 0, -1.0},
+        {23, 0, -1.0},
+        {64, 0, 1.0},
+        {70, 0, 1.0},
+        {73, 0, -1.0},
+        {74, 0, 1.0},
+        {75, 0, 1.0},
+        {70, 0, -1.0},
+        {66, 0, -1.0},
+        {61, 0, -1.0},
+        {68, 0, -1.0},
+        {67, 0, -1.0},
+        {61, 0, 1.0},
+        {68, 0, -1.0},
+        {21, 0, 1.0},
+        {15, 0, 1.0},
+        {15, 0, -1.0},
+        {21, 0, -1.0},
+        {24, 0, 1.0},
+        {17, 0, 1.0},
+        {17, 0, -1.0},
+        {24, 0, -1.0},
+        {65, 0, -1.0},
+        {71, 0, 1.0},
+        {74, 0, 1.0},
+        {76, 0, -1.0},
+        {77, 0, 1.0},
+        {78, 0, 1.0},
+        {79, 0, -1.0},
+        {60, 0, 1.0},
+        {61, 0, 1.0},
+        {59, 0, -1.0},
+        {60, 0, 1.0},
+        {61, 0, -1.0},
+        {20, 0, -1.0},
+        {14, 0, -1.0},
+        {19, 0, -1.0},
+        {14, 0, -1.0},
+        {20, 0, -1.0},
+        {23, 0, -1.0},
+        {16, 0, -1.0},
+        {22, 0, -1.0},
+        {16, 0, -1.0},
+        {23, 0, -1.0},
+        {75, 0, 1.0},
+        {77, 0, 1.0},
+        {80, 0, -1.0},
+        {81, 0, 1.0},
+        {82, 0, 1.0},
+        {77, 0, -1.0},
+        {66, 0, -1.0},
+        {61, 0, -1.0},
+        {68, 0, -1.0},
+        {67, 0, -1.0},
+        {61, 0, 1.0},
+        {68, 0, -1.0},
+        {21, 0, 1.0},
+        {15, 0, 1.0},
+        {15, 0, -1.0},
+        {21, 0, -1.0},
+        {24, 0, 1.0},
+        {17, 0, 1.0},
+        {17, 0, -1.0},
+        {24, 0, -1.0},
+        {70, 0, -1.0},
+        {78, 0, 1.0},
+        {81, 0, 1.0},
+        {83, 0, -1.0},
+        {84, 0, 1.0},
+        {85, 0, 1.0},
+        {86, 0, -1.0},
+        {60, 0, 1.0},
+        {61, 0, 1.0},
+        {59, 0, -1.0},
+        {60, 0, 1.0},
+        {61, 0, -1.0},
+        {20, 0, -1.0},
+        {14, 0, -1.0},
+        {19, 0, -1.0},
+        {14, 0, -1.0},
+        {20, 0, -1.0},
+        {23, 0, -1.0},
+        {16, 0, -1.0},
+        {22, 0, -1.0},
+        {16, 0, -1.0},
+        {23, 0, -1.0},
+        {82, 0, 1.0},
+        {84, 0, 1.0},
+        {87, 0, -1.0},
+        {88, 0, 1.0},
+        {89, 0, 1.0},
+        {84, 0, -1.0},
+        {66, 0, -1.0},
+        {61, 0, -1.0},
+        {68, 0, -1.0},
+        {67, 0, -1.0},
+        {61, 0, 1.0},
+        {68, 0, -1.0},
+        {21, 0, 1.0},
+        {15, 0, 1.0},
+        {15, 0, -1.0},
+        {21, 0, -1.0},
+        {24, 0, 1.0},
+        {17, 0, 1.0},
+        {17, 0, -1.0},
+        {24, 0, -1.0},
+        {77, 0, -1.0},
+        {85, 0, 1.0},
+        {88, 0, 1.0},
+        {90, 0, -1.0},
+        {91, 0, 1.0},
+        {92, 0, 1.0},
+        {93, 0, -1.0},
+        {60, 0, 1.0},
+        {61, 0, 1.0},
+        {59, 0, -1.0},
+        {60, 0, 1.0},
+        {61, 0, -1.0},
+        {20, 0, -1.0},
+        {14, 0, -1.0},
+        {19, 0, -1.0},
+        {14, 0, -1.0},
+        {20, 0, -1.0},
+        {23, 0, -1.0},
+        {16, 0, -1.0},
+        {22, 0, -1.0},
+        {16, 0, -1.0},
+        {23, 0, -1.0},
+        {89, 0, 1.0},
+        {91, 0, 1.0},
+        {94, 0, -1.0},
+        {95, 0, 1.0},
+        {96, 0, 1.0},
+        {91, 0, -1.0},
+        {66, 0, -1.0},
+        {61, 0, -1.0},
+        {68, 0, -1.0},
+        {67, 0, -1.0},
+        {61, 0, 1.0},
+        {68, 0, -1.0},
+        {21, 0, 1.0},
+        {15, 0, 1.0},
+        {15, 0, -1.0},
+        {21, 0, -1.0},
+        {24, 0, 1.0},
+        {17, 0, 1.0},
+        {17, 0, -1.0},
+        {24, 0, -1.0},
+        {84, 0, -1.0},
+        {92, 0, 1.0},
+        {95, 0, 1.0},
+        {97, 0, -1.0},
+        {98, 0, 1.0},
+        {99, 0, 1.0},
+        {100, 0, -1.0},
+        {60, 0, 1.0},
+        {61, 0, 1.0},
+        {59, 0, -1.0},
+        {60, 0, 1.0},
+        {61, 0, -1.0},
+        {20, 0, -1.0},
+        {14, 0, -1.0},
+        {19, 0, -1.0},
+        {14, 0, -1.0},
+        {20, 0, -1.0},
+        {23, 0, -1.0},
+        {16, 0, -1.0},
+        {22, 0, -1.0},
+        {16, 0, -1.0},
+        {23, 0, -1.0},
+        {96, 0, 1.0},
+        {98, 0, 1.0},
+        {101, 0, -1.0},
+        {102, 0, 1.0},
+        {103, 0, 1.0},
+        {98, 0, -1.0},
+        {66, 0, -1.0},
+        {61, 0, -1.0},
+        {68, 0, -1.0},
+        {67, 0, -1.0},
+        {61, 0, 1.0},
+        {68, 0, -1.0},
+        {21, 0, 1.0},
+        {15, 0, 1.0},
+        {15, 0, -1.0},
+        {21, 0, -1.0},
+        {24, 0, 1.0},
+        {17, 0, 1.0},
+        {17, 0, -1.0},
+        {24, 0, -1.0},
+        {91, 0, -1.0},
+        {99, 0, 1.0},
+        {102, 0, 1.0},
+        {104, 0, -1.0},
+        {105, 0, 1.0},
+        {106, 0, 1.0},
+        {107, 0, -1.0},
+        {60, 0, 1.0},
+        {61, 0, 1.0},
+        {59, 0, -1.0},
+        {60, 0, 1.0},
+        {61, 0, -1.0},
+        {20, 0, -1.0},
+        {14, 0, -1.0},
+        {19, 0, -1.0},
+        {14, 0, -1.0},
+        {20, 0, -1.0},
+        {23, 0, -1.0},
+        {16, 0, -1.0},
+        {22, 0, -1.0},
+        {16, 0, -1.0},
+        {23, 0, -1.0},
+        {103, 0, 1.0},
+        {105, 0, 1.0},
+        {108, 0, -1.0},
+        {109, 0, 1.0},
+        {110, 0, 1.0},
+        {105, 0, -1.0},
+        {66, 0, -1.0},
+        {61, 0, -1.0},
+        {68, 0, -1.0},
+        {67, 0, -1.0},
+        {61, 0, 1.0},
+        {68, 0, -1.0},
+        {21, 0, 1.0},
+        {15, 0, 1.0},
+        {15, 0, -1.0},
+        {21, 0, -1.0},
+        {24, 0, 1.0},
+        {17, 0, 1.0},
+        {17, 0, -1.0},
+        {24, 0, -1.0},
+        {98, 0, -1.0},
+        {106, 0, 1.0},
+        {109, 0, 1.0},
+        {111, 0, -1.0},
+        {112, 0, 1.0},
+        {113, 0, 1.0},
+        {114, 0, -1.0},
+        {60, 0, 1.0},
+        {61, 0, 1.0},
+        {59, 0, -1.0},
+        {60, 0, 1.0},
+        {61, 0, -1.0},
+        {20, 0, -1.0},
+        {14, 0, -1.0},
+        {19, 0, -1.0},
+        {14, 0, -1.0},
+        {20, 0, -1.0},
+        {23, 0, -1.0},
+        {16, 0, -1.0},
+        {22, 0, -1.0},
+        {16, 0, -1.0},
+        {23, 0, -1.0},
+        {110, 0, 1.0},
+        {112, 0, 1.0},
+        {115, 0, -1.0},
+        {116, 0, 1.0},
+        {117, 0, 1.0},
+        {112, 0, -1.0},
+        {66, 0, -1.0},
+        {61, 0, -1.0},
+        {68, 0, -1.0},
+        {67, 0, -1.0},
+        {61, 0, 1.0},
+        {68, 0, -1.0},
+        {21, 0, 1.0},
+        {15, 0, 1.0},
+        {15, 0, -1.0},
+        {21, 0, -1.0},
+        {24, 0, 1.0},
+        {17, 0, 1.0},
+        {17, 0, -1.0},
+        {24, 0, -1.0},
+        {105, 0, -1.0},
+        {113, 0, 1.0},
+        {116, 0, 1.0},
+        {118, 0, -1.0},
+        {119, 0, 1.0},
+        {120, 0, 1.0},
+        {121, 0, -1.0},
+        {60, 0, 1.0},
+        {61, 0, 1.0},
+        {59, 0, -1.0},
+        {60, 0, 1.0},
+        {61, 0, -1.0},
+        {20, 0, -1.0},
+        {14, 0, -1.0},
+        {19, 0, -1.0},
+        {14, 0, -1.0},
+        {20, 0, -1.0},
+        {23, 0, -1.0},
+        {16, 0, -1.0},
+        {22, 0, -1.0},
+        {16, 0, -1.0},
+        {23, 0, -1.0},
+        {117, 0, 1.0},
+        {119, 0, 1.0},
+        {122, 0, -1.0},
+        {123, 0, 1.0},
+        {124, 0, 1.0},
+        {119, 0, -1.0},
+        {66, 0, -1.0},
+        {61, 0, -1.0},
+        {68, 0, -1.0},
+        {67, 0, -1.0},
+        {61, 0, 1.0},
+        {68, 0, -1.0},
+        {21, 0, 1.0},
+        {15, 0, 1.0},
+        {15, 0, -1.0},
+        {21, 0, -1.0},
+        {24, 0, 1.0},
+        {17, 0, 1.0},
+        {17, 0, -1.0},
+        {24, 0, -1.0},
+        {112, 0, -1.0},
+        {120, 0, 1.0},
+        {123, 0, 1.0},
+        {125, 0, -1.0},
+        {126, 0, 1.0},
+        {127, 0, 1.0},
+        {128, 0, -1.0},
+        {60, 0, 1.0},
+        {61, 0, 1.0},
+        {59, 0, -1.0},
+        {60, 0, 1.0},
+        {61, 0, -1.0},
+        {20, 0, -1.0},
+        {14, 0, -1.0},
+        {19, 0, -1.0},
+        {14, 0, -1.0},
+        {20, 0, -1.0},
+        {23, 0, -1.0},
+        {16, 0, -1.0},
+        {22, 0, -1.0},
+        {16, 0, -1.0},
+        {23, 0, -1.0},
+        {124, 0, 1.0},
+        {126, 0, 1.0},
+        {129, 0, -1.0},
+        {130, 0, 1.0},
+        {131, 0, 1.0},
+        {126, 0, -1.0},
+        {66, 0, -1.0},
+        {61, 0, -1.0},
+        {68, 0, -1.0},
+        {67, 0, -1.0},
+        {61, 0, 1.0},
+        {68, 0, -1.0},
+        {21, 0, 1.0},
+        {15, 0, 1.0},
+        {15, 0, -1.0},
+        {21, 0, -1.0},
+        {24, 0, 1.0},
+        {17, 0, 1.0},
+        {17, 0, -1.0},
+        {24, 0, -1.0},
+        {119, 0, -1.0},
+        {127, 0, 1.0},
+        {130, 0, 1.0},
+        {132, 0, -1.0},
+        {133, 0, 1.0},
+        {134, 0, 1.0},
+        {135, 0, -1.0},
+        {60, 0, 1.0},
+        {61, 0, 1.0},
+        {59, 0, -1.0},
+        {60, 0, 1.0},
+        {61, 0, -1.0},
+        {20, 0, -1.0},
+        {14, 0, -1.0},
+        {19, 0, -1.0},
+        {14, 0, -1.0},
+        {20, 0, -1.0},
+        {23, 0, -1.0},
+        {16, 0, -1.0},
+        {22, 0, -1.0},
+        {16, 0, -1.0},
+        {23, 0, -1.0},
+        {131, 0, 1.0},
+        {133, 0, 1.0},
+        {136, 0, -1.0},
+        {137, 0, 1.0},
+        {138, 0, 1.0},
+        {133, 0, -1.0},
+        {66, 0, -1.0},
+        {61, 0, -1.0},
+        {68, 0, -1.0},
+        {67, 0, -1.0},
+        {61, 0, 1.0},
+        {68, 0, -1.0},
+        {21, 0, 1.0},
+        {15, 0, 1.0},
+        {15, 0, -1.0},
+        {21, 0, -1.0},
+        {24, 0, 1.0},
+        {17, 0, 1.0},
+        {17, 0, -1.0},
+        {24, 0, -1.0},
+        {126, 0, -1.0},
+        {134, 0, 1.0},
+        {137, 0, 1.0},
+        {139, 0, -1.0},
+        {140, 0, 1.0},
+        {141, 0, 1.0},
+        {142, 0, -1.0},
+        {60, 0, 1.0},
+        {61, 0, 1.0},
+        {59, 0, -1.0},
+        {60, 0, 1.0},
+        {61, 0, -1.0},
+        {20, 0, -1.0},
+        {14, 0, -1.0},
+        {19, 0, -1.0},
+        {14, 0, -1.0},
+        {20, 0, -1.0},
+        {23, 0, -1.0},
+        {16, 0, -1.0},
+        {22, 0, -1.0},
+        {16, 0, -1.0},
+        {23, 0, -1.0},
+        {138, 0, 1.0},
+        {140, 0, 1.0},
+        {143, 0, -1.0},
+        {144, 0, 1.0},
+        {145, 0, 1.0},
+        {140, 0, -1.0},
+        {66, 0, -1.0},
+        {61, 0, -1.0},
+        {68, 0, -1.0},
+        {67, 0, -1.0},
+        {61, 0, 1.0},
+        {68, 0, -1.0},
+        {21, 0, 1.0},
+        {15, 0, 1.0},
+        {15, 0, -1.0},
+        {21, 0, -1.0},
+        {24, 0, 1.0},
+        {17, 0, 1.0},
+        {17, 0, -1.0},
+        {24, 0, -1.0},
+        {133, 0, -1.0},
+        {141, 0, 1.0},
+        {144, 0, 1.0},
+        {146, 0, -1.0},
+        {147, 0, 1.0},
+        {148, 0, 1.0},
+        {149, 0, -1.0},
+        {60, 0, 1.0},
+        {61, 0, 1.0},
+        {59, 0, -1.0},
+        {60, 0, 1.0},
+        {61, 0, -1.0},
+        {20, 0, -1.0},
+        {14, 0, -1.0},
+        {19, 0, -1.0},
+        {14, 0, -1.0},
+        {20, 0, -1.0},
+        {23, 0, -1.0},
+        {16, 0, -1.0},
+        {22, 0, -1.0},
+        {16, 0, -1.0},
+        {23, 0, -1.0},
+        {145, 0, 1.0},
+        {147, 0, 1.0},
+        {150, 0, -1.0},
+        {151, 0, 1.0},
+        {152, 0, 1.0},
+        {147, 0, -1.0},
+        {66, 0, -1.0},
+        {61, 0, -1.0},
+        {68, 0, -1.0},
+        {67, 0, -1.0},
+        {61, 0, 1.0},
+        {68, 0, -1.0},
+        {21, 0, 1.0},
+        {15, 0, 1.0},
+        {15, 0, -1.0},
+        {21, 0, -1.0},
+        {24, 0, 1.0},
+        {17, 0, 1.0},
+        {17, 0, -1.0},
+        {24, 0, -1.0},
+        {140, 0, -1.0},
+        {148, 0, 1.0},
+        {151, 0, 1.0},
+        {153, 0, -1.0},
+        {154, 0, 1.0},
+        {155, 0, 1.0},
+        {156, 0, -1.0},
+        {60, 0, 1.0},
+        {61, 0, 1.0},
+        {59, 0, -1.0},
+        {60, 0, 1.0},
+        {61, 0, -1.0},
+        {20, 0, -1.0},
+        {14, 0, -1.0},
+        {19, 0, -1.0},
+        {14, 0, -1.0},
+        {20, 0, -1.0},
+        {23, 0, -1.0},
+        {16, 0, -1.0},
+        {22, 0, -1.0},
+        {16, 0, -1.0},
+        {23, 0, -1.0},
+        {152, 0, 1.0},
+        {154, 0, 1.0},
+        {157, 0, -1.0},
+        {158, 0, 1.0},
+        {159, 0, 1.0},
+        {154, 0, -1.0},
+        {66, 0, -1.0},
+        {61, 0, -1.0},
+        {68, 0, -1.0},
+        {67, 0, -1.0},
+        {61, 0, 1.0},
+        {68, 0, -1.0},
+        {21, 0, 1.0},
+        {15, 0, 1.0},
+        {15, 0, -1.0},
+        {21, 0, -1.0},
+        {24, 0, 1.0},
+        {17, 0, 1.0},
+        {17, 0, -1.0},
+        {24, 0, -1.0},
+        {147, 0, -1.0},
+        {155, 0, 1.0},
+        {158, 0, 1.0},
+        {160, 0, -1.0},
+        {161, 0, 1.0},
+        {162, 0, 1.0},
+        {163, 0, -1.0},
+        {60, 0, 1.0},
+        {61, 0, 1.0},
+        {59, 0, -1.0},
+        {60, 0, 1.0},
+        {61, 0, -1.0},
+        {20, 0, -1.0},
+        {14, 0, -1.0},
+        {19, 0, -1.0},
+        {14, 0, -1.0},
+        {20, 0, -1.0},
+        {23, 0, -1.0},
+        {16, 0, -1.0},
+        {22, 0, -1.0},
+        {16, 0, -1.0},
+        {23, 0, -1.0},
+        {159, 0, 1.0},
+        {161, 0, 1.0},
+        {164, 0, -1.0},
+        {165, 0, 1.0},
+        {166, 0, 1.0},
+        {161, 0, -1.0},
+        {66, 0, -1.0},
+        {61, 0, -1.0},
+        {68, 0, -1.0},
+        {67, 0, -1.0},
+        {61, 0, 1.0},
+        {68, 0, -1.0},
+        {21, 0, 1.0},
+        {15, 0, 1.0},
+        {15, 0, -1.0},
+        {21, 0, -1.0},
+        {24, 0, 1.0},
+        {17, 0, 1.0},
+        {17, 0, -1.0},
+        {24, 0, -1.0},
+        {154, 0, -1.0},
+        {162, 0, 1.0},
+        {165, 0, 1.0},
+        {167, 0, -1.0},
+        {168, 0, 1.0},
+        {169, 0, 1.0},
+        {170, 0, -1.0},
+        {60, 0, 1.0},
+        {61, 0, 1.0},
+        {60, 0, -1.0},
+        {61, 0, 1.0},
+        {20, 0, -1.0},
+        {14, 0, -1.0},
+        {22, 0, -1.0},
+        {23, 0, -1.0},
+        {16, 0, -1.0},
+        {56, 0, -1.0},
+        {166, 0, 1.0},
+        {168, 0, 1.0},
+        {171, 0, -1.0},
+        {172, 0, 1.0},
+        {173, 0, 1.0},
+        {61, 0, -1.0},
+        {68, 0, -1.0},
+        {61, 0, 1.0},
+        {174, 0, -1.0},
+        {21, 0, 1.0},
+        {15, 0, 1.0},
+        {55, 0, 1.0},
+        {24, 0, 1.0},
+        {17, 0, 1.0},
+        {57, 0, 1.0},
+        {161, 0, -1.0},
+        {169, 0, 1.0},
+        {172, 0, 1.0},
+        {175, 0, -1.0},
+    };
+    static const int written[] = {1, 2, 65, 98, 99, 162, 163, 194, 195, 259, 260, 261, 323, 356, 358, 359,
+        420, 422, 423, 452, 453, 454, 518, 519, 520, 581, 614, 615, 616, 617, 678, 679,
+        680, 681, 711, 712, 713, 777, 778, 779, 839, 872, 873, 874, 876, 877, 936, 937,
+        938, 940, 941, 970, 971, 972, 1036, 1037, 1038, 1097, 1132, 1133, 1134, 1135, 1196, 1197,
+        1198, 1199, 1229, 1230, 1231, 1295, 1296, 1297, 1355, 1390, 1391, 1392, 1394, 1395, 1454, 1455,
+        1456, 1458, 1459, 1488, 1489, 1490, 1554, 1555, 1556, 1613, 1650, 1651, 1652, 1653, 1714, 1715,
+        1716, 1717, 1747, 1748, 1749, 1813, 1814, 1815, 1871, 1908, 1909, 1910, 1912, 1913, 1972, 1973,
+        1974, 1976, 1977, 2006, 2007, 2008, 2072, 2073, 2074, 2129, 2168, 2169, 2170, 2171, 2232, 2233,
+        2234, 2235, 2265, 2266, 2267, 2331, 2332, 2333, 2387, 2426, 2427, 2428, 2430, 2431, 2490, 2491,
+        2492, 2494, 2495, 2524, 2525, 2526, 2590, 2591, 2592, 2645, 2686, 2687, 2688, 2689, 2750, 2751,
+        2752, 2753, 2783, 2784, 2785, 2849, 2850, 2851, 2903, 2944, 2945, 2946, 2948, 2949, 3008, 3009,
+        3010, 3012, 3013, 3042, 3043, 3044, 3108, 3109, 3110, 3161, 3204, 3205, 3206, 3207, 3268, 3269,
+        3270, 3271, 3301, 3302, 3303, 3367, 3368, 3369, 3419, 3462, 3463, 3464, 3466, 3467, 3526, 3527,
+        3528, 3530, 3531, 3560, 3561, 3562, 3626, 3627, 3628, 3677, 3722, 3723, 3724, 3725, 3786, 3787,
+        3788, 3789, 3819, 3820, 3821, 3885, 3886, 3887, 3935, 3980, 3981, 3982, 3984, 3985, 4044, 4045,
+        4046, 4048, 4049, 4078, 4079, 4080, 4144, 4145, 4146, 4193, 4240, 4241, 4242, 4243, 4304, 4305,
+        4306, 4307, 4337, 4338, 4339, 4403, 4404, 4405, 4451, 4498, 4499, 4500, 4502, 4503, 4562, 4563,
+        4564, 4566, 4567, 4596, 4597, 4598, 4662, 4663, 4664, 4709, 4758, 4759, 4760, 4761, 4822, 4823,
+        4824, 4825, 4855, 4856, 4857, 4921, 4922, 4923, 4967, 5016, 5017, 5018, 5020, 5021, 5080, 5081,
+        5082, 5084, 5085, 5114, 5115, 5116, 5180, 5181, 5182, 5225, 5276, 5277, 5278, 5279, 5340, 5341,
+        5342, 5343, 5373, 5374, 5375, 5439, 5440, 5441, 5483, 5534, 5535, 5536, 5538, 5539, 5598, 5599,
+        5600, 5602, 5603, 5632, 5633, 5634, 5698, 5699, 5700, 5741, 5794, 5795, 5796, 5797, 5858, 5859,
+        5860, 5861, 5891, 5892, 5893, 5957, 5958, 5959, 5999, 6052, 6053, 6054, 6056, 6057, 6116, 6117,
+        6118, 6120, 6121, 6150, 6151, 6152, 6216, 6217, 6218, 6257, 6312, 6313, 6314, 6315, 6376, 6377,
+        6378, 6379, 6409, 6410, 6411, 6475, 6476, 6477, 6515, 6570, 6571, 6572, 6574, 6575, 6634, 6635,
+        6636, 6638, 6639, 6668, 6669, 6670, 6734, 6735, 6736, 6773, 6830, 6831, 6832, 6833, 6894, 6895,
+        6896, 6897, 6927, 6928, 6929, 6993, 6994, 6995, 7031, 7088, 7089, 7090, 7092, 7093, 7152, 7153,
+        7154, 7156, 7157, 7186, 7187, 7188, 7252, 7253, 7254, 7289, 7348, 7349, 7350, 7351, 7412, 7413,
+        7414, 7415, 7445, 7446, 7447, 7511, 7512, 7513, 7547, 7606, 7607, 7608, 7610, 7611, 7670, 7671,
+        7672, 7674, 7675, 7704, 7705, 7706, 7770, 7771, 7772, 7805, 7866, 7867, 7868, 7869, 7930, 7931,
+        7932, 7933, 7963, 7964, 7965, 8029, 8030, 8063, 8124, 8125, 8126, 8127, 8188, 8189, 8190, 8191,
+        8222, 8223, 8256, 8289, 8291, 8292, 8322, 8323, 8324, 8325, 8386, 8387, 8388, 8389, 8482, 8483,
+        8484, 8485, 8514, 8548, 8549, 8550, 8580, 8582, 8583, 8644, 8646, 8647, 8740, 8741, 8742, 8743,
+        8772, 8805, 8806, 8807, 8809, 8810, 8839, 8840, 8841, 8842, 8843, 8903, 8904, 8905, 8906, 8907,
+        8998, 8999, 9000, 9001, 9002, 9003, 9030, 9063, 9064, 9066, 9067, 9068, 9097, 9098, 9100, 9101,
+        9161, 9162, 9164, 9165, 9256, 9257, 9258, 9259, 9260, 9261, 9288, 9323, 9324, 9325, 9327, 9328,
+        9357, 9358, 9359, 9360, 9361, 9421, 9422, 9423, 9424, 9425, 9516, 9517, 9518, 9519, 9520, 9521,
+        9546, 9581, 9582, 9584, 9585, 9586, 9615, 9616, 9618, 9619, 9679, 9680, 9682, 9683, 9774, 9775,
+        9776, 9777, 9778, 9779, 9804, 9841, 9842, 9843, 9845, 9846, 9875, 9876, 9877, 9878, 9879, 9939,
+        9940, 9941, 9942, 9943, 10034, 10035, 10036, 10037, 10038, 10039, 10062, 10099, 10100, 10102, 10103, 10104,
+        10133, 10134, 10136, 10137, 10197, 10198, 10200, 10201, 10292, 10293, 10294, 10295, 10296, 10297, 10320, 10359,
+        10360, 10361, 10363, 10364, 10393, 10394, 10395, 10396, 10397, 10457, 10458, 10459, 10460, 10461, 10552, 10553,
+        10554, 10555, 10556, 10557, 10578, 10617, 10618, 10620, 10621, 10622, 10651, 10652, 10654, 10655, 10715, 10716,
+        10718, 10719, 10810, 10811, 10812, 10813, 10814, 10815, 10836, 10877, 10878, 10879, 10881, 10882, 10911, 10912,
+        10913, 10914, 10915, 10975, 10976, 10977, 10978, 10979, 11070, 11071, 11072, 11073, 11074, 11075, 11094, 11135,
+        11136, 11138, 11139, 11140, 11169, 11170, 11172, 11173, 11233, 11234, 11236, 11237, 11328, 11329, 11330, 11331,
+        11332, 11333, 11352, 11395, 11396, 11397, 11399, 11400, 11429, 11430, 11431, 11432, 11433, 11493, 11494, 11495,
+        11496, 11497, 11588, 11589, 11590, 11591, 11592, 11593, 11610, 11653, 11654, 11656, 11657, 11658, 11687, 11688,
+        11690, 11691, 11751, 11752, 11754, 11755, 11846, 11847, 11848, 11849, 11850, 11851, 11868, 11913, 11914, 11915,
+        11917, 11918, 11947, 11948, 11949, 11950, 11951, 12011, 12012, 12013, 12014, 12015, 12106, 12107, 12108, 12109,
+        12110, 12111, 12126, 12171, 12172, 12174, 12175, 12176, 12205, 12206, 12208, 12209, 12269, 12270, 12272, 12273,
+        12364, 12365, 12366, 12367, 12368, 12369, 12384, 12431, 12432, 12433, 12435, 12436, 12465, 12466, 12467, 12468,
+        12469, 12529, 12530, 12531, 12532, 12533, 12624, 12625, 12626, 12627, 12628, 12629, 12642, 12689, 12690, 12692,
+        12693, 12694, 12723, 12724, 12726, 12727, 12787, 12788, 12790, 12791, 12882, 12883, 12884, 12885, 12886, 12887,
+        12900, 12949, 12950, 12951, 12953, 12954, 12983, 12984, 12985, 12986, 12987, 13047, 13048, 13049, 13050, 13051,
+        13142, 13143, 13144, 13145, 13146, 13147, 13158, 13207, 13208, 13210, 13211, 13212, 13241, 13242, 13244, 13245,
+        13305, 13306, 13308, 13309, 13400, 13401, 13402, 13403, 13404, 13405, 13416, 13467, 13468, 13469, 13471, 13472,
+        13501, 13502, 13503, 13504, 13505, 13565, 13566, 13567, 13568, 13569, 13660, 13661, 13662, 13663, 13664, 13665,
+        13674, 13725, 13726, 13728, 13729, 13730, 13759, 13760, 13762, 13763, 13823, 13824, 13826, 13827, 13918, 13919,
+        13920, 13921, 13922, 13923, 13932, 13985, 13986, 13987, 13989, 13990, 14019, 14020, 14021, 14022, 14023, 14083,
+        14084, 14085, 14086, 14087, 14178, 14179, 14180, 14181, 14182, 14183, 14190, 14243, 14244, 14246, 14247, 14248,
+        14277, 14278, 14280, 14281, 14341, 14342, 14344, 14345, 14436, 14437, 14438, 14439, 14440, 14441, 14448, 14503,
+        14504, 14505, 14507, 14508, 14537, 14538, 14539, 14540, 14541, 14601, 14602, 14603, 14604, 14605, 14696, 14697,
+        14698, 14699, 14700, 14701, 14706, 14761, 14762, 14764, 14765, 14766, 14795, 14796, 14798, 14799, 14859, 14860,
+        14862, 14863, 14954, 14955, 14956, 14957, 14958, 14959, 14964, 15021, 15022, 15023, 15025, 15026, 15055, 15056,
+        15057, 15058, 15059, 15119, 15120, 15121, 15122, 15123, 15214, 15215, 15216, 15217, 15218, 15219, 15222, 15279,
+        15280, 15282, 15283, 15284, 15313, 15314, 15316, 15317, 15377, 15378, 15380, 15381, 15472, 15473, 15474, 15475,
+        15476, 15477, 15480, 15539, 15540, 15541, 15543, 15544, 15573, 15574, 15575, 15576, 15577, 15637, 15638, 15639,
+        15640, 15641, 15732, 15733, 15734, 15735, 15736, 15737, 15738, 15797, 15798, 15800, 15801, 15802, 15831, 15832,
+        15834, 15835, 15895, 15896, 15898, 15899, 15990, 15991, 15992, 15993, 15994, 15995, 15996, 16057, 16058, 16059,
+        16060, 16091, 16092, 16093, 16155, 16156, 16157, 16250, 16251, 16252, 16253, 16254, 16315, 16316, 16317, 16318,
+        16349, 16350, 16351, 16413, 16414, 16415, 16508, 16509, 16510, 16511};
+    static const int first[] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15,
+        16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31,
+        32, 33, 34, 35, 36, 37, 38, 39, 40, 41, 42, 43, 44, 45, 46, 47,
+        48, 49, 50, 51, 52, 53, 54, 55, 56, 57, 58, 59, 60, 61, 62, 63,
+        64, 65, 66, 67, 68, 69, 70, 71, 72, 73, 74, 75, 76, 77, 78, 79,
+        80, 81, 82, 83, 84, 85, 86, 87, 88, 89, 90, 91, 92, 93, 94, 95,
+        96, 97, 98, 99, 100, 101, 102, 103, 104, 105, 106, 107, 108, 109, 110, 111,
+        112, 113, 114, 115, 116, 117, 118, 119, 120, 121, 122, 123, 124, 125, 126, 127,
+        128, 129, 130, 131, 132, 133, 134, 135, 136, 137, 138, 139, 140, 141, 142, 143,
+        144, 145, 146, 147, 148, 149, 150, 151, 152, 153, 154, 155, 156, 157, 158, 159,
+        160, 161, 162, 163, 164, 165, 166, 167, 168, 169, 170, 171, 172, 173, 174, 175,
+        176, 177, 178, 179, 180, 181, 182, 183, 184, 185, 186, 187, 188, 189, 190, 191,
+        192, 193, 194, 195, 196, 197, 198, 199, 200, 201, 202, 203, 204, 205, 206, 207,
+        208, 209, 210, 211, 212, 213, 214, 215, 216, 217, 218, 219, 220, 221, 222, 223,
+        224, 225, 226, 227, 228, 229, 230, 231, 232, 233, 234, 235, 236, 237, 238, 239,
+        240, 241, 242, 243, 244, 245, 246, 247, 248, 249, 250, 251, 252, 253, 254, 255,
+        256, 257, 258, 259, 260, 261, 262, 263, 264, 265, 266, 267, 268, 269, 270, 271,
+        272, 273, 274, 275, 276, 277, 278, 279, 280, 281, 282, 283, 284, 285, 286, 287,
+        288, 289, 290, 291, 292, 293, 294, 295, 296, 297, 298, 299, 300, 301, 302, 303,
+        304, 305, 306, 307, 308, 309, 310, 311, 312, 313, 314, 315, 316, 317, 318, 319,
+        320, 321, 322, 323, 324, 325, 326, 327, 328, 329, 330, 331, 332, 333, 334, 335,
+        336, 337, 338, 339, 340, 341, 342, 343, 344, 345, 346, 347, 348, 349, 350, 351,
+        352, 353, 354, 355, 356, 357, 358, 359, 360, 361, 362, 363, 364, 365, 366, 367,
+        368, 369, 370, 371, 372, 373, 374, 375, 376, 377, 378, 379, 380, 381, 382, 383,
+        384, 385, 386, 387, 388, 389, 390, 391, 392, 393, 394, 395, 396, 397, 398, 399,
+        400, 401, 402, 403, 404, 405, 406, 407, 408, 409, 410, 411, 412, 413, 414, 415,
+        416, 417, 418, 419, 420, 421, 422, 423, 424, 425, 426, 427, 428, 429, 430, 431,
+        432, 433, 434, 435, 436, 437, 438, 439, 440, 441, 442, 443, 444, 445, 446, 447,
+        448, 449, 450, 451, 452, 453, 454, 455, 456, 457, 458, 459, 460, 461, 462, 463,
+        464, 465, 466, 467, 468, 469, 470, 471, 472, 473, 474, 475, 476, 477, 478, 479,
+        480, 481, 482, 483, 484, 485, 486, 487, 488, 489, 490, 491, 492, 493, 494, 495,
+        496, 497, 498, 499, 500, 501, 502, 503, 504, 505, 506, 507, 508, 509, 510, 511,
+        512, 513, 514, 515, 516, 517, 518, 519, 520, 521, 522, 523, 524, 525, 526, 527,
+        528, 529, 530, 531, 532, 533, 534, 535, 536, 537, 538, 539, 540, 541, 542, 543,
+        544, 545, 546, 547, 548, 549, 550, 551, 552, 553, 554, 555, 556, 557, 558, 559,
+        560, 561, 562, 563, 564, 565, 566, 567, 568, 569, 570, 571, 572, 573, 574, 575,
+        576, 577, 578, 579, 580, 581, 582, 583, 584, 585, 586, 587, 588, 589, 590, 591,
+        592, 593, 594, 595, 596, 597, 598, 599, 600, 601, 602, 603, 604, 605, 606, 607,
+        608, 609, 610, 611, 612, 613, 614, 615, 616, 617, 618, 619, 620, 621, 622, 623,
+        624, 625, 626, 627, 628, 629, 630, 631, 632, 633, 634, 635, 636, 637, 638, 639,
+        640, 641, 642, 643, 644, 645, 646, 647, 648, 649, 650, 651, 652, 653, 654, 655,
+        656, 657, 658, 659, 660, 661, 662, 663, 664, 665, 666, 667, 668, 669, 670, 671,
+        672, 673, 674, 675, 676, 677, 678, 679, 680, 681, 682, 683, 684, 685, 686, 687,
+        688, 689, 690, 691, 692, 693, 694, 695, 696, 697, 698, 699, 700, 701, 702, 703,
+        704, 705, 706, 707, 708, 709, 710, 711, 712, 713, 714, 715, 716, 717, 718, 719,
+        720, 721, 722, 723, 724, 725, 726, 727, 728, 729, 730, 731, 732, 733, 734, 735,
+        736, 737, 738, 739, 740, 741, 742, 743, 744, 745, 746, 747, 748, 749, 750, 751,
+        752, 753, 754, 755, 756, 757, 758, 759, 760, 761, 762, 763, 764, 765, 766, 767,
+        768, 769, 770, 771, 772, 773, 774, 775, 776, 777, 778, 779, 780, 781, 782, 783,
+        784, 785, 786, 787, 788, 789, 790, 791, 792, 793, 794, 795, 796, 797, 798, 799,
+        800, 801, 802, 803, 804, 805, 806, 807, 808, 809, 810, 811, 812, 813, 814, 815,
+        816, 817, 818, 819, 820, 821, 822, 823, 824, 825, 826, 827, 828, 829, 830, 831,
+        832, 833, 834, 835, 836, 837, 838, 839, 840, 841, 842, 843, 844, 845, 846, 847,
+        848, 849, 850, 851, 852, 853, 854, 855, 856, 857, 858, 859, 860, 861, 862, 863,
+        864, 865, 866, 867, 868, 869, 870, 871, 872, 873, 874, 875, 876, 877, 878, 879,
+        880, 881, 882, 883, 884, 885, 886, 887, 888, 889, 890, 891, 892, 893, 894, 895,
+        896, 897, 898, 899, 900, 901, 902, 903, 904, 905, 906, 907, 908, 909, 910, 911,
+        912, 913, 914, 915, 916, 917, 918, 919, 920, 921, 922, 923, 924, 925, 926, 927,
+        928, 929, 930, 931, 932, 933, 934, 935, 936, 937, 938, 939, 940, 941, 942, 943,
+        944, 945, 946, 947, 948, 949, 950, 951, 952, 953, 954, 955, 956, 957, 958, 959,
+        960, 961, 962, 963, 964, 965, 966, 967, 968, 969, 970, 971, 972, 973, 974, 975,
+        976, 977, 978, 979, 980, 981, 982, 983, 984, 985, 986, 987, 988, 989, 990, 991,
+        992, 993, 994, 995, 996, 997, 998, 999, 1000, 1001, 1002, 1003, 1004, 1005, 1006, 1007,
+        1008, 1009, 1010, 1011, 1012, 1013, 1014, 1015, 1016, 1017, 1018, 1019, 1020, 1021, 1022, 1023,
+        1024, 1025, 1026, 1027, 1028, 1029, 1030, 1031, 1032, 1033, 1034, 1035, 1036, 1037, 1038, 1039,
+        1040, 1041, 1042, 1043, 1044, 1045, 1046, 1047, 1048, 1049, 1050, 1051, 1052, 1053, 1054, 1055,
+        1056, 1057, 1058, 1059, 1060, 1061, 1062, 1063, 1064, 1065, 1066, 1067, 1068, 1069, 1070, 1071,
+        1072, 1073, 1074, 1075, 1076, 1077, 1078, 1079, 1080, 1081, 1082, 1083, 1084, 1085, 1086, 1087,
+        1088, 1089, 1090, 1091, 1092, 1093, 1094, 1095, 1096, 1097, 1098, 1099, 1100, 1101, 1102, 1103,
+        1104, 1105, 1106, 1107, 1108, 1109, 1110, 1111, 1112, 1113, 1114, 1115, 1116, 1117, 1118, 1119,
+        1120, 1121, 1122, 1123, 1124, 1125, 1126, 1127, 1128, 1129, 1130, 1131, 1132, 1133, 1134, 1135,
+        1136, 1137, 1138, 1139, 1140, 1141, 1142, 1143, 1144, 1145, 1146};
+    for (int i = 0; i < 1146; ++i) {
+        double sum = 0.0;
+        for (int t = first[i]; t < first[i + 1]; ++t) sum += terms[t].scale * c[terms[t].coef] * m[terms[t].mono];
+        out[written[i]] = sum;
+    }
 }
 
 /* energy:(c[332],u[3],q[64],qd[64])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */

@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[332]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[333]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void fem_nx32_ny32_torque_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -171,193 +171,194 @@ void fem_nx32_ny32_torque_first_coefficients(const double* p, double* c)
     c[145] = 0.023214285714285715*L*m;
     c[146] = 0.00020461309523809524*L*m;
     c[147] = 2.3251488095238097e-06*L*m;
-    c[148] = 0.041666666666666664*L*m;
-    c[149] = 72.0*m*a + 38.114285714285714*L*m;
-    c[150] = 0.03125*m*a + 0.01658296130952381*L*m;
-    c[151] = 67.2*m*a + 37.66428571428571*L*m;
-    c[152] = 0.029166666666666667*m*a + 0.01638764880952381*L*m;
-    c[153] = 62.4*m*a + 36.91428571428571*L*m;
-    c[154] = 0.027083333333333334*m*a + 0.016062127976190475*L*m;
-    c[155] = 57.6*m*a + 35.864285714285714*L*m;
-    c[156] = 0.025*m*a + 0.01560639880952381*L*m;
-    c[157] = 52.8*m*a + 34.51428571428571*L*m;
-    c[158] = 0.022916666666666665*m*a + 0.01502046130952381*L*m;
-    c[159] = 48.0*m*a + 32.864285714285714*L*m;
-    c[160] = 0.020833333333333332*m*a + 0.014304315476190476*L*m;
-    c[161] = 43.2*m*a + 30.914285714285715*L*m;
-    c[162] = 0.01875*m*a + 0.01345796130952381*L*m;
-    c[163] = 38.4*m*a + 28.664285714285715*L*m;
-    c[164] = 0.016666666666666666*m*a + 0.01248139880952381*L*m;
-    c[165] = 33.6*m*a + 26.114285714285714*L*m;
-    c[166] = 0.014583333333333334*m*a + 0.011374627976190476*L*m;
-    c[167] = 28.8*m*a + 23.264285714285716*L*m;
-    c[168] = 0.0125*m*a + 0.01013764880952381*L*m;
-    c[169] = 24.0*m*a + 20.114285714285714*L*m;
-    c[170] = 0.010416666666666666*m*a + 0.00877046130952381*L*m;
-    c[171] = 19.2*m*a + 16.664285714285715*L*m;
-    c[172] = 0.008333333333333333*m*a + 0.007273065476190476*L*m;
-    c[173] = 14.4*m*a + 12.914285714285715*L*m;
-    c[174] = 0.00625*m*a + 0.005645461309523809*L*m;
-    c[175] = 9.6*m*a + 8.864285714285714*L*m;
-    c[176] = 0.004166666666666667*m*a + 0.0038876488095238096*L*m;
-    c[177] = 4.8*m*a + 4.514285714285714*L*m;
-    c[178] = 0.0020833333333333333*m*a + 0.001999627976190476*L*m;
-    c[179] = 1.2*m*a + 1.1321428571428571*L*m;
-    c[180] = 0.00026041666666666666*m*a + 0.0002511160714285714*L*m;
-    c[181] = 64.0*ES/(L);
-    c[182] = 32.0*ES/(L);
-    c[183] = 0.03125*L*m*a + 0.0009765625*L*L*m;
-    c[184] = 0.03125*L*m;
-    c[185] = 0.0004069010416666667*L*m;
-    c[186] = 0.03125*L*m*a + 0.001953125*L*L*m;
-    c[187] = 0.05625*L*m;
-    c[188] = 0.003125*L*m;
-    c[189] = 5.6966145833333334e-05*L*m;
-    c[190] = 0.03125*L*m*a + 0.0029296875*L*L*m;
-    c[191] = 0.03125*L*m*a + 0.00390625*L*L*m;
-    c[192] = 0.03125*L*m*a + 0.0048828125*L*L*m;
-    c[193] = 0.03125*L*m*a + 0.005859375*L*L*m;
-    c[194] = 0.03125*L*m*a + 0.0068359375*L*L*m;
-    c[195] = 0.03125*L*m*a + 0.0078125*L*L*m;
-    c[196] = 0.03125*L*m*a + 0.0087890625*L*L*m;
-    c[197] = 0.03125*L*m*a + 0.009765625*L*L*m;
-    c[198] = 0.03125*L*m*a + 0.0107421875*L*L*m;
-    c[199] = 0.03125*L*m*a + 0.01171875*L*L*m;
-    c[200] = 0.03125*L*m*a + 0.0126953125*L*L*m;
-    c[201] = 0.03125*L*m*a + 0.013671875*L*L*m;
-    c[202] = 0.03125*L*m*a + 0.0146484375*L*L*m;
-    c[203] = 0.03125*L*m*a + 0.015625*L*L*m;
-    c[204] = 0.03125*L*m*a + 0.0166015625*L*L*m;
-    c[205] = 0.03125*L*m*a + 0.017578125*L*L*m;
-    c[206] = 0.03125*L*m*a + 0.0185546875*L*L*m;
-    c[207] = 0.03125*L*m*a + 0.01953125*L*L*m;
-    c[208] = 0.03125*L*m*a + 0.0205078125*L*L*m;
-    c[209] = 0.03125*L*m*a + 0.021484375*L*L*m;
-    c[210] = 0.03125*L*m*a + 0.0224609375*L*L*m;
-    c[211] = 0.03125*L*m*a + 0.0234375*L*L*m;
-    c[212] = 0.03125*L*m*a + 0.0244140625*L*L*m;
-    c[213] = 0.03125*L*m*a + 0.025390625*L*L*m;
-    c[214] = 0.03125*L*m*a + 0.0263671875*L*L*m;
-    c[215] = 0.03125*L*m*a + 0.02734375*L*L*m;
-    c[216] = 0.03125*L*m*a + 0.0283203125*L*L*m;
-    c[217] = 0.03125*L*m*a + 0.029296875*L*L*m;
-    c[218] = 0.03125*L*m*a + 0.0302734375*L*L*m;
-    c[219] = 0.015625*L*m*a + 0.015462239583333334*L*L*m;
-    c[220] = 0.00018717447916666668*L*m;
-    c[221] = 98304.0*EI/(L*L*L);
-    c[222] = 49152.0*EI/(L*L*L);
-    c[223] = 1536.0*EI/(L*L*L);
-    c[224] = 0.0125*m*a + 0.00078125*L*m;
-    c[225] = 17.4*m*a + 9.522321428571429*L*m;
-    c[226] = 0.09375*m*a + 0.04998139880952381*L*m;
-    c[227] = 128.0*EI/(L*L*L);
-    c[228] = 32.0*EI/(L*L*L);
-    c[229] = 0.0875*m*a + 0.04939546130952381*L*m;
-    c[230] = 0.0018880208333333333*m*a + 0.0010300409226190476*L*m;
-    c[231] = 0.0125*m*a + 0.0015625*L*m;
-    c[232] = 16.2*m*a + 9.372321428571428*L*m;
-    c[233] = 0.08125*m*a + 0.04841889880952381*L*m;
-    c[234] = 0.0017578125*m*a + 0.001013764880952381*L*m;
-    c[235] = 0.0125*m*a + 0.00234375*L*m;
-    c[236] = 15.0*m*a + 9.147321428571429*L*m;
-    c[237] = 0.075*m*a + 0.04705171130952381*L*m;
-    c[238] = 0.0016276041666666667*m*a + 0.000989350818452381*L*m;
-    c[239] = 0.0125*m*a + 0.003125*L*m;
-    c[240] = 13.8*m*a + 8.847321428571428*L*m;
-    c[241] = 0.06875*m*a + 0.04529389880952381*L*m;
-    c[242] = 0.0014973958333333334*m*a + 0.0009567987351190476*L*m;
-    c[243] = 0.0125*m*a + 0.00390625*L*m;
-    c[244] = 12.6*m*a + 8.472321428571428*L*m;
-    c[245] = 0.0625*m*a + 0.04314546130952381*L*m;
-    c[246] = 0.0013671875*m*a + 0.000916108630952381*L*m;
-    c[247] = 0.0125*m*a + 0.0046875*L*m;
-    c[248] = 11.4*m*a + 8.022321428571429*L*m;
-    c[249] = 0.05625*m*a + 0.04060639880952381*L*m;
-    c[250] = 0.0012369791666666666*m*a + 0.0008672805059523809*L*m;
-    c[251] = 0.0125*m*a + 0.00546875*L*m;
-    c[252] = 10.2*m*a + 7.4973214285714285*L*m;
-    c[253] = 0.05*m*a + 0.03767671130952381*L*m;
-    c[254] = 0.0011067708333333333*m*a + 0.0008103143601190477*L*m;
-    c[255] = 0.0125*m*a + 0.00625*L*m;
-    c[256] = 9.0*m*a + 6.897321428571429*L*m;
-    c[257] = 0.04375*m*a + 0.03435639880952381*L*m;
-    c[258] = 0.0009765625*m*a + 0.0007452101934523809*L*m;
-    c[259] = 0.0125*m*a + 0.00703125*L*m;
-    c[260] = 7.8*m*a + 6.222321428571429*L*m;
-    c[261] = 0.0375*m*a + 0.030645461309523808*L*m;
-    c[262] = 0.0008463541666666667*m*a + 0.000671968005952381*L*m;
-    c[263] = 0.0125*m*a + 0.0078125*L*m;
-    c[264] = 6.6*m*a + 5.472321428571429*L*m;
-    c[265] = 0.03125*m*a + 0.02654389880952381*L*m;
-    c[266] = 0.0007161458333333333*m*a + 0.0005905877976190476*L*m;
-    c[267] = 0.0125*m*a + 0.00859375*L*m;
-    c[268] = 5.4*m*a + 4.647321428571429*L*m;
-    c[269] = 0.025*m*a + 0.02205171130952381*L*m;
-    c[270] = 0.0005859375*m*a + 0.0005010695684523809*L*m;
-    c[271] = 0.0125*m*a + 0.009375*L*m;
-    c[272] = 4.2*m*a + 3.7473214285714285*L*m;
-    c[273] = 0.01875*m*a + 0.01716889880952381*L*m;
-    c[274] = 0.0004557291666666667*m*a + 0.00040341331845238093*L*m;
-    c[275] = 0.0125*m*a + 0.01015625*L*m;
-    c[276] = 3.0*m*a + 2.7723214285714284*L*m;
-    c[277] = 0.0125*m*a + 0.011895461309523809*L*m;
-    c[278] = 0.0003255208333333333*m*a + 0.00029761904761904765*L*m;
-    c[279] = 0.0125*m*a + 0.0109375*L*m;
-    c[280] = 1.8*m*a + 1.7223214285714286*L*m;
-    c[281] = 0.00625*m*a + 0.00623139880952381*L*m;
-    c[282] = 0.0001953125*m*a + 0.00018368675595238095*L*m;
-    c[283] = 0.0125*m*a + 0.01171875*L*m;
-    c[284] = 0.6*m*a + 0.5973214285714286*L*m;
-    c[285] = 0.00017671130952380952*L*m;
-    c[286] = 6.510416666666667e-05*m*a + 6.161644345238095e-05*L*m;
-    c[287] = 0.00625*m*a + 0.005905877976190476*L*m;
-    c[288] = 64.0*EI/(L*L*L);
-    c[289] = 0.5*J_oh + 0.5*L*m*a*a + 0.5*L*L*m*a + 0.16666666666666666*L*L*L*m;
-    c[290] = 0.011607142857142858*L*m;
-    c[291] = 1.1625744047619049e-06*L*m;
-    c[292] = 18.0*m*a + 9.528571428571428*L*m;
-    c[293] = 0.0078125*m*a + 0.004145740327380952*L*m;
-    c[294] = 16.8*m*a + 9.416071428571428*L*m;
-    c[295] = 0.007291666666666667*m*a + 0.004096912202380953*L*m;
-    c[296] = 15.6*m*a + 9.228571428571428*L*m;
-    c[297] = 0.0067708333333333336*m*a + 0.004015531994047619*L*m;
-    c[298] = 14.4*m*a + 8.966071428571428*L*m;
-    c[299] = 0.00625*m*a + 0.0039015997023809524*L*m;
-    c[300] = 13.2*m*a + 8.628571428571428*L*m;
-    c[301] = 0.005729166666666666*m*a + 0.0037551153273809525*L*m;
-    c[302] = 12.0*m*a + 8.216071428571428*L*m;
-    c[303] = 0.005208333333333333*m*a + 0.003576078869047619*L*m;
-    c[304] = 10.8*m*a + 7.728571428571429*L*m;
-    c[305] = 0.0046875*m*a + 0.0033644903273809526*L*m;
-    c[306] = 9.6*m*a + 7.166071428571429*L*m;
-    c[307] = 0.004166666666666667*m*a + 0.0031203497023809526*L*m;
-    c[308] = 8.4*m*a + 6.5285714285714285*L*m;
-    c[309] = 0.0036458333333333334*m*a + 0.002843656994047619*L*m;
-    c[310] = 7.2*m*a + 5.816071428571429*L*m;
-    c[311] = 0.003125*m*a + 0.0025344122023809525*L*m;
-    c[312] = 6.0*m*a + 5.0285714285714285*L*m;
-    c[313] = 0.0026041666666666665*m*a + 0.0021926153273809524*L*m;
-    c[314] = 4.8*m*a + 4.166071428571429*L*m;
-    c[315] = 0.0020833333333333333*m*a + 0.001818266369047619*L*m;
-    c[316] = 3.6*m*a + 3.2285714285714286*L*m;
-    c[317] = 0.0015625*m*a + 0.0014113653273809524*L*m;
-    c[318] = 2.4*m*a + 2.2160714285714285*L*m;
-    c[319] = 0.0010416666666666667*m*a + 0.0009719122023809524*L*m;
-    c[320] = 1.2*m*a + 1.1285714285714286*L*m;
-    c[321] = 0.0005208333333333333*m*a + 0.000499906994047619*L*m;
-    c[322] = 0.3*m*a + 0.2830357142857143*L*m;
-    c[323] = 6.510416666666667e-05*m*a + 6.277901785714285e-05*L*m;
-    c[324] = 16.0*ES/(L);
-    c[325] = 24576.0*EI/(L*L*L);
-    c[326] = 19.2*1.0/(L);
-    c[327] = 0.1*1.0/(L);
-    c[328] = 0.008333333333333333*1.0/(L);
-    c[329] = 0.0020833333333333333*1.0/(L);
-    c[330] = 9.6*1.0/(L);
-    c[331] = 0.004166666666666667*1.0/(L);
+    c[148] = 1.0;
+    c[149] = 0.041666666666666664*L*m;
+    c[150] = 72.0*m*a + 38.114285714285714*L*m;
+    c[151] = 0.03125*m*a + 0.01658296130952381*L*m;
+    c[152] = 67.2*m*a + 37.66428571428571*L*m;
+    c[153] = 0.029166666666666667*m*a + 0.01638764880952381*L*m;
+    c[154] = 62.4*m*a + 36.91428571428571*L*m;
+    c[155] = 0.027083333333333334*m*a + 0.016062127976190475*L*m;
+    c[156] = 57.6*m*a + 35.864285714285714*L*m;
+    c[157] = 0.025*m*a + 0.01560639880952381*L*m;
+    c[158] = 52.8*m*a + 34.51428571428571*L*m;
+    c[159] = 0.022916666666666665*m*a + 0.01502046130952381*L*m;
+    c[160] = 48.0*m*a + 32.864285714285714*L*m;
+    c[161] = 0.020833333333333332*m*a + 0.014304315476190476*L*m;
+    c[162] = 43.2*m*a + 30.914285714285715*L*m;
+    c[163] = 0.01875*m*a + 0.01345796130952381*L*m;
+    c[164] = 38.4*m*a + 28.664285714285715*L*m;
+    c[165] = 0.016666666666666666*m*a + 0.01248139880952381*L*m;
+    c[166] = 33.6*m*a + 26.114285714285714*L*m;
+    c[167] = 0.014583333333333334*m*a + 0.011374627976190476*L*m;
+    c[168] = 28.8*m*a + 23.264285714285716*L*m;
+    c[169] = 0.0125*m*a + 0.01013764880952381*L*m;
+    c[170] = 24.0*m*a + 20.114285714285714*L*m;
+    c[171] = 0.010416666666666666*m*a + 0.00877046130952381*L*m;
+    c[172] = 19.2*m*a + 16.664285714285715*L*m;
+    c[173] = 0.008333333333333333*m*a + 0.007273065476190476*L*m;
+    c[174] = 14.4*m*a + 12.914285714285715*L*m;
+    c[175] = 0.00625*m*a + 0.005645461309523809*L*m;
+    c[176] = 9.6*m*a + 8.864285714285714*L*m;
+    c[177] = 0.004166666666666667*m*a + 0.0038876488095238096*L*m;
+    c[178] = 4.8*m*a + 4.514285714285714*L*m;
+    c[179] = 0.0020833333333333333*m*a + 0.001999627976190476*L*m;
+    c[180] = 1.2*m*a + 1.1321428571428571*L*m;
+    c[181] = 0.00026041666666666666*m*a + 0.0002511160714285714*L*m;
+    c[182] = 64.0*ES/(L);
+    c[183] = 32.0*ES/(L);
+    c[184] = 0.03125*L*m*a + 0.0009765625*L*L*m;
+    c[185] = 0.03125*L*m;
+    c[186] = 0.0004069010416666667*L*m;
+    c[187] = 0.03125*L*m*a + 0.001953125*L*L*m;
+    c[188] = 0.05625*L*m;
+    c[189] = 0.003125*L*m;
+    c[190] = 5.6966145833333334e-05*L*m;
+    c[191] = 0.03125*L*m*a + 0.0029296875*L*L*m;
+    c[192] = 0.03125*L*m*a + 0.00390625*L*L*m;
+    c[193] = 0.03125*L*m*a + 0.0048828125*L*L*m;
+    c[194] = 0.03125*L*m*a + 0.005859375*L*L*m;
+    c[195] = 0.03125*L*m*a + 0.0068359375*L*L*m;
+    c[196] = 0.03125*L*m*a + 0.0078125*L*L*m;
+    c[197] = 0.03125*L*m*a + 0.0087890625*L*L*m;
+    c[198] = 0.03125*L*m*a + 0.009765625*L*L*m;
+    c[199] = 0.03125*L*m*a + 0.0107421875*L*L*m;
+    c[200] = 0.03125*L*m*a + 0.01171875*L*L*m;
+    c[201] = 0.03125*L*m*a + 0.0126953125*L*L*m;
+    c[202] = 0.03125*L*m*a + 0.013671875*L*L*m;
+    c[203] = 0.03125*L*m*a + 0.0146484375*L*L*m;
+    c[204] = 0.03125*L*m*a + 0.015625*L*L*m;
+    c[205] = 0.03125*L*m*a + 0.0166015625*L*L*m;
+    c[206] = 0.03125*L*m*a + 0.017578125*L*L*m;
+    c[207] = 0.03125*L*m*a + 0.0185546875*L*L*m;
+    c[208] = 0.03125*L*m*a + 0.01953125*L*L*m;
+    c[209] = 0.03125*L*m*a + 0.0205078125*L*L*m;
+    c[210] = 0.03125*L*m*a + 0.021484375*L*L*m;
+    c[211] = 0.03125*L*m*a + 0.0224609375*L*L*m;
+    c[212] = 0.03125*L*m*a + 0.0234375*L*L*m;
+    c[213] = 0.03125*L*m*a + 0.0244140625*L*L*m;
+    c[214] = 0.03125*L*m*a + 0.025390625*L*L*m;
+    c[215] = 0.03125*L*m*a + 0.0263671875*L*L*m;
+    c[216] = 0.03125*L*m*a + 0.02734375*L*L*m;
+    c[217] = 0.03125*L*m*a + 0.0283203125*L*L*m;
+    c[218] = 0.03125*L*m*a + 0.029296875*L*L*m;
+    c[219] = 0.03125*L*m*a + 0.0302734375*L*L*m;
+    c[220] = 0.015625*L*m*a + 0.015462239583333334*L*L*m;
+    c[221] = 0.00018717447916666668*L*m;
+    c[222] = 98304.0*EI/(L*L*L);
+    c[223] = 49152.0*EI/(L*L*L);
+    c[224] = 1536.0*EI/(L*L*L);
+    c[225] = 0.0125*m*a + 0.00078125*L*m;
+    c[226] = 17.4*m*a + 9.522321428571429*L*m;
+    c[227] = 0.09375*m*a + 0.04998139880952381*L*m;
+    c[228] = 128.0*EI/(L*L*L);
+    c[229] = 32.0*EI/(L*L*L);
+    c[230] = 0.0875*m*a + 0.04939546130952381*L*m;
+    c[231] = 0.0018880208333333333*m*a + 0.0010300409226190476*L*m;
+    c[232] = 0.0125*m*a + 0.0015625*L*m;
+    c[233] = 16.2*m*a + 9.372321428571428*L*m;
+    c[234] = 0.08125*m*a + 0.04841889880952381*L*m;
+    c[235] = 0.0017578125*m*a + 0.001013764880952381*L*m;
+    c[236] = 0.0125*m*a + 0.00234375*L*m;
+    c[237] = 15.0*m*a + 9.147321428571429*L*m;
+    c[238] = 0.075*m*a + 0.04705171130952381*L*m;
+    c[239] = 0.0016276041666666667*m*a + 0.000989350818452381*L*m;
+    c[240] = 0.0125*m*a + 0.003125*L*m;
+    c[241] = 13.8*m*a + 8.847321428571428*L*m;
+    c[242] = 0.06875*m*a + 0.04529389880952381*L*m;
+    c[243] = 0.0014973958333333334*m*a + 0.0009567987351190476*L*m;
+    c[244] = 0.0125*m*a + 0.00390625*L*m;
+    c[245] = 12.6*m*a + 8.472321428571428*L*m;
+    c[246] = 0.0625*m*a + 0.04314546130952381*L*m;
+    c[247] = 0.0013671875*m*a + 0.000916108630952381*L*m;
+    c[248] = 0.0125*m*a + 0.0046875*L*m;
+    c[249] = 11.4*m*a + 8.022321428571429*L*m;
+    c[250] = 0.05625*m*a + 0.04060639880952381*L*m;
+    c[251] = 0.0012369791666666666*m*a + 0.0008672805059523809*L*m;
+    c[252] = 0.0125*m*a + 0.00546875*L*m;
+    c[253] = 10.2*m*a + 7.4973214285714285*L*m;
+    c[254] = 0.05*m*a + 0.03767671130952381*L*m;
+    c[255] = 0.0011067708333333333*m*a + 0.0008103143601190477*L*m;
+    c[256] = 0.0125*m*a + 0.00625*L*m;
+    c[257] = 9.0*m*a + 6.897321428571429*L*m;
+    c[258] = 0.04375*m*a + 0.03435639880952381*L*m;
+    c[259] = 0.0009765625*m*a + 0.0007452101934523809*L*m;
+    c[260] = 0.0125*m*a + 0.00703125*L*m;
+    c[261] = 7.8*m*a + 6.222321428571429*L*m;
+    c[262] = 0.0375*m*a + 0.030645461309523808*L*m;
+    c[263] = 0.0008463541666666667*m*a + 0.000671968005952381*L*m;
+    c[264] = 0.0125*m*a + 0.0078125*L*m;
+    c[265] = 6.6*m*a + 5.472321428571429*L*m;
+    c[266] = 0.03125*m*a + 0.02654389880952381*L*m;
+    c[267] = 0.0007161458333333333*m*a + 0.0005905877976190476*L*m;
+    c[268] = 0.0125*m*a + 0.00859375*L*m;
+    c[269] = 5.4*m*a + 4.647321428571429*L*m;
+    c[270] = 0.025*m*a + 0.02205171130952381*L*m;
+    c[271] = 0.0005859375*m*a + 0.0005010695684523809*L*m;
+    c[272] = 0.0125*m*a + 0.009375*L*m;
+    c[273] = 4.2*m*a + 3.7473214285714285*L*m;
+    c[274] = 0.01875*m*a + 0.01716889880952381*L*m;
+    c[275] = 0.0004557291666666667*m*a + 0.00040341331845238093*L*m;
+    c[276] = 0.0125*m*a + 0.01015625*L*m;
+    c[277] = 3.0*m*a + 2.7723214285714284*L*m;
+    c[278] = 0.0125*m*a + 0.011895461309523809*L*m;
+    c[279] = 0.0003255208333333333*m*a + 0.00029761904761904765*L*m;
+    c[280] = 0.0125*m*a + 0.0109375*L*m;
+    c[281] = 1.8*m*a + 1.7223214285714286*L*m;
+    c[282] = 0.00625*m*a + 0.00623139880952381*L*m;
+    c[283] = 0.0001953125*m*a + 0.00018368675595238095*L*m;
+    c[284] = 0.0125*m*a + 0.01171875*L*m;
+    c[285] = 0.6*m*a + 0.5973214285714286*L*m;
+    c[286] = 0.00017671130952380952*L*m;
+    c[287] = 6.510416666666667e-05*m*a + 6.161644345238095e-05*L*m;
+    c[288] = 0.00625*m*a + 0.005905877976190476*L*m;
+    c[289] = 64.0*EI/(L*L*L);
+    c[290] = 0.5*J_oh + 0.5*L*m*a*a + 0.5*L*L*m*a + 0.16666666666666666*L*L*L*m;
+    c[291] = 0.011607142857142858*L*m;
+    c[292] = 1.1625744047619049e-06*L*m;
+    c[293] = 18.0*m*a + 9.528571428571428*L*m;
+    c[294] = 0.0078125*m*a + 0.004145740327380952*L*m;
+    c[295] = 16.8*m*a + 9.416071428571428*L*m;
+    c[296] = 0.007291666666666667*m*a + 0.004096912202380953*L*m;
+    c[297] = 15.6*m*a + 9.228571428571428*L*m;
+    c[298] = 0.0067708333333333336*m*a + 0.004015531994047619*L*m;
+    c[299] = 14.4*m*a + 8.966071428571428*L*m;
+    c[300] = 0.00625*m*a + 0.0039015997023809524*L*m;
+    c[301] = 13.2*m*a + 8.628571428571428*L*m;
+    c[302] = 0.005729166666666666*m*a + 0.0037551153273809525*L*m;
+    c[303] = 12.0*m*a + 8.216071428571428*L*m;
+    c[304] = 0.005208333333333333*m*a + 0.003576078869047619*L*m;
+    c[305] = 10.8*m*a + 7.728571428571429*L*m;
+    c[306] = 0.0046875*m*a + 0.0033644903273809526*L*m;
+    c[307] = 9.6*m*a + 7.166071428571429*L*m;
+    c[308] = 0.004166666666666667*m*a + 0.0031203497023809526*L*m;
+    c[309] = 8.4*m*a + 6.5285714285714285*L*m;
+    c[310] = 0.0036458333333333334*m*a + 0.002843656994047619*L*m;
+    c[311] = 7.2*m*a + 5.816071428571429*L*m;
+    c[312] = 0.003125*m*a + 0.0025344122023809525*L*m;
+    c[313] = 6.0*m*a + 5.0285714285714285*L*m;
+    c[314] = 0.0026041666666666665*m*a + 0.0021926153273809524*L*m;
+    c[315] = 4.8*m*a + 4.166071428571429*L*m;
+    c[316] = 0.0020833333333333333*m*a + 0.001818266369047619*L*m;
+    c[317] = 3.6*m*a + 3.2285714285714286*L*m;
+    c[318] = 0.0015625*m*a + 0.0014113653273809524*L*m;
+    c[319] = 2.4*m*a + 2.2160714285714285*L*m;
+    c[320] = 0.0010416666666666667*m*a + 0.0009719122023809524*L*m;
+    c[321] = 1.2*m*a + 1.1285714285714286*L*m;
+    c[322] = 0.0005208333333333333*m*a + 0.000499906994047619*L*m;
+    c[323] = 0.3*m*a + 0.2830357142857143*L*m;
+    c[324] = 6.510416666666667e-05*m*a + 6.277901785714285e-05*L*m;
+    c[325] = 16.0*ES/(L);
+    c[326] = 24576.0*EI/(L*L*L);
+    c[327] = 19.2*1.0/(L);
+    c[328] = 0.1*1.0/(L);
+    c[329] = 0.008333333333333333*1.0/(L);
+    c[330] = 0.0020833333333333333*1.0/(L);
+    c[331] = 9.6*1.0/(L);
+    c[332] = 0.004166666666666667*1.0/(L);
 }
 
-/* mass:(c[332],u[3],q[65],qd[65])->(M[4225]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[333],u[3],q[65],qd[65])->(M[4225]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void fem_nx32_ny32_torque_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -820,678 +821,1725 @@ void fem_nx32_ny32_torque_first_mass(const double* c, const double* u, const dou
     out[4224] = c[147];
 }
 
-/* forces:(c[332],u[3],q[65],qd[65])->(Q[65]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[333],u[3],q[65],qd[65])->(Q[65]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void fem_nx32_ny32_torque_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
-    const double tau = u[0];
-    const double A1 = q[1];
-    const double A2 = q[2];
-    const double A3 = q[3];
-    const double A4 = q[4];
-    const double A5 = q[5];
-    const double A6 = q[6];
-    const double A7 = q[7];
-    const double A8 = q[8];
-    const double A9 = q[9];
-    const double A10 = q[10];
-    const double A11 = q[11];
-    const double A12 = q[12];
-    const double A13 = q[13];
-    const double A14 = q[14];
-    const double A15 = q[15];
-    const double A16 = q[16];
-    const double A17 = q[17];
-    const double A18 = q[18];
-    const double A19 = q[19];
-    const double A20 = q[20];
-    const double A21 = q[21];
-    const double A22 = q[22];
-    const double A23 = q[23];
-    const double A24 = q[24];
-    const double A25 = q[25];
-    const double A26 = q[26];
-    const double A27 = q[27];
-    const double A28 = q[28];
-    const double A29 = q[29];
-    const double A30 = q[30];
-    const double A31 = q[31];
-    const double A32 = q[32];
-    const double B1 = q[33];
-    const double B2 = q[34];
-    const double B3 = q[35];
-    const double B4 = q[36];
-    const double B5 = q[37];
-    const double B6 = q[38];
-    const double B7 = q[39];
-    const double B8 = q[40];
-    const double B9 = q[41];
-    const double B10 = q[42];
-    const double B11 = q[43];
-    const double B12 = q[44];
-    const double B13 = q[45];
-    const double B14 = q[46];
-    const double B15 = q[47];
-    const double B16 = q[48];
-    const double B17 = q[49];
-    const double B18 = q[50];
-    const double B19 = q[51];
-    const double B20 = q[52];
-    const double B21 = q[53];
-    const double B22 = q[54];
-    const double B23 = q[55];
-    const double B24 = q[56];
-    const double B25 = q[57];
-    const double B26 = q[58];
-    const double B27 = q[59];
-    const double B28 = q[60];
-    const double B29 = q[61];
-    const double B30 = q[62];
-    const double B31 = q[63];
-    const double B32 = q[64];
-    const double theta_dot = qd[0];
-    const double A1_dot = qd[1];
-    const double A2_dot = qd[2];
-    const double A3_dot = qd[3];
-    const double A4_dot = qd[4];
-    const double A5_dot = qd[5];
-    const double A6_dot = qd[6];
-    const double A7_dot = qd[7];
-    const double A8_dot = qd[8];
-    const double A9_dot = qd[9];
-    const double A10_dot = qd[10];
-    const double A11_dot = qd[11];
-    const double A12_dot = qd[12];
-    const double A13_dot = qd[13];
-    const double A14_dot = qd[14];
-    const double A15_dot = qd[15];
-    const double A16_dot = qd[16];
-    const double A17_dot = qd[17];
-    const double A18_dot = qd[18];
-    const double A19_dot = qd[19];
-    const double A20_dot = qd[20];
-    const double A21_dot = qd[21];
-    const double A22_dot = qd[22];
-    const double A23_dot = qd[23];
-    const double A24_dot = qd[24];
-    const double A25_dot = qd[25];
-    const double A26_dot = qd[26];
-    const double A27_dot = qd[27];
-    const double A28_dot = qd[28];
-    const double A29_dot = qd[29];
-    const double A30_dot = qd[30];
-    const double A31_dot = qd[31];
-    const double A32_dot = qd[32];
-    const double B1_dot = qd[33];
-    const double B2_dot = qd[34];
-    const double B3_dot = qd[35];
-    const double B4_dot = qd[36];
-    const double B5_dot = qd[37];
-    const double B6_dot = qd[38];
-    const double B7_dot = qd[39];
-    const double B8_dot = qd[40];
-    const double B9_dot = qd[41];
-    const double B10_dot = qd[42];
-    const double B11_dot = qd[43];
-    const double B12_dot = qd[44];
-    const double B13_dot = qd[45];
-    const double B14_dot = qd[46];
-    const double B15_dot = qd[47];
-    const double B16_dot = qd[48];
-    const double B17_dot = qd[49];
-    const double B18_dot = qd[50];
-    const double B19_dot = qd[51];
-    const double B20_dot = qd[52];
-    const double B21_dot = qd[53];
-    const double B22_dot = qd[54];
-    const double B23_dot = qd[55];
-    const double B24_dot = qd[56];
-    const double B25_dot = qd[57];
-    const double B26_dot = qd[58];
-    const double B27_dot = qd[59];
-    const double B28_dot = qd[60];
-    const double B29_dot = qd[61];
-    const double B30_dot = qd[62];
-    const double B31_dot = qd[63];
-    const double B32_dot = qd[64];
-    const double theta_dotsq = theta_dot*theta_dot;
-    const double theta_dot_A1_dot = theta_dot*A1_dot;
-    const double theta_dot_A2_dot = theta_dot*A2_dot;
-    const double theta_dot_A3_dot = theta_dot*A3_dot;
-    const double theta_dot_A4_dot = theta_dot*A4_dot;
-    const double theta_dot_A5_dot = theta_dot*A5_dot;
-    const double theta_dot_A6_dot = theta_dot*A6_dot;
-    const double theta_dot_A7_dot = theta_dot*A7_dot;
-    const double theta_dot_A8_dot = theta_dot*A8_dot;
-    const double theta_dot_A9_dot = theta_dot*A9_dot;
-    const double theta_dot_A10_dot = theta_dot*A10_dot;
-    const double theta_dot_A11_dot = theta_dot*A11_dot;
-    const double theta_dot_A12_dot = theta_dot*A12_dot;
-    const double theta_dot_A13_dot = theta_dot*A13_dot;
-    const double theta_dot_A14_dot = theta_dot*A14_dot;
-    const double theta_dot_A15_dot = theta_dot*A15_dot;
-    const double theta_dot_A16_dot = theta_dot*A16_dot;
-    const double theta_dot_A17_dot = theta_dot*A17_dot;
-    const double theta_dot_A18_dot = theta_dot*A18_dot;
-    const double theta_dot_A19_dot = theta_dot*A19_dot;
-    const double theta_dot_A20_dot = theta_dot*A20_dot;
-    const double theta_dot_A21_dot = theta_dot*A21_dot;
-    const double theta_dot_A22_dot = theta_dot*A22_dot;
-    const double theta_dot_A23_dot = theta_dot*A23_dot;
-    const double theta_dot_A24_dot = theta_dot*A24_dot;
-    const double theta_dot_A25_dot = theta_dot*A25_dot;
-    const double theta_dot_A26_dot = theta_dot*A26_dot;
-    const double theta_dot_A27_dot = theta_dot*A27_dot;
-    const double theta_dot_A28_dot = theta_dot*A28_dot;
-    const double theta_dot_A29_dot = theta_dot*A29_dot;
-    const double theta_dot_A30_dot = theta_dot*A30_dot;
-    const double theta_dot_A31_dot = theta_dot*A31_dot;
-    const double theta_dot_A32_dot = theta_dot*A32_dot;
-    const double theta_dot_B1_dot = theta_dot*B1_dot;
-    const double theta_dot_B2_dot = theta_dot*B2_dot;
-    const double theta_dot_B3_dot = theta_dot*B3_dot;
-    const double theta_dot_B4_dot = theta_dot*B4_dot;
-    const double theta_dot_B5_dot = theta_dot*B5_dot;
-    const double theta_dot_B6_dot = theta_dot*B6_dot;
-    const double theta_dot_B7_dot = theta_dot*B7_dot;
-    const double theta_dot_B8_dot = theta_dot*B8_dot;
-    const double theta_dot_B9_dot = theta_dot*B9_dot;
-    const double theta_dot_B10_dot = theta_dot*B10_dot;
-    const double theta_dot_B11_dot = theta_dot*B11_dot;
-    const double theta_dot_B12_dot = theta_dot*B12_dot;
-    const double theta_dot_B13_dot = theta_dot*B13_dot;
-    const double theta_dot_B14_dot = theta_dot*B14_dot;
-    const double theta_dot_B15_dot = theta_dot*B15_dot;
-    const double theta_dot_B16_dot = theta_dot*B16_dot;
-    const double theta_dot_B17_dot = theta_dot*B17_dot;
-    const double theta_dot_B18_dot = theta_dot*B18_dot;
-    const double theta_dot_B19_dot = theta_dot*B19_dot;
-    const double theta_dot_B20_dot = theta_dot*B20_dot;
-    const double theta_dot_B21_dot = theta_dot*B21_dot;
-    const double theta_dot_B22_dot = theta_dot*B22_dot;
-    const double theta_dot_B23_dot = theta_dot*B23_dot;
-    const double theta_dot_B24_dot = theta_dot*B24_dot;
-    const double theta_dot_B25_dot = theta_dot*B25_dot;
-    const double theta_dot_B26_dot = theta_dot*B26_dot;
-    const double theta_dot_B27_dot = theta_dot*B27_dot;
-    const double theta_dot_B28_dot = theta_dot*B28_dot;
-    const double theta_dot_B29_dot = theta_dot*B29_dot;
-    const double theta_dot_B30_dot = theta_dot*B30_dot;
-    const double theta_dot_B31_dot = theta_dot*B31_dot;
-    const double theta_dot_B32_dot = theta_dot*B32_dot;
-    const double A1_theta_dot = A1*theta_dot;
-    const double A1_theta_dotsq = A1_theta_dot*theta_dot;
-    const double A1_theta_dot_A1_dot = A1_theta_dot*A1_dot;
-    const double A1_theta_dot_A2_dot = A1_theta_dot*A2_dot;
-    const double A2_theta_dot = A2*theta_dot;
-    const double A2_theta_dotsq = A2_theta_dot*theta_dot;
-    const double A2_theta_dot_A1_dot = A2_theta_dot*A1_dot;
-    const double A2_theta_dot_A2_dot = A2_theta_dot*A2_dot;
-    const double A2_theta_dot_A3_dot = A2_theta_dot*A3_dot;
-    const double A3_theta_dot = A3*theta_dot;
-    const double A3_theta_dotsq = A3_theta_dot*theta_dot;
-    const double A3_theta_dot_A2_dot = A3_theta_dot*A2_dot;
-    const double A3_theta_dot_A3_dot = A3_theta_dot*A3_dot;
-    const double A3_theta_dot_A4_dot = A3_theta_dot*A4_dot;
-    const double A4_theta_dot = A4*theta_dot;
-    const double A4_theta_dotsq = A4_theta_dot*theta_dot;
-    const double A4_theta_dot_A3_dot = A4_theta_dot*A3_dot;
-    const double A4_theta_dot_A4_dot = A4_theta_dot*A4_dot;
-    const double A4_theta_dot_A5_dot = A4_theta_dot*A5_dot;
-    const double A5_theta_dot = A5*theta_dot;
-    const double A5_theta_dotsq = A5_theta_dot*theta_dot;
-    const double A5_theta_dot_A4_dot = A5_theta_dot*A4_dot;
-    const double A5_theta_dot_A5_dot = A5_theta_dot*A5_dot;
-    const double A5_theta_dot_A6_dot = A5_theta_dot*A6_dot;
-    const double A6_theta_dot = A6*theta_dot;
-    const double A6_theta_dotsq = A6_theta_dot*theta_dot;
-    const double A6_theta_dot_A5_dot = A6_theta_dot*A5_dot;
-    const double A6_theta_dot_A6_dot = A6_theta_dot*A6_dot;
-    const double A6_theta_dot_A7_dot = A6_theta_dot*A7_dot;
-    const double A7_theta_dot = A7*theta_dot;
-    const double A7_theta_dotsq = A7_theta_dot*theta_dot;
-    const double A7_theta_dot_A6_dot = A7_theta_dot*A6_dot;
-    const double A7_theta_dot_A7_dot = A7_theta_dot*A7_dot;
-    const double A7_theta_dot_A8_dot = A7_theta_dot*A8_dot;
-    const double A8_theta_dot = A8*theta_dot;
-    const double A8_theta_dotsq = A8_theta_dot*theta_dot;
-    const double A8_theta_dot_A7_dot = A8_theta_dot*A7_dot;
-    const double A8_theta_dot_A8_dot = A8_theta_dot*A8_dot;
-    const double A8_theta_dot_A9_dot = A8_theta_dot*A9_dot;
-    const double A9_theta_dot = A9*theta_dot;
-    const double A9_theta_dotsq = A9_theta_dot*theta_dot;
-    const double A9_theta_dot_A8_dot = A9_theta_dot*A8_dot;
-    const double A9_theta_dot_A9_dot = A9_theta_dot*A9_dot;
-    const double A9_theta_dot_A10_dot = A9_theta_dot*A10_dot;
-    const double A10_theta_dot = A10*theta_dot;
-    const double A10_theta_dotsq = A10_theta_dot*theta_dot;
-    const double A10_theta_dot_A9_dot = A10_theta_dot*A9_dot;
-    const double A10_theta_dot_A10_dot = A10_theta_dot*A10_dot;
-    const double A10_theta_dot_A11_dot = A10_theta_dot*A11_dot;
-    const double A11_theta_dot = A11*theta_dot;
-    const double A11_theta_dotsq = A11_theta_dot*theta_dot;
-    const double A11_theta_dot_A10_dot = A11_theta_dot*A10_dot;
-    const double A11_theta_dot_A11_dot = A11_theta_dot*A11_dot;
-    const double A11_theta_dot_A12_dot = A11_theta_dot*A12_dot;
-    const double A12_theta_dot = A12*theta_dot;
-    const double A12_theta_dotsq = A12_theta_dot*theta_dot;
-    const double A12_theta_dot_A11_dot = A12_theta_dot*A11_dot;
-    const double A12_theta_dot_A12_dot = A12_theta_dot*A12_dot;
-    const double A12_theta_dot_A13_dot = A12_theta_dot*A13_dot;
-    const double A13_theta_dot = A13*theta_dot;
-    const double A13_theta_dotsq = A13_theta_dot*theta_dot;
-    const double A13_theta_dot_A12_dot = A13_theta_dot*A12_dot;
-    const double A13_theta_dot_A13_dot = A13_theta_dot*A13_dot;
-    const double A13_theta_dot_A14_dot = A13_theta_dot*A14_dot;
-    const double A14_theta_dot = A14*theta_dot;
-    const double A14_theta_dotsq = A14_theta_dot*theta_dot;
-    const double A14_theta_dot_A13_dot = A14_theta_dot*A13_dot;
-    const double A14_theta_dot_A14_dot = A14_theta_dot*A14_dot;
-    const double A14_theta_dot_A15_dot = A14_theta_dot*A15_dot;
-    const double A15_theta_dot = A15*theta_dot;
-    const double A15_theta_dotsq = A15_theta_dot*theta_dot;
-    const double A15_theta_dot_A14_dot = A15_theta_dot*A14_dot;
-    const double A15_theta_dot_A15_dot = A15_theta_dot*A15_dot;
-    const double A15_theta_dot_A16_dot = A15_theta_dot*A16_dot;
-    const double A16_theta_dot = A16*theta_dot;
-    const double A16_theta_dotsq = A16_theta_dot*theta_dot;
-    const double A16_theta_dot_A15_dot = A16_theta_dot*A15_dot;
-    const double A16_theta_dot_A16_dot = A16_theta_dot*A16_dot;
-    const double A16_theta_dot_A17_dot = A16_theta_dot*A17_dot;
-    const double A17_theta_dot = A17*theta_dot;
-    const double A17_theta_dotsq = A17_theta_dot*theta_dot;
-    const double A17_theta_dot_A16_dot = A17_theta_dot*A16_dot;
-    const double A17_theta_dot_A17_dot = A17_theta_dot*A17_dot;
-    const double A17_theta_dot_A18_dot = A17_theta_dot*A18_dot;
-    const double A18_theta_dot = A18*theta_dot;
-    const double A18_theta_dotsq = A18_theta_dot*theta_dot;
-    const double A18_theta_dot_A17_dot = A18_theta_dot*A17_dot;
-    const double A18_theta_dot_A18_dot = A18_theta_dot*A18_dot;
-    const double A18_theta_dot_A19_dot = A18_theta_dot*A19_dot;
-    const double A19_theta_dot = A19*theta_dot;
-    const double A19_theta_dotsq = A19_theta_dot*theta_dot;
-    const double A19_theta_dot_A18_dot = A19_theta_dot*A18_dot;
-    const double A19_theta_dot_A19_dot = A19_theta_dot*A19_dot;
-    const double A19_theta_dot_A20_dot = A19_theta_dot*A20_dot;
-    const double A20_theta_dot = A20*theta_dot;
-    const double A20_theta_dotsq = A20_theta_dot*theta_dot;
-    const double A20_theta_dot_A19_dot = A20_theta_dot*A19_dot;
-    const double A20_theta_dot_A20_dot = A20_theta_dot*A20_dot;
-    const double A20_theta_dot_A21_dot = A20_theta_dot*A21_dot;
-    const double A21_theta_dot = A21*theta_dot;
-    const double A21_theta_dotsq = A21_theta_dot*theta_dot;
-    const double A21_theta_dot_A20_dot = A21_theta_dot*A20_dot;
-    const double A21_theta_dot_A21_dot = A21_theta_dot*A21_dot;
-    const double A21_theta_dot_A22_dot = A21_theta_dot*A22_dot;
-    const double A22_theta_dot = A22*theta_dot;
-    const double A22_theta_dotsq = A22_theta_dot*theta_dot;
-    const double A22_theta_dot_A21_dot = A22_theta_dot*A21_dot;
-    const double A22_theta_dot_A22_dot = A22_theta_dot*A22_dot;
-    const double A22_theta_dot_A23_dot = A22_theta_dot*A23_dot;
-    const double A23_theta_dot = A23*theta_dot;
-    const double A23_theta_dotsq = A23_theta_dot*theta_dot;
-    const double A23_theta_dot_A22_dot = A23_theta_dot*A22_dot;
-    const double A23_theta_dot_A23_dot = A23_theta_dot*A23_dot;
-    const double A23_theta_dot_A24_dot = A23_theta_dot*A24_dot;
-    const double A24_theta_dot = A24*theta_dot;
-    const double A24_theta_dotsq = A24_theta_dot*theta_dot;
-    const double A24_theta_dot_A23_dot = A24_theta_dot*A23_dot;
-    const double A24_theta_dot_A24_dot = A24_theta_dot*A24_dot;
-    const double A24_theta_dot_A25_dot = A24_theta_dot*A25_dot;
-    const double A25_theta_dot = A25*theta_dot;
-    const double A25_theta_dotsq = A25_theta_dot*theta_dot;
-    const double A25_theta_dot_A24_dot = A25_theta_dot*A24_dot;
-    const double A25_theta_dot_A25_dot = A25_theta_dot*A25_dot;
-    const double A25_theta_dot_A26_dot = A25_theta_dot*A26_dot;
-    const double A26_theta_dot = A26*theta_dot;
-    const double A26_theta_dotsq = A26_theta_dot*theta_dot;
-    const double A26_theta_dot_A25_dot = A26_theta_dot*A25_dot;
-    const double A26_theta_dot_A26_dot = A26_theta_dot*A26_dot;
-    const double A26_theta_dot_A27_dot = A26_theta_dot*A27_dot;
-    const double A27_theta_dot = A27*theta_dot;
-    const double A27_theta_dotsq = A27_theta_dot*theta_dot;
-    const double A27_theta_dot_A26_dot = A27_theta_dot*A26_dot;
-    const double A27_theta_dot_A27_dot = A27_theta_dot*A27_dot;
-    const double A27_theta_dot_A28_dot = A27_theta_dot*A28_dot;
-    const double A28_theta_dot = A28*theta_dot;
-    const double A28_theta_dotsq = A28_theta_dot*theta_dot;
-    const double A28_theta_dot_A27_dot = A28_theta_dot*A27_dot;
-    const double A28_theta_dot_A28_dot = A28_theta_dot*A28_dot;
-    const double A28_theta_dot_A29_dot = A28_theta_dot*A29_dot;
-    const double A29_theta_dot = A29*theta_dot;
-    const double A29_theta_dotsq = A29_theta_dot*theta_dot;
-    const double A29_theta_dot_A28_dot = A29_theta_dot*A28_dot;
-    const double A29_theta_dot_A29_dot = A29_theta_dot*A29_dot;
-    const double A29_theta_dot_A30_dot = A29_theta_dot*A30_dot;
-    const double A30_theta_dot = A30*theta_dot;
-    const double A30_theta_dotsq = A30_theta_dot*theta_dot;
-    const double A30_theta_dot_A29_dot = A30_theta_dot*A29_dot;
-    const double A30_theta_dot_A30_dot = A30_theta_dot*A30_dot;
-    const double A30_theta_dot_A31_dot = A30_theta_dot*A31_dot;
-    const double A31_theta_dot = A31*theta_dot;
-    const double A31_theta_dotsq = A31_theta_dot*theta_dot;
-    const double A31_theta_dot_A30_dot = A31_theta_dot*A30_dot;
-    const double A31_theta_dot_A31_dot = A31_theta_dot*A31_dot;
-    const double A31_theta_dot_A32_dot = A31_theta_dot*A32_dot;
-    const double A32_theta_dot = A32*theta_dot;
-    const double A32_theta_dotsq = A32_theta_dot*theta_dot;
-    const double A32_theta_dot_A31_dot = A32_theta_dot*A31_dot;
-    const double A32_theta_dot_A32_dot = A32_theta_dot*A32_dot;
-    const double B1_theta_dot = B1*theta_dot;
-    const double B1_theta_dotsq = B1_theta_dot*theta_dot;
-    const double B1_theta_dot_B1_dot = B1_theta_dot*B1_dot;
-    const double B1_theta_dot_B2_dot = B1_theta_dot*B2_dot;
-    const double B1_theta_dot_B3_dot = B1_theta_dot*B3_dot;
-    const double B1_theta_dot_B4_dot = B1_theta_dot*B4_dot;
-    const double B2_theta_dot = B2*theta_dot;
-    const double B2_theta_dotsq = B2_theta_dot*theta_dot;
-    const double B2_theta_dot_B1_dot = B2_theta_dot*B1_dot;
-    const double B2_theta_dot_B2_dot = B2_theta_dot*B2_dot;
-    const double B2_theta_dot_B3_dot = B2_theta_dot*B3_dot;
-    const double B2_theta_dot_B4_dot = B2_theta_dot*B4_dot;
-    const double B3_theta_dot = B3*theta_dot;
-    const double B3_theta_dotsq = B3_theta_dot*theta_dot;
-    const double B3_theta_dot_B1_dot = B3_theta_dot*B1_dot;
-    const double B3_theta_dot_B2_dot = B3_theta_dot*B2_dot;
-    const double B3_theta_dot_B3_dot = B3_theta_dot*B3_dot;
-    const double B3_theta_dot_B4_dot = B3_theta_dot*B4_dot;
-    const double B3_theta_dot_B5_dot = B3_theta_dot*B5_dot;
-    const double B3_theta_dot_B6_dot = B3_theta_dot*B6_dot;
-    const double B4_theta_dot = B4*theta_dot;
-    const double B4_theta_dotsq = B4_theta_dot*theta_dot;
-    const double B4_theta_dot_B1_dot = B4_theta_dot*B1_dot;
-    const double B4_theta_dot_B2_dot = B4_theta_dot*B2_dot;
-    const double B4_theta_dot_B3_dot = B4_theta_dot*B3_dot;
-    const double B4_theta_dot_B4_dot = B4_theta_dot*B4_dot;
-    const double B4_theta_dot_B5_dot = B4_theta_dot*B5_dot;
-    const double B4_theta_dot_B6_dot = B4_theta_dot*B6_dot;
-    const double B5_theta_dot = B5*theta_dot;
-    const double B5_theta_dotsq = B5_theta_dot*theta_dot;
-    const double B5_theta_dot_B3_dot = B5_theta_dot*B3_dot;
-    const double B5_theta_dot_B4_dot = B5_theta_dot*B4_dot;
-    const double B5_theta_dot_B5_dot = B5_theta_dot*B5_dot;
-    const double B5_theta_dot_B6_dot = B5_theta_dot*B6_dot;
-    const double B5_theta_dot_B7_dot = B5_theta_dot*B7_dot;
-    const double B5_theta_dot_B8_dot = B5_theta_dot*B8_dot;
-    const double B6_theta_dot = B6*theta_dot;
-    const double B6_theta_dotsq = B6_theta_dot*theta_dot;
-    const double B6_theta_dot_B3_dot = B6_theta_dot*B3_dot;
-    const double B6_theta_dot_B4_dot = B6_theta_dot*B4_dot;
-    const double B6_theta_dot_B5_dot = B6_theta_dot*B5_dot;
-    const double B6_theta_dot_B6_dot = B6_theta_dot*B6_dot;
-    const double B6_theta_dot_B7_dot = B6_theta_dot*B7_dot;
-    const double B6_theta_dot_B8_dot = B6_theta_dot*B8_dot;
-    const double B7_theta_dot = B7*theta_dot;
-    const double B7_theta_dotsq = B7_theta_dot*theta_dot;
-    const double B7_theta_dot_B5_dot = B7_theta_dot*B5_dot;
-    const double B7_theta_dot_B6_dot = B7_theta_dot*B6_dot;
-    const double B7_theta_dot_B7_dot = B7_theta_dot*B7_dot;
-    const double B7_theta_dot_B8_dot = B7_theta_dot*B8_dot;
-    const double B7_theta_dot_B9_dot = B7_theta_dot*B9_dot;
-    const double B7_theta_dot_B10_dot = B7_theta_dot*B10_dot;
-    const double B8_theta_dot = B8*theta_dot;
-    const double B8_theta_dotsq = B8_theta_dot*theta_dot;
-    const double B8_theta_dot_B5_dot = B8_theta_dot*B5_dot;
-    const double B8_theta_dot_B6_dot = B8_theta_dot*B6_dot;
-    const double B8_theta_dot_B7_dot = B8_theta_dot*B7_dot;
-    const double B8_theta_dot_B8_dot = B8_theta_dot*B8_dot;
-    const double B8_theta_dot_B9_dot = B8_theta_dot*B9_dot;
-    const double B8_theta_dot_B10_dot = B8_theta_dot*B10_dot;
-    const double B9_theta_dot = B9*theta_dot;
-    const double B9_theta_dotsq = B9_theta_dot*theta_dot;
-    const double B9_theta_dot_B7_dot = B9_theta_dot*B7_dot;
-    const double B9_theta_dot_B8_dot = B9_theta_dot*B8_dot;
-    const double B9_theta_dot_B9_dot = B9_theta_dot*B9_dot;
-    const double B9_theta_dot_B10_dot = B9_theta_dot*B10_dot;
-    const double B9_theta_dot_B11_dot = B9_theta_dot*B11_dot;
-    const double B9_theta_dot_B12_dot = B9_theta_dot*B12_dot;
-    const double B10_theta_dot = B10*theta_dot;
-    const double B10_theta_dotsq = B10_theta_dot*theta_dot;
-    const double B10_theta_dot_B7_dot = B10_theta_dot*B7_dot;
-    const double B10_theta_dot_B8_dot = B10_theta_dot*B8_dot;
-    const double B10_theta_dot_B9_dot = B10_theta_dot*B9_dot;
-    const double B10_theta_dot_B10_dot = B10_theta_dot*B10_dot;
-    const double B10_theta_dot_B11_dot = B10_theta_dot*B11_dot;
-    const double B10_theta_dot_B12_dot = B10_theta_dot*B12_dot;
-    const double B11_theta_dot = B11*theta_dot;
-    const double B11_theta_dotsq = B11_theta_dot*theta_dot;
-    const double B11_theta_dot_B9_dot = B11_theta_dot*B9_dot;
-    const double B11_theta_dot_B10_dot = B11_theta_dot*B10_dot;
-    const double B11_theta_dot_B11_dot = B11_theta_dot*B11_dot;
-    const double B11_theta_dot_B12_dot = B11_theta_dot*B12_dot;
-    const double B11_theta_dot_B13_dot = B11_theta_dot*B13_dot;
-    const double B11_theta_dot_B14_dot = B11_theta_dot*B14_dot;
-    const double B12_theta_dot = B12*theta_dot;
-    const double B12_theta_dotsq = B12_theta_dot*theta_dot;
-    const double B12_theta_dot_B9_dot = B12_theta_dot*B9_dot;
-    const double B12_theta_dot_B10_dot = B12_theta_dot*B10_dot;
-    const double B12_theta_dot_B11_dot = B12_theta_dot*B11_dot;
-    const double B12_theta_dot_B12_dot = B12_theta_dot*B12_dot;
-    const double B12_theta_dot_B13_dot = B12_theta_dot*B13_dot;
-    const double B12_theta_dot_B14_dot = B12_theta_dot*B14_dot;
-    const double B13_theta_dot = B13*theta_dot;
-    const double B13_theta_dotsq = B13_theta_dot*theta_dot;
-    const double B13_theta_dot_B11_dot = B13_theta_dot*B11_dot;
-    const double B13_theta_dot_B12_dot = B13_theta_dot*B12_dot;
-    const double B13_theta_dot_B13_dot = B13_theta_dot*B13_dot;
-    const double B13_theta_dot_B14_dot = B13_theta_dot*B14_dot;
-    const double B13_theta_dot_B15_dot = B13_theta_dot*B15_dot;
-    const double B13_theta_dot_B16_dot = B13_theta_dot*B16_dot;
-    const double B14_theta_dot = B14*theta_dot;
-    const double B14_theta_dotsq = B14_theta_dot*theta_dot;
-    const double B14_theta_dot_B11_dot = B14_theta_dot*B11_dot;
-    const double B14_theta_dot_B12_dot = B14_theta_dot*B12_dot;
-    const double B14_theta_dot_B13_dot = B14_theta_dot*B13_dot;
-    const double B14_theta_dot_B14_dot = B14_theta_dot*B14_dot;
-    const double B14_theta_dot_B15_dot = B14_theta_dot*B15_dot;
-    const double B14_theta_dot_B16_dot = B14_theta_dot*B16_dot;
-    const double B15_theta_dot = B15*theta_dot;
-    const double B15_theta_dotsq = B15_theta_dot*theta_dot;
-    const double B15_theta_dot_B13_dot = B15_theta_dot*B13_dot;
-    const double B15_theta_dot_B14_dot = B15_theta_dot*B14_dot;
-    const double B15_theta_dot_B15_dot = B15_theta_dot*B15_dot;
-    const double B15_theta_dot_B16_dot = B15_theta_dot*B16_dot;
-    const double B15_theta_dot_B17_dot = B15_theta_dot*B17_dot;
-    const double B15_theta_dot_B18_dot = B15_theta_dot*B18_dot;
-    const double B16_theta_dot = B16*theta_dot;
-    const double B16_theta_dotsq = B16_theta_dot*theta_dot;
-    const double B16_theta_dot_B13_dot = B16_theta_dot*B13_dot;
-    const double B16_theta_dot_B14_dot = B16_theta_dot*B14_dot;
-    const double B16_theta_dot_B15_dot = B16_theta_dot*B15_dot;
-    const double B16_theta_dot_B16_dot = B16_theta_dot*B16_dot;
-    const double B16_theta_dot_B17_dot = B16_theta_dot*B17_dot;
-    const double B16_theta_dot_B18_dot = B16_theta_dot*B18_dot;
-    const double B17_theta_dot = B17*theta_dot;
-    const double B17_theta_dotsq = B17_theta_dot*theta_dot;
-    const double B17_theta_dot_B15_dot = B17_theta_dot*B15_dot;
-    const double B17_theta_dot_B16_dot = B17_theta_dot*B16_dot;
-    const double B17_theta_dot_B17_dot = B17_theta_dot*B17_dot;
-    const double B17_theta_dot_B18_dot = B17_theta_dot*B18_dot;
-    const double B17_theta_dot_B19_dot = B17_theta_dot*B19_dot;
-    const double B17_theta_dot_B20_dot = B17_theta_dot*B20_dot;
-    const double B18_theta_dot = B18*theta_dot;
-    const double B18_theta_dotsq = B18_theta_dot*theta_dot;
-    const double B18_theta_dot_B15_dot = B18_theta_dot*B15_dot;
-    const double B18_theta_dot_B16_dot = B18_theta_dot*B16_dot;
-    const double B18_theta_dot_B17_dot = B18_theta_dot*B17_dot;
-    const double B18_theta_dot_B18_dot = B18_theta_dot*B18_dot;
-    const double B18_theta_dot_B19_dot = B18_theta_dot*B19_dot;
-    const double B18_theta_dot_B20_dot = B18_theta_dot*B20_dot;
-    const double B19_theta_dot = B19*theta_dot;
-    const double B19_theta_dotsq = B19_theta_dot*theta_dot;
-    const double B19_theta_dot_B17_dot = B19_theta_dot*B17_dot;
-    const double B19_theta_dot_B18_dot = B19_theta_dot*B18_dot;
-    const double B19_theta_dot_B19_dot = B19_theta_dot*B19_dot;
-    const double B19_theta_dot_B20_dot = B19_theta_dot*B20_dot;
-    const double B19_theta_dot_B21_dot = B19_theta_dot*B21_dot;
-    const double B19_theta_dot_B22_dot = B19_theta_dot*B22_dot;
-    const double B20_theta_dot = B20*theta_dot;
-    const double B20_theta_dotsq = B20_theta_dot*theta_dot;
-    const double B20_theta_dot_B17_dot = B20_theta_dot*B17_dot;
-    const double B20_theta_dot_B18_dot = B20_theta_dot*B18_dot;
-    const double B20_theta_dot_B19_dot = B20_theta_dot*B19_dot;
-    const double B20_theta_dot_B20_dot = B20_theta_dot*B20_dot;
-    const double B20_theta_dot_B21_dot = B20_theta_dot*B21_dot;
-    const double B20_theta_dot_B22_dot = B20_theta_dot*B22_dot;
-    const double B21_theta_dot = B21*theta_dot;
-    const double B21_theta_dotsq = B21_theta_dot*theta_dot;
-    const double B21_theta_dot_B19_dot = B21_theta_dot*B19_dot;
-    const double B21_theta_dot_B20_dot = B21_theta_dot*B20_dot;
-    const double B21_theta_dot_B21_dot = B21_theta_dot*B21_dot;
-    const double B21_theta_dot_B22_dot = B21_theta_dot*B22_dot;
-    const double B21_theta_dot_B23_dot = B21_theta_dot*B23_dot;
-    const double B21_theta_dot_B24_dot = B21_theta_dot*B24_dot;
-    const double B22_theta_dot = B22*theta_dot;
-    const double B22_theta_dotsq = B22_theta_dot*theta_dot;
-    const double B22_theta_dot_B19_dot = B22_theta_dot*B19_dot;
-    const double B22_theta_dot_B20_dot = B22_theta_dot*B20_dot;
-    const double B22_theta_dot_B21_dot = B22_theta_dot*B21_dot;
-    const double B22_theta_dot_B22_dot = B22_theta_dot*B22_dot;
-    const double B22_theta_dot_B23_dot = B22_theta_dot*B23_dot;
-    const double B22_theta_dot_B24_dot = B22_theta_dot*B24_dot;
-    const double B23_theta_dot = B23*theta_dot;
-    const double B23_theta_dotsq = B23_theta_dot*theta_dot;
-    const double B23_theta_dot_B21_dot = B23_theta_dot*B21_dot;
-    const double B23_theta_dot_B22_dot = B23_theta_dot*B22_dot;
-    const double B23_theta_dot_B23_dot = B23_theta_dot*B23_dot;
-    const double B23_theta_dot_B24_dot = B23_theta_dot*B24_dot;
-    const double B23_theta_dot_B25_dot = B23_theta_dot*B25_dot;
-    const double B23_theta_dot_B26_dot = B23_theta_dot*B26_dot;
-    const double B24_theta_dot = B24*theta_dot;
-    const double B24_theta_dotsq = B24_theta_dot*theta_dot;
-    const double B24_theta_dot_B21_dot = B24_theta_dot*B21_dot;
-    const double B24_theta_dot_B22_dot = B24_theta_dot*B22_dot;
-    const double B24_theta_dot_B23_dot = B24_theta_dot*B23_dot;
-    const double B24_theta_dot_B24_dot = B24_theta_dot*B24_dot;
-    const double B24_theta_dot_B25_dot = B24_theta_dot*B25_dot;
-    const double B24_theta_dot_B26_dot = B24_theta_dot*B26_dot;
-    const double B25_theta_dot = B25*theta_dot;
-    const double B25_theta_dotsq = B25_theta_dot*theta_dot;
-    const double B25_theta_dot_B23_dot = B25_theta_dot*B23_dot;
-    const double B25_theta_dot_B24_dot = B25_theta_dot*B24_dot;
-    const double B25_theta_dot_B25_dot = B25_theta_dot*B25_dot;
-    const double B25_theta_dot_B26_dot = B25_theta_dot*B26_dot;
-    const double B25_theta_dot_B27_dot = B25_theta_dot*B27_dot;
-    const double B25_theta_dot_B28_dot = B25_theta_dot*B28_dot;
-    const double B26_theta_dot = B26*theta_dot;
-    const double B26_theta_dotsq = B26_theta_dot*theta_dot;
-    const double B26_theta_dot_B23_dot = B26_theta_dot*B23_dot;
-    const double B26_theta_dot_B24_dot = B26_theta_dot*B24_dot;
-    const double B26_theta_dot_B25_dot = B26_theta_dot*B25_dot;
-    const double B26_theta_dot_B26_dot = B26_theta_dot*B26_dot;
-    const double B26_theta_dot_B27_dot = B26_theta_dot*B27_dot;
-    const double B26_theta_dot_B28_dot = B26_theta_dot*B28_dot;
-    const double B27_theta_dot = B27*theta_dot;
-    const double B27_theta_dotsq = B27_theta_dot*theta_dot;
-    const double B27_theta_dot_B25_dot = B27_theta_dot*B25_dot;
-    const double B27_theta_dot_B26_dot = B27_theta_dot*B26_dot;
-    const double B27_theta_dot_B27_dot = B27_theta_dot*B27_dot;
-    const double B27_theta_dot_B28_dot = B27_theta_dot*B28_dot;
-    const double B27_theta_dot_B29_dot = B27_theta_dot*B29_dot;
-    const double B27_theta_dot_B30_dot = B27_theta_dot*B30_dot;
-    const double B28_theta_dot = B28*theta_dot;
-    const double B28_theta_dotsq = B28_theta_dot*theta_dot;
-    const double B28_theta_dot_B25_dot = B28_theta_dot*B25_dot;
-    const double B28_theta_dot_B26_dot = B28_theta_dot*B26_dot;
-    const double B28_theta_dot_B27_dot = B28_theta_dot*B27_dot;
-    const double B28_theta_dot_B28_dot = B28_theta_dot*B28_dot;
-    const double B28_theta_dot_B29_dot = B28_theta_dot*B29_dot;
-    const double B28_theta_dot_B30_dot = B28_theta_dot*B30_dot;
-    const double B29_theta_dot = B29*theta_dot;
-    const double B29_theta_dotsq = B29_theta_dot*theta_dot;
-    const double B29_theta_dot_B27_dot = B29_theta_dot*B27_dot;
-    const double B29_theta_dot_B28_dot = B29_theta_dot*B28_dot;
-    const double B29_theta_dot_B29_dot = B29_theta_dot*B29_dot;
-    const double B29_theta_dot_B30_dot = B29_theta_dot*B30_dot;
-    const double B29_theta_dot_B31_dot = B29_theta_dot*B31_dot;
-    const double B29_theta_dot_B32_dot = B29_theta_dot*B32_dot;
-    const double B30_theta_dot = B30*theta_dot;
-    const double B30_theta_dotsq = B30_theta_dot*theta_dot;
-    const double B30_theta_dot_B27_dot = B30_theta_dot*B27_dot;
-    const double B30_theta_dot_B28_dot = B30_theta_dot*B28_dot;
-    const double B30_theta_dot_B29_dot = B30_theta_dot*B29_dot;
-    const double B30_theta_dot_B30_dot = B30_theta_dot*B30_dot;
-    const double B30_theta_dot_B31_dot = B30_theta_dot*B31_dot;
-    const double B30_theta_dot_B32_dot = B30_theta_dot*B32_dot;
-    const double B31_theta_dot = B31*theta_dot;
-    const double B31_theta_dotsq = B31_theta_dot*theta_dot;
-    const double B31_theta_dot_B29_dot = B31_theta_dot*B29_dot;
-    const double B31_theta_dot_B30_dot = B31_theta_dot*B30_dot;
-    const double B31_theta_dot_B31_dot = B31_theta_dot*B31_dot;
-    const double B31_theta_dot_B32_dot = B31_theta_dot*B32_dot;
-    const double B32_theta_dot = B32*theta_dot;
-    const double B32_theta_dotsq = B32_theta_dot*theta_dot;
-    const double B32_theta_dot_B29_dot = B32_theta_dot*B29_dot;
-    const double B32_theta_dot_B30_dot = B32_theta_dot*B30_dot;
-    const double B32_theta_dot_B31_dot = B32_theta_dot*B31_dot;
-    const double B32_theta_dot_B32_dot = B32_theta_dot*B32_dot;
-    out[0] = tau - c[1]*theta_dot_A1_dot - c[2]*theta_dot_A2_dot - c[3]*theta_dot_A3_dot - c[4]*theta_dot_A4_dot - c[5]*theta_dot_A5_dot - c[6]*theta_dot_A6_dot - c[7]*theta_dot_A7_dot - c[8]*theta_dot_A8_dot - c[9]*theta_dot_A9_dot - c[10]*theta_dot_A10_dot - c[11]*theta_dot_A11_dot - c[12]*theta_dot_A12_dot - c[13]*theta_dot_A13_dot - c[14]*theta_dot_A14_dot - c[15]*theta_dot_A15_dot - c[16]*theta_dot_A16_dot - c[17]*theta_dot_A17_dot - c[18]*theta_dot_A18_dot - c[19]*theta_dot_A19_dot - c[20]*theta_dot_A20_dot - c[21]*theta_dot_A21_dot - c[22]*theta_dot_A22_dot - c[23]*theta_dot_A23_dot - c[24]*theta_dot_A24_dot - c[25]*theta_dot_A25_dot - c[26]*theta_dot_A26_dot - c[27]*theta_dot_A27_dot - c[28]*theta_dot_A28_dot - c[29]*theta_dot_A29_dot - c[30]*theta_dot_A30_dot - c[31]*theta_dot_A31_dot - c[32]*theta_dot_A32_dot - c[148]*A1_theta_dot_A1_dot - c[34]*A1_theta_dot_A2_dot - c[34]*A2_theta_dot_A1_dot - c[148]*A2_theta_dot_A2_dot - c[34]*A2_theta_dot_A3_dot - c[34]*A3_theta_dot_A2_dot - c[148]*A3_theta_dot_A3_dot - c[34]*A3_theta_dot_A4_dot - c[34]*A4_theta_dot_A3_dot - c[148]*A4_theta_dot_A4_dot - c[34]*A4_theta_dot_A5_dot - c[34]*A5_theta_dot_A4_dot - c[148]*A5_theta_dot_A5_dot - c[34]*A5_theta_dot_A6_dot - c[34]*A6_theta_dot_A5_dot - c[148]*A6_theta_dot_A6_dot - c[34]*A6_theta_dot_A7_dot - c[34]*A7_theta_dot_A6_dot - c[148]*A7_theta_dot_A7_dot - c[34]*A7_theta_dot_A8_dot - c[34]*A8_theta_dot_A7_dot - c[148]*A8_theta_dot_A8_dot - c[34]*A8_theta_dot_A9_dot - c[34]*A9_theta_dot_A8_dot - c[148]*A9_theta_dot_A9_dot - c[34]*A9_theta_dot_A10_dot - c[34]*A10_theta_dot_A9_dot - c[148]*A10_theta_dot_A10_dot - c[34]*A10_theta_dot_A11_dot - c[34]*A11_theta_dot_A10_dot - c[148]*A11_theta_dot_A11_dot - c[34]*A11_theta_dot_A12_dot - c[34]*A12_theta_dot_A11_dot - c[148]*A12_theta_dot_A12_dot - c[34]*A12_theta_dot_A13_dot - c[34]*A13_theta_dot_A12_dot - c[148]*A13_theta_dot_A13_dot - c[34]*A13_theta_dot_A14_dot - c[34]*A14_theta_dot_A13_dot - c[148]*A14_theta_dot_A14_dot - c[34]*A14_theta_dot_A15_dot - c[34]*A15_theta_dot_A14_dot - c[148]*A15_theta_dot_A15_dot - c[34]*A15_theta_dot_A16_dot - c[34]*A16_theta_dot_A15_dot - c[148]*A16_theta_dot_A16_dot - c[34]*A16_theta_dot_A17_dot - c[34]*A17_theta_dot_A16_dot - c[148]*A17_theta_dot_A17_dot - c[34]*A17_theta_dot_A18_dot - c[34]*A18_theta_dot_A17_dot - c[148]*A18_theta_dot_A18_dot - c[34]*A18_theta_dot_A19_dot - c[34]*A19_theta_dot_A18_dot - c[148]*A19_theta_dot_A19_dot - c[34]*A19_theta_dot_A20_dot - c[34]*A20_theta_dot_A19_dot - c[148]*A20_theta_dot_A20_dot - c[34]*A20_theta_dot_A21_dot - c[34]*A21_theta_dot_A20_dot - c[148]*A21_theta_dot_A21_dot - c[34]*A21_theta_dot_A22_dot - c[34]*A22_theta_dot_A21_dot - c[148]*A22_theta_dot_A22_dot - c[34]*A22_theta_dot_A23_dot - c[34]*A23_theta_dot_A22_dot - c[148]*A23_theta_dot_A23_dot - c[34]*A23_theta_dot_A24_dot - c[34]*A24_theta_dot_A23_dot - c[148]*A24_theta_dot_A24_dot - c[34]*A24_theta_dot_A25_dot - c[34]*A25_theta_dot_A24_dot - c[148]*A25_theta_dot_A25_dot - c[34]*A25_theta_dot_A26_dot - c[34]*A26_theta_dot_A25_dot - c[148]*A26_theta_dot_A26_dot - c[34]*A26_theta_dot_A27_dot - c[34]*A27_theta_dot_A26_dot - c[148]*A27_theta_dot_A27_dot - c[34]*A27_theta_dot_A28_dot - c[34]*A28_theta_dot_A27_dot - c[148]*A28_theta_dot_A28_dot - c[34]*A28_theta_dot_A29_dot - c[34]*A29_theta_dot_A28_dot - c[148]*A29_theta_dot_A29_dot - c[34]*A29_theta_dot_A30_dot - c[34]*A30_theta_dot_A29_dot - c[148]*A30_theta_dot_A30_dot - c[34]*A30_theta_dot_A31_dot - c[34]*A31_theta_dot_A30_dot - c[148]*A31_theta_dot_A31_dot - c[34]*A31_theta_dot_A32_dot - c[34]*A32_theta_dot_A31_dot - c[33]*A32_theta_dot_A32_dot + c[149]*B1_theta_dot_B1_dot - c[36]*B1_theta_dot_B2_dot - c[37]*B1_theta_dot_B3_dot + c[38]*B1_theta_dot_B4_dot - c[36]*B2_theta_dot_B1_dot + c[150]*B2_theta_dot_B2_dot - c[40]*B2_theta_dot_B3_dot - c[41]*B2_theta_dot_B4_dot - c[37]*B3_theta_dot_B1_dot - c[40]*B3_theta_dot_B2_dot + c[151]*B3_theta_dot_B3_dot - c[43]*B3_theta_dot_B4_dot - c[44]*B3_theta_dot_B5_dot + c[40]*B3_theta_dot_B6_dot + c[38]*B4_theta_dot_B1_dot - c[41]*B4_theta_dot_B2_dot - c[43]*B4_theta_dot_B3_dot + c[152]*B4_theta_dot_B4_dot - c[46]*B4_theta_dot_B5_dot - c[47]*B4_theta_dot_B6_dot - c[44]*B5_theta_dot_B3_dot - c[46]*B5_theta_dot_B4_dot + c[153]*B5_theta_dot_B5_dot - c[49]*B5_theta_dot_B6_dot - c[50]*B5_theta_dot_B7_dot + c[46]*B5_theta_dot_B8_dot + c[40]*B6_theta_dot_B3_dot - c[47]*B6_theta_dot_B4_dot - c[49]*B6_theta_dot_B5_dot + c[154]*B6_theta_dot_B6_dot - c[52]*B6_theta_dot_B7_dot - c[53]*B6_theta_dot_B8_dot - c[50]*B7_theta_dot_B5_dot - c[52]*B7_theta_dot_B6_dot + c[155]*B7_theta_dot_B7_dot - c[55]*B7_theta_dot_B8_dot - c[56]*B7_theta_dot_B9_dot + c[52]*B7_theta_dot_B10_dot + c[46]*B8_theta_dot_B5_dot - c[53]*B8_theta_dot_B6_dot - c[55]*B8_theta_dot_B7_dot + c[156]*B8_theta_dot_B8_dot - c[58]*B8_theta_dot_B9_dot - c[59]*B8_theta_dot_B10_dot - c[56]*B9_theta_dot_B7_dot - c[58]*B9_theta_dot_B8_dot + c[157]*B9_theta_dot_B9_dot - c[61]*B9_theta_dot_B10_dot - c[62]*B9_theta_dot_B11_dot + c[58]*B9_theta_dot_B12_dot + c[52]*B10_theta_dot_B7_dot - c[59]*B10_theta_dot_B8_dot - c[61]*B10_theta_dot_B9_dot + c[158]*B10_theta_dot_B10_dot - c[64]*B10_theta_dot_B11_dot - c[65]*B10_theta_dot_B12_dot - c[62]*B11_theta_dot_B9_dot - c[64]*B11_theta_dot_B10_dot + c[159]*B11_theta_dot_B11_dot - c[67]*B11_theta_dot_B12_dot - c[68]*B11_theta_dot_B13_dot + c[64]*B11_theta_dot_B14_dot + c[58]*B12_theta_dot_B9_dot - c[65]*B12_theta_dot_B10_dot - c[67]*B12_theta_dot_B11_dot + c[160]*B12_theta_dot_B12_dot - c[70]*B12_theta_dot_B13_dot - c[71]*B12_theta_dot_B14_dot - c[68]*B13_theta_dot_B11_dot - c[70]*B13_theta_dot_B12_dot + c[161]*B13_theta_dot_B13_dot - c[73]*B13_theta_dot_B14_dot - c[74]*B13_theta_dot_B15_dot + c[70]*B13_theta_dot_B16_dot + c[64]*B14_theta_dot_B11_dot - c[71]*B14_theta_dot_B12_dot - c[73]*B14_theta_dot_B13_dot + c[162]*B14_theta_dot_B14_dot - c[76]*B14_theta_dot_B15_dot - c[77]*B14_theta_dot_B16_dot - c[74]*B15_theta_dot_B13_dot - c[76]*B15_theta_dot_B14_dot + c[163]*B15_theta_dot_B15_dot - c[79]*B15_theta_dot_B16_dot - c[80]*B15_theta_dot_B17_dot + c[76]*B15_theta_dot_B18_dot + c[70]*B16_theta_dot_B13_dot - c[77]*B16_theta_dot_B14_dot - c[79]*B16_theta_dot_B15_dot + c[164]*B16_theta_dot_B16_dot - c[82]*B16_theta_dot_B17_dot - c[83]*B16_theta_dot_B18_dot - c[80]*B17_theta_dot_B15_dot - c[82]*B17_theta_dot_B16_dot + c[165]*B17_theta_dot_B17_dot - c[85]*B17_theta_dot_B18_dot - c[86]*B17_theta_dot_B19_dot + c[82]*B17_theta_dot_B20_dot + c[76]*B18_theta_dot_B15_dot - c[83]*B18_theta_dot_B16_dot - c[85]*B18_theta_dot_B17_dot + c[166]*B18_theta_dot_B18_dot - c[88]*B18_theta_dot_B19_dot - c[89]*B18_theta_dot_B20_dot - c[86]*B19_theta_dot_B17_dot - c[88]*B19_theta_dot_B18_dot + c[167]*B19_theta_dot_B19_dot - c[91]*B19_theta_dot_B20_dot - c[92]*B19_theta_dot_B21_dot + c[88]*B19_theta_dot_B22_dot + c[82]*B20_theta_dot_B17_dot - c[89]*B20_theta_dot_B18_dot - c[91]*B20_theta_dot_B19_dot + c[168]*B20_theta_dot_B20_dot - c[94]*B20_theta_dot_B21_dot - c[95]*B20_theta_dot_B22_dot - c[92]*B21_theta_dot_B19_dot - c[94]*B21_theta_dot_B20_dot + c[169]*B21_theta_dot_B21_dot - c[97]*B21_theta_dot_B22_dot - c[98]*B21_theta_dot_B23_dot + c[94]*B21_theta_dot_B24_dot + c[88]*B22_theta_dot_B19_dot - c[95]*B22_theta_dot_B20_dot - c[97]*B22_theta_dot_B21_dot + c[170]*B22_theta_dot_B22_dot - c[100]*B22_theta_dot_B23_dot - c[101]*B22_theta_dot_B24_dot - c[98]*B23_theta_dot_B21_dot - c[100]*B23_theta_dot_B22_dot + c[171]*B23_theta_dot_B23_dot - c[103]*B23_theta_dot_B24_dot - c[104]*B23_theta_dot_B25_dot + c[100]*B23_theta_dot_B26_dot + c[94]*B24_theta_dot_B21_dot - c[101]*B24_theta_dot_B22_dot - c[103]*B24_theta_dot_B23_dot + c[172]*B24_theta_dot_B24_dot - c[106]*B24_theta_dot_B25_dot - c[107]*B24_theta_dot_B26_dot - c[104]*B25_theta_dot_B23_dot - c[106]*B25_theta_dot_B24_dot + c[173]*B25_theta_dot_B25_dot - c[109]*B25_theta_dot_B26_dot - c[110]*B25_theta_dot_B27_dot + c[106]*B25_theta_dot_B28_dot + c[100]*B26_theta_dot_B23_dot - c[107]*B26_theta_dot_B24_dot - c[109]*B26_theta_dot_B25_dot + c[174]*B26_theta_dot_B26_dot - c[112]*B26_theta_dot_B27_dot - c[113]*B26_theta_dot_B28_dot - c[110]*B27_theta_dot_B25_dot - c[112]*B27_theta_dot_B26_dot + c[175]*B27_theta_dot_B27_dot - c[115]*B27_theta_dot_B28_dot - c[116]*B27_theta_dot_B29_dot + c[112]*B27_theta_dot_B30_dot + c[106]*B28_theta_dot_B25_dot - c[113]*B28_theta_dot_B26_dot - c[115]*B28_theta_dot_B27_dot + c[176]*B28_theta_dot_B28_dot - c[118]*B28_theta_dot_B29_dot - c[119]*B28_theta_dot_B30_dot - c[116]*B29_theta_dot_B27_dot - c[118]*B29_theta_dot_B28_dot + c[177]*B29_theta_dot_B29_dot - c[121]*B29_theta_dot_B30_dot - c[122]*B29_theta_dot_B31_dot + c[118]*B29_theta_dot_B32_dot + c[112]*B30_theta_dot_B27_dot - c[119]*B30_theta_dot_B28_dot - c[121]*B30_theta_dot_B29_dot + c[178]*B30_theta_dot_B30_dot - c[124]*B30_theta_dot_B31_dot - c[125]*B30_theta_dot_B32_dot - c[122]*B31_theta_dot_B29_dot - c[124]*B31_theta_dot_B30_dot + c[179]*B31_theta_dot_B31_dot - c[127]*B31_theta_dot_B32_dot + c[118]*B32_theta_dot_B29_dot - c[125]*B32_theta_dot_B30_dot - c[127]*B32_theta_dot_B31_dot + c[180]*B32_theta_dot_B32_dot;
-    out[1] = -c[181]*A1 + c[182]*A2 + c[183]*theta_dotsq + c[184]*theta_dot_B1_dot - c[185]*theta_dot_B2_dot + c[33]*A1_theta_dotsq + c[139]*A2_theta_dotsq;
-    out[2] = c[182]*A1 - c[181]*A2 + c[182]*A3 + c[186]*theta_dotsq + c[187]*theta_dot_B1_dot + c[188]*theta_dot_B3_dot - c[189]*theta_dot_B4_dot + c[139]*A1_theta_dotsq + c[33]*A2_theta_dotsq + c[139]*A3_theta_dotsq;
-    out[3] = c[182]*A2 - c[181]*A3 + c[182]*A4 + c[190]*theta_dotsq + c[184]*theta_dot_B1_dot + c[185]*theta_dot_B2_dot + c[184]*theta_dot_B3_dot - c[185]*theta_dot_B4_dot + c[139]*A2_theta_dotsq + c[33]*A3_theta_dotsq + c[139]*A4_theta_dotsq;
-    out[4] = c[182]*A3 - c[181]*A4 + c[182]*A5 + c[191]*theta_dotsq + c[188]*theta_dot_B1_dot + c[189]*theta_dot_B2_dot + c[187]*theta_dot_B3_dot + c[188]*theta_dot_B5_dot - c[189]*theta_dot_B6_dot + c[139]*A3_theta_dotsq + c[33]*A4_theta_dotsq + c[139]*A5_theta_dotsq;
-    out[5] = c[182]*A4 - c[181]*A5 + c[182]*A6 + c[192]*theta_dotsq + c[184]*theta_dot_B3_dot + c[185]*theta_dot_B4_dot + c[184]*theta_dot_B5_dot - c[185]*theta_dot_B6_dot + c[139]*A4_theta_dotsq + c[33]*A5_theta_dotsq + c[139]*A6_theta_dotsq;
-    out[6] = c[182]*A5 - c[181]*A6 + c[182]*A7 + c[193]*theta_dotsq + c[188]*theta_dot_B3_dot + c[189]*theta_dot_B4_dot + c[187]*theta_dot_B5_dot + c[188]*theta_dot_B7_dot - c[189]*theta_dot_B8_dot + c[139]*A5_theta_dotsq + c[33]*A6_theta_dotsq + c[139]*A7_theta_dotsq;
-    out[7] = c[182]*A6 - c[181]*A7 + c[182]*A8 + c[194]*theta_dotsq + c[184]*theta_dot_B5_dot + c[185]*theta_dot_B6_dot + c[184]*theta_dot_B7_dot - c[185]*theta_dot_B8_dot + c[139]*A6_theta_dotsq + c[33]*A7_theta_dotsq + c[139]*A8_theta_dotsq;
-    out[8] = c[182]*A7 - c[181]*A8 + c[182]*A9 + c[195]*theta_dotsq + c[188]*theta_dot_B5_dot + c[189]*theta_dot_B6_dot + c[187]*theta_dot_B7_dot + c[188]*theta_dot_B9_dot - c[189]*theta_dot_B10_dot + c[139]*A7_theta_dotsq + c[33]*A8_theta_dotsq + c[139]*A9_theta_dotsq;
-    out[9] = c[182]*A8 - c[181]*A9 + c[182]*A10 + c[196]*theta_dotsq + c[184]*theta_dot_B7_dot + c[185]*theta_dot_B8_dot + c[184]*theta_dot_B9_dot - c[185]*theta_dot_B10_dot + c[139]*A8_theta_dotsq + c[33]*A9_theta_dotsq + c[139]*A10_theta_dotsq;
-    out[10] = c[182]*A9 - c[181]*A10 + c[182]*A11 + c[197]*theta_dotsq + c[188]*theta_dot_B7_dot + c[189]*theta_dot_B8_dot + c[187]*theta_dot_B9_dot + c[188]*theta_dot_B11_dot - c[189]*theta_dot_B12_dot + c[139]*A9_theta_dotsq + c[33]*A10_theta_dotsq + c[139]*A11_theta_dotsq;
-    out[11] = c[182]*A10 - c[181]*A11 + c[182]*A12 + c[198]*theta_dotsq + c[184]*theta_dot_B9_dot + c[185]*theta_dot_B10_dot + c[184]*theta_dot_B11_dot - c[185]*theta_dot_B12_dot + c[139]*A10_theta_dotsq + c[33]*A11_theta_dotsq + c[139]*A12_theta_dotsq;
-    out[12] = c[182]*A11 - c[181]*A12 + c[182]*A13 + c[199]*theta_dotsq + c[188]*theta_dot_B9_dot + c[189]*theta_dot_B10_dot + c[187]*theta_dot_B11_dot + c[188]*theta_dot_B13_dot - c[189]*theta_dot_B14_dot + c[139]*A11_theta_dotsq + c[33]*A12_theta_dotsq + c[139]*A13_theta_dotsq;
-    out[13] = c[182]*A12 - c[181]*A13 + c[182]*A14 + c[200]*theta_dotsq + c[184]*theta_dot_B11_dot + c[185]*theta_dot_B12_dot + c[184]*theta_dot_B13_dot - c[185]*theta_dot_B14_dot + c[139]*A12_theta_dotsq + c[33]*A13_theta_dotsq + c[139]*A14_theta_dotsq;
-    out[14] = c[182]*A13 - c[181]*A14 + c[182]*A15 + c[201]*theta_dotsq + c[188]*theta_dot_B11_dot + c[189]*theta_dot_B12_dot + c[187]*theta_dot_B13_dot + c[188]*theta_dot_B15_dot - c[189]*theta_dot_B16_dot + c[139]*A13_theta_dotsq + c[33]*A14_theta_dotsq + c[139]*A15_theta_dotsq;
-    out[15] = c[182]*A14 - c[181]*A15 + c[182]*A16 + c[202]*theta_dotsq + c[184]*theta_dot_B13_dot + c[185]*theta_dot_B14_dot + c[184]*theta_dot_B15_dot - c[185]*theta_dot_B16_dot + c[139]*A14_theta_dotsq + c[33]*A15_theta_dotsq + c[139]*A16_theta_dotsq;
-    out[16] = c[182]*A15 - c[181]*A16 + c[182]*A17 + c[203]*theta_dotsq + c[188]*theta_dot_B13_dot + c[189]*theta_dot_B14_dot + c[187]*theta_dot_B15_dot + c[188]*theta_dot_B17_dot - c[189]*theta_dot_B18_dot + c[139]*A15_theta_dotsq + c[33]*A16_theta_dotsq + c[139]*A17_theta_dotsq;
-    out[17] = c[182]*A16 - c[181]*A17 + c[182]*A18 + c[204]*theta_dotsq + c[184]*theta_dot_B15_dot + c[185]*theta_dot_B16_dot + c[184]*theta_dot_B17_dot - c[185]*theta_dot_B18_dot + c[139]*A16_theta_dotsq + c[33]*A17_theta_dotsq + c[139]*A18_theta_dotsq;
-    out[18] = c[182]*A17 - c[181]*A18 + c[182]*A19 + c[205]*theta_dotsq + c[188]*theta_dot_B15_dot + c[189]*theta_dot_B16_dot + c[187]*theta_dot_B17_dot + c[188]*theta_dot_B19_dot - c[189]*theta_dot_B20_dot + c[139]*A17_theta_dotsq + c[33]*A18_theta_dotsq + c[139]*A19_theta_dotsq;
-    out[19] = c[182]*A18 - c[181]*A19 + c[182]*A20 + c[206]*theta_dotsq + c[184]*theta_dot_B17_dot + c[185]*theta_dot_B18_dot + c[184]*theta_dot_B19_dot - c[185]*theta_dot_B20_dot + c[139]*A18_theta_dotsq + c[33]*A19_theta_dotsq + c[139]*A20_theta_dotsq;
-    out[20] = c[182]*A19 - c[181]*A20 + c[182]*A21 + c[207]*theta_dotsq + c[188]*theta_dot_B17_dot + c[189]*theta_dot_B18_dot + c[187]*theta_dot_B19_dot + c[188]*theta_dot_B21_dot - c[189]*theta_dot_B22_dot + c[139]*A19_theta_dotsq + c[33]*A20_theta_dotsq + c[139]*A21_theta_dotsq;
-    out[21] = c[182]*A20 - c[181]*A21 + c[182]*A22 + c[208]*theta_dotsq + c[184]*theta_dot_B19_dot + c[185]*theta_dot_B20_dot + c[184]*theta_dot_B21_dot - c[185]*theta_dot_B22_dot + c[139]*A20_theta_dotsq + c[33]*A21_theta_dotsq + c[139]*A22_theta_dotsq;
-    out[22] = c[182]*A21 - c[181]*A22 + c[182]*A23 + c[209]*theta_dotsq + c[188]*theta_dot_B19_dot + c[189]*theta_dot_B20_dot + c[187]*theta_dot_B21_dot + c[188]*theta_dot_B23_dot - c[189]*theta_dot_B24_dot + c[139]*A21_theta_dotsq + c[33]*A22_theta_dotsq + c[139]*A23_theta_dotsq;
-    out[23] = c[182]*A22 - c[181]*A23 + c[182]*A24 + c[210]*theta_dotsq + c[184]*theta_dot_B21_dot + c[185]*theta_dot_B22_dot + c[184]*theta_dot_B23_dot - c[185]*theta_dot_B24_dot + c[139]*A22_theta_dotsq + c[33]*A23_theta_dotsq + c[139]*A24_theta_dotsq;
-    out[24] = c[182]*A23 - c[181]*A24 + c[182]*A25 + c[211]*theta_dotsq + c[188]*theta_dot_B21_dot + c[189]*theta_dot_B22_dot + c[187]*theta_dot_B23_dot + c[188]*theta_dot_B25_dot - c[189]*theta_dot_B26_dot + c[139]*A23_theta_dotsq + c[33]*A24_theta_dotsq + c[139]*A25_theta_dotsq;
-    out[25] = c[182]*A24 - c[181]*A25 + c[182]*A26 + c[212]*theta_dotsq + c[184]*theta_dot_B23_dot + c[185]*theta_dot_B24_dot + c[184]*theta_dot_B25_dot - c[185]*theta_dot_B26_dot + c[139]*A24_theta_dotsq + c[33]*A25_theta_dotsq + c[139]*A26_theta_dotsq;
-    out[26] = c[182]*A25 - c[181]*A26 + c[182]*A27 + c[213]*theta_dotsq + c[188]*theta_dot_B23_dot + c[189]*theta_dot_B24_dot + c[187]*theta_dot_B25_dot + c[188]*theta_dot_B27_dot - c[189]*theta_dot_B28_dot + c[139]*A25_theta_dotsq + c[33]*A26_theta_dotsq + c[139]*A27_theta_dotsq;
-    out[27] = c[182]*A26 - c[181]*A27 + c[182]*A28 + c[214]*theta_dotsq + c[184]*theta_dot_B25_dot + c[185]*theta_dot_B26_dot + c[184]*theta_dot_B27_dot - c[185]*theta_dot_B28_dot + c[139]*A26_theta_dotsq + c[33]*A27_theta_dotsq + c[139]*A28_theta_dotsq;
-    out[28] = c[182]*A27 - c[181]*A28 + c[182]*A29 + c[215]*theta_dotsq + c[188]*theta_dot_B25_dot + c[189]*theta_dot_B26_dot + c[187]*theta_dot_B27_dot + c[188]*theta_dot_B29_dot - c[189]*theta_dot_B30_dot + c[139]*A27_theta_dotsq + c[33]*A28_theta_dotsq + c[139]*A29_theta_dotsq;
-    out[29] = c[182]*A28 - c[181]*A29 + c[182]*A30 + c[216]*theta_dotsq + c[184]*theta_dot_B27_dot + c[185]*theta_dot_B28_dot + c[184]*theta_dot_B29_dot - c[185]*theta_dot_B30_dot + c[139]*A28_theta_dotsq + c[33]*A29_theta_dotsq + c[139]*A30_theta_dotsq;
-    out[30] = c[182]*A29 - c[181]*A30 + c[182]*A31 + c[217]*theta_dotsq + c[188]*theta_dot_B27_dot + c[189]*theta_dot_B28_dot + c[187]*theta_dot_B29_dot + c[188]*theta_dot_B31_dot - c[189]*theta_dot_B32_dot + c[139]*A29_theta_dotsq + c[33]*A30_theta_dotsq + c[139]*A31_theta_dotsq;
-    out[31] = c[182]*A30 - c[181]*A31 + c[182]*A32 + c[218]*theta_dotsq + c[184]*theta_dot_B29_dot + c[185]*theta_dot_B30_dot + c[184]*theta_dot_B31_dot - c[185]*theta_dot_B32_dot + c[139]*A30_theta_dotsq + c[33]*A31_theta_dotsq + c[139]*A32_theta_dotsq;
-    out[32] = c[182]*A31 - c[182]*A32 + c[219]*theta_dotsq + c[188]*theta_dot_B29_dot + c[189]*theta_dot_B30_dot + c[131]*theta_dot_B31_dot - c[220]*theta_dot_B32_dot + c[139]*A31_theta_dotsq + c[34]*A32_theta_dotsq;
-    out[33] = -c[221]*B1 + c[222]*B3 - c[223]*B4 - c[184]*theta_dot_A1_dot - c[187]*theta_dot_A2_dot - c[184]*theta_dot_A3_dot - c[188]*theta_dot_A4_dot - c[35]*B1_theta_dotsq + c[224]*B2_theta_dotsq + c[225]*B3_theta_dotsq - c[226]*B4_theta_dotsq;
-    out[34] = -c[227]*B2 + c[223]*B3 - c[228]*B4 + c[185]*theta_dot_A1_dot - c[185]*theta_dot_A3_dot - c[189]*theta_dot_A4_dot + c[224]*B1_theta_dotsq - c[39]*B2_theta_dotsq + c[229]*B3_theta_dotsq + c[230]*B4_theta_dotsq;
-    out[35] = c[222]*B1 + c[223]*B2 - c[221]*B3 + c[222]*B5 - c[223]*B6 - c[188]*theta_dot_A2_dot - c[184]*theta_dot_A3_dot - c[187]*theta_dot_A4_dot - c[184]*theta_dot_A5_dot - c[188]*theta_dot_A6_dot + c[225]*B1_theta_dotsq + c[229]*B2_theta_dotsq - c[42]*B3_theta_dotsq + c[231]*B4_theta_dotsq + c[232]*B5_theta_dotsq - c[229]*B6_theta_dotsq;
-    out[36] = -c[223]*B1 - c[228]*B2 - c[227]*B4 + c[223]*B5 - c[228]*B6 + c[189]*theta_dot_A2_dot + c[185]*theta_dot_A3_dot - c[185]*theta_dot_A5_dot - c[189]*theta_dot_A6_dot - c[226]*B1_theta_dotsq + c[230]*B2_theta_dotsq + c[231]*B3_theta_dotsq - c[45]*B4_theta_dotsq + c[233]*B5_theta_dotsq + c[234]*B6_theta_dotsq;
-    out[37] = c[222]*B3 + c[223]*B4 - c[221]*B5 + c[222]*B7 - c[223]*B8 - c[188]*theta_dot_A4_dot - c[184]*theta_dot_A5_dot - c[187]*theta_dot_A6_dot - c[184]*theta_dot_A7_dot - c[188]*theta_dot_A8_dot + c[232]*B3_theta_dotsq + c[233]*B4_theta_dotsq - c[48]*B5_theta_dotsq + c[235]*B6_theta_dotsq + c[236]*B7_theta_dotsq - c[233]*B8_theta_dotsq;
-    out[38] = -c[223]*B3 - c[228]*B4 - c[227]*B6 + c[223]*B7 - c[228]*B8 + c[189]*theta_dot_A4_dot + c[185]*theta_dot_A5_dot - c[185]*theta_dot_A7_dot - c[189]*theta_dot_A8_dot - c[229]*B3_theta_dotsq + c[234]*B4_theta_dotsq + c[235]*B5_theta_dotsq - c[51]*B6_theta_dotsq + c[237]*B7_theta_dotsq + c[238]*B8_theta_dotsq;
-    out[39] = c[222]*B5 + c[223]*B6 - c[221]*B7 + c[222]*B9 - c[223]*B10 - c[188]*theta_dot_A6_dot - c[184]*theta_dot_A7_dot - c[187]*theta_dot_A8_dot - c[184]*theta_dot_A9_dot - c[188]*theta_dot_A10_dot + c[236]*B5_theta_dotsq + c[237]*B6_theta_dotsq - c[54]*B7_theta_dotsq + c[239]*B8_theta_dotsq + c[240]*B9_theta_dotsq - c[237]*B10_theta_dotsq;
-    out[40] = -c[223]*B5 - c[228]*B6 - c[227]*B8 + c[223]*B9 - c[228]*B10 + c[189]*theta_dot_A6_dot + c[185]*theta_dot_A7_dot - c[185]*theta_dot_A9_dot - c[189]*theta_dot_A10_dot - c[233]*B5_theta_dotsq + c[238]*B6_theta_dotsq + c[239]*B7_theta_dotsq - c[57]*B8_theta_dotsq + c[241]*B9_theta_dotsq + c[242]*B10_theta_dotsq;
-    out[41] = c[222]*B7 + c[223]*B8 - c[221]*B9 + c[222]*B11 - c[223]*B12 - c[188]*theta_dot_A8_dot - c[184]*theta_dot_A9_dot - c[187]*theta_dot_A10_dot - c[184]*theta_dot_A11_dot - c[188]*theta_dot_A12_dot + c[240]*B7_theta_dotsq + c[241]*B8_theta_dotsq - c[60]*B9_theta_dotsq + c[243]*B10_theta_dotsq + c[244]*B11_theta_dotsq - c[241]*B12_theta_dotsq;
-    out[42] = -c[223]*B7 - c[228]*B8 - c[227]*B10 + c[223]*B11 - c[228]*B12 + c[189]*theta_dot_A8_dot + c[185]*theta_dot_A9_dot - c[185]*theta_dot_A11_dot - c[189]*theta_dot_A12_dot - c[237]*B7_theta_dotsq + c[242]*B8_theta_dotsq + c[243]*B9_theta_dotsq - c[63]*B10_theta_dotsq + c[245]*B11_theta_dotsq + c[246]*B12_theta_dotsq;
-    out[43] = c[222]*B9 + c[223]*B10 - c[221]*B11 + c[222]*B13 - c[223]*B14 - c[188]*theta_dot_A10_dot - c[184]*theta_dot_A11_dot - c[187]*theta_dot_A12_dot - c[184]*theta_dot_A13_dot - c[188]*theta_dot_A14_dot + c[244]*B9_theta_dotsq + c[245]*B10_theta_dotsq - c[66]*B11_theta_dotsq + c[247]*B12_theta_dotsq + c[248]*B13_theta_dotsq - c[245]*B14_theta_dotsq;
-    out[44] = -c[223]*B9 - c[228]*B10 - c[227]*B12 + c[223]*B13 - c[228]*B14 + c[189]*theta_dot_A10_dot + c[185]*theta_dot_A11_dot - c[185]*theta_dot_A13_dot - c[189]*theta_dot_A14_dot - c[241]*B9_theta_dotsq + c[246]*B10_theta_dotsq + c[247]*B11_theta_dotsq - c[69]*B12_theta_dotsq + c[249]*B13_theta_dotsq + c[250]*B14_theta_dotsq;
-    out[45] = c[222]*B11 + c[223]*B12 - c[221]*B13 + c[222]*B15 - c[223]*B16 - c[188]*theta_dot_A12_dot - c[184]*theta_dot_A13_dot - c[187]*theta_dot_A14_dot - c[184]*theta_dot_A15_dot - c[188]*theta_dot_A16_dot + c[248]*B11_theta_dotsq + c[249]*B12_theta_dotsq - c[72]*B13_theta_dotsq + c[251]*B14_theta_dotsq + c[252]*B15_theta_dotsq - c[249]*B16_theta_dotsq;
-    out[46] = -c[223]*B11 - c[228]*B12 - c[227]*B14 + c[223]*B15 - c[228]*B16 + c[189]*theta_dot_A12_dot + c[185]*theta_dot_A13_dot - c[185]*theta_dot_A15_dot - c[189]*theta_dot_A16_dot - c[245]*B11_theta_dotsq + c[250]*B12_theta_dotsq + c[251]*B13_theta_dotsq - c[75]*B14_theta_dotsq + c[253]*B15_theta_dotsq + c[254]*B16_theta_dotsq;
-    out[47] = c[222]*B13 + c[223]*B14 - c[221]*B15 + c[222]*B17 - c[223]*B18 - c[188]*theta_dot_A14_dot - c[184]*theta_dot_A15_dot - c[187]*theta_dot_A16_dot - c[184]*theta_dot_A17_dot - c[188]*theta_dot_A18_dot + c[252]*B13_theta_dotsq + c[253]*B14_theta_dotsq - c[78]*B15_theta_dotsq + c[255]*B16_theta_dotsq + c[256]*B17_theta_dotsq - c[253]*B18_theta_dotsq;
-    out[48] = -c[223]*B13 - c[228]*B14 - c[227]*B16 + c[223]*B17 - c[228]*B18 + c[189]*theta_dot_A14_dot + c[185]*theta_dot_A15_dot - c[185]*theta_dot_A17_dot - c[189]*theta_dot_A18_dot - c[249]*B13_theta_dotsq + c[254]*B14_theta_dotsq + c[255]*B15_theta_dotsq - c[81]*B16_theta_dotsq + c[257]*B17_theta_dotsq + c[258]*B18_theta_dotsq;
-    out[49] = c[222]*B15 + c[223]*B16 - c[221]*B17 + c[222]*B19 - c[223]*B20 - c[188]*theta_dot_A16_dot - c[184]*theta_dot_A17_dot - c[187]*theta_dot_A18_dot - c[184]*theta_dot_A19_dot - c[188]*theta_dot_A20_dot + c[256]*B15_theta_dotsq + c[257]*B16_theta_dotsq - c[84]*B17_theta_dotsq + c[259]*B18_theta_dotsq + c[260]*B19_theta_dotsq - c[257]*B20_theta_dotsq;
-    out[50] = -c[223]*B15 - c[228]*B16 - c[227]*B18 + c[223]*B19 - c[228]*B20 + c[189]*theta_dot_A16_dot + c[185]*theta_dot_A17_dot - c[185]*theta_dot_A19_dot - c[189]*theta_dot_A20_dot - c[253]*B15_theta_dotsq + c[258]*B16_theta_dotsq + c[259]*B17_theta_dotsq - c[87]*B18_theta_dotsq + c[261]*B19_theta_dotsq + c[262]*B20_theta_dotsq;
-    out[51] = c[222]*B17 + c[223]*B18 - c[221]*B19 + c[222]*B21 - c[223]*B22 - c[188]*theta_dot_A18_dot - c[184]*theta_dot_A19_dot - c[187]*theta_dot_A20_dot - c[184]*theta_dot_A21_dot - c[188]*theta_dot_A22_dot + c[260]*B17_theta_dotsq + c[261]*B18_theta_dotsq - c[90]*B19_theta_dotsq + c[263]*B20_theta_dotsq + c[264]*B21_theta_dotsq - c[261]*B22_theta_dotsq;
-    out[52] = -c[223]*B17 - c[228]*B18 - c[227]*B20 + c[223]*B21 - c[228]*B22 + c[189]*theta_dot_A18_dot + c[185]*theta_dot_A19_dot - c[185]*theta_dot_A21_dot - c[189]*theta_dot_A22_dot - c[257]*B17_theta_dotsq + c[262]*B18_theta_dotsq + c[263]*B19_theta_dotsq - c[93]*B20_theta_dotsq + c[265]*B21_theta_dotsq + c[266]*B22_theta_dotsq;
-    out[53] = c[222]*B19 + c[223]*B20 - c[221]*B21 + c[222]*B23 - c[223]*B24 - c[188]*theta_dot_A20_dot - c[184]*theta_dot_A21_dot - c[187]*theta_dot_A22_dot - c[184]*theta_dot_A23_dot - c[188]*theta_dot_A24_dot + c[264]*B19_theta_dotsq + c[265]*B20_theta_dotsq - c[96]*B21_theta_dotsq + c[267]*B22_theta_dotsq + c[268]*B23_theta_dotsq - c[265]*B24_theta_dotsq;
-    out[54] = -c[223]*B19 - c[228]*B20 - c[227]*B22 + c[223]*B23 - c[228]*B24 + c[189]*theta_dot_A20_dot + c[185]*theta_dot_A21_dot - c[185]*theta_dot_A23_dot - c[189]*theta_dot_A24_dot - c[261]*B19_theta_dotsq + c[266]*B20_theta_dotsq + c[267]*B21_theta_dotsq - c[99]*B22_theta_dotsq + c[269]*B23_theta_dotsq + c[270]*B24_theta_dotsq;
-    out[55] = c[222]*B21 + c[223]*B22 - c[221]*B23 + c[222]*B25 - c[223]*B26 - c[188]*theta_dot_A22_dot - c[184]*theta_dot_A23_dot - c[187]*theta_dot_A24_dot - c[184]*theta_dot_A25_dot - c[188]*theta_dot_A26_dot + c[268]*B21_theta_dotsq + c[269]*B22_theta_dotsq - c[102]*B23_theta_dotsq + c[271]*B24_theta_dotsq + c[272]*B25_theta_dotsq - c[269]*B26_theta_dotsq;
-    out[56] = -c[223]*B21 - c[228]*B22 - c[227]*B24 + c[223]*B25 - c[228]*B26 + c[189]*theta_dot_A22_dot + c[185]*theta_dot_A23_dot - c[185]*theta_dot_A25_dot - c[189]*theta_dot_A26_dot - c[265]*B21_theta_dotsq + c[270]*B22_theta_dotsq + c[271]*B23_theta_dotsq - c[105]*B24_theta_dotsq + c[273]*B25_theta_dotsq + c[274]*B26_theta_dotsq;
-    out[57] = c[222]*B23 + c[223]*B24 - c[221]*B25 + c[222]*B27 - c[223]*B28 - c[188]*theta_dot_A24_dot - c[184]*theta_dot_A25_dot - c[187]*theta_dot_A26_dot - c[184]*theta_dot_A27_dot - c[188]*theta_dot_A28_dot + c[272]*B23_theta_dotsq + c[273]*B24_theta_dotsq - c[108]*B25_theta_dotsq + c[275]*B26_theta_dotsq + c[276]*B27_theta_dotsq - c[273]*B28_theta_dotsq;
-    out[58] = -c[223]*B23 - c[228]*B24 - c[227]*B26 + c[223]*B27 - c[228]*B28 + c[189]*theta_dot_A24_dot + c[185]*theta_dot_A25_dot - c[185]*theta_dot_A27_dot - c[189]*theta_dot_A28_dot - c[269]*B23_theta_dotsq + c[274]*B24_theta_dotsq + c[275]*B25_theta_dotsq - c[111]*B26_theta_dotsq + c[277]*B27_theta_dotsq + c[278]*B28_theta_dotsq;
-    out[59] = c[222]*B25 + c[223]*B26 - c[221]*B27 + c[222]*B29 - c[223]*B30 - c[188]*theta_dot_A26_dot - c[184]*theta_dot_A27_dot - c[187]*theta_dot_A28_dot - c[184]*theta_dot_A29_dot - c[188]*theta_dot_A30_dot + c[276]*B25_theta_dotsq + c[277]*B26_theta_dotsq - c[114]*B27_theta_dotsq + c[279]*B28_theta_dotsq + c[280]*B29_theta_dotsq - c[277]*B30_theta_dotsq;
-    out[60] = -c[223]*B25 - c[228]*B26 - c[227]*B28 + c[223]*B29 - c[228]*B30 + c[189]*theta_dot_A26_dot + c[185]*theta_dot_A27_dot - c[185]*theta_dot_A29_dot - c[189]*theta_dot_A30_dot - c[273]*B25_theta_dotsq + c[278]*B26_theta_dotsq + c[279]*B27_theta_dotsq - c[117]*B28_theta_dotsq + c[281]*B29_theta_dotsq + c[282]*B30_theta_dotsq;
-    out[61] = c[222]*B27 + c[223]*B28 - c[221]*B29 + c[222]*B31 - c[223]*B32 - c[188]*theta_dot_A28_dot - c[184]*theta_dot_A29_dot - c[187]*theta_dot_A30_dot - c[184]*theta_dot_A31_dot - c[188]*theta_dot_A32_dot + c[280]*B27_theta_dotsq + c[281]*B28_theta_dotsq - c[120]*B29_theta_dotsq + c[283]*B30_theta_dotsq + c[284]*B31_theta_dotsq - c[281]*B32_theta_dotsq;
-    out[62] = -c[223]*B27 - c[228]*B28 - c[227]*B30 + c[223]*B31 - c[228]*B32 + c[189]*theta_dot_A28_dot + c[185]*theta_dot_A29_dot - c[185]*theta_dot_A31_dot - c[189]*theta_dot_A32_dot - c[277]*B27_theta_dotsq + c[282]*B28_theta_dotsq + c[283]*B29_theta_dotsq - c[123]*B30_theta_dotsq + c[285]*B31_theta_dotsq + c[286]*B32_theta_dotsq;
-    out[63] = c[222]*B29 + c[223]*B30 - c[222]*B31 + c[223]*B32 - c[188]*theta_dot_A30_dot - c[184]*theta_dot_A31_dot - c[131]*theta_dot_A32_dot + c[284]*B29_theta_dotsq + c[285]*B30_theta_dotsq - c[126]*B31_theta_dotsq + c[287]*B32_theta_dotsq;
-    out[64] = -c[223]*B29 - c[228]*B30 + c[223]*B31 - c[288]*B32 + c[189]*theta_dot_A30_dot + c[185]*theta_dot_A31_dot + c[220]*theta_dot_A32_dot - c[281]*B29_theta_dotsq + c[286]*B30_theta_dotsq + c[287]*B31_theta_dotsq - c[128]*B32_theta_dotsq;
+    // Table form (1147 terms, 537 monomials): m[0] = 1, m[k + 1] = m[chain[k][0]] * v[chain[k][1]];
+    // out[written[i]] = sum of t.scale * c[t.coef] * m[t.mono] over terms[first[i]] .. terms[first[i + 1] - 1].
+    static const int chain[][2] = {
+        {0, 0},
+        {0, 2},
+        {0, 3},
+        {0, 4},
+        {0, 5},
+        {0, 6},
+        {0, 7},
+        {0, 8},
+        {0, 9},
+        {0, 10},
+        {0, 11},
+        {0, 12},
+        {0, 13},
+        {0, 14},
+        {0, 15},
+        {0, 16},
+        {0, 17},
+        {0, 18},
+        {0, 19},
+        {0, 20},
+        {0, 21},
+        {0, 22},
+        {0, 23},
+        {0, 24},
+        {0, 25},
+        {0, 26},
+        {0, 27},
+        {0, 28},
+        {0, 29},
+        {0, 30},
+        {0, 31},
+        {0, 32},
+        {0, 33},
+        {0, 34},
+        {0, 35},
+        {0, 36},
+        {0, 37},
+        {0, 38},
+        {0, 39},
+        {0, 40},
+        {0, 41},
+        {0, 42},
+        {0, 43},
+        {0, 44},
+        {0, 45},
+        {0, 46},
+        {0, 47},
+        {0, 48},
+        {0, 49},
+        {0, 50},
+        {0, 51},
+        {0, 52},
+        {0, 53},
+        {0, 54},
+        {0, 55},
+        {0, 56},
+        {0, 57},
+        {0, 58},
+        {0, 59},
+        {0, 60},
+        {0, 61},
+        {0, 62},
+        {0, 63},
+        {0, 64},
+        {0, 65},
+        {0, 66},
+        {2, 66},
+        {3, 66},
+        {4, 66},
+        {5, 66},
+        {6, 66},
+        {7, 66},
+        {8, 66},
+        {9, 66},
+        {10, 66},
+        {11, 66},
+        {12, 66},
+        {13, 66},
+        {14, 66},
+        {15, 66},
+        {16, 66},
+        {17, 66},
+        {18, 66},
+        {19, 66},
+        {20, 66},
+        {21, 66},
+        {22, 66},
+        {23, 66},
+        {24, 66},
+        {25, 66},
+        {26, 66},
+        {27, 66},
+        {28, 66},
+        {29, 66},
+        {30, 66},
+        {31, 66},
+        {32, 66},
+        {33, 66},
+        {34, 66},
+        {35, 66},
+        {36, 66},
+        {37, 66},
+        {38, 66},
+        {39, 66},
+        {40, 66},
+        {41, 66},
+        {42, 66},
+        {43, 66},
+        {44, 66},
+        {45, 66},
+        {46, 66},
+        {47, 66},
+        {48, 66},
+        {49, 66},
+        {50, 66},
+        {51, 66},
+        {52, 66},
+        {53, 66},
+        {54, 66},
+        {55, 66},
+        {56, 66},
+        {57, 66},
+        {58, 66},
+        {59, 66},
+        {60, 66},
+        {61, 66},
+        {62, 66},
+        {63, 66},
+        {64, 66},
+        {65, 66},
+        {66, 66},
+        {66, 67},
+        {66, 68},
+        {66, 69},
+        {66, 70},
+        {66, 71},
+        {66, 72},
+        {66, 73},
+        {66, 74},
+        {66, 75},
+        {66, 76},
+        {66, 77},
+        {66, 78},
+        {66, 79},
+        {66, 80},
+        {66, 81},
+        {66, 82},
+        {66, 83},
+        {66, 84},
+        {66, 85},
+        {66, 86},
+        {66, 87},
+        {66, 88},
+        {66, 89},
+        {66, 90},
+        {66, 91},
+        {66, 92},
+        {66, 93},
+        {66, 94},
+        {66, 95},
+        {66, 96},
+        {66, 97},
+        {66, 98},
+        {66, 99},
+        {66, 100},
+        {66, 101},
+        {66, 102},
+        {66, 103},
+        {66, 104},
+        {66, 105},
+        {66, 106},
+        {66, 107},
+        {66, 108},
+        {66, 109},
+        {66, 110},
+        {66, 111},
+        {66, 112},
+        {66, 113},
+        {66, 114},
+        {66, 115},
+        {66, 116},
+        {66, 117},
+        {66, 118},
+        {66, 119},
+        {66, 120},
+        {66, 121},
+        {66, 122},
+        {66, 123},
+        {66, 124},
+        {66, 125},
+        {66, 126},
+        {66, 127},
+        {66, 128},
+        {66, 129},
+        {66, 130},
+        {67, 66},
+        {67, 67},
+        {67, 68},
+        {68, 66},
+        {68, 67},
+        {68, 68},
+        {68, 69},
+        {69, 66},
+        {69, 68},
+        {69, 69},
+        {69, 70},
+        {70, 66},
+        {70, 69},
+        {70, 70},
+        {70, 71},
+        {71, 66},
+        {71, 70},
+        {71, 71},
+        {71, 72},
+        {72, 66},
+        {72, 71},
+        {72, 72},
+        {72, 73},
+        {73, 66},
+        {73, 72},
+        {73, 73},
+        {73, 74},
+        {74, 66},
+        {74, 73},
+        {74, 74},
+        {74, 75},
+        {75, 66},
+        {75, 74},
+        {75, 75},
+        {75, 76},
+        {76, 66},
+        {76, 75},
+        {76, 76},
+        {76, 77},
+        {77, 66},
+        {77, 76},
+        {77, 77},
+        {77, 78},
+        {78, 66},
+        {78, 77},
+        {78, 78},
+        {78, 79},
+        {79, 66},
+        {79, 78},
+        {79, 79},
+        {79, 80},
+        {80, 66},
+        {80, 79},
+        {80, 80},
+        {80, 81},
+        {81, 66},
+        {81, 80},
+        {81, 81},
+        {81, 82},
+        {82, 66},
+        {82, 81},
+        {82, 82},
+        {82, 83},
+        {83, 66},
+        {83, 82},
+        {83, 83},
+        {83, 84},
+        {84, 66},
+        {84, 83},
+        {84, 84},
+        {84, 85},
+        {85, 66},
+        {85, 84},
+        {85, 85},
+        {85, 86},
+        {86, 66},
+        {86, 85},
+        {86, 86},
+        {86, 87},
+        {87, 66},
+        {87, 86},
+        {87, 87},
+        {87, 88},
+        {88, 66},
+        {88, 87},
+        {88, 88},
+        {88, 89},
+        {89, 66},
+        {89, 88},
+        {89, 89},
+        {89, 90},
+        {90, 66},
+        {90, 89},
+        {90, 90},
+        {90, 91},
+        {91, 66},
+        {91, 90},
+        {91, 91},
+        {91, 92},
+        {92, 66},
+        {92, 91},
+        {92, 92},
+        {92, 93},
+        {93, 66},
+        {93, 92},
+        {93, 93},
+        {93, 94},
+        {94, 66},
+        {94, 93},
+        {94, 94},
+        {94, 95},
+        {95, 66},
+        {95, 94},
+        {95, 95},
+        {95, 96},
+        {96, 66},
+        {96, 95},
+        {96, 96},
+        {96, 97},
+        {97, 66},
+        {97, 96},
+        {97, 97},
+        {97, 98},
+        {98, 66},
+        {98, 97},
+        {98, 98},
+        {99, 66},
+        {99, 99},
+        {99, 100},
+        {99, 101},
+        {99, 102},
+        {100, 66},
+        {100, 99},
+        {100, 100},
+        {100, 101},
+        {100, 102},
+        {101, 66},
+        {101, 99},
+        {101, 100},
+        {101, 101},
+        {101, 102},
+        {101, 103},
+        {101, 104},
+        {102, 66},
+        {102, 99},
+        {102, 100},
+        {102, 101},
+        {102, 102},
+        {102, 103},
+        {102, 104},
+        {103, 66},
+        {103, 101},
+        {103, 102},
+        {103, 103},
+        {103, 104},
+        {103, 105},
+        {103, 106},
+        {104, 66},
+        {104, 101},
+        {104, 102},
+        {104, 103},
+        {104, 104},
+        {104, 105},
+        {104, 106},
+        {105, 66},
+        {105, 103},
+        {105, 104},
+        {105, 105},
+        {105, 106},
+        {105, 107},
+        {105, 108},
+        {106, 66},
+        {106, 103},
+        {106, 104},
+        {106, 105},
+        {106, 106},
+        {106, 107},
+        {106, 108},
+        {107, 66},
+        {107, 105},
+        {107, 106},
+        {107, 107},
+        {107, 108},
+        {107, 109},
+        {107, 110},
+        {108, 66},
+        {108, 105},
+        {108, 106},
+        {108, 107},
+        {108, 108},
+        {108, 109},
+        {108, 110},
+        {109, 66},
+        {109, 107},
+        {109, 108},
+        {109, 109},
+        {109, 110},
+        {109, 111},
+        {109, 112},
+        {110, 66},
+        {110, 107},
+        {110, 108},
+        {110, 109},
+        {110, 110},
+        {110, 111},
+        {110, 112},
+        {111, 66},
+        {111, 109},
+        {111, 110},
+        {111, 111},
+        {111, 112},
+        {111, 113},
+        {111, 114},
+        {112, 66},
+        {112, 109},
+        {112, 110},
+        {112, 111},
+        {112, 112},
+        {112, 113},
+        {112, 114},
+        {113, 66},
+        {113, 111},
+        {113, 112},
+        {113, 113},
+        {113, 114},
+        {113, 115},
+        {113, 116},
+        {114, 66},
+        {114, 111},
+        {114, 112},
+        {114, 113},
+        {114, 114},
+        {114, 115},
+        {114, 116},
+        {115, 66},
+        {115, 113},
+        {115, 114},
+        {115, 115},
+        {115, 116},
+        {115, 117},
+        {115, 118},
+        {116, 66},
+        {116, 113},
+        {116, 114},
+        {116, 115},
+        {116, 116},
+        {116, 117},
+        {116, 118},
+        {117, 66},
+        {117, 115},
+        {117, 116},
+        {117, 117},
+        {117, 118},
+        {117, 119},
+        {117, 120},
+        {118, 66},
+        {118, 115},
+        {118, 116},
+        {118, 117},
+        {118, 118},
+        {118, 119},
+        {118, 120},
+        {119, 66},
+        {119, 117},
+        {119, 118},
+        {119, 119},
+        {119, 120},
+        {119, 121},
+        {119, 122},
+        {120, 66},
+        {120, 117},
+        {120, 118},
+        {120, 119},
+        {120, 120},
+        {120, 121},
+        {120, 122},
+        {121, 66},
+        {121, 119},
+        {121, 120},
+        {121, 121},
+        {121, 122},
+        {121, 123},
+        {121, 124},
+        {122, 66},
+        {122, 119},
+        {122, 120},
+        {122, 121},
+        {122, 122},
+        {122, 123},
+        {122, 124},
+        {123, 66},
+        {123, 121},
+        {123, 122},
+        {123, 123},
+        {123, 124},
+        {123, 125},
+        {123, 126},
+        {124, 66},
+        {124, 121},
+        {124, 122},
+        {124, 123},
+        {124, 124},
+        {124, 125},
+        {124, 126},
+        {125, 66},
+        {125, 123},
+        {125, 124},
+        {125, 125},
+        {125, 126},
+        {125, 127},
+        {125, 128},
+        {126, 66},
+        {126, 123},
+        {126, 124},
+        {126, 125},
+        {126, 126},
+        {126, 127},
+        {126, 128},
+        {127, 66},
+        {127, 125},
+        {127, 126},
+        {127, 127},
+        {127, 128},
+        {127, 129},
+        {127, 130},
+        {128, 66},
+        {128, 125},
+        {128, 126},
+        {128, 127},
+        {128, 128},
+        {128, 129},
+        {128, 130},
+        {129, 66},
+        {129, 127},
+        {129, 128},
+        {129, 129},
+        {129, 130},
+        {130, 66},
+        {130, 127},
+        {130, 128},
+        {130, 129},
+        {130, 130},
+    };
+    const double v[] = {u[0], q[0], q[1], q[2], q[3], q[4], q[5], q[6], q[7], q[8], q[9], q[10], q[11], q[12], q[13], q[14], q[15], q[16], q[17], q[18], q[19], q[20], q[21], q[22], q[23], q[24], q[25], q[26], q[27], q[28], q[29], q[30], q[31], q[32], q[33], q[34], q[35], q[36], q[37], q[38], q[39], q[40], q[41], q[42], q[43], q[44], q[45], q[46], q[47], q[48], q[49], q[50], q[51], q[52], q[53], q[54], q[55], q[56], q[57], q[58], q[59], q[60], q[61], q[62], q[63], q[64], qd[0], qd[1], qd[2], qd[3], qd[4], qd[5], qd[6], qd[7], qd[8], qd[9], qd[10], qd[11], qd[12], qd[13], qd[14], qd[15], qd[16], qd[17], qd[18], qd[19], qd[20], qd[21], qd[22], qd[23], qd[24], qd[25], qd[26], qd[27], qd[28], qd[29], qd[30], qd[31], qd[32], qd[33], qd[34], qd[35], qd[36], qd[37], qd[38], qd[39], qd[40], qd[41], qd[42], qd[43], qd[44], qd[45], qd[46], qd[47], qd[48], qd[49], qd[50], qd[51], qd[52], qd[53], qd[54], qd[55], qd[56], qd[57], qd[58], qd[59], qd[60], qd[61], qd[62], qd[63], qd[64]};
+    double m[538];
+    m[0] = 1.0;
+    for (int k = 0; k < 537; ++k) m[k + 1] = m[chain[k][0]] * v[chain[k][1]];
+    struct Term {
+        int coef, mono;
+        double scale;
+    };
+    static const Term terms[] = {
+        {148, 1, 1.0},
+        {1, 132, -1.0},
+        {2, 133, -1.0},
+        {3, 134, -1.0},
+        {4, 135, -1.0},
+        {5, 136, -1.0},
+        {6, 137, -1.0},
+        {7, 138, -1.0},
+        {8, 139, -1.0},
+        {9, 140, -1.0},
+        {10, 141, -1.0},
+        {11, 142, -1.0},
+        {12, 143, -1.0},
+        {13, 144, -1.0},
+        {14, 145, -1.0},
+        {15, 146, -1.0},
+        {16, 147, -1.0},
+        {17, 148, -1.0},
+        {18, 149, -1.0},
+        {19, 150, -1.0},
+        {20, 151, -1.0},
+        {21, 152, -1.0},
+        {22, 153, -1.0},
+        {23, 154, -1.0},
+        {24, 155, -1.0},
+        {25, 156, -1.0},
+        {26, 157, -1.0},
+        {27, 158, -1.0},
+        {28, 159, -1.0},
+        {29, 160, -1.0},
+        {30, 161, -1.0},
+        {31, 162, -1.0},
+        {32, 163, -1.0},
+        {149, 197, -1.0},
+        {34, 198, -1.0},
+        {34, 200, -1.0},
+        {149, 201, -1.0},
+        {34, 202, -1.0},
+        {34, 204, -1.0},
+        {149, 205, -1.0},
+        {34, 206, -1.0},
+        {34, 208, -1.0},
+        {149, 209, -1.0},
+        {34, 210, -1.0},
+        {34, 212, -1.0},
+        {149, 213, -1.0},
+        {34, 214, -1.0},
+        {34, 216, -1.0},
+        {149, 217, -1.0},
+        {34, 218, -1.0},
+        {34, 220, -1.0},
+        {149, 221, -1.0},
+        {34, 222, -1.0},
+        {34, 224, -1.0},
+        {149, 225, -1.0},
+        {34, 226, -1.0},
+        {34, 228, -1.0},
+        {149, 229, -1.0},
+        {34, 230, -1.0},
+        {34, 232, -1.0},
+        {149, 233, -1.0},
+        {34, 234, -1.0},
+        {34, 236, -1.0},
+        {149, 237, -1.0},
+        {34, 238, -1.0},
+        {34, 240, -1.0},
+        {149, 241, -1.0},
+        {34, 242, -1.0},
+        {34, 244, -1.0},
+        {149, 245, -1.0},
+        {34, 246, -1.0},
+        {34, 248, -1.0},
+        {149, 249, -1.0},
+        {34, 250, -1.0},
+        {34, 252, -1.0},
+        {149, 253, -1.0},
+        {34, 254, -1.0},
+        {34, 256, -1.0},
+        {149, 257, -1.0},
+        {34, 258, -1.0},
+        {34, 260, -1.0},
+        {149, 261, -1.0},
+        {34, 262, -1.0},
+        {34, 264, -1.0},
+        {149, 265, -1.0},
+        {34, 266, -1.0},
+        {34, 268, -1.0},
+        {149, 269, -1.0},
+        {34, 270, -1.0},
+        {34, 272, -1.0},
+        {149, 273, -1.0},
+        {34, 274, -1.0},
+        {34, 276, -1.0},
+        {149, 277, -1.0},
+        {34, 278, -1.0},
+        {34, 280, -1.0},
+        {149, 281, -1.0},
+        {34, 282, -1.0},
+        {34, 284, -1.0},
+        {149, 285, -1.0},
+        {34, 286, -1.0},
+        {34, 288, -1.0},
+        {149, 289, -1.0},
+        {34, 290, -1.0},
+        {34, 292, -1.0},
+        {149, 293, -1.0},
+        {34, 294, -1.0},
+        {34, 296, -1.0},
+        {149, 297, -1.0},
+        {34, 298, -1.0},
+        {34, 300, -1.0},
+        {149, 301, -1.0},
+        {34, 302, -1.0},
+        {34, 304, -1.0},
+        {149, 305, -1.0},
+        {34, 306, -1.0},
+        {34, 308, -1.0},
+        {149, 309, -1.0},
+        {34, 310, -1.0},
+        {34, 312, -1.0},
+        {149, 313, -1.0},
+        {34, 314, -1.0},
+        {34, 316, -1.0},
+        {149, 317, -1.0},
+        {34, 318, -1.0},
+        {34, 320, -1.0},
+        {33, 321, -1.0},
+        {150, 323, 1.0},
+        {36, 324, -1.0},
+        {37, 325, -1.0},
+        {38, 326, 1.0},
+        {36, 328, -1.0},
+        {151, 329, 1.0},
+        {40, 330, -1.0},
+        {41, 331, -1.0},
+        {37, 333, -1.0},
+        {40, 334, -1.0},
+        {152, 335, 1.0},
+        {43, 336, -1.0},
+        {44, 337, -1.0},
+        {40, 338, 1.0},
+        {38, 340, 1.0},
+        {41, 341, -1.0},
+        {43, 342, -1.0},
+        {153, 343, 1.0},
+        {46, 344, -1.0},
+        {47, 345, -1.0},
+        {44, 347, -1.0},
+        {46, 348, -1.0},
+        {154, 349, 1.0},
+        {49, 350, -1.0},
+        {50, 351, -1.0},
+        {46, 352, 1.0},
+        {40, 354, 1.0},
+        {47, 355, -1.0},
+        {49, 356, -1.0},
+        {155, 357, 1.0},
+        {52, 358, -1.0},
+        {53, 359, -1.0},
+        {50, 361, -1.0},
+        {52, 362, -1.0},
+        {156, 363, 1.0},
+        {55, 364, -1.0},
+        {56, 365, -1.0},
+        {52, 366, 1.0},
+        {46, 368, 1.0},
+        {53, 369, -1.0},
+        {55, 370, -1.0},
+        {157, 371, 1.0},
+        {58, 372, -1.0},
+        {59, 373, -1.0},
+        {56, 375, -1.0},
+        {58, 376, -1.0},
+        {158, 377, 1.0},
+        {61, 378, -1.0},
+        {62, 379, -1.0},
+        {58, 380, 1.0},
+        {52, 382, 1.0},
+        {59, 383, -1.0},
+        {61, 384, -1.0},
+        {159, 385, 1.0},
+        {64, 386, -1.0},
+        {65, 387, -1.0},
+        {62, 389, -1.0},
+        {64, 390, -1.0},
+        {160, 391, 1.0},
+        {67, 392, -1.0},
+        {68, 393, -1.0},
+        {64, 394, 1.0},
+        {58, 396, 1.0},
+        {65, 397, -1.0},
+        {67, 398, -1.0},
+        {161, 399, 1.0},
+        {70, 400, -1.0},
+        {71, 401, -1.0},
+        {68, 403, -1.0},
+        {70, 404, -1.0},
+        {162, 405, 1.0},
+        {73, 406, -1.0},
+        {74, 407, -1.0},
+        {70, 408, 1.0},
+        {64, 410, 1.0},
+        {71, 411, -1.0},
+        {73, 412, -1.0},
+        {163, 413, 1.0},
+        {76, 414, -1.0},
+        {77, 415, -1.0},
+        {74, 417, -1.0},
+        {76, 418, -1.0},
+        {164, 419, 1.0},
+        {79, 420, -1.0},
+        {80, 421, -1.0},
+        {76, 422, 1.0},
+        {70, 424, 1.0},
+        {77, 425, -1.0},
+        {79, 426, -1.0},
+        {165, 427, 1.0},
+        {82, 428, -1.0},
+        {83, 429, -1.0},
+        {80, 431, -1.0},
+        {82, 432, -1.0},
+        {166, 433, 1.0},
+        {85, 434, -1.0},
+        {86, 435, -1.0},
+        {82, 436, 1.0},
+        {76, 438, 1.0},
+        {83, 439, -1.0},
+        {85, 440, -1.0},
+        {167, 441, 1.0},
+        {88, 442, -1.0},
+        {89, 443, -1.0},
+        {86, 445, -1.0},
+        {88, 446, -1.0},
+        {168, 447, 1.0},
+        {91, 448, -1.0},
+        {92, 449, -1.0},
+        {88, 450, 1.0},
+        {82, 452, 1.0},
+        {89, 453, -1.0},
+        {91, 454, -1.0},
+        {169, 455, 1.0},
+        {94, 456, -1.0},
+        {95, 457, -1.0},
+        {92, 459, -1.0},
+        {94, 460, -1.0},
+        {170, 461, 1.0},
+        {97, 462, -1.0},
+        {98, 463, -1.0},
+        {94, 464, 1.0},
+        {88, 466, 1.0},
+        {95, 467, -1.0},
+        {97, 468, -1.0},
+        {171, 469, 1.0},
+        {100, 470, -1.0},
+        {101, 471, -1.0},
+        {98, 473, -1.0},
+        {100, 474, -1.0},
+        {172, 475, 1.0},
+        {103, 476, -1.0},
+        {104, 477, -1.0},
+        {100, 478, 1.0},
+        {94, 480, 1.0},
+        {101, 481, -1.0},
+        {103, 482, -1.0},
+        {173, 483, 1.0},
+        {106, 484, -1.0},
+        {107, 485, -1.0},
+        {104, 487, -1.0},
+        {106, 488, -1.0},
+        {174, 489, 1.0},
+        {109, 490, -1.0},
+        {110, 491, -1.0},
+        {106, 492, 1.0},
+        {100, 494, 1.0},
+        {107, 495, -1.0},
+        {109, 496, -1.0},
+        {175, 497, 1.0},
+        {112, 498, -1.0},
+        {113, 499, -1.0},
+        {110, 501, -1.0},
+        {112, 502, -1.0},
+        {176, 503, 1.0},
+        {115, 504, -1.0},
+        {116, 505, -1.0},
+        {112, 506, 1.0},
+        {106, 508, 1.0},
+        {113, 509, -1.0},
+        {115, 510, -1.0},
+        {177, 511, 1.0},
+        {118, 512, -1.0},
+        {119, 513, -1.0},
+        {116, 515, -1.0},
+        {118, 516, -1.0},
+        {178, 517, 1.0},
+        {121, 518, -1.0},
+        {122, 519, -1.0},
+        {118, 520, 1.0},
+        {112, 522, 1.0},
+        {119, 523, -1.0},
+        {121, 524, -1.0},
+        {179, 525, 1.0},
+        {124, 526, -1.0},
+        {125, 527, -1.0},
+        {122, 529, -1.0},
+        {124, 530, -1.0},
+        {180, 531, 1.0},
+        {127, 532, -1.0},
+        {118, 534, 1.0},
+        {125, 535, -1.0},
+        {127, 536, -1.0},
+        {181, 537, 1.0},
+        {182, 2, -1.0},
+        {183, 3, 1.0},
+        {184, 131, 1.0},
+        {185, 164, 1.0},
+        {186, 165, -1.0},
+        {33, 196, 1.0},
+        {139, 199, 1.0},
+        {183, 2, 1.0},
+        {182, 3, -1.0},
+        {183, 4, 1.0},
+        {187, 131, 1.0},
+        {188, 164, 1.0},
+        {189, 166, 1.0},
+        {190, 167, -1.0},
+        {139, 196, 1.0},
+        {33, 199, 1.0},
+        {139, 203, 1.0},
+        {183, 3, 1.0},
+        {182, 4, -1.0},
+        {183, 5, 1.0},
+        {191, 131, 1.0},
+        {185, 164, 1.0},
+        {186, 165, 1.0},
+        {185, 166, 1.0},
+        {186, 167, -1.0},
+        {139, 199, 1.0},
+        {33, 203, 1.0},
+        {139, 207, 1.0},
+        {183, 4, 1.0},
+        {182, 5, -1.0},
+        {183, 6, 1.0},
+        {192, 131, 1.0},
+        {189, 164, 1.0},
+        {190, 165, 1.0},
+        {188, 166, 1.0},
+        {189, 168, 1.0},
+        {190, 169, -1.0},
+        {139, 203, 1.0},
+        {33, 207, 1.0},
+        {139, 211, 1.0},
+        {183, 5, 1.0},
+        {182, 6, -1.0},
+        {183, 7, 1.0},
+        {193, 131, 1.0},
+        {185, 166, 1.0},
+        {186, 167, 1.0},
+        {185, 168, 1.0},
+        {186, 169, -1.0},
+        {139, 207, 1.0},
+        {33, 211, 1.0},
+        {139, 215, 1.0},
+        {183, 6, 1.0},
+        {182, 7, -1.0},
+        {183, 8, 1.0},
+        {194, 131, 1.0},
+        {189, 166, 1.0},
+        {190, 167, 1.0},
+        {188, 168, 1.0},
+        {189, 170, 1.0},
+        {190, 171, -1.0},
+        {139, 211, 1.0},
+        {33, 215, 1.0},
+        {139, 219, 1.0},
+        {183, 7, 1.0},
+        {182, 8, -1.0},
+        {183, 9, 1.0},
+        {195, 131, 1.0},
+        {185, 168, 1.0},
+        {186, 169, 1.0},
+        {185, 170, 1.0},
+        {186, 171, -1.0},
+        {139, 215, 1.0},
+        {33, 219, 1.0},
+        {139, 223, 1.0},
+        {183, 8, 1.0},
+        {182, 9, -1.0},
+        {183, 10, 1.0},
+        {196, 131, 1.0},
+        {189, 168, 1.0},
+        {190, 169, 1.0},
+        {188, 170, 1.0},
+        {189, 172, 1.0},
+        {190, 173, -1.0},
+        {139, 219, 1.0},
+        {33, 223, 1.0},
+        {139, 227, 1.0},
+        {183, 9, 1.0},
+        {182, 10, -1.0},
+        {183, 11, 1.0},
+        {197, 131, 1.0},
+        {185, 170, 1.0},
+        {186, 171, 1.0},
+        {185, 172, 1.0},
+        {186, 173, -1.0},
+        {139, 223, 1.0},
+        {33, 227, 1.0},
+        {139, 231, 1.0},
+        {183, 10, 1.0},
+        {182, 11, -1.0},
+        {183, 12, 1.0},
+        {198, 131, 1.0},
+        {189, 170, 1.0},
+        {190, 171, 1.0},
+        {188, 172, 1.0},
+        {189, 174, 1.0},
+        {190, 175, -1.0},
+        {139, 227, 1.0},
+        {33, 231, 1.0},
+        {139, 235, 1.0},
+        {183, 11, 1.0},
+        {182, 12, -1.0},
+        {183, 13, 1.0},
+        {199, 131, 1.0},
+        {185, 172, 1.0},
+        {186, 173, 1.0},
+        {185, 174, 1.0},
+        {186, 175, -1.0},
+        {139, 231, 1.0},
+        {33, 235, 1.0},
+        {139, 239, 1.0},
+        {183, 12, 1.0},
+        {182, 13, -1.0},
+        {183, 14, 1.0},
+        {200, 131, 1.0},
+        {189, 172, 1.0},
+        {190, 173, 1.0},
+        {188, 174, 1.0},
+        {189, 176, 1.0},
+        {190, 177, -1.0},
+        {139, 235, 1.0},
+        {33, 239, 1.0},
+        {139, 243, 1.0},
+        {183, 13, 1.0},
+        {182, 14, -1.0},
+        {183, 15, 1.0},
+        {201, 131, 1.0},
+        {185, 174, 1.0},
+        {186, 175, 1.0},
+        {185, 176, 1.0},
+        {186, 177, -1.0},
+        {139, 239, 1.0},
+        {33, 243, 1.0},
+        {139, 247, 1.0},
+        {183, 14, 1.0},
+        {182, 15, -1.0},
+        {183, 16, 1.0},
+        {202, 131, 1.0},
+        {189, 174, 1.0},
+        {190, 175, 1.0},
+        {188, 176, 1.0},
+        {189, 178, 1.0},
+        {190, 179, -1.0},
+        {139, 243, 1.0},
+        {33, 247, 1.0},
+        {139, 251, 1.0},
+        {183, 15, 1.0},
+        {182, 16, -1.0},
+        {183, 17, 1.0},
+        {203, 131, 1.0},
+        {185, 176, 1.0},
+        {186, 177, 1.0},
+        {185, 178, 1.0},
+        {186, 179, -1.0},
+        {139, 247, 1.0},
+        {33, 251, 1.0},
+        {139, 255, 1.0},
+        {183, 16, 1.0},
+        {182, 17, -1.0},
+        {183, 18, 1.0},
+        {204, 131, 1.0},
+        {189, 176, 1.0},
+        {190, 177, 1.0},
+        {188, 178, 1.0},
+        {189, 180, 1.0},
+        {190, 181, -1.0},
+        {139, 251, 1.0},
+        {33, 255, 1.0},
+        {139, 259, 1.0},
+        {183, 17, 1.0},
+        {182, 18, -1.0},
+        {183, 19, 1.0},
+        {205, 131, 1.0},
+        {185, 178, 1.0},
+        {186, 179, 1.0},
+        {185, 180, 1.0},
+        {186, 181, -1.0},
+        {139, 255, 1.0},
+        {33, 259, 1.0},
+        {139, 263, 1.0},
+        {183, 18, 1.0},
+        {182, 19, -1.0},
+        {183, 20, 1.0},
+        {206, 131, 1.0},
+        {189, 178, 1.0},
+        {190, 179, 1.0},
+        {188, 180, 1.0},
+        {189, 182, 1.0},
+        {190, 183, -1.0},
+        {139, 259, 1.0},
+        {33, 263, 1.0},
+        {139, 267, 1.0},
+        {183, 19, 1.0},
+        {182, 20, -1.0},
+        {183, 21, 1.0},
+        {207, 131, 1.0},
+        {185, 180, 1.0},
+        {186, 181, 1.0},
+        {185, 182, 1.0},
+        {186, 183, -1.0},
+        {139, 263, 1.0},
+        {33, 267, 1.0},
+        {139, 271, 1.0},
+        {183, 20, 1.0},
+        {182, 21, -1.0},
+        {183, 22, 1.0},
+        {208, 131, 1.0},
+        {189, 180, 1.0},
+        {190, 181, 1.0},
+        {188, 182, 1.0},
+        {189, 184, 1.0},
+        {190, 185, -1.0},
+        {139, 267, 1.0},
+        {33, 271, 1.0},
+        {139, 275, 1.0},
+        {183, 21, 1.0},
+        {182, 22, -1.0},
+        {183, 23, 1.0},
+        {209, 131, 1.0},
+        {185, 182, 1.0},
+        {186, 183, 1.0},
+        {185, 184, 1.0},
+        {186, 185, -1.0},
+        {139, 271, 1.0},
+        {33, 275, 1.0},
+        {139, 279, 1.0},
+        {183, 22, 1.0},
+        {182, 23, -1.0},
+        {183, 24, 1.0},
+        {210, 131, 1.0},
+        {189, 182, 1.0},
+        {190, 183, 1.0},
+        {188, 184, 1.0},
+        {189, 186, 1.0},
+        {190, 187, -1.0},
+        {139, 275, 1.0},
+        {33, 279, 1.0},
+        {139, 283, 1.0},
+        {183, 23, 1.0},
+        {182, 24, -1.0},
+        {183, 25, 1.0},
+        {211, 131, 1.0},
+        {185, 184, 1.0},
+        {186, 185, 1.0},
+        {185, 186, 1.0},
+        {186, 187, -1.0},
+        {139, 279, 1.0},
+        {33, 283, 1.0},
+        {139, 287, 1.0},
+        {183, 24, 1.0},
+        {182, 25, -1.0},
+        {183, 26, 1.0},
+        {212, 131, 1.0},
+        {189, 184, 1.0},
+        {190, 185, 1.0},
+        {188, 186, 1.0},
+        {189, 188, 1.0},
+        {190, 189, -1.0},
+        {139, 283, 1.0},
+        {33, 287, 1.0},
+        {139, 291, 1.0},
+        {183, 25, 1.0},
+        {182, 26, -1.0},
+        {183, 27, 1.0},
+        {213, 131, 1.0},
+        {185, 186, 1.0},
+        {186, 187, 1.0},
+        {185, 188, 1.0},
+        {186, 189, -1.0},
+        {139, 287, 1.0},
+        {33, 291, 1.0},
+        {139, 295, 1.0},
+        {183, 26, 1.0},
+        {182, 27, -1.0},
+        {183, 28, 1.0},
+        {214, 131, 1.0},
+        {189, 186, 1.0},
+        {190, 187, 1.0},
+        {188, 188, 1.0},
+        {189, 190, 1.0},
+        {190, 191, -1.0},
+        {139, 291, 1.0},
+        {33, 295, 1.0},
+        {139, 299, 1.0},
+        {183, 27, 1.0},
+        {182, 28, -1.0},
+        {183, 29, 1.0},
+        {215, 131, 1.0},
+        {185, 188, 1.0},
+        {186, 189, 1.0},
+        {185, 190, 1.0},
+        {186, 191, -1.0},
+        {139, 295, 1.0},
+        {33, 299, 1.0},
+        {139, 303, 1.0},
+        {183, 28, 1.0},
+        {182, 29, -1.0},
+        {183, 30, 1.0},
+        {216, 131, 1.0},
+        {189, 188, 1.0},
+        {190, 189, 1.0},
+        {188, 190, 1.0},
+        {189, 192, 1.0},
+        {190, 193, -1.0},
+        {139, 299, 1.0},
+        {33, 303, 1.0},
+        {139, 307, 1.0},
+        {183, 29, 1.0},
+        {182, 30, -1.0},
+        {183, 31, 1.0},
+        {217, 131, 1.0},
+        {185, 190, 1.0},
+        {186, 191, 1.0},
+        {185, 192, 1.0},
+        {186, 193, -1.0},
+        {139, 303, 1.0},
+        {33, 307, 1.0},
+        {139, 311, 1.0},
+        {183, 30, 1.0},
+        {182, 31, -1.0},
+        {183, 32, 1.0},
+        {218, 131, 1.0},
+        {189, 190, 1.0},
+        {190, 191, 1.0},
+        {188, 192, 1.0},
+        {189, 194, 1.0},
+        {190, 195, -1.0},
+        {139, 307, 1.0},
+        {33, 311, 1.0},
+        {139, 315, 1.0},
+        {183, 31, 1.0},
+        {182, 32, -1.0},
+        {183, 33, 1.0},
+        {219, 131, 1.0},
+        {185, 192, 1.0},
+        {186, 193, 1.0},
+        {185, 194, 1.0},
+        {186, 195, -1.0},
+        {139, 311, 1.0},
+        {33, 315, 1.0},
+        {139, 319, 1.0},
+        {183, 32, 1.0},
+        {183, 33, -1.0},
+        {220, 131, 1.0},
+        {189, 192, 1.0},
+        {190, 193, 1.0},
+        {131, 194, 1.0},
+        {221, 195, -1.0},
+        {139, 315, 1.0},
+        {34, 319, 1.0},
+        {222, 34, -1.0},
+        {223, 36, 1.0},
+        {224, 37, -1.0},
+        {185, 132, -1.0},
+        {188, 133, -1.0},
+        {185, 134, -1.0},
+        {189, 135, -1.0},
+        {35, 322, -1.0},
+        {225, 327, 1.0},
+        {226, 332, 1.0},
+        {227, 339, -1.0},
+        {228, 35, -1.0},
+        {224, 36, 1.0},
+        {229, 37, -1.0},
+        {186, 132, 1.0},
+        {186, 134, -1.0},
+        {190, 135, -1.0},
+        {225, 322, 1.0},
+        {39, 327, -1.0},
+        {230, 332, 1.0},
+        {231, 339, 1.0},
+        {223, 34, 1.0},
+        {224, 35, 1.0},
+        {222, 36, -1.0},
+        {223, 38, 1.0},
+        {224, 39, -1.0},
+        {189, 133, -1.0},
+        {185, 134, -1.0},
+        {188, 135, -1.0},
+        {185, 136, -1.0},
+        {189, 137, -1.0},
+        {226, 322, 1.0},
+        {230, 327, 1.0},
+        {42, 332, -1.0},
+        {232, 339, 1.0},
+        {233, 346, 1.0},
+        {230, 353, -1.0},
+        {224, 34, -1.0},
+        {229, 35, -1.0},
+        {228, 37, -1.0},
+        {224, 38, 1.0},
+        {229, 39, -1.0},
+        {190, 133, 1.0},
+        {186, 134, 1.0},
+        {186, 136, -1.0},
+        {190, 137, -1.0},
+        {227, 322, -1.0},
+        {231, 327, 1.0},
+        {232, 332, 1.0},
+        {45, 339, -1.0},
+        {234, 346, 1.0},
+        {235, 353, 1.0},
+        {223, 36, 1.0},
+        {224, 37, 1.0},
+        {222, 38, -1.0},
+        {223, 40, 1.0},
+        {224, 41, -1.0},
+        {189, 135, -1.0},
+        {185, 136, -1.0},
+        {188, 137, -1.0},
+        {185, 138, -1.0},
+        {189, 139, -1.0},
+        {233, 332, 1.0},
+        {234, 339, 1.0},
+        {48, 346, -1.0},
+        {236, 353, 1.0},
+        {237, 360, 1.0},
+        {234, 367, -1.0},
+        {224, 36, -1.0},
+        {229, 37, -1.0},
+        {228, 39, -1.0},
+        {224, 40, 1.0},
+        {229, 41, -1.0},
+        {190, 135, 1.0},
+        {186, 136, 1.0},
+        {186, 138, -1.0},
+        {190, 139, -1.0},
+        {230, 332, -1.0},
+        {235, 339, 1.0},
+        {236, 346, 1.0},
+        {51, 353, -1.0},
+        {238, 360, 1.0},
+        {239, 367, 1.0},
+        {223, 38, 1.0},
+        {224, 39, 1.0},
+        {222, 40, -1.0},
+        {223, 42, 1.0},
+        {224, 43, -1.0},
+        {189, 137, -1.0},
+        {185, 138, -1.0},
+        {188, 139, -1.0},
+        {185, 140, -1.0},
+        {189, 141, -1.0},
+        {237, 346, 1.0},
+        {238, 353, 1.0},
+        {54, 360, -1.0},
+        {240, 367, 1.0},
+        {241, 374, 1.0},
+        {238, 381, -1.0},
+        {224, 38, -1.0},
+        {229, 39, -1.0},
+        {228, 41, -1.0},
+        {224, 42, 1.0},
+        {229, 43, -1.0},
+        {190, 137, 1.0},
+        {186, 138, 1.0},
+        {186, 140, -1.0},
+        {190, 141, -1.0},
+        {234, 346, -1.0},
+        {239, 353, 1.0},
+        {240, 360, 1.0},
+        {57, 367, -1.0},
+        {242, 374, 1.0},
+        {243, 381, 1.0},
+        {223, 40, 1.0},
+        {224, 41, 1.0},
+        {222, 42, -1.0},
+        {223, 44, 1.0},
+        {224, 45, -1.0},
+        {189, 139, -1.0},
+        {185, 140, -1.0},
+        {188, 141, -1.0},
+        {185, 142, -1.0},
+        {189, 143, -1.0},
+        {241, 360, 1.0},
+        {242, 367, 1.0},
+        {60, 374, -1.0},
+        {244, 381, 1.0},
+        {245, 388, 1.0},
+        {242, 395, -1.0},
+        {224, 40, -1.0},
+        {229, 41, -1.0},
+        {228, 43, -1.0},
+        {224, 44, 1.0},
+        {229, 45, -1.0},
+        {190, 139, 1.0},
+        {186, 140, 1.0},
+        {186, 142, -1.0},
+        {190, 143, -1.0},
+        {238, 360, -1.0},
+        {243, 367, 1.0},
+        {244, 374, 1.0},
+        {63, 381, -1.0},
+        {246, 388, 1.0},
+        {247, 395, 1.0},
+        {223, 42, 1.0},
+        {224, 43, 1.0},
+        {222, 44, -1.0},
+        {223, 46, 1.0},
+        {224, 47, -1.0},
+        {189, 141, -1.0},
+        {185, 142, -1.0},
+        {188, 143, -1.0},
+        {185, 144, -1.0},
+        {189, 145, -1.0},
+        {245, 374, 1.0},
+        {246, 381, 1.0},
+        {66, 388, -1.0},
+        {248, 395, 1.0},
+        {249, 402, 1.0},
+        {246, 409, -1.0},
+        {224, 42, -1.0},
+        {229, 43, -1.0},
+        {228, 45, -1.0},
+        {224, 46, 1.0},
+        {229, 47, -1.0},
+        {190, 141, 1.0},
+        {186, 142, 1.0},
+        {186, 144, -1.0},
+        {190, 145, -1.0},
+        {242, 374, -1.0},
+        {247, 381, 1.0},
+        {248, 388, 1.0},
+        {69, 395, -1.0},
+        {250, 402, 1.0},
+        {251, 409, 1.0},
+        {223, 44, 1.0},
+        {224, 45, 1.0},
+        {222, 46, -1.0},
+        {223, 48, 1.0},
+        {224, 49, -1.0},
+        {189, 143, -1.0},
+        {185, 144, -1.0},
+        {188, 145, -1.0},
+        {185, 146, -1.0},
+        {189, 147, -1.0},
+        {249, 388, 1.0},
+        {250, 395, 1.0},
+        {72, 402, -1.0},
+        {252, 409, 1.0},
+        {253, 416, 1.0},
+        {250, 423, -1.0},
+        {224, 44, -1.0},
+        {229, 45, -1.0},
+        {228, 47, -1.0},
+        {224, 48, 1.0},
+        {229, 49, -1.0},
+        {190, 143, 1.0},
+        {186, 144, 1.0},
+        {186, 146, -1.0},
+        {190, 147, -1.0},
+        {246, 388, -1.0},
+        {251, 395, 1.0},
+        {252, 402, 1.0},
+        {75, 409, -1.0},
+        {254, 416, 1.0},
+        {255, 423, 1.0},
+        {223, 46, 1.0},
+        {224, 47, 1.0},
+        {222, 48, -1.0},
+        {223, 50, 1.0},
+        {224, 51, -1.0},
+        {189, 145, -1.0},
+        {185, 146, -1.0},
+        {188, 147, -1.0},
+        {185, 148, -1.0},
+        {189, 149, -1.0},
+        {253, 402, 1.0},
+        {254, 409, 1.0},
+        {78, 416, -1.0},
+        {256, 423, 1.0},
+        {257, 430, 1.0},
+        {254, 437, -1.0},
+        {224, 46, -1.0},
+        {229, 47, -1.0},
+        {228, 49, -1.0},
+        {224, 50, 1.0},
+        {229, 51, -1.0},
+        {190, 145, 1.0},
+        {186, 146, 1.0},
+        {186, 148, -1.0},
+        {190, 149, -1.0},
+        {250, 402, -1.0},
+        {255, 409, 1.0},
+        {256, 416, 1.0},
+        {81, 423, -1.0},
+        {258, 430, 1.0},
+        {259, 437, 1.0},
+        {223, 48, 1.0},
+        {224, 49, 1.0},
+        {222, 50, -1.0},
+        {223, 52, 1.0},
+        {224, 53, -1.0},
+        {189, 147, -1.0},
+        {185, 148, -1.0},
+        {188, 149, -1.0},
+        {185, 150, -1.0},
+        {189, 151, -1.0},
+        {257, 416, 1.0},
+        {258, 423, 1.0},
+        {84, 430, -1.0},
+        {260, 437, 1.0},
+        {261, 444, 1.0},
+        {258, 451, -1.0},
+        {224, 48, -1.0},
+        {229, 49, -1.0},
+        {228, 51, -1.0},
+        {224, 52, 1.0},
+        {229, 53, -1.0},
+        {190, 147, 1.0},
+        {186, 148, 1.0},
+        {186, 150, -1.0},
+        {190, 151, -1.0},
+        {254, 416, -1.0},
+        {259, 423, 1.0},
+        {260, 430, 1.0},
+        {87, 437, -1.0},
+        {262, 444, 1.0},
+        {263, 451, 1.0},
+        {223, 50, 1.0},
+        {224, 51, 1.0},
+        {222, 52, -1.0},
+        {223, 54, 1.0},
+        {224, 55, -1.0},
+        {189, 149, -1.0},
+        {185, 150, -1.0},
+        {188, 151, -1.0},
+        {185, 152, -1.0},
+        {189, 153, -1.0},
+        {261, 430, 1.0},
+        {262, 437, 1.0},
+        {90, 444, -1.0},
+        {264, 451, 1.0},
+        {265, 458, 1.0},
+        {262, 465, -1.0},
+        {224, 50, -1.0},
+        {229, 51, -1.0},
+        {228, 53, -1.0},
+        {224, 54, 1.0},
+        {229, 55, -1.0},
+        {190, 149, 1.0},
+        {186, 150, 1.0},
+        {186, 152, -1.0},
+        {190, 153, -1.0},
+        {258, 430, -1.0},
+        {263, 437, 1.0},
+        {264, 444, 1.0},
+        {93, 451, -1.0},
+        {266, 458, 1.0},
+        {267, 465, 1.0},
+        {223, 52, 1.0},
+        {224, 53, 1.0},
+        {222, 54, -1.0},
+        {223, 56, 1.0},
+        {224, 57, -1.0},
+        {189, 151, -1.0},
+        {185, 152, -1.0},
+        {188, 153, -1.0},
+        {185, 154, -1.0},
+        {189, 155, -1.0},
+        {265, 444, 1.0},
+        {266, 451, 1.0},
+        {96, 458, -1.0},
+        {268, 465, 1.0},
+        {269, 472, 1.0},
+        {266, 479, -1.0},
+        {224, 52, -1.0},
+        {229, 53, -1.0},
+        {228, 55, -1.0},
+        {224, 56, 1.0},
+        {229, 57, -1.0},
+        {190, 151, 1.0},
+        {186, 152, 1.0},
+        {186, 154, -1.0},
+        {190, 155, -1.0},
+        {262, 444, -1.0},
+        {267, 451, 1.0},
+        {268, 458, 1.0},
+        {99, 465, -1.0},
+        {270, 472, 1.0},
+        {271, 479, 1.0},
+        {223, 54, 1.0},
+        {224, 55, 1.0},
+        {222, 56, -1.0},
+        {223, 58, 1.0},
+        {224, 59, -1.0},
+        {189, 153, -1.0},
+        {185, 154, -1.0},
+        {188, 155, -1.0},
+        {185, 156, -1.0},
+        {189, 157, -1.0},
+        {269, 458, 1.0},
+        {270, 465, 1.0},
+        {102, 472, -1.0},
+        {272, 479, 1.0},
+        {273, 486, 1.0},
+        {270, 493, -1.0},
+        {224, 54, -1.0},
+        {229, 55, -1.0},
+        {228, 57, -1.0},
+        {224, 58, 1.0},
+        {229, 59, -1.0},
+        {190, 153, 1.0},
+        {186, 154, 1.0},
+        {186, 156, -1.0},
+        {190, 157, -1.0},
+        {266, 458, -1.0},
+        {271, 465, 1.0},
+        {272, 472, 1.0},
+        {105, 479, -1.0},
+        {274, 486, 1.0},
+        {275, 493, 1.0},
+        {223, 56, 1.0},
+        {224, 57, 1.0},
+        {222, 58, -1.0},
+        {223, 60, 1.0},
+        {224, 61, -1.0},
+        {189, 155, -1.0},
+        {185, 156, -1.0},
+        {188, 157, -1.0},
+        {185, 158, -1.0},
+        {189, 159, -1.0},
+        {273, 472, 1.0},
+        {274, 479, 1.0},
+        {108, 486, -1.0},
+        {276, 493, 1.0},
+        {277, 500, 1.0},
+        {274, 507, -1.0},
+        {224, 56, -1.0},
+        {229, 57, -1.0},
+        {228, 59, -1.0},
+        {224, 60, 1.0},
+        {229, 61, -1.0},
+        {190, 155, 1.0},
+        {186, 156, 1.0},
+        {186, 158, -1.0},
+        {190, 159, -1.0},
+        {270, 472, -1.0},
+        {275, 479, 1.0},
+        {276, 486, 1.0},
+        {111, 493, -1.0},
+        {278, 500, 1.0},
+        {279, 507, 1.0},
+        {223, 58, 1.0},
+        {224, 59, 1.0},
+        {222, 60, -1.0},
+        {223, 62, 1.0},
+        {224, 63, -1.0},
+        {189, 157, -1.0},
+        {185, 158, -1.0},
+        {188, 159, -1.0},
+        {185, 160, -1.0},
+        {189, 161, -1.0},
+        {277, 486, 1.0},
+        {278, 493, 1.0},
+        {114, 500, -1.0},
+        {280, 507, 1.0},
+        {281, 514, 1.0},
+        {278, 521, -1.0},
+        {224, 58, -1.0},
+        {229, 59, -1.0},
+        {228, 61, -1.0},
+        {224, 62, 1.0},
+        {229, 63, -1.0},
+        {190, 157, 1.0},
+        {186, 158, 1.0},
+        {186, 160, -1.0},
+        {190, 161, -1.0},
+        {274, 486, -1.0},
+        {279, 493, 1.0},
+        {280, 500, 1.0},
+        {117, 507, -1.0},
+        {282, 514, 1.0},
+        {283, 521, 1.0},
+        {223, 60, 1.0},
+        {224, 61, 1.0},
+        {222, 62, -1.0},
+        {223, 64, 1.0},
+        {224, 65, -1.0},
+        {189, 159, -1.0},
+        {185, 160, -1.0},
+        {188, 161, -1.0},
+        {185, 162, -1.0},
+        {189, 163, -1.0},
+        {281, 500, 1.0},
+        {282, 507, 1.0},
+        {120, 514, -1.0},
+        {284, 521, 1.0},
+        {285, 528, 1.0},
+        {282, 533, -1.0},
+        {224, 60, -1.0},
+        {229, 61, -1.0},
+        {228, 63, -1.0},
+        {224, 64, 1.0},
+        {229, 65, -1.0},
+        {190, 159, 1.0},
+        {186, 160, 1.0},
+        {186, 162, -1.0},
+        {190, 163, -1.0},
+        {278, 500, -1.0},
+        {283, 507, 1.0},
+        {284, 514, 1.0},
+        {123, 521, -1.0},
+        {286, 528, 1.0},
+        {287, 533, 1.0},
+        {223, 62, 1.0},
+        {224, 63, 1.0},
+        {223, 64, -1.0},
+        {224, 65, 1.0},
+        {189, 161, -1.0},
+        {185, 162, -1.0},
+        {131, 163, -1.0},
+        {285, 514, 1.0},
+        {286, 521, 1.0},
+        {126, 528, -1.0},
+        {288, 533, 1.0},
+        {224, 62, -1.0},
+        {229, 63, -1.0},
+        {224, 64, 1.0},
+        {289, 65, -1.0},
+        {190, 161, 1.0},
+        {186, 162, 1.0},
+        {221, 163, 1.0},
+        {282, 514, -1.0},
+        {287, 521, 1.0},
+        {288, 528, 1.0},
+        {128, 533, -1.0},
+    };
+    static const int written[] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15,
+        16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31,
+        32, 33, 34, 35, 36, 37, 38, 39, 40, 41, 42, 43, 44, 45, 46, 47,
+        48, 49, 50, 51, 52, 53, 54, 55, 56, 57, 58, 59, 60, 61, 62, 63,
+        64};
+    static const int first[] = {0, 311, 318, 328, 339, 351, 362, 374, 385, 397, 408, 420, 431, 443, 454, 466,
+        477, 489, 500, 512, 523, 535, 546, 558, 569, 581, 592, 604, 615, 627, 638, 650,
+        661, 670, 681, 691, 707, 722, 738, 753, 769, 784, 800, 815, 831, 846, 862, 877,
+        893, 908, 924, 939, 955, 970, 986, 1001, 1017, 1032, 1048, 1063, 1079, 1094, 1110, 1125,
+        1136, 1147};
+    for (int i = 0; i < 65; ++i) {
+        double sum = 0.0;
+        for (int t = first[i]; t < first[i + 1]; ++t) sum += terms[t].scale * c[terms[t].coef] * m[terms[t].mono];
+        out[written[i]] = sum;
+    }
 }
 
-/* forces_terms:(c[332],u[3],q[65],qd[65])->(m[472]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[333],u[3],q[65],qd[65])->(m[472]) the state monomials of Q: Q = F m */
 void fem_nx32_ny32_torque_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -2570,1162 +3618,1320 @@ void fem_nx32_ny32_torque_first_forces_terms(const double* c, const double* u, c
     out[471] = B32_theta_dot_B32_dot;
 }
 
-/* forces_matrix:(c[332],u[3],q[65],qd[65])->(F[65*472]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[333],u[3],q[65],qd[65])->(F[65*472]) row-major, state-free: Q = F m; nonzero entries only */
 void fem_nx32_ny32_torque_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
+    // Table form (1147 terms, 0 monomials): m[0] = 1, m[k + 1] = m[chain[k][0]] * v[chain[k][1]];
+    // out[written[i]] = sum of t.scale * c[t.coef] * m[t.mono] over terms[first[i]] .. terms[first[i + 1] - 1].
     (void)u;
     (void)q;
     (void)qd;
-    out[0] = 1.0;
-    out[66] = -c[1];
-    out[67] = -c[2];
-    out[68] = -c[3];
-    out[69] = -c[4];
-    out[70] = -c[5];
-    out[71] = -c[6];
-    out[72] = -c[7];
-    out[73] = -c[8];
-    out[74] = -c[9];
-    out[75] = -c[10];
-    out[76] = -c[11];
-    out[77] = -c[12];
-    out[78] = -c[13];
-    out[79] = -c[14];
-    out[80] = -c[15];
-    out[81] = -c[16];
-    out[82] = -c[17];
-    out[83] = -c[18];
-    out[84] = -c[19];
-    out[85] = -c[20];
-    out[86] = -c[21];
-    out[87] = -c[22];
-    out[88] = -c[23];
-    out[89] = -c[24];
-    out[90] = -c[25];
-    out[91] = -c[26];
-    out[92] = -c[27];
-    out[93] = -c[28];
-    out[94] = -c[29];
-    out[95] = -c[30];
-    out[96] = -c[31];
-    out[97] = -c[32];
-    out[131] = -c[148];
-    out[132] = -c[34];
-    out[134] = -c[34];
-    out[135] = -c[148];
-    out[136] = -c[34];
-    out[138] = -c[34];
-    out[139] = -c[148];
-    out[140] = -c[34];
-    out[142] = -c[34];
-    out[143] = -c[148];
-    out[144] = -c[34];
-    out[146] = -c[34];
-    out[147] = -c[148];
-    out[148] = -c[34];
-    out[150] = -c[34];
-    out[151] = -c[148];
-    out[152] = -c[34];
-    out[154] = -c[34];
-    out[155] = -c[148];
-    out[156] = -c[34];
-    out[158] = -c[34];
-    out[159] = -c[148];
-    out[160] = -c[34];
-    out[162] = -c[34];
-    out[163] = -c[148];
-    out[164] = -c[34];
-    out[166] = -c[34];
-    out[167] = -c[148];
-    out[168] = -c[34];
-    out[170] = -c[34];
-    out[171] = -c[148];
-    out[172] = -c[34];
-    out[174] = -c[34];
-    out[175] = -c[148];
-    out[176] = -c[34];
-    out[178] = -c[34];
-    out[179] = -c[148];
-    out[180] = -c[34];
-    out[182] = -c[34];
-    out[183] = -c[148];
-    out[184] = -c[34];
-    out[186] = -c[34];
-    out[187] = -c[148];
-    out[188] = -c[34];
-    out[190] = -c[34];
-    out[191] = -c[148];
-    out[192] = -c[34];
-    out[194] = -c[34];
-    out[195] = -c[148];
-    out[196] = -c[34];
-    out[198] = -c[34];
-    out[199] = -c[148];
-    out[200] = -c[34];
-    out[202] = -c[34];
-    out[203] = -c[148];
-    out[204] = -c[34];
-    out[206] = -c[34];
-    out[207] = -c[148];
-    out[208] = -c[34];
-    out[210] = -c[34];
-    out[211] = -c[148];
-    out[212] = -c[34];
-    out[214] = -c[34];
-    out[215] = -c[148];
-    out[216] = -c[34];
-    out[218] = -c[34];
-    out[219] = -c[148];
-    out[220] = -c[34];
-    out[222] = -c[34];
-    out[223] = -c[148];
-    out[224] = -c[34];
-    out[226] = -c[34];
-    out[227] = -c[148];
-    out[228] = -c[34];
-    out[230] = -c[34];
-    out[231] = -c[148];
-    out[232] = -c[34];
-    out[234] = -c[34];
-    out[235] = -c[148];
-    out[236] = -c[34];
-    out[238] = -c[34];
-    out[239] = -c[148];
-    out[240] = -c[34];
-    out[242] = -c[34];
-    out[243] = -c[148];
-    out[244] = -c[34];
-    out[246] = -c[34];
-    out[247] = -c[148];
-    out[248] = -c[34];
-    out[250] = -c[34];
-    out[251] = -c[148];
-    out[252] = -c[34];
-    out[254] = -c[34];
-    out[255] = -c[33];
-    out[257] = c[149];
-    out[258] = -c[36];
-    out[259] = -c[37];
-    out[260] = c[38];
-    out[262] = -c[36];
-    out[263] = c[150];
-    out[264] = -c[40];
-    out[265] = -c[41];
-    out[267] = -c[37];
-    out[268] = -c[40];
-    out[269] = c[151];
-    out[270] = -c[43];
-    out[271] = -c[44];
-    out[272] = c[40];
-    out[274] = c[38];
-    out[275] = -c[41];
-    out[276] = -c[43];
-    out[277] = c[152];
-    out[278] = -c[46];
-    out[279] = -c[47];
-    out[281] = -c[44];
-    out[282] = -c[46];
-    out[283] = c[153];
-    out[284] = -c[49];
-    out[285] = -c[50];
-    out[286] = c[46];
-    out[288] = c[40];
-    out[289] = -c[47];
-    out[290] = -c[49];
-    out[291] = c[154];
-    out[292] = -c[52];
-    out[293] = -c[53];
-    out[295] = -c[50];
-    out[296] = -c[52];
-    out[297] = c[155];
-    out[298] = -c[55];
-    out[299] = -c[56];
-    out[300] = c[52];
-    out[302] = c[46];
-    out[303] = -c[53];
-    out[304] = -c[55];
-    out[305] = c[156];
-    out[306] = -c[58];
-    out[307] = -c[59];
-    out[309] = -c[56];
-    out[310] = -c[58];
-    out[311] = c[157];
-    out[312] = -c[61];
-    out[313] = -c[62];
-    out[314] = c[58];
-    out[316] = c[52];
-    out[317] = -c[59];
-    out[318] = -c[61];
-    out[319] = c[158];
-    out[320] = -c[64];
-    out[321] = -c[65];
-    out[323] = -c[62];
-    out[324] = -c[64];
-    out[325] = c[159];
-    out[326] = -c[67];
-    out[327] = -c[68];
-    out[328] = c[64];
-    out[330] = c[58];
-    out[331] = -c[65];
-    out[332] = -c[67];
-    out[333] = c[160];
-    out[334] = -c[70];
-    out[335] = -c[71];
-    out[337] = -c[68];
-    out[338] = -c[70];
-    out[339] = c[161];
-    out[340] = -c[73];
-    out[341] = -c[74];
-    out[342] = c[70];
-    out[344] = c[64];
-    out[345] = -c[71];
-    out[346] = -c[73];
-    out[347] = c[162];
-    out[348] = -c[76];
-    out[349] = -c[77];
-    out[351] = -c[74];
-    out[352] = -c[76];
-    out[353] = c[163];
-    out[354] = -c[79];
-    out[355] = -c[80];
-    out[356] = c[76];
-    out[358] = c[70];
-    out[359] = -c[77];
-    out[360] = -c[79];
-    out[361] = c[164];
-    out[362] = -c[82];
-    out[363] = -c[83];
-    out[365] = -c[80];
-    out[366] = -c[82];
-    out[367] = c[165];
-    out[368] = -c[85];
-    out[369] = -c[86];
-    out[370] = c[82];
-    out[372] = c[76];
-    out[373] = -c[83];
-    out[374] = -c[85];
-    out[375] = c[166];
-    out[376] = -c[88];
-    out[377] = -c[89];
-    out[379] = -c[86];
-    out[380] = -c[88];
-    out[381] = c[167];
-    out[382] = -c[91];
-    out[383] = -c[92];
-    out[384] = c[88];
-    out[386] = c[82];
-    out[387] = -c[89];
-    out[388] = -c[91];
-    out[389] = c[168];
-    out[390] = -c[94];
-    out[391] = -c[95];
-    out[393] = -c[92];
-    out[394] = -c[94];
-    out[395] = c[169];
-    out[396] = -c[97];
-    out[397] = -c[98];
-    out[398] = c[94];
-    out[400] = c[88];
-    out[401] = -c[95];
-    out[402] = -c[97];
-    out[403] = c[170];
-    out[404] = -c[100];
-    out[405] = -c[101];
-    out[407] = -c[98];
-    out[408] = -c[100];
-    out[409] = c[171];
-    out[410] = -c[103];
-    out[411] = -c[104];
-    out[412] = c[100];
-    out[414] = c[94];
-    out[415] = -c[101];
-    out[416] = -c[103];
-    out[417] = c[172];
-    out[418] = -c[106];
-    out[419] = -c[107];
-    out[421] = -c[104];
-    out[422] = -c[106];
-    out[423] = c[173];
-    out[424] = -c[109];
-    out[425] = -c[110];
-    out[426] = c[106];
-    out[428] = c[100];
-    out[429] = -c[107];
-    out[430] = -c[109];
-    out[431] = c[174];
-    out[432] = -c[112];
-    out[433] = -c[113];
-    out[435] = -c[110];
-    out[436] = -c[112];
-    out[437] = c[175];
-    out[438] = -c[115];
-    out[439] = -c[116];
-    out[440] = c[112];
-    out[442] = c[106];
-    out[443] = -c[113];
-    out[444] = -c[115];
-    out[445] = c[176];
-    out[446] = -c[118];
-    out[447] = -c[119];
-    out[449] = -c[116];
-    out[450] = -c[118];
-    out[451] = c[177];
-    out[452] = -c[121];
-    out[453] = -c[122];
-    out[454] = c[118];
-    out[456] = c[112];
-    out[457] = -c[119];
-    out[458] = -c[121];
-    out[459] = c[178];
-    out[460] = -c[124];
-    out[461] = -c[125];
-    out[463] = -c[122];
-    out[464] = -c[124];
-    out[465] = c[179];
-    out[466] = -c[127];
-    out[468] = c[118];
-    out[469] = -c[125];
-    out[470] = -c[127];
-    out[471] = c[180];
-    out[473] = -c[181];
-    out[474] = c[182];
-    out[537] = c[183];
-    out[570] = c[184];
-    out[571] = -c[185];
-    out[602] = c[33];
-    out[605] = c[139];
-    out[945] = c[182];
-    out[946] = -c[181];
-    out[947] = c[182];
-    out[1009] = c[186];
-    out[1042] = c[187];
-    out[1044] = c[188];
-    out[1045] = -c[189];
-    out[1074] = c[139];
-    out[1077] = c[33];
-    out[1081] = c[139];
-    out[1418] = c[182];
-    out[1419] = -c[181];
-    out[1420] = c[182];
-    out[1481] = c[190];
-    out[1514] = c[184];
-    out[1515] = c[185];
-    out[1516] = c[184];
-    out[1517] = -c[185];
-    out[1549] = c[139];
-    out[1553] = c[33];
-    out[1557] = c[139];
-    out[1891] = c[182];
-    out[1892] = -c[181];
-    out[1893] = c[182];
-    out[1953] = c[191];
-    out[1986] = c[188];
-    out[1987] = c[189];
-    out[1988] = c[187];
-    out[1990] = c[188];
-    out[1991] = -c[189];
-    out[2025] = c[139];
-    out[2029] = c[33];
-    out[2033] = c[139];
-    out[2364] = c[182];
-    out[2365] = -c[181];
-    out[2366] = c[182];
-    out[2425] = c[192];
-    out[2460] = c[184];
-    out[2461] = c[185];
-    out[2462] = c[184];
-    out[2463] = -c[185];
-    out[2501] = c[139];
-    out[2505] = c[33];
-    out[2509] = c[139];
-    out[2837] = c[182];
-    out[2838] = -c[181];
-    out[2839] = c[182];
-    out[2897] = c[193];
-    out[2932] = c[188];
-    out[2933] = c[189];
-    out[2934] = c[187];
-    out[2936] = c[188];
-    out[2937] = -c[189];
-    out[2977] = c[139];
-    out[2981] = c[33];
-    out[2985] = c[139];
-    out[3310] = c[182];
-    out[3311] = -c[181];
-    out[3312] = c[182];
-    out[3369] = c[194];
-    out[3406] = c[184];
-    out[3407] = c[185];
-    out[3408] = c[184];
-    out[3409] = -c[185];
-    out[3453] = c[139];
-    out[3457] = c[33];
-    out[3461] = c[139];
-    out[3783] = c[182];
-    out[3784] = -c[181];
-    out[3785] = c[182];
-    out[3841] = c[195];
-    out[3878] = c[188];
-    out[3879] = c[189];
-    out[3880] = c[187];
-    out[3882] = c[188];
-    out[3883] = -c[189];
-    out[3929] = c[139];
-    out[3933] = c[33];
-    out[3937] = c[139];
-    out[4256] = c[182];
-    out[4257] = -c[181];
-    out[4258] = c[182];
-    out[4313] = c[196];
-    out[4352] = c[184];
-    out[4353] = c[185];
-    out[4354] = c[184];
-    out[4355] = -c[185];
-    out[4405] = c[139];
-    out[4409] = c[33];
-    out[4413] = c[139];
-    out[4729] = c[182];
-    out[4730] = -c[181];
-    out[4731] = c[182];
-    out[4785] = c[197];
-    out[4824] = c[188];
-    out[4825] = c[189];
-    out[4826] = c[187];
-    out[4828] = c[188];
-    out[4829] = -c[189];
-    out[4881] = c[139];
-    out[4885] = c[33];
-    out[4889] = c[139];
-    out[5202] = c[182];
-    out[5203] = -c[181];
-    out[5204] = c[182];
-    out[5257] = c[198];
-    out[5298] = c[184];
-    out[5299] = c[185];
-    out[5300] = c[184];
-    out[5301] = -c[185];
-    out[5357] = c[139];
-    out[5361] = c[33];
-    out[5365] = c[139];
-    out[5675] = c[182];
-    out[5676] = -c[181];
-    out[5677] = c[182];
-    out[5729] = c[199];
-    out[5770] = c[188];
-    out[5771] = c[189];
-    out[5772] = c[187];
-    out[5774] = c[188];
-    out[5775] = -c[189];
-    out[5833] = c[139];
-    out[5837] = c[33];
-    out[5841] = c[139];
-    out[6148] = c[182];
-    out[6149] = -c[181];
-    out[6150] = c[182];
-    out[6201] = c[200];
-    out[6244] = c[184];
-    out[6245] = c[185];
-    out[6246] = c[184];
-    out[6247] = -c[185];
-    out[6309] = c[139];
-    out[6313] = c[33];
-    out[6317] = c[139];
-    out[6621] = c[182];
-    out[6622] = -c[181];
-    out[6623] = c[182];
-    out[6673] = c[201];
-    out[6716] = c[188];
-    out[6717] = c[189];
-    out[6718] = c[187];
-    out[6720] = c[188];
-    out[6721] = -c[189];
-    out[6785] = c[139];
-    out[6789] = c[33];
-    out[6793] = c[139];
-    out[7094] = c[182];
-    out[7095] = -c[181];
-    out[7096] = c[182];
-    out[7145] = c[202];
-    out[7190] = c[184];
-    out[7191] = c[185];
-    out[7192] = c[184];
-    out[7193] = -c[185];
-    out[7261] = c[139];
-    out[7265] = c[33];
-    out[7269] = c[139];
-    out[7567] = c[182];
-    out[7568] = -c[181];
-    out[7569] = c[182];
-    out[7617] = c[203];
-    out[7662] = c[188];
-    out[7663] = c[189];
-    out[7664] = c[187];
-    out[7666] = c[188];
-    out[7667] = -c[189];
-    out[7737] = c[139];
-    out[7741] = c[33];
-    out[7745] = c[139];
-    out[8040] = c[182];
-    out[8041] = -c[181];
-    out[8042] = c[182];
-    out[8089] = c[204];
-    out[8136] = c[184];
-    out[8137] = c[185];
-    out[8138] = c[184];
-    out[8139] = -c[185];
-    out[8213] = c[139];
-    out[8217] = c[33];
-    out[8221] = c[139];
-    out[8513] = c[182];
-    out[8514] = -c[181];
-    out[8515] = c[182];
-    out[8561] = c[205];
-    out[8608] = c[188];
-    out[8609] = c[189];
-    out[8610] = c[187];
-    out[8612] = c[188];
-    out[8613] = -c[189];
-    out[8689] = c[139];
-    out[8693] = c[33];
-    out[8697] = c[139];
-    out[8986] = c[182];
-    out[8987] = -c[181];
-    out[8988] = c[182];
-    out[9033] = c[206];
-    out[9082] = c[184];
-    out[9083] = c[185];
-    out[9084] = c[184];
-    out[9085] = -c[185];
-    out[9165] = c[139];
-    out[9169] = c[33];
-    out[9173] = c[139];
-    out[9459] = c[182];
-    out[9460] = -c[181];
-    out[9461] = c[182];
-    out[9505] = c[207];
-    out[9554] = c[188];
-    out[9555] = c[189];
-    out[9556] = c[187];
-    out[9558] = c[188];
-    out[9559] = -c[189];
-    out[9641] = c[139];
-    out[9645] = c[33];
-    out[9649] = c[139];
-    out[9932] = c[182];
-    out[9933] = -c[181];
-    out[9934] = c[182];
-    out[9977] = c[208];
-    out[10028] = c[184];
-    out[10029] = c[185];
-    out[10030] = c[184];
-    out[10031] = -c[185];
-    out[10117] = c[139];
-    out[10121] = c[33];
-    out[10125] = c[139];
-    out[10405] = c[182];
-    out[10406] = -c[181];
-    out[10407] = c[182];
-    out[10449] = c[209];
-    out[10500] = c[188];
-    out[10501] = c[189];
-    out[10502] = c[187];
-    out[10504] = c[188];
-    out[10505] = -c[189];
-    out[10593] = c[139];
-    out[10597] = c[33];
-    out[10601] = c[139];
-    out[10878] = c[182];
-    out[10879] = -c[181];
-    out[10880] = c[182];
-    out[10921] = c[210];
-    out[10974] = c[184];
-    out[10975] = c[185];
-    out[10976] = c[184];
-    out[10977] = -c[185];
-    out[11069] = c[139];
-    out[11073] = c[33];
-    out[11077] = c[139];
-    out[11351] = c[182];
-    out[11352] = -c[181];
-    out[11353] = c[182];
-    out[11393] = c[211];
-    out[11446] = c[188];
-    out[11447] = c[189];
-    out[11448] = c[187];
-    out[11450] = c[188];
-    out[11451] = -c[189];
-    out[11545] = c[139];
-    out[11549] = c[33];
-    out[11553] = c[139];
-    out[11824] = c[182];
-    out[11825] = -c[181];
-    out[11826] = c[182];
-    out[11865] = c[212];
-    out[11920] = c[184];
-    out[11921] = c[185];
-    out[11922] = c[184];
-    out[11923] = -c[185];
-    out[12021] = c[139];
-    out[12025] = c[33];
-    out[12029] = c[139];
-    out[12297] = c[182];
-    out[12298] = -c[181];
-    out[12299] = c[182];
-    out[12337] = c[213];
-    out[12392] = c[188];
-    out[12393] = c[189];
-    out[12394] = c[187];
-    out[12396] = c[188];
-    out[12397] = -c[189];
-    out[12497] = c[139];
-    out[12501] = c[33];
-    out[12505] = c[139];
-    out[12770] = c[182];
-    out[12771] = -c[181];
-    out[12772] = c[182];
-    out[12809] = c[214];
-    out[12866] = c[184];
-    out[12867] = c[185];
-    out[12868] = c[184];
-    out[12869] = -c[185];
-    out[12973] = c[139];
-    out[12977] = c[33];
-    out[12981] = c[139];
-    out[13243] = c[182];
-    out[13244] = -c[181];
-    out[13245] = c[182];
-    out[13281] = c[215];
-    out[13338] = c[188];
-    out[13339] = c[189];
-    out[13340] = c[187];
-    out[13342] = c[188];
-    out[13343] = -c[189];
-    out[13449] = c[139];
-    out[13453] = c[33];
-    out[13457] = c[139];
-    out[13716] = c[182];
-    out[13717] = -c[181];
-    out[13718] = c[182];
-    out[13753] = c[216];
-    out[13812] = c[184];
-    out[13813] = c[185];
-    out[13814] = c[184];
-    out[13815] = -c[185];
-    out[13925] = c[139];
-    out[13929] = c[33];
-    out[13933] = c[139];
-    out[14189] = c[182];
-    out[14190] = -c[181];
-    out[14191] = c[182];
-    out[14225] = c[217];
-    out[14284] = c[188];
-    out[14285] = c[189];
-    out[14286] = c[187];
-    out[14288] = c[188];
-    out[14289] = -c[189];
-    out[14401] = c[139];
-    out[14405] = c[33];
-    out[14409] = c[139];
-    out[14662] = c[182];
-    out[14663] = -c[181];
-    out[14664] = c[182];
-    out[14697] = c[218];
-    out[14758] = c[184];
-    out[14759] = c[185];
-    out[14760] = c[184];
-    out[14761] = -c[185];
-    out[14877] = c[139];
-    out[14881] = c[33];
-    out[14885] = c[139];
-    out[15135] = c[182];
-    out[15136] = -c[182];
-    out[15169] = c[219];
-    out[15230] = c[188];
-    out[15231] = c[189];
-    out[15232] = c[131];
-    out[15233] = -c[220];
-    out[15353] = c[139];
-    out[15357] = c[34];
-    out[15609] = -c[221];
-    out[15611] = c[222];
-    out[15612] = -c[223];
-    out[15642] = -c[184];
-    out[15643] = -c[187];
-    out[15644] = -c[184];
-    out[15645] = -c[188];
-    out[15832] = -c[35];
-    out[15837] = c[224];
-    out[15842] = c[225];
-    out[15849] = -c[226];
-    out[16082] = -c[227];
-    out[16083] = c[223];
-    out[16084] = -c[228];
-    out[16114] = c[185];
-    out[16116] = -c[185];
-    out[16117] = -c[189];
-    out[16304] = c[224];
-    out[16309] = -c[39];
-    out[16314] = c[229];
-    out[16321] = c[230];
-    out[16553] = c[222];
-    out[16554] = c[223];
-    out[16555] = -c[221];
-    out[16557] = c[222];
-    out[16558] = -c[223];
-    out[16587] = -c[188];
-    out[16588] = -c[184];
-    out[16589] = -c[187];
-    out[16590] = -c[184];
-    out[16591] = -c[188];
-    out[16776] = c[225];
-    out[16781] = c[229];
-    out[16786] = -c[42];
-    out[16793] = c[231];
-    out[16800] = c[232];
-    out[16807] = -c[229];
-    out[17025] = -c[223];
-    out[17026] = -c[228];
-    out[17028] = -c[227];
-    out[17029] = c[223];
-    out[17030] = -c[228];
-    out[17059] = c[189];
-    out[17060] = c[185];
-    out[17062] = -c[185];
-    out[17063] = -c[189];
-    out[17248] = -c[226];
-    out[17253] = c[230];
-    out[17258] = c[231];
-    out[17265] = -c[45];
-    out[17272] = c[233];
-    out[17279] = c[234];
-    out[17499] = c[222];
-    out[17500] = c[223];
-    out[17501] = -c[221];
-    out[17503] = c[222];
-    out[17504] = -c[223];
-    out[17533] = -c[188];
-    out[17534] = -c[184];
-    out[17535] = -c[187];
-    out[17536] = -c[184];
-    out[17537] = -c[188];
-    out[17730] = c[232];
-    out[17737] = c[233];
-    out[17744] = -c[48];
-    out[17751] = c[235];
-    out[17758] = c[236];
-    out[17765] = -c[233];
-    out[17971] = -c[223];
-    out[17972] = -c[228];
-    out[17974] = -c[227];
-    out[17975] = c[223];
-    out[17976] = -c[228];
-    out[18005] = c[189];
-    out[18006] = c[185];
-    out[18008] = -c[185];
-    out[18009] = -c[189];
-    out[18202] = -c[229];
-    out[18209] = c[234];
-    out[18216] = c[235];
-    out[18223] = -c[51];
-    out[18230] = c[237];
-    out[18237] = c[238];
-    out[18445] = c[222];
-    out[18446] = c[223];
-    out[18447] = -c[221];
-    out[18449] = c[222];
-    out[18450] = -c[223];
-    out[18479] = -c[188];
-    out[18480] = -c[184];
-    out[18481] = -c[187];
-    out[18482] = -c[184];
-    out[18483] = -c[188];
-    out[18688] = c[236];
-    out[18695] = c[237];
-    out[18702] = -c[54];
-    out[18709] = c[239];
-    out[18716] = c[240];
-    out[18723] = -c[237];
-    out[18917] = -c[223];
-    out[18918] = -c[228];
-    out[18920] = -c[227];
-    out[18921] = c[223];
-    out[18922] = -c[228];
-    out[18951] = c[189];
-    out[18952] = c[185];
-    out[18954] = -c[185];
-    out[18955] = -c[189];
-    out[19160] = -c[233];
-    out[19167] = c[238];
-    out[19174] = c[239];
-    out[19181] = -c[57];
-    out[19188] = c[241];
-    out[19195] = c[242];
-    out[19391] = c[222];
-    out[19392] = c[223];
-    out[19393] = -c[221];
-    out[19395] = c[222];
-    out[19396] = -c[223];
-    out[19425] = -c[188];
-    out[19426] = -c[184];
-    out[19427] = -c[187];
-    out[19428] = -c[184];
-    out[19429] = -c[188];
-    out[19646] = c[240];
-    out[19653] = c[241];
-    out[19660] = -c[60];
-    out[19667] = c[243];
-    out[19674] = c[244];
-    out[19681] = -c[241];
-    out[19863] = -c[223];
-    out[19864] = -c[228];
-    out[19866] = -c[227];
-    out[19867] = c[223];
-    out[19868] = -c[228];
-    out[19897] = c[189];
-    out[19898] = c[185];
-    out[19900] = -c[185];
-    out[19901] = -c[189];
-    out[20118] = -c[237];
-    out[20125] = c[242];
-    out[20132] = c[243];
-    out[20139] = -c[63];
-    out[20146] = c[245];
-    out[20153] = c[246];
-    out[20337] = c[222];
-    out[20338] = c[223];
-    out[20339] = -c[221];
-    out[20341] = c[222];
-    out[20342] = -c[223];
-    out[20371] = -c[188];
-    out[20372] = -c[184];
-    out[20373] = -c[187];
-    out[20374] = -c[184];
-    out[20375] = -c[188];
-    out[20604] = c[244];
-    out[20611] = c[245];
-    out[20618] = -c[66];
-    out[20625] = c[247];
-    out[20632] = c[248];
-    out[20639] = -c[245];
-    out[20809] = -c[223];
-    out[20810] = -c[228];
-    out[20812] = -c[227];
-    out[20813] = c[223];
-    out[20814] = -c[228];
-    out[20843] = c[189];
-    out[20844] = c[185];
-    out[20846] = -c[185];
-    out[20847] = -c[189];
-    out[21076] = -c[241];
-    out[21083] = c[246];
-    out[21090] = c[247];
-    out[21097] = -c[69];
-    out[21104] = c[249];
-    out[21111] = c[250];
-    out[21283] = c[222];
-    out[21284] = c[223];
-    out[21285] = -c[221];
-    out[21287] = c[222];
-    out[21288] = -c[223];
-    out[21317] = -c[188];
-    out[21318] = -c[184];
-    out[21319] = -c[187];
-    out[21320] = -c[184];
-    out[21321] = -c[188];
-    out[21562] = c[248];
-    out[21569] = c[249];
-    out[21576] = -c[72];
-    out[21583] = c[251];
-    out[21590] = c[252];
-    out[21597] = -c[249];
-    out[21755] = -c[223];
-    out[21756] = -c[228];
-    out[21758] = -c[227];
-    out[21759] = c[223];
-    out[21760] = -c[228];
-    out[21789] = c[189];
-    out[21790] = c[185];
-    out[21792] = -c[185];
-    out[21793] = -c[189];
-    out[22034] = -c[245];
-    out[22041] = c[250];
-    out[22048] = c[251];
-    out[22055] = -c[75];
-    out[22062] = c[253];
-    out[22069] = c[254];
-    out[22229] = c[222];
-    out[22230] = c[223];
-    out[22231] = -c[221];
-    out[22233] = c[222];
-    out[22234] = -c[223];
-    out[22263] = -c[188];
-    out[22264] = -c[184];
-    out[22265] = -c[187];
-    out[22266] = -c[184];
-    out[22267] = -c[188];
-    out[22520] = c[252];
-    out[22527] = c[253];
-    out[22534] = -c[78];
-    out[22541] = c[255];
-    out[22548] = c[256];
-    out[22555] = -c[253];
-    out[22701] = -c[223];
-    out[22702] = -c[228];
-    out[22704] = -c[227];
-    out[22705] = c[223];
-    out[22706] = -c[228];
-    out[22735] = c[189];
-    out[22736] = c[185];
-    out[22738] = -c[185];
-    out[22739] = -c[189];
-    out[22992] = -c[249];
-    out[22999] = c[254];
-    out[23006] = c[255];
-    out[23013] = -c[81];
-    out[23020] = c[257];
-    out[23027] = c[258];
-    out[23175] = c[222];
-    out[23176] = c[223];
-    out[23177] = -c[221];
-    out[23179] = c[222];
-    out[23180] = -c[223];
-    out[23209] = -c[188];
-    out[23210] = -c[184];
-    out[23211] = -c[187];
-    out[23212] = -c[184];
-    out[23213] = -c[188];
-    out[23478] = c[256];
-    out[23485] = c[257];
-    out[23492] = -c[84];
-    out[23499] = c[259];
-    out[23506] = c[260];
-    out[23513] = -c[257];
-    out[23647] = -c[223];
-    out[23648] = -c[228];
-    out[23650] = -c[227];
-    out[23651] = c[223];
-    out[23652] = -c[228];
-    out[23681] = c[189];
-    out[23682] = c[185];
-    out[23684] = -c[185];
-    out[23685] = -c[189];
-    out[23950] = -c[253];
-    out[23957] = c[258];
-    out[23964] = c[259];
-    out[23971] = -c[87];
-    out[23978] = c[261];
-    out[23985] = c[262];
-    out[24121] = c[222];
-    out[24122] = c[223];
-    out[24123] = -c[221];
-    out[24125] = c[222];
-    out[24126] = -c[223];
-    out[24155] = -c[188];
-    out[24156] = -c[184];
-    out[24157] = -c[187];
-    out[24158] = -c[184];
-    out[24159] = -c[188];
-    out[24436] = c[260];
-    out[24443] = c[261];
-    out[24450] = -c[90];
-    out[24457] = c[263];
-    out[24464] = c[264];
-    out[24471] = -c[261];
-    out[24593] = -c[223];
-    out[24594] = -c[228];
-    out[24596] = -c[227];
-    out[24597] = c[223];
-    out[24598] = -c[228];
-    out[24627] = c[189];
-    out[24628] = c[185];
-    out[24630] = -c[185];
-    out[24631] = -c[189];
-    out[24908] = -c[257];
-    out[24915] = c[262];
-    out[24922] = c[263];
-    out[24929] = -c[93];
-    out[24936] = c[265];
-    out[24943] = c[266];
-    out[25067] = c[222];
-    out[25068] = c[223];
-    out[25069] = -c[221];
-    out[25071] = c[222];
-    out[25072] = -c[223];
-    out[25101] = -c[188];
-    out[25102] = -c[184];
-    out[25103] = -c[187];
-    out[25104] = -c[184];
-    out[25105] = -c[188];
-    out[25394] = c[264];
-    out[25401] = c[265];
-    out[25408] = -c[96];
-    out[25415] = c[267];
-    out[25422] = c[268];
-    out[25429] = -c[265];
-    out[25539] = -c[223];
-    out[25540] = -c[228];
-    out[25542] = -c[227];
-    out[25543] = c[223];
-    out[25544] = -c[228];
-    out[25573] = c[189];
-    out[25574] = c[185];
-    out[25576] = -c[185];
-    out[25577] = -c[189];
-    out[25866] = -c[261];
-    out[25873] = c[266];
-    out[25880] = c[267];
-    out[25887] = -c[99];
-    out[25894] = c[269];
-    out[25901] = c[270];
-    out[26013] = c[222];
-    out[26014] = c[223];
-    out[26015] = -c[221];
-    out[26017] = c[222];
-    out[26018] = -c[223];
-    out[26047] = -c[188];
-    out[26048] = -c[184];
-    out[26049] = -c[187];
-    out[26050] = -c[184];
-    out[26051] = -c[188];
-    out[26352] = c[268];
-    out[26359] = c[269];
-    out[26366] = -c[102];
-    out[26373] = c[271];
-    out[26380] = c[272];
-    out[26387] = -c[269];
-    out[26485] = -c[223];
-    out[26486] = -c[228];
-    out[26488] = -c[227];
-    out[26489] = c[223];
-    out[26490] = -c[228];
-    out[26519] = c[189];
-    out[26520] = c[185];
-    out[26522] = -c[185];
-    out[26523] = -c[189];
-    out[26824] = -c[265];
-    out[26831] = c[270];
-    out[26838] = c[271];
-    out[26845] = -c[105];
-    out[26852] = c[273];
-    out[26859] = c[274];
-    out[26959] = c[222];
-    out[26960] = c[223];
-    out[26961] = -c[221];
-    out[26963] = c[222];
-    out[26964] = -c[223];
-    out[26993] = -c[188];
-    out[26994] = -c[184];
-    out[26995] = -c[187];
-    out[26996] = -c[184];
-    out[26997] = -c[188];
-    out[27310] = c[272];
-    out[27317] = c[273];
-    out[27324] = -c[108];
-    out[27331] = c[275];
-    out[27338] = c[276];
-    out[27345] = -c[273];
-    out[27431] = -c[223];
-    out[27432] = -c[228];
-    out[27434] = -c[227];
-    out[27435] = c[223];
-    out[27436] = -c[228];
-    out[27465] = c[189];
-    out[27466] = c[185];
-    out[27468] = -c[185];
-    out[27469] = -c[189];
-    out[27782] = -c[269];
-    out[27789] = c[274];
-    out[27796] = c[275];
-    out[27803] = -c[111];
-    out[27810] = c[277];
-    out[27817] = c[278];
-    out[27905] = c[222];
-    out[27906] = c[223];
-    out[27907] = -c[221];
-    out[27909] = c[222];
-    out[27910] = -c[223];
-    out[27939] = -c[188];
-    out[27940] = -c[184];
-    out[27941] = -c[187];
-    out[27942] = -c[184];
-    out[27943] = -c[188];
-    out[28268] = c[276];
-    out[28275] = c[277];
-    out[28282] = -c[114];
-    out[28289] = c[279];
-    out[28296] = c[280];
-    out[28303] = -c[277];
-    out[28377] = -c[223];
-    out[28378] = -c[228];
-    out[28380] = -c[227];
-    out[28381] = c[223];
-    out[28382] = -c[228];
-    out[28411] = c[189];
-    out[28412] = c[185];
-    out[28414] = -c[185];
-    out[28415] = -c[189];
-    out[28740] = -c[273];
-    out[28747] = c[278];
-    out[28754] = c[279];
-    out[28761] = -c[117];
-    out[28768] = c[281];
-    out[28775] = c[282];
-    out[28851] = c[222];
-    out[28852] = c[223];
-    out[28853] = -c[221];
-    out[28855] = c[222];
-    out[28856] = -c[223];
-    out[28885] = -c[188];
-    out[28886] = -c[184];
-    out[28887] = -c[187];
-    out[28888] = -c[184];
-    out[28889] = -c[188];
-    out[29226] = c[280];
-    out[29233] = c[281];
-    out[29240] = -c[120];
-    out[29247] = c[283];
-    out[29254] = c[284];
-    out[29259] = -c[281];
-    out[29323] = -c[223];
-    out[29324] = -c[228];
-    out[29326] = -c[227];
-    out[29327] = c[223];
-    out[29328] = -c[228];
-    out[29357] = c[189];
-    out[29358] = c[185];
-    out[29360] = -c[185];
-    out[29361] = -c[189];
-    out[29698] = -c[277];
-    out[29705] = c[282];
-    out[29712] = c[283];
-    out[29719] = -c[123];
-    out[29726] = c[285];
-    out[29731] = c[286];
-    out[29797] = c[222];
-    out[29798] = c[223];
-    out[29799] = -c[222];
-    out[29800] = c[223];
-    out[29831] = -c[188];
-    out[29832] = -c[184];
-    out[29833] = -c[131];
-    out[30184] = c[284];
-    out[30191] = c[285];
-    out[30198] = -c[126];
-    out[30203] = c[287];
-    out[30269] = -c[223];
-    out[30270] = -c[228];
-    out[30271] = c[223];
-    out[30272] = -c[288];
-    out[30303] = c[189];
-    out[30304] = c[185];
-    out[30305] = c[220];
-    out[30656] = -c[281];
-    out[30663] = c[286];
-    out[30670] = c[287];
-    out[30675] = -c[128];
+    const double m[1] = {1.0};
+    struct Term {
+        int coef, mono;
+        double scale;
+    };
+    static const Term terms[] = {
+        {148, 0, 1.0},
+        {1, 0, -1.0},
+        {2, 0, -1.0},
+        {3, 0, -1.0},
+        {4, 0, -1.0},
+        {5, 0, -1.0},
+        {6, 0, -1.0},
+        {7, 0, -1.0},
+        {8, 0, -1.0},
+        {9, 0, -1.0},
+        {10, 0, -1.0},
+        {11, 0, -1.0},
+        {12, 0, -1.0},
+        {13, 0, -1.0},
+        {14, 0, -1.0},
+        {15, 0, -1.0},
+        {16, 0, -1.0},
+        {17, 0, -1.0},
+        {18, 0, -1.0},
+        {19, 0, -1.0},
+        {20, 0, -1.0},
+        {21, 0, -1.0},
+        {22, 0, -1.0},
+        {23, 0, -1.0},
+        {24, 0, -1.0},
+        {25, 0, -1.0},
+        {26, 0, -1.0},
+        {27, 0, -1.0},
+        {28, 0, -1.0},
+        {29, 0, -1.0},
+        {30, 0, -1.0},
+        {31, 0, -1.0},
+        {32, 0, -1.0},
+        {149, 0, -1.0},
+        {34, 0, -1.0},
+        {34, 0, -1.0},
+        {149, 0, -1.0},
+        {34, 0, -1.0},
+        {34, 0, -1.0},
+        {149, 0, -1.0},
+        {34, 0, -1.0},
+        {34, 0, -1.0},
+        {149, 0, -1.0},
+        {34, 0, -1.0},
+        {34, 0, -1.0},
+        {149, 0, -1.0},
+        {34, 0, -1.0},
+        {34, 0, -1.0},
+        {149, 0, -1.0},
+        {34, 0, -1.0},
+        {34, 0, -1.0},
+        {149, 0, -1.0},
+        {34, 0, -1.0},
+        {34, 0, -1.0},
+        {149, 0, -1.0},
+        {34, 0, -1.0},
+        {34, 0, -1.0},
+        {149, 0, -1.0},
+        {34, 0, -1.0},
+        {34, 0, -1.0},
+        {149, 0, -1.0},
+        {34, 0, -1.0},
+        {34, 0, -1.0},
+        {149, 0, -1.0},
+        {34, 0, -1.0},
+        {34, 0, -1.0},
+        {149, 0, -1.0},
+        {34, 0, -1.0},
+        {34, 0, -1.0},
+        {149, 0, -1.0},
+        {34, 0, -1.0},
+        {34, 0, -1.0},
+        {149, 0, -1.0},
+        {34, 0, -1.0},
+        {34, 0, -1.0},
+        {149, 0, -1.0},
+        {34, 0, -1.0},
+        {34, 0, -1.0},
+        {149, 0, -1.0},
+        {34, 0, -1.0},
+        {34, 0, -1.0},
+        {149, 0, -1.0},
+        {34, 0, -1.0},
+        {34, 0, -1.0},
+        {149, 0, -1.0},
+        {34, 0, -1.0},
+        {34, 0, -1.0},
+        {149, 0, -1.0},
+        {34, 0, -1.0},
+        {34, 0, -1.0},
+        {149, 0, -1.0},
+        {34, 0, -1.0},
+        {34, 0, -1.0},
+        {149, 0, -1.0},
+        {34, 0, -1.0},
+        {34, 0, -1.0},
+        {149, 0, -1.0},
+        {34, 0, -1.0},
+        {34, 0, -1.0},
+        {149, 0, -1.0},
+        {34, 0, -1.0},
+        {34, 0, -1.0},
+        {149, 0, -1.0},
+        {34, 0, -1.0},
+        {34, 0, -1.0},
+        {149, 0, -1.0},
+        {34, 0, -1.0},
+        {34, 0, -1.0},
+        {149, 0, -1.0},
+        {34, 0, -1.0},
+        {34, 0, -1.0},
+        {149, 0, -1.0},
+        {34, 0, -1.0},
+        {34, 0, -1.0},
+        {149, 0, -1.0},
+        {34, 0, -1.0},
+        {34, 0, -1.0},
+        {149, 0, -1.0},
+        {34, 0, -1.0},
+        {34, 0, -1.0},
+        {149, 0, -1.0},
+        {34, 0, -1.0},
+        {34, 0, -1.0},
+        {149, 0, -1.0},
+        {34, 0, -1.0},
+        {34, 0, -1.0},
+        {33, 0, -1.0},
+        {150, 0, 1.0},
+        {36, 0, -1.0},
+        {37, 0, -1.0},
+        {38, 0, 1.0},
+        {36, 0, -1.0},
+        {151, 0, 1.0},
+        {40, 0, -1.0},
+        {41, 0, -1.0},
+        {37, 0, -1.0},
+        {40, 0, -1.0},
+        {152, 0, 1.0},
+        {43, 0, -1.0},
+        {44, 0, -1.0},
+        {40, 0, 1.0},
+        {38, 0, 1.0},
+        {41, 0, -1.0},
+        {43, 0, -1.0},
+        {153, 0, 1.0},
+        {46, 0, -1.0},
+        {47, 0, -1.0},
+        {44, 0, -1.0},
+        {46, 0, -1.0},
+        {154, 0, 1.0},
+        {49, 0, -1.0},
+        {50, 0, -1.0},
+        {46, 0, 1.0},
+        {40, 0, 1.0},
+        {47, 0, -1.0},
+        {49, 0, -1.0},
+        {155, 0, 1.0},
+        {52, 0, -1.0},
+        {53, 0, -1.0},
+        {50, 0, -1.0},
+        {52, 0, -1.0},
+        {156, 0, 1.0},
+        {55, 0, -1.0},
+        {56, 0, -1.0},
+        {52, 0, 1.0},
+        {46, 0, 1.0},
+        {53, 0, -1.0},
+        {55, 0, -1.0},
+        {157, 0, 1.0},
+        {58, 0, -1.0},
+        {59, 0, -1.0},
+        {56, 0, -1.0},
+        {58, 0, -1.0},
+        {158, 0, 1.0},
+        {61, 0, -1.0},
+        {62, 0, -1.0},
+        {58, 0, 1.0},
+        {52, 0, 1.0},
+        {59, 0, -1.0},
+        {61, 0, -1.0},
+        {159, 0, 1.0},
+        {64, 0, -1.0},
+        {65, 0, -1.0},
+        {62, 0, -1.0},
+        {64, 0, -1.0},
+        {160, 0, 1.0},
+        {67, 0, -1.0},
+        {68, 0, -1.0},
+        {64, 0, 1.0},
+        {58, 0, 1.0},
+        {65, 0, -1.0},
+        {67, 0, -1.0},
+        {161, 0, 1.0},
+        {70, 0, -1.0},
+        {71, 0, -1.0},
+        {68, 0, -1.0},
+        {70, 0, -1.0},
+        {162, 0, 1.0},
+        {73, 0, -1.0},
+        {74, 0, -1.0},
+        {70, 0, 1.0},
+        {64, 0, 1.0},
+        {71, 0, -1.0},
+        {73, 0, -1.0},
+        {163, 0, 1.0},
+        {76, 0, -1.0},
+        {77, 0, -1.0},
+        {74, 0, -1.0},
+        {76, 0, -1.0},
+        {164, 0, 1.0},
+        {79, 0, -1.0},
+        {80, 0, -1.0},
+        {76, 0, 1.0},
+        {70, 0, 1.0},
+        {77, 0, -1.0},
+        {79, 0, -1.0},
+        {165, 0, 1.0},
+        {82, 0, -1.0},
+        {83, 0, -1.0},
+        {80, 0, -1.0},
+        {82, 0, -1.0},
+        {166, 0, 1.0},
+        {85, 0, -1.0},
+        {86, 0, -1.0},
+        {82, 0, 1.0},
+        {76, 0, 1.0},
+        {83, 0, -1.0},
+        {85, 0, -1.0},
+        {167, 0, 1.0},
+        {88, 0, -1.0},
+        {89, 0, -1.0},
+        {86, 0, -1.0},
+        {88, 0, -1.0},
+        {168, 0, 1.0},
+        {91, 0, -1.0},
+        {92, 0, -1.0},
+        {88, 0, 1.0},
+        {82, 0, 1.0},
+        {89, 0, -1.0},
+        {91, 0, -1.0},
+        {169, 0, 1.0},
+        {94, 0, -1.0},
+        {95, 0, -1.0},
+        {92, 0, -1.0},
+        {94, 0, -1.0},
+        {170, 0, 1.0},
+        {97, 0, -1.0},
+        {98, 0, -1.0},
+        {94, 0, 1.0},
+        {88, 0, 1.0},
+        {95, 0, -1.0},
+        {97, 0, -1.0},
+        {171, 0, 1.0},
+        {100, 0, -1.0},
+        {101, 0, -1.0},
+        {98, 0, -1.0},
+        {100, 0, -1.0},
+        {172, 0, 1.0},
+        {103, 0, -1.0},
+        {104, 0, -1.0},
+        {100, 0, 1.0},
+        {94, 0, 1.0},
+        {101, 0, -1.0},
+        {103, 0, -1.0},
+        {173, 0, 1.0},
+        {106, 0, -1.0},
+        {107, 0, -1.0},
+        {104, 0, -1.0},
+        {106, 0, -1.0},
+        {174, 0, 1.0},
+        {109, 0, -1.0},
+        {110, 0, -1.0},
+        {106, 0, 1.0},
+        {100, 0, 1.0},
+        {107, 0, -1.0},
+        {109, 0, -1.0},
+        {175, 0, 1.0},
+        {112, 0, -1.0},
+        {113, 0, -1.0},
+        {110, 0, -1.0},
+        {112, 0, -1.0},
+        {176, 0, 1.0},
+        {115, 0, -1.0},
+        {116, 0, -1.0},
+        {112, 0, 1.0},
+        {106, 0, 1.0},
+        {113, 0, -1.0},
+        {115, 0, -1.0},
+        {177, 0, 1.0},
+        {118, 0, -1.0},
+        {119, 0, -1.0},
+        {116, 0, -1.0},
+        {118, 0, -1.0},
+        {178, 0, 1.0},
+        {121, 0, -1.0},
+        {122, 0, -1.0},
+        {118, 0, 1.0},
+        {112, 0, 1.0},
+        {119, 0, -1.0},
+        {121, 0, -1.0},
+        {179, 0, 1.0},
+        {124, 0, -1.0},
+        {125, 0, -1.0},
+        {122, 0, -1.0},
+        {124, 0, -1.0},
+        {180, 0, 1.0},
+        {127, 0, -1.0},
+        {118, 0, 1.0},
+        {125, 0, -1.0},
+        {127, 0, -1.0},
+        {181, 0, 1.0},
+        {182, 0, -1.0},
+        {183, 0, 1.0},
+        {184, 0, 1.0},
+        {185, 0, 1.0},
+        {186, 0, -1.0},
+        {33, 0, 1.0},
+        {139, 0, 1.0},
+        {183, 0, 1.0},
+        {182, 0, -1.0},
+        {183, 0, 1.0},
+        {187, 0, 1.0},
+        {188, 0, 1.0},
+        {189, 0, 1.0},
+        {190, 0, -1.0},
+        {139, 0, 1.0},
+        {33, 0, 1.0},
+        {139, 0, 1.0},
+        {183, 0, 1.0},
+        {182, 0, -1.0},
+        {183, 0, 1.0},
+        {191, 0, 1.0},
+        {185, 0, 1.0},
+        {186, 0, 1.0},
+        {185, 0, 1.0},
+        {186, 0, -1.0},
+        {139, 0, 1.0},
+        {33, 0, 1.0},
+        {139, 0, 1.0},
+        {183, 0, 1.0},
+        {182, 0, -1.0},
+        {183, 0, 1.0},
+        {192, 0, 1.0},
+        {189, 0, 1.0},
+        {190, 0, 1.0},
+        {188, 0, 1.0},
+        {189, 0, 1.0},
+        {190, 0, -1.0},
+        {139, 0, 1.0},
+        {33, 0, 1.0},
+        {139, 0, 1.0},
+        {183, 0, 1.0},
+        {182, 0, -1.0},
+        {183, 0, 1.0},
+        {193, 0, 1.0},
+        {185, 0, 1.0},
+        {186, 0, 1.0},
+        {185, 0, 1.0},
+        {186, 0, -1.0},
+        {139, 0, 1.0},
+        {33, 0, 1.0},
+        {139, 0, 1.0},
+        {183, 0, 1.0},
+        {182, 0, -1.0},
+        {183, 0, 1.0},
+        {194, 0, 1.0},
+        {189, 0, 1.0},
+        {190, 0, 1.0},
+        {188, 0, 1.0},
+        {189, 0, 1.0},
+        {190, 0, -1.0},
+        {139, 0, 1.0},
+        {33, 0, 1.0},
+        {139, 0, 1.0},
+        {183, 0, 1.0},
+        {182, 0, -1.0},
+        {183, 0, 1.0},
+        {195, 0, 1.0},
+        {185, 0, 1.0},
+        {186, 0, 1.0},
+        {185, 0, 1.0},
+        {186, 0, -1.0},
+        {139, 0, 1.0},
+        {33, 0, 1.0},
+        {139, 0, 1.0},
+        {183, 0, 1.0},
+        {182, 0, -1.0},
+        {183, 0, 1.0},
+        {196, 0, 1.0},
+        {189, 0, 1.0},
+        {190, 0, 1.0},
+        {188, 0, 1.0},
+        {189, 0, 1.0},
+        {190, 0, -1.0},
+        {139, 0, 1.0},
+        {33, 0, 1.0},
+        {139, 0, 1.0},
+        {183, 0, 1.0},
+        {182, 0, -1.0},
+        {183, 0, 1.0},
+        {197, 0, 1.0},
+        {185, 0, 1.0},
+        {186, 0, 1.0},
+        {185, 0, 1.0},
+        {186, 0, -1.0},
+        {139, 0, 1.0},
+        {33, 0, 1.0},
+        {139, 0, 1.0},
+        {183, 0, 1.0},
+        {182, 0, -1.0},
+        {183, 0, 1.0},
+        {198, 0, 1.0},
+        {189, 0, 1.0},
+        {190, 0, 1.0},
+        {188, 0, 1.0},
+        {189, 0, 1.0},
+        {190, 0, -1.0},
+        {139, 0, 1.0},
+        {33, 0, 1.0},
+        {139, 0, 1.0},
+        {183, 0, 1.0},
+        {182, 0, -1.0},
+        {183, 0, 1.0},
+        {199, 0, 1.0},
+        {185, 0, 1.0},
+        {186, 0, 1.0},
+        {185, 0, 1.0},
+        {186, 0, -1.0},
+        {139, 0, 1.0},
+        {33, 0, 1.0},
+        {139, 0, 1.0},
+        {183, 0, 1.0},
+        {182, 0, -1.0},
+        {183, 0, 1.0},
+        {200, 0, 1.0},
+        {189, 0, 1.0},
+        {190, 0, 1.0},
+        {188, 0, 1.0},
+        {189, 0, 1.0},
+        {190, 0, -1.0},
+        {139, 0, 1.0},
+        {33, 0, 1.0},
+        {139, 0, 1.0},
+        {183, 0, 1.0},
+        {182, 0, -1.0},
+        {183, 0, 1.0},
+        {201, 0, 1.0},
+        {185, 0, 1.0},
+        {186, 0, 1.0},
+        {185, 0, 1.0},
+        {186, 0, -1.0},
+        {139, 0, 1.0},
+        {33, 0, 1.0},
+        {139, 0, 1.0},
+        {183, 0, 1.0},
+        {182, 0, -1.0},
+        {183, 0, 1.0},
+        {202, 0, 1.0},
+        {189, 0, 1.0},
+        {190, 0, 1.0},
+        {188, 0, 1.0},
+        {189, 0, 1.0},
+        {190, 0, -1.0},
+        {139, 0, 1.0},
+        {33, 0, 1.0},
+        {139, 0, 1.0},
+        {183, 0, 1.0},
+        {182, 0, -1.0},
+        {183, 0, 1.0},
+        {203, 0, 1.0},
+        {185, 0, 1.0},
+        {186, 0, 1.0},
+        {185, 0, 1.0},
+        {186, 0, -1.0},
+        {139, 0, 1.0},
+        {33, 0, 1.0},
+        {139, 0, 1.0},
+        {183, 0, 1.0},
+        {182, 0, -1.0},
+        {183, 0, 1.0},
+        {204, 0, 1.0},
+        {189, 0, 1.0},
+        {190, 0, 1.0},
+        {188, 0, 1.0},
+        {189, 0, 1.0},
+        {190, 0, -1.0},
+        {139, 0, 1.0},
+        {33, 0, 1.0},
+        {139, 0, 1.0},
+        {183, 0, 1.0},
+        {182, 0, -1.0},
+        {183, 0, 1.0},
+        {205, 0, 1.0},
+        {185, 0, 1.0},
+        {186, 0, 1.0},
+        {185, 0, 1.0},
+        {186, 0, -1.0},
+        {139, 0, 1.0},
+        {33, 0, 1.0},
+        {139, 0, 1.0},
+        {183, 0, 1.0},
+        {182, 0, -1.0},
+        {183, 0, 1.0},
+        {206, 0, 1.0},
+        {189, 0, 1.0},
+        {190, 0, 1.0},
+        {188, 0, 1.0},
+        {189, 0, 1.0},
+        {190, 0, -1.0},
+        {139, 0, 1.0},
+        {33, 0, 1.0},
+        {139, 0, 1.0},
+        {183, 0, 1.0},
+        {182, 0, -1.0},
+        {183, 0, 1.0},
+        {207, 0, 1.0},
+        {185, 0, 1.0},
+        {186, 0, 1.0},
+        {185, 0, 1.0},
+        {186, 0, -1.0},
+        {139, 0, 1.0},
+        {33, 0, 1.0},
+        {139, 0, 1.0},
+        {183, 0, 1.0},
+        {182, 0, -1.0},
+        {183, 0, 1.0},
+        {208, 0, 1.0},
+        {189, 0, 1.0},
+        {190, 0, 1.0},
+        {188, 0, 1.0},
+        {189, 0, 1.0},
+        {190, 0, -1.0},
+        {139, 0, 1.0},
+        {33, 0, 1.0},
+        {139, 0, 1.0},
+        {183, 0, 1.0},
+        {182, 0, -1.0},
+        {183, 0, 1.0},
+        {209, 0, 1.0},
+        {185, 0, 1.0},
+        {186, 0, 1.0},
+        {185, 0, 1.0},
+        {186, 0, -1.0},
+        {139, 0, 1.0},
+        {33, 0, 1.0},
+        {139, 0, 1.0},
+        {183, 0, 1.0},
+        {182, 0, -1.0},
+        {183, 0, 1.0},
+        {210, 0, 1.0},
+        {189, 0, 1.0},
+        {190, 0, 1.0},
+        {188, 0, 1.0},
+        {189, 0, 1.0},
+        {190, 0, -1.0},
+        {139, 0, 1.0},
+        {33, 0, 1.0},
+        {139, 0, 1.0},
+        {183, 0, 1.0},
+        {182, 0, -1.0},
+        {183, 0, 1.0},
+        {211, 0, 1.0},
+        {185, 0, 1.0},
+        {186, 0, 1.0},
+        {185, 0, 1.0},
+        {186, 0, -1.0},
+        {139, 0, 1.0},
+        {33, 0, 1.0},
+        {139, 0, 1.0},
+        {183, 0, 1.0},
+        {182, 0, -1.0},
+        {183, 0, 1.0},
+        {212, 0, 1.0},
+        {189, 0, 1.0},
+        {190, 0, 1.0},
+        {188, 0, 1.0},
+        {189, 0, 1.0},
+        {190, 0, -1.0},
+        {139, 0, 1.0},
+        {33, 0, 1.0},
+        {139, 0, 1.0},
+        {183, 0, 1.0},
+        {182, 0, -1.0},
+        {183, 0, 1.0},
+        {213, 0, 1.0},
+        {185, 0, 1.0},
+        {186, 0, 1.0},
+        {185, 0, 1.0},
+        {186, 0, -1.0},
+        {139, 0, 1.0},
+        {33, 0, 1.0},
+        {139, 0, 1.0},
+        {183, 0, 1.0},
+        {182, 0, -1.0},
+        {183, 0, 1.0},
+        {214, 0, 1.0},
+        {189, 0, 1.0},
+        {190, 0, 1.0},
+        {188, 0, 1.0},
+        {189, 0, 1.0},
+        {190, 0, -1.0},
+        {139, 0, 1.0},
+        {33, 0, 1.0},
+        {139, 0, 1.0},
+        {183, 0, 1.0},
+        {182, 0, -1.0},
+        {183, 0, 1.0},
+        {215, 0, 1.0},
+        {185, 0, 1.0},
+        {186, 0, 1.0},
+        {185, 0, 1.0},
+        {186, 0, -1.0},
+        {139, 0, 1.0},
+        {33, 0, 1.0},
+        {139, 0, 1.0},
+        {183, 0, 1.0},
+        {182, 0, -1.0},
+        {183, 0, 1.0},
+        {216, 0, 1.0},
+        {189, 0, 1.0},
+        {190, 0, 1.0},
+        {188, 0, 1.0},
+        {189, 0, 1.0},
+        {190, 0, -1.0},
+        {139, 0, 1.0},
+        {33, 0, 1.0},
+        {139, 0, 1.0},
+        {183, 0, 1.0},
+        {182, 0, -1.0},
+        {183, 0, 1.0},
+        {217, 0, 1.0},
+        {185, 0, 1.0},
+        {186, 0, 1.0},
+        {185, 0, 1.0},
+        {186, 0, -1.0},
+        {139, 0, 1.0},
+        {33, 0, 1.0},
+        {139, 0, 1.0},
+        {183, 0, 1.0},
+        {182, 0, -1.0},
+        {183, 0, 1.0},
+        {218, 0, 1.0},
+        {189, 0, 1.0},
+        {190, 0, 1.0},
+        {188, 0, 1.0},
+        {189, 0, 1.0},
+        {190, 0, -1.0},
+        {139, 0, 1.0},
+        {33, 0, 1.0},
+        {139, 0, 1.0},
+        {183, 0, 1.0},
+        {182, 0, -1.0},
+        {183, 0, 1.0},
+        {219, 0, 1.0},
+        {185, 0, 1.0},
+        {186, 0, 1.0},
+        {185, 0, 1.0},
+        {186, 0, -1.0},
+        {139, 0, 1.0},
+        {33, 0, 1.0},
+        {139, 0, 1.0},
+        {183, 0, 1.0},
+        {183, 0, -1.0},
+        {220, 0, 1.0},
+        {189, 0, 1.0},
+        {190, 0, 1.0},
+        {131, 0, 1.0},
+        {221, 0, -1.0},
+        {139, 0, 1.0},
+        {34, 0, 1.0},
+        {222, 0, -1.0},
+        {223, 0, 1.0},
+        {224, 0, -1.0},
+        {185, 0, -1.0},
+        {188, 0, -1.0},
+        {185, 0, -1.0},
+        {189, 0, -1.0},
+        {35, 0, -1.0},
+        {225, 0, 1.0},
+        {226, 0, 1.0},
+        {227, 0, -1.0},
+        {228, 0, -1.0},
+        {224, 0, 1.0},
+        {229, 0, -1.0},
+        {186, 0, 1.0},
+        {186, 0, -1.0},
+        {190, 0, -1.0},
+        {225, 0, 1.0},
+        {39, 0, -1.0},
+        {230, 0, 1.0},
+        {231, 0, 1.0},
+        {223, 0, 1.0},
+        {224, 0, 1.0},
+        {222, 0, -1.0},
+        {223, 0, 1.0},
+        {224, 0, -1.0},
+        {189, 0, -1.0},
+        {185, 0, -1.0},
+        {188, 0, -1.0},
+        {185, 0, -1.0},
+        {189, 0, -1.0},
+        {226, 0, 1.0},
+        {230, 0, 1.0},
+        {42, 0, -1.0},
+        {232, 0, 1.0},
+        {233, 0, 1.0},
+        {230, 0, -1.0},
+        {224, 0, -1.0},
+        {229, 0, -1.0},
+        {228, 0, -1.0},
+        {224, 0, 1.0},
+        {229, 0, -1.0},
+        {190, 0, 1.0},
+        {186, 0, 1.0},
+        {186, 0, -1.0},
+        {190, 0, -1.0},
+        {227, 0, -1.0},
+        {231, 0, 1.0},
+        {232, 0, 1.0},
+        {45, 0, -1.0},
+        {234, 0, 1.0},
+        {235, 0, 1.0},
+        {223, 0, 1.0},
+        {224, 0, 1.0},
+        {222, 0, -1.0},
+        {223, 0, 1.0},
+        {224, 0, -1.0},
+        {189, 0, -1.0},
+        {185, 0, -1.0},
+        {188, 0, -1.0},
+        {185, 0, -1.0},
+        {189, 0, -1.0},
+        {233, 0, 1.0},
+        {234, 0, 1.0},
+        {48, 0, -1.0},
+        {236, 0, 1.0},
+        {237, 0, 1.0},
+        {234, 0, -1.0},
+        {224, 0, -1.0},
+        {229, 0, -1.0},
+        {228, 0, -1.0},
+        {224, 0, 1.0},
+        {229, 0, -1.0},
+        {190, 0, 1.0},
+        {186, 0, 1.0},
+        {186, 0, -1.0},
+        {190, 0, -1.0},
+        {230, 0, -1.0},
+        {235, 0, 1.0},
+        {236, 0, 1.0},
+        {51, 0, -1.0},
+        {238, 0, 1.0},
+        {239, 0, 1.0},
+        {223, 0, 1.0},
+        {224, 0, 1.0},
+        {222, 0, -1.0},
+        {223, 0, 1.0},
+        {224, 0, -1.0},
+        {189, 0, -1.0},
+        {185, 0, -1.0},
+        {188, 0, -1.0},
+        {185, 0, -1.0},
+        {189, 0, -1.0},
+        {237, 0, 1.0},
+        {238, 0, 1.0},
+        {54, 0, -1.0},
+        {240, 0, 1.0},
+        {241, 0, 1.0},
+        {238, 0, -1.0},
+        {224, 0, -1.0},
+        {229, 0, -1.0},
+        {228, 0, -1.0},
+        {224, 0, 1.0},
+        {229, 0, -1.0},
+        {190, 0, 1.0},
+        {186, 0, 1.0},
+        {186, 0, -1.0},
+        {190, 0, -1.0},
+        {234, 0, -1.0},
+        {239, 0, 1.0},
+        {240, 0, 1.0},
+        {57, 0, -1.0},
+        {242, 0, 1.0},
+        {243, 0, 1.0},
+        {223, 0, 1.0},
+        {224, 0, 1.0},
+        {222, 0, -1.0},
+        {223, 0, 1.0},
+        {224, 0, -1.0},
+        {189, 0, -1.0},
+        {185, 0, -1.0},
+        {188, 0, -1.0},
+        {185, 0, -1.0},
+        {189, 0, -1.0},
+        {241, 0, 1.0},
+        {242, 0, 1.0},
+        {60, 0, -1.0},
+        {244, 0, 1.0},
+        {245, 0, 1.0},
+        {242, 0, -1.0},
+        {224, 0, -1.0},
+        {229, 0, -1.0},
+        {228, 0, -1.0},
+        {224, 0, 1.0},
+        {229, 0, -1.0},
+        {190, 0, 1.0},
+        {186, 0, 1.0},
+        {186, 0, -1.0},
+        {190, 0, -1.0},
+        {238, 0, -1.0},
+        {243, 0, 1.0},
+        {244, 0, 1.0},
+        {63, 0, -1.0},
+        {246, 0, 1.0},
+        {247, 0, 1.0},
+        {223, 0, 1.0},
+        {224, 0, 1.0},
+        {222, 0, -1.0},
+        {223, 0, 1.0},
+        {224, 0, -1.0},
+        {189, 0, -1.0},
+        {185, 0, -1.0},
+        {188, 0, -1.0},
+        {185, 0, -1.0},
+        {189, 0, -1.0},
+        {245, 0, 1.0},
+        {246, 0, 1.0},
+        {66, 0, -1.0},
+        {248, 0, 1.0},
+        {249, 0, 1.0},
+        {246, 0, -1.0},
+        {224, 0, -1.0},
+        {229, 0, -1.0},
+        {228, 0, -1.0},
+        {224, 0, 1.0},
+        {229, 0, -1.0},
+        {190, 0, 1.0},
+        {186, 0, 1.0},
+        {186, 0, -1.0},
+        {190, 0, -1.0},
+        {242, 0, -1.0},
+        {247, 0, 1.0},
+        {248, 0, 1.0},
+        {69, 0, -1.0},
+        {250, 0, 1.0},
+        {251, 0, 1.0},
+        {223, 0, 1.0},
+        {224, 0, 1.0},
+        {222, 0, -1.0},
+        {223, 0, 1.0},
+        {224, 0, -1.0},
+        {189, 0, -1.0},
+        {185, 0, -1.0},
+        {188, 0, -1.0},
+        {185, 0, -1.0},
+        {189, 0, -1.0},
+        {249, 0, 1.0},
+        {250, 0, 1.0},
+        {72, 0, -1.0},
+        {252, 0, 1.0},
+        {253, 0, 1.0},
+        {250, 0, -1.0},
+        {224, 0, -1.0},
+        {229, 0, -1.0},
+        {228, 0, -1.0},
+        {224, 0, 1.0},
+        {229, 0, -1.0},
+        {190, 0, 1.0},
+        {186, 0, 1.0},
+        {186, 0, -1.0},
+        {190, 0, -1.0},
+        {246, 0, -1.0},
+        {251, 0, 1.0},
+        {252, 0, 1.0},
+        {75, 0, -1.0},
+        {254, 0, 1.0},
+        {255, 0, 1.0},
+        {223, 0, 1.0},
+        {224, 0, 1.0},
+        {222, 0, -1.0},
+        {223, 0, 1.0},
+        {224, 0, -1.0},
+        {189, 0, -1.0},
+        {185, 0, -1.0},
+        {188, 0, -1.0},
+        {185, 0, -1.0},
+        {189, 0, -1.0},
+        {253, 0, 1.0},
+        {254, 0, 1.0},
+        {78, 0, -1.0},
+        {256, 0, 1.0},
+        {257, 0, 1.0},
+        {254, 0, -1.0},
+        {224, 0, -1.0},
+        {229, 0, -1.0},
+        {228, 0, -1.0},
+        {224, 0, 1.0},
+        {229, 0, -1.0},
+        {190, 0, 1.0},
+        {186, 0, 1.0},
+        {186, 0, -1.0},
+        {190, 0, -1.0},
+        {250, 0, -1.0},
+        {255, 0, 1.0},
+        {256, 0, 1.0},
+        {81, 0, -1.0},
+        {258, 0, 1.0},
+        {259, 0, 1.0},
+        {223, 0, 1.0},
+        {224, 0, 1.0},
+        {222, 0, -1.0},
+        {223, 0, 1.0},
+        {224, 0, -1.0},
+        {189, 0, -1.0},
+        {185, 0, -1.0},
+        {188, 0, -1.0},
+        {185, 0, -1.0},
+        {189, 0, -1.0},
+        {257, 0, 1.0},
+        {258, 0, 1.0},
+        {84, 0, -1.0},
+        {260, 0, 1.0},
+        {261, 0, 1.0},
+        {258, 0, -1.0},
+        {224, 0, -1.0},
+        {229, 0, -1.0},
+        {228, 0, -1.0},
+        {224, 0, 1.0},
+        {229, 0, -1.0},
+        {190, 0, 1.0},
+        {186, 0, 1.0},
+        {186, 0, -1.0},
+        {190, 0, -1.0},
+        {254, 0, -1.0},
+        {259, 0, 1.0},
+        {260, 0, 1.0},
+        {87, 0, -1.0},
+        {262, 0, 1.0},
+        {263, 0, 1.0},
+        {223, 0, 1.0},
+        {224, 0, 1.0},
+        {222, 0, -1.0},
+        {223, 0, 1.0},
+        {224, 0, -1.0},
+        {189, 0, -1.0},
+        {185, 0, -1.0},
+        {188, 0, -1.0},
+        {185, 0, -1.0},
+        {189, 0, -1.0},
+        {261, 0, 1.0},
+        {262, 0, 1.0},
+        {90, 0, -1.0},
+        {264, 0, 1.0},
+        {265, 0, 1.0},
+        {262, 0, -1.0},
+        {224, 0, -1.0},
+        {229, 0, -1.0},
+        {228, 0, -1.0},
+        {224, 0, 1.0},
+        {229, 0, -1.0},
+        {190, 0, 1.0},
+        {186, 0, 1.0},
+        {186, 0, -1.0},
+        {190, 0, -1.0},
+        {258, 0, -1.0},
+        {263, 0, 1.0},
+        {264, 0, 1.0},
+        {93, 0, -1.0},
+        {266, 0, 1.0},
+        {267, 0, 1.0},
+        {223, 0, 1.0},
+        {224, 0, 1.0},
+        {222, 0, -1.0},
+        {223, 0, 1.0},
+        {224, 0, -1.0},
+        {189, 0, -1.0},
+        {185, 0, -1.0},
+        {188, 0, -1.0},
+        {185, 0, -1.0},
+        {189, 0, -1.0},
+        {265, 0, 1.0},
+        {266, 0, 1.0},
+        {96, 0, -1.0},
+        {268, 0, 1.0},
+        {269, 0, 1.0},
+        {266, 0, -1.0},
+        {224, 0, -1.0},
+        {229, 0, -1.0},
+        {228, 0, -1.0},
+        {224, 0, 1.0},
+        {229, 0, -1.0},
+        {190, 0, 1.0},
+        {186, 0, 1.0},
+        {186, 0, -1.0},
+        {190, 0, -1.0},
+        {262, 0, -1.0},
+        {267, 0, 1.0},
+        {268, 0, 1.0},
+        {99, 0, -1.0},
+        {270, 0, 1.0},
+        {271, 0, 1.0},
+        {223, 0, 1.0},
+        {224, 0, 1.0},
+        {222, 0, -1.0},
+        {223, 0, 1.0},
+        {224, 0, -1.0},
+        {189, 0, -1.0},
+        {185, 0, -1.0},
+        {188, 0, -1.0},
+        {185, 0, -1.0},
+        {189, 0, -1.0},
+        {269, 0, 1.0},
+        {270, 0, 1.0},
+        {102, 0, -1.0},
+        {272, 0, 1.0},
+        {273, 0, 1.0},
+        {270, 0, -1.0},
+        {224, 0, -1.0},
+        {229, 0, -1.0},
+        {228, 0, -1.0},
+        {224, 0, 1.0},
+        {229, 0, -1.0},
+        {190, 0, 1.0},
+        {186, 0, 1.0},
+        {186, 0, -1.0},
+        {190, 0, -1.0},
+        {266, 0, -1.0},
+        {271, 0, 1.0},
+        {272, 0, 1.0},
+        {105, 0, -1.0},
+        {274, 0, 1.0},
+        {275, 0, 1.0},
+        {223, 0, 1.0},
+        {224, 0, 1.0},
+        {222, 0, -1.0},
+        {223, 0, 1.0},
+        {224, 0, -1.0},
+        {189, 0, -1.0},
+        {185, 0, -1.0},
+        {188, 0, -1.0},
+        {185, 0, -1.0},
+        {189, 0, -1.0},
+        {273, 0, 1.0},
+        {274, 0, 1.0},
+        {108, 0, -1.0},
+        {276, 0, 1.0},
+        {277, 0, 1.0},
+        {274, 0, -1.0},
+        {224, 0, -1.0},
+        {229, 0, -1.0},
+        {228, 0, -1.0},
+        {224, 0, 1.0},
+        {229, 0, -1.0},
+        {190, 0, 1.0},
+        {186, 0, 1.0},
+        {186, 0, -1.0},
+        {190, 0, -1.0},
+        {270, 0, -1.0},
+        {275, 0, 1.0},
+        {276, 0, 1.0},
+        {111, 0, -1.0},
+        {278, 0, 1.0},
+        {279, 0, 1.0},
+        {223, 0, 1.0},
+        {224, 0, 1.0},
+        {222, 0, -1.0},
+        {223, 0, 1.0},
+        {224, 0, -1.0},
+        {189, 0, -1.0},
+        {185, 0, -1.0},
+        {188, 0, -1.0},
+        {185, 0, -1.0},
+        {189, 0, -1.0},
+        {277, 0, 1.0},
+        {278, 0, 1.0},
+        {114, 0, -1.0},
+        {280, 0, 1.0},
+        {281, 0, 1.0},
+        {278, 0, -1.0},
+        {224, 0, -1.0},
+        {229, 0, -1.0},
+        {228, 0, -1.0},
+        {224, 0, 1.0},
+        {229, 0, -1.0},
+        {190, 0, 1.0},
+        {186, 0, 1.0},
+        {186, 0, -1.0},
+        {190, 0, -1.0},
+        {274, 0, -1.0},
+        {279, 0, 1.0},
+        {280, 0, 1.0},
+        {117, 0, -1.0},
+        {282, 0, 1.0},
+        {283, 0, 1.0},
+        {223, 0, 1.0},
+        {224, 0, 1.0},
+        {222, 0, -1.0},
+        {223, 0, 1.0},
+        {224, 0, -1.0},
+        {189, 0, -1.0},
+        {185, 0, -1.0},
+        {188, 0, -1.0},
+        {185, 0, -1.0},
+        {189, 0, -1.0},
+        {281, 0, 1.0},
+        {282, 0, 1.0},
+        {120, 0, -1.0},
+        {284, 0, 1.0},
+        {285, 0, 1.0},
+        {282, 0, -1.0},
+        {224, 0, -1.0},
+        {229, 0, -1.0},
+        {228, 0, -1.0},
+        {224, 0, 1.0},
+        {229, 0, -1.0},
+        {190, 0, 1.0},
+        {186, 0, 1.0},
+        {186, 0, -1.0},
+        {190, 0, -1.0},
+        {278, 0, -1.0},
+        {283, 0, 1.0},
+        {284, 0, 1.0},
+        {123, 0, -1.0},
+        {286, 0, 1.0},
+        {287, 0, 1.0},
+        {223, 0, 1.0},
+        {224, 0, 1.0},
+        {223, 0, -1.0},
+        {224, 0, 1.0},
+        {189, 0, -1.0},
+        {185, 0, -1.0},
+        {131, 0, -1.0},
+        {285, 0, 1.0},
+        {286, 0, 1.0},
+        {126, 0, -1.0},
+        {288, 0, 1.0},
+        {224, 0, -1.0},
+        {229, 0, -1.0},
+        {224, 0, 1.0},
+        {289, 0, -1.0},
+        {190, 0, 1.0},
+        {186, 0, 1.0},
+        {221, 0, 1.0},
+        {282, 0, -1.0},
+        {287, 0, 1.0},
+        {288, 0, 1.0},
+        {128, 0, -1.0},
+    };
+    static const int written[] = {0, 66, 67, 68, 69, 70, 71, 72, 73, 74, 75, 76, 77, 78, 79, 80,
+        81, 82, 83, 84, 85, 86, 87, 88, 89, 90, 91, 92, 93, 94, 95, 96,
+        97, 131, 132, 134, 135, 136, 138, 139, 140, 142, 143, 144, 146, 147, 148, 150,
+        151, 152, 154, 155, 156, 158, 159, 160, 162, 163, 164, 166, 167, 168, 170, 171,
+        172, 174, 175, 176, 178, 179, 180, 182, 183, 184, 186, 187, 188, 190, 191, 192,
+        194, 195, 196, 198, 199, 200, 202, 203, 204, 206, 207, 208, 210, 211, 212, 214,
+        215, 216, 218, 219, 220, 222, 223, 224, 226, 227, 228, 230, 231, 232, 234, 235,
+        236, 238, 239, 240, 242, 243, 244, 246, 247, 248, 250, 251, 252, 254, 255, 257,
+        258, 259, 260, 262, 263, 264, 265, 267, 268, 269, 270, 271, 272, 274, 275, 276,
+        277, 278, 279, 281, 282, 283, 284, 285, 286, 288, 289, 290, 291, 292, 293, 295,
+        296, 297, 298, 299, 300, 302, 303, 304, 305, 306, 307, 309, 310, 311, 312, 313,
+        314, 316, 317, 318, 319, 320, 321, 323, 324, 325, 326, 327, 328, 330, 331, 332,
+        333, 334, 335, 337, 338, 339, 340, 341, 342, 344, 345, 346, 347, 348, 349, 351,
+        352, 353, 354, 355, 356, 358, 359, 360, 361, 362, 363, 365, 366, 367, 368, 369,
+        370, 372, 373, 374, 375, 376, 377, 379, 380, 381, 382, 383, 384, 386, 387, 388,
+        389, 390, 391, 393, 394, 395, 396, 397, 398, 400, 401, 402, 403, 404, 405, 407,
+        408, 409, 410, 411, 412, 414, 415, 416, 417, 418, 419, 421, 422, 423, 424, 425,
+        426, 428, 429, 430, 431, 432, 433, 435, 436, 437, 438, 439, 440, 442, 443, 444,
+        445, 446, 447, 449, 450, 451, 452, 453, 454, 456, 457, 458, 459, 460, 461, 463,
+        464, 465, 466, 468, 469, 470, 471, 473, 474, 537, 570, 571, 602, 605, 945, 946,
+        947, 1009, 1042, 1044, 1045, 1074, 1077, 1081, 1418, 1419, 1420, 1481, 1514, 1515, 1516, 1517,
+        1549, 1553, 1557, 1891, 1892, 1893, 1953, 1986, 1987, 1988, 1990, 1991, 2025, 2029, 2033, 2364,
+        2365, 2366, 2425, 2460, 2461, 2462, 2463, 2501, 2505, 2509, 2837, 2838, 2839, 2897, 2932, 2933,
+        2934, 2936, 2937, 2977, 2981, 2985, 3310, 3311, 3312, 3369, 3406, 3407, 3408, 3409, 3453, 3457,
+        3461, 3783, 3784, 3785, 3841, 3878, 3879, 3880, 3882, 3883, 3929, 3933, 3937, 4256, 4257, 4258,
+        4313, 4352, 4353, 4354, 4355, 4405, 4409, 4413, 4729, 4730, 4731, 4785, 4824, 4825, 4826, 4828,
+        4829, 4881, 4885, 4889, 5202, 5203, 5204, 5257, 5298, 5299, 5300, 5301, 5357, 5361, 5365, 5675,
+        5676, 5677, 5729, 5770, 5771, 5772, 5774, 5775, 5833, 5837, 5841, 6148, 6149, 6150, 6201, 6244,
+        6245, 6246, 6247, 6309, 6313, 6317, 6621, 6622, 6623, 6673, 6716, 6717, 6718, 6720, 6721, 6785,
+        6789, 6793, 7094, 7095, 7096, 7145, 7190, 7191, 7192, 7193, 7261, 7265, 7269, 7567, 7568, 7569,
+        7617, 7662, 7663, 7664, 7666, 7667, 7737, 7741, 7745, 8040, 8041, 8042, 8089, 8136, 8137, 8138,
+        8139, 8213, 8217, 8221, 8513, 8514, 8515, 8561, 8608, 8609, 8610, 8612, 8613, 8689, 8693, 8697,
+        8986, 8987, 8988, 9033, 9082, 9083, 9084, 9085, 9165, 9169, 9173, 9459, 9460, 9461, 9505, 9554,
+        9555, 9556, 9558, 9559, 9641, 9645, 9649, 9932, 9933, 9934, 9977, 10028, 10029, 10030, 10031, 10117,
+        10121, 10125, 10405, 10406, 10407, 10449, 10500, 10501, 10502, 10504, 10505, 10593, 10597, 10601, 10878, 10879,
+        10880, 10921, 10974, 10975, 10976, 10977, 11069, 11073, 11077, 11351, 11352, 11353, 11393, 11446, 11447, 11448,
+        11450, 11451, 11545, 11549, 11553, 11824, 11825, 11826, 11865, 11920, 11921, 11922, 11923, 12021, 12025, 12029,
+        12297, 12298, 12299, 12337, 12392, 12393, 12394, 12396, 12397, 12497, 12501, 12505, 12770, 12771, 12772, 12809,
+        12866, 12867, 12868, 12869, 12973, 12977, 12981, 13243, 13244, 13245, 13281, 13338, 13339, 13340, 13342, 13343,
+        13449, 13453, 13457, 13716, 13717, 13718, 13753, 13812, 13813, 13814, 13815, 13925, 13929, 13933, 14189, 14190,
+        14191, 14225, 14284, 14285, 14286, 14288, 14289, 14401, 14405, 14409, 14662, 14663, 14664, 14697, 14758, 14759,
+        14760, 14761, 14877, 14881, 14885, 15135, 15136, 15169, 15230, 15231, 15232, 15233, 15353, 15357, 15609, 15611,
+        15612, 15642, 15643, 15644, 15645, 15832, 15837, 15842, 15849, 16082, 16083, 16084, 16114, 16116, 16117, 16304,
+        16309, 16314, 16321, 16553, 16554, 16555, 16557, 16558, 16587, 16588, 16589, 16590, 16591, 16776, 16781, 16786,
+        16793, 16800, 16807, 17025, 17026, 17028, 17029, 17030, 17059, 17060, 17062, 17063, 17248, 17253, 17258, 17265,
+        17272, 17279, 17499, 17500, 17501, 17503, 17504, 17533, 17534, 17535, 17536, 17537, 17730, 17737, 17744, 17751,
+        17758, 17765, 17971, 17972, 17974, 17975, 17976, 18005, 18006, 18008, 18009, 18202, 18209, 18216, 18223, 18230,
+        18237, 18445, 18446, 18447, 18449, 18450, 18479, 18480, 18481, 18482, 18483, 18688, 18695, 18702, 18709, 18716,
+        18723, 18917, 18918, 18920, 18921, 18922, 18951, 18952, 18954, 18955, 19160, 19167, 19174, 19181, 19188, 19195,
+        19391, 19392, 19393, 19395, 19396, 19425, 19426, 19427, 19428, 19429, 19646, 19653, 19660, 19667, 19674, 19681,
+        19863, 19864, 19866, 19867, 19868, 19897, 19898, 19900, 19901, 20118, 20125, 20132, 20139, 20146, 20153, 20337,
+        20338, 20339, 20341, 20342, 20371, 20372, 20373, 20374, 20375, 20604, 20611, 20618, 20625, 20632, 20639, 20809,
+        20810, 20812, 20813, 20814, 20843, 20844, 20846, 20847, 21076, 21083, 21090, 21097, 21104, 21111, 21283, 21284,
+        21285, 21287, 21288, 21317, 21318, 21319, 21320, 21321, 21562, 21569, 21576, 21583, 21590, 21597, 21755, 21756,
+        21758, 21759, 21760, 21789, 21790, 21792, 21793, 22034, 22041, 22048, 22055, 22062, 22069, 22229, 22230, 22231,
+        22233, 22234, 22263, 22264, 22265, 22266, 22267, 22520, 22527, 22534, 22541, 22548, 22555, 22701, 22702, 22704,
+        22705, 22706, 22735, 22736, 22738, 22739, 22992, 22999, 23006, 23013, 23020, 23027, 23175, 23176, 23177, 23179,
+        23180, 23209, 23210, 23211, 23212, 23213, 23478, 23485, 23492, 23499, 23506, 23513, 23647, 23648, 23650, 23651,
+        23652, 23681, 23682, 23684, 23685, 23950, 23957, 23964, 23971, 23978, 23985, 24121, 24122, 24123, 24125, 24126,
+        24155, 24156, 24157, 24158, 24159, 24436, 24443, 24450, 24457, 24464, 24471, 24593, 24594, 24596, 24597, 24598,
+        24627, 24628, 24630, 24631, 24908, 24915, 24922, 24929, 24936, 24943, 25067, 25068, 25069, 25071, 25072, 25101,
+        25102, 25103, 25104, 25105, 25394, 25401, 25408, 25415, 25422, 25429, 25539, 25540, 25542, 25543, 25544, 25573,
+        25574, 25576, 25577, 25866, 25873, 25880, 25887, 25894, 25901, 26013, 26014, 26015, 26017, 26018, 26047, 26048,
+        26049, 26050, 26051, 26352, 26359, 26366, 26373, 26380, 26387, 26485, 26486, 26488, 26489, 26490, 26519, 26520,
+        26522, 26523, 26824, 26831, 26838, 26845, 26852, 26859, 26959, 26960, 26961, 26963, 26964, 26993, 26994, 26995,
+        26996, 26997, 27310, 27317, 27324, 27331, 27338, 27345, 27431, 27432, 27434, 27435, 27436, 27465, 27466, 27468,
+        27469, 27782, 27789, 27796, 27803, 27810, 27817, 27905, 27906, 27907, 27909, 27910, 27939, 27940, 27941, 27942,
+        27943, 28268, 28275, 28282, 28289, 28296, 28303, 28377, 28378, 28380, 28381, 28382, 28411, 28412, 28414, 28415,
+        28740, 28747, 28754, 28761, 28768, 28775, 28851, 28852, 28853, 28855, 28856, 28885, 28886, 28887, 28888, 28889,
+        29226, 29233, 29240, 29247, 29254, 29259, 29323, 29324, 29326, 29327, 29328, 29357, 29358, 29360, 29361, 29698,
+        29705, 29712, 29719, 29726, 29731, 29797, 29798, 29799, 29800, 29831, 29832, 29833, 30184, 30191, 30198, 30203,
+        30269, 30270, 30271, 30272, 30303, 30304, 30305, 30656, 30663, 30670, 30675};
+    static const int first[] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15,
+        16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31,
+        32, 33, 34, 35, 36, 37, 38, 39, 40, 41, 42, 43, 44, 45, 46, 47,
+        48, 49, 50, 51, 52, 53, 54, 55, 56, 57, 58, 59, 60, 61, 62, 63,
+        64, 65, 66, 67, 68, 69, 70, 71, 72, 73, 74, 75, 76, 77, 78, 79,
+        80, 81, 82, 83, 84, 85, 86, 87, 88, 89, 90, 91, 92, 93, 94, 95,
+        96, 97, 98, 99, 100, 101, 102, 103, 104, 105, 106, 107, 108, 109, 110, 111,
+        112, 113, 114, 115, 116, 117, 118, 119, 120, 121, 122, 123, 124, 125, 126, 127,
+        128, 129, 130, 131, 132, 133, 134, 135, 136, 137, 138, 139, 140, 141, 142, 143,
+        144, 145, 146, 147, 148, 149, 150, 151, 152, 153, 154, 155, 156, 157, 158, 159,
+        160, 161, 162, 163, 164, 165, 166, 167, 168, 169, 170, 171, 172, 173, 174, 175,
+        176, 177, 178, 179, 180, 181, 182, 183, 184, 185, 186, 187, 188, 189, 190, 191,
+        192, 193, 194, 195, 196, 197, 198, 199, 200, 201, 202, 203, 204, 205, 206, 207,
+        208, 209, 210, 211, 212, 213, 214, 215, 216, 217, 218, 219, 220, 221, 222, 223,
+        224, 225, 226, 227, 228, 229, 230, 231, 232, 233, 234, 235, 236, 237, 238, 239,
+        240, 241, 242, 243, 244, 245, 246, 247, 248, 249, 250, 251, 252, 253, 254, 255,
+        256, 257, 258, 259, 260, 261, 262, 263, 264, 265, 266, 267, 268, 269, 270, 271,
+        272, 273, 274, 275, 276, 277, 278, 279, 280, 281, 282, 283, 284, 285, 286, 287,
+        288, 289, 290, 291, 292, 293, 294, 295, 296, 297, 298, 299, 300, 301, 302, 303,
+        304, 305, 306, 307, 308, 309, 310, 311, 312, 313, 314, 315, 316, 317, 318, 319,
+        320, 321, 322, 323, 324, 325, 326, 327, 328, 329, 330, 331, 332, 333, 334, 335,
+        336, 337, 338, 339, 340, 341, 342, 343, 344, 345, 346, 347, 348, 349, 350, 351,
+        352, 353, 354, 355, 356, 357, 358, 359, 360, 361, 362, 363, 364, 365, 366, 367,
+        368, 369, 370, 371, 372, 373, 374, 375, 376, 377, 378, 379, 380, 381, 382, 383,
+        384, 385, 386, 387, 388, 389, 390, 391, 392, 393, 394, 395, 396, 397, 398, 399,
+        400, 401, 402, 403, 404, 405, 406, 407, 408, 409, 410, 411, 412, 413, 414, 415,
+        416, 417, 418, 419, 420, 421, 422, 423, 424, 425, 426, 427, 428, 429, 430, 431,
+        432, 433, 434, 435, 436, 437, 438, 439, 440, 441, 442, 443, 444, 445, 446, 447,
+        448, 449, 450, 451, 452, 453, 454, 455, 456, 457, 458, 459, 460, 461, 462, 463,
+        464, 465, 466, 467, 468, 469, 470, 471, 472, 473, 474, 475, 476, 477, 478, 479,
+        480, 481, 482, 483, 484, 485, 486, 487, 488, 489, 490, 491, 492, 493, 494, 495,
+        496, 497, 498, 499, 500, 501, 502, 503, 504, 505, 506, 507, 508, 509, 510, 511,
+        512, 513, 514, 515, 516, 517, 518, 519, 520, 521, 522, 523, 524, 525, 526, 527,
+        528, 529, 530, 531, 532, 533, 534, 535, 536, 537, 538, 539, 540, 541, 542, 543,
+        544, 545, 546, 547, 548, 549, 550, 551, 552, 553, 554, 555, 556, 557, 558, 559,
+        560, 561, 562, 563, 564, 565, 566, 567, 568, 569, 570, 571, 572, 573, 574, 575,
+        576, 577, 578, 579, 580, 581, 582, 583, 584, 585, 586, 587, 588, 589, 590, 591,
+        592, 593, 594, 595, 596, 597, 598, 599, 600, 601, 602, 603, 604, 605, 606, 607,
+        608, 609, 610, 611, 612, 613, 614, 615, 616, 617, 618, 619, 620, 621, 622, 623,
+        624, 625, 626, 627, 628, 629, 630, 631, 632, 633, 634, 635, 636, 637, 638, 639,
+        640, 641, 642, 643, 644, 645, 646, 647, 648, 649, 650, 651, 652, 653, 654, 655,
+        656, 657, 658, 659, 660, 661, 662, 663, 664, 665, 666, 667, 668, 669, 670, 671,
+        672, 673, 674, 675, 676, 677, 678, 679, 680, 681, 682, 683, 684, 685, 686, 687,
+        688, 689, 690, 691, 692, 693, 694, 695, 696, 697, 698, 699, 700, 701, 702, 703,
+        704, 705, 706, 707, 708, 709, 710, 711, 712, 713, 714, 715, 716, 717, 718, 719,
+        720, 721, 722, 723, 724, 725, 726, 727, 728, 729, 730, 731, 732, 733, 734, 735,
+        736, 737, 738, 739, 740, 741, 742, 743, 744, 745, 746, 747, 748, 749, 750, 751,
+        752, 753, 754, 755, 756, 757, 758, 759, 760, 761, 762, 763, 764, 765, 766, 767,
+        768, 769, 770, 771, 772, 773, 774, 775, 776, 777, 778, 779, 780, 781, 782, 783,
+        784, 785, 786, 787, 788, 789, 790, 791, 792, 793, 794, 795, 796, 797, 798, 799,
+        800, 801, 802, 803, 804, 805, 806, 807, 808, 809, 810, 811, 812, 813, 814, 815,
+        816, 817, 818, 819, 820, 821, 822, 823, 824, 825, 826, 827, 828, 829, 830, 831,
+        832, 833, 834, 835, 836, 837, 838, 839, 840, 841, 842, 843, 844, 845, 846, 847,
+        848, 849, 850, 851, 852, 853, 854, 855, 856, 857, 858, 859, 860, 861, 862, 863,
+        864, 865, 866, 867, 868, 869, 870, 871, 872, 873, 874, 875, 876, 877, 878, 879,
+        880, 881, 882, 883, 884, 885, 886, 887, 888, 889, 890, 891, 892, 893, 894, 895,
+        896, 897, 898, 899, 900, 901, 902, 903, 904, 905, 906, 907, 908, 909, 910, 911,
+        912, 913, 914, 915, 916, 917, 918, 919, 920, 921, 922, 923, 924, 925, 926, 927,
+        928, 929, 930, 931, 932, 933, 934, 935, 936, 937, 938, 939, 940, 941, 942, 943,
+        944, 945, 946, 947, 948, 949, 950, 951, 952, 953, 954, 955, 956, 957, 958, 959,
+        960, 961, 962, 963, 964, 965, 966, 967, 968, 969, 970, 971, 972, 973, 974, 975,
+        976, 977, 978, 979, 980, 981, 982, 983, 984, 985, 986, 987, 988, 989, 990, 991,
+        992, 993, 994, 995, 996, 997, 998, 999, 1000, 1001, 1002, 1003, 1004, 1005, 1006, 1007,
+        1008, 1009, 1010, 1011, 1012, 1013, 1014, 1015, 1016, 1017, 1018, 1019, 1020, 1021, 1022, 1023,
+        1024, 1025, 1026, 1027, 1028, 1029, 1030, 1031, 1032, 1033, 1034, 1035, 1036, 1037, 1038, 1039,
+        1040, 1041, 1042, 1043, 1044, 1045, 1046, 1047, 1048, 1049, 1050, 1051, 1052, 1053, 1054, 1055,
+        1056, 1057, 1058, 1059, 1060, 1061, 1062, 1063, 1064, 1065, 1066, 1067, 1068, 1069, 1070, 1071,
+        1072, 1073, 1074, 1075, 1076, 1077, 1078, 1079, 1080, 1081, 1082, 1083, 1084, 1085, 1086, 1087,
+        1088, 1089, 1090, 1091, 1092, 1093, 1094, 1095, 1096, 1097, 1098, 1099, 1100, 1101, 1102, 1103,
+        1104, 1105, 1106, 1107, 1108, 1109, 1110, 1111, 1112, 1113, 1114, 1115, 1116, 1117, 1118, 1119,
+        1120, 1121, 1122, 1123, 1124, 1125, 1126, 1127, 1128, 1129, 1130, 1131, 1132, 1133, 1134, 1135,
+        1136, 1137, 1138, 1139, 1140, 1141, 1142, 1143, 1144, 1145, 1146, 1147};
+    for (int i = 0; i < 1147; ++i) {
+        double sum = 0.0;
+        for (int t = first[i]; t < first[i + 1]; ++t) sum += terms[t].scale * c[terms[t].coef] * m[terms[t].mono];
+        out[written[i]] = sum;
+    }
 }
 
-/* energy:(c[332],u[3],q[65],qd[65])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[333],u[3],q[65],qd[65])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void fem_nx32_ny32_torque_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -4934,13 +6140,13 @@ void fem_nx32_ny32_torque_first_energy(const double* c, const double* u, const d
     const double B31_B32_theta_dotsq = B31_B32_theta_dot*theta_dot;
     const double B32sq_theta_dot = B32sq*theta_dot;
     const double B32sq_theta_dotsq = B32sq_theta_dot*theta_dot;
-    out[0] = c[289]*theta_dotsq + c[2]*theta_dot_B1_dot + c[136]*theta_dot_B2_dot + c[4]*theta_dot_B3_dot + c[136]*theta_dot_B4_dot + c[6]*theta_dot_B5_dot + c[136]*theta_dot_B6_dot + c[8]*theta_dot_B7_dot + c[136]*theta_dot_B8_dot + c[10]*theta_dot_B9_dot + c[136]*theta_dot_B10_dot + c[12]*theta_dot_B11_dot + c[136]*theta_dot_B12_dot + c[14]*theta_dot_B13_dot + c[136]*theta_dot_B14_dot + c[16]*theta_dot_B15_dot + c[136]*theta_dot_B16_dot + c[18]*theta_dot_B17_dot + c[136]*theta_dot_B18_dot + c[20]*theta_dot_B19_dot + c[136]*theta_dot_B20_dot + c[22]*theta_dot_B21_dot + c[136]*theta_dot_B22_dot + c[24]*theta_dot_B23_dot + c[136]*theta_dot_B24_dot + c[26]*theta_dot_B25_dot + c[136]*theta_dot_B26_dot + c[28]*theta_dot_B27_dot + c[136]*theta_dot_B28_dot + c[30]*theta_dot_B29_dot + c[136]*theta_dot_B30_dot + c[137]*theta_dot_B31_dot - c[138]*theta_dot_B32_dot + c[34]*A1_dotsq + c[139]*A1_dot_A2_dot + c[34]*A2_dotsq + c[139]*A2_dot_A3_dot + c[34]*A3_dotsq + c[139]*A3_dot_A4_dot + c[34]*A4_dotsq + c[139]*A4_dot_A5_dot + c[34]*A5_dotsq + c[139]*A5_dot_A6_dot + c[34]*A6_dotsq + c[139]*A6_dot_A7_dot + c[34]*A7_dotsq + c[139]*A7_dot_A8_dot + c[34]*A8_dotsq + c[139]*A8_dot_A9_dot + c[34]*A9_dotsq + c[139]*A9_dot_A10_dot + c[34]*A10_dotsq + c[139]*A10_dot_A11_dot + c[34]*A11_dotsq + c[139]*A11_dot_A12_dot + c[34]*A12_dotsq + c[139]*A12_dot_A13_dot + c[34]*A13_dotsq + c[139]*A13_dot_A14_dot + c[34]*A14_dotsq + c[139]*A14_dot_A15_dot + c[34]*A15_dotsq + c[139]*A15_dot_A16_dot + c[34]*A16_dotsq + c[139]*A16_dot_A17_dot + c[34]*A17_dotsq + c[139]*A17_dot_A18_dot + c[34]*A18_dotsq + c[139]*A18_dot_A19_dot + c[34]*A19_dotsq + c[139]*A19_dot_A20_dot + c[34]*A20_dotsq + c[139]*A20_dot_A21_dot + c[34]*A21_dotsq + c[139]*A21_dot_A22_dot + c[34]*A22_dotsq + c[139]*A22_dot_A23_dot + c[34]*A23_dotsq + c[139]*A23_dot_A24_dot + c[34]*A24_dotsq + c[139]*A24_dot_A25_dot + c[34]*A25_dotsq + c[139]*A25_dot_A26_dot + c[34]*A26_dotsq + c[139]*A26_dot_A27_dot + c[34]*A27_dotsq + c[139]*A27_dot_A28_dot + c[34]*A28_dotsq + c[139]*A28_dot_A29_dot + c[34]*A29_dotsq + c[139]*A29_dot_A30_dot + c[34]*A30_dotsq + c[139]*A30_dot_A31_dot + c[34]*A31_dotsq + c[139]*A31_dot_A32_dot + c[139]*A32_dotsq + c[145]*B1_dotsq + c[141]*B1_dot_B3_dot - c[142]*B1_dot_B4_dot + c[147]*B2_dotsq + c[142]*B2_dot_B3_dot - c[144]*B2_dot_B4_dot + c[145]*B3_dotsq + c[141]*B3_dot_B5_dot - c[142]*B3_dot_B6_dot + c[147]*B4_dotsq + c[142]*B4_dot_B5_dot - c[144]*B4_dot_B6_dot + c[145]*B5_dotsq + c[141]*B5_dot_B7_dot - c[142]*B5_dot_B8_dot + c[147]*B6_dotsq + c[142]*B6_dot_B7_dot - c[144]*B6_dot_B8_dot + c[145]*B7_dotsq + c[141]*B7_dot_B9_dot - c[142]*B7_dot_B10_dot + c[147]*B8_dotsq + c[142]*B8_dot_B9_dot - c[144]*B8_dot_B10_dot + c[145]*B9_dotsq + c[141]*B9_dot_B11_dot - c[142]*B9_dot_B12_dot + c[147]*B10_dotsq + c[142]*B10_dot_B11_dot - c[144]*B10_dot_B12_dot + c[145]*B11_dotsq + c[141]*B11_dot_B13_dot - c[142]*B11_dot_B14_dot + c[147]*B12_dotsq + c[142]*B12_dot_B13_dot - c[144]*B12_dot_B14_dot + c[145]*B13_dotsq + c[141]*B13_dot_B15_dot - c[142]*B13_dot_B16_dot + c[147]*B14_dotsq + c[142]*B14_dot_B15_dot - c[144]*B14_dot_B16_dot + c[145]*B15_dotsq + c[141]*B15_dot_B17_dot - c[142]*B15_dot_B18_dot + c[147]*B16_dotsq + c[142]*B16_dot_B17_dot - c[144]*B16_dot_B18_dot + c[145]*B17_dotsq + c[141]*B17_dot_B19_dot - c[142]*B17_dot_B20_dot + c[147]*B18_dotsq + c[142]*B18_dot_B19_dot - c[144]*B18_dot_B20_dot + c[145]*B19_dotsq + c[141]*B19_dot_B21_dot - c[142]*B19_dot_B22_dot + c[147]*B20_dotsq + c[142]*B20_dot_B21_dot - c[144]*B20_dot_B22_dot + c[145]*B21_dotsq + c[141]*B21_dot_B23_dot - c[142]*B21_dot_B24_dot + c[147]*B22_dotsq + c[142]*B22_dot_B23_dot - c[144]*B22_dot_B24_dot + c[145]*B23_dotsq + c[141]*B23_dot_B25_dot - c[142]*B23_dot_B26_dot + c[147]*B24_dotsq + c[142]*B24_dot_B25_dot - c[144]*B24_dot_B26_dot + c[145]*B25_dotsq + c[141]*B25_dot_B27_dot - c[142]*B25_dot_B28_dot + c[147]*B26_dotsq + c[142]*B26_dot_B27_dot - c[144]*B26_dot_B28_dot + c[145]*B27_dotsq + c[141]*B27_dot_B29_dot - c[142]*B27_dot_B30_dot + c[147]*B28_dotsq + c[142]*B28_dot_B29_dot - c[144]*B28_dot_B30_dot + c[145]*B29_dotsq + c[141]*B29_dot_B31_dot - c[142]*B29_dot_B32_dot + c[147]*B30_dotsq + c[142]*B30_dot_B31_dot - c[144]*B30_dot_B32_dot + c[290]*B31_dotsq - c[146]*B31_dot_B32_dot + c[291]*B32_dotsq + c[183]*A1_theta_dotsq + c[129]*A1_theta_dot_B1_dot - c[130]*A1_theta_dot_B2_dot + c[186]*A2_theta_dotsq + c[131]*A2_theta_dot_B1_dot + c[132]*A2_theta_dot_B3_dot - c[133]*A2_theta_dot_B4_dot + c[190]*A3_theta_dotsq + c[129]*A3_theta_dot_B1_dot + c[130]*A3_theta_dot_B2_dot + c[129]*A3_theta_dot_B3_dot - c[130]*A3_theta_dot_B4_dot + c[191]*A4_theta_dotsq + c[132]*A4_theta_dot_B1_dot + c[133]*A4_theta_dot_B2_dot + c[131]*A4_theta_dot_B3_dot + c[132]*A4_theta_dot_B5_dot - c[133]*A4_theta_dot_B6_dot + c[192]*A5_theta_dotsq + c[129]*A5_theta_dot_B3_dot + c[130]*A5_theta_dot_B4_dot + c[129]*A5_theta_dot_B5_dot - c[130]*A5_theta_dot_B6_dot + c[193]*A6_theta_dotsq + c[132]*A6_theta_dot_B3_dot + c[133]*A6_theta_dot_B4_dot + c[131]*A6_theta_dot_B5_dot + c[132]*A6_theta_dot_B7_dot - c[133]*A6_theta_dot_B8_dot + c[194]*A7_theta_dotsq + c[129]*A7_theta_dot_B5_dot + c[130]*A7_theta_dot_B6_dot + c[129]*A7_theta_dot_B7_dot - c[130]*A7_theta_dot_B8_dot + c[195]*A8_theta_dotsq + c[132]*A8_theta_dot_B5_dot + c[133]*A8_theta_dot_B6_dot + c[131]*A8_theta_dot_B7_dot + c[132]*A8_theta_dot_B9_dot - c[133]*A8_theta_dot_B10_dot + c[196]*A9_theta_dotsq + c[129]*A9_theta_dot_B7_dot + c[130]*A9_theta_dot_B8_dot + c[129]*A9_theta_dot_B9_dot - c[130]*A9_theta_dot_B10_dot + c[197]*A10_theta_dotsq + c[132]*A10_theta_dot_B7_dot + c[133]*A10_theta_dot_B8_dot + c[131]*A10_theta_dot_B9_dot + c[132]*A10_theta_dot_B11_dot - c[133]*A10_theta_dot_B12_dot + c[198]*A11_theta_dotsq + c[129]*A11_theta_dot_B9_dot + c[130]*A11_theta_dot_B10_dot + c[129]*A11_theta_dot_B11_dot - c[130]*A11_theta_dot_B12_dot + c[199]*A12_theta_dotsq + c[132]*A12_theta_dot_B9_dot + c[133]*A12_theta_dot_B10_dot + c[131]*A12_theta_dot_B11_dot + c[132]*A12_theta_dot_B13_dot - c[133]*A12_theta_dot_B14_dot + c[200]*A13_theta_dotsq + c[129]*A13_theta_dot_B11_dot + c[130]*A13_theta_dot_B12_dot + c[129]*A13_theta_dot_B13_dot - c[130]*A13_theta_dot_B14_dot + c[201]*A14_theta_dotsq + c[132]*A14_theta_dot_B11_dot + c[133]*A14_theta_dot_B12_dot + c[131]*A14_theta_dot_B13_dot + c[132]*A14_theta_dot_B15_dot - c[133]*A14_theta_dot_B16_dot + c[202]*A15_theta_dotsq + c[129]*A15_theta_dot_B13_dot + c[130]*A15_theta_dot_B14_dot + c[129]*A15_theta_dot_B15_dot - c[130]*A15_theta_dot_B16_dot + c[203]*A16_theta_dotsq + c[132]*A16_theta_dot_B13_dot + c[133]*A16_theta_dot_B14_dot + c[131]*A16_theta_dot_B15_dot + c[132]*A16_theta_dot_B17_dot - c[133]*A16_theta_dot_B18_dot + c[204]*A17_theta_dotsq + c[129]*A17_theta_dot_B15_dot + c[130]*A17_theta_dot_B16_dot + c[129]*A17_theta_dot_B17_dot - c[130]*A17_theta_dot_B18_dot + c[205]*A18_theta_dotsq + c[132]*A18_theta_dot_B15_dot + c[133]*A18_theta_dot_B16_dot + c[131]*A18_theta_dot_B17_dot + c[132]*A18_theta_dot_B19_dot - c[133]*A18_theta_dot_B20_dot + c[206]*A19_theta_dotsq + c[129]*A19_theta_dot_B17_dot + c[130]*A19_theta_dot_B18_dot + c[129]*A19_theta_dot_B19_dot - c[130]*A19_theta_dot_B20_dot + c[207]*A20_theta_dotsq + c[132]*A20_theta_dot_B17_dot + c[133]*A20_theta_dot_B18_dot + c[131]*A20_theta_dot_B19_dot + c[132]*A20_theta_dot_B21_dot - c[133]*A20_theta_dot_B22_dot + c[208]*A21_theta_dotsq + c[129]*A21_theta_dot_B19_dot + c[130]*A21_theta_dot_B20_dot + c[129]*A21_theta_dot_B21_dot - c[130]*A21_theta_dot_B22_dot + c[209]*A22_theta_dotsq + c[132]*A22_theta_dot_B19_dot + c[133]*A22_theta_dot_B20_dot + c[131]*A22_theta_dot_B21_dot + c[132]*A22_theta_dot_B23_dot - c[133]*A22_theta_dot_B24_dot + c[210]*A23_theta_dotsq + c[129]*A23_theta_dot_B21_dot + c[130]*A23_theta_dot_B22_dot + c[129]*A23_theta_dot_B23_dot - c[130]*A23_theta_dot_B24_dot + c[211]*A24_theta_dotsq + c[132]*A24_theta_dot_B21_dot + c[133]*A24_theta_dot_B22_dot + c[131]*A24_theta_dot_B23_dot + c[132]*A24_theta_dot_B25_dot - c[133]*A24_theta_dot_B26_dot + c[212]*A25_theta_dotsq + c[129]*A25_theta_dot_B23_dot + c[130]*A25_theta_dot_B24_dot + c[129]*A25_theta_dot_B25_dot - c[130]*A25_theta_dot_B26_dot + c[213]*A26_theta_dotsq + c[132]*A26_theta_dot_B23_dot + c[133]*A26_theta_dot_B24_dot + c[131]*A26_theta_dot_B25_dot + c[132]*A26_theta_dot_B27_dot - c[133]*A26_theta_dot_B28_dot + c[214]*A27_theta_dotsq + c[129]*A27_theta_dot_B25_dot + c[130]*A27_theta_dot_B26_dot + c[129]*A27_theta_dot_B27_dot - c[130]*A27_theta_dot_B28_dot + c[215]*A28_theta_dotsq + c[132]*A28_theta_dot_B25_dot + c[133]*A28_theta_dot_B26_dot + c[131]*A28_theta_dot_B27_dot + c[132]*A28_theta_dot_B29_dot - c[133]*A28_theta_dot_B30_dot + c[216]*A29_theta_dotsq + c[129]*A29_theta_dot_B27_dot + c[130]*A29_theta_dot_B28_dot + c[129]*A29_theta_dot_B29_dot - c[130]*A29_theta_dot_B30_dot + c[217]*A30_theta_dotsq + c[132]*A30_theta_dot_B27_dot + c[133]*A30_theta_dot_B28_dot + c[131]*A30_theta_dot_B29_dot + c[132]*A30_theta_dot_B31_dot - c[133]*A30_theta_dot_B32_dot + c[218]*A31_theta_dotsq + c[129]*A31_theta_dot_B29_dot + c[130]*A31_theta_dot_B30_dot + c[129]*A31_theta_dot_B31_dot - c[130]*A31_theta_dot_B32_dot + c[219]*A32_theta_dotsq + c[132]*A32_theta_dot_B29_dot + c[133]*A32_theta_dot_B30_dot + c[134]*A32_theta_dot_B31_dot - c[135]*A32_theta_dot_B32_dot - c[129]*B1_theta_dot_A1_dot - c[131]*B1_theta_dot_A2_dot - c[129]*B1_theta_dot_A3_dot - c[132]*B1_theta_dot_A4_dot + c[130]*B2_theta_dot_A1_dot - c[130]*B2_theta_dot_A3_dot - c[133]*B2_theta_dot_A4_dot - c[132]*B3_theta_dot_A2_dot - c[129]*B3_theta_dot_A3_dot - c[131]*B3_theta_dot_A4_dot - c[129]*B3_theta_dot_A5_dot - c[132]*B3_theta_dot_A6_dot + c[133]*B4_theta_dot_A2_dot + c[130]*B4_theta_dot_A3_dot - c[130]*B4_theta_dot_A5_dot - c[133]*B4_theta_dot_A6_dot - c[132]*B5_theta_dot_A4_dot - c[129]*B5_theta_dot_A5_dot - c[131]*B5_theta_dot_A6_dot - c[129]*B5_theta_dot_A7_dot - c[132]*B5_theta_dot_A8_dot + c[133]*B6_theta_dot_A4_dot + c[130]*B6_theta_dot_A5_dot - c[130]*B6_theta_dot_A7_dot - c[133]*B6_theta_dot_A8_dot - c[132]*B7_theta_dot_A6_dot - c[129]*B7_theta_dot_A7_dot - c[131]*B7_theta_dot_A8_dot - c[129]*B7_theta_dot_A9_dot - c[132]*B7_theta_dot_A10_dot + c[133]*B8_theta_dot_A6_dot + c[130]*B8_theta_dot_A7_dot - c[130]*B8_theta_dot_A9_dot - c[133]*B8_theta_dot_A10_dot - c[132]*B9_theta_dot_A8_dot - c[129]*B9_theta_dot_A9_dot - c[131]*B9_theta_dot_A10_dot - c[129]*B9_theta_dot_A11_dot - c[132]*B9_theta_dot_A12_dot + c[133]*B10_theta_dot_A8_dot + c[130]*B10_theta_dot_A9_dot - c[130]*B10_theta_dot_A11_dot - c[133]*B10_theta_dot_A12_dot - c[132]*B11_theta_dot_A10_dot - c[129]*B11_theta_dot_A11_dot - c[131]*B11_theta_dot_A12_dot - c[129]*B11_theta_dot_A13_dot - c[132]*B11_theta_dot_A14_dot + c[133]*B12_theta_dot_A10_dot + c[130]*B12_theta_dot_A11_dot - c[130]*B12_theta_dot_A13_dot - c[133]*B12_theta_dot_A14_dot - c[132]*B13_theta_dot_A12_dot - c[129]*B13_theta_dot_A13_dot - c[131]*B13_theta_dot_A14_dot - c[129]*B13_theta_dot_A15_dot - c[132]*B13_theta_dot_A16_dot + c[133]*B14_theta_dot_A12_dot + c[130]*B14_theta_dot_A13_dot - c[130]*B14_theta_dot_A15_dot - c[133]*B14_theta_dot_A16_dot - c[132]*B15_theta_dot_A14_dot - c[129]*B15_theta_dot_A15_dot - c[131]*B15_theta_dot_A16_dot - c[129]*B15_theta_dot_A17_dot - c[132]*B15_theta_dot_A18_dot + c[133]*B16_theta_dot_A14_dot + c[130]*B16_theta_dot_A15_dot - c[130]*B16_theta_dot_A17_dot - c[133]*B16_theta_dot_A18_dot - c[132]*B17_theta_dot_A16_dot - c[129]*B17_theta_dot_A17_dot - c[131]*B17_theta_dot_A18_dot - c[129]*B17_theta_dot_A19_dot - c[132]*B17_theta_dot_A20_dot + c[133]*B18_theta_dot_A16_dot + c[130]*B18_theta_dot_A17_dot - c[130]*B18_theta_dot_A19_dot - c[133]*B18_theta_dot_A20_dot - c[132]*B19_theta_dot_A18_dot - c[129]*B19_theta_dot_A19_dot - c[131]*B19_theta_dot_A20_dot - c[129]*B19_theta_dot_A21_dot - c[132]*B19_theta_dot_A22_dot + c[133]*B20_theta_dot_A18_dot + c[130]*B20_theta_dot_A19_dot - c[130]*B20_theta_dot_A21_dot - c[133]*B20_theta_dot_A22_dot - c[132]*B21_theta_dot_A20_dot - c[129]*B21_theta_dot_A21_dot - c[131]*B21_theta_dot_A22_dot - c[129]*B21_theta_dot_A23_dot - c[132]*B21_theta_dot_A24_dot + c[133]*B22_theta_dot_A20_dot + c[130]*B22_theta_dot_A21_dot - c[130]*B22_theta_dot_A23_dot - c[133]*B22_theta_dot_A24_dot - c[132]*B23_theta_dot_A22_dot - c[129]*B23_theta_dot_A23_dot - c[131]*B23_theta_dot_A24_dot - c[129]*B23_theta_dot_A25_dot - c[132]*B23_theta_dot_A26_dot + c[133]*B24_theta_dot_A22_dot + c[130]*B24_theta_dot_A23_dot - c[130]*B24_theta_dot_A25_dot - c[133]*B24_theta_dot_A26_dot - c[132]*B25_theta_dot_A24_dot - c[129]*B25_theta_dot_A25_dot - c[131]*B25_theta_dot_A26_dot - c[129]*B25_theta_dot_A27_dot - c[132]*B25_theta_dot_A28_dot + c[133]*B26_theta_dot_A24_dot + c[130]*B26_theta_dot_A25_dot - c[130]*B26_theta_dot_A27_dot - c[133]*B26_theta_dot_A28_dot - c[132]*B27_theta_dot_A26_dot - c[129]*B27_theta_dot_A27_dot - c[131]*B27_theta_dot_A28_dot - c[129]*B27_theta_dot_A29_dot - c[132]*B27_theta_dot_A30_dot + c[133]*B28_theta_dot_A26_dot + c[130]*B28_theta_dot_A27_dot - c[130]*B28_theta_dot_A29_dot - c[133]*B28_theta_dot_A30_dot - c[132]*B29_theta_dot_A28_dot - c[129]*B29_theta_dot_A29_dot - c[131]*B29_theta_dot_A30_dot - c[129]*B29_theta_dot_A31_dot - c[132]*B29_theta_dot_A32_dot + c[133]*B30_theta_dot_A28_dot + c[130]*B30_theta_dot_A29_dot - c[130]*B30_theta_dot_A31_dot - c[133]*B30_theta_dot_A32_dot - c[132]*B31_theta_dot_A30_dot - c[129]*B31_theta_dot_A31_dot - c[134]*B31_theta_dot_A32_dot + c[133]*B32_theta_dot_A30_dot + c[130]*B32_theta_dot_A31_dot + c[135]*B32_theta_dot_A32_dot + c[34]*A1sq_theta_dotsq + c[139]*A1_A2_theta_dotsq + c[34]*A2sq_theta_dotsq + c[139]*A2_A3_theta_dotsq + c[34]*A3sq_theta_dotsq + c[139]*A3_A4_theta_dotsq + c[34]*A4sq_theta_dotsq + c[139]*A4_A5_theta_dotsq + c[34]*A5sq_theta_dotsq + c[139]*A5_A6_theta_dotsq + c[34]*A6sq_theta_dotsq + c[139]*A6_A7_theta_dotsq + c[34]*A7sq_theta_dotsq + c[139]*A7_A8_theta_dotsq + c[34]*A8sq_theta_dotsq + c[139]*A8_A9_theta_dotsq + c[34]*A9sq_theta_dotsq + c[139]*A9_A10_theta_dotsq + c[34]*A10sq_theta_dotsq + c[139]*A10_A11_theta_dotsq + c[34]*A11sq_theta_dotsq + c[139]*A11_A12_theta_dotsq + c[34]*A12sq_theta_dotsq + c[139]*A12_A13_theta_dotsq + c[34]*A13sq_theta_dotsq + c[139]*A13_A14_theta_dotsq + c[34]*A14sq_theta_dotsq + c[139]*A14_A15_theta_dotsq + c[34]*A15sq_theta_dotsq + c[139]*A15_A16_theta_dotsq + c[34]*A16sq_theta_dotsq + c[139]*A16_A17_theta_dotsq + c[34]*A17sq_theta_dotsq + c[139]*A17_A18_theta_dotsq + c[34]*A18sq_theta_dotsq + c[139]*A18_A19_theta_dotsq + c[34]*A19sq_theta_dotsq + c[139]*A19_A20_theta_dotsq + c[34]*A20sq_theta_dotsq + c[139]*A20_A21_theta_dotsq + c[34]*A21sq_theta_dotsq + c[139]*A21_A22_theta_dotsq + c[34]*A22sq_theta_dotsq + c[139]*A22_A23_theta_dotsq + c[34]*A23sq_theta_dotsq + c[139]*A23_A24_theta_dotsq + c[34]*A24sq_theta_dotsq + c[139]*A24_A25_theta_dotsq + c[34]*A25sq_theta_dotsq + c[139]*A25_A26_theta_dotsq + c[34]*A26sq_theta_dotsq + c[139]*A26_A27_theta_dotsq + c[34]*A27sq_theta_dotsq + c[139]*A27_A28_theta_dotsq + c[34]*A28sq_theta_dotsq + c[139]*A28_A29_theta_dotsq + c[34]*A29sq_theta_dotsq + c[139]*A29_A30_theta_dotsq + c[34]*A30sq_theta_dotsq + c[139]*A30_A31_theta_dotsq + c[34]*A31sq_theta_dotsq + c[139]*A31_A32_theta_dotsq + c[139]*A32sq_theta_dotsq - c[292]*B1sq_theta_dotsq + c[224]*B1_B2_theta_dotsq + c[225]*B1_B3_theta_dotsq - c[226]*B1_B4_theta_dotsq - c[293]*B2sq_theta_dotsq + c[229]*B2_B3_theta_dotsq + c[230]*B2_B4_theta_dotsq - c[294]*B3sq_theta_dotsq + c[231]*B3_B4_theta_dotsq + c[232]*B3_B5_theta_dotsq - c[229]*B3_B6_theta_dotsq - c[295]*B4sq_theta_dotsq + c[233]*B4_B5_theta_dotsq + c[234]*B4_B6_theta_dotsq - c[296]*B5sq_theta_dotsq + c[235]*B5_B6_theta_dotsq + c[236]*B5_B7_theta_dotsq - c[233]*B5_B8_theta_dotsq - c[297]*B6sq_theta_dotsq + c[237]*B6_B7_theta_dotsq + c[238]*B6_B8_theta_dotsq - c[298]*B7sq_theta_dotsq + c[239]*B7_B8_theta_dotsq + c[240]*B7_B9_theta_dotsq - c[237]*B7_B10_theta_dotsq - c[299]*B8sq_theta_dotsq + c[241]*B8_B9_theta_dotsq + c[242]*B8_B10_theta_dotsq - c[300]*B9sq_theta_dotsq + c[243]*B9_B10_theta_dotsq + c[244]*B9_B11_theta_dotsq - c[241]*B9_B12_theta_dotsq - c[301]*B10sq_theta_dotsq + c[245]*B10_B11_theta_dotsq + c[246]*B10_B12_theta_dotsq - c[302]*B11sq_theta_dotsq + c[247]*B11_B12_theta_dotsq + c[248]*B11_B13_theta_dotsq - c[245]*B11_B14_theta_dotsq - c[303]*B12sq_theta_dotsq + c[249]*B12_B13_theta_dotsq + c[250]*B12_B14_theta_dotsq - c[304]*B13sq_theta_dotsq + c[251]*B13_B14_theta_dotsq + c[252]*B13_B15_theta_dotsq - c[249]*B13_B16_theta_dotsq - c[305]*B14sq_theta_dotsq + c[253]*B14_B15_theta_dotsq + c[254]*B14_B16_theta_dotsq - c[306]*B15sq_theta_dotsq + c[255]*B15_B16_theta_dotsq + c[256]*B15_B17_theta_dotsq - c[253]*B15_B18_theta_dotsq - c[307]*B16sq_theta_dotsq + c[257]*B16_B17_theta_dotsq + c[258]*B16_B18_theta_dotsq - c[308]*B17sq_theta_dotsq + c[259]*B17_B18_theta_dotsq + c[260]*B17_B19_theta_dotsq - c[257]*B17_B20_theta_dotsq - c[309]*B18sq_theta_dotsq + c[261]*B18_B19_theta_dotsq + c[262]*B18_B20_theta_dotsq - c[310]*B19sq_theta_dotsq + c[263]*B19_B20_theta_dotsq + c[264]*B19_B21_theta_dotsq - c[261]*B19_B22_theta_dotsq - c[311]*B20sq_theta_dotsq + c[265]*B20_B21_theta_dotsq + c[266]*B20_B22_theta_dotsq - c[312]*B21sq_theta_dotsq + c[267]*B21_B22_theta_dotsq + c[268]*B21_B23_theta_dotsq - c[265]*B21_B24_theta_dotsq - c[313]*B22sq_theta_dotsq + c[269]*B22_B23_theta_dotsq + c[270]*B22_B24_theta_dotsq - c[314]*B23sq_theta_dotsq + c[271]*B23_B24_theta_dotsq + c[272]*B23_B25_theta_dotsq - c[269]*B23_B26_theta_dotsq - c[315]*B24sq_theta_dotsq + c[273]*B24_B25_theta_dotsq + c[274]*B24_B26_theta_dotsq - c[316]*B25sq_theta_dotsq + c[275]*B25_B26_theta_dotsq + c[276]*B25_B27_theta_dotsq - c[273]*B25_B28_theta_dotsq - c[317]*B26sq_theta_dotsq + c[277]*B26_B27_theta_dotsq + c[278]*B26_B28_theta_dotsq - c[318]*B27sq_theta_dotsq + c[279]*B27_B28_theta_dotsq + c[280]*B27_B29_theta_dotsq - c[277]*B27_B30_theta_dotsq - c[319]*B28sq_theta_dotsq + c[281]*B28_B29_theta_dotsq + c[282]*B28_B30_theta_dotsq - c[320]*B29sq_theta_dotsq + c[283]*B29_B30_theta_dotsq + c[284]*B29_B31_theta_dotsq - c[281]*B29_B32_theta_dotsq - c[321]*B30sq_theta_dotsq + c[285]*B30_B31_theta_dotsq + c[286]*B30_B32_theta_dotsq - c[322]*B31sq_theta_dotsq + c[287]*B31_B32_theta_dotsq - c[323]*B32sq_theta_dotsq;
+    out[0] = c[290]*theta_dotsq + c[2]*theta_dot_B1_dot + c[136]*theta_dot_B2_dot + c[4]*theta_dot_B3_dot + c[136]*theta_dot_B4_dot + c[6]*theta_dot_B5_dot + c[136]*theta_dot_B6_dot + c[8]*theta_dot_B7_dot + c[136]*theta_dot_B8_dot + c[10]*theta_dot_B9_dot + c[136]*theta_dot_B10_dot + c[12]*theta_dot_B11_dot + c[136]*theta_dot_B12_dot + c[14]*theta_dot_B13_dot + c[136]*theta_dot_B14_dot + c[16]*theta_dot_B15_dot + c[136]*theta_dot_B16_dot + c[18]*theta_dot_B17_dot + c[136]*theta_dot_B18_dot + c[20]*theta_dot_B19_dot + c[136]*theta_dot_B20_dot + c[22]*theta_dot_B21_dot + c[136]*theta_dot_B22_dot + c[24]*theta_dot_B23_dot + c[136]*theta_dot_B24_dot + c[26]*theta_dot_B25_dot + c[136]*theta_dot_B26_dot + c[28]*theta_dot_B27_dot + c[136]*theta_dot_B28_dot + c[30]*theta_dot_B29_dot + c[136]*theta_dot_B30_dot + c[137]*theta_dot_B31_dot - c[138]*theta_dot_B32_dot + c[34]*A1_dotsq + c[139]*A1_dot_A2_dot + c[34]*A2_dotsq + c[139]*A2_dot_A3_dot + c[34]*A3_dotsq + c[139]*A3_dot_A4_dot + c[34]*A4_dotsq + c[139]*A4_dot_A5_dot + c[34]*A5_dotsq + c[139]*A5_dot_A6_dot + c[34]*A6_dotsq + c[139]*A6_dot_A7_dot + c[34]*A7_dotsq + c[139]*A7_dot_A8_dot + c[34]*A8_dotsq + c[139]*A8_dot_A9_dot + c[34]*A9_dotsq + c[139]*A9_dot_A10_dot + c[34]*A10_dotsq + c[139]*A10_dot_A11_dot + c[34]*A11_dotsq + c[139]*A11_dot_A12_dot + c[34]*A12_dotsq + c[139]*A12_dot_A13_dot + c[34]*A13_dotsq + c[139]*A13_dot_A14_dot + c[34]*A14_dotsq + c[139]*A14_dot_A15_dot + c[34]*A15_dotsq + c[139]*A15_dot_A16_dot + c[34]*A16_dotsq + c[139]*A16_dot_A17_dot + c[34]*A17_dotsq + c[139]*A17_dot_A18_dot + c[34]*A18_dotsq + c[139]*A18_dot_A19_dot + c[34]*A19_dotsq + c[139]*A19_dot_A20_dot + c[34]*A20_dotsq + c[139]*A20_dot_A21_dot + c[34]*A21_dotsq + c[139]*A21_dot_A22_dot + c[34]*A22_dotsq + c[139]*A22_dot_A23_dot + c[34]*A23_dotsq + c[139]*A23_dot_A24_dot + c[34]*A24_dotsq + c[139]*A24_dot_A25_dot + c[34]*A25_dotsq + c[139]*A25_dot_A26_dot + c[34]*A26_dotsq + c[139]*A26_dot_A27_dot + c[34]*A27_dotsq + c[139]*A27_dot_A28_dot + c[34]*A28_dotsq + c[139]*A28_dot_A29_dot + c[34]*A29_dotsq + c[139]*A29_dot_A30_dot + c[34]*A30_dotsq + c[139]*A30_dot_A31_dot + c[34]*A31_dotsq + c[139]*A31_dot_A32_dot + c[139]*A32_dotsq + c[145]*B1_dotsq + c[141]*B1_dot_B3_dot - c[142]*B1_dot_B4_dot + c[147]*B2_dotsq + c[142]*B2_dot_B3_dot - c[144]*B2_dot_B4_dot + c[145]*B3_dotsq + c[141]*B3_dot_B5_dot - c[142]*B3_dot_B6_dot + c[147]*B4_dotsq + c[142]*B4_dot_B5_dot - c[144]*B4_dot_B6_dot + c[145]*B5_dotsq + c[141]*B5_dot_B7_dot - c[142]*B5_dot_B8_dot + c[147]*B6_dotsq + c[142]*B6_dot_B7_dot - c[144]*B6_dot_B8_dot + c[145]*B7_dotsq + c[141]*B7_dot_B9_dot - c[142]*B7_dot_B10_dot + c[147]*B8_dotsq + c[142]*B8_dot_B9_dot - c[144]*B8_dot_B10_dot + c[145]*B9_dotsq + c[141]*B9_dot_B11_dot - c[142]*B9_dot_B12_dot + c[147]*B10_dotsq + c[142]*B10_dot_B11_dot - c[144]*B10_dot_B12_dot + c[145]*B11_dotsq + c[141]*B11_dot_B13_dot - c[142]*B11_dot_B14_dot + c[147]*B12_dotsq + c[142]*B12_dot_B13_dot - c[144]*B12_dot_B14_dot + c[145]*B13_dotsq + c[141]*B13_dot_B15_dot - c[142]*B13_dot_B16_dot + c[147]*B14_dotsq + c[142]*B14_dot_B15_dot - c[144]*B14_dot_B16_dot + c[145]*B15_dotsq + c[141]*B15_dot_B17_dot - c[142]*B15_dot_B18_dot + c[147]*B16_dotsq + c[142]*B16_dot_B17_dot - c[144]*B16_dot_B18_dot + c[145]*B17_dotsq + c[141]*B17_dot_B19_dot - c[142]*B17_dot_B20_dot + c[147]*B18_dotsq + c[142]*B18_dot_B19_dot - c[144]*B18_dot_B20_dot + c[145]*B19_dotsq + c[141]*B19_dot_B21_dot - c[142]*B19_dot_B22_dot + c[147]*B20_dotsq + c[142]*B20_dot_B21_dot - c[144]*B20_dot_B22_dot + c[145]*B21_dotsq + c[141]*B21_dot_B23_dot - c[142]*B21_dot_B24_dot + c[147]*B22_dotsq + c[142]*B22_dot_B23_dot - c[144]*B22_dot_B24_dot + c[145]*B23_dotsq + c[141]*B23_dot_B25_dot - c[142]*B23_dot_B26_dot + c[147]*B24_dotsq + c[142]*B24_dot_B25_dot - c[144]*B24_dot_B26_dot + c[145]*B25_dotsq + c[141]*B25_dot_B27_dot - c[142]*B25_dot_B28_dot + c[147]*B26_dotsq + c[142]*B26_dot_B27_dot - c[144]*B26_dot_B28_dot + c[145]*B27_dotsq + c[141]*B27_dot_B29_dot - c[142]*B27_dot_B30_dot + c[147]*B28_dotsq + c[142]*B28_dot_B29_dot - c[144]*B28_dot_B30_dot + c[145]*B29_dotsq + c[141]*B29_dot_B31_dot - c[142]*B29_dot_B32_dot + c[147]*B30_dotsq + c[142]*B30_dot_B31_dot - c[144]*B30_dot_B32_dot + c[291]*B31_dotsq - c[146]*B31_dot_B32_dot + c[292]*B32_dotsq + c[184]*A1_theta_dotsq + c[129]*A1_theta_dot_B1_dot - c[130]*A1_theta_dot_B2_dot + c[187]*A2_theta_dotsq + c[131]*A2_theta_dot_B1_dot + c[132]*A2_theta_dot_B3_dot - c[133]*A2_theta_dot_B4_dot + c[191]*A3_theta_dotsq + c[129]*A3_theta_dot_B1_dot + c[130]*A3_theta_dot_B2_dot + c[129]*A3_theta_dot_B3_dot - c[130]*A3_theta_dot_B4_dot + c[192]*A4_theta_dotsq + c[132]*A4_theta_dot_B1_dot + c[133]*A4_theta_dot_B2_dot + c[131]*A4_theta_dot_B3_dot + c[132]*A4_theta_dot_B5_dot - c[133]*A4_theta_dot_B6_dot + c[193]*A5_theta_dotsq + c[129]*A5_theta_dot_B3_dot + c[130]*A5_theta_dot_B4_dot + c[129]*A5_theta_dot_B5_dot - c[130]*A5_theta_dot_B6_dot + c[194]*A6_theta_dotsq + c[132]*A6_theta_dot_B3_dot + c[133]*A6_theta_dot_B4_dot + c[131]*A6_theta_dot_B5_dot + c[132]*A6_theta_dot_B7_dot - c[133]*A6_theta_dot_B8_dot + c[195]*A7_theta_dotsq + c[129]*A7_theta_dot_B5_dot + c[130]*A7_theta_dot_B6_dot + c[129]*A7_theta_dot_B7_dot - c[130]*A7_theta_dot_B8_dot + c[196]*A8_theta_dotsq + c[132]*A8_theta_dot_B5_dot + c[133]*A8_theta_dot_B6_dot + c[131]*A8_theta_dot_B7_dot + c[132]*A8_theta_dot_B9_dot - c[133]*A8_theta_dot_B10_dot + c[197]*A9_theta_dotsq + c[129]*A9_theta_dot_B7_dot + c[130]*A9_theta_dot_B8_dot + c[129]*A9_theta_dot_B9_dot - c[130]*A9_theta_dot_B10_dot + c[198]*A10_theta_dotsq + c[132]*A10_theta_dot_B7_dot + c[133]*A10_theta_dot_B8_dot + c[131]*A10_theta_dot_B9_dot + c[132]*A10_theta_dot_B11_dot - c[133]*A10_theta_dot_B12_dot + c[199]*A11_theta_dotsq + c[129]*A11_theta_dot_B9_dot + c[130]*A11_theta_dot_B10_dot + c[129]*A11_theta_dot_B11_dot - c[130]*A11_theta_dot_B12_dot + c[200]*A12_theta_dotsq + c[132]*A12_theta_dot_B9_dot + c[133]*A12_theta_dot_B10_dot + c[131]*A12_theta_dot_B11_dot + c[132]*A12_theta_dot_B13_dot - c[133]*A12_theta_dot_B14_dot + c[201]*A13_theta_dotsq + c[129]*A13_theta_dot_B11_dot + c[130]*A13_theta_dot_B12_dot + c[129]*A13_theta_dot_B13_dot - c[130]*A13_theta_dot_B14_dot + c[202]*A14_theta_dotsq + c[132]*A14_theta_dot_B11_dot + c[133]*A14_theta_dot_B12_dot + c[131]*A14_theta_dot_B13_dot + c[132]*A14_theta_dot_B15_dot - c[133]*A14_theta_dot_B16_dot + c[203]*A15_theta_dotsq + c[129]*A15_theta_dot_B13_dot + c[130]*A15_theta_dot_B14_dot + c[129]*A15_theta_dot_B15_dot - c[130]*A15_theta_dot_B16_dot + c[204]*A16_theta_dotsq + c[132]*A16_theta_dot_B13_dot + c[133]*A16_theta_dot_B14_dot + c[131]*A16_theta_dot_B15_dot + c[132]*A16_theta_dot_B17_dot - c[133]*A16_theta_dot_B18_dot + c[205]*A17_theta_dotsq + c[129]*A17_theta_dot_B15_dot + c[130]*A17_theta_dot_B16_dot + c[129]*A17_theta_dot_B17_dot - c[130]*A17_theta_dot_B18_dot + c[206]*A18_theta_dotsq + c[132]*A18_theta_dot_B15_dot + c[133]*A18_theta_dot_B16_dot + c[131]*A18_theta_dot_B17_dot + c[132]*A18_theta_dot_B19_dot - c[133]*A18_theta_dot_B20_dot + c[207]*A19_theta_dotsq + c[129]*A19_theta_dot_B17_dot + c[130]*A19_theta_dot_B18_dot + c[129]*A19_theta_dot_B19_dot - c[130]*A19_theta_dot_B20_dot + c[208]*A20_theta_dotsq + c[132]*A20_theta_dot_B17_dot + c[133]*A20_theta_dot_B18_dot + c[131]*A20_theta_dot_B19_dot + c[132]*A20_theta_dot_B21_dot - c[133]*A20_theta_dot_B22_dot + c[209]*A21_theta_dotsq + c[129]*A21_theta_dot_B19_dot + c[130]*A21_theta_dot_B20_dot + c[129]*A21_theta_dot_B21_dot - c[130]*A21_theta_dot_B22_dot + c[210]*A22_theta_dotsq + c[132]*A22_theta_dot_B19_dot + c[133]*A22_theta_dot_B20_dot + c[131]*A22_theta_dot_B21_dot + c[132]*A22_theta_dot_B23_dot - c[133]*A22_theta_dot_B24_dot + c[211]*A23_theta_dotsq + c[129]*A23_theta_dot_B21_dot + c[130]*A23_theta_dot_B22_dot + c[129]*A23_theta_dot_B23_dot - c[130]*A23_theta_dot_B24_dot + c[212]*A24_theta_dotsq + c[132]*A24_theta_dot_B21_dot + c[133]*A24_theta_dot_B22_dot + c[131]*A24_theta_dot_B23_dot + c[132]*A24_theta_dot_B25_dot - c[133]*A24_theta_dot_B26_dot + c[213]*A25_theta_dotsq + c[129]*A25_theta_dot_B23_dot + c[130]*A25_theta_dot_B24_dot + c[129]*A25_theta_dot_B25_dot - c[130]*A25_theta_dot_B26_dot + c[214]*A26_theta_dotsq + c[132]*A26_theta_dot_B23_dot + c[133]*A26_theta_dot_B24_dot + c[131]*A26_theta_dot_B25_dot + c[132]*A26_theta_dot_B27_dot - c[133]*A26_theta_dot_B28_dot + c[215]*A27_theta_dotsq + c[129]*A27_theta_dot_B25_dot + c[130]*A27_theta_dot_B26_dot + c[129]*A27_theta_dot_B27_dot - c[130]*A27_theta_dot_B28_dot + c[216]*A28_theta_dotsq + c[132]*A28_theta_dot_B25_dot + c[133]*A28_theta_dot_B26_dot + c[131]*A28_theta_dot_B27_dot + c[132]*A28_theta_dot_B29_dot - c[133]*A28_theta_dot_B30_dot + c[217]*A29_theta_dotsq + c[129]*A29_theta_dot_B27_dot + c[130]*A29_theta_dot_B28_dot + c[129]*A29_theta_dot_B29_dot - c[130]*A29_theta_dot_B30_dot + c[218]*A30_theta_dotsq + c[132]*A30_theta_dot_B27_dot + c[133]*A30_theta_dot_B28_dot + c[131]*A30_theta_dot_B29_dot + c[132]*A30_theta_dot_B31_dot - c[133]*A30_theta_dot_B32_dot + c[219]*A31_theta_dotsq + c[129]*A31_theta_dot_B29_dot + c[130]*A31_theta_dot_B30_dot + c[129]*A31_theta_dot_B31_dot - c[130]*A31_theta_dot_B32_dot + c[220]*A32_theta_dotsq + c[132]*A32_theta_dot_B29_dot + c[133]*A32_theta_dot_B30_dot + c[134]*A32_theta_dot_B31_dot - c[135]*A32_theta_dot_B32_dot - c[129]*B1_theta_dot_A1_dot - c[131]*B1_theta_dot_A2_dot - c[129]*B1_theta_dot_A3_dot - c[132]*B1_theta_dot_A4_dot + c[130]*B2_theta_dot_A1_dot - c[130]*B2_theta_dot_A3_dot - c[133]*B2_theta_dot_A4_dot - c[132]*B3_theta_dot_A2_dot - c[129]*B3_theta_dot_A3_dot - c[131]*B3_theta_dot_A4_dot - c[129]*B3_theta_dot_A5_dot - c[132]*B3_theta_dot_A6_dot + c[133]*B4_theta_dot_A2_dot + c[130]*B4_theta_dot_A3_dot - c[130]*B4_theta_dot_A5_dot - c[133]*B4_theta_dot_A6_dot - c[132]*B5_theta_dot_A4_dot - c[129]*B5_theta_dot_A5_dot - c[131]*B5_theta_dot_A6_dot - c[129]*B5_theta_dot_A7_dot - c[132]*B5_theta_dot_A8_dot + c[133]*B6_theta_dot_A4_dot + c[130]*B6_theta_dot_A5_dot - c[130]*B6_theta_dot_A7_dot - c[133]*B6_theta_dot_A8_dot - c[132]*B7_theta_dot_A6_dot - c[129]*B7_theta_dot_A7_dot - c[131]*B7_theta_dot_A8_dot - c[129]*B7_theta_dot_A9_dot - c[132]*B7_theta_dot_A10_dot + c[133]*B8_theta_dot_A6_dot + c[130]*B8_theta_dot_A7_dot - c[130]*B8_theta_dot_A9_dot - c[133]*B8_theta_dot_A10_dot - c[132]*B9_theta_dot_A8_dot - c[129]*B9_theta_dot_A9_dot - c[131]*B9_theta_dot_A10_dot - c[129]*B9_theta_dot_A11_dot - c[132]*B9_theta_dot_A12_dot + c[133]*B10_theta_dot_A8_dot + c[130]*B10_theta_dot_A9_dot - c[130]*B10_theta_dot_A11_dot - c[133]*B10_theta_dot_A12_dot - c[132]*B11_theta_dot_A10_dot - c[129]*B11_theta_dot_A11_dot - c[131]*B11_theta_dot_A12_dot - c[129]*B11_theta_dot_A13_dot - c[132]*B11_theta_dot_A14_dot + c[133]*B12_theta_dot_A10_dot + c[130]*B12_theta_dot_A11_dot - c[130]*B12_theta_dot_A13_dot - c[133]*B12_theta_dot_A14_dot - c[132]*B13_theta_dot_A12_dot - c[129]*B13_theta_dot_A13_dot - c[131]*B13_theta_dot_A14_dot - c[129]*B13_theta_dot_A15_dot - c[132]*B13_theta_dot_A16_dot + c[133]*B14_theta_dot_A12_dot + c[130]*B14_theta_dot_A13_dot - c[130]*B14_theta_dot_A15_dot - c[133]*B14_theta_dot_A16_dot - c[132]*B15_theta_dot_A14_dot - c[129]*B15_theta_dot_A15_dot - c[131]*B15_theta_dot_A16_dot - c[129]*B15_theta_dot_A17_dot - c[132]*B15_theta_dot_A18_dot + c[133]*B16_theta_dot_A14_dot + c[130]*B16_theta_dot_A15_dot - c[130]*B16_theta_dot_A17_dot - c[133]*B16_theta_dot_A18_dot - c[132]*B17_theta_dot_A16_dot - c[129]*B17_theta_dot_A17_dot - c[131]*B17_theta_dot_A18_dot - c[129]*B17_theta_dot_A19_dot - c[132]*B17_theta_dot_A20_dot + c[133]*B18_theta_dot_A16_dot + c[130]*B18_theta_dot_A17_dot - c[130]*B18_theta_dot_A19_dot - c[133]*B18_theta_dot_A20_dot - c[132]*B19_theta_dot_A18_dot - c[129]*B19_theta_dot_A19_dot - c[131]*B19_theta_dot_A20_dot - c[129]*B19_theta_dot_A21_dot - c[132]*B19_theta_dot_A22_dot + c[133]*B20_theta_dot_A18_dot + c[130]*B20_theta_dot_A19_dot - c[130]*B20_theta_dot_A21_dot - c[133]*B20_theta_dot_A22_dot - c[132]*B21_theta_dot_A20_dot - c[129]*B21_theta_dot_A21_dot - c[131]*B21_theta_dot_A22_dot - c[129]*B21_theta_dot_A23_dot - c[132]*B21_theta_dot_A24_dot + c[133]*B22_theta_dot_A20_dot + c[130]*B22_theta_dot_A21_dot - c[130]*B22_theta_dot_A23_dot - c[133]*B22_theta_dot_A24_dot - c[132]*B23_theta_dot_A22_dot - c[129]*B23_theta_dot_A23_dot - c[131]*B23_theta_dot_A24_dot - c[129]*B23_theta_dot_A25_dot - c[132]*B23_theta_dot_A26_dot + c[133]*B24_theta_dot_A22_dot + c[130]*B24_theta_dot_A23_dot - c[130]*B24_theta_dot_A25_dot - c[133]*B24_theta_dot_A26_dot - c[132]*B25_theta_dot_A24_dot - c[129]*B25_theta_dot_A25_dot - c[131]*B25_theta_dot_A26_dot - c[129]*B25_theta_dot_A27_dot - c[132]*B25_theta_dot_A28_dot + c[133]*B26_theta_dot_A24_dot + c[130]*B26_theta_dot_A25_dot - c[130]*B26_theta_dot_A27_dot - c[133]*B26_theta_dot_A28_dot - c[132]*B27_theta_dot_A26_dot - c[129]*B27_theta_dot_A27_dot - c[131]*B27_theta_dot_A28_dot - c[129]*B27_theta_dot_A29_dot - c[132]*B27_theta_dot_A30_dot + c[133]*B28_theta_dot_A26_dot + c[130]*B28_theta_dot_A27_dot - c[130]*B28_theta_dot_A29_dot - c[133]*B28_theta_dot_A30_dot - c[132]*B29_theta_dot_A28_dot - c[129]*B29_theta_dot_A29_dot - c[131]*B29_theta_dot_A30_dot - c[129]*B29_theta_dot_A31_dot - c[132]*B29_theta_dot_A32_dot + c[133]*B30_theta_dot_A28_dot + c[130]*B30_theta_dot_A29_dot - c[130]*B30_theta_dot_A31_dot - c[133]*B30_theta_dot_A32_dot - c[132]*B31_theta_dot_A30_dot - c[129]*B31_theta_dot_A31_dot - c[134]*B31_theta_dot_A32_dot + c[133]*B32_theta_dot_A30_dot + c[130]*B32_theta_dot_A31_dot + c[135]*B32_theta_dot_A32_dot + c[34]*A1sq_theta_dotsq + c[139]*A1_A2_theta_dotsq + c[34]*A2sq_theta_dotsq + c[139]*A2_A3_theta_dotsq + c[34]*A3sq_theta_dotsq + c[139]*A3_A4_theta_dotsq + c[34]*A4sq_theta_dotsq + c[139]*A4_A5_theta_dotsq + c[34]*A5sq_theta_dotsq + c[139]*A5_A6_theta_dotsq + c[34]*A6sq_theta_dotsq + c[139]*A6_A7_theta_dotsq + c[34]*A7sq_theta_dotsq + c[139]*A7_A8_theta_dotsq + c[34]*A8sq_theta_dotsq + c[139]*A8_A9_theta_dotsq + c[34]*A9sq_theta_dotsq + c[139]*A9_A10_theta_dotsq + c[34]*A10sq_theta_dotsq + c[139]*A10_A11_theta_dotsq + c[34]*A11sq_theta_dotsq + c[139]*A11_A12_theta_dotsq + c[34]*A12sq_theta_dotsq + c[139]*A12_A13_theta_dotsq + c[34]*A13sq_theta_dotsq + c[139]*A13_A14_theta_dotsq + c[34]*A14sq_theta_dotsq + c[139]*A14_A15_theta_dotsq + c[34]*A15sq_theta_dotsq + c[139]*A15_A16_theta_dotsq + c[34]*A16sq_theta_dotsq + c[139]*A16_A17_theta_dotsq + c[34]*A17sq_theta_dotsq + c[139]*A17_A18_theta_dotsq + c[34]*A18sq_theta_dotsq + c[139]*A18_A19_theta_dotsq + c[34]*A19sq_theta_dotsq + c[139]*A19_A20_theta_dotsq + c[34]*A20sq_theta_dotsq + c[139]*A20_A21_theta_dotsq + c[34]*A21sq_theta_dotsq + c[139]*A21_A22_theta_dotsq + c[34]*A22sq_theta_dotsq + c[139]*A22_A23_theta_dotsq + c[34]*A23sq_theta_dotsq + c[139]*A23_A24_theta_dotsq + c[34]*A24sq_theta_dotsq + c[139]*A24_A25_theta_dotsq + c[34]*A25sq_theta_dotsq + c[139]*A25_A26_theta_dotsq + c[34]*A26sq_theta_dotsq + c[139]*A26_A27_theta_dotsq + c[34]*A27sq_theta_dotsq + c[139]*A27_A28_theta_dotsq + c[34]*A28sq_theta_dotsq + c[139]*A28_A29_theta_dotsq + c[34]*A29sq_theta_dotsq + c[139]*A29_A30_theta_dotsq + c[34]*A30sq_theta_dotsq + c[139]*A30_A31_theta_dotsq + c[34]*A31sq_theta_dotsq + c[139]*A31_A32_theta_dotsq + c[139]*A32sq_theta_dotsq - c[293]*B1sq_theta_dotsq + c[225]*B1_B2_theta_dotsq + c[226]*B1_B3_theta_dotsq - c[227]*B1_B4_theta_dotsq - c[294]*B2sq_theta_dotsq + c[230]*B2_B3_theta_dotsq + c[231]*B2_B4_theta_dotsq - c[295]*B3sq_theta_dotsq + c[232]*B3_B4_theta_dotsq + c[233]*B3_B5_theta_dotsq - c[230]*B3_B6_theta_dotsq - c[296]*B4sq_theta_dotsq + c[234]*B4_B5_theta_dotsq + c[235]*B4_B6_theta_dotsq - c[297]*B5sq_theta_dotsq + c[236]*B5_B6_theta_dotsq + c[237]*B5_B7_theta_dotsq - c[234]*B5_B8_theta_dotsq - c[298]*B6sq_theta_dotsq + c[238]*B6_B7_theta_dotsq + c[239]*B6_B8_theta_dotsq - c[299]*B7sq_theta_dotsq + c[240]*B7_B8_theta_dotsq + c[241]*B7_B9_theta_dotsq - c[238]*B7_B10_theta_dotsq - c[300]*B8sq_theta_dotsq + c[242]*B8_B9_theta_dotsq + c[243]*B8_B10_theta_dotsq - c[301]*B9sq_theta_dotsq + c[244]*B9_B10_theta_dotsq + c[245]*B9_B11_theta_dotsq - c[242]*B9_B12_theta_dotsq - c[302]*B10sq_theta_dotsq + c[246]*B10_B11_theta_dotsq + c[247]*B10_B12_theta_dotsq - c[303]*B11sq_theta_dotsq + c[248]*B11_B12_theta_dotsq + c[249]*B11_B13_theta_dotsq - c[246]*B11_B14_theta_dotsq - c[304]*B12sq_theta_dotsq + c[250]*B12_B13_theta_dotsq + c[251]*B12_B14_theta_dotsq - c[305]*B13sq_theta_dotsq + c[252]*B13_B14_theta_dotsq + c[253]*B13_B15_theta_dotsq - c[250]*B13_B16_theta_dotsq - c[306]*B14sq_theta_dotsq + c[254]*B14_B15_theta_dotsq + c[255]*B14_B16_theta_dotsq - c[307]*B15sq_theta_dotsq + c[256]*B15_B16_theta_dotsq + c[257]*B15_B17_theta_dotsq - c[254]*B15_B18_theta_dotsq - c[308]*B16sq_theta_dotsq + c[258]*B16_B17_theta_dotsq + c[259]*B16_B18_theta_dotsq - c[309]*B17sq_theta_dotsq + c[260]*B17_B18_theta_dotsq + c[261]*B17_B19_theta_dotsq - c[258]*B17_B20_theta_dotsq - c[310]*B18sq_theta_dotsq + c[262]*B18_B19_theta_dotsq + c[263]*B18_B20_theta_dotsq - c[311]*B19sq_theta_dotsq + c[264]*B19_B20_theta_dotsq + c[265]*B19_B21_theta_dotsq - c[262]*B19_B22_theta_dotsq - c[312]*B20sq_theta_dotsq + c[266]*B20_B21_theta_dotsq + c[267]*B20_B22_theta_dotsq - c[313]*B21sq_theta_dotsq + c[268]*B21_B22_theta_dotsq + c[269]*B21_B23_theta_dotsq - c[266]*B21_B24_theta_dotsq - c[314]*B22sq_theta_dotsq + c[270]*B22_B23_theta_dotsq + c[271]*B22_B24_theta_dotsq - c[315]*B23sq_theta_dotsq + c[272]*B23_B24_theta_dotsq + c[273]*B23_B25_theta_dotsq - c[270]*B23_B26_theta_dotsq - c[316]*B24sq_theta_dotsq + c[274]*B24_B25_theta_dotsq + c[275]*B24_B26_theta_dotsq - c[317]*B25sq_theta_dotsq + c[276]*B25_B26_theta_dotsq + c[277]*B25_B27_theta_dotsq - c[274]*B25_B28_theta_dotsq - c[318]*B26sq_theta_dotsq + c[278]*B26_B27_theta_dotsq + c[279]*B26_B28_theta_dotsq - c[319]*B27sq_theta_dotsq + c[280]*B27_B28_theta_dotsq + c[281]*B27_B29_theta_dotsq - c[278]*B27_B30_theta_dotsq - c[320]*B28sq_theta_dotsq + c[282]*B28_B29_theta_dotsq + c[283]*B28_B30_theta_dotsq - c[321]*B29sq_theta_dotsq + c[284]*B29_B30_theta_dotsq + c[285]*B29_B31_theta_dotsq - c[282]*B29_B32_theta_dotsq - c[322]*B30sq_theta_dotsq + c[286]*B30_B31_theta_dotsq + c[287]*B30_B32_theta_dotsq - c[323]*B31sq_theta_dotsq + c[288]*B31_B32_theta_dotsq - c[324]*B32sq_theta_dotsq;
     out[1] = 0.0;
     out[2] = 0.0;
-    out[3] = c[182]*A1sq - c[182]*A1_A2 + c[182]*A2sq - c[182]*A2_A3 + c[182]*A3sq - c[182]*A3_A4 + c[182]*A4sq - c[182]*A4_A5 + c[182]*A5sq - c[182]*A5_A6 + c[182]*A6sq - c[182]*A6_A7 + c[182]*A7sq - c[182]*A7_A8 + c[182]*A8sq - c[182]*A8_A9 + c[182]*A9sq - c[182]*A9_A10 + c[182]*A10sq - c[182]*A10_A11 + c[182]*A11sq - c[182]*A11_A12 + c[182]*A12sq - c[182]*A12_A13 + c[182]*A13sq - c[182]*A13_A14 + c[182]*A14sq - c[182]*A14_A15 + c[182]*A15sq - c[182]*A15_A16 + c[182]*A16sq - c[182]*A16_A17 + c[182]*A17sq - c[182]*A17_A18 + c[182]*A18sq - c[182]*A18_A19 + c[182]*A19sq - c[182]*A19_A20 + c[182]*A20sq - c[182]*A20_A21 + c[182]*A21sq - c[182]*A21_A22 + c[182]*A22sq - c[182]*A22_A23 + c[182]*A23sq - c[182]*A23_A24 + c[182]*A24sq - c[182]*A24_A25 + c[182]*A25sq - c[182]*A25_A26 + c[182]*A26sq - c[182]*A26_A27 + c[182]*A27sq - c[182]*A27_A28 + c[182]*A28sq - c[182]*A28_A29 + c[182]*A29sq - c[182]*A29_A30 + c[182]*A30sq - c[182]*A30_A31 + c[182]*A31sq - c[182]*A31_A32 + c[324]*A32sq + c[222]*B1sq - c[222]*B1_B3 + c[223]*B1_B4 + c[288]*B2sq - c[223]*B2_B3 + c[228]*B2_B4 + c[222]*B3sq - c[222]*B3_B5 + c[223]*B3_B6 + c[288]*B4sq - c[223]*B4_B5 + c[228]*B4_B6 + c[222]*B5sq - c[222]*B5_B7 + c[223]*B5_B8 + c[288]*B6sq - c[223]*B6_B7 + c[228]*B6_B8 + c[222]*B7sq - c[222]*B7_B9 + c[223]*B7_B10 + c[288]*B8sq - c[223]*B8_B9 + c[228]*B8_B10 + c[222]*B9sq - c[222]*B9_B11 + c[223]*B9_B12 + c[288]*B10sq - c[223]*B10_B11 + c[228]*B10_B12 + c[222]*B11sq - c[222]*B11_B13 + c[223]*B11_B14 + c[288]*B12sq - c[223]*B12_B13 + c[228]*B12_B14 + c[222]*B13sq - c[222]*B13_B15 + c[223]*B13_B16 + c[288]*B14sq - c[223]*B14_B15 + c[228]*B14_B16 + c[222]*B15sq - c[222]*B15_B17 + c[223]*B15_B18 + c[288]*B16sq - c[223]*B16_B17 + c[228]*B16_B18 + c[222]*B17sq - c[222]*B17_B19 + c[223]*B17_B20 + c[288]*B18sq - c[223]*B18_B19 + c[228]*B18_B20 + c[222]*B19sq - c[222]*B19_B21 + c[223]*B19_B22 + c[288]*B20sq - c[223]*B20_B21 + c[228]*B20_B22 + c[222]*B21sq - c[222]*B21_B23 + c[223]*B21_B24 + c[288]*B22sq - c[223]*B22_B23 + c[228]*B22_B24 + c[222]*B23sq - c[222]*B23_B25 + c[223]*B23_B26 + c[288]*B24sq - c[223]*B24_B25 + c[228]*B24_B26 + c[222]*B25sq - c[222]*B25_B27 + c[223]*B25_B28 + c[288]*B26sq - c[223]*B26_B27 + c[228]*B26_B28 + c[222]*B27sq - c[222]*B27_B29 + c[223]*B27_B30 + c[288]*B28sq - c[223]*B28_B29 + c[228]*B28_B30 + c[222]*B29sq - c[222]*B29_B31 + c[223]*B29_B32 + c[288]*B30sq - c[223]*B30_B31 + c[228]*B30_B32 + c[325]*B31sq - c[223]*B31_B32 + c[228]*B32sq;
+    out[3] = c[183]*A1sq - c[183]*A1_A2 + c[183]*A2sq - c[183]*A2_A3 + c[183]*A3sq - c[183]*A3_A4 + c[183]*A4sq - c[183]*A4_A5 + c[183]*A5sq - c[183]*A5_A6 + c[183]*A6sq - c[183]*A6_A7 + c[183]*A7sq - c[183]*A7_A8 + c[183]*A8sq - c[183]*A8_A9 + c[183]*A9sq - c[183]*A9_A10 + c[183]*A10sq - c[183]*A10_A11 + c[183]*A11sq - c[183]*A11_A12 + c[183]*A12sq - c[183]*A12_A13 + c[183]*A13sq - c[183]*A13_A14 + c[183]*A14sq - c[183]*A14_A15 + c[183]*A15sq - c[183]*A15_A16 + c[183]*A16sq - c[183]*A16_A17 + c[183]*A17sq - c[183]*A17_A18 + c[183]*A18sq - c[183]*A18_A19 + c[183]*A19sq - c[183]*A19_A20 + c[183]*A20sq - c[183]*A20_A21 + c[183]*A21sq - c[183]*A21_A22 + c[183]*A22sq - c[183]*A22_A23 + c[183]*A23sq - c[183]*A23_A24 + c[183]*A24sq - c[183]*A24_A25 + c[183]*A25sq - c[183]*A25_A26 + c[183]*A26sq - c[183]*A26_A27 + c[183]*A27sq - c[183]*A27_A28 + c[183]*A28sq - c[183]*A28_A29 + c[183]*A29sq - c[183]*A29_A30 + c[183]*A30sq - c[183]*A30_A31 + c[183]*A31sq - c[183]*A31_A32 + c[325]*A32sq + c[223]*B1sq - c[223]*B1_B3 + c[224]*B1_B4 + c[289]*B2sq - c[224]*B2_B3 + c[229]*B2_B4 + c[223]*B3sq - c[223]*B3_B5 + c[224]*B3_B6 + c[289]*B4sq - c[224]*B4_B5 + c[229]*B4_B6 + c[223]*B5sq - c[223]*B5_B7 + c[224]*B5_B8 + c[289]*B6sq - c[224]*B6_B7 + c[229]*B6_B8 + c[223]*B7sq - c[223]*B7_B9 + c[224]*B7_B10 + c[289]*B8sq - c[224]*B8_B9 + c[229]*B8_B10 + c[223]*B9sq - c[223]*B9_B11 + c[224]*B9_B12 + c[289]*B10sq - c[224]*B10_B11 + c[229]*B10_B12 + c[223]*B11sq - c[223]*B11_B13 + c[224]*B11_B14 + c[289]*B12sq - c[224]*B12_B13 + c[229]*B12_B14 + c[223]*B13sq - c[223]*B13_B15 + c[224]*B13_B16 + c[289]*B14sq - c[224]*B14_B15 + c[229]*B14_B16 + c[223]*B15sq - c[223]*B15_B17 + c[224]*B15_B18 + c[289]*B16sq - c[224]*B16_B17 + c[229]*B16_B18 + c[223]*B17sq - c[223]*B17_B19 + c[224]*B17_B20 + c[289]*B18sq - c[224]*B18_B19 + c[229]*B18_B20 + c[223]*B19sq - c[223]*B19_B21 + c[224]*B19_B22 + c[289]*B20sq - c[224]*B20_B21 + c[229]*B20_B22 + c[223]*B21sq - c[223]*B21_B23 + c[224]*B21_B24 + c[289]*B22sq - c[224]*B22_B23 + c[229]*B22_B24 + c[223]*B23sq - c[223]*B23_B25 + c[224]*B23_B26 + c[289]*B24sq - c[224]*B24_B25 + c[229]*B24_B26 + c[223]*B25sq - c[223]*B25_B27 + c[224]*B25_B28 + c[289]*B26sq - c[224]*B26_B27 + c[229]*B26_B28 + c[223]*B27sq - c[223]*B27_B29 + c[224]*B27_B30 + c[289]*B28sq - c[224]*B28_B29 + c[229]*B28_B30 + c[223]*B29sq - c[223]*B29_B31 + c[224]*B29_B32 + c[289]*B30sq - c[224]*B30_B31 + c[229]*B30_B32 + c[326]*B31sq - c[224]*B31_B32 + c[229]*B32sq;
 }
 
-/* momentum:(c[332],u[3],q[65],qd[65])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[333],u[3],q[65],qd[65])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void fem_nx32_ny32_torque_first_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -5728,7 +6934,7 @@ void fem_nx32_ny32_torque_first_momentum(const double* c, const double* u, const
     out[0] = c[0]*theta_dot + c[2]*B1_dot + c[136]*B2_dot + c[4]*B3_dot + c[136]*B4_dot + c[6]*B5_dot + c[136]*B6_dot + c[8]*B7_dot + c[136]*B8_dot + c[10]*B9_dot + c[136]*B10_dot + c[12]*B11_dot + c[136]*B12_dot + c[14]*B13_dot + c[136]*B14_dot + c[16]*B15_dot + c[136]*B16_dot + c[18]*B17_dot + c[136]*B18_dot + c[20]*B19_dot + c[136]*B20_dot + c[22]*B21_dot + c[136]*B22_dot + c[24]*B23_dot + c[136]*B24_dot + c[26]*B25_dot + c[136]*B26_dot + c[28]*B27_dot + c[136]*B28_dot + c[30]*B29_dot + c[136]*B30_dot + c[137]*B31_dot - c[138]*B32_dot + c[1]*A1_theta_dot + c[129]*A1_B1_dot - c[130]*A1_B2_dot + c[2]*A2_theta_dot + c[131]*A2_B1_dot + c[132]*A2_B3_dot - c[133]*A2_B4_dot + c[3]*A3_theta_dot + c[129]*A3_B1_dot + c[130]*A3_B2_dot + c[129]*A3_B3_dot - c[130]*A3_B4_dot + c[4]*A4_theta_dot + c[132]*A4_B1_dot + c[133]*A4_B2_dot + c[131]*A4_B3_dot + c[132]*A4_B5_dot - c[133]*A4_B6_dot + c[5]*A5_theta_dot + c[129]*A5_B3_dot + c[130]*A5_B4_dot + c[129]*A5_B5_dot - c[130]*A5_B6_dot + c[6]*A6_theta_dot + c[132]*A6_B3_dot + c[133]*A6_B4_dot + c[131]*A6_B5_dot + c[132]*A6_B7_dot - c[133]*A6_B8_dot + c[7]*A7_theta_dot + c[129]*A7_B5_dot + c[130]*A7_B6_dot + c[129]*A7_B7_dot - c[130]*A7_B8_dot + c[8]*A8_theta_dot + c[132]*A8_B5_dot + c[133]*A8_B6_dot + c[131]*A8_B7_dot + c[132]*A8_B9_dot - c[133]*A8_B10_dot + c[9]*A9_theta_dot + c[129]*A9_B7_dot + c[130]*A9_B8_dot + c[129]*A9_B9_dot - c[130]*A9_B10_dot + c[10]*A10_theta_dot + c[132]*A10_B7_dot + c[133]*A10_B8_dot + c[131]*A10_B9_dot + c[132]*A10_B11_dot - c[133]*A10_B12_dot + c[11]*A11_theta_dot + c[129]*A11_B9_dot + c[130]*A11_B10_dot + c[129]*A11_B11_dot - c[130]*A11_B12_dot + c[12]*A12_theta_dot + c[132]*A12_B9_dot + c[133]*A12_B10_dot + c[131]*A12_B11_dot + c[132]*A12_B13_dot - c[133]*A12_B14_dot + c[13]*A13_theta_dot + c[129]*A13_B11_dot + c[130]*A13_B12_dot + c[129]*A13_B13_dot - c[130]*A13_B14_dot + c[14]*A14_theta_dot + c[132]*A14_B11_dot + c[133]*A14_B12_dot + c[131]*A14_B13_dot + c[132]*A14_B15_dot - c[133]*A14_B16_dot + c[15]*A15_theta_dot + c[129]*A15_B13_dot + c[130]*A15_B14_dot + c[129]*A15_B15_dot - c[130]*A15_B16_dot + c[16]*A16_theta_dot + c[132]*A16_B13_dot + c[133]*A16_B14_dot + c[131]*A16_B15_dot + c[132]*A16_B17_dot - c[133]*A16_B18_dot + c[17]*A17_theta_dot + c[129]*A17_B15_dot + c[130]*A17_B16_dot + c[129]*A17_B17_dot - c[130]*A17_B18_dot + c[18]*A18_theta_dot + c[132]*A18_B15_dot + c[133]*A18_B16_dot + c[131]*A18_B17_dot + c[132]*A18_B19_dot - c[133]*A18_B20_dot + c[19]*A19_theta_dot + c[129]*A19_B17_dot + c[130]*A19_B18_dot + c[129]*A19_B19_dot - c[130]*A19_B20_dot + c[20]*A20_theta_dot + c[132]*A20_B17_dot + c[133]*A20_B18_dot + c[131]*A20_B19_dot + c[132]*A20_B21_dot - c[133]*A20_B22_dot + c[21]*A21_theta_dot + c[129]*A21_B19_dot + c[130]*A21_B20_dot + c[129]*A21_B21_dot - c[130]*A21_B22_dot + c[22]*A22_theta_dot + c[132]*A22_B19_dot + c[133]*A22_B20_dot + c[131]*A22_B21_dot + c[132]*A22_B23_dot - c[133]*A22_B24_dot + c[23]*A23_theta_dot + c[129]*A23_B21_dot + c[130]*A23_B22_dot + c[129]*A23_B23_dot - c[130]*A23_B24_dot + c[24]*A24_theta_dot + c[132]*A24_B21_dot + c[133]*A24_B22_dot + c[131]*A24_B23_dot + c[132]*A24_B25_dot - c[133]*A24_B26_dot + c[25]*A25_theta_dot + c[129]*A25_B23_dot + c[130]*A25_B24_dot + c[129]*A25_B25_dot - c[130]*A25_B26_dot + c[26]*A26_theta_dot + c[132]*A26_B23_dot + c[133]*A26_B24_dot + c[131]*A26_B25_dot + c[132]*A26_B27_dot - c[133]*A26_B28_dot + c[27]*A27_theta_dot + c[129]*A27_B25_dot + c[130]*A27_B26_dot + c[129]*A27_B27_dot - c[130]*A27_B28_dot + c[28]*A28_theta_dot + c[132]*A28_B25_dot + c[133]*A28_B26_dot + c[131]*A28_B27_dot + c[132]*A28_B29_dot - c[133]*A28_B30_dot + c[29]*A29_theta_dot + c[129]*A29_B27_dot + c[130]*A29_B28_dot + c[129]*A29_B29_dot - c[130]*A29_B30_dot + c[30]*A30_theta_dot + c[132]*A30_B27_dot + c[133]*A30_B28_dot + c[131]*A30_B29_dot + c[132]*A30_B31_dot - c[133]*A30_B32_dot + c[31]*A31_theta_dot + c[129]*A31_B29_dot + c[130]*A31_B30_dot + c[129]*A31_B31_dot - c[130]*A31_B32_dot + c[32]*A32_theta_dot + c[132]*A32_B29_dot + c[133]*A32_B30_dot + c[134]*A32_B31_dot - c[135]*A32_B32_dot - c[129]*B1_A1_dot - c[131]*B1_A2_dot - c[129]*B1_A3_dot - c[132]*B1_A4_dot + c[130]*B2_A1_dot - c[130]*B2_A3_dot - c[133]*B2_A4_dot - c[132]*B3_A2_dot - c[129]*B3_A3_dot - c[131]*B3_A4_dot - c[129]*B3_A5_dot - c[132]*B3_A6_dot + c[133]*B4_A2_dot + c[130]*B4_A3_dot - c[130]*B4_A5_dot - c[133]*B4_A6_dot - c[132]*B5_A4_dot - c[129]*B5_A5_dot - c[131]*B5_A6_dot - c[129]*B5_A7_dot - c[132]*B5_A8_dot + c[133]*B6_A4_dot + c[130]*B6_A5_dot - c[130]*B6_A7_dot - c[133]*B6_A8_dot - c[132]*B7_A6_dot - c[129]*B7_A7_dot - c[131]*B7_A8_dot - c[129]*B7_A9_dot - c[132]*B7_A10_dot + c[133]*B8_A6_dot + c[130]*B8_A7_dot - c[130]*B8_A9_dot - c[133]*B8_A10_dot - c[132]*B9_A8_dot - c[129]*B9_A9_dot - c[131]*B9_A10_dot - c[129]*B9_A11_dot - c[132]*B9_A12_dot + c[133]*B10_A8_dot + c[130]*B10_A9_dot - c[130]*B10_A11_dot - c[133]*B10_A12_dot - c[132]*B11_A10_dot - c[129]*B11_A11_dot - c[131]*B11_A12_dot - c[129]*B11_A13_dot - c[132]*B11_A14_dot + c[133]*B12_A10_dot + c[130]*B12_A11_dot - c[130]*B12_A13_dot - c[133]*B12_A14_dot - c[132]*B13_A12_dot - c[129]*B13_A13_dot - c[131]*B13_A14_dot - c[129]*B13_A15_dot - c[132]*B13_A16_dot + c[133]*B14_A12_dot + c[130]*B14_A13_dot - c[130]*B14_A15_dot - c[133]*B14_A16_dot - c[132]*B15_A14_dot - c[129]*B15_A15_dot - c[131]*B15_A16_dot - c[129]*B15_A17_dot - c[132]*B15_A18_dot + c[133]*B16_A14_dot + c[130]*B16_A15_dot - c[130]*B16_A17_dot - c[133]*B16_A18_dot - c[132]*B17_A16_dot - c[129]*B17_A17_dot - c[131]*B17_A18_dot - c[129]*B17_A19_dot - c[132]*B17_A20_dot + c[133]*B18_A16_dot + c[130]*B18_A17_dot - c[130]*B18_A19_dot - c[133]*B18_A20_dot - c[132]*B19_A18_dot - c[129]*B19_A19_dot - c[131]*B19_A20_dot - c[129]*B19_A21_dot - c[132]*B19_A22_dot + c[133]*B20_A18_dot + c[130]*B20_A19_dot - c[130]*B20_A21_dot - c[133]*B20_A22_dot - c[132]*B21_A20_dot - c[129]*B21_A21_dot - c[131]*B21_A22_dot - c[129]*B21_A23_dot - c[132]*B21_A24_dot + c[133]*B22_A20_dot + c[130]*B22_A21_dot - c[130]*B22_A23_dot - c[133]*B22_A24_dot - c[132]*B23_A22_dot - c[129]*B23_A23_dot - c[131]*B23_A24_dot - c[129]*B23_A25_dot - c[132]*B23_A26_dot + c[133]*B24_A22_dot + c[130]*B24_A23_dot - c[130]*B24_A25_dot - c[133]*B24_A26_dot - c[132]*B25_A24_dot - c[129]*B25_A25_dot - c[131]*B25_A26_dot - c[129]*B25_A27_dot - c[132]*B25_A28_dot + c[133]*B26_A24_dot + c[130]*B26_A25_dot - c[130]*B26_A27_dot - c[133]*B26_A28_dot - c[132]*B27_A26_dot - c[129]*B27_A27_dot - c[131]*B27_A28_dot - c[129]*B27_A29_dot - c[132]*B27_A30_dot + c[133]*B28_A26_dot + c[130]*B28_A27_dot - c[130]*B28_A29_dot - c[133]*B28_A30_dot - c[132]*B29_A28_dot - c[129]*B29_A29_dot - c[131]*B29_A30_dot - c[129]*B29_A31_dot - c[132]*B29_A32_dot + c[133]*B30_A28_dot + c[130]*B30_A29_dot - c[130]*B30_A31_dot - c[133]*B30_A32_dot - c[132]*B31_A30_dot - c[129]*B31_A31_dot - c[134]*B31_A32_dot + c[133]*B32_A30_dot + c[130]*B32_A31_dot + c[135]*B32_A32_dot + c[33]*A1sq_theta_dot + c[34]*A1_A2_theta_dot + c[33]*A2sq_theta_dot + c[34]*A2_A3_theta_dot + c[33]*A3sq_theta_dot + c[34]*A3_A4_theta_dot + c[33]*A4sq_theta_dot + c[34]*A4_A5_theta_dot + c[33]*A5sq_theta_dot + c[34]*A5_A6_theta_dot + c[33]*A6sq_theta_dot + c[34]*A6_A7_theta_dot + c[33]*A7sq_theta_dot + c[34]*A7_A8_theta_dot + c[33]*A8sq_theta_dot + c[34]*A8_A9_theta_dot + c[33]*A9sq_theta_dot + c[34]*A9_A10_theta_dot + c[33]*A10sq_theta_dot + c[34]*A10_A11_theta_dot + c[33]*A11sq_theta_dot + c[34]*A11_A12_theta_dot + c[33]*A12sq_theta_dot + c[34]*A12_A13_theta_dot + c[33]*A13sq_theta_dot + c[34]*A13_A14_theta_dot + c[33]*A14sq_theta_dot + c[34]*A14_A15_theta_dot + c[33]*A15sq_theta_dot + c[34]*A15_A16_theta_dot + c[33]*A16sq_theta_dot + c[34]*A16_A17_theta_dot + c[33]*A17sq_theta_dot + c[34]*A17_A18_theta_dot + c[33]*A18sq_theta_dot + c[34]*A18_A19_theta_dot + c[33]*A19sq_theta_dot + c[34]*A19_A20_theta_dot + c[33]*A20sq_theta_dot + c[34]*A20_A21_theta_dot + c[33]*A21sq_theta_dot + c[34]*A21_A22_theta_dot + c[33]*A22sq_theta_dot + c[34]*A22_A23_theta_dot + c[33]*A23sq_theta_dot + c[34]*A23_A24_theta_dot + c[33]*A24sq_theta_dot + c[34]*A24_A25_theta_dot + c[33]*A25sq_theta_dot + c[34]*A25_A26_theta_dot + c[33]*A26sq_theta_dot + c[34]*A26_A27_theta_dot + c[33]*A27sq_theta_dot + c[34]*A27_A28_theta_dot + c[33]*A28sq_theta_dot + c[34]*A28_A29_theta_dot + c[33]*A29sq_theta_dot + c[34]*A29_A30_theta_dot + c[33]*A30sq_theta_dot + c[34]*A30_A31_theta_dot + c[33]*A31sq_theta_dot + c[34]*A31_A32_theta_dot + c[34]*A32sq_theta_dot - c[35]*B1sq_theta_dot + c[36]*B1_B2_theta_dot + c[37]*B1_B3_theta_dot - c[38]*B1_B4_theta_dot - c[39]*B2sq_theta_dot + c[40]*B2_B3_theta_dot + c[41]*B2_B4_theta_dot - c[42]*B3sq_theta_dot + c[43]*B3_B4_theta_dot + c[44]*B3_B5_theta_dot - c[40]*B3_B6_theta_dot - c[45]*B4sq_theta_dot + c[46]*B4_B5_theta_dot + c[47]*B4_B6_theta_dot - c[48]*B5sq_theta_dot + c[49]*B5_B6_theta_dot + c[50]*B5_B7_theta_dot - c[46]*B5_B8_theta_dot - c[51]*B6sq_theta_dot + c[52]*B6_B7_theta_dot + c[53]*B6_B8_theta_dot - c[54]*B7sq_theta_dot + c[55]*B7_B8_theta_dot + c[56]*B7_B9_theta_dot - c[52]*B7_B10_theta_dot - c[57]*B8sq_theta_dot + c[58]*B8_B9_theta_dot + c[59]*B8_B10_theta_dot - c[60]*B9sq_theta_dot + c[61]*B9_B10_theta_dot + c[62]*B9_B11_theta_dot - c[58]*B9_B12_theta_dot - c[63]*B10sq_theta_dot + c[64]*B10_B11_theta_dot + c[65]*B10_B12_theta_dot - c[66]*B11sq_theta_dot + c[67]*B11_B12_theta_dot + c[68]*B11_B13_theta_dot - c[64]*B11_B14_theta_dot - c[69]*B12sq_theta_dot + c[70]*B12_B13_theta_dot + c[71]*B12_B14_theta_dot - c[72]*B13sq_theta_dot + c[73]*B13_B14_theta_dot + c[74]*B13_B15_theta_dot - c[70]*B13_B16_theta_dot - c[75]*B14sq_theta_dot + c[76]*B14_B15_theta_dot + c[77]*B14_B16_theta_dot - c[78]*B15sq_theta_dot + c[79]*B15_B16_theta_dot + c[80]*B15_B17_theta_dot - c[76]*B15_B18_theta_dot - c[81]*B16sq_theta_dot + c[82]*B16_B17_theta_dot + c[83]*B16_B18_theta_dot - c[84]*B17sq_theta_dot + c[85]*B17_B18_theta_dot + c[86]*B17_B19_theta_dot - c[82]*B17_B20_theta_dot - c[87]*B18sq_theta_dot + c[88]*B18_B19_theta_dot + c[89]*B18_B20_theta_dot - c[90]*B19sq_theta_dot + c[91]*B19_B20_theta_dot + c[92]*B19_B21_theta_dot - c[88]*B19_B22_theta_dot - c[93]*B20sq_theta_dot + c[94]*B20_B21_theta_dot + c[95]*B20_B22_theta_dot - c[96]*B21sq_theta_dot + c[97]*B21_B22_theta_dot + c[98]*B21_B23_theta_dot - c[94]*B21_B24_theta_dot - c[99]*B22sq_theta_dot + c[100]*B22_B23_theta_dot + c[101]*B22_B24_theta_dot - c[102]*B23sq_theta_dot + c[103]*B23_B24_theta_dot + c[104]*B23_B25_theta_dot - c[100]*B23_B26_theta_dot - c[105]*B24sq_theta_dot + c[106]*B24_B25_theta_dot + c[107]*B24_B26_theta_dot - c[108]*B25sq_theta_dot + c[109]*B25_B26_theta_dot + c[110]*B25_B27_theta_dot - c[106]*B25_B28_theta_dot - c[111]*B26sq_theta_dot + c[112]*B26_B27_theta_dot + c[113]*B26_B28_theta_dot - c[114]*B27sq_theta_dot + c[115]*B27_B28_theta_dot + c[116]*B27_B29_theta_dot - c[112]*B27_B30_theta_dot - c[117]*B28sq_theta_dot + c[118]*B28_B29_theta_dot + c[119]*B28_B30_theta_dot - c[120]*B29sq_theta_dot + c[121]*B29_B30_theta_dot + c[122]*B29_B31_theta_dot - c[118]*B29_B32_theta_dot - c[123]*B30sq_theta_dot + c[124]*B30_B31_theta_dot + c[125]*B30_B32_theta_dot - c[126]*B31sq_theta_dot + c[127]*B31_B32_theta_dot - c[128]*B32sq_theta_dot;
 }
 
-/* tip:(c[332],u[3],q[65],qd[65])->(tip[3]) tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B */
+/* tip:(c[333],u[3],q[65],qd[65])->(tip[3]) tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B */
 void fem_nx32_ny32_torque_first_tip(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -5861,10 +7067,10 @@ void fem_nx32_ny32_torque_first_tip(const double* c, const double* u, const doub
     const double B32sq = B32*B32;
     out[0] = B31;
     out[1] = A32;
-    out[2] = A32 - c[326]*B1sq + c[326]*B1_B3 - c[327]*B1_B4 - c[328]*B2sq + c[327]*B2_B3 + c[329]*B2_B4 - c[326]*B3sq + c[326]*B3_B5 - c[327]*B3_B6 - c[328]*B4sq + c[327]*B4_B5 + c[329]*B4_B6 - c[326]*B5sq + c[326]*B5_B7 - c[327]*B5_B8 - c[328]*B6sq + c[327]*B6_B7 + c[329]*B6_B8 - c[326]*B7sq + c[326]*B7_B9 - c[327]*B7_B10 - c[328]*B8sq + c[327]*B8_B9 + c[329]*B8_B10 - c[326]*B9sq + c[326]*B9_B11 - c[327]*B9_B12 - c[328]*B10sq + c[327]*B10_B11 + c[329]*B10_B12 - c[326]*B11sq + c[326]*B11_B13 - c[327]*B11_B14 - c[328]*B12sq + c[327]*B12_B13 + c[329]*B12_B14 - c[326]*B13sq + c[326]*B13_B15 - c[327]*B13_B16 - c[328]*B14sq + c[327]*B14_B15 + c[329]*B14_B16 - c[326]*B15sq + c[326]*B15_B17 - c[327]*B15_B18 - c[328]*B16sq + c[327]*B16_B17 + c[329]*B16_B18 - c[326]*B17sq + c[326]*B17_B19 - c[327]*B17_B20 - c[328]*B18sq + c[327]*B18_B19 + c[329]*B18_B20 - c[326]*B19sq + c[326]*B19_B21 - c[327]*B19_B22 - c[328]*B20sq + c[327]*B20_B21 + c[329]*B20_B22 - c[326]*B21sq + c[326]*B21_B23 - c[327]*B21_B24 - c[328]*B22sq + c[327]*B22_B23 + c[329]*B22_B24 - c[326]*B23sq + c[326]*B23_B25 - c[327]*B23_B26 - c[328]*B24sq + c[327]*B24_B25 + c[329]*B24_B26 - c[326]*B25sq + c[326]*B25_B27 - c[327]*B25_B28 - c[328]*B26sq + c[327]*B26_B27 + c[329]*B26_B28 - c[326]*B27sq + c[326]*B27_B29 - c[327]*B27_B30 - c[328]*B28sq + c[327]*B28_B29 + c[329]*B28_B30 - c[326]*B29sq + c[326]*B29_B31 - c[327]*B29_B32 - c[328]*B30sq + c[327]*B30_B31 + c[329]*B30_B32 - c[330]*B31sq + c[327]*B31_B32 - c[331]*B32sq;
+    out[2] = A32 - c[327]*B1sq + c[327]*B1_B3 - c[328]*B1_B4 - c[329]*B2sq + c[328]*B2_B3 + c[330]*B2_B4 - c[327]*B3sq + c[327]*B3_B5 - c[328]*B3_B6 - c[329]*B4sq + c[328]*B4_B5 + c[330]*B4_B6 - c[327]*B5sq + c[327]*B5_B7 - c[328]*B5_B8 - c[329]*B6sq + c[328]*B6_B7 + c[330]*B6_B8 - c[327]*B7sq + c[327]*B7_B9 - c[328]*B7_B10 - c[329]*B8sq + c[328]*B8_B9 + c[330]*B8_B10 - c[327]*B9sq + c[327]*B9_B11 - c[328]*B9_B12 - c[329]*B10sq + c[328]*B10_B11 + c[330]*B10_B12 - c[327]*B11sq + c[327]*B11_B13 - c[328]*B11_B14 - c[329]*B12sq + c[328]*B12_B13 + c[330]*B12_B14 - c[327]*B13sq + c[327]*B13_B15 - c[328]*B13_B16 - c[329]*B14sq + c[328]*B14_B15 + c[330]*B14_B16 - c[327]*B15sq + c[327]*B15_B17 - c[328]*B15_B18 - c[329]*B16sq + c[328]*B16_B17 + c[330]*B16_B18 - c[327]*B17sq + c[327]*B17_B19 - c[328]*B17_B20 - c[329]*B18sq + c[328]*B18_B19 + c[330]*B18_B20 - c[327]*B19sq + c[327]*B19_B21 - c[328]*B19_B22 - c[329]*B20sq + c[328]*B20_B21 + c[330]*B20_B22 - c[327]*B21sq + c[327]*B21_B23 - c[328]*B21_B24 - c[329]*B22sq + c[328]*B22_B23 + c[330]*B22_B24 - c[327]*B23sq + c[327]*B23_B25 - c[328]*B23_B26 - c[329]*B24sq + c[328]*B24_B25 + c[330]*B24_B26 - c[327]*B25sq + c[327]*B25_B27 - c[328]*B25_B28 - c[329]*B26sq + c[328]*B26_B27 + c[330]*B26_B28 - c[327]*B27sq + c[327]*B27_B29 - c[328]*B27_B30 - c[329]*B28sq + c[328]*B28_B29 + c[330]*B28_B30 - c[327]*B29sq + c[327]*B29_B31 - c[328]*B29_B32 - c[329]*B30sq + c[328]*B30_B31 + c[330]*B30_B32 - c[331]*B31sq + c[328]*B31_B32 - c[332]*B32sq;
 }
 
-/* forces_q:(c[332],u[3],q[65],qd[65])->(dQdq[4225]) row-major; out[i*65+k] = dQ_i/dq_k; nonzero entries only */
+/* forces_q:(c[333],u[3],q[65],qd[65])->(dQdq[4225]) row-major; out[i*65+k] = dQ_i/dq_k; nonzero entries only */
 void fem_nx32_ny32_torque_first_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -5999,1235 +7205,2384 @@ void fem_nx32_ny32_torque_first_forces_q(const double* c, const double* u, const
     const double theta_dot_B30_dot = theta_dot*B30_dot;
     const double theta_dot_B31_dot = theta_dot*B31_dot;
     const double theta_dot_B32_dot = theta_dot*B32_dot;
-    out[1] = -c[148]*theta_dot_A1_dot - c[34]*theta_dot_A2_dot;
-    out[2] = -c[34]*theta_dot_A1_dot - c[148]*theta_dot_A2_dot - c[34]*theta_dot_A3_dot;
-    out[3] = -c[34]*theta_dot_A2_dot - c[148]*theta_dot_A3_dot - c[34]*theta_dot_A4_dot;
-    out[4] = -c[34]*theta_dot_A3_dot - c[148]*theta_dot_A4_dot - c[34]*theta_dot_A5_dot;
-    out[5] = -c[34]*theta_dot_A4_dot - c[148]*theta_dot_A5_dot - c[34]*theta_dot_A6_dot;
-    out[6] = -c[34]*theta_dot_A5_dot - c[148]*theta_dot_A6_dot - c[34]*theta_dot_A7_dot;
-    out[7] = -c[34]*theta_dot_A6_dot - c[148]*theta_dot_A7_dot - c[34]*theta_dot_A8_dot;
-    out[8] = -c[34]*theta_dot_A7_dot - c[148]*theta_dot_A8_dot - c[34]*theta_dot_A9_dot;
-    out[9] = -c[34]*theta_dot_A8_dot - c[148]*theta_dot_A9_dot - c[34]*theta_dot_A10_dot;
-    out[10] = -c[34]*theta_dot_A9_dot - c[148]*theta_dot_A10_dot - c[34]*theta_dot_A11_dot;
-    out[11] = -c[34]*theta_dot_A10_dot - c[148]*theta_dot_A11_dot - c[34]*theta_dot_A12_dot;
-    out[12] = -c[34]*theta_dot_A11_dot - c[148]*theta_dot_A12_dot - c[34]*theta_dot_A13_dot;
-    out[13] = -c[34]*theta_dot_A12_dot - c[148]*theta_dot_A13_dot - c[34]*theta_dot_A14_dot;
-    out[14] = -c[34]*theta_dot_A13_dot - c[148]*theta_dot_A14_dot - c[34]*theta_dot_A15_dot;
-    out[15] = -c[34]*theta_dot_A14_dot - c[148]*theta_dot_A15_dot - c[34]*theta_dot_A16_dot;
-    out[16] = -c[34]*theta_dot_A15_dot - c[148]*theta_dot_A16_dot - c[34]*theta_dot_A17_dot;
-    out[17] = -c[34]*theta_dot_A16_dot - c[148]*theta_dot_A17_dot - c[34]*theta_dot_A18_dot;
-    out[18] = -c[34]*theta_dot_A17_dot - c[148]*theta_dot_A18_dot - c[34]*theta_dot_A19_dot;
-    out[19] = -c[34]*theta_dot_A18_dot - c[148]*theta_dot_A19_dot - c[34]*theta_dot_A20_dot;
-    out[20] = -c[34]*theta_dot_A19_dot - c[148]*theta_dot_A20_dot - c[34]*theta_dot_A21_dot;
-    out[21] = -c[34]*theta_dot_A20_dot - c[148]*theta_dot_A21_dot - c[34]*theta_dot_A22_dot;
-    out[22] = -c[34]*theta_dot_A21_dot - c[148]*theta_dot_A22_dot - c[34]*theta_dot_A23_dot;
-    out[23] = -c[34]*theta_dot_A22_dot - c[148]*theta_dot_A23_dot - c[34]*theta_dot_A24_dot;
-    out[24] = -c[34]*theta_dot_A23_dot - c[148]*theta_dot_A24_dot - c[34]*theta_dot_A25_dot;
-    out[25] = -c[34]*theta_dot_A24_dot - c[148]*theta_dot_A25_dot - c[34]*theta_dot_A26_dot;
-    out[26] = -c[34]*theta_dot_A25_dot - c[148]*theta_dot_A26_dot - c[34]*theta_dot_A27_dot;
-    out[27] = -c[34]*theta_dot_A26_dot - c[148]*theta_dot_A27_dot - c[34]*theta_dot_A28_dot;
-    out[28] = -c[34]*theta_dot_A27_dot - c[148]*theta_dot_A28_dot - c[34]*theta_dot_A29_dot;
-    out[29] = -c[34]*theta_dot_A28_dot - c[148]*theta_dot_A29_dot - c[34]*theta_dot_A30_dot;
-    out[30] = -c[34]*theta_dot_A29_dot - c[148]*theta_dot_A30_dot - c[34]*theta_dot_A31_dot;
-    out[31] = -c[34]*theta_dot_A30_dot - c[148]*theta_dot_A31_dot - c[34]*theta_dot_A32_dot;
+    out[1] = -c[149]*theta_dot_A1_dot - c[34]*theta_dot_A2_dot;
+    out[2] = -c[34]*theta_dot_A1_dot - c[149]*theta_dot_A2_dot - c[34]*theta_dot_A3_dot;
+    out[3] = -c[34]*theta_dot_A2_dot - c[149]*theta_dot_A3_dot - c[34]*theta_dot_A4_dot;
+    out[4] = -c[34]*theta_dot_A3_dot - c[149]*theta_dot_A4_dot - c[34]*theta_dot_A5_dot;
+    out[5] = -c[34]*theta_dot_A4_dot - c[149]*theta_dot_A5_dot - c[34]*theta_dot_A6_dot;
+    out[6] = -c[34]*theta_dot_A5_dot - c[149]*theta_dot_A6_dot - c[34]*theta_dot_A7_dot;
+    out[7] = -c[34]*theta_dot_A6_dot - c[149]*theta_dot_A7_dot - c[34]*theta_dot_A8_dot;
+    out[8] = -c[34]*theta_dot_A7_dot - c[149]*theta_dot_A8_dot - c[34]*theta_dot_A9_dot;
+    out[9] = -c[34]*theta_dot_A8_dot - c[149]*theta_dot_A9_dot - c[34]*theta_dot_A10_dot;
+    out[10] = -c[34]*theta_dot_A9_dot - c[149]*theta_dot_A10_dot - c[34]*theta_dot_A11_dot;
+    out[11] = -c[34]*theta_dot_A10_dot - c[149]*theta_dot_A11_dot - c[34]*theta_dot_A12_dot;
+    out[12] = -c[34]*theta_dot_A11_dot - c[149]*theta_dot_A12_dot - c[34]*theta_dot_A13_dot;
+    out[13] = -c[34]*theta_dot_A12_dot - c[149]*theta_dot_A13_dot - c[34]*theta_dot_A14_dot;
+    out[14] = -c[34]*theta_dot_A13_dot - c[149]*theta_dot_A14_dot - c[34]*theta_dot_A15_dot;
+    out[15] = -c[34]*theta_dot_A14_dot - c[149]*theta_dot_A15_dot - c[34]*theta_dot_A16_dot;
+    out[16] = -c[34]*theta_dot_A15_dot - c[149]*theta_dot_A16_dot - c[34]*theta_dot_A17_dot;
+    out[17] = -c[34]*theta_dot_A16_dot - c[149]*theta_dot_A17_dot - c[34]*theta_dot_A18_dot;
+    out[18] = -c[34]*theta_dot_A17_dot - c[149]*theta_dot_A18_dot - c[34]*theta_dot_A19_dot;
+    out[19] = -c[34]*theta_dot_A18_dot - c[149]*theta_dot_A19_dot - c[34]*theta_dot_A20_dot;
+    out[20] = -c[34]*theta_dot_A19_dot - c[149]*theta_dot_A20_dot - c[34]*theta_dot_A21_dot;
+    out[21] = -c[34]*theta_dot_A20_dot - c[149]*theta_dot_A21_dot - c[34]*theta_dot_A22_dot;
+    out[22] = -c[34]*theta_dot_A21_dot - c[149]*theta_dot_A22_dot - c[34]*theta_dot_A23_dot;
+    out[23] = -c[34]*theta_dot_A22_dot - c[149]*theta_dot_A23_dot - c[34]*theta_dot_A24_dot;
+    out[24] = -c[34]*theta_dot_A23_dot - c[149]*theta_dot_A24_dot - c[34]*theta_dot_A25_dot;
+    out[25] = -c[34]*theta_dot_A24_dot - c[149]*theta_dot_A25_dot - c[34]*theta_dot_A26_dot;
+    out[26] = -c[34]*theta_dot_A25_dot - c[149]*theta_dot_A26_dot - c[34]*theta_dot_A27_dot;
+    out[27] = -c[34]*theta_dot_A26_dot - c[149]*theta_dot_A27_dot - c[34]*theta_dot_A28_dot;
+    out[28] = -c[34]*theta_dot_A27_dot - c[149]*theta_dot_A28_dot - c[34]*theta_dot_A29_dot;
+    out[29] = -c[34]*theta_dot_A28_dot - c[149]*theta_dot_A29_dot - c[34]*theta_dot_A30_dot;
+    out[30] = -c[34]*theta_dot_A29_dot - c[149]*theta_dot_A30_dot - c[34]*theta_dot_A31_dot;
+    out[31] = -c[34]*theta_dot_A30_dot - c[149]*theta_dot_A31_dot - c[34]*theta_dot_A32_dot;
     out[32] = -c[34]*theta_dot_A31_dot - c[33]*theta_dot_A32_dot;
-    out[33] = c[149]*theta_dot_B1_dot - c[36]*theta_dot_B2_dot - c[37]*theta_dot_B3_dot + c[38]*theta_dot_B4_dot;
-    out[34] = -c[36]*theta_dot_B1_dot + c[150]*theta_dot_B2_dot - c[40]*theta_dot_B3_dot - c[41]*theta_dot_B4_dot;
-    out[35] = -c[37]*theta_dot_B1_dot - c[40]*theta_dot_B2_dot + c[151]*theta_dot_B3_dot - c[43]*theta_dot_B4_dot - c[44]*theta_dot_B5_dot + c[40]*theta_dot_B6_dot;
-    out[36] = c[38]*theta_dot_B1_dot - c[41]*theta_dot_B2_dot - c[43]*theta_dot_B3_dot + c[152]*theta_dot_B4_dot - c[46]*theta_dot_B5_dot - c[47]*theta_dot_B6_dot;
-    out[37] = -c[44]*theta_dot_B3_dot - c[46]*theta_dot_B4_dot + c[153]*theta_dot_B5_dot - c[49]*theta_dot_B6_dot - c[50]*theta_dot_B7_dot + c[46]*theta_dot_B8_dot;
-    out[38] = c[40]*theta_dot_B3_dot - c[47]*theta_dot_B4_dot - c[49]*theta_dot_B5_dot + c[154]*theta_dot_B6_dot - c[52]*theta_dot_B7_dot - c[53]*theta_dot_B8_dot;
-    out[39] = -c[50]*theta_dot_B5_dot - c[52]*theta_dot_B6_dot + c[155]*theta_dot_B7_dot - c[55]*theta_dot_B8_dot - c[56]*theta_dot_B9_dot + c[52]*theta_dot_B10_dot;
-    out[40] = c[46]*theta_dot_B5_dot - c[53]*theta_dot_B6_dot - c[55]*theta_dot_B7_dot + c[156]*theta_dot_B8_dot - c[58]*theta_dot_B9_dot - c[59]*theta_dot_B10_dot;
-    out[41] = -c[56]*theta_dot_B7_dot - c[58]*theta_dot_B8_dot + c[157]*theta_dot_B9_dot - c[61]*theta_dot_B10_dot - c[62]*theta_dot_B11_dot + c[58]*theta_dot_B12_dot;
-    out[42] = c[52]*theta_dot_B7_dot - c[59]*theta_dot_B8_dot - c[61]*theta_dot_B9_dot + c[158]*theta_dot_B10_dot - c[64]*theta_dot_B11_dot - c[65]*theta_dot_B12_dot;
-    out[43] = -c[62]*theta_dot_B9_dot - c[64]*theta_dot_B10_dot + c[159]*theta_dot_B11_dot - c[67]*theta_dot_B12_dot - c[68]*theta_dot_B13_dot + c[64]*theta_dot_B14_dot;
-    out[44] = c[58]*theta_dot_B9_dot - c[65]*theta_dot_B10_dot - c[67]*theta_dot_B11_dot + c[160]*theta_dot_B12_dot - c[70]*theta_dot_B13_dot - c[71]*theta_dot_B14_dot;
-    out[45] = -c[68]*theta_dot_B11_dot - c[70]*theta_dot_B12_dot + c[161]*theta_dot_B13_dot - c[73]*theta_dot_B14_dot - c[74]*theta_dot_B15_dot + c[70]*theta_dot_B16_dot;
-    out[46] = c[64]*theta_dot_B11_dot - c[71]*theta_dot_B12_dot - c[73]*theta_dot_B13_dot + c[162]*theta_dot_B14_dot - c[76]*theta_dot_B15_dot - c[77]*theta_dot_B16_dot;
-    out[47] = -c[74]*theta_dot_B13_dot - c[76]*theta_dot_B14_dot + c[163]*theta_dot_B15_dot - c[79]*theta_dot_B16_dot - c[80]*theta_dot_B17_dot + c[76]*theta_dot_B18_dot;
-    out[48] = c[70]*theta_dot_B13_dot - c[77]*theta_dot_B14_dot - c[79]*theta_dot_B15_dot + c[164]*theta_dot_B16_dot - c[82]*theta_dot_B17_dot - c[83]*theta_dot_B18_dot;
-    out[49] = -c[80]*theta_dot_B15_dot - c[82]*theta_dot_B16_dot + c[165]*theta_dot_B17_dot - c[85]*theta_dot_B18_dot - c[86]*theta_dot_B19_dot + c[82]*theta_dot_B20_dot;
-    out[50] = c[76]*theta_dot_B15_dot - c[83]*theta_dot_B16_dot - c[85]*theta_dot_B17_dot + c[166]*theta_dot_B18_dot - c[88]*theta_dot_B19_dot - c[89]*theta_dot_B20_dot;
-    out[51] = -c[86]*theta_dot_B17_dot - c[88]*theta_dot_B18_dot + c[167]*theta_dot_B19_dot - c[91]*theta_dot_B20_dot - c[92]*theta_dot_B21_dot + c[88]*theta_dot_B22_dot;
-    out[52] = c[82]*theta_dot_B17_dot - c[89]*theta_dot_B18_dot - c[91]*theta_dot_B19_dot + c[168]*theta_dot_B20_dot - c[94]*theta_dot_B21_dot - c[95]*theta_dot_B22_dot;
-    out[53] = -c[92]*theta_dot_B19_dot - c[94]*theta_dot_B20_dot + c[169]*theta_dot_B21_dot - c[97]*theta_dot_B22_dot - c[98]*theta_dot_B23_dot + c[94]*theta_dot_B24_dot;
-    out[54] = c[88]*theta_dot_B19_dot - c[95]*theta_dot_B20_dot - c[97]*theta_dot_B21_dot + c[170]*theta_dot_B22_dot - c[100]*theta_dot_B23_dot - c[101]*theta_dot_B24_dot;
-    out[55] = -c[98]*theta_dot_B21_dot - c[100]*theta_dot_B22_dot + c[171]*theta_dot_B23_dot - c[103]*theta_dot_B24_dot - c[104]*theta_dot_B25_dot + c[100]*theta_dot_B26_dot;
-    out[56] = c[94]*theta_dot_B21_dot - c[101]*theta_dot_B22_dot - c[103]*theta_dot_B23_dot + c[172]*theta_dot_B24_dot - c[106]*theta_dot_B25_dot - c[107]*theta_dot_B26_dot;
-    out[57] = -c[104]*theta_dot_B23_dot - c[106]*theta_dot_B24_dot + c[173]*theta_dot_B25_dot - c[109]*theta_dot_B26_dot - c[110]*theta_dot_B27_dot + c[106]*theta_dot_B28_dot;
-    out[58] = c[100]*theta_dot_B23_dot - c[107]*theta_dot_B24_dot - c[109]*theta_dot_B25_dot + c[174]*theta_dot_B26_dot - c[112]*theta_dot_B27_dot - c[113]*theta_dot_B28_dot;
-    out[59] = -c[110]*theta_dot_B25_dot - c[112]*theta_dot_B26_dot + c[175]*theta_dot_B27_dot - c[115]*theta_dot_B28_dot - c[116]*theta_dot_B29_dot + c[112]*theta_dot_B30_dot;
-    out[60] = c[106]*theta_dot_B25_dot - c[113]*theta_dot_B26_dot - c[115]*theta_dot_B27_dot + c[176]*theta_dot_B28_dot - c[118]*theta_dot_B29_dot - c[119]*theta_dot_B30_dot;
-    out[61] = -c[116]*theta_dot_B27_dot - c[118]*theta_dot_B28_dot + c[177]*theta_dot_B29_dot - c[121]*theta_dot_B30_dot - c[122]*theta_dot_B31_dot + c[118]*theta_dot_B32_dot;
-    out[62] = c[112]*theta_dot_B27_dot - c[119]*theta_dot_B28_dot - c[121]*theta_dot_B29_dot + c[178]*theta_dot_B30_dot - c[124]*theta_dot_B31_dot - c[125]*theta_dot_B32_dot;
-    out[63] = -c[122]*theta_dot_B29_dot - c[124]*theta_dot_B30_dot + c[179]*theta_dot_B31_dot - c[127]*theta_dot_B32_dot;
-    out[64] = c[118]*theta_dot_B29_dot - c[125]*theta_dot_B30_dot - c[127]*theta_dot_B31_dot + c[180]*theta_dot_B32_dot;
-    out[66] = -c[181] + c[33]*theta_dotsq;
-    out[67] = c[182] + c[139]*theta_dotsq;
-    out[131] = c[182] + c[139]*theta_dotsq;
-    out[132] = -c[181] + c[33]*theta_dotsq;
-    out[133] = c[182] + c[139]*theta_dotsq;
-    out[197] = c[182] + c[139]*theta_dotsq;
-    out[198] = -c[181] + c[33]*theta_dotsq;
-    out[199] = c[182] + c[139]*theta_dotsq;
-    out[263] = c[182] + c[139]*theta_dotsq;
-    out[264] = -c[181] + c[33]*theta_dotsq;
-    out[265] = c[182] + c[139]*theta_dotsq;
-    out[329] = c[182] + c[139]*theta_dotsq;
-    out[330] = -c[181] + c[33]*theta_dotsq;
-    out[331] = c[182] + c[139]*theta_dotsq;
-    out[395] = c[182] + c[139]*theta_dotsq;
-    out[396] = -c[181] + c[33]*theta_dotsq;
-    out[397] = c[182] + c[139]*theta_dotsq;
-    out[461] = c[182] + c[139]*theta_dotsq;
-    out[462] = -c[181] + c[33]*theta_dotsq;
-    out[463] = c[182] + c[139]*theta_dotsq;
-    out[527] = c[182] + c[139]*theta_dotsq;
-    out[528] = -c[181] + c[33]*theta_dotsq;
-    out[529] = c[182] + c[139]*theta_dotsq;
-    out[593] = c[182] + c[139]*theta_dotsq;
-    out[594] = -c[181] + c[33]*theta_dotsq;
-    out[595] = c[182] + c[139]*theta_dotsq;
-    out[659] = c[182] + c[139]*theta_dotsq;
-    out[660] = -c[181] + c[33]*theta_dotsq;
-    out[661] = c[182] + c[139]*theta_dotsq;
-    out[725] = c[182] + c[139]*theta_dotsq;
-    out[726] = -c[181] + c[33]*theta_dotsq;
-    out[727] = c[182] + c[139]*theta_dotsq;
-    out[791] = c[182] + c[139]*theta_dotsq;
-    out[792] = -c[181] + c[33]*theta_dotsq;
-    out[793] = c[182] + c[139]*theta_dotsq;
-    out[857] = c[182] + c[139]*theta_dotsq;
-    out[858] = -c[181] + c[33]*theta_dotsq;
-    out[859] = c[182] + c[139]*theta_dotsq;
-    out[923] = c[182] + c[139]*theta_dotsq;
-    out[924] = -c[181] + c[33]*theta_dotsq;
-    out[925] = c[182] + c[139]*theta_dotsq;
-    out[989] = c[182] + c[139]*theta_dotsq;
-    out[990] = -c[181] + c[33]*theta_dotsq;
-    out[991] = c[182] + c[139]*theta_dotsq;
-    out[1055] = c[182] + c[139]*theta_dotsq;
-    out[1056] = -c[181] + c[33]*theta_dotsq;
-    out[1057] = c[182] + c[139]*theta_dotsq;
-    out[1121] = c[182] + c[139]*theta_dotsq;
-    out[1122] = -c[181] + c[33]*theta_dotsq;
-    out[1123] = c[182] + c[139]*theta_dotsq;
-    out[1187] = c[182] + c[139]*theta_dotsq;
-    out[1188] = -c[181] + c[33]*theta_dotsq;
-    out[1189] = c[182] + c[139]*theta_dotsq;
-    out[1253] = c[182] + c[139]*theta_dotsq;
-    out[1254] = -c[181] + c[33]*theta_dotsq;
-    out[1255] = c[182] + c[139]*theta_dotsq;
-    out[1319] = c[182] + c[139]*theta_dotsq;
-    out[1320] = -c[181] + c[33]*theta_dotsq;
-    out[1321] = c[182] + c[139]*theta_dotsq;
-    out[1385] = c[182] + c[139]*theta_dotsq;
-    out[1386] = -c[181] + c[33]*theta_dotsq;
-    out[1387] = c[182] + c[139]*theta_dotsq;
-    out[1451] = c[182] + c[139]*theta_dotsq;
-    out[1452] = -c[181] + c[33]*theta_dotsq;
-    out[1453] = c[182] + c[139]*theta_dotsq;
-    out[1517] = c[182] + c[139]*theta_dotsq;
-    out[1518] = -c[181] + c[33]*theta_dotsq;
-    out[1519] = c[182] + c[139]*theta_dotsq;
-    out[1583] = c[182] + c[139]*theta_dotsq;
-    out[1584] = -c[181] + c[33]*theta_dotsq;
-    out[1585] = c[182] + c[139]*theta_dotsq;
-    out[1649] = c[182] + c[139]*theta_dotsq;
-    out[1650] = -c[181] + c[33]*theta_dotsq;
-    out[1651] = c[182] + c[139]*theta_dotsq;
-    out[1715] = c[182] + c[139]*theta_dotsq;
-    out[1716] = -c[181] + c[33]*theta_dotsq;
-    out[1717] = c[182] + c[139]*theta_dotsq;
-    out[1781] = c[182] + c[139]*theta_dotsq;
-    out[1782] = -c[181] + c[33]*theta_dotsq;
-    out[1783] = c[182] + c[139]*theta_dotsq;
-    out[1847] = c[182] + c[139]*theta_dotsq;
-    out[1848] = -c[181] + c[33]*theta_dotsq;
-    out[1849] = c[182] + c[139]*theta_dotsq;
-    out[1913] = c[182] + c[139]*theta_dotsq;
-    out[1914] = -c[181] + c[33]*theta_dotsq;
-    out[1915] = c[182] + c[139]*theta_dotsq;
-    out[1979] = c[182] + c[139]*theta_dotsq;
-    out[1980] = -c[181] + c[33]*theta_dotsq;
-    out[1981] = c[182] + c[139]*theta_dotsq;
-    out[2045] = c[182] + c[139]*theta_dotsq;
-    out[2046] = -c[181] + c[33]*theta_dotsq;
-    out[2047] = c[182] + c[139]*theta_dotsq;
-    out[2111] = c[182] + c[139]*theta_dotsq;
-    out[2112] = -c[182] + c[34]*theta_dotsq;
-    out[2178] = -c[221] - c[35]*theta_dotsq;
-    out[2179] = c[224]*theta_dotsq;
-    out[2180] = c[222] + c[225]*theta_dotsq;
-    out[2181] = -c[223] - c[226]*theta_dotsq;
-    out[2243] = c[224]*theta_dotsq;
-    out[2244] = -c[227] - c[39]*theta_dotsq;
-    out[2245] = c[223] + c[229]*theta_dotsq;
-    out[2246] = -c[228] + c[230]*theta_dotsq;
-    out[2308] = c[222] + c[225]*theta_dotsq;
-    out[2309] = c[223] + c[229]*theta_dotsq;
-    out[2310] = -c[221] - c[42]*theta_dotsq;
-    out[2311] = c[231]*theta_dotsq;
-    out[2312] = c[222] + c[232]*theta_dotsq;
-    out[2313] = -c[223] - c[229]*theta_dotsq;
-    out[2373] = -c[223] - c[226]*theta_dotsq;
-    out[2374] = -c[228] + c[230]*theta_dotsq;
-    out[2375] = c[231]*theta_dotsq;
-    out[2376] = -c[227] - c[45]*theta_dotsq;
-    out[2377] = c[223] + c[233]*theta_dotsq;
-    out[2378] = -c[228] + c[234]*theta_dotsq;
-    out[2440] = c[222] + c[232]*theta_dotsq;
-    out[2441] = c[223] + c[233]*theta_dotsq;
-    out[2442] = -c[221] - c[48]*theta_dotsq;
-    out[2443] = c[235]*theta_dotsq;
-    out[2444] = c[222] + c[236]*theta_dotsq;
-    out[2445] = -c[223] - c[233]*theta_dotsq;
-    out[2505] = -c[223] - c[229]*theta_dotsq;
-    out[2506] = -c[228] + c[234]*theta_dotsq;
-    out[2507] = c[235]*theta_dotsq;
-    out[2508] = -c[227] - c[51]*theta_dotsq;
-    out[2509] = c[223] + c[237]*theta_dotsq;
-    out[2510] = -c[228] + c[238]*theta_dotsq;
-    out[2572] = c[222] + c[236]*theta_dotsq;
-    out[2573] = c[223] + c[237]*theta_dotsq;
-    out[2574] = -c[221] - c[54]*theta_dotsq;
-    out[2575] = c[239]*theta_dotsq;
-    out[2576] = c[222] + c[240]*theta_dotsq;
-    out[2577] = -c[223] - c[237]*theta_dotsq;
-    out[2637] = -c[223] - c[233]*theta_dotsq;
-    out[2638] = -c[228] + c[238]*theta_dotsq;
-    out[2639] = c[239]*theta_dotsq;
-    out[2640] = -c[227] - c[57]*theta_dotsq;
-    out[2641] = c[223] + c[241]*theta_dotsq;
-    out[2642] = -c[228] + c[242]*theta_dotsq;
-    out[2704] = c[222] + c[240]*theta_dotsq;
-    out[2705] = c[223] + c[241]*theta_dotsq;
-    out[2706] = -c[221] - c[60]*theta_dotsq;
-    out[2707] = c[243]*theta_dotsq;
-    out[2708] = c[222] + c[244]*theta_dotsq;
-    out[2709] = -c[223] - c[241]*theta_dotsq;
-    out[2769] = -c[223] - c[237]*theta_dotsq;
-    out[2770] = -c[228] + c[242]*theta_dotsq;
-    out[2771] = c[243]*theta_dotsq;
-    out[2772] = -c[227] - c[63]*theta_dotsq;
-    out[2773] = c[223] + c[245]*theta_dotsq;
-    out[2774] = -c[228] + c[246]*theta_dotsq;
-    out[2836] = c[222] + c[244]*theta_dotsq;
-    out[2837] = c[223] + c[245]*theta_dotsq;
-    out[2838] = -c[221] - c[66]*theta_dotsq;
-    out[2839] = c[247]*theta_dotsq;
-    out[2840] = c[222] + c[248]*theta_dotsq;
-    out[2841] = -c[223] - c[245]*theta_dotsq;
-    out[2901] = -c[223] - c[241]*theta_dotsq;
-    out[2902] = -c[228] + c[246]*theta_dotsq;
-    out[2903] = c[247]*theta_dotsq;
-    out[2904] = -c[227] - c[69]*theta_dotsq;
-    out[2905] = c[223] + c[249]*theta_dotsq;
-    out[2906] = -c[228] + c[250]*theta_dotsq;
-    out[2968] = c[222] + c[248]*theta_dotsq;
-    out[2969] = c[223] + c[249]*theta_dotsq;
-    out[2970] = -c[221] - c[72]*theta_dotsq;
-    out[2971] = c[251]*theta_dotsq;
-    out[2972] = c[222] + c[252]*theta_dotsq;
-    out[2973] = -c[223] - c[249]*theta_dotsq;
-    out[3033] = -c[223] - c[245]*theta_dotsq;
-    out[3034] = -c[228] + c[250]*theta_dotsq;
-    out[3035] = c[251]*theta_dotsq;
-    out[3036] = -c[227] - c[75]*theta_dotsq;
-    out[3037] = c[223] + c[253]*theta_dotsq;
-    out[3038] = -c[228] + c[254]*theta_dotsq;
-    out[3100] = c[222] + c[252]*theta_dotsq;
-    out[3101] = c[223] + c[253]*theta_dotsq;
-    out[3102] = -c[221] - c[78]*theta_dotsq;
-    out[3103] = c[255]*theta_dotsq;
-    out[3104] = c[222] + c[256]*theta_dotsq;
-    out[3105] = -c[223] - c[253]*theta_dotsq;
-    out[3165] = -c[223] - c[249]*theta_dotsq;
-    out[3166] = -c[228] + c[254]*theta_dotsq;
-    out[3167] = c[255]*theta_dotsq;
-    out[3168] = -c[227] - c[81]*theta_dotsq;
-    out[3169] = c[223] + c[257]*theta_dotsq;
-    out[3170] = -c[228] + c[258]*theta_dotsq;
-    out[3232] = c[222] + c[256]*theta_dotsq;
-    out[3233] = c[223] + c[257]*theta_dotsq;
-    out[3234] = -c[221] - c[84]*theta_dotsq;
-    out[3235] = c[259]*theta_dotsq;
-    out[3236] = c[222] + c[260]*theta_dotsq;
-    out[3237] = -c[223] - c[257]*theta_dotsq;
-    out[3297] = -c[223] - c[253]*theta_dotsq;
-    out[3298] = -c[228] + c[258]*theta_dotsq;
-    out[3299] = c[259]*theta_dotsq;
-    out[3300] = -c[227] - c[87]*theta_dotsq;
-    out[3301] = c[223] + c[261]*theta_dotsq;
-    out[3302] = -c[228] + c[262]*theta_dotsq;
-    out[3364] = c[222] + c[260]*theta_dotsq;
-    out[3365] = c[223] + c[261]*theta_dotsq;
-    out[3366] = -c[221] - c[90]*theta_dotsq;
-    out[3367] = c[263]*theta_dotsq;
-    out[3368] = c[222] + c[264]*theta_dotsq;
-    out[3369] = -c[223] - c[261]*theta_dotsq;
-    out[3429] = -c[223] - c[257]*theta_dotsq;
-    out[3430] = -c[228] + c[262]*theta_dotsq;
-    out[3431] = c[263]*theta_dotsq;
-    out[3432] = -c[227] - c[93]*theta_dotsq;
-    out[3433] = c[223] + c[265]*theta_dotsq;
-    out[3434] = -c[228] + c[266]*theta_dotsq;
-    out[3496] = c[222] + c[264]*theta_dotsq;
-    out[3497] = c[223] + c[265]*theta_dotsq;
-    out[3498] = -c[221] - c[96]*theta_dotsq;
-    out[3499] = c[267]*theta_dotsq;
-    out[3500] = c[222] + c[268]*theta_dotsq;
-    out[3501] = -c[223] - c[265]*theta_dotsq;
-    out[3561] = -c[223] - c[261]*theta_dotsq;
-    out[3562] = -c[228] + c[266]*theta_dotsq;
-    out[3563] = c[267]*theta_dotsq;
-    out[3564] = -c[227] - c[99]*theta_dotsq;
-    out[3565] = c[223] + c[269]*theta_dotsq;
-    out[3566] = -c[228] + c[270]*theta_dotsq;
-    out[3628] = c[222] + c[268]*theta_dotsq;
-    out[3629] = c[223] + c[269]*theta_dotsq;
-    out[3630] = -c[221] - c[102]*theta_dotsq;
-    out[3631] = c[271]*theta_dotsq;
-    out[3632] = c[222] + c[272]*theta_dotsq;
-    out[3633] = -c[223] - c[269]*theta_dotsq;
-    out[3693] = -c[223] - c[265]*theta_dotsq;
-    out[3694] = -c[228] + c[270]*theta_dotsq;
-    out[3695] = c[271]*theta_dotsq;
-    out[3696] = -c[227] - c[105]*theta_dotsq;
-    out[3697] = c[223] + c[273]*theta_dotsq;
-    out[3698] = -c[228] + c[274]*theta_dotsq;
-    out[3760] = c[222] + c[272]*theta_dotsq;
-    out[3761] = c[223] + c[273]*theta_dotsq;
-    out[3762] = -c[221] - c[108]*theta_dotsq;
-    out[3763] = c[275]*theta_dotsq;
-    out[3764] = c[222] + c[276]*theta_dotsq;
-    out[3765] = -c[223] - c[273]*theta_dotsq;
-    out[3825] = -c[223] - c[269]*theta_dotsq;
-    out[3826] = -c[228] + c[274]*theta_dotsq;
-    out[3827] = c[275]*theta_dotsq;
-    out[3828] = -c[227] - c[111]*theta_dotsq;
-    out[3829] = c[223] + c[277]*theta_dotsq;
-    out[3830] = -c[228] + c[278]*theta_dotsq;
-    out[3892] = c[222] + c[276]*theta_dotsq;
-    out[3893] = c[223] + c[277]*theta_dotsq;
-    out[3894] = -c[221] - c[114]*theta_dotsq;
-    out[3895] = c[279]*theta_dotsq;
-    out[3896] = c[222] + c[280]*theta_dotsq;
-    out[3897] = -c[223] - c[277]*theta_dotsq;
-    out[3957] = -c[223] - c[273]*theta_dotsq;
-    out[3958] = -c[228] + c[278]*theta_dotsq;
-    out[3959] = c[279]*theta_dotsq;
-    out[3960] = -c[227] - c[117]*theta_dotsq;
-    out[3961] = c[223] + c[281]*theta_dotsq;
-    out[3962] = -c[228] + c[282]*theta_dotsq;
-    out[4024] = c[222] + c[280]*theta_dotsq;
-    out[4025] = c[223] + c[281]*theta_dotsq;
-    out[4026] = -c[221] - c[120]*theta_dotsq;
-    out[4027] = c[283]*theta_dotsq;
-    out[4028] = c[222] + c[284]*theta_dotsq;
-    out[4029] = -c[223] - c[281]*theta_dotsq;
-    out[4089] = -c[223] - c[277]*theta_dotsq;
-    out[4090] = -c[228] + c[282]*theta_dotsq;
-    out[4091] = c[283]*theta_dotsq;
-    out[4092] = -c[227] - c[123]*theta_dotsq;
-    out[4093] = c[223] + c[285]*theta_dotsq;
-    out[4094] = -c[228] + c[286]*theta_dotsq;
-    out[4156] = c[222] + c[284]*theta_dotsq;
-    out[4157] = c[223] + c[285]*theta_dotsq;
-    out[4158] = -c[222] - c[126]*theta_dotsq;
-    out[4159] = c[223] + c[287]*theta_dotsq;
-    out[4221] = -c[223] - c[281]*theta_dotsq;
-    out[4222] = -c[228] + c[286]*theta_dotsq;
-    out[4223] = c[223] + c[287]*theta_dotsq;
-    out[4224] = -c[288] - c[128]*theta_dotsq;
+    out[33] = c[150]*theta_dot_B1_dot - c[36]*theta_dot_B2_dot - c[37]*theta_dot_B3_dot + c[38]*theta_dot_B4_dot;
+    out[34] = -c[36]*theta_dot_B1_dot + c[151]*theta_dot_B2_dot - c[40]*theta_dot_B3_dot - c[41]*theta_dot_B4_dot;
+    out[35] = -c[37]*theta_dot_B1_dot - c[40]*theta_dot_B2_dot + c[152]*theta_dot_B3_dot - c[43]*theta_dot_B4_dot - c[44]*theta_dot_B5_dot + c[40]*theta_dot_B6_dot;
+    out[36] = c[38]*theta_dot_B1_dot - c[41]*theta_dot_B2_dot - c[43]*theta_dot_B3_dot + c[153]*theta_dot_B4_dot - c[46]*theta_dot_B5_dot - c[47]*theta_dot_B6_dot;
+    out[37] = -c[44]*theta_dot_B3_dot - c[46]*theta_dot_B4_dot + c[154]*theta_dot_B5_dot - c[49]*theta_dot_B6_dot - c[50]*theta_dot_B7_dot + c[46]*theta_dot_B8_dot;
+    out[38] = c[40]*theta_dot_B3_dot - c[47]*theta_dot_B4_dot - c[49]*theta_dot_B5_dot + c[155]*theta_dot_B6_dot - c[52]*theta_dot_B7_dot - c[53]*theta_dot_B8_dot;
+    out[39] = -c[50]*theta_dot_B5_dot - c[52]*theta_dot_B6_dot + c[156]*theta_dot_B7_dot - c[55]*theta_dot_B8_dot - c[56]*theta_dot_B9_dot + c[52]*theta_dot_B10_dot;
+    out[40] = c[46]*theta_dot_B5_dot - c[53]*theta_dot_B6_dot - c[55]*theta_dot_B7_dot + c[157]*theta_dot_B8_dot - c[58]*theta_dot_B9_dot - c[59]*theta_dot_B10_dot;
+    out[41] = -c[56]*theta_dot_B7_dot - c[58]*theta_dot_B8_dot + c[158]*theta_dot_B9_dot - c[61]*theta_dot_B10_dot - c[62]*theta_dot_B11_dot + c[58]*theta_dot_B12_dot;
+    out[42] = c[52]*theta_dot_B7_dot - c[59]*theta_dot_B8_dot - c[61]*theta_dot_B9_dot + c[159]*theta_dot_B10_dot - c[64]*theta_dot_B11_dot - c[65]*theta_dot_B12_dot;
+    out[43] = -c[62]*theta_dot_B9_dot - c[64]*theta_dot_B10_dot + c[160]*theta_dot_B11_dot - c[67]*theta_dot_B12_dot - c[68]*theta_dot_B13_dot + c[64]*theta_dot_B14_dot;
+    out[44] = c[58]*theta_dot_B9_dot - c[65]*theta_dot_B10_dot - c[67]*theta_dot_B11_dot + c[161]*theta_dot_B12_dot - c[70]*theta_dot_B13_dot - c[71]*theta_dot_B14_dot;
+    out[45] = -c[68]*theta_dot_B11_dot - c[70]*theta_dot_B12_dot + c[162]*theta_dot_B13_dot - c[73]*theta_dot_B14_dot - c[74]*theta_dot_B15_dot + c[70]*theta_dot_B16_dot;
+    out[46] = c[64]*theta_dot_B11_dot - c[71]*theta_dot_B12_dot - c[73]*theta_dot_B13_dot + c[163]*theta_dot_B14_dot - c[76]*theta_dot_B15_dot - c[77]*theta_dot_B16_dot;
+    out[47] = -c[74]*theta_dot_B13_dot - c[76]*theta_dot_B14_dot + c[164]*theta_dot_B15_dot - c[79]*theta_dot_B16_dot - c[80]*theta_dot_B17_dot + c[76]*theta_dot_B18_dot;
+    out[48] = c[70]*theta_dot_B13_dot - c[77]*theta_dot_B14_dot - c[79]*theta_dot_B15_dot + c[165]*theta_dot_B16_dot - c[82]*theta_dot_B17_dot - c[83]*theta_dot_B18_dot;
+    out[49] = -c[80]*theta_dot_B15_dot - c[82]*theta_dot_B16_dot + c[166]*theta_dot_B17_dot - c[85]*theta_dot_B18_dot - c[86]*theta_dot_B19_dot + c[82]*theta_dot_B20_dot;
+    out[50] = c[76]*theta_dot_B15_dot - c[83]*theta_dot_B16_dot - c[85]*theta_dot_B17_dot + c[167]*theta_dot_B18_dot - c[88]*theta_dot_B19_dot - c[89]*theta_dot_B20_dot;
+    out[51] = -c[86]*theta_dot_B17_dot - c[88]*theta_dot_B18_dot + c[168]*theta_dot_B19_dot - c[91]*theta_dot_B20_dot - c[92]*theta_dot_B21_dot + c[88]*theta_dot_B22_dot;
+    out[52] = c[82]*theta_dot_B17_dot - c[89]*theta_dot_B18_dot - c[91]*theta_dot_B19_dot + c[169]*theta_dot_B20_dot - c[94]*theta_dot_B21_dot - c[95]*theta_dot_B22_dot;
+    out[53] = -c[92]*theta_dot_B19_dot - c[94]*theta_dot_B20_dot + c[170]*theta_dot_B21_dot - c[97]*theta_dot_B22_dot - c[98]*theta_dot_B23_dot + c[94]*theta_dot_B24_dot;
+    out[54] = c[88]*theta_dot_B19_dot - c[95]*theta_dot_B20_dot - c[97]*theta_dot_B21_dot + c[171]*theta_dot_B22_dot - c[100]*theta_dot_B23_dot - c[101]*theta_dot_B24_dot;
+    out[55] = -c[98]*theta_dot_B21_dot - c[100]*theta_dot_B22_dot + c[172]*theta_dot_B23_dot - c[103]*theta_dot_B24_dot - c[104]*theta_dot_B25_dot + c[100]*theta_dot_B26_dot;
+    out[56] = c[94]*theta_dot_B21_dot - c[101]*theta_dot_B22_dot - c[103]*theta_dot_B23_dot + c[173]*theta_dot_B24_dot - c[106]*theta_dot_B25_dot - c[107]*theta_dot_B26_dot;
+    out[57] = -c[104]*theta_dot_B23_dot - c[106]*theta_dot_B24_dot + c[174]*theta_dot_B25_dot - c[109]*theta_dot_B26_dot - c[110]*theta_dot_B27_dot + c[106]*theta_dot_B28_dot;
+    out[58] = c[100]*theta_dot_B23_dot - c[107]*theta_dot_B24_dot - c[109]*theta_dot_B25_dot + c[175]*theta_dot_B26_dot - c[112]*theta_dot_B27_dot - c[113]*theta_dot_B28_dot;
+    out[59] = -c[110]*theta_dot_B25_dot - c[112]*theta_dot_B26_dot + c[176]*theta_dot_B27_dot - c[115]*theta_dot_B28_dot - c[116]*theta_dot_B29_dot + c[112]*theta_dot_B30_dot;
+    out[60] = c[106]*theta_dot_B25_dot - c[113]*theta_dot_B26_dot - c[115]*theta_dot_B27_dot + c[177]*theta_dot_B28_dot - c[118]*theta_dot_B29_dot - c[119]*theta_dot_B30_dot;
+    out[61] = -c[116]*theta_dot_B27_dot - c[118]*theta_dot_B28_dot + c[178]*theta_dot_B29_dot - c[121]*theta_dot_B30_dot - c[122]*theta_dot_B31_dot + c[118]*theta_dot_B32_dot;
+    out[62] = c[112]*theta_dot_B27_dot - c[119]*theta_dot_B28_dot - c[121]*theta_dot_B29_dot + c[179]*theta_dot_B30_dot - c[124]*theta_dot_B31_dot - c[125]*theta_dot_B32_dot;
+    out[63] = -c[122]*theta_dot_B29_dot - c[124]*theta_dot_B30_dot + c[180]*theta_dot_B31_dot - c[127]*theta_dot_B32_dot;
+    out[64] = c[118]*theta_dot_B29_dot - c[125]*theta_dot_B30_dot - c[127]*theta_dot_B31_dot + c[181]*theta_dot_B32_dot;
+    out[66] = -c[182] + c[33]*theta_dotsq;
+    out[67] = c[183] + c[139]*theta_dotsq;
+    out[131] = c[183] + c[139]*theta_dotsq;
+    out[132] = -c[182] + c[33]*theta_dotsq;
+    out[133] = c[183] + c[139]*theta_dotsq;
+    out[197] = c[183] + c[139]*theta_dotsq;
+    out[198] = -c[182] + c[33]*theta_dotsq;
+    out[199] = c[183] + c[139]*theta_dotsq;
+    out[263] = c[183] + c[139]*theta_dotsq;
+    out[264] = -c[182] + c[33]*theta_dotsq;
+    out[265] = c[183] + c[139]*theta_dotsq;
+    out[329] = c[183] + c[139]*theta_dotsq;
+    out[330] = -c[182] + c[33]*theta_dotsq;
+    out[331] = c[183] + c[139]*theta_dotsq;
+    out[395] = c[183] + c[139]*theta_dotsq;
+    out[396] = -c[182] + c[33]*theta_dotsq;
+    out[397] = c[183] + c[139]*theta_dotsq;
+    out[461] = c[183] + c[139]*theta_dotsq;
+    out[462] = -c[182] + c[33]*theta_dotsq;
+    out[463] = c[183] + c[139]*theta_dotsq;
+    out[527] = c[183] + c[139]*theta_dotsq;
+    out[528] = -c[182] + c[33]*theta_dotsq;
+    out[529] = c[183] + c[139]*theta_dotsq;
+    out[593] = c[183] + c[139]*theta_dotsq;
+    out[594] = -c[182] + c[33]*theta_dotsq;
+    out[595] = c[183] + c[139]*theta_dotsq;
+    out[659] = c[183] + c[139]*theta_dotsq;
+    out[660] = -c[182] + c[33]*theta_dotsq;
+    out[661] = c[183] + c[139]*theta_dotsq;
+    out[725] = c[183] + c[139]*theta_dotsq;
+    out[726] = -c[182] + c[33]*theta_dotsq;
+    out[727] = c[183] + c[139]*theta_dotsq;
+    out[791] = c[183] + c[139]*theta_dotsq;
+    out[792] = -c[182] + c[33]*theta_dotsq;
+    out[793] = c[183] + c[139]*theta_dotsq;
+    out[857] = c[183] + c[139]*theta_dotsq;
+    out[858] = -c[182] + c[33]*theta_dotsq;
+    out[859] = c[183] + c[139]*theta_dotsq;
+    out[923] = c[183] + c[139]*theta_dotsq;
+    out[924] = -c[182] + c[33]*theta_dotsq;
+    out[925] = c[183] + c[139]*theta_dotsq;
+    out[989] = c[183] + c[139]*theta_dotsq;
+    out[990] = -c[182] + c[33]*theta_dotsq;
+    out[991] = c[183] + c[139]*theta_dotsq;
+    out[1055] = c[183] + c[139]*theta_dotsq;
+    out[1056] = -c[182] + c[33]*theta_dotsq;
+    out[1057] = c[183] + c[139]*theta_dotsq;
+    out[1121] = c[183] + c[139]*theta_dotsq;
+    out[1122] = -c[182] + c[33]*theta_dotsq;
+    out[1123] = c[183] + c[139]*theta_dotsq;
+    out[1187] = c[183] + c[139]*theta_dotsq;
+    out[1188] = -c[182] + c[33]*theta_dotsq;
+    out[1189] = c[183] + c[139]*theta_dotsq;
+    out[1253] = c[183] + c[139]*theta_dotsq;
+    out[1254] = -c[182] + c[33]*theta_dotsq;
+    out[1255] = c[183] + c[139]*theta_dotsq;
+    out[1319] = c[183] + c[139]*theta_dotsq;
+    out[1320] = -c[182] + c[33]*theta_dotsq;
+    out[1321] = c[183] + c[139]*theta_dotsq;
+    out[1385] = c[183] + c[139]*theta_dotsq;
+    out[1386] = -c[182] + c[33]*theta_dotsq;
+    out[1387] = c[183] + c[139]*theta_dotsq;
+    out[1451] = c[183] + c[139]*theta_dotsq;
+    out[1452] = -c[182] + c[33]*theta_dotsq;
+    out[1453] = c[183] + c[139]*theta_dotsq;
+    out[1517] = c[183] + c[139]*theta_dotsq;
+    out[1518] = -c[182] + c[33]*theta_dotsq;
+    out[1519] = c[183] + c[139]*theta_dotsq;
+    out[1583] = c[183] + c[139]*theta_dotsq;
+    out[1584] = -c[182] + c[33]*theta_dotsq;
+    out[1585] = c[183] + c[139]*theta_dotsq;
+    out[1649] = c[183] + c[139]*theta_dotsq;
+    out[1650] = -c[182] + c[33]*theta_dotsq;
+    out[1651] = c[183] + c[139]*theta_dotsq;
+    out[1715] = c[183] + c[139]*theta_dotsq;
+    out[1716] = -c[182] + c[33]*theta_dotsq;
+    out[1717] = c[183] + c[139]*theta_dotsq;
+    out[1781] = c[183] + c[139]*theta_dotsq;
+    out[1782] = -c[182] + c[33]*theta_dotsq;
+    out[1783] = c[183] + c[139]*theta_dotsq;
+    out[1847] = c[183] + c[139]*theta_dotsq;
+    out[1848] = -c[182] + c[33]*theta_dotsq;
+    out[1849] = c[183] + c[139]*theta_dotsq;
+    out[1913] = c[183] + c[139]*theta_dotsq;
+    out[1914] = -c[182] + c[33]*theta_dotsq;
+    out[1915] = c[183] + c[139]*theta_dotsq;
+    out[1979] = c[183] + c[139]*theta_dotsq;
+    out[1980] = -c[182] + c[33]*theta_dotsq;
+    out[1981] = c[183] + c[139]*theta_dotsq;
+    out[2045] = c[183] + c[139]*theta_dotsq;
+    out[2046] = -c[182] + c[33]*theta_dotsq;
+    out[2047] = c[183] + c[139]*theta_dotsq;
+    out[2111] = c[183] + c[139]*theta_dotsq;
+    out[2112] = -c[183] + c[34]*theta_dotsq;
+    out[2178] = -c[222] - c[35]*theta_dotsq;
+    out[2179] = c[225]*theta_dotsq;
+    out[2180] = c[223] + c[226]*theta_dotsq;
+    out[2181] = -c[224] - c[227]*theta_dotsq;
+    out[2243] = c[225]*theta_dotsq;
+    out[2244] = -c[228] - c[39]*theta_dotsq;
+    out[2245] = c[224] + c[230]*theta_dotsq;
+    out[2246] = -c[229] + c[231]*theta_dotsq;
+    out[2308] = c[223] + c[226]*theta_dotsq;
+    out[2309] = c[224] + c[230]*theta_dotsq;
+    out[2310] = -c[222] - c[42]*theta_dotsq;
+    out[2311] = c[232]*theta_dotsq;
+    out[2312] = c[223] + c[233]*theta_dotsq;
+    out[2313] = -c[224] - c[230]*theta_dotsq;
+    out[2373] = -c[224] - c[227]*theta_dotsq;
+    out[2374] = -c[229] + c[231]*theta_dotsq;
+    out[2375] = c[232]*theta_dotsq;
+    out[2376] = -c[228] - c[45]*theta_dotsq;
+    out[2377] = c[224] + c[234]*theta_dotsq;
+    out[2378] = -c[229] + c[235]*theta_dotsq;
+    out[2440] = c[223] + c[233]*theta_dotsq;
+    out[2441] = c[224] + c[234]*theta_dotsq;
+    out[2442] = -c[222] - c[48]*theta_dotsq;
+    out[2443] = c[236]*theta_dotsq;
+    out[2444] = c[223] + c[237]*theta_dotsq;
+    out[2445] = -c[224] - c[234]*theta_dotsq;
+    out[2505] = -c[224] - c[230]*theta_dotsq;
+    out[2506] = -c[229] + c[235]*theta_dotsq;
+    out[2507] = c[236]*theta_dotsq;
+    out[2508] = -c[228] - c[51]*theta_dotsq;
+    out[2509] = c[224] + c[238]*theta_dotsq;
+    out[2510] = -c[229] + c[239]*theta_dotsq;
+    out[2572] = c[223] + c[237]*theta_dotsq;
+    out[2573] = c[224] + c[238]*theta_dotsq;
+    out[2574] = -c[222] - c[54]*theta_dotsq;
+    out[2575] = c[240]*theta_dotsq;
+    out[2576] = c[223] + c[241]*theta_dotsq;
+    out[2577] = -c[224] - c[238]*theta_dotsq;
+    out[2637] = -c[224] - c[234]*theta_dotsq;
+    out[2638] = -c[229] + c[239]*theta_dotsq;
+    out[2639] = c[240]*theta_dotsq;
+    out[2640] = -c[228] - c[57]*theta_dotsq;
+    out[2641] = c[224] + c[242]*theta_dotsq;
+    out[2642] = -c[229] + c[243]*theta_dotsq;
+    out[2704] = c[223] + c[241]*theta_dotsq;
+    out[2705] = c[224] + c[242]*theta_dotsq;
+    out[2706] = -c[222] - c[60]*theta_dotsq;
+    out[2707] = c[244]*theta_dotsq;
+    out[2708] = c[223] + c[245]*theta_dotsq;
+    out[2709] = -c[224] - c[242]*theta_dotsq;
+    out[2769] = -c[224] - c[238]*theta_dotsq;
+    out[2770] = -c[229] + c[243]*theta_dotsq;
+    out[2771] = c[244]*theta_dotsq;
+    out[2772] = -c[228] - c[63]*theta_dotsq;
+    out[2773] = c[224] + c[246]*theta_dotsq;
+    out[2774] = -c[229] + c[247]*theta_dotsq;
+    out[2836] = c[223] + c[245]*theta_dotsq;
+    out[2837] = c[224] + c[246]*theta_dotsq;
+    out[2838] = -c[222] - c[66]*theta_dotsq;
+    out[2839] = c[248]*theta_dotsq;
+    out[2840] = c[223] + c[249]*theta_dotsq;
+    out[2841] = -c[224] - c[246]*theta_dotsq;
+    out[2901] = -c[224] - c[242]*theta_dotsq;
+    out[2902] = -c[229] + c[247]*theta_dotsq;
+    out[2903] = c[248]*theta_dotsq;
+    out[2904] = -c[228] - c[69]*theta_dotsq;
+    out[2905] = c[224] + c[250]*theta_dotsq;
+    out[2906] = -c[229] + c[251]*theta_dotsq;
+    out[2968] = c[223] + c[249]*theta_dotsq;
+    out[2969] = c[224] + c[250]*theta_dotsq;
+    out[2970] = -c[222] - c[72]*theta_dotsq;
+    out[2971] = c[252]*theta_dotsq;
+    out[2972] = c[223] + c[253]*theta_dotsq;
+    out[2973] = -c[224] - c[250]*theta_dotsq;
+    out[3033] = -c[224] - c[246]*theta_dotsq;
+    out[3034] = -c[229] + c[251]*theta_dotsq;
+    out[3035] = c[252]*theta_dotsq;
+    out[3036] = -c[228] - c[75]*theta_dotsq;
+    out[3037] = c[224] + c[254]*theta_dotsq;
+    out[3038] = -c[229] + c[255]*theta_dotsq;
+    out[3100] = c[223] + c[253]*theta_dotsq;
+    out[3101] = c[224] + c[254]*theta_dotsq;
+    out[3102] = -c[222] - c[78]*theta_dotsq;
+    out[3103] = c[256]*theta_dotsq;
+    out[3104] = c[223] + c[257]*theta_dotsq;
+    out[3105] = -c[224] - c[254]*theta_dotsq;
+    out[3165] = -c[224] - c[250]*theta_dotsq;
+    out[3166] = -c[229] + c[255]*theta_dotsq;
+    out[3167] = c[256]*theta_dotsq;
+    out[3168] = -c[228] - c[81]*theta_dotsq;
+    out[3169] = c[224] + c[258]*theta_dotsq;
+    out[3170] = -c[229] + c[259]*theta_dotsq;
+    out[3232] = c[223] + c[257]*theta_dotsq;
+    out[3233] = c[224] + c[258]*theta_dotsq;
+    out[3234] = -c[222] - c[84]*theta_dotsq;
+    out[3235] = c[260]*theta_dotsq;
+    out[3236] = c[223] + c[261]*theta_dotsq;
+    out[3237] = -c[224] - c[258]*theta_dotsq;
+    out[3297] = -c[224] - c[254]*theta_dotsq;
+    out[3298] = -c[229] + c[259]*theta_dotsq;
+    out[3299] = c[260]*theta_dotsq;
+    out[3300] = -c[228] - c[87]*theta_dotsq;
+    out[3301] = c[224] + c[262]*theta_dotsq;
+    out[3302] = -c[229] + c[263]*theta_dotsq;
+    out[3364] = c[223] + c[261]*theta_dotsq;
+    out[3365] = c[224] + c[262]*theta_dotsq;
+    out[3366] = -c[222] - c[90]*theta_dotsq;
+    out[3367] = c[264]*theta_dotsq;
+    out[3368] = c[223] + c[265]*theta_dotsq;
+    out[3369] = -c[224] - c[262]*theta_dotsq;
+    out[3429] = -c[224] - c[258]*theta_dotsq;
+    out[3430] = -c[229] + c[263]*theta_dotsq;
+    out[3431] = c[264]*theta_dotsq;
+    out[3432] = -c[228] - c[93]*theta_dotsq;
+    out[3433] = c[224] + c[266]*theta_dotsq;
+    out[3434] = -c[229] + c[267]*theta_dotsq;
+    out[3496] = c[223] + c[265]*theta_dotsq;
+    out[3497] = c[224] + c[266]*theta_dotsq;
+    out[3498] = -c[222] - c[96]*theta_dotsq;
+    out[3499] = c[268]*theta_dotsq;
+    out[3500] = c[223] + c[269]*theta_dotsq;
+    out[3501] = -c[224] - c[266]*theta_dotsq;
+    out[3561] = -c[224] - c[262]*theta_dotsq;
+    out[3562] = -c[229] + c[267]*theta_dotsq;
+    out[3563] = c[268]*theta_dotsq;
+    out[3564] = -c[228] - c[99]*theta_dotsq;
+    out[3565] = c[224] + c[270]*theta_dotsq;
+    out[3566] = -c[229] + c[271]*theta_dotsq;
+    out[3628] = c[223] + c[269]*theta_dotsq;
+    out[3629] = c[224] + c[270]*theta_dotsq;
+    out[3630] = -c[222] - c[102]*theta_dotsq;
+    out[3631] = c[272]*theta_dotsq;
+    out[3632] = c[223] + c[273]*theta_dotsq;
+    out[3633] = -c[224] - c[270]*theta_dotsq;
+    out[3693] = -c[224] - c[266]*theta_dotsq;
+    out[3694] = -c[229] + c[271]*theta_dotsq;
+    out[3695] = c[272]*theta_dotsq;
+    out[3696] = -c[228] - c[105]*theta_dotsq;
+    out[3697] = c[224] + c[274]*theta_dotsq;
+    out[3698] = -c[229] + c[275]*theta_dotsq;
+    out[3760] = c[223] + c[273]*theta_dotsq;
+    out[3761] = c[224] + c[274]*theta_dotsq;
+    out[3762] = -c[222] - c[108]*theta_dotsq;
+    out[3763] = c[276]*theta_dotsq;
+    out[3764] = c[223] + c[277]*theta_dotsq;
+    out[3765] = -c[224] - c[274]*theta_dotsq;
+    out[3825] = -c[224] - c[270]*theta_dotsq;
+    out[3826] = -c[229] + c[275]*theta_dotsq;
+    out[3827] = c[276]*theta_dotsq;
+    out[3828] = -c[228] - c[111]*theta_dotsq;
+    out[3829] = c[224] + c[278]*theta_dotsq;
+    out[3830] = -c[229] + c[279]*theta_dotsq;
+    out[3892] = c[223] + c[277]*theta_dotsq;
+    out[3893] = c[224] + c[278]*theta_dotsq;
+    out[3894] = -c[222] - c[114]*theta_dotsq;
+    out[3895] = c[280]*theta_dotsq;
+    out[3896] = c[223] + c[281]*theta_dotsq;
+    out[3897] = -c[224] - c[278]*theta_dotsq;
+    out[3957] = -c[224] - c[274]*theta_dotsq;
+    out[3958] = -c[229] + c[279]*theta_dotsq;
+    out[3959] = c[280]*theta_dotsq;
+    out[3960] = -c[228] - c[117]*theta_dotsq;
+    out[3961] = c[224] + c[282]*theta_dotsq;
+    out[3962] = -c[229] + c[283]*theta_dotsq;
+    out[4024] = c[223] + c[281]*theta_dotsq;
+    out[4025] = c[224] + c[282]*theta_dotsq;
+    out[4026] = -c[222] - c[120]*theta_dotsq;
+    out[4027] = c[284]*theta_dotsq;
+    out[4028] = c[223] + c[285]*theta_dotsq;
+    out[4029] = -c[224] - c[282]*theta_dotsq;
+    out[4089] = -c[224] - c[278]*theta_dotsq;
+    out[4090] = -c[229] + c[283]*theta_dotsq;
+    out[4091] = c[284]*theta_dotsq;
+    out[4092] = -c[228] - c[123]*theta_dotsq;
+    out[4093] = c[224] + c[286]*theta_dotsq;
+    out[4094] = -c[229] + c[287]*theta_dotsq;
+    out[4156] = c[223] + c[285]*theta_dotsq;
+    out[4157] = c[224] + c[286]*theta_dotsq;
+    out[4158] = -c[223] - c[126]*theta_dotsq;
+    out[4159] = c[224] + c[288]*theta_dotsq;
+    out[4221] = -c[224] - c[282]*theta_dotsq;
+    out[4222] = -c[229] + c[287]*theta_dotsq;
+    out[4223] = c[224] + c[288]*theta_dotsq;
+    out[4224] = -c[289] - c[128]*theta_dotsq;
 }
 
-/* forces_qd:(c[332],u[3],q[65],qd[65])->(dQdqd[4225]) row-major; out[i*65+k] = dQ_i/dqd_k; nonzero entries only */
+/* forces_qd:(c[333],u[3],q[65],qd[65])->(dQdqd[4225]) row-major; out[i*65+k] = dQ_i/dqd_k; nonzero entries only */
 void fem_nx32_ny32_torque_first_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
-    (void)u;
-    const double A1 = q[1];
-    const double A2 = q[2];
-    const double A3 = q[3];
-    const double A4 = q[4];
-    const double A5 = q[5];
-    const double A6 = q[6];
-    const double A7 = q[7];
-    const double A8 = q[8];
-    const double A9 = q[9];
-    const double A10 = q[10];
-    const double A11 = q[11];
-    const double A12 = q[12];
-    const double A13 = q[13];
-    const double A14 = q[14];
-    const double A15 = q[15];
-    const double A16 = q[16];
-    const double A17 = q[17];
-    const double A18 = q[18];
-    const double A19 = q[19];
-    const double A20 = q[20];
-    const double A21 = q[21];
-    const double A22 = q[22];
-    const double A23 = q[23];
-    const double A24 = q[24];
-    const double A25 = q[25];
-    const double A26 = q[26];
-    const double A27 = q[27];
-    const double A28 = q[28];
-    const double A29 = q[29];
-    const double A30 = q[30];
-    const double A31 = q[31];
-    const double A32 = q[32];
-    const double B1 = q[33];
-    const double B2 = q[34];
-    const double B3 = q[35];
-    const double B4 = q[36];
-    const double B5 = q[37];
-    const double B6 = q[38];
-    const double B7 = q[39];
-    const double B8 = q[40];
-    const double B9 = q[41];
-    const double B10 = q[42];
-    const double B11 = q[43];
-    const double B12 = q[44];
-    const double B13 = q[45];
-    const double B14 = q[46];
-    const double B15 = q[47];
-    const double B16 = q[48];
-    const double B17 = q[49];
-    const double B18 = q[50];
-    const double B19 = q[51];
-    const double B20 = q[52];
-    const double B21 = q[53];
-    const double B22 = q[54];
-    const double B23 = q[55];
-    const double B24 = q[56];
-    const double B25 = q[57];
-    const double B26 = q[58];
-    const double B27 = q[59];
-    const double B28 = q[60];
-    const double B29 = q[61];
-    const double B30 = q[62];
-    const double B31 = q[63];
-    const double B32 = q[64];
-    const double theta_dot = qd[0];
-    const double A1_dot = qd[1];
-    const double A2_dot = qd[2];
-    const double A3_dot = qd[3];
-    const double A4_dot = qd[4];
-    const double A5_dot = qd[5];
-    const double A6_dot = qd[6];
-    const double A7_dot = qd[7];
-    const double A8_dot = qd[8];
-    const double A9_dot = qd[9];
-    const double A10_dot = qd[10];
-    const double A11_dot = qd[11];
-    const double A12_dot = qd[12];
-    const double A13_dot = qd[13];
-    const double A14_dot = qd[14];
-    const double A15_dot = qd[15];
-    const double A16_dot = qd[16];
-    const double A17_dot = qd[17];
-    const double A18_dot = qd[18];
-    const double A19_dot = qd[19];
-    const double A20_dot = qd[20];
-    const double A21_dot = qd[21];
-    const double A22_dot = qd[22];
-    const double A23_dot = qd[23];
-    const double A24_dot = qd[24];
-    const double A25_dot = qd[25];
-    const double A26_dot = qd[26];
-    const double A27_dot = qd[27];
-    const double A28_dot = qd[28];
-    const double A29_dot = qd[29];
-    const double A30_dot = qd[30];
-    const double A31_dot = qd[31];
-    const double A32_dot = qd[32];
-    const double B1_dot = qd[33];
-    const double B2_dot = qd[34];
-    const double B3_dot = qd[35];
-    const double B4_dot = qd[36];
-    const double B5_dot = qd[37];
-    const double B6_dot = qd[38];
-    const double B7_dot = qd[39];
-    const double B8_dot = qd[40];
-    const double B9_dot = qd[41];
-    const double B10_dot = qd[42];
-    const double B11_dot = qd[43];
-    const double B12_dot = qd[44];
-    const double B13_dot = qd[45];
-    const double B14_dot = qd[46];
-    const double B15_dot = qd[47];
-    const double B16_dot = qd[48];
-    const double B17_dot = qd[49];
-    const double B18_dot = qd[50];
-    const double B19_dot = qd[51];
-    const double B20_dot = qd[52];
-    const double B21_dot = qd[53];
-    const double B22_dot = qd[54];
-    const double B23_dot = qd[55];
-    const double B24_dot = qd[56];
-    const double B25_dot = qd[57];
-    const double B26_dot = qd[58];
-    const double B27_dot = qd[59];
-    const double B28_dot = qd[60];
-    const double B29_dot = qd[61];
-    const double B30_dot = qd[62];
-    const double B31_dot = qd[63];
-    const double B32_dot = qd[64];
-    const double A1_theta_dot = A1*theta_dot;
-    const double A1_A1_dot = A1*A1_dot;
-    const double A1_A2_dot = A1*A2_dot;
-    const double A2_theta_dot = A2*theta_dot;
-    const double A2_A1_dot = A2*A1_dot;
-    const double A2_A2_dot = A2*A2_dot;
-    const double A2_A3_dot = A2*A3_dot;
-    const double A3_theta_dot = A3*theta_dot;
-    const double A3_A2_dot = A3*A2_dot;
-    const double A3_A3_dot = A3*A3_dot;
-    const double A3_A4_dot = A3*A4_dot;
-    const double A4_theta_dot = A4*theta_dot;
-    const double A4_A3_dot = A4*A3_dot;
-    const double A4_A4_dot = A4*A4_dot;
-    const double A4_A5_dot = A4*A5_dot;
-    const double A5_theta_dot = A5*theta_dot;
-    const double A5_A4_dot = A5*A4_dot;
-    const double A5_A5_dot = A5*A5_dot;
-    const double A5_A6_dot = A5*A6_dot;
-    const double A6_theta_dot = A6*theta_dot;
-    const double A6_A5_dot = A6*A5_dot;
-    const double A6_A6_dot = A6*A6_dot;
-    const double A6_A7_dot = A6*A7_dot;
-    const double A7_theta_dot = A7*theta_dot;
-    const double A7_A6_dot = A7*A6_dot;
-    const double A7_A7_dot = A7*A7_dot;
-    const double A7_A8_dot = A7*A8_dot;
-    const double A8_theta_dot = A8*theta_dot;
-    const double A8_A7_dot = A8*A7_dot;
-    const double A8_A8_dot = A8*A8_dot;
-    const double A8_A9_dot = A8*A9_dot;
-    const double A9_theta_dot = A9*theta_dot;
-    const double A9_A8_dot = A9*A8_dot;
-    const double A9_A9_dot = A9*A9_dot;
-    const double A9_A10_dot = A9*A10_dot;
-    const double A10_theta_dot = A10*theta_dot;
-    const double A10_A9_dot = A10*A9_dot;
-    const double A10_A10_dot = A10*A10_dot;
-    const double A10_A11_dot = A10*A11_dot;
-    const double A11_theta_dot = A11*theta_dot;
-    const double A11_A10_dot = A11*A10_dot;
-    const double A11_A11_dot = A11*A11_dot;
-    const double A11_A12_dot = A11*A12_dot;
-    const double A12_theta_dot = A12*theta_dot;
-    const double A12_A11_dot = A12*A11_dot;
-    const double A12_A12_dot = A12*A12_dot;
-    const double A12_A13_dot = A12*A13_dot;
-    const double A13_theta_dot = A13*theta_dot;
-    const double A13_A12_dot = A13*A12_dot;
-    const double A13_A13_dot = A13*A13_dot;
-    const double A13_A14_dot = A13*A14_dot;
-    const double A14_theta_dot = A14*theta_dot;
-    const double A14_A13_dot = A14*A13_dot;
-    const double A14_A14_dot = A14*A14_dot;
-    const double A14_A15_dot = A14*A15_dot;
-    const double A15_theta_dot = A15*theta_dot;
-    const double A15_A14_dot = A15*A14_dot;
-    const double A15_A15_dot = A15*A15_dot;
-    const double A15_A16_dot = A15*A16_dot;
-    const double A16_theta_dot = A16*theta_dot;
-    const double A16_A15_dot = A16*A15_dot;
-    const double A16_A16_dot = A16*A16_dot;
-    const double A16_A17_dot = A16*A17_dot;
-    const double A17_theta_dot = A17*theta_dot;
-    const double A17_A16_dot = A17*A16_dot;
-    const double A17_A17_dot = A17*A17_dot;
-    const double A17_A18_dot = A17*A18_dot;
-    const double A18_theta_dot = A18*theta_dot;
-    const double A18_A17_dot = A18*A17_dot;
-    const double A18_A18_dot = A18*A18_dot;
-    const double A18_A19_dot = A18*A19_dot;
-    const double A19_theta_dot = A19*theta_dot;
-    const double A19_A18_dot = A19*A18_dot;
-    const double A19_A19_dot = A19*A19_dot;
-    const double A19_A20_dot = A19*A20_dot;
-    const double A20_theta_dot = A20*theta_dot;
-    const double A20_A19_dot = A20*A19_dot;
-    const double A20_A20_dot = A20*A20_dot;
-    const double A20_A21_dot = A20*A21_dot;
-    const double A21_theta_dot = A21*theta_dot;
-    const double A21_A20_dot = A21*A20_dot;
-    const double A21_A21_dot = A21*A21_dot;
-    const double A21_A22_dot = A21*A22_dot;
-    const double A22_theta_dot = A22*theta_dot;
-    const double A22_A21_dot = A22*A21_dot;
-    const double A22_A22_dot = A22*A22_dot;
-    const double A22_A23_dot = A22*A23_dot;
-    const double A23_theta_dot = A23*theta_dot;
-    const double A23_A22_dot = A23*A22_dot;
-    const double A23_A23_dot = A23*A23_dot;
-    const double A23_A24_dot = A23*A24_dot;
-    const double A24_theta_dot = A24*theta_dot;
-    const double A24_A23_dot = A24*A23_dot;
-    const double A24_A24_dot = A24*A24_dot;
-    const double A24_A25_dot = A24*A25_dot;
-    const double A25_theta_dot = A25*theta_dot;
-    const double A25_A24_dot = A25*A24_dot;
-    const double A25_A25_dot = A25*A25_dot;
-    const double A25_A26_dot = A25*A26_dot;
-    const double A26_theta_dot = A26*theta_dot;
-    const double A26_A25_dot = A26*A25_dot;
-    const double A26_A26_dot = A26*A26_dot;
-    const double A26_A27_dot = A26*A27_dot;
-    const double A27_theta_dot = A27*theta_dot;
-    const double A27_A26_dot = A27*A26_dot;
-    const double A27_A27_dot = A27*A27_dot;
-    const double A27_A28_dot = A27*A28_dot;
-    const double A28_theta_dot = A28*theta_dot;
-    const double A28_A27_dot = A28*A27_dot;
-    const double A28_A28_dot = A28*A28_dot;
-    const double A28_A29_dot = A28*A29_dot;
-    const double A29_theta_dot = A29*theta_dot;
-    const double A29_A28_dot = A29*A28_dot;
-    const double A29_A29_dot = A29*A29_dot;
-    const double A29_A30_dot = A29*A30_dot;
-    const double A30_theta_dot = A30*theta_dot;
-    const double A30_A29_dot = A30*A29_dot;
-    const double A30_A30_dot = A30*A30_dot;
-    const double A30_A31_dot = A30*A31_dot;
-    const double A31_theta_dot = A31*theta_dot;
-    const double A31_A30_dot = A31*A30_dot;
-    const double A31_A31_dot = A31*A31_dot;
-    const double A31_A32_dot = A31*A32_dot;
-    const double A32_theta_dot = A32*theta_dot;
-    const double A32_A31_dot = A32*A31_dot;
-    const double A32_A32_dot = A32*A32_dot;
-    const double B1_theta_dot = B1*theta_dot;
-    const double B1_B1_dot = B1*B1_dot;
-    const double B1_B2_dot = B1*B2_dot;
-    const double B1_B3_dot = B1*B3_dot;
-    const double B1_B4_dot = B1*B4_dot;
-    const double B2_theta_dot = B2*theta_dot;
-    const double B2_B1_dot = B2*B1_dot;
-    const double B2_B2_dot = B2*B2_dot;
-    const double B2_B3_dot = B2*B3_dot;
-    const double B2_B4_dot = B2*B4_dot;
-    const double B3_theta_dot = B3*theta_dot;
-    const double B3_B1_dot = B3*B1_dot;
-    const double B3_B2_dot = B3*B2_dot;
-    const double B3_B3_dot = B3*B3_dot;
-    const double B3_B4_dot = B3*B4_dot;
-    const double B3_B5_dot = B3*B5_dot;
-    const double B3_B6_dot = B3*B6_dot;
-    const double B4_theta_dot = B4*theta_dot;
-    const double B4_B1_dot = B4*B1_dot;
-    const double B4_B2_dot = B4*B2_dot;
-    const double B4_B3_dot = B4*B3_dot;
-    const double B4_B4_dot = B4*B4_dot;
-    const double B4_B5_dot = B4*B5_dot;
-    const double B4_B6_dot = B4*B6_dot;
-    const double B5_theta_dot = B5*theta_dot;
-    const double B5_B3_dot = B5*B3_dot;
-    const double B5_B4_dot = B5*B4_dot;
-    const double B5_B5_dot = B5*B5_dot;
-    const double B5_B6_dot = B5*B6_dot;
-    const double B5_B7_dot = B5*B7_dot;
-    const double B5_B8_dot = B5*B8_dot;
-    const double B6_theta_dot = B6*theta_dot;
-    const double B6_B3_dot = B6*B3_dot;
-    const double B6_B4_dot = B6*B4_dot;
-    const double B6_B5_dot = B6*B5_dot;
-    const double B6_B6_dot = B6*B6_dot;
-    const double B6_B7_dot = B6*B7_dot;
-    const double B6_B8_dot = B6*B8_dot;
-    const double B7_theta_dot = B7*theta_dot;
-    const double B7_B5_dot = B7*B5_dot;
-    const double B7_B6_dot = B7*B6_dot;
-    const double B7_B7_dot = B7*B7_dot;
-    const double B7_B8_dot = B7*B8_dot;
-    const double B7_B9_dot = B7*B9_dot;
-    const double B7_B10_dot = B7*B10_dot;
-    const double B8_theta_dot = B8*theta_dot;
-    const double B8_B5_dot = B8*B5_dot;
-    const double B8_B6_dot = B8*B6_dot;
-    const double B8_B7_dot = B8*B7_dot;
-    const double B8_B8_dot = B8*B8_dot;
-    const double B8_B9_dot = B8*B9_dot;
-    const double B8_B10_dot = B8*B10_dot;
-    const double B9_theta_dot = B9*theta_dot;
-    const double B9_B7_dot = B9*B7_dot;
-    const double B9_B8_dot = B9*B8_dot;
-    const double B9_B9_dot = B9*B9_dot;
-    const double B9_B10_dot = B9*B10_dot;
-    const double B9_B11_dot = B9*B11_dot;
-    const double B9_B12_dot = B9*B12_dot;
-    const double B10_theta_dot = B10*theta_dot;
-    const double B10_B7_dot = B10*B7_dot;
-    const double B10_B8_dot = B10*B8_dot;
-    const double B10_B9_dot = B10*B9_dot;
-    const double B10_B10_dot = B10*B10_dot;
-    const double B10_B11_dot = B10*B11_dot;
-    const double B10_B12_dot = B10*B12_dot;
-    const double B11_theta_dot = B11*theta_dot;
-    const double B11_B9_dot = B11*B9_dot;
-    const double B11_B10_dot = B11*B10_dot;
-    const double B11_B11_dot = B11*B11_dot;
-    const double B11_B12_dot = B11*B12_dot;
-    const double B11_B13_dot = B11*B13_dot;
-    const double B11_B14_dot = B11*B14_dot;
-    const double B12_theta_dot = B12*theta_dot;
-    const double B12_B9_dot = B12*B9_dot;
-    const double B12_B10_dot = B12*B10_dot;
-    const double B12_B11_dot = B12*B11_dot;
-    const double B12_B12_dot = B12*B12_dot;
-    const double B12_B13_dot = B12*B13_dot;
-    const double B12_B14_dot = B12*B14_dot;
-    const double B13_theta_dot = B13*theta_dot;
-    const double B13_B11_dot = B13*B11_dot;
-    const double B13_B12_dot = B13*B12_dot;
-    const double B13_B13_dot = B13*B13_dot;
-    const double B13_B14_dot = B13*B14_dot;
-    const double B13_B15_dot = B13*B15_dot;
-    const double B13_B16_dot = B13*B16_dot;
-    const double B14_theta_dot = B14*theta_dot;
-    const double B14_B11_dot = B14*B11_dot;
-    const double B14_B12_dot = B14*B12_dot;
-    const double B14_B13_dot = B14*B13_dot;
-    const double B14_B14_dot = B14*B14_dot;
-    const double B14_B15_dot = B14*B15_dot;
-    const double B14_B16_dot = B14*B16_dot;
-    const double B15_theta_dot = B15*theta_dot;
-    const double B15_B13_dot = B15*B13_dot;
-    const double B15_B14_dot = B15*B14_dot;
-    const double B15_B15_dot = B15*B15_dot;
-    const double B15_B16_dot = B15*B16_dot;
-    const double B15_B17_dot = B15*B17_dot;
-    const double B15_B18_dot = B15*B18_dot;
-    const double B16_theta_dot = B16*theta_dot;
-    const double B16_B13_dot = B16*B13_dot;
-    const double B16_B14_dot = B16*B14_dot;
-    const double B16_B15_dot = B16*B15_dot;
-    const double B16_B16_dot = B16*B16_dot;
-    const double B16_B17_dot = B16*B17_dot;
-    const double B16_B18_dot = B16*B18_dot;
-    const double B17_theta_dot = B17*theta_dot;
-    const double B17_B15_dot = B17*B15_dot;
-    const double B17_B16_dot = B17*B16_dot;
-    const double B17_B17_dot = B17*B17_dot;
-    const double B17_B18_dot = B17*B18_dot;
-    const double B17_B19_dot = B17*B19_dot;
-    const double B17_B20_dot = B17*B20_dot;
-    const double B18_theta_dot = B18*theta_dot;
-    const double B18_B15_dot = B18*B15_dot;
-    const double B18_B16_dot = B18*B16_dot;
-    const double B18_B17_dot = B18*B17_dot;
-    const double B18_B18_dot = B18*B18_dot;
-    const double B18_B19_dot = B18*B19_dot;
-    const double B18_B20_dot = B18*B20_dot;
-    const double B19_theta_dot = B19*theta_dot;
-    const double B19_B17_dot = B19*B17_dot;
-    const double B19_B18_dot = B19*B18_dot;
-    const double B19_B19_dot = B19*B19_dot;
-    const double B19_B20_dot = B19*B20_dot;
-    const double B19_B21_dot = B19*B21_dot;
-    const double B19_B22_dot = B19*B22_dot;
-    const double B20_theta_dot = B20*theta_dot;
-    const double B20_B17_dot = B20*B17_dot;
-    const double B20_B18_dot = B20*B18_dot;
-    const double B20_B19_dot = B20*B19_dot;
-    const double B20_B20_dot = B20*B20_dot;
-    const double B20_B21_dot = B20*B21_dot;
-    const double B20_B22_dot = B20*B22_dot;
-    const double B21_theta_dot = B21*theta_dot;
-    const double B21_B19_dot = B21*B19_dot;
-    const double B21_B20_dot = B21*B20_dot;
-    const double B21_B21_dot = B21*B21_dot;
-    const double B21_B22_dot = B21*B22_dot;
-    const double B21_B23_dot = B21*B23_dot;
-    const double B21_B24_dot = B21*B24_dot;
-    const double B22_theta_dot = B22*theta_dot;
-    const double B22_B19_dot = B22*B19_dot;
-    const double B22_B20_dot = B22*B20_dot;
-    const double B22_B21_dot = B22*B21_dot;
-    const double B22_B22_dot = B22*B22_dot;
-    const double B22_B23_dot = B22*B23_dot;
-    const double B22_B24_dot = B22*B24_dot;
-    const double B23_theta_dot = B23*theta_dot;
-    const double B23_B21_dot = B23*B21_dot;
-    const double B23_B22_dot = B23*B22_dot;
-    const double B23_B23_dot = B23*B23_dot;
-    const double B23_B24_dot = B23*B24_dot;
-    const double B23_B25_dot = B23*B25_dot;
-    const double B23_B26_dot = B23*B26_dot;
-    const double B24_theta_dot = B24*theta_dot;
-    const double B24_B21_dot = B24*B21_dot;
-    const double B24_B22_dot = B24*B22_dot;
-    const double B24_B23_dot = B24*B23_dot;
-    const double B24_B24_dot = B24*B24_dot;
-    const double B24_B25_dot = B24*B25_dot;
-    const double B24_B26_dot = B24*B26_dot;
-    const double B25_theta_dot = B25*theta_dot;
-    const double B25_B23_dot = B25*B23_dot;
-    const double B25_B24_dot = B25*B24_dot;
-    const double B25_B25_dot = B25*B25_dot;
-    const double B25_B26_dot = B25*B26_dot;
-    const double B25_B27_dot = B25*B27_dot;
-    const double B25_B28_dot = B25*B28_dot;
-    const double B26_theta_dot = B26*theta_dot;
-    const double B26_B23_dot = B26*B23_dot;
-    const double B26_B24_dot = B26*B24_dot;
-    const double B26_B25_dot = B26*B25_dot;
-    const double B26_B26_dot = B26*B26_dot;
-    const double B26_B27_dot = B26*B27_dot;
-    const double B26_B28_dot = B26*B28_dot;
-    const double B27_theta_dot = B27*theta_dot;
-    const double B27_B25_dot = B27*B25_dot;
-    const double B27_B26_dot = B27*B26_dot;
-    const double B27_B27_dot = B27*B27_dot;
-    const double B27_B28_dot = B27*B28_dot;
-    const double B27_B29_dot = B27*B29_dot;
-    const double B27_B30_dot = B27*B30_dot;
-    const double B28_theta_dot = B28*theta_dot;
-    const double B28_B25_dot = B28*B25_dot;
-    const double B28_B26_dot = B28*B26_dot;
-    const double B28_B27_dot = B28*B27_dot;
-    const double B28_B28_dot = B28*B28_dot;
-    const double B28_B29_dot = B28*B29_dot;
-    const double B28_B30_dot = B28*B30_dot;
-    const double B29_theta_dot = B29*theta_dot;
-    const double B29_B27_dot = B29*B27_dot;
-    const double B29_B28_dot = B29*B28_dot;
-    const double B29_B29_dot = B29*B29_dot;
-    const double B29_B30_dot = B29*B30_dot;
-    const double B29_B31_dot = B29*B31_dot;
-    const double B29_B32_dot = B29*B32_dot;
-    const double B30_theta_dot = B30*theta_dot;
-    const double B30_B27_dot = B30*B27_dot;
-    const double B30_B28_dot = B30*B28_dot;
-    const double B30_B29_dot = B30*B29_dot;
-    const double B30_B30_dot = B30*B30_dot;
-    const double B30_B31_dot = B30*B31_dot;
-    const double B30_B32_dot = B30*B32_dot;
-    const double B31_theta_dot = B31*theta_dot;
-    const double B31_B29_dot = B31*B29_dot;
-    const double B31_B30_dot = B31*B30_dot;
-    const double B31_B31_dot = B31*B31_dot;
-    const double B31_B32_dot = B31*B32_dot;
-    const double B32_theta_dot = B32*theta_dot;
-    const double B32_B29_dot = B32*B29_dot;
-    const double B32_B30_dot = B32*B30_dot;
-    const double B32_B31_dot = B32*B31_dot;
-    const double B32_B32_dot = B32*B32_dot;
-    out[0] = -c[1]*A1_dot - c[2]*A2_dot - c[3]*A3_dot - c[4]*A4_dot - c[5]*A5_dot - c[6]*A6_dot - c[7]*A7_dot - c[8]*A8_dot - c[9]*A9_dot - c[10]*A10_dot - c[11]*A11_dot - c[12]*A12_dot - c[13]*A13_dot - c[14]*A14_dot - c[15]*A15_dot - c[16]*A16_dot - c[17]*A17_dot - c[18]*A18_dot - c[19]*A19_dot - c[20]*A20_dot - c[21]*A21_dot - c[22]*A22_dot - c[23]*A23_dot - c[24]*A24_dot - c[25]*A25_dot - c[26]*A26_dot - c[27]*A27_dot - c[28]*A28_dot - c[29]*A29_dot - c[30]*A30_dot - c[31]*A31_dot - c[32]*A32_dot - c[148]*A1_A1_dot - c[34]*A1_A2_dot - c[34]*A2_A1_dot - c[148]*A2_A2_dot - c[34]*A2_A3_dot - c[34]*A3_A2_dot - c[148]*A3_A3_dot - c[34]*A3_A4_dot - c[34]*A4_A3_dot - c[148]*A4_A4_dot - c[34]*A4_A5_dot - c[34]*A5_A4_dot - c[148]*A5_A5_dot - c[34]*A5_A6_dot - c[34]*A6_A5_dot - c[148]*A6_A6_dot - c[34]*A6_A7_dot - c[34]*A7_A6_dot - c[148]*A7_A7_dot - c[34]*A7_A8_dot - c[34]*A8_A7_dot - c[148]*A8_A8_dot - c[34]*A8_A9_dot - c[34]*A9_A8_dot - c[148]*A9_A9_dot - c[34]*A9_A10_dot - c[34]*A10_A9_dot - c[148]*A10_A10_dot - c[34]*A10_A11_dot - c[34]*A11_A10_dot - c[148]*A11_A11_dot - c[34]*A11_A12_dot - c[34]*A12_A11_dot - c[148]*A12_A12_dot - c[34]*A12_A13_dot - c[34]*A13_A12_dot - c[148]*A13_A13_dot - c[34]*A13_A14_dot - c[34]*A14_A13_dot - c[148]*A14_A14_dot - c[34]*A14_A15_dot - c[34]*A15_A14_dot - c[148]*A15_A15_dot - c[34]*A15_A16_dot - c[34]*A16_A15_dot - c[148]*A16_A16_dot - c[34]*A16_A17_dot - c[34]*A17_A16_dot - c[148]*A17_A17_dot - c[34]*A17_A18_dot - c[34]*A18_A17_dot - c[148]*A18_A18_dot - c[34]*A18_A19_dot - c[34]*A19_A18_dot - c[148]*A19_A19_dot - c[34]*A19_A20_dot - c[34]*A20_A19_dot - c[148]*A20_A20_dot - c[34]*A20_A21_dot - c[34]*A21_A20_dot - c[148]*A21_A21_dot - c[34]*A21_A22_dot - c[34]*A22_A21_dot - c[148]*A22_A22_dot - c[34]*A22_A23_dot - c[34]*A23_A22_dot - c[148]*A23_A23_dot - c[34]*A23_A24_dot - c[34]*A24_A23_dot - c[148]*A24_A24_dot - c[34]*A24_A25_dot - c[34]*A25_A24_dot - c[148]*A25_A25_dot - c[34]*A25_A26_dot - c[34]*A26_A25_dot - c[148]*A26_A26_dot - c[34]*A26_A27_dot - c[34]*A27_A26_dot - c[148]*A27_A27_dot - c[34]*A27_A28_dot - c[34]*A28_A27_dot - c[148]*A28_A28_dot - c[34]*A28_A29_dot - c[34]*A29_A28_dot - c[148]*A29_A29_dot - c[34]*A29_A30_dot - c[34]*A30_A29_dot - c[148]*A30_A30_dot - c[34]*A30_A31_dot - c[34]*A31_A30_dot - c[148]*A31_A31_dot - c[34]*A31_A32_dot - c[34]*A32_A31_dot - c[33]*A32_A32_dot + c[149]*B1_B1_dot - c[36]*B1_B2_dot - c[37]*B1_B3_dot + c[38]*B1_B4_dot - c[36]*B2_B1_dot + c[150]*B2_B2_dot - c[40]*B2_B3_dot - c[41]*B2_B4_dot - c[37]*B3_B1_dot - c[40]*B3_B2_dot + c[151]*B3_B3_dot - c[43]*B3_B4_dot - c[44]*B3_B5_dot + c[40]*B3_B6_dot + c[38]*B4_B1_dot - c[41]*B4_B2_dot - c[43]*B4_B3_dot + c[152]*B4_B4_dot - c[46]*B4_B5_dot - c[47]*B4_B6_dot - c[44]*B5_B3_dot - c[46]*B5_B4_dot + c[153]*B5_B5_dot - c[49]*B5_B6_dot - c[50]*B5_B7_dot + c[46]*B5_B8_dot + c[40]*B6_B3_dot - c[47]*B6_B4_dot - c[49]*B6_B5_dot + c[154]*B6_B6_dot - c[52]*B6_B7_dot - c[53]*B6_B8_dot - c[50]*B7_B5_dot - c[52]*B7_B6_dot + c[155]*B7_B7_dot - c[55]*B7_B8_dot - c[56]*B7_B9_dot + c[52]*B7_B10_dot + c[46]*B8_B5_dot - c[53]*B8_B6_dot - c[55]*B8_B7_dot + c[156]*B8_B8_dot - c[58]*B8_B9_dot - c[59]*B8_B10_dot - c[56]*B9_B7_dot - c[58]*B9_B8_dot + c[157]*B9_B9_dot - c[61]*B9_B10_dot - c[62]*B9_B11_dot + c[58]*B9_B12_dot + c[52]*B10_B7_dot - c[59]*B10_B8_dot - c[61]*B10_B9_dot + c[158]*B10_B10_dot - c[64]*B10_B11_dot - c[65]*B10_B12_dot - c[62]*B11_B9_dot - c[64]*B11_B10_dot + c[159]*B11_B11_dot - c[67]*B11_B12_dot - c[68]*B11_B13_dot + c[64]*B11_B14_dot + c[58]*B12_B9_dot - c[65]*B12_B10_dot - c[67]*B12_B11_dot + c[160]*B12_B12_dot - c[70]*B12_B13_dot - c[71]*B12_B14_dot - c[68]*B13_B11_dot - c[70]*B13_B12_dot + c[161]*B13_B13_dot - c[73]*B13_B14_dot - c[74]*B13_B15_dot + c[70]*B13_B16_dot + c[64]*B14_B11_dot - c[71]*B14_B12_dot - c[73]*B14_B13_dot + c[162]*B14_B14_dot - c[76]*B14_B15_dot - c[77]*B14_B16_dot - c[74]*B15_B13_dot - c[76]*B15_B14_dot + c[163]*B15_B15_dot - c[79]*B15_B16_dot - c[80]*B15_B17_dot + c[76]*B15_B18_dot + c[70]*B16_B13_dot - c[77]*B16_B14_dot - c[79]*B16_B15_dot + c[164]*B16_B16_dot - c[82]*B16_B17_dot - c[83]*B16_B18_dot - c[80]*B17_B15_dot - c[82]*B17_B16_dot + c[165]*B17_B17_dot - c[85]*B17_B18_dot - c[86]*B17_B19_dot + c[82]*B17_B20_dot + c[76]*B18_B15_dot - c[83]*B18_B16_dot - c[85]*B18_B17_dot + c[166]*B18_B18_dot - c[88]*B18_B19_dot - c[89]*B18_B20_dot - c[86]*B19_B17_dot - c[88]*B19_B18_dot + c[167]*B19_B19_dot - c[91]*B19_B20_dot - c[92]*B19_B21_dot + c[88]*B19_B22_dot + c[82]*B20_B17_dot - c[89]*B20_B18_dot - c[91]*B20_B19_dot + c[168]*B20_B20_dot - c[94]*B20_B21_dot - c[95]*B20_B22_dot - c[92]*B21_B19_dot - c[94]*B21_B20_dot + c[169]*B21_B21_dot - c[97]*B21_B22_dot - c[98]*B21_B23_dot + c[94]*B21_B24_dot + c[88]*B22_B19_dot - c[95]*B22_B20_dot - c[97]*B22_B21_dot + c[170]*B22_B22_dot - c[100]*B22_B23_dot - c[101]*B22_B24_dot - c[98]*B23_B21_dot - c[100]*B23_B22_dot + c[171]*B23_B23_dot - c[103]*B23_B24_dot - c[104]*B23_B25_dot + c[100]*B23_B26_dot + c[94]*B24_B21_dot - c[101]*B24_B22_dot - c[103]*B24_B23_dot + c[172]*B24_B24_dot - c[106]*B24_B25_dot - c[107]*B24_B26_dot - c[104]*B25_B23_dot - c[106]*B25_B24_dot + c[173]*B25_B25_dot - c[109]*B25_B26_dot - c[110]*B25_B27_dot + c[106]*B25_B28_dot + c[100]*B26_B23_dot - c[107]*B26_B24_dot - c[109]*B26_B25_dot + c[174]*B26_B26_dot - c[112]*B26_B27_dot - c[113]*B26_B28_dot - c[110]*B27_B25_dot - c[112]*B27_B26_dot + c[175]*B27_B27_dot - c[115]*B27_B28_dot - c[116]*B27_B29_dot + c[112]*B27_B30_dot + c[106]*B28_B25_dot - c[113]*B28_B26_dot - c[115]*B28_B27_dot + c[176]*B28_B28_dot - c[118]*B28_B29_dot - c[119]*B28_B30_dot - c[116]*B29_B27_dot - c[118]*B29_B28_dot + c[177]*B29_B29_dot - c[121]*B29_B30_dot - c[122]*B29_B31_dot + c[118]*B29_B32_dot + c[112]*B30_B27_dot - c[119]*B30_B28_dot - c[121]*B30_B29_dot + c[178]*B30_B30_dot - c[124]*B30_B31_dot - c[125]*B30_B32_dot - c[122]*B31_B29_dot - c[124]*B31_B30_dot + c[179]*B31_B31_dot - c[127]*B31_B32_dot + c[118]*B32_B29_dot - c[125]*B32_B30_dot - c[127]*B32_B31_dot + c[180]*B32_B32_dot;
-    out[1] = -c[1]*theta_dot - c[148]*A1_theta_dot - c[34]*A2_theta_dot;
-    out[2] = -c[2]*theta_dot - c[34]*A1_theta_dot - c[148]*A2_theta_dot - c[34]*A3_theta_dot;
-    out[3] = -c[3]*theta_dot - c[34]*A2_theta_dot - c[148]*A3_theta_dot - c[34]*A4_theta_dot;
-    out[4] = -c[4]*theta_dot - c[34]*A3_theta_dot - c[148]*A4_theta_dot - c[34]*A5_theta_dot;
-    out[5] = -c[5]*theta_dot - c[34]*A4_theta_dot - c[148]*A5_theta_dot - c[34]*A6_theta_dot;
-    out[6] = -c[6]*theta_dot - c[34]*A5_theta_dot - c[148]*A6_theta_dot - c[34]*A7_theta_dot;
-    out[7] = -c[7]*theta_dot - c[34]*A6_theta_dot - c[148]*A7_theta_dot - c[34]*A8_theta_dot;
-    out[8] = -c[8]*theta_dot - c[34]*A7_theta_dot - c[148]*A8_theta_dot - c[34]*A9_theta_dot;
-    out[9] = -c[9]*theta_dot - c[34]*A8_theta_dot - c[148]*A9_theta_dot - c[34]*A10_theta_dot;
-    out[10] = -c[10]*theta_dot - c[34]*A9_theta_dot - c[148]*A10_theta_dot - c[34]*A11_theta_dot;
-    out[11] = -c[11]*theta_dot - c[34]*A10_theta_dot - c[148]*A11_theta_dot - c[34]*A12_theta_dot;
-    out[12] = -c[12]*theta_dot - c[34]*A11_theta_dot - c[148]*A12_theta_dot - c[34]*A13_theta_dot;
-    out[13] = -c[13]*theta_dot - c[34]*A12_theta_dot - c[148]*A13_theta_dot - c[34]*A14_theta_dot;
-    out[14] = -c[14]*theta_dot - c[34]*A13_theta_dot - c[148]*A14_theta_dot - c[34]*A15_theta_dot;
-    out[15] = -c[15]*theta_dot - c[34]*A14_theta_dot - c[148]*A15_theta_dot - c[34]*A16_theta_dot;
-    out[16] = -c[16]*theta_dot - c[34]*A15_theta_dot - c[148]*A16_theta_dot - c[34]*A17_theta_dot;
-    out[17] = -c[17]*theta_dot - c[34]*A16_theta_dot - c[148]*A17_theta_dot - c[34]*A18_theta_dot;
-    out[18] = -c[18]*theta_dot - c[34]*A17_theta_dot - c[148]*A18_theta_dot - c[34]*A19_theta_dot;
-    out[19] = -c[19]*theta_dot - c[34]*A18_theta_dot - c[148]*A19_theta_dot - c[34]*A20_theta_dot;
-    out[20] = -c[20]*theta_dot - c[34]*A19_theta_dot - c[148]*A20_theta_dot - c[34]*A21_theta_dot;
-    out[21] = -c[21]*theta_dot - c[34]*A20_theta_dot - c[148]*A21_theta_dot - c[34]*A22_theta_dot;
-    out[22] = -c[22]*theta_dot - c[34]*A21_theta_dot - c[148]*A22_theta_dot - c[34]*A23_theta_dot;
-    out[23] = -c[23]*theta_dot - c[34]*A22_theta_dot - c[148]*A23_theta_dot - c[34]*A24_theta_dot;
-    out[24] = -c[24]*theta_dot - c[34]*A23_theta_dot - c[148]*A24_theta_dot - c[34]*A25_theta_dot;
-    out[25] = -c[25]*theta_dot - c[34]*A24_theta_dot - c[148]*A25_theta_dot - c[34]*A26_theta_dot;
-    out[26] = -c[26]*theta_dot - c[34]*A25_theta_dot - c[148]*A26_theta_dot - c[34]*A27_theta_dot;
-    out[27] = -c[27]*theta_dot - c[34]*A26_theta_dot - c[148]*A27_theta_dot - c[34]*A28_theta_dot;
-    out[28] = -c[28]*theta_dot - c[34]*A27_theta_dot - c[148]*A28_theta_dot - c[34]*A29_theta_dot;
-    out[29] = -c[29]*theta_dot - c[34]*A28_theta_dot - c[148]*A29_theta_dot - c[34]*A30_theta_dot;
-    out[30] = -c[30]*theta_dot - c[34]*A29_theta_dot - c[148]*A30_theta_dot - c[34]*A31_theta_dot;
-    out[31] = -c[31]*theta_dot - c[34]*A30_theta_dot - c[148]*A31_theta_dot - c[34]*A32_theta_dot;
-    out[32] = -c[32]*theta_dot - c[34]*A31_theta_dot - c[33]*A32_theta_dot;
-    out[33] = c[149]*B1_theta_dot - c[36]*B2_theta_dot - c[37]*B3_theta_dot + c[38]*B4_theta_dot;
-    out[34] = -c[36]*B1_theta_dot + c[150]*B2_theta_dot - c[40]*B3_theta_dot - c[41]*B4_theta_dot;
-    out[35] = -c[37]*B1_theta_dot - c[40]*B2_theta_dot + c[151]*B3_theta_dot - c[43]*B4_theta_dot - c[44]*B5_theta_dot + c[40]*B6_theta_dot;
-    out[36] = c[38]*B1_theta_dot - c[41]*B2_theta_dot - c[43]*B3_theta_dot + c[152]*B4_theta_dot - c[46]*B5_theta_dot - c[47]*B6_theta_dot;
-    out[37] = -c[44]*B3_theta_dot - c[46]*B4_theta_dot + c[153]*B5_theta_dot - c[49]*B6_theta_dot - c[50]*B7_theta_dot + c[46]*B8_theta_dot;
-    out[38] = c[40]*B3_theta_dot - c[47]*B4_theta_dot - c[49]*B5_theta_dot + c[154]*B6_theta_dot - c[52]*B7_theta_dot - c[53]*B8_theta_dot;
-    out[39] = -c[50]*B5_theta_dot - c[52]*B6_theta_dot + c[155]*B7_theta_dot - c[55]*B8_theta_dot - c[56]*B9_theta_dot + c[52]*B10_theta_dot;
-    out[40] = c[46]*B5_theta_dot - c[53]*B6_theta_dot - c[55]*B7_theta_dot + c[156]*B8_theta_dot - c[58]*B9_theta_dot - c[59]*B10_theta_dot;
-    out[41] = -c[56]*B7_theta_dot - c[58]*B8_theta_dot + c[157]*B9_theta_dot - c[61]*B10_theta_dot - c[62]*B11_theta_dot + c[58]*B12_theta_dot;
-    out[42] = c[52]*B7_theta_dot - c[59]*B8_theta_dot - c[61]*B9_theta_dot + c[158]*B10_theta_dot - c[64]*B11_theta_dot - c[65]*B12_theta_dot;
-    out[43] = -c[62]*B9_theta_dot - c[64]*B10_theta_dot + c[159]*B11_theta_dot - c[67]*B12_theta_dot - c[68]*B13_theta_dot + c[64]*B14_theta_dot;
-    out[44] = c[58]*B9_theta_dot - c[65]*B10_theta_dot - c[67]*B11_theta_dot + c[160]*B12_theta_dot - c[70]*B13_theta_dot - c[71]*B14_theta_dot;
-    out[45] = -c[68]*B11_theta_dot - c[70]*B12_theta_dot + c[161]*B13_theta_dot - c[73]*B14_theta_dot - c[74]*B15_theta_dot + c[70]*B16_theta_dot;
-    out[46] = c[64]*B11_theta_dot - c[71]*B12_theta_dot - c[73]*B13_theta_dot + c[162]*B14_theta_dot - c[76]*B15_theta_dot - c[77]*B16_theta_dot;
-    out[47] = -c[74]*B13_theta_dot - c[76]*B14_theta_dot + c[163]*B15_theta_dot - c[79]*B16_theta_dot - c[80]*B17_theta_dot + c[76]*B18_theta_dot;
-    out[48] = c[70]*B13_theta_dot - c[77]*B14_theta_dot - c[79]*B15_theta_dot + c[164]*B16_theta_dot - c[82]*B17_theta_dot - c[83]*B18_theta_dot;
-    out[49] = -c[80]*B15_theta_dot - c[82]*B16_theta_dot + c[165]*B17_theta_dot - c[85]*B18_theta_dot - c[86]*B19_theta_dot + c[82]*B20_theta_dot;
-    out[50] = c[76]*B15_theta_dot - c[83]*B16_theta_dot - c[85]*B17_theta_dot + c[166]*B18_theta_dot - c[88]*B19_theta_dot - c[89]*B20_theta_dot;
-    out[51] = -c[86]*B17_theta_dot - c[88]*B18_theta_dot + c[167]*B19_theta_dot - c[91]*B20_theta_dot - c[92]*B21_theta_dot + c[88]*B22_theta_dot;
-    out[52] = c[82]*B17_theta_dot - c[89]*B18_theta_dot - c[91]*B19_theta_dot + c[168]*B20_theta_dot - c[94]*B21_theta_dot - c[95]*B22_theta_dot;
-    out[53] = -c[92]*B19_theta_dot - c[94]*B20_theta_dot + c[169]*B21_theta_dot - c[97]*B22_theta_dot - c[98]*B23_theta_dot + c[94]*B24_theta_dot;
-    out[54] = c[88]*B19_theta_dot - c[95]*B20_theta_dot - c[97]*B21_theta_dot + c[170]*B22_theta_dot - c[100]*B23_theta_dot - c[101]*B24_theta_dot;
-    out[55] = -c[98]*B21_theta_dot - c[100]*B22_theta_dot + c[171]*B23_theta_dot - c[103]*B24_theta_dot - c[104]*B25_theta_dot + c[100]*B26_theta_dot;
-    out[56] = c[94]*B21_theta_dot - c[101]*B22_theta_dot - c[103]*B23_theta_dot + c[172]*B24_theta_dot - c[106]*B25_theta_dot - c[107]*B26_theta_dot;
-    out[57] = -c[104]*B23_theta_dot - c[106]*B24_theta_dot + c[173]*B25_theta_dot - c[109]*B26_theta_dot - c[110]*B27_theta_dot + c[106]*B28_theta_dot;
-    out[58] = c[100]*B23_theta_dot - c[107]*B24_theta_dot - c[109]*B25_theta_dot + c[174]*B26_theta_dot - c[112]*B27_theta_dot - c[113]*B28_theta_dot;
-    out[59] = -c[110]*B25_theta_dot - c[112]*B26_theta_dot + c[175]*B27_theta_dot - c[115]*B28_theta_dot - c[116]*B29_theta_dot + c[112]*B30_theta_dot;
-    out[60] = c[106]*B25_theta_dot - c[113]*B26_theta_dot - c[115]*B27_theta_dot + c[176]*B28_theta_dot - c[118]*B29_theta_dot - c[119]*B30_theta_dot;
-    out[61] = -c[116]*B27_theta_dot - c[118]*B28_theta_dot + c[177]*B29_theta_dot - c[121]*B30_theta_dot - c[122]*B31_theta_dot + c[118]*B32_theta_dot;
-    out[62] = c[112]*B27_theta_dot - c[119]*B28_theta_dot - c[121]*B29_theta_dot + c[178]*B30_theta_dot - c[124]*B31_theta_dot - c[125]*B32_theta_dot;
-    out[63] = -c[122]*B29_theta_dot - c[124]*B30_theta_dot + c[179]*B31_theta_dot - c[127]*B32_theta_dot;
-    out[64] = c[118]*B29_theta_dot - c[125]*B30_theta_dot - c[127]*B31_theta_dot + c[180]*B32_theta_dot;
-    out[65] = c[1]*theta_dot + c[184]*B1_dot - c[185]*B2_dot + c[148]*A1_theta_dot + c[34]*A2_theta_dot;
-    out[98] = c[184]*theta_dot;
-    out[99] = -c[185]*theta_dot;
-    out[130] = c[2]*theta_dot + c[187]*B1_dot + c[188]*B3_dot - c[189]*B4_dot + c[34]*A1_theta_dot + c[148]*A2_theta_dot + c[34]*A3_theta_dot;
-    out[163] = c[187]*theta_dot;
-    out[165] = c[188]*theta_dot;
-    out[166] = -c[189]*theta_dot;
-    out[195] = c[3]*theta_dot + c[184]*B1_dot + c[185]*B2_dot + c[184]*B3_dot - c[185]*B4_dot + c[34]*A2_theta_dot + c[148]*A3_theta_dot + c[34]*A4_theta_dot;
-    out[228] = c[184]*theta_dot;
-    out[229] = c[185]*theta_dot;
-    out[230] = c[184]*theta_dot;
-    out[231] = -c[185]*theta_dot;
-    out[260] = c[4]*theta_dot + c[188]*B1_dot + c[189]*B2_dot + c[187]*B3_dot + c[188]*B5_dot - c[189]*B6_dot + c[34]*A3_theta_dot + c[148]*A4_theta_dot + c[34]*A5_theta_dot;
-    out[293] = c[188]*theta_dot;
-    out[294] = c[189]*theta_dot;
-    out[295] = c[187]*theta_dot;
-    out[297] = c[188]*theta_dot;
-    out[298] = -c[189]*theta_dot;
-    out[325] = c[5]*theta_dot + c[184]*B3_dot + c[185]*B4_dot + c[184]*B5_dot - c[185]*B6_dot + c[34]*A4_theta_dot + c[148]*A5_theta_dot + c[34]*A6_theta_dot;
-    out[360] = c[184]*theta_dot;
-    out[361] = c[185]*theta_dot;
-    out[362] = c[184]*theta_dot;
-    out[363] = -c[185]*theta_dot;
-    out[390] = c[6]*theta_dot + c[188]*B3_dot + c[189]*B4_dot + c[187]*B5_dot + c[188]*B7_dot - c[189]*B8_dot + c[34]*A5_theta_dot + c[148]*A6_theta_dot + c[34]*A7_theta_dot;
-    out[425] = c[188]*theta_dot;
-    out[426] = c[189]*theta_dot;
-    out[427] = c[187]*theta_dot;
-    out[429] = c[188]*theta_dot;
-    out[430] = -c[189]*theta_dot;
-    out[455] = c[7]*theta_dot + c[184]*B5_dot + c[185]*B6_dot + c[184]*B7_dot - c[185]*B8_dot + c[34]*A6_theta_dot + c[148]*A7_theta_dot + c[34]*A8_theta_dot;
-    out[492] = c[184]*theta_dot;
-    out[493] = c[185]*theta_dot;
-    out[494] = c[184]*theta_dot;
-    out[495] = -c[185]*theta_dot;
-    out[520] = c[8]*theta_dot + c[188]*B5_dot + c[189]*B6_dot + c[187]*B7_dot + c[188]*B9_dot - c[189]*B10_dot + c[34]*A7_theta_dot + c[148]*A8_theta_dot + c[34]*A9_theta_dot;
-    out[557] = c[188]*theta_dot;
-    out[558] = c[189]*theta_dot;
-    out[559] = c[187]*theta_dot;
-    out[561] = c[188]*theta_dot;
-    out[562] = -c[189]*theta_dot;
-    out[585] = c[9]*theta_dot + c[184]*B7_dot + c[185]*B8_dot + c[184]*B9_dot - c[185]*B10_dot + c[34]*A8_theta_dot + c[148]*A9_theta_dot + c[34]*A10_theta_dot;
-    out[624] = c[184]*theta_dot;
-    out[625] = c[185]*theta_dot;
-    out[626] = c[184]*theta_dot;
-    out[627] = -c[185]*theta_dot;
-    out[650] = c[10]*theta_dot + c[188]*B7_dot + c[189]*B8_dot + c[187]*B9_dot + c[188]*B11_dot - c[189]*B12_dot + c[34]*A9_theta_dot + c[148]*A10_theta_dot + c[34]*A11_theta_dot;
-    out[689] = c[188]*theta_dot;
-    out[690] = c[189]*theta_dot;
-    out[691] = c[187]*theta_dot;
-    out[693] = c[188]*theta_dot;
-    out[694] = -c[189]*theta_dot;
-    out[715] = c[11]*theta_dot + c[184]*B9_dot + c[185]*B10_dot + c[184]*B11_dot - c[185]*B12_dot + c[34]*A10_theta_dot + c[148]*A11_theta_dot + c[34]*A12_theta_dot;
-    out[756] = c[184]*theta_dot;
-    out[757] = c[185]*theta_dot;
-    out[758] = c[184]*theta_dot;
-    out[759] = -c[185]*theta_dot;
-    out[780] = c[12]*theta_dot + c[188]*B9_dot + c[189]*B10_dot + c[187]*B11_dot + c[188]*B13_dot - c[189]*B14_dot + c[34]*A11_theta_dot + c[148]*A12_theta_dot + c[34]*A13_theta_dot;
-    out[821] = c[188]*theta_dot;
-    out[822] = c[189]*theta_dot;
-    out[823] = c[187]*theta_dot;
-    out[825] = c[188]*theta_dot;
-    out[826] = -c[189]*theta_dot;
-    out[845] = c[13]*theta_dot + c[184]*B11_dot + c[185]*B12_dot + c[184]*B13_dot - c[185]*B14_dot + c[34]*A12_theta_dot + c[148]*A13_theta_dot + c[34]*A14_theta_dot;
-    out[888] = c[184]*theta_dot;
-    out[889] = c[185]*theta_dot;
-    out[890] = c[184]*theta_dot;
-    out[891] = -c[185]*theta_dot;
-    out[910] = c[14]*theta_dot + c[188]*B11_dot + c[189]*B12_dot + c[187]*B13_dot + c[188]*B15_dot - c[189]*B16_dot + c[34]*A13_theta_dot + c[148]*A14_theta_dot + c[34]*A15_theta_dot;
-    out[953] = c[188]*theta_dot;
-    out[954] = c[189]*theta_dot;
-    out[955] = c[187]*theta_dot;
-    out[957] = c[188]*theta_dot;
-    out[958] = -c[189]*theta_dot;
-    out[975] = c[15]*theta_dot + c[184]*B13_dot + c[185]*B14_dot + c[184]*B15_dot - c[185]*B16_dot + c[34]*A14_theta_dot + c[148]*A15_theta_dot + c[34]*A16_theta_dot;
-    out[1020] = c[184]*theta_dot;
-    out[1021] = c[185]*theta_dot;
-    out[1022] = c[184]*theta_dot;
-    out[1023] = -c[185]*theta_dot;
-    out[1040] = c[16]*theta_dot + c[188]*B13_dot + c[189]*B14_dot + c[187]*B15_dot + c[188]*B17_dot - c[189]*B18_dot + c[34]*A15_theta_dot + c[148]*A16_theta_dot + c[34]*A17_theta_dot;
-    out[1085] = c[188]*theta_dot;
-    out[1086] = c[189]*theta_dot;
-    out[1087] = c[187]*theta_dot;
-    out[1089] = c[188]*theta_dot;
-    out[1090] = -c[189]*theta_dot;
-    out[1105] = c[17]*theta_dot + c[184]*B15_dot + c[185]*B16_dot + c[184]*B17_dot - c[185]*B18_dot + c[34]*A16_theta_dot + c[148]*A17_theta_dot + c[34]*A18_theta_dot;
-    out[1152] = c[184]*theta_dot;
-    out[1153] = c[185]*theta_dot;
-    out[1154] = c[184]*theta_dot;
-    out[1155] = -c[185]*theta_dot;
-    out[1170] = c[18]*theta_dot + c[188]*B15_dot + c[189]*B16_dot + c[187]*B17_dot + c[188]*B19_dot - c[189]*B20_dot + c[34]*A17_theta_dot + c[148]*A18_theta_dot + c[34]*A19_theta_dot;
-    out[1217] = c[188]*theta_dot;
-    out[1218] = c[189]*theta_dot;
-    out[1219] = c[187]*theta_dot;
-    out[1221] = c[188]*theta_dot;
-    out[1222] = -c[189]*theta_dot;
-    out[1235] = c[19]*theta_dot + c[184]*B17_dot + c[185]*B18_dot + c[184]*B19_dot - c[185]*B20_dot + c[34]*A18_theta_dot + c[148]*A19_theta_dot + c[34]*A20_theta_dot;
-    out[1284] = c[184]*theta_dot;
-    out[1285] = c[185]*theta_dot;
-    out[1286] = c[184]*theta_dot;
-    out[1287] = -c[185]*theta_dot;
-    out[1300] = c[20]*theta_dot + c[188]*B17_dot + c[189]*B18_dot + c[187]*B19_dot + c[188]*B21_dot - c[189]*B22_dot + c[34]*A19_theta_dot + c[148]*A20_theta_dot + c[34]*A21_theta_dot;
-    out[1349] = c[188]*theta_dot;
-    out[1350] = c[189]*theta_dot;
-    out[1351] = c[187]*theta_dot;
-    out[1353] = c[188]*theta_dot;
-    out[1354] = -c[189]*theta_dot;
-    out[1365] = c[21]*theta_dot + c[184]*B19_dot + c[185]*B20_dot + c[184]*B21_dot - c[185]*B22_dot + c[34]*A20_theta_dot + c[148]*A21_theta_dot + c[34]*A22_theta_dot;
-    out[1416] = c[184]*theta_dot;
-    out[1417] = c[185]*theta_dot;
-    out[1418] = c[184]*theta_dot;
-    out[1419] = -c[185]*theta_dot;
-    out[1430] = c[22]*theta_dot + c[188]*B19_dot + c[189]*B20_dot + c[187]*B21_dot + c[188]*B23_dot - c[189]*B24_dot + c[34]*A21_theta_dot + c[148]*A22_theta_dot + c[34]*A23_theta_dot;
-    out[1481] = c[188]*theta_dot;
-    out[1482] = c[189]*theta_dot;
-    out[1483] = c[187]*theta_dot;
-    out[1485] = c[188]*theta_dot;
-    out[1486] = -c[189]*theta_dot;
-    out[1495] = c[23]*theta_dot + c[184]*B21_dot + c[185]*B22_dot + c[184]*B23_dot - c[185]*B24_dot + c[34]*A22_theta_dot + c[148]*A23_theta_dot + c[34]*A24_theta_dot;
-    out[1548] = c[184]*theta_dot;
-    out[1549] = c[185]*theta_dot;
-    out[1550] = c[184]*theta_dot;
-    out[1551] = -c[185]*theta_dot;
-    out[1560] = c[24]*theta_dot + c[188]*B21_dot + c[189]*B22_dot + c[187]*B23_dot + c[188]*B25_dot - c[189]*B26_dot + c[34]*A23_theta_dot + c[148]*A24_theta_dot + c[34]*A25_theta_dot;
-    out[1613] = c[188]*theta_dot;
-    out[1614] = c[189]*theta_dot;
-    out[1615] = c[187]*theta_dot;
-    out[1617] = c[188]*theta_dot;
-    out[1618] = -c[189]*theta_dot;
-    out[1625] = c[25]*theta_dot + c[184]*B23_dot + c[185]*B24_dot + c[184]*B25_dot - c[185]*B26_dot + c[34]*A24_theta_dot + c[148]*A25_theta_dot + c[34]*A26_theta_dot;
-    out[1680] = c[184]*theta_dot;
-    out[1681] = c[185]*theta_dot;
-    out[1682] = c[184]*theta_dot;
-    out[1683] = -c[185]*theta_dot;
-    out[1690] = c[26]*theta_dot + c[188]*B23_dot + c[189]*B24_dot + c[187]*B25_dot + c[188]*B27_dot - c[189]*B28_dot + c[34]*A25_theta_dot + c[148]*A26_theta_dot + c[34]*A27_theta_dot;
-    out[1745] = c[188]*theta_dot;
-    out[1746] = c[189]*theta_dot;
-    out[1747] = c[187]*theta_dot;
-    out[1749] = c[188]*theta_dot;
-    out[1750] = -c[189]*theta_dot;
-    out[1755] = c[27]*theta_dot + c[184]*B25_dot + c[185]*B26_dot + c[184]*B27_dot - c[185]*B28_dot + c[34]*A26_theta_dot + c[148]*A27_theta_dot + c[34]*A28_theta_dot;
-    out[1812] = c[184]*theta_dot;
-    out[1813] = c[185]*theta_dot;
-    out[1814] = c[184]*theta_dot;
-    out[1815] = -c[185]*theta_dot;
-    out[1820] = c[28]*theta_dot + c[188]*B25_dot + c[189]*B26_dot + c[187]*B27_dot + c[188]*B29_dot - c[189]*B30_dot + c[34]*A27_theta_dot + c[148]*A28_theta_dot + c[34]*A29_theta_dot;
-    out[1877] = c[188]*theta_dot;
-    out[1878] = c[189]*theta_dot;
-    out[1879] = c[187]*theta_dot;
-    out[1881] = c[188]*theta_dot;
-    out[1882] = -c[189]*theta_dot;
-    out[1885] = c[29]*theta_dot + c[184]*B27_dot + c[185]*B28_dot + c[184]*B29_dot - c[185]*B30_dot + c[34]*A28_theta_dot + c[148]*A29_theta_dot + c[34]*A30_theta_dot;
-    out[1944] = c[184]*theta_dot;
-    out[1945] = c[185]*theta_dot;
-    out[1946] = c[184]*theta_dot;
-    out[1947] = -c[185]*theta_dot;
-    out[1950] = c[30]*theta_dot + c[188]*B27_dot + c[189]*B28_dot + c[187]*B29_dot + c[188]*B31_dot - c[189]*B32_dot + c[34]*A29_theta_dot + c[148]*A30_theta_dot + c[34]*A31_theta_dot;
-    out[2009] = c[188]*theta_dot;
-    out[2010] = c[189]*theta_dot;
-    out[2011] = c[187]*theta_dot;
-    out[2013] = c[188]*theta_dot;
-    out[2014] = -c[189]*theta_dot;
-    out[2015] = c[31]*theta_dot + c[184]*B29_dot + c[185]*B30_dot + c[184]*B31_dot - c[185]*B32_dot + c[34]*A30_theta_dot + c[148]*A31_theta_dot + c[34]*A32_theta_dot;
-    out[2076] = c[184]*theta_dot;
-    out[2077] = c[185]*theta_dot;
-    out[2078] = c[184]*theta_dot;
-    out[2079] = -c[185]*theta_dot;
-    out[2080] = c[32]*theta_dot + c[188]*B29_dot + c[189]*B30_dot + c[131]*B31_dot - c[220]*B32_dot + c[34]*A31_theta_dot + c[33]*A32_theta_dot;
-    out[2141] = c[188]*theta_dot;
-    out[2142] = c[189]*theta_dot;
-    out[2143] = c[131]*theta_dot;
-    out[2144] = -c[220]*theta_dot;
-    out[2145] = -c[184]*A1_dot - c[187]*A2_dot - c[184]*A3_dot - c[188]*A4_dot - c[149]*B1_theta_dot + c[36]*B2_theta_dot + c[37]*B3_theta_dot - c[38]*B4_theta_dot;
-    out[2146] = -c[184]*theta_dot;
-    out[2147] = -c[187]*theta_dot;
-    out[2148] = -c[184]*theta_dot;
-    out[2149] = -c[188]*theta_dot;
-    out[2210] = c[185]*A1_dot - c[185]*A3_dot - c[189]*A4_dot + c[36]*B1_theta_dot - c[150]*B2_theta_dot + c[40]*B3_theta_dot + c[41]*B4_theta_dot;
-    out[2211] = c[185]*theta_dot;
-    out[2213] = -c[185]*theta_dot;
-    out[2214] = -c[189]*theta_dot;
-    out[2275] = -c[188]*A2_dot - c[184]*A3_dot - c[187]*A4_dot - c[184]*A5_dot - c[188]*A6_dot + c[37]*B1_theta_dot + c[40]*B2_theta_dot - c[151]*B3_theta_dot + c[43]*B4_theta_dot + c[44]*B5_theta_dot - c[40]*B6_theta_dot;
-    out[2277] = -c[188]*theta_dot;
-    out[2278] = -c[184]*theta_dot;
-    out[2279] = -c[187]*theta_dot;
-    out[2280] = -c[184]*theta_dot;
-    out[2281] = -c[188]*theta_dot;
-    out[2340] = c[189]*A2_dot + c[185]*A3_dot - c[185]*A5_dot - c[189]*A6_dot - c[38]*B1_theta_dot + c[41]*B2_theta_dot + c[43]*B3_theta_dot - c[152]*B4_theta_dot + c[46]*B5_theta_dot + c[47]*B6_theta_dot;
-    out[2342] = c[189]*theta_dot;
-    out[2343] = c[185]*theta_dot;
-    out[2345] = -c[185]*theta_dot;
-    out[2346] = -c[189]*theta_dot;
-    out[2405] = -c[188]*A4_dot - c[184]*A5_dot - c[187]*A6_dot - c[184]*A7_dot - c[188]*A8_dot + c[44]*B3_theta_dot + c[46]*B4_theta_dot - c[153]*B5_theta_dot + c[49]*B6_theta_dot + c[50]*B7_theta_dot - c[46]*B8_theta_dot;
-    out[2409] = -c[188]*theta_dot;
-    out[2410] = -c[184]*theta_dot;
-    out[2411] = -c[187]*theta_dot;
-    out[2412] = -c[184]*theta_dot;
-    out[2413] = -c[188]*theta_dot;
-    out[2470] = c[189]*A4_dot + c[185]*A5_dot - c[185]*A7_dot - c[189]*A8_dot - c[40]*B3_theta_dot + c[47]*B4_theta_dot + c[49]*B5_theta_dot - c[154]*B6_theta_dot + c[52]*B7_theta_dot + c[53]*B8_theta_dot;
-    out[2474] = c[189]*theta_dot;
-    out[2475] = c[185]*theta_dot;
-    out[2477] = -c[185]*theta_dot;
-    out[2478] = -c[189]*theta_dot;
-    out[2535] = -c[188]*A6_dot - c[184]*A7_dot - c[187]*A8_dot - c[184]*A9_dot - c[188]*A10_dot + c[50]*B5_theta_dot + c[52]*B6_theta_dot - c[155]*B7_theta_dot + c[55]*B8_theta_dot + c[56]*B9_theta_dot - c[52]*B10_theta_dot;
-    out[2541] = -c[188]*theta_dot;
-    out[2542] = -c[184]*theta_dot;
-    out[2543] = -c[187]*theta_dot;
-    out[2544] = -c[184]*theta_dot;
-    out[2545] = -c[188]*theta_dot;
-    out[2600] = c[189]*A6_dot + c[185]*A7_dot - c[185]*A9_dot - c[189]*A10_dot - c[46]*B5_theta_dot + c[53]*B6_theta_dot + c[55]*B7_theta_dot - c[156]*B8_theta_dot + c[58]*B9_theta_dot + c[59]*B10_theta_dot;
-    out[2606] = c[189]*theta_dot;
-    out[2607] = c[185]*theta_dot;
-    out[2609] = -c[185]*theta_dot;
-    out[2610] = -c[189]*theta_dot;
-    out[2665] = -c[188]*A8_dot - c[184]*A9_dot - c[187]*A10_dot - c[184]*A11_dot - c[188]*A12_dot + c[56]*B7_theta_dot + c[58]*B8_theta_dot - c[157]*B9_theta_dot + c[61]*B10_theta_dot + c[62]*B11_theta_dot - c[58]*B12_theta_dot;
-    out[2673] = -c[188]*theta_dot;
-    out[2674] = -c[184]*theta_dot;
-    out[2675] = -c[187]*theta_dot;
-    out[2676] = -c[184]*theta_dot;
-    out[2677] = -c[188]*theta_dot;
-    out[2730] = c[189]*A8_dot + c[185]*A9_dot - c[185]*A11_dot - c[189]*A12_dot - c[52]*B7_theta_dot + c[59]*B8_theta_dot + c[61]*B9_theta_dot - c[158]*B10_theta_dot + c[64]*B11_theta_dot + c[65]*B12_theta_dot;
-    out[2738] = c[189]*theta_dot;
-    out[2739] = c[185]*theta_dot;
-    out[2741] = -c[185]*theta_dot;
-    out[2742] = -c[189]*theta_dot;
-    out[2795] = -c[188]*A10_dot - c[184]*A11_dot - c[187]*A12_dot - c[184]*A13_dot - c[188]*A14_dot + c[62]*B9_theta_dot + c[64]*B10_theta_dot - c[159]*B11_theta_dot + c[67]*B12_theta_dot + c[68]*B13_theta_dot - c[64]*B14_theta_dot;
-    out[2805] = -c[188]*theta_dot;
-    out[2806] = -c[184]*theta_dot;
-    out[2807] = -c[187]*theta_dot;
-    out[2808] = -c[184]*theta_dot;
-    out[2809] = -c[188]*theta_dot;
-    out[2860] = c[189]*A10_dot + c[185]*A11_dot - c[185]*A13_dot - c[189]*A14_dot - c[58]*B9_theta_dot + c[65]*B10_theta_dot + c[67]*B11_theta_dot - c[160]*B12_theta_dot + c[70]*B13_theta_dot + c[71]*B14_theta_dot;
-    out[2870] = c[189]*theta_dot;
-    out[2871] = c[185]*theta_dot;
-    out[2873] = -c[185]*theta_dot;
-    out[2874] = -c[189]*theta_dot;
-    out[2925] = -c[188]*A12_dot - c[184]*A13_dot - c[187]*A14_dot - c[184]*A15_dot - c[188]*A16_dot + c[68]*B11_theta_dot + c[70]*B12_theta_dot - c[161]*B13_theta_dot + c[73]*B14_theta_dot + c[74]*B15_theta_dot - c[70]*B16_theta_dot;
-    out[2937] = -c[188]*theta_dot;
-    out[2938] = -c[184]*theta_dot;
-    out[2939] = -c[187]*theta_dot;
-    out[2940] = -c[184]*theta_dot;
-    out[2941] = -c[188]*theta_dot;
-    out[2990] = c[189]*A12_dot + c[185]*A13_dot - c[185]*A15_dot - c[189]*A16_dot - c[64]*B11_theta_dot + c[71]*B12_theta_dot + c[73]*B13_theta_dot - c[162]*B14_theta_dot + c[76]*B15_theta_dot + c[77]*B16_theta_dot;
-    out[3002] = c[189]*theta_dot;
-    out[3003] = c[185]*theta_dot;
-    out[3005] = -c[185]*theta_dot;
-    out[3006] = -c[189]*theta_dot;
-    out[3055] = -c[188]*A14_dot - c[184]*A15_dot - c[187]*A16_dot - c[184]*A17_dot - c[188]*A18_dot + c[74]*B13_theta_dot + c[76]*B14_theta_dot - c[163]*B15_theta_dot + c[79]*B16_theta_dot + c[80]*B17_theta_dot - c[76]*B18_theta_dot;
-    out[3069] = -c[188]*theta_dot;
-    out[3070] = -c[184]*theta_dot;
-    out[3071] = -c[187]*theta_dot;
-    out[3072] = -c[184]*theta_dot;
-    out[3073] = -c[188]*theta_dot;
-    out[3120] = c[189]*A14_dot + c[185]*A15_dot - c[185]*A17_dot - c[189]*A18_dot - c[70]*B13_theta_dot + c[77]*B14_theta_dot + c[79]*B15_theta_dot - c[164]*B16_theta_dot + c[82]*B17_theta_dot + c[83]*B18_theta_dot;
-    out[3134] = c[189]*theta_dot;
-    out[3135] = c[185]*theta_dot;
-    out[3137] = -c[185]*theta_dot;
-    out[3138] = -c[189]*theta_dot;
-    out[3185] = -c[188]*A16_dot - c[184]*A17_dot - c[187]*A18_dot - c[184]*A19_dot - c[188]*A20_dot + c[80]*B15_theta_dot + c[82]*B16_theta_dot - c[165]*B17_theta_dot + c[85]*B18_theta_dot + c[86]*B19_theta_dot - c[82]*B20_theta_dot;
-    out[3201] = -c[188]*theta_dot;
-    out[3202] = -c[184]*theta_dot;
-    out[3203] = -c[187]*theta_dot;
-    out[3204] = -c[184]*theta_dot;
-    out[3205] = -c[188]*theta_dot;
-    out[3250] = c[189]*A16_dot + c[185]*A17_dot - c[185]*A19_dot - c[189]*A20_dot - c[76]*B15_theta_dot + c[83]*B16_theta_dot + c[85]*B17_theta_dot - c[166]*B18_theta_dot + c[88]*B19_theta_dot + c[89]*B20_theta_dot;
-    out[3266] = c[189]*theta_dot;
-    out[3267] = c[185]*theta_dot;
-    out[3269] = -c[185]*theta_dot;
-    out[3270] = -c[189]*theta_dot;
-    out[3315] = -c[188]*A18_dot - c[184]*A19_dot - c[187]*A20_dot - c[184]*A21_dot - c[188]*A22_dot + c[86]*B17_theta_dot + c[88]*B18_theta_dot - c[167]*B19_theta_dot + c[91]*B20_theta_dot + c[92]*B21_theta_dot - c[88]*B22_theta_dot;
-    out[3333] = -c[188]*theta_dot;
-    out[3334] = -c[184]*theta_dot;
-    out[3335] = -c[187]*theta_dot;
-    out[3336] = -c[184]*theta_dot;
-    out[3337] = -c[188]*theta_dot;
-    out[3380] = c[189]*A18_dot + c[185]*A19_dot - c[185]*A21_dot - c[189]*A22_dot - c[82]*B17_theta_dot + c[89]*B18_theta_dot + c[91]*B19_theta_dot - c[168]*B20_theta_dot + c[94]*B21_theta_dot + c[95]*B22_theta_dot;
-    out[3398] = c[189]*theta_dot;
-    out[3399] = c[185]*theta_dot;
-    out[3401] = -c[185]*theta_dot;
-    out[3402] = -c[189]*theta_dot;
-    out[3445] = -c[188]*A20_dot - c[184]*A21_dot - c[187]*A22_dot - c[184]*A23_dot - c[188]*A24_dot + c[92]*B19_theta_dot + c[94]*B20_theta_dot - c[169]*B21_theta_dot + c[97]*B22_theta_dot + c[98]*B23_theta_dot - c[94]*B24_theta_dot;
-    out[3465] = -c[188]*theta_dot;
-    out[3466] = -c[184]*theta_dot;
-    out[3467] = -c[187]*theta_dot;
-    out[3468] = -c[184]*theta_dot;
-    out[3469] = -c[188]*theta_dot;
-    out[3510] = c[189]*A20_dot + c[185]*A21_dot - c[185]*A23_dot - c[189]*A24_dot - c[88]*B19_theta_dot + c[95]*B20_theta_dot + c[97]*B21_theta_dot - c[170]*B22_theta_dot + c[100]*B23_theta_dot + c[101]*B24_theta_dot;
-    out[3530] = c[189]*theta_dot;
-    out[3531] = c[185]*theta_dot;
-    out[3533] = -c[185]*theta_dot;
-    out[3534] = -c[189]*theta_dot;
-    out[3575] = -c[188]*A22_dot - c[184]*A23_dot - c[187]*A24_dot - c[184]*A25_dot - c[188]*A26_dot + c[98]*B21_theta_dot + c[100]*B22_theta_dot - c[171]*B23_theta_dot + c[103]*B24_theta_dot + c[104]*B25_theta_dot - c[100]*B26_theta_dot;
-    out[3597] = -c[188]*theta_dot;
-    out[3598] = -c[184]*theta_dot;
-    out[3599] = -c[187]*theta_dot;
-    out[3600] = -c[184]*theta_dot;
-    out[3601] = -c[188]*theta_dot;
-    out[3640] = c[189]*A22_dot + c[185]*A23_dot - c[185]*A25_dot - c[189]*A26_dot - c[94]*B21_theta_dot + c[101]*B22_theta_dot + c[103]*B23_theta_dot - c[172]*B24_theta_dot + c[106]*B25_theta_dot + c[107]*B26_theta_dot;
-    out[3662] = c[189]*theta_dot;
-    out[3663] = c[185]*theta_dot;
-    out[3665] = -c[185]*theta_dot;
-    out[3666] = -c[189]*theta_dot;
-    out[3705] = -c[188]*A24_dot - c[184]*A25_dot - c[187]*A26_dot - c[184]*A27_dot - c[188]*A28_dot + c[104]*B23_theta_dot + c[106]*B24_theta_dot - c[173]*B25_theta_dot + c[109]*B26_theta_dot + c[110]*B27_theta_dot - c[106]*B28_theta_dot;
-    out[3729] = -c[188]*theta_dot;
-    out[3730] = -c[184]*theta_dot;
-    out[3731] = -c[187]*theta_dot;
-    out[3732] = -c[184]*theta_dot;
-    out[3733] = -c[188]*theta_dot;
-    out[3770] = c[189]*A24_dot + c[185]*A25_dot - c[185]*A27_dot - c[189]*A28_dot - c[100]*B23_theta_dot + c[107]*B24_theta_dot + c[109]*B25_theta_dot - c[174]*B26_theta_dot + c[112]*B27_theta_dot + c[113]*B28_theta_dot;
-    out[3794] = c[189]*theta_dot;
-    out[3795] = c[185]*theta_dot;
-    out[3797] = -c[185]*theta_dot;
-    out[3798] = -c[189]*theta_dot;
-    out[3835] = -c[188]*A26_dot - c[184]*A27_dot - c[187]*A28_dot - c[184]*A29_dot - c[188]*A30_dot + c[110]*B25_theta_dot + c[112]*B26_theta_dot - c[175]*B27_theta_dot + c[115]*B28_theta_dot + c[116]*B29_theta_dot - c[112]*B30_theta_dot;
-    out[3861] = -c[188]*theta_dot;
-    out[3862] = -c[184]*theta_dot;
-    out[3863] = -c[187]*theta_dot;
-    out[3864] = -c[184]*theta_dot;
-    out[3865] = -c[188]*theta_dot;
-    out[3900] = c[189]*A26_dot + c[185]*A27_dot - c[185]*A29_dot - c[189]*A30_dot - c[106]*B25_theta_dot + c[113]*B26_theta_dot + c[115]*B27_theta_dot - c[176]*B28_theta_dot + c[118]*B29_theta_dot + c[119]*B30_theta_dot;
-    out[3926] = c[189]*theta_dot;
-    out[3927] = c[185]*theta_dot;
-    out[3929] = -c[185]*theta_dot;
-    out[3930] = -c[189]*theta_dot;
-    out[3965] = -c[188]*A28_dot - c[184]*A29_dot - c[187]*A30_dot - c[184]*A31_dot - c[188]*A32_dot + c[116]*B27_theta_dot + c[118]*B28_theta_dot - c[177]*B29_theta_dot + c[121]*B30_theta_dot + c[122]*B31_theta_dot - c[118]*B32_theta_dot;
-    out[3993] = -c[188]*theta_dot;
-    out[3994] = -c[184]*theta_dot;
-    out[3995] = -c[187]*theta_dot;
-    out[3996] = -c[184]*theta_dot;
-    out[3997] = -c[188]*theta_dot;
-    out[4030] = c[189]*A28_dot + c[185]*A29_dot - c[185]*A31_dot - c[189]*A32_dot - c[112]*B27_theta_dot + c[119]*B28_theta_dot + c[121]*B29_theta_dot - c[178]*B30_theta_dot + c[124]*B31_theta_dot + c[125]*B32_theta_dot;
-    out[4058] = c[189]*theta_dot;
-    out[4059] = c[185]*theta_dot;
-    out[4061] = -c[185]*theta_dot;
-    out[4062] = -c[189]*theta_dot;
-    out[4095] = -c[188]*A30_dot - c[184]*A31_dot - c[131]*A32_dot + c[122]*B29_theta_dot + c[124]*B30_theta_dot - c[179]*B31_theta_dot + c[127]*B32_theta_dot;
-    out[4125] = -c[188]*theta_dot;
-    out[4126] = -c[184]*theta_dot;
-    out[4127] = -c[131]*theta_dot;
-    out[4160] = c[189]*A30_dot + c[185]*A31_dot + c[220]*A32_dot - c[118]*B29_theta_dot + c[125]*B30_theta_dot + c[127]*B31_theta_dot - c[180]*B32_theta_dot;
-    out[4190] = c[189]*theta_dot;
-    out[4191] = c[185]*theta_dot;
-    out[4192] = c[220]*theta_dot;
+    // Table form (1486 terms, 471 monomials): m[0] = 1, m[k + 1] = m[chain[k][0]] * v[chain[k][1]];
+    // out[written[i]] = sum of t.scale * c[t.coef] * m[t.mono] over terms[first[i]] .. terms[first[i + 1] - 1].
+    static const int chain[][2] = {
+        {0, 2},
+        {0, 3},
+        {0, 4},
+        {0, 5},
+        {0, 6},
+        {0, 7},
+        {0, 8},
+        {0, 9},
+        {0, 10},
+        {0, 11},
+        {0, 12},
+        {0, 13},
+        {0, 14},
+        {0, 15},
+        {0, 16},
+        {0, 17},
+        {0, 18},
+        {0, 19},
+        {0, 20},
+        {0, 21},
+        {0, 22},
+        {0, 23},
+        {0, 24},
+        {0, 25},
+        {0, 26},
+        {0, 27},
+        {0, 28},
+        {0, 29},
+        {0, 30},
+        {0, 31},
+        {0, 32},
+        {0, 33},
+        {0, 34},
+        {0, 35},
+        {0, 36},
+        {0, 37},
+        {0, 38},
+        {0, 39},
+        {0, 40},
+        {0, 41},
+        {0, 42},
+        {0, 43},
+        {0, 44},
+        {0, 45},
+        {0, 46},
+        {0, 47},
+        {0, 48},
+        {0, 49},
+        {0, 50},
+        {0, 51},
+        {0, 52},
+        {0, 53},
+        {0, 54},
+        {0, 55},
+        {0, 56},
+        {0, 57},
+        {0, 58},
+        {0, 59},
+        {0, 60},
+        {0, 61},
+        {0, 62},
+        {0, 63},
+        {0, 64},
+        {0, 65},
+        {0, 66},
+        {0, 67},
+        {0, 68},
+        {0, 69},
+        {0, 70},
+        {0, 71},
+        {0, 72},
+        {0, 73},
+        {0, 74},
+        {0, 75},
+        {0, 76},
+        {0, 77},
+        {0, 78},
+        {0, 79},
+        {0, 80},
+        {0, 81},
+        {0, 82},
+        {0, 83},
+        {0, 84},
+        {0, 85},
+        {0, 86},
+        {0, 87},
+        {0, 88},
+        {0, 89},
+        {0, 90},
+        {0, 91},
+        {0, 92},
+        {0, 93},
+        {0, 94},
+        {0, 95},
+        {0, 96},
+        {0, 97},
+        {0, 98},
+        {0, 99},
+        {0, 100},
+        {0, 101},
+        {0, 102},
+        {0, 103},
+        {0, 104},
+        {0, 105},
+        {0, 106},
+        {0, 107},
+        {0, 108},
+        {0, 109},
+        {0, 110},
+        {0, 111},
+        {0, 112},
+        {0, 113},
+        {0, 114},
+        {0, 115},
+        {0, 116},
+        {0, 117},
+        {0, 118},
+        {0, 119},
+        {0, 120},
+        {0, 121},
+        {0, 122},
+        {0, 123},
+        {0, 124},
+        {0, 125},
+        {0, 126},
+        {0, 127},
+        {0, 128},
+        {0, 129},
+        {0, 130},
+        {1, 66},
+        {1, 67},
+        {1, 68},
+        {2, 66},
+        {2, 67},
+        {2, 68},
+        {2, 69},
+        {3, 66},
+        {3, 68},
+        {3, 69},
+        {3, 70},
+        {4, 66},
+        {4, 69},
+        {4, 70},
+        {4, 71},
+        {5, 66},
+        {5, 70},
+        {5, 71},
+        {5, 72},
+        {6, 66},
+        {6, 71},
+        {6, 72},
+        {6, 73},
+        {7, 66},
+        {7, 72},
+        {7, 73},
+        {7, 74},
+        {8, 66},
+        {8, 73},
+        {8, 74},
+        {8, 75},
+        {9, 66},
+        {9, 74},
+        {9, 75},
+        {9, 76},
+        {10, 66},
+        {10, 75},
+        {10, 76},
+        {10, 77},
+        {11, 66},
+        {11, 76},
+        {11, 77},
+        {11, 78},
+        {12, 66},
+        {12, 77},
+        {12, 78},
+        {12, 79},
+        {13, 66},
+        {13, 78},
+        {13, 79},
+        {13, 80},
+        {14, 66},
+        {14, 79},
+        {14, 80},
+        {14, 81},
+        {15, 66},
+        {15, 80},
+        {15, 81},
+        {15, 82},
+        {16, 66},
+        {16, 81},
+        {16, 82},
+        {16, 83},
+        {17, 66},
+        {17, 82},
+        {17, 83},
+        {17, 84},
+        {18, 66},
+        {18, 83},
+        {18, 84},
+        {18, 85},
+        {19, 66},
+        {19, 84},
+        {19, 85},
+        {19, 86},
+        {20, 66},
+        {20, 85},
+        {20, 86},
+        {20, 87},
+        {21, 66},
+        {21, 86},
+        {21, 87},
+        {21, 88},
+        {22, 66},
+        {22, 87},
+        {22, 88},
+        {22, 89},
+        {23, 66},
+        {23, 88},
+        {23, 89},
+        {23, 90},
+        {24, 66},
+        {24, 89},
+        {24, 90},
+        {24, 91},
+        {25, 66},
+        {25, 90},
+        {25, 91},
+        {25, 92},
+        {26, 66},
+        {26, 91},
+        {26, 92},
+        {26, 93},
+        {27, 66},
+        {27, 92},
+        {27, 93},
+        {27, 94},
+        {28, 66},
+        {28, 93},
+        {28, 94},
+        {28, 95},
+        {29, 66},
+        {29, 94},
+        {29, 95},
+        {29, 96},
+        {30, 66},
+        {30, 95},
+        {30, 96},
+        {30, 97},
+        {31, 66},
+        {31, 96},
+        {31, 97},
+        {31, 98},
+        {32, 66},
+        {32, 97},
+        {32, 98},
+        {33, 66},
+        {33, 99},
+        {33, 100},
+        {33, 101},
+        {33, 102},
+        {34, 66},
+        {34, 99},
+        {34, 100},
+        {34, 101},
+        {34, 102},
+        {35, 66},
+        {35, 99},
+        {35, 100},
+        {35, 101},
+        {35, 102},
+        {35, 103},
+        {35, 104},
+        {36, 66},
+        {36, 99},
+        {36, 100},
+        {36, 101},
+        {36, 102},
+        {36, 103},
+        {36, 104},
+        {37, 66},
+        {37, 101},
+        {37, 102},
+        {37, 103},
+        {37, 104},
+        {37, 105},
+        {37, 106},
+        {38, 66},
+        {38, 101},
+        {38, 102},
+        {38, 103},
+        {38, 104},
+        {38, 105},
+        {38, 106},
+        {39, 66},
+        {39, 103},
+        {39, 104},
+        {39, 105},
+        {39, 106},
+        {39, 107},
+        {39, 108},
+        {40, 66},
+        {40, 103},
+        {40, 104},
+        {40, 105},
+        {40, 106},
+        {40, 107},
+        {40, 108},
+        {41, 66},
+        {41, 105},
+        {41, 106},
+        {41, 107},
+        {41, 108},
+        {41, 109},
+        {41, 110},
+        {42, 66},
+        {42, 105},
+        {42, 106},
+        {42, 107},
+        {42, 108},
+        {42, 109},
+        {42, 110},
+        {43, 66},
+        {43, 107},
+        {43, 108},
+        {43, 109},
+        {43, 110},
+        {43, 111},
+        {43, 112},
+        {44, 66},
+        {44, 107},
+        {44, 108},
+        {44, 109},
+        {44, 110},
+        {44, 111},
+        {44, 112},
+        {45, 66},
+        {45, 109},
+        {45, 110},
+        {45, 111},
+        {45, 112},
+        {45, 113},
+        {45, 114},
+        {46, 66},
+        {46, 109},
+        {46, 110},
+        {46, 111},
+        {46, 112},
+        {46, 113},
+        {46, 114},
+        {47, 66},
+        {47, 111},
+        {47, 112},
+        {47, 113},
+        {47, 114},
+        {47, 115},
+        {47, 116},
+        {48, 66},
+        {48, 111},
+        {48, 112},
+        {48, 113},
+        {48, 114},
+        {48, 115},
+        {48, 116},
+        {49, 66},
+        {49, 113},
+        {49, 114},
+        {49, 115},
+        {49, 116},
+        {49, 117},
+        {49, 118},
+        {50, 66},
+        {50, 113},
+        {50, 114},
+        {50, 115},
+        {50, 116},
+        {50, 117},
+        {50, 118},
+        {51, 66},
+        {51, 115},
+        {51, 116},
+        {51, 117},
+        {51, 118},
+        {51, 119},
+        {51, 120},
+        {52, 66},
+        {52, 115},
+        {52, 116},
+        {52, 117},
+        {52, 118},
+        {52, 119},
+        {52, 120},
+        {53, 66},
+        {53, 117},
+        {53, 118},
+        {53, 119},
+        {53, 120},
+        {53, 121},
+        {53, 122},
+        {54, 66},
+        {54, 117},
+        {54, 118},
+        {54, 119},
+        {54, 120},
+        {54, 121},
+        {54, 122},
+        {55, 66},
+        {55, 119},
+        {55, 120},
+        {55, 121},
+        {55, 122},
+        {55, 123},
+        {55, 124},
+        {56, 66},
+        {56, 119},
+        {56, 120},
+        {56, 121},
+        {56, 122},
+        {56, 123},
+        {56, 124},
+        {57, 66},
+        {57, 121},
+        {57, 122},
+        {57, 123},
+        {57, 124},
+        {57, 125},
+        {57, 126},
+        {58, 66},
+        {58, 121},
+        {58, 122},
+        {58, 123},
+        {58, 124},
+        {58, 125},
+        {58, 126},
+        {59, 66},
+        {59, 123},
+        {59, 124},
+        {59, 125},
+        {59, 126},
+        {59, 127},
+        {59, 128},
+        {60, 66},
+        {60, 123},
+        {60, 124},
+        {60, 125},
+        {60, 126},
+        {60, 127},
+        {60, 128},
+        {61, 66},
+        {61, 125},
+        {61, 126},
+        {61, 127},
+        {61, 128},
+        {61, 129},
+        {61, 130},
+        {62, 66},
+        {62, 125},
+        {62, 126},
+        {62, 127},
+        {62, 128},
+        {62, 129},
+        {62, 130},
+        {63, 66},
+        {63, 127},
+        {63, 128},
+        {63, 129},
+        {63, 130},
+        {64, 66},
+        {64, 127},
+        {64, 128},
+        {64, 129},
+        {64, 130},
+    };
+    const double v[] = {u[0], q[0], q[1], q[2], q[3], q[4], q[5], q[6], q[7], q[8], q[9], q[10], q[11], q[12], q[13], q[14], q[15], q[16], q[17], q[18], q[19], q[20], q[21], q[22], q[23], q[24], q[25], q[26], q[27], q[28], q[29], q[30], q[31], q[32], q[33], q[34], q[35], q[36], q[37], q[38], q[39], q[40], q[41], q[42], q[43], q[44], q[45], q[46], q[47], q[48], q[49], q[50], q[51], q[52], q[53], q[54], q[55], q[56], q[57], q[58], q[59], q[60], q[61], q[62], q[63], q[64], qd[0], qd[1], qd[2], qd[3], qd[4], qd[5], qd[6], qd[7], qd[8], qd[9], qd[10], qd[11], qd[12], qd[13], qd[14], qd[15], qd[16], qd[17], qd[18], qd[19], qd[20], qd[21], qd[22], qd[23], qd[24], qd[25], qd[26], qd[27], qd[28], qd[29], qd[30], qd[31], qd[32], qd[33], qd[34], qd[35], qd[36], qd[37], qd[38], qd[39], qd[40], qd[41], qd[42], qd[43], qd[44], qd[45], qd[46], qd[47], qd[48], qd[49], qd[50], qd[51], qd[52], qd[53], qd[54], qd[55], qd[56], qd[57], qd[58], qd[59], qd[60], qd[61], qd[62], qd[63], qd[64]};
+    double m[472];
+    m[0] = 1.0;
+    for (int k = 0; k < 471; ++k) m[k + 1] = m[chain[k][0]] * v[chain[k][1]];
+    struct Term {
+        int coef, mono;
+        double scale;
+    };
+    static const Term terms[] = {
+        {1, 66, -1.0},
+        {2, 67, -1.0},
+        {3, 68, -1.0},
+        {4, 69, -1.0},
+        {5, 70, -1.0},
+        {6, 71, -1.0},
+        {7, 72, -1.0},
+        {8, 73, -1.0},
+        {9, 74, -1.0},
+        {10, 75, -1.0},
+        {11, 76, -1.0},
+        {12, 77, -1.0},
+        {13, 78, -1.0},
+        {14, 79, -1.0},
+        {15, 80, -1.0},
+        {16, 81, -1.0},
+        {17, 82, -1.0},
+        {18, 83, -1.0},
+        {19, 84, -1.0},
+        {20, 85, -1.0},
+        {21, 86, -1.0},
+        {22, 87, -1.0},
+        {23, 88, -1.0},
+        {24, 89, -1.0},
+        {25, 90, -1.0},
+        {26, 91, -1.0},
+        {27, 92, -1.0},
+        {28, 93, -1.0},
+        {29, 94, -1.0},
+        {30, 95, -1.0},
+        {31, 96, -1.0},
+        {32, 97, -1.0},
+        {149, 131, -1.0},
+        {34, 132, -1.0},
+        {34, 134, -1.0},
+        {149, 135, -1.0},
+        {34, 136, -1.0},
+        {34, 138, -1.0},
+        {149, 139, -1.0},
+        {34, 140, -1.0},
+        {34, 142, -1.0},
+        {149, 143, -1.0},
+        {34, 144, -1.0},
+        {34, 146, -1.0},
+        {149, 147, -1.0},
+        {34, 148, -1.0},
+        {34, 150, -1.0},
+        {149, 151, -1.0},
+        {34, 152, -1.0},
+        {34, 154, -1.0},
+        {149, 155, -1.0},
+        {34, 156, -1.0},
+        {34, 158, -1.0},
+        {149, 159, -1.0},
+        {34, 160, -1.0},
+        {34, 162, -1.0},
+        {149, 163, -1.0},
+        {34, 164, -1.0},
+        {34, 166, -1.0},
+        {149, 167, -1.0},
+        {34, 168, -1.0},
+        {34, 170, -1.0},
+        {149, 171, -1.0},
+        {34, 172, -1.0},
+        {34, 174, -1.0},
+        {149, 175, -1.0},
+        {34, 176, -1.0},
+        {34, 178, -1.0},
+        {149, 179, -1.0},
+        {34, 180, -1.0},
+        {34, 182, -1.0},
+        {149, 183, -1.0},
+        {34, 184, -1.0},
+        {34, 186, -1.0},
+        {149, 187, -1.0},
+        {34, 188, -1.0},
+        {34, 190, -1.0},
+        {149, 191, -1.0},
+        {34, 192, -1.0},
+        {34, 194, -1.0},
+        {149, 195, -1.0},
+        {34, 196, -1.0},
+        {34, 198, -1.0},
+        {149, 199, -1.0},
+        {34, 200, -1.0},
+        {34, 202, -1.0},
+        {149, 203, -1.0},
+        {34, 204, -1.0},
+        {34, 206, -1.0},
+        {149, 207, -1.0},
+        {34, 208, -1.0},
+        {34, 210, -1.0},
+        {149, 211, -1.0},
+        {34, 212, -1.0},
+        {34, 214, -1.0},
+        {149, 215, -1.0},
+        {34, 216, -1.0},
+        {34, 218, -1.0},
+        {149, 219, -1.0},
+        {34, 220, -1.0},
+        {34, 222, -1.0},
+        {149, 223, -1.0},
+        {34, 224, -1.0},
+        {34, 226, -1.0},
+        {149, 227, -1.0},
+        {34, 228, -1.0},
+        {34, 230, -1.0},
+        {149, 231, -1.0},
+        {34, 232, -1.0},
+        {34, 234, -1.0},
+        {149, 235, -1.0},
+        {34, 236, -1.0},
+        {34, 238, -1.0},
+        {149, 239, -1.0},
+        {34, 240, -1.0},
+        {34, 242, -1.0},
+        {149, 243, -1.0},
+        {34, 244, -1.0},
+        {34, 246, -1.0},
+        {149, 247, -1.0},
+        {34, 248, -1.0},
+        {34, 250, -1.0},
+        {149, 251, -1.0},
+        {34, 252, -1.0},
+        {34, 254, -1.0},
+        {33, 255, -1.0},
+        {150, 257, 1.0},
+        {36, 258, -1.0},
+        {37, 259, -1.0},
+        {38, 260, 1.0},
+        {36, 262, -1.0},
+        {151, 263, 1.0},
+        {40, 264, -1.0},
+        {41, 265, -1.0},
+        {37, 267, -1.0},
+        {40, 268, -1.0},
+        {152, 269, 1.0},
+        {43, 270, -1.0},
+        {44, 271, -1.0},
+        {40, 272, 1.0},
+        {38, 274, 1.0},
+        {41, 275, -1.0},
+        {43, 276, -1.0},
+        {153, 277, 1.0},
+        {46, 278, -1.0},
+        {47, 279, -1.0},
+        {44, 281, -1.0},
+        {46, 282, -1.0},
+        {154, 283, 1.0},
+        {49, 284, -1.0},
+        {50, 285, -1.0},
+        {46, 286, 1.0},
+        {40, 288, 1.0},
+        {47, 289, -1.0},
+        {49, 290, -1.0},
+        {155, 291, 1.0},
+        {52, 292, -1.0},
+        {53, 293, -1.0},
+        {50, 295, -1.0},
+        {52, 296, -1.0},
+        {156, 297, 1.0},
+        {55, 298, -1.0},
+        {56, 299, -1.0},
+        {52, 300, 1.0},
+        {46, 302, 1.0},
+        {53, 303, -1.0},
+        {55, 304, -1.0},
+        {157, 305, 1.0},
+        {58, 306, -1.0},
+        {59, 307, -1.0},
+        {56, 309, -1.0},
+        {58, 310, -1.0},
+        {158, 311, 1.0},
+        {61, 312, -1.0},
+        {62, 313, -1.0},
+        {58, 314, 1.0},
+        {52, 316, 1.0},
+        {59, 317, -1.0},
+        {61, 318, -1.0},
+        {159, 319, 1.0},
+        {64, 320, -1.0},
+        {65, 321, -1.0},
+        {62, 323, -1.0},
+        {64, 324, -1.0},
+        {160, 325, 1.0},
+        {67, 326, -1.0},
+        {68, 327, -1.0},
+        {64, 328, 1.0},
+        {58, 330, 1.0},
+        {65, 331, -1.0},
+        {67, 332, -1.0},
+        {161, 333, 1.0},
+        {70, 334, -1.0},
+        {71, 335, -1.0},
+        {68, 337, -1.0},
+        {70, 338, -1.0},
+        {162, 339, 1.0},
+        {73, 340, -1.0},
+        {74, 341, -1.0},
+        {70, 342, 1.0},
+        {64, 344, 1.0},
+        {71, 345, -1.0},
+        {73, 346, -1.0},
+        {163, 347, 1.0},
+        {76, 348, -1.0},
+        {77, 349, -1.0},
+        {74, 351, -1.0},
+        {76, 352, -1.0},
+        {164, 353, 1.0},
+        {79, 354, -1.0},
+        {80, 355, -1.0},
+        {76, 356, 1.0},
+        {70, 358, 1.0},
+        {77, 359, -1.0},
+        {79, 360, -1.0},
+        {165, 361, 1.0},
+        {82, 362, -1.0},
+        {83, 363, -1.0},
+        {80, 365, -1.0},
+        {82, 366, -1.0},
+        {166, 367, 1.0},
+        {85, 368, -1.0},
+        {86, 369, -1.0},
+        {82, 370, 1.0},
+        {76, 372, 1.0},
+        {83, 373, -1.0},
+        {85, 374, -1.0},
+        {167, 375, 1.0},
+        {88, 376, -1.0},
+        {89, 377, -1.0},
+        {86, 379, -1.0},
+        {88, 380, -1.0},
+        {168, 381, 1.0},
+        {91, 382, -1.0},
+        {92, 383, -1.0},
+        {88, 384, 1.0},
+        {82, 386, 1.0},
+        {89, 387, -1.0},
+        {91, 388, -1.0},
+        {169, 389, 1.0},
+        {94, 390, -1.0},
+        {95, 391, -1.0},
+        {92, 393, -1.0},
+        {94, 394, -1.0},
+        {170, 395, 1.0},
+        {97, 396, -1.0},
+        {98, 397, -1.0},
+        {94, 398, 1.0},
+        {88, 400, 1.0},
+        {95, 401, -1.0},
+        {97, 402, -1.0},
+        {171, 403, 1.0},
+        {100, 404, -1.0},
+        {101, 405, -1.0},
+        {98, 407, -1.0},
+        {100, 408, -1.0},
+        {172, 409, 1.0},
+        {103, 410, -1.0},
+        {104, 411, -1.0},
+        {100, 412, 1.0},
+        {94, 414, 1.0},
+        {101, 415, -1.0},
+        {103, 416, -1.0},
+        {173, 417, 1.0},
+        {106, 418, -1.0},
+        {107, 419, -1.0},
+        {104, 421, -1.0},
+        {106, 422, -1.0},
+        {174, 423, 1.0},
+        {109, 424, -1.0},
+        {110, 425, -1.0},
+        {106, 426, 1.0},
+        {100, 428, 1.0},
+        {107, 429, -1.0},
+        {109, 430, -1.0},
+        {175, 431, 1.0},
+        {112, 432, -1.0},
+        {113, 433, -1.0},
+        {110, 435, -1.0},
+        {112, 436, -1.0},
+        {176, 437, 1.0},
+        {115, 438, -1.0},
+        {116, 439, -1.0},
+        {112, 440, 1.0},
+        {106, 442, 1.0},
+        {113, 443, -1.0},
+        {115, 444, -1.0},
+        {177, 445, 1.0},
+        {118, 446, -1.0},
+        {119, 447, -1.0},
+        {116, 449, -1.0},
+        {118, 450, -1.0},
+        {178, 451, 1.0},
+        {121, 452, -1.0},
+        {122, 453, -1.0},
+        {118, 454, 1.0},
+        {112, 456, 1.0},
+        {119, 457, -1.0},
+        {121, 458, -1.0},
+        {179, 459, 1.0},
+        {124, 460, -1.0},
+        {125, 461, -1.0},
+        {122, 463, -1.0},
+        {124, 464, -1.0},
+        {180, 465, 1.0},
+        {127, 466, -1.0},
+        {118, 468, 1.0},
+        {125, 469, -1.0},
+        {127, 470, -1.0},
+        {181, 471, 1.0},
+        {1, 65, -1.0},
+        {149, 130, -1.0},
+        {34, 133, -1.0},
+        {2, 65, -1.0},
+        {34, 130, -1.0},
+        {149, 133, -1.0},
+        {34, 137, -1.0},
+        {3, 65, -1.0},
+        {34, 133, -1.0},
+        {149, 137, -1.0},
+        {34, 141, -1.0},
+        {4, 65, -1.0},
+        {34, 137, -1.0},
+        {149, 141, -1.0},
+        {34, 145, -1.0},
+        {5, 65, -1.0},
+        {34, 141, -1.0},
+        {149, 145, -1.0},
+        {34, 149, -1.0},
+        {6, 65, -1.0},
+        {34, 145, -1.0},
+        {149, 149, -1.0},
+        {34, 153, -1.0},
+        {7, 65, -1.0},
+        {34, 149, -1.0},
+        {149, 153, -1.0},
+        {34, 157, -1.0},
+        {8, 65, -1.0},
+        {34, 153, -1.0},
+        {149, 157, -1.0},
+        {34, 161, -1.0},
+        {9, 65, -1.0},
+        {34, 157, -1.0},
+        {149, 161, -1.0},
+        {34, 165, -1.0},
+        {10, 65, -1.0},
+        {34, 161, -1.0},
+        {149, 165, -1.0},
+        {34, 169, -1.0},
+        {11, 65, -1.0},
+        {34, 165, -1.0},
+        {149, 169, -1.0},
+        {34, 173, -1.0},
+        {12, 65, -1.0},
+        {34, 169, -1.0},
+        {149, 173, -1.0},
+        {34, 177, -1.0},
+        {13, 65, -1.0},
+        {34, 173, -1.0},
+        {149, 177, -1.0},
+        {34, 181, -1.0},
+        {14, 65, -1.0},
+        {34, 177, -1.0},
+        {149, 181, -1.0},
+        {34, 185, -1.0},
+        {15, 65, -1.0},
+        {34, 181, -1.0},
+        {149, 185, -1.0},
+        {34, 189, -1.0},
+        {16, 65, -1.0},
+        {34, 185, -1.0},
+        {149, 189, -1.0},
+        {34, 193, -1.0},
+        {17, 65, -1.0},
+        {34, 189, -1.0},
+        {149, 193, -1.0},
+        {34, 197, -1.0},
+        {18, 65, -1.0},
+        {34, 193, -1.0},
+        {149, 197, -1.0},
+        {34, 201, -1.0},
+        {19, 65, -1.0},
+        {34, 197, -1.0},
+        {149, 201, -1.0},
+        {34, 205, -1.0},
+        {20, 65, -1.0},
+        {34, 201, -1.0},
+        {149, 205, -1.0},
+        {34, 209, -1.0},
+        {21, 65, -1.0},
+        {34, 205, -1.0},
+        {149, 209, -1.0},
+        {34, 213, -1.0},
+        {22, 65, -1.0},
+        {34, 209, -1.0},
+        {149, 213, -1.0},
+        {34, 217, -1.0},
+        {23, 65, -1.0},
+        {34, 213, -1.0},
+        {149, 217, -1.0},
+        {34, 221, -1.0},
+        {24, 65, -1.0},
+        {34, 217, -1.0},
+        {149, 221, -1.0},
+        {34, 225, -1.0},
+        {25, 65, -1.0},
+        {34, 221, -1.0},
+        {149, 225, -1.0},
+        {34, 229, -1.0},
+        {26, 65, -1.0},
+        {34, 225, -1.0},
+        {149, 229, -1.0},
+        {34, 233, -1.0},
+        {27, 65, -1.0},
+        {34, 229, -1.0},
+        {149, 233, -1.0},
+        {34, 237, -1.0},
+        {28, 65, -1.0},
+        {34, 233, -1.0},
+        {149, 237, -1.0},
+        {34, 241, -1.0},
+        {29, 65, -1.0},
+        {34, 237, -1.0},
+        {149, 241, -1.0},
+        {34, 245, -1.0},
+        {30, 65, -1.0},
+        {34, 241, -1.0},
+        {149, 245, -1.0},
+        {34, 249, -1.0},
+        {31, 65, -1.0},
+        {34, 245, -1.0},
+        {149, 249, -1.0},
+        {34, 253, -1.0},
+        {32, 65, -1.0},
+        {34, 249, -1.0},
+        {33, 253, -1.0},
+        {150, 256, 1.0},
+        {36, 261, -1.0},
+        {37, 266, -1.0},
+        {38, 273, 1.0},
+        {36, 256, -1.0},
+        {151, 261, 1.0},
+        {40, 266, -1.0},
+        {41, 273, -1.0},
+        {37, 256, -1.0},
+        {40, 261, -1.0},
+        {152, 266, 1.0},
+        {43, 273, -1.0},
+        {44, 280, -1.0},
+        {40, 287, 1.0},
+        {38, 256, 1.0},
+        {41, 261, -1.0},
+        {43, 266, -1.0},
+        {153, 273, 1.0},
+        {46, 280, -1.0},
+        {47, 287, -1.0},
+        {44, 266, -1.0},
+        {46, 273, -1.0},
+        {154, 280, 1.0},
+        {49, 287, -1.0},
+        {50, 294, -1.0},
+        {46, 301, 1.0},
+        {40, 266, 1.0},
+        {47, 273, -1.0},
+        {49, 280, -1.0},
+        {155, 287, 1.0},
+        {52, 294, -1.0},
+        {53, 301, -1.0},
+        {50, 280, -1.0},
+        {52, 287, -1.0},
+        {156, 294, 1.0},
+        {55, 301, -1.0},
+        {56, 308, -1.0},
+        {52, 315, 1.0},
+        {46, 280, 1.0},
+        {53, 287, -1.0},
+        {55, 294, -1.0},
+        {157, 301, 1.0},
+        {58, 308, -1.0},
+        {59, 315, -1.0},
+        {56, 294, -1.0},
+        {58, 301, -1.0},
+        {158, 308, 1.0},
+        {61, 315, -1.0},
+        {62, 322, -1.0},
+        {58, 329, 1.0},
+        {52, 294, 1.0},
+        {59, 301, -1.0},
+        {61, 308, -1.0},
+        {159, 315, 1.0},
+        {64, 322, -1.0},
+        {65, 329, -1.0},
+        {62, 308, -1.0},
+        {64, 315, -1.0},
+        {160, 322, 1.0},
+        {67, 329, -1.0},
+        {68, 336, -1.0},
+        {64, 343, 1.0},
+        {58, 308, 1.0},
+        {65, 315, -1.0},
+        {67, 322, -1.0},
+        {161, 329, 1.0},
+        {70, 336, -1.0},
+        {71, 343, -1.0},
+        {68, 322, -1.0},
+        {70, 329, -1.0},
+        {162, 336, 1.0},
+        {73, 343, -1.0},
+        {74, 350, -1.0},
+        {70, 357, 1.0},
+        {64, 322, 1.0},
+        {71, 329, -1.0},
+        {73, 336, -1.0},
+        {163, 343, 1.0},
+        {76, 350, -1.0},
+        {77, 357, -1.0},
+        {74, 336, -1.0},
+        {76, 343, -1.0},
+        {164, 350, 1.0},
+        {79, 357, -1.0},
+        {80, 364, -1.0},
+        {76, 371, 1.0},
+        {70, 336, 1.0},
+        {77, 343, -1.0},
+        {79, 350, -1.0},
+        {165, 357, 1.0},
+        {82, 364, -1.0},
+        {83, 371, -1.0},
+        {80, 350, -1.0},
+        {82, 357, -1.0},
+        {166, 364, 1.0},
+        {85, 371, -1.0},
+        {86, 378, -1.0},
+        {82, 385, 1.0},
+        {76, 350, 1.0},
+        {83, 357, -1.0},
+        {85, 364, -1.0},
+        {167, 371, 1.0},
+        {88, 378, -1.0},
+        {89, 385, -1.0},
+        {86, 364, -1.0},
+        {88, 371, -1.0},
+        {168, 378, 1.0},
+        {91, 385, -1.0},
+        {92, 392, -1.0},
+        {88, 399, 1.0},
+        {82, 364, 1.0},
+        {89, 371, -1.0},
+        {91, 378, -1.0},
+        {169, 385, 1.0},
+        {94, 392, -1.0},
+        {95, 399, -1.0},
+        {92, 378, -1.0},
+        {94, 385, -1.0},
+        {170, 392, 1.0},
+        {97, 399, -1.0},
+        {98, 406, -1.0},
+        {94, 413, 1.0},
+        {88, 378, 1.0},
+        {95, 385, -1.0},
+        {97, 392, -1.0},
+        {171, 399, 1.0},
+        {100, 406, -1.0},
+        {101, 413, -1.0},
+        {98, 392, -1.0},
+        {100, 399, -1.0},
+        {172, 406, 1.0},
+        {103, 413, -1.0},
+        {104, 420, -1.0},
+        {100, 427, 1.0},
+        {94, 392, 1.0},
+        {101, 399, -1.0},
+        {103, 406, -1.0},
+        {173, 413, 1.0},
+        {106, 420, -1.0},
+        {107, 427, -1.0},
+        {104, 406, -1.0},
+        {106, 413, -1.0},
+        {174, 420, 1.0},
+        {109, 427, -1.0},
+        {110, 434, -1.0},
+        {106, 441, 1.0},
+        {100, 406, 1.0},
+        {107, 413, -1.0},
+        {109, 420, -1.0},
+        {175, 427, 1.0},
+        {112, 434, -1.0},
+        {113, 441, -1.0},
+        {110, 420, -1.0},
+        {112, 427, -1.0},
+        {176, 434, 1.0},
+        {115, 441, -1.0},
+        {116, 448, -1.0},
+        {112, 455, 1.0},
+        {106, 420, 1.0},
+        {113, 427, -1.0},
+        {115, 434, -1.0},
+        {177, 441, 1.0},
+        {118, 448, -1.0},
+        {119, 455, -1.0},
+        {116, 434, -1.0},
+        {118, 441, -1.0},
+        {178, 448, 1.0},
+        {121, 455, -1.0},
+        {122, 462, -1.0},
+        {118, 467, 1.0},
+        {112, 434, 1.0},
+        {119, 441, -1.0},
+        {121, 448, -1.0},
+        {179, 455, 1.0},
+        {124, 462, -1.0},
+        {125, 467, -1.0},
+        {122, 448, -1.0},
+        {124, 455, -1.0},
+        {180, 462, 1.0},
+        {127, 467, -1.0},
+        {118, 448, 1.0},
+        {125, 455, -1.0},
+        {127, 462, -1.0},
+        {181, 467, 1.0},
+        {1, 65, 1.0},
+        {185, 98, 1.0},
+        {186, 99, -1.0},
+        {149, 130, 1.0},
+        {34, 133, 1.0},
+        {185, 65, 1.0},
+        {186, 65, -1.0},
+        {2, 65, 1.0},
+        {188, 98, 1.0},
+        {189, 100, 1.0},
+        {190, 101, -1.0},
+        {34, 130, 1.0},
+        {149, 133, 1.0},
+        {34, 137, 1.0},
+        {188, 65, 1.0},
+        {189, 65, 1.0},
+        {190, 65, -1.0},
+        {3, 65, 1.0},
+        {185, 98, 1.0},
+        {186, 99, 1.0},
+        {185, 100, 1.0},
+        {186, 101, -1.0},
+        {34, 133, 1.0},
+        {149, 137, 1.0},
+        {34, 141, 1.0},
+        {185, 65, 1.0},
+        {186, 65, 1.0},
+        {185, 65, 1.0},
+        {186, 65, -1.0},
+        {4, 65, 1.0},
+        {189, 98, 1.0},
+        {190, 99, 1.0},
+        {188, 100, 1.0},
+        {189, 102, 1.0},
+        {190, 103, -1.0},
+        {34, 137, 1.0},
+        {149, 141, 1.0},
+        {34, 145, 1.0},
+        {189, 65, 1.0},
+        {190, 65, 1.0},
+        {188, 65, 1.0},
+        {189, 65, 1.0},
+        {190, 65, -1.0},
+        {5, 65, 1.0},
+        {185, 100, 1.0},
+        {186, 101, 1.0},
+        {185, 102, 1.0},
+        {186, 103, -1.0},
+        {34, 141, 1.0},
+        {149, 145, 1.0},
+        {34, 149, 1.0},
+        {185, 65, 1.0},
+        {186, 65, 1.0},
+        {185, 65, 1.0},
+        {186, 65, -1.0},
+        {6, 65, 1.0},
+        {189, 100, 1.0},
+        {190, 101, 1.0},
+        {188, 102, 1.0},
+        {189, 104, 1.0},
+        {190, 105, -1.0},
+        {34, 145, 1.0},
+        {149, 149, 1.0},
+        {34, 153, 1.0},
+        {189, 65, 1.0},
+        {190, 65, 1.0},
+        {188, 65, 1.0},
+        {189, 65, 1.0},
+        {190, 65, -1.0},
+        {7, 65, 1.0},
+        {185, 102, 1.0},
+        {186, 103, 1.0},
+        {185, 104, 1.0},
+        {186, 105, -1.0},
+        {34, 149, 1.0},
+        {149, 153, 1.0},
+        {34, 157, 1.0},
+        {185, 65, 1.0},
+        {186, 65, 1.0},
+        {185, 65, 1.0},
+        {186, 65, -1.0},
+        {8, 65, 1.0},
+        {189, 102, 1.0},
+        {190, 103, 1.0},
+        {188, 104, 1.0},
+        {189, 106, 1.0},
+        {190, 107, -1.0},
+        {34, 153, 1.0},
+        {149, 157, 1.0},
+        {34, 161, 1.0},
+        {189, 65, 1.0},
+        {190, 65, 1.0},
+        {188, 65, 1.0},
+        {189, 65, 1.0},
+        {190, 65, -1.0},
+        {9, 65, 1.0},
+        {185, 104, 1.0},
+        {186, 105, 1.0},
+        {185, 106, 1.0},
+        {186, 107, -1.0},
+        {34, 157, 1.0},
+        {149, 161, 1.0},
+        {34, 165, 1.0},
+        {185, 65, 1.0},
+        {186, 65, 1.0},
+        {185, 65, 1.0},
+        {186, 65, -1.0},
+        {10, 65, 1.0},
+        {189, 104, 1.0},
+        {190, 105, 1.0},
+        {188, 106, 1.0},
+        {189, 108, 1.0},
+        {190, 109, -1.0},
+        {34, 161, 1.0},
+        {149, 165, 1.0},
+        {34, 169, 1.0},
+        {189, 65, 1.0},
+        {190, 65, 1.0},
+        {188, 65, 1.0},
+        {189, 65, 1.0},
+        {190, 65, -1.0},
+        {11, 65, 1.0},
+        {185, 106, 1.0},
+        {186, 107, 1.0},
+        {185, 108, 1.0},
+        {186, 109, -1.0},
+        {34, 165, 1.0},
+        {149, 169, 1.0},
+        {34, 173, 1.0},
+        {185, 65, 1.0},
+        {186, 65, 1.0},
+        {185, 65, 1.0},
+        {186, 65, -1.0},
+        {12, 65, 1.0},
+        {189, 106, 1.0},
+        {190, 107, 1.0},
+        {188, 108, 1.0},
+        {189, 110, 1.0},
+        {190, 111, -1.0},
+        {34, 169, 1.0},
+        {149, 173, 1.0},
+        {34, 177, 1.0},
+        {189, 65, 1.0},
+        {190, 65, 1.0},
+        {188, 65, 1.0},
+        {189, 65, 1.0},
+        {190, 65, -1.0},
+        {13, 65, 1.0},
+        {185, 108, 1.0},
+        {186, 109, 1.0},
+        {185, 110, 1.0},
+        {186, 111, -1.0},
+        {34, 173, 1.0},
+        {149, 177, 1.0},
+        {34, 181, 1.0},
+        {185, 65, 1.0},
+        {186, 65, 1.0},
+        {185, 65, 1.0},
+        {186, 65, -1.0},
+        {14, 65, 1.0},
+        {189, 108, 1.0},
+        {190, 109, 1.0},
+        {188, 110, 1.0},
+        {189, 112, 1.0},
+        {190, 113, -1.0},
+        {34, 177, 1.0},
+        {149, 181, 1.0},
+        {34, 185, 1.0},
+        {189, 65, 1.0},
+        {190, 65, 1.0},
+        {188, 65, 1.0},
+        {189, 65, 1.0},
+        {190, 65, -1.0},
+        {15, 65, 1.0},
+        {185, 110, 1.0},
+        {186, 111, 1.0},
+        {185, 112, 1.0},
+        {186, 113, -1.0},
+        {34, 181, 1.0},
+        {149, 185, 1.0},
+        {34, 189, 1.0},
+        {185, 65, 1.0},
+        {186, 65, 1.0},
+        {185, 65, 1.0},
+        {186, 65, -1.0},
+        {16, 65, 1.0},
+        {189, 110, 1.0},
+        {190, 111, 1.0},
+        {188, 112, 1.0},
+        {189, 114, 1.0},
+        {190, 115, -1.0},
+        {34, 185, 1.0},
+        {149, 189, 1.0},
+        {34, 193, 1.0},
+        {189, 65, 1.0},
+        {190, 65, 1.0},
+        {188, 65, 1.0},
+        {189, 65, 1.0},
+        {190, 65, -1.0},
+        {17, 65, 1.0},
+        {185, 112, 1.0},
+        {186, 113, 1.0},
+        {185, 114, 1.0},
+        {186, 115, -1.0},
+        {34, 189, 1.0},
+        {149, 193, 1.0},
+        {34, 197, 1.0},
+        {185, 65, 1.0},
+        {186, 65, 1.0},
+        {185, 65, 1.0},
+        {186, 65, -1.0},
+        {18, 65, 1.0},
+        {189, 112, 1.0},
+        {190, 113, 1.0},
+        {188, 114, 1.0},
+        {189, 116, 1.0},
+        {190, 117, -1.0},
+        {34, 193, 1.0},
+        {149, 197, 1.0},
+        {34, 201, 1.0},
+        {189, 65, 1.0},
+        {190, 65, 1.0},
+        {188, 65, 1.0},
+        {189, 65, 1.0},
+        {190, 65, -1.0},
+        {19, 65, 1.0},
+        {185, 114, 1.0},
+        {186, 115, 1.0},
+        {185, 116, 1.0},
+        {186, 117, -1.0},
+        {34, 197, 1.0},
+        {149, 201, 1.0},
+        {34, 205, 1.0},
+        {185, 65, 1.0},
+        {186, 65, 1.0},
+        {185, 65, 1.0},
+        {186, 65, -1.0},
+        {20, 65, 1.0},
+        {189, 114, 1.0},
+        {190, 115, 1.0},
+        {188, 116, 1.0},
+        {189, 118, 1.0},
+        {190, 119, -1.0},
+        {34, 201, 1.0},
+        {149, 205, 1.0},
+        {34, 209, 1.0},
+        {189, 65, 1.0},
+        {190, 65, 1.0},
+        {188, 65, 1.0},
+        {189, 65, 1.0},
+        {190, 65, -1.0},
+        {21, 65, 1.0},
+        {185, 116, 1.0},
+        {186, 117, 1.0},
+        {185, 118, 1.0},
+        {186, 119, -1.0},
+        {34, 205, 1.0},
+        {149, 209, 1.0},
+        {34, 213, 1.0},
+        {185, 65, 1.0},
+        {186, 65, 1.0},
+        {185, 65, 1.0},
+        {186, 65, -1.0},
+        {22, 65, 1.0},
+        {189, 116, 1.0},
+        {190, 117, 1.0},
+        {188, 118, 1.0},
+        {189, 120, 1.0},
+        {190, 121, -1.0},
+        {34, 209, 1.0},
+        {149, 213, 1.0},
+        {34, 217, 1.0},
+        {189, 65, 1.0},
+        {190, 65, 1.0},
+        {188, 65, 1.0},
+        {189, 65, 1.0},
+        {190, 65, -1.0},
+        {23, 65, 1.0},
+        {185, 118, 1.0},
+        {186, 119, 1.0},
+        {185, 120, 1.0},
+        {186, 121, -1.0},
+        {34, 213, 1.0},
+        {149, 217, 1.0},
+        {34, 221, 1.0},
+        {185, 65, 1.0},
+        {186, 65, 1.0},
+        {185, 65, 1.0},
+        {186, 65, -1.0},
+        {24, 65, 1.0},
+        {189, 118, 1.0},
+        {190, 119, 1.0},
+        {188, 120, 1.0},
+        {189, 122, 1.0},
+        {190, 123, -1.0},
+        {34, 217, 1.0},
+        {149, 221, 1.0},
+        {34, 225, 1.0},
+        {189, 65, 1.0},
+        {190, 65, 1.0},
+        {188, 65, 1.0},
+        {189, 65, 1.0},
+        {190, 65, -1.0},
+        {25, 65, 1.0},
+        {185, 120, 1.0},
+        {186, 121, 1.0},
+        {185, 122, 1.0},
+        {186, 123, -1.0},
+        {34, 221, 1.0},
+        {149, 225, 1.0},
+        {34, 229, 1.0},
+        {185, 65, 1.0},
+        {186, 65, 1.0},
+        {185, 65, 1.0},
+        {186, 65, -1.0},
+        {26, 65, 1.0},
+        {189, 120, 1.0},
+        {190, 121, 1.0},
+        {188, 122, 1.0},
+        {189, 124, 1.0},
+        {190, 125, -1.0},
+        {34, 225, 1.0},
+        {149, 229, 1.0},
+        {34, 233, 1.0},
+        {189, 65, 1.0},
+        {190, 65, 1.0},
+        {188, 65, 1.0},
+        {189, 65, 1.0},
+        {190, 65, -1.0},
+        {27, 65, 1.0},
+        {185, 122, 1.0},
+        {186, 123, 1.0},
+        {185, 124, 1.0},
+        {186, 125, -1.0},
+        {34, 229, 1.0},
+        {149, 233, 1.0},
+        {34, 237, 1.0},
+        {185, 65, 1.0},
+        {186, 65, 1.0},
+        {185, 65, 1.0},
+        {186, 65, -1.0},
+        {28, 65, 1.0},
+        {189, 122, 1.0},
+        {190, 123, 1.0},
+        {188, 124, 1.0},
+        {189, 126, 1.0},
+        {190, 127, -1.0},
+        {34, 233, 1.0},
+        {149, 237, 1.0},
+        {34, 241, 1.0},
+        {189, 65, 1.0},
+        {190, 65, 1.0},
+        {188, 65, 1.0},
+        {189, 65, 1.0},
+        {190, 65, -1.0},
+        {29, 65, 1.0},
+        {185, 124, 1.0},
+        {186, 125, 1.0},
+        {185, 126, 1.0},
+        {186, 127, -1.0},
+        {34, 237, 1.0},
+        {149, 241, 1.0},
+        {34, 245, 1.0},
+        {185, 65, 1.0},
+        {186, 65, 1.0},
+        {185, 65, 1.0},
+        {186, 65, -1.0},
+        {30, 65, 1.0},
+        {189, 124, 1.0},
+        {190, 125, 1.0},
+        {188, 126, 1.0},
+        {189, 128, 1.0},
+        {190, 129, -1.0},
+        {34, 241, 1.0},
+        {149, 245, 1.0},
+        {34, 249, 1.0},
+        {189, 65, 1.0},
+        {190, 65, 1.0},
+        {188, 65, 1.0},
+        {189, 65, 1.0},
+        {190, 65, -1.0},
+        {31, 65, 1.0},
+        {185, 126, 1.0},
+        {186, 127, 1.0},
+        {185, 128, 1.0},
+        {186, 129, -1.0},
+        {34, 245, 1.0},
+        {149, 249, 1.0},
+        {34, 253, 1.0},
+        {185, 65, 1.0},
+        {186, 65, 1.0},
+        {185, 65, 1.0},
+        {186, 65, -1.0},
+        {32, 65, 1.0},
+        {189, 126, 1.0},
+        {190, 127, 1.0},
+        {131, 128, 1.0},
+        {221, 129, -1.0},
+        {34, 249, 1.0},
+        {33, 253, 1.0},
+        {189, 65, 1.0},
+        {190, 65, 1.0},
+        {131, 65, 1.0},
+        {221, 65, -1.0},
+        {185, 66, -1.0},
+        {188, 67, -1.0},
+        {185, 68, -1.0},
+        {189, 69, -1.0},
+        {150, 256, -1.0},
+        {36, 261, 1.0},
+        {37, 266, 1.0},
+        {38, 273, -1.0},
+        {185, 65, -1.0},
+        {188, 65, -1.0},
+        {185, 65, -1.0},
+        {189, 65, -1.0},
+        {186, 66, 1.0},
+        {186, 68, -1.0},
+        {190, 69, -1.0},
+        {36, 256, 1.0},
+        {151, 261, -1.0},
+        {40, 266, 1.0},
+        {41, 273, 1.0},
+        {186, 65, 1.0},
+        {186, 65, -1.0},
+        {190, 65, -1.0},
+        {189, 67, -1.0},
+        {185, 68, -1.0},
+        {188, 69, -1.0},
+        {185, 70, -1.0},
+        {189, 71, -1.0},
+        {37, 256, 1.0},
+        {40, 261, 1.0},
+        {152, 266, -1.0},
+        {43, 273, 1.0},
+        {44, 280, 1.0},
+        {40, 287, -1.0},
+        {189, 65, -1.0},
+        {185, 65, -1.0},
+        {188, 65, -1.0},
+        {185, 65, -1.0},
+        {189, 65, -1.0},
+        {190, 67, 1.0},
+        {186, 68, 1.0},
+        {186, 70, -1.0},
+        {190, 71, -1.0},
+        {38, 256, -1.0},
+        {41, 261, 1.0},
+        {43, 266, 1.0},
+        {153, 273, -1.0},
+        {46, 280, 1.0},
+        {47, 287, 1.0},
+        {190, 65, 1.0},
+        {186, 65, 1.0},
+        {186, 65, -1.0},
+        {190, 65, -1.0},
+        {189, 69, -1.0},
+        {185, 70, -1.0},
+        {188, 71, -1.0},
+        {185, 72, -1.0},
+        {189, 73, -1.0},
+        {44, 266, 1.0},
+        {46, 273, 1.0},
+        {154, 280, -1.0},
+        {49, 287, 1.0},
+        {50, 294, 1.0},
+        {46, 301, -1.0},
+        {189, 65, -1.0},
+        {185, 65, -1.0},
+        {188, 65, -1.0},
+        {185, 65, -1.0},
+        {189, 65, -1.0},
+        {190, 69, 1.0},
+        {186, 70, 1.0},
+        {186, 72, -1.0},
+        {190, 73, -1.0},
+        {40, 266, -1.0},
+        {47, 273, 1.0},
+        {49, 280, 1.0},
+        {155, 287, -1.0},
+        {52, 294, 1.0},
+        {53, 301, 1.0},
+        {190, 65, 1.0},
+        {186, 65, 1.0},
+        {186, 65, -1.0},
+        {190, 65, -1.0},
+        {189, 71, -1.0},
+        {185, 72, -1.0},
+        {188, 73, -1.0},
+        {185, 74, -1.0},
+        {189, 75, -1.0},
+        {50, 280, 1.0},
+        {52, 287, 1.0},
+        {156, 294, -1.0},
+        {55, 301, 1.0},
+        {56, 308, 1.0},
+        {52, 315, -1.0},
+        {189, 65, -1.0},
+        {185, 65, -1.0},
+        {188, 65, -1.0},
+        {185, 65, -1.0},
+        {189, 65, -1.0},
+        {190, 71, 1.0},
+        {186, 72, 1.0},
+        {186, 74, -1.0},
+        {190, 75, -1.0},
+        {46, 280, -1.0},
+        {53, 287, 1.0},
+        {55, 294, 1.0},
+        {157, 301, -1.0},
+        {58, 308, 1.0},
+        {59, 315, 1.0},
+        {190, 65, 1.0},
+        {186, 65, 1.0},
+        {186, 65, -1.0},
+        {190, 65, -1.0},
+        {189, 73, -1.0},
+        {185, 74, -1.0},
+        {188, 75, -1.0},
+        {185, 76, -1.0},
+        {189, 77, -1.0},
+        {56, 294, 1.0},
+        {58, 301, 1.0},
+        {158, 308, -1.0},
+        {61, 315, 1.0},
+        {62, 322, 1.0},
+        {58, 329, -1.0},
+        {189, 65, -1.0},
+        {185, 65, -1.0},
+        {188, 65, -1.0},
+        {185, 65, -1.0},
+        {189, 65, -1.0},
+        {190, 73, 1.0},
+        {186, 74, 1.0},
+        {186, 76, -1.0},
+        {190, 77, -1.0},
+        {52, 294, -1.0},
+        {59, 301, 1.0},
+        {61, 308, 1.0},
+        {159, 315, -1.0},
+        {64, 322, 1.0},
+        {65, 329, 1.0},
+        {190, 65, 1.0},
+        {186, 65, 1.0},
+        {186, 65, -1.0},
+        {190, 65, -1.0},
+        {189, 75, -1.0},
+        {185, 76, -1.0},
+        {188, 77, -1.0},
+        {185, 78, -1.0},
+        {189, 79, -1.0},
+        {62, 308, 1.0},
+        {64, 315, 1.0},
+        {160, 322, -1.0},
+        {67, 329, 1.0},
+        {68, 336, 1.0},
+        {64, 343, -1.0},
+        {189, 65, -1.0},
+        {185, 65, -1.0},
+        {188, 65, -1.0},
+        {185, 65, -1.0},
+        {189, 65, -1.0},
+        {190, 75, 1.0},
+        {186, 76, 1.0},
+        {186, 78, -1.0},
+        {190, 79, -1.0},
+        {58, 308, -1.0},
+        {65, 315, 1.0},
+        {67, 322, 1.0},
+        {161, 329, -1.0},
+        {70, 336, 1.0},
+        {71, 343, 1.0},
+        {190, 65, 1.0},
+        {186, 65, 1.0},
+        {186, 65, -1.0},
+        {190, 65, -1.0},
+        {189, 77, -1.0},
+        {185, 78, -1.0},
+        {188, 79, -1.0},
+        {185, 80, -1.0},
+        {189, 81, -1.0},
+        {68, 322, 1.0},
+        {70, 329, 1.0},
+        {162, 336, -1.0},
+        {73, 343, 1.0},
+        {74, 350, 1.0},
+        {70, 357, -1.0},
+        {189, 65, -1.0},
+        {185, 65, -1.0},
+        {188, 65, -1.0},
+        {185, 65, -1.0},
+        {189, 65, -1.0},
+        {190, 77, 1.0},
+        {186, 78, 1.0},
+        {186, 80, -1.0},
+        {190, 81, -1.0},
+        {64, 322, -1.0},
+        {71, 329, 1.0},
+        {73, 336, 1.0},
+        {163, 343, -1.0},
+        {76, 350, 1.0},
+        {77, 357, 1.0},
+        {190, 65, 1.0},
+        {186, 65, 1.0},
+        {186, 65, -1.0},
+        {190, 65, -1.0},
+        {189, 79, -1.0},
+        {185, 80, -1.0},
+        {188, 81, -1.0},
+        {185, 82, -1.0},
+        {189, 83, -1.0},
+        {74, 336, 1.0},
+        {76, 343, 1.0},
+        {164, 350, -1.0},
+        {79, 357, 1.0},
+        {80, 364, 1.0},
+        {76, 371, -1.0},
+        {189, 65, -1.0},
+        {185, 65, -1.0},
+        {188, 65, -1.0},
+        {185, 65, -1.0},
+        {189, 65, -1.0},
+        {190, 79, 1.0},
+        {186, 80, 1.0},
+        {186, 82, -1.0},
+        {190, 83, -1.0},
+        {70, 336, -1.0},
+        {77, 343, 1.0},
+        {79, 350, 1.0},
+        {165, 357, -1.0},
+        {82, 364, 1.0},
+        {83, 371, 1.0},
+        {190, 65, 1.0},
+        {186, 65, 1.0},
+        {186, 65, -1.0},
+        {190, 65, -1.0},
+        {189, 81, -1.0},
+        {185, 82, -1.0},
+        {188, 83, -1.0},
+        {185, 84, -1.0},
+        {189, 85, -1.0},
+        {80, 350, 1.0},
+        {82, 357, 1.0},
+        {166, 364, -1.0},
+        {85, 371, 1.0},
+        {86, 378, 1.0},
+        {82, 385, -1.0},
+        {189, 65, -1.0},
+        {185, 65, -1.0},
+        {188, 65, -1.0},
+        {185, 65, -1.0},
+        {189, 65, -1.0},
+        {190, 81, 1.0},
+        {186, 82, 1.0},
+        {186, 84, -1.0},
+        {190, 85, -1.0},
+        {76, 350, -1.0},
+        {83, 357, 1.0},
+        {85, 364, 1.0},
+        {167, 371, -1.0},
+        {88, 378, 1.0},
+        {89, 385, 1.0},
+        {190, 65, 1.0},
+        {186, 65, 1.0},
+        {186, 65, -1.0},
+        {190, 65, -1.0},
+        {189, 83, -1.0},
+        {185, 84, -1.0},
+        {188, 85, -1.0},
+        {185, 86, -1.0},
+        {189, 87, -1.0},
+        {86, 364, 1.0},
+        {88, 371, 1.0},
+        {168, 378, -1.0},
+        {91, 385, 1.0},
+        {92, 392, 1.0},
+        {88, 399, -1.0},
+        {189, 65, -1.0},
+        {185, 65, -1.0},
+        {188, 65, -1.0},
+        {185, 65, -1.0},
+        {189, 65, -1.0},
+        {190, 83, 1.0},
+        {186, 84, 1.0},
+        {186, 86, -1.0},
+        {190, 87, -1.0},
+        {82, 364, -1.0},
+        {89, 371, 1.0},
+        {91, 378, 1.0},
+        {169, 385, -1.0},
+        {94, 392, 1.0},
+        {95, 399, 1.0},
+        {190, 65, 1.0},
+        {186, 65, 1.0},
+        {186, 65, -1.0},
+        {190, 65, -1.0},
+        {189, 85, -1.0},
+        {185, 86, -1.0},
+        {188, 87, -1.0},
+        {185, 88, -1.0},
+        {189, 89, -1.0},
+        {92, 378, 1.0},
+        {94, 385, 1.0},
+        {170, 392, -1.0},
+        {97, 399, 1.0},
+        {98, 406, 1.0},
+        {94, 413, -1.0},
+        {189, 65, -1.0},
+        {185, 65, -1.0},
+        {188, 65, -1.0},
+        {185, 65, -1.0},
+        {189, 65, -1.0},
+        {190, 85, 1.0},
+        {186, 86, 1.0},
+        {186, 88, -1.0},
+        {190, 89, -1.0},
+        {88, 378, -1.0},
+        {95, 385, 1.0},
+        {97, 392, 1.0},
+        {171, 399, -1.0},
+        {100, 406, 1.0},
+        {101, 413, 1.0},
+        {190, 65, 1.0},
+        {186, 65, 1.0},
+        {186, 65, -1.0},
+        {190, 65, -1.0},
+        {189, 87, -1.0},
+        {185, 88, -1.0},
+        {188, 89, -1.0},
+        {185, 90, -1.0},
+        {189, 91, -1.0},
+        {98, 392, 1.0},
+        {100, 399, 1.0},
+        {172, 406, -1.0},
+        {103, 413, 1.0},
+        {104, 420, 1.0},
+        {100, 427, -1.0},
+        {189, 65, -1.0},
+        {185, 65, -1.0},
+        {188, 65, -1.0},
+        {185, 65, -1.0},
+        {189, 65, -1.0},
+        {190, 87, 1.0},
+        {186, 88, 1.0},
+        {186, 90, -1.0},
+        {190, 91, -1.0},
+        {94, 392, -1.0},
+        {101, 399, 1.0},
+        {103, 406, 1.0},
+        {173, 413, -1.0},
+        {106, 420, 1.0},
+        {107, 427, 1.0},
+        {190, 65, 1.0},
+        {186, 65, 1.0},
+        {186, 65, -1.0},
+        {190, 65, -1.0},
+        {189, 89, -1.0},
+        {185, 90, -1.0},
+        {188, 91, -1.0},
+        {185, 92, -1.0},
+        {189, 93, -1.0},
+        {104, 406, 1.0},
+        {106, 413, 1.0},
+        {174, 420, -1.0},
+        {109, 427, 1.0},
+        {110, 434, 1.0},
+        {106, 441, -1.0},
+        {189, 65, -1.0},
+        {185, 65, -1.0},
+        {188, 65, -1.0},
+        {185, 65, -1.0},
+        {189, 65, -1.0},
+        {190, 89, 1.0},
+        {186, 90, 1.0},
+        {186, 92, -1.0},
+        {190, 93, -1.0},
+        {100, 406, -1.0},
+        {107, 413, 1.0},
+        {109, 420, 1.0},
+        {175, 427, -1.0},
+        {112, 434, 1.0},
+        {113, 441, 1.0},
+        {190, 65, 1.0},
+        {186, 65, 1.0},
+        {186, 65, -1.0},
+        {190, 65, -1.0},
+        {189, 91, -1.0},
+        {185, 92, -1.0},
+        {188, 93, -1.0},
+        {185, 94, -1.0},
+        {189, 95, -1.0},
+        {110, 420, 1.0},
+        {112, 427, 1.0},
+        {176, 434, -1.0},
+        {115, 441, 1.0},
+        {116, 448, 1.0},
+        {112, 455, -1.0},
+        {189, 65, -1.0},
+        {185, 65, -1.0},
+        {188, 65, -1.0},
+        {185, 65, -1.0},
+        {189, 65, -1.0},
+        {190, 91, 1.0},
+        {186, 92, 1.0},
+        {186, 94, -1.0},
+        {190, 95, -1.0},
+        {106, 420, -1.0},
+        {113, 427, 1.0},
+        {115, 434, 1.0},
+        {177, 441, -1.0},
+        {118, 448, 1.0},
+        {119, 455, 1.0},
+        {190, 65, 1.0},
+        {186, 65, 1.0},
+        {186, 65, -1.0},
+        {190, 65, -1.0},
+        {189, 93, -1.0},
+        {185, 94, -1.0},
+        {188, 95, -1.0},
+        {185, 96, -1.0},
+        {189, 97, -1.0},
+        {116, 434, 1.0},
+        {118, 441, 1.0},
+        {178, 448, -1.0},
+        {121, 455, 1.0},
+        {122, 462, 1.0},
+        {118, 467, -1.0},
+        {189, 65, -1.0},
+        {185, 65, -1.0},
+        {188, 65, -1.0},
+        {185, 65, -1.0},
+        {189, 65, -1.0},
+        {190, 93, 1.0},
+        {186, 94, 1.0},
+        {186, 96, -1.0},
+        {190, 97, -1.0},
+        {112, 434, -1.0},
+        {119, 441, 1.0},
+        {121, 448, 1.0},
+        {179, 455, -1.0},
+        {124, 462, 1.0},
+        {125, 467, 1.0},
+        {190, 65, 1.0},
+        {186, 65, 1.0},
+        {186, 65, -1.0},
+        {190, 65, -1.0},
+        {189, 95, -1.0},
+        {185, 96, -1.0},
+        {131, 97, -1.0},
+        {122, 448, 1.0},
+        {124, 455, 1.0},
+        {180, 462, -1.0},
+        {127, 467, 1.0},
+        {189, 65, -1.0},
+        {185, 65, -1.0},
+        {131, 65, -1.0},
+        {190, 95, 1.0},
+        {186, 96, 1.0},
+        {221, 97, 1.0},
+        {118, 448, -1.0},
+        {125, 455, 1.0},
+        {127, 462, 1.0},
+        {181, 467, -1.0},
+        {190, 65, 1.0},
+        {186, 65, 1.0},
+        {221, 65, 1.0},
+    };
+    static const int written[] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15,
+        16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31,
+        32, 33, 34, 35, 36, 37, 38, 39, 40, 41, 42, 43, 44, 45, 46, 47,
+        48, 49, 50, 51, 52, 53, 54, 55, 56, 57, 58, 59, 60, 61, 62, 63,
+        64, 65, 98, 99, 130, 163, 165, 166, 195, 228, 229, 230, 231, 260, 293, 294,
+        295, 297, 298, 325, 360, 361, 362, 363, 390, 425, 426, 427, 429, 430, 455, 492,
+        493, 494, 495, 520, 557, 558, 559, 561, 562, 585, 624, 625, 626, 627, 650, 689,
+        690, 691, 693, 694, 715, 756, 757, 758, 759, 780, 821, 822, 823, 825, 826, 845,
+        888, 889, 890, 891, 910, 953, 954, 955, 957, 958, 975, 1020, 1021, 1022, 1023, 1040,
+        1085, 1086, 1087, 1089, 1090, 1105, 1152, 1153, 1154, 1155, 1170, 1217, 1218, 1219, 1221, 1222,
+        1235, 1284, 1285, 1286, 1287, 1300, 1349, 1350, 1351, 1353, 1354, 1365, 1416, 1417, 1418, 1419,
+        1430, 1481, 1482, 1483, 1485, 1486, 1495, 1548, 1549, 1550, 1551, 1560, 1613, 1614, 1615, 1617,
+        1618, 1625, 1680, 1681, 1682, 1683, 1690, 1745, 1746, 1747, 1749, 1750, 1755, 1812, 1813, 1814,
+        1815, 1820, 1877, 1878, 1879, 1881, 1882, 1885, 1944, 1945, 1946, 1947, 1950, 2009, 2010, 2011,
+        2013, 2014, 2015, 2076, 2077, 2078, 2079, 2080, 2141, 2142, 2143, 2144, 2145, 2146, 2147, 2148,
+        2149, 2210, 2211, 2213, 2214, 2275, 2277, 2278, 2279, 2280, 2281, 2340, 2342, 2343, 2345, 2346,
+        2405, 2409, 2410, 2411, 2412, 2413, 2470, 2474, 2475, 2477, 2478, 2535, 2541, 2542, 2543, 2544,
+        2545, 2600, 2606, 2607, 2609, 2610, 2665, 2673, 2674, 2675, 2676, 2677, 2730, 2738, 2739, 2741,
+        2742, 2795, 2805, 2806, 2807, 2808, 2809, 2860, 2870, 2871, 2873, 2874, 2925, 2937, 2938, 2939,
+        2940, 2941, 2990, 3002, 3003, 3005, 3006, 3055, 3069, 3070, 3071, 3072, 3073, 3120, 3134, 3135,
+        3137, 3138, 3185, 3201, 3202, 3203, 3204, 3205, 3250, 3266, 3267, 3269, 3270, 3315, 3333, 3334,
+        3335, 3336, 3337, 3380, 3398, 3399, 3401, 3402, 3445, 3465, 3466, 3467, 3468, 3469, 3510, 3530,
+        3531, 3533, 3534, 3575, 3597, 3598, 3599, 3600, 3601, 3640, 3662, 3663, 3665, 3666, 3705, 3729,
+        3730, 3731, 3732, 3733, 3770, 3794, 3795, 3797, 3798, 3835, 3861, 3862, 3863, 3864, 3865, 3900,
+        3926, 3927, 3929, 3930, 3965, 3993, 3994, 3995, 3996, 3997, 4030, 4058, 4059, 4061, 4062, 4095,
+        4125, 4126, 4127, 4160, 4190, 4191, 4192};
+    static const int first[] = {0, 310, 313, 317, 321, 325, 329, 333, 337, 341, 345, 349, 353, 357, 361, 365,
+        369, 373, 377, 381, 385, 389, 393, 397, 401, 405, 409, 413, 417, 421, 425, 429,
+        433, 436, 440, 444, 450, 456, 462, 468, 474, 480, 486, 492, 498, 504, 510, 516,
+        522, 528, 534, 540, 546, 552, 558, 564, 570, 576, 582, 588, 594, 600, 606, 612,
+        616, 620, 625, 626, 627, 634, 635, 636, 637, 645, 646, 647, 648, 649, 658, 659,
+        660, 661, 662, 663, 671, 672, 673, 674, 675, 684, 685, 686, 687, 688, 689, 697,
+        698, 699, 700, 701, 710, 711, 712, 713, 714, 715, 723, 724, 725, 726, 727, 736,
+        737, 738, 739, 740, 741, 749, 750, 751, 752, 753, 762, 763, 764, 765, 766, 767,
+        775, 776, 777, 778, 779, 788, 789, 790, 791, 792, 793, 801, 802, 803, 804, 805,
+        814, 815, 816, 817, 818, 819, 827, 828, 829, 830, 831, 840, 841, 842, 843, 844,
+        845, 853, 854, 855, 856, 857, 866, 867, 868, 869, 870, 871, 879, 880, 881, 882,
+        883, 892, 893, 894, 895, 896, 897, 905, 906, 907, 908, 909, 918, 919, 920, 921,
+        922, 923, 931, 932, 933, 934, 935, 944, 945, 946, 947, 948, 949, 957, 958, 959,
+        960, 961, 970, 971, 972, 973, 974, 975, 983, 984, 985, 986, 987, 996, 997, 998,
+        999, 1000, 1001, 1009, 1010, 1011, 1012, 1013, 1020, 1021, 1022, 1023, 1024, 1032, 1033, 1034,
+        1035, 1036, 1043, 1044, 1045, 1046, 1057, 1058, 1059, 1060, 1061, 1062, 1072, 1073, 1074, 1075,
+        1076, 1087, 1088, 1089, 1090, 1091, 1092, 1102, 1103, 1104, 1105, 1106, 1117, 1118, 1119, 1120,
+        1121, 1122, 1132, 1133, 1134, 1135, 1136, 1147, 1148, 1149, 1150, 1151, 1152, 1162, 1163, 1164,
+        1165, 1166, 1177, 1178, 1179, 1180, 1181, 1182, 1192, 1193, 1194, 1195, 1196, 1207, 1208, 1209,
+        1210, 1211, 1212, 1222, 1223, 1224, 1225, 1226, 1237, 1238, 1239, 1240, 1241, 1242, 1252, 1253,
+        1254, 1255, 1256, 1267, 1268, 1269, 1270, 1271, 1272, 1282, 1283, 1284, 1285, 1286, 1297, 1298,
+        1299, 1300, 1301, 1302, 1312, 1313, 1314, 1315, 1316, 1327, 1328, 1329, 1330, 1331, 1332, 1342,
+        1343, 1344, 1345, 1346, 1357, 1358, 1359, 1360, 1361, 1362, 1372, 1373, 1374, 1375, 1376, 1387,
+        1388, 1389, 1390, 1391, 1392, 1402, 1403, 1404, 1405, 1406, 1417, 1418, 1419, 1420, 1421, 1422,
+        1432, 1433, 1434, 1435, 1436, 1447, 1448, 1449, 1450, 1451, 1452, 1462, 1463, 1464, 1465, 1466,
+        1473, 1474, 1475, 1476, 1483, 1484, 1485, 1486};
+    for (int i = 0; i < 407; ++i) {
+        double sum = 0.0;
+        for (int t = first[i]; t < first[i + 1]; ++t) sum += terms[t].scale * c[terms[t].coef] * m[terms[t].mono];
+        out[written[i]] = sum;
+    }
 }
 
-/* forces_u:(c[332],u[3],q[65],qd[65])->(dQdu[195]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
+/* forces_u:(c[333],u[3],q[65],qd[65])->(dQdu[195]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
 void fem_nx32_ny32_torque_first_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -7237,7 +9592,7 @@ void fem_nx32_ny32_torque_first_forces_u(const double* c, const double* u, const
     out[0] = 1.0;
 }
 
-/* mass_varying:(c[332],u[3],q[65],qd[65])->(M[4225]) as mass, the entries that depend on q only */
+/* mass_varying:(c[333],u[3],q[65],qd[65])->(M[4225]) as mass, the entries that depend on q only */
 void fem_nx32_ny32_torque_first_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -7544,7 +9899,7 @@ void fem_nx32_ny32_torque_first_mass_varying(const double* c, const double* u, c
     out[64] = -c[138] - c[133]*A30 - c[130]*A31 - c[135]*A32;
 }
 
-/* mass_q_product:(c[332],u[3],q[65],qd[65])->(dMv[4225]) row-major; v in the qd slot; out[i*65+k] = sum_j dM_ij/dq_k v_j; nonzero entries only */
+/* mass_q_product:(c[333],u[3],q[65],qd[65])->(dMv[4225]) row-major; v in the qd slot; out[i*65+k] = sum_j dM_ij/dq_k v_j; nonzero entries only */
 void fem_nx32_ny32_torque_first_mass_q_product(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -7741,70 +10096,70 @@ void fem_nx32_ny32_torque_first_mass_q_product(const double* c, const double* u,
     const double B30_theta_dot = B30*theta_dot;
     const double B31_theta_dot = B31*theta_dot;
     const double B32_theta_dot = B32*theta_dot;
-    out[1] = c[1]*theta_dot + c[129]*B1_dot - c[130]*B2_dot + c[148]*A1_theta_dot + c[34]*A2_theta_dot;
-    out[2] = c[2]*theta_dot + c[131]*B1_dot + c[132]*B3_dot - c[133]*B4_dot + c[34]*A1_theta_dot + c[148]*A2_theta_dot + c[34]*A3_theta_dot;
-    out[3] = c[3]*theta_dot + c[129]*B1_dot + c[130]*B2_dot + c[129]*B3_dot - c[130]*B4_dot + c[34]*A2_theta_dot + c[148]*A3_theta_dot + c[34]*A4_theta_dot;
-    out[4] = c[4]*theta_dot + c[132]*B1_dot + c[133]*B2_dot + c[131]*B3_dot + c[132]*B5_dot - c[133]*B6_dot + c[34]*A3_theta_dot + c[148]*A4_theta_dot + c[34]*A5_theta_dot;
-    out[5] = c[5]*theta_dot + c[129]*B3_dot + c[130]*B4_dot + c[129]*B5_dot - c[130]*B6_dot + c[34]*A4_theta_dot + c[148]*A5_theta_dot + c[34]*A6_theta_dot;
-    out[6] = c[6]*theta_dot + c[132]*B3_dot + c[133]*B4_dot + c[131]*B5_dot + c[132]*B7_dot - c[133]*B8_dot + c[34]*A5_theta_dot + c[148]*A6_theta_dot + c[34]*A7_theta_dot;
-    out[7] = c[7]*theta_dot + c[129]*B5_dot + c[130]*B6_dot + c[129]*B7_dot - c[130]*B8_dot + c[34]*A6_theta_dot + c[148]*A7_theta_dot + c[34]*A8_theta_dot;
-    out[8] = c[8]*theta_dot + c[132]*B5_dot + c[133]*B6_dot + c[131]*B7_dot + c[132]*B9_dot - c[133]*B10_dot + c[34]*A7_theta_dot + c[148]*A8_theta_dot + c[34]*A9_theta_dot;
-    out[9] = c[9]*theta_dot + c[129]*B7_dot + c[130]*B8_dot + c[129]*B9_dot - c[130]*B10_dot + c[34]*A8_theta_dot + c[148]*A9_theta_dot + c[34]*A10_theta_dot;
-    out[10] = c[10]*theta_dot + c[132]*B7_dot + c[133]*B8_dot + c[131]*B9_dot + c[132]*B11_dot - c[133]*B12_dot + c[34]*A9_theta_dot + c[148]*A10_theta_dot + c[34]*A11_theta_dot;
-    out[11] = c[11]*theta_dot + c[129]*B9_dot + c[130]*B10_dot + c[129]*B11_dot - c[130]*B12_dot + c[34]*A10_theta_dot + c[148]*A11_theta_dot + c[34]*A12_theta_dot;
-    out[12] = c[12]*theta_dot + c[132]*B9_dot + c[133]*B10_dot + c[131]*B11_dot + c[132]*B13_dot - c[133]*B14_dot + c[34]*A11_theta_dot + c[148]*A12_theta_dot + c[34]*A13_theta_dot;
-    out[13] = c[13]*theta_dot + c[129]*B11_dot + c[130]*B12_dot + c[129]*B13_dot - c[130]*B14_dot + c[34]*A12_theta_dot + c[148]*A13_theta_dot + c[34]*A14_theta_dot;
-    out[14] = c[14]*theta_dot + c[132]*B11_dot + c[133]*B12_dot + c[131]*B13_dot + c[132]*B15_dot - c[133]*B16_dot + c[34]*A13_theta_dot + c[148]*A14_theta_dot + c[34]*A15_theta_dot;
-    out[15] = c[15]*theta_dot + c[129]*B13_dot + c[130]*B14_dot + c[129]*B15_dot - c[130]*B16_dot + c[34]*A14_theta_dot + c[148]*A15_theta_dot + c[34]*A16_theta_dot;
-    out[16] = c[16]*theta_dot + c[132]*B13_dot + c[133]*B14_dot + c[131]*B15_dot + c[132]*B17_dot - c[133]*B18_dot + c[34]*A15_theta_dot + c[148]*A16_theta_dot + c[34]*A17_theta_dot;
-    out[17] = c[17]*theta_dot + c[129]*B15_dot + c[130]*B16_dot + c[129]*B17_dot - c[130]*B18_dot + c[34]*A16_theta_dot + c[148]*A17_theta_dot + c[34]*A18_theta_dot;
-    out[18] = c[18]*theta_dot + c[132]*B15_dot + c[133]*B16_dot + c[131]*B17_dot + c[132]*B19_dot - c[133]*B20_dot + c[34]*A17_theta_dot + c[148]*A18_theta_dot + c[34]*A19_theta_dot;
-    out[19] = c[19]*theta_dot + c[129]*B17_dot + c[130]*B18_dot + c[129]*B19_dot - c[130]*B20_dot + c[34]*A18_theta_dot + c[148]*A19_theta_dot + c[34]*A20_theta_dot;
-    out[20] = c[20]*theta_dot + c[132]*B17_dot + c[133]*B18_dot + c[131]*B19_dot + c[132]*B21_dot - c[133]*B22_dot + c[34]*A19_theta_dot + c[148]*A20_theta_dot + c[34]*A21_theta_dot;
-    out[21] = c[21]*theta_dot + c[129]*B19_dot + c[130]*B20_dot + c[129]*B21_dot - c[130]*B22_dot + c[34]*A20_theta_dot + c[148]*A21_theta_dot + c[34]*A22_theta_dot;
-    out[22] = c[22]*theta_dot + c[132]*B19_dot + c[133]*B20_dot + c[131]*B21_dot + c[132]*B23_dot - c[133]*B24_dot + c[34]*A21_theta_dot + c[148]*A22_theta_dot + c[34]*A23_theta_dot;
-    out[23] = c[23]*theta_dot + c[129]*B21_dot + c[130]*B22_dot + c[129]*B23_dot - c[130]*B24_dot + c[34]*A22_theta_dot + c[148]*A23_theta_dot + c[34]*A24_theta_dot;
-    out[24] = c[24]*theta_dot + c[132]*B21_dot + c[133]*B22_dot + c[131]*B23_dot + c[132]*B25_dot - c[133]*B26_dot + c[34]*A23_theta_dot + c[148]*A24_theta_dot + c[34]*A25_theta_dot;
-    out[25] = c[25]*theta_dot + c[129]*B23_dot + c[130]*B24_dot + c[129]*B25_dot - c[130]*B26_dot + c[34]*A24_theta_dot + c[148]*A25_theta_dot + c[34]*A26_theta_dot;
-    out[26] = c[26]*theta_dot + c[132]*B23_dot + c[133]*B24_dot + c[131]*B25_dot + c[132]*B27_dot - c[133]*B28_dot + c[34]*A25_theta_dot + c[148]*A26_theta_dot + c[34]*A27_theta_dot;
-    out[27] = c[27]*theta_dot + c[129]*B25_dot + c[130]*B26_dot + c[129]*B27_dot - c[130]*B28_dot + c[34]*A26_theta_dot + c[148]*A27_theta_dot + c[34]*A28_theta_dot;
-    out[28] = c[28]*theta_dot + c[132]*B25_dot + c[133]*B26_dot + c[131]*B27_dot + c[132]*B29_dot - c[133]*B30_dot + c[34]*A27_theta_dot + c[148]*A28_theta_dot + c[34]*A29_theta_dot;
-    out[29] = c[29]*theta_dot + c[129]*B27_dot + c[130]*B28_dot + c[129]*B29_dot - c[130]*B30_dot + c[34]*A28_theta_dot + c[148]*A29_theta_dot + c[34]*A30_theta_dot;
-    out[30] = c[30]*theta_dot + c[132]*B27_dot + c[133]*B28_dot + c[131]*B29_dot + c[132]*B31_dot - c[133]*B32_dot + c[34]*A29_theta_dot + c[148]*A30_theta_dot + c[34]*A31_theta_dot;
-    out[31] = c[31]*theta_dot + c[129]*B29_dot + c[130]*B30_dot + c[129]*B31_dot - c[130]*B32_dot + c[34]*A30_theta_dot + c[148]*A31_theta_dot + c[34]*A32_theta_dot;
+    out[1] = c[1]*theta_dot + c[129]*B1_dot - c[130]*B2_dot + c[149]*A1_theta_dot + c[34]*A2_theta_dot;
+    out[2] = c[2]*theta_dot + c[131]*B1_dot + c[132]*B3_dot - c[133]*B4_dot + c[34]*A1_theta_dot + c[149]*A2_theta_dot + c[34]*A3_theta_dot;
+    out[3] = c[3]*theta_dot + c[129]*B1_dot + c[130]*B2_dot + c[129]*B3_dot - c[130]*B4_dot + c[34]*A2_theta_dot + c[149]*A3_theta_dot + c[34]*A4_theta_dot;
+    out[4] = c[4]*theta_dot + c[132]*B1_dot + c[133]*B2_dot + c[131]*B3_dot + c[132]*B5_dot - c[133]*B6_dot + c[34]*A3_theta_dot + c[149]*A4_theta_dot + c[34]*A5_theta_dot;
+    out[5] = c[5]*theta_dot + c[129]*B3_dot + c[130]*B4_dot + c[129]*B5_dot - c[130]*B6_dot + c[34]*A4_theta_dot + c[149]*A5_theta_dot + c[34]*A6_theta_dot;
+    out[6] = c[6]*theta_dot + c[132]*B3_dot + c[133]*B4_dot + c[131]*B5_dot + c[132]*B7_dot - c[133]*B8_dot + c[34]*A5_theta_dot + c[149]*A6_theta_dot + c[34]*A7_theta_dot;
+    out[7] = c[7]*theta_dot + c[129]*B5_dot + c[130]*B6_dot + c[129]*B7_dot - c[130]*B8_dot + c[34]*A6_theta_dot + c[149]*A7_theta_dot + c[34]*A8_theta_dot;
+    out[8] = c[8]*theta_dot + c[132]*B5_dot + c[133]*B6_dot + c[131]*B7_dot + c[132]*B9_dot - c[133]*B10_dot + c[34]*A7_theta_dot + c[149]*A8_theta_dot + c[34]*A9_theta_dot;
+    out[9] = c[9]*theta_dot + c[129]*B7_dot + c[130]*B8_dot + c[129]*B9_dot - c[130]*B10_dot + c[34]*A8_theta_dot + c[149]*A9_theta_dot + c[34]*A10_theta_dot;
+    out[10] = c[10]*theta_dot + c[132]*B7_dot + c[133]*B8_dot + c[131]*B9_dot + c[132]*B11_dot - c[133]*B12_dot + c[34]*A9_theta_dot + c[149]*A10_theta_dot + c[34]*A11_theta_dot;
+    out[11] = c[11]*theta_dot + c[129]*B9_dot + c[130]*B10_dot + c[129]*B11_dot - c[130]*B12_dot + c[34]*A10_theta_dot + c[149]*A11_theta_dot + c[34]*A12_theta_dot;
+    out[12] = c[12]*theta_dot + c[132]*B9_dot + c[133]*B10_dot + c[131]*B11_dot + c[132]*B13_dot - c[133]*B14_dot + c[34]*A11_theta_dot + c[149]*A12_theta_dot + c[34]*A13_theta_dot;
+    out[13] = c[13]*theta_dot + c[129]*B11_dot + c[130]*B12_dot + c[129]*B13_dot - c[130]*B14_dot + c[34]*A12_theta_dot + c[149]*A13_theta_dot + c[34]*A14_theta_dot;
+    out[14] = c[14]*theta_dot + c[132]*B11_dot + c[133]*B12_dot + c[131]*B13_dot + c[132]*B15_dot - c[133]*B16_dot + c[34]*A13_theta_dot + c[149]*A14_theta_dot + c[34]*A15_theta_dot;
+    out[15] = c[15]*theta_dot + c[129]*B13_dot + c[130]*B14_dot + c[129]*B15_dot - c[130]*B16_dot + c[34]*A14_theta_dot + c[149]*A15_theta_dot + c[34]*A16_theta_dot;
+    out[16] = c[16]*theta_dot + c[132]*B13_dot + c[133]*B14_dot + c[131]*B15_dot + c[132]*B17_dot - c[133]*B18_dot + c[34]*A15_theta_dot + c[149]*A16_theta_dot + c[34]*A17_theta_dot;
+    out[17] = c[17]*theta_dot + c[129]*B15_dot + c[130]*B16_dot + c[129]*B17_dot - c[130]*B18_dot + c[34]*A16_theta_dot + c[149]*A17_theta_dot + c[34]*A18_theta_dot;
+    out[18] = c[18]*theta_dot + c[132]*B15_dot + c[133]*B16_dot + c[131]*B17_dot + c[132]*B19_dot - c[133]*B20_dot + c[34]*A17_theta_dot + c[149]*A18_theta_dot + c[34]*A19_theta_dot;
+    out[19] = c[19]*theta_dot + c[129]*B17_dot + c[130]*B18_dot + c[129]*B19_dot - c[130]*B20_dot + c[34]*A18_theta_dot + c[149]*A19_theta_dot + c[34]*A20_theta_dot;
+    out[20] = c[20]*theta_dot + c[132]*B17_dot + c[133]*B18_dot + c[131]*B19_dot + c[132]*B21_dot - c[133]*B22_dot + c[34]*A19_theta_dot + c[149]*A20_theta_dot + c[34]*A21_theta_dot;
+    out[21] = c[21]*theta_dot + c[129]*B19_dot + c[130]*B20_dot + c[129]*B21_dot - c[130]*B22_dot + c[34]*A20_theta_dot + c[149]*A21_theta_dot + c[34]*A22_theta_dot;
+    out[22] = c[22]*theta_dot + c[132]*B19_dot + c[133]*B20_dot + c[131]*B21_dot + c[132]*B23_dot - c[133]*B24_dot + c[34]*A21_theta_dot + c[149]*A22_theta_dot + c[34]*A23_theta_dot;
+    out[23] = c[23]*theta_dot + c[129]*B21_dot + c[130]*B22_dot + c[129]*B23_dot - c[130]*B24_dot + c[34]*A22_theta_dot + c[149]*A23_theta_dot + c[34]*A24_theta_dot;
+    out[24] = c[24]*theta_dot + c[132]*B21_dot + c[133]*B22_dot + c[131]*B23_dot + c[132]*B25_dot - c[133]*B26_dot + c[34]*A23_theta_dot + c[149]*A24_theta_dot + c[34]*A25_theta_dot;
+    out[25] = c[25]*theta_dot + c[129]*B23_dot + c[130]*B24_dot + c[129]*B25_dot - c[130]*B26_dot + c[34]*A24_theta_dot + c[149]*A25_theta_dot + c[34]*A26_theta_dot;
+    out[26] = c[26]*theta_dot + c[132]*B23_dot + c[133]*B24_dot + c[131]*B25_dot + c[132]*B27_dot - c[133]*B28_dot + c[34]*A25_theta_dot + c[149]*A26_theta_dot + c[34]*A27_theta_dot;
+    out[27] = c[27]*theta_dot + c[129]*B25_dot + c[130]*B26_dot + c[129]*B27_dot - c[130]*B28_dot + c[34]*A26_theta_dot + c[149]*A27_theta_dot + c[34]*A28_theta_dot;
+    out[28] = c[28]*theta_dot + c[132]*B25_dot + c[133]*B26_dot + c[131]*B27_dot + c[132]*B29_dot - c[133]*B30_dot + c[34]*A27_theta_dot + c[149]*A28_theta_dot + c[34]*A29_theta_dot;
+    out[29] = c[29]*theta_dot + c[129]*B27_dot + c[130]*B28_dot + c[129]*B29_dot - c[130]*B30_dot + c[34]*A28_theta_dot + c[149]*A29_theta_dot + c[34]*A30_theta_dot;
+    out[30] = c[30]*theta_dot + c[132]*B27_dot + c[133]*B28_dot + c[131]*B29_dot + c[132]*B31_dot - c[133]*B32_dot + c[34]*A29_theta_dot + c[149]*A30_theta_dot + c[34]*A31_theta_dot;
+    out[31] = c[31]*theta_dot + c[129]*B29_dot + c[130]*B30_dot + c[129]*B31_dot - c[130]*B32_dot + c[34]*A30_theta_dot + c[149]*A31_theta_dot + c[34]*A32_theta_dot;
     out[32] = c[32]*theta_dot + c[132]*B29_dot + c[133]*B30_dot + c[134]*B31_dot - c[135]*B32_dot + c[34]*A31_theta_dot + c[33]*A32_theta_dot;
-    out[33] = -c[129]*A1_dot - c[131]*A2_dot - c[129]*A3_dot - c[132]*A4_dot - c[149]*B1_theta_dot + c[36]*B2_theta_dot + c[37]*B3_theta_dot - c[38]*B4_theta_dot;
-    out[34] = c[130]*A1_dot - c[130]*A3_dot - c[133]*A4_dot + c[36]*B1_theta_dot - c[150]*B2_theta_dot + c[40]*B3_theta_dot + c[41]*B4_theta_dot;
-    out[35] = -c[132]*A2_dot - c[129]*A3_dot - c[131]*A4_dot - c[129]*A5_dot - c[132]*A6_dot + c[37]*B1_theta_dot + c[40]*B2_theta_dot - c[151]*B3_theta_dot + c[43]*B4_theta_dot + c[44]*B5_theta_dot - c[40]*B6_theta_dot;
-    out[36] = c[133]*A2_dot + c[130]*A3_dot - c[130]*A5_dot - c[133]*A6_dot - c[38]*B1_theta_dot + c[41]*B2_theta_dot + c[43]*B3_theta_dot - c[152]*B4_theta_dot + c[46]*B5_theta_dot + c[47]*B6_theta_dot;
-    out[37] = -c[132]*A4_dot - c[129]*A5_dot - c[131]*A6_dot - c[129]*A7_dot - c[132]*A8_dot + c[44]*B3_theta_dot + c[46]*B4_theta_dot - c[153]*B5_theta_dot + c[49]*B6_theta_dot + c[50]*B7_theta_dot - c[46]*B8_theta_dot;
-    out[38] = c[133]*A4_dot + c[130]*A5_dot - c[130]*A7_dot - c[133]*A8_dot - c[40]*B3_theta_dot + c[47]*B4_theta_dot + c[49]*B5_theta_dot - c[154]*B6_theta_dot + c[52]*B7_theta_dot + c[53]*B8_theta_dot;
-    out[39] = -c[132]*A6_dot - c[129]*A7_dot - c[131]*A8_dot - c[129]*A9_dot - c[132]*A10_dot + c[50]*B5_theta_dot + c[52]*B6_theta_dot - c[155]*B7_theta_dot + c[55]*B8_theta_dot + c[56]*B9_theta_dot - c[52]*B10_theta_dot;
-    out[40] = c[133]*A6_dot + c[130]*A7_dot - c[130]*A9_dot - c[133]*A10_dot - c[46]*B5_theta_dot + c[53]*B6_theta_dot + c[55]*B7_theta_dot - c[156]*B8_theta_dot + c[58]*B9_theta_dot + c[59]*B10_theta_dot;
-    out[41] = -c[132]*A8_dot - c[129]*A9_dot - c[131]*A10_dot - c[129]*A11_dot - c[132]*A12_dot + c[56]*B7_theta_dot + c[58]*B8_theta_dot - c[157]*B9_theta_dot + c[61]*B10_theta_dot + c[62]*B11_theta_dot - c[58]*B12_theta_dot;
-    out[42] = c[133]*A8_dot + c[130]*A9_dot - c[130]*A11_dot - c[133]*A12_dot - c[52]*B7_theta_dot + c[59]*B8_theta_dot + c[61]*B9_theta_dot - c[158]*B10_theta_dot + c[64]*B11_theta_dot + c[65]*B12_theta_dot;
-    out[43] = -c[132]*A10_dot - c[129]*A11_dot - c[131]*A12_dot - c[129]*A13_dot - c[132]*A14_dot + c[62]*B9_theta_dot + c[64]*B10_theta_dot - c[159]*B11_theta_dot + c[67]*B12_theta_dot + c[68]*B13_theta_dot - c[64]*B14_theta_dot;
-    out[44] = c[133]*A10_dot + c[130]*A11_dot - c[130]*A13_dot - c[133]*A14_dot - c[58]*B9_theta_dot + c[65]*B10_theta_dot + c[67]*B11_theta_dot - c[160]*B12_theta_dot + c[70]*B13_theta_dot + c[71]*B14_theta_dot;
-    out[45] = -c[132]*A12_dot - c[129]*A13_dot - c[131]*A14_dot - c[129]*A15_dot - c[132]*A16_dot + c[68]*B11_theta_dot + c[70]*B12_theta_dot - c[161]*B13_theta_dot + c[73]*B14_theta_dot + c[74]*B15_theta_dot - c[70]*B16_theta_dot;
-    out[46] = c[133]*A12_dot + c[130]*A13_dot - c[130]*A15_dot - c[133]*A16_dot - c[64]*B11_theta_dot + c[71]*B12_theta_dot + c[73]*B13_theta_dot - c[162]*B14_theta_dot + c[76]*B15_theta_dot + c[77]*B16_theta_dot;
-    out[47] = -c[132]*A14_dot - c[129]*A15_dot - c[131]*A16_dot - c[129]*A17_dot - c[132]*A18_dot + c[74]*B13_theta_dot + c[76]*B14_theta_dot - c[163]*B15_theta_dot + c[79]*B16_theta_dot + c[80]*B17_theta_dot - c[76]*B18_theta_dot;
-    out[48] = c[133]*A14_dot + c[130]*A15_dot - c[130]*A17_dot - c[133]*A18_dot - c[70]*B13_theta_dot + c[77]*B14_theta_dot + c[79]*B15_theta_dot - c[164]*B16_theta_dot + c[82]*B17_theta_dot + c[83]*B18_theta_dot;
-    out[49] = -c[132]*A16_dot - c[129]*A17_dot - c[131]*A18_dot - c[129]*A19_dot - c[132]*A20_dot + c[80]*B15_theta_dot + c[82]*B16_theta_dot - c[165]*B17_theta_dot + c[85]*B18_theta_dot + c[86]*B19_theta_dot - c[82]*B20_theta_dot;
-    out[50] = c[133]*A16_dot + c[130]*A17_dot - c[130]*A19_dot - c[133]*A20_dot - c[76]*B15_theta_dot + c[83]*B16_theta_dot + c[85]*B17_theta_dot - c[166]*B18_theta_dot + c[88]*B19_theta_dot + c[89]*B20_theta_dot;
-    out[51] = -c[132]*A18_dot - c[129]*A19_dot - c[131]*A20_dot - c[129]*A21_dot - c[132]*A22_dot + c[86]*B17_theta_dot + c[88]*B18_theta_dot - c[167]*B19_theta_dot + c[91]*B20_theta_dot + c[92]*B21_theta_dot - c[88]*B22_theta_dot;
-    out[52] = c[133]*A18_dot + c[130]*A19_dot - c[130]*A21_dot - c[133]*A22_dot - c[82]*B17_theta_dot + c[89]*B18_theta_dot + c[91]*B19_theta_dot - c[168]*B20_theta_dot + c[94]*B21_theta_dot + c[95]*B22_theta_dot;
-    out[53] = -c[132]*A20_dot - c[129]*A21_dot - c[131]*A22_dot - c[129]*A23_dot - c[132]*A24_dot + c[92]*B19_theta_dot + c[94]*B20_theta_dot - c[169]*B21_theta_dot + c[97]*B22_theta_dot + c[98]*B23_theta_dot - c[94]*B24_theta_dot;
-    out[54] = c[133]*A20_dot + c[130]*A21_dot - c[130]*A23_dot - c[133]*A24_dot - c[88]*B19_theta_dot + c[95]*B20_theta_dot + c[97]*B21_theta_dot - c[170]*B22_theta_dot + c[100]*B23_theta_dot + c[101]*B24_theta_dot;
-    out[55] = -c[132]*A22_dot - c[129]*A23_dot - c[131]*A24_dot - c[129]*A25_dot - c[132]*A26_dot + c[98]*B21_theta_dot + c[100]*B22_theta_dot - c[171]*B23_theta_dot + c[103]*B24_theta_dot + c[104]*B25_theta_dot - c[100]*B26_theta_dot;
-    out[56] = c[133]*A22_dot + c[130]*A23_dot - c[130]*A25_dot - c[133]*A26_dot - c[94]*B21_theta_dot + c[101]*B22_theta_dot + c[103]*B23_theta_dot - c[172]*B24_theta_dot + c[106]*B25_theta_dot + c[107]*B26_theta_dot;
-    out[57] = -c[132]*A24_dot - c[129]*A25_dot - c[131]*A26_dot - c[129]*A27_dot - c[132]*A28_dot + c[104]*B23_theta_dot + c[106]*B24_theta_dot - c[173]*B25_theta_dot + c[109]*B26_theta_dot + c[110]*B27_theta_dot - c[106]*B28_theta_dot;
-    out[58] = c[133]*A24_dot + c[130]*A25_dot - c[130]*A27_dot - c[133]*A28_dot - c[100]*B23_theta_dot + c[107]*B24_theta_dot + c[109]*B25_theta_dot - c[174]*B26_theta_dot + c[112]*B27_theta_dot + c[113]*B28_theta_dot;
-    out[59] = -c[132]*A26_dot - c[129]*A27_dot - c[131]*A28_dot - c[129]*A29_dot - c[132]*A30_dot + c[110]*B25_theta_dot + c[112]*B26_theta_dot - c[175]*B27_theta_dot + c[115]*B28_theta_dot + c[116]*B29_theta_dot - c[112]*B30_theta_dot;
-    out[60] = c[133]*A26_dot + c[130]*A27_dot - c[130]*A29_dot - c[133]*A30_dot - c[106]*B25_theta_dot + c[113]*B26_theta_dot + c[115]*B27_theta_dot - c[176]*B28_theta_dot + c[118]*B29_theta_dot + c[119]*B30_theta_dot;
-    out[61] = -c[132]*A28_dot - c[129]*A29_dot - c[131]*A30_dot - c[129]*A31_dot - c[132]*A32_dot + c[116]*B27_theta_dot + c[118]*B28_theta_dot - c[177]*B29_theta_dot + c[121]*B30_theta_dot + c[122]*B31_theta_dot - c[118]*B32_theta_dot;
-    out[62] = c[133]*A28_dot + c[130]*A29_dot - c[130]*A31_dot - c[133]*A32_dot - c[112]*B27_theta_dot + c[119]*B28_theta_dot + c[121]*B29_theta_dot - c[178]*B30_theta_dot + c[124]*B31_theta_dot + c[125]*B32_theta_dot;
-    out[63] = -c[132]*A30_dot - c[129]*A31_dot - c[134]*A32_dot + c[122]*B29_theta_dot + c[124]*B30_theta_dot - c[179]*B31_theta_dot + c[127]*B32_theta_dot;
-    out[64] = c[133]*A30_dot + c[130]*A31_dot + c[135]*A32_dot - c[118]*B29_theta_dot + c[125]*B30_theta_dot + c[127]*B31_theta_dot - c[180]*B32_theta_dot;
+    out[33] = -c[129]*A1_dot - c[131]*A2_dot - c[129]*A3_dot - c[132]*A4_dot - c[150]*B1_theta_dot + c[36]*B2_theta_dot + c[37]*B3_theta_dot - c[38]*B4_theta_dot;
+    out[34] = c[130]*A1_dot - c[130]*A3_dot - c[133]*A4_dot + c[36]*B1_theta_dot - c[151]*B2_theta_dot + c[40]*B3_theta_dot + c[41]*B4_theta_dot;
+    out[35] = -c[132]*A2_dot - c[129]*A3_dot - c[131]*A4_dot - c[129]*A5_dot - c[132]*A6_dot + c[37]*B1_theta_dot + c[40]*B2_theta_dot - c[152]*B3_theta_dot + c[43]*B4_theta_dot + c[44]*B5_theta_dot - c[40]*B6_theta_dot;
+    out[36] = c[133]*A2_dot + c[130]*A3_dot - c[130]*A5_dot - c[133]*A6_dot - c[38]*B1_theta_dot + c[41]*B2_theta_dot + c[43]*B3_theta_dot - c[153]*B4_theta_dot + c[46]*B5_theta_dot + c[47]*B6_theta_dot;
+    out[37] = -c[132]*A4_dot - c[129]*A5_dot - c[131]*A6_dot - c[129]*A7_dot - c[132]*A8_dot + c[44]*B3_theta_dot + c[46]*B4_theta_dot - c[154]*B5_theta_dot + c[49]*B6_theta_dot + c[50]*B7_theta_dot - c[46]*B8_theta_dot;
+    out[38] = c[133]*A4_dot + c[130]*A5_dot - c[130]*A7_dot - c[133]*A8_dot - c[40]*B3_theta_dot + c[47]*B4_theta_dot + c[49]*B5_theta_dot - c[155]*B6_theta_dot + c[52]*B7_theta_dot + c[53]*B8_theta_dot;
+    out[39] = -c[132]*A6_dot - c[129]*A7_dot - c[131]*A8_dot - c[129]*A9_dot - c[132]*A10_dot + c[50]*B5_theta_dot + c[52]*B6_theta_dot - c[156]*B7_theta_dot + c[55]*B8_theta_dot + c[56]*B9_theta_dot - c[52]*B10_theta_dot;
+    out[40] = c[133]*A6_dot + c[130]*A7_dot - c[130]*A9_dot - c[133]*A10_dot - c[46]*B5_theta_dot + c[53]*B6_theta_dot + c[55]*B7_theta_dot - c[157]*B8_theta_dot + c[58]*B9_theta_dot + c[59]*B10_theta_dot;
+    out[41] = -c[132]*A8_dot - c[129]*A9_dot - c[131]*A10_dot - c[129]*A11_dot - c[132]*A12_dot + c[56]*B7_theta_dot + c[58]*B8_theta_dot - c[158]*B9_theta_dot + c[61]*B10_theta_dot + c[62]*B11_theta_dot - c[58]*B12_theta_dot;
+    out[42] = c[133]*A8_dot + c[130]*A9_dot - c[130]*A11_dot - c[133]*A12_dot - c[52]*B7_theta_dot + c[59]*B8_theta_dot + c[61]*B9_theta_dot - c[159]*B10_theta_dot + c[64]*B11_theta_dot + c[65]*B12_theta_dot;
+    out[43] = -c[132]*A10_dot - c[129]*A11_dot - c[131]*A12_dot - c[129]*A13_dot - c[132]*A14_dot + c[62]*B9_theta_dot + c[64]*B10_theta_dot - c[160]*B11_theta_dot + c[67]*B12_theta_dot + c[68]*B13_theta_dot - c[64]*B14_theta_dot;
+    out[44] = c[133]*A10_dot + c[130]*A11_dot - c[130]*A13_dot - c[133]*A14_dot - c[58]*B9_theta_dot + c[65]*B10_theta_dot + c[67]*B11_theta_dot - c[161]*B12_theta_dot + c[70]*B13_theta_dot + c[71]*B14_theta_dot;
+    out[45] = -c[132]*A12_dot - c[129]*A13_dot - c[131]*A14_dot - c[129]*A15_dot - c[132]*A16_dot + c[68]*B11_theta_dot + c[70]*B12_theta_dot - c[162]*B13_theta_dot + c[73]*B14_theta_dot + c[74]*B15_theta_dot - c[70]*B16_theta_dot;
+    out[46] = c[133]*A12_dot + c[130]*A13_dot - c[130]*A15_dot - c[133]*A16_dot - c[64]*B11_theta_dot + c[71]*B12_theta_dot + c[73]*B13_theta_dot - c[163]*B14_theta_dot + c[76]*B15_theta_dot + c[77]*B16_theta_dot;
+    out[47] = -c[132]*A14_dot - c[129]*A15_dot - c[131]*A16_dot - c[129]*A17_dot - c[132]*A18_dot + c[74]*B13_theta_dot + c[76]*B14_theta_dot - c[164]*B15_theta_dot + c[79]*B16_theta_dot + c[80]*B17_theta_dot - c[76]*B18_theta_dot;
+    out[48] = c[133]*A14_dot + c[130]*A15_dot - c[130]*A17_dot - c[133]*A18_dot - c[70]*B13_theta_dot + c[77]*B14_theta_dot + c[79]*B15_theta_dot - c[165]*B16_theta_dot + c[82]*B17_theta_dot + c[83]*B18_theta_dot;
+    out[49] = -c[132]*A16_dot - c[129]*A17_dot - c[131]*A18_dot - c[129]*A19_dot - c[132]*A20_dot + c[80]*B15_theta_dot + c[82]*B16_theta_dot - c[166]*B17_theta_dot + c[85]*B18_theta_dot + c[86]*B19_theta_dot - c[82]*B20_theta_dot;
+    out[50] = c[133]*A16_dot + c[130]*A17_dot - c[130]*A19_dot - c[133]*A20_dot - c[76]*B15_theta_dot + c[83]*B16_theta_dot + c[85]*B17_theta_dot - c[167]*B18_theta_dot + c[88]*B19_theta_dot + c[89]*B20_theta_dot;
+    out[51] = -c[132]*A18_dot - c[129]*A19_dot - c[131]*A20_dot - c[129]*A21_dot - c[132]*A22_dot + c[86]*B17_theta_dot + c[88]*B18_theta_dot - c[168]*B19_theta_dot + c[91]*B20_theta_dot + c[92]*B21_theta_dot - c[88]*B22_theta_dot;
+    out[52] = c[133]*A18_dot + c[130]*A19_dot - c[130]*A21_dot - c[133]*A22_dot - c[82]*B17_theta_dot + c[89]*B18_theta_dot + c[91]*B19_theta_dot - c[169]*B20_theta_dot + c[94]*B21_theta_dot + c[95]*B22_theta_dot;
+    out[53] = -c[132]*A20_dot - c[129]*A21_dot - c[131]*A22_dot - c[129]*A23_dot - c[132]*A24_dot + c[92]*B19_theta_dot + c[94]*B20_theta_dot - c[170]*B21_theta_dot + c[97]*B22_theta_dot + c[98]*B23_theta_dot - c[94]*B24_theta_dot;
+    out[54] = c[133]*A20_dot + c[130]*A21_dot - c[130]*A23_dot - c[133]*A24_dot - c[88]*B19_theta_dot + c[95]*B20_theta_dot + c[97]*B21_theta_dot - c[171]*B22_theta_dot + c[100]*B23_theta_dot + c[101]*B24_theta_dot;
+    out[55] = -c[132]*A22_dot - c[129]*A23_dot - c[131]*A24_dot - c[129]*A25_dot - c[132]*A26_dot + c[98]*B21_theta_dot + c[100]*B22_theta_dot - c[172]*B23_theta_dot + c[103]*B24_theta_dot + c[104]*B25_theta_dot - c[100]*B26_theta_dot;
+    out[56] = c[133]*A22_dot + c[130]*A23_dot - c[130]*A25_dot - c[133]*A26_dot - c[94]*B21_theta_dot + c[101]*B22_theta_dot + c[103]*B23_theta_dot - c[173]*B24_theta_dot + c[106]*B25_theta_dot + c[107]*B26_theta_dot;
+    out[57] = -c[132]*A24_dot - c[129]*A25_dot - c[131]*A26_dot - c[129]*A27_dot - c[132]*A28_dot + c[104]*B23_theta_dot + c[106]*B24_theta_dot - c[174]*B25_theta_dot + c[109]*B26_theta_dot + c[110]*B27_theta_dot - c[106]*B28_theta_dot;
+    out[58] = c[133]*A24_dot + c[130]*A25_dot - c[130]*A27_dot - c[133]*A28_dot - c[100]*B23_theta_dot + c[107]*B24_theta_dot + c[109]*B25_theta_dot - c[175]*B26_theta_dot + c[112]*B27_theta_dot + c[113]*B28_theta_dot;
+    out[59] = -c[132]*A26_dot - c[129]*A27_dot - c[131]*A28_dot - c[129]*A29_dot - c[132]*A30_dot + c[110]*B25_theta_dot + c[112]*B26_theta_dot - c[176]*B27_theta_dot + c[115]*B28_theta_dot + c[116]*B29_theta_dot - c[112]*B30_theta_dot;
+    out[60] = c[133]*A26_dot + c[130]*A27_dot - c[130]*A29_dot - c[133]*A30_dot - c[106]*B25_theta_dot + c[113]*B26_theta_dot + c[115]*B27_theta_dot - c[177]*B28_theta_dot + c[118]*B29_theta_dot + c[119]*B30_theta_dot;
+    out[61] = -c[132]*A28_dot - c[129]*A29_dot - c[131]*A30_dot - c[129]*A31_dot - c[132]*A32_dot + c[116]*B27_theta_dot + c[118]*B28_theta_dot - c[178]*B29_theta_dot + c[121]*B30_theta_dot + c[122]*B31_theta_dot - c[118]*B32_theta_dot;
+    out[62] = c[133]*A28_dot + c[130]*A29_dot - c[130]*A31_dot - c[133]*A32_dot - c[112]*B27_theta_dot + c[119]*B28_theta_dot + c[121]*B29_theta_dot - c[179]*B30_theta_dot + c[124]*B31_theta_dot + c[125]*B32_theta_dot;
+    out[63] = -c[132]*A30_dot - c[129]*A31_dot - c[134]*A32_dot + c[122]*B29_theta_dot + c[124]*B30_theta_dot - c[180]*B31_theta_dot + c[127]*B32_theta_dot;
+    out[64] = c[133]*A30_dot + c[130]*A31_dot + c[135]*A32_dot - c[118]*B29_theta_dot + c[125]*B30_theta_dot + c[127]*B31_theta_dot - c[181]*B32_theta_dot;
     out[98] = -c[129]*theta_dot;
     out[99] = c[130]*theta_dot;
     out[163] = -c[131]*theta_dot;
@@ -8087,7 +10442,7 @@ void fem_nx32_ny32_torque_first_mass_q_product(const double* c, const double* u,
 
 }  // namespace
 
-extern const Variant fem_nx32_ny32_torque_first = {"fem_nx32_ny32_torque_first", 65, 332, 472,
+extern const Variant fem_nx32_ny32_torque_first = {"fem_nx32_ny32_torque_first", 65, 333, 472,
     "vvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvcc00000000000000000000000000000000000000000000000000000000000000vccc0000000000000000000000000000000000000000000000000000000000000v0ccc000000000000000000000000000000000000000000000000000000000000v00ccc00000000000000000000000000000000000000000000000000000000000v000ccc0000000000000000000000000000000000000000000000000000000000v0000ccc000000000000000000000000000000000000000000000000000000000v00000ccc00000000000000000000000000000000000000000000000000000000v000000ccc0000000000000000000000000000000000000000000000000000000v0000000ccc000000000000000000000000000000000000000000000000000000v00000000ccc00000000000000000000000000000000000000000000000000000v000000000ccc0000000000000000000000000000000000000000000000000000v0000000000ccc000000000000000000000000000000000000000000000000000v00000000000ccc00000000000000000000000000000000000000000000000000v000000000000ccc0000000000000000000000000000000000000000000000000v0000000000000ccc000000000000000000000000000000000000000000000000v00000000000000ccc00000000000000000000000000000000000000000000000v000000000000000ccc0000000000000000000000000000000000000000000000v0000000000000000ccc000000000000000000000000000000000000000000000v00000000000000000ccc00000000000000000000000000000000000000000000v000000000000000000ccc0000000000000000000000000000000000000000000v0000000000000000000ccc000000000000000000000000000000000000000000v00000000000000000000ccc00000000000000000000000000000000000000000v000000000000000000000ccc0000000000000000000000000000000000000000v0000000000000000000000ccc000000000000000000000000000000000000000v00000000000000000000000ccc00000000000000000000000000000000000000v000000000000000000000000ccc0000000000000000000000000000000000000v0000000000000000000000000ccc000000000000000000000000000000000000v00000000000000000000000000ccc00000000000000000000000000000000000v000000000000000000000000000ccc0000000000000000000000000000000000v0000000000000000000000000000ccc000000000000000000000000000000000v00000000000000000000000000000ccc00000000000000000000000000000000v000000000000000000000000000000cc00000000000000000000000000000000v00000000000000000000000000000000c0cc0000000000000000000000000000v000000000000000000000000000000000ccc0000000000000000000000000000v00000000000000000000000000000000ccc0cc00000000000000000000000000v00000000000000000000000000000000cc0ccc00000000000000000000000000v0000000000000000000000000000000000ccc0cc000000000000000000000000v0000000000000000000000000000000000cc0ccc000000000000000000000000v000000000000000000000000000000000000ccc0cc0000000000000000000000v000000000000000000000000000000000000cc0ccc0000000000000000000000v00000000000000000000000000000000000000ccc0cc00000000000000000000v00000000000000000000000000000000000000cc0ccc00000000000000000000v0000000000000000000000000000000000000000ccc0cc000000000000000000v0000000000000000000000000000000000000000cc0ccc000000000000000000v000000000000000000000000000000000000000000ccc0cc0000000000000000v000000000000000000000000000000000000000000cc0ccc0000000000000000v00000000000000000000000000000000000000000000ccc0cc00000000000000v00000000000000000000000000000000000000000000cc0ccc00000000000000v0000000000000000000000000000000000000000000000ccc0cc000000000000v0000000000000000000000000000000000000000000000cc0ccc000000000000v000000000000000000000000000000000000000000000000ccc0cc0000000000v000000000000000000000000000000000000000000000000cc0ccc0000000000v00000000000000000000000000000000000000000000000000ccc0cc00000000v00000000000000000000000000000000000000000000000000cc0ccc00000000v0000000000000000000000000000000000000000000000000000ccc0cc000000v0000000000000000000000000000000000000000000000000000cc0ccc000000v000000000000000000000000000000000000000000000000000000ccc0cc0000v000000000000000000000000000000000000000000000000000000cc0ccc0000v00000000000000000000000000000000000000000000000000000000ccc0cc00v00000000000000000000000000000000000000000000000000000000cc0ccc00v0000000000000000000000000000000000000000000000000000000000ccc0ccv0000000000000000000000000000000000000000000000000000000000cc0cccv000000000000000000000000000000000000000000000000000000000000ccccv000000000000000000000000000000000000000000000000000000000000cccc",
     fem_nx32_ny32_torque_first_coefficients, fem_nx32_ny32_torque_first_mass, fem_nx32_ny32_torque_first_mass_varying, fem_nx32_ny32_torque_first_forces, fem_nx32_ny32_torque_first_forces_terms, fem_nx32_ny32_torque_first_forces_matrix,
     fem_nx32_ny32_torque_first_energy, fem_nx32_ny32_torque_first_momentum, fem_nx32_ny32_torque_first_forces_q, fem_nx32_ny32_torque_first_forces_qd, fem_nx32_ny32_torque_first_mass_q_product, fem_nx32_ny32_torque_first_forces_u, fem_nx32_ny32_torque_first_tip, nullptr};

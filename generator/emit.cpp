@@ -15,70 +15,6 @@ using namespace GiNaC;
 
 namespace {
 
-/// numeric * prod(parameter^pe) * prod(variable^ve)
-struct PolyTerm {
-    numeric coeff = 1;
-    std::vector<int> pe, ve;
-};
-
-class Decomposer {
-public:
-    Decomposer(const std::vector<Input>& params, const std::vector<Input>& vars)
-    {
-        for (std::size_t i = 0; i < params.size(); ++i) index_[params[i].symbol] = {true, i};
-        for (std::size_t i = 0; i < vars.size(); ++i) index_[vars[i].symbol] = {false, i};
-        np_ = params.size();
-        nv_ = vars.size();
-    }
-
-    std::vector<PolyTerm> operator()(const ex& value) const
-    {
-        const ex e = value.expand();
-        std::vector<PolyTerm> terms;
-        if (e.is_zero()) return terms;
-        for (const ex& term : is_a<add>(e) ? e : lst{e}) {
-            PolyTerm t{1, std::vector<int>(np_), std::vector<int>(nv_)};
-            for (const ex& f : is_a<mul>(term) ? term : lst{term}) factor(f, t);
-            terms.push_back(std::move(t));
-        }
-        return terms;
-    }
-
-private:
-    void factor(const ex& f, PolyTerm& t) const
-    {
-        if (is_a<numeric>(f)) {
-            const numeric& n = ex_to<numeric>(f);
-            if (!n.is_real()) throw EmitError("emit: non-real number " + str(f));
-            t.coeff *= n;
-            return;
-        }
-        ex base = f;
-        int n = 1;
-        if (is_a<power>(f)) {
-            if (!is_a<numeric>(f.op(1)) || !ex_to<numeric>(f.op(1)).is_integer())
-                throw EmitError("emit: cannot print non-integer power " + str(f));
-            base = f.op(0);
-            n = ex_to<numeric>(f.op(1)).to_int();
-        }
-        auto it = is_a<symbol>(base) ? index_.find(ex_to<symbol>(base)) : index_.end();
-        if (it == index_.end()) throw EmitError("emit: cannot print " + str(f) + " (not a polynomial in the inputs)");
-        const auto [is_param, i] = it->second;
-        if (!is_param && n < 0) throw EmitError("emit: negative power of a variable " + str(f));
-        (is_param ? t.pe : t.ve)[i] += n;
-    }
-
-    static std::string str(const ex& e)
-    {
-        std::ostringstream s;
-        s << e;
-        return s.str();
-    }
-
-    std::map<symbol, std::pair<bool, std::size_t>, ex_is_less> index_;
-    std::size_t np_ = 0, nv_ = 0;
-};
-
 /// "x*x*y" for exponents {2,1} over names {x,y}; empty for the constant monomial.
 std::string product(const std::vector<int>& e, const std::vector<std::string>& names, bool positive)
 {
@@ -157,18 +93,21 @@ bool EmittedCode::constant(const std::string& kernel) const
 
 namespace {
 
-/// A coefficient: a sum of number * parameter monomial (exponents over the parameter inputs).
-using Coefficient = std::vector<std::pair<numeric, std::vector<int>>>;
 /// One output as a polynomial in the state: state monomial (exponents over the state inputs) -> coefficient.
-using Output = std::map<std::vector<int>, Coefficient>;
+using Output = std::map<Exponents, Coefficient>;
 
-/// Stage "decompose": each output of a kernel as a polynomial in the state with parameter coefficients.
-std::vector<Output> decompose_outputs(const Decomposer& decompose, const std::vector<ex>& values)
+/// Stage "decompose": each output of a kernel as a polynomial in the state with parameter coefficients (given as
+/// Polys, or read from expressions).
+std::vector<Output> decompose_outputs(const PolyReader& read, const KernelSpec& k)
 {
     std::vector<Output> outputs;
-    for (const ex& v : values) {
-        Output& grouped = outputs.emplace_back();
-        for (PolyTerm& t : decompose(v)) grouped[t.ve].emplace_back(t.coeff, t.pe);
+    for (const Poly& p : k.polys) outputs.push_back(p.terms());
+    for (const ex& v : k.values) {
+        try {
+            outputs.push_back(read(v).terms());
+        } catch (const std::invalid_argument& e) {
+            throw EmitError(std::string("emit: cannot print: ") + e.what());
+        }
     }
     return outputs;
 }
@@ -225,19 +164,18 @@ public:
     /// The pure number of a coefficient without parameters, or nullopt.
     static std::optional<numeric> pure_number(const Coefficient& c)
     {
-        if (c.size() != 1 || std::any_of(c[0].second.begin(), c[0].second.end(), [](int x) { return x != 0; }))
-            return std::nullopt;
-        return c[0].first;
+        const auto& [pe, number] = *c.begin();
+        if (c.size() != 1 || std::any_of(pe.begin(), pe.end(), [](int x) { return x != 0; })) return std::nullopt;
+        return number;
     }
 
     /// The coefficient as sign * c[k], adding c[k] to the pool if it is new. A coefficient and its negative
     /// share one entry: the entry holds the form whose first term is positive.
     std::pair<int, std::string> reference(Coefficient c)
     {
-        std::sort(c.begin(), c.end(), [](const auto& x, const auto& y) { return x.second < y.second; });
-        const int sign = c.front().first < 0 ? -1 : 1;
+        const int sign = c.begin()->second < 0 ? -1 : 1;
         std::vector<std::pair<numeric, std::string>> parts;
-        for (const auto& [number, pe] : c) {
+        for (const auto& [pe, number] : c) {
             for (std::size_t j = 0; j < pe.size(); ++j) params_used_[j] = params_used_[j] || pe[j] != 0;
             const std::string num = product(pe, pnames_, true), den = product(pe, pnames_, false);
             std::string m = num;
@@ -248,7 +186,7 @@ public:
         auto [it, added] = index_.emplace(text, static_cast<int>(texts_.size()));
         if (added) {
             texts_.push_back(text);
-            for (auto& term : c) term.first *= sign;
+            for (auto& term : c) term.second *= sign;
             entries_.push_back(std::move(c));
         }
         return {sign, "c[" + std::to_string(it->second) + "]"};
@@ -260,7 +198,7 @@ public:
         auto [it, added] = index_.emplace("1.0", static_cast<int>(texts_.size()));
         if (added) {
             texts_.push_back("1.0");
-            entries_.push_back({{numeric(1), std::vector<int>(pnames_.size())}});
+            entries_.push_back({{Exponents(pnames_.size()), numeric(1)}});
         }
         return it->second;
     }
@@ -471,7 +409,7 @@ std::string print_coefficients(const std::string& prefix, const Signature& sig, 
         std::ostringstream terms;
         std::size_t nterms = 0;
         for (std::size_t k = 0; k < pool.entries().size(); ++k)
-            for (const auto& [number, pe] : pool.entries()[k]) {
+            for (const auto& [pe, number] : pool.entries()[k]) {
                 const int j = monomials.emplace(pe, static_cast<int>(monomials.size())).first->second;
                 terms << "        {" << k << ", " << j << ", " << c_number(number) << "},\n";
                 ++nterms;
@@ -509,14 +447,16 @@ EmittedCode emit_kernels(const std::string& prefix, const Signature& sig, const 
                          const EmitOptions& options)
 {
     using Form = EmitOptions::Form;
-    const Decomposer decompose(sig.parameter_inputs, sig.state_inputs);
+    std::vector<symbol> parameters;
+    for (const Input& i : sig.parameter_inputs) parameters.push_back(i.symbol);
+    const PolyReader read(parameters, sig.state_inputs_symbols());
     CoefficientPool pool(names_of(sig.parameter_inputs));
     EmittedCode code;
     std::vector<std::string> bodies;  // printed after the coefficients kernel, whose size they state
     for (const KernelSpec& k : kernels) {
-        const std::vector<Output> outputs = decompose_outputs(decompose, k.values);
-        if (!k.slots.empty() && k.slots.size() != k.values.size())
-            throw EmitError("emit: kernel " + k.name + " has " + std::to_string(k.values.size()) + " values but " +
+        const std::vector<Output> outputs = decompose_outputs(read, k);
+        if (!k.slots.empty() && k.slots.size() != outputs.size())
+            throw EmitError("emit: kernel " + k.name + " has " + std::to_string(outputs.size()) + " values but " +
                             std::to_string(k.slots.size()) + " slots");
         const bool tables = k.rows == 0 && (options.form == Form::tables ||
                                             (options.form == Form::automatic &&

@@ -12,6 +12,8 @@
 
 #include <ginac/ginac.h>
 
+#include "poly.hpp"
+
 namespace hubbeam::gen {
 
 struct EmitError : std::runtime_error {
@@ -31,6 +33,8 @@ struct KernelSpec {
     std::string doc;   // e.g. "row-major, M = d2T/dqd2"
     std::vector<GiNaC::ex> values;
     std::vector<int> slots = {};  // for a kernel that writes only some entries of out
+    /// Outputs already in polynomial form (over Signature's parameter and state inputs); they come before values.
+    std::vector<Poly> polys = {};
     /// > 0: a matrix-times-monomials kernel. values are K monomials m_k of the state, and the kernel writes
     /// out[i] = sum_k c[i*K + k] m_k for i < rows, reading its c argument as that row-major matrix (a runtime
     /// product such as M^-1 F) instead of the coefficient pool.
