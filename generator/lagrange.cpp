@@ -31,4 +31,28 @@ Equations lagrange(const ex& T, const ex& U, const Coordinates& c)
     return e;
 }
 
+PolyEquations lagrange(const Poly& T, const Poly& U, const PolyCoordinates& c)
+{
+    const std::size_t n = c.q.size();
+    PolyEquations e;
+    e.M.resize(n * n);
+    e.Q.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const Poly p = T.diff(c.qd[i]);  // generalized momentum
+        for (std::size_t j = 0; j < n; ++j) e.M[i * n + j] = p.diff(c.qd[j]);
+        Poly Q = c.force[i];
+        Q += T.diff(c.q[i]);
+        Q -= U.diff(c.q[i]);
+        for (std::size_t j = 0; j < n; ++j) Q -= p.diff(c.q[j]).times(c.qd[j]);
+        for (const auto& [u, u_dot] : c.driven) Q -= p.diff(u).times(u_dot);
+        e.Q[i] = std::move(Q);
+    }
+    e.T2 = T.of_degree(c.qd, 2);
+    e.T1 = T.of_degree(c.qd, 1);
+    e.T0 = T.of_degree(c.qd, 0);
+    e.U = U;
+    e.momentum = T.diff(c.spin);
+    return e;
+}
+
 }  // namespace hubbeam::gen

@@ -6,6 +6,8 @@
 
 #include <ginac/ginac.h>
 
+#include "poly.hpp"
+
 namespace hubbeam::gen {
 
 struct Coordinates {
@@ -28,5 +30,20 @@ struct Equations {
 };
 
 Equations lagrange(const GiNaC::ex& T, const GiNaC::ex& U, const Coordinates& c);
+
+/// The same for T and U as Polys: coordinates, rates and drive values are indices of the Polys' variables. This
+/// is the generator's route (fast at scale); the expression route above is its test oracle.
+struct PolyCoordinates {
+    std::vector<int> q, qd;
+    std::vector<std::pair<int, int>> driven;  // (u, u_dot)
+    std::vector<Poly> force;
+    int spin = -1;
+};
+struct PolyEquations {
+    std::vector<Poly> M, Q;  // as Equations
+    Poly T2, T1, T0, U;
+    Poly momentum;
+};
+PolyEquations lagrange(const Poly& T, const Poly& U, const PolyCoordinates& c);
 
 }  // namespace hubbeam::gen

@@ -67,18 +67,18 @@ std::string banner(const VariantKey& key, bool mass_varies)
 }
 
 /// The derivatives of M qdd = Q that an implicit integrator's Jacobian needs (docs/model.md section 5.1),
-/// by symbolic differentiation of the same eq.M and eq.Q the other kernels print.
+/// by differentiating the same M and Q the other kernels print.
 struct JacobianPieces {
-    std::vector<ex> forces_q, forces_qd, forces_u, mass_q_product;  // row-major, see the kernels' shape comments
+    std::vector<Poly> forces_q, forces_qd, forces_u, mass_q_product;  // row-major, see the kernels' shape comments
 };
 
 /// A kernel that writes only the nonzero values (the runtime zero-fills its output first).
-KernelSpec sparse_kernel(std::string name, std::string out, std::string doc, const std::vector<ex>& values)
+KernelSpec sparse_kernel(std::string name, std::string out, std::string doc, const std::vector<Poly>& values)
 {
     KernelSpec k{std::move(name), std::move(out), std::move(doc) + "; nonzero entries only", {}};
     for (std::size_t i = 0; i < values.size(); ++i)
         if (!values[i].is_zero()) {
-            k.values.push_back(values[i]);
+            k.polys.push_back(values[i]);
             k.slots.push_back(static_cast<int>(i));
         }
     return k;
@@ -102,35 +102,40 @@ std::vector<ex> tip_displacements(const VariantKey& key, const Symbols& s)
     return {uy, ux1, (ux1 + ux2).expand()};
 }
 
-JacobianPieces jacobian_pieces(const Equations& eq, const Symbols& s, bool torque)
+/// Variable indices of the Polys: the order of Signature::state_inputs.
+struct Variables {
+    std::vector<int> q, qd;
+    int tau = -1, theta_dot = -1, theta_ddot = -1;  // -1 where the variant does not read the drive value
+};
+
+JacobianPieces jacobian_pieces(const PolyEquations& eq, const Variables& v, bool torque)
 {
-    const std::size_t n = s.q.size();
+    const std::size_t n = v.q.size();
     JacobianPieces j;
     j.forces_q.resize(n * n);
     j.forces_qd.resize(n * n);
     j.mass_q_product.resize(n * n);
-    j.forces_u.assign(n * drive_value_count, 0);
+    j.forces_u.resize(n * drive_value_count);
     for (std::size_t i = 0; i < n; ++i)
         for (std::size_t k = 0; k < n; ++k) {
-            j.forces_q[i * n + k] = eq.Q[i].diff(s.q[k]).expand();
-            j.forces_qd[i * n + k] = eq.Q[i].diff(s.qd[k]).expand();
-            // v is read from the qd slot, so the rates' symbols stand for v here.
-            ex dMv = 0;
-            for (std::size_t c = 0; c < n; ++c) dMv += eq.M[i * n + c].diff(s.q[k]) * s.qd[c];
-            j.mass_q_product[i * n + k] = dMv.expand();
+            j.forces_q[i * n + k] = eq.Q[i].diff(v.q[k]);
+            j.forces_qd[i * n + k] = eq.Q[i].diff(v.qd[k]);
+            // v is read from the qd slot, so the rates' variables stand for v here.
+            for (std::size_t c = 0; c < n; ++c) j.mass_q_product[i * n + k] += eq.M[i * n + c].diff(v.q[k]).times(v.qd[c]);
         }
     // dQ/du only for the drive values the variant reads: under torque theta_dot is the rate qd[0], not an input.
-    std::vector<std::pair<DriveValue, symbol>> inputs;
-    if (torque) inputs.emplace_back(DriveValue::tau, s.tau);
-    else inputs.insert(inputs.end(), {{DriveValue::theta_dot, s.theta_dot}, {DriveValue::theta_ddot, s.theta_ddot}});
+    std::vector<std::pair<DriveValue, int>> inputs;
+    if (torque) inputs.emplace_back(DriveValue::tau, v.tau);
+    else inputs.insert(inputs.end(), {{DriveValue::theta_dot, v.theta_dot}, {DriveValue::theta_ddot, v.theta_ddot}});
     for (std::size_t i = 0; i < n; ++i)
-        for (const auto& [u, sym] : inputs) j.forces_u[i * drive_value_count + index(u)] = eq.Q[i].diff(sym).expand();
+        for (const auto& [u, var] : inputs) j.forces_u[i * drive_value_count + index(u)] = eq.Q[i].diff(var);
     // The runtime's dfdt = M^-1 dQ/du du/dt assumes M does not depend on the drive or on the rates.
-    for (const ex& Mij : eq.M) {
-        bool depends = Mij.has(s.tau) || Mij.has(s.theta_dot) || Mij.has(s.theta_ddot);
-        for (const symbol& v : s.qd) depends = depends || Mij.has(v);
-        if (depends) throw std::logic_error("lagrange: M depends on the rates or the drive; the Jacobian assumes not");
-    }
+    std::vector<int> not_in_M = v.qd;
+    for (int d : {v.tau, v.theta_dot, v.theta_ddot})
+        if (d >= 0) not_in_M.push_back(d);
+    for (const Poly& Mij : eq.M)
+        for (int var : not_in_M)
+            if (Mij.has(var)) throw std::logic_error("lagrange: M depends on the rates or the drive; the Jacobian assumes not");
     return j;
 }
 
@@ -141,16 +146,6 @@ std::string variant_source(const VariantKey& key, const EmitOptions& options)
     const Symbols s(key);
     const Energies en = derive_energies(key, s);
     const bool torque = key.drive == Drive::torque;
-
-    Coordinates c;
-    c.q = s.q;
-    c.qd = s.qd;
-    c.spin = s.theta_dot;
-    c.force.assign(s.q.size(), 0);
-    if (torque) c.force[0] = s.tau;
-    else c.driven.emplace_back(s.theta_dot, s.theta_ddot);
-    const Equations eq = lagrange(en.T, en.U, c);
-
     const int nq = key.nq();
     const std::string n2 = std::to_string(nq * nq), n1 = std::to_string(nq);
     Signature sig;
@@ -170,8 +165,28 @@ std::string variant_source(const VariantKey& key, const EmitOptions& options)
     for (std::size_t i = 0; i < s.q.size(); ++i) sig.state_inputs.push_back({s.q[i], "q[" + std::to_string(i) + "]"});
     for (std::size_t i = 0; i < s.qd.size(); ++i) sig.state_inputs.push_back({s.qd[i], "qd[" + std::to_string(i) + "]"});
 
-    const JacobianPieces jac = jacobian_pieces(eq, s, torque);
-    const std::string pattern = mass_pattern(eq.M, s.q);
+    // Lagrange's equations and their derivatives on the energies as polynomials in the kernels' variables.
+    std::vector<symbol> parameters, variables = sig.state_inputs_symbols();
+    for (const Input& i : sig.parameter_inputs) parameters.push_back(i.symbol);
+    const auto variable = [&](const symbol& x) {
+        for (std::size_t i = 0; i < variables.size(); ++i)
+            if (variables[i] == x) return static_cast<int>(i);
+        return -1;
+    };
+    Variables v;
+    for (const symbol& x : s.q) v.q.push_back(variable(x));
+    for (const symbol& x : s.qd) v.qd.push_back(variable(x));
+    v.tau = variable(s.tau);
+    v.theta_dot = variable(s.theta_dot);
+    v.theta_ddot = variable(s.theta_ddot);
+    const PolyReader read(parameters, variables);
+    PolyCoordinates c{v.q, v.qd, {}, std::vector<Poly>(s.q.size()), torque ? v.qd[0] : v.theta_dot};
+    if (torque) c.force[0] = read(s.tau);
+    else c.driven.emplace_back(v.theta_dot, v.theta_ddot);
+    const PolyEquations eq = lagrange(read(en.T), read(en.U), c);
+
+    const JacobianPieces jac = jacobian_pieces(eq, v, torque);
+    const std::string pattern = mass_pattern(eq.M, v.q);
     // M is symmetric: its upper triangle is emitted, structural zeros are not, and the state-dependent entries
     // get a kernel of their own for runtimes that keep the constant ones.
     KernelSpec mass{"mass", "M[" + n2 + "]", "row-major; M = d2T/dqd2, upper triangle, nonzero entries only", {}};
@@ -182,28 +197,33 @@ std::string variant_source(const VariantKey& key, const EmitOptions& options)
             if (kind == '0') continue;
             for (KernelSpec* k : {&mass, &mass_varying})
                 if (k == &mass || kind == 'v') {
-                    k->values.push_back(eq.M[static_cast<std::size_t>(i * nq + j)]);
+                    k->polys.push_back(eq.M[static_cast<std::size_t>(i * nq + j)]);
                     k->slots.push_back(i * nq + j);
                 }
         }
-    const bool mass_varies = !mass_varying.values.empty();
-    const TermMatrix terms = term_matrix(eq.Q, sig.state_inputs_symbols());
+    const bool mass_varies = !mass_varying.polys.empty();
+    const TermMatrix terms = term_matrix(eq.Q, parameters.size());
     const std::string nk = std::to_string(terms.terms.size());
     KernelSpec force_matrix{"forces_matrix", "F[" + std::to_string(nq) + "*" + nk + "]",
                             "row-major, state-free: Q = F m; nonzero entries only", {}};
     for (std::size_t i = 0; i < terms.matrix.size(); ++i)
         if (!terms.matrix[i].is_zero()) {
-            force_matrix.values.push_back(terms.matrix[i]);
+            force_matrix.polys.push_back(terms.matrix[i]);
             force_matrix.slots.push_back(static_cast<int>(i));
         }
     const std::string nu = std::to_string(nq * static_cast<int>(drive_value_count));
+    const auto polys = [](std::string name, std::string out, std::string doc, std::vector<Poly> values) {
+        KernelSpec k{std::move(name), std::move(out), std::move(doc), {}};
+        k.polys = std::move(values);
+        return k;
+    };
     std::vector<KernelSpec> kernels = {
         mass,
-        {"forces", "Q[" + n1 + "]", "Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq", eq.Q},
-        {"forces_terms", "m[" + nk + "]", "the state monomials of Q: Q = F m", terms.terms},
+        polys("forces", "Q[" + n1 + "]", "Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq", eq.Q),
+        polys("forces_terms", "m[" + nk + "]", "the state monomials of Q: Q = F m", terms.terms),
         force_matrix,
-        {"energy", "E[4]", "E = (T2, T1, T0, U), T split by degree in qd", {eq.T2, eq.T1, eq.T0, eq.U}},
-        {"momentum", "h[1]", "h = dT/dtheta_dot, angular momentum about the hub axis", {eq.momentum}},
+        polys("energy", "E[4]", "E = (T2, T1, T0, U), T split by degree in qd", {eq.T2, eq.T1, eq.T0, eq.U}),
+        polys("momentum", "h[1]", "h = dT/dtheta_dot, angular momentum about the hub axis", {eq.momentum}),
         {"tip", "tip[3]", "tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B", tip_displacements(key, s)},
         sparse_kernel("forces_q", "dQdq[" + n2 + "]", "row-major; out[i*" + n1 + "+k] = dQ_i/dq_k", jac.forces_q),
         sparse_kernel("forces_qd", "dQdqd[" + n2 + "]", "row-major; out[i*" + n1 + "+k] = dQ_i/dqd_k", jac.forces_qd),
@@ -214,8 +234,8 @@ std::string variant_source(const VariantKey& key, const EmitOptions& options)
     // places, unrolled, up to a size where unrolling stops paying (the runtime then loops).
     const bool folded = !mass_varies && nq * static_cast<int>(terms.terms.size()) <= 512;
     if (folded) {
-        KernelSpec f{"forces_folded", "qdd[" + n1 + "]",
-                     "qdd = W m, W = M^-1 F (" + n1 + " x " + nk + ", row-major) passed in the c slot", terms.terms};
+        KernelSpec f = polys("forces_folded", "qdd[" + n1 + "]",
+                             "qdd = W m, W = M^-1 F (" + n1 + " x " + nk + ", row-major) passed in the c slot", terms.terms);
         f.rows = nq;
         kernels.push_back(f);
     }
