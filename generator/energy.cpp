@@ -19,35 +19,68 @@ std::vector<symbol> numbered(const std::string& stem, int n, const std::string& 
     return v;
 }
 
-/// A field at one abscissa, expanded in the coordinates: sum of coef * prod(factors)(xi).
+/// One term of a field's expansion at an abscissa: coefficient * variable monomial (over the PolyReader's
+/// variables) * prod(factors)(xi).
 struct Term {
-    ex coef;
+    Exponents monomial;
+    Coefficient coefficient;
     std::vector<Factor> factors;
 };
 using Expansion = std::vector<Term>;
 
+/// The product of two parameter coefficients.
+Coefficient product(const Coefficient& x, const Coefficient& y)
+{
+    Coefficient p;
+    for (const auto& [px, nx] : x)
+        for (const auto& [py, ny] : y) {
+            Exponents e = px;
+            for (std::size_t i = 0; i < e.size(); ++i) e[i] += py[i];
+            auto [it, added] = p.emplace(std::move(e), nx * ny);
+            if (!added) {
+                it->second += nx * ny;
+                if (it->second.is_zero()) p.erase(it);
+            }
+        }
+    return p;
+}
+
+/// The single term of a monomial expression read as a Poly.
+Term single_term(const PolyReader& read, const ex& e, std::vector<Factor> factors)
+{
+    const Poly p = read(e);
+    if (p.terms().size() != 1) throw std::logic_error("energy: a field term is not one monomial");
+    const auto& [monomial, coefficient] = *p.terms().begin();
+    return {monomial, coefficient, std::move(factors)};
+}
+
 /// Integrates an energy density over the beam: int_0^L density dx with x = L xi and every field symbol
-/// replaced by its expansion in shape functions.
+/// replaced by its expansion in shape functions, straight into a Poly (the Cartesian products of the fields'
+/// expansions reach 10^5 terms for order full; as GiNaC products they cost seconds).
 class DensityIntegrator {
 public:
-    DensityIntegrator(const Symbols& s, const FieldSymbols& f, const VariantKey& key, ShapeIntegrals& integrals)
-        : s_(s), f_(f), integrals_(integrals)
+    DensityIntegrator(const Symbols& s, const FieldSymbols& f, const VariantKey& key, ShapeIntegrals& integrals,
+                      const PolyReader& read)
+        : s_(s), f_(f), integrals_(integrals), read_(read)
     {
         using K = Factor::Kind;
         const ex inv_L = 1 / s.L;
+        const auto add = [&](const symbol& field, const ex& coef, const Factor& factor) {
+            fields_[field].push_back(single_term(read, coef, {factor}));
+        };
         for (int i = 0; i < key.nx; ++i) {
-            fields_[f.ux1].push_back({s.A[i], {{K::axial, i, 0, 0}}});
-            fields_[f.ux1_dot].push_back({s.A_dot[i], {{K::axial, i, 0, 0}}});
-            fields_[f.ux1_x].push_back({s.A[i] * inv_L, {{K::axial, i, 0, 1}}});
+            add(f.ux1, s.A[i], {K::axial, i, 0, 0});
+            add(f.ux1_dot, s.A_dot[i], {K::axial, i, 0, 0});
+            add(f.ux1_x, s.A[i] * inv_L, {K::axial, i, 0, 1});
         }
         for (int j = 0; j < key.ny; ++j) {
-            fields_[f.uy].push_back({s.B[j], {{K::transverse, j, 0, 0}}});
-            fields_[f.uy_dot].push_back({s.B_dot[j], {{K::transverse, j, 0, 0}}});
-            fields_[f.uy_xx].push_back({s.B[j] * pow(inv_L, 2), {{K::transverse, j, 0, 2}}});
+            add(f.uy, s.B[j], {K::transverse, j, 0, 0});
+            add(f.uy_dot, s.B_dot[j], {K::transverse, j, 0, 0});
+            add(f.uy_xx, s.B[j] * pow(inv_L, 2), {K::transverse, j, 0, 2});
             // u_x2 = -1/2 B^T H(x) B with H in x units = H_xi / L; its rate is -B^T H B_dot (H symmetric).
             for (int k = 0; k < key.ny; ++k) {
-                fields_[f.ux2].push_back({-s.B[j] * s.B[k] * inv_L / 2, {{K::coupling, j, k, 0}}});
-                fields_[f.ux2_dot].push_back({-s.B[j] * s.B_dot[k] * inv_L, {{K::coupling, j, k, 0}}});
+                add(f.ux2, -s.B[j] * s.B[k] * inv_L / 2, {K::coupling, j, k, 0});
+                add(f.ux2_dot, -s.B[j] * s.B_dot[k] * inv_L, {K::coupling, j, k, 0});
             }
         }
         fields_[f.ux1];  // present (possibly empty) so that nx = 0 makes its terms vanish
@@ -55,13 +88,13 @@ public:
         fields_[f.ux1_x];
     }
 
-    ex operator()(const ex& density)
+    Poly operator()(const ex& density)
     {
         const symbol xi("xi");
         const ex d = density.subs(f_.X == s_.a + s_.L * xi).expand();
-        exvector sum;
+        Poly sum;
         for (const ex& term : is_a<add>(d) ? d : lst{d}) {
-            ex coef = 1;
+            ex coef = s_.L;  // dx = L dxi
             int xi_power = 0;
             std::vector<const Expansion*> occurrences;
             for (const ex& factor : is_a<mul>(term) ? term : lst{term}) {
@@ -75,30 +108,34 @@ public:
                     coef *= factor;
                 }
             }
-            // Cartesian product of the occurring fields' expansions.
-            std::vector<Term> products{{1, {}}};
-            for (const Expansion* e : occurrences) {
-                std::vector<Term> next;
-                for (const Term& p : products)
-                    for (const Term& t : *e) {
-                        Term n{p.coef * t.coef, p.factors};
-                        n.factors.insert(n.factors.end(), t.factors.begin(), t.factors.end());
-                        next.push_back(std::move(n));
-                    }
-                products = std::move(next);
-            }
-            for (const Term& p : products) {
-                const numeric value = integrals_.integrate(p.factors, xi_power);
-                if (!value.is_zero()) sum.push_back(coef * p.coef * value);
-            }
+            // Every combination of one term per occurring field: monomials multiply, shape factors integrate.
+            Term start = single_term(read_, coef, {});
+            expand(sum, occurrences, 0, start, xi_power);
         }
-        return (s_.L * add(sum)).expand();  // dx = L dxi
+        return sum;
     }
 
 private:
+    void expand(Poly& sum, const std::vector<const Expansion*>& occurrences, std::size_t next, const Term& partial,
+                int xi_power)
+    {
+        if (next == occurrences.size()) {
+            const numeric value = integrals_.integrate(partial.factors, xi_power);
+            if (!value.is_zero()) sum.add(partial.monomial, partial.coefficient, value);
+            return;
+        }
+        for (const Term& t : *occurrences[next]) {
+            Term p{partial.monomial, product(partial.coefficient, t.coefficient), partial.factors};
+            for (std::size_t i = 0; i < p.monomial.size(); ++i) p.monomial[i] += t.monomial[i];
+            p.factors.insert(p.factors.end(), t.factors.begin(), t.factors.end());
+            expand(sum, occurrences, next + 1, p, xi_power);
+        }
+    }
+
     const Symbols& s_;
     const FieldSymbols& f_;
     ShapeIntegrals& integrals_;
+    const PolyReader& read_;
     std::map<ex, Expansion, ex_is_less> fields_;
 };
 
@@ -138,16 +175,16 @@ ex velocity_squared(Order order, const FieldSymbols& f, const ex& w)
     return kept;
 }
 
-Energies derive_energies(const VariantKey& key, const Symbols& s)
+Energies derive_energies(const VariantKey& key, const Symbols& s, const PolyReader& read)
 {
     if (const std::string why = key.dof_problem(); !why.empty()) throw std::invalid_argument(key.name() + ": " + why);
     ShapeIntegrals integrals(key.axial_basis(), key.transverse_basis());
     const FieldSymbols f;
-    DensityIntegrator integrate(s, f, key, integrals);
-    const ex v2 = velocity_squared(key.order, f, s.theta_dot);
-    const ex T = s.J_oh * pow(s.theta_dot, 2) / 2 + s.m * integrate(v2) / 2;
-    const ex U = integrate(s.ES * pow(f.ux1_x, 2) + s.EI * pow(f.uy_xx, 2)) / 2;
-    return {T.expand(), U.expand()};
+    DensityIntegrator integrate(s, f, key, integrals, read);
+    Poly T = read(s.J_oh * pow(s.theta_dot, 2) / 2);
+    T += integrate(s.m * velocity_squared(key.order, f, s.theta_dot) / 2);
+    const Poly U = integrate((s.ES * pow(f.ux1_x, 2) + s.EI * pow(f.uy_xx, 2)) / 2);
+    return {T, U};
 }
 
 }  // namespace hubbeam::gen

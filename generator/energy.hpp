@@ -7,6 +7,7 @@
 #include <ginac/ginac.h>
 
 #include "integrals.hpp"
+#include "poly.hpp"
 #include "variant.hpp"
 
 namespace hubbeam::gen {
@@ -25,8 +26,9 @@ struct Symbols {
     explicit Symbols(const VariantKey& key);
 };
 
+/// T and U as polynomials in the variables of the reader (the kernels' run-time inputs).
 struct Energies {
-    GiNaC::ex T, U;
+    Poly T, U;
 };
 
 /// |r_dot|^2 of docs/model.md section 2 in terms of field symbols, truncated to the model order (section 3).
@@ -37,7 +39,8 @@ struct FieldSymbols {
 };
 GiNaC::ex velocity_squared(Order order, const FieldSymbols& f, const GiNaC::ex& theta_dot);
 
-/// T = 1/2 J_oh theta_dot^2 + 1/2 int m |r_dot|^2 dx and U = 1/2 int (ES u_x1'^2 + EI u_y''^2) dx.
-Energies derive_energies(const VariantKey& key, const Symbols& s);
+/// T = 1/2 J_oh theta_dot^2 + 1/2 int m |r_dot|^2 dx and U = 1/2 int (ES u_x1'^2 + EI u_y''^2) dx, over the
+/// parameter and variable symbols of read.
+Energies derive_energies(const VariantKey& key, const Symbols& s, const PolyReader& read);
 
 }  // namespace hubbeam::gen

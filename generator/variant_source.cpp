@@ -144,7 +144,6 @@ JacobianPieces jacobian_pieces(const PolyEquations& eq, const Variables& v, bool
 std::string variant_source(const VariantKey& key, const EmitOptions& options)
 {
     const Symbols s(key);
-    const Energies en = derive_energies(key, s);
     const bool torque = key.drive == Drive::torque;
     const int nq = key.nq();
     const std::string n2 = std::to_string(nq * nq), n1 = std::to_string(nq);
@@ -183,7 +182,8 @@ std::string variant_source(const VariantKey& key, const EmitOptions& options)
     PolyCoordinates c{v.q, v.qd, {}, std::vector<Poly>(s.q.size()), torque ? v.qd[0] : v.theta_dot};
     if (torque) c.force[0] = read(s.tau);
     else c.driven.emplace_back(v.theta_dot, v.theta_ddot);
-    const PolyEquations eq = lagrange(read(en.T), read(en.U), c);
+    const Energies en = derive_energies(key, s, read);
+    const PolyEquations eq = lagrange(en.T, en.U, c);
 
     const JacobianPieces jac = jacobian_pieces(eq, v, torque);
     const std::string pattern = mass_pattern(eq.M, v.q);
