@@ -39,6 +39,8 @@ private:
     GiNaC::numeric exact(const std::vector<Factor>& factors, int power);
     GiNaC::numeric quadrature(const std::vector<Factor>& factors, int power);
     GiNaC::ex piece(const Factor& f, const GiNaC::numeric& lo, const GiNaC::numeric& hi);
+    /// piece() on breaks_[interval], breaks_[interval + 1] as coefficients of 1, xi, xi^2, ... (empty if zero).
+    const std::vector<GiNaC::numeric>& piece_coefficients(const Factor& f, std::size_t interval);
     const std::vector<double>& values(const Factor& f);
     const FieldBasis& basis(const Factor& f) const;
 
@@ -47,6 +49,7 @@ private:
     GiNaC::symbol xi_{"xi"};
     std::vector<GiNaC::numeric> breaks_;  // common refinement of both fields' intervals
     std::map<std::pair<Factor, int>, GiNaC::ex> pieces_;            // (factor, field interval) -> polynomial
+    std::map<std::pair<Factor, int>, std::vector<GiNaC::numeric>> coefficients_;  // the same, as coefficients
     std::map<std::pair<std::vector<Factor>, int>, GiNaC::numeric> cache_;
     std::vector<double> nodes_, weights_;  // composite rule (quadrature path)
     std::map<Factor, std::vector<double>> node_values_;
