@@ -47,6 +47,7 @@ public:
     int force_terms() const override { return v_.nterms; }
     void forces_terms(const HubInput& u, const double* q, const double* qd, double* m) const override
     {
+        if (v_.forces_terms == nullptr) Model::forces_terms(u, q, qd, m);  // throws: M varies
         call(v_.forces_terms, u, q, qd, m);
     }
     bool has_forces_folded() const override { return v_.forces_folded != nullptr; }
@@ -59,6 +60,7 @@ public:
     void forces_matrix(double* F) const override
     {
         const HubInput none;
+        if (v_.forces_matrix == nullptr) Model::forces_matrix(F);  // throws: M varies
         std::fill_n(F, nq() * v_.nterms, 0.0);
         call(v_.forces_matrix, none, nullptr, nullptr, F);
     }
