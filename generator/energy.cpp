@@ -45,6 +45,19 @@ Coefficient product(const Coefficient& x, const Coefficient& y)
     return p;
 }
 
+/// The sum of two parameter coefficients.
+Coefficient sum(Coefficient x, const Coefficient& y)
+{
+    for (const auto& [pe, n] : y) {
+        auto [it, added] = x.emplace(pe, n);
+        if (!added) {
+            it->second += n;
+            if (it->second.is_zero()) x.erase(it);
+        }
+    }
+    return x;
+}
+
 /// The single term of a monomial expression read as a Poly.
 Term single_term(const PolyReader& read, const ex& e, std::vector<Factor> factors)
 {
@@ -83,6 +96,19 @@ public:
                 add(f.ux2_dot, -s.B[j] * s.B_dot[k] * inv_L, {K::coupling, j, k, 0});
             }
         }
+        // H is symmetric: B_j B_k H_jk and B_k B_j H_kj are one term (halves u_x2's expansion, quarters its square).
+        for (auto& [field, expansion] : fields_) {
+            std::map<std::pair<Exponents, std::vector<Factor>>, Coefficient> merged;
+            for (Term& t : expansion) {
+                for (Factor& factor : t.factors)
+                    if (factor.kind == K::coupling && factor.i > factor.j) std::swap(factor.i, factor.j);
+                Coefficient& c = merged[{t.monomial, t.factors}];
+                c = sum(c, t.coefficient);
+            }
+            expansion.clear();
+            for (auto& [key, c] : merged)
+                if (!c.empty()) expansion.push_back({key.first, c, key.second});
+        }
         fields_[f.ux1];  // present (possibly empty) so that nx = 0 makes its terms vanish
         fields_[f.ux1_dot];
         fields_[f.ux1_x];
@@ -110,26 +136,54 @@ public:
             }
             // Every combination of one term per occurring field: monomials multiply, shape factors integrate.
             Term start = single_term(read_, coef, {});
-            expand(sum, occurrences, 0, start, xi_power);
+            std::vector<std::size_t> chosen;
+            expand(sum, occurrences, start, xi_power, chosen);
         }
         return sum;
     }
 
 private:
-    void expand(Poly& sum, const std::vector<const Expansion*>& occurrences, std::size_t next, const Term& partial,
-                int xi_power)
+    /// Adds every combination of one term per remaining occurrence. A field that occurs r times (u_x2^2) is
+    /// expanded as a multiset, chosen indices non-decreasing, each combination weighted by its number of orderings.
+    void expand(Poly& sum, const std::vector<const Expansion*>& occurrences, const Term& partial, int xi_power,
+                std::vector<std::size_t>& chosen)
     {
+        const std::size_t next = chosen.size();
         if (next == occurrences.size()) {
-            const numeric value = integrals_.integrate(partial.factors, xi_power);
+            const numeric value = integrals_.integrate(partial.factors, xi_power) * orderings(occurrences, chosen);
             if (!value.is_zero()) sum.add(partial.monomial, partial.coefficient, value);
             return;
         }
-        for (const Term& t : *occurrences[next]) {
+        const bool repeat = next > 0 && occurrences[next] == occurrences[next - 1];
+        const Expansion& e = *occurrences[next];
+        for (std::size_t i = repeat ? chosen.back() : 0; i < e.size(); ++i) {
+            const Term& t = e[i];
             Term p{partial.monomial, product(partial.coefficient, t.coefficient), partial.factors};
-            for (std::size_t i = 0; i < p.monomial.size(); ++i) p.monomial[i] += t.monomial[i];
+            for (std::size_t v = 0; v < p.monomial.size(); ++v) p.monomial[v] += t.monomial[v];
             p.factors.insert(p.factors.end(), t.factors.begin(), t.factors.end());
-            expand(sum, occurrences, next + 1, p, xi_power);
+            chosen.push_back(i);
+            expand(sum, occurrences, p, xi_power, chosen);
+            chosen.pop_back();
         }
+    }
+
+    /// The number of orderings of the chosen indices within each run of repeated occurrences: r! / prod(count!).
+    static numeric orderings(const std::vector<const Expansion*>& occurrences, const std::vector<std::size_t>& chosen)
+    {
+        numeric n = 1;
+        for (std::size_t start = 0; start < chosen.size();) {
+            std::size_t end = start + 1;
+            while (end < chosen.size() && occurrences[end] == occurrences[start]) ++end;
+            n *= factorial(numeric(static_cast<int>(end - start)));
+            for (std::size_t i = start; i < end;) {
+                std::size_t same = i + 1;
+                while (same < end && chosen[same] == chosen[i]) ++same;
+                n /= factorial(numeric(static_cast<int>(same - i)));
+                i = same;
+            }
+            start = end;
+        }
+        return n;
     }
 
     const Symbols& s_;
