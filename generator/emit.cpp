@@ -174,6 +174,12 @@ public:
     std::pair<int, std::string> reference(Coefficient c)
     {
         const int sign = c.begin()->second < 0 ? -1 : 1;
+        // Equal doubles print equal text (c_number is the shortest round-trip form), so the doubles find an entry
+        // without printing it: order full has 10^5 references.
+        std::vector<std::pair<Exponents, double>> key;
+        for (const auto& [pe, number] : c) key.emplace_back(pe, sign * number.to_double());
+        if (auto found = by_value_.find(key); found != by_value_.end())
+            return {sign, "c[" + std::to_string(found->second) + "]"};
         std::vector<std::pair<numeric, std::string>> parts;
         for (const auto& [pe, number] : c) {
             for (std::size_t j = 0; j < pe.size(); ++j) params_used_[j] = params_used_[j] || pe[j] != 0;
@@ -189,18 +195,8 @@ public:
             for (auto& term : c) term.second *= sign;
             entries_.push_back(std::move(c));
         }
+        by_value_.emplace(std::move(key), it->second);
         return {sign, "c[" + std::to_string(it->second) + "]"};
-    }
-
-    /// The entry holding the number 1 (tables scale it by a term's pure-number coefficient).
-    int one()
-    {
-        auto [it, added] = index_.emplace("1.0", static_cast<int>(texts_.size()));
-        if (added) {
-            texts_.push_back("1.0");
-            entries_.push_back({{Exponents(pnames_.size()), numeric(1)}});
-        }
-        return it->second;
     }
 
     const std::vector<std::string>& texts() const { return texts_; }
@@ -213,6 +209,7 @@ private:
     std::vector<std::string> pnames_;
     std::vector<bool> params_used_;
     std::map<std::string, int> index_;
+    std::map<std::vector<std::pair<Exponents, double>>, int> by_value_;
     std::vector<std::string> texts_;
     std::vector<Coefficient> entries_;
 };
@@ -313,18 +310,10 @@ std::string print_tables(const std::string& prefix, const KernelSpec& k, const S
         for (const auto& entry : outputs[i]) order.push_back(entry.first);
         std::sort(order.begin(), order.end(), reads_before);
         for (const std::vector<int>& ve : order) {
-            const Coefficient& c = outputs[i].at(ve);
-            numeric scale = 1;
-            int coef = 0;
-            if (const auto number = CoefficientPool::pure_number(c)) {
-                scale = *number;
-                coef = pool.one();
-            } else {
-                const auto [sign, ck] = pool.reference(c);
-                scale = sign;
-                coef = std::stoi(ck.substr(2));  // "c[k]"
-            }
-            terms << "        {" << coef << ", " << index.at(ve) << ", " << c_number(scale) << "},\n";
+            // Pure numbers are pool entries too, so that a term is two integers: the signed entry and the monomial.
+            const auto [sign, ck] = pool.reference(outputs[i].at(ve));
+            const int coef = std::stoi(ck.substr(2));  // "c[k]"
+            terms << (nterms % 8 == 0 ? "\n        " : " ") << (sign > 0 ? coef : -coef - 1) << ", " << index.at(ve) << ",";
             ++nterms;
         }
     }
@@ -337,7 +326,8 @@ std::string print_tables(const std::string& prefix, const KernelSpec& k, const S
     f << ", double* out)\n{\n";
     f << "    // Table form (" << nterms << " terms, " << ordered.size()
       << " monomials): m[0] = 1, m[k + 1] = m[chain[k][0]] * v[chain[k][1]];\n"
-      << "    // out[written[i]] = sum of t.scale * c[t.coef] * m[t.mono] over terms[first[i]] .. terms[first[i + 1] - 1].\n";
+      << "    // out[written[i]] = sum over terms t = first[i] .. first[i + 1] - 1 of c[k] * m[terms[2t + 1]], k = terms[2t],\n"
+      << "    // negated for k < 0 (entry -k - 1).\n";
     if (ordered.empty()) {  // a state-free kernel reads no state (its callers may pass null pointers)
         for (const Array& a : sig.state) f << "    (void)" << a.name << ";\n";
         f << "    const double m[1] = {1.0};\n";
@@ -353,13 +343,14 @@ std::string print_tables(const std::string& prefix, const KernelSpec& k, const S
         f << "    (void)c;\n    (void)m;\n    (void)out;  // every entry is zero\n}\n";
         return f.str();
     }
-    f << "    struct Term {\n        int coef, mono;\n        double scale;\n    };\n";
-    if (nterms > 0) f << "    static const Term terms[] = {\n" << terms.str() << "    };\n";
-    else f << "    static const Term terms[1] = {};  // no term: every written entry is zero\n    (void)m;\n";
+    if (nterms > 0) f << "    static const int terms[] = {" << terms.str() << "\n    };\n";
+    else f << "    static const int terms[2] = {0, 0};  // no term: every written entry is zero\n    (void)m;\n";
     f << "    static const int written[] = {" << written.str() << "};\n";
     f << "    static const int first[] = {" << first.str() << "};\n";
     f << "    for (int i = 0; i < " << outputs.size() << "; ++i) {\n        double sum = 0.0;\n"
-      << "        for (int t = first[i]; t < first[i + 1]; ++t) sum += terms[t].scale * c[terms[t].coef] * m[terms[t].mono];\n"
+      << "        for (int t = first[i]; t < first[i + 1]; ++t) {\n"
+      << "            const int k = terms[2 * t];\n"
+      << "            sum += (k >= 0 ? c[k] : -c[-k - 1]) * m[terms[2 * t + 1]];\n        }\n"
       << "        out[written[i]] = sum;\n    }\n}\n";
     return f.str();
 }

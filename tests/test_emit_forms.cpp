@@ -48,7 +48,7 @@ TEST_CASE("table form equals unrolled form, kernel by kernel", "[generated][emit
             const VariantKey key = VariantKey::parse(name);
             const generated::Variant& a = unrolled(key);
             const generated::Variant& b = *compile_variant_in(key, dir / name, {"--form", "tables"});
-            REQUIRE(a.ncoeff == b.ncoeff - (b.ncoeff > a.ncoeff ? 1 : 0));  // tables may add the entry 1.0
+            REQUIRE(b.ncoeff >= a.ncoeff);  // tables also pool the pure numbers
             REQUIRE(a.nterms == b.nterms);
             REQUIRE(std::string(a.mass_pattern) == b.mass_pattern);
             const int n = a.nq;
