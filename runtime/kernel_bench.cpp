@@ -229,7 +229,7 @@ constexpr std::size_t w_ns = 10, w_spread = 20;
 /// The table's two header lines.
 void print_header(std::ostream& out)
 {
-    out << pad_right("method", 7) << pad_right("drive", 11) << pad_left("nx", 4) << pad_left("ny", 4)
+    out << pad_right("method", 7) << pad_right("drive", 11) << pad_right("order", 6) << pad_left("nx", 4) << pad_left("ny", 4)
         << pad_left("nq", 4) << "  " << pad_left("rhs gen", w_ns) << "  " << pad_right("(min-max)", w_spread)
         << pad_left("rhs asm", w_ns) << "  " << pad_right("(min-max)", w_spread) << pad_left("asm/gen", 8) << "  "
         << pad_left("jac gen", w_ns) << "  " << pad_right("(min-max)", w_spread) << pad_left("jac asm", w_ns) << "  "
@@ -237,7 +237,7 @@ void print_header(std::ostream& out)
 }
 
 /// One table line per variant: the generated row (or "-") beside the assembled one.
-void print_line(std::ostream& out, const VariantKey& key, const KernelBenchRow* gen, const KernelBenchRow& as)
+void print_line(std::ostream& out, const VariantKey& key, const KernelBenchRow* gen, const KernelBenchRow* as)
 {
     const auto cells = [&](const KernelBenchRow* r, const CallTiming KernelBenchRow::*which) {
         if (r == nullptr) return pad_left("-", w_ns) + "  " + pad_right("", w_spread);
@@ -245,14 +245,14 @@ void print_line(std::ostream& out, const VariantKey& key, const KernelBenchRow* 
         return pad_left(ns_text((r->*which).median), w_ns) + "  " + pad_right(spread_text(r->*which), w_spread);
     };
     char ratio[32] = "-";
-    if (gen != nullptr && gen->failure.empty() && as.failure.empty())
-        std::snprintf(ratio, sizeof ratio, "%.2f", as.rhs.median / gen->rhs.median);
+    if (gen != nullptr && gen->failure.empty() && as != nullptr && as->failure.empty())
+        std::snprintf(ratio, sizeof ratio, "%.2f", as->rhs.median / gen->rhs.median);
     std::ostringstream line;
-    line << pad_right(to_string(key.method), 7) << pad_right(to_string(key.drive), 11)
+    line << pad_right(to_string(key.method), 7) << pad_right(to_string(key.drive), 11) << pad_right(to_string(key.order), 6)
          << pad_left(std::to_string(key.nx), 4) << pad_left(std::to_string(key.ny), 4)
          << pad_left(std::to_string(key.nq()), 4) << "  " << cells(gen, &KernelBenchRow::rhs)
-         << cells(&as, &KernelBenchRow::rhs) << pad_left(ratio, 8) << "  " << cells(gen, &KernelBenchRow::jacobian)
-         << cells(&as, &KernelBenchRow::jacobian);
+         << cells(as, &KernelBenchRow::rhs) << pad_left(ratio, 8) << "  " << cells(gen, &KernelBenchRow::jacobian)
+         << cells(as, &KernelBenchRow::jacobian);
     std::string text = line.str();
     text.erase(text.find_last_not_of(' ') + 1);
     out << text << "\n" << std::flush;
@@ -261,8 +261,8 @@ void print_line(std::ostream& out, const VariantKey& key, const KernelBenchRow* 
 void write_csv_row(std::ostream& csv, const KernelBenchRow& r)
 {
     char buf[256];
-    std::snprintf(buf, sizeof buf, "%s,%s,%d,%d,%d,%s,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f\n", to_string(r.key.method).c_str(),
-                  to_string(r.key.drive).c_str(), r.key.nx, r.key.ny, r.key.nq(), r.source.c_str(), r.rhs.median,
+    std::snprintf(buf, sizeof buf, "%s,%s,%s,%d,%d,%d,%s,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f\n", to_string(r.key.method).c_str(),
+                  to_string(r.key.drive).c_str(), to_string(r.key.order).c_str(), r.key.nx, r.key.ny, r.key.nq(), r.source.c_str(), r.rhs.median,
                   r.rhs.min, r.rhs.max, r.jacobian.median, r.jacobian.min, r.jacobian.max);
     csv << buf;
 }
@@ -282,6 +282,11 @@ KernelBenchOptions parse_kernel_options(const KernelArgs& args)
         Method v{};
         if (!parse(s, v)) bad("--methods", "a comma-separated list of " + joined(words<Method>()), s);
         add_unique(o.methods, v);
+    }
+    for (const std::string& s : split(args.orders)) {
+        Order v{};
+        if (!parse(s, v)) bad("--orders", "a comma-separated list of " + joined(words<Order>()), s);
+        add_unique(o.orders, v);
     }
     for (const std::string& s : split(args.drives)) {
         Drive v{};
@@ -314,11 +319,11 @@ std::vector<KernelBenchRow> run_kernel_bench(const KernelBenchOptions& options, 
         csv.open(options.output);
         if (!csv)
             throw KernelOptionError("-o: cannot open " + options.output + " for writing: " + std::strerror(errno));
-        csv << "method,drive,nx,ny,nq,source,ns_rhs,ns_rhs_min,ns_rhs_max,ns_jac,ns_jac_min,ns_jac_max\n";
+        csv << "method,drive,order,nx,ny,nq,source,ns_rhs,ns_rhs_min,ns_rhs_max,ns_jac,ns_jac_min,ns_jac_max\n";
     }
 
     out << "ns per call: median of " << options.samples << " samples of ~" << sample_seconds * 1e3
-        << " ms each, (min-max) over the samples; order first.\n"
+        << " ms each, (min-max) over the samples.\n"
            "rhs = FirstOrderSystem::rhs (M factored once when it is constant, as in a run); jac = "
            "FirstOrderSystem::jacobian\n(generated: the exact derivative kernels; assembled: central differences, "
            "4 nq + 2 right-hand sides).\n\n";
@@ -327,6 +332,7 @@ std::vector<KernelBenchRow> run_kernel_bench(const KernelBenchOptions& options, 
     std::vector<KernelBenchRow> rows;
     std::vector<std::string> skipped, failed;
     bool any_capped = false;
+    for (const Order order : options.orders)
     for (const Method method : options.methods)
         for (const Drive drive : options.drives)
             for (const int ny : options.ny) {
@@ -338,15 +344,17 @@ std::vector<KernelBenchRow> run_kernel_bench(const KernelBenchOptions& options, 
                     key.drive = drive;
                     key.nx = nx;
                     key.ny = ny;
+                    key.order = order;
                     if (const std::string why = key.dof_problem(); !why.empty()) {
                         skipped.push_back(key.name() + ": " + why);
                         continue;
                     }
                     KernelBenchRow gen, as;
                     const bool has_gen = measure(key, ModelSource::generated, options.samples, gen);
-                    measure(key, ModelSource::assembled, options.samples, as);
-                    print_line(out, key, has_gen ? &gen : nullptr, as);
-                    for (const KernelBenchRow* r : {has_gen ? &gen : nullptr, &as}) {
+                    // The assembled path has no order full.
+                    const bool has_asm = order != Order::full && measure(key, ModelSource::assembled, options.samples, as);
+                    print_line(out, key, has_gen ? &gen : nullptr, has_asm ? &as : nullptr);
+                    for (const KernelBenchRow* r : {has_gen ? &gen : nullptr, has_asm ? &as : nullptr}) {
                         if (r == nullptr) continue;
                         if (!r->failure.empty()) {
                             failed.push_back(key.name() + " (" + r->source + "): " + r->failure);
@@ -359,7 +367,8 @@ std::vector<KernelBenchRow> run_kernel_bench(const KernelBenchOptions& options, 
                 }
             }
 
-    out << "\nasm/gen = assembled rhs / generated rhs; \"-\": the variant is not generated into this build.\n";
+    out << "\nasm/gen = assembled rhs / generated rhs; \"-\": no such model (no compiler for generated code; no "
+           "assembled order full).\n";
     if (any_capped)
         out << "* a single call took over " << slow_call_seconds * 1e3 << " ms: timed one call at a time, at most "
             << capped_samples << " samples.\n";

@@ -17,6 +17,7 @@ struct KernelArgs {
     std::string ny = "4,8,16,32";
     std::string methods = "amm,fem,bim,bsim";
     std::string drives = "prescribed,torque";
+    std::string orders = "first";
     std::string nx = "0,ny";
     bool nx_equal_ny = false;  // --nx-equal-ny: nx = ny only
     bool nx0 = false;          // --nx0: nx = 0 only
@@ -36,6 +37,7 @@ inline constexpr int nx_equal_ny = -1;
 struct KernelBenchOptions {
     std::vector<Method> methods;
     std::vector<Drive> drives;
+    std::vector<Order> orders;
     std::vector<int> ny;
     std::vector<int> nx;  // counts, or nx_equal_ny
     int samples = 7;

@@ -4,7 +4,7 @@
 //
 //   hubbeam run SCENE.toml [--method M] [--nx N] [--ny N] ... [-o FILE]   (options: scene_keys() in scene.cpp)
 //   hubbeam variants                                   (built in, cached, and how others run)
-//   hubbeam kernels [--ny LIST] [--methods LIST] [--drives LIST] [--nx LIST] [--samples N] [-o FILE]
+//   hubbeam kernels [--ny LIST] [--methods LIST] [--drives LIST] [--orders LIST] [--nx LIST] [--samples N] [-o FILE]
 //
 // Exit codes: 0 success; 1 the simulation stopped early (rows so far kept); 2 bad input (nothing computed);
 // 130 / 143 interrupted by SIGINT / SIGTERM (rows so far kept).
@@ -196,6 +196,7 @@ void add_kernel_options(CLI::App& sub, KernelArgs& a)
     sub.add_option("--ny", a.ny, "Ny values, comma-separated (default " + a.ny + ")")->type_name("LIST");
     sub.add_option("--methods", a.methods, "Methods, comma-separated (default " + a.methods + ")")->type_name("LIST");
     sub.add_option("--drives", a.drives, "Drives, comma-separated (default " + a.drives + ")")->type_name("LIST");
+    sub.add_option("--orders", a.orders, "Model orders, comma-separated (default " + a.orders + ")")->type_name("LIST");
     CLI::Option* nx = sub.add_option("--nx", a.nx, "Nx values, comma-separated; 'ny' is Nx = Ny (default " + a.nx + ")")
                           ->type_name("LIST");
     CLI::Option* equal = sub.add_flag("--nx-equal-ny", a.nx_equal_ny, "Only Nx = Ny (same as --nx ny)");
