@@ -1,10 +1,13 @@
 // The generator's stages on their own: the strict printer (golden strings), the kinematics of each model
-// order against docs/model.md section 3, and the shape-function integrals against closed forms.
+// order against docs/model.md section 3, the shape-function integrals against closed forms, and the Poly route of
+// Lagrange's equations against GiNaC's differentiation.
 #include <catch2/catch.hpp>
+#include <algorithm>
 
 #include "emit.hpp"
 #include "energy.hpp"
 #include "integrals.hpp"
+#include "lagrange.hpp"
 
 using namespace GiNaC;
 using namespace hubbeam;
@@ -177,4 +180,59 @@ TEST_CASE("AMM integrals that vanish by orthogonality are exact zeros, the other
         for (int j = 0; j < 4; ++j)
             CHECK(in.integrate({{K::axial, i, 0, 0}, {K::axial, j, 0, 0}}, 0).is_zero() == (i != j));
     CHECK_FALSE(in.integrate({{K::coupling, 0, 1, 0}}, 0).is_zero());
+}
+
+TEST_CASE("Lagrange's equations on Polys equal GiNaC's differentiation of the same energies", "[poly][lagrange]")
+{
+    // The generator differentiates Polys (poly.cpp); GiNaC's diff of the same T and U is the oracle. Exact equality:
+    // both are exact rational arithmetic.
+    for (const char* name : {"bim_nx2_ny3_torque_full", "fem_nx2_ny4_prescribed_full", "amm_nx1_ny2_prescribed_first"}) {
+        INFO(name);
+        const hubbeam::VariantKey key = hubbeam::VariantKey::parse(name);
+        const Symbols s(key);
+        const bool torque = key.drive == hubbeam::Drive::torque;
+        const std::vector<symbol> parameters = {s.L, s.m, s.EI, s.ES, s.a, s.J_oh};
+        std::vector<symbol> variables;
+        if (torque) variables = {s.tau};
+        else variables = {s.theta_dot, s.theta_ddot};
+        variables.insert(variables.end(), s.q.begin(), s.q.end());
+        variables.insert(variables.end(), s.qd.begin(), s.qd.end());
+        const auto index = [&](const symbol& x) {
+            return static_cast<int>(std::find_if(variables.begin(), variables.end(), [&](const symbol& v) { return v == x; }) -
+                                    variables.begin());
+        };
+        const PolyReader read(parameters, variables);
+        const Energies en = derive_energies(key, s, read);
+
+        PolyCoordinates pc;
+        Coordinates ec;
+        for (const symbol& x : s.q) pc.q.push_back(index(x));
+        for (const symbol& x : s.qd) pc.qd.push_back(index(x));
+        ec.q = s.q;
+        ec.qd = s.qd;
+        pc.force.resize(s.q.size());
+        ec.force.assign(s.q.size(), 0);
+        if (torque) {
+            pc.force[0] = read(s.tau);
+            ec.force[0] = s.tau;
+            pc.spin = index(s.theta_dot);
+        } else {
+            pc.driven.emplace_back(index(s.theta_dot), index(s.theta_ddot));
+            ec.driven.emplace_back(s.theta_dot, s.theta_ddot);
+            pc.spin = index(s.theta_dot);
+        }
+        ec.spin = s.theta_dot;
+        const PolyEquations p = lagrange(en.T, en.U, pc);
+        const Equations e = lagrange(to_ex(en.T, parameters, variables), to_ex(en.U, parameters, variables), ec);
+        const auto same = [&](const Poly& x, const ex& y) { return (to_ex(x, parameters, variables) - y).expand().is_zero(); };
+        for (std::size_t i = 0; i < e.M.size(); ++i) CHECK(same(p.M[i], e.M[i]));
+        for (std::size_t i = 0; i < e.Q.size(); ++i) CHECK(same(p.Q[i], e.Q[i]));
+        CHECK(same(p.T2, e.T2));
+        CHECK(same(p.T1, e.T1));
+        CHECK(same(p.T0, e.T0));
+        CHECK(same(p.momentum, e.momentum));
+        // and the energies themselves are nontrivial
+        CHECK(!p.Q.back().is_zero());
+        CHECK(!p.T2.is_zero());
+    }
 }
