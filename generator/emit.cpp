@@ -60,11 +60,19 @@ int degree(const std::vector<int>& e)
     return d;
 }
 
-/// Reading order of monomials: by degree, then in the order of the variables (A1 before A2 before B1).
-bool reads_before(const std::vector<int>& x, const std::vector<int>& y)
+/// Sorts monomials into reading order: by degree, then in the order of the variables (A1 before A2 before B1);
+/// each degree is computed once.
+void sort_reading(std::vector<std::vector<int>>& monomials)
 {
-    if (degree(x) != degree(y)) return degree(x) < degree(y);
-    return x > y;
+    std::vector<std::pair<int, std::size_t>> keyed;
+    for (std::size_t i = 0; i < monomials.size(); ++i) keyed.emplace_back(degree(monomials[i]), i);
+    std::sort(keyed.begin(), keyed.end(), [&](const auto& x, const auto& y) {
+        return x.first != y.first ? x.first < y.first : monomials[x.second] > monomials[y.second];
+    });
+    std::vector<std::vector<int>> sorted;
+    sorted.reserve(monomials.size());
+    for (const auto& k : keyed) sorted.push_back(std::move(monomials[k.second]));
+    monomials = std::move(sorted);
 }
 
 }  // namespace
@@ -98,10 +106,10 @@ using Output = std::map<Exponents, Coefficient>;
 
 /// Stage "decompose": each output of a kernel as a polynomial in the state with parameter coefficients (given as
 /// Polys, or read from expressions).
-std::vector<Output> decompose_outputs(const PolyReader& read, const KernelSpec& k)
+std::vector<Output> decompose_outputs(const PolyReader& read, KernelSpec& k)
 {
     std::vector<Output> outputs;
-    for (const Poly& p : k.polys) outputs.push_back(p.terms());
+    for (Poly& p : k.polys) outputs.push_back(std::move(p).release());
     for (const ex& v : k.values) {
         try {
             outputs.push_back(read(v).terms());
@@ -147,9 +155,24 @@ MonomialPlan plan_monomials(const std::vector<Output>& outputs, const std::vecto
         return plan.names[e] = name;
     };
     std::vector<std::vector<int>> ordered(monomials.begin(), monomials.end());
-    std::sort(ordered.begin(), ordered.end(), reads_before);
+    sort_reading(ordered);
     for (const auto& e : ordered) ensure(ensure, e);
     return plan;
+}
+
+/// An output's terms in reading order (pointers into it, no copies).
+std::vector<const Output::value_type*> reading_order(const Output& o)
+{
+    std::vector<std::pair<int, const Output::value_type*>> keyed;  // (degree, term): the degree computed once
+    keyed.reserve(o.size());
+    for (const auto& entry : o) keyed.emplace_back(degree(entry.first), &entry);
+    std::sort(keyed.begin(), keyed.end(), [](const auto& x, const auto& y) {
+        return x.first != y.first ? x.first < y.first : x.second->first > y.second->first;
+    });
+    std::vector<const Output::value_type*> order;
+    order.reserve(keyed.size());
+    for (const auto& k : keyed) order.push_back(k.second);
+    return order;
 }
 
 /// Stage "pool coefficients": every coefficient that is not a pure number becomes one entry c[k] of the
@@ -220,12 +243,10 @@ std::string print_outputs(const std::vector<Output>& outputs, const std::vector<
 {
     std::ostringstream lines;
     for (std::size_t i = 0; i < outputs.size(); ++i) {
-        std::vector<std::vector<int>> order;
-        for (const auto& entry : outputs[i]) order.push_back(entry.first);
-        std::sort(order.begin(), order.end(), reads_before);
         std::vector<std::pair<numeric, std::string>> terms;
-        for (const std::vector<int>& ve : order) {
-            const Coefficient& c = outputs[i].at(ve);
+        for (const auto* entry : reading_order(outputs[i])) {
+            const Exponents& ve = entry->first;
+            const Coefficient& c = entry->second;
             const std::string mono = degree(ve) == 0 ? "" : plan.names.at(ve);
             if (const auto number = CoefficientPool::pure_number(c)) {
                 terms.emplace_back(*number, mono);
@@ -288,7 +309,7 @@ std::string print_tables(const std::string& prefix, const KernelSpec& k, const S
                 --e[last];
             }
     std::vector<std::vector<int>> ordered(all.begin(), all.end());
-    std::sort(ordered.begin(), ordered.end(), reads_before);
+    sort_reading(ordered);
     std::map<std::vector<int>, int> index{{std::vector<int>(sig.state_inputs.size()), 0}};
     std::ostringstream chain;
     for (const std::vector<int>& e : ordered) {
@@ -306,12 +327,10 @@ std::string print_tables(const std::string& prefix, const KernelSpec& k, const S
         const char* sep = i == 0 ? "" : i % 16 == 0 ? ",\n        " : ", ";
         written << sep << (k.slots.empty() ? static_cast<int>(i) : k.slots[i]);
         first << sep << nterms;
-        std::vector<std::vector<int>> order;
-        for (const auto& entry : outputs[i]) order.push_back(entry.first);
-        std::sort(order.begin(), order.end(), reads_before);
-        for (const std::vector<int>& ve : order) {
+        for (const auto* entry : reading_order(outputs[i])) {
+            const Exponents& ve = entry->first;
             // Pure numbers are pool entries too, so that a term is two integers: the signed entry and the monomial.
-            const auto [sign, ck] = pool.reference(outputs[i].at(ve));
+            const auto [sign, ck] = pool.reference(entry->second);
             const int coef = std::stoi(ck.substr(2));  // "c[k]"
             terms << (nterms % 8 == 0 ? "\n        " : " ") << (sign > 0 ? coef : -coef - 1) << ", " << index.at(ve) << ",";
             ++nterms;
@@ -434,7 +453,7 @@ std::vector<std::string> names_of(const std::vector<Input>& inputs)
 
 }  // namespace
 
-EmittedCode emit_kernels(const std::string& prefix, const Signature& sig, const std::vector<KernelSpec>& kernels,
+EmittedCode emit_kernels(const std::string& prefix, const Signature& sig, std::vector<KernelSpec> kernels,
                          const EmitOptions& options)
 {
     using Form = EmitOptions::Form;
@@ -444,7 +463,7 @@ EmittedCode emit_kernels(const std::string& prefix, const Signature& sig, const 
     CoefficientPool pool(names_of(sig.parameter_inputs));
     EmittedCode code;
     std::vector<std::string> bodies;  // printed after the coefficients kernel, whose size they state
-    for (const KernelSpec& k : kernels) {
+    for (KernelSpec& k : kernels) {
         const std::vector<Output> outputs = decompose_outputs(read, k);
         if (!k.slots.empty() && k.slots.size() != outputs.size())
             throw EmitError("emit: kernel " + k.name + " has " + std::to_string(outputs.size()) + " values but " +

@@ -81,7 +81,7 @@ struct EmitOptions {
 };
 
 /// Emits `<prefix>_coefficients(p, c)` and `<prefix>_<kernel>(c, state..., out)` for each kernel.
-EmittedCode emit_kernels(const std::string& prefix, const Signature& signature, const std::vector<KernelSpec>& kernels,
+EmittedCode emit_kernels(const std::string& prefix, const Signature& signature, std::vector<KernelSpec> kernels,
                          const EmitOptions& options = {});
 
 /// The C literal for a number: round-trip precision, always a double literal ("2.0", "0.1", "-1e-05").

@@ -20,6 +20,8 @@ using Coefficient = std::map<Exponents, GiNaC::numeric>;
 class Poly {
 public:
     const std::map<Exponents, Coefficient>& terms() const { return terms_; }
+    /// The terms, moved out (for a consumer that needs no Poly afterwards).
+    std::map<Exponents, Coefficient> release() && { return std::move(terms_); }
     bool is_zero() const { return terms_.empty(); }
     /// Whether a term holds variable v.
     bool has(int v) const;

@@ -73,12 +73,12 @@ struct JacobianPieces {
 };
 
 /// A kernel that writes only the nonzero values (the runtime zero-fills its output first).
-KernelSpec sparse_kernel(std::string name, std::string out, std::string doc, const std::vector<Poly>& values)
+KernelSpec sparse_kernel(std::string name, std::string out, std::string doc, std::vector<Poly> values)
 {
     KernelSpec k{std::move(name), std::move(out), std::move(doc) + "; nonzero entries only", {}};
     for (std::size_t i = 0; i < values.size(); ++i)
         if (!values[i].is_zero()) {
-            k.polys.push_back(values[i]);
+            k.polys.push_back(std::move(values[i]));
             k.slots.push_back(static_cast<int>(i));
         }
     return k;
@@ -185,7 +185,7 @@ std::string variant_source(const VariantKey& key, const EmitOptions& options)
     const Energies en = derive_energies(key, s, read);
     const PolyEquations eq = lagrange(en.T, en.U, c);
 
-    const JacobianPieces jac = jacobian_pieces(eq, v, torque);
+    JacobianPieces jac = jacobian_pieces(eq, v, torque);
     const std::string pattern = mass_pattern(eq.M, v.q);
     // M is symmetric: its upper triangle is emitted, structural zeros are not, and the state-dependent entries
     // get a kernel of their own for runtimes that keep the constant ones.
@@ -225,10 +225,10 @@ std::string variant_source(const VariantKey& key, const EmitOptions& options)
         polys("energy", "E[4]", "E = (T2, T1, T0, U), T split by degree in qd", {eq.T2, eq.T1, eq.T0, eq.U}),
         polys("momentum", "h[1]", "h = dT/dtheta_dot, angular momentum about the hub axis", {eq.momentum}),
         {"tip", "tip[3]", "tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B", tip_displacements(key, s)},
-        sparse_kernel("forces_q", "dQdq[" + n2 + "]", "row-major; out[i*" + n1 + "+k] = dQ_i/dq_k", jac.forces_q),
-        sparse_kernel("forces_qd", "dQdqd[" + n2 + "]", "row-major; out[i*" + n1 + "+k] = dQ_i/dqd_k", jac.forces_qd),
+        sparse_kernel("forces_q", "dQdq[" + n2 + "]", "row-major; out[i*" + n1 + "+k] = dQ_i/dq_k", std::move(jac.forces_q)),
+        sparse_kernel("forces_qd", "dQdqd[" + n2 + "]", "row-major; out[i*" + n1 + "+k] = dQ_i/dqd_k", std::move(jac.forces_qd)),
         sparse_kernel("forces_u", "dQdu[" + nu + "]", "row-major; out[i*3+j] = dQ_i/du_j, u = " + tuple(drive_value_names),
-                      jac.forces_u),
+                      std::move(jac.forces_u)),
     };
     if (!mass_varies)  // after forces, as the table row lists them
         kernels.insert(kernels.begin() + 2,
@@ -247,10 +247,10 @@ std::string variant_source(const VariantKey& key, const EmitOptions& options)
         kernels.push_back(mass_varying);
         kernels.push_back(sparse_kernel("mass_q_product", "dMv[" + n2 + "]",
                                         "row-major; v in the qd slot; out[i*" + n1 + "+k] = sum_j dM_ij/dq_k v_j",
-                                        jac.mass_q_product));
+                                        std::move(jac.mass_q_product)));
     }
     const std::string name = key.name();
-    const EmittedCode code = emit_kernels(name, sig, kernels, options);
+    const EmittedCode code = emit_kernels(name, sig, std::move(kernels), options);
     const auto optional = [&](const char* kernel) { return mass_varies ? name + "_" + kernel : std::string("nullptr"); };
     const auto constant = [&](const char* kernel) { return mass_varies ? std::string("nullptr") : name + "_" + kernel; };
 
