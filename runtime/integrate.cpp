@@ -45,12 +45,52 @@ int gsl_jacobian(double t, const double y[], double* dfdy, double dfdt[], void* 
 namespace {
 
 const WordTable<Axial, 2> axial_words = {{Axial::dynamic, "dynamic"}, {Axial::quasi_static, "quasi-static"}};
+const WordTable<Stepping, 2> stepping_words = {{Stepping::free, "free"}, {Stepping::rows, "rows"}};
 
 }  // namespace
 
 std::string to_string(Axial v) { return word_of(v, axial_words); }
 bool parse(std::string_view w, Axial& v) { return parse_word(w, axial_words, v); }
 template <> std::vector<std::string> words<Axial>() { return all_words(axial_words); }
+std::string to_string(Stepping v) { return word_of(v, stepping_words); }
+bool parse(std::string_view w, Stepping& v) { return parse_word(w, stepping_words, v); }
+template <> std::vector<std::string> words<Stepping>() { return all_words(stepping_words); }
+
+void interpolate_state(double t0, const double* y0, const double* f0, double t1, const double* y1, const double* f1,
+                       double t, int size, double* y)
+{
+    const double h = t1 - t0, s = (t - t0) / h, s2 = s * s, s3 = s2 * s, s4 = s3 * s, s5 = s4 * s;
+    // Quintic Hermite basis on [0, 1] (value, first and second derivative at 0, then at 1) and its derivative.
+    const double h0 = 1 - 10 * s3 + 15 * s4 - 6 * s5, h1 = s - 6 * s3 + 8 * s4 - 3 * s5,
+                 h2 = 0.5 * (s2 - 3 * s3 + 3 * s4 - s5), h3 = 10 * s3 - 15 * s4 + 6 * s5, h4 = -4 * s3 + 7 * s4 - 3 * s5,
+                 h5 = 0.5 * (s3 - 2 * s4 + s5);
+    const double d0 = -30 * s2 + 60 * s3 - 30 * s4, d1 = 1 - 18 * s2 + 32 * s3 - 15 * s4,
+                 d2 = 0.5 * (2 * s - 9 * s2 + 12 * s3 - 5 * s4), d3 = 30 * s2 - 60 * s3 + 30 * s4,
+                 d4 = -12 * s2 + 28 * s3 - 15 * s4, d5 = 0.5 * (3 * s2 - 8 * s3 + 5 * s4);
+    const int k = size / 2;
+    for (int i = 0; i < k; ++i) {
+        const double p0 = y0[i], v0 = y0[k + i], a0 = f0[k + i], p1 = y1[i], v1 = y1[k + i], a1 = f1[k + i];
+        y[i] = h0 * p0 + h * (h1 * v0 + h4 * v1) + h * h * (h2 * a0 + h5 * a1) + h3 * p1;
+        y[k + i] = (d0 * p0 + d3 * p1) / h + d1 * v0 + d4 * v1 + h * (d2 * a0 + d5 * a1);
+    }
+}
+
+double interpolation_error(double t0, const double* y0, const double* f0, double t1, const double* y1, const double* f1,
+                           const double* y_mid, const double* f_mid, int size, double atol, double rtol)
+{
+    const double h = t1 - t0;
+    // Second derivatives in s of the quintic Hermite basis at s = 1/2 (those of the end values vanish there).
+    const double b0 = 0.0, b1 = -1.5, b2 = -0.25, b3 = 0.0, b4 = 1.5, b5 = -0.25;
+    const int k = size / 2;
+    double worst = 0.0;
+    for (int i = 0; i < k; ++i) {
+        const double acc = (b0 * y0[i] + b3 * y1[i]) / (h * h) + (b1 * y0[k + i] + b4 * y1[k + i]) / h +
+                           (b2 * f0[k + i] + b5 * f1[k + i]);
+        const double error = std::abs(acc - f_mid[k + i]) * h * h / 24.0;
+        worst = std::max(worst, error / (atol + rtol * std::abs(y_mid[i])));
+    }
+    return worst;
+}
 
 std::vector<std::string> stepper_names()
 {

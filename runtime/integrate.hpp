@@ -28,6 +28,28 @@ std::string to_string(Axial);
 bool parse(std::string_view, Axial&);
 template <> std::vector<std::string> words<Axial>();
 
+/// Where steps end: free (the tolerance alone chooses them; rows between step ends are interpolated by
+/// interpolate_state) or at rows (every output time ends a step, as GSL's driver does: exact, but the row
+/// spacing caps the step).
+enum class Stepping { free, rows };
+/// Words "free", "rows" (scene key solver.stepping, option --stepping).
+std::string to_string(Stepping);
+bool parse(std::string_view, Stepping&);
+template <> std::vector<std::string> words<Stepping>();
+
+/// The state at t in [t0, t1] from the states y0, y1 and their derivatives f0, f1 at the ends of a step, for
+/// y = (positions, rates) of size 2k with f = (rates, accelerations): the positions by the quintic Hermite
+/// interpolant of their values, rates and accelerations at both ends (error O(h^6)), the rates by its
+/// derivative (O(h^5)).
+void interpolate_state(double t0, const double* y0, const double* f0, double t1, const double* y1, const double* f1,
+                       double t, int size, double* y);
+
+/// The position error of interpolate_state at the middle of a step, relative to atol + rtol |position|, largest
+/// over the positions: the quintic's error is about E s^3 (1-s)^3, so its error in acceleration at s = 1/2 is
+/// -24 / h^2 times its error in position there; fm = f(t_mid, interpolated state) gives the true acceleration.
+double interpolation_error(double t0, const double* y0, const double* f0, double t1, const double* y1, const double* f1,
+                           const double* y_mid, const double* f_mid, int size, double atol, double rtol);
+
 /// dy/dt = (qd, M(q)^-1 Q(t, q, qd)) for one model and hub motion; counts its evaluations. With quasi-static
 /// axial coordinates y holds only theta (torque) and B with their rates: A solves the axial rows of
 /// Lagrange's equations with A_dot = A_ddot = 0 (and the hub acceleration's axial term dropped) at every

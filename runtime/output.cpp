@@ -185,7 +185,9 @@ std::string format_summary(const RunSummary& r, const Scene& scene)
     out << "variant     " << r.variant << " (" << r.source << ")\n";
     out << "algebra     " << r.algebra << "\n";
     out << "stepper     " << scene.solver.stepper << ", rtol " << shortest(scene.solver.rtol) << ", atol "
-        << shortest(scene.solver.atol) << ", h0 " << shortest(scene.solver.h0) << " s\n";
+        << shortest(scene.solver.atol) << ", h0 " << shortest(scene.solver.h0) << " s, "
+        << (scene.solver.stepping == Stepping::free ? "free steps (rows interpolated)" : "a step ends at every row")
+        << "\n";
     out << "time        0 to " << shortest(r.t_reached) << " s of " << shortest(scene.output.t_end) << " s, rows every "
         << shortest(scene.output.dt_out) << " s";
     if (!scene.output.file.empty()) out << " in " << scene.output.file;

@@ -62,6 +62,7 @@ std::vector<SceneKey> make_scene_keys()
         {"solver.rtol", "--rtol", K::number, "a number > 0 (relative tolerance)"},
         {"solver.atol", "--atol", K::number, "a number > 0 (absolute tolerance)"},
         {"solver.h0", "--h0", K::number, "a number > 0 (first trial step, s)"},
+        {"solver.stepping", "--stepping", K::word, one_of(words<Stepping>())},
         {"output.t_end", "--t-end", K::number, "a number > 0 (end time, s)"},
         {"output.dt_out", "--dt-out", K::number, "a number > 0 and <= output.t_end (output interval, s)"},
         {"output.file", "-o,--output", K::text, "a file name"},
@@ -359,12 +360,13 @@ Scene load_scene(const std::string& path, const Overrides& overrides)
 
     // [solver]
     const Section solver(path, root, "solver");
-    solver.only({"stepper", "rtol", "atol", "h0"});
+    solver.only({"stepper", "rtol", "atol", "h0", "stepping"});
     SolverOptions& so = scene.solver;
     so.stepper = solver.string("stepper").value_or(so.stepper);
     so.rtol = solver.number("rtol", so.rtol);
     so.atol = solver.number("atol", so.atol);
     so.h0 = solver.number("h0", so.h0);
+    so.stepping = solver.word<Stepping>("stepping", parse_enum<Stepping>).value_or(so.stepping);
 
     // [output]
     const Section output(path, root, "output");

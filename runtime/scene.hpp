@@ -19,6 +19,7 @@ struct SolverOptions {
     double rtol = 1e-8;
     double atol = 1e-10;
     double h0 = 1e-4;  // first trial step (s)
+    Stepping stepping = Stepping::free;
 };
 
 struct OutputOptions {

@@ -1,10 +1,11 @@
-// Simulation: drives GSL's odeiv2 driver from output time to output time (and through the drive's
-// breakpoints), turning states into rows, and stops with a message when the solution goes bad.
+// Simulation: steps GSL's odeiv2 integrators freely (rows interpolated) or from output time to output time,
+// through the drive's breakpoints, turning states into rows, and stops with a message when the solution goes bad.
 #include "simulate.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include <gsl/gsl_errno.h>
@@ -127,8 +128,8 @@ RunSummary Simulation::run(const RowSink& sink, const StopRequest& stop)
     double t = 0.0;
     long steps = 0;
 
-    auto row_at = [&](double ti) {
-        system.full_state(ti, y.data(), q_full.data(), qd_full.data());
+    auto row_at = [&](double ti, const double* state) {
+        system.full_state(ti, state, q_full.data(), qd_full.data());
         const double* q = q_full.data();
         const double* qd = qd_full.data();
         const HubInput u = motion.at(ti);
@@ -156,11 +157,89 @@ RunSummary Simulation::run(const RowSink& sink, const StopRequest& stop)
         gsl_odeiv2_driver_reset(driver.get());
     };
 
-    sink(row_at(0.0));
+    sink(row_at(0.0, y.data()));
     const OutputClock clock(scene_.output.dt_out);
     const long rows = static_cast<long>(std::floor(scene_.output.t_end / scene_.output.dt_out * (1.0 + same_instant)));
     const std::vector<double> breaks = breaks_before(motion, clock(rows));
     auto next_break = breaks.begin();
+    // A row to the sink, or why the run must stop (the small-deformation model no longer holds).
+    auto emit = [&](double ti, const double* state) -> std::string {
+        const Row r = row_at(ti, state);
+        sink(r);
+        if (!std::isfinite(r.tip_uy) || std::abs(r.tip_uy) > scene_.parameters.L)
+            return "unstable: tip deflection " + std::to_string(r.tip_uy) + " m exceeds the beam length" + at_time(ti) +
+                   "; the small-deformation model no longer holds";
+        return {};
+    };
+
+    if (scene_.solver.stepping == Stepping::free) {
+        // Steps as the tolerance chooses them, to the drive's breakpoints and the last row; rows inside a step are
+        // interpolated from its ends (the derivatives there cost one right-hand side per step that holds a row).
+        const int size = system.size();
+        std::vector<double> y0(static_cast<std::size_t>(size)), f0(y0), f1(y0), yi(y0);
+        bool have_f0 = false;
+        double h = scene_.solver.h0;
+        // Longest step whose interpolated rows stay within the tolerance (interpolation_error), learnt from the
+        // steps that held rows: the quintic's error grows as h^6.
+        double h_max = std::numeric_limits<double>::infinity();
+        std::vector<double> y_mid(y0), f_mid(y0);
+        const double t_last = clock(rows);
+        long i = 1;
+        double last_row = 0.0;
+        // A stop request is honoured between rows, asked before each step and each row; the run then ends at the
+        // last row written.
+        auto stop_here = [&]() -> const char* {
+            const char* why = stop ? stop() : nullptr;
+            if (why != nullptr) t = last_row;
+            return why;
+        };
+        while (i <= rows) {
+            if (const char* why = stop_here()) return finish(why);
+            const bool to_break = next_break != breaks.end();
+            const double target = to_break ? *next_break : t_last;
+            const double t0 = t;
+            y0 = y;
+            h = std::min(h, h_max);
+            const int status =
+                gsl_odeiv2_evolve_apply(driver->e, driver->c, driver->s, system.gsl(), &t, target, &h, y.data());
+            if (std::string failure = step_failure(status, t); !failure.empty()) return finish(failure);
+            bool have_f1 = false;
+            if (i <= rows && clock(i) < t * (1.0 - same_instant)) {  // rows inside the step: check the interpolant
+                if (!have_f0) system.rhs(t0, y0.data(), f0.data());
+                system.rhs(t, y.data(), f1.data());
+                have_f0 = have_f1 = true;
+                const double t_mid = 0.5 * (t0 + t);
+                interpolate_state(t0, y0.data(), f0.data(), t, y.data(), f1.data(), t_mid, size, y_mid.data());
+                system.rhs(t_mid, y_mid.data(), f_mid.data());
+                const double ratio = interpolation_error(t0, y0.data(), f0.data(), t, y.data(), f1.data(), y_mid.data(),
+                                                         f_mid.data(), size, scene_.solver.atol, scene_.solver.rtol);
+                h_max = (t - t0) * std::min(4.0, 0.9 * std::pow(std::max(ratio, 1e-12), -1.0 / 6.0));
+            }
+            for (; i <= rows && clock(i) <= t * (1.0 + same_instant); ++i) {
+                const double ti = clock(i);
+                if (const char* why = stop_here()) return finish(why);
+                const double* state = y.data();
+                if (std::abs(ti - t) > same_instant * ti) {
+                    if (!have_f0) system.rhs(t0, y0.data(), f0.data());
+                    if (!have_f1) system.rhs(t, y.data(), f1.data());
+                    have_f0 = have_f1 = true;
+                    interpolate_state(t0, y0.data(), f0.data(), t, y.data(), f1.data(), ti, size, yi.data());
+                    state = yi.data();
+                }
+                if (std::string failure = emit(ti, state); !failure.empty()) return finish(failure);
+                last_row = ti;
+            }
+            std::swap(f0, f1);  // the derivative at this step's end starts the next step
+            have_f0 = have_f1;
+            if (to_break && t >= target) {
+                ++next_break;
+                restart();
+                h = std::min(h, scene_.solver.h0);  // a fresh start, as after a reset of the driver
+            }
+        }
+        return finish({});
+    }
+
     for (long i = 1; i <= rows; ++i) {
         if (const char* why = stop ? stop() : nullptr) return finish(why);
         const double ti = clock(i);
@@ -171,11 +250,7 @@ RunSummary Simulation::run(const RowSink& sink, const StopRequest& stop)
         }
         if (t < ti)
             if (std::string failure = advance(ti); !failure.empty()) return finish(failure);
-        const Row r = row_at(ti);
-        sink(r);
-        if (!std::isfinite(r.tip_uy) || std::abs(r.tip_uy) > scene_.parameters.L)
-            return finish("unstable: tip deflection " + std::to_string(r.tip_uy) + " m exceeds the beam length" +
-                          at_time(ti) + "; the small-deformation model no longer holds");
+        if (std::string failure = emit(ti, y.data()); !failure.empty()) return finish(failure);
     }
     return finish({});
 }
