@@ -3,6 +3,8 @@
 #pragma once
 
 #include <catch2/catch.hpp>
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "simulate.hpp"
@@ -36,6 +38,25 @@ inline std::vector<Row> run(const Scene& s)
     INFO(summary.failure);
     REQUIRE(summary.completed);
     return rows;
+}
+
+/// The Jacobi integral's largest change from its value at t_steady on, and the largest strain energy U there
+/// (the part of the integral the flexible motion exchanges, against which the drift is judged).
+struct JacobiDrift {
+    double drift = 0.0, vibration = 0.0;
+};
+inline JacobiDrift jacobi_drift(const std::vector<Row>& rows, double t_steady)
+{
+    JacobiDrift d;
+    double j0 = 0.0;
+    bool first = true;
+    for (const Row& r : rows) {
+        if (r.t < t_steady) continue;
+        if (first) j0 = r.jacobi, first = false;
+        d.drift = std::max(d.drift, std::abs(r.jacobi - j0));
+        d.vibration = std::max(d.vibration, r.potential);
+    }
+    return d;
 }
 
 }  // namespace hubbeam::test

@@ -140,15 +140,7 @@ TEST_CASE("steady drive: the Jacobi integral is constant", "[dynamics]")
         Scene s = paper_scene(c.method, c.nx, 4, c.motion);
         s.output.t_end = 30.0;
         s.output.dt_out = 0.05;
-        const std::vector<Row> rows = run(s);
-        double j0 = 0.0, drift = 0.0, vibration = 0.0;
-        bool first = true;
-        for (const Row& r : rows) {
-            if (r.t < c.t_steady) continue;
-            if (first) j0 = r.jacobi, first = false;
-            drift = std::max(drift, std::abs(r.jacobi - j0));
-            vibration = std::max(vibration, r.potential);
-        }
+        const auto [drift, vibration] = test::jacobi_drift(test::run(s), c.t_steady);
         INFO(to_string(c.method) << " nx=" << c.nx << ": drift " << drift << " J, vibration energy " << vibration);
         CHECK(drift <= 1e-6 * vibration);
     }

@@ -95,15 +95,7 @@ TEST_CASE("order full: the Jacobi integral is constant under a steady drive", "[
         s.source = ModelSource::generated;
         s.output.t_end = 25.0;
         s.output.dt_out = 0.05;
-        const std::vector<Row> rows = run(s);
-        double j0 = 0.0, drift = 0.0, vibration = 0.0;
-        bool first = true;
-        for (const Row& r : rows) {
-            if (r.t < c.t_steady) continue;
-            if (first) j0 = r.jacobi, first = false;
-            drift = std::max(drift, std::abs(r.jacobi - j0));
-            vibration = std::max(vibration, r.potential);
-        }
+        const auto [drift, vibration] = jacobi_drift(run(s), c.t_steady);
         INFO(to_string(c.method) << " nx=" << c.nx << ": drift " << drift << " J, vibration energy " << vibration);
         CHECK(vibration > 0.0);
         CHECK(drift <= 1e-6 * vibration);
