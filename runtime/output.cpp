@@ -47,7 +47,10 @@ std::runtime_error cannot_open(const std::string& path, int error, const std::st
 
 }  // namespace
 
-CsvWriter::CsvWriter(const std::string& path) : path_(path), target_(path), buffer_(new char[buffer_size])
+CsvWriter::CsvWriter(const std::string& path) : CsvWriter(path, row_header()) {}
+
+CsvWriter::CsvWriter(const std::string& path, const std::string& header)
+    : path_(path), target_(path), buffer_(new char[buffer_size])
 {
     struct stat st {};
     const bool exists = ::stat(path.c_str(), &st) == 0;
@@ -66,10 +69,21 @@ CsvWriter::CsvWriter(const std::string& path) : path_(path), target_(path), buff
     }
     // The header is written at once, so that an output that cannot take anything (a full disk) stops the run
     // at its first row instead of after all the computing.
-    std::memcpy(buffer_.get(), row_header(), std::strlen(row_header()));
-    used_ = std::strlen(row_header());
-    buffer_[used_++] = '\n';
+    write_line(header);
+    buffered_rows_ = 0;  // the header is not a row
     flush();
+}
+
+void CsvWriter::write_line(std::string_view line)
+{
+    if (!ok_ || finished_) return;
+    if (line.size() >= buffer_size / 2) throw std::logic_error("CsvWriter: a line of " + std::to_string(line.size()) + " bytes");
+    if (buffer_size - used_ <= line.size()) flush();
+    std::memcpy(buffer_.get() + used_, line.data(), line.size());
+    used_ += line.size();
+    buffer_[used_++] = '\n';
+    ++buffered_rows_;
+    if (std::chrono::steady_clock::now() - last_flush_ >= flush_interval) flush();
 }
 
 void CsvWriter::open_temporary(int existing_mode)

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <string_view>
 
 #include "scene.hpp"
 #include "simulate.hpp"
@@ -27,6 +28,8 @@ public:
     /// Creates the temporary file (or opens a non-regular target) and writes the header; throws
     /// std::runtime_error "PATH: cannot open for writing: REASON" if it cannot, leaving nothing behind.
     explicit CsvWriter(const std::string& path);
+    /// The same for another table: header is its first line (no newline).
+    CsvWriter(const std::string& path, const std::string& header);
     /// finish() if the caller has not, so that a run ended by an exception keeps its rows too.
     ~CsvWriter();
     CsvWriter(const CsvWriter&) = delete;
@@ -35,6 +38,8 @@ public:
     /// Appends one row. A write error is remembered (see ok()) instead of thrown through the integrator;
     /// rows after it are dropped.
     void write(const Row& row);
+    /// Appends one line of another table (no newline; shorter than 32 KB), buffered and flushed as rows are.
+    void write_line(std::string_view line);
     /// This writer as a RowSink for simulate(); the writer must outlive the returned function.
     RowSink sink();
 
