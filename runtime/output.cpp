@@ -69,8 +69,10 @@ CsvWriter::CsvWriter(const std::string& path, const std::string& header)
     }
     // The header is written at once, so that an output that cannot take anything (a full disk) stops the run
     // at its first row instead of after all the computing.
-    write_line(header);
-    buffered_rows_ = 0;  // the header is not a row
+    if (header.size() >= buffer_size / 2) throw std::logic_error("CsvWriter: a header of " + std::to_string(header.size()) + " bytes");
+    std::memcpy(buffer_.get(), header.data(), header.size());
+    used_ = header.size();
+    buffer_[used_++] = '\n';
     flush();
 }
 
