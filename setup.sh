@@ -6,9 +6,9 @@ set -euo pipefail
 cd "$(dirname "$0")"
 
 # GiNaC (symbolic derivation), Eigen (linear algebra), GSL (odeiv2 integrators), Catch2 (tests), toml++
-# (scene files), CLI11 (command line); cmake, ninja and g++ to build.
+# (scene files), CLI11 (command line), gnuplot (the benchmark's figures); cmake, ninja and g++ to build.
 packages=(build-essential cmake ninja-build pkg-config libginac-dev libeigen3-dev libgsl-dev catch2
-          libtomlplusplus-dev libcli11-dev)
+          libtomlplusplus-dev libcli11-dev gnuplot-nox)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -16,6 +16,7 @@
 #include "integrate.hpp"
 #include "make_model.hpp"
 #include "motion.hpp"
+#include "option_lists.hpp"
 
 namespace hubbeam {
 
@@ -37,40 +38,9 @@ constexpr int max_dof = 128;
 // Every timed result ends up here, so the compiler must make every call (the outputs are read).
 volatile double sink = 0.0;
 
-std::vector<std::string> split(std::string_view text)
-{
-    std::vector<std::string> items;
-    std::size_t start = 0;
-    while (true) {
-        const std::size_t comma = text.find(',', start);
-        items.emplace_back(text.substr(start, comma == std::string_view::npos ? comma : comma - start));
-        if (comma == std::string_view::npos) return items;
-        start = comma + 1;
-    }
-}
-
 [[noreturn]] void bad(const std::string& option, const std::string& expected, const std::string& got)
 {
-    throw KernelOptionError(option + ": expected " + expected + ", got " + (got.empty() ? "an empty item" : got));
-}
-
-/// A whole item as an integer in [lo, hi], or false.
-bool parse_int(const std::string& s, int lo, int hi, int& v)
-{
-    if (s.empty()) return false;
-    std::size_t used = 0;
-    try {
-        v = std::stoi(s, &used);
-    } catch (const std::exception&) {
-        return false;
-    }
-    return used == s.size() && v >= lo && v <= hi;
-}
-
-template <class T>
-void add_unique(std::vector<T>& v, const T& x)
-{
-    if (std::find(v.begin(), v.end(), x) == v.end()) v.push_back(x);
+    bad_option<KernelOptionError>(option, expected, got);
 }
 
 /// The drive of a benchmark row, at an instant mid-way through it: the spin-up still accelerating (theta_ddot
@@ -273,22 +243,22 @@ KernelBenchOptions parse_kernel_options(const KernelArgs& args)
 {
     KernelBenchOptions o;
     const std::string dofs = "from 1 to " + std::to_string(max_dof);
-    for (const std::string& s : split(args.ny)) {
+    for (const std::string& s : split_list(args.ny)) {
         int v = 0;
         if (!parse_int(s, 1, max_dof, v)) bad("--ny", "a comma-separated list of integers " + dofs, s);
         add_unique(o.ny, v);
     }
-    for (const std::string& s : split(args.methods)) {
+    for (const std::string& s : split_list(args.methods)) {
         Method v{};
         if (!parse(s, v)) bad("--methods", "a comma-separated list of " + joined(words<Method>()), s);
         add_unique(o.methods, v);
     }
-    for (const std::string& s : split(args.orders)) {
+    for (const std::string& s : split_list(args.orders)) {
         Order v{};
         if (!parse(s, v)) bad("--orders", "a comma-separated list of " + joined(words<Order>()), s);
         add_unique(o.orders, v);
     }
-    for (const std::string& s : split(args.drives)) {
+    for (const std::string& s : split_list(args.drives)) {
         Drive v{};
         if (!parse(s, v)) bad("--drives", "a comma-separated list of prescribed, torque", s);
         add_unique(o.drives, v);
@@ -298,7 +268,7 @@ KernelBenchOptions parse_kernel_options(const KernelArgs& args)
     else if (args.nx0)
         o.nx = {0};
     else
-        for (const std::string& s : split(args.nx)) {
+        for (const std::string& s : split_list(args.nx)) {
             int v = 0;
             if (s == "ny")
                 v = nx_equal_ny;

@@ -4,6 +4,7 @@
 //
 //   hubbeam run SCENE.toml [--method M] [--nx N] [--ny N] ... [-o FILE]   (options: scene_keys() in scene.cpp)
 //   hubbeam variants                                   (built in, cached, and how others run)
+//   hubbeam bench SCENE.toml [--methods LIST] [--ny LIST] [--steppers LIST] [--rtols LIST] [-o FILE] [--plot PREFIX]
 //   hubbeam kernels [--ny LIST] [--methods LIST] [--drives LIST] [--orders LIST] [--nx LIST] [--samples N] [-o FILE]
 //
 // Exit codes: 0 success; 1 the simulation stopped early (rows so far kept); 2 bad input (nothing computed);
@@ -15,10 +16,12 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "bench.hpp"
 #include "generated_model.hpp"
 #include "integrate.hpp"
 #include "kernel_bench.hpp"
@@ -28,6 +31,7 @@
 #include "simulate.hpp"
 
 #include <signal.h>
+#include <unistd.h>
 
 namespace {
 
@@ -189,6 +193,65 @@ int list_variants()
     return exit_ok;
 }
 
+/// Declares the `bench` options; all are taken as text and checked by parse_bench_options.
+void add_bench_options(CLI::App& sub, std::string& scene, BenchArgs& a)
+{
+    sub.add_option("scene", scene, "Scene file: the grid varies its discretization and solver")->required();
+    sub.add_option("--methods", a.methods, "Methods, comma-separated (default " + a.methods + ")")->type_name("LIST");
+    sub.add_option("--ny", a.ny, "Ny values, comma-separated (default " + a.ny + ")")->type_name("LIST");
+    sub.add_option("--nx", a.nx, "Nx values, comma-separated (default: the scene's)")->type_name("LIST");
+    sub.add_option("--steppers", a.steppers, "Steppers, comma-separated (default " + a.steppers + ")")->type_name("LIST");
+    sub.add_option("--rtols", a.rtols, "Relative tolerances, comma-separated; atol = rtol/100 (default " + a.rtols + ")")
+        ->type_name("LIST");
+    sub.add_option("--repeats", a.repeats, "Timed runs per point, median reported (default " + a.repeats + ")")
+        ->type_name("N");
+    sub.add_option("--ref-ny", a.ref_ny, "Ny of the converged reference (default " + a.ref_ny + ")")->type_name("N");
+    sub.add_option("--ref-method", a.ref_method, "Method of the converged reference (default " + a.ref_method + ")")
+        ->type_name("M");
+    sub.add_option("-o,--output", a.output, "CSV of the rows (default bench.csv)")->type_name("FILE");
+    sub.add_option("--plot", a.plot, "Also draw PREFIX-work and PREFIX-dofs (PNG and SVG) with gnuplot")
+        ->type_name("PREFIX");
+    sub.add_flag("--yes", a.yes, "Run a grid estimated at over an hour");
+}
+
+/// hubbeam bench: returns the exit code.
+int bench(const std::string& scene_path, const BenchArgs& args)
+{
+    Scene scene;
+    BenchOptions options;
+    try {
+        scene = load_scene(scene_path, {});
+        options = parse_bench_options(args, scene);
+    } catch (const SceneError& e) {
+        std::cerr << e.what() << "\n";
+        return exit_bad_input;
+    } catch (const BenchOptionError& e) {
+        std::cerr << e.what() << "\n";
+        return exit_bad_input;
+    }
+    catch_stop_signals();
+    const StopRequest stop = []() -> const char* { return stop_signal != 0 ? interrupted : nullptr; };
+    std::ostringstream quiet;
+    std::ostream& progress = ::isatty(STDERR_FILENO) ? std::cerr : quiet;  // progress lines on a terminal only
+    try {
+        run_bench(scene, options, std::cout, progress, stop);
+    } catch (const BenchOptionError& e) {
+        std::cerr << e.what() << "\n";
+        return exit_bad_input;
+    } catch (const std::invalid_argument& e) {
+        std::cerr << scene.path << ": " << e.what() << "\n";
+        return exit_bad_input;
+    } catch (const CompileError& e) {
+        std::cerr << "hubbeam: " << e.what() << "\n";
+        return exit_bad_input;
+    }
+    if (stop_signal != 0) {
+        std::cerr << "hubbeam: bench interrupted by signal; the finished rows are in " << options.output << "\n";
+        return exit_signal_base + stop_signal;
+    }
+    return exit_ok;
+}
+
 /// Declares the `kernels` options; all are taken as text and checked by parse_kernel_options, so that every bad
 /// value is reported as "--option: expected ..., got ...".
 void add_kernel_options(CLI::App& sub, KernelArgs& a)
@@ -239,6 +302,13 @@ int main(int argc, char** argv)
     add_run_options(*run_cmd, options);
     CLI::App* variants_cmd =
         app.add_subcommand("variants", "List the variants built in and cached, and how any other variant runs");
+    std::string bench_scene;
+    BenchArgs bench_args;
+    CLI::App* bench_cmd = app.add_subcommand(
+        "bench", "Work against precision: time and error of a grid of methods, DOF counts, steppers and tolerances");
+    bench_cmd->footer("Writes a CSV (README: Work-precision benchmark); exit code 2 for a bad option value or a grid "
+                      "estimated at over an hour without --yes, 130/143 when interrupted (finished rows kept).");
+    add_bench_options(*bench_cmd, bench_scene, bench_args);
     KernelArgs kernel_args;
     CLI::App* kernels_cmd = app.add_subcommand(
         "kernels", "Time the right-hand side and Jacobian per call, generated kernels against the assembled path");
@@ -257,6 +327,7 @@ int main(int argc, char** argv)
         if (run_cmd->parsed()) return run(*run_cmd, options);
         if (variants_cmd->parsed()) return list_variants();
         if (kernels_cmd->parsed()) return kernels(kernel_args);
+        if (bench_cmd->parsed()) return bench(bench_scene, bench_args);
     } catch (const std::exception& e) {
         std::cerr << "hubbeam: " << e.what() << "\n";
         return exit_stopped;

@@ -144,6 +144,7 @@ RunSummary Simulation::run(const RowSink& sink, const StopRequest& stop)
     auto finish = [&](const std::string& failure) {
         summary.steps = steps + static_cast<long>(driver->e->count);
         summary.rhs_evals = system.evaluations();
+        summary.jacobian_evals = system.jacobian_evaluations();
         summary.completed = failure.empty();
         summary.failure = failure;
         summary.t_reached = t;

@@ -34,6 +34,7 @@ struct RunSummary {
     double max_abs_tip_uy = 0.0;
     long steps = 0;
     long rhs_evals = 0;
+    long jacobian_evals = 0;
     double wall_seconds = 0.0;
 };
 

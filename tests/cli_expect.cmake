@@ -4,6 +4,8 @@
 #   -DSTDERR=regex                                            stderr must match
 #   -DSTDOUT=regex                                            stdout must match
 #   -DEMPTY_DIR=path                                          this folder holds no file afterwards (recursively)
+#   -DNONEMPTY=path|path...                                   these files exist and are not empty
+#   -DCSV_MATCH=regex                                         the CSV's text matches
 #   -DCSV=path -DHEADER=line -DMIN_ROWS=n -DLAST_T=t          the CSV's header, data rows and final time
 #   -DNO_FILE=path                                            this path must not exist afterwards
 #   -DKEEP_FILE=path                                          holds "old contents" before and must after
@@ -19,6 +21,10 @@ if(DEFINED CSV)
   get_filename_component(name ${CSV} NAME)
   file(GLOB stale ${dir}/.${name}.tmp-*)
   file(REMOVE ${CSV} ${stale})
+endif()
+if(DEFINED NONEMPTY)  # figures an earlier run left are not this run's
+  string(REPLACE "|" ";" stale_figures "${NONEMPTY}")
+  file(REMOVE ${stale_figures})
 endif()
 if(DEFINED EMPTY_DIR)
   file(REMOVE_RECURSE ${EMPTY_DIR})  # what an earlier run left is not this run's
@@ -51,6 +57,24 @@ if(DEFINED EMPTY_DIR)
       message(FATAL_ERROR "hubbeam ${ARGS}: ${f} should not exist")
     endif()
   endforeach()
+endif()
+if(DEFINED NONEMPTY)
+  string(REPLACE "|" ";" nonempty "${NONEMPTY}")
+  foreach(f IN LISTS nonempty)
+    if(NOT EXISTS ${f})
+      message(FATAL_ERROR "hubbeam ${ARGS}: ${f} was not written")
+    endif()
+    file(SIZE ${f} size)
+    if(size EQUAL 0)
+      message(FATAL_ERROR "hubbeam ${ARGS}: ${f} is empty")
+    endif()
+  endforeach()
+endif()
+if(DEFINED CSV_MATCH)
+  file(READ ${CSV} text)
+  if(NOT text MATCHES "${CSV_MATCH}")
+    message(FATAL_ERROR "hubbeam ${ARGS}: ${CSV} should match '${CSV_MATCH}', holds: ${text}")
+  endif()
 endif()
 if(DEFINED NO_FILE AND EXISTS ${NO_FILE})
   message(FATAL_ERROR "hubbeam ${ARGS}: ${NO_FILE} should not exist")

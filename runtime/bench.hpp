@@ -1,0 +1,75 @@
+// Work-precision benchmark (hubbeam bench): run time against error for a grid of discretizations, steppers and
+// tolerances on one scene, each run timed in process and compared with two references that hubbeam computes:
+// the same discretization at a tight tolerance (time-integration error) and a discretization converged in DOFs
+// (discretization error).
+#pragma once
+
+#include <iosfwd>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "scene.hpp"
+#include "simulate.hpp"
+
+namespace hubbeam {
+
+/// The `bench` options as typed (checked by parse_bench_options, so that a bad value is one line naming it).
+struct BenchArgs {
+    std::string methods = "amm,fem,bim,bsim";
+    std::string ny = "4,8";
+    std::string nx;  // empty: the scene's
+    std::string steppers = "rk8pd,rk4imp,msadams";
+    std::string rtols = "1e-6,1e-8,1e-10";
+    std::string repeats = "3";
+    std::string ref_ny = "12";
+    std::string ref_method = "amm";
+    std::string output;  // CSV; empty: bench.csv
+    std::string plot;    // PREFIX: PREFIX-work.{png,svg} and PREFIX-dofs.{png,svg} by gnuplot
+    bool yes = false;    // run a grid estimated at over an hour
+};
+
+struct BenchOptionError : std::invalid_argument {
+    using std::invalid_argument::invalid_argument;
+};
+
+struct BenchOptions {
+    std::vector<Method> methods;
+    std::vector<int> ny, nx;
+    std::vector<std::string> steppers;
+    std::vector<double> rtols;
+    int repeats = 3;
+    int ref_ny = 12;
+    Method ref_method = Method::amm;
+    std::string output, plot;
+    bool yes = false;
+};
+
+/// Checks and converts the typed options against the scene (nx defaults to the scene's); throws BenchOptionError.
+BenchOptions parse_bench_options(const BenchArgs& args, const Scene& scene);
+
+/// One grid point's result: a CSV row.
+struct BenchRow {
+    VariantKey key;
+    std::string stepper;
+    double rtol = 0.0, atol = 0.0;
+    double time_error = 0.0;  // max |tip_uy - same discretization at a tight tolerance|, m
+    double disc_error = 0.0;  // max |tip_uy - converged reference|, m
+    double jacobi_drift = -1.0;  // max |J - J(t_steady)| after the drive ends, J; -1: no steady part
+    double wall_median = 0.0, wall_min = 0.0, wall_max = 0.0;  // s, in process, over the repeats
+    int repeats = 0;
+    long steps = 0, rhs_evals = 0, jacobian_evals = 0;
+    std::string status = "ok";  // or why the run (or its reference) stopped early
+};
+
+/// The CSV header of BenchRow.
+const char* bench_header();
+
+/// Runs the grid: the references first, then an estimate of the grid's time (refused over an hour unless
+/// options.yes, as BenchOptionError), then every point, each row written to the CSV as it is measured and
+/// progress on `progress` (one line per point). Asked stop between runs; a stopped grid keeps its finished rows
+/// in a valid CSV. Returns the rows.
+std::vector<BenchRow> run_bench(const Scene& scene, const BenchOptions& options, std::ostream& out,
+                                std::ostream& progress, const StopRequest& stop);
+
+}  // namespace hubbeam
