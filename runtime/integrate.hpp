@@ -17,6 +17,9 @@ namespace hubbeam {
 
 /// The GSL odeiv2 step type names the integrator accepts ("msadams", "rk8pd", ...), in table order.
 std::vector<std::string> stepper_names();
+/// The stepper word that asks for the stepper of the scene's stiffness (stiffness.hpp).
+inline constexpr const char* automatic_stepper_word = "auto";
+
 /// The GSL step type of a name from stepper_names(), or nullptr.
 const gsl_odeiv2_step_type* step_type(const std::string& name);
 

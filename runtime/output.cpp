@@ -200,7 +200,7 @@ std::string format_summary(const RunSummary& r, const Scene& scene)
         out << " (hub torque tau0 = " << shortest(m.tau0) << " N m for T_t = " << shortest(m.torque_time) << " s)\n";
     out << "variant     " << r.variant << " (" << r.source << ")\n";
     out << "algebra     " << r.algebra << "\n";
-    out << "stepper     " << scene.solver.stepper << ", rtol " << shortest(scene.solver.rtol) << ", atol "
+    out << "stepper     " << r.stepper << (r.stepper_why.empty() ? "" : " (" + r.stepper_why + ")") << ", rtol " << shortest(scene.solver.rtol) << ", atol "
         << shortest(scene.solver.atol) << ", h0 " << shortest(scene.solver.h0) << " s, "
         << (scene.solver.stepping == Stepping::free ? "free steps (rows interpolated)" : "a step ends at every row")
         << "\n";

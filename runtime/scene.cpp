@@ -36,6 +36,14 @@ bool parse_kind(std::string_view w, Motion::Kind& k)
 
 std::string one_of(const std::vector<std::string>& words) { return "one of " + joined(words, "\""); }
 
+/// "auto" (the stepper for the scene's stiffness), then every GSL step type.
+std::vector<std::string> stepper_words()
+{
+    std::vector<std::string> w = {automatic_stepper_word};
+    for (const std::string& s : stepper_names()) w.push_back(s);
+    return w;
+}
+
 std::vector<SceneKey> make_scene_keys()
 {
     using K = SceneKey::Kind;
@@ -58,7 +66,7 @@ std::vector<SceneKey> make_scene_keys()
         {"model.order", "--order", K::word, one_of(words<Order>())},
         {"model.source", "--source", K::word, one_of(words<ModelSource>())},
         {"model.axial", "--axial", K::word, one_of(words<Axial>())},
-        {"solver.stepper", "--stepper", K::word, one_of(stepper_names())},
+        {"solver.stepper", "--stepper", K::word, one_of(stepper_words())},
         {"solver.rtol", "--rtol", K::number, "a number > 0 (relative tolerance)"},
         {"solver.atol", "--atol", K::number, "a number > 0 (absolute tolerance)"},
         {"solver.h0", "--h0", K::number, "a number > 0 (first trial step, s)"},
@@ -414,7 +422,7 @@ void validate(const Scene& s)
         fail(s.path, "model.axial", "\"dynamic\" for a scene without axial coordinates (quasi-static needs nx > 0)",
              "\"quasi-static\"");
 
-    if (step_type(s.solver.stepper) == nullptr)
+    if (s.solver.stepper != automatic_stepper_word && step_type(s.solver.stepper) == nullptr)
         fail(s.path, "solver.stepper", expected("solver.stepper"), "\"" + s.solver.stepper + "\"");
     check_positive(s, s.solver.rtol, "solver.rtol");
     check_positive(s, s.solver.atol, "solver.atol");

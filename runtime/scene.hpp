@@ -15,7 +15,7 @@
 namespace hubbeam {
 
 struct SolverOptions {
-    std::string stepper = "msadams";  // a GSL odeiv2 step type name (see integrate.hpp)
+    std::string stepper = automatic_stepper_word;  // a GSL odeiv2 step type name (integrate.hpp), or automatic
     double rtol = 1e-8;
     double atol = 1e-10;
     double h0 = 1e-4;  // first trial step (s)

@@ -12,6 +12,7 @@
 
 #include "integrate.hpp"
 #include "make_model.hpp"
+#include "stiffness.hpp"
 
 namespace hubbeam {
 
@@ -97,6 +98,12 @@ Simulation::Simulation(const Scene& scene, const std::function<void(const std::s
     VariantKey key = scene.variant;
     key.drive = scene.motion.drive();
     model_ = make_model(key, scene.parameters, scene.source, note);
+    stepper_ = scene.solver.stepper;
+    if (stepper_ == automatic_stepper_word) {
+        const StepperChoice choice = automatic_stepper(*model_, scene.axial);
+        stepper_ = choice.stepper;
+        stepper_why_ = choice.why;
+    }
 }
 
 Simulation::~Simulation() = default;
@@ -115,11 +122,13 @@ RunSummary Simulation::run(const RowSink& sink, const StopRequest& stop)
 
     FirstOrderSystem system(model, motion, scene_.axial);
     summary.algebra = system.linear_algebra();
-    const gsl_odeiv2_step_type* type = step_type(scene_.solver.stepper);
-    if (type == nullptr) throw std::invalid_argument("unknown stepper '" + scene_.solver.stepper + "'");
+    summary.stepper = stepper_;
+    summary.stepper_why = stepper_why_;
+    const gsl_odeiv2_step_type* type = step_type(stepper_);
+    if (type == nullptr) throw std::invalid_argument("unknown stepper '" + stepper_ + "'");
     const std::unique_ptr<gsl_odeiv2_driver, DriverDeleter> driver(gsl_odeiv2_driver_alloc_y_new(
         system.gsl(), type, scene_.solver.h0, scene_.solver.atol, scene_.solver.rtol));
-    if (!driver) throw std::runtime_error("GSL could not allocate the " + scene_.solver.stepper + " driver");
+    if (!driver) throw std::runtime_error("GSL could not allocate the " + stepper_ + " driver");
 
     const int n = model.nq();
     const bool torque = key.drive == Drive::torque;

@@ -28,6 +28,8 @@ struct RunSummary {
     std::string variant;  // VariantKey::name()
     std::string source;   // "generated" or "assembled", then where from ("generated, cached")
     std::string algebra;  // how accelerations are computed (FirstOrderSystem::linear_algebra())
+    std::string stepper;      // the step type that ran
+    std::string stepper_why;  // why, when it was chosen automatically (stiffness.hpp); else empty
     bool completed = false;
     std::string failure;  // why the run stopped early (empty if completed)
     double t_reached = 0.0;
@@ -66,6 +68,7 @@ public:
 private:
     const Scene& scene_;
     std::unique_ptr<Model> model_;
+    std::string stepper_, stepper_why_;  // the scene's, or the automatic choice and why
 };
 
 /// Simulation(scene).run(sink).

@@ -34,7 +34,7 @@ void check_paper_common(const Scene& s)
     CHECK(s.variant.ny == 4);
     CHECK(s.variant.order == Order::first);
     CHECK(s.source == ModelSource::automatic);
-    CHECK(s.solver.stepper == "msadams");
+    CHECK(s.solver.stepper == "auto");  // cases/ name no stepper: chosen by stiffness
     CHECK(s.solver.rtol == 1e-8);
     CHECK(s.solver.atol == 1e-10);
     CHECK(s.output.t_end == 30.0);
@@ -166,7 +166,7 @@ TEST_CASE("optional scene keys take their documented defaults", "[scene]")
     CHECK(s.variant.spline == SplineBasis::paper);
     CHECK(s.variant.order == Order::first);
     CHECK(s.source == ModelSource::automatic);
-    CHECK(s.solver.stepper == "msadams");
+    CHECK(s.solver.stepper == "auto");
     CHECK(s.solver.rtol == 1e-8);
     CHECK(s.solver.atol == 1e-10);
     CHECK(s.solver.h0 == 1e-4);

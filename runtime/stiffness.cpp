@@ -1,0 +1,75 @@
+// Stiffness from the generalized eigenvalues of the stiffness and mass matrices at rest.
+#include "stiffness.hpp"
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+namespace hubbeam {
+
+double highest_frequency(const Model& model, Axial axial)
+{
+    const int n = model.nq();
+    const VariantKey& key = model.key();
+    const HubInput rest;
+    const std::vector<double> zero(static_cast<std::size_t>(n), 0.0);
+    Eigen::MatrixXd M(n, n), K(n, n);
+    model.mass(rest, zero.data(), M.data());  // symmetric, so row- or column-major alike
+    if (model.has_jacobian()) {
+        Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> dQdq(n, n), dQdqd(n, n),
+            dQdu(n, static_cast<Eigen::Index>(drive_value_count));
+        model.force_derivatives(rest, zero.data(), zero.data(), dQdq.data(), dQdqd.data(), dQdu.data());
+        K = -dQdq;
+    } else {
+        // Central differences of Q: exact for the linear restoring force of the beam at rest.
+        std::vector<double> q = zero, plus(static_cast<std::size_t>(n)), minus(plus);
+        for (int k = 0; k < n; ++k) {
+            const double h = 1e-6;
+            q[static_cast<std::size_t>(k)] = h;
+            model.forces(rest, q.data(), zero.data(), plus.data());
+            q[static_cast<std::size_t>(k)] = -h;
+            model.forces(rest, q.data(), zero.data(), minus.data());
+            q[static_cast<std::size_t>(k)] = 0.0;
+            for (int i = 0; i < n; ++i) K(i, k) = -(plus[static_cast<std::size_t>(i)] - minus[static_cast<std::size_t>(i)]) / (2 * h);
+        }
+    }
+    // The integrated coordinates only.
+    std::vector<int> kept;
+    for (int i = 0; i < n; ++i)
+        if (axial == Axial::dynamic || i < key.first_a() || i >= key.first_b()) kept.push_back(i);
+    const auto m = static_cast<Eigen::Index>(kept.size());
+    Eigen::MatrixXd Mk(m, m), Kk(m, m);
+    for (Eigen::Index i = 0; i < m; ++i)
+        for (Eigen::Index j = 0; j < m; ++j) {
+            Mk(i, j) = M(kept[static_cast<std::size_t>(i)], kept[static_cast<std::size_t>(j)]);
+            Kk(i, j) = 0.5 * (K(kept[static_cast<std::size_t>(i)], kept[static_cast<std::size_t>(j)]) +
+                              K(kept[static_cast<std::size_t>(j)], kept[static_cast<std::size_t>(i)]));
+        }
+    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(Kk, Mk, Eigen::EigenvaluesOnly);
+    if (solver.info() != Eigen::Success) return INFINITY;  // M not positive definite: treat as stiff
+    return std::sqrt(std::max(0.0, solver.eigenvalues().maxCoeff()));
+}
+
+StepperChoice automatic_stepper(const Model& model, Axial axial)
+{
+    const double omega = highest_frequency(model, axial);
+    char why[160];
+    if (omega > stiff_frequency && model.mass_is_constant()) {
+        std::snprintf(why, sizeof why, "automatic: stiff, highest frequency %.0f rad/s > %.0f rad/s, constant M", omega,
+                      stiff_frequency);
+        return {"rk4imp", why};
+    }
+    if (omega > stiff_frequency) {
+        std::snprintf(why, sizeof why,
+                      "automatic: stiff, highest frequency %.0f rad/s > %.0f rad/s, but M varies: an implicit step "
+                      "costs more than the explicit steps it saves",
+                      omega, stiff_frequency);
+        return {"rk8pd", why};
+    }
+    std::snprintf(why, sizeof why, "automatic: not stiff, highest frequency %.0f rad/s <= %.0f rad/s", omega,
+                  stiff_frequency);
+    return {"rk8pd", why};
+}
+
+}  // namespace hubbeam

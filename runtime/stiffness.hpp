@@ -1,0 +1,34 @@
+// The stepper for a scene that names none: judged by the stiffness of its equations, the highest natural
+// frequency of the beam at rest against the step an explicit stepper needs for accuracy.
+#pragma once
+
+#include <string>
+
+#include "integrate.hpp"
+#include "model.hpp"
+
+namespace hubbeam {
+
+/// The highest natural frequency (rad/s) of the linearized equations at rest, no spin: sqrt of the largest
+/// eigenvalue of K x = lambda M x with K = -dQ/dq at q = qd = 0, u = 0. With quasi-static axial coordinates
+/// their rows and columns are left out (they are not integrated).
+double highest_frequency(const Model& model, Axial axial);
+
+/// Above this highest frequency (rad/s) the equations count as stiff: an explicit Runge-Kutta step is then
+/// stability-bound at about 5 / omega_max s, shorter than the ~0.03 s that rtol 1e-8 needs for the bending
+/// motion of the paper's beam (measured with hubbeam bench; README "Which stepper for which scene").
+inline constexpr double stiff_frequency = 200.0;
+
+struct StepperChoice {
+    std::string stepper;  // rk8pd (non-stiff) or rk4imp (stiff)
+    std::string why;      // for the summary
+};
+
+/// The fastest stepper at the default tolerance in the benchmark: rk8pd for non-stiff equations; for stiff ones
+/// rk4imp (implicit, with the model's Jacobian) where M is constant (prescribed rotation), and rk8pd where M
+/// depends on q (hub torque, order full): there each implicit step refactors M and its Jacobian needs dM/dq, and
+/// rk8pd's stability-bound steps come out cheaper (cases/: 0.10 against 0.15 s prescribed, 0.38 against 0.15 s
+/// under torque).
+StepperChoice automatic_stepper(const Model& model, Axial axial);
+
+}  // namespace hubbeam

@@ -1,0 +1,53 @@
+// The automatic stepper (stiffness.hpp): the highest frequency at rest against the cantilever's exact values
+// (docs/model.md section 7), and the choice it makes for each kind of scene.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <numbers>
+
+#include "make_model.hpp"
+#include "stiffness.hpp"
+
+using namespace hubbeam;
+
+namespace {
+
+VariantKey amm_key(int nx, int ny, Drive drive)
+{
+    VariantKey k;
+    k.method = Method::amm;
+    k.nx = nx;
+    k.ny = ny;
+    k.drive = drive;
+    return k;
+}
+
+}  // namespace
+
+TEST_CASE("the highest frequency at rest is the cantilever's highest mode in the basis", "[stiffness]")
+{
+    const Parameters p;
+    const double m = p.rho * p.S, EI = p.E * p.I, ES = p.E * p.S;
+    // AMM's bases are the exact modes: bending beta_4 L = 10.9955407349 (1 + cos cosh = 0), axial (2i - 1) pi/2.
+    const double bending4 = std::pow(10.9955407349, 2) * std::sqrt(EI / (m * std::pow(p.L, 4)));
+    const double axial4 = 7.0 * std::numbers::pi / 2.0 * std::sqrt(ES / m) / p.L;
+    for (const ModelSource source : {ModelSource::generated, ModelSource::assembled}) {
+        const auto bending = make_model(amm_key(0, 4, Drive::prescribed), p, source);
+        CHECK(highest_frequency(*bending, Axial::dynamic) == Approx(bending4).epsilon(1e-8));
+        const auto both = make_model(amm_key(4, 4, Drive::prescribed), p, source);
+        CHECK(highest_frequency(*both, Axial::dynamic) == Approx(axial4).epsilon(1e-8));
+        // Quasi-static axial coordinates are not integrated: the bending modes are left.
+        CHECK(highest_frequency(*both, Axial::quasi_static) == Approx(bending4).epsilon(1e-8));
+    }
+}
+
+TEST_CASE("the automatic stepper follows the stiffness and the mass matrix", "[stiffness]")
+{
+    const Parameters p;
+    CHECK(automatic_stepper(*make_model(amm_key(0, 4, Drive::prescribed), p), Axial::dynamic).stepper == "rk8pd");
+    CHECK(automatic_stepper(*make_model(amm_key(4, 4, Drive::prescribed), p), Axial::dynamic).stepper == "rk4imp");
+    CHECK(automatic_stepper(*make_model(amm_key(4, 4, Drive::prescribed), p), Axial::quasi_static).stepper == "rk8pd");
+    CHECK(automatic_stepper(*make_model(amm_key(4, 4, Drive::torque), p), Axial::dynamic).stepper == "rk8pd");
+    CHECK(automatic_stepper(*make_model(amm_key(0, 4, Drive::torque), p), Axial::dynamic).stepper == "rk8pd");
+    const StepperChoice stiff = automatic_stepper(*make_model(amm_key(4, 4, Drive::prescribed), p), Axial::dynamic);
+    CHECK(stiff.why.find("stiff, highest frequency 6862 rad/s") != std::string::npos);
+}
