@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "integrate.hpp"
+#include "oscillation.hpp"
 #include "option_lists.hpp"
 #include "output.hpp"
 #include "shortest.hpp"
@@ -160,6 +161,7 @@ BenchOptions parse_bench_options(const BenchArgs& args, const Scene& scene)
     if (args.plot.find_first_of("'\"") != std::string::npos) bad("--plot", "a path prefix without quotes", args.plot);
     o.plot = args.plot;
     o.yes = args.yes;
+    o.table1 = args.table1;
     return o;
 }
 
@@ -299,6 +301,91 @@ std::vector<BenchRow> run_bench(const Scene& scene, const BenchOptions& o, std::
     if (!o.plot.empty())
         if (const std::string problem = plot(o.plot, o.output, out); !problem.empty()) out << "no figures: " << problem << "\n";
     return rows;
+}
+
+void run_table1(const Scene& scene, const BenchOptions& o, std::ostream& out, const StopRequest& stop)
+{
+    // Paper Table 1 (Omega0 = 4 rad/s): relative computation time, error (%), amplitude (m), frequency (Hz);
+    // BIM's time is the unit (its cell is blank in the paper's text, the unit by the others' ratios).
+    struct Paper {
+        Method method;
+        const char *time, *error, *amplitude, *frequency;
+    };
+    const Paper paper[] = {{Method::fem, "24.1", "-", "0.0074", "0.5326"},
+                           {Method::amm, "2.1", "0.1", "0.0074", "0.5319"},
+                           {Method::bim, "1", "0.15", "0.0074", "0.5324"},
+                           {Method::bsim, "1.67", "0.14", "0.0074", "0.5314"}};
+    VariantKey ref_key = scene.variant;
+    ref_key.method = o.ref_method;
+    ref_key.ny = o.ref_ny;
+    ref_key.nx = scene.variant.nx > 0 ? o.ref_ny : 0;
+    ref_key.drive = scene.motion.drive();
+    const Collected converged =
+        collect(variant_scene(scene, ref_key, reference_stepper, reference_rtol, reference_atol, Stepping::rows), stop);
+    if (!converged.summary.completed) throw std::runtime_error("the converged reference stopped: " + converged.summary.failure);
+    double peak = 0.0;
+    for (const Row& r : converged.rows) peak = std::max(peak, std::abs(r.tip_uy));
+    const std::vector<double> breaks = scene.motion.breakpoints();
+    const double t_steady = breaks.empty() ? 0.0 : *std::max_element(breaks.begin(), breaks.end());
+    struct Ours {
+        double time_auto, time_msadams, error, amplitude, frequency;
+        std::string stepper;
+    };
+    std::vector<Ours> ours;
+    const auto median_time = [&](const Scene& s, Collected& first) {
+        std::vector<double> walls;
+        for (int rep = 0; rep < o.repeats; ++rep) {
+            Collected c = collect(s, stop);
+            walls.push_back(c.summary.wall_seconds);
+            if (rep == 0) first = std::move(c);
+        }
+        std::sort(walls.begin(), walls.end());
+        return walls[walls.size() / 2];
+    };
+    for (const Paper& p : paper) {
+        VariantKey k = scene.variant;
+        k.method = p.method;
+        k.ny = 4;
+        k.drive = scene.motion.drive();
+        Scene automatic = scene;
+        automatic.variant = k;
+        Scene adams = automatic;
+        adams.solver.stepper = "msadams";
+        Collected a, m;
+        Ours r;
+        r.time_auto = median_time(automatic, a);
+        r.time_msadams = median_time(adams, m);
+        if (!a.summary.completed) throw std::runtime_error(k.name() + " stopped: " + a.summary.failure);
+        r.stepper = a.summary.stepper;
+        r.error = 100.0 * max_difference(a.rows, converged.rows) / peak;
+        const Oscillation osc = steady_oscillation(a.rows, t_steady);
+        r.amplitude = osc.amplitude;
+        r.frequency = osc.frequency;
+        ours.push_back(r);
+    }
+    const double unit_auto = ours[2].time_auto, unit_adams = ours[2].time_msadams;  // BIM, as in the paper
+    char line[512];
+    out << "Table 1, redone: spin-up to " << shortest(scene.motion.omega0) << " rad/s, Ny = 4, Nx = "
+        << scene.variant.nx << "; times relative to BIM (in process, median of " << o.repeats
+        << "); error = max |tip_uy - " << ref_key.name() << "| / max |tip_uy| (" << shortest(peak)
+        << " m); steady response after t = " << shortest(t_steady) << " s\n\n";
+    std::snprintf(line, sizeof line, "%-6s %-30s %-22s %-18s %-22s %-20s\n", "method", "relative time: ours (stepper)",
+                  "ours msadams | paper", "error %: ours | paper", "amplitude m: ours | paper",
+                  "frequency Hz: ours | paper");
+    out << line;
+    for (std::size_t i = 0; i < ours.size(); ++i) {
+        const Ours& r = ours[i];
+        const Paper& p = paper[i];
+        char t1[64], t2[64], e[64], a[64], f[64];
+        std::snprintf(t1, sizeof t1, "%.2f (%s, %.1f ms)", r.time_auto / unit_auto, r.stepper.c_str(), r.time_auto * 1e3);
+        std::snprintf(t2, sizeof t2, "%.2f | %s", r.time_msadams / unit_adams, p.time);
+        std::snprintf(e, sizeof e, "%.3f | %s", r.error, p.error);
+        std::snprintf(a, sizeof a, "%.4f | %s", r.amplitude, p.amplitude);
+        std::snprintf(f, sizeof f, "%.4f | %s", r.frequency, p.frequency);
+        std::snprintf(line, sizeof line, "%-6s %-30s %-22s %-18s %-22s %-20s\n", to_string(p.method).c_str(), t1, t2, e,
+                      a, f);
+        out << line;
+    }
 }
 
 namespace {

@@ -27,6 +27,7 @@ struct BenchArgs {
     std::string output;  // CSV; empty: bench.csv
     std::string plot;    // PREFIX: PREFIX-work.{png,svg} and PREFIX-dofs.{png,svg} by gnuplot
     bool yes = false;    // run a grid estimated at over an hour
+    bool table1 = false; // the paper's Table 1 instead of a grid
 };
 
 struct BenchOptionError : std::invalid_argument {
@@ -43,6 +44,7 @@ struct BenchOptions {
     Method ref_method = Method::amm;
     std::string output, plot;
     bool yes = false;
+    bool table1 = false;
 };
 
 /// Checks and converts the typed options against the scene (nx defaults to the scene's); throws BenchOptionError.
@@ -71,5 +73,11 @@ const char* bench_header();
 /// in a valid CSV. Returns the rows.
 std::vector<BenchRow> run_bench(const Scene& scene, const BenchOptions& options, std::ostream& out,
                                 std::ostream& progress, const StopRequest& stop);
+
+/// The paper's Table 1 redone on scene (its spin-up to 4 rad/s): for each method at Ny = 4 (the scene's Nx),
+/// the relative run time with the scene's stepper and with msadams (median of options.repeats), the error against
+/// the converged reference in percent of the largest deflection, and the steady amplitude and frequency, beside
+/// the paper's values. Prints the table to out.
+void run_table1(const Scene& scene, const BenchOptions& options, std::ostream& out, const StopRequest& stop);
 
 }  // namespace hubbeam

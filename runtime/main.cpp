@@ -212,6 +212,8 @@ void add_bench_options(CLI::App& sub, std::string& scene, BenchArgs& a)
     sub.add_option("--plot", a.plot, "Also draw PREFIX-work and PREFIX-dofs (PNG and SVG) with gnuplot")
         ->type_name("PREFIX");
     sub.add_flag("--yes", a.yes, "Run a grid estimated at over an hour");
+    sub.add_flag("--table1", a.table1,
+                 "Instead of a grid: the paper's Table 1 (four methods at Ny = 4) beside the paper's values");
 }
 
 /// hubbeam bench: returns the exit code.
@@ -234,7 +236,8 @@ int bench(const std::string& scene_path, const BenchArgs& args)
     std::ostringstream quiet;
     std::ostream& progress = ::isatty(STDERR_FILENO) ? std::cerr : quiet;  // progress lines on a terminal only
     try {
-        run_bench(scene, options, std::cout, progress, stop);
+        if (options.table1) run_table1(scene, options, std::cout, stop);
+        else run_bench(scene, options, std::cout, progress, stop);
     } catch (const BenchOptionError& e) {
         std::cerr << e.what() << "\n";
         return exit_bad_input;

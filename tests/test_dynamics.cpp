@@ -13,6 +13,7 @@
 #include "integrate.hpp"
 #include "make_model.hpp"
 #include "runs.hpp"
+#include "oscillation.hpp"
 #include "simulate.hpp"
 
 using namespace hubbeam;
@@ -23,31 +24,12 @@ using test::torque;
 
 namespace {
 
-/// Frequency (Hz) and half peak-to-peak amplitude of tip_uy after t0, from upward zero crossings of the
-/// signal about its mean, located by linear interpolation.
-struct Oscillation {
-    double frequency, amplitude;
-};
-Oscillation steady_oscillation(const std::vector<Row>& rows, double t0)
+/// The steady oscillation of tip_uy after t0 (oscillation.hpp), which must have at least five periods.
+Oscillation steady(const std::vector<Row>& rows, double t0)
 {
-    double mean = 0.0, lo = 1e300, hi = -1e300;
-    int count = 0;
-    for (const Row& r : rows)
-        if (r.t >= t0) {
-            mean += r.tip_uy;
-            lo = std::min(lo, r.tip_uy);
-            hi = std::max(hi, r.tip_uy);
-            ++count;
-        }
-    mean /= count;
-    std::vector<double> crossings;
-    for (std::size_t i = 1; i < rows.size(); ++i) {
-        const double a = rows[i - 1].tip_uy - mean, b = rows[i].tip_uy - mean;
-        if (rows[i - 1].t >= t0 && a < 0.0 && b >= 0.0)
-            crossings.push_back(rows[i - 1].t + (rows[i].t - rows[i - 1].t) * a / (a - b));
-    }
-    REQUIRE(crossings.size() >= 5);
-    return {(crossings.size() - 1) / (crossings.back() - crossings.front()), (hi - lo) / 2.0};
+    const Oscillation o = steady_oscillation(rows, t0);
+    REQUIRE(o.crossings >= 5);
+    return o;
 }
 
 }  // namespace
@@ -62,7 +44,7 @@ TEST_CASE("spin-up to 4 rad/s: every method oscillates at the rotating beam's fr
             Scene s = paper_scene(m, nx, 4, spin_up(4.0));
             s.output.t_end = 45.0;
             s.output.dt_out = 0.005;
-            const Oscillation o = steady_oscillation(run(s), 20.0);
+            const Oscillation o = steady(run(s), 20.0);
             INFO(to_string(m) << " nx=" << nx << ": " << o.frequency << " Hz, amplitude " << o.amplitude << " m");
             CHECK(std::abs(o.frequency / 0.532 - 1.0) < 0.01);
             found.push_back(o);
