@@ -11,8 +11,9 @@
 #   -DKEEP_FILE=path                                          holds "old contents" before and must after
 #   -DSIGNAL=TERM|INT                                         sent once the run writes rows (send_signal.sh)
 #   -DFSIZE_BLOCKS=n                                          files larger than n blocks cannot be written
-#   -DWHOLE_ROWS=ON -DMAX_ROWS=n                              every line has the header's fields and ends in a
-#                                                             newline, row k is at t = k * 0.01, at most n rows,
+#   -DMAX_ROWS=n                                              at most n data rows
+#   -DWHOLE_ROWS=ON                                           every line has the header's fields and ends in a
+#                                                             newline, row k is at t = k * 0.01,
 #                                                             and no temporary file is left beside the CSV
 string(REPLACE "|" ";" ARGS "${ARGS}")
 if(DEFINED CSV)
@@ -119,10 +120,10 @@ if(DEFINED CSV)
       message(FATAL_ERROR "last CSV row has ${nf} fields, the header ${nh}")
     endif()
   endif()
+  if(DEFINED MAX_ROWS AND rows GREATER MAX_ROWS)
+    message(FATAL_ERROR "CSV has ${rows} data rows, expected at most ${MAX_ROWS} (was the run stopped?)")
+  endif()
   if(WHOLE_ROWS)
-    if(DEFINED MAX_ROWS AND rows GREATER MAX_ROWS)
-      message(FATAL_ERROR "CSV has ${rows} data rows, expected at most ${MAX_ROWS} (was the run stopped?)")
-    endif()
     file(SIZE ${CSV} size)
     math(EXPR last_byte "${size} - 1")
     file(READ ${CSV} end OFFSET ${last_byte} LIMIT 1 HEX)
