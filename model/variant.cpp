@@ -2,6 +2,7 @@
 #include "variant.hpp"
 
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 namespace hubbeam {
@@ -15,6 +16,26 @@ const WordTable<Drive, 2> drives = {{Drive::prescribed, "prescribed"}, {Drive::t
 const WordTable<SplineBasis, 2> splines = {{SplineBasis::paper, "paper"}, {SplineBasis::open, "open"}};
 
 }  // namespace
+
+int max_dof(Method m)
+{
+    switch (m) {
+    case Method::amm: return 40;
+    case Method::bim: return 27;
+    case Method::fem:
+    case Method::bsim: return 64;
+    }
+    return 0;
+}
+
+std::string max_dof_reason(Method m)
+{
+    switch (m) {
+    case Method::bim: return "the Bernstein mass matrix loses definiteness in double precision from 28";
+    case Method::amm: return "the supported range; the highest modes' frequencies make runs slow beyond it";
+    default: return "the supported range: generation, compilation and every run grow quickly beyond it";
+    }
+}
 
 std::string to_string(Method v) { return word_of(v, methods); }
 std::string to_string(Order v) { return word_of(v, orders); }
@@ -82,6 +103,11 @@ std::string VariantKey::dof_problem() const
 {
     if (nx < 0) return "nx must be >= 0";
     if (ny < 1) return "ny must be >= 1";
+    const int most = max_dof(method);
+    for (const auto& [name, n] : {std::pair<const char*, int>{"ny", ny}, {"nx", nx}})
+        if (n > most)
+            return to_string(method) + " supports " + name + " up to " + std::to_string(most) + " (" +
+                   max_dof_reason(method) + "), got " + std::to_string(n);
     switch (method) {
     case Method::fem:
         if (ny % 2 != 0) return "FEM needs an even ny (a deflection and a slope per node), got " + std::to_string(ny);

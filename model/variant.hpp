@@ -12,6 +12,10 @@
 
 namespace hubbeam {
 
+/// The largest DOF count (each of nx and ny) a method supports, and why (README "Scene files").
+int max_dof(Method m);
+std::string max_dof_reason(Method m);
+
 /// Model order of docs/model.md section 3.
 enum class Order { zero, first, full };
 /// Prescribed hub rotation theta(t) (no hub equation) or applied hub torque tau(t) (theta is a coordinate).

@@ -33,7 +33,7 @@ constexpr double slow_call_seconds = 0.010;
 constexpr int capped_samples = 3;
 // Upper bound on DOF counts: beyond it one assembled finite-difference Jacobian takes seconds, and a typo
 // (--ny 400) would look like a hang.
-constexpr int max_dof = 128;
+constexpr int max_grid_dof = 128;
 
 // Every timed result ends up here, so the compiler must make every call (the outputs are read).
 volatile double sink = 0.0;
@@ -242,10 +242,10 @@ void write_csv_row(std::ostream& csv, const KernelBenchRow& r)
 KernelBenchOptions parse_kernel_options(const KernelArgs& args)
 {
     KernelBenchOptions o;
-    const std::string dofs = "from 1 to " + std::to_string(max_dof);
+    const std::string dofs = "from 1 to " + std::to_string(max_grid_dof);
     for (const std::string& s : split_list(args.ny)) {
         int v = 0;
-        if (!parse_int(s, 1, max_dof, v)) bad("--ny", "a comma-separated list of integers " + dofs, s);
+        if (!parse_int(s, 1, max_grid_dof, v)) bad("--ny", "a comma-separated list of integers " + dofs, s);
         add_unique(o.ny, v);
     }
     for (const std::string& s : split_list(args.methods)) {
@@ -272,8 +272,8 @@ KernelBenchOptions parse_kernel_options(const KernelArgs& args)
             int v = 0;
             if (s == "ny")
                 v = nx_equal_ny;
-            else if (!parse_int(s, 0, max_dof, v))
-                bad("--nx", "a comma-separated list of integers from 0 to " + std::to_string(max_dof) + " or ny", s);
+            else if (!parse_int(s, 0, max_grid_dof, v))
+                bad("--nx", "a comma-separated list of integers from 0 to " + std::to_string(max_grid_dof) + " or ny", s);
             add_unique(o.nx, v);
         }
     if (!parse_int(args.samples, 1, 1000, o.samples)) bad("--samples", "an integer from 1 to 1000", args.samples);

@@ -432,6 +432,13 @@ void validate(const Scene& s)
     if (!(s.output.dt_out > 0.0) || !(s.output.dt_out <= s.output.t_end))
         fail(s.path, "output.dt_out", expected("output.dt_out"),
              shortest(s.output.dt_out) + " with t_end = " + shortest(s.output.t_end));
+    // A bound on the rows, checked before anything runs: beyond it the CSV would be gigabytes and the row
+    // clock's integer arithmetic would overflow.
+    if (s.output.t_end / s.output.dt_out > static_cast<double>(max_output_rows))
+        fail(s.path, "output.dt_out",
+             "at most " + std::to_string(max_output_rows) + " rows (output.t_end / output.dt_out)",
+             shortest(s.output.t_end / s.output.dt_out) + " rows (t_end = " + shortest(s.output.t_end) +
+                 ", dt_out = " + shortest(s.output.dt_out) + ")");
 }
 
 }  // namespace hubbeam

@@ -22,6 +22,9 @@ struct SolverOptions {
     Stepping stepping = Stepping::free;
 };
 
+/// The most rows a run may write (t_end / dt_out): 10^8 rows is about 20 GB of CSV.
+inline constexpr long max_output_rows = 100'000'000;
+
 struct OutputOptions {
     double t_end = 30.0;   // s
     double dt_out = 0.01;  // s; rows fall on exact multiples of dt_out
