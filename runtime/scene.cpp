@@ -7,8 +7,11 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cerrno>
 #include <climits>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -67,7 +70,7 @@ std::vector<SceneKey> make_scene_keys()
         {"model.source", "--source", K::word, one_of(words<ModelSource>())},
         {"model.axial", "--axial", K::word, one_of(words<Axial>())},
         {"solver.stepper", "--stepper", K::word, one_of(stepper_words())},
-        {"solver.rtol", "--rtol", K::number, "a number > 0 (relative tolerance)"},
+        {"solver.rtol", "--rtol", K::number, "a number in (0, 1) (relative tolerance)"},
         {"solver.atol", "--atol", K::number, "a number > 0 (absolute tolerance)"},
         {"solver.h0", "--h0", K::number, "a number > 0 (first trial step, s)"},
         {"solver.stepping", "--stepping", K::word, one_of(words<Stepping>())},
@@ -198,13 +201,18 @@ bool parse_enum(std::string_view w, E& e)
 std::string read_file(const std::string& path)
 {
     std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) throw SceneError::with_detail(path, "", "cannot open");
+    if (std::filesystem::is_directory(path, ec)) throw SceneError::with_detail(path, "", "cannot open: it is a directory");
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw SceneError::with_detail(path, "", "cannot open");
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (in.bad()) throw SceneError::with_detail(path, "", "cannot open");
-    return text.str();
+    if (!in) throw SceneError::with_detail(path, "", std::string("cannot open: ") + std::strerror(errno));
+    // Read at most one byte past the cap: a scene is a few kilobytes, and /dev/zero never ends.
+    std::string text(max_scene_bytes + 1, '\0');
+    in.read(text.data(), static_cast<std::streamsize>(text.size()));
+    if (in.bad()) throw SceneError::with_detail(path, "", std::string("cannot read: ") + std::strerror(errno));
+    text.resize(static_cast<std::size_t>(in.gcount()));
+    if (text.size() > max_scene_bytes)
+        throw SceneError::with_detail(path, "", "is larger than a scene file can be (" +
+                                                    std::to_string(max_scene_bytes / 1024) + " KB)");
+    return text;
 }
 
 toml::table parse_toml(const std::string& path)
@@ -264,7 +272,37 @@ void check_finite(const Scene& s, double v, const char* key)
 
 }  // namespace
 
+namespace {
+
+/// User text as it may be echoed on a terminal: control characters as \xNN (a scene value could hold escape
+/// sequences or newlines), and at most `cap` characters.
+std::string printable(std::string_view text, std::size_t cap)
+{
+    std::string out;
+    for (const char c : text) {
+        if (out.size() >= cap) return out + "...";
+        const auto u = static_cast<unsigned char>(c);
+        if (u < 0x20 || u == 0x7f) {
+            char hex[8];
+            std::snprintf(hex, sizeof hex, "\\x%02x", u);
+            out += hex;
+        } else {
+            out += c;
+        }
+    }
+    return out;
+}
+
+}  // namespace
+
 SceneError::SceneError(std::string file_, std::string key_, std::string expected_, std::string got_,
+                       std::string detail_)
+    : SceneError(Clean{}, printable(file_, 400), printable(key_, 80), std::move(expected_), printable(got_, 120),
+                 printable(detail_, 400))
+{
+}
+
+SceneError::SceneError(Clean, std::string file_, std::string key_, std::string expected_, std::string got_,
                        std::string detail_)
     : std::runtime_error(file_label(file_) + ": " + (key_.empty() ? "" : key_ + ": ") +
                          (detail_.empty() ? "expected " + expected_ + ", got " + got_ : detail_)),
@@ -425,6 +463,8 @@ void validate(const Scene& s)
     if (s.solver.stepper != automatic_stepper_word && step_type(s.solver.stepper) == nullptr)
         fail(s.path, "solver.stepper", expected("solver.stepper"), "\"" + s.solver.stepper + "\"");
     check_positive(s, s.solver.rtol, "solver.rtol");
+    if (!(s.solver.rtol < 1.0))  // a relative error of 100 % or more controls nothing
+        fail(s.path, "solver.rtol", "a number in (0, 1) (relative tolerance)", shortest(s.solver.rtol));
     check_positive(s, s.solver.atol, "solver.atol");
     check_positive(s, s.solver.h0, "solver.h0");
 

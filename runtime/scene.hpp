@@ -55,7 +55,12 @@ struct SceneError : std::runtime_error {
 
 private:
     SceneError(std::string file, std::string key, std::string expected, std::string got, std::string detail);
+    struct Clean {};  // the fields are printable already
+    SceneError(Clean, std::string file, std::string key, std::string expected, std::string got, std::string detail);
 };
+
+/// The largest scene file read (bytes).
+inline constexpr std::size_t max_scene_bytes = 1 << 20;
 
 /// A scene key: its dotted name, what it must hold, and the command-line option that sets it (or null).
 /// One table of these serves reading, validation, messages, the command line and its --help.
