@@ -168,8 +168,14 @@ RunSummary Simulation::run(const RowSink& sink, const StopRequest& stop)
     };
 
     sink(row_at(0.0, y.data()));
-    const OutputClock clock(scene_.output.dt_out);
-    const long rows = static_cast<long>(std::floor(scene_.output.t_end / scene_.output.dt_out * (1.0 + same_instant)));
+    const OutputClock grid(scene_.output.dt_out);
+    const double t_end = scene_.output.t_end;
+    const long grid_rows = static_cast<long>(std::floor(t_end / scene_.output.dt_out * (1.0 + same_instant)));
+    // Rows at multiples of dt_out, and a last one at t_end when dt_out does not divide it: a run that exits 0
+    // has reached t_end.
+    const bool last_off_grid = grid(grid_rows) < t_end * (1.0 - same_instant);
+    const long rows = grid_rows + (last_off_grid ? 1 : 0);
+    const auto clock = [&](long i) { return i > grid_rows ? t_end : grid(i); };
     const std::vector<double> breaks = breaks_before(motion, clock(rows));
     auto next_break = breaks.begin();
     // A row to the sink, or why the run must stop (the small-deformation model no longer holds).
