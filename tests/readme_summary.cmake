@@ -1,0 +1,21 @@
+# The summary README.md shows for `./setup.sh run` is what the program prints (its wall time and the CSV's path
+# aside). Run as cmake -DHUBBEAM=exe -DSRC=source-dir -DOUT=csv -P readme_summary.cmake.
+execute_process(COMMAND ${HUBBEAM} run cases/spinup_omega4.toml -o ${OUT} WORKING_DIRECTORY ${SRC}
+                RESULT_VARIABLE code OUTPUT_VARIABLE printed ERROR_VARIABLE err)
+if(NOT code EQUAL 0)
+  message(FATAL_ERROR "hubbeam run cases/spinup_omega4.toml exited ${code}: ${err}")
+endif()
+file(READ ${SRC}/README.md readme)
+string(REGEX MATCH "```\nscene       cases/spinup_omega4.toml[^`]*```" block "${readme}")
+if(NOT block)
+  message(FATAL_ERROR "README.md has no summary block starting 'scene       cases/spinup_omega4.toml'")
+endif()
+string(REGEX REPLACE "^```\n" "" block "${block}")
+string(REGEX REPLACE "```$" "" block "${block}")
+foreach(text block printed)
+  string(REGEX REPLACE "wall time   [^\n]*" "wall time   (varies)" ${text} "${${text}}")
+  string(REGEX REPLACE "(rows every [^ ]+ s) in [^\n]*" "\\1 in FILE" ${text} "${${text}}")
+endforeach()
+if(NOT block STREQUAL printed)
+  message(FATAL_ERROR "README.md's example summary differs from what the program prints.\nREADME:\n${block}\nprinted:\n${printed}")
+endif()
