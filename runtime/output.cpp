@@ -211,6 +211,12 @@ std::string format_summary(const RunSummary& r, const Scene& scene)
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.6g", r.max_abs_tip_uy);
     out << "max |tip_uy| " << buf << " m\n";
+    if (r.vibration_energy > 0.0) {
+        char line[160];
+        std::snprintf(line, sizeof line, "%.2g J after t = %g s, %.1g of the vibration energy", r.jacobi_drift,
+                      r.t_steady, r.jacobi_drift / r.vibration_energy);
+        out << "invariant   Jacobi integral drift " << line << "\n";
+    }
     out << "steps       " << r.steps << "\n";
     out << "RHS evals   " << r.rhs_evals << "\n";
     std::snprintf(buf, sizeof buf, "%.3f", r.wall_seconds);

@@ -150,7 +150,23 @@ RunSummary Simulation::run(const RowSink& sink, const StopRequest& stop)
         summary.max_abs_tip_uy = std::max(summary.max_abs_tip_uy, std::abs(r.tip_uy));
         return r;
     };
-    auto finish = [&](const std::string& failure) {
+    // The invariant monitor: once the drive is steady (after its last breakpoint) the Jacobi integral is constant
+    // (docs/model.md section 7); its drift against the vibration energy (the largest U since) says whether the
+    // rows can be trusted.
+    const std::vector<double> all_breaks = motion.breakpoints();
+    summary.t_steady = all_breaks.empty() ? 0.0 : *std::max_element(all_breaks.begin(), all_breaks.end());
+    double jacobi0 = 0.0;
+    auto finish = [&](std::string failure) {
+        if (failure.empty() && summary.jacobi_drift > invariant_tolerance * summary.vibration_energy &&
+            summary.vibration_energy > 0.0) {
+            char text[320];
+            std::snprintf(text, sizeof text,
+                          "untrustworthy: the Jacobi integral drifted by %.3g J after the drive ended at t = %g s, "
+                          "%.2g of the vibration energy (more than %g): the tolerance is too loose for the stepper",
+                          summary.jacobi_drift, summary.t_steady, summary.jacobi_drift / summary.vibration_energy,
+                          invariant_tolerance);
+            failure = text;
+        }
         summary.steps = steps + static_cast<long>(driver->e->count);
         summary.rhs_evals = system.evaluations();
         summary.jacobian_evals = system.jacobian_evaluations();
@@ -182,6 +198,11 @@ RunSummary Simulation::run(const RowSink& sink, const StopRequest& stop)
     auto emit = [&](double ti, const double* state) -> std::string {
         const Row r = row_at(ti, state);
         sink(r);
+        if (ti >= summary.t_steady) {
+            if (summary.vibration_energy < 0.0) jacobi0 = r.jacobi, summary.vibration_energy = 0.0;
+            summary.jacobi_drift = std::max(summary.jacobi_drift, std::abs(r.jacobi - jacobi0));
+            summary.vibration_energy = std::max(summary.vibration_energy, r.potential);
+        }
         if (!std::isfinite(r.tip_uy) || std::abs(r.tip_uy) > scene_.parameters.L)
             return "unstable: tip deflection " + std::to_string(r.tip_uy) + " m exceeds the beam length" + at_time(ti) +
                    "; the small-deformation model no longer holds";

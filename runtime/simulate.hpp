@@ -24,6 +24,10 @@ inline const char* row_header()
     return "t,theta,theta_dot,tip_uy,tip_ux1,tip_ux,kinetic,potential,momentum,jacobi";
 }
 
+/// A run whose Jacobi integral drifts by more than this fraction of the vibration energy once the drive is steady
+/// is reported as untrustworthy (exit 1): correct runs drift by 1e-8 of it, runs at absurd tolerances by 100 %.
+inline constexpr double invariant_tolerance = 1e-2;
+
 struct RunSummary {
     std::string variant;  // VariantKey::name()
     std::string source;   // "generated" or "assembled", then where from ("generated, cached")
@@ -34,6 +38,11 @@ struct RunSummary {
     std::string failure;  // why the run stopped early (empty if completed)
     double t_reached = 0.0;
     double max_abs_tip_uy = 0.0;
+    // The invariant monitor (after t_steady, the drive's last breakpoint): the Jacobi integral's largest change
+    // and the largest strain energy U; vibration_energy < 0 when no row came after t_steady.
+    double t_steady = 0.0;
+    double jacobi_drift = 0.0;
+    double vibration_energy = -1.0;
     long steps = 0;
     long rhs_evals = 0;
     long jacobian_evals = 0;
