@@ -10,6 +10,7 @@
 // Exit codes: 0 success; 1 the simulation stopped early (rows so far kept); 2 bad input (nothing computed);
 // 130 / 143 interrupted by SIGINT / SIGTERM (rows so far kept).
 #include <CLI/CLI.hpp>
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <exception>
@@ -120,6 +121,45 @@ std::string message_for(const SceneError& e, const Overrides& overrides)
     return e.what();
 }
 
+/// A long run's progress on a terminal: after the first second, at most twice a second, one line on standard
+/// error rewritten in place (simulated time, rate, time left, and a faster stepper if there is one); erased at the
+/// end.
+class Progress {
+public:
+    Progress(double t_end, std::string hint)
+        : t_end_(t_end), hint_(std::move(hint)), enabled_(::isatty(STDERR_FILENO) != 0),
+          start_(std::chrono::steady_clock::now()), last_(start_)
+    {
+    }
+    ~Progress()
+    {
+        if (shown_) std::fputs("\r\033[K", stderr);
+    }
+    Progress(const Progress&) = delete;
+    Progress& operator=(const Progress&) = delete;
+
+    void row(double t)
+    {
+        if (!enabled_) return;
+        const auto now = std::chrono::steady_clock::now();
+        const double elapsed = std::chrono::duration<double>(now - start_).count();
+        if (elapsed < 1.0 || std::chrono::duration<double>(now - last_).count() < 0.5 || t <= 0.0) return;
+        last_ = now;
+        const double rate = t / elapsed;
+        std::fprintf(stderr, "\rhubbeam: t = %.4g of %.4g s (%.0f %%), %.3g s simulated per s, about %.0f s left%s%s\033[K",
+                     t, t_end_, 100.0 * t / t_end_, rate, (t_end_ - t) / rate, hint_.empty() ? "" : "; ",
+                     hint_.c_str());
+        std::fflush(stderr);
+        shown_ = true;
+    }
+
+private:
+    double t_end_;
+    std::string hint_;
+    bool enabled_, shown_ = false;
+    std::chrono::steady_clock::time_point start_, last_;
+};
+
 /// hubbeam run: returns the exit code.
 int run(const CLI::App& sub, const RunOptions& o)
 {
@@ -163,7 +203,12 @@ int run(const CLI::App& sub, const RunOptions& o)
         if (!csv->ok()) return "the output could not be written";  // no use computing rows that cannot be kept
         return nullptr;
     };
-    const RunSummary summary = simulation->run(csv->sink(), stop);
+    RunSummary summary;
+    {
+        Progress progress(scene.output.t_end, ::isatty(STDERR_FILENO) ? simulation->faster_stepper_hint() : "");
+        CsvWriter& writer = *csv;
+        summary = simulation->run([&](const Row& r) { writer.write(r); progress.row(r.t); }, stop);
+    }
     csv->finish();
     std::cout << format_summary(summary, scene);
     if (!csv->ok()) {

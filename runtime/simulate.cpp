@@ -108,6 +108,14 @@ Simulation::Simulation(const Scene& scene, const std::function<void(const std::s
 
 Simulation::~Simulation() = default;
 
+std::string Simulation::faster_stepper_hint() const
+{
+    if (!stepper_why_.empty()) return {};  // chosen automatically already
+    const StepperChoice choice = automatic_stepper(*model_, scene_.axial);
+    if (choice.stepper == stepper_) return {};
+    return "--stepper " + choice.stepper + " suits this scene (" + choice.why.substr(choice.why.find(' ') + 1) + ")";
+}
+
 RunSummary Simulation::run(const RowSink& sink, const StopRequest& stop)
 {
     const auto start = std::chrono::steady_clock::now();

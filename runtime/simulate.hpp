@@ -68,6 +68,9 @@ public:
     Simulation& operator=(const Simulation&) = delete;
 
     const Model& model() const { return *model_; }
+    /// For a long run's progress line: "--stepper X is faster here (why)" when the scene names a stepper other
+    /// than the one its stiffness calls for; empty otherwise.
+    std::string faster_stepper_hint() const;
 
     /// Integrates from rest; every row reaches sink before the next step is taken, so a failed run keeps all
     /// rows up to the failure. Before each step to the next row it asks stop (if given), so an interrupted

@@ -5,6 +5,8 @@
 #include <numbers>
 
 #include "make_model.hpp"
+#include "scene.hpp"
+#include "simulate.hpp"
 #include "stiffness.hpp"
 
 using namespace hubbeam;
@@ -50,4 +52,17 @@ TEST_CASE("the automatic stepper follows the stiffness and the mass matrix", "[s
     CHECK(automatic_stepper(*make_model(amm_key(0, 4, Drive::torque), p), Axial::dynamic).stepper == "rk8pd");
     const StepperChoice stiff = automatic_stepper(*make_model(amm_key(4, 4, Drive::prescribed), p), Axial::dynamic);
     CHECK(stiff.why.find("stiff, highest frequency 6862 rad/s") != std::string::npos);
+}
+
+TEST_CASE("a long run's progress line names a faster stepper only when the scene chose a slower one", "[stiffness]")
+{
+    Scene s;
+    s.path = "test";
+    s.variant = amm_key(4, 4, Drive::prescribed);
+    s.solver.stepper = "msadams";
+    CHECK(Simulation(s).faster_stepper_hint().find("--stepper rk4imp suits this scene (stiff") == 0);
+    s.solver.stepper = "rk4imp";
+    CHECK(Simulation(s).faster_stepper_hint().empty());
+    s.solver.stepper = "auto";
+    CHECK(Simulation(s).faster_stepper_hint().empty());
 }
