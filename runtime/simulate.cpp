@@ -12,6 +12,7 @@
 
 #include "integrate.hpp"
 #include "make_model.hpp"
+#include "shortest.hpp"
 #include "stiffness.hpp"
 
 namespace hubbeam {
@@ -70,15 +71,23 @@ std::string at_time(double t)
     return s.str();
 }
 
-/// The message for a failed driver step, or empty for success.
-std::string step_failure(int status, double t)
+/// The message for a failed step, or empty for success; hint names a stepper that suits the scene, if any.
+std::string step_failure(int status, double t, const std::string& hint)
 {
     if (status == GSL_SUCCESS) return {};
     if (status == GSL_EBADFUNC)
         return "unstable: the equations became singular or non-finite" + at_time(t) +
                " (mass matrix not positive definite or accelerations overflowed)";
-    return std::string("integration failed") + at_time(t) + ": " + gsl_strerror(status) +
-           " (try a smaller rtol/atol or a stiff stepper such as msbdf)";
+    // GSL's own words ("failure", "no progress") say little: what they mean for a step.
+    std::string what;
+    switch (status) {
+    case GSL_FAILURE: what = "the stepper could not take a step that meets the tolerance"; break;
+    case GSL_ENOPROG: what = "the step size fell to round-off without meeting the tolerance"; break;
+    case GSL_EMAXITER: what = "the implicit stepper's iteration did not converge"; break;
+    default: what = gsl_strerror(status); break;
+    }
+    return "integration failed" + at_time(t) + ": " + what + " (GSL status " + std::to_string(status) + ")" +
+           (hint.empty() ? "; try a looser rtol/atol" : "; " + hint);
 }
 
 /// The drive's breakpoints inside (0, t_last), in order.
@@ -184,7 +193,15 @@ RunSummary Simulation::run(const RowSink& sink, const StopRequest& stop)
         summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         return summary;
     };
-    auto advance = [&](double t1) { return step_failure(gsl_odeiv2_driver_apply(driver.get(), &t, t1, y.data()), t); };
+    const auto failure_hint = [&]() -> std::string {
+        if (scene_.solver.rtol < 1e-14)  // about 50 ulps: no step meets a relative error below that
+            return "rtol " + shortest(scene_.solver.rtol) + " is below what double precision can meet: use 1e-13 or more";
+        return faster_stepper_hint();
+    };
+    auto advance = [&](double t1) {
+        const int status = gsl_odeiv2_driver_apply(driver.get(), &t, t1, y.data());
+        return step_failure(status, t, status == GSL_SUCCESS || status == GSL_EBADFUNC ? "" : failure_hint());
+    };
     // At a breakpoint the drive's derivatives jump: the step history is discarded there.
     auto restart = [&] {
         steps += static_cast<long>(driver->e->count);
@@ -247,7 +264,10 @@ RunSummary Simulation::run(const RowSink& sink, const StopRequest& stop)
             h = std::min(h, h_max);
             const int status =
                 gsl_odeiv2_evolve_apply(driver->e, driver->c, driver->s, system.gsl(), &t, target, &h, y.data());
-            if (std::string failure = step_failure(status, t); !failure.empty()) return finish(failure);
+            if (std::string failure =
+                    step_failure(status, t, status == GSL_SUCCESS || status == GSL_EBADFUNC ? "" : failure_hint());
+                !failure.empty())
+                return finish(failure);
             bool have_f1 = false;
             if (i <= rows && clock(i) < t * (1.0 - same_instant)) {  // rows inside the step: check the interpolant
                 if (!have_f0) system.rhs(t0, y0.data(), f0.data());
