@@ -172,6 +172,14 @@ int run(const CLI::App& sub, const RunOptions& o)
         return exit_bad_input;
     }
     if (scene.output.file.empty()) scene.output.file = std::filesystem::path(scene.path).stem().string() + ".csv";
+    // The CSV must not replace the scene it comes from (-o scene.toml, ./scene.toml, a link to it).
+    if (std::error_code ec; std::filesystem::equivalent(scene.output.file, scene.path, ec)) {
+        std::cerr << message_for(SceneError(scene.path, "output.file", "a file other than the scene itself",
+                                            "\"" + scene.output.file + "\""),
+                                 overrides)
+                  << "\n";
+        return exit_bad_input;
+    }
 
     // Everything that can refuse the run does so before the output file is touched.
     std::unique_ptr<Simulation> simulation;

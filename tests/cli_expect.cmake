@@ -6,6 +6,7 @@
 #   -DEMPTY_DIR=path                                          this folder holds no file afterwards (recursively)
 #   -DNONEMPTY=path|path...                                   these files exist and are not empty
 #   -DCSV_MATCH=regex                                         the CSV's text matches
+#   -DSAME_AS=a|b                                             file a has b's contents afterwards
 #   -DCSV=path -DHEADER=line -DMIN_ROWS=n -DLAST_T=t          the CSV's header, data rows and final time
 #   -DNO_FILE=path                                            this path must not exist afterwards
 #   -DKEEP_FILE=path                                          holds "old contents" before and must after
@@ -75,6 +76,16 @@ if(DEFINED CSV_MATCH)
   file(READ ${CSV} text)
   if(NOT text MATCHES "${CSV_MATCH}")
     message(FATAL_ERROR "hubbeam ${ARGS}: ${CSV} should match '${CSV_MATCH}', holds: ${text}")
+  endif()
+endif()
+if(DEFINED SAME_AS)
+  string(REPLACE "|" ";" pair "${SAME_AS}")
+  list(GET pair 0 a)
+  list(GET pair 1 b)
+  file(READ ${a} ta)
+  file(READ ${b} tb)
+  if(NOT ta STREQUAL tb)
+    message(FATAL_ERROR "hubbeam ${ARGS}: ${a} was changed")
   endif()
 endif()
 if(DEFINED NO_FILE AND EXISTS ${NO_FILE})
