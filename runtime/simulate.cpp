@@ -219,10 +219,22 @@ RunSummary Simulation::run(const RowSink& sink, const StopRequest& stop)
     const auto clock = [&](long i) { return i > grid_rows ? t_end : grid(i); };
     const std::vector<double> breaks = breaks_before(motion, clock(rows));
     auto next_break = breaks.begin();
+    // Known before the run: the spin above which this model's straight beam is unstable (infinite for orders
+    // first and full), so that passing it stops the run at once instead of after metres of deflection.
+    const double critical = critical_spin(model);
     // A row to the sink, or why the run must stop (the small-deformation model no longer holds).
     auto emit = [&](double ti, const double* state) -> std::string {
         const Row r = row_at(ti, state);
         sink(r);
+        if (std::abs(r.theta_dot) > critical) {
+            char text[300];
+            std::snprintf(text, sizeof text,
+                          "unstable: the hub rate %.4g rad/s has passed %.4g rad/s, above which the straight beam of "
+                          "this model is unstable (its effective stiffness loses definiteness; order zero: the first "
+                          "bending frequency) at t = %g s; order first or full stays stable",
+                          r.theta_dot, critical, ti);
+            return text;
+        }
         if (ti >= summary.t_steady) {
             if (summary.vibration_energy < 0.0) jacobi0 = r.jacobi, summary.vibration_energy = 0.0;
             summary.jacobi_drift = std::max(summary.jacobi_drift, std::abs(r.jacobi - jacobi0));

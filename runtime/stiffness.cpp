@@ -51,6 +51,53 @@ double highest_frequency(const Model& model, Axial axial)
     return std::sqrt(std::max(0.0, solver.eigenvalues().maxCoeff()));
 }
 
+namespace {
+
+/// Whether -dQ/dq at rest, spinning steadily at omega, is positive definite (the cyclic hub angle left out).
+bool stable_at(const Model& model, double omega)
+{
+    const int n = model.nq(), first = model.key().first_a();
+    HubInput u;
+    std::vector<double> q(static_cast<std::size_t>(n), 0.0), qd(q);
+    if (model.key().drive == Drive::torque) qd[0] = omega;
+    else u.theta_dot = omega;
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> dQdq(n, n), dQdqd(n, n),
+        dQdu(n, static_cast<Eigen::Index>(drive_value_count));
+    if (model.has_jacobian()) {
+        model.force_derivatives(u, q.data(), qd.data(), dQdq.data(), dQdqd.data(), dQdu.data());
+    } else {
+        std::vector<double> plus(static_cast<std::size_t>(n)), minus(plus);
+        for (int k = 0; k < n; ++k) {
+            const double h = 1e-6;
+            q[static_cast<std::size_t>(k)] = h;
+            model.forces(u, q.data(), qd.data(), plus.data());
+            q[static_cast<std::size_t>(k)] = -h;
+            model.forces(u, q.data(), qd.data(), minus.data());
+            q[static_cast<std::size_t>(k)] = 0.0;
+            for (int i = 0; i < n; ++i)
+                dQdq(i, k) = (plus[static_cast<std::size_t>(i)] - minus[static_cast<std::size_t>(i)]) / (2 * h);
+        }
+    }
+    const int m = n - first;
+    const Eigen::MatrixXd K = -dQdq.bottomRightCorner(m, m);
+    const Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (K + K.transpose()));
+    return llt.info() == Eigen::Success;
+}
+
+}  // namespace
+
+double critical_spin(const Model& model)
+{
+    double lo = 0.0, hi = 1000.0;
+    if (stable_at(model, hi)) return INFINITY;
+    if (!stable_at(model, lo)) return 0.0;
+    for (int i = 0; i < 60 && hi - lo > 1e-9 * hi; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (stable_at(model, mid) ? lo : hi) = mid;
+    }
+    return lo;
+}
+
 StepperChoice automatic_stepper(const Model& model, Axial axial)
 {
     const double omega = highest_frequency(model, axial);

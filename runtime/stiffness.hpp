@@ -31,4 +31,10 @@ struct StepperChoice {
 /// under torque).
 StepperChoice automatic_stepper(const Model& model, Axial axial);
 
+/// The lowest hub rate (rad/s, up to 1000) at which the equations linearized about the straight beam lose
+/// stability: the effective stiffness -dQ/dq at q = qd = 0, steady spin, stops being positive definite (the
+/// hub angle itself, cyclic, left out). The zero-order model's is its first bending frequency (docs/model.md
+/// section 7); the first and full orders stay stable: infinity.
+double critical_spin(const Model& model);
+
 }  // namespace hubbeam

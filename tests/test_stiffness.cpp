@@ -66,3 +66,21 @@ TEST_CASE("a long run's progress line names a faster stepper only when the scene
     s.solver.stepper = "auto";
     CHECK(Simulation(s).faster_stepper_hint().empty());
 }
+
+TEST_CASE("the critical spin is the first frequency that the centrifugal softening cancels", "[stiffness]")
+{
+    // docs/model.md section 7: order zero's straight beam is unstable above the first bending frequency; orders
+    // first and full keep the geometric stiffening, and only the axial mode (softened by theta_dot^2 u_x1^2)
+    // goes at the first axial frequency. AMM's bases are the exact modes, so the values are exact.
+    const Parameters p;
+    const double m = p.rho * p.S, EI = p.E * p.I, ES = p.E * p.S;
+    const double bending1 = std::pow(1.8751040687, 2) * std::sqrt(EI / (m * std::pow(p.L, 4)));
+    const double axial1 = std::numbers::pi / 2.0 * std::sqrt(ES / m) / p.L;
+    for (const Drive drive : {Drive::prescribed, Drive::torque}) {
+        VariantKey zero = amm_key(0, 4, drive);
+        zero.order = Order::zero;
+        CHECK(critical_spin(*make_model(zero, p)) == Approx(bending1).epsilon(1e-7));
+        CHECK(std::isinf(critical_spin(*make_model(amm_key(0, 4, drive), p))));
+        CHECK(critical_spin(*make_model(amm_key(4, 4, drive), p)) == Approx(axial1).epsilon(1e-7));
+    }
+}
