@@ -8,32 +8,45 @@
 
 namespace hubbeam {
 
+namespace {
+
+/// -dQ/dq at (u, q, qd): the model's derivative kernels, else central differences of Q (exact for the linear
+/// restoring forces about the straight beam, where it is used).
+Eigen::MatrixXd stiffness(const Model& model, const HubInput& u, std::vector<double> q, const std::vector<double>& qd)
+{
+    const int n = model.nq();
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> dQdq(n, n);
+    if (model.has_jacobian()) {
+        Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> dQdqd(n, n),
+            dQdu(n, static_cast<Eigen::Index>(drive_value_count));
+        model.force_derivatives(u, q.data(), qd.data(), dQdq.data(), dQdqd.data(), dQdu.data());
+    } else {
+        std::vector<double> plus(static_cast<std::size_t>(n)), minus(plus);
+        for (int k = 0; k < n; ++k) {
+            const double h = 1e-6, q0 = q[static_cast<std::size_t>(k)];
+            q[static_cast<std::size_t>(k)] = q0 + h;
+            model.forces(u, q.data(), qd.data(), plus.data());
+            q[static_cast<std::size_t>(k)] = q0 - h;
+            model.forces(u, q.data(), qd.data(), minus.data());
+            q[static_cast<std::size_t>(k)] = q0;
+            for (int i = 0; i < n; ++i)
+                dQdq(i, k) = (plus[static_cast<std::size_t>(i)] - minus[static_cast<std::size_t>(i)]) / (2 * h);
+        }
+    }
+    return -dQdq;
+}
+
+}  // namespace
+
 double highest_frequency(const Model& model, Axial axial)
 {
     const int n = model.nq();
     const VariantKey& key = model.key();
     const HubInput rest;
     const std::vector<double> zero(static_cast<std::size_t>(n), 0.0);
-    Eigen::MatrixXd M(n, n), K(n, n);
+    Eigen::MatrixXd M(n, n);
     model.mass(rest, zero.data(), M.data());  // symmetric, so row- or column-major alike
-    if (model.has_jacobian()) {
-        Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> dQdq(n, n), dQdqd(n, n),
-            dQdu(n, static_cast<Eigen::Index>(drive_value_count));
-        model.force_derivatives(rest, zero.data(), zero.data(), dQdq.data(), dQdqd.data(), dQdu.data());
-        K = -dQdq;
-    } else {
-        // Central differences of Q: exact for the linear restoring force of the beam at rest.
-        std::vector<double> q = zero, plus(static_cast<std::size_t>(n)), minus(plus);
-        for (int k = 0; k < n; ++k) {
-            const double h = 1e-6;
-            q[static_cast<std::size_t>(k)] = h;
-            model.forces(rest, q.data(), zero.data(), plus.data());
-            q[static_cast<std::size_t>(k)] = -h;
-            model.forces(rest, q.data(), zero.data(), minus.data());
-            q[static_cast<std::size_t>(k)] = 0.0;
-            for (int i = 0; i < n; ++i) K(i, k) = -(plus[static_cast<std::size_t>(i)] - minus[static_cast<std::size_t>(i)]) / (2 * h);
-        }
-    }
+    const Eigen::MatrixXd K = stiffness(model, rest, zero, zero);
     // The integrated coordinates only.
     std::vector<int> kept;
     for (int i = 0; i < n; ++i)
@@ -61,25 +74,8 @@ bool stable_at(const Model& model, double omega)
     std::vector<double> q(static_cast<std::size_t>(n), 0.0), qd(q);
     if (model.key().drive == Drive::torque) qd[0] = omega;
     else u.theta_dot = omega;
-    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> dQdq(n, n), dQdqd(n, n),
-        dQdu(n, static_cast<Eigen::Index>(drive_value_count));
-    if (model.has_jacobian()) {
-        model.force_derivatives(u, q.data(), qd.data(), dQdq.data(), dQdqd.data(), dQdu.data());
-    } else {
-        std::vector<double> plus(static_cast<std::size_t>(n)), minus(plus);
-        for (int k = 0; k < n; ++k) {
-            const double h = 1e-6;
-            q[static_cast<std::size_t>(k)] = h;
-            model.forces(u, q.data(), qd.data(), plus.data());
-            q[static_cast<std::size_t>(k)] = -h;
-            model.forces(u, q.data(), qd.data(), minus.data());
-            q[static_cast<std::size_t>(k)] = 0.0;
-            for (int i = 0; i < n; ++i)
-                dQdq(i, k) = (plus[static_cast<std::size_t>(i)] - minus[static_cast<std::size_t>(i)]) / (2 * h);
-        }
-    }
     const int m = n - first;
-    const Eigen::MatrixXd K = -dQdq.bottomRightCorner(m, m);
+    const Eigen::MatrixXd K = stiffness(model, u, q, qd).bottomRightCorner(m, m);
     const Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (K + K.transpose()));
     return llt.info() == Eigen::Success;
 }
