@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "bench.hpp"
+#include "stress.hpp"
 #include "generated_model.hpp"
 #include "integrate.hpp"
 #include "kernel_bench.hpp"
@@ -308,6 +309,19 @@ int bench(const std::string& scene_path, const BenchArgs& args)
     return exit_ok;
 }
 
+/// hubbeam stress: returns 0 when every case did what it must, 1 otherwise.
+int stress(const StressOptions& options)
+{
+    catch_stop_signals();
+    const StopRequest stop = []() -> const char* { return stop_signal != 0 ? interrupted : nullptr; };
+    const std::vector<StressRow> rows = run_stress(options, std::cout, stop);
+    int failed = 0;
+    for (const StressRow& r : rows) failed += r.pass ? 0 : 1;
+    std::cout << rows.size() << " cases, " << failed << " failed\n";
+    if (stop_signal != 0) return exit_signal_base + stop_signal;
+    return failed == 0 ? exit_ok : exit_stopped;
+}
+
 /// Declares the `kernels` options; all are taken as text and checked by parse_kernel_options, so that every bad
 /// value is reported as "--option: expected ..., got ...".
 void add_kernel_options(CLI::App& sub, KernelArgs& a)
@@ -365,6 +379,13 @@ int main(int argc, char** argv)
     bench_cmd->footer("Writes a CSV (README: Work-precision benchmark); exit code 2 for a bad option value or a grid "
                       "estimated at over an hour without --yes, 130/143 when interrupted (finished rows kept).");
     add_bench_options(*bench_cmd, bench_scene, bench_args);
+    StressOptions stress_options;
+    CLI::App* stress_cmd = app.add_subcommand(
+        "stress", "Stability stress suite: high spin, many DOFs, long runs, extreme beams (README: Stress suite)");
+    stress_cmd->add_flag("--long", stress_options.long_runs, "1000 s runs and every method's largest DOF count");
+    stress_cmd->add_flag("--quick", stress_options.quick, "Spin rates up to 20 rad/s only (what the tests run)");
+    stress_cmd->add_option("-o,--output", stress_options.output, "Also write the table as CSV")->type_name("FILE");
+    stress_cmd->footer("Exit code 0 when every case did what it must, 1 otherwise.");
     KernelArgs kernel_args;
     CLI::App* kernels_cmd = app.add_subcommand(
         "kernels", "Time the right-hand side and Jacobian per call, generated kernels against the assembled path");
@@ -384,6 +405,7 @@ int main(int argc, char** argv)
         if (variants_cmd->parsed()) return list_variants();
         if (kernels_cmd->parsed()) return kernels(kernel_args);
         if (bench_cmd->parsed()) return bench(bench_scene, bench_args);
+        if (stress_cmd->parsed()) return stress(stress_options);
     } catch (const std::exception& e) {
         std::cerr << "hubbeam: " << e.what() << "\n";
         return exit_stopped;
