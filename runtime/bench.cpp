@@ -84,15 +84,6 @@ Scene variant_scene(const Scene& base, const VariantKey& key, const std::string&
 
 std::string number(double x) { return x < 0.0 ? std::string() : shortest(x); }
 
-/// A CSV field: quoted when it holds a comma or a quote.
-std::string field(const std::string& text)
-{
-    if (text.find_first_of(",\"\n") == std::string::npos) return text;
-    std::string q = "\"";
-    for (char c : text) q += c == '"' ? std::string("\"\"") : std::string(1, c == '\n' ? ' ' : c);
-    return q + "\"";
-}
-
 std::string csv_row(const BenchRow& r)
 {
     std::ostringstream line;
@@ -100,7 +91,7 @@ std::string csv_row(const BenchRow& r)
          << r.stepper << "," << shortest(r.rtol) << "," << shortest(r.atol) << "," << number(r.time_error) << ","
          << number(r.disc_error) << "," << number(r.jacobi_drift) << "," << number(r.wall_median) << ","
          << number(r.wall_min) << "," << number(r.wall_max) << "," << r.repeats << "," << r.steps << "," << r.rhs_evals
-         << "," << r.jacobian_evals << "," << field(r.status);
+         << "," << r.jacobian_evals << "," << csv_field(r.status);
     return line.str();
 }
 

@@ -189,6 +189,14 @@ std::string csv_line(const Row& row)
     return std::string(line, format_row(line, row));
 }
 
+std::string csv_field(std::string_view text)
+{
+    if (text.find_first_of(",\"\n") == std::string_view::npos) return std::string(text);
+    std::string q = "\"";
+    for (const char c : text) q += c == '"' ? std::string("\"\"") : std::string(1, c == '\n' ? ' ' : c);
+    return q + "\"";
+}
+
 std::string format_summary(const RunSummary& r, const Scene& scene)
 {
     std::ostringstream out;

@@ -77,6 +77,10 @@ private:
     std::string error_;
 };
 
+/// A text field of a CSV line: as it is, or quoted (quotes doubled, newlines as spaces) when it holds a comma,
+/// a quote or a newline.
+std::string csv_field(std::string_view text);
+
 /// One CSV line of row (no newline), columns as in row_header(): the text CsvWriter writes for it.
 std::string csv_line(const Row& row);
 

@@ -70,13 +70,6 @@ void print(std::ostream& out, const StressRow& r)
     out << line << std::flush;
 }
 
-std::string csv_field(const std::string& text)
-{
-    if (text.find_first_of(",\"\n") == std::string::npos) return text;
-    std::string q = "\"";
-    for (char c : text) q += c == '"' ? std::string("\"\"") : std::string(1, c == '\n' ? ' ' : c);
-    return q + "\"";
-}
 
 /// cond(M) at rest (2-norm, from the eigenvalues of the symmetric M).
 double mass_condition(const Model& model)
