@@ -48,26 +48,36 @@ Collected collect(const Scene& scene, const StopRequest& stop)
     return c;
 }
 
+/// A point's repeated runs: the first run's rows and summary, and every run's wall time, sorted. Repeats stop at
+/// the first run that does not complete.
+struct Repeated {
+    Collected first;
+    std::vector<double> walls;
+    double median() const
+    {
+        const std::size_t n = walls.size();
+        return n % 2 == 1 ? walls[n / 2] : 0.5 * (walls[n / 2 - 1] + walls[n / 2]);
+    }
+};
+
+Repeated repeat(const Scene& s, int repeats, const StopRequest& stop)
+{
+    Repeated r;
+    for (int rep = 0; rep < repeats; ++rep) {
+        Collected c = collect(s, stop);
+        r.walls.push_back(c.summary.wall_seconds);
+        if (rep == 0) r.first = std::move(c);
+        if (!r.first.summary.completed) break;
+    }
+    std::sort(r.walls.begin(), r.walls.end());
+    return r;
+}
+
 double max_difference(const std::vector<Row>& a, const std::vector<Row>& b)
 {
     double d = 0.0;
     for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i) d = std::max(d, std::abs(a[i].tip_uy - b[i].tip_uy));
     return d;
-}
-
-/// The largest change of the Jacobi integral after the drive's last breakpoint (steady from there), or -1.
-double jacobi_drift(const std::vector<Row>& rows, const Motion& motion)
-{
-    const std::vector<double> breaks = motion.breakpoints();
-    if (breaks.empty()) return -1.0;
-    const double t_steady = *std::max_element(breaks.begin(), breaks.end());
-    double j0 = 0.0, drift = -1.0;
-    for (const Row& r : rows) {
-        if (r.t < t_steady) continue;
-        if (drift < 0.0) j0 = r.jacobi, drift = 0.0;
-        drift = std::max(drift, std::abs(r.jacobi - j0));
-    }
-    return drift;
 }
 
 Scene variant_scene(const Scene& base, const VariantKey& key, const std::string& stepper, double rtol, double atol,
@@ -248,21 +258,13 @@ std::vector<BenchRow> run_bench(const Scene& scene, const BenchOptions& o, std::
                 r.rtol = rtol;
                 r.atol = rtol / 100.0;
                 const Scene s = variant_scene(scene, k, stepper, r.rtol, r.atol, scene.solver.stepping);
-                std::vector<double> walls;
-                Collected first;
-                for (int rep = 0; rep < o.repeats; ++rep) {
-                    Collected c = collect(s, stop);
-                    walls.push_back(c.summary.wall_seconds);
-                    if (rep == 0) first = std::move(c);
-                    if (!first.summary.completed) break;
-                }
+                const Repeated runs = repeat(s, o.repeats, stop);
+                const Collected& first = runs.first;
                 if (!first.summary.completed && first.summary.failure == "interrupted by signal") break;
-                std::sort(walls.begin(), walls.end());
-                r.repeats = static_cast<int>(walls.size());
-                const std::size_t n = walls.size();
-                r.wall_median = n % 2 == 1 ? walls[n / 2] : 0.5 * (walls[n / 2 - 1] + walls[n / 2]);
-                r.wall_min = walls.front();
-                r.wall_max = walls.back();
+                r.repeats = static_cast<int>(runs.walls.size());
+                r.wall_median = runs.median();
+                r.wall_min = runs.walls.front();
+                r.wall_max = runs.walls.back();
                 r.steps = first.summary.steps;
                 r.rhs_evals = first.summary.rhs_evals;
                 r.jacobian_evals = first.summary.jacobian_evals;
@@ -272,7 +274,8 @@ std::vector<BenchRow> run_bench(const Scene& scene, const BenchOptions& o, std::
                 if (r.status == "ok") {
                     r.time_error = max_difference(first.rows, same.rows);
                     r.disc_error = max_difference(first.rows, converged.rows);
-                    r.jacobi_drift = jacobi_drift(first.rows, scene.motion);
+                    // the run's own invariant monitor; -1 when no row came after the drive
+                    r.jacobi_drift = first.summary.vibration_energy < 0.0 ? -1.0 : first.summary.jacobi_drift;
                 } else {
                     r.time_error = r.disc_error = r.jacobi_drift = -1.0;  // a failed run is no data point
                 }
@@ -316,23 +319,12 @@ void run_table1(const Scene& scene, const BenchOptions& o, std::ostream& out, co
     if (!converged.summary.completed) throw std::runtime_error("the converged reference stopped: " + converged.summary.failure);
     double peak = 0.0;
     for (const Row& r : converged.rows) peak = std::max(peak, std::abs(r.tip_uy));
-    const std::vector<double> breaks = scene.motion.breakpoints();
-    const double t_steady = breaks.empty() ? 0.0 : *std::max_element(breaks.begin(), breaks.end());
+    const double t_steady = converged.summary.t_steady;  // the drive's last breakpoint
     struct Ours {
         double time_auto, time_msadams, error, amplitude, frequency;
         std::string stepper;
     };
     std::vector<Ours> ours;
-    const auto median_time = [&](const Scene& s, Collected& first) {
-        std::vector<double> walls;
-        for (int rep = 0; rep < o.repeats; ++rep) {
-            Collected c = collect(s, stop);
-            walls.push_back(c.summary.wall_seconds);
-            if (rep == 0) first = std::move(c);
-        }
-        std::sort(walls.begin(), walls.end());
-        return walls[walls.size() / 2];
-    };
     for (const Paper& p : paper) {
         VariantKey k = scene.variant;
         k.method = p.method;
@@ -342,14 +334,14 @@ void run_table1(const Scene& scene, const BenchOptions& o, std::ostream& out, co
         automatic.variant = k;
         Scene adams = automatic;
         adams.solver.stepper = "msadams";
-        Collected a, m;
+        const Repeated a = repeat(automatic, o.repeats, stop), m = repeat(adams, o.repeats, stop);
         Ours r;
-        r.time_auto = median_time(automatic, a);
-        r.time_msadams = median_time(adams, m);
-        if (!a.summary.completed) throw std::runtime_error(k.name() + " stopped: " + a.summary.failure);
-        r.stepper = a.summary.stepper;
-        r.error = 100.0 * max_difference(a.rows, converged.rows) / peak;
-        const Oscillation osc = steady_oscillation(a.rows, t_steady);
+        r.time_auto = a.median();
+        r.time_msadams = m.median();
+        if (!a.first.summary.completed) throw std::runtime_error(k.name() + " stopped: " + a.first.summary.failure);
+        r.stepper = a.first.summary.stepper;
+        r.error = 100.0 * max_difference(a.first.rows, converged.rows) / peak;
+        const Oscillation osc = steady_oscillation(a.first.rows, t_steady);
         r.amplitude = osc.amplitude;
         r.frequency = osc.frequency;
         ours.push_back(r);
