@@ -60,6 +60,16 @@ int degree(const std::vector<int>& e)
     return d;
 }
 
+/// The index of a monomial's last variable (of nonzero exponent): its prefix, in the order monomials are built,
+/// has one factor of it fewer. The monomial must not be constant.
+std::size_t last_variable(const std::vector<int>& e)
+{
+    std::size_t last = e.size();
+    while (e[--last] == 0) {
+    }
+    return last;
+}
+
 /// Sorts monomials into reading order: by degree, then in the order of the variables (A1 before A2 before B1);
 /// each degree is computed once.
 void sort_reading(std::vector<std::vector<int>>& monomials)
@@ -138,9 +148,7 @@ MonomialPlan plan_monomials(const std::vector<Output>& outputs, const std::vecto
             if (degree(entry.first) > 0) monomials.insert(entry.first);
     auto ensure = [&](auto&& self, const std::vector<int>& e) -> std::string {
         if (auto it = plan.names.find(e); it != plan.names.end()) return it->second;
-        std::size_t last = e.size();
-        while (e[--last] == 0) {
-        }
+        const std::size_t last = last_variable(e);
         if (degree(e) == 1) {
             plan.variable_used[last] = true;
             return plan.names[e] = vnames[last];
@@ -303,19 +311,14 @@ std::string print_tables(const std::string& prefix, const KernelSpec& k, const S
         for (const auto& entry : o)
             for (std::vector<int> e = entry.first; degree(e) > 0;) {
                 if (!all.insert(e).second) break;
-                std::size_t last = e.size();
-                while (e[--last] == 0) {
-                }
-                --e[last];
+                --e[last_variable(e)];
             }
     std::vector<std::vector<int>> ordered(all.begin(), all.end());
     sort_reading(ordered);
     std::map<std::vector<int>, int> index{{std::vector<int>(sig.state_inputs.size()), 0}};
     std::ostringstream chain;
     for (const std::vector<int>& e : ordered) {
-        std::size_t last = e.size();
-        while (e[--last] == 0) {
-        }
+        const std::size_t last = last_variable(e);
         std::vector<int> rest = e;
         --rest[last];
         chain << "        {" << index.at(rest) << ", " << last << "},\n";

@@ -75,15 +75,10 @@ VariantKey VariantKey::parse(std::string_view name)
         return std::invalid_argument("not a variant name: '" + std::string(name) + "': " + what +
                                      " (expected METHOD_nxN_nyN_DRIVE_ORDER[_open], e.g. bim_nx4_ny4_torque_first)");
     };
-    const auto one_of = [](const std::vector<std::string>& ws) {
-        std::string s;
-        for (const std::string& w : ws) s += (s.empty() ? "" : ", ") + w;
-        return s;
-    };
     if (parts.size() < 5 || parts.size() > 6) throw bad(std::to_string(parts.size()) + " parts separated by '_'");
-    if (!hubbeam::parse(parts[0], k.method)) throw bad("method '" + parts[0] + "' is not one of " + one_of(words<Method>()));
+    if (!hubbeam::parse(parts[0], k.method)) throw bad("method '" + parts[0] + "' is not one of " + joined(words<Method>()));
     if (!hubbeam::parse(parts[3], k.drive)) throw bad("drive '" + parts[3] + "' is not one of prescribed, torque");
-    if (!hubbeam::parse(parts[4], k.order)) throw bad("order '" + parts[4] + "' is not one of " + one_of(words<Order>()));
+    if (!hubbeam::parse(parts[4], k.order)) throw bad("order '" + parts[4] + "' is not one of " + joined(words<Order>()));
     const auto count = [&](const std::string& part, const char* stem, int& n) {
         if (part.size() < 3 || part.rfind(stem, 0) != 0 || part.find_first_not_of("0123456789", 2) != std::string::npos ||
             part.size() > 2 + 9)
