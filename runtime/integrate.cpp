@@ -285,11 +285,17 @@ int FirstOrderSystem::rhs(double t, const double* y, double* dydt)
             }
         }
     } else {
-        if (!w.solver->prepare(u, q)) return GSL_EBADFUNC;
+        if (!w.solver->prepare(u, q)) return indefinite_mass_at(q);
         model_.forces(u, q, qd, w.qdd.data());
         w.solver->solve(w.qdd.data());
     }
     return store_derivative(qd, w.qdd.data(), n_, dydt);
+}
+
+int FirstOrderSystem::indefinite_mass_at(const double* q)
+{
+    indefinite_mass_tip_ = model_.tip(q).uy;
+    return GSL_EBADFUNC;
 }
 
 int FirstOrderSystem::jacobian(double t, const double* y, double* dfdy, double* dfdt)
@@ -374,7 +380,7 @@ int FirstOrderSystem::quasi_static_rhs(double t, const double* y, double* dydt)
         for (int i = 0; i < r; ++i)
             for (int j = 0; j < r; ++j) Mr(i, j) = M(kept_[static_cast<std::size_t>(i)], kept_[static_cast<std::size_t>(j)]);
         w.reduced_llt.compute(Mr);
-        if (w.reduced_llt.info() != Eigen::Success) return GSL_EBADFUNC;
+        if (w.reduced_llt.info() != Eigen::Success) return indefinite_mass_at(w.q.data());
         w.reduced_factored = model_.mass_is_constant();
     }
     Eigen::VectorXd Qr(r);
@@ -392,7 +398,7 @@ int FirstOrderSystem::exact_jacobian(double t, const double* y, double* dfdy, do
     const HubInput u = drive_at(t);
     const double* q = y;
     const double* qd = y + n_;
-    if (!w.solver->prepare(u, q)) return GSL_EBADFUNC;
+    if (!w.solver->prepare(u, q)) return indefinite_mass_at(q);
     model_.forces(u, q, qd, w.qdd.data());
     w.solver->solve(w.qdd.data());
     model_.force_derivatives(u, q, qd, w.dQdq.data(), w.dQdqd.data(), w.dQdu.data());

@@ -83,6 +83,9 @@ public:
     gsl_odeiv2_system* gsl() { return &sys_; }
     /// How accelerations are computed, for the summary: folded M^-1, or which mass solver.
     std::string linear_algebra() const;
+    /// The tip deflection u_y(L) of the last state at which M was found not positive definite (NaN if none): a
+    /// failed step's cause, since GSL reports only that the function failed.
+    double indefinite_mass_tip() const { return indefinite_mass_tip_; }
 
 private:
     struct Work;
@@ -97,11 +100,14 @@ private:
     bool solve_axial(const HubInput& u, const double* y, double* q, double* qd);
     /// motion_.at(t), remembered for the last t.
     const HubInput& drive_at(double t);
+    /// Records q as a state where M is not positive definite; returns GSL_EBADFUNC.
+    int indefinite_mass_at(const double* q);
 
     double drive_t_ = std::numeric_limits<double>::quiet_NaN();
     HubInput drive_;
     long evaluations_ = 0;
     long jacobian_evaluations_ = 0;
+    double indefinite_mass_tip_ = std::numeric_limits<double>::quiet_NaN();
     std::unique_ptr<Work> work_;
     gsl_odeiv2_system sys_;
 };

@@ -74,6 +74,7 @@ std::vector<SceneKey> make_scene_keys()
         {"solver.atol", "--atol", K::number, "a number > 0 (absolute tolerance)"},
         {"solver.h0", "--h0", K::number, "a number > 0 (first trial step, s)"},
         {"solver.stepping", "--stepping", K::word, one_of(words<Stepping>())},
+        {"solver.max_steps", "--max-steps", K::number, "a whole number from 1 to 1e15 (step budget)"},
         {"output.t_end", "--t-end", K::number, "a number > 0 (end time, s)"},
         {"output.dt_out", "--dt-out", K::number, "a number > 0 and <= output.t_end (output interval, s)"},
         {"output.file", "-o,--output", K::text, "a file name"},
@@ -406,13 +407,18 @@ Scene load_scene(const std::string& path, const Overrides& overrides)
 
     // [solver]
     const Section solver(path, root, "solver");
-    solver.only({"stepper", "rtol", "atol", "h0", "stepping"});
+    solver.only({"stepper", "rtol", "atol", "h0", "stepping", "max_steps"});
     SolverOptions& so = scene.solver;
     so.stepper = solver.string("stepper").value_or(so.stepper);
     so.rtol = solver.number("rtol", so.rtol);
     so.atol = solver.number("atol", so.atol);
     so.h0 = solver.number("h0", so.h0);
     so.stepping = solver.word<Stepping>("stepping", parse_enum<Stepping>).value_or(so.stepping);
+    if (const auto budget = solver.number("max_steps")) {  // 1e7 reads better than 10000000: a float is accepted
+        if (!(*budget >= 1.0 && *budget <= 1e15 && *budget == std::floor(*budget)))
+            fail(path, "solver.max_steps", expected("solver.max_steps"), shortest(*budget));
+        so.max_steps = static_cast<long>(*budget);
+    }
 
     // [output]
     const Section output(path, root, "output");

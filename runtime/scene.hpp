@@ -20,6 +20,7 @@ struct SolverOptions {
     double atol = 1e-10;
     double h0 = 1e-4;  // first trial step (s)
     Stepping stepping = Stepping::free;
+    long max_steps = 10'000'000;  // a run that needs more steps stops with the reason its steps are short
 };
 
 /// The most rows a run may write (t_end / dt_out): 10^8 rows is about 20 GB of CSV.

@@ -71,13 +71,13 @@ std::string at_time(double t)
     return s.str();
 }
 
-/// The message for a failed step, or empty for success; hint names a stepper that suits the scene, if any.
+/// The message for a failed step, or empty for success. hint says what to do: for GSL_EBADFUNC the cause the
+/// system found, otherwise a stepper that suits the scene (or nothing).
 std::string step_failure(int status, double t, const std::string& hint)
 {
     if (status == GSL_SUCCESS) return {};
     if (status == GSL_EBADFUNC)
-        return "unstable: the equations became singular or non-finite" + at_time(t) +
-               " (mass matrix not positive definite or accelerations overflowed)";
+        return "unstable: the equations became singular or non-finite" + at_time(t) + " (" + hint + ")";
     // GSL's own words ("failure", "no progress") say little: what they mean for a step.
     std::string what;
     switch (status) {
@@ -198,9 +198,54 @@ RunSummary Simulation::run(const RowSink& sink, const StopRequest& stop)
             return "rtol " + shortest(scene_.solver.rtol) + " is below what double precision can meet: use 1e-13 or more";
         return faster_stepper_hint();
     };
-    auto advance = [&](double t1) {
-        const int status = gsl_odeiv2_driver_apply(driver.get(), &t, t1, y.data());
-        return step_failure(status, t, status == GSL_SUCCESS || status == GSL_EBADFUNC ? "" : failure_hint());
+    // Why the equations failed to evaluate: M lost definiteness (where, and what to do), or overflow.
+    const auto singular_cause = [&]() -> std::string {
+        const double tip = system.indefinite_mass_tip();
+        if (std::isnan(tip)) return "accelerations overflowed";
+        char text[400];
+        std::snprintf(text, sizeof text, "the mass matrix is not positive definite at a tip deflection of %.3g m, %.3g L",
+                      tip, tip / scene_.parameters.L);
+        std::string cause = text;
+        if (key.order == Order::first)
+            cause += ": order first truncates the kinetic energy for small deflections and its M can lose definiteness "
+                     "at large ones; --order full keeps M positive definite at any deflection";
+        else
+            cause += ": round-off in a badly conditioned mass matrix; fewer DOFs or another method";
+        return cause;
+    };
+    const auto why_failed = [&](int status) -> std::string {
+        if (status == GSL_SUCCESS) return {};
+        return step_failure(status, t, status == GSL_EBADFUNC ? singular_cause() : failure_hint());
+    };
+    auto advance = [&](double t1) { return why_failed(gsl_odeiv2_driver_apply(driver.get(), &t, t1, y.data())); };
+    // The step budget: a run that needs more than solver.max_steps steps stops, early when its pace so far projects
+    // past the budget (checked from a twentieth of it on), with the reason its steps are short.
+    const long budget = scene_.solver.max_steps;
+    auto over_budget = [&]() -> std::string {
+        const long taken = steps + static_cast<long>(driver->e->count);
+        if (taken < budget / 20 || t <= 0.0) return {};
+        const double projected = static_cast<double>(taken) * scene_.output.t_end / t;
+        if (taken < budget && projected <= static_cast<double>(budget)) return {};
+        const double h = t / static_cast<double>(taken), omega = highest_frequency(model, scene_.axial);
+        char text[600];
+        std::snprintf(text, sizeof text,
+                      "too many steps: %ld by t = %g s, about %.3g to t_end, more than solver.max_steps = %ld; "
+                      "the mean step %.3g s is %.3g / omega_max (highest frequency %.4g rad/s): ",
+                      taken, t, projected, budget, h, h * omega, omega);
+        std::string why = text;
+        const std::string hint = faster_stepper_hint();
+        // Round-off in the accelerations, about eps cond(M) relative, above the tolerance shrinks the steps of
+        // every stepper; otherwise an explicit stepper on stiff equations is held by stability.
+        if (const double cond = mass_condition(model); cond * 0x1p-52 > scene_.solver.rtol) {
+            std::snprintf(text, sizeof text, "round-off bounds the steps (cond(M) %.3g at rest, times the machine "
+                          "epsilon above rtol): fewer DOFs, another method, or a looser rtol", cond);
+            why += text;
+        } else if (!hint.empty()) {
+            why += "the steps are bound by stability, not accuracy: " + hint;
+        } else {
+            why += "the tolerance and the scene's stiffness need these steps: raise --max-steps to go on, or loosen rtol";
+        }
+        return why;
     };
     // At a breakpoint the drive's derivatives jump: the step history is discarded there.
     auto restart = [&] {
@@ -276,10 +321,8 @@ RunSummary Simulation::run(const RowSink& sink, const StopRequest& stop)
             h = std::min(h, h_max);
             const int status =
                 gsl_odeiv2_evolve_apply(driver->e, driver->c, driver->s, system.gsl(), &t, target, &h, y.data());
-            if (std::string failure =
-                    step_failure(status, t, status == GSL_SUCCESS || status == GSL_EBADFUNC ? "" : failure_hint());
-                !failure.empty())
-                return finish(failure);
+            if (std::string failure = why_failed(status); !failure.empty()) return finish(failure);
+            if (std::string failure = over_budget(); !failure.empty()) return finish(failure);
             bool have_f1 = false;
             if (i <= rows && clock(i) < t * (1.0 - same_instant)) {  // rows inside the step: check the interpolant
                 if (!have_f0) system.rhs(t0, y0.data(), f0.data());
@@ -327,6 +370,7 @@ RunSummary Simulation::run(const RowSink& sink, const StopRequest& stop)
         }
         if (t < ti)
             if (std::string failure = advance(ti); !failure.empty()) return finish(failure);
+        if (std::string failure = over_budget(); !failure.empty()) return finish(failure);
         if (std::string failure = emit(ti, y.data()); !failure.empty()) return finish(failure);
     }
     return finish({});

@@ -115,4 +115,15 @@ StepperChoice automatic_stepper(const Model& model, Axial axial)
     return {"rk8pd", why};
 }
 
+double mass_condition(const Model& model)
+{
+    const int n = model.nq();
+    const std::vector<double> zero(static_cast<std::size_t>(n), 0.0);
+    Eigen::MatrixXd M(n, n);
+    model.mass(HubInput{}, zero.data(), M.data());
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(M, Eigen::EigenvaluesOnly);
+    const double lo = eig.eigenvalues().minCoeff(), hi = eig.eigenvalues().maxCoeff();
+    return lo > 0.0 ? hi / lo : INFINITY;
+}
+
 }  // namespace hubbeam

@@ -37,4 +37,8 @@ StepperChoice automatic_stepper(const Model& model, Axial axial);
 /// section 7); the first and full orders stay stable: infinity.
 double critical_spin(const Model& model);
 
+/// cond(M) at rest in the 2-norm (from M's eigenvalues; infinite when M is not positive definite): what round-off
+/// in the accelerations is amplified by.
+double mass_condition(const Model& model);
+
 }  // namespace hubbeam

@@ -1,7 +1,6 @@
 // hubbeam stress: the cases, what each must do, and the table.
 #include "stress.hpp"
 
-#include <Eigen/Dense>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -12,6 +11,7 @@
 #include "output.hpp"
 #include "scene.hpp"
 #include "shortest.hpp"
+#include "stiffness.hpp"
 
 namespace hubbeam {
 
@@ -68,19 +68,6 @@ void print(std::ostream& out, const StressRow& r)
                   number(r.wall, "%.3f").c_str(), r.status.substr(0, 90).c_str(), r.note.empty() ? "" : "; ",
                   r.note.c_str());
     out << line << std::flush;
-}
-
-
-/// cond(M) at rest (2-norm, from the eigenvalues of the symmetric M).
-double mass_condition(const Model& model)
-{
-    const int n = model.nq();
-    const std::vector<double> zero(static_cast<std::size_t>(n), 0.0);
-    Eigen::MatrixXd M(n, n);
-    model.mass(HubInput{}, zero.data(), M.data());
-    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(M, Eigen::EigenvaluesOnly);
-    const double lo = eig.eigenvalues().minCoeff(), hi = eig.eigenvalues().maxCoeff();
-    return lo > 0.0 ? hi / lo : INFINITY;
 }
 
 }  // namespace

@@ -170,6 +170,7 @@ TEST_CASE("optional scene keys take their documented defaults", "[scene]")
     CHECK(s.solver.rtol == 1e-8);
     CHECK(s.solver.atol == 1e-10);
     CHECK(s.solver.h0 == 1e-4);
+    CHECK(s.solver.max_steps == 10'000'000);
     CHECK(s.output.dt_out == 0.01);
     CHECK(s.output.file.empty());
 
@@ -187,6 +188,7 @@ stepper = "rk8pd"
 rtol = 1e-6
 atol = 1e-9
 h0 = 1e-3
+max_steps = 2e5
 )"));
     CHECK(t.parameters.a == 0.5);
     CHECK(t.parameters.J_oh == 12.0);
@@ -196,6 +198,7 @@ h0 = 1e-3
     CHECK(t.solver.rtol == 1e-6);
     CHECK(t.solver.atol == 1e-9);
     CHECK(t.solver.h0 == 1e-3);
+    CHECK(t.solver.max_steps == 200'000);
 
     const Scene u = load_scene(dir.write("open.toml", edited("method = \"amm\"\nny = 4",
                                                              "method = \"bsim\"\n"
@@ -254,6 +257,14 @@ TEST_CASE("bad scene input throws SceneError naming the file and the key", "[sce
     SECTION("non-positive second moment")
     {
         names(edited("second_moment = 8.2189e-9", "second_moment = -8.2189e-9"), "beam.second_moment", "> 0");
+    }
+    SECTION("step budget not a whole number")
+    {
+        names(good_scene + "[solver]\nmax_steps = 1.5\n", "solver.max_steps", "got 1.5");
+    }
+    SECTION("step budget below one")
+    {
+        names(good_scene + "[solver]\nmax_steps = 0\n", "solver.max_steps", "a whole number from 1");
     }
     SECTION("not a number")
     {
