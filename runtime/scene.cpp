@@ -210,15 +210,11 @@ std::string read_file(const std::string& path)
     in.read(text.data(), static_cast<std::streamsize>(text.size()));
     if (in.bad()) throw SceneError::with_detail(path, "", std::string("cannot read: ") + std::strerror(errno));
     text.resize(static_cast<std::size_t>(in.gcount()));
-    if (text.size() > max_scene_bytes)
-        throw SceneError::with_detail(path, "", "is larger than a scene file can be (" +
-                                                    std::to_string(max_scene_bytes / 1024) + " KB)");
     return text;
 }
 
-toml::table parse_toml(const std::string& path)
+toml::table parse_toml(std::string_view text, const std::string& path)
 {
-    const std::string text = read_file(path);
     try {
         return toml::parse(text, path);
     } catch (const toml::parse_error& e) {
@@ -339,7 +335,15 @@ const SceneKey& scene_key(const std::string& name)
 
 Scene load_scene(const std::string& path, const Overrides& overrides)
 {
-    toml::table root = parse_toml(path);
+    return parse_scene(read_file(path), path, overrides);
+}
+
+Scene parse_scene(std::string_view text, const std::string& path, const Overrides& overrides)
+{
+    if (text.size() > max_scene_bytes)
+        throw SceneError::with_detail(path, "", "is larger than a scene file can be (" +
+                                                    std::to_string(max_scene_bytes / 1024) + " KB)");
+    toml::table root = parse_toml(text, path);
     for (const auto& [name, text] : overrides) set_override(root, path, name, text);
 
     const std::vector<std::string> tables = {"beam", "hub", "motion", "discretization", "model", "solver", "output"};

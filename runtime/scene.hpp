@@ -4,6 +4,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -80,6 +81,8 @@ using Overrides = std::vector<std::pair<std::string, std::string>>;
 
 /// Reads a scene file, sets the overridden keys, then validates it; throws SceneError before any computation.
 Scene load_scene(const std::string& path, const Overrides& overrides = {});
+/// load_scene of a scene's text; path names it in messages.
+Scene parse_scene(std::string_view text, const std::string& path, const Overrides& overrides = {});
 /// Re-checks a scene changed in code (ranges, DOF counts, tolerances, times); throws SceneError naming the key.
 void validate(const Scene& scene);
 
