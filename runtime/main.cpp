@@ -5,6 +5,8 @@
 //   hubbeam run SCENE.toml [--method M] [--nx N] [--ny N] ... [-o FILE]   (options: scene_keys() in scene.cpp)
 //   hubbeam variants                                   (built in, cached, and how others run)
 //   hubbeam bench SCENE.toml [--methods LIST] [--ny LIST] [--steppers LIST] [--rtols LIST] [-o FILE] [--plot PREFIX]
+//   hubbeam modes SCENE.toml [--omega LIST] [--methods LIST] [--ny LIST] [--count N] [-o FILE]
+//   hubbeam linearize SCENE.toml --omega W [-o PREFIX]
 //   hubbeam kernels [--ny LIST] [--methods LIST] [--drives LIST] [--orders LIST] [--nx LIST] [--samples N] [-o FILE]
 //
 // Exit codes: 0 success; 1 the simulation stopped early (rows so far kept); 2 bad input (nothing computed);
@@ -27,6 +29,7 @@
 #include "generated_model.hpp"
 #include "integrate.hpp"
 #include "kernel_bench.hpp"
+#include "modes.hpp"
 #include "on_demand.hpp"
 #include "output.hpp"
 #include "scene.hpp"
@@ -309,6 +312,58 @@ int bench(const std::string& scene_path, const BenchArgs& args)
     return exit_ok;
 }
 
+/// The scene keys that `modes` and `linearize` take as options ("--nx", "--order", "--source"), as overrides.
+struct LinearOverrides {
+    std::string nx, order, source, method, ny;
+    Overrides overrides() const
+    {
+        Overrides o;
+        for (const auto& [key, value] : {std::pair{"discretization.nx", &nx}, std::pair{"model.order", &order},
+                                         std::pair{"model.source", &source}, std::pair{"discretization.method", &method},
+                                         std::pair{"discretization.ny", &ny}})
+            if (!value->empty()) o.emplace_back(key, *value);
+        return o;
+    }
+};
+
+void add_linear_overrides(CLI::App& sub, LinearOverrides& o, bool single_variant)
+{
+    sub.add_option("--nx", o.nx, "Axial coordinates Nx (default: the scene's)")->type_name("N");
+    sub.add_option("--order", o.order, "Model order zero, first or full (default: the scene's)")->type_name("O");
+    sub.add_option("--source", o.source, "auto, generated or assembled (default: the scene's)")->type_name("S");
+    if (single_variant) {
+        sub.add_option("--method", o.method, "Discretization method (default: the scene's)")->type_name("M");
+        sub.add_option("--ny", o.ny, "Transverse coordinates Ny (default: the scene's)")->type_name("N");
+    }
+}
+
+/// hubbeam modes and hubbeam linearize: load the scene with the overrides, then act; returns the exit code.
+template <class Act>
+int linear_command(const std::string& scene_path, const LinearOverrides& lo, const Act& act)
+{
+    const Overrides overrides = lo.overrides();
+    Scene scene;
+    try {
+        scene = load_scene(scene_path, overrides);
+    } catch (const SceneError& e) {
+        std::cerr << message_for(e, overrides) << "\n";
+        return exit_bad_input;
+    }
+    try {
+        act(scene);
+    } catch (const ModesOptionError& e) {
+        std::cerr << e.what() << "\n";
+        return exit_bad_input;
+    } catch (const std::invalid_argument& e) {
+        std::cerr << scene.path << ": " << e.what() << "\n";
+        return exit_bad_input;
+    } catch (const CompileError& e) {
+        std::cerr << "hubbeam: " << e.what() << "\n";
+        return exit_bad_input;
+    }
+    return exit_ok;
+}
+
 /// hubbeam stress: returns 0 when every case did what it must, 1 otherwise.
 int stress(const StressOptions& options)
 {
@@ -386,6 +441,32 @@ int main(int argc, char** argv)
     stress_cmd->add_flag("--quick", stress_options.quick, "Spin rates up to 20 rad/s only (what the tests run)");
     stress_cmd->add_option("-o,--output", stress_options.output, "Also write the table as CSV")->type_name("FILE");
     stress_cmd->footer("Exit code 0 when every case did what it must, 1 otherwise.");
+    std::string modes_scene;
+    ModesArgs modes_args;
+    LinearOverrides modes_overrides;
+    CLI::App* modes_cmd = app.add_subcommand(
+        "modes", "Natural frequencies about a steady spin, per method, Ny and spin rate (a Campbell table)");
+    modes_cmd->add_option("scene", modes_scene, "Scene file (TOML)")->required()->type_name("SCENE.toml");
+    modes_cmd->add_option("--omega", modes_args.omega,
+                          "Spin rates (rad/s): a comma-separated list, items may be ranges FIRST:LAST:STEP "
+                          "(default: 0 and the scene's steady rate)")->type_name("LIST");
+    modes_cmd->add_option("--methods", modes_args.methods, "Methods, comma-separated (default: the scene's)")->type_name("LIST");
+    modes_cmd->add_option("--ny", modes_args.ny, "Ny values, comma-separated (default: the scene's)")->type_name("LIST");
+    modes_cmd->add_option("--count", modes_args.count, "Bending modes printed per line group (default 4; the CSV has all)")
+        ->type_name("N");
+    modes_cmd->add_option("-o,--output", modes_args.output, "CSV of every mode (default: SCENE-modes.csv)")->type_name("FILE");
+    add_linear_overrides(*modes_cmd, modes_overrides, false);
+    modes_cmd->footer("README: Modes and linearized models. Exit code 2 for a bad option value.");
+    std::string linearize_scene, linearize_omega, linearize_prefix;
+    LinearOverrides linearize_overrides;
+    CLI::App* linearize_cmd = app.add_subcommand(
+        "linearize", "State-space matrices A, B, C, D about a steady spin (input hub torque or acceleration)");
+    linearize_cmd->add_option("scene", linearize_scene, "Scene file (TOML)")->required()->type_name("SCENE.toml");
+    linearize_cmd->add_option("--omega", linearize_omega, "Steady spin rate (rad/s), >= 0")->required()->type_name("W");
+    linearize_cmd->add_option("-o,--output", linearize_prefix, "Prefix of PREFIX-A.csv ... PREFIX-D.csv (default: SCENE-lin)")
+        ->type_name("PREFIX");
+    add_linear_overrides(*linearize_cmd, linearize_overrides, true);
+    linearize_cmd->footer("README: Modes and linearized models. Exit code 2 for a bad option value.");
     KernelArgs kernel_args;
     CLI::App* kernels_cmd = app.add_subcommand(
         "kernels", "Time the right-hand side and Jacobian per call, generated kernels against the assembled path");
@@ -406,6 +487,21 @@ int main(int argc, char** argv)
         if (kernels_cmd->parsed()) return kernels(kernel_args);
         if (bench_cmd->parsed()) return bench(bench_scene, bench_args);
         if (stress_cmd->parsed()) return stress(stress_options);
+        if (modes_cmd->parsed())
+            return linear_command(modes_scene, modes_overrides, [&](const Scene& scene) {
+                ModesOptions o = parse_modes_options(modes_args, scene);
+                if (o.output.empty()) o.output = std::filesystem::path(scene.path).stem().string() + "-modes.csv";
+                run_modes(scene, o, std::cout);
+            });
+        if (linearize_cmd->parsed())
+            return linear_command(linearize_scene, linearize_overrides, [&](const Scene& scene) {
+                const std::vector<double> omega = parse_spin_rates("--omega", linearize_omega);
+                if (omega.size() != 1) throw ModesOptionError("--omega: expected one spin rate >= 0, got " + linearize_omega);
+                const std::string prefix = linearize_prefix.empty()
+                                               ? std::filesystem::path(scene.path).stem().string() + "-lin"
+                                               : linearize_prefix;
+                run_linearize(scene, omega[0], prefix, std::cout);
+            });
     } catch (const std::exception& e) {
         std::cerr << "hubbeam: " << e.what() << "\n";
         return exit_stopped;

@@ -1,0 +1,223 @@
+// The linearized hub-beam about a steady spin: force Jacobians, the steady stretch, the state-space matrices and
+// the natural modes (docs/model.md section 10).
+#include "linearize.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace hubbeam {
+
+namespace {
+
+using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+/// Central-difference step for a value of size x: about the cube root of machine epsilon, relative.
+double step_for(double x) { return 6e-6 * std::max(1.0, std::abs(x)); }
+
+/// The one drive value of u that index names.
+double& drive_value(HubInput& u, int index)
+{
+    switch (static_cast<DriveValue>(index)) {
+    case DriveValue::tau: return u.tau;
+    case DriveValue::theta_dot: return u.theta_dot;
+    default: return u.theta_ddot;
+    }
+}
+
+/// M(q), symmetric, as an Eigen matrix.
+Eigen::MatrixXd mass_at(const Model& model, const HubInput& u, const std::vector<double>& q)
+{
+    const int n = model.nq();
+    RowMatrix M(n, n);
+    model.mass(u, q.data(), M.data());
+    return M;
+}
+
+}  // namespace
+
+ForceJacobians force_jacobians(const Model& model, const HubInput& u, const std::vector<double>& q,
+                               const std::vector<double>& qd)
+{
+    const int n = model.nq();
+    const auto drives = static_cast<Eigen::Index>(drive_value_count);
+    if (model.has_jacobian()) {
+        RowMatrix dq(n, n), dqd(n, n), du(n, drives);
+        model.force_derivatives(u, q.data(), qd.data(), dq.data(), dqd.data(), du.data());
+        return {dq, dqd, du};
+    }
+    ForceJacobians J{Eigen::MatrixXd(n, n), Eigen::MatrixXd(n, n), Eigen::MatrixXd(n, drives)};
+    std::vector<double> plus(static_cast<std::size_t>(n)), minus(plus);
+    // Column k of dQ/dz by central differences, z one of q, qd, u perturbed by set(+-h).
+    const auto column = [&](Eigen::MatrixXd& out, Eigen::Index k, double h, const auto& evaluate) {
+        evaluate(h, plus.data());
+        evaluate(-h, minus.data());
+        for (int i = 0; i < n; ++i)
+            out(i, k) = (plus[static_cast<std::size_t>(i)] - minus[static_cast<std::size_t>(i)]) / (2 * h);
+    };
+    for (int k = 0; k < n; ++k) {
+        const auto kk = static_cast<std::size_t>(k);
+        column(J.q, k, step_for(q[kk]), [&](double h, double* Q) {
+            std::vector<double> qh = q;
+            qh[kk] += h;
+            model.forces(u, qh.data(), qd.data(), Q);
+        });
+        column(J.qd, k, step_for(qd[kk]), [&](double h, double* Q) {
+            std::vector<double> qdh = qd;
+            qdh[kk] += h;
+            model.forces(u, q.data(), qdh.data(), Q);
+        });
+    }
+    for (int j = 0; j < static_cast<int>(drive_value_count); ++j) {
+        HubInput base = u;
+        column(J.u, j, step_for(drive_value(base, j)), [&](double h, double* Q) {
+            HubInput uh = u;
+            drive_value(uh, j) += h;
+            model.forces(uh, q.data(), qd.data(), Q);
+        });
+    }
+    return J;
+}
+
+SteadySpin steady_spin(const Model& model, double omega)
+{
+    const VariantKey& key = model.key();
+    const int n = model.nq(), a0 = key.first_a(), na = key.nx;
+    SteadySpin s;
+    s.omega = omega;
+    s.q.assign(static_cast<std::size_t>(n), 0.0);
+    s.qd = s.q;
+    if (key.drive == Drive::torque) s.qd[0] = omega;
+    else s.u.theta_dot = omega;
+    // Newton on the axial equations with B = 0 (the straight beam is an equilibrium by symmetry); one step for
+    // the linear stretch of orders zero and first, a few for full.
+    for (int iteration = 0; na > 0 && iteration < 50; ++iteration) {
+        std::vector<double> Q(static_cast<std::size_t>(n));
+        model.forces(s.u, s.q.data(), s.qd.data(), Q.data());
+        const Eigen::MatrixXd K = force_jacobians(model, s.u, s.q, s.qd).q.block(a0, a0, na, na);
+        const Eigen::VectorXd dA = K.partialPivLu().solve(-Eigen::Map<const Eigen::VectorXd>(Q.data() + a0, na));
+        double size = 0.0;
+        for (int i = 0; i < na; ++i) {
+            s.q[static_cast<std::size_t>(a0 + i)] += dA[i];
+            size = std::max(size, std::abs(s.q[static_cast<std::size_t>(a0 + i)]));
+        }
+        if (!dA.allFinite()) throw std::runtime_error("the steady axial stretch at this spin has no solution");
+        if (dA.cwiseAbs().maxCoeff() <= 1e-14 * std::max(size, 1e-300)) break;
+    }
+    return s;
+}
+
+StateSpace state_space(const Model& model, const SteadySpin& s)
+{
+    const VariantKey& key = model.key();
+    const int n = model.nq();
+    const bool torque = key.drive == Drive::torque;
+    const int f0 = key.first_a();  // the first flexible coordinate in q
+    const int nf = n - f0;         // flexible coordinates
+    const int m = nf + 1;          // theta and the flexible coordinates
+    const ForceJacobians J = force_jacobians(model, s.u, s.q, s.qd);
+    const Eigen::MatrixXd M = mass_at(model, s.u, s.q);
+    const auto llt = M.llt();
+    if (llt.info() != Eigen::Success) throw std::runtime_error("the mass matrix at the steady spin is not positive definite");
+    // M^-1 of Q's derivatives: qdd = M^-1 (Qq dq + Qqd dqd + Qu du) about the steady state (its qdd is 0, so
+    // dM/dq does not enter).
+    const Eigen::MatrixXd Aq = llt.solve(J.q), Aqd = llt.solve(J.qd), Au = llt.solve(J.u);
+    StateSpace ss;
+    ss.A = Eigen::MatrixXd::Zero(2 * m, 2 * m);
+    ss.B = Eigen::MatrixXd::Zero(2 * m, 1);
+    ss.A.topRightCorner(m, m).setIdentity();
+    // Row and column of state coordinate c (0 = theta, 1.. = flexible) among q's rows: the model's own index, or
+    // none for a prescribed hub (theta is not among q).
+    const auto model_index = [&](int c) { return torque ? c : c - 1; };
+    const int dv_theta_dot = static_cast<int>(DriveValue::theta_dot);
+    for (int r = 0; r < m; ++r) {
+        const int i = model_index(r);
+        if (i < 0) continue;  // theta_ddot of a prescribed hub is the input itself
+        for (int c = 0; c < m; ++c) {
+            const int k = model_index(c);
+            if (k >= 0) {
+                ss.A(m + r, c) = Aq(i, k);
+                ss.A(m + r, m + c) = Aqd(i, k);
+            } else {  // a prescribed hub's rate enters through the drive
+                ss.A(m + r, m + c) = Au(i, dv_theta_dot);
+            }
+        }
+        ss.B(m + r, 0) = torque ? Au(i, static_cast<int>(DriveValue::tau)) : Au(i, static_cast<int>(DriveValue::theta_ddot));
+    }
+    if (!torque) ss.B(m, 0) = 1.0;  // theta_ddot = v
+    ss.C = Eigen::MatrixXd::Zero(2, 2 * m);
+    // tip_uy is linear in B: its row from the model's tip at unit offsets (exact for a linear function).
+    for (int c = 1; c < m; ++c) {
+        std::vector<double> plus = s.q, minus = s.q;
+        plus[static_cast<std::size_t>(model_index(c))] += 1.0;
+        minus[static_cast<std::size_t>(model_index(c))] -= 1.0;
+        ss.C(0, c) = 0.5 * (model.tip(plus.data()).uy - model.tip(minus.data()).uy);
+    }
+    ss.C(1, 0) = 1.0;
+    ss.D = Eigen::MatrixXd::Zero(2, 1);
+    std::vector<std::string> names{"theta"};
+    for (int i = 1; i <= key.nx; ++i) names.push_back("A" + std::to_string(i));
+    for (int i = 1; i <= key.ny; ++i) names.push_back("B" + std::to_string(i));
+    ss.states = names;
+    for (const std::string& name : names) ss.states.push_back(name + "_dot");
+    ss.inputs = {torque ? "tau" : "theta_ddot"};
+    ss.outputs = {"tip_uy", "theta"};
+    return ss;
+}
+
+std::vector<NaturalMode> natural_modes(const Model& model, const SteadySpin& s)
+{
+    const VariantKey& key = model.key();
+    const bool torque = key.drive == Drive::torque;
+    const StateSpace ss = state_space(model, s);
+    const auto m = ss.A.rows() / 2;
+    // Keep the flexible coordinates and their rates, and a free hub's rate (its dynamics couple to the beam's).
+    std::vector<Eigen::Index> kept;
+    for (Eigen::Index c = 1; c < m; ++c) kept.push_back(c);
+    if (torque) kept.push_back(m);
+    for (Eigen::Index c = m + 1; c < 2 * m; ++c) kept.push_back(c);
+    const auto r = static_cast<Eigen::Index>(kept.size());
+    Eigen::MatrixXd A(r, r);
+    for (Eigen::Index i = 0; i < r; ++i)
+        for (Eigen::Index j = 0; j < r; ++j) A(i, j) = ss.A(kept[static_cast<std::size_t>(i)], kept[static_cast<std::size_t>(j)]);
+    const Eigen::EigenSolver<Eigen::MatrixXd> eig(A);
+    if (eig.info() != Eigen::Success) throw std::runtime_error("the eigenvalues of the linearized equations did not converge");
+    const Eigen::VectorXcd lambda = eig.eigenvalues();
+    const Eigen::MatrixXcd vectors = eig.eigenvectors();
+    // The free hub's conserved angular momentum: one zero eigenvalue, the smallest.
+    Eigen::Index momentum = -1;
+    if (torque) lambda.cwiseAbs().minCoeff(&momentum);
+    const Eigen::MatrixXd M = mass_at(model, s.u, s.q);
+    const int a0 = key.first_a(), b0 = key.first_b();
+    // Position rows of the kept states for the axial and transverse coordinates.
+    const auto position_row = [&](int model_index) { return static_cast<Eigen::Index>(model_index - a0); };
+    std::vector<NaturalMode> modes;
+    for (Eigen::Index k = 0; k < lambda.size(); ++k) {
+        const std::complex<double> l = lambda[k];
+        if (k == momentum) continue;
+        const double scale = std::max(1.0, std::abs(l));
+        const bool oscillating = l.imag() > 1e-9 * scale, divergent = std::abs(l.imag()) <= 1e-9 * scale && l.real() > 0.0;
+        if (!oscillating && !divergent) continue;  // the conjugate, or the stable twin of a divergent pair
+        // Kinetic energy share of the axial coordinates: v^H M_AA v against v^H M_BB v.
+        double axial = 0.0, transverse = 0.0;
+        for (int i = a0; i < b0; ++i)
+            for (int j = a0; j < b0; ++j)
+                axial += (std::conj(vectors(position_row(i), k)) * M(i, j) * vectors(position_row(j), k)).real();
+        for (int i = b0; i < model.nq(); ++i)
+            for (int j = b0; j < model.nq(); ++j)
+                transverse += (std::conj(vectors(position_row(i), k)) * M(i, j) * vectors(position_row(j), k)).real();
+        // The equations are conservative (gyroscopic at most): a real part below 1e-6 of |lambda| is the eigen
+        // solver's round-off, not damping.
+        const double growth = std::abs(l.real()) <= 1e-6 * scale ? 0.0 : l.real();
+        modes.push_back({oscillating ? l.imag() : 0.0, growth, axial > transverse ? "axial" : "bending"});
+    }
+    std::sort(modes.begin(), modes.end(), [](const NaturalMode& a, const NaturalMode& b) {
+        return a.rad_s != b.rad_s ? a.rad_s < b.rad_s : a.growth > b.growth;
+    });
+    return modes;
+}
+
+double frequency_unit(const Parameters& p) { return std::sqrt(p.E * p.I / (p.rho * p.S * std::pow(p.L, 4))); }
+
+}  // namespace hubbeam

@@ -1,0 +1,179 @@
+// hubbeam modes and hubbeam linearize: the linearization of linearize.hpp applied to a scene's variants, as tables.
+#include "modes.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <ostream>
+#include <sstream>
+
+#include "linearize.hpp"
+#include "option_lists.hpp"
+#include "output.hpp"
+#include "shortest.hpp"
+
+namespace hubbeam {
+
+namespace {
+
+[[noreturn]] void bad(const std::string& option, const std::string& expected, const std::string& got)
+{
+    bad_option<ModesOptionError>(option, expected, got);
+}
+
+/// A whole item as a finite number >= 0, or false.
+bool parse_rate(const std::string& s, double& v)
+{
+    if (s == "0") return v = 0.0, true;
+    return parse_positive(s, v);
+}
+
+constexpr std::size_t max_spin_rates = 10000;
+
+}  // namespace
+
+std::vector<double> parse_spin_rates(const std::string& option, const std::string& text)
+{
+    const std::string expected = "a comma-separated list of spin rates >= 0 (rad/s) or ranges FIRST:LAST:STEP";
+    std::vector<double> rates;
+    for (const std::string& item : split_list(text)) {
+        const std::size_t c1 = item.find(':');
+        if (c1 == std::string::npos) {
+            double v = 0.0;
+            if (!parse_rate(item, v)) bad(option, expected, item);
+            add_unique(rates, v);
+            continue;
+        }
+        const std::size_t c2 = item.find(':', c1 + 1);
+        double first = 0.0, last = 0.0, step = 0.0;
+        if (c2 == std::string::npos || !parse_rate(item.substr(0, c1), first) ||
+            !parse_rate(item.substr(c1 + 1, c2 - c1 - 1), last) || !parse_positive(item.substr(c2 + 1), step) ||
+            last < first || (last - first) / step > static_cast<double>(max_spin_rates))
+            bad(option, expected, item);
+        const auto count = static_cast<long>(std::floor((last - first) / step * (1.0 + 1e-12)));
+        for (long k = 0; k <= count; ++k) add_unique(rates, first + static_cast<double>(k) * step);
+    }
+    if (rates.size() > max_spin_rates) bad(option, "at most 10000 spin rates", std::to_string(rates.size()) + " of them");
+    return rates;
+}
+
+ModesOptions parse_modes_options(const ModesArgs& args, const Scene& scene)
+{
+    ModesOptions o;
+    if (args.omega.empty()) {
+        o.omegas = {0.0};
+        if (scene.motion.drive() == Drive::prescribed && scene.motion.omega0 != 0.0)
+            o.omegas.push_back(std::abs(scene.motion.omega0));
+    } else {
+        o.omegas = parse_spin_rates("--omega", args.omega);
+    }
+    if (args.methods.empty()) o.methods = {scene.variant.method};
+    else
+        for (const std::string& s : split_list(args.methods)) {
+            Method v{};
+            if (!parse(s, v)) bad("--methods", "a comma-separated list of " + joined(words<Method>()), s);
+            add_unique(o.methods, v);
+        }
+    if (args.ny.empty()) o.ny = {scene.variant.ny};
+    else
+        for (const std::string& s : split_list(args.ny)) {
+            int v = 0;
+            if (!parse_int(s, 1, 64, v)) bad("--ny", "a comma-separated list of integers from 1 to 64", s);
+            add_unique(o.ny, v);
+        }
+    // Every (method, Ny) must be a variant the method can take, checked before anything is computed.
+    for (Method m : o.methods)
+        for (int ny : o.ny) {
+            VariantKey k = scene.variant;
+            k.method = m;
+            k.ny = ny;
+            if (const std::string why = k.dof_problem(); !why.empty()) bad("--ny", "DOF counts every method can take", why);
+            if (ny > max_dof(m))
+                bad("--ny", "at most " + std::to_string(max_dof(m)) + " for " + to_string(m) + " (" + max_dof_reason(m) + ")",
+                    std::to_string(ny));
+        }
+    if (!parse_int(args.count, 1, 64, o.count)) bad("--count", "an integer from 1 to 64", args.count);
+    o.output = args.output;
+    return o;
+}
+
+const char* modes_header() { return "method,ny,nx,order,drive,omega,mode,kind,rad_s,hz,dimensionless,growth"; }
+
+void run_modes(const Scene& scene, const ModesOptions& o, std::ostream& out)
+{
+    const double unit = frequency_unit(scene.parameters);
+    CsvWriter csv(o.output, modes_header());
+    char line[400];
+    out << "method  Ny  Nx  order  Omega rad/s  mode  kind        rad/s          Hz  dimensionless  growth 1/s\n";
+    for (Method method : o.methods)
+        for (int ny : o.ny) {
+            VariantKey key = scene.variant;
+            key.method = method;
+            key.ny = ny;
+            key.drive = scene.motion.drive();
+            const std::unique_ptr<Model> model = make_model(key, scene.parameters, scene.source);
+            for (double omega : o.omegas) {
+                const std::vector<NaturalMode> modes = natural_modes(*model, steady_spin(*model, omega));
+                int shown_bending = 0, number = 0;
+                bool shown_axial = false;
+                for (const NaturalMode& mode : modes) {
+                    ++number;
+                    const double hz = mode.rad_s / (2.0 * M_PI);
+                    std::ostringstream row;
+                    row << to_string(method) << ',' << ny << ',' << key.nx << ',' << to_string(key.order) << ','
+                        << to_string(key.drive) << ',' << shortest(omega) << ',' << number << ',' << mode.kind << ','
+                        << shortest(mode.rad_s) << ',' << shortest(hz) << ',' << shortest(mode.rad_s / unit) << ','
+                        << shortest(mode.growth);
+                    csv.write_line(row.str());
+                    const bool bending = mode.kind == "bending";
+                    if (bending ? shown_bending >= o.count : shown_axial) continue;
+                    (bending ? shown_bending : (shown_axial = true, shown_bending)) += bending ? 1 : 0;
+                    std::snprintf(line, sizeof line, "%-6s %3d %3d  %-5s %12.4g  %4d  %-7s %11.6g %11.6g %14.6g  %10.3g\n",
+                                  to_string(method).c_str(), ny, key.nx, to_string(key.order).c_str(), omega, number,
+                                  mode.kind.c_str(), mode.rad_s, hz, mode.rad_s / unit, mode.growth);
+                    out << line;
+                }
+            }
+        }
+    if (!csv.finish()) throw std::runtime_error(csv.error());
+    out << "modes: " << o.output << "\n";
+}
+
+void run_linearize(const Scene& scene, double omega, const std::string& prefix, std::ostream& out)
+{
+    VariantKey key = scene.variant;
+    key.drive = scene.motion.drive();
+    const std::unique_ptr<Model> model = make_model(key, scene.parameters, scene.source);
+    const SteadySpin steady = steady_spin(*model, omega);
+    const StateSpace ss = state_space(*model, steady);
+    // One CSV per matrix: a header of column names, then each row led by its name.
+    const auto write = [&](const char* name, const Eigen::MatrixXd& X, const std::vector<std::string>& rows,
+                           const std::vector<std::string>& columns) {
+        const std::string path = prefix + "-" + name + ".csv";
+        std::string header = name;
+        for (const std::string& c : columns) header += "," + c;
+        CsvWriter csv(path, header);
+        for (Eigen::Index i = 0; i < X.rows(); ++i) {
+            std::string text = rows[static_cast<std::size_t>(i)];
+            for (Eigen::Index j = 0; j < X.cols(); ++j) {
+                text += ',';
+                append_shortest(text, X(i, j));
+            }
+            csv.write_line(text);
+        }
+        if (!csv.finish()) throw std::runtime_error(csv.error());
+        return path;
+    };
+    write("A", ss.A, ss.states, ss.states);
+    write("B", ss.B, ss.states, ss.inputs);
+    write("C", ss.C, ss.outputs, ss.states);
+    write("D", ss.D, ss.outputs, ss.inputs);
+    out << "variant     " << key.name() << " (" << model->source() << ")\n"
+        << "steady spin " << shortest(omega) << " rad/s";
+    if (key.nx > 0) out << ", axial stretch at the tip " << shortest(model->tip(steady.q.data()).ux1) << " m";
+    out << "\nstates      " << ss.states.size() << " (" << joined(ss.states, ", ") << ")\n"
+        << "input       " << ss.inputs[0] << (key.drive == Drive::torque ? " (N m)" : " (rad/s^2)") << "\n"
+        << "outputs     tip_uy (m), theta (rad)\n"
+        << "matrices    " << prefix << "-{A,B,C,D}.csv (x' = A x + B v, y = C x + D v, deviations from the steady spin)\n";
+}
+
+}  // namespace hubbeam

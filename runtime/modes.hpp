@@ -1,0 +1,54 @@
+// hubbeam modes and hubbeam linearize: natural frequencies against spin rate (a Campbell table) and the
+// state-space model about one steady spin, as CSV files.
+#pragma once
+
+#include <iosfwd>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "scene.hpp"
+
+namespace hubbeam {
+
+struct ModesOptionError : std::invalid_argument {
+    using std::invalid_argument::invalid_argument;
+};
+
+/// Spin rates from a comma-separated list whose items are numbers >= 0 (rad/s) or ranges FIRST:LAST:STEP;
+/// throws ModesOptionError naming option for a bad item or more than 10000 rates.
+std::vector<double> parse_spin_rates(const std::string& option, const std::string& text);
+
+/// The `modes` options as typed.
+struct ModesArgs {
+    std::string omega;    // empty: 0 and the scene's steady rate (spin-up), or 0 (torque)
+    std::string methods;  // empty: the scene's
+    std::string ny;       // empty: the scene's
+    std::string count = "4";
+    std::string output;   // CSV; empty: SCENE-modes.csv
+};
+
+struct ModesOptions {
+    std::vector<double> omegas;
+    std::vector<Method> methods;
+    std::vector<int> ny;
+    int count = 4;
+    std::string output;
+};
+
+/// Checks and converts the typed options against the scene; throws ModesOptionError.
+ModesOptions parse_modes_options(const ModesArgs& args, const Scene& scene);
+
+/// The CSV header of the modes table.
+const char* modes_header();
+
+/// For each method, Ny and spin rate: the scene's variant linearized about the steady spin, its first `count`
+/// bending modes and first axial mode printed to out, and every mode written to options.output (atomically).
+/// Returns false if the CSV could not be written (message on out's caller via the exception).
+void run_modes(const Scene& scene, const ModesOptions& options, std::ostream& out);
+
+/// hubbeam linearize: A, B, C and D about the steady spin omega written to PREFIX-A.csv ... PREFIX-D.csv, each
+/// with its row and column names; a summary to out.
+void run_linearize(const Scene& scene, double omega, const std::string& prefix, std::ostream& out);
+
+}  // namespace hubbeam

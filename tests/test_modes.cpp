@@ -1,0 +1,234 @@
+// Modes and the linearized model (linearize.hpp) against physics computed here independently: the cantilever's
+// frequencies (roots of 1 + cos z cosh z = 0), the rotating cantilever's flapwise frequencies by power series,
+// the in-plane relation omega_inplane^2 = omega_flap^2 - Omega^2 (docs/model.md section 7), and the state-space
+// matrices against central differences of the nonlinear equations.
+#include <catch2/catch.hpp>
+#include <Eigen/Dense>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "linearize.hpp"
+#include "make_model.hpp"
+
+using namespace hubbeam;
+
+namespace {
+
+VariantKey key_of(Method method, int nx, int ny, Drive drive = Drive::prescribed, Order order = Order::first)
+{
+    VariantKey k;
+    k.method = method;
+    k.nx = nx;
+    k.ny = ny;
+    k.drive = drive;
+    k.order = order;
+    return k;
+}
+
+/// The bending frequencies of the linearized model about a steady spin, dimensionless (omega / sqrt(EI/(m L^4))).
+std::vector<double> bending(const Model& model, const Parameters& p, double omega)
+{
+    std::vector<double> out;
+    for (const NaturalMode& m : natural_modes(model, steady_spin(model, omega)))
+        if (m.kind == "bending") out.push_back(m.rad_s / frequency_unit(p));
+    return out;
+}
+
+/// The i-th root of 1 + cos z cosh z = 0 by bisection: the cantilever's beta_i L.
+double cantilever_root(int i)
+{
+    const auto f = [](double z) { return 1.0 + std::cos(z) * std::cosh(z); };
+    double lo = (i - 0.5) * std::numbers::pi - 1.0, hi = (i - 0.5) * std::numbers::pi + 1.0;
+    if (i == 1) lo = 1.0;
+    for (int k = 0; k < 200; ++k) {
+        const double mid = 0.5 * (lo + hi);
+        (f(lo) * f(mid) <= 0.0 ? hi : lo) = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+/// The flapwise (out-of-plane) frequencies, dimensionless, of a uniform cantilever spinning at nu (dimensionless
+/// Omega) about an axis through its root: w'''' - (nu^2/2) ((1 - xi^2) w')' - lambda^2 w = 0, w(0) = w'(0) = 0,
+/// w''(1) = w'''(1) = 0, solved by power series (the coefficients are polynomial, so the series converges on
+/// [0, 1]) and bisection on the boundary determinant.
+std::vector<double> flapwise(double nu, int count)
+{
+    const auto determinant = [&](long double lambda2) {
+        long double d2[2] = {0, 0}, d3[2] = {0, 0};
+        for (int s = 0; s < 2; ++s) {
+            std::vector<long double> c(260, 0.0L);
+            c[2 + s] = 1.0L;
+            for (int k = 0; k + 4 < static_cast<int>(c.size()); ++k)
+                c[k + 4] = (0.5L * nu * nu * ((k + 2.0L) * (k + 1.0L) * c[k + 2] - k * (k + 1.0L) * c[k]) + lambda2 * c[k]) /
+                           ((k + 4.0L) * (k + 3.0L) * (k + 2.0L) * (k + 1.0L));
+            for (int k = 2; k < static_cast<int>(c.size()); ++k) {
+                d2[s] += k * (k - 1.0L) * c[k];
+                d3[s] += k * (k - 1.0L) * (k - 2.0L) * c[k];
+            }
+        }
+        return d2[0] * d3[1] - d2[1] * d3[0];
+    };
+    std::vector<double> roots;
+    long double lo = 0.5L, step = 0.01L;
+    for (long double l = lo; static_cast<int>(roots.size()) < count; l += step) {
+        const long double a = determinant(l * l), b = determinant((l + step) * (l + step));
+        if ((a < 0) == (b < 0)) continue;
+        long double x = l, y = l + step;
+        for (int k = 0; k < 100; ++k) {
+            const long double mid = 0.5L * (x + y);
+            ((determinant(x * x) < 0) == (determinant(mid * mid) < 0) ? x : y) = mid;
+        }
+        roots.push_back(static_cast<double>(0.5L * (x + y)));
+    }
+    return roots;
+}
+
+}  // namespace
+
+TEST_CASE("the power series reproduces the cantilever at rest", "[modes]")
+{
+    const std::vector<double> series = flapwise(0.0, 4);
+    for (int i = 1; i <= 4; ++i) CHECK(series[static_cast<std::size_t>(i - 1)] == Approx(std::pow(cantilever_root(i), 2)).epsilon(1e-12));
+}
+
+TEST_CASE("at rest every method converges to the cantilever's frequencies", "[modes]")
+{
+    const Parameters p;
+    std::vector<double> exact;
+    for (int i = 1; i <= 3; ++i) exact.push_back(std::pow(cantilever_root(i), 2));
+    // AMM's basis is the exact mode shapes: exact at any Ny.
+    const auto amm = make_model(key_of(Method::amm, 0, 6), p, ModelSource::assembled);
+    for (std::size_t i = 0; i < 3; ++i) CHECK(bending(*amm, p, 0.0)[i] == Approx(exact[i]).epsilon(1e-9));
+    // BIM's single polynomial converges spectrally: six digits at Ny = 12.
+    const auto bim = make_model(key_of(Method::bim, 0, 12), p, ModelSource::assembled);
+    for (std::size_t i = 0; i < 3; ++i) CHECK(bending(*bim, p, 0.0)[i] == Approx(exact[i]).epsilon(1e-6));
+    // The cubic pieces of FEM and BSIM converge from above (Rayleigh-Ritz) as h^4: doubling Ny divides the error of
+    // modes 2 and 3 by 16 in the limit, by more than 8 from Ny = 8 to 16.
+    for (Method method : {Method::fem, Method::bsim}) {
+        std::vector<double> error8;
+        for (int ny : {8, 16}) {
+            const auto model = make_model(key_of(method, 0, ny), p, ModelSource::assembled);
+            const std::vector<double> f = bending(*model, p, 0.0);
+            for (std::size_t i = 0; i < 3; ++i) {
+                INFO(to_string(method) << " Ny " << ny << " mode " << i + 1);
+                CHECK(f[i] >= exact[i] * (1.0 - 1e-12));
+                if (ny == 8) error8.push_back(f[i] - exact[i]);
+                else if (i > 0) CHECK(f[i] - exact[i] < error8[i] / 8.0);
+            }
+        }
+    }
+    // The axial modes: (2i - 1) pi / 2 sqrt(E / rho) / L.
+    const auto both = make_model(key_of(Method::amm, 4, 4), p, ModelSource::assembled);
+    std::vector<double> axial;
+    for (const NaturalMode& m : natural_modes(*both, steady_spin(*both, 0.0)))
+        if (m.kind == "axial") axial.push_back(m.rad_s);
+    REQUIRE(axial.size() == 4);
+    CHECK(axial[0] == Approx(std::numbers::pi / 2.0 * std::sqrt(p.E / p.rho) / p.L).epsilon(1e-9));
+}
+
+TEST_CASE("spinning without axial coordinates, omega_inplane^2 = omega_flap^2 - Omega^2", "[modes]")
+{
+    const Parameters p;  // a = 0
+    for (double omega : {4.0, 10.0, 20.0}) {
+        const double nu = omega / frequency_unit(p);
+        const std::vector<double> flap = flapwise(nu, 3);
+        // BIM, converged to round-off at Ny = 14, holds the relation to 1e-7.
+        const auto bim = make_model(key_of(Method::bim, 0, 14), p, ModelSource::assembled);
+        const std::vector<double> converged = bending(*bim, p, omega);
+        for (std::size_t i = 0; i < 3; ++i) {
+            INFO("Omega " << omega << " mode " << i + 1);
+            CHECK(converged[i] * converged[i] + nu * nu == Approx(flap[i] * flap[i]).epsilon(1e-7));
+        }
+        // Every method converges to it: closer at Ny = 24 than at Ny = 8, and within 5e-4 in omega^2 (FEM, the
+        // slowest, is 3.6e-4 off with its 12 elements at 20 rad/s).
+        for (Method method : {Method::amm, Method::fem, Method::bsim}) {
+            std::vector<double> error8;
+            for (int ny : {8, 24}) {
+                const auto model = make_model(key_of(method, 0, ny), p, ModelSource::assembled);
+                const std::vector<double> f = bending(*model, p, omega);
+                for (std::size_t i = 0; i < 3; ++i) {
+                    INFO(to_string(method) << " Ny " << ny << " Omega " << omega << " mode " << i + 1);
+                    const double error = std::abs(f[i] * f[i] + nu * nu - flap[i] * flap[i]) / (flap[i] * flap[i]);
+                    if (ny == 8) error8.push_back(error);
+                    else CHECK(error < error8[i]);
+                    if (ny == 24) CHECK(error < 5e-4);
+                }
+            }
+        }
+    }
+}
+
+TEST_CASE("order zero loses its first mode to divergence above the first bending frequency", "[modes]")
+{
+    const Parameters p;
+    const auto model = make_model(key_of(Method::amm, 0, 4, Drive::prescribed, Order::zero), p, ModelSource::generated);
+    const double critical = std::pow(cantilever_root(1), 2) * frequency_unit(p);
+    const std::vector<NaturalMode> below = natural_modes(*model, steady_spin(*model, 0.99 * critical));
+    const std::vector<NaturalMode> above = natural_modes(*model, steady_spin(*model, 1.01 * critical));
+    CHECK(below[0].rad_s > 0.0);
+    CHECK(below[0].growth == 0.0);
+    CHECK(above[0].rad_s == 0.0);
+    CHECK(above[0].growth > 0.0);
+}
+
+TEST_CASE("the state-space matrices are the derivatives of the nonlinear equations", "[modes]")
+{
+    const Parameters p;
+    for (const Drive drive : {Drive::prescribed, Drive::torque})
+        for (const Method method : {Method::amm, Method::bsim}) {
+            const auto model = make_model(key_of(method, 4, 4, drive), p, ModelSource::generated);
+            REQUIRE(model->has_jacobian());
+            const SteadySpin s = steady_spin(*model, 4.0);
+            const StateSpace ss = state_space(*model, s);
+            const int n = model->nq();
+            const bool torque = drive == Drive::torque;
+            const auto m = ss.A.rows() / 2;
+            // x' = f(x, v) of the nonlinear equations, in the state order of StateSpace.
+            const auto f = [&](const Eigen::VectorXd& x, double v) {
+                std::vector<double> q(static_cast<std::size_t>(n)), qd(q), Q(q);
+                HubInput u;
+                const int shift = torque ? 0 : 1;
+                for (int i = 0; i < n; ++i) {
+                    q[static_cast<std::size_t>(i)] = x[i + shift];
+                    qd[static_cast<std::size_t>(i)] = x[m + i + shift];
+                }
+                if (torque) u.tau = v;
+                else u.theta_dot = x[m], u.theta_ddot = v;
+                Eigen::MatrixXd M(n, n);
+                model->mass(u, q.data(), M.data());
+                model->forces(u, q.data(), qd.data(), Q.data());
+                const Eigen::VectorXd qdd = M.llt().solve(Eigen::Map<Eigen::VectorXd>(Q.data(), n));
+                Eigen::VectorXd dx(2 * m);
+                dx.head(m) = x.tail(m);
+                if (!torque) dx[m] = v;
+                for (int i = 0; i < n; ++i) dx[m + i + shift] = qdd[i];
+                return dx;
+            };
+            Eigen::VectorXd x0 = Eigen::VectorXd::Zero(2 * m);
+            for (int i = 0; i < n; ++i) {
+                x0[i + (torque ? 0 : 1)] = s.q[static_cast<std::size_t>(i)];
+                x0[m + i + (torque ? 0 : 1)] = s.qd[static_cast<std::size_t>(i)];
+            }
+            if (!torque) x0[m] = 4.0;
+            REQUIRE(f(x0, 0.0).tail(m).cwiseAbs().maxCoeff() < 1e-9);  // the steady spin is an equilibrium
+            const double scale = ss.A.cwiseAbs().maxCoeff();
+            for (Eigen::Index k = 0; k < 2 * m; ++k) {
+                const double h = 1e-6 * std::max(1.0, std::abs(x0[k]));
+                Eigen::VectorXd plus = x0, minus = x0;
+                plus[k] += h;
+                minus[k] -= h;
+                const Eigen::VectorXd column = (f(plus, 0.0) - f(minus, 0.0)) / (2 * h);
+                INFO(to_string(method) << " " << to_string(drive) << " state " << ss.states[static_cast<std::size_t>(k)]);
+                CHECK((column - ss.A.col(k)).cwiseAbs().maxCoeff() <= 1e-6 * scale);
+            }
+            const Eigen::VectorXd input = (f(x0, 1e-3) - f(x0, -1e-3)) / 2e-3;
+            CHECK((input - ss.B.col(0)).cwiseAbs().maxCoeff() <= 1e-7 * std::max(1.0, ss.B.cwiseAbs().maxCoeff()));
+            // tip_uy = Phi_y(L) B: the C row against the model's tip.
+            Eigen::VectorXd x1 = x0;
+            x1.segment(m - 4, 4).setConstant(0.01);
+            std::vector<double> q(static_cast<std::size_t>(n));
+            for (int i = 0; i < n; ++i) q[static_cast<std::size_t>(i)] = x1[i + (torque ? 0 : 1)];
+            CHECK(ss.C.row(0).dot(x1 - x0) == Approx(model->tip(q.data()).uy).epsilon(1e-12));
+        }
+}
