@@ -1,7 +1,11 @@
 // BeamFields: u_y, u_x1, u_x, EI u_y'' and ES u_x1' from the shape functions (docs/model.md section 5 outputs).
 #include "fields.hpp"
 
+#include "output.hpp"
+#include "shortest.hpp"
+
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -72,5 +76,95 @@ double BeamFields::axial_force(const double* A, double x) const
 {
     return ES_ * combination(axial_, A, xi_of(x), 1) / L_;  // d/dx = (1/L) d/dxi
 }
+
+double BeamFields::slope(const double* B, double x) const
+{
+    return combination(transverse_, B, xi_of(x), 1) / L_;
+}
+
+double BeamFields::curvature(const double* B, double x) const
+{
+    return combination(transverse_, B, xi_of(x), 2) / (L_ * L_);
+}
+
+std::vector<double> BeamFields::piece_boundaries() const
+{
+    std::vector<double> xs;
+    if (!transverse_.polynomial()) return xs;
+    const int pieces = transverse_.intervals();
+    for (int k = 1; k < pieces; ++k) xs.push_back(L_ * k / pieces);
+    return xs;
+}
+
+std::vector<double> BeamFields::foreshortening(const double* B, const std::vector<double>& xs) const
+{
+    // Cuts at the pieces' boundaries and at the abscissae, so that every panel is one smooth piece; a rule that
+    // integrates the squared slope exactly (polynomials) or to round-off (AMM's panels, as for H(L)).
+    std::vector<double> cuts{0.0, 1.0};
+    const bool polynomial = transverse_.polynomial();
+    const int panels = polynomial ? transverse_.intervals() : transcendental_panels(transverse_.size());
+    for (int k = 1; k < panels; ++k) cuts.push_back(static_cast<double>(k) / panels);
+    for (double x : xs) cuts.push_back(xi_of(x));
+    std::sort(cuts.begin(), cuts.end());
+    cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+    const QuadratureRule g = gauss_legendre(polynomial ? transverse_.degree() + 1 : transcendental_points);
+    std::vector<double> out;
+    double integral = 0.0;  // int_0^cut (du_y/dxi)^2 dxi
+    std::size_t next = 0;
+    for (std::size_t c = 0; c < cuts.size(); ++c) {
+        if (c > 0) {
+            const double lo = cuts[c - 1], width = cuts[c] - cuts[c - 1];
+            for (std::size_t j = 0; j < g.nodes.size(); ++j) {
+                const double d = combination(transverse_, B, lo + width * g.nodes[j], 1);
+                integral += width * g.weights[j] * d * d;
+            }
+        }
+        for (; next < xs.size() && xi_of(xs[next]) <= cuts[c]; ++next) out.push_back(-0.5 * integral / L_);
+    }
+    return out;
+}
+
+FieldRecorder::FieldRecorder(const VariantKey& key, const Parameters& p, std::vector<double> times, int points,
+                             const std::string& path)
+    : key_(key), fields_(key, p), times_(std::move(times))
+{
+    std::sort(times_.begin(), times_.end());
+    for (int i = 0; i < points; ++i) xs_.push_back(p.L * i / (points - 1));
+    // Both sides of each piece boundary, 1e-9 L apart: the moment's jump at FEM's nodes shows as a step.
+    for (double b : fields_.piece_boundaries()) {
+        xs_.push_back(b * (1.0 - 1e-9));
+        xs_.push_back(b * (1.0 + 1e-9));
+    }
+    std::sort(xs_.begin(), xs_.end());
+    xs_.erase(std::unique(xs_.begin(), xs_.end()), xs_.end());
+    csv_ = std::make_unique<CsvWriter>(path, header());
+}
+
+FieldRecorder::~FieldRecorder() = default;
+
+void FieldRecorder::state(double t, const double* q)
+{
+    if (next_ >= times_.size() || t < times_[next_] * (1.0 - 1e-12)) return;
+    while (next_ < times_.size() && times_[next_] <= t * (1.0 + 1e-12)) ++next_;  // one record for times a row covers
+    const double* A = key_.nx > 0 ? q + key_.first_a() : nullptr;
+    const double* B = q + key_.first_b();
+    const std::vector<double> ux2 = fields_.foreshortening(B, xs_);
+    for (std::size_t i = 0; i < xs_.size(); ++i) {
+        const double x = xs_[i];
+        std::string line;
+        for (double v : {t, x, fields_.uy(B, x), fields_.ux1(A, x) + ux2[i], fields_.slope(B, x), fields_.curvature(B, x),
+                         fields_.bending_moment(B, x), fields_.axial_force(A, x)}) {
+            if (!line.empty()) line += ',';
+            append_shortest(line, v);
+        }
+        csv_->write_line(line);
+    }
+}
+
+bool FieldRecorder::finish() { return csv_->finish(); }
+
+const std::string& FieldRecorder::error() const { return csv_->error(); }
+
+const std::string& FieldRecorder::path() const { return csv_->path(); }
 
 }  // namespace hubbeam

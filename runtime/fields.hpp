@@ -3,6 +3,10 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <string>
+#include <vector>
+
+#include <memory>
 
 #include "model.hpp"
 
@@ -25,6 +29,16 @@ public:
     const Eigen::RowVectorXd& Phi_y_L() const { return Phi_y_L_; }
     const Eigen::MatrixXd& H_L() const { return H_L_; }
 
+    /// Slope u_y'(x) and curvature u_y''(x).
+    double slope(const double* B, double x) const;
+    double curvature(const double* B, double x) const;
+    /// The foreshortening u_x2(x) = -1/2 int_0^x u_y'^2 at each of the sorted abscissae xs, by Gauss quadrature
+    /// exact on the polynomial pieces (converged to round-off for AMM).
+    std::vector<double> foreshortening(const double* B, const std::vector<double>& xs) const;
+    /// The interior boundaries (m) between the transverse basis's polynomial pieces: FEM's element nodes, BSIM's
+    /// knots; none for AMM and BIM.
+    std::vector<double> piece_boundaries() const;
+
     /// Axial stretch displacement u_x1(x) = Phi_x(x) A.
     double ux1(const double* A, double x) const;
     /// Bending moment EI u_y''(x).
@@ -39,6 +53,38 @@ private:
     double L_, EI_, ES_;
     Eigen::RowVectorXd Phi_x_L_, Phi_y_L_;
     Eigen::MatrixXd H_L_;
+};
+
+}  // namespace hubbeam
+
+namespace hubbeam {
+
+/// The fields along the beam at chosen times, written as a second CSV by hubbeam run (README "Fields along the
+/// beam"): at the first row at or after each time, u_y, u_x, slope, curvature, bending moment and axial force at
+/// `points` equally spaced abscissae, plus both sides of each interior piece boundary (where FEM's moment jumps).
+class CsvWriter;
+
+class FieldRecorder {
+public:
+    ~FieldRecorder();
+    /// Opens path (atomically written, CsvWriter); times sorted, within the run.
+    FieldRecorder(const VariantKey& key, const Parameters& p, std::vector<double> times, int points, const std::string& path);
+    /// The state at a row: records it if it is the first row at or after the next requested time.
+    void state(double t, const double* q);
+    /// Puts the file in place; false (and error()) if a write failed.
+    bool finish();
+    const std::string& error() const;
+    const std::string& path() const;
+
+    /// The CSV header.
+    static const char* header() { return "t,x,uy,ux,slope,curvature,bending_moment,axial_force"; }
+
+private:
+    VariantKey key_;
+    BeamFields fields_;
+    std::vector<double> times_, xs_;
+    std::size_t next_ = 0;
+    std::unique_ptr<CsvWriter> csv_;
 };
 
 }  // namespace hubbeam

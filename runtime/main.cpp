@@ -29,7 +29,10 @@
 #include "generated_model.hpp"
 #include "integrate.hpp"
 #include "kernel_bench.hpp"
+#include "fields.hpp"
 #include "modes.hpp"
+#include "option_lists.hpp"
+#include "shortest.hpp"
 #include "on_demand.hpp"
 #include "output.hpp"
 #include "scene.hpp"
@@ -84,6 +87,7 @@ void catch_stop_signals()
 struct RunOptions {
     std::string scene;
     std::vector<std::string> values = std::vector<std::string>(scene_keys().size());
+    std::string fields_at, fields_points = "81", fields_file;  // the fields along the beam (not scene keys)
 };
 
 /// The option's name in messages: the first of CLI11's names ("-o" of "-o,--output").
@@ -103,6 +107,31 @@ void add_run_options(CLI::App& sub, RunOptions& o)
         if (keys[i].option)
             sub.add_option(keys[i].option, o.values[i], std::string("Sets ") + keys[i].name + ": " + keys[i].expected)
                 ->type_name(type_names[static_cast<int>(keys[i].kind)]);
+    sub.add_option("--fields-at", o.fields_at,
+                   "Also write the fields along the beam (u_y, u_x, slope, curvature, bending moment, axial force) at "
+                   "these times (s, comma-separated; the first row at or after each)")->type_name("LIST");
+    sub.add_option("--fields-points", o.fields_points, "Equally spaced points along the beam for --fields-at (default 81)")
+        ->type_name("N");
+    sub.add_option("--fields", o.fields_file, "CSV of the fields (default: the output's name with -fields.csv)")
+        ->type_name("FILE");
+}
+
+/// The --fields-at times and --fields-points count checked against the scene; throws ModesOptionError naming the
+/// option.
+std::pair<std::vector<double>, int> field_request(const RunOptions& o, const Scene& scene)
+{
+    std::vector<double> times;
+    const std::string expected = "a comma-separated list of times from 0 to t_end = " + shortest(scene.output.t_end) + " s";
+    for (const std::string& item : split_list(o.fields_at)) {
+        double t = 0.0;
+        if (!(item == "0" || parse_positive(item, t)) || t > scene.output.t_end)
+            bad_option<ModesOptionError>("--fields-at", expected, printable(item));
+        add_unique(times, t);
+    }
+    int points = 0;
+    if (!parse_int(o.fields_points, 2, 100000, points))
+        bad_option<ModesOptionError>("--fields-points", "an integer from 2 to 100000", printable(o.fields_points));
+    return {times, points};
 }
 
 /// The options that were given, as overrides of their scene keys.
@@ -185,6 +214,27 @@ int run(const CLI::App& sub, const RunOptions& o)
         return exit_bad_input;
     }
 
+    std::pair<std::vector<double>, int> fields;
+    std::string fields_file = o.fields_file;
+    if (!o.fields_at.empty() || !fields_file.empty()) {
+        try {
+            fields = field_request(o, scene);
+        } catch (const ModesOptionError& e) {
+            std::cerr << e.what() << "\n";
+            return exit_bad_input;
+        }
+        if (fields_file.empty()) {
+            const std::filesystem::path out(scene.output.file);
+            fields_file = (out.parent_path() / (out.stem().string() + "-fields.csv")).string();
+        }
+        std::error_code ec;
+        if (std::filesystem::equivalent(fields_file, scene.path, ec) || fields_file == scene.output.file) {
+            std::cerr << "--fields: expected a file other than the scene and the output, got " << printable(fields_file)
+                      << "\n";
+            return exit_bad_input;
+        }
+    }
+
     // Everything that can refuse the run does so before the output file is touched.
     std::unique_ptr<Simulation> simulation;
     try {
@@ -209,6 +259,19 @@ int run(const CLI::App& sub, const RunOptions& o)
         return exit_bad_input;
     }
 
+    std::unique_ptr<FieldRecorder> recorder;
+    if (!fields_file.empty()) {
+        try {
+            VariantKey key = scene.variant;
+            key.drive = scene.motion.drive();
+            recorder = std::make_unique<FieldRecorder>(key, scene.parameters, fields.first, fields.second, fields_file);
+        } catch (const std::runtime_error& e) {
+            std::cerr << e.what() << "\n";
+            return exit_bad_input;
+        }
+        simulation->observe_states([&recorder](double t, const double* q) { recorder->state(t, q); });
+    }
+
     // An exception out of run() unwinds through ~CsvWriter, which finishes the file the same way.
     const StopRequest stop = [&csv]() -> const char* {
         if (stop_signal != 0) return interrupted;
@@ -226,6 +289,13 @@ int run(const CLI::App& sub, const RunOptions& o)
     if (!csv->ok()) {
         std::cerr << csv->error() << "\n";
         return exit_stopped;
+    }
+    if (recorder) {
+        if (!recorder->finish()) {
+            std::cerr << recorder->error() << "\n";
+            return exit_stopped;
+        }
+        std::cout << "fields      " << recorder->path() << "\n";
     }
     if (!summary.completed) {
         std::cerr << "hubbeam: stopped at t = " << summary.t_reached << " s: " << summary.failure << " (" << csv->rows()

@@ -158,6 +158,7 @@ RunSummary Simulation::run(const RowSink& sink, const StopRequest& stop)
         system.full_state(ti, state, q_full.data(), qd_full.data());
         const double* q = q_full.data();
         const double* qd = qd_full.data();
+        if (observer_) observer_(ti, q);
         const HubInput u = motion.at(ti);
         const Tip tip = model.tip(q);
         const Energy e = model.energy(u, q, qd);

@@ -77,9 +77,15 @@ public:
     /// run ends on a whole row. Does not throw for numerical failure: see RunSummary::completed.
     RunSummary run(const RowSink& sink, const StopRequest& stop = {});
 
+    /// Also called for every row, before sink, with the model's coordinates q (nq of them) at the row's time:
+    /// for outputs that need the whole state, such as the fields along the beam.
+    using StateObserver = std::function<void(double t, const double* q)>;
+    void observe_states(StateObserver observer) { observer_ = std::move(observer); }
+
 private:
     const Scene& scene_;
     std::unique_ptr<Model> model_;
+    StateObserver observer_;
     std::string stepper_, stepper_why_;  // the scene's, or the automatic choice and why
 };
 
