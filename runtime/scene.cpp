@@ -273,10 +273,6 @@ void check_finite(const Scene& s, double v, const char* key)
 
 }  // namespace
 
-namespace {
-
-/// User text as it may be echoed on a terminal: control characters as \xNN (a scene value could hold escape
-/// sequences or newlines), and at most `cap` characters.
 std::string printable(std::string_view text, std::size_t cap)
 {
     std::string out;
@@ -293,8 +289,6 @@ std::string printable(std::string_view text, std::size_t cap)
     }
     return out;
 }
-
-}  // namespace
 
 SceneError::SceneError(std::string file_, std::string key_, std::string expected_, std::string got_,
                        std::string detail_)

@@ -4,6 +4,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -59,6 +60,10 @@ private:
     struct Clean {};  // the fields are printable already
     SceneError(Clean, std::string file, std::string key, std::string expected, std::string got, std::string detail);
 };
+
+/// User text as it may be echoed on a terminal: control characters as \xNN (a file or value could hold escape
+/// sequences or newlines), and at most `cap` characters.
+std::string printable(std::string_view text, std::size_t cap);
 
 /// The largest scene file read (bytes).
 inline constexpr std::size_t max_scene_bytes = 1 << 20;
