@@ -15,6 +15,7 @@
 #include "oscillation.hpp"
 #include "option_lists.hpp"
 #include "output.hpp"
+#include "plot.hpp"
 #include "shortest.hpp"
 
 namespace hubbeam {
@@ -380,36 +381,30 @@ std::string plot(const std::string& prefix, const std::string& csv, std::ostream
     const std::string script_path = prefix + ".gp";
     std::ofstream gp(script_path);
     gp << "# gnuplot script written by hubbeam bench: work-precision figures from " << csv << "\n"
-       << "set datafile separator ','\n"
-          "set key outside right top box\n"
-          "set logscale xy\n"
-          "set grid\n"
+       << figure_style()
+       << "set logscale xy\n"
           "set format y '10^{%L}'\n"
           "methods = 'amm fem bim bsim'\n"
           "steppers = system(\"tail -n +2 '"
        << csv << "' | cut -d, -f5 | sort -u | tr '\\n' ' '\")\n"
           "ok(s) = (strcol(18) eq 'ok') ? s : NaN\n"
           "err(c1, c2) = (column(c1) > column(c2) ? column(c1) : column(c2))\n"
-          "do for [term in 'pngcairo svg'] {\n"
-          "  ext = (term eq 'svg') ? 'svg' : 'png'\n"
-          "  if (term eq 'svg') { set terminal svg size 1000,640 font 'Sans,12' } else { set terminal pngcairo size 1000,640 font 'Sans,11' }\n"
-          "  set output '"
-       << prefix << "-work.'.ext\n"
-          "  set title 'Work against precision: tip deflection error against the converged solution'\n"
-          "  set xlabel 'wall time per run (s, in process, median)'\n"
-          "  set ylabel 'max |tip u_y - reference| (m)'\n"
-          "  plot for [m in methods] for [s in steppers] '"
-       << csv << "' using (strcol(1) eq m && strcol(5) eq s ? ok(column(11)) : NaN):(err(8, 9)) with linespoints title m.' '.s, \\\n"
-          "       '"
-       << prefix << "-front.dat' using 1:2 with steps lw 3 lc rgb 'black' title 'Pareto front'\n"
-          "  set output '"
-       << prefix << "-dofs.'.ext\n"
-          "  set title 'Discretization error against DOF count (tightest tolerance of the grid)'\n"
-          "  set xlabel 'transverse DOFs N_y'\n"
-          "  set ylabel 'max |tip u_y - converged reference| (m)'\n"
-          "  plot for [m in methods] '"
-       << prefix << "-dofs.dat' using (strcol(1) eq m ? column(2) : NaN):3 with linespoints title m\n"
-          "}\n";
+       << in_png_and_svg(figure_output(prefix + "-work") +
+                         "  set title 'Work against precision: tip deflection error against the converged solution'\n"
+                         "  set xlabel 'wall time per run (s, in process, median)'\n"
+                         "  set ylabel 'max |tip u_y - reference| (m)'\n"
+                         "  plot for [m in methods] for [s in steppers] '" +
+                         csv +
+                         "' using (strcol(1) eq m && strcol(5) eq s ? ok(column(11)) : NaN):(err(8, 9)) with "
+                         "linespoints title m.' '.s, \\\n"
+                         "       '" +
+                         prefix + "-front.dat' using 1:2 with steps lw 3 lc rgb 'black' title 'Pareto front'\n" +
+                         figure_output(prefix + "-dofs") +
+                         "  set title 'Discretization error against DOF count (tightest tolerance of the grid)'\n"
+                         "  set xlabel 'transverse DOFs N_y'\n"
+                         "  set ylabel 'max |tip u_y - converged reference| (m)'\n"
+                         "  plot for [m in methods] '" +
+                         prefix + "-dofs.dat' using (strcol(1) eq m ? column(2) : NaN):3 with linespoints title m\n");
     gp.close();
     // The data the script needs beside the CSV: the front and the DOF convergence, computed here.
     struct Point {
@@ -446,14 +441,7 @@ std::string plot(const std::string& prefix, const std::string& csv, std::ostream
     for (const auto& [k, e] : dofs) d << k.first << "," << k.second << "," << e << "\n";
     front.close();
     d.close();
-    const std::string command = "gnuplot '" + script_path + "' 2>&1";
-    FILE* pipe = ::popen(command.c_str(), "r");
-    if (pipe == nullptr) return "cannot run gnuplot";
-    std::string messages;
-    char buf[256];
-    while (std::fgets(buf, sizeof buf, pipe) != nullptr) messages += buf;
-    const int status = ::pclose(pipe);
-    if (status != 0) return "gnuplot failed (is it installed? apt-get install gnuplot-nox): " + messages;
+    if (const std::string problem = run_gnuplot(script_path); !problem.empty()) return problem;
     out << "figures: " << prefix << "-work.{png,svg}, " << prefix << "-dofs.{png,svg} (script " << script_path << ")\n";
     return {};
 }

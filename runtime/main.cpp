@@ -35,6 +35,7 @@
 #include "shortest.hpp"
 #include "on_demand.hpp"
 #include "output.hpp"
+#include "plot.hpp"
 #include "scene.hpp"
 #include "simulate.hpp"
 
@@ -478,6 +479,38 @@ int kernels(const KernelArgs& args)
     return exit_ok;
 }
 
+/// Declares the `plot` arguments; all are taken as text and checked by plot_script, so that a bad one is one line
+/// naming it.
+void add_plot_options(CLI::App& sub, PlotArgs& a)
+{
+    sub.add_option("KIND", a.kind, "tip, axial (run CSVs), campbell (modes CSVs) or moment (field CSVs)")->required();
+    sub.add_option("FILE", a.files, "CSV files in the kind's format (README: Plots)")->required();
+    sub.add_option("-o,--output", a.prefix, "Writes PREFIX.png, PREFIX.svg and the gnuplot script PREFIX.gp")
+        ->type_name("PREFIX")
+        ->required();
+    sub.add_option("--labels", a.labels, "Legend labels, comma-separated, one per file (default: the files' stems)")
+        ->type_name("LIST");
+    sub.add_option("--title", a.title, "Title (default: the kind's)")->type_name("TEXT");
+    sub.add_option("--time", a.time, "moment: the rows at the t closest to T (default: each file's last t)")
+        ->type_name("T");
+}
+
+/// hubbeam plot: returns the exit code.
+int plot(const PlotArgs& args)
+{
+    try {
+        if (const std::string problem = draw_plot(args); !problem.empty()) {
+            std::cerr << "hubbeam: " << problem << "\n";
+            return exit_stopped;
+        }
+    } catch (const PlotInputError& e) {
+        std::cerr << e.what() << "\n";
+        return exit_bad_input;
+    }
+    std::cout << "figure: " << args.prefix << ".{png,svg}\n";
+    return exit_ok;
+}
+
 }  // namespace
 
 int main(int argc, char** argv)
@@ -542,6 +575,12 @@ int main(int argc, char** argv)
         "kernels", "Time the right-hand side and Jacobian per call, generated kernels against the assembled path");
     kernels_cmd->footer("Prints a table (ns per call); exit code 2 for a bad option value.");
     add_kernel_options(*kernels_cmd, kernel_args);
+    PlotArgs plot_args;
+    CLI::App* plot_cmd = app.add_subcommand(
+        "plot", "Figures from CSV files with gnuplot: tip deflection, axial tip, Campbell diagram, bending moment");
+    plot_cmd->footer("README: Plots. Exit codes: 0 figure written, 1 gnuplot failed, 2 bad input (one line on stderr, "
+                     "nothing written).");
+    add_plot_options(*plot_cmd, plot_args);
 
     try {
         app.parse(argc, argv);
@@ -572,6 +611,7 @@ int main(int argc, char** argv)
                                                : linearize_prefix;
                 run_linearize(scene, omega[0], prefix, std::cout);
             });
+        if (plot_cmd->parsed()) return plot(plot_args);
     } catch (const std::exception& e) {
         std::cerr << "hubbeam: " << e.what() << "\n";
         return exit_stopped;

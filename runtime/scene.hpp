@@ -61,6 +61,10 @@ private:
     SceneError(Clean, std::string file, std::string key, std::string expected, std::string got, std::string detail);
 };
 
+/// User text as it may be echoed on a terminal: control characters as \xNN (a file or value could hold escape
+/// sequences or newlines), and at most `cap` characters.
+std::string printable(std::string_view text, std::size_t cap = 120);
+
 /// The largest scene file read (bytes).
 inline constexpr std::size_t max_scene_bytes = 1 << 20;
 
@@ -78,10 +82,6 @@ const SceneKey& scene_key(const std::string& name);
 
 /// Key name -> value as typed on the command line, e.g. {"discretization.ny", "8"}.
 using Overrides = std::vector<std::pair<std::string, std::string>>;
-
-/// User text as it may be echoed on a terminal: control characters as \xNN (a scene value could hold escape
-/// sequences or newlines), and at most `cap` characters.
-std::string printable(std::string_view text, std::size_t cap = 120);
 
 /// Reads a scene file, sets the overridden keys, then validates it; throws SceneError before any computation.
 Scene load_scene(const std::string& path, const Overrides& overrides = {});

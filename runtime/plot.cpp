@@ -1,0 +1,419 @@
+// Figures with gnuplot: the shared look, the run of gnuplot, and hubbeam plot's kinds of figure with the CSV
+// formats they read.
+#include "plot.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <sstream>
+#include <string>
+
+#include "option_lists.hpp"
+#include "scene.hpp"
+#include "simulate.hpp"
+
+namespace hubbeam {
+
+std::string gnuplot_string(std::string_view text)
+{
+    if (text.find('\'') == std::string_view::npos) return "'" + std::string(text) + "'";
+    // Not 'it''s': gnuplot 5.4 misreads two doubled quotes in a row. Each quote is a "'" of its own, concatenated
+    // (a double-quoted string holding more would run any `command` in backquotes).
+    std::string s = "(";
+    std::size_t start = 0;
+    while (true) {
+        const std::size_t quote = text.find('\'', start);
+        const std::string_view part = text.substr(start, quote == std::string_view::npos ? quote : quote - start);
+        if (!part.empty()) s += (s.size() > 1 ? "." : "") + ("'" + std::string(part) + "'");
+        if (quote == std::string_view::npos) return s + ")";
+        s += (s.size() > 1 ? "." : "") + std::string("\"'\"");
+        start = quote + 1;
+    }
+}
+
+std::string figure_style()
+{
+    return "set datafile separator ','\n"
+           "set key outside right top box\n"
+           "set grid\n";
+}
+
+std::string in_png_and_svg(const std::string& figures)
+{
+    return "do for [term in 'pngcairo svg'] {\n"
+           "  ext = (term eq 'svg') ? 'svg' : 'png'\n"
+           "  if (term eq 'svg') { set terminal svg size 1000,640 font 'Sans,12' } else { set terminal pngcairo size "
+           "1000,640 font 'Sans,11' }\n" +
+           figures + "}\n";
+}
+
+std::string figure_output(const std::string& prefix)
+{
+    return "  set output " + gnuplot_string(prefix + ".") + ".ext\n";
+}
+
+std::string run_gnuplot(const std::string& script_path)
+{
+    // The path in the shell's single quotes, its own quotes as '\'' (close, escaped quote, reopen).
+    std::string quoted = "'";
+    for (const char c : script_path) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    const std::string command = "gnuplot " + quoted + "' 2>&1";
+    FILE* pipe = ::popen(command.c_str(), "r");
+    if (pipe == nullptr) return "cannot run gnuplot";
+    std::string messages;
+    char buf[256];
+    while (std::fgets(buf, sizeof buf, pipe) != nullptr) messages += buf;
+    const int status = ::pclose(pipe);
+    while (!messages.empty() && (messages.back() == '\n' || messages.back() == ' ')) messages.pop_back();
+    if (status != 0) return "gnuplot failed (is it installed? apt-get install gnuplot-nox): " + messages;
+    return {};
+}
+
+namespace {
+
+/// A CSV format that kinds read: its header, exactly, and what it is called in messages.
+struct CsvFormat {
+    const char* name;    // "a run CSV"
+    const char* header;  // the first line
+};
+
+const CsvFormat run_csv{"a run CSV", row_header()};
+const CsvFormat modes_csv{"a modes CSV", "method,ny,nx,order,drive,omega,mode,kind,rad_s,hz,dimensionless,growth"};
+const CsvFormat field_csv{"a field CSV", "t,x,uy,ux,slope,curvature,bending_moment,axial_force"};
+
+/// A kind of figure: the format it reads, the columns it needs as numbers, its default title.
+struct Kind {
+    const char* name;
+    const CsvFormat* format;
+    std::vector<std::string> numeric;
+    const char* title;
+};
+
+const std::vector<Kind>& kinds()
+{
+    static const std::vector<Kind> table{
+        {"tip", &run_csv, {"t", "tip_uy"}, "Tip deflection"},
+        {"axial", &run_csv, {"t", "tip_ux1", "tip_ux"}, "Longitudinal tip deformation with and without foreshortening"},
+        {"campbell", &modes_csv, {"ny", "omega", "mode", "hz"}, "Campbell diagram"},
+        {"moment", &field_csv, {"t", "x", "bending_moment"}, "Bending moment along the beam"},
+    };
+    return table;
+}
+
+std::vector<std::string> split(const std::string& line)
+{
+    std::vector<std::string> fields;
+    std::stringstream ss(line);
+    for (std::string item; std::getline(ss, item, ',');) fields.push_back(item);
+    if (!line.empty() && line.back() == ',') fields.emplace_back();  // getline drops a last empty field
+    return fields;
+}
+
+bool is_number(const std::string& s, double& v)
+{
+    const char* end = s.data() + s.size();
+    const auto [ptr, ec] = std::from_chars(s.data(), end, v);
+    return ec == std::errc() && ptr == end;
+}
+
+/// What a header is, for the message when it is not the expected one: another format the kinds read, or the line.
+std::string header_seen(const std::string& header)
+{
+    std::vector<std::string> readers;
+    const CsvFormat* format = nullptr;
+    for (const Kind& k : kinds())
+        if (header == k.format->header) {
+            format = k.format;
+            readers.emplace_back(k.name);
+        }
+    if (format == nullptr) return "the header '" + printable(header, 120) + "'";
+    return "the header of " + std::string(format->name) + ", which kind" + (readers.size() > 1 ? "s " : " ") +
+           joined(readers) + " read" + (readers.size() > 1 ? "" : "s");
+}
+
+/// Reads path as kind's format: the header must be the format's, every row must have its fields and numbers in
+/// the kind's columns; each row goes to `row` as its fields. Throws PlotInputError naming the file.
+void read_csv(const std::string& path, const Kind& kind,
+              const std::function<void(const std::vector<std::string>&)>& row)
+{
+    const std::string file = printable(path, 400);
+    const auto bad = [&](const std::string& what) { throw PlotInputError(file + ": " + what); };
+    std::ifstream in(path, std::ios::binary);
+    if (!in) bad(std::string("cannot open: ") + std::strerror(errno));
+    // Read twice, here and by gnuplot: a pipe would be empty the second time (and /dev/zero has no lines).
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec))
+        bad(std::string("expected a regular file, got ") +
+            (std::filesystem::is_directory(path, ec) ? "a directory" : "a device or pipe"));
+    const std::string expected = "expected " + std::string(kind.format->name) + " for kind " + kind.name + " (header " +
+                                 kind.format->header + ")";
+    std::string line;
+    if (!std::getline(in, line)) bad(expected + ", got an empty file");
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line != kind.format->header) bad(expected + ", got " + header_seen(line));
+    const std::vector<std::string> columns = split(line);
+    std::vector<std::size_t> numeric;
+    for (const std::string& name : kind.numeric)
+        numeric.push_back(static_cast<std::size_t>(std::find(columns.begin(), columns.end(), name) - columns.begin()));
+    long line_number = 1, rows = 0;
+    while (std::getline(in, line)) {
+        ++line_number;
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        if (line.empty()) continue;  // a blank line (gnuplot's block separator) is no row
+        const std::string at = "line " + std::to_string(line_number) + ": ";
+        const std::vector<std::string> fields = split(line);
+        if (fields.size() != columns.size())
+            bad(at + "expected " + std::to_string(columns.size()) + " comma-separated fields as in the header, got " +
+                std::to_string(fields.size()));
+        for (const std::size_t c : numeric)
+            if (double v = 0.0; !is_number(fields[c], v))
+                bad(at + "expected a number in column " + columns[c] + ", got '" + printable(fields[c], 40) + "'");
+        row(fields);
+        ++rows;
+    }
+    if (in.bad()) bad(std::string("cannot read: ") + std::strerror(errno));
+    if (rows == 0) bad("expected rows after the header, got none");
+}
+
+/// Text typed for the figure (a label, a title, a path): one line of a script, so no control characters.
+void check_text(const std::string& option, const std::string& text, const char* what)
+{
+    if (std::any_of(text.begin(), text.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }))
+        bad_option<PlotInputError>(option, std::string(what) + " without control characters", printable(text, 120));
+}
+
+/// A figure of plot_script: what gnuplot computes before drawing, the axes, and the plot command's elements.
+struct Figure {
+    std::string data;  // datablocks of selected rows
+    std::string axes;  // set xlabel, set ylabel
+    std::vector<std::string> elements;
+    std::string title_suffix;  // " at t = 2 s"
+};
+
+std::string title_of(const std::string& text)
+{
+    return "title " + gnuplot_string(text) + " noenhanced";
+}
+
+/// Figures 3-4, 7-8 and 9-12 of the paper: tip_uy against t, a line per file.
+Figure tip_figure(const std::vector<std::string>& files, const std::vector<std::string>& labels)
+{
+    Figure f;
+    f.axes = "set xlabel 'time t (s)'\nset ylabel 'tip deflection u_y(L) (m)'\n";
+    for (std::size_t i = 0; i < files.size(); ++i)
+        f.elements.push_back(gnuplot_string(files[i]) + " using 't':'tip_uy' with lines lw 2 lc " +
+                             std::to_string(i + 1) + " " + title_of(labels[i]));
+    return f;
+}
+
+/// Figures 5-6: per file, the tip's axial stretch u_x1 (dashed) and its displacement u_x with the foreshortening
+/// u_x2 = -1/2 int u_y'^2 (solid), both in the file's colour.
+Figure axial_figure(const std::vector<std::string>& files, const std::vector<std::string>& labels)
+{
+    Figure f;
+    f.axes = "set xlabel 'time t (s)'\nset ylabel 'longitudinal tip deformation (m)'\n";
+    for (std::size_t i = 0; i < files.size(); ++i) {
+        const std::string colour = " lc " + std::to_string(i + 1) + " ";
+        f.elements.push_back(gnuplot_string(files[i]) + " using 't':'tip_ux1' with lines lw 2 dt 2" + colour +
+                             title_of(labels[i] + ": u_x1 (stretch only)"));
+        f.elements.push_back(gnuplot_string(files[i]) + " using 't':'tip_ux' with lines lw 2 dt 1" + colour +
+                             title_of(labels[i] + ": u_x (foreshortened)"));
+    }
+    return f;
+}
+
+/// A Campbell diagram: the bending frequencies (Hz) against the spin rate, a line per file, variant (method, Ny,
+/// Nx, order, drive) and mode, a colour per method, with the spin frequency 1P. A mode's rows are interleaved with
+/// the other modes' in the file, and gnuplot breaks a line at every row a condition leaves out: so each line's
+/// rows are first selected into a datablock of their own (`with table if`, gnuplot 5.4).
+Figure campbell_figure(const std::vector<std::string>& files, const std::vector<std::string>& labels, bool label_lines,
+                       const Kind& kind)
+{
+    struct Line {
+        std::size_t file;
+        std::vector<std::string> variant;  // method, ny, nx, order, drive as the file writes them
+        std::string mode;
+    };
+    std::vector<Line> lines;
+    for (std::size_t file = 0; file < files.size(); ++file) {
+        const std::size_t before = lines.size();
+        read_csv(files[file], kind, [&](const std::vector<std::string>& r) {
+            if (r[7] != "bending") return;
+            Line l{file, {r[0], r[1], r[2], r[3], r[4]}, r[6]};
+            if (std::none_of(lines.begin() + static_cast<std::ptrdiff_t>(before), lines.end(),
+                             [&](const Line& o) { return o.variant == l.variant && o.mode == l.mode; }))
+                lines.push_back(l);
+        });
+        if (lines.size() == before)
+            throw PlotInputError(printable(files[file], 400) +
+                                 ": expected rows of kind bending (the modes a Campbell diagram draws), got none");
+    }
+    // The legend names a variant by its method and Ny, and by Nx, order and drive when they vary.
+    static const char* const columns[] = {"method", "ny", "nx", "order", "drive"};
+    static const char* const names[] = {"", " Ny = ", " Nx = ", " order ", " drive "};
+    std::vector<bool> named = {true, true, false, false, false};
+    for (const Line& l : lines)
+        for (std::size_t c = 2; c < 5; ++c) named[c] = named[c] || l.variant[c] != lines.front().variant[c];
+
+    Figure f;
+    f.axes = "set xlabel 'hub spin rate omega (rad/s)'\nset ylabel 'natural frequency f (Hz)'\n";
+    f.data = "# one datablock per line: the rows of one bending mode of one variant\n";
+    std::vector<std::string> methods;                                       // a colour each
+    std::vector<std::pair<std::size_t, std::vector<std::string>>> entries;  // (file, variant): a legend entry each
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+        const Line& l = lines[i];
+        std::string condition;
+        for (std::size_t c = 0; c < 5; ++c)
+            condition += "strcol('" + std::string(columns[c]) + "') eq " + gnuplot_string(l.variant[c]) + " && ";
+        condition += "strcol('mode') eq " + gnuplot_string(l.mode) + " && strcol('kind') eq 'bending'";
+        const std::string block = "$mode" + std::to_string(i + 1);
+        f.data += "set table " + block + " separator comma\nplot " + gnuplot_string(files[l.file]) +
+                  " using 'omega':'hz' with table if (" + condition + ")\n";
+
+        if (std::find(methods.begin(), methods.end(), l.variant[0]) == methods.end()) methods.push_back(l.variant[0]);
+        const std::size_t colour =
+            static_cast<std::size_t>(std::find(methods.begin(), methods.end(), l.variant[0]) - methods.begin());
+        const std::pair<std::size_t, std::vector<std::string>> entry{l.file, l.variant};
+        auto e = std::find(entries.begin(), entries.end(), entry);
+        const bool first = e == entries.end();
+        if (first) e = entries.insert(e, entry);
+        // a point type per variant of the same method, a dash type per file
+        const auto same_method =
+            std::count_if(entries.begin(), e, [&](const auto& o) { return o.second[0] == l.variant[0]; });
+        static const int point_types[] = {7, 5, 9, 11, 13, 15};
+        std::string legend = label_lines ? labels[l.file] + ": " : "";
+        for (std::size_t c = 0; c < 5; ++c)
+            if (named[c]) legend += names[c] + l.variant[c];
+        f.elements.push_back(block + " using 1:2 with linespoints lw 2 lc " + std::to_string(colour + 1) + " dt " +
+                             std::to_string(l.file + 1) + " pt " + std::to_string(point_types[same_method % 6]) +
+                             " ps 0.8 " + (first ? title_of(legend) : std::string("notitle")));
+    }
+    f.data += "unset table\n";
+    f.elements.push_back("x/(2*pi) with lines lw 2 dt 2 lc rgb 'black' title '1P: spin frequency omega/2pi'");
+    return f;
+}
+
+/// The bending moment EI u_y'' against x at one time per file, lines with small points: FEM's moment jumps at
+/// the element nodes (u_y'' of cubic elements is not continuous there), the other methods' is continuous. The
+/// rows of that time go to a datablock first, so that their order in the file does not matter.
+Figure moment_figure(const std::vector<std::string>& files, const std::vector<std::string>& labels,
+                     const std::string& time, const Kind& kind)
+{
+    double wanted = 0.0;
+    if (!time.empty() && (!is_number(time, wanted) || !std::isfinite(wanted)))
+        bad_option<PlotInputError>("--time", "a time in seconds", printable(time, 40));
+    std::vector<std::string> chosen;  // per file, its t as the file writes it
+    for (const std::string& file : files) {
+        std::string best;
+        double best_t = 0.0;
+        read_csv(file, kind, [&](const std::vector<std::string>& r) {
+            double t = 0.0;
+            is_number(r[0], t);
+            // without --time the last t, with it the closest (the earlier of two as close)
+            if (best.empty() || (time.empty() ? t >= best_t : std::abs(t - wanted) < std::abs(best_t - wanted))) {
+                best = r[0];
+                best_t = t;
+            }
+        });
+        chosen.push_back(best);
+    }
+    const bool one_time =
+        std::all_of(chosen.begin(), chosen.end(), [&](const std::string& t) { return t == chosen[0]; });
+    Figure f;
+    if (one_time) f.title_suffix = " at t = " + chosen[0] + " s";
+    f.axes = "set xlabel 'position along the beam x (m)'\nset ylabel " +
+             gnuplot_string("bending moment M = EI d^2u_y/dx^2 (N m)") + "\n";
+    f.data = "# one datablock per file: its rows at the time drawn\n";
+    for (std::size_t i = 0; i < files.size(); ++i) {
+        const std::string block = "$moment" + std::to_string(i + 1);
+        f.data += "set table " + block + " separator comma\nplot " + gnuplot_string(files[i]) +
+                  " using 'x':'bending_moment' with table if (strcol('t') eq " + gnuplot_string(chosen[i]) + ")\n";
+        f.elements.push_back(block + " using 1:2 with linespoints lw 2 lc " + std::to_string(i + 1) + " pt 7 ps 0.5 " +
+                             title_of(one_time ? labels[i] : labels[i] + ", t = " + chosen[i] + " s"));
+    }
+    f.data += "unset table\n";
+    return f;
+}
+
+}  // namespace
+
+const std::vector<std::string>& plot_kinds()
+{
+    static const std::vector<std::string> names = [] {
+        std::vector<std::string> n;
+        for (const Kind& k : kinds()) n.push_back(k.name);
+        return n;
+    }();
+    return names;
+}
+
+std::string plot_script(const PlotArgs& args)
+{
+    const auto kind = std::find_if(kinds().begin(), kinds().end(), [&](const Kind& k) { return args.kind == k.name; });
+    if (kind == kinds().end())
+        bad_option<PlotInputError>("KIND", "one of " + joined(plot_kinds()), printable(args.kind, 40));
+    if (args.files.empty()) bad_option<PlotInputError>("FILE", "at least one CSV file", "none");
+    if (args.prefix.empty()) bad_option<PlotInputError>("-o", "a path prefix for PREFIX.png and PREFIX.svg", "");
+    check_text("-o", args.prefix, "a path prefix");
+    for (const std::string& f : args.files) check_text("FILE", f, "a file name");
+    check_text("--title", args.title, "a title");
+    if (!args.time.empty() && args.kind != "moment")
+        bad_option<PlotInputError>("--time", "no time for kind " + args.kind + " (only kind moment draws one time)",
+                                   printable(args.time, 40));
+    std::vector<std::string> labels;
+    if (args.labels.empty())
+        for (const std::string& f : args.files) labels.push_back(std::filesystem::path(f).stem().string());
+    else {
+        labels = split_list(args.labels);
+        if (labels.size() != args.files.size())
+            bad_option<PlotInputError>("--labels",
+                                       std::to_string(args.files.size()) + " comma-separated labels, one per file",
+                                       std::to_string(labels.size()) + " (" + printable(args.labels, 120) + ")");
+        for (const std::string& l : labels) {
+            if (l.empty()) bad_option<PlotInputError>("--labels", "a non-empty label per file", "");
+            check_text("--labels", l, "labels");
+        }
+    }
+
+    const std::string name = kind->name;
+    Figure figure;
+    if (name == "tip" || name == "axial") {
+        for (const std::string& f : args.files) read_csv(f, *kind, [](const std::vector<std::string>&) {});
+        figure = name == "tip" ? tip_figure(args.files, labels) : axial_figure(args.files, labels);
+    } else if (name == "campbell") {
+        // the labels name the lines once there is more than one file, or when given
+        figure = campbell_figure(args.files, labels, args.files.size() > 1 || !args.labels.empty(), *kind);
+    } else {
+        figure = moment_figure(args.files, labels, args.time, *kind);
+    }
+    const std::string title = args.title.empty() ? kind->title + figure.title_suffix : args.title;
+
+    std::string plot = "  plot ";
+    for (std::size_t i = 0; i < figure.elements.size(); ++i) plot += (i ? ", \\\n       " : "") + figure.elements[i];
+    std::string script =
+        "# gnuplot script written by hubbeam plot " + name + " (redraw: gnuplot " + args.prefix + ".gp), from";
+    for (const std::string& f : args.files) script += " " + f;
+    return script + "\n" + figure_style() + figure.data + "set title " + gnuplot_string(title) + " noenhanced\n" +
+           figure.axes + in_png_and_svg(figure_output(args.prefix) + plot + "\n");
+}
+
+std::string draw_plot(const PlotArgs& args)
+{
+    const std::string script = plot_script(args);
+    const std::string path = args.prefix + ".gp";
+    std::ofstream gp(path);
+    if (!gp) throw PlotInputError(printable(path, 400) + ": cannot open for writing: " + std::strerror(errno));
+    gp << script;
+    gp.close();
+    if (!gp) return path + ": write failed: " + std::strerror(errno);
+    return run_gnuplot(path);
+}
+
+}  // namespace hubbeam

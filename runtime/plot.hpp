@@ -1,0 +1,57 @@
+// Figures with gnuplot: the look every figure of hubbeam shares (PNG and SVG at 1000 x 640, a boxed legend, a
+// grid), running gnuplot on a script (for `hubbeam bench --plot` too), and `hubbeam plot`: the paper's figures
+// from the program's CSV files (tip response, axial tip, Campbell diagram, bending moment along the beam).
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace hubbeam {
+
+/// text as a gnuplot string expression that reads back as it is: 'text' (no escapes, no substitutions), or with
+/// quotes in it ('it'."'".'s').
+std::string gnuplot_string(std::string_view text);
+
+/// The settings every figure starts with: comma-separated data (the CSV files), the legend boxed outside on the
+/// right, where it covers no curve, and a grid.
+std::string figure_style();
+
+/// The loop that draws `figures` (gnuplot commands, each figure opened by figure_output) twice: as PNG for a
+/// screen and as SVG for a document, both 1000 x 640 so that they look alike. Inside it, `ext` is 'png' or 'svg'.
+std::string in_png_and_svg(const std::string& figures);
+
+/// The command in in_png_and_svg's figures that sends the next figure to PREFIX.png or PREFIX.svg.
+std::string figure_output(const std::string& prefix);
+
+/// Runs gnuplot on the script at script_path; returns what went wrong (gnuplot's own messages), or empty.
+std::string run_gnuplot(const std::string& script_path);
+
+/// The `plot` arguments as typed (checked by plot_script, so that a bad one is one line naming it).
+struct PlotArgs {
+    std::string kind;                // one of plot_kinds()
+    std::vector<std::string> files;  // CSV files in the kind's format
+    std::string prefix;              // PREFIX.png, PREFIX.svg and the script PREFIX.gp
+    std::string labels;              // comma-separated, one per file; empty: each file's stem
+    std::string title;               // empty: the kind's
+    std::string time;                // kind moment: draw the rows at the t closest to it; empty: each file's last t
+};
+
+/// Bad input to `plot`: an argument, or a file that is not what its kind reads ("FILE: expected ..., got ...").
+struct PlotInputError : std::invalid_argument {
+    using std::invalid_argument::invalid_argument;
+};
+
+/// The kinds of figure: tip, axial (run CSVs), campbell (modes CSVs), moment (field CSVs).
+const std::vector<std::string>& plot_kinds();
+
+/// The gnuplot script of args' figure. Checks the arguments and reads every file through first: its header must
+/// be exactly its kind's, and every row must hold numbers where the figure reads them. Throws PlotInputError.
+std::string plot_script(const PlotArgs& args);
+
+/// hubbeam plot: plot_script written to PREFIX.gp, then gnuplot draws PREFIX.png and PREFIX.svg. Bad input throws
+/// PlotInputError with nothing written; returns what went wrong with gnuplot, or empty.
+std::string draw_plot(const PlotArgs& args);
+
+}  // namespace hubbeam
