@@ -3,6 +3,7 @@
 #   ./setup.sh run [SCENE.toml] [hubbeam run options...]   runs a scene (default cases/spinup_omega4.toml)
 #   ./setup.sh test                                         runs the whole test suite through ctest
 #   ./setup.sh fuzz [SECONDS]                               fuzzes the scene parser (clang's libFuzzer, default 60 s)
+#   ./setup.sh figures [DIR]                                the README's figures of the paper (default docs/figures)
 set -euo pipefail
 cd "$(dirname "$0")"
 
@@ -47,8 +48,50 @@ case "$mode" in
   test)
     exec ctest --preset release
     ;;
+  figures)
+    # Each figure from the runs, modes and fields that hubbeam computes, with the commands in plain view.
+    dir=${1:-docs/figures}
+    data=out/figures
+    mkdir -p "$dir" "$data"
+    methods=(amm fem bim bsim)
+    labels=AMM,FEM,BIM,BSIM
+    for scene in spinup_omega4 spinup_omega10 torque_tau1 torque_tau10; do  # Figs. 3-8: Ny = Nx = 4
+      files=()
+      for m in "${methods[@]}"; do
+        build/hubbeam run "cases/$scene.toml" --method "$m" -o "$data/$scene-$m.csv" >/dev/null
+        files+=("$data/$scene-$m.csv")
+      done
+      build/hubbeam plot tip "${files[@]}" --labels "$labels" --title "Tip deflection, $scene, Ny = Nx = 4" \
+        -o "$dir/$scene-tip"
+      [[ $scene == spinup* ]] && build/hubbeam plot axial "${files[@]}" --labels "$labels" \
+        --title "Axial tip displacement, $scene: u_x1 (stretch, dashed) and u_x (with foreshortening)" -o "$dir/$scene-axial"
+    done
+    for scene in torque_tau1 torque_tau10; do  # Figs. 9-12: one method, Ny = 4 to 10, Nx = 0
+      for m in "${methods[@]}"; do
+        files=() names=()
+        for ny in 4 6 8 10; do
+          build/hubbeam run "cases/$scene.toml" --method "$m" --ny "$ny" --nx 0 -o "$data/$scene-$m-ny$ny.csv" >/dev/null
+          files+=("$data/$scene-$m-ny$ny.csv") names+=("Ny = $ny")
+        done
+        build/hubbeam plot tip "${files[@]}" --labels "$(IFS=,; echo "${names[*]}")" \
+          --title "Tip deflection, $scene, ${m^^} against Ny (Nx = 0)" -o "$dir/$scene-$m-dofs"
+      done
+    done
+    build/hubbeam modes cases/spinup_omega4.toml --methods amm,fem,bim,bsim --ny 4 --omega 0:12:0.25 \
+      -o "$data/modes.csv" >/dev/null
+    build/hubbeam plot campbell "$data/modes.csv" --title "Campbell diagram: in-plane bending, Ny = Nx = 4" \
+      -o "$dir/campbell"
+    files=()
+    for m in "${methods[@]}"; do  # paper conclusion 3: FEM's bending moment jumps at its nodes
+      build/hubbeam run cases/spinup_omega4.toml --method "$m" --t-end 20 --fields-at 20 \
+        -o "$data/moment-$m.csv" >/dev/null
+      files+=("$data/moment-$m-fields.csv")
+    done
+    build/hubbeam plot moment "${files[@]}" --labels "$labels" --time 20 \
+      --title "Bending moment along the beam at t = 20 s, spin-up to 4 rad/s, Ny = Nx = 4" -o "$dir/moment"
+    ;;
   *)
-    echo "usage: ./setup.sh run [SCENE.toml] [options] | ./setup.sh test | ./setup.sh fuzz [SECONDS]" >&2
+    echo "usage: ./setup.sh run [SCENE.toml] [options] | ./setup.sh test | ./setup.sh fuzz [SECONDS] | ./setup.sh figures [DIR]" >&2
     exit 2
     ;;
 esac
