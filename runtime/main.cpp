@@ -5,7 +5,7 @@
 //   hubbeam run SCENE.toml [--method M] [--nx N] [--ny N] ... [-o FILE]   (options: scene_keys() in scene.cpp)
 //   hubbeam variants                                   (built in, cached, and how others run)
 //   hubbeam bench SCENE.toml [--methods LIST] [--ny LIST] [--steppers LIST] [--rtols LIST] [-o FILE] [--plot PREFIX]
-//   hubbeam modes SCENE.toml [--omega LIST] [--methods LIST] [--ny LIST] [--count N] [-o FILE]
+//   hubbeam modes SCENE.toml [--omega LIST] [--methods LIST] [--ny LIST] [--count N] [-o FILE] [--plot PREFIX]
 //   hubbeam linearize SCENE.toml --omega W [-o PREFIX]
 //   hubbeam kernels [--ny LIST] [--methods LIST] [--drives LIST] [--orders LIST] [--nx LIST] [--samples N] [-o FILE]
 //
@@ -558,6 +558,8 @@ int main(int argc, char** argv)
     modes_cmd->add_option("--count", modes_args.count, "Bending modes printed per line group (default 4; the CSV has all)")
         ->type_name("N");
     modes_cmd->add_option("-o,--output", modes_args.output, "CSV of every mode (default: SCENE-modes.csv)")->type_name("FILE");
+    modes_cmd->add_option("--plot", modes_args.plot, "Also draw the Campbell diagram PREFIX.png and PREFIX.svg")
+        ->type_name("PREFIX");
     add_linear_overrides(*modes_cmd, modes_overrides, false);
     modes_cmd->footer("README: Modes and linearized models. Exit code 2 for a bad option value.");
     std::string linearize_scene, linearize_omega, linearize_prefix;

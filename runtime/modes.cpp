@@ -9,6 +9,7 @@
 #include "linearize.hpp"
 #include "option_lists.hpp"
 #include "output.hpp"
+#include "plot.hpp"
 #include "shortest.hpp"
 
 namespace hubbeam {
@@ -93,6 +94,7 @@ ModesOptions parse_modes_options(const ModesArgs& args, const Scene& scene)
         }
     if (!parse_int(args.count, 1, 64, o.count)) bad("--count", "an integer from 1 to 64", args.count);
     o.output = args.output;
+    o.plot = args.plot;
     return o;
 }
 
@@ -136,6 +138,14 @@ void run_modes(const Scene& scene, const ModesOptions& o, std::ostream& out)
         }
     if (!csv.finish()) throw std::runtime_error(csv.error());
     out << "modes: " << o.output << "\n";
+    if (!o.plot.empty()) {
+        PlotArgs figure;
+        figure.kind = "campbell";
+        figure.files = {o.output};
+        figure.prefix = o.plot;
+        if (const std::string why = draw_plot(figure); !why.empty()) throw std::runtime_error(why);
+        out << "figure: " << o.plot << ".{png,svg}\n";
+    }
 }
 
 void run_linearize(const Scene& scene, double omega, const std::string& prefix, std::ostream& out)

@@ -26,6 +26,7 @@ struct ModesArgs {
     std::string ny;       // empty: the scene's
     std::string count = "4";
     std::string output;   // CSV; empty: SCENE-modes.csv
+    std::string plot;     // PREFIX: the Campbell diagram PREFIX.{png,svg} (hubbeam plot campbell)
 };
 
 struct ModesOptions {
@@ -33,7 +34,7 @@ struct ModesOptions {
     std::vector<Method> methods;
     std::vector<int> ny;
     int count = 4;
-    std::string output;
+    std::string output, plot;
 };
 
 /// Checks and converts the typed options against the scene; throws ModesOptionError.
