@@ -78,7 +78,8 @@ std::vector<std::string> compiler_command()
     return words;
 }
 
-/// hubbeam-gen: $HUBBEAM_GEN, else next to this executable (an installed or build tree), else the build's own.
+/// hubbeam-gen: $HUBBEAM_GEN, else next to this executable (an installed or build tree), else the build's own, else
+/// the installed one.
 std::string generator_path()
 {
     if (const std::string g = env("HUBBEAM_GEN"); !g.empty()) return find_program(g);
@@ -88,7 +89,16 @@ std::string generator_path()
         if (const std::string beside = find_program((self.parent_path() / "hubbeam-gen").string()); !beside.empty())
             return beside;
     }
-    return find_program(HUBBEAM_GEN_PATH);
+    if (const std::string built = find_program(HUBBEAM_GEN_PATH); !built.empty()) return built;
+    return find_program(HUBBEAM_INSTALLED_GEN);  // a library installed from a build tree that is gone
+}
+
+/// Where generated_abi.h is: the source tree's model/, else the installed headers.
+std::string abi_dir()
+{
+    std::error_code ec;
+    if (fs::exists(fs::path(HUBBEAM_ABI_DIR) / "generated_abi.h", ec)) return HUBBEAM_ABI_DIR;
+    return HUBBEAM_INSTALLED_ABI_DIR;
 }
 
 /// Runs argv with stdout and stderr into log; returns the exit status (-1 if it could not start or died).
@@ -216,7 +226,7 @@ fs::path build_object(const VariantKey& key, const fs::path& work, const std::ve
     std::vector<std::string> cc = compiler_command();
     cc.insert(cc.end(), compile_flags.begin(), compile_flags.end());
     const fs::path object = work / (name + ".so");
-    cc.insert(cc.end(), {"-I", HUBBEAM_ABI_DIR, (work / (name + ".cpp")).string(), "-o", object.string()});
+    cc.insert(cc.end(), {"-I", abi_dir(), (work / (name + ".cpp")).string(), "-o", object.string()});
     if (run_logged(cc, log) != 0)
         throw CompileError("compiling " + name + " failed: " + first_error(log) + " (cache: " + where.string() + ")");
     return object;

@@ -1,0 +1,13 @@
+// hubbeam as a C++ library: everything a program needs to load or build a scene, run it and receive its rows,
+// compute modes and linearized models (README "Using hubbeam as a C++ library"; examples/run_scene).
+//
+//   hubbeam::Scene scene = hubbeam::load_scene("cases/spinup_omega4.toml", {{"discretization.ny", "8"}});
+//   hubbeam::Simulation simulation(scene);
+//   hubbeam::RunSummary summary = simulation.run([](const hubbeam::Row& row) { /* row.t, row.tip_uy, ... */ });
+#pragma once
+
+#include "fields.hpp"     // BeamFields, FieldRecorder: fields along the beam
+#include "linearize.hpp"  // steady_spin, state_space, natural_modes
+#include "output.hpp"     // CsvWriter, format_summary
+#include "scene.hpp"      // Scene, load_scene, parse_scene, validate, scene_keys
+#include "simulate.hpp"   // Simulation, Row, RunSummary
