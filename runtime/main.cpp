@@ -91,12 +91,6 @@ struct RunOptions {
     std::string fields_at, fields_points = "81", fields_file;  // the fields along the beam (not scene keys)
 };
 
-/// The option's name in messages: the first of CLI11's names ("-o" of "-o,--output").
-std::string option_name(const SceneKey& k)
-{
-    const std::string names = k.option;
-    return names.substr(0, names.find(','));
-}
 
 /// Declares the `run` options on sub from the scene key table; the help text of each is its documentation.
 void add_run_options(CLI::App& sub, RunOptions& o)
@@ -146,14 +140,6 @@ Overrides given_overrides(const CLI::App& sub, const RunOptions& o)
     return overrides;
 }
 
-/// A scene problem as the user should read it: against the option when an option set the key
-/// ("--ny: FEM needs an even ny ..."), else against the file and key.
-std::string message_for(const SceneError& e, const Overrides& overrides)
-{
-    for (const auto& [name, value] : overrides)
-        if (name == e.key) return option_name(scene_key(name)) + ": " + e.problem();
-    return e.what();
-}
 
 /// A long run's progress on a terminal: after the first second, at most twice a second, one line on standard
 /// error rewritten in place (simulated time, rate, time left, and a faster stepper if there is one); erased at the

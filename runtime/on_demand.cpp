@@ -17,6 +17,7 @@
 
 #include <dlfcn.h>
 #include <fcntl.h>
+#include <sys/file.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -234,6 +235,31 @@ fs::path build_object(const VariantKey& key, const fs::path& work, const std::ve
 
 }  // namespace
 
+namespace {
+
+/// An exclusive flock() on path, held for the object's life; without a lock file (read-only cache) it holds nothing
+/// and compilations may repeat, as they are safe to.
+class FileLock {
+public:
+    explicit FileLock(const fs::path& path) : fd_(::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644))
+    {
+        if (fd_ >= 0)
+            while (::flock(fd_, LOCK_EX) != 0 && errno == EINTR) {
+            }
+    }
+    ~FileLock()
+    {
+        if (fd_ >= 0) ::close(fd_);  // closing releases the lock
+    }
+    FileLock(const FileLock&) = delete;
+    FileLock& operator=(const FileLock&) = delete;
+
+private:
+    int fd_;
+};
+
+}  // namespace
+
 const generated::Variant* compile_variant(const VariantKey& key, const std::function<void(const std::string&)>& note)
 {
     if (const generated::Variant* v = load_cached_variant(key)) return v;  // another run may have made it
@@ -243,6 +269,10 @@ const generated::Variant* compile_variant(const VariantKey& key, const std::func
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec) throw CompileError("cannot create the variant cache " + dir.string() + ": " + ec.message());
+    // One compilation per machine: processes that want the same variant at once (a sweep's workers) wait for the
+    // first one's, then load its object. (Threads of one process each take the lock through their own descriptor.)
+    const FileLock lock(dir / ("." + name + ".lock"));
+    if (const generated::Variant* v = load_cached_variant(key)) return v;
     if (note) note("compiling variant " + name + " on demand into " + dir.string() + " (once per machine)");
 
     static std::atomic<int> serial{0};  // two threads of one process get two folders

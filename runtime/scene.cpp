@@ -485,4 +485,18 @@ void validate(const Scene& s)
                  ", dt_out = " + shortest(s.output.dt_out) + ")");
 }
 
+std::string option_name(const SceneKey& k)
+{
+    if (k.option == nullptr) return k.name;  // overridden from code (the Python module), not an option
+    const std::string names = k.option;
+    return names.substr(0, names.find(','));
+}
+
+std::string message_for(const SceneError& e, const Overrides& overrides)
+{
+    for (const auto& [name, value] : overrides)
+        if (name == e.key) return option_name(scene_key(name)) + ": " + e.problem();
+    return e.what();
+}
+
 }  // namespace hubbeam

@@ -83,6 +83,13 @@ const SceneKey& scene_key(const std::string& name);
 /// Key name -> value as typed on the command line, e.g. {"discretization.ny", "8"}.
 using Overrides = std::vector<std::pair<std::string, std::string>>;
 
+/// The key's option name in messages: the first of CLI11's names ("-o" of "-o,--output"), or the key's own name
+/// for a key without an option.
+std::string option_name(const SceneKey& k);
+/// A scene problem as the user should read it: against the option when an option set the key
+/// ("--ny: FEM needs an even ny ..."), else against the file and key.
+std::string message_for(const SceneError& e, const Overrides& overrides);
+
 /// Reads a scene file, sets the overridden keys, then validates it; throws SceneError before any computation.
 Scene load_scene(const std::string& path, const Overrides& overrides = {});
 /// load_scene of a scene's text; path names it in messages.

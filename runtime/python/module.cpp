@@ -1,0 +1,185 @@
+// hubbeam._core: the Python module's C++ side (pybind11). Runs scenes given as TOML text into one numpy array
+// per run (rows appended in C++ with the GIL released, handed to numpy without a copy), and computes modes and
+// linearized models; runtime/python/hubbeam/__init__.py gives them their Python shape.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "hubbeam.hpp"
+#include "make_model.hpp"
+#include "on_demand.hpp"
+
+namespace py = pybind11;
+using namespace hubbeam;
+
+namespace {
+
+constexpr int row_width = 10;  // the columns of Row, in row_header()'s order
+
+/// The scene with the overrides set: the file at `text` when name is empty, else `text` itself (a scene written in
+/// code, named name in messages). Bad input raises ValueError with the command line's message.
+Scene scene_of(const std::string& text, const std::string& name, const Overrides& overrides)
+{
+    try {
+        return name.empty() ? load_scene(text, overrides) : parse_scene(text, name, overrides);
+    } catch (const SceneError& e) {
+        throw py::value_error(message_for(e, overrides));
+    }
+}
+
+/// A model for the scene's variant, or ValueError / RuntimeError as hubbeam run exits 2.
+template <class Make>
+auto guarded(const Scene& scene, const Make& make)
+{
+    try {
+        return make();
+    } catch (const std::invalid_argument& e) {
+        throw py::value_error(scene.path + ": " + e.what());
+    } catch (const CompileError& e) {
+        throw std::runtime_error(e.what());
+    }
+}
+
+/// The rows as an n x 10 array that owns them (no copy: the vector moves into the capsule).
+py::array_t<double> rows_array(std::vector<double>&& rows)
+{
+    auto* owned = new std::vector<double>(std::move(rows));
+    py::capsule free_rows(owned, [](void* p) { delete static_cast<std::vector<double>*>(p); });
+    const auto n = static_cast<py::ssize_t>(owned->size() / row_width);
+    return py::array_t<double>({n, static_cast<py::ssize_t>(row_width)},
+                               {static_cast<py::ssize_t>(row_width * sizeof(double)), static_cast<py::ssize_t>(sizeof(double))},
+                               owned->data(), free_rows);
+}
+
+py::dict run(const std::string& text, const std::string& name, const Overrides& overrides)
+{
+    const Scene scene = scene_of(text, name, overrides);
+    std::unique_ptr<Simulation> simulation = guarded(scene, [&] { return std::make_unique<Simulation>(scene); });
+    std::vector<double> rows;
+    RunSummary s;
+    {
+        // The integration touches no Python object: other Python threads run meanwhile.
+        const py::gil_scoped_release release;
+        rows.reserve(static_cast<std::size_t>(row_width) *
+                     static_cast<std::size_t>(std::min(1e7, scene.output.t_end / scene.output.dt_out + 2.0)));
+        s = simulation->run([&rows](const Row& r) {
+            rows.insert(rows.end(), {r.t, r.theta, r.theta_dot, r.tip_uy, r.tip_ux1, r.tip_ux, r.kinetic, r.potential,
+                                     r.momentum, r.jacobi});
+        });
+    }
+    py::dict out;
+    out["data"] = rows_array(std::move(rows));
+    out["columns"] = row_header();
+    out["variant"] = s.variant;
+    out["source"] = s.source;
+    out["algebra"] = s.algebra;
+    out["stepper"] = s.stepper;
+    out["stepper_why"] = s.stepper_why;
+    out["completed"] = s.completed;
+    out["failure"] = s.failure;
+    out["t_reached"] = s.t_reached;
+    out["max_abs_tip_uy"] = s.max_abs_tip_uy;
+    out["t_steady"] = s.t_steady;
+    out["jacobi_drift"] = s.jacobi_drift;
+    out["vibration_energy"] = s.vibration_energy;
+    out["steps"] = s.steps;
+    out["rhs_evals"] = s.rhs_evals;
+    out["jacobian_evals"] = s.jacobian_evals;
+    out["wall_seconds"] = s.wall_seconds;
+    out["summary_text"] = format_summary(s, scene);
+    return out;
+}
+
+/// Every mode of the scene's variant at each spin rate: columns of equal length.
+py::dict modes(const std::string& text, const std::string& name, const Overrides& overrides, const std::vector<double>& omegas)
+{
+    const Scene scene = scene_of(text, name, overrides);
+    VariantKey key = scene.variant;
+    key.drive = scene.motion.drive();
+    const std::unique_ptr<Model> model = guarded(scene, [&] { return make_model(key, scene.parameters, scene.source); });
+    std::vector<double> omega, rad_s, hz, dimensionless, growth;
+    std::vector<int> number;
+    std::vector<std::string> kind;
+    const double unit = frequency_unit(scene.parameters);
+    {
+        const py::gil_scoped_release release;
+        for (double w : omegas) {
+            int k = 0;
+            for (const NaturalMode& m : natural_modes(*model, steady_spin(*model, w))) {
+                omega.push_back(w);
+                number.push_back(++k);
+                kind.push_back(m.kind);
+                rad_s.push_back(m.rad_s);
+                hz.push_back(m.rad_s / (2.0 * M_PI));
+                dimensionless.push_back(m.rad_s / unit);
+                growth.push_back(m.growth);
+            }
+        }
+    }
+    py::dict out;
+    out["variant"] = key.name();
+    out["omega"] = py::array(py::cast(omega));
+    out["mode"] = py::array(py::cast(number));
+    out["kind"] = kind;
+    out["rad_s"] = py::array(py::cast(rad_s));
+    out["hz"] = py::array(py::cast(hz));
+    out["dimensionless"] = py::array(py::cast(dimensionless));
+    out["growth"] = py::array(py::cast(growth));
+    return out;
+}
+
+py::array_t<double> matrix(const Eigen::MatrixXd& m)
+{
+    py::array_t<double> a({m.rows(), m.cols()});
+    auto v = a.mutable_unchecked<2>();
+    for (Eigen::Index i = 0; i < m.rows(); ++i)
+        for (Eigen::Index j = 0; j < m.cols(); ++j) v(i, j) = m(i, j);
+    return a;
+}
+
+py::dict linearize(const std::string& text, const std::string& name, const Overrides& overrides, double omega)
+{
+    const Scene scene = scene_of(text, name, overrides);
+    VariantKey key = scene.variant;
+    key.drive = scene.motion.drive();
+    const std::unique_ptr<Model> model = guarded(scene, [&] { return make_model(key, scene.parameters, scene.source); });
+    const StateSpace ss = state_space(*model, steady_spin(*model, omega));
+    py::dict out;
+    out["variant"] = key.name();
+    out["A"] = matrix(ss.A);
+    out["B"] = matrix(ss.B);
+    out["C"] = matrix(ss.C);
+    out["D"] = matrix(ss.D);
+    out["states"] = ss.states;
+    out["inputs"] = ss.inputs;
+    out["outputs"] = ss.outputs;
+    return out;
+}
+
+std::vector<std::pair<std::string, std::string>> keys()
+{
+    std::vector<std::pair<std::string, std::string>> out;
+    for (const SceneKey& k : scene_keys()) out.emplace_back(k.name, k.expected);
+    return out;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_core, m)
+{
+    m.doc() = "hubbeam's C++ core: use the functions of the hubbeam package instead";
+    m.def("run", &run, "Runs a scene given as TOML text; returns the rows and the summary", py::arg("text"),
+          py::arg("name"), py::arg("overrides"));
+    m.def("modes", &modes, "Every mode of a scene's variant at each spin rate", py::arg("text"), py::arg("name"),
+          py::arg("overrides"), py::arg("omegas"));
+    m.def("linearize", &linearize, "State-space matrices about a steady spin", py::arg("text"), py::arg("name"),
+          py::arg("overrides"), py::arg("omega"));
+    m.def("scene_keys", &keys, "Every scene key (dotted name) and what it takes");
+    m.def("generator_version", [] { return variant_cache_dir().filename().string(); },
+          "The generator's version: on-demand variants are cached under it");
+    m.attr("__version__") = HUBBEAM_VERSION;
+}
