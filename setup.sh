@@ -8,9 +8,11 @@ set -euo pipefail
 cd "$(dirname "$0")"
 
 # GiNaC (symbolic derivation), Eigen (linear algebra), GSL (odeiv2 integrators), Catch2 (tests), toml++
-# (scene files), CLI11 (command line), gnuplot (the benchmark's figures); cmake, ninja and g++ to build.
+# (scene files), CLI11 (command line), gnuplot (figures), pybind11 and numpy (the Python module), Dask's
+# distributed (sweeps); cmake, ninja and g++ to build.
 packages=(build-essential cmake ninja-build pkg-config libginac-dev libeigen3-dev libgsl-dev catch2
-          libtomlplusplus-dev libcli11-dev gnuplot-nox)
+          libtomlplusplus-dev libcli11-dev gnuplot-nox python3 python3-dev pybind11-dev python3-numpy
+          python3-distributed)
 mode=${1:-run}
 shift || true
 [[ $mode == fuzz ]] && packages+=(clang)  # libFuzzer and the sanitizers' runtime come with Debian's clang

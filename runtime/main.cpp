@@ -7,6 +7,7 @@
 //   hubbeam bench SCENE.toml [--methods LIST] [--ny LIST] [--steppers LIST] [--rtols LIST] [-o FILE] [--plot PREFIX]
 //   hubbeam modes SCENE.toml [--omega LIST] [--methods LIST] [--ny LIST] [--count N] [-o FILE] [--plot PREFIX]
 //   hubbeam linearize SCENE.toml --omega W [-o PREFIX]
+//   hubbeam sweep SWEEP.toml [-o FILE] [--scheduler ADDRESS] [--workers N] [--no-resume]   (runtime/python: Dask)
 //   hubbeam kernels [--ny LIST] [--methods LIST] [--drives LIST] [--orders LIST] [--nx LIST] [--samples N] [-o FILE]
 //
 // Exit codes: 0 success; 1 the simulation stopped early (rows so far kept); 2 bad input (nothing computed);
@@ -15,6 +16,8 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <exception>
 #include <filesystem>
 #include <iostream>
@@ -421,6 +424,28 @@ int linear_command(const std::string& scene_path, const LinearOverrides& lo, con
     return exit_ok;
 }
 
+/// hubbeam sweep: hands the arguments to the Python package's sweep (it runs on Dask), replacing this process;
+/// returns only if that cannot start.
+int sweep(const std::vector<std::string>& args)
+{
+#ifdef HUBBEAM_PYTHON_EXECUTABLE
+    const char* old = std::getenv("PYTHONPATH");
+    const std::string path = std::string(HUBBEAM_PYTHON_DIR) + (old != nullptr && *old != '\0' ? ":" + std::string(old) : "");
+    ::setenv("PYTHONPATH", path.c_str(), 1);
+    std::vector<std::string> words = {HUBBEAM_PYTHON_EXECUTABLE, "-m", "hubbeam.sweeps"};
+    words.insert(words.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (std::string& w : words) argv.push_back(w.data());
+    argv.push_back(nullptr);
+    ::execv(argv[0], argv.data());
+    std::cerr << "hubbeam: cannot start " << HUBBEAM_PYTHON_EXECUTABLE << " for the sweep: " << std::strerror(errno) << "\n";
+#else
+    (void)args;
+    std::cerr << "hubbeam: sweep needs the Python module: configure with -DHUBBEAM_PYTHON=ON (README: Python module)\n";
+#endif
+    return exit_bad_input;
+}
+
 /// hubbeam stress: returns 0 when every case did what it must, 1 otherwise.
 int stress(const StressOptions& options)
 {
@@ -558,6 +583,10 @@ int main(int argc, char** argv)
         ->type_name("PREFIX");
     add_linear_overrides(*linearize_cmd, linearize_overrides, true);
     linearize_cmd->footer("README: Modes and linearized models. Exit code 2 for a bad option value.");
+    CLI::App* sweep_cmd = app.add_subcommand(
+        "sweep", "Parameter sweep on Dask: SWEEP.toml [-o FILE] [--scheduler ADDRESS] [--workers N] [--no-resume]");
+    sweep_cmd->prefix_command();  // every argument goes to the sweep (hubbeam sweep --help describes them)
+    sweep_cmd->set_help_flag();
     KernelArgs kernel_args;
     CLI::App* kernels_cmd = app.add_subcommand(
         "kernels", "Time the right-hand side and Jacobian per call, generated kernels against the assembled path");
@@ -584,6 +613,7 @@ int main(int argc, char** argv)
         if (kernels_cmd->parsed()) return kernels(kernel_args);
         if (bench_cmd->parsed()) return bench(bench_scene, bench_args);
         if (stress_cmd->parsed()) return stress(stress_options);
+        if (sweep_cmd->parsed()) return sweep(sweep_cmd->remaining());
         if (modes_cmd->parsed())
             return linear_command(modes_scene, modes_overrides, [&](const Scene& scene) {
                 ModesOptions o = parse_modes_options(modes_args, scene);

@@ -178,6 +178,8 @@ PYBIND11_MODULE(_core, m)
           py::arg("overrides"), py::arg("omegas"));
     m.def("linearize", &linearize, "State-space matrices about a steady spin", py::arg("text"), py::arg("name"),
           py::arg("overrides"), py::arg("omega"));
+    m.def("check", [](const std::string& text, const std::string& name) { scene_of(text, name, {}); },
+          "Parses and checks a scene (ValueError if it is bad)", py::arg("text"), py::arg("name"));
     m.def("scene_keys", &keys, "Every scene key (dotted name) and what it takes");
     m.def("generator_version", [] { return variant_cache_dir().filename().string(); },
           "The generator's version: on-demand variants are cached under it");

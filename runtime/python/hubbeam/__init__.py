@@ -148,7 +148,22 @@ def linearize(scene: Any, omega: float, **keys: Any) -> dict[str, Any]:
     return _core.linearize(text, name, _overrides(keys), float(omega))
 
 
+def _run_text(text: str, name: str, keys: Mapping[str, Any]) -> Result:
+    """run() of a scene's text (named name in messages): for the sweep's workers, which get the text, not a file."""
+    return Result(_core.run(text, name, _overrides(keys)))
+
+
+def _modes_text(text: str, name: str, keys: Mapping[str, Any], omegas: list[float]) -> dict[str, Any]:
+    out = _core.modes(text, name, _overrides(keys), omegas)
+    out["kind"] = np.array(out["kind"])
+    return out
+
+
+def _check_scene(text: str, name: str) -> None:
+    _core.check(text, name)
+
+
 def sweep(*args: Any, **kwargs: Any):
-    """Runs a parameter sweep on Dask (hubbeam.sweep.run_sweep; README "Parameter sweeps")."""
-    from .sweep import run_sweep
+    """Runs a parameter sweep on Dask (hubbeam.sweeps.run_sweep; README "Parameter sweeps")."""
+    from .sweeps import run_sweep
     return run_sweep(*args, **kwargs)
