@@ -26,7 +26,7 @@ TEST_CASE("an on-demand variant is compiled once, even by two racing callers, th
     Parameters p;
     p.a = 0.35;
 
-    // Two callers at once: each compiles in its own work folder and renames its object into place.
+    // Two callers at once: the variant's file lock lets one compile; the other waits and loads its object.
     const auto make = [&] { return make_model(key, p, ModelSource::generated); };
     auto first = std::async(std::launch::async, make), second = std::async(std::launch::async, make);
     const std::unique_ptr<Model> a = first.get(), b = second.get();
@@ -34,13 +34,14 @@ TEST_CASE("an on-demand variant is compiled once, even by two racing callers, th
     CHECK(a->origin().rfind("compiled now", 0) == 0);
     CHECK(b->origin().rfind("compiled now", 0) == 0);
 
-    // The cache holds the object and nothing else: the work folders are gone.
+    // The cache holds the object and its lock file, nothing else: the work folders are gone.
     std::vector<std::string> entries;
     for (const fs::directory_entry& e : fs::recursive_directory_iterator(root))
         entries.push_back(fs::relative(e.path(), root).string());
     std::sort(entries.begin(), entries.end());
-    CHECK(entries == std::vector<std::string>{variant_cache_dir().filename().string(),
-                                              (variant_cache_dir().filename() / (key.name() + ".so")).string()});
+    const fs::path version = variant_cache_dir().filename();
+    CHECK(entries == std::vector<std::string>{version.string(), (version / ("." + key.name() + ".lock")).string(),
+                                              (version / (key.name() + ".so")).string()});
     CHECK(cached_variant_names() == std::vector<std::string>{key.name()});
 
     // A later request loads it without compiling, and it computes the same equations as the assembled path.
