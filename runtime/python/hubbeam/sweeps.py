@@ -132,6 +132,12 @@ def _columns(keys: Sequence[str], keep: Sequence[str], frequencies: int) -> list
     return ["point", *keys, "status", *values, "run_seconds"]
 
 
+def run_points(scene_text: str, scene_name: str, points: Sequence[Mapping[str, Any]], keep: Sequence[str],
+               frequencies: int) -> list[dict[str, Any]]:
+    """A batch of points in one task (Dask's own cost per task is about a millisecond: short points share it)."""
+    return [run_point(scene_text, scene_name, p, keep, frequencies) for p in points]
+
+
 def run_point(scene_text: str, scene_name: str, point: Mapping[str, Any], keep: Sequence[str],
               frequencies: int) -> dict[str, Any]:
     """One point, on a worker: its row. Never raises: bad input, an unstable run or any error is the status."""
@@ -159,7 +165,7 @@ def run_point(scene_text: str, scene_name: str, point: Mapping[str, Any], keep: 
                 hz = m["hz"][m["kind"] == "bending"][:frequencies]
                 for i in range(frequencies):
                     row[f"f{i + 1}_hz"] = float(hz[i]) if i < len(hz) else ""
-        row["run_seconds"] = r.wall_seconds
+        row["run_seconds"] = r.in_process_seconds  # as hubbeam run spends in process: load, model, integrate
     except ValueError as e:
         row["status"] = "error: " + str(e)
     except Exception as e:  # noqa: BLE001 - a point's failure must never end the sweep
@@ -215,6 +221,12 @@ class _Progress:
             print(file=sys.stderr)
 
 
+def _import_hubbeam() -> str:
+    import hubbeam
+
+    return hubbeam.__version__
+
+
 def _client(scheduler: str | None, workers: int | None):
     """A Dask client: of the scheduler at its address, or of a local cluster of single-threaded worker processes
     (one per core by default) that can import hubbeam from where this process did."""
@@ -232,12 +244,19 @@ def _client(scheduler: str | None, workers: int | None):
     return Client(cluster), cluster
 
 
+# The last sweep's timing: the wall time from the first task submitted to the last row, the workers, the sum of the
+# points' own in-process times (python3 -m hubbeam.benchmark reads it).
+last_timing: dict[str, float] = {}
+
+
 def run_sweep(spec: str | os.PathLike | Mapping[str, Any], *, output: str | None = None,
               scheduler: str | None = None, workers: int | None = None, resume: bool = True,
-              progress: bool = True) -> list[dict[str, str]]:
+              progress: bool = True, batch: int | None = None) -> list[dict[str, str]]:
     """Runs every point not yet in the output table on Dask and appends its row as it finishes. Returns the table
     (the rows of all points, in the sweep's order, values as written). scheduler: a Dask scheduler's address
-    (tcp://host:8786); else a local cluster of `workers` processes (default one per core)."""
+    (tcp://host:8786); else a local cluster of `workers` processes (default one per core). batch: points per task
+    (default: about four tasks per worker, at most 16 points each, so that short points share Dask's per-task cost
+    and the workers stay balanced); a batch's rows are written when it finishes."""
     import hubbeam
 
     sweep = load_sweep(spec)
@@ -269,30 +288,38 @@ def run_sweep(spec: str | os.PathLike | Mapping[str, Any], *, output: str | None
                 out.write(_csv_line(header))
                 out.flush()
             client, cluster = _client(scheduler, workers)
+            client.run(_import_hubbeam)  # each worker's one-off imports, part of its start-up, not of a point
             started = time.perf_counter()
             run_total = 0.0
             try:
                 from distributed import as_completed
 
-                futures = {client.submit(run_point, scene_text, sweep["scene"], p, sweep["keep"], sweep["frequencies"],
-                                         key=f"hubbeam-point-{ids[i]}", pure=False): i for i, p in todo}
+                n_workers = len(client.scheduler_info().get("workers", {})) or 1
+                size = batch or max(1, min(16, len(todo) // (4 * n_workers)))
+                batches = [todo[k:k + size] for k in range(0, len(todo), size)]
+                futures = {client.submit(run_points, scene_text, sweep["scene"], [p for _, p in b], sweep["keep"],
+                                         sweep["frequencies"], key=f"hubbeam-points-{ids[b[0][0]]}-{len(b)}",
+                                         pure=False): b for b in batches}
                 for future in as_completed(futures):
-                    i = futures[future]
+                    b = futures[future]
                     try:
-                        row = future.result()
-                    except Exception as e:  # noqa: BLE001 - a lost worker: the point is a row with its status
-                        row = {"status": f"error: the task failed: {type(e).__name__}: {e}", "run_seconds": ""}
-                    values = [ids[i], *(points[i].get(k, "") for k in keys)] + [row.get(c, "") for c in header[len(keys) + 1:]]
-                    line = _csv_line(values)
-                    out.write(line)  # one whole line per write: a reader never sees half of it
+                        rows = future.result()
+                    except Exception as e:  # noqa: BLE001 - a lost worker: its points are rows with the status
+                        rows = [{"status": f"error: the task failed: {type(e).__name__}: {e}"} for _ in b]
+                    for (i, _), row in zip(b, rows):
+                        values = [ids[i], *(points[i].get(k, "") for k in keys)] + \
+                            [row.get(c, "") for c in header[len(keys) + 1:]]
+                        line = _csv_line(values)
+                        out.write(line)  # one whole line per write: a reader never sees half of it
+                        table[ids[i]] = dict(zip(header, next(csv.reader([line]))))
+                        run_total += row["run_seconds"] if isinstance(row.get("run_seconds"), float) else 0.0
+                        meter.point(row.get("status") == "ok")
                     out.flush()
-                    table[ids[i]] = dict(zip(header, next(csv.reader([line]))))
-                    run_total += row["run_seconds"] if isinstance(row.get("run_seconds"), float) else 0.0
-                    meter.point(row.get("status") == "ok")
             finally:
                 meter.close()
                 wall = time.perf_counter() - started
                 n = len(client.scheduler_info().get("workers", {})) or 1
+                last_timing.update(wall=wall, workers=n, runs=run_total)
                 client.close()
                 if cluster is not None:
                     cluster.close()
