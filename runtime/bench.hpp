@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "option_lists.hpp"
 #include "scene.hpp"
 #include "simulate.hpp"
 
@@ -30,8 +31,8 @@ struct BenchArgs {
     bool table1 = false; // the paper's Table 1 instead of a grid
 };
 
-struct BenchOptionError : std::invalid_argument {
-    using std::invalid_argument::invalid_argument;
+struct BenchOptionError : OptionError {
+    using OptionError::OptionError;
 };
 
 struct BenchOptions {

@@ -309,12 +309,7 @@ std::vector<KernelBenchRow> run_kernel_bench(const KernelBenchOptions& options, 
                 std::vector<int> nxs;
                 for (const int nx : options.nx) add_unique(nxs, nx == nx_equal_ny ? ny : nx);
                 for (const int nx : nxs) {
-                    VariantKey key;
-                    key.method = method;
-                    key.drive = drive;
-                    key.nx = nx;
-                    key.ny = ny;
-                    key.order = order;
+                    const VariantKey key{.method = method, .nx = nx, .ny = ny, .order = order, .drive = drive};
                     if (const std::string why = key.dof_problem(); !why.empty()) {
                         skipped.push_back(key.name() + ": " + why);
                         continue;

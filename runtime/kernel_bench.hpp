@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "option_lists.hpp"
+
 #include "variant.hpp"
 
 namespace hubbeam {
@@ -26,8 +28,8 @@ struct KernelArgs {
 };
 
 /// Bad `kernels` option value: what() is "--ny: expected ..., got 0", one line for the user.
-struct KernelOptionError : std::invalid_argument {
-    using std::invalid_argument::invalid_argument;
+struct KernelOptionError : OptionError {
+    using OptionError::OptionError;
 };
 
 /// An entry of the Nx list that stands for "the same as this row's Ny".

@@ -333,6 +333,23 @@ void add_bench_options(CLI::App& sub, std::string& scene, BenchArgs& a)
                  "Instead of a grid: the paper's Table 1 (four methods at Ny = 4) beside the paper's values");
 }
 
+/// Runs a command's work; its refusals become one line and exit 2: a bad option value, a scene that no model can
+/// serve (named by scene_path), an on-demand variant that failed to compile.
+template <class Work>
+int refusing(const std::string& scene_path, const Work& work)
+{
+    try {
+        return work();
+    } catch (const OptionError& e) {
+        std::cerr << e.what() << "\n";
+    } catch (const std::invalid_argument& e) {
+        std::cerr << scene_path << ": " << e.what() << "\n";
+    } catch (const CompileError& e) {
+        std::cerr << "hubbeam: " << e.what() << "\n";
+    }
+    return exit_bad_input;
+}
+
 /// hubbeam bench: returns the exit code.
 int bench(const std::string& scene_path, const BenchArgs& args)
 {
@@ -352,19 +369,12 @@ int bench(const std::string& scene_path, const BenchArgs& args)
     const StopRequest stop = []() -> const char* { return stop_signal != 0 ? interrupted : nullptr; };
     std::ostringstream quiet;
     std::ostream& progress = ::isatty(STDERR_FILENO) ? std::cerr : quiet;  // progress lines on a terminal only
-    try {
+    const int refused = refusing(scene.path, [&] {
         if (options.table1) run_table1(scene, options, std::cout, stop);
         else run_bench(scene, options, std::cout, progress, stop);
-    } catch (const BenchOptionError& e) {
-        std::cerr << e.what() << "\n";
-        return exit_bad_input;
-    } catch (const std::invalid_argument& e) {
-        std::cerr << scene.path << ": " << e.what() << "\n";
-        return exit_bad_input;
-    } catch (const CompileError& e) {
-        std::cerr << "hubbeam: " << e.what() << "\n";
-        return exit_bad_input;
-    }
+        return exit_ok;
+    });
+    if (refused != exit_ok) return refused;
     if (stop_signal != 0) {
         std::cerr << "hubbeam: bench interrupted by signal; the finished rows are in " << options.output << "\n";
         return exit_signal_base + stop_signal;
@@ -409,19 +419,10 @@ int linear_command(const std::string& scene_path, const LinearOverrides& lo, con
         std::cerr << message_for(e, overrides) << "\n";
         return exit_bad_input;
     }
-    try {
+    return refusing(scene.path, [&] {
         act(scene);
-    } catch (const ModesOptionError& e) {
-        std::cerr << e.what() << "\n";
-        return exit_bad_input;
-    } catch (const std::invalid_argument& e) {
-        std::cerr << scene.path << ": " << e.what() << "\n";
-        return exit_bad_input;
-    } catch (const CompileError& e) {
-        std::cerr << "hubbeam: " << e.what() << "\n";
-        return exit_bad_input;
-    }
-    return exit_ok;
+        return exit_ok;
+    });
 }
 
 /// hubbeam sweep: hands the arguments to the Python package's sweep (it runs on Dask), replacing this process;

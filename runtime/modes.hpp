@@ -7,12 +7,13 @@
 #include <string>
 #include <vector>
 
+#include "option_lists.hpp"
 #include "scene.hpp"
 
 namespace hubbeam {
 
-struct ModesOptionError : std::invalid_argument {
-    using std::invalid_argument::invalid_argument;
+struct ModesOptionError : OptionError {
+    using OptionError::OptionError;
 };
 
 /// Spin rates from a comma-separated list whose items are numbers >= 0 (rad/s) or ranges FIRST:LAST:STEP;

@@ -3,11 +3,17 @@
 #pragma once
 
 #include <algorithm>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
 
 namespace hubbeam {
+
+/// A bad option value of a command ("--ny: expected ..., got ..."): the message is the whole line to print.
+struct OptionError : std::invalid_argument {
+    using std::invalid_argument::invalid_argument;
+};
 
 /// The items of a comma-separated list (empty items kept, so that "4,,8" is reported).
 inline std::vector<std::string> split_list(std::string_view text)

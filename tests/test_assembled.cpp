@@ -72,14 +72,7 @@ VectorXd frequencies(const MatrixXd& K, const MatrixXd& M)
 VariantKey make_key(Method method, int nx, int ny, Drive drive = Drive::prescribed, Order order = Order::first,
                     SplineBasis spline = SplineBasis::paper)
 {
-    VariantKey k;
-    k.method = method;
-    k.nx = nx;
-    k.ny = ny;
-    k.drive = drive;
-    k.order = order;
-    k.spline = spline;
-    return k;
+    return {.method = method, .nx = nx, .ny = ny, .order = order, .drive = drive, .spline = spline};
 }
 
 /// The five transverse discretizations with a representative Ny.

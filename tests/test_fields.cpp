@@ -31,14 +31,7 @@ std::vector<double> statically_bent(const Model& model)
     return {q.data(), q.data() + n};
 }
 
-VariantKey bending_key(Method method, int ny)
-{
-    VariantKey k;
-    k.method = method;
-    k.nx = 0;
-    k.ny = ny;
-    return k;
-}
+VariantKey bending_key(Method method, int ny) { return {.method = method, .nx = 0, .ny = ny}; }
 
 double exact_moment(const Parameters& p, double x)
 {

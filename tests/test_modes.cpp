@@ -17,13 +17,7 @@ namespace {
 
 VariantKey key_of(Method method, int nx, int ny, Drive drive = Drive::prescribed, Order order = Order::first)
 {
-    VariantKey k;
-    k.method = method;
-    k.nx = nx;
-    k.ny = ny;
-    k.drive = drive;
-    k.order = order;
-    return k;
+    return {.method = method, .nx = nx, .ny = ny, .order = order, .drive = drive};
 }
 
 /// The bending frequencies of the linearized model about a steady spin, dimensionless (omega / sqrt(EI/(m L^4))).

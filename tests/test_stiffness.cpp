@@ -13,15 +13,7 @@ using namespace hubbeam;
 
 namespace {
 
-VariantKey amm_key(int nx, int ny, Drive drive)
-{
-    VariantKey k;
-    k.method = Method::amm;
-    k.nx = nx;
-    k.ny = ny;
-    k.drive = drive;
-    return k;
-}
+VariantKey amm_key(int nx, int ny, Drive drive) { return {.method = Method::amm, .nx = nx, .ny = ny, .drive = drive}; }
 
 }  // namespace
 
