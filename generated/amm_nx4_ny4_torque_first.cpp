@@ -258,6 +258,218 @@ void amm_nx4_ny4_torque_first_forces(const double* c, const double* u, const dou
     out[8] = -c[81]*B4 + c[53]*theta_dot_A1_dot + c[59]*theta_dot_A2_dot + c[65]*theta_dot_A3_dot + c[71]*theta_dot_A4_dot + c[75]*B1_theta_dotsq + c[78]*B2_theta_dotsq - c[80]*B3_theta_dotsq - c[18]*B4_theta_dotsq;
 }
 
+/* forces_terms:(c[110],u[3],q[9],qd[9])->(m[46]) the state monomials of Q: Q = F m */
+void amm_nx4_ny4_torque_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)c;
+    const double tau = u[0];
+    const double A1 = q[1];
+    const double A2 = q[2];
+    const double A3 = q[3];
+    const double A4 = q[4];
+    const double B1 = q[5];
+    const double B2 = q[6];
+    const double B3 = q[7];
+    const double B4 = q[8];
+    const double theta_dot = qd[0];
+    const double A1_dot = qd[1];
+    const double A2_dot = qd[2];
+    const double A3_dot = qd[3];
+    const double A4_dot = qd[4];
+    const double B1_dot = qd[5];
+    const double B2_dot = qd[6];
+    const double B3_dot = qd[7];
+    const double B4_dot = qd[8];
+    const double theta_dotsq = theta_dot*theta_dot;
+    const double theta_dot_A1_dot = theta_dot*A1_dot;
+    const double theta_dot_A2_dot = theta_dot*A2_dot;
+    const double theta_dot_A3_dot = theta_dot*A3_dot;
+    const double theta_dot_A4_dot = theta_dot*A4_dot;
+    const double theta_dot_B1_dot = theta_dot*B1_dot;
+    const double theta_dot_B2_dot = theta_dot*B2_dot;
+    const double theta_dot_B3_dot = theta_dot*B3_dot;
+    const double theta_dot_B4_dot = theta_dot*B4_dot;
+    const double A1_theta_dot = A1*theta_dot;
+    const double A1_theta_dotsq = A1_theta_dot*theta_dot;
+    const double A1_theta_dot_A1_dot = A1_theta_dot*A1_dot;
+    const double A2_theta_dot = A2*theta_dot;
+    const double A2_theta_dotsq = A2_theta_dot*theta_dot;
+    const double A2_theta_dot_A2_dot = A2_theta_dot*A2_dot;
+    const double A3_theta_dot = A3*theta_dot;
+    const double A3_theta_dotsq = A3_theta_dot*theta_dot;
+    const double A3_theta_dot_A3_dot = A3_theta_dot*A3_dot;
+    const double A4_theta_dot = A4*theta_dot;
+    const double A4_theta_dotsq = A4_theta_dot*theta_dot;
+    const double A4_theta_dot_A4_dot = A4_theta_dot*A4_dot;
+    const double B1_theta_dot = B1*theta_dot;
+    const double B1_theta_dotsq = B1_theta_dot*theta_dot;
+    const double B1_theta_dot_B1_dot = B1_theta_dot*B1_dot;
+    const double B1_theta_dot_B2_dot = B1_theta_dot*B2_dot;
+    const double B1_theta_dot_B3_dot = B1_theta_dot*B3_dot;
+    const double B1_theta_dot_B4_dot = B1_theta_dot*B4_dot;
+    const double B2_theta_dot = B2*theta_dot;
+    const double B2_theta_dotsq = B2_theta_dot*theta_dot;
+    const double B2_theta_dot_B1_dot = B2_theta_dot*B1_dot;
+    const double B2_theta_dot_B2_dot = B2_theta_dot*B2_dot;
+    const double B2_theta_dot_B3_dot = B2_theta_dot*B3_dot;
+    const double B2_theta_dot_B4_dot = B2_theta_dot*B4_dot;
+    const double B3_theta_dot = B3*theta_dot;
+    const double B3_theta_dotsq = B3_theta_dot*theta_dot;
+    const double B3_theta_dot_B1_dot = B3_theta_dot*B1_dot;
+    const double B3_theta_dot_B2_dot = B3_theta_dot*B2_dot;
+    const double B3_theta_dot_B3_dot = B3_theta_dot*B3_dot;
+    const double B3_theta_dot_B4_dot = B3_theta_dot*B4_dot;
+    const double B4_theta_dot = B4*theta_dot;
+    const double B4_theta_dotsq = B4_theta_dot*theta_dot;
+    const double B4_theta_dot_B1_dot = B4_theta_dot*B1_dot;
+    const double B4_theta_dot_B2_dot = B4_theta_dot*B2_dot;
+    const double B4_theta_dot_B3_dot = B4_theta_dot*B3_dot;
+    const double B4_theta_dot_B4_dot = B4_theta_dot*B4_dot;
+    out[0] = tau;
+    out[1] = A1;
+    out[2] = A2;
+    out[3] = A3;
+    out[4] = A4;
+    out[5] = B1;
+    out[6] = B2;
+    out[7] = B3;
+    out[8] = B4;
+    out[9] = theta_dotsq;
+    out[10] = theta_dot_A1_dot;
+    out[11] = theta_dot_A2_dot;
+    out[12] = theta_dot_A3_dot;
+    out[13] = theta_dot_A4_dot;
+    out[14] = theta_dot_B1_dot;
+    out[15] = theta_dot_B2_dot;
+    out[16] = theta_dot_B3_dot;
+    out[17] = theta_dot_B4_dot;
+    out[18] = A1_theta_dotsq;
+    out[19] = A1_theta_dot_A1_dot;
+    out[20] = A2_theta_dotsq;
+    out[21] = A2_theta_dot_A2_dot;
+    out[22] = A3_theta_dotsq;
+    out[23] = A3_theta_dot_A3_dot;
+    out[24] = A4_theta_dotsq;
+    out[25] = A4_theta_dot_A4_dot;
+    out[26] = B1_theta_dotsq;
+    out[27] = B1_theta_dot_B1_dot;
+    out[28] = B1_theta_dot_B2_dot;
+    out[29] = B1_theta_dot_B3_dot;
+    out[30] = B1_theta_dot_B4_dot;
+    out[31] = B2_theta_dotsq;
+    out[32] = B2_theta_dot_B1_dot;
+    out[33] = B2_theta_dot_B2_dot;
+    out[34] = B2_theta_dot_B3_dot;
+    out[35] = B2_theta_dot_B4_dot;
+    out[36] = B3_theta_dotsq;
+    out[37] = B3_theta_dot_B1_dot;
+    out[38] = B3_theta_dot_B2_dot;
+    out[39] = B3_theta_dot_B3_dot;
+    out[40] = B3_theta_dot_B4_dot;
+    out[41] = B4_theta_dotsq;
+    out[42] = B4_theta_dot_B1_dot;
+    out[43] = B4_theta_dot_B2_dot;
+    out[44] = B4_theta_dot_B3_dot;
+    out[45] = B4_theta_dot_B4_dot;
+}
+
+/* forces_matrix:(c[110],u[3],q[9],qd[9])->(F[9*46]) row-major, state-free: Q = F m; nonzero entries only */
+void amm_nx4_ny4_torque_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)q;
+    (void)qd;
+    out[0] = 1.0;
+    out[10] = -c[1];
+    out[11] = -c[2];
+    out[12] = -c[3];
+    out[13] = -c[4];
+    out[19] = -c[42];
+    out[21] = -c[43];
+    out[23] = -c[41];
+    out[25] = -c[40];
+    out[27] = c[44];
+    out[28] = -c[10];
+    out[29] = -c[11];
+    out[30] = -c[12];
+    out[32] = -c[10];
+    out[33] = c[45];
+    out[34] = c[14];
+    out[35] = -c[15];
+    out[37] = -c[11];
+    out[38] = c[14];
+    out[39] = c[46];
+    out[40] = c[17];
+    out[42] = -c[12];
+    out[43] = -c[15];
+    out[44] = c[17];
+    out[45] = c[47];
+    out[47] = -c[48];
+    out[55] = c[49];
+    out[60] = -c[50];
+    out[61] = -c[51];
+    out[62] = -c[52];
+    out[63] = -c[53];
+    out[64] = c[5];
+    out[94] = -c[54];
+    out[101] = c[55];
+    out[106] = c[56];
+    out[107] = -c[57];
+    out[108] = -c[58];
+    out[109] = -c[59];
+    out[112] = c[6];
+    out[141] = -c[60];
+    out[147] = c[61];
+    out[152] = -c[62];
+    out[153] = c[63];
+    out[154] = -c[64];
+    out[155] = -c[65];
+    out[160] = c[7];
+    out[188] = -c[66];
+    out[193] = c[67];
+    out[198] = c[68];
+    out[199] = -c[69];
+    out[200] = c[70];
+    out[201] = -c[71];
+    out[208] = c[8];
+    out[235] = -c[72];
+    out[240] = c[50];
+    out[241] = -c[56];
+    out[242] = c[62];
+    out[243] = -c[68];
+    out[256] = -c[9];
+    out[261] = c[73];
+    out[266] = c[74];
+    out[271] = c[75];
+    out[282] = -c[76];
+    out[286] = c[51];
+    out[287] = c[57];
+    out[288] = -c[63];
+    out[289] = c[69];
+    out[302] = c[73];
+    out[307] = -c[13];
+    out[312] = -c[77];
+    out[317] = c[78];
+    out[329] = -c[79];
+    out[332] = c[52];
+    out[333] = c[58];
+    out[334] = c[64];
+    out[335] = -c[70];
+    out[348] = c[74];
+    out[353] = -c[77];
+    out[358] = -c[16];
+    out[363] = -c[80];
+    out[376] = -c[81];
+    out[378] = c[53];
+    out[379] = c[59];
+    out[380] = c[65];
+    out[381] = c[71];
+    out[394] = c[75];
+    out[399] = c[78];
+    out[404] = -c[80];
+    out[409] = -c[18];
+}
+
 /* energy:(c[110],u[3],q[9],qd[9])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void amm_nx4_ny4_torque_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
@@ -774,9 +986,9 @@ void amm_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, c
 
 }  // namespace
 
-extern const Variant amm_nx4_ny4_torque_first = {"amm_nx4_ny4_torque_first", 9, 110, 0,
+extern const Variant amm_nx4_ny4_torque_first = {"amm_nx4_ny4_torque_first", 9, 110, 46,
     "vvvvvvvvvvc0000000v0c000000v00c00000v000c0000v0000c000v00000c00v000000c0v0000000c",
-    amm_nx4_ny4_torque_first_coefficients, amm_nx4_ny4_torque_first_mass, amm_nx4_ny4_torque_first_mass_varying, amm_nx4_ny4_torque_first_forces, nullptr, nullptr,
+    amm_nx4_ny4_torque_first_coefficients, amm_nx4_ny4_torque_first_mass, amm_nx4_ny4_torque_first_mass_varying, amm_nx4_ny4_torque_first_forces, amm_nx4_ny4_torque_first_forces_terms, amm_nx4_ny4_torque_first_forces_matrix,
     amm_nx4_ny4_torque_first_energy, amm_nx4_ny4_torque_first_momentum, amm_nx4_ny4_torque_first_forces_q, amm_nx4_ny4_torque_first_forces_qd, amm_nx4_ny4_torque_first_mass_q_product, amm_nx4_ny4_torque_first_forces_u, amm_nx4_ny4_torque_first_tip, nullptr};
 
 }  // namespace hubbeam::generated

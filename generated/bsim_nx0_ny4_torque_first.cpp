@@ -166,6 +166,128 @@ void bsim_nx0_ny4_torque_first_forces(const double* c, const double* u, const do
     out[4] = -c[30]*B1 - c[35]*B2 + c[39]*B3 - c[41]*B4 - c[33]*B1_theta_dotsq - c[37]*B2_theta_dotsq + c[40]*B3_theta_dotsq - c[10]*B4_theta_dotsq;
 }
 
+/* forces_terms:(c[62],u[3],q[5],qd[5])->(m[25]) the state monomials of Q: Q = F m */
+void bsim_nx0_ny4_torque_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)c;
+    const double tau = u[0];
+    const double B1 = q[1];
+    const double B2 = q[2];
+    const double B3 = q[3];
+    const double B4 = q[4];
+    const double theta_dot = qd[0];
+    const double B1_dot = qd[1];
+    const double B2_dot = qd[2];
+    const double B3_dot = qd[3];
+    const double B4_dot = qd[4];
+    const double B1_theta_dot = B1*theta_dot;
+    const double B1_theta_dotsq = B1_theta_dot*theta_dot;
+    const double B1_theta_dot_B1_dot = B1_theta_dot*B1_dot;
+    const double B1_theta_dot_B2_dot = B1_theta_dot*B2_dot;
+    const double B1_theta_dot_B3_dot = B1_theta_dot*B3_dot;
+    const double B1_theta_dot_B4_dot = B1_theta_dot*B4_dot;
+    const double B2_theta_dot = B2*theta_dot;
+    const double B2_theta_dotsq = B2_theta_dot*theta_dot;
+    const double B2_theta_dot_B1_dot = B2_theta_dot*B1_dot;
+    const double B2_theta_dot_B2_dot = B2_theta_dot*B2_dot;
+    const double B2_theta_dot_B3_dot = B2_theta_dot*B3_dot;
+    const double B2_theta_dot_B4_dot = B2_theta_dot*B4_dot;
+    const double B3_theta_dot = B3*theta_dot;
+    const double B3_theta_dotsq = B3_theta_dot*theta_dot;
+    const double B3_theta_dot_B1_dot = B3_theta_dot*B1_dot;
+    const double B3_theta_dot_B2_dot = B3_theta_dot*B2_dot;
+    const double B3_theta_dot_B3_dot = B3_theta_dot*B3_dot;
+    const double B3_theta_dot_B4_dot = B3_theta_dot*B4_dot;
+    const double B4_theta_dot = B4*theta_dot;
+    const double B4_theta_dotsq = B4_theta_dot*theta_dot;
+    const double B4_theta_dot_B1_dot = B4_theta_dot*B1_dot;
+    const double B4_theta_dot_B2_dot = B4_theta_dot*B2_dot;
+    const double B4_theta_dot_B3_dot = B4_theta_dot*B3_dot;
+    const double B4_theta_dot_B4_dot = B4_theta_dot*B4_dot;
+    out[0] = tau;
+    out[1] = B1;
+    out[2] = B2;
+    out[3] = B3;
+    out[4] = B4;
+    out[5] = B1_theta_dotsq;
+    out[6] = B1_theta_dot_B1_dot;
+    out[7] = B1_theta_dot_B2_dot;
+    out[8] = B1_theta_dot_B3_dot;
+    out[9] = B1_theta_dot_B4_dot;
+    out[10] = B2_theta_dotsq;
+    out[11] = B2_theta_dot_B1_dot;
+    out[12] = B2_theta_dot_B2_dot;
+    out[13] = B2_theta_dot_B3_dot;
+    out[14] = B2_theta_dot_B4_dot;
+    out[15] = B3_theta_dotsq;
+    out[16] = B3_theta_dot_B1_dot;
+    out[17] = B3_theta_dot_B2_dot;
+    out[18] = B3_theta_dot_B3_dot;
+    out[19] = B3_theta_dot_B4_dot;
+    out[20] = B4_theta_dotsq;
+    out[21] = B4_theta_dot_B1_dot;
+    out[22] = B4_theta_dot_B2_dot;
+    out[23] = B4_theta_dot_B3_dot;
+    out[24] = B4_theta_dot_B4_dot;
+}
+
+/* forces_matrix:(c[62],u[3],q[5],qd[5])->(F[5*25]) row-major, state-free: Q = F m; nonzero entries only */
+void bsim_nx0_ny4_torque_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)q;
+    (void)qd;
+    out[0] = 1.0;
+    out[6] = c[24];
+    out[7] = c[2];
+    out[8] = -c[3];
+    out[9] = c[4];
+    out[11] = c[2];
+    out[12] = c[25];
+    out[13] = -c[6];
+    out[14] = c[7];
+    out[16] = -c[3];
+    out[17] = -c[6];
+    out[18] = c[26];
+    out[19] = -c[9];
+    out[21] = c[4];
+    out[22] = c[7];
+    out[23] = -c[9];
+    out[24] = c[27];
+    out[26] = -c[28];
+    out[27] = c[29];
+    out[28] = c[30];
+    out[29] = -c[30];
+    out[30] = -c[1];
+    out[35] = -c[31];
+    out[40] = c[32];
+    out[45] = -c[33];
+    out[51] = c[29];
+    out[52] = -c[28];
+    out[53] = c[34];
+    out[54] = -c[35];
+    out[55] = -c[31];
+    out[60] = -c[5];
+    out[65] = c[36];
+    out[70] = -c[37];
+    out[76] = c[30];
+    out[77] = c[34];
+    out[78] = -c[38];
+    out[79] = c[39];
+    out[80] = c[32];
+    out[85] = c[36];
+    out[90] = -c[8];
+    out[95] = c[40];
+    out[101] = -c[30];
+    out[102] = -c[35];
+    out[103] = c[39];
+    out[104] = -c[41];
+    out[105] = -c[33];
+    out[110] = -c[37];
+    out[115] = c[40];
+    out[120] = -c[10];
+}
+
 /* energy:(c[62],u[3],q[5],qd[5])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void bsim_nx0_ny4_torque_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
@@ -424,9 +546,9 @@ void bsim_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, 
 
 }  // namespace
 
-extern const Variant bsim_nx0_ny4_torque_first = {"bsim_nx0_ny4_torque_first", 5, 62, 0,
+extern const Variant bsim_nx0_ny4_torque_first = {"bsim_nx0_ny4_torque_first", 5, 62, 25,
     "vcccccccccccccccccccccccc",
-    bsim_nx0_ny4_torque_first_coefficients, bsim_nx0_ny4_torque_first_mass, bsim_nx0_ny4_torque_first_mass_varying, bsim_nx0_ny4_torque_first_forces, nullptr, nullptr,
+    bsim_nx0_ny4_torque_first_coefficients, bsim_nx0_ny4_torque_first_mass, bsim_nx0_ny4_torque_first_mass_varying, bsim_nx0_ny4_torque_first_forces, bsim_nx0_ny4_torque_first_forces_terms, bsim_nx0_ny4_torque_first_forces_matrix,
     bsim_nx0_ny4_torque_first_energy, bsim_nx0_ny4_torque_first_momentum, bsim_nx0_ny4_torque_first_forces_q, bsim_nx0_ny4_torque_first_forces_qd, bsim_nx0_ny4_torque_first_mass_q_product, bsim_nx0_ny4_torque_first_forces_u, bsim_nx0_ny4_torque_first_tip, nullptr};
 
 }  // namespace hubbeam::generated

@@ -1536,6 +1536,1395 @@ void fem_nx32_ny32_torque_first_forces(const double* c, const double* u, const d
     }
 }
 
+/* forces_terms:(c[333],u[3],q[65],qd[65])->(m[472]) the state monomials of Q: Q = F m */
+void fem_nx32_ny32_torque_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)c;
+    const double tau = u[0];
+    const double A1 = q[1];
+    const double A2 = q[2];
+    const double A3 = q[3];
+    const double A4 = q[4];
+    const double A5 = q[5];
+    const double A6 = q[6];
+    const double A7 = q[7];
+    const double A8 = q[8];
+    const double A9 = q[9];
+    const double A10 = q[10];
+    const double A11 = q[11];
+    const double A12 = q[12];
+    const double A13 = q[13];
+    const double A14 = q[14];
+    const double A15 = q[15];
+    const double A16 = q[16];
+    const double A17 = q[17];
+    const double A18 = q[18];
+    const double A19 = q[19];
+    const double A20 = q[20];
+    const double A21 = q[21];
+    const double A22 = q[22];
+    const double A23 = q[23];
+    const double A24 = q[24];
+    const double A25 = q[25];
+    const double A26 = q[26];
+    const double A27 = q[27];
+    const double A28 = q[28];
+    const double A29 = q[29];
+    const double A30 = q[30];
+    const double A31 = q[31];
+    const double A32 = q[32];
+    const double B1 = q[33];
+    const double B2 = q[34];
+    const double B3 = q[35];
+    const double B4 = q[36];
+    const double B5 = q[37];
+    const double B6 = q[38];
+    const double B7 = q[39];
+    const double B8 = q[40];
+    const double B9 = q[41];
+    const double B10 = q[42];
+    const double B11 = q[43];
+    const double B12 = q[44];
+    const double B13 = q[45];
+    const double B14 = q[46];
+    const double B15 = q[47];
+    const double B16 = q[48];
+    const double B17 = q[49];
+    const double B18 = q[50];
+    const double B19 = q[51];
+    const double B20 = q[52];
+    const double B21 = q[53];
+    const double B22 = q[54];
+    const double B23 = q[55];
+    const double B24 = q[56];
+    const double B25 = q[57];
+    const double B26 = q[58];
+    const double B27 = q[59];
+    const double B28 = q[60];
+    const double B29 = q[61];
+    const double B30 = q[62];
+    const double B31 = q[63];
+    const double B32 = q[64];
+    const double theta_dot = qd[0];
+    const double A1_dot = qd[1];
+    const double A2_dot = qd[2];
+    const double A3_dot = qd[3];
+    const double A4_dot = qd[4];
+    const double A5_dot = qd[5];
+    const double A6_dot = qd[6];
+    const double A7_dot = qd[7];
+    const double A8_dot = qd[8];
+    const double A9_dot = qd[9];
+    const double A10_dot = qd[10];
+    const double A11_dot = qd[11];
+    const double A12_dot = qd[12];
+    const double A13_dot = qd[13];
+    const double A14_dot = qd[14];
+    const double A15_dot = qd[15];
+    const double A16_dot = qd[16];
+    const double A17_dot = qd[17];
+    const double A18_dot = qd[18];
+    const double A19_dot = qd[19];
+    const double A20_dot = qd[20];
+    const double A21_dot = qd[21];
+    const double A22_dot = qd[22];
+    const double A23_dot = qd[23];
+    const double A24_dot = qd[24];
+    const double A25_dot = qd[25];
+    const double A26_dot = qd[26];
+    const double A27_dot = qd[27];
+    const double A28_dot = qd[28];
+    const double A29_dot = qd[29];
+    const double A30_dot = qd[30];
+    const double A31_dot = qd[31];
+    const double A32_dot = qd[32];
+    const double B1_dot = qd[33];
+    const double B2_dot = qd[34];
+    const double B3_dot = qd[35];
+    const double B4_dot = qd[36];
+    const double B5_dot = qd[37];
+    const double B6_dot = qd[38];
+    const double B7_dot = qd[39];
+    const double B8_dot = qd[40];
+    const double B9_dot = qd[41];
+    const double B10_dot = qd[42];
+    const double B11_dot = qd[43];
+    const double B12_dot = qd[44];
+    const double B13_dot = qd[45];
+    const double B14_dot = qd[46];
+    const double B15_dot = qd[47];
+    const double B16_dot = qd[48];
+    const double B17_dot = qd[49];
+    const double B18_dot = qd[50];
+    const double B19_dot = qd[51];
+    const double B20_dot = qd[52];
+    const double B21_dot = qd[53];
+    const double B22_dot = qd[54];
+    const double B23_dot = qd[55];
+    const double B24_dot = qd[56];
+    const double B25_dot = qd[57];
+    const double B26_dot = qd[58];
+    const double B27_dot = qd[59];
+    const double B28_dot = qd[60];
+    const double B29_dot = qd[61];
+    const double B30_dot = qd[62];
+    const double B31_dot = qd[63];
+    const double B32_dot = qd[64];
+    const double theta_dotsq = theta_dot*theta_dot;
+    const double theta_dot_A1_dot = theta_dot*A1_dot;
+    const double theta_dot_A2_dot = theta_dot*A2_dot;
+    const double theta_dot_A3_dot = theta_dot*A3_dot;
+    const double theta_dot_A4_dot = theta_dot*A4_dot;
+    const double theta_dot_A5_dot = theta_dot*A5_dot;
+    const double theta_dot_A6_dot = theta_dot*A6_dot;
+    const double theta_dot_A7_dot = theta_dot*A7_dot;
+    const double theta_dot_A8_dot = theta_dot*A8_dot;
+    const double theta_dot_A9_dot = theta_dot*A9_dot;
+    const double theta_dot_A10_dot = theta_dot*A10_dot;
+    const double theta_dot_A11_dot = theta_dot*A11_dot;
+    const double theta_dot_A12_dot = theta_dot*A12_dot;
+    const double theta_dot_A13_dot = theta_dot*A13_dot;
+    const double theta_dot_A14_dot = theta_dot*A14_dot;
+    const double theta_dot_A15_dot = theta_dot*A15_dot;
+    const double theta_dot_A16_dot = theta_dot*A16_dot;
+    const double theta_dot_A17_dot = theta_dot*A17_dot;
+    const double theta_dot_A18_dot = theta_dot*A18_dot;
+    const double theta_dot_A19_dot = theta_dot*A19_dot;
+    const double theta_dot_A20_dot = theta_dot*A20_dot;
+    const double theta_dot_A21_dot = theta_dot*A21_dot;
+    const double theta_dot_A22_dot = theta_dot*A22_dot;
+    const double theta_dot_A23_dot = theta_dot*A23_dot;
+    const double theta_dot_A24_dot = theta_dot*A24_dot;
+    const double theta_dot_A25_dot = theta_dot*A25_dot;
+    const double theta_dot_A26_dot = theta_dot*A26_dot;
+    const double theta_dot_A27_dot = theta_dot*A27_dot;
+    const double theta_dot_A28_dot = theta_dot*A28_dot;
+    const double theta_dot_A29_dot = theta_dot*A29_dot;
+    const double theta_dot_A30_dot = theta_dot*A30_dot;
+    const double theta_dot_A31_dot = theta_dot*A31_dot;
+    const double theta_dot_A32_dot = theta_dot*A32_dot;
+    const double theta_dot_B1_dot = theta_dot*B1_dot;
+    const double theta_dot_B2_dot = theta_dot*B2_dot;
+    const double theta_dot_B3_dot = theta_dot*B3_dot;
+    const double theta_dot_B4_dot = theta_dot*B4_dot;
+    const double theta_dot_B5_dot = theta_dot*B5_dot;
+    const double theta_dot_B6_dot = theta_dot*B6_dot;
+    const double theta_dot_B7_dot = theta_dot*B7_dot;
+    const double theta_dot_B8_dot = theta_dot*B8_dot;
+    const double theta_dot_B9_dot = theta_dot*B9_dot;
+    const double theta_dot_B10_dot = theta_dot*B10_dot;
+    const double theta_dot_B11_dot = theta_dot*B11_dot;
+    const double theta_dot_B12_dot = theta_dot*B12_dot;
+    const double theta_dot_B13_dot = theta_dot*B13_dot;
+    const double theta_dot_B14_dot = theta_dot*B14_dot;
+    const double theta_dot_B15_dot = theta_dot*B15_dot;
+    const double theta_dot_B16_dot = theta_dot*B16_dot;
+    const double theta_dot_B17_dot = theta_dot*B17_dot;
+    const double theta_dot_B18_dot = theta_dot*B18_dot;
+    const double theta_dot_B19_dot = theta_dot*B19_dot;
+    const double theta_dot_B20_dot = theta_dot*B20_dot;
+    const double theta_dot_B21_dot = theta_dot*B21_dot;
+    const double theta_dot_B22_dot = theta_dot*B22_dot;
+    const double theta_dot_B23_dot = theta_dot*B23_dot;
+    const double theta_dot_B24_dot = theta_dot*B24_dot;
+    const double theta_dot_B25_dot = theta_dot*B25_dot;
+    const double theta_dot_B26_dot = theta_dot*B26_dot;
+    const double theta_dot_B27_dot = theta_dot*B27_dot;
+    const double theta_dot_B28_dot = theta_dot*B28_dot;
+    const double theta_dot_B29_dot = theta_dot*B29_dot;
+    const double theta_dot_B30_dot = theta_dot*B30_dot;
+    const double theta_dot_B31_dot = theta_dot*B31_dot;
+    const double theta_dot_B32_dot = theta_dot*B32_dot;
+    const double A1_theta_dot = A1*theta_dot;
+    const double A1_theta_dotsq = A1_theta_dot*theta_dot;
+    const double A1_theta_dot_A1_dot = A1_theta_dot*A1_dot;
+    const double A1_theta_dot_A2_dot = A1_theta_dot*A2_dot;
+    const double A2_theta_dot = A2*theta_dot;
+    const double A2_theta_dotsq = A2_theta_dot*theta_dot;
+    const double A2_theta_dot_A1_dot = A2_theta_dot*A1_dot;
+    const double A2_theta_dot_A2_dot = A2_theta_dot*A2_dot;
+    const double A2_theta_dot_A3_dot = A2_theta_dot*A3_dot;
+    const double A3_theta_dot = A3*theta_dot;
+    const double A3_theta_dotsq = A3_theta_dot*theta_dot;
+    const double A3_theta_dot_A2_dot = A3_theta_dot*A2_dot;
+    const double A3_theta_dot_A3_dot = A3_theta_dot*A3_dot;
+    const double A3_theta_dot_A4_dot = A3_theta_dot*A4_dot;
+    const double A4_theta_dot = A4*theta_dot;
+    const double A4_theta_dotsq = A4_theta_dot*theta_dot;
+    const double A4_theta_dot_A3_dot = A4_theta_dot*A3_dot;
+    const double A4_theta_dot_A4_dot = A4_theta_dot*A4_dot;
+    const double A4_theta_dot_A5_dot = A4_theta_dot*A5_dot;
+    const double A5_theta_dot = A5*theta_dot;
+    const double A5_theta_dotsq = A5_theta_dot*theta_dot;
+    const double A5_theta_dot_A4_dot = A5_theta_dot*A4_dot;
+    const double A5_theta_dot_A5_dot = A5_theta_dot*A5_dot;
+    const double A5_theta_dot_A6_dot = A5_theta_dot*A6_dot;
+    const double A6_theta_dot = A6*theta_dot;
+    const double A6_theta_dotsq = A6_theta_dot*theta_dot;
+    const double A6_theta_dot_A5_dot = A6_theta_dot*A5_dot;
+    const double A6_theta_dot_A6_dot = A6_theta_dot*A6_dot;
+    const double A6_theta_dot_A7_dot = A6_theta_dot*A7_dot;
+    const double A7_theta_dot = A7*theta_dot;
+    const double A7_theta_dotsq = A7_theta_dot*theta_dot;
+    const double A7_theta_dot_A6_dot = A7_theta_dot*A6_dot;
+    const double A7_theta_dot_A7_dot = A7_theta_dot*A7_dot;
+    const double A7_theta_dot_A8_dot = A7_theta_dot*A8_dot;
+    const double A8_theta_dot = A8*theta_dot;
+    const double A8_theta_dotsq = A8_theta_dot*theta_dot;
+    const double A8_theta_dot_A7_dot = A8_theta_dot*A7_dot;
+    const double A8_theta_dot_A8_dot = A8_theta_dot*A8_dot;
+    const double A8_theta_dot_A9_dot = A8_theta_dot*A9_dot;
+    const double A9_theta_dot = A9*theta_dot;
+    const double A9_theta_dotsq = A9_theta_dot*theta_dot;
+    const double A9_theta_dot_A8_dot = A9_theta_dot*A8_dot;
+    const double A9_theta_dot_A9_dot = A9_theta_dot*A9_dot;
+    const double A9_theta_dot_A10_dot = A9_theta_dot*A10_dot;
+    const double A10_theta_dot = A10*theta_dot;
+    const double A10_theta_dotsq = A10_theta_dot*theta_dot;
+    const double A10_theta_dot_A9_dot = A10_theta_dot*A9_dot;
+    const double A10_theta_dot_A10_dot = A10_theta_dot*A10_dot;
+    const double A10_theta_dot_A11_dot = A10_theta_dot*A11_dot;
+    const double A11_theta_dot = A11*theta_dot;
+    const double A11_theta_dotsq = A11_theta_dot*theta_dot;
+    const double A11_theta_dot_A10_dot = A11_theta_dot*A10_dot;
+    const double A11_theta_dot_A11_dot = A11_theta_dot*A11_dot;
+    const double A11_theta_dot_A12_dot = A11_theta_dot*A12_dot;
+    const double A12_theta_dot = A12*theta_dot;
+    const double A12_theta_dotsq = A12_theta_dot*theta_dot;
+    const double A12_theta_dot_A11_dot = A12_theta_dot*A11_dot;
+    const double A12_theta_dot_A12_dot = A12_theta_dot*A12_dot;
+    const double A12_theta_dot_A13_dot = A12_theta_dot*A13_dot;
+    const double A13_theta_dot = A13*theta_dot;
+    const double A13_theta_dotsq = A13_theta_dot*theta_dot;
+    const double A13_theta_dot_A12_dot = A13_theta_dot*A12_dot;
+    const double A13_theta_dot_A13_dot = A13_theta_dot*A13_dot;
+    const double A13_theta_dot_A14_dot = A13_theta_dot*A14_dot;
+    const double A14_theta_dot = A14*theta_dot;
+    const double A14_theta_dotsq = A14_theta_dot*theta_dot;
+    const double A14_theta_dot_A13_dot = A14_theta_dot*A13_dot;
+    const double A14_theta_dot_A14_dot = A14_theta_dot*A14_dot;
+    const double A14_theta_dot_A15_dot = A14_theta_dot*A15_dot;
+    const double A15_theta_dot = A15*theta_dot;
+    const double A15_theta_dotsq = A15_theta_dot*theta_dot;
+    const double A15_theta_dot_A14_dot = A15_theta_dot*A14_dot;
+    const double A15_theta_dot_A15_dot = A15_theta_dot*A15_dot;
+    const double A15_theta_dot_A16_dot = A15_theta_dot*A16_dot;
+    const double A16_theta_dot = A16*theta_dot;
+    const double A16_theta_dotsq = A16_theta_dot*theta_dot;
+    const double A16_theta_dot_A15_dot = A16_theta_dot*A15_dot;
+    const double A16_theta_dot_A16_dot = A16_theta_dot*A16_dot;
+    const double A16_theta_dot_A17_dot = A16_theta_dot*A17_dot;
+    const double A17_theta_dot = A17*theta_dot;
+    const double A17_theta_dotsq = A17_theta_dot*theta_dot;
+    const double A17_theta_dot_A16_dot = A17_theta_dot*A16_dot;
+    const double A17_theta_dot_A17_dot = A17_theta_dot*A17_dot;
+    const double A17_theta_dot_A18_dot = A17_theta_dot*A18_dot;
+    const double A18_theta_dot = A18*theta_dot;
+    const double A18_theta_dotsq = A18_theta_dot*theta_dot;
+    const double A18_theta_dot_A17_dot = A18_theta_dot*A17_dot;
+    const double A18_theta_dot_A18_dot = A18_theta_dot*A18_dot;
+    const double A18_theta_dot_A19_dot = A18_theta_dot*A19_dot;
+    const double A19_theta_dot = A19*theta_dot;
+    const double A19_theta_dotsq = A19_theta_dot*theta_dot;
+    const double A19_theta_dot_A18_dot = A19_theta_dot*A18_dot;
+    const double A19_theta_dot_A19_dot = A19_theta_dot*A19_dot;
+    const double A19_theta_dot_A20_dot = A19_theta_dot*A20_dot;
+    const double A20_theta_dot = A20*theta_dot;
+    const double A20_theta_dotsq = A20_theta_dot*theta_dot;
+    const double A20_theta_dot_A19_dot = A20_theta_dot*A19_dot;
+    const double A20_theta_dot_A20_dot = A20_theta_dot*A20_dot;
+    const double A20_theta_dot_A21_dot = A20_theta_dot*A21_dot;
+    const double A21_theta_dot = A21*theta_dot;
+    const double A21_theta_dotsq = A21_theta_dot*theta_dot;
+    const double A21_theta_dot_A20_dot = A21_theta_dot*A20_dot;
+    const double A21_theta_dot_A21_dot = A21_theta_dot*A21_dot;
+    const double A21_theta_dot_A22_dot = A21_theta_dot*A22_dot;
+    const double A22_theta_dot = A22*theta_dot;
+    const double A22_theta_dotsq = A22_theta_dot*theta_dot;
+    const double A22_theta_dot_A21_dot = A22_theta_dot*A21_dot;
+    const double A22_theta_dot_A22_dot = A22_theta_dot*A22_dot;
+    const double A22_theta_dot_A23_dot = A22_theta_dot*A23_dot;
+    const double A23_theta_dot = A23*theta_dot;
+    const double A23_theta_dotsq = A23_theta_dot*theta_dot;
+    const double A23_theta_dot_A22_dot = A23_theta_dot*A22_dot;
+    const double A23_theta_dot_A23_dot = A23_theta_dot*A23_dot;
+    const double A23_theta_dot_A24_dot = A23_theta_dot*A24_dot;
+    const double A24_theta_dot = A24*theta_dot;
+    const double A24_theta_dotsq = A24_theta_dot*theta_dot;
+    const double A24_theta_dot_A23_dot = A24_theta_dot*A23_dot;
+    const double A24_theta_dot_A24_dot = A24_theta_dot*A24_dot;
+    const double A24_theta_dot_A25_dot = A24_theta_dot*A25_dot;
+    const double A25_theta_dot = A25*theta_dot;
+    const double A25_theta_dotsq = A25_theta_dot*theta_dot;
+    const double A25_theta_dot_A24_dot = A25_theta_dot*A24_dot;
+    const double A25_theta_dot_A25_dot = A25_theta_dot*A25_dot;
+    const double A25_theta_dot_A26_dot = A25_theta_dot*A26_dot;
+    const double A26_theta_dot = A26*theta_dot;
+    const double A26_theta_dotsq = A26_theta_dot*theta_dot;
+    const double A26_theta_dot_A25_dot = A26_theta_dot*A25_dot;
+    const double A26_theta_dot_A26_dot = A26_theta_dot*A26_dot;
+    const double A26_theta_dot_A27_dot = A26_theta_dot*A27_dot;
+    const double A27_theta_dot = A27*theta_dot;
+    const double A27_theta_dotsq = A27_theta_dot*theta_dot;
+    const double A27_theta_dot_A26_dot = A27_theta_dot*A26_dot;
+    const double A27_theta_dot_A27_dot = A27_theta_dot*A27_dot;
+    const double A27_theta_dot_A28_dot = A27_theta_dot*A28_dot;
+    const double A28_theta_dot = A28*theta_dot;
+    const double A28_theta_dotsq = A28_theta_dot*theta_dot;
+    const double A28_theta_dot_A27_dot = A28_theta_dot*A27_dot;
+    const double A28_theta_dot_A28_dot = A28_theta_dot*A28_dot;
+    const double A28_theta_dot_A29_dot = A28_theta_dot*A29_dot;
+    const double A29_theta_dot = A29*theta_dot;
+    const double A29_theta_dotsq = A29_theta_dot*theta_dot;
+    const double A29_theta_dot_A28_dot = A29_theta_dot*A28_dot;
+    const double A29_theta_dot_A29_dot = A29_theta_dot*A29_dot;
+    const double A29_theta_dot_A30_dot = A29_theta_dot*A30_dot;
+    const double A30_theta_dot = A30*theta_dot;
+    const double A30_theta_dotsq = A30_theta_dot*theta_dot;
+    const double A30_theta_dot_A29_dot = A30_theta_dot*A29_dot;
+    const double A30_theta_dot_A30_dot = A30_theta_dot*A30_dot;
+    const double A30_theta_dot_A31_dot = A30_theta_dot*A31_dot;
+    const double A31_theta_dot = A31*theta_dot;
+    const double A31_theta_dotsq = A31_theta_dot*theta_dot;
+    const double A31_theta_dot_A30_dot = A31_theta_dot*A30_dot;
+    const double A31_theta_dot_A31_dot = A31_theta_dot*A31_dot;
+    const double A31_theta_dot_A32_dot = A31_theta_dot*A32_dot;
+    const double A32_theta_dot = A32*theta_dot;
+    const double A32_theta_dotsq = A32_theta_dot*theta_dot;
+    const double A32_theta_dot_A31_dot = A32_theta_dot*A31_dot;
+    const double A32_theta_dot_A32_dot = A32_theta_dot*A32_dot;
+    const double B1_theta_dot = B1*theta_dot;
+    const double B1_theta_dotsq = B1_theta_dot*theta_dot;
+    const double B1_theta_dot_B1_dot = B1_theta_dot*B1_dot;
+    const double B1_theta_dot_B2_dot = B1_theta_dot*B2_dot;
+    const double B1_theta_dot_B3_dot = B1_theta_dot*B3_dot;
+    const double B1_theta_dot_B4_dot = B1_theta_dot*B4_dot;
+    const double B2_theta_dot = B2*theta_dot;
+    const double B2_theta_dotsq = B2_theta_dot*theta_dot;
+    const double B2_theta_dot_B1_dot = B2_theta_dot*B1_dot;
+    const double B2_theta_dot_B2_dot = B2_theta_dot*B2_dot;
+    const double B2_theta_dot_B3_dot = B2_theta_dot*B3_dot;
+    const double B2_theta_dot_B4_dot = B2_theta_dot*B4_dot;
+    const double B3_theta_dot = B3*theta_dot;
+    const double B3_theta_dotsq = B3_theta_dot*theta_dot;
+    const double B3_theta_dot_B1_dot = B3_theta_dot*B1_dot;
+    const double B3_theta_dot_B2_dot = B3_theta_dot*B2_dot;
+    const double B3_theta_dot_B3_dot = B3_theta_dot*B3_dot;
+    const double B3_theta_dot_B4_dot = B3_theta_dot*B4_dot;
+    const double B3_theta_dot_B5_dot = B3_theta_dot*B5_dot;
+    const double B3_theta_dot_B6_dot = B3_theta_dot*B6_dot;
+    const double B4_theta_dot = B4*theta_dot;
+    const double B4_theta_dotsq = B4_theta_dot*theta_dot;
+    const double B4_theta_dot_B1_dot = B4_theta_dot*B1_dot;
+    const double B4_theta_dot_B2_dot = B4_theta_dot*B2_dot;
+    const double B4_theta_dot_B3_dot = B4_theta_dot*B3_dot;
+    const double B4_theta_dot_B4_dot = B4_theta_dot*B4_dot;
+    const double B4_theta_dot_B5_dot = B4_theta_dot*B5_dot;
+    const double B4_theta_dot_B6_dot = B4_theta_dot*B6_dot;
+    const double B5_theta_dot = B5*theta_dot;
+    const double B5_theta_dotsq = B5_theta_dot*theta_dot;
+    const double B5_theta_dot_B3_dot = B5_theta_dot*B3_dot;
+    const double B5_theta_dot_B4_dot = B5_theta_dot*B4_dot;
+    const double B5_theta_dot_B5_dot = B5_theta_dot*B5_dot;
+    const double B5_theta_dot_B6_dot = B5_theta_dot*B6_dot;
+    const double B5_theta_dot_B7_dot = B5_theta_dot*B7_dot;
+    const double B5_theta_dot_B8_dot = B5_theta_dot*B8_dot;
+    const double B6_theta_dot = B6*theta_dot;
+    const double B6_theta_dotsq = B6_theta_dot*theta_dot;
+    const double B6_theta_dot_B3_dot = B6_theta_dot*B3_dot;
+    const double B6_theta_dot_B4_dot = B6_theta_dot*B4_dot;
+    const double B6_theta_dot_B5_dot = B6_theta_dot*B5_dot;
+    const double B6_theta_dot_B6_dot = B6_theta_dot*B6_dot;
+    const double B6_theta_dot_B7_dot = B6_theta_dot*B7_dot;
+    const double B6_theta_dot_B8_dot = B6_theta_dot*B8_dot;
+    const double B7_theta_dot = B7*theta_dot;
+    const double B7_theta_dotsq = B7_theta_dot*theta_dot;
+    const double B7_theta_dot_B5_dot = B7_theta_dot*B5_dot;
+    const double B7_theta_dot_B6_dot = B7_theta_dot*B6_dot;
+    const double B7_theta_dot_B7_dot = B7_theta_dot*B7_dot;
+    const double B7_theta_dot_B8_dot = B7_theta_dot*B8_dot;
+    const double B7_theta_dot_B9_dot = B7_theta_dot*B9_dot;
+    const double B7_theta_dot_B10_dot = B7_theta_dot*B10_dot;
+    const double B8_theta_dot = B8*theta_dot;
+    const double B8_theta_dotsq = B8_theta_dot*theta_dot;
+    const double B8_theta_dot_B5_dot = B8_theta_dot*B5_dot;
+    const double B8_theta_dot_B6_dot = B8_theta_dot*B6_dot;
+    const double B8_theta_dot_B7_dot = B8_theta_dot*B7_dot;
+    const double B8_theta_dot_B8_dot = B8_theta_dot*B8_dot;
+    const double B8_theta_dot_B9_dot = B8_theta_dot*B9_dot;
+    const double B8_theta_dot_B10_dot = B8_theta_dot*B10_dot;
+    const double B9_theta_dot = B9*theta_dot;
+    const double B9_theta_dotsq = B9_theta_dot*theta_dot;
+    const double B9_theta_dot_B7_dot = B9_theta_dot*B7_dot;
+    const double B9_theta_dot_B8_dot = B9_theta_dot*B8_dot;
+    const double B9_theta_dot_B9_dot = B9_theta_dot*B9_dot;
+    const double B9_theta_dot_B10_dot = B9_theta_dot*B10_dot;
+    const double B9_theta_dot_B11_dot = B9_theta_dot*B11_dot;
+    const double B9_theta_dot_B12_dot = B9_theta_dot*B12_dot;
+    const double B10_theta_dot = B10*theta_dot;
+    const double B10_theta_dotsq = B10_theta_dot*theta_dot;
+    const double B10_theta_dot_B7_dot = B10_theta_dot*B7_dot;
+    const double B10_theta_dot_B8_dot = B10_theta_dot*B8_dot;
+    const double B10_theta_dot_B9_dot = B10_theta_dot*B9_dot;
+    const double B10_theta_dot_B10_dot = B10_theta_dot*B10_dot;
+    const double B10_theta_dot_B11_dot = B10_theta_dot*B11_dot;
+    const double B10_theta_dot_B12_dot = B10_theta_dot*B12_dot;
+    const double B11_theta_dot = B11*theta_dot;
+    const double B11_theta_dotsq = B11_theta_dot*theta_dot;
+    const double B11_theta_dot_B9_dot = B11_theta_dot*B9_dot;
+    const double B11_theta_dot_B10_dot = B11_theta_dot*B10_dot;
+    const double B11_theta_dot_B11_dot = B11_theta_dot*B11_dot;
+    const double B11_theta_dot_B12_dot = B11_theta_dot*B12_dot;
+    const double B11_theta_dot_B13_dot = B11_theta_dot*B13_dot;
+    const double B11_theta_dot_B14_dot = B11_theta_dot*B14_dot;
+    const double B12_theta_dot = B12*theta_dot;
+    const double B12_theta_dotsq = B12_theta_dot*theta_dot;
+    const double B12_theta_dot_B9_dot = B12_theta_dot*B9_dot;
+    const double B12_theta_dot_B10_dot = B12_theta_dot*B10_dot;
+    const double B12_theta_dot_B11_dot = B12_theta_dot*B11_dot;
+    const double B12_theta_dot_B12_dot = B12_theta_dot*B12_dot;
+    const double B12_theta_dot_B13_dot = B12_theta_dot*B13_dot;
+    const double B12_theta_dot_B14_dot = B12_theta_dot*B14_dot;
+    const double B13_theta_dot = B13*theta_dot;
+    const double B13_theta_dotsq = B13_theta_dot*theta_dot;
+    const double B13_theta_dot_B11_dot = B13_theta_dot*B11_dot;
+    const double B13_theta_dot_B12_dot = B13_theta_dot*B12_dot;
+    const double B13_theta_dot_B13_dot = B13_theta_dot*B13_dot;
+    const double B13_theta_dot_B14_dot = B13_theta_dot*B14_dot;
+    const double B13_theta_dot_B15_dot = B13_theta_dot*B15_dot;
+    const double B13_theta_dot_B16_dot = B13_theta_dot*B16_dot;
+    const double B14_theta_dot = B14*theta_dot;
+    const double B14_theta_dotsq = B14_theta_dot*theta_dot;
+    const double B14_theta_dot_B11_dot = B14_theta_dot*B11_dot;
+    const double B14_theta_dot_B12_dot = B14_theta_dot*B12_dot;
+    const double B14_theta_dot_B13_dot = B14_theta_dot*B13_dot;
+    const double B14_theta_dot_B14_dot = B14_theta_dot*B14_dot;
+    const double B14_theta_dot_B15_dot = B14_theta_dot*B15_dot;
+    const double B14_theta_dot_B16_dot = B14_theta_dot*B16_dot;
+    const double B15_theta_dot = B15*theta_dot;
+    const double B15_theta_dotsq = B15_theta_dot*theta_dot;
+    const double B15_theta_dot_B13_dot = B15_theta_dot*B13_dot;
+    const double B15_theta_dot_B14_dot = B15_theta_dot*B14_dot;
+    const double B15_theta_dot_B15_dot = B15_theta_dot*B15_dot;
+    const double B15_theta_dot_B16_dot = B15_theta_dot*B16_dot;
+    const double B15_theta_dot_B17_dot = B15_theta_dot*B17_dot;
+    const double B15_theta_dot_B18_dot = B15_theta_dot*B18_dot;
+    const double B16_theta_dot = B16*theta_dot;
+    const double B16_theta_dotsq = B16_theta_dot*theta_dot;
+    const double B16_theta_dot_B13_dot = B16_theta_dot*B13_dot;
+    const double B16_theta_dot_B14_dot = B16_theta_dot*B14_dot;
+    const double B16_theta_dot_B15_dot = B16_theta_dot*B15_dot;
+    const double B16_theta_dot_B16_dot = B16_theta_dot*B16_dot;
+    const double B16_theta_dot_B17_dot = B16_theta_dot*B17_dot;
+    const double B16_theta_dot_B18_dot = B16_theta_dot*B18_dot;
+    const double B17_theta_dot = B17*theta_dot;
+    const double B17_theta_dotsq = B17_theta_dot*theta_dot;
+    const double B17_theta_dot_B15_dot = B17_theta_dot*B15_dot;
+    const double B17_theta_dot_B16_dot = B17_theta_dot*B16_dot;
+    const double B17_theta_dot_B17_dot = B17_theta_dot*B17_dot;
+    const double B17_theta_dot_B18_dot = B17_theta_dot*B18_dot;
+    const double B17_theta_dot_B19_dot = B17_theta_dot*B19_dot;
+    const double B17_theta_dot_B20_dot = B17_theta_dot*B20_dot;
+    const double B18_theta_dot = B18*theta_dot;
+    const double B18_theta_dotsq = B18_theta_dot*theta_dot;
+    const double B18_theta_dot_B15_dot = B18_theta_dot*B15_dot;
+    const double B18_theta_dot_B16_dot = B18_theta_dot*B16_dot;
+    const double B18_theta_dot_B17_dot = B18_theta_dot*B17_dot;
+    const double B18_theta_dot_B18_dot = B18_theta_dot*B18_dot;
+    const double B18_theta_dot_B19_dot = B18_theta_dot*B19_dot;
+    const double B18_theta_dot_B20_dot = B18_theta_dot*B20_dot;
+    const double B19_theta_dot = B19*theta_dot;
+    const double B19_theta_dotsq = B19_theta_dot*theta_dot;
+    const double B19_theta_dot_B17_dot = B19_theta_dot*B17_dot;
+    const double B19_theta_dot_B18_dot = B19_theta_dot*B18_dot;
+    const double B19_theta_dot_B19_dot = B19_theta_dot*B19_dot;
+    const double B19_theta_dot_B20_dot = B19_theta_dot*B20_dot;
+    const double B19_theta_dot_B21_dot = B19_theta_dot*B21_dot;
+    const double B19_theta_dot_B22_dot = B19_theta_dot*B22_dot;
+    const double B20_theta_dot = B20*theta_dot;
+    const double B20_theta_dotsq = B20_theta_dot*theta_dot;
+    const double B20_theta_dot_B17_dot = B20_theta_dot*B17_dot;
+    const double B20_theta_dot_B18_dot = B20_theta_dot*B18_dot;
+    const double B20_theta_dot_B19_dot = B20_theta_dot*B19_dot;
+    const double B20_theta_dot_B20_dot = B20_theta_dot*B20_dot;
+    const double B20_theta_dot_B21_dot = B20_theta_dot*B21_dot;
+    const double B20_theta_dot_B22_dot = B20_theta_dot*B22_dot;
+    const double B21_theta_dot = B21*theta_dot;
+    const double B21_theta_dotsq = B21_theta_dot*theta_dot;
+    const double B21_theta_dot_B19_dot = B21_theta_dot*B19_dot;
+    const double B21_theta_dot_B20_dot = B21_theta_dot*B20_dot;
+    const double B21_theta_dot_B21_dot = B21_theta_dot*B21_dot;
+    const double B21_theta_dot_B22_dot = B21_theta_dot*B22_dot;
+    const double B21_theta_dot_B23_dot = B21_theta_dot*B23_dot;
+    const double B21_theta_dot_B24_dot = B21_theta_dot*B24_dot;
+    const double B22_theta_dot = B22*theta_dot;
+    const double B22_theta_dotsq = B22_theta_dot*theta_dot;
+    const double B22_theta_dot_B19_dot = B22_theta_dot*B19_dot;
+    const double B22_theta_dot_B20_dot = B22_theta_dot*B20_dot;
+    const double B22_theta_dot_B21_dot = B22_theta_dot*B21_dot;
+    const double B22_theta_dot_B22_dot = B22_theta_dot*B22_dot;
+    const double B22_theta_dot_B23_dot = B22_theta_dot*B23_dot;
+    const double B22_theta_dot_B24_dot = B22_theta_dot*B24_dot;
+    const double B23_theta_dot = B23*theta_dot;
+    const double B23_theta_dotsq = B23_theta_dot*theta_dot;
+    const double B23_theta_dot_B21_dot = B23_theta_dot*B21_dot;
+    const double B23_theta_dot_B22_dot = B23_theta_dot*B22_dot;
+    const double B23_theta_dot_B23_dot = B23_theta_dot*B23_dot;
+    const double B23_theta_dot_B24_dot = B23_theta_dot*B24_dot;
+    const double B23_theta_dot_B25_dot = B23_theta_dot*B25_dot;
+    const double B23_theta_dot_B26_dot = B23_theta_dot*B26_dot;
+    const double B24_theta_dot = B24*theta_dot;
+    const double B24_theta_dotsq = B24_theta_dot*theta_dot;
+    const double B24_theta_dot_B21_dot = B24_theta_dot*B21_dot;
+    const double B24_theta_dot_B22_dot = B24_theta_dot*B22_dot;
+    const double B24_theta_dot_B23_dot = B24_theta_dot*B23_dot;
+    const double B24_theta_dot_B24_dot = B24_theta_dot*B24_dot;
+    const double B24_theta_dot_B25_dot = B24_theta_dot*B25_dot;
+    const double B24_theta_dot_B26_dot = B24_theta_dot*B26_dot;
+    const double B25_theta_dot = B25*theta_dot;
+    const double B25_theta_dotsq = B25_theta_dot*theta_dot;
+    const double B25_theta_dot_B23_dot = B25_theta_dot*B23_dot;
+    const double B25_theta_dot_B24_dot = B25_theta_dot*B24_dot;
+    const double B25_theta_dot_B25_dot = B25_theta_dot*B25_dot;
+    const double B25_theta_dot_B26_dot = B25_theta_dot*B26_dot;
+    const double B25_theta_dot_B27_dot = B25_theta_dot*B27_dot;
+    const double B25_theta_dot_B28_dot = B25_theta_dot*B28_dot;
+    const double B26_theta_dot = B26*theta_dot;
+    const double B26_theta_dotsq = B26_theta_dot*theta_dot;
+    const double B26_theta_dot_B23_dot = B26_theta_dot*B23_dot;
+    const double B26_theta_dot_B24_dot = B26_theta_dot*B24_dot;
+    const double B26_theta_dot_B25_dot = B26_theta_dot*B25_dot;
+    const double B26_theta_dot_B26_dot = B26_theta_dot*B26_dot;
+    const double B26_theta_dot_B27_dot = B26_theta_dot*B27_dot;
+    const double B26_theta_dot_B28_dot = B26_theta_dot*B28_dot;
+    const double B27_theta_dot = B27*theta_dot;
+    const double B27_theta_dotsq = B27_theta_dot*theta_dot;
+    const double B27_theta_dot_B25_dot = B27_theta_dot*B25_dot;
+    const double B27_theta_dot_B26_dot = B27_theta_dot*B26_dot;
+    const double B27_theta_dot_B27_dot = B27_theta_dot*B27_dot;
+    const double B27_theta_dot_B28_dot = B27_theta_dot*B28_dot;
+    const double B27_theta_dot_B29_dot = B27_theta_dot*B29_dot;
+    const double B27_theta_dot_B30_dot = B27_theta_dot*B30_dot;
+    const double B28_theta_dot = B28*theta_dot;
+    const double B28_theta_dotsq = B28_theta_dot*theta_dot;
+    const double B28_theta_dot_B25_dot = B28_theta_dot*B25_dot;
+    const double B28_theta_dot_B26_dot = B28_theta_dot*B26_dot;
+    const double B28_theta_dot_B27_dot = B28_theta_dot*B27_dot;
+    const double B28_theta_dot_B28_dot = B28_theta_dot*B28_dot;
+    const double B28_theta_dot_B29_dot = B28_theta_dot*B29_dot;
+    const double B28_theta_dot_B30_dot = B28_theta_dot*B30_dot;
+    const double B29_theta_dot = B29*theta_dot;
+    const double B29_theta_dotsq = B29_theta_dot*theta_dot;
+    const double B29_theta_dot_B27_dot = B29_theta_dot*B27_dot;
+    const double B29_theta_dot_B28_dot = B29_theta_dot*B28_dot;
+    const double B29_theta_dot_B29_dot = B29_theta_dot*B29_dot;
+    const double B29_theta_dot_B30_dot = B29_theta_dot*B30_dot;
+    const double B29_theta_dot_B31_dot = B29_theta_dot*B31_dot;
+    const double B29_theta_dot_B32_dot = B29_theta_dot*B32_dot;
+    const double B30_theta_dot = B30*theta_dot;
+    const double B30_theta_dotsq = B30_theta_dot*theta_dot;
+    const double B30_theta_dot_B27_dot = B30_theta_dot*B27_dot;
+    const double B30_theta_dot_B28_dot = B30_theta_dot*B28_dot;
+    const double B30_theta_dot_B29_dot = B30_theta_dot*B29_dot;
+    const double B30_theta_dot_B30_dot = B30_theta_dot*B30_dot;
+    const double B30_theta_dot_B31_dot = B30_theta_dot*B31_dot;
+    const double B30_theta_dot_B32_dot = B30_theta_dot*B32_dot;
+    const double B31_theta_dot = B31*theta_dot;
+    const double B31_theta_dotsq = B31_theta_dot*theta_dot;
+    const double B31_theta_dot_B29_dot = B31_theta_dot*B29_dot;
+    const double B31_theta_dot_B30_dot = B31_theta_dot*B30_dot;
+    const double B31_theta_dot_B31_dot = B31_theta_dot*B31_dot;
+    const double B31_theta_dot_B32_dot = B31_theta_dot*B32_dot;
+    const double B32_theta_dot = B32*theta_dot;
+    const double B32_theta_dotsq = B32_theta_dot*theta_dot;
+    const double B32_theta_dot_B29_dot = B32_theta_dot*B29_dot;
+    const double B32_theta_dot_B30_dot = B32_theta_dot*B30_dot;
+    const double B32_theta_dot_B31_dot = B32_theta_dot*B31_dot;
+    const double B32_theta_dot_B32_dot = B32_theta_dot*B32_dot;
+    out[0] = tau;
+    out[1] = A1;
+    out[2] = A2;
+    out[3] = A3;
+    out[4] = A4;
+    out[5] = A5;
+    out[6] = A6;
+    out[7] = A7;
+    out[8] = A8;
+    out[9] = A9;
+    out[10] = A10;
+    out[11] = A11;
+    out[12] = A12;
+    out[13] = A13;
+    out[14] = A14;
+    out[15] = A15;
+    out[16] = A16;
+    out[17] = A17;
+    out[18] = A18;
+    out[19] = A19;
+    out[20] = A20;
+    out[21] = A21;
+    out[22] = A22;
+    out[23] = A23;
+    out[24] = A24;
+    out[25] = A25;
+    out[26] = A26;
+    out[27] = A27;
+    out[28] = A28;
+    out[29] = A29;
+    out[30] = A30;
+    out[31] = A31;
+    out[32] = A32;
+    out[33] = B1;
+    out[34] = B2;
+    out[35] = B3;
+    out[36] = B4;
+    out[37] = B5;
+    out[38] = B6;
+    out[39] = B7;
+    out[40] = B8;
+    out[41] = B9;
+    out[42] = B10;
+    out[43] = B11;
+    out[44] = B12;
+    out[45] = B13;
+    out[46] = B14;
+    out[47] = B15;
+    out[48] = B16;
+    out[49] = B17;
+    out[50] = B18;
+    out[51] = B19;
+    out[52] = B20;
+    out[53] = B21;
+    out[54] = B22;
+    out[55] = B23;
+    out[56] = B24;
+    out[57] = B25;
+    out[58] = B26;
+    out[59] = B27;
+    out[60] = B28;
+    out[61] = B29;
+    out[62] = B30;
+    out[63] = B31;
+    out[64] = B32;
+    out[65] = theta_dotsq;
+    out[66] = theta_dot_A1_dot;
+    out[67] = theta_dot_A2_dot;
+    out[68] = theta_dot_A3_dot;
+    out[69] = theta_dot_A4_dot;
+    out[70] = theta_dot_A5_dot;
+    out[71] = theta_dot_A6_dot;
+    out[72] = theta_dot_A7_dot;
+    out[73] = theta_dot_A8_dot;
+    out[74] = theta_dot_A9_dot;
+    out[75] = theta_dot_A10_dot;
+    out[76] = theta_dot_A11_dot;
+    out[77] = theta_dot_A12_dot;
+    out[78] = theta_dot_A13_dot;
+    out[79] = theta_dot_A14_dot;
+    out[80] = theta_dot_A15_dot;
+    out[81] = theta_dot_A16_dot;
+    out[82] = theta_dot_A17_dot;
+    out[83] = theta_dot_A18_dot;
+    out[84] = theta_dot_A19_dot;
+    out[85] = theta_dot_A20_dot;
+    out[86] = theta_dot_A21_dot;
+    out[87] = theta_dot_A22_dot;
+    out[88] = theta_dot_A23_dot;
+    out[89] = theta_dot_A24_dot;
+    out[90] = theta_dot_A25_dot;
+    out[91] = theta_dot_A26_dot;
+    out[92] = theta_dot_A27_dot;
+    out[93] = theta_dot_A28_dot;
+    out[94] = theta_dot_A29_dot;
+    out[95] = theta_dot_A30_dot;
+    out[96] = theta_dot_A31_dot;
+    out[97] = theta_dot_A32_dot;
+    out[98] = theta_dot_B1_dot;
+    out[99] = theta_dot_B2_dot;
+    out[100] = theta_dot_B3_dot;
+    out[101] = theta_dot_B4_dot;
+    out[102] = theta_dot_B5_dot;
+    out[103] = theta_dot_B6_dot;
+    out[104] = theta_dot_B7_dot;
+    out[105] = theta_dot_B8_dot;
+    out[106] = theta_dot_B9_dot;
+    out[107] = theta_dot_B10_dot;
+    out[108] = theta_dot_B11_dot;
+    out[109] = theta_dot_B12_dot;
+    out[110] = theta_dot_B13_dot;
+    out[111] = theta_dot_B14_dot;
+    out[112] = theta_dot_B15_dot;
+    out[113] = theta_dot_B16_dot;
+    out[114] = theta_dot_B17_dot;
+    out[115] = theta_dot_B18_dot;
+    out[116] = theta_dot_B19_dot;
+    out[117] = theta_dot_B20_dot;
+    out[118] = theta_dot_B21_dot;
+    out[119] = theta_dot_B22_dot;
+    out[120] = theta_dot_B23_dot;
+    out[121] = theta_dot_B24_dot;
+    out[122] = theta_dot_B25_dot;
+    out[123] = theta_dot_B26_dot;
+    out[124] = theta_dot_B27_dot;
+    out[125] = theta_dot_B28_dot;
+    out[126] = theta_dot_B29_dot;
+    out[127] = theta_dot_B30_dot;
+    out[128] = theta_dot_B31_dot;
+    out[129] = theta_dot_B32_dot;
+    out[130] = A1_theta_dotsq;
+    out[131] = A1_theta_dot_A1_dot;
+    out[132] = A1_theta_dot_A2_dot;
+    out[133] = A2_theta_dotsq;
+    out[134] = A2_theta_dot_A1_dot;
+    out[135] = A2_theta_dot_A2_dot;
+    out[136] = A2_theta_dot_A3_dot;
+    out[137] = A3_theta_dotsq;
+    out[138] = A3_theta_dot_A2_dot;
+    out[139] = A3_theta_dot_A3_dot;
+    out[140] = A3_theta_dot_A4_dot;
+    out[141] = A4_theta_dotsq;
+    out[142] = A4_theta_dot_A3_dot;
+    out[143] = A4_theta_dot_A4_dot;
+    out[144] = A4_theta_dot_A5_dot;
+    out[145] = A5_theta_dotsq;
+    out[146] = A5_theta_dot_A4_dot;
+    out[147] = A5_theta_dot_A5_dot;
+    out[148] = A5_theta_dot_A6_dot;
+    out[149] = A6_theta_dotsq;
+    out[150] = A6_theta_dot_A5_dot;
+    out[151] = A6_theta_dot_A6_dot;
+    out[152] = A6_theta_dot_A7_dot;
+    out[153] = A7_theta_dotsq;
+    out[154] = A7_theta_dot_A6_dot;
+    out[155] = A7_theta_dot_A7_dot;
+    out[156] = A7_theta_dot_A8_dot;
+    out[157] = A8_theta_dotsq;
+    out[158] = A8_theta_dot_A7_dot;
+    out[159] = A8_theta_dot_A8_dot;
+    out[160] = A8_theta_dot_A9_dot;
+    out[161] = A9_theta_dotsq;
+    out[162] = A9_theta_dot_A8_dot;
+    out[163] = A9_theta_dot_A9_dot;
+    out[164] = A9_theta_dot_A10_dot;
+    out[165] = A10_theta_dotsq;
+    out[166] = A10_theta_dot_A9_dot;
+    out[167] = A10_theta_dot_A10_dot;
+    out[168] = A10_theta_dot_A11_dot;
+    out[169] = A11_theta_dotsq;
+    out[170] = A11_theta_dot_A10_dot;
+    out[171] = A11_theta_dot_A11_dot;
+    out[172] = A11_theta_dot_A12_dot;
+    out[173] = A12_theta_dotsq;
+    out[174] = A12_theta_dot_A11_dot;
+    out[175] = A12_theta_dot_A12_dot;
+    out[176] = A12_theta_dot_A13_dot;
+    out[177] = A13_theta_dotsq;
+    out[178] = A13_theta_dot_A12_dot;
+    out[179] = A13_theta_dot_A13_dot;
+    out[180] = A13_theta_dot_A14_dot;
+    out[181] = A14_theta_dotsq;
+    out[182] = A14_theta_dot_A13_dot;
+    out[183] = A14_theta_dot_A14_dot;
+    out[184] = A14_theta_dot_A15_dot;
+    out[185] = A15_theta_dotsq;
+    out[186] = A15_theta_dot_A14_dot;
+    out[187] = A15_theta_dot_A15_dot;
+    out[188] = A15_theta_dot_A16_dot;
+    out[189] = A16_theta_dotsq;
+    out[190] = A16_theta_dot_A15_dot;
+    out[191] = A16_theta_dot_A16_dot;
+    out[192] = A16_theta_dot_A17_dot;
+    out[193] = A17_theta_dotsq;
+    out[194] = A17_theta_dot_A16_dot;
+    out[195] = A17_theta_dot_A17_dot;
+    out[196] = A17_theta_dot_A18_dot;
+    out[197] = A18_theta_dotsq;
+    out[198] = A18_theta_dot_A17_dot;
+    out[199] = A18_theta_dot_A18_dot;
+    out[200] = A18_theta_dot_A19_dot;
+    out[201] = A19_theta_dotsq;
+    out[202] = A19_theta_dot_A18_dot;
+    out[203] = A19_theta_dot_A19_dot;
+    out[204] = A19_theta_dot_A20_dot;
+    out[205] = A20_theta_dotsq;
+    out[206] = A20_theta_dot_A19_dot;
+    out[207] = A20_theta_dot_A20_dot;
+    out[208] = A20_theta_dot_A21_dot;
+    out[209] = A21_theta_dotsq;
+    out[210] = A21_theta_dot_A20_dot;
+    out[211] = A21_theta_dot_A21_dot;
+    out[212] = A21_theta_dot_A22_dot;
+    out[213] = A22_theta_dotsq;
+    out[214] = A22_theta_dot_A21_dot;
+    out[215] = A22_theta_dot_A22_dot;
+    out[216] = A22_theta_dot_A23_dot;
+    out[217] = A23_theta_dotsq;
+    out[218] = A23_theta_dot_A22_dot;
+    out[219] = A23_theta_dot_A23_dot;
+    out[220] = A23_theta_dot_A24_dot;
+    out[221] = A24_theta_dotsq;
+    out[222] = A24_theta_dot_A23_dot;
+    out[223] = A24_theta_dot_A24_dot;
+    out[224] = A24_theta_dot_A25_dot;
+    out[225] = A25_theta_dotsq;
+    out[226] = A25_theta_dot_A24_dot;
+    out[227] = A25_theta_dot_A25_dot;
+    out[228] = A25_theta_dot_A26_dot;
+    out[229] = A26_theta_dotsq;
+    out[230] = A26_theta_dot_A25_dot;
+    out[231] = A26_theta_dot_A26_dot;
+    out[232] = A26_theta_dot_A27_dot;
+    out[233] = A27_theta_dotsq;
+    out[234] = A27_theta_dot_A26_dot;
+    out[235] = A27_theta_dot_A27_dot;
+    out[236] = A27_theta_dot_A28_dot;
+    out[237] = A28_theta_dotsq;
+    out[238] = A28_theta_dot_A27_dot;
+    out[239] = A28_theta_dot_A28_dot;
+    out[240] = A28_theta_dot_A29_dot;
+    out[241] = A29_theta_dotsq;
+    out[242] = A29_theta_dot_A28_dot;
+    out[243] = A29_theta_dot_A29_dot;
+    out[244] = A29_theta_dot_A30_dot;
+    out[245] = A30_theta_dotsq;
+    out[246] = A30_theta_dot_A29_dot;
+    out[247] = A30_theta_dot_A30_dot;
+    out[248] = A30_theta_dot_A31_dot;
+    out[249] = A31_theta_dotsq;
+    out[250] = A31_theta_dot_A30_dot;
+    out[251] = A31_theta_dot_A31_dot;
+    out[252] = A31_theta_dot_A32_dot;
+    out[253] = A32_theta_dotsq;
+    out[254] = A32_theta_dot_A31_dot;
+    out[255] = A32_theta_dot_A32_dot;
+    out[256] = B1_theta_dotsq;
+    out[257] = B1_theta_dot_B1_dot;
+    out[258] = B1_theta_dot_B2_dot;
+    out[259] = B1_theta_dot_B3_dot;
+    out[260] = B1_theta_dot_B4_dot;
+    out[261] = B2_theta_dotsq;
+    out[262] = B2_theta_dot_B1_dot;
+    out[263] = B2_theta_dot_B2_dot;
+    out[264] = B2_theta_dot_B3_dot;
+    out[265] = B2_theta_dot_B4_dot;
+    out[266] = B3_theta_dotsq;
+    out[267] = B3_theta_dot_B1_dot;
+    out[268] = B3_theta_dot_B2_dot;
+    out[269] = B3_theta_dot_B3_dot;
+    out[270] = B3_theta_dot_B4_dot;
+    out[271] = B3_theta_dot_B5_dot;
+    out[272] = B3_theta_dot_B6_dot;
+    out[273] = B4_theta_dotsq;
+    out[274] = B4_theta_dot_B1_dot;
+    out[275] = B4_theta_dot_B2_dot;
+    out[276] = B4_theta_dot_B3_dot;
+    out[277] = B4_theta_dot_B4_dot;
+    out[278] = B4_theta_dot_B5_dot;
+    out[279] = B4_theta_dot_B6_dot;
+    out[280] = B5_theta_dotsq;
+    out[281] = B5_theta_dot_B3_dot;
+    out[282] = B5_theta_dot_B4_dot;
+    out[283] = B5_theta_dot_B5_dot;
+    out[284] = B5_theta_dot_B6_dot;
+    out[285] = B5_theta_dot_B7_dot;
+    out[286] = B5_theta_dot_B8_dot;
+    out[287] = B6_theta_dotsq;
+    out[288] = B6_theta_dot_B3_dot;
+    out[289] = B6_theta_dot_B4_dot;
+    out[290] = B6_theta_dot_B5_dot;
+    out[291] = B6_theta_dot_B6_dot;
+    out[292] = B6_theta_dot_B7_dot;
+    out[293] = B6_theta_dot_B8_dot;
+    out[294] = B7_theta_dotsq;
+    out[295] = B7_theta_dot_B5_dot;
+    out[296] = B7_theta_dot_B6_dot;
+    out[297] = B7_theta_dot_B7_dot;
+    out[298] = B7_theta_dot_B8_dot;
+    out[299] = B7_theta_dot_B9_dot;
+    out[300] = B7_theta_dot_B10_dot;
+    out[301] = B8_theta_dotsq;
+    out[302] = B8_theta_dot_B5_dot;
+    out[303] = B8_theta_dot_B6_dot;
+    out[304] = B8_theta_dot_B7_dot;
+    out[305] = B8_theta_dot_B8_dot;
+    out[306] = B8_theta_dot_B9_dot;
+    out[307] = B8_theta_dot_B10_dot;
+    out[308] = B9_theta_dotsq;
+    out[309] = B9_theta_dot_B7_dot;
+    out[310] = B9_theta_dot_B8_dot;
+    out[311] = B9_theta_dot_B9_dot;
+    out[312] = B9_theta_dot_B10_dot;
+    out[313] = B9_theta_dot_B11_dot;
+    out[314] = B9_theta_dot_B12_dot;
+    out[315] = B10_theta_dotsq;
+    out[316] = B10_theta_dot_B7_dot;
+    out[317] = B10_theta_dot_B8_dot;
+    out[318] = B10_theta_dot_B9_dot;
+    out[319] = B10_theta_dot_B10_dot;
+    out[320] = B10_theta_dot_B11_dot;
+    out[321] = B10_theta_dot_B12_dot;
+    out[322] = B11_theta_dotsq;
+    out[323] = B11_theta_dot_B9_dot;
+    out[324] = B11_theta_dot_B10_dot;
+    out[325] = B11_theta_dot_B11_dot;
+    out[326] = B11_theta_dot_B12_dot;
+    out[327] = B11_theta_dot_B13_dot;
+    out[328] = B11_theta_dot_B14_dot;
+    out[329] = B12_theta_dotsq;
+    out[330] = B12_theta_dot_B9_dot;
+    out[331] = B12_theta_dot_B10_dot;
+    out[332] = B12_theta_dot_B11_dot;
+    out[333] = B12_theta_dot_B12_dot;
+    out[334] = B12_theta_dot_B13_dot;
+    out[335] = B12_theta_dot_B14_dot;
+    out[336] = B13_theta_dotsq;
+    out[337] = B13_theta_dot_B11_dot;
+    out[338] = B13_theta_dot_B12_dot;
+    out[339] = B13_theta_dot_B13_dot;
+    out[340] = B13_theta_dot_B14_dot;
+    out[341] = B13_theta_dot_B15_dot;
+    out[342] = B13_theta_dot_B16_dot;
+    out[343] = B14_theta_dotsq;
+    out[344] = B14_theta_dot_B11_dot;
+    out[345] = B14_theta_dot_B12_dot;
+    out[346] = B14_theta_dot_B13_dot;
+    out[347] = B14_theta_dot_B14_dot;
+    out[348] = B14_theta_dot_B15_dot;
+    out[349] = B14_theta_dot_B16_dot;
+    out[350] = B15_theta_dotsq;
+    out[351] = B15_theta_dot_B13_dot;
+    out[352] = B15_theta_dot_B14_dot;
+    out[353] = B15_theta_dot_B15_dot;
+    out[354] = B15_theta_dot_B16_dot;
+    out[355] = B15_theta_dot_B17_dot;
+    out[356] = B15_theta_dot_B18_dot;
+    out[357] = B16_theta_dotsq;
+    out[358] = B16_theta_dot_B13_dot;
+    out[359] = B16_theta_dot_B14_dot;
+    out[360] = B16_theta_dot_B15_dot;
+    out[361] = B16_theta_dot_B16_dot;
+    out[362] = B16_theta_dot_B17_dot;
+    out[363] = B16_theta_dot_B18_dot;
+    out[364] = B17_theta_dotsq;
+    out[365] = B17_theta_dot_B15_dot;
+    out[366] = B17_theta_dot_B16_dot;
+    out[367] = B17_theta_dot_B17_dot;
+    out[368] = B17_theta_dot_B18_dot;
+    out[369] = B17_theta_dot_B19_dot;
+    out[370] = B17_theta_dot_B20_dot;
+    out[371] = B18_theta_dotsq;
+    out[372] = B18_theta_dot_B15_dot;
+    out[373] = B18_theta_dot_B16_dot;
+    out[374] = B18_theta_dot_B17_dot;
+    out[375] = B18_theta_dot_B18_dot;
+    out[376] = B18_theta_dot_B19_dot;
+    out[377] = B18_theta_dot_B20_dot;
+    out[378] = B19_theta_dotsq;
+    out[379] = B19_theta_dot_B17_dot;
+    out[380] = B19_theta_dot_B18_dot;
+    out[381] = B19_theta_dot_B19_dot;
+    out[382] = B19_theta_dot_B20_dot;
+    out[383] = B19_theta_dot_B21_dot;
+    out[384] = B19_theta_dot_B22_dot;
+    out[385] = B20_theta_dotsq;
+    out[386] = B20_theta_dot_B17_dot;
+    out[387] = B20_theta_dot_B18_dot;
+    out[388] = B20_theta_dot_B19_dot;
+    out[389] = B20_theta_dot_B20_dot;
+    out[390] = B20_theta_dot_B21_dot;
+    out[391] = B20_theta_dot_B22_dot;
+    out[392] = B21_theta_dotsq;
+    out[393] = B21_theta_dot_B19_dot;
+    out[394] = B21_theta_dot_B20_dot;
+    out[395] = B21_theta_dot_B21_dot;
+    out[396] = B21_theta_dot_B22_dot;
+    out[397] = B21_theta_dot_B23_dot;
+    out[398] = B21_theta_dot_B24_dot;
+    out[399] = B22_theta_dotsq;
+    out[400] = B22_theta_dot_B19_dot;
+    out[401] = B22_theta_dot_B20_dot;
+    out[402] = B22_theta_dot_B21_dot;
+    out[403] = B22_theta_dot_B22_dot;
+    out[404] = B22_theta_dot_B23_dot;
+    out[405] = B22_theta_dot_B24_dot;
+    out[406] = B23_theta_dotsq;
+    out[407] = B23_theta_dot_B21_dot;
+    out[408] = B23_theta_dot_B22_dot;
+    out[409] = B23_theta_dot_B23_dot;
+    out[410] = B23_theta_dot_B24_dot;
+    out[411] = B23_theta_dot_B25_dot;
+    out[412] = B23_theta_dot_B26_dot;
+    out[413] = B24_theta_dotsq;
+    out[414] = B24_theta_dot_B21_dot;
+    out[415] = B24_theta_dot_B22_dot;
+    out[416] = B24_theta_dot_B23_dot;
+    out[417] = B24_theta_dot_B24_dot;
+    out[418] = B24_theta_dot_B25_dot;
+    out[419] = B24_theta_dot_B26_dot;
+    out[420] = B25_theta_dotsq;
+    out[421] = B25_theta_dot_B23_dot;
+    out[422] = B25_theta_dot_B24_dot;
+    out[423] = B25_theta_dot_B25_dot;
+    out[424] = B25_theta_dot_B26_dot;
+    out[425] = B25_theta_dot_B27_dot;
+    out[426] = B25_theta_dot_B28_dot;
+    out[427] = B26_theta_dotsq;
+    out[428] = B26_theta_dot_B23_dot;
+    out[429] = B26_theta_dot_B24_dot;
+    out[430] = B26_theta_dot_B25_dot;
+    out[431] = B26_theta_dot_B26_dot;
+    out[432] = B26_theta_dot_B27_dot;
+    out[433] = B26_theta_dot_B28_dot;
+    out[434] = B27_theta_dotsq;
+    out[435] = B27_theta_dot_B25_dot;
+    out[436] = B27_theta_dot_B26_dot;
+    out[437] = B27_theta_dot_B27_dot;
+    out[438] = B27_theta_dot_B28_dot;
+    out[439] = B27_theta_dot_B29_dot;
+    out[440] = B27_theta_dot_B30_dot;
+    out[441] = B28_theta_dotsq;
+    out[442] = B28_theta_dot_B25_dot;
+    out[443] = B28_theta_dot_B26_dot;
+    out[444] = B28_theta_dot_B27_dot;
+    out[445] = B28_theta_dot_B28_dot;
+    out[446] = B28_theta_dot_B29_dot;
+    out[447] = B28_theta_dot_B30_dot;
+    out[448] = B29_theta_dotsq;
+    out[449] = B29_theta_dot_B27_dot;
+    out[450] = B29_theta_dot_B28_dot;
+    out[451] = B29_theta_dot_B29_dot;
+    out[452] = B29_theta_dot_B30_dot;
+    out[453] = B29_theta_dot_B31_dot;
+    out[454] = B29_theta_dot_B32_dot;
+    out[455] = B30_theta_dotsq;
+    out[456] = B30_theta_dot_B27_dot;
+    out[457] = B30_theta_dot_B28_dot;
+    out[458] = B30_theta_dot_B29_dot;
+    out[459] = B30_theta_dot_B30_dot;
+    out[460] = B30_theta_dot_B31_dot;
+    out[461] = B30_theta_dot_B32_dot;
+    out[462] = B31_theta_dotsq;
+    out[463] = B31_theta_dot_B29_dot;
+    out[464] = B31_theta_dot_B30_dot;
+    out[465] = B31_theta_dot_B31_dot;
+    out[466] = B31_theta_dot_B32_dot;
+    out[467] = B32_theta_dotsq;
+    out[468] = B32_theta_dot_B29_dot;
+    out[469] = B32_theta_dot_B30_dot;
+    out[470] = B32_theta_dot_B31_dot;
+    out[471] = B32_theta_dot_B32_dot;
+}
+
+/* forces_matrix:(c[333],u[3],q[65],qd[65])->(F[65*472]) row-major, state-free: Q = F m; nonzero entries only */
+void fem_nx32_ny32_torque_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    // Table form (1147 terms, 0 monomials): m[0] = 1, m[k + 1] = m[chain[k][0]] * v[chain[k][1]];
+    // out[written[i]] = sum over terms t = first[i] .. first[i + 1] - 1 of c[k] * m[terms[2t + 1]], k = terms[2t],
+    // negated for k < 0 (entry -k - 1).
+    (void)u;
+    (void)q;
+    (void)qd;
+    const double m[1] = {1.0};
+    static const int terms[] = {
+        148, 0, -2, 0, -3, 0, -4, 0, -5, 0, -6, 0, -7, 0, -8, 0,
+        -9, 0, -10, 0, -11, 0, -12, 0, -13, 0, -14, 0, -15, 0, -16, 0,
+        -17, 0, -18, 0, -19, 0, -20, 0, -21, 0, -22, 0, -23, 0, -24, 0,
+        -25, 0, -26, 0, -27, 0, -28, 0, -29, 0, -30, 0, -31, 0, -32, 0,
+        -33, 0, -150, 0, -35, 0, -35, 0, -150, 0, -35, 0, -35, 0, -150, 0,
+        -35, 0, -35, 0, -150, 0, -35, 0, -35, 0, -150, 0, -35, 0, -35, 0,
+        -150, 0, -35, 0, -35, 0, -150, 0, -35, 0, -35, 0, -150, 0, -35, 0,
+        -35, 0, -150, 0, -35, 0, -35, 0, -150, 0, -35, 0, -35, 0, -150, 0,
+        -35, 0, -35, 0, -150, 0, -35, 0, -35, 0, -150, 0, -35, 0, -35, 0,
+        -150, 0, -35, 0, -35, 0, -150, 0, -35, 0, -35, 0, -150, 0, -35, 0,
+        -35, 0, -150, 0, -35, 0, -35, 0, -150, 0, -35, 0, -35, 0, -150, 0,
+        -35, 0, -35, 0, -150, 0, -35, 0, -35, 0, -150, 0, -35, 0, -35, 0,
+        -150, 0, -35, 0, -35, 0, -150, 0, -35, 0, -35, 0, -150, 0, -35, 0,
+        -35, 0, -150, 0, -35, 0, -35, 0, -150, 0, -35, 0, -35, 0, -150, 0,
+        -35, 0, -35, 0, -150, 0, -35, 0, -35, 0, -150, 0, -35, 0, -35, 0,
+        -150, 0, -35, 0, -35, 0, -150, 0, -35, 0, -35, 0, -34, 0, 150, 0,
+        -37, 0, -38, 0, 38, 0, -37, 0, 151, 0, -41, 0, -42, 0, -38, 0,
+        -41, 0, 152, 0, -44, 0, -45, 0, 40, 0, 38, 0, -42, 0, -44, 0,
+        153, 0, -47, 0, -48, 0, -45, 0, -47, 0, 154, 0, -50, 0, -51, 0,
+        46, 0, 40, 0, -48, 0, -50, 0, 155, 0, -53, 0, -54, 0, -51, 0,
+        -53, 0, 156, 0, -56, 0, -57, 0, 52, 0, 46, 0, -54, 0, -56, 0,
+        157, 0, -59, 0, -60, 0, -57, 0, -59, 0, 158, 0, -62, 0, -63, 0,
+        58, 0, 52, 0, -60, 0, -62, 0, 159, 0, -65, 0, -66, 0, -63, 0,
+        -65, 0, 160, 0, -68, 0, -69, 0, 64, 0, 58, 0, -66, 0, -68, 0,
+        161, 0, -71, 0, -72, 0, -69, 0, -71, 0, 162, 0, -74, 0, -75, 0,
+        70, 0, 64, 0, -72, 0, -74, 0, 163, 0, -77, 0, -78, 0, -75, 0,
+        -77, 0, 164, 0, -80, 0, -81, 0, 76, 0, 70, 0, -78, 0, -80, 0,
+        165, 0, -83, 0, -84, 0, -81, 0, -83, 0, 166, 0, -86, 0, -87, 0,
+        82, 0, 76, 0, -84, 0, -86, 0, 167, 0, -89, 0, -90, 0, -87, 0,
+        -89, 0, 168, 0, -92, 0, -93, 0, 88, 0, 82, 0, -90, 0, -92, 0,
+        169, 0, -95, 0, -96, 0, -93, 0, -95, 0, 170, 0, -98, 0, -99, 0,
+        94, 0, 88, 0, -96, 0, -98, 0, 171, 0, -101, 0, -102, 0, -99, 0,
+        -101, 0, 172, 0, -104, 0, -105, 0, 100, 0, 94, 0, -102, 0, -104, 0,
+        173, 0, -107, 0, -108, 0, -105, 0, -107, 0, 174, 0, -110, 0, -111, 0,
+        106, 0, 100, 0, -108, 0, -110, 0, 175, 0, -113, 0, -114, 0, -111, 0,
+        -113, 0, 176, 0, -116, 0, -117, 0, 112, 0, 106, 0, -114, 0, -116, 0,
+        177, 0, -119, 0, -120, 0, -117, 0, -119, 0, 178, 0, -122, 0, -123, 0,
+        118, 0, 112, 0, -120, 0, -122, 0, 179, 0, -125, 0, -126, 0, -123, 0,
+        -125, 0, 180, 0, -128, 0, 118, 0, -126, 0, -128, 0, 181, 0, -183, 0,
+        183, 0, 184, 0, 185, 0, -187, 0, 33, 0, 139, 0, 183, 0, -183, 0,
+        183, 0, 187, 0, 188, 0, 189, 0, -191, 0, 139, 0, 33, 0, 139, 0,
+        183, 0, -183, 0, 183, 0, 191, 0, 185, 0, 186, 0, 185, 0, -187, 0,
+        139, 0, 33, 0, 139, 0, 183, 0, -183, 0, 183, 0, 192, 0, 189, 0,
+        190, 0, 188, 0, 189, 0, -191, 0, 139, 0, 33, 0, 139, 0, 183, 0,
+        -183, 0, 183, 0, 193, 0, 185, 0, 186, 0, 185, 0, -187, 0, 139, 0,
+        33, 0, 139, 0, 183, 0, -183, 0, 183, 0, 194, 0, 189, 0, 190, 0,
+        188, 0, 189, 0, -191, 0, 139, 0, 33, 0, 139, 0, 183, 0, -183, 0,
+        183, 0, 195, 0, 185, 0, 186, 0, 185, 0, -187, 0, 139, 0, 33, 0,
+        139, 0, 183, 0, -183, 0, 183, 0, 196, 0, 189, 0, 190, 0, 188, 0,
+        189, 0, -191, 0, 139, 0, 33, 0, 139, 0, 183, 0, -183, 0, 183, 0,
+        197, 0, 185, 0, 186, 0, 185, 0, -187, 0, 139, 0, 33, 0, 139, 0,
+        183, 0, -183, 0, 183, 0, 198, 0, 189, 0, 190, 0, 188, 0, 189, 0,
+        -191, 0, 139, 0, 33, 0, 139, 0, 183, 0, -183, 0, 183, 0, 199, 0,
+        185, 0, 186, 0, 185, 0, -187, 0, 139, 0, 33, 0, 139, 0, 183, 0,
+        -183, 0, 183, 0, 200, 0, 189, 0, 190, 0, 188, 0, 189, 0, -191, 0,
+        139, 0, 33, 0, 139, 0, 183, 0, -183, 0, 183, 0, 201, 0, 185, 0,
+        186, 0, 185, 0, -187, 0, 139, 0, 33, 0, 139, 0, 183, 0, -183, 0,
+        183, 0, 202, 0, 189, 0, 190, 0, 188, 0, 189, 0, -191, 0, 139, 0,
+        33, 0, 139, 0, 183, 0, -183, 0, 183, 0, 203, 0, 185, 0, 186, 0,
+        185, 0, -187, 0, 139, 0, 33, 0, 139, 0, 183, 0, -183, 0, 183, 0,
+        204, 0, 189, 0, 190, 0, 188, 0, 189, 0, -191, 0, 139, 0, 33, 0,
+        139, 0, 183, 0, -183, 0, 183, 0, 205, 0, 185, 0, 186, 0, 185, 0,
+        -187, 0, 139, 0, 33, 0, 139, 0, 183, 0, -183, 0, 183, 0, 206, 0,
+        189, 0, 190, 0, 188, 0, 189, 0, -191, 0, 139, 0, 33, 0, 139, 0,
+        183, 0, -183, 0, 183, 0, 207, 0, 185, 0, 186, 0, 185, 0, -187, 0,
+        139, 0, 33, 0, 139, 0, 183, 0, -183, 0, 183, 0, 208, 0, 189, 0,
+        190, 0, 188, 0, 189, 0, -191, 0, 139, 0, 33, 0, 139, 0, 183, 0,
+        -183, 0, 183, 0, 209, 0, 185, 0, 186, 0, 185, 0, -187, 0, 139, 0,
+        33, 0, 139, 0, 183, 0, -183, 0, 183, 0, 210, 0, 189, 0, 190, 0,
+        188, 0, 189, 0, -191, 0, 139, 0, 33, 0, 139, 0, 183, 0, -183, 0,
+        183, 0, 211, 0, 185, 0, 186, 0, 185, 0, -187, 0, 139, 0, 33, 0,
+        139, 0, 183, 0, -183, 0, 183, 0, 212, 0, 189, 0, 190, 0, 188, 0,
+        189, 0, -191, 0, 139, 0, 33, 0, 139, 0, 183, 0, -183, 0, 183, 0,
+        213, 0, 185, 0, 186, 0, 185, 0, -187, 0, 139, 0, 33, 0, 139, 0,
+        183, 0, -183, 0, 183, 0, 214, 0, 189, 0, 190, 0, 188, 0, 189, 0,
+        -191, 0, 139, 0, 33, 0, 139, 0, 183, 0, -183, 0, 183, 0, 215, 0,
+        185, 0, 186, 0, 185, 0, -187, 0, 139, 0, 33, 0, 139, 0, 183, 0,
+        -183, 0, 183, 0, 216, 0, 189, 0, 190, 0, 188, 0, 189, 0, -191, 0,
+        139, 0, 33, 0, 139, 0, 183, 0, -183, 0, 183, 0, 217, 0, 185, 0,
+        186, 0, 185, 0, -187, 0, 139, 0, 33, 0, 139, 0, 183, 0, -183, 0,
+        183, 0, 218, 0, 189, 0, 190, 0, 188, 0, 189, 0, -191, 0, 139, 0,
+        33, 0, 139, 0, 183, 0, -183, 0, 183, 0, 219, 0, 185, 0, 186, 0,
+        185, 0, -187, 0, 139, 0, 33, 0, 139, 0, 183, 0, -184, 0, 220, 0,
+        189, 0, 190, 0, 131, 0, -222, 0, 139, 0, 34, 0, -223, 0, 223, 0,
+        -225, 0, -186, 0, -189, 0, -186, 0, -190, 0, -36, 0, 225, 0, 226, 0,
+        -228, 0, -229, 0, 224, 0, -230, 0, 186, 0, -187, 0, -191, 0, 225, 0,
+        -40, 0, 230, 0, 231, 0, 223, 0, 224, 0, -223, 0, 223, 0, -225, 0,
+        -190, 0, -186, 0, -189, 0, -186, 0, -190, 0, 226, 0, 230, 0, -43, 0,
+        232, 0, 233, 0, -231, 0, -225, 0, -230, 0, -229, 0, 224, 0, -230, 0,
+        190, 0, 186, 0, -187, 0, -191, 0, -228, 0, 231, 0, 232, 0, -46, 0,
+        234, 0, 235, 0, 223, 0, 224, 0, -223, 0, 223, 0, -225, 0, -190, 0,
+        -186, 0, -189, 0, -186, 0, -190, 0, 233, 0, 234, 0, -49, 0, 236, 0,
+        237, 0, -235, 0, -225, 0, -230, 0, -229, 0, 224, 0, -230, 0, 190, 0,
+        186, 0, -187, 0, -191, 0, -231, 0, 235, 0, 236, 0, -52, 0, 238, 0,
+        239, 0, 223, 0, 224, 0, -223, 0, 223, 0, -225, 0, -190, 0, -186, 0,
+        -189, 0, -186, 0, -190, 0, 237, 0, 238, 0, -55, 0, 240, 0, 241, 0,
+        -239, 0, -225, 0, -230, 0, -229, 0, 224, 0, -230, 0, 190, 0, 186, 0,
+        -187, 0, -191, 0, -235, 0, 239, 0, 240, 0, -58, 0, 242, 0, 243, 0,
+        223, 0, 224, 0, -223, 0, 223, 0, -225, 0, -190, 0, -186, 0, -189, 0,
+        -186, 0, -190, 0, 241, 0, 242, 0, -61, 0, 244, 0, 245, 0, -243, 0,
+        -225, 0, -230, 0, -229, 0, 224, 0, -230, 0, 190, 0, 186, 0, -187, 0,
+        -191, 0, -239, 0, 243, 0, 244, 0, -64, 0, 246, 0, 247, 0, 223, 0,
+        224, 0, -223, 0, 223, 0, -225, 0, -190, 0, -186, 0, -189, 0, -186, 0,
+        -190, 0, 245, 0, 246, 0, -67, 0, 248, 0, 249, 0, -247, 0, -225, 0,
+        -230, 0, -229, 0, 224, 0, -230, 0, 190, 0, 186, 0, -187, 0, -191, 0,
+        -243, 0, 247, 0, 248, 0, -70, 0, 250, 0, 251, 0, 223, 0, 224, 0,
+        -223, 0, 223, 0, -225, 0, -190, 0, -186, 0, -189, 0, -186, 0, -190, 0,
+        249, 0, 250, 0, -73, 0, 252, 0, 253, 0, -251, 0, -225, 0, -230, 0,
+        -229, 0, 224, 0, -230, 0, 190, 0, 186, 0, -187, 0, -191, 0, -247, 0,
+        251, 0, 252, 0, -76, 0, 254, 0, 255, 0, 223, 0, 224, 0, -223, 0,
+        223, 0, -225, 0, -190, 0, -186, 0, -189, 0, -186, 0, -190, 0, 253, 0,
+        254, 0, -79, 0, 256, 0, 257, 0, -255, 0, -225, 0, -230, 0, -229, 0,
+        224, 0, -230, 0, 190, 0, 186, 0, -187, 0, -191, 0, -251, 0, 255, 0,
+        256, 0, -82, 0, 258, 0, 259, 0, 223, 0, 224, 0, -223, 0, 223, 0,
+        -225, 0, -190, 0, -186, 0, -189, 0, -186, 0, -190, 0, 257, 0, 258, 0,
+        -85, 0, 260, 0, 261, 0, -259, 0, -225, 0, -230, 0, -229, 0, 224, 0,
+        -230, 0, 190, 0, 186, 0, -187, 0, -191, 0, -255, 0, 259, 0, 260, 0,
+        -88, 0, 262, 0, 263, 0, 223, 0, 224, 0, -223, 0, 223, 0, -225, 0,
+        -190, 0, -186, 0, -189, 0, -186, 0, -190, 0, 261, 0, 262, 0, -91, 0,
+        264, 0, 265, 0, -263, 0, -225, 0, -230, 0, -229, 0, 224, 0, -230, 0,
+        190, 0, 186, 0, -187, 0, -191, 0, -259, 0, 263, 0, 264, 0, -94, 0,
+        266, 0, 267, 0, 223, 0, 224, 0, -223, 0, 223, 0, -225, 0, -190, 0,
+        -186, 0, -189, 0, -186, 0, -190, 0, 265, 0, 266, 0, -97, 0, 268, 0,
+        269, 0, -267, 0, -225, 0, -230, 0, -229, 0, 224, 0, -230, 0, 190, 0,
+        186, 0, -187, 0, -191, 0, -263, 0, 267, 0, 268, 0, -100, 0, 270, 0,
+        271, 0, 223, 0, 224, 0, -223, 0, 223, 0, -225, 0, -190, 0, -186, 0,
+        -189, 0, -186, 0, -190, 0, 269, 0, 270, 0, -103, 0, 272, 0, 273, 0,
+        -271, 0, -225, 0, -230, 0, -229, 0, 224, 0, -230, 0, 190, 0, 186, 0,
+        -187, 0, -191, 0, -267, 0, 271, 0, 272, 0, -106, 0, 274, 0, 275, 0,
+        223, 0, 224, 0, -223, 0, 223, 0, -225, 0, -190, 0, -186, 0, -189, 0,
+        -186, 0, -190, 0, 273, 0, 274, 0, -109, 0, 276, 0, 277, 0, -275, 0,
+        -225, 0, -230, 0, -229, 0, 224, 0, -230, 0, 190, 0, 186, 0, -187, 0,
+        -191, 0, -271, 0, 275, 0, 276, 0, -112, 0, 278, 0, 279, 0, 223, 0,
+        224, 0, -223, 0, 223, 0, -225, 0, -190, 0, -186, 0, -189, 0, -186, 0,
+        -190, 0, 277, 0, 278, 0, -115, 0, 280, 0, 281, 0, -279, 0, -225, 0,
+        -230, 0, -229, 0, 224, 0, -230, 0, 190, 0, 186, 0, -187, 0, -191, 0,
+        -275, 0, 279, 0, 280, 0, -118, 0, 282, 0, 283, 0, 223, 0, 224, 0,
+        -223, 0, 223, 0, -225, 0, -190, 0, -186, 0, -189, 0, -186, 0, -190, 0,
+        281, 0, 282, 0, -121, 0, 284, 0, 285, 0, -283, 0, -225, 0, -230, 0,
+        -229, 0, 224, 0, -230, 0, 190, 0, 186, 0, -187, 0, -191, 0, -279, 0,
+        283, 0, 284, 0, -124, 0, 286, 0, 287, 0, 223, 0, 224, 0, -224, 0,
+        224, 0, -190, 0, -186, 0, -132, 0, 285, 0, 286, 0, -127, 0, 288, 0,
+        -225, 0, -230, 0, 224, 0, -290, 0, 190, 0, 186, 0, 221, 0, -283, 0,
+        287, 0, 288, 0, -129, 0,
+    };
+    static const int written[] = {0, 66, 67, 68, 69, 70, 71, 72, 73, 74, 75, 76, 77, 78, 79, 80,
+        81, 82, 83, 84, 85, 86, 87, 88, 89, 90, 91, 92, 93, 94, 95, 96,
+        97, 131, 132, 134, 135, 136, 138, 139, 140, 142, 143, 144, 146, 147, 148, 150,
+        151, 152, 154, 155, 156, 158, 159, 160, 162, 163, 164, 166, 167, 168, 170, 171,
+        172, 174, 175, 176, 178, 179, 180, 182, 183, 184, 186, 187, 188, 190, 191, 192,
+        194, 195, 196, 198, 199, 200, 202, 203, 204, 206, 207, 208, 210, 211, 212, 214,
+        215, 216, 218, 219, 220, 222, 223, 224, 226, 227, 228, 230, 231, 232, 234, 235,
+        236, 238, 239, 240, 242, 243, 244, 246, 247, 248, 250, 251, 252, 254, 255, 257,
+        258, 259, 260, 262, 263, 264, 265, 267, 268, 269, 270, 271, 272, 274, 275, 276,
+        277, 278, 279, 281, 282, 283, 284, 285, 286, 288, 289, 290, 291, 292, 293, 295,
+        296, 297, 298, 299, 300, 302, 303, 304, 305, 306, 307, 309, 310, 311, 312, 313,
+        314, 316, 317, 318, 319, 320, 321, 323, 324, 325, 326, 327, 328, 330, 331, 332,
+        333, 334, 335, 337, 338, 339, 340, 341, 342, 344, 345, 346, 347, 348, 349, 351,
+        352, 353, 354, 355, 356, 358, 359, 360, 361, 362, 363, 365, 366, 367, 368, 369,
+        370, 372, 373, 374, 375, 376, 377, 379, 380, 381, 382, 383, 384, 386, 387, 388,
+        389, 390, 391, 393, 394, 395, 396, 397, 398, 400, 401, 402, 403, 404, 405, 407,
+        408, 409, 410, 411, 412, 414, 415, 416, 417, 418, 419, 421, 422, 423, 424, 425,
+        426, 428, 429, 430, 431, 432, 433, 435, 436, 437, 438, 439, 440, 442, 443, 444,
+        445, 446, 447, 449, 450, 451, 452, 453, 454, 456, 457, 458, 459, 460, 461, 463,
+        464, 465, 466, 468, 469, 470, 471, 473, 474, 537, 570, 571, 602, 605, 945, 946,
+        947, 1009, 1042, 1044, 1045, 1074, 1077, 1081, 1418, 1419, 1420, 1481, 1514, 1515, 1516, 1517,
+        1549, 1553, 1557, 1891, 1892, 1893, 1953, 1986, 1987, 1988, 1990, 1991, 2025, 2029, 2033, 2364,
+        2365, 2366, 2425, 2460, 2461, 2462, 2463, 2501, 2505, 2509, 2837, 2838, 2839, 2897, 2932, 2933,
+        2934, 2936, 2937, 2977, 2981, 2985, 3310, 3311, 3312, 3369, 3406, 3407, 3408, 3409, 3453, 3457,
+        3461, 3783, 3784, 3785, 3841, 3878, 3879, 3880, 3882, 3883, 3929, 3933, 3937, 4256, 4257, 4258,
+        4313, 4352, 4353, 4354, 4355, 4405, 4409, 4413, 4729, 4730, 4731, 4785, 4824, 4825, 4826, 4828,
+        4829, 4881, 4885, 4889, 5202, 5203, 5204, 5257, 5298, 5299, 5300, 5301, 5357, 5361, 5365, 5675,
+        5676, 5677, 5729, 5770, 5771, 5772, 5774, 5775, 5833, 5837, 5841, 6148, 6149, 6150, 6201, 6244,
+        6245, 6246, 6247, 6309, 6313, 6317, 6621, 6622, 6623, 6673, 6716, 6717, 6718, 6720, 6721, 6785,
+        6789, 6793, 7094, 7095, 7096, 7145, 7190, 7191, 7192, 7193, 7261, 7265, 7269, 7567, 7568, 7569,
+        7617, 7662, 7663, 7664, 7666, 7667, 7737, 7741, 7745, 8040, 8041, 8042, 8089, 8136, 8137, 8138,
+        8139, 8213, 8217, 8221, 8513, 8514, 8515, 8561, 8608, 8609, 8610, 8612, 8613, 8689, 8693, 8697,
+        8986, 8987, 8988, 9033, 9082, 9083, 9084, 9085, 9165, 9169, 9173, 9459, 9460, 9461, 9505, 9554,
+        9555, 9556, 9558, 9559, 9641, 9645, 9649, 9932, 9933, 9934, 9977, 10028, 10029, 10030, 10031, 10117,
+        10121, 10125, 10405, 10406, 10407, 10449, 10500, 10501, 10502, 10504, 10505, 10593, 10597, 10601, 10878, 10879,
+        10880, 10921, 10974, 10975, 10976, 10977, 11069, 11073, 11077, 11351, 11352, 11353, 11393, 11446, 11447, 11448,
+        11450, 11451, 11545, 11549, 11553, 11824, 11825, 11826, 11865, 11920, 11921, 11922, 11923, 12021, 12025, 12029,
+        12297, 12298, 12299, 12337, 12392, 12393, 12394, 12396, 12397, 12497, 12501, 12505, 12770, 12771, 12772, 12809,
+        12866, 12867, 12868, 12869, 12973, 12977, 12981, 13243, 13244, 13245, 13281, 13338, 13339, 13340, 13342, 13343,
+        13449, 13453, 13457, 13716, 13717, 13718, 13753, 13812, 13813, 13814, 13815, 13925, 13929, 13933, 14189, 14190,
+        14191, 14225, 14284, 14285, 14286, 14288, 14289, 14401, 14405, 14409, 14662, 14663, 14664, 14697, 14758, 14759,
+        14760, 14761, 14877, 14881, 14885, 15135, 15136, 15169, 15230, 15231, 15232, 15233, 15353, 15357, 15609, 15611,
+        15612, 15642, 15643, 15644, 15645, 15832, 15837, 15842, 15849, 16082, 16083, 16084, 16114, 16116, 16117, 16304,
+        16309, 16314, 16321, 16553, 16554, 16555, 16557, 16558, 16587, 16588, 16589, 16590, 16591, 16776, 16781, 16786,
+        16793, 16800, 16807, 17025, 17026, 17028, 17029, 17030, 17059, 17060, 17062, 17063, 17248, 17253, 17258, 17265,
+        17272, 17279, 17499, 17500, 17501, 17503, 17504, 17533, 17534, 17535, 17536, 17537, 17730, 17737, 17744, 17751,
+        17758, 17765, 17971, 17972, 17974, 17975, 17976, 18005, 18006, 18008, 18009, 18202, 18209, 18216, 18223, 18230,
+        18237, 18445, 18446, 18447, 18449, 18450, 18479, 18480, 18481, 18482, 18483, 18688, 18695, 18702, 18709, 18716,
+        18723, 18917, 18918, 18920, 18921, 18922, 18951, 18952, 18954, 18955, 19160, 19167, 19174, 19181, 19188, 19195,
+        19391, 19392, 19393, 19395, 19396, 19425, 19426, 19427, 19428, 19429, 19646, 19653, 19660, 19667, 19674, 19681,
+        19863, 19864, 19866, 19867, 19868, 19897, 19898, 19900, 19901, 20118, 20125, 20132, 20139, 20146, 20153, 20337,
+        20338, 20339, 20341, 20342, 20371, 20372, 20373, 20374, 20375, 20604, 20611, 20618, 20625, 20632, 20639, 20809,
+        20810, 20812, 20813, 20814, 20843, 20844, 20846, 20847, 21076, 21083, 21090, 21097, 21104, 21111, 21283, 21284,
+        21285, 21287, 21288, 21317, 21318, 21319, 21320, 21321, 21562, 21569, 21576, 21583, 21590, 21597, 21755, 21756,
+        21758, 21759, 21760, 21789, 21790, 21792, 21793, 22034, 22041, 22048, 22055, 22062, 22069, 22229, 22230, 22231,
+        22233, 22234, 22263, 22264, 22265, 22266, 22267, 22520, 22527, 22534, 22541, 22548, 22555, 22701, 22702, 22704,
+        22705, 22706, 22735, 22736, 22738, 22739, 22992, 22999, 23006, 23013, 23020, 23027, 23175, 23176, 23177, 23179,
+        23180, 23209, 23210, 23211, 23212, 23213, 23478, 23485, 23492, 23499, 23506, 23513, 23647, 23648, 23650, 23651,
+        23652, 23681, 23682, 23684, 23685, 23950, 23957, 23964, 23971, 23978, 23985, 24121, 24122, 24123, 24125, 24126,
+        24155, 24156, 24157, 24158, 24159, 24436, 24443, 24450, 24457, 24464, 24471, 24593, 24594, 24596, 24597, 24598,
+        24627, 24628, 24630, 24631, 24908, 24915, 24922, 24929, 24936, 24943, 25067, 25068, 25069, 25071, 25072, 25101,
+        25102, 25103, 25104, 25105, 25394, 25401, 25408, 25415, 25422, 25429, 25539, 25540, 25542, 25543, 25544, 25573,
+        25574, 25576, 25577, 25866, 25873, 25880, 25887, 25894, 25901, 26013, 26014, 26015, 26017, 26018, 26047, 26048,
+        26049, 26050, 26051, 26352, 26359, 26366, 26373, 26380, 26387, 26485, 26486, 26488, 26489, 26490, 26519, 26520,
+        26522, 26523, 26824, 26831, 26838, 26845, 26852, 26859, 26959, 26960, 26961, 26963, 26964, 26993, 26994, 26995,
+        26996, 26997, 27310, 27317, 27324, 27331, 27338, 27345, 27431, 27432, 27434, 27435, 27436, 27465, 27466, 27468,
+        27469, 27782, 27789, 27796, 27803, 27810, 27817, 27905, 27906, 27907, 27909, 27910, 27939, 27940, 27941, 27942,
+        27943, 28268, 28275, 28282, 28289, 28296, 28303, 28377, 28378, 28380, 28381, 28382, 28411, 28412, 28414, 28415,
+        28740, 28747, 28754, 28761, 28768, 28775, 28851, 28852, 28853, 28855, 28856, 28885, 28886, 28887, 28888, 28889,
+        29226, 29233, 29240, 29247, 29254, 29259, 29323, 29324, 29326, 29327, 29328, 29357, 29358, 29360, 29361, 29698,
+        29705, 29712, 29719, 29726, 29731, 29797, 29798, 29799, 29800, 29831, 29832, 29833, 30184, 30191, 30198, 30203,
+        30269, 30270, 30271, 30272, 30303, 30304, 30305, 30656, 30663, 30670, 30675};
+    static const int first[] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15,
+        16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31,
+        32, 33, 34, 35, 36, 37, 38, 39, 40, 41, 42, 43, 44, 45, 46, 47,
+        48, 49, 50, 51, 52, 53, 54, 55, 56, 57, 58, 59, 60, 61, 62, 63,
+        64, 65, 66, 67, 68, 69, 70, 71, 72, 73, 74, 75, 76, 77, 78, 79,
+        80, 81, 82, 83, 84, 85, 86, 87, 88, 89, 90, 91, 92, 93, 94, 95,
+        96, 97, 98, 99, 100, 101, 102, 103, 104, 105, 106, 107, 108, 109, 110, 111,
+        112, 113, 114, 115, 116, 117, 118, 119, 120, 121, 122, 123, 124, 125, 126, 127,
+        128, 129, 130, 131, 132, 133, 134, 135, 136, 137, 138, 139, 140, 141, 142, 143,
+        144, 145, 146, 147, 148, 149, 150, 151, 152, 153, 154, 155, 156, 157, 158, 159,
+        160, 161, 162, 163, 164, 165, 166, 167, 168, 169, 170, 171, 172, 173, 174, 175,
+        176, 177, 178, 179, 180, 181, 182, 183, 184, 185, 186, 187, 188, 189, 190, 191,
+        192, 193, 194, 195, 196, 197, 198, 199, 200, 201, 202, 203, 204, 205, 206, 207,
+        208, 209, 210, 211, 212, 213, 214, 215, 216, 217, 218, 219, 220, 221, 222, 223,
+        224, 225, 226, 227, 228, 229, 230, 231, 232, 233, 234, 235, 236, 237, 238, 239,
+        240, 241, 242, 243, 244, 245, 246, 247, 248, 249, 250, 251, 252, 253, 254, 255,
+        256, 257, 258, 259, 260, 261, 262, 263, 264, 265, 266, 267, 268, 269, 270, 271,
+        272, 273, 274, 275, 276, 277, 278, 279, 280, 281, 282, 283, 284, 285, 286, 287,
+        288, 289, 290, 291, 292, 293, 294, 295, 296, 297, 298, 299, 300, 301, 302, 303,
+        304, 305, 306, 307, 308, 309, 310, 311, 312, 313, 314, 315, 316, 317, 318, 319,
+        320, 321, 322, 323, 324, 325, 326, 327, 328, 329, 330, 331, 332, 333, 334, 335,
+        336, 337, 338, 339, 340, 341, 342, 343, 344, 345, 346, 347, 348, 349, 350, 351,
+        352, 353, 354, 355, 356, 357, 358, 359, 360, 361, 362, 363, 364, 365, 366, 367,
+        368, 369, 370, 371, 372, 373, 374, 375, 376, 377, 378, 379, 380, 381, 382, 383,
+        384, 385, 386, 387, 388, 389, 390, 391, 392, 393, 394, 395, 396, 397, 398, 399,
+        400, 401, 402, 403, 404, 405, 406, 407, 408, 409, 410, 411, 412, 413, 414, 415,
+        416, 417, 418, 419, 420, 421, 422, 423, 424, 425, 426, 427, 428, 429, 430, 431,
+        432, 433, 434, 435, 436, 437, 438, 439, 440, 441, 442, 443, 444, 445, 446, 447,
+        448, 449, 450, 451, 452, 453, 454, 455, 456, 457, 458, 459, 460, 461, 462, 463,
+        464, 465, 466, 467, 468, 469, 470, 471, 472, 473, 474, 475, 476, 477, 478, 479,
+        480, 481, 482, 483, 484, 485, 486, 487, 488, 489, 490, 491, 492, 493, 494, 495,
+        496, 497, 498, 499, 500, 501, 502, 503, 504, 505, 506, 507, 508, 509, 510, 511,
+        512, 513, 514, 515, 516, 517, 518, 519, 520, 521, 522, 523, 524, 525, 526, 527,
+        528, 529, 530, 531, 532, 533, 534, 535, 536, 537, 538, 539, 540, 541, 542, 543,
+        544, 545, 546, 547, 548, 549, 550, 551, 552, 553, 554, 555, 556, 557, 558, 559,
+        560, 561, 562, 563, 564, 565, 566, 567, 568, 569, 570, 571, 572, 573, 574, 575,
+        576, 577, 578, 579, 580, 581, 582, 583, 584, 585, 586, 587, 588, 589, 590, 591,
+        592, 593, 594, 595, 596, 597, 598, 599, 600, 601, 602, 603, 604, 605, 606, 607,
+        608, 609, 610, 611, 612, 613, 614, 615, 616, 617, 618, 619, 620, 621, 622, 623,
+        624, 625, 626, 627, 628, 629, 630, 631, 632, 633, 634, 635, 636, 637, 638, 639,
+        640, 641, 642, 643, 644, 645, 646, 647, 648, 649, 650, 651, 652, 653, 654, 655,
+        656, 657, 658, 659, 660, 661, 662, 663, 664, 665, 666, 667, 668, 669, 670, 671,
+        672, 673, 674, 675, 676, 677, 678, 679, 680, 681, 682, 683, 684, 685, 686, 687,
+        688, 689, 690, 691, 692, 693, 694, 695, 696, 697, 698, 699, 700, 701, 702, 703,
+        704, 705, 706, 707, 708, 709, 710, 711, 712, 713, 714, 715, 716, 717, 718, 719,
+        720, 721, 722, 723, 724, 725, 726, 727, 728, 729, 730, 731, 732, 733, 734, 735,
+        736, 737, 738, 739, 740, 741, 742, 743, 744, 745, 746, 747, 748, 749, 750, 751,
+        752, 753, 754, 755, 756, 757, 758, 759, 760, 761, 762, 763, 764, 765, 766, 767,
+        768, 769, 770, 771, 772, 773, 774, 775, 776, 777, 778, 779, 780, 781, 782, 783,
+        784, 785, 786, 787, 788, 789, 790, 791, 792, 793, 794, 795, 796, 797, 798, 799,
+        800, 801, 802, 803, 804, 805, 806, 807, 808, 809, 810, 811, 812, 813, 814, 815,
+        816, 817, 818, 819, 820, 821, 822, 823, 824, 825, 826, 827, 828, 829, 830, 831,
+        832, 833, 834, 835, 836, 837, 838, 839, 840, 841, 842, 843, 844, 845, 846, 847,
+        848, 849, 850, 851, 852, 853, 854, 855, 856, 857, 858, 859, 860, 861, 862, 863,
+        864, 865, 866, 867, 868, 869, 870, 871, 872, 873, 874, 875, 876, 877, 878, 879,
+        880, 881, 882, 883, 884, 885, 886, 887, 888, 889, 890, 891, 892, 893, 894, 895,
+        896, 897, 898, 899, 900, 901, 902, 903, 904, 905, 906, 907, 908, 909, 910, 911,
+        912, 913, 914, 915, 916, 917, 918, 919, 920, 921, 922, 923, 924, 925, 926, 927,
+        928, 929, 930, 931, 932, 933, 934, 935, 936, 937, 938, 939, 940, 941, 942, 943,
+        944, 945, 946, 947, 948, 949, 950, 951, 952, 953, 954, 955, 956, 957, 958, 959,
+        960, 961, 962, 963, 964, 965, 966, 967, 968, 969, 970, 971, 972, 973, 974, 975,
+        976, 977, 978, 979, 980, 981, 982, 983, 984, 985, 986, 987, 988, 989, 990, 991,
+        992, 993, 994, 995, 996, 997, 998, 999, 1000, 1001, 1002, 1003, 1004, 1005, 1006, 1007,
+        1008, 1009, 1010, 1011, 1012, 1013, 1014, 1015, 1016, 1017, 1018, 1019, 1020, 1021, 1022, 1023,
+        1024, 1025, 1026, 1027, 1028, 1029, 1030, 1031, 1032, 1033, 1034, 1035, 1036, 1037, 1038, 1039,
+        1040, 1041, 1042, 1043, 1044, 1045, 1046, 1047, 1048, 1049, 1050, 1051, 1052, 1053, 1054, 1055,
+        1056, 1057, 1058, 1059, 1060, 1061, 1062, 1063, 1064, 1065, 1066, 1067, 1068, 1069, 1070, 1071,
+        1072, 1073, 1074, 1075, 1076, 1077, 1078, 1079, 1080, 1081, 1082, 1083, 1084, 1085, 1086, 1087,
+        1088, 1089, 1090, 1091, 1092, 1093, 1094, 1095, 1096, 1097, 1098, 1099, 1100, 1101, 1102, 1103,
+        1104, 1105, 1106, 1107, 1108, 1109, 1110, 1111, 1112, 1113, 1114, 1115, 1116, 1117, 1118, 1119,
+        1120, 1121, 1122, 1123, 1124, 1125, 1126, 1127, 1128, 1129, 1130, 1131, 1132, 1133, 1134, 1135,
+        1136, 1137, 1138, 1139, 1140, 1141, 1142, 1143, 1144, 1145, 1146, 1147};
+    for (int i = 0; i < 1147; ++i) {
+        double sum = 0.0;
+        for (int t = first[i]; t < first[i + 1]; ++t) {
+            const int k = terms[2 * t];
+            sum += (k >= 0 ? c[k] : -c[-k - 1]) * m[terms[2 * t + 1]];
+        }
+        out[written[i]] = sum;
+    }
+}
+
 /* energy:(c[333],u[3],q[65],qd[65])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void fem_nx32_ny32_torque_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
@@ -5747,9 +7136,9 @@ void fem_nx32_ny32_torque_first_mass_q_product(const double* c, const double* u,
 
 }  // namespace
 
-extern const Variant fem_nx32_ny32_torque_first = {"fem_nx32_ny32_torque_first", 65, 333, 0,
+extern const Variant fem_nx32_ny32_torque_first = {"fem_nx32_ny32_torque_first", 65, 333, 472,
     "vvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvvcc00000000000000000000000000000000000000000000000000000000000000vccc0000000000000000000000000000000000000000000000000000000000000v0ccc000000000000000000000000000000000000000000000000000000000000v00ccc00000000000000000000000000000000000000000000000000000000000v000ccc0000000000000000000000000000000000000000000000000000000000v0000ccc000000000000000000000000000000000000000000000000000000000v00000ccc00000000000000000000000000000000000000000000000000000000v000000ccc0000000000000000000000000000000000000000000000000000000v0000000ccc000000000000000000000000000000000000000000000000000000v00000000ccc00000000000000000000000000000000000000000000000000000v000000000ccc0000000000000000000000000000000000000000000000000000v0000000000ccc000000000000000000000000000000000000000000000000000v00000000000ccc00000000000000000000000000000000000000000000000000v000000000000ccc0000000000000000000000000000000000000000000000000v0000000000000ccc000000000000000000000000000000000000000000000000v00000000000000ccc00000000000000000000000000000000000000000000000v000000000000000ccc0000000000000000000000000000000000000000000000v0000000000000000ccc000000000000000000000000000000000000000000000v00000000000000000ccc00000000000000000000000000000000000000000000v000000000000000000ccc0000000000000000000000000000000000000000000v0000000000000000000ccc000000000000000000000000000000000000000000v00000000000000000000ccc00000000000000000000000000000000000000000v000000000000000000000ccc0000000000000000000000000000000000000000v0000000000000000000000ccc000000000000000000000000000000000000000v00000000000000000000000ccc00000000000000000000000000000000000000v000000000000000000000000ccc0000000000000000000000000000000000000v0000000000000000000000000ccc000000000000000000000000000000000000v00000000000000000000000000ccc00000000000000000000000000000000000v000000000000000000000000000ccc0000000000000000000000000000000000v0000000000000000000000000000ccc000000000000000000000000000000000v00000000000000000000000000000ccc00000000000000000000000000000000v000000000000000000000000000000cc00000000000000000000000000000000v00000000000000000000000000000000c0cc0000000000000000000000000000v000000000000000000000000000000000ccc0000000000000000000000000000v00000000000000000000000000000000ccc0cc00000000000000000000000000v00000000000000000000000000000000cc0ccc00000000000000000000000000v0000000000000000000000000000000000ccc0cc000000000000000000000000v0000000000000000000000000000000000cc0ccc000000000000000000000000v000000000000000000000000000000000000ccc0cc0000000000000000000000v000000000000000000000000000000000000cc0ccc0000000000000000000000v00000000000000000000000000000000000000ccc0cc00000000000000000000v00000000000000000000000000000000000000cc0ccc00000000000000000000v0000000000000000000000000000000000000000ccc0cc000000000000000000v0000000000000000000000000000000000000000cc0ccc000000000000000000v000000000000000000000000000000000000000000ccc0cc0000000000000000v000000000000000000000000000000000000000000cc0ccc0000000000000000v00000000000000000000000000000000000000000000ccc0cc00000000000000v00000000000000000000000000000000000000000000cc0ccc00000000000000v0000000000000000000000000000000000000000000000ccc0cc000000000000v0000000000000000000000000000000000000000000000cc0ccc000000000000v000000000000000000000000000000000000000000000000ccc0cc0000000000v000000000000000000000000000000000000000000000000cc0ccc0000000000v00000000000000000000000000000000000000000000000000ccc0cc00000000v00000000000000000000000000000000000000000000000000cc0ccc00000000v0000000000000000000000000000000000000000000000000000ccc0cc000000v0000000000000000000000000000000000000000000000000000cc0ccc000000v000000000000000000000000000000000000000000000000000000ccc0cc0000v000000000000000000000000000000000000000000000000000000cc0ccc0000v00000000000000000000000000000000000000000000000000000000ccc0cc00v00000000000000000000000000000000000000000000000000000000cc0ccc00v0000000000000000000000000000000000000000000000000000000000ccc0ccv0000000000000000000000000000000000000000000000000000000000cc0cccv000000000000000000000000000000000000000000000000000000000000ccccv000000000000000000000000000000000000000000000000000000000000cccc",
-    fem_nx32_ny32_torque_first_coefficients, fem_nx32_ny32_torque_first_mass, fem_nx32_ny32_torque_first_mass_varying, fem_nx32_ny32_torque_first_forces, nullptr, nullptr,
+    fem_nx32_ny32_torque_first_coefficients, fem_nx32_ny32_torque_first_mass, fem_nx32_ny32_torque_first_mass_varying, fem_nx32_ny32_torque_first_forces, fem_nx32_ny32_torque_first_forces_terms, fem_nx32_ny32_torque_first_forces_matrix,
     fem_nx32_ny32_torque_first_energy, fem_nx32_ny32_torque_first_momentum, fem_nx32_ny32_torque_first_forces_q, fem_nx32_ny32_torque_first_forces_qd, fem_nx32_ny32_torque_first_mass_q_product, fem_nx32_ny32_torque_first_forces_u, fem_nx32_ny32_torque_first_tip, nullptr};
 
 }  // namespace hubbeam::generated

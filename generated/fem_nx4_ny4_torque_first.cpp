@@ -245,6 +245,252 @@ void fem_nx4_ny4_torque_first_forces(const double* c, const double* u, const dou
     out[8] = -c[55]*B1 - c[60]*B2 + c[55]*B3 - c[64]*B4 + c[49]*theta_dot_A2_dot + c[45]*theta_dot_A3_dot + c[52]*theta_dot_A4_dot - c[58]*B1_theta_dotsq + c[62]*B2_theta_dotsq + c[63]*B3_theta_dotsq - c[16]*B4_theta_dotsq;
 }
 
+/* forces_terms:(c[80],u[3],q[9],qd[9])->(m[52]) the state monomials of Q: Q = F m */
+void fem_nx4_ny4_torque_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)c;
+    const double tau = u[0];
+    const double A1 = q[1];
+    const double A2 = q[2];
+    const double A3 = q[3];
+    const double A4 = q[4];
+    const double B1 = q[5];
+    const double B2 = q[6];
+    const double B3 = q[7];
+    const double B4 = q[8];
+    const double theta_dot = qd[0];
+    const double A1_dot = qd[1];
+    const double A2_dot = qd[2];
+    const double A3_dot = qd[3];
+    const double A4_dot = qd[4];
+    const double B1_dot = qd[5];
+    const double B2_dot = qd[6];
+    const double B3_dot = qd[7];
+    const double B4_dot = qd[8];
+    const double theta_dotsq = theta_dot*theta_dot;
+    const double theta_dot_A1_dot = theta_dot*A1_dot;
+    const double theta_dot_A2_dot = theta_dot*A2_dot;
+    const double theta_dot_A3_dot = theta_dot*A3_dot;
+    const double theta_dot_A4_dot = theta_dot*A4_dot;
+    const double theta_dot_B1_dot = theta_dot*B1_dot;
+    const double theta_dot_B2_dot = theta_dot*B2_dot;
+    const double theta_dot_B3_dot = theta_dot*B3_dot;
+    const double theta_dot_B4_dot = theta_dot*B4_dot;
+    const double A1_theta_dot = A1*theta_dot;
+    const double A1_theta_dotsq = A1_theta_dot*theta_dot;
+    const double A1_theta_dot_A1_dot = A1_theta_dot*A1_dot;
+    const double A1_theta_dot_A2_dot = A1_theta_dot*A2_dot;
+    const double A2_theta_dot = A2*theta_dot;
+    const double A2_theta_dotsq = A2_theta_dot*theta_dot;
+    const double A2_theta_dot_A1_dot = A2_theta_dot*A1_dot;
+    const double A2_theta_dot_A2_dot = A2_theta_dot*A2_dot;
+    const double A2_theta_dot_A3_dot = A2_theta_dot*A3_dot;
+    const double A3_theta_dot = A3*theta_dot;
+    const double A3_theta_dotsq = A3_theta_dot*theta_dot;
+    const double A3_theta_dot_A2_dot = A3_theta_dot*A2_dot;
+    const double A3_theta_dot_A3_dot = A3_theta_dot*A3_dot;
+    const double A3_theta_dot_A4_dot = A3_theta_dot*A4_dot;
+    const double A4_theta_dot = A4*theta_dot;
+    const double A4_theta_dotsq = A4_theta_dot*theta_dot;
+    const double A4_theta_dot_A3_dot = A4_theta_dot*A3_dot;
+    const double A4_theta_dot_A4_dot = A4_theta_dot*A4_dot;
+    const double B1_theta_dot = B1*theta_dot;
+    const double B1_theta_dotsq = B1_theta_dot*theta_dot;
+    const double B1_theta_dot_B1_dot = B1_theta_dot*B1_dot;
+    const double B1_theta_dot_B2_dot = B1_theta_dot*B2_dot;
+    const double B1_theta_dot_B3_dot = B1_theta_dot*B3_dot;
+    const double B1_theta_dot_B4_dot = B1_theta_dot*B4_dot;
+    const double B2_theta_dot = B2*theta_dot;
+    const double B2_theta_dotsq = B2_theta_dot*theta_dot;
+    const double B2_theta_dot_B1_dot = B2_theta_dot*B1_dot;
+    const double B2_theta_dot_B2_dot = B2_theta_dot*B2_dot;
+    const double B2_theta_dot_B3_dot = B2_theta_dot*B3_dot;
+    const double B2_theta_dot_B4_dot = B2_theta_dot*B4_dot;
+    const double B3_theta_dot = B3*theta_dot;
+    const double B3_theta_dotsq = B3_theta_dot*theta_dot;
+    const double B3_theta_dot_B1_dot = B3_theta_dot*B1_dot;
+    const double B3_theta_dot_B2_dot = B3_theta_dot*B2_dot;
+    const double B3_theta_dot_B3_dot = B3_theta_dot*B3_dot;
+    const double B3_theta_dot_B4_dot = B3_theta_dot*B4_dot;
+    const double B4_theta_dot = B4*theta_dot;
+    const double B4_theta_dotsq = B4_theta_dot*theta_dot;
+    const double B4_theta_dot_B1_dot = B4_theta_dot*B1_dot;
+    const double B4_theta_dot_B2_dot = B4_theta_dot*B2_dot;
+    const double B4_theta_dot_B3_dot = B4_theta_dot*B3_dot;
+    const double B4_theta_dot_B4_dot = B4_theta_dot*B4_dot;
+    out[0] = tau;
+    out[1] = A1;
+    out[2] = A2;
+    out[3] = A3;
+    out[4] = A4;
+    out[5] = B1;
+    out[6] = B2;
+    out[7] = B3;
+    out[8] = B4;
+    out[9] = theta_dotsq;
+    out[10] = theta_dot_A1_dot;
+    out[11] = theta_dot_A2_dot;
+    out[12] = theta_dot_A3_dot;
+    out[13] = theta_dot_A4_dot;
+    out[14] = theta_dot_B1_dot;
+    out[15] = theta_dot_B2_dot;
+    out[16] = theta_dot_B3_dot;
+    out[17] = theta_dot_B4_dot;
+    out[18] = A1_theta_dotsq;
+    out[19] = A1_theta_dot_A1_dot;
+    out[20] = A1_theta_dot_A2_dot;
+    out[21] = A2_theta_dotsq;
+    out[22] = A2_theta_dot_A1_dot;
+    out[23] = A2_theta_dot_A2_dot;
+    out[24] = A2_theta_dot_A3_dot;
+    out[25] = A3_theta_dotsq;
+    out[26] = A3_theta_dot_A2_dot;
+    out[27] = A3_theta_dot_A3_dot;
+    out[28] = A3_theta_dot_A4_dot;
+    out[29] = A4_theta_dotsq;
+    out[30] = A4_theta_dot_A3_dot;
+    out[31] = A4_theta_dot_A4_dot;
+    out[32] = B1_theta_dotsq;
+    out[33] = B1_theta_dot_B1_dot;
+    out[34] = B1_theta_dot_B2_dot;
+    out[35] = B1_theta_dot_B3_dot;
+    out[36] = B1_theta_dot_B4_dot;
+    out[37] = B2_theta_dotsq;
+    out[38] = B2_theta_dot_B1_dot;
+    out[39] = B2_theta_dot_B2_dot;
+    out[40] = B2_theta_dot_B3_dot;
+    out[41] = B2_theta_dot_B4_dot;
+    out[42] = B3_theta_dotsq;
+    out[43] = B3_theta_dot_B1_dot;
+    out[44] = B3_theta_dot_B2_dot;
+    out[45] = B3_theta_dot_B3_dot;
+    out[46] = B3_theta_dot_B4_dot;
+    out[47] = B4_theta_dotsq;
+    out[48] = B4_theta_dot_B1_dot;
+    out[49] = B4_theta_dot_B2_dot;
+    out[50] = B4_theta_dot_B3_dot;
+    out[51] = B4_theta_dot_B4_dot;
+}
+
+/* forces_matrix:(c[80],u[3],q[9],qd[9])->(F[9*52]) row-major, state-free: Q = F m; nonzero entries only */
+void fem_nx4_ny4_torque_first_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    (void)u;
+    (void)q;
+    (void)qd;
+    out[0] = 1.0;
+    out[10] = -c[1];
+    out[11] = -c[2];
+    out[12] = -c[3];
+    out[13] = -c[4];
+    out[19] = -c[36];
+    out[20] = -c[6];
+    out[22] = -c[6];
+    out[23] = -c[36];
+    out[24] = -c[6];
+    out[26] = -c[6];
+    out[27] = -c[36];
+    out[28] = -c[6];
+    out[30] = -c[6];
+    out[31] = -c[5];
+    out[33] = c[37];
+    out[34] = -c[8];
+    out[35] = -c[9];
+    out[36] = c[10];
+    out[38] = -c[8];
+    out[39] = c[38];
+    out[40] = -c[12];
+    out[41] = -c[13];
+    out[43] = -c[9];
+    out[44] = -c[12];
+    out[45] = c[39];
+    out[46] = -c[15];
+    out[48] = c[10];
+    out[49] = -c[13];
+    out[50] = -c[15];
+    out[51] = c[40];
+    out[53] = -c[41];
+    out[54] = c[42];
+    out[61] = c[43];
+    out[66] = c[44];
+    out[67] = -c[45];
+    out[70] = c[5];
+    out[73] = c[27];
+    out[105] = c[42];
+    out[106] = -c[41];
+    out[107] = c[42];
+    out[113] = c[46];
+    out[118] = c[47];
+    out[120] = c[48];
+    out[121] = -c[49];
+    out[122] = c[27];
+    out[125] = c[5];
+    out[129] = c[27];
+    out[158] = c[42];
+    out[159] = -c[41];
+    out[160] = c[42];
+    out[165] = c[50];
+    out[170] = c[44];
+    out[171] = c[45];
+    out[172] = c[44];
+    out[173] = -c[45];
+    out[177] = c[27];
+    out[181] = c[5];
+    out[185] = c[27];
+    out[211] = c[42];
+    out[212] = -c[42];
+    out[217] = c[51];
+    out[222] = c[48];
+    out[223] = c[49];
+    out[224] = c[19];
+    out[225] = -c[52];
+    out[233] = c[27];
+    out[237] = c[6];
+    out[265] = -c[53];
+    out[267] = c[54];
+    out[268] = -c[55];
+    out[270] = -c[44];
+    out[271] = -c[47];
+    out[272] = -c[44];
+    out[273] = -c[48];
+    out[292] = -c[7];
+    out[297] = c[56];
+    out[302] = c[57];
+    out[307] = -c[58];
+    out[318] = -c[59];
+    out[319] = c[55];
+    out[320] = -c[60];
+    out[322] = c[45];
+    out[324] = -c[45];
+    out[325] = -c[49];
+    out[344] = c[56];
+    out[349] = -c[11];
+    out[354] = c[61];
+    out[359] = c[62];
+    out[369] = c[54];
+    out[370] = c[55];
+    out[371] = -c[54];
+    out[372] = c[55];
+    out[375] = -c[48];
+    out[376] = -c[44];
+    out[377] = -c[19];
+    out[396] = c[57];
+    out[401] = c[61];
+    out[406] = -c[14];
+    out[411] = c[63];
+    out[421] = -c[55];
+    out[422] = -c[60];
+    out[423] = c[55];
+    out[424] = -c[64];
+    out[427] = c[49];
+    out[428] = c[45];
+    out[429] = c[52];
+    out[448] = -c[58];
+    out[453] = c[62];
+    out[458] = c[63];
+    out[463] = -c[16];
+}
+
 /* energy:(c[80],u[3],q[9],qd[9])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void fem_nx4_ny4_torque_first_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
@@ -771,9 +1017,9 @@ void fem_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, c
 
 }  // namespace
 
-extern const Variant fem_nx4_ny4_torque_first = {"fem_nx4_ny4_torque_first", 9, 80, 0,
+extern const Variant fem_nx4_ny4_torque_first = {"fem_nx4_ny4_torque_first", 9, 80, 52,
     "vvvvvvvvvvcc000000vccc00000v0ccc0000v00cc0000v0000c0ccv00000cccv0000ccccv0000cccc",
-    fem_nx4_ny4_torque_first_coefficients, fem_nx4_ny4_torque_first_mass, fem_nx4_ny4_torque_first_mass_varying, fem_nx4_ny4_torque_first_forces, nullptr, nullptr,
+    fem_nx4_ny4_torque_first_coefficients, fem_nx4_ny4_torque_first_mass, fem_nx4_ny4_torque_first_mass_varying, fem_nx4_ny4_torque_first_forces, fem_nx4_ny4_torque_first_forces_terms, fem_nx4_ny4_torque_first_forces_matrix,
     fem_nx4_ny4_torque_first_energy, fem_nx4_ny4_torque_first_momentum, fem_nx4_ny4_torque_first_forces_q, fem_nx4_ny4_torque_first_forces_qd, fem_nx4_ny4_torque_first_mass_q_product, fem_nx4_ny4_torque_first_forces_u, fem_nx4_ny4_torque_first_tip, nullptr};
 
 }  // namespace hubbeam::generated

@@ -202,9 +202,9 @@ std::string variant_source(const VariantKey& key, const EmitOptions& options)
                 }
         }
     const bool mass_varies = !mass_varying.polys.empty();
-    // Q = F m serves only the folding of a constant M^-1 into F (the runtime's cheapest right-hand side); where M
-    // varies it is not emitted (no kernels, nterms = 0).
-    const TermMatrix terms = mass_varies ? TermMatrix{} : term_matrix(eq.Q, parameters.size());
+    // Q = F m lets the runtime fold M^-1 into F once: all of M where it is constant (prescribed rotation), the
+    // constant beam block where only the hub's entry varies (hub torque without axial coordinates).
+    const TermMatrix terms = term_matrix(eq.Q, parameters.size());
     const std::string nk = std::to_string(terms.terms.size());
     KernelSpec force_matrix{"forces_matrix", "F[" + std::to_string(nq) + "*" + nk + "]",
                             "row-major, state-free: Q = F m; nonzero entries only", {}};
@@ -230,9 +230,8 @@ std::string variant_source(const VariantKey& key, const EmitOptions& options)
         sparse_kernel("forces_u", "dQdu[" + nu + "]", "row-major; out[i*3+j] = dQ_i/du_j, u = " + tuple(drive_value_names),
                       std::move(jac.forces_u)),
     };
-    if (!mass_varies)  // after forces, as the table row lists them
-        kernels.insert(kernels.begin() + 2,
-                       {polys("forces_terms", "m[" + nk + "]", "the state monomials of Q: Q = F m", terms.terms), force_matrix});
+    kernels.insert(kernels.begin() + 2,  // after forces, as the table row lists them
+                   {polys("forces_terms", "m[" + nk + "]", "the state monomials of Q: Q = F m", terms.terms), force_matrix});
     // A constant M is folded into W = M^-1 F by the runtime; this kernel evaluates W m with W's entries at fixed
     // places, unrolled, up to a size where unrolling stops paying (the runtime then loops).
     const bool folded = !mass_varies && nq * static_cast<int>(terms.terms.size()) <= 512;
@@ -252,15 +251,14 @@ std::string variant_source(const VariantKey& key, const EmitOptions& options)
     const std::string name = key.name();
     const EmittedCode code = emit_kernels(name, sig, std::move(kernels), options);
     const auto optional = [&](const char* kernel) { return mass_varies ? name + "_" + kernel : std::string("nullptr"); };
-    const auto constant = [&](const char* kernel) { return mass_varies ? std::string("nullptr") : name + "_" + kernel; };
 
     std::ostringstream f;
     f << banner(key, mass_varies) << "\n#include \"generated_abi.h\"\n\nnamespace hubbeam::generated {\n\nnamespace {\n"
       << code.text << "\n}  // namespace\n\n"
       << "extern const Variant " << name << " = {\"" << name << "\", " << nq << ", " << code.ncoeff << ", " << nk
       << ",\n    \"" << pattern << "\",\n    " << name << "_coefficients, " << name << "_mass, "
-      << optional("mass_varying") << ", " << name << "_forces, " << constant("forces_terms") << ", "
-      << constant("forces_matrix") << ",\n    " << name << "_energy, " << name << "_momentum, " << name << "_forces_q, " << name
+      << optional("mass_varying") << ", " << name << "_forces, " << name << "_forces_terms, "
+      << name << "_forces_matrix,\n    " << name << "_energy, " << name << "_momentum, " << name << "_forces_q, " << name
       << "_forces_qd, " << optional("mass_q_product") << ", " << name << "_forces_u, " << name << "_tip, "
       << (folded ? name + "_forces_folded" : std::string("nullptr")) << "};\n\n}  // namespace hubbeam::generated\n";
     return f.str();

@@ -15,15 +15,15 @@ struct Variant {
     const char* name;         /* VariantKey::name(), e.g. "bim_nx4_ny4_torque_first" */
     int nq;                   /* number of generalized coordinates */
     int ncoeff;               /* length of c */
-    int nterms;               /* K, the number of state monomials of Q (forces_terms); 0 where M varies */
+    int nterms;               /* K, the number of state monomials of Q (forces_terms) */
     const char* mass_pattern; /* nq*nq characters, row-major: '0' zero, 'c' constant, 'v' depends on q */
     CoefficientsKernel coefficients;
     Kernel mass;              /* M[nq*nq] = d2T/dqd2, symmetric: writes the upper triangle's nonzero entries only */
     Kernel mass_varying;      /* as mass, the 'v' entries only; a null pointer when M is constant */
     Kernel forces;            /* Q[nq]: tau e_theta + dT/dq - d(dT/dqd)/dt|_(qdd=0) - dU/dq */
-    Kernel forces_terms;      /* m[nterms]: the state monomials of Q; only for a constant M (folded into F by the
-                               * runtime), else a null pointer */
-    Kernel forces_matrix;     /* F[nq*nterms], row-major, free of the state: Q = F m; only for a constant M */
+    Kernel forces_terms;      /* m[nterms]: the state monomials of Q (the runtime folds the constant part of M^-1
+                               * into F) */
+    Kernel forces_matrix;     /* F[nq*nterms], row-major, free of the state: Q = F m */
     Kernel energy;            /* E[4] = (T2, T1, T0, U), T split by degree in qd */
     Kernel momentum;          /* h[1] = dT/dtheta_dot */
     /* The Jacobian pieces for implicit integrators, derivatives of the M and Q above (docs/model.md section 5.1);

@@ -117,6 +117,17 @@ struct FirstOrderSystem::Work {
     std::vector<int> W_start, W_column;
     std::vector<double> W_value;
     bool folded() const { return W.size() > 0 || W_rows.size() > 0 || !W_start.empty(); }
+    // Hub torque where only M's hub entry m00(q) varies (no axial coordinates): with C the constant beam block
+    // and b the constant coupling column, W_B = C^-1 F_B, c = C^-1 b, g = F_0 - b^T W_B and s0 = b^T c once, then
+    // theta_ddot = g m / (m00(q) - s0) and B_ddot = W_B m - c theta_ddot. Besides saving the solves, the beam's
+    // ill-conditioned C (BIM) is applied through fixed products of smooth monomials: its round-off is the same
+    // at every evaluation instead of noise that an error control chases down to tiny steps.
+    Eigen::MatrixXd hub_W;
+    Eigen::VectorXd hub_c;
+    Eigen::RowVectorXd hub_g;
+    double hub_s0 = 0.0;
+    RowMatrix hub_M;  // the varying entry's evaluation
+    bool hub_folded() const { return hub_W.size() > 0; }
     Eigen::VectorXd m;
     Eigen::VectorXd qdd;
     std::vector<double> y_plus, y_minus, f_plus, f_minus;
@@ -226,6 +237,30 @@ FirstOrderSystem::FirstOrderSystem(const Model& model, const Motion& motion, Axi
             }
         }
     }
+    const std::string pattern = model.mass_pattern();
+    const bool hub_only_varies = pattern[0] == 'v' && pattern.find('v', 1) == std::string::npos;
+    if (axial_ == Axial::dynamic && !model.mass_is_constant() && hub_only_varies && K > 0 && n_ > 1) {
+        Work::RowMatrix F(n_, K), M(n_, n_);
+        model.forces_matrix(F.data());
+        const std::vector<double> rest(static_cast<std::size_t>(n_), 0.0);
+        model.mass(motion.at(0.0), rest.data(), M.data());
+        const int r = n_ - 1;
+        const Eigen::MatrixXd C = M.bottomRightCorner(r, r).selfadjointView<Eigen::Upper>();
+        const Eigen::VectorXd b = M.row(0).tail(r).transpose();  // the upper triangle holds the coupling
+        const Eigen::LLT<Eigen::MatrixXd> llt(C);
+        if (llt.info() != Eigen::Success)
+            throw std::invalid_argument("the mass matrix of " + model.key().name() + " is not positive definite");
+        Eigen::MatrixXd W = llt.solve(Eigen::MatrixXd(F.bottomRows(r)));
+        // As for a constant M: folding pays while W costs no more than the forces' terms plus a dense solve.
+        if (static_cast<long>((W.array() != 0.0).count()) <= nonzeros(F) + static_cast<long>(n_) * n_) {
+            w.hub_c = llt.solve(b);
+            w.hub_g = F.row(0) - b.transpose() * W;
+            w.hub_s0 = b.dot(w.hub_c);
+            w.hub_W = std::move(W);
+            w.hub_M.resize(n_, n_);
+            w.m.resize(K);
+        }
+    }
     if (axial_ == Axial::quasi_static) {
         w.q.assign(static_cast<std::size_t>(n_), 0.0);
         w.qd.assign(static_cast<std::size_t>(n_), 0.0);
@@ -253,6 +288,9 @@ std::string FirstOrderSystem::linear_algebra() const
     const Work& w = *work_;
     if (axial_ == Axial::quasi_static)
         return "quasi-static axial coordinates (A by Newton on the axial rows), dense Cholesky of M without them";
+    if (w.hub_folded())
+        return "the hub's row by its Schur complement, the constant beam block's inverse folded into the forces "
+               "once (" + std::to_string(n_ - 1) + " x " + std::to_string(w.m.size()) + ")";
     if (w.folded())
         return "M^-1 folded into the forces once (" + std::to_string(n_) + " x " + std::to_string(w.m.size()) +
                (w.W_rows.size() > 0 ? ", dense, by the generated kernel"
@@ -284,6 +322,14 @@ int FirstOrderSystem::rhs(double t, const double* y, double* dydt)
                 w.qdd[i] = sum;
             }
         }
+    } else if (w.hub_folded()) {
+        model_.forces_terms(u, q, qd, w.m.data());
+        model_.mass_varying(u, q, w.hub_M.data());
+        const double schur = w.hub_M(0, 0) - w.hub_s0;  // > 0 exactly when M is positive definite (C is)
+        if (!(schur > 0.0)) return indefinite_mass_at(q);
+        const double theta_ddot = w.hub_g.dot(w.m) / schur;
+        w.qdd[0] = theta_ddot;
+        w.qdd.tail(n_ - 1).noalias() = w.hub_W * w.m - w.hub_c * theta_ddot;
     } else {
         if (!w.solver->prepare(u, q)) return indefinite_mass_at(q);
         model_.forces(u, q, qd, w.qdd.data());
