@@ -64,6 +64,21 @@ py::dict run(const std::string& text, const std::string& name, const Overrides& 
     std::unique_ptr<Simulation> simulation = guarded(scene, [&] { return std::make_unique<Simulation>(scene); });
     std::vector<double> rows;
     RunSummary s;
+    // Ctrl-C: Python's handler only marks the signal; every 0.1 s between rows the run takes the GIL back for a
+    // moment to let Python act on it, and stops on a KeyboardInterrupt, which is raised once the run returns.
+    bool interrupted = false;
+    auto asked = std::chrono::steady_clock::now();
+    const StopRequest stop = [&]() -> const char* {
+        const auto now = std::chrono::steady_clock::now();
+        if (now - asked < std::chrono::milliseconds(100)) return nullptr;
+        asked = now;
+        const py::gil_scoped_acquire acquire;
+        if (PyErr_CheckSignals() != 0) {
+            interrupted = true;
+            return "interrupted by signal";
+        }
+        return nullptr;
+    };
     {
         // The integration touches no Python object: other Python threads run meanwhile.
         const py::gil_scoped_release release;
@@ -72,8 +87,9 @@ py::dict run(const std::string& text, const std::string& name, const Overrides& 
         s = simulation->run([&rows](const Row& r) {
             rows.insert(rows.end(), {r.t, r.theta, r.theta_dot, r.tip_uy, r.tip_ux1, r.tip_ux, r.kinetic, r.potential,
                                      r.momentum, r.jacobi});
-        });
+        }, stop);
     }
+    if (interrupted) throw py::error_already_set();  // the KeyboardInterrupt that PyErr_CheckSignals set
     const double in_process = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     py::dict out;
     out["data"] = rows_array(std::move(rows));

@@ -2,7 +2,9 @@
 views without copies, the GIL released while integrating. Needs HUBBEAM (the executable) and SOURCE_DIR."""
 import csv
 import os
+import signal
 import subprocess
+import sys
 import tempfile
 import threading
 import time
@@ -108,6 +110,23 @@ class RunTest(unittest.TestCase):
         worker.join()
         self.assertGreater(wall[0], 0.1)
         self.assertLess(longest, wall[0] / 4)
+
+
+    def test_ctrl_c_stops_a_long_run_with_keyboardinterrupt(self):
+        # A run of about 25 s, interrupted after 1 s: it stops within a fraction of a second and raises.
+        script = ("import hubbeam, sys, time\n"
+                  "start = time.time()\n"
+                  "try:\n"
+                  "    hubbeam.run(sys.argv[1], nx=0, t_end=1e6, dt_out=1.0, max_steps=1e12)\n"
+                  "    print('completed')\n"
+                  "except KeyboardInterrupt:\n"
+                  "    print('KeyboardInterrupt after %.1f s' % (time.time() - start))\n")
+        child = subprocess.Popen([sys.executable, "-c", script, SPINUP], stdout=subprocess.PIPE, text=True,
+                                 preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+        time.sleep(1.0)
+        child.send_signal(signal.SIGINT)
+        out, _ = child.communicate(timeout=15)
+        self.assertIn("KeyboardInterrupt after", out)
 
 
 class ModesTest(unittest.TestCase):
