@@ -4,6 +4,7 @@
 #include <Eigen/Dense>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <vector>
 
 namespace hubbeam {
@@ -124,6 +125,14 @@ double mass_condition(const Model& model)
     const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(M, Eigen::EigenvaluesOnly);
     const double lo = eig.eigenvalues().minCoeff(), hi = eig.eigenvalues().maxCoeff();
     return lo > 0.0 ? hi / lo : INFINITY;
+}
+
+double stability_step_factor(const std::string& stepper)
+{
+    static const std::map<std::string, double> factors = {{"rk2", 1.1},   {"rk4", 2.5},   {"rkf45", 0.42},
+                                                          {"rkck", 0.47}, {"rk8pd", 3.1}, {"msadams", 0.21}};
+    const auto it = factors.find(stepper);
+    return it == factors.end() ? INFINITY : it->second;
 }
 
 }  // namespace hubbeam
