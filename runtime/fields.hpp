@@ -3,10 +3,9 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <memory>
 #include <string>
 #include <vector>
-
-#include <memory>
 
 #include "model.hpp"
 
@@ -55,20 +54,16 @@ private:
     Eigen::MatrixXd H_L_;
 };
 
-}  // namespace hubbeam
-
-namespace hubbeam {
+class CsvWriter;
 
 /// The fields along the beam at chosen times, written as a second CSV by hubbeam run (README "Fields along the
 /// beam"): at the first row at or after each time, u_y, u_x, slope, curvature, bending moment and axial force at
 /// `points` equally spaced abscissae, plus both sides of each interior piece boundary (where FEM's moment jumps).
-class CsvWriter;
-
 class FieldRecorder {
 public:
-    ~FieldRecorder();
     /// Opens path (atomically written, CsvWriter); times sorted, within the run.
     FieldRecorder(const VariantKey& key, const Parameters& p, std::vector<double> times, int points, const std::string& path);
+    ~FieldRecorder();
     /// The state at a row: records it if it is the first row at or after the next requested time.
     void state(double t, const double* q);
     /// Puts the file in place; false (and error()) if a write failed.

@@ -45,8 +45,8 @@ ModesOptions parse_modes_options(const ModesArgs& args, const Scene& scene);
 const char* modes_header();
 
 /// For each method, Ny and spin rate: the scene's variant linearized about the steady spin, its first `count`
-/// bending modes and first axial mode printed to out, and every mode written to options.output (atomically).
-/// Returns false if the CSV could not be written (message on out's caller via the exception).
+/// bending modes and first axial mode printed to out, and every mode written to options.output (atomically);
+/// with options.plot, the Campbell diagram. Throws std::runtime_error if the CSV or the figure cannot be written.
 void run_modes(const Scene& scene, const ModesOptions& options, std::ostream& out);
 
 /// hubbeam linearize: A, B, C and D about the steady spin omega written to PREFIX-A.csv ... PREFIX-D.csv, each

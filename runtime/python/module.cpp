@@ -56,6 +56,7 @@ py::array_t<double> rows_array(std::vector<double>&& rows)
                                owned->data(), free_rows);
 }
 
+/// One run: the rows as an array and the summary's fields (hubbeam.run).
 py::dict run(const std::string& text, const std::string& name, const Overrides& overrides)
 {
     // What hubbeam run does in process, timed the same way: load, choose the model, integrate.
@@ -153,6 +154,7 @@ py::dict modes(const std::string& text, const std::string& name, const Overrides
     return out;
 }
 
+/// An Eigen matrix as a new numpy array.
 py::array_t<double> matrix(const Eigen::MatrixXd& m)
 {
     py::array_t<double> a({m.rows(), m.cols()});
@@ -162,6 +164,7 @@ py::array_t<double> matrix(const Eigen::MatrixXd& m)
     return a;
 }
 
+/// The state-space matrices and their names about the steady spin omega (hubbeam.linearize).
 py::dict linearize(const std::string& text, const std::string& name, const Overrides& overrides, double omega)
 {
     const Scene scene = scene_of(text, name, overrides);
@@ -181,6 +184,7 @@ py::dict linearize(const std::string& text, const std::string& name, const Overr
     return out;
 }
 
+/// Every scene key with what it takes, for the keyword arguments.
 std::vector<std::pair<std::string, std::string>> keys()
 {
     std::vector<std::pair<std::string, std::string>> out;
