@@ -259,6 +259,8 @@ def run_sweep(spec: str | os.PathLike | Mapping[str, Any], *, output: str | None
     and the workers stay balanced); a batch's rows are written when it finishes."""
     import hubbeam
 
+    if workers is not None and not (isinstance(workers, int) and workers >= 1):
+        raise SweepError(f"--workers: expected a number of worker processes >= 1, got {workers!r}")
     sweep = load_sweep(spec)
     path = output or sweep["output"]
     points = expand(sweep)
