@@ -129,6 +129,10 @@ std::pair<std::vector<double>, int> field_request(const RunOptions& o, const Sce
     int points = 0;
     if (!parse_int(o.fields_points, 2, 100000, points))
         bad_option<ModesOptionError>("--fields-points", "an integer from 2 to 100000", printable(o.fields_points));
+    if (static_cast<double>(times.size()) * points > static_cast<double>(max_output_rows))
+        bad_option<ModesOptionError>("--fields-at", "at most " + std::to_string(max_output_rows) +
+                                                        " field rows (times x points)",
+                                     std::to_string(times.size()) + " times x " + std::to_string(points) + " points");
     return {times, points};
 }
 

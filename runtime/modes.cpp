@@ -87,10 +87,7 @@ ModesOptions parse_modes_options(const ModesArgs& args, const Scene& scene)
             VariantKey k = scene.variant;
             k.method = m;
             k.ny = ny;
-            if (const std::string why = k.dof_problem(); !why.empty()) bad("--ny", "DOF counts every method can take", why);
-            if (ny > max_dof(m))
-                bad("--ny", "at most " + std::to_string(max_dof(m)) + " for " + to_string(m) + " (" + max_dof_reason(m) + ")",
-                    std::to_string(ny));
+            if (const std::string why = k.dof_problem(); !why.empty()) throw ModesOptionError("--ny: " + why);
         }
     if (!parse_int(args.count, 1, 64, o.count)) bad("--count", "an integer from 1 to 64", args.count);
     o.output = args.output;
