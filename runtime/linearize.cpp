@@ -157,8 +157,10 @@ StateSpace state_space(const Model& model, const SteadySpin& s)
     ss.C(1, 0) = 1.0;
     ss.D = Eigen::MatrixXd::Zero(2, 1);
     std::vector<std::string> names{"theta"};
-    for (int i = 1; i <= key.nx; ++i) names.push_back("A" + std::to_string(i));
-    for (int i = 1; i <= key.ny; ++i) names.push_back("B" + std::to_string(i));
+    // (Appending rather than "A" + std::to_string(i), which GCC 12 misreads as an overlapping copy: -Wrestrict.)
+    const auto indexed = [](char letter, int i) { return std::string(1, letter).append(std::to_string(i)); };
+    for (int i = 1; i <= key.nx; ++i) names.push_back(indexed('A', i));
+    for (int i = 1; i <= key.ny; ++i) names.push_back(indexed('B', i));
     ss.states = names;
     for (const std::string& name : names) ss.states.push_back(name + "_dot");
     ss.inputs = {torque ? "tau" : "theta_ddot"};
@@ -166,32 +168,46 @@ StateSpace state_space(const Model& model, const SteadySpin& s)
     return ss;
 }
 
-std::vector<NaturalMode> natural_modes(const Model& model, const SteadySpin& s)
+std::vector<NaturalMode> natural_modes(const Model& model, const SteadySpin& s, Axial axial)
 {
     const VariantKey& key = model.key();
     const bool torque = key.drive == Drive::torque;
-    const StateSpace ss = state_space(model, s);
-    const auto m = ss.A.rows() / 2;
-    // Keep the flexible coordinates and their rates, and a free hub's rate (its dynamics couple to the beam's).
-    std::vector<Eigen::Index> kept;
-    for (Eigen::Index c = 1; c < m; ++c) kept.push_back(c);
-    if (torque) kept.push_back(m);
-    for (Eigen::Index c = m + 1; c < 2 * m; ++c) kept.push_back(c);
-    const auto r = static_cast<Eigen::Index>(kept.size());
-    Eigen::MatrixXd A(r, r);
-    for (Eigen::Index i = 0; i < r; ++i)
-        for (Eigen::Index j = 0; j < r; ++j) A(i, j) = ss.A(kept[static_cast<std::size_t>(i)], kept[static_cast<std::size_t>(j)]);
-    const Eigen::EigenSolver<Eigen::MatrixXd> eig(A);
+    const int n = model.nq(), a0 = key.first_a(), b0 = key.first_b();
+    const ForceJacobians J = force_jacobians(model, s.u, s.q, s.qd);
+    const Eigen::MatrixXd M = mass_at(model, s.u, s.q);
+    // The coordinates that keep their inertia: all, or with quasi-static axial coordinates all but A. A then
+    // follows its own rows with A_dot = A_ddot = 0 (docs/model.md section 9), and the other rows drop A's rates;
+    // they do not depend on A itself at the straight beam (Q_B is odd in B, Q_theta holds A only with rates), so
+    // A's deviation drops out of them and the condensed equations are R's rows and columns alone.
+    std::vector<int> R;
+    for (int i = 0; i < n; ++i)
+        if (axial == Axial::dynamic || i < a0 || i >= b0) R.push_back(i);
+    const auto block = [](const Eigen::MatrixXd& X, const std::vector<int>& rows, const std::vector<int>& cols) {
+        Eigen::MatrixXd out(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(cols.size()));
+        for (std::size_t i = 0; i < rows.size(); ++i)
+            for (std::size_t j = 0; j < cols.size(); ++j)
+                out(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = X(rows[i], cols[j]);
+        return out;
+    };
+    const Eigen::MatrixXd Qq = block(J.q, R, R), Qqd = block(J.qd, R, R);
+    const auto llt = block(M, R, R).llt();
+    if (llt.info() != Eigen::Success) throw std::runtime_error("the mass matrix at the steady spin is not positive definite");
+    // States: the positions of R but a free hub's angle (cyclic), then all rates of R (a free hub's rate couples to
+    // the beam's): x' = [[select, 0], [M^-1 Qq(:, positions), M^-1 Qqd]] x.
+    const auto r = static_cast<Eigen::Index>(R.size());
+    const Eigen::Index first = torque ? 1 : 0, p = r - first;
+    const Eigen::MatrixXd Aq = llt.solve(Qq), Aqd = llt.solve(Qqd);
+    Eigen::MatrixXd X = Eigen::MatrixXd::Zero(p + r, p + r);
+    for (Eigen::Index i = 0; i < p; ++i) X(i, p + first + i) = 1.0;
+    X.bottomLeftCorner(r, p) = Aq.rightCols(p);
+    X.bottomRightCorner(r, r) = Aqd;
+    const Eigen::EigenSolver<Eigen::MatrixXd> eig(X);
     if (eig.info() != Eigen::Success) throw std::runtime_error("the eigenvalues of the linearized equations did not converge");
     const Eigen::VectorXcd lambda = eig.eigenvalues();
     const Eigen::MatrixXcd vectors = eig.eigenvectors();
     // The free hub's conserved angular momentum: one zero eigenvalue, the smallest.
     Eigen::Index momentum = -1;
     if (torque) lambda.cwiseAbs().minCoeff(&momentum);
-    const Eigen::MatrixXd M = mass_at(model, s.u, s.q);
-    const int a0 = key.first_a(), b0 = key.first_b();
-    // Position rows of the kept states for the axial and transverse coordinates.
-    const auto position_row = [&](int model_index) { return static_cast<Eigen::Index>(model_index - a0); };
     std::vector<NaturalMode> modes;
     for (Eigen::Index k = 0; k < lambda.size(); ++k) {
         const std::complex<double> l = lambda[k];
@@ -199,18 +215,19 @@ std::vector<NaturalMode> natural_modes(const Model& model, const SteadySpin& s)
         const double scale = std::max(1.0, std::abs(l));
         const bool oscillating = l.imag() > 1e-9 * scale, divergent = std::abs(l.imag()) <= 1e-9 * scale && l.real() > 0.0;
         if (!oscillating && !divergent) continue;  // the conjugate, or the stable twin of a divergent pair
-        // Kinetic energy share of the axial coordinates: v^H M_AA v against v^H M_BB v.
-        double axial = 0.0, transverse = 0.0;
-        for (int i = a0; i < b0; ++i)
-            for (int j = a0; j < b0; ++j)
-                axial += (std::conj(vectors(position_row(i), k)) * M(i, j) * vectors(position_row(j), k)).real();
-        for (int i = b0; i < model.nq(); ++i)
-            for (int j = b0; j < model.nq(); ++j)
-                transverse += (std::conj(vectors(position_row(i), k)) * M(i, j) * vectors(position_row(j), k)).real();
+        // Kinetic energy of the axial and of the transverse coordinates, from the rates: v^H M v over each set.
+        double axial_energy = 0.0, transverse = 0.0;
+        for (Eigen::Index i = first; i < r; ++i)
+            for (Eigen::Index j = first; j < r; ++j) {
+                const int mi = R[static_cast<std::size_t>(i)], mj = R[static_cast<std::size_t>(j)];
+                if ((mi < b0) != (mj < b0)) continue;
+                const double e = (std::conj(vectors(p + i, k)) * M(mi, mj) * vectors(p + j, k)).real();
+                (mi < b0 ? axial_energy : transverse) += e;
+            }
         // The equations are conservative (gyroscopic at most): a real part below 1e-6 of |lambda| is the eigen
         // solver's round-off, not damping.
         const double growth = std::abs(l.real()) <= 1e-6 * scale ? 0.0 : l.real();
-        modes.push_back({oscillating ? l.imag() : 0.0, growth, axial > transverse ? "axial" : "bending"});
+        modes.push_back({oscillating ? l.imag() : 0.0, growth, axial_energy > transverse ? "axial" : "bending"});
     }
     std::sort(modes.begin(), modes.end(), [](const NaturalMode& a, const NaturalMode& b) {
         return a.rad_s != b.rad_s ? a.rad_s < b.rad_s : a.growth > b.growth;

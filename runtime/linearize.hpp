@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "integrate.hpp"
 #include "model.hpp"
 
 namespace hubbeam {
@@ -49,7 +50,9 @@ struct NaturalMode {
 /// theta is cyclic, and the zero eigenvalue of the conserved angular momentum is dropped). A divergent mode (real
 /// positive eigenvalue, e.g. order zero above its critical spin) has rad_s 0 and growth > 0; a real part within
 /// 1e-6 of |lambda| is round-off and reported as growth 0.
-std::vector<NaturalMode> natural_modes(const Model& model, const SteadySpin& steady);
+/// With quasi-static axial coordinates (docs/model.md section 9) A leaves the state, as in a run: its rows hold at
+/// every instant with A_dot = 0, so there are no axial modes, and the other rows drop A's rates.
+std::vector<NaturalMode> natural_modes(const Model& model, const SteadySpin& steady, Axial axial = Axial::dynamic);
 
 /// sqrt(EI / (rho S L^4)) (rad/s): frequencies divided by it are the classical dimensionless ones (the first
 /// cantilever bending frequency is 1.8751^2 = 3.5160 of it).

@@ -111,7 +111,7 @@ void run_modes(const Scene& scene, const ModesOptions& o, std::ostream& out)
             key.drive = scene.motion.drive();
             const std::unique_ptr<Model> model = make_model(key, scene.parameters, scene.source);
             for (double omega : o.omegas) {
-                const std::vector<NaturalMode> modes = natural_modes(*model, steady_spin(*model, omega));
+                const std::vector<NaturalMode> modes = natural_modes(*model, steady_spin(*model, omega), scene.axial);
                 int shown_bending = 0, number = 0;
                 bool shown_axial = false;
                 for (const NaturalMode& mode : modes) {

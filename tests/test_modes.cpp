@@ -9,7 +9,9 @@
 #include <vector>
 
 #include "linearize.hpp"
+#include "integrate.hpp"
 #include "make_model.hpp"
+#include "motion.hpp"
 
 using namespace hubbeam;
 
@@ -225,4 +227,63 @@ TEST_CASE("the state-space matrices are the derivatives of the nonlinear equatio
             for (int i = 0; i < n; ++i) q[static_cast<std::size_t>(i)] = x1[i + (torque ? 0 : 1)];
             CHECK(ss.C.row(0).dot(x1 - x0) == Approx(model->tip(q.data()).uy).epsilon(1e-12));
         }
+}
+
+TEST_CASE("quasi-static axial coordinates leave the bending modes and no axial ones", "[modes]")
+{
+    // A condensed statically (docs/model.md section 9): at rest nothing couples it to bending, so the bending
+    // frequencies are the dynamic model's, up to the nonsymmetric eigensolver's round-off (7e-11 with the free
+    // hub, whose eigenproblem spans 4 to 980 rad/s); spinning, the Coriolis coupling to the axial modes, 340 times
+    // higher, shifts them by far less than 1e-3.
+    const Parameters p;
+    for (const Drive drive : {Drive::prescribed, Drive::torque}) {
+        const auto model = make_model(key_of(Method::amm, 4, 4, drive), p, ModelSource::generated);
+        for (double omega : {0.0, 10.0}) {
+            const SteadySpin s = steady_spin(*model, omega);
+            std::vector<double> dynamic;
+            for (const NaturalMode& m : natural_modes(*model, s, Axial::dynamic))
+                if (m.kind == "bending") dynamic.push_back(m.rad_s);
+            const std::vector<NaturalMode> condensed = natural_modes(*model, s, Axial::quasi_static);
+            INFO(to_string(drive) << " Omega " << omega);
+            REQUIRE(condensed.size() == dynamic.size());
+            for (std::size_t i = 0; i < condensed.size(); ++i) {
+                CHECK(condensed[i].kind == "bending");
+                if (omega == 0.0) CHECK(condensed[i].rad_s == Approx(dynamic[i]).epsilon(1e-9));
+                else CHECK(condensed[i].rad_s == Approx(dynamic[i]).epsilon(1e-3));
+            }
+        }
+    }
+}
+
+TEST_CASE("the condensed modes are the eigenvalues of the quasi-static run's own equations", "[modes]")
+{
+    // An independent route: FirstOrderSystem's quasi-static right-hand side (A by Newton at every evaluation,
+    // integrate.cpp), differentiated by central differences at the steady spin, has the condensed modes as its
+    // eigenvalues (besides a free hub's zero pair). Order full too: there the other rows depend on A itself, which
+    // the condensation must carry (at order first only A's rates enter them, and those are dropped).
+    const Parameters p;
+    for (const Order order : {Order::first, Order::full})
+    for (const Drive drive : {Drive::prescribed, Drive::torque}) {
+        const auto model = make_model(key_of(Method::amm, 2, 3, drive, order), p, ModelSource::generated);
+        const double omega = 10.0;
+        Motion motion;  // long after the drive: steady spin (prescribed) or no torque (free hub)
+        motion.kind = drive == Drive::torque ? Motion::Kind::torque : Motion::Kind::spin_up;
+        motion.omega0 = omega;
+        FirstOrderSystem system(*model, motion, Axial::quasi_static);
+        const int size = system.size();
+        std::vector<double> y(static_cast<std::size_t>(size), 0.0), dfdy(static_cast<std::size_t>(size * size)), dfdt(y);
+        if (drive == Drive::torque) y[static_cast<std::size_t>(size / 2)] = omega;  // theta_dot
+        const double t = 100.0;
+        REQUIRE(system.finite_difference_jacobian(t, y.data(), dfdy.data(), dfdt.data()) == 0);
+        const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> J(dfdy.data(), size, size);
+        const Eigen::VectorXcd lambda = Eigen::EigenSolver<Eigen::MatrixXd>(J).eigenvalues();
+        std::vector<double> reference;
+        for (Eigen::Index k = 0; k < lambda.size(); ++k)
+            if (lambda[k].imag() > 1e-6) reference.push_back(lambda[k].imag());
+        std::sort(reference.begin(), reference.end());
+        const std::vector<NaturalMode> condensed = natural_modes(*model, steady_spin(*model, omega), Axial::quasi_static);
+        INFO(to_string(drive) << " " << to_string(order));
+        REQUIRE(condensed.size() == reference.size());
+        for (std::size_t i = 0; i < reference.size(); ++i) CHECK(condensed[i].rad_s == Approx(reference[i]).epsilon(1e-6));
+    }
 }

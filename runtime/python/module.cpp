@@ -131,7 +131,7 @@ py::dict modes(const std::string& text, const std::string& name, const Overrides
         const py::gil_scoped_release release;
         for (double w : omegas) {
             int k = 0;
-            for (const NaturalMode& m : natural_modes(*model, steady_spin(*model, w))) {
+            for (const NaturalMode& m : natural_modes(*model, steady_spin(*model, w), scene.axial)) {
                 omega.push_back(w);
                 number.push_back(++k);
                 kind.push_back(m.kind);
