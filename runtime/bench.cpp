@@ -179,11 +179,10 @@ std::vector<BenchRow> run_bench(const Scene& scene, const BenchOptions& o, std::
     for (const Method m : o.methods)
         for (const int ny : o.ny)
             for (const int nx : o.nx) {
-                VariantKey k = scene.variant;
+                VariantKey k = scene.key();
                 k.method = m;
                 k.ny = ny;
                 k.nx = nx;
-                k.drive = scene.motion.drive();
                 if (const std::string why = k.dof_problem(); !why.empty()) skipped.push_back(k.name() + ": " + why);
                 else keys.push_back(k);
             }
@@ -193,9 +192,8 @@ std::vector<BenchRow> run_bench(const Scene& scene, const BenchOptions& o, std::
     // stepper integrates it cheaply) at ref_ny, and at ref_ny - 4 to show how far it has converged; axial
     // coordinates as many as bending ones when the grid has any.
     const bool axial = std::any_of(o.nx.begin(), o.nx.end(), [](int nx) { return nx > 0; });
-    VariantKey ref_key = scene.variant, coarse_key = scene.variant;
+    VariantKey ref_key = scene.key(), coarse_key = scene.key();
     ref_key.method = coarse_key.method = o.ref_method;
-    ref_key.drive = coarse_key.drive = scene.motion.drive();
     ref_key.ny = o.ref_ny;
     coarse_key.ny = o.ref_ny - 4;
     ref_key.nx = axial ? o.ref_ny : 0;
@@ -227,11 +225,8 @@ std::vector<BenchRow> run_bench(const Scene& scene, const BenchOptions& o, std::
     // on stiff equations is held by stability once the stiff modes are excited, which the probe's first moments
     // do not show: its run takes at least t_end omega_max / stability_step_factor steps at the probe's cost each.
     double estimate = 0.0;
-    const auto scaled = [&](const Scene& p) {
+    const auto scaled = [&](const Scene& p, double omega) {
         const RunSummary probe = collect(p, stop).summary;
-        VariantKey key = p.variant;
-        key.drive = p.motion.drive();
-        const double omega = highest_frequency(*make_model(key, p.parameters, p.source), p.axial);
         const double bound_steps = scene.output.t_end * omega / stability_step_factor(p.solver.stepper);
         const double per_step = probe.steps > 0 ? probe.wall_seconds / static_cast<double>(probe.steps) : 0.0;
         return std::max(probe.wall_seconds / probe_fraction, bound_steps * per_step);
@@ -240,13 +235,15 @@ std::vector<BenchRow> run_bench(const Scene& scene, const BenchOptions& o, std::
         Scene t = tight(k);
         t.output.t_end = scene.output.t_end * probe_fraction;
         t.output.dt_out = std::min(t.output.dt_out, t.output.t_end);
-        estimate += scaled(t);
+        // The grid point's stiffness, once for its steppers and tolerances (the variant is cached by now).
+        const double omega = highest_frequency(*make_model(t.key(), t.parameters, t.source), t.axial);
+        estimate += scaled(t, omega);
         for (const std::string& stepper : o.steppers)
             for (const double rtol : o.rtols) {
                 Scene p = variant_scene(scene, k, stepper, rtol, rtol / 100.0, scene.solver.stepping);
                 p.output.t_end = t.output.t_end;
                 p.output.dt_out = t.output.dt_out;
-                estimate += scaled(p) * o.repeats;
+                estimate += scaled(p, omega) * o.repeats;
             }
     }
     const std::size_t points = keys.size() * o.steppers.size() * o.rtols.size();
@@ -322,11 +319,10 @@ void run_table1(const Scene& scene, const BenchOptions& o, std::ostream& out, co
                            {Method::amm, "2.1", "0.1", "0.0074", "0.5319"},
                            {Method::bim, "1", "0.15", "0.0074", "0.5324"},
                            {Method::bsim, "1.67", "0.14", "0.0074", "0.5314"}};
-    VariantKey ref_key = scene.variant;
+    VariantKey ref_key = scene.key();
     ref_key.method = o.ref_method;
     ref_key.ny = o.ref_ny;
     ref_key.nx = scene.variant.nx > 0 ? o.ref_ny : 0;
-    ref_key.drive = scene.motion.drive();
     const Collected converged =
         collect(variant_scene(scene, ref_key, reference_stepper, reference_rtol, reference_atol, Stepping::rows), stop);
     if (!converged.summary.completed) throw std::runtime_error("the converged reference stopped: " + converged.summary.failure);
@@ -339,10 +335,9 @@ void run_table1(const Scene& scene, const BenchOptions& o, std::ostream& out, co
     };
     std::vector<Ours> ours;
     for (const Paper& p : paper) {
-        VariantKey k = scene.variant;
+        VariantKey k = scene.key();
         k.method = p.method;
         k.ny = 4;
-        k.drive = scene.motion.drive();
         Scene automatic = scene;
         automatic.variant = k;
         Scene adams = automatic;

@@ -35,6 +35,36 @@ Eigen::MatrixXd mass_at(const Model& model, const HubInput& u, const std::vector
     return M;
 }
 
+/// count columns of dQ/dz by central differences: evaluate(k, h, Q) writes Q with the k-th of z moved by h, whose
+/// value is value(k).
+template <class Value, class Evaluate>
+Eigen::MatrixXd differences(const Model& model, int count, const Value& value, const Evaluate& evaluate)
+{
+    const int n = model.nq();
+    Eigen::MatrixXd out(n, count);
+    std::vector<double> plus(static_cast<std::size_t>(n)), minus(plus);
+    for (int k = 0; k < count; ++k) {
+        const double h = step_for(value(k));
+        evaluate(k, h, plus.data());
+        evaluate(k, -h, minus.data());
+        for (int i = 0; i < n; ++i)
+            out(i, k) = (plus[static_cast<std::size_t>(i)] - minus[static_cast<std::size_t>(i)]) / (2 * h);
+    }
+    return out;
+}
+
+/// dQ/dq by central differences.
+Eigen::MatrixXd q_differences(const Model& model, const HubInput& u, const std::vector<double>& q,
+                              const std::vector<double>& qd)
+{
+    return differences(model, model.nq(), [&](int k) { return q[static_cast<std::size_t>(k)]; },
+                       [&](int k, double h, double* Q) {
+                           std::vector<double> qh = q;
+                           qh[static_cast<std::size_t>(k)] += h;
+                           model.forces(u, qh.data(), qd.data(), Q);
+                       });
+}
+
 }  // namespace
 
 ForceJacobians force_jacobians(const Model& model, const HubInput& u, const std::vector<double>& q,
@@ -47,37 +77,25 @@ ForceJacobians force_jacobians(const Model& model, const HubInput& u, const std:
         model.force_derivatives(u, q.data(), qd.data(), dq.data(), dqd.data(), du.data());
         return {dq, dqd, du};
     }
-    ForceJacobians J{Eigen::MatrixXd(n, n), Eigen::MatrixXd(n, n), Eigen::MatrixXd(n, drives)};
-    std::vector<double> plus(static_cast<std::size_t>(n)), minus(plus);
-    // Column k of dQ/dz by central differences, z one of q, qd, u perturbed by set(+-h).
-    const auto column = [&](Eigen::MatrixXd& out, Eigen::Index k, double h, const auto& evaluate) {
-        evaluate(h, plus.data());
-        evaluate(-h, minus.data());
-        for (int i = 0; i < n; ++i)
-            out(i, k) = (plus[static_cast<std::size_t>(i)] - minus[static_cast<std::size_t>(i)]) / (2 * h);
-    };
-    for (int k = 0; k < n; ++k) {
-        const auto kk = static_cast<std::size_t>(k);
-        column(J.q, k, step_for(q[kk]), [&](double h, double* Q) {
-            std::vector<double> qh = q;
-            qh[kk] += h;
-            model.forces(u, qh.data(), qd.data(), Q);
-        });
-        column(J.qd, k, step_for(qd[kk]), [&](double h, double* Q) {
-            std::vector<double> qdh = qd;
-            qdh[kk] += h;
-            model.forces(u, q.data(), qdh.data(), Q);
-        });
-    }
-    for (int j = 0; j < static_cast<int>(drive_value_count); ++j) {
-        HubInput base = u;
-        column(J.u, j, step_for(drive_value(base, j)), [&](double h, double* Q) {
-            HubInput uh = u;
-            drive_value(uh, j) += h;
-            model.forces(uh, q.data(), qd.data(), Q);
-        });
-    }
-    return J;
+    return {q_differences(model, u, q, qd),
+            differences(model, n, [&](int k) { return qd[static_cast<std::size_t>(k)]; },
+                        [&](int k, double h, double* Q) {
+                            std::vector<double> qdh = qd;
+                            qdh[static_cast<std::size_t>(k)] += h;
+                            model.forces(u, q.data(), qdh.data(), Q);
+                        }),
+            differences(model, static_cast<int>(drives), [&](int j) { return u.packed()[static_cast<std::size_t>(j)]; },
+                        [&](int j, double h, double* Q) {
+                            HubInput uh = u;
+                            drive_value(uh, j) += h;
+                            model.forces(uh, q.data(), qd.data(), Q);
+                        })};
+}
+
+Eigen::MatrixXd force_q_jacobian(const Model& model, const HubInput& u, const std::vector<double>& q,
+                                 const std::vector<double>& qd)
+{
+    return model.has_jacobian() ? force_jacobians(model, u, q, qd).q : q_differences(model, u, q, qd);
 }
 
 SteadySpin steady_spin(const Model& model, double omega)
@@ -95,7 +113,7 @@ SteadySpin steady_spin(const Model& model, double omega)
     for (int iteration = 0; na > 0 && iteration < 50; ++iteration) {
         std::vector<double> Q(static_cast<std::size_t>(n));
         model.forces(s.u, s.q.data(), s.qd.data(), Q.data());
-        const Eigen::MatrixXd K = force_jacobians(model, s.u, s.q, s.qd).q.block(a0, a0, na, na);
+        const Eigen::MatrixXd K = force_q_jacobian(model, s.u, s.q, s.qd).block(a0, a0, na, na);
         const Eigen::VectorXd dA = K.partialPivLu().solve(-Eigen::Map<const Eigen::VectorXd>(Q.data() + a0, na));
         double size = 0.0;
         for (int i = 0; i < na; ++i) {
@@ -233,6 +251,17 @@ std::vector<NaturalMode> natural_modes(const Model& model, const SteadySpin& s, 
         return a.rad_s != b.rad_s ? a.rad_s < b.rad_s : a.growth > b.growth;
     });
     return modes;
+}
+
+std::vector<SpinMode> campbell(const Model& model, const std::vector<double>& omegas, Axial axial)
+{
+    std::vector<SpinMode> rows;
+    for (const double omega : omegas) {
+        int number = 0;
+        for (const NaturalMode& mode : natural_modes(model, steady_spin(model, omega), axial))
+            rows.push_back({omega, ++number, mode});
+    }
+    return rows;
 }
 
 double frequency_unit(const Parameters& p) { return std::sqrt(p.E * p.I / (p.rho * p.S * std::pow(p.L, 4))); }

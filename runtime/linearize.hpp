@@ -18,6 +18,9 @@ struct ForceJacobians {
 };
 ForceJacobians force_jacobians(const Model& model, const HubInput& u, const std::vector<double>& q,
                                const std::vector<double>& qd);
+/// dQ/dq alone, the same way (without differences in the rates and the drive where there are no kernels).
+Eigen::MatrixXd force_q_jacobian(const Model& model, const HubInput& u, const std::vector<double>& q,
+                                 const std::vector<double>& qd);
 
 /// The steady spin at omega (rad/s): the beam straight, the axial coordinates at their centrifugal stretch
 /// (Newton on Q_A = 0), the hub turning at omega (prescribed: the drive's rate; free hub: theta_dot, no torque).
@@ -53,6 +56,16 @@ struct NaturalMode {
 /// With quasi-static axial coordinates (docs/model.md section 9) A leaves the state, as in a run: its rows hold at
 /// every instant with A_dot = 0, so there are no axial modes, and the other rows drop A's rates.
 std::vector<NaturalMode> natural_modes(const Model& model, const SteadySpin& steady, Axial axial = Axial::dynamic);
+
+/// One row of a Campbell table: a natural mode about the steady spin omega, numbered 1, 2, ... by frequency among
+/// all the modes at that rate.
+struct SpinMode {
+    double omega = 0.0;
+    int number = 0;
+    NaturalMode mode;
+};
+/// natural_modes about the steady spin at each rate of omegas, rate by rate (hubbeam modes, hubbeam.modes).
+std::vector<SpinMode> campbell(const Model& model, const std::vector<double>& omegas, Axial axial = Axial::dynamic);
 
 /// sqrt(EI / (rho S L^4)) (rad/s): frequencies divided by it are the classical dimensionless ones (the first
 /// cantilever bending frequency is 1.8751^2 = 3.5160 of it).

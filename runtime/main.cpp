@@ -256,9 +256,8 @@ int run(const CLI::App& sub, const RunOptions& o)
     std::unique_ptr<FieldRecorder> recorder;
     if (!fields_file.empty()) {
         try {
-            VariantKey key = scene.variant;
-            key.drive = scene.motion.drive();
-            recorder = std::make_unique<FieldRecorder>(key, scene.parameters, fields.first, fields.second, fields_file);
+            recorder = std::make_unique<FieldRecorder>(scene.key(), scene.parameters, fields.first, fields.second,
+                                                       fields_file);
         } catch (const std::runtime_error& e) {
             std::cerr << e.what() << "\n";
             return exit_bad_input;

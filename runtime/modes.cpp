@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <ostream>
 #include <sstream>
+#include <utility>
 
 #include "linearize.hpp"
 #include "option_lists.hpp"
@@ -105,32 +106,28 @@ void run_modes(const Scene& scene, const ModesOptions& o, std::ostream& out)
     out << "method  Ny  Nx  order  Omega rad/s  mode  kind        rad/s          Hz  dimensionless  growth 1/s\n";
     for (Method method : o.methods)
         for (int ny : o.ny) {
-            VariantKey key = scene.variant;
+            VariantKey key = scene.key();
             key.method = method;
             key.ny = ny;
-            key.drive = scene.motion.drive();
             const std::unique_ptr<Model> model = make_model(key, scene.parameters, scene.source);
-            for (double omega : o.omegas) {
-                const std::vector<NaturalMode> modes = natural_modes(*model, steady_spin(*model, omega), scene.axial);
-                int shown_bending = 0, number = 0;
-                bool shown_axial = false;
-                for (const NaturalMode& mode : modes) {
-                    ++number;
-                    const double hz = mode.rad_s / (2.0 * M_PI);
-                    std::ostringstream row;
-                    row << to_string(method) << ',' << ny << ',' << key.nx << ',' << to_string(key.order) << ','
-                        << to_string(key.drive) << ',' << shortest(omega) << ',' << number << ',' << mode.kind << ','
-                        << shortest(mode.rad_s) << ',' << shortest(hz) << ',' << shortest(mode.rad_s / unit) << ','
-                        << shortest(mode.growth);
-                    csv.write_line(row.str());
-                    const bool bending = mode.kind == "bending";
-                    if (bending ? shown_bending >= o.count : shown_axial) continue;
-                    (bending ? shown_bending : (shown_axial = true, shown_bending)) += bending ? 1 : 0;
-                    std::snprintf(line, sizeof line, "%-6s %3d %3d  %-5s %12.4g  %4d  %-7s %11.6g %11.6g %14.6g  %10.3g\n",
-                                  to_string(method).c_str(), ny, key.nx, to_string(key.order).c_str(), omega, number,
-                                  mode.kind.c_str(), mode.rad_s, hz, mode.rad_s / unit, mode.growth);
-                    out << line;
-                }
+            // Printed: the first `count` bending modes and the first axial one of each spin rate.
+            int shown_bending = 0;
+            bool shown_axial = false;
+            for (const auto& [omega, number, mode] : campbell(*model, o.omegas, scene.axial)) {
+                if (number == 1) shown_bending = 0, shown_axial = false;
+                const double hz = mode.rad_s / (2.0 * M_PI);
+                std::ostringstream row;
+                row << to_string(method) << ',' << ny << ',' << key.nx << ',' << to_string(key.order) << ','
+                    << to_string(key.drive) << ',' << shortest(omega) << ',' << number << ',' << mode.kind << ','
+                    << shortest(mode.rad_s) << ',' << shortest(hz) << ',' << shortest(mode.rad_s / unit) << ','
+                    << shortest(mode.growth);
+                csv.write_line(row.str());
+                const bool enough = mode.kind == "bending" ? shown_bending++ >= o.count : std::exchange(shown_axial, true);
+                if (enough) continue;
+                std::snprintf(line, sizeof line, "%-6s %3d %3d  %-5s %12.4g  %4d  %-7s %11.6g %11.6g %14.6g  %10.3g\n",
+                              to_string(method).c_str(), ny, key.nx, to_string(key.order).c_str(), omega, number,
+                              mode.kind.c_str(), mode.rad_s, hz, mode.rad_s / unit, mode.growth);
+                out << line;
             }
         }
     if (!csv.finish()) throw std::runtime_error(csv.error());
@@ -147,8 +144,7 @@ void run_modes(const Scene& scene, const ModesOptions& o, std::ostream& out)
 
 void run_linearize(const Scene& scene, double omega, const std::string& prefix, std::ostream& out)
 {
-    VariantKey key = scene.variant;
-    key.drive = scene.motion.drive();
+    const VariantKey key = scene.key();
     const std::unique_ptr<Model> model = make_model(key, scene.parameters, scene.source);
     const SteadySpin steady = steady_spin(*model, omega);
     const StateSpace ss = state_space(*model, steady);

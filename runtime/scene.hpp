@@ -42,6 +42,15 @@ struct Scene {
     Axial axial = Axial::dynamic;  // quasi-static: A follows the axial equilibrium (integrate.hpp)
     SolverOptions solver;
     OutputOptions output;
+
+    /// The variant this scene runs: its discretization with the drive its motion implies (the motion may have
+    /// been changed in code since loading).
+    VariantKey key() const
+    {
+        VariantKey k = variant;
+        k.drive = motion.drive();
+        return k;
+    }
 };
 
 /// Bad scene input, as data: the file, the key ("discretization.ny"; empty when the file itself is the

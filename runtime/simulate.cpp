@@ -104,9 +104,7 @@ std::vector<double> breaks_before(const Motion& motion, double t_last)
 
 Simulation::Simulation(const Scene& scene, const std::function<void(const std::string&)>& note) : scene_(scene)
 {
-    VariantKey key = scene.variant;
-    key.drive = scene.motion.drive();
-    model_ = make_model(key, scene.parameters, scene.source, note);
+    model_ = make_model(scene.key(), scene.parameters, scene.source, note);
     stepper_ = scene.solver.stepper;
     if (stepper_ == automatic_stepper_word) {
         const StepperChoice choice = automatic_stepper(*model_, scene.axial);

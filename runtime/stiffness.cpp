@@ -7,34 +7,17 @@
 #include <map>
 #include <vector>
 
+#include "linearize.hpp"
+
 namespace hubbeam {
 
 namespace {
 
-/// -dQ/dq at (u, q, qd): the model's derivative kernels, else central differences of Q (exact for the linear
-/// restoring forces about the straight beam, where it is used).
-Eigen::MatrixXd stiffness(const Model& model, const HubInput& u, std::vector<double> q, const std::vector<double>& qd)
+/// -dQ/dq at (u, q, qd) (exact by differences too for the linear restoring forces about the straight beam, where it
+/// is used).
+Eigen::MatrixXd stiffness(const Model& model, const HubInput& u, const std::vector<double>& q, const std::vector<double>& qd)
 {
-    const int n = model.nq();
-    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> dQdq(n, n);
-    if (model.has_jacobian()) {
-        Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> dQdqd(n, n),
-            dQdu(n, static_cast<Eigen::Index>(drive_value_count));
-        model.force_derivatives(u, q.data(), qd.data(), dQdq.data(), dQdqd.data(), dQdu.data());
-    } else {
-        std::vector<double> plus(static_cast<std::size_t>(n)), minus(plus);
-        for (int k = 0; k < n; ++k) {
-            const double h = 1e-6, q0 = q[static_cast<std::size_t>(k)];
-            q[static_cast<std::size_t>(k)] = q0 + h;
-            model.forces(u, q.data(), qd.data(), plus.data());
-            q[static_cast<std::size_t>(k)] = q0 - h;
-            model.forces(u, q.data(), qd.data(), minus.data());
-            q[static_cast<std::size_t>(k)] = q0;
-            for (int i = 0; i < n; ++i)
-                dQdq(i, k) = (plus[static_cast<std::size_t>(i)] - minus[static_cast<std::size_t>(i)]) / (2 * h);
-        }
-    }
-    return -dQdq;
+    return -force_q_jacobian(model, u, q, qd);
 }
 
 }  // namespace

@@ -107,9 +107,7 @@ std::vector<StressRow> run_stress(const StressOptions& o, std::ostream& out, con
             s.source = ModelSource::assembled;
             s.output.t_end = o.long_runs ? 20.0 : 2.0;
             StressRow r = run_case("dofs", to_string(m) + " Ny " + std::to_string(ny), s, "bounded", stop);
-            VariantKey k = s.variant;
-            k.drive = s.motion.drive();
-            r.note = "cond(M) " + number(mass_condition(*make_model(k, s.parameters, ModelSource::assembled)));
+            r.note = "cond(M) " + number(mass_condition(*make_model(s.key(), s.parameters, ModelSource::assembled)));
             add(r);
         }
     }

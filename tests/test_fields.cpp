@@ -26,7 +26,7 @@ std::vector<double> statically_bent(const Model& model)
     const std::vector<double> zero(static_cast<std::size_t>(n), 0.0);
     std::vector<double> Q(zero);
     model.forces(u, zero.data(), zero.data(), Q.data());
-    const Eigen::MatrixXd K = -force_jacobians(model, u, zero, zero).q;
+    const Eigen::MatrixXd K = -force_q_jacobian(model, u, zero, zero);
     const Eigen::VectorXd q = K.partialPivLu().solve(Eigen::Map<const Eigen::VectorXd>(Q.data(), n));
     return {q.data(), q.data() + n};
 }

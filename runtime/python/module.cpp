@@ -120,27 +120,25 @@ py::dict run(const std::string& text, const std::string& name, const Overrides& 
 py::dict modes(const std::string& text, const std::string& name, const Overrides& overrides, const std::vector<double>& omegas)
 {
     const Scene scene = scene_of(text, name, overrides);
-    VariantKey key = scene.variant;
-    key.drive = scene.motion.drive();
+    const VariantKey key = scene.key();
     const std::unique_ptr<Model> model = guarded(scene, [&] { return make_model(key, scene.parameters, scene.source); });
+    std::vector<SpinMode> rows;
+    {
+        const py::gil_scoped_release release;
+        rows = campbell(*model, omegas, scene.axial);
+    }
     std::vector<double> omega, rad_s, hz, dimensionless, growth;
     std::vector<int> number;
     std::vector<std::string> kind;
     const double unit = frequency_unit(scene.parameters);
-    {
-        const py::gil_scoped_release release;
-        for (double w : omegas) {
-            int k = 0;
-            for (const NaturalMode& m : natural_modes(*model, steady_spin(*model, w), scene.axial)) {
-                omega.push_back(w);
-                number.push_back(++k);
-                kind.push_back(m.kind);
-                rad_s.push_back(m.rad_s);
-                hz.push_back(m.rad_s / (2.0 * M_PI));
-                dimensionless.push_back(m.rad_s / unit);
-                growth.push_back(m.growth);
-            }
-        }
+    for (const auto& [w, k, m] : rows) {
+        omega.push_back(w);
+        number.push_back(k);
+        kind.push_back(m.kind);
+        rad_s.push_back(m.rad_s);
+        hz.push_back(m.rad_s / (2.0 * M_PI));
+        dimensionless.push_back(m.rad_s / unit);
+        growth.push_back(m.growth);
     }
     py::dict out;
     out["variant"] = key.name();
@@ -168,8 +166,7 @@ py::array_t<double> matrix(const Eigen::MatrixXd& m)
 py::dict linearize(const std::string& text, const std::string& name, const Overrides& overrides, double omega)
 {
     const Scene scene = scene_of(text, name, overrides);
-    VariantKey key = scene.variant;
-    key.drive = scene.motion.drive();
+    const VariantKey key = scene.key();
     const std::unique_ptr<Model> model = guarded(scene, [&] { return make_model(key, scene.parameters, scene.source); });
     const StateSpace ss = state_space(*model, steady_spin(*model, omega));
     py::dict out;

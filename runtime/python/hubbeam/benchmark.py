@@ -42,7 +42,7 @@ def sweep_overhead(scene: str, points: int, t_end: float, label: str) -> None:
         t = sweeps.last_timing
         print(f"sweep ({label}): {points} points, runs' own time {1e3 * t['runs'] / points:.1f} ms each, "
               f"{t['runs']:.2f} s in all; wall {t['wall']:.2f} s on {t['workers']} workers; overhead "
-              f"{100 * (t['workers'] * t['wall'] - t['runs']) / t['runs']:.1f} % (with the cluster's start-up and "
+              f"{100 * t['overhead']:.1f} % (with the cluster's start-up and "
               f"the workers' first imports: {total:.2f} s)")
 
 

@@ -245,7 +245,8 @@ def _client(scheduler: str | None, workers: int | None):
 
 
 # The last sweep's timing: the wall time from the first task submitted to the last row, the workers, the sum of the
-# points' own in-process times (python3 -m hubbeam.benchmark reads it).
+# points' own in-process times, and the overhead (workers x wall - runs) / runs (python3 -m hubbeam.benchmark reads
+# it).
 last_timing: dict[str, float] = {}
 
 
@@ -291,12 +292,12 @@ def run_sweep(spec: str | os.PathLike | Mapping[str, Any], *, output: str | None
                 out.flush()
             client, cluster = _client(scheduler, workers)
             client.run(_import_hubbeam)  # each worker's one-off imports, part of its start-up, not of a point
+            n_workers = len(client.scheduler_info().get("workers", {})) or 1
             started = time.perf_counter()
             run_total = 0.0
             try:
                 from distributed import as_completed
 
-                n_workers = len(client.scheduler_info().get("workers", {})) or 1
                 size = batch or max(1, min(16, len(todo) // (4 * n_workers)))
                 batches = [todo[k:k + size] for k in range(0, len(todo), size)]
                 futures = {client.submit(run_points, scene_text, sweep["scene"], [p for _, p in b], sweep["keep"],
@@ -320,14 +321,13 @@ def run_sweep(spec: str | os.PathLike | Mapping[str, Any], *, output: str | None
             finally:
                 meter.close()
                 wall = time.perf_counter() - started
-                n = len(client.scheduler_info().get("workers", {})) or 1
-                last_timing.update(wall=wall, workers=n, runs=run_total)
+                overhead = (wall * n_workers - run_total) / run_total if run_total > 0 else float("nan")
+                last_timing.update(wall=wall, workers=n_workers, runs=run_total, overhead=overhead)
                 client.close()
                 if cluster is not None:
                     cluster.close()
             if progress:
-                overhead = (wall * n - run_total) / run_total if run_total > 0 else float("nan")
-                print(f"sweep: {len(todo)} points in {wall:.2f} s on {n} workers; the runs' own time {run_total:.2f} s; "
+                print(f"sweep: {len(todo)} points in {wall:.2f} s on {n_workers} workers; the runs' own time {run_total:.2f} s; "
                       f"overhead {100 * overhead:.0f} % (workers x wall against the runs' time)", file=sys.stderr)
     return [table[k] for k in ids]
 
