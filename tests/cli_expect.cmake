@@ -10,6 +10,8 @@
 #   -DCSV=path -DHEADER=line -DMIN_ROWS=n -DLAST_T=t          the CSV's header, data rows and final time
 #   -DNO_FILE=path                                            this path must not exist afterwards
 #   -DKEEP_FILE=path|path...                                  hold "old contents" before and must after
+#   -DFRESH_COPY=src|dst                                      dst rewritten in place with src's text first (so
+#                                                             that a hard link to dst stays one)
 #   -DMKFIFO=path                                             a FIFO (named pipe) made there before the run
 #   -DWORKDIR=path                                            run in this folder (made if missing)
 #   -DTIMEOUT=seconds                                         the run is killed after this long (a blocked
@@ -40,6 +42,13 @@ if(DEFINED KEEP_FILE)
   foreach(f IN LISTS keep_files)
     file(WRITE ${f} "old contents\n")
   endforeach()
+endif()
+if(DEFINED FRESH_COPY)
+  string(REPLACE "|" ";" copy "${FRESH_COPY}")
+  list(GET copy 0 copy_from)
+  list(GET copy 1 copy_to)
+  file(READ ${copy_from} text)
+  file(WRITE ${copy_to} "${text}")
 endif()
 if(DEFINED MKFIFO)
   file(REMOVE ${MKFIFO})
