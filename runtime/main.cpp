@@ -5,13 +5,15 @@
 //   hubbeam run SCENE.toml [--method M] [--nx N] [--ny N] ... [-o FILE]   (options: scene_keys() in scene.cpp)
 //   hubbeam variants                                   (built in, cached, and how others run)
 //   hubbeam bench SCENE.toml [--methods LIST] [--ny LIST] [--steppers LIST] [--rtols LIST] [-o FILE] [--plot PREFIX]
-//   hubbeam modes SCENE.toml [--omega LIST] [--methods LIST] [--ny LIST] [--count N] [-o FILE] [--plot PREFIX]
-//   hubbeam linearize SCENE.toml --omega W [-o PREFIX]
+//   hubbeam modes SCENE.toml [--omega LIST] [--methods LIST] [--ny LIST] [--count N] [-o FILE [--plot PREFIX]]
+//   hubbeam linearize SCENE.toml --omega W -o PREFIX
 //   hubbeam sweep SWEEP.toml [-o FILE] [--scheduler ADDRESS] [--workers N] [--no-resume]   (runtime/python: Dask)
 //   hubbeam kernels [--ny LIST] [--methods LIST] [--drives LIST] [--orders LIST] [--nx LIST] [--samples N] [-o FILE]
 //
-// Exit codes: 0 success; 1 the simulation stopped early (rows so far kept); 2 bad input (nothing computed);
-// 130 / 143 interrupted by SIGINT / SIGTERM (rows so far kept).
+// Every file is written through OutputFile (output_file.hpp); outputs are checked against the command's inputs and
+// each other before anything is computed. run writes NAME.csv into the current folder unless -o; modes writes a CSV
+// only with -o. Exit codes: 0 success; 1 the simulation stopped early (rows so far kept); 2 bad input (nothing
+// computed); 130 / 143 interrupted by SIGINT / SIGTERM (rows so far kept).
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
