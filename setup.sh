@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # One-step set-up for a fresh Debian 12 machine (as root): installs what is missing, builds, then
-#   ./setup.sh run [SCENE.toml] [hubbeam run options...]   runs a scene (default cases/spinup_omega4.toml)
+#   ./setup.sh run [SCENE.toml] [hubbeam run options...]   runs a scene (default cases/spinup_omega4.toml) into
+#                                                           NAME.csv here, as hubbeam run does
 #   ./setup.sh test                                         runs the whole test suite through ctest
 #   ./setup.sh fuzz [SECONDS]                               fuzzes the scene parser (clang's libFuzzer, default 60 s)
 #   ./setup.sh figures [DIR]                                the README's figures of the paper (default docs/figures)
@@ -44,8 +45,8 @@ case "$mode" in
   run)
     scene=cases/spinup_omega4.toml
     if (($#)) && [[ $1 != -* ]]; then scene=$1; shift; fi
-    mkdir -p out
-    exec build/hubbeam run "$scene" -o "out/$(basename "${scene%.toml}").csv" "$@"
+    # exactly `hubbeam run`: NAME.csv in the current folder unless the options say -o FILE
+    exec build/hubbeam run "$scene" "$@"
     ;;
   test)
     exec ctest --preset release

@@ -1,5 +1,6 @@
 // CsvWriter: rows buffered and written in chunks at most 0.1 s apart, into a temporary file renamed over the
-// target at the end (by finish() or the destructor); and Simulation::run stopping between rows when asked.
+// target at the end (by finish() or the destructor); OutputFile's refusals, lock and failed writes; the checks of
+// a command's outputs by file identity; and Simulation::run stopping between rows when asked.
 #include <catch2/catch.hpp>
 
 #include <chrono>
@@ -10,9 +11,14 @@
 #include <string>
 #include <thread>
 
+#include <csignal>
+
+#include <sys/resource.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "output.hpp"
+#include "output_file.hpp"
 #include "scene.hpp"
 #include "simulate.hpp"
 
@@ -87,22 +93,23 @@ TEST_CASE("CsvWriter buffers rows and writes them at the latest 0.1 s after the 
     CHECK(contents(csv.writing_path()) == expected({0.0, 1.0}));
 }
 
-TEST_CASE("CsvWriter: two writers of one path do not mix their rows", "[output]")
+TEST_CASE("CsvWriter: a second writer of one path is refused while the first writes", "[output]")
 {
     const ScratchDir scratch;
     const std::string target = scratch / "out.csv";
-    CsvWriter first(target), second(target);
-    CHECK(first.writing_path() != second.writing_path());
-    for (int i = 0; i < 3000; ++i) {  // several chunks each
-        first.write(row_at(i));
-        second.write(row_at(-i));
-    }
-    REQUIRE(second.finish());
+    CsvWriter first(target);
+    CHECK_THROWS_MATCHES(CsvWriter(target), OutputRefused,
+                         Catch::Message("another hubbeam is writing " + target + " (it holds " +
+                                        scratch / ".out.csv.lock" + "): wait for it to finish, or write to another file"));
+    for (int i = 0; i < 3000; ++i) first.write(row_at(i));  // several chunks
     REQUIRE(first.finish());
     std::string all = expected({});
     for (int i = 0; i < 3000; ++i) all += csv_line(row_at(i)) + "\n";
-    CHECK(contents(target) == all);  // the last to finish, whole
+    CHECK(contents(target) == all);
+    // The lock is gone with the writer: nothing but the CSV is left, and the next writer may start.
     CHECK(std::distance(fs::directory_iterator(scratch.dir), fs::directory_iterator()) == 1);
+    CsvWriter next(target);
+    CHECK(next.finish());
 }
 
 TEST_CASE("CsvWriter puts the file in place when destroyed without finish() (a run ended by an exception)",
@@ -137,6 +144,87 @@ TEST_CASE("CsvWriter refuses a target it cannot create, leaving nothing behind",
     const std::string target = scratch / "no_such_dir/out.csv";
     CHECK_THROWS_WITH(CsvWriter(target), Catch::StartsWith(target + ": cannot open for writing: No such file"));
     CHECK(std::distance(fs::directory_iterator(scratch.dir), fs::directory_iterator()) == 0);
+}
+
+TEST_CASE("OutputFile: a failed write leaves the old file and no temporary file", "[output]")
+{
+    // A full disk, simulated by a file size limit: write() fails with EFBIG (SIGXFSZ ignored, else it kills).
+    const ScratchDir scratch;
+    const std::string target = scratch / "out.csv";
+    put(target, "old contents\n");
+    struct rlimit old_limit {};
+    REQUIRE(::getrlimit(RLIMIT_FSIZE, &old_limit) == 0);
+    const auto old_handler = std::signal(SIGXFSZ, SIG_IGN);
+    std::string error;
+    {
+        OutputFile file(target);
+        struct rlimit small = old_limit;
+        small.rlim_cur = 4096;
+        REQUIRE(::setrlimit(RLIMIT_FSIZE, &small) == 0);
+        const int first = file.write(std::string(4000, 'x'));
+        const int second = file.write(std::string(4000, 'y'));
+        ::setrlimit(RLIMIT_FSIZE, &old_limit);
+        CHECK(first == 0);
+        CHECK(second == EFBIG);
+        CHECK(file.write("z") == EFBIG);  // nothing after a failure
+        error = file.commit();
+    }
+    std::signal(SIGXFSZ, old_handler);
+    CHECK(error == "write failed: File too large");
+    CHECK(contents(target) == "old contents\n");
+    CHECK(std::distance(fs::directory_iterator(scratch.dir), fs::directory_iterator()) == 1);
+}
+
+TEST_CASE("OutputFile: an abandoned file is removed and the target kept", "[output]")
+{
+    const ScratchDir scratch;
+    const std::string target = scratch / "out.csv";
+    put(target, "old contents\n");
+    {
+        OutputFile file(target);
+        CHECK(file.write("new") == 0);
+    }
+    CHECK(contents(target) == "old contents\n");
+    CHECK(std::distance(fs::directory_iterator(scratch.dir), fs::directory_iterator()) == 1);
+}
+
+TEST_CASE("OutputFile refuses a FIFO, a device and a directory without opening them", "[output]")
+{
+    const ScratchDir scratch;
+    const std::string fifo = scratch / "fifo";
+    REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+    // Opening a FIFO for writing would block here until a reader came.
+    CHECK_THROWS_MATCHES(OutputFile(fifo), OutputRefused, Catch::Message(fifo + ": expected a regular file or the name of a new one, got a FIFO"));
+    CHECK_THROWS_AS(OutputFile("/dev/null"), OutputRefused);
+    CHECK_THROWS_AS(OutputFile(scratch.dir.string()), OutputRefused);
+    CHECK(not_a_regular_file(fifo) == "a FIFO");
+    CHECK(not_a_regular_file("/dev/null") == "a character device");
+    CHECK(not_a_regular_file(scratch.dir.string()) == "a directory");
+    CHECK(not_a_regular_file(scratch / "new.csv").empty());
+    CHECK(std::distance(fs::directory_iterator(scratch.dir), fs::directory_iterator()) == 1);  // the FIFO alone
+}
+
+TEST_CASE("same_file and check_outputs compare files, not spellings", "[output]")
+{
+    const ScratchDir scratch;
+    const std::string scene = scratch / "scene.toml";
+    put(scene, "[beam]\n");
+    fs::create_directory(scratch.dir / "sub");
+    fs::create_hard_link(scene, scratch.dir / "link.toml");
+    CHECK(same_file(scene, scratch / "sub/../scene.toml"));
+    CHECK(same_file(scene, scratch / "link.toml"));
+    CHECK(same_file(scratch / "new.csv", scratch / "sub/../new.csv"));  // a file that does not exist yet
+    CHECK_FALSE(same_file(scratch / "new.csv", scratch / "other.csv"));
+    CHECK_FALSE(same_file(scratch / "new.csv", scratch / "no_such_dir/new.csv"));
+    CHECK_THROWS_MATCHES(check_outputs({{scene, "the scene itself"}}, {{scratch / "link.toml", "-o"}}), OutputRefused,
+                         Catch::Message("-o: expected a file other than the scene itself, got \"" + scratch / "link.toml" + "\""));
+    CHECK_THROWS_MATCHES(check_outputs({}, {{scratch / "out.csv", "-o"}, {scratch / "sub/../out.csv", "--fields"}}),
+                         OutputRefused,
+                         Catch::Message("--fields: expected a file other than -o's \"" + scratch / "out.csv" + "\", got \"" +
+                                        scratch / "sub/../out.csv" + "\""));
+    CHECK_THROWS_WITH(check_outputs({}, {{scratch / "no_such_dir/out.csv", "-o"}}),
+                      scratch / "no_such_dir/out.csv" + ": cannot open for writing: No such file or directory");
+    CHECK_NOTHROW(check_outputs({{scene, "the scene itself"}}, {{scratch / "out.csv", "-o"}, {"", "--fields"}}));
 }
 
 TEST_CASE("Simulation::run stops between rows when its StopRequest asks", "[output]")

@@ -5,14 +5,17 @@
 //   hubbeam run SCENE.toml [--method M] [--nx N] [--ny N] ... [-o FILE]   (options: scene_keys() in scene.cpp)
 //   hubbeam variants                                   (built in, cached, and how others run)
 //   hubbeam bench SCENE.toml [--methods LIST] [--ny LIST] [--steppers LIST] [--rtols LIST] [-o FILE] [--plot PREFIX]
-//   hubbeam modes SCENE.toml [--omega LIST] [--methods LIST] [--ny LIST] [--count N] [-o FILE] [--plot PREFIX]
-//   hubbeam linearize SCENE.toml --omega W [-o PREFIX]
+//   hubbeam modes SCENE.toml [--omega LIST] [--methods LIST] [--ny LIST] [--count N] [-o FILE [--plot PREFIX]]
+//   hubbeam linearize SCENE.toml --omega W -o PREFIX
 //   hubbeam sweep SWEEP.toml [-o FILE] [--scheduler ADDRESS] [--workers N] [--no-resume]   (runtime/python: Dask)
 //   hubbeam kernels [--ny LIST] [--methods LIST] [--drives LIST] [--orders LIST] [--nx LIST] [--samples N] [-o FILE]
 //
-// Exit codes: 0 success; 1 the simulation stopped early (rows so far kept); 2 bad input (nothing computed);
-// 130 / 143 interrupted by SIGINT / SIGTERM (rows so far kept).
+// Every file is written through OutputFile (output_file.hpp); outputs are checked against the command's inputs and
+// each other before anything is computed. run writes NAME.csv into the current folder unless -o; modes writes a CSV
+// only with -o. Exit codes: 0 success; 1 the simulation stopped early (rows so far kept); 2 bad input (nothing
+// computed); 130 / 143 interrupted by SIGINT / SIGTERM (rows so far kept).
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -38,6 +41,7 @@
 #include "shortest.hpp"
 #include "on_demand.hpp"
 #include "output.hpp"
+#include "output_file.hpp"
 #include "plot.hpp"
 #include "scene.hpp"
 #include "simulate.hpp"
@@ -199,14 +203,6 @@ int run(const CLI::App& sub, const RunOptions& o)
         return exit_bad_input;
     }
     if (scene.output.file.empty()) scene.output.file = std::filesystem::path(scene.path).stem().string() + ".csv";
-    // The CSV must not replace the scene it comes from (-o scene.toml, ./scene.toml, a link to it).
-    if (std::error_code ec; std::filesystem::equivalent(scene.output.file, scene.path, ec)) {
-        std::cerr << message_for(SceneError(scene.path, "output.file", "a file other than the scene itself",
-                                            "\"" + scene.output.file + "\""),
-                                 overrides)
-                  << "\n";
-        return exit_bad_input;
-    }
 
     std::pair<std::vector<double>, int> fields;
     std::string fields_file = o.fields_file;
@@ -221,12 +217,17 @@ int run(const CLI::App& sub, const RunOptions& o)
             const std::filesystem::path out(scene.output.file);
             fields_file = (out.parent_path() / (out.stem().string() + "-fields.csv")).string();
         }
-        std::error_code ec;
-        if (std::filesystem::equivalent(fields_file, scene.path, ec) || fields_file == scene.output.file) {
-            std::cerr << "--fields: expected a file other than the scene and the output, got " << printable(fields_file)
-                      << "\n";
-            return exit_bad_input;
-        }
+    }
+    // Neither output may replace the scene or the other one (compared as files: ./x/../scene.toml, a hard link).
+    const bool output_option = std::any_of(overrides.begin(), overrides.end(),
+                                           [](const auto& kv) { return kv.first == "output.file"; });
+    try {
+        check_outputs({{scene.path, "the scene itself"}},
+                      {{scene.output.file, output_option ? "-o" : scene.path + ": output.file"},
+                       {fields_file, "--fields"}});
+    } catch (const OutputRefused& e) {
+        std::cerr << e.what() << "\n";
+        return exit_bad_input;
     }
 
     // Everything that can refuse the run does so before the output file is touched.
@@ -248,7 +249,7 @@ int run(const CLI::App& sub, const RunOptions& o)
     std::unique_ptr<CsvWriter> csv;
     try {
         csv = std::make_unique<CsvWriter>(scene.output.file);
-    } catch (const std::runtime_error& e) {
+    } catch (const std::exception& e) {  // OutputRefused (another hubbeam writes it), or cannot create
         std::cerr << e.what() << "\n";
         return exit_bad_input;
     }
@@ -258,7 +259,8 @@ int run(const CLI::App& sub, const RunOptions& o)
         try {
             recorder = std::make_unique<FieldRecorder>(scene.key(), scene.parameters, fields.first, fields.second,
                                                        fields_file);
-        } catch (const std::runtime_error& e) {
+        } catch (const std::exception& e) {
+            csv->discard();  // refused before any row: the old output stays as it was
             std::cerr << e.what() << "\n";
             return exit_bad_input;
         }
@@ -361,6 +363,14 @@ int bench(const std::string& scene_path, const BenchArgs& args)
     try {
         scene = load_scene(scene_path, {});
         options = parse_bench_options(args, scene);
+        std::vector<NamedPath> outputs = {{options.table1 ? std::string() : options.output, "-o"}};
+        if (!options.table1 && !options.plot.empty())
+            for (const char* end : {"-work.png", "-work.svg", "-dofs.png", "-dofs.svg", ".gp", "-front.dat", "-dofs.dat"})
+                outputs.push_back({options.plot + end, "--plot"});
+        check_outputs({{scene.path, "the scene itself"}}, outputs);
+    } catch (const OutputRefused& e) {
+        std::cerr << e.what() << "\n";
+        return exit_bad_input;
     } catch (const SceneError& e) {
         std::cerr << e.what() << "\n";
         return exit_bad_input;
@@ -453,6 +463,12 @@ int sweep(const std::vector<std::string>& args)
 /// hubbeam stress: returns 0 when every case did what it must, 1 otherwise.
 int stress(const StressOptions& options)
 {
+    try {
+        check_outputs({}, {{options.output, "-o"}});  // checked now, not after the suite has run
+    } catch (const OutputRefused& e) {
+        std::cerr << e.what() << "\n";
+        return exit_bad_input;
+    }
     catch_stop_signals();
     const StopRequest stop = []() -> const char* { return stop_signal != 0 ? interrupted : nullptr; };
     const std::vector<StressRow> rows = run_stress(options, std::cout, stop);
@@ -486,8 +502,10 @@ void add_kernel_options(CLI::App& sub, KernelArgs& a)
 int kernels(const KernelArgs& args)
 {
     try {
-        run_kernel_bench(parse_kernel_options(args), std::cout);
-    } catch (const KernelOptionError& e) {
+        const KernelBenchOptions options = parse_kernel_options(args);
+        check_outputs({}, {{options.output, "-o"}});
+        run_kernel_bench(options, std::cout);
+    } catch (const OptionError& e) {  // KernelOptionError, OutputRefused
         std::cerr << e.what() << "\n";
         return exit_bad_input;
     }
@@ -521,6 +539,9 @@ int plot(const PlotArgs& args)
     } catch (const PlotInputError& e) {
         std::cerr << e.what() << "\n";
         return exit_bad_input;
+    } catch (const OutputRefused& e) {
+        std::cerr << e.what() << "\n";
+        return exit_bad_input;
     }
     std::cout << "figure: " << args.prefix << ".{png,svg}\n";
     return exit_ok;
@@ -539,9 +560,12 @@ int main(int argc, char** argv)
     RunOptions options;
     CLI::App* run_cmd = app.add_subcommand("run", "Simulate a scene file and write its response as CSV");
     run_cmd->footer(
-        "Options override the scene's keys. Exit codes: 0 success, 1 simulation stopped early (rows so "
-        "far kept), 2 bad input (one line on stderr, nothing computed), 130/143 interrupted by SIGINT/SIGTERM "
-        "(rows so far kept). The CSV is written to DIR/.NAME.tmp-PID and renamed over FILE when the run ends.");
+        "Options override the scene's keys. The CSV goes to -o FILE, else to the scene's output.file, else to "
+        "NAME.csv in the current folder (NAME.toml's name). Exit codes: 0 success, 1 simulation stopped early (rows "
+        "so far kept), 2 bad input (one line on stderr, nothing computed; also an output that is the scene or the "
+        "other output, a FIFO, device or directory, or a file another hubbeam is writing), 130/143 interrupted by "
+        "SIGINT/SIGTERM (rows so far kept). The CSV is written to DIR/.NAME.tmp-PID and renamed over FILE when the "
+        "run ends.");
     add_run_options(*run_cmd, options);
     CLI::App* variants_cmd =
         app.add_subcommand("variants", "List the variants built in and cached, and how any other variant runs");
@@ -572,19 +596,23 @@ int main(int argc, char** argv)
     modes_cmd->add_option("--ny", modes_args.ny, "Ny values, comma-separated (default: the scene's)")->type_name("LIST");
     modes_cmd->add_option("--count", modes_args.count, "Bending modes printed per line group (default 4; the CSV has all)")
         ->type_name("N");
-    modes_cmd->add_option("-o,--output", modes_args.output, "CSV of every mode (default: SCENE-modes.csv)")->type_name("FILE");
-    modes_cmd->add_option("--plot", modes_args.plot, "Also draw the Campbell diagram PREFIX.png and PREFIX.svg")
+    modes_cmd->add_option("-o,--output", modes_args.output, "Also write every mode as CSV to FILE (default: no file)")
+        ->type_name("FILE");
+    modes_cmd->add_option("--plot", modes_args.plot, "Also draw the Campbell diagram PREFIX.png and PREFIX.svg (needs -o)")
         ->type_name("PREFIX");
     add_linear_overrides(*modes_cmd, modes_overrides, false);
-    modes_cmd->footer("README: Modes and linearized models. Exit code 2 for a bad option value.");
+    modes_cmd->footer("Prints the table; writes a file only when asked (-o, --plot). README: Modes and linearized models. "
+                      "Exit code 2 for a bad option value or an output that is the scene, another output, not a "
+                      "regular file, or being written by another hubbeam.");
     std::string linearize_scene, linearize_omega, linearize_prefix;
     LinearOverrides linearize_overrides;
     CLI::App* linearize_cmd = app.add_subcommand(
         "linearize", "State-space matrices A, B, C, D about a steady spin (input hub torque or acceleration)");
     linearize_cmd->add_option("scene", linearize_scene, "Scene file (TOML)")->required()->type_name("SCENE.toml");
     linearize_cmd->add_option("--omega", linearize_omega, "Steady spin rate (rad/s), >= 0")->required()->type_name("W");
-    linearize_cmd->add_option("-o,--output", linearize_prefix, "Prefix of PREFIX-A.csv ... PREFIX-D.csv (default: SCENE-lin)")
-        ->type_name("PREFIX");
+    linearize_cmd->add_option("-o,--output", linearize_prefix, "Writes PREFIX-A.csv, PREFIX-B.csv, PREFIX-C.csv, PREFIX-D.csv")
+        ->type_name("PREFIX")
+        ->required();
     add_linear_overrides(*linearize_cmd, linearize_overrides, true);
     linearize_cmd->footer("README: Modes and linearized models. Exit code 2 for a bad option value.");
     CLI::App* sweep_cmd = app.add_subcommand(
@@ -599,8 +627,9 @@ int main(int argc, char** argv)
     PlotArgs plot_args;
     CLI::App* plot_cmd = app.add_subcommand(
         "plot", "Figures from CSV files with gnuplot: tip deflection, axial tip, Campbell diagram, bending moment");
-    plot_cmd->footer("README: Plots. Exit codes: 0 figure written, 1 gnuplot failed, 2 bad input (one line on stderr, "
-                     "nothing written).");
+    plot_cmd->footer("README: Plots. gnuplot draws into temporary files that replace the figures only when complete. "
+                     "Exit codes: 0 figure written, 1 gnuplot or the disk failed (old figures kept), 2 bad input (one "
+                     "line on stderr, nothing written).");
     add_plot_options(*plot_cmd, plot_args);
 
     try {
@@ -620,18 +649,13 @@ int main(int argc, char** argv)
         if (sweep_cmd->parsed()) return sweep(sweep_cmd->remaining());
         if (modes_cmd->parsed())
             return linear_command(modes_scene, modes_overrides, [&](const Scene& scene) {
-                ModesOptions o = parse_modes_options(modes_args, scene);
-                if (o.output.empty()) o.output = std::filesystem::path(scene.path).stem().string() + "-modes.csv";
-                run_modes(scene, o, std::cout);
+                run_modes(scene, parse_modes_options(modes_args, scene), std::cout);
             });
         if (linearize_cmd->parsed())
             return linear_command(linearize_scene, linearize_overrides, [&](const Scene& scene) {
                 const std::vector<double> omega = parse_spin_rates("--omega", linearize_omega);
                 if (omega.size() != 1) throw ModesOptionError("--omega: expected one spin rate >= 0, got " + linearize_omega);
-                const std::string prefix = linearize_prefix.empty()
-                                               ? std::filesystem::path(scene.path).stem().string() + "-lin"
-                                               : linearize_prefix;
-                run_linearize(scene, omega[0], prefix, std::cout);
+                run_linearize(scene, omega[0], linearize_prefix, std::cout);
             });
         if (plot_cmd->parsed()) return plot(plot_args);
     } catch (const std::exception& e) {

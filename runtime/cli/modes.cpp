@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <ostream>
 #include <sstream>
 #include <utility>
@@ -10,6 +11,7 @@
 #include "linearize.hpp"
 #include "option_lists.hpp"
 #include "output.hpp"
+#include "output_file.hpp"
 #include "plot.hpp"
 #include "shortest.hpp"
 
@@ -93,6 +95,13 @@ ModesOptions parse_modes_options(const ModesArgs& args, const Scene& scene)
     if (!parse_int(args.count, 1, 64, o.count)) bad("--count", "an integer from 1 to 64", args.count);
     o.output = args.output;
     o.plot = args.plot;
+    if (!o.plot.empty() && o.output.empty())
+        bad("--plot", "-o FILE as well (the diagram is drawn from that CSV)", printable(o.plot));
+    // Every output checked before anything is computed: none may be the scene or another output.
+    std::vector<NamedPath> outputs = {{o.output, "-o"}};
+    if (!o.plot.empty())
+        for (const char* ext : {".png", ".svg", ".gp"}) outputs.push_back({o.plot + ext, "--plot"});
+    check_outputs({{scene.path, "the scene itself"}}, outputs);
     return o;
 }
 
@@ -101,36 +110,43 @@ const char* modes_header() { return "method,ny,nx,order,drive,omega,mode,kind,ra
 void run_modes(const Scene& scene, const ModesOptions& o, std::ostream& out)
 {
     const double unit = frequency_unit(scene.parameters);
-    CsvWriter csv(o.output, modes_header());
-    char line[400];
-    out << "method  Ny  Nx  order  Omega rad/s  mode  kind        rad/s          Hz  dimensionless  growth 1/s\n";
-    for (Method method : o.methods)
-        for (int ny : o.ny) {
-            VariantKey key = scene.key();
-            key.method = method;
-            key.ny = ny;
-            const std::unique_ptr<Model> model = make_model(key, scene.parameters, scene.source);
-            // Printed: the first `count` bending modes and the first axial one of each spin rate.
-            int shown_bending = 0;
-            bool shown_axial = false;
-            for (const auto& [omega, number, mode] : campbell(*model, o.omegas, scene.axial)) {
-                if (number == 1) shown_bending = 0, shown_axial = false;
-                const double hz = mode.rad_s / (2.0 * M_PI);
-                std::ostringstream row;
-                row << to_string(method) << ',' << ny << ',' << key.nx << ',' << to_string(key.order) << ','
-                    << to_string(key.drive) << ',' << shortest(omega) << ',' << number << ',' << mode.kind << ','
-                    << shortest(mode.rad_s) << ',' << shortest(hz) << ',' << shortest(mode.rad_s / unit) << ','
-                    << shortest(mode.growth);
-                csv.write_line(row.str());
-                const bool enough = mode.kind == "bending" ? shown_bending++ >= o.count : std::exchange(shown_axial, true);
-                if (enough) continue;
-                std::snprintf(line, sizeof line, "%-6s %3d %3d  %-5s %12.4g  %4d  %-7s %11.6g %11.6g %14.6g  %10.3g\n",
-                              to_string(method).c_str(), ny, key.nx, to_string(key.order).c_str(), omega, number,
-                              mode.kind.c_str(), mode.rad_s, hz, mode.rad_s / unit, mode.growth);
-                out << line;
+    // The table is printed; the CSV written only when asked for, and put in place only when complete.
+    std::unique_ptr<CsvWriter> csv = o.output.empty() ? nullptr : std::make_unique<CsvWriter>(o.output, modes_header());
+    try {
+        char line[400];
+        out << "method  Ny  Nx  order  Omega rad/s  mode  kind        rad/s          Hz  dimensionless  growth 1/s\n";
+        for (Method method : o.methods)
+            for (int ny : o.ny) {
+                VariantKey key = scene.key();
+                key.method = method;
+                key.ny = ny;
+                const std::unique_ptr<Model> model = make_model(key, scene.parameters, scene.source);
+                // Printed: the first `count` bending modes and the first axial one of each spin rate.
+                int shown_bending = 0;
+                bool shown_axial = false;
+                for (const auto& [omega, number, mode] : campbell(*model, o.omegas, scene.axial)) {
+                    if (number == 1) shown_bending = 0, shown_axial = false;
+                    const double hz = mode.rad_s / (2.0 * M_PI);
+                    std::ostringstream row;
+                    row << to_string(method) << ',' << ny << ',' << key.nx << ',' << to_string(key.order) << ','
+                        << to_string(key.drive) << ',' << shortest(omega) << ',' << number << ',' << mode.kind << ','
+                        << shortest(mode.rad_s) << ',' << shortest(hz) << ',' << shortest(mode.rad_s / unit) << ','
+                        << shortest(mode.growth);
+                    if (csv) csv->write_line(row.str());
+                    const bool enough = mode.kind == "bending" ? shown_bending++ >= o.count : std::exchange(shown_axial, true);
+                    if (enough) continue;
+                    std::snprintf(line, sizeof line, "%-6s %3d %3d  %-5s %12.4g  %4d  %-7s %11.6g %11.6g %14.6g  %10.3g\n",
+                                  to_string(method).c_str(), ny, key.nx, to_string(key.order).c_str(), omega, number,
+                                  mode.kind.c_str(), mode.rad_s, hz, mode.rad_s / unit, mode.growth);
+                    out << line;
+                }
             }
-        }
-    if (!csv.finish()) throw std::runtime_error(csv.error());
+    } catch (...) {
+        if (csv) csv->discard();
+        throw;
+    }
+    if (!csv) return;
+    if (!csv->finish()) throw std::runtime_error(csv->error());
     out << "modes: " << o.output << "\n";
     if (!o.plot.empty()) {
         PlotArgs figure;
@@ -144,32 +160,41 @@ void run_modes(const Scene& scene, const ModesOptions& o, std::ostream& out)
 
 void run_linearize(const Scene& scene, double omega, const std::string& prefix, std::ostream& out)
 {
+    std::vector<NamedPath> outputs;
+    for (const char* name : {"A", "B", "C", "D"}) outputs.push_back({prefix + "-" + name + ".csv", "-o"});
+    check_outputs({{scene.path, "the scene itself"}}, outputs);  // before anything is computed
     const VariantKey key = scene.key();
     const std::unique_ptr<Model> model = make_model(key, scene.parameters, scene.source);
     const SteadySpin steady = steady_spin(*model, omega);
     const StateSpace ss = state_space(*model, steady);
-    // One CSV per matrix: a header of column names, then each row led by its name.
-    const auto write = [&](const char* name, const Eigen::MatrixXd& X, const std::vector<std::string>& rows,
-                           const std::vector<std::string>& columns) {
-        const std::string path = prefix + "-" + name + ".csv";
-        std::string header = name;
-        for (const std::string& c : columns) header += "," + c;
-        CsvWriter csv(path, header);
-        for (Eigen::Index i = 0; i < X.rows(); ++i) {
-            std::string text = rows[static_cast<std::size_t>(i)];
-            for (Eigen::Index j = 0; j < X.cols(); ++j) {
-                text += ',';
-                append_shortest(text, X(i, j));
+    // One CSV per matrix: a header of column names, then each row led by its name. Each is put in place once all
+    // four are written; an exception on the way leaves all four old files as they were.
+    const std::vector<std::pair<const char*, const Eigen::MatrixXd*>> matrices = {
+        {"A", &ss.A}, {"B", &ss.B}, {"C", &ss.C}, {"D", &ss.D}};
+    std::vector<std::unique_ptr<CsvWriter>> files;
+    try {
+        for (std::size_t m = 0; m < matrices.size(); ++m) {
+            const auto& [name, X] = matrices[m];
+            const bool state_rows = m < 2, state_columns = m % 2 == 0;
+            const std::vector<std::string>& rows = state_rows ? ss.states : ss.outputs;
+            std::string header = name;
+            for (const std::string& c : state_columns ? ss.states : ss.inputs) header += "," + c;
+            files.push_back(std::make_unique<CsvWriter>(outputs[m].path, header));
+            for (Eigen::Index i = 0; i < X->rows(); ++i) {
+                std::string text = rows[static_cast<std::size_t>(i)];
+                for (Eigen::Index j = 0; j < X->cols(); ++j) {
+                    text += ',';
+                    append_shortest(text, (*X)(i, j));
+                }
+                files.back()->write_line(text);
             }
-            csv.write_line(text);
         }
-        if (!csv.finish()) throw std::runtime_error(csv.error());
-        return path;
-    };
-    write("A", ss.A, ss.states, ss.states);
-    write("B", ss.B, ss.states, ss.inputs);
-    write("C", ss.C, ss.outputs, ss.states);
-    write("D", ss.D, ss.outputs, ss.inputs);
+    } catch (...) {
+        for (const auto& f : files) f->discard();
+        throw;
+    }
+    for (const auto& f : files)
+        if (!f->finish()) throw std::runtime_error(f->error());
     out << "variant     " << key.name() << " (" << model->source() << ")\n"
         << "steady spin " << shortest(omega) << " rad/s";
     if (key.nx > 0) out << ", axial stretch at the tip " << shortest(model->tip(steady.q.data()).ux1) << " m";

@@ -26,7 +26,7 @@ struct ModesArgs {
     std::string methods;  // empty: the scene's
     std::string ny;       // empty: the scene's
     std::string count = "4";
-    std::string output;   // CSV; empty: SCENE-modes.csv
+    std::string output;   // CSV; empty: none (the table is printed)
     std::string plot;     // PREFIX: the Campbell diagram PREFIX.{png,svg} (hubbeam plot campbell)
 };
 
@@ -45,7 +45,7 @@ ModesOptions parse_modes_options(const ModesArgs& args, const Scene& scene);
 const char* modes_header();
 
 /// For each method, Ny and spin rate: the scene's variant linearized about the steady spin, its first `count`
-/// bending modes and first axial mode printed to out, and every mode written to options.output (atomically);
+/// bending modes and first axial mode printed to out, and every mode written to options.output if given (atomically);
 /// with options.plot, the Campbell diagram. Throws std::runtime_error if the CSV or the figure cannot be written.
 void run_modes(const Scene& scene, const ModesOptions& options, std::ostream& out);
 

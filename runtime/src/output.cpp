@@ -1,4 +1,4 @@
-// CSV rows (buffered, written to a temporary file that is renamed into place) and the run summary.
+// CSV rows (buffered, written through an OutputFile: a temporary file renamed into place) and the run summary.
 #include "output.hpp"
 
 #include "shortest.hpp"
@@ -10,9 +10,6 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 namespace hubbeam {
 
@@ -40,33 +37,13 @@ char* format_row(char* out, const Row& row)
     return out;
 }
 
-std::runtime_error cannot_open(const std::string& path, int error, const std::string& detail = {})
-{
-    return std::runtime_error(path + ": cannot open for writing: " + std::strerror(error) + detail);
-}
-
 }  // namespace
 
 CsvWriter::CsvWriter(const std::string& path) : CsvWriter(path, row_header()) {}
 
 CsvWriter::CsvWriter(const std::string& path, const std::string& header)
-    : path_(path), target_(path), buffer_(new char[buffer_size])
+    : path_(path), file_(std::make_unique<OutputFile>(path)), buffer_(new char[buffer_size])
 {
-    struct stat st {};
-    const bool exists = ::stat(path.c_str(), &st) == 0;
-    if (exists && !S_ISREG(st.st_mode)) {
-        // A device or a pipe: written directly (a directory fails here with "Is a directory").
-        fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-        if (fd_ < 0) throw cannot_open(path_, errno);
-    } else {
-        struct stat link {};
-        if (exists && ::lstat(path.c_str(), &link) == 0 && S_ISLNK(link.st_mode)) {
-            // Replace the file the link points to, not the link: what writing through it did before.
-            std::error_code ec;
-            if (const auto real = std::filesystem::canonical(path, ec); !ec) target_ = real.string();
-        }
-        open_temporary(exists ? static_cast<int>(st.st_mode & 07777) : -1);
-    }
     // The header is written at once, so that an output that cannot take anything (a full disk) stops the run
     // at its first row instead of after all the computing.
     if (header.size() >= buffer_size / 2) throw std::logic_error("CsvWriter: a header of " + std::to_string(header.size()) + " bytes");
@@ -75,6 +52,8 @@ CsvWriter::CsvWriter(const std::string& path, const std::string& header)
     buffer_[used_++] = '\n';
     flush();
 }
+
+const std::string& CsvWriter::writing_path() const { return file_->temp_path(); }
 
 void CsvWriter::write_line(std::string_view line)
 {
@@ -86,25 +65,6 @@ void CsvWriter::write_line(std::string_view line)
     buffer_[used_++] = '\n';
     ++buffered_rows_;
     if (std::chrono::steady_clock::now() - last_flush_ >= flush_interval) flush();
-}
-
-void CsvWriter::open_temporary(int existing_mode)
-{
-    const std::filesystem::path target(target_);
-    std::string stem = ".";  // appended piece by piece: GCC 12 warns falsely (-Wrestrict) about "." + string
-    stem += target.filename().string();
-    stem += ".tmp-" + std::to_string(::getpid());
-    // O_EXCL: never write into a file someone else has; a name left by a killed run whose pid has come round
-    // again is skipped with a suffix rather than reused.
-    for (int attempt = 0; attempt < 100; ++attempt) {
-        temp_ = (target.parent_path() / (attempt ? stem + "-" + std::to_string(attempt) : stem)).string();
-        fd_ = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-        if (fd_ >= 0) break;
-        if (errno != EEXIST) throw cannot_open(path_, errno, " (creating its temporary file " + temp_ + ")");
-    }
-    if (fd_ < 0) throw cannot_open(path_, EEXIST, " (creating its temporary file " + temp_ + ")");
-    // The replacement keeps the permissions of the file it replaces (a new file gets the umask's, as before).
-    if (existing_mode >= 0) (void)::fchmod(fd_, static_cast<mode_t>(existing_mode));
 }
 
 CsvWriter::~CsvWriter()
@@ -127,20 +87,9 @@ void CsvWriter::write(const Row& row)
 
 void CsvWriter::flush()
 {
-    const char* p = buffer_.get();
-    std::size_t left = used_;
-    while (left > 0 && ok_) {
-        const ssize_t n = ::write(fd_, p, left);
-        if (n > 0) {
-            p += n;
-            left -= static_cast<std::size_t>(n);
-        } else if (n < 0 && errno == EINTR) {
-            continue;  // a signal arrived before anything was written
-        } else {
-            const int error = n < 0 ? errno : EIO;
+    if (ok_ && used_ > 0)
+        if (const int error = file_->write(std::string_view(buffer_.get(), used_)); error != 0)
             fail("write failed after " + std::to_string(written_rows_) + " rows: " + std::strerror(error));
-        }
-    }
     used_ = 0;
     if (ok_) written_rows_ += buffered_rows_;
     buffered_rows_ = 0;
@@ -159,23 +108,27 @@ bool CsvWriter::finish()
     if (finished_) return ok_;
     finished_ = true;
     if (ok_) flush();
-    // On disk before the rename, so that a crash just after it cannot leave an empty file under the target.
-    if (!temp_.empty() && ok_ && ::fsync(fd_) != 0) fail(std::string("write failed: ") + std::strerror(errno));
-    if (::close(fd_) != 0) fail(std::string("write failed: ") + std::strerror(errno));
-    fd_ = -1;
-    if (temp_.empty()) return ok_;
     if (!ok_) {
         // What the temporary file holds cannot be trusted (it may end inside a line): the target is left alone.
-        ::unlink(temp_.c_str());
+        file_->discard();
         error_ += " (nothing written: " + path_ + " is as it was)";
         return false;
     }
-    if (std::rename(temp_.c_str(), target_.c_str()) != 0) {
-        fail(std::string("cannot replace it: ") + std::strerror(errno) + " (the " + std::to_string(rows()) +
-             " rows are in " + temp_ + ")");
+    if (const std::string problem = file_->commit(); !problem.empty()) {
+        fail(problem);
+        if (problem.rfind("write failed", 0) == 0) error_ += " (nothing written: " + path_ + " is as it was)";
         return false;
     }
     return true;
+}
+
+void CsvWriter::discard()
+{
+    if (finished_) return;
+    finished_ = true;
+    used_ = 0;
+    buffered_rows_ = 0;
+    file_->discard();
 }
 
 RowSink CsvWriter::sink()

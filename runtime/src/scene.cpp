@@ -3,6 +3,8 @@
 // README.md ("Scene files"); the symbols are those of docs/model.md.
 #include "scene.hpp"
 
+#include "output_file.hpp"
+
 #include <toml++/toml.h>
 
 #include <algorithm>
@@ -201,8 +203,9 @@ bool parse_enum(std::string_view w, E& e)
 
 std::string read_file(const std::string& path)
 {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) throw SceneError::with_detail(path, "", "cannot open: it is a directory");
+    // Checked before opening: open() on a FIFO waits for a writer, and a device or a directory is no scene.
+    if (const std::string kind = not_a_regular_file(path); !kind.empty())
+        throw SceneError::with_detail(path, "", "cannot open: it is " + kind + ", not a regular file");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw SceneError::with_detail(path, "", std::string("cannot open: ") + std::strerror(errno));
     // Read at most one byte past the cap: a scene is a few kilobytes, and /dev/zero never ends.

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <map>
 #include <ostream>
@@ -15,6 +16,7 @@
 #include "oscillation.hpp"
 #include "option_lists.hpp"
 #include "output.hpp"
+#include "output_file.hpp"
 #include "plot.hpp"
 #include "shortest.hpp"
 #include "stiffness.hpp"
@@ -386,33 +388,37 @@ std::string plot(const std::string& prefix, const std::string& csv, std::ostream
     // The Pareto front: rows no other row beats in both wall time and error (time and discretization error
     // together: their maximum is the error against the converged solution up to the reference's own).
     const std::string script_path = prefix + ".gp";
-    std::ofstream gp(script_path);
-    gp << "# gnuplot script written by hubbeam bench: work-precision figures from " << csv << "\n"
-       << figure_style()
-       << "set logscale xy\n"
-          "set format y '10^{%L}'\n"
-          "methods = 'amm fem bim bsim'\n"
-          "steppers = system(\"tail -n +2 '"
-       << csv << "' | cut -d, -f5 | sort -u | tr '\\n' ' '\")\n"
-          "ok(s) = (strcol(18) eq 'ok') ? s : NaN\n"
-          "err(c1, c2) = (column(c1) > column(c2) ? column(c1) : column(c2))\n"
-       << in_png_and_svg(figure_output(prefix + "-work") +
-                         "  set title 'Work against precision: tip deflection error against the converged solution'\n"
-                         "  set xlabel 'wall time per run (s, in process, median)'\n"
-                         "  set ylabel 'max |tip u_y - reference| (m)'\n"
-                         "  plot for [m in methods] for [s in steppers] '" +
-                         csv +
-                         "' using (strcol(1) eq m && strcol(5) eq s ? ok(column(11)) : NaN):(err(8, 9)) with "
-                         "linespoints title m.' '.s, \\\n"
-                         "       '" +
-                         prefix + "-front.dat' using 1:2 with steps lw 3 lc rgb 'black' title 'Pareto front'\n" +
-                         figure_output(prefix + "-dofs") +
-                         "  set title 'Discretization error against DOF count (tightest tolerance of the grid)'\n"
-                         "  set xlabel 'transverse DOFs N_y'\n"
-                         "  set ylabel 'max |tip u_y - converged reference| (m)'\n"
-                         "  plot for [m in methods] '" +
-                         prefix + "-dofs.dat' using (strcol(1) eq m ? column(2) : NaN):3 with linespoints title m\n");
-    gp.close();
+    // The script drawing the figures work and dofs into the given prefixes (draw_figures draws them into temporary
+    // files first).
+    const auto script_for = [&](const std::vector<std::string>& figures) {
+        std::ostringstream gp;
+        gp << "# gnuplot script written by hubbeam bench: work-precision figures from " << csv << "\n"
+           << figure_style()
+           << "set logscale xy\n"
+              "set format y '10^{%L}'\n"
+              "methods = 'amm fem bim bsim'\n"
+              "steppers = system(\"tail -n +2 '"
+           << csv << "' | cut -d, -f5 | sort -u | tr '\\n' ' '\")\n"
+              "ok(s) = (strcol(18) eq 'ok') ? s : NaN\n"
+              "err(c1, c2) = (column(c1) > column(c2) ? column(c1) : column(c2))\n"
+           << in_png_and_svg(figure_output(figures[0]) +
+                             "  set title 'Work against precision: tip deflection error against the converged solution'\n"
+                             "  set xlabel 'wall time per run (s, in process, median)'\n"
+                             "  set ylabel 'max |tip u_y - reference| (m)'\n"
+                             "  plot for [m in methods] for [s in steppers] '" +
+                             csv +
+                             "' using (strcol(1) eq m && strcol(5) eq s ? ok(column(11)) : NaN):(err(8, 9)) with "
+                             "linespoints title m.' '.s, \\\n"
+                             "       '" +
+                             prefix + "-front.dat' using 1:2 with steps lw 3 lc rgb 'black' title 'Pareto front'\n" +
+                             figure_output(figures[1]) +
+                             "  set title 'Discretization error against DOF count (tightest tolerance of the grid)'\n"
+                             "  set xlabel 'transverse DOFs N_y'\n"
+                             "  set ylabel 'max |tip u_y - converged reference| (m)'\n"
+                             "  plot for [m in methods] '" +
+                             prefix + "-dofs.dat' using (strcol(1) eq m ? column(2) : NaN):3 with linespoints title m\n");
+        return gp.str();
+    };
     // The data the script needs beside the CSV: the front and the DOF convergence, computed here.
     struct Point {
         std::string method, stepper;
@@ -432,7 +438,7 @@ std::string plot(const std::string& prefix, const std::string& csv, std::ostream
                           std::max(std::atof(f[7].c_str()), std::atof(f[8].c_str()))});
     }
     std::sort(points.begin(), points.end(), [](const Point& a, const Point& b) { return a.wall < b.wall; });
-    std::ofstream front(prefix + "-front.dat");
+    std::ostringstream front;
     double best = HUGE_VAL;
     for (const Point& p : points)
         if (p.error < best) {
@@ -444,11 +450,16 @@ std::string plot(const std::string& prefix, const std::string& csv, std::ostream
         auto [it, added] = dofs.emplace(std::make_pair(p.method, p.ny), p.error);
         if (!added) it->second = std::min(it->second, p.error);
     }
-    std::ofstream d(prefix + "-dofs.dat");
+    std::ostringstream d;
     for (const auto& [k, e] : dofs) d << k.first << "," << k.second << "," << e << "\n";
-    front.close();
-    d.close();
-    if (const std::string problem = run_gnuplot(script_path); !problem.empty()) return problem;
+    for (const auto& [path, text] : {std::pair{prefix + "-front.dat", front.str()}, std::pair{prefix + "-dofs.dat", d.str()}}) {
+        OutputFile file(path);
+        if (const int error = file.write(text); error != 0) return path + ": write failed: " + std::strerror(error);
+        if (const std::string why = file.commit(); !why.empty()) return path + ": " + why;
+    }
+    const std::vector<std::string> figures = {prefix + "-work", prefix + "-dofs"};
+    if (const std::string problem = draw_figures(figures, script_path, script_for(figures), script_for); !problem.empty())
+        return problem;
     out << "figures: " << prefix << "-work.{png,svg}, " << prefix << "-dofs.{png,svg} (script " << script_path << ")\n";
     return {};
 }

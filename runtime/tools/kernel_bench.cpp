@@ -17,6 +17,7 @@
 #include "make_model.hpp"
 #include "motion.hpp"
 #include "option_lists.hpp"
+#include "output.hpp"
 
 namespace hubbeam {
 
@@ -228,13 +229,13 @@ void print_line(std::ostream& out, const VariantKey& key, const KernelBenchRow* 
     out << text << "\n" << std::flush;
 }
 
-void write_csv_row(std::ostream& csv, const KernelBenchRow& r)
+void write_csv_row(CsvWriter& csv, const KernelBenchRow& r)
 {
     char buf[256];
-    std::snprintf(buf, sizeof buf, "%s,%s,%s,%d,%d,%d,%s,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f\n", to_string(r.key.method).c_str(),
+    std::snprintf(buf, sizeof buf, "%s,%s,%s,%d,%d,%d,%s,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f", to_string(r.key.method).c_str(),
                   to_string(r.key.drive).c_str(), to_string(r.key.order).c_str(), r.key.nx, r.key.ny, r.key.nq(), r.source.c_str(), r.rhs.median,
                   r.rhs.min, r.rhs.max, r.jacobian.median, r.jacobian.min, r.jacobian.max);
-    csv << buf;
+    csv.write_line(buf);
 }
 
 }  // namespace
@@ -283,13 +284,15 @@ KernelBenchOptions parse_kernel_options(const KernelArgs& args)
 
 std::vector<KernelBenchRow> run_kernel_bench(const KernelBenchOptions& options, std::ostream& out)
 {
-    // The CSV is created first so that a bad path costs nothing.
-    std::ofstream csv;
+    // The CSV is created first so that a bad path costs nothing; it replaces the target when the table is complete.
+    std::unique_ptr<CsvWriter> csv;
     if (!options.output.empty()) {
-        csv.open(options.output);
-        if (!csv)
-            throw KernelOptionError("-o: cannot open " + options.output + " for writing: " + std::strerror(errno));
-        csv << "method,drive,order,nx,ny,nq,source,ns_rhs,ns_rhs_min,ns_rhs_max,ns_jac,ns_jac_min,ns_jac_max\n";
+        try {
+            csv = std::make_unique<CsvWriter>(
+                options.output, "method,drive,order,nx,ny,nq,source,ns_rhs,ns_rhs_min,ns_rhs_max,ns_jac,ns_jac_min,ns_jac_max");
+        } catch (const std::runtime_error& e) {
+            throw KernelOptionError(std::string("-o: ") + e.what());
+        }
     }
 
     out << "ns per call: median of " << options.samples << " samples of ~" << sample_seconds * 1e3
@@ -326,7 +329,7 @@ std::vector<KernelBenchRow> run_kernel_bench(const KernelBenchOptions& options, 
                             continue;
                         }
                         any_capped = any_capped || r->rhs.capped || r->jacobian.capped;
-                        if (csv.is_open()) write_csv_row(csv, *r);
+                        if (csv) write_csv_row(*csv, *r);
                         rows.push_back(*r);
                     }
                 }
@@ -339,9 +342,8 @@ std::vector<KernelBenchRow> run_kernel_bench(const KernelBenchOptions& options, 
             << capped_samples << " samples.\n";
     for (const std::string& s : skipped) out << "skipped " << s << "\n";
     for (const std::string& s : failed) out << "fails " << s << "\n";
-    if (csv.is_open()) {
-        csv.flush();
-        if (!csv) throw std::runtime_error(options.output + ": write failed");
+    if (csv) {
+        if (!csv->finish()) throw std::runtime_error(csv->error());
         out << "CSV: " << options.output << "\n";
     }
     return rows;

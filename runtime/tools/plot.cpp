@@ -13,9 +13,14 @@
 #include <functional>
 #include <map>
 #include <sstream>
+#include <iterator>
+#include <memory>
 #include <string>
 
+#include <unistd.h>
+
 #include "option_lists.hpp"
+#include "output_file.hpp"
 #include "scene.hpp"
 #include "simulate.hpp"
 
@@ -145,13 +150,11 @@ void read_csv(const std::string& path, const Kind& kind,
 {
     const std::string file = printable(path, 400);
     const auto bad = [&](const std::string& what) { throw PlotInputError(file + ": " + what); };
+    // Checked before opening (open() on a FIFO waits for a writer); and a file is read twice, here and by gnuplot:
+    // a pipe would be empty the second time, /dev/zero has no lines.
+    if (const std::string kind = not_a_regular_file(path); !kind.empty()) bad("expected a regular file, got " + kind);
     std::ifstream in(path, std::ios::binary);
     if (!in) bad(std::string("cannot open: ") + std::strerror(errno));
-    // Read twice, here and by gnuplot: a pipe would be empty the second time (and /dev/zero has no lines).
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec))
-        bad(std::string("expected a regular file, got ") +
-            (std::filesystem::is_directory(path, ec) ? "a directory" : "a device or pipe"));
     const std::string expected = "expected " + std::string(kind.format->name) + " for kind " + kind.name + " (header " +
                                  kind.format->header + ")";
     std::string line;
@@ -404,16 +407,84 @@ std::string plot_script(const PlotArgs& args)
            figure.axes + in_png_and_svg(figure_output(args.prefix) + plot + "\n");
 }
 
+namespace {
+
+/// Whether gnuplot's figure at path ends as a whole PNG (its IEND chunk) or SVG (the closing tag) does: a full disk or
+/// a file size limit cuts it, and gnuplot does not always say so.
+bool complete_figure(const std::string& path, bool png)
+{
+    std::ifstream in(path, std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (in.bad()) return false;
+    if (png) {
+        static const std::string iend("\0\0\0\0IEND\xae\x42\x60\x82", 12);
+        return text.size() >= 20 && text.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0 &&
+               text.compare(text.size() - iend.size(), iend.size(), iend) == 0;
+    }
+    const std::size_t end = text.find_last_not_of(" \t\r\n");
+    return end != std::string::npos && end >= 5 && text.compare(end - 5, 6, "</svg>") == 0;
+}
+
+}  // namespace
+
+std::string draw_figures(const std::vector<std::string>& prefixes, const std::string& script_path,
+                         const std::string& script,
+                         const std::function<std::string(const std::vector<std::string>&)>& script_for)
+{
+    // Each figure gets its lock and its temporary files DIR/.NAME.tmp-PID.png and .svg first: one prefix, since
+    // the script derives both names from it.
+    std::vector<std::unique_ptr<OutputFile>> figures;
+    std::vector<std::string> temp_prefixes;
+    for (const std::string& prefix : prefixes) {
+        const std::filesystem::path p(prefix);
+        for (int attempt = 0;; ++attempt) {
+            std::string name = ".";
+            name += p.filename().string();
+            name += ".tmp-" + std::to_string(::getpid()) + (attempt ? "-" + std::to_string(attempt) : "");
+            const std::string temp = (p.parent_path() / name).string();
+            try {
+                auto png = std::make_unique<OutputFile>(prefix + ".png", temp + ".png");
+                auto svg = std::make_unique<OutputFile>(prefix + ".svg", temp + ".svg");
+                figures.push_back(std::move(png));
+                figures.push_back(std::move(svg));
+                temp_prefixes.push_back(temp);
+                break;
+            } catch (const OutputFile::TempExists&) {
+                if (attempt >= 100) throw std::runtime_error(prefix + ": cannot create its temporary figures");
+            }
+        }
+    }
+    OutputFile gp(script_path);
+    if (const int error = gp.write(script); error != 0)
+        return printable(script_path, 400) + ": write failed: " + std::strerror(error) + " (no figure replaced)";
+    // gnuplot draws into the temporary files, from a script of its own beside them (removed afterwards).
+    OutputFile draw(temp_prefixes.front() + ".gp");
+    if (const int error = draw.write(script_for(temp_prefixes)); error != 0)
+        return printable(draw.temp_path(), 400) + ": write failed: " + std::strerror(error) + " (no figure replaced)";
+    const std::string problem = run_gnuplot(draw.temp_path());
+    draw.discard();
+    if (!problem.empty()) return problem;
+    for (std::size_t i = 0; i < figures.size(); ++i)
+        if (!complete_figure(figures[i]->temp_path(), i % 2 == 0))
+            return printable(figures[i]->path(), 400) + ": gnuplot wrote an incomplete file (a full disk?); the old "
+                   "figures are as they were";
+    if (const std::string why = gp.commit(); !why.empty()) return printable(script_path, 400) + ": " + why;
+    for (const auto& f : figures)
+        if (const std::string why = f->commit(); !why.empty()) return printable(f->path(), 400) + ": " + why;
+    return {};
+}
+
 std::string draw_plot(const PlotArgs& args)
 {
     const std::string script = plot_script(args);
-    const std::string path = args.prefix + ".gp";
-    std::ofstream gp(path);
-    if (!gp) throw PlotInputError(printable(path, 400) + ": cannot open for writing: " + std::strerror(errno));
-    gp << script;
-    gp.close();
-    if (!gp) return path + ": write failed: " + std::strerror(errno);
-    return run_gnuplot(path);
+    std::vector<NamedPath> inputs;
+    for (const std::string& f : args.files) inputs.push_back({f, "the input " + printable(f, 400)});
+    check_outputs(inputs, {{args.prefix + ".gp", "-o"}, {args.prefix + ".png", "-o"}, {args.prefix + ".svg", "-o"}});
+    return draw_figures({args.prefix}, args.prefix + ".gp", script, [&](const std::vector<std::string>& temp) {
+        PlotArgs drawn = args;
+        drawn.prefix = temp.front();
+        return plot_script(drawn);
+    });
 }
 
 }  // namespace hubbeam

@@ -3,6 +3,7 @@
 // from the program's CSV files (tip response, axial tip, Campbell diagram, bending moment along the beam).
 #pragma once
 
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -28,6 +29,15 @@ std::string figure_output(const std::string& prefix);
 /// Runs gnuplot on the script at script_path; returns what went wrong (gnuplot's own messages), or empty.
 std::string run_gnuplot(const std::string& script_path);
 
+/// Draws figures with gnuplot so that each is replaced whole or not at all: for each PREFIX of prefixes, PREFIX.png
+/// and PREFIX.svg are OutputFiles (checked, locked) whose temporary files gnuplot writes, from script_for(the
+/// temporary prefixes); script (the same figures under their real names) goes to script_path, to redraw them. Only
+/// when gnuplot exits 0 and every figure ends as a whole PNG or SVG are the files renamed into place. Returns what
+/// went wrong (the old files then as they were), or empty; throws OutputRefused for a refused output.
+std::string draw_figures(const std::vector<std::string>& prefixes, const std::string& script_path,
+                         const std::string& script,
+                         const std::function<std::string(const std::vector<std::string>&)>& script_for);
+
 /// The `plot` arguments as typed (checked by plot_script, so that a bad one is one line naming it).
 struct PlotArgs {
     std::string kind;                // one of plot_kinds()
@@ -50,8 +60,9 @@ const std::vector<std::string>& plot_kinds();
 /// be exactly its kind's, and every row must hold numbers where the figure reads them. Throws PlotInputError.
 std::string plot_script(const PlotArgs& args);
 
-/// hubbeam plot: plot_script written to PREFIX.gp, then gnuplot draws PREFIX.png and PREFIX.svg. Bad input throws
-/// PlotInputError with nothing written; returns what went wrong with gnuplot, or empty.
+/// hubbeam plot: plot_script written to PREFIX.gp, then gnuplot draws PREFIX.png and PREFIX.svg (draw_figures). Bad
+/// input throws PlotInputError, an output that is an input or not a regular file OutputRefused, with nothing
+/// written; returns what went wrong with gnuplot or the disk (the old figures kept), or empty.
 std::string draw_plot(const PlotArgs& args);
 
 }  // namespace hubbeam

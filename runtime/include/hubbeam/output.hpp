@@ -7,6 +7,7 @@
 #include <string>
 #include <string_view>
 
+#include "output_file.hpp"
 #include "scene.hpp"
 #include "simulate.hpp"
 
@@ -17,16 +18,14 @@ namespace hubbeam {
 /// the latest 0.1 s (wall time) after the previous chunk, so that a long run's progress is on disk without
 /// a system call per row.
 ///
-/// A regular file (or a path that does not exist yet) is replaced atomically: the rows go to a temporary
-/// file DIR/.NAME.tmp-PID next to the target, created exclusively, and finish() renames it over the target.
-/// A reader of the target sees the old file or the complete new one, never a half-written line, and two
-/// runs writing the same path do not mix their rows. A target that exists and is not a regular file (a
-/// device such as /dev/null, a pipe) is written directly: there is nothing to replace, and renaming over it
-/// would replace the device node itself.
+/// The file is an OutputFile (output_file.hpp): the rows go to a temporary file DIR/.NAME.tmp-PID next to the
+/// target, and finish() renames it over the target. A reader of the target sees the old file or the complete new
+/// one, never a half-written line; a second hubbeam writing the same path is refused while this one writes; a
+/// target that exists and is not a regular file (a FIFO, a device, a directory) is refused, never opened.
 class CsvWriter {
 public:
-    /// Creates the temporary file (or opens a non-regular target) and writes the header; throws
-    /// std::runtime_error "PATH: cannot open for writing: REASON" if it cannot, leaving nothing behind.
+    /// Creates the temporary file and writes the header; throws OutputRefused (a FIFO, a device, another hubbeam
+    /// writing it) or std::runtime_error "PATH: cannot open for writing: REASON" if it cannot, leaving nothing behind.
     explicit CsvWriter(const std::string& path);
     /// The same for another table: header is its first line (no newline).
     CsvWriter(const std::string& path, const std::string& header);
@@ -47,26 +46,26 @@ public:
     /// after a write failure removes it and leaves the target as it was. Only the first call acts; returns
     /// ok().
     bool finish();
+    /// Drops the rows: the temporary file is removed and the target left as it was (a command refused after its
+    /// writer was created). Only the first of finish() and discard() acts.
+    void discard();
 
     /// False once a write, flush or the final rename failed (disk full, ...): error() says what.
     bool ok() const { return ok_; }
     /// Rows accepted after the header and not lost to a failed write; after finish(), the file's data rows.
     long rows() const { return written_rows_ + buffered_rows_; }
     const std::string& path() const { return path_; }
-    /// Where the rows are until finish(): the temporary file, or path() when the target is written directly.
-    const std::string& writing_path() const { return temp_.empty() ? path_ : temp_; }
+    /// Where the rows are until finish(): the temporary file.
+    const std::string& writing_path() const;
     /// One line for the user when !ok(): "PATH: what failed: REASON" and where the rows are.
     const std::string& error() const { return error_; }
 
 private:
-    void open_temporary(int existing_mode);
     void flush();
     void fail(const std::string& what);
 
-    std::string path_;    // as given, for messages
-    std::string target_;  // path_ with a symbolic link resolved: the file that is replaced
-    std::string temp_;    // the temporary file, empty when writing the target directly
-    int fd_ = -1;
+    std::string path_;  // as given, for messages
+    std::unique_ptr<OutputFile> file_;
     std::unique_ptr<char[]> buffer_;
     std::size_t used_ = 0;
     std::chrono::steady_clock::time_point last_flush_;

@@ -1,0 +1,240 @@
+// OutputFile and the checks of a command's outputs: file identity, file type, the lock against a second writer.
+#include "output_file.hpp"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "scene.hpp"  // printable
+
+namespace hubbeam {
+
+namespace {
+
+std::string kind_of(mode_t mode)
+{
+    if (S_ISREG(mode)) return {};
+    if (S_ISDIR(mode)) return "a directory";
+    if (S_ISFIFO(mode)) return "a FIFO";
+    if (S_ISCHR(mode)) return "a character device";
+    if (S_ISBLK(mode)) return "a block device";
+    if (S_ISSOCK(mode)) return "a socket";
+    return "not a regular file";
+}
+
+/// A file's place for comparisons: its device and inode, or its folder's and its name while it does not exist.
+struct Identity {
+    bool known = false;
+    dev_t dev = 0;
+    ino_t ino = 0;
+    std::string name;  // empty for an existing file
+};
+
+Identity identify(const std::string& path)
+{
+    struct stat st {};
+    if (::stat(path.c_str(), &st) == 0) return {true, st.st_dev, st.st_ino, {}};
+    if (errno != ENOENT) return {};
+    // The kernel resolves DIR as open() will (x/.. through x, links): so the folder, not the spelling, is compared.
+    const std::filesystem::path p(path);
+    const std::string dir = p.has_parent_path() ? p.parent_path().string() : ".";
+    if (::stat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) return {};
+    return {true, st.st_dev, st.st_ino, p.filename().string()};
+}
+
+std::string quoted(const std::string& path) { return "\"" + printable(path, 400) + "\""; }
+
+std::runtime_error cannot_open(const std::string& path, int error, const std::string& detail = {})
+{
+    return std::runtime_error(printable(path, 400) + ": cannot open for writing: " + std::strerror(error) + detail);
+}
+
+}  // namespace
+
+std::string not_a_regular_file(const std::string& path)
+{
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0) return {};
+    return kind_of(st.st_mode);
+}
+
+bool same_file(const std::string& a, const std::string& b)
+{
+    const Identity x = identify(a), y = identify(b);
+    return x.known && y.known && x.dev == y.dev && x.ino == y.ino && x.name == y.name;
+}
+
+void check_outputs(const std::vector<NamedPath>& inputs, const std::vector<NamedPath>& outputs)
+{
+    for (std::size_t k = 0; k < outputs.size(); ++k) {
+        const NamedPath& o = outputs[k];
+        if (o.path.empty()) continue;
+        if (const std::string kind = not_a_regular_file(o.path); !kind.empty())
+            throw OutputRefused(o.name + ": expected a regular file or the name of a new one, got " + quoted(o.path) +
+                                ", " + kind);
+        const std::filesystem::path p(o.path);
+        if (const std::string name = p.filename().string(); name.empty() || name == "." || name == "..")
+            throw OutputRefused(o.name + ": expected a file name, got " + quoted(o.path));
+        if (struct stat st {}; ::stat(o.path.c_str(), &st) != 0) {
+            // A new file: its folder must exist (checked now, not after the computing).
+            int error = errno;
+            const std::string dir = p.has_parent_path() ? p.parent_path().string() : ".";
+            if (error == ENOENT) error = ::stat(dir.c_str(), &st) != 0 ? errno : S_ISDIR(st.st_mode) ? 0 : ENOTDIR;
+            if (error != 0)
+                throw OutputRefused(printable(o.path, 400) + ": cannot open for writing: " + std::strerror(error));
+        }
+        for (const NamedPath& i : inputs)
+            if (!i.path.empty() && same_file(o.path, i.path))
+                throw OutputRefused(o.name + ": expected a file other than " + i.name + ", got " + quoted(o.path));
+        for (std::size_t j = 0; j < k; ++j)
+            if (!outputs[j].path.empty() && same_file(o.path, outputs[j].path))
+                throw OutputRefused(o.name + ": expected a file other than " + outputs[j].name + "'s " +
+                                    quoted(outputs[j].path) + ", got " + quoted(o.path));
+    }
+}
+
+OutputFile::OutputFile(const std::string& path, const std::string& temp) : path_(path), target_(path)
+{
+    struct stat st {};
+    const bool exists = ::stat(path.c_str(), &st) == 0;
+    if (exists && !S_ISREG(st.st_mode))
+        // Never opened: open() on a FIFO blocks until a reader comes, and renaming over a device replaces the node.
+        throw OutputRefused(printable(path, 400) + ": expected a regular file or the name of a new one, got " +
+                            kind_of(st.st_mode));
+    if (exists) mode_ = static_cast<int>(st.st_mode & 07777);
+    struct stat link {};
+    if (exists && ::lstat(path.c_str(), &link) == 0 && S_ISLNK(link.st_mode)) {
+        // Replace the file the link points to, not the link: what writing through it would do.
+        std::error_code ec;
+        if (const auto real = std::filesystem::canonical(path, ec); !ec) target_ = real.string();
+    }
+    const std::filesystem::path target(target_);
+    const std::string name = target.filename().string();
+    if (name.empty() || name == "." || name == "..") throw cannot_open(path_, EISDIR);
+    const std::filesystem::path dir = target.parent_path();
+
+    // The lock first: a second writer is refused before it creates anything. The lock file is removed when
+    // released, so after taking the lock it must still be the file at that path (else its holder removed it
+    // between this open and this flock, and the lock is taken again on the new one).
+    lock_ = (dir / ("." + name + ".lock")).string();
+    for (int attempt = 0; lock_fd_ < 0; ++attempt) {
+        const int fd = ::open(lock_.c_str(), O_RDONLY | O_CREAT | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0666);
+        if (fd < 0) throw cannot_open(path_, errno, " (creating its lock file " + printable(lock_, 400) + ")");
+        struct stat held {}, now {};
+        if (::fstat(fd, &held) != 0 || !S_ISREG(held.st_mode)) {
+            ::close(fd);
+            throw cannot_open(path_, EEXIST, " (its lock file " + printable(lock_, 400) + " is not a regular file)");
+        }
+        if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+            const int error = errno;
+            ::close(fd);
+            if (error == EWOULDBLOCK)
+                throw OutputRefused("another hubbeam is writing " + printable(path_, 400) + " (it holds " +
+                                    printable(lock_, 400) + "): wait for it to finish, or write to another file");
+            throw cannot_open(path_, error, " (locking " + printable(lock_, 400) + ")");
+        }
+        if (::stat(lock_.c_str(), &now) == 0 && now.st_dev == held.st_dev && now.st_ino == held.st_ino)
+            lock_fd_ = fd;
+        else
+            ::close(fd);
+        if (lock_fd_ < 0 && attempt >= 100) throw cannot_open(path_, EAGAIN, " (its lock file keeps changing)");
+    }
+
+    // O_EXCL: never write into a file someone else has; a name left by a killed run whose pid has come round again is
+    // skipped with a suffix rather than reused.
+    std::string stem = ".";  // appended piece by piece: GCC 12 warns falsely (-Wrestrict) about "." + string
+    stem += name;
+    stem += ".tmp-" + std::to_string(::getpid());
+    for (int attempt = 0; attempt < 100 && fd_ < 0; ++attempt) {
+        temp_ = temp.empty() ? (dir / (attempt ? stem + "-" + std::to_string(attempt) : stem)).string() : temp;
+        fd_ = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+        if (fd_ >= 0) break;
+        const int error = errno;
+        if (error == EEXIST && !temp.empty()) {
+            release_lock();
+            throw TempExists(temp + " exists");
+        }
+        if (error != EEXIST) {
+            release_lock();
+            throw cannot_open(path_, error, " (creating its temporary file " + printable(temp_, 400) + ")");
+        }
+    }
+    if (fd_ < 0) {
+        release_lock();
+        throw cannot_open(path_, EEXIST, " (creating its temporary file " + printable(temp_, 400) + ")");
+    }
+    // The replacement keeps the permissions of the file it replaces (a new file gets the umask's).
+    if (mode_ >= 0) (void)::fchmod(fd_, static_cast<mode_t>(mode_));
+}
+
+OutputFile::~OutputFile() { discard(); }
+
+int OutputFile::write(std::string_view bytes)
+{
+    if (done_ || error_ != 0 || !failure_.empty()) return error_ != 0 ? error_ : EIO;
+    const char* p = bytes.data();
+    std::size_t left = bytes.size();
+    while (left > 0) {
+        const ssize_t n = ::write(fd_, p, left);
+        if (n > 0) {
+            p += n;
+            left -= static_cast<std::size_t>(n);
+        } else if (n < 0 && errno == EINTR) {
+            continue;  // a signal arrived before anything was written
+        } else {
+            return error_ = n < 0 ? errno : EIO;
+        }
+    }
+    return 0;
+}
+
+void OutputFile::fail(const std::string& why)
+{
+    if (failure_.empty()) failure_ = why;
+}
+
+std::string OutputFile::commit()
+{
+    if (done_) return "already finished";
+    done_ = true;
+    std::string problem;
+    if (error_ != 0) problem = std::string("write failed: ") + std::strerror(error_);
+    else if (!failure_.empty()) problem = failure_;
+    // On disk before the rename, so that a crash just after it cannot leave an empty file under the target.
+    else if (::fsync(fd_) != 0) problem = std::string("write failed: ") + std::strerror(errno);
+    if (::close(fd_) != 0 && problem.empty()) problem = std::string("write failed: ") + std::strerror(errno);
+    fd_ = -1;
+    if (problem.empty() && std::rename(temp_.c_str(), target_.c_str()) != 0)
+        problem = std::string("cannot replace it: ") + std::strerror(errno) + " (the complete file is " +
+                  printable(temp_, 400) + ")";
+    else if (!problem.empty())
+        ::unlink(temp_.c_str());  // what it holds cannot be trusted (it may end inside a line)
+    release_lock();
+    return problem;
+}
+
+void OutputFile::discard()
+{
+    if (done_) return;
+    done_ = true;
+    if (fd_ >= 0) ::close(fd_);
+    fd_ = -1;
+    ::unlink(temp_.c_str());
+    release_lock();
+}
+
+void OutputFile::release_lock()
+{
+    if (lock_fd_ < 0) return;
+    ::unlink(lock_.c_str());  // while still held: see the constructor
+    ::close(lock_fd_);
+    lock_fd_ = -1;
+}
+
+}  // namespace hubbeam
