@@ -178,11 +178,12 @@ TEST_CASE("modes CSV: the dimensionless column is omega / sqrt(EI / (rho S L^4))
     for (const auto& r : csv.rows) {
         CHECK(std::stod(r[dimensionless]) == Approx(std::stod(r[rad_s]) / unit).epsilon(1e-12));
         CHECK(std::stod(r[hz]) == Approx(std::stod(r[rad_s]) / (2.0 * M_PI)).epsilon(1e-12));
-        // the cantilever's first bending frequency, (1.87510407)^2 = 3.51601527 in this unit; AMM's basis is
-        // the cantilever's own modes, so it is exact there, FEM's cubic elements within 1e-4
+        // the cantilever's first bending frequency, (1.87510407)^2 = 3.51601527 in this unit: AMM's basis is
+        // the cantilever's own modes, so it is exact there; FEM's four cubic elements are stiffer, within 1e-3
         if (std::stod(r[omega]) == 0.0 && r[mode] == "1" && r[kind] == "bending") {
-            CHECK(std::stod(r[dimensionless]) ==
-                  Approx(3.51601527).epsilon(r[method] == "amm" ? 1e-7 : 1e-4));
+            const double lambda = std::stod(r[dimensionless]);
+            if (r[method] == "amm") CHECK(lambda == Approx(3.51601527).epsilon(1e-7));
+            else CHECK((lambda > 3.51601527 && lambda < 3.51601527 * (1 + 1e-3)));
             ++at_rest;
         }
     }
