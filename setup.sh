@@ -72,7 +72,7 @@ case "$mode" in
     for scene in torque_tau1 torque_tau10; do  # Figs. 9-12: one method, Ny = 4 to 10, Nx = 0
       for m in "${methods[@]}"; do
         files=() names=()
-        for ny in 4 6 8 10; do
+        for ny in 10 4 6 8; do  # the finest first: the difference panel shows the others against it
           build/hubbeam run "cases/$scene.toml" --method "$m" --ny "$ny" --nx 0 -o "$data/$scene-$m-ny$ny.csv" >/dev/null
           files+=("$data/$scene-$m-ny$ny.csv") names+=("Ny = $ny")
         done

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include <unistd.h>
 
@@ -88,7 +89,9 @@ TEST_CASE("moment: each file's rows at the t closest to --time, by default at it
     SECTION("default: the last t")
     {
         CHECK(first_rows() == at_one);
-        CHECK(plot_script(args).find("set title 'Bending moment along the beam at t = 1 s'") != std::string::npos);
+        // the files' names share "fields", which the default title takes for the scene's name
+        CHECK(plot_script(args).find("set title 'Bending moment along the beam, fields at t = 1 s'") !=
+              std::string::npos);
     }
     SECTION("--time 0.6 is closer to 0.5 than to 1")
     {
@@ -139,4 +142,145 @@ TEST_CASE("plot input errors name the file or option")
     timed.labels.clear();
     timed.time = "1";
     CHECK_THROWS_WITH(plot_script(timed), Catch::StartsWith("--time: expected no time for kind campbell"));
+}
+
+namespace {
+
+/// The rows of a CSV file as fields, the header first (a reader of its own, independent of plot.cpp's).
+std::vector<std::vector<std::string>> csv_rows(const std::string& path)
+{
+    std::vector<std::vector<std::string>> rows;
+    std::ifstream in(path);
+    for (std::string line; std::getline(in, line);) {
+        std::vector<std::string> fields;
+        std::size_t start = 0;
+        for (std::size_t comma; (comma = line.find(',', start)) != std::string::npos; start = comma + 1)
+            fields.push_back(line.substr(start, comma - start));
+        fields.push_back(line.substr(start));
+        rows.push_back(fields);
+    }
+    return rows;
+}
+
+/// Writes rows to path with the columns in the order `order` gives (order[i]: the source column of column i).
+void write_permuted(const std::vector<std::vector<std::string>>& rows, const std::vector<std::size_t>& order,
+                    const fs::path& path)
+{
+    std::ofstream out(path);
+    for (const auto& r : rows) {
+        for (std::size_t i = 0; i < order.size(); ++i) out << (i ? "," : "") << r[order[i]];
+        out << "\n";
+    }
+}
+
+/// How many times text occurs in s.
+std::size_t count(const std::string& s, const std::string& text)
+{
+    std::size_t n = 0;
+    for (std::size_t at = s.find(text); at != std::string::npos; at = s.find(text, at + 1)) ++n;
+    return n;
+}
+
+}  // namespace
+
+TEST_CASE("tip: curves that coincide get their own dash patterns and a panel of their differences")
+{
+    ScratchDir scratch;
+    PlotArgs args;
+    args.kind = "tip";
+    // named as setup.sh names a scene's runs: the default title names the scene
+    fs::copy_file(fixture("run_amm.csv"), scratch.dir / "spinup_omega4-amm.csv");
+    fs::copy_file(fixture("run_fem.csv"), scratch.dir / "spinup_omega4-fem.csv");
+    args.files = {(scratch.dir / "spinup_omega4-amm.csv").string(), (scratch.dir / "spinup_omega4-fem.csv").string()};
+    args.labels = "AMM,FEM";
+    args.prefix = (scratch.dir / "tip").string();
+    const std::string script = plot_script(args);
+    CHECK(script.find("set title 'Tip deflection, spinup_omega4' noenhanced") != std::string::npos);
+    // AMM's and FEM's tips differ by at most 1e-4 m of 0.5 m: a line each, solid and dashed, then the panel
+    CHECK(script.find("using 't':'tip_uy' with lines lw 3.0 dt 1 lc 1 title 'AMM'") != std::string::npos);
+    CHECK(script.find("using 't':'tip_uy' with lines lw 2.5 dt 2 lc 2 title 'FEM'") != std::string::npos);
+    CHECK(count(script, "  set multiplot\n") == 1);
+    CHECK(script.find("$difference2 using 1:2 with lines lw 2.5 dt 2 lc 2 title 'FEM - AMM'") != std::string::npos);
+    // the panel's rows: FEM's tip_uy minus AMM's at each time, from the files as this test reads them
+    const auto amm = csv_rows(fixture("run_amm.csv")), fem = csv_rows(fixture("run_fem.csv"));
+    REQUIRE(amm.size() == fem.size());
+    std::string expected;
+    for (std::size_t i = 1; i < fem.size(); ++i) {
+        REQUIRE(amm[i][0] == fem[i][0]);  // the same times
+        char line[64];
+        std::snprintf(line, sizeof line, "%s,%.4e\n", fem[i][0].c_str(), std::stod(fem[i][3]) - std::stod(amm[i][3]));
+        expected += line;
+    }
+    const std::string printed = gnuplot_prints(
+        scratch.dir, script, "print $difference2");
+    std::string rounded;  // gnuplot prints the block's lines as written: round them as expected is
+    std::size_t start = 0;
+    for (std::size_t end; (end = printed.find('\n', start)) != std::string::npos; start = end + 1) {
+        const std::string row = printed.substr(start, end - start);
+        if (row.empty()) continue;
+        const std::size_t comma = row.find(',');
+        char line[64];
+        std::snprintf(line, sizeof line, "%s,%.4e\n", row.substr(0, comma).c_str(), std::stod(row.substr(comma + 1)));
+        rounded += line;
+    }
+    CHECK(rounded == expected);
+    CHECK(fs::file_size(args.prefix + ".png") > 0);
+
+    SECTION("curves apart (a tip ten times AMM's) need no difference panel")
+    {
+        auto rows = amm;
+        for (std::size_t i = 1; i < rows.size(); ++i) rows[i][3] = std::to_string(10.0 * std::stod(rows[i][3]));
+        write_permuted(rows, {0, 1, 2, 3, 4, 5, 6, 7, 8, 9}, scratch.dir / "spinup_omega4-big.csv");
+        args.files[1] = (scratch.dir / "spinup_omega4-big.csv").string();
+        const std::string apart = plot_script(args);
+        CHECK(apart.find("multiplot") == std::string::npos);
+        CHECK(apart.find("$difference") == std::string::npos);
+        CHECK(apart.find(" dt 2 lc 2 title 'FEM'") != std::string::npos);  // still dashed
+    }
+}
+
+TEST_CASE("every kind reads its columns by name, in any order, and names a missing one")
+{
+    ScratchDir scratch;
+    PlotArgs args;
+    args.kind = "campbell";
+    args.prefix = (scratch.dir / "campbell").string();
+    // modes.csv with its columns reversed: the same lines of the same rows
+    const auto rows = csv_rows(fixture("modes.csv"));
+    std::vector<std::size_t> reversed;
+    for (std::size_t i = rows[0].size(); i-- > 0;) reversed.push_back(i);
+    write_permuted(rows, reversed, scratch.dir / "reversed.csv");
+    args.files = {(scratch.dir / "reversed.csv").string()};
+    CHECK(gnuplot_prints(scratch.dir, plot_script(args), "print $mode1\nprint $mode4") ==
+          "0,0.46335\n4,0.53201\n\n0,2.9175\n4,3.0879\n\n");
+
+    // a modes CSV without its kind column: refused, naming the file and the column
+    std::vector<std::size_t> without_kind;
+    for (std::size_t i = 0; i < rows[0].size(); ++i)
+        if (rows[0][i] != "kind") without_kind.push_back(i);
+    write_permuted(rows, without_kind, scratch.dir / "no_kind.csv");
+    args.files = {(scratch.dir / "no_kind.csv").string()};
+    CHECK_THROWS_WITH(plot_script(args), Catch::StartsWith((scratch.dir / "no_kind.csv").string() +
+                                                           ": expected a modes CSV for kind campbell") &&
+                                             Catch::Contains("it needs the column kind"));
+
+    // a field CSV with its columns rotated draws the same moment
+    const auto fields = csv_rows(fixture("fields_fem.csv"));
+    std::vector<std::size_t> rotated;
+    for (std::size_t i = 0; i < fields[0].size(); ++i) rotated.push_back((i + 3) % fields[0].size());
+    write_permuted(fields, rotated, scratch.dir / "rotated.csv");
+    args.kind = "moment";
+    args.files = {(scratch.dir / "rotated.csv").string()};
+    args.time = "0.6";
+    CHECK(gnuplot_prints(scratch.dir, plot_script(args), "print $moment1").substr(0, 17) == "0,-12\n1,-9.8\n2,-7");
+}
+
+TEST_CASE("legend entries fit their box: the key is widened for proportional fonts")
+{
+    PlotArgs args;
+    args.kind = "axial";
+    args.files = {fixture("run_amm.csv")};
+    args.prefix = "never-written";
+    const std::string script = plot_script(args);
+    CHECK(script.find("set key outside right top box width 2") != std::string::npos);
 }

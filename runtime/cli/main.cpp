@@ -383,7 +383,7 @@ int bench(const std::string& scene_path, const BenchArgs& args)
     std::ostringstream quiet;
     std::ostream& progress = ::isatty(STDERR_FILENO) ? std::cerr : quiet;  // progress lines on a terminal only
     const int refused = refusing(scene.path, [&] {
-        if (options.table1) run_table1(scene, options, std::cout, stop);
+        if (options.table1) run_table1(scene, options, std::cout, std::cerr, stop);  // a minute: progress always
         else run_bench(scene, options, std::cout, progress, stop);
         return exit_ok;
     });

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <utility>
 
+#include "csv_columns.hpp"
 #include "linearize.hpp"
 #include "option_lists.hpp"
 #include "output.hpp"
@@ -105,7 +106,13 @@ ModesOptions parse_modes_options(const ModesArgs& args, const Scene& scene)
     return o;
 }
 
-const char* modes_header() { return "method,ny,nx,order,drive,omega,mode,kind,rad_s,hz,dimensionless,growth"; }
+const char* modes_header()
+{
+    // The one list of the modes CSV's columns, in the order run_modes writes them; readers look them up by name.
+    static const std::string h = csv_header({"method", "ny", "nx", "order", "drive", "omega", "mode", "kind", "rad_s",
+                                             "hz", "dimensionless", "growth"});
+    return h.c_str();
+}
 
 void run_modes(const Scene& scene, const ModesOptions& o, std::ostream& out)
 {

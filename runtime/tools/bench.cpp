@@ -12,6 +12,7 @@
 #include <ostream>
 #include <sstream>
 
+#include "csv_columns.hpp"
 #include "integrate.hpp"
 #include "oscillation.hpp"
 #include "option_lists.hpp"
@@ -98,15 +99,42 @@ Scene variant_scene(const Scene& base, const VariantKey& key, const std::string&
 
 std::string number(double x) { return x < 0.0 ? std::string() : shortest(x); }
 
+/// The bench CSV's columns: the one definition of its header and of how a row fills each column.
+struct BenchColumn {
+    const char* name;
+    std::string (*text)(const BenchRow&);
+};
+
+const std::vector<BenchColumn>& bench_columns()
+{
+    static const std::vector<BenchColumn> columns{
+        {"method", [](const BenchRow& r) { return to_string(r.key.method); }},
+        {"nx", [](const BenchRow& r) { return std::to_string(r.key.nx); }},
+        {"ny", [](const BenchRow& r) { return std::to_string(r.key.ny); }},
+        {"order", [](const BenchRow& r) { return to_string(r.key.order); }},
+        {"stepper", [](const BenchRow& r) { return r.stepper; }},
+        {"rtol", [](const BenchRow& r) { return shortest(r.rtol); }},
+        {"atol", [](const BenchRow& r) { return shortest(r.atol); }},
+        {"time_error", [](const BenchRow& r) { return number(r.time_error); }},
+        {"disc_error", [](const BenchRow& r) { return number(r.disc_error); }},
+        {"jacobi_drift", [](const BenchRow& r) { return number(r.jacobi_drift); }},
+        {"wall_median", [](const BenchRow& r) { return number(r.wall_median); }},
+        {"wall_min", [](const BenchRow& r) { return number(r.wall_min); }},
+        {"wall_max", [](const BenchRow& r) { return number(r.wall_max); }},
+        {"repeats", [](const BenchRow& r) { return std::to_string(r.repeats); }},
+        {"steps", [](const BenchRow& r) { return std::to_string(r.steps); }},
+        {"rhs_evals", [](const BenchRow& r) { return std::to_string(r.rhs_evals); }},
+        {"jacobian_evals", [](const BenchRow& r) { return std::to_string(r.jacobian_evals); }},
+        {"status", [](const BenchRow& r) { return csv_field(r.status); }},
+    };
+    return columns;
+}
+
 std::string csv_row(const BenchRow& r)
 {
-    std::ostringstream line;
-    line << to_string(r.key.method) << "," << r.key.nx << "," << r.key.ny << "," << to_string(r.key.order) << ","
-         << r.stepper << "," << shortest(r.rtol) << "," << shortest(r.atol) << "," << number(r.time_error) << ","
-         << number(r.disc_error) << "," << number(r.jacobi_drift) << "," << number(r.wall_median) << ","
-         << number(r.wall_min) << "," << number(r.wall_max) << "," << r.repeats << "," << r.steps << "," << r.rhs_evals
-         << "," << r.jacobian_evals << "," << csv_field(r.status);
-    return line.str();
+    std::string line;
+    for (const BenchColumn& c : bench_columns()) line += (&c == &bench_columns().front() ? "" : ",") + c.text(r);
+    return line;
 }
 
 std::string seconds_text(double s)
@@ -116,15 +144,79 @@ std::string seconds_text(double s)
     return buf;
 }
 
-/// Writes and runs the gnuplot script of the figures; returns what went wrong, or empty.
-std::string plot(const std::string& prefix, const std::string& csv, std::ostream& out);
+/// x to three significant digits, for the messages.
+std::string three_digits(double x)
+{
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3g", x);
+    return buf;
+}
+
+/// Writes and runs the gnuplot script of the figures of the bench CSV csv (of scene `scene`, its converged reference
+/// good to `resolution` m); returns what went wrong, or empty.
+std::string plot(const std::string& prefix, const std::string& csv, const std::string& scene, double resolution,
+                 std::ostream& out);
+
+/// The method of the second converged reference, whose difference from the first is the first's resolution: BIM
+/// (it converges fastest in DOFs), or AMM when the reference is BIM.
+Method second_reference_method(Method reference) { return reference == Method::bim ? Method::amm : Method::bim; }
+
+/// The scene's name for titles: its file's stem.
+std::string scene_name(const Scene& scene)
+{
+    const std::size_t slash = scene.path.find_last_of('/');
+    std::string name = slash == std::string::npos ? scene.path : scene.path.substr(slash + 1);
+    if (const std::size_t dot = name.rfind('.'); dot != std::string::npos && dot > 0) name.resize(dot);
+    return name;
+}
+
+/// A row's error against the converged solution: the larger of its two errors (their maximum is that error up to
+/// the reference's own).
+double overall_error(const BenchRow& r) { return std::max(r.time_error, r.disc_error); }
+
+/// Prints the rows on the Pareto front, fastest first.
+void print_front(const std::vector<BenchRow>& rows, double resolution, std::ostream& out)
+{
+    std::vector<WorkPoint> points;
+    std::vector<const BenchRow*> ok;
+    for (const BenchRow& r : rows)
+        if (r.status == "ok") {
+            points.push_back({r.wall_median, overall_error(r)});
+            ok.push_back(&r);
+        }
+    if (points.empty()) return;
+    out << "Pareto front (errors within " << three_digits(resolution) << " m of each other are ties):\n";
+    for (const std::size_t i : pareto_front(points, resolution)) {
+        const BenchRow& r = *ok[i];
+        out << "  " << r.key.name() << " " << r.stepper << " rtol " << shortest(r.rtol) << ": "
+            << seconds_text(r.wall_median) << ", error " << three_digits(overall_error(r)) << " m\n";
+    }
+}
 
 }  // namespace
 
+std::vector<std::size_t> pareto_front(const std::vector<WorkPoint>& points, double resolution)
+{
+    std::vector<std::size_t> order(points.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return points[a].wall != points[b].wall ? points[a].wall < points[b].wall : points[a].error < points[b].error;
+    });
+    std::vector<std::size_t> front;
+    for (const std::size_t i : order)
+        // a slower point is on the front only if it beats the front's best error by more than a tie
+        if (front.empty() || points[i].error < points[front.back()].error - resolution) front.push_back(i);
+    return front;
+}
+
 const char* bench_header()
 {
-    return "method,nx,ny,order,stepper,rtol,atol,time_error,disc_error,jacobi_drift,wall_median,wall_min,wall_max,"
-           "repeats,steps,rhs_evals,jacobian_evals,status";
+    static const std::string header = [] {
+        std::string h;
+        for (const BenchColumn& c : bench_columns()) h += (h.empty() ? "" : ",") + std::string(c.name);
+        return h;
+    }();
+    return header.c_str();
 }
 
 BenchOptions parse_bench_options(const BenchArgs& args, const Scene& scene)
@@ -191,38 +283,42 @@ std::vector<BenchRow> run_bench(const Scene& scene, const BenchOptions& o, std::
     for (const std::string& s : skipped) out << "skipped " << s << "\n";
 
     // The converged reference: ref_method (AMM by default: its high modes are the beam's own, so an explicit
-    // stepper integrates it cheaply) at ref_ny, and at ref_ny - 4 to show how far it has converged; axial
-    // coordinates as many as bending ones when the grid has any.
+    // stepper integrates it cheaply) at ref_ny; axial coordinates as many as bending ones when the grid has any.
+    // Its own resolution is how far a second discretization converged as far (another method, its basis
+    // functions different, at the same DOF count) lies from it: errors closer to each other than that are ties.
     const bool axial = std::any_of(o.nx.begin(), o.nx.end(), [](int nx) { return nx > 0; });
-    VariantKey ref_key = scene.key(), coarse_key = scene.key();
-    ref_key.method = coarse_key.method = o.ref_method;
+    VariantKey ref_key = scene.key();
+    ref_key.method = o.ref_method;
     ref_key.ny = o.ref_ny;
-    coarse_key.ny = o.ref_ny - 4;
     ref_key.nx = axial ? o.ref_ny : 0;
-    coarse_key.nx = axial ? o.ref_ny - 4 : 0;
+    VariantKey second_key = ref_key;
+    second_key.method = second_reference_method(o.ref_method);
     const auto tight = [&](const VariantKey& k) {
         return variant_scene(scene, k, reference_stepper, reference_rtol, reference_atol, Stepping::rows);
     };
-    out << "references: " << ref_key.name() << " and " << coarse_key.name() << " (converged in DOFs), and each "
-        << "variant at " << reference_stepper << " rtol " << shortest(reference_rtol) << " with a step at every row\n"
+    out << "references: " << ref_key.name() << " (converged in DOFs; " << second_key.name()
+        << " for its resolution), and each variant at " << reference_stepper << " rtol " << shortest(reference_rtol)
+        << " with a step at every row\n"
         << std::flush;
     const auto start = now();
-    for (const VariantKey& k : {ref_key, coarse_key})
+    for (const VariantKey& k : {ref_key, second_key})
         if (const std::string why = k.dof_problem(); !why.empty())
             throw BenchOptionError("--ref-ny: the reference " + k.name() + " is not a valid variant: " + why);
     const Collected converged = collect(tight(ref_key), stop);
-    const Collected coarse = collect(tight(coarse_key), stop);
+    const Collected second = collect(tight(second_key), stop);
     std::string converged_failure;
-    for (const Collected* c : {&converged, &coarse})
+    for (const Collected* c : {&converged, &second})
         if (!c->summary.completed && converged_failure.empty())
             converged_failure = "converged reference stopped at t = " + shortest(c->summary.t_reached) + ": " + c->summary.failure;
-    if (converged_failure.empty())
-        out << "converged reference: max |tip_uy| change from Ny = " << coarse_key.ny << " to " << ref_key.ny << ": "
-            << shortest(max_difference(converged.rows, coarse.rows))
-            << " m (discretization errors below this are not resolved)\n";
-    else
+    double resolution = 0.0;
+    if (converged_failure.empty()) {
+        resolution = max_difference(converged.rows, second.rows);
+        out << "converged reference: max |tip_uy| difference between " << ref_key.name() << " and "
+            << second_key.name() << ": " << three_digits(resolution)
+            << " m (its resolution: errors within it of each other are ties on the Pareto front)\n";
+    } else {
         out << converged_failure << "; no errors are reported\n";
-
+    }
     // Estimate: a probe of every grid point over a thirtieth of the scene, scaled to the whole. An explicit stepper
     // on stiff equations is held by stability once the stiff modes are excited, which the probe's first moments
     // do not show: its run takes at least t_end omega_max / stability_step_factor steps at the probe's cost each.
@@ -249,7 +345,14 @@ std::vector<BenchRow> run_bench(const Scene& scene, const BenchOptions& o, std::
             }
     }
     const std::size_t points = keys.size() * o.steppers.size() * o.rtols.size();
-    out << points << " runs x " << o.repeats << " repeats; estimated time " << seconds_text(estimate) << "\n"
+    // A lower bound: the probes see the cost of a step, not the steps a tolerance needs once the response has
+    // grown (an adaptive stepper shortens its steps then), and leave out compiling variants not yet cached.
+    out << points << " runs x " << o.repeats << " repeats and " << keys.size()
+        << " same-discretization references; estimated time at least " << seconds_text(estimate)
+        << " (from probes over the first " << shortest(probe_fraction * scene.output.t_end)
+        << " s scaled to the whole, no step longer than an explicit stepper's stability bound; the references and "
+           "probes, with compiling the variants not cached yet, took "
+        << seconds_text(since(start)) << " so far)\n"
         << std::flush;
     if (estimate > refuse_seconds && !o.yes)
         throw BenchOptionError("the grid is estimated at " + seconds_text(estimate) +
@@ -303,13 +406,17 @@ std::vector<BenchRow> run_bench(const Scene& scene, const BenchOptions& o, std::
     }
     csv.finish();
     if (!csv.ok()) throw std::runtime_error(csv.error());
-    out << rows.size() << " of " << points << " runs in " << seconds_text(since(start)) << "; CSV: " << o.output << "\n";
+    out << rows.size() << " of " << points << " runs in " << seconds_text(since(start)) << " with the references"
+        << "; CSV: " << o.output << "\n";
+    print_front(rows, resolution, out);
     if (!o.plot.empty())
-        if (const std::string problem = plot(o.plot, o.output, out); !problem.empty()) out << "no figures: " << problem << "\n";
+        if (const std::string problem = plot(o.plot, o.output, scene_name(scene), resolution, out); !problem.empty())
+            out << "no figures: " << problem << "\n";
     return rows;
 }
 
-void run_table1(const Scene& scene, const BenchOptions& o, std::ostream& out, const StopRequest& stop)
+void run_table1(const Scene& scene, const BenchOptions& o, std::ostream& out, std::ostream& progress,
+                const StopRequest& stop)
 {
     // Paper Table 1 (Omega0 = 4 rad/s): relative computation time, error (%), amplitude (m), frequency (Hz);
     // BIM's time is the unit (its cell is blank in the paper's text, the unit by the others' ratios).
@@ -325,9 +432,16 @@ void run_table1(const Scene& scene, const BenchOptions& o, std::ostream& out, co
     ref_key.method = o.ref_method;
     ref_key.ny = o.ref_ny;
     ref_key.nx = scene.variant.nx > 0 ? o.ref_ny : 0;
+    const auto start = std::chrono::steady_clock::now();
+    const auto elapsed = [&] {
+        return seconds_text(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    };
     const Collected converged =
         collect(variant_scene(scene, ref_key, reference_stepper, reference_rtol, reference_atol, Stepping::rows), stop);
     if (!converged.summary.completed) throw std::runtime_error("the converged reference stopped: " + converged.summary.failure);
+    progress << "[reference] " << ref_key.name() << " at " << reference_stepper << " rtol " << shortest(reference_rtol)
+             << ": done after " << elapsed() << "\n"
+             << std::flush;
     double peak = 0.0;
     for (const Row& r : converged.rows) peak = std::max(peak, std::abs(r.tip_uy));
     const double t_steady = converged.summary.t_steady;  // the drive's last breakpoint
@@ -355,6 +469,10 @@ void run_table1(const Scene& scene, const BenchOptions& o, std::ostream& out, co
         r.amplitude = osc.amplitude;
         r.frequency = osc.frequency;
         ours.push_back(r);
+        progress << "[" << ours.size() << "/" << std::size(paper) << "] " << k.name() << ": " << r.stepper << " "
+                 << seconds_text(r.time_auto) << ", msadams " << seconds_text(r.time_msadams) << " (median of "
+                 << o.repeats << "); done after " << elapsed() << "\n"
+                 << std::flush;
     }
     const double unit_auto = ours[2].time_auto, unit_adams = ours[2].time_msadams;  // BIM, as in the paper
     char line[512];
@@ -383,82 +501,138 @@ void run_table1(const Scene& scene, const BenchOptions& o, std::ostream& out, co
 
 namespace {
 
-std::string plot(const std::string& prefix, const std::string& csv, std::ostream& out)
+/// The figures' script and the data files beside the CSV that it reads.
+struct BenchFigures {
+    std::string script, front, dofs;
+};
+
+/// The figures of the bench CSV at csv, read back by column name: a line per method and stepper in the CSV (a
+/// colour per method, a point type and dash pattern per stepper, so that no two lines look alike), the Pareto
+/// front, and the smallest error per method against Ny (ticks at the grid's Ny), with the reference's resolution.
+BenchFigures bench_figures(const std::string& prefix, const std::vector<std::string>& figures, const std::string& csv,
+                           const std::string& scene, double resolution)
 {
-    // The Pareto front: rows no other row beats in both wall time and error (time and discretization error
-    // together: their maximum is the error against the converged solution up to the reference's own).
-    const std::string script_path = prefix + ".gp";
-    // The script drawing the figures work and dofs into the given prefixes (draw_figures draws them into temporary
-    // files first).
-    const auto script_for = [&](const std::vector<std::string>& figures) {
-        std::ostringstream gp;
-        gp << "# gnuplot script written by hubbeam bench: work-precision figures from " << csv << "\n"
-           << figure_style()
-           << "set logscale xy\n"
-              "set format y '10^{%L}'\n"
-              "methods = 'amm fem bim bsim'\n"
-              "steppers = system(\"tail -n +2 '"
-           << csv << "' | cut -d, -f5 | sort -u | tr '\\n' ' '\")\n"
-              "ok(s) = (strcol(18) eq 'ok') ? s : NaN\n"
-              "err(c1, c2) = (column(c1) > column(c2) ? column(c1) : column(c2))\n"
-           << in_png_and_svg(figure_output(figures[0]) +
-                             "  set title 'Work against precision: tip deflection error against the converged solution'\n"
-                             "  set xlabel 'wall time per run (s, in process, median)'\n"
-                             "  set ylabel 'max |tip u_y - reference| (m)'\n"
-                             "  plot for [m in methods] for [s in steppers] '" +
-                             csv +
-                             "' using (strcol(1) eq m && strcol(5) eq s ? ok(column(11)) : NaN):(err(8, 9)) with "
-                             "linespoints title m.' '.s, \\\n"
-                             "       '" +
-                             prefix + "-front.dat' using 1:2 with steps lw 3 lc rgb 'black' title 'Pareto front'\n" +
-                             figure_output(figures[1]) +
-                             "  set title 'Discretization error against DOF count (tightest tolerance of the grid)'\n"
-                             "  set xlabel 'transverse DOFs N_y'\n"
-                             "  set ylabel 'max |tip u_y - converged reference| (m)'\n"
-                             "  plot for [m in methods] '" +
-                             prefix + "-dofs.dat' using (strcol(1) eq m ? column(2) : NaN):3 with linespoints title m\n");
-        return gp.str();
-    };
-    // The data the script needs beside the CSV: the front and the DOF convergence, computed here.
     struct Point {
         std::string method, stepper;
         int ny;
-        double rtol, wall, error;
+        double wall, error;
     };
     std::vector<Point> points;
     std::ifstream in(csv);
     std::string line;
     std::getline(in, line);
+    const CsvColumns columns(csv, line);
+    const std::size_t method = columns.at("method"), stepper = columns.at("stepper"), ny = columns.at("ny"),
+                      wall = columns.at("wall_median"), time_error = columns.at("time_error"),
+                      disc_error = columns.at("disc_error"), status = columns.at("status");
     while (std::getline(in, line)) {
-        std::vector<std::string> f;
-        std::stringstream ss(line);
-        for (std::string item; std::getline(ss, item, ',');) f.push_back(item);
-        if (f.size() < 18 || f[17] != "ok") continue;
-        points.push_back({f[0], f[4], std::atoi(f[2].c_str()), std::atof(f[5].c_str()), std::atof(f[10].c_str()),
-                          std::max(std::atof(f[7].c_str()), std::atof(f[8].c_str()))});
+        const std::vector<std::string> f = csv_fields(line);
+        if (f.size() != columns.size() || f[status] != "ok") continue;
+        points.push_back({f[method], f[stepper], std::atoi(f[ny].c_str()), std::atof(f[wall].c_str()),
+                          std::max(std::atof(f[time_error].c_str()), std::atof(f[disc_error].c_str()))});
     }
-    std::sort(points.begin(), points.end(), [](const Point& a, const Point& b) { return a.wall < b.wall; });
-    std::ostringstream front;
-    double best = HUGE_VAL;
-    for (const Point& p : points)
-        if (p.error < best) {
-            best = p.error;
-            front << p.wall << "," << p.error << "\n";
-        }
-    std::map<std::pair<std::string, int>, double> dofs;  // the smallest error per method and Ny
+    // The series present, in a fixed order of methods and steppers, so that a method keeps its colour and a
+    // stepper its marker from one figure to the next.
+    const std::vector<std::string> all_steppers = stepper_names();
+    const auto method_index = [](const std::string& m) {
+        const std::vector<std::string> names = words<Method>();
+        return static_cast<std::size_t>(std::find(names.begin(), names.end(), m) - names.begin());
+    };
+    const auto stepper_index = [&](const std::string& st) {
+        return static_cast<std::size_t>(std::find(all_steppers.begin(), all_steppers.end(), st) - all_steppers.begin());
+    };
+    std::vector<std::pair<std::size_t, std::size_t>> series;  // (method, stepper) indices
+    std::vector<std::size_t> methods;
+    std::vector<int> nys;
     for (const Point& p : points) {
-        auto [it, added] = dofs.emplace(std::make_pair(p.method, p.ny), p.error);
+        add_unique(series, std::make_pair(method_index(p.method), stepper_index(p.stepper)));
+        add_unique(methods, method_index(p.method));
+        add_unique(nys, p.ny);
+    }
+    std::sort(series.begin(), series.end());
+    std::sort(methods.begin(), methods.end());
+    std::sort(nys.begin(), nys.end());
+    const std::vector<std::string> method_names = words<Method>();
+    static const char* const dashes[] = {"1", "2", "3", "4", "5", "(20,6,3,6,3,6)", "(4,8)", "(30,10)"};
+    const auto quoted = [](const std::string& s) { return "'" + s + "'"; };  // names of methods and steppers
+
+    std::string work = "  plot ";
+    for (std::size_t i = 0; i < series.size(); ++i) {
+        const auto [m, st] = series[i];
+        work += (i ? ", \\\n       " : "") + quoted(csv) + " using (strcol('method') eq " + quoted(method_names[m]) +
+                " && strcol('stepper') eq " + quoted(all_steppers[st]) +
+                " && strcol('status') eq 'ok' ? column('wall_median') : NaN):(larger(column('time_error'), column('disc_error')))"
+                " with linespoints lw 1.5 lc " +
+                std::to_string(m + 1) + " pt " + std::to_string(st % 13 + 1) + " dt " + dashes[st % 8] +
+                " title " + quoted(method_names[m] + " " + all_steppers[st]);
+    }
+    work += ", \\\n       '" + prefix + "-front.dat' using 'wall':'error' with steps lw 3 lc rgb 'black' title 'Pareto front'";
+    std::string dofs = "  plot ";
+    for (std::size_t i = 0; i < methods.size(); ++i)
+        dofs += (i ? ", \\\n       " : "") + ("'" + prefix + "-dofs.dat' using (strcol('method') eq " +
+                                            quoted(method_names[methods[i]]) + " ? column('ny') : NaN):'error' " +
+                                            "with linespoints lw 2 pt 7 lc " + std::to_string(methods[i] + 1) +
+                                            " title " + quoted(method_names[methods[i]]));
+    if (resolution > 0.0)
+        dofs += ", \\\n       " + shortest(resolution) +
+                " with lines dt 2 lw 2 lc rgb 'gray40' title 'reference resolution'";
+    std::string ny_tics;
+    for (const int n : nys) ny_tics += (ny_tics.empty() ? "" : ", ") + std::to_string(n);
+
+    BenchFigures f;
+    f.script = "# gnuplot script written by hubbeam bench: work-precision figures from " + csv + "\n" + figure_style() +
+               "set logscale xy\n"
+               "set format y '10^{%L}'\n"
+               "larger(a, b) = a > b ? a : b\n" +
+               in_png_and_svg(figure_output(figures[0]) + "  set title " +
+                              gnuplot_string("Work against precision, " + scene +
+                                             ": tip deflection error against the converged solution") +
+                              " noenhanced\n"
+                              "  set xlabel 'wall time per run (s, in process, median)'\n"
+                              "  set ylabel 'max |tip u_y - reference| (m)'\n"
+                              "  set xtics autofreq\n" +
+                              work + "\n" + figure_output(figures[1]) + "  set title " +
+                              gnuplot_string("Discretization error against DOF count, " + scene +
+                                             " (the smallest error of each method and N_y)") +
+                              " noenhanced\n"
+                              "  set xlabel 'transverse DOFs N_y'\n"
+                              "  set ylabel 'max |tip u_y - converged reference| (m)'\n"
+                              "  set xtics (" + ny_tics + ")\n" +
+                              dofs + "\n");
+    // The front (errors within the reference's resolution are ties) and the DOF convergence, computed here.
+    std::vector<WorkPoint> plane;
+    for (const Point& p : points) plane.push_back({p.wall, p.error});
+    f.front = "wall,error\n";
+    for (const std::size_t i : pareto_front(plane, resolution))
+        f.front += shortest(points[i].wall) + "," + shortest(points[i].error) + "\n";
+    std::map<std::pair<std::string, int>, double> smallest;  // the smallest error per method and Ny
+    for (const Point& p : points) {
+        auto [it, added] = smallest.emplace(std::make_pair(p.method, p.ny), p.error);
         if (!added) it->second = std::min(it->second, p.error);
     }
-    std::ostringstream d;
-    for (const auto& [k, e] : dofs) d << k.first << "," << k.second << "," << e << "\n";
-    for (const auto& [path, text] : {std::pair{prefix + "-front.dat", front.str()}, std::pair{prefix + "-dofs.dat", d.str()}}) {
+    f.dofs = "method,ny,error\n";
+    for (const auto& [k, e] : smallest) f.dofs += k.first + "," + std::to_string(k.second) + "," + shortest(e) + "\n";
+    return f;
+}
+
+std::string plot(const std::string& prefix, const std::string& csv, const std::string& scene, double resolution,
+                 std::ostream& out)
+{
+    const std::vector<std::string> names = {prefix + "-work", prefix + "-dofs"};
+    const BenchFigures figures = bench_figures(prefix, names, csv, scene, resolution);
+    const std::string script_path = prefix + ".gp";
+    // The data the script reads beside the CSV, then the figures (draw_figures draws them into temporary files).
+    for (const auto& [path, text] : {std::pair{prefix + "-front.dat", figures.front}, std::pair{prefix + "-dofs.dat", figures.dofs}}) {
         OutputFile file(path);
         if (const int error = file.write(text); error != 0) return path + ": write failed: " + std::strerror(error);
         if (const std::string why = file.commit(); !why.empty()) return path + ": " + why;
     }
-    const std::vector<std::string> figures = {prefix + "-work", prefix + "-dofs"};
-    if (const std::string problem = draw_figures(figures, script_path, script_for(figures), script_for); !problem.empty())
+    if (const std::string problem =
+            draw_figures(names, script_path, figures.script,
+                         [&](const std::vector<std::string>& temp) {
+                             return bench_figures(prefix, temp, csv, scene, resolution).script;
+                         });
+        !problem.empty())
         return problem;
     out << "figures: " << prefix << "-work.{png,svg}, " << prefix << "-dofs.{png,svg} (script " << script_path << ")\n";
     return {};

@@ -65,6 +65,16 @@ struct BenchRow {
     std::string status = "ok";  // or why the run (or its reference) stopped early
 };
 
+/// A run on the work-precision plane: its wall time (s) and its error (m).
+struct WorkPoint {
+    double wall = 0.0, error = 0.0;
+};
+
+/// The indices of points on the Pareto front, fastest first: the fastest point, then each slower point whose error
+/// is below the front's best so far by more than `resolution` (the converged reference's own: differences within
+/// it are ties, so a slower run that is "better" by less than that is not on the front).
+std::vector<std::size_t> pareto_front(const std::vector<WorkPoint>& points, double resolution);
+
 /// The CSV header of BenchRow.
 const char* bench_header();
 
@@ -78,7 +88,9 @@ std::vector<BenchRow> run_bench(const Scene& scene, const BenchOptions& options,
 /// The paper's Table 1 redone on scene (its spin-up to 4 rad/s): for each method at Ny = 4 (the scene's Nx),
 /// the relative run time with the scene's stepper and with msadams (median of options.repeats), the error against
 /// the converged reference in percent of the largest deflection, and the steady amplitude and frequency, beside
-/// the paper's values. Prints the table to out.
-void run_table1(const Scene& scene, const BenchOptions& options, std::ostream& out, const StopRequest& stop);
+/// the paper's values. Prints the table to out, and a line per finished case to progress (the table comes at the
+/// end, after about a minute).
+void run_table1(const Scene& scene, const BenchOptions& options, std::ostream& out, std::ostream& progress,
+                const StopRequest& stop);
 
 }  // namespace hubbeam

@@ -19,9 +19,13 @@
 
 #include <unistd.h>
 
+#include "csv_columns.hpp"
+#include "fields.hpp"
+#include "modes.hpp"
 #include "option_lists.hpp"
 #include "output_file.hpp"
 #include "scene.hpp"
+#include "shortest.hpp"
 #include "simulate.hpp"
 
 namespace hubbeam {
@@ -46,7 +50,7 @@ std::string gnuplot_string(std::string_view text)
 std::string figure_style()
 {
     return "set datafile separator ','\n"
-           "set key outside right top box\n"
+           "set key outside right top box width 2\n"
            "set grid\n";
 }
 
@@ -83,20 +87,22 @@ std::string run_gnuplot(const std::string& script_path)
 
 namespace {
 
-/// A CSV format that kinds read: its header, exactly, and what it is called in messages.
+/// A CSV format that kinds read: what it is called in messages, and its header (the writer's one definition).
 struct CsvFormat {
-    const char* name;    // "a run CSV"
-    const char* header;  // the first line
+    const char* name;                // "a run CSV"
+    const char* (*header)();         // the first line the writer puts
 };
 
-const CsvFormat run_csv{"a run CSV", row_header()};
-const CsvFormat modes_csv{"a modes CSV", "method,ny,nx,order,drive,omega,mode,kind,rad_s,hz,dimensionless,growth"};
-const CsvFormat field_csv{"a field CSV", "t,x,uy,ux,slope,curvature,bending_moment,axial_force"};
+const CsvFormat run_csv{"a run CSV", row_header};
+const CsvFormat modes_csv{"a modes CSV", modes_header};
+const CsvFormat field_csv{"a field CSV", FieldRecorder::header};
 
-/// A kind of figure: the format it reads, the columns it needs as numbers, its default title.
+/// A kind of figure: the format it reads, the columns it reads (by name), those of them that must be numbers, and
+/// its default title (followed by what the files' names say the scene is).
 struct Kind {
     const char* name;
     const CsvFormat* format;
+    std::vector<std::string> columns;
     std::vector<std::string> numeric;
     const char* title;
 };
@@ -104,21 +110,15 @@ struct Kind {
 const std::vector<Kind>& kinds()
 {
     static const std::vector<Kind> table{
-        {"tip", &run_csv, {"t", "tip_uy"}, "Tip deflection"},
-        {"axial", &run_csv, {"t", "tip_ux1", "tip_ux"}, "Longitudinal tip deformation with and without foreshortening"},
-        {"campbell", &modes_csv, {"ny", "omega", "mode", "hz"}, "Campbell diagram"},
-        {"moment", &field_csv, {"t", "x", "bending_moment"}, "Bending moment along the beam"},
+        {"tip", &run_csv, {"t", "tip_uy"}, {"t", "tip_uy"}, "Tip deflection"},
+        {"axial", &run_csv, {"t", "tip_ux1", "tip_ux"}, {"t", "tip_ux1", "tip_ux"},
+         "Longitudinal tip deformation with and without foreshortening"},
+        {"campbell", &modes_csv, {"method", "ny", "nx", "order", "drive", "omega", "mode", "kind", "hz"},
+         {"ny", "omega", "mode", "hz"}, "Campbell diagram"},
+        {"moment", &field_csv, {"t", "x", "bending_moment"}, {"t", "x", "bending_moment"},
+         "Bending moment along the beam"},
     };
     return table;
-}
-
-std::vector<std::string> split(const std::string& line)
-{
-    std::vector<std::string> fields;
-    std::stringstream ss(line);
-    for (std::string item; std::getline(ss, item, ',');) fields.push_back(item);
-    if (!line.empty() && line.back() == ',') fields.emplace_back();  // getline drops a last empty field
-    return fields;
 }
 
 bool is_number(const std::string& s, double& v)
@@ -134,7 +134,7 @@ std::string header_seen(const std::string& header)
     std::vector<std::string> readers;
     const CsvFormat* format = nullptr;
     for (const Kind& k : kinds())
-        if (header == k.format->header) {
+        if (header == k.format->header()) {
             format = k.format;
             readers.emplace_back(k.name);
         }
@@ -143,10 +143,29 @@ std::string header_seen(const std::string& header)
            joined(readers) + " read" + (readers.size() > 1 ? "" : "s");
 }
 
-/// Reads path as kind's format: the header must be the format's, every row must have its fields and numbers in
-/// the kind's columns; each row goes to `row` as its fields. Throws PlotInputError naming the file.
-void read_csv(const std::string& path, const Kind& kind,
-              const std::function<void(const std::vector<std::string>&)>& row)
+/// One row of a CSV as read_csv passes it on: its fields, by the header's column names.
+class Record {
+public:
+    Record(const CsvColumns& columns, const std::vector<std::string>& fields) : columns_(columns), fields_(fields) {}
+    /// The field of column name (one of the kind's columns, which read_csv has checked are in the header).
+    const std::string& operator[](std::string_view name) const { return fields_[columns_.at(name)]; }
+    /// The same as a number (one of the kind's numeric columns, checked to hold one).
+    double number(std::string_view name) const
+    {
+        double v = 0.0;
+        is_number((*this)[name], v);
+        return v;
+    }
+
+private:
+    const CsvColumns& columns_;
+    const std::vector<std::string>& fields_;
+};
+
+/// Reads path as kind's format: the header must hold every column the kind reads (in any order, among others),
+/// every row must have the header's number of fields and numbers in the kind's numeric columns; each row goes to
+/// `row`. Throws PlotInputError naming the file (and the column).
+void read_csv(const std::string& path, const Kind& kind, const std::function<void(const Record&)>& row)
 {
     const std::string file = printable(path, 400);
     const auto bad = [&](const std::string& what) { throw PlotInputError(file + ": " + what); };
@@ -155,30 +174,29 @@ void read_csv(const std::string& path, const Kind& kind,
     if (const std::string kind = not_a_regular_file(path); !kind.empty()) bad("expected a regular file, got " + kind);
     std::ifstream in(path, std::ios::binary);
     if (!in) bad(std::string("cannot open: ") + std::strerror(errno));
-    const std::string expected = "expected " + std::string(kind.format->name) + " for kind " + kind.name + " (header " +
-                                 kind.format->header + ")";
+    const std::string expected =
+        "expected " + std::string(kind.format->name) + " for kind " + kind.name + " (header " + kind.format->header();
     std::string line;
-    if (!std::getline(in, line)) bad(expected + ", got an empty file");
+    if (!std::getline(in, line)) bad(expected + "), got an empty file");
     if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line != kind.format->header) bad(expected + ", got " + header_seen(line));
-    const std::vector<std::string> columns = split(line);
-    std::vector<std::size_t> numeric;
-    for (const std::string& name : kind.numeric)
-        numeric.push_back(static_cast<std::size_t>(std::find(columns.begin(), columns.end(), name) - columns.begin()));
+    const CsvColumns columns(file, line);
+    for (const std::string& name : kind.columns)
+        if (!columns.has(name)) bad(expected + "; it needs the column " + name + "), got " + header_seen(line));
     long line_number = 1, rows = 0;
     while (std::getline(in, line)) {
         ++line_number;
         if (!line.empty() && line.back() == '\r') line.pop_back();
         if (line.empty()) continue;  // a blank line (gnuplot's block separator) is no row
         const std::string at = "line " + std::to_string(line_number) + ": ";
-        const std::vector<std::string> fields = split(line);
+        const std::vector<std::string> fields = csv_fields(line);
         if (fields.size() != columns.size())
             bad(at + "expected " + std::to_string(columns.size()) + " comma-separated fields as in the header, got " +
                 std::to_string(fields.size()));
-        for (const std::size_t c : numeric)
-            if (double v = 0.0; !is_number(fields[c], v))
-                bad(at + "expected a number in column " + columns[c] + ", got '" + printable(fields[c], 40) + "'");
-        row(fields);
+        for (const std::string& name : kind.numeric)
+            if (double v = 0.0; !is_number(fields[columns.at(name)], v))
+                bad(at + "expected a number in column " + name + ", got '" + printable(fields[columns.at(name)], 40) +
+                    "'");
+        row(Record(columns, fields));
         ++rows;
     }
     if (in.bad()) bad(std::string("cannot read: ") + std::strerror(errno));
@@ -192,12 +210,16 @@ void check_text(const std::string& option, const std::string& text, const char* 
         bad_option<PlotInputError>(option, std::string(what) + " without control characters", printable(text, 120));
 }
 
-/// A figure of plot_script: what gnuplot computes before drawing, the axes, and the plot command's elements.
+/// A figure of plot_script: what gnuplot computes before drawing, the axes, and the plot command's elements; and,
+/// when its curves coincide to the eye, a panel below it of their differences against the first file's curve.
 struct Figure {
     std::string data;  // datablocks of selected rows
     std::string axes;  // set xlabel, set ylabel
     std::vector<std::string> elements;
     std::string title_suffix;  // " at t = 2 s"
+    std::string lower_axes;    // the difference panel's set xlabel, set ylabel; empty: no such panel
+    std::vector<std::string> lower_elements;
+    std::size_t longest_label = 0;  // characters of the longest legend entry
 };
 
 std::string title_of(const std::string& text)
@@ -205,30 +227,114 @@ std::string title_of(const std::string& text)
     return "title " + gnuplot_string(text) + " noenhanced";
 }
 
+/// The line style of the i-th file's curve in figures of a line per file: its own colour, its own dash pattern,
+/// and a width that shrinks from the first file's on, so that curves drawn on top of each other still show the
+/// ones below them (in the gaps of their dashes and at their edges).
+std::string line_style(std::size_t i)
+{
+    static const char* const dashes[] = {"1", "2", "3", "4", "5", "(20,6,3,6,3,6)", "(4,8)", "(30,10)"};
+    const double width = std::max(1.2, 3.0 - 0.5 * static_cast<double>(i));
+    char w[16];
+    std::snprintf(w, sizeof w, "%.1f", width);
+    return std::string(" lw ") + w + " dt " + dashes[i % std::size(dashes)] + " lc " + std::to_string(i + 1) + " ";
+}
+
+/// A curve read from a file: (t, value) in the file's order.
+using Series = std::vector<std::pair<double, double>>;
+
+/// Reads column `value` against t from every file (each checked as kind's format).
+std::vector<Series> read_series(const std::vector<std::string>& files, const Kind& kind, const char* value)
+{
+    std::vector<Series> all;
+    for (const std::string& file : files) {
+        Series s;
+        read_csv(file, kind, [&](const Record& r) { s.emplace_back(r.number("t"), r.number(value)); });
+        all.push_back(std::move(s));
+    }
+    return all;
+}
+
+/// b minus a at b's times inside a's span (a, its times ascending, interpolated linearly between its rows).
+Series difference(const Series& a, const Series& b)
+{
+    Series d;
+    for (const auto& [t, y] : b) {
+        if (a.empty() || !(t >= a.front().first && t <= a.back().first)) continue;
+        const auto after = std::upper_bound(a.begin(), a.end(), t, [](double x, const auto& p) { return x < p.first; });
+        const auto& [t0, y0] = *(after - 1);
+        double ya = y0;
+        if (after != a.end() && after->first > t0) ya += (after->second - y0) * (t - t0) / (after->first - t0);
+        d.emplace_back(t, y - ya);
+    }
+    return d;
+}
+
+/// Curves closer than this fraction of the figure's value range (a few pixels of a 640-pixel figure) are drawn on
+/// top of each other: the differences then get a panel of their own.
+constexpr double coincide_fraction = 0.02;
+
+/// Adds the panel of the differences of series[1..] against series[0], if any of them stays within
+/// coincide_fraction of the figure's range (otherwise the curves are told apart where they are drawn).
+void add_difference_panel(Figure& f, const std::vector<Series>& series, const std::vector<std::string>& labels,
+                          const std::string& quantity)
+{
+    if (series.size() < 2) return;
+    double lo = HUGE_VAL, hi = -HUGE_VAL;
+    for (const Series& s : series)
+        for (const auto& [t, y] : s) lo = std::min(lo, y), hi = std::max(hi, y);
+    std::vector<Series> differences;
+    bool coincide = false;
+    for (std::size_t i = 1; i < series.size(); ++i) {
+        differences.push_back(difference(series[0], series[i]));
+        double largest = 0.0;
+        for (const auto& [t, d] : differences.back()) largest = std::max(largest, std::abs(d));
+        coincide = coincide || largest <= coincide_fraction * (hi - lo);
+    }
+    if (!coincide) return;
+    f.lower_axes = "set xlabel 'time t (s)'\nset ylabel " + gnuplot_string(quantity + " - " + labels[0] + " (m)") +
+                   " noenhanced\n";
+    f.data += "# the differences against " + printable(labels[0], 80) + "'s curve, for the panel below\n";
+    for (std::size_t i = 1; i < series.size(); ++i) {
+        const std::string block = "$difference" + std::to_string(i + 1);
+        f.data += block + " << EOD\n";
+        for (const auto& [t, d] : differences[i - 1]) f.data += shortest(t) + "," + shortest(d) + "\n";
+        f.data += "EOD\n";
+        f.lower_elements.push_back(block + " using 1:2 with lines" + line_style(i) +
+                                   title_of(labels[i] + " - " + labels[0]));
+        f.longest_label = std::max(f.longest_label, labels[i].size() + 3 + labels[0].size());
+    }
+}
+
 /// Figures 3-4, 7-8 and 9-12 of the paper: tip_uy against t, a line per file.
-Figure tip_figure(const std::vector<std::string>& files, const std::vector<std::string>& labels)
+Figure tip_figure(const std::vector<std::string>& files, const std::vector<std::string>& labels, const Kind& kind)
 {
     Figure f;
     f.axes = "set xlabel 'time t (s)'\nset ylabel 'tip deflection u_y(L) (m)'\n";
     for (std::size_t i = 0; i < files.size(); ++i)
-        f.elements.push_back(gnuplot_string(files[i]) + " using 't':'tip_uy' with lines lw 2 lc " +
-                             std::to_string(i + 1) + " " + title_of(labels[i]));
+    {
+        f.elements.push_back(gnuplot_string(files[i]) + " using 't':'tip_uy' with lines" + line_style(i) +
+                             title_of(labels[i]));
+        f.longest_label = std::max(f.longest_label, labels[i].size());
+    }
+    add_difference_panel(f, read_series(files, kind, "tip_uy"), labels, "u_y(L)");
     return f;
 }
 
-/// Figures 5-6: per file, the tip's axial stretch u_x1 (dashed) and its displacement u_x with the foreshortening
-/// u_x2 = -1/2 int u_y'^2 (solid), both in the file's colour.
-Figure axial_figure(const std::vector<std::string>& files, const std::vector<std::string>& labels)
+/// Figures 5-6: per file, the tip's displacement u_x with the foreshortening u_x2 = -1/2 int u_y'^2 (thick) and
+/// its axial stretch u_x1 alone (thin, with points), both in the file's colour and dash pattern.
+Figure axial_figure(const std::vector<std::string>& files, const std::vector<std::string>& labels, const Kind& kind)
 {
     Figure f;
     f.axes = "set xlabel 'time t (s)'\nset ylabel 'longitudinal tip deformation (m)'\n";
     for (std::size_t i = 0; i < files.size(); ++i) {
-        const std::string colour = " lc " + std::to_string(i + 1) + " ";
-        f.elements.push_back(gnuplot_string(files[i]) + " using 't':'tip_ux1' with lines lw 2 dt 2" + colour +
-                             title_of(labels[i] + ": u_x1 (stretch only)"));
-        f.elements.push_back(gnuplot_string(files[i]) + " using 't':'tip_ux' with lines lw 2 dt 1" + colour +
+        const std::string colour = " dt " + std::to_string(i % 5 + 1) + " lc " + std::to_string(i + 1) + " ";
+        f.elements.push_back(gnuplot_string(files[i]) + " using 't':'tip_ux' with lines" + line_style(i) +
                              title_of(labels[i] + ": u_x (foreshortened)"));
+        f.elements.push_back(gnuplot_string(files[i]) + " using 't':'tip_ux1' with linespoints lw 1 pi 250 pt " +
+                             std::to_string(2 * i + 4) + " ps 1" + colour + title_of(labels[i] + ": u_x1 (stretch)"));
+        f.longest_label = std::max(f.longest_label, labels[i].size() + 22);
     }
+    add_difference_panel(f, read_series(files, kind, "tip_ux"), labels, "u_x(L)");
     return f;
 }
 
@@ -247,9 +353,9 @@ Figure campbell_figure(const std::vector<std::string>& files, const std::vector<
     std::vector<Line> lines;
     for (std::size_t file = 0; file < files.size(); ++file) {
         const std::size_t before = lines.size();
-        read_csv(files[file], kind, [&](const std::vector<std::string>& r) {
-            if (r[7] != "bending") return;
-            Line l{file, {r[0], r[1], r[2], r[3], r[4]}, r[6]};
+        read_csv(files[file], kind, [&](const Record& r) {
+            if (r["kind"] != "bending") return;
+            Line l{file, {r["method"], r["ny"], r["nx"], r["order"], r["drive"]}, r["mode"]};
             if (std::none_of(lines.begin() + static_cast<std::ptrdiff_t>(before), lines.end(),
                              [&](const Line& o) { return o.variant == l.variant && o.mode == l.mode; }))
                 lines.push_back(l);
@@ -316,12 +422,11 @@ Figure moment_figure(const std::vector<std::string>& files, const std::vector<st
     for (const std::string& file : files) {
         std::string best;
         double best_t = 0.0;
-        read_csv(file, kind, [&](const std::vector<std::string>& r) {
-            double t = 0.0;
-            is_number(r[0], t);
+        read_csv(file, kind, [&](const Record& r) {
+            const double t = r.number("t");
             // without --time the last t, with it the closest (the earlier of two as close)
             if (best.empty() || (time.empty() ? t >= best_t : std::abs(t - wanted) < std::abs(best_t - wanted))) {
-                best = r[0];
+                best = r["t"];
                 best_t = t;
             }
         });
@@ -343,6 +448,51 @@ Figure moment_figure(const std::vector<std::string>& files, const std::vector<st
     }
     f.data += "unset table\n";
     return f;
+}
+
+/// The scene the files are runs of, as their names say: the part of their stems that they share
+/// ("spinup_omega4" of spinup_omega4-amm.csv and spinup_omega4-fem.csv), else the stems, comma-separated.
+std::string scene_of(const std::vector<std::string>& files)
+{
+    std::vector<std::string> stems;
+    for (const std::string& f : files) stems.push_back(std::filesystem::path(f).stem().string());
+    std::string common = stems.front();
+    for (const std::string& s : stems) {
+        std::size_t n = 0;
+        while (n < common.size() && n < s.size() && common[n] == s[n]) ++n;
+        common.resize(n);
+    }
+    while (!common.empty() && std::string_view("-_ .,").find(common.back()) != std::string_view::npos)
+        common.pop_back();
+    if (common.size() >= 3) return common;
+    std::vector<std::string> unique;
+    for (const std::string& s : stems)
+        if (std::find(unique.begin(), unique.end(), s) == unique.end()) unique.push_back(s);
+    return joined(unique);
+}
+
+/// Script lines as the body of in_png_and_svg's loop.
+std::string indented(const std::string& lines)
+{
+    std::string out;
+    std::size_t start = 0;
+    while (start < lines.size()) {
+        const std::size_t end = lines.find('\n', start);
+        out += "  " + lines.substr(start, end == std::string::npos ? end : end - start + 1);
+        if (end == std::string::npos) break;
+        start = end + 1;
+    }
+    return out;
+}
+
+/// Where the panels of a two-panel figure end on the right (screen fraction): room for the widest legend entry.
+std::string right_edge(const Figure& f)
+{
+    const double chars = static_cast<double>(f.longest_label);
+    const double edge = std::clamp(0.93 - 0.0085 * chars - 0.06, 0.55, 0.85);
+    char buf[16];
+    std::snprintf(buf, sizeof buf, "%.3f", edge);
+    return buf;
 }
 
 }  // namespace
@@ -387,24 +537,36 @@ std::string plot_script(const PlotArgs& args)
 
     const std::string name = kind->name;
     Figure figure;
-    if (name == "tip" || name == "axial") {
-        for (const std::string& f : args.files) read_csv(f, *kind, [](const std::vector<std::string>&) {});
-        figure = name == "tip" ? tip_figure(args.files, labels) : axial_figure(args.files, labels);
-    } else if (name == "campbell") {
+    if (name == "tip") figure = tip_figure(args.files, labels, *kind);
+    else if (name == "axial") figure = axial_figure(args.files, labels, *kind);
+    else if (name == "campbell")
         // the labels name the lines once there is more than one file, or when given
         figure = campbell_figure(args.files, labels, args.files.size() > 1 || !args.labels.empty(), *kind);
-    } else {
+    else
         figure = moment_figure(args.files, labels, args.time, *kind);
-    }
-    const std::string title = args.title.empty() ? kind->title + figure.title_suffix : args.title;
+    const std::string title =
+        args.title.empty() ? kind->title + (", " + scene_of(args.files)) + figure.title_suffix : args.title;
 
-    std::string plot = "  plot ";
-    for (std::size_t i = 0; i < figure.elements.size(); ++i) plot += (i ? ", \\\n       " : "") + figure.elements[i];
+    const auto plot_of = [](const std::vector<std::string>& elements) {
+        std::string plot = "  plot ";
+        for (std::size_t i = 0; i < elements.size(); ++i) plot += (i ? ", \\\n       " : "") + elements[i];
+        return plot + "\n";
+    };
+    std::string body = figure_output(args.prefix) + "  set title " + gnuplot_string(title) + " noenhanced\n" +
+                       indented(figure.axes);
+    if (figure.lower_elements.empty()) body += plot_of(figure.elements);
+    else
+        // Two panels with the same left and right edges (the legends in the margin on the right), so that their
+        // time axes line up: the curves above, their differences against the first file's below.
+        body += "  set multiplot\n  set lmargin at screen 0.12\n  set rmargin at screen " + right_edge(figure) +
+                "\n  set tmargin at screen 0.93\n  set bmargin at screen 0.42\n  set xlabel ''\n" +
+                plot_of(figure.elements) + "  set title ''\n  set tmargin at screen 0.33\n  set bmargin at screen 0.09\n" +
+                indented(figure.lower_axes) + plot_of(figure.lower_elements) +
+                "  unset multiplot\n  unset lmargin\n  unset rmargin\n  unset tmargin\n  unset bmargin\n";
     std::string script =
         "# gnuplot script written by hubbeam plot " + name + " (redraw: gnuplot " + args.prefix + ".gp), from";
     for (const std::string& f : args.files) script += " " + f;
-    return script + "\n" + figure_style() + figure.data + "set title " + gnuplot_string(title) + " noenhanced\n" +
-           figure.axes + in_png_and_svg(figure_output(args.prefix) + plot + "\n");
+    return script + "\n" + figure_style() + figure.data + in_png_and_svg(body);
 }
 
 namespace {

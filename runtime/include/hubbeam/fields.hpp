@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "csv_columns.hpp"
 #include "model.hpp"
 
 namespace hubbeam {
@@ -71,8 +72,14 @@ public:
     const std::string& error() const;
     const std::string& path() const;
 
-    /// The CSV header.
-    static const char* header() { return "t,x,uy,ux,slope,curvature,bending_moment,axial_force"; }
+    /// The CSV header: the one list of the field CSV's columns, which state() writes in this order and readers
+    /// (hubbeam plot moment) look up by name.
+    static const char* header()
+    {
+        static const std::string h =
+            csv_header({"t", "x", "uy", "ux", "slope", "curvature", "bending_moment", "axial_force"});
+        return h.c_str();
+    }
 
 private:
     VariantKey key_;
