@@ -4,6 +4,7 @@ loopback only, serves a dashboard only when asked, ends cleanly on SIGTERM, and 
 Needs HUBBEAM and SOURCE_DIR."""
 import os
 import re
+import select
 import signal
 import subprocess
 import sys
@@ -23,7 +24,10 @@ def wait_for_line(child, pattern, timeout):
     seen = []
     end = time.monotonic() + timeout
     while time.monotonic() < end:
-        line = child.stderr.readline()
+        # Wait for output no longer than the time left: a child that prints nothing must not hang the test.
+        if not select.select([child.stderr], [], [], max(0.0, end - time.monotonic()))[0]:
+            break
+        line = child.stderr.readline().decode()  # unbuffered: select() sees every byte not yet read
         if not line:
             break
         seen.append(line)
@@ -50,7 +54,7 @@ class LocalClusterTest(unittest.TestCase):
                 f.write(f'scene = "{SPINUP}"\n[set]\nnx = 0\n"output.t_end" = 1e6\n"output.dt_out" = 1.0\n'
                         f'"solver.max_steps" = 1e12\n')
             children = [subprocess.Popen([HUBBEAM, "sweep", spec, "-o", os.path.join(d, f"{n}.csv"), "--workers", "1",
-                                          *extra], stderr=subprocess.PIPE, text=True)
+                                          *extra], stderr=subprocess.PIPE, bufsize=0)
                         for n, extra in (("plain", []), ("dashboard", ["--dashboard"]))]
             try:
                 lines = [wait_for_line(c, r"local cluster at (\S+)", 90)[0] for c in children]
@@ -73,7 +77,14 @@ class LocalClusterTest(unittest.TestCase):
             finally:
                 for c in children:
                     c.send_signal(signal.SIGTERM)
-                results = [(c.wait(timeout=30), c.stderr.read()) for c in children]
+                results = []
+                for c in children:
+                    try:
+                        code = c.wait(timeout=30)
+                    except subprocess.TimeoutExpired:  # not ended by SIGTERM: fail, but leave nothing running
+                        c.kill()
+                        code = c.wait()
+                    results.append((code, c.stderr.read().decode()))
             for code, err in results:
                 self.assertEqual(code, 143, err)
                 self.assertIn("terminated", err)
