@@ -98,6 +98,9 @@ class InvocationTest(unittest.TestCase):
                 f"table = hubbeam.sweep({{'scene': {SPINUP!r}, 'set': {{'output.t_end': 1.0}}, "
                 "'grid': {'ny': [4, 6]}, 'keep': ['max_abs_tip_uy', 'steps']}, output='t.csv', workers=2)\n"
                 "print(*(type(r[k]).__name__ for r in table for k in ('max_abs_tip_uy', 'steps', 'status')))\n")
+        # A notebook's cell: code without a file behind __main__, run while an event loop runs (as in a kernel).
+        cell = "import asyncio\nasync def cell():\n" + "".join("    " + line + "\n" for line in code.splitlines()) + \
+            "asyncio.run(cell())\n"
         with tempfile.TemporaryDirectory() as d:
             folders = [os.path.join(d, n) for n in ("script", "notebook", "stdin")]
             for f in folders:
@@ -105,7 +108,7 @@ class InvocationTest(unittest.TestCase):
             script = os.path.join(folders[0], "unguarded.py")
             with open(script, "w") as f:
                 f.write(code)
-            forms = [([sys.executable, script], None), ([sys.executable, "-c", code], None),
+            forms = [([sys.executable, script], None), ([sys.executable, "-c", cell], None),
                      ([sys.executable, "-"], code)]
             children = [subprocess.Popen(command, cwd=folder, stdin=subprocess.PIPE, stdout=subprocess.PIPE,
                                          stderr=subprocess.PIPE, text=True)
