@@ -29,7 +29,7 @@ keep = {KEEP!r}
 frequencies = 2
 
 [set]
-"output.t_end" = 5.0
+"output.t_end" = 2.0
 
 [grid]
 method = ["amm", "fem", "bim", "bsim"]
