@@ -7,7 +7,8 @@
 //   hubbeam bench SCENE.toml [--methods LIST] [--ny LIST] [--steppers LIST] [--rtols LIST] [-o FILE] [--plot PREFIX]
 //   hubbeam modes SCENE.toml [--omega LIST] [--methods LIST] [--ny LIST] [--count N] [-o FILE [--plot PREFIX]]
 //   hubbeam linearize SCENE.toml --omega W -o PREFIX
-//   hubbeam sweep SWEEP.toml [-o FILE] [--scheduler ADDRESS] [--workers N] [--no-resume]   (runtime/python: Dask)
+//   hubbeam sweep SWEEP.toml [-o FILE] [--scheduler tls://HOST:PORT --tls-ca-file --tls-cert --tls-key]
+//                 [--workers N] [--dashboard] [--no-resume]                                (runtime/python: Dask)
 //   hubbeam kernels [--ny LIST] [--methods LIST] [--drives LIST] [--orders LIST] [--nx LIST] [--samples N] [-o FILE]
 //
 // Every file is written through OutputFile (output_file.hpp); outputs are checked against the command's inputs and
@@ -455,7 +456,7 @@ int sweep(const std::vector<std::string>& args)
     std::cerr << "hubbeam: cannot start " << HUBBEAM_PYTHON_EXECUTABLE << " for the sweep: " << std::strerror(errno) << "\n";
 #else
     (void)args;
-    std::cerr << "hubbeam: sweep needs the Python module: configure with -DHUBBEAM_PYTHON=ON (README: Python module)\n";
+    std::cerr << "hubbeam: sweep needs the Python module: configure with -DHUBBEAM_PYTHON=ON (docs/python.md)\n";
 #endif
     return exit_bad_input;
 }
@@ -616,7 +617,8 @@ int main(int argc, char** argv)
     add_linear_overrides(*linearize_cmd, linearize_overrides, true);
     linearize_cmd->footer("README: Modes and linearized models. Exit code 2 for a bad option value.");
     CLI::App* sweep_cmd = app.add_subcommand(
-        "sweep", "Parameter sweep on Dask: SWEEP.toml [-o FILE] [--scheduler ADDRESS] [--workers N] [--no-resume]");
+        "sweep", "Parameter sweep on Dask: SWEEP.toml [-o FILE] [--scheduler tls://HOST:PORT --tls-ca-file CA "
+                 "--tls-cert CERT --tls-key KEY] [--workers N] [--dashboard] [--no-resume] (docs/python.md)");
     sweep_cmd->prefix_command();  // every argument goes to the sweep (hubbeam sweep --help describes them)
     sweep_cmd->set_help_flag();
     KernelArgs kernel_args;

@@ -5,6 +5,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <atomic>
 #include <chrono>
 #include <memory>
 #include <string>
@@ -13,13 +14,22 @@
 #include "hubbeam.hpp"
 #include "make_model.hpp"
 #include "on_demand.hpp"
+#include "shortest.hpp"
 
 namespace py = pybind11;
 using namespace hubbeam;
 
 namespace {
 
-constexpr int row_width = 10;  // the columns of Row, in row_header()'s order
+// The one place the module lists the run's columns: row_width and append_row() follow Row and row_header().
+constexpr int row_width = 10;
+
+/// r's values at the end of rows, in row_header()'s order.
+void append_row(std::vector<double>& rows, const Row& r)
+{
+    rows.insert(rows.end(), {r.t, r.theta, r.theta_dot, r.tip_uy, r.tip_ux1, r.tip_ux, r.kinetic, r.potential,
+                             r.momentum, r.jacobi});
+}
 
 /// The scene with the overrides set: the file at `text` when name is empty, else `text` itself (a scene written in
 /// code, named name in messages). Bad input raises ValueError with the command line's message.
@@ -29,6 +39,21 @@ Scene scene_of(const std::string& text, const std::string& name, const Overrides
         return name.empty() ? load_scene(text, overrides) : parse_scene(text, name, overrides);
     } catch (const SceneError& e) {
         throw py::value_error(message_for(e, overrides));
+    }
+}
+
+/// What a spin rate the model has no steady state at (the axial stretch diverges) raises: ValueError naming omega,
+/// as for any other rate the function cannot take.
+template <class Compute>
+auto at_spin(double omega, const Compute& compute)
+{
+    try {
+        return compute();
+    } catch (const CompileError&) {
+        throw;
+    } catch (const std::runtime_error& e) {
+        throw py::value_error("omega: expected a spin rate the scene's beam has a steady state at, got " +
+                              shortest(omega) + " rad/s: " + e.what());
     }
 }
 
@@ -56,13 +81,23 @@ py::array_t<double> rows_array(std::vector<double>&& rows)
                                owned->data(), free_rows);
 }
 
+/// Raised by cancel_runs(): a run started with cancellable set stops at its next row once this has changed since
+/// its start (an interrupted sweep's local workers are threads of this process: they stop instead of running on).
+std::atomic<long> cancel_generation{0};
+
 /// One run: the rows as an array and the summary's fields (hubbeam.run).
-py::dict run(const std::string& text, const std::string& name, const Overrides& overrides)
+py::dict run(const std::string& text, const std::string& name, const Overrides& overrides, bool cancellable)
 {
+    const long generation = cancel_generation.load();
     // What hubbeam run does in process, timed the same way: load, choose the model, integrate.
     const auto start = std::chrono::steady_clock::now();
     const Scene scene = scene_of(text, name, overrides);
-    std::unique_ptr<Simulation> simulation = guarded(scene, [&] { return std::make_unique<Simulation>(scene); });
+    std::unique_ptr<Simulation> simulation;
+    {
+        // Choosing the model may compile a variant for seconds: a sweep's other worker threads run meanwhile.
+        const py::gil_scoped_release release;
+        simulation = guarded(scene, [&] { return std::make_unique<Simulation>(scene); });
+    }
     std::vector<double> rows;
     RunSummary s;
     // Ctrl-C: Python's handler only marks the signal; every 0.1 s between rows the run takes the GIL back for a
@@ -70,6 +105,7 @@ py::dict run(const std::string& text, const std::string& name, const Overrides& 
     bool interrupted = false;
     auto asked = std::chrono::steady_clock::now();
     const StopRequest stop = [&]() -> const char* {
+        if (cancellable && cancel_generation.load() != generation) return "cancelled: the sweep was interrupted";
         const auto now = std::chrono::steady_clock::now();
         if (now - asked < std::chrono::milliseconds(100)) return nullptr;
         asked = now;
@@ -85,10 +121,7 @@ py::dict run(const std::string& text, const std::string& name, const Overrides& 
         const py::gil_scoped_release release;
         rows.reserve(static_cast<std::size_t>(row_width) *
                      static_cast<std::size_t>(std::min(1e7, scene.output.t_end / scene.output.dt_out + 2.0)));
-        s = simulation->run([&rows](const Row& r) {
-            rows.insert(rows.end(), {r.t, r.theta, r.theta_dot, r.tip_uy, r.tip_ux1, r.tip_ux, r.kinetic, r.potential,
-                                     r.momentum, r.jacobi});
-        }, stop);
+        s = simulation->run([&rows](const Row& r) { append_row(rows, r); }, stop);
     }
     if (interrupted) throw py::error_already_set();  // the KeyboardInterrupt that PyErr_CheckSignals set
     const double in_process = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -125,7 +158,13 @@ py::dict modes(const std::string& text, const std::string& name, const Overrides
     std::vector<SpinMode> rows;
     {
         const py::gil_scoped_release release;
-        rows = campbell(*model, omegas, scene.axial);
+        try {
+            rows = campbell(*model, omegas, scene.axial);
+        } catch (const std::runtime_error&) {
+            // Name the rate that has no steady state (ValueError) if that is what failed.
+            for (const double w : omegas) at_spin(w, [&] { return steady_spin(*model, w); });
+            throw;
+        }
     }
     std::vector<double> omega, rad_s, hz, dimensionless, growth;
     std::vector<int> number;
@@ -168,7 +207,7 @@ py::dict linearize(const std::string& text, const std::string& name, const Overr
     const Scene scene = scene_of(text, name, overrides);
     const VariantKey key = scene.key();
     const std::unique_ptr<Model> model = guarded(scene, [&] { return make_model(key, scene.parameters, scene.source); });
-    const StateSpace ss = state_space(*model, steady_spin(*model, omega));
+    const StateSpace ss = at_spin(omega, [&] { return state_space(*model, steady_spin(*model, omega)); });
     py::dict out;
     out["variant"] = key.name();
     out["A"] = matrix(ss.A);
@@ -195,7 +234,8 @@ PYBIND11_MODULE(_core, m)
 {
     m.doc() = "hubbeam's C++ core: use the functions of the hubbeam package instead";
     m.def("run", &run, "Runs a scene given as TOML text; returns the rows and the summary", py::arg("text"),
-          py::arg("name"), py::arg("overrides"));
+          py::arg("name"), py::arg("overrides"), py::arg("cancellable") = false);
+    m.def("cancel_runs", [] { ++cancel_generation; }, "Stops every cancellable run in progress in this process");
     m.def("modes", &modes, "Every mode of a scene's variant at each spin rate", py::arg("text"), py::arg("name"),
           py::arg("overrides"), py::arg("omegas"));
     m.def("linearize", &linearize, "State-space matrices about a steady spin", py::arg("text"), py::arg("name"),

@@ -13,6 +13,7 @@ import unittest
 import numpy as np
 
 import hubbeam
+from hubbeam import sweeps
 
 HUBBEAM = os.environ["HUBBEAM"]
 SOURCE = os.environ["SOURCE_DIR"]
@@ -129,23 +130,89 @@ class RunTest(unittest.TestCase):
         self.assertIn("KeyboardInterrupt after", out)
 
 
-class ReadmeTest(unittest.TestCase):
-    def test_the_readmes_python_examples_run(self):
-        # The Campbell loop and the first example of README "The Python module", run as a user would from the root.
-        with open(os.path.join(SOURCE, "README.md")) as f:
-            readme = f.read()
-        start = readme.index("A Campbell diagram of the first three bending modes")
-        campbell = readme[readme.index("```python\n", start) + 10:readme.index("```", readme.index("```python\n", start) + 10)]
-        self.assertEqual(len(campbell.strip().splitlines()), 5)
-        here = os.getcwd()
-        os.chdir(SOURCE)
-        try:
-            out = subprocess.run([sys.executable, "-c", campbell], capture_output=True, text=True, env=os.environ)
-        finally:
-            os.chdir(here)
+class MessagesTest(unittest.TestCase):
+    def test_control_and_format_characters_show_as_escapes(self):
+        # ESC would recolour the terminal, U+202E reverse what follows: a message shows both as escapes, whether
+        # Python (an unknown keyword, a dict scene's table) or the core (a bad value) built it.
+        shady = "x\x1b[31m\u202e"
+        for call in (lambda: hubbeam.run(SPINUP, **{shady: 1}),
+                     lambda: hubbeam.run(SPINUP, stepper=shady),
+                     lambda: hubbeam.run({shady: 1}),
+                     lambda: hubbeam.modes(SPINUP, shady),
+                     lambda: sweeps.load_sweep({"scene": SPINUP, "keep": [shady]})):
+            with self.assertRaises(ValueError) as caught:
+                call()
+            text = str(caught.exception)
+            self.assertIn("x\\x1b[31m\\u202e", text)
+            self.assertNotIn("\x1b", text)
+            self.assertNotIn("\u202e", text)
+        self.assertEqual(hubbeam.printable("a\x00b\nc\u2066\U000e0001"), "a\\x00b\\x0ac\\u2066\\U000e0001")
+
+    def test_a_nul_character_is_refused(self):
+        with self.assertRaises(ValueError) as caught:
+            hubbeam.run(SPINUP, file="a\u0000b.csv")
+        self.assertIn("NUL", str(caught.exception))
+
+
+class PandasTest(unittest.TestCase):
+    def test_to_pandas_has_the_columns_and_their_units(self):
+        import pandas as pd
+
+        r = hubbeam.run(SPINUP, t_end=1)
+        df = r.to_pandas()
+        self.assertIsInstance(df, pd.DataFrame)
+        self.assertEqual(list(df.columns), list(r.columns))
+        self.assertTrue(np.array_equal(df.to_numpy(), r.data))
+        self.assertEqual(df.attrs["units"]["tip_uy"], "m")
+        self.assertEqual(df.attrs["units"]["t"], "s")
+        self.assertEqual(df.attrs["units"]["theta_dot"], "rad/s")
+        self.assertEqual(set(df.attrs["units"]), set(r.columns))  # every column has its unit
+        self.assertEqual(df.attrs["summary"]["variant"], r.variant)
+
+    def test_without_pandas_to_pandas_says_what_to_install(self):
+        script = ("import sys; sys.modules['pandas'] = None\n"
+                  "import hubbeam\n"
+                  "r = hubbeam.run(sys.argv[1], t_end=0.1)\n"
+                  "try:\n    r.to_pandas()\nexcept ImportError as e:\n    print(e)\n")
+        out = subprocess.run([sys.executable, "-c", script, SPINUP], capture_output=True, text=True, timeout=60)
+        self.assertIn("python3-pandas", out.stdout, out.stderr)
+
+
+class ImportTest(unittest.TestCase):
+    def test_a_python_without_numpy_is_told_how(self):
+        # -S: no site-packages, as a python3 of its own (pyenv, conda) without Debian's numpy and dask would be.
+        out = subprocess.run([sys.executable, "-S", "-c", "import hubbeam"], capture_output=True, text=True,
+                             timeout=60)
+        self.assertNotEqual(out.returncode, 0)
+        last = out.stderr.strip().splitlines()[-1]
+        self.assertIn("venv --system-site-packages", last)
+        self.assertIn(sys.version.split()[0], last)
+
+    def test_the_documented_virtual_environment_imports_it(self):
+        # docs/python.md: a venv over the system's Python and its packages, hubbeam on PYTHONPATH.
+        with tempfile.TemporaryDirectory() as d:
+            venv = os.path.join(d, "venv")
+            subprocess.run([sys.executable, "-m", "venv", "--system-site-packages", "--without-pip", venv], check=True,
+                           timeout=60)
+            out = subprocess.run([os.path.join(venv, "bin", "python"), "-c",
+                                  "import sys, hubbeam; print(sys.prefix, hubbeam.run(sys.argv[1], t_end=0.1).completed)",
+                                  SPINUP], capture_output=True, text=True, timeout=60)
+            self.assertEqual(out.returncode, 0, out.stderr)
+            self.assertEqual(out.stdout.split(), [venv, "True"])
+
+
+class DocsTest(unittest.TestCase):
+    def test_the_modes_example_of_docs_python_runs(self):
+        # docs/python.md "Modes and linearized models", run as a user would from the source folder.
+        with open(os.path.join(SOURCE, "docs", "python.md")) as f:
+            page = f.read()
+        start = page.index("```python\n", page.index("## Modes and linearized models")) + 10
+        example = page[start:page.index("```", start)]
+        out = subprocess.run([sys.executable, "-c", example], capture_output=True, text=True, cwd=SOURCE, timeout=120)
         self.assertEqual(out.returncode, 0, out.stderr)
         first = out.stdout.splitlines()[0]
-        self.assertTrue(first.startswith("1 [0.4633"), first)  # the cantilever's 0.4633 Hz at rest
+        # The first bending mode at rest: the cantilever's 1.8751^2 sqrt(EI/(m L^4)) / (2 pi) = 0.46327 Hz.
+        self.assertTrue(first.startswith("1 [0.4633"), first)
 
 
 class ModesTest(unittest.TestCase):
@@ -159,6 +226,20 @@ class ModesTest(unittest.TestCase):
         self.assertAlmostEqual(at_rest[0] / (beta ** 2 * unit), 1.0, places=9)
         spinning = m["rad_s"][(m["omega"] == 4.0) & (m["kind"] == "bending")]
         self.assertGreater(spinning[0], at_rest[0])  # centrifugal stiffening
+
+    def test_bad_spin_rates_raise_valueerror(self):
+        torque = os.path.join(SOURCE, "cases", "torque_tau10.toml")
+        for call in (lambda: hubbeam.modes(SPINUP, None), lambda: hubbeam.modes(SPINUP, "3"),
+                     lambda: hubbeam.modes(SPINUP, [1.0, "2"]), lambda: hubbeam.modes(SPINUP, True),
+                     lambda: hubbeam.modes(SPINUP, []), lambda: hubbeam.modes(SPINUP, -1.0),
+                     lambda: hubbeam.modes(SPINUP, 1e300, nx=4),
+                     lambda: hubbeam.linearize(torque, None), lambda: hubbeam.linearize(torque, "3"),
+                     lambda: hubbeam.linearize(torque, [1.0]), lambda: hubbeam.linearize(torque, float("nan")),
+                     lambda: hubbeam.linearize(torque, 1e300)):
+            with self.assertRaises(ValueError) as caught:
+                call()
+            self.assertTrue(str(caught.exception).startswith("omega: expected"), str(caught.exception))
+        self.assertEqual(len(hubbeam.modes(SPINUP, np.int64(2), nx=0)["omega"]), 4)  # numpy's numbers are rates
 
     def test_linearize_shapes_and_names(self):
         lin = hubbeam.linearize(os.path.join(SOURCE, "cases", "torque_tau10.toml"), 2.0, nx=0)

@@ -1,4 +1,4 @@
-"""hubbeam from Python: run scenes, compute modes and linearized models, sweep parameters (README "Python module").
+"""hubbeam from Python: run scenes, compute modes and linearized models, sweep parameters (docs/python.md).
 
     import hubbeam
     r = hubbeam.run("cases/spinup_omega4.toml", method="fem", ny=8)
@@ -10,17 +10,45 @@ from __future__ import annotations
 import json
 import math
 import os
+import sys
+import unicodedata
 from typing import Any, Mapping
 
-import numpy as np
+try:
+    import numpy as np
 
-from . import _core
+    from . import _core
+except ImportError as _missing:
+    # The compiled core is built for one interpreter (Debian's /usr/bin/python3, whose numpy and dask are Debian's
+    # packages): any other python3 fails here with a message that does not say why or what to do.
+    raise ImportError(
+        f"hubbeam: this Python ({sys.executable}, {sys.version.split()[0]}) cannot load hubbeam ({_missing}); "
+        f"use the Python it was built for (/usr/bin/python3 on Debian) or a virtual environment over it: "
+        f"/usr/bin/python3 -m venv --system-site-packages DIR (docs/python.md)") from _missing
 
-__all__ = ["run", "modes", "linearize", "sweep", "Result", "RunStopped", "scene_keys", "generator_version"]
+__all__ = ["run", "modes", "linearize", "sweep", "Result", "RunStopped", "scene_keys", "generator_version", "printable"]
 __version__ = _core.__version__
 
 _KEYS = dict(_core.scene_keys())                 # dotted name -> what it takes
 _LEAVES = {k.split(".", 1)[1]: k for k in _KEYS}  # "ny" -> "discretization.ny" (leaf names are unique)
+
+
+def printable(text: Any, cap: int = 400) -> str:
+    """text for a one-line message: control and format characters (ESC, newlines, U+202E and the other
+    bidirectional overrides) shown as escapes (\\x1b, \\u202e) so that a value cannot move the cursor, recolour the
+    terminal or reorder what follows; cut at cap characters. Every message the package builds from a value it was
+    given goes through it."""
+    out = []
+    for ch in str(text):
+        if len(out) >= cap:
+            out.append("...")
+            break
+        if unicodedata.category(ch) in ("Cc", "Cf", "Zl", "Zp", "Cs", "Co", "Cn") and ch not in " ":
+            code = ord(ch)
+            out.append(f"\\x{code:02x}" if code < 0x100 else (f"\\u{code:04x}" if code < 0x10000 else f"\\U{code:08x}"))
+        else:
+            out.append(ch)
+    return "".join(out)
 
 
 def scene_keys() -> dict[str, str]:
@@ -37,8 +65,13 @@ class RunStopped(RuntimeError):
     """Raised by run(..., check=True) when the simulation stopped before t_end; .result holds the rows so far."""
 
     def __init__(self, result: "Result"):
-        super().__init__(f"stopped at t = {result.t_reached:g} s: {result.failure}")
+        super().__init__(f"stopped at t = {result.t_reached:g} s: {printable(result.failure)}")
         self.result = result
+
+
+# The unit of each column of a run's rows (the columns themselves come from the core, in its order).
+UNITS = {"t": "s", "theta": "rad", "theta_dot": "rad/s", "tip_uy": "m", "tip_ux1": "m", "tip_ux": "m",
+         "kinetic": "J", "potential": "J", "momentum": "kg m^2/s", "jacobi": "J"}
 
 
 class Result:
@@ -54,6 +87,20 @@ class Result:
         for i, name in enumerate(self.columns):
             setattr(self, name, self.data[:, i])
 
+    def to_pandas(self):
+        """The rows as a pandas DataFrame: one column per quantity (t, theta, ..., as .columns), the units in
+        df.attrs["units"] (column -> unit) and the summary in df.attrs["summary"]. Needs pandas (python3-pandas)."""
+        try:
+            import pandas as pd
+        except ImportError:
+            raise ImportError("hubbeam: Result.to_pandas() needs pandas: install python3-pandas (Debian) or pandas in "
+                              "this environment; the rows are in .data and the columns as attributes without it") \
+                from None
+        df = pd.DataFrame(self.data, columns=list(self.columns))
+        df.attrs["units"] = {c: UNITS.get(c, "") for c in self.columns}
+        df.attrs["summary"] = dict(self.summary)
+        return df
+
     def __repr__(self) -> str:
         state = "completed" if self.completed else f"stopped at t = {self.t_reached:g} s"
         return f"<hubbeam.Result {self.variant}, {len(self.data)} rows, {state}>"
@@ -65,6 +112,8 @@ def _value_text(name: str, value: Any) -> str:
         raise ValueError(f"{name}: expected {_KEYS[name]}, got {value}")
     if isinstance(value, float):
         return repr(value)
+    if not isinstance(value, (int, str)) or (isinstance(value, str) and "\0" in value):
+        raise ValueError(f"{name}: expected {_KEYS[name]} (no NUL character), got {printable(repr(value), 120)}")
     return str(value)
 
 
@@ -74,8 +123,8 @@ def _overrides(keywords: Mapping[str, Any]) -> list[tuple[str, str]]:
     for name, value in keywords.items():
         key = name if name in _KEYS else _LEAVES.get(name)
         if key is None:
-            raise ValueError(f"{name}: expected a scene key (README: Scene files; hubbeam.scene_keys()), got an "
-                             f"unknown keyword")
+            raise ValueError(f"{printable(name, 80)}: expected a scene key (docs/scene.md; hubbeam.scene_keys()), "
+                             f"got an unknown keyword")
         out.append((key, _value_text(key, value)))
     return out
 
@@ -89,7 +138,7 @@ def _toml_value(value: Any) -> str:
         return repr(value) if math.isfinite(value) else ("nan" if math.isnan(value) else ("inf" if value > 0 else "-inf"))
     if isinstance(value, str):
         return json.dumps(value)  # a JSON string is a TOML basic string
-    raise ValueError(f"expected a number or a string in a scene, got {value!r}")
+    raise ValueError(f"expected a number or a string in a scene, got {printable(repr(value), 120)}")
 
 
 def _scene_text(scene: Mapping[str, Mapping[str, Any]]) -> str:
@@ -97,7 +146,7 @@ def _scene_text(scene: Mapping[str, Mapping[str, Any]]) -> str:
     lines = []
     for table, keys in scene.items():
         if not isinstance(keys, Mapping):
-            raise ValueError(f"{table}: expected a table (a dict of keys), got {keys!r}")
+            raise ValueError(f"{printable(table, 80)}: expected a table (a dict of keys), got {printable(repr(keys), 120)}")
         lines.append(f"[{table}]")
         lines += [f"{key} = {_toml_value(value)}" for key, value in keys.items()]
     return "\n".join(lines) + "\n"
@@ -109,7 +158,7 @@ def _source(scene: Any) -> tuple[str, str]:
         return os.fspath(scene), ""
     if isinstance(scene, Mapping):
         return _scene_text(scene), "<dict scene>"
-    raise ValueError(f"scene: expected a scene file's path or a dict of tables, got {type(scene).__name__}")
+    raise ValueError(f"scene: expected a scene file's path or a dict of tables, got {printable(type(scene).__name__)}")
 
 
 def run(scene: Any, *, check: bool = False, **keys: Any) -> Result:
@@ -121,7 +170,7 @@ def run(scene: Any, *, check: bool = False, **keys: Any) -> Result:
     check=True it raises RunStopped instead. The GIL is released while integrating.
     """
     text, name = _source(scene)
-    result = Result(_core.run(text, name, _overrides(keys)))
+    result = Result(_core_call(_core.run, text, name, _overrides(keys)))
     if check and not result.completed:
         raise RunStopped(result)
     return result
@@ -131,10 +180,8 @@ def modes(scene: Any, omega: Any = 0.0, **keys: Any) -> dict[str, Any]:
     """Every natural mode of the scene's variant linearized about a steady spin at each rate of omega (rad/s):
     equal-length arrays omega, mode, kind, rad_s, hz, dimensionless, growth, and the variant's name."""
     text, name = _source(scene)
-    rates = [float(w) for w in np.atleast_1d(omega)]
-    if any(not (w >= 0.0 and math.isfinite(w)) for w in rates):
-        raise ValueError(f"omega: expected spin rates >= 0 (rad/s), got {omega!r}")
-    out = _core.modes(text, name, _overrides(keys), rates)
+    out = _core_call(_core.modes, text, name, _overrides(keys),
+                     _rates(omega, "spin rates >= 0 (rad/s): a number or a list"))
     out["kind"] = np.array(out["kind"])
     return out
 
@@ -143,27 +190,59 @@ def linearize(scene: Any, omega: float, **keys: Any) -> dict[str, Any]:
     """x' = A x + B v, y = C x + D v about the steady spin omega (rad/s): A, B, C, D as arrays and the names of
     the states, inputs and outputs (README "A linearized model to take away")."""
     text, name = _source(scene)
-    if not (omega >= 0.0 and math.isfinite(omega)):
-        raise ValueError(f"omega: expected a spin rate >= 0 (rad/s), got {omega!r}")
-    return _core.linearize(text, name, _overrides(keys), float(omega))
+    if np.ndim(omega) != 0:
+        raise ValueError(f"omega: expected a spin rate >= 0 (rad/s), got {printable(repr(omega), 120)}")
+    return _core_call(_core.linearize, text, name, _overrides(keys), _rates(omega, "a spin rate >= 0 (rad/s)")[0])
+
+
+def _core_call(function, *args):
+    """A call into the core whose ValueError message shows every control and format character as an escape."""
+    try:
+        return function(*args)
+    except ValueError as e:
+        raise ValueError(printable(e, 2000)) from None
+
+
+def _rates(omega: Any, expected: str) -> list[float]:
+    """omega (a number or a list of numbers) as finite rates >= 0, or ValueError naming what it got: a string,
+    None or a bool is not a rate even where float() would take it."""
+    def bad():
+        return ValueError(f"omega: expected {expected}, got {printable(repr(omega), 120)}")
+    values = np.atleast_1d(np.asarray(omega, dtype=object))
+    if values.ndim != 1 or values.size == 0:
+        raise bad()
+    rates = []
+    for w in values:
+        if isinstance(w, (bool, np.bool_)) or not isinstance(w, (int, float, np.integer, np.floating)):
+            raise bad()
+        w = float(w)
+        if not (w >= 0.0 and math.isfinite(w)):
+            raise bad()
+        rates.append(w)
+    return rates
 
 
 def _run_text(text: str, name: str, keys: Mapping[str, Any]) -> Result:
-    """run() of a scene's text (named name in messages): for the sweep's workers, which get the text, not a file."""
-    return Result(_core.run(text, name, _overrides(keys)))
+    """run() of a scene's text (named name in messages): for the sweep's workers, which get the text, not a file.
+    The run stops early when _cancel_runs() is called meanwhile (an interrupted sweep on local threads)."""
+    return Result(_core_call(_core.run, text, name, _overrides(keys), True))
+
+
+def _cancel_runs() -> None:
+    _core.cancel_runs()
 
 
 def _modes_text(text: str, name: str, keys: Mapping[str, Any], omegas: list[float]) -> dict[str, Any]:
-    out = _core.modes(text, name, _overrides(keys), omegas)
+    out = _core_call(_core.modes, text, name, _overrides(keys), omegas)
     out["kind"] = np.array(out["kind"])
     return out
 
 
 def _check_scene(text: str, name: str) -> None:
-    _core.check(text, name)
+    _core_call(_core.check, text, name)
 
 
 def sweep(*args: Any, **kwargs: Any):
-    """Runs a parameter sweep on Dask (hubbeam.sweeps.run_sweep; README "Parameter sweeps")."""
+    """Runs a parameter sweep on Dask (hubbeam.sweeps.run_sweep; docs/python.md, "Sweeps")."""
     from .sweeps import run_sweep
     return run_sweep(*args, **kwargs)

@@ -1,9 +1,9 @@
-"""The Python module's and the sweeps' overheads (README "Python module"): python3 -m hubbeam.benchmark.
+"""The Python module's and the sweeps' overheads (docs/python.md): python3 -m hubbeam.benchmark.
 
 1. hubbeam.run against the command line's in-process time (loading the scene, choosing the model, integrating,
    as hubbeam run does), median over repeated runs.
-2. A sweep on a local cluster of 2 workers against the sum of its runs' own times, for points of about 10 ms and
-   about 100 ms: (workers x wall - sum of run times) / sum of run times, the cluster's start-up left out.
+2. A sweep on a local cluster of 2 worker threads against the sum of its runs' own times, for points of about 10 ms
+   and about 100 ms: (workers x wall - sum of run times) / sum of run times, the cluster's start-up left out.
 """
 from __future__ import annotations
 
@@ -42,8 +42,8 @@ def sweep_overhead(scene: str, points: int, t_end: float, label: str) -> None:
         t = sweeps.last_timing
         print(f"sweep ({label}): {points} points, runs' own time {1e3 * t['runs'] / points:.1f} ms each, "
               f"{t['runs']:.2f} s in all; wall {t['wall']:.2f} s on {t['workers']} workers; overhead "
-              f"{100 * t['overhead']:.1f} % (with the cluster's start-up and "
-              f"the workers' first imports: {total:.2f} s)")
+              f"{100 * t['overhead']:.1f} % (the cluster's start-up, {t['start_up']:.2f} s, left out; the whole "
+              f"sweep took {total:.2f} s)")
 
 
 def main() -> int:

@@ -1,10 +1,11 @@
-"""Parameter sweeps on Dask: `hubbeam sweep SWEEP.toml` and hubbeam.sweep(...) (README "Parameter sweeps").
+"""Parameter sweeps on Dask: `hubbeam sweep SWEEP.toml` and hubbeam.sweep(...) (docs/python.md, "Sweeps").
 
 A sweep is a base scene plus a grid and/or a list of overrides of any scene keys. Every point runs as one Dask
-task, on a local cluster (one worker process per core) or on a running scheduler, and lands as one row of a CSV
-table: the point's keys, its status and the quantities kept. A point that fails is a row with its status; an
-interrupted sweep resumes without recomputing the points already in the table (keyed by the point's overrides
-and the generator's version).
+task, on a local cluster (worker threads of this process: the runs release the GIL) or on a running scheduler,
+and lands as one row of a CSV table: the point's keys, its status and the quantities kept. A point that fails is a
+row with its status; an interrupted sweep resumes without recomputing the points already in the table (keyed by
+the point's overrides and the generator's version). A kept tip series goes to one .npy file per point beside the
+table, and its cell names that file.
 """
 from __future__ import annotations
 
@@ -14,27 +15,40 @@ import hashlib
 import io
 import itertools
 import json
-import math
+import logging
 import os
+import signal
+import socket
+import stat
 import sys
 import time
 import tomllib
 from typing import Any, Mapping, Sequence
 
-# What a sweep may keep per point: the run's summary values, its tip_uy series, the bending frequencies about the
-# point's steady spin, and the invariant drift relative to the vibration energy.
+# What a sweep may keep per point: the run's summary values, its tip series (t, tip_uy), the bending frequencies
+# about the point's steady spin, and the invariant drift relative to the vibration energy.
 SUMMARY_VALUES = ("completed", "t_reached", "max_abs_tip_uy", "jacobi_drift", "vibration_energy", "steps",
                   "rhs_evals", "jacobian_evals", "wall_seconds", "variant", "source", "stepper")
 DERIVED_VALUES = ("relative_drift", "tip_series", "frequencies")
 DEFAULT_KEEP = ("max_abs_tip_uy", "relative_drift", "wall_seconds")
+# The type of each kept value as the table's text reads back (the rest are floats): hubbeam.sweep returns these.
+_TEXT_COLUMNS = {"point", "status", "variant", "source", "stepper"}
+_INT_COLUMNS = {"steps", "rhs_evals", "jacobian_evals"}
 
 
 class SweepError(ValueError):
-    """A sweep that cannot start: a bad sweep file, option or existing output (one line naming it)."""
+    """A sweep that cannot start or go on: a bad sweep file, option, output or scheduler (one line naming it)."""
+
+
+def _printable(text: Any, cap: int = 400) -> str:
+    import hubbeam
+
+    return hubbeam.printable(text, cap)
 
 
 def _fail(where: str, key: str, expected: str, got: Any) -> None:
-    raise SweepError(f"{where}: {key}: expected {expected}, got {got!r}")
+    raise SweepError(f"{_printable(where)}: {_printable(key, 80)}: expected {expected}, got "
+                     f"{_printable(repr(got), 120)}")
 
 
 def load_sweep(spec: str | os.PathLike | Mapping[str, Any]) -> dict[str, Any]:
@@ -46,19 +60,22 @@ def load_sweep(spec: str | os.PathLike | Mapping[str, Any]) -> dict[str, Any]:
         where, base_dir, sweep = "<dict sweep>", os.getcwd(), dict(spec)
     else:
         where = os.fspath(spec)
+        _check_path("sweep file", where)
         try:
             with open(where, "rb") as f:
+                if not stat.S_ISREG(os.fstat(f.fileno()).st_mode):
+                    raise SweepError(f"{_printable(where)}: expected a sweep file (TOML), got a directory or device")
                 sweep = tomllib.load(f)
         except OSError as e:
-            raise SweepError(f"{where}: cannot open: {e.strerror}") from None
-        except tomllib.TOMLDecodeError as e:
-            raise SweepError(f"{where}: {e}") from None
+            raise SweepError(f"{_printable(where)}: cannot open: {e.strerror}") from None
+        except (tomllib.TOMLDecodeError, UnicodeDecodeError) as e:
+            raise SweepError(f"{_printable(where)}: {_printable(e)}") from None
         base_dir = os.path.dirname(os.path.abspath(where))
     known = {"scene", "set", "grid", "points", "keep", "frequencies", "output"}
     for key in sweep:
         if key not in known:
             _fail(where, key, "one of " + ", ".join(sorted(known)), "an unknown key")
-    if not isinstance(sweep.get("scene"), str):
+    if not isinstance(sweep.get("scene"), str) or not sweep["scene"] or "\0" in sweep["scene"]:
         _fail(where, "scene", "the base scene file's path (a string)", sweep.get("scene", "nothing"))
     scene = os.path.join(base_dir, sweep["scene"])
     grid = sweep.get("grid", {})
@@ -86,8 +103,8 @@ def load_sweep(spec: str | os.PathLike | Mapping[str, Any]) -> dict[str, Any]:
     output = sweep.get("output")
     if output is None:
         output = (os.path.splitext(os.path.basename(where))[0] if where != "<dict sweep>" else "sweep") + ".csv"
-    if not isinstance(output, str):
-        _fail(where, "output", "a file name", output)
+    elif not isinstance(output, str) or not output or "\0" in output:
+        _fail(where, "output", "a file name (not empty, no NUL character)", output)
     return {"where": where, "scene": scene, "set": dict(common), "grid": dict(grid), "points": points, "keep": list(keep),
             "frequencies": frequencies, "output": output}
 
@@ -100,13 +117,14 @@ def _full_key(name: str, where: str) -> str:
         return name
     matches = [k for k in keys if k.split(".", 1)[1] == name]
     if len(matches) != 1:
-        _fail(where, name, "a scene key (README: Scene files)", "an unknown key")
+        _fail(where, name, "a scene key (docs/scene.md)", "an unknown key")
     return matches[0]
 
 
 def expand(sweep: Mapping[str, Any]) -> list[dict[str, Any]]:
     """Every point of the sweep, as dotted scene keys: each combination of the grid, then each [[points]] table,
-    all on top of the keys of [set]. Without grid and points, the one point [set] makes."""
+    all on top of the keys of [set]. Without grid and points, the one point [set] makes. Each value must be a
+    number, a string or a boolean (SweepError otherwise)."""
     where = sweep["where"]
     common = {_full_key(k, where): v for k, v in sweep["set"].items()}
     grid_keys = [_full_key(k, where) for k in sweep["grid"]]
@@ -116,7 +134,12 @@ def expand(sweep: Mapping[str, Any]) -> list[dict[str, Any]]:
             out.append({**common, **dict(zip(grid_keys, combo))})
     for point in sweep["points"]:
         out.append({**common, **{_full_key(k, where): v for k, v in point.items()}})
-    return out or [common]
+    out = out or [common]
+    for point in out:
+        for k, v in point.items():
+            if not isinstance(v, (int, float, str)) or (isinstance(v, str) and "\0" in v):
+                _fail(where, k, "a number or a string (no NUL character)", v)
+    return out
 
 
 def point_key(point: Mapping[str, Any], version: str) -> str:
@@ -140,7 +163,8 @@ def run_points(scene_text: str, scene_name: str, points: Sequence[Mapping[str, A
 
 def run_point(scene_text: str, scene_name: str, point: Mapping[str, Any], keep: Sequence[str],
               frequencies: int) -> dict[str, Any]:
-    """One point, on a worker: its row. Never raises: bad input, an unstable run or any error is the status."""
+    """One point, on a worker: its row, values typed (tip_series an n x 2 array of t and tip_uy). Never raises:
+    bad input, an unstable run or any error is the status."""
     import numpy as np
 
     import hubbeam
@@ -150,51 +174,211 @@ def run_point(scene_text: str, scene_name: str, point: Mapping[str, Any], keep: 
     try:
         # The base scene travels as text, so a remote worker needs no copy of the file.
         r = hubbeam._run_text(scene_text, scene_name, point)
-        row["status"] = "ok" if r.completed else "stopped: " + r.failure
+        row["status"] = "ok" if r.completed else "stopped: " + hubbeam.printable(r.failure)
         for k in keep:
             if k in SUMMARY_VALUES:
                 row[k] = getattr(r, k)
             elif k == "relative_drift":
-                row[k] = r.jacobi_drift / r.vibration_energy if r.vibration_energy > 0 else ""
+                row[k] = r.jacobi_drift / r.vibration_energy if r.vibration_energy > 0 else None
             elif k == "tip_series":
-                row[k] = " ".join(repr(float(v)) for v in r.tip_uy)
+                row[k] = np.column_stack([r.t, r.tip_uy])
             elif k == "frequencies":
                 # About the point's steady spin: the rate the hub ends at when prescribed, at rest for a free hub.
                 omega = 0.0 if "_torque_" in r.variant else abs(float(r.theta_dot[-1]))
                 m = hubbeam._modes_text(scene_text, scene_name, point, [omega])
                 hz = m["hz"][m["kind"] == "bending"][:frequencies]
                 for i in range(frequencies):
-                    row[f"f{i + 1}_hz"] = float(hz[i]) if i < len(hz) else ""
+                    row[f"f{i + 1}_hz"] = float(hz[i]) if i < len(hz) else None
         row["run_seconds"] = r.in_process_seconds  # as hubbeam run spends in process: load, model, integrate
     except ValueError as e:
-        row["status"] = "error: " + str(e)
+        row["status"] = "error: " + hubbeam.printable(e)
     except Exception as e:  # noqa: BLE001 - a point's failure must never end the sweep
-        row["status"] = f"error: {type(e).__name__}: {e}"
+        row["status"] = "error: " + hubbeam.printable(f"{type(e).__name__}: {e}")
     row.setdefault("run_seconds", time.perf_counter() - start)
     return row
 
 
+def _cell(value: Any) -> str:
+    if value is None:
+        return ""
+    return repr(value) if isinstance(value, float) else str(value)
+
+
 def _csv_line(values: Sequence[Any]) -> str:
     buffer = io.StringIO()
-    csv.writer(buffer, lineterminator="\n").writerow(
-        ["" if v is None else (repr(v) if isinstance(v, float) else v) for v in values])
+    csv.writer(buffer, lineterminator="\n").writerow([_cell(v) for v in values])
     return buffer.getvalue()
 
 
-def _done_points(path: str, header: list[str]) -> dict[str, dict[str, str]]:
-    """The rows already in an earlier run's table, by point key; SweepError if it is another table."""
-    if not os.path.exists(path):
-        return {}
-    with open(path, newline="") as f:
-        reader = csv.reader(f)
-        found = next(reader, None)
-        if found is None:
-            return {}
-        if found != header:
-            raise SweepError(f"{path}: expected the table of this sweep to resume (header {','.join(header)}), got "
-                             f"the header {','.join(found)}; remove it or choose another output")
-        return {row[0]: dict(zip(header, row)) for row in reader if len(row) == len(header)}
+# --- files: the output checked before anything is written, rows appended whole, resume past a cut line ----------
 
+def _check_path(what: str, path: Any) -> None:
+    if not isinstance(path, (str, os.PathLike)) or not os.fspath(path) or "\0" in os.fspath(path):
+        raise SweepError(f"{what}: expected a file name (not empty, no NUL character), got "
+                         f"{_printable(repr(path), 120)}")
+
+
+def _same_file(a: str, b: str) -> bool:
+    """Whether a and b are one file: the same device and inode when both exist, else the same resolved path."""
+    try:
+        sa, sb = os.stat(a), os.stat(b)
+        return (sa.st_dev, sa.st_ino) == (sb.st_dev, sb.st_ino)
+    except OSError:
+        return os.path.realpath(a) == os.path.realpath(b)
+
+
+def _check_output(path: str, inputs: Mapping[str, str]) -> None:
+    """SweepError unless path can be the table: a regular file or a new name in an existing folder, and none of the
+    sweep's inputs (compared as files, not as names)."""
+    _check_path("--output", path)
+    shown = _printable(path)
+    if os.path.isdir(path):
+        raise SweepError(f"{shown}: expected a file for the sweep's table, got a directory (give -o DIR/NAME.csv)")
+    if os.path.exists(path) and not stat.S_ISREG(os.stat(path).st_mode):
+        raise SweepError(f"{shown}: expected a regular file for the sweep's table, got a device, pipe or socket")
+    folder = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(folder):
+        raise SweepError(f"{shown}: expected a file in an existing folder, got a folder that does not exist")
+    for what, other in inputs.items():
+        if _same_file(path, other):
+            raise SweepError(f"{shown}: expected an output other than the {what} ({_printable(other)}), got the "
+                             f"same file")
+
+
+def _series_dir(path: str) -> str:
+    return os.path.splitext(path)[0] + ".series"
+
+
+def _read_table(path: str, header: list[str], keep: Sequence[str]) -> tuple[dict[str, list[str]], int, bool]:
+    """An earlier run's table: its complete rows by point key, the byte length of its complete lines, and whether a
+    last line was cut (no newline at its end or a wrong number of fields: a write that did not finish). SweepError
+    if it is not this sweep's table."""
+    shown = _printable(path)
+    try:
+        with open(path, "rb") as f:
+            data = f.read()
+    except FileNotFoundError:
+        return {}, 0, False
+    except OSError as e:
+        raise SweepError(f"{shown}: cannot read the table to resume: {e.strerror}") from None
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as e:
+        raise SweepError(f"{shown}: expected this sweep's CSV table (UTF-8 text) to resume, got bytes that are not "
+                         f"text at byte {e.start}; remove it, choose another output or give --no-resume") from None
+    if not text:
+        return {}, 0, False
+    lines = text.split("\n")
+    complete, tail = lines[:-1], lines[-1]
+    if not complete and _csv_line(header).startswith(tail):  # a header cut before its newline: nothing finished
+        return {}, 0, True
+    found = next(csv.reader([complete[0] if complete else tail]))
+    if found != header:
+        raise SweepError(f"{shown}: expected the table of this sweep to resume (header {','.join(header)}), got the "
+                         f"header {_printable(','.join(found), 200)}; remove it, choose another output or give "
+                         f"--no-resume")
+    done: dict[str, list[str]] = {}
+    end = len(complete[0].encode()) + 1 if complete else 0
+    cut = bool(tail)
+    folder = os.path.dirname(os.path.abspath(path))
+    for n, line in enumerate(complete[1:], start=2):
+        row = next(csv.reader([line]), [])
+        if len(row) != len(header):
+            if n == len(complete):  # the last line, cut by a full disk or a kill before its newline was written
+                cut = True
+                break
+            raise SweepError(f"{shown}: line {n}: expected {len(header)} fields, got {len(row)}; remove the line or "
+                             f"give --no-resume")
+        end += len(line.encode()) + 1
+        values = dict(zip(header, row))
+        if "tip_series" in keep and values["tip_series"] and not os.path.exists(
+                os.path.join(folder, values["tip_series"])):
+            continue  # its series file is gone: the point runs again
+        done[row[0]] = row
+    return done, end, cut
+
+
+class _Table:
+    """The table file, appended one whole row at a time: each row is one write of one line, flushed, and a write
+    that fails (a full disk) is cut back to the previous line before the error is raised, so the file never holds
+    half a row."""
+
+    def __init__(self, path: str, shown: str, truncate_to: int | None, header: str | None):
+        self.shown = shown
+        self.fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_APPEND | os.O_CLOEXEC, 0o666)
+        if truncate_to is not None:
+            os.ftruncate(self.fd, truncate_to)
+        if header is not None:
+            self.append(header)
+
+    def append(self, line: str) -> None:
+        data = line.encode()
+        start = os.fstat(self.fd).st_size
+        try:
+            written = 0
+            while written < len(data):
+                written += os.write(self.fd, data[written:])
+        except OSError as e:
+            try:
+                os.ftruncate(self.fd, start)
+            except OSError:
+                pass
+            raise SweepError(f"{self.shown}: cannot write the table: {e.strerror}; it holds every point finished "
+                             f"before, run the sweep again to resume") from None
+
+    def close(self, sync: bool) -> None:
+        try:
+            if sync:
+                os.fsync(self.fd)
+        except OSError as e:
+            raise SweepError(f"{self.shown}: cannot write the table: {e.strerror}") from None
+        finally:
+            os.close(self.fd)
+
+
+def _save_series(folder: str, name: str, series: Any) -> str:
+    """The series as folder/name.npy, written to a temporary file and renamed; returns its path relative to the
+    table's folder."""
+    import numpy as np
+
+    os.makedirs(folder, exist_ok=True)
+    final = os.path.join(folder, name + ".npy")
+    temporary = os.path.join(folder, f".{name}.{os.getpid()}.tmp")
+    try:
+        with open(temporary, "wb") as f:
+            np.save(f, np.asarray(series, dtype=float))
+        os.replace(temporary, final)
+    except OSError as e:
+        try:
+            os.remove(temporary)
+        except OSError:
+            pass
+        raise SweepError(f"{_printable(final)}: cannot write the tip series: {e.strerror}; the table holds every "
+                         f"point finished before, run the sweep again to resume") from None
+    return os.path.join(os.path.basename(folder), name + ".npy")
+
+
+def _typed(column: str, text: str, folder: str) -> Any:
+    """A cell's text as the value it was: None for an empty cell, str, int, bool, float, or the tip series' array."""
+    if text == "":
+        return None
+    if column in _TEXT_COLUMNS:
+        return text
+    if column == "completed":
+        return text == "True"
+    if column in _INT_COLUMNS:
+        return int(text)
+    if column == "tip_series":
+        import numpy as np
+
+        return np.load(os.path.join(folder, text))
+    try:
+        return float(text)
+    except ValueError:
+        return text
+
+
+# --- the cluster --------------------------------------------------------------------------------------------------
 
 class _Progress:
     """One line on standard error per finished point, rewritten in place on a terminal."""
@@ -227,74 +411,179 @@ def _import_hubbeam() -> str:
     return hubbeam.__version__
 
 
-def _client(scheduler: str | None, workers: int | None):
-    """A Dask client: of the scheduler at its address, or of a local cluster of single-threaded worker processes
-    (one per core by default) that can import hubbeam from where this process did."""
-    from distributed import Client, LocalCluster
+def local_cluster(workers: int | None = None, dashboard: bool = False):
+    """A local Dask cluster for sweeps and a client of it: (client, close). One worker with `workers` threads (one
+    per core by default) in this process: the runs release the GIL, so threads run in parallel, and no process is
+    spawned (a script without an `if __name__ == "__main__":` guard, a notebook and stdin work alike). Its scheduler
+    and worker listen on 127.0.0.1 only, speak TLS with credentials made for this cluster alone (a client without
+    them is refused), and the dashboard is off unless asked for (then on 127.0.0.1:8787, or a free port)."""
+    from distributed import Client, Scheduler, SpecCluster, Worker
+    from distributed.security import Security
 
-    if scheduler:
-        return Client(scheduler), None
-    import hubbeam
+    security = Security.temporary()  # a fresh CA and certificates, in memory, for this cluster only
+    common = {"host": "127.0.0.1", "protocol": "tls://", "security": security}
+    # Every HTTP server on loopback: Dask's default address for them is every interface.
+    scheduler = {"cls": Scheduler, "options": {**common, "dashboard": dashboard,
+                                               "dashboard_address": "127.0.0.1:8787" if dashboard else "127.0.0.1:0"}}
+    worker = {"cls": Worker, "options": {**common, "nthreads": workers or os.cpu_count() or 1, "dashboard": False,
+                                         "dashboard_address": "127.0.0.1:0"}}
+    cluster = SpecCluster(scheduler=scheduler, workers={0: worker}, security=security, silence_logs=logging.CRITICAL)
+    try:
+        client = Client(cluster, security=security)
+    except BaseException:
+        cluster.close()
+        raise
+    return client, lambda: (client.close(), cluster.close())
 
-    package_parent = os.path.dirname(os.path.dirname(os.path.abspath(hubbeam.__file__)))
-    paths = [package_parent] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p]
-    os.environ["PYTHONPATH"] = os.pathsep.join(dict.fromkeys(paths))  # the worker processes inherit it
-    cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
-                           dashboard_address=None)
-    return Client(cluster), cluster
+
+def _tcp_reachable(address: str) -> str | None:
+    """None if a TCP connection to the scheduler's host and port opens within 3 s, else why not."""
+    host_port = address.split("://", 1)[-1]
+    host, _, port = host_port.rpartition(":")
+    try:
+        with socket.create_connection((host.strip("[]"), int(port)), timeout=3):
+            return None
+    except ValueError:
+        return "expected host:port after the protocol"
+    except OSError as e:
+        return e.strerror or str(e) or type(e).__name__
 
 
-# The last sweep's timing: the wall time from the first task submitted to the last row, the workers, the sum of the
-# points' own in-process times, and the overhead (workers x wall - runs) / runs (python3 -m hubbeam.benchmark reads
-# it).
+def _remote_client(scheduler: str, security: Any):
+    """A client of the scheduler at its address, or SweepError within a few seconds naming what is wrong."""
+    from distributed import Client
+
+    shown = _printable(scheduler)
+    protocol = scheduler.split("://", 1)[0] if "://" in scheduler else "tcp"
+    if protocol not in ("tcp", "tls"):
+        raise SweepError(f"--scheduler: expected a tls://host:port or tcp://host:port address, got {shown}")
+    if protocol == "tls" and security is None:
+        raise SweepError(f"--scheduler: expected the cluster's certificates for {shown} (--tls-ca-file, --tls-cert, "
+                         f"--tls-key; security= in Python)")
+    if protocol == "tcp":
+        print(f"hubbeam: warning: {shown} is a plain tcp:// scheduler: it runs whatever any client that reaches it "
+              f"sends, as the workers' user; use tls:// with certificates (docs/python.md, Security)", file=sys.stderr)
+    why = _tcp_reachable(scheduler)
+    if why is not None:
+        raise SweepError(f"--scheduler: cannot reach {shown}: {why}")
+    try:
+        return Client(scheduler, security=security, timeout=10)
+    except (OSError, TimeoutError) as e:
+        raise SweepError(f"--scheduler: cannot connect to {shown}: {_printable(e, 200)}") from None
+
+
+def _security_of_files(ca: str | None, cert: str | None, key: str | None):
+    """A Security for a tls:// scheduler from the CA's certificate and this client's certificate and key."""
+    given = {"--tls-ca-file": ca, "--tls-cert": cert, "--tls-key": key}
+    if not any(given.values()):
+        return None
+    for option, path in given.items():
+        if not path:
+            raise SweepError(f"{option}: expected a PEM file (a tls:// scheduler needs all three of --tls-ca-file, "
+                             f"--tls-cert, --tls-key), got nothing")
+        if not os.path.isfile(path):
+            raise SweepError(f"{option}: cannot open {_printable(path)}: expected a PEM file")
+    from distributed.security import Security
+
+    return Security(tls_ca_file=ca, tls_client_cert=cert, tls_client_key=key, require_encryption=True)
+
+
+# The last sweep's timing: the wall time from the first task submitted to the last row, the worker threads, the sum
+# of the points' own in-process times, the cluster's start-up, and the overhead (workers x wall - runs) / runs
+# (python3 -m hubbeam.benchmark reads it: meaningful over many points, not over three).
 last_timing: dict[str, float] = {}
 
 
 def run_sweep(spec: str | os.PathLike | Mapping[str, Any], *, output: str | None = None,
-              scheduler: str | None = None, workers: int | None = None, resume: bool = True,
-              progress: bool = True, batch: int | None = None) -> list[dict[str, str]]:
-    """Runs every point not yet in the output table on Dask and appends its row as it finishes. Returns the table
-    (the rows of all points, in the sweep's order, values as written). scheduler: a Dask scheduler's address
-    (tcp://host:8786); else a local cluster of `workers` processes (default one per core). batch: points per task
-    (default: about four tasks per worker, at most 16 points each, so that short points share Dask's per-task cost
-    and the workers stay balanced); a batch's rows are written when it finishes."""
+              scheduler: Any = None, workers: int | None = None, resume: bool = True,
+              progress: bool = True, batch: int | None = None, security: Any = None,
+              dashboard: bool = False) -> list[dict[str, Any]]:
+    """Runs every point not yet in the output table on Dask and appends its row as it finishes. Returns the table:
+    one dict per point in the sweep's order, values typed (floats, ints, None for an empty cell, tip_series an
+    n x 2 array of t and tip_uy). scheduler: a Dask scheduler's address (tls://host:8786 with security=, a
+    distributed.security.Security with this client's certificates; tcp:// is unauthenticated) or a
+    distributed.Client; else a local cluster of `workers` threads (default one per core; dashboard=True serves
+    Dask's dashboard on 127.0.0.1). batch: points per task (default: about four tasks per worker, at most 16 points
+    each); a batch's rows are written when it finishes. resume=False recomputes every point into a new table that
+    replaces the old one only once it is complete."""
     import hubbeam
 
-    if workers is not None and not (isinstance(workers, int) and workers >= 1):
-        raise SweepError(f"--workers: expected a number of worker processes >= 1, got {workers!r}")
+    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
+        raise SweepError(f"--workers: expected a number of worker threads >= 1, got {_printable(repr(workers))}")
+    if batch is not None and (isinstance(batch, bool) or not isinstance(batch, int) or batch < 1):
+        raise SweepError(f"batch: expected a number of points per task >= 1, got {_printable(repr(batch))}")
+    # Everything is checked before the table is touched: the sweep, its points, the base scene, the output.
     sweep = load_sweep(spec)
-    path = output or sweep["output"]
+    if output is not None:
+        _check_path("--output", output)
+    path = os.fspath(output) if output is not None else sweep["output"]
     points = expand(sweep)
+    _check_path("scene", sweep["scene"])
+    try:
+        with open(sweep["scene"], "rb") as f:
+            if not stat.S_ISREG(os.fstat(f.fileno()).st_mode):
+                raise SweepError(f"{_printable(sweep['scene'])}: expected a scene file, got a directory or device")
+            scene_text = f.read().decode("utf-8")
+    except OSError as e:
+        raise SweepError(f"{_printable(sweep['scene'])}: cannot open: {e.strerror}") from None
+    except UnicodeDecodeError:
+        raise SweepError(f"{_printable(sweep['scene'])}: expected a scene file (UTF-8 TOML), got bytes that are not "
+                         f"text") from None
+    hubbeam._check_scene(scene_text, sweep["scene"])  # a bad base scene stops the sweep before any task
+    inputs = {"base scene": sweep["scene"]}
+    if sweep["where"] != "<dict sweep>":
+        inputs["sweep file"] = sweep["where"]
+    _check_output(path, inputs)
+    shown = _printable(path)
     keys = list(dict.fromkeys(k for p in points for k in p))
     header = _columns(keys, sweep["keep"], sweep["frequencies"])
     version = hubbeam.generator_version()
     ids = [point_key(p, version) for p in points]
-    done = _done_points(path, header) if resume else {}
-    if not resume and os.path.exists(path):
-        os.remove(path)
-    try:
-        with open(sweep["scene"], encoding="utf-8") as f:
-            scene_text = f.read()
-    except OSError as e:
-        raise SweepError(f"{sweep['scene']}: cannot open: {e.strerror}") from None
-    hubbeam._check_scene(scene_text, sweep["scene"])  # a bad base scene stops the sweep before any task
+    done, good_end, cut = _read_table(path, header, sweep["keep"]) if resume else ({}, 0, False)
     todo = [(i, p) for i, p in enumerate(points) if ids[i] not in done]
-    table = dict(done)
-    meter = _Progress(len(points), len(points) - len(todo), progress)
+    folder = os.path.dirname(os.path.abspath(path))
+    series_folder = _series_dir(os.path.abspath(path))
+    lines: dict[str, list[str]] = dict(done)
     if not todo and progress:
-        print(f"sweep: all {len(points)} points are in {path} already (this generator version); --no-resume "
+        print(f"sweep: all {len(points)} points are in {shown} already (this generator version); --no-resume "
               f"recomputes them", file=sys.stderr)
     if todo:
-        new_file = not os.path.exists(path) or os.path.getsize(path) == 0
-        with open(path, "a", encoding="utf-8") as out:
-            if new_file:
-                out.write(_csv_line(header))
-                out.flush()
-            client, cluster = _client(scheduler, workers)
+        started_cluster = time.perf_counter()
+        close = None
+        if scheduler is None:
+            client, close = local_cluster(workers, dashboard)
+            if progress:
+                print(f"sweep: local cluster at {client.scheduler.address} (TLS, this sweep's certificates only)"
+                      + (f", dashboard {client.dashboard_link}" if dashboard else ""), file=sys.stderr, flush=True)
+        elif isinstance(scheduler, (str, os.PathLike)):
+            client = _remote_client(os.fspath(scheduler), security)
+            close = client.close
+        elif hasattr(scheduler, "submit") and hasattr(scheduler, "scheduler_info"):
+            client = scheduler  # the caller's distributed.Client: theirs to close
+        else:
+            raise SweepError(f"scheduler: expected an address or a distributed.Client, got "
+                             f"{_printable(type(scheduler).__name__)}")
+        table = None
+        temporary = None
+        finished = False
+        interrupted = True
+        try:
             client.run(_import_hubbeam)  # each worker's one-off imports, part of its start-up, not of a point
-            n_workers = len(client.scheduler_info().get("workers", {})) or 1
+            n_workers = sum(w.get("nthreads", 1) for w in client.scheduler_info().get("workers", {}).values()) or 1
+            start_up = time.perf_counter() - started_cluster
+            # Only now that the cluster answers is a file written: the table, or with resume=False a new table
+            # beside it that replaces the old one once complete.
+            if resume:
+                if cut and progress:
+                    print(f"sweep: {shown}: its last line was cut (a write that did not finish): dropped, that point "
+                          f"runs again", file=sys.stderr)
+                table = _Table(path, shown, good_end, _csv_line(header) if good_end == 0 else None)
+            else:
+                temporary = os.path.join(folder, f".{os.path.basename(path)}.{os.getpid()}.partial")
+                table = _Table(temporary, shown, 0, _csv_line(header))
             started = time.perf_counter()
             run_total = 0.0
+            meter = _Progress(len(points), len(points) - len(todo), progress)
             try:
                 from distributed import as_completed
 
@@ -308,51 +597,99 @@ def run_sweep(spec: str | os.PathLike | Mapping[str, Any], *, output: str | None
                     try:
                         rows = future.result()
                     except Exception as e:  # noqa: BLE001 - a lost worker: its points are rows with the status
-                        rows = [{"status": f"error: the task failed: {type(e).__name__}: {e}"} for _ in b]
+                        rows = [{"status": "error: the task failed: " + _printable(f"{type(e).__name__}: {e}")}
+                                for _ in b]
                     for (i, _), row in zip(b, rows):
-                        values = [ids[i], *(points[i].get(k, "") for k in keys)] + \
-                            [row.get(c, "") for c in header[len(keys) + 1:]]
+                        if row.get("tip_series") is not None:
+                            row["tip_series"] = _save_series(series_folder, ids[i], row["tip_series"])
+                        values = [ids[i], *(points[i].get(k) for k in keys)] + \
+                            [row.get(c) for c in header[len(keys) + 1:]]
                         line = _csv_line(values)
-                        out.write(line)  # one whole line per write: a reader never sees half of it
-                        table[ids[i]] = dict(zip(header, next(csv.reader([line]))))
+                        table.append(line)  # one whole line per write: a reader never sees half of it
+                        lines[ids[i]] = next(csv.reader([line]))
                         run_total += row["run_seconds"] if isinstance(row.get("run_seconds"), float) else 0.0
                         meter.point(row.get("status") == "ok")
-                    out.flush()
             finally:
                 meter.close()
-                wall = time.perf_counter() - started
-                overhead = (wall * n_workers - run_total) / run_total if run_total > 0 else float("nan")
-                last_timing.update(wall=wall, workers=n_workers, runs=run_total, overhead=overhead)
-                client.close()
-                if cluster is not None:
-                    cluster.close()
+            wall = time.perf_counter() - started
+            table.close(sync=True)
+            table = None
+            if temporary is not None:
+                os.replace(temporary, path)
+                temporary = None
+            finished = True
+            interrupted = False
+        except SweepError:
+            interrupted = False
+            raise
+        finally:
+            if interrupted and scheduler is None:
+                hubbeam._cancel_runs()  # the local workers are this process's threads: their runs stop now
+            if table is not None:
+                table.close(sync=False)
+            if temporary is not None:  # an unfinished replacement: the old table stays as it was
+                try:
+                    os.remove(temporary)
+                except OSError:
+                    pass
+            if close is not None:
+                close()
+        if finished:
+            overhead = (wall * n_workers - run_total) / run_total if run_total > 0 else float("nan")
+            last_timing.update(wall=wall, workers=n_workers, runs=run_total, overhead=overhead, start_up=start_up)
             if progress:
-                print(f"sweep: {len(todo)} points in {wall:.2f} s on {n_workers} workers; the runs' own time {run_total:.2f} s; "
-                      f"overhead {100 * overhead:.0f} % (workers x wall against the runs' time)", file=sys.stderr)
-    return [table[k] for k in ids]
+                print(f"sweep: {len(todo)} points in {wall:.2f} s on {n_workers} workers, after {start_up:.2f} s to "
+                      f"start or reach the cluster; the runs themselves took {run_total:.2f} s of the workers' "
+                      f"{wall * n_workers:.2f} s (the rest is Dask's scheduling and transfers, and workers left "
+                      f"without a point)", file=sys.stderr)
+    by_point = {k: dict(zip(header, row)) for k, row in lines.items()}
+    out = []
+    for i, k in enumerate(ids):
+        row = {c: _typed(c, v, folder) for c, v in by_point[k].items()}
+        row.update({key: points[i].get(key) for key in keys})  # the point's own values, as the sweep gave them
+        out.append(row)
+    return out
+
+
+class _Terminated(KeyboardInterrupt):
+    """SIGTERM, raised where the sweep is so that the cluster closes and the table is left whole."""
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """hubbeam sweep: returns the exit code (0 done, 2 bad input, 130 interrupted)."""
-    parser = argparse.ArgumentParser(prog="hubbeam sweep", description="Runs a parameter sweep on Dask (README: "
-                                     "Parameter sweeps). Exit codes: 0 every point has a row (whatever its status), "
-                                     "2 bad input, 130 interrupted (finished points kept; run again to resume).")
+    """hubbeam sweep: returns the exit code (0 done, 2 bad input, 130 interrupted, 143 terminated)."""
+    parser = argparse.ArgumentParser(prog="hubbeam sweep", description="Runs a parameter sweep on Dask "
+                                     "(docs/python.md). Exit codes: 0 every point has a row (whatever its status), "
+                                     "2 bad input or an output that cannot be written, 130 interrupted, 143 "
+                                     "terminated (finished points kept; run again to resume).")
     parser.add_argument("sweep", help="SWEEP.toml: scene, grid and/or [[points]], keep, frequencies, output")
     parser.add_argument("-o", "--output", help="CSV table (default: the sweep's output, else SWEEP.csv)")
-    parser.add_argument("--scheduler", help="a running Dask scheduler's address (tcp://host:8786); default: a local "
-                        "cluster")
-    parser.add_argument("--workers", type=int, help="local cluster's worker processes (default: one per core)")
-    parser.add_argument("--no-resume", action="store_true", help="recompute every point (replaces the table)")
+    parser.add_argument("--scheduler", help="a running Dask scheduler's address: tls://host:8786 with --tls-ca-file, "
+                        "--tls-cert and --tls-key (tcp:// runs whatever any client sends); default: a local cluster "
+                        "on 127.0.0.1 with TLS")
+    parser.add_argument("--tls-ca-file", help="PEM: the certificate authority of the tls:// scheduler's cluster")
+    parser.add_argument("--tls-cert", help="PEM: this client's certificate, signed by that authority")
+    parser.add_argument("--tls-key", help="PEM: this client's private key")
+    parser.add_argument("--workers", type=int, help="local cluster's worker threads (default: one per core)")
+    parser.add_argument("--dashboard", action="store_true", help="serve the local cluster's Dask dashboard on "
+                        "127.0.0.1:8787 (off by default)")
+    parser.add_argument("--no-resume", action="store_true", help="recompute every point (the new table replaces "
+                        "the old one once complete)")
     args = parser.parse_args(argv)
+
+    def terminate(signum, frame):
+        raise _Terminated()
+
+    signal.signal(signal.SIGTERM, terminate)
     try:
+        security = _security_of_files(args.tls_ca_file, args.tls_cert, args.tls_key)
         run_sweep(args.sweep, output=args.output, scheduler=args.scheduler, workers=args.workers,
-                  resume=not args.no_resume)
-    except SweepError as e:
-        print(e, file=sys.stderr)
+                  resume=not args.no_resume, security=security, dashboard=args.dashboard)
+    except ValueError as e:  # SweepError and the core's bad-input errors: one line each
+        print(e if isinstance(e, SweepError) else _printable(e), file=sys.stderr)
         return 2
-    except ValueError as e:
-        print(e, file=sys.stderr)
-        return 2
+    except _Terminated:
+        print("hubbeam: sweep terminated; the finished points are in the table, run again to resume", file=sys.stderr)
+        return 143
     except KeyboardInterrupt:
         print("hubbeam: sweep interrupted; the finished points are in the table, run again to resume", file=sys.stderr)
         return 130
