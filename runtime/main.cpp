@@ -98,7 +98,7 @@ struct RunOptions {
 /// Declares the `run` options on sub from the scene key table; the help text of each is its documentation.
 void add_run_options(CLI::App& sub, RunOptions& o)
 {
-    sub.add_option("scene", o.scene, "Scene file (TOML; format in README.md, examples in cases/)")->required();
+    sub.add_option("scene", o.scene, "Scene file (TOML; format in docs/scene.md, examples in cases/)")->required();
     static const char* const type_names[] = {"X", "N", "WORD", "FILE"};  // by SceneKey::Kind
     const std::vector<SceneKey>& keys = scene_keys();
     for (std::size_t i = 0; i < keys.size(); ++i)
@@ -445,7 +445,7 @@ int sweep(const std::vector<std::string>& args)
     std::cerr << "hubbeam: cannot start " << HUBBEAM_PYTHON_EXECUTABLE << " for the sweep: " << std::strerror(errno) << "\n";
 #else
     (void)args;
-    std::cerr << "hubbeam: sweep needs the Python module: configure with -DHUBBEAM_PYTHON=ON (README: Python module)\n";
+    std::cerr << "hubbeam: sweep needs the Python module: configure with -DHUBBEAM_PYTHON=ON (docs/python.md)\n";
 #endif
     return exit_bad_input;
 }
@@ -499,7 +499,7 @@ int kernels(const KernelArgs& args)
 void add_plot_options(CLI::App& sub, PlotArgs& a)
 {
     sub.add_option("KIND", a.kind, "tip, axial (run CSVs), campbell (modes CSVs) or moment (field CSVs)")->required();
-    sub.add_option("FILE", a.files, "CSV files in the kind's format (README: Plots)")->required();
+    sub.add_option("FILE", a.files, "CSV files in the kind's format (docs/cli.md)")->required();
     sub.add_option("-o,--output", a.prefix, "Writes PREFIX.png, PREFIX.svg and the gnuplot script PREFIX.gp")
         ->type_name("PREFIX")
         ->required();
@@ -549,12 +549,12 @@ int main(int argc, char** argv)
     BenchArgs bench_args;
     CLI::App* bench_cmd = app.add_subcommand(
         "bench", "Work against precision: time and error of a grid of methods, DOF counts, steppers and tolerances");
-    bench_cmd->footer("Writes a CSV (README: Work-precision benchmark); exit code 2 for a bad option value or a grid "
+    bench_cmd->footer("Writes a CSV (columns in docs/cli.md); exit code 2 for a bad option value or a grid "
                       "estimated at over an hour without --yes, 130/143 when interrupted (finished rows kept).");
     add_bench_options(*bench_cmd, bench_scene, bench_args);
     StressOptions stress_options;
     CLI::App* stress_cmd = app.add_subcommand(
-        "stress", "Stability stress suite: high spin, many DOFs, long runs, extreme beams (README: Stress suite)");
+        "stress", "Stability stress suite: high spin, many DOFs, long runs, extreme beams");
     stress_cmd->add_flag("--long", stress_options.long_runs, "1000 s runs and every method's largest DOF count");
     stress_cmd->add_flag("--quick", stress_options.quick, "Spin rates up to 20 rad/s only (what the tests run)");
     stress_cmd->add_option("-o,--output", stress_options.output, "Also write the table as CSV")->type_name("FILE");
@@ -576,7 +576,7 @@ int main(int argc, char** argv)
     modes_cmd->add_option("--plot", modes_args.plot, "Also draw the Campbell diagram PREFIX.png and PREFIX.svg")
         ->type_name("PREFIX");
     add_linear_overrides(*modes_cmd, modes_overrides, false);
-    modes_cmd->footer("README: Modes and linearized models. Exit code 2 for a bad option value.");
+    modes_cmd->footer("docs/cli.md. Exit code 2 for a bad option value.");
     std::string linearize_scene, linearize_omega, linearize_prefix;
     LinearOverrides linearize_overrides;
     CLI::App* linearize_cmd = app.add_subcommand(
@@ -586,7 +586,7 @@ int main(int argc, char** argv)
     linearize_cmd->add_option("-o,--output", linearize_prefix, "Prefix of PREFIX-A.csv ... PREFIX-D.csv (default: SCENE-lin)")
         ->type_name("PREFIX");
     add_linear_overrides(*linearize_cmd, linearize_overrides, true);
-    linearize_cmd->footer("README: Modes and linearized models. Exit code 2 for a bad option value.");
+    linearize_cmd->footer("docs/cli.md. Exit code 2 for a bad option value.");
     CLI::App* sweep_cmd = app.add_subcommand(
         "sweep", "Parameter sweep on Dask: SWEEP.toml [-o FILE] [--scheduler ADDRESS] [--workers N] [--no-resume]");
     sweep_cmd->prefix_command();  // every argument goes to the sweep (hubbeam sweep --help describes them)
@@ -599,7 +599,7 @@ int main(int argc, char** argv)
     PlotArgs plot_args;
     CLI::App* plot_cmd = app.add_subcommand(
         "plot", "Figures from CSV files with gnuplot: tip deflection, axial tip, Campbell diagram, bending moment");
-    plot_cmd->footer("README: Plots. Exit codes: 0 figure written, 1 gnuplot failed, 2 bad input (one line on stderr, "
+    plot_cmd->footer("docs/cli.md. Exit codes: 0 figure written, 1 gnuplot failed, 2 bad input (one line on stderr, "
                      "nothing written).");
     add_plot_options(*plot_cmd, plot_args);
 
