@@ -1,6 +1,7 @@
 // The documentation's facts about scenes, against the program: docs/scene.md's key table lists exactly the keys
 // of scene_keys() with what each accepts, its documented defaults are the defaults load_scene() applies, the
-// keys it calls required are refused when missing, and docs/cli.md's `run` table sets the key each option sets.
+// keys it calls required are refused when missing, the scenes the pages show parse, and docs/cli.md's `run`
+// table sets the key each option sets.
 #include <catch2/catch.hpp>
 #include <fstream>
 #include <map>
@@ -76,9 +77,9 @@ std::string scene_text(const SceneLines& lines, const std::string& left_out = ""
 {
     std::map<std::string, std::string> tables;
     for (const auto& [key, value] : lines) {
-        if (key == left_out) continue;
         const std::size_t dot = key.find('.');
-        tables[key.substr(0, dot)] += key.substr(dot + 1) + " = " + value + "\n";
+        std::string& body = tables[key.substr(0, dot)];  // the table stays, even if left_out was its only key
+        if (key != left_out) body += key.substr(dot + 1) + " = " + value + "\n";
     }
     std::string text;
     for (const auto& [table, body] : tables) text += "[" + table + "]\n" + body;
@@ -136,8 +137,8 @@ TEST_CASE("docs/scene.md lists exactly the program's scene keys, with what each 
 
 TEST_CASE("docs/scene.md's defaults are the ones a scene gets, and its required keys are required", "[docs]")
 {
-    // A default `V` is right when setting the key to V changes nothing; a required key is refused when missing.
-    const Scene plain = parse_scene(scene_text(spin_up), "spin-up.toml");
+    // A default `V` is right when a scene without the key is valid and setting the key to V changes nothing; a
+    // required key is refused when missing.
     int defaults = 0, required = 0;
     for (const auto& [name, row] : table_rows("scene.md")) {
         if (name.find('.') == std::string::npos) continue;
@@ -148,7 +149,10 @@ TEST_CASE("docs/scene.md's defaults are the ones a scene gets, and its required 
             std::string value = cell.substr(1, cell.find('`', 1) - 1);
             if (value.size() >= 2 && value.front() == '"' && value.back() == '"') value = value.substr(1, value.size() - 2);
             INFO("documented default " << value);
-            check_same(parse_scene(scene_text(spin_up), "spin-up.toml", {{name, value}}), plain);
+            const std::string without = scene_text(spin_up, name);
+            Scene plain;
+            REQUIRE_NOTHROW(plain = parse_scene(without, "spin-up.toml"));
+            check_same(parse_scene(without, "spin-up.toml", {{name, value}}), plain);
             ++defaults;
         } else if (cell.rfind("required", 0) == 0) {
             bool held = false;
@@ -183,4 +187,29 @@ TEST_CASE("docs/cli.md's run options set the keys the program's options set", "[
         REQUIRE(rows[option].size() >= 2);
         CHECK(rows[option][1] == std::string("`") + k.name + "`");
     }
+}
+
+TEST_CASE("the scenes shown in README.md and docs/scene.md are valid scenes", "[docs]")
+{
+    int shown = 0;
+    for (const std::string page : {"README.md", "docs/scene.md"}) {
+        std::ifstream in(std::string(HUBBEAM_SOURCE_DIR) + "/" + page);
+        REQUIRE(in);
+        std::string block;
+        bool inside = false;
+        for (std::string line; std::getline(in, line);) {
+            if (!inside && line == "```toml") {
+                inside = true;
+                block.clear();
+            } else if (inside && line.rfind("```", 0) == 0) {
+                inside = false;
+                INFO(page << ":\n" << block);
+                CHECK_NOTHROW(parse_scene(block, page));
+                ++shown;
+            } else if (inside) {
+                block += line + "\n";
+            }
+        }
+    }
+    CHECK(shown >= 2);
 }
