@@ -1,4 +1,4 @@
-# Runs one hubbeam command line and checks what a user is promised (README.md): the exit code, a message on
+# Runs one hubbeam command line and checks what a user is promised (docs/cli.md): the exit code, a message on
 # stderr, and the CSV it leaves behind.
 #   -DHUBBEAM=exe -DARGS="run|scene.toml|..." -DEXIT=N       required (arguments separated by |)
 #   -DSTDERR=regex                                            stderr must match

@@ -5,8 +5,6 @@
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
-#include <map>
-#include <set>
 #include <string>
 
 #include "scene.hpp"
@@ -358,33 +356,6 @@ TEST_CASE("validate() re-checks a scene changed after loading", "[scene]")
     s.output.dt_out = 0.01;
     s.solver.stepper = "euler";
     CHECK_THROWS_WITH(validate(s), Catch::Contains("solver.stepper"));
-}
-
-TEST_CASE("README.md documents exactly the scene keys and options of scene_keys()", "[scene]")
-{
-    // The key table in scene.cpp is the one definition; the README's two tables must follow it.
-    std::ifstream in(std::string(HUBBEAM_SOURCE_DIR) + "/README.md");
-    REQUIRE(in);
-    std::set<std::string> documented_keys;
-    std::map<std::string, std::string> documented_options;  // option -> the line that documents it
-    for (std::string line; std::getline(in, line);) {
-        if (line.rfind("| `", 0) != 0) continue;
-        const std::string first = line.substr(3, line.find('`', 3) - 3);
-        if (first.find('.') != std::string::npos) documented_keys.insert(first);
-        if (first.rfind("-", 0) == 0) documented_options[first.substr(0, first.find(' '))] = line;
-    }
-    std::set<std::string> keys;
-    for (const SceneKey& k : scene_keys()) {
-        keys.insert(k.name);
-        if (!k.option) continue;
-        const std::string option = std::string(k.option).substr(0, std::string(k.option).find(','));
-        INFO(option);
-        REQUIRE(documented_options.count(option) == 1);
-        CHECK(documented_options[option].find(std::string("`") + k.name + "`") != std::string::npos);
-        documented_options.erase(option);
-    }
-    CHECK(documented_keys == keys);
-    CHECK(documented_options.empty());
 }
 
 TEST_CASE("overrides set keys before validation, and SceneError carries file, key, expected and got", "[scene]")

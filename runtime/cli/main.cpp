@@ -103,7 +103,7 @@ struct RunOptions {
 /// Declares the `run` options on sub from the scene key table; the help text of each is its documentation.
 void add_run_options(CLI::App& sub, RunOptions& o)
 {
-    sub.add_option("scene", o.scene, "Scene file (TOML; format in README.md, examples in cases/)")->required();
+    sub.add_option("scene", o.scene, "Scene file (TOML; format in docs/scene.md, examples in cases/)")->required();
     static const char* const type_names[] = {"X", "N", "WORD", "FILE"};  // by SceneKey::Kind
     const std::vector<SceneKey>& keys = scene_keys();
     for (std::size_t i = 0; i < keys.size(); ++i)
@@ -518,7 +518,7 @@ int kernels(const KernelArgs& args)
 void add_plot_options(CLI::App& sub, PlotArgs& a)
 {
     sub.add_option("KIND", a.kind, "tip, axial (run CSVs), campbell (modes CSVs) or moment (field CSVs)")->required();
-    sub.add_option("FILE", a.files, "CSV files in the kind's format (README: Plots)")->required();
+    sub.add_option("FILE", a.files, "CSV files in the kind's format (docs/cli.md)")->required();
     sub.add_option("-o,--output", a.prefix, "Writes PREFIX.png, PREFIX.svg and the gnuplot script PREFIX.gp")
         ->type_name("PREFIX")
         ->required();
@@ -574,12 +574,12 @@ int main(int argc, char** argv)
     BenchArgs bench_args;
     CLI::App* bench_cmd = app.add_subcommand(
         "bench", "Work against precision: time and error of a grid of methods, DOF counts, steppers and tolerances");
-    bench_cmd->footer("Writes a CSV (README: Work-precision benchmark); exit code 2 for a bad option value or a grid "
+    bench_cmd->footer("Writes a CSV (columns in docs/cli.md); exit code 2 for a bad option value or a grid "
                       "estimated at over an hour without --yes, 130/143 when interrupted (finished rows kept).");
     add_bench_options(*bench_cmd, bench_scene, bench_args);
     StressOptions stress_options;
     CLI::App* stress_cmd = app.add_subcommand(
-        "stress", "Stability stress suite: high spin, many DOFs, long runs, extreme beams (README: Stress suite)");
+        "stress", "Stability stress suite: high spin, many DOFs, long runs, extreme beams");
     stress_cmd->add_flag("--long", stress_options.long_runs, "1000 s runs and every method's largest DOF count");
     stress_cmd->add_flag("--quick", stress_options.quick, "Spin rates up to 20 rad/s only (what the tests run)");
     stress_cmd->add_option("-o,--output", stress_options.output, "Also write the table as CSV")->type_name("FILE");
@@ -602,7 +602,7 @@ int main(int argc, char** argv)
     modes_cmd->add_option("--plot", modes_args.plot, "Also draw the Campbell diagram PREFIX.png and PREFIX.svg (needs -o)")
         ->type_name("PREFIX");
     add_linear_overrides(*modes_cmd, modes_overrides, false);
-    modes_cmd->footer("Prints the table; writes a file only when asked (-o, --plot). README: Modes and linearized models. "
+    modes_cmd->footer("Prints the table; writes a file only when asked (-o, --plot). docs/cli.md. "
                       "Exit code 2 for a bad option value or an output that is the scene, another output, not a "
                       "regular file, or being written by another hubbeam.");
     std::string linearize_scene, linearize_omega, linearize_prefix;
@@ -615,7 +615,7 @@ int main(int argc, char** argv)
         ->type_name("PREFIX")
         ->required();
     add_linear_overrides(*linearize_cmd, linearize_overrides, true);
-    linearize_cmd->footer("README: Modes and linearized models. Exit code 2 for a bad option value.");
+    linearize_cmd->footer("docs/cli.md. Exit code 2 for a bad option value.");
     CLI::App* sweep_cmd = app.add_subcommand(
         "sweep", "Parameter sweep on Dask: SWEEP.toml [-o FILE] [--scheduler tls://HOST:PORT --tls-ca-file CA "
                  "--tls-cert CERT --tls-key KEY] [--workers N] [--dashboard] [--no-resume] (docs/python.md)");
@@ -629,7 +629,7 @@ int main(int argc, char** argv)
     PlotArgs plot_args;
     CLI::App* plot_cmd = app.add_subcommand(
         "plot", "Figures from CSV files with gnuplot: tip deflection, axial tip, Campbell diagram, bending moment");
-    plot_cmd->footer("README: Plots. gnuplot draws into temporary files that replace the figures only when complete. "
+    plot_cmd->footer("docs/cli.md. gnuplot draws into temporary files that replace the figures only when complete. "
                      "Exit codes: 0 figure written, 1 gnuplot or the disk failed (old figures kept), 2 bad input (one "
                      "line on stderr, nothing written).");
     add_plot_options(*plot_cmd, plot_args);

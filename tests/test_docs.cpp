@@ -1,0 +1,215 @@
+// The documentation's facts about scenes, against the program: docs/scene.md's key table lists exactly the keys
+// of scene_keys() with what each accepts, its documented defaults are the defaults load_scene() applies, the
+// keys it calls required are refused when missing, the scenes the pages show parse, and docs/cli.md's `run`
+// table sets the key each option sets.
+#include <catch2/catch.hpp>
+#include <fstream>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "scene.hpp"
+
+using namespace hubbeam;
+
+namespace {
+
+/// The cells of a Markdown table row "| a | b | c |", trimmed.
+std::vector<std::string> cells(const std::string& line)
+{
+    std::vector<std::string> out;
+    std::size_t start = line.find('|');
+    while (start != std::string::npos) {
+        const std::size_t end = line.find('|', start + 1);
+        if (end == std::string::npos) break;
+        std::string cell = line.substr(start + 1, end - start - 1);
+        cell.erase(0, cell.find_first_not_of(' '));
+        cell.erase(cell.find_last_not_of(' ') + 1);
+        out.push_back(cell);
+        start = end;
+    }
+    return out;
+}
+
+/// The rows of the tables in a page of the docs (in its section "## SECTION" if one is named) whose first cell
+/// starts with a backquoted name, by that name's first word ("--ny" of "`--ny N`").
+std::map<std::string, std::vector<std::string>> table_rows(const std::string& page, const std::string& section = "")
+{
+    std::ifstream in(std::string(HUBBEAM_SOURCE_DIR) + "/docs/" + page);
+    REQUIRE(in);
+    std::map<std::string, std::vector<std::string>> rows;
+    bool inside = section.empty();
+    for (std::string line; std::getline(in, line);) {
+        if (!section.empty() && line.rfind("## ", 0) == 0) inside = line == "## " + section;
+        if (!inside || line.rfind("| `", 0) != 0) continue;
+        std::vector<std::string> c = cells(line);
+        const std::string name = c[0].substr(1, c[0].find_first_of("` ", 1) - 1);
+        rows[name] = c;
+    }
+    return rows;
+}
+
+/// A scene with every required key of its motion: one line per key, as "table.key = value".
+using SceneLines = std::vector<std::pair<std::string, std::string>>;
+
+const SceneLines spin_up = {
+    {"beam.length", "8.0"},         {"beam.density", "2.7667e3"},    {"beam.area", "7.2968e-5"},
+    {"beam.second_moment", "8.2189e-9"}, {"beam.youngs_modulus", "6.8952e10"}, {"motion.kind", "\"spin-up\""},
+    {"motion.omega0", "4.0"},       {"motion.duration", "15.0"},     {"discretization.method", "\"amm\""},
+    {"discretization.ny", "4"},     {"discretization.nx", "4"},      {"output.t_end", "30.0"},
+};
+
+SceneLines torque_scene()
+{
+    SceneLines s;
+    for (const auto& [key, value] : spin_up) {
+        if (key == "motion.kind") s.emplace_back(key, "\"torque\"");
+        else if (key == "motion.omega0") s.emplace_back("motion.tau0", "10.0");
+        else s.emplace_back(key, value);
+    }
+    s.emplace_back("hub.inertia", "30.0");
+    return s;
+}
+
+/// The TOML text of the scene without the key `left_out`.
+std::string scene_text(const SceneLines& lines, const std::string& left_out = "")
+{
+    std::map<std::string, std::string> tables;
+    for (const auto& [key, value] : lines) {
+        const std::size_t dot = key.find('.');
+        std::string& body = tables[key.substr(0, dot)];  // the table stays, even if left_out was its only key
+        if (key != left_out) body += key.substr(dot + 1) + " = " + value + "\n";
+    }
+    std::string text;
+    for (const auto& [table, body] : tables) text += "[" + table + "]\n" + body;
+    return text;
+}
+
+/// Every value a scene key sets, compared field by field.
+void check_same(const Scene& a, const Scene& b)
+{
+    CHECK(a.parameters.L == b.parameters.L);
+    CHECK(a.parameters.rho == b.parameters.rho);
+    CHECK(a.parameters.S == b.parameters.S);
+    CHECK(a.parameters.I == b.parameters.I);
+    CHECK(a.parameters.E == b.parameters.E);
+    CHECK(a.parameters.a == b.parameters.a);
+    CHECK(a.parameters.J_oh == b.parameters.J_oh);
+    CHECK(a.motion.kind == b.motion.kind);
+    CHECK(a.motion.omega0 == b.motion.omega0);
+    CHECK(a.motion.spin_time == b.motion.spin_time);
+    CHECK(a.motion.tau0 == b.motion.tau0);
+    CHECK(a.motion.torque_time == b.motion.torque_time);
+    CHECK(a.variant == b.variant);
+    CHECK(a.source == b.source);
+    CHECK(a.axial == b.axial);
+    CHECK(a.solver.stepper == b.solver.stepper);
+    CHECK(a.solver.rtol == b.solver.rtol);
+    CHECK(a.solver.atol == b.solver.atol);
+    CHECK(a.solver.h0 == b.solver.h0);
+    CHECK(a.solver.stepping == b.solver.stepping);
+    CHECK(a.solver.max_steps == b.solver.max_steps);
+    CHECK(a.output.t_end == b.output.t_end);
+    CHECK(a.output.dt_out == b.output.dt_out);
+    CHECK(a.output.file == b.output.file);
+}
+
+}  // namespace
+
+TEST_CASE("docs/scene.md lists exactly the program's scene keys, with what each accepts", "[docs]")
+{
+    // The key table in scene.cpp is the one definition; the page's column "accepts" is its `expected`, word for word.
+    std::map<std::string, std::vector<std::string>> rows = table_rows("scene.md");
+    std::set<std::string> documented;
+    for (const auto& [name, row] : rows)
+        if (name.find('.') != std::string::npos) documented.insert(name);
+    std::set<std::string> keys;
+    for (const SceneKey& k : scene_keys()) {
+        keys.insert(k.name);
+        INFO(k.name);
+        REQUIRE(rows.count(k.name) == 1);
+        REQUIRE(rows[k.name].size() >= 4);
+        CHECK(rows[k.name][1] == k.expected);
+    }
+    CHECK(documented == keys);
+}
+
+TEST_CASE("docs/scene.md's defaults are the ones a scene gets, and its required keys are required", "[docs]")
+{
+    // A default `V` is right when a scene without the key is valid and setting the key to V changes nothing; a
+    // required key is refused when missing.
+    int defaults = 0, required = 0;
+    for (const auto& [name, row] : table_rows("scene.md")) {
+        if (name.find('.') == std::string::npos) continue;
+        INFO(name);
+        REQUIRE(row.size() >= 4);
+        const std::string& cell = row[3];
+        if (cell.rfind("`", 0) == 0) {
+            std::string value = cell.substr(1, cell.find('`', 1) - 1);
+            if (value.size() >= 2 && value.front() == '"' && value.back() == '"') value = value.substr(1, value.size() - 2);
+            INFO("documented default " << value);
+            const std::string without = scene_text(spin_up, name);
+            Scene plain;
+            REQUIRE_NOTHROW(plain = parse_scene(without, "spin-up.toml"));
+            check_same(parse_scene(without, "spin-up.toml", {{name, value}}), plain);
+            ++defaults;
+        } else if (cell.rfind("required", 0) == 0) {
+            bool held = false;
+            for (const SceneLines& scene : {spin_up, torque_scene()}) {
+                bool holds = false;
+                for (const auto& line : scene) holds = holds || line.first == name;
+                if (!holds) continue;
+                held = true;
+                try {
+                    parse_scene(scene_text(scene, name), "scene.toml");
+                    FAIL("a scene without " << name << " was accepted");
+                } catch (const SceneError& e) {
+                    CHECK(e.key == name);
+                }
+            }
+            CHECK(held);
+            ++required;
+        }
+    }
+    // Every key is one or the other but output.file, whose default is derived from the scene's name.
+    CHECK(defaults + required + 1 == static_cast<int>(scene_keys().size()));
+}
+
+TEST_CASE("docs/cli.md's run options set the keys the program's options set", "[docs]")
+{
+    std::map<std::string, std::vector<std::string>> rows = table_rows("cli.md", "hubbeam run");
+    for (const SceneKey& k : scene_keys()) {
+        if (!k.option) continue;
+        const std::string option = option_name(k);
+        INFO(option);
+        REQUIRE(rows.count(option) == 1);
+        REQUIRE(rows[option].size() >= 2);
+        CHECK(rows[option][1] == std::string("`") + k.name + "`");
+    }
+}
+
+TEST_CASE("the scenes shown in README.md and docs/scene.md are valid scenes", "[docs]")
+{
+    int shown = 0;
+    for (const std::string page : {"README.md", "docs/scene.md"}) {
+        std::ifstream in(std::string(HUBBEAM_SOURCE_DIR) + "/" + page);
+        REQUIRE(in);
+        std::string block;
+        bool inside = false;
+        for (std::string line; std::getline(in, line);) {
+            if (!inside && line == "```toml") {
+                inside = true;
+                block.clear();
+            } else if (inside && line.rfind("```", 0) == 0) {
+                inside = false;
+                INFO(page << ":\n" << block);
+                CHECK_NOTHROW(parse_scene(block, page));
+                ++shown;
+            } else if (inside) {
+                block += line + "\n";
+            }
+        }
+    }
+    CHECK(shown >= 2);
+}
