@@ -106,14 +106,6 @@ ModesOptions parse_modes_options(const ModesArgs& args, const Scene& scene)
     return o;
 }
 
-const char* modes_header()
-{
-    // The one list of the modes CSV's columns, in the order run_modes writes them; readers look them up by name.
-    static const std::string h = csv_header({"method", "ny", "nx", "order", "drive", "omega", "mode", "kind", "rad_s",
-                                             "hz", "dimensionless", "growth"});
-    return h.c_str();
-}
-
 void run_modes(const Scene& scene, const ModesOptions& o, std::ostream& out)
 {
     const double unit = frequency_unit(scene.parameters);

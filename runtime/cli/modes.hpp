@@ -41,9 +41,6 @@ struct ModesOptions {
 /// Checks and converts the typed options against the scene; throws ModesOptionError.
 ModesOptions parse_modes_options(const ModesArgs& args, const Scene& scene);
 
-/// The CSV header of the modes table.
-const char* modes_header();
-
 /// For each method, Ny and spin rate: the scene's variant linearized about the steady spin, its first `count`
 /// bending modes and first axial mode printed to out, and every mode written to options.output if given (atomically);
 /// with options.plot, the Campbell diagram. Throws std::runtime_error if the CSV or the figure cannot be written.

@@ -2,6 +2,8 @@
 // the natural modes (docs/model.md section 10).
 #include "linearize.hpp"
 
+#include "csv_columns.hpp"
+
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
@@ -265,5 +267,13 @@ std::vector<SpinMode> campbell(const Model& model, const std::vector<double>& om
 }
 
 double frequency_unit(const Parameters& p) { return std::sqrt(p.E * p.I / (p.rho * p.S * std::pow(p.L, 4))); }
+
+const char* modes_header()
+{
+    // The one list of the modes CSV's columns, in the order run_modes writes them; readers look them up by name.
+    static const std::string h = csv_header({"method", "ny", "nx", "order", "drive", "omega", "mode", "kind", "rad_s",
+                                             "hz", "dimensionless", "growth"});
+    return h.c_str();
+}
 
 }  // namespace hubbeam

@@ -21,7 +21,7 @@
 
 #include "csv_columns.hpp"
 #include "fields.hpp"
-#include "modes.hpp"
+#include "linearize.hpp"
 #include "option_lists.hpp"
 #include "output_file.hpp"
 #include "scene.hpp"

@@ -67,6 +67,9 @@ struct SpinMode {
 /// natural_modes about the steady spin at each rate of omegas, rate by rate (hubbeam modes, hubbeam.modes).
 std::vector<SpinMode> campbell(const Model& model, const std::vector<double>& omegas, Axial axial = Axial::dynamic);
 
+/// The CSV header of the modes table (hubbeam modes writes it, hubbeam plot campbell reads it by column name).
+const char* modes_header();
+
 /// sqrt(EI / (rho S L^4)) (rad/s): frequencies divided by it are the classical dimensionless ones (the first
 /// cantilever bending frequency is 1.8751^2 = 3.5160 of it).
 double frequency_unit(const Parameters& p);
