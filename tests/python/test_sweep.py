@@ -191,6 +191,14 @@ class SweepTest(unittest.TestCase):
         self.assertEqual(code, 0, err)
         self.assertNotIn("warning", err)
         self.assertEqual(len(read(path)), 20)
+        # The same from Python: the address and security=, a distributed.security.Security; without it, refused.
+        path, _ = self.copy_of_table("remote_python.csv", 19)
+        table = hubbeam.sweep(self.spec, output=path, scheduler=CLIENT.scheduler.address, security=CLIENT.security,
+                              progress=False)
+        self.assertEqual(len(table), 20)
+        with self.assertRaises(sweeps.SweepError) as caught:
+            hubbeam.sweep(self.spec, output=path + ".x", scheduler=CLIENT.scheduler.address, progress=False)
+        self.assertIn("certificates", str(caught.exception))
 
     def small_sweep(self, name):
         """A sweep of 4 short points and its complete table."""

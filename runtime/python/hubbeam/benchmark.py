@@ -55,7 +55,7 @@ def main() -> int:
     args = parser.parse_args()
     scene = os.path.abspath(args.scene)
     if not os.path.exists(scene):
-        print(f"{scene}: cannot open (give --scene cases/spinup_omega4.toml)", file=sys.stderr)
+        print(f"{hubbeam.printable(scene)}: cannot open (give --scene cases/spinup_omega4.toml)", file=sys.stderr)
         return 2
     run_overhead(scene, args.repeats)
     sweep_overhead(scene, args.points, 4.0, "points of about 10 ms")

@@ -239,6 +239,8 @@ def _check_output(path: str, inputs: Mapping[str, str]) -> None:
     folder = os.path.dirname(os.path.abspath(path))
     if not os.path.isdir(folder):
         raise SweepError(f"{shown}: expected a file in an existing folder, got a folder that does not exist")
+    if not os.access(folder, os.W_OK) or (os.path.exists(path) and not os.access(path, os.W_OK)):
+        raise SweepError(f"{shown}: cannot write there (permission denied)")
     for what, other in inputs.items():
         if _same_file(path, other):
             raise SweepError(f"{shown}: expected an output other than the {what} ({_printable(other)}), got the "
@@ -305,7 +307,10 @@ class _Table:
 
     def __init__(self, path: str, shown: str, truncate_to: int | None, header: str | None):
         self.shown = shown
-        self.fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_APPEND | os.O_CLOEXEC, 0o666)
+        try:
+            self.fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_APPEND | os.O_CLOEXEC | os.O_NONBLOCK, 0o666)
+        except OSError as e:
+            raise SweepError(f"{shown}: cannot open for writing: {e.strerror}") from None
         if truncate_to is not None:
             os.ftruncate(self.fd, truncate_to)
         if header is not None:
@@ -341,10 +346,10 @@ def _save_series(folder: str, name: str, series: Any) -> str:
     table's folder."""
     import numpy as np
 
-    os.makedirs(folder, exist_ok=True)
     final = os.path.join(folder, name + ".npy")
     temporary = os.path.join(folder, f".{name}.{os.getpid()}.tmp")
     try:
+        os.makedirs(folder, exist_ok=True)
         with open(temporary, "wb") as f:
             np.save(f, np.asarray(series, dtype=float))
         os.replace(temporary, final)
@@ -615,7 +620,10 @@ def run_sweep(spec: str | os.PathLike | Mapping[str, Any], *, output: str | None
             table.close(sync=True)
             table = None
             if temporary is not None:
-                os.replace(temporary, path)
+                try:
+                    os.replace(temporary, path)
+                except OSError as e:
+                    raise SweepError(f"{shown}: cannot replace the old table with the new one: {e.strerror}") from None
                 temporary = None
             finished = True
             interrupted = False
@@ -638,7 +646,7 @@ def run_sweep(spec: str | os.PathLike | Mapping[str, Any], *, output: str | None
             overhead = (wall * n_workers - run_total) / run_total if run_total > 0 else float("nan")
             last_timing.update(wall=wall, workers=n_workers, runs=run_total, overhead=overhead, start_up=start_up)
             if progress:
-                print(f"sweep: {len(todo)} points in {wall:.2f} s on {n_workers} workers, after {start_up:.2f} s to "
+                print(f"sweep: {len(todo)} points in {wall:.2f} s on {n_workers} worker{'s' if n_workers != 1 else ''}, after {start_up:.2f} s to "
                       f"start or reach the cluster; the runs themselves took {run_total:.2f} s of the workers' "
                       f"{wall * n_workers:.2f} s (the rest is Dask's scheduling and transfers, and workers left "
                       f"without a point)", file=sys.stderr)
