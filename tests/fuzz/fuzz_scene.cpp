@@ -1,4 +1,4 @@
-// libFuzzer target for the scene parser (README "Fuzzing the scene parser"): any bytes as a scene file, with or
+// libFuzzer target for the scene parser (docs/testing.md): any bytes as a scene file, with or
 // without a command-line override. A SceneError is the parser's answer to bad input; anything else, another
 // exception, a crash or a sanitizer report, is a bug.
 #include <cstddef>
