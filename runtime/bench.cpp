@@ -452,14 +452,15 @@ std::string plot(const std::string& prefix, const std::string& csv, std::ostream
     }
     std::ostringstream d;
     for (const auto& [k, e] : dofs) d << k.first << "," << k.second << "," << e << "\n";
-    for (const auto& [path, text] : {std::pair{prefix + "-front.dat", front.str()}, std::pair{prefix + "-dofs.dat", d.str()}}) {
+    for (const auto& [path, text] :
+         {std::pair{prefix + "-front.dat", front.str()}, std::pair{prefix + "-dofs.dat", d.str()}}) {
         OutputFile file(path);
         if (const int error = file.write(text); error != 0) return path + ": write failed: " + std::strerror(error);
         if (const std::string why = file.commit(); !why.empty()) return path + ": " + why;
     }
     const std::vector<std::string> figures = {prefix + "-work", prefix + "-dofs"};
-    if (const std::string problem = draw_figures(figures, script_path, script_for(figures), script_for); !problem.empty())
-        return problem;
+    const std::string problem = draw_figures(figures, script_path, script_for(figures), script_for);
+    if (!problem.empty()) return problem;
     out << "figures: " << prefix << "-work.{png,svg}, " << prefix << "-dofs.{png,svg} (script " << script_path << ")\n";
     return {};
 }
