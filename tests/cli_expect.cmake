@@ -12,6 +12,7 @@
 #   -DKEEP_FILE=path|path...                                  hold "old contents" before and must after
 #   -DFRESH_COPY=src|dst                                      dst rewritten in place with src's text first (so
 #                                                             that a hard link to dst stays one)
+#   -DHARD_LINK=a|b                                           b made a hard link to a first
 #   -DMKFIFO=path                                             a FIFO (named pipe) made there before the run
 #   -DWORKDIR=path                                            run in this folder (made if missing)
 #   -DTIMEOUT=seconds                                         the run is killed after this long (a blocked
@@ -49,6 +50,16 @@ if(DEFINED FRESH_COPY)
   list(GET copy 1 copy_to)
   file(READ ${copy_from} text)
   file(WRITE ${copy_to} "${text}")
+endif()
+if(DEFINED HARD_LINK)
+  string(REPLACE "|" ";" link "${HARD_LINK}")
+  list(GET link 0 link_to)
+  list(GET link 1 link_name)
+  file(REMOVE ${link_name})
+  file(CREATE_LINK ${link_to} ${link_name})
+endif()
+if(DEFINED NO_FILE)
+  file(REMOVE ${NO_FILE})  # what an earlier run left is not this run's
 endif()
 if(DEFINED MKFIFO)
   file(REMOVE ${MKFIFO})

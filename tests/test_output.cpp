@@ -100,7 +100,8 @@ TEST_CASE("CsvWriter: a second writer of one path is refused while the first wri
     CsvWriter first(target);
     CHECK_THROWS_MATCHES(CsvWriter(target), OutputRefused,
                          Catch::Message("another hubbeam is writing " + target + " (it holds " +
-                                        scratch / ".out.csv.lock" + "): wait for it to finish, or write to another file"));
+                                        scratch / ".out.csv.lock" +
+                                        "): wait for it to finish, or write to another file"));
     for (int i = 0; i < 3000; ++i) first.write(row_at(i));  // several chunks
     REQUIRE(first.finish());
     std::string all = expected({});
@@ -194,7 +195,8 @@ TEST_CASE("OutputFile refuses a FIFO, a device and a directory without opening t
     const std::string fifo = scratch / "fifo";
     REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
     // Opening a FIFO for writing would block here until a reader came.
-    CHECK_THROWS_MATCHES(OutputFile(fifo), OutputRefused, Catch::Message(fifo + ": expected a regular file or the name of a new one, got a FIFO"));
+    CHECK_THROWS_MATCHES(OutputFile(fifo), OutputRefused,
+                         Catch::Message(fifo + ": expected a regular file or the name of a new one, got a FIFO"));
     CHECK_THROWS_AS(OutputFile("/dev/null"), OutputRefused);
     CHECK_THROWS_AS(OutputFile(scratch.dir.string()), OutputRefused);
     CHECK(not_a_regular_file(fifo) == "a FIFO");
@@ -217,11 +219,12 @@ TEST_CASE("same_file and check_outputs compare files, not spellings", "[output]"
     CHECK_FALSE(same_file(scratch / "new.csv", scratch / "other.csv"));
     CHECK_FALSE(same_file(scratch / "new.csv", scratch / "no_such_dir/new.csv"));
     CHECK_THROWS_MATCHES(check_outputs({{scene, "the scene itself"}}, {{scratch / "link.toml", "-o"}}), OutputRefused,
-                         Catch::Message("-o: expected a file other than the scene itself, got \"" + scratch / "link.toml" + "\""));
+                         Catch::Message("-o: expected a file other than the scene itself, got \"" +
+                                        scratch / "link.toml" + "\""));
     CHECK_THROWS_MATCHES(check_outputs({}, {{scratch / "out.csv", "-o"}, {scratch / "sub/../out.csv", "--fields"}}),
                          OutputRefused,
-                         Catch::Message("--fields: expected a file other than -o's \"" + scratch / "out.csv" + "\", got \"" +
-                                        scratch / "sub/../out.csv" + "\""));
+                         Catch::Message("--fields: expected a file other than -o's \"" + scratch / "out.csv" +
+                                        "\", got \"" + scratch / "sub/../out.csv" + "\""));
     CHECK_THROWS_WITH(check_outputs({}, {{scratch / "no_such_dir/out.csv", "-o"}}),
                       scratch / "no_such_dir/out.csv" + ": cannot open for writing: No such file or directory");
     CHECK_NOTHROW(check_outputs({{scene, "the scene itself"}}, {{scratch / "out.csv", "-o"}, {"", "--fields"}}));

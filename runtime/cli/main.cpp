@@ -366,7 +366,8 @@ int bench(const std::string& scene_path, const BenchArgs& args)
         options = parse_bench_options(args, scene);
         std::vector<NamedPath> outputs = {{options.table1 ? std::string() : options.output, "-o"}};
         if (!options.table1 && !options.plot.empty())
-            for (const char* end : {"-work.png", "-work.svg", "-dofs.png", "-dofs.svg", ".gp", "-front.dat", "-dofs.dat"})
+            for (const char* end :
+                 {"-work.png", "-work.svg", "-dofs.png", "-dofs.svg", ".gp", "-front.dat", "-dofs.dat"})
                 outputs.push_back({options.plot + end, "--plot"});
         check_outputs({{scene.path, "the scene itself"}}, outputs);
     } catch (const OutputRefused& e) {
@@ -599,7 +600,8 @@ int main(int argc, char** argv)
         ->type_name("N");
     modes_cmd->add_option("-o,--output", modes_args.output, "Also write every mode as CSV to FILE (default: no file)")
         ->type_name("FILE");
-    modes_cmd->add_option("--plot", modes_args.plot, "Also draw the Campbell diagram PREFIX.png and PREFIX.svg (needs -o)")
+    modes_cmd
+        ->add_option("--plot", modes_args.plot, "Also draw the Campbell diagram PREFIX.png and PREFIX.svg (needs -o)")
         ->type_name("PREFIX");
     add_linear_overrides(*modes_cmd, modes_overrides, false);
     modes_cmd->footer("Prints the table; writes a file only when asked (-o, --plot). docs/cli.md. "
@@ -611,7 +613,8 @@ int main(int argc, char** argv)
         "linearize", "State-space matrices A, B, C, D about a steady spin (input hub torque or acceleration)");
     linearize_cmd->add_option("scene", linearize_scene, "Scene file (TOML)")->required()->type_name("SCENE.toml");
     linearize_cmd->add_option("--omega", linearize_omega, "Steady spin rate (rad/s), >= 0")->required()->type_name("W");
-    linearize_cmd->add_option("-o,--output", linearize_prefix, "Writes PREFIX-A.csv, PREFIX-B.csv, PREFIX-C.csv, PREFIX-D.csv")
+    linearize_cmd
+        ->add_option("-o,--output", linearize_prefix, "Writes PREFIX-A.csv, PREFIX-B.csv, PREFIX-C.csv, PREFIX-D.csv")
         ->type_name("PREFIX")
         ->required();
     add_linear_overrides(*linearize_cmd, linearize_overrides, true);

@@ -132,9 +132,11 @@ void run_modes(const Scene& scene, const ModesOptions& o, std::ostream& out)
                         << shortest(mode.rad_s) << ',' << shortest(hz) << ',' << shortest(mode.rad_s / unit) << ','
                         << shortest(mode.growth);
                     if (csv) csv->write_line(row.str());
-                    const bool enough = mode.kind == "bending" ? shown_bending++ >= o.count : std::exchange(shown_axial, true);
+                    const bool enough =
+                        mode.kind == "bending" ? shown_bending++ >= o.count : std::exchange(shown_axial, true);
                     if (enough) continue;
-                    std::snprintf(line, sizeof line, "%-6s %3d %3d  %-5s %12.4g  %4d  %-7s %11.6g %11.6g %14.6g  %10.3g\n",
+                    std::snprintf(line, sizeof line,
+                                  "%-6s %3d %3d  %-5s %12.4g  %4d  %-7s %11.6g %11.6g %14.6g  %10.3g\n",
                                   to_string(method).c_str(), ny, key.nx, to_string(key.order).c_str(), omega, number,
                                   mode.kind.c_str(), mode.rad_s, hz, mode.rad_s / unit, mode.growth);
                     out << line;

@@ -288,8 +288,9 @@ std::vector<KernelBenchRow> run_kernel_bench(const KernelBenchOptions& options, 
     std::unique_ptr<CsvWriter> csv;
     if (!options.output.empty()) {
         try {
-            csv = std::make_unique<CsvWriter>(
-                options.output, "method,drive,order,nx,ny,nq,source,ns_rhs,ns_rhs_min,ns_rhs_max,ns_jac,ns_jac_min,ns_jac_max");
+            csv = std::make_unique<CsvWriter>(options.output,
+                                              "method,drive,order,nx,ny,nq,source,ns_rhs,ns_rhs_min,ns_rhs_max,ns_jac,"
+                                              "ns_jac_min,ns_jac_max");
         } catch (const std::runtime_error& e) {
             throw KernelOptionError(std::string("-o: ") + e.what());
         }
