@@ -28,6 +28,7 @@ struct ModesArgs {
     std::string count = "4";
     std::string output;   // CSV; empty: SCENE-modes.csv
     std::string plot;     // PREFIX: the Campbell diagram PREFIX.{png,svg} (hubbeam plot campbell)
+    bool quiet = false;   // the table to the CSV only, and one summary line printed
 };
 
 struct ModesOptions {
@@ -36,6 +37,7 @@ struct ModesOptions {
     std::vector<int> ny;
     int count = 4;
     std::string output, plot;
+    bool quiet = false;
 };
 
 /// Checks and converts the typed options against the scene; throws ModesOptionError.
@@ -45,8 +47,8 @@ ModesOptions parse_modes_options(const ModesArgs& args, const Scene& scene);
 const char* modes_header();
 
 /// For each method, Ny and spin rate: the scene's variant linearized about the steady spin, its first `count`
-/// bending modes and first axial mode printed to out, and every mode written to options.output (atomically);
-/// with options.plot, the Campbell diagram. Throws std::runtime_error if the CSV or the figure cannot be written.
+/// bending modes and first axial mode printed to out (with options.quiet, only how many modes were written), and
+/// every mode written to options.output (atomically); with options.plot, the Campbell diagram. Throws std::runtime_error if the CSV or the figure cannot be written.
 void run_modes(const Scene& scene, const ModesOptions& options, std::ostream& out);
 
 /// hubbeam linearize: A, B, C and D about the steady spin omega written to PREFIX-A.csv ... PREFIX-D.csv, each
