@@ -50,7 +50,7 @@ TEST_CASE("modes and linearize take spin rates written 0.0 as 0, also as the sta
     CHECK_THROWS_AS(parse_spin_rates("--omega", "0:1:0.0"), ModesOptionError);  // a step must be > 0
 }
 
-TEST_CASE("--methods lists read every method word, each once, and name a bad one", "[options]")
+TEST_CASE("method lists read every method word, each once, and name a bad one", "[options]")
 {
     CHECK(parse_method_list<OptionError>("--methods", "bim,amm,bim") == std::vector<Method>{Method::bim, Method::amm});
     std::vector<Method> all;
