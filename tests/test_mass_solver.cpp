@@ -2,7 +2,11 @@
 // runtime/integrate.cpp) against a plain dense solve, and the generated mass pattern against M's values.
 #include <catch2/catch.hpp>
 
+#include <gsl/gsl_errno.h>
+#include <malloc.h>
+
 #include <Eigen/Dense>
+#include <algorithm>
 #include <random>
 #include <string>
 #include <vector>
@@ -160,4 +164,73 @@ TEST_CASE("folded forces: one multiply-add pass gives M^-1 Q", "[structure]")
             CHECK(relative_error(f.tail(key.nq()), qdd) < 1e-11);
         }
     }
+}
+
+namespace {
+
+/// A constant tridiagonal mass matrix, -1 or +2 on the diagonal (indefinite or definite, switched by the test),
+/// 0.5 beside it: large enough to be solved banded. Only the mass matters here.
+class Tridiagonal final : public Model {
+public:
+    explicit Tridiagonal(const VariantKey& key) : Model(key) {}
+    double diagonal = -1.0;
+    const char* source() const override { return "test"; }
+    bool mass_is_constant() const override { return true; }
+    std::string mass_pattern() const override
+    {
+        std::string p(static_cast<std::size_t>(nq() * nq()), '0');
+        for (int i = 0; i < nq(); ++i)
+            for (int j = std::max(0, i - 1); j <= std::min(nq() - 1, i + 1); ++j) p[static_cast<std::size_t>(i * nq() + j)] = 'c';
+        return p;
+    }
+    void mass(const HubInput&, const double*, double* M) const override
+    {
+        const int n = nq();
+        std::fill(M, M + n * n, 0.0);
+        for (int i = 0; i < n; ++i) {
+            M[i * n + i] = diagonal;
+            if (i + 1 < n) M[i * n + i + 1] = M[(i + 1) * n + i] = 0.5;
+        }
+    }
+    void forces(const HubInput&, const double*, const double*, double* Q) const override
+    {
+        std::fill(Q, Q + nq(), 0.0);
+    }
+    Energy energy(const HubInput&, const double*, const double*) const override { return {}; }
+    double momentum(const HubInput&, const double*, const double*) const override { return 0.0; }
+    Tip tip(const double*) const override { return {}; }
+};
+
+}  // namespace
+
+TEST_CASE("a banded factorization retried after failing holds one band, not one per attempt", "[structure]")
+{
+    VariantKey key;
+    key.method = Method::fem;
+    key.nx = 0;
+    key.ny = 40;
+    Tridiagonal model(key);
+    const auto solver = MassSolver::make(model);
+    REQUIRE(solver->describe().find("banded") != std::string::npos);
+    // An indefinite M fails at every prepare() and is factored again at the next: the heap in use must not grow
+    // with the attempts (a band of 40 x 2 doubles left behind each time would be some 4 MB after 5000).
+    const std::vector<double> q(static_cast<std::size_t>(model.nq()), 0.0);
+    // GSL reports the indefinite matrix through its error handler, which aborts unless switched off (as a run does).
+    struct QuietGsl {
+        gsl_error_handler_t* previous = gsl_set_error_handler_off();
+        ~QuietGsl() { gsl_set_error_handler(previous); }
+    } quiet;
+    REQUIRE_FALSE(solver->prepare({}, q.data()));
+    const std::size_t before = mallinfo2().uordblks;
+    for (int attempt = 0; attempt < 5000; ++attempt) REQUIRE_FALSE(solver->prepare({}, q.data()));
+    const std::size_t after = mallinfo2().uordblks;
+    CHECK(after < before + 64 * 1024);
+    // The band reused for a definite M solves it (nothing of the failed attempts left in it).
+    model.diagonal = 2.0;
+    REQUIRE(solver->prepare({}, q.data()));
+    const MatrixXd M = mass_of(model, {}, VectorXd::Zero(model.nq()));
+    const MatrixXd B = MatrixXd::Random(model.nq(), 2);
+    MatrixXd X = B;
+    solver->solve(X.data(), 2);
+    CHECK(relative_error(X, M.llt().solve(B)) < 1e-13);
 }

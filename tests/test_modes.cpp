@@ -2,16 +2,23 @@
 // frequencies (roots of 1 + cos z cosh z = 0), the rotating cantilever's flapwise frequencies by power series,
 // the in-plane relation omega_inplane^2 = omega_flap^2 - Omega^2 (docs/model.md section 7), and the state-space
 // matrices against central differences of the nonlinear equations.
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
 #include <Eigen/Dense>
 #include <cmath>
+#include <filesystem>
 #include <numbers>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "linearize.hpp"
 #include "integrate.hpp"
 #include "make_model.hpp"
+#include "modes.hpp"
 #include "motion.hpp"
+#include "scene.hpp"
 
 using namespace hubbeam;
 
@@ -286,4 +293,23 @@ TEST_CASE("the condensed modes are the eigenvalues of the quasi-static run's own
         REQUIRE(condensed.size() == reference.size());
         for (std::size_t i = 0; i < reference.size(); ++i) CHECK(condensed[i].rad_s == Approx(reference[i]).epsilon(1e-6));
     }
+}
+
+TEST_CASE("linearize prints the state names it writes, separated by commas", "[modes]")
+{
+    // The free hub with Nx = Ny = 4: theta, A1..A4, B1..B4, then their rates (the rows of PREFIX-A.csv).
+    const Scene scene = load_scene(std::string(HUBBEAM_SOURCE_DIR) + "/cases/torque_tau10.toml");
+    std::string names = "theta";
+    for (const char* stem : {"A", "B"})
+        for (int i = 1; i <= 4; ++i) names += ", " + std::string(stem) + std::to_string(i);
+    names += ", theta_dot";
+    for (const char* stem : {"A", "B"})
+        for (int i = 1; i <= 4; ++i) names += ", " + std::string(stem) + std::to_string(i) + "_dot";
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("hubbeam-lin-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    std::ostringstream out;
+    run_linearize(scene, 2.0, (dir / "lin").string(), out);
+    std::filesystem::remove_all(dir);
+    INFO(out.str());
+    CHECK(out.str().find("\nstates      18 (" + names + ")\n") != std::string::npos);
 }

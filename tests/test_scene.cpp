@@ -3,9 +3,11 @@
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "scene.hpp"
 
@@ -386,4 +388,48 @@ TEST_CASE("overrides set keys before validation, and SceneError carries file, ke
         CHECK(e.problem() == e.detail);
         CHECK(std::string(e.what()) == file + ": discretization.ny: " + e.detail);
     }
+}
+
+TEST_CASE("a table accepts exactly the keys the key table gives it, [motion] those of its kind", "[scene]")
+{
+    // Each key of the table, set in each paper case (as an override, which puts it into the parsed file), is
+    // either accepted or refused for its value, never as unknown; a [motion] key of the other kind is unknown.
+    const std::vector<std::string> kinds = {"spin-up", "torque"};
+    const std::map<std::string, std::string> files = {{"spin-up", case_path("spinup_omega4.toml")},
+                                                      {"torque", case_path("torque_tau10.toml")}};
+    for (const SceneKey& key : scene_keys()) {
+        if (key.motion_kind != nullptr)
+            CHECK(std::find(kinds.begin(), kinds.end(), key.motion_kind) != kinds.end());
+        const std::string value = key.kind == SceneKey::Kind::integer  ? "4"
+                                  : key.kind == SceneKey::Kind::number ? "0.5"
+                                                                       : "x";
+        for (const std::string& kind : kinds) {
+            INFO(key.name << " = " << value << " in a " << kind << " scene");
+            const bool belongs = key.motion_kind == nullptr || key.motion_kind == kind;
+            std::string got;
+            try {
+                load_scene(files.at(kind), {{key.name, value}});
+            } catch (const SceneError& e) {
+                got = e.got;
+                if (e.key != key.name) continue;  // another key's value check came first: says nothing of this one
+            }
+            CHECK((got == "an unknown key") == !belongs);
+        }
+    }
+    // And nothing else: a key of one table is unknown in another, and the message lists the table's own keys.
+    try {
+        const std::string text = "[beam]\nlength = 8\ndensity = 1\narea = 1\nsecond_moment = 1\nyoungs_modulus = 1\n"
+                                 "ny = 4\n[motion]\nkind = \"spin-up\"\nomega0 = 1\nduration = 1\n"
+                                 "[discretization]\nmethod = \"amm\"\nny = 4\nnx = 0\n[output]\nt_end = 1\n";
+        parse_scene(text, "s.toml");
+        FAIL("beam.ny was accepted");
+    } catch (const SceneError& e) {
+        CHECK(e.key == "beam.ny");
+        CHECK(e.expected == "one of length, density, area, second_moment, youngs_modulus");
+        CHECK(e.got == "an unknown key");
+    }
+    // The parameters of the paper's two motions: Omega0 and T_s (eq. 58), tau0 and T_t (eq. 59).
+    CHECK(table_keys("motion", "spin-up") == std::vector<std::string>{"kind", "omega0", "duration"});
+    CHECK(table_keys("motion", "torque") == std::vector<std::string>{"kind", "tau0", "duration"});
+    CHECK(scene_tables() == std::vector<std::string>{"beam", "hub", "motion", "discretization", "model", "solver", "output"});
 }

@@ -100,16 +100,21 @@ struct RunOptions {
 };
 
 
+/// Declares key's option on sub, its help text from the key table (with note after it), setting value.
+void add_key_option(CLI::App& sub, const SceneKey& key, std::string& value, const std::string& note = "")
+{
+    static const char* const type_names[] = {"X", "N", "WORD", "FILE"};  // by SceneKey::Kind
+    sub.add_option(key.option, value, std::string("Sets ") + key.name + ": " + key.expected + note)
+        ->type_name(type_names[static_cast<int>(key.kind)]);
+}
+
 /// Declares the `run` options on sub from the scene key table; the help text of each is its documentation.
 void add_run_options(CLI::App& sub, RunOptions& o)
 {
     sub.add_option("scene", o.scene, "Scene file (TOML; format in docs/scene.md, examples in cases/)")->required();
-    static const char* const type_names[] = {"X", "N", "WORD", "FILE"};  // by SceneKey::Kind
     const std::vector<SceneKey>& keys = scene_keys();
     for (std::size_t i = 0; i < keys.size(); ++i)
-        if (keys[i].option)
-            sub.add_option(keys[i].option, o.values[i], std::string("Sets ") + keys[i].name + ": " + keys[i].expected)
-                ->type_name(type_names[static_cast<int>(keys[i].kind)]);
+        if (keys[i].option) add_key_option(sub, keys[i], o.values[i]);
     sub.add_option("--fields-at", o.fields_at,
                    "Also write the fields along the beam (u_y, u_x, slope, curvature, bending moment, axial force) at "
                    "these times (s, comma-separated; the first row at or after each)")->type_name("LIST");
@@ -127,7 +132,7 @@ std::pair<std::vector<double>, int> field_request(const RunOptions& o, const Sce
     const std::string expected = "a comma-separated list of times from 0 to t_end = " + shortest(scene.output.t_end) + " s";
     for (const std::string& item : split_list(o.fields_at)) {
         double t = 0.0;
-        if (!(item == "0" || parse_positive(item, t)) || t > scene.output.t_end)
+        if (!parse_non_negative(item, t) || t > scene.output.t_end)
             bad_option<ModesOptionError>("--fields-at", expected, printable(item));
         add_unique(times, t);
     }
@@ -397,29 +402,26 @@ int bench(const std::string& scene_path, const BenchArgs& args)
     return exit_ok;
 }
 
-/// The scene keys that `modes` and `linearize` take as options ("--nx", "--order", "--source"), as overrides.
+/// The scene keys that `modes` and `linearize` take as options ("--nx", "--order", "--source"), as overrides; the
+/// options, their help and their checks are the key table's.
 struct LinearOverrides {
-    std::string nx, order, source, method, ny;
+    std::vector<std::string> keys, values;  // scene key names, and the values typed (empty: not given)
     Overrides overrides() const
     {
         Overrides o;
-        for (const auto& [key, value] : {std::pair{"discretization.nx", &nx}, std::pair{"model.order", &order},
-                                         std::pair{"model.source", &source}, std::pair{"discretization.method", &method},
-                                         std::pair{"discretization.ny", &ny}})
-            if (!value->empty()) o.emplace_back(key, *value);
+        for (std::size_t i = 0; i < keys.size(); ++i)
+            if (!values[i].empty()) o.emplace_back(keys[i], values[i]);
         return o;
     }
 };
 
 void add_linear_overrides(CLI::App& sub, LinearOverrides& o, bool single_variant)
 {
-    sub.add_option("--nx", o.nx, "Axial coordinates Nx (default: the scene's)")->type_name("N");
-    sub.add_option("--order", o.order, "Model order zero, first or full (default: the scene's)")->type_name("O");
-    sub.add_option("--source", o.source, "auto, generated or assembled (default: the scene's)")->type_name("S");
-    if (single_variant) {
-        sub.add_option("--method", o.method, "Discretization method (default: the scene's)")->type_name("M");
-        sub.add_option("--ny", o.ny, "Transverse coordinates Ny (default: the scene's)")->type_name("N");
-    }
+    o.keys = {"discretization.nx", "model.order", "model.source"};
+    if (single_variant) o.keys.insert(o.keys.end(), {"discretization.method", "discretization.ny"});
+    o.values.assign(o.keys.size(), "");  // sized before the options hold references into it
+    for (std::size_t i = 0; i < o.keys.size(); ++i)
+        add_key_option(sub, scene_key(o.keys[i]), o.values[i], " (default: the scene's)");
 }
 
 /// hubbeam modes and hubbeam linearize: load the scene with the overrides, then act; returns the exit code.
@@ -603,6 +605,8 @@ int main(int argc, char** argv)
     modes_cmd
         ->add_option("--plot", modes_args.plot, "Also draw the Campbell diagram PREFIX.png and PREFIX.svg (needs -o)")
         ->type_name("PREFIX");
+    modes_cmd->add_flag("-q,--quiet", modes_args.quiet,
+                        "Print only how many modes were written, not the table (the CSV has every mode)");
     add_linear_overrides(*modes_cmd, modes_overrides, false);
     modes_cmd->footer("Prints the table; writes a file only when asked (-o, --plot). docs/cli.md. "
                       "Exit code 2 for a bad option value or an output that is the scene, another output, not a "

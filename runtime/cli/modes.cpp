@@ -25,13 +25,6 @@ namespace {
     bad_option<ModesOptionError>(option, expected, got);
 }
 
-/// A whole item as a finite number >= 0, or false.
-bool parse_rate(const std::string& s, double& v)
-{
-    if (s == "0") return v = 0.0, true;
-    return parse_positive(s, v);
-}
-
 constexpr std::size_t max_spin_rates = 10000;
 
 }  // namespace
@@ -44,14 +37,14 @@ std::vector<double> parse_spin_rates(const std::string& option, const std::strin
         const std::size_t c1 = item.find(':');
         if (c1 == std::string::npos) {
             double v = 0.0;
-            if (!parse_rate(item, v)) bad(option, expected, item);
+            if (!parse_non_negative(item, v)) bad(option, expected, item);
             add_unique(rates, v);
             continue;
         }
         const std::size_t c2 = item.find(':', c1 + 1);
         double first = 0.0, last = 0.0, step = 0.0;
-        if (c2 == std::string::npos || !parse_rate(item.substr(0, c1), first) ||
-            !parse_rate(item.substr(c1 + 1, c2 - c1 - 1), last) || !parse_positive(item.substr(c2 + 1), step) ||
+        if (c2 == std::string::npos || !parse_non_negative(item.substr(0, c1), first) ||
+            !parse_non_negative(item.substr(c1 + 1, c2 - c1 - 1), last) || !parse_positive(item.substr(c2 + 1), step) ||
             last < first || (last - first) / step > static_cast<double>(max_spin_rates))
             bad(option, expected, item);
         const auto count = static_cast<long>(std::floor((last - first) / step * (1.0 + 1e-12)));
@@ -71,20 +64,9 @@ ModesOptions parse_modes_options(const ModesArgs& args, const Scene& scene)
     } else {
         o.omegas = parse_spin_rates("--omega", args.omega);
     }
-    if (args.methods.empty()) o.methods = {scene.variant.method};
-    else
-        for (const std::string& s : split_list(args.methods)) {
-            Method v{};
-            if (!parse(s, v)) bad("--methods", "a comma-separated list of " + joined(words<Method>()), s);
-            add_unique(o.methods, v);
-        }
-    if (args.ny.empty()) o.ny = {scene.variant.ny};
-    else
-        for (const std::string& s : split_list(args.ny)) {
-            int v = 0;
-            if (!parse_int(s, 1, 64, v)) bad("--ny", "a comma-separated list of integers from 1 to 64", s);
-            add_unique(o.ny, v);
-        }
+    o.methods = args.methods.empty() ? std::vector<Method>{scene.variant.method}
+                                     : parse_method_list<ModesOptionError>("--methods", args.methods);
+    o.ny = args.ny.empty() ? std::vector<int>{scene.variant.ny} : parse_dof_list<ModesOptionError>("--ny", args.ny, 1);
     // Every (method, Ny) must be a variant the method can take, checked before anything is computed.
     for (Method m : o.methods)
         for (int ny : o.ny) {
@@ -96,13 +78,7 @@ ModesOptions parse_modes_options(const ModesArgs& args, const Scene& scene)
     if (!parse_int(args.count, 1, 64, o.count)) bad("--count", "an integer from 1 to 64", args.count);
     o.output = args.output;
     o.plot = args.plot;
-    if (!o.plot.empty() && o.output.empty())
-        bad("--plot", "-o FILE as well (the diagram is drawn from that CSV)", printable(o.plot));
-    // Every output checked before anything is computed: none may be the scene or another output.
-    std::vector<NamedPath> outputs = {{o.output, "-o"}};
-    if (!o.plot.empty())
-        for (const char* ext : {".png", ".svg", ".gp"}) outputs.push_back({o.plot + ext, "--plot"});
-    check_outputs({{scene.path, "the scene itself"}}, outputs);
+    o.quiet = args.quiet;
     return o;
 }
 
@@ -111,9 +87,11 @@ void run_modes(const Scene& scene, const ModesOptions& o, std::ostream& out)
     const double unit = frequency_unit(scene.parameters);
     // The table is printed; the CSV written only when asked for, and put in place only when complete.
     std::unique_ptr<CsvWriter> csv = o.output.empty() ? nullptr : std::make_unique<CsvWriter>(o.output, modes_header());
+    long rows = 0;
     try {
         char line[400];
-        out << "method  Ny  Nx  order  Omega rad/s  mode  kind        rad/s          Hz  dimensionless  growth 1/s\n";
+        if (!o.quiet)
+            out << "method  Ny  Nx  order  Omega rad/s  mode  kind        rad/s          Hz  dimensionless  growth 1/s\n";
         for (Method method : o.methods)
             for (int ny : o.ny) {
                 VariantKey key = scene.key();
@@ -132,6 +110,8 @@ void run_modes(const Scene& scene, const ModesOptions& o, std::ostream& out)
                         << shortest(mode.rad_s) << ',' << shortest(hz) << ',' << shortest(mode.rad_s / unit) << ','
                         << shortest(mode.growth);
                     if (csv) csv->write_line(row.str());
+                    ++rows;
+                    if (o.quiet) continue;
                     const bool enough =
                         mode.kind == "bending" ? shown_bending++ >= o.count : std::exchange(shown_axial, true);
                     if (enough) continue;
@@ -146,6 +126,9 @@ void run_modes(const Scene& scene, const ModesOptions& o, std::ostream& out)
         if (csv) csv->discard();
         throw;
     }
+    if (o.quiet)
+        out << rows << " modes of " << o.methods.size() * o.ny.size() << " variant(s) at " << o.omegas.size()
+            << " spin rate(s)\n";
     if (!csv) return;
     if (!csv->finish()) throw std::runtime_error(csv->error());
     out << "modes: " << o.output << "\n";
@@ -199,7 +182,7 @@ void run_linearize(const Scene& scene, double omega, const std::string& prefix, 
     out << "variant     " << key.name() << " (" << model->source() << ")\n"
         << "steady spin " << shortest(omega) << " rad/s";
     if (key.nx > 0) out << ", axial stretch at the tip " << shortest(model->tip(steady.q.data()).ux1) << " m";
-    out << "\nstates      " << ss.states.size() << " (" << joined(ss.states, ", ") << ")\n"
+    out << "\nstates      " << ss.states.size() << " (" << joined(ss.states) << ")\n"
         << "input       " << ss.inputs[0] << (key.drive == Drive::torque ? " (N m)" : " (rad/s^2)") << "\n"
         << "outputs     tip_uy (m), theta (rad)\n"
         << "matrices    " << prefix << "-{A,B,C,D}.csv (x' = A x + B v, y = C x + D v, deviations from the steady spin)\n";

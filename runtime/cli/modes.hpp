@@ -28,6 +28,7 @@ struct ModesArgs {
     std::string count = "4";
     std::string output;   // CSV; empty: none (the table is printed)
     std::string plot;     // PREFIX: the Campbell diagram PREFIX.{png,svg} (hubbeam plot campbell)
+    bool quiet = false;   // the table to the CSV only, and one summary line printed
 };
 
 struct ModesOptions {
@@ -36,14 +37,16 @@ struct ModesOptions {
     std::vector<int> ny;
     int count = 4;
     std::string output, plot;
+    bool quiet = false;
 };
 
 /// Checks and converts the typed options against the scene; throws ModesOptionError.
 ModesOptions parse_modes_options(const ModesArgs& args, const Scene& scene);
 
 /// For each method, Ny and spin rate: the scene's variant linearized about the steady spin, its first `count`
-/// bending modes and first axial mode printed to out, and every mode written to options.output if given (atomically);
-/// with options.plot, the Campbell diagram. Throws std::runtime_error if the CSV or the figure cannot be written.
+/// bending modes and first axial mode printed to out (with options.quiet, only how many modes there are), and every
+/// mode written to options.output if given (atomically); with options.plot, the Campbell diagram. Throws
+/// std::runtime_error if the CSV or the figure cannot be written.
 void run_modes(const Scene& scene, const ModesOptions& options, std::ostream& out);
 
 /// hubbeam linearize: A, B, C and D about the steady spin omega written to PREFIX-A.csv ... PREFIX-D.csv, each

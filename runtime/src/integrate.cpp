@@ -197,8 +197,7 @@ FirstOrderSystem::FirstOrderSystem(const Model& model, const Motion& motion, Axi
     const VariantKey& key = model.key();
     if (axial_ == Axial::quasi_static && key.nx == 0)
         throw std::invalid_argument("quasi-static axial coordinates need axial coordinates (nx > 0)");
-    for (int i = 0; i < n_; ++i)
-        if (axial_ == Axial::dynamic || i < key.first_a() || i >= key.first_b()) kept_.push_back(i);
+    kept_ = kept_coordinates(key, axial_);
     Work& w = *work_;
     w.solver = MassSolver::make(model);
     w.qdd.resize(n_);

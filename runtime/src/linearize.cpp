@@ -192,16 +192,14 @@ std::vector<NaturalMode> natural_modes(const Model& model, const SteadySpin& s, 
 {
     const VariantKey& key = model.key();
     const bool torque = key.drive == Drive::torque;
-    const int n = model.nq(), a0 = key.first_a(), b0 = key.first_b();
+    const int b0 = key.first_b();
     const ForceJacobians J = force_jacobians(model, s.u, s.q, s.qd);
     const Eigen::MatrixXd M = mass_at(model, s.u, s.q);
     // The coordinates that keep their inertia: all, or with quasi-static axial coordinates all but A. A then
     // follows its own rows with A_dot = A_ddot = 0 (docs/model.md section 9), and the other rows drop A's rates;
     // they do not depend on A itself at the straight beam (Q_B is odd in B, Q_theta holds A only with rates), so
     // A's deviation drops out of them and the condensed equations are R's rows and columns alone.
-    std::vector<int> R;
-    for (int i = 0; i < n; ++i)
-        if (axial == Axial::dynamic || i < a0 || i >= b0) R.push_back(i);
+    const std::vector<int> R = kept_coordinates(key, axial);
     const auto block = [](const Eigen::MatrixXd& X, const std::vector<int>& rows, const std::vector<int>& cols) {
         Eigen::MatrixXd out(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(cols.size()));
         for (std::size_t i = 0; i < rows.size(); ++i)

@@ -109,10 +109,19 @@ public:
     {
         if (band_) gsl_matrix_free(band_);
     }
+    BandedFactor(const BandedFactor&) = delete;
+    BandedFactor& operator=(const BandedFactor&) = delete;
     bool factor(const MatrixXd& A) override
     {
+        // A failed factorization is retried at the next prepare(): the band is reused, or replaced (and the old
+        // one freed) when A's size changed.
         const auto n = static_cast<std::size_t>(A.rows());
-        band_ = gsl_matrix_calloc(n, static_cast<std::size_t>(p_) + 1);
+        if (band_ && band_->size1 != n) {
+            gsl_matrix_free(band_);
+            band_ = nullptr;
+        }
+        if (!band_) band_ = gsl_matrix_alloc(n, static_cast<std::size_t>(p_) + 1);
+        gsl_matrix_set_zero(band_);
         // GSL's symmetric band storage: row i holds A(i, i), A(i+1, i), ..., A(i+p, i).
         for (std::size_t i = 0; i < n; ++i)
             for (std::size_t j = 0; j <= static_cast<std::size_t>(p_) && i + j < n; ++j)

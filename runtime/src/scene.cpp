@@ -29,15 +29,12 @@ namespace {
 
 constexpr const char* missing = "nothing (the key is missing)";
 
-std::vector<std::string> motion_kinds() { return {"spin-up", "torque"}; }
+// The words of motion.kind; the key table's motion_kind entries are among them (tests/test_scene.cpp).
+const WordTable<Motion::Kind, 2> kind_words = {{Motion::Kind::spin_up, "spin-up"}, {Motion::Kind::torque, "torque"}};
 
-bool parse_kind(std::string_view w, Motion::Kind& k)
-{
-    if (w == "spin-up") k = Motion::Kind::spin_up;
-    else if (w == "torque") k = Motion::Kind::torque;
-    else return false;
-    return true;
-}
+std::vector<std::string> motion_kinds() { return all_words(kind_words); }
+
+bool parse_kind(std::string_view w, Motion::Kind& k) { return parse_word(w, kind_words, k); }
 
 std::string one_of(const std::vector<std::string>& words) { return "one of " + joined(words, "\""); }
 
@@ -61,8 +58,8 @@ std::vector<SceneKey> make_scene_keys()
         {"hub.radius", nullptr, K::number, "a number >= 0 (a, m)"},
         {"hub.inertia", nullptr, K::number, "a number > 0 (J_oh, kg m^2)"},
         {"motion.kind", nullptr, K::word, one_of(motion_kinds())},
-        {"motion.omega0", nullptr, K::number, "a finite number (Omega0, rad/s)"},
-        {"motion.tau0", nullptr, K::number, "a finite number (tau0, N m)"},
+        {"motion.omega0", nullptr, K::number, "a finite number (Omega0, rad/s)", "spin-up"},
+        {"motion.tau0", nullptr, K::number, "a finite number (tau0, N m)", "torque"},
         {"motion.duration", nullptr, K::number, "a number > 0 (T_s or T_t, s)"},
         {"discretization.method", "--method", K::word, one_of(words<Method>())},
         {"discretization.ny", "--ny", K::integer, "an integer >= 1 (Ny)"},
@@ -127,10 +124,13 @@ public:
     std::string path(std::string_view key) const { return name_ + "." + std::string(key); }
     const toml::node* get(std::string_view key) const { return table_ ? table_->get(key) : nullptr; }
 
-    /// Rejects any key not in allowed (a mistyped key must not be silently ignored).
-    void only(const std::vector<std::string>& allowed, const std::string& note = "") const
+    /// Rejects any key the key table does not give this table (for [motion], its kind): a mistyped key must not
+    /// be silently ignored.
+    void only(const std::string& motion_kind = "") const
     {
         if (!table_) return;
+        const std::vector<std::string> allowed = table_keys(name_, motion_kind);
+        const std::string note = motion_kind.empty() ? "" : " (the keys of kind = \"" + motion_kind + "\")";
         for (auto&& [k, v] : *table_) {
             if (std::find(allowed.begin(), allowed.end(), k.str()) == allowed.end())
                 fail(file_, path(k.str()), "one of " + joined(allowed) + note,
@@ -330,6 +330,35 @@ const SceneKey& scene_key(const std::string& name)
     throw std::logic_error("no scene key " + name);
 }
 
+std::string SceneKey::table() const
+{
+    const std::string n = name;
+    return n.substr(0, n.find('.'));
+}
+
+std::string SceneKey::leaf() const
+{
+    const std::string n = name;
+    return n.substr(n.find('.') + 1);
+}
+
+std::vector<std::string> scene_tables()
+{
+    std::vector<std::string> tables;
+    for (const SceneKey& k : scene_keys())
+        if (std::find(tables.begin(), tables.end(), k.table()) == tables.end()) tables.push_back(k.table());
+    return tables;
+}
+
+std::vector<std::string> table_keys(const std::string& table, const std::string& motion_kind)
+{
+    std::vector<std::string> leaves;
+    for (const SceneKey& k : scene_keys())
+        if (k.table() == table && (k.motion_kind == nullptr || motion_kind.empty() || motion_kind == k.motion_kind))
+            leaves.push_back(k.leaf());
+    return leaves;
+}
+
 Scene load_scene(const std::string& path, const Overrides& overrides)
 {
     return parse_scene(read_file(path), path, overrides);
@@ -343,7 +372,7 @@ Scene parse_scene(std::string_view text, const std::string& path, const Override
     toml::table root = parse_toml(text, path);
     for (const auto& [name, text] : overrides) set_override(root, path, name, text);
 
-    const std::vector<std::string> tables = {"beam", "hub", "motion", "discretization", "model", "solver", "output"};
+    const std::vector<std::string> tables = scene_tables();
     for (auto&& [k, v] : root) {
         const bool known = std::find(tables.begin(), tables.end(), k.str()) != tables.end();
         if (!known)
@@ -360,7 +389,7 @@ Scene parse_scene(std::string_view text, const std::string& path, const Override
 
     // [beam]: docs/model.md section 1.
     const Section beam(path, root, "beam");
-    beam.only({"length", "density", "area", "second_moment", "youngs_modulus"});
+    beam.only();
     Parameters& p = scene.parameters;
     p.L = beam.required_number("length");
     p.rho = beam.required_number("density");
@@ -372,26 +401,25 @@ Scene parse_scene(std::string_view text, const std::string& path, const Override
     const Section motion(path, root, "motion");
     Motion& m = scene.motion;
     m.kind = motion.required_word<Motion::Kind>("kind", parse_kind);
+    motion.only(word_of(m.kind, kind_words));
     if (m.kind == Motion::Kind::spin_up) {
-        motion.only({"kind", "omega0", "duration"}, " (the keys of kind = \"spin-up\")");
         m.omega0 = motion.required_number("omega0");
         m.spin_time = motion.required_number("duration");
     } else {
-        motion.only({"kind", "tau0", "duration"}, " (the keys of kind = \"torque\")");
         m.tau0 = motion.required_number("tau0");
         m.torque_time = motion.required_number("duration");
     }
 
     // [hub]: the hub inertia only enters the torque case, where theta is a coordinate.
     const Section hub(path, root, "hub");
-    hub.only({"radius", "inertia"});
+    hub.only();
     p.a = hub.number("radius", p.a);
     if (m.kind == Motion::Kind::torque) p.J_oh = hub.required_number("inertia", ", required for kind = \"torque\"");
     else p.J_oh = hub.number("inertia", p.J_oh);
 
     // [discretization]: docs/model.md section 4.
     const Section disc(path, root, "discretization");
-    disc.only({"method", "ny", "nx", "spline_basis"});
+    disc.only();
     VariantKey& key = scene.variant;
     key.method = disc.required_word<Method>("method", parse_enum<Method>);
     key.ny = disc.required_integer("ny");
@@ -401,14 +429,14 @@ Scene parse_scene(std::string_view text, const std::string& path, const Override
 
     // [model]: docs/model.md section 3; whether the build can run an order is make_model's call.
     const Section model(path, root, "model");
-    model.only({"order", "source", "axial"});
+    model.only();
     key.order = model.word<Order>("order", parse_enum<Order>).value_or(key.order);
     scene.source = model.word<ModelSource>("source", parse_enum<ModelSource>).value_or(scene.source);
     scene.axial = model.word<Axial>("axial", parse_enum<Axial>).value_or(scene.axial);
 
     // [solver]
     const Section solver(path, root, "solver");
-    solver.only({"stepper", "rtol", "atol", "h0", "stepping", "max_steps"});
+    solver.only();
     SolverOptions& so = scene.solver;
     so.stepper = solver.string("stepper").value_or(so.stepper);
     so.rtol = solver.number("rtol", so.rtol);
@@ -423,7 +451,7 @@ Scene parse_scene(std::string_view text, const std::string& path, const Override
 
     // [output]
     const Section output(path, root, "output");
-    output.only({"t_end", "dt_out", "file"});
+    output.only();
     OutputOptions& out = scene.output;
     out.t_end = output.required_number("t_end");
     out.dt_out = output.number("dt_out", out.dt_out);

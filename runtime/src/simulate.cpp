@@ -236,8 +236,9 @@ RunSummary Simulation::run(const RowSink& sink, const StopRequest& stop)
         // Round-off in the accelerations, about eps cond(M) relative, above the tolerance shrinks the steps of
         // every stepper; otherwise an explicit stepper on stiff equations is held by stability.
         if (const double cond = mass_condition(model); cond * 0x1p-52 > scene_.solver.rtol) {
-            std::snprintf(text, sizeof text, "round-off bounds the steps (cond(M) %.3g at rest, times the machine "
-                          "epsilon above rtol): fewer DOFs, another method, or a looser rtol", cond);
+            std::snprintf(text, sizeof text, "round-off bounds the steps (cond(M) %.3g at rest, of the whole mass "
+                          "matrix in SI units%s, times the machine epsilon above rtol): fewer DOFs, another method, or a "
+                          "looser rtol", cond, key.drive == Drive::torque ? " with the hub's row" : "");
             why += text;
         } else if (!hint.empty()) {
             why += "the steps are bound by stability, not accuracy: " + hint;

@@ -32,9 +32,7 @@ double highest_frequency(const Model& model, Axial axial)
     model.mass(rest, zero.data(), M.data());  // symmetric, so row- or column-major alike
     const Eigen::MatrixXd K = stiffness(model, rest, zero, zero);
     // The integrated coordinates only.
-    std::vector<int> kept;
-    for (int i = 0; i < n; ++i)
-        if (axial == Axial::dynamic || i < key.first_a() || i >= key.first_b()) kept.push_back(i);
+    const std::vector<int> kept = kept_coordinates(key, axial);
     const auto m = static_cast<Eigen::Index>(kept.size());
     Eigen::MatrixXd Mk(m, m), Kk(m, m);
     for (Eigen::Index i = 0; i < m; ++i)

@@ -44,7 +44,8 @@ double critical_spin(const Model& model);
 double stability_step_factor(const std::string& stepper);
 
 /// cond(M) at rest in the 2-norm (from M's eigenvalues; infinite when M is not positive definite): what round-off
-/// in the accelerations is amplified by.
+/// in the accelerations is amplified by. M is the model's whole mass matrix in SI units: every coordinate, the hub
+/// angle's row included under torque (whose J_oh + J_ob dwarfs the beam's smallest eigenvalue).
 double mass_condition(const Model& model);
 
 }  // namespace hubbeam

@@ -30,6 +30,16 @@ enum class Axial { dynamic, quasi_static };
 std::string to_string(Axial);
 bool parse(std::string_view, Axial&);
 template <> std::vector<std::string> words<Axial>();
+/// The coordinates that keep their inertia and are states of the first-order system, in order: all of key's,
+/// or with quasi-static axial coordinates all but A (which then follows its equilibrium). The one definition
+/// for the integrator, the stiffness estimates and the linearization.
+inline std::vector<int> kept_coordinates(const VariantKey& key, Axial axial)
+{
+    std::vector<int> kept;
+    for (int i = 0; i < key.nq(); ++i)
+        if (axial == Axial::dynamic || i < key.first_a() || i >= key.first_b()) kept.push_back(i);
+    return kept;
+}
 
 /// Where steps end: free (the tolerance alone chooses them; rows between step ends are interpolated by
 /// interpolate_state) or at rows (every output time ends a step, as GSL's driver does: exact, but the row
