@@ -3,6 +3,7 @@
 #include "generated_model.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -126,7 +127,13 @@ const generated::Variant* built_in_variant(const VariantKey& key)
     const std::string name = key.name();
     for (int i = 0; i < generated::variant_count; ++i) {
         const generated::Variant* v = generated::variants[i];
-        if (v != nullptr && name == v->name) return v;
+        if (v == nullptr || name != v->name) continue;
+        // Rows compiled into this program come from its own generator; a mismatch means a stale generated/ copy.
+        if (v->abi_version != generated::abi_version)
+            throw std::logic_error("built-in variant " + name + " was built by an older generator (interface version " +
+                                   std::to_string(v->abi_version) + ", this hubbeam reads " +
+                                   std::to_string(generated::abi_version) + "): rebuild hubbeam");
+        return v;
     }
     return nullptr;
 }
