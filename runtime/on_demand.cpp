@@ -277,11 +277,15 @@ Loaded& loaded()
 /// version before any kernel is called. Throws CompileError.
 const generated::Variant* open_verified(const VariantKey& key, const fs::path& object, int fd)
 {
-    // dlopen the very file that was verified, not whatever the path names by now.
-    const std::string self = "/proc/self/fd/" + std::to_string(fd);
-    const bool proc = ::access(self.c_str(), R_OK) == 0;
-    void* handle = ::dlopen(proc ? self.c_str() : object.c_str(), RTLD_NOW | RTLD_LOCAL);
+    // By path: glibc knows loaded objects by name, so a /proc/self/fd/N name would return whichever object had that
+    // descriptor number before. The file loaded must still be the one verified (only this user can replace it, in a
+    // folder private to them; the check makes a race with another process of theirs visible).
+    void* handle = ::dlopen(object.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (handle == nullptr) refuse("cannot load " + object.string() + ": " + ::dlerror() + "; remove it and run again");
+    struct stat verified {}, now {};
+    if (::fstat(fd, &verified) != 0 || ::stat(object.c_str(), &now) != 0 || verified.st_dev != now.st_dev ||
+        verified.st_ino != now.st_ino)
+        refuse(object.string() + " was replaced while it was loaded: run again");
     using Entry = const generated::Variant* (*)();
     const auto entry = reinterpret_cast<Entry>(::dlsym(handle, "hubbeam_variant"));
     const generated::Variant* v = entry != nullptr ? entry() : nullptr;
