@@ -41,7 +41,7 @@ file(WRITE ${moved}/commands.sh "set -e
 cd '${moved}'
 unset HUBBEAM_GEN PYTHONPATH
 export HUBBEAM_CACHE_DIR='${moved}/cache'
-echo run; '${hubbeam}' run spinup_omega4.toml --method amm --nx 1 --ny 3 --t-end 0.5 -o run.csv
+echo run; '${hubbeam}' run spinup_omega4.toml --source generated --method amm --nx 1 --ny 3 --t-end 0.5 -o run.csv | grep 'compiled now'
 echo modes; '${hubbeam}' modes spinup_omega4.toml --omega 0:4:2 --methods amm -o modes.csv
 echo linearize; '${hubbeam}' linearize torque_tau10.toml --omega 2 -o lin
 echo sweep; '${hubbeam}' sweep --help
