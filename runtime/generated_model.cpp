@@ -122,17 +122,24 @@ private:
 
 }  // namespace
 
+std::string row_problem(const generated::Variant& v, const VariantKey& key)
+{
+    if (v.abi_version != generated::abi_version)
+        return "was built by an older generator (interface version " + std::to_string(v.abi_version) +
+               ", this hubbeam reads " + std::to_string(generated::abi_version) + ")";
+    if (v.name == nullptr || key.name() != v.name || v.nq != key.nq()) return "does not hold variant " + key.name();
+    return {};
+}
+
 const generated::Variant* built_in_variant(const VariantKey& key)
 {
     const std::string name = key.name();
     for (int i = 0; i < generated::variant_count; ++i) {
         const generated::Variant* v = generated::variants[i];
-        if (v == nullptr || name != v->name) continue;
-        // Rows compiled into this program come from its own generator; a mismatch means a stale generated/ copy.
-        if (v->abi_version != generated::abi_version)
-            throw std::logic_error("built-in variant " + name + " was built by an older generator (interface version " +
-                                   std::to_string(v->abi_version) + ", this hubbeam reads " +
-                                   std::to_string(generated::abi_version) + "): rebuild hubbeam");
+        if (v == nullptr || v->name == nullptr || name != v->name) continue;
+        // Rows compiled into this program come from its own generator: a refusal means a stale build.
+        if (const std::string why = row_problem(*v, key); !why.empty())
+            throw std::logic_error("the built-in variant " + name + " " + why + ": rebuild hubbeam");
         return v;
     }
     return nullptr;

@@ -29,6 +29,7 @@
 #include <unistd.h>
 
 #include "generated_abi.h"
+#include "generated_model.hpp"
 #include "install_layout.hpp"
 #include "sha256.hpp"
 
@@ -290,12 +291,8 @@ const generated::Variant* open_verified(const VariantKey& key, const fs::path& o
     const auto entry = reinterpret_cast<Entry>(::dlsym(handle, "hubbeam_variant"));
     const generated::Variant* v = entry != nullptr ? entry() : nullptr;
     if (v == nullptr) refuse(object.string() + " has no hubbeam variant: delete it and hubbeam compiles it again");
-    if (v->abi_version != generated::abi_version)
-        refuse(object.string() + " was built by an older generator (interface version " +
-               std::to_string(v->abi_version) + ", this hubbeam reads " + std::to_string(generated::abi_version) +
-               "): delete " + object.string() + " or let hubbeam recompile it (rm it, then run again)");
-    if (v->name == nullptr || key.name() != v->name || v->nq != key.nq())
-        refuse(object.string() + " does not hold variant " + key.name() + ": delete it and hubbeam compiles it again");
+    if (const std::string why = row_problem(*v, key); !why.empty())
+        refuse(object.string() + " " + why + ": delete " + object.string() + " and hubbeam compiles it again");
     return v;
 }
 

@@ -10,6 +10,8 @@
 #include <random>
 #include <string>
 
+#include "generated_abi.h"
+#include "generated_model.hpp"
 #include "make_model.hpp"
 #include "model.hpp"
 #include "on_demand.hpp"
@@ -86,4 +88,20 @@ TEST_CASE("an on-demand variant is compiled once, even by two racing callers, th
         }
     }
     fs::remove_all(root);
+}
+
+TEST_CASE("a table row of another interface version or variant is refused before any kernel is called",
+          "[on_demand][abi]")
+{
+    const VariantKey key = VariantKey::parse("amm_nx4_ny4_prescribed_first");
+    const generated::Variant* built_in = built_in_variant(key);
+    REQUIRE(built_in != nullptr);
+    CHECK(built_in->abi_version == generated::abi_version);
+    CHECK(row_problem(*built_in, key).empty());
+    generated::Variant older = *built_in;
+    older.abi_version = generated::abi_version - 1;
+    CHECK_THAT(row_problem(older, key), Catch::Contains("built by an older generator (interface version " +
+                                                        std::to_string(generated::abi_version - 1)));
+    CHECK_THAT(row_problem(*built_in, VariantKey::parse("amm_nx4_ny4_torque_first")),
+               Catch::Contains("does not hold variant amm_nx4_ny4_torque_first"));
 }
