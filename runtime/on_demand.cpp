@@ -583,7 +583,9 @@ fs::path variant_cache_root()
     refuse("no folder for the variant cache: set HUBBEAM_CACHE_DIR (or HOME) to a folder of your own");
 }
 
-fs::path variant_cache_dir() { return variant_cache_root() / HUBBEAM_GENERATOR_VERSION; }
+fs::path variant_cache_dir() { return variant_cache_root() / generator_version(); }
+
+std::string generator_version() { return HUBBEAM_GENERATOR_VERSION; }
 
 std::string on_demand_compiler()
 {
