@@ -180,6 +180,16 @@ elseif(CASE STREQUAL "old_abi")
   hubbeam("HUBBEAM_CACHE_DIR=${CACHE_DIR};HUBBEAM_GEN=${WORK}/old-gen.sh" ${RUN})
   expect_refusal("an object of an older generator"
                  "^hubbeam: [^\n]*/${VARIANT}.so was built by an older generator \\(interface version 1, this hubbeam reads [0-9]+\\): delete ")
+  # An object of the layout before rows carried a version (no abi_version field: the row starts with the name's
+  # pointer), as the generator of that time made them.
+  file(REMOVE_RECURSE ${CACHE_DIR})
+  file(WRITE ${WORK}/old-gen.sh "#!/bin/sh\n'${GEN}' \"$@\" || exit $?\n"
+             "while [ \"$1\" != --out ]; do shift; done\n"
+             "sed -i '/int abi_version;/d' \"$2\"/generated_abi.h\n"
+             "sed -i '/\\.abi_version = /d' \"$2\"/*.cpp\n")
+  hubbeam("HUBBEAM_CACHE_DIR=${CACHE_DIR};HUBBEAM_GEN=${WORK}/old-gen.sh" ${RUN})
+  expect_refusal("an object of the unversioned layout"
+                 "^hubbeam: [^\n]*/${VARIANT}.so was built by an older generator \\(one that recorded no interface version")
 
 elseif(CASE STREQUAL "timeout")
   # A hung generator is stopped at the time limit, with its process group and work folder.
