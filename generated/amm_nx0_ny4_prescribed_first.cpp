@@ -349,9 +349,27 @@ void amm_nx0_ny4_prescribed_first_forces_folded(const double* c, const double* u
 
 }  // namespace
 
-extern const Variant amm_nx0_ny4_prescribed_first = {"amm_nx0_ny4_prescribed_first", 4, 54, 9,
-    "c0000c0000c0000c",
-    amm_nx0_ny4_prescribed_first_coefficients, amm_nx0_ny4_prescribed_first_mass, nullptr, amm_nx0_ny4_prescribed_first_forces, amm_nx0_ny4_prescribed_first_forces_terms, amm_nx0_ny4_prescribed_first_forces_matrix,
-    amm_nx0_ny4_prescribed_first_energy, amm_nx0_ny4_prescribed_first_momentum, amm_nx0_ny4_prescribed_first_forces_q, amm_nx0_ny4_prescribed_first_forces_qd, nullptr, amm_nx0_ny4_prescribed_first_forces_u, amm_nx0_ny4_prescribed_first_tip, amm_nx0_ny4_prescribed_first_forces_folded};
+extern const Variant amm_nx0_ny4_prescribed_first = {
+    .abi_version = 2,
+    .name = "amm_nx0_ny4_prescribed_first",
+    .nq = 4,
+    .ncoeff = 54,
+    .nterms = 9,
+    .mass_pattern = "c0000c0000c0000c",
+    .coefficients = amm_nx0_ny4_prescribed_first_coefficients,
+    .mass = amm_nx0_ny4_prescribed_first_mass,
+    .mass_varying = nullptr,
+    .forces = amm_nx0_ny4_prescribed_first_forces,
+    .forces_terms = amm_nx0_ny4_prescribed_first_forces_terms,
+    .forces_matrix = amm_nx0_ny4_prescribed_first_forces_matrix,
+    .energy = amm_nx0_ny4_prescribed_first_energy,
+    .momentum = amm_nx0_ny4_prescribed_first_momentum,
+    .forces_q = amm_nx0_ny4_prescribed_first_forces_q,
+    .forces_qd = amm_nx0_ny4_prescribed_first_forces_qd,
+    .mass_q_product = nullptr,
+    .forces_u = amm_nx0_ny4_prescribed_first_forces_u,
+    .tip = amm_nx0_ny4_prescribed_first_tip,
+    .forces_folded = amm_nx0_ny4_prescribed_first_forces_folded,
+};
 
 }  // namespace hubbeam::generated

@@ -292,9 +292,27 @@ void amm_nx0_ny4_prescribed_zero_forces_folded(const double* c, const double* u,
 
 }  // namespace
 
-extern const Variant amm_nx0_ny4_prescribed_zero = {"amm_nx0_ny4_prescribed_zero", 4, 33, 9,
-    "c0000c0000c0000c",
-    amm_nx0_ny4_prescribed_zero_coefficients, amm_nx0_ny4_prescribed_zero_mass, nullptr, amm_nx0_ny4_prescribed_zero_forces, amm_nx0_ny4_prescribed_zero_forces_terms, amm_nx0_ny4_prescribed_zero_forces_matrix,
-    amm_nx0_ny4_prescribed_zero_energy, amm_nx0_ny4_prescribed_zero_momentum, amm_nx0_ny4_prescribed_zero_forces_q, amm_nx0_ny4_prescribed_zero_forces_qd, nullptr, amm_nx0_ny4_prescribed_zero_forces_u, amm_nx0_ny4_prescribed_zero_tip, amm_nx0_ny4_prescribed_zero_forces_folded};
+extern const Variant amm_nx0_ny4_prescribed_zero = {
+    .abi_version = 2,
+    .name = "amm_nx0_ny4_prescribed_zero",
+    .nq = 4,
+    .ncoeff = 33,
+    .nterms = 9,
+    .mass_pattern = "c0000c0000c0000c",
+    .coefficients = amm_nx0_ny4_prescribed_zero_coefficients,
+    .mass = amm_nx0_ny4_prescribed_zero_mass,
+    .mass_varying = nullptr,
+    .forces = amm_nx0_ny4_prescribed_zero_forces,
+    .forces_terms = amm_nx0_ny4_prescribed_zero_forces_terms,
+    .forces_matrix = amm_nx0_ny4_prescribed_zero_forces_matrix,
+    .energy = amm_nx0_ny4_prescribed_zero_energy,
+    .momentum = amm_nx0_ny4_prescribed_zero_momentum,
+    .forces_q = amm_nx0_ny4_prescribed_zero_forces_q,
+    .forces_qd = amm_nx0_ny4_prescribed_zero_forces_qd,
+    .mass_q_product = nullptr,
+    .forces_u = amm_nx0_ny4_prescribed_zero_forces_u,
+    .tip = amm_nx0_ny4_prescribed_zero_tip,
+    .forces_folded = amm_nx0_ny4_prescribed_zero_forces_folded,
+};
 
 }  // namespace hubbeam::generated

@@ -514,9 +514,27 @@ void amm_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, c
 
 }  // namespace
 
-extern const Variant amm_nx0_ny4_torque_first = {"amm_nx0_ny4_torque_first", 5, 54, 25,
-    "vcccccc000c0c00c00c0c000c",
-    amm_nx0_ny4_torque_first_coefficients, amm_nx0_ny4_torque_first_mass, amm_nx0_ny4_torque_first_mass_varying, amm_nx0_ny4_torque_first_forces, amm_nx0_ny4_torque_first_forces_terms, amm_nx0_ny4_torque_first_forces_matrix,
-    amm_nx0_ny4_torque_first_energy, amm_nx0_ny4_torque_first_momentum, amm_nx0_ny4_torque_first_forces_q, amm_nx0_ny4_torque_first_forces_qd, amm_nx0_ny4_torque_first_mass_q_product, amm_nx0_ny4_torque_first_forces_u, amm_nx0_ny4_torque_first_tip, nullptr};
+extern const Variant amm_nx0_ny4_torque_first = {
+    .abi_version = 2,
+    .name = "amm_nx0_ny4_torque_first",
+    .nq = 5,
+    .ncoeff = 54,
+    .nterms = 25,
+    .mass_pattern = "vcccccc000c0c00c00c0c000c",
+    .coefficients = amm_nx0_ny4_torque_first_coefficients,
+    .mass = amm_nx0_ny4_torque_first_mass,
+    .mass_varying = amm_nx0_ny4_torque_first_mass_varying,
+    .forces = amm_nx0_ny4_torque_first_forces,
+    .forces_terms = amm_nx0_ny4_torque_first_forces_terms,
+    .forces_matrix = amm_nx0_ny4_torque_first_forces_matrix,
+    .energy = amm_nx0_ny4_torque_first_energy,
+    .momentum = amm_nx0_ny4_torque_first_momentum,
+    .forces_q = amm_nx0_ny4_torque_first_forces_q,
+    .forces_qd = amm_nx0_ny4_torque_first_forces_qd,
+    .mass_q_product = amm_nx0_ny4_torque_first_mass_q_product,
+    .forces_u = amm_nx0_ny4_torque_first_forces_u,
+    .tip = amm_nx0_ny4_torque_first_tip,
+    .forces_folded = nullptr,
+};
 
 }  // namespace hubbeam::generated

@@ -818,9 +818,27 @@ void amm_nx4_ny4_prescribed_first_forces_folded(const double* c, const double* u
 
 }  // namespace
 
-extern const Variant amm_nx4_ny4_prescribed_first = {"amm_nx4_ny4_prescribed_first", 8, 110, 34,
-    "c00000000c00000000c00000000c00000000c00000000c00000000c00000000c",
-    amm_nx4_ny4_prescribed_first_coefficients, amm_nx4_ny4_prescribed_first_mass, nullptr, amm_nx4_ny4_prescribed_first_forces, amm_nx4_ny4_prescribed_first_forces_terms, amm_nx4_ny4_prescribed_first_forces_matrix,
-    amm_nx4_ny4_prescribed_first_energy, amm_nx4_ny4_prescribed_first_momentum, amm_nx4_ny4_prescribed_first_forces_q, amm_nx4_ny4_prescribed_first_forces_qd, nullptr, amm_nx4_ny4_prescribed_first_forces_u, amm_nx4_ny4_prescribed_first_tip, amm_nx4_ny4_prescribed_first_forces_folded};
+extern const Variant amm_nx4_ny4_prescribed_first = {
+    .abi_version = 2,
+    .name = "amm_nx4_ny4_prescribed_first",
+    .nq = 8,
+    .ncoeff = 110,
+    .nterms = 34,
+    .mass_pattern = "c00000000c00000000c00000000c00000000c00000000c00000000c00000000c",
+    .coefficients = amm_nx4_ny4_prescribed_first_coefficients,
+    .mass = amm_nx4_ny4_prescribed_first_mass,
+    .mass_varying = nullptr,
+    .forces = amm_nx4_ny4_prescribed_first_forces,
+    .forces_terms = amm_nx4_ny4_prescribed_first_forces_terms,
+    .forces_matrix = amm_nx4_ny4_prescribed_first_forces_matrix,
+    .energy = amm_nx4_ny4_prescribed_first_energy,
+    .momentum = amm_nx4_ny4_prescribed_first_momentum,
+    .forces_q = amm_nx4_ny4_prescribed_first_forces_q,
+    .forces_qd = amm_nx4_ny4_prescribed_first_forces_qd,
+    .mass_q_product = nullptr,
+    .forces_u = amm_nx4_ny4_prescribed_first_forces_u,
+    .tip = amm_nx4_ny4_prescribed_first_tip,
+    .forces_folded = amm_nx4_ny4_prescribed_first_forces_folded,
+};
 
 }  // namespace hubbeam::generated

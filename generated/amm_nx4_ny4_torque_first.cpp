@@ -986,9 +986,27 @@ void amm_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, c
 
 }  // namespace
 
-extern const Variant amm_nx4_ny4_torque_first = {"amm_nx4_ny4_torque_first", 9, 110, 46,
-    "vvvvvvvvvvc0000000v0c000000v00c00000v000c0000v0000c000v00000c00v000000c0v0000000c",
-    amm_nx4_ny4_torque_first_coefficients, amm_nx4_ny4_torque_first_mass, amm_nx4_ny4_torque_first_mass_varying, amm_nx4_ny4_torque_first_forces, amm_nx4_ny4_torque_first_forces_terms, amm_nx4_ny4_torque_first_forces_matrix,
-    amm_nx4_ny4_torque_first_energy, amm_nx4_ny4_torque_first_momentum, amm_nx4_ny4_torque_first_forces_q, amm_nx4_ny4_torque_first_forces_qd, amm_nx4_ny4_torque_first_mass_q_product, amm_nx4_ny4_torque_first_forces_u, amm_nx4_ny4_torque_first_tip, nullptr};
+extern const Variant amm_nx4_ny4_torque_first = {
+    .abi_version = 2,
+    .name = "amm_nx4_ny4_torque_first",
+    .nq = 9,
+    .ncoeff = 110,
+    .nterms = 46,
+    .mass_pattern = "vvvvvvvvvvc0000000v0c000000v00c00000v000c0000v0000c000v00000c00v000000c0v0000000c",
+    .coefficients = amm_nx4_ny4_torque_first_coefficients,
+    .mass = amm_nx4_ny4_torque_first_mass,
+    .mass_varying = amm_nx4_ny4_torque_first_mass_varying,
+    .forces = amm_nx4_ny4_torque_first_forces,
+    .forces_terms = amm_nx4_ny4_torque_first_forces_terms,
+    .forces_matrix = amm_nx4_ny4_torque_first_forces_matrix,
+    .energy = amm_nx4_ny4_torque_first_energy,
+    .momentum = amm_nx4_ny4_torque_first_momentum,
+    .forces_q = amm_nx4_ny4_torque_first_forces_q,
+    .forces_qd = amm_nx4_ny4_torque_first_forces_qd,
+    .mass_q_product = amm_nx4_ny4_torque_first_mass_q_product,
+    .forces_u = amm_nx4_ny4_torque_first_forces_u,
+    .tip = amm_nx4_ny4_torque_first_tip,
+    .forces_folded = nullptr,
+};
 
 }  // namespace hubbeam::generated

@@ -541,9 +541,27 @@ void bim_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, c
 
 }  // namespace
 
-extern const Variant bim_nx0_ny4_torque_first = {"bim_nx0_ny4_torque_first", 5, 57, 25,
-    "vcccccccccccccccccccccccc",
-    bim_nx0_ny4_torque_first_coefficients, bim_nx0_ny4_torque_first_mass, bim_nx0_ny4_torque_first_mass_varying, bim_nx0_ny4_torque_first_forces, bim_nx0_ny4_torque_first_forces_terms, bim_nx0_ny4_torque_first_forces_matrix,
-    bim_nx0_ny4_torque_first_energy, bim_nx0_ny4_torque_first_momentum, bim_nx0_ny4_torque_first_forces_q, bim_nx0_ny4_torque_first_forces_qd, bim_nx0_ny4_torque_first_mass_q_product, bim_nx0_ny4_torque_first_forces_u, bim_nx0_ny4_torque_first_tip, nullptr};
+extern const Variant bim_nx0_ny4_torque_first = {
+    .abi_version = 2,
+    .name = "bim_nx0_ny4_torque_first",
+    .nq = 5,
+    .ncoeff = 57,
+    .nterms = 25,
+    .mass_pattern = "vcccccccccccccccccccccccc",
+    .coefficients = bim_nx0_ny4_torque_first_coefficients,
+    .mass = bim_nx0_ny4_torque_first_mass,
+    .mass_varying = bim_nx0_ny4_torque_first_mass_varying,
+    .forces = bim_nx0_ny4_torque_first_forces,
+    .forces_terms = bim_nx0_ny4_torque_first_forces_terms,
+    .forces_matrix = bim_nx0_ny4_torque_first_forces_matrix,
+    .energy = bim_nx0_ny4_torque_first_energy,
+    .momentum = bim_nx0_ny4_torque_first_momentum,
+    .forces_q = bim_nx0_ny4_torque_first_forces_q,
+    .forces_qd = bim_nx0_ny4_torque_first_forces_qd,
+    .mass_q_product = bim_nx0_ny4_torque_first_mass_q_product,
+    .forces_u = bim_nx0_ny4_torque_first_forces_u,
+    .tip = bim_nx0_ny4_torque_first_tip,
+    .forces_folded = nullptr,
+};
 
 }  // namespace hubbeam::generated

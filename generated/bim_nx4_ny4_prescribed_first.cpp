@@ -900,9 +900,27 @@ void bim_nx4_ny4_prescribed_first_forces_folded(const double* c, const double* u
 
 }  // namespace
 
-extern const Variant bim_nx4_ny4_prescribed_first = {"bim_nx4_ny4_prescribed_first", 8, 99, 34,
-    "cccc0000cccc0000cccc0000cccc00000000cccc0000cccc0000cccc0000cccc",
-    bim_nx4_ny4_prescribed_first_coefficients, bim_nx4_ny4_prescribed_first_mass, nullptr, bim_nx4_ny4_prescribed_first_forces, bim_nx4_ny4_prescribed_first_forces_terms, bim_nx4_ny4_prescribed_first_forces_matrix,
-    bim_nx4_ny4_prescribed_first_energy, bim_nx4_ny4_prescribed_first_momentum, bim_nx4_ny4_prescribed_first_forces_q, bim_nx4_ny4_prescribed_first_forces_qd, nullptr, bim_nx4_ny4_prescribed_first_forces_u, bim_nx4_ny4_prescribed_first_tip, bim_nx4_ny4_prescribed_first_forces_folded};
+extern const Variant bim_nx4_ny4_prescribed_first = {
+    .abi_version = 2,
+    .name = "bim_nx4_ny4_prescribed_first",
+    .nq = 8,
+    .ncoeff = 99,
+    .nterms = 34,
+    .mass_pattern = "cccc0000cccc0000cccc0000cccc00000000cccc0000cccc0000cccc0000cccc",
+    .coefficients = bim_nx4_ny4_prescribed_first_coefficients,
+    .mass = bim_nx4_ny4_prescribed_first_mass,
+    .mass_varying = nullptr,
+    .forces = bim_nx4_ny4_prescribed_first_forces,
+    .forces_terms = bim_nx4_ny4_prescribed_first_forces_terms,
+    .forces_matrix = bim_nx4_ny4_prescribed_first_forces_matrix,
+    .energy = bim_nx4_ny4_prescribed_first_energy,
+    .momentum = bim_nx4_ny4_prescribed_first_momentum,
+    .forces_q = bim_nx4_ny4_prescribed_first_forces_q,
+    .forces_qd = bim_nx4_ny4_prescribed_first_forces_qd,
+    .mass_q_product = nullptr,
+    .forces_u = bim_nx4_ny4_prescribed_first_forces_u,
+    .tip = bim_nx4_ny4_prescribed_first_tip,
+    .forces_folded = bim_nx4_ny4_prescribed_first_forces_folded,
+};
 
 }  // namespace hubbeam::generated

@@ -1146,9 +1146,27 @@ void bim_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, c
 
 }  // namespace
 
-extern const Variant bim_nx4_ny4_torque_first = {"bim_nx4_ny4_torque_first", 9, 99, 58,
-    "vvvvvvvvvvcccc0000vcccc0000vcccc0000vcccc0000v0000ccccv0000ccccv0000ccccv0000cccc",
-    bim_nx4_ny4_torque_first_coefficients, bim_nx4_ny4_torque_first_mass, bim_nx4_ny4_torque_first_mass_varying, bim_nx4_ny4_torque_first_forces, bim_nx4_ny4_torque_first_forces_terms, bim_nx4_ny4_torque_first_forces_matrix,
-    bim_nx4_ny4_torque_first_energy, bim_nx4_ny4_torque_first_momentum, bim_nx4_ny4_torque_first_forces_q, bim_nx4_ny4_torque_first_forces_qd, bim_nx4_ny4_torque_first_mass_q_product, bim_nx4_ny4_torque_first_forces_u, bim_nx4_ny4_torque_first_tip, nullptr};
+extern const Variant bim_nx4_ny4_torque_first = {
+    .abi_version = 2,
+    .name = "bim_nx4_ny4_torque_first",
+    .nq = 9,
+    .ncoeff = 99,
+    .nterms = 58,
+    .mass_pattern = "vvvvvvvvvvcccc0000vcccc0000vcccc0000vcccc0000v0000ccccv0000ccccv0000ccccv0000cccc",
+    .coefficients = bim_nx4_ny4_torque_first_coefficients,
+    .mass = bim_nx4_ny4_torque_first_mass,
+    .mass_varying = bim_nx4_ny4_torque_first_mass_varying,
+    .forces = bim_nx4_ny4_torque_first_forces,
+    .forces_terms = bim_nx4_ny4_torque_first_forces_terms,
+    .forces_matrix = bim_nx4_ny4_torque_first_forces_matrix,
+    .energy = bim_nx4_ny4_torque_first_energy,
+    .momentum = bim_nx4_ny4_torque_first_momentum,
+    .forces_q = bim_nx4_ny4_torque_first_forces_q,
+    .forces_qd = bim_nx4_ny4_torque_first_forces_qd,
+    .mass_q_product = bim_nx4_ny4_torque_first_mass_q_product,
+    .forces_u = bim_nx4_ny4_torque_first_forces_u,
+    .tip = bim_nx4_ny4_torque_first_tip,
+    .forces_folded = nullptr,
+};
 
 }  // namespace hubbeam::generated

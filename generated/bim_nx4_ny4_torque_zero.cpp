@@ -1129,9 +1129,27 @@ void bim_nx4_ny4_torque_zero_mass_q_product(const double* c, const double* u, co
 
 }  // namespace
 
-extern const Variant bim_nx4_ny4_torque_zero = {"bim_nx4_ny4_torque_zero", 9, 82, 58,
-    "vvvvvvvvvvcccc0000vcccc0000vcccc0000vcccc0000v0000ccccv0000ccccv0000ccccv0000cccc",
-    bim_nx4_ny4_torque_zero_coefficients, bim_nx4_ny4_torque_zero_mass, bim_nx4_ny4_torque_zero_mass_varying, bim_nx4_ny4_torque_zero_forces, bim_nx4_ny4_torque_zero_forces_terms, bim_nx4_ny4_torque_zero_forces_matrix,
-    bim_nx4_ny4_torque_zero_energy, bim_nx4_ny4_torque_zero_momentum, bim_nx4_ny4_torque_zero_forces_q, bim_nx4_ny4_torque_zero_forces_qd, bim_nx4_ny4_torque_zero_mass_q_product, bim_nx4_ny4_torque_zero_forces_u, bim_nx4_ny4_torque_zero_tip, nullptr};
+extern const Variant bim_nx4_ny4_torque_zero = {
+    .abi_version = 2,
+    .name = "bim_nx4_ny4_torque_zero",
+    .nq = 9,
+    .ncoeff = 82,
+    .nterms = 58,
+    .mass_pattern = "vvvvvvvvvvcccc0000vcccc0000vcccc0000vcccc0000v0000ccccv0000ccccv0000ccccv0000cccc",
+    .coefficients = bim_nx4_ny4_torque_zero_coefficients,
+    .mass = bim_nx4_ny4_torque_zero_mass,
+    .mass_varying = bim_nx4_ny4_torque_zero_mass_varying,
+    .forces = bim_nx4_ny4_torque_zero_forces,
+    .forces_terms = bim_nx4_ny4_torque_zero_forces_terms,
+    .forces_matrix = bim_nx4_ny4_torque_zero_forces_matrix,
+    .energy = bim_nx4_ny4_torque_zero_energy,
+    .momentum = bim_nx4_ny4_torque_zero_momentum,
+    .forces_q = bim_nx4_ny4_torque_zero_forces_q,
+    .forces_qd = bim_nx4_ny4_torque_zero_forces_qd,
+    .mass_q_product = bim_nx4_ny4_torque_zero_mass_q_product,
+    .forces_u = bim_nx4_ny4_torque_zero_forces_u,
+    .tip = bim_nx4_ny4_torque_zero_tip,
+    .forces_folded = nullptr,
+};
 
 }  // namespace hubbeam::generated

@@ -387,9 +387,27 @@ void bsim_nx0_ny4_prescribed_first_forces_folded(const double* c, const double* 
 
 }  // namespace
 
-extern const Variant bsim_nx0_ny4_prescribed_first = {"bsim_nx0_ny4_prescribed_first", 4, 62, 9,
-    "cccccccccccccccc",
-    bsim_nx0_ny4_prescribed_first_coefficients, bsim_nx0_ny4_prescribed_first_mass, nullptr, bsim_nx0_ny4_prescribed_first_forces, bsim_nx0_ny4_prescribed_first_forces_terms, bsim_nx0_ny4_prescribed_first_forces_matrix,
-    bsim_nx0_ny4_prescribed_first_energy, bsim_nx0_ny4_prescribed_first_momentum, bsim_nx0_ny4_prescribed_first_forces_q, bsim_nx0_ny4_prescribed_first_forces_qd, nullptr, bsim_nx0_ny4_prescribed_first_forces_u, bsim_nx0_ny4_prescribed_first_tip, bsim_nx0_ny4_prescribed_first_forces_folded};
+extern const Variant bsim_nx0_ny4_prescribed_first = {
+    .abi_version = 2,
+    .name = "bsim_nx0_ny4_prescribed_first",
+    .nq = 4,
+    .ncoeff = 62,
+    .nterms = 9,
+    .mass_pattern = "cccccccccccccccc",
+    .coefficients = bsim_nx0_ny4_prescribed_first_coefficients,
+    .mass = bsim_nx0_ny4_prescribed_first_mass,
+    .mass_varying = nullptr,
+    .forces = bsim_nx0_ny4_prescribed_first_forces,
+    .forces_terms = bsim_nx0_ny4_prescribed_first_forces_terms,
+    .forces_matrix = bsim_nx0_ny4_prescribed_first_forces_matrix,
+    .energy = bsim_nx0_ny4_prescribed_first_energy,
+    .momentum = bsim_nx0_ny4_prescribed_first_momentum,
+    .forces_q = bsim_nx0_ny4_prescribed_first_forces_q,
+    .forces_qd = bsim_nx0_ny4_prescribed_first_forces_qd,
+    .mass_q_product = nullptr,
+    .forces_u = bsim_nx0_ny4_prescribed_first_forces_u,
+    .tip = bsim_nx0_ny4_prescribed_first_tip,
+    .forces_folded = bsim_nx0_ny4_prescribed_first_forces_folded,
+};
 
 }  // namespace hubbeam::generated

@@ -386,9 +386,27 @@ void bsim_nx0_ny4_prescribed_first_open_forces_folded(const double* c, const dou
 
 }  // namespace
 
-extern const Variant bsim_nx0_ny4_prescribed_first_open = {"bsim_nx0_ny4_prescribed_first_open", 4, 61, 9,
-    "cccccccccccccccc",
-    bsim_nx0_ny4_prescribed_first_open_coefficients, bsim_nx0_ny4_prescribed_first_open_mass, nullptr, bsim_nx0_ny4_prescribed_first_open_forces, bsim_nx0_ny4_prescribed_first_open_forces_terms, bsim_nx0_ny4_prescribed_first_open_forces_matrix,
-    bsim_nx0_ny4_prescribed_first_open_energy, bsim_nx0_ny4_prescribed_first_open_momentum, bsim_nx0_ny4_prescribed_first_open_forces_q, bsim_nx0_ny4_prescribed_first_open_forces_qd, nullptr, bsim_nx0_ny4_prescribed_first_open_forces_u, bsim_nx0_ny4_prescribed_first_open_tip, bsim_nx0_ny4_prescribed_first_open_forces_folded};
+extern const Variant bsim_nx0_ny4_prescribed_first_open = {
+    .abi_version = 2,
+    .name = "bsim_nx0_ny4_prescribed_first_open",
+    .nq = 4,
+    .ncoeff = 61,
+    .nterms = 9,
+    .mass_pattern = "cccccccccccccccc",
+    .coefficients = bsim_nx0_ny4_prescribed_first_open_coefficients,
+    .mass = bsim_nx0_ny4_prescribed_first_open_mass,
+    .mass_varying = nullptr,
+    .forces = bsim_nx0_ny4_prescribed_first_open_forces,
+    .forces_terms = bsim_nx0_ny4_prescribed_first_open_forces_terms,
+    .forces_matrix = bsim_nx0_ny4_prescribed_first_open_forces_matrix,
+    .energy = bsim_nx0_ny4_prescribed_first_open_energy,
+    .momentum = bsim_nx0_ny4_prescribed_first_open_momentum,
+    .forces_q = bsim_nx0_ny4_prescribed_first_open_forces_q,
+    .forces_qd = bsim_nx0_ny4_prescribed_first_open_forces_qd,
+    .mass_q_product = nullptr,
+    .forces_u = bsim_nx0_ny4_prescribed_first_open_forces_u,
+    .tip = bsim_nx0_ny4_prescribed_first_open_tip,
+    .forces_folded = bsim_nx0_ny4_prescribed_first_open_forces_folded,
+};
 
 }  // namespace hubbeam::generated

@@ -546,9 +546,27 @@ void bsim_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, 
 
 }  // namespace
 
-extern const Variant bsim_nx0_ny4_torque_first = {"bsim_nx0_ny4_torque_first", 5, 62, 25,
-    "vcccccccccccccccccccccccc",
-    bsim_nx0_ny4_torque_first_coefficients, bsim_nx0_ny4_torque_first_mass, bsim_nx0_ny4_torque_first_mass_varying, bsim_nx0_ny4_torque_first_forces, bsim_nx0_ny4_torque_first_forces_terms, bsim_nx0_ny4_torque_first_forces_matrix,
-    bsim_nx0_ny4_torque_first_energy, bsim_nx0_ny4_torque_first_momentum, bsim_nx0_ny4_torque_first_forces_q, bsim_nx0_ny4_torque_first_forces_qd, bsim_nx0_ny4_torque_first_mass_q_product, bsim_nx0_ny4_torque_first_forces_u, bsim_nx0_ny4_torque_first_tip, nullptr};
+extern const Variant bsim_nx0_ny4_torque_first = {
+    .abi_version = 2,
+    .name = "bsim_nx0_ny4_torque_first",
+    .nq = 5,
+    .ncoeff = 62,
+    .nterms = 25,
+    .mass_pattern = "vcccccccccccccccccccccccc",
+    .coefficients = bsim_nx0_ny4_torque_first_coefficients,
+    .mass = bsim_nx0_ny4_torque_first_mass,
+    .mass_varying = bsim_nx0_ny4_torque_first_mass_varying,
+    .forces = bsim_nx0_ny4_torque_first_forces,
+    .forces_terms = bsim_nx0_ny4_torque_first_forces_terms,
+    .forces_matrix = bsim_nx0_ny4_torque_first_forces_matrix,
+    .energy = bsim_nx0_ny4_torque_first_energy,
+    .momentum = bsim_nx0_ny4_torque_first_momentum,
+    .forces_q = bsim_nx0_ny4_torque_first_forces_q,
+    .forces_qd = bsim_nx0_ny4_torque_first_forces_qd,
+    .mass_q_product = bsim_nx0_ny4_torque_first_mass_q_product,
+    .forces_u = bsim_nx0_ny4_torque_first_forces_u,
+    .tip = bsim_nx0_ny4_torque_first_tip,
+    .forces_folded = nullptr,
+};
 
 }  // namespace hubbeam::generated

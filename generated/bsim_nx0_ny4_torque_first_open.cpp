@@ -545,9 +545,27 @@ void bsim_nx0_ny4_torque_first_open_mass_q_product(const double* c, const double
 
 }  // namespace
 
-extern const Variant bsim_nx0_ny4_torque_first_open = {"bsim_nx0_ny4_torque_first_open", 5, 61, 25,
-    "vcccccccccccccccccccccccc",
-    bsim_nx0_ny4_torque_first_open_coefficients, bsim_nx0_ny4_torque_first_open_mass, bsim_nx0_ny4_torque_first_open_mass_varying, bsim_nx0_ny4_torque_first_open_forces, bsim_nx0_ny4_torque_first_open_forces_terms, bsim_nx0_ny4_torque_first_open_forces_matrix,
-    bsim_nx0_ny4_torque_first_open_energy, bsim_nx0_ny4_torque_first_open_momentum, bsim_nx0_ny4_torque_first_open_forces_q, bsim_nx0_ny4_torque_first_open_forces_qd, bsim_nx0_ny4_torque_first_open_mass_q_product, bsim_nx0_ny4_torque_first_open_forces_u, bsim_nx0_ny4_torque_first_open_tip, nullptr};
+extern const Variant bsim_nx0_ny4_torque_first_open = {
+    .abi_version = 2,
+    .name = "bsim_nx0_ny4_torque_first_open",
+    .nq = 5,
+    .ncoeff = 61,
+    .nterms = 25,
+    .mass_pattern = "vcccccccccccccccccccccccc",
+    .coefficients = bsim_nx0_ny4_torque_first_open_coefficients,
+    .mass = bsim_nx0_ny4_torque_first_open_mass,
+    .mass_varying = bsim_nx0_ny4_torque_first_open_mass_varying,
+    .forces = bsim_nx0_ny4_torque_first_open_forces,
+    .forces_terms = bsim_nx0_ny4_torque_first_open_forces_terms,
+    .forces_matrix = bsim_nx0_ny4_torque_first_open_forces_matrix,
+    .energy = bsim_nx0_ny4_torque_first_open_energy,
+    .momentum = bsim_nx0_ny4_torque_first_open_momentum,
+    .forces_q = bsim_nx0_ny4_torque_first_open_forces_q,
+    .forces_qd = bsim_nx0_ny4_torque_first_open_forces_qd,
+    .mass_q_product = bsim_nx0_ny4_torque_first_open_mass_q_product,
+    .forces_u = bsim_nx0_ny4_torque_first_open_forces_u,
+    .tip = bsim_nx0_ny4_torque_first_open_tip,
+    .forces_folded = nullptr,
+};
 
 }  // namespace hubbeam::generated

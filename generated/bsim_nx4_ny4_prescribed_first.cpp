@@ -926,9 +926,27 @@ void bsim_nx4_ny4_prescribed_first_forces_folded(const double* c, const double* 
 
 }  // namespace
 
-extern const Variant bsim_nx4_ny4_prescribed_first = {"bsim_nx4_ny4_prescribed_first", 8, 125, 34,
-    "cccc0000cccc0000cccc0000cccc00000000cccc0000cccc0000cccc0000cccc",
-    bsim_nx4_ny4_prescribed_first_coefficients, bsim_nx4_ny4_prescribed_first_mass, nullptr, bsim_nx4_ny4_prescribed_first_forces, bsim_nx4_ny4_prescribed_first_forces_terms, bsim_nx4_ny4_prescribed_first_forces_matrix,
-    bsim_nx4_ny4_prescribed_first_energy, bsim_nx4_ny4_prescribed_first_momentum, bsim_nx4_ny4_prescribed_first_forces_q, bsim_nx4_ny4_prescribed_first_forces_qd, nullptr, bsim_nx4_ny4_prescribed_first_forces_u, bsim_nx4_ny4_prescribed_first_tip, bsim_nx4_ny4_prescribed_first_forces_folded};
+extern const Variant bsim_nx4_ny4_prescribed_first = {
+    .abi_version = 2,
+    .name = "bsim_nx4_ny4_prescribed_first",
+    .nq = 8,
+    .ncoeff = 125,
+    .nterms = 34,
+    .mass_pattern = "cccc0000cccc0000cccc0000cccc00000000cccc0000cccc0000cccc0000cccc",
+    .coefficients = bsim_nx4_ny4_prescribed_first_coefficients,
+    .mass = bsim_nx4_ny4_prescribed_first_mass,
+    .mass_varying = nullptr,
+    .forces = bsim_nx4_ny4_prescribed_first_forces,
+    .forces_terms = bsim_nx4_ny4_prescribed_first_forces_terms,
+    .forces_matrix = bsim_nx4_ny4_prescribed_first_forces_matrix,
+    .energy = bsim_nx4_ny4_prescribed_first_energy,
+    .momentum = bsim_nx4_ny4_prescribed_first_momentum,
+    .forces_q = bsim_nx4_ny4_prescribed_first_forces_q,
+    .forces_qd = bsim_nx4_ny4_prescribed_first_forces_qd,
+    .mass_q_product = nullptr,
+    .forces_u = bsim_nx4_ny4_prescribed_first_forces_u,
+    .tip = bsim_nx4_ny4_prescribed_first_tip,
+    .forces_folded = bsim_nx4_ny4_prescribed_first_forces_folded,
+};
 
 }  // namespace hubbeam::generated

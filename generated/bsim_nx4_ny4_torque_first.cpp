@@ -1172,9 +1172,27 @@ void bsim_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, 
 
 }  // namespace
 
-extern const Variant bsim_nx4_ny4_torque_first = {"bsim_nx4_ny4_torque_first", 9, 125, 58,
-    "vvvvvvvvvvcccc0000vcccc0000vcccc0000vcccc0000v0000ccccv0000ccccv0000ccccv0000cccc",
-    bsim_nx4_ny4_torque_first_coefficients, bsim_nx4_ny4_torque_first_mass, bsim_nx4_ny4_torque_first_mass_varying, bsim_nx4_ny4_torque_first_forces, bsim_nx4_ny4_torque_first_forces_terms, bsim_nx4_ny4_torque_first_forces_matrix,
-    bsim_nx4_ny4_torque_first_energy, bsim_nx4_ny4_torque_first_momentum, bsim_nx4_ny4_torque_first_forces_q, bsim_nx4_ny4_torque_first_forces_qd, bsim_nx4_ny4_torque_first_mass_q_product, bsim_nx4_ny4_torque_first_forces_u, bsim_nx4_ny4_torque_first_tip, nullptr};
+extern const Variant bsim_nx4_ny4_torque_first = {
+    .abi_version = 2,
+    .name = "bsim_nx4_ny4_torque_first",
+    .nq = 9,
+    .ncoeff = 125,
+    .nterms = 58,
+    .mass_pattern = "vvvvvvvvvvcccc0000vcccc0000vcccc0000vcccc0000v0000ccccv0000ccccv0000ccccv0000cccc",
+    .coefficients = bsim_nx4_ny4_torque_first_coefficients,
+    .mass = bsim_nx4_ny4_torque_first_mass,
+    .mass_varying = bsim_nx4_ny4_torque_first_mass_varying,
+    .forces = bsim_nx4_ny4_torque_first_forces,
+    .forces_terms = bsim_nx4_ny4_torque_first_forces_terms,
+    .forces_matrix = bsim_nx4_ny4_torque_first_forces_matrix,
+    .energy = bsim_nx4_ny4_torque_first_energy,
+    .momentum = bsim_nx4_ny4_torque_first_momentum,
+    .forces_q = bsim_nx4_ny4_torque_first_forces_q,
+    .forces_qd = bsim_nx4_ny4_torque_first_forces_qd,
+    .mass_q_product = bsim_nx4_ny4_torque_first_mass_q_product,
+    .forces_u = bsim_nx4_ny4_torque_first_forces_u,
+    .tip = bsim_nx4_ny4_torque_first_tip,
+    .forces_folded = nullptr,
+};
 
 }  // namespace hubbeam::generated

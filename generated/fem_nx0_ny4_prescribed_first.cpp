@@ -372,9 +372,27 @@ void fem_nx0_ny4_prescribed_first_forces_folded(const double* c, const double* u
 
 }  // namespace
 
-extern const Variant fem_nx0_ny4_prescribed_first = {"fem_nx0_ny4_prescribed_first", 4, 53, 9,
-    "c0cc0ccccccccccc",
-    fem_nx0_ny4_prescribed_first_coefficients, fem_nx0_ny4_prescribed_first_mass, nullptr, fem_nx0_ny4_prescribed_first_forces, fem_nx0_ny4_prescribed_first_forces_terms, fem_nx0_ny4_prescribed_first_forces_matrix,
-    fem_nx0_ny4_prescribed_first_energy, fem_nx0_ny4_prescribed_first_momentum, fem_nx0_ny4_prescribed_first_forces_q, fem_nx0_ny4_prescribed_first_forces_qd, nullptr, fem_nx0_ny4_prescribed_first_forces_u, fem_nx0_ny4_prescribed_first_tip, fem_nx0_ny4_prescribed_first_forces_folded};
+extern const Variant fem_nx0_ny4_prescribed_first = {
+    .abi_version = 2,
+    .name = "fem_nx0_ny4_prescribed_first",
+    .nq = 4,
+    .ncoeff = 53,
+    .nterms = 9,
+    .mass_pattern = "c0cc0ccccccccccc",
+    .coefficients = fem_nx0_ny4_prescribed_first_coefficients,
+    .mass = fem_nx0_ny4_prescribed_first_mass,
+    .mass_varying = nullptr,
+    .forces = fem_nx0_ny4_prescribed_first_forces,
+    .forces_terms = fem_nx0_ny4_prescribed_first_forces_terms,
+    .forces_matrix = fem_nx0_ny4_prescribed_first_forces_matrix,
+    .energy = fem_nx0_ny4_prescribed_first_energy,
+    .momentum = fem_nx0_ny4_prescribed_first_momentum,
+    .forces_q = fem_nx0_ny4_prescribed_first_forces_q,
+    .forces_qd = fem_nx0_ny4_prescribed_first_forces_qd,
+    .mass_q_product = nullptr,
+    .forces_u = fem_nx0_ny4_prescribed_first_forces_u,
+    .tip = fem_nx0_ny4_prescribed_first_tip,
+    .forces_folded = fem_nx0_ny4_prescribed_first_forces_folded,
+};
 
 }  // namespace hubbeam::generated

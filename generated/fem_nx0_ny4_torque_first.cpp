@@ -532,9 +532,27 @@ void fem_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, c
 
 }  // namespace
 
-extern const Variant fem_nx0_ny4_torque_first = {"fem_nx0_ny4_torque_first", 5, 53, 25,
-    "vcccccc0ccc0ccccccccccccc",
-    fem_nx0_ny4_torque_first_coefficients, fem_nx0_ny4_torque_first_mass, fem_nx0_ny4_torque_first_mass_varying, fem_nx0_ny4_torque_first_forces, fem_nx0_ny4_torque_first_forces_terms, fem_nx0_ny4_torque_first_forces_matrix,
-    fem_nx0_ny4_torque_first_energy, fem_nx0_ny4_torque_first_momentum, fem_nx0_ny4_torque_first_forces_q, fem_nx0_ny4_torque_first_forces_qd, fem_nx0_ny4_torque_first_mass_q_product, fem_nx0_ny4_torque_first_forces_u, fem_nx0_ny4_torque_first_tip, nullptr};
+extern const Variant fem_nx0_ny4_torque_first = {
+    .abi_version = 2,
+    .name = "fem_nx0_ny4_torque_first",
+    .nq = 5,
+    .ncoeff = 53,
+    .nterms = 25,
+    .mass_pattern = "vcccccc0ccc0ccccccccccccc",
+    .coefficients = fem_nx0_ny4_torque_first_coefficients,
+    .mass = fem_nx0_ny4_torque_first_mass,
+    .mass_varying = fem_nx0_ny4_torque_first_mass_varying,
+    .forces = fem_nx0_ny4_torque_first_forces,
+    .forces_terms = fem_nx0_ny4_torque_first_forces_terms,
+    .forces_matrix = fem_nx0_ny4_torque_first_forces_matrix,
+    .energy = fem_nx0_ny4_torque_first_energy,
+    .momentum = fem_nx0_ny4_torque_first_momentum,
+    .forces_q = fem_nx0_ny4_torque_first_forces_q,
+    .forces_qd = fem_nx0_ny4_torque_first_forces_qd,
+    .mass_q_product = fem_nx0_ny4_torque_first_mass_q_product,
+    .forces_u = fem_nx0_ny4_torque_first_forces_u,
+    .tip = fem_nx0_ny4_torque_first_tip,
+    .forces_folded = nullptr,
+};
 
 }  // namespace hubbeam::generated

@@ -806,9 +806,27 @@ void fem_nx4_ny4_prescribed_first_forces_folded(const double* c, const double* u
 
 }  // namespace
 
-extern const Variant fem_nx4_ny4_prescribed_first = {"fem_nx4_ny4_prescribed_first", 8, 80, 34,
-    "cc000000ccc000000ccc000000cc00000000c0cc00000ccc0000cccc0000cccc",
-    fem_nx4_ny4_prescribed_first_coefficients, fem_nx4_ny4_prescribed_first_mass, nullptr, fem_nx4_ny4_prescribed_first_forces, fem_nx4_ny4_prescribed_first_forces_terms, fem_nx4_ny4_prescribed_first_forces_matrix,
-    fem_nx4_ny4_prescribed_first_energy, fem_nx4_ny4_prescribed_first_momentum, fem_nx4_ny4_prescribed_first_forces_q, fem_nx4_ny4_prescribed_first_forces_qd, nullptr, fem_nx4_ny4_prescribed_first_forces_u, fem_nx4_ny4_prescribed_first_tip, fem_nx4_ny4_prescribed_first_forces_folded};
+extern const Variant fem_nx4_ny4_prescribed_first = {
+    .abi_version = 2,
+    .name = "fem_nx4_ny4_prescribed_first",
+    .nq = 8,
+    .ncoeff = 80,
+    .nterms = 34,
+    .mass_pattern = "cc000000ccc000000ccc000000cc00000000c0cc00000ccc0000cccc0000cccc",
+    .coefficients = fem_nx4_ny4_prescribed_first_coefficients,
+    .mass = fem_nx4_ny4_prescribed_first_mass,
+    .mass_varying = nullptr,
+    .forces = fem_nx4_ny4_prescribed_first_forces,
+    .forces_terms = fem_nx4_ny4_prescribed_first_forces_terms,
+    .forces_matrix = fem_nx4_ny4_prescribed_first_forces_matrix,
+    .energy = fem_nx4_ny4_prescribed_first_energy,
+    .momentum = fem_nx4_ny4_prescribed_first_momentum,
+    .forces_q = fem_nx4_ny4_prescribed_first_forces_q,
+    .forces_qd = fem_nx4_ny4_prescribed_first_forces_qd,
+    .mass_q_product = nullptr,
+    .forces_u = fem_nx4_ny4_prescribed_first_forces_u,
+    .tip = fem_nx4_ny4_prescribed_first_tip,
+    .forces_folded = fem_nx4_ny4_prescribed_first_forces_folded,
+};
 
 }  // namespace hubbeam::generated

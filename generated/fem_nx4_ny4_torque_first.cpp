@@ -1017,9 +1017,27 @@ void fem_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, c
 
 }  // namespace
 
-extern const Variant fem_nx4_ny4_torque_first = {"fem_nx4_ny4_torque_first", 9, 80, 52,
-    "vvvvvvvvvvcc000000vccc00000v0ccc0000v00cc0000v0000c0ccv00000cccv0000ccccv0000cccc",
-    fem_nx4_ny4_torque_first_coefficients, fem_nx4_ny4_torque_first_mass, fem_nx4_ny4_torque_first_mass_varying, fem_nx4_ny4_torque_first_forces, fem_nx4_ny4_torque_first_forces_terms, fem_nx4_ny4_torque_first_forces_matrix,
-    fem_nx4_ny4_torque_first_energy, fem_nx4_ny4_torque_first_momentum, fem_nx4_ny4_torque_first_forces_q, fem_nx4_ny4_torque_first_forces_qd, fem_nx4_ny4_torque_first_mass_q_product, fem_nx4_ny4_torque_first_forces_u, fem_nx4_ny4_torque_first_tip, nullptr};
+extern const Variant fem_nx4_ny4_torque_first = {
+    .abi_version = 2,
+    .name = "fem_nx4_ny4_torque_first",
+    .nq = 9,
+    .ncoeff = 80,
+    .nterms = 52,
+    .mass_pattern = "vvvvvvvvvvcc000000vccc00000v0ccc0000v00cc0000v0000c0ccv00000cccv0000ccccv0000cccc",
+    .coefficients = fem_nx4_ny4_torque_first_coefficients,
+    .mass = fem_nx4_ny4_torque_first_mass,
+    .mass_varying = fem_nx4_ny4_torque_first_mass_varying,
+    .forces = fem_nx4_ny4_torque_first_forces,
+    .forces_terms = fem_nx4_ny4_torque_first_forces_terms,
+    .forces_matrix = fem_nx4_ny4_torque_first_forces_matrix,
+    .energy = fem_nx4_ny4_torque_first_energy,
+    .momentum = fem_nx4_ny4_torque_first_momentum,
+    .forces_q = fem_nx4_ny4_torque_first_forces_q,
+    .forces_qd = fem_nx4_ny4_torque_first_forces_qd,
+    .mass_q_product = fem_nx4_ny4_torque_first_mass_q_product,
+    .forces_u = fem_nx4_ny4_torque_first_forces_u,
+    .tip = fem_nx4_ny4_torque_first_tip,
+    .forces_folded = nullptr,
+};
 
 }  // namespace hubbeam::generated

@@ -1454,9 +1454,27 @@ void fem_nx8_ny8_prescribed_first_forces_u(const double* c, const double* u, con
 
 }  // namespace
 
-extern const Variant fem_nx8_ny8_prescribed_first = {"fem_nx8_ny8_prescribed_first", 16, 116, 66,
-    "cc00000000000000ccc00000000000000ccc00000000000000ccc00000000000000ccc00000000000000ccc00000000000000ccc00000000000000cc0000000000000000c0cc0000000000000ccc000000000000ccc0cc0000000000cc0ccc000000000000ccc0cc0000000000cc0ccc000000000000cccc000000000000cccc",
-    fem_nx8_ny8_prescribed_first_coefficients, fem_nx8_ny8_prescribed_first_mass, nullptr, fem_nx8_ny8_prescribed_first_forces, fem_nx8_ny8_prescribed_first_forces_terms, fem_nx8_ny8_prescribed_first_forces_matrix,
-    fem_nx8_ny8_prescribed_first_energy, fem_nx8_ny8_prescribed_first_momentum, fem_nx8_ny8_prescribed_first_forces_q, fem_nx8_ny8_prescribed_first_forces_qd, nullptr, fem_nx8_ny8_prescribed_first_forces_u, fem_nx8_ny8_prescribed_first_tip, nullptr};
+extern const Variant fem_nx8_ny8_prescribed_first = {
+    .abi_version = 2,
+    .name = "fem_nx8_ny8_prescribed_first",
+    .nq = 16,
+    .ncoeff = 116,
+    .nterms = 66,
+    .mass_pattern = "cc00000000000000ccc00000000000000ccc00000000000000ccc00000000000000ccc00000000000000ccc00000000000000ccc00000000000000cc0000000000000000c0cc0000000000000ccc000000000000ccc0cc0000000000cc0ccc000000000000ccc0cc0000000000cc0ccc000000000000cccc000000000000cccc",
+    .coefficients = fem_nx8_ny8_prescribed_first_coefficients,
+    .mass = fem_nx8_ny8_prescribed_first_mass,
+    .mass_varying = nullptr,
+    .forces = fem_nx8_ny8_prescribed_first_forces,
+    .forces_terms = fem_nx8_ny8_prescribed_first_forces_terms,
+    .forces_matrix = fem_nx8_ny8_prescribed_first_forces_matrix,
+    .energy = fem_nx8_ny8_prescribed_first_energy,
+    .momentum = fem_nx8_ny8_prescribed_first_momentum,
+    .forces_q = fem_nx8_ny8_prescribed_first_forces_q,
+    .forces_qd = fem_nx8_ny8_prescribed_first_forces_qd,
+    .mass_q_product = nullptr,
+    .forces_u = fem_nx8_ny8_prescribed_first_forces_u,
+    .tip = fem_nx8_ny8_prescribed_first_tip,
+    .forces_folded = nullptr,
+};
 
 }  // namespace hubbeam::generated

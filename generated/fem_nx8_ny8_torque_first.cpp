@@ -2027,9 +2027,27 @@ void fem_nx8_ny8_torque_first_mass_q_product(const double* c, const double* u, c
 
 }  // namespace
 
-extern const Variant fem_nx8_ny8_torque_first = {"fem_nx8_ny8_torque_first", 17, 116, 112,
-    "vvvvvvvvvvvvvvvvvvcc00000000000000vccc0000000000000v0ccc000000000000v00ccc00000000000v000ccc0000000000v0000ccc000000000v00000ccc00000000v000000cc00000000v00000000c0cc0000v000000000ccc0000v00000000ccc0cc00v00000000cc0ccc00v0000000000ccc0ccv0000000000cc0cccv000000000000ccccv000000000000cccc",
-    fem_nx8_ny8_torque_first_coefficients, fem_nx8_ny8_torque_first_mass, fem_nx8_ny8_torque_first_mass_varying, fem_nx8_ny8_torque_first_forces, fem_nx8_ny8_torque_first_forces_terms, fem_nx8_ny8_torque_first_forces_matrix,
-    fem_nx8_ny8_torque_first_energy, fem_nx8_ny8_torque_first_momentum, fem_nx8_ny8_torque_first_forces_q, fem_nx8_ny8_torque_first_forces_qd, fem_nx8_ny8_torque_first_mass_q_product, fem_nx8_ny8_torque_first_forces_u, fem_nx8_ny8_torque_first_tip, nullptr};
+extern const Variant fem_nx8_ny8_torque_first = {
+    .abi_version = 2,
+    .name = "fem_nx8_ny8_torque_first",
+    .nq = 17,
+    .ncoeff = 116,
+    .nterms = 112,
+    .mass_pattern = "vvvvvvvvvvvvvvvvvvcc00000000000000vccc0000000000000v0ccc000000000000v00ccc00000000000v000ccc0000000000v0000ccc000000000v00000ccc00000000v000000cc00000000v00000000c0cc0000v000000000ccc0000v00000000ccc0cc00v00000000cc0ccc00v0000000000ccc0ccv0000000000cc0cccv000000000000ccccv000000000000cccc",
+    .coefficients = fem_nx8_ny8_torque_first_coefficients,
+    .mass = fem_nx8_ny8_torque_first_mass,
+    .mass_varying = fem_nx8_ny8_torque_first_mass_varying,
+    .forces = fem_nx8_ny8_torque_first_forces,
+    .forces_terms = fem_nx8_ny8_torque_first_forces_terms,
+    .forces_matrix = fem_nx8_ny8_torque_first_forces_matrix,
+    .energy = fem_nx8_ny8_torque_first_energy,
+    .momentum = fem_nx8_ny8_torque_first_momentum,
+    .forces_q = fem_nx8_ny8_torque_first_forces_q,
+    .forces_qd = fem_nx8_ny8_torque_first_forces_qd,
+    .mass_q_product = fem_nx8_ny8_torque_first_mass_q_product,
+    .forces_u = fem_nx8_ny8_torque_first_forces_u,
+    .tip = fem_nx8_ny8_torque_first_tip,
+    .forces_folded = nullptr,
+};
 
 }  // namespace hubbeam::generated

@@ -9,6 +9,8 @@
 #include <set>
 #include <sstream>
 
+#include "monomial_order.hpp"
+
 namespace hubbeam::gen {
 
 using namespace GiNaC;
@@ -53,13 +55,6 @@ std::string monomial_name(const std::vector<int>& e, const std::vector<std::stri
     return s;
 }
 
-int degree(const std::vector<int>& e)
-{
-    int d = 0;
-    for (int x : e) d += x;
-    return d;
-}
-
 /// The index of a monomial's last variable (of nonzero exponent): its prefix, in the order monomials are built,
 /// has one factor of it fewer. The monomial must not be constant.
 std::size_t last_variable(const std::vector<int>& e)
@@ -68,21 +63,6 @@ std::size_t last_variable(const std::vector<int>& e)
     while (e[--last] == 0) {
     }
     return last;
-}
-
-/// Sorts monomials into reading order: by degree, then in the order of the variables (A1 before A2 before B1);
-/// each degree is computed once.
-void sort_reading(std::vector<std::vector<int>>& monomials)
-{
-    std::vector<std::pair<int, std::size_t>> keyed;
-    for (std::size_t i = 0; i < monomials.size(); ++i) keyed.emplace_back(degree(monomials[i]), i);
-    std::sort(keyed.begin(), keyed.end(), [&](const auto& x, const auto& y) {
-        return x.first != y.first ? x.first < y.first : monomials[x.second] > monomials[y.second];
-    });
-    std::vector<std::vector<int>> sorted;
-    sorted.reserve(monomials.size());
-    for (const auto& k : keyed) sorted.push_back(std::move(monomials[k.second]));
-    monomials = std::move(sorted);
 }
 
 }  // namespace
@@ -171,15 +151,13 @@ MonomialPlan plan_monomials(const std::vector<Output>& outputs, const std::vecto
 /// An output's terms in reading order (pointers into it, no copies).
 std::vector<const Output::value_type*> reading_order(const Output& o)
 {
-    std::vector<std::pair<int, const Output::value_type*>> keyed;  // (degree, term): the degree computed once
-    keyed.reserve(o.size());
-    for (const auto& entry : o) keyed.emplace_back(degree(entry.first), &entry);
-    std::sort(keyed.begin(), keyed.end(), [](const auto& x, const auto& y) {
-        return x.first != y.first ? x.first < y.first : x.second->first > y.second->first;
-    });
+    std::vector<const Output::value_type*> terms;
+    terms.reserve(o.size());
+    for (const auto& entry : o) terms.push_back(&entry);
     std::vector<const Output::value_type*> order;
-    order.reserve(keyed.size());
-    for (const auto& k : keyed) order.push_back(k.second);
+    order.reserve(terms.size());
+    for (std::size_t i : reading_permutation(terms, [](const Output::value_type* t) -> const Exponents& { return t->first; }))
+        order.push_back(terms[i]);
     return order;
 }
 

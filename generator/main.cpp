@@ -33,7 +33,8 @@ int main(int argc, char** argv)
     app.add_option("--out", out, "Folder for the sources (created if missing; default: the current folder)")
         ->type_name("DIR");
     app.add_flag("--module", module,
-                 "Write each source with an entry point `hubbeam_variant()` for a shared object, and no registry");
+                 "Write each source with an entry point `hubbeam_variant()` for a shared object, and the interface "
+                 "header generated_abi.h beside it instead of a registry");
     app.add_flag("-q,--quiet", quiet, "Print nothing on success");
     hubbeam::gen::EmitOptions options;
     app.add_option("--form", form,
@@ -52,7 +53,8 @@ int main(int argc, char** argv)
                    "uniform basis; e.g. bim_nx4_ny4_torque_first")
         ->required()
         ->type_name("VARIANT");
-    app.footer("Writes DIR/VARIANT.cpp for each variant and DIR/registry.cpp (without --module). Exit codes: 0 "
+    app.footer("Writes DIR/VARIANT.cpp for each variant, and DIR/registry.cpp (without --module) or DIR/generated_abi.h "
+               "(with --module). Exit codes: 0 "
                "success, 1 a variant could not be derived or written, 2 bad arguments (one line on stderr).");
     try {
         app.parse(argc, argv);
@@ -86,7 +88,8 @@ int main(int argc, char** argv)
             const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             if (!quiet) std::cout << "hubbeam-gen: " << key.name() << " (" << s << " s)\n";
         }
-        if (!module) write(std::filesystem::path(out) / "registry.cpp", hubbeam::gen::registry_source(names));
+        if (module) write(std::filesystem::path(out) / "generated_abi.h", hubbeam::gen::abi_header());
+        else write(std::filesystem::path(out) / "registry.cpp", hubbeam::gen::registry_source(names));
     } catch (const std::exception& e) {
         std::cerr << "hubbeam-gen: " << e.what() << "\n";
         return 1;

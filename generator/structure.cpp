@@ -3,7 +3,8 @@
 
 #include <algorithm>
 #include <map>
-#include <numeric>
+
+#include "monomial_order.hpp"
 
 namespace hubbeam::gen {
 
@@ -20,11 +21,7 @@ TermMatrix term_matrix(const std::vector<Poly>& Q, std::size_t parameter_count)
     std::vector<Exponents> monomials;
     for (const Poly& q : Q)
         for (const auto& entry : q.terms()) monomials.push_back(entry.first);
-    const auto degree = [](const Exponents& e) { return std::accumulate(e.begin(), e.end(), 0); };
-    // Reading order, as the emitter's: by degree, then larger exponents of earlier variables first.
-    std::sort(monomials.begin(), monomials.end(), [&](const Exponents& x, const Exponents& y) {
-        return degree(x) != degree(y) ? degree(x) < degree(y) : x > y;
-    });
+    sort_reading(monomials);  // the emitter's order of temporaries, so that m_k reads as the other kernels do
     monomials.erase(std::unique(monomials.begin(), monomials.end()), monomials.end());
     std::map<Exponents, std::size_t> index;
     TermMatrix t;

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "emit.hpp"
+#include "generated_abi.h"
 #include "interface.hpp"
 #include "energy.hpp"
 #include "lagrange.hpp"
@@ -252,15 +253,37 @@ std::string variant_source(const VariantKey& key, const EmitOptions& options)
     const EmittedCode code = emit_kernels(name, sig, std::move(kernels), options);
     const auto optional = [&](const char* kernel) { return mass_varies ? name + "_" + kernel : std::string("nullptr"); };
 
+    const auto kernel = [&](const char* k) { return name + "_" + k; };
+    // Designated initializers, in the order of generated_abi.h's fields (C++20 requires that order): a field renamed,
+    // removed or moved there makes the generated source fail to compile instead of shifting every later pointer.
+    const std::vector<std::pair<const char*, std::string>> row = {
+        {"abi_version", std::to_string(generated::abi_version)},
+        {"name", "\"" + name + "\""},
+        {"nq", std::to_string(nq)},
+        {"ncoeff", std::to_string(code.ncoeff)},
+        {"nterms", nk},
+        {"mass_pattern", "\"" + pattern + "\""},
+        {"coefficients", kernel("coefficients")},
+        {"mass", kernel("mass")},
+        {"mass_varying", optional("mass_varying")},
+        {"forces", kernel("forces")},
+        {"forces_terms", kernel("forces_terms")},
+        {"forces_matrix", kernel("forces_matrix")},
+        {"energy", kernel("energy")},
+        {"momentum", kernel("momentum")},
+        {"forces_q", kernel("forces_q")},
+        {"forces_qd", kernel("forces_qd")},
+        {"mass_q_product", optional("mass_q_product")},
+        {"forces_u", kernel("forces_u")},
+        {"tip", kernel("tip")},
+        {"forces_folded", folded ? kernel("forces_folded") : std::string("nullptr")},
+    };
     std::ostringstream f;
     f << banner(key, mass_varies) << "\n#include \"generated_abi.h\"\n\nnamespace hubbeam::generated {\n\nnamespace {\n"
       << code.text << "\n}  // namespace\n\n"
-      << "extern const Variant " << name << " = {\"" << name << "\", " << nq << ", " << code.ncoeff << ", " << nk
-      << ",\n    \"" << pattern << "\",\n    " << name << "_coefficients, " << name << "_mass, "
-      << optional("mass_varying") << ", " << name << "_forces, " << name << "_forces_terms, "
-      << name << "_forces_matrix,\n    " << name << "_energy, " << name << "_momentum, " << name << "_forces_q, " << name
-      << "_forces_qd, " << optional("mass_q_product") << ", " << name << "_forces_u, " << name << "_tip, "
-      << (folded ? name + "_forces_folded" : std::string("nullptr")) << "};\n\n}  // namespace hubbeam::generated\n";
+      << "extern const Variant " << name << " = {\n";
+    for (const auto& [field, value] : row) f << "    ." << field << " = " << value << ",\n";
+    f << "};\n\n}  // namespace hubbeam::generated\n";
     return f.str();
 }
 

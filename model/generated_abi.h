@@ -4,6 +4,11 @@
 
 namespace hubbeam::generated {
 
+/* The version of this interface. Every table row starts with the version of the generator that wrote it, and a
+ * loader refuses a row of any other version before calling one of its kernels (an on-demand object outlives the
+ * generator that made it). Raise it with any change to Variant, Kernel or CoefficientsKernel below. */
+inline constexpr int abi_version = 2;
+
 /* out = f(c, u, q, qd). c: the variant's coefficients (from its coefficients kernel, once per parameter set);
  * u: the drive, indexed by DriveValue of model/interface.hpp (a torque variant reads tau, a prescribed variant
  * theta_dot and theta_ddot); q, qd: generalized coordinates and rates of the variant. */
@@ -11,7 +16,9 @@ using Kernel = void (*)(const double* c, const double* u, const double* q, const
 /* c = f(p), p: the physical parameters in SI units, indexed by Param of model/interface.hpp. */
 using CoefficientsKernel = void (*)(const double* p, double* c);
 
+/* One variant's row, filled by designated initializers (field names, not positions) in the generated source. */
 struct Variant {
+    int abi_version;          /* first, where every version of this struct has it: the generator's abi_version */
     const char* name;         /* VariantKey::name(), e.g. "bim_nx4_ny4_torque_first" */
     int nq;                   /* number of generalized coordinates */
     int ncoeff;               /* length of c */

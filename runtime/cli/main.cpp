@@ -37,6 +37,7 @@
 #include "integrate.hpp"
 #include "kernel_bench.hpp"
 #include "fields.hpp"
+#include "install_layout.hpp"
 #include "modes.hpp"
 #include "option_lists.hpp"
 #include "shortest.hpp"
@@ -447,9 +448,12 @@ int linear_command(const std::string& scene_path, const LinearOverrides& lo, con
 int sweep(const std::vector<std::string>& args)
 {
 #ifdef HUBBEAM_PYTHON_EXECUTABLE
+    // The package of this build or installation, found relative to this program (none: Python's own path).
     const char* old = std::getenv("PYTHONPATH");
-    const std::string path = std::string(HUBBEAM_PYTHON_DIR) + (old != nullptr && *old != '\0' ? ":" + std::string(old) : "");
-    ::setenv("PYTHONPATH", path.c_str(), 1);
+    if (const std::filesystem::path package = python_package_parent(); !package.empty()) {
+        const std::string path = package.string() + (old != nullptr && *old != '\0' ? ":" + std::string(old) : "");
+        ::setenv("PYTHONPATH", path.c_str(), 1);
+    }
     std::vector<std::string> words = {HUBBEAM_PYTHON_EXECUTABLE, "-m", "hubbeam.sweeps"};
     words.insert(words.end(), args.begin(), args.end());
     std::vector<char*> argv;

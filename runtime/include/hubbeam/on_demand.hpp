@@ -16,30 +16,37 @@ namespace generated {
 struct Variant;
 }
 
-/// A generation or compilation that failed: the message names the variant, the tool's first error line and the
-/// cache folder. Nothing is left in the cache.
+/// A generation or compilation that failed (the message names the variant, the tool's first error line and the
+/// cache folder; nothing is left in the cache), or a cache or object refused as unsafe (the message names the path
+/// and the fix).
 struct CompileError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
 /// The cache of this generator version: $HUBBEAM_CACHE_DIR, else $XDG_CACHE_HOME/hubbeam, else
 /// ~/.cache/hubbeam, then a folder named after the generator's version (a hash of its sources), so that a
-/// changed generator never loads objects made by an older one.
+/// changed generator never loads objects made by an older one. Throws CompileError when none of the three is set
+/// (never a shared temporary folder: docs/security.md).
 std::filesystem::path variant_cache_dir();
-/// The folder that holds every version's cache (what to remove to clear it).
+/// The folder that holds every version's cache (what to remove to clear it); throws as variant_cache_dir().
 std::filesystem::path variant_cache_root();
+/// The generator's version, the name of its folder in the cache.
+std::string generator_version();
 
 /// Why this machine cannot compile variants on demand (no compiler, no generator), or empty if it can.
 std::string on_demand_problem();
 /// The compiler command used: $CXX, else the compiler this build was made with, else c++.
 std::string on_demand_compiler();
 
-/// The variant from the cache, loaded; nullptr if it is not cached.
+/// The variant from the cache, loaded once its file matches the checksum recorded when it was compiled; nullptr if
+/// it is not cached or does not match. Throws CompileError for a cache folder or object another user could have
+/// written.
 const generated::Variant* load_cached_variant(const VariantKey& key);
 
 /// Generates, compiles and loads key into the cache (note is told before the work starts, as it takes seconds).
-/// Two processes may do this at once: each compiles in its own folder and renames its object into place, so
-/// a reader only ever opens a whole file. Throws CompileError.
+/// Processes that want the same variant at once take turns under a lock file; the first compiles in a private
+/// work folder, records the object's checksum and renames the object into place. The tools run in their own
+/// process group, killed when hubbeam ends or the time limit passes. Throws CompileError.
 const generated::Variant* compile_variant(const VariantKey& key,
                                           const std::function<void(const std::string&)>& note = {});
 
