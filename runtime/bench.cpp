@@ -586,8 +586,10 @@ BenchFigures bench_figures(const std::string& prefix, const std::string& csv, co
     if (resolution > 0.0)
         dofs += ", \\\n       " + shortest(resolution) +
                 " with lines dt 2 lw 2 lc rgb 'gray40' title 'reference resolution'";
-    std::string ny_tics;
+    std::string ny_tics, ny_range;
     for (const int n : nys) ny_tics += (ny_tics.empty() ? "" : ", ") + std::to_string(n);
+    if (!nys.empty())  // a little beyond the grid's Ny on either side, not the decades around them
+        ny_range = "  set xrange [" + shortest(nys.front() / 1.15) + ":" + shortest(nys.back() * 1.15) + "]\n";
 
     BenchFigures f;
     f.script = "# gnuplot script written by hubbeam bench: work-precision figures from " + csv + "\n" + figure_style() +
@@ -600,14 +602,15 @@ BenchFigures bench_figures(const std::string& prefix, const std::string& csv, co
                               " noenhanced\n"
                               "  set xlabel 'wall time per run (s, in process, median)'\n"
                               "  set ylabel 'max |tip u_y - reference| (m)'\n"
-                              "  set xtics autofreq\n" +
+                              "  set xtics autofreq\n"
+                              "  set autoscale x\n" +
                               work + "\n" + figure_output(prefix + "-dofs") + "  set title " +
                               gnuplot_string("Discretization error against DOF count, " + scene +
-                                             " (the smallest error of each method and N_y)") +
+                                             " (the smallest error of each method and Ny)") +
                               " noenhanced\n"
                               "  set xlabel 'transverse DOFs N_y'\n"
                               "  set ylabel 'max |tip u_y - converged reference| (m)'\n"
-                              "  set xtics (" + ny_tics + ")\n" +
+                              "  set xtics (" + ny_tics + ")\n" + ny_range +
                               dofs + "\n");
     // The front (errors within the reference's resolution are ties) and the DOF convergence, computed here.
     std::vector<WorkPoint> plane;

@@ -445,7 +445,7 @@ Figure moment_figure(const std::vector<std::string>& files, const std::vector<st
         const std::string block = "$moment" + std::to_string(i + 1);
         f.data += "set table " + block + " separator comma\nplot " + gnuplot_string(files[i]) +
                   " using 'x':'bending_moment' with table if (strcol('t') eq " + gnuplot_string(chosen[i]) + ")\n";
-        f.elements.push_back(block + " using 1:2 with linespoints lw 2 lc " + std::to_string(i + 1) + " pt 7 ps 0.5 " +
+        f.elements.push_back(block + " using 1:2 with linespoints" + line_style(i) + "pt 7 ps 0.5 " +
                              title_of(one_time ? labels[i] : labels[i] + ", t = " + chosen[i] + " s"));
     }
     f.data += "unset table\n";
