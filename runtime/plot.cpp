@@ -453,11 +453,19 @@ Figure moment_figure(const std::vector<std::string>& files, const std::vector<st
 }
 
 /// The scene the files are runs of, as their names say: the part of their stems that they share
-/// ("spinup_omega4" of spinup_omega4-amm.csv and spinup_omega4-fem.csv), else the stems, comma-separated.
+/// ("spinup_omega4" of spinup_omega4-amm.csv and spinup_omega4-fem.csv, or of spinup_omega4-modes.csv), else the
+/// stems, comma-separated.
 std::string scene_of(const std::vector<std::string>& files)
 {
     std::vector<std::string> stems;
-    for (const std::string& f : files) stems.push_back(std::filesystem::path(f).stem().string());
+    for (const std::string& f : files) {
+        std::string stem = std::filesystem::path(f).stem().string();
+        // the suffixes hubbeam gives the modes and field CSVs of a scene (SCENE-modes.csv, RUN-fields.csv)
+        for (const std::string_view suffix : {"-modes", "-fields"})
+            if (stem.size() > suffix.size() && stem.compare(stem.size() - suffix.size(), suffix.size(), suffix) == 0)
+                stem.resize(stem.size() - suffix.size());
+        stems.push_back(stem);
+    }
     std::string common = stems.front();
     for (const std::string& s : stems) {
         std::size_t n = 0;

@@ -63,6 +63,12 @@ TEST_CASE("campbell: a line per bending mode of each variant, through its rows i
                   "0,2.9175\n4,3.0879\n\n"
                   "fourlines\n");
     CHECK(fs::file_size(args.prefix + ".png") > 0);
+    // the default title names the scene: modes.csv's stem here, SCENE of SCENE-modes.csv as `modes` names it
+    CHECK(script.find("set title 'Campbell diagram, modes' noenhanced") != std::string::npos);
+    fs::copy_file(fixture("modes.csv"), scratch.dir / "spinup_omega4-modes.csv");
+    PlotArgs named = args;
+    named.files = {(scratch.dir / "spinup_omega4-modes.csv").string()};
+    CHECK(plot_script(named).find("set title 'Campbell diagram, spinup_omega4' noenhanced") != std::string::npos);
     // a legend entry per method, not per mode
     CHECK(script.find("title 'amm Ny = 4' noenhanced") != std::string::npos);
     CHECK(script.find("title 'fem Ny = 4' noenhanced") != std::string::npos);
