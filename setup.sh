@@ -68,7 +68,7 @@ case "$mode" in
       build/hubbeam plot tip "${files[@]}" --labels "$labels" --title "Tip deflection, $scene, Ny = Nx = 4" \
         -o "$dir/$scene-tip"
       [[ $scene == spinup* ]] && build/hubbeam plot axial "${files[@]}" --labels "$labels" \
-        --title "Axial tip displacement, $scene: u_x1 (stretch, dashed) and u_x (with foreshortening)" -o "$dir/$scene-axial"
+        --title "Axial tip displacement, $scene: u_x (with foreshortening, thick) and u_x1 (stretch, thin with points)" -o "$dir/$scene-axial"
     done
     for scene in torque_tau1 torque_tau10; do  # Figs. 9-12: one method, Ny = 4 to 10, Nx = 0
       for m in "${methods[@]}"; do

@@ -63,10 +63,18 @@ TEST_CASE("campbell: a line per bending mode of each variant, through its rows i
                   "0,2.9175\n4,3.0879\n\n"
                   "fourlines\n");
     CHECK(fs::file_size(args.prefix + ".png") > 0);
+    // the default title names the scene: modes.csv's stem here, SCENE of SCENE-modes.csv as `modes` names it
+    CHECK(script.find("set title 'Campbell diagram, modes' noenhanced") != std::string::npos);
+    fs::copy_file(fixture("modes.csv"), scratch.dir / "spinup_omega4-modes.csv");
+    PlotArgs named = args;
+    named.files = {(scratch.dir / "spinup_omega4-modes.csv").string()};
+    CHECK(plot_script(named).find("set title 'Campbell diagram, spinup_omega4' noenhanced") != std::string::npos);
     // a legend entry per method, not per mode
     CHECK(script.find("title 'amm Ny = 4' noenhanced") != std::string::npos);
     CHECK(script.find("title 'fem Ny = 4' noenhanced") != std::string::npos);
-    CHECK(script.find("$mode2 using 1:2 with linespoints lw 2 lc 1 dt 1 pt 7 ps 0.8 notitle") != std::string::npos);
+    // amm's and fem's lines coincide to the eye: each its own open marker, amm's larger and wider under fem's
+    CHECK(script.find("$mode2 using 1:2 with linespoints lw 2.5 lc 1 dt 1 pt 6 ps 1.60 notitle") != std::string::npos);
+    CHECK(script.find("$mode4 using 1:2 with linespoints lw 2.1 lc 2 dt 1 pt 4 ps 1.35 notitle") != std::string::npos);
 }
 
 TEST_CASE("moment: each file's rows at the t closest to --time, by default at its last t")

@@ -393,16 +393,21 @@ Figure campbell_figure(const std::vector<std::string>& files, const std::vector<
         auto e = std::find(entries.begin(), entries.end(), entry);
         const bool first = e == entries.end();
         if (first) e = entries.insert(e, entry);
-        // a point type per variant of the same method, a dash type per file
-        const auto same_method =
-            std::count_if(entries.begin(), e, [&](const auto& o) { return o.second[0] == l.variant[0]; });
-        static const int point_types[] = {7, 5, 9, 11, 13, 15};
+        // An open marker of its own per legend entry, larger and the line wider the earlier the entry, so that
+        // variants whose frequencies coincide show as nested outlines; a dash type per file.
+        const auto entry_index = static_cast<std::size_t>(e - entries.begin());
+        static const int open_points[] = {6, 4, 8, 12, 10, 14, 1, 2};
+        char size[40];
+        std::snprintf(size, sizeof size, "lw %.1f", std::max(1.0, 2.5 - 0.4 * static_cast<double>(entry_index)));
         std::string legend = label_lines ? labels[l.file] + ": " : "";
         for (std::size_t c = 0; c < 5; ++c)
             if (named[c]) legend += names[c] + l.variant[c];
-        f.elements.push_back(block + " using 1:2 with linespoints lw 2 lc " + std::to_string(colour + 1) + " dt " +
-                             std::to_string(l.file + 1) + " pt " + std::to_string(point_types[same_method % 6]) +
-                             " ps 0.8 " + (first ? title_of(legend) : std::string("notitle")));
+        char points[40];
+        std::snprintf(points, sizeof points, " pt %d ps %.2f ", open_points[entry_index % std::size(open_points)],
+                      std::max(0.6, 1.6 - 0.25 * static_cast<double>(entry_index)));
+        f.elements.push_back(block + " using 1:2 with linespoints " + size + " lc " + std::to_string(colour + 1) +
+                             " dt " + std::to_string(l.file % 5 + 1) + points +
+                             (first ? title_of(legend) : std::string("notitle")));
     }
     f.data += "unset table\n";
     f.elements.push_back("x/(2*pi) with lines lw 2 dt 2 lc rgb 'black' title '1P: spin frequency omega/2pi'");
@@ -443,7 +448,7 @@ Figure moment_figure(const std::vector<std::string>& files, const std::vector<st
         const std::string block = "$moment" + std::to_string(i + 1);
         f.data += "set table " + block + " separator comma\nplot " + gnuplot_string(files[i]) +
                   " using 'x':'bending_moment' with table if (strcol('t') eq " + gnuplot_string(chosen[i]) + ")\n";
-        f.elements.push_back(block + " using 1:2 with linespoints lw 2 lc " + std::to_string(i + 1) + " pt 7 ps 0.5 " +
+        f.elements.push_back(block + " using 1:2 with linespoints" + line_style(i) + "pt 7 ps 0.5 " +
                              title_of(one_time ? labels[i] : labels[i] + ", t = " + chosen[i] + " s"));
     }
     f.data += "unset table\n";
@@ -451,11 +456,19 @@ Figure moment_figure(const std::vector<std::string>& files, const std::vector<st
 }
 
 /// The scene the files are runs of, as their names say: the part of their stems that they share
-/// ("spinup_omega4" of spinup_omega4-amm.csv and spinup_omega4-fem.csv), else the stems, comma-separated.
+/// ("spinup_omega4" of spinup_omega4-amm.csv and spinup_omega4-fem.csv, or of spinup_omega4-modes.csv), else the
+/// stems, comma-separated.
 std::string scene_of(const std::vector<std::string>& files)
 {
     std::vector<std::string> stems;
-    for (const std::string& f : files) stems.push_back(std::filesystem::path(f).stem().string());
+    for (const std::string& f : files) {
+        std::string stem = std::filesystem::path(f).stem().string();
+        // the suffixes hubbeam gives the modes and field CSVs of a scene (SCENE-modes.csv, RUN-fields.csv)
+        for (const std::string_view suffix : {"-modes", "-fields"})
+            if (stem.size() > suffix.size() && stem.compare(stem.size() - suffix.size(), suffix.size(), suffix) == 0)
+                stem.resize(stem.size() - suffix.size());
+        stems.push_back(stem);
+    }
     std::string common = stems.front();
     for (const std::string& s : stems) {
         std::size_t n = 0;
