@@ -275,13 +275,13 @@ std::pair<double, double Row::*> window_error(const Scene& scene, const Model& m
 /// loops, rows to the sink, the diagnosis of a stop, the checks and the summary).
 class Simulation::Run {
 public:
-    Run(const Simulation& simulation);
+    explicit Run(const Simulation& simulation);
     RunSummary operator()(const RowSink& sink, const StopRequest& stop);
 
 private:
     /// What free stepping carries from step to step: the step's start, the derivatives at its ends, the step sizes.
     struct FreeStep {
-        FreeStep(int size, double h0) : y0(size), f0(size), f1(size), yi(size), y_mid(size), f_mid(size), h(h0) {}
+        FreeStep(std::size_t size, double h0) : y0(size), f0(size), f1(size), yi(size), y_mid(size), f_mid(size), h(h0) {}
         std::vector<double> y0, f0, f1, yi, y_mid, f_mid;
         bool have_f0 = false, have_f1 = false;
         double t0 = 0.0, h;
@@ -370,7 +370,7 @@ RunSummary Simulation::Run::operator()(const RowSink& sink, const StopRequest& s
 /// interpolated from its ends (the derivatives there cost one right-hand side per step that holds a row).
 std::string Simulation::Run::free_steps(const RowSink& sink, const StopRequest& stop)
 {
-    FreeStep s(system_.size(), scene_.solver.h0);
+    FreeStep s(static_cast<std::size_t>(system_.size()), scene_.solver.h0);
     const double t_last = times_(times_.last());
     long i = 1;
     while (i <= times_.last()) {
@@ -491,7 +491,7 @@ std::string Simulation::Run::emit(double ti, const double* state, const RowSink&
 /// be trusted. And the error indicator's record: the columns' peaks and the rows of its windows.
 void Simulation::Run::monitor(const Row& r)
 {
-    if (r.t >= summary_.t_steady) {
+    if (r.t > 0.0 && r.t >= summary_.t_steady) {  // from the first row after rest
         if (summary_.vibration_energy < 0.0) jacobi0_ = r.jacobi, summary_.vibration_energy = 0.0;
         summary_.jacobi_drift = std::max(summary_.jacobi_drift, std::abs(r.jacobi - jacobi0_));
         summary_.vibration_energy = std::max(summary_.vibration_energy, r.potential);
