@@ -118,7 +118,9 @@ public:
 
     /// Integrates from rest; every row reaches sink before the next step is taken, so a failed run keeps all
     /// rows up to the failure. Before each step to the next row it asks stop (if given), so an interrupted
-    /// run ends on a whole row. Does not throw for numerical failure: see RunSummary::completed.
+    /// run ends on a whole row. Does not throw for numerical failure: see RunSummary::completed. Then the run's
+    /// rows are checked (the invariant monitor; the error indicator, see check_error), which can make a run that
+    /// reached t_end untrustworthy, and a failure that a tighter tolerance avoids is said to be the tolerance's.
     RunSummary run(const RowSink& sink, const StopRequest& stop = {});
 
     /// Also called for every row, before sink, with the model's coordinates q (nq of them) at the row's time:
