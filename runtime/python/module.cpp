@@ -21,15 +21,6 @@ using namespace hubbeam;
 
 namespace {
 
-// The one place the module lists the run's columns: row_width and append_row() follow Row and row_header().
-constexpr int row_width = 10;
-
-/// r's values at the end of rows, in row_header()'s order.
-void append_row(std::vector<double>& rows, const Row& r)
-{
-    rows.insert(rows.end(), {r.t, r.theta, r.theta_dot, r.tip_uy, r.tip_ux1, r.tip_ux, r.kinetic, r.potential,
-                             r.momentum, r.jacobi});
-}
 
 /// The scene with the overrides set: the file at `text` when name is empty, else `text` itself (a scene written in
 /// code, named name in messages). Bad input raises ValueError with the command line's message.
@@ -121,7 +112,9 @@ py::dict run(const std::string& text, const std::string& name, const Overrides& 
         const py::gil_scoped_release release;
         rows.reserve(static_cast<std::size_t>(row_width) *
                      static_cast<std::size_t>(std::min(1e7, scene.output.t_end / scene.output.dt_out + 2.0)));
-        s = simulation->run([&rows](const Row& r) { append_row(rows, r); }, stop);
+        s = simulation->run([&rows](const Row& r) {
+            for (const RowColumn& c : row_columns) rows.push_back(r.*c.member);
+        }, stop);
     }
     if (interrupted) throw py::error_already_set();  // the KeyboardInterrupt that PyErr_CheckSignals set
     const double in_process = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

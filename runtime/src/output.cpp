@@ -18,9 +18,9 @@ namespace {
 // A chunk is written once the buffer cannot take another line: large enough that the default run (about
 // 0.5 MB) needs a handful of write calls, small enough to stay in cache.
 constexpr std::size_t buffer_size = std::size_t{1} << 16;
-// The longest double to_chars writes is 24 characters (-1.7976931348623157e+308): ten of them, nine commas
-// and the newline.
-constexpr std::size_t max_line = 10 * 24 + 9 + 1;
+// The longest double to_chars writes is 24 characters (-1.7976931348623157e+308): one per column, the commas
+// between them and the newline.
+constexpr std::size_t max_line = row_width * 24 + row_width;
 // Buffered rows reach the file at the latest this long after the previous chunk: a long run's progress is
 // visible, and at most this much wall time of rows is lost if the process is killed outright.
 constexpr auto flush_interval = std::chrono::milliseconds(100);
@@ -28,11 +28,9 @@ constexpr auto flush_interval = std::chrono::milliseconds(100);
 /// Formats row's columns into out (room for max_line characters, no newline); returns the end.
 char* format_row(char* out, const Row& row)
 {
-    const double columns[] = {row.t,      row.theta,   row.theta_dot, row.tip_uy,  row.tip_ux1,
-                              row.tip_ux, row.kinetic, row.potential, row.momentum, row.jacobi};
-    for (std::size_t i = 0; i < std::size(columns); ++i) {
+    for (std::size_t i = 0; i < row_width; ++i) {
         if (i) *out++ = ',';
-        out = std::to_chars(out, out + 24, columns[i]).ptr;
+        out = std::to_chars(out, out + 24, row.*row_columns[i].member).ptr;
     }
     return out;
 }
@@ -174,14 +172,26 @@ std::string format_summary(const RunSummary& r, const Scene& scene)
     out << "max |tip_uy| " << buf << " m\n";
     if (r.vibration_energy > 0.0) {
         char line[160];
-        std::snprintf(line, sizeof line, "%.2g J after t = %g s, %.1g of the vibration energy", r.jacobi_drift,
+        // As the untrustworthy message words it (simulate.cpp), so that the two agree.
+        std::snprintf(line, sizeof line, "%.2g J after t = %g s, %.2g of the vibration energy", r.jacobi_drift,
                       r.t_steady, r.jacobi_drift / r.vibration_energy);
         out << "invariant   Jacobi integral drift " << line << "\n";
+    }
+    if (r.estimated_error >= 0.0) {
+        char line[200];
+        std::snprintf(line, sizeof line, "%.2g of the largest value (%s), from windows re-run at rtol %g, atol %g",
+                      r.estimated_error, r.error_column.c_str(), r.check_rtol, r.check_atol);
+        out << "error       " << line << "\n";
     }
     out << "steps       " << r.steps << "\n";
     out << "RHS evals   " << r.rhs_evals << "\n";
     std::snprintf(buf, sizeof buf, "%.3f", r.wall_seconds);
-    out << "wall time   " << buf << " s\n";
+    out << "wall time   " << buf << " s";
+    if (r.check_wall_seconds > 0.0) {
+        std::snprintf(buf, sizeof buf, "%.3f", r.check_wall_seconds);
+        out << " and " << buf << " s for the error check";
+    }
+    out << "\n";
     if (!r.completed) out << "STOPPED     at t = " << shortest(r.t_reached) << " s: " << r.failure << "\n";
     return out.str();
 }

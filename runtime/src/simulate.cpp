@@ -3,10 +3,12 @@
 #include "simulate.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 #include <gsl/gsl_errno.h>
 
@@ -100,7 +102,576 @@ std::vector<double> breaks_before(const Motion& motion, double t_last)
     return breaks;
 }
 
+using Driver = std::unique_ptr<gsl_odeiv2_driver, DriverDeleter>;
+
+/// GSL's driver for system with the named stepper; throws for an unknown name.
+Driver make_driver(FirstOrderSystem& system, const std::string& stepper, double h0, double atol, double rtol)
+{
+    const gsl_odeiv2_step_type* type = step_type(stepper);
+    if (type == nullptr) throw std::invalid_argument("unknown stepper '" + stepper + "'");
+    Driver driver(gsl_odeiv2_driver_alloc_y_new(system.gsl(), type, h0, atol, rtol));
+    if (!driver) throw std::runtime_error("GSL could not allocate the " + stepper + " driver");
+    return driver;
+}
+
+/// The run's output times: row 0 at t = 0, rows at multiples of dt_out, and a last one at t_end when dt_out does
+/// not divide it, so that a run that exits 0 has reached t_end.
+class OutputTimes {
+public:
+    explicit OutputTimes(const OutputOptions& o)
+        : grid_(o.dt_out), t_end_(o.t_end),
+          grid_rows_(static_cast<long>(std::floor(o.t_end / o.dt_out * (1.0 + same_instant))))
+    {
+        last_ = grid_rows_ + (grid_(grid_rows_) < t_end_ * (1.0 - same_instant) ? 1 : 0);
+    }
+    /// The last row's index.
+    long last() const { return last_; }
+    double operator()(long i) const { return i > grid_rows_ ? t_end_ : grid_(i); }
+
+private:
+    OutputClock grid_;
+    double t_end_;
+    long grid_rows_, last_ = 0;
+};
+
+/// Rows from states: the hub's angle and rate (prescribed, or coordinates under torque), the tip, the energies.
+class RowMaker {
+public:
+    RowMaker(const Model& model, const Motion& motion, FirstOrderSystem& system)
+        : model_(model), motion_(motion), system_(system), q_(static_cast<std::size_t>(model.nq())), qd_(q_)
+    {
+    }
+    /// The row of state y at t; q() is then its full coordinates.
+    Row operator()(double t, const double* y)
+    {
+        system_.full_state(t, y, q_.data(), qd_.data());
+        const double* q = q_.data();
+        const double* qd = qd_.data();
+        const HubInput u = motion_.at(t);
+        const Tip tip = model_.tip(q);
+        const Energy e = model_.energy(u, q, qd);
+        const bool torque = model_.key().drive == Drive::torque;
+        const double theta = torque ? q[0] : motion_.theta(t), theta_dot = torque ? qd[0] : u.theta_dot;
+        // Order zero has no foreshortening u_x2 (docs/model.md section 3): its u_x is u_x1.
+        const double ux = model_.key().order == Order::zero ? tip.ux1 : tip.ux;
+        return {t, theta, theta_dot, tip.uy, tip.ux1, ux, e.kinetic(), e.U, model_.momentum(u, q, qd), e.T2 - e.T0 + e.U};
+    }
+    const double* q() const { return q_.data(); }
+
+private:
+    const Model& model_;
+    const Motion& motion_;
+    FirstOrderSystem& system_;
+    std::vector<double> q_, qd_;
+};
+
+/// Why a row cannot stand, from the model's limits (empty if it can): the hub rate past the spin above which the
+/// straight beam is unstable, or a tip deflection beyond the beam's length.
+std::string model_limit(const Row& r, double critical, double L)
+{
+    char text[300];
+    if (std::abs(r.theta_dot) > critical) {
+        std::snprintf(text, sizeof text,
+                      "unstable: the hub rate %.4g rad/s has passed %.4g rad/s, above which the straight beam of "
+                      "this model is unstable (its effective stiffness loses definiteness; order zero: the first "
+                      "bending frequency) at t = %g s; order first or full stays stable",
+                      r.theta_dot, critical, r.t);
+        return text;
+    }
+    if (!std::isfinite(r.tip_uy) || std::abs(r.tip_uy) > L)
+        return "unstable: tip deflection " + std::to_string(r.tip_uy) + " m exceeds the beam length" + at_time(r.t) +
+               "; the small-deformation model no longer holds";
+    return {};
+}
+
+// The error indicator (RunSummary::estimated_error). Its windows are this fraction of the run (at least one row
+// interval): the run's own error accumulates over the run, and a window of a thirtieth measures its rate at a
+// fifteenth of a run's cost at the tighter tolerance.
+constexpr double check_window_fraction = 1.0 / 50.0;
+// The re-run's tolerances: this many times tighter than the run's, and than the scene defaults at the loosest, so
+// that its own error is small beside the error it measures.
+constexpr double check_tightening = 10.0;
+
+/// The columns the error indicator compares: what a reader of the rows plots (the energies follow from these).
+constexpr double Row::*checked_columns[] = {&Row::theta, &Row::theta_dot, &Row::tip_uy, &Row::tip_ux1, &Row::tip_ux};
+constexpr std::size_t checked_count = std::size(checked_columns);
+
+const char* column_name(double Row::*member)
+{
+    for (const RowColumn& c : row_columns)
+        if (c.member == member) return c.name;
+    return "?";
+}
+
+/// A stretch of the run to re-run at the tighter tolerance: its start and the state there, and the run's rows in it.
+struct CheckWindow {
+    double t0 = -1.0;  // < 0: not reached
+    std::vector<double> y0;
+    std::vector<Row> rows;
+};
+
+/// The tighter tolerances of the error indicator's re-runs.
+struct CheckTolerance {
+    double rtol, atol;
+};
+CheckTolerance check_tolerance(const SolverOptions& solver)
+{
+    const SolverOptions defaults;
+    return {std::max(std::min(solver.rtol, defaults.rtol) / check_tightening, 1e-13),
+            std::min(solver.atol, defaults.atol) / check_tightening};
+}
+
+/// The rows of a re-run of the scene from state y (of system) at t0 to each of times (ascending, > t0), at tol with
+/// the stepper that suits the scene, a step ending at each row and breakpoint. Fewer rows than times: the re-run
+/// failed there (a step, or a model limit).
+std::vector<Row> rerun(const Scene& scene, const Model& model, double t0, std::vector<double> y,
+                       const std::vector<double>& times, CheckTolerance tol)
+{
+    FirstOrderSystem system(model, scene.motion, scene.axial);
+    const Driver driver =
+        make_driver(system, automatic_stepper(model, scene.axial).stepper, scene.solver.h0, tol.atol, tol.rtol);
+    gsl_odeiv2_driver_set_nmax(driver.get(), static_cast<unsigned long>(scene.solver.max_steps));
+    RowMaker make_row(model, scene.motion, system);
+    const std::vector<double> breaks = times.empty() ? std::vector<double>{} : breaks_before(scene.motion, times.back());
+    auto next = std::upper_bound(breaks.begin(), breaks.end(), t0 * (1.0 + same_instant));
+    const double critical = critical_spin(model);
+    std::vector<Row> rows;
+    double t = t0;
+    for (const double ti : times) {
+        for (; next != breaks.end() && *next < ti * (1.0 - same_instant); ++next) {
+            if (gsl_odeiv2_driver_apply(driver.get(), &t, *next, y.data()) != GSL_SUCCESS) return rows;
+            gsl_odeiv2_driver_reset(driver.get());
+        }
+        if (gsl_odeiv2_driver_apply(driver.get(), &t, ti, y.data()) != GSL_SUCCESS) return rows;
+        const Row r = make_row(ti, y.data());
+        if (!model_limit(r, critical, scene.parameters.L).empty()) return rows;
+        rows.push_back(r);
+    }
+    return rows;
+}
+
+/// The largest difference of window's rows from a re-run of it, relative to each column's peak: the fraction and
+/// the column, or a negative fraction when the re-run failed.
+std::pair<double, double Row::*> window_error(const Scene& scene, const Model& model, const CheckWindow& window,
+                                              const std::array<double, checked_count>& peak, CheckTolerance tol)
+{
+    std::vector<double> times;
+    for (const Row& r : window.rows) times.push_back(r.t);
+    const std::vector<Row> again = rerun(scene, model, window.t0, window.y0, times, tol);
+    if (again.size() != window.rows.size()) return {-1.0, nullptr};
+    std::pair<double, double Row::*> worst{0.0, checked_columns[0]};
+    for (std::size_t i = 0; i < again.size(); ++i)
+        for (std::size_t c = 0; c < checked_count; ++c) {
+            if (peak[c] == 0.0) continue;  // a column the variant does not have (tip_ux1 without axial coordinates)
+            const double e = std::abs(window.rows[i].*checked_columns[c] - again[i].*checked_columns[c]) / peak[c];
+            if (std::isnan(e) || e > worst.first) worst = {std::isnan(e) ? INFINITY : e, checked_columns[c]};
+        }
+    return worst;
+}
+
 }  // namespace
+
+/// One run of Simulation::run: the integration's state, with one member function per job (setup, the two stepping
+/// loops, rows to the sink, the diagnosis of a stop, the checks and the summary).
+class Simulation::Run {
+public:
+    explicit Run(const Simulation& simulation);
+    RunSummary operator()(const RowSink& sink, const StopRequest& stop);
+
+private:
+    /// What free stepping carries from step to step: the step's start, the derivatives at its ends, the step sizes.
+    struct FreeStep {
+        FreeStep(std::size_t size, double h0) : y0(size), f0(size), f1(size), yi(size), y_mid(size), f_mid(size), h(h0) {}
+        std::vector<double> y0, f0, f1, yi, y_mid, f_mid;
+        bool have_f0 = false, have_f1 = false;
+        double t0 = 0.0, h;
+        // Longest step whose interpolated rows stay within the tolerance (interpolation_error), learnt from the
+        // steps that held rows: the quintic's error grows as h^6.
+        double h_max = std::numeric_limits<double>::infinity();
+    };
+
+    std::string free_steps(const RowSink& sink, const StopRequest& stop);
+    void limit_interpolation(FreeStep& s);
+    std::string rows_in_step(FreeStep& s, long& i, const RowSink& sink, const StopRequest& stop);
+    std::string row_steps(const RowSink& sink, const StopRequest& stop);
+    const char* stop_requested(const StopRequest& stop);
+    void restart();
+
+    std::string emit(double ti, const double* state, const RowSink& sink);
+    void monitor(const Row& r);
+    void mark_end_window(double t, const std::vector<double>& y, double t_next);
+
+    std::string why_failed(int status);
+    std::string failure_hint() const;
+    std::string singular_cause() const;
+    std::string over_budget() const;
+
+    RunSummary finish(std::string failure);
+    std::string untrustworthy();
+    std::string tolerance_as_cause(const std::string& failure);
+
+    const Simulation& sim_;
+    const Scene& scene_;
+    const Model& model_;
+    const std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+    const QuietGsl quiet_;
+    FirstOrderSystem system_;
+    Driver driver_;
+    RowMaker make_row_;
+    const OutputTimes times_;
+    const std::vector<double> breaks_;
+    std::size_t next_break_ = 0;
+    const double critical_;  // critical_spin: passing it stops the run at once, not after metres of deflection
+    const long budget_;      // solver.max_steps
+    std::vector<double> y_;
+    double t_ = 0.0, last_row_ = 0.0;
+    long steps_ = 0;  // of the driver's past lives (reset at breakpoints)
+    RunSummary summary_;
+    double jacobi0_ = 0.0;
+    std::string model_failure_;  // set when a row broke a model limit
+    // The error indicator's windows and each checked column's largest |value|.
+    double check_window_ = 0.0;
+    CheckWindow start_window_, end_window_;
+    std::array<double, checked_count> peak_{};
+};
+
+Simulation::Run::Run(const Simulation& simulation)
+    : sim_(simulation), scene_(simulation.scene_), model_(*simulation.model_),
+      system_(model_, scene_.motion, scene_.axial),
+      driver_(make_driver(system_, sim_.stepper_, scene_.solver.h0, scene_.solver.atol, scene_.solver.rtol)),
+      make_row_(model_, scene_.motion, system_), times_(scene_.output),
+      breaks_(breaks_before(scene_.motion, times_(times_.last()))), critical_(critical_spin(model_)),
+      budget_(scene_.solver.max_steps), y_(static_cast<std::size_t>(system_.size()), 0.0)
+{
+    summary_.variant = model_.key().name();
+    summary_.source = model_.source();
+    if (!model_.origin().empty()) summary_.source += ", " + model_.origin();
+    summary_.algebra = system_.linear_algebra();
+    summary_.stepper = sim_.stepper_;
+    summary_.stepper_why = sim_.stepper_why_;
+    // The invariant monitor starts after the drive's last breakpoint, from where its Jacobi integral is constant.
+    const std::vector<double> all_breaks = scene_.motion.breakpoints();
+    summary_.t_steady = all_breaks.empty() ? 0.0 : *std::max_element(all_breaks.begin(), all_breaks.end());
+    const double t_end = scene_.output.t_end;
+    check_window_ = std::min(t_end, std::max(t_end * check_window_fraction, scene_.output.dt_out));
+    start_window_.t0 = 0.0;
+    start_window_.y0 = y_;  // at rest
+}
+
+RunSummary Simulation::Run::operator()(const RowSink& sink, const StopRequest& stop)
+{
+    if (std::string failure = emit(0.0, y_.data(), sink); !failure.empty()) return finish(failure);
+    return finish(scene_.solver.stepping == Stepping::free ? free_steps(sink, stop) : row_steps(sink, stop));
+}
+
+// ---- Stepping ----
+
+/// Steps as the tolerance chooses them, to the drive's breakpoints and the last row; rows inside a step are
+/// interpolated from its ends (the derivatives there cost one right-hand side per step that holds a row).
+std::string Simulation::Run::free_steps(const RowSink& sink, const StopRequest& stop)
+{
+    FreeStep s(static_cast<std::size_t>(system_.size()), scene_.solver.h0);
+    const double t_last = times_(times_.last());
+    long i = 1;
+    while (i <= times_.last()) {
+        if (const char* why = stop_requested(stop)) return why;
+        const bool to_break = next_break_ < breaks_.size();
+        const double target = to_break ? breaks_[next_break_] : t_last;
+        s.t0 = t_;
+        s.y0 = y_;
+        s.h = std::min(s.h, s.h_max);
+        const int status =
+            gsl_odeiv2_evolve_apply(driver_->e, driver_->c, driver_->s, system_.gsl(), &t_, target, &s.h, y_.data());
+        if (std::string failure = why_failed(status); !failure.empty()) return failure;
+        if (std::string failure = over_budget(); !failure.empty()) return failure;
+        mark_end_window(s.t0, s.y0, t_);
+        s.have_f1 = false;
+        if (times_(i) < t_ * (1.0 - same_instant)) limit_interpolation(s);
+        if (std::string failure = rows_in_step(s, i, sink, stop); !failure.empty()) return failure;
+        std::swap(s.f0, s.f1);  // the derivative at this step's end starts the next step
+        s.have_f0 = s.have_f1;
+        if (to_break && t_ >= target) {
+            ++next_break_;
+            restart();
+            s.h = std::min(s.h, scene_.solver.h0);  // a fresh start, as after a reset of the driver
+        }
+    }
+    return {};
+}
+
+/// For a step that holds rows: the interpolant's error at the step's middle bounds the next steps (h_max).
+void Simulation::Run::limit_interpolation(FreeStep& s)
+{
+    const int size = system_.size();
+    if (!s.have_f0) system_.rhs(s.t0, s.y0.data(), s.f0.data());
+    system_.rhs(t_, y_.data(), s.f1.data());
+    s.have_f0 = s.have_f1 = true;
+    const double t_mid = 0.5 * (s.t0 + t_);
+    interpolate_state(s.t0, s.y0.data(), s.f0.data(), t_, y_.data(), s.f1.data(), t_mid, size, s.y_mid.data());
+    system_.rhs(t_mid, s.y_mid.data(), s.f_mid.data());
+    const double ratio = interpolation_error(s.t0, s.y0.data(), s.f0.data(), t_, y_.data(), s.f1.data(), s.y_mid.data(),
+                                             s.f_mid.data(), size, scene_.solver.atol, scene_.solver.rtol);
+    s.h_max = (t_ - s.t0) * std::min(4.0, 0.9 * std::pow(std::max(ratio, 1e-12), -1.0 / 6.0));
+}
+
+/// The rows from index i up to the step's end t_, interpolated where they fall inside the step; advances i.
+std::string Simulation::Run::rows_in_step(FreeStep& s, long& i, const RowSink& sink, const StopRequest& stop)
+{
+    for (; i <= times_.last() && times_(i) <= t_ * (1.0 + same_instant); ++i) {
+        const double ti = times_(i);
+        if (const char* why = stop_requested(stop)) return why;
+        const double* state = y_.data();
+        if (std::abs(ti - t_) > same_instant * ti) {
+            if (!s.have_f0) system_.rhs(s.t0, s.y0.data(), s.f0.data());
+            if (!s.have_f1) system_.rhs(t_, y_.data(), s.f1.data());
+            s.have_f0 = s.have_f1 = true;
+            interpolate_state(s.t0, s.y0.data(), s.f0.data(), t_, y_.data(), s.f1.data(), ti, system_.size(), s.yi.data());
+            state = s.yi.data();
+        }
+        if (std::string failure = emit(ti, state, sink); !failure.empty()) return failure;
+        last_row_ = ti;
+    }
+    return {};
+}
+
+/// A step ends at every row (GSL's driver), and at each breakpoint on the way.
+std::string Simulation::Run::row_steps(const RowSink& sink, const StopRequest& stop)
+{
+    const auto advance = [&](double t1) { return why_failed(gsl_odeiv2_driver_apply(driver_.get(), &t_, t1, y_.data())); };
+    for (long i = 1; i <= times_.last(); ++i) {
+        if (const char* why = stop ? stop() : nullptr) return why;
+        const double ti = times_(i);
+        mark_end_window(t_, y_, ti);
+        for (; next_break_ < breaks_.size() && breaks_[next_break_] <= ti * (1.0 + same_instant); ++next_break_) {
+            const double b = breaks_[next_break_];
+            const double tb = std::abs(b - ti) <= same_instant * ti ? ti : b;
+            if (std::string failure = advance(tb); !failure.empty()) return failure;
+            restart();
+        }
+        if (t_ < ti)
+            if (std::string failure = advance(ti); !failure.empty()) return failure;
+        if (std::string failure = over_budget(); !failure.empty()) return failure;
+        if (std::string failure = emit(ti, y_.data(), sink); !failure.empty()) return failure;
+    }
+    return {};
+}
+
+/// The stop request's reason, or nullptr to go on; a stop ends the run at the last row written.
+const char* Simulation::Run::stop_requested(const StopRequest& stop)
+{
+    const char* why = stop ? stop() : nullptr;
+    if (why != nullptr) t_ = last_row_;
+    return why;
+}
+
+/// At a breakpoint the drive's derivatives jump: the step history is discarded there.
+void Simulation::Run::restart()
+{
+    steps_ += static_cast<long>(driver_->e->count);
+    gsl_odeiv2_driver_reset(driver_.get());
+}
+
+// ---- Rows ----
+
+/// The row at ti to the sink (the observer first), then the monitors; or why the run must stop.
+std::string Simulation::Run::emit(double ti, const double* state, const RowSink& sink)
+{
+    const Row r = make_row_(ti, state);
+    if (sim_.observer_) sim_.observer_(ti, make_row_.q());
+    summary_.max_abs_tip_uy = std::max(summary_.max_abs_tip_uy, std::abs(r.tip_uy));
+    sink(r);
+    if (!(std::abs(r.theta_dot) > critical_)) monitor(r);
+    model_failure_ = model_limit(r, critical_, scene_.parameters.L);
+    if (!model_failure_.empty()) t_ = ti;  // the run ends with this row, whatever the step reached
+    return model_failure_;
+}
+
+/// The invariant monitor (docs/model.md section 7): once the drive is steady (after its last breakpoint) the Jacobi
+/// integral is constant, and its drift against the vibration energy (the largest U since) says whether the rows can
+/// be trusted. And the error indicator's record: the columns' peaks and the rows of its windows.
+void Simulation::Run::monitor(const Row& r)
+{
+    if (r.t > 0.0 && r.t >= summary_.t_steady) {  // from the first row after rest
+        if (summary_.vibration_energy < 0.0) jacobi0_ = r.jacobi, summary_.vibration_energy = 0.0;
+        summary_.jacobi_drift = std::max(summary_.jacobi_drift, std::abs(r.jacobi - jacobi0_));
+        summary_.vibration_energy = std::max(summary_.vibration_energy, r.potential);
+    }
+    if (!sim_.check_error_) return;
+    for (std::size_t c = 0; c < checked_count; ++c) peak_[c] = std::max(peak_[c], std::abs(r.*checked_columns[c]));
+    if (r.t > 0.0 && r.t <= check_window_ * (1.0 + same_instant)) start_window_.rows.push_back(r);
+    else if (end_window_.t0 >= 0.0 && r.t > end_window_.t0) end_window_.rows.push_back(r);
+}
+
+/// The error indicator's last window starts at the end of the step before it reaches t_end - window: a state the
+/// run computed, not an interpolated one (whose error would excite the stiff modes the re-run then resolves).
+void Simulation::Run::mark_end_window(double t, const std::vector<double>& y, double t_next)
+{
+    if (!sim_.check_error_ || end_window_.t0 >= 0.0) return;
+    if (t_next < scene_.output.t_end - check_window_ || t <= check_window_) return;
+    end_window_.t0 = t;
+    end_window_.y0 = y;
+}
+
+// ---- Why a run stops ----
+
+/// The message for a failed step (empty for success), with its likely cause.
+std::string Simulation::Run::why_failed(int status)
+{
+    if (status == GSL_SUCCESS) return {};
+    return step_failure(status, t_, status == GSL_EBADFUNC ? singular_cause() : failure_hint());
+}
+
+std::string Simulation::Run::failure_hint() const
+{
+    if (scene_.solver.rtol < 1e-14)  // about 50 ulps: no step meets a relative error below that
+        return "rtol " + shortest(scene_.solver.rtol) + " is below what double precision can meet: use 1e-13 or more";
+    return sim_.faster_stepper_hint();
+}
+
+/// Why the equations failed to evaluate: M lost definiteness (where, and what to do), or overflow.
+std::string Simulation::Run::singular_cause() const
+{
+    const double tip = system_.indefinite_mass_tip();
+    if (std::isnan(tip)) return "accelerations overflowed";
+    char text[400];
+    std::snprintf(text, sizeof text, "the mass matrix is not positive definite at a tip deflection of %.3g m, %.3g L",
+                  tip, tip / scene_.parameters.L);
+    std::string cause = text;
+    if (model_.key().order == Order::first)
+        cause += ": order first truncates the kinetic energy for small deflections and its M can lose definiteness "
+                 "at large ones; --order full keeps M positive definite at any deflection";
+    else
+        cause += ": round-off in a badly conditioned mass matrix; fewer DOFs or another method";
+    return cause;
+}
+
+/// The step budget: a run that needs more than solver.max_steps steps stops, early when its pace so far projects
+/// past the budget (checked from a twentieth of it on), with the reason its steps are short.
+std::string Simulation::Run::over_budget() const
+{
+    const long taken = steps_ + static_cast<long>(driver_->e->count);
+    if (taken < budget_ / 20 || t_ <= 0.0) return {};
+    const double projected = static_cast<double>(taken) * scene_.output.t_end / t_;
+    if (taken < budget_ && projected <= static_cast<double>(budget_)) return {};
+    const double h = t_ / static_cast<double>(taken), omega = highest_frequency(model_, scene_.axial);
+    char text[600];
+    std::snprintf(text, sizeof text,
+                  "too many steps: %ld by t = %g s, about %.3g to t_end, more than solver.max_steps = %ld; "
+                  "the mean step %.3g s is %.3g / omega_max (highest frequency %.4g rad/s): ",
+                  taken, t_, projected, budget_, h, h * omega, omega);
+    std::string why = text;
+    const std::string hint = sim_.faster_stepper_hint();
+    // Round-off in the accelerations, about eps cond(M) relative, above the tolerance shrinks the steps of
+    // every stepper; otherwise an explicit stepper on stiff equations is held by stability.
+    if (const double cond = mass_condition(model_); cond * 0x1p-52 > scene_.solver.rtol) {
+        std::snprintf(text, sizeof text, "round-off bounds the steps (cond(M) %.3g at rest, of the whole mass "
+                      "matrix in SI units%s, times the machine epsilon above rtol): fewer DOFs, another method, or a "
+                      "looser rtol", cond, model_.key().drive == Drive::torque ? " with the hub's row" : "");
+        why += text;
+    } else if (!hint.empty()) {
+        why += "the steps are bound by stability, not accuracy: " + hint;
+    } else {
+        why += "the tolerance and the scene's stiffness need these steps: raise --max-steps to go on, or loosen rtol";
+    }
+    return why;
+}
+
+// ---- Checks and summary ----
+
+/// The summary of the run that ended with failure (empty: it reached t_end), after the checks that can still find
+/// it untrustworthy or find the tolerance, not the model, behind a failure.
+RunSummary Simulation::Run::finish(std::string failure)
+{
+    summary_.steps = steps_ + static_cast<long>(driver_->e->count);
+    summary_.rhs_evals = system_.evaluations();
+    summary_.jacobian_evals = system_.jacobian_evaluations();
+    summary_.t_reached = t_;
+    const auto checked = std::chrono::steady_clock::now();
+    summary_.wall_seconds = std::chrono::duration<double>(checked - start_).count();
+    if (failure.empty()) failure = untrustworthy();
+    else if (!model_failure_.empty() || failure.rfind("unstable: the equations", 0) == 0)
+        failure = tolerance_as_cause(failure);
+    if (summary_.check_rtol > 0.0)  // a check ran
+        summary_.check_wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - checked).count();
+    summary_.completed = failure.empty();
+    summary_.failure = failure;
+    return summary_;
+}
+
+/// For a run that reached t_end: why its rows cannot be trusted (empty if they can), from the invariant monitor
+/// and the error indicator; both find the tolerance too loose.
+std::string Simulation::Run::untrustworthy()
+{
+    char text[480];
+    const double drift = summary_.vibration_energy > 0.0 ? summary_.jacobi_drift / summary_.vibration_energy : 0.0;
+    if (drift > invariant_tolerance) {
+        std::snprintf(text, sizeof text,
+                      "untrustworthy: the Jacobi integral drifted by %.3g J after the drive ended at t = %g s, "
+                      "%.2g of the vibration energy (more than %g): the tolerance is too loose for the stepper; "
+                      "tighten --rtol/--atol",
+                      summary_.jacobi_drift, summary_.t_steady, drift, invariant_tolerance);
+        return text;
+    }
+    if (!sim_.check_error_ || start_window_.rows.empty()) return {};
+    const CheckTolerance tol = check_tolerance(scene_.solver);
+    summary_.check_rtol = tol.rtol;
+    summary_.check_atol = tol.atol;
+    // The start window from rest: an error made at once (a fast mode excited by a loose tolerance) stays.
+    auto [measured, column] = window_error(scene_, model_, start_window_, peak_, tol);
+    const CheckWindow* where = &start_window_;
+    double error = measured;
+    if (measured >= 0.0 && !end_window_.rows.empty()) {
+        // The error made in the last window, times the square root of the windows the run holds: the windows'
+        // errors add up as independent ones would (a linear sum overstates the atol-sized noise of a coordinate
+        // near zero eightfold in cases/torque_tau1.toml); a mode that the stepper amplifies shows in the window.
+        const auto [end_measured, end_column] = window_error(scene_, model_, end_window_, peak_, tol);
+        const double t1 = end_window_.rows.back().t;
+        const double scaled = end_measured < 0.0 ? -1.0 : end_measured * std::sqrt(t1 / (t1 - end_window_.t0));
+        if (scaled < 0.0 || scaled > error) error = scaled, measured = end_measured, column = end_column, where = &end_window_;
+    }
+    summary_.estimated_error = error;
+    if (error < 0.0) return {};  // the re-run failed where the run did not: nothing to compare
+    summary_.error_column = column_name(column);
+    if (!(error > error_tolerance)) return {};
+    char rate[120] = "";
+    if (where == &end_window_)
+        std::snprintf(rate, sizeof rate, ", about %.2g over the run", error);
+    std::snprintf(text, sizeof text,
+                  "untrustworthy: the run's error exceeds %g: its %s differs by %.2g of its largest value from a re-run "
+                  "at rtol %g, atol %g over t = %g to %g s%s; tighten --rtol/--atol",
+                  error_tolerance, summary_.error_column.c_str(), measured, tol.rtol, tol.atol, where->t0,
+                  where->rows.back().t, rate);
+    return text;
+}
+
+/// A run stopped by the model's limits or singular equations: if a re-run from rest at the tighter tolerance gets
+/// past that time, the run's own error and not the model caused it, and the message says so.
+std::string Simulation::Run::tolerance_as_cause(const std::string& failure)
+{
+    if (!sim_.check_error_) return failure;
+    const CheckTolerance tol = check_tolerance(scene_.solver);
+    if (tol.rtol >= scene_.solver.rtol && tol.atol >= scene_.solver.atol) return failure;  // as tight as it gets
+    // The rows up to the failure: its row, or after a failed step the next row.
+    std::vector<double> times;
+    const bool at_row = !model_failure_.empty();
+    for (long i = 1; i <= times_.last(); ++i) {
+        times.push_back(times_(i));
+        if (at_row ? times_(i) >= t_ * (1.0 - same_instant) : times_(i) > t_ * (1.0 + same_instant)) break;
+    }
+    if (times.empty()) return failure;
+    const std::vector<double> rest(static_cast<std::size_t>(system_.size()), 0.0);
+    summary_.check_rtol = tol.rtol;
+    summary_.check_atol = tol.atol;
+    const std::vector<Row> again = rerun(scene_, model_, 0.0, rest, times, tol);
+    if (again.size() < times.size()) return failure;  // the model fails there at the tighter tolerance too
+    // What happened, without the clauses that blame the model.
+    std::string what = failure.substr(0, std::min({failure.find(" ("), failure.find("; "), failure.find(", above")}));
+    if (what.rfind("unstable: ", 0) == 0) what.erase(0, 10);
+    char text[200];
+    std::snprintf(text, sizeof text, "): a re-run at rtol %g, atol %g passes t = %g s; tighten --rtol/--atol", tol.rtol,
+                  tol.atol, times.back());
+    return "untrustworthy: the run's error, not the model, stopped it (" + what + text;
+}
 
 Simulation::Simulation(const Scene& scene, const std::function<void(const std::string&)>& note) : scene_(scene)
 {
@@ -123,259 +694,21 @@ std::string Simulation::faster_stepper_hint() const
     return "--stepper " + choice.stepper + " suits this scene (" + choice.why.substr(choice.why.find(' ') + 1) + ")";
 }
 
-RunSummary Simulation::run(const RowSink& sink, const StopRequest& stop)
-{
-    const auto start = std::chrono::steady_clock::now();
-    const QuietGsl quiet;
-    const Model& model = *model_;
-    const VariantKey& key = model.key();
-    const Motion& motion = scene_.motion;
-    RunSummary summary;
-    summary.variant = key.name();
-    summary.source = model.source();
-    if (!model.origin().empty()) summary.source += ", " + model.origin();
-
-    FirstOrderSystem system(model, motion, scene_.axial);
-    summary.algebra = system.linear_algebra();
-    summary.stepper = stepper_;
-    summary.stepper_why = stepper_why_;
-    const gsl_odeiv2_step_type* type = step_type(stepper_);
-    if (type == nullptr) throw std::invalid_argument("unknown stepper '" + stepper_ + "'");
-    const std::unique_ptr<gsl_odeiv2_driver, DriverDeleter> driver(gsl_odeiv2_driver_alloc_y_new(
-        system.gsl(), type, scene_.solver.h0, scene_.solver.atol, scene_.solver.rtol));
-    if (!driver) throw std::runtime_error("GSL could not allocate the " + stepper_ + " driver");
-
-    const int n = model.nq();
-    const bool torque = key.drive == Drive::torque;
-    std::vector<double> y(static_cast<std::size_t>(system.size()), 0.0);
-    std::vector<double> q_full(static_cast<std::size_t>(n)), qd_full(static_cast<std::size_t>(n));
-    double t = 0.0;
-    long steps = 0;
-
-    auto row_at = [&](double ti, const double* state) {
-        system.full_state(ti, state, q_full.data(), qd_full.data());
-        const double* q = q_full.data();
-        const double* qd = qd_full.data();
-        if (observer_) observer_(ti, q);
-        const HubInput u = motion.at(ti);
-        const Tip tip = model.tip(q);
-        const Energy e = model.energy(u, q, qd);
-        const double theta = torque ? q[0] : motion.theta(ti), theta_dot = torque ? qd[0] : u.theta_dot;
-        const Row r{ti, theta, theta_dot, tip.uy, tip.ux1, tip.ux, e.kinetic(), e.U, model.momentum(u, q, qd),
-                    e.T2 - e.T0 + e.U};
-        summary.max_abs_tip_uy = std::max(summary.max_abs_tip_uy, std::abs(r.tip_uy));
-        return r;
-    };
-    // The invariant monitor: once the drive is steady (after its last breakpoint) the Jacobi integral is constant
-    // (docs/model.md section 7); its drift against the vibration energy (the largest U since) says whether the
-    // rows can be trusted.
-    const std::vector<double> all_breaks = motion.breakpoints();
-    summary.t_steady = all_breaks.empty() ? 0.0 : *std::max_element(all_breaks.begin(), all_breaks.end());
-    double jacobi0 = 0.0;
-    auto finish = [&](std::string failure) {
-        if (failure.empty() && summary.jacobi_drift > invariant_tolerance * summary.vibration_energy &&
-            summary.vibration_energy > 0.0) {
-            char text[320];
-            std::snprintf(text, sizeof text,
-                          "untrustworthy: the Jacobi integral drifted by %.3g J after the drive ended at t = %g s, "
-                          "%.2g of the vibration energy (more than %g): the tolerance is too loose for the stepper",
-                          summary.jacobi_drift, summary.t_steady, summary.jacobi_drift / summary.vibration_energy,
-                          invariant_tolerance);
-            failure = text;
-        }
-        summary.steps = steps + static_cast<long>(driver->e->count);
-        summary.rhs_evals = system.evaluations();
-        summary.jacobian_evals = system.jacobian_evaluations();
-        summary.completed = failure.empty();
-        summary.failure = failure;
-        summary.t_reached = t;
-        summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        return summary;
-    };
-    const auto failure_hint = [&]() -> std::string {
-        if (scene_.solver.rtol < 1e-14)  // about 50 ulps: no step meets a relative error below that
-            return "rtol " + shortest(scene_.solver.rtol) + " is below what double precision can meet: use 1e-13 or more";
-        return faster_stepper_hint();
-    };
-    // Why the equations failed to evaluate: M lost definiteness (where, and what to do), or overflow.
-    const auto singular_cause = [&]() -> std::string {
-        const double tip = system.indefinite_mass_tip();
-        if (std::isnan(tip)) return "accelerations overflowed";
-        char text[400];
-        std::snprintf(text, sizeof text, "the mass matrix is not positive definite at a tip deflection of %.3g m, %.3g L",
-                      tip, tip / scene_.parameters.L);
-        std::string cause = text;
-        if (key.order == Order::first)
-            cause += ": order first truncates the kinetic energy for small deflections and its M can lose definiteness "
-                     "at large ones; --order full keeps M positive definite at any deflection";
-        else
-            cause += ": round-off in a badly conditioned mass matrix; fewer DOFs or another method";
-        return cause;
-    };
-    const auto why_failed = [&](int status) -> std::string {
-        if (status == GSL_SUCCESS) return {};
-        return step_failure(status, t, status == GSL_EBADFUNC ? singular_cause() : failure_hint());
-    };
-    auto advance = [&](double t1) { return why_failed(gsl_odeiv2_driver_apply(driver.get(), &t, t1, y.data())); };
-    // The step budget: a run that needs more than solver.max_steps steps stops, early when its pace so far projects
-    // past the budget (checked from a twentieth of it on), with the reason its steps are short.
-    const long budget = scene_.solver.max_steps;
-    auto over_budget = [&]() -> std::string {
-        const long taken = steps + static_cast<long>(driver->e->count);
-        if (taken < budget / 20 || t <= 0.0) return {};
-        const double projected = static_cast<double>(taken) * scene_.output.t_end / t;
-        if (taken < budget && projected <= static_cast<double>(budget)) return {};
-        const double h = t / static_cast<double>(taken), omega = highest_frequency(model, scene_.axial);
-        char text[600];
-        std::snprintf(text, sizeof text,
-                      "too many steps: %ld by t = %g s, about %.3g to t_end, more than solver.max_steps = %ld; "
-                      "the mean step %.3g s is %.3g / omega_max (highest frequency %.4g rad/s): ",
-                      taken, t, projected, budget, h, h * omega, omega);
-        std::string why = text;
-        const std::string hint = faster_stepper_hint();
-        // Round-off in the accelerations, about eps cond(M) relative, above the tolerance shrinks the steps of
-        // every stepper; otherwise an explicit stepper on stiff equations is held by stability.
-        if (const double cond = mass_condition(model); cond * 0x1p-52 > scene_.solver.rtol) {
-            std::snprintf(text, sizeof text, "round-off bounds the steps (cond(M) %.3g at rest, of the whole mass "
-                          "matrix in SI units%s, times the machine epsilon above rtol): fewer DOFs, another method, or a "
-                          "looser rtol", cond, key.drive == Drive::torque ? " with the hub's row" : "");
-            why += text;
-        } else if (!hint.empty()) {
-            why += "the steps are bound by stability, not accuracy: " + hint;
-        } else {
-            why += "the tolerance and the scene's stiffness need these steps: raise --max-steps to go on, or loosen rtol";
-        }
-        return why;
-    };
-    // At a breakpoint the drive's derivatives jump: the step history is discarded there.
-    auto restart = [&] {
-        steps += static_cast<long>(driver->e->count);
-        gsl_odeiv2_driver_reset(driver.get());
-    };
-
-    sink(row_at(0.0, y.data()));
-    const OutputClock grid(scene_.output.dt_out);
-    const double t_end = scene_.output.t_end;
-    const long grid_rows = static_cast<long>(std::floor(t_end / scene_.output.dt_out * (1.0 + same_instant)));
-    // Rows at multiples of dt_out, and a last one at t_end when dt_out does not divide it: a run that exits 0
-    // has reached t_end.
-    const bool last_off_grid = grid(grid_rows) < t_end * (1.0 - same_instant);
-    const long rows = grid_rows + (last_off_grid ? 1 : 0);
-    const auto clock = [&](long i) { return i > grid_rows ? t_end : grid(i); };
-    const std::vector<double> breaks = breaks_before(motion, clock(rows));
-    auto next_break = breaks.begin();
-    // Known before the run: the spin above which this model's straight beam is unstable (infinite for orders
-    // first and full), so that passing it stops the run at once instead of after metres of deflection.
-    const double critical = critical_spin(model);
-    // A row to the sink, or why the run must stop (the small-deformation model no longer holds).
-    auto emit = [&](double ti, const double* state) -> std::string {
-        const Row r = row_at(ti, state);
-        sink(r);
-        if (std::abs(r.theta_dot) > critical) {
-            char text[300];
-            std::snprintf(text, sizeof text,
-                          "unstable: the hub rate %.4g rad/s has passed %.4g rad/s, above which the straight beam of "
-                          "this model is unstable (its effective stiffness loses definiteness; order zero: the first "
-                          "bending frequency) at t = %g s; order first or full stays stable",
-                          r.theta_dot, critical, ti);
-            return text;
-        }
-        if (ti >= summary.t_steady) {
-            if (summary.vibration_energy < 0.0) jacobi0 = r.jacobi, summary.vibration_energy = 0.0;
-            summary.jacobi_drift = std::max(summary.jacobi_drift, std::abs(r.jacobi - jacobi0));
-            summary.vibration_energy = std::max(summary.vibration_energy, r.potential);
-        }
-        if (!std::isfinite(r.tip_uy) || std::abs(r.tip_uy) > scene_.parameters.L)
-            return "unstable: tip deflection " + std::to_string(r.tip_uy) + " m exceeds the beam length" + at_time(ti) +
-                   "; the small-deformation model no longer holds";
-        return {};
-    };
-
-    if (scene_.solver.stepping == Stepping::free) {
-        // Steps as the tolerance chooses them, to the drive's breakpoints and the last row; rows inside a step are
-        // interpolated from its ends (the derivatives there cost one right-hand side per step that holds a row).
-        const int size = system.size();
-        std::vector<double> y0(static_cast<std::size_t>(size)), f0(y0), f1(y0), yi(y0);
-        bool have_f0 = false;
-        double h = scene_.solver.h0;
-        // Longest step whose interpolated rows stay within the tolerance (interpolation_error), learnt from the
-        // steps that held rows: the quintic's error grows as h^6.
-        double h_max = std::numeric_limits<double>::infinity();
-        std::vector<double> y_mid(y0), f_mid(y0);
-        const double t_last = clock(rows);
-        long i = 1;
-        double last_row = 0.0;
-        // A stop request is honoured between rows, asked before each step and each row; the run then ends at the
-        // last row written.
-        auto stop_here = [&]() -> const char* {
-            const char* why = stop ? stop() : nullptr;
-            if (why != nullptr) t = last_row;
-            return why;
-        };
-        while (i <= rows) {
-            if (const char* why = stop_here()) return finish(why);
-            const bool to_break = next_break != breaks.end();
-            const double target = to_break ? *next_break : t_last;
-            const double t0 = t;
-            y0 = y;
-            h = std::min(h, h_max);
-            const int status =
-                gsl_odeiv2_evolve_apply(driver->e, driver->c, driver->s, system.gsl(), &t, target, &h, y.data());
-            if (std::string failure = why_failed(status); !failure.empty()) return finish(failure);
-            if (std::string failure = over_budget(); !failure.empty()) return finish(failure);
-            bool have_f1 = false;
-            if (i <= rows && clock(i) < t * (1.0 - same_instant)) {  // rows inside the step: check the interpolant
-                if (!have_f0) system.rhs(t0, y0.data(), f0.data());
-                system.rhs(t, y.data(), f1.data());
-                have_f0 = have_f1 = true;
-                const double t_mid = 0.5 * (t0 + t);
-                interpolate_state(t0, y0.data(), f0.data(), t, y.data(), f1.data(), t_mid, size, y_mid.data());
-                system.rhs(t_mid, y_mid.data(), f_mid.data());
-                const double ratio = interpolation_error(t0, y0.data(), f0.data(), t, y.data(), f1.data(), y_mid.data(),
-                                                         f_mid.data(), size, scene_.solver.atol, scene_.solver.rtol);
-                h_max = (t - t0) * std::min(4.0, 0.9 * std::pow(std::max(ratio, 1e-12), -1.0 / 6.0));
-            }
-            for (; i <= rows && clock(i) <= t * (1.0 + same_instant); ++i) {
-                const double ti = clock(i);
-                if (const char* why = stop_here()) return finish(why);
-                const double* state = y.data();
-                if (std::abs(ti - t) > same_instant * ti) {
-                    if (!have_f0) system.rhs(t0, y0.data(), f0.data());
-                    if (!have_f1) system.rhs(t, y.data(), f1.data());
-                    have_f0 = have_f1 = true;
-                    interpolate_state(t0, y0.data(), f0.data(), t, y.data(), f1.data(), ti, size, yi.data());
-                    state = yi.data();
-                }
-                if (std::string failure = emit(ti, state); !failure.empty()) return finish(failure);
-                last_row = ti;
-            }
-            std::swap(f0, f1);  // the derivative at this step's end starts the next step
-            have_f0 = have_f1;
-            if (to_break && t >= target) {
-                ++next_break;
-                restart();
-                h = std::min(h, scene_.solver.h0);  // a fresh start, as after a reset of the driver
-            }
-        }
-        return finish({});
-    }
-
-    for (long i = 1; i <= rows; ++i) {
-        if (const char* why = stop ? stop() : nullptr) return finish(why);
-        const double ti = clock(i);
-        for (; next_break != breaks.end() && *next_break <= ti * (1.0 + same_instant); ++next_break) {
-            const double tb = std::abs(*next_break - ti) <= same_instant * ti ? ti : *next_break;
-            if (std::string failure = advance(tb); !failure.empty()) return finish(failure);
-            restart();
-        }
-        if (t < ti)
-            if (std::string failure = advance(ti); !failure.empty()) return finish(failure);
-        if (std::string failure = over_budget(); !failure.empty()) return finish(failure);
-        if (std::string failure = emit(ti, y.data()); !failure.empty()) return finish(failure);
-    }
-    return finish({});
-}
+RunSummary Simulation::run(const RowSink& sink, const StopRequest& stop) { return Run(*this)(sink, stop); }
 
 RunSummary simulate(const Scene& scene, const RowSink& sink) { return Simulation(scene).run(sink); }
+
+const char* row_header()
+{
+    static const std::string header = [] {
+        std::string h;
+        for (const RowColumn& c : row_columns) {
+            if (!h.empty()) h += ',';
+            h += c.name;
+        }
+        return h;
+    }();
+    return header.c_str();
+}
 
 }  // namespace hubbeam
