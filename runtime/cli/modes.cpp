@@ -79,6 +79,13 @@ ModesOptions parse_modes_options(const ModesArgs& args, const Scene& scene)
     o.output = args.output;
     o.plot = args.plot;
     o.quiet = args.quiet;
+    if (!o.plot.empty() && o.output.empty())
+        bad("--plot", "-o FILE as well (the diagram is drawn from that CSV)", printable(o.plot));
+    // Every output checked before anything is computed: none may be the scene or another output.
+    std::vector<NamedPath> outputs = {{o.output, "-o"}};
+    if (!o.plot.empty())
+        for (const char* ext : {".png", ".svg", ".gp"}) outputs.push_back({o.plot + ext, "--plot"});
+    check_outputs({{scene.path, "the scene itself"}}, outputs);
     return o;
 }
 
