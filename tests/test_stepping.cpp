@@ -1,11 +1,20 @@
 // Free stepping (solver.stepping = "free"): rows interpolated between step ends by the quintic Hermite interpolant
 // of positions, rates and accelerations, with its error estimated at each step's middle; against polynomials it
-// must reproduce, its convergence order, and runs of every stepper against a tight reference.
+// must reproduce, its convergence order, and runs of every stepper against a tight reference. The right-hand-side
+// strategies (acceleration.hpp), each against the plain dense solve of M qdd = Q at random states, and the factory's
+// choice among them.
 #include <catch2/catch.hpp>
+#include <Eigen/Dense>
 #include <cmath>
+#include <random>
 #include <vector>
 
+#include <gsl/gsl_errno.h>
+
+#include "acceleration.hpp"
 #include "integrate.hpp"
+#include "make_model.hpp"
+#include "random_state.hpp"
 #include "runs.hpp"
 
 using namespace hubbeam;
@@ -107,4 +116,148 @@ TEST_CASE("free stepping: every stepper's interpolated rows are as accurate as a
         INFO(stepper << ": free " << free << " m, a step at every row " << at_rows << " m, scale " << scale << " m");
         CHECK(free <= std::max(2.0 * at_rows, 50.0 * s.solver.rtol * scale));
     }
+}
+
+namespace {
+
+/// qdd of the plain dense solve of M(q) qdd = Q(u, q, qd).
+Eigen::VectorXd dense_accelerations(const Model& model, const HubInput& u, const Eigen::VectorXd& q, const Eigen::VectorXd& qd)
+{
+    const int n = model.nq();
+    Eigen::MatrixXd M(n, n);
+    Eigen::VectorXd Q(n);
+    model.mass(u, q.data(), M.data());
+    model.forces(u, q.data(), qd.data(), Q.data());
+    return M.selfadjointView<Eigen::Upper>().llt().solve(Q);
+}
+
+/// The strategy's accelerations against the dense solve at random states, within 1e-9 of the largest.
+void check_against_dense(RightHandSide& rhs, const Model& model, int seed)
+{
+    std::mt19937 rng(static_cast<unsigned>(seed));
+    const int n = model.nq();
+    for (int trial = 0; trial < 5; ++trial) {
+        const test::State s = test::random_state(model.key(), rng);
+        Eigen::VectorXd y(2 * n), dydt(2 * n);
+        y << s.q, s.qd;
+        REQUIRE(rhs.derivative(s.u, y.data(), dydt.data()) == GSL_SUCCESS);
+        const Eigen::VectorXd qdd = dense_accelerations(model, s.u, s.q, s.qd);
+        INFO(model.key().name() << " " << rhs.describe() << " trial " << trial);
+        CHECK(dydt.head(n) == s.qd);
+        CHECK((dydt.tail(n) - qdd).cwiseAbs().maxCoeff() <= 1e-9 * qdd.cwiseAbs().maxCoeff());
+    }
+}
+
+VariantKey key_of(Method method, int nx, int ny, Drive drive) { return {.method = method, .nx = nx, .ny = ny, .drive = drive}; }
+
+}  // namespace
+
+TEST_CASE("every right-hand-side strategy solves M qdd = Q", "[stepping][strategy]")
+{
+    const Parameters p;
+    const HubInput rest;
+    SECTION("constant M folded into the forces: by the kernel, dense and by rows")
+    {
+        for (const Method method : {Method::amm, Method::fem, Method::bim, Method::bsim}) {
+            const auto model = make_model(key_of(method, 4, 4, Drive::prescribed), p, ModelSource::generated);
+            REQUIRE(model->has_forces_folded());
+            const Eigen::MatrixXd W = folded_forces(*model, rest);
+            FoldedKernel kernel(*model, W);
+            FoldedDense dense(*model, W);
+            FoldedSparse sparse(*model, W);
+            check_against_dense(kernel, *model, 1);
+            check_against_dense(dense, *model, 2);
+            check_against_dense(sparse, *model, 3);
+        }
+    }
+    SECTION("the hub's row by its Schur complement")
+    {
+        for (const Method method : {Method::amm, Method::fem, Method::bim, Method::bsim}) {
+            const auto model = make_model(key_of(method, 0, 4, Drive::torque), p, ModelSource::generated);
+            HubSchur hub(*model, rest);
+            check_against_dense(hub, *model, 4);
+        }
+    }
+    SECTION("the mass solver, for constant and varying M, generated and assembled")
+    {
+        for (const Drive drive : {Drive::prescribed, Drive::torque})
+            for (const ModelSource source : {ModelSource::generated, ModelSource::assembled}) {
+                const auto model = make_model(key_of(Method::fem, 4, 4, drive), p, source);
+                MassSolved solved(*model);
+                check_against_dense(solved, *model, 5);
+            }
+    }
+    SECTION("quasi-static axial coordinates: the axial rows in equilibrium, the others solved densely")
+    {
+        for (const Drive drive : {Drive::prescribed, Drive::torque}) {
+            const auto model = make_model(key_of(Method::amm, 4, 4, drive), p, ModelSource::generated);
+            const VariantKey& key = model->key();
+            QuasiStaticAxial quasi(*model);
+            std::mt19937 rng(6);
+            const int n = model->nq(), r = n - key.nx;
+            for (int trial = 0; trial < 5; ++trial) {
+                const test::State s = test::random_state(key, rng);
+                Eigen::VectorXd y(2 * r), dydt(2 * r), q(n), qd(n);
+                for (int i = 0, k = 0; i < n; ++i)
+                    if (i < key.first_a() || i >= key.first_b()) {
+                        y[k] = s.q[i];
+                        y[r + k] = s.qd[i];
+                        ++k;
+                    }
+                REQUIRE(quasi.derivative(s.u, y.data(), dydt.data()) == GSL_SUCCESS);
+                REQUIRE(quasi.full_state(s.u, y.data(), q.data(), qd.data()));
+                INFO(key.name() << " trial " << trial);
+                // The axial rows of Q vanish with A_dot = 0 and the hub acceleration's axial term dropped.
+                HubInput ua = s.u;
+                ua.theta_ddot = 0.0;
+                Eigen::VectorXd Q(n);
+                model->forces(ua, q.data(), qd.data(), Q.data());
+                Eigen::VectorXd Q0(n);
+                model->forces(ua, Eigen::VectorXd::Zero(n).eval().data(), qd.data(), Q0.data());
+                CHECK(Q.segment(key.first_a(), key.nx).cwiseAbs().maxCoeff() <= 1e-9 * Q0.segment(key.first_a(), key.nx).cwiseAbs().maxCoeff() + 1e-12);
+                CHECK(qd.segment(key.first_a(), key.nx).cwiseAbs().maxCoeff() == 0.0);
+                // The other rows: M_rr qdd_r = Q_r by a dense solve.
+                Eigen::MatrixXd M(n, n);
+                model->mass(s.u, q.data(), M.data());
+                model->forces(s.u, q.data(), qd.data(), Q.data());
+                std::vector<int> kept;
+                for (int i = 0; i < n; ++i)
+                    if (i < key.first_a() || i >= key.first_b()) kept.push_back(i);
+                Eigen::MatrixXd Mr(r, r);
+                Eigen::VectorXd Qr(r);
+                for (int i = 0; i < r; ++i) {
+                    Qr[i] = Q[kept[static_cast<std::size_t>(i)]];
+                    for (int j = 0; j < r; ++j) Mr(i, j) = M(kept[static_cast<std::size_t>(i)], kept[static_cast<std::size_t>(j)]);
+                }
+                const Eigen::VectorXd qdd = Mr.selfadjointView<Eigen::Upper>().llt().solve(Qr);
+                CHECK((dydt.tail(r) - qdd).cwiseAbs().maxCoeff() <= 1e-9 * qdd.cwiseAbs().maxCoeff());
+                CHECK(dydt.head(r) == y.tail(r));
+            }
+        }
+    }
+}
+
+TEST_CASE("the factory picks the strategy from the model's structure", "[stepping][strategy]")
+{
+    const Parameters p;
+    Motion spin;
+    spin.kind = Motion::Kind::spin_up;
+    spin.omega0 = 4.0;
+    Motion torque;
+    torque.kind = Motion::Kind::torque;
+    const auto picks = [&](const VariantKey& key, const Motion& motion, Axial axial, ModelSource source) {
+        const auto model = make_model(key, p, source);
+        return std::shared_ptr<RightHandSide>(make_right_hand_side(*model, motion, axial).release());
+    };
+    // The paper's spin-up with axial coordinates: W keeps M's block structure, mostly zeros: by rows.
+    CHECK(dynamic_cast<FoldedSparse*>(picks(key_of(Method::amm, 4, 4, Drive::prescribed), spin, Axial::dynamic, ModelSource::generated).get()));
+    // Without them W is dense; the generated kernel holds its entries at fixed places.
+    CHECK(dynamic_cast<FoldedKernel*>(picks(key_of(Method::amm, 0, 4, Drive::prescribed), spin, Axial::dynamic, ModelSource::generated).get()));
+    // A free hub without axial coordinates: only the hub entry of M varies.
+    CHECK(dynamic_cast<HubSchur*>(picks(key_of(Method::bim, 0, 4, Drive::torque), torque, Axial::dynamic, ModelSource::generated).get()));
+    // With axial coordinates under torque M varies beyond the hub entry; the assembled path has no term form.
+    CHECK(dynamic_cast<MassSolved*>(picks(key_of(Method::amm, 4, 4, Drive::torque), torque, Axial::dynamic, ModelSource::generated).get()));
+    CHECK(dynamic_cast<MassSolved*>(picks(key_of(Method::amm, 4, 4, Drive::prescribed), spin, Axial::dynamic, ModelSource::assembled).get()));
+    CHECK(dynamic_cast<QuasiStaticAxial*>(picks(key_of(Method::amm, 4, 4, Drive::torque), torque, Axial::quasi_static, ModelSource::generated).get()));
+    CHECK_THROWS_AS(picks(key_of(Method::amm, 0, 4, Drive::torque), torque, Axial::quasi_static, ModelSource::generated), std::invalid_argument);
 }

@@ -63,11 +63,13 @@ void interpolate_state(double t0, const double* y0, const double* f0, double t1,
 double interpolation_error(double t0, const double* y0, const double* f0, double t1, const double* y1, const double* f1,
                            const double* y_mid, const double* f_mid, int size, double atol, double rtol);
 
-/// dy/dt = (qd, M(q)^-1 Q(t, q, qd)) for one model and hub motion; counts its evaluations. With quasi-static
-/// axial coordinates y holds only theta (torque) and B with their rates: A solves the axial rows of
-/// Lagrange's equations with A_dot = A_ddot = 0 (and the hub acceleration's axial term dropped) at every
-/// evaluation, and the remaining rows are M_rr qdd_r = Q_r: the stiff axial modes are gone, the centrifugal
-/// stretch and its coupling to bending stay.
+class RightHandSide;
+
+/// dy/dt = (qd, M(q)^-1 Q(t, q, qd)) for one model and hub motion, by the right-hand-side strategy chosen for the
+/// model's structure (acceleration.hpp); counts its evaluations. With quasi-static axial coordinates y holds only
+/// theta (torque) and B with their rates: A solves the axial rows of Lagrange's equations with A_dot = A_ddot = 0
+/// (and the hub acceleration's axial term dropped) at every evaluation, and the remaining rows are
+/// M_rr qdd_r = Q_r: the stiff axial modes are gone, the centrifugal stretch and its coupling to bending stay.
 class FirstOrderSystem {
 public:
     FirstOrderSystem(const Model& model, const Motion& motion, Axial axial = Axial::dynamic);
@@ -95,7 +97,7 @@ public:
     std::string linear_algebra() const;
     /// The tip deflection u_y(L) of the last state at which M was found not positive definite (NaN if none): a
     /// failed step's cause, since GSL reports only that the function failed.
-    double indefinite_mass_tip() const { return indefinite_mass_tip_; }
+    double indefinite_mass_tip() const;
 
 private:
     struct Work;
@@ -105,19 +107,13 @@ private:
     Axial axial_;
     std::vector<int> kept_;  // the model's coordinates that are states of y (all of them unless quasi-static)
     int exact_jacobian(double t, const double* y, double* dfdy, double* dfdt);
-    int quasi_static_rhs(double t, const double* y, double* dydt);
-    /// With quasi-static axial coordinates: q, qd (full) from y, A by Newton on Q_A = 0; false if it fails.
-    bool solve_axial(const HubInput& u, const double* y, double* q, double* qd);
     /// motion_.at(t), remembered for the last t.
     const HubInput& drive_at(double t);
-    /// Records q as a state where M is not positive definite; returns GSL_EBADFUNC.
-    int indefinite_mass_at(const double* q);
 
     double drive_t_ = std::numeric_limits<double>::quiet_NaN();
     HubInput drive_;
     long evaluations_ = 0;
     long jacobian_evaluations_ = 0;
-    double indefinite_mass_tip_ = std::numeric_limits<double>::quiet_NaN();
     std::unique_ptr<Work> work_;
     gsl_odeiv2_system sys_;
 };

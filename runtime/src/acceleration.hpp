@@ -1,0 +1,161 @@
+// The right-hand-side strategies of FirstOrderSystem: how dy/dt = (qd, qdd) with M(q) qdd = Q(t, q, qd) is computed,
+// one small class per structure of the model (a constant M folded into the forces, the hub's row by its Schur
+// complement, a mass solver, quasi-static axial coordinates), chosen once by make_right_hand_side from the model's data.
+#pragma once
+
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Dense>
+
+#include "integrate.hpp"
+#include "mass_solver.hpp"
+
+namespace hubbeam {
+
+/// dy/dt of the first-order system at a drive value u, for one model.
+class RightHandSide {
+public:
+    explicit RightHandSide(const Model& model) : model_(model), n_(model.nq()) {}
+    virtual ~RightHandSide() = default;
+    RightHandSide(const RightHandSide&) = delete;
+    RightHandSide& operator=(const RightHandSide&) = delete;
+
+    /// GSL_SUCCESS, or GSL_EBADFUNC when M is not positive definite or a result is not finite.
+    virtual int derivative(const HubInput& u, const double* y, double* dydt) = 0;
+    /// The model's q and qd (nq each) of a state y: y itself unless coordinates left the state. False if they
+    /// cannot be found.
+    virtual bool full_state(const HubInput& u, const double* y, double* q, double* qd);
+    /// How accelerations are computed, for the summary.
+    virtual std::string describe() const = 0;
+
+    /// Records q as a state where M is not positive definite; returns GSL_EBADFUNC.
+    int indefinite_mass_at(const double* q);
+    /// u_y(L) of the last state so recorded (NaN if none).
+    double indefinite_mass_tip() const { return indefinite_mass_tip_; }
+
+protected:
+    const Model& model_;
+    int n_;
+
+private:
+    double indefinite_mass_tip_ = std::numeric_limits<double>::quiet_NaN();
+};
+
+/// The strategies over the full state y = (q, qd): each computes qdd its own way.
+class Accelerations : public RightHandSide {
+public:
+    explicit Accelerations(const Model& model) : RightHandSide(model), qdd_(static_cast<std::size_t>(n_)) {}
+    int derivative(const HubInput& u, const double* y, double* dydt) final;
+    /// qdd (nq) at (u, q, qd); GSL status as derivative().
+    virtual int accelerations(const HubInput& u, const double* q, const double* qd, double* qdd) = 0;
+
+private:
+    std::vector<double> qdd_;
+};
+
+/// W = M^-1 F (nq x K, column-major) for a constant M and Q = F m (docs/model.md section 5.3: the prescribed-rotation
+/// M is constant), factored at the drive u0. Throws std::invalid_argument when M is not positive definite.
+Eigen::MatrixXd folded_forces(const Model& model, const HubInput& u0);
+
+/// Constant M, qdd = W m by the generated kernel with W's entries at fixed places (model.has_forces_folded()).
+class FoldedKernel final : public Accelerations {
+public:
+    FoldedKernel(const Model& model, const Eigen::MatrixXd& W) : Accelerations(model), W_(W) {}
+    int accelerations(const HubInput& u, const double* q, const double* qd, double* qdd) override;
+    std::string describe() const override;
+
+private:
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> W_;
+};
+
+/// Constant M, qdd = W m with W dense: one pass of multiply-adds.
+class FoldedDense final : public Accelerations {
+public:
+    FoldedDense(const Model& model, Eigen::MatrixXd W) : Accelerations(model), W_(std::move(W)), m_(W_.cols()) {}
+    int accelerations(const HubInput& u, const double* q, const double* qd, double* qdd) override;
+    std::string describe() const override;
+
+private:
+    Eigen::MatrixXd W_;
+    Eigen::VectorXd m_;
+};
+
+/// Constant M, qdd = W m with W stored by rows where it is mostly zeros (the prescribed M's axial and transverse
+/// blocks keep W block-structured): row i holds value[start[i] .. start[i+1]) in column.
+class FoldedSparse final : public Accelerations {
+public:
+    FoldedSparse(const Model& model, const Eigen::MatrixXd& W);
+    int accelerations(const HubInput& u, const double* q, const double* qd, double* qdd) override;
+    std::string describe() const override;
+
+private:
+    std::vector<int> start_, column_;
+    std::vector<double> value_;
+    Eigen::VectorXd m_;
+};
+
+/// Hub torque where only M's hub entry m00(q) varies (no axial coordinates): with C the constant beam block and b
+/// the constant coupling column, W_B = C^-1 F_B, c = C^-1 b, g = F_0 - b^T W_B and s0 = b^T c once, then
+/// theta_ddot = g m / (m00(q) - s0) and B_ddot = W_B m - c theta_ddot. Besides saving the solves, the beam's
+/// ill-conditioned C (BIM) is applied through fixed products of smooth monomials: its round-off is the same at
+/// every evaluation instead of noise that an error control chases down to tiny steps. Throws
+/// std::invalid_argument when C is not positive definite.
+class HubSchur final : public Accelerations {
+public:
+    HubSchur(const Model& model, const HubInput& u0);
+    int accelerations(const HubInput& u, const double* q, const double* qd, double* qdd) override;
+    std::string describe() const override;
+    /// Nonzeros of W_B: folding pays while they cost no more than the forces' terms plus a dense solve.
+    long nonzeros() const { return static_cast<long>((W_.array() != 0.0).count()); }
+
+private:
+    Eigen::MatrixXd W_;
+    Eigen::VectorXd c_, m_;
+    Eigen::RowVectorXd g_;
+    double s0_ = 0.0;
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> M_;  // the varying entry's evaluation
+};
+
+/// M evaluated and factored by the mass solver its pattern allows (mass_solver.hpp), then qdd = M^-1 Q.
+class MassSolved final : public Accelerations {
+public:
+    explicit MassSolved(const Model& model) : Accelerations(model), solver_(MassSolver::make(model)) {}
+    int accelerations(const HubInput& u, const double* q, const double* qd, double* qdd) override;
+    std::string describe() const override { return solver_->describe(); }
+
+private:
+    std::unique_ptr<MassSolver> solver_;
+};
+
+/// Quasi-static axial coordinates (docs/model.md section 9): y holds only theta (torque) and B with their rates; A
+/// solves the axial rows of Lagrange's equations with A_dot = A_ddot = 0 (and the hub acceleration's axial term
+/// dropped) at every evaluation, and the remaining rows are M_rr qdd_r = Q_r. Throws std::invalid_argument without
+/// axial coordinates.
+class QuasiStaticAxial final : public RightHandSide {
+public:
+    explicit QuasiStaticAxial(const Model& model);
+    int derivative(const HubInput& u, const double* y, double* dydt) override;
+    /// A by Newton on Q_A = 0 from the last solution, A_dot = 0.
+    bool full_state(const HubInput& u, const double* y, double* q, double* qd) override;
+    std::string describe() const override;
+
+private:
+    std::vector<int> kept_;  // the model's coordinates that are states
+    std::vector<double> q_, qd_;
+    Eigen::VectorXd A_, Q_;
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> dQdq_, dQdqd_, dQdu_;
+    Eigen::LLT<Eigen::MatrixXd> reduced_llt_;
+    bool reduced_factored_ = false;
+};
+
+/// The strategy for a model and its hub motion, chosen from the model's data: quasi-static axial coordinates if
+/// asked; else, with a constant M and forces in term form, M^-1 folded into them (by the kernel, dense or by rows,
+/// as W's density decides) where W costs no more than the forces' terms plus a dense solve; else, where only the
+/// hub's entry of M varies, the Schur-folded hub row on the same condition; else the mass solver.
+std::unique_ptr<RightHandSide> make_right_hand_side(const Model& model, const Motion& motion, Axial axial);
+
+}  // namespace hubbeam
