@@ -1,0 +1,63 @@
+// hubbeam plot: figures from run, modes and field CSVs with gnuplot.
+#include <iostream>
+#include <memory>
+
+#include "command.hpp"
+#include "output_file.hpp"
+#include "plot.hpp"
+
+namespace hubbeam::cli {
+
+namespace {
+
+/// Declares the `plot` arguments; all are taken as text and checked by plot_script, so that a bad one is one line
+/// naming it.
+void add_plot_options(CLI::App& sub, PlotArgs& a)
+{
+    sub.add_option("KIND", a.kind, "tip, axial (run CSVs), campbell (modes CSVs) or moment (field CSVs)")->required();
+    sub.add_option("FILE", a.files, "CSV files in the kind's format (docs/cli.md)")->required();
+    sub.add_option("-o,--output", a.prefix, "Writes PREFIX.png, PREFIX.svg and the gnuplot script PREFIX.gp")
+        ->type_name("PREFIX")
+        ->required();
+    sub.add_option("--labels", a.labels, "Legend labels, comma-separated, one per file (default: the files' stems)")
+        ->type_name("LIST");
+    sub.add_option("--title", a.title, "Title (default: the kind's)")->type_name("TEXT");
+    sub.add_option("--time", a.time, "moment: the rows at the t closest to T (default: each file's last t)")
+        ->type_name("T");
+}
+
+/// hubbeam plot: returns the exit code.
+int plot(const PlotArgs& args)
+{
+    try {
+        if (const std::string problem = draw_plot(args); !problem.empty()) {
+            std::cerr << "hubbeam: " << problem << "\n";
+            return exit_stopped;
+        }
+    } catch (const PlotInputError& e) {
+        std::cerr << e.what() << "\n";
+        return exit_bad_input;
+    } catch (const OutputRefused& e) {
+        std::cerr << e.what() << "\n";
+        return exit_bad_input;
+    }
+    std::cout << "figure: " << args.prefix << ".{png,svg}\n";
+    return exit_ok;
+}
+
+}  // namespace
+
+Command add_plot_command(CLI::App& app)
+{
+    auto args = std::make_shared<PlotArgs>();
+    CLI::App* plot_cmd = app.add_subcommand(
+        "plot", "Figures from CSV files with gnuplot: tip deflection, axial tip, Campbell diagram, bending moment");
+    plot_cmd->footer("docs/cli.md. gnuplot draws into temporary files that replace the figures only when complete. "
+                     "Exit codes: 0 figure written, 1 gnuplot or the disk failed (old figures kept), 2 bad input (one "
+                     "line on stderr, nothing written).");
+    add_plot_options(*plot_cmd, *args);
+
+    return {plot_cmd, [args] { return plot(*args); }};
+}
+
+}  // namespace hubbeam::cli

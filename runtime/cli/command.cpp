@@ -1,0 +1,56 @@
+// The command line's shared parts: the stop signals and the options declared from the scene key table.
+#include "command.hpp"
+
+#include <signal.h>
+
+namespace hubbeam::cli {
+
+namespace {
+
+/// The signal that asked the command to stop, 0 if none: the handler only sets it, the work reads it between rows
+/// (through the StopRequest), so that files are finished outside the handler.
+volatile std::sig_atomic_t stop_signal_number = 0;
+
+/// SIGINT / SIGTERM handler. A second signal while the first is being honoured kills at once (the default
+/// action), for a user who does not want to wait for the next row; the temporary file is then left behind.
+extern "C" void on_stop_signal(int sig)
+{
+    if (stop_signal_number != 0) {
+        ::signal(sig, SIG_DFL);  // both async-signal-safe; sig is blocked until the handler returns
+        ::raise(sig);
+        return;
+    }
+    stop_signal_number = sig;
+}
+
+}  // namespace
+
+int stop_signal() { return stop_signal_number; }
+
+void catch_stop_signals()
+{
+    struct sigaction action {};
+    action.sa_handler = on_stop_signal;
+    sigemptyset(&action.sa_mask);
+    action.sa_flags = SA_RESTART;
+    for (const int sig : {SIGINT, SIGTERM}) {
+        struct sigaction previous {};
+        // A shell's background job ignores SIGINT, and should go on doing so.
+        if (::sigaction(sig, nullptr, &previous) == 0 && previous.sa_handler == SIG_IGN) continue;
+        ::sigaction(sig, &action, nullptr);
+    }
+}
+
+StopRequest signal_stop()
+{
+    return []() -> const char* { return stop_signal_number != 0 ? interrupted : nullptr; };
+}
+
+void add_key_option(CLI::App& sub, const SceneKey& key, std::string& value, const std::string& note)
+{
+    static const char* const type_names[] = {"X", "N", "WORD", "FILE"};  // by SceneKey::Kind
+    sub.add_option(key.option, value, std::string("Sets ") + key.name + ": " + key.expected + note)
+        ->type_name(type_names[static_cast<int>(key.kind)]);
+}
+
+}  // namespace hubbeam::cli

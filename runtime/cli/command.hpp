@@ -1,0 +1,71 @@
+// The command line's shared parts: exit codes, the stop signals, one-line refusals, and the entry of each command
+// (one file per command: cmd_run.cpp, cmd_modes.cpp, ...; main.cpp declares them all and runs the one given).
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <csignal>
+#include <functional>
+#include <iostream>
+#include <stdexcept>
+#include <string>
+
+#include "on_demand.hpp"
+#include "option_lists.hpp"
+#include "scene.hpp"
+#include "simulate.hpp"
+
+namespace hubbeam::cli {
+
+constexpr int exit_ok = 0;
+constexpr int exit_stopped = 1;     // the simulation stopped early or cannot be trusted (rows so far kept)
+constexpr int exit_bad_input = 2;   // one line on stderr, nothing computed
+constexpr int exit_signal_base = 128;  // the shell's convention: 128 + the signal's number (130, 143)
+
+/// The failure a run stopped by SIGINT or SIGTERM reports.
+inline constexpr const char* interrupted = "interrupted by signal";
+
+/// The signal that asked the command to stop, 0 if none.
+int stop_signal();
+/// Routes SIGINT and SIGTERM to a handler that only records them (the work stops between rows and finishes its
+/// files), except a signal the parent set to be ignored.
+void catch_stop_signals();
+/// A StopRequest that answers `interrupted` once a stop signal has come.
+StopRequest signal_stop();
+
+/// Declares key's option on sub, its help text from the key table (with note after it), setting value.
+void add_key_option(CLI::App& sub, const SceneKey& key, std::string& value, const std::string& note = "");
+
+/// Runs a command's work; its refusals become one line and exit 2: a bad option value, a scene that no model can
+/// serve (named by scene_path), an on-demand variant that failed to compile.
+template <class Work>
+int refusing(const std::string& scene_path, const Work& work)
+{
+    try {
+        return work();
+    } catch (const OptionError& e) {
+        std::cerr << e.what() << "\n";
+    } catch (const std::invalid_argument& e) {
+        std::cerr << scene_path << ": " << e.what() << "\n";
+    } catch (const CompileError& e) {
+        std::cerr << "hubbeam: " << e.what() << "\n";
+    }
+    return exit_bad_input;
+}
+
+/// A command declared on the app: its subcommand, and its work (the exit code), called once the app has parsed.
+struct Command {
+    CLI::App* sub;
+    std::function<int()> run;
+};
+
+Command add_run_command(CLI::App& app);
+Command add_variants_command(CLI::App& app);
+Command add_bench_command(CLI::App& app);
+Command add_stress_command(CLI::App& app);
+Command add_modes_command(CLI::App& app);
+Command add_linearize_command(CLI::App& app);
+Command add_sweep_command(CLI::App& app);
+Command add_kernels_command(CLI::App& app);
+Command add_plot_command(CLI::App& app);
+
+}  // namespace hubbeam::cli
