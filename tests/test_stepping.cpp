@@ -160,11 +160,13 @@ TEST_CASE("every right-hand-side strategy solves M qdd = Q", "[stepping][strateg
     {
         for (const Method method : {Method::amm, Method::fem, Method::bim, Method::bsim}) {
             const auto model = make_model(key_of(method, 4, 4, Drive::prescribed), p, ModelSource::generated);
-            REQUIRE(model->has_forces_folded());
-            const Eigen::MatrixXd W = folded_forces(*model, rest);
-            FoldedKernel kernel(*model, W);
-            FoldedDense dense(*model, W);
-            FoldedSparse sparse(*model, W);
+            REQUIRE(model->folded_kernel() != nullptr);
+            REQUIRE(model->term_forces() != nullptr);
+            const TermForces& terms = *model->term_forces();
+            const Eigen::MatrixXd W = folded_forces(*model, terms, rest);
+            FoldedKernel kernel(*model, *model->folded_kernel(), W);
+            FoldedDense dense(*model, terms, W);
+            FoldedSparse sparse(*model, terms, W);
             check_against_dense(kernel, *model, 1);
             check_against_dense(dense, *model, 2);
             check_against_dense(sparse, *model, 3);
@@ -174,7 +176,8 @@ TEST_CASE("every right-hand-side strategy solves M qdd = Q", "[stepping][strateg
     {
         for (const Method method : {Method::amm, Method::fem, Method::bim, Method::bsim}) {
             const auto model = make_model(key_of(method, 0, 4, Drive::torque), p, ModelSource::generated);
-            HubSchur hub(*model, rest);
+            REQUIRE(model->term_forces() != nullptr);
+            HubSchur hub(*model, *model->term_forces(), rest);
             check_against_dense(hub, *model, 4);
         }
     }

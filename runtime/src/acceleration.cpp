@@ -73,11 +73,11 @@ int Accelerations::derivative(const HubInput& u, const double* y, double* dydt)
     return GSL_SUCCESS;
 }
 
-Eigen::MatrixXd folded_forces(const Model& model, const HubInput& u0)
+Eigen::MatrixXd folded_forces(const Model& model, const TermForces& terms, const HubInput& u0)
 {
-    const int n = model.nq(), K = model.force_terms();
+    const int n = model.nq(), K = terms.term_count();
     RowMatrix F(n, K);
-    model.forces_matrix(F.data());
+    terms.term_matrix(F.data());
     const std::unique_ptr<MassSolver> solver = MassSolver::make(model);
     const std::vector<double> rest(static_cast<std::size_t>(n), 0.0);
     if (!solver->prepare(u0, rest.data()))
@@ -89,7 +89,7 @@ Eigen::MatrixXd folded_forces(const Model& model, const HubInput& u0)
 
 int FoldedKernel::accelerations(const HubInput& u, const double* q, const double* qd, double* qdd)
 {
-    model_.forces_folded(W_.data(), u, q, qd, qdd);
+    kernel_.accelerations(W_.data(), u, q, qd, qdd);
     return GSL_SUCCESS;
 }
 
@@ -101,7 +101,7 @@ std::string FoldedKernel::describe() const
 
 int FoldedDense::accelerations(const HubInput& u, const double* q, const double* qd, double* qdd)
 {
-    model_.forces_terms(u, q, qd, m_.data());
+    terms_.terms(u, q, qd, m_.data());
     multiply(W_, m_, qdd);
     return GSL_SUCCESS;
 }
@@ -111,7 +111,8 @@ std::string FoldedDense::describe() const
     return "M^-1 folded into the forces once (" + std::to_string(n_) + " x " + std::to_string(W_.cols()) + ", dense)";
 }
 
-FoldedSparse::FoldedSparse(const Model& model, const Eigen::MatrixXd& W) : Accelerations(model), m_(W.cols())
+FoldedSparse::FoldedSparse(const Model& model, const TermForces& terms, const Eigen::MatrixXd& W)
+    : Accelerations(model), terms_(terms), m_(W.cols())
 {
     start_.push_back(0);
     for (int i = 0; i < n_; ++i) {
@@ -126,7 +127,7 @@ FoldedSparse::FoldedSparse(const Model& model, const Eigen::MatrixXd& W) : Accel
 
 int FoldedSparse::accelerations(const HubInput& u, const double* q, const double* qd, double* qdd)
 {
-    model_.forces_terms(u, q, qd, m_.data());
+    terms_.terms(u, q, qd, m_.data());
     for (int i = 0; i < n_; ++i) {
         double sum = 0.0;
         for (int e = start_[static_cast<std::size_t>(i)]; e < start_[static_cast<std::size_t>(i) + 1]; ++e)
@@ -142,11 +143,12 @@ std::string FoldedSparse::describe() const
            std::to_string(value_.size()) + " nonzeros)";
 }
 
-HubSchur::HubSchur(const Model& model, const HubInput& u0) : Accelerations(model), m_(model.force_terms()), M_(n_, n_)
+HubSchur::HubSchur(const Model& model, const TermForces& terms, const HubInput& u0)
+    : Accelerations(model), terms_(terms), m_(terms.term_count()), M_(n_, n_)
 {
-    const int K = model.force_terms();
+    const int K = terms.term_count();
     RowMatrix F(n_, K), M(n_, n_);
-    model.forces_matrix(F.data());
+    terms.term_matrix(F.data());
     const std::vector<double> rest(static_cast<std::size_t>(n_), 0.0);
     model.mass(u0, rest.data(), M.data());
     const int r = n_ - 1;
@@ -163,7 +165,7 @@ HubSchur::HubSchur(const Model& model, const HubInput& u0) : Accelerations(model
 
 int HubSchur::accelerations(const HubInput& u, const double* q, const double* qd, double* qdd)
 {
-    model_.forces_terms(u, q, qd, m_.data());
+    terms_.terms(u, q, qd, m_.data());
     model_.mass_varying(u, q, M_.data());
     const double schur = M_(0, 0) - s0_;  // > 0 exactly when M is positive definite (C is)
     if (!(schur > 0.0)) return indefinite_mass_at(q);
@@ -222,8 +224,8 @@ bool QuasiStaticAxial::full_state(const HubInput& u, const double* y, double* q,
     double previous = 0.0;
     for (int iteration = 0; iteration < 20; ++iteration) {
         model_.forces(ua, q, qd, Q_.data());
-        if (model_.has_jacobian()) {
-            model_.force_derivatives(ua, q, qd, dQdq_.data(), dQdqd_.data(), dQdu_.data());
+        if (const ExactJacobian* exact = model_.jacobian()) {
+            exact->force_derivatives(ua, q, qd, dQdq_.data(), dQdqd_.data(), dQdu_.data());
             J = dQdq_.block(a, a, nx, nx);
         } else {
             for (int k = 0; k < nx; ++k) {
@@ -280,27 +282,28 @@ int QuasiStaticAxial::derivative(const HubInput& u, const double* y, double* dyd
 std::unique_ptr<RightHandSide> make_right_hand_side(const Model& model, const Motion& motion, Axial axial)
 {
     if (axial == Axial::quasi_static) return std::make_unique<QuasiStaticAxial>(model);
-    const int n = model.nq(), K = model.force_terms();
+    const TermForces* terms = model.term_forces();
+    if (terms == nullptr) return std::make_unique<MassSolved>(model);
+    const int n = model.nq(), K = terms->term_count();
     const long dense_solve = static_cast<long>(n) * n;
-    if (model.mass_is_constant() && K > 0) {
-        Eigen::MatrixXd W = folded_forces(model, motion.at(0.0));
-        RowMatrix F(n, K);
-        model.forces_matrix(F.data());
+    RowMatrix F(n, K);
+    terms->term_matrix(F.data());
+    if (model.mass_is_constant()) {
+        Eigen::MatrixXd W = folded_forces(model, *terms, motion.at(0.0));
         // Folding pays while W's nonzeros cost no more than the forces' own terms plus a dense solve; by rows only
         // when that skips most of W.
         const long nnz = nonzeros(W);
         if (nnz <= nonzeros(F) + dense_solve) {
-            if (2 * nnz < static_cast<long>(n) * K) return std::make_unique<FoldedSparse>(model, W);
-            if (model.has_forces_folded()) return std::make_unique<FoldedKernel>(model, W);
-            return std::make_unique<FoldedDense>(model, std::move(W));
+            if (2 * nnz < static_cast<long>(n) * K) return std::make_unique<FoldedSparse>(model, *terms, W);
+            if (const FoldedForceKernel* kernel = model.folded_kernel())
+                return std::make_unique<FoldedKernel>(model, *kernel, W);
+            return std::make_unique<FoldedDense>(model, *terms, std::move(W));
         }
     }
     const std::string pattern = model.mass_pattern();
     const bool hub_only_varies = pattern[0] == 'v' && pattern.find('v', 1) == std::string::npos;
-    if (!model.mass_is_constant() && hub_only_varies && K > 0 && n > 1) {
-        auto hub = std::make_unique<HubSchur>(model, motion.at(0.0));
-        RowMatrix F(n, K);
-        model.forces_matrix(F.data());
+    if (!model.mass_is_constant() && hub_only_varies && n > 1) {
+        auto hub = std::make_unique<HubSchur>(model, *terms, motion.at(0.0));
         if (hub->nonzeros() <= nonzeros(F) + dense_solve) return hub;
     }
     return std::make_unique<MassSolved>(model);

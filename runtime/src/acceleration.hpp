@@ -59,27 +59,35 @@ private:
 
 /// W = M^-1 F (nq x K, column-major) for a constant M and Q = F m (docs/model.md section 5.3: the prescribed-rotation
 /// M is constant), factored at the drive u0. Throws std::invalid_argument when M is not positive definite.
-Eigen::MatrixXd folded_forces(const Model& model, const HubInput& u0);
+Eigen::MatrixXd folded_forces(const Model& model, const TermForces& terms, const HubInput& u0);
 
-/// Constant M, qdd = W m by the generated kernel with W's entries at fixed places (model.has_forces_folded()).
+/// Constant M, qdd = W m by the generated kernel with W's entries at fixed places (model.folded_kernel()).
 class FoldedKernel final : public Accelerations {
 public:
-    FoldedKernel(const Model& model, const Eigen::MatrixXd& W) : Accelerations(model), W_(W) {}
+    FoldedKernel(const Model& model, const FoldedForceKernel& kernel, const Eigen::MatrixXd& W)
+        : Accelerations(model), kernel_(kernel), W_(W)
+    {
+    }
     int accelerations(const HubInput& u, const double* q, const double* qd, double* qdd) override;
     std::string describe() const override;
 
 private:
+    const FoldedForceKernel& kernel_;
     Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> W_;
 };
 
 /// Constant M, qdd = W m with W dense: one pass of multiply-adds.
 class FoldedDense final : public Accelerations {
 public:
-    FoldedDense(const Model& model, Eigen::MatrixXd W) : Accelerations(model), W_(std::move(W)), m_(W_.cols()) {}
+    FoldedDense(const Model& model, const TermForces& terms, Eigen::MatrixXd W)
+        : Accelerations(model), terms_(terms), W_(std::move(W)), m_(W_.cols())
+    {
+    }
     int accelerations(const HubInput& u, const double* q, const double* qd, double* qdd) override;
     std::string describe() const override;
 
 private:
+    const TermForces& terms_;
     Eigen::MatrixXd W_;
     Eigen::VectorXd m_;
 };
@@ -88,11 +96,12 @@ private:
 /// blocks keep W block-structured): row i holds value[start[i] .. start[i+1]) in column.
 class FoldedSparse final : public Accelerations {
 public:
-    FoldedSparse(const Model& model, const Eigen::MatrixXd& W);
+    FoldedSparse(const Model& model, const TermForces& terms, const Eigen::MatrixXd& W);
     int accelerations(const HubInput& u, const double* q, const double* qd, double* qdd) override;
     std::string describe() const override;
 
 private:
+    const TermForces& terms_;
     std::vector<int> start_, column_;
     std::vector<double> value_;
     Eigen::VectorXd m_;
@@ -106,13 +115,14 @@ private:
 /// std::invalid_argument when C is not positive definite.
 class HubSchur final : public Accelerations {
 public:
-    HubSchur(const Model& model, const HubInput& u0);
+    HubSchur(const Model& model, const TermForces& terms, const HubInput& u0);
     int accelerations(const HubInput& u, const double* q, const double* qd, double* qdd) override;
     std::string describe() const override;
     /// Nonzeros of W_B: folding pays while they cost no more than the forces' terms plus a dense solve.
     long nonzeros() const { return static_cast<long>((W_.array() != 0.0).count()); }
 
 private:
+    const TermForces& terms_;
     Eigen::MatrixXd W_;
     Eigen::VectorXd c_, m_;
     Eigen::RowVectorXd g_;

@@ -13,7 +13,7 @@ namespace hubbeam {
 
 namespace {
 
-class GeneratedModel final : public Model {
+class GeneratedModel final : public Model, TermForces, FoldedForceKernel, ExactJacobian {
 public:
     GeneratedModel(const VariantKey& key, const generated::Variant& v, const Parameters& p)
         : Model(key), v_(v), c_(static_cast<std::size_t>(v.ncoeff)), pattern_(v.mass_pattern)
@@ -45,25 +45,27 @@ public:
         call(v_.mass_varying, u, q, q, M);
         for (const auto& [upper, lower] : mirrored_varying_) M[lower] = M[upper];
     }
-    int force_terms() const override { return v_.nterms; }
-    void forces_terms(const HubInput& u, const double* q, const double* qd, double* m) const override
+    const TermForces* term_forces() const override
     {
-        if (v_.forces_terms == nullptr) Model::forces_terms(u, q, qd, m);  // throws: M varies
+        return v_.nterms > 0 && v_.forces_terms != nullptr && v_.forces_matrix != nullptr ? this : nullptr;
+    }
+    const FoldedForceKernel* folded_kernel() const override { return v_.forces_folded != nullptr ? this : nullptr; }
+    const ExactJacobian* jacobian() const override { return this; }
+
+    int term_count() const override { return v_.nterms; }
+    void terms(const HubInput& u, const double* q, const double* qd, double* m) const override
+    {
         call(v_.forces_terms, u, q, qd, m);
     }
-    bool has_forces_folded() const override { return v_.forces_folded != nullptr; }
-    void forces_folded(const double* W, const HubInput& u, const double* q, const double* qd,
+    void term_matrix(double* F) const override
+    {
+        std::fill_n(F, nq() * v_.nterms, 0.0);
+        call(v_.forces_matrix, HubInput{}, nullptr, nullptr, F);
+    }
+    void accelerations(const double* W, const HubInput& u, const double* q, const double* qd,
                        double* qdd) const override
     {
-        if (v_.forces_folded == nullptr) Model::forces_folded(W, u, q, qd, qdd);  // throws
-        else v_.forces_folded(W, u.packed().data(), q, qd, qdd);
-    }
-    void forces_matrix(double* F) const override
-    {
-        const HubInput none;
-        if (v_.forces_matrix == nullptr) Model::forces_matrix(F);  // throws: M varies
-        std::fill_n(F, nq() * v_.nterms, 0.0);
-        call(v_.forces_matrix, none, nullptr, nullptr, F);
+        v_.forces_folded(W, u.packed().data(), q, qd, qdd);
     }
     void forces(const HubInput& u, const double* q, const double* qd, double* Q) const override
     {
@@ -89,7 +91,6 @@ public:
         return {t[0], t[1], t[2]};
     }
 
-    bool has_jacobian() const override { return true; }
     void force_derivatives(const HubInput& u, const double* q, const double* qd, double* dQdq, double* dQdqd,
                            double* dQdu) const override
     {

@@ -159,8 +159,9 @@ int FirstOrderSystem::rhs(double t, const double* y, double* dydt)
 int FirstOrderSystem::jacobian(double t, const double* y, double* dfdy, double* dfdt)
 {
     ++jacobian_evaluations_;
-    const bool exact = model_.has_jacobian() && axial_ == Axial::dynamic;
-    return exact ? exact_jacobian(t, y, dfdy, dfdt) : finite_difference_jacobian(t, y, dfdy, dfdt);
+    if (const ExactJacobian* exact = model_.jacobian(); exact != nullptr && axial_ == Axial::dynamic)
+        return exact_jacobian(*exact, t, y, dfdy, dfdt);
+    return finite_difference_jacobian(t, y, dfdy, dfdt);
 }
 
 void FirstOrderSystem::full_state(double t, const double* y, double* q, double* qd)
@@ -168,7 +169,7 @@ void FirstOrderSystem::full_state(double t, const double* y, double* q, double* 
     work_->rhs->full_state(drive_at(t), y, q, qd);
 }
 
-int FirstOrderSystem::exact_jacobian(double t, const double* y, double* dfdy, double* dfdt)
+int FirstOrderSystem::exact_jacobian(const ExactJacobian& exact, double t, const double* y, double* dfdy, double* dfdt)
 {
     // y = (q, qd), f = (qd, qdd) with M(q) qdd = Q(t, q, qd) (docs/model.md section 5.1). Differentiating
     // M qdd = Q: M dqdd/dq = dQ/dq - (dM/dq) qdd, M dqdd/dqd = dQ/dqd, M dqdd/dt = dQ/du du/dt (M depends on
@@ -180,9 +181,9 @@ int FirstOrderSystem::exact_jacobian(double t, const double* y, double* dfdy, do
     if (!w.solver->prepare(u, q)) return w.rhs->indefinite_mass_at(q);
     model_.forces(u, q, qd, w.qdd.data());
     w.solver->solve(w.qdd.data());
-    model_.force_derivatives(u, q, qd, w.dQdq.data(), w.dQdqd.data(), w.dQdu.data());
+    exact.force_derivatives(u, q, qd, w.dQdq.data(), w.dQdqd.data(), w.dQdu.data());
     if (!model_.mass_is_constant()) {
-        model_.mass_q_product(u, q, w.qdd.data(), w.dMv.data());
+        exact.mass_q_product(u, q, w.qdd.data(), w.dMv.data());
         w.dQdq -= w.dMv;
     }
     Eigen::MatrixXd lower_q = w.dQdq, lower_qd = w.dQdqd;  // column-major copies, solved in place

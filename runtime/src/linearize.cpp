@@ -74,9 +74,9 @@ ForceJacobians force_jacobians(const Model& model, const HubInput& u, const std:
 {
     const int n = model.nq();
     const auto drives = static_cast<Eigen::Index>(drive_value_count);
-    if (model.has_jacobian()) {
+    if (const ExactJacobian* exact = model.jacobian()) {
         RowMatrix dq(n, n), dqd(n, n), du(n, drives);
-        model.force_derivatives(u, q.data(), qd.data(), dq.data(), dqd.data(), du.data());
+        exact->force_derivatives(u, q.data(), qd.data(), dq.data(), dqd.data(), du.data());
         return {dq, dqd, du};
     }
     return {q_differences(model, u, q, qd),
@@ -97,7 +97,7 @@ ForceJacobians force_jacobians(const Model& model, const HubInput& u, const std:
 Eigen::MatrixXd force_q_jacobian(const Model& model, const HubInput& u, const std::vector<double>& q,
                                  const std::vector<double>& qd)
 {
-    return model.has_jacobian() ? force_jacobians(model, u, q, qd).q : q_differences(model, u, q, qd);
+    return model.jacobian() != nullptr ? force_jacobians(model, u, q, qd).q : q_differences(model, u, q, qd);
 }
 
 SteadySpin steady_spin(const Model& model, double omega)

@@ -143,7 +143,7 @@ bool measure(const VariantKey& key, ModelSource source, int samples, KernelBench
     std::vector<double> dydt(static_cast<std::size_t>(m)), dfdy(static_cast<std::size_t>(m) * m), dfdt(dydt);
     row.key = key;
     row.source = model->source();
-    row.exact_jacobian = model->has_jacobian();
+    row.exact_jacobian = model->jacobian() != nullptr;
     // A model that cannot evaluate here (e.g. M numerically indefinite) would time an early return: report it.
     if (system.rhs(d.t, y.data(), dydt.data()) != 0 || system.jacobian(d.t, y.data(), dfdy.data(), dfdt.data()) != 0) {
         row.failure = "M is not positive definite (Cholesky fails) or a result is not finite at the benchmark state";

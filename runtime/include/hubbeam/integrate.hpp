@@ -106,7 +106,7 @@ private:
     int n_;
     Axial axial_;
     std::vector<int> kept_;  // the model's coordinates that are states of y (all of them unless quasi-static)
-    int exact_jacobian(double t, const double* y, double* dfdy, double* dfdt);
+    int exact_jacobian(const ExactJacobian& exact, double t, const double* y, double* dfdy, double* dfdt);
     /// motion_.at(t), remembered for the last t.
     const HubInput& drive_at(double t);
 

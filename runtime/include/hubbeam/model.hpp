@@ -23,6 +23,42 @@ struct Tip {
     double uy = 0.0, ux1 = 0.0, ux = 0.0;
 };
 
+/// Q = F m: F (nq x K, free of the state) fixed for the run, m the K monomials of the state Q is a sum of. What
+/// lets the integrator fold a constant M^-1 into F once (docs/architecture.md, "From scene to rows").
+class TermForces {
+public:
+    virtual ~TermForces() = default;
+    /// K, the number of monomials.
+    virtual int term_count() const = 0;
+    /// m[K] at the state.
+    virtual void terms(const HubInput& u, const double* q, const double* qd, double* m) const = 0;
+    /// F[nq*K], row-major.
+    virtual void term_matrix(double* F) const = 0;
+};
+
+/// qdd = W m by a kernel with W's entries at fixed places, W = M^-1 F (nq x K, row-major) for a constant M.
+class FoldedForceKernel {
+public:
+    virtual ~FoldedForceKernel() = default;
+    virtual void accelerations(const double* W, const HubInput& u, const double* q, const double* qd,
+                               double* qdd) const = 0;
+};
+
+/// The exact derivatives of M and Q that implicit steppers and linearization use.
+class ExactJacobian {
+public:
+    virtual ~ExactJacobian() = default;
+    /// Each row-major: dQdq[i*nq+k] = dQ_i/dq_k, dQdqd[i*nq+k] = dQ_i/dqd_k and dQdu[i*3+j] = dQ_i/du_j with u indexed
+    /// by DriveValue (docs/model.md section 5.1).
+    virtual void force_derivatives(const HubInput& u, const double* q, const double* qd, double* dQdq, double* dQdqd,
+                                   double* dQdu) const = 0;
+    /// dMv[i*nq+k] = sum_j dM_ij/dq_k v_j, row-major; all zeros when M is constant.
+    virtual void mass_q_product(const HubInput& u, const double* q, const double* v, double* dMv) const = 0;
+};
+
+/// The one interface the integrator sees. What only some models can do (the term form of Q, a folded kernel, exact
+/// Jacobians) is reached through an accessor that returns nullptr when the model cannot: a caller cannot call it
+/// without asking first.
 class Model {
 public:
     virtual ~Model() = default;
@@ -43,18 +79,11 @@ public:
     virtual std::string mass_pattern() const { return std::string(nq() * nq(), mass_is_constant() ? 'c' : 'v'); }
     /// Writes the entries of M(q) that the pattern marks 'v', in both triangles, and leaves the others.
     virtual void mass_varying(const HubInput& u, const double* q, double* M) const { mass(u, q, M); }
-    /// K > 0 when Q = F m with F (nq x K) fixed for the run and m K monomials of the state; 0 otherwise.
-    virtual int force_terms() const { return 0; }
-    /// m[K] of Q = F m (only if force_terms() > 0).
-    virtual void forces_terms(const HubInput& u, const double* q, const double* qd, double* m) const;
-    /// F[nq*K] of Q = F m, row-major (only if force_terms() > 0).
-    virtual void forces_matrix(double* F) const;
-    /// Whether forces_folded() computes.
-    virtual bool has_forces_folded() const { return false; }
-    /// qdd = W m for a row-major W (nq x K) by a kernel with W's entries at fixed places (only if
-    /// has_forces_folded()).
-    virtual void forces_folded(const double* W, const HubInput& u, const double* q, const double* qd,
-                               double* qdd) const;
+    /// Q in the form F m (F fixed for the run, m monomials of the state), or nullptr when the model has no such
+    /// form: the integrator then calls forces() and solves with M.
+    virtual const TermForces* term_forces() const { return nullptr; }
+    /// The kernel qdd = W m for a constant M, with W's entries at fixed places, or nullptr.
+    virtual const FoldedForceKernel* folded_kernel() const { return nullptr; }
     /// Q(t, q, qd) such that M qdd = Q.
     virtual void forces(const HubInput& u, const double* q, const double* qd, double* Q) const = 0;
     virtual Energy energy(const HubInput& u, const double* q, const double* qd) const = 0;
@@ -63,15 +92,8 @@ public:
     /// The tip's displacements at coordinates q.
     virtual Tip tip(const double* q) const = 0;
 
-    /// True when the model supplies the exact derivatives below (generated kernels); otherwise the integrator
-    /// falls back to a finite-difference Jacobian.
-    virtual bool has_jacobian() const { return false; }
-    /// The derivatives of Q, each row-major: dQdq[i*nq+k] = dQ_i/dq_k, dQdqd[i*nq+k] = dQ_i/dqd_k and
-    /// dQdu[i*3+j] = dQ_i/du_j with u indexed by DriveValue (docs/model.md section 5.1). Only if has_jacobian().
-    virtual void force_derivatives(const HubInput& u, const double* q, const double* qd, double* dQdq, double* dQdqd,
-                                   double* dQdu) const;
-    /// dMv[i*nq+k] = sum_j dM_ij/dq_k v_j, row-major; all zeros when mass_is_constant(). Only if has_jacobian().
-    virtual void mass_q_product(const HubInput& u, const double* q, const double* v, double* dMv) const;
+    /// The exact derivatives of M and Q (generated kernels), or nullptr: the integrator then differences Q.
+    virtual const ExactJacobian* jacobian() const { return nullptr; }
 
 protected:
     explicit Model(const VariantKey& key) : key_(key) {}
@@ -80,30 +102,5 @@ private:
     VariantKey key_;
     std::string origin_;
 };
-
-inline void Model::forces_terms(const HubInput&, const double*, const double*, double*) const
-{
-    throw std::logic_error(std::string(source()) + " model has no term form of its forces");
-}
-
-inline void Model::forces_matrix(double*) const
-{
-    throw std::logic_error(std::string(source()) + " model has no term form of its forces");
-}
-
-inline void Model::forces_folded(const double*, const HubInput&, const double*, const double*, double*) const
-{
-    throw std::logic_error(std::string(source()) + " model has no folded forces kernel");
-}
-
-inline void Model::force_derivatives(const HubInput&, const double*, const double*, double*, double*, double*) const
-{
-    throw std::logic_error(std::string(source()) + " model has no Jacobian");
-}
-
-inline void Model::mass_q_product(const HubInput&, const double*, const double*, double*) const
-{
-    throw std::logic_error(std::string(source()) + " model has no Jacobian");
-}
 
 }  // namespace hubbeam
