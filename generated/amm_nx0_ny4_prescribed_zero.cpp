@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[33]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[23]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void amm_nx0_ny4_prescribed_zero_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -42,22 +42,12 @@ void amm_nx0_ny4_prescribed_zero_coefficients(const double* p, double* c)
     c[17] = 1903.2731331957266*EI/(L*L*L);
     c[18] = 7308.636652559391*EI/(L*L*L);
     c[19] = J_oh + 1.0000000000000042*L*m*a*a + 0.9999999999999994*L*L*m*a + 0.33333333333333326*L*L*L*m;
-    c[20] = 2.3238891593393207*1.0/(L);
-    c[21] = 7.3798752696619845*1.0/(L);
-    c[22] = 3.9415154871266065*1.0/(L);
-    c[23] = 6.59338841823299*1.0/(L);
-    c[24] = 16.208699513984463*1.0/(L);
-    c[25] = 22.352444439886856*1.0/(L);
-    c[26] = 13.582471389900336*1.0/(L);
-    c[27] = 38.64944540114812*1.0/(L);
-    c[28] = 35.64826964878872*1.0/(L);
-    c[29] = 71.45092441765324*1.0/(L);
-    c[30] = 1.9999999999999998*L*m;
-    c[31] = 2.0*L*m;
-    c[32] = 2.000000000000001*L*m;
+    c[20] = 1.9999999999999998*L*m;
+    c[21] = 2.0*L*m;
+    c[22] = 2.000000000000001*L*m;
 }
 
-/* mass:(c[33],u[3],q[4],qd[4])->(M[16]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[23],u[3],q[4],qd[4])->(M[16]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void amm_nx0_ny4_prescribed_zero_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -69,7 +59,7 @@ void amm_nx0_ny4_prescribed_zero_mass(const double* c, const double* u, const do
     out[15] = c[2];
 }
 
-/* forces:(c[33],u[3],q[4],qd[4])->(Q[4]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[23],u[3],q[4],qd[4])->(Q[4]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void amm_nx0_ny4_prescribed_zero_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)qd;
@@ -90,7 +80,7 @@ void amm_nx0_ny4_prescribed_zero_forces(const double* c, const double* u, const 
     out[3] = c[9]*theta_ddot - c[10]*B4 + c[2]*theta_dotsq_B4;
 }
 
-/* forces_terms:(c[33],u[3],q[4],qd[4])->(m[9]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[23],u[3],q[4],qd[4])->(m[9]) the state monomials of Q: Q = F m */
 void amm_nx0_ny4_prescribed_zero_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -117,7 +107,7 @@ void amm_nx0_ny4_prescribed_zero_forces_terms(const double* c, const double* u, 
     out[8] = theta_dotsq_B4;
 }
 
-/* forces_matrix:(c[33],u[3],q[4],qd[4])->(F[4*9]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[23],u[3],q[4],qd[4])->(F[4*9]) row-major, state-free: Q = F m; nonzero entries only */
 void amm_nx0_ny4_prescribed_zero_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -137,7 +127,7 @@ void amm_nx0_ny4_prescribed_zero_forces_matrix(const double* c, const double* u,
     out[35] = c[2];
 }
 
-/* energy:(c[33],u[3],q[4],qd[4])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[23],u[3],q[4],qd[4])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void amm_nx0_ny4_prescribed_zero_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -176,7 +166,7 @@ void amm_nx0_ny4_prescribed_zero_energy(const double* c, const double* u, const 
     out[3] = c[15]*B1sq + c[16]*B2sq + c[17]*B3sq + c[18]*B4sq;
 }
 
-/* momentum:(c[33],u[3],q[4],qd[4])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[23],u[3],q[4],qd[4])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void amm_nx0_ny4_prescribed_zero_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -199,31 +189,22 @@ void amm_nx0_ny4_prescribed_zero_momentum(const double* c, const double* u, cons
     out[0] = c[19]*theta_dot - c[3]*B1_dot - c[5]*B2_dot - c[7]*B3_dot - c[9]*B4_dot + c[0]*theta_dot_B1sq + c[1]*theta_dot_B2sq + c[1]*theta_dot_B3sq + c[2]*theta_dot_B4sq;
 }
 
-/* tip:(c[33],u[3],q[4],qd[4])->(tip[3]) tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B */
+/* tip:(c[23],u[3],q[4],qd[4])->(tip[3]) tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 (order zero: no foreshortening) */
 void amm_nx0_ny4_prescribed_zero_tip(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
+    (void)c;
     (void)u;
     (void)qd;
     const double B1 = q[0];
     const double B2 = q[1];
     const double B3 = q[2];
     const double B4 = q[3];
-    const double B1sq = B1*B1;
-    const double B1_B2 = B1*B2;
-    const double B1_B3 = B1*B3;
-    const double B1_B4 = B1*B4;
-    const double B2sq = B2*B2;
-    const double B2_B3 = B2*B3;
-    const double B2_B4 = B2*B4;
-    const double B3sq = B3*B3;
-    const double B3_B4 = B3*B4;
-    const double B4sq = B4*B4;
     out[0] = -1.9999999999999998*B1 + 2.0*B2 - 2.0*B3 + 1.9999999999999998*B4;
     out[1] = 0.0;
-    out[2] = -c[20]*B1sq + c[21]*B1_B2 - c[22]*B1_B3 + c[23]*B1_B4 - c[24]*B2sq + c[25]*B2_B3 - c[26]*B2_B4 - c[27]*B3sq + c[28]*B3_B4 - c[29]*B4sq;
+    out[2] = 0.0;
 }
 
-/* forces_q:(c[33],u[3],q[4],qd[4])->(dQdq[16]) row-major; out[i*4+k] = dQ_i/dq_k; nonzero entries only */
+/* forces_q:(c[23],u[3],q[4],qd[4])->(dQdq[16]) row-major; out[i*4+k] = dQ_i/dq_k; nonzero entries only */
 void amm_nx0_ny4_prescribed_zero_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)q;
@@ -236,7 +217,7 @@ void amm_nx0_ny4_prescribed_zero_forces_q(const double* c, const double* u, cons
     out[15] = -c[10] + c[2]*theta_dotsq;
 }
 
-/* forces_qd:(c[33],u[3],q[4],qd[4])->(dQdqd[16]) row-major; out[i*4+k] = dQ_i/dqd_k; nonzero entries only */
+/* forces_qd:(c[23],u[3],q[4],qd[4])->(dQdqd[16]) row-major; out[i*4+k] = dQ_i/dqd_k; nonzero entries only */
 void amm_nx0_ny4_prescribed_zero_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -246,7 +227,7 @@ void amm_nx0_ny4_prescribed_zero_forces_qd(const double* c, const double* u, con
     (void)qd;
 }
 
-/* forces_u:(c[33],u[3],q[4],qd[4])->(dQdu[12]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
+/* forces_u:(c[23],u[3],q[4],qd[4])->(dQdu[12]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
 void amm_nx0_ny4_prescribed_zero_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)qd;
@@ -259,17 +240,17 @@ void amm_nx0_ny4_prescribed_zero_forces_u(const double* c, const double* u, cons
     const double theta_dot_B2 = theta_dot*B2;
     const double theta_dot_B3 = theta_dot*B3;
     const double theta_dot_B4 = theta_dot*B4;
-    out[1] = c[30]*theta_dot_B1;
+    out[1] = c[20]*theta_dot_B1;
     out[2] = c[3];
-    out[4] = c[31]*theta_dot_B2;
+    out[4] = c[21]*theta_dot_B2;
     out[5] = c[5];
-    out[7] = c[31]*theta_dot_B3;
+    out[7] = c[21]*theta_dot_B3;
     out[8] = c[7];
-    out[10] = c[32]*theta_dot_B4;
+    out[10] = c[22]*theta_dot_B4;
     out[11] = c[9];
 }
 
-/* forces_folded:(c[33],u[3],q[4],qd[4])->(qdd[4]) qdd = W m, W = M^-1 F (4 x 9, row-major) passed in the c slot */
+/* forces_folded:(c[23],u[3],q[4],qd[4])->(qdd[4]) qdd = W m, W = M^-1 F (4 x 9, row-major) passed in the c slot */
 void amm_nx0_ny4_prescribed_zero_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)qd;
@@ -296,7 +277,7 @@ extern const Variant amm_nx0_ny4_prescribed_zero = {
     .abi_version = 2,
     .name = "amm_nx0_ny4_prescribed_zero",
     .nq = 4,
-    .ncoeff = 33,
+    .ncoeff = 23,
     .nterms = 9,
     .mass_pattern = "c0000c0000c0000c",
     .coefficients = amm_nx0_ny4_prescribed_zero_coefficients,

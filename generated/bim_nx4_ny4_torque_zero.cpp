@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[7])->(c[82]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
+/* coefficients:(p[7])->(c[77]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
 void bim_nx4_ny4_torque_zero_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -100,14 +100,9 @@ void bim_nx4_ny4_torque_zero_coefficients(const double* p, double* c)
     c[74] = 17.142857142857142*EI/(L*L*L);
     c[75] = 74.28571428571429*EI/(L*L*L);
     c[76] = 28.571428571428573*EI/(L*L*L);
-    c[77] = 0.31746031746031744*1.0/(L);
-    c[78] = 0.15873015873015872*1.0/(L);
-    c[79] = 0.3968253968253968*1.0/(L);
-    c[80] = 0.7936507936507936*1.0/(L);
-    c[81] = 1.3888888888888888*1.0/(L);
 }
 
-/* mass:(c[82],u[3],q[9],qd[9])->(M[81]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
+/* mass:(c[77],u[3],q[9],qd[9])->(M[81]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
 void bim_nx4_ny4_torque_zero_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -171,7 +166,7 @@ void bim_nx4_ny4_torque_zero_mass(const double* c, const double* u, const double
     out[80] = c[18];
 }
 
-/* forces:(c[82],u[3],q[9],qd[9])->(Q[9]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
+/* forces:(c[77],u[3],q[9],qd[9])->(Q[9]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void bim_nx4_ny4_torque_zero_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
@@ -260,7 +255,7 @@ void bim_nx4_ny4_torque_zero_forces(const double* c, const double* u, const doub
     out[8] = -c[65]*B1 - c[67]*B2 + c[69]*B3 - c[70]*B4 - c[51]*theta_dot_A1_dot - c[55]*theta_dot_A2_dot - c[58]*theta_dot_A3_dot - c[61]*theta_dot_A4_dot + c[37]*B1_theta_dotsq + c[39]*B2_theta_dotsq + c[40]*B3_theta_dotsq + c[18]*B4_theta_dotsq;
 }
 
-/* forces_terms:(c[82],u[3],q[9],qd[9])->(m[58]) the state monomials of Q: Q = F m */
+/* forces_terms:(c[77],u[3],q[9],qd[9])->(m[58]) the state monomials of Q: Q = F m */
 void bim_nx4_ny4_torque_zero_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -399,7 +394,7 @@ void bim_nx4_ny4_torque_zero_forces_terms(const double* c, const double* u, cons
     out[57] = B4_theta_dot_B4_dot;
 }
 
-/* forces_matrix:(c[82],u[3],q[9],qd[9])->(F[9*58]) row-major, state-free: Q = F m; nonzero entries only */
+/* forces_matrix:(c[77],u[3],q[9],qd[9])->(F[9*58]) row-major, state-free: Q = F m; nonzero entries only */
 void bim_nx4_ny4_torque_zero_forces_matrix(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -544,7 +539,7 @@ void bim_nx4_ny4_torque_zero_forces_matrix(const double* c, const double* u, con
     out[517] = c[18];
 }
 
-/* energy:(c[82],u[3],q[9],qd[9])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
+/* energy:(c[77],u[3],q[9],qd[9])->(E[4]) E = (T2, T1, T0, U), T split by degree in qd */
 void bim_nx4_ny4_torque_zero_energy(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -700,7 +695,7 @@ void bim_nx4_ny4_torque_zero_energy(const double* c, const double* u, const doub
     out[3] = c[52]*A1sq + c[48]*A1_A2 - c[49]*A1_A3 - c[48]*A1_A4 + c[48]*A2sq + c[48]*A2_A3 - c[52]*A2_A4 + c[52]*A3sq - c[56]*A3_A4 + c[56]*A4sq + c[74]*B1sq + c[63]*B1_B2 - c[64]*B1_B3 + c[65]*B1_B4 + c[74]*B2sq - c[66]*B2_B3 + c[67]*B2_B4 + c[75]*B3sq - c[69]*B3_B4 + c[76]*B4sq;
 }
 
-/* momentum:(c[82],u[3],q[9],qd[9])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
+/* momentum:(c[77],u[3],q[9],qd[9])->(h[1]) h = dT/dtheta_dot, angular momentum about the hub axis */
 void bim_nx4_ny4_torque_zero_momentum(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -800,32 +795,20 @@ void bim_nx4_ny4_torque_zero_momentum(const double* c, const double* u, const do
     out[0] = c[0]*theta_dot + c[28]*B1_dot + c[29]*B2_dot + c[30]*B3_dot + c[31]*B4_dot + c[1]*A1_theta_dot + c[10]*A1_B1_dot + c[19]*A1_B2_dot + c[8]*A1_B3_dot + c[20]*A1_B4_dot + c[2]*A2_theta_dot + c[10]*A2_B1_dot + c[10]*A2_B2_dot + c[21]*A2_B3_dot + c[22]*A2_B4_dot + c[3]*A3_theta_dot + c[19]*A3_B1_dot + c[10]*A3_B2_dot + c[23]*A3_B3_dot + c[24]*A3_B4_dot + c[4]*A4_theta_dot + c[25]*A4_B1_dot + c[26]*A4_B2_dot + c[23]*A4_B3_dot + c[27]*A4_B4_dot - c[10]*B1_A1_dot - c[10]*B1_A2_dot - c[19]*B1_A3_dot - c[25]*B1_A4_dot - c[19]*B2_A1_dot - c[10]*B2_A2_dot - c[10]*B2_A3_dot - c[26]*B2_A4_dot - c[8]*B3_A1_dot - c[21]*B3_A2_dot - c[23]*B3_A3_dot - c[23]*B3_A4_dot - c[20]*B4_A1_dot - c[22]*B4_A2_dot - c[24]*B4_A3_dot - c[27]*B4_A4_dot + c[5]*A1sq_theta_dot + c[6]*A1_A2_theta_dot + c[7]*A1_A3_theta_dot + c[8]*A1_A4_theta_dot + c[9]*A2sq_theta_dot + c[6]*A2_A3_theta_dot + c[10]*A2_A4_theta_dot + c[5]*A3sq_theta_dot + c[11]*A3_A4_theta_dot + c[11]*A4sq_theta_dot + c[12]*B1sq_theta_dot + c[13]*B1_B2_theta_dot + c[12]*B1_B3_theta_dot + c[14]*B1_B4_theta_dot + c[12]*B2sq_theta_dot + c[15]*B2_B3_theta_dot + c[16]*B2_B4_theta_dot + c[17]*B3sq_theta_dot + c[18]*B3_B4_theta_dot + c[18]*B4sq_theta_dot;
 }
 
-/* tip:(c[82],u[3],q[9],qd[9])->(tip[3]) tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B */
+/* tip:(c[77],u[3],q[9],qd[9])->(tip[3]) tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 (order zero: no foreshortening) */
 void bim_nx4_ny4_torque_zero_tip(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
+    (void)c;
     (void)u;
     (void)qd;
     const double A4 = q[4];
-    const double B1 = q[5];
-    const double B2 = q[6];
-    const double B3 = q[7];
     const double B4 = q[8];
-    const double B1sq = B1*B1;
-    const double B1_B2 = B1*B2;
-    const double B1_B3 = B1*B3;
-    const double B1_B4 = B1*B4;
-    const double B2sq = B2*B2;
-    const double B2_B3 = B2*B3;
-    const double B2_B4 = B2*B4;
-    const double B3sq = B3*B3;
-    const double B3_B4 = B3*B4;
-    const double B4sq = B4*B4;
     out[0] = B4;
     out[1] = A4;
-    out[2] = A4 - c[77]*B1sq - c[77]*B1_B2 + c[78]*B1_B3 + c[79]*B1_B4 - c[77]*B2sq - c[79]*B2_B3 + c[80]*B2_B4 - c[80]*B3sq + c[81]*B3_B4 - c[81]*B4sq;
+    out[2] = A4;
 }
 
-/* forces_q:(c[82],u[3],q[9],qd[9])->(dQdq[81]) row-major; out[i*9+k] = dQ_i/dq_k; nonzero entries only */
+/* forces_q:(c[77],u[3],q[9],qd[9])->(dQdq[81]) row-major; out[i*9+k] = dQ_i/dq_k; nonzero entries only */
 void bim_nx4_ny4_torque_zero_forces_q(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -890,7 +873,7 @@ void bim_nx4_ny4_torque_zero_forces_q(const double* c, const double* u, const do
     out[80] = -c[70] + c[18]*theta_dotsq;
 }
 
-/* forces_qd:(c[82],u[3],q[9],qd[9])->(dQdqd[81]) row-major; out[i*9+k] = dQ_i/dqd_k; nonzero entries only */
+/* forces_qd:(c[77],u[3],q[9],qd[9])->(dQdqd[81]) row-major; out[i*9+k] = dQ_i/dqd_k; nonzero entries only */
 void bim_nx4_ny4_torque_zero_forces_qd(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -1002,7 +985,7 @@ void bim_nx4_ny4_torque_zero_forces_qd(const double* c, const double* u, const d
     out[76] = -c[61]*theta_dot;
 }
 
-/* forces_u:(c[82],u[3],q[9],qd[9])->(dQdu[27]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
+/* forces_u:(c[77],u[3],q[9],qd[9])->(dQdu[27]) row-major; out[i*3+j] = dQ_i/du_j, u = (tau, theta_dot, theta_ddot); nonzero entries only */
 void bim_nx4_ny4_torque_zero_forces_u(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
@@ -1012,7 +995,7 @@ void bim_nx4_ny4_torque_zero_forces_u(const double* c, const double* u, const do
     out[0] = 1.0;
 }
 
-/* mass_varying:(c[82],u[3],q[9],qd[9])->(M[81]) as mass, the entries that depend on q only */
+/* mass_varying:(c[77],u[3],q[9],qd[9])->(M[81]) as mass, the entries that depend on q only */
 void bim_nx4_ny4_torque_zero_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -1056,7 +1039,7 @@ void bim_nx4_ny4_torque_zero_mass_varying(const double* c, const double* u, cons
     out[8] = c[31] + c[20]*A1 + c[22]*A2 + c[24]*A3 + c[27]*A4;
 }
 
-/* mass_q_product:(c[82],u[3],q[9],qd[9])->(dMv[81]) row-major; v in the qd slot; out[i*9+k] = sum_j dM_ij/dq_k v_j; nonzero entries only */
+/* mass_q_product:(c[77],u[3],q[9],qd[9])->(dMv[81]) row-major; v in the qd slot; out[i*9+k] = sum_j dM_ij/dq_k v_j; nonzero entries only */
 void bim_nx4_ny4_torque_zero_mass_q_product(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
@@ -1133,7 +1116,7 @@ extern const Variant bim_nx4_ny4_torque_zero = {
     .abi_version = 2,
     .name = "bim_nx4_ny4_torque_zero",
     .nq = 9,
-    .ncoeff = 82,
+    .ncoeff = 77,
     .nterms = 58,
     .mass_pattern = "vvvvvvvvvvcccc0000vcccc0000vcccc0000vcccc0000v0000ccccv0000ccccv0000ccccv0000cccc",
     .coefficients = bim_nx4_ny4_torque_zero_coefficients,

@@ -277,11 +277,15 @@ std::size_t term_count(const std::vector<Output>& outputs)
     return n;
 }
 
-/// Stage "print" in table form: the kernel's monomials m[k] built by the chain m[k + 1] = m[a] * v[b] from
-/// m[0] = 1, then each written entry as a sum over its run of terms (scale * c[coef] * m[mono]), accumulated in a
-/// register: rows of a sparse matrix in compressed form.
-std::string print_tables(const std::string& prefix, const KernelSpec& k, const Signature& sig,
-                         const std::vector<Output>& outputs, CoefficientPool& pool)
+/// The monomials of a table-form kernel, in reading order, each built from one before it: m[0] = 1 and
+/// m[k + 1] = m[a] * v[b], chain line k = "{a, b}"; index maps each monomial's exponents to its k + 1 (1 to 0).
+struct MonomialChain {
+    std::vector<std::vector<int>> ordered;
+    std::map<std::vector<int>, int> index;
+    std::string chain;
+};
+
+MonomialChain monomial_chain(const std::vector<Output>& outputs, std::size_t variables)
 {
     // Monomials in reading order, each after its prefix (one factor of its last variable fewer).
     std::set<std::vector<int>> all;
@@ -291,17 +295,32 @@ std::string print_tables(const std::string& prefix, const KernelSpec& k, const S
                 if (!all.insert(e).second) break;
                 --e[last_variable(e)];
             }
-    std::vector<std::vector<int>> ordered(all.begin(), all.end());
-    sort_reading(ordered);
-    std::map<std::vector<int>, int> index{{std::vector<int>(sig.state_inputs.size()), 0}};
+    MonomialChain c;
+    c.ordered.assign(all.begin(), all.end());
+    sort_reading(c.ordered);
+    c.index.emplace(std::vector<int>(variables), 0);
     std::ostringstream chain;
-    for (const std::vector<int>& e : ordered) {
+    for (const std::vector<int>& e : c.ordered) {
         const std::size_t last = last_variable(e);
         std::vector<int> rest = e;
         --rest[last];
-        chain << "        {" << index.at(rest) << ", " << last << "},\n";
-        index.emplace(e, static_cast<int>(index.size()));
+        chain << "        {" << c.index.at(rest) << ", " << last << "},\n";
+        c.index.emplace(e, static_cast<int>(c.index.size()));
     }
+    c.chain = chain.str();
+    return c;
+}
+
+/// The tables' text of a table-form kernel: terms (pairs signed coefficient entry, monomial), first (each written
+/// entry's first term, then the count) and written (the output slots).
+struct TermTables {
+    std::string terms, first, written;
+    std::size_t nterms = 0;
+};
+
+TermTables term_tables(const KernelSpec& k, const std::vector<Output>& outputs, const std::map<std::vector<int>, int>& index,
+                       CoefficientPool& pool)
+{
     std::ostringstream terms, first, written;
     std::size_t nterms = 0;
     for (std::size_t i = 0; i < outputs.size(); ++i) {
@@ -318,13 +337,25 @@ std::string print_tables(const std::string& prefix, const KernelSpec& k, const S
         }
     }
     first << (outputs.empty() ? "" : ", ") << nterms;
+    return {terms.str(), first.str(), written.str(), nterms};
+}
+
+/// Stage "print" in table form: the kernel's monomials m[k] built by the chain m[k + 1] = m[a] * v[b] from
+/// m[0] = 1, then each written entry as a sum over its run of terms (scale * c[coef] * m[mono]), accumulated in a
+/// register: rows of a sparse matrix in compressed form.
+std::string print_tables(const std::string& prefix, const KernelSpec& k, const Signature& sig,
+                         const std::vector<Output>& outputs, CoefficientPool& pool)
+{
+    const MonomialChain chain = monomial_chain(outputs, sig.state_inputs.size());
+    const TermTables t = term_tables(k, outputs, chain.index, pool);
+    const std::vector<std::vector<int>>& ordered = chain.ordered;
     // Up to 64 KB of monomials on the stack; beyond, one buffer per thread.
     const std::size_t nm = ordered.size() + 1;
     std::ostringstream f;
     f << "void " << prefix << "_" << k.name << "(const double* c";
     for (const Array& a : sig.state) f << ", const double* " << a.name;
     f << ", double* out)\n{\n";
-    f << "    // Table form (" << nterms << " terms, " << ordered.size()
+    f << "    // Table form (" << t.nterms << " terms, " << ordered.size()
       << " monomials): m[0] = 1, m[k + 1] = m[chain[k][0]] * v[chain[k][1]];\n"
       << "    // out[written[i]] = sum over terms t = first[i] .. first[i + 1] - 1 of c[k] * m[terms[2t + 1]], k = terms[2t],\n"
       << "    // negated for k < 0 (entry -k - 1).\n";
@@ -332,7 +363,7 @@ std::string print_tables(const std::string& prefix, const KernelSpec& k, const S
         for (const Array& a : sig.state) f << "    (void)" << a.name << ";\n";
         f << "    const double m[1] = {1.0};\n";
     } else {
-        f << "    static const int chain[][2] = {\n" << chain.str() << "    };\n";
+        f << "    static const int chain[][2] = {\n" << chain.chain << "    };\n";
         f << "    const double v[] = {";
         for (std::size_t v = 0; v < sig.state_inputs.size(); ++v) f << (v ? ", " : "") << sig.state_inputs[v].read;
         f << "};\n";
@@ -343,10 +374,10 @@ std::string print_tables(const std::string& prefix, const KernelSpec& k, const S
         f << "    (void)c;\n    (void)m;\n    (void)out;  // every entry is zero\n}\n";
         return f.str();
     }
-    if (nterms > 0) f << "    static const int terms[] = {" << terms.str() << "\n    };\n";
+    if (t.nterms > 0) f << "    static const int terms[] = {" << t.terms << "\n    };\n";
     else f << "    static const int terms[2] = {0, 0};  // no term: every written entry is zero\n    (void)m;\n";
-    f << "    static const int written[] = {" << written.str() << "};\n";
-    f << "    static const int first[] = {" << first.str() << "};\n";
+    f << "    static const int written[] = {" << t.written << "};\n";
+    f << "    static const int first[] = {" << t.first << "};\n";
     f << "    for (int i = 0; i < " << outputs.size() << "; ++i) {\n        double sum = 0.0;\n"
       << "        for (int t = first[i]; t < first[i + 1]; ++t) {\n"
       << "            const int k = terms[2 * t];\n"

@@ -20,34 +20,35 @@ void write(const std::filesystem::path& path, const std::string& text)
     if (!f) throw std::runtime_error("cannot write " + path.string());
 }
 
-}  // namespace
-
-int main(int argc, char** argv)
-{
-    CLI::App app{"hubbeam-gen: derives the rotating hub-beam's equations of motion with GiNaC (Lagrange's equations of\n"
-                 "T and U, docs/model.md) and emits C++ kernels for the named variants."};
+/// What the command line asks for.
+struct Arguments {
     std::string out = ".";
     bool module = false, quiet = false;
     std::string form = "auto";
     std::vector<std::string> names;
-    app.add_option("--out", out, "Folder for the sources (created if missing; default: the current folder)")
+    hubbeam::gen::EmitOptions options;
+};
+
+/// The options and their help, bound to a's fields.
+void add_options(CLI::App& app, Arguments& a)
+{
+    app.add_option("--out", a.out, "Folder for the sources (created if missing; default: the current folder)")
         ->type_name("DIR");
-    app.add_flag("--module", module,
+    app.add_flag("--module", a.module,
                  "Write each source with an entry point `hubbeam_variant()` for a shared object, and the interface "
                  "header generated_abi.h beside it instead of a registry");
-    app.add_flag("-q,--quiet", quiet, "Print nothing on success");
-    hubbeam::gen::EmitOptions options;
-    app.add_option("--form", form,
+    app.add_flag("-q,--quiet", a.quiet, "Print nothing on success");
+    app.add_option("--form", a.form,
                    "How kernels are printed: unrolled (fastest code), tables (constant tables and loops: compile time "
                    "linear in the terms), or auto: tables for kernels of more than --table-threshold terms "
                    "(default auto)")
         ->check(CLI::IsMember({"auto", "unrolled", "tables"}))
         ->type_name("FORM");
-    app.add_option("--table-threshold", options.table_threshold, "Terms above which auto prints a kernel as tables "
-                                                                   "(default 1000)")
+    app.add_option("--table-threshold", a.options.table_threshold, "Terms above which auto prints a kernel as tables "
+                                                                     "(default 1000)")
         ->check(CLI::PositiveNumber)
         ->type_name("N");
-    app.add_option("variants", names,
+    app.add_option("variants", a.names,
                    "Variant names METHOD_nxN_nyN_DRIVE_ORDER[_open]: METHOD amm|fem|bim|bsim, Nx axial and Ny "
                    "transverse coordinates, DRIVE prescribed|torque, ORDER zero|first|full, _open for BSIM's open "
                    "uniform basis; e.g. bim_nx4_ny4_torque_first")
@@ -56,6 +57,47 @@ int main(int argc, char** argv)
     app.footer("Writes DIR/VARIANT.cpp for each variant, and DIR/registry.cpp (without --module) or DIR/generated_abi.h "
                "(with --module). Exit codes: 0 "
                "success, 1 a variant could not be derived or written, 2 bad arguments (one line on stderr).");
+}
+
+/// The variants named, each spelled canonically and with DOF counts its method takes; throws
+/// std::invalid_argument naming the first that is not.
+std::vector<hubbeam::VariantKey> parse_variants(const std::vector<std::string>& names)
+{
+    std::vector<hubbeam::VariantKey> keys;
+    for (const std::string& name : names) {
+        keys.push_back(hubbeam::VariantKey::parse(name));
+        if (keys.back().name() != name)
+            throw std::invalid_argument("variant '" + name + "' is spelled " + keys.back().name());
+        if (const std::string why = keys.back().dof_problem(); !why.empty())
+            throw std::invalid_argument("variant '" + name + "': " + why);
+    }
+    return keys;
+}
+
+/// Derives and writes each variant's source, then the registry or the interface header; throws on failure.
+void write_sources(const std::vector<hubbeam::VariantKey>& keys, const Arguments& a)
+{
+    std::filesystem::create_directories(a.out);
+    for (const hubbeam::VariantKey& key : keys) {
+        const auto start = std::chrono::steady_clock::now();
+        std::string text = hubbeam::gen::variant_source(key, a.options);
+        if (a.module) text += hubbeam::gen::module_entry_source(key.name());
+        write(std::filesystem::path(a.out) / (key.name() + ".cpp"), text);
+        const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        if (!a.quiet) std::cout << "hubbeam-gen: " << key.name() << " (" << s << " s)\n";
+    }
+    if (a.module) write(std::filesystem::path(a.out) / "generated_abi.h", hubbeam::gen::abi_header());
+    else write(std::filesystem::path(a.out) / "registry.cpp", hubbeam::gen::registry_source(a.names));
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+    CLI::App app{"hubbeam-gen: derives the rotating hub-beam's equations of motion with GiNaC (Lagrange's equations of\n"
+                 "T and U, docs/model.md) and emits C++ kernels for the named variants."};
+    Arguments a;
+    add_options(app, a);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -64,32 +106,16 @@ int main(int argc, char** argv)
         return 2;
     }
     using Form = hubbeam::gen::EmitOptions::Form;
-    options.form = form == "tables" ? Form::tables : form == "unrolled" ? Form::unrolled : Form::automatic;
+    a.options.form = a.form == "tables" ? Form::tables : a.form == "unrolled" ? Form::unrolled : Form::automatic;
     std::vector<hubbeam::VariantKey> keys;
-    for (const std::string& name : names) {
-        try {
-            keys.push_back(hubbeam::VariantKey::parse(name));
-            if (keys.back().name() != name)
-                throw std::invalid_argument("variant '" + name + "' is spelled " + keys.back().name());
-            if (const std::string why = keys.back().dof_problem(); !why.empty())
-                throw std::invalid_argument("variant '" + name + "': " + why);
-        } catch (const std::invalid_argument& e) {
-            std::cerr << "hubbeam-gen: " << e.what() << "\n";
-            return 2;
-        }
+    try {
+        keys = parse_variants(a.names);
+    } catch (const std::invalid_argument& e) {
+        std::cerr << "hubbeam-gen: " << e.what() << "\n";
+        return 2;
     }
     try {
-        std::filesystem::create_directories(out);
-        for (const hubbeam::VariantKey& key : keys) {
-            const auto start = std::chrono::steady_clock::now();
-            std::string text = hubbeam::gen::variant_source(key, options);
-            if (module) text += hubbeam::gen::module_entry_source(key.name());
-            write(std::filesystem::path(out) / (key.name() + ".cpp"), text);
-            const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            if (!quiet) std::cout << "hubbeam-gen: " << key.name() << " (" << s << " s)\n";
-        }
-        if (module) write(std::filesystem::path(out) / "generated_abi.h", hubbeam::gen::abi_header());
-        else write(std::filesystem::path(out) / "registry.cpp", hubbeam::gen::registry_source(names));
+        write_sources(keys, a);
     } catch (const std::exception& e) {
         std::cerr << "hubbeam-gen: " << e.what() << "\n";
         return 1;

@@ -87,7 +87,8 @@ KernelSpec sparse_kernel(std::string name, std::string out, std::string doc, std
 
 /// The tip displacements (docs/model.md section 5.4) u_y(L) = Phi_y(1) B, u_x1(L) = Phi_x(1) A and
 /// u_x(L) = u_x1(L) - 1/2 B^T H(L) B with H(L) = H_xi(1) / L: the shape values and integrals as numbers, so
-/// that the runtime needs no shape functions or quadrature for its rows.
+/// that the runtime needs no shape functions or quadrature for its rows. Order zero is the linear model
+/// (section 3), which has no foreshortening u_x2: its u_x is u_x1.
 std::vector<ex> tip_displacements(const VariantKey& key, const Symbols& s)
 {
     const FieldBasis axial = key.axial_basis(), transverse = key.transverse_basis();
@@ -95,6 +96,7 @@ std::vector<ex> tip_displacements(const VariantKey& key, const Symbols& s)
     ex uy = 0, ux1 = 0, ux2 = 0;
     for (int j = 0; j < key.ny; ++j) uy += numeric(transverse.at(j, 1.0).v) * s.B[static_cast<std::size_t>(j)];
     for (int i = 0; i < key.nx; ++i) ux1 += numeric(axial.at(i, 1.0).v) * s.A[static_cast<std::size_t>(i)];
+    if (key.order == Order::zero) return {uy, ux1, ux1};
     using K = Factor::Kind;
     for (int j = 0; j < key.ny; ++j)
         for (int k = 0; k < key.ny; ++k)
@@ -140,14 +142,9 @@ JacobianPieces jacobian_pieces(const PolyEquations& eq, const Variables& v, bool
     return j;
 }
 
-}  // namespace
-
-std::string variant_source(const VariantKey& key, const EmitOptions& options)
+/// The kernels' inputs: the parameters p, read once by the coefficients kernel, and the state u, q, qd.
+Signature signature(const Symbols& s, bool torque, int nq)
 {
-    const Symbols s(key);
-    const bool torque = key.drive == Drive::torque;
-    const int nq = key.nq();
-    const std::string n2 = std::to_string(nq * nq), n1 = std::to_string(nq);
     Signature sig;
     sig.parameters = {"p", static_cast<int>(param_count), "p = " + tuple(param_names)};
     sig.state = {{"u", static_cast<int>(drive_value_count), ""}, {"q", nq, ""}, {"qd", nq, ""}};
@@ -164,8 +161,20 @@ std::string variant_source(const VariantKey& key, const EmitOptions& options)
                                                          {s.theta_ddot, read(DriveValue::theta_ddot)}});
     for (std::size_t i = 0; i < s.q.size(); ++i) sig.state_inputs.push_back({s.q[i], "q[" + std::to_string(i) + "]"});
     for (std::size_t i = 0; i < s.qd.size(); ++i) sig.state_inputs.push_back({s.qd[i], "qd[" + std::to_string(i) + "]"});
+    return sig;
+}
 
-    // Lagrange's equations and their derivatives on the energies as polynomials in the kernels' variables.
+/// Lagrange's equations of one variant as polynomials in the kernels' variables, and where those variables are.
+struct Derivation {
+    PolyEquations eq;
+    Variables v;
+    std::size_t parameter_count = 0;
+};
+
+/// Lagrange's equations on the energies, over sig's parameter and state inputs.
+Derivation derive(const VariantKey& key, const Symbols& s, const Signature& sig)
+{
+    const bool torque = key.drive == Drive::torque;
     std::vector<symbol> parameters, variables = sig.state_inputs_symbols();
     for (const Input& i : sig.parameter_inputs) parameters.push_back(i.symbol);
     const auto variable = [&](const symbol& x) {
@@ -179,17 +188,27 @@ std::string variant_source(const VariantKey& key, const EmitOptions& options)
     v.tau = variable(s.tau);
     v.theta_dot = variable(s.theta_dot);
     v.theta_ddot = variable(s.theta_ddot);
-    const PolyReader read(parameters, variables);
+    const PolyReader reader(parameters, variables);
     PolyCoordinates c{v.q, v.qd, {}, std::vector<Poly>(s.q.size()), torque ? v.qd[0] : v.theta_dot};
-    if (torque) c.force[0] = read(s.tau);
+    if (torque) c.force[0] = reader(s.tau);
     else c.driven.emplace_back(v.theta_dot, v.theta_ddot);
-    const Energies en = derive_energies(key, s, read);
-    const PolyEquations eq = lagrange(en.T, en.U, c);
+    const Energies en = derive_energies(key, s, reader);
+    return {lagrange(en.T, en.U, c), v, parameters.size()};
+}
 
-    JacobianPieces jac = jacobian_pieces(eq, v, torque);
-    const std::string pattern = mass_pattern(eq.M, v.q);
-    // M is symmetric: its upper triangle is emitted, structural zeros are not, and the state-dependent entries
-    // get a kernel of their own for runtimes that keep the constant ones.
+/// A kernel that writes every value, zeros included.
+KernelSpec dense_kernel(std::string name, std::string out, std::string doc, std::vector<Poly> values)
+{
+    KernelSpec k{std::move(name), std::move(out), std::move(doc), {}};
+    k.polys = std::move(values);
+    return k;
+}
+
+/// M's kernels: M is symmetric, so its upper triangle is emitted, structural zeros are not, and the
+/// state-dependent entries (pattern 'v') get a kernel of their own for runtimes that keep the constant ones.
+std::pair<KernelSpec, KernelSpec> mass_kernels(const std::vector<Poly>& M, const std::string& pattern, int nq)
+{
+    const std::string n2 = std::to_string(nq * nq);
     KernelSpec mass{"mass", "M[" + n2 + "]", "row-major; M = d2T/dqd2, upper triangle, nonzero entries only", {}};
     KernelSpec mass_varying{"mass_varying", "M[" + n2 + "]", "as mass, the entries that depend on q only", {}};
     for (int i = 0; i < nq; ++i)
@@ -198,74 +217,95 @@ std::string variant_source(const VariantKey& key, const EmitOptions& options)
             if (kind == '0') continue;
             for (KernelSpec* k : {&mass, &mass_varying})
                 if (k == &mass || kind == 'v') {
-                    k->polys.push_back(eq.M[static_cast<std::size_t>(i * nq + j)]);
+                    k->polys.push_back(M[static_cast<std::size_t>(i * nq + j)]);
                     k->slots.push_back(i * nq + j);
                 }
         }
-    const bool mass_varies = !mass_varying.polys.empty();
+    return {std::move(mass), std::move(mass_varying)};
+}
+
+KernelSpec tip_kernel(const VariantKey& key, const Symbols& s)
+{
+    return {"tip", "tip[3]",
+            key.order == Order::zero ? "tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 (order zero: no foreshortening)"
+                                     : "tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B",
+            tip_displacements(key, s)};
+}
+
+/// Every kernel of a variant, in the order of its table row, and what the row says about them.
+struct Kernels {
+    std::vector<KernelSpec> list;
+    std::string mass_pattern;
+    std::size_t nterms = 0;
+    bool mass_varies = false, folded = false;
+};
+
+Kernels variant_kernels(const VariantKey& key, const Symbols& s, const Derivation& d)
+{
+    const PolyEquations& eq = d.eq;
+    const int nq = key.nq();
+    const std::string n2 = std::to_string(nq * nq), n1 = std::to_string(nq);
+    Kernels out;
+    JacobianPieces jac = jacobian_pieces(eq, d.v, key.drive == Drive::torque);
+    out.mass_pattern = mass_pattern(eq.M, d.v.q);
+    auto [mass, mass_varying] = mass_kernels(eq.M, out.mass_pattern, nq);
+    out.mass_varies = !mass_varying.polys.empty();
     // Q = F m lets the runtime fold M^-1 into F once: all of M where it is constant (prescribed rotation), the
     // constant beam block where only the hub's entry varies (hub torque without axial coordinates).
-    const TermMatrix terms = term_matrix(eq.Q, parameters.size());
+    const TermMatrix terms = term_matrix(eq.Q, d.parameter_count);
+    out.nterms = terms.terms.size();
     const std::string nk = std::to_string(terms.terms.size());
-    KernelSpec force_matrix{"forces_matrix", "F[" + std::to_string(nq) + "*" + nk + "]",
-                            "row-major, state-free: Q = F m; nonzero entries only", {}};
-    for (std::size_t i = 0; i < terms.matrix.size(); ++i)
-        if (!terms.matrix[i].is_zero()) {
-            force_matrix.polys.push_back(terms.matrix[i]);
-            force_matrix.slots.push_back(static_cast<int>(i));
-        }
     const std::string nu = std::to_string(nq * static_cast<int>(drive_value_count));
-    const auto polys = [](std::string name, std::string out, std::string doc, std::vector<Poly> values) {
-        KernelSpec k{std::move(name), std::move(out), std::move(doc), {}};
-        k.polys = std::move(values);
-        return k;
-    };
-    std::vector<KernelSpec> kernels = {
+    out.list = {
         mass,
-        polys("forces", "Q[" + n1 + "]", "Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq", eq.Q),
-        polys("energy", "E[4]", "E = (T2, T1, T0, U), T split by degree in qd", {eq.T2, eq.T1, eq.T0, eq.U}),
-        polys("momentum", "h[1]", "h = dT/dtheta_dot, angular momentum about the hub axis", {eq.momentum}),
-        {"tip", "tip[3]", "tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B", tip_displacements(key, s)},
+        dense_kernel("forces", "Q[" + n1 + "]", "Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq", eq.Q),
+        dense_kernel("forces_terms", "m[" + nk + "]", "the state monomials of Q: Q = F m", terms.terms),
+        sparse_kernel("forces_matrix", "F[" + n1 + "*" + nk + "]", "row-major, state-free: Q = F m", terms.matrix),
+        dense_kernel("energy", "E[4]", "E = (T2, T1, T0, U), T split by degree in qd", {eq.T2, eq.T1, eq.T0, eq.U}),
+        dense_kernel("momentum", "h[1]", "h = dT/dtheta_dot, angular momentum about the hub axis", {eq.momentum}),
+        tip_kernel(key, s),
         sparse_kernel("forces_q", "dQdq[" + n2 + "]", "row-major; out[i*" + n1 + "+k] = dQ_i/dq_k", std::move(jac.forces_q)),
         sparse_kernel("forces_qd", "dQdqd[" + n2 + "]", "row-major; out[i*" + n1 + "+k] = dQ_i/dqd_k", std::move(jac.forces_qd)),
         sparse_kernel("forces_u", "dQdu[" + nu + "]", "row-major; out[i*3+j] = dQ_i/du_j, u = " + tuple(drive_value_names),
                       std::move(jac.forces_u)),
     };
-    kernels.insert(kernels.begin() + 2,  // after forces, as the table row lists them
-                   {polys("forces_terms", "m[" + nk + "]", "the state monomials of Q: Q = F m", terms.terms), force_matrix});
     // A constant M is folded into W = M^-1 F by the runtime; this kernel evaluates W m with W's entries at fixed
     // places, unrolled, up to a size where unrolling stops paying (the runtime then loops).
-    const bool folded = !mass_varies && nq * static_cast<int>(terms.terms.size()) <= 512;
-    if (folded) {
-        KernelSpec f = polys("forces_folded", "qdd[" + n1 + "]",
-                             "qdd = W m, W = M^-1 F (" + n1 + " x " + nk + ", row-major) passed in the c slot", terms.terms);
+    out.folded = !out.mass_varies && nq * static_cast<int>(terms.terms.size()) <= 512;
+    if (out.folded) {
+        KernelSpec f = dense_kernel("forces_folded", "qdd[" + n1 + "]",
+                                    "qdd = W m, W = M^-1 F (" + n1 + " x " + nk + ", row-major) passed in the c slot",
+                                    terms.terms);
         f.rows = nq;
-        kernels.push_back(f);
+        out.list.push_back(f);
     }
     // A constant M has dM/dq = 0: no kernels, null pointers in the table row, and the runtime skips the terms.
-    if (mass_varies) {
-        kernels.push_back(mass_varying);
-        kernels.push_back(sparse_kernel("mass_q_product", "dMv[" + n2 + "]",
-                                        "row-major; v in the qd slot; out[i*" + n1 + "+k] = sum_j dM_ij/dq_k v_j",
-                                        std::move(jac.mass_q_product)));
+    if (out.mass_varies) {
+        out.list.push_back(std::move(mass_varying));
+        out.list.push_back(sparse_kernel("mass_q_product", "dMv[" + n2 + "]",
+                                         "row-major; v in the qd slot; out[i*" + n1 + "+k] = sum_j dM_ij/dq_k v_j",
+                                         std::move(jac.mass_q_product)));
     }
-    const std::string name = key.name();
-    const EmittedCode code = emit_kernels(name, sig, std::move(kernels), options);
-    const auto optional = [&](const char* kernel) { return mass_varies ? name + "_" + kernel : std::string("nullptr"); };
+    return out;
+}
 
-    const auto kernel = [&](const char* k) { return name + "_" + k; };
-    // Designated initializers, in the order of generated_abi.h's fields (C++20 requires that order): a field renamed,
-    // removed or moved there makes the generated source fail to compile instead of shifting every later pointer.
+/// The variant's table row: designated initializers in the order of generated_abi.h's fields (C++20 requires
+/// that order), so that a field renamed, removed or moved there makes the generated source fail to compile
+/// instead of shifting every later pointer.
+std::string table_row(const std::string& name, int nq, int ncoeff, const Kernels& k)
+{
+    const auto kernel = [&](const char* kernel) { return name + "_" + kernel; };
+    const auto optional = [&](bool present, const char* kernel) { return present ? name + "_" + kernel : std::string("nullptr"); };
     const std::vector<std::pair<const char*, std::string>> row = {
         {"abi_version", std::to_string(generated::abi_version)},
         {"name", "\"" + name + "\""},
         {"nq", std::to_string(nq)},
-        {"ncoeff", std::to_string(code.ncoeff)},
-        {"nterms", nk},
-        {"mass_pattern", "\"" + pattern + "\""},
+        {"ncoeff", std::to_string(ncoeff)},
+        {"nterms", std::to_string(k.nterms)},
+        {"mass_pattern", "\"" + k.mass_pattern + "\""},
         {"coefficients", kernel("coefficients")},
         {"mass", kernel("mass")},
-        {"mass_varying", optional("mass_varying")},
+        {"mass_varying", optional(k.mass_varies, "mass_varying")},
         {"forces", kernel("forces")},
         {"forces_terms", kernel("forces_terms")},
         {"forces_matrix", kernel("forces_matrix")},
@@ -273,17 +313,30 @@ std::string variant_source(const VariantKey& key, const EmitOptions& options)
         {"momentum", kernel("momentum")},
         {"forces_q", kernel("forces_q")},
         {"forces_qd", kernel("forces_qd")},
-        {"mass_q_product", optional("mass_q_product")},
+        {"mass_q_product", optional(k.mass_varies, "mass_q_product")},
         {"forces_u", kernel("forces_u")},
         {"tip", kernel("tip")},
-        {"forces_folded", folded ? kernel("forces_folded") : std::string("nullptr")},
+        {"forces_folded", optional(k.folded, "forces_folded")},
     };
+    std::string text = "extern const Variant " + name + " = {\n";
+    for (const auto& [field, value] : row) text += "    ." + std::string(field) + " = " + value + ",\n";
+    return text + "};\n";
+}
+
+}  // namespace
+
+std::string variant_source(const VariantKey& key, const EmitOptions& options)
+{
+    const Symbols s(key);
+    const Signature sig = signature(s, key.drive == Drive::torque, key.nq());
+    const Derivation d = derive(key, s, sig);
+    Kernels kernels = variant_kernels(key, s, d);
+    const std::string name = key.name();
+    const EmittedCode code = emit_kernels(name, sig, std::move(kernels.list), options);
     std::ostringstream f;
-    f << banner(key, mass_varies) << "\n#include \"generated_abi.h\"\n\nnamespace hubbeam::generated {\n\nnamespace {\n"
+    f << banner(key, kernels.mass_varies) << "\n#include \"generated_abi.h\"\n\nnamespace hubbeam::generated {\n\nnamespace {\n"
       << code.text << "\n}  // namespace\n\n"
-      << "extern const Variant " << name << " = {\n";
-    for (const auto& [field, value] : row) f << "    ." << field << " = " << value << ",\n";
-    f << "};\n\n}  // namespace hubbeam::generated\n";
+      << table_row(name, key.nq(), code.ncoeff, kernels) << "\n}  // namespace hubbeam::generated\n";
     return f.str();
 }
 

@@ -12,7 +12,8 @@
 namespace hubbeam {
 
 BeamFields::BeamFields(const VariantKey& key, const Parameters& p)
-    : axial_(key.axial_basis()), transverse_(key.transverse_basis()), L_(p.L), EI_(p.E * p.I), ES_(p.E * p.S),
+    : axial_(key.axial_basis()), transverse_(key.transverse_basis()), foreshortened_(key.order != Order::zero), L_(p.L),
+      EI_(p.E * p.I), ES_(p.E * p.S),
       Phi_x_L_(axial_.size()), Phi_y_L_(transverse_.size()), H_L_(Eigen::MatrixXd::Zero(transverse_.size(), transverse_.size()))
 {
     for (int i = 0; i < axial_.size(); ++i) Phi_x_L_(i) = axial_.at(i, 1.0).v;
@@ -33,7 +34,8 @@ Tip BeamFields::tip(const double* A, const double* B) const
     if (B) {
         const Eigen::Map<const Eigen::VectorXd> b(B, transverse_.size());
         t.uy = Phi_y_L_.dot(b);
-        t.ux = t.ux1 - 0.5 * b.dot(H_L_.lazyProduct(b));  // u_x2(L) = -1/2 B^T H(L) B
+        if (foreshortened_) t.ux = t.ux1 - 0.5 * b.dot(H_L_.lazyProduct(b));  // u_x2(L) = -1/2 B^T H(L) B
+        else t.ux = t.ux1;
     } else {
         t.ux = t.ux1;
     }
@@ -85,6 +87,13 @@ double BeamFields::slope(const double* B, double x) const
 double BeamFields::curvature(const double* B, double x) const
 {
     return combination(transverse_, B, xi_of(x), 2) / (L_ * L_);
+}
+
+std::vector<double> BeamFields::ux(const double* A, const double* B, const std::vector<double>& xs) const
+{
+    std::vector<double> u = foreshortened_ ? foreshortening(B, xs) : std::vector<double>(xs.size(), 0.0);
+    for (std::size_t i = 0; i < xs.size(); ++i) u[i] += ux1(A, xs[i]);
+    return u;
 }
 
 std::vector<double> BeamFields::piece_boundaries() const
@@ -148,11 +157,11 @@ void FieldRecorder::state(double t, const double* q)
     while (next_ < times_.size() && times_[next_] <= t * (1.0 + 1e-12)) ++next_;  // one record for times a row covers
     const double* A = key_.nx > 0 ? q + key_.first_a() : nullptr;
     const double* B = q + key_.first_b();
-    const std::vector<double> ux2 = fields_.foreshortening(B, xs_);
+    const std::vector<double> ux = fields_.ux(A, B, xs_);
     for (std::size_t i = 0; i < xs_.size(); ++i) {
         const double x = xs_[i];
         std::string line;
-        for (double v : {t, x, fields_.uy(B, x), fields_.ux1(A, x) + ux2[i], fields_.slope(B, x), fields_.curvature(B, x),
+        for (double v : {t, x, fields_.uy(B, x), ux[i], fields_.slope(B, x), fields_.curvature(B, x),
                          fields_.bending_moment(B, x), fields_.axial_force(A, x)}) {
             if (!line.empty()) line += ',';
             append_shortest(line, v);

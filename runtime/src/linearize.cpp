@@ -188,38 +188,68 @@ StateSpace state_space(const Model& model, const SteadySpin& s)
     return ss;
 }
 
-std::vector<NaturalMode> natural_modes(const Model& model, const SteadySpin& s, Axial axial)
+namespace {
+
+/// X's entries at rows x cols.
+Eigen::MatrixXd submatrix(const Eigen::MatrixXd& X, const std::vector<int>& rows, const std::vector<int>& cols)
 {
-    const VariantKey& key = model.key();
-    const bool torque = key.drive == Drive::torque;
-    const int b0 = key.first_b();
+    Eigen::MatrixXd out(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(cols.size()));
+    for (std::size_t i = 0; i < rows.size(); ++i)
+        for (std::size_t j = 0; j < cols.size(); ++j)
+            out(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = X(rows[i], cols[j]);
+    return out;
+}
+
+/// The linearized equations about the steady spin s as a first-order system x' = X x over the kept coordinates
+/// R: the positions of R but a free hub's angle (cyclic), then all rates of R (a free hub's rate couples to the
+/// beam's): X = [[select, 0], [M^-1 Qq(:, positions), M^-1 Qqd]]. M is the mass matrix at s (all coordinates).
+Eigen::MatrixXd linearized_system(const Model& model, const SteadySpin& s, const Eigen::MatrixXd& M,
+                                  const std::vector<int>& R)
+{
     const ForceJacobians J = force_jacobians(model, s.u, s.q, s.qd);
-    const Eigen::MatrixXd M = mass_at(model, s.u, s.q);
-    // The coordinates that keep their inertia: all, or with quasi-static axial coordinates all but A. A then
-    // follows its own rows with A_dot = A_ddot = 0 (docs/model.md section 9), and the other rows drop A's rates;
-    // they do not depend on A itself at the straight beam (Q_B is odd in B, Q_theta holds A only with rates), so
-    // A's deviation drops out of them and the condensed equations are R's rows and columns alone.
-    const std::vector<int> R = kept_coordinates(key, axial);
-    const auto block = [](const Eigen::MatrixXd& X, const std::vector<int>& rows, const std::vector<int>& cols) {
-        Eigen::MatrixXd out(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(cols.size()));
-        for (std::size_t i = 0; i < rows.size(); ++i)
-            for (std::size_t j = 0; j < cols.size(); ++j)
-                out(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = X(rows[i], cols[j]);
-        return out;
-    };
-    const Eigen::MatrixXd Qq = block(J.q, R, R), Qqd = block(J.qd, R, R);
-    const auto llt = block(M, R, R).llt();
+    const Eigen::MatrixXd Qq = submatrix(J.q, R, R), Qqd = submatrix(J.qd, R, R);
+    const auto llt = submatrix(M, R, R).llt();
     if (llt.info() != Eigen::Success) throw std::runtime_error("the mass matrix at the steady spin is not positive definite");
-    // States: the positions of R but a free hub's angle (cyclic), then all rates of R (a free hub's rate couples to
-    // the beam's): x' = [[select, 0], [M^-1 Qq(:, positions), M^-1 Qqd]] x.
     const auto r = static_cast<Eigen::Index>(R.size());
-    const Eigen::Index first = torque ? 1 : 0, p = r - first;
+    const Eigen::Index first = model.key().drive == Drive::torque ? 1 : 0, p = r - first;
     const Eigen::MatrixXd Aq = llt.solve(Qq), Aqd = llt.solve(Qqd);
     Eigen::MatrixXd X = Eigen::MatrixXd::Zero(p + r, p + r);
     for (Eigen::Index i = 0; i < p; ++i) X(i, p + first + i) = 1.0;
     X.bottomLeftCorner(r, p) = Aq.rightCols(p);
     X.bottomRightCorner(r, r) = Aqd;
-    const Eigen::EigenSolver<Eigen::MatrixXd> eig(X);
+    return X;
+}
+
+/// Whether the mode with eigenvector v of linearized_system's X holds more kinetic energy in the axial than in
+/// the transverse coordinates, from its rates: v^H M v over each set.
+bool mostly_axial(const Model& model, const Eigen::MatrixXd& M, const std::vector<int>& R, const Eigen::VectorXcd& v)
+{
+    const int b0 = model.key().first_b();
+    const auto r = static_cast<Eigen::Index>(R.size());
+    const Eigen::Index first = model.key().drive == Drive::torque ? 1 : 0, p = r - first;
+    double axial_energy = 0.0, transverse = 0.0;
+    for (Eigen::Index i = first; i < r; ++i)
+        for (Eigen::Index j = first; j < r; ++j) {
+            const int mi = R[static_cast<std::size_t>(i)], mj = R[static_cast<std::size_t>(j)];
+            if ((mi < b0) != (mj < b0)) continue;
+            const double e = (std::conj(v(p + i)) * M(mi, mj) * v(p + j)).real();
+            (mi < b0 ? axial_energy : transverse) += e;
+        }
+    return axial_energy > transverse;
+}
+
+}  // namespace
+
+std::vector<NaturalMode> natural_modes(const Model& model, const SteadySpin& s, Axial axial)
+{
+    const bool torque = model.key().drive == Drive::torque;
+    const Eigen::MatrixXd M = mass_at(model, s.u, s.q);
+    // The coordinates that keep their inertia: all, or with quasi-static axial coordinates all but A. A then
+    // follows its own rows with A_dot = A_ddot = 0 (docs/model.md section 9), and the other rows drop A's rates;
+    // they do not depend on A itself at the straight beam (Q_B is odd in B, Q_theta holds A only with rates), so
+    // A's deviation drops out of them and the condensed equations are R's rows and columns alone.
+    const std::vector<int> R = kept_coordinates(model.key(), axial);
+    const Eigen::EigenSolver<Eigen::MatrixXd> eig(linearized_system(model, s, M, R));
     if (eig.info() != Eigen::Success) throw std::runtime_error("the eigenvalues of the linearized equations did not converge");
     const Eigen::VectorXcd lambda = eig.eigenvalues();
     const Eigen::MatrixXcd vectors = eig.eigenvectors();
@@ -233,19 +263,11 @@ std::vector<NaturalMode> natural_modes(const Model& model, const SteadySpin& s, 
         const double scale = std::max(1.0, std::abs(l));
         const bool oscillating = l.imag() > 1e-9 * scale, divergent = std::abs(l.imag()) <= 1e-9 * scale && l.real() > 0.0;
         if (!oscillating && !divergent) continue;  // the conjugate, or the stable twin of a divergent pair
-        // Kinetic energy of the axial and of the transverse coordinates, from the rates: v^H M v over each set.
-        double axial_energy = 0.0, transverse = 0.0;
-        for (Eigen::Index i = first; i < r; ++i)
-            for (Eigen::Index j = first; j < r; ++j) {
-                const int mi = R[static_cast<std::size_t>(i)], mj = R[static_cast<std::size_t>(j)];
-                if ((mi < b0) != (mj < b0)) continue;
-                const double e = (std::conj(vectors(p + i, k)) * M(mi, mj) * vectors(p + j, k)).real();
-                (mi < b0 ? axial_energy : transverse) += e;
-            }
         // The equations are conservative (gyroscopic at most): a real part below 1e-6 of |lambda| is the eigen
         // solver's round-off, not damping.
         const double growth = std::abs(l.real()) <= 1e-6 * scale ? 0.0 : l.real();
-        modes.push_back({oscillating ? l.imag() : 0.0, growth, axial_energy > transverse ? "axial" : "bending"});
+        const bool is_axial = mostly_axial(model, M, R, vectors.col(k));
+        modes.push_back({oscillating ? l.imag() : 0.0, growth, is_axial ? "axial" : "bending"});
     }
     std::sort(modes.begin(), modes.end(), [](const NaturalMode& a, const NaturalMode& b) {
         return a.rad_s != b.rad_s ? a.rad_s < b.rad_s : a.growth > b.growth;

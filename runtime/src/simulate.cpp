@@ -152,9 +152,7 @@ public:
         const Energy e = model_.energy(u, q, qd);
         const bool torque = model_.key().drive == Drive::torque;
         const double theta = torque ? q[0] : motion_.theta(t), theta_dot = torque ? qd[0] : u.theta_dot;
-        // Order zero has no foreshortening u_x2 (docs/model.md section 3): its u_x is u_x1.
-        const double ux = model_.key().order == Order::zero ? tip.ux1 : tip.ux;
-        return {t, theta, theta_dot, tip.uy, tip.ux1, ux, e.kinetic(), e.U, model_.momentum(u, q, qd), e.T2 - e.T0 + e.U};
+        return {t, theta, theta_dot, tip.uy, tip.ux1, tip.ux, e.kinetic(), e.U, model_.momentum(u, q, qd), e.T2 - e.T0 + e.U};
     }
     const double* q() const { return q_.data(); }
 

@@ -19,7 +19,7 @@ public:
     /// The shape functions of key's variant, their tip values and H(L), for parameters p.
     BeamFields(const VariantKey& key, const Parameters& p);
 
-    /// Tip displacements at coordinates A, B.
+    /// Tip displacements at coordinates A, B; order zero, the linear model, has no foreshortening: u_x = u_x1.
     Tip tip(const double* A, const double* B) const;
 
     /// Transverse deflection u_y(x) = Phi_y(x) B.
@@ -35,6 +35,9 @@ public:
     /// The foreshortening u_x2(x) = -1/2 int_0^x u_y'^2 at each of the sorted abscissae xs, by Gauss quadrature
     /// exact on the polynomial pieces (converged to round-off for AMM).
     std::vector<double> foreshortening(const double* B, const std::vector<double>& xs) const;
+    /// The axial displacement u_x(x) = u_x1(x) + u_x2(x) at each of the sorted abscissae xs; u_x1(x) alone for
+    /// order zero, the linear model (docs/model.md section 3).
+    std::vector<double> ux(const double* A, const double* B, const std::vector<double>& xs) const;
     /// The interior boundaries (m) between the transverse basis's polynomial pieces: FEM's element nodes, BSIM's
     /// knots; none for AMM and BIM.
     std::vector<double> piece_boundaries() const;
@@ -50,6 +53,7 @@ private:
     double xi_of(double x) const;
 
     FieldBasis axial_, transverse_;
+    bool foreshortened_;  // u_x includes u_x2: every order but zero
     double L_, EI_, ES_;
     Eigen::RowVectorXd Phi_x_L_, Phi_y_L_;
     Eigen::MatrixXd H_L_;
