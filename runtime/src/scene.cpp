@@ -87,11 +87,7 @@ std::string describe(const toml::node& n)
 {
     switch (n.type()) {
     case toml::node_type::string: {
-        std::string s(n.as_string()->get());
-        if (s.size() > 40) s = s.substr(0, 40) + "...";
-        for (char& ch : s)
-            if (static_cast<unsigned char>(ch) < 0x20) ch = '?';
-        return "a string \"" + s + "\"";
+        return "a string \"" + printable(n.as_string()->get(), 40) + "\"";
     }
     case toml::node_type::integer: return "an integer " + std::to_string(n.as_integer()->get());
     case toml::node_type::floating_point: return "a float " + shortest(n.as_floating_point()->get());
@@ -168,8 +164,12 @@ public:
     {
         const toml::node* n = get(key);
         if (!n) return std::nullopt;
-        if (const auto* s = n->as_string()) return s->get();
-        fail(file_, path(key), expected(path(key)), describe(*n));
+        const auto* s = n->as_string();
+        if (!s) fail(file_, path(key), expected(path(key)), describe(*n));
+        // TOML allows "\u0000"; a C path or step-type name would end there ("a\u0000b.csv" would write "a").
+        if (s->get().find('\0') != std::string::npos)
+            fail(file_, path(key), expected(path(key)) + " with no NUL character", describe(*n));
+        return s->get();
     }
 
     /// One of a fixed set of words, turned into its value by parse_word.
@@ -272,19 +272,78 @@ void check_finite(const Scene& s, double v, const char* key)
 
 }  // namespace
 
+namespace {
+
+/// The code point of the well-formed UTF-8 sequence at text[i] and its length, or length 0 for a byte that starts
+/// no well-formed sequence (a stray continuation byte, an overlong form, a surrogate, beyond U+10FFFF, cut short).
+std::pair<char32_t, std::size_t> decode_utf8(std::string_view text, std::size_t i)
+{
+    const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+    const unsigned char b0 = byte(i);
+    if (b0 < 0x80) return {b0, 1};
+    std::size_t n = 0;
+    char32_t cp = 0, min = 0;
+    if (b0 >= 0xc2 && b0 <= 0xdf) n = 2, cp = b0 & 0x1f, min = 0x80;
+    else if (b0 >= 0xe0 && b0 <= 0xef) n = 3, cp = b0 & 0x0f, min = 0x800;
+    else if (b0 >= 0xf0 && b0 <= 0xf4) n = 4, cp = b0 & 0x07, min = 0x10000;
+    else return {0, 0};
+    if (i + n > text.size()) return {0, 0};
+    for (std::size_t k = 1; k < n; ++k) {
+        if ((byte(i + k) & 0xc0) != 0x80) return {0, 0};
+        cp = (cp << 6) | (byte(i + k) & 0x3f);
+    }
+    if (cp < min || cp > 0x10ffff || (cp >= 0xd800 && cp <= 0xdfff)) return {0, 0};
+    return {cp, n};
+}
+
+/// Whether a code point must not reach a terminal as it is: the controls (C0, DEL, C1), the format characters
+/// (bidirectional overrides and isolates, zero-width characters, the language tags), the line and paragraph
+/// separators, private use and the noncharacters. These are Unicode's categories Cc, Cf, Zl, Zp and Co that the
+/// Python module escapes too (hubbeam.printable); it also escapes unassigned code points, which need a table.
+bool needs_escape(char32_t c)
+{
+    struct Range {
+        char32_t first, last;
+    };
+    static constexpr Range ranges[] = {
+        {0x0000, 0x001f},   {0x007f, 0x009f},   {0x00ad, 0x00ad},   {0x0600, 0x0605},   {0x061c, 0x061c},
+        {0x06dd, 0x06dd},   {0x070f, 0x070f},   {0x0890, 0x0891},   {0x08e2, 0x08e2},   {0x180e, 0x180e},
+        {0x200b, 0x200f},   {0x2028, 0x202e},   {0x2060, 0x2064},   {0x2066, 0x206f},   {0xe000, 0xf8ff},
+        {0xfdd0, 0xfdef},   {0xfeff, 0xfeff},   {0xfff9, 0xfffb},   {0x110bd, 0x110bd}, {0x110cd, 0x110cd},
+        {0x13430, 0x1343f}, {0x1bca0, 0x1bca3}, {0x1d173, 0x1d17a}, {0xe0001, 0xe0001}, {0xe0020, 0xe007f},
+        {0xf0000, 0x10ffff},
+    };
+    if ((c & 0xfffe) == 0xfffe) return true;  // U+FFFE, U+FFFF and their copies in every plane
+    for (const Range& r : ranges)
+        if (c >= r.first && c <= r.last) return true;
+    return false;
+}
+
+}  // namespace
+
 std::string printable(std::string_view text, std::size_t cap)
 {
     std::string out;
-    for (const char c : text) {
+    char escape[16];
+    for (std::size_t i = 0; i < text.size();) {
         if (out.size() >= cap) return out + "...";
-        const auto u = static_cast<unsigned char>(c);
-        if (u < 0x20 || u == 0x7f) {
-            char hex[8];
-            std::snprintf(hex, sizeof hex, "\\x%02x", u);
-            out += hex;
-        } else {
-            out += c;
+        const auto [cp, n] = decode_utf8(text, i);
+        if (n == 0) {  // not UTF-8: the byte itself
+            std::snprintf(escape, sizeof escape, "\\x%02x", static_cast<unsigned>(static_cast<unsigned char>(text[i])));
+            out += escape;
+            ++i;
+            continue;
         }
+        if (!needs_escape(cp)) out.append(text.substr(i, n));
+        else {
+            const auto u = static_cast<unsigned long>(cp);
+            // The forms of Python's repr, as hubbeam.printable writes them: \x1b, \u202e, \U000e0001.
+            if (u < 0x100) std::snprintf(escape, sizeof escape, "\\x%02lx", u);
+            else if (u < 0x10000) std::snprintf(escape, sizeof escape, "\\u%04lx", u);
+            else std::snprintf(escape, sizeof escape, "\\U%08lx", u);
+            out += escape;
+        }
+        i += n;
     }
     return out;
 }
@@ -455,7 +514,11 @@ Scene parse_scene(std::string_view text, const std::string& path, const Override
     OutputOptions& out = scene.output;
     out.t_end = output.required_number("t_end");
     out.dt_out = output.number("dt_out", out.dt_out);
-    out.file = output.string("file").value_or(out.file);
+    if (const auto file = output.string("file")) {
+        // An empty name is refused, not read as "the default": -o "" is more likely a lost shell variable.
+        if (file->empty()) fail(path, "output.file", expected("output.file"), "an empty one");
+        out.file = *file;
+    }
 
     validate(scene);
     return scene;
