@@ -134,6 +134,12 @@ public:
         }
     }
 
+    /// The key's value is out of range: expected what the key table says, got `got`.
+    [[noreturn]] void refuse(std::string_view key, const std::string& got) const
+    {
+        hubbeam::fail(file_, path(key), expected(path(key)), got);
+    }
+
     /// A number (TOML integer or float), or nullopt if the key is absent.
     std::optional<double> number(std::string_view key) const
     {
@@ -268,6 +274,115 @@ void check_positive(const Scene& s, double v, const char* key)
 void check_finite(const Scene& s, double v, const char* key)
 {
     if (!std::isfinite(v)) fail(s.path, key, expected(key), shortest(v));
+}
+
+// The parts of parse_scene, in the order it calls them: the file as a whole, then one table each. A table's
+// reader takes its keys' values; ranges and the checks that join keys are validate()'s.
+
+void check_size(std::string_view text, const std::string& path)
+{
+    if (text.size() > max_scene_bytes)
+        throw SceneError::with_detail(path, "", "is larger than a scene file can be (" +
+                                                    std::to_string(max_scene_bytes / 1024) + " KB)");
+}
+
+/// Every top-level name is one of the key table's tables and is a table; the tables without a default are there.
+void check_tables(const toml::table& root, const std::string& path)
+{
+    const std::vector<std::string> tables = scene_tables();
+    for (auto&& [k, v] : root) {
+        const bool known = std::find(tables.begin(), tables.end(), k.str()) != tables.end();
+        if (!known)
+            fail(path, std::string(k.str()), "one of the tables " + joined(tables),
+                 std::string("an unknown ") + (v.is_table() ? "table" : "key"));
+        if (!v.is_table()) fail(path, std::string(k.str()), "a table [" + std::string(k.str()) + "]", describe(v));
+    }
+    for (const char* required : {"beam", "motion", "discretization", "output"})
+        if (!root.get(required))
+            fail(path, required, std::string("a table [") + required + "]", "nothing (the table is missing)");
+}
+
+/// [beam]: docs/model.md section 1.
+void read_beam(const Section& beam, Parameters& p)
+{
+    beam.only();
+    p.L = beam.required_number("length");
+    p.rho = beam.required_number("density");
+    p.S = beam.required_number("area");
+    p.I = beam.required_number("second_moment");
+    p.E = beam.required_number("youngs_modulus");
+}
+
+/// [motion]: paper eq. 58 (spin-up) or eq. 59 (torque); the kind decides which keys the table may hold.
+void read_motion(const Section& motion, Motion& m)
+{
+    m.kind = motion.required_word<Motion::Kind>("kind", parse_kind);
+    motion.only(word_of(m.kind, kind_words));
+    if (m.kind == Motion::Kind::spin_up) {
+        m.omega0 = motion.required_number("omega0");
+        m.spin_time = motion.required_number("duration");
+    } else {
+        m.tau0 = motion.required_number("tau0");
+        m.torque_time = motion.required_number("duration");
+    }
+}
+
+/// [hub]: the hub inertia only enters the torque case, where theta is a coordinate.
+void read_hub(const Section& hub, Motion::Kind kind, Parameters& p)
+{
+    hub.only();
+    p.a = hub.number("radius", p.a);
+    if (kind == Motion::Kind::torque) p.J_oh = hub.required_number("inertia", ", required for kind = \"torque\"");
+    else p.J_oh = hub.number("inertia", p.J_oh);
+}
+
+/// [discretization]: docs/model.md section 4; the variant's drive follows the motion.
+void read_discretization(const Section& disc, const Motion& m, VariantKey& key)
+{
+    disc.only();
+    key.method = disc.required_word<Method>("method", parse_enum<Method>);
+    key.ny = disc.required_integer("ny");
+    key.nx = disc.required_integer("nx");
+    key.spline = disc.word<SplineBasis>("spline_basis", parse_enum<SplineBasis>).value_or(key.spline);
+    key.drive = m.drive();
+}
+
+/// [model]: docs/model.md section 3; whether the build can run an order is make_model's call.
+void read_model(const Section& model, Scene& scene)
+{
+    model.only();
+    scene.variant.order = model.word<Order>("order", parse_enum<Order>).value_or(scene.variant.order);
+    scene.source = model.word<ModelSource>("source", parse_enum<ModelSource>).value_or(scene.source);
+    scene.axial = model.word<Axial>("axial", parse_enum<Axial>).value_or(scene.axial);
+}
+
+/// [solver]: the stepper word is checked against GSL's step types by validate().
+void read_solver(const Section& solver, SolverOptions& so)
+{
+    solver.only();
+    so.stepper = solver.string("stepper").value_or(so.stepper);
+    so.rtol = solver.number("rtol", so.rtol);
+    so.atol = solver.number("atol", so.atol);
+    so.h0 = solver.number("h0", so.h0);
+    so.stepping = solver.word<Stepping>("stepping", parse_enum<Stepping>).value_or(so.stepping);
+    if (const auto budget = solver.number("max_steps")) {  // 1e7 reads better than 10000000: a float is accepted
+        if (!(*budget >= 1.0 && *budget <= 1e15 && *budget == std::floor(*budget)))
+            solver.refuse("max_steps", shortest(*budget));
+        so.max_steps = static_cast<long>(*budget);
+    }
+}
+
+/// [output]
+void read_output(const Section& output, OutputOptions& out)
+{
+    output.only();
+    out.t_end = output.required_number("t_end");
+    out.dt_out = output.number("dt_out", out.dt_out);
+    if (const auto file = output.string("file")) {
+        // An empty name is refused, not read as "the default": -o "" is more likely a lost shell variable.
+        if (file->empty()) output.refuse("file", "an empty one");
+        out.file = *file;
+    }
 }
 
 }  // namespace
@@ -425,101 +540,20 @@ Scene load_scene(const std::string& path, const Overrides& overrides)
 
 Scene parse_scene(std::string_view text, const std::string& path, const Overrides& overrides)
 {
-    if (text.size() > max_scene_bytes)
-        throw SceneError::with_detail(path, "", "is larger than a scene file can be (" +
-                                                    std::to_string(max_scene_bytes / 1024) + " KB)");
+    check_size(text, path);
     toml::table root = parse_toml(text, path);
-    for (const auto& [name, text] : overrides) set_override(root, path, name, text);
-
-    const std::vector<std::string> tables = scene_tables();
-    for (auto&& [k, v] : root) {
-        const bool known = std::find(tables.begin(), tables.end(), k.str()) != tables.end();
-        if (!known)
-            fail(path, std::string(k.str()), "one of the tables " + joined(tables),
-                 std::string("an unknown ") + (v.is_table() ? "table" : "key"));
-        if (!v.is_table()) fail(path, std::string(k.str()), "a table [" + std::string(k.str()) + "]", describe(v));
-    }
-    for (const char* required : {"beam", "motion", "discretization", "output"})
-        if (!root.get(required))
-            fail(path, required, std::string("a table [") + required + "]", "nothing (the table is missing)");
+    for (const auto& [name, value] : overrides) set_override(root, path, name, value);
+    check_tables(root, path);
 
     Scene scene;
     scene.path = path;
-
-    // [beam]: docs/model.md section 1.
-    const Section beam(path, root, "beam");
-    beam.only();
-    Parameters& p = scene.parameters;
-    p.L = beam.required_number("length");
-    p.rho = beam.required_number("density");
-    p.S = beam.required_number("area");
-    p.I = beam.required_number("second_moment");
-    p.E = beam.required_number("youngs_modulus");
-
-    // [motion]: paper eq. 58 (spin-up) or eq. 59 (torque).
-    const Section motion(path, root, "motion");
-    Motion& m = scene.motion;
-    m.kind = motion.required_word<Motion::Kind>("kind", parse_kind);
-    motion.only(word_of(m.kind, kind_words));
-    if (m.kind == Motion::Kind::spin_up) {
-        m.omega0 = motion.required_number("omega0");
-        m.spin_time = motion.required_number("duration");
-    } else {
-        m.tau0 = motion.required_number("tau0");
-        m.torque_time = motion.required_number("duration");
-    }
-
-    // [hub]: the hub inertia only enters the torque case, where theta is a coordinate.
-    const Section hub(path, root, "hub");
-    hub.only();
-    p.a = hub.number("radius", p.a);
-    if (m.kind == Motion::Kind::torque) p.J_oh = hub.required_number("inertia", ", required for kind = \"torque\"");
-    else p.J_oh = hub.number("inertia", p.J_oh);
-
-    // [discretization]: docs/model.md section 4.
-    const Section disc(path, root, "discretization");
-    disc.only();
-    VariantKey& key = scene.variant;
-    key.method = disc.required_word<Method>("method", parse_enum<Method>);
-    key.ny = disc.required_integer("ny");
-    key.nx = disc.required_integer("nx");
-    key.spline = disc.word<SplineBasis>("spline_basis", parse_enum<SplineBasis>).value_or(key.spline);
-    key.drive = m.drive();
-
-    // [model]: docs/model.md section 3; whether the build can run an order is make_model's call.
-    const Section model(path, root, "model");
-    model.only();
-    key.order = model.word<Order>("order", parse_enum<Order>).value_or(key.order);
-    scene.source = model.word<ModelSource>("source", parse_enum<ModelSource>).value_or(scene.source);
-    scene.axial = model.word<Axial>("axial", parse_enum<Axial>).value_or(scene.axial);
-
-    // [solver]
-    const Section solver(path, root, "solver");
-    solver.only();
-    SolverOptions& so = scene.solver;
-    so.stepper = solver.string("stepper").value_or(so.stepper);
-    so.rtol = solver.number("rtol", so.rtol);
-    so.atol = solver.number("atol", so.atol);
-    so.h0 = solver.number("h0", so.h0);
-    so.stepping = solver.word<Stepping>("stepping", parse_enum<Stepping>).value_or(so.stepping);
-    if (const auto budget = solver.number("max_steps")) {  // 1e7 reads better than 10000000: a float is accepted
-        if (!(*budget >= 1.0 && *budget <= 1e15 && *budget == std::floor(*budget)))
-            fail(path, "solver.max_steps", expected("solver.max_steps"), shortest(*budget));
-        so.max_steps = static_cast<long>(*budget);
-    }
-
-    // [output]
-    const Section output(path, root, "output");
-    output.only();
-    OutputOptions& out = scene.output;
-    out.t_end = output.required_number("t_end");
-    out.dt_out = output.number("dt_out", out.dt_out);
-    if (const auto file = output.string("file")) {
-        // An empty name is refused, not read as "the default": -o "" is more likely a lost shell variable.
-        if (file->empty()) fail(path, "output.file", expected("output.file"), "an empty one");
-        out.file = *file;
-    }
-
+    read_beam(Section(path, root, "beam"), scene.parameters);
+    read_motion(Section(path, root, "motion"), scene.motion);
+    read_hub(Section(path, root, "hub"), scene.motion.kind, scene.parameters);
+    read_discretization(Section(path, root, "discretization"), scene.motion, scene.variant);
+    read_model(Section(path, root, "model"), scene);
+    read_solver(Section(path, root, "solver"), scene.solver);
+    read_output(Section(path, root, "output"), scene.output);
     validate(scene);
     return scene;
 }
