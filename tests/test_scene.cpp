@@ -434,3 +434,101 @@ TEST_CASE("a table accepts exactly the keys the key table gives it, [motion] tho
     CHECK(table_keys("motion", "torque") == std::vector<std::string>{"kind", "tau0", "duration"});
     CHECK(scene_tables() == std::vector<std::string>{"beam", "hub", "motion", "discretization", "model", "solver", "output"});
 }
+
+TEST_CASE("printable() escapes what could move, recolour or reorder a terminal, in hubbeam.printable's forms",
+          "[scene]")
+{
+    CHECK(printable("plain ascii, \"quoted\" \\ backslash") == "plain ascii, \"quoted\" \\ backslash");
+    CHECK(printable("\x1b[31m\n\t\x7f") == "\\x1b[31m\\x0a\\x09\\x7f");
+    CHECK(printable(std::string("a\0b", 3)) == "a\\x00b");
+    // Letters of other scripts pass as they are.
+    CHECK(printable("\xc3\xa9t\xc3\xa9 \xe4\xb8\xad \xf0\x9f\x99\x82") == "\xc3\xa9t\xc3\xa9 \xe4\xb8\xad \xf0\x9f\x99\x82");
+    // C1 controls (U+0085, U+009B: a one-byte CSI on some terminals) as Python writes them.
+    CHECK(printable("\xc2\x85\xc2\x9b") == "\\x85\\x9b");
+    // Bidirectional overrides, isolates and marks; zero-width characters; line separators; a language tag.
+    CHECK(printable("\xe2\x80\xae") == "\\u202e");                            // U+202E
+    CHECK(printable("\xe2\x81\xa6\xe2\x81\xa9") == "\\u2066\\u2069");         // U+2066, U+2069
+    CHECK(printable("\xe2\x80\x8e\xe2\x80\x8f\xd8\x9c") == "\\u200e\\u200f\\u061c");
+    CHECK(printable("\xe2\x80\x8b\xef\xbb\xbf\xe2\x80\xa8") == "\\u200b\\ufeff\\u2028");
+    CHECK(printable("\xf3\xa0\x80\x81") == "\\U000e0001");
+    // Bytes that are not UTF-8, one escape each: a stray continuation byte, 0xff, an overlong '/', a surrogate,
+    // a sequence cut short at the end.
+    CHECK(printable("\x80\xff") == "\\x80\\xff");
+    CHECK(printable("\xc0\xaf") == "\\xc0\\xaf");
+    CHECK(printable("\xed\xa0\x80") == "\\xed\\xa0\\x80");
+    CHECK(printable("x\xe2\x80") == "x\\xe2\\x80");
+    // Escaping twice changes nothing: messages built from printable parts may pass through it again.
+    const std::string once = printable("\x1b\xe2\x80\xae\xff");
+    CHECK(printable(once) == once);
+    // The cap cuts between characters, never inside one.
+    CHECK(printable(std::string(10, 'a') + "\xc3\xa9", 10) == "aaaaaaaaaa...");
+    CHECK(printable("\xc3\xa9\xc3\xa9", 1) == "\xc3\xa9...");
+}
+
+TEST_CASE("messages quoting a scene value escape it, from the file or from an override", "[scene]")
+{
+    const TempDir dir;
+    const std::string esc_rlo = "x\\u001b[31m\\u202e";  // TOML's spelling of x ESC [31m U+202E
+    const auto no_raw = [](const std::string& message) {
+        INFO(message);
+        CHECK(message.find('\x1b') == std::string::npos);
+        CHECK(message.find("\xe2\x80\xae") == std::string::npos);
+    };
+    SECTION("a string where a word is expected")
+    {
+        const std::string m = error_of(dir, edited("method = \"amm\"", "method = \"" + esc_rlo + "\""));
+        no_raw(m);
+        CHECK(m.find("discretization.method: expected one of") != std::string::npos);
+        CHECK(m.find("got a string \"x\\x1b[31m\\u202e\"") != std::string::npos);
+    }
+    SECTION("an unknown stepper set by an override, as --stepper reports it")
+    {
+        const Overrides overrides = {{"solver.stepper", "x\x1b[31m\xe2\x80\xae"}};
+        try {
+            load_scene(case_path("spinup_omega4.toml"), overrides);
+            FAIL("the stepper was accepted");
+        } catch (const SceneError& e) {
+            const std::string m = message_for(e, overrides);
+            no_raw(m);
+            CHECK(m.rfind("--stepper: expected one of", 0) == 0);
+            CHECK(m.find("got \"x\\x1b[31m\\u202e\"") == m.size() - std::string("got \"x\\x1b[31m\\u202e\"").size());
+        }
+    }
+}
+
+TEST_CASE("output.file holds a file name: no NUL inside, not empty", "[scene]")
+{
+    const TempDir dir;
+    SECTION("a NUL in the scene file")
+    {
+        const std::string m = error_of(dir, good_scene + "file = \"a\\u0000b.csv\"\n");
+        CHECK(m.find(": output.file: expected a file name with no NUL character, got a string \"a\\x00b.csv\"") !=
+              std::string::npos);
+    }
+    SECTION("a NUL in another string key")
+    {
+        const std::string m = error_of(dir, good_scene + "[solver]\nstepper = \"rk4\\u0000imp\"\n");
+        CHECK(m.find(": solver.stepper: expected one of") != std::string::npos);
+        CHECK(m.find("with no NUL character, got a string \"rk4\\x00imp\"") != std::string::npos);
+    }
+    SECTION("an empty name in the scene file")
+    {
+        const std::string m = error_of(dir, good_scene + "file = \"\"\n");
+        CHECK(m.find(": output.file: expected a file name, got an empty one") != std::string::npos);
+    }
+    SECTION("overrides, as -o reports them")
+    {
+        for (const std::string& name : {std::string(), std::string("a\0b.csv", 7)}) {
+            const Overrides overrides = {{"output.file", name}};
+            try {
+                load_scene(case_path("spinup_omega4.toml"), overrides);
+                FAIL("output.file = \"" << printable(name) << "\" was accepted");
+            } catch (const SceneError& e) {
+                const std::string m = message_for(e, overrides);
+                CHECK(m == (name.empty() ? "-o: expected a file name, got an empty one"
+                                         : "-o: expected a file name with no NUL character, got a string "
+                                           "\"a\\x00b.csv\""));
+            }
+        }
+    }
+}

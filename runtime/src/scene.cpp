@@ -87,11 +87,7 @@ std::string describe(const toml::node& n)
 {
     switch (n.type()) {
     case toml::node_type::string: {
-        std::string s(n.as_string()->get());
-        if (s.size() > 40) s = s.substr(0, 40) + "...";
-        for (char& ch : s)
-            if (static_cast<unsigned char>(ch) < 0x20) ch = '?';
-        return "a string \"" + s + "\"";
+        return "a string \"" + printable(n.as_string()->get(), 40) + "\"";
     }
     case toml::node_type::integer: return "an integer " + std::to_string(n.as_integer()->get());
     case toml::node_type::floating_point: return "a float " + shortest(n.as_floating_point()->get());
@@ -138,6 +134,12 @@ public:
         }
     }
 
+    /// The key's value is out of range: expected what the key table says, got `got`.
+    [[noreturn]] void refuse(std::string_view key, const std::string& got) const
+    {
+        hubbeam::fail(file_, path(key), expected(path(key)), got);
+    }
+
     /// A number (TOML integer or float), or nullopt if the key is absent.
     std::optional<double> number(std::string_view key) const
     {
@@ -168,8 +170,12 @@ public:
     {
         const toml::node* n = get(key);
         if (!n) return std::nullopt;
-        if (const auto* s = n->as_string()) return s->get();
-        fail(file_, path(key), expected(path(key)), describe(*n));
+        const auto* s = n->as_string();
+        if (!s) fail(file_, path(key), expected(path(key)), describe(*n));
+        // TOML allows "\u0000"; a C path or step-type name would end there ("a\u0000b.csv" would write "a").
+        if (s->get().find('\0') != std::string::npos)
+            fail(file_, path(key), expected(path(key)) + " with no NUL character", describe(*n));
+        return s->get();
     }
 
     /// One of a fixed set of words, turned into its value by parse_word.
@@ -270,21 +276,189 @@ void check_finite(const Scene& s, double v, const char* key)
     if (!std::isfinite(v)) fail(s.path, key, expected(key), shortest(v));
 }
 
+// The parts of parse_scene, in the order it calls them: the file as a whole, then one table each. A table's
+// reader takes its keys' values; ranges and the checks that join keys are validate()'s.
+
+void check_size(std::string_view text, const std::string& path)
+{
+    if (text.size() > max_scene_bytes)
+        throw SceneError::with_detail(path, "", "is larger than a scene file can be (" +
+                                                    std::to_string(max_scene_bytes / 1024) + " KB)");
+}
+
+/// Every top-level name is one of the key table's tables and is a table; the tables without a default are there.
+void check_tables(const toml::table& root, const std::string& path)
+{
+    const std::vector<std::string> tables = scene_tables();
+    for (auto&& [k, v] : root) {
+        const bool known = std::find(tables.begin(), tables.end(), k.str()) != tables.end();
+        if (!known)
+            fail(path, std::string(k.str()), "one of the tables " + joined(tables),
+                 std::string("an unknown ") + (v.is_table() ? "table" : "key"));
+        if (!v.is_table()) fail(path, std::string(k.str()), "a table [" + std::string(k.str()) + "]", describe(v));
+    }
+    for (const char* required : {"beam", "motion", "discretization", "output"})
+        if (!root.get(required))
+            fail(path, required, std::string("a table [") + required + "]", "nothing (the table is missing)");
+}
+
+/// [beam]: docs/model.md section 1.
+void read_beam(const Section& beam, Parameters& p)
+{
+    beam.only();
+    p.L = beam.required_number("length");
+    p.rho = beam.required_number("density");
+    p.S = beam.required_number("area");
+    p.I = beam.required_number("second_moment");
+    p.E = beam.required_number("youngs_modulus");
+}
+
+/// [motion]: paper eq. 58 (spin-up) or eq. 59 (torque); the kind decides which keys the table may hold.
+void read_motion(const Section& motion, Motion& m)
+{
+    m.kind = motion.required_word<Motion::Kind>("kind", parse_kind);
+    motion.only(word_of(m.kind, kind_words));
+    if (m.kind == Motion::Kind::spin_up) {
+        m.omega0 = motion.required_number("omega0");
+        m.spin_time = motion.required_number("duration");
+    } else {
+        m.tau0 = motion.required_number("tau0");
+        m.torque_time = motion.required_number("duration");
+    }
+}
+
+/// [hub]: the hub inertia only enters the torque case, where theta is a coordinate.
+void read_hub(const Section& hub, Motion::Kind kind, Parameters& p)
+{
+    hub.only();
+    p.a = hub.number("radius", p.a);
+    if (kind == Motion::Kind::torque) p.J_oh = hub.required_number("inertia", ", required for kind = \"torque\"");
+    else p.J_oh = hub.number("inertia", p.J_oh);
+}
+
+/// [discretization]: docs/model.md section 4; the variant's drive follows the motion.
+void read_discretization(const Section& disc, const Motion& m, VariantKey& key)
+{
+    disc.only();
+    key.method = disc.required_word<Method>("method", parse_enum<Method>);
+    key.ny = disc.required_integer("ny");
+    key.nx = disc.required_integer("nx");
+    key.spline = disc.word<SplineBasis>("spline_basis", parse_enum<SplineBasis>).value_or(key.spline);
+    key.drive = m.drive();
+}
+
+/// [model]: docs/model.md section 3; whether the build can run an order is make_model's call.
+void read_model(const Section& model, Scene& scene)
+{
+    model.only();
+    scene.variant.order = model.word<Order>("order", parse_enum<Order>).value_or(scene.variant.order);
+    scene.source = model.word<ModelSource>("source", parse_enum<ModelSource>).value_or(scene.source);
+    scene.axial = model.word<Axial>("axial", parse_enum<Axial>).value_or(scene.axial);
+}
+
+/// [solver]: the stepper word is checked against GSL's step types by validate().
+void read_solver(const Section& solver, SolverOptions& so)
+{
+    solver.only();
+    so.stepper = solver.string("stepper").value_or(so.stepper);
+    so.rtol = solver.number("rtol", so.rtol);
+    so.atol = solver.number("atol", so.atol);
+    so.h0 = solver.number("h0", so.h0);
+    so.stepping = solver.word<Stepping>("stepping", parse_enum<Stepping>).value_or(so.stepping);
+    if (const auto budget = solver.number("max_steps")) {  // 1e7 reads better than 10000000: a float is accepted
+        if (!(*budget >= 1.0 && *budget <= 1e15 && *budget == std::floor(*budget)))
+            solver.refuse("max_steps", shortest(*budget));
+        so.max_steps = static_cast<long>(*budget);
+    }
+}
+
+/// [output]
+void read_output(const Section& output, OutputOptions& out)
+{
+    output.only();
+    out.t_end = output.required_number("t_end");
+    out.dt_out = output.number("dt_out", out.dt_out);
+    if (const auto file = output.string("file")) {
+        // An empty name is refused, not read as "the default": -o "" is more likely a lost shell variable.
+        if (file->empty()) output.refuse("file", "an empty one");
+        out.file = *file;
+    }
+}
+
+}  // namespace
+
+namespace {
+
+/// The code point of the well-formed UTF-8 sequence at text[i] and its length, or length 0 for a byte that starts
+/// no well-formed sequence (a stray continuation byte, an overlong form, a surrogate, beyond U+10FFFF, cut short).
+std::pair<char32_t, std::size_t> decode_utf8(std::string_view text, std::size_t i)
+{
+    const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+    const unsigned char b0 = byte(i);
+    if (b0 < 0x80) return {b0, 1};
+    std::size_t n = 0;
+    char32_t cp = 0, min = 0;
+    if (b0 >= 0xc2 && b0 <= 0xdf) n = 2, cp = b0 & 0x1f, min = 0x80;
+    else if (b0 >= 0xe0 && b0 <= 0xef) n = 3, cp = b0 & 0x0f, min = 0x800;
+    else if (b0 >= 0xf0 && b0 <= 0xf4) n = 4, cp = b0 & 0x07, min = 0x10000;
+    else return {0, 0};
+    if (i + n > text.size()) return {0, 0};
+    for (std::size_t k = 1; k < n; ++k) {
+        if ((byte(i + k) & 0xc0) != 0x80) return {0, 0};
+        cp = (cp << 6) | (byte(i + k) & 0x3f);
+    }
+    if (cp < min || cp > 0x10ffff || (cp >= 0xd800 && cp <= 0xdfff)) return {0, 0};
+    return {cp, n};
+}
+
+/// Whether a code point must not reach a terminal as it is: the controls (C0, DEL, C1), the format characters
+/// (bidirectional overrides and isolates, zero-width characters, the language tags), the line and paragraph
+/// separators, private use and the noncharacters. These are Unicode's categories Cc, Cf, Zl, Zp and Co that the
+/// Python module escapes too (hubbeam.printable); it also escapes unassigned code points, which need a table.
+bool needs_escape(char32_t c)
+{
+    struct Range {
+        char32_t first, last;
+    };
+    static constexpr Range ranges[] = {
+        {0x0000, 0x001f},   {0x007f, 0x009f},   {0x00ad, 0x00ad},   {0x0600, 0x0605},   {0x061c, 0x061c},
+        {0x06dd, 0x06dd},   {0x070f, 0x070f},   {0x0890, 0x0891},   {0x08e2, 0x08e2},   {0x180e, 0x180e},
+        {0x200b, 0x200f},   {0x2028, 0x202e},   {0x2060, 0x2064},   {0x2066, 0x206f},   {0xe000, 0xf8ff},
+        {0xfdd0, 0xfdef},   {0xfeff, 0xfeff},   {0xfff9, 0xfffb},   {0x110bd, 0x110bd}, {0x110cd, 0x110cd},
+        {0x13430, 0x1343f}, {0x1bca0, 0x1bca3}, {0x1d173, 0x1d17a}, {0xe0001, 0xe0001}, {0xe0020, 0xe007f},
+        {0xf0000, 0x10ffff},
+    };
+    if ((c & 0xfffe) == 0xfffe) return true;  // U+FFFE, U+FFFF and their copies in every plane
+    for (const Range& r : ranges)
+        if (c >= r.first && c <= r.last) return true;
+    return false;
+}
+
 }  // namespace
 
 std::string printable(std::string_view text, std::size_t cap)
 {
     std::string out;
-    for (const char c : text) {
+    char escape[16];
+    for (std::size_t i = 0; i < text.size();) {
         if (out.size() >= cap) return out + "...";
-        const auto u = static_cast<unsigned char>(c);
-        if (u < 0x20 || u == 0x7f) {
-            char hex[8];
-            std::snprintf(hex, sizeof hex, "\\x%02x", u);
-            out += hex;
-        } else {
-            out += c;
+        const auto [cp, n] = decode_utf8(text, i);
+        if (n == 0) {  // not UTF-8: the byte itself
+            std::snprintf(escape, sizeof escape, "\\x%02x", static_cast<unsigned>(static_cast<unsigned char>(text[i])));
+            out += escape;
+            ++i;
+            continue;
         }
+        if (!needs_escape(cp)) out.append(text.substr(i, n));
+        else {
+            const auto u = static_cast<unsigned long>(cp);
+            // The forms of Python's repr, as hubbeam.printable writes them: \x1b, \u202e, \U000e0001.
+            if (u < 0x100) std::snprintf(escape, sizeof escape, "\\x%02lx", u);
+            else if (u < 0x10000) std::snprintf(escape, sizeof escape, "\\u%04lx", u);
+            else std::snprintf(escape, sizeof escape, "\\U%08lx", u);
+            out += escape;
+        }
+        i += n;
     }
     return out;
 }
@@ -366,97 +540,20 @@ Scene load_scene(const std::string& path, const Overrides& overrides)
 
 Scene parse_scene(std::string_view text, const std::string& path, const Overrides& overrides)
 {
-    if (text.size() > max_scene_bytes)
-        throw SceneError::with_detail(path, "", "is larger than a scene file can be (" +
-                                                    std::to_string(max_scene_bytes / 1024) + " KB)");
+    check_size(text, path);
     toml::table root = parse_toml(text, path);
-    for (const auto& [name, text] : overrides) set_override(root, path, name, text);
-
-    const std::vector<std::string> tables = scene_tables();
-    for (auto&& [k, v] : root) {
-        const bool known = std::find(tables.begin(), tables.end(), k.str()) != tables.end();
-        if (!known)
-            fail(path, std::string(k.str()), "one of the tables " + joined(tables),
-                 std::string("an unknown ") + (v.is_table() ? "table" : "key"));
-        if (!v.is_table()) fail(path, std::string(k.str()), "a table [" + std::string(k.str()) + "]", describe(v));
-    }
-    for (const char* required : {"beam", "motion", "discretization", "output"})
-        if (!root.get(required))
-            fail(path, required, std::string("a table [") + required + "]", "nothing (the table is missing)");
+    for (const auto& [name, value] : overrides) set_override(root, path, name, value);
+    check_tables(root, path);
 
     Scene scene;
     scene.path = path;
-
-    // [beam]: docs/model.md section 1.
-    const Section beam(path, root, "beam");
-    beam.only();
-    Parameters& p = scene.parameters;
-    p.L = beam.required_number("length");
-    p.rho = beam.required_number("density");
-    p.S = beam.required_number("area");
-    p.I = beam.required_number("second_moment");
-    p.E = beam.required_number("youngs_modulus");
-
-    // [motion]: paper eq. 58 (spin-up) or eq. 59 (torque).
-    const Section motion(path, root, "motion");
-    Motion& m = scene.motion;
-    m.kind = motion.required_word<Motion::Kind>("kind", parse_kind);
-    motion.only(word_of(m.kind, kind_words));
-    if (m.kind == Motion::Kind::spin_up) {
-        m.omega0 = motion.required_number("omega0");
-        m.spin_time = motion.required_number("duration");
-    } else {
-        m.tau0 = motion.required_number("tau0");
-        m.torque_time = motion.required_number("duration");
-    }
-
-    // [hub]: the hub inertia only enters the torque case, where theta is a coordinate.
-    const Section hub(path, root, "hub");
-    hub.only();
-    p.a = hub.number("radius", p.a);
-    if (m.kind == Motion::Kind::torque) p.J_oh = hub.required_number("inertia", ", required for kind = \"torque\"");
-    else p.J_oh = hub.number("inertia", p.J_oh);
-
-    // [discretization]: docs/model.md section 4.
-    const Section disc(path, root, "discretization");
-    disc.only();
-    VariantKey& key = scene.variant;
-    key.method = disc.required_word<Method>("method", parse_enum<Method>);
-    key.ny = disc.required_integer("ny");
-    key.nx = disc.required_integer("nx");
-    key.spline = disc.word<SplineBasis>("spline_basis", parse_enum<SplineBasis>).value_or(key.spline);
-    key.drive = m.drive();
-
-    // [model]: docs/model.md section 3; whether the build can run an order is make_model's call.
-    const Section model(path, root, "model");
-    model.only();
-    key.order = model.word<Order>("order", parse_enum<Order>).value_or(key.order);
-    scene.source = model.word<ModelSource>("source", parse_enum<ModelSource>).value_or(scene.source);
-    scene.axial = model.word<Axial>("axial", parse_enum<Axial>).value_or(scene.axial);
-
-    // [solver]
-    const Section solver(path, root, "solver");
-    solver.only();
-    SolverOptions& so = scene.solver;
-    so.stepper = solver.string("stepper").value_or(so.stepper);
-    so.rtol = solver.number("rtol", so.rtol);
-    so.atol = solver.number("atol", so.atol);
-    so.h0 = solver.number("h0", so.h0);
-    so.stepping = solver.word<Stepping>("stepping", parse_enum<Stepping>).value_or(so.stepping);
-    if (const auto budget = solver.number("max_steps")) {  // 1e7 reads better than 10000000: a float is accepted
-        if (!(*budget >= 1.0 && *budget <= 1e15 && *budget == std::floor(*budget)))
-            fail(path, "solver.max_steps", expected("solver.max_steps"), shortest(*budget));
-        so.max_steps = static_cast<long>(*budget);
-    }
-
-    // [output]
-    const Section output(path, root, "output");
-    output.only();
-    OutputOptions& out = scene.output;
-    out.t_end = output.required_number("t_end");
-    out.dt_out = output.number("dt_out", out.dt_out);
-    out.file = output.string("file").value_or(out.file);
-
+    read_beam(Section(path, root, "beam"), scene.parameters);
+    read_motion(Section(path, root, "motion"), scene.motion);
+    read_hub(Section(path, root, "hub"), scene.motion.kind, scene.parameters);
+    read_discretization(Section(path, root, "discretization"), scene.motion, scene.variant);
+    read_model(Section(path, root, "model"), scene);
+    read_solver(Section(path, root, "solver"), scene.solver);
+    read_output(Section(path, root, "output"), scene.output);
     validate(scene);
     return scene;
 }

@@ -30,7 +30,8 @@ inline constexpr long max_output_rows = 100'000'000;
 struct OutputOptions {
     double t_end = 30.0;   // s
     double dt_out = 0.01;  // s; rows fall on exact multiples of dt_out
-    std::string file;      // CSV path; empty: derived from the scene name by the command line
+    std::string file;      // CSV path; empty: derived from the scene name by the command line (a file or an
+                           // override cannot set it empty, nor put a NUL in it)
 };
 
 struct Scene {
@@ -70,8 +71,10 @@ private:
     SceneError(Clean, std::string file, std::string key, std::string expected, std::string got, std::string detail);
 };
 
-/// User text as it may be echoed on a terminal: control characters as \xNN (a file or value could hold escape
-/// sequences or newlines), and at most `cap` characters.
+/// User text as it may be echoed on a terminal, in the forms of the Python module's hubbeam.printable: controls
+/// (C0, DEL, C1) as \xNN, format characters such as the bidirectional overrides and line separators as \uNNNN
+/// (or \UNNNNNNNN), bytes that are not UTF-8 as \xNN; cut after about `cap` bytes, between characters. Every
+/// message that quotes a value, a file name or an option given by the user passes it through here.
 std::string printable(std::string_view text, std::size_t cap = 120);
 
 /// The largest scene file read (bytes).
