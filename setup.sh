@@ -4,7 +4,7 @@
 #                                                           NAME.csv here, as hubbeam run does
 #   ./setup.sh test                                         runs the whole test suite through ctest
 #   ./setup.sh fuzz [SECONDS]                               fuzzes the scene parser (clang's libFuzzer, default 60 s)
-#   ./setup.sh figures [DIR]                                the README's figures of the paper (default docs/figures)
+#   ./setup.sh figures [DIR]                                the paper's figures (docs/performance.md) into DIR
 set -euo pipefail
 cd "$(dirname "$0")"
 

@@ -12,7 +12,7 @@
 
 namespace hubbeam {
 
-/// The largest DOF count (each of nx and ny) a method supports, and why (README "Scene files").
+/// The largest DOF count (each of nx and ny) a method supports, and why (docs/scene.md "Every key").
 int max_dof(Method m);
 std::string max_dof_reason(Method m);
 

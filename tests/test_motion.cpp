@@ -1,6 +1,6 @@
-// The drive profiles of runtime/motion.hpp on their own (docs/model.md section 6, paper eqs. 58-59): each
-// profile's rate, angle and impulse are the integrals of its acceleration, rate and torque, checked against
-// an independent composite Gauss-Legendre quadrature, and the end values section 6 states.
+// The drive profiles of runtime/include/hubbeam/motion.hpp on their own (docs/model.md section 6, paper eqs. 58-59):
+// each profile's rate, angle and impulse are the integrals of its acceleration, rate and torque, checked against an
+// independent composite Gauss-Legendre quadrature, and the end values section 6 states.
 #include <catch2/catch.hpp>
 
 #include <algorithm>

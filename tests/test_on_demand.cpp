@@ -1,5 +1,5 @@
-// On-demand variants (runtime/on_demand.hpp): compiled once into the cache, reused, safe when two compilations
-// race, and equal to the hand-assembled equations.
+// On-demand variants (runtime/include/hubbeam/on_demand.hpp): compiled once into the cache, reused, safe when two
+// compilations race, and equal to the hand-assembled equations.
 #include <catch2/catch.hpp>
 #include <cstdio>
 #include <cstdlib>

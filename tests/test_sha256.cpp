@@ -1,4 +1,4 @@
-// SHA-256 (runtime/sha256.hpp) against the test vectors of FIPS 180-4's examples (NIST CSRC "SHA256.pdf",
+// SHA-256 (runtime/src/sha256.hpp) against the test vectors of FIPS 180-4's examples (NIST CSRC "SHA256.pdf",
 // "SHA2_Additional.pdf"): the checksums of on-demand objects are only as good as this.
 #include <catch2/catch.hpp>
 #include <string>

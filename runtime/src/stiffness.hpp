@@ -16,7 +16,7 @@ double highest_frequency(const Model& model, Axial axial);
 
 /// Above this highest frequency (rad/s) the equations count as stiff: an explicit Runge-Kutta step is then
 /// stability-bound at about 5 / omega_max s, shorter than the ~0.03 s that rtol 1e-8 needs for the bending
-/// motion of the paper's beam (measured with hubbeam bench; README "Which stepper for which scene").
+/// motion of the paper's beam (measured with hubbeam bench; docs/performance.md "Which stepper for which scene").
 inline constexpr double stiff_frequency = 200.0;
 
 struct StepperChoice {

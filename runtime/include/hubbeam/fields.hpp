@@ -61,8 +61,8 @@ private:
 
 class CsvWriter;
 
-/// The fields along the beam at chosen times, written as a second CSV by hubbeam run (README "Fields along the
-/// beam"): at the first row at or after each time, u_y, u_x, slope, curvature, bending moment and axial force at
+/// The fields along the beam at chosen times, written as a second CSV by hubbeam run (docs/cli.md "hubbeam
+/// run"): at the first row at or after each time, u_y, u_x, slope, curvature, bending moment and axial force at
 /// `points` equally spaced abscissae, plus both sides of each interior piece boundary (where FEM's moment jumps).
 class FieldRecorder {
 public:

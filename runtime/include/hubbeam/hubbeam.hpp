@@ -1,5 +1,5 @@
 // hubbeam as a C++ library: everything a program needs to load or build a scene, run it and receive its rows,
-// compute modes and linearized models (README "Using hubbeam as a C++ library"; examples/run_scene).
+// compute modes and linearized models (docs/development.md "Building"; examples/run_scene).
 //
 //   hubbeam::Scene scene = hubbeam::load_scene("cases/spinup_omega4.toml", {{"discretization.ny", "8"}});
 //   hubbeam::Simulation simulation(scene);

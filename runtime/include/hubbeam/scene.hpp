@@ -1,4 +1,4 @@
-// Scene: everything one simulation needs, read and validated from a TOML file (format in README.md), with
+// Scene: everything one simulation needs, read and validated from a TOML file (format in docs/scene.md), with
 // command-line overrides applied to the file's keys before anything is checked.
 #pragma once
 

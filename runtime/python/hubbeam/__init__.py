@@ -188,7 +188,7 @@ def modes(scene: Any, omega: Any = 0.0, **keys: Any) -> dict[str, Any]:
 
 def linearize(scene: Any, omega: float, **keys: Any) -> dict[str, Any]:
     """x' = A x + B v, y = C x + D v about the steady spin omega (rad/s): A, B, C, D as arrays and the names of
-    the states, inputs and outputs (README "A linearized model to take away")."""
+    the states, inputs and outputs (docs/python.md "Modes and linearized models")."""
     text, name = _source(scene)
     if np.ndim(omega) != 0:
         raise ValueError(f"omega: expected a spin rate >= 0 (rad/s), got {printable(repr(omega), 120)}")
