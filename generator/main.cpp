@@ -1,6 +1,6 @@
 // hubbeam-gen: derives the named variants symbolically and writes one C++ source per variant, plus either the
 // registry that compiles them into the hubbeam build or, with --module, an entry point per source for loading
-// it as a shared object (the runtime's on-demand variants, runtime/on_demand.hpp).
+// it as a shared object (the runtime's on-demand variants, runtime/include/hubbeam/on_demand.hpp).
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <filesystem>

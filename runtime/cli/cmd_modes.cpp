@@ -70,7 +70,7 @@ Command add_modes_command(CLI::App& app)
                           "(default: 0 and the scene's steady rate)")->type_name("LIST");
     modes_cmd->add_option("--methods", o->args.methods, "Methods, comma-separated (default: the scene's)")->type_name("LIST");
     modes_cmd->add_option("--ny", o->args.ny, "Ny values, comma-separated (default: the scene's)")->type_name("LIST");
-    modes_cmd->add_option("--count", o->args.count, "Bending modes printed per line group (default 4; the CSV has all)")
+    modes_cmd->add_option("--count", o->args.count, "Bending modes printed per spin rate (default 4; the CSV has all)")
         ->type_name("N");
     modes_cmd->add_option("-o,--output", o->args.output, "Also write every mode as CSV to FILE (default: no file)")
         ->type_name("FILE");

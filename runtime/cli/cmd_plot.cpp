@@ -21,7 +21,7 @@ void add_plot_options(CLI::App& sub, PlotArgs& a)
         ->required();
     sub.add_option("--labels", a.labels, "Legend labels, comma-separated, one per file (default: the files' stems)")
         ->type_name("LIST");
-    sub.add_option("--title", a.title, "Title (default: the kind's)")->type_name("TEXT");
+    sub.add_option("--title", a.title, "Title (default: the kind's, then the scene's name)")->type_name("TEXT");
     sub.add_option("--time", a.time, "moment: the rows at the t closest to T (default: each file's last t)")
         ->type_name("T");
 }

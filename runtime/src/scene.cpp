@@ -1,6 +1,6 @@
 // Scene files: TOML read with toml++, overrides set on the parsed table, every key checked for presence,
 // type and range against one table of keys, every unknown key rejected. The format is documented in
-// README.md ("Scene files"); the symbols are those of docs/model.md.
+// docs/scene.md; the symbols are those of docs/model.md.
 #include "scene.hpp"
 
 #include "output_file.hpp"
