@@ -15,8 +15,8 @@
 
 #include "csv_columns.hpp"
 #include "integrate.hpp"
-#include "oscillation.hpp"
 #include "option_lists.hpp"
+#include "oscillation.hpp"
 #include "output.hpp"
 #include "output_file.hpp"
 #include "plot.hpp"
@@ -344,8 +344,8 @@ References collect_references(const Scene& scene, const VariantKey& ref_key, con
             << ": " << second.summary.failure << "; the reference's resolution is unknown, every difference counts\n";
     } else {
         refs.resolution = max_difference(refs.converged.rows, second.rows);
-        out << "converged reference: max |tip_uy| difference between " << ref_key.name() << " and "
-            << second_key.name() << ": " << three_digits(refs.resolution)
+        out << "converged reference: max |tip_uy| difference between " << ref_key.name() << " and " << second_key.name()
+            << ": " << three_digits(refs.resolution)
             << " m (its resolution: errors within it of each other are ties on the Pareto front)\n";
     }
     return refs;
@@ -405,9 +405,12 @@ std::optional<BenchRow> measure_point(const Scene& scene, const VariantKey& k, c
     r.steps = first.summary.steps;
     r.rhs_evals = first.summary.rhs_evals;
     r.jacobian_evals = first.summary.jacobian_evals;
-    if (!first.summary.completed) r.status = "stopped at t = " + shortest(first.summary.t_reached) + ": " + first.summary.failure;
-    else if (!same.summary.completed) r.status = "reference stopped: " + same.summary.failure;
-    else if (!refs.failure.empty()) r.status = refs.failure;
+    if (!first.summary.completed)
+        r.status = "stopped at t = " + shortest(first.summary.t_reached) + ": " + first.summary.failure;
+    else if (!same.summary.completed)
+        r.status = "reference stopped: " + same.summary.failure;
+    else if (!refs.failure.empty())
+        r.status = refs.failure;
     if (r.status == "ok") {
         r.time_error = max_difference(first.rows, same.rows);
         r.disc_error = max_difference(first.rows, refs.converged.rows);
@@ -438,8 +441,8 @@ std::vector<BenchRow> run_grid(const Scene& scene, const BenchOptions& o, const 
                 csv.write_line(csv_row(*r));
                 rows.push_back(*r);
                 progress << "[" << rows.size() << "/" << points << "] " << k.name() << " " << stepper << " rtol "
-                         << shortest(rtol) << ": " << seconds_text(r->wall_median) << ", error " << number(r->time_error)
-                         << " m (time), " << number(r->disc_error) << " m (discretization)"
+                         << shortest(rtol) << ": " << seconds_text(r->wall_median) << ", error "
+                         << number(r->time_error) << " m (time), " << number(r->disc_error) << " m (discretization)"
                          << (r->status == "ok" ? "" : ", " + r->status) << "\n"
                          << std::flush;
             }
@@ -488,7 +491,8 @@ std::vector<BenchRow> run_bench(const Scene& scene, const BenchOptions& o, std::
         << "; CSV: " << o.output << "\n";
     print_front(rows, refs.resolution, out);
     if (!o.plot.empty())
-        if (const std::string problem = plot(o.plot, o.output, scene_name(scene), refs.resolution, out); !problem.empty())
+        if (const std::string problem = plot(o.plot, o.output, scene_name(scene), refs.resolution, out);
+            !problem.empty())
             out << "no figures: " << problem << "\n";
     return rows;
 }
@@ -526,8 +530,10 @@ Table1Reference table1_reference(const Scene& scene, const BenchOptions& o, cons
     ref.key.method = o.ref_method;
     ref.key.ny = o.ref_ny;
     ref.key.nx = scene.variant.nx > 0 ? o.ref_ny : 0;
-    ref.run = collect(variant_scene(scene, ref.key, reference_stepper, reference_rtol, reference_atol, Stepping::rows), stop);
-    if (!ref.run.summary.completed) throw std::runtime_error("the converged reference stopped: " + ref.run.summary.failure);
+    ref.run =
+        collect(variant_scene(scene, ref.key, reference_stepper, reference_rtol, reference_atol, Stepping::rows), stop);
+    if (!ref.run.summary.completed)
+        throw std::runtime_error("the converged reference stopped: " + ref.run.summary.failure);
     for (const Row& r : ref.run.rows) ref.peak = std::max(ref.peak, std::abs(r.tip_uy));
     ref.t_steady = ref.run.summary.t_steady;
     return ref;
@@ -550,7 +556,8 @@ VariantKey table1_key(const Scene& scene, Method method)
 
 /// Method `method` at Ny = 4 on scene: its times with the scene's stepper and with msadams (medians of `repeats`),
 /// its error against the reference and its steady oscillation. Throws when the run stops.
-Table1Row table1_row(const Scene& scene, Method method, int repeats, const Table1Reference& ref, const StopRequest& stop)
+Table1Row table1_row(const Scene& scene, Method method, int repeats, const Table1Reference& ref,
+                     const StopRequest& stop)
 {
     const VariantKey k = table1_key(scene, method);
     Scene automatic = scene;
@@ -576,8 +583,8 @@ void print_table1(const Scene& scene, const BenchOptions& o, const Table1Referen
 {
     const double unit_auto = ours[table1_unit].time_auto, unit_adams = ours[table1_unit].time_msadams;
     char line[512];
-    out << "Table 1, redone: spin-up to " << shortest(scene.motion.omega0) << " rad/s, Ny = 4, Nx = "
-        << scene.variant.nx << "; times relative to BIM (in process, median of " << o.repeats
+    out << "Table 1, redone: spin-up to " << shortest(scene.motion.omega0)
+        << " rad/s, Ny = 4, Nx = " << scene.variant.nx << "; times relative to BIM (in process, median of " << o.repeats
         << "); error = max |tip_uy - " << ref.key.name() << "| / max |tip_uy| (" << shortest(ref.peak)
         << " m); steady response after t = " << shortest(ref.t_steady) << " s\n\n";
     std::snprintf(line, sizeof line, "%-6s %-30s %-22s %-18s %-22s %-20s\n", "method", "relative time: ours (stepper)",
@@ -685,7 +692,10 @@ FigureSeries figure_series(const std::vector<FigurePoint>& points)
 }
 
 /// A name of a method or stepper in the script's quotes.
-std::string quoted(const std::string& s) { return "'" + s + "'"; }
+std::string quoted(const std::string& s)
+{
+    return "'" + s + "'";
+}
 
 /// The work figure's plot command: a line per method and stepper read from the CSV (a colour per method, a point
 /// type and dash pattern per stepper, so that no two lines look alike), and the Pareto front from PREFIX-front.dat.
@@ -703,7 +713,8 @@ std::string work_plot(const std::string& prefix, const std::string& csv, const F
                 std::to_string(m + 1) + " pt " + std::to_string(st % 13 + 1) + " dt " + dashes[st % 8] +
                 " title " + quoted(method_names[m] + " " + all_steppers[st]);
     }
-    return work + ", \\\n       '" + prefix + "-front.dat' using 'wall':'error' with steps lw 3 lc rgb 'black' title 'Pareto front'";
+    return work + ", \\\n       '" + prefix +
+           "-front.dat' using 'wall':'error' with steps lw 3 lc rgb 'black' title 'Pareto front'";
 }
 
 /// The DOF figure's axis settings and plot command: the smallest error per method against Ny from PREFIX-dofs.dat,
@@ -713,17 +724,18 @@ std::string dofs_plot(const std::string& prefix, const FigureSeries& series, dou
     const std::vector<std::string> method_names = words<Method>();
     std::string dofs = "  plot ";
     for (std::size_t i = 0; i < series.methods.size(); ++i)
-        dofs += (i ? ", \\\n       " : "") + ("'" + prefix + "-dofs.dat' using (strcol('method') eq " +
-                                            quoted(method_names[series.methods[i]]) + " ? column('ny') : NaN):'error' " +
-                                            "with linespoints lw 2 pt 7 lc " + std::to_string(series.methods[i] + 1) +
-                                            " title " + quoted(method_names[series.methods[i]]));
+        dofs += (i ? ", \\\n       " : "") +
+                ("'" + prefix + "-dofs.dat' using (strcol('method') eq " + quoted(method_names[series.methods[i]]) +
+                 " ? column('ny') : NaN):'error' " + "with linespoints lw 2 pt 7 lc " +
+                 std::to_string(series.methods[i] + 1) + " title " + quoted(method_names[series.methods[i]]));
     if (resolution > 0.0)
         dofs += ", \\\n       " + shortest(resolution) +
                 " with lines dt 2 lw 2 lc rgb 'gray40' title 'reference resolution'";
     std::string ny_tics, ny_range;
     for (const int n : series.nys) ny_tics += (ny_tics.empty() ? "" : ", ") + std::to_string(n);
     if (!series.nys.empty())  // a little beyond the grid's Ny on either side, not the decades around them
-        ny_range = "  set xrange [" + shortest(series.nys.front() / 1.15) + ":" + shortest(series.nys.back() * 1.15) + "]\n";
+        ny_range =
+            "  set xrange [" + shortest(series.nys.front() / 1.15) + ":" + shortest(series.nys.back() * 1.15) + "]\n";
     return "  set xtics (" + ny_tics + ")\n" + ny_range + dofs;
 }
 

@@ -88,7 +88,8 @@ struct Table {
 /// frequency, 2.911 rad/s, which every Omega0 here passes). Returns false when asked to stop.
 bool spin_cases(const StressOptions& o, Table& table)
 {
-    const std::vector<double> omegas = o.quick ? std::vector<double>{4.0, 10.0, 20.0} : std::vector<double>{4.0, 10.0, 20.0, 50.0};
+    const std::vector<double> omegas =
+        o.quick ? std::vector<double>{4.0, 10.0, 20.0} : std::vector<double>{4.0, 10.0, 20.0, 50.0};
     for (const double omega : omegas)
         for (const Method m : {Method::amm, Method::fem, Method::bim, Method::bsim})
             for (const Order order : {Order::zero, Order::first, Order::full}) {
@@ -138,9 +139,10 @@ bool long_cases(const StressOptions& o, Table& table)
             s.solver.stepper = stepper;
             s.output.t_end = t_long;
             s.output.dt_out = 0.1;
-            table.add(run_case("long", std::string(torque ? "torque 10 N m, " : "spin 4 rad/s, ") + stepper + ", " +
-                                           shortest(t_long) + " s",
-                               s, "bounded", table.stop));
+            table.add(run_case(
+                "long",
+                std::string(torque ? "torque 10 N m, " : "spin 4 rad/s, ") + stepper + ", " + shortest(t_long) + " s",
+                s, "bounded", table.stop));
         }
     return true;
 }
@@ -157,8 +159,8 @@ bool beam_cases(Table& table)
             Scene s = base_scene(Method::amm, 0, 4, order);
             s.parameters.E *= scale;
             s.output.t_end = 25.0;
-            StressRow r = run_case("beam", std::string(scale < 1 ? "E/100 " : "E*100 ") + to_string(order), s,
-                                   "report", table.stop);
+            StressRow r = run_case("beam", std::string(scale < 1 ? "E/100 " : "E*100 ") + to_string(order), s, "report",
+                                   table.stop);
             (order == Order::first ? first : full) = r;
         }
         if (first.status == "ok" && full.status == "ok")
@@ -188,8 +190,7 @@ std::vector<StressRow> run_stress(const StressOptions& o, std::ostream& out, con
     out << "pass  group    case                               expect      max|tip| J drift/U   wall s  status\n";
     Table table{out, stop, {}};
     // A stopped suite returns the rows it has, without the CSV.
-    if (!spin_cases(o, table) || !dof_cases(o, table) || !long_cases(o, table) || !beam_cases(table))
-        return table.rows;
+    if (!spin_cases(o, table) || !dof_cases(o, table) || !long_cases(o, table) || !beam_cases(table)) return table.rows;
     if (!o.output.empty()) write_csv(o.output, table.rows);
     return table.rows;
 }
