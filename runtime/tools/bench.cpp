@@ -9,13 +9,14 @@
 #include <cstring>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <ostream>
 #include <sstream>
 
 #include "csv_columns.hpp"
 #include "integrate.hpp"
-#include "oscillation.hpp"
 #include "option_lists.hpp"
+#include "oscillation.hpp"
 #include "output.hpp"
 #include "output_file.hpp"
 #include "plot.hpp"
@@ -134,7 +135,10 @@ const std::vector<BenchColumn>& bench_columns()
 std::string csv_row(const BenchRow& r)
 {
     std::string line;
-    for (const BenchColumn& c : bench_columns()) line += (&c == &bench_columns().front() ? "" : ",") + c.text(r);
+    for (const BenchColumn& c : bench_columns()) {
+        if (&c != &bench_columns().front()) line += ',';
+        line += c.text(r);
+    }
     return line;
 }
 
@@ -273,12 +277,11 @@ BenchOptions parse_bench_options(const BenchArgs& args, const Scene& scene)
     return o;
 }
 
-std::vector<BenchRow> run_bench(const Scene& scene, const BenchOptions& o, std::ostream& out, std::ostream& progress,
-                                const StopRequest& stop)
+namespace {
+
+/// The grid's variants, without the DOF counts a method cannot take (each skipped one printed to out).
+std::vector<VariantKey> grid_keys(const Scene& scene, const BenchOptions& o, std::ostream& out)
 {
-    const auto now = [] { return std::chrono::steady_clock::now(); };
-    const auto since = [&](auto start) { return std::chrono::duration<double>(now() - start).count(); };
-    // The grid, without the DOF counts a method cannot take.
     std::vector<VariantKey> keys;
     std::vector<std::string> skipped;
     for (const Method m : o.methods)
@@ -292,49 +295,69 @@ std::vector<BenchRow> run_bench(const Scene& scene, const BenchOptions& o, std::
                 else keys.push_back(k);
             }
     for (const std::string& s : skipped) out << "skipped " << s << "\n";
+    return keys;
+}
 
-    // The converged reference: ref_method (AMM by default: its high modes are the beam's own, so an explicit
-    // stepper integrates it cheaply) at ref_ny; axial coordinates as many as bending ones when the grid has any.
-    // Its own resolution is how far a second converged discretization (another method, its basis functions
-    // different) lies from it: errors closer to each other than that are ties.
+/// The converged reference's variant: ref_method (AMM by default: its high modes are the beam's own, so an explicit
+/// stepper integrates it cheaply) at ref_ny; axial coordinates as many as bending ones when the grid has any.
+VariantKey reference_key(const Scene& scene, const BenchOptions& o)
+{
     const bool axial = std::any_of(o.nx.begin(), o.nx.end(), [](int nx) { return nx > 0; });
     VariantKey ref_key = scene.key();
     ref_key.method = o.ref_method;
     ref_key.ny = o.ref_ny;
     ref_key.nx = axial ? o.ref_ny : 0;
-    const VariantKey second_key = second_reference(ref_key);
-    const auto tight = [&](const VariantKey& k) {
-        return variant_scene(scene, k, reference_stepper, reference_rtol, reference_atol, Stepping::rows);
-    };
-    out << "references: " << ref_key.name() << " (converged in DOFs; " << second_key.name()
-        << " for its resolution), and each variant at " << reference_stepper << " rtol " << shortest(reference_rtol)
-        << " with a step at every row\n"
-        << std::flush;
-    const auto start = now();
+    return ref_key;
+}
+
+/// scene as variant k at the tight reference tolerance, with a step at every row.
+Scene tight_scene(const Scene& scene, const VariantKey& k)
+{
+    return variant_scene(scene, k, reference_stepper, reference_rtol, reference_atol, Stepping::rows);
+}
+
+/// The converged reference's run, why it stopped (empty: it did not), and its resolution in m (0: unknown).
+struct References {
+    Collected converged;
+    std::string failure;
+    double resolution = 0.0;
+};
+
+/// Runs the converged reference and the second one, and says on out what their difference, the first's
+/// resolution, is (or why it is unknown). Throws BenchOptionError when either is not a valid variant.
+References collect_references(const Scene& scene, const VariantKey& ref_key, const VariantKey& second_key,
+                              std::ostream& out, const StopRequest& stop)
+{
     for (const VariantKey& k : {ref_key, second_key})
         if (const std::string why = k.dof_problem(); !why.empty())
             throw BenchOptionError("--ref-ny: the reference " + k.name() + " is not a valid variant: " + why);
-    const Collected converged = collect(tight(ref_key), stop);
-    const Collected second = collect(tight(second_key), stop);
-    std::string converged_failure;
-    if (!converged.summary.completed)
-        converged_failure = "converged reference stopped at t = " + shortest(converged.summary.t_reached) + ": " +
-                            converged.summary.failure;
-    double resolution = 0.0;
-    if (!converged_failure.empty()) {
-        out << converged_failure << "; no errors are reported\n";
+    References refs;
+    refs.converged = collect(tight_scene(scene, ref_key), stop);
+    const Collected second = collect(tight_scene(scene, second_key), stop);
+    const RunSummary& converged = refs.converged.summary;
+    if (!converged.completed)
+        refs.failure = "converged reference stopped at t = " + shortest(converged.t_reached) + ": " + converged.failure;
+    if (!refs.failure.empty()) {
+        out << refs.failure << "; no errors are reported\n";
     } else if (!second.summary.completed) {
         out << "the second reference " << second_key.name() << " stopped at t = " << shortest(second.summary.t_reached)
             << ": " << second.summary.failure << "; the reference's resolution is unknown, every difference counts\n";
     } else {
-        resolution = max_difference(converged.rows, second.rows);
-        out << "converged reference: max |tip_uy| difference between " << ref_key.name() << " and "
-            << second_key.name() << ": " << three_digits(resolution)
+        refs.resolution = max_difference(refs.converged.rows, second.rows);
+        out << "converged reference: max |tip_uy| difference between " << ref_key.name() << " and " << second_key.name()
+            << ": " << three_digits(refs.resolution)
             << " m (its resolution: errors within it of each other are ties on the Pareto front)\n";
     }
-    // Estimate: a probe of every grid point over a thirtieth of the scene, scaled to the whole. An explicit stepper
-    // on stiff equations is held by stability once the stiff modes are excited, which the probe's first moments
-    // do not show: its run takes at least t_end omega_max / stability_step_factor steps at the probe's cost each.
+    return refs;
+}
+
+/// The grid's time in s, a lower bound: a probe of every grid point over a thirtieth of the scene, scaled to the
+/// whole. An explicit stepper on stiff equations is held by stability once the stiff modes are excited, which the
+/// probe's first moments do not show: its run takes at least t_end omega_max / stability_step_factor steps at the
+/// probe's cost each.
+double estimate_seconds(const Scene& scene, const BenchOptions& o, const std::vector<VariantKey>& keys,
+                        const StopRequest& stop)
+{
     double estimate = 0.0;
     const auto scaled = [&](const Scene& p, double omega) {
         const RunSummary probe = collect(p, stop).summary;
@@ -343,7 +366,7 @@ std::vector<BenchRow> run_bench(const Scene& scene, const BenchOptions& o, std::
         return std::max(probe.wall_seconds / probe_fraction, bound_steps * per_step);
     };
     for (const VariantKey& k : keys) {
-        Scene t = tight(k);
+        Scene t = tight_scene(scene, k);
         t.output.t_end = scene.output.t_end * probe_fraction;
         t.output.dt_out = std::min(t.output.dt_out, t.output.t_end);
         // The grid point's stiffness, once for its steppers and tolerances (the variant is cached by now).
@@ -357,6 +380,98 @@ std::vector<BenchRow> run_bench(const Scene& scene, const BenchOptions& o, std::
                 estimate += scaled(p, omega) * o.repeats;
             }
     }
+    return estimate;
+}
+
+/// One grid point: variant k with stepper at rtol (atol rtol / 100), repeated, against its same-discretization
+/// reference `same` and the converged one. Empty when a signal interrupted its first run (no row then).
+std::optional<BenchRow> measure_point(const Scene& scene, const VariantKey& k, const std::string& stepper, double rtol,
+                                      int repeats, const Collected& same, const References& refs,
+                                      const StopRequest& stop)
+{
+    BenchRow r;
+    r.key = k;
+    r.stepper = stepper;
+    r.rtol = rtol;
+    r.atol = rtol / 100.0;
+    const Scene s = variant_scene(scene, k, stepper, r.rtol, r.atol, scene.solver.stepping);
+    const Repeated runs = repeat(s, repeats, stop);
+    const Collected& first = runs.first;
+    if (!first.summary.completed && first.summary.failure == "interrupted by signal") return std::nullopt;
+    r.repeats = static_cast<int>(runs.walls.size());
+    r.wall_median = runs.median();
+    r.wall_min = runs.walls.front();
+    r.wall_max = runs.walls.back();
+    r.steps = first.summary.steps;
+    r.rhs_evals = first.summary.rhs_evals;
+    r.jacobian_evals = first.summary.jacobian_evals;
+    if (!first.summary.completed)
+        r.status = "stopped at t = " + shortest(first.summary.t_reached) + ": " + first.summary.failure;
+    else if (!same.summary.completed)
+        r.status = "reference stopped: " + same.summary.failure;
+    else if (!refs.failure.empty())
+        r.status = refs.failure;
+    if (r.status == "ok") {
+        r.time_error = max_difference(first.rows, same.rows);
+        r.disc_error = max_difference(first.rows, refs.converged.rows);
+        // the run's own invariant monitor; -1 when no row came after the drive
+        r.jacobi_drift = first.summary.vibration_energy < 0.0 ? -1.0 : first.summary.jacobi_drift;
+    } else {
+        r.time_error = r.disc_error = r.jacobi_drift = -1.0;  // a failed run is no data point
+    }
+    return r;
+}
+
+/// Runs every grid point, each row written to the CSV o.output as it is measured and a line of progress per point
+/// (`points` in all); stops between runs when asked, the CSV valid with the finished rows. Returns the rows.
+std::vector<BenchRow> run_grid(const Scene& scene, const BenchOptions& o, const std::vector<VariantKey>& keys,
+                               const References& refs, std::size_t points, std::ostream& progress,
+                               const StopRequest& stop)
+{
+    CsvWriter csv(o.output, bench_header());
+    std::vector<BenchRow> rows;
+    for (const VariantKey& k : keys) {
+        if (stop && stop()) break;
+        const Collected same = collect(tight_scene(scene, k), stop);
+        for (const std::string& stepper : o.steppers)
+            for (const double rtol : o.rtols) {
+                if (stop && stop()) break;
+                const std::optional<BenchRow> r = measure_point(scene, k, stepper, rtol, o.repeats, same, refs, stop);
+                if (!r) break;
+                csv.write_line(csv_row(*r));
+                rows.push_back(*r);
+                progress << "[" << rows.size() << "/" << points << "] " << k.name() << " " << stepper << " rtol "
+                         << shortest(rtol) << ": " << seconds_text(r->wall_median) << ", error "
+                         << number(r->time_error) << " m (time), " << number(r->disc_error) << " m (discretization)"
+                         << (r->status == "ok" ? "" : ", " + r->status) << "\n"
+                         << std::flush;
+            }
+    }
+    csv.finish();
+    if (!csv.ok()) throw std::runtime_error(csv.error());
+    return rows;
+}
+
+}  // namespace
+
+std::vector<BenchRow> run_bench(const Scene& scene, const BenchOptions& o, std::ostream& out, std::ostream& progress,
+                                const StopRequest& stop)
+{
+    const auto now = [] { return std::chrono::steady_clock::now(); };
+    const auto since = [&](auto start) { return std::chrono::duration<double>(now() - start).count(); };
+    const std::vector<VariantKey> keys = grid_keys(scene, o, out);
+
+    // The converged reference's own resolution is how far a second converged discretization (another method, its
+    // basis functions different) lies from it: errors closer to each other than that are ties.
+    const VariantKey ref_key = reference_key(scene, o), second_key = second_reference(ref_key);
+    out << "references: " << ref_key.name() << " (converged in DOFs; " << second_key.name()
+        << " for its resolution), and each variant at " << reference_stepper << " rtol " << shortest(reference_rtol)
+        << " with a step at every row\n"
+        << std::flush;
+    const auto start = now();
+    const References refs = collect_references(scene, ref_key, second_key, out, stop);
+
+    const double estimate = estimate_seconds(scene, o, keys, stop);
     const std::size_t points = keys.size() * o.steppers.size() * o.rtols.size();
     // A lower bound: the probes see the cost of a step, not the steps a tolerance needs once the response has
     // grown (an adaptive stepper shortens its steps then), and leave out compiling variants not yet cached.
@@ -371,135 +486,114 @@ std::vector<BenchRow> run_bench(const Scene& scene, const BenchOptions& o, std::
         throw BenchOptionError("the grid is estimated at " + seconds_text(estimate) +
                                " (over an hour): make it smaller, or pass --yes to run it anyway");
 
-    CsvWriter csv(o.output, bench_header());
-    std::vector<BenchRow> rows;
-    std::size_t done = 0;
-    for (const VariantKey& k : keys) {
-        if (stop && stop()) break;
-        const Collected same = collect(tight(k), stop);
-        for (const std::string& stepper : o.steppers)
-            for (const double rtol : o.rtols) {
-                if (stop && stop()) break;
-                BenchRow r;
-                r.key = k;
-                r.stepper = stepper;
-                r.rtol = rtol;
-                r.atol = rtol / 100.0;
-                const Scene s = variant_scene(scene, k, stepper, r.rtol, r.atol, scene.solver.stepping);
-                const Repeated runs = repeat(s, o.repeats, stop);
-                const Collected& first = runs.first;
-                if (!first.summary.completed && first.summary.failure == "interrupted by signal") break;
-                r.repeats = static_cast<int>(runs.walls.size());
-                r.wall_median = runs.median();
-                r.wall_min = runs.walls.front();
-                r.wall_max = runs.walls.back();
-                r.steps = first.summary.steps;
-                r.rhs_evals = first.summary.rhs_evals;
-                r.jacobian_evals = first.summary.jacobian_evals;
-                if (!first.summary.completed) r.status = "stopped at t = " + shortest(first.summary.t_reached) + ": " + first.summary.failure;
-                else if (!same.summary.completed) r.status = "reference stopped: " + same.summary.failure;
-                else if (!converged_failure.empty()) r.status = converged_failure;
-                if (r.status == "ok") {
-                    r.time_error = max_difference(first.rows, same.rows);
-                    r.disc_error = max_difference(first.rows, converged.rows);
-                    // the run's own invariant monitor; -1 when no row came after the drive
-                    r.jacobi_drift = first.summary.vibration_energy < 0.0 ? -1.0 : first.summary.jacobi_drift;
-                } else {
-                    r.time_error = r.disc_error = r.jacobi_drift = -1.0;  // a failed run is no data point
-                }
-                csv.write_line(csv_row(r));
-                rows.push_back(r);
-                ++done;
-                progress << "[" << done << "/" << points << "] " << k.name() << " " << stepper << " rtol "
-                         << shortest(rtol) << ": " << seconds_text(r.wall_median) << ", error " << number(r.time_error)
-                         << " m (time), " << number(r.disc_error) << " m (discretization)"
-                         << (r.status == "ok" ? "" : ", " + r.status) << "\n"
-                         << std::flush;
-            }
-    }
-    csv.finish();
-    if (!csv.ok()) throw std::runtime_error(csv.error());
+    const std::vector<BenchRow> rows = run_grid(scene, o, keys, refs, points, progress, stop);
     out << rows.size() << " of " << points << " runs in " << seconds_text(since(start)) << " with the references"
         << "; CSV: " << o.output << "\n";
-    print_front(rows, resolution, out);
+    print_front(rows, refs.resolution, out);
     if (!o.plot.empty())
-        if (const std::string problem = plot(o.plot, o.output, scene_name(scene), resolution, out); !problem.empty())
+        if (const std::string problem = plot(o.plot, o.output, scene_name(scene), refs.resolution, out);
+            !problem.empty())
             out << "no figures: " << problem << "\n";
     return rows;
 }
 
-void run_table1(const Scene& scene, const BenchOptions& o, std::ostream& out, std::ostream& progress,
-                const StopRequest& stop)
+namespace {
+
+/// A row of the paper's Table 1 (Omega0 = 4 rad/s): relative computation time, error (%), amplitude (m),
+/// frequency (Hz), as printed there.
+struct PaperRow {
+    Method method;
+    const char *time, *error, *amplitude, *frequency;
+};
+
+// BIM's time is the unit (its cell is blank in the paper's text, the unit by the others' ratios).
+constexpr PaperRow paper_table1[] = {{Method::fem, "24.1", "-", "0.0074", "0.5326"},
+                                     {Method::amm, "2.1", "0.1", "0.0074", "0.5319"},
+                                     {Method::bim, "1", "0.15", "0.0074", "0.5324"},
+                                     {Method::bsim, "1.67", "0.14", "0.0074", "0.5314"}};
+constexpr std::size_t table1_unit = 2;  // BIM's row
+
+/// The converged reference of Table 1 and what the rows are measured against: its largest deflection (m) and the
+/// time its steady response starts (s, the drive's last breakpoint).
+struct Table1Reference {
+    VariantKey key;
+    Collected run;
+    double peak = 0.0, t_steady = 0.0;
+};
+
+/// Runs Table 1's converged reference: o.ref_method at o.ref_ny (axial coordinates as many when the scene has any)
+/// at the tight tolerance. Throws when it stops.
+Table1Reference table1_reference(const Scene& scene, const BenchOptions& o, const StopRequest& stop)
 {
-    // Paper Table 1 (Omega0 = 4 rad/s): relative computation time, error (%), amplitude (m), frequency (Hz);
-    // BIM's time is the unit (its cell is blank in the paper's text, the unit by the others' ratios).
-    struct Paper {
-        Method method;
-        const char *time, *error, *amplitude, *frequency;
-    };
-    const Paper paper[] = {{Method::fem, "24.1", "-", "0.0074", "0.5326"},
-                           {Method::amm, "2.1", "0.1", "0.0074", "0.5319"},
-                           {Method::bim, "1", "0.15", "0.0074", "0.5324"},
-                           {Method::bsim, "1.67", "0.14", "0.0074", "0.5314"}};
-    VariantKey ref_key = scene.key();
-    ref_key.method = o.ref_method;
-    ref_key.ny = o.ref_ny;
-    ref_key.nx = scene.variant.nx > 0 ? o.ref_ny : 0;
-    const auto start = std::chrono::steady_clock::now();
-    const auto elapsed = [&] {
-        return seconds_text(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-    };
-    const Collected converged =
-        collect(variant_scene(scene, ref_key, reference_stepper, reference_rtol, reference_atol, Stepping::rows), stop);
-    if (!converged.summary.completed) throw std::runtime_error("the converged reference stopped: " + converged.summary.failure);
-    progress << "[reference] " << ref_key.name() << " at " << reference_stepper << " rtol " << shortest(reference_rtol)
-             << ": done after " << elapsed() << "\n"
-             << std::flush;
-    double peak = 0.0;
-    for (const Row& r : converged.rows) peak = std::max(peak, std::abs(r.tip_uy));
-    const double t_steady = converged.summary.t_steady;  // the drive's last breakpoint
-    struct Ours {
-        double time_auto, time_msadams, error, amplitude, frequency;
-        std::string stepper;
-    };
-    std::vector<Ours> ours;
-    for (const Paper& p : paper) {
-        VariantKey k = scene.key();
-        k.method = p.method;
-        k.ny = 4;
-        Scene automatic = scene;
-        automatic.variant = k;
-        Scene adams = automatic;
-        adams.solver.stepper = "msadams";
-        const Repeated a = repeat(automatic, o.repeats, stop), m = repeat(adams, o.repeats, stop);
-        Ours r;
-        r.time_auto = a.median();
-        r.time_msadams = m.median();
-        if (!a.first.summary.completed) throw std::runtime_error(k.name() + " stopped: " + a.first.summary.failure);
-        r.stepper = a.first.summary.stepper;
-        r.error = 100.0 * max_difference(a.first.rows, converged.rows) / peak;
-        const Oscillation osc = steady_oscillation(a.first.rows, t_steady);
-        r.amplitude = osc.amplitude;
-        r.frequency = osc.frequency;
-        ours.push_back(r);
-        progress << "[" << ours.size() << "/" << std::size(paper) << "] " << k.name() << ": " << r.stepper << " "
-                 << seconds_text(r.time_auto) << ", msadams " << seconds_text(r.time_msadams) << " (median of "
-                 << o.repeats << "); done after " << elapsed() << "\n"
-                 << std::flush;
-    }
-    const double unit_auto = ours[2].time_auto, unit_adams = ours[2].time_msadams;  // BIM, as in the paper
+    Table1Reference ref;
+    ref.key = scene.key();
+    ref.key.method = o.ref_method;
+    ref.key.ny = o.ref_ny;
+    ref.key.nx = scene.variant.nx > 0 ? o.ref_ny : 0;
+    ref.run =
+        collect(variant_scene(scene, ref.key, reference_stepper, reference_rtol, reference_atol, Stepping::rows), stop);
+    if (!ref.run.summary.completed)
+        throw std::runtime_error("the converged reference stopped: " + ref.run.summary.failure);
+    for (const Row& r : ref.run.rows) ref.peak = std::max(ref.peak, std::abs(r.tip_uy));
+    ref.t_steady = ref.run.summary.t_steady;
+    return ref;
+}
+
+/// Our measures of a row of Table 1.
+struct Table1Row {
+    double time_auto, time_msadams, error, amplitude, frequency;  // s, s, % of the peak, m, Hz
+    std::string stepper;                                          // the scene's, as the run resolved it
+};
+
+/// The variant of method's row of Table 1: the scene's at Ny = 4.
+VariantKey table1_key(const Scene& scene, Method method)
+{
+    VariantKey k = scene.key();
+    k.method = method;
+    k.ny = 4;
+    return k;
+}
+
+/// Method `method` at Ny = 4 on scene: its times with the scene's stepper and with msadams (medians of `repeats`),
+/// its error against the reference and its steady oscillation. Throws when the run stops.
+Table1Row table1_row(const Scene& scene, Method method, int repeats, const Table1Reference& ref,
+                     const StopRequest& stop)
+{
+    const VariantKey k = table1_key(scene, method);
+    Scene automatic = scene;
+    automatic.variant = k;
+    Scene adams = automatic;
+    adams.solver.stepper = "msadams";
+    const Repeated a = repeat(automatic, repeats, stop), m = repeat(adams, repeats, stop);
+    Table1Row r;
+    r.time_auto = a.median();
+    r.time_msadams = m.median();
+    if (!a.first.summary.completed) throw std::runtime_error(k.name() + " stopped: " + a.first.summary.failure);
+    r.stepper = a.first.summary.stepper;
+    r.error = 100.0 * max_difference(a.first.rows, ref.run.rows) / ref.peak;
+    const Oscillation osc = steady_oscillation(a.first.rows, ref.t_steady);
+    r.amplitude = osc.amplitude;
+    r.frequency = osc.frequency;
+    return r;
+}
+
+/// Prints Table 1: its heading, then our row beside the paper's for each method, times relative to BIM's.
+void print_table1(const Scene& scene, const BenchOptions& o, const Table1Reference& ref,
+                  const std::vector<Table1Row>& ours, std::ostream& out)
+{
+    const double unit_auto = ours[table1_unit].time_auto, unit_adams = ours[table1_unit].time_msadams;
     char line[512];
-    out << "Table 1, redone: spin-up to " << shortest(scene.motion.omega0) << " rad/s, Ny = 4, Nx = "
-        << scene.variant.nx << "; times relative to BIM (in process, median of " << o.repeats
-        << "); error = max |tip_uy - " << ref_key.name() << "| / max |tip_uy| (" << shortest(peak)
-        << " m); steady response after t = " << shortest(t_steady) << " s\n\n";
+    out << "Table 1, redone: spin-up to " << shortest(scene.motion.omega0)
+        << " rad/s, Ny = 4, Nx = " << scene.variant.nx << "; times relative to BIM (in process, median of " << o.repeats
+        << "); error = max |tip_uy - " << ref.key.name() << "| / max |tip_uy| (" << shortest(ref.peak)
+        << " m); steady response after t = " << shortest(ref.t_steady) << " s\n\n";
     std::snprintf(line, sizeof line, "%-6s %-30s %-22s %-18s %-22s %-20s\n", "method", "relative time: ours (stepper)",
                   "ours msadams | paper", "error %: ours | paper", "amplitude m: ours | paper",
                   "frequency Hz: ours | paper");
     out << line;
     for (std::size_t i = 0; i < ours.size(); ++i) {
-        const Ours& r = ours[i];
-        const Paper& p = paper[i];
+        const Table1Row& r = ours[i];
+        const PaperRow& p = paper_table1[i];
         char t1[64], t2[64], e[64], a[64], f[64];
         std::snprintf(t1, sizeof t1, "%.2f (%s, %.1f ms)", r.time_auto / unit_auto, r.stepper.c_str(), r.time_auto * 1e3);
         std::snprintf(t2, sizeof t2, "%.2f | %s", r.time_msadams / unit_adams, p.time);
@@ -512,6 +606,31 @@ void run_table1(const Scene& scene, const BenchOptions& o, std::ostream& out, st
     }
 }
 
+}  // namespace
+
+void run_table1(const Scene& scene, const BenchOptions& o, std::ostream& out, std::ostream& progress,
+                const StopRequest& stop)
+{
+    const auto start = std::chrono::steady_clock::now();
+    const auto elapsed = [&] {
+        return seconds_text(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    };
+    const Table1Reference ref = table1_reference(scene, o, stop);
+    progress << "[reference] " << ref.key.name() << " at " << reference_stepper << " rtol " << shortest(reference_rtol)
+             << ": done after " << elapsed() << "\n"
+             << std::flush;
+    std::vector<Table1Row> ours;
+    for (const PaperRow& p : paper_table1) {
+        ours.push_back(table1_row(scene, p.method, o.repeats, ref, stop));
+        const Table1Row& r = ours.back();
+        progress << "[" << ours.size() << "/" << std::size(paper_table1) << "] " << table1_key(scene, p.method).name()
+                 << ": " << r.stepper << " " << seconds_text(r.time_auto) << ", msadams "
+                 << seconds_text(r.time_msadams) << " (median of " << o.repeats << "); done after " << elapsed() << "\n"
+                 << std::flush;
+    }
+    print_table1(scene, o, ref, ours, out);
+}
+
 namespace {
 
 /// The figures' script and the data files beside the CSV that it reads.
@@ -519,18 +638,17 @@ struct BenchFigures {
     std::string script, front, dofs;
 };
 
-/// The figures of the bench CSV at csv, read back by column name: a line per method and stepper in the CSV (a
-/// colour per method, a point type and dash pattern per stepper, so that no two lines look alike), the Pareto
-/// front, and the smallest error per method against Ny (ticks at the grid's Ny), with the reference's resolution.
-BenchFigures bench_figures(const std::string& prefix, const std::vector<std::string>& figures, const std::string& csv,
-                           const std::string& scene, double resolution)
+/// A finished run of the bench CSV, as the figures draw it.
+struct FigurePoint {
+    std::string method, stepper;
+    int ny;
+    double wall, error;  // s; m, the larger of its two errors
+};
+
+/// The bench CSV at csv's finished runs, read back by column name.
+std::vector<FigurePoint> read_points(const std::string& csv)
 {
-    struct Point {
-        std::string method, stepper;
-        int ny;
-        double wall, error;
-    };
-    std::vector<Point> points;
+    std::vector<FigurePoint> points;
     std::ifstream in(csv);
     std::string line;
     std::getline(in, line);
@@ -544,34 +662,50 @@ BenchFigures bench_figures(const std::string& prefix, const std::vector<std::str
         points.push_back({f[method], f[stepper], std::atoi(f[ny].c_str()), std::atof(f[wall].c_str()),
                           std::max(std::atof(f[time_error].c_str()), std::atof(f[disc_error].c_str()))});
     }
-    // The series present, in a fixed order of methods and steppers, so that a method keeps its colour and a
-    // stepper its marker from one figure to the next.
-    const std::vector<std::string> all_steppers = stepper_names();
-    const auto method_index = [](const std::string& m) {
-        const std::vector<std::string> names = words<Method>();
-        return static_cast<std::size_t>(std::find(names.begin(), names.end(), m) - names.begin());
-    };
-    const auto stepper_index = [&](const std::string& st) {
-        return static_cast<std::size_t>(std::find(all_steppers.begin(), all_steppers.end(), st) - all_steppers.begin());
-    };
-    std::vector<std::pair<std::size_t, std::size_t>> series;  // (method, stepper) indices
-    std::vector<std::size_t> methods;
-    std::vector<int> nys;
-    for (const Point& p : points) {
-        add_unique(series, std::make_pair(method_index(p.method), stepper_index(p.stepper)));
-        add_unique(methods, method_index(p.method));
-        add_unique(nys, p.ny);
-    }
-    std::sort(series.begin(), series.end());
-    std::sort(methods.begin(), methods.end());
-    std::sort(nys.begin(), nys.end());
-    const std::vector<std::string> method_names = words<Method>();
-    static const char* const dashes[] = {"1", "2", "3", "4", "5", "(20,6,3,6,3,6)", "(4,8)", "(30,10)"};
-    const auto quoted = [](const std::string& s) { return "'" + s + "'"; };  // names of methods and steppers
+    return points;
+}
 
+/// The series the points make, each sorted: (method, stepper) pairs and methods as indices into words<Method>()
+/// and stepper_names(), so that a method keeps its colour and a stepper its marker from one figure to the next.
+struct FigureSeries {
+    std::vector<std::pair<std::size_t, std::size_t>> lines;  // (method, stepper): a line of the work figure each
+    std::vector<std::size_t> methods;                        // a line of the DOF figure each
+    std::vector<int> nys;                                    // the DOF figure's ticks
+};
+
+FigureSeries figure_series(const std::vector<FigurePoint>& points)
+{
+    const std::vector<std::string> all_steppers = stepper_names(), method_names = words<Method>();
+    const auto index = [](const std::vector<std::string>& names, const std::string& name) {
+        return static_cast<std::size_t>(std::find(names.begin(), names.end(), name) - names.begin());
+    };
+    FigureSeries s;
+    for (const FigurePoint& p : points) {
+        add_unique(s.lines, std::make_pair(index(method_names, p.method), index(all_steppers, p.stepper)));
+        add_unique(s.methods, index(method_names, p.method));
+        add_unique(s.nys, p.ny);
+    }
+    std::sort(s.lines.begin(), s.lines.end());
+    std::sort(s.methods.begin(), s.methods.end());
+    std::sort(s.nys.begin(), s.nys.end());
+    return s;
+}
+
+/// A name of a method or stepper in the script's quotes.
+std::string quoted(const std::string& s)
+{
+    return "'" + s + "'";
+}
+
+/// The work figure's plot command: a line per method and stepper read from the CSV (a colour per method, a point
+/// type and dash pattern per stepper, so that no two lines look alike), and the Pareto front from PREFIX-front.dat.
+std::string work_plot(const std::string& prefix, const std::string& csv, const FigureSeries& series)
+{
+    const std::vector<std::string> all_steppers = stepper_names(), method_names = words<Method>();
+    static const char* const dashes[] = {"1", "2", "3", "4", "5", "(20,6,3,6,3,6)", "(4,8)", "(30,10)"};
     std::string work = "  plot ";
-    for (std::size_t i = 0; i < series.size(); ++i) {
-        const auto [m, st] = series[i];
+    for (std::size_t i = 0; i < series.lines.size(); ++i) {
+        const auto [m, st] = series.lines[i];
         work += (i ? ", \\\n       " : "") + quoted(csv) + " using (strcol('method') eq " + quoted(method_names[m]) +
                 " && strcol('stepper') eq " + quoted(all_steppers[st]) +
                 " && strcol('status') eq 'ok' ? column('wall_median') : NaN):(larger(column('time_error'), column('disc_error')))"
@@ -579,21 +713,63 @@ BenchFigures bench_figures(const std::string& prefix, const std::vector<std::str
                 std::to_string(m + 1) + " pt " + std::to_string(st % 13 + 1) + " dt " + dashes[st % 8] +
                 " title " + quoted(method_names[m] + " " + all_steppers[st]);
     }
-    work += ", \\\n       '" + prefix + "-front.dat' using 'wall':'error' with steps lw 3 lc rgb 'black' title 'Pareto front'";
+    return work + ", \\\n       '" + prefix +
+           "-front.dat' using 'wall':'error' with steps lw 3 lc rgb 'black' title 'Pareto front'";
+}
+
+/// The DOF figure's axis settings and plot command: the smallest error per method against Ny from PREFIX-dofs.dat,
+/// ticks at the grid's Ny, and the reference's resolution when known.
+std::string dofs_plot(const std::string& prefix, const FigureSeries& series, double resolution)
+{
+    const std::vector<std::string> method_names = words<Method>();
     std::string dofs = "  plot ";
-    for (std::size_t i = 0; i < methods.size(); ++i)
-        dofs += (i ? ", \\\n       " : "") + ("'" + prefix + "-dofs.dat' using (strcol('method') eq " +
-                                            quoted(method_names[methods[i]]) + " ? column('ny') : NaN):'error' " +
-                                            "with linespoints lw 2 pt 7 lc " + std::to_string(methods[i] + 1) +
-                                            " title " + quoted(method_names[methods[i]]));
+    for (std::size_t i = 0; i < series.methods.size(); ++i)
+        dofs += (i ? ", \\\n       " : "") +
+                ("'" + prefix + "-dofs.dat' using (strcol('method') eq " + quoted(method_names[series.methods[i]]) +
+                 " ? column('ny') : NaN):'error' " + "with linespoints lw 2 pt 7 lc " +
+                 std::to_string(series.methods[i] + 1) + " title " + quoted(method_names[series.methods[i]]));
     if (resolution > 0.0)
         dofs += ", \\\n       " + shortest(resolution) +
                 " with lines dt 2 lw 2 lc rgb 'gray40' title 'reference resolution'";
     std::string ny_tics, ny_range;
-    for (const int n : nys) ny_tics += (ny_tics.empty() ? "" : ", ") + std::to_string(n);
-    if (!nys.empty())  // a little beyond the grid's Ny on either side, not the decades around them
-        ny_range = "  set xrange [" + shortest(nys.front() / 1.15) + ":" + shortest(nys.back() * 1.15) + "]\n";
+    for (const int n : series.nys) ny_tics += (ny_tics.empty() ? "" : ", ") + std::to_string(n);
+    if (!series.nys.empty())  // a little beyond the grid's Ny on either side, not the decades around them
+        ny_range =
+            "  set xrange [" + shortest(series.nys.front() / 1.15) + ":" + shortest(series.nys.back() * 1.15) + "]\n";
+    return "  set xtics (" + ny_tics + ")\n" + ny_range + dofs;
+}
 
+/// PREFIX-front.dat: the points on the Pareto front (errors within the reference's resolution are ties).
+std::string front_data(const std::vector<FigurePoint>& points, double resolution)
+{
+    std::vector<WorkPoint> plane;
+    for (const FigurePoint& p : points) plane.push_back({p.wall, p.error});
+    std::string front = "wall,error\n";
+    for (const std::size_t i : pareto_front(plane, resolution))
+        front += shortest(points[i].wall) + "," + shortest(points[i].error) + "\n";
+    return front;
+}
+
+/// PREFIX-dofs.dat: the smallest error per method and Ny.
+std::string dofs_data(const std::vector<FigurePoint>& points)
+{
+    std::map<std::pair<std::string, int>, double> smallest;
+    for (const FigurePoint& p : points) {
+        auto [it, added] = smallest.emplace(std::make_pair(p.method, p.ny), p.error);
+        if (!added) it->second = std::min(it->second, p.error);
+    }
+    std::string dofs = "method,ny,error\n";
+    for (const auto& [k, e] : smallest) dofs += k.first + "," + std::to_string(k.second) + "," + shortest(e) + "\n";
+    return dofs;
+}
+
+/// The figures of the bench CSV at csv (drawn to figures[0], the work against precision, and figures[1], the error
+/// against Ny) and the data files they read beside it, computed here.
+BenchFigures bench_figures(const std::string& prefix, const std::vector<std::string>& figures, const std::string& csv,
+                           const std::string& scene, double resolution)
+{
+    const std::vector<FigurePoint> points = read_points(csv);
+    const FigureSeries series = figure_series(points);
     BenchFigures f;
     f.script = "# gnuplot script written by hubbeam bench: work-precision figures from " + csv + "\n" + figure_style() +
                "set logscale xy\n"
@@ -607,27 +783,15 @@ BenchFigures bench_figures(const std::string& prefix, const std::vector<std::str
                               "  set ylabel 'max |tip u_y - reference| (m)'\n"
                               "  set xtics autofreq\n"
                               "  set autoscale x\n" +
-                              work + "\n" + figure_output(figures[1]) + "  set title " +
+                              work_plot(prefix, csv, series) + "\n" + figure_output(figures[1]) + "  set title " +
                               gnuplot_string("Discretization error against DOF count, " + scene +
                                              " (the smallest error of each method and Ny)") +
                               " noenhanced\n"
                               "  set xlabel 'transverse DOFs N_y'\n"
-                              "  set ylabel 'max |tip u_y - converged reference| (m)'\n"
-                              "  set xtics (" + ny_tics + ")\n" + ny_range +
-                              dofs + "\n");
-    // The front (errors within the reference's resolution are ties) and the DOF convergence, computed here.
-    std::vector<WorkPoint> plane;
-    for (const Point& p : points) plane.push_back({p.wall, p.error});
-    f.front = "wall,error\n";
-    for (const std::size_t i : pareto_front(plane, resolution))
-        f.front += shortest(points[i].wall) + "," + shortest(points[i].error) + "\n";
-    std::map<std::pair<std::string, int>, double> smallest;  // the smallest error per method and Ny
-    for (const Point& p : points) {
-        auto [it, added] = smallest.emplace(std::make_pair(p.method, p.ny), p.error);
-        if (!added) it->second = std::min(it->second, p.error);
-    }
-    f.dofs = "method,ny,error\n";
-    for (const auto& [k, e] : smallest) f.dofs += k.first + "," + std::to_string(k.second) + "," + shortest(e) + "\n";
+                              "  set ylabel 'max |tip u_y - converged reference| (m)'\n" +
+                              dofs_plot(prefix, series, resolution) + "\n");
+    f.front = front_data(points, resolution);
+    f.dofs = dofs_data(points);
     return f;
 }
 

@@ -338,6 +338,73 @@ Figure axial_figure(const std::vector<std::string>& files, const std::vector<std
     return f;
 }
 
+/// A line of a Campbell diagram: one bending mode of one variant of one file.
+struct CampbellLine {
+    std::size_t file;
+    std::vector<std::string> variant;  // method, ny, nx, order, drive as the file writes them
+    std::string mode;
+};
+
+/// The modes CSV columns that name a variant, and how the legend introduces each.
+constexpr const char* variant_columns[] = {"method", "ny", "nx", "order", "drive"};
+constexpr const char* variant_names[] = {"", " Ny = ", " Nx = ", " order ", " drive "};
+constexpr std::size_t variant_size = std::size(variant_columns);
+
+/// The Campbell diagram's lines, in the order of the files and of their first rows. Throws PlotInputError for a file
+/// without bending rows.
+std::vector<CampbellLine> campbell_lines(const std::vector<std::string>& files, const Kind& kind)
+{
+    std::vector<CampbellLine> lines;
+    for (std::size_t file = 0; file < files.size(); ++file) {
+        const std::size_t before = lines.size();
+        read_csv(files[file], kind, [&](const Record& r) {
+            if (r["kind"] != "bending") return;
+            CampbellLine l{file, {r["method"], r["ny"], r["nx"], r["order"], r["drive"]}, r["mode"]};
+            if (std::none_of(lines.begin() + static_cast<std::ptrdiff_t>(before), lines.end(),
+                             [&](const CampbellLine& o) { return o.variant == l.variant && o.mode == l.mode; }))
+                lines.push_back(l);
+        });
+        if (lines.size() == before)
+            throw PlotInputError(printable(files[file], 400) +
+                                 ": expected rows of kind bending (the modes a Campbell diagram draws), got none");
+    }
+    return lines;
+}
+
+/// Which variant columns the legend names: method and Ny always, Nx, order and drive when they vary.
+std::vector<bool> named_columns(const std::vector<CampbellLine>& lines)
+{
+    std::vector<bool> named = {true, true, false, false, false};
+    for (const CampbellLine& l : lines)
+        for (std::size_t c = 2; c < variant_size; ++c) named[c] = named[c] || l.variant[c] != lines.front().variant[c];
+    return named;
+}
+
+/// The commands that select line l's rows of its file into the datablock `block`.
+std::string campbell_table(const std::string& block, const CampbellLine& l, const std::string& file)
+{
+    std::string condition;
+    for (std::size_t c = 0; c < variant_size; ++c)
+        condition += "strcol('" + std::string(variant_columns[c]) + "') eq " + gnuplot_string(l.variant[c]) + " && ";
+    condition += "strcol('mode') eq " + gnuplot_string(l.mode) + " && strcol('kind') eq 'bending'";
+    return "set table " + block + " separator comma\nplot " + gnuplot_string(file) +
+           " using 'omega':'hz' with table if (" + condition + ")\n";
+}
+
+/// The look of a Campbell line, by the index of its method (a colour each) and of its legend entry: an open marker
+/// of its own per legend entry, larger and the line wider the earlier the entry, so that variants whose frequencies
+/// coincide show as nested outlines; a dash type per file.
+std::string campbell_style(std::size_t colour, std::size_t entry_index, std::size_t file)
+{
+    static const int open_points[] = {6, 4, 8, 12, 10, 14, 1, 2};
+    char size[40];
+    std::snprintf(size, sizeof size, "lw %.1f", std::max(1.0, 2.5 - 0.4 * static_cast<double>(entry_index)));
+    char points[40];
+    std::snprintf(points, sizeof points, " pt %d ps %.2f ", open_points[entry_index % std::size(open_points)],
+                  std::max(0.6, 1.6 - 0.25 * static_cast<double>(entry_index)));
+    return std::string(size) + " lc " + std::to_string(colour + 1) + " dt " + std::to_string(file % 5 + 1) + points;
+}
+
 /// A Campbell diagram: the bending frequencies (Hz) against the spin rate, a line per file, variant (method, Ny,
 /// Nx, order, drive) and mode, a colour per method, with the spin frequency 1P. A mode's rows are interleaved with
 /// the other modes' in the file, and gnuplot breaks a line at every row a condition leaves out: so each line's
@@ -345,46 +412,17 @@ Figure axial_figure(const std::vector<std::string>& files, const std::vector<std
 Figure campbell_figure(const std::vector<std::string>& files, const std::vector<std::string>& labels, bool label_lines,
                        const Kind& kind)
 {
-    struct Line {
-        std::size_t file;
-        std::vector<std::string> variant;  // method, ny, nx, order, drive as the file writes them
-        std::string mode;
-    };
-    std::vector<Line> lines;
-    for (std::size_t file = 0; file < files.size(); ++file) {
-        const std::size_t before = lines.size();
-        read_csv(files[file], kind, [&](const Record& r) {
-            if (r["kind"] != "bending") return;
-            Line l{file, {r["method"], r["ny"], r["nx"], r["order"], r["drive"]}, r["mode"]};
-            if (std::none_of(lines.begin() + static_cast<std::ptrdiff_t>(before), lines.end(),
-                             [&](const Line& o) { return o.variant == l.variant && o.mode == l.mode; }))
-                lines.push_back(l);
-        });
-        if (lines.size() == before)
-            throw PlotInputError(printable(files[file], 400) +
-                                 ": expected rows of kind bending (the modes a Campbell diagram draws), got none");
-    }
-    // The legend names a variant by its method and Ny, and by Nx, order and drive when they vary.
-    static const char* const columns[] = {"method", "ny", "nx", "order", "drive"};
-    static const char* const names[] = {"", " Ny = ", " Nx = ", " order ", " drive "};
-    std::vector<bool> named = {true, true, false, false, false};
-    for (const Line& l : lines)
-        for (std::size_t c = 2; c < 5; ++c) named[c] = named[c] || l.variant[c] != lines.front().variant[c];
-
+    const std::vector<CampbellLine> lines = campbell_lines(files, kind);
+    const std::vector<bool> named = named_columns(lines);
     Figure f;
     f.axes = "set xlabel 'hub spin rate omega (rad/s)'\nset ylabel 'natural frequency f (Hz)'\n";
     f.data = "# one datablock per line: the rows of one bending mode of one variant\n";
     std::vector<std::string> methods;                                       // a colour each
     std::vector<std::pair<std::size_t, std::vector<std::string>>> entries;  // (file, variant): a legend entry each
     for (std::size_t i = 0; i < lines.size(); ++i) {
-        const Line& l = lines[i];
-        std::string condition;
-        for (std::size_t c = 0; c < 5; ++c)
-            condition += "strcol('" + std::string(columns[c]) + "') eq " + gnuplot_string(l.variant[c]) + " && ";
-        condition += "strcol('mode') eq " + gnuplot_string(l.mode) + " && strcol('kind') eq 'bending'";
+        const CampbellLine& l = lines[i];
         const std::string block = "$mode" + std::to_string(i + 1);
-        f.data += "set table " + block + " separator comma\nplot " + gnuplot_string(files[l.file]) +
-                  " using 'omega':'hz' with table if (" + condition + ")\n";
+        f.data += campbell_table(block, l, files[l.file]);
 
         if (std::find(methods.begin(), methods.end(), l.variant[0]) == methods.end()) methods.push_back(l.variant[0]);
         const std::size_t colour =
@@ -393,20 +431,11 @@ Figure campbell_figure(const std::vector<std::string>& files, const std::vector<
         auto e = std::find(entries.begin(), entries.end(), entry);
         const bool first = e == entries.end();
         if (first) e = entries.insert(e, entry);
-        // An open marker of its own per legend entry, larger and the line wider the earlier the entry, so that
-        // variants whose frequencies coincide show as nested outlines; a dash type per file.
-        const auto entry_index = static_cast<std::size_t>(e - entries.begin());
-        static const int open_points[] = {6, 4, 8, 12, 10, 14, 1, 2};
-        char size[40];
-        std::snprintf(size, sizeof size, "lw %.1f", std::max(1.0, 2.5 - 0.4 * static_cast<double>(entry_index)));
         std::string legend = label_lines ? labels[l.file] + ": " : "";
-        for (std::size_t c = 0; c < 5; ++c)
-            if (named[c]) legend += names[c] + l.variant[c];
-        char points[40];
-        std::snprintf(points, sizeof points, " pt %d ps %.2f ", open_points[entry_index % std::size(open_points)],
-                      std::max(0.6, 1.6 - 0.25 * static_cast<double>(entry_index)));
-        f.elements.push_back(block + " using 1:2 with linespoints " + size + " lc " + std::to_string(colour + 1) +
-                             " dt " + std::to_string(l.file % 5 + 1) + points +
+        for (std::size_t c = 0; c < variant_size; ++c)
+            if (named[c]) legend += variant_names[c] + l.variant[c];
+        f.elements.push_back(block + " using 1:2 with linespoints " +
+                             campbell_style(colour, static_cast<std::size_t>(e - entries.begin()), l.file) +
                              (first ? title_of(legend) : std::string("notitle")));
     }
     f.data += "unset table\n";
@@ -520,7 +549,10 @@ const std::vector<std::string>& plot_kinds()
     return names;
 }
 
-std::string plot_script(const PlotArgs& args)
+namespace {
+
+/// Checks args' kind, files, prefix and texts (labels aside); returns the kind. Throws PlotInputError.
+const Kind& checked_kind(const PlotArgs& args)
 {
     const auto kind = std::find_if(kinds().begin(), kinds().end(), [&](const Kind& k) { return args.kind == k.name; });
     if (kind == kinds().end())
@@ -533,53 +565,77 @@ std::string plot_script(const PlotArgs& args)
     if (!args.time.empty() && args.kind != "moment")
         bad_option<PlotInputError>("--time", "no time for kind " + args.kind + " (only kind moment draws one time)",
                                    printable(args.time, 40));
+    return *kind;
+}
+
+/// The legend's label per file: --labels, checked, or the files' stems. Throws PlotInputError.
+std::vector<std::string> file_labels(const PlotArgs& args)
+{
     std::vector<std::string> labels;
-    if (args.labels.empty())
+    if (args.labels.empty()) {
         for (const std::string& f : args.files) labels.push_back(std::filesystem::path(f).stem().string());
-    else {
-        labels = split_list(args.labels);
-        if (labels.size() != args.files.size())
-            bad_option<PlotInputError>("--labels",
-                                       std::to_string(args.files.size()) + " comma-separated labels, one per file",
-                                       std::to_string(labels.size()) + " (" + printable(args.labels, 120) + ")");
-        for (const std::string& l : labels) {
-            if (l.empty()) bad_option<PlotInputError>("--labels", "a non-empty label per file", "");
-            check_text("--labels", l, "labels");
-        }
+        return labels;
     }
+    labels = split_list(args.labels);
+    if (labels.size() != args.files.size())
+        bad_option<PlotInputError>("--labels",
+                                   std::to_string(args.files.size()) + " comma-separated labels, one per file",
+                                   std::to_string(labels.size()) + " (" + printable(args.labels, 120) + ")");
+    for (const std::string& l : labels) {
+        if (l.empty()) bad_option<PlotInputError>("--labels", "a non-empty label per file", "");
+        check_text("--labels", l, "labels");
+    }
+    return labels;
+}
 
-    const std::string name = kind->name;
-    Figure figure;
-    if (name == "tip") figure = tip_figure(args.files, labels, *kind);
-    else if (name == "axial") figure = axial_figure(args.files, labels, *kind);
-    else if (name == "campbell")
+/// The figure of kind, read from args' files.
+Figure kind_figure(const Kind& kind, const PlotArgs& args, const std::vector<std::string>& labels)
+{
+    const std::string name = kind.name;
+    if (name == "tip") return tip_figure(args.files, labels, kind);
+    if (name == "axial") return axial_figure(args.files, labels, kind);
+    if (name == "campbell")
         // the labels name the lines once there is more than one file, or when given
-        figure = campbell_figure(args.files, labels, args.files.size() > 1 || !args.labels.empty(), *kind);
-    else
-        figure = moment_figure(args.files, labels, args.time, *kind);
-    const std::string title =
-        args.title.empty() ? kind->title + (", " + scene_of(args.files)) + figure.title_suffix : args.title;
+        return campbell_figure(args.files, labels, args.files.size() > 1 || !args.labels.empty(), kind);
+    return moment_figure(args.files, labels, args.time, kind);
+}
 
-    const auto plot_of = [](const std::vector<std::string>& elements) {
-        std::string plot = "  plot ";
-        for (std::size_t i = 0; i < elements.size(); ++i) plot += (i ? ", \\\n       " : "") + elements[i];
-        return plot + "\n";
-    };
-    std::string body = figure_output(args.prefix) + "  set title " + gnuplot_string(title) + " noenhanced\n" +
-                       indented(figure.axes);
-    if (figure.lower_elements.empty()) body += plot_of(figure.elements);
-    else
-        // Two panels with the same left and right edges (the legends in the margin on the right), so that their
-        // time axes line up: the curves above, their differences against the first file's below.
-        body += "  set multiplot\n  set lmargin at screen 0.12\n  set rmargin at screen " + right_edge(figure) +
-                "\n  set tmargin at screen 0.93\n  set bmargin at screen 0.42\n  set xlabel ''\n" +
-                plot_of(figure.elements) + "  set title ''\n  set tmargin at screen 0.33\n  set bmargin at screen 0.09\n" +
-                indented(figure.lower_axes) + plot_of(figure.lower_elements) +
-                "  unset multiplot\n  unset lmargin\n  unset rmargin\n  unset tmargin\n  unset bmargin\n";
-    std::string script =
-        "# gnuplot script written by hubbeam plot " + name + " (redraw: gnuplot " + args.prefix + ".gp), from";
+/// A plot command of the elements.
+std::string plot_of(const std::vector<std::string>& elements)
+{
+    std::string plot = "  plot ";
+    for (std::size_t i = 0; i < elements.size(); ++i) plot += (i ? ", \\\n       " : "") + elements[i];
+    return plot + "\n";
+}
+
+/// The figure's commands inside in_png_and_svg's loop, drawn to prefix under title.
+std::string figure_body(const Figure& figure, const std::string& prefix, const std::string& title)
+{
+    std::string body =
+        figure_output(prefix) + "  set title " + gnuplot_string(title) + " noenhanced\n" + indented(figure.axes);
+    if (figure.lower_elements.empty()) return body + plot_of(figure.elements);
+    // Two panels with the same left and right edges (the legends in the margin on the right), so that their time
+    // axes line up: the curves above, their differences against the first file's below.
+    return body + "  set multiplot\n  set lmargin at screen 0.12\n  set rmargin at screen " + right_edge(figure) +
+           "\n  set tmargin at screen 0.93\n  set bmargin at screen 0.42\n  set xlabel ''\n" +
+           plot_of(figure.elements) + "  set title ''\n  set tmargin at screen 0.33\n  set bmargin at screen 0.09\n" +
+           indented(figure.lower_axes) + plot_of(figure.lower_elements) +
+           "  unset multiplot\n  unset lmargin\n  unset rmargin\n  unset tmargin\n  unset bmargin\n";
+}
+
+}  // namespace
+
+std::string plot_script(const PlotArgs& args)
+{
+    const Kind& kind = checked_kind(args);
+    const std::vector<std::string> labels = file_labels(args);
+    const Figure figure = kind_figure(kind, args, labels);
+    const std::string title =
+        args.title.empty() ? kind.title + (", " + scene_of(args.files)) + figure.title_suffix : args.title;
+    std::string script = "# gnuplot script written by hubbeam plot " + std::string(kind.name) + " (redraw: gnuplot " +
+                         args.prefix + ".gp), from";
     for (const std::string& f : args.files) script += " " + f;
-    return script + "\n" + figure_style() + figure.data + in_png_and_svg(body);
+    return script + "\n" + figure_style() + figure.data + in_png_and_svg(figure_body(figure, args.prefix, title));
 }
 
 namespace {

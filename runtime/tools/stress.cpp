@@ -70,53 +70,67 @@ void print(std::ostream& out, const StressRow& r)
     out << line << std::flush;
 }
 
-}  // namespace
-
-std::vector<StressRow> run_stress(const StressOptions& o, std::ostream& out, const StopRequest& stop)
-{
+/// The table as it grows: each row printed when added; the stop request the cases ask between runs.
+struct Table {
+    std::ostream& out;
+    const StopRequest& stop;
     std::vector<StressRow> rows;
-    out << "pass  group    case                               expect      max|tip| J drift/U   wall s  status\n";
-    const auto add = [&](StressRow r) {
+
+    void add(StressRow r)
+    {
         print(out, r);
         rows.push_back(std::move(r));
-    };
-    const auto stopped = [&] { return stop && stop() != nullptr; };
+    }
+    bool stopped() const { return stop && stop() != nullptr; }
+};
 
-    // 1. Spin-up to Omega0: first and full stay bounded; zero must be caught as unstable (it is, above the
-    // first bending frequency, 2.911 rad/s, which every Omega0 here passes).
-    const std::vector<double> omegas = o.quick ? std::vector<double>{4.0, 10.0, 20.0} : std::vector<double>{4.0, 10.0, 20.0, 50.0};
+/// Spin-up to Omega0: first and full stay bounded; zero must be caught as unstable (it is, above the first bending
+/// frequency, 2.911 rad/s, which every Omega0 here passes). Returns false when asked to stop.
+bool spin_cases(const StressOptions& o, Table& table)
+{
+    const std::vector<double> omegas =
+        o.quick ? std::vector<double>{4.0, 10.0, 20.0} : std::vector<double>{4.0, 10.0, 20.0, 50.0};
     for (const double omega : omegas)
         for (const Method m : {Method::amm, Method::fem, Method::bim, Method::bsim})
             for (const Order order : {Order::zero, Order::first, Order::full}) {
-                if (stopped()) return rows;
+                if (table.stopped()) return false;
                 Scene s = base_scene(m, 0, 4, order);
                 s.motion.omega0 = omega;
                 s.output.t_end = 25.0;
-                add(run_case("spin", to_string(m) + " " + to_string(order) + " Omega0 " + shortest(omega), s,
-                             order == Order::zero ? "unstable" : "bounded", stop));
+                table.add(run_case("spin", to_string(m) + " " + to_string(order) + " Omega0 " + shortest(omega), s,
+                                   order == Order::zero ? "unstable" : "bounded", table.stop));
             }
+    return true;
+}
 
-    // 2. DOF counts up to each method's limit: the mass matrix's condition number, and a short bounded run
-    // (assembled, so that no large variant is compiled for it).
+/// DOF counts up to each method's limit: the mass matrix's condition number, and a short bounded run (assembled,
+/// so that no large variant is compiled for it). Returns false when asked to stop.
+bool dof_cases(const StressOptions& o, Table& table)
+{
     for (const Method m : {Method::amm, Method::fem, Method::bim, Method::bsim}) {
         std::vector<int> counts = {8, 16};
         if (o.long_runs) counts.push_back(max_dof(m));
         for (const int ny : counts) {
-            if (stopped()) return rows;
+            if (table.stopped()) return false;
             Scene s = base_scene(m, 0, ny, Order::first);
             s.source = ModelSource::assembled;
             s.output.t_end = o.long_runs ? 20.0 : 2.0;
-            StressRow r = run_case("dofs", to_string(m) + " Ny " + std::to_string(ny), s, "bounded", stop);
+            StressRow r = run_case("dofs", to_string(m) + " Ny " + std::to_string(ny), s, "bounded", table.stop);
             r.note = "cond(M) " + number(mass_condition(*make_model(s.key(), s.parameters, ModelSource::assembled)));
-            add(r);
+            table.add(r);
         }
     }
+    return true;
+}
 
-    // 3. Long runs: the Jacobi integral's drift per stepper at steady spin and after the torque.
+/// Long runs: the Jacobi integral's drift per stepper at steady spin and after the torque. Returns false when asked
+/// to stop.
+bool long_cases(const StressOptions& o, Table& table)
+{
     const double t_long = o.long_runs ? 1000.0 : 100.0;
     for (const char* stepper : {"rk8pd", "rk4imp", "msadams"})
         for (const bool torque : {false, true}) {
-            if (stopped()) return rows;
+            if (table.stopped()) return false;
             Scene s = base_scene(Method::amm, 4, 4, Order::first);
             if (torque) {
                 s.motion.kind = Motion::Kind::torque;
@@ -125,40 +139,60 @@ std::vector<StressRow> run_stress(const StressOptions& o, std::ostream& out, con
             s.solver.stepper = stepper;
             s.output.t_end = t_long;
             s.output.dt_out = 0.1;
-            add(run_case("long", std::string(torque ? "torque 10 N m, " : "spin 4 rad/s, ") + stepper + ", " +
-                                     shortest(t_long) + " s",
-                         s, "bounded", stop));
+            table.add(run_case(
+                "long",
+                std::string(torque ? "torque 10 N m, " : "spin 4 rad/s, ") + stepper + ", " + shortest(t_long) + " s",
+                s, "bounded", table.stop));
         }
+    return true;
+}
 
-    // 4. A beam 100 times more flexible and one 100 times stiffer (E scaled), spin-up to 4 rad/s: first against
-    // full. Measured, nothing required: the flexible beam spins 14 times above its first bending frequency.
+/// A beam 100 times more flexible and one 100 times stiffer (E scaled), spin-up to 4 rad/s: first against full.
+/// Measured, nothing required: the flexible beam spins 14 times above its first bending frequency. Returns false
+/// when asked to stop.
+bool beam_cases(Table& table)
+{
     for (const double scale : {0.01, 100.0}) {
         StressRow first, full;
         for (const Order order : {Order::first, Order::full}) {
-            if (stopped()) return rows;
+            if (table.stopped()) return false;
             Scene s = base_scene(Method::amm, 0, 4, order);
             s.parameters.E *= scale;
             s.output.t_end = 25.0;
-            StressRow r = run_case("beam", std::string(scale < 1 ? "E/100 " : "E*100 ") + to_string(order), s,
-                                   "report", stop);
+            StressRow r = run_case("beam", std::string(scale < 1 ? "E/100 " : "E*100 ") + to_string(order), s, "report",
+                                   table.stop);
             (order == Order::first ? first : full) = r;
         }
         if (first.status == "ok" && full.status == "ok")
             first.note = "max|tip| first / full = " + number(first.max_tip / full.max_tip, "%.4f");
-        add(first);
-        add(full);
+        table.add(first);
+        table.add(full);
     }
+    return true;
+}
 
-    if (!o.output.empty()) {
-        CsvWriter csv(o.output, "pass,group,case,expect,max_tip,drift,wall,status,note");
-        for (const StressRow& r : rows)
-            csv.write_line(std::string(r.pass ? "pass" : "FAIL") + "," + r.group + "," + csv_field(r.name) + "," +
-                           r.expect + "," + number(r.max_tip, "%.6g") + "," + number(r.drift, "%.3g") + "," +
-                           number(r.wall, "%.4f") + "," + csv_field(r.status) + "," + csv_field(r.note));
-        csv.finish();
-        if (!csv.ok()) throw std::runtime_error(csv.error());
-    }
-    return rows;
+/// The table as a CSV at path; throws on a write error.
+void write_csv(const std::string& path, const std::vector<StressRow>& rows)
+{
+    CsvWriter csv(path, "pass,group,case,expect,max_tip,drift,wall,status,note");
+    for (const StressRow& r : rows)
+        csv.write_line(std::string(r.pass ? "pass" : "FAIL") + "," + r.group + "," + csv_field(r.name) + "," +
+                       r.expect + "," + number(r.max_tip, "%.6g") + "," + number(r.drift, "%.3g") + "," +
+                       number(r.wall, "%.4f") + "," + csv_field(r.status) + "," + csv_field(r.note));
+    csv.finish();
+    if (!csv.ok()) throw std::runtime_error(csv.error());
+}
+
+}  // namespace
+
+std::vector<StressRow> run_stress(const StressOptions& o, std::ostream& out, const StopRequest& stop)
+{
+    out << "pass  group    case                               expect      max|tip| J drift/U   wall s  status\n";
+    Table table{out, stop, {}};
+    // A stopped suite returns the rows it has, without the CSV.
+    if (!spin_cases(o, table) || !dof_cases(o, table) || !long_cases(o, table) || !beam_cases(table)) return table.rows;
+    if (!o.output.empty()) write_csv(o.output, table.rows);
+    return table.rows;
 }
 
 }  // namespace hubbeam
