@@ -76,6 +76,34 @@ py::array_t<double> rows_array(std::vector<double>&& rows)
 /// its start (an interrupted sweep's local workers are threads of this process: they stop instead of running on).
 std::atomic<long> cancel_generation{0};
 
+/// A run's summary as the Python result's attributes (the command line's summary lines, and its text).
+py::dict summary_dict(const RunSummary& s, const Scene& scene)
+{
+    py::dict out;
+    out["columns"] = row_header();
+    out["variant"] = s.variant;
+    out["source"] = s.source;
+    out["algebra"] = s.algebra;
+    out["stepper"] = s.stepper;
+    out["stepper_why"] = s.stepper_why;
+    out["completed"] = s.completed;
+    out["failure"] = s.failure;
+    out["t_reached"] = s.t_reached;
+    out["max_abs_tip_uy"] = s.max_abs_tip_uy;
+    out["t_steady"] = s.t_steady;
+    out["jacobi_drift"] = s.jacobi_drift;
+    out["vibration_energy"] = s.vibration_energy;
+    out["estimated_error"] = s.estimated_error;
+    out["error_column"] = s.error_column;
+    out["steps"] = s.steps;
+    out["rhs_evals"] = s.rhs_evals;
+    out["jacobian_evals"] = s.jacobian_evals;
+    out["wall_seconds"] = s.wall_seconds;
+    out["check_wall_seconds"] = s.check_wall_seconds;
+    out["summary_text"] = format_summary(s, scene);
+    return out;
+}
+
 /// One run: the rows as an array and the summary's fields (hubbeam.run).
 py::dict run(const std::string& text, const std::string& name, const Overrides& overrides, bool cancellable)
 {
@@ -118,27 +146,9 @@ py::dict run(const std::string& text, const std::string& name, const Overrides& 
     }
     if (interrupted) throw py::error_already_set();  // the KeyboardInterrupt that PyErr_CheckSignals set
     const double in_process = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    py::dict out;
+    py::dict out = summary_dict(s, scene);
     out["data"] = rows_array(std::move(rows));
     out["in_process_seconds"] = in_process;
-    out["columns"] = row_header();
-    out["variant"] = s.variant;
-    out["source"] = s.source;
-    out["algebra"] = s.algebra;
-    out["stepper"] = s.stepper;
-    out["stepper_why"] = s.stepper_why;
-    out["completed"] = s.completed;
-    out["failure"] = s.failure;
-    out["t_reached"] = s.t_reached;
-    out["max_abs_tip_uy"] = s.max_abs_tip_uy;
-    out["t_steady"] = s.t_steady;
-    out["jacobi_drift"] = s.jacobi_drift;
-    out["vibration_energy"] = s.vibration_energy;
-    out["steps"] = s.steps;
-    out["rhs_evals"] = s.rhs_evals;
-    out["jacobian_evals"] = s.jacobian_evals;
-    out["wall_seconds"] = s.wall_seconds;
-    out["summary_text"] = format_summary(s, scene);
     return out;
 }
 

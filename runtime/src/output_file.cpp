@@ -101,24 +101,37 @@ void check_outputs(const std::vector<NamedPath>& inputs, const std::vector<Named
 
 OutputFile::OutputFile(const std::string& path, const std::string& temp) : path_(path), target_(path)
 {
-    struct stat st {};
-    const bool exists = ::stat(path.c_str(), &st) == 0;
-    if (exists && !S_ISREG(st.st_mode))
-        // Never opened: open() on a FIFO blocks until a reader comes, and renaming over a device replaces the node.
-        throw OutputRefused(printable(path, 400) + ": expected a regular file or the name of a new one, got " +
-                            kind_of(st.st_mode));
-    if (exists) mode_ = static_cast<int>(st.st_mode & 07777);
-    struct stat link {};
-    if (exists && ::lstat(path.c_str(), &link) == 0 && S_ISLNK(link.st_mode)) {
-        // Replace the file the link points to, not the link: what writing through it would do.
-        std::error_code ec;
-        if (const auto real = std::filesystem::canonical(path, ec); !ec) target_ = real.string();
-    }
+    resolve_target();
     const std::filesystem::path target(target_);
     const std::string name = target.filename().string();
     if (name.empty() || name == "." || name == "..") throw cannot_open(path_, EISDIR);
     const std::filesystem::path dir = target.parent_path();
 
+    take_lock(dir, name);
+    create_temp(dir, name, temp);
+    // The replacement keeps the permissions of the file it replaces (a new file gets the umask's).
+    if (mode_ >= 0) (void)::fchmod(fd_, static_cast<mode_t>(mode_));
+}
+
+void OutputFile::resolve_target()
+{
+    struct stat st {};
+    const bool exists = ::stat(path_.c_str(), &st) == 0;
+    if (exists && !S_ISREG(st.st_mode))
+        // Never opened: open() on a FIFO blocks until a reader comes, and renaming over a device replaces the node.
+        throw OutputRefused(printable(path_, 400) + ": expected a regular file or the name of a new one, got " +
+                            kind_of(st.st_mode));
+    if (exists) mode_ = static_cast<int>(st.st_mode & 07777);
+    struct stat link {};
+    if (exists && ::lstat(path_.c_str(), &link) == 0 && S_ISLNK(link.st_mode)) {
+        // Replace the file the link points to, not the link: what writing through it would do.
+        std::error_code ec;
+        if (const auto real = std::filesystem::canonical(path_, ec); !ec) target_ = real.string();
+    }
+}
+
+void OutputFile::take_lock(const std::filesystem::path& dir, const std::string& name)
+{
     // The lock first: a second writer is refused before it creates anything. The lock file is removed when
     // released, so after taking the lock it must still be the file at that path (else its holder removed it
     // between this open and this flock, and the lock is taken again on the new one).
@@ -146,6 +159,10 @@ OutputFile::OutputFile(const std::string& path, const std::string& temp) : path_
         if (lock_fd_ < 0 && attempt >= 100) throw cannot_open(path_, EAGAIN, " (its lock file keeps changing)");
     }
 
+}
+
+void OutputFile::create_temp(const std::filesystem::path& dir, const std::string& name, const std::string& temp)
+{
     // O_EXCL: never write into a file someone else has; a name left by a killed run whose pid has come round again is
     // skipped with a suffix rather than reused.
     std::string stem = ".";  // appended piece by piece: GCC 12 warns falsely (-Wrestrict) about "." + string
@@ -169,8 +186,6 @@ OutputFile::OutputFile(const std::string& path, const std::string& temp) : path_
         release_lock();
         throw cannot_open(path_, EEXIST, " (creating its temporary file " + printable(temp_, 400) + ")");
     }
-    // The replacement keeps the permissions of the file it replaces (a new file gets the umask's).
-    if (mode_ >= 0) (void)::fchmod(fd_, static_cast<mode_t>(mode_));
 }
 
 OutputFile::~OutputFile() { discard(); }

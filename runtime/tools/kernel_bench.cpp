@@ -263,6 +263,37 @@ KernelBenchOptions parse_kernel_options(const KernelArgs& args)
     return o;
 }
 
+namespace {
+
+/// What the grid's loop gathers besides the rows, for the notes under the table.
+struct KernelNotes {
+    std::vector<std::string> skipped, failed;
+    bool any_capped = false;
+};
+
+/// Measures key generated and assembled (the assembled path has no order full), prints its line, and keeps the rows
+/// that measured.
+void bench_variant(const VariantKey& key, const KernelBenchOptions& options, std::ostream& out, CsvWriter* csv,
+                   std::vector<KernelBenchRow>& rows, KernelNotes& notes)
+{
+    KernelBenchRow gen, as;
+    const bool has_gen = measure(key, ModelSource::generated, options.samples, gen);
+    const bool has_asm = key.order != Order::full && measure(key, ModelSource::assembled, options.samples, as);
+    print_line(out, key, has_gen ? &gen : nullptr, has_asm ? &as : nullptr);
+    for (const KernelBenchRow* r : {has_gen ? &gen : nullptr, has_asm ? &as : nullptr}) {
+        if (r == nullptr) continue;
+        if (!r->failure.empty()) {
+            notes.failed.push_back(key.name() + " (" + r->source + "): " + r->failure);
+            continue;
+        }
+        notes.any_capped = notes.any_capped || r->rhs.capped || r->jacobian.capped;
+        if (csv != nullptr) write_csv_row(*csv, *r);
+        rows.push_back(*r);
+    }
+}
+
+}  // namespace
+
 std::vector<KernelBenchRow> run_kernel_bench(const KernelBenchOptions& options, std::ostream& out)
 {
     // The CSV is created first so that a bad path costs nothing; it replaces the target when the table is complete.
@@ -276,7 +307,6 @@ std::vector<KernelBenchRow> run_kernel_bench(const KernelBenchOptions& options, 
             throw KernelOptionError(std::string("-o: ") + e.what());
         }
     }
-
     out << "ns per call: median of " << options.samples << " samples of ~" << sample_seconds * 1e3
         << " ms each, (min-max) over the samples.\n"
            "rhs = FirstOrderSystem::rhs (M factored once when it is constant, as in a run); jac = "
@@ -285,45 +315,29 @@ std::vector<KernelBenchRow> run_kernel_bench(const KernelBenchOptions& options, 
     print_header(out);
 
     std::vector<KernelBenchRow> rows;
-    std::vector<std::string> skipped, failed;
-    bool any_capped = false;
+    KernelNotes notes;
     for (const Order order : options.orders)
-    for (const Method method : options.methods)
-        for (const Drive drive : options.drives)
-            for (const int ny : options.ny) {
-                std::vector<int> nxs;
-                for (const int nx : options.nx) add_unique(nxs, nx == nx_equal_ny ? ny : nx);
-                for (const int nx : nxs) {
-                    const VariantKey key{.method = method, .nx = nx, .ny = ny, .order = order, .drive = drive};
-                    if (const std::string why = key.dof_problem(); !why.empty()) {
-                        skipped.push_back(key.name() + ": " + why);
-                        continue;
-                    }
-                    KernelBenchRow gen, as;
-                    const bool has_gen = measure(key, ModelSource::generated, options.samples, gen);
-                    // The assembled path has no order full.
-                    const bool has_asm = order != Order::full && measure(key, ModelSource::assembled, options.samples, as);
-                    print_line(out, key, has_gen ? &gen : nullptr, has_asm ? &as : nullptr);
-                    for (const KernelBenchRow* r : {has_gen ? &gen : nullptr, has_asm ? &as : nullptr}) {
-                        if (r == nullptr) continue;
-                        if (!r->failure.empty()) {
-                            failed.push_back(key.name() + " (" + r->source + "): " + r->failure);
-                            continue;
-                        }
-                        any_capped = any_capped || r->rhs.capped || r->jacobian.capped;
-                        if (csv) write_csv_row(*csv, *r);
-                        rows.push_back(*r);
+        for (const Method method : options.methods)
+            for (const Drive drive : options.drives)
+                for (const int ny : options.ny) {
+                    std::vector<int> nxs;
+                    for (const int nx : options.nx) add_unique(nxs, nx == nx_equal_ny ? ny : nx);
+                    for (const int nx : nxs) {
+                        const VariantKey key{.method = method, .nx = nx, .ny = ny, .order = order, .drive = drive};
+                        if (const std::string why = key.dof_problem(); !why.empty())
+                            notes.skipped.push_back(key.name() + ": " + why);
+                        else
+                            bench_variant(key, options, out, csv.get(), rows, notes);
                     }
                 }
-            }
 
     out << "\nasm/gen = assembled rhs / generated rhs; \"-\": no such model (no compiler for generated code; no "
            "assembled order full).\n";
-    if (any_capped)
+    if (notes.any_capped)
         out << "* a single call took over " << slow_call_seconds * 1e3 << " ms: timed one call at a time, at most "
             << capped_samples << " samples.\n";
-    for (const std::string& s : skipped) out << "skipped " << s << "\n";
-    for (const std::string& s : failed) out << "fails " << s << "\n";
+    for (const std::string& s : notes.skipped) out << "skipped " << s << "\n";
+    for (const std::string& s : notes.failed) out << "fails " << s << "\n";
     if (csv) {
         if (!csv->finish()) throw std::runtime_error(csv->error());
         out << "CSV: " << options.output << "\n";

@@ -2,6 +2,7 @@
 // written beside the target and renamed over it whole, and never by two hubbeam processes at once.
 #pragma once
 
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -78,6 +79,12 @@ public:
     const std::string& temp_path() const { return temp_; }
 
 private:
+    /// The file to replace (through a link, the file it points to), refusing what is not a regular file.
+    void resolve_target();
+    /// Takes the lock beside the target (DIR/.NAME.lock), refusing while another hubbeam holds it.
+    void take_lock(const std::filesystem::path& dir, const std::string& name);
+    /// Creates the temporary file (temp, or DIR/.NAME.tmp-PID[-N]) with O_EXCL.
+    void create_temp(const std::filesystem::path& dir, const std::string& name, const std::string& temp);
     void release_lock();
 
     std::string path_;    // as given, for messages
