@@ -32,7 +32,6 @@ namespace {
     bad_option<BenchOptionError>(option, expected, got);
 }
 
-constexpr int max_grid_dof = 64;
 // The tight reference: the most accurate explicit stepper, a step at every row, tolerances near round-off.
 constexpr const char* reference_stepper = "rk8pd";
 constexpr double reference_rtol = 1e-12, reference_atol = 1e-14;
@@ -237,24 +236,9 @@ const char* bench_header()
 BenchOptions parse_bench_options(const BenchArgs& args, const Scene& scene)
 {
     BenchOptions o;
-    for (const std::string& s : split_list(args.methods)) {
-        Method v{};
-        if (!parse(s, v)) bad("--methods", "a comma-separated list of " + joined(words<Method>()), s);
-        add_unique(o.methods, v);
-    }
-    const std::string dofs = "from 1 to " + std::to_string(max_grid_dof);
-    for (const std::string& s : split_list(args.ny)) {
-        int v = 0;
-        if (!parse_int(s, 1, max_grid_dof, v)) bad("--ny", "a comma-separated list of integers " + dofs, s);
-        add_unique(o.ny, v);
-    }
-    if (args.nx.empty()) o.nx = {scene.variant.nx};
-    else
-        for (const std::string& s : split_list(args.nx)) {
-            int v = 0;
-            if (!parse_int(s, 0, max_grid_dof, v)) bad("--nx", "a comma-separated list of integers from 0 to 64", s);
-            add_unique(o.nx, v);
-        }
+    o.methods = parse_method_list<BenchOptionError>("--methods", args.methods);
+    o.ny = parse_dof_list<BenchOptionError>("--ny", args.ny, 1);
+    o.nx = args.nx.empty() ? std::vector<int>{scene.variant.nx} : parse_dof_list<BenchOptionError>("--nx", args.nx, 0);
     const std::vector<std::string> known = stepper_names();
     for (const std::string& s : split_list(args.steppers)) {
         if (std::find(known.begin(), known.end(), s) == known.end())
@@ -267,7 +251,8 @@ BenchOptions parse_bench_options(const BenchArgs& args, const Scene& scene)
         add_unique(o.rtols, v);
     }
     if (!parse_int(args.repeats, 1, 100, o.repeats)) bad("--repeats", "an integer from 1 to 100", args.repeats);
-    if (!parse_int(args.ref_ny, 6, max_grid_dof, o.ref_ny)) bad("--ref-ny", "an integer from 6 to 64", args.ref_ny);
+    if (!parse_int(args.ref_ny, 6, largest_dof_count(), o.ref_ny))
+        bad("--ref-ny", "an integer from 6 to " + std::to_string(largest_dof_count()), args.ref_ny);
     if (!parse(args.ref_method, o.ref_method)) bad("--ref-method", "one of " + joined(words<Method>()), args.ref_method);
     o.output = args.output.empty() ? "bench.csv" : args.output;
     if (args.plot.find_first_of("'\"") != std::string::npos) bad("--plot", "a path prefix without quotes", args.plot);
