@@ -300,6 +300,26 @@ class TipSeriesTest(unittest.TestCase):
             self.assertEqual(len(read(out)), 3)  # the resumed point's new row; the old row is ignored
 
 
+class LockTest(unittest.TestCase):
+    def test_a_table_another_hubbeam_writes_is_refused(self):
+        # Every hubbeam writer holds DIR/.NAME.lock (flock) while it writes NAME: a sweep onto a table that another
+        # sweep or command is writing exits 2 with one line, and leaves the table as it was.
+        import fcntl
+        with tempfile.TemporaryDirectory() as d:
+            spec = os.path.join(d, "s.toml")
+            with open(spec, "w") as f:
+                f.write(f'scene = "{SPINUP}"\n[set]\n"output.t_end" = 0.1\n')
+            table = os.path.join(d, "table.csv")
+            with open(table, "w") as f:
+                f.write("a table being written\n")
+            with open(os.path.join(d, ".table.csv.lock"), "w") as held:
+                fcntl.flock(held, fcntl.LOCK_EX)
+                (code, err), = cli_all([spec, "-o", table, "--no-resume"])
+            self.assertEqual(code, 2, err)
+            self.assertIn("another hubbeam is writing", err)
+            self.assertEqual(lines_of(table), b"a table being written\n")
+
+
 class BadInputTest(unittest.TestCase):
     def test_bad_input_is_one_line_and_leaves_every_file_as_it_was(self):
         with tempfile.TemporaryDirectory() as d:
@@ -343,7 +363,7 @@ class BadInputTest(unittest.TestCase):
                 ([shady], "\\x1b[31m\\u202e"),
                 ([spec, "-o", binary], "binary.csv: expected this sweep's CSV table"),
                 ([spec, "-o", unreachable, "--scheduler", f"tcp://127.0.0.1:{port}"], "cannot reach"),
-                ([spec, "-o", unreachable, "--scheduler", f"tls://127.0.0.1:{port}"], "certificates"),
+                ([spec, "-o", unreachable + "-tls", "--scheduler", f"tls://127.0.0.1:{port}"], "certificates"),
             ]
             start = time.perf_counter()
             results = cli_all(*(c for c, _ in cases))
@@ -359,4 +379,4 @@ class BadInputTest(unittest.TestCase):
                 self.assertEqual(lines_of(path), content, path)
             self.assertFalse(os.path.exists(unreachable))  # no header-only table
             self.assertIn("runs whatever any client", results[-2][1])  # a plain tcp:// scheduler is named unsafe
-            self.assertEqual([n for n in os.listdir(d) if n.endswith(".partial")], [])
+            self.assertEqual([n for n in os.listdir(d) if n.endswith((".partial", ".lock"))], [])

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import argparse
 import csv
+import fcntl
 import hashlib
 import io
 import itertools
@@ -300,6 +301,46 @@ def _read_table(path: str, header: list[str], keep: Sequence[str]) -> tuple[dict
     return done, end, cut
 
 
+class _OutputLock:
+    """The lock every hubbeam writer takes beside its output, DIR/.NAME.lock (flock, as runtime/src/output_file.cpp):
+    while one sweep or command writes a table, another that would write it is refused at once. The lock file is
+    removed when released, so once locked it must still be the file at that path, else it is taken again."""
+
+    def __init__(self, path: str, shown: str):
+        target = os.path.abspath(path)
+        self.path = os.path.join(os.path.dirname(target), "." + os.path.basename(target) + ".lock")
+        for _ in range(100):
+            try:
+                fd = os.open(self.path, os.O_RDONLY | os.O_CREAT | os.O_NOFOLLOW | os.O_NONBLOCK | os.O_CLOEXEC,
+                             0o666)
+            except OSError as e:
+                raise SweepError(f"{shown}: cannot create its lock file {_printable(self.path)}: {e.strerror}") \
+                    from None
+            try:
+                fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            except OSError:
+                os.close(fd)
+                raise SweepError(f"another hubbeam is writing {shown} (it holds {_printable(self.path)}): wait for "
+                                 f"it to finish, or write to another file") from None
+            held = os.fstat(fd)
+            try:
+                now = os.stat(self.path)
+                if (now.st_dev, now.st_ino) == (held.st_dev, held.st_ino):
+                    self.fd = fd
+                    return
+            except OSError:
+                pass
+            os.close(fd)
+        raise SweepError(f"{shown}: its lock file {_printable(self.path)} keeps changing")
+
+    def release(self) -> None:
+        try:
+            os.remove(self.path)  # while still holding it: a writer waiting on this file re-checks and retries
+        except OSError:
+            pass
+        os.close(self.fd)
+
+
 class _Table:
     """The table file, appended one whole row at a time: each row is one write of one line, flushed, and a write
     that fails (a full disk) is cut back to the previous line before the error is raised, so the file never holds
@@ -539,124 +580,129 @@ def run_sweep(spec: str | os.PathLike | Mapping[str, Any], *, output: str | None
     if sweep["where"] != "<dict sweep>":
         inputs["sweep file"] = sweep["where"]
     _check_output(path, inputs)
-    shown = _printable(path)
-    keys = list(dict.fromkeys(k for p in points for k in p))
-    header = _columns(keys, sweep["keep"], sweep["frequencies"])
-    version = hubbeam.generator_version()
-    ids = [point_key(p, version) for p in points]
-    done, good_end, cut = _read_table(path, header, sweep["keep"]) if resume else ({}, 0, False)
-    todo = [(i, p) for i, p in enumerate(points) if ids[i] not in done]
-    folder = os.path.dirname(os.path.abspath(path))
-    series_folder = _series_dir(os.path.abspath(path))
-    lines: dict[str, list[str]] = dict(done)
-    if not todo and progress:
-        print(f"sweep: all {len(points)} points are in {shown} already (this generator version); --no-resume "
-              f"recomputes them", file=sys.stderr)
-    if todo:
-        started_cluster = time.perf_counter()
-        close = None
-        if scheduler is None:
-            client, close = local_cluster(workers, dashboard)
-            if progress:
-                print(f"sweep: local cluster at {client.scheduler.address} (TLS, this sweep's certificates only)"
-                      + (f", dashboard {client.dashboard_link}" if dashboard else ""), file=sys.stderr, flush=True)
-        elif isinstance(scheduler, (str, os.PathLike)):
-            client = _remote_client(os.fspath(scheduler), security)
-            close = client.close
-        elif hasattr(scheduler, "submit") and hasattr(scheduler, "scheduler_info"):
-            client = scheduler  # the caller's distributed.Client: theirs to close
-        else:
-            raise SweepError(f"scheduler: expected an address or a distributed.Client, got "
-                             f"{_printable(type(scheduler).__name__)}")
-        table = None
-        temporary = None
-        finished = False
-        interrupted = True
-        try:
-            client.run(_import_hubbeam)  # each worker's one-off imports, part of its start-up, not of a point
-            n_workers = sum(w.get("nthreads", 1) for w in client.scheduler_info().get("workers", {}).values()) or 1
-            start_up = time.perf_counter() - started_cluster
-            # Only now that the cluster answers is a file written: the table, or with resume=False a new table
-            # beside it that replaces the old one once complete.
-            if resume:
-                if cut and progress:
-                    print(f"sweep: {shown}: its last line was cut (a write that did not finish): dropped, that point "
-                          f"runs again", file=sys.stderr)
-                table = _Table(path, shown, good_end, _csv_line(header) if good_end == 0 else None)
+    # Taken before the table is read: a second sweep (or a hubbeam command) writing the same table is refused.
+    lock = _OutputLock(path, _printable(path))
+    try:
+        shown = _printable(path)
+        keys = list(dict.fromkeys(k for p in points for k in p))
+        header = _columns(keys, sweep["keep"], sweep["frequencies"])
+        version = hubbeam.generator_version()
+        ids = [point_key(p, version) for p in points]
+        done, good_end, cut = _read_table(path, header, sweep["keep"]) if resume else ({}, 0, False)
+        todo = [(i, p) for i, p in enumerate(points) if ids[i] not in done]
+        folder = os.path.dirname(os.path.abspath(path))
+        series_folder = _series_dir(os.path.abspath(path))
+        lines: dict[str, list[str]] = dict(done)
+        if not todo and progress:
+            print(f"sweep: all {len(points)} points are in {shown} already (this generator version); --no-resume "
+                  f"recomputes them", file=sys.stderr)
+        if todo:
+            started_cluster = time.perf_counter()
+            close = None
+            if scheduler is None:
+                client, close = local_cluster(workers, dashboard)
+                if progress:
+                    print(f"sweep: local cluster at {client.scheduler.address} (TLS, this sweep's certificates only)"
+                          + (f", dashboard {client.dashboard_link}" if dashboard else ""), file=sys.stderr, flush=True)
+            elif isinstance(scheduler, (str, os.PathLike)):
+                client = _remote_client(os.fspath(scheduler), security)
+                close = client.close
+            elif hasattr(scheduler, "submit") and hasattr(scheduler, "scheduler_info"):
+                client = scheduler  # the caller's distributed.Client: theirs to close
             else:
-                temporary = os.path.join(folder, f".{os.path.basename(path)}.{os.getpid()}.partial")
-                table = _Table(temporary, shown, 0, _csv_line(header))
-            started = time.perf_counter()
-            run_total = 0.0
-            meter = _Progress(len(points), len(points) - len(todo), progress)
-            try:
-                from distributed import as_completed
-
-                size = batch or max(1, min(16, len(todo) // (4 * n_workers)))
-                batches = [todo[k:k + size] for k in range(0, len(todo), size)]
-                futures = {client.submit(run_points, scene_text, sweep["scene"], [p for _, p in b], sweep["keep"],
-                                         sweep["frequencies"], key=f"hubbeam-points-{ids[b[0][0]]}-{len(b)}",
-                                         pure=False): b for b in batches}
-                for future in as_completed(futures):
-                    b = futures[future]
-                    try:
-                        rows = future.result()
-                    except Exception as e:  # noqa: BLE001 - a lost worker: its points are rows with the status
-                        rows = [{"status": "error: the task failed: " + _printable(f"{type(e).__name__}: {e}")}
-                                for _ in b]
-                    for (i, _), row in zip(b, rows):
-                        if row.get("tip_series") is not None:
-                            row["tip_series"] = _save_series(series_folder, ids[i], row["tip_series"])
-                        values = [ids[i], *(points[i].get(k) for k in keys)] + \
-                            [row.get(c) for c in header[len(keys) + 1:]]
-                        line = _csv_line(values)
-                        table.append(line)  # one whole line per write: a reader never sees half of it
-                        lines[ids[i]] = next(csv.reader([line]))
-                        run_total += row["run_seconds"] if isinstance(row.get("run_seconds"), float) else 0.0
-                        meter.point(row.get("status") == "ok")
-            finally:
-                meter.close()
-            wall = time.perf_counter() - started
-            table.close(sync=True)
+                raise SweepError(f"scheduler: expected an address or a distributed.Client, got "
+                                 f"{_printable(type(scheduler).__name__)}")
             table = None
-            if temporary is not None:
+            temporary = None
+            finished = False
+            interrupted = True
+            try:
+                client.run(_import_hubbeam)  # each worker's one-off imports, part of its start-up, not of a point
+                n_workers = sum(w.get("nthreads", 1) for w in client.scheduler_info().get("workers", {}).values()) or 1
+                start_up = time.perf_counter() - started_cluster
+                # Only now that the cluster answers is a file written: the table, or with resume=False a new table
+                # beside it that replaces the old one once complete.
+                if resume:
+                    if cut and progress:
+                        print(f"sweep: {shown}: its last line was cut (a write that did not finish): dropped, that point "
+                              f"runs again", file=sys.stderr)
+                    table = _Table(path, shown, good_end, _csv_line(header) if good_end == 0 else None)
+                else:
+                    temporary = os.path.join(folder, f".{os.path.basename(path)}.{os.getpid()}.partial")
+                    table = _Table(temporary, shown, 0, _csv_line(header))
+                started = time.perf_counter()
+                run_total = 0.0
+                meter = _Progress(len(points), len(points) - len(todo), progress)
                 try:
-                    os.replace(temporary, path)
-                except OSError as e:
-                    raise SweepError(f"{shown}: cannot replace the old table with the new one: {e.strerror}") from None
-                temporary = None
-            finished = True
-            interrupted = False
-        except SweepError:
-            interrupted = False
-            raise
-        finally:
-            if interrupted and scheduler is None:
-                hubbeam._cancel_runs()  # the local workers are this process's threads: their runs stop now
-            if table is not None:
-                table.close(sync=False)
-            if temporary is not None:  # an unfinished replacement: the old table stays as it was
-                try:
-                    os.remove(temporary)
-                except OSError:
-                    pass
-            if close is not None:
-                close()
-        if finished:
-            overhead = (wall * n_workers - run_total) / run_total if run_total > 0 else float("nan")
-            last_timing.update(wall=wall, workers=n_workers, runs=run_total, overhead=overhead, start_up=start_up)
-            if progress:
-                print(f"sweep: {len(todo)} points in {wall:.2f} s on {n_workers} worker{'s' if n_workers != 1 else ''}, after {start_up:.2f} s to "
-                      f"start or reach the cluster; the runs themselves took {run_total:.2f} s of the workers' "
-                      f"{wall * n_workers:.2f} s (the rest is Dask's scheduling and transfers, and workers left "
-                      f"without a point)", file=sys.stderr)
-    by_point = {k: dict(zip(header, row)) for k, row in lines.items()}
-    out = []
-    for i, k in enumerate(ids):
-        row = {c: _typed(c, v, folder) for c, v in by_point[k].items()}
-        row.update({key: points[i].get(key) for key in keys})  # the point's own values, as the sweep gave them
-        out.append(row)
-    return out
+                    from distributed import as_completed
+
+                    size = batch or max(1, min(16, len(todo) // (4 * n_workers)))
+                    batches = [todo[k:k + size] for k in range(0, len(todo), size)]
+                    futures = {client.submit(run_points, scene_text, sweep["scene"], [p for _, p in b], sweep["keep"],
+                                             sweep["frequencies"], key=f"hubbeam-points-{ids[b[0][0]]}-{len(b)}",
+                                             pure=False): b for b in batches}
+                    for future in as_completed(futures):
+                        b = futures[future]
+                        try:
+                            rows = future.result()
+                        except Exception as e:  # noqa: BLE001 - a lost worker: its points are rows with the status
+                            rows = [{"status": "error: the task failed: " + _printable(f"{type(e).__name__}: {e}")}
+                                    for _ in b]
+                        for (i, _), row in zip(b, rows):
+                            if row.get("tip_series") is not None:
+                                row["tip_series"] = _save_series(series_folder, ids[i], row["tip_series"])
+                            values = [ids[i], *(points[i].get(k) for k in keys)] + \
+                                [row.get(c) for c in header[len(keys) + 1:]]
+                            line = _csv_line(values)
+                            table.append(line)  # one whole line per write: a reader never sees half of it
+                            lines[ids[i]] = next(csv.reader([line]))
+                            run_total += row["run_seconds"] if isinstance(row.get("run_seconds"), float) else 0.0
+                            meter.point(row.get("status") == "ok")
+                finally:
+                    meter.close()
+                wall = time.perf_counter() - started
+                table.close(sync=True)
+                table = None
+                if temporary is not None:
+                    try:
+                        os.replace(temporary, path)
+                    except OSError as e:
+                        raise SweepError(f"{shown}: cannot replace the old table with the new one: {e.strerror}") from None
+                    temporary = None
+                finished = True
+                interrupted = False
+            except SweepError:
+                interrupted = False
+                raise
+            finally:
+                if interrupted and scheduler is None:
+                    hubbeam._cancel_runs()  # the local workers are this process's threads: their runs stop now
+                if table is not None:
+                    table.close(sync=False)
+                if temporary is not None:  # an unfinished replacement: the old table stays as it was
+                    try:
+                        os.remove(temporary)
+                    except OSError:
+                        pass
+                if close is not None:
+                    close()
+            if finished:
+                overhead = (wall * n_workers - run_total) / run_total if run_total > 0 else float("nan")
+                last_timing.update(wall=wall, workers=n_workers, runs=run_total, overhead=overhead, start_up=start_up)
+                if progress:
+                    print(f"sweep: {len(todo)} points in {wall:.2f} s on {n_workers} worker{'s' if n_workers != 1 else ''}, after {start_up:.2f} s to "
+                          f"start or reach the cluster; the runs themselves took {run_total:.2f} s of the workers' "
+                          f"{wall * n_workers:.2f} s (the rest is Dask's scheduling and transfers, and workers left "
+                          f"without a point)", file=sys.stderr)
+        by_point = {k: dict(zip(header, row)) for k, row in lines.items()}
+        out = []
+        for i, k in enumerate(ids):
+            row = {c: _typed(c, v, folder) for c, v in by_point[k].items()}
+            row.update({key: points[i].get(key) for key in keys})  # the point's own values, as the sweep gave them
+            out.append(row)
+        return out
+    finally:
+        lock.release()
 
 
 class _Terminated(KeyboardInterrupt):
