@@ -479,7 +479,24 @@ def local_cluster(workers: int | None = None, dashboard: bool = False):
     except BaseException:
         cluster.close()
         raise
-    return client, lambda: (client.close(), cluster.close())
+
+    def close() -> None:
+        # Shutting the cluster down on a loaded machine can time out inside Dask's event loop; the table is complete
+        # (or as complete as it will be) by then, so that is no failure of the sweep, and asyncio's report of it
+        # ("Future exception was never retrieved") is not printed.
+        quiet = logging.getLogger("asyncio")
+        level = quiet.level
+        quiet.setLevel(logging.CRITICAL)
+        try:
+            for step in (client.close, cluster.close):
+                try:
+                    step()
+                except Exception:  # noqa: BLE001 - see above
+                    pass
+        finally:
+            quiet.setLevel(level)
+
+    return client, close
 
 
 def _tcp_reachable(address: str) -> str | None:
@@ -711,6 +728,9 @@ class _Terminated(KeyboardInterrupt):
 
 def main(argv: Sequence[str] | None = None) -> int:
     """hubbeam sweep: returns the exit code (0 done, 2 bad input, 130 interrupted, 143 terminated)."""
+    # The command's own lines say what went wrong; Dask's event loop may still report a shutdown timed out on a
+    # loaded machine when its futures are collected at exit, which would add lines to a one-line message.
+    logging.getLogger("asyncio").setLevel(logging.CRITICAL)
     parser = argparse.ArgumentParser(prog="hubbeam sweep", description="Runs a parameter sweep on Dask "
                                      "(docs/python.md). Exit codes: 0 every point has a row (whatever its status), "
                                      "2 bad input or an output that cannot be written, 130 interrupted, 143 "
