@@ -225,7 +225,7 @@ elseif(CASE STREQUAL "killed_compile")
     file(READ ${WORK}/gen.pid pid)
     string(STRIP "${pid}" pid)
     set(running TRUE)
-    foreach(i RANGE 50)  # the supervisor's parent-death signal is asynchronous
+    foreach(i RANGE 300)  # the supervisor's parent-death signal is asynchronous (up to 30 s on a loaded machine)
       alive(${pid} running)
       if(NOT running)
         break()
