@@ -26,6 +26,14 @@
 namespace hubbeam {
 
 namespace {
+const WordTable<ErrorCheck, 2> error_check_words = {{ErrorCheck::on, "on"}, {ErrorCheck::off, "off"}};
+}  // namespace
+
+std::string to_string(ErrorCheck v) { return word_of(v, error_check_words); }
+bool parse(std::string_view w, ErrorCheck& v) { return parse_word(w, error_check_words, v); }
+template <> std::vector<std::string> words<ErrorCheck>() { return all_words(error_check_words); }
+
+namespace {
 
 constexpr const char* missing = "nothing (the key is missing)";
 
@@ -74,6 +82,7 @@ std::vector<SceneKey> make_scene_keys()
         {"solver.h0", "--h0", K::number, "a number > 0 (first trial step, s)"},
         {"solver.stepping", "--stepping", K::word, one_of(words<Stepping>())},
         {"solver.max_steps", "--max-steps", K::number, "a whole number from 1 to 1e15 (step budget)"},
+        {"solver.error_check", "--error-check", K::word, one_of(words<ErrorCheck>())},
         {"output.t_end", "--t-end", K::number, "a number > 0 (end time, s)"},
         {"output.dt_out", "--dt-out", K::number, "a number > 0 and <= output.t_end (output interval, s)"},
         {"output.file", "-o,--output", K::text, "a file name"},
@@ -365,6 +374,7 @@ void read_solver(const Section& solver, SolverOptions& so)
     so.atol = solver.number("atol", so.atol);
     so.h0 = solver.number("h0", so.h0);
     so.stepping = solver.word<Stepping>("stepping", parse_enum<Stepping>).value_or(so.stepping);
+    so.error_check = solver.word<ErrorCheck>("error_check", parse_enum<ErrorCheck>).value_or(so.error_check);
     if (const auto budget = solver.number("max_steps")) {  // 1e7 reads better than 10000000: a float is accepted
         if (!(*budget >= 1.0 && *budget <= 1e15 && *budget == std::floor(*budget)))
             solver.refuse("max_steps", shortest(*budget));

@@ -678,6 +678,7 @@ std::string Simulation::Run::tolerance_as_cause(const std::string& failure)
 Simulation::Simulation(const Scene& scene, const std::function<void(const std::string&)>& note) : scene_(scene)
 {
     model_ = make_model(scene.key(), scene.parameters, scene.source, note);
+    check_error_ = scene.solver.error_check == ErrorCheck::on;
     stepper_ = scene.solver.stepper;
     if (stepper_ == automatic_stepper_word) {
         const StepperChoice choice = automatic_stepper(*model_, scene.axial);

@@ -15,6 +15,13 @@
 
 namespace hubbeam {
 
+/// Whether a run checks its own error by re-running windows at a tighter tolerance (RunSummary::estimated_error):
+/// on by default; off saves its cost (about 13 % of the main job) where the tolerance is known to be adequate.
+enum class ErrorCheck { on, off };
+std::string to_string(ErrorCheck);
+bool parse(std::string_view, ErrorCheck&);
+template <> std::vector<std::string> words<ErrorCheck>();
+
 struct SolverOptions {
     std::string stepper = automatic_stepper_word;  // a GSL odeiv2 step type name (integrate.hpp), or automatic
     double rtol = 1e-8;
@@ -22,6 +29,7 @@ struct SolverOptions {
     double h0 = 1e-4;  // first trial step (s)
     Stepping stepping = Stepping::free;
     long max_steps = 10'000'000;  // a run that needs more steps stops with the reason its steps are short
+    ErrorCheck error_check = ErrorCheck::on;
 };
 
 /// The most rows a run may write (t_end / dt_out): 10^8 rows is about 20 GB of CSV.
