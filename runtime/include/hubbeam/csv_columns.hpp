@@ -8,6 +8,8 @@
 #include <string_view>
 #include <vector>
 
+#include "option_lists.hpp"
+
 namespace hubbeam {
 
 /// A CSV file that is not what its reader needs ("FILE: expected a column NAME ..."): the whole line to print.
@@ -24,17 +26,7 @@ inline std::string csv_header(std::initializer_list<std::string_view> names)
 }
 
 /// The fields of one CSV line (no quoting: the tables hubbeam reads back have none in their numbers and names).
-inline std::vector<std::string> csv_fields(std::string_view line)
-{
-    std::vector<std::string> fields;
-    std::size_t start = 0;
-    while (true) {
-        const std::size_t comma = line.find(',', start);
-        fields.emplace_back(line.substr(start, comma == std::string_view::npos ? comma : comma - start));
-        if (comma == std::string_view::npos) return fields;
-        start = comma + 1;
-    }
-}
+inline std::vector<std::string> csv_fields(std::string_view line) { return split_list(line); }
 
 /// The columns of a file's header, looked up by name.
 class CsvColumns {
