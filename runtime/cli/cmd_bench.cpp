@@ -47,19 +47,11 @@ int bench(const std::string& scene_path, const BenchArgs& args)
     try {
         scene = load_scene(scene_path, {});
         options = parse_bench_options(args, scene);
-        std::vector<NamedPath> outputs = {{options.table1 ? std::string() : options.output, "-o"}};
-        if (!options.table1 && !options.plot.empty())
-            for (const char* end :
-                 {"-work.png", "-work.svg", "-dofs.png", "-dofs.svg", ".gp", "-front.dat", "-dofs.dat"})
-                outputs.push_back({options.plot + end, "--plot"});
-        check_outputs({{scene.path, "the scene itself"}}, outputs);
-    } catch (const OutputRefused& e) {
+        check_outputs({{scene.path, "the scene itself"}}, bench_outputs(options));
+    } catch (const OptionError& e) {  // BenchOptionError, OutputRefused
         std::cerr << e.what() << "\n";
         return exit_bad_input;
     } catch (const SceneError& e) {
-        std::cerr << e.what() << "\n";
-        return exit_bad_input;
-    } catch (const BenchOptionError& e) {
         std::cerr << e.what() << "\n";
         return exit_bad_input;
     }

@@ -32,6 +32,11 @@ namespace {
     bad_option<BenchOptionError>(option, expected, got);
 }
 
+// The files of --plot PREFIX: the two figures (each .png and .svg), their script, the data the script reads.
+constexpr const char* figure_suffixes[] = {"-work", "-dofs"};
+constexpr const char* script_suffix = ".gp";
+constexpr const char* data_suffixes[] = {"-front.dat", "-dofs.dat"};  // the Pareto front, the DOF convergence
+
 // The tight reference: the most accurate explicit stepper, a step at every row, tolerances near round-off.
 constexpr const char* reference_stepper = "rk8pd";
 constexpr double reference_rtol = 1e-12, reference_atol = 1e-14;
@@ -260,6 +265,18 @@ BenchOptions parse_bench_options(const BenchArgs& args, const Scene& scene)
     o.yes = args.yes;
     o.table1 = args.table1;
     return o;
+}
+
+std::vector<NamedPath> bench_outputs(const BenchOptions& o)
+{
+    if (o.table1) return {};  // the paper's table is printed, not written
+    std::vector<NamedPath> outputs = {{o.output, "-o"}};
+    if (o.plot.empty()) return outputs;
+    for (const char* figure : figure_suffixes)
+        for (const char* ext : {".png", ".svg"}) outputs.push_back({o.plot + figure + ext, "--plot"});
+    outputs.push_back({o.plot + script_suffix, "--plot"});
+    for (const char* data : data_suffixes) outputs.push_back({o.plot + data, "--plot"});
+    return outputs;
 }
 
 namespace {
@@ -783,11 +800,12 @@ BenchFigures bench_figures(const std::string& prefix, const std::vector<std::str
 std::string plot(const std::string& prefix, const std::string& csv, const std::string& scene, double resolution,
                  std::ostream& out)
 {
-    const std::vector<std::string> names = {prefix + "-work", prefix + "-dofs"};
+    const std::vector<std::string> names = {prefix + figure_suffixes[0], prefix + figure_suffixes[1]};
     const BenchFigures figures = bench_figures(prefix, names, csv, scene, resolution);
-    const std::string script_path = prefix + ".gp";
+    const std::string script_path = prefix + script_suffix;
     // The data the script reads beside the CSV, then the figures (draw_figures draws them into temporary files).
-    for (const auto& [path, text] : {std::pair{prefix + "-front.dat", figures.front}, std::pair{prefix + "-dofs.dat", figures.dofs}}) {
+    for (const auto& [path, text] : {std::pair{prefix + data_suffixes[0], figures.front},
+                                     std::pair{prefix + data_suffixes[1], figures.dofs}}) {
         OutputFile file(path);
         if (const int error = file.write(text); error != 0) return path + ": write failed: " + std::strerror(error);
         if (const std::string why = file.commit(); !why.empty()) return path + ": " + why;
@@ -799,7 +817,7 @@ std::string plot(const std::string& prefix, const std::string& csv, const std::s
                          });
         !problem.empty())
         return problem;
-    out << "figures: " << prefix << "-work.{png,svg}, " << prefix << "-dofs.{png,svg} (script " << script_path << ")\n";
+    out << "figures: " << names[0] << ".{png,svg}, " << names[1] << ".{png,svg} (script " << script_path << ")\n";
     return {};
 }
 

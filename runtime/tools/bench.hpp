@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "option_lists.hpp"
+#include "output_file.hpp"
 #include "scene.hpp"
 #include "simulate.hpp"
 
@@ -50,6 +51,10 @@ struct BenchOptions {
 
 /// Checks and converts the typed options against the scene (nx defaults to the scene's); throws BenchOptionError.
 BenchOptions parse_bench_options(const BenchArgs& args, const Scene& scene);
+
+/// Every file bench writes with these options (the CSV; with --plot the figures, their script and data), named as
+/// its messages name them: what the command checks against its inputs before the grid runs.
+std::vector<NamedPath> bench_outputs(const BenchOptions& options);
 
 /// One grid point's result: a CSV row.
 struct BenchRow {
