@@ -131,7 +131,7 @@ TEST_CASE("steady drive: the Jacobi integral is constant", "[dynamics]")
 TEST_CASE("the implicit stepper msbdf agrees with msadams", "[dynamics][stepper]")
 {
     // msbdf is the stepper the runtime suggests for stiff runs (axial coordinates make the equations stiff,
-    // docs/model.md section 7), and it runs on the finite-difference Jacobian of runtime/src/integrate.cpp. Both
+    // docs/model.md section 7), and it runs on the finite-difference Jacobian of runtime/src/dynamics/integrate.cpp. Both
     // steppers at rtol 1e-10 must give one response, through the spin-up's breakpoint at T_s. What separates
     // them is the global error of two independent integrations, the tolerance grown over the window's ten or
     // so oscillations: measured 3e-8 (spin-up) and 4e-9 (torque) of the peak, so 1e-6 of the peak leaves a

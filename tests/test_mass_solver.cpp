@@ -1,5 +1,5 @@
-// The linear algebra chosen from a model's structure (runtime/src/mass_solver.*, the folded forces of
-// runtime/src/integrate.cpp) against a plain dense solve, and the generated mass pattern against M's values.
+// The linear algebra chosen from a model's structure (runtime/src/dynamics/mass_solver.*, the folded forces of
+// runtime/src/dynamics/integrate.cpp) against a plain dense solve, and the generated mass pattern against M's values.
 #include <catch2/catch.hpp>
 
 #include <gsl/gsl_errno.h>

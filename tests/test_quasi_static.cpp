@@ -1,4 +1,4 @@
-// Quasi-static axial coordinates (runtime/src/integrate.cpp, docs/model.md section 9): A from the axial equilibrium
+// Quasi-static axial coordinates (runtime/src/dynamics/integrate.cpp, docs/model.md section 9): A from the axial equilibrium
 // against the rotating bar's closed-form stretch, and the bending response against full axial dynamics.
 #include <catch2/catch.hpp>
 

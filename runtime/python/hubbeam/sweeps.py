@@ -302,7 +302,7 @@ def _read_table(path: str, header: list[str], keep: Sequence[str]) -> tuple[dict
 
 
 class _OutputLock:
-    """The lock every hubbeam writer takes beside its output, DIR/.NAME.lock (flock, as runtime/src/output_file.cpp):
+    """The lock every hubbeam writer takes beside its output, DIR/.NAME.lock (flock, as runtime/src/io/output_file.cpp):
     while one sweep or command writes a table, another that would write it is refused at once. The lock file is
     removed when released, so once locked it must still be the file at that path, else it is taken again."""
 
