@@ -286,14 +286,18 @@ std::unique_ptr<RightHandSide> make_right_hand_side(const Model& model, const Mo
     if (terms == nullptr) return std::make_unique<MassSolved>(model);
     const int n = model.nq(), K = terms->term_count();
     const long dense_solve = static_cast<long>(n) * n;
-    RowMatrix F(n, K);
-    terms->term_matrix(F.data());
+    // F's nonzeros: the cost of the forces' own terms, what a folded form must not exceed.
+    const auto forces_nonzeros = [&] {
+        RowMatrix F(n, K);
+        terms->term_matrix(F.data());
+        return nonzeros(F);
+    };
     if (model.mass_is_constant()) {
         Eigen::MatrixXd W = folded_forces(model, *terms, motion.at(0.0));
         // Folding pays while W's nonzeros cost no more than the forces' own terms plus a dense solve; by rows only
         // when that skips most of W.
         const long nnz = nonzeros(W);
-        if (nnz <= nonzeros(F) + dense_solve) {
+        if (nnz <= forces_nonzeros() + dense_solve) {
             if (2 * nnz < static_cast<long>(n) * K) return std::make_unique<FoldedSparse>(model, *terms, W);
             if (const FoldedForceKernel* kernel = model.folded_kernel())
                 return std::make_unique<FoldedKernel>(model, *kernel, W);
@@ -304,7 +308,7 @@ std::unique_ptr<RightHandSide> make_right_hand_side(const Model& model, const Mo
     const bool hub_only_varies = pattern[0] == 'v' && pattern.find('v', 1) == std::string::npos;
     if (!model.mass_is_constant() && hub_only_varies && n > 1) {
         auto hub = std::make_unique<HubSchur>(model, *terms, motion.at(0.0));
-        if (hub->nonzeros() <= nonzeros(F) + dense_solve) return hub;
+        if (hub->nonzeros() <= forces_nonzeros() + dense_solve) return hub;
     }
     return std::make_unique<MassSolved>(model);
 }
