@@ -9,6 +9,7 @@
 #include <numbers>
 #include <vector>
 
+#include "gauss_legendre.hpp"
 #include "motion.hpp"
 
 using namespace hubbeam;
@@ -17,38 +18,10 @@ namespace {
 
 constexpr double pi = std::numbers::pi;
 
-/// Gauss-Legendre nodes and weights on [-1, 1] by Newton's method on P_n (written here so that the test does
-/// not lean on the project's own quadrature).
-struct Rule {
-    std::vector<double> x, w;
-};
-Rule gauss_legendre_rule(int n)
-{
-    Rule r;
-    for (int i = 1; i <= n; ++i) {
-        double z = std::cos(pi * (i - 0.25) / (n + 0.5)), dp = 0.0;
-        for (int it = 0; it < 100; ++it) {
-            double p0 = 1.0, p1 = z;  // P_0, P_1, then the three-term recurrence up to P_n
-            for (int k = 2; k <= n; ++k) {
-                const double p2 = ((2 * k - 1) * z * p1 - (k - 1) * p0) / k;
-                p0 = p1;
-                p1 = p2;
-            }
-            dp = n * (z * p1 - p0) / (z * z - 1.0);
-            const double step = p1 / dp;
-            z -= step;
-            if (std::abs(step) < 1e-16) break;
-        }
-        r.x.push_back(z);
-        r.w.push_back(2.0 / ((1.0 - z * z) * dp * dp));
-    }
-    return r;
-}
-
 /// int_a^b f by composite 10-point Gauss-Legendre on `panels` equal panels (0 for an empty interval).
 double integrate(const std::function<double(double)>& f, double a, double b, int panels = 40)
 {
-    static const Rule rule = gauss_legendre_rule(10);
+    static const test::GaussRule rule = test::gauss_legendre(10);
     if (b <= a) return 0.0;
     const double h = (b - a) / panels;
     double sum = 0.0;

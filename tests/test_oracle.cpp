@@ -15,6 +15,7 @@
 #include <random>
 #include <vector>
 
+#include "gauss_legendre.hpp"
 #include "linearize.hpp"
 #include "make_model.hpp"
 
@@ -23,36 +24,6 @@ using Eigen::MatrixXd;
 using Eigen::VectorXd;
 
 namespace {
-
-// ---- Quadrature -------------------------------------------------------------------------------------------------
-
-/// Gauss-Legendre nodes and weights on [-1, 1]: Newton on P_n from the three-term recurrence.
-struct Rule {
-    std::vector<double> x, w;
-};
-
-Rule gauss_legendre(int n)
-{
-    Rule r;
-    for (int i = 1; i <= n; ++i) {
-        double z = std::cos(std::numbers::pi * (i - 0.25) / (n + 0.5)), dp = 0.0;
-        for (int it = 0; it < 100; ++it) {
-            double p0 = 1.0, p1 = z;
-            for (int k = 2; k <= n; ++k) {
-                const double p2 = ((2.0 * k - 1.0) * z * p1 - (k - 1.0) * p0) / k;
-                p0 = p1;
-                p1 = p2;
-            }
-            dp = n * (z * p1 - p0) / (z * z - 1.0);
-            const double dz = p1 / dp;
-            z -= dz;
-            if (std::abs(dz) < 1e-16) break;
-        }
-        r.x.push_back(z);
-        r.w.push_back(2.0 / ((1.0 - z * z) * dp * dp));
-    }
-    return r;
-}
 
 // ---- Shape functions, in x in [0, L] ----------------------------------------------------------------------------
 
@@ -233,7 +204,7 @@ MatrixXd integral(const Basis& a, int da, const Basis& b, int db, const std::fun
     cuts.insert(cuts.end(), b.breaks.begin(), b.breaks.end());
     std::sort(cuts.begin(), cuts.end());
     cuts.erase(std::unique(cuts.begin(), cuts.end(), [](double u, double v) { return v - u < 1e-12; }), cuts.end());
-    static const Rule rule = gauss_legendre(16);
+    static const test::GaussRule rule = test::gauss_legendre(16);
     const auto pick = [](const Value& v, int d) { return d == 0 ? v.f : d == 1 ? v.d1 : v.d2; };
     MatrixXd out = MatrixXd::Zero(a.size, b.size);
     for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
