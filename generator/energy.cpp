@@ -85,11 +85,15 @@ public:
             add(f.ux1, s.A[i], {K::axial, i, 0, 0});
             add(f.ux1_dot, s.A_dot[i], {K::axial, i, 0, 0});
             add(f.ux1_x, s.A[i] * inv_L, {K::axial, i, 0, 1});
+            add(f.ux1_x_dot, s.A_dot[i] * inv_L, {K::axial, i, 0, 1});
         }
         for (int j = 0; j < key.ny; ++j) {
             add(f.uy, s.B[j], {K::transverse, j, 0, 0});
             add(f.uy_dot, s.B_dot[j], {K::transverse, j, 0, 0});
             add(f.uy_xx, s.B[j] * pow(inv_L, 2), {K::transverse, j, 0, 2});
+            add(f.uy_x, s.B[j] * inv_L, {K::transverse, j, 0, 1});
+            add(f.uy_x_dot, s.B_dot[j] * inv_L, {K::transverse, j, 0, 1});
+            add(f.uy_xx_dot, s.B_dot[j] * pow(inv_L, 2), {K::transverse, j, 0, 2});
             // u_x2 = -1/2 B^T H(x) B with H in x units = H_xi / L; its rate is -B^T H B_dot (H symmetric).
             for (int k = 0; k < key.ny; ++k) {
                 add(f.ux2, -s.B[j] * s.B[k] * inv_L / 2, {K::coupling, j, k, 0});
@@ -112,15 +116,22 @@ public:
         fields_[f.ux1];  // present (possibly empty) so that nx = 0 makes its terms vanish
         fields_[f.ux1_dot];
         fields_[f.ux1_x];
+        fields_[f.ux1_x_dot];
     }
 
-    Poly operator()(const ex& density)
+    /// int_0^L density dx.
+    Poly operator()(const ex& density) { return evaluate(density, false); }
+    /// The density at x = L (a tip body's energies): no integral.
+    Poly at_tip(const ex& density) { return evaluate(density, true); }
+
+private:
+    Poly evaluate(const ex& density, bool tip)
     {
-        const symbol xi("xi");
-        const ex d = density.subs(f_.X == s_.a + s_.L * xi).expand();
+        const symbol& xi = f_.xi;
+        const ex d = density.subs(f_.X == s_.a + s_.L * xi).subs(xi == (tip ? ex(1) : ex(xi))).expand();
         Poly sum;
         for (const ex& term : is_a<add>(d) ? d : lst{d}) {
-            ex coef = s_.L;  // dx = L dxi
+            ex coef = tip ? ex(1) : ex(s_.L);  // dx = L dxi
             int xi_power = 0;
             std::vector<const Expansion*> occurrences;
             for (const ex& factor : is_a<mul>(term) ? term : lst{term}) {
@@ -137,20 +148,21 @@ public:
             // Every combination of one term per occurring field: monomials multiply, shape factors integrate.
             Term start = single_term(read_, coef, {});
             std::vector<std::size_t> chosen;
-            expand(sum, occurrences, start, xi_power, chosen);
+            expand(sum, occurrences, start, tip ? -1 : xi_power, chosen);
         }
         return sum;
     }
 
-private:
     /// Adds every combination of one term per remaining occurrence. A field that occurs r times (u_x2^2) is
     /// expanded as a multiset, chosen indices non-decreasing, each combination weighted by its number of orderings.
+    /// xi_power -1: the product at the tip instead of the integral.
     void expand(Poly& sum, const std::vector<const Expansion*>& occurrences, const Term& partial, int xi_power,
                 std::vector<std::size_t>& chosen)
     {
         const std::size_t next = chosen.size();
         if (next == occurrences.size()) {
-            const numeric value = integrals_.integrate(partial.factors, xi_power) * orderings(occurrences, chosen);
+            const numeric shape = xi_power < 0 ? integrals_.at_tip(partial.factors) : integrals_.integrate(partial.factors, xi_power);
+            const numeric value = shape * orderings(occurrences, chosen);
             if (!value.is_zero()) sum.add(partial.monomial, partial.coefficient, value);
             return;
         }
@@ -235,10 +247,32 @@ Energies derive_energies(const VariantKey& key, const Symbols& s, const PolyRead
     ShapeIntegrals integrals(key.axial_basis(), key.transverse_basis());
     const FieldSymbols f;
     DensityIntegrator integrate(s, f, key, integrals, read);
+    const Extras& x = key.extras;
+    // The section's area and second moment over the root's (docs/model.md section 10): a width taper scales both
+    // linearly, a depth taper the area linearly and the second moment as the cube.
+    const ex area = x.taper == Taper::uniform ? ex(1) : 1 + (s.tip_ratio - 1) * f.xi;
+    const ex moment = x.taper == Taper::depth ? pow(area, 3) : area;
+    const ex v2 = velocity_squared(key.order, f, s.theta_dot);
     Poly T = read(s.J_oh * pow(s.theta_dot, 2) / 2);
-    T += integrate(s.m * velocity_squared(key.order, f, s.theta_dot) / 2);
-    const Poly U = integrate((s.ES * pow(f.ux1_x, 2) + s.EI * pow(f.uy_xx, 2)) / 2);
-    return {T, U};
+    T += integrate(s.m * area * v2 / 2);
+    Poly U = integrate((s.ES * area * pow(f.ux1_x, 2) + s.EI * moment * pow(f.uy_xx, 2)) / 2);
+    Poly D;
+    if (x.tip) T += integrate.at_tip(s.m_tip * v2 / 2 + s.J_tip * pow(s.theta_dot + f.uy_x_dot, 2) / 2);
+    if (x.gravity) {
+        // The height of a point, p rotated by theta: sin(theta) (X + u_x) + cos(theta) u_y; order zero has no u_x2.
+        const ex ux = f.ux1 + (key.order == Order::zero ? ex(0) : ex(f.ux2));
+        const ex height = s.sin_theta * (f.X + ux) + s.cos_theta * f.uy;
+        U += integrate(s.g * s.m * area * height);
+        if (x.tip) U += integrate.at_tip(s.g * s.m_tip * height);
+    }
+    if (x.damping) {
+        // Rayleigh: D = 1/2 qd_e^T (alpha M_ee + beta K_e) qd_e, M_ee and K_e of the undeformed beam (with its tip body).
+        const ex rates2 = pow(f.ux1_dot, 2) + pow(f.uy_dot, 2);
+        D += integrate((s.alpha * s.m * area * rates2 + s.beta * (s.ES * area * pow(f.ux1_x_dot, 2) +
+                                                                  s.EI * moment * pow(f.uy_xx_dot, 2))) / 2);
+        if (x.tip) D += integrate.at_tip(s.alpha * (s.m_tip * rates2 + s.J_tip * pow(f.uy_x_dot, 2)) / 2);
+    }
+    return {T, U, D};
 }
 
 }  // namespace hubbeam::gen

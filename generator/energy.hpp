@@ -16,6 +16,10 @@ namespace hubbeam::gen {
 struct Symbols {
     // Physical parameters; m = rho S, EI and ES are formed from p = (L, rho, S, I, E, a, J_oh).
     GiNaC::symbol L{"L"}, m{"m"}, EI{"EI"}, ES{"ES"}, a{"a"}, J_oh{"J_oh"};
+    // The extra terms' parameters (docs/model.md section 10), read only by variants that carry the terms.
+    GiNaC::symbol m_tip{"m_tip"}, J_tip{"J_tip"}, g{"g"}, alpha{"alpha"}, beta{"beta"}, tip_ratio{"tip_ratio"};
+    // A gravity variant's sin(theta) and cos(theta): inputs, or under torque functions of the coordinate theta.
+    GiNaC::symbol sin_theta{"sin_theta"}, cos_theta{"cos_theta"};
     // The drive u = (tau, theta_dot, theta_ddot).
     GiNaC::symbol tau{"tau"}, theta_dot{"theta_dot"}, theta_ddot{"theta_ddot"};
     GiNaC::symbol theta{"theta"};
@@ -26,9 +30,10 @@ struct Symbols {
     explicit Symbols(const VariantKey& key);
 };
 
-/// T and U as polynomials in the variables of the reader (the kernels' run-time inputs).
+/// T, U and the dissipation function D (zero without damping) as polynomials in the variables of the reader
+/// (the kernels' run-time inputs).
 struct Energies {
-    Poly T, U;
+    Poly T, U, D;
 };
 
 /// |r_dot|^2 of docs/model.md section 2 in terms of field symbols, truncated to the model order (section 3).
@@ -36,11 +41,15 @@ struct Energies {
 struct FieldSymbols {
     GiNaC::symbol X{"X"}, ux1{"u_x1"}, uy{"u_y"}, ux2{"u_x2"}, ux1_dot{"u_x1_dot"}, uy_dot{"u_y_dot"},
         ux2_dot{"u_x2_dot"}, ux1_x{"u_x1_x"}, uy_xx{"u_y_xx"};
+    // The slope and its rate (a tip body's rotation), the strain rates (stiffness-proportional damping), and
+    // the span coordinate xi = x / L that a taper's section varies with.
+    GiNaC::symbol uy_x{"u_y_x"}, uy_x_dot{"u_y_x_dot"}, ux1_x_dot{"u_x1_x_dot"}, uy_xx_dot{"u_y_xx_dot"}, xi{"xi"};
 };
 GiNaC::ex velocity_squared(Order order, const FieldSymbols& f, const GiNaC::ex& theta_dot);
 
 /// T = 1/2 J_oh theta_dot^2 + 1/2 int m |r_dot|^2 dx and U = 1/2 int (ES u_x1'^2 + EI u_y''^2) dx, over the
-/// parameter and variable symbols of read.
+/// parameter and variable symbols of read; with the key's extras, the tip body's, gravity's, the taper's and the
+/// dissipation function's terms of docs/model.md section 10.
 Energies derive_energies(const VariantKey& key, const Symbols& s, const PolyReader& read);
 
 }  // namespace hubbeam::gen

@@ -73,6 +73,23 @@ numeric ShapeIntegrals::integrate(std::vector<Factor> factors, int power)
     return r;
 }
 
+numeric ShapeIntegrals::at_tip(const std::vector<Factor>& factors)
+{
+    numeric product = 1;
+    for (const Factor& f : factors) {
+        if (f.kind == Factor::Kind::coupling) {  // H_ij(1) = int_0^1 phi_i' phi_j' dxi
+            product *= integrate({{Factor::Kind::transverse, f.i, 0, 1}, {Factor::Kind::transverse, f.j, 0, 1}}, 0);
+        } else if (exact_) {
+            const int n = basis(f).intervals();
+            product *= ex_to<numeric>(piece(f, numeric(n - 1, n), 1).subs(xi_ == 1));
+        } else {
+            const Jet<double> j = basis(f).at(f.i, 1.0);
+            product *= numeric(f.deriv == 0 ? j.v : f.deriv == 1 ? j.d1 : j.d2);
+        }
+    }
+    return product;
+}
+
 ex ShapeIntegrals::piece(const Factor& f, const numeric& lo, const numeric& hi)
 {
     const FieldBasis& b = basis(f);

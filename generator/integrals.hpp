@@ -34,6 +34,8 @@ public:
 
     /// int_0^1 xi^power * prod(factors) dxi: exact when both bases are polynomial.
     GiNaC::numeric integrate(std::vector<Factor> factors, int power);
+    /// prod(factors) at xi = 1, the beam's tip (a tip body's energies): exact when both bases are polynomial.
+    GiNaC::numeric at_tip(const std::vector<Factor>& factors);
 
 private:
     GiNaC::numeric exact(const std::vector<Factor>& factors, int power);

@@ -31,6 +31,16 @@ Equations lagrange(const ex& T, const ex& U, const Coordinates& c)
     return e;
 }
 
+Poly PolyCoordinates::d_dq(const Poly& P, std::size_t i) const
+{
+    Poly d = P.diff(q[i]);
+    if (static_cast<int>(i) == angle) {  // d/dtheta = d/dtheta + cos d/dsin - sin d/dcos
+        d += P.diff(angle_sin).times(angle_cos);
+        d -= P.diff(angle_cos).times(angle_sin);
+    }
+    return d;
+}
+
 PolyEquations lagrange(const Poly& T, const Poly& U, const PolyCoordinates& c)
 {
     const std::size_t n = c.q.size();
@@ -41,9 +51,10 @@ PolyEquations lagrange(const Poly& T, const Poly& U, const PolyCoordinates& c)
         const Poly p = T.diff(c.qd[i]);  // generalized momentum
         for (std::size_t j = 0; j < n; ++j) e.M[i * n + j] = p.diff(c.qd[j]);
         Poly Q = c.force[i];
-        Q += T.diff(c.q[i]);
-        Q -= U.diff(c.q[i]);
-        for (std::size_t j = 0; j < n; ++j) Q -= p.diff(c.q[j]).times(c.qd[j]);
+        Q += c.d_dq(T, i);
+        Q -= c.d_dq(U, i);
+        Q -= c.dissipation.diff(c.qd[i]);
+        for (std::size_t j = 0; j < n; ++j) Q -= c.d_dq(p, j).times(c.qd[j]);
         for (const auto& [u, u_dot] : c.driven) Q -= p.diff(u).times(u_dot);
         e.Q[i] = std::move(Q);
     }

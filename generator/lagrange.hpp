@@ -38,6 +38,14 @@ struct PolyCoordinates {
     std::vector<std::pair<int, int>> driven;  // (u, u_dot)
     std::vector<Poly> force;
     int spin = -1;
+    /// The dissipation function D: the force on q_i gains -dD/dqd_i (zero: no damping).
+    Poly dissipation;
+    /// Where q_i's sine and cosine are variables of their own (a torque variant's theta under gravity): q index,
+    /// sin and cos variables; -1 if none. Derivatives by q_i then follow the chain rule through them.
+    int angle = -1, angle_sin = -1, angle_cos = -1;
+
+    /// dP/dq_i, through sin and cos of the angle coordinate.
+    Poly d_dq(const Poly& P, std::size_t i) const;
 };
 struct PolyEquations {
     std::vector<Poly> M, Q;  // as Equations

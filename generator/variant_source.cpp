@@ -22,18 +22,45 @@ using namespace GiNaC;
 
 namespace {
 
-/// "(L, rho, ...)" from a name table.
-template <std::size_t N>
-std::string tuple(const std::array<const char*, N>& names)
+/// "(L, rho, ...)" from a list of names.
+template <class Names>
+std::string tuple(const Names& names)
 {
     std::string t;
-    for (const char* n : names) t += (t.empty() ? "(" : ", ") + std::string(n);
+    for (const auto& n : names) t += (t.empty() ? "(" : ", ") + std::string(n);
     return t + ")";
+}
+
+/// The parameters p a variant's coefficients kernel takes: the paper's seven, or all of them with extra terms
+/// (so that the paper's variants read, and say, what they always did).
+std::vector<std::string> read_parameter_names(const Extras& x)
+{
+    return {param_names.begin(), param_names.begin() + static_cast<std::ptrdiff_t>(x.any() ? param_count : paper_param_count)};
+}
+
+/// The kernels' u: the drive values, and for gravity sin and cos of the angle.
+std::vector<std::string> input_names(bool gravity)
+{
+    std::vector<std::string> names(drive_value_names.begin(), drive_value_names.end());
+    if (gravity) names.insert(names.end(), angle_value_names.begin(), angle_value_names.end());
+    return names;
+}
+
+/// " tip gravity damped width" words of the banner's variant line.
+std::vector<std::string> extras_words(const Extras& x)
+{
+    std::vector<std::string> w;
+    if (x.tip) w.emplace_back("tip_body");
+    if (x.gravity) w.emplace_back("gravity");
+    if (x.damping) w.emplace_back("rayleigh_damping");
+    if (x.taper != Taper::uniform) w.push_back("taper=" + to_string(x.taper));
+    return w;
 }
 
 /// How generated code reads one entry of p or u.
 std::string read(Param p) { return "p[" + std::to_string(index(p)) + "]"; }
 std::string read(DriveValue u) { return "u[" + std::to_string(index(u)) + "]"; }
+std::string read(AngleValue u) { return "u[" + std::to_string(index(u)) + "]"; }
 
 std::string range(const std::string& stem, int n, const std::string& suffix = "")
 {
@@ -56,11 +83,13 @@ std::string banner(const VariantKey& key, bool mass_varies)
       << "// Variant: method=" << to_string(key.method) << " Nx=" << key.nx << " Ny=" << key.ny
       << " order=" << to_string(key.order) << " drive=" << to_string(key.drive);
     if (key.method == Method::bsim) b << " spline_basis=" << to_string(key.spline);
-    b << "\n// q = (" << coords << "), qd = d/dt q; u = " << tuple(drive_value_names) << ", of which this variant reads "
+    for (const std::string& suffix : extras_words(key.extras)) b << " " << suffix;
+    const bool gravity = key.extras.gravity;
+    b << "\n// q = (" << coords << "), qd = d/dt q; u = " << tuple(input_names(gravity)) << ", of which this variant reads "
       << (torque ? drive_value_names[index(DriveValue::tau)]
                  : std::string(drive_value_names[index(DriveValue::theta_dot)]) + ", " + drive_value_names[index(DriveValue::theta_ddot)])
-      << ";\n"
-      << "// p = " << tuple(param_names) << " in SI units. Slope coordinates (FEM, BSIM) are d/dxi = L d/dx.\n"
+      << (gravity ? std::string(", sin_theta, cos_theta") + (torque ? " (of q[0])" : "") : std::string()) << ";\n"
+      << "// p = " << tuple(read_parameter_names(key.extras)) << " in SI units. Slope coordinates (FEM, BSIM) are d/dxi = L d/dx.\n"
       << "// Derived symbolically from T and U (docs/model.md sections 2-3) by Lagrange's equations of the second kind.\n"
       << "// For implicit integrators, derivatives of the same M and Q: forces_q = dQ/dq, forces_qd = dQ/dqd, forces_u =\n"
       << "// dQ/du" << (mass_varies ? ", mass_q_product = (dM/dq) v.\n" : "; M is constant, so there is no mass_q_product.\n");
@@ -109,9 +138,10 @@ std::vector<ex> tip_displacements(const VariantKey& key, const Symbols& s)
 struct Variables {
     std::vector<int> q, qd;
     int tau = -1, theta_dot = -1, theta_ddot = -1;  // -1 where the variant does not read the drive value
+    int sin_theta = -1, cos_theta = -1;             // gravity variants only
 };
 
-JacobianPieces jacobian_pieces(const PolyEquations& eq, const Variables& v, bool torque)
+JacobianPieces jacobian_pieces(const PolyEquations& eq, const Variables& v, const PolyCoordinates& c, bool torque)
 {
     const std::size_t n = v.q.size();
     JacobianPieces j;
@@ -121,10 +151,10 @@ JacobianPieces jacobian_pieces(const PolyEquations& eq, const Variables& v, bool
     j.forces_u.resize(n * drive_value_count);
     for (std::size_t i = 0; i < n; ++i)
         for (std::size_t k = 0; k < n; ++k) {
-            j.forces_q[i * n + k] = eq.Q[i].diff(v.q[k]);
+            j.forces_q[i * n + k] = c.d_dq(eq.Q[i], k);
             j.forces_qd[i * n + k] = eq.Q[i].diff(v.qd[k]);
             // v is read from the qd slot, so the rates' variables stand for v here.
-            for (std::size_t c = 0; c < n; ++c) j.mass_q_product[i * n + k] += eq.M[i * n + c].diff(v.q[k]).times(v.qd[c]);
+            for (std::size_t l = 0; l < n; ++l) j.mass_q_product[i * n + k] += c.d_dq(eq.M[i * n + l], k).times(v.qd[l]);
         }
     // dQ/du only for the drive values the variant reads: under torque theta_dot is the rate qd[0], not an input.
     std::vector<std::pair<DriveValue, int>> inputs;
@@ -134,7 +164,7 @@ JacobianPieces jacobian_pieces(const PolyEquations& eq, const Variables& v, bool
         for (const auto& [u, var] : inputs) j.forces_u[i * drive_value_count + index(u)] = eq.Q[i].diff(var);
     // The runtime's dfdt = M^-1 dQ/du du/dt assumes M does not depend on the drive or on the rates.
     std::vector<int> not_in_M = v.qd;
-    for (int d : {v.tau, v.theta_dot, v.theta_ddot})
+    for (int d : {v.tau, v.theta_dot, v.theta_ddot, v.sin_theta, v.cos_theta})
         if (d >= 0) not_in_M.push_back(d);
     for (const Poly& Mij : eq.M)
         for (int var : not_in_M)
@@ -143,11 +173,15 @@ JacobianPieces jacobian_pieces(const PolyEquations& eq, const Variables& v, bool
 }
 
 /// The kernels' inputs: the parameters p, read once by the coefficients kernel, and the state u, q, qd.
-Signature signature(const Symbols& s, bool torque, int nq)
+Signature signature(const Symbols& s, const VariantKey& key)
 {
+    const bool torque = key.drive == Drive::torque;
+    const int nq = key.nq();
+    const Extras& x = key.extras;
+    const std::vector<std::string> p_names = read_parameter_names(x);
     Signature sig;
-    sig.parameters = {"p", static_cast<int>(param_count), "p = " + tuple(param_names)};
-    sig.state = {{"u", static_cast<int>(drive_value_count), ""}, {"q", nq, ""}, {"qd", nq, ""}};
+    sig.parameters = {"p", static_cast<int>(p_names.size()), "p = " + tuple(p_names)};
+    sig.state = {{"u", static_cast<int>(input_names(x.gravity).size()), ""}, {"q", nq, ""}, {"qd", nq, ""}};
     // m = rho S, EI and ES are formed from p once, in the coefficients kernel.
     sig.parameter_inputs = {{s.L, read(Param::L)},
                             {s.m, read(Param::rho) + " * " + read(Param::S)},
@@ -155,10 +189,20 @@ Signature signature(const Symbols& s, bool torque, int nq)
                             {s.ES, read(Param::E) + " * " + read(Param::S)},
                             {s.a, read(Param::a)},
                             {s.J_oh, read(Param::J_oh)}};
+    if (x.any())
+        sig.parameter_inputs.insert(sig.parameter_inputs.end(), {{s.m_tip, read(Param::m_tip)},
+                                                                 {s.J_tip, read(Param::J_tip)},
+                                                                 {s.g, read(Param::g)},
+                                                                 {s.alpha, read(Param::alpha)},
+                                                                 {s.beta, read(Param::beta)},
+                                                                 {s.tip_ratio, read(Param::tip_ratio)}});
     if (torque) sig.state_inputs.push_back({s.tau, read(DriveValue::tau)});
     else
         sig.state_inputs.insert(sig.state_inputs.end(), {{s.theta_dot, read(DriveValue::theta_dot)},
                                                          {s.theta_ddot, read(DriveValue::theta_ddot)}});
+    if (x.gravity)
+        sig.state_inputs.insert(sig.state_inputs.end(), {{s.sin_theta, read(AngleValue::sin_theta)},
+                                                         {s.cos_theta, read(AngleValue::cos_theta)}});
     for (std::size_t i = 0; i < s.q.size(); ++i) sig.state_inputs.push_back({s.q[i], "q[" + std::to_string(i) + "]"});
     for (std::size_t i = 0; i < s.qd.size(); ++i) sig.state_inputs.push_back({s.qd[i], "qd[" + std::to_string(i) + "]"});
     return sig;
@@ -168,6 +212,7 @@ Signature signature(const Symbols& s, bool torque, int nq)
 struct Derivation {
     PolyEquations eq;
     Variables v;
+    PolyCoordinates c;
     std::size_t parameter_count = 0;
 };
 
@@ -188,12 +233,24 @@ Derivation derive(const VariantKey& key, const Symbols& s, const Signature& sig)
     v.tau = variable(s.tau);
     v.theta_dot = variable(s.theta_dot);
     v.theta_ddot = variable(s.theta_ddot);
+    v.sin_theta = variable(s.sin_theta);
+    v.cos_theta = variable(s.cos_theta);
     const PolyReader reader(parameters, variables);
-    PolyCoordinates c{v.q, v.qd, {}, std::vector<Poly>(s.q.size()), torque ? v.qd[0] : v.theta_dot};
+    PolyCoordinates c;
+    c.q = v.q;
+    c.qd = v.qd;
+    c.force.resize(s.q.size());
+    c.spin = torque ? v.qd[0] : v.theta_dot;
     if (torque) c.force[0] = reader(s.tau);
     else c.driven.emplace_back(v.theta_dot, v.theta_ddot);
+    if (torque && key.extras.gravity) {
+        c.angle = 0;
+        c.angle_sin = v.sin_theta;
+        c.angle_cos = v.cos_theta;
+    }
     const Energies en = derive_energies(key, s, reader);
-    return {lagrange(en.T, en.U, c), v, parameters.size()};
+    c.dissipation = en.D;
+    return {lagrange(en.T, en.U, c), v, c, parameters.size()};
 }
 
 /// A kernel that writes every value, zeros included.
@@ -246,7 +303,7 @@ Kernels variant_kernels(const VariantKey& key, const Symbols& s, const Derivatio
     const int nq = key.nq();
     const std::string n2 = std::to_string(nq * nq), n1 = std::to_string(nq);
     Kernels out;
-    JacobianPieces jac = jacobian_pieces(eq, d.v, key.drive == Drive::torque);
+    JacobianPieces jac = jacobian_pieces(eq, d.v, d.c, key.drive == Drive::torque);
     out.mass_pattern = mass_pattern(eq.M, d.v.q);
     auto [mass, mass_varying] = mass_kernels(eq.M, out.mass_pattern, nq);
     out.mass_varies = !mass_varying.polys.empty();
@@ -328,7 +385,7 @@ std::string table_row(const std::string& name, int nq, int ncoeff, const Kernels
 std::string variant_source(const VariantKey& key, const EmitOptions& options)
 {
     const Symbols s(key);
-    const Signature sig = signature(s, key.drive == Drive::torque, key.nq());
+    const Signature sig = signature(s, key);
     const Derivation d = derive(key, s, sig);
     Kernels kernels = variant_kernels(key, s, d);
     const std::string name = key.name();

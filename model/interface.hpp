@@ -8,23 +8,38 @@
 namespace hubbeam {
 
 /// Index of each physical parameter in the packed vector p (SI units; docs/model.md section 1).
-enum class Param : std::size_t { L, rho, S, I, E, a, J_oh };
-inline constexpr std::size_t param_count = 7;
+/// The paper's seven come first; the rest (tip body, gravity, Rayleigh damping, taper; docs/model.md section 10)
+/// are read only by the variants that carry those terms, so the paper's variants read p[0..6] as before.
+enum class Param : std::size_t { L, rho, S, I, E, a, J_oh, m_tip, J_tip, g, alpha, beta, tip_ratio };
+inline constexpr std::size_t param_count = 13;
+/// The paper's parameters: a variant without extra terms reads these only.
+inline constexpr std::size_t paper_param_count = 7;
 /// Names of p's entries in the order of Param, as they read in docs/model.md and in generated code.
-inline constexpr std::array<const char*, param_count> param_names = {"L", "rho", "S", "I", "E", "a", "J_oh"};
+inline constexpr std::array<const char*, param_count> param_names = {"L", "rho", "S", "I", "E", "a", "J_oh",
+                                                                     "m_tip", "J_tip", "g", "alpha", "beta", "tip_ratio"};
 
 /// Index of each drive value in u: a torque variant reads tau, a prescribed variant theta_dot, theta_ddot.
 enum class DriveValue : std::size_t { tau, theta_dot, theta_ddot };
 inline constexpr std::size_t drive_value_count = 3;
 inline constexpr std::array<const char*, drive_value_count> drive_value_names = {"tau", "theta_dot", "theta_ddot"};
+/// A gravity variant's kernels also read sin(theta) and cos(theta), after the drive values: u[3], u[4]. The
+/// Jacobian's dQ/du covers the drive values only (dQ/dtheta is Model::forces_theta).
+enum class AngleValue : std::size_t { sin_theta = drive_value_count, cos_theta };
+inline constexpr std::size_t kernel_input_count = drive_value_count + 2;
+inline constexpr std::array<const char*, 2> angle_value_names = {"sin_theta", "cos_theta"};
 
 constexpr std::size_t index(Param p) { return static_cast<std::size_t>(p); }
 constexpr std::size_t index(DriveValue u) { return static_cast<std::size_t>(u); }
+constexpr std::size_t index(AngleValue u) { return static_cast<std::size_t>(u); }
 
 /// Physical parameters (SI): beam length, density, cross-section, second moment, Young's modulus, hub
-/// radius, hub inertia. The defaults are the beam of Kane, Ryan & Banerjee (docs/model.md section 6).
+/// radius, hub inertia. The defaults are the beam of Kane, Ryan & Banerjee (docs/model.md section 6). Then the
+/// extra terms' values (docs/model.md section 10): tip mass and rotary inertia, gravity, Rayleigh damping
+/// (alpha 1/s, beta s) and the taper's tip-to-root ratio of the tapered dimension; at these defaults a variant
+/// that carries the terms equals one that does not.
 struct Parameters {
     double L = 8.0, rho = 2.7667e3, S = 7.2968e-5, I = 8.2189e-9, E = 6.8952e10, a = 0.0, J_oh = 30.0;
+    double m_tip = 0.0, J_tip = 0.0, g = 0.0, alpha = 0.0, beta = 0.0, tip_ratio = 1.0;
 
     /// p, indexed by Param.
     std::array<double, param_count> packed() const
@@ -37,13 +52,21 @@ struct Parameters {
         p[index(Param::E)] = E;
         p[index(Param::a)] = a;
         p[index(Param::J_oh)] = J_oh;
+        p[index(Param::m_tip)] = m_tip;
+        p[index(Param::J_tip)] = J_tip;
+        p[index(Param::g)] = g;
+        p[index(Param::alpha)] = alpha;
+        p[index(Param::beta)] = beta;
+        p[index(Param::tip_ratio)] = tip_ratio;
         return p;
     }
 };
 
-/// The drive at one instant.
+/// The drive at one instant. theta is the prescribed angle, read only by a prescribed variant with gravity (a
+/// torque variant's angle is its coordinate q[0]).
 struct HubInput {
     double tau = 0.0, theta_dot = 0.0, theta_ddot = 0.0;
+    double theta = 0.0;
 
     /// u, indexed by DriveValue.
     std::array<double, drive_value_count> packed() const

@@ -14,6 +14,18 @@ const WordTable<Method, 4> methods = {
 const WordTable<Order, 3> orders = {{Order::zero, "zero"}, {Order::first, "first"}, {Order::full, "full"}};
 const WordTable<Drive, 2> drives = {{Drive::prescribed, "prescribed"}, {Drive::torque, "torque"}};
 const WordTable<SplineBasis, 2> splines = {{SplineBasis::paper, "paper"}, {SplineBasis::open, "open"}};
+const WordTable<Taper, 3> tapers = {{Taper::uniform, "uniform"}, {Taper::width, "width"}, {Taper::depth, "depth"}};
+
+/// The name suffixes of the extras, in name order.
+std::vector<std::string> extras_suffixes(const Extras& e)
+{
+    std::vector<std::string> s;
+    if (e.tip) s.emplace_back("tip");
+    if (e.gravity) s.emplace_back("gravity");
+    if (e.damping) s.emplace_back("damped");
+    if (e.taper != Taper::uniform) s.push_back(word_of(e.taper, tapers));
+    return s;
+}
 
 }  // namespace
 
@@ -41,6 +53,9 @@ std::string to_string(Method v) { return word_of(v, methods); }
 std::string to_string(Order v) { return word_of(v, orders); }
 std::string to_string(Drive v) { return word_of(v, drives); }
 std::string to_string(SplineBasis v) { return word_of(v, splines); }
+std::string to_string(Taper v) { return word_of(v, tapers); }
+bool parse(std::string_view w, Taper& v) { return parse_word(w, tapers, v); }
+template <> std::vector<std::string> words<Taper>() { return all_words(tapers); }
 bool parse(std::string_view w, Method& v) { return parse_word(w, methods, v); }
 bool parse(std::string_view w, Order& v) { return parse_word(w, orders, v); }
 bool parse(std::string_view w, Drive& v) { return parse_word(w, drives, v); }
@@ -54,6 +69,7 @@ std::string VariantKey::name() const
     std::string s = to_string(method) + "_nx" + std::to_string(nx) + "_ny" + std::to_string(ny) + "_" +
                     to_string(drive) + "_" + to_string(order);
     if (method == Method::bsim && spline == SplineBasis::open) s += "_open";
+    for (const std::string& suffix : extras_suffixes(extras)) s += "_" + suffix;
     return s;
 }
 
@@ -73,9 +89,10 @@ VariantKey VariantKey::parse(std::string_view name)
     VariantKey k;
     const auto bad = [&](const std::string& what) {
         return std::invalid_argument("not a variant name: '" + std::string(name) + "': " + what +
-                                     " (expected METHOD_nxN_nyN_DRIVE_ORDER[_open], e.g. bim_nx4_ny4_torque_first)");
+                                     " (expected METHOD_nxN_nyN_DRIVE_ORDER[_open][_tip][_gravity][_damped][_width|_depth], "
+                                     "e.g. bim_nx4_ny4_torque_first)");
     };
-    if (parts.size() < 5 || parts.size() > 6) throw bad(std::to_string(parts.size()) + " parts separated by '_'");
+    if (parts.size() < 5) throw bad(std::to_string(parts.size()) + " parts separated by '_'");
     if (!hubbeam::parse(parts[0], k.method)) throw bad("method '" + parts[0] + "' is not one of " + joined(words<Method>()));
     if (!hubbeam::parse(parts[3], k.drive)) throw bad("drive '" + parts[3] + "' is not one of prescribed, torque");
     if (!hubbeam::parse(parts[4], k.order)) throw bad("order '" + parts[4] + "' is not one of " + joined(words<Order>()));
@@ -87,10 +104,22 @@ VariantKey VariantKey::parse(std::string_view name)
     };
     count(parts[1], "nx", k.nx);
     count(parts[2], "ny", k.ny);
-    if (parts.size() == 6) {
-        if (k.method != Method::bsim || parts[5] != "open") throw bad("'" + parts[5] + "': only bsim takes the suffix _open");
+    std::size_t next = 5;
+    if (parts.size() > next && parts[next] == "open") {
+        if (k.method != Method::bsim) throw bad("'open': only bsim takes the suffix _open");
         k.spline = SplineBasis::open;
+        ++next;
     }
+    // The extras, each at most once and in name order: the name of a key is unique.
+    const std::vector<std::string> rest(parts.begin() + static_cast<std::ptrdiff_t>(next), parts.end());
+    for (const std::string& part : rest) {
+        if (part == "tip") k.extras.tip = true;
+        else if (part == "gravity") k.extras.gravity = true;
+        else if (part == "damped") k.extras.damping = true;
+        else if (Taper t; hubbeam::parse(part, t) && t != Taper::uniform) k.extras.taper = t;
+        else throw bad("'" + part + "' is not a suffix");
+    }
+    if (extras_suffixes(k.extras) != rest) throw bad("the suffixes are repeated or out of order");
     return k;
 }
 

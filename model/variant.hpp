@@ -21,12 +21,30 @@ enum class Order { zero, first, full };
 /// Prescribed hub rotation theta(t) (no hub equation) or applied hub torque tau(t) (theta is a coordinate).
 enum class Drive { prescribed, torque };
 
+/// How the beam's section varies along the span (docs/model.md section 10): uniform, or a linear taper of its
+/// width (S and I both linear in x) or of its depth (S linear, I cubic).
+enum class Taper { uniform, width, depth };
+
+/// The terms beyond the paper's beam a variant carries (docs/model.md section 10). Each is structure: it adds
+/// terms to T, U or the dissipation function D, whose values (Param::m_tip, ...) are read at run time. A scene
+/// that does not use a term runs the variant without it.
+struct Extras {
+    bool tip = false;      // tip body: m_tip at x = L, J_tip turning with the slope there
+    bool gravity = false;  // weight along -j of a vertical plane of motion (g)
+    bool damping = false;  // Rayleigh damping of the elastic coordinates (alpha, beta)
+    Taper taper = Taper::uniform;
+
+    bool any() const { return tip || gravity || damping || taper != Taper::uniform; }
+    bool operator==(const Extras&) const = default;
+};
+
 struct VariantKey {
     Method method = Method::amm;
     int nx = 0, ny = 4;
     Order order = Order::first;
     Drive drive = Drive::prescribed;
     SplineBasis spline = SplineBasis::paper;  // BSIM transverse basis; ignored by other methods
+    Extras extras;
 
     /// Number of generalized coordinates: theta (torque only), A (nx), B (ny).
     int nq() const { return (drive == Drive::torque ? 1 : 0) + nx + ny; }
@@ -34,7 +52,8 @@ struct VariantKey {
     int first_a() const { return drive == Drive::torque ? 1 : 0; }
     int first_b() const { return first_a() + nx; }
 
-    /// e.g. "bim_nx4_ny4_torque_first", "bsim_nx0_ny4_prescribed_first_open": a C identifier.
+    /// e.g. "bim_nx4_ny4_torque_first", "bsim_nx0_ny4_prescribed_first_open", "amm_nx0_ny4_torque_first_tip_gravity":
+    /// a C identifier; the extras follow in the order tip, gravity, damped, width|depth.
     std::string name() const;
     /// Inverse of name(); throws std::invalid_argument.
     static VariantKey parse(std::string_view name);
@@ -54,15 +73,18 @@ std::vector<std::string> words();
 template <> std::vector<std::string> words<Method>();
 template <> std::vector<std::string> words<Order>();
 template <> std::vector<std::string> words<SplineBasis>();
+template <> std::vector<std::string> words<Taper>();
 
 std::string to_string(Method);
 std::string to_string(Order);
 std::string to_string(Drive);
 std::string to_string(SplineBasis);
+std::string to_string(Taper);
 /// Parsers for the names above; return false for an unknown word.
 bool parse(std::string_view, Method&);
 bool parse(std::string_view, Order&);
 bool parse(std::string_view, Drive&);
 bool parse(std::string_view, SplineBasis&);
+bool parse(std::string_view, Taper&);
 
 }  // namespace hubbeam

@@ -72,7 +72,7 @@ VectorXd frequencies(const MatrixXd& K, const MatrixXd& M)
 VariantKey make_key(Method method, int nx, int ny, Drive drive = Drive::prescribed, Order order = Order::first,
                     SplineBasis spline = SplineBasis::paper)
 {
-    return {.method = method, .nx = nx, .ny = ny, .order = order, .drive = drive, .spline = spline};
+    return {.method = method, .nx = nx, .ny = ny, .order = order, .drive = drive, .spline = spline, .extras = {}};
 }
 
 /// The five transverse discretizations with a representative Ny.

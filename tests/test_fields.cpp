@@ -31,7 +31,7 @@ std::vector<double> statically_bent(const Model& model)
     return {q.data(), q.data() + n};
 }
 
-VariantKey bending_key(Method method, int ny) { return {.method = method, .nx = 0, .ny = ny}; }
+VariantKey bending_key(Method method, int ny) { return {.method = method, .nx = 0, .ny = ny, .extras = {}}; }
 
 double exact_moment(const Parameters& p, double x)
 {

@@ -26,7 +26,7 @@ namespace {
 
 VariantKey key_of(Method method, int nx, int ny, Drive drive = Drive::prescribed, Order order = Order::first)
 {
-    return {.method = method, .nx = nx, .ny = ny, .order = order, .drive = drive};
+    return {.method = method, .nx = nx, .ny = ny, .order = order, .drive = drive, .extras = {}};
 }
 
 /// The bending frequencies of the linearized model about a steady spin, dimensionless (omega / sqrt(EI/(m L^4))).

@@ -320,7 +320,7 @@ Matrices read_off(const Model& model)
 
 VariantKey key_of(Method method, int nx, int ny, Drive drive = Drive::prescribed, SplineBasis spline = SplineBasis::open)
 {
-    return {.method = method, .nx = nx, .ny = ny, .order = Order::first, .drive = drive, .spline = spline};
+    return {.method = method, .nx = nx, .ny = ny, .order = Order::first, .drive = drive, .spline = spline, .extras = {}};
 }
 
 Parameters with_hub_radius(double a)

@@ -426,13 +426,14 @@ TEST_CASE("a table accepts exactly the keys the key table gives it, [motion] tho
         FAIL("beam.ny was accepted");
     } catch (const SceneError& e) {
         CHECK(e.key == "beam.ny");
-        CHECK(e.expected == "one of length, density, area, second_moment, youngs_modulus");
+        CHECK(e.expected == "one of length, density, area, second_moment, youngs_modulus, taper, tip_ratio");
         CHECK(e.got == "an unknown key");
     }
     // The parameters of the paper's two motions: Omega0 and T_s (eq. 58), tau0 and T_t (eq. 59).
     CHECK(table_keys("motion", "spin-up") == std::vector<std::string>{"kind", "omega0", "duration"});
     CHECK(table_keys("motion", "torque") == std::vector<std::string>{"kind", "tau0", "duration"});
-    CHECK(scene_tables() == std::vector<std::string>{"beam", "hub", "motion", "discretization", "model", "solver", "output"});
+    CHECK(scene_tables() == std::vector<std::string>{"beam", "hub", "tip", "damping", "gravity", "motion",
+                                                     "discretization", "model", "solver", "output"});
 }
 
 TEST_CASE("printable() escapes what could move, recolour or reorder a terminal, in hubbeam.printable's forms",

@@ -148,7 +148,7 @@ void check_against_dense(RightHandSide& rhs, const Model& model, int seed)
     }
 }
 
-VariantKey key_of(Method method, int nx, int ny, Drive drive) { return {.method = method, .nx = nx, .ny = ny, .drive = drive}; }
+VariantKey key_of(Method method, int nx, int ny, Drive drive) { return {.method = method, .nx = nx, .ny = ny, .drive = drive, .extras = {}}; }
 
 }  // namespace
 

@@ -13,7 +13,7 @@ using namespace hubbeam;
 
 namespace {
 
-VariantKey amm_key(int nx, int ny, Drive drive) { return {.method = Method::amm, .nx = nx, .ny = ny, .drive = drive}; }
+VariantKey amm_key(int nx, int ny, Drive drive) { return {.method = Method::amm, .nx = nx, .ny = ny, .drive = drive, .extras = {}}; }
 
 }  // namespace
 

@@ -323,7 +323,7 @@ std::vector<KernelBenchRow> run_kernel_bench(const KernelBenchOptions& options, 
                     std::vector<int> nxs;
                     for (const int nx : options.nx) add_unique(nxs, nx == nx_equal_ny ? ny : nx);
                     for (const int nx : nxs) {
-                        const VariantKey key{.method = method, .nx = nx, .ny = ny, .order = order, .drive = drive};
+                        const VariantKey key{.method = method, .nx = nx, .ny = ny, .order = order, .drive = drive, .extras = {}};
                         if (const std::string why = key.dof_problem(); !why.empty())
                             notes.skipped.push_back(key.name() + ": " + why);
                         else

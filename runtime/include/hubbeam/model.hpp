@@ -3,6 +3,7 @@
 // section 5 (assembled.hpp); make_model.hpp chooses between them.
 #pragma once
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -94,6 +95,14 @@ public:
 
     /// The exact derivatives of M and Q (generated kernels), or nullptr: the integrator then differences Q.
     virtual const ExactJacobian* jacobian() const { return nullptr; }
+
+    /// dQ/dtheta of a prescribed variant with gravity, where the angle u.theta is an input (the time derivative of
+    /// the implicit steppers' Jacobian gains dQ/dtheta theta_dot); zeros for every other variant.
+    virtual void forces_theta(const HubInput& u, const double* q, const double* qd, double* dQdtheta) const
+    {
+        (void)u, (void)q, (void)qd;
+        std::fill_n(dQdtheta, nq(), 0.0);
+    }
 
 protected:
     explicit Model(const VariantKey& key) : key_(key) {}

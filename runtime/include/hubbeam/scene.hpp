@@ -52,12 +52,16 @@ struct Scene {
     SolverOptions solver;
     OutputOptions output;
 
-    /// The variant this scene runs: its discretization with the drive its motion implies (the motion may have
-    /// been changed in code since loading).
+    /// The variant this scene runs: its discretization with the drive its motion implies and the extra terms its
+    /// parameters use (either may have been changed in code since loading). A term whose values are all zero is
+    /// left out: the paper's scenes run the paper's variants.
     VariantKey key() const
     {
         VariantKey k = variant;
         k.drive = motion.drive();
+        k.extras.tip = parameters.m_tip != 0.0 || parameters.J_tip != 0.0;
+        k.extras.gravity = parameters.g != 0.0;
+        k.extras.damping = parameters.alpha != 0.0 || parameters.beta != 0.0;
         return k;
     }
 };

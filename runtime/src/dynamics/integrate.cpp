@@ -192,6 +192,11 @@ int FirstOrderSystem::exact_jacobian(const ExactJacobian& exact, double t, const
     const std::array<double, drive_value_count> du = motion_.rate(t).packed();
     const Eigen::VectorXd dudt = Eigen::Map<const Eigen::VectorXd>(du.data(), static_cast<Eigen::Index>(du.size()));
     Eigen::VectorXd lower_t = w.dQdu * dudt;
+    if (model_.key().extras.gravity && model_.key().drive == Drive::prescribed) {
+        Eigen::VectorXd dQdtheta(n_);  // the angle is an input too: dQ/dtheta theta_dot
+        model_.forces_theta(u, q, qd, dQdtheta.data());
+        lower_t += u.theta_dot * dQdtheta;
+    }
     w.solver->solve(lower_t.data());
     const int m = size();
     for (int i = 0; i < n_; ++i) {

@@ -33,8 +33,10 @@ HubInput Motion::at(double t) const
             const auto [s, c] = sin_cos(two_pi * t / spin_time);
             u.theta_dot = omega0 * (t / spin_time - s / two_pi);
             u.theta_ddot = omega0 / spin_time * (1.0 - c);
+            u.theta = omega0 * (t * t / (2.0 * spin_time) + spin_time * (c - 1.0) / (two_pi * two_pi));
         } else {
             u.theta_dot = omega0;
+            u.theta = omega0 * (t - spin_time / 2.0);
         }
     } else if (t <= torque_time) {
         u.tau = tau0 * std::sin(two_pi * t / torque_time);

@@ -63,8 +63,15 @@ std::vector<SceneKey> make_scene_keys()
         {"beam.area", nullptr, K::number, "a number > 0 (S, m^2)"},
         {"beam.second_moment", nullptr, K::number, "a number > 0 (I, m^4)"},
         {"beam.youngs_modulus", nullptr, K::number, "a number > 0 (E, Pa)"},
+        {"beam.taper", nullptr, K::word, one_of(words<Taper>())},
+        {"beam.tip_ratio", nullptr, K::number, "a number > 0 (the tapered dimension at the tip over the root)"},
         {"hub.radius", nullptr, K::number, "a number >= 0 (a, m)"},
         {"hub.inertia", nullptr, K::number, "a number > 0 (J_oh, kg m^2)"},
+        {"tip.mass", nullptr, K::number, "a number >= 0 (m_tip, kg)"},
+        {"tip.inertia", nullptr, K::number, "a number >= 0 (J_tip, kg m^2)"},
+        {"damping.mass_proportional", nullptr, K::number, "a number >= 0 (alpha, 1/s)"},
+        {"damping.stiffness_proportional", nullptr, K::number, "a number >= 0 (beta, s)"},
+        {"gravity.g", nullptr, K::number, "a finite number (g, m/s^2)"},
         {"motion.kind", nullptr, K::word, one_of(motion_kinds())},
         {"motion.omega0", nullptr, K::number, "a finite number (Omega0, rad/s)", "spin-up"},
         {"motion.tau0", nullptr, K::number, "a finite number (tau0, N m)", "torque"},
@@ -311,8 +318,9 @@ void check_tables(const toml::table& root, const std::string& path)
             fail(path, required, std::string("a table [") + required + "]", "nothing (the table is missing)");
 }
 
-/// [beam]: docs/model.md section 1.
-void read_beam(const Section& beam, Parameters& p)
+/// [beam]: docs/model.md section 1, and the taper of section 10 (a taper kind without a ratio is refused: the
+/// default ratio 1 would make it uniform without a word).
+void read_beam(const Section& beam, Parameters& p, Taper& taper)
 {
     beam.only();
     p.L = beam.required_number("length");
@@ -320,6 +328,24 @@ void read_beam(const Section& beam, Parameters& p)
     p.S = beam.required_number("area");
     p.I = beam.required_number("second_moment");
     p.E = beam.required_number("youngs_modulus");
+    taper = beam.word<Taper>("taper", parse_enum<Taper>).value_or(Taper::uniform);
+    if (taper != Taper::uniform) p.tip_ratio = beam.required_number("tip_ratio", ", required for a taper");
+    else if (const auto r = beam.number("tip_ratio"); r && *r != 1.0)
+        beam.refuse("tip_ratio", shortest(*r) + " without beam.taper = \"width\" or \"depth\"");
+}
+
+/// [tip], [damping], [gravity]: the extra terms of docs/model.md section 10; absent tables leave them out.
+void read_extras(const toml::table& root, const std::string& path, Parameters& p)
+{
+    const Section tip(path, root, "tip"), damping(path, root, "damping"), gravity(path, root, "gravity");
+    tip.only();
+    damping.only();
+    gravity.only();
+    p.m_tip = tip.number("mass", p.m_tip);
+    p.J_tip = tip.number("inertia", p.J_tip);
+    p.alpha = damping.number("mass_proportional", p.alpha);
+    p.beta = damping.number("stiffness_proportional", p.beta);
+    p.g = gravity.number("g", p.g);
 }
 
 /// [motion]: paper eq. 58 (spin-up) or eq. 59 (torque); the kind decides which keys the table may hold.
@@ -557,7 +583,8 @@ Scene parse_scene(std::string_view text, const std::string& path, const Override
 
     Scene scene;
     scene.path = path;
-    read_beam(Section(path, root, "beam"), scene.parameters);
+    read_beam(Section(path, root, "beam"), scene.parameters, scene.variant.extras.taper);
+    read_extras(root, path, scene.parameters);
     read_motion(Section(path, root, "motion"), scene.motion);
     read_hub(Section(path, root, "hub"), scene.motion.kind, scene.parameters);
     read_discretization(Section(path, root, "discretization"), scene.motion, scene.variant);
@@ -578,6 +605,11 @@ void validate(const Scene& s)
     check_positive(s, p.E, "beam.youngs_modulus");
     if (!(p.a >= 0.0) || !std::isfinite(p.a)) fail(s.path, "hub.radius", expected("hub.radius"), shortest(p.a));
     check_positive(s, p.J_oh, "hub.inertia");
+    if (s.variant.extras.taper != Taper::uniform) check_positive(s, p.tip_ratio, "beam.tip_ratio");
+    for (const auto& [v, key] : {std::pair{p.m_tip, "tip.mass"}, {p.J_tip, "tip.inertia"},
+                                 {p.alpha, "damping.mass_proportional"}, {p.beta, "damping.stiffness_proportional"}})
+        if (!(v >= 0.0) || !std::isfinite(v)) fail(s.path, key, expected(key), shortest(v));
+    check_finite(s, p.g, "gravity.g");
 
     if (s.motion.kind == Motion::Kind::spin_up) {
         check_finite(s, s.motion.omega0, "motion.omega0");

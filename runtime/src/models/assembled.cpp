@@ -234,6 +234,8 @@ std::unique_ptr<Model> make_assembled_model(const VariantKey& key, const Paramet
 {
     if (key.order == Order::full)
         throw std::invalid_argument("full order has no hand-assembled form; it needs a generated variant");
+    if (key.extras.any())
+        throw std::invalid_argument("a tip body, gravity, damping or a taper has no hand-assembled form yet; it needs a generated variant");
     return std::make_unique<AssembledModel>(key, p);
 }
 

@@ -3,6 +3,8 @@
 #include "generated_model.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -16,7 +18,8 @@ namespace {
 class GeneratedModel final : public Model, TermForces, FoldedForceKernel, ExactJacobian {
 public:
     GeneratedModel(const VariantKey& key, const generated::Variant& v, const Parameters& p)
-        : Model(key), v_(v), c_(static_cast<std::size_t>(v.ncoeff)), pattern_(v.mass_pattern)
+        : Model(key), v_(v), c_(static_cast<std::size_t>(v.ncoeff)), pattern_(v.mass_pattern),
+          gravity_(key.extras.gravity), torque_(key.drive == Drive::torque)
     {
         v_.coefficients(p.packed().data(), c_.data());
         // The kernels write M's upper triangle: these lower entries are mirrored from it.
@@ -65,7 +68,7 @@ public:
     void accelerations(const double* W, const HubInput& u, const double* q, const double* qd,
                        double* qdd) const override
     {
-        v_.forces_folded(W, u.packed().data(), q, qd, qdd);
+        v_.forces_folded(W, inputs(u, q).data(), q, qd, qdd);
     }
     void forces(const HubInput& u, const double* q, const double* qd, double* Q) const override
     {
@@ -102,6 +105,22 @@ public:
         call(v_.forces_qd, u, q, qd, dQdqd);
         call(v_.forces_u, u, q, qd, dQdu);
     }
+    void forces_theta(const HubInput& u, const double* q, const double* qd, double* dQdtheta) const override
+    {
+        std::fill_n(dQdtheta, nq(), 0.0);
+        if (!gravity_ || torque_) return;
+        // Q is affine in (sin theta, cos theta) (only U_g holds them, linearly): dQ/dtheta = cos dQ/dsin - sin dQ/dcos
+        // is Q at (cos theta, -sin theta) less Q at (0, 0).
+        std::array<double, kernel_input_count> k = inputs(u, q);
+        const double s = k[index(AngleValue::sin_theta)], c = k[index(AngleValue::cos_theta)];
+        std::vector<double> base(static_cast<std::size_t>(nq()));
+        k[index(AngleValue::sin_theta)] = c;
+        k[index(AngleValue::cos_theta)] = -s;
+        v_.forces(c_.data(), k.data(), q, qd, dQdtheta);
+        k[index(AngleValue::sin_theta)] = k[index(AngleValue::cos_theta)] = 0.0;
+        v_.forces(c_.data(), k.data(), q, qd, base.data());
+        for (int i = 0; i < nq(); ++i) dQdtheta[i] -= base[static_cast<std::size_t>(i)];
+    }
     void mass_q_product(const HubInput& u, const double* q, const double* v, double* dMv) const override
     {
         // The generator emits no kernel for a constant M (dM/dq = 0).
@@ -112,13 +131,28 @@ public:
 private:
     void call(generated::Kernel k, const HubInput& u, const double* q, const double* qd, double* out) const
     {
-        k(c_.data(), u.packed().data(), q, qd, out);
+        k(c_.data(), inputs(u, q).data(), q, qd, out);
+    }
+
+    /// The kernels' u: the drive values, then for gravity sin and cos of the angle (a torque variant's q[0]; q is
+    /// null only for the state-free F, which holds no angle).
+    std::array<double, kernel_input_count> inputs(const HubInput& u, const double* q) const
+    {
+        const std::array<double, drive_value_count> d = u.packed();
+        std::array<double, kernel_input_count> k{d[0], d[1], d[2], 0.0, 0.0};
+        if (gravity_) {
+            const double theta = torque_ ? (q != nullptr ? q[0] : 0.0) : u.theta;
+            k[index(AngleValue::sin_theta)] = std::sin(theta);
+            k[index(AngleValue::cos_theta)] = std::cos(theta);
+        }
+        return k;
     }
 
     const generated::Variant& v_;
     std::vector<double> c_;
     std::string pattern_;
     std::vector<std::pair<int, int>> mirrored_, mirrored_varying_;  // (upper, lower) entry pairs of M
+    bool gravity_, torque_;
 };
 
 }  // namespace
