@@ -188,7 +188,7 @@ std::unique_ptr<Simulation> prepare(const RunPlan& plan, std::unique_ptr<CsvWrit
     // is still put in place. (Before, the default action ends the process with nothing created.)
     catch_stop_signals();
     try {
-        csv = std::make_unique<CsvWriter>(scene.output.file);
+        csv = std::make_unique<CsvWriter>(scene.output.file, optional_columns_of(scene));
     } catch (const std::exception& e) {  // OutputRefused (another hubbeam writes it), or cannot create
         std::cerr << e.what() << "\n";
         return nullptr;

@@ -7,6 +7,8 @@
 
 #include <atomic>
 #include <chrono>
+#include <exception>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -61,15 +63,38 @@ auto guarded(const Scene& scene, const Make& make)
     }
 }
 
-/// The rows as an n x 10 array that owns them (no copy: the vector moves into the capsule).
-py::array_t<double> rows_array(std::vector<double>&& rows)
+/// The rows as an n x width array that owns them (no copy: the vector moves into the capsule).
+py::array_t<double> rows_array(std::vector<double>&& rows, std::size_t width)
 {
     auto* owned = new std::vector<double>(std::move(rows));
     py::capsule free_rows(owned, [](void* p) { delete static_cast<std::vector<double>*>(p); });
-    const auto n = static_cast<py::ssize_t>(owned->size() / row_width);
-    return py::array_t<double>({n, static_cast<py::ssize_t>(row_width)},
-                               {static_cast<py::ssize_t>(row_width * sizeof(double)), static_cast<py::ssize_t>(sizeof(double))},
+    const auto n = static_cast<py::ssize_t>(owned->size() / width);
+    return py::array_t<double>({n, static_cast<py::ssize_t>(width)},
+                               {static_cast<py::ssize_t>(width * sizeof(double)), static_cast<py::ssize_t>(sizeof(double))},
                                owned->data(), free_rows);
+}
+
+/// A Python callable f(t, state) -> tau as a torque law: state is a dict with theta, theta_dot, tip_uy and
+/// tip_uy_dot. Each call takes the GIL (the integration runs without it). An exception in f, or a result that is not
+/// a number, is kept for the caller to raise and makes the torque NaN, which stops the run at once.
+TorqueLaw python_law(py::object f, std::shared_ptr<std::exception_ptr> failure)
+{
+    auto held = std::make_shared<py::object>(std::move(f));
+    return [held, failure](double t, const HubState& s) -> double {
+        const py::gil_scoped_acquire acquire;
+        if (*failure) return std::numeric_limits<double>::quiet_NaN();
+        try {
+            py::dict state;
+            state["theta"] = s.theta;
+            state["theta_dot"] = s.theta_dot;
+            state["tip_uy"] = s.tip_uy;
+            state["tip_uy_dot"] = s.tip_uy_dot;
+            return (*held)(t, state).cast<double>();
+        } catch (...) {
+            *failure = std::current_exception();
+            return std::numeric_limits<double>::quiet_NaN();
+        }
+    };
 }
 
 /// Raised by cancel_runs(): a run started with cancellable set stops at its next row once this has changed since
@@ -105,12 +130,24 @@ py::dict summary_dict(const RunSummary& s, const Scene& scene)
 }
 
 /// One run: the rows as an array and the summary's fields (hubbeam.run).
-py::dict run(const std::string& text, const std::string& name, const Overrides& overrides, bool cancellable)
+py::dict run(const std::string& text, const std::string& name, const Overrides& overrides, bool cancellable,
+             const py::object& torque)
 {
     const long generation = cancel_generation.load();
     // What hubbeam run does in process, timed the same way: load, choose the model, integrate.
     const auto start = std::chrono::steady_clock::now();
-    const Scene scene = scene_of(text, name, overrides);
+    Scene scene = scene_of(text, name, overrides);
+    const auto law_failure = std::make_shared<std::exception_ptr>();
+    if (!torque.is_none()) {
+        if (!PyCallable_Check(torque.ptr()))
+            throw py::value_error("torque: expected a callable f(t, state) -> tau (N m), got " +
+                                  printable(py::str(py::repr(torque)).cast<std::string>()));
+        Control c;  // the hub is free, driven by f; the scene's motion and [control] are not used
+        c.law = python_law(torque, law_failure);
+        scene.control = std::move(c);
+    }
+    const ColumnSet columns = optional_columns_of(scene);
+    const std::size_t width = row_width + columns.count();
     std::unique_ptr<Simulation> simulation;
     {
         // Choosing the model may compile a variant for seconds: a sweep's other worker threads run meanwhile.
@@ -138,16 +175,19 @@ py::dict run(const std::string& text, const std::string& name, const Overrides& 
     {
         // The integration touches no Python object: other Python threads run meanwhile.
         const py::gil_scoped_release release;
-        rows.reserve(static_cast<std::size_t>(row_width) *
-                     static_cast<std::size_t>(std::min(1e7, scene.output.t_end / scene.output.dt_out + 2.0)));
-        s = simulation->run([&rows](const Row& r) {
+        rows.reserve(width * static_cast<std::size_t>(std::min(1e7, scene.output.t_end / scene.output.dt_out + 2.0)));
+        s = simulation->run([&rows, columns](const Row& r) {
             for (const RowColumn& c : row_columns) rows.push_back(r.*c.member);
+            for (std::size_t i = 0; columns.bits != 0 && i < optional_width; ++i)
+                if (columns.has(i)) rows.push_back(r.extras.*optional_columns[i].member);
         }, stop);
     }
     if (interrupted) throw py::error_already_set();  // the KeyboardInterrupt that PyErr_CheckSignals set
+    if (*law_failure) std::rethrow_exception(*law_failure);  // the torque law's own exception
     const double in_process = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     py::dict out = summary_dict(s, scene);
-    out["data"] = rows_array(std::move(rows));
+    out["columns"] = row_header(columns);
+    out["data"] = rows_array(std::move(rows), width);
     out["in_process_seconds"] = in_process;
     return out;
 }
@@ -237,7 +277,7 @@ PYBIND11_MODULE(_core, m)
 {
     m.doc() = "hubbeam's C++ core: use the functions of the hubbeam package instead";
     m.def("run", &run, "Runs a scene given as TOML text; returns the rows and the summary", py::arg("text"),
-          py::arg("name"), py::arg("overrides"), py::arg("cancellable") = false);
+          py::arg("name"), py::arg("overrides"), py::arg("cancellable") = false, py::arg("torque") = py::none());
     m.def("cancel_runs", [] { ++cancel_generation; }, "Stops every cancellable run in progress in this process");
     m.def("modes", &modes, "Every mode of a scene's variant at each spin rate", py::arg("text"), py::arg("name"),
           py::arg("overrides"), py::arg("omegas"));

@@ -51,40 +51,72 @@ bool parse(std::string_view, Stepping&);
 template <> std::vector<std::string> words<Stepping>();
 
 /// The state at t in [t0, t1] from the states y0, y1 and their derivatives f0, f1 at the ends of a step, for
-/// y = (positions, rates) of size 2k with f = (rates, accelerations): the positions by the quintic Hermite
-/// interpolant of their values, rates and accelerations at both ends (error O(h^6)), the rates by its
-/// derivative (O(h^5)).
+/// y = (positions, rates, z) of size 2k + auxiliary with f = (rates, accelerations, dz/dt): the positions by the
+/// quintic Hermite interpolant of their values, rates and accelerations at both ends (error O(h^6)), the rates by
+/// its derivative (O(h^5)); the auxiliary states z (integrals of the state: FirstOrderSystem::Auxiliary) by the
+/// cubic Hermite interpolant of their values and rates (O(h^4)).
 void interpolate_state(double t0, const double* y0, const double* f0, double t1, const double* y1, const double* f1,
-                       double t, int size, double* y);
+                       double t, int size, double* y, int auxiliary = 0);
 
 /// The position error of interpolate_state at the middle of a step, relative to atol + rtol |position|, largest
 /// over the positions: the quintic's error is about E s^3 (1-s)^3, so its error in acceleration at s = 1/2 is
 /// -24 / h^2 times its error in position there; fm = f(t_mid, interpolated state) gives the true acceleration.
+/// An auxiliary state's is the step's increment z1 - z0 against Simpson's rule over its rates at the ends and the
+/// middle: how far its rate is from being integrated by three values.
 double interpolation_error(double t0, const double* y0, const double* f0, double t1, const double* y1, const double* f1,
-                           const double* y_mid, const double* f_mid, int size, double atol, double rtol);
+                           const double* y_mid, const double* f_mid, int size, double atol, double rtol,
+                           int auxiliary = 0);
 
 class RightHandSide;
 
-/// dy/dt = (qd, M(q)^-1 Q(t, q, qd)) for one model and hub motion, by the right-hand-side strategy chosen for the
-/// model's structure (acceleration.hpp); counts its evaluations. With quasi-static axial coordinates y holds only
+/// The auxiliary states at the end of y, z' = g(t, q, qd), present only where a run needs them (the paper's scenes
+/// have none): the controller's integral of the angle error (ki != 0), the dissipated energy int 2 D dt (damping:
+/// 2 D = qd_e^T (alpha M_ee + beta K_e) qd_e, M_ee the elastic block of M at q = 0, K_e the undeformed beam's
+/// stiffness) and the hub's work int tau theta_dot dt (a torque-driven hub with a controller or damping: with it
+/// the energy balance E + dissipated - work = E(0) holds, docs/model.md section 9).
+struct Auxiliary {
+    bool integral = false, dissipated = false, work = false;
+    int count() const { return int{integral} + int{dissipated} + int{work}; }
+    /// Those a run of key needs, controlled by control (or nullptr).
+    static Auxiliary of(const VariantKey& key, const Control* control);
+};
+
+/// dy/dt = (qd, M(q)^-1 Q(t, q, qd), z') for one model and hub motion, by the right-hand-side strategy chosen for
+/// the model's structure (acceleration.hpp); counts its evaluations. With quasi-static axial coordinates y holds only
 /// theta (torque) and B with their rates: A solves the axial rows of Lagrange's equations with A_dot = A_ddot = 0
 /// (and the hub acceleration's axial term dropped) at every evaluation, and the remaining rows are
 /// M_rr qdd_r = Q_r: the stiff axial modes are gone, the centrifugal stretch and its coupling to bending stay.
+/// With a control (a torque model), the motion is the reference and the torque is the control's law of the state,
+/// evaluated at every right-hand side; the auxiliary states (Auxiliary::of) follow the positions and rates. A damped
+/// model needs parameters (its alpha and beta) for the dissipated energy; throws std::invalid_argument without them,
+/// or for a control of a model whose hub is not torque-driven.
 class FirstOrderSystem {
 public:
-    FirstOrderSystem(const Model& model, const Motion& motion, Axial axial = Axial::dynamic);
+    FirstOrderSystem(const Model& model, const Motion& motion, Axial axial = Axial::dynamic,
+                     const Control* control = nullptr, const Parameters* parameters = nullptr);
     ~FirstOrderSystem();
     FirstOrderSystem(const FirstOrderSystem&) = delete;
     FirstOrderSystem& operator=(const FirstOrderSystem&) = delete;
 
-    int size() const { return 2 * static_cast<int>(kept_.size()); }
+    int size() const { return 2 * static_cast<int>(kept_.size()) + aux_.count(); }
+    /// The auxiliary states' count: they are the last entries of y.
+    int auxiliary_count() const { return aux_.count(); }
+    const Auxiliary& auxiliary() const { return aux_; }
+    /// Where an auxiliary state sits in y (-1 when absent).
+    int integral_index() const { return integral_; }
+    int dissipated_index() const { return dissipated_; }
+    int work_index() const { return work_at_; }
+    /// The hub torque at (t, y) (N m): the control's (saturated) law, or the motion's tau; 0 for a prescribed
+    /// rotation.
+    double torque(double t, const double* y);
     /// The model's full q and qd (nq each) of a state y at time t: y itself for dynamic axial coordinates;
     /// with quasi-static ones, A solved from the axial equations and A_dot = 0.
     void full_state(double t, const double* y, double* q, double* qd);
     /// GSL status: GSL_SUCCESS, or GSL_EBADFUNC when M is not positive definite or the result is not finite.
     int rhs(double t, const double* y, double* dydt);
-    /// Jacobian for the implicit steppers (row-major, as GSL wants): dfdy (2nq x 2nq) and dfdt (2nq) from the
-    /// model's exact derivatives when it has them, else finite_difference_jacobian.
+    /// Jacobian for the implicit steppers (row-major, as GSL wants): dfdy (size x size) and dfdt (size) from the
+    /// model's exact derivatives when it has them (with the control's dtau/dy through dQ/dtau), else
+    /// finite_difference_jacobian.
     int jacobian(double t, const double* y, double* dfdy, double* dfdt);
     /// Central differences of rhs: the fallback for models without derivatives, and the tests' oracle.
     int finite_difference_jacobian(double t, const double* y, double* dfdy, double* dfdt);
@@ -106,7 +138,15 @@ private:
     int n_;
     Axial axial_;
     std::vector<int> kept_;  // the model's coordinates that are states of y (all of them unless quasi-static)
+    const Control* control_;
+    Auxiliary aux_;
+    int integral_ = -1, dissipated_ = -1, work_at_ = -1;
+    bool saturated_ = false;  // the last torque() was clipped: its derivatives by the state are zero
     int exact_jacobian(const ExactJacobian& exact, double t, const double* y, double* dfdy, double* dfdt);
+    /// rhs() of a system with a control or auxiliary states.
+    int extended_rhs(double t, const double* y, double* dydt);
+    /// u_y(L) and its rate of a state y (linear in the kept coordinates: tip_row).
+    HubState hub_state(const double* y) const;
     /// motion_.at(t), remembered for the last t.
     const HubInput& drive_at(double t);
 

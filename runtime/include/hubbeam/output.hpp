@@ -27,6 +27,8 @@ public:
     /// Creates the temporary file and writes the header; throws OutputRefused (a FIFO, a device, another hubbeam
     /// writing it) or std::runtime_error "PATH: cannot open for writing: REASON" if it cannot, leaving nothing behind.
     explicit CsvWriter(const std::string& path);
+    /// A run's rows with the optional columns of columns (optional_columns_of(scene)) after row_columns.
+    CsvWriter(const std::string& path, ColumnSet columns);
     /// The same for another table: header is its first line (no newline).
     CsvWriter(const std::string& path, const std::string& header);
     /// finish() if the caller has not, so that a run ended by an exception keeps its rows too.
@@ -65,6 +67,7 @@ private:
     void fail(const std::string& what);
 
     std::string path_;  // as given, for messages
+    ColumnSet columns_;  // a run's optional columns written by write(Row)
     std::unique_ptr<OutputFile> file_;
     std::unique_ptr<char[]> buffer_;
     std::size_t used_ = 0;
@@ -80,8 +83,8 @@ private:
 /// a quote or a newline.
 std::string csv_field(std::string_view text);
 
-/// One CSV line of row (no newline), columns as in row_header(): the text CsvWriter writes for it.
-std::string csv_line(const Row& row);
+/// One CSV line of row (no newline), columns as in row_header(columns): the text CsvWriter writes for it.
+std::string csv_line(const Row& row, ColumnSet columns = {});
 
 /// Short multi-line summary of a run for the terminal: scene, variant and whether generated or assembled,
 /// stepper and tolerances, max |tip_uy|, steps, RHS evaluations, wall time and, if the run stopped early,

@@ -2,6 +2,7 @@
 // command-line overrides applied to the file's keys before anything is checked.
 #pragma once
 
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -46,19 +47,22 @@ struct Scene {
     std::string path;  // the file it came from, for messages
     Parameters parameters;
     Motion motion;
-    VariantKey variant;  // drive follows motion
+    std::optional<Control> control;  // [control]: motion is then the reference of a torque-driven hub
+    VariantKey variant;  // drive follows motion, or control
     ModelSource source = ModelSource::automatic;
     Axial axial = Axial::dynamic;  // quasi-static: A follows the axial equilibrium (integrate.hpp)
     SolverOptions solver;
     OutputOptions output;
 
-    /// The variant this scene runs: its discretization with the drive its motion implies and the extra terms its
-    /// parameters use (either may have been changed in code since loading). A term whose values are all zero is
-    /// left out: the paper's scenes run the paper's variants.
+    /// The hub's drive: torque under a control (its motion is a reference), else the one the motion implies.
+    Drive drive() const { return control ? Drive::torque : motion.drive(); }
+    /// The variant this scene runs: its discretization with the drive its motion and control imply and the extra
+    /// terms its parameters use (either may have been changed in code since loading). A term whose values are all
+    /// zero is left out: the paper's scenes run the paper's variants.
     VariantKey key() const
     {
         VariantKey k = variant;
-        k.drive = motion.drive();
+        k.drive = drive();
         k.extras.tip = parameters.m_tip != 0.0 || parameters.J_tip != 0.0;
         k.extras.gravity = parameters.g != 0.0;
         k.extras.damping = parameters.alpha != 0.0 || parameters.beta != 0.0;

@@ -13,9 +13,15 @@
 
 namespace hubbeam {
 
-/// One output row: the columns of row_columns, in that order.
+/// The values of a row's optional columns (optional_columns): those a scene does not have stay 0 and are not written.
+struct RowExtras {
+    double tau = 0.0, theta_ref = 0.0, controller_integral = 0.0, dissipated = 0.0, work = 0.0;
+};
+
+/// One output row: the columns of row_columns, in that order, then the optional ones its scene has.
 struct Row {
     double t, theta, theta_dot, tip_uy, tip_ux1, tip_ux, kinetic, potential, momentum, jacobi;
+    RowExtras extras{};
 };
 
 /// One column of the output: its name in the CSV header and the Python module, its unit, what it holds.
@@ -42,8 +48,45 @@ inline constexpr RowColumn row_columns[] = {
     {"jacobi", "J", &Row::jacobi, "Jacobi integral T2 - T0 + U"},
 };
 inline constexpr std::size_t row_width = std::size(row_columns);
+
+/// A column that only some scenes' rows have (a scene without a controller, damping or a torque law writes the
+/// table of row_columns alone, as ever).
+struct OptionalColumn {
+    const char* name;
+    const char* unit;
+    double RowExtras::*member;
+    const char* meaning;
+    const char* when;  // which scenes have it
+};
+inline constexpr OptionalColumn optional_columns[] = {
+    {"tau", "N m", &RowExtras::tau, "hub torque applied (after saturation)",
+     "a torque-driven hub under a controller or a torque law, or with damping"},
+    {"theta_ref", "rad", &RowExtras::theta_ref, "the controller's reference angle", "[control]"},
+    {"controller_integral", "rad s", &RowExtras::controller_integral, "int (theta - theta_ref) dt",
+     "[control] with ki > 0"},
+    {"dissipated", "J", &RowExtras::dissipated, "energy dissipated by damping, int 2 D dt", "damping"},
+    {"work", "J", &RowExtras::work, "work of the hub torque, int tau theta_dot dt", "as tau"},
+};
+inline constexpr std::size_t optional_width = std::size(optional_columns);
 // Every member of Row has its column (a member added to Row and not here fails to compile).
-static_assert(sizeof(Row) == row_width * sizeof(double));
+static_assert(sizeof(Row) == (row_width + optional_width) * sizeof(double));
+static_assert(sizeof(RowExtras) == optional_width * sizeof(double));
+
+/// Which optional columns a run's rows carry: bit i for optional_columns[i].
+struct ColumnSet {
+    unsigned bits = 0;
+    bool has(std::size_t i) const { return (bits >> i & 1u) != 0; }
+    std::size_t count() const
+    {
+        std::size_t n = 0;
+        for (std::size_t i = 0; i < optional_width; ++i) n += has(i) ? 1 : 0;
+        return n;
+    }
+};
+/// The optional columns of a scene's rows (none for the paper's scenes).
+ColumnSet optional_columns_of(const Scene& scene);
+/// The CSV header of rows with the optional columns of set: row_columns' names, then theirs, joined by commas.
+std::string row_header(ColumnSet set);
 static_assert([] {
     for (std::size_t i = 0; i < row_width; ++i)
         for (std::size_t j = 0; j < i; ++j)
@@ -75,9 +118,14 @@ struct RunSummary {
     double max_abs_tip_uy = 0.0;
     // The invariant monitor (after t_steady, the drive's last breakpoint): the Jacobi integral's largest change
     // and the largest strain energy U; vibration_energy < 0 when no row came after t_steady.
+    // With damping or a controlled hub the balance E + dissipated - work (E the Jacobi integral, T + U under torque)
+    // is what stays constant (energy_balance); under a prescribed rotation with gravity nothing does and the monitor
+    // is off (monitor_off says why).
     double t_steady = 0.0;
     double jacobi_drift = 0.0;
     double vibration_energy = -1.0;
+    bool energy_balance = false;
+    std::string monitor_off;
     // The error indicator: the rows of a window at the start and one at the end re-run from the run's own state
     // there at check_rtol, check_atol (ten times tighter), compared in theta, theta_dot, tip_uy, tip_ux1 and tip_ux.
     // estimated_error is the largest difference relative to that column's largest value in the run, the end

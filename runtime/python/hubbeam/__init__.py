@@ -71,11 +71,13 @@ class RunStopped(RuntimeError):
 
 # The unit of each column of a run's rows (the columns themselves come from the core, in its order).
 UNITS = {"t": "s", "theta": "rad", "theta_dot": "rad/s", "tip_uy": "m", "tip_ux1": "m", "tip_ux": "m",
-         "kinetic": "J", "potential": "J", "momentum": "kg m^2/s", "jacobi": "J"}
+         "kinetic": "J", "potential": "J", "momentum": "kg m^2/s", "jacobi": "J",
+         "tau": "N m", "theta_ref": "rad", "controller_integral": "rad s", "dissipated": "J", "work": "J"}
 
 
 class Result:
-    """One run: its rows as columns (numpy views of .data, n x 10) and its summary as attributes."""
+    """One run: its rows as columns (numpy views of .data, n x 10, more with a scene's optional columns such as tau)
+    and its summary as attributes."""
 
     def __init__(self, raw: dict):
         self.data: np.ndarray = raw.pop("data")
@@ -161,16 +163,23 @@ def _source(scene: Any) -> tuple[str, str]:
     raise ValueError(f"scene: expected a scene file's path or a dict of tables, got {printable(type(scene).__name__)}")
 
 
-def run(scene: Any, *, check: bool = False, **keys: Any) -> Result:
+def run(scene: Any, *, check: bool = False, torque: Any = None, **keys: Any) -> Result:
     """Runs a scene (a file's path, or a dict of tables) with scene keys overridden by keyword (ny=8,
     method="fem", rtol=1e-10, or dotted names via **{"discretization.ny": 8}).
+
+    torque=f makes the hub free and drives it by f(t, state) -> tau (N m), called at every evaluation of the
+    equations with state a dict of theta (rad), theta_dot (rad/s), tip_uy (m) and tip_uy_dot (m/s); the scene's
+    motion and [control] are then not used, and the rows gain the columns tau and work. An exception in f stops the
+    run and is raised here. Each call costs some microseconds (docs/python.md, "A torque law in Python").
 
     Bad input raises ValueError with the command line's one-line message. A run that stops before t_end (unstable,
     untrustworthy, out of steps) returns its rows so far with completed False and the reason in .failure; with
     check=True it raises RunStopped instead. The GIL is released while integrating.
     """
     text, name = _source(scene)
-    result = Result(_core_call(_core.run, text, name, _overrides(keys)))
+    if torque is not None and not callable(torque):
+        raise ValueError(f"torque: expected a callable f(t, state) -> tau (N m), got {printable(repr(torque), 120)}")
+    result = Result(_core_call(_core.run, text, name, _overrides(keys), False, torque))
     if check and not result.completed:
         raise RunStopped(result)
     return result

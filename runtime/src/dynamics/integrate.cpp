@@ -3,6 +3,7 @@
 #include "integrate.hpp"
 
 #include "acceleration.hpp"
+#include "linearize.hpp"
 #include "mass_solver.hpp"
 
 #include <algorithm>
@@ -58,7 +59,7 @@ bool parse(std::string_view w, Stepping& v) { return parse_word(w, stepping_word
 template <> std::vector<std::string> words<Stepping>() { return all_words(stepping_words); }
 
 void interpolate_state(double t0, const double* y0, const double* f0, double t1, const double* y1, const double* f1,
-                       double t, int size, double* y)
+                       double t, int size, double* y, int auxiliary)
 {
     const double h = t1 - t0, s = (t - t0) / h, s2 = s * s, s3 = s2 * s, s4 = s3 * s, s5 = s4 * s;
     // Quintic Hermite basis on [0, 1] (value, first and second derivative at 0, then at 1) and its derivative.
@@ -68,26 +69,37 @@ void interpolate_state(double t0, const double* y0, const double* f0, double t1,
     const double d0 = -30 * s2 + 60 * s3 - 30 * s4, d1 = 1 - 18 * s2 + 32 * s3 - 15 * s4,
                  d2 = 0.5 * (2 * s - 9 * s2 + 12 * s3 - 5 * s4), d3 = 30 * s2 - 60 * s3 + 30 * s4,
                  d4 = -12 * s2 + 28 * s3 - 15 * s4, d5 = 0.5 * (3 * s2 - 8 * s3 + 5 * s4);
-    const int k = size / 2;
+    const int k = (size - auxiliary) / 2;
     for (int i = 0; i < k; ++i) {
         const double p0 = y0[i], v0 = y0[k + i], a0 = f0[k + i], p1 = y1[i], v1 = y1[k + i], a1 = f1[k + i];
         y[i] = h0 * p0 + h * (h1 * v0 + h4 * v1) + h * h * (h2 * a0 + h5 * a1) + h3 * p1;
         y[k + i] = (d0 * p0 + d3 * p1) / h + d1 * v0 + d4 * v1 + h * (d2 * a0 + d5 * a1);
     }
+    // Cubic Hermite basis (value and rate at 0, then at 1) for the auxiliary states.
+    const double c0 = 1 - 3 * s2 + 2 * s3, c1 = s - 2 * s2 + s3, c2 = 3 * s2 - 2 * s3, c3 = -s2 + s3;
+    for (int i = 2 * k; i < size; ++i) y[i] = c0 * y0[i] + c2 * y1[i] + h * (c1 * f0[i] + c3 * f1[i]);
 }
 
 double interpolation_error(double t0, const double* y0, const double* f0, double t1, const double* y1, const double* f1,
-                           const double* y_mid, const double* f_mid, int size, double atol, double rtol)
+                           const double* y_mid, const double* f_mid, int size, double atol, double rtol, int auxiliary)
 {
     const double h = t1 - t0;
     // Second derivatives in s of the quintic Hermite basis at s = 1/2 (those of the end values vanish there).
     const double b0 = 0.0, b1 = -1.5, b2 = -0.25, b3 = 0.0, b4 = 1.5, b5 = -0.25;
-    const int k = size / 2;
+    const int k = (size - auxiliary) / 2;
     double worst = 0.0;
     for (int i = 0; i < k; ++i) {
         const double acc = (b0 * y0[i] + b3 * y1[i]) / (h * h) + (b1 * y0[k + i] + b4 * y1[k + i]) / h +
                            (b2 * f0[k + i] + b5 * f1[k + i]);
         const double error = std::abs(acc - f_mid[k + i]) * h * h / 24.0;
+        worst = std::max(worst, error / (atol + rtol * std::abs(y_mid[i])));
+    }
+    for (int i = 2 * k; i < size; ++i) {
+        // The rates at both ends and the middle against the step's increment of z (Simpson's rule): a rate that
+        // varies too much over the step for its three values to integrate it shows here, and the step limit that
+        // keeps this within the tolerance keeps the cubic's values near it.
+        const double simpson = y0[i] + h / 6.0 * (f0[i] + 4.0 * f_mid[i] + f1[i]);
+        const double error = std::abs(simpson - y1[i]);
         worst = std::max(worst, error / (atol + rtol * std::abs(y_mid[i])));
     }
     return worst;
@@ -115,14 +127,68 @@ struct FirstOrderSystem::Work {
     Eigen::VectorXd qdd;
     RowMatrix dQdq, dQdqd, dQdu, dMv;
     std::vector<double> y_plus, y_minus, f_plus, f_minus;
+    // A control's tip feedback: u_y(L) = tip_row . (kept coordinates); the dissipation matrix alpha M_ee + beta K_e
+    // over the kept coordinates (zero in the hub's row and column), and a product with it.
+    Eigen::VectorXd tip_row;
+    Eigen::MatrixXd dissipation;
+    Eigen::VectorXd product;
 };
 
-FirstOrderSystem::FirstOrderSystem(const Model& model, const Motion& motion, Axial axial)
-    : model_(model), motion_(motion), n_(model.nq()), axial_(axial), work_(std::make_unique<Work>())
+Auxiliary Auxiliary::of(const VariantKey& key, const Control* control)
+{
+    Auxiliary a;
+    a.integral = control != nullptr && !control->law && control->ki != 0.0;
+    a.dissipated = key.extras.damping;
+    a.work = key.drive == Drive::torque && (control != nullptr || key.extras.damping);
+    return a;
+}
+
+FirstOrderSystem::FirstOrderSystem(const Model& model, const Motion& motion, Axial axial, const Control* control,
+                                   const Parameters* parameters)
+    : model_(model), motion_(motion), n_(model.nq()), axial_(axial), control_(control), work_(std::make_unique<Work>())
 {
     const VariantKey& key = model.key();
+    if (control_ != nullptr && key.drive != Drive::torque)
+        throw std::invalid_argument("a controlled hub needs a torque variant, not " + key.name());
+    if (key.extras.damping && parameters == nullptr)
+        throw std::invalid_argument("the dissipated energy of " + key.name() + " needs its damping parameters");
     kept_ = kept_coordinates(key, axial_);
+    aux_ = Auxiliary::of(key, control_);
+    const int k = static_cast<int>(kept_.size());
+    int next = 2 * k;
+    if (aux_.integral) integral_ = next++;
+    if (aux_.dissipated) dissipated_ = next++;
+    if (aux_.work) work_at_ = next++;
     Work& w = *work_;
+    const std::vector<double> zero(static_cast<std::size_t>(n_), 0.0);
+    if (control_ != nullptr) {
+        // u_y(L) is linear in B: its coefficients are the tip's values at unit coordinates.
+        w.tip_row.resize(k);
+        const double at_rest = model.tip(zero.data()).uy;
+        std::vector<double> unit = zero;
+        for (int i = 0; i < k; ++i) {
+            unit[static_cast<std::size_t>(kept_[static_cast<std::size_t>(i)])] = 1.0;
+            w.tip_row[i] = model.tip(unit.data()).uy - at_rest;
+            unit[static_cast<std::size_t>(kept_[static_cast<std::size_t>(i)])] = 0.0;
+        }
+    }
+    if (aux_.dissipated) {
+        // docs/model.md section 9: -(alpha M_ee + beta K_e) qd_e, M_ee and K_e of the undeformed beam at rest.
+        const HubInput rest;
+        Eigen::MatrixXd M(n_, n_);
+        model.mass(rest, zero.data(), M.data());  // symmetric: row- or column-major alike
+        const Eigen::MatrixXd K = -force_q_jacobian(model, rest, zero, zero);
+        const double alpha = parameters->alpha, beta = parameters->beta;
+        w.dissipation = Eigen::MatrixXd::Zero(k, k);
+        const int elastic = key.first_a();  // the hub angle, a coordinate under torque, is not damped
+        for (int i = 0; i < k; ++i)
+            for (int j = 0; j < k; ++j) {
+                const int a = kept_[static_cast<std::size_t>(i)], b = kept_[static_cast<std::size_t>(j)];
+                if (a < elastic || b < elastic) continue;
+                w.dissipation(i, j) = alpha * M(a, b) + beta * 0.5 * (K(a, b) + K(b, a));
+            }
+        w.product.resize(k);
+    }
     w.rhs = make_right_hand_side(model, motion, axial);
     w.solver = MassSolver::make(model);
     w.qdd.resize(n_);
@@ -153,13 +219,60 @@ double FirstOrderSystem::indefinite_mass_tip() const { return work_->rhs->indefi
 int FirstOrderSystem::rhs(double t, const double* y, double* dydt)
 {
     ++evaluations_;
-    return work_->rhs->derivative(drive_at(t), y, dydt);
+    if (control_ == nullptr && aux_.count() == 0) return work_->rhs->derivative(drive_at(t), y, dydt);
+    return extended_rhs(t, y, dydt);
+}
+
+HubState FirstOrderSystem::hub_state(const double* y) const
+{
+    const auto k = static_cast<Eigen::Index>(kept_.size());
+    const Eigen::VectorXd& c = work_->tip_row;
+    HubState s;
+    s.theta = y[0];
+    s.theta_dot = y[k];
+    s.tip_uy = c.dot(Eigen::Map<const Eigen::VectorXd>(y, k));
+    s.tip_uy_dot = c.dot(Eigen::Map<const Eigen::VectorXd>(y + k, k));
+    return s;
+}
+
+double FirstOrderSystem::torque(double t, const double* y)
+{
+    saturated_ = false;
+    if (control_ == nullptr) return model_.key().drive == Drive::torque ? drive_at(t).tau : 0.0;
+    const HubState s = hub_state(y);
+    if (control_->law) return control_->law(t, s);
+    const double tau = control_->unclipped(s, integral_ >= 0 ? y[integral_] : 0.0, drive_at(t));
+    if (std::abs(tau) <= control_->tau_max || std::isnan(tau)) return tau;
+    saturated_ = true;
+    return std::copysign(control_->tau_max, tau);
+}
+
+int FirstOrderSystem::extended_rhs(double t, const double* y, double* dydt)
+{
+    Work& w = *work_;
+    const int k = static_cast<int>(kept_.size());
+    HubInput u = drive_at(t);
+    if (control_ != nullptr) {
+        u = HubInput{};  // a torque variant reads tau alone (and its angle from q)
+        u.tau = torque(t, y);
+        if (!std::isfinite(u.tau)) return GSL_EBADFUNC;
+    }
+    if (const int status = w.rhs->derivative(u, y, dydt); status != GSL_SUCCESS) return status;
+    if (integral_ >= 0) dydt[integral_] = y[0] - drive_at(t).theta;
+    if (dissipated_ >= 0) {
+        const Eigen::Map<const Eigen::VectorXd> qd(y + k, k);
+        w.product.noalias() = w.dissipation * qd;
+        dydt[dissipated_] = qd.dot(w.product);
+    }
+    if (work_at_ >= 0) dydt[work_at_] = u.tau * y[k];
+    return GSL_SUCCESS;
 }
 
 int FirstOrderSystem::jacobian(double t, const double* y, double* dfdy, double* dfdt)
 {
     ++jacobian_evaluations_;
-    if (const ExactJacobian* exact = model_.jacobian(); exact != nullptr && axial_ == Axial::dynamic)
+    const bool law_as_code = control_ != nullptr && control_->law;
+    if (const ExactJacobian* exact = model_.jacobian(); exact != nullptr && axial_ == Axial::dynamic && !law_as_code)
         return exact_jacobian(*exact, t, y, dfdy, dfdt);
     return finite_difference_jacobian(t, y, dfdy, dfdt);
 }
@@ -174,8 +287,15 @@ int FirstOrderSystem::exact_jacobian(const ExactJacobian& exact, double t, const
     // y = (q, qd), f = (qd, qdd) with M(q) qdd = Q(t, q, qd) (docs/model.md section 5.1). Differentiating
     // M qdd = Q: M dqdd/dq = dQ/dq - (dM/dq) qdd, M dqdd/dqd = dQ/dqd, M dqdd/dt = dQ/du du/dt (M depends on
     // neither u nor qd; the generator checks). So dfdy = [[0, I], [M^-1 (dQ/dq - (dM/dq) qdd), M^-1 dQ/dqd]].
+    // A control's torque depends on the state: dQ/dtau dtau/dy joins each block (zero where it saturates), and the
+    // auxiliary states' rows are their rates' derivatives.
     Work& w = *work_;
-    const HubInput u = drive_at(t);
+    const HubInput reference = drive_at(t);
+    HubInput u = reference;
+    if (control_ != nullptr) {
+        u = HubInput{};
+        u.tau = torque(t, y);
+    }
     const double* q = y;
     const double* qd = y + n_;
     if (!w.solver->prepare(u, q)) return w.rhs->indefinite_mass_at(q);
@@ -189,7 +309,26 @@ int FirstOrderSystem::exact_jacobian(const ExactJacobian& exact, double t, const
     Eigen::MatrixXd lower_q = w.dQdq, lower_qd = w.dQdqd;  // column-major copies, solved in place
     w.solver->solve(lower_q.data(), n_);
     w.solver->solve(lower_qd.data(), n_);
-    const std::array<double, drive_value_count> du = motion_.rate(t).packed();
+    // The torque's derivatives by q, qd, the integral and t (the PD(I) law unsaturated; a law given as code is
+    // differenced by finite_difference_jacobian instead).
+    Eigen::VectorXd dtau_dq = Eigen::VectorXd::Zero(n_), dtau_dqd = Eigen::VectorXd::Zero(n_);
+    double dtau_dz = 0.0, dtau_dt = 0.0;
+    if (control_ != nullptr && !saturated_) {
+        dtau_dq = -control_->k_tip * w.tip_row;
+        dtau_dq[0] -= control_->kp;
+        dtau_dqd[0] = -control_->kd;
+        dtau_dz = -control_->ki;
+        dtau_dt = control_->kp * reference.theta_dot + control_->kd * reference.theta_ddot;
+    }
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(n_);  // M^-1 dQ/dtau
+    if (control_ != nullptr) {
+        b = w.dQdu.col(static_cast<Eigen::Index>(index(DriveValue::tau)));
+        w.solver->solve(b.data());
+        lower_q += b * dtau_dq.transpose();
+        lower_qd += b * dtau_dqd.transpose();
+    }
+    std::array<double, drive_value_count> du = motion_.rate(t).packed();
+    if (control_ != nullptr) du = {dtau_dt, 0.0, 0.0};
     const Eigen::VectorXd dudt = Eigen::Map<const Eigen::VectorXd>(du.data(), static_cast<Eigen::Index>(du.size()));
     Eigen::VectorXd lower_t = w.dQdu * dudt;
     if (model_.key().extras.gravity && model_.key().drive == Drive::prescribed) {
@@ -199,6 +338,10 @@ int FirstOrderSystem::exact_jacobian(const ExactJacobian& exact, double t, const
     }
     w.solver->solve(lower_t.data());
     const int m = size();
+    if (aux_.count() > 0) {
+        std::fill_n(dfdy, m * m, 0.0);
+        std::fill_n(dfdt, m, 0.0);
+    }
     for (int i = 0; i < n_; ++i) {
         for (int j = 0; j < n_; ++j) {
             dfdy[i * m + j] = 0.0;
@@ -208,6 +351,25 @@ int FirstOrderSystem::exact_jacobian(const ExactJacobian& exact, double t, const
         }
         dfdt[i] = 0.0;
         dfdt[n_ + i] = lower_t[i];
+        if (integral_ >= 0) dfdy[(n_ + i) * m + integral_] = b[i] * dtau_dz;
+    }
+    if (integral_ >= 0) {  // z' = theta - theta_ref(t)
+        dfdy[integral_ * m + 0] = 1.0;
+        dfdt[integral_] = -reference.theta_dot;
+    }
+    if (dissipated_ >= 0) {  // z' = qd^T C qd
+        const Eigen::VectorXd g = 2.0 * (w.dissipation * Eigen::Map<const Eigen::VectorXd>(qd, n_));
+        for (int j = 0; j < n_; ++j) dfdy[dissipated_ * m + n_ + j] = g[j];
+    }
+    if (work_at_ >= 0) {  // z' = tau theta_dot
+        const double theta_dot = qd[0];
+        for (int j = 0; j < n_; ++j) {
+            dfdy[work_at_ * m + j] = theta_dot * dtau_dq[j];
+            dfdy[work_at_ * m + n_ + j] = theta_dot * dtau_dqd[j];
+        }
+        dfdy[work_at_ * m + n_] += u.tau;
+        if (integral_ >= 0) dfdy[work_at_ * m + integral_] = theta_dot * dtau_dz;
+        dfdt[work_at_] = theta_dot * (control_ != nullptr ? dtau_dt : motion_.rate(t).tau);
     }
     for (int i = 0; i < m * m; ++i)
         if (!std::isfinite(dfdy[i])) return GSL_EBADFUNC;

@@ -28,7 +28,9 @@ std::pair<double, double> sin_cos(double x)
 HubInput Motion::at(double t) const
 {
     HubInput u;
-    if (kind == Kind::spin_up) {
+    if (kind == Kind::step) {
+        u.theta = angle;
+    } else if (kind == Kind::spin_up) {
         if (t <= spin_time) {
             const auto [s, c] = sin_cos(two_pi * t / spin_time);
             u.theta_dot = omega0 * (t / spin_time - s / two_pi);
@@ -49,6 +51,7 @@ HubInput Motion::rate(double t) const
     // Same branches as at(t): the profile's pieces are differentiated separately (the breakpoints restart the
     // integrator, so it never differentiates across them).
     HubInput r;
+    if (kind == Kind::step) return r;
     if (kind == Kind::spin_up) {
         if (t <= spin_time) {
             const double w = two_pi / spin_time;
@@ -64,6 +67,7 @@ HubInput Motion::rate(double t) const
 
 double Motion::theta(double t) const
 {
+    if (kind == Kind::step) return angle;
     if (kind != Kind::spin_up) return 0.0;
     if (t <= spin_time)
         return omega0 * (t * t / (2.0 * spin_time) + spin_time * (std::cos(two_pi * t / spin_time) - 1.0) / (two_pi * two_pi));
@@ -79,6 +83,7 @@ double Motion::torque_impulse(double t) const
 
 std::vector<double> Motion::breakpoints() const
 {
+    if (kind == Kind::step) return {};  // the step is at t = 0, where the run starts
     return {kind == Kind::spin_up ? spin_time : torque_time};
 }
 

@@ -134,11 +134,13 @@ private:
     long grid_rows_, last_ = 0;
 };
 
-/// Rows from states: the hub's angle and rate (prescribed, or coordinates under torque), the tip, the energies.
+/// Rows from states: the hub's angle and rate (prescribed, or coordinates under torque), the tip, the energies, and
+/// the optional columns of a scene that has them (the torque, the reference, the auxiliary states).
 class RowMaker {
 public:
-    RowMaker(const Model& model, const Motion& motion, FirstOrderSystem& system)
-        : model_(model), motion_(motion), system_(system), q_(static_cast<std::size_t>(model.nq())), qd_(q_)
+    RowMaker(const Model& model, const Motion& motion, FirstOrderSystem& system, const Control* control)
+        : model_(model), motion_(motion), system_(system), control_(control), q_(static_cast<std::size_t>(model.nq())),
+          qd_(q_), extended_(control != nullptr || system.auxiliary_count() > 0)
     {
     }
     /// The row of state y at t; q() is then its full coordinates.
@@ -147,12 +149,26 @@ public:
         system_.full_state(t, y, q_.data(), qd_.data());
         const double* q = q_.data();
         const double* qd = qd_.data();
-        const HubInput u = motion_.at(t);
+        const bool torque = model_.key().drive == Drive::torque;
+        HubInput u = motion_.at(t);
+        RowExtras extras;
+        if (extended_) {
+            if (torque) extras.tau = system_.torque(t, y);
+            if (control_ != nullptr) {
+                extras.theta_ref = u.theta;
+                u = HubInput{};  // the model's input: the torque alone
+                u.tau = extras.tau;
+            }
+            const auto at = [y](int i) { return i >= 0 ? y[i] : 0.0; };
+            extras.controller_integral = at(system_.integral_index());
+            extras.dissipated = at(system_.dissipated_index());
+            extras.work = at(system_.work_index());
+        }
         const Tip tip = model_.tip(q);
         const Energy e = model_.energy(u, q, qd);
-        const bool torque = model_.key().drive == Drive::torque;
         const double theta = torque ? q[0] : motion_.theta(t), theta_dot = torque ? qd[0] : u.theta_dot;
-        return {t, theta, theta_dot, tip.uy, tip.ux1, tip.ux, e.kinetic(), e.U, model_.momentum(u, q, qd), e.T2 - e.T0 + e.U};
+        return {t, theta, theta_dot, tip.uy, tip.ux1, tip.ux, e.kinetic(), e.U, model_.momentum(u, q, qd), e.T2 - e.T0 + e.U,
+                extras};
     }
     const double* q() const { return q_.data(); }
 
@@ -160,7 +176,9 @@ private:
     const Model& model_;
     const Motion& motion_;
     FirstOrderSystem& system_;
+    const Control* control_;
     std::vector<double> q_, qd_;
+    bool extended_;
 };
 
 /// Why a row cannot stand, from the model's limits (empty if it can): the hub rate past the spin above which the
@@ -225,11 +243,12 @@ CheckTolerance check_tolerance(const SolverOptions& solver)
 std::vector<Row> rerun(const Scene& scene, const Model& model, double t0, std::vector<double> y,
                        const std::vector<double>& times, CheckTolerance tol)
 {
-    FirstOrderSystem system(model, scene.motion, scene.axial);
+    const Control* control = scene.control ? &*scene.control : nullptr;
+    FirstOrderSystem system(model, scene.motion, scene.axial, control, &scene.parameters);
     const Driver driver =
         make_driver(system, automatic_stepper(model, scene.axial).stepper, scene.solver.h0, tol.atol, tol.rtol);
     gsl_odeiv2_driver_set_nmax(driver.get(), static_cast<unsigned long>(scene.solver.max_steps));
-    RowMaker make_row(model, scene.motion, system);
+    RowMaker make_row(model, scene.motion, system, control);
     const std::vector<double> breaks = times.empty() ? std::vector<double>{} : breaks_before(scene.motion, times.back());
     auto next = std::upper_bound(breaks.begin(), breaks.end(), t0 * (1.0 + same_instant));
     const double critical = critical_spin(model);
@@ -339,9 +358,9 @@ private:
 
 Simulation::Run::Run(const Simulation& simulation)
     : sim_(simulation), scene_(simulation.scene_), model_(*simulation.model_),
-      system_(model_, scene_.motion, scene_.axial),
+      system_(model_, scene_.motion, scene_.axial, scene_.control ? &*scene_.control : nullptr, &scene_.parameters),
       driver_(make_driver(system_, sim_.stepper_, scene_.solver.h0, scene_.solver.atol, scene_.solver.rtol)),
-      make_row_(model_, scene_.motion, system_), times_(scene_.output),
+      make_row_(model_, scene_.motion, system_, scene_.control ? &*scene_.control : nullptr), times_(scene_.output),
       breaks_(breaks_before(scene_.motion, times_(times_.last()))), critical_(critical_spin(model_)),
       budget_(scene_.solver.max_steps), y_(static_cast<std::size_t>(system_.size()), 0.0)
 {
@@ -351,9 +370,17 @@ Simulation::Run::Run(const Simulation& simulation)
     summary_.algebra = system_.linear_algebra();
     summary_.stepper = sim_.stepper_;
     summary_.stepper_why = sim_.stepper_why_;
-    // The invariant monitor starts after the drive's last breakpoint, from where its Jacobi integral is constant.
+    // The invariant monitor starts after the drive's last breakpoint, from where its Jacobi integral is constant; with
+    // the hub's work a state, E + dissipated - work is constant from the start; with damping the Jacobi integral
+    // plus the dissipated energy is (docs/model.md section 9). Gravity under a prescribed rotation leaves nothing
+    // constant: U_g changes with the prescribed angle.
     const std::vector<double> all_breaks = scene_.motion.breakpoints();
     summary_.t_steady = all_breaks.empty() ? 0.0 : *std::max_element(all_breaks.begin(), all_breaks.end());
+    summary_.energy_balance = system_.auxiliary_count() > 0 || scene_.control.has_value();
+    if (system_.auxiliary().work) summary_.t_steady = 0.0;
+    if (model_.key().extras.gravity && model_.key().drive == Drive::prescribed)
+        summary_.monitor_off = "gravity under a prescribed rotation: U_g follows the prescribed angle, no energy is "
+                               "constant";
     const double t_end = scene_.output.t_end;
     check_window_ = std::min(t_end, std::max(t_end * check_window_fraction, scene_.output.dt_out));
     start_window_.t0 = 0.0;
@@ -409,10 +436,11 @@ void Simulation::Run::limit_interpolation(FreeStep& s)
     system_.rhs(t_, y_.data(), s.f1.data());
     s.have_f0 = s.have_f1 = true;
     const double t_mid = 0.5 * (s.t0 + t_);
-    interpolate_state(s.t0, s.y0.data(), s.f0.data(), t_, y_.data(), s.f1.data(), t_mid, size, s.y_mid.data());
+    const int aux = system_.auxiliary_count();
+    interpolate_state(s.t0, s.y0.data(), s.f0.data(), t_, y_.data(), s.f1.data(), t_mid, size, s.y_mid.data(), aux);
     system_.rhs(t_mid, s.y_mid.data(), s.f_mid.data());
     const double ratio = interpolation_error(s.t0, s.y0.data(), s.f0.data(), t_, y_.data(), s.f1.data(), s.y_mid.data(),
-                                             s.f_mid.data(), size, scene_.solver.atol, scene_.solver.rtol);
+                                             s.f_mid.data(), size, scene_.solver.atol, scene_.solver.rtol, aux);
     s.h_max = (t_ - s.t0) * std::min(4.0, 0.9 * std::pow(std::max(ratio, 1e-12), -1.0 / 6.0));
 }
 
@@ -427,7 +455,8 @@ std::string Simulation::Run::rows_in_step(FreeStep& s, long& i, const RowSink& s
             if (!s.have_f0) system_.rhs(s.t0, s.y0.data(), s.f0.data());
             if (!s.have_f1) system_.rhs(t_, y_.data(), s.f1.data());
             s.have_f0 = s.have_f1 = true;
-            interpolate_state(s.t0, s.y0.data(), s.f0.data(), t_, y_.data(), s.f1.data(), ti, system_.size(), s.yi.data());
+            interpolate_state(s.t0, s.y0.data(), s.f0.data(), t_, y_.data(), s.f1.data(), ti, system_.size(), s.yi.data(),
+                              system_.auxiliary_count());
             state = s.yi.data();
         }
         if (std::string failure = emit(ti, state, sink); !failure.empty()) return failure;
@@ -493,7 +522,17 @@ std::string Simulation::Run::emit(double ti, const double* state, const RowSink&
 /// be trusted. And the error indicator's record: the columns' peaks and the rows of its windows.
 void Simulation::Run::monitor(const Row& r)
 {
-    if (r.t > 0.0 && r.t >= summary_.t_steady) {  // from the first row after rest
+    if (summary_.energy_balance && summary_.monitor_off.empty() && r.t >= summary_.t_steady) {
+        // E + dissipated - work against the largest energy in it (the hub's kinetic energy can dwarf U).
+        const double balance = r.jacobi + r.extras.dissipated - r.extras.work;
+        if (summary_.vibration_energy < 0.0) jacobi0_ = balance, summary_.vibration_energy = 0.0;
+        summary_.jacobi_drift = std::max(summary_.jacobi_drift, std::abs(balance - jacobi0_));
+        // Under a prescribed rotation the rigid spin's energy is not in the balance (T0 cancels): U and what was
+        // dissipated measure it, as the Jacobi integral's drift is measured without damping.
+        const double energy = model_.key().drive == Drive::torque ? std::abs(r.kinetic) + std::abs(r.potential) : r.potential;
+        summary_.vibration_energy = std::max({summary_.vibration_energy, energy, std::abs(r.extras.dissipated),
+                                              std::abs(r.extras.work)});
+    } else if (summary_.monitor_off.empty() && r.t > 0.0 && r.t >= summary_.t_steady) {  // from the first row after rest
         if (summary_.vibration_energy < 0.0) jacobi0_ = r.jacobi, summary_.vibration_energy = 0.0;
         summary_.jacobi_drift = std::max(summary_.jacobi_drift, std::abs(r.jacobi - jacobi0_));
         summary_.vibration_energy = std::max(summary_.vibration_energy, r.potential);
@@ -606,6 +645,14 @@ std::string Simulation::Run::untrustworthy()
 {
     char text[480];
     const double drift = summary_.vibration_energy > 0.0 ? summary_.jacobi_drift / summary_.vibration_energy : 0.0;
+    if (drift > invariant_tolerance && summary_.energy_balance) {
+        std::snprintf(text, sizeof text,
+                      "untrustworthy: the energy balance E + dissipated - work drifted by %.3g J from t = %g s, %.2g of "
+                      "the largest energy in it (more than %g): the tolerance is too loose for the stepper; tighten "
+                      "--rtol/--atol",
+                      summary_.jacobi_drift, summary_.t_steady, drift, invariant_tolerance);
+        return text;
+    }
     if (drift > invariant_tolerance) {
         std::snprintf(text, sizeof text,
                       "untrustworthy: the Jacobi integral drifted by %.3g J after the drive ended at t = %g s, "
@@ -700,6 +747,28 @@ std::string Simulation::faster_stepper_hint() const
 RunSummary Simulation::run(const RowSink& sink, const StopRequest& stop) { return Run(*this)(sink, stop); }
 
 RunSummary simulate(const Scene& scene, const RowSink& sink) { return Simulation(scene).run(sink); }
+
+ColumnSet optional_columns_of(const Scene& scene)
+{
+    const Control* control = scene.control ? &*scene.control : nullptr;
+    const VariantKey key = scene.key();
+    const Auxiliary aux = Auxiliary::of(key, control);
+    const bool torque = key.drive == Drive::torque && (control != nullptr || key.extras.damping);
+    const bool has[] = {torque, control != nullptr && !control->law, aux.integral, aux.dissipated, aux.work};
+    static_assert(std::size(has) == optional_width);
+    ColumnSet set;
+    for (std::size_t i = 0; i < optional_width; ++i)
+        if (has[i]) set.bits |= 1u << i;
+    return set;
+}
+
+std::string row_header(ColumnSet set)
+{
+    std::string h = row_header();
+    for (std::size_t i = 0; i < optional_width; ++i)
+        if (set.has(i)) h += std::string(",") + optional_columns[i].name;
+    return h;
+}
 
 const char* row_header()
 {

@@ -20,24 +20,35 @@ namespace {
 constexpr std::size_t buffer_size = std::size_t{1} << 16;
 // The longest double to_chars writes is 24 characters (-1.7976931348623157e+308): one per column, the commas
 // between them and the newline.
-constexpr std::size_t max_line = row_width * 24 + row_width;
+constexpr std::size_t max_line = (row_width + optional_width) * 25;
 // Buffered rows reach the file at the latest this long after the previous chunk: a long run's progress is
 // visible, and at most this much wall time of rows is lost if the process is killed outright.
 constexpr auto flush_interval = std::chrono::milliseconds(100);
 
-/// Formats row's columns into out (room for max_line characters, no newline); returns the end.
-char* format_row(char* out, const Row& row)
+/// Formats row's columns, then the optional ones of set, into out (room for max_line characters, no newline); returns
+/// the end.
+char* format_row(char* out, const Row& row, ColumnSet set)
 {
     for (std::size_t i = 0; i < row_width; ++i) {
         if (i) *out++ = ',';
         out = std::to_chars(out, out + 24, row.*row_columns[i].member).ptr;
     }
+    for (std::size_t i = 0; set.bits != 0 && i < optional_width; ++i)
+        if (set.has(i)) {
+            *out++ = ',';
+            out = std::to_chars(out, out + 24, row.extras.*optional_columns[i].member).ptr;
+        }
     return out;
 }
 
 }  // namespace
 
 CsvWriter::CsvWriter(const std::string& path) : CsvWriter(path, row_header()) {}
+
+CsvWriter::CsvWriter(const std::string& path, ColumnSet columns) : CsvWriter(path, row_header(columns))
+{
+    columns_ = columns;
+}
 
 CsvWriter::CsvWriter(const std::string& path, const std::string& header)
     : path_(path), file_(std::make_unique<OutputFile>(path)), buffer_(new char[buffer_size])
@@ -74,7 +85,7 @@ void CsvWriter::write(const Row& row)
 {
     if (!ok_ || finished_) return;
     if (buffer_size - used_ < max_line) flush();
-    char* end = format_row(buffer_.get() + used_, row);
+    char* end = format_row(buffer_.get() + used_, row, columns_);
     *end++ = '\n';
     used_ = static_cast<std::size_t>(end - buffer_.get());
     ++buffered_rows_;
@@ -134,10 +145,10 @@ RowSink CsvWriter::sink()
     return [this](const Row& row) { write(row); };
 }
 
-std::string csv_line(const Row& row)
+std::string csv_line(const Row& row, ColumnSet columns)
 {
     char line[max_line];
-    return std::string(line, format_row(line, row));
+    return std::string(line, format_row(line, row, columns));
 }
 
 std::string csv_field(std::string_view text)
@@ -153,8 +164,14 @@ std::string format_summary(const RunSummary& r, const Scene& scene)
     std::ostringstream out;
     const Motion& m = scene.motion;
     out << "scene       " << scene.path;
-    if (m.kind == Motion::Kind::spin_up)
-        out << " (spin-up to Omega0 = " << shortest(m.omega0) << " rad/s in T_s = " << shortest(m.spin_time) << " s)\n";
+    const std::string controlled = scene.control ? (scene.control->law ? "hub torque from a torque law" : "controlled hub, reference: ") : "";
+    if (scene.control && scene.control->law)
+        out << " (" << controlled << ")\n";
+    else if (m.kind == Motion::Kind::spin_up)
+        out << " (" << controlled << "spin-up to Omega0 = " << shortest(m.omega0) << " rad/s in T_s = "
+            << shortest(m.spin_time) << " s)\n";
+    else if (m.kind == Motion::Kind::step)
+        out << " (" << controlled << "step to " << shortest(m.angle) << " rad at t = 0)\n";
     else
         out << " (hub torque tau0 = " << shortest(m.tau0) << " N m for T_t = " << shortest(m.torque_time) << " s)\n";
     out << "variant     " << r.variant << " (" << r.source << ")\n";
@@ -170,7 +187,14 @@ std::string format_summary(const RunSummary& r, const Scene& scene)
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.6g", r.max_abs_tip_uy);
     out << "max |tip_uy| " << buf << " m\n";
-    if (r.vibration_energy > 0.0) {
+    if (!r.monitor_off.empty()) {
+        out << "invariant   none checked: " << r.monitor_off << "\n";
+    } else if (r.vibration_energy > 0.0 && r.energy_balance) {
+        char line[200];
+        std::snprintf(line, sizeof line, "%.2g J from t = %g s, %.2g of the largest energy in it", r.jacobi_drift,
+                      r.t_steady, r.jacobi_drift / r.vibration_energy);
+        out << "invariant   energy balance E + dissipated - work drift " << line << "\n";
+    } else if (r.vibration_energy > 0.0) {
         char line[160];
         // As the untrustworthy message words it (simulate.cpp), so that the two agree.
         std::snprintf(line, sizeof line, "%.2g J after t = %g s, %.2g of the vibration energy", r.jacobi_drift,

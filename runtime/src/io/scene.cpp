@@ -38,7 +38,8 @@ namespace {
 constexpr const char* missing = "nothing (the key is missing)";
 
 // The words of motion.kind; the key table's motion_kind entries are among them (tests/test_scene.cpp).
-const WordTable<Motion::Kind, 2> kind_words = {{Motion::Kind::spin_up, "spin-up"}, {Motion::Kind::torque, "torque"}};
+const WordTable<Motion::Kind, 3> kind_words = {
+    {Motion::Kind::spin_up, "spin-up"}, {Motion::Kind::torque, "torque"}, {Motion::Kind::step, "step"}};
 
 std::vector<std::string> motion_kinds() { return all_words(kind_words); }
 
@@ -76,6 +77,12 @@ std::vector<SceneKey> make_scene_keys()
         {"motion.omega0", nullptr, K::number, "a finite number (Omega0, rad/s)", "spin-up"},
         {"motion.tau0", nullptr, K::number, "a finite number (tau0, N m)", "torque"},
         {"motion.duration", nullptr, K::number, "a number > 0 (T_s or T_t, s)"},
+        {"motion.angle", nullptr, K::number, "a finite number (the step's angle, rad)", "step"},
+        {"control.kp", nullptr, K::number, "a number >= 0 (kp, N m/rad)"},
+        {"control.kd", nullptr, K::number, "a number >= 0 (kd, N m s/rad)"},
+        {"control.ki", nullptr, K::number, "a number >= 0 (ki, N m/(rad s))"},
+        {"control.tau_max", nullptr, K::number, "a number > 0 or inf (tau_max, N m)"},
+        {"control.k_tip", nullptr, K::number, "a finite number (k_tip, N m/m)"},
         {"discretization.method", "--method", K::word, one_of(words<Method>())},
         {"discretization.ny", "--ny", K::integer, "an integer >= 1 (Ny)"},
         {"discretization.nx", "--nx", K::integer, "an integer >= 0 (Nx)"},
@@ -135,6 +142,7 @@ public:
 
     std::string path(std::string_view key) const { return name_ + "." + std::string(key); }
     const toml::node* get(std::string_view key) const { return table_ ? table_->get(key) : nullptr; }
+    bool absent() const { return table_ == nullptr; }
 
     /// Rejects any key the key table does not give this table (for [motion], its kind): a mistyped key must not
     /// be silently ignored.
@@ -292,6 +300,24 @@ void check_finite(const Scene& s, double v, const char* key)
     if (!std::isfinite(v)) fail(s.path, key, expected(key), shortest(v));
 }
 
+/// [control]'s ranges, and the motions it can follow: a step is a reference only, a torque pulse is none.
+void check_control(const Scene& s)
+{
+    if (!s.control) {
+        if (s.motion.kind == Motion::Kind::step)
+            fail(s.path, "motion.kind", "\"spin-up\" or \"torque\" without a [control] section (a step is the "
+                 "reference of a controlled hub)", "\"step\"");
+        return;
+    }
+    if (s.motion.kind == Motion::Kind::torque)
+        fail(s.path, "motion.kind", "a reference for [control]: \"spin-up\" or \"step\"", "\"torque\"");
+    const Control& c = *s.control;
+    for (const auto& [v, key] : {std::pair{c.kp, "control.kp"}, {c.kd, "control.kd"}, {c.ki, "control.ki"}})
+        if (!(v >= 0.0) || !std::isfinite(v)) fail(s.path, key, expected(key), shortest(v));
+    if (!(c.tau_max > 0.0)) fail(s.path, "control.tau_max", expected("control.tau_max"), shortest(c.tau_max));
+    check_finite(s, c.k_tip, "control.k_tip");
+}
+
 // The parts of parse_scene, in the order it calls them: the file as a whole, then one table each. A table's
 // reader takes its keys' values; ranges and the checks that join keys are validate()'s.
 
@@ -356,30 +382,50 @@ void read_motion(const Section& motion, Motion& m)
     if (m.kind == Motion::Kind::spin_up) {
         m.omega0 = motion.required_number("omega0");
         m.spin_time = motion.required_number("duration");
+    } else if (m.kind == Motion::Kind::step) {
+        m.angle = motion.required_number("angle");
+        if (const auto d = motion.number("duration"))
+            motion.refuse("duration", shortest(*d) + " for kind = \"step\" (the step is at t = 0: no duration)");
     } else {
         m.tau0 = motion.required_number("tau0");
         m.torque_time = motion.required_number("duration");
     }
 }
 
-/// [hub]: the hub inertia only enters the torque case, where theta is a coordinate.
-void read_hub(const Section& hub, Motion::Kind kind, Parameters& p)
+/// [control]: docs/model.md section 9; absent, the hub follows its motion.
+void read_control(const Section& control, std::optional<Control>& c)
+{
+    if (control.absent()) return;
+    control.only();
+    c.emplace();
+    c->kp = control.required_number("kp");
+    c->kd = control.required_number("kd");
+    c->ki = control.number("ki", c->ki);
+    c->tau_max = control.number("tau_max", c->tau_max);
+    c->k_tip = control.number("k_tip", c->k_tip);
+}
+
+/// [hub]: the hub inertia only enters a torque-driven hub (the torque case, or a controlled one), where theta is a
+/// coordinate.
+void read_hub(const Section& hub, const Scene& scene, Parameters& p)
 {
     hub.only();
     p.a = hub.number("radius", p.a);
-    if (kind == Motion::Kind::torque) p.J_oh = hub.required_number("inertia", ", required for kind = \"torque\"");
+    if (scene.control) p.J_oh = hub.required_number("inertia", ", required for a controlled hub ([control])");
+    else if (scene.motion.kind == Motion::Kind::torque)
+        p.J_oh = hub.required_number("inertia", ", required for kind = \"torque\"");
     else p.J_oh = hub.number("inertia", p.J_oh);
 }
 
-/// [discretization]: docs/model.md section 4; the variant's drive follows the motion.
-void read_discretization(const Section& disc, const Motion& m, VariantKey& key)
+/// [discretization]: docs/model.md section 4; the variant's drive follows the motion (or the control).
+void read_discretization(const Section& disc, const Scene& scene, VariantKey& key)
 {
     disc.only();
     key.method = disc.required_word<Method>("method", parse_enum<Method>);
     key.ny = disc.required_integer("ny");
     key.nx = disc.required_integer("nx");
     key.spline = disc.word<SplineBasis>("spline_basis", parse_enum<SplineBasis>).value_or(key.spline);
-    key.drive = m.drive();
+    key.drive = scene.drive();
 }
 
 /// [model]: docs/model.md section 3; whether the build can run an order is make_model's call.
@@ -586,8 +632,9 @@ Scene parse_scene(std::string_view text, const std::string& path, const Override
     read_beam(Section(path, root, "beam"), scene.parameters, scene.variant.extras.taper);
     read_extras(root, path, scene.parameters);
     read_motion(Section(path, root, "motion"), scene.motion);
-    read_hub(Section(path, root, "hub"), scene.motion.kind, scene.parameters);
-    read_discretization(Section(path, root, "discretization"), scene.motion, scene.variant);
+    read_control(Section(path, root, "control"), scene.control);
+    read_hub(Section(path, root, "hub"), scene, scene.parameters);
+    read_discretization(Section(path, root, "discretization"), scene, scene.variant);
     read_model(Section(path, root, "model"), scene);
     read_solver(Section(path, root, "solver"), scene.solver);
     read_output(Section(path, root, "output"), scene.output);
@@ -614,10 +661,13 @@ void validate(const Scene& s)
     if (s.motion.kind == Motion::Kind::spin_up) {
         check_finite(s, s.motion.omega0, "motion.omega0");
         check_positive(s, s.motion.spin_time, "motion.duration");
+    } else if (s.motion.kind == Motion::Kind::step) {
+        check_finite(s, s.motion.angle, "motion.angle");
     } else {
         check_finite(s, s.motion.tau0, "motion.tau0");
         check_positive(s, s.motion.torque_time, "motion.duration");
     }
+    check_control(s);
 
     // DOF counts: a problem that persists with nx = 0 is about ny.
     const VariantKey& key = s.variant;
