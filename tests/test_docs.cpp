@@ -72,6 +72,21 @@ SceneLines torque_scene()
     return s;
 }
 
+/// A controlled hub following a step: the scene whose [control] and step keys the tables' rows are checked in.
+SceneLines controlled_step()
+{
+    SceneLines s;
+    for (const auto& [key, value] : spin_up) {
+        if (key == "motion.kind") s.emplace_back(key, "\"step\"");
+        else if (key == "motion.omega0") s.emplace_back("motion.angle", "0.5");
+        else if (key != "motion.duration") s.emplace_back(key, value);
+    }
+    s.emplace_back("hub.inertia", "30.0");
+    s.emplace_back("control.kp", "64.0");
+    s.emplace_back("control.kd", "90.0");
+    return s;
+}
+
 /// The TOML text of the scene without the key `left_out`.
 std::string scene_text(const SceneLines& lines, const std::string& left_out = "")
 {
@@ -113,6 +128,15 @@ void check_same(const Scene& a, const Scene& b)
     CHECK(a.output.t_end == b.output.t_end);
     CHECK(a.output.dt_out == b.output.dt_out);
     CHECK(a.output.file == b.output.file);
+    CHECK(a.motion.angle == b.motion.angle);
+    REQUIRE(a.control.has_value() == b.control.has_value());
+    if (a.control) {
+        CHECK(a.control->kp == b.control->kp);
+        CHECK(a.control->kd == b.control->kd);
+        CHECK(a.control->ki == b.control->ki);
+        CHECK(a.control->tau_max == b.control->tau_max);
+        CHECK(a.control->k_tip == b.control->k_tip);
+    }
 }
 
 }  // namespace
@@ -149,14 +173,15 @@ TEST_CASE("docs/scene.md's defaults are the ones a scene gets, and its required 
             std::string value = cell.substr(1, cell.find('`', 1) - 1);
             if (value.size() >= 2 && value.front() == '"' && value.back() == '"') value = value.substr(1, value.size() - 2);
             INFO("documented default " << value);
-            const std::string without = scene_text(spin_up, name);
+            // A [control] key's default is the one a controlled scene gets (in another, the key would add [control]).
+            const std::string without = scene_text(name.rfind("control.", 0) == 0 ? controlled_step() : spin_up, name);
             Scene plain;
             REQUIRE_NOTHROW(plain = parse_scene(without, "spin-up.toml"));
             check_same(parse_scene(without, "spin-up.toml", {{name, value}}), plain);
             ++defaults;
         } else if (cell.rfind("required", 0) == 0) {
             bool held = false;
-            for (const SceneLines& scene : {spin_up, torque_scene()}) {
+            for (const SceneLines& scene : {spin_up, torque_scene(), controlled_step()}) {
                 bool holds = false;
                 for (const auto& line : scene) holds = holds || line.first == name;
                 if (!holds) continue;

@@ -395,9 +395,10 @@ TEST_CASE("a table accepts exactly the keys the key table gives it, [motion] tho
 {
     // Each key of the table, set in each paper case (as an override, which puts it into the parsed file), is
     // either accepted or refused for its value, never as unknown; a [motion] key of the other kind is unknown.
-    const std::vector<std::string> kinds = {"spin-up", "torque"};
+    const std::vector<std::string> kinds = {"spin-up", "torque", "step"};
     const std::map<std::string, std::string> files = {{"spin-up", case_path("spinup_omega4.toml")},
-                                                      {"torque", case_path("torque_tau10.toml")}};
+                                                      {"torque", case_path("torque_tau10.toml")},
+                                                      {"step", case_path("controlled_step.toml")}};
     for (const SceneKey& key : scene_keys()) {
         if (key.motion_kind != nullptr)
             CHECK(std::find(kinds.begin(), kinds.end(), key.motion_kind) != kinds.end());
@@ -432,7 +433,7 @@ TEST_CASE("a table accepts exactly the keys the key table gives it, [motion] tho
     // The parameters of the paper's two motions: Omega0 and T_s (eq. 58), tau0 and T_t (eq. 59).
     CHECK(table_keys("motion", "spin-up") == std::vector<std::string>{"kind", "omega0", "duration"});
     CHECK(table_keys("motion", "torque") == std::vector<std::string>{"kind", "tau0", "duration"});
-    CHECK(scene_tables() == std::vector<std::string>{"beam", "hub", "tip", "damping", "gravity", "motion",
+    CHECK(scene_tables() == std::vector<std::string>{"beam", "hub", "tip", "damping", "gravity", "motion", "control",
                                                      "discretization", "model", "solver", "output"});
 }
 
