@@ -192,6 +192,7 @@ TEST_CASE("with damping, E + dissipated - work stays constant, and the run's mon
         s.control = Control{};
         s.control->kp = 200.0;
         s.control->kd = 150.0;
+        s.control->ki = 50.0;
         s.parameters.alpha = 0.1;
         s.output.t_end = 20.0;
         const Ran r = run_scene(s);
@@ -199,8 +200,10 @@ TEST_CASE("with damping, E + dissipated - work stays constant, and the run's mon
         for (const Row& row : r.rows) largest = std::max(largest, row.kinetic + row.potential);
         for (const Row& row : r.rows)
             CHECK(std::abs(row.kinetic + row.potential + row.extras.dissipated - row.extras.work) < 1e-7 * largest);
-        // It follows the reference: the spin-up's angle at the end, within what kd leaves at a steady rate (none).
+        // It follows the reference: at a steady rate no torque is needed, so the error and its integral settle at 0
+        // (slowly: the loop's real root is near -0.3 1/s, and the beam still rings after the spin-up).
         CHECK(r.rows.back().theta == Approx(r.rows.back().extras.theta_ref).epsilon(1e-3));
+        CHECK(std::abs(r.rows.back().extras.controller_integral) < 0.05);
     }
 }
 
@@ -215,7 +218,7 @@ TEST_CASE("the exact Jacobian of a controlled, damped system equals central diff
     p.beta = 1e-3;
     VariantKey key;
     key.method = Method::amm;
-    key.nx = 2;
+    key.nx = 0;  // the axial stiffness's entries (1e6) would hide the control's terms in a common margin
     key.ny = 3;
     key.drive = Drive::torque;
     key.extras.damping = true;
@@ -245,7 +248,8 @@ TEST_CASE("the exact Jacobian of a controlled, damped system equals central diff
             for (double v : fd) scale = std::max(scale, std::abs(v));
             for (int i = 0; i < n * n; ++i) {
                 INFO("tau_max " << tau_max << ", entry " << i / n << "," << i % n);
-                CHECK(exact[static_cast<std::size_t>(i)] == Approx(fd[static_cast<std::size_t>(i)]).margin(1e-6 * scale));
+                CHECK(exact[static_cast<std::size_t>(i)] ==
+                      Approx(fd[static_cast<std::size_t>(i)]).epsilon(1e-6).margin(1e-8 * scale));
             }
             for (int i = 0; i < n; ++i) {
                 INFO("tau_max " << tau_max << ", dfdt " << i);
