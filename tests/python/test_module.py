@@ -215,6 +215,64 @@ class DocsTest(unittest.TestCase):
         self.assertTrue(first.startswith("1 [0.4633"), first)
 
 
+class TorqueLawTest(unittest.TestCase):
+    """hubbeam.run(..., torque=f): a hub driven by a Python callable of (t, state)."""
+    STEP = os.path.join(SOURCE, "cases", "controlled_step.toml")
+
+    def test_a_controlled_scene_has_its_columns_as_the_command_line_writes_them(self):
+        with tempfile.TemporaryDirectory() as d:
+            out = os.path.join(d, "step.csv")
+            p = cli("run", self.STEP, "--t-end", "3", "-o", out)
+            self.assertEqual(p.returncode, 0, p.stderr)
+            header, rows = read_csv(out)
+            r = hubbeam.run(self.STEP, t_end=3)
+            self.assertEqual(list(r.columns), header)
+            self.assertEqual(header[-3:], ["tau", "theta_ref", "work"])
+            self.assertTrue(np.array_equal(r.data, rows))
+
+    def test_a_law_in_python_equals_the_same_law_in_the_scene(self):
+        # The scene's own PD law with its saturation, written in Python: the same rows to the tolerance.
+        kp, kd, tau_max, angle = 64.45, 90.2, 10.0, 0.5
+        seen = []
+
+        def law(t, state):
+            seen.append(sorted(state))
+            return float(np.clip(-kp * (state["theta"] - angle) - kd * state["theta_dot"], -tau_max, tau_max))
+
+        ref = hubbeam.run(self.STEP, t_end=5)
+        r = hubbeam.run(self.STEP, t_end=5, torque=law)
+        self.assertTrue(r.completed, r.failure)
+        self.assertEqual(list(r.columns), list(ref.columns[:10]) + ["tau", "work"])
+        self.assertEqual(seen[0], ["theta", "theta_dot", "tip_uy", "tip_uy_dot"])
+        self.assertLess(abs(r.theta - ref.theta).max(), 1e-7)
+        self.assertLess(abs(r.tau - ref.tau).max(), 1e-5)
+        self.assertLessEqual(abs(r.tau).max(), tau_max)
+
+    def test_the_tip_values_are_the_rows_and_an_exception_in_the_law_is_raised(self):
+        tips = {}
+
+        def law(t, state):
+            tips[t] = (state["tip_uy"], state["theta"])
+            return 1.0 if t < 1.0 else 0.0
+
+        r = hubbeam.run(SPINUP, t_end=2, torque=law, error_check="off")  # no re-runs: the last call at t is the row's
+        self.assertTrue(r.completed, r.failure)
+        for t, uy, theta in zip(r.t, r.tip_uy, r.theta):
+            if t in tips:  # the row's own torque: the state it saw is the row's (u_y(L) summed another way)
+                self.assertEqual(tips[t][1], theta)
+                self.assertAlmostEqual(tips[t][0], uy, delta=1e-12 * abs(uy) + 1e-300)
+
+        def broken(t, state):
+            if t > 0.5:
+                raise ZeroDivisionError("law failed")
+            return 0.0
+
+        with self.assertRaisesRegex(ZeroDivisionError, "law failed"):
+            hubbeam.run(SPINUP, t_end=1, torque=broken)
+        with self.assertRaisesRegex(ValueError, "torque: expected a callable"):
+            hubbeam.run(SPINUP, t_end=1, torque=3.0)
+
+
 class ModesTest(unittest.TestCase):
     def test_the_cantilevers_frequency_at_rest(self):
         # docs/model.md section 7: the first bending frequency, 1.8751^2 sqrt(EI/(m L^4)) = 2.9107 rad/s.
