@@ -4,6 +4,8 @@
    as hubbeam run does), median over repeated runs.
 2. A sweep on a local cluster of 2 worker threads against the sum of its runs' own times, for points of about 10 ms
    and about 100 ms: (workers x wall - sum of run times) / sum of run times, the cluster's start-up left out.
+3. With --torque-law, only the cost of one call of a torque law hubbeam.run(..., torque=f): cases/controlled_step.toml
+   driven by its own PD law written in Python against the same law from its [control], best of five runs each.
 """
 from __future__ import annotations
 
@@ -46,13 +48,39 @@ def sweep_overhead(scene: str, points: int, t_end: float, label: str) -> None:
               f"sweep took {total:.2f} s)")
 
 
+def torque_law_cost(scene: str) -> None:
+    calls = [0]
+
+    def law(t, s):  # the scene's [control]: kp 64.45, kd 90.2, step to 0.5 rad, |tau| <= 10 N m
+        calls[0] += 1
+        tau = -64.45 * (s["theta"] - 0.5) - 90.2 * s["theta_dot"]
+        return max(-10.0, min(10.0, tau))
+
+    own, python = [], []
+    for _ in range(5):
+        c = hubbeam.run(scene, error_check="off")
+        calls[0] = 0
+        f = hubbeam.run(scene, error_check="off", torque=law)
+        own.append(c.wall_seconds)
+        python.append(f.wall_seconds)
+    per_call = (min(python) - min(own) * f.rhs_evals / c.rhs_evals) / calls[0]
+    print(f"torque law: [control] {min(own):.4f} s ({c.rhs_evals} evaluations), torque=f {min(python):.4f} s "
+          f"({f.rhs_evals} evaluations, {calls[0]} calls of f): {1e6 * per_call:.2f} us per call, the right-hand "
+          f"side with [control] {1e6 * min(own) / c.rhs_evals:.2f} us")
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(prog="python3 -m hubbeam.benchmark", description=__doc__.splitlines()[0])
     parser.add_argument("--scene", default=os.path.join(os.path.dirname(__file__), "..", "..", "..", "cases",
                                                          "spinup_omega4.toml"))
     parser.add_argument("--repeats", type=int, default=200)
     parser.add_argument("--points", type=int, default=100)
+    parser.add_argument("--torque-law", action="store_true", help="only the cost of a call of a torque law")
     args = parser.parse_args()
+    if args.torque_law:
+        step = os.path.join(os.path.dirname(__file__), "..", "..", "..", "cases", "controlled_step.toml")
+        torque_law_cost(os.path.abspath(step))
+        return 0
     scene = os.path.abspath(args.scene)
     if not os.path.exists(scene):
         print(f"{hubbeam.printable(scene)}: cannot open (give --scene cases/spinup_omega4.toml)", file=sys.stderr)
