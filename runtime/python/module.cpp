@@ -118,6 +118,8 @@ py::dict summary_dict(const RunSummary& s, const Scene& scene)
     out["t_steady"] = s.t_steady;
     out["jacobi_drift"] = s.jacobi_drift;
     out["vibration_energy"] = s.vibration_energy;
+    out["energy_balance"] = s.energy_balance;
+    out["monitor_off"] = s.monitor_off;
     out["estimated_error"] = s.estimated_error;
     out["error_column"] = s.error_column;
     out["steps"] = s.steps;

@@ -88,8 +88,9 @@ struct Auxiliary {
 /// M_rr qdd_r = Q_r: the stiff axial modes are gone, the centrifugal stretch and its coupling to bending stay.
 /// With a control (a torque model), the motion is the reference and the torque is the control's law of the state,
 /// evaluated at every right-hand side; the auxiliary states (Auxiliary::of) follow the positions and rates. A damped
-/// model needs parameters (its alpha and beta) for the dissipated energy; throws std::invalid_argument without them,
-/// or for a control of a model whose hub is not torque-driven.
+/// model's dissipated energy comes from parameters' alpha and beta (an independent check of the generated damping
+/// forces: simulations pass them), or without them from the model's own -dQ/dqd at rest. Throws
+/// std::invalid_argument for a control of a model whose hub is not torque-driven.
 class FirstOrderSystem {
 public:
     FirstOrderSystem(const Model& model, const Motion& motion, Axial axial = Axial::dynamic,

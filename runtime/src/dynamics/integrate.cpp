@@ -150,8 +150,6 @@ FirstOrderSystem::FirstOrderSystem(const Model& model, const Motion& motion, Axi
     const VariantKey& key = model.key();
     if (control_ != nullptr && key.drive != Drive::torque)
         throw std::invalid_argument("a controlled hub needs a torque variant, not " + key.name());
-    if (key.extras.damping && parameters == nullptr)
-        throw std::invalid_argument("the dissipated energy of " + key.name() + " needs its damping parameters");
     kept_ = kept_coordinates(key, axial_);
     aux_ = Auxiliary::of(key, control_);
     const int k = static_cast<int>(kept_.size());
@@ -173,19 +171,33 @@ FirstOrderSystem::FirstOrderSystem(const Model& model, const Motion& motion, Axi
         }
     }
     if (aux_.dissipated) {
-        // docs/model.md section 9: -(alpha M_ee + beta K_e) qd_e, M_ee and K_e of the undeformed beam at rest.
+        // docs/model.md section 9: -(alpha M_ee + beta K_e) qd_e, M_ee and K_e of the undeformed beam at rest; without
+        // the parameters, the model's own -dQ/dqd at rest (its damping forces: the other rate terms are quadratic).
         const HubInput rest;
-        Eigen::MatrixXd M(n_, n_);
-        model.mass(rest, zero.data(), M.data());  // symmetric: row- or column-major alike
-        const Eigen::MatrixXd K = -force_q_jacobian(model, rest, zero, zero);
-        const double alpha = parameters->alpha, beta = parameters->beta;
+        Eigen::MatrixXd C(n_, n_);
+        if (parameters != nullptr) {
+            Eigen::MatrixXd M(n_, n_);
+            model.mass(rest, zero.data(), M.data());  // symmetric: row- or column-major alike
+            const Eigen::MatrixXd K = -force_q_jacobian(model, rest, zero, zero);
+            C = parameters->alpha * M + parameters->beta * 0.5 * (K + K.transpose());
+        } else {
+            std::vector<double> qd = zero, Q_plus(zero), Q_minus(zero);
+            for (int j = 0; j < n_; ++j) {
+                qd[static_cast<std::size_t>(j)] = 1.0;
+                model.forces(rest, zero.data(), qd.data(), Q_plus.data());
+                qd[static_cast<std::size_t>(j)] = -1.0;
+                model.forces(rest, zero.data(), qd.data(), Q_minus.data());
+                qd[static_cast<std::size_t>(j)] = 0.0;
+                for (int i = 0; i < n_; ++i)
+                    C(i, j) = -0.5 * (Q_plus[static_cast<std::size_t>(i)] - Q_minus[static_cast<std::size_t>(i)]);
+            }
+        }
         w.dissipation = Eigen::MatrixXd::Zero(k, k);
         const int elastic = key.first_a();  // the hub angle, a coordinate under torque, is not damped
         for (int i = 0; i < k; ++i)
             for (int j = 0; j < k; ++j) {
                 const int a = kept_[static_cast<std::size_t>(i)], b = kept_[static_cast<std::size_t>(j)];
-                if (a < elastic || b < elastic) continue;
-                w.dissipation(i, j) = alpha * M(a, b) + beta * 0.5 * (K(a, b) + K(b, a));
+                if (a >= elastic && b >= elastic) w.dissipation(i, j) = C(a, b);
             }
         w.product.resize(k);
     }

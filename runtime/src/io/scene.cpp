@@ -384,6 +384,7 @@ void read_motion(const Section& motion, Motion& m)
         m.spin_time = motion.required_number("duration");
     } else if (m.kind == Motion::Kind::step) {
         m.angle = motion.required_number("angle");
+        m.omega0 = 0.0;  // no spin: what reads the final rate of a motion (modes' default rates) reads none
         if (const auto d = motion.number("duration"))
             motion.refuse("duration", shortest(*d) + " for kind = \"step\" (the step is at t = 0: no duration)");
     } else {
