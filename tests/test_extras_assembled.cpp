@@ -6,12 +6,16 @@
 #include <catch2/catch.hpp>
 
 #include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <random>
 #include <string>
+#include <tuple>
 #include <vector>
 
+#include "gauss_legendre.hpp"
 #include "generated_model.hpp"
 #include "make_model.hpp"
 #include "random_state.hpp"
@@ -285,5 +289,158 @@ TEST_CASE("assembled extra terms: forces from the assembled energies and dissipa
                 CHECK(-s.qd.tail(ne).dot(added.tail(ne)) > 0.0);
             }
         }
+    }
+}
+
+namespace {
+
+/// Non-rotating, no gravity, prescribed form without axial coordinates: M and K = -dQ/dq (exact by columns, Q is
+/// linear in q) and C = -dQ/dqd of a model at rest.
+struct Linear {
+    MatrixXd M, K, C;
+};
+Linear at_rest(const Model& model)
+{
+    const int n = model.nq();
+    test::State s{VectorXd::Zero(n), VectorXd::Zero(n), HubInput{}};
+    Linear l{mass_of(model, s), MatrixXd(n, n), MatrixXd(n, n)};
+    const VectorXd Q0 = forces_of(model, s);
+    for (int j = 0; j < n; ++j) {
+        test::State moved = s, moving = s;
+        moved.q(j) = 1.0;
+        moving.qd(j) = 1.0;
+        l.K.col(j) = Q0 - forces_of(model, moved);
+        l.C.col(j) = Q0 - forces_of(model, moving);
+    }
+    return l;
+}
+
+/// The first roots of 1 + cos z cosh z + mu z (cos z sinh z - sin z cosh z) = 0 (divided by cosh z), by bisection
+/// between the sign changes of a fine scan.
+std::vector<double> tip_mass_roots(double mu, int count)
+{
+    const auto f = [mu](double z) {
+        return 1.0 / std::cosh(z) + std::cos(z) + mu * z * (std::cos(z) * std::tanh(z) - std::sin(z));
+    };
+    std::vector<double> roots;
+    for (double z = 0.1; static_cast<int>(roots.size()) < count; z += 0.01) {
+        double lo = z, hi = z + 0.01;
+        if (f(lo) * f(hi) > 0.0) continue;
+        for (int it = 0; it < 200 && hi - lo > 1e-15 * hi; ++it) {
+            const double mid = 0.5 * (lo + hi);
+            (f(mid) * f(lo) > 0.0 ? lo : hi) = mid;
+        }
+        roots.push_back(0.5 * (lo + hi));
+    }
+    return roots;
+}
+
+VariantKey still_key(Method method, int nx, int ny, Extras extras)
+{
+    return {.method = method, .nx = nx, .ny = ny, .order = Order::first, .drive = Drive::prescribed, .extras = extras};
+}
+
+}  // namespace
+
+TEST_CASE("assembled tip mass: the cantilever's frequency equation", "[extras][assembled][physics]")
+{
+    // A tip mass of half the beam's (Laura, Pombo & Susemihl 1974): omega = z^2 sqrt(EI / (m L^4)).
+    Parameters p;
+    const double m = p.rho * p.S, mu = 0.5;
+    p.m_tip = mu * m * p.L;
+    const std::vector<double> z = tip_mass_roots(mu, 3);
+    REQUIRE(z[0] < 1.8751);  // a tip mass lowers the first root below the bare cantilever's
+    // Rayleigh-Ritz from above, to each method's convergence at these counts (AMM's clamped-free modes miss the
+    // tip's shear force, so converge slowest; BIM spectrally).
+    for (auto [method, ny, tolerance] : {std::tuple{Method::bim, 12, 1e-9}, std::tuple{Method::fem, 32, 1e-4},
+                                         std::tuple{Method::bsim, 24, 2e-5}, std::tuple{Method::amm, 16, 3e-4}}) {
+        INFO(to_string(method) << " ny " << ny);
+        const Linear l = at_rest(*make_model(still_key(method, 0, ny, {.tip = true}), p, ModelSource::assembled));
+        Eigen::GeneralizedSelfAdjointEigenSolver<MatrixXd> es(l.K, l.M, Eigen::EigenvaluesOnly);
+        REQUIRE(es.info() == Eigen::Success);
+        for (int i = 0; i < 3; ++i) {
+            const double exact = z[i] * z[i] * std::sqrt(p.E * p.I / (m * std::pow(p.L, 4)));
+            CHECK(std::sqrt(es.eigenvalues()(i)) == Approx(exact).epsilon(tolerance));
+        }
+    }
+}
+
+TEST_CASE("assembled weight, taper and tip mass: the static deflection of a horizontal cantilever", "[extras][assembled][physics]")
+{
+    // Held horizontal (theta = 0, no spin), a cantilever under its own weight q(x) = g m s(x/L) and a tip weight
+    // g m_tip: M(x) = int_x^L q(t) (t - x) dt + g m_tip (L - x), and by the unit-load method
+    // u_y(L) = -int_0^L M(x) (L - x) / EI(x) dx. Gauss-Legendre on [0, L] converged (the integrand is smooth).
+    Parameters p;
+    p.g = 9.81;
+    p.m_tip = 0.4;
+    p.tip_ratio = 0.5;
+    const double m = p.rho * p.S, EI = p.E * p.I, L = p.L;
+    for (Taper taper : {Taper::width, Taper::depth}) {
+        const auto s = [&](double x) { return 1.0 + (p.tip_ratio - 1.0) * x / L; };
+        const auto ei = [&](double x) { return EI * (taper == Taper::depth ? std::pow(s(x), 3) : s(x)); };
+        const test::GaussRule rule = test::gauss_legendre(40);  // on [-1, 1]: node (1 + x)/2, weight w/2 on [0, 1]
+        const auto moment = [&](double x) {
+            double M = p.g * p.m_tip * (L - x);
+            for (std::size_t k = 0; k < rule.x.size(); ++k) {
+                const double t = x + (L - x) * 0.5 * (1.0 + rule.x[k]);
+                M += (L - x) * 0.5 * rule.w[k] * p.g * m * s(t) * (t - x);
+            }
+            return M;
+        };
+        double exact = 0.0;
+        for (std::size_t k = 0; k < rule.x.size(); ++k) {
+            const double x = L * 0.5 * (1.0 + rule.x[k]);
+            exact -= L * 0.5 * rule.w[k] * moment(x) * (L - x) / ei(x);
+        }
+        for (auto [method, ny, tolerance] : {std::tuple{Method::bim, 14, 1e-9}, std::tuple{Method::fem, 32, 1e-6},
+                                             std::tuple{Method::bsim, 32, 1e-6}, std::tuple{Method::amm, 16, 1e-3}}) {
+            INFO(to_string(taper) << " taper, " << to_string(method) << " ny " << ny);
+            const auto model = make_model(still_key(method, 0, ny, {.tip = true, .gravity = true, .taper = taper}), p,
+                                          ModelSource::assembled);
+            // theta = 0: Q = -K2 B - g W_y^T, linear in B; the deflection solves Q = 0.
+            const Linear l = at_rest(*model);
+            test::State rest{VectorXd::Zero(ny), VectorXd::Zero(ny), HubInput{}};
+            const VectorXd B = l.K.ldlt().solve(forces_of(*model, rest));
+            CHECK(model->tip(B.data()).uy == Approx(exact).epsilon(tolerance));
+        }
+    }
+}
+
+TEST_CASE("assembled Rayleigh damping: each mode decays at alpha/2 + beta omega^2/2", "[extras][assembled][physics]")
+{
+    // At rest the damped modes are those of (K, M), each pair the roots of lambda^2 + (alpha + beta omega^2) lambda +
+    // omega^2 = 0: zeta = alpha/(2 omega) + beta omega/2, the axial modes overdamped above omega = 2/beta.
+    Parameters p;
+    p.alpha = 0.2;
+    p.beta = 1e-3;
+    p.m_tip = 0.3;
+    p.J_tip = 0.05;
+    for (Method method : {Method::amm, Method::fem, Method::bim, Method::bsim}) {
+        INFO(to_string(method));
+        const auto model =
+            make_model(still_key(method, 4, 4, {.tip = true, .damping = true}), p, ModelSource::assembled);
+        const Linear l = at_rest(*model);
+        const int n = model->nq();
+        Eigen::GeneralizedSelfAdjointEigenSolver<MatrixXd> modes(l.K, l.M, Eigen::EigenvaluesOnly);
+        std::vector<std::complex<double>> expected;
+        for (int i = 0; i < n; ++i) {
+            const double w2 = modes.eigenvalues()(i), c = p.alpha + p.beta * w2;
+            const std::complex<double> root = std::sqrt(std::complex<double>(c * c / 4.0 - w2, 0.0));
+            expected.push_back(-c / 2.0 + root);
+            expected.push_back(-c / 2.0 - root);
+        }
+        MatrixXd A = MatrixXd::Zero(2 * n, 2 * n);
+        A.topRightCorner(n, n) = MatrixXd::Identity(n, n);
+        A.bottomLeftCorner(n, n) = -l.M.ldlt().solve(l.K);
+        A.bottomRightCorner(n, n) = -l.M.ldlt().solve(l.C);
+        const Eigen::VectorXcd lambda = A.eigenvalues();
+        int overdamped = 0;
+        for (const std::complex<double>& e : expected) {
+            double nearest = 1e300;
+            for (int k = 0; k < 2 * n; ++k) nearest = std::min(nearest, std::abs(lambda(k) - e));
+            CHECK(nearest < 1e-8 * std::abs(e));
+            overdamped += e.imag() == 0.0 ? 1 : 0;
+        }
+        CHECK(overdamped > 0);  // the stiff axial modes (beta omega > 2) decay without oscillating
     }
 }
