@@ -1,4 +1,4 @@
-// docs/model.md sections 5 and 10 assembled numerically: coefficient matrices by quadrature (a taper as a weight
+// docs/model.md sections 5 and 11 assembled numerically: coefficient matrices by quadrature (a taper as a weight
 // inside them), a tip body as point values of the shape functions at x = L, then M(q) and Q(q, qd) of Lagrange's
 // equations for orders first and zero, with gravity and Rayleigh damping, in torque form q = (theta, A, B) or
 // prescribed form q = (A, B).
@@ -69,7 +69,7 @@ BeamMatrices assemble_matrices(const VariantKey& key, const Parameters& p)
     const double L = p.L, a = p.a, m = p.rho * p.S, EI = p.E * p.I, ES = p.E * p.S;
     const Eigen::ArrayXd xi = Eigen::Map<const Eigen::ArrayXd>(rule.nodes.data(), nn);
     const VectorXd w = Eigen::Map<const VectorXd>(rule.weights.data(), nn);
-    // Section 10's profile: m(x) = m s(xi), ES(x) = ES s(xi), EI(x) = EI i(xi), s = 1 + (tip_ratio - 1) xi, i = s (width
+    // Section 11.2's profile: m(x) = m s(xi), ES(x) = ES s(xi), EI(x) = EI i(xi), s = 1 + (tip_ratio - 1) xi, i = s (width
     // taper) or s^3 (depth taper); s = i = 1 for a uniform beam, whatever tip_ratio says.
     const double r1 = key.extras.taper == Taper::uniform ? 0.0 : p.tip_ratio - 1.0;
     const Eigen::ArrayXd s = 1.0 + r1 * xi;
@@ -116,7 +116,7 @@ BeamMatrices assemble_matrices(const VariantKey& key, const Parameters& p)
 
 namespace {
 
-/// docs/model.md sections 5 and 10's M and Q from constant matrices: section 5's beam matrices with the tip body
+/// docs/model.md sections 5 and 11's M and Q from constant matrices: section 5's beam matrices with the tip body
 /// added (its translation to S_x, S_y, M1, M2, M3, G, its rotation to J_o, S_y and the B-rate mass M2r), the weight's
 /// W_o, W_x, W_y, W_H and the damping matrices. Order zero drops G and W_H (no foreshortening).
 class AssembledModel final : public Model {
@@ -132,7 +132,7 @@ public:
         g_ = x.gravity ? p.g : 0.0;
         const double alpha = x.damping ? p.alpha : 0.0, beta = x.damping ? p.beta : 0.0;
 
-        // Section 10.1: the tip body's T at x = L (order rules of section 3) in section 5.2's form.
+        // Section 11.1: the tip body's T at x = L (order rules of section 3) in section 5.2's form.
         J_o_ = p.J_oh + c.J_ob + m_t * R * R + J_t;
         S_x_ = c.S_x + m_t * R * c.Phi_x_L;
         S_y_ = c.S_y + m_t * R * c.Phi_y_L + J_t * c.Phi_y1_L;
@@ -146,13 +146,13 @@ public:
         S_x_T_ = S_x_.transpose();
         S_y_T_ = S_y_.transpose();
 
-        // Section 10.2: U_g = g sin(theta) (W_o + W_x A - 1/2 B^T W_H B) + g cos(theta) W_y B.
+        // Section 11.3: U_g = g sin(theta) (W_o + W_x A - 1/2 B^T W_H B) + g cos(theta) W_y B.
         W_o_ = c.S_ob + m_t * R;
         W_x_ = c.P_x + m_t * c.Phi_x_L;
         W_y_ = c.P_y + m_t * c.Phi_y_L;
         W_H_ = zero ? MatrixXd::Zero(ny_, ny_) : MatrixXd(c.C + m_t * c.H_L);
 
-        // Section 10.3: -dD/dqd = -(alpha M_ee + beta K_e) qd_e with M_ee = blockdiag(M1, M2r) of the beam with its tip.
+        // Section 11.4: -dD/dqd = -(alpha M_ee + beta K_e) qd_e with M_ee = blockdiag(M1, M2r) of the beam with its tip.
         D_A_ = alpha * M1_ + beta * K1_;
         D_B_ = alpha * M2r_ + beta * K2_;
         damped_ = alpha != 0.0 || beta != 0.0;
@@ -232,7 +232,7 @@ public:
         }
 
         if (g_ != 0.0) {
-            // -dU_g/dq (section 10.2): Q_A -= g sin W_x^T, Q_B += g (sin W_H B - cos W_y^T),
+            // -dU_g/dq (section 11.3): Q_A -= g sin W_x^T, Q_B += g (sin W_H B - cos W_y^T),
             // Q_theta -= g (cos (W_o + W_x A - 1/2 B^T W_H B) - sin W_y B).
             const double theta = torque ? q[0] : u.theta, gs = g_ * std::sin(theta), gc = g_ * std::cos(theta);
             Q_A -= gs * W_x_.transpose();
@@ -241,7 +241,7 @@ public:
             if (torque) Q[0] -= gc * (W_o_ + W_x_.dot(A) - 0.5 * B.dot(W_H_.lazyProduct(B))) - gs * W_y_.dot(B);
         }
         if (damped_) {
-            // -dD/dqd (section 10.3): Rayleigh damping of the elastic rates; the hub's rate is not damped.
+            // -dD/dqd (section 11.4): Rayleigh damping of the elastic rates; the hub's rate is not damped.
             Q_A.noalias() -= D_A_ * A_dot;
             Q_B.noalias() -= D_B_ * B_dot;
         }
@@ -267,7 +267,7 @@ public:
         const double theta_dot = torque ? qd[0] : u.theta_dot;
         const ConstVector A(q + o, nx_), B(q + o + nx_, ny_), A_dot(qd + o, nx_), B_dot(qd + o + nx_, ny_);
 
-        // T of docs/model.md section 5 (with section 10's tip body), by degree in the flexible rates.
+        // T of docs/model.md section 5 (with section 11's tip body), by degree in the flexible rates.
         const double flexible = 0.5 * A_dot.dot(M1_.lazyProduct(A_dot)) + 0.5 * B_dot.dot(M2r_.lazyProduct(B_dot));
         const double coupling = theta_dot * gyroscopic(A, B, A_dot, B_dot);
         const double spin = 0.5 * M11(A, B) * theta_dot * theta_dot;
@@ -317,7 +317,7 @@ private:
 
     BeamFields fields_;
     int nx_, ny_;
-    // Section 5.2's matrices of the beam with its tip body (section 10.1).
+    // Section 5.2's matrices of the beam with its tip body (section 11.1).
     double J_o_ = 0.0;             // J_oh + J_ob + m_tip (a+L)^2 + J_tip
     Eigen::RowVectorXd S_x_, S_y_;
     MatrixXd M1_, M3_, K1_, K2_;
@@ -325,7 +325,7 @@ private:
     MatrixXd M2_G_;                // M2 - G (first order) or M2 (zero order)
     VectorXd S_x_T_, S_y_T_;       // S_x^T, S_y^T as columns
     RowMajorMatrix M_prescribed_;  // blockdiag(M1, M2r) for the prescribed form
-    // Section 10.2's weight and 10.3's damping.
+    // Section 11.3's weight and 11.4's damping.
     double g_ = 0.0, W_o_ = 0.0;
     Eigen::RowVectorXd W_x_, W_y_;
     MatrixXd W_H_;
