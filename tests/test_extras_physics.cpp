@@ -410,3 +410,112 @@ TEST_CASE("with gravity and neither damping nor torque, T + U (U holding the wei
     CHECK(largest_kinetic > 1.0);
     CHECK(drift < 1e-7 * largest_kinetic);
 }
+
+TEST_CASE("a beam held upright buckles under its own weight at Greenhill's load; hanging, it stiffens",
+          "[extras][gravity][modes]")
+{
+    // Greenhill: the slope t(s) of an upright cantilever, s = L - x from the free tip, buckles when
+    // t'' + (q/EI) s t = 0 with t'(0) = 0 (no moment at the tip) has t(L) = 0 (clamped). By power series in
+    // s (t = sum c_k s^k, c_0 = 1, c_1 = c_2 = 0, c_(k+3) = -k3 c_k / ((k+3)(k+2)), k3 = q L^3/EI at L = 1) and
+    // bisection on k3: q L^3 / EI = 7.837.
+    const auto slope_at_root = [](double k3) {
+        std::vector<double> c(120, 0.0);
+        c[0] = 1.0;
+        double sum = 0.0;
+        for (std::size_t k = 0; k < c.size(); ++k) {
+            if (k >= 3) c[k] = -k3 * c[k - 3] / (static_cast<double>(k) * static_cast<double>(k - 1));
+            sum += c[k];
+        }
+        return sum;
+    };
+    double lo = 5.0, hi = 10.0;
+    for (int k = 0; k < 100; ++k) {
+        const double mid = 0.5 * (lo + hi);
+        ((slope_at_root(lo) < 0.0) == (slope_at_root(mid) < 0.0) ? lo : hi) = mid;
+    }
+    const double greenhill = 0.5 * (lo + hi);
+    CHECK(greenhill == Approx(7.837).epsilon(1e-4));
+    Parameters p = short_beam();
+    const double g_critical = greenhill * p.E * p.I / (p.rho * p.S * std::pow(p.L, 3));
+    // Held upright (theta = pi/2), the model's first mode diverges from the g where its K loses definiteness.
+    const auto divergent = [&](double g) {
+        Parameters at = p;
+        at.g = g;
+        const std::unique_ptr<Model> model = generated(Method::fem, 16, at, tip_gravity_width);
+        const std::vector<NaturalMode> modes = natural_modes(*model, held_equilibrium(*model, std::numbers::pi / 2));
+        return modes.front().rad_s == 0.0 && modes.front().growth > 0.0;
+    };
+    double below = 0.5 * g_critical, above = 1.5 * g_critical;
+    REQUIRE(!divergent(below));
+    REQUIRE(divergent(above));
+    for (int k = 0; k < 40; ++k) {
+        const double mid = 0.5 * (below + above);
+        (divergent(mid) ? above : below) = mid;
+    }
+    INFO("the model buckles at g = " << below << " m/s^2, Greenhill's load at " << g_critical);
+    // A Ritz model buckles from above (FEM at Ny = 16: 1.3e-5 above). g here is some 2000 of Earth's: what
+    // buckles a 1 m beam of this section is the load q L^3 / EI alone.
+    CHECK(below >= g_critical * (1.0 - 1e-9));
+    CHECK(below == Approx(g_critical).epsilon(1e-4));
+    // Hanging (theta = -pi/2) the weight pulls the beam straight: its frequencies rise above the horizontal
+    // beam's, which the weight does not change (first order), and the upright beam's fall below them.
+    p.g = 0.5 * g_critical;
+    const std::unique_ptr<Model> model = generated(Method::fem, 16, p, tip_gravity_width);
+    const double hanging = natural_modes(*model, held_equilibrium(*model, -std::numbers::pi / 2)).front().rad_s;
+    const double level = natural_modes(*model, held_equilibrium(*model, 0.0)).front().rad_s;
+    const double upright = natural_modes(*model, held_equilibrium(*model, std::numbers::pi / 2)).front().rad_s;
+    CHECK(hanging > level);
+    CHECK(upright < level);
+    // Upright or hanging, the straight beam is the equilibrium: no sideways sag.
+    CHECK(std::abs(model->tip(held_equilibrium(*model, std::numbers::pi / 2).q.data()).uy) < 1e-12);
+}
+
+TEST_CASE("under gravity the state-space matrices are those of the nonlinear equations about the held sag",
+          "[extras][gravity][linearize]")
+{
+    Parameters p = short_beam();
+    p.g = 9.81;
+    p.J_oh = 0.2;
+    const double held = 0.4;  // a tilted beam: the weight has components along and across it
+    for (const Drive drive : {Drive::prescribed, Drive::torque}) {
+        Extras gravity_only;
+        gravity_only.gravity = true;
+        const std::unique_ptr<Model> model =
+            make_model(extras_key(Method::amm, 4, drive, gravity_only), p, ModelSource::generated);
+        const SteadySpin s = held_equilibrium(*model, held);
+        const int n = model->nq();
+        // The equilibrium: no acceleration anywhere, a free hub's included (its holding torque).
+        std::vector<double> Q(static_cast<std::size_t>(n));
+        model->forces(s.u, s.q.data(), s.qd.data(), Q.data());
+        for (double x : Q) CHECK(std::abs(x) < 1e-9);
+        // A's rows of accelerations against central differences of M^-1 Q in every state (theta of a prescribed
+        // hub through the drive's angle).
+        const StateSpace ss = state_space(*model, s);
+        const int m = static_cast<int>(ss.states.size()) / 2;
+        const bool torque = drive == Drive::torque;
+        const auto accelerations = [&](int state, double h) {
+            HubInput u = s.u;
+            std::vector<double> q = s.q, qd = s.qd;
+            const int c = state % m, index = torque ? c : c - 1;
+            if (state < m) (index < 0 ? u.theta : q[static_cast<std::size_t>(index)]) += h;
+            else (index < 0 ? u.theta_dot : qd[static_cast<std::size_t>(index)]) += h;
+            Eigen::MatrixXd M(n, n);
+            std::vector<double> Mrow(static_cast<std::size_t>(n * n)), F(static_cast<std::size_t>(n));
+            model->mass(u, q.data(), Mrow.data());
+            model->forces(u, q.data(), qd.data(), F.data());
+            for (int i = 0; i < n; ++i)
+                for (int j = 0; j < n; ++j) M(i, j) = Mrow[static_cast<std::size_t>(i * n + j)];
+            return Eigen::VectorXd(M.llt().solve(Eigen::Map<Eigen::VectorXd>(F.data(), n)));
+        };
+        for (int state = 0; state < 2 * m; ++state) {
+            const double h = 1e-6;
+            const Eigen::VectorXd column = (accelerations(state, h) - accelerations(state, -h)) / (2 * h);
+            for (int r = torque ? 0 : 1; r < m; ++r) {
+                const int index = torque ? r : r - 1;
+                INFO(to_string(drive) << " row " << ss.states[static_cast<std::size_t>(m + r)] << ", column "
+                                      << ss.states[static_cast<std::size_t>(state)]);
+                CHECK(ss.A(m + r, state) == Approx(column[index]).margin(1e-5 * std::max(1.0, column.cwiseAbs().maxCoeff())));
+            }
+        }
+    }
+}

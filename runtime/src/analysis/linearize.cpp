@@ -144,22 +144,23 @@ SteadySpin held_equilibrium(const Model& model, double theta)
     s.q.assign(static_cast<std::size_t>(n), 0.0);
     s.qd = s.q;
     if (key.drive == Drive::torque) s.q[0] = theta;
-    // Newton on the elastic rows at rest: one step where they are linear in q_e (orders zero and first at a
-    // horizontal beam), a few where the weight's component along the beam meets the foreshortening.
+    // Newton on the elastic rows at rest: one step where they are linear in q_e (orders zero and first), a few
+    // where the weight meets full order's nonlinear terms. Converged when the residual is round-off against the
+    // terms that make it up (the load and K q), which holds whatever K's condition, near buckling too.
     std::vector<double> Q(static_cast<std::size_t>(n));
-    bool converged = false;
+    const auto elastic = [&] { return Eigen::Map<const Eigen::VectorXd>(Q.data() + e0, ne); };
+    model.forces(s.u, s.q.data(), s.qd.data(), Q.data());
+    const double load = elastic().cwiseAbs().maxCoeff();
+    bool converged = load == 0.0;
     for (int iteration = 0; iteration < 50 && !converged; ++iteration) {
-        model.forces(s.u, s.q.data(), s.qd.data(), Q.data());
         const Eigen::MatrixXd K = force_q_jacobian(model, s.u, s.q, s.qd).block(e0, e0, ne, ne);
-        const Eigen::VectorXd dq = K.partialPivLu().solve(-Eigen::Map<const Eigen::VectorXd>(Q.data() + e0, ne));
+        const Eigen::VectorXd dq = K.partialPivLu().solve(-elastic());
         if (!dq.allFinite()) break;
-        double size = 0.0;
-        for (int i = 0; i < ne; ++i) {
-            s.q[static_cast<std::size_t>(e0 + i)] += dq[i];
-            size = std::max(size, std::abs(s.q[static_cast<std::size_t>(e0 + i)]));
-        }
-        // Relative to round-off amplified by K's condition (FEM at high Ny: 1e6 and more), not to machine epsilon.
-        converged = dq.cwiseAbs().maxCoeff() <= 1e-9 * std::max(size, 1e-300);
+        for (int i = 0; i < ne; ++i) s.q[static_cast<std::size_t>(e0 + i)] += dq[i];
+        model.forces(s.u, s.q.data(), s.qd.data(), Q.data());
+        const double terms = load + K.cwiseAbs().maxCoeff() *
+                                        Eigen::Map<const Eigen::VectorXd>(s.q.data() + e0, ne).cwiseAbs().maxCoeff();
+        converged = elastic().cwiseAbs().maxCoeff() <= 1e-12 * terms;
     }
     if (!converged)
         throw std::runtime_error("the beam has no static equilibrium under its weight with the hub held at this angle");
