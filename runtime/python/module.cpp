@@ -169,7 +169,7 @@ py::dict modes(const std::string& text, const std::string& name, const Overrides
             throw;
         }
     }
-    std::vector<double> omega, rad_s, hz, dimensionless, growth;
+    std::vector<double> omega, rad_s, hz, dimensionless, growth, undamped, zeta;
     std::vector<int> number;
     std::vector<std::string> kind;
     const double unit = frequency_unit(scene.parameters);
@@ -181,6 +181,8 @@ py::dict modes(const std::string& text, const std::string& name, const Overrides
         hz.push_back(m.rad_s / (2.0 * M_PI));
         dimensionless.push_back(m.rad_s / unit);
         growth.push_back(m.growth);
+        undamped.push_back(m.undamped_rad_s);
+        zeta.push_back(m.damping_ratio);
     }
     py::dict out;
     out["variant"] = key.name();
@@ -191,6 +193,8 @@ py::dict modes(const std::string& text, const std::string& name, const Overrides
     out["hz"] = py::array(py::cast(hz));
     out["dimensionless"] = py::array(py::cast(dimensionless));
     out["growth"] = py::array(py::cast(growth));
+    out["undamped_rad_s"] = py::array(py::cast(undamped));
+    out["damping_ratio"] = py::array(py::cast(zeta));
     return out;
 }
 

@@ -232,6 +232,14 @@ class ModesTest(unittest.TestCase):
         spinning = m["rad_s"][(m["omega"] == 4.0) & (m["kind"] == "bending")]
         self.assertGreater(spinning[0], at_rest[0])  # centrifugal stiffening
 
+    def test_damping_ratios_are_rayleighs(self):
+        # Rayleigh damping gives each mode at rest zeta = alpha / (2 omega) + beta omega / 2 (docs/model.md section 11).
+        alpha, beta = 0.05, 1e-3
+        m = hubbeam.modes(SPINUP, 0.0, nx=0, **{"damping.mass_proportional": alpha,
+                                                "damping.stiffness_proportional": beta})
+        for omega, zeta in zip(m["undamped_rad_s"], m["damping_ratio"]):
+            self.assertAlmostEqual(zeta, alpha / (2 * omega) + beta * omega / 2, places=9)
+
     def test_bad_spin_rates_raise_valueerror(self):
         torque = os.path.join(SOURCE, "cases", "torque_tau10.toml")
         for call in (lambda: hubbeam.modes(SPINUP, None), lambda: hubbeam.modes(SPINUP, "3"),

@@ -186,7 +186,8 @@ def run(scene: Any, *, check: bool = False, **keys: Any) -> Result:
 
 def modes(scene: Any, omega: Any = 0.0, **keys: Any) -> dict[str, Any]:
     """Every natural mode of the scene's variant linearized about a steady spin at each rate of omega (rad/s):
-    equal-length arrays omega, mode, kind, rad_s, hz, dimensionless, growth, and the variant's name."""
+    equal-length arrays omega, mode, kind, rad_s, hz, dimensionless, growth, undamped_rad_s, damping_ratio (zero
+    without damping), and the variant's name."""
     text, name = _source(scene)
     out = _core_call(_core.modes, text, name, _overrides(keys),
                      _rates(omega, "spin rates >= 0 (rad/s): a number or a list"))
