@@ -59,7 +59,7 @@ ModesOptions parse_modes_options(const ModesArgs& args, const Scene& scene)
     ModesOptions o;
     if (args.omega.empty()) {
         o.omegas = {0.0};
-        if (scene.motion.drive() == Drive::prescribed && scene.motion.omega0 != 0.0)
+        if (scene.motion.kind == Motion::Kind::spin_up && scene.motion.omega0 != 0.0)  // its steady rate
             o.omegas.push_back(std::abs(scene.motion.omega0));
     } else {
         o.omegas = parse_spin_rates("--omega", args.omega);
