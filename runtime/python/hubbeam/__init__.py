@@ -30,7 +30,9 @@ __all__ = ["run", "modes", "linearize", "sweep", "Result", "RunStopped", "scene_
 __version__ = _core.__version__
 
 _KEYS = dict(_core.scene_keys())                 # dotted name -> what it takes
-_LEAVES = {k.split(".", 1)[1]: k for k in _KEYS}  # "ny" -> "discretization.ny" (leaf names are unique)
+# "ny" -> "discretization.ny". A leaf two keys share is the later key's: file= is output.file, motion.file is set
+# by its dotted name (**{"motion.file": "rig.csv"}).
+_LEAVES = {k.split(".", 1)[1]: k for k in _KEYS}
 
 
 def printable(text: Any, cap: int = 400) -> str:
