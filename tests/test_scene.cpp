@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "output.hpp"
 #include "scene.hpp"
 
 using namespace hubbeam;
@@ -707,4 +708,20 @@ TEST_CASE("a bad [motion] of the new kinds, or a bad motion table, is refused na
         keyed(edited(spin, "kind = \"spun\""),
               "motion.kind", "one of \"spin-up\", \"torque\", \"held\", \"table\", \"torque-table\"");
     }
+}
+
+TEST_CASE("a run's summary says how the hub moves: held, from which table, from which angle", "[scene]")
+{
+    const auto first_line = [](const Scene& s) {
+        const std::string text = format_summary(RunSummary{}, s);
+        return text.substr(0, text.find('\n'));
+    };
+    CHECK(first_line(load_scene(case_path("held_gravity.toml"), {{"motion.angle", "0.25"}})) ==
+          "scene       " + case_path("held_gravity.toml") + " (hub held at theta = 0.25 rad)");
+    CHECK(first_line(load_scene(case_path("table_spinup.toml"), {{"motion.theta0", "-0.5"}})) ==
+          "scene       " + case_path("table_spinup.toml") + " (hub angle from " + case_path("table_spinup.csv") +
+              ", 121 rows to t = 30 s, natural cubic spline, theta0 = -0.5 rad)");
+    // The paper's scenes say what they always said.
+    CHECK(first_line(load_scene(case_path("torque_tau1.toml"))) ==
+          "scene       " + case_path("torque_tau1.toml") + " (hub torque tau0 = 1 N m for T_t = 10 s)");
 }
