@@ -148,9 +148,14 @@ class MessagesTest(unittest.TestCase):
             self.assertNotIn("\u202e", text)
         self.assertEqual(hubbeam.printable("a\x00b\nc\u2066\U000e0001"), "a\\x00b\\x0ac\\u2066\\U000e0001")
 
+    def test_a_leaf_name_that_two_tables_share_must_name_its_table(self):
+        with self.assertRaises(ValueError) as caught:
+            hubbeam.run(SPINUP, inertia=40.0)
+        self.assertIn("hub.inertia and tip.inertia", str(caught.exception))
+
     def test_a_nul_character_is_refused(self):
         with self.assertRaises(ValueError) as caught:
-            hubbeam.run(SPINUP, file="a\u0000b.csv")
+            hubbeam.run(SPINUP, **{"output.file": "a\u0000b.csv"})
         self.assertIn("NUL", str(caught.exception))
 
 

@@ -335,7 +335,7 @@ void check_tables(const toml::table& root, const std::string& path)
             fail(path, required, std::string("a table [") + required + "]", "nothing (the table is missing)");
 }
 
-/// [beam]: docs/model.md section 1, and the taper of section 10 (a taper kind without a ratio is refused: the
+/// [beam]: docs/model.md section 1, and the taper of section 11 (a taper kind without a ratio is refused: the
 /// default ratio 1 would make it uniform without a word).
 void read_beam(const Section& beam, Parameters& p, Taper& taper)
 {
@@ -351,7 +351,7 @@ void read_beam(const Section& beam, Parameters& p, Taper& taper)
         beam.refuse("tip_ratio", shortest(*r) + " without beam.taper = \"width\" or \"depth\"");
 }
 
-/// [tip], [damping], [gravity]: the extra terms of docs/model.md section 10; absent tables leave them out.
+/// [tip], [damping], [gravity]: the extra terms of docs/model.md section 11; absent tables leave them out.
 void read_extras(const toml::table& root, const std::string& path, Parameters& p)
 {
     const Section tip(path, root, "tip"), damping(path, root, "damping"), gravity(path, root, "gravity");
