@@ -27,12 +27,9 @@ namespace {
 
 constexpr std::size_t max_spin_rates = 10000;
 
-/// The angle a gravity scene's hub is held at for its modes (rad): a horizontal beam.
-double held_angle(const Scene& scene)
-{
-    (void)scene;
-    return 0.0;
-}
+/// The angle a gravity scene's hub is held at for its modes (rad): the scene's angle at t = 0 (a held hub's
+/// angle, theta0 of the other drives; 0 is a horizontal beam).
+double held_angle(const Scene& scene) { return scene.motion.initial_theta(); }
 
 /// Refuses a spin rate for a scene with gravity: its beam's weight turns with the hub, so there is no steady spin.
 void check_steady(const Scene& scene, const std::vector<double>& omegas)
@@ -75,7 +72,7 @@ ModesOptions parse_modes_options(const ModesArgs& args, const Scene& scene)
     ModesOptions o;
     if (args.omega.empty()) {
         o.omegas = {0.0};
-        if (scene.motion.drive() == Drive::prescribed && scene.motion.omega0 != 0.0 && scene.parameters.g == 0.0)
+        if (scene.motion.kind == Motion::Kind::spin_up && scene.motion.omega0 != 0.0 && scene.parameters.g == 0.0)
             o.omegas.push_back(std::abs(scene.motion.omega0));
     } else {
         o.omegas = parse_spin_rates("--omega", args.omega);

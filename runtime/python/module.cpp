@@ -162,10 +162,10 @@ py::dict modes(const std::string& text, const std::string& name, const Overrides
     {
         const py::gil_scoped_release release;
         try {
-            rows = campbell(*model, omegas, scene.axial);
+            rows = campbell(*model, omegas, scene.axial, scene.motion.initial_theta());  // held there under gravity
         } catch (const std::runtime_error&) {
             // Name the rate that has no steady state (ValueError) if that is what failed.
-            for (const double w : omegas) at_spin(w, [&] { return steady_spin(*model, w); });
+            for (const double w : omegas) at_spin(w, [&] { return steady_spin(*model, w, scene.motion.initial_theta()); });
             throw;
         }
     }
@@ -214,7 +214,8 @@ py::dict linearize(const std::string& text, const std::string& name, const Overr
     const Scene scene = scene_of(text, name, overrides);
     const VariantKey key = scene.key();
     const std::unique_ptr<Model> model = guarded(scene, [&] { return make_model(key, scene.parameters, scene.source); });
-    const StateSpace ss = at_spin(omega, [&] { return state_space(*model, steady_spin(*model, omega)); });
+    const StateSpace ss =
+        at_spin(omega, [&] { return state_space(*model, steady_spin(*model, omega, scene.motion.initial_theta())); });
     py::dict out;
     out["variant"] = key.name();
     out["A"] = matrix(ss.A);

@@ -155,7 +155,7 @@ class MessagesTest(unittest.TestCase):
 
     def test_a_nul_character_is_refused(self):
         with self.assertRaises(ValueError) as caught:
-            hubbeam.run(SPINUP, file="a\u0000b.csv")
+            hubbeam.run(SPINUP, **{"output.file": "a\u0000b.csv"})
         self.assertIn("NUL", str(caught.exception))
 
 

@@ -351,13 +351,15 @@ Simulation::Run::Run(const Simulation& simulation)
     summary_.algebra = system_.linear_algebra();
     summary_.stepper = sim_.stepper_;
     summary_.stepper_why = sim_.stepper_why_;
+    // At rest, the free hub at its initial angle (q[0], the first state: kept_coordinates keeps it first).
+    if (model_.key().drive == Drive::torque) y_[0] = scene_.motion.initial_theta();
     // The invariant monitor starts after the drive's last breakpoint, from where its Jacobi integral is constant.
     const std::vector<double> all_breaks = scene_.motion.breakpoints();
     summary_.t_steady = all_breaks.empty() ? 0.0 : *std::max_element(all_breaks.begin(), all_breaks.end());
     const double t_end = scene_.output.t_end;
     check_window_ = std::min(t_end, std::max(t_end * check_window_fraction, scene_.output.dt_out));
     start_window_.t0 = 0.0;
-    start_window_.y0 = y_;  // at rest
+    start_window_.y0 = y_;  // the initial state
 }
 
 RunSummary Simulation::Run::operator()(const RowSink& sink, const StopRequest& stop)
@@ -661,10 +663,9 @@ std::string Simulation::Run::tolerance_as_cause(const std::string& failure)
         if (at_row ? times_(i) >= t_ * (1.0 - same_instant) : times_(i) > t_ * (1.0 + same_instant)) break;
     }
     if (times.empty()) return failure;
-    const std::vector<double> rest(static_cast<std::size_t>(system_.size()), 0.0);
     summary_.check_rtol = tol.rtol;
     summary_.check_atol = tol.atol;
-    const std::vector<Row> again = rerun(scene_, model_, 0.0, rest, times, tol);
+    const std::vector<Row> again = rerun(scene_, model_, 0.0, start_window_.y0, times, tol);  // the run's start
     if (again.size() < times.size()) return failure;  // the model fails there at the tighter tolerance too
     // What happened, without the clauses that blame the model.
     std::string what = failure.substr(0, std::min({failure.find(" ("), failure.find("; "), failure.find(", above")}));

@@ -16,10 +16,12 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <string_view>
 
+#include "csv_columns.hpp"
 #include "integrate.hpp"
 #include "shortest.hpp"
 
@@ -37,8 +39,12 @@ namespace {
 
 constexpr const char* missing = "nothing (the key is missing)";
 
-// The words of motion.kind; the key table's motion_kind entries are among them (tests/test_scene.cpp).
-const WordTable<Motion::Kind, 2> kind_words = {{Motion::Kind::spin_up, "spin-up"}, {Motion::Kind::torque, "torque"}};
+// The words of motion.kind; the key table's motion_kinds entries are among them (tests/test_scene.cpp).
+const WordTable<Motion::Kind, 5> kind_words = {{Motion::Kind::spin_up, "spin-up"},
+                                               {Motion::Kind::torque, "torque"},
+                                               {Motion::Kind::held, "held"},
+                                               {Motion::Kind::table, "table"},
+                                               {Motion::Kind::torque_table, "torque-table"}};
 
 std::vector<std::string> motion_kinds() { return all_words(kind_words); }
 
@@ -73,9 +79,13 @@ std::vector<SceneKey> make_scene_keys()
         {"damping.stiffness_proportional", nullptr, K::number, "a number >= 0 (beta, s)"},
         {"gravity.g", nullptr, K::number, "a finite number (g, m/s^2)"},
         {"motion.kind", nullptr, K::word, one_of(motion_kinds())},
-        {"motion.omega0", nullptr, K::number, "a finite number (Omega0, rad/s)", "spin-up"},
-        {"motion.tau0", nullptr, K::number, "a finite number (tau0, N m)", "torque"},
-        {"motion.duration", nullptr, K::number, "a number > 0 (T_s or T_t, s)"},
+        {"motion.omega0", nullptr, K::number, "a finite number (Omega0, rad/s)", {"spin-up"}},
+        {"motion.tau0", nullptr, K::number, "a finite number (tau0, N m)", {"torque"}},
+        {"motion.duration", nullptr, K::number, "a number > 0 (T_s or T_t, s)", {"spin-up", "torque"}},
+        {"motion.theta0", nullptr, K::number, "a finite number (theta0, rad)", {"spin-up", "torque", "table", "torque-table"}},
+        {"motion.angle", nullptr, K::number, "a finite number (the hub angle, rad)", {"held"}},
+        {"motion.file", nullptr, K::text, "a CSV file with columns t, theta (table) or t, tau (torque-table)",
+         {"table", "torque-table"}},
         {"discretization.method", "--method", K::word, one_of(words<Method>())},
         {"discretization.ny", "--ny", K::integer, "an integer >= 1 (Ny)"},
         {"discretization.nx", "--nx", K::integer, "an integer >= 0 (Nx)"},
@@ -182,6 +192,12 @@ public:
         return static_cast<int>(i->get());
     }
 
+    std::string required_string(std::string_view key) const
+    {
+        if (const auto v = string(key)) return *v;
+        fail(file_, path(key), expected(path(key)), missing);
+    }
+
     std::optional<std::string> string(std::string_view key) const
     {
         const toml::node* n = get(key);
@@ -223,7 +239,8 @@ bool parse_enum(std::string_view w, E& e)
     return hubbeam::parse(w, e);
 }
 
-std::string read_file(const std::string& path)
+/// A file's text, at most cap + 1 bytes of it (the caller refuses more).
+std::string read_file(const std::string& path, std::size_t cap = max_scene_bytes)
 {
     // Checked before opening: open() on a FIFO waits for a writer, and a device or a directory is no scene.
     if (const std::string kind = not_a_regular_file(path); !kind.empty())
@@ -231,7 +248,7 @@ std::string read_file(const std::string& path)
     std::ifstream in(path, std::ios::binary);
     if (!in) throw SceneError::with_detail(path, "", std::string("cannot open: ") + std::strerror(errno));
     // Read at most one byte past the cap: a scene is a few kilobytes, and /dev/zero never ends.
-    std::string text(max_scene_bytes + 1, '\0');
+    std::string text(cap + 1, '\0');
     in.read(text.data(), static_cast<std::streamsize>(text.size()));
     if (in.bad()) throw SceneError::with_detail(path, "", std::string("cannot read: ") + std::strerror(errno));
     text.resize(static_cast<std::size_t>(in.gcount()));
@@ -348,26 +365,148 @@ void read_extras(const toml::table& root, const std::string& path, Parameters& p
     p.g = gravity.number("g", p.g);
 }
 
-/// [motion]: paper eq. 58 (spin-up) or eq. 59 (torque); the kind decides which keys the table may hold.
-void read_motion(const Section& motion, Motion& m)
+std::string_view trimmed(std::string_view s)
 {
-    m.kind = motion.required_word<Motion::Kind>("kind", parse_kind);
-    motion.only(word_of(m.kind, kind_words));
-    if (m.kind == Motion::Kind::spin_up) {
-        m.omega0 = motion.required_number("omega0");
-        m.spin_time = motion.required_number("duration");
-    } else {
-        m.tau0 = motion.required_number("tau0");
-        m.torque_time = motion.required_number("duration");
+    const std::size_t first = s.find_first_not_of(" \t");
+    if (first == std::string_view::npos) return {};
+    return s.substr(first, s.find_last_not_of(" \t") - first + 1);
+}
+
+/// A motion table's problem: "SCENE: motion.file: WHERE: WHAT" (WHERE the CSV file, with its line if one is at fault).
+[[noreturn]] void table_fail(const std::string& scene, const std::string& where, const std::string& what)
+{
+    throw SceneError::with_detail(scene, "motion.file", where + ": " + what);
+}
+
+/// The table of motion.file: columns t and `column` (found by name, in any order among others), one row a line,
+/// read and checked whole before anything runs. file is already resolved against the scene's folder.
+std::shared_ptr<const DriveTable> read_drive_table(const std::string& scene, const std::string& file,
+                                                   const char* column, const char* meaning,
+                                                   DriveTable::Interpolation interpolation)
+{
+    std::string text;
+    try {
+        text = read_file(file, max_table_bytes);  // the scene's own reader: FIFOs, devices, folders refused
+    } catch (const SceneError& e) {
+        table_fail(scene, printable(file, 400), e.detail);
+    }
+    if (text.size() > max_table_bytes)
+        table_fail(scene, printable(file, 400),
+                   "is larger than a motion table can be (" + std::to_string(max_table_bytes >> 20) + " MB)");
+    const std::string label = printable(file, 400);
+    if (text.rfind("\xef\xbb\xbf", 0) == 0) text.erase(0, 3);  // a spreadsheet's byte-order mark
+
+    std::optional<CsvColumns> columns;
+    std::size_t t_at = 0, v_at = 0;
+    std::vector<double> t, v;
+    std::vector<long> lines;  // each row's line, for the checks across rows
+    long line_no = 0;
+    for (std::size_t pos = 0; pos < text.size();) {
+        std::size_t end = text.find('\n', pos);
+        if (end == std::string::npos) end = text.size();
+        std::string_view line(text.data() + pos, end - pos);
+        pos = end + 1;
+        ++line_no;
+        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+        if (trimmed(line).empty()) continue;
+        const std::string where = label + ":" + std::to_string(line_no);
+        std::vector<std::string> fields = csv_fields(line);
+        for (std::string& f : fields) f = std::string(trimmed(f));
+        if (!columns) {  // the header: "t, theta" as well as "t,theta"
+            std::string header;
+            for (const std::string& f : fields) header += (header.empty() ? "" : ",") + f;
+            columns.emplace(where, header);
+            try {
+                t_at = columns->at("t", "time, s");
+                v_at = columns->at(column, meaning);
+            } catch (const CsvColumnError& e) {
+                throw SceneError::with_detail(scene, "motion.file", e.what());
+            }
+            continue;
+        }
+        if (fields.size() != columns->size())
+            table_fail(scene, where,
+                       "expected " + std::to_string(columns->size()) + " fields as the header has, got " +
+                           std::to_string(fields.size()));
+        const auto number = [&](std::size_t at, const std::string& name) {
+            const std::string& f = fields[at];
+            double x = 0.0;
+            const auto [stop, ec] = std::from_chars(f.data(), f.data() + f.size(), x);
+            if (ec != std::errc() || stop != f.data() + f.size() || !std::isfinite(x))
+                table_fail(scene, where,
+                           "expected a finite number in column " + name + ", got \"" + printable(f, 40) + "\"");
+            return x;
+        };
+        t.push_back(number(t_at, "t"));
+        v.push_back(number(v_at, column));
+        lines.push_back(line_no);
+        if (t.size() >= 2 && !(t.back() > t[t.size() - 2]))
+            table_fail(scene, where,
+                       "expected times that increase strictly, got t = " + shortest(t.back()) + " after t = " +
+                           shortest(t[t.size() - 2]) + " (line " + std::to_string(lines[lines.size() - 2]) + ")");
+    }
+    if (!columns) table_fail(scene, label, "expected a header line with columns t, " + std::string(column) + ", got an empty file");
+    const std::size_t need = DriveTable::min_rows(interpolation);
+    if (t.size() < need)
+        table_fail(scene, label,
+                   "expected at least " + std::to_string(need) + " rows" +
+                       (interpolation == DriveTable::Interpolation::cubic_spline ? " (a cubic spline)" : "") + ", got " +
+                       std::to_string(t.size()));
+    try {
+        return std::make_shared<const DriveTable>(std::move(t), std::move(v), interpolation);
+    } catch (const std::invalid_argument& e) {
+        table_fail(scene, label, e.what());
     }
 }
 
-/// [hub]: the hub inertia only enters the torque case, where theta is a coordinate.
+/// motion.file as a path: relative to the scene file's folder (a scene and its table travel together).
+std::string table_path(const std::string& scene, const std::string& file)
+{
+    const std::filesystem::path p(file);
+    if (p.is_absolute() || scene.empty()) return file;
+    return (std::filesystem::path(scene).parent_path() / p).lexically_normal().string();
+}
+
+/// [motion]: paper eq. 58 (spin-up) or eq. 59 (torque), a held hub, or a table of theta or tau against time; the
+/// kind decides which keys the table may hold.
+void read_motion(const Section& motion, const std::string& path, Motion& m)
+{
+    m.kind = motion.required_word<Motion::Kind>("kind", parse_kind);
+    motion.only(word_of(m.kind, kind_words));
+    switch (m.kind) {
+    case Motion::Kind::spin_up:
+        m.omega0 = motion.required_number("omega0");
+        m.spin_time = motion.required_number("duration");
+        break;
+    case Motion::Kind::torque:
+        m.tau0 = motion.required_number("tau0");
+        m.torque_time = motion.required_number("duration");
+        break;
+    case Motion::Kind::held: m.angle = motion.required_number("angle"); break;
+    case Motion::Kind::table:
+    case Motion::Kind::torque_table: {
+        const std::string file = motion.required_string("file");
+        if (file.empty()) motion.refuse("file", "an empty one");
+        const bool angle = m.kind == Motion::Kind::table;
+        m.table_file = table_path(path, file);
+        // The angle's rate and acceleration enter the equations: a C2 spline. A torque enters as it is, and a
+        // test rig's record is piecewise constant or linear: straight lines, each row a breakpoint, so a step
+        // stays a step (a spline would overshoot it).
+        m.table = read_drive_table(path, m.table_file, angle ? "theta" : "tau", angle ? "the hub angle, rad" : "the hub torque, N m",
+                                   angle ? DriveTable::Interpolation::cubic_spline : DriveTable::Interpolation::linear);
+        break;
+    }
+    }
+    m.theta0 = motion.number("theta0", m.theta0);
+}
+
+/// [hub]: the hub inertia only enters the torque drives, where theta is a coordinate.
 void read_hub(const Section& hub, Motion::Kind kind, Parameters& p)
 {
     hub.only();
     p.a = hub.number("radius", p.a);
-    if (kind == Motion::Kind::torque) p.J_oh = hub.required_number("inertia", ", required for kind = \"torque\"");
+    if (kind == Motion::Kind::torque || kind == Motion::Kind::torque_table)
+        p.J_oh = hub.required_number("inertia", ", required for kind = \"" + word_of(kind, kind_words) + "\"");
     else p.J_oh = hub.number("inertia", p.J_oh);
 }
 
@@ -564,7 +703,8 @@ std::vector<std::string> table_keys(const std::string& table, const std::string&
 {
     std::vector<std::string> leaves;
     for (const SceneKey& k : scene_keys())
-        if (k.table() == table && (k.motion_kind == nullptr || motion_kind.empty() || motion_kind == k.motion_kind))
+        if (k.table() == table && (k.motion_kinds.empty() || motion_kind.empty() ||
+                                   std::find(k.motion_kinds.begin(), k.motion_kinds.end(), motion_kind) != k.motion_kinds.end()))
             leaves.push_back(k.leaf());
     return leaves;
 }
@@ -585,7 +725,7 @@ Scene parse_scene(std::string_view text, const std::string& path, const Override
     scene.path = path;
     read_beam(Section(path, root, "beam"), scene.parameters, scene.variant.extras.taper);
     read_extras(root, path, scene.parameters);
-    read_motion(Section(path, root, "motion"), scene.motion);
+    read_motion(Section(path, root, "motion"), path, scene.motion);
     read_hub(Section(path, root, "hub"), scene.motion.kind, scene.parameters);
     read_discretization(Section(path, root, "discretization"), scene.motion, scene.variant);
     read_model(Section(path, root, "model"), scene);
@@ -611,13 +751,22 @@ void validate(const Scene& s)
         if (!(v >= 0.0) || !std::isfinite(v)) fail(s.path, key, expected(key), shortest(v));
     check_finite(s, p.g, "gravity.g");
 
-    if (s.motion.kind == Motion::Kind::spin_up) {
+    switch (s.motion.kind) {
+    case Motion::Kind::spin_up:
         check_finite(s, s.motion.omega0, "motion.omega0");
         check_positive(s, s.motion.spin_time, "motion.duration");
-    } else {
+        break;
+    case Motion::Kind::torque:
         check_finite(s, s.motion.tau0, "motion.tau0");
         check_positive(s, s.motion.torque_time, "motion.duration");
+        break;
+    case Motion::Kind::held: check_finite(s, s.motion.angle, "motion.angle"); break;
+    case Motion::Kind::table:
+    case Motion::Kind::torque_table:
+        if (!s.motion.table) fail(s.path, "motion.file", expected("motion.file"), missing);
+        break;
     }
+    if (s.motion.kind != Motion::Kind::held) check_finite(s, s.motion.theta0, "motion.theta0");
 
     // DOF counts: a problem that persists with nx = 0 is about ny.
     const VariantKey& key = s.variant;
@@ -653,6 +802,15 @@ void validate(const Scene& s)
              "at most " + std::to_string(max_output_rows) + " rows (output.t_end / output.dt_out)",
              shortest(s.output.t_end / s.output.dt_out) + " rows (t_end = " + shortest(s.output.t_end) +
                  ", dt_out = " + shortest(s.output.dt_out) + ")");
+
+    // A table is not extrapolated: a run past its rows would make up a drive no one wrote down.
+    const bool tabled = s.motion.kind == Motion::Kind::table || s.motion.kind == Motion::Kind::torque_table;
+    if (const DriveTable* t = s.motion.table.get();
+        tabled && (t->first_time() > 0.0 || t->last_time() < s.output.t_end))
+        table_fail(s.path, printable(s.motion.table_file, 400),
+                   "its rows cover t = " + shortest(t->first_time()) + " to " + shortest(t->last_time()) +
+                       " s, the run needs t = 0 to output.t_end = " + shortest(s.output.t_end) +
+                       " s (a table is not extrapolated: extend it or shorten the run)");
 }
 
 std::string option_name(const SceneKey& k)
