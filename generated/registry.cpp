@@ -32,6 +32,22 @@ extern const Variant fem_nx16_ny16_prescribed_first;
 extern const Variant fem_nx16_ny16_torque_first;
 extern const Variant fem_nx32_ny32_prescribed_first;
 extern const Variant fem_nx32_ny32_torque_first;
+extern const Variant amm_nx4_ny4_torque_first_tip_gravity_damped_width;
+extern const Variant amm_nx0_ny4_prescribed_first_tip_gravity_damped_depth;
+extern const Variant amm_nx4_ny4_prescribed_zero_tip_gravity_damped_width;
+extern const Variant amm_nx0_ny4_torque_zero_tip_gravity_damped_depth;
+extern const Variant fem_nx4_ny4_torque_first_tip_gravity_damped_depth;
+extern const Variant fem_nx0_ny4_prescribed_first_tip_gravity_damped_width;
+extern const Variant fem_nx4_ny4_prescribed_zero_tip_gravity_damped_depth;
+extern const Variant fem_nx0_ny4_torque_zero_tip_gravity_damped_width;
+extern const Variant bim_nx4_ny4_torque_first_tip_gravity_damped_width;
+extern const Variant bim_nx0_ny4_prescribed_first_tip_gravity_damped_depth;
+extern const Variant bim_nx4_ny4_prescribed_zero_tip_gravity_damped_width;
+extern const Variant bim_nx0_ny4_torque_zero_tip_gravity_damped_depth;
+extern const Variant bsim_nx4_ny4_torque_first_tip_gravity_damped_depth;
+extern const Variant bsim_nx0_ny4_prescribed_first_tip_gravity_damped_width;
+extern const Variant bsim_nx4_ny4_prescribed_zero_tip_gravity_damped_depth;
+extern const Variant bsim_nx0_ny4_torque_zero_open_tip_gravity_damped_width;
 
 const Variant* const variants[] = {
     &amm_nx0_ny4_prescribed_first,
@@ -60,7 +76,23 @@ const Variant* const variants[] = {
     &fem_nx16_ny16_torque_first,
     &fem_nx32_ny32_prescribed_first,
     &fem_nx32_ny32_torque_first,
+    &amm_nx4_ny4_torque_first_tip_gravity_damped_width,
+    &amm_nx0_ny4_prescribed_first_tip_gravity_damped_depth,
+    &amm_nx4_ny4_prescribed_zero_tip_gravity_damped_width,
+    &amm_nx0_ny4_torque_zero_tip_gravity_damped_depth,
+    &fem_nx4_ny4_torque_first_tip_gravity_damped_depth,
+    &fem_nx0_ny4_prescribed_first_tip_gravity_damped_width,
+    &fem_nx4_ny4_prescribed_zero_tip_gravity_damped_depth,
+    &fem_nx0_ny4_torque_zero_tip_gravity_damped_width,
+    &bim_nx4_ny4_torque_first_tip_gravity_damped_width,
+    &bim_nx0_ny4_prescribed_first_tip_gravity_damped_depth,
+    &bim_nx4_ny4_prescribed_zero_tip_gravity_damped_width,
+    &bim_nx0_ny4_torque_zero_tip_gravity_damped_depth,
+    &bsim_nx4_ny4_torque_first_tip_gravity_damped_depth,
+    &bsim_nx0_ny4_prescribed_first_tip_gravity_damped_width,
+    &bsim_nx4_ny4_prescribed_zero_tip_gravity_damped_depth,
+    &bsim_nx0_ny4_torque_zero_open_tip_gravity_damped_width,
 };
-const int variant_count = 26;
+const int variant_count = 42;
 
 }  // namespace hubbeam::generated

@@ -248,7 +248,7 @@ Energies derive_energies(const VariantKey& key, const Symbols& s, const PolyRead
     const FieldSymbols f;
     DensityIntegrator integrate(s, f, key, integrals, read);
     const Extras& x = key.extras;
-    // The section's area and second moment over the root's (docs/model.md section 10): a width taper scales both
+    // The section's area and second moment over the root's (docs/model.md section 11): a width taper scales both
     // linearly, a depth taper the area linearly and the second moment as the cube.
     const ex area = x.taper == Taper::uniform ? ex(1) : 1 + (s.tip_ratio - 1) * f.xi;
     const ex moment = x.taper == Taper::depth ? pow(area, 3) : area;

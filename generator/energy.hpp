@@ -16,7 +16,7 @@ namespace hubbeam::gen {
 struct Symbols {
     // Physical parameters; m = rho S, EI and ES are formed from p = (L, rho, S, I, E, a, J_oh).
     GiNaC::symbol L{"L"}, m{"m"}, EI{"EI"}, ES{"ES"}, a{"a"}, J_oh{"J_oh"};
-    // The extra terms' parameters (docs/model.md section 10), read only by variants that carry the terms.
+    // The extra terms' parameters (docs/model.md section 11), read only by variants that carry the terms.
     GiNaC::symbol m_tip{"m_tip"}, J_tip{"J_tip"}, g{"g"}, alpha{"alpha"}, beta{"beta"}, tip_ratio{"tip_ratio"};
     // A gravity variant's sin(theta) and cos(theta): inputs, or under torque functions of the coordinate theta.
     GiNaC::symbol sin_theta{"sin_theta"}, cos_theta{"cos_theta"};
@@ -49,7 +49,7 @@ GiNaC::ex velocity_squared(Order order, const FieldSymbols& f, const GiNaC::ex& 
 
 /// T = 1/2 J_oh theta_dot^2 + 1/2 int m |r_dot|^2 dx and U = 1/2 int (ES u_x1'^2 + EI u_y''^2) dx, over the
 /// parameter and variable symbols of read; with the key's extras, the tip body's, gravity's, the taper's and the
-/// dissipation function's terms of docs/model.md section 10.
+/// dissipation function's terms of docs/model.md section 11.
 Energies derive_energies(const VariantKey& key, const Symbols& s, const PolyReader& read);
 
 }  // namespace hubbeam::gen

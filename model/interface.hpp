@@ -8,7 +8,7 @@
 namespace hubbeam {
 
 /// Index of each physical parameter in the packed vector p (SI units; docs/model.md section 1).
-/// The paper's seven come first; the rest (tip body, gravity, Rayleigh damping, taper; docs/model.md section 10)
+/// The paper's seven come first; the rest (tip body, gravity, Rayleigh damping, taper; docs/model.md section 11)
 /// are read only by the variants that carry those terms, so the paper's variants read p[0..6] as before.
 enum class Param : std::size_t { L, rho, S, I, E, a, J_oh, m_tip, J_tip, g, alpha, beta, tip_ratio };
 inline constexpr std::size_t param_count = 13;
@@ -34,7 +34,7 @@ constexpr std::size_t index(AngleValue u) { return static_cast<std::size_t>(u); 
 
 /// Physical parameters (SI): beam length, density, cross-section, second moment, Young's modulus, hub
 /// radius, hub inertia. The defaults are the beam of Kane, Ryan & Banerjee (docs/model.md section 6). Then the
-/// extra terms' values (docs/model.md section 10): tip mass and rotary inertia, gravity, Rayleigh damping
+/// extra terms' values (docs/model.md section 11): tip mass and rotary inertia, gravity, Rayleigh damping
 /// (alpha 1/s, beta s) and the taper's tip-to-root ratio of the tapered dimension; at these defaults a variant
 /// that carries the terms equals one that does not.
 struct Parameters {

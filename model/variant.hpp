@@ -21,11 +21,11 @@ enum class Order { zero, first, full };
 /// Prescribed hub rotation theta(t) (no hub equation) or applied hub torque tau(t) (theta is a coordinate).
 enum class Drive { prescribed, torque };
 
-/// How the beam's section varies along the span (docs/model.md section 10): uniform, or a linear taper of its
+/// How the beam's section varies along the span (docs/model.md section 11): uniform, or a linear taper of its
 /// width (S and I both linear in x) or of its depth (S linear, I cubic).
 enum class Taper { uniform, width, depth };
 
-/// The terms beyond the paper's beam a variant carries (docs/model.md section 10). Each is structure: it adds
+/// The terms beyond the paper's beam a variant carries (docs/model.md section 11). Each is structure: it adds
 /// terms to T, U or the dissipation function D, whose values (Param::m_tip, ...) are read at run time. A scene
 /// that does not use a term runs the variant without it.
 struct Extras {

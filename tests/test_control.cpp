@@ -157,7 +157,7 @@ TEST_CASE("an integral term removes the steady error that gravity's torque leave
 
 TEST_CASE("with damping, E + dissipated - work stays constant, and the run's monitor checks it", "[control]")
 {
-    // docs/model.md section 9: d/dt (T + U) = -2 D + tau theta_dot. The paper's torque pulse on a damped beam (the
+    // docs/model.md section 11.4: d/dt (T + U) = -2 D + tau theta_dot. The paper's torque pulse on a damped beam (the
     // work an independent trapezoid of tau theta_dot over the rows), and a controlled spin-up.
     SECTION("torque pulse")
     {

@@ -72,15 +72,21 @@ SceneLines torque_scene()
     return s;
 }
 
-/// A controlled hub following a step: the scene whose [control] and step keys the tables' rows are checked in.
-SceneLines controlled_step()
+/// The spin-up scene with its [motion] of another kind: `motion` replaces the spin-up's motion keys.
+SceneLines other_motion(const SceneLines& motion)
 {
     SceneLines s;
     for (const auto& [key, value] : spin_up) {
-        if (key == "motion.kind") s.emplace_back(key, "\"step\"");
-        else if (key == "motion.omega0") s.emplace_back("motion.angle", "0.5");
-        else if (key != "motion.duration") s.emplace_back(key, value);
+        if (key == "motion.kind") s.insert(s.end(), motion.begin(), motion.end());
+        else if (key.rfind("motion.", 0) != 0) s.emplace_back(key, value);
     }
+    return s;
+}
+
+/// A controlled hub following a step: the scene whose [control] keys the tables' rows are checked in.
+SceneLines controlled_step()
+{
+    SceneLines s = other_motion({{"motion.kind", "\"step\""}, {"motion.angle", "0.5"}});
     s.emplace_back("hub.inertia", "30.0");
     s.emplace_back("control.kp", "64.0");
     s.emplace_back("control.kd", "90.0");
@@ -116,6 +122,9 @@ void check_same(const Scene& a, const Scene& b)
     CHECK(a.motion.spin_time == b.motion.spin_time);
     CHECK(a.motion.tau0 == b.motion.tau0);
     CHECK(a.motion.torque_time == b.motion.torque_time);
+    CHECK(a.motion.theta0 == b.motion.theta0);
+    CHECK(a.motion.angle == b.motion.angle);
+    CHECK(a.motion.table_file == b.motion.table_file);
     CHECK(a.variant == b.variant);
     CHECK(a.source == b.source);
     CHECK(a.axial == b.axial);
@@ -181,7 +190,11 @@ TEST_CASE("docs/scene.md's defaults are the ones a scene gets, and its required 
             ++defaults;
         } else if (cell.rfind("required", 0) == 0) {
             bool held = false;
-            for (const SceneLines& scene : {spin_up, torque_scene(), controlled_step()}) {
+            const SceneLines held_hub = other_motion({{"motion.kind", "\"held\""}, {"motion.angle", "0.5"}});
+            const SceneLines from_table = other_motion(
+                {{"motion.kind", "\"table\""},
+                 {"motion.file", "\"" + std::string(HUBBEAM_SOURCE_DIR) + "/cases/table_spinup.csv\""}});
+            for (const SceneLines& scene : {spin_up, torque_scene(), held_hub, from_table, controlled_step()}) {
                 bool holds = false;
                 for (const auto& line : scene) holds = holds || line.first == name;
                 if (!holds) continue;

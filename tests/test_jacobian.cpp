@@ -66,15 +66,27 @@ void rate_and_time_reference(FirstOrderSystem& sys, const Model& model, const Mo
         yp[j] = ym[j] = y[j];
     }
     const HubInput u = motion.at(t), r = motion.rate(t);
-    const HubInput up{u.tau + r.tau, u.theta_dot + r.theta_dot, u.theta_ddot + r.theta_ddot};
-    const HubInput down{u.tau - r.tau, u.theta_dot - r.theta_dot, u.theta_ddot - r.theta_ddot};
+    const HubInput up{u.tau + r.tau, u.theta_dot + r.theta_dot, u.theta_ddot + r.theta_ddot, u.theta};
+    const HubInput down{u.tau - r.tau, u.theta_dot - r.theta_dot, u.theta_ddot - r.theta_ddot, u.theta};
     Eigen::VectorXd Qp(n), Qm(n);
     model.forces(up, y.data(), y.data() + n, Qp.data());
     model.forces(down, y.data(), y.data() + n, Qm.data());
+    Eigen::VectorXd dQdt = (Qp - Qm) / 2.0;
+    // A prescribed variant with gravity also reads the angle, through sin and cos: its part dQ/dtheta theta_dot by
+    // a small central difference (Q is not polynomial in theta).
+    if (model.key().extras.gravity && model.key().drive == Drive::prescribed) {
+        const double h = 1e-5;
+        HubInput ahead = u, behind = u;
+        ahead.theta += h;
+        behind.theta -= h;
+        model.forces(ahead, y.data(), y.data() + n, Qp.data());
+        model.forces(behind, y.data(), y.data() + n, Qm.data());
+        dQdt += u.theta_dot * (Qp - Qm) / (2.0 * h);
+    }
     Eigen::MatrixXd M(n, n);
     model.mass(u, y.data(), M.data());
     dfdt.head(n).setZero();
-    dfdt.tail(n) = M.partialPivLu().solve(Eigen::VectorXd((Qp - Qm) / 2.0));
+    dfdt.tail(n) = M.partialPivLu().solve(dQdt);
 }
 
 /// The four nq x nq blocks of a row-major 2nq x 2nq Jacobian, as (row block, column block).
@@ -92,6 +104,18 @@ TEST_CASE("generated Jacobian equals central differences of the right-hand side"
     // and order full, compiled on demand, where M depends on B under either drive (the mass_q_product kernel)
     for (const char* full : {"amm_nx2_ny3_prescribed_full", "fem_nx2_ny4_torque_full", "bsim_nx3_ny4_prescribed_full"})
         names.emplace_back(full);
+    // and the extra terms (docs/model.md section 11) under both drives, where gravity brings the angle into Q: under
+    // torque through the coordinate theta (the generator's chain rule through sin and cos), prescribed through the
+    // drive's angle (Model::forces_theta in dfdt)
+    for (const char* extra : {"amm_nx0_ny3_torque_first_tip_gravity_damped_width", "bim_nx2_ny3_prescribed_first_tip_gravity_damped_depth",
+                              "fem_nx2_ny4_torque_full_tip_gravity"})
+        names.emplace_back(extra);
+    p.m_tip = 0.8;
+    p.J_tip = 0.05;
+    p.g = 9.81;
+    p.alpha = 0.3;
+    p.beta = 2e-3;
+    p.tip_ratio = 0.6;
     for (const std::string& name : names) {
         const VariantKey key = VariantKey::parse(name);
         SECTION(key.name())

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "output.hpp"
 #include "scene.hpp"
 
 using namespace hubbeam;
@@ -395,19 +396,27 @@ TEST_CASE("a table accepts exactly the keys the key table gives it, [motion] tho
 {
     // Each key of the table, set in each paper case (as an override, which puts it into the parsed file), is
     // either accepted or refused for its value, never as unknown; a [motion] key of the other kind is unknown.
-    const std::vector<std::string> kinds = {"spin-up", "torque", "step"};
-    const std::map<std::string, std::string> files = {{"spin-up", case_path("spinup_omega4.toml")},
-                                                      {"torque", case_path("torque_tau10.toml")},
-                                                      {"step", case_path("controlled_step.toml")}};
+    const std::vector<std::string> kinds = {"spin-up", "torque", "held", "table", "torque-table", "step"};
+    const TempDir dir;
+    dir.write("rig.csv", "t,tau\n0,0\n1,1\n40,0\n");
+    const std::map<std::string, std::string> files = {
+        {"spin-up", case_path("spinup_omega4.toml")},
+        {"torque", case_path("torque_tau10.toml")},
+        {"held", case_path("held_gravity.toml")},
+        {"table", case_path("table_spinup.toml")},
+        {"torque-table", dir.write("rig.toml", edited("kind = \"spin-up\"\nomega0 = 4.0\nduration = 15.0",
+                                                      "kind = \"torque-table\"\nfile = \"rig.csv\"") +
+                                             "[hub]\ninertia = 30.0\n")},
+        {"step", case_path("controlled_step.toml")}};
     for (const SceneKey& key : scene_keys()) {
-        if (key.motion_kind != nullptr)
-            CHECK(std::find(kinds.begin(), kinds.end(), key.motion_kind) != kinds.end());
+        for (const std::string& k : key.motion_kinds) CHECK(std::find(kinds.begin(), kinds.end(), k) != kinds.end());
         const std::string value = key.kind == SceneKey::Kind::integer  ? "4"
                                   : key.kind == SceneKey::Kind::number ? "0.5"
                                                                        : "x";
         for (const std::string& kind : kinds) {
             INFO(key.name << " = " << value << " in a " << kind << " scene");
-            const bool belongs = key.motion_kind == nullptr || key.motion_kind == kind;
+            const bool belongs = key.motion_kinds.empty() ||
+                                 std::find(key.motion_kinds.begin(), key.motion_kinds.end(), kind) != key.motion_kinds.end();
             std::string got;
             try {
                 load_scene(files.at(kind), {{key.name, value}});
@@ -431,8 +440,13 @@ TEST_CASE("a table accepts exactly the keys the key table gives it, [motion] tho
         CHECK(e.got == "an unknown key");
     }
     // The parameters of the paper's two motions: Omega0 and T_s (eq. 58), tau0 and T_t (eq. 59).
-    CHECK(table_keys("motion", "spin-up") == std::vector<std::string>{"kind", "omega0", "duration"});
-    CHECK(table_keys("motion", "torque") == std::vector<std::string>{"kind", "tau0", "duration"});
+    CHECK(table_keys("motion", "spin-up") == std::vector<std::string>{"kind", "omega0", "duration", "theta0"});
+    CHECK(table_keys("motion", "torque") == std::vector<std::string>{"kind", "tau0", "duration", "theta0"});
+    // A held hub has its angle only; a table its file, and the angle it starts from.
+    CHECK(table_keys("motion", "held") == std::vector<std::string>{"kind", "angle"});
+    CHECK(table_keys("motion", "step") == std::vector<std::string>{"kind", "angle"});
+    CHECK(table_keys("motion", "table") == std::vector<std::string>{"kind", "theta0", "file"});
+    CHECK(table_keys("motion", "torque-table") == std::vector<std::string>{"kind", "theta0", "file"});
     CHECK(scene_tables() == std::vector<std::string>{"beam", "hub", "tip", "damping", "gravity", "motion", "control",
                                                      "discretization", "model", "solver", "output"});
 }
@@ -533,4 +547,183 @@ TEST_CASE("output.file holds a file name: no NUL inside, not empty", "[scene]")
             }
         }
     }
+}
+
+TEST_CASE("the held, table and torque-table scenes in cases/ and in files parse to their values", "[scene]")
+{
+    SECTION("held under gravity")
+    {
+        const Scene s = load_scene(case_path("held_gravity.toml"));
+        CHECK(s.motion.kind == Motion::Kind::held);
+        CHECK(s.motion.angle == 0.0);
+        CHECK(s.motion.drive() == Drive::prescribed);
+        CHECK(s.parameters.g == 9.81);
+        CHECK(s.key().extras.gravity);
+    }
+    SECTION("a table of the paper's spin-up, next to its scene")
+    {
+        const Scene s = load_scene(case_path("table_spinup.toml"));
+        CHECK(s.motion.kind == Motion::Kind::table);
+        REQUIRE(s.motion.table);
+        CHECK(s.motion.table_file == case_path("table_spinup.csv"));
+        CHECK(s.motion.table->times().size() == 121);
+        CHECK(s.motion.table->last_time() == 30.0);
+        CHECK(s.motion.drive() == Drive::prescribed);
+        // Its rows are eq. 58's angle: 4 rad/s reached at T_s = 15 s after turning Omega0 T_s / 2 = 30 rad.
+        CHECK(s.motion.theta(15.0) == Approx(30.0).epsilon(1e-12));
+        CHECK(s.motion.at(30.0).theta_dot == Approx(4.0).epsilon(1e-6));
+    }
+    SECTION("theta0, a torque table relative to the scene's folder, and an absolute path")
+    {
+        const TempDir dir;
+        std::filesystem::create_directories(dir.path / "sub");
+        dir.write("sub/rig.csv", "time_note,t , tau\r\nx,0,1.5\r\n\r\ny,2,-0.5\r\n");  // CRLF, blanks, extra column
+        const std::string torque_table = "kind = \"torque-table\"\ntheta0 = 0.25\nfile = \"rig.csv\"";
+        const Scene s = load_scene(dir.write("sub/scene.toml", edited("kind = \"spin-up\"\nomega0 = 4.0\nduration = 15.0",
+                                                                     torque_table) +
+                                                              "[hub]\ninertia = 30.0\n"),
+                                   {{"output.t_end", "2"}});
+        CHECK(s.motion.kind == Motion::Kind::torque_table);
+        CHECK(s.motion.drive() == Drive::torque);
+        CHECK(s.motion.theta0 == 0.25);
+        CHECK(s.motion.initial_theta() == 0.25);
+        CHECK(s.motion.at(1.0).tau == Approx(0.5).epsilon(1e-15));
+        CHECK(s.motion.breakpoints() == std::vector<double>{0.0, 2.0});
+        const std::string absolute = (dir.path / "sub" / "rig.csv").string();
+        const Scene a = load_scene(dir.write("elsewhere.toml", edited("kind = \"spin-up\"\nomega0 = 4.0\nduration = 15.0",
+                                                                     "kind = \"torque-table\"\nfile = \"" + absolute +
+                                                                         "\"") +
+                                                                   "[hub]\ninertia = 30.0\n"),
+                                   {{"output.t_end", "2"}});
+        CHECK(a.motion.table_file == absolute);
+        CHECK(a.motion.theta0 == 0.0);
+        const Scene u = load_scene(dir.write("spin.toml", edited("duration = 15.0", "duration = 15.0\ntheta0 = -1")));
+        CHECK(u.motion.theta0 == -1.0);
+        CHECK(u.motion.at(0.0).theta == -1.0);
+    }
+}
+
+TEST_CASE("a bad [motion] of the new kinds, or a bad motion table, is refused naming the scene, the key and the CSV",
+          "[scene]")
+{
+    const TempDir dir;
+    const std::string spin = "kind = \"spin-up\"\nomega0 = 4.0\nduration = 15.0";
+    const std::string scene_file = (dir.path / "scene.toml").string();
+    // The table scene of `kind` reading `csv` (written next to it under that name) with `rows` as its text.
+    const auto table_error = [&](const std::string& rows, const std::string& kind = "table",
+                                 const std::string& csv = "m.csv", const std::string& extra = "") {
+        if (!rows.empty()) dir.write(csv, rows);
+        std::string text = edited(spin, "kind = \"" + kind + "\"\nfile = \"" + csv + "\"" + extra);
+        if (kind == "torque-table") text += "[hub]\ninertia = 30.0\n";
+        return error_of(dir, text);
+    };
+    // Every table problem: "SCENE: motion.file: CSV[:LINE]: what".
+    const auto names = [&](const std::string& message, const std::string& where, const std::string& what) {
+        INFO(message);
+        CHECK(message.rfind(scene_file + ": motion.file: " + (dir.path / where).string() + ": ", 0) == 0);
+        CHECK(message.find(what) != std::string::npos);
+    };
+    const std::string good = "t,theta\n0,0\n1,0.5\n2,2\n";
+
+    SECTION("a missing column")
+    {
+        names(table_error("t,angle\n0,0\n1,0.5\n2,2\n"), "m.csv:1", "expected a column theta in its header");
+        names(table_error("time,tau\n0,0\n1,0.5\n", "torque-table"), "m.csv:1", "expected a column t in its header");
+    }
+    SECTION("a value that is not a number, or not finite")
+    {
+        names(table_error("t,theta\n0,0\n1,abc\n2,2\n"), "m.csv:3", "expected a finite number in column theta, got \"abc\"");
+        names(table_error("t,theta\n0,0\n1,0.5x\n2,2\n"), "m.csv:3", "got \"0.5x\"");
+        names(table_error("t,theta\n0,0\nnan,0.5\n2,2\n"), "m.csv:3", "expected a finite number in column t, got \"nan\"");
+        names(table_error("t,theta\n0,0\n1,inf\n2,2\n"), "m.csv:3", "got \"inf\"");
+        names(table_error("t,theta\n0,0\n1,1e999\n2,2\n"), "m.csv:3", "got \"1e999\"");
+        names(table_error("t,theta\n0,0\n1,\n2,2\n"), "m.csv:3", "got \"\"");
+    }
+    SECTION("a row with too few or too many fields")
+    {
+        names(table_error("t,theta\n0,0\n1\n2,2\n"), "m.csv:3", "expected 2 fields as the header has, got 1");
+        names(table_error("t,theta\n0,0\n1,2,3\n2,2\n"), "m.csv:3", "expected 2 fields as the header has, got 3");
+    }
+    SECTION("too few rows: 3 for the spline, 2 for linear")
+    {
+        names(table_error("t,theta\n0,0\n40,1\n"), "m.csv", "expected at least 3 rows (a cubic spline), got 2");
+        names(table_error("t,tau\n0,1\n", "torque-table"), "m.csv", "expected at least 2 rows, got 1");
+        names(table_error("t,tau\n", "torque-table"), "m.csv", "expected at least 2 rows, got 0");
+        names(table_error("\n\n", "torque-table"), "m.csv", "expected a header line with columns t, tau, got an empty file");
+    }
+    SECTION("times that do not increase strictly")
+    {
+        names(table_error("t,theta\n0,0\n1,0.5\n1,0.7\n2,2\n"), "m.csv:4",
+              "expected times that increase strictly, got t = 1 after t = 1 (line 3)");
+        names(table_error("t,theta\n0,0\n\n2,0.5\n1,0.7\n"), "m.csv:5", "got t = 1 after t = 2 (line 4)");
+    }
+    SECTION("a table that does not cover the run: no extrapolation")
+    {
+        names(table_error(good), "m.csv", "its rows cover t = 0 to 2 s, the run needs t = 0 to output.t_end = 30 s");
+        names(table_error("t,theta\n0.5,0\n1,0.5\n40,2\n"), "m.csv", "its rows cover t = 0.5 to 40 s");
+        // t_end from an override is checked too; within the rows the scene loads.
+        dir.write("m.csv", good);
+        CHECK_NOTHROW(load_scene(dir.write("ok.toml", edited(spin, "kind = \"table\"\nfile = \"m.csv\"")),
+                                 {{"output.t_end", "2"}}));
+        try {
+            load_scene(dir.write("ok.toml", edited(spin, "kind = \"table\"\nfile = \"m.csv\"")), {{"output.t_end", "2.5"}});
+            FAIL("a run past the table was accepted");
+        } catch (const SceneError& e) {
+            CHECK(e.key == "motion.file");
+            CHECK(std::string(e.what()).find("output.t_end = 2.5 s") != std::string::npos);
+        }
+    }
+    SECTION("a file that cannot be read: missing, a folder, too large")
+    {
+        names(table_error("", "table", "absent.csv"), "absent.csv", "cannot open: No such file or directory");
+        std::filesystem::create_directories(dir.path / "folder.csv");
+        names(table_error("", "table", "folder.csv"), "folder.csv", "not a regular file");
+        {
+            std::ofstream(dir.path / "big.csv") << "t,theta\n";
+            std::filesystem::resize_file(dir.path / "big.csv", max_table_bytes + 1);
+        }
+        names(table_error("", "table", "big.csv"), "big.csv", "is larger than a motion table can be (16 MB)");
+    }
+    SECTION("the [motion] keys of the new kinds")
+    {
+        const auto keyed = [&](const std::string& text, const std::string& key, const std::string& what) {
+            const std::string message = error_of(dir, text);
+            INFO(message);
+            CHECK(message.find(": " + key + ": ") != std::string::npos);
+            CHECK(message.find(what) != std::string::npos);
+        };
+        dir.write("m.csv", "t,theta\n0,0\n1,0.5\n40,2\n");
+        keyed(edited(spin, "kind = \"held\""), "motion.angle", "missing");
+        keyed(edited(spin, "kind = \"held\"\nangle = \"up\""), "motion.angle", "a finite number (the hub angle, rad)");
+        keyed(edited(spin, "kind = \"held\"\nangle = 0\ntheta0 = 1"), "motion.theta0", "unknown key");
+        keyed(edited(spin, "kind = \"held\"\nangle = 0\nduration = 1"), "motion.duration", "unknown key");
+        keyed(edited(spin, "kind = \"table\""), "motion.file", "missing");
+        keyed(edited(spin, "kind = \"table\"\nfile = \"\""), "motion.file", "got an empty one");
+        keyed(edited(spin, "kind = \"table\"\nfile = 3"), "motion.file", "got an integer 3");
+        keyed(edited(spin, "kind = \"table\"\nfile = \"m.csv\"\nduration = 15.0"), "motion.duration", "unknown key");
+        dir.write("r.csv", "t,tau\n0,0\n40,2\n");
+        keyed(edited(spin, "kind = \"torque-table\"\nfile = \"r.csv\""), "hub.inertia",
+              "required for kind = \"torque-table\"");
+        keyed(edited(spin, "kind = \"spin-up\"\nomega0 = 4.0\nduration = 15.0\nfile = \"m.csv\""), "motion.file",
+              "unknown key");
+        keyed(edited(spin, spin + "\ntheta0 = nan"), "motion.theta0", "got nan");
+        keyed(edited(spin, "kind = \"spun\""),
+              "motion.kind", "one of \"spin-up\", \"torque\", \"held\", \"table\", \"torque-table\"");
+    }
+}
+
+TEST_CASE("a run's summary says how the hub moves: held, from which table, from which angle", "[scene]")
+{
+    const auto first_line = [](const Scene& s) {
+        const std::string text = format_summary(RunSummary{}, s);
+        return text.substr(0, text.find('\n'));
+    };
+    CHECK(first_line(load_scene(case_path("held_gravity.toml"), {{"motion.angle", "0.25"}})) ==
+          "scene       " + case_path("held_gravity.toml") + " (hub held at theta = 0.25 rad)");
+    CHECK(first_line(load_scene(case_path("table_spinup.toml"), {{"motion.theta0", "-0.5"}})) ==
+          "scene       " + case_path("table_spinup.toml") + " (hub angle from " + case_path("table_spinup.csv") +
+              ", 121 rows to t = 30 s, natural cubic spline, theta0 = -0.5 rad)");
+    // The paper's scenes say what they always said.
+    CHECK(first_line(load_scene(case_path("torque_tau1.toml"))) ==
+          "scene       " + case_path("torque_tau1.toml") + " (hub torque tau0 = 1 N m for T_t = 10 s)");
 }

@@ -27,6 +27,19 @@ namespace {
 
 constexpr std::size_t max_spin_rates = 10000;
 
+/// The angle a gravity scene's hub is held at for its modes (rad): the scene's angle at t = 0 (a held hub's
+/// angle, theta0 of the other drives; 0 is a horizontal beam).
+double held_angle(const Scene& scene) { return scene.motion.initial_theta(); }
+
+/// Refuses a spin rate for a scene with gravity: its beam's weight turns with the hub, so there is no steady spin.
+void check_steady(const Scene& scene, const std::vector<double>& omegas)
+{
+    for (const double omega : omegas)
+        if (scene.parameters.g != 0.0 && omega != 0.0)
+            throw ModesOptionError("--omega: with gravity only 0 (the hub held; at a spin rate the motion is periodic, "
+                                   "not steady), got " + shortest(omega));
+}
+
 }  // namespace
 
 std::vector<double> parse_spin_rates(const std::string& option, const std::string& text)
@@ -59,10 +72,11 @@ ModesOptions parse_modes_options(const ModesArgs& args, const Scene& scene)
     ModesOptions o;
     if (args.omega.empty()) {
         o.omegas = {0.0};
-        if (scene.motion.drive() == Drive::prescribed && scene.motion.omega0 != 0.0)
+        if (scene.motion.kind == Motion::Kind::spin_up && scene.motion.omega0 != 0.0 && scene.parameters.g == 0.0)
             o.omegas.push_back(std::abs(scene.motion.omega0));
     } else {
         o.omegas = parse_spin_rates("--omega", args.omega);
+        check_steady(scene, o.omegas);
     }
     o.methods = args.methods.empty() ? std::vector<Method>{scene.variant.method}
                                      : parse_method_list<ModesOptionError>("--methods", args.methods);
@@ -97,8 +111,11 @@ void run_modes(const Scene& scene, const ModesOptions& o, std::ostream& out)
     long rows = 0;
     try {
         char line[400];
+        // Damping adds the undamped frequency |lambda| and the damping ratio to the printed table.
+        const bool damped = scene.key().extras.damping;
         if (!o.quiet)
-            out << "method  Ny  Nx  order  Omega rad/s  mode  kind        rad/s          Hz  dimensionless  growth 1/s\n";
+            out << "method  Ny  Nx  order  Omega rad/s  mode  kind        rad/s          Hz  dimensionless  growth 1/s"
+                << (damped ? "  undamped rad/s     zeta" : "") << "\n";
         for (Method method : o.methods)
             for (int ny : o.ny) {
                 VariantKey key = scene.key();
@@ -108,25 +125,30 @@ void run_modes(const Scene& scene, const ModesOptions& o, std::ostream& out)
                 // Printed: the first `count` bending modes and the first axial one of each spin rate.
                 int shown_bending = 0;
                 bool shown_axial = false;
-                for (const auto& [omega, number, mode] : campbell(*model, o.omegas, scene.axial)) {
+                for (const auto& [omega, number, mode] : campbell(*model, o.omegas, scene.axial, held_angle(scene))) {
                     if (number == 1) shown_bending = 0, shown_axial = false;
                     const double hz = mode.rad_s / (2.0 * M_PI);
                     std::ostringstream row;
                     row << to_string(method) << ',' << ny << ',' << key.nx << ',' << to_string(key.order) << ','
                         << to_string(key.drive) << ',' << shortest(omega) << ',' << number << ',' << mode.kind << ','
                         << shortest(mode.rad_s) << ',' << shortest(hz) << ',' << shortest(mode.rad_s / unit) << ','
-                        << shortest(mode.growth);
+                        << shortest(mode.growth) << ',' << shortest(mode.undamped_rad_s) << ','
+                        << shortest(mode.damping_ratio);
                     if (csv) csv->write_line(row.str());
                     ++rows;
                     if (o.quiet) continue;
                     const bool enough =
                         mode.kind == "bending" ? shown_bending++ >= o.count : std::exchange(shown_axial, true);
                     if (enough) continue;
-                    std::snprintf(line, sizeof line,
-                                  "%-6s %3d %3d  %-5s %12.4g  %4d  %-7s %11.6g %11.6g %14.6g  %10.3g\n",
+                    std::snprintf(line, sizeof line, "%-6s %3d %3d  %-5s %12.4g  %4d  %-7s %11.6g %11.6g %14.6g  %10.3g",
                                   to_string(method).c_str(), ny, key.nx, to_string(key.order).c_str(), omega, number,
                                   mode.kind.c_str(), mode.rad_s, hz, mode.rad_s / unit, mode.growth);
                     out << line;
+                    if (damped) {
+                        std::snprintf(line, sizeof line, "  %14.6g %8.4g", mode.undamped_rad_s, mode.damping_ratio);
+                        out << line;
+                    }
+                    out << '\n';
                 }
             }
     } catch (...) {
@@ -154,9 +176,10 @@ void run_linearize(const Scene& scene, double omega, const std::string& prefix, 
     std::vector<NamedPath> outputs;
     for (const char* name : {"A", "B", "C", "D"}) outputs.push_back({prefix + "-" + name + ".csv", "-o"});
     check_outputs({{scene.path, "the scene itself"}}, outputs);  // before anything is computed
+    check_steady(scene, {omega});
     const VariantKey key = scene.key();
     const std::unique_ptr<Model> model = make_model(key, scene.parameters, scene.source);
-    const SteadySpin steady = steady_spin(*model, omega);
+    const SteadySpin steady = steady_spin(*model, omega, held_angle(scene));
     const StateSpace ss = state_space(*model, steady);
     // One CSV per matrix: a header of column names, then each row led by its name. Each is put in place once all
     // four are written; an exception on the way leaves all four old files as they were.
@@ -186,13 +209,19 @@ void run_linearize(const Scene& scene, double omega, const std::string& prefix, 
     }
     for (const auto& f : files)
         if (!f->finish()) throw std::runtime_error(f->error());
-    out << "variant     " << key.name() << " (" << model->source() << ")\n"
-        << "steady spin " << shortest(omega) << " rad/s";
+    out << "variant     " << key.name() << " (" << model->source() << ")\n";
+    if (steady.held)
+        out << "held        at theta = " << shortest(steady.u.theta) << " rad under gravity, tip_uy "
+            << shortest(model->tip(steady.q.data()).uy) << " m"
+            << (key.drive == Drive::torque ? ", holding torque " + shortest(steady.u.tau) + " N m" : std::string());
+    else
+        out << "steady spin " << shortest(omega) << " rad/s";
     if (key.nx > 0) out << ", axial stretch at the tip " << shortest(model->tip(steady.q.data()).ux1) << " m";
     out << "\nstates      " << ss.states.size() << " (" << joined(ss.states) << ")\n"
         << "input       " << ss.inputs[0] << (key.drive == Drive::torque ? " (N m)" : " (rad/s^2)") << "\n"
         << "outputs     tip_uy (m), theta (rad)\n"
-        << "matrices    " << prefix << "-{A,B,C,D}.csv (x' = A x + B v, y = C x + D v, deviations from the steady spin)\n";
+        << "matrices    " << prefix << "-{A,B,C,D}.csv (x' = A x + B v, y = C x + D v, deviations from the "
+        << (steady.held ? "equilibrium" : "steady spin") << ")\n";
 }
 
 }  // namespace hubbeam

@@ -204,14 +204,14 @@ py::dict modes(const std::string& text, const std::string& name, const Overrides
     {
         const py::gil_scoped_release release;
         try {
-            rows = campbell(*model, omegas, scene.axial);
+            rows = campbell(*model, omegas, scene.axial, scene.motion.initial_theta());  // held there under gravity
         } catch (const std::runtime_error&) {
             // Name the rate that has no steady state (ValueError) if that is what failed.
-            for (const double w : omegas) at_spin(w, [&] { return steady_spin(*model, w); });
+            for (const double w : omegas) at_spin(w, [&] { return steady_spin(*model, w, scene.motion.initial_theta()); });
             throw;
         }
     }
-    std::vector<double> omega, rad_s, hz, dimensionless, growth;
+    std::vector<double> omega, rad_s, hz, dimensionless, growth, undamped, zeta;
     std::vector<int> number;
     std::vector<std::string> kind;
     const double unit = frequency_unit(scene.parameters);
@@ -223,6 +223,8 @@ py::dict modes(const std::string& text, const std::string& name, const Overrides
         hz.push_back(m.rad_s / (2.0 * M_PI));
         dimensionless.push_back(m.rad_s / unit);
         growth.push_back(m.growth);
+        undamped.push_back(m.undamped_rad_s);
+        zeta.push_back(m.damping_ratio);
     }
     py::dict out;
     out["variant"] = key.name();
@@ -233,6 +235,8 @@ py::dict modes(const std::string& text, const std::string& name, const Overrides
     out["hz"] = py::array(py::cast(hz));
     out["dimensionless"] = py::array(py::cast(dimensionless));
     out["growth"] = py::array(py::cast(growth));
+    out["undamped_rad_s"] = py::array(py::cast(undamped));
+    out["damping_ratio"] = py::array(py::cast(zeta));
     return out;
 }
 
@@ -252,7 +256,8 @@ py::dict linearize(const std::string& text, const std::string& name, const Overr
     const Scene scene = scene_of(text, name, overrides);
     const VariantKey key = scene.key();
     const std::unique_ptr<Model> model = guarded(scene, [&] { return make_model(key, scene.parameters, scene.source); });
-    const StateSpace ss = at_spin(omega, [&] { return state_space(*model, steady_spin(*model, omega)); });
+    const StateSpace ss =
+        at_spin(omega, [&] { return state_space(*model, steady_spin(*model, omega, scene.motion.initial_theta())); });
     py::dict out;
     out["variant"] = key.name();
     out["A"] = matrix(ss.A);

@@ -148,9 +148,14 @@ class MessagesTest(unittest.TestCase):
             self.assertNotIn("\u202e", text)
         self.assertEqual(hubbeam.printable("a\x00b\nc\u2066\U000e0001"), "a\\x00b\\x0ac\\u2066\\U000e0001")
 
+    def test_a_leaf_name_that_two_tables_share_must_name_its_table(self):
+        with self.assertRaises(ValueError) as caught:
+            hubbeam.run(SPINUP, inertia=40.0)
+        self.assertIn("hub.inertia and tip.inertia", str(caught.exception))
+
     def test_a_nul_character_is_refused(self):
         with self.assertRaises(ValueError) as caught:
-            hubbeam.run(SPINUP, file="a\u0000b.csv")
+            hubbeam.run(SPINUP, **{"output.file": "a\u0000b.csv"})
         self.assertIn("NUL", str(caught.exception))
 
 
@@ -284,6 +289,14 @@ class ModesTest(unittest.TestCase):
         self.assertAlmostEqual(at_rest[0] / (beta ** 2 * unit), 1.0, places=9)
         spinning = m["rad_s"][(m["omega"] == 4.0) & (m["kind"] == "bending")]
         self.assertGreater(spinning[0], at_rest[0])  # centrifugal stiffening
+
+    def test_damping_ratios_are_rayleighs(self):
+        # Rayleigh damping gives each mode at rest zeta = alpha / (2 omega) + beta omega / 2 (docs/model.md section 11).
+        alpha, beta = 0.05, 1e-3
+        m = hubbeam.modes(SPINUP, 0.0, nx=0, **{"damping.mass_proportional": alpha,
+                                                "damping.stiffness_proportional": beta})
+        for omega, zeta in zip(m["undamped_rad_s"], m["damping_ratio"]):
+            self.assertAlmostEqual(zeta, alpha / (2 * omega) + beta * omega / 2, places=9)
 
     def test_bad_spin_rates_raise_valueerror(self):
         torque = os.path.join(SOURCE, "cases", "torque_tau10.toml")

@@ -44,10 +44,14 @@ public:
 
     /// Axial stretch displacement u_x1(x) = Phi_x(x) A.
     double ux1(const double* A, double x) const;
-    /// Bending moment EI u_y''(x).
+    /// Bending moment EI(x) u_y''(x), with a tapered beam's own EI(x) (docs/model.md section 11).
     double bending_moment(const double* B, double x) const;
-    /// Axial force ES u_x1'(x).
+    /// Axial force ES(x) u_x1'(x).
     double axial_force(const double* A, double x) const;
+    /// The section's area and second moment at x over the root's: 1 for a uniform beam; s = 1 + (tip_ratio - 1) x/L
+    /// for the area of either taper, s for the second moment of a width taper and s^3 of a depth taper.
+    double area_ratio(double x) const;
+    double moment_ratio(double x) const;
 
 private:
     double xi_of(double x) const;
@@ -55,6 +59,8 @@ private:
     FieldBasis axial_, transverse_;
     bool foreshortened_;  // u_x includes u_x2: every order but zero
     double L_, EI_, ES_;
+    Taper taper_;
+    double tip_ratio_;
     Eigen::RowVectorXd Phi_x_L_, Phi_y_L_;
     Eigen::MatrixXd H_L_;
 };

@@ -73,12 +73,13 @@ class RightHandSide;
 /// have none): the controller's integral of the angle error (ki != 0), the dissipated energy int 2 D dt (damping:
 /// 2 D = qd_e^T (alpha M_ee + beta K_e) qd_e, M_ee the elastic block of M at q = 0, K_e the undeformed beam's
 /// stiffness) and the hub's work int tau theta_dot dt (a torque-driven hub with a controller or damping: with it
-/// the energy balance E + dissipated - work = E(0) holds, docs/model.md section 9).
+/// the energy balance E + dissipated - work = E(0) holds, docs/model.md section 11.4).
 struct Auxiliary {
     bool integral = false, dissipated = false, work = false;
     int count() const { return int{integral} + int{dissipated} + int{work}; }
-    /// Those a run of key needs, controlled by control (or nullptr).
-    static Auxiliary of(const VariantKey& key, const Control* control);
+    /// Those a run of key needs, controlled by control (or nullptr), with the parameters whose damping it accounts
+    /// for (nullptr: the system keeps no energy account, as for the tests of its kernels alone).
+    static Auxiliary of(const VariantKey& key, const Control* control, const Parameters* parameters);
 };
 
 /// dy/dt = (qd, M(q)^-1 Q(t, q, qd), z') for one model and hub motion, by the right-hand-side strategy chosen for
@@ -88,9 +89,8 @@ struct Auxiliary {
 /// M_rr qdd_r = Q_r: the stiff axial modes are gone, the centrifugal stretch and its coupling to bending stay.
 /// With a control (a torque model), the motion is the reference and the torque is the control's law of the state,
 /// evaluated at every right-hand side; the auxiliary states (Auxiliary::of) follow the positions and rates. A damped
-/// model's dissipated energy comes from parameters' alpha and beta (an independent check of the generated damping
-/// forces: simulations pass them), or without them from the model's own -dQ/dqd at rest. Throws
-/// std::invalid_argument for a control of a model whose hub is not torque-driven.
+/// model's dissipated energy is a state when parameters are given (its alpha and beta: simulations pass them).
+/// Throws std::invalid_argument for a control of a model whose hub is not torque-driven.
 class FirstOrderSystem {
 public:
     FirstOrderSystem(const Model& model, const Motion& motion, Axial axial = Axial::dynamic,

@@ -1,5 +1,6 @@
-// Linearization about a steady spin (docs/model.md section 10): the steady state with its axial stretch, the
-// state-space model a control engineer takes away (hubbeam linearize) and the natural modes (hubbeam modes).
+// Linearization about a steady spin, or under gravity about the static equilibrium of the held hub (docs/model.md
+// section 10): the steady state, the state-space model a control engineer takes away (hubbeam linearize) and the
+// natural modes with their damping (hubbeam modes).
 #pragma once
 
 #include <Eigen/Dense>
@@ -24,35 +25,51 @@ Eigen::MatrixXd force_q_jacobian(const Model& model, const HubInput& u, const st
 
 /// The steady spin at omega (rad/s): the beam straight, the axial coordinates at their centrifugal stretch
 /// (Newton on Q_A = 0), the hub turning at omega (prescribed: the drive's rate; free hub: theta_dot, no torque).
+/// Under gravity, the static equilibrium of the hub held at an angle instead (held_equilibrium).
 struct SteadySpin {
     double omega = 0.0;
     HubInput u;
     std::vector<double> q, qd;
+    /// The hub held at u.theta (a gravity variant): its angle is not a degree of freedom of the modes; a free hub's
+    /// u.tau is the torque that holds it there.
+    bool held = false;
 };
-SteadySpin steady_spin(const Model& model, double omega);
+/// The steady spin at omega; a gravity variant has one at omega = 0 only (held_equilibrium at theta) and throws
+/// std::invalid_argument for a spin rate: its motion is then periodic, not steady. theta is read by gravity alone.
+SteadySpin steady_spin(const Model& model, double omega, double theta = 0.0);
+/// The static equilibrium of a gravity variant with the hub held at theta (rad; 0 is a horizontal beam, at rest):
+/// Newton on the elastic rows Q_e(q_e) = 0 with theta fixed, and for a free hub the torque that holds it
+/// (u.tau = -Q_theta there). Throws std::runtime_error if Newton does not converge (the beam buckles under its
+/// weight).
+SteadySpin held_equilibrium(const Model& model, double theta);
 
-/// x' = A x + B v, y = C x + D v about a steady spin, in deviations from it. States: theta, the axial and
-/// transverse coordinates, then their rates (theta_dot first). Input v: the hub torque tau (free hub) or the hub's
-/// angular acceleration theta_ddot (prescribed rotation, where theta and theta_dot are states driven by it).
-/// Outputs: tip_uy and theta.
+/// x' = A x + B v, y = C x + D v about a steady spin (or a held equilibrium under gravity), in deviations from
+/// it. States: theta, the axial and transverse coordinates, then their rates (theta_dot first). Input v: the hub
+/// torque tau (free hub; about a held equilibrium, beyond the holding torque) or the hub's angular acceleration
+/// theta_ddot (prescribed rotation, where theta and theta_dot are states driven by it; under gravity theta enters
+/// the forces through Model::forces_theta). Outputs: tip_uy and theta.
 struct StateSpace {
     Eigen::MatrixXd A, B, C, D;
     std::vector<std::string> states, inputs, outputs;
 };
 StateSpace state_space(const Model& model, const SteadySpin& steady);
 
-/// One natural mode of the linearized equations: eigenvalue growth +- i rad_s; kind "bending" or "axial" by
-/// where its kinetic energy lies.
+/// One natural mode of the linearized equations: eigenvalue lambda = growth +- i rad_s (rad_s the damped
+/// frequency); undamped_rad_s = |lambda| and damping_ratio = -growth / |lambda| (zeta; a real eigenvalue of an
+/// overdamped mode has rad_s 0 and zeta 1, each of its two eigenvalues a row); kind "bending" or "axial" by where
+/// its kinetic energy lies.
 struct NaturalMode {
     double rad_s = 0.0, growth = 0.0;
     std::string kind;
+    double undamped_rad_s = 0.0, damping_ratio = 0.0;
 };
 
-/// The modes of the flexible coordinates about the steady spin, by increasing frequency: the eigenvalues of the
-/// state matrix with the hub's own states left out (prescribed: theta and theta_dot are the drive's; free hub:
-/// theta is cyclic, and the zero eigenvalue of the conserved angular momentum is dropped). A divergent mode (real
-/// positive eigenvalue, e.g. order zero above its critical spin) has rad_s 0 and growth > 0; a real part within
-/// 1e-6 of |lambda| is round-off and reported as growth 0.
+/// The modes of the flexible coordinates about the steady spin, by increasing undamped frequency: the eigenvalues
+/// of the state matrix with the hub's own states left out (prescribed or held: theta and theta_dot are the drive's;
+/// free hub: theta is cyclic, and the zero eigenvalue of the conserved angular momentum is dropped). A divergent
+/// mode (real positive eigenvalue, e.g. order zero above its critical spin) has rad_s 0 and growth > 0, first;
+/// without damping a real part within 1e-6 of |lambda| is round-off and reported as growth 0. With damping the
+/// first-order (state-space) eigenproblem is the damped one: growth < 0 is the decay rate.
 /// With quasi-static axial coordinates (docs/model.md section 9) A leaves the state, as in a run: its rows hold at
 /// every instant with A_dot = 0, so there are no axial modes, and the other rows drop A's rates.
 std::vector<NaturalMode> natural_modes(const Model& model, const SteadySpin& steady, Axial axial = Axial::dynamic);
@@ -64,8 +81,10 @@ struct SpinMode {
     int number = 0;
     NaturalMode mode;
 };
-/// natural_modes about the steady spin at each rate of omegas, rate by rate (hubbeam modes, hubbeam.modes).
-std::vector<SpinMode> campbell(const Model& model, const std::vector<double>& omegas, Axial axial = Axial::dynamic);
+/// natural_modes about the steady spin at each rate of omegas, rate by rate (hubbeam modes, hubbeam.modes); theta
+/// is the held angle of a gravity variant (steady_spin).
+std::vector<SpinMode> campbell(const Model& model, const std::vector<double>& omegas, Axial axial = Axial::dynamic,
+                               double theta = 0.0);
 
 /// The CSV header of the modes table (hubbeam modes writes it, hubbeam plot campbell reads it by column name).
 const char* modes_header();

@@ -95,6 +95,8 @@ std::string printable(std::string_view text, std::size_t cap = 120);
 
 /// The largest scene file read (bytes).
 inline constexpr std::size_t max_scene_bytes = 1 << 20;
+/// The largest motion table read (bytes): about half a million rows, a test rig's kilohertz record of minutes.
+inline constexpr std::size_t max_table_bytes = 16 << 20;
 
 /// A scene key: its dotted name, what it must hold, and the command-line option that sets it (or null).
 /// One table of these serves reading, validation (the keys a table may hold), messages, the command line and
@@ -104,7 +106,7 @@ struct SceneKey {
     const char* option;  // "--ny", or nullptr; CLI11's form ("-o,--output"): messages use the first name
     enum class Kind { number, integer, word, text } kind;
     std::string expected;  // "an integer >= 1 (Ny)", or for words "one of \"amm\", \"fem\", ..."
-    const char* motion_kind = nullptr;  // a [motion] key of one kind only ("spin-up", "torque"); null: of every kind
+    std::vector<std::string> motion_kinds = {};  // the [motion] kinds that take the key ("spin-up", ...); empty: all
 
     /// "discretization" of "discretization.ny".
     std::string table() const;
@@ -116,7 +118,7 @@ const std::vector<SceneKey>& scene_keys();
 const SceneKey& scene_key(const std::string& name);
 /// The tables of a scene file ("beam", "hub", ...), in the key table's order.
 std::vector<std::string> scene_tables();
-/// The keys table may hold (leaf names, in the key table's order); for [motion], those of motion_kind.
+/// The keys table may hold (leaf names, in the key table's order); for [motion], those motion_kind takes.
 std::vector<std::string> table_keys(const std::string& table, const std::string& motion_kind = "");
 
 /// Key name -> value as typed on the command line, e.g. {"discretization.ny", "8"}.

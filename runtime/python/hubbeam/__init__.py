@@ -30,7 +30,11 @@ __all__ = ["run", "modes", "linearize", "sweep", "Result", "RunStopped", "scene_
 __version__ = _core.__version__
 
 _KEYS = dict(_core.scene_keys())                 # dotted name -> what it takes
-_LEAVES = {k.split(".", 1)[1]: k for k in _KEYS}  # "ny" -> "discretization.ny" (leaf names are unique)
+# "ny" -> "discretization.ny"; a leaf that several tables share ("inertia": hub and tip) maps to all of them, and a
+# keyword must then name its table.
+_LEAVES: dict[str, list[str]] = {}
+for _key in _KEYS:
+    _LEAVES.setdefault(_key.split(".", 1)[1], []).append(_key)
 
 
 def printable(text: Any, cap: int = 400) -> str:
@@ -123,10 +127,14 @@ def _overrides(keywords: Mapping[str, Any]) -> list[tuple[str, str]]:
     """Keyword arguments (leaf names such as ny, or dotted names) as scene-key overrides."""
     out = []
     for name, value in keywords.items():
-        key = name if name in _KEYS else _LEAVES.get(name)
-        if key is None:
+        keys = [name] if name in _KEYS else _LEAVES.get(name, [])
+        if not keys:
             raise ValueError(f"{printable(name, 80)}: expected a scene key (docs/scene.md; hubbeam.scene_keys()), "
                              f"got an unknown keyword")
+        if len(keys) > 1:
+            raise ValueError(f"{name}: expected one scene key, got a name that " + " and ".join(keys) +
+                             f" share: name the table, e.g. **{{\"{keys[0]}\": ...}}")
+        key = keys[0]
         out.append((key, _value_text(key, value)))
     return out
 
@@ -187,7 +195,8 @@ def run(scene: Any, *, check: bool = False, torque: Any = None, **keys: Any) -> 
 
 def modes(scene: Any, omega: Any = 0.0, **keys: Any) -> dict[str, Any]:
     """Every natural mode of the scene's variant linearized about a steady spin at each rate of omega (rad/s):
-    equal-length arrays omega, mode, kind, rad_s, hz, dimensionless, growth, and the variant's name."""
+    equal-length arrays omega, mode, kind, rad_s, hz, dimensionless, growth, undamped_rad_s, damping_ratio (zero
+    without damping), and the variant's name."""
     text, name = _source(scene)
     out = _core_call(_core.modes, text, name, _overrides(keys),
                      _rates(omega, "spin rates >= 0 (rad/s): a number or a list"))

@@ -13,7 +13,7 @@ namespace hubbeam {
 
 BeamFields::BeamFields(const VariantKey& key, const Parameters& p)
     : axial_(key.axial_basis()), transverse_(key.transverse_basis()), foreshortened_(key.order != Order::zero), L_(p.L),
-      EI_(p.E * p.I), ES_(p.E * p.S),
+      EI_(p.E * p.I), ES_(p.E * p.S), taper_(key.extras.taper), tip_ratio_(p.tip_ratio),
       Phi_x_L_(axial_.size()), Phi_y_L_(transverse_.size()), H_L_(Eigen::MatrixXd::Zero(transverse_.size(), transverse_.size()))
 {
     for (int i = 0; i < axial_.size(); ++i) Phi_x_L_(i) = axial_.at(i, 1.0).v;
@@ -71,12 +71,12 @@ double BeamFields::ux1(const double* A, double x) const { return combination(axi
 
 double BeamFields::bending_moment(const double* B, double x) const
 {
-    return EI_ * combination(transverse_, B, xi_of(x), 2) / (L_ * L_);  // d2/dx2 = (1/L^2) d2/dxi2
+    return EI_ * moment_ratio(x) * combination(transverse_, B, xi_of(x), 2) / (L_ * L_);  // d2/dx2 = (1/L^2) d2/dxi2
 }
 
 double BeamFields::axial_force(const double* A, double x) const
 {
-    return ES_ * combination(axial_, A, xi_of(x), 1) / L_;  // d/dx = (1/L) d/dxi
+    return ES_ * area_ratio(x) * combination(axial_, A, xi_of(x), 1) / L_;  // d/dx = (1/L) d/dxi
 }
 
 double BeamFields::slope(const double* B, double x) const
@@ -175,5 +175,16 @@ bool FieldRecorder::finish() { return csv_->finish(); }
 const std::string& FieldRecorder::error() const { return csv_->error(); }
 
 const std::string& FieldRecorder::path() const { return csv_->path(); }
+
+double BeamFields::area_ratio(double x) const
+{
+    return taper_ == Taper::uniform ? 1.0 : 1.0 + (tip_ratio_ - 1.0) * xi_of(x);
+}
+
+double BeamFields::moment_ratio(double x) const
+{
+    const double s = area_ratio(x);
+    return taper_ == Taper::depth ? s * s * s : s;
+}
 
 }  // namespace hubbeam

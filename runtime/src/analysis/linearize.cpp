@@ -100,9 +100,15 @@ Eigen::MatrixXd force_q_jacobian(const Model& model, const HubInput& u, const st
     return model.jacobian() != nullptr ? force_jacobians(model, u, q, qd).q : q_differences(model, u, q, qd);
 }
 
-SteadySpin steady_spin(const Model& model, double omega)
+SteadySpin steady_spin(const Model& model, double omega, double theta)
 {
     const VariantKey& key = model.key();
+    if (key.extras.gravity) {
+        if (omega != 0.0)
+            throw std::invalid_argument("with gravity a spin at a constant rate is not steady (the beam's weight turns "
+                                        "with it: the motion is periodic); linearize about the held hub, Omega = 0");
+        return held_equilibrium(model, theta);
+    }
     const int n = model.nq(), a0 = key.first_a(), na = key.nx;
     SteadySpin s;
     s.omega = omega;
@@ -124,6 +130,45 @@ SteadySpin steady_spin(const Model& model, double omega)
         }
         if (!dA.allFinite()) throw std::runtime_error("the steady axial stretch at this spin has no solution");
         if (dA.cwiseAbs().maxCoeff() <= 1e-14 * std::max(size, 1e-300)) break;
+    }
+    return s;
+}
+
+SteadySpin held_equilibrium(const Model& model, double theta)
+{
+    const VariantKey& key = model.key();
+    const int n = model.nq(), e0 = key.first_a(), ne = n - e0;
+    SteadySpin s;
+    s.held = true;
+    s.u.theta = theta;
+    s.q.assign(static_cast<std::size_t>(n), 0.0);
+    s.qd = s.q;
+    if (key.drive == Drive::torque) s.q[0] = theta;
+    // Newton on the elastic rows at rest: one step where they are linear in q_e (orders zero and first), a few
+    // where the weight meets full order's nonlinear terms. Converged when the residual is round-off against the
+    // terms that make it up (the load and K q), which holds whatever K's condition, near buckling too.
+    std::vector<double> Q(static_cast<std::size_t>(n));
+    const auto elastic = [&] { return Eigen::Map<const Eigen::VectorXd>(Q.data() + e0, ne); };
+    model.forces(s.u, s.q.data(), s.qd.data(), Q.data());
+    const double load = elastic().cwiseAbs().maxCoeff();
+    bool converged = load == 0.0;
+    for (int iteration = 0; iteration < 50 && !converged; ++iteration) {
+        const Eigen::MatrixXd K = force_q_jacobian(model, s.u, s.q, s.qd).block(e0, e0, ne, ne);
+        const Eigen::VectorXd dq = K.partialPivLu().solve(-elastic());
+        if (!dq.allFinite()) break;
+        for (int i = 0; i < ne; ++i) s.q[static_cast<std::size_t>(e0 + i)] += dq[i];
+        model.forces(s.u, s.q.data(), s.qd.data(), Q.data());
+        const double terms = load + K.cwiseAbs().maxCoeff() *
+                                        Eigen::Map<const Eigen::VectorXd>(s.q.data() + e0, ne).cwiseAbs().maxCoeff();
+        converged = elastic().cwiseAbs().maxCoeff() <= 1e-12 * terms;
+    }
+    if (!converged)
+        throw std::runtime_error("the beam has no static equilibrium under its weight with the hub held at this angle");
+    // The torque that holds a free hub: Q_theta with tau = 0 is the weight's moment about the axis.
+    if (key.drive == Drive::torque) {
+        model.forces(s.u, s.q.data(), s.qd.data(), Q.data());
+        const ForceJacobians J = force_jacobians(model, s.u, s.q, s.qd);
+        s.u.tau = -Q[0] / J.u(0, static_cast<Eigen::Index>(DriveValue::tau));
     }
     return s;
 }
@@ -166,6 +211,13 @@ StateSpace state_space(const Model& model, const SteadySpin& s)
         ss.B(m + r, 0) = torque ? Au(i, static_cast<int>(DriveValue::tau)) : Au(i, static_cast<int>(DriveValue::theta_ddot));
     }
     if (!torque) ss.B(m, 0) = 1.0;  // theta_ddot = v
+    if (!torque && key.extras.gravity) {
+        // A prescribed hub's angle is an input of the weight's terms: its column is M^-1 dQ/dtheta.
+        std::vector<double> dtheta(static_cast<std::size_t>(n));
+        model.forces_theta(s.u, s.q.data(), s.qd.data(), dtheta.data());
+        const Eigen::VectorXd column = llt.solve(Eigen::Map<const Eigen::VectorXd>(dtheta.data(), n));
+        for (int r = 1; r < m; ++r) ss.A(m + r, 0) = column[model_index(r)];
+    }
     ss.C = Eigen::MatrixXd::Zero(2, 2 * m);
     // tip_uy is linear in B: its row from the model's tip at unit offsets (exact for a linear function).
     for (int c = 1; c < m; ++c) {
@@ -200,9 +252,16 @@ Eigen::MatrixXd submatrix(const Eigen::MatrixXd& X, const std::vector<int>& rows
     return out;
 }
 
+/// Whether R's first coordinate is a free hub's angle: cyclic, its position left out of the state.
+Eigen::Index cyclic_angle(const Model& model, const std::vector<int>& R)
+{
+    return model.key().drive == Drive::torque && !R.empty() && R.front() == 0 ? 1 : 0;
+}
+
 /// The linearized equations about the steady spin s as a first-order system x' = X x over the kept coordinates
 /// R: the positions of R but a free hub's angle (cyclic), then all rates of R (a free hub's rate couples to the
 /// beam's): X = [[select, 0], [M^-1 Qq(:, positions), M^-1 Qqd]]. M is the mass matrix at s (all coordinates).
+/// Damping is in Qqd: X's eigenproblem is the damped (quadratic) one in first-order form.
 Eigen::MatrixXd linearized_system(const Model& model, const SteadySpin& s, const Eigen::MatrixXd& M,
                                   const std::vector<int>& R)
 {
@@ -211,7 +270,7 @@ Eigen::MatrixXd linearized_system(const Model& model, const SteadySpin& s, const
     const auto llt = submatrix(M, R, R).llt();
     if (llt.info() != Eigen::Success) throw std::runtime_error("the mass matrix at the steady spin is not positive definite");
     const auto r = static_cast<Eigen::Index>(R.size());
-    const Eigen::Index first = model.key().drive == Drive::torque ? 1 : 0, p = r - first;
+    const Eigen::Index first = cyclic_angle(model, R), p = r - first;
     const Eigen::MatrixXd Aq = llt.solve(Qq), Aqd = llt.solve(Qqd);
     Eigen::MatrixXd X = Eigen::MatrixXd::Zero(p + r, p + r);
     for (Eigen::Index i = 0; i < p; ++i) X(i, p + first + i) = 1.0;
@@ -226,7 +285,7 @@ bool mostly_axial(const Model& model, const Eigen::MatrixXd& M, const std::vecto
 {
     const int b0 = model.key().first_b();
     const auto r = static_cast<Eigen::Index>(R.size());
-    const Eigen::Index first = model.key().drive == Drive::torque ? 1 : 0, p = r - first;
+    const Eigen::Index first = cyclic_angle(model, R), p = r - first;
     double axial_energy = 0.0, transverse = 0.0;
     for (Eigen::Index i = first; i < r; ++i)
         for (Eigen::Index j = first; j < r; ++j) {
@@ -242,45 +301,56 @@ bool mostly_axial(const Model& model, const Eigen::MatrixXd& M, const std::vecto
 
 std::vector<NaturalMode> natural_modes(const Model& model, const SteadySpin& s, Axial axial)
 {
-    const bool torque = model.key().drive == Drive::torque;
+    const bool torque = model.key().drive == Drive::torque, damped = model.key().extras.damping;
     const Eigen::MatrixXd M = mass_at(model, s.u, s.q);
     // The coordinates that keep their inertia: all, or with quasi-static axial coordinates all but A. A then
     // follows its own rows with A_dot = A_ddot = 0 (docs/model.md section 9), and the other rows drop A's rates;
     // they do not depend on A itself at the straight beam (Q_B is odd in B, Q_theta holds A only with rates), so
-    // A's deviation drops out of them and the condensed equations are R's rows and columns alone.
-    const std::vector<int> R = kept_coordinates(model.key(), axial);
+    // A's deviation drops out of them and the condensed equations are R's rows and columns alone. A held hub's
+    // angle is not among them.
+    std::vector<int> R = kept_coordinates(model.key(), axial);
+    if (torque && s.held) R.erase(R.begin());
     const Eigen::EigenSolver<Eigen::MatrixXd> eig(linearized_system(model, s, M, R));
     if (eig.info() != Eigen::Success) throw std::runtime_error("the eigenvalues of the linearized equations did not converge");
     const Eigen::VectorXcd lambda = eig.eigenvalues();
     const Eigen::MatrixXcd vectors = eig.eigenvectors();
-    // The free hub's conserved angular momentum: one zero eigenvalue, the smallest.
+    // The free hub's conserved angular momentum: one zero eigenvalue, the smallest (damping acts on the elastic
+    // rates relative to the hub, so it conserves it too).
     Eigen::Index momentum = -1;
-    if (torque) lambda.cwiseAbs().minCoeff(&momentum);
+    if (cyclic_angle(model, R) == 1) lambda.cwiseAbs().minCoeff(&momentum);
     std::vector<NaturalMode> modes;
     for (Eigen::Index k = 0; k < lambda.size(); ++k) {
         const std::complex<double> l = lambda[k];
         if (k == momentum) continue;
         const double scale = std::max(1.0, std::abs(l));
-        const bool oscillating = l.imag() > 1e-9 * scale, divergent = std::abs(l.imag()) <= 1e-9 * scale && l.real() > 0.0;
-        if (!oscillating && !divergent) continue;  // the conjugate, or the stable twin of a divergent pair
-        // The equations are conservative (gyroscopic at most): a real part below 1e-6 of |lambda| is the eigen
-        // solver's round-off, not damping.
-        const double growth = std::abs(l.real()) <= 1e-6 * scale ? 0.0 : l.real();
+        const bool oscillating = l.imag() > 1e-9 * scale, real = std::abs(l.imag()) <= 1e-9 * scale;
+        const bool divergent = real && l.real() > 0.0, overdamped = damped && real && l.real() < 0.0;
+        if (!oscillating && !divergent && !overdamped) continue;  // the conjugate, or the stable twin of a divergent pair
+        // Without damping the equations are conservative (gyroscopic at most): a real part below 1e-6 of |lambda|
+        // is the eigen solver's round-off, not damping.
+        const double growth = !damped && std::abs(l.real()) <= 1e-6 * scale ? 0.0 : l.real();
         const bool is_axial = mostly_axial(model, M, R, vectors.col(k));
-        modes.push_back({oscillating ? l.imag() : 0.0, growth, is_axial ? "axial" : "bending"});
+        const double magnitude = std::hypot(growth, oscillating ? l.imag() : 0.0);
+        modes.push_back({oscillating ? l.imag() : 0.0, growth, is_axial ? "axial" : "bending", magnitude,
+                         magnitude > 0.0 ? -growth / magnitude : 0.0});
     }
-    std::sort(modes.begin(), modes.end(), [](const NaturalMode& a, const NaturalMode& b) {
-        return a.rad_s != b.rad_s ? a.rad_s < b.rad_s : a.growth > b.growth;
+    // By frequency, divergent modes (rad_s 0) first; with damping by undamped frequency, so that an overdamped
+    // mode keeps its place among the others.
+    const auto frequency = [damped](const NaturalMode& m) {
+        return !damped || (m.rad_s == 0.0 && m.growth > 0.0) ? m.rad_s : m.undamped_rad_s;
+    };
+    std::sort(modes.begin(), modes.end(), [&](const NaturalMode& a, const NaturalMode& b) {
+        return frequency(a) != frequency(b) ? frequency(a) < frequency(b) : a.growth > b.growth;
     });
     return modes;
 }
 
-std::vector<SpinMode> campbell(const Model& model, const std::vector<double>& omegas, Axial axial)
+std::vector<SpinMode> campbell(const Model& model, const std::vector<double>& omegas, Axial axial, double theta)
 {
     std::vector<SpinMode> rows;
     for (const double omega : omegas) {
         int number = 0;
-        for (const NaturalMode& mode : natural_modes(model, steady_spin(model, omega), axial))
+        for (const NaturalMode& mode : natural_modes(model, steady_spin(model, omega, theta), axial))
             rows.push_back({omega, ++number, mode});
     }
     return rows;
@@ -292,7 +362,8 @@ const char* modes_header()
 {
     // The one list of the modes CSV's columns, in the order run_modes writes them; readers look them up by name.
     static const std::string h = csv_header({"method", "ny", "nx", "order", "drive", "omega", "mode", "kind", "rad_s",
-                                             "hz", "dimensionless", "growth"});
+                                             "hz", "dimensionless", "growth", "undamped_rad_s",
+                                             "damping_ratio"});
     return h.c_str();
 }
 

@@ -134,12 +134,12 @@ struct FirstOrderSystem::Work {
     Eigen::VectorXd product;
 };
 
-Auxiliary Auxiliary::of(const VariantKey& key, const Control* control)
+Auxiliary Auxiliary::of(const VariantKey& key, const Control* control, const Parameters* parameters)
 {
     Auxiliary a;
     a.integral = control != nullptr && !control->law && control->ki != 0.0;
-    a.dissipated = key.extras.damping;
-    a.work = key.drive == Drive::torque && (control != nullptr || key.extras.damping);
+    a.dissipated = key.extras.damping && parameters != nullptr;
+    a.work = key.drive == Drive::torque && (control != nullptr || a.dissipated);
     return a;
 }
 
@@ -151,7 +151,7 @@ FirstOrderSystem::FirstOrderSystem(const Model& model, const Motion& motion, Axi
     if (control_ != nullptr && key.drive != Drive::torque)
         throw std::invalid_argument("a controlled hub needs a torque variant, not " + key.name());
     kept_ = kept_coordinates(key, axial_);
-    aux_ = Auxiliary::of(key, control_);
+    aux_ = Auxiliary::of(key, control_, parameters);
     const int k = static_cast<int>(kept_.size());
     int next = 2 * k;
     if (aux_.integral) integral_ = next++;
@@ -171,27 +171,13 @@ FirstOrderSystem::FirstOrderSystem(const Model& model, const Motion& motion, Axi
         }
     }
     if (aux_.dissipated) {
-        // docs/model.md section 9: -(alpha M_ee + beta K_e) qd_e, M_ee and K_e of the undeformed beam at rest; without
-        // the parameters, the model's own -dQ/dqd at rest (its damping forces: the other rate terms are quadratic).
+        // docs/model.md section 11.4: -(alpha M_ee + beta K_e) qd_e, M_ee and K_e of the undeformed beam at rest, from
+        // the parameters: an independent check of the generated damping forces.
         const HubInput rest;
-        Eigen::MatrixXd C(n_, n_);
-        if (parameters != nullptr) {
-            Eigen::MatrixXd M(n_, n_);
-            model.mass(rest, zero.data(), M.data());  // symmetric: row- or column-major alike
-            const Eigen::MatrixXd K = -force_q_jacobian(model, rest, zero, zero);
-            C = parameters->alpha * M + parameters->beta * 0.5 * (K + K.transpose());
-        } else {
-            std::vector<double> qd = zero, Q_plus(zero), Q_minus(zero);
-            for (int j = 0; j < n_; ++j) {
-                qd[static_cast<std::size_t>(j)] = 1.0;
-                model.forces(rest, zero.data(), qd.data(), Q_plus.data());
-                qd[static_cast<std::size_t>(j)] = -1.0;
-                model.forces(rest, zero.data(), qd.data(), Q_minus.data());
-                qd[static_cast<std::size_t>(j)] = 0.0;
-                for (int i = 0; i < n_; ++i)
-                    C(i, j) = -0.5 * (Q_plus[static_cast<std::size_t>(i)] - Q_minus[static_cast<std::size_t>(i)]);
-            }
-        }
+        Eigen::MatrixXd M(n_, n_);
+        model.mass(rest, zero.data(), M.data());  // symmetric: row- or column-major alike
+        const Eigen::MatrixXd K = -force_q_jacobian(model, rest, zero, zero);
+        const Eigen::MatrixXd C = parameters->alpha * M + parameters->beta * 0.5 * (K + K.transpose());
         w.dissipation = Eigen::MatrixXd::Zero(k, k);
         const int elastic = key.first_a();  // the hub angle, a coordinate under torque, is not damped
         for (int i = 0; i < k; ++i)

@@ -370,21 +370,24 @@ Simulation::Run::Run(const Simulation& simulation)
     summary_.algebra = system_.linear_algebra();
     summary_.stepper = sim_.stepper_;
     summary_.stepper_why = sim_.stepper_why_;
+    // At rest, the free hub at its initial angle (q[0], the first state: kept_coordinates keeps it first).
+    if (model_.key().drive == Drive::torque) y_[0] = scene_.motion.initial_theta();
     // The invariant monitor starts after the drive's last breakpoint, from where its Jacobi integral is constant; with
     // the hub's work a state, E + dissipated - work is constant from the start; with damping the Jacobi integral
-    // plus the dissipated energy is (docs/model.md section 9). Gravity under a prescribed rotation leaves nothing
+    // plus the dissipated energy is (docs/model.md section 11.4). Gravity under a prescribed rotation leaves nothing
     // constant: U_g changes with the prescribed angle.
     const std::vector<double> all_breaks = scene_.motion.breakpoints();
     summary_.t_steady = all_breaks.empty() ? 0.0 : *std::max_element(all_breaks.begin(), all_breaks.end());
     summary_.energy_balance = system_.auxiliary_count() > 0 || scene_.control.has_value();
     if (system_.auxiliary().work) summary_.t_steady = 0.0;
-    if (model_.key().extras.gravity && model_.key().drive == Drive::prescribed)
+    const bool turning = scene_.motion.kind != Motion::Kind::held;
+    if (model_.key().extras.gravity && model_.key().drive == Drive::prescribed && turning)
         summary_.monitor_off = "gravity under a prescribed rotation: U_g follows the prescribed angle, no energy is "
                                "constant";
     const double t_end = scene_.output.t_end;
     check_window_ = std::min(t_end, std::max(t_end * check_window_fraction, scene_.output.dt_out));
     start_window_.t0 = 0.0;
-    start_window_.y0 = y_;  // at rest
+    start_window_.y0 = y_;  // the initial state
 }
 
 RunSummary Simulation::Run::operator()(const RowSink& sink, const StopRequest& stop)
@@ -708,10 +711,9 @@ std::string Simulation::Run::tolerance_as_cause(const std::string& failure)
         if (at_row ? times_(i) >= t_ * (1.0 - same_instant) : times_(i) > t_ * (1.0 + same_instant)) break;
     }
     if (times.empty()) return failure;
-    const std::vector<double> rest(static_cast<std::size_t>(system_.size()), 0.0);
     summary_.check_rtol = tol.rtol;
     summary_.check_atol = tol.atol;
-    const std::vector<Row> again = rerun(scene_, model_, 0.0, rest, times, tol);
+    const std::vector<Row> again = rerun(scene_, model_, 0.0, start_window_.y0, times, tol);  // the run's start
     if (again.size() < times.size()) return failure;  // the model fails there at the tighter tolerance too
     // What happened, without the clauses that blame the model.
     std::string what = failure.substr(0, std::min({failure.find(" ("), failure.find("; "), failure.find(", above")}));
@@ -752,7 +754,7 @@ ColumnSet optional_columns_of(const Scene& scene)
 {
     const Control* control = scene.control ? &*scene.control : nullptr;
     const VariantKey key = scene.key();
-    const Auxiliary aux = Auxiliary::of(key, control);
+    const Auxiliary aux = Auxiliary::of(key, control, &scene.parameters);
     const bool torque = key.drive == Drive::torque && (control != nullptr || key.extras.damping);
     const bool has[] = {torque, control != nullptr && !control->law, aux.integral, aux.dissipated, aux.work};
     static_assert(std::size(has) == optional_width);

@@ -2,6 +2,7 @@
 #include "stiffness.hpp"
 
 #include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -46,6 +47,39 @@ double highest_frequency(const Model& model, Axial axial)
     return std::sqrt(std::max(0.0, solver.eigenvalues().maxCoeff()));
 }
 
+double highest_rate(const Model& model, Axial axial)
+{
+    const double omega = highest_frequency(model, axial);
+    const int n = model.nq();
+    const std::vector<double> zero(static_cast<std::size_t>(n), 0.0);
+    const HubInput rest;
+    const ForceJacobians J = force_jacobians(model, rest, zero, zero);
+    if (J.qd.isZero(0.0)) return omega;  // undamped: the rates are the frequencies
+    // Damped: the eigenvalues of the first-order system x' = [[0, I], [M^-1 dQ/dq, M^-1 dQ/dqd]] x at rest, kept
+    // coordinates only. Stiffness-proportional damping turns the stiff axial modes into fast real decays of rate
+    // about beta omega^2, which bound an explicit step as a frequency does.
+    const std::vector<int> kept = kept_coordinates(model.key(), axial);
+    const auto m = static_cast<Eigen::Index>(kept.size());
+    Eigen::MatrixXd M(n, n), Mk(m, m), Kq(m, m), Kqd(m, m);
+    model.mass(rest, zero.data(), M.data());
+    for (Eigen::Index i = 0; i < m; ++i)
+        for (Eigen::Index j = 0; j < m; ++j) {
+            const auto a = static_cast<Eigen::Index>(kept[static_cast<std::size_t>(i)]);
+            const auto b = static_cast<Eigen::Index>(kept[static_cast<std::size_t>(j)]);
+            Mk(i, j) = M(a, b);
+            Kq(i, j) = J.q(a, b);
+            Kqd(i, j) = J.qd(a, b);
+        }
+    const Eigen::LDLT<Eigen::MatrixXd> solve(Mk);
+    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(2 * m, 2 * m);
+    A.topRightCorner(m, m).setIdentity();
+    A.bottomLeftCorner(m, m) = solve.solve(Kq);
+    A.bottomRightCorner(m, m) = solve.solve(Kqd);
+    const Eigen::EigenSolver<Eigen::MatrixXd> eig(A, false);
+    if (eig.info() != Eigen::Success) return INFINITY;
+    return std::max(omega, eig.eigenvalues().cwiseAbs().maxCoeff());
+}
+
 namespace {
 
 /// Whether -dQ/dq at rest, spinning steadily at omega, is positive definite (the cyclic hub angle left out).
@@ -78,22 +112,25 @@ double critical_spin(const Model& model)
 
 StepperChoice automatic_stepper(const Model& model, Axial axial)
 {
-    const double omega = highest_frequency(model, axial);
-    char why[160];
+    const double omega = highest_rate(model, axial);
+    const bool damped = omega != highest_frequency(model, axial);
+    // Damped equations are judged by their largest rate |lambda|, which a damped decay may set.
+    const char* what = damped ? "largest rate |lambda| of the damped equations" : "highest frequency";
+    const char* unit = damped ? "1/s" : "rad/s";
+    char why[220];
     if (omega > stiff_frequency && model.mass_is_constant()) {
-        std::snprintf(why, sizeof why, "automatic: stiff, highest frequency %.0f rad/s > %.0f rad/s, constant M", omega,
-                      stiff_frequency);
+        std::snprintf(why, sizeof why, "automatic: stiff, %s %.0f %s > %.0f %s, constant M", what, omega, unit,
+                      stiff_frequency, unit);
         return {"rk4imp", why};
     }
     if (omega > stiff_frequency) {
         std::snprintf(why, sizeof why,
-                      "automatic: stiff, highest frequency %.0f rad/s > %.0f rad/s, but M varies: an implicit step "
-                      "costs more than the explicit steps it saves",
-                      omega, stiff_frequency);
+                      "automatic: stiff, %s %.0f %s > %.0f %s, but M varies: an implicit step costs more than the "
+                      "explicit steps it saves",
+                      what, omega, unit, stiff_frequency, unit);
         return {"rk8pd", why};
     }
-    std::snprintf(why, sizeof why, "automatic: not stiff, highest frequency %.0f rad/s <= %.0f rad/s", omega,
-                  stiff_frequency);
+    std::snprintf(why, sizeof why, "automatic: not stiff, %s %.0f %s <= %.0f %s", what, omega, unit, stiff_frequency, unit);
     return {"rk8pd", why};
 }
 

@@ -14,6 +14,11 @@ namespace hubbeam {
 /// their rows and columns are left out (they are not integrated).
 double highest_frequency(const Model& model, Axial axial);
 
+/// The largest |lambda| (1/s) of the first-order equations linearized at rest, no spin: the highest frequency when
+/// the beam is undamped; with damping the fast decay rates count too (stiffness-proportional damping makes the
+/// stiff axial modes overdamped, their fast rate about beta omega^2). What bounds an explicit step.
+double highest_rate(const Model& model, Axial axial);
+
 /// Above this highest frequency (rad/s) the equations count as stiff: an explicit Runge-Kutta step is then
 /// stability-bound at about 5 / omega_max s, shorter than the ~0.03 s that rtol 1e-8 needs for the bending
 /// motion of the paper's beam (measured with hubbeam bench; docs/performance.md "Which stepper for which scene").

@@ -164,16 +164,29 @@ std::string format_summary(const RunSummary& r, const Scene& scene)
     std::ostringstream out;
     const Motion& m = scene.motion;
     out << "scene       " << scene.path;
-    const std::string controlled = scene.control ? (scene.control->law ? "hub torque from a torque law" : "controlled hub, reference: ") : "";
-    if (scene.control && scene.control->law)
-        out << " (" << controlled << ")\n";
-    else if (m.kind == Motion::Kind::spin_up)
-        out << " (" << controlled << "spin-up to Omega0 = " << shortest(m.omega0) << " rad/s in T_s = "
-            << shortest(m.spin_time) << " s)\n";
-    else if (m.kind == Motion::Kind::step)
-        out << " (" << controlled << "step to " << shortest(m.angle) << " rad at t = 0)\n";
-    else
-        out << " (hub torque tau0 = " << shortest(m.tau0) << " N m for T_t = " << shortest(m.torque_time) << " s)\n";
+    if (scene.control && scene.control->law) {
+        out << " (hub torque from a torque law)\n";
+    } else {
+        out << (scene.control ? " (controlled hub, reference:" : "");
+        switch (m.kind) {
+        case Motion::Kind::spin_up:
+            out << " (spin-up to Omega0 = " << shortest(m.omega0) << " rad/s in T_s = " << shortest(m.spin_time) << " s";
+            break;
+        case Motion::Kind::torque:
+            out << " (hub torque tau0 = " << shortest(m.tau0) << " N m for T_t = " << shortest(m.torque_time) << " s";
+            break;
+        case Motion::Kind::held: out << " (hub held at theta = " << shortest(m.angle) << " rad"; break;
+        case Motion::Kind::step: out << " (step to " << shortest(m.angle) << " rad at t = 0"; break;
+        case Motion::Kind::table:
+        case Motion::Kind::torque_table:
+            out << (m.kind == Motion::Kind::table ? " (hub angle from " : " (hub torque from ") << printable(m.table_file, 200)
+                << ", " << m.table->times().size() << " rows to t = " << shortest(m.table->last_time()) << " s, "
+                << (m.kind == Motion::Kind::table ? "natural cubic spline" : "linear between rows");
+            break;
+        }
+        if (m.kind != Motion::Kind::held && m.theta0 != 0.0) out << ", theta0 = " << shortest(m.theta0) << " rad";
+        out << (scene.control ? "))\n" : ")\n");
+    }
     out << "variant     " << r.variant << " (" << r.source << ")\n";
     out << "algebra     " << r.algebra << "\n";
     out << "stepper     " << r.stepper << (r.stepper_why.empty() ? "" : " (" + r.stepper_why + ")") << ", rtol " << shortest(scene.solver.rtol) << ", atol "

@@ -16,10 +16,12 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <string_view>
 
+#include "csv_columns.hpp"
 #include "integrate.hpp"
 #include "shortest.hpp"
 
@@ -37,9 +39,13 @@ namespace {
 
 constexpr const char* missing = "nothing (the key is missing)";
 
-// The words of motion.kind; the key table's motion_kind entries are among them (tests/test_scene.cpp).
-const WordTable<Motion::Kind, 3> kind_words = {
-    {Motion::Kind::spin_up, "spin-up"}, {Motion::Kind::torque, "torque"}, {Motion::Kind::step, "step"}};
+// The words of motion.kind; the key table's motion_kinds entries are among them (tests/test_scene.cpp).
+const WordTable<Motion::Kind, 6> kind_words = {{Motion::Kind::spin_up, "spin-up"},
+                                               {Motion::Kind::torque, "torque"},
+                                               {Motion::Kind::held, "held"},
+                                               {Motion::Kind::table, "table"},
+                                               {Motion::Kind::torque_table, "torque-table"},
+                                               {Motion::Kind::step, "step"}};
 
 std::vector<std::string> motion_kinds() { return all_words(kind_words); }
 
@@ -74,10 +80,13 @@ std::vector<SceneKey> make_scene_keys()
         {"damping.stiffness_proportional", nullptr, K::number, "a number >= 0 (beta, s)"},
         {"gravity.g", nullptr, K::number, "a finite number (g, m/s^2)"},
         {"motion.kind", nullptr, K::word, one_of(motion_kinds())},
-        {"motion.omega0", nullptr, K::number, "a finite number (Omega0, rad/s)", "spin-up"},
-        {"motion.tau0", nullptr, K::number, "a finite number (tau0, N m)", "torque"},
-        {"motion.duration", nullptr, K::number, "a number > 0 (T_s or T_t, s)"},
-        {"motion.angle", nullptr, K::number, "a finite number (the step's angle, rad)", "step"},
+        {"motion.omega0", nullptr, K::number, "a finite number (Omega0, rad/s)", {"spin-up"}},
+        {"motion.tau0", nullptr, K::number, "a finite number (tau0, N m)", {"torque"}},
+        {"motion.duration", nullptr, K::number, "a number > 0 (T_s or T_t, s)", {"spin-up", "torque"}},
+        {"motion.theta0", nullptr, K::number, "a finite number (theta0, rad)", {"spin-up", "torque", "table", "torque-table"}},
+        {"motion.angle", nullptr, K::number, "a finite number (the hub angle, rad)", {"held", "step"}},
+        {"motion.file", nullptr, K::text, "a CSV file with columns t, theta (table) or t, tau (torque-table)",
+         {"table", "torque-table"}},
         {"control.kp", nullptr, K::number, "a number >= 0 (kp, N m/rad)"},
         {"control.kd", nullptr, K::number, "a number >= 0 (kd, N m s/rad)"},
         {"control.ki", nullptr, K::number, "a number >= 0 (ki, N m/(rad s))"},
@@ -190,6 +199,12 @@ public:
         return static_cast<int>(i->get());
     }
 
+    std::string required_string(std::string_view key) const
+    {
+        if (const auto v = string(key)) return *v;
+        fail(file_, path(key), expected(path(key)), missing);
+    }
+
     std::optional<std::string> string(std::string_view key) const
     {
         const toml::node* n = get(key);
@@ -231,7 +246,8 @@ bool parse_enum(std::string_view w, E& e)
     return hubbeam::parse(w, e);
 }
 
-std::string read_file(const std::string& path)
+/// A file's text, at most cap + 1 bytes of it (the caller refuses more).
+std::string read_file(const std::string& path, std::size_t cap = max_scene_bytes)
 {
     // Checked before opening: open() on a FIFO waits for a writer, and a device or a directory is no scene.
     if (const std::string kind = not_a_regular_file(path); !kind.empty())
@@ -239,7 +255,7 @@ std::string read_file(const std::string& path)
     std::ifstream in(path, std::ios::binary);
     if (!in) throw SceneError::with_detail(path, "", std::string("cannot open: ") + std::strerror(errno));
     // Read at most one byte past the cap: a scene is a few kilobytes, and /dev/zero never ends.
-    std::string text(max_scene_bytes + 1, '\0');
+    std::string text(cap + 1, '\0');
     in.read(text.data(), static_cast<std::streamsize>(text.size()));
     if (in.bad()) throw SceneError::with_detail(path, "", std::string("cannot read: ") + std::strerror(errno));
     text.resize(static_cast<std::size_t>(in.gcount()));
@@ -300,17 +316,18 @@ void check_finite(const Scene& s, double v, const char* key)
     if (!std::isfinite(v)) fail(s.path, key, expected(key), shortest(v));
 }
 
-/// [control]'s ranges, and the motions it can follow: a step is a reference only, a torque pulse is none.
+/// [control]'s ranges, and the motions it can follow: a step is a reference only, a torque drive is none.
 void check_control(const Scene& s)
 {
     if (!s.control) {
         if (s.motion.kind == Motion::Kind::step)
-            fail(s.path, "motion.kind", "\"spin-up\" or \"torque\" without a [control] section (a step is the "
-                 "reference of a controlled hub)", "\"step\"");
+            fail(s.path, "motion.kind", "a motion of its own without a [control] section (a step is the reference of a "
+                 "controlled hub)", "\"step\"");
         return;
     }
-    if (s.motion.kind == Motion::Kind::torque)
-        fail(s.path, "motion.kind", "a reference for [control]: \"spin-up\" or \"step\"", "\"torque\"");
+    if (s.motion.drive() == Drive::torque)
+        fail(s.path, "motion.kind", "a reference for [control]: \"spin-up\", \"held\", \"table\" or \"step\"",
+             "\"" + word_of(s.motion.kind, kind_words) + "\"");
     const Control& c = *s.control;
     for (const auto& [v, key] : {std::pair{c.kp, "control.kp"}, {c.kd, "control.kd"}, {c.ki, "control.ki"}})
         if (!(v >= 0.0) || !std::isfinite(v)) fail(s.path, key, expected(key), shortest(v));
@@ -344,7 +361,7 @@ void check_tables(const toml::table& root, const std::string& path)
             fail(path, required, std::string("a table [") + required + "]", "nothing (the table is missing)");
 }
 
-/// [beam]: docs/model.md section 1, and the taper of section 10 (a taper kind without a ratio is refused: the
+/// [beam]: docs/model.md section 1, and the taper of section 11 (a taper kind without a ratio is refused: the
 /// default ratio 1 would make it uniform without a word).
 void read_beam(const Section& beam, Parameters& p, Taper& taper)
 {
@@ -360,7 +377,7 @@ void read_beam(const Section& beam, Parameters& p, Taper& taper)
         beam.refuse("tip_ratio", shortest(*r) + " without beam.taper = \"width\" or \"depth\"");
 }
 
-/// [tip], [damping], [gravity]: the extra terms of docs/model.md section 10; absent tables leave them out.
+/// [tip], [damping], [gravity]: the extra terms of docs/model.md section 11; absent tables leave them out.
 void read_extras(const toml::table& root, const std::string& path, Parameters& p)
 {
     const Section tip(path, root, "tip"), damping(path, root, "damping"), gravity(path, root, "gravity");
@@ -374,26 +391,146 @@ void read_extras(const toml::table& root, const std::string& path, Parameters& p
     p.g = gravity.number("g", p.g);
 }
 
-/// [motion]: paper eq. 58 (spin-up) or eq. 59 (torque); the kind decides which keys the table may hold.
-void read_motion(const Section& motion, Motion& m)
+std::string_view trimmed(std::string_view s)
 {
-    m.kind = motion.required_word<Motion::Kind>("kind", parse_kind);
-    motion.only(word_of(m.kind, kind_words));
-    if (m.kind == Motion::Kind::spin_up) {
-        m.omega0 = motion.required_number("omega0");
-        m.spin_time = motion.required_number("duration");
-    } else if (m.kind == Motion::Kind::step) {
-        m.angle = motion.required_number("angle");
-        m.omega0 = 0.0;  // no spin: what reads the final rate of a motion (modes' default rates) reads none
-        if (const auto d = motion.number("duration"))
-            motion.refuse("duration", shortest(*d) + " for kind = \"step\" (the step is at t = 0: no duration)");
-    } else {
-        m.tau0 = motion.required_number("tau0");
-        m.torque_time = motion.required_number("duration");
+    const std::size_t first = s.find_first_not_of(" \t");
+    if (first == std::string_view::npos) return {};
+    return s.substr(first, s.find_last_not_of(" \t") - first + 1);
+}
+
+/// A motion table's problem: "SCENE: motion.file: WHERE: WHAT" (WHERE the CSV file, with its line if one is at fault).
+[[noreturn]] void table_fail(const std::string& scene, const std::string& where, const std::string& what)
+{
+    throw SceneError::with_detail(scene, "motion.file", where + ": " + what);
+}
+
+/// The table of motion.file: columns t and `column` (found by name, in any order among others), one row a line,
+/// read and checked whole before anything runs. file is already resolved against the scene's folder.
+std::shared_ptr<const DriveTable> read_drive_table(const std::string& scene, const std::string& file,
+                                                   const char* column, const char* meaning,
+                                                   DriveTable::Interpolation interpolation)
+{
+    std::string text;
+    try {
+        text = read_file(file, max_table_bytes);  // the scene's own reader: FIFOs, devices, folders refused
+    } catch (const SceneError& e) {
+        table_fail(scene, printable(file, 400), e.detail);
+    }
+    if (text.size() > max_table_bytes)
+        table_fail(scene, printable(file, 400),
+                   "is larger than a motion table can be (" + std::to_string(max_table_bytes >> 20) + " MB)");
+    const std::string label = printable(file, 400);
+    if (text.rfind("\xef\xbb\xbf", 0) == 0) text.erase(0, 3);  // a spreadsheet's byte-order mark
+
+    std::optional<CsvColumns> columns;
+    std::size_t t_at = 0, v_at = 0;
+    std::vector<double> t, v;
+    std::vector<long> lines;  // each row's line, for the checks across rows
+    long line_no = 0;
+    for (std::size_t pos = 0; pos < text.size();) {
+        std::size_t end = text.find('\n', pos);
+        if (end == std::string::npos) end = text.size();
+        std::string_view line(text.data() + pos, end - pos);
+        pos = end + 1;
+        ++line_no;
+        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+        if (trimmed(line).empty()) continue;
+        const std::string where = label + ":" + std::to_string(line_no);
+        std::vector<std::string> fields = csv_fields(line);
+        for (std::string& f : fields) f = std::string(trimmed(f));
+        if (!columns) {  // the header: "t, theta" as well as "t,theta"
+            std::string header;
+            for (const std::string& f : fields) header += (header.empty() ? "" : ",") + f;
+            columns.emplace(where, header);
+            try {
+                t_at = columns->at("t", "time, s");
+                v_at = columns->at(column, meaning);
+            } catch (const CsvColumnError& e) {
+                throw SceneError::with_detail(scene, "motion.file", e.what());
+            }
+            continue;
+        }
+        if (fields.size() != columns->size())
+            table_fail(scene, where,
+                       "expected " + std::to_string(columns->size()) + " fields as the header has, got " +
+                           std::to_string(fields.size()));
+        const auto number = [&](std::size_t at, const std::string& name) {
+            const std::string& f = fields[at];
+            double x = 0.0;
+            const auto [stop, ec] = std::from_chars(f.data(), f.data() + f.size(), x);
+            if (ec != std::errc() || stop != f.data() + f.size() || !std::isfinite(x))
+                table_fail(scene, where,
+                           "expected a finite number in column " + name + ", got \"" + printable(f, 40) + "\"");
+            return x;
+        };
+        t.push_back(number(t_at, "t"));
+        v.push_back(number(v_at, column));
+        lines.push_back(line_no);
+        if (t.size() >= 2 && !(t.back() > t[t.size() - 2]))
+            table_fail(scene, where,
+                       "expected times that increase strictly, got t = " + shortest(t.back()) + " after t = " +
+                           shortest(t[t.size() - 2]) + " (line " + std::to_string(lines[lines.size() - 2]) + ")");
+    }
+    if (!columns) table_fail(scene, label, "expected a header line with columns t, " + std::string(column) + ", got an empty file");
+    const std::size_t need = DriveTable::min_rows(interpolation);
+    if (t.size() < need)
+        table_fail(scene, label,
+                   "expected at least " + std::to_string(need) + " rows" +
+                       (interpolation == DriveTable::Interpolation::cubic_spline ? " (a cubic spline)" : "") + ", got " +
+                       std::to_string(t.size()));
+    try {
+        return std::make_shared<const DriveTable>(std::move(t), std::move(v), interpolation);
+    } catch (const std::invalid_argument& e) {
+        table_fail(scene, label, e.what());
     }
 }
 
-/// [control]: docs/model.md section 9; absent, the hub follows its motion.
+/// motion.file as a path: relative to the scene file's folder (a scene and its table travel together).
+std::string table_path(const std::string& scene, const std::string& file)
+{
+    const std::filesystem::path p(file);
+    if (p.is_absolute() || scene.empty()) return file;
+    return (std::filesystem::path(scene).parent_path() / p).lexically_normal().string();
+}
+
+/// [motion]: paper eq. 58 (spin-up) or eq. 59 (torque), a held hub, or a table of theta or tau against time; the
+/// kind decides which keys the table may hold.
+void read_motion(const Section& motion, const std::string& path, Motion& m)
+{
+    m.kind = motion.required_word<Motion::Kind>("kind", parse_kind);
+    motion.only(word_of(m.kind, kind_words));
+    switch (m.kind) {
+    case Motion::Kind::spin_up:
+        m.omega0 = motion.required_number("omega0");
+        m.spin_time = motion.required_number("duration");
+        break;
+    case Motion::Kind::torque:
+        m.tau0 = motion.required_number("tau0");
+        m.torque_time = motion.required_number("duration");
+        break;
+    case Motion::Kind::held: m.angle = motion.required_number("angle"); break;
+    case Motion::Kind::step:
+        m.angle = motion.required_number("angle");
+        m.omega0 = 0.0;  // no spin: what reads the final rate of a motion (modes' default rates) reads none
+        break;
+    case Motion::Kind::table:
+    case Motion::Kind::torque_table: {
+        const std::string file = motion.required_string("file");
+        if (file.empty()) motion.refuse("file", "an empty one");
+        const bool angle = m.kind == Motion::Kind::table;
+        m.table_file = table_path(path, file);
+        // The angle's rate and acceleration enter the equations: a C2 spline. A torque enters as it is, and a
+        // test rig's record is piecewise constant or linear: straight lines, each row a breakpoint, so a step
+        // stays a step (a spline would overshoot it).
+        m.table = read_drive_table(path, m.table_file, angle ? "theta" : "tau", angle ? "the hub angle, rad" : "the hub torque, N m",
+                                   angle ? DriveTable::Interpolation::cubic_spline : DriveTable::Interpolation::linear);
+        break;
+    }
+    }
+    m.theta0 = motion.number("theta0", m.theta0);
+}
+
+/// [control]: docs/model.md section 11; absent, the hub follows its motion.
 void read_control(const Section& control, std::optional<Control>& c)
 {
     if (control.absent()) return;
@@ -406,19 +543,19 @@ void read_control(const Section& control, std::optional<Control>& c)
     c->k_tip = control.number("k_tip", c->k_tip);
 }
 
-/// [hub]: the hub inertia only enters a torque-driven hub (the torque case, or a controlled one), where theta is a
-/// coordinate.
+/// [hub]: the hub inertia only enters the torque drives (or a controlled hub), where theta is a coordinate.
 void read_hub(const Section& hub, const Scene& scene, Parameters& p)
 {
     hub.only();
     p.a = hub.number("radius", p.a);
+    const Motion::Kind kind = scene.motion.kind;
     if (scene.control) p.J_oh = hub.required_number("inertia", ", required for a controlled hub ([control])");
-    else if (scene.motion.kind == Motion::Kind::torque)
-        p.J_oh = hub.required_number("inertia", ", required for kind = \"torque\"");
+    else if (kind == Motion::Kind::torque || kind == Motion::Kind::torque_table)
+        p.J_oh = hub.required_number("inertia", ", required for kind = \"" + word_of(kind, kind_words) + "\"");
     else p.J_oh = hub.number("inertia", p.J_oh);
 }
 
-/// [discretization]: docs/model.md section 4; the variant's drive follows the motion (or the control).
+/// [discretization]: docs/model.md section 4; the variant's drive follows the motion.
 void read_discretization(const Section& disc, const Scene& scene, VariantKey& key)
 {
     disc.only();
@@ -611,7 +748,8 @@ std::vector<std::string> table_keys(const std::string& table, const std::string&
 {
     std::vector<std::string> leaves;
     for (const SceneKey& k : scene_keys())
-        if (k.table() == table && (k.motion_kind == nullptr || motion_kind.empty() || motion_kind == k.motion_kind))
+        if (k.table() == table && (k.motion_kinds.empty() || motion_kind.empty() ||
+                                   std::find(k.motion_kinds.begin(), k.motion_kinds.end(), motion_kind) != k.motion_kinds.end()))
             leaves.push_back(k.leaf());
     return leaves;
 }
@@ -632,7 +770,7 @@ Scene parse_scene(std::string_view text, const std::string& path, const Override
     scene.path = path;
     read_beam(Section(path, root, "beam"), scene.parameters, scene.variant.extras.taper);
     read_extras(root, path, scene.parameters);
-    read_motion(Section(path, root, "motion"), scene.motion);
+    read_motion(Section(path, root, "motion"), path, scene.motion);
     read_control(Section(path, root, "control"), scene.control);
     read_hub(Section(path, root, "hub"), scene, scene.parameters);
     read_discretization(Section(path, root, "discretization"), scene, scene.variant);
@@ -659,15 +797,23 @@ void validate(const Scene& s)
         if (!(v >= 0.0) || !std::isfinite(v)) fail(s.path, key, expected(key), shortest(v));
     check_finite(s, p.g, "gravity.g");
 
-    if (s.motion.kind == Motion::Kind::spin_up) {
+    switch (s.motion.kind) {
+    case Motion::Kind::spin_up:
         check_finite(s, s.motion.omega0, "motion.omega0");
         check_positive(s, s.motion.spin_time, "motion.duration");
-    } else if (s.motion.kind == Motion::Kind::step) {
-        check_finite(s, s.motion.angle, "motion.angle");
-    } else {
+        break;
+    case Motion::Kind::torque:
         check_finite(s, s.motion.tau0, "motion.tau0");
         check_positive(s, s.motion.torque_time, "motion.duration");
+        break;
+    case Motion::Kind::held:
+    case Motion::Kind::step: check_finite(s, s.motion.angle, "motion.angle"); break;
+    case Motion::Kind::table:
+    case Motion::Kind::torque_table:
+        if (!s.motion.table) fail(s.path, "motion.file", expected("motion.file"), missing);
+        break;
     }
+    if (s.motion.kind != Motion::Kind::held) check_finite(s, s.motion.theta0, "motion.theta0");
     check_control(s);
 
     // DOF counts: a problem that persists with nx = 0 is about ny.
@@ -704,6 +850,15 @@ void validate(const Scene& s)
              "at most " + std::to_string(max_output_rows) + " rows (output.t_end / output.dt_out)",
              shortest(s.output.t_end / s.output.dt_out) + " rows (t_end = " + shortest(s.output.t_end) +
                  ", dt_out = " + shortest(s.output.dt_out) + ")");
+
+    // A table is not extrapolated: a run past its rows would make up a drive no one wrote down.
+    const bool tabled = s.motion.kind == Motion::Kind::table || s.motion.kind == Motion::Kind::torque_table;
+    if (const DriveTable* t = s.motion.table.get();
+        tabled && (t->first_time() > 0.0 || t->last_time() < s.output.t_end))
+        table_fail(s.path, printable(s.motion.table_file, 400),
+                   "its rows cover t = " + shortest(t->first_time()) + " to " + shortest(t->last_time()) +
+                       " s, the run needs t = 0 to output.t_end = " + shortest(s.output.t_end) +
+                       " s (a table is not extrapolated: extend it or shorten the run)");
 }
 
 std::string option_name(const SceneKey& k)

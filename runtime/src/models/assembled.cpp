@@ -1,5 +1,7 @@
-// docs/model.md section 5 assembled numerically: coefficient matrices by quadrature, then M(q) and Q(q, qd) of
-// Lagrange's equations for orders first and zero, in torque form q = (theta, A, B) or prescribed form q = (A, B).
+// docs/model.md sections 5 and 11 assembled numerically: coefficient matrices by quadrature (a taper as a weight
+// inside them), a tip body as point values of the shape functions at x = L, then M(q) and Q(q, qd) of Lagrange's
+// equations for orders first and zero, with gravity and Rayleigh damping, in torque form q = (theta, A, B) or
+// prescribed form q = (A, B).
 #include "assembled.hpp"
 
 #include "fields.hpp"
@@ -40,6 +42,9 @@ BeamMatrices assemble_matrices(const VariantKey& key, const Parameters& p)
     if (const std::string problem = key.dof_problem(); !problem.empty()) throw std::invalid_argument(problem);
     const FieldBasis axial = key.axial_basis(), transverse = key.transverse_basis();
     const int nx = key.nx, ny = key.ny;
+    // Exact for the polynomial bases with a taper too: max(degree) + 2 Gauss points per piece integrate degree
+    // 2 max(degree) + 3, and no integrand below exceeds the product of two pieces times a cubic in xi (the depth
+    // taper's i(xi) times two second derivatives; the weights of D and G); AMM's rule is converged to round-off.
     const QuadratureRule rule = product_rule(axial, transverse);
     const int nn = static_cast<int>(rule.nodes.size());
 
@@ -64,40 +69,98 @@ BeamMatrices assemble_matrices(const VariantKey& key, const Parameters& p)
     const double L = p.L, a = p.a, m = p.rho * p.S, EI = p.E * p.I, ES = p.E * p.S;
     const Eigen::ArrayXd xi = Eigen::Map<const Eigen::ArrayXd>(rule.nodes.data(), nn);
     const VectorXd w = Eigen::Map<const VectorXd>(rule.weights.data(), nn);
-    const VectorXd w_arm = (m * L * w.array() * (a + L * xi)).matrix();         // m (a+x) dx
-    const VectorXd w_C = (m * w.array() * (1.0 - xi)).matrix();                  // m (L-x) dx / L^2
-    const VectorXd w_D = (0.5 * m * L * w.array() * (1.0 - xi * xi)).matrix();  // m (L^2-x^2)/2 dx / L^2
+    // Section 11.2's profile: m(x) = m s(xi), ES(x) = ES s(xi), EI(x) = EI i(xi), s = 1 + (tip_ratio - 1) xi, i = s (width
+    // taper) or s^3 (depth taper); s = i = 1 for a uniform beam, whatever tip_ratio says.
+    const double r1 = key.extras.taper == Taper::uniform ? 0.0 : p.tip_ratio - 1.0;
+    const Eigen::ArrayXd s = 1.0 + r1 * xi;
+    const Eigen::ArrayXd i = key.extras.taper == Taper::depth ? Eigen::ArrayXd(s.cube()) : s;
+    // C and D with the order of integration exchanged: H(x) is weighed by int_x^L m dt = m L above and by
+    // int_x^L m t dt = m L^2 above_x / 2.
+    const Eigen::ArrayXd above = (1.0 - xi) + 0.5 * r1 * (1.0 - xi * xi);
+    const Eigen::ArrayXd above_x = (1.0 - xi * xi) + (2.0 / 3.0) * r1 * (1.0 - xi * xi * xi);
+    const VectorXd w_s = (w.array() * s).matrix();                              // m(x) dx / (m L)
+    const VectorXd w_i = (w.array() * i).matrix();                              // EI(x) dx / (EI L)
+    const VectorXd w_arm = (m * L * w_s.array() * (a + L * xi)).matrix();       // m(x) (a+x) dx
+    const VectorXd w_C = (m * w.array() * above).matrix();                      // m L above dx / L^2
+    const VectorXd w_D = (0.5 * m * L * w.array() * above_x).matrix();          // m L^2 above_x / 2 dx / L^2
 
     BeamMatrices b;
-    b.J_ob = m * (std::pow(a + L, 3) - std::pow(a, 3)) / 3.0;  // int_0^L m (a+x)^2 dx in closed form
+    // int_0^L m s(x/L) (a+x)^2 dx and int_0^L m s(x/L) (a+x) dx in closed form.
+    b.J_ob = m * ((std::pow(a + L, 3) - std::pow(a, 3)) / 3.0 + r1 * L * (a * a / 2.0 + 2.0 * a * L / 3.0 + L * L / 4.0));
+    b.S_ob = m * (a * L + L * L / 2.0 + r1 * L * (a / 2.0 + L / 3.0));
     b.S_x = (X.transpose() * w_arm).transpose();
     b.S_y = (Y.transpose() * w_arm).transpose();
-    b.M1 = m * L * weighted_gram(X, w);
-    b.M2 = m * L * weighted_gram(Y, w);
-    b.M3 = m * L * weighted_product(X, w, Y);
-    b.K1 = ES / L * weighted_gram(X1, w);
-    b.K2 = EI / (L * L * L) * weighted_gram(Y2, w);
+    b.M1 = m * L * weighted_gram(X, w_s);
+    b.M2 = m * L * weighted_gram(Y, w_s);
+    b.M3 = m * L * weighted_product(X, w_s, Y);
+    b.K1 = ES / L * weighted_gram(X1, w_s);
+    b.K2 = EI / (L * L * L) * weighted_gram(Y2, w_i);
     b.C = weighted_gram(Y1, w_C);
     b.D = weighted_gram(Y1, w_D);
     b.G = a * b.C + b.D;
+
+    b.P_x = m * L * (X.transpose() * w_s).transpose();
+    b.P_y = m * L * (Y.transpose() * w_s).transpose();
+    b.Phi_x_L.resize(nx);
+    b.Phi_y_L.resize(ny);
+    b.Phi_y1_L.resize(ny);
+    for (int k = 0; k < nx; ++k) b.Phi_x_L(k) = axial.at(k, 1.0).v;
+    for (int k = 0; k < ny; ++k) {
+        const Jet<double> f = transverse.at(k, 1.0);
+        b.Phi_y_L(k) = f.v;
+        b.Phi_y1_L(k) = f.d1 / L;
+    }
+    b.H_L = weighted_gram(Y1, w) / L;
     return b;
 }
 
 namespace {
 
-/// docs/model.md section 5's M and Q from the constant matrices; `zero` order uses M2 in place of M2 - G.
+/// docs/model.md sections 5 and 11's M and Q from constant matrices: section 5's beam matrices with the tip body
+/// added (its translation to S_x, S_y, M1, M2, M3, G, its rotation to J_o, S_y and the B-rate mass M2r), the weight's
+/// W_o, W_x, W_y, W_H and the damping matrices. Order zero drops G and W_H (no foreshortening).
 class AssembledModel final : public Model {
 public:
     AssembledModel(const VariantKey& key, const Parameters& p)
-        : Model(key), c_(assemble_matrices(key, p)), fields_(key, p), nx_(key.nx), ny_(key.ny), J_o_(p.J_oh + c_.J_ob)
+        : Model(key), fields_(key, p), nx_(key.nx), ny_(key.ny)
     {
-        M2_G_ = key.order == Order::zero ? c_.M2 : MatrixXd(c_.M2 - c_.G);
-        S_x_T_ = c_.S_x.transpose();
-        S_y_T_ = c_.S_y.transpose();
-        if (key.drive == Drive::prescribed) {  // paper eq. 57: M = blockdiag(M1, M2), constant
+        const BeamMatrices c = assemble_matrices(key, p);
+        const Extras& x = key.extras;
+        const bool zero = key.order == Order::zero;
+        // A term the variant does not carry contributes nothing, whatever its parameter says (as in the generator).
+        const double m_t = x.tip ? p.m_tip : 0.0, J_t = x.tip ? p.J_tip : 0.0, R = p.a + p.L;
+        g_ = x.gravity ? p.g : 0.0;
+        const double alpha = x.damping ? p.alpha : 0.0, beta = x.damping ? p.beta : 0.0;
+
+        // Section 11.1: the tip body's T at x = L (order rules of section 3) in section 5.2's form.
+        J_o_ = p.J_oh + c.J_ob + m_t * R * R + J_t;
+        S_x_ = c.S_x + m_t * R * c.Phi_x_L;
+        S_y_ = c.S_y + m_t * R * c.Phi_y_L + J_t * c.Phi_y1_L;
+        M1_ = c.M1 + m_t * c.Phi_x_L.transpose() * c.Phi_x_L;
+        const MatrixXd M2 = c.M2 + m_t * c.Phi_y_L.transpose() * c.Phi_y_L;
+        M3_ = c.M3 + m_t * c.Phi_x_L.transpose() * c.Phi_y_L;
+        M2r_ = M2 + J_t * c.Phi_y1_L.transpose() * c.Phi_y1_L;
+        M2_G_ = zero ? M2 : MatrixXd(M2 - (c.G + m_t * R * c.H_L));
+        K1_ = c.K1;
+        K2_ = c.K2;
+        S_x_T_ = S_x_.transpose();
+        S_y_T_ = S_y_.transpose();
+
+        // Section 11.3: U_g = g sin(theta) (W_o + W_x A - 1/2 B^T W_H B) + g cos(theta) W_y B.
+        W_o_ = c.S_ob + m_t * R;
+        W_x_ = c.P_x + m_t * c.Phi_x_L;
+        W_y_ = c.P_y + m_t * c.Phi_y_L;
+        W_H_ = zero ? MatrixXd::Zero(ny_, ny_) : MatrixXd(c.C + m_t * c.H_L);
+
+        // Section 11.4: -dD/dqd = -(alpha M_ee + beta K_e) qd_e with M_ee = blockdiag(M1, M2r) of the beam with its tip.
+        D_A_ = alpha * M1_ + beta * K1_;
+        D_B_ = alpha * M2r_ + beta * K2_;
+        damped_ = alpha != 0.0 || beta != 0.0;
+
+        if (key.drive == Drive::prescribed) {  // paper eq. 57: M = blockdiag(M1, M2r), constant
             M_prescribed_ = RowMajorMatrix::Zero(nx_ + ny_, nx_ + ny_);
-            M_prescribed_.topLeftCorner(nx_, nx_) = c_.M1;
-            M_prescribed_.bottomRightCorner(ny_, ny_) = c_.M2;
+            M_prescribed_.topLeftCorner(nx_, nx_) = M1_;
+            M_prescribed_.bottomRightCorner(ny_, ny_) = M2r_;
         }
     }
 
@@ -131,12 +194,12 @@ public:
         Mm.setZero();
         Mm(0, 0) = M11(A, B);
         // Row 0: M12 = -(M3 B)^T, M13 = S_y + A^T M3; column 0 is its transpose (M21, M31).
-        Mm.row(0).segment(1, nx_).noalias() = -B.transpose() * c_.M3.transpose();
-        Mm.row(0).segment(1 + nx_, ny_).noalias() = A.transpose() * c_.M3;
-        Mm.row(0).segment(1 + nx_, ny_) += c_.S_y;
+        Mm.row(0).segment(1, nx_).noalias() = -B.transpose() * M3_.transpose();
+        Mm.row(0).segment(1 + nx_, ny_).noalias() = A.transpose() * M3_;
+        Mm.row(0).segment(1 + nx_, ny_) += S_y_;
         Mm.col(0).tail(n - 1) = Mm.row(0).tail(n - 1).transpose();
-        Mm.block(1, 1, nx_, nx_) = c_.M1;
-        Mm.block(1 + nx_, 1 + nx_, ny_, ny_) = c_.M2;
+        Mm.block(1, 1, nx_, nx_) = M1_;
+        Mm.block(1 + nx_, 1 + nx_, ny_, ny_) = M2r_;
     }
 
     void forces(const HubInput& u, const double* q, const double* qd, double* Q) const override
@@ -149,24 +212,52 @@ public:
         const double w2 = theta_dot * theta_dot, w = 2.0 * theta_dot;
 
         // Q_A = theta_dot^2 (S_x^T + M1 A) + 2 theta_dot M3 B_dot - K1 A
-        Q_A.noalias() = w2 * (c_.M1 * A);
+        Q_A.noalias() = w2 * (M1_ * A);
         Q_A += w2 * S_x_T_;
-        Q_A.noalias() += w * (c_.M3 * B_dot);
-        Q_A.noalias() -= c_.K1 * A;
+        Q_A.noalias() += w * (M3_ * B_dot);
+        Q_A.noalias() -= K1_ * A;
         // Q_B = theta_dot^2 (M2 - G) B - 2 theta_dot M3^T A_dot - K2 B
         Q_B.noalias() = w2 * (M2_G_ * B);
-        Q_B.noalias() -= w * (c_.M3.transpose() * A_dot);
-        Q_B.noalias() -= c_.K2 * B;
+        Q_B.noalias() -= w * (M3_.transpose() * A_dot);
+        Q_B.noalias() -= K2_ * B;
 
         if (torque) {
             // Q_theta = tau - 2 theta_dot (S_x A_dot + A^T M1 A_dot + B^T (M2 - G) B_dot)
-            Q[0] = u.tau - w * (c_.S_x.dot(A_dot) + A.dot(c_.M1.lazyProduct(A_dot)) + B.dot(M2_G_.lazyProduct(B_dot)));
+            Q[0] = u.tau - w * (S_x_.dot(A_dot) + A.dot(M1_.lazyProduct(A_dot)) + B.dot(M2_G_.lazyProduct(B_dot)));
         } else {
             // Paper eq. 57: the known theta_ddot moves to the right: Q_A - M21 theta_ddot, Q_B - M31 theta_ddot.
-            Q_A.noalias() += u.theta_ddot * (c_.M3 * B);
-            Q_B.noalias() -= u.theta_ddot * (c_.M3.transpose() * A);
+            Q_A.noalias() += u.theta_ddot * (M3_ * B);
+            Q_B.noalias() -= u.theta_ddot * (M3_.transpose() * A);
             Q_B -= u.theta_ddot * S_y_T_;
         }
+
+        if (g_ != 0.0) {
+            // -dU_g/dq (section 11.3): Q_A -= g sin W_x^T, Q_B += g (sin W_H B - cos W_y^T),
+            // Q_theta -= g (cos (W_o + W_x A - 1/2 B^T W_H B) - sin W_y B).
+            const double theta = torque ? q[0] : u.theta, gs = g_ * std::sin(theta), gc = g_ * std::cos(theta);
+            Q_A -= gs * W_x_.transpose();
+            Q_B.noalias() += gs * (W_H_ * B);
+            Q_B -= gc * W_y_.transpose();
+            if (torque) Q[0] -= gc * (W_o_ + W_x_.dot(A) - 0.5 * B.dot(W_H_.lazyProduct(B))) - gs * W_y_.dot(B);
+        }
+        if (damped_) {
+            // -dD/dqd (section 11.4): Rayleigh damping of the elastic rates; the hub's rate is not damped.
+            Q_A.noalias() -= D_A_ * A_dot;
+            Q_B.noalias() -= D_B_ * B_dot;
+        }
+    }
+
+    /// dQ/dtheta of the prescribed form with gravity: U_g is the only place theta enters.
+    void forces_theta(const HubInput& u, const double* q, const double*, double* dQdtheta) const override
+    {
+        std::fill_n(dQdtheta, nq(), 0.0);
+        if (g_ == 0.0 || key().drive == Drive::torque) return;
+        const ConstVector B(q + nx_, ny_);
+        Vector dA(dQdtheta, nx_), dB(dQdtheta + nx_, ny_);
+        const double gs = g_ * std::sin(u.theta), gc = g_ * std::cos(u.theta);
+        dA = -gc * W_x_.transpose();
+        dB.noalias() = gc * (W_H_ * B);
+        dB += gs * W_y_.transpose();
     }
 
     Energy energy(const HubInput& u, const double* q, const double* qd) const override
@@ -176,8 +267,8 @@ public:
         const double theta_dot = torque ? qd[0] : u.theta_dot;
         const ConstVector A(q + o, nx_), B(q + o + nx_, ny_), A_dot(qd + o, nx_), B_dot(qd + o + nx_, ny_);
 
-        // T of docs/model.md section 5, by degree in the flexible rates.
-        const double flexible = 0.5 * A_dot.dot(c_.M1.lazyProduct(A_dot)) + 0.5 * B_dot.dot(c_.M2.lazyProduct(B_dot));
+        // T of docs/model.md section 5 (with section 11's tip body), by degree in the flexible rates.
+        const double flexible = 0.5 * A_dot.dot(M1_.lazyProduct(A_dot)) + 0.5 * B_dot.dot(M2r_.lazyProduct(B_dot));
         const double coupling = theta_dot * gyroscopic(A, B, A_dot, B_dot);
         const double spin = 0.5 * M11(A, B) * theta_dot * theta_dot;
         Energy e;
@@ -188,7 +279,12 @@ public:
             e.T1 = coupling;
             e.T0 = spin;
         }
-        e.U = 0.5 * A.dot(c_.K1.lazyProduct(A)) + 0.5 * B.dot(c_.K2.lazyProduct(B));
+        e.U = 0.5 * A.dot(K1_.lazyProduct(A)) + 0.5 * B.dot(K2_.lazyProduct(B));
+        if (g_ != 0.0) {
+            const double theta = torque ? q[0] : u.theta;
+            e.U += g_ * std::sin(theta) * (W_o_ + W_x_.dot(A) - 0.5 * B.dot(W_H_.lazyProduct(B))) +
+                   g_ * std::cos(theta) * W_y_.dot(B);
+        }
         return e;
     }
 
@@ -206,26 +302,35 @@ public:
     }
 
 private:
-    /// M11 = J_oh + J_ob + 2 S_x A + A^T M1 A + B^T (M2 - G) B.
+    /// M11 = J_o + 2 S_x A + A^T M1 A + B^T (M2 - G) B, J_o = J_oh + J_ob (+ the tip's m_tip (a+L)^2 + J_tip).
     double M11(const ConstVector& A, const ConstVector& B) const
     {
-        return J_o_ + 2.0 * c_.S_x.dot(A) + A.dot(c_.M1.lazyProduct(A)) + B.dot(M2_G_.lazyProduct(B));
+        return J_o_ + 2.0 * S_x_.dot(A) + A.dot(M1_.lazyProduct(A)) + B.dot(M2_G_.lazyProduct(B));
     }
 
     /// The factor of theta_dot in T linear in the rates: (S_y + A^T M3) B_dot - B^T M3^T A_dot.
     double gyroscopic(const ConstVector& A, const ConstVector& B, const ConstVector& A_dot,
                       const ConstVector& B_dot) const
     {
-        return c_.S_y.dot(B_dot) + A.dot(c_.M3.lazyProduct(B_dot)) - A_dot.dot(c_.M3.lazyProduct(B));
+        return S_y_.dot(B_dot) + A.dot(M3_.lazyProduct(B_dot)) - A_dot.dot(M3_.lazyProduct(B));
     }
 
-    BeamMatrices c_;
     BeamFields fields_;
     int nx_, ny_;
-    double J_o_;                  // J_oh + J_ob
-    MatrixXd M2_G_;               // M2 - G (first order) or M2 (zero order)
-    VectorXd S_x_T_, S_y_T_;      // S_x^T, S_y^T as columns
-    RowMajorMatrix M_prescribed_;  // blockdiag(M1, M2) for the prescribed form
+    // Section 5.2's matrices of the beam with its tip body (section 11.1).
+    double J_o_ = 0.0;             // J_oh + J_ob + m_tip (a+L)^2 + J_tip
+    Eigen::RowVectorXd S_x_, S_y_;
+    MatrixXd M1_, M3_, K1_, K2_;
+    MatrixXd M2r_;                 // the B-rate mass: M2 + J_tip Phi_y'(L)^T Phi_y'(L)
+    MatrixXd M2_G_;                // M2 - G (first order) or M2 (zero order)
+    VectorXd S_x_T_, S_y_T_;       // S_x^T, S_y^T as columns
+    RowMajorMatrix M_prescribed_;  // blockdiag(M1, M2r) for the prescribed form
+    // Section 11.3's weight and 11.4's damping.
+    double g_ = 0.0, W_o_ = 0.0;
+    Eigen::RowVectorXd W_x_, W_y_;
+    MatrixXd W_H_;
+    MatrixXd D_A_, D_B_;           // alpha M1 + beta K1, alpha M2r + beta K2
+    bool damped_ = false;
 };
 
 }  // namespace
@@ -234,8 +339,6 @@ std::unique_ptr<Model> make_assembled_model(const VariantKey& key, const Paramet
 {
     if (key.order == Order::full)
         throw std::invalid_argument("full order has no hand-assembled form; it needs a generated variant");
-    if (key.extras.any())
-        throw std::invalid_argument("a tip body, gravity, damping or a taper has no hand-assembled form yet; it needs a generated variant");
     return std::make_unique<AssembledModel>(key, p);
 }
 

@@ -1,5 +1,6 @@
 // The hand-assembled path: docs/model.md section 5's constant coefficient matrices by Gauss-Legendre
-// quadrature over the shape functions, and the Model built from them (orders zero and first).
+// quadrature over the shape functions, extended by section 11's tip body, taper, gravity and Rayleigh damping,
+// and the Model built from them (orders zero and first).
 #pragma once
 
 #include <memory>
@@ -10,7 +11,9 @@
 
 namespace hubbeam {
 
-/// docs/model.md section 5's coefficient matrices in SI units ('= d/dx).
+/// docs/model.md section 5's coefficient matrices in SI units ('= d/dx). For a tapered variant m, ES and EI are the
+/// root values times the section's profile, m(x) = m s(xi), ES(x) = ES s(xi), EI(x) = EI i(xi) (section 11), inside
+/// every integral. The beam alone: the tip body is added by the model from the tip values below.
 struct BeamMatrices {
     double J_ob = 0.0;          // int m (a+x)^2 dx
     Eigen::RowVectorXd S_x;     // 1 x Nx, int m (a+x) Phi_x dx
@@ -20,16 +23,25 @@ struct BeamMatrices {
     Eigen::MatrixXd M3;         // Nx x Ny, int m Phi_x^T Phi_y dx
     Eigen::MatrixXd K1;         // Nx x Nx, int ES Phi_x'^T Phi_x' dx
     Eigen::MatrixXd K2;         // Ny x Ny, int EI Phi_y''^T Phi_y'' dx
-    Eigen::MatrixXd C;          // Ny x Ny, int m H(x) dx = int m (L-x) Phi_y'^T Phi_y' dx
-    Eigen::MatrixXd D;          // Ny x Ny, int m x H(x) dx = int m (L^2-x^2)/2 Phi_y'^T Phi_y' dx
+    Eigen::MatrixXd C;          // Ny x Ny, int m H(x) dx = int (int_x^L m ds) Phi_y'^T Phi_y' dx
+    Eigen::MatrixXd D;          // Ny x Ny, int m x H(x) dx = int (int_x^L m s ds) Phi_y'^T Phi_y' dx
     Eigen::MatrixXd G;          // Ny x Ny, a C + D: geometric stiffness per unit theta_dot^2
+
+    // Section 11: the weight's integrals and the shape functions at the tip.
+    double S_ob = 0.0;          // int m (a+x) dx, the beam's first moment about o
+    Eigen::RowVectorXd P_x;     // 1 x Nx, int m Phi_x dx
+    Eigen::RowVectorXd P_y;     // 1 x Ny, int m Phi_y dx
+    Eigen::RowVectorXd Phi_x_L;   // 1 x Nx, Phi_x(L)
+    Eigen::RowVectorXd Phi_y_L;   // 1 x Ny, Phi_y(L)
+    Eigen::RowVectorXd Phi_y1_L;  // 1 x Ny, Phi_y'(L) (1/m)
+    Eigen::MatrixXd H_L;          // Ny x Ny, H(L) = int Phi_y'^T Phi_y' dx
 };
 
 /// docs/model.md section 5's coefficient matrices of a variant (order and drive do not matter); symmetric ones are
 /// exactly symmetric. Throws std::invalid_argument if the variant's DOF counts are invalid for its method.
 BeamMatrices assemble_matrices(const VariantKey& key, const Parameters& p);
 
-/// docs/model.md section 5 assembled numerically; orders zero and first only (throws std::invalid_argument).
+/// docs/model.md sections 5 and 11 assembled numerically; orders zero and first only (throws std::invalid_argument).
 std::unique_ptr<Model> make_assembled_model(const VariantKey& key, const Parameters& p);
 
 }  // namespace hubbeam
