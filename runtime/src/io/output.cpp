@@ -167,25 +167,26 @@ std::string format_summary(const RunSummary& r, const Scene& scene)
     if (scene.control && scene.control->law) {
         out << " (hub torque from a torque law)\n";
     } else {
-        out << (scene.control ? " (controlled hub, reference:" : "");
+        std::ostringstream motion;  // " (what the motion is", closed below
         switch (m.kind) {
         case Motion::Kind::spin_up:
-            out << " (spin-up to Omega0 = " << shortest(m.omega0) << " rad/s in T_s = " << shortest(m.spin_time) << " s";
+            motion << " (spin-up to Omega0 = " << shortest(m.omega0) << " rad/s in T_s = " << shortest(m.spin_time) << " s";
             break;
         case Motion::Kind::torque:
-            out << " (hub torque tau0 = " << shortest(m.tau0) << " N m for T_t = " << shortest(m.torque_time) << " s";
+            motion << " (hub torque tau0 = " << shortest(m.tau0) << " N m for T_t = " << shortest(m.torque_time) << " s";
             break;
-        case Motion::Kind::held: out << " (hub held at theta = " << shortest(m.angle) << " rad"; break;
-        case Motion::Kind::step: out << " (step to " << shortest(m.angle) << " rad at t = 0"; break;
+        case Motion::Kind::held: motion << " (hub held at theta = " << shortest(m.angle) << " rad"; break;
+        case Motion::Kind::step: motion << " (step to " << shortest(m.angle) << " rad at t = 0"; break;
         case Motion::Kind::table:
         case Motion::Kind::torque_table:
-            out << (m.kind == Motion::Kind::table ? " (hub angle from " : " (hub torque from ") << printable(m.table_file, 200)
+            motion << (m.kind == Motion::Kind::table ? " (hub angle from " : " (hub torque from ") << printable(m.table_file, 200)
                 << ", " << m.table->times().size() << " rows to t = " << shortest(m.table->last_time()) << " s, "
                 << (m.kind == Motion::Kind::table ? "natural cubic spline" : "linear between rows");
             break;
         }
-        if (m.kind != Motion::Kind::held && m.theta0 != 0.0) out << ", theta0 = " << shortest(m.theta0) << " rad";
-        out << (scene.control ? "))\n" : ")\n");
+        if (m.kind != Motion::Kind::held && m.theta0 != 0.0) motion << ", theta0 = " << shortest(m.theta0) << " rad";
+        const std::string what = motion.str();
+        out << (scene.control ? " (controlled hub, reference: " + what.substr(2) : what) << ")\n";
     }
     out << "variant     " << r.variant << " (" << r.source << ")\n";
     out << "algebra     " << r.algebra << "\n";
