@@ -14,6 +14,7 @@
 
 #include "assembled.hpp"
 #include "fields.hpp"
+#include "shared_oracles.hpp"
 
 using namespace hubbeam;
 using Eigen::MatrixXd;
@@ -132,39 +133,6 @@ VectorXd forces_of(const Model& model, const State& s)
 {
     VectorXd Q(model.nq());
     model.forces(s.u, s.q.data(), s.qd.data(), Q.data());
-    return Q;
-}
-
-/// Q of Lagrange's equations from energy() alone (docs/model.md section 5): tau e_theta + dT/dq - dp/dt - dU/dq
-/// with p = dT/dqd and dp/dt taken at qdd = 0 along theta_dot(t) (prescribed). T and U are polynomials of
-/// degree <= 2 in each of these directions, so central differences with unit steps are exact.
-VectorXd lagrange_forces(const Model& model, const State& s)
-{
-    const int n = model.nq();
-    const auto T = [&](const HubInput& u, const VectorXd& q, const VectorXd& qd) {
-        return model.energy(u, q.data(), qd.data()).kinetic();
-    };
-    const auto U = [&](const VectorXd& q) { return model.energy(s.u, q.data(), s.qd.data()).U; };
-    const auto p = [&](const HubInput& u, const VectorXd& q) {
-        VectorXd r(n);
-        for (int j = 0; j < n; ++j) {
-            const VectorXd e = VectorXd::Unit(n, j);
-            r(j) = 0.5 * (T(u, q, s.qd + e) - T(u, q, s.qd - e));
-        }
-        return r;
-    };
-    HubInput later = s.u, earlier = s.u;  // theta_dot(t +- 1 s) along theta_ddot
-    later.theta_dot += s.u.theta_ddot;
-    earlier.theta_dot -= s.u.theta_ddot;
-    const VectorXd p_dot = 0.5 * (p(later, s.q + s.qd) - p(earlier, s.q - s.qd));
-    VectorXd Q(n);
-    for (int j = 0; j < n; ++j) {
-        const VectorXd e = VectorXd::Unit(n, j);
-        const double dT = 0.5 * (T(s.u, s.q + e, s.qd) - T(s.u, s.q - e, s.qd));
-        const double dU = 0.5 * (U(s.q + e) - U(s.q - e));
-        Q(j) = dT - p_dot(j) - dU;
-    }
-    if (model.key().drive == Drive::torque) Q(0) += s.u.tau;
     return Q;
 }
 
@@ -545,7 +513,7 @@ TEST_CASE("forces follow from the energy by Lagrange's equations", "[assembled]"
                 const auto model = make_assembled_model(key, p);
                 for (int trial = 0; trial < 3; ++trial) {
                     const State s = random_state(key, rng);
-                    const VectorXd Q = forces_of(*model, s), Q_ref = lagrange_forces(*model, s);
+                    const VectorXd Q = forces_of(*model, s), Q_ref = test::lagrange_forces(*model, s);
                     CHECK((Q - Q_ref).lpNorm<Eigen::Infinity>() <= 1e-9 * Q_ref.lpNorm<Eigen::Infinity>());
                 }
             }

@@ -19,6 +19,7 @@
 #include "generated_model.hpp"
 #include "make_model.hpp"
 #include "random_state.hpp"
+#include "shared_oracles.hpp"
 
 using namespace hubbeam;
 using Eigen::MatrixXd;
@@ -110,41 +111,6 @@ std::vector<VariantKey> extras_variants()
     for (const std::string& name : generated_variant_names())
         if (VariantKey k = VariantKey::parse(name); k.extras.any()) keys.push_back(k);
     return keys;
-}
-
-/// Q of Lagrange's equations from energy() alone (docs/model.md section 5.1): tau e_theta + dT/dq - dp/dt - dU/dq,
-/// p = dT/dqd, dp/dt at qdd = 0 along theta_dot(t) (prescribed). T, U and p are polynomials of degree <= 2 along
-/// every direction taken, except U along a torque variant's theta, which is affine in (sin theta, cos theta): there
-/// the central difference over 2 sin(1) in place of 2 is exact.
-VectorXd lagrange_forces(const Model& model, const test::State& s)
-{
-    const int n = model.nq();
-    const bool torque = model.key().drive == Drive::torque;
-    const auto T = [&](const HubInput& u, const VectorXd& q, const VectorXd& qd) {
-        return model.energy(u, q.data(), qd.data()).kinetic();
-    };
-    const auto U = [&](const VectorXd& q) { return model.energy(s.u, q.data(), s.qd.data()).U; };
-    const auto p = [&](const HubInput& u, const VectorXd& q) {
-        VectorXd r(n);
-        for (int j = 0; j < n; ++j) {
-            const VectorXd e = VectorXd::Unit(n, j);
-            r(j) = 0.5 * (T(u, q, s.qd + e) - T(u, q, s.qd - e));
-        }
-        return r;
-    };
-    HubInput later = s.u, earlier = s.u;  // theta_dot(t +- 1 s) along theta_ddot (theta does not enter T)
-    later.theta_dot += s.u.theta_ddot;
-    earlier.theta_dot -= s.u.theta_ddot;
-    const VectorXd p_dot = 0.5 * (p(later, s.q + s.qd) - p(earlier, s.q - s.qd));
-    VectorXd Q(n);
-    for (int j = 0; j < n; ++j) {
-        const VectorXd e = VectorXd::Unit(n, j);
-        const double dT = 0.5 * (T(s.u, s.q + e, s.qd) - T(s.u, s.q - e, s.qd));
-        const double dU = (U(s.q + e) - U(s.q - e)) / (torque && j == 0 ? 2.0 * std::sin(1.0) : 2.0);
-        Q(j) = dT - p_dot(j) - dU;
-    }
-    if (torque) Q(0) += s.u.tau;
-    return Q;
 }
 
 /// Every assembled variant the Lagrange checks cover: each method (BSIM in both constructions), both drives, orders
@@ -242,7 +208,7 @@ TEST_CASE("assembled extra terms: forces from the assembled energies and dissipa
                 const test::State s = state_of(key, rng);
                 INFO("trial " << trial);
                 // Tip body, taper and gravity are conservative: Q is Lagrange's from T and U alone.
-                const VectorXd Q = forces_of(*model, s), QL = lagrange_forces(*model, s);
+                const VectorXd Q = forces_of(*model, s), QL = test::lagrange_forces(*model, s);
                 CHECK(relative_error(Q, QL) < 1e-9);
                 // The mass matrix is T's Hessian in the rates (T is quadratic in them: exact differences).
                 MatrixXd H(n, n);
@@ -315,26 +281,6 @@ Linear at_rest(const Model& model)
     return l;
 }
 
-/// The first roots of 1 + cos z cosh z + mu z (cos z sinh z - sin z cosh z) = 0 (divided by cosh z), by bisection
-/// between the sign changes of a fine scan.
-std::vector<double> tip_mass_roots(double mu, int count)
-{
-    const auto f = [mu](double z) {
-        return 1.0 / std::cosh(z) + std::cos(z) + mu * z * (std::cos(z) * std::tanh(z) - std::sin(z));
-    };
-    std::vector<double> roots;
-    for (double z = 0.1; static_cast<int>(roots.size()) < count; z += 0.01) {
-        double lo = z, hi = z + 0.01;
-        if (f(lo) * f(hi) > 0.0) continue;
-        for (int it = 0; it < 200 && hi - lo > 1e-15 * hi; ++it) {
-            const double mid = 0.5 * (lo + hi);
-            (f(mid) * f(lo) > 0.0 ? lo : hi) = mid;
-        }
-        roots.push_back(0.5 * (lo + hi));
-    }
-    return roots;
-}
-
 VariantKey still_key(Method method, int nx, int ny, Extras extras)
 {
     return {.method = method, .nx = nx, .ny = ny, .order = Order::first, .drive = Drive::prescribed, .extras = extras};
@@ -348,7 +294,7 @@ TEST_CASE("assembled tip mass: the cantilever's frequency equation", "[extras][a
     Parameters p;
     const double m = p.rho * p.S, mu = 0.5;
     p.m_tip = mu * m * p.L;
-    const std::vector<double> z = tip_mass_roots(mu, 3);
+    const std::vector<double> z = test::tip_mass_roots(mu, 3);
     REQUIRE(z[0] < 1.8751);  // a tip mass lowers the first root below the bare cantilever's
     // Rayleigh-Ritz from above, to each method's convergence at these counts (AMM's clamped-free modes miss the
     // tip's shear force, so converge slowest; BIM spectrally).

@@ -18,6 +18,7 @@
 #include "linearize.hpp"
 #include "make_model.hpp"
 #include "runs.hpp"
+#include "shared_oracles.hpp"
 #include "simulate.hpp"
 
 using namespace hubbeam;
@@ -52,27 +53,6 @@ std::vector<double> bending(const Model& model, double omega = 0.0)
     return out;
 }
 
-/// The first `count` roots z of 1 + cos z cosh z + mu z (cos z sinh z - sin z cosh z) = 0 (a cantilever with a
-/// point mass mu m L at its tip, no rotary inertia), by scanning for sign changes and bisection. Divided by
-/// cosh z, which keeps the sign and the size finite.
-std::vector<double> tip_mass_roots(double mu, int count)
-{
-    const auto f = [mu](double z) {
-        return 1.0 / std::cosh(z) + std::cos(z) + mu * z * (std::cos(z) * std::tanh(z) - std::sin(z));
-    };
-    std::vector<double> roots;
-    for (double z = 0.05; static_cast<int>(roots.size()) < count; z += 0.01) {
-        double lo = z, hi = z + 0.01;
-        if ((f(lo) < 0.0) == (f(hi) < 0.0)) continue;
-        for (int k = 0; k < 100; ++k) {
-            const double mid = 0.5 * (lo + hi);
-            ((f(lo) < 0.0) == (f(mid) < 0.0) ? lo : hi) = mid;
-        }
-        roots.push_back(0.5 * (lo + hi));
-    }
-    return roots;
-}
-
 double relative(double a, double b) { return std::abs(a - b) / std::abs(b); }
 
 /// A beam stiffer and shorter than the paper's: L = 1 m (q L^4 / (8 EI) = 4.4e-4 m with the paper's section).
@@ -91,11 +71,11 @@ TEST_CASE("a tip mass lowers the cantilever's frequencies to the roots of its fr
     Parameters p;
     p.m_tip = 0.5 * p.rho * p.S * p.L;
     const double mu = p.m_tip / (p.rho * p.S * p.L);
-    const std::vector<double> z = tip_mass_roots(mu, 3);
+    const std::vector<double> z = test::tip_mass_roots(mu, 3);
     const double unit = std::sqrt(p.E * p.I / (p.rho * p.S * std::pow(p.L, 4)));
     // The oracle against the tabulated first roots: 1.87510 without a tip mass, 1.24792 for mu = 1 (Blevins).
-    CHECK(tip_mass_roots(0.0, 1)[0] == Approx(1.8751041).epsilon(1e-7));
-    CHECK(tip_mass_roots(1.0, 1)[0] == Approx(1.24792).epsilon(1e-5));
+    CHECK(test::tip_mass_roots(0.0, 1)[0] == Approx(1.8751041).epsilon(1e-7));
+    CHECK(test::tip_mass_roots(1.0, 1)[0] == Approx(1.24792).epsilon(1e-5));
     for (Method method : all_methods) {
         std::vector<double> previous(3, INFINITY);
         for (int ny : ny_steps) {
