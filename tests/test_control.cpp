@@ -4,6 +4,8 @@
 // and the auxiliary states' interpolation against steps that end at every row.
 #include <catch2/catch.hpp>
 
+#include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -11,6 +13,7 @@
 #include <vector>
 
 #include "integrate.hpp"
+#include "linearize.hpp"
 #include "make_model.hpp"
 #include "runs.hpp"
 #include "simulate.hpp"
@@ -300,4 +303,58 @@ TEST_CASE("optional columns: only the scenes that have them, in the CSV header a
     Scene damped = paper_scene(Method::amm, 4, 4, test::spin_up(4.0));
     damped.parameters.beta = 1e-3;
     CHECK(row_header(optional_columns_of(damped)) == std::string(row_header()) + ",dissipated");
+}
+
+TEST_CASE("a small controlled step follows the closed loop that modes and linearize give", "[control][modes]")
+{
+    // The paper's flexible beam (not stiffened) under PD control with tip feedback, a step small enough for the
+    // equations to be linear in it: the run's theta(t) and tip_uy(t) are the closed loop's free response
+    // x(t) = V exp(Lambda t) V^-1 x0 from x0 = (theta - angle = -angle, all else 0), by the eigen decomposition of
+    // closed_loop's A, whose eigenvalues are what hubbeam modes prints for the scene.
+    const double angle = 1e-3;
+    Motion m;
+    m.kind = Motion::Kind::step;
+    m.angle = angle;
+    Scene s = paper_scene(Method::amm, 0, 4, m);
+    s.control = Control{};
+    const double J = rigid_inertia(s.parameters);
+    s.control->kp = J;
+    s.control->kd = 1.4 * J;
+    s.control->k_tip = 20.0;
+    s.output.t_end = 8.0;
+    s.output.dt_out = 0.1;
+    s.solver.rtol = 1e-10;
+    s.solver.atol = 1e-13;
+    const Ran r = run_scene(s);
+
+    const auto model = make_model(s.key(), s.parameters, ModelSource::generated);
+    const SteadySpin rest = steady_spin(*model, 0.0);
+    const StateSpace cl = closed_loop(state_space(*model, rest), *s.control);
+    const Eigen::EigenSolver<Eigen::MatrixXd> eig(cl.A);
+    const Eigen::MatrixXcd V = eig.eigenvectors();
+    Eigen::VectorXcd x0 = Eigen::VectorXcd::Zero(cl.A.rows());
+    x0(0) = -angle;  // the error's deviation; everything else starts at the reference's state
+    const Eigen::VectorXcd c = V.partialPivLu().solve(x0);
+    // The modes hubbeam modes reports are these eigenvalues.
+    const std::vector<NaturalMode> modes = closed_loop_modes(*model, rest, *s.control);
+    REQUIRE(!modes.empty());
+    CHECK(modes.front().kind == "hub");
+    for (const NaturalMode& mode : modes) {
+        double nearest = INFINITY;
+        for (Eigen::Index k = 0; k < eig.eigenvalues().size(); ++k)
+            nearest = std::min(nearest, std::abs(eig.eigenvalues()[k] - std::complex<double>(mode.growth, mode.rad_s)));
+        CHECK(nearest < 1e-9 * mode.undamped_rad_s);
+    }
+    double worst_theta = 0.0, worst_tip = 0.0, largest_tip = 0.0;
+    for (const Row& row : r.rows) {
+        const Eigen::VectorXcd x = V * (c.array() * (eig.eigenvalues().array() * row.t).exp()).matrix();
+        const Eigen::VectorXd y = (cl.C * x.real());
+        worst_theta = std::max(worst_theta, std::abs(row.theta - angle - y(1)));
+        worst_tip = std::max(worst_tip, std::abs(row.tip_uy - y(0)));
+        largest_tip = std::max(largest_tip, std::abs(row.tip_uy));
+    }
+    // Nonlinear terms are of the step squared: 1e-6 of the angle's scale, far below the 1e-3 the closed loop
+    // without its tip feedback would be off by.
+    CHECK(worst_theta < 1e-3 * angle);
+    CHECK(worst_tip < 1e-3 * largest_tip);
 }

@@ -1,6 +1,7 @@
 // hubbeam modes and hubbeam linearize: the linearization of linearize.hpp applied to a scene's variants, as tables.
 #include "modes.hpp"
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -112,7 +113,7 @@ void run_modes(const Scene& scene, const ModesOptions& o, std::ostream& out)
     try {
         char line[400];
         // Damping adds the undamped frequency |lambda| and the damping ratio to the printed table.
-        const bool damped = scene.key().extras.damping;
+        const bool damped = scene.key().extras.damping || scene.control;
         if (!o.quiet)
             out << "method  Ny  Nx  order  Omega rad/s  mode  kind        rad/s          Hz  dimensionless  growth 1/s"
                 << (damped ? "  undamped rad/s     zeta" : "") << "\n";
@@ -125,7 +126,8 @@ void run_modes(const Scene& scene, const ModesOptions& o, std::ostream& out)
                 // Printed: the first `count` bending modes and the first axial one of each spin rate.
                 int shown_bending = 0;
                 bool shown_axial = false;
-                for (const auto& [omega, number, mode] : campbell(*model, o.omegas, scene.axial, held_angle(scene))) {
+                for (const auto& [omega, number, mode] : campbell(*model, o.omegas, scene.axial, held_angle(scene),
+                                                                      scene.control ? &*scene.control : nullptr)) {
                     if (number == 1) shown_bending = 0, shown_axial = false;
                     const double hz = mode.rad_s / (2.0 * M_PI);
                     std::ostringstream row;
@@ -173,27 +175,35 @@ void run_modes(const Scene& scene, const ModesOptions& o, std::ostream& out)
 
 void run_linearize(const Scene& scene, double omega, const std::string& prefix, std::ostream& out)
 {
+    // A controlled hub: the closed loop (input: a torque added to the controller's) in PREFIX-*.csv, and the open
+    // loop (input tau), what a control design starts from, in PREFIX-open-*.csv.
+    std::vector<std::string> prefixes = {prefix};
+    if (scene.control) prefixes.push_back(prefix + "-open");
     std::vector<NamedPath> outputs;
-    for (const char* name : {"A", "B", "C", "D"}) outputs.push_back({prefix + "-" + name + ".csv", "-o"});
+    for (const std::string& p : prefixes)
+        for (const char* name : {"A", "B", "C", "D"}) outputs.push_back({p + "-" + name + ".csv", "-o"});
     check_outputs({{scene.path, "the scene itself"}}, outputs);  // before anything is computed
     check_steady(scene, {omega});
     const VariantKey key = scene.key();
     const std::unique_ptr<Model> model = make_model(key, scene.parameters, scene.source);
     const SteadySpin steady = steady_spin(*model, omega, held_angle(scene));
-    const StateSpace ss = state_space(*model, steady);
+    const StateSpace open = state_space(*model, steady);
+    const StateSpace ss = scene.control ? closed_loop(open, *scene.control) : open;
+    std::vector<const StateSpace*> systems = {&ss};
+    if (scene.control) systems.push_back(&open);
     // One CSV per matrix: a header of column names, then each row led by its name. Each is put in place once all
-    // four are written; an exception on the way leaves all four old files as they were.
-    const std::vector<std::pair<const char*, const Eigen::MatrixXd*>> matrices = {
-        {"A", &ss.A}, {"B", &ss.B}, {"C", &ss.C}, {"D", &ss.D}};
+    // are written; an exception on the way leaves all the old files as they were.
     std::vector<std::unique_ptr<CsvWriter>> files;
     try {
-        for (std::size_t m = 0; m < matrices.size(); ++m) {
-            const auto& [name, X] = matrices[m];
+        for (std::size_t f = 0; f < outputs.size(); ++f) {
+            const StateSpace& sys = *systems[f / 4];
+            const std::size_t m = f % 4;
+            const Eigen::MatrixXd* X = std::array<const Eigen::MatrixXd*, 4>{&sys.A, &sys.B, &sys.C, &sys.D}[m];
             const bool state_rows = m < 2, state_columns = m % 2 == 0;
-            const std::vector<std::string>& rows = state_rows ? ss.states : ss.outputs;
-            std::string header = name;
-            for (const std::string& c : state_columns ? ss.states : ss.inputs) header += "," + c;
-            files.push_back(std::make_unique<CsvWriter>(outputs[m].path, header));
+            const std::vector<std::string>& rows = state_rows ? sys.states : sys.outputs;
+            std::string header = std::string(1, "ABCD"[m]);
+            for (const std::string& c : state_columns ? sys.states : sys.inputs) header += "," + c;
+            files.push_back(std::make_unique<CsvWriter>(outputs[f].path, header));
             for (Eigen::Index i = 0; i < X->rows(); ++i) {
                 std::string text = rows[static_cast<std::size_t>(i)];
                 for (Eigen::Index j = 0; j < X->cols(); ++j) {
@@ -221,7 +231,9 @@ void run_linearize(const Scene& scene, double omega, const std::string& prefix, 
         << "input       " << ss.inputs[0] << (key.drive == Drive::torque ? " (N m)" : " (rad/s^2)") << "\n"
         << "outputs     tip_uy (m), theta (rad)\n"
         << "matrices    " << prefix << "-{A,B,C,D}.csv (x' = A x + B v, y = C x + D v, deviations from the "
-        << (steady.held ? "equilibrium" : "steady spin") << ")\n";
+        << (steady.held ? "equilibrium" : "steady spin") << (scene.control ? "; the closed loop" : "") << ")\n";
+    if (scene.control)
+        out << "open loop   " << prefix << "-open-{A,B,C,D}.csv (input tau, N m: the hub without its controller)\n";
 }
 
 }  // namespace hubbeam

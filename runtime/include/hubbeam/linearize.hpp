@@ -9,6 +9,7 @@
 
 #include "integrate.hpp"
 #include "model.hpp"
+#include "motion.hpp"
 
 namespace hubbeam {
 
@@ -74,6 +75,19 @@ struct NaturalMode {
 /// every instant with A_dot = 0, so there are no axial modes, and the other rows drop A's rates.
 std::vector<NaturalMode> natural_modes(const Model& model, const SteadySpin& steady, Axial axial = Axial::dynamic);
 
+/// The closed loop of a controlled hub (scene table [control]) from the open loop of a free hub's state_space
+/// about the same state: tau = -kp theta - kd theta_dot - ki z - k_tip tip_uy + v in deviations (the reference is
+/// the steady state's own), with z' = theta the angle error's integral as one more state when ki != 0 (named
+/// controller_integral). The input v is a torque added to the controller's (a disturbance); the outputs are the
+/// open loop's. The law's saturation is left out: it is inactive for small deviations.
+StateSpace closed_loop(const StateSpace& open, const Control& control);
+
+/// The modes of a controlled hub about a steady spin: the eigenvalues of closed_loop's A, each pair a row with
+/// its damped frequency, growth, |lambda| and damping ratio (a real eigenvalue a row of its own, rad_s 0), kind
+/// "hub", "axial" or "bending" by where the mode's kinetic energy lies; by increasing |lambda|. The hub's angle is a
+/// state here: the controller's stiffness turns the free hub's rigid rotation into a mode.
+std::vector<NaturalMode> closed_loop_modes(const Model& model, const SteadySpin& steady, const Control& control);
+
 /// One row of a Campbell table: a natural mode about the steady spin omega, numbered 1, 2, ... by frequency among
 /// all the modes at that rate.
 struct SpinMode {
@@ -82,9 +96,9 @@ struct SpinMode {
     NaturalMode mode;
 };
 /// natural_modes about the steady spin at each rate of omegas, rate by rate (hubbeam modes, hubbeam.modes); theta
-/// is the held angle of a gravity variant (steady_spin).
+/// is the held angle of a gravity variant (steady_spin); with a control, the closed loop's modes (closed_loop_modes).
 std::vector<SpinMode> campbell(const Model& model, const std::vector<double>& omegas, Axial axial = Axial::dynamic,
-                               double theta = 0.0);
+                               double theta = 0.0, const Control* control = nullptr);
 
 /// The CSV header of the modes table (hubbeam modes writes it, hubbeam plot campbell reads it by column name).
 const char* modes_header();

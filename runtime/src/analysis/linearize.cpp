@@ -345,12 +345,74 @@ std::vector<NaturalMode> natural_modes(const Model& model, const SteadySpin& s, 
     return modes;
 }
 
-std::vector<SpinMode> campbell(const Model& model, const std::vector<double>& omegas, Axial axial, double theta)
+StateSpace closed_loop(const StateSpace& open, const Control& control)
+{
+    if (open.inputs.size() != 1 || open.inputs[0] != "tau")
+        throw std::invalid_argument("a closed loop needs the open loop of a free hub (input tau)");
+    const Eigen::Index n = open.A.rows(), m = n / 2;  // states (theta, q_f, theta_dot, q_f_dot)
+    // tau = K x: the gains on theta (state 0), theta_dot (state m) and tip_uy (output row 0, through C).
+    Eigen::RowVectorXd K = -control.k_tip * open.C.row(0);
+    K(0) -= control.kp;
+    K(m) -= control.kd;
+    const bool integral = control.ki != 0.0;
+    const Eigen::Index N = n + (integral ? 1 : 0);
+    StateSpace cl;
+    cl.A = Eigen::MatrixXd::Zero(N, N);
+    cl.A.topLeftCorner(n, n) = open.A + open.B * K;
+    cl.B = Eigen::MatrixXd::Zero(N, 1);
+    cl.B.topRows(n) = open.B;
+    cl.C = Eigen::MatrixXd::Zero(open.C.rows(), N);
+    cl.C.leftCols(n) = open.C;
+    cl.D = open.D;
+    cl.states = open.states;
+    if (integral) {
+        cl.A.block(0, n, n, 1) = -control.ki * open.B;  // tau's integral term
+        cl.A(n, 0) = 1.0;                               // z' = theta (deviation from the reference)
+        cl.states.emplace_back("controller_integral");
+    }
+    cl.inputs = {"tau_disturbance"};
+    cl.outputs = open.outputs;
+    return cl;
+}
+
+std::vector<NaturalMode> closed_loop_modes(const Model& model, const SteadySpin& s, const Control& control)
+{
+    const StateSpace cl = closed_loop(state_space(model, s), control);
+    const Eigen::EigenSolver<Eigen::MatrixXd> eig(cl.A);
+    if (eig.info() != Eigen::Success) throw std::runtime_error("the eigenvalues of the closed loop did not converge");
+    const Eigen::MatrixXd M = mass_at(model, s.u, s.q);
+    const Eigen::Index m = M.rows();  // the state holds theta and the flexible coordinates, as q does under torque
+    const int b0 = model.key().first_b();
+    std::vector<NaturalMode> modes;
+    for (Eigen::Index k = 0; k < eig.eigenvalues().size(); ++k) {
+        const std::complex<double> l = eig.eigenvalues()[k];
+        const double magnitude = std::abs(l), scale = std::max(1.0, magnitude);
+        if (l.imag() < -1e-9 * scale || magnitude <= 1e-9) continue;  // a conjugate, or a neutral direction
+        // Kinetic energy of the mode's rates by block: the hub's angle, the axial and the transverse coordinates.
+        const Eigen::VectorXcd rates = eig.eigenvectors().col(k).segment(m, m);
+        const auto block = [&](Eigen::Index c) { return c == 0 ? 0 : c < b0 ? 1 : 2; };
+        double energy[3] = {0.0, 0.0, 0.0};
+        for (Eigen::Index i = 0; i < m; ++i)
+            for (Eigen::Index j = 0; j < m; ++j)
+                if (block(i) == block(j)) energy[block(i)] += (std::conj(rates(i)) * M(i, j) * rates(j)).real();
+        const int kind = static_cast<int>(std::max_element(energy, energy + 3) - energy);
+        const bool oscillating = l.imag() > 1e-9 * scale;
+        modes.push_back({oscillating ? l.imag() : 0.0, l.real(), kind == 0 ? "hub" : kind == 1 ? "axial" : "bending",
+                         magnitude, -l.real() / magnitude});
+    }
+    std::sort(modes.begin(), modes.end(),
+              [](const NaturalMode& a, const NaturalMode& b) { return a.undamped_rad_s < b.undamped_rad_s; });
+    return modes;
+}
+
+std::vector<SpinMode> campbell(const Model& model, const std::vector<double>& omegas, Axial axial, double theta,
+                               const Control* control)
 {
     std::vector<SpinMode> rows;
     for (const double omega : omegas) {
         int number = 0;
-        for (const NaturalMode& mode : natural_modes(model, steady_spin(model, omega, theta), axial))
+        const SteadySpin s = steady_spin(model, omega, theta);
+        for (const NaturalMode& mode : control ? closed_loop_modes(model, s, *control) : natural_modes(model, s, axial))
             rows.push_back({omega, ++number, mode});
     }
     return rows;
