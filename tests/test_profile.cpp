@@ -405,3 +405,39 @@ TEST_CASE("profile: bad tables and scenes are refused naming the scene, the key,
     has(error_of(f, good_table, "profile = \"blade.csv\"\ntaper = \"width\"\ntip_ratio = 0.5\n", "beam.taper"),
         "not used with beam.profile");
 }
+
+TEST_CASE("profile: the variant name carries the stations exactly and in one spelling only", "[profile][variant]")
+{
+    VariantKey key = profile_key(Method::bsim, Drive::torque, {0.0, 0.125, 0.3, 1.0});
+    key.spline = SplineBasis::open;
+    CHECK(key.extras.station_denominator == 1000);
+    CHECK(key.extras.stations == std::vector<long long>{0, 125, 300, 1000});
+    CHECK(key.name() == "bsim_nx4_ny4_torque_first_open_tip_gravity_damped_profile1000x0x125x300x1000");
+    CHECK(VariantKey::parse(key.name()) == key);
+    CHECK(station_positions(key.extras) == std::vector<double>{0.0, 0.125, 0.3, 1.0});
+    // Each a different spelling of a profile, or none: refused, so that one key has one name (and one cached module).
+    for (const char* bad : {"fem_nx0_ny4_prescribed_first_profile1000x0x120x300x1000",  // DEN not the smallest
+                            "fem_nx0_ny4_prescribed_first_profile300x0x100x300",        // DEN not a power of ten
+                            "fem_nx0_ny4_prescribed_first_profile100x10x100",           // not from 0
+                            "fem_nx0_ny4_prescribed_first_profile100x0x50",             // not to 1
+                            "fem_nx0_ny4_prescribed_first_profile100x0x50x50x100",      // not increasing
+                            "fem_nx0_ny4_prescribed_first_profile100x100",              // one station
+                            "fem_nx0_ny4_prescribed_first_profile100x0xx100",           // an empty number
+                            "fem_nx0_ny4_prescribed_first_width_profile100x0x100",      // with a taper
+                            "fem_nx0_ny4_prescribed_first_profile100x0x100_tip"})       // out of order
+    {
+        INFO(bad);
+        CHECK_THROWS_AS(VariantKey::parse(bad), std::invalid_argument);
+    }
+    // The name's length bounds the stations: 20 of 6 decimals fit, 21 do not.
+    for (int n : {20, 21}) {
+        std::vector<double> x = {0.0};
+        for (int k = 0; k + 2 < n; ++k) x.push_back(0.100001 + 0.04 * k);
+        x.push_back(1.0);
+        Extras e;
+        const std::string why = set_stations(x, e);
+        INFO(n << " stations: " << why);
+        CHECK(why.empty() == (n == 20));
+        if (n == 20) CHECK(VariantKey{.method = Method::bsim, .nx = 40, .ny = 40, .extras = e}.name().size() < 240);
+    }
+}
