@@ -48,6 +48,14 @@ extern const Variant bsim_nx4_ny4_torque_first_tip_gravity_damped_depth;
 extern const Variant bsim_nx0_ny4_prescribed_first_tip_gravity_damped_width;
 extern const Variant bsim_nx4_ny4_prescribed_zero_tip_gravity_damped_depth;
 extern const Variant bsim_nx0_ny4_torque_zero_open_tip_gravity_damped_width;
+extern const Variant amm_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100;
+extern const Variant amm_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100;
+extern const Variant fem_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100;
+extern const Variant fem_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100;
+extern const Variant bim_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100;
+extern const Variant bim_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100;
+extern const Variant bsim_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100;
+extern const Variant bsim_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100;
 
 const Variant* const variants[] = {
     &amm_nx0_ny4_prescribed_first,
@@ -92,7 +100,15 @@ const Variant* const variants[] = {
     &bsim_nx0_ny4_prescribed_first_tip_gravity_damped_width,
     &bsim_nx4_ny4_prescribed_zero_tip_gravity_damped_depth,
     &bsim_nx0_ny4_torque_zero_open_tip_gravity_damped_width,
+    &amm_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100,
+    &amm_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100,
+    &fem_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100,
+    &fem_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100,
+    &bim_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100,
+    &bim_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100,
+    &bsim_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100,
+    &bsim_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100,
 };
-const int variant_count = 42;
+const int variant_count = 50;
 
 }  // namespace hubbeam::generated

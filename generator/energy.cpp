@@ -113,6 +113,13 @@ public:
             for (auto& [key, c] : merged)
                 if (!c.empty()) expansion.push_back({key.first, c, key.second});
         }
+        // A profile's distributions: station k's value times its hat function.
+        for (std::size_t k = 0; k < key.extras.stations.size(); ++k) {
+            const Factor hat{K::hat, static_cast<int>(k), 0, 0};
+            add(f.m_x, s.m_k[k], hat);
+            add(f.EI_x, s.EI_k[k], hat);
+            add(f.ES_x, s.ES_k[k], hat);
+        }
         fields_[f.ux1];  // present (possibly empty) so that nx = 0 makes its terms vanish
         fields_[f.ux1_dot];
         fields_[f.ux1_x];
@@ -211,6 +218,11 @@ Symbols::Symbols(const VariantKey& key)
     : A(numbered("A", key.nx)), B(numbered("B", key.ny)), A_dot(numbered("A", key.nx, "_dot")),
       B_dot(numbered("B", key.ny, "_dot"))
 {
+    for (std::size_t k = 0; k < key.extras.stations.size(); ++k) {
+        m_k.emplace_back("m_" + std::to_string(k));
+        EI_k.emplace_back("EI_" + std::to_string(k));
+        ES_k.emplace_back("ES_" + std::to_string(k));
+    }
     if (key.drive == Drive::torque) {
         q.push_back(theta);
         qd.push_back(theta_dot);
@@ -244,32 +256,37 @@ ex velocity_squared(Order order, const FieldSymbols& f, const ex& w)
 Energies derive_energies(const VariantKey& key, const Symbols& s, const PolyReader& read)
 {
     if (const std::string why = key.dof_problem(); !why.empty()) throw std::invalid_argument(key.name() + ": " + why);
-    ShapeIntegrals integrals(key.axial_basis(), key.transverse_basis());
+    const Extras& x = key.extras;
+    std::vector<numeric> stations;
+    for (long long n : x.stations) stations.push_back(numeric(n) / numeric(x.station_denominator));
+    ShapeIntegrals integrals(key.axial_basis(), key.transverse_basis(), stations);
     const FieldSymbols f;
     DensityIntegrator integrate(s, f, key, integrals, read);
-    const Extras& x = key.extras;
     // The section's area and second moment over the root's (docs/model.md section 11): a width taper scales both
     // linearly, a depth taper the area linearly and the second moment as the cube.
     const ex area = x.taper == Taper::uniform ? ex(1) : 1 + (s.tip_ratio - 1) * f.xi;
     const ex moment = x.taper == Taper::depth ? pow(area, 3) : area;
+    // The distributions along the span: the root's values times the taper's ratios, or a profile's (section 11.2).
+    const ex mass = x.profile() ? ex(f.m_x) : s.m * area;
+    const ex axial = x.profile() ? ex(f.ES_x) : s.ES * area;
+    const ex bending = x.profile() ? ex(f.EI_x) : s.EI * moment;
     const ex v2 = velocity_squared(key.order, f, s.theta_dot);
     Poly T = read(s.J_oh * pow(s.theta_dot, 2) / 2);
-    T += integrate(s.m * area * v2 / 2);
-    Poly U = integrate((s.ES * area * pow(f.ux1_x, 2) + s.EI * moment * pow(f.uy_xx, 2)) / 2);
+    T += integrate(mass * v2 / 2);
+    Poly U = integrate((axial * pow(f.ux1_x, 2) + bending * pow(f.uy_xx, 2)) / 2);
     Poly D;
     if (x.tip) T += integrate.at_tip(s.m_tip * v2 / 2 + s.J_tip * pow(s.theta_dot + f.uy_x_dot, 2) / 2);
     if (x.gravity) {
         // The height of a point, p rotated by theta: sin(theta) (X + u_x) + cos(theta) u_y; order zero has no u_x2.
         const ex ux = f.ux1 + (key.order == Order::zero ? ex(0) : ex(f.ux2));
         const ex height = s.sin_theta * (f.X + ux) + s.cos_theta * f.uy;
-        U += integrate(s.g * s.m * area * height);
+        U += integrate(s.g * mass * height);
         if (x.tip) U += integrate.at_tip(s.g * s.m_tip * height);
     }
     if (x.damping) {
         // Rayleigh: D = 1/2 qd_e^T (alpha M_ee + beta K_e) qd_e, M_ee and K_e of the undeformed beam (with its tip body).
         const ex rates2 = pow(f.ux1_dot, 2) + pow(f.uy_dot, 2);
-        D += integrate((s.alpha * s.m * area * rates2 + s.beta * (s.ES * area * pow(f.ux1_x_dot, 2) +
-                                                                  s.EI * moment * pow(f.uy_xx_dot, 2))) / 2);
+        D += integrate((s.alpha * mass * rates2 + s.beta * (axial * pow(f.ux1_x_dot, 2) + bending * pow(f.uy_xx_dot, 2))) / 2);
         if (x.tip) D += integrate.at_tip(s.alpha * (s.m_tip * rates2 + s.J_tip * pow(f.uy_x_dot, 2)) / 2);
     }
     return {T, U, D};

@@ -21,6 +21,8 @@ struct Symbols {
     // A gravity variant's sin(theta) and cos(theta): inputs, or under torque functions of the coordinate theta.
     GiNaC::symbol sin_theta{"sin_theta"}, cos_theta{"cos_theta"};
     // The drive u = (tau, theta_dot, theta_ddot).
+    // A tabulated profile's values at station k: mass per length, EI and ES (p[13 + 3k], p[14 + 3k], p[15 + 3k]).
+    std::vector<GiNaC::symbol> m_k, EI_k, ES_k;
     GiNaC::symbol tau{"tau"}, theta_dot{"theta_dot"}, theta_ddot{"theta_ddot"};
     GiNaC::symbol theta{"theta"};
     std::vector<GiNaC::symbol> A, B, A_dot, B_dot;
@@ -44,6 +46,8 @@ struct FieldSymbols {
     // The slope and its rate (a tip body's rotation), the strain rates (stiffness-proportional damping), and
     // the span coordinate xi = x / L that a taper's section varies with.
     GiNaC::symbol uy_x{"u_y_x"}, uy_x_dot{"u_y_x_dot"}, ux1_x_dot{"u_x1_x_dot"}, uy_xx_dot{"u_y_xx_dot"}, xi{"xi"};
+    // A tabulated profile's distributions m(x), EI(x), ES(x): sum_k value_k N_k(xi) over the stations' hat functions.
+    GiNaC::symbol m_x{"m_x"}, EI_x{"EI_x"}, ES_x{"ES_x"};
 };
 GiNaC::ex velocity_squared(Order order, const FieldSymbols& f, const GiNaC::ex& theta_dot);
 

@@ -35,7 +35,17 @@ std::string tuple(const Names& names)
 /// (so that the paper's variants read, and say, what they always did).
 std::vector<std::string> read_parameter_names(const Extras& x)
 {
-    return {param_names.begin(), param_names.begin() + static_cast<std::ptrdiff_t>(x.any() ? param_count : paper_param_count)};
+    std::vector<std::string> names(param_names.begin(),
+                                   param_names.begin() + static_cast<std::ptrdiff_t>(x.any() ? param_count : paper_param_count));
+    for (std::size_t k = 0; k < x.stations.size(); ++k)
+        for (const char* v : profile_value_names) names.push_back(std::string(v) + "_" + std::to_string(k));
+    return names;
+}
+
+/// How generated code reads station k's profile value v.
+std::string read_profile(std::size_t k, ProfileValue v)
+{
+    return "p[" + std::to_string(param_count + profile_value_count * k + static_cast<std::size_t>(v)) + "]";
 }
 
 /// The kernels' u: the drive values, and for gravity sin and cos of the angle.
@@ -54,6 +64,11 @@ std::vector<std::string> extras_words(const Extras& x)
     if (x.gravity) w.emplace_back("gravity");
     if (x.damping) w.emplace_back("rayleigh_damping");
     if (x.taper != Taper::uniform) w.push_back("taper=" + to_string(x.taper));
+    if (x.profile()) {
+        std::string stations;
+        for (long long n : x.stations) stations += (stations.empty() ? "" : ",") + std::to_string(n);
+        w.push_back("profile_stations=(" + stations + ")/" + std::to_string(x.station_denominator));
+    }
     return w;
 }
 
@@ -196,6 +211,10 @@ Signature signature(const Symbols& s, const VariantKey& key)
                                                                  {s.alpha, read(Param::alpha)},
                                                                  {s.beta, read(Param::beta)},
                                                                  {s.tip_ratio, read(Param::tip_ratio)}});
+    for (std::size_t k = 0; k < x.stations.size(); ++k)
+        sig.parameter_inputs.insert(sig.parameter_inputs.end(), {{s.m_k[k], read_profile(k, ProfileValue::m)},
+                                                                 {s.EI_k[k], read_profile(k, ProfileValue::EI)},
+                                                                 {s.ES_k[k], read_profile(k, ProfileValue::ES)}});
     if (torque) sig.state_inputs.push_back({s.tau, read(DriveValue::tau)});
     else
         sig.state_inputs.insert(sig.state_inputs.end(), {{s.theta_dot, read(DriveValue::theta_dot)},

@@ -2,8 +2,10 @@
 // the drive u. The generator prints its reads and comments from these tables, the runtime packs from them.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
+#include <vector>
 
 namespace hubbeam {
 
@@ -12,6 +14,10 @@ namespace hubbeam {
 /// are read only by the variants that carry those terms, so the paper's variants read p[0..6] as before.
 enum class Param : std::size_t { L, rho, S, I, E, a, J_oh, m_tip, J_tip, g, alpha, beta, tip_ratio };
 inline constexpr std::size_t param_count = 13;
+/// A tabulated profile's values follow: p[param_count + 3 k + j] is station k's value j (docs/model.md section 11.2).
+enum class ProfileValue : std::size_t { m, EI, ES };
+inline constexpr std::size_t profile_value_count = 3;
+inline constexpr std::array<const char*, profile_value_count> profile_value_names = {"m", "EI", "ES"};
 /// The paper's parameters: a variant without extra terms reads these only.
 inline constexpr std::size_t paper_param_count = 7;
 /// Names of p's entries in the order of Param, as they read in docs/model.md and in generated code.
@@ -40,11 +46,15 @@ constexpr std::size_t index(AngleValue u) { return static_cast<std::size_t>(u); 
 struct Parameters {
     double L = 8.0, rho = 2.7667e3, S = 7.2968e-5, I = 8.2189e-9, E = 6.8952e10, a = 0.0, J_oh = 30.0;
     double m_tip = 0.0, J_tip = 0.0, g = 0.0, alpha = 0.0, beta = 0.0, tip_ratio = 1.0;
+    /// A tabulated profile's values at its stations (VariantKey's extras hold the positions): mass per length
+    /// (kg/m), EI (N m^2), ES (N), indexed by station then ProfileValue; empty without a profile.
+    std::vector<double> profile = {};
 
-    /// p, indexed by Param.
-    std::array<double, param_count> packed() const
+    /// p, indexed by Param, then the profile's values.
+    std::vector<double> packed() const
     {
-        std::array<double, param_count> p{};
+        std::vector<double> p(param_count + profile.size());
+        std::copy(profile.begin(), profile.end(), p.begin() + static_cast<std::ptrdiff_t>(param_count));
         p[index(Param::L)] = L;
         p[index(Param::rho)] = rho;
         p[index(Param::S)] = S;

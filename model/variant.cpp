@@ -1,6 +1,9 @@
 // VariantKey naming, parsing and DOF validity.
 #include "variant.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -24,10 +27,82 @@ std::vector<std::string> extras_suffixes(const Extras& e)
     if (e.gravity) s.emplace_back("gravity");
     if (e.damping) s.emplace_back("damped");
     if (e.taper != Taper::uniform) s.push_back(word_of(e.taper, tapers));
+    if (e.profile()) {
+        std::string p = "profile";
+        p += std::to_string(e.station_denominator);
+        for (long long n : e.stations) {
+            p += 'x';
+            p += std::to_string(n);
+        }
+        s.push_back(std::move(p));
+    }
     return s;
 }
 
+/// Why stations over a denominator are not a profile's (empty if they are): 0 first, the denominator last,
+/// strictly increasing, a power of ten no larger than needed, the suffix short enough.
+std::string stations_problem(const Extras& e)
+{
+    const std::vector<long long>& n = e.stations;
+    if (n.size() < 2) return "a profile needs at least 2 stations";
+    long long d = e.station_denominator;
+    bool power_of_ten = d >= 1;
+    for (long long r = d; power_of_ten && r > 1; r /= 10)
+        if (r % 10 != 0) power_of_ten = false;
+    if (!power_of_ten || d > 1000000) return "the denominator must be a power of ten up to 10^6";
+    if (n.front() != 0 || n.back() != d) return "the stations must start at 0 and end at 1";
+    for (std::size_t k = 1; k < n.size(); ++k)
+        if (n[k] <= n[k - 1]) return "the stations must increase strictly";
+    if (d > 1 && std::all_of(n.begin(), n.end(), [](long long v) { return v % 10 == 0; }))
+        return "the denominator must be the smallest power of ten that makes every station an integer";
+    return {};
+}
+
 }  // namespace
+
+namespace {
+
+std::string text_of(double v)
+{
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.17g", v);
+    return buf;
+}
+
+}  // namespace
+
+std::vector<double> station_positions(const Extras& e)
+{
+    std::vector<double> x;
+    for (long long n : e.stations) x.push_back(static_cast<double>(n) / static_cast<double>(e.station_denominator));
+    return x;
+}
+
+std::string set_stations(const std::vector<double>& x, Extras& e)
+{
+    long long d = 1;
+    for (double v : x) {
+        // The fewest decimals that hold v to 1e-12 (below a double's resolution of the table's text).
+        long long dv = 1;
+        while (dv <= 1000000 && std::abs(v * static_cast<double>(dv) - std::round(v * static_cast<double>(dv))) >
+                                    1e-12 * static_cast<double>(dv))
+            dv *= 10;
+        if (dv > 1000000) return text_of(v) + " is not a decimal with at most 6 digits after the point";
+        d = std::max(d, dv);
+    }
+    Extras t = e;
+    t.station_denominator = d;
+    t.stations.clear();
+    for (double v : x) t.stations.push_back(std::llround(v * static_cast<double>(d)));
+    if (std::string why = stations_problem(t); !why.empty()) return why;
+    const std::vector<std::string> suffixes = extras_suffixes(t);
+    if (suffixes.back().size() > max_profile_suffix)
+        return std::to_string(x.size()) + " stations with " + std::to_string(suffixes.back().size() - 7) +
+               " characters of numerators make the variant's name too long (at most " + std::to_string(max_profile_suffix - 7) +
+               "): use fewer stations or fewer decimals";
+    e = std::move(t);
+    return {};
+}
 
 int max_dof(Method m)
 {
@@ -89,7 +164,7 @@ VariantKey VariantKey::parse(std::string_view name)
     VariantKey k;
     const auto bad = [&](const std::string& what) {
         return std::invalid_argument("not a variant name: '" + std::string(name) + "': " + what +
-                                     " (expected METHOD_nxN_nyN_DRIVE_ORDER[_open][_tip][_gravity][_damped][_width|_depth], "
+                                     " (expected METHOD_nxN_nyN_DRIVE_ORDER[_open][_tip][_gravity][_damped][_width|_depth][_profileDENxN0xN1...], "
                                      "e.g. bim_nx4_ny4_torque_first)");
     };
     if (parts.size() < 5) throw bad(std::to_string(parts.size()) + " parts separated by '_'");
@@ -117,9 +192,29 @@ VariantKey VariantKey::parse(std::string_view name)
         else if (part == "gravity") k.extras.gravity = true;
         else if (part == "damped") k.extras.damping = true;
         else if (Taper t; hubbeam::parse(part, t) && t != Taper::uniform) k.extras.taper = t;
+        else if (part.rfind("profile", 0) == 0 && part.size() > 7 && part.size() <= max_profile_suffix) {
+            // profileDENxN0xN1...: digits separated by 'x', each a number of at most 7 digits.
+            std::vector<long long> numbers;
+            std::string digits;
+            for (std::size_t c = 7; c <= part.size(); ++c) {
+                if (c == part.size() || part[c] == 'x') {
+                    if (digits.empty() || digits.size() > 7) throw bad("'" + part + "' is not profileDENxN0xN1...");
+                    numbers.push_back(std::stoll(digits));
+                    digits.clear();
+                } else if (part[c] >= '0' && part[c] <= '9') {
+                    digits += part[c];
+                } else {
+                    throw bad("'" + part + "' is not profileDENxN0xN1...");
+                }
+            }
+            k.extras.station_denominator = numbers.front();
+            k.extras.stations.assign(numbers.begin() + 1, numbers.end());
+            if (const std::string why = stations_problem(k.extras); !why.empty()) throw bad("'" + part + "': " + why);
+        }
         else throw bad("'" + part + "' is not a suffix");
     }
     if (extras_suffixes(k.extras) != rest) throw bad("the suffixes are repeated or out of order");
+    if (k.extras.profile() && k.extras.taper != Taper::uniform) throw bad("a profile and a taper together");
     return k;
 }
 

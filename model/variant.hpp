@@ -33,10 +33,27 @@ struct Extras {
     bool gravity = false;  // weight along -j of a vertical plane of motion (g)
     bool damping = false;  // Rayleigh damping of the elastic coordinates (alpha, beta)
     Taper taper = Taper::uniform;
+    // A tabulated profile's stations x/L = stations[k] / station_denominator (docs/model.md section 11.2): exact
+    // rationals, so that the generator splits its integrals there exactly; empty without a profile. The values at
+    // the stations (m, EI, ES) are run-time parameters, the positions are structure.
+    std::vector<long long> stations = {};
+    long long station_denominator = 1;
 
-    bool any() const { return tip || gravity || damping || taper != Taper::uniform; }
+    bool profile() const { return !stations.empty(); }
+    bool any() const { return tip || gravity || damping || taper != Taper::uniform || profile(); }
     bool operator==(const Extras&) const = default;
 };
+
+/// The most characters a profile's name suffix may take ("profile" DEN "x" N0 "x" ...), so that a variant's
+/// name stays a valid file name (its source and module files are named by it).
+inline constexpr std::size_t max_profile_suffix = 150;
+
+/// The stations x/L as doubles.
+std::vector<double> station_positions(const Extras& e);
+/// Sets e's stations from x/L values read from a table: each exact to 1e-12 as a decimal of at most 6 digits
+/// after the point (the smallest common power of ten is the denominator). Empty if they are accepted, else why
+/// not (e.g. "0.3333333 is not a decimal of at most 6 digits").
+std::string set_stations(const std::vector<double>& x, Extras& e);
 
 struct VariantKey {
     Method method = Method::amm;
@@ -53,7 +70,8 @@ struct VariantKey {
     int first_b() const { return first_a() + nx; }
 
     /// e.g. "bim_nx4_ny4_torque_first", "bsim_nx0_ny4_prescribed_first_open", "amm_nx0_ny4_torque_first_tip_gravity":
-    /// a C identifier; the extras follow in the order tip, gravity, damped, width|depth.
+    /// a C identifier; the extras follow in the order tip, gravity, damped, width|depth, profileDENxN0xN1...
+    /// (a profile's stations x/L = N_k / DEN).
     std::string name() const;
     /// Inverse of name(); throws std::invalid_argument.
     static VariantKey parse(std::string_view name);

@@ -29,4 +29,16 @@ inline State random_state(const VariantKey& key, std::mt19937& rng)
     return s;
 }
 
+/// p with a table at the stations of key's profile, if it has one (and p none): the section of p's rho, S, I, E at
+/// the root, falling to half at the tip and with a bump between, so that no value is the uniform beam's.
+inline Parameters with_profile(const VariantKey& key, Parameters p)
+{
+    if (!p.profile.empty()) return p;
+    for (double x : station_positions(key.extras)) {
+        const double s = 1.0 - 0.5 * x + 0.3 * x * (1.0 - x);
+        p.profile.insert(p.profile.end(), {p.rho * p.S * s, p.E * p.I * s * s, p.E * p.S * s});
+    }
+    return p;
+}
+
 }  // namespace hubbeam::test

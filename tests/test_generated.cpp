@@ -35,8 +35,8 @@ TEST_CASE("generated kernels equal the hand-assembled equations", "[generated]")
         const VariantKey key = VariantKey::parse(name);
         SECTION(key.name())
         {
-            const auto gen = make_model(key, p, ModelSource::generated);
-            const auto asm_ = make_model(key, p, ModelSource::assembled);
+            const auto gen = make_model(key, test::with_profile(key, p), ModelSource::generated);
+            const auto asm_ = make_model(key, test::with_profile(key, p), ModelSource::assembled);
             REQUIRE(std::string(gen->source()) == "generated");
             REQUIRE(std::string(asm_->source()) == "assembled");
             CHECK(gen->mass_is_constant() == asm_->mass_is_constant());
@@ -75,7 +75,7 @@ TEST_CASE("the mass matrix is symmetric positive definite", "[generated]")
     std::mt19937 rng(7);
     for (const std::string& name : generated_variant_names()) {
         const VariantKey key = VariantKey::parse(name);
-        const auto model = make_model(key, p, ModelSource::generated);
+        const auto model = make_model(key, test::with_profile(key, p), ModelSource::generated);
         const int n = key.nq();
         for (int trial = 0; trial < 5; ++trial) {
             const State s = random_state(key, rng);

@@ -120,7 +120,7 @@ TEST_CASE("generated Jacobian equals central differences of the right-hand side"
         const VariantKey key = VariantKey::parse(name);
         SECTION(key.name())
         {
-            const auto model = make_model(key, p, ModelSource::generated);
+            const auto model = make_model(key, test::with_profile(key, p), ModelSource::generated);
             REQUIRE(model->jacobian() != nullptr);
             const Motion motion = motion_for(key.drive);
             // Inside the spin-up (T_s = 15 s) or torque (T_t = 10 s) window, away from its ends.

@@ -77,7 +77,7 @@ TEST_CASE("every generated mass pattern tells zero, constant and varying entries
     p.tip_ratio = 0.6;
     for (const std::string& name : generated_variant_names()) {
         const VariantKey key = VariantKey::parse(name);
-        const auto model = make_model(key, p, ModelSource::generated);
+        const auto model = make_model(key, test::with_profile(key, p), ModelSource::generated);
         const std::string pattern = model->mass_pattern();
         INFO(name << " " << pattern);
         REQUIRE(pattern.size() == static_cast<std::size_t>(key.nq() * key.nq()));
@@ -107,7 +107,7 @@ TEST_CASE("mass solvers equal a dense solve, for every structure they are chosen
     SECTION("every generated variant (constant, and Schur complement under torque)")
     {
         for (const std::string& name : generated_variant_names())
-            check_solver(*make_model(VariantKey::parse(name), p, ModelSource::generated), rng);
+            check_solver(*make_model(VariantKey::parse(name), test::with_profile(VariantKey::parse(name), p), ModelSource::generated), rng);
     }
     SECTION("banded for large FEM and BSIM, prescribed and under torque")
     {
@@ -148,7 +148,7 @@ TEST_CASE("folded forces: one multiply-add pass gives M^-1 Q", "[structure]")
     const Motion torque{Motion::Kind::torque, 0.0, 15.0, 10.0, 10.0};
     for (const std::string& name : generated_variant_names()) {
         const VariantKey key = VariantKey::parse(name);
-        const auto model = make_model(key, p, ModelSource::generated);
+        const auto model = make_model(key, test::with_profile(key, p), ModelSource::generated);
         FirstOrderSystem system(*model, key.drive == Drive::prescribed ? motion : torque);
         INFO(name << ": " << system.linear_algebra());
         const std::string algebra = system.linear_algebra();

@@ -101,15 +101,24 @@ private:
 /// Nodes and weights on xi in [0, 1] for integrals of products of two members of a and b (and their
 /// derivatives) times a polynomial of degree <= 2 in xi: Gauss-Legendre on every interval of the common
 /// refinement of both bases' intervals, exact for polynomial bases; for AMM a composite rule converged to
-/// round-off.
-inline QuadratureRule product_rule(const FieldBasis& a, const FieldBasis& b)
+/// round-off. extra_cuts (a tabulated profile's stations) are interval boundaries too, so that an integrand with a
+/// kink there stays exact (polynomial bases) or converged (AMM).
+inline QuadratureRule product_rule(const FieldBasis& a, const FieldBasis& b, const std::vector<double>& extra_cuts = {})
 {
-    if (!a.polynomial() || !b.polynomial()) return transcendental_rule(std::max(a.size(), b.size()));
     std::vector<double> cuts{0.0, 1.0};
-    for (const FieldBasis* f : {&a, &b})
-        for (int k = 1; k < f->intervals(); ++k) cuts.push_back(static_cast<double>(k) / f->intervals());
+    if (!a.polynomial() || !b.polynomial()) {
+        if (extra_cuts.empty()) return transcendental_rule(std::max(a.size(), b.size()));
+        const int panels = transcendental_panels(std::max(a.size(), b.size()));
+        for (int k = 1; k < panels; ++k) cuts.push_back(static_cast<double>(k) / panels);
+    } else {
+        for (const FieldBasis* f : {&a, &b})
+            for (int k = 1; k < f->intervals(); ++k) cuts.push_back(static_cast<double>(k) / f->intervals());
+    }
+    cuts.insert(cuts.end(), extra_cuts.begin(), extra_cuts.end());
     std::sort(cuts.begin(), cuts.end());
     cuts.erase(std::unique(cuts.begin(), cuts.end(), [](double u, double v) { return v - u < 1e-14; }), cuts.end());
+    cuts.back() = 1.0;
+    if (!a.polynomial() || !b.polynomial()) return composite_gauss_legendre(cuts, transcendental_points);
     // Two pieces times at most a quadratic in xi: degree <= 2 max + 2, and n points are exact to 2n - 1.
     return composite_gauss_legendre(cuts, std::max(a.degree(), b.degree()) + 2);
 }

@@ -61,6 +61,7 @@ private:
     double L_, EI_, ES_;
     Taper taper_;
     double tip_ratio_;
+    std::vector<double> stations_, profile_;  // a tabulated profile's x/L and values (docs/model.md section 11.2)
     Eigen::RowVectorXd Phi_x_L_, Phi_y_L_;
     Eigen::MatrixXd H_L_;
 };

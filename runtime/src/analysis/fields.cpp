@@ -2,6 +2,7 @@
 #include "fields.hpp"
 
 #include "output.hpp"
+#include "profile.hpp"
 #include "shortest.hpp"
 
 #include <algorithm>
@@ -14,6 +15,7 @@ namespace hubbeam {
 BeamFields::BeamFields(const VariantKey& key, const Parameters& p)
     : axial_(key.axial_basis()), transverse_(key.transverse_basis()), foreshortened_(key.order != Order::zero), L_(p.L),
       EI_(p.E * p.I), ES_(p.E * p.S), taper_(key.extras.taper), tip_ratio_(p.tip_ratio),
+      stations_(station_positions(key.extras)), profile_(p.profile),
       Phi_x_L_(axial_.size()), Phi_y_L_(transverse_.size()), H_L_(Eigen::MatrixXd::Zero(transverse_.size(), transverse_.size()))
 {
     for (int i = 0; i < axial_.size(); ++i) Phi_x_L_(i) = axial_.at(i, 1.0).v;
@@ -71,12 +73,15 @@ double BeamFields::ux1(const double* A, double x) const { return combination(axi
 
 double BeamFields::bending_moment(const double* B, double x) const
 {
-    return EI_ * moment_ratio(x) * combination(transverse_, B, xi_of(x), 2) / (L_ * L_);  // d2/dx2 = (1/L^2) d2/dxi2
+    // A profile's own EI(x), else the root's times the taper's ratio.
+    const double EI = stations_.empty() ? EI_ * moment_ratio(x) : profile_value(stations_, profile_, ProfileValue::EI, xi_of(x));
+    return EI * combination(transverse_, B, xi_of(x), 2) / (L_ * L_);  // d2/dx2 = (1/L^2) d2/dxi2
 }
 
 double BeamFields::axial_force(const double* A, double x) const
 {
-    return ES_ * area_ratio(x) * combination(axial_, A, xi_of(x), 1) / L_;  // d/dx = (1/L) d/dxi
+    const double ES = stations_.empty() ? ES_ * area_ratio(x) : profile_value(stations_, profile_, ProfileValue::ES, xi_of(x));
+    return ES * combination(axial_, A, xi_of(x), 1) / L_;  // d/dx = (1/L) d/dxi
 }
 
 double BeamFields::slope(const double* B, double x) const

@@ -8,6 +8,7 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cerrno>
 #include <climits>
@@ -72,6 +73,9 @@ std::vector<SceneKey> make_scene_keys()
         {"beam.youngs_modulus", nullptr, K::number, "a number > 0 (E, Pa)"},
         {"beam.taper", nullptr, K::word, one_of(words<Taper>())},
         {"beam.tip_ratio", nullptr, K::number, "a number > 0 (the tapered dimension at the tip over the root)"},
+        {"beam.profile", nullptr, K::text,
+         "a CSV file name relative to the scene's folder, with the columns x/L, m, EI, ES (m kg/m, EI N m^2, ES N); "
+         "empty: none"},
         {"hub.radius", nullptr, K::number, "a number >= 0 (a, m)"},
         {"hub.inertia", nullptr, K::number, "a number > 0 (J_oh, kg m^2)"},
         {"tip.mass", nullptr, K::number, "a number >= 0 (m_tip, kg)"},
@@ -361,16 +365,118 @@ void check_tables(const toml::table& root, const std::string& path)
             fail(path, required, std::string("a table [") + required + "]", "nothing (the table is missing)");
 }
 
-/// [beam]: docs/model.md section 1, and the taper of section 11 (a taper kind without a ratio is refused: the
-/// default ratio 1 would make it uniform without a word).
-void read_beam(const Section& beam, Parameters& p, Taper& taper)
+/// The most stations a profile table may have: the generator's cost and the variant's name grow with them.
+constexpr std::size_t max_profile_stations = 64;
+/// The largest profile table read: a blade table of max_profile_stations rows is a few kilobytes.
+constexpr std::size_t max_profile_bytes = 1 << 16;
+
+std::string trimmed(std::string_view t)
+{
+    const std::size_t b = t.find_first_not_of(" \t\r"), e = t.find_last_not_of(" \t\r");
+    return b == std::string_view::npos ? std::string() : std::string(t.substr(b, e - b + 1));
+}
+
+/// beam.profile's table (docs/model.md section 11.2): stations x/L from 0 to 1, strictly increasing, and positive
+/// finite m, EI, ES at each, into the variant's stations (structure) and p.profile (run-time values). Every error
+/// names the scene, the key and the table's file and line.
+void read_profile(const std::string& scene_path, const std::string& name, Parameters& p, Extras& extras)
+{
+    namespace fs = std::filesystem;
+    const fs::path file = fs::path(scene_path).parent_path() / name;
+    const std::string label = file.string();
+    const auto bad = [&](int line, const std::string& what) -> SceneError {
+        return SceneError::with_detail(scene_path, "beam.profile",
+                                       label + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": " + what);
+    };
+    if (const std::string kind = not_a_regular_file(label); !kind.empty()) throw bad(0, "cannot open: it is " + kind + ", not a regular file");
+    std::ifstream in(label, std::ios::binary);
+    if (!in) throw bad(0, std::string("cannot open: ") + std::strerror(errno));
+    std::string text(max_profile_bytes + 1, '\0');
+    in.read(text.data(), static_cast<std::streamsize>(text.size()));
+    if (in.bad()) throw bad(0, std::string("cannot read: ") + std::strerror(errno));
+    text.resize(static_cast<std::size_t>(in.gcount()));
+    if (text.size() > max_profile_bytes)
+        throw bad(0, "is larger than a profile table can be (" + std::to_string(max_profile_bytes / 1024) + " KB)");
+
+    // Lines: a header, then one station per line; blank lines and lines starting with '#' are skipped.
+    const std::vector<std::string> want = {"x/L", "m", "EI", "ES"};
+    std::optional<CsvColumns> columns;
+    std::vector<double> x, values;
+    std::istringstream lines(text);
+    std::string raw;
+    for (int line = 1; std::getline(lines, raw); ++line) {
+        const std::string l = trimmed(raw);
+        if (l.empty() || l[0] == '#') continue;
+        std::vector<std::string> fields = csv_fields(l);
+        for (std::string& f : fields) f = trimmed(f);
+        if (!columns) {
+            std::string header;
+            for (const std::string& f : fields) header += (header.empty() ? "" : ",") + f;
+            columns.emplace(label + ":" + std::to_string(line), header);
+            for (const std::string& c : want) {
+                try {
+                    columns->at(c, "x/L, m kg/m, EI N m^2, ES N");
+                } catch (const CsvColumnError& e) {
+                    throw SceneError::with_detail(scene_path, "beam.profile", e.what());
+                }
+            }
+            if (columns->size() != want.size())
+                throw bad(line, "expected exactly the columns x/L, m, EI, ES in its header, got '" + printable(header, 120) + "'");
+            continue;
+        }
+        if (fields.size() != want.size())
+            throw bad(line, "expected " + std::to_string(want.size()) + " fields, got " + std::to_string(fields.size()));
+        if (x.size() == max_profile_stations)
+            throw bad(line, "more than " + std::to_string(max_profile_stations) + " stations");
+        std::array<double, 4> v{};
+        for (std::size_t c = 0; c < want.size(); ++c) {
+            const std::string& f = fields[columns->at(want[c])];
+            const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), v[c]);
+            if (f.empty() || ec != std::errc() || end != f.data() + f.size() || !std::isfinite(v[c]))
+                throw bad(line, "expected a finite number for " + want[c] + ", got '" + printable(f, 40) + "'");
+            if (c > 0 && !(v[c] > 0.0)) throw bad(line, "expected " + want[c] + " > 0, got " + shortest(v[c]));
+        }
+        if (x.empty() && v[0] != 0.0) throw bad(line, "the first station must be x/L = 0, got " + shortest(v[0]));
+        if (!x.empty() && !(v[0] > x.back()))
+            throw bad(line, "the stations must increase strictly, got x/L = " + shortest(v[0]) + " after " + shortest(x.back()));
+        if (v[0] > 1.0) throw bad(line, "expected x/L <= 1, got " + shortest(v[0]));
+        x.push_back(v[0]);
+        values.insert(values.end(), {v[1], v[2], v[3]});
+    }
+    if (!columns) throw bad(0, "expected a header x/L, m, EI, ES and at least 2 stations, got no lines");
+    if (x.size() < 2) throw bad(0, "expected at least 2 stations, got " + std::to_string(x.size()));
+    if (x.back() != 1.0) throw bad(0, "the last station must be x/L = 1, got " + shortest(x.back()));
+    if (const std::string why = set_stations(x, extras); !why.empty()) throw bad(0, why);
+    p.profile = std::move(values);
+    // The root's values stand for rho S, E I and E S wherever a single value of the beam is reported (the
+    // frequency unit sqrt(EI / (m L^4))): S = 1 m^2 keeps the three products the table's.
+    p.rho = p.profile[static_cast<std::size_t>(ProfileValue::m)];
+    p.S = 1.0;
+    p.E = p.profile[static_cast<std::size_t>(ProfileValue::ES)];
+    p.I = p.profile[static_cast<std::size_t>(ProfileValue::EI)] / p.E;
+}
+
+/// [beam]: docs/model.md section 1, the taper of section 11 (a taper kind without a ratio is refused: the default
+/// ratio 1 would make it uniform without a word) and the tabulated profile of section 11.2 (the section's keys and
+/// a taper with it are refused: the table gives the beam's distributions).
+void read_beam(const Section& beam, const std::string& scene_path, Parameters& p, Extras& extras)
 {
     beam.only();
     p.L = beam.required_number("length");
+    if (const auto profile = beam.string("profile"); profile && !profile->empty()) {
+        for (const char* key : {"density", "area", "second_moment", "youngs_modulus", "taper", "tip_ratio"})
+            if (beam.get(key))
+                throw SceneError::with_detail(scene_path, beam.path(key),
+                                              "not used with beam.profile (its table gives m, EI and ES along the span): "
+                                              "remove it");
+        read_profile(scene_path, *profile, p, extras);
+        return;
+    }
     p.rho = beam.required_number("density");
     p.S = beam.required_number("area");
     p.I = beam.required_number("second_moment");
     p.E = beam.required_number("youngs_modulus");
+    Taper& taper = extras.taper;
     taper = beam.word<Taper>("taper", parse_enum<Taper>).value_or(Taper::uniform);
     if (taper != Taper::uniform) p.tip_ratio = beam.required_number("tip_ratio", ", required for a taper");
     else if (const auto r = beam.number("tip_ratio"); r && *r != 1.0)
@@ -768,7 +874,7 @@ Scene parse_scene(std::string_view text, const std::string& path, const Override
 
     Scene scene;
     scene.path = path;
-    read_beam(Section(path, root, "beam"), scene.parameters, scene.variant.extras.taper);
+    read_beam(Section(path, root, "beam"), path, scene.parameters, scene.variant.extras);
     read_extras(root, path, scene.parameters);
     read_motion(Section(path, root, "motion"), path, scene.motion);
     read_control(Section(path, root, "control"), scene.control);

@@ -5,6 +5,7 @@
 #include "assembled.hpp"
 
 #include "fields.hpp"
+#include "profile.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -45,7 +46,9 @@ BeamMatrices assemble_matrices(const VariantKey& key, const Parameters& p)
     // Exact for the polynomial bases with a taper too: max(degree) + 2 Gauss points per piece integrate degree
     // 2 max(degree) + 3, and no integrand below exceeds the product of two pieces times a cubic in xi (the depth
     // taper's i(xi) times two second derivatives; the weights of D and G); AMM's rule is converged to round-off.
-    const QuadratureRule rule = product_rule(axial, transverse);
+    // A profile's stations are cuts too: its values are linear on each interval between them.
+    const std::vector<double> stations = station_positions(key.extras);
+    const QuadratureRule rule = product_rule(axial, transverse, stations);
     const int nn = static_cast<int>(rule.nodes.size());
 
     // Shape functions and their xi-derivatives at the nodes (one row per node).
@@ -66,34 +69,72 @@ BeamMatrices assemble_matrices(const VariantKey& key, const Parameters& p)
     }
 
     // docs/model.md section 5's integrals in xi: x = L xi, dx = L dxi, Phi' = (1/L) dPhi/dxi, Phi'' = (1/L^2) d2Phi/dxi2.
-    const double L = p.L, a = p.a, m = p.rho * p.S, EI = p.E * p.I, ES = p.E * p.S;
+    const bool profile = key.extras.profile();
+    // With a profile (section 11.2) the reference values are 1 and the ratios below are its distributions.
+    const double L = p.L, a = p.a, m = profile ? 1.0 : p.rho * p.S, EI = profile ? 1.0 : p.E * p.I,
+                 ES = profile ? 1.0 : p.E * p.S;
     const Eigen::ArrayXd xi = Eigen::Map<const Eigen::ArrayXd>(rule.nodes.data(), nn);
     const VectorXd w = Eigen::Map<const VectorXd>(rule.weights.data(), nn);
     // Section 11.2's profile: m(x) = m s(xi), ES(x) = ES s(xi), EI(x) = EI i(xi), s = 1 + (tip_ratio - 1) xi, i = s (width
     // taper) or s^3 (depth taper); s = i = 1 for a uniform beam, whatever tip_ratio says.
     const double r1 = key.extras.taper == Taper::uniform ? 0.0 : p.tip_ratio - 1.0;
-    const Eigen::ArrayXd s = 1.0 + r1 * xi;
-    const Eigen::ArrayXd i = key.extras.taper == Taper::depth ? Eigen::ArrayXd(s.cube()) : s;
+    Eigen::ArrayXd s = 1.0 + r1 * xi;
+    Eigen::ArrayXd i = key.extras.taper == Taper::depth ? Eigen::ArrayXd(s.cube()) : s;
+    Eigen::ArrayXd e = s;  // ES(x) / ES
     // C and D with the order of integration exchanged: H(x) is weighed by int_x^L m dt = m L above and by
     // int_x^L m t dt = m L^2 above_x / 2.
-    const Eigen::ArrayXd above = (1.0 - xi) + 0.5 * r1 * (1.0 - xi * xi);
-    const Eigen::ArrayXd above_x = (1.0 - xi * xi) + (2.0 / 3.0) * r1 * (1.0 - xi * xi * xi);
+    Eigen::ArrayXd above = (1.0 - xi) + 0.5 * r1 * (1.0 - xi * xi);
+    Eigen::ArrayXd above_x = (1.0 - xi * xi) + (2.0 / 3.0) * r1 * (1.0 - xi * xi * xi);
+    // A profile's int_0^1 m(xi) (a + L xi)^n dxi for n = 1, 2 (S_ob, J_ob).
+    double first_moment = 0.0, second_moment = 0.0;
+    if (profile) {
+        const auto value = [&](ProfileValue j, double x) { return profile_value(stations, p.profile, j, x); };
+        for (int r = 0; r < nn; ++r) {
+            s(r) = value(ProfileValue::m, xi(r));
+            i(r) = value(ProfileValue::EI, xi(r));
+            e(r) = value(ProfileValue::ES, xi(r));
+        }
+        // int_xi^1 m(t) t^n dt by 3-point Gauss on each station interval (exact: m is linear there).
+        const QuadratureRule g3 = gauss_legendre(3);
+        const auto tail = [&](double from, int n) {
+            double sum = 0.0;
+            for (std::size_t k = 0; k + 1 < stations.size(); ++k) {
+                const double lo = std::max(from, stations[k]), hi = stations[k + 1];
+                if (hi <= lo) continue;
+                for (int j = 0; j < 3; ++j) {
+                    const double t = lo + (hi - lo) * g3.nodes[j];
+                    sum += (hi - lo) * g3.weights[j] * value(ProfileValue::m, t) * std::pow(t, n);
+                }
+            }
+            return sum;
+        };
+        for (int r = 0; r < nn; ++r) {
+            above(r) = tail(xi(r), 0);
+            above_x(r) = 2.0 * tail(xi(r), 1);
+        }
+        // (a + L xi)^n = sum of xi powers: the moments of m over [0, 1].
+        const double t0 = tail(0.0, 0), t1 = tail(0.0, 1), t2 = tail(0.0, 2);
+        first_moment = a * t0 + L * t1;
+        second_moment = a * a * t0 + 2.0 * a * L * t1 + L * L * t2;
+    }
     const VectorXd w_s = (w.array() * s).matrix();                              // m(x) dx / (m L)
+    const VectorXd w_e = (w.array() * e).matrix();                              // ES(x) dx / (ES L)
     const VectorXd w_i = (w.array() * i).matrix();                              // EI(x) dx / (EI L)
     const VectorXd w_arm = (m * L * w_s.array() * (a + L * xi)).matrix();       // m(x) (a+x) dx
     const VectorXd w_C = (m * w.array() * above).matrix();                      // m L above dx / L^2
     const VectorXd w_D = (0.5 * m * L * w.array() * above_x).matrix();          // m L^2 above_x / 2 dx / L^2
 
     BeamMatrices b;
-    // int_0^L m s(x/L) (a+x)^2 dx and int_0^L m s(x/L) (a+x) dx in closed form.
-    b.J_ob = m * ((std::pow(a + L, 3) - std::pow(a, 3)) / 3.0 + r1 * L * (a * a / 2.0 + 2.0 * a * L / 3.0 + L * L / 4.0));
-    b.S_ob = m * (a * L + L * L / 2.0 + r1 * L * (a / 2.0 + L / 3.0));
+    // int_0^L m(x) (a+x)^2 dx and int_0^L m(x) (a+x) dx, in closed form for the taper.
+    b.J_ob = profile ? L * second_moment
+                     : m * ((std::pow(a + L, 3) - std::pow(a, 3)) / 3.0 + r1 * L * (a * a / 2.0 + 2.0 * a * L / 3.0 + L * L / 4.0));
+    b.S_ob = profile ? L * first_moment : m * (a * L + L * L / 2.0 + r1 * L * (a / 2.0 + L / 3.0));
     b.S_x = (X.transpose() * w_arm).transpose();
     b.S_y = (Y.transpose() * w_arm).transpose();
     b.M1 = m * L * weighted_gram(X, w_s);
     b.M2 = m * L * weighted_gram(Y, w_s);
     b.M3 = m * L * weighted_product(X, w_s, Y);
-    b.K1 = ES / L * weighted_gram(X1, w_s);
+    b.K1 = ES / L * weighted_gram(X1, w_e);
     b.K2 = EI / (L * L * L) * weighted_gram(Y2, w_i);
     b.C = weighted_gram(Y1, w_C);
     b.D = weighted_gram(Y1, w_D);

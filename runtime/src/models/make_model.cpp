@@ -25,6 +25,10 @@ template <> std::vector<std::string> words<ModelSource>() { return all_words(sou
 std::unique_ptr<Model> make_model(const VariantKey& key, const Parameters& p, ModelSource source, const ModelNote& note)
 {
     if (const std::string why = key.dof_problem(); !why.empty()) throw std::invalid_argument(why);
+    // The kernels read the profile's values at p[param_count + 3 k + j]: a count that disagrees would read past p.
+    if (p.profile.size() != profile_value_count * key.extras.stations.size())
+        throw std::invalid_argument("the parameters hold " + std::to_string(p.profile.size()) + " profile values, the variant " +
+                                    key.name() + " needs " + std::to_string(profile_value_count * key.extras.stations.size()));
     if (source == ModelSource::assembled) return make_assembled_model(key, p);
     if (const generated::Variant* v = built_in_variant(key)) return make_generated_model(key, *v, p, "built in");
     if (const generated::Variant* v = load_cached_variant(key)) return make_generated_model(key, *v, p, "cached");
