@@ -365,16 +365,19 @@ void check_tables(const toml::table& root, const std::string& path)
             fail(path, required, std::string("a table [") + required + "]", "nothing (the table is missing)");
 }
 
+/// s without the blanks around it.
+std::string_view trimmed(std::string_view s)
+{
+    const std::size_t first = s.find_first_not_of(" \t\r");
+    if (first == std::string_view::npos) return {};
+    return s.substr(first, s.find_last_not_of(" \t\r") - first + 1);
+}
+
 /// The most stations a profile table may have: the generator's cost and the variant's name grow with them.
 constexpr std::size_t max_profile_stations = 64;
 /// The largest profile table read: a blade table of max_profile_stations rows is a few kilobytes.
 constexpr std::size_t max_profile_bytes = 1 << 16;
 
-std::string trimmed(std::string_view t)
-{
-    const std::size_t b = t.find_first_not_of(" \t\r"), e = t.find_last_not_of(" \t\r");
-    return b == std::string_view::npos ? std::string() : std::string(t.substr(b, e - b + 1));
-}
 
 /// beam.profile's table (docs/model.md section 11.2): stations x/L from 0 to 1, strictly increasing, and positive
 /// finite m, EI, ES at each, into the variant's stations (structure) and p.profile (run-time values). Every error
@@ -405,10 +408,10 @@ void read_profile(const std::string& scene_path, const std::string& name, Parame
     std::istringstream lines(text);
     std::string raw;
     for (int line = 1; std::getline(lines, raw); ++line) {
-        const std::string l = trimmed(raw);
+        const std::string l(trimmed(raw));
         if (l.empty() || l[0] == '#') continue;
         std::vector<std::string> fields = csv_fields(l);
-        for (std::string& f : fields) f = trimmed(f);
+        for (std::string& f : fields) f = std::string(trimmed(f));
         if (!columns) {
             std::string header;
             for (const std::string& f : fields) header += (header.empty() ? "" : ",") + f;
@@ -497,12 +500,6 @@ void read_extras(const toml::table& root, const std::string& path, Parameters& p
     p.g = gravity.number("g", p.g);
 }
 
-std::string_view trimmed(std::string_view s)
-{
-    const std::size_t first = s.find_first_not_of(" \t");
-    if (first == std::string_view::npos) return {};
-    return s.substr(first, s.find_last_not_of(" \t") - first + 1);
-}
 
 /// A motion table's problem: "SCENE: motion.file: WHERE: WHAT" (WHERE the CSV file, with its line if one is at fault).
 [[noreturn]] void table_fail(const std::string& scene, const std::string& where, const std::string& what)
