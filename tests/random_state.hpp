@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <random>
 
 #include "interface.hpp"
@@ -39,6 +40,20 @@ inline Parameters with_profile(const VariantKey& key, Parameters p)
         p.profile.insert(p.profile.end(), {p.rho * p.S * s, p.E * p.I * s * s, p.E * p.S * s});
     }
     return p;
+}
+
+/// random_state with a prescribed angle as well, in (-3, 3) rad (a prescribed variant with gravity reads it).
+inline State random_state_with_angle(const VariantKey& key, std::mt19937& rng)
+{
+    State s = random_state(key, rng);
+    s.u.theta = std::uniform_real_distribution<double>(-3.0, 3.0)(rng);
+    return s;
+}
+
+/// max |a - b| / max |b|: the relative error of a whole vector or matrix.
+inline double relative_error(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b)
+{
+    return (a - b).lpNorm<Eigen::Infinity>() / std::max(b.lpNorm<Eigen::Infinity>(), 1e-300);
 }
 
 }  // namespace hubbeam::test

@@ -41,6 +41,20 @@ Scene stiff_step(double angle, double kp, double kd)
     return s;
 }
 
+/// A PID-controlled spin-up to 1 rad/s of the paper's beam with mass-proportional damping, to t_end: every auxiliary
+/// state (the integral, the dissipated energy, the work) at once.
+Scene controlled_damped_spin_up(double t_end)
+{
+    Scene s = paper_scene(Method::amm, 0, 4, test::spin_up(1.0));
+    s.control = Control{};
+    s.control->kp = 200.0;
+    s.control->kd = 150.0;
+    s.control->ki = 50.0;
+    s.parameters.alpha = 0.1;
+    s.output.t_end = t_end;
+    return s;
+}
+
 /// J_oh + J_ob, the whole inertia about the axis of the straight beam: J_ob = int_0^L rho S (a + x)^2 dx.
 double rigid_inertia(const Parameters& p)
 {
@@ -191,13 +205,7 @@ TEST_CASE("with damping, E + dissipated - work stays constant, and the run's mon
     }
     SECTION("controlled spin-up with damping")
     {
-        Scene s = paper_scene(Method::amm, 0, 4, test::spin_up(1.0));
-        s.control = Control{};
-        s.control->kp = 200.0;
-        s.control->kd = 150.0;
-        s.control->ki = 50.0;
-        s.parameters.alpha = 0.1;
-        s.output.t_end = 20.0;
+        const Scene s = controlled_damped_spin_up(20.0);
         const Ran r = run_scene(s);
         double largest = 0.0;
         for (const Row& row : r.rows) largest = std::max(largest, row.kinetic + row.potential);
@@ -264,13 +272,7 @@ TEST_CASE("the exact Jacobian of a controlled, damped system equals central diff
 
 TEST_CASE("interpolated rows of the auxiliary states agree with steps that end at every row", "[control]")
 {
-    Scene s = paper_scene(Method::amm, 0, 4, test::spin_up(1.0));
-    s.control = Control{};
-    s.control->kp = 200.0;
-    s.control->kd = 150.0;
-    s.control->ki = 50.0;
-    s.parameters.alpha = 0.1;
-    s.output.t_end = 10.0;
+    Scene s = controlled_damped_spin_up(10.0);
     s.output.dt_out = 0.1;
     const Ran free = run_scene(s);
     s.solver.stepping = Stepping::rows;

@@ -63,20 +63,6 @@ Parameters parameters_with(Term on)
     return p;
 }
 
-/// max |a - b| / max |b|: relative error of a whole vector or matrix.
-double relative_error(const VectorXd& a, const VectorXd& b)
-{
-    return (a - b).lpNorm<Eigen::Infinity>() / std::max(b.lpNorm<Eigen::Infinity>(), 1e-300);
-}
-
-/// A random state of the paper's sizes (tests/random_state.hpp) with a prescribed angle too.
-test::State state_of(const VariantKey& key, std::mt19937& rng)
-{
-    test::State s = test::random_state(key, rng);
-    s.u.theta = std::uniform_real_distribution<double>(-3.0, 3.0)(rng);
-    return s;
-}
-
 MatrixXd mass_of(const Model& model, const test::State& s)
 {
     RowMajorMatrix M(model.nq(), model.nq());
@@ -165,12 +151,12 @@ TEST_CASE("generated and assembled agree on every extra term", "[extras][generat
                 CHECK(gen->mass_is_constant() == asm_->mass_is_constant());
                 double shown = 0.0;  // the largest relative change the term makes to M, Q or the energies
                 for (int trial = 0; trial < 4; ++trial) {
-                    const test::State s = state_of(key, rng);
+                    const test::State s = test::random_state_with_angle(key, rng);
                     INFO("trial " << trial << ", theta " << s.u.theta);
                     const MatrixXd Mg = mass_of(*gen, s), Ma = mass_of(*asm_, s);
-                    CHECK(relative_error(Mg.reshaped(), Ma.reshaped()) < 1e-12);
+                    CHECK(test::relative_error(Mg.reshaped(), Ma.reshaped()) < 1e-12);
                     const VectorXd Qg = forces_of(*gen, s), Qa = forces_of(*asm_, s);
-                    CHECK(relative_error(Qg, Qa) < 1e-12);
+                    CHECK(test::relative_error(Qg, Qa) < 1e-12);
                     const Eigen::Vector4d eg = energy_of(*gen, s), ea = energy_of(*asm_, s);
                     // Each part against the largest, so that a T1 or T0 of zero compares as one.
                     CHECK((eg - ea).lpNorm<Eigen::Infinity>() < 1e-12 * ea.lpNorm<Eigen::Infinity>());
@@ -180,14 +166,14 @@ TEST_CASE("generated and assembled agree on every extra term", "[extras][generat
                     const VectorXd dg = forces_theta_of(*gen, s), da = forces_theta_of(*asm_, s);
                     if (p.g != 0.0 && key.drive == Drive::prescribed) {
                         REQUIRE(da.lpNorm<Eigen::Infinity>() > 0.0);
-                        CHECK(relative_error(dg, da) < 1e-12);
+                        CHECK(test::relative_error(dg, da) < 1e-12);
                     } else {
                         CHECK(dg.lpNorm<Eigen::Infinity>() == 0.0);
                         CHECK(da.lpNorm<Eigen::Infinity>() == 0.0);
                     }
-                    shown = std::max({shown, relative_error(mass_of(*plain, s).reshaped(), Ma.reshaped()),
-                                      relative_error(forces_of(*plain, s), Qa),
-                                      relative_error(energy_of(*plain, s), ea)});
+                    shown = std::max({shown, test::relative_error(mass_of(*plain, s).reshaped(), Ma.reshaped()),
+                                      test::relative_error(forces_of(*plain, s), Qa),
+                                      test::relative_error(energy_of(*plain, s), ea)});
                 }
                 // The comparison means something only where the term changes what is compared.
                 CHECK(shown > 1e-4);
@@ -206,11 +192,11 @@ TEST_CASE("assembled extra terms: forces from the assembled energies and dissipa
             const auto model = make_model(key, conservative, ModelSource::assembled);
             const int n = key.nq(), o = key.first_a();
             for (int trial = 0; trial < 3; ++trial) {
-                const test::State s = state_of(key, rng);
+                const test::State s = test::random_state_with_angle(key, rng);
                 INFO("trial " << trial);
                 // Tip body, taper and gravity are conservative: Q is Lagrange's from T and U alone.
                 const VectorXd Q = forces_of(*model, s), QL = test::lagrange_forces(*model, s);
-                CHECK(relative_error(Q, QL) < 1e-9);
+                CHECK(test::relative_error(Q, QL) < 1e-9);
                 // The mass matrix is T's Hessian in the rates (T is quadratic in them: exact differences).
                 MatrixXd H(n, n);
                 for (int i = 0; i < n; ++i)
@@ -219,14 +205,14 @@ TEST_CASE("assembled extra terms: forces from the assembled energies and dissipa
                         const auto T = [&](const VectorXd& qd) { return model->energy(s.u, s.q.data(), qd.data()).kinetic(); };
                         H(i, j) = 0.25 * (T(s.qd + ei + ej) - T(s.qd + ei - ej) - T(s.qd - ei + ej) + T(s.qd - ei - ej));
                     }
-                CHECK(relative_error(mass_of(*model, s).reshaped(), H.reshaped()) < 1e-9);
+                CHECK(test::relative_error(mass_of(*model, s).reshaped(), H.reshaped()) < 1e-9);
                 if (key.drive == Drive::prescribed) {
                     // dQ/dtheta: Q is affine in (sin theta, cos theta), so the difference over 2 sin(h) is exact.
                     test::State up = s, down = s;
                     up.u.theta += 1.0;
                     down.u.theta -= 1.0;
                     const VectorXd dQ = (forces_of(*model, up) - forces_of(*model, down)) / (2.0 * std::sin(1.0));
-                    CHECK(relative_error(forces_theta_of(*model, s), dQ) < 1e-9);
+                    CHECK(test::relative_error(forces_theta_of(*model, s), dQ) < 1e-9);
                 }
             }
 
@@ -247,10 +233,10 @@ TEST_CASE("assembled extra terms: forces from the assembled energies and dissipa
                 K_e.col(j) = -forces_of(*rest, moved).tail(ne);
             }
             for (int trial = 0; trial < 3; ++trial) {
-                const test::State s = state_of(key, rng);
+                const test::State s = test::random_state_with_angle(key, rng);
                 const VectorXd added = forces_of(*with, s) - forces_of(*model, s);
                 const VectorXd expected = -(damped.alpha * M_ee + damped.beta * K_e) * s.qd.tail(ne);
-                CHECK(relative_error(added.tail(ne), expected) < 1e-9);
+                CHECK(test::relative_error(added.tail(ne), expected) < 1e-9);
                 CHECK(added.head(o).lpNorm<Eigen::Infinity>() == 0.0);  // the hub's rate is not damped
                 // D = -1/2 qd . Q_damping >= 0: damping only dissipates.
                 CHECK(-s.qd.tail(ne).dot(added.tail(ne)) > 0.0);

@@ -16,11 +16,6 @@ using namespace hubbeam::test;
 
 namespace {
 
-double relative_error(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b)
-{
-    return (a - b).lpNorm<Eigen::Infinity>() / b.lpNorm<Eigen::Infinity>();
-}
-
 /// Every method with axial coordinates (the u_x1 u_x2 coupling of order full), both drives.
 std::vector<VariantKey> full_variants()
 {

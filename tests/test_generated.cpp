@@ -17,11 +17,6 @@ using test::State;
 namespace {
 
 /// max |a - b| / max |b|: relative error of a whole vector or matrix.
-double relative_error(const Eigen::VectorXd& a, const Eigen::VectorXd& b)
-{
-    return (a - b).lpNorm<Eigen::Infinity>() / std::max(b.lpNorm<Eigen::Infinity>(), 1e-300);
-}
-
 }  // namespace
 
 TEST_CASE("generated kernels equal the hand-assembled equations", "[generated]")
@@ -46,21 +41,21 @@ TEST_CASE("generated kernels equal the hand-assembled equations", "[generated]")
                 Eigen::MatrixXd Mg(n, n), Ma(n, n);
                 gen->mass(s.u, s.q.data(), Mg.data());
                 asm_->mass(s.u, s.q.data(), Ma.data());
-                CHECK(relative_error(Mg.reshaped(), Ma.reshaped()) < 1e-12);
+                CHECK(test::relative_error(Mg.reshaped(), Ma.reshaped()) < 1e-12);
 
                 Eigen::VectorXd Qg(n), Qa(n);
                 gen->forces(s.u, s.q.data(), s.qd.data(), Qg.data());
                 asm_->forces(s.u, s.q.data(), s.qd.data(), Qa.data());
-                CHECK(relative_error(Qg, Qa) < 1e-12);
+                CHECK(test::relative_error(Qg, Qa) < 1e-12);
 
                 const Energy eg = gen->energy(s.u, s.q.data(), s.qd.data());
                 const Energy ea = asm_->energy(s.u, s.q.data(), s.qd.data());
                 const Eigen::Vector4d vg(eg.T2, eg.T1, eg.T0, eg.U), va(ea.T2, ea.T1, ea.T0, ea.U);
-                CHECK(relative_error(vg, va) < 1e-12);
+                CHECK(test::relative_error(vg, va) < 1e-12);
                 // Tip displacements: generated shape values and H(1) against the runtime's shape functions and
                 // quadrature (BeamFields).
                 const Tip tg = gen->tip(s.q.data()), ta = asm_->tip(s.q.data());
-                CHECK(relative_error(Eigen::Vector3d(tg.uy, tg.ux1, tg.ux), Eigen::Vector3d(ta.uy, ta.ux1, ta.ux)) < 1e-12);
+                CHECK(test::relative_error(Eigen::Vector3d(tg.uy, tg.ux1, tg.ux), Eigen::Vector3d(ta.uy, ta.ux1, ta.ux)) < 1e-12);
                 const double hg = gen->momentum(s.u, s.q.data(), s.qd.data());
                 const double ha = asm_->momentum(s.u, s.q.data(), s.qd.data());
                 CHECK(std::abs(hg - ha) <= 1e-12 * std::abs(ha));

@@ -18,12 +18,6 @@ namespace {
 
 using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-/// max |a - b| / max |b| of one block.
-double relative_error(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b)
-{
-    return (a - b).lpNorm<Eigen::Infinity>() / std::max(b.lpNorm<Eigen::Infinity>(), 1e-300);
-}
-
 /// y = (q, qd) of a random state (random_state.hpp).
 Eigen::VectorXd random_y(const VariantKey& key, std::mt19937& rng)
 {
@@ -141,11 +135,11 @@ TEST_CASE("generated Jacobian equals central differences of the right-hand side"
                 // to round-off; the q columns are the runtime's central differences, accurate to ~1e-9 here).
                 CHECK(block(J, n, 0, 0).lpNorm<Eigen::Infinity>() == 0.0);
                 CHECK(block(Jfd, n, 0, 0).lpNorm<Eigen::Infinity>() == 0.0);
-                CHECK(relative_error(block(J, n, 0, 1), block(Jfd, n, 0, 1)) < 1e-7);
-                CHECK(relative_error(block(J, n, 1, 0), block(Jfd, n, 1, 0)) < 1e-7);
-                CHECK(relative_error(block(J, n, 1, 1), block(Jfd, n, 1, 1)) < 1e-7);
+                CHECK(test::relative_error(block(J, n, 0, 1), block(Jfd, n, 0, 1)) < 1e-7);
+                CHECK(test::relative_error(block(J, n, 1, 0), block(Jfd, n, 1, 0)) < 1e-7);
+                CHECK(test::relative_error(block(J, n, 1, 1), block(Jfd, n, 1, 1)) < 1e-7);
                 CHECK(dfdt.head(n).lpNorm<Eigen::Infinity>() == 0.0);
-                CHECK(relative_error(dfdt.tail(n), dfdt_fd.tail(n)) < 1e-7);
+                CHECK(test::relative_error(dfdt.tail(n), dfdt_fd.tail(n)) < 1e-7);
             }
         }
     }
@@ -185,7 +179,7 @@ TEST_CASE("du/dt of the drive equals central differences of the drive", "[jacobi
             }
             INFO(to_string(drive) << " at t = " << t << ": exact " << exact.transpose() << ", fd " << fd.transpose());
             if (t > end) CHECK(exact.lpNorm<Eigen::Infinity>() == 0.0);
-            else CHECK(relative_error(exact, fd) < 1e-7);
+            else CHECK(test::relative_error(exact, fd) < 1e-7);
         }
     }
 }

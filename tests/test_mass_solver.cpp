@@ -40,11 +40,6 @@ MatrixXd mass_of(const Model& model, const HubInput& u, const VectorXd& q)
 }
 
 /// max |a - b| / max |b|.
-double relative_error(const MatrixXd& a, const MatrixXd& b)
-{
-    return (a - b).lpNorm<Eigen::Infinity>() / b.lpNorm<Eigen::Infinity>();
-}
-
 /// The solver's M^-1 B against a dense LU solve, at several states (the solver re-prepared at each).
 void check_solver(const Model& model, std::mt19937& rng)
 {
@@ -59,7 +54,7 @@ void check_solver(const Model& model, std::mt19937& rng)
         MatrixXd X = B;
         REQUIRE(solver->prepare(u, q.data()));
         solver->solve(X.data(), 3);
-        CHECK(relative_error(X, M.partialPivLu().solve(B)) < 1e-11);
+        CHECK(test::relative_error(X, M.partialPivLu().solve(B)) < 1e-11);
     }
 }
 
@@ -167,7 +162,7 @@ TEST_CASE("folded forces: one multiply-add pass gives M^-1 Q", "[structure]")
             model->forces(u, q.data(), qd.data(), Q.data());
             const VectorXd qdd = mass_of(*model, u, q).partialPivLu().solve(Q);
             CHECK(f.head(key.nq()) == qd);
-            CHECK(relative_error(f.tail(key.nq()), qdd) < 1e-11);
+            CHECK(test::relative_error(f.tail(key.nq()), qdd) < 1e-11);
         }
     }
 }
@@ -238,5 +233,5 @@ TEST_CASE("a banded factorization retried after failing holds one band, not one 
     const MatrixXd B = MatrixXd::Random(model.nq(), 2);
     MatrixXd X = B;
     solver->solve(X.data(), 2);
-    CHECK(relative_error(X, M.llt().solve(B)) < 1e-13);
+    CHECK(test::relative_error(X, M.llt().solve(B)) < 1e-13);
 }

@@ -74,18 +74,6 @@ void irregular(Parameters& p)
                  0.09, 150.0, 2.4e6}; // 1
 }
 
-double relative_error(const VectorXd& a, const VectorXd& b)
-{
-    return (a - b).lpNorm<Eigen::Infinity>() / std::max(b.lpNorm<Eigen::Infinity>(), 1e-300);
-}
-
-test::State state_of(const VariantKey& key, std::mt19937& rng)
-{
-    test::State s = test::random_state(key, rng);
-    s.u.theta = std::uniform_real_distribution<double>(-3.0, 3.0)(rng);
-    return s;
-}
-
 /// M, Q, the energies, the momentum and dQ/dtheta of a model at a state, stacked.
 VectorXd everything(const Model& model, const test::State& s)
 {
@@ -106,15 +94,15 @@ void compare(const Model& a, const Model& b, double tolerance, std::mt19937& rng
 {
     REQUIRE(a.nq() == b.nq());
     for (int trial = 0; trial < 4; ++trial) {
-        const test::State s = state_of(a.key(), rng);
+        const test::State s = test::random_state_with_angle(a.key(), rng);
         const VectorXd va = everything(a, s), vb = everything(b, s);
         const int n = a.nq();
         INFO("trial " << trial);
-        CHECK(relative_error(va.head(n * n), vb.head(n * n)) < tolerance);
-        CHECK(relative_error(va.segment(n * n, n), vb.segment(n * n, n)) < tolerance);
+        CHECK(test::relative_error(va.head(n * n), vb.head(n * n)) < tolerance);
+        CHECK(test::relative_error(va.segment(n * n, n), vb.segment(n * n, n)) < tolerance);
         CHECK((va.segment(n * n + n, n) - vb.segment(n * n + n, n)).lpNorm<Eigen::Infinity>() <=
               tolerance * std::max(vb.segment(n * n, n).lpNorm<Eigen::Infinity>(), 1e-300));
-        CHECK(relative_error(va.tail(5), vb.tail(5)) < tolerance);
+        CHECK(test::relative_error(va.tail(5), vb.tail(5)) < tolerance);
     }
 }
 
@@ -142,8 +130,8 @@ TEST_CASE("profile: generated and assembled agree at random states", "[profile][
                 Parameters q = p;
                 for (std::size_t j = 3; j < 9; ++j) q.profile[j] *= 2.0;
                 const auto other = make_model(key, q, ModelSource::generated);
-                const test::State s = state_of(key, rng);
-                CHECK(relative_error(everything(*other, s), everything(*gen, s)) > 1e-3);
+                const test::State s = test::random_state_with_angle(key, rng);
+                CHECK(test::relative_error(everything(*other, s), everything(*gen, s)) > 1e-3);
             }
         }
 }
