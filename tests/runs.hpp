@@ -30,15 +30,29 @@ inline Scene paper_scene(Method method, int nx, int ny, Motion motion)
 inline Motion spin_up(double omega0) { return {Motion::Kind::spin_up, omega0, 15.0, 0.0, 10.0}; }
 inline Motion torque(double tau0) { return {Motion::Kind::torque, 0.0, 15.0, tau0, 10.0}; }
 
-/// The rows of a run that must complete.
-inline std::vector<Row> run(const Scene& s)
-{
+/// The rows of a run, complete or not, and its summary.
+struct Collected {
     std::vector<Row> rows;
-    const RunSummary summary = simulate(s, [&](const Row& r) { rows.push_back(r); });
-    INFO(summary.failure);
-    REQUIRE(summary.completed);
-    return rows;
+    RunSummary summary;
+};
+inline Collected collect(const Scene& s)
+{
+    Collected c;
+    c.summary = simulate(s, [&](const Row& r) { c.rows.push_back(r); });
+    return c;
 }
+
+/// collect() of a run that must complete.
+inline Collected completed_run(const Scene& s)
+{
+    Collected c = collect(s);
+    INFO(c.summary.failure);
+    REQUIRE(c.summary.completed);
+    return c;
+}
+
+/// The rows of a run that must complete.
+inline std::vector<Row> run(const Scene& s) { return completed_run(s).rows; }
 
 /// The Jacobi integral's largest change from its value at t_steady on, and the largest strain energy U there
 /// (the part of the integral the flexible motion exchanges, against which the drift is judged).

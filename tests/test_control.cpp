@@ -63,18 +63,8 @@ double rigid_inertia(const Parameters& p)
 }
 
 /// The rows of a run (which must complete) and its summary.
-struct Ran {
-    std::vector<Row> rows;
-    RunSummary summary;
-};
-Ran run_scene(const Scene& s)
-{
-    Ran r;
-    r.summary = simulate(s, [&](const Row& row) { r.rows.push_back(row); });
-    INFO(r.summary.failure);
-    REQUIRE(r.summary.completed);
-    return r;
-}
+using Ran = test::Collected;
+Ran run_scene(const Scene& s) { return test::completed_run(s); }
 
 }  // namespace
 

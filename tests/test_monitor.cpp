@@ -19,17 +19,8 @@ using test::torque;
 
 namespace {
 
-struct Collected {
-    std::vector<Row> rows;
-    RunSummary summary;
-};
-
-Collected collect(const Scene& s)
-{
-    Collected c;
-    c.summary = simulate(s, [&](const Row& r) { c.rows.push_back(r); });
-    return c;
-}
+using test::collect;
+using test::Collected;
 
 /// The true error of rows: the largest difference from reference in tip_uy, tip_ux1 and tip_ux, relative to the
 /// column's largest value, over the rows both have.
