@@ -373,6 +373,93 @@ std::string_view trimmed(std::string_view s)
     return s.substr(first, s.find_last_not_of(" \t\r") - first + 1);
 }
 
+/// A numeric CSV table named by a scene key (beam.profile, motion.file): its header's column count and, for each
+/// row, the values of the wanted columns and the row's line. Read whole by read_file (FIFOs, devices and folders
+/// refused; at most cap bytes) and checked before anything runs; blank lines, lines starting with '#' and a
+/// spreadsheet's byte-order mark are skipped. Every problem is "SCENE: KEY: FILE[:LINE]: what".
+struct NumericTable {
+    std::size_t header_columns = 0;
+    std::vector<std::vector<double>> rows;  // the wanted columns' values, in the order asked for
+    std::vector<long> lines;
+};
+
+/// The failure of a table's check, as read_numeric_table words it.
+[[noreturn]] void table_problem(const std::string& scene, const std::string& key, const std::string& where,
+                                const std::string& what)
+{
+    throw SceneError::with_detail(scene, key, where + ": " + what);
+}
+
+/// Reads file (resolved already) as a table with the columns `wanted` (found by name in its header, among others;
+/// `meaning` says what they hold, for the message naming a missing one); each value a finite number.
+NumericTable read_numeric_table(const std::string& scene, const std::string& key, const std::string& file,
+                                std::size_t cap, const char* what_it_is, const std::vector<std::string>& wanted,
+                                const char* meaning)
+{
+    const std::string label = printable(file, 400);
+    std::string text;
+    try {
+        text = read_file(file, cap);
+    } catch (const SceneError& e) {
+        table_problem(scene, key, label, e.detail);
+    }
+    if (text.size() > cap)
+        table_problem(scene, key, label,
+                      "is larger than " + std::string(what_it_is) + " can be (" +
+                          (cap >= (1u << 20) ? std::to_string(cap >> 20) + " MB)" : std::to_string(cap >> 10) + " KB)"));
+    if (text.rfind("\xef\xbb\xbf", 0) == 0) text.erase(0, 3);
+
+    std::optional<CsvColumns> columns;
+    std::vector<std::size_t> at;
+    NumericTable table;
+    long line_no = 0;
+    for (std::size_t pos = 0; pos < text.size();) {
+        std::size_t end = text.find('\n', pos);
+        if (end == std::string::npos) end = text.size();
+        const std::string_view line = trimmed(std::string_view(text.data() + pos, end - pos));
+        pos = end + 1;
+        ++line_no;
+        if (line.empty() || line.front() == '#') continue;
+        const std::string where = label + ":" + std::to_string(line_no);
+        std::vector<std::string> fields = csv_fields(line);
+        for (std::string& f : fields) f = std::string(trimmed(f));
+        if (!columns) {  // the header: "t, theta" as well as "t,theta"
+            std::string header;
+            for (const std::string& f : fields) header += (header.empty() ? "" : ",") + f;
+            columns.emplace(where, header);
+            try {
+                for (const std::string& name : wanted) at.push_back(columns->at(name, meaning));
+            } catch (const CsvColumnError& e) {
+                throw SceneError::with_detail(scene, key, e.what());
+            }
+            table.header_columns = columns->size();
+            continue;
+        }
+        if (fields.size() != columns->size())
+            table_problem(scene, key, where,
+                          "expected " + std::to_string(columns->size()) + " fields as the header has, got " +
+                              std::to_string(fields.size()));
+        std::vector<double> row;
+        for (std::size_t c = 0; c < wanted.size(); ++c) {
+            const std::string& f = fields[at[c]];
+            double x = 0.0;
+            const auto [stop, ec] = std::from_chars(f.data(), f.data() + f.size(), x);
+            if (ec != std::errc() || stop != f.data() + f.size() || !std::isfinite(x))
+                table_problem(scene, key, where,
+                              "expected a finite number in column " + wanted[c] + ", got \"" + printable(f, 40) + "\"");
+            row.push_back(x);
+        }
+        table.rows.push_back(std::move(row));
+        table.lines.push_back(line_no);
+    }
+    if (!columns) {
+        std::string names;
+        for (const std::string& w : wanted) names += (names.empty() ? "" : ", ") + w;
+        table_problem(scene, key, label, "expected a header line with columns " + names + ", got an empty file");
+    }
+    return table;
+}
+
 /// The most stations a profile table may have: the generator's cost and the variant's name grow with them.
 constexpr std::size_t max_profile_stations = 64;
 /// The largest profile table read: a blade table of max_profile_stations rows is a few kilobytes.
@@ -384,61 +471,26 @@ constexpr std::size_t max_profile_bytes = 1 << 16;
 /// names the scene, the key and the table's file and line.
 void read_profile(const std::string& scene_path, const std::string& name, Parameters& p, Extras& extras)
 {
-    namespace fs = std::filesystem;
-    const fs::path file = fs::path(scene_path).parent_path() / name;
-    const std::string label = file.string();
-    const auto bad = [&](int line, const std::string& what) -> SceneError {
+    const std::string file = (std::filesystem::path(scene_path).parent_path() / name).string();
+    const std::string label = printable(file, 400);
+    const auto bad = [&](long line, const std::string& what) -> SceneError {
         return SceneError::with_detail(scene_path, "beam.profile",
                                        label + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": " + what);
     };
-    if (const std::string kind = not_a_regular_file(label); !kind.empty()) throw bad(0, "cannot open: it is " + kind + ", not a regular file");
-    std::ifstream in(label, std::ios::binary);
-    if (!in) throw bad(0, std::string("cannot open: ") + std::strerror(errno));
-    std::string text(max_profile_bytes + 1, '\0');
-    in.read(text.data(), static_cast<std::streamsize>(text.size()));
-    if (in.bad()) throw bad(0, std::string("cannot read: ") + std::strerror(errno));
-    text.resize(static_cast<std::size_t>(in.gcount()));
-    if (text.size() > max_profile_bytes)
-        throw bad(0, "is larger than a profile table can be (" + std::to_string(max_profile_bytes / 1024) + " KB)");
-
-    // Lines: a header, then one station per line; blank lines and lines starting with '#' are skipped.
     const std::vector<std::string> want = {"x/L", "m", "EI", "ES"};
-    std::optional<CsvColumns> columns;
+    const NumericTable table = read_numeric_table(scene_path, "beam.profile", file, max_profile_bytes,
+                                                  "a profile table", want, "x/L, m kg/m, EI N m^2, ES N");
+    if (table.header_columns != want.size())
+        throw bad(1, "expected exactly the columns x/L, m, EI, ES in its header, got " +
+                         std::to_string(table.header_columns) + " columns");
     std::vector<double> x, values;
-    std::istringstream lines(text);
-    std::string raw;
-    for (int line = 1; std::getline(lines, raw); ++line) {
-        const std::string l(trimmed(raw));
-        if (l.empty() || l[0] == '#') continue;
-        std::vector<std::string> fields = csv_fields(l);
-        for (std::string& f : fields) f = std::string(trimmed(f));
-        if (!columns) {
-            std::string header;
-            for (const std::string& f : fields) header += (header.empty() ? "" : ",") + f;
-            columns.emplace(label + ":" + std::to_string(line), header);
-            for (const std::string& c : want) {
-                try {
-                    columns->at(c, "x/L, m kg/m, EI N m^2, ES N");
-                } catch (const CsvColumnError& e) {
-                    throw SceneError::with_detail(scene_path, "beam.profile", e.what());
-                }
-            }
-            if (columns->size() != want.size())
-                throw bad(line, "expected exactly the columns x/L, m, EI, ES in its header, got '" + printable(header, 120) + "'");
-            continue;
-        }
-        if (fields.size() != want.size())
-            throw bad(line, "expected " + std::to_string(want.size()) + " fields, got " + std::to_string(fields.size()));
+    for (std::size_t r = 0; r < table.rows.size(); ++r) {
+        const std::vector<double>& v = table.rows[r];
+        const long line = table.lines[r];
         if (x.size() == max_profile_stations)
             throw bad(line, "more than " + std::to_string(max_profile_stations) + " stations");
-        std::array<double, 4> v{};
-        for (std::size_t c = 0; c < want.size(); ++c) {
-            const std::string& f = fields[columns->at(want[c])];
-            const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), v[c]);
-            if (f.empty() || ec != std::errc() || end != f.data() + f.size() || !std::isfinite(v[c]))
-                throw bad(line, "expected a finite number for " + want[c] + ", got '" + printable(f, 40) + "'");
-            if (c > 0 && !(v[c] > 0.0)) throw bad(line, "expected " + want[c] + " > 0, got " + shortest(v[c]));
-        }
+        for (std::size_t c = 1; c < want.size(); ++c)
+            if (!(v[c] > 0.0)) throw bad(line, "expected " + want[c] + " > 0, got " + shortest(v[c]));
         if (x.empty() && v[0] != 0.0) throw bad(line, "the first station must be x/L = 0, got " + shortest(v[0]));
         if (!x.empty() && !(v[0] > x.back()))
             throw bad(line, "the stations must increase strictly, got x/L = " + shortest(v[0]) + " after " + shortest(x.back()));
@@ -446,7 +498,6 @@ void read_profile(const std::string& scene_path, const std::string& name, Parame
         x.push_back(v[0]);
         values.insert(values.end(), {v[1], v[2], v[3]});
     }
-    if (!columns) throw bad(0, "expected a header x/L, m, EI, ES and at least 2 stations, got no lines");
     if (x.size() < 2) throw bad(0, "expected at least 2 stations, got " + std::to_string(x.size()));
     if (x.back() != 1.0) throw bad(0, "the last station must be x/L = 1, got " + shortest(x.back()));
     if (const std::string why = set_stations(x, extras); !why.empty()) throw bad(0, why);
@@ -513,68 +564,18 @@ std::shared_ptr<const DriveTable> read_drive_table(const std::string& scene, con
                                                    const char* column, const char* meaning,
                                                    DriveTable::Interpolation interpolation)
 {
-    std::string text;
-    try {
-        text = read_file(file, max_table_bytes);  // the scene's own reader: FIFOs, devices, folders refused
-    } catch (const SceneError& e) {
-        table_fail(scene, printable(file, 400), e.detail);
-    }
-    if (text.size() > max_table_bytes)
-        table_fail(scene, printable(file, 400),
-                   "is larger than a motion table can be (" + std::to_string(max_table_bytes >> 20) + " MB)");
     const std::string label = printable(file, 400);
-    if (text.rfind("\xef\xbb\xbf", 0) == 0) text.erase(0, 3);  // a spreadsheet's byte-order mark
-
-    std::optional<CsvColumns> columns;
-    std::size_t t_at = 0, v_at = 0;
+    const NumericTable table =
+        read_numeric_table(scene, "motion.file", file, max_table_bytes, "a motion table", {"t", column}, meaning);
     std::vector<double> t, v;
-    std::vector<long> lines;  // each row's line, for the checks across rows
-    long line_no = 0;
-    for (std::size_t pos = 0; pos < text.size();) {
-        std::size_t end = text.find('\n', pos);
-        if (end == std::string::npos) end = text.size();
-        std::string_view line(text.data() + pos, end - pos);
-        pos = end + 1;
-        ++line_no;
-        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-        if (trimmed(line).empty()) continue;
-        const std::string where = label + ":" + std::to_string(line_no);
-        std::vector<std::string> fields = csv_fields(line);
-        for (std::string& f : fields) f = std::string(trimmed(f));
-        if (!columns) {  // the header: "t, theta" as well as "t,theta"
-            std::string header;
-            for (const std::string& f : fields) header += (header.empty() ? "" : ",") + f;
-            columns.emplace(where, header);
-            try {
-                t_at = columns->at("t", "time, s");
-                v_at = columns->at(column, meaning);
-            } catch (const CsvColumnError& e) {
-                throw SceneError::with_detail(scene, "motion.file", e.what());
-            }
-            continue;
-        }
-        if (fields.size() != columns->size())
-            table_fail(scene, where,
-                       "expected " + std::to_string(columns->size()) + " fields as the header has, got " +
-                           std::to_string(fields.size()));
-        const auto number = [&](std::size_t at, const std::string& name) {
-            const std::string& f = fields[at];
-            double x = 0.0;
-            const auto [stop, ec] = std::from_chars(f.data(), f.data() + f.size(), x);
-            if (ec != std::errc() || stop != f.data() + f.size() || !std::isfinite(x))
-                table_fail(scene, where,
-                           "expected a finite number in column " + name + ", got \"" + printable(f, 40) + "\"");
-            return x;
-        };
-        t.push_back(number(t_at, "t"));
-        v.push_back(number(v_at, column));
-        lines.push_back(line_no);
-        if (t.size() >= 2 && !(t.back() > t[t.size() - 2]))
-            table_fail(scene, where,
-                       "expected times that increase strictly, got t = " + shortest(t.back()) + " after t = " +
-                           shortest(t[t.size() - 2]) + " (line " + std::to_string(lines[lines.size() - 2]) + ")");
+    for (std::size_t r = 0; r < table.rows.size(); ++r) {
+        t.push_back(table.rows[r][0]);
+        v.push_back(table.rows[r][1]);
+        if (r > 0 && !(t[r] > t[r - 1]))
+            table_fail(scene, label + ":" + std::to_string(table.lines[r]),
+                       "expected times that increase strictly, got t = " + shortest(t[r]) + " after t = " +
+                           shortest(t[r - 1]) + " (line " + std::to_string(table.lines[r - 1]) + ")");
     }
-    if (!columns) table_fail(scene, label, "expected a header line with columns t, " + std::string(column) + ", got an empty file");
     const std::size_t need = DriveTable::min_rows(interpolation);
     if (t.size() < need)
         table_fail(scene, label,
