@@ -258,11 +258,18 @@ std::string read_file(const std::string& path, std::size_t cap = max_scene_bytes
         throw SceneError::with_detail(path, "", "cannot open: it is " + kind + ", not a regular file");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw SceneError::with_detail(path, "", std::string("cannot open: ") + std::strerror(errno));
-    // Read at most one byte past the cap: a scene is a few kilobytes, and /dev/zero never ends.
-    std::string text(cap + 1, '\0');
-    in.read(text.data(), static_cast<std::streamsize>(text.size()));
+    // Read by the file's own size, in chunks, and at most one byte past the cap: a scene is a few kilobytes (a
+    // buffer of the cap's size zero-filled for it cost a run's start-up millions of instructions), and /dev/zero
+    // never ends.
+    std::string text;
+    std::array<char, 1 << 14> chunk;
+    while (text.size() <= cap) {
+        const std::size_t want = std::min(chunk.size(), cap + 1 - text.size());
+        in.read(chunk.data(), static_cast<std::streamsize>(want));
+        text.append(chunk.data(), static_cast<std::size_t>(in.gcount()));
+        if (static_cast<std::size_t>(in.gcount()) < want) break;  // the end of the file, or an error (below)
+    }
     if (in.bad()) throw SceneError::with_detail(path, "", std::string("cannot read: ") + std::strerror(errno));
-    text.resize(static_cast<std::size_t>(in.gcount()));
     return text;
 }
 
