@@ -127,7 +127,7 @@ void run_modes(const Scene& scene, const ModesOptions& o, std::ostream& out)
                 int shown_bending = 0;
                 bool shown_axial = false;
                 for (const auto& [omega, number, mode] : campbell(*model, o.omegas, scene.axial, held_angle(scene),
-                                                                      scene.control ? &*scene.control : nullptr)) {
+                                                                      scene.controller())) {
                     if (number == 1) shown_bending = 0, shown_axial = false;
                     const double hz = mode.rad_s / (2.0 * M_PI);
                     std::ostringstream row;

@@ -179,9 +179,7 @@ py::dict run(const std::string& text, const std::string& name, const Overrides& 
         const py::gil_scoped_release release;
         rows.reserve(width * static_cast<std::size_t>(std::min(1e7, scene.output.t_end / scene.output.dt_out + 2.0)));
         s = simulation->run([&rows, columns](const Row& r) {
-            for (const RowColumn& c : row_columns) rows.push_back(r.*c.member);
-            for (std::size_t i = 0; columns.bits != 0 && i < optional_width; ++i)
-                if (columns.has(i)) rows.push_back(r.extras.*optional_columns[i].member);
+            for_each_value(r, columns, [&rows](double v) { rows.push_back(v); });
         }, stop);
     }
     if (interrupted) throw py::error_already_set();  // the KeyboardInterrupt that PyErr_CheckSignals set

@@ -24,6 +24,11 @@ ForceJacobians force_jacobians(const Model& model, const HubInput& u, const std:
 Eigen::MatrixXd force_q_jacobian(const Model& model, const HubInput& u, const std::vector<double>& q,
                                  const std::vector<double>& qd);
 
+/// d u_y(L) / dq_c for each of the coordinates c (indices into q), at q: u_y(L) is linear in B, so central
+/// differences at unit offsets are exact. The tip-deflection row of the state space's C and of a controller's
+/// tip feedback.
+Eigen::VectorXd tip_uy_row(const Model& model, const std::vector<double>& q, const std::vector<int>& coordinates);
+
 /// The steady spin at omega (rad/s): the beam straight, the axial coordinates at their centrifugal stretch
 /// (Newton on Q_A = 0), the hub turning at omega (prescribed: the drive's rate; free hub: theta_dot, no torque).
 /// Under gravity, the static equilibrium of the hub held at an angle instead (held_equilibrium).

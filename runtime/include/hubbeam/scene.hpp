@@ -54,6 +54,8 @@ struct Scene {
     SolverOptions solver;
     OutputOptions output;
 
+    /// The control, or nullptr: what the integrator and the linearization take.
+    const Control* controller() const { return control ? &*control : nullptr; }
     /// The hub's drive: torque under a control (its motion is a reference), else the one the motion implies.
     Drive drive() const { return control ? Drive::torque : motion.drive(); }
     /// The variant this scene runs: its discretization with the drive its motion and control imply and the extra

@@ -83,6 +83,15 @@ struct ColumnSet {
         return n;
     }
 };
+/// Calls value(x) for each value of row a CSV line or the Python module's array holds, in column order: row_columns',
+/// then the optional columns of set.
+template <class Value>
+void for_each_value(const Row& row, ColumnSet set, Value value)
+{
+    for (const RowColumn& c : row_columns) value(row.*c.member);
+    for (std::size_t i = 0; set.bits != 0 && i < optional_width; ++i)
+        if (set.has(i)) value(row.extras.*optional_columns[i].member);
+}
 /// The optional columns of a scene's rows (none for the paper's scenes).
 ColumnSet optional_columns_of(const Scene& scene);
 /// The CSV header of rows with the optional columns of set: row_columns' names, then theirs, joined by commas.

@@ -100,6 +100,20 @@ Eigen::MatrixXd force_q_jacobian(const Model& model, const HubInput& u, const st
     return model.jacobian() != nullptr ? force_jacobians(model, u, q, qd).q : q_differences(model, u, q, qd);
 }
 
+Eigen::VectorXd tip_uy_row(const Model& model, const std::vector<double>& q, const std::vector<int>& coordinates)
+{
+    Eigen::VectorXd row(static_cast<Eigen::Index>(coordinates.size()));
+    std::vector<double> plus = q, minus = q;
+    for (std::size_t i = 0; i < coordinates.size(); ++i) {
+        const auto c = static_cast<std::size_t>(coordinates[i]);
+        plus[c] += 1.0;
+        minus[c] -= 1.0;
+        row[static_cast<Eigen::Index>(i)] = 0.5 * (model.tip(plus.data()).uy - model.tip(minus.data()).uy);
+        plus[c] = minus[c] = q[c];
+    }
+    return row;
+}
+
 SteadySpin steady_spin(const Model& model, double omega, double theta)
 {
     const VariantKey& key = model.key();
@@ -219,13 +233,9 @@ StateSpace state_space(const Model& model, const SteadySpin& s)
         for (int r = 1; r < m; ++r) ss.A(m + r, 0) = column[model_index(r)];
     }
     ss.C = Eigen::MatrixXd::Zero(2, 2 * m);
-    // tip_uy is linear in B: its row from the model's tip at unit offsets (exact for a linear function).
-    for (int c = 1; c < m; ++c) {
-        std::vector<double> plus = s.q, minus = s.q;
-        plus[static_cast<std::size_t>(model_index(c))] += 1.0;
-        minus[static_cast<std::size_t>(model_index(c))] -= 1.0;
-        ss.C(0, c) = 0.5 * (model.tip(plus.data()).uy - model.tip(minus.data()).uy);
-    }
+    std::vector<int> flexible;  // the state's flexible coordinates 1..m-1 among q's
+    for (int c = 1; c < m; ++c) flexible.push_back(model_index(c));
+    ss.C.block(0, 1, 1, m - 1) = tip_uy_row(model, s.q, flexible).transpose();
     ss.C(1, 0) = 1.0;
     ss.D = Eigen::MatrixXd::Zero(2, 1);
     std::vector<std::string> names{"theta"};

@@ -160,15 +160,7 @@ FirstOrderSystem::FirstOrderSystem(const Model& model, const Motion& motion, Axi
     Work& w = *work_;
     const std::vector<double> zero(static_cast<std::size_t>(n_), 0.0);
     if (control_ != nullptr) {
-        // u_y(L) is linear in B: its coefficients are the tip's values at unit coordinates.
-        w.tip_row.resize(k);
-        const double at_rest = model.tip(zero.data()).uy;
-        std::vector<double> unit = zero;
-        for (int i = 0; i < k; ++i) {
-            unit[static_cast<std::size_t>(kept_[static_cast<std::size_t>(i)])] = 1.0;
-            w.tip_row[i] = model.tip(unit.data()).uy - at_rest;
-            unit[static_cast<std::size_t>(kept_[static_cast<std::size_t>(i)])] = 0.0;
-        }
+        w.tip_row = tip_uy_row(model, zero, kept_);  // u_y(L) is linear in the kept coordinates
     }
     if (aux_.dissipated) {
         // docs/model.md section 11.4: -(alpha M_ee + beta K_e) qd_e, M_ee and K_e of the undeformed beam at rest, from
@@ -367,7 +359,7 @@ int FirstOrderSystem::exact_jacobian(const ExactJacobian& exact, double t, const
         }
         dfdy[work_at_ * m + n_] += u.tau;
         if (integral_ >= 0) dfdy[work_at_ * m + integral_] = theta_dot * dtau_dz;
-        dfdt[work_at_] = theta_dot * (control_ != nullptr ? dtau_dt : motion_.rate(t).tau);
+        dfdt[work_at_] = theta_dot * du[index(DriveValue::tau)];  // the law's dtau/dt under a control
     }
     for (int i = 0; i < m * m; ++i)
         if (!std::isfinite(dfdy[i])) return GSL_EBADFUNC;

@@ -243,7 +243,7 @@ CheckTolerance check_tolerance(const SolverOptions& solver)
 std::vector<Row> rerun(const Scene& scene, const Model& model, double t0, std::vector<double> y,
                        const std::vector<double>& times, CheckTolerance tol)
 {
-    const Control* control = scene.control ? &*scene.control : nullptr;
+    const Control* control = scene.controller();
     FirstOrderSystem system(model, scene.motion, scene.axial, control, &scene.parameters);
     const Driver driver =
         make_driver(system, automatic_stepper(model, scene.axial).stepper, scene.solver.h0, tol.atol, tol.rtol);
@@ -358,9 +358,9 @@ private:
 
 Simulation::Run::Run(const Simulation& simulation)
     : sim_(simulation), scene_(simulation.scene_), model_(*simulation.model_),
-      system_(model_, scene_.motion, scene_.axial, scene_.control ? &*scene_.control : nullptr, &scene_.parameters),
+      system_(model_, scene_.motion, scene_.axial, scene_.controller(), &scene_.parameters),
       driver_(make_driver(system_, sim_.stepper_, scene_.solver.h0, scene_.solver.atol, scene_.solver.rtol)),
-      make_row_(model_, scene_.motion, system_, scene_.control ? &*scene_.control : nullptr), times_(scene_.output),
+      make_row_(model_, scene_.motion, system_, scene_.controller()), times_(scene_.output),
       breaks_(breaks_before(scene_.motion, times_(times_.last()))), critical_(critical_spin(model_)),
       budget_(scene_.solver.max_steps), y_(static_cast<std::size_t>(system_.size()), 0.0)
 {
@@ -747,7 +747,7 @@ RunSummary simulate(const Scene& scene, const RowSink& sink) { return Simulation
 
 ColumnSet optional_columns_of(const Scene& scene)
 {
-    const Control* control = scene.control ? &*scene.control : nullptr;
+    const Control* control = scene.controller();
     const VariantKey key = scene.key();
     const Auxiliary aux = Auxiliary::of(key, control, &scene.parameters);
     const bool torque = key.drive == Drive::torque && (control != nullptr || key.extras.damping);

@@ -29,15 +29,11 @@ constexpr auto flush_interval = std::chrono::milliseconds(100);
 /// the end.
 char* format_row(char* out, const Row& row, ColumnSet set)
 {
-    for (std::size_t i = 0; i < row_width; ++i) {
-        if (i) *out++ = ',';
-        out = std::to_chars(out, out + 24, row.*row_columns[i].member).ptr;
-    }
-    for (std::size_t i = 0; set.bits != 0 && i < optional_width; ++i)
-        if (set.has(i)) {
-            *out++ = ',';
-            out = std::to_chars(out, out + 24, row.extras.*optional_columns[i].member).ptr;
-        }
+    const char* start = out;
+    for_each_value(row, set, [&](double v) {
+        if (out != start) *out++ = ',';
+        out = std::to_chars(out, out + 24, v).ptr;
+    });
     return out;
 }
 
