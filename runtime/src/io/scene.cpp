@@ -472,7 +472,6 @@ constexpr std::size_t max_profile_stations = 64;
 /// The largest profile table read: a blade table of max_profile_stations rows is a few kilobytes.
 constexpr std::size_t max_profile_bytes = 1 << 16;
 
-
 /// beam.profile's table (docs/model.md section 11.2): stations x/L from 0 to 1, strictly increasing, and positive
 /// finite m, EI, ES at each, into the variant's stations (structure) and p.profile (run-time values). Every error
 /// names the scene, the key and the table's file and line.
@@ -480,34 +479,33 @@ void read_profile(const std::string& scene_path, const std::string& name, Parame
 {
     const std::string file = (std::filesystem::path(scene_path).parent_path() / name).string();
     const std::string label = printable(file, 400);
-    const auto bad = [&](long line, const std::string& what) -> SceneError {
-        return SceneError::with_detail(scene_path, "beam.profile",
-                                       label + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": " + what);
+    const auto bad = [&](long line, const std::string& what) {
+        table_problem(scene_path, "beam.profile", label + (line > 0 ? ":" + std::to_string(line) : std::string()), what);
     };
     const std::vector<std::string> want = {"x/L", "m", "EI", "ES"};
     const NumericTable table = read_numeric_table(scene_path, "beam.profile", file, max_profile_bytes,
                                                   "a profile table", want, "x/L, m kg/m, EI N m^2, ES N");
     if (table.header_columns != want.size())
-        throw bad(1, "expected exactly the columns x/L, m, EI, ES in its header, got " +
+        bad(1, "expected exactly the columns x/L, m, EI, ES in its header, got " +
                          std::to_string(table.header_columns) + " columns");
     std::vector<double> x, values;
     for (std::size_t r = 0; r < table.rows.size(); ++r) {
         const std::vector<double>& v = table.rows[r];
         const long line = table.lines[r];
         if (x.size() == max_profile_stations)
-            throw bad(line, "more than " + std::to_string(max_profile_stations) + " stations");
+            bad(line, "more than " + std::to_string(max_profile_stations) + " stations");
         for (std::size_t c = 1; c < want.size(); ++c)
-            if (!(v[c] > 0.0)) throw bad(line, "expected " + want[c] + " > 0, got " + shortest(v[c]));
-        if (x.empty() && v[0] != 0.0) throw bad(line, "the first station must be x/L = 0, got " + shortest(v[0]));
+            if (!(v[c] > 0.0)) bad(line, "expected " + want[c] + " > 0, got " + shortest(v[c]));
+        if (x.empty() && v[0] != 0.0) bad(line, "the first station must be x/L = 0, got " + shortest(v[0]));
         if (!x.empty() && !(v[0] > x.back()))
-            throw bad(line, "the stations must increase strictly, got x/L = " + shortest(v[0]) + " after " + shortest(x.back()));
-        if (v[0] > 1.0) throw bad(line, "expected x/L <= 1, got " + shortest(v[0]));
+            bad(line, "the stations must increase strictly, got x/L = " + shortest(v[0]) + " after " + shortest(x.back()));
+        if (v[0] > 1.0) bad(line, "expected x/L <= 1, got " + shortest(v[0]));
         x.push_back(v[0]);
         values.insert(values.end(), {v[1], v[2], v[3]});
     }
-    if (x.size() < 2) throw bad(0, "expected at least 2 stations, got " + std::to_string(x.size()));
-    if (x.back() != 1.0) throw bad(0, "the last station must be x/L = 1, got " + shortest(x.back()));
-    if (const std::string why = set_stations(x, extras); !why.empty()) throw bad(0, why);
+    if (x.size() < 2) bad(0, "expected at least 2 stations, got " + std::to_string(x.size()));
+    if (x.back() != 1.0) bad(0, "the last station must be x/L = 1, got " + shortest(x.back()));
+    if (const std::string why = set_stations(x, extras); !why.empty()) bad(0, why);
     p.profile = std::move(values);
     // The root's values stand for rho S, E I and E S wherever a single value of the beam is reported (the
     // frequency unit sqrt(EI / (m L^4))): S = 1 m^2 keeps the three products the table's.
@@ -562,7 +560,7 @@ void read_extras(const toml::table& root, const std::string& path, Parameters& p
 /// A motion table's problem: "SCENE: motion.file: WHERE: WHAT" (WHERE the CSV file, with its line if one is at fault).
 [[noreturn]] void table_fail(const std::string& scene, const std::string& where, const std::string& what)
 {
-    throw SceneError::with_detail(scene, "motion.file", where + ": " + what);
+    table_problem(scene, "motion.file", where, what);
 }
 
 /// The table of motion.file: columns t and `column` (found by name, in any order among others), one row a line,
