@@ -188,22 +188,7 @@ HubInput Motion::rate(double t) const
     return r;
 }
 
-double Motion::theta(double t) const
-{
-    switch (kind) {
-    case Kind::spin_up:
-        if (t <= spin_time)
-            return theta0 + omega0 * (t * t / (2.0 * spin_time) +
-                                      spin_time * (std::cos(two_pi * t / spin_time) - 1.0) / (two_pi * two_pi));
-        return theta0 + omega0 * (t - spin_time / 2.0);
-    case Kind::held:
-    case Kind::step: return angle;
-    case Kind::table: return theta0 + table->at(t).value;
-    case Kind::torque:
-    case Kind::torque_table: return 0.0;
-    }
-    return 0.0;
-}
+double Motion::theta(double t) const { return at(t).theta; }
 
 // A step is a reference whose hub starts where it is, at theta0 (0): the step is at t = 0.
 double Motion::initial_theta() const { return drive() == Drive::torque || kind == Kind::step ? theta0 : theta(0.0); }

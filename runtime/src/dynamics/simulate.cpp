@@ -166,7 +166,7 @@ public:
         }
         const Tip tip = model_.tip(q);
         const Energy e = model_.energy(u, q, qd);
-        const double theta = torque ? q[0] : motion_.theta(t), theta_dot = torque ? qd[0] : u.theta_dot;
+        const double theta = torque ? q[0] : u.theta, theta_dot = torque ? qd[0] : u.theta_dot;
         return {t, theta, theta_dot, tip.uy, tip.ux1, tip.ux, e.kinetic(), e.U, model_.momentum(u, q, qd), e.T2 - e.T0 + e.U,
                 extras};
     }
