@@ -6,6 +6,8 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <array>
+#include <numeric>
 #include <cmath>
 #include <stdexcept>
 
@@ -289,22 +291,32 @@ Eigen::MatrixXd linearized_system(const Model& model, const SteadySpin& s, const
     return X;
 }
 
+/// The kinetic energy of a mode's rates, v^H M v, split by the kind of coordinate: (the hub's angle, the axial, the
+/// transverse coordinates); coordinates[i] is the index in q of rates[i], and cross terms between kinds are left out.
+std::array<double, 3> energy_by_kind(const Model& model, const Eigen::MatrixXd& M, const std::vector<int>& coordinates,
+                                     const Eigen::VectorXcd& rates)
+{
+    const int a0 = model.key().first_a(), b0 = model.key().first_b();
+    const auto kind = [&](int c) { return c < a0 ? 0 : c < b0 ? 1 : 2; };
+    std::array<double, 3> energy{};
+    for (std::size_t i = 0; i < coordinates.size(); ++i)
+        for (std::size_t j = 0; j < coordinates.size(); ++j) {
+            const int mi = coordinates[i], mj = coordinates[j];
+            if (kind(mi) != kind(mj)) continue;
+            energy[static_cast<std::size_t>(kind(mi))] +=
+                (std::conj(rates(static_cast<Eigen::Index>(i))) * M(mi, mj) * rates(static_cast<Eigen::Index>(j))).real();
+        }
+    return energy;
+}
+
 /// Whether the mode with eigenvector v of linearized_system's X holds more kinetic energy in the axial than in
-/// the transverse coordinates, from its rates: v^H M v over each set.
+/// the transverse coordinates, from its rates.
 bool mostly_axial(const Model& model, const Eigen::MatrixXd& M, const std::vector<int>& R, const Eigen::VectorXcd& v)
 {
-    const int b0 = model.key().first_b();
     const auto r = static_cast<Eigen::Index>(R.size());
-    const Eigen::Index first = cyclic_angle(model, R), p = r - first;
-    double axial_energy = 0.0, transverse = 0.0;
-    for (Eigen::Index i = first; i < r; ++i)
-        for (Eigen::Index j = first; j < r; ++j) {
-            const int mi = R[static_cast<std::size_t>(i)], mj = R[static_cast<std::size_t>(j)];
-            if ((mi < b0) != (mj < b0)) continue;
-            const double e = (std::conj(v(p + i)) * M(mi, mj) * v(p + j)).real();
-            (mi < b0 ? axial_energy : transverse) += e;
-        }
-    return axial_energy > transverse;
+    const Eigen::Index p = r - cyclic_angle(model, R);  // the rates follow the positions (a free hub's angle left out)
+    const std::array<double, 3> e = energy_by_kind(model, M, R, v.segment(p, r));
+    return e[1] > e[2];
 }
 
 }  // namespace
@@ -392,20 +404,16 @@ std::vector<NaturalMode> closed_loop_modes(const Model& model, const SteadySpin&
     if (eig.info() != Eigen::Success) throw std::runtime_error("the eigenvalues of the closed loop did not converge");
     const Eigen::MatrixXd M = mass_at(model, s.u, s.q);
     const Eigen::Index m = M.rows();  // the state holds theta and the flexible coordinates, as q does under torque
-    const int b0 = model.key().first_b();
+    std::vector<int> all(static_cast<std::size_t>(m));
+    std::iota(all.begin(), all.end(), 0);
     std::vector<NaturalMode> modes;
     for (Eigen::Index k = 0; k < eig.eigenvalues().size(); ++k) {
         const std::complex<double> l = eig.eigenvalues()[k];
         const double magnitude = std::abs(l), scale = std::max(1.0, magnitude);
         if (l.imag() < -1e-9 * scale || magnitude <= 1e-9) continue;  // a conjugate, or a neutral direction
-        // Kinetic energy of the mode's rates by block: the hub's angle, the axial and the transverse coordinates.
-        const Eigen::VectorXcd rates = eig.eigenvectors().col(k).segment(m, m);
-        const auto block = [&](Eigen::Index c) { return c == 0 ? 0 : c < b0 ? 1 : 2; };
-        double energy[3] = {0.0, 0.0, 0.0};
-        for (Eigen::Index i = 0; i < m; ++i)
-            for (Eigen::Index j = 0; j < m; ++j)
-                if (block(i) == block(j)) energy[block(i)] += (std::conj(rates(i)) * M(i, j) * rates(j)).real();
-        const int kind = static_cast<int>(std::max_element(energy, energy + 3) - energy);
+        // The kind whose coordinates hold most of the mode's kinetic energy (the state's rates are q's, all of them).
+        const std::array<double, 3> energy = energy_by_kind(model, M, all, eig.eigenvectors().col(k).segment(m, m));
+        const auto kind = std::max_element(energy.begin(), energy.end()) - energy.begin();
         const bool oscillating = l.imag() > 1e-9 * scale;
         modes.push_back({oscillating ? l.imag() : 0.0, l.real(), kind == 0 ? "hub" : kind == 1 ? "axial" : "bending",
                          magnitude, -l.real() / magnitude});
