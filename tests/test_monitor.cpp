@@ -94,6 +94,7 @@ TEST_CASE("a failure caused by the tolerance is not blamed on the model", "[moni
     // tolerance the re-run uses, the same scene stays within 0.3 m of the axis (cases/spinup_omega4.toml).
     Scene s = load_scene(HUBBEAM_SOURCE_DIR "/cases/spinup_omega4.toml");
     s.solver.atol = 1e300;
+    s.solver.stepper = "rk4imp";  // gauss4, A-stable and symmetric, stays bounded: it is found untrustworthy instead
     const Collected run = collect(s);
     INFO(run.summary.failure);
     REQUIRE_FALSE(run.summary.completed);

@@ -109,7 +109,15 @@ std::vector<std::string> stepper_names()
 {
     std::vector<std::string> names;
     for (const StepperInfo& s : steppers) names.emplace_back(s.name);
+    names.emplace_back(gauss_stepper);
+    names.emplace_back(cvode_stepper);
     return names;
+}
+
+bool is_stepper(const std::string& name)
+{
+    const std::vector<std::string> names = stepper_names();
+    return std::find(names.begin(), names.end(), name) != names.end();
 }
 
 const gsl_odeiv2_step_type* step_type(const std::string& name)

@@ -1,4 +1,4 @@
-// Simulation: steps GSL's odeiv2 integrators freely (rows interpolated) or from output time to output time,
+// Simulation: steps the integrators (stepper.hpp) freely (rows interpolated) or from output time to output time,
 // through the drive's breakpoints, turning states into rows, and stops with a message when the solution goes bad.
 #include "simulate.hpp"
 
@@ -15,6 +15,7 @@
 #include "integrate.hpp"
 #include "make_model.hpp"
 #include "shortest.hpp"
+#include "stepper.hpp"
 #include "stiffness.hpp"
 
 namespace hubbeam {
@@ -24,10 +25,6 @@ namespace {
 // Times are compared relative to their size: an output time and a breakpoint closer than this are one
 // instant, and t_end / dt_out within this of an integer counts as that integer.
 constexpr double same_instant = 1e-12;
-
-struct DriverDeleter {
-    void operator()(gsl_odeiv2_driver* d) const { gsl_odeiv2_driver_free(d); }
-};
 
 /// GSL's error handler off for one scope (GSL's default aborts the process; odeiv2 failures must come
 /// back as status codes), restored afterwards so that the caller's handler is left as it was.
@@ -100,18 +97,6 @@ std::vector<double> breaks_before(const Motion& motion, double t_last)
         if (b > 0.0 && b < t_last) breaks.push_back(b);
     std::sort(breaks.begin(), breaks.end());
     return breaks;
-}
-
-using Driver = std::unique_ptr<gsl_odeiv2_driver, DriverDeleter>;
-
-/// GSL's driver for system with the named stepper; throws for an unknown name.
-Driver make_driver(FirstOrderSystem& system, const std::string& stepper, double h0, double atol, double rtol)
-{
-    const gsl_odeiv2_step_type* type = step_type(stepper);
-    if (type == nullptr) throw std::invalid_argument("unknown stepper '" + stepper + "'");
-    Driver driver(gsl_odeiv2_driver_alloc_y_new(system.gsl(), type, h0, atol, rtol));
-    if (!driver) throw std::runtime_error("GSL could not allocate the " + stepper + " driver");
-    return driver;
 }
 
 /// The run's output times: row 0 at t = 0, rows at multiples of dt_out, and a last one at t_end when dt_out does
@@ -241,13 +226,12 @@ CheckTolerance check_tolerance(const SolverOptions& solver)
 /// the stepper that suits the scene, a step ending at each row and breakpoint. Fewer rows than times: the re-run
 /// failed there (a step, or a model limit).
 std::vector<Row> rerun(const Scene& scene, const Model& model, double t0, std::vector<double> y,
-                       const std::vector<double>& times, CheckTolerance tol)
+                       const std::vector<double>& times, CheckTolerance tol, const std::string& stepper_name)
 {
     const Control* control = scene.controller();
     FirstOrderSystem system(model, scene.motion, scene.axial, control, &scene.parameters);
-    const Driver driver =
-        make_driver(system, automatic_stepper(model, scene.axial).stepper, scene.solver.h0, tol.atol, tol.rtol);
-    gsl_odeiv2_driver_set_nmax(driver.get(), static_cast<unsigned long>(scene.solver.max_steps));
+    const std::unique_ptr<Stepper> stepper =
+        make_stepper(system, stepper_name, t0, y.data(), scene.solver.h0, tol.atol, tol.rtol);
     RowMaker make_row(model, scene.motion, system, control);
     const std::vector<double> breaks = times.empty() ? std::vector<double>{} : breaks_before(scene.motion, times.back());
     auto next = std::upper_bound(breaks.begin(), breaks.end(), t0 * (1.0 + same_instant));
@@ -256,10 +240,11 @@ std::vector<Row> rerun(const Scene& scene, const Model& model, double t0, std::v
     double t = t0;
     for (const double ti : times) {
         for (; next != breaks.end() && *next < ti * (1.0 - same_instant); ++next) {
-            if (gsl_odeiv2_driver_apply(driver.get(), &t, *next, y.data()) != GSL_SUCCESS) return rows;
-            gsl_odeiv2_driver_reset(driver.get());
+            if (stepper->advance(t, *next, y.data()) != GSL_SUCCESS) return rows;
+            stepper->restart(t, y.data());
         }
-        if (gsl_odeiv2_driver_apply(driver.get(), &t, ti, y.data()) != GSL_SUCCESS) return rows;
+        if (stepper->advance(t, ti, y.data()) != GSL_SUCCESS) return rows;
+        if (stepper->steps() > scene.solver.max_steps) return rows;
         const Row r = make_row(ti, y.data());
         if (!model_limit(r, critical, scene.parameters.L).empty()) return rows;
         rows.push_back(r);
@@ -270,11 +255,12 @@ std::vector<Row> rerun(const Scene& scene, const Model& model, double t0, std::v
 /// The largest difference of window's rows from a re-run of it, relative to each column's peak: the fraction and
 /// the column, or a negative fraction when the re-run failed.
 std::pair<double, double Row::*> window_error(const Scene& scene, const Model& model, const CheckWindow& window,
-                                              const std::array<double, checked_count>& peak, CheckTolerance tol)
+                                              const std::array<double, checked_count>& peak, CheckTolerance tol,
+                                              const std::string& stepper)
 {
     std::vector<double> times;
     for (const Row& r : window.rows) times.push_back(r.t);
-    const std::vector<Row> again = rerun(scene, model, window.t0, window.y0, times, tol);
+    const std::vector<Row> again = rerun(scene, model, window.t0, window.y0, times, tol, stepper);
     if (again.size() != window.rows.size()) return {-1.0, nullptr};
     std::pair<double, double Row::*> worst{0.0, checked_columns[0]};
     for (std::size_t i = 0; i < again.size(); ++i)
@@ -292,6 +278,18 @@ std::pair<double, double Row::*> window_error(const Scene& scene, const Model& m
 
 }  // namespace
 
+namespace {
+
+/// The state at rest: the free hub at its initial angle (q[0], the first state: kept_coordinates keeps it first).
+std::vector<double> initial_state(const FirstOrderSystem& system, const Model& model, const Scene& scene)
+{
+    std::vector<double> y(static_cast<std::size_t>(system.size()), 0.0);
+    if (model.key().drive == Drive::torque) y[0] = scene.motion.initial_theta();
+    return y;
+}
+
+}  // namespace
+
 /// One run of Simulation::run: the integration's state, with one member function per job (setup, the two stepping
 /// loops, rows to the sink, the diagnosis of a stop, the checks and the summary).
 class Simulation::Run {
@@ -300,19 +298,19 @@ public:
     RunSummary operator()(const RowSink& sink, const StopRequest& stop);
 
 private:
-    /// What free stepping carries from step to step: the step's start, the derivatives at its ends, the step sizes.
+    /// What free stepping carries from step to step: the step's start, the derivatives at its ends, the step limit.
     struct FreeStep {
-        FreeStep(std::size_t size, double h0) : y0(size), f0(size), f1(size), yi(size), y_mid(size), f_mid(size), h(h0) {}
+        explicit FreeStep(std::size_t size) : y0(size), f0(size), f1(size), yi(size), y_mid(size), f_mid(size) {}
         std::vector<double> y0, f0, f1, yi, y_mid, f_mid;
         bool have_f0 = false, have_f1 = false;
-        double t0 = 0.0, h;
+        double t0 = 0.0;
         // Longest step whose interpolated rows stay within the tolerance (interpolation_error), learnt from the
         // steps that held rows: the quintic's error grows as h^6.
         double h_max = std::numeric_limits<double>::infinity();
     };
 
     std::string free_steps(const RowSink& sink, const StopRequest& stop);
-    void limit_interpolation(FreeStep& s);
+    bool limit_interpolation(FreeStep& s);
     std::string rows_in_step(FreeStep& s, long& i, const RowSink& sink, const StopRequest& stop);
     std::string row_steps(const RowSink& sink, const StopRequest& stop);
     const char* stop_requested(const StopRequest& stop);
@@ -337,16 +335,15 @@ private:
     const std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
     const QuietGsl quiet_;
     FirstOrderSystem system_;
-    Driver driver_;
+    std::vector<double> y_;
+    std::unique_ptr<Stepper> stepper_;
     RowMaker make_row_;
     const OutputTimes times_;
     const std::vector<double> breaks_;
     std::size_t next_break_ = 0;
     const double critical_;  // critical_spin: passing it stops the run at once, not after metres of deflection
     const long budget_;      // solver.max_steps
-    std::vector<double> y_;
     double t_ = 0.0, last_row_ = 0.0;
-    long steps_ = 0;  // of the driver's past lives (reset at breakpoints)
     RunSummary summary_;
     double jacobi0_ = 0.0;
     std::string model_failure_;  // set when a row broke a model limit
@@ -359,10 +356,12 @@ private:
 Simulation::Run::Run(const Simulation& simulation)
     : sim_(simulation), scene_(simulation.scene_), model_(*simulation.model_),
       system_(model_, scene_.motion, scene_.axial, scene_.controller(), &scene_.parameters),
-      driver_(make_driver(system_, sim_.stepper_, scene_.solver.h0, scene_.solver.atol, scene_.solver.rtol)),
+      y_(initial_state(system_, model_, scene_)),
+      stepper_(make_stepper(system_, sim_.stepper_, 0.0, y_.data(), scene_.solver.h0, scene_.solver.atol,
+                            scene_.solver.rtol)),
       make_row_(model_, scene_.motion, system_, scene_.controller()), times_(scene_.output),
       breaks_(breaks_before(scene_.motion, times_(times_.last()))), critical_(critical_spin(model_)),
-      budget_(scene_.solver.max_steps), y_(static_cast<std::size_t>(system_.size()), 0.0)
+      budget_(scene_.solver.max_steps)
 {
     summary_.variant = model_.key().name();
     summary_.source = model_.source();
@@ -370,8 +369,6 @@ Simulation::Run::Run(const Simulation& simulation)
     summary_.algebra = system_.linear_algebra();
     summary_.stepper = sim_.stepper_;
     summary_.stepper_why = sim_.stepper_why_;
-    // At rest, the free hub at its initial angle (q[0], the first state: kept_coordinates keeps it first).
-    if (model_.key().drive == Drive::torque) y_[0] = scene_.motion.initial_theta();
     // The invariant monitor starts after the drive's last breakpoint, from where its Jacobi integral is constant; with
     // the hub's work a state, E + dissipated - work is constant from the start; with damping the Jacobi integral
     // plus the dissipated energy is (docs/model.md section 11.4). Gravity under a prescribed rotation leaves nothing
@@ -402,7 +399,7 @@ RunSummary Simulation::Run::operator()(const RowSink& sink, const StopRequest& s
 /// interpolated from its ends (the derivatives there cost one right-hand side per step that holds a row).
 std::string Simulation::Run::free_steps(const RowSink& sink, const StopRequest& stop)
 {
-    FreeStep s(static_cast<std::size_t>(system_.size()), scene_.solver.h0);
+    FreeStep s(static_cast<std::size_t>(system_.size()));
     const double t_last = times_(times_.last());
     long i = 1;
     while (i <= times_.last()) {
@@ -411,28 +408,34 @@ std::string Simulation::Run::free_steps(const RowSink& sink, const StopRequest& 
         const double target = to_break ? breaks_[next_break_] : t_last;
         s.t0 = t_;
         s.y0 = y_;
-        s.h = std::min(s.h, s.h_max);
-        const int status =
-            gsl_odeiv2_evolve_apply(driver_->e, driver_->c, driver_->s, system_.gsl(), &t_, target, &s.h, y_.data());
+        const int status = stepper_->step(t_, target, y_.data(), s.h_max);
         if (std::string failure = why_failed(status); !failure.empty()) return failure;
         if (std::string failure = over_budget(); !failure.empty()) return failure;
         mark_end_window(s.t0, s.y0, t_);
         s.have_f1 = false;
-        if (times_(i) < t_ * (1.0 - same_instant)) limit_interpolation(s);
+        if (times_(i) < t_ * (1.0 - same_instant) && !limit_interpolation(s)) {
+            // Too long a step to interpolate its rows within the tolerance (the first step to reach a row after a
+            // start, whose length nothing bounded yet): taken again from its start, no longer than h_max.
+            t_ = s.t0;
+            y_ = s.y0;
+            stepper_->retake(t_, y_.data());
+            s.have_f1 = false;
+            continue;
+        }
         if (std::string failure = rows_in_step(s, i, sink, stop); !failure.empty()) return failure;
         std::swap(s.f0, s.f1);  // the derivative at this step's end starts the next step
         s.have_f0 = s.have_f1;
         if (to_break && t_ >= target) {
             ++next_break_;
             restart();
-            s.h = std::min(s.h, scene_.solver.h0);  // a fresh start, as after a reset of the driver
         }
     }
     return {};
 }
 
-/// For a step that holds rows: the interpolant's error at the step's middle bounds the next steps (h_max).
-void Simulation::Run::limit_interpolation(FreeStep& s)
+/// For a step that holds rows: the interpolant's error at the step's middle bounds the next steps (h_max); false when
+/// the stepper's own middle state shows it exceeds the tolerance in this step.
+bool Simulation::Run::limit_interpolation(FreeStep& s)
 {
     const int size = system_.size();
     if (!s.have_f0) system_.rhs(s.t0, s.y0.data(), s.f0.data());
@@ -441,10 +444,22 @@ void Simulation::Run::limit_interpolation(FreeStep& s)
     const double t_mid = 0.5 * (s.t0 + t_);
     const int aux = system_.auxiliary_count();
     interpolate_state(s.t0, s.y0.data(), s.f0.data(), t_, y_.data(), s.f1.data(), t_mid, size, s.y_mid.data(), aux);
+    if (stepper_->midpoint(s.f_mid.data())) {
+        // The stepper's own state at the middle: the interpolant's error there measured, not estimated from the
+        // acceleration (whose stiff terms overstate a position error by (omega h)^2 / 24).
+        double ratio = 0.0;
+        for (int i = 0; i < size; ++i)
+            ratio = std::max(ratio, std::abs(s.y_mid[i] - s.f_mid[i]) /
+                                        (scene_.solver.atol + scene_.solver.rtol * std::abs(s.f_mid[i])));
+        s.h_max = (t_ - s.t0) * std::min(4.0, 0.9 * std::pow(std::max(ratio, 1e-12), -1.0 / 5.0));
+        return ratio <= 1.0;
+    }
+    // Estimated only: the step stands (GSL's steppers, whose output this has always been), the next ones obey h_max.
     system_.rhs(t_mid, s.y_mid.data(), s.f_mid.data());
     const double ratio = interpolation_error(s.t0, s.y0.data(), s.f0.data(), t_, y_.data(), s.f1.data(), s.y_mid.data(),
                                              s.f_mid.data(), size, scene_.solver.atol, scene_.solver.rtol, aux);
     s.h_max = (t_ - s.t0) * std::min(4.0, 0.9 * std::pow(std::max(ratio, 1e-12), -1.0 / 6.0));
+    return true;
 }
 
 /// The rows from index i up to the step's end t_, interpolated where they fall inside the step; advances i.
@@ -468,10 +483,10 @@ std::string Simulation::Run::rows_in_step(FreeStep& s, long& i, const RowSink& s
     return {};
 }
 
-/// A step ends at every row (GSL's driver), and at each breakpoint on the way.
+/// A step ends at every row, and at each breakpoint on the way.
 std::string Simulation::Run::row_steps(const RowSink& sink, const StopRequest& stop)
 {
-    const auto advance = [&](double t1) { return why_failed(gsl_odeiv2_driver_apply(driver_.get(), &t_, t1, y_.data())); };
+    const auto advance = [&](double t1) { return why_failed(stepper_->advance(t_, t1, y_.data())); };
     for (long i = 1; i <= times_.last(); ++i) {
         if (const char* why = stop ? stop() : nullptr) return why;
         const double ti = times_(i);
@@ -499,11 +514,7 @@ const char* Simulation::Run::stop_requested(const StopRequest& stop)
 }
 
 /// At a breakpoint the drive's derivatives jump: the step history is discarded there.
-void Simulation::Run::restart()
-{
-    steps_ += static_cast<long>(driver_->e->count);
-    gsl_odeiv2_driver_reset(driver_.get());
-}
+void Simulation::Run::restart() { stepper_->restart(t_, y_.data()); }
 
 // ---- Rows ----
 
@@ -593,7 +604,7 @@ std::string Simulation::Run::singular_cause() const
 /// past the budget (checked from a twentieth of it on), with the reason its steps are short.
 std::string Simulation::Run::over_budget() const
 {
-    const long taken = steps_ + static_cast<long>(driver_->e->count);
+    const long taken = stepper_->steps();
     if (taken < budget_ / 20 || t_ <= 0.0) return {};
     const double projected = static_cast<double>(taken) * scene_.output.t_end / t_;
     if (taken < budget_ && projected <= static_cast<double>(budget_)) return {};
@@ -626,7 +637,7 @@ std::string Simulation::Run::over_budget() const
 /// it untrustworthy or find the tolerance, not the model, behind a failure.
 RunSummary Simulation::Run::finish(std::string failure)
 {
-    summary_.steps = steps_ + static_cast<long>(driver_->e->count);
+    summary_.steps = stepper_->steps();
     summary_.rhs_evals = system_.evaluations();
     summary_.jacobian_evals = system_.jacobian_evaluations();
     summary_.t_reached = t_;
@@ -664,14 +675,14 @@ std::string Simulation::Run::untrustworthy()
     summary_.check_rtol = tol.rtol;
     summary_.check_atol = tol.atol;
     // The start window from rest: an error made at once (a fast mode excited by a loose tolerance) stays.
-    auto [measured, column] = window_error(scene_, model_, start_window_, peak_, tol);
+    auto [measured, column] = window_error(scene_, model_, start_window_, peak_, tol, automatic_stepper(model_, scene_.axial, tol.rtol, scene_.output.t_end).stepper);
     const CheckWindow* where = &start_window_;
     double error = measured;
     if (measured >= 0.0 && !end_window_.rows.empty()) {
         // The error made in the last window, times the square root of the windows the run holds: the windows'
         // errors add up as independent ones would (a linear sum overstates the atol-sized noise of a coordinate
         // near zero eightfold in cases/torque_tau1.toml); a mode that the stepper amplifies shows in the window.
-        const auto [end_measured, end_column] = window_error(scene_, model_, end_window_, peak_, tol);
+        const auto [end_measured, end_column] = window_error(scene_, model_, end_window_, peak_, tol, automatic_stepper(model_, scene_.axial, tol.rtol, scene_.output.t_end).stepper);
         const double t1 = end_window_.rows.back().t;
         const double scaled = end_measured < 0.0 ? -1.0 : end_measured * std::sqrt(t1 / (t1 - end_window_.t0));
         if (scaled < 0.0 || scaled > error) error = scaled, measured = end_measured, column = end_column, where = &end_window_;
@@ -708,7 +719,7 @@ std::string Simulation::Run::tolerance_as_cause(const std::string& failure)
     if (times.empty()) return failure;
     summary_.check_rtol = tol.rtol;
     summary_.check_atol = tol.atol;
-    const std::vector<Row> again = rerun(scene_, model_, 0.0, start_window_.y0, times, tol);  // the run's start
+    const std::vector<Row> again = rerun(scene_, model_, 0.0, start_window_.y0, times, tol, automatic_stepper(model_, scene_.axial, tol.rtol, scene_.output.t_end).stepper);  // the run's start
     if (again.size() < times.size()) return failure;  // the model fails there at the tighter tolerance too
     // What happened, without the clauses that blame the model.
     std::string what = failure.substr(0, std::min({failure.find(" ("), failure.find("; "), failure.find(", above")}));
@@ -725,7 +736,7 @@ Simulation::Simulation(const Scene& scene, const std::function<void(const std::s
     check_error_ = scene.solver.error_check == ErrorCheck::on;
     stepper_ = scene.solver.stepper;
     if (stepper_ == automatic_stepper_word) {
-        const StepperChoice choice = automatic_stepper(*model_, scene.axial);
+        const StepperChoice choice = automatic_stepper(*model_, scene.axial, scene.solver.rtol, scene.output.t_end);
         stepper_ = choice.stepper;
         stepper_why_ = choice.why;
     }
@@ -736,7 +747,7 @@ Simulation::~Simulation() = default;
 std::string Simulation::faster_stepper_hint() const
 {
     if (!stepper_why_.empty()) return {};  // chosen automatically already
-    const StepperChoice choice = automatic_stepper(*model_, scene_.axial);
+    const StepperChoice choice = automatic_stepper(*model_, scene_.axial, scene_.solver.rtol, scene_.output.t_end);
     if (choice.stepper == stepper_) return {};
     return "--stepper " + choice.stepper + " suits this scene (" + choice.why.substr(choice.why.find(' ') + 1) + ")";
 }

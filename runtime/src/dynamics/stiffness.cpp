@@ -110,28 +110,79 @@ double critical_spin(const Model& model)
     return lo;
 }
 
-StepperChoice automatic_stepper(const Model& model, Axial axial)
+double lowest_frequency(const Model& model, Axial axial)
 {
-    const double omega = highest_rate(model, axial);
-    const bool damped = omega != highest_frequency(model, axial);
-    // Damped equations are judged by their largest rate |lambda|, which a damped decay may set.
-    const char* what = damped ? "largest rate |lambda| of the damped equations" : "highest frequency";
-    const char* unit = damped ? "1/s" : "rad/s";
-    char why[220];
-    if (omega > stiff_frequency && model.mass_is_constant()) {
-        std::snprintf(why, sizeof why, "automatic: stiff, %s %.0f %s > %.0f %s, constant M", what, omega, unit,
-                      stiff_frequency, unit);
-        return {"rk4imp", why};
-    }
-    if (omega > stiff_frequency) {
-        std::snprintf(why, sizeof why,
-                      "automatic: stiff, %s %.0f %s > %.0f %s, but M varies: an implicit step costs more than the "
-                      "explicit steps it saves",
-                      what, omega, unit, stiff_frequency, unit);
+    const int n = model.nq();
+    const HubInput rest;
+    const std::vector<double> zero(static_cast<std::size_t>(n), 0.0);
+    Eigen::MatrixXd M(n, n);
+    model.mass(rest, zero.data(), M.data());
+    const Eigen::MatrixXd K = stiffness(model, rest, zero, zero);
+    const std::vector<int> kept = kept_coordinates(model.key(), axial);
+    const auto m = static_cast<Eigen::Index>(kept.size());
+    Eigen::MatrixXd Mk(m, m), Kk(m, m);
+    for (Eigen::Index i = 0; i < m; ++i)
+        for (Eigen::Index j = 0; j < m; ++j) {
+            const auto a = static_cast<Eigen::Index>(kept[static_cast<std::size_t>(i)]);
+            const auto b = static_cast<Eigen::Index>(kept[static_cast<std::size_t>(j)]);
+            Mk(i, j) = M(a, b);
+            Kk(i, j) = 0.5 * (K(a, b) + K(b, a));
+        }
+    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(Kk, Mk, Eigen::EigenvaluesOnly);
+    if (solver.info() != Eigen::Success) return 0.0;
+    // The hub angle under torque is a rigid mode (zero frequency): the lowest vibration is the first above it.
+    const double largest = solver.eigenvalues().maxCoeff();
+    for (Eigen::Index i = 0; i < m; ++i)
+        if (solver.eigenvalues()[i] > 1e-9 * largest) return std::sqrt(solver.eigenvalues()[i]);
+    return 0.0;
+}
+
+StepperCosts predicted_costs(const Model& model, Axial axial, double rtol, double t_end)
+{
+    StepperCosts c;
+    c.omega_max = highest_rate(model, axial);
+    c.omega_1 = lowest_frequency(model, axial);
+    const double m = 2.0 * static_cast<double>(kept_coordinates(model.key(), axial).size());
+    // Steps: rk8pd's the more of accuracy (order 8: h omega_1 = 0.077 at rtol 1e-8, the paper's spin-up with AMM at
+    // Ny = 4) and stability (h omega_max = 3.1: stability_step_factor); gauss4's accuracy alone (order 4: h omega_1 =
+    // 0.073 at rtol 1e-8, same scene), times 2 for the stiff modes its step doubling sees excited: the median over
+    // the four methods at Ny 4 to 16, Nx 0 and Ny, both paper drives, rtol 1e-8 (AMM's smooth modes 1 to 1.9, BSIM's
+    // and FEM's 1.8 under the spin-up; FEM's 5 to 8 under the paper's torque, where rk8pd can be chosen wrongly).
+    const double scale = rtol / 1e-8;
+    const double accuracy8 = t_end * c.omega_1 / (0.077 * std::pow(scale, 1.0 / 8.0));
+    const double stability8 = t_end * c.omega_max / stability_step_factor("rk8pd");
+    c.steps_rk8pd = std::max(accuracy8, stability8);
+    c.stability_bound = stability8 > accuracy8;
+    c.steps_gauss4 = 2.0 * t_end * c.omega_1 / (0.073 * std::pow(scale, 1.0 / 5.0));
+    // Cost per step in flops, with a right-hand side of about 4 m^2 (the folded or dense products over m states):
+    // rk8pd's 13 evaluations; gauss4's 21 evaluations, 10 solves with the factored 2m x 2m Newton matrices and, every
+    // third step, their two factorizations (2 x 2/3 (2m)^3).
+    const double rhs = 4.0 * m * m;
+    c.rk8pd = c.steps_rk8pd * 13.0 * rhs;
+    c.gauss4 = c.steps_gauss4 * (21.0 * rhs + 10.0 * 2.0 * (2.0 * m) * (2.0 * m) + (2.0 * 2.0 / 3.0 * std::pow(2.0 * m, 3.0)) / 3.0);
+    return c;
+}
+
+StepperChoice automatic_stepper(const Model& model, Axial axial, double rtol, double t_end)
+{
+    const StepperCosts c = predicted_costs(model, axial, rtol, t_end);
+    // Below rtol 1e-9 gauss4's step doubling compares results that agree to round-off in the stiff coordinates, and
+    // its steps collapse (the paper's scenes with axial coordinates at rtol 1e-10, atol 1e-12): rk8pd, whatever it
+    // costs.
+    const bool implicit = c.gauss4 < c.rk8pd && rtol >= gauss4_tightest_rtol;
+    char why[320];
+    if (c.gauss4 < c.rk8pd && !implicit) {
+        std::snprintf(why, sizeof why, "automatic: rtol %g is below gauss4's %g, where its error estimate meets "
+                      "round-off", rtol, gauss4_tightest_rtol);
         return {"rk8pd", why};
     }
-    std::snprintf(why, sizeof why, "automatic: not stiff, %s %.0f %s <= %.0f %s", what, omega, unit, stiff_frequency, unit);
-    return {"rk8pd", why};
+    std::snprintf(why, sizeof why,
+                  "automatic: predicted %.2g flops against %.2g for %s (rk8pd about %.0f steps, %s; gauss4 about %.0f; "
+                  "highest rate %.0f 1/s, lowest frequency %.3g rad/s)",
+                  implicit ? c.gauss4 : c.rk8pd, implicit ? c.rk8pd : c.gauss4, implicit ? "rk8pd" : "gauss4",
+                  c.steps_rk8pd, c.stability_bound ? "bound by stability" : "bound by accuracy", c.steps_gauss4,
+                  c.omega_max, c.omega_1);
+    return {implicit ? gauss_stepper : "rk8pd", why};
 }
 
 double mass_condition(const Model& model)

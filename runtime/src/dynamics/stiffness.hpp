@@ -1,5 +1,5 @@
-// The stepper for a scene that names none: judged by the stiffness of its equations, the highest natural
-// frequency of the beam at rest against the step an explicit stepper needs for accuracy.
+// The stepper for a scene that names none: the candidate of the lower predicted cost, from the stiffness of the
+// equations at rest, the tolerance and the size of the system.
 #pragma once
 
 #include <string>
@@ -19,22 +19,32 @@ double highest_frequency(const Model& model, Axial axial);
 /// stiff axial modes overdamped, their fast rate about beta omega^2). What bounds an explicit step.
 double highest_rate(const Model& model, Axial axial);
 
-/// Above this highest frequency (rad/s) the equations count as stiff: an explicit Runge-Kutta step is then
-/// stability-bound at about 5 / omega_max s, shorter than the ~0.03 s that rtol 1e-8 needs for the bending
-/// motion of the paper's beam (measured with hubbeam bench; docs/performance.md "Which stepper for which scene").
-inline constexpr double stiff_frequency = 200.0;
+/// The lowest positive natural frequency (rad/s) of the linearized equations at rest, no spin, kept coordinates only
+/// (a free hub's rigid rotation left out): the motion the tolerance must follow.
+double lowest_frequency(const Model& model, Axial axial);
+
+/// The predicted work of the automatic choice's candidates over a run of t_end s at rtol: steps from the stiffness,
+/// the tolerance and each method's order, times flops per step from the number of states.
+struct StepperCosts {
+    double omega_max = 0.0, omega_1 = 0.0;   // highest_rate, lowest_frequency
+    double steps_rk8pd = 0.0, steps_gauss4 = 0.0;
+    bool stability_bound = false;             // rk8pd's steps set by omega_max, not accuracy
+    double rk8pd = 0.0, gauss4 = 0.0;         // flops
+};
+StepperCosts predicted_costs(const Model& model, Axial axial, double rtol, double t_end);
 
 struct StepperChoice {
-    std::string stepper;  // rk8pd (non-stiff) or rk4imp (stiff)
+    std::string stepper;  // rk8pd or gauss4
     std::string why;      // for the summary
 };
 
-/// The fastest stepper at the default tolerance in the benchmark: rk8pd for non-stiff equations; for stiff ones
-/// rk4imp (implicit, with the model's Jacobian) where M is constant (prescribed rotation), and rk8pd where M
-/// depends on q (hub torque, order full): there each implicit step refactors M and its Jacobian needs dM/dq, and
-/// rk8pd's stability-bound steps come out cheaper (cases/: 0.10 against 0.15 s prescribed, 0.38 against 0.15 s
-/// under torque).
-StepperChoice automatic_stepper(const Model& model, Axial axial);
+/// The tightest rtol at which the automatic choice takes gauss4.
+inline constexpr double gauss4_tightest_rtol = 1e-9;
+
+/// The candidate of the lower predicted cost (predicted_costs): rk8pd, explicit, where the steps accuracy needs
+/// are not much shorter than stability allows; gauss4, implicit, where stiff modes (axial coordinates, fine FEM and
+/// B-spline meshes) would hold an explicit step far below what accuracy needs.
+StepperChoice automatic_stepper(const Model& model, Axial axial, double rtol, double t_end);
 
 /// The lowest hub rate (rad/s, up to 1000) at which the equations linearized about the straight beam lose
 /// stability: the effective stiffness -dQ/dq at q = qd = 0, steady spin, stops being positive definite (the

@@ -940,7 +940,7 @@ void validate(const Scene& s)
         fail(s.path, "model.axial", "\"dynamic\" for a scene without axial coordinates (quasi-static needs nx > 0)",
              "\"quasi-static\"");
 
-    if (s.solver.stepper != automatic_stepper_word && step_type(s.solver.stepper) == nullptr)
+    if (s.solver.stepper != automatic_stepper_word && !is_stepper(s.solver.stepper))
         fail(s.path, "solver.stepper", expected("solver.stepper"), "\"" + s.solver.stepper + "\"");
     check_positive(s, s.solver.rtol, "solver.rtol");
     if (!(s.solver.rtol < 1.0))  // a relative error of 100 % or more controls nothing

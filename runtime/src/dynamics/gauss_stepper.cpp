@@ -1,0 +1,242 @@
+// gauss4: the two-stage Gauss-Legendre method (order 4, A-stable and symmetric, so it neither damps nor excites the
+// undamped stiff modes it does not resolve) with simplified Newton iterations that reuse the Jacobian and the factored
+// Newton matrices across steps (Hairer & Wanner, Solving ODEs II, section IV.8, the design of RADAU5), and its error
+// from step doubling, as GSL's rk4imp, which factors and forms its Jacobian at every step.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <Eigen/Dense>
+#include <gsl/gsl_errno.h>
+
+#include "stepper.hpp"
+
+namespace hubbeam {
+
+namespace {
+
+// The method: nodes c, matrix A, weights b = (1/2, 1/2), and d = b^T A^-1, which gives the step's end from the stage
+// increments without evaluating f there (as in RADAU5).
+const double root3 = std::sqrt(3.0);
+const double c1 = 0.5 - root3 / 6.0, c2 = 0.5 + root3 / 6.0;
+const double a11 = 0.25, a12 = 0.25 - root3 / 6.0, a21 = 0.25 + root3 / 6.0, a22 = 0.25;
+const double d1 = -root3, d2 = root3;
+
+/// The collocation polynomial u(s) over a step (s in units of it) has degree 2, u(0) = y0 and u(c_i) = y0 + Z_i:
+/// the Lagrange weights of Z1 and Z2, for the next step's starting values.
+double l1(double s) { return s * (s - c2) / (c1 * (c1 - c2)); }
+double l2(double s) { return s * (s - c1) / (c2 * (c2 - c1)); }
+
+class GaussStepper final : public Stepper {
+public:
+    GaussStepper(FirstOrderSystem& system, double h0, double atol, double rtol)
+        : system_(system), m_(system.size()), h_(h0), h0_(h0), atol_(atol), rtol_(rtol),
+          newton_tol_(std::min(0.03, std::sqrt(rtol))), y1_(m_), y_half_(m_), y2_(m_), w_(m_), stage_(m_), z_(2 * m_),
+          dz_(2 * m_), g_(2 * m_), f_(2 * m_), J_(m_, m_), dfdt_(m_), rows_(static_cast<std::size_t>(m_) * m_)
+    {
+    }
+
+    int step(double& t, double target, double* y, double h_max) override
+    {
+        Eigen::Map<Eigen::VectorXd> y0(y, m_);
+        bool bad_function = false;
+        for (int attempt = 0;; ++attempt) {
+            double h = std::min({h_, h_max, target - t});
+            if (target - t - h < 0.01 * h) h = target - t;  // no sliver of a step before the target
+            // Out of steps to try: equations that failed to evaluate on the way are the cause (M not positive
+            // definite, which GSL's steppers report at once).
+            if (h <= 64.0 * std::numeric_limits<double>::epsilon() * std::max(std::abs(t), 1.0) || attempt > 60)
+                return bad_function ? GSL_EBADFUNC : GSL_FAILURE;
+            if (!fresh_jacobian_ && stale_jacobian_)
+                if (const int s = jacobian(t, y); s != GSL_SUCCESS) return s;
+            // A Newton matrix of a step within a fifth of this one still converges fast: refactored only beyond that.
+            if (!factored_ || std::abs(h / h_factored_ - 1.0) > 0.2) factor(h);
+            for (int i = 0; i < m_; ++i) w_[i] = atol_ + rtol_ * std::abs(y[i]);
+            // One step of h and two of h/2 from the same start; the halves' result is kept, and their difference
+            // from the whole step, (2^4 - 1) times the halves' error, is the estimate.
+            guess(h);
+            int status = solve_stages(t, y0, h, whole_, y1_);
+            if (status == GSL_SUCCESS) {
+                // The whole step's collocation polynomial, inside its interval, starts the halves' iterations.
+                z_last_ = z_;
+                h_last_ = h;
+                interpolate(0.0);
+                status = solve_stages(t, y0, 0.5 * h, half_, y_half_);
+                if (status == GSL_SUCCESS) {
+                    interpolate(0.5);
+                    status = solve_stages(t + 0.5 * h, y_half_, 0.5 * h, half_, y2_);
+                }
+            }
+            if (status != GSL_SUCCESS) {  // no convergence: a fresh Jacobian, then a shorter step
+                bad_function = bad_function || status == GSL_EBADFUNC;
+                if (!fresh_jacobian_) stale_jacobian_ = true;
+                else h_ = 0.5 * h;
+                have_guess_ = false;
+                continue;
+            }
+            double ratio = 0.0;
+            for (int i = 0; i < m_; ++i)
+                ratio = std::max(ratio, std::abs(y2_[i] - y1_[i]) / 15.0 /
+                                            (atol_ + rtol_ * std::max(std::abs(y[i]), std::abs(y2_[i]))));
+            const double factor = std::clamp(0.9 * std::pow(std::max(ratio, 1e-10), -0.2), 0.2, 4.0);
+            if (!(ratio <= 1.0)) {
+                h_ = h * std::min(factor, 0.9);
+                have_guess_ = false;
+                continue;
+            }
+            // Accepted. The Jacobian is kept while the iteration converges fast; the second half's polynomial
+            // extrapolates to the next step's starting values.
+            z_last_ = z_;
+            h_last_ = 0.5 * h;
+            have_guess_ = true;
+            t = h == target - t ? target : t + h;
+            y0 = y2_;
+            ++steps_;
+            fresh_jacobian_ = false;
+            stale_jacobian_ = rate_ > 0.05;
+            h_ = h * factor;
+            return GSL_SUCCESS;
+        }
+    }
+
+    int advance(double& t, double t1, double* y) override
+    {
+        while (t < t1)
+            if (const int s = step(t, t1, y, INFINITY); s != GSL_SUCCESS) return s;
+        return GSL_SUCCESS;
+    }
+
+    void restart(double, const double*) override
+    {
+        have_guess_ = false;
+        stale_jacobian_ = true;
+        h_ = std::min(h_, h0_);
+    }
+    void retake(double, const double*) override { have_guess_ = false; }
+
+    long steps() const override { return steps_; }
+    bool midpoint(double* y) const override
+    {
+        if (steps_ == 0) return false;
+        std::copy_n(y_half_.data(), m_, y);
+        return true;
+    }
+
+
+private:
+    int rhs(double t, const double* y, double* f) { return system_.rhs(t, y, f); }
+
+    int jacobian(double t, const double* y)
+    {
+        if (const int s = system_.jacobian(t, y, rows_.data(), dfdt_.data()); s != GSL_SUCCESS) return s;
+        J_ = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(rows_.data(), m_, m_);
+        fresh_jacobian_ = true;
+        stale_jacobian_ = false;
+        factored_ = false;
+        return GSL_SUCCESS;
+    }
+
+    /// The Newton matrices I - h A (x) J of the two stages for the whole step h and its halves, factored.
+    void factor(double h)
+    {
+        const auto factor_one = [&](double step, Eigen::PartialPivLU<Eigen::MatrixXd>& lu) {
+            Eigen::MatrixXd N(2 * m_, 2 * m_);
+            const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(m_, m_);
+            N.topLeftCorner(m_, m_) = I - step * a11 * J_;
+            N.topRightCorner(m_, m_) = -step * a12 * J_;
+            N.bottomLeftCorner(m_, m_) = -step * a21 * J_;
+            N.bottomRightCorner(m_, m_) = I - step * a22 * J_;
+            lu.compute(N);
+        };
+        factor_one(h, whole_);
+        factor_one(0.5 * h, half_);
+        factored_ = true;
+        h_factored_ = h;
+    }
+
+    /// The stage increments' starting values for a step of h from the last step's end: that step's collocation
+    /// polynomial extrapolated (zero at a start).
+    void guess(double h)
+    {
+        if (!have_guess_) {
+            z_.setZero();
+            return;
+        }
+        // u(s) over the last step, in units of it: the new stages sit at s = 1 + c_i h / h_last, and their increments
+        // are u(s_i) - u(1).
+        const double r = h / h_last_, s0 = 1.0;
+        const auto u = [&](double s) -> Eigen::VectorXd { return l1(s) * z_last_.head(m_) + l2(s) * z_last_.tail(m_); };
+        const Eigen::VectorXd start = u(s0);
+        z_.head(m_) = u(s0 + c1 * r) - start;
+        z_.tail(m_) = u(s0 + c2 * r) - start;
+    }
+
+    /// The starting values of a half step from s0 (0 or 1/2) of the whole step z_last_: its polynomial's increments.
+    void interpolate(double s0)
+    {
+        const auto u = [&](double s) -> Eigen::VectorXd { return l1(s) * z_last_.head(m_) + l2(s) * z_last_.tail(m_); };
+        const Eigen::VectorXd start = u(s0);
+        z_.head(m_) = u(s0 + 0.5 * c1) - start;
+        z_.tail(m_) = u(s0 + 0.5 * c2) - start;
+    }
+
+    /// Simplified Newton on Z = (Y1 - y0, Y2 - y0): Z = h (A (x) I) F(y0 + Z), with the factored matrix lu, from the
+    /// starting values in z_; y1 = y0 + d Z. The rate estimate carried from the last solve lets a linear step stop
+    /// after one iteration (RADAU5's test).
+    int solve_stages(double t, const Eigen::Ref<const Eigen::VectorXd>& y0, double h,
+                     const Eigen::PartialPivLU<Eigen::MatrixXd>& lu, Eigen::VectorXd& y1)
+    {
+        double previous = 0.0;
+        double eta = std::pow(std::max(eta_, std::numeric_limits<double>::epsilon()), 0.8);
+        for (int k = 0; k < 7; ++k) {
+            stage_ = y0 + z_.head(m_);
+            if (rhs(t + c1 * h, stage_.data(), f_.data()) != GSL_SUCCESS) return GSL_EBADFUNC;
+            stage_ = y0 + z_.tail(m_);
+            if (rhs(t + c2 * h, stage_.data(), f_.data() + m_) != GSL_SUCCESS) return GSL_EBADFUNC;
+            g_.head(m_) = h * (a11 * f_.head(m_) + a12 * f_.tail(m_)) - z_.head(m_);
+            g_.tail(m_) = h * (a21 * f_.head(m_) + a22 * f_.tail(m_)) - z_.tail(m_);
+            dz_ = lu.solve(g_);
+            z_ += dz_;
+            double norm = 0.0;
+            for (int i = 0; i < 2 * m_; ++i) norm = std::max(norm, std::abs(dz_[i]) / w_[i % m_]);
+            if (!std::isfinite(norm)) return GSL_EBADFUNC;
+            if (k > 0) {
+                rate_ = norm / previous;
+                if (rate_ >= 0.99) return GSL_EMAXITER;
+                eta = rate_ / (1.0 - rate_);
+            }
+            previous = norm;
+            if (eta * norm <= newton_tol_ || norm == 0.0) {
+                eta_ = eta;
+                if (k == 0) rate_ = 0.0;
+                y1 = y0 + d1 * z_.head(m_) + d2 * z_.tail(m_);
+                return GSL_SUCCESS;
+            }
+        }
+        return GSL_EMAXITER;
+    }
+
+    FirstOrderSystem& system_;
+    int m_;
+    double h_, h0_, atol_, rtol_;
+    double newton_tol_;
+    Eigen::VectorXd y1_, y_half_, y2_, w_, stage_, z_, dz_, g_, f_, z_last_;
+    Eigen::MatrixXd J_;
+    Eigen::VectorXd dfdt_;
+    std::vector<double> rows_;  // the system's row-major Jacobian
+    Eigen::PartialPivLU<Eigen::MatrixXd> whole_, half_;  // the Newton matrices of h and h/2
+    bool have_guess_ = false, factored_ = false, fresh_jacobian_ = false, stale_jacobian_ = true;
+    double h_factored_ = 0.0, h_last_ = 0.0, eta_ = 1.0, rate_ = 0.0;
+    long steps_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<Stepper> make_gauss_stepper(FirstOrderSystem& system, double h0, double atol, double rtol)
+{
+    return std::make_unique<GaussStepper>(system, h0, atol, rtol);
+}
+
+}  // namespace hubbeam

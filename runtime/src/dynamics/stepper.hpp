@@ -1,0 +1,44 @@
+// Stepper: one interface for the integrator families a run can select (GSL odeiv2's steppers, SUNDIALS CVODE), so
+// that the simulation steps, restarts and counts alike whichever family took the step.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "integrate.hpp"
+
+namespace hubbeam {
+
+/// A stepper family's integrator of one FirstOrderSystem, with the run's tolerances. Statuses are GSL's
+/// (GSL_SUCCESS, GSL_EBADFUNC for equations that failed to evaluate, GSL_FAILURE when no step met the tolerance,
+/// GSL_EMAXITER when an implicit iteration did not converge), whatever the family, so that one message serves.
+class Stepper {
+public:
+    virtual ~Stepper() = default;
+    /// One step from t towards target, never past it: t and y advance to the step's end. No step is longer than
+    /// h_max (the simulation's limit for interpolating rows inside a step).
+    virtual int step(double& t, double target, double* y, double h_max) = 0;
+    /// Steps from t to t1 exactly (a step ends at t1).
+    virtual int advance(double& t, double t1, double* y) = 0;
+    /// Forgets the step history at (t, y): the drive's derivatives jump at a breakpoint, and a multistep or
+    /// implicit method must not carry its past across. The next step starts from the initial step size again.
+    virtual void restart(double t, const double* y) = 0;
+    /// Takes the last step again from its start (t, y), where the caller found it too long for its own purposes
+    /// (interpolating rows): the history goes, the step size the tolerance chose stays.
+    virtual void retake(double t, const double* y) = 0;
+    /// The state at the middle of the last step, where the stepper computed one (gauss4's step doubling does): false
+    /// otherwise.
+    virtual bool midpoint(double*) const { return false; }
+    /// Steps taken since construction, through restarts.
+    virtual long steps() const = 0;
+};
+
+/// The integrator of system named stepper (stepper_names()), starting at (t0, y0) with initial step h0 and
+/// tolerances |error| <= atol + rtol |y| per component. Throws std::invalid_argument for an unknown name.
+std::unique_ptr<Stepper> make_stepper(FirstOrderSystem& system, const std::string& stepper, double t0, const double* y0,
+                                      double h0, double atol, double rtol);
+
+/// gauss4 (gauss_stepper.cpp): hubbeam's own two-stage Gauss-Legendre stepper.
+std::unique_ptr<Stepper> make_gauss_stepper(FirstOrderSystem& system, double h0, double atol, double rtol);
+
+}  // namespace hubbeam
