@@ -202,7 +202,8 @@ py::dict modes(const std::string& text, const std::string& name, const Overrides
     {
         const py::gil_scoped_release release;
         try {
-            rows = campbell(*model, omegas, scene.axial, scene.motion.initial_theta());  // held there under gravity
+            // Held at the initial angle under gravity; with [control], the closed loop's modes (as hubbeam modes).
+            rows = campbell(*model, omegas, scene.axial, scene.motion.initial_theta(), scene.controller());
         } catch (const std::runtime_error&) {
             // Name the rate that has no steady state (ValueError) if that is what failed.
             for (const double w : omegas) at_spin(w, [&] { return steady_spin(*model, w, scene.motion.initial_theta()); });
@@ -248,23 +249,31 @@ py::array_t<double> matrix(const Eigen::MatrixXd& m)
     return a;
 }
 
-/// The state-space matrices and their names about the steady spin omega (hubbeam.linearize).
+/// The state-space matrices and their names about the steady spin omega; a controlled hub's closed loop and open
+/// loop (hubbeam.linearize).
 py::dict linearize(const std::string& text, const std::string& name, const Overrides& overrides, double omega)
 {
     const Scene scene = scene_of(text, name, overrides);
     const VariantKey key = scene.key();
     const std::unique_ptr<Model> model = guarded(scene, [&] { return make_model(key, scene.parameters, scene.source); });
-    const StateSpace ss =
+    const StateSpace open =
         at_spin(omega, [&] { return state_space(*model, steady_spin(*model, omega, scene.motion.initial_theta())); });
-    py::dict out;
+    // A controlled hub: the closed loop (input: a torque added to the controller's), and under "open" the hub
+    // without its controller (input tau), as `hubbeam linearize` writes PREFIX-* and PREFIX-open-*.
+    const auto system = [](const StateSpace& ss) {
+        py::dict out;
+        out["A"] = matrix(ss.A);
+        out["B"] = matrix(ss.B);
+        out["C"] = matrix(ss.C);
+        out["D"] = matrix(ss.D);
+        out["states"] = ss.states;
+        out["inputs"] = ss.inputs;
+        out["outputs"] = ss.outputs;
+        return out;
+    };
+    py::dict out = system(scene.control ? closed_loop(open, *scene.control) : open);
     out["variant"] = key.name();
-    out["A"] = matrix(ss.A);
-    out["B"] = matrix(ss.B);
-    out["C"] = matrix(ss.C);
-    out["D"] = matrix(ss.D);
-    out["states"] = ss.states;
-    out["inputs"] = ss.inputs;
-    out["outputs"] = ss.outputs;
+    if (scene.control) out["open"] = system(open);
     return out;
 }
 

@@ -30,6 +30,13 @@ def read_csv(path):
     return rows[0], np.array([[float(v) for v in row] for row in rows[1:]])
 
 
+def read_csv_named(path):
+    """A linearize CSV: its row names, its column names and its values."""
+    with open(path, newline="") as f:
+        rows = list(csv.reader(f))
+    return [r[0] for r in rows[1:]], rows[0][1:], np.array([[float(v) for v in r[1:]] for r in rows[1:]])
+
+
 class RunTest(unittest.TestCase):
     def test_rows_equal_the_command_lines_bit_for_bit(self):
         with tempfile.TemporaryDirectory() as d:
@@ -311,6 +318,34 @@ class ModesTest(unittest.TestCase):
                 call()
             self.assertTrue(str(caught.exception).startswith("omega: expected"), str(caught.exception))
         self.assertEqual(len(hubbeam.modes(SPINUP, np.int64(2), nx=0)["omega"]), 4)  # numpy's numbers are rates
+
+    def test_a_controlled_scene_gives_the_closed_loop_as_the_command_line_does(self):
+        # The command line's modes CSV and linearize CSVs of a scene with [control] are the closed loop: the
+        # controller's stiffness turns the free hub's rigid rotation into a mode of kind "hub".
+        scene = os.path.join(SOURCE, "cases", "controlled_step.toml")
+        with tempfile.TemporaryDirectory() as d:
+            out = os.path.join(d, "modes.csv")
+            self.assertEqual(cli("modes", scene, "--omega", "0,1", "-o", out, "-q").returncode, 0)
+            with open(out, newline="") as f:
+                rows = list(csv.DictReader(f))
+            prefix = os.path.join(d, "lin")
+            self.assertEqual(cli("linearize", scene, "--omega", "1", "-o", prefix).returncode, 0)
+            matrices = {name: read_csv_named(f"{prefix}-{name}.csv") for name in "ABCD"}
+            open_loop = {name: read_csv_named(f"{prefix}-open-{name}.csv") for name in "ABCD"}
+        m = hubbeam.modes(scene, [0.0, 1.0])
+        self.assertEqual(list(m["kind"]), [r["kind"] for r in rows])
+        self.assertIn("hub", list(m["kind"]))
+        self.assertEqual(list(m["mode"]), [int(r["mode"]) for r in rows])
+        for column in ("omega", "rad_s", "hz", "dimensionless", "growth", "undamped_rad_s", "damping_ratio"):
+            self.assertEqual(list(m[column]), [float(r[column]) for r in rows], column)  # written round-trip exact
+        lin = hubbeam.linearize(scene, 1.0)
+        for name, (rows_, columns, values) in matrices.items():
+            np.testing.assert_array_equal(lin[name], values, name)
+        self.assertEqual(lin["inputs"], matrices["B"][1])
+        self.assertEqual(lin["states"], matrices["A"][1])
+        for name, (rows_, columns, values) in open_loop.items():
+            np.testing.assert_array_equal(lin["open"][name], values, "open " + name)
+        self.assertEqual(lin["open"]["inputs"], open_loop["B"][1])
 
     def test_linearize_shapes_and_names(self):
         lin = hubbeam.linearize(os.path.join(SOURCE, "cases", "torque_tau10.toml"), 2.0, nx=0)

@@ -380,12 +380,13 @@ std::string_view trimmed(std::string_view s)
     return s.substr(first, s.find_last_not_of(" \t\r") - first + 1);
 }
 
-/// A numeric CSV table named by a scene key (beam.profile, motion.file): its header's column count and, for each
-/// row, the values of the wanted columns and the row's line. Read whole by read_file (FIFOs, devices and folders
-/// refused; at most cap bytes) and checked before anything runs; blank lines, lines starting with '#' and a
+/// A numeric CSV table named by a scene key (beam.profile, motion.file): its header's column count and line and,
+/// for each row, the values of the wanted columns and the row's line. Read whole by read_file (FIFOs, devices and
+/// folders refused; at most cap bytes) and checked before anything runs; blank lines, lines starting with '#' and a
 /// spreadsheet's byte-order mark are skipped. Every problem is "SCENE: KEY: FILE[:LINE]: what".
 struct NumericTable {
     std::size_t header_columns = 0;
+    long header_line = 0;                   // comment and blank lines may come before the header
     std::vector<std::vector<double>> rows;  // the wanted columns' values, in the order asked for
     std::vector<long> lines;
 };
@@ -440,6 +441,7 @@ NumericTable read_numeric_table(const std::string& scene, const std::string& key
                 throw SceneError::with_detail(scene, key, e.what());
             }
             table.header_columns = columns->size();
+            table.header_line = line_no;
             continue;
         }
         if (fields.size() != columns->size())
@@ -486,8 +488,8 @@ void read_profile(const std::string& scene_path, const std::string& name, Parame
     const NumericTable table = read_numeric_table(scene_path, "beam.profile", file, max_profile_bytes,
                                                   "a profile table", want, "x/L, m kg/m, EI N m^2, ES N");
     if (table.header_columns != want.size())
-        bad(1, "expected exactly the columns x/L, m, EI, ES in its header, got " +
-                         std::to_string(table.header_columns) + " columns");
+        bad(table.header_line, "expected exactly the columns x/L, m, EI, ES in its header, got " +
+                                   std::to_string(table.header_columns) + " columns");
     std::vector<double> x, values;
     for (std::size_t r = 0; r < table.rows.size(); ++r) {
         const std::vector<double>& v = table.rows[r];
