@@ -3,12 +3,17 @@
 // a command's outputs by file identity; and Simulation::run stopping between rows when asked.
 #include <catch2/catch.hpp>
 
+#include <bit>
+#include <charconv>
 #include <chrono>
+#include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <sstream>
 #include <string>
+#include <random>
 #include <thread>
 
 #include <csignal>
@@ -19,6 +24,7 @@
 
 #include "output.hpp"
 #include "output_file.hpp"
+#include "shortest.hpp"
 #include "scene.hpp"
 #include "simulate.hpp"
 
@@ -137,6 +143,60 @@ TEST_CASE("CsvWriter writes each number in its shortest round-trip form", "[outp
     CHECK(contents(target) == std::string(row_header()) + "\n" +
                                   "0.03,-1.7976931348623157e+308,5e-324,-0,0.3333333333333333,1e+21,100,-1e-07,"
                                   "0.30000000000000004,7\n");
+}
+
+TEST_CASE("write_shortest writes std::to_chars's text, which reads back as the same double", "[output]")
+{
+    // libstdc++'s to_chars is the independent path: every value must come out byte for byte as it writes it.
+    long checked = 0;
+    std::string first_mismatch;
+    const auto check = [&](double v) {
+        char ours[shortest_room], theirs[64];
+        const char* end = write_shortest(ours, v);
+        const char* their_end = std::to_chars(theirs, theirs + sizeof theirs, v).ptr;
+        ++checked;
+        if (std::string_view(ours, end - ours) != std::string_view(theirs, their_end - theirs) &&
+            first_mismatch.empty())
+            first_mismatch = std::string(theirs, their_end - theirs) + " written as " + std::string(ours, end - ours);
+        if (std::isfinite(v)) {
+            double back = 0.0;
+            std::from_chars(ours, end, back);
+            if (std::bit_cast<std::uint64_t>(back) != std::bit_cast<std::uint64_t>(v) && first_mismatch.empty())
+                first_mismatch = std::string(ours, end - ours) + " does not read back";
+        }
+    };
+    std::mt19937_64 random(20261123);
+    for (int i = 0; i < 300000; ++i) check(std::bit_cast<double>(random()));  // every exponent, sign, nan
+    // Short decimals (the multiples of dt_out, round parameters), 1 to 17 digits at every decimal exponent.
+    for (int i = 0; i < 300000; ++i) {
+        const int digits = 1 + static_cast<int>(random() % 17), exponent = static_cast<int>(random() % 640) - 330;
+        const std::string text = std::to_string(random() % static_cast<std::uint64_t>(std::pow(10.0, digits))) +
+                                 "e" + std::to_string(exponent);
+        double v = 0.0;
+        std::from_chars(text.data(), text.data() + text.size(), v);
+        check(v);
+        check(-v);
+    }
+    // Powers of two (whose rounding interval is narrower below) and their neighbours, subnormals to the largest.
+    for (int e = -1074; e <= 1023; ++e)
+        for (int d = -2; d <= 2; ++d) check(std::bit_cast<double>(std::bit_cast<std::uint64_t>(std::ldexp(1.0, e)) + d));
+    // Rows' times and round values: integers, multiples of 0.01 and 0.001, binary fractions, the plain/scientific
+    // boundaries (0.001 against 1e-04, 12300000 against 1.23e+07), around 2^53.
+    for (int i = -20000; i <= 20000; ++i) {
+        check(i * 0.01);
+        check(i * 0.001);
+        check(i / 1024.0);
+        check(static_cast<double>(i));
+        check(i * 1e5);
+        check(9007199254740992.0 + i);
+    }
+    for (const double v : {0.0, -0.0, 1e-4, 1.5e-4, 0.001, 0.00123, 1e15, 1e16, 1e21, 1e22, 1e23, 12300000.0,
+                           123456789012345680000.0, 5e-324, 2.2250738585072014e-308, 1.7976931348623157e308,
+                           std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+                           std::numeric_limits<double>::quiet_NaN()})
+        check(v);
+    CHECK(first_mismatch == "");
+    CHECK(checked > 1000000);
 }
 
 TEST_CASE("CsvWriter refuses a target it cannot create, leaving nothing behind", "[output]")

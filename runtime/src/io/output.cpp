@@ -18,9 +18,9 @@ namespace {
 // A chunk is written once the buffer cannot take another line: large enough that the default run (about
 // 0.5 MB) needs a handful of write calls, small enough to stay in cache.
 constexpr std::size_t buffer_size = std::size_t{1} << 16;
-// The longest double to_chars writes is 24 characters (-1.7976931348623157e+308): one per column, the commas
-// between them and the newline.
-constexpr std::size_t max_line = (row_width + optional_width) * 25;
+// The longest number is max_shortest_chars (-1.7976931348623157e+308): one per column, the commas between them
+// and the newline, and the scratch write_shortest may leave past the last number.
+constexpr std::size_t max_line = (row_width + optional_width) * (max_shortest_chars + 1) + shortest_room;
 // Buffered rows reach the file at the latest this long after the previous chunk: a long run's progress is
 // visible, and at most this much wall time of rows is lost if the process is killed outright.
 constexpr auto flush_interval = std::chrono::milliseconds(100);
@@ -32,7 +32,7 @@ char* format_row(char* out, const Row& row, ColumnSet set)
     const char* start = out;
     for_each_value(row, set, [&](double v) {
         if (out != start) *out++ = ',';
-        out = std::to_chars(out, out + 24, v).ptr;
+        out = write_shortest(out, v);
     });
     return out;
 }
