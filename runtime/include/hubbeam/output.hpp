@@ -42,8 +42,8 @@ public:
     /// A run's rows with the optional columns of columns (optional_columns_of(scene)) after row_columns: as CSV,
     /// or a NumPy array when is_npy_path(path). durable: synced to the disk at finish().
     CsvWriter(const std::string& path, ColumnSet columns, bool durable = false);
-    /// The same for another table: header is its first line (no newline).
-    CsvWriter(const std::string& path, const std::string& header);
+    /// The same for another table: header is its first line (no newline). durable: synced at finish().
+    CsvWriter(const std::string& path, const std::string& header, bool durable = false);
     /// finish() if the caller has not, so that a run ended by an exception keeps its rows too.
     ~CsvWriter();
     CsvWriter(const CsvWriter&) = delete;

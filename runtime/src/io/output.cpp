@@ -106,9 +106,10 @@ CsvWriter::CsvWriter(const std::string& path, ColumnSet columns, bool durable)
     flush();
 }
 
-CsvWriter::CsvWriter(const std::string& path, const std::string& header)
+CsvWriter::CsvWriter(const std::string& path, const std::string& header, bool durable)
     : path_(path), file_(std::make_unique<OutputFile>(path)), buffer_(new char[buffer_size])
 {
+    file_->set_durable(durable);
     write_header(header);
 }
 
