@@ -3,12 +3,20 @@
 // a command's outputs by file identity; and Simulation::run stopping between rows when asked.
 #include <catch2/catch.hpp>
 
+#include <bit>
+#include <charconv>
 #include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <string_view>
+#include <vector>
 #include <string>
+#include <random>
 #include <thread>
 
 #include <csignal>
@@ -19,6 +27,7 @@
 
 #include "output.hpp"
 #include "output_file.hpp"
+#include "shortest.hpp"
 #include "scene.hpp"
 #include "simulate.hpp"
 
@@ -57,6 +66,72 @@ std::string expected(std::initializer_list<double> times)
     std::string s = std::string(row_header()) + "\n";
     for (double t : times) s += csv_line(row_at(t)) + "\n";
     return s;
+}
+
+/// An .npy file as this test reads it, written from the format's description (numpy's NEP 1), not from the writer.
+struct Npy {
+    std::string dict;          // the header's dict, as written
+    long rows = -1, columns = -1;
+    std::vector<double> data;  // row after row
+};
+
+/// Reads a format 1.0 .npy file of little-endian doubles in C order; fails the test on anything else.
+Npy read_npy(const std::string& path)
+{
+    const std::string bytes = contents(path);
+    REQUIRE(bytes.size() >= 10);
+    REQUIRE(bytes.substr(0, 8) == std::string("\x93NUMPY\x01\x00", 8));
+    const std::size_t dict_size = static_cast<unsigned char>(bytes[8]) + 256u * static_cast<unsigned char>(bytes[9]);
+    REQUIRE(bytes.size() >= 10 + dict_size);
+    CHECK((10 + dict_size) % 64 == 0);  // numpy aligns the data to 64 bytes
+    Npy npy;
+    npy.dict = bytes.substr(10, dict_size);
+    CHECK(npy.dict.back() == '\n');
+    CHECK(npy.dict.find("'descr': '<f8'") != std::string::npos);
+    CHECK(npy.dict.find("'fortran_order': False") != std::string::npos);
+    const std::size_t shape = npy.dict.find("'shape': (");
+    REQUIRE(shape != std::string::npos);
+    char* end = nullptr;
+    npy.rows = std::strtol(npy.dict.c_str() + shape + 10, &end, 10);
+    REQUIRE(std::string_view(end, 2) == ", ");
+    npy.columns = std::strtol(end + 2, &end, 10);
+    REQUIRE(*end == ')');
+    const std::string data = bytes.substr(10 + dict_size);
+    REQUIRE(data.size() == static_cast<std::size_t>(npy.rows * npy.columns) * 8);
+    for (std::size_t i = 0; i < data.size(); i += 8) {
+        std::uint64_t bits = 0;
+        for (int b = 7; b >= 0; --b) bits = bits << 8 | static_cast<unsigned char>(data[i + b]);
+        npy.data.push_back(std::bit_cast<double>(bits));
+    }
+    return npy;
+}
+
+/// A CSV table's numbers read with strtod, row after row (the header line skipped).
+std::vector<double> csv_numbers(const std::string& path, long& rows)
+{
+    std::istringstream in(contents(path));
+    std::string line;
+    std::getline(in, line);
+    std::vector<double> v;
+    rows = 0;
+    while (std::getline(in, line)) {
+        ++rows;
+        for (const char* p = line.c_str(); *p != '\0';) {
+            char* end = nullptr;
+            v.push_back(std::strtod(p, &end));
+            p = *end == ',' ? end + 1 : end;
+        }
+    }
+    return v;
+}
+
+/// Whether a and b hold the same doubles, bit for bit (-0 is not 0).
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b)
+{
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        if (std::bit_cast<std::uint64_t>(a[i]) != std::bit_cast<std::uint64_t>(b[i])) return false;
+    return true;
 }
 
 }  // namespace
@@ -137,6 +212,155 @@ TEST_CASE("CsvWriter writes each number in its shortest round-trip form", "[outp
     CHECK(contents(target) == std::string(row_header()) + "\n" +
                                   "0.03,-1.7976931348623157e+308,5e-324,-0,0.3333333333333333,1e+21,100,-1e-07,"
                                   "0.30000000000000004,7\n");
+}
+
+TEST_CASE("write_shortest writes std::to_chars's text, which reads back as the same double", "[output]")
+{
+    // libstdc++'s to_chars is the independent path: every value must come out byte for byte as it writes it.
+    long checked = 0;
+    std::string first_mismatch;
+    const auto check = [&](double v) {
+        char ours[shortest_room], theirs[64];
+        const char* end = write_shortest(ours, v);
+        const char* their_end = std::to_chars(theirs, theirs + sizeof theirs, v).ptr;
+        ++checked;
+        if (std::string_view(ours, end - ours) != std::string_view(theirs, their_end - theirs) &&
+            first_mismatch.empty())
+            first_mismatch = std::string(theirs, their_end - theirs) + " written as " + std::string(ours, end - ours);
+        if (std::isfinite(v)) {
+            double back = 0.0;
+            std::from_chars(ours, end, back);
+            if (std::bit_cast<std::uint64_t>(back) != std::bit_cast<std::uint64_t>(v) && first_mismatch.empty())
+                first_mismatch = std::string(ours, end - ours) + " does not read back";
+        }
+    };
+    std::mt19937_64 random(20261123);
+    for (int i = 0; i < 300000; ++i) check(std::bit_cast<double>(random()));  // every exponent, sign, nan
+    // Short decimals (the multiples of dt_out, round parameters), 1 to 17 digits at every decimal exponent.
+    for (int i = 0; i < 300000; ++i) {
+        const int digits = 1 + static_cast<int>(random() % 17), exponent = static_cast<int>(random() % 640) - 330;
+        const std::string text = std::to_string(random() % static_cast<std::uint64_t>(std::pow(10.0, digits))) +
+                                 "e" + std::to_string(exponent);
+        double v = 0.0;
+        std::from_chars(text.data(), text.data() + text.size(), v);
+        check(v);
+        check(-v);
+    }
+    // Powers of two (whose rounding interval is narrower below) and their neighbours, subnormals to the largest.
+    for (int e = -1074; e <= 1023; ++e)
+        for (int d = -2; d <= 2; ++d) check(std::bit_cast<double>(std::bit_cast<std::uint64_t>(std::ldexp(1.0, e)) + d));
+    // Rows' times and round values: integers, multiples of 0.01 and 0.001, binary fractions, the plain/scientific
+    // boundaries (0.001 against 1e-04, 12300000 against 1.23e+07), around 2^53.
+    for (int i = -20000; i <= 20000; ++i) {
+        check(i * 0.01);
+        check(i * 0.001);
+        check(i / 1024.0);
+        check(static_cast<double>(i));
+        check(i * 1e5);
+        check(9007199254740992.0 + i);
+    }
+    for (const double v : {0.0, -0.0, 1e-4, 1.5e-4, 0.001, 0.00123, 1e15, 1e16, 1e21, 1e22, 1e23, 12300000.0,
+                           123456789012345680000.0, 5e-324, 2.2250738585072014e-308, 1.7976931348623157e308,
+                           std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+                           std::numeric_limits<double>::quiet_NaN()})
+        check(v);
+    CHECK(first_mismatch == "");
+    CHECK(checked > 1000000);
+}
+
+TEST_CASE("An .npy output holds the CSV's numbers as doubles, its names beside it, in place only at finish()",
+          "[output]")
+{
+    const ScratchDir scratch;
+    const std::string target = scratch / "run.npy", names = scratch / "run.columns.txt";
+    CHECK(is_npy_path(target));
+    CHECK_FALSE(is_npy_path(scratch / "run.csv"));
+    CHECK(npy_columns_path(target) == names);
+    put(target, "old contents\n");
+    const ColumnSet columns{0b10001};  // tau and work
+    const std::vector<double> times = {0.0, 0.5, 1.0};
+    {
+        CsvWriter npy(target, columns);
+        for (double t : times) npy.write(row_at(t));
+        CHECK(contents(target) == "old contents\n");
+        CHECK_FALSE(fs::exists(names));
+        REQUIRE(npy.finish());
+        CHECK(npy.rows() == 3);
+    }
+    const Npy a = read_npy(target);
+    CHECK(a.rows == 3);
+    CHECK(a.columns == static_cast<long>(row_width + 2));
+    // The same numbers as the CSV lines of these rows, read back with strtod: the round trip both promise.
+    std::vector<double> expected_values;
+    for (double t : times) {
+        const std::string line = csv_line(row_at(t), columns) + ",";
+        for (const char* p = line.c_str(); *p != '\0';) {
+            char* end = nullptr;
+            expected_values.push_back(std::strtod(p, &end));
+            p = end + 1;
+        }
+    }
+    CHECK(same_bits(a.data, expected_values));
+    CHECK(contents(names) == row_header(columns) + "\n");
+    CHECK(std::distance(fs::directory_iterator(scratch.dir), fs::directory_iterator()) == 2);  // no lock, no temp
+
+    // Rows that could not be kept (discard) leave the old file and no names.
+    fs::remove(names);
+    const std::string before = contents(target);
+    {
+        CsvWriter npy(target, columns);
+        npy.write(row_at(2.0));
+        npy.discard();
+    }
+    CHECK(contents(target) == before);
+    CHECK_FALSE(fs::exists(names));
+    CHECK_THROWS_AS(CsvWriter(target, columns).write_line("1,2"), std::logic_error);
+}
+
+TEST_CASE("A run stopped early to .npy counts its rows in the header and equals the CSV of the same run",
+          "[output]")
+{
+    // One run feeds both writers: the .npy must hold exactly the numbers the CSV's text reads back as, and its
+    // header the rows there are (written at the end, not guessed from t_end / dt_out at the start).
+    const ScratchDir scratch;
+    const Scene scene = load_scene(HUBBEAM_SOURCE_DIR "/cases/damped_appendage.toml", {{"output.t_end", "2"}});
+    const ColumnSet columns = optional_columns_of(scene);
+    REQUIRE(columns.count() > 0);
+    CsvWriter csv(scratch / "run.csv", columns), npy(scratch / "run.npy", columns);
+    long rows = 0;
+    const RunSummary summary = Simulation(scene).run(
+        [&](const Row& r) {
+            csv.write(r);
+            npy.write(r);
+            ++rows;
+        },
+        [&]() -> const char* { return rows == 37 ? "asked to stop" : nullptr; });
+    CHECK_FALSE(summary.completed);
+    REQUIRE(csv.finish());
+    REQUIRE(npy.finish());
+    long csv_rows = 0;
+    const std::vector<double> from_text = csv_numbers(scratch / "run.csv", csv_rows);
+    const Npy a = read_npy(scratch / "run.npy");
+    CHECK(csv_rows == 37);
+    CHECK(a.rows == 37);
+    CHECK(a.columns == static_cast<long>(row_width + columns.count()));
+    CHECK(same_bits(a.data, from_text));
+    CHECK(contents(scratch / "run.columns.txt") == row_header(columns) + "\n");
+}
+
+TEST_CASE("OutputFile::write_at overwrites in place; durable or not, commit() puts the file in place", "[output]")
+{
+    const ScratchDir scratch;
+    for (const bool durable : {false, true}) {
+        const std::string target = scratch / (durable ? "durable.txt" : "plain.txt");
+        OutputFile file(target);
+        file.set_durable(durable);
+        REQUIRE(file.write("abcdef") == 0);
+        REQUIRE(file.write_at(2, "XY") == 0);
+        CHECK_FALSE(fs::exists(target));
+        CHECK(file.commit() == "");
+        CHECK(contents(target) == "abXYef");
+    }
 }
 
 TEST_CASE("CsvWriter refuses a target it cannot create, leaving nothing behind", "[output]")

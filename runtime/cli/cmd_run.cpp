@@ -28,6 +28,9 @@ struct RunOptions {
     std::string scene;
     std::vector<std::string> values = std::vector<std::string>(scene_keys().size());
     std::string fields_at, fields_points = "81", fields_file;  // the fields along the beam (not scene keys)
+    // Not a scene key: whether the output must survive a power loss depends on the machine and the job, not on
+    // what is simulated (the same scene runs on a laptop and in a batch queue).
+    bool durable = false;
 };
 
 
@@ -45,6 +48,10 @@ void add_run_options(CLI::App& sub, RunOptions& o)
         ->type_name("N");
     sub.add_option("--fields", o.fields_file, "CSV of the fields (default: the output's name with -fields.csv)")
         ->type_name("FILE");
+    sub.add_flag("--durable", o.durable,
+                 "Sync the output to the disk before it replaces the old one, so that it survives a power loss (off: "
+                 "the output still appears whole or not at all, but the last seconds of a run may be lost with the "
+                 "machine)");
 }
 
 /// The --fields-at times and --fields-points count checked against the scene; throws ModesOptionError naming the
@@ -155,9 +162,12 @@ bool plan_run(const CLI::App& sub, const RunOptions& o, RunPlan& plan)
     }
     const bool output_option = std::any_of(overrides.begin(), overrides.end(),
                                            [](const auto& kv) { return kv.first == "output.file"; });
+    const std::string output_name = output_option ? "-o" : scene.path + ": output.file";
     try {
         check_outputs({{scene.path, "the scene itself"}},
-                      {{scene.output.file, output_option ? "-o" : scene.path + ": output.file"},
+                      {{scene.output.file, output_name},
+                       {is_npy_path(scene.output.file) ? npy_columns_path(scene.output.file) : "",
+                        output_name + "'s column names"},
                        {plan.fields_file, "--fields"}});
     } catch (const OutputRefused& e) {
         std::cerr << e.what() << "\n";
@@ -168,7 +178,7 @@ bool plan_run(const CLI::App& sub, const RunOptions& o, RunPlan& plan)
 
 /// The model chosen and the output files opened, or the refusal printed and nullptr: everything that can refuse the
 /// run does so before the output is touched.
-std::unique_ptr<Simulation> prepare(const RunPlan& plan, std::unique_ptr<CsvWriter>& csv,
+std::unique_ptr<Simulation> prepare(const RunPlan& plan, bool durable, std::unique_ptr<CsvWriter>& csv,
                                     std::unique_ptr<FieldRecorder>& recorder)
 {
     const Scene& scene = plan.scene;
@@ -188,7 +198,7 @@ std::unique_ptr<Simulation> prepare(const RunPlan& plan, std::unique_ptr<CsvWrit
     // is still put in place. (Before, the default action ends the process with nothing created.)
     catch_stop_signals();
     try {
-        csv = std::make_unique<CsvWriter>(scene.output.file, optional_columns_of(scene));
+        csv = std::make_unique<CsvWriter>(scene.output.file, optional_columns_of(scene), durable);
     } catch (const std::exception& e) {  // OutputRefused (another hubbeam writes it), or cannot create
         std::cerr << e.what() << "\n";
         return nullptr;
@@ -213,7 +223,7 @@ int run(const CLI::App& sub, const RunOptions& o)
     if (!plan_run(sub, o, plan)) return exit_bad_input;
     std::unique_ptr<CsvWriter> csv;
     std::unique_ptr<FieldRecorder> recorder;
-    const std::unique_ptr<Simulation> simulation = prepare(plan, csv, recorder);
+    const std::unique_ptr<Simulation> simulation = prepare(plan, o.durable, csv, recorder);
     if (!simulation) return exit_bad_input;
 
     // An exception out of run() unwinds through ~CsvWriter, which finishes the file the same way.
@@ -257,11 +267,12 @@ Command add_run_command(CLI::App& app)
     CLI::App* run_cmd = app.add_subcommand("run", "Simulate a scene file and write its response as CSV");
     run_cmd->footer(
         "Options override the scene's keys. The CSV goes to -o FILE, else to the scene's output.file, else to "
-        "NAME.csv in the current folder (NAME.toml's name). Exit codes: 0 success, 1 simulation stopped early (rows "
-        "so far kept), 2 bad input (one line on stderr, nothing computed; also an output that is the scene or the "
-        "other output, a FIFO, device or directory, or a file another hubbeam is writing), 130/143 interrupted by "
-        "SIGINT/SIGTERM (rows so far kept). The CSV is written to DIR/.NAME.tmp-PID and renamed over FILE when the "
-        "run ends.");
+        "NAME.csv in the current folder (NAME.toml's name); a FILE ending in .npy gets the rows as a NumPy array "
+        "(float64, rows x columns) and the column names in FILE's name with .columns.txt. Exit codes: 0 success, 1 "
+        "simulation stopped early (rows so far kept), 2 bad input (one line on stderr, nothing computed; also an "
+        "output that is the scene or the other output, a FIFO, device or directory, or a file another hubbeam is "
+        "writing), 130/143 interrupted by SIGINT/SIGTERM (rows so far kept). The output is written to "
+        "DIR/.NAME.tmp-PID and renamed over FILE when the run ends.");
     add_run_options(*run_cmd, *options);
     return {run_cmd, [run_cmd, options] { return run(*run_cmd, *options); }};
 }

@@ -13,24 +13,37 @@
 
 namespace hubbeam {
 
+/// Whether a run's rows to path are a NumPy array rather than CSV: path ends in .npy.
+bool is_npy_path(const std::string& path);
+/// Where the column names of an .npy output go: DIR/NAME.npy -> DIR/NAME.columns.txt.
+std::string npy_columns_path(const std::string& path);
+
 /// CSV writer usable as simulate()'s RowSink: row_header() first, every number in the shortest form that
 /// reads back as the same double. Rows are formatted into a memory buffer and written in large chunks, at
 /// the latest 0.1 s (wall time) after the previous chunk, so that a long run's progress is on disk without
 /// a system call per row.
 ///
+/// A run's rows to a path ending in .npy (is_npy_path) are written as a NumPy array instead: format 1.0, '<f8',
+/// C order, shape (rows, columns), the columns and their order the CSV's; the row count in its header is written
+/// by finish(), so it is right for a run stopped early too. The column names, the CSV's header line, go to
+/// npy_columns_path(path), written and put in place alongside. Each number is the double itself: the same
+/// round trip as the CSV's text, without formatting.
+///
 /// The file is an OutputFile (output_file.hpp): the rows go to a temporary file DIR/.NAME.tmp-PID next to the
 /// target, and finish() renames it over the target. A reader of the target sees the old file or the complete new
 /// one, never a half-written line; a second hubbeam writing the same path is refused while this one writes; a
-/// target that exists and is not a regular file (a FIFO, a device, a directory) is refused, never opened.
+/// target that exists and is not a regular file (a FIFO, a device, a directory) is refused, never opened. Made
+/// durable, the files are synced to the disk at finish() (OutputFile::set_durable).
 class CsvWriter {
 public:
     /// Creates the temporary file and writes the header; throws OutputRefused (a FIFO, a device, another hubbeam
     /// writing it) or std::runtime_error "PATH: cannot open for writing: REASON" if it cannot, leaving nothing behind.
     explicit CsvWriter(const std::string& path);
-    /// A run's rows with the optional columns of columns (optional_columns_of(scene)) after row_columns.
-    CsvWriter(const std::string& path, ColumnSet columns);
-    /// The same for another table: header is its first line (no newline).
-    CsvWriter(const std::string& path, const std::string& header);
+    /// A run's rows with the optional columns of columns (optional_columns_of(scene)) after row_columns: as CSV,
+    /// or a NumPy array when is_npy_path(path). durable: synced to the disk at finish().
+    CsvWriter(const std::string& path, ColumnSet columns, bool durable = false);
+    /// The same for another table: header is its first line (no newline). durable: synced at finish().
+    CsvWriter(const std::string& path, const std::string& header, bool durable = false);
     /// finish() if the caller has not, so that a run ended by an exception keeps its rows too.
     ~CsvWriter();
     CsvWriter(const CsvWriter&) = delete;
@@ -39,7 +52,8 @@ public:
     /// Appends one row. A write error is remembered (see ok()) instead of thrown through the integrator;
     /// rows after it are dropped.
     void write(const Row& row);
-    /// Appends one line of another table (no newline; shorter than 32 KB), buffered and flushed as rows are.
+    /// Appends one line of another table (no newline; shorter than 32 KB), buffered and flushed as rows are. Not
+    /// for an .npy file (std::logic_error).
     void write_line(std::string_view line);
     /// This writer as a RowSink for simulate(); the writer must outlive the returned function.
     RowSink sink();
@@ -63,12 +77,17 @@ public:
     const std::string& error() const { return error_; }
 
 private:
+    void write_header(const std::string& header);
     void flush();
     void fail(const std::string& what);
+    /// Writes the .npy header with the row count (at the start of the file, over the placeholder).
+    void write_npy_header();
 
     std::string path_;  // as given, for messages
     ColumnSet columns_;  // a run's optional columns written by write(Row)
     std::unique_ptr<OutputFile> file_;
+    std::unique_ptr<OutputFile> columns_file_;  // an .npy file's column names; null for CSV
+    std::size_t width_ = 0;                     // an .npy file's columns
     std::unique_ptr<char[]> buffer_;
     std::size_t used_ = 0;
     std::chrono::steady_clock::time_point last_flush_;

@@ -2,6 +2,7 @@
 // written beside the target and renamed over it whole, and never by two hubbeam processes at once.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -42,8 +43,11 @@ void check_outputs(const std::vector<NamedPath>& inputs, const std::vector<Named
 /// takes an advisory lock (flock on DIR/.NAME.lock, removed again when released) so that a second hubbeam writing
 /// the same file is refused, and creates the temporary file DIR/.NAME.tmp-PID beside the target exclusively
 /// (O_CREAT | O_EXCL, permissions from the umask, or the replaced file's). write() checks every write; commit()
-/// syncs the temporary file, checks its close and renames it over the target, so that a reader sees the old file or
-/// the complete new one. Until commit() succeeds the target is untouched; a failed or abandoned file is removed.
+/// checks the temporary file's close and renames it over the target, so that a reader sees the old file or the
+/// complete new one. Until commit() succeeds the target is untouched; a failed or abandoned file is removed.
+/// Made durable (set_durable), commit() also syncs the file to the disk before the rename and the folder after
+/// it, so that the new file survives a power loss or a crash of the machine; without it the rename alone keeps a
+/// reader from a half-written file, and the kernel writes the data back when it likes.
 class OutputFile {
 public:
     /// Throws OutputRefused for a target that is not a regular file or that another hubbeam is writing, and
@@ -64,11 +68,19 @@ public:
     /// Appends bytes (retrying short writes and EINTR); returns 0, or the errno of the write that failed. After a
     /// failure nothing more is written and commit() refuses.
     int write(std::string_view bytes);
+    /// Overwrites bytes already written, at offset from the start (a header whose counts are known at the end);
+    /// returns 0 or the errno of the failed write, as write() does.
+    int write_at(std::uint64_t offset, std::string_view bytes);
     /// Marks the file as failed (for a caller whose own check failed, e.g. of what another program wrote).
     void fail(const std::string& why);
-    /// Puts the file in place: fsync, close, rename over the target, release the lock. Returns an empty string, or
+    /// With on, commit() syncs the file before the rename and its folder after it (fsync): the file then survives
+    /// a power loss. Off by default: a sync costs a disk round trip (milliseconds to seconds) per file.
+    void set_durable(bool on) { durable_ = on; }
+    /// Puts the file in place: close, rename over the target (durable: fsync before, and of the folder after),
+    /// release the lock. Returns an empty string, or
     /// what failed ("write failed: REASON"); then the temporary file is removed and the target is as it was (except
-    /// when only the rename failed: the complete file is then kept at temp_path(), and the message says so).
+    /// when only the rename failed: the complete file is then kept at temp_path(), and the message says so; or, durable,
+    /// when only the folder's sync failed: the file is then in place, and the message says so).
     std::string commit();
     /// Removes the temporary file and releases the lock; the target stays as it was. Only the first of commit() and
     /// discard() acts.
@@ -86,6 +98,8 @@ private:
     /// Creates the temporary file (temp, or DIR/.NAME.tmp-PID[-N]) with O_EXCL.
     void create_temp(const std::filesystem::path& dir, const std::string& name, const std::string& temp);
     void release_lock();
+    /// fsync of the target's folder after the rename: "" or what failed.
+    std::string sync_folder() const;
 
     std::string path_;    // as given, for messages
     std::string target_;  // path_ with a symbolic link resolved: the file that is replaced
@@ -97,6 +111,7 @@ private:
     int error_ = 0;       // errno of the first failed write
     std::string failure_; // fail()'s reason
     bool done_ = false;
+    bool durable_ = false;
 };
 
 }  // namespace hubbeam

@@ -3,7 +3,9 @@
 
 #include "shortest.hpp"
 
+#include <bit>
 #include <cerrno>
+#include <cstdint>
 #include <charconv>
 #include <cstring>
 #include <filesystem>
@@ -18,12 +20,46 @@ namespace {
 // A chunk is written once the buffer cannot take another line: large enough that the default run (about
 // 0.5 MB) needs a handful of write calls, small enough to stay in cache.
 constexpr std::size_t buffer_size = std::size_t{1} << 16;
-// The longest double to_chars writes is 24 characters (-1.7976931348623157e+308): one per column, the commas
-// between them and the newline.
-constexpr std::size_t max_line = (row_width + optional_width) * 25;
+// The longest number is max_shortest_chars (-1.7976931348623157e+308): one per column, the commas between them
+// and the newline, and the scratch write_shortest may leave past the last number.
+constexpr std::size_t max_line = (row_width + optional_width) * (max_shortest_chars + 1) + shortest_room;
 // Buffered rows reach the file at the latest this long after the previous chunk: a long run's progress is
 // visible, and at most this much wall time of rows is lost if the process is killed outright.
 constexpr auto flush_interval = std::chrono::milliseconds(100);
+
+// An .npy file's header (format 1.0): magic, version, the length of the dict, the dict padded with spaces to a
+// newline. Always this long, so that the count written at the end fits in the placeholder written first; a
+// multiple of 64, numpy's alignment of the data.
+constexpr std::size_t npy_header_size = 128;
+
+/// The .npy header of rows x width little-endian doubles in C order.
+std::string npy_header(long rows, std::size_t width)
+{
+    std::string dict = "{'descr': '<f8', 'fortran_order': False, 'shape': (" + std::to_string(rows) + ", " +
+                       std::to_string(width) + "), }";
+    const std::size_t prefix = 10;  // "\x93NUMPY", 1, 0, the dict's length (2 bytes, little-endian)
+    dict.append(npy_header_size - prefix - 1 - dict.size(), ' ');
+    dict += '\n';
+    std::string h("\x93NUMPY\x01\x00", 8);
+    h += static_cast<char>(dict.size() & 0xff);
+    h += static_cast<char>(dict.size() >> 8);
+    return h + dict;
+}
+
+/// Copies row's values, in column order, into out as little-endian doubles; returns the end.
+char* binary_row(char* out, const Row& row, ColumnSet set)
+{
+    for_each_value(row, set, [&](double v) {
+        if constexpr (std::endian::native == std::endian::little) {
+            std::memcpy(out, &v, sizeof v);
+        } else {
+            const auto bits = std::bit_cast<std::uint64_t>(v);
+            for (int i = 0; i < 8; ++i) out[i] = static_cast<char>(bits >> (8 * i));
+        }
+        out += sizeof v;
+    });
+    return out;
+}
 
 /// Formats row's columns, then the optional ones of set, into out (room for max_line characters, no newline); returns
 /// the end.
@@ -32,7 +68,7 @@ char* format_row(char* out, const Row& row, ColumnSet set)
     const char* start = out;
     for_each_value(row, set, [&](double v) {
         if (out != start) *out++ = ',';
-        out = std::to_chars(out, out + 24, v).ptr;
+        out = write_shortest(out, v);
     });
     return out;
 }
@@ -41,13 +77,43 @@ char* format_row(char* out, const Row& row, ColumnSet set)
 
 CsvWriter::CsvWriter(const std::string& path) : CsvWriter(path, row_header()) {}
 
-CsvWriter::CsvWriter(const std::string& path, ColumnSet columns) : CsvWriter(path, row_header(columns))
+bool is_npy_path(const std::string& path) { return std::filesystem::path(path).extension() == ".npy"; }
+
+std::string npy_columns_path(const std::string& path)
 {
-    columns_ = columns;
+    std::filesystem::path p(path);
+    return p.replace_extension(".columns.txt").string();
 }
 
-CsvWriter::CsvWriter(const std::string& path, const std::string& header)
+CsvWriter::CsvWriter(const std::string& path, ColumnSet columns, bool durable)
+    : path_(path), columns_(columns), file_(std::make_unique<OutputFile>(path)), buffer_(new char[buffer_size])
+{
+    file_->set_durable(durable);
+    if (!is_npy_path(path)) {
+        write_header(row_header(columns));
+        return;
+    }
+    columns_file_ = std::make_unique<OutputFile>(npy_columns_path(path));
+    columns_file_->set_durable(durable);
+    width_ = row_width + columns.count();
+    const std::string names = row_header(columns) + "\n";
+    if (const int error = columns_file_->write(names); error != 0)
+        throw std::runtime_error(npy_columns_path(path) + ": cannot write: " + std::strerror(error));
+    // A placeholder of the header's size now (the rows follow it), the count at finish().
+    const std::string header = npy_header(0, width_);
+    std::memcpy(buffer_.get(), header.data(), header.size());
+    used_ = header.size();
+    flush();
+}
+
+CsvWriter::CsvWriter(const std::string& path, const std::string& header, bool durable)
     : path_(path), file_(std::make_unique<OutputFile>(path)), buffer_(new char[buffer_size])
+{
+    file_->set_durable(durable);
+    write_header(header);
+}
+
+void CsvWriter::write_header(const std::string& header)
 {
     // The header is written at once, so that an output that cannot take anything (a full disk) stops the run
     // at its first row instead of after all the computing.
@@ -62,6 +128,7 @@ const std::string& CsvWriter::writing_path() const { return file_->temp_path(); 
 
 void CsvWriter::write_line(std::string_view line)
 {
+    if (columns_file_) throw std::logic_error("CsvWriter: a text line for an .npy file");
     if (!ok_ || finished_) return;
     if (line.size() >= buffer_size / 2) throw std::logic_error("CsvWriter: a line of " + std::to_string(line.size()) + " bytes");
     if (buffer_size - used_ <= line.size()) flush();
@@ -81,9 +148,13 @@ void CsvWriter::write(const Row& row)
 {
     if (!ok_ || finished_) return;
     if (buffer_size - used_ < max_line) flush();
-    char* end = format_row(buffer_.get() + used_, row, columns_);
-    *end++ = '\n';
-    used_ = static_cast<std::size_t>(end - buffer_.get());
+    if (columns_file_) {
+        used_ = static_cast<std::size_t>(binary_row(buffer_.get() + used_, row, columns_) - buffer_.get());
+    } else {
+        char* end = format_row(buffer_.get() + used_, row, columns_);
+        *end++ = '\n';
+        used_ = static_cast<std::size_t>(end - buffer_.get());
+    }
     ++buffered_rows_;
     // now() is a vDSO call of some tens of nanoseconds, cheap beside formatting ten doubles: checked every row
     // so that the 0.1 s bound holds however slowly rows come.
@@ -113,18 +184,34 @@ bool CsvWriter::finish()
     if (finished_) return ok_;
     finished_ = true;
     if (ok_) flush();
+    if (ok_ && columns_file_) write_npy_header();
     if (!ok_) {
         // What the temporary file holds cannot be trusted (it may end inside a line): the target is left alone.
         file_->discard();
+        if (columns_file_) columns_file_->discard();
         error_ += " (nothing written: " + path_ + " is as it was)";
         return false;
     }
+    // The names first: an .npy file in place has its names beside it.
+    if (columns_file_)
+        if (const std::string problem = columns_file_->commit(); !problem.empty()) {
+            file_->discard();
+            fail(npy_columns_path(path_) + ": " + problem);
+            error_ += " (nothing written: " + path_ + " is as it was)";
+            return false;
+        }
     if (const std::string problem = file_->commit(); !problem.empty()) {
         fail(problem);
         if (problem.rfind("write failed", 0) == 0) error_ += " (nothing written: " + path_ + " is as it was)";
         return false;
     }
     return true;
+}
+
+void CsvWriter::write_npy_header()
+{
+    if (const int error = file_->write_at(0, npy_header(written_rows_, width_)); error != 0)
+        fail(std::string("write failed (the header): ") + std::strerror(error));
 }
 
 void CsvWriter::discard()
@@ -134,6 +221,7 @@ void CsvWriter::discard()
     used_ = 0;
     buffered_rows_ = 0;
     file_->discard();
+    if (columns_file_) columns_file_->discard();
 }
 
 RowSink CsvWriter::sink()

@@ -209,6 +209,26 @@ int OutputFile::write(std::string_view bytes)
     return 0;
 }
 
+int OutputFile::write_at(std::uint64_t offset, std::string_view bytes)
+{
+    if (done_ || error_ != 0 || !failure_.empty()) return error_ != 0 ? error_ : EIO;
+    const char* p = bytes.data();
+    std::size_t left = bytes.size();
+    while (left > 0) {
+        const ssize_t n = ::pwrite(fd_, p, left, static_cast<off_t>(offset));
+        if (n > 0) {
+            p += n;
+            offset += static_cast<std::uint64_t>(n);
+            left -= static_cast<std::size_t>(n);
+        } else if (n < 0 && errno == EINTR) {
+            continue;
+        } else {
+            return error_ = n < 0 ? errno : EIO;
+        }
+    }
+    return 0;
+}
+
 void OutputFile::fail(const std::string& why)
 {
     if (failure_.empty()) failure_ = why;
@@ -221,8 +241,9 @@ std::string OutputFile::commit()
     std::string problem;
     if (error_ != 0) problem = std::string("write failed: ") + std::strerror(error_);
     else if (!failure_.empty()) problem = failure_;
-    // On disk before the rename, so that a crash just after it cannot leave an empty file under the target.
-    else if (::fsync(fd_) != 0) problem = std::string("write failed: ") + std::strerror(errno);
+    // Durable: on disk before the rename, so that a crash of the machine just after it cannot leave an empty file
+    // under the target. (Without it a reader still never sees a half-written file: the rename is atomic.)
+    else if (durable_ && ::fsync(fd_) != 0) problem = std::string("write failed: ") + std::strerror(errno);
     if (::close(fd_) != 0 && problem.empty()) problem = std::string("write failed: ") + std::strerror(errno);
     fd_ = -1;
     if (problem.empty() && std::rename(temp_.c_str(), target_.c_str()) != 0)
@@ -230,8 +251,23 @@ std::string OutputFile::commit()
                   printable(temp_, 400) + ")";
     else if (!problem.empty())
         ::unlink(temp_.c_str());  // what it holds cannot be trusted (it may end inside a line)
+    else if (durable_)
+        problem = sync_folder();
     release_lock();
     return problem;
+}
+
+std::string OutputFile::sync_folder() const
+{
+    // The rename is an entry of the folder: durable only once the folder itself is on disk.
+    const std::filesystem::path dir = std::filesystem::path(target_).parent_path();
+    const std::string name = dir.empty() ? std::string(".") : dir.string();
+    const int fd = ::open(name.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    int error = fd < 0 ? errno : ::fsync(fd) != 0 ? errno : 0;
+    if (fd >= 0 && ::close(fd) != 0 && error == 0) error = errno;
+    if (error == 0) return {};
+    return std::string("cannot sync its folder: ") + std::strerror(error) + " (the file is in place, but may not " +
+           "survive a power loss)";
 }
 
 void OutputFile::discard()
