@@ -247,9 +247,10 @@ std::string print_outputs(const std::vector<Output>& outputs, const std::vector<
     return lines.str();
 }
 
-/// Stage "print" of a matrix-times-monomials kernel: out[i] = sum_k c[i*K + k] m_k, every m_k a monomial with
-/// coefficient 1 (KernelSpec::rows).
-std::string print_matrix_product(const std::vector<Output>& monomials, int rows, const MonomialPlan& plan, bool& uses_c)
+/// Stage "print" of a matrix-times-monomials kernel: out[i] = sum_k c[i*K + k] m_k over the entries pattern allows
+/// (all when empty), in increasing k, every m_k a monomial with coefficient 1 (KernelSpec::rows).
+std::string print_matrix_product(const std::vector<Output>& monomials, int rows, const std::vector<bool>& pattern,
+                                 const MonomialPlan& plan, bool& uses_c)
 {
     std::vector<std::string> names;
     for (const Output& m : monomials) {
@@ -258,14 +259,23 @@ std::string print_matrix_product(const std::vector<Output>& monomials, int rows,
         names.push_back(degree(m.begin()->first) == 0 ? "1.0" : plan.names.at(m.begin()->first));
     }
     const std::size_t K = names.size();
+    if (!pattern.empty() && pattern.size() != static_cast<std::size_t>(rows) * K)
+        throw EmitError("emit: a matrix-times-monomials kernel's pattern has " + std::to_string(pattern.size()) +
+                        " entries for " + std::to_string(rows) + " x " + std::to_string(K));
     std::ostringstream lines;
+    uses_c = false;
     for (int i = 0; i < rows; ++i) {
         lines << "    out[" << i << "] =";
-        for (std::size_t k = 0; k < K; ++k)
-            lines << (k ? " + " : " ") << "c[" << static_cast<std::size_t>(i) * K + k << "]*" << names[k];
-        lines << (K == 0 ? " 0.0;\n" : ";\n");
+        bool first = true;
+        for (std::size_t k = 0; k < K; ++k) {
+            const std::size_t entry = static_cast<std::size_t>(i) * K + k;
+            if (!pattern.empty() && !pattern[entry]) continue;
+            lines << (first ? " " : " + ") << "c[" << entry << "]*" << names[k];
+            first = false;
+        }
+        uses_c = uses_c || !first;
+        lines << (first ? " 0.0;\n" : ";\n");
     }
-    uses_c = K > 0;
     return lines.str();
 }
 
@@ -494,7 +504,7 @@ EmittedCode emit_kernels(const std::string& prefix, const Signature& sig, std::v
         const MonomialPlan plan = plan_monomials(outputs, names_of(sig.state_inputs));
         if (plan.names.empty()) code.constant_kernels.push_back(k.name);
         bool uses_c = false;
-        const std::string lines = k.rows > 0 ? print_matrix_product(outputs, k.rows, plan, uses_c)
+        const std::string lines = k.rows > 0 ? print_matrix_product(outputs, k.rows, k.pattern, plan, uses_c)
                                              : print_outputs(outputs, k.slots, plan, pool, uses_c);
         bodies.push_back(print_kernel(prefix, k, sig, plan, lines, uses_c));
     }

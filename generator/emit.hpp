@@ -39,6 +39,9 @@ struct KernelSpec {
     /// out[i] = sum_k c[i*K + k] m_k for i < rows, reading its c argument as that row-major matrix (a runtime
     /// product such as M^-1 F) instead of the coefficient pool.
     int rows = 0;
+    /// With rows > 0: which entries c[i*K + k] can be nonzero (row-major, rows x K); the others are neither read
+    /// nor multiplied. Empty: every entry.
+    std::vector<bool> pattern = {};
 };
 
 struct EmittedCode {
