@@ -875,6 +875,83 @@ void amm_nx4_ny4_torque_first_forces_u(const double* c, const double* u, const d
     out[0] = 1.0;
 }
 
+/* forces_folded:(c[110],u[3],q[9],qd[9])->(y[9]) y = P m, P (9 x 46, row-major) passed in the c slot: P = M^-1 F for a constant M; under hub torque, C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); the 89 entries that can be nonzero are read */
+void amm_nx4_ny4_torque_first_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    const double tau = u[0];
+    const double A1 = q[1];
+    const double A2 = q[2];
+    const double A3 = q[3];
+    const double A4 = q[4];
+    const double B1 = q[5];
+    const double B2 = q[6];
+    const double B3 = q[7];
+    const double B4 = q[8];
+    const double theta_dot = qd[0];
+    const double A1_dot = qd[1];
+    const double A2_dot = qd[2];
+    const double A3_dot = qd[3];
+    const double A4_dot = qd[4];
+    const double B1_dot = qd[5];
+    const double B2_dot = qd[6];
+    const double B3_dot = qd[7];
+    const double B4_dot = qd[8];
+    const double theta_dotsq = theta_dot*theta_dot;
+    const double theta_dot_A1_dot = theta_dot*A1_dot;
+    const double theta_dot_A2_dot = theta_dot*A2_dot;
+    const double theta_dot_A3_dot = theta_dot*A3_dot;
+    const double theta_dot_A4_dot = theta_dot*A4_dot;
+    const double theta_dot_B1_dot = theta_dot*B1_dot;
+    const double theta_dot_B2_dot = theta_dot*B2_dot;
+    const double theta_dot_B3_dot = theta_dot*B3_dot;
+    const double theta_dot_B4_dot = theta_dot*B4_dot;
+    const double A1_theta_dot = A1*theta_dot;
+    const double A1_theta_dotsq = A1_theta_dot*theta_dot;
+    const double A1_theta_dot_A1_dot = A1_theta_dot*A1_dot;
+    const double A2_theta_dot = A2*theta_dot;
+    const double A2_theta_dotsq = A2_theta_dot*theta_dot;
+    const double A2_theta_dot_A2_dot = A2_theta_dot*A2_dot;
+    const double A3_theta_dot = A3*theta_dot;
+    const double A3_theta_dotsq = A3_theta_dot*theta_dot;
+    const double A3_theta_dot_A3_dot = A3_theta_dot*A3_dot;
+    const double A4_theta_dot = A4*theta_dot;
+    const double A4_theta_dotsq = A4_theta_dot*theta_dot;
+    const double A4_theta_dot_A4_dot = A4_theta_dot*A4_dot;
+    const double B1_theta_dot = B1*theta_dot;
+    const double B1_theta_dotsq = B1_theta_dot*theta_dot;
+    const double B1_theta_dot_B1_dot = B1_theta_dot*B1_dot;
+    const double B1_theta_dot_B2_dot = B1_theta_dot*B2_dot;
+    const double B1_theta_dot_B3_dot = B1_theta_dot*B3_dot;
+    const double B1_theta_dot_B4_dot = B1_theta_dot*B4_dot;
+    const double B2_theta_dot = B2*theta_dot;
+    const double B2_theta_dotsq = B2_theta_dot*theta_dot;
+    const double B2_theta_dot_B1_dot = B2_theta_dot*B1_dot;
+    const double B2_theta_dot_B2_dot = B2_theta_dot*B2_dot;
+    const double B2_theta_dot_B3_dot = B2_theta_dot*B3_dot;
+    const double B2_theta_dot_B4_dot = B2_theta_dot*B4_dot;
+    const double B3_theta_dot = B3*theta_dot;
+    const double B3_theta_dotsq = B3_theta_dot*theta_dot;
+    const double B3_theta_dot_B1_dot = B3_theta_dot*B1_dot;
+    const double B3_theta_dot_B2_dot = B3_theta_dot*B2_dot;
+    const double B3_theta_dot_B3_dot = B3_theta_dot*B3_dot;
+    const double B3_theta_dot_B4_dot = B3_theta_dot*B4_dot;
+    const double B4_theta_dot = B4*theta_dot;
+    const double B4_theta_dotsq = B4_theta_dot*theta_dot;
+    const double B4_theta_dot_B1_dot = B4_theta_dot*B1_dot;
+    const double B4_theta_dot_B2_dot = B4_theta_dot*B2_dot;
+    const double B4_theta_dot_B3_dot = B4_theta_dot*B3_dot;
+    const double B4_theta_dot_B4_dot = B4_theta_dot*B4_dot;
+    out[0] = c[0]*tau + c[10]*theta_dot_A1_dot + c[11]*theta_dot_A2_dot + c[12]*theta_dot_A3_dot + c[13]*theta_dot_A4_dot + c[19]*A1_theta_dot_A1_dot + c[21]*A2_theta_dot_A2_dot + c[23]*A3_theta_dot_A3_dot + c[25]*A4_theta_dot_A4_dot + c[27]*B1_theta_dot_B1_dot + c[28]*B1_theta_dot_B2_dot + c[29]*B1_theta_dot_B3_dot + c[30]*B1_theta_dot_B4_dot + c[32]*B2_theta_dot_B1_dot + c[33]*B2_theta_dot_B2_dot + c[34]*B2_theta_dot_B3_dot + c[35]*B2_theta_dot_B4_dot + c[37]*B3_theta_dot_B1_dot + c[38]*B3_theta_dot_B2_dot + c[39]*B3_theta_dot_B3_dot + c[40]*B3_theta_dot_B4_dot + c[42]*B4_theta_dot_B1_dot + c[43]*B4_theta_dot_B2_dot + c[44]*B4_theta_dot_B3_dot + c[45]*B4_theta_dot_B4_dot;
+    out[1] = c[47]*A1 + c[55]*theta_dotsq + c[60]*theta_dot_B1_dot + c[61]*theta_dot_B2_dot + c[62]*theta_dot_B3_dot + c[63]*theta_dot_B4_dot + c[64]*A1_theta_dotsq;
+    out[2] = c[94]*A2 + c[101]*theta_dotsq + c[106]*theta_dot_B1_dot + c[107]*theta_dot_B2_dot + c[108]*theta_dot_B3_dot + c[109]*theta_dot_B4_dot + c[112]*A2_theta_dotsq;
+    out[3] = c[141]*A3 + c[147]*theta_dotsq + c[152]*theta_dot_B1_dot + c[153]*theta_dot_B2_dot + c[154]*theta_dot_B3_dot + c[155]*theta_dot_B4_dot + c[160]*A3_theta_dotsq;
+    out[4] = c[188]*A4 + c[193]*theta_dotsq + c[198]*theta_dot_B1_dot + c[199]*theta_dot_B2_dot + c[200]*theta_dot_B3_dot + c[201]*theta_dot_B4_dot + c[208]*A4_theta_dotsq;
+    out[5] = c[235]*B1 + c[240]*theta_dot_A1_dot + c[241]*theta_dot_A2_dot + c[242]*theta_dot_A3_dot + c[243]*theta_dot_A4_dot + c[256]*B1_theta_dotsq + c[261]*B2_theta_dotsq + c[266]*B3_theta_dotsq + c[271]*B4_theta_dotsq;
+    out[6] = c[282]*B2 + c[286]*theta_dot_A1_dot + c[287]*theta_dot_A2_dot + c[288]*theta_dot_A3_dot + c[289]*theta_dot_A4_dot + c[302]*B1_theta_dotsq + c[307]*B2_theta_dotsq + c[312]*B3_theta_dotsq + c[317]*B4_theta_dotsq;
+    out[7] = c[329]*B3 + c[332]*theta_dot_A1_dot + c[333]*theta_dot_A2_dot + c[334]*theta_dot_A3_dot + c[335]*theta_dot_A4_dot + c[348]*B1_theta_dotsq + c[353]*B2_theta_dotsq + c[358]*B3_theta_dotsq + c[363]*B4_theta_dotsq;
+    out[8] = c[376]*B4 + c[378]*theta_dot_A1_dot + c[379]*theta_dot_A2_dot + c[380]*theta_dot_A3_dot + c[381]*theta_dot_A4_dot + c[394]*B1_theta_dotsq + c[399]*B2_theta_dotsq + c[404]*B3_theta_dotsq + c[409]*B4_theta_dotsq;
+}
+
 /* mass_varying:(c[110],u[3],q[9],qd[9])->(M[81]) as mass, the entries that depend on q only */
 void amm_nx4_ny4_torque_first_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
@@ -1006,7 +1083,7 @@ extern const Variant amm_nx4_ny4_torque_first = {
     .mass_q_product = amm_nx4_ny4_torque_first_mass_q_product,
     .forces_u = amm_nx4_ny4_torque_first_forces_u,
     .tip = amm_nx4_ny4_torque_first_tip,
-    .forces_folded = nullptr,
+    .forces_folded = amm_nx4_ny4_torque_first_forces_folded,
 };
 
 }  // namespace hubbeam::generated

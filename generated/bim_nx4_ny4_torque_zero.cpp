@@ -995,6 +995,95 @@ void bim_nx4_ny4_torque_zero_forces_u(const double* c, const double* u, const do
     out[0] = 1.0;
 }
 
+/* forces_folded:(c[77],u[3],q[9],qd[9])->(y[9]) y = P m, P (9 x 58, row-major) passed in the c slot: P = M^-1 F for a constant M; under hub torque, C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); the 137 entries that can be nonzero are read */
+void bim_nx4_ny4_torque_zero_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    const double tau = u[0];
+    const double A1 = q[1];
+    const double A2 = q[2];
+    const double A3 = q[3];
+    const double A4 = q[4];
+    const double B1 = q[5];
+    const double B2 = q[6];
+    const double B3 = q[7];
+    const double B4 = q[8];
+    const double theta_dot = qd[0];
+    const double A1_dot = qd[1];
+    const double A2_dot = qd[2];
+    const double A3_dot = qd[3];
+    const double A4_dot = qd[4];
+    const double B1_dot = qd[5];
+    const double B2_dot = qd[6];
+    const double B3_dot = qd[7];
+    const double B4_dot = qd[8];
+    const double theta_dotsq = theta_dot*theta_dot;
+    const double theta_dot_A1_dot = theta_dot*A1_dot;
+    const double theta_dot_A2_dot = theta_dot*A2_dot;
+    const double theta_dot_A3_dot = theta_dot*A3_dot;
+    const double theta_dot_A4_dot = theta_dot*A4_dot;
+    const double theta_dot_B1_dot = theta_dot*B1_dot;
+    const double theta_dot_B2_dot = theta_dot*B2_dot;
+    const double theta_dot_B3_dot = theta_dot*B3_dot;
+    const double theta_dot_B4_dot = theta_dot*B4_dot;
+    const double A1_theta_dot = A1*theta_dot;
+    const double A1_theta_dotsq = A1_theta_dot*theta_dot;
+    const double A1_theta_dot_A1_dot = A1_theta_dot*A1_dot;
+    const double A1_theta_dot_A2_dot = A1_theta_dot*A2_dot;
+    const double A1_theta_dot_A3_dot = A1_theta_dot*A3_dot;
+    const double A1_theta_dot_A4_dot = A1_theta_dot*A4_dot;
+    const double A2_theta_dot = A2*theta_dot;
+    const double A2_theta_dotsq = A2_theta_dot*theta_dot;
+    const double A2_theta_dot_A1_dot = A2_theta_dot*A1_dot;
+    const double A2_theta_dot_A2_dot = A2_theta_dot*A2_dot;
+    const double A2_theta_dot_A3_dot = A2_theta_dot*A3_dot;
+    const double A2_theta_dot_A4_dot = A2_theta_dot*A4_dot;
+    const double A3_theta_dot = A3*theta_dot;
+    const double A3_theta_dotsq = A3_theta_dot*theta_dot;
+    const double A3_theta_dot_A1_dot = A3_theta_dot*A1_dot;
+    const double A3_theta_dot_A2_dot = A3_theta_dot*A2_dot;
+    const double A3_theta_dot_A3_dot = A3_theta_dot*A3_dot;
+    const double A3_theta_dot_A4_dot = A3_theta_dot*A4_dot;
+    const double A4_theta_dot = A4*theta_dot;
+    const double A4_theta_dotsq = A4_theta_dot*theta_dot;
+    const double A4_theta_dot_A1_dot = A4_theta_dot*A1_dot;
+    const double A4_theta_dot_A2_dot = A4_theta_dot*A2_dot;
+    const double A4_theta_dot_A3_dot = A4_theta_dot*A3_dot;
+    const double A4_theta_dot_A4_dot = A4_theta_dot*A4_dot;
+    const double B1_theta_dot = B1*theta_dot;
+    const double B1_theta_dotsq = B1_theta_dot*theta_dot;
+    const double B1_theta_dot_B1_dot = B1_theta_dot*B1_dot;
+    const double B1_theta_dot_B2_dot = B1_theta_dot*B2_dot;
+    const double B1_theta_dot_B3_dot = B1_theta_dot*B3_dot;
+    const double B1_theta_dot_B4_dot = B1_theta_dot*B4_dot;
+    const double B2_theta_dot = B2*theta_dot;
+    const double B2_theta_dotsq = B2_theta_dot*theta_dot;
+    const double B2_theta_dot_B1_dot = B2_theta_dot*B1_dot;
+    const double B2_theta_dot_B2_dot = B2_theta_dot*B2_dot;
+    const double B2_theta_dot_B3_dot = B2_theta_dot*B3_dot;
+    const double B2_theta_dot_B4_dot = B2_theta_dot*B4_dot;
+    const double B3_theta_dot = B3*theta_dot;
+    const double B3_theta_dotsq = B3_theta_dot*theta_dot;
+    const double B3_theta_dot_B1_dot = B3_theta_dot*B1_dot;
+    const double B3_theta_dot_B2_dot = B3_theta_dot*B2_dot;
+    const double B3_theta_dot_B3_dot = B3_theta_dot*B3_dot;
+    const double B3_theta_dot_B4_dot = B3_theta_dot*B4_dot;
+    const double B4_theta_dot = B4*theta_dot;
+    const double B4_theta_dotsq = B4_theta_dot*theta_dot;
+    const double B4_theta_dot_B1_dot = B4_theta_dot*B1_dot;
+    const double B4_theta_dot_B2_dot = B4_theta_dot*B2_dot;
+    const double B4_theta_dot_B3_dot = B4_theta_dot*B3_dot;
+    const double B4_theta_dot_B4_dot = B4_theta_dot*B4_dot;
+    out[0] = c[0]*tau + c[10]*theta_dot_A1_dot + c[11]*theta_dot_A2_dot + c[12]*theta_dot_A3_dot + c[13]*theta_dot_A4_dot + c[19]*A1_theta_dot_A1_dot + c[20]*A1_theta_dot_A2_dot + c[21]*A1_theta_dot_A3_dot + c[22]*A1_theta_dot_A4_dot + c[24]*A2_theta_dot_A1_dot + c[25]*A2_theta_dot_A2_dot + c[26]*A2_theta_dot_A3_dot + c[27]*A2_theta_dot_A4_dot + c[29]*A3_theta_dot_A1_dot + c[30]*A3_theta_dot_A2_dot + c[31]*A3_theta_dot_A3_dot + c[32]*A3_theta_dot_A4_dot + c[34]*A4_theta_dot_A1_dot + c[35]*A4_theta_dot_A2_dot + c[36]*A4_theta_dot_A3_dot + c[37]*A4_theta_dot_A4_dot + c[39]*B1_theta_dot_B1_dot + c[40]*B1_theta_dot_B2_dot + c[41]*B1_theta_dot_B3_dot + c[42]*B1_theta_dot_B4_dot + c[44]*B2_theta_dot_B1_dot + c[45]*B2_theta_dot_B2_dot + c[46]*B2_theta_dot_B3_dot + c[47]*B2_theta_dot_B4_dot + c[49]*B3_theta_dot_B1_dot + c[50]*B3_theta_dot_B2_dot + c[51]*B3_theta_dot_B3_dot + c[52]*B3_theta_dot_B4_dot + c[54]*B4_theta_dot_B1_dot + c[55]*B4_theta_dot_B2_dot + c[56]*B4_theta_dot_B3_dot + c[57]*B4_theta_dot_B4_dot;
+    out[1] = c[59]*A1 + c[60]*A2 + c[61]*A3 + c[62]*A4 + c[67]*theta_dotsq + c[72]*theta_dot_B1_dot + c[73]*theta_dot_B2_dot + c[74]*theta_dot_B3_dot + c[75]*theta_dot_B4_dot + c[76]*A1_theta_dotsq + c[81]*A2_theta_dotsq + c[86]*A3_theta_dotsq + c[91]*A4_theta_dotsq;
+    out[2] = c[117]*A1 + c[118]*A2 + c[119]*A3 + c[120]*A4 + c[125]*theta_dotsq + c[130]*theta_dot_B1_dot + c[131]*theta_dot_B2_dot + c[132]*theta_dot_B3_dot + c[133]*theta_dot_B4_dot + c[134]*A1_theta_dotsq + c[139]*A2_theta_dotsq + c[144]*A3_theta_dotsq + c[149]*A4_theta_dotsq;
+    out[3] = c[175]*A1 + c[176]*A2 + c[177]*A3 + c[178]*A4 + c[183]*theta_dotsq + c[188]*theta_dot_B1_dot + c[189]*theta_dot_B2_dot + c[190]*theta_dot_B3_dot + c[191]*theta_dot_B4_dot + c[192]*A1_theta_dotsq + c[197]*A2_theta_dotsq + c[202]*A3_theta_dotsq + c[207]*A4_theta_dotsq;
+    out[4] = c[233]*A1 + c[234]*A2 + c[235]*A3 + c[236]*A4 + c[241]*theta_dotsq + c[246]*theta_dot_B1_dot + c[247]*theta_dot_B2_dot + c[248]*theta_dot_B3_dot + c[249]*theta_dot_B4_dot + c[250]*A1_theta_dotsq + c[255]*A2_theta_dotsq + c[260]*A3_theta_dotsq + c[265]*A4_theta_dotsq;
+    out[5] = c[295]*B1 + c[296]*B2 + c[297]*B3 + c[298]*B4 + c[300]*theta_dot_A1_dot + c[301]*theta_dot_A2_dot + c[302]*theta_dot_A3_dot + c[303]*theta_dot_A4_dot + c[328]*B1_theta_dotsq + c[333]*B2_theta_dotsq + c[338]*B3_theta_dotsq + c[343]*B4_theta_dotsq;
+    out[6] = c[353]*B1 + c[354]*B2 + c[355]*B3 + c[356]*B4 + c[358]*theta_dot_A1_dot + c[359]*theta_dot_A2_dot + c[360]*theta_dot_A3_dot + c[361]*theta_dot_A4_dot + c[386]*B1_theta_dotsq + c[391]*B2_theta_dotsq + c[396]*B3_theta_dotsq + c[401]*B4_theta_dotsq;
+    out[7] = c[411]*B1 + c[412]*B2 + c[413]*B3 + c[414]*B4 + c[416]*theta_dot_A1_dot + c[417]*theta_dot_A2_dot + c[418]*theta_dot_A3_dot + c[419]*theta_dot_A4_dot + c[444]*B1_theta_dotsq + c[449]*B2_theta_dotsq + c[454]*B3_theta_dotsq + c[459]*B4_theta_dotsq;
+    out[8] = c[469]*B1 + c[470]*B2 + c[471]*B3 + c[472]*B4 + c[474]*theta_dot_A1_dot + c[475]*theta_dot_A2_dot + c[476]*theta_dot_A3_dot + c[477]*theta_dot_A4_dot + c[502]*B1_theta_dotsq + c[507]*B2_theta_dotsq + c[512]*B3_theta_dotsq + c[517]*B4_theta_dotsq;
+}
+
 /* mass_varying:(c[77],u[3],q[9],qd[9])->(M[81]) as mass, the entries that depend on q only */
 void bim_nx4_ny4_torque_zero_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
@@ -1132,7 +1221,7 @@ extern const Variant bim_nx4_ny4_torque_zero = {
     .mass_q_product = bim_nx4_ny4_torque_zero_mass_q_product,
     .forces_u = bim_nx4_ny4_torque_zero_forces_u,
     .tip = bim_nx4_ny4_torque_zero_tip,
-    .forces_folded = nullptr,
+    .forces_folded = bim_nx4_ny4_torque_zero_forces_folded,
 };
 
 }  // namespace hubbeam::generated

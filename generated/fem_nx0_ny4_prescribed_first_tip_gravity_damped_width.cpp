@@ -494,7 +494,7 @@ void fem_nx0_ny4_prescribed_first_tip_gravity_damped_width_forces_u(const double
     out[11] = -c[48];
 }
 
-/* forces_folded:(c[89],u[5],q[4],qd[4])->(qdd[4]) qdd = W m, W = M^-1 F (4 x 18, row-major) passed in the c slot */
+/* forces_folded:(c[89],u[5],q[4],qd[4])->(y[4]) y = P m, P (4 x 18, row-major) passed in the c slot: P = M^-1 F for a constant M; under hub torque, C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); the 72 entries that can be nonzero are read */
 void fem_nx0_ny4_prescribed_first_tip_gravity_damped_width_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];

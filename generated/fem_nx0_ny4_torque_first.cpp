@@ -489,6 +489,50 @@ void fem_nx0_ny4_torque_first_forces_u(const double* c, const double* u, const d
     out[0] = 1.0;
 }
 
+/* forces_folded:(c[53],u[3],q[5],qd[5])->(y[5]) y = P m, P (5 x 25, row-major) passed in the c slot: P = M^-1 F for a constant M; under hub torque, C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); the 57 entries that can be nonzero are read */
+void fem_nx0_ny4_torque_first_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    const double tau = u[0];
+    const double B1 = q[1];
+    const double B2 = q[2];
+    const double B3 = q[3];
+    const double B4 = q[4];
+    const double theta_dot = qd[0];
+    const double B1_dot = qd[1];
+    const double B2_dot = qd[2];
+    const double B3_dot = qd[3];
+    const double B4_dot = qd[4];
+    const double B1_theta_dot = B1*theta_dot;
+    const double B1_theta_dotsq = B1_theta_dot*theta_dot;
+    const double B1_theta_dot_B1_dot = B1_theta_dot*B1_dot;
+    const double B1_theta_dot_B2_dot = B1_theta_dot*B2_dot;
+    const double B1_theta_dot_B3_dot = B1_theta_dot*B3_dot;
+    const double B1_theta_dot_B4_dot = B1_theta_dot*B4_dot;
+    const double B2_theta_dot = B2*theta_dot;
+    const double B2_theta_dotsq = B2_theta_dot*theta_dot;
+    const double B2_theta_dot_B1_dot = B2_theta_dot*B1_dot;
+    const double B2_theta_dot_B2_dot = B2_theta_dot*B2_dot;
+    const double B2_theta_dot_B3_dot = B2_theta_dot*B3_dot;
+    const double B2_theta_dot_B4_dot = B2_theta_dot*B4_dot;
+    const double B3_theta_dot = B3*theta_dot;
+    const double B3_theta_dotsq = B3_theta_dot*theta_dot;
+    const double B3_theta_dot_B1_dot = B3_theta_dot*B1_dot;
+    const double B3_theta_dot_B2_dot = B3_theta_dot*B2_dot;
+    const double B3_theta_dot_B3_dot = B3_theta_dot*B3_dot;
+    const double B3_theta_dot_B4_dot = B3_theta_dot*B4_dot;
+    const double B4_theta_dot = B4*theta_dot;
+    const double B4_theta_dotsq = B4_theta_dot*theta_dot;
+    const double B4_theta_dot_B1_dot = B4_theta_dot*B1_dot;
+    const double B4_theta_dot_B2_dot = B4_theta_dot*B2_dot;
+    const double B4_theta_dot_B3_dot = B4_theta_dot*B3_dot;
+    const double B4_theta_dot_B4_dot = B4_theta_dot*B4_dot;
+    out[0] = c[0]*tau + c[1]*B1 + c[2]*B2 + c[3]*B3 + c[4]*B4 + c[5]*B1_theta_dotsq + c[6]*B1_theta_dot_B1_dot + c[7]*B1_theta_dot_B2_dot + c[8]*B1_theta_dot_B3_dot + c[9]*B1_theta_dot_B4_dot + c[10]*B2_theta_dotsq + c[11]*B2_theta_dot_B1_dot + c[12]*B2_theta_dot_B2_dot + c[13]*B2_theta_dot_B3_dot + c[14]*B2_theta_dot_B4_dot + c[15]*B3_theta_dotsq + c[16]*B3_theta_dot_B1_dot + c[17]*B3_theta_dot_B2_dot + c[18]*B3_theta_dot_B3_dot + c[19]*B3_theta_dot_B4_dot + c[20]*B4_theta_dotsq + c[21]*B4_theta_dot_B1_dot + c[22]*B4_theta_dot_B2_dot + c[23]*B4_theta_dot_B3_dot + c[24]*B4_theta_dot_B4_dot;
+    out[1] = c[26]*B1 + c[27]*B2 + c[28]*B3 + c[29]*B4 + c[30]*B1_theta_dotsq + c[35]*B2_theta_dotsq + c[40]*B3_theta_dotsq + c[45]*B4_theta_dotsq;
+    out[2] = c[51]*B1 + c[52]*B2 + c[53]*B3 + c[54]*B4 + c[55]*B1_theta_dotsq + c[60]*B2_theta_dotsq + c[65]*B3_theta_dotsq + c[70]*B4_theta_dotsq;
+    out[3] = c[76]*B1 + c[77]*B2 + c[78]*B3 + c[79]*B4 + c[80]*B1_theta_dotsq + c[85]*B2_theta_dotsq + c[90]*B3_theta_dotsq + c[95]*B4_theta_dotsq;
+    out[4] = c[101]*B1 + c[102]*B2 + c[103]*B3 + c[104]*B4 + c[105]*B1_theta_dotsq + c[110]*B2_theta_dotsq + c[115]*B3_theta_dotsq + c[120]*B4_theta_dotsq;
+}
+
 /* mass_varying:(c[53],u[3],q[5],qd[5])->(M[25]) as mass, the entries that depend on q only */
 void fem_nx0_ny4_torque_first_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
@@ -552,7 +596,7 @@ extern const Variant fem_nx0_ny4_torque_first = {
     .mass_q_product = fem_nx0_ny4_torque_first_mass_q_product,
     .forces_u = fem_nx0_ny4_torque_first_forces_u,
     .tip = fem_nx0_ny4_torque_first_tip,
-    .forces_folded = nullptr,
+    .forces_folded = fem_nx0_ny4_torque_first_forces_folded,
 };
 
 }  // namespace hubbeam::generated

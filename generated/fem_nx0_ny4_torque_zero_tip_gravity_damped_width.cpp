@@ -574,6 +574,56 @@ void fem_nx0_ny4_torque_zero_tip_gravity_damped_width_forces_u(const double* c, 
     out[0] = 1.0;
 }
 
+/* forces_folded:(c[59],u[5],q[5],qd[5])->(y[5]) y = P m, P (5 x 34, row-major) passed in the c slot: P = M^-1 F for a constant M; under hub torque, C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); the 86 entries that can be nonzero are read */
+void fem_nx0_ny4_torque_zero_tip_gravity_damped_width_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    const double tau = u[0];
+    const double sin_theta = u[3];
+    const double cos_theta = u[4];
+    const double B1 = q[1];
+    const double B2 = q[2];
+    const double B3 = q[3];
+    const double B4 = q[4];
+    const double theta_dot = qd[0];
+    const double B1_dot = qd[1];
+    const double B2_dot = qd[2];
+    const double B3_dot = qd[3];
+    const double B4_dot = qd[4];
+    const double sin_theta_B1 = sin_theta*B1;
+    const double sin_theta_B2 = sin_theta*B2;
+    const double sin_theta_B3 = sin_theta*B3;
+    const double sin_theta_B4 = sin_theta*B4;
+    const double B1_theta_dot = B1*theta_dot;
+    const double B1_theta_dotsq = B1_theta_dot*theta_dot;
+    const double B1_theta_dot_B1_dot = B1_theta_dot*B1_dot;
+    const double B1_theta_dot_B2_dot = B1_theta_dot*B2_dot;
+    const double B1_theta_dot_B3_dot = B1_theta_dot*B3_dot;
+    const double B1_theta_dot_B4_dot = B1_theta_dot*B4_dot;
+    const double B2_theta_dot = B2*theta_dot;
+    const double B2_theta_dotsq = B2_theta_dot*theta_dot;
+    const double B2_theta_dot_B1_dot = B2_theta_dot*B1_dot;
+    const double B2_theta_dot_B2_dot = B2_theta_dot*B2_dot;
+    const double B2_theta_dot_B3_dot = B2_theta_dot*B3_dot;
+    const double B2_theta_dot_B4_dot = B2_theta_dot*B4_dot;
+    const double B3_theta_dot = B3*theta_dot;
+    const double B3_theta_dotsq = B3_theta_dot*theta_dot;
+    const double B3_theta_dot_B1_dot = B3_theta_dot*B1_dot;
+    const double B3_theta_dot_B2_dot = B3_theta_dot*B2_dot;
+    const double B3_theta_dot_B3_dot = B3_theta_dot*B3_dot;
+    const double B3_theta_dot_B4_dot = B3_theta_dot*B4_dot;
+    const double B4_theta_dot = B4*theta_dot;
+    const double B4_theta_dotsq = B4_theta_dot*theta_dot;
+    const double B4_theta_dot_B1_dot = B4_theta_dot*B1_dot;
+    const double B4_theta_dot_B2_dot = B4_theta_dot*B2_dot;
+    const double B4_theta_dot_B3_dot = B4_theta_dot*B3_dot;
+    const double B4_theta_dot_B4_dot = B4_theta_dot*B4_dot;
+    out[0] = c[0]*tau + c[1]*cos_theta + c[2]*B1 + c[3]*B2 + c[4]*B3 + c[5]*B4 + c[6]*B1_dot + c[7]*B2_dot + c[8]*B3_dot + c[9]*B4_dot + c[10]*sin_theta_B1 + c[11]*sin_theta_B2 + c[12]*sin_theta_B3 + c[13]*sin_theta_B4 + c[14]*B1_theta_dotsq + c[15]*B1_theta_dot_B1_dot + c[16]*B1_theta_dot_B2_dot + c[17]*B1_theta_dot_B3_dot + c[18]*B1_theta_dot_B4_dot + c[19]*B2_theta_dotsq + c[20]*B2_theta_dot_B1_dot + c[21]*B2_theta_dot_B2_dot + c[22]*B2_theta_dot_B3_dot + c[23]*B2_theta_dot_B4_dot + c[24]*B3_theta_dotsq + c[25]*B3_theta_dot_B1_dot + c[26]*B3_theta_dot_B2_dot + c[27]*B3_theta_dot_B3_dot + c[28]*B3_theta_dot_B4_dot + c[29]*B4_theta_dotsq + c[30]*B4_theta_dot_B1_dot + c[31]*B4_theta_dot_B2_dot + c[32]*B4_theta_dot_B3_dot + c[33]*B4_theta_dot_B4_dot;
+    out[1] = c[35]*cos_theta + c[36]*B1 + c[37]*B2 + c[38]*B3 + c[39]*B4 + c[40]*B1_dot + c[41]*B2_dot + c[42]*B3_dot + c[43]*B4_dot + c[48]*B1_theta_dotsq + c[53]*B2_theta_dotsq + c[58]*B3_theta_dotsq + c[63]*B4_theta_dotsq;
+    out[2] = c[69]*cos_theta + c[70]*B1 + c[71]*B2 + c[72]*B3 + c[73]*B4 + c[74]*B1_dot + c[75]*B2_dot + c[76]*B3_dot + c[77]*B4_dot + c[82]*B1_theta_dotsq + c[87]*B2_theta_dotsq + c[92]*B3_theta_dotsq + c[97]*B4_theta_dotsq;
+    out[3] = c[103]*cos_theta + c[104]*B1 + c[105]*B2 + c[106]*B3 + c[107]*B4 + c[108]*B1_dot + c[109]*B2_dot + c[110]*B3_dot + c[111]*B4_dot + c[116]*B1_theta_dotsq + c[121]*B2_theta_dotsq + c[126]*B3_theta_dotsq + c[131]*B4_theta_dotsq;
+    out[4] = c[137]*cos_theta + c[138]*B1 + c[139]*B2 + c[140]*B3 + c[141]*B4 + c[142]*B1_dot + c[143]*B2_dot + c[144]*B3_dot + c[145]*B4_dot + c[150]*B1_theta_dotsq + c[155]*B2_theta_dotsq + c[160]*B3_theta_dotsq + c[165]*B4_theta_dotsq;
+}
+
 /* mass_varying:(c[59],u[5],q[5],qd[5])->(M[25]) as mass, the entries that depend on q only */
 void fem_nx0_ny4_torque_zero_tip_gravity_damped_width_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
@@ -637,7 +687,7 @@ extern const Variant fem_nx0_ny4_torque_zero_tip_gravity_damped_width = {
     .mass_q_product = fem_nx0_ny4_torque_zero_tip_gravity_damped_width_mass_q_product,
     .forces_u = fem_nx0_ny4_torque_zero_tip_gravity_damped_width_forces_u,
     .tip = fem_nx0_ny4_torque_zero_tip_gravity_damped_width_tip,
-    .forces_folded = nullptr,
+    .forces_folded = fem_nx0_ny4_torque_zero_tip_gravity_damped_width_forces_folded,
 };
 
 }  // namespace hubbeam::generated

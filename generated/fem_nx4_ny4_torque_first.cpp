@@ -909,6 +909,89 @@ void fem_nx4_ny4_torque_first_forces_u(const double* c, const double* u, const d
     out[0] = 1.0;
 }
 
+/* forces_folded:(c[80],u[3],q[9],qd[9])->(y[9]) y = P m, P (9 x 52, row-major) passed in the c slot: P = M^-1 F for a constant M; under hub torque, C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); the 131 entries that can be nonzero are read */
+void fem_nx4_ny4_torque_first_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    const double tau = u[0];
+    const double A1 = q[1];
+    const double A2 = q[2];
+    const double A3 = q[3];
+    const double A4 = q[4];
+    const double B1 = q[5];
+    const double B2 = q[6];
+    const double B3 = q[7];
+    const double B4 = q[8];
+    const double theta_dot = qd[0];
+    const double A1_dot = qd[1];
+    const double A2_dot = qd[2];
+    const double A3_dot = qd[3];
+    const double A4_dot = qd[4];
+    const double B1_dot = qd[5];
+    const double B2_dot = qd[6];
+    const double B3_dot = qd[7];
+    const double B4_dot = qd[8];
+    const double theta_dotsq = theta_dot*theta_dot;
+    const double theta_dot_A1_dot = theta_dot*A1_dot;
+    const double theta_dot_A2_dot = theta_dot*A2_dot;
+    const double theta_dot_A3_dot = theta_dot*A3_dot;
+    const double theta_dot_A4_dot = theta_dot*A4_dot;
+    const double theta_dot_B1_dot = theta_dot*B1_dot;
+    const double theta_dot_B2_dot = theta_dot*B2_dot;
+    const double theta_dot_B3_dot = theta_dot*B3_dot;
+    const double theta_dot_B4_dot = theta_dot*B4_dot;
+    const double A1_theta_dot = A1*theta_dot;
+    const double A1_theta_dotsq = A1_theta_dot*theta_dot;
+    const double A1_theta_dot_A1_dot = A1_theta_dot*A1_dot;
+    const double A1_theta_dot_A2_dot = A1_theta_dot*A2_dot;
+    const double A2_theta_dot = A2*theta_dot;
+    const double A2_theta_dotsq = A2_theta_dot*theta_dot;
+    const double A2_theta_dot_A1_dot = A2_theta_dot*A1_dot;
+    const double A2_theta_dot_A2_dot = A2_theta_dot*A2_dot;
+    const double A2_theta_dot_A3_dot = A2_theta_dot*A3_dot;
+    const double A3_theta_dot = A3*theta_dot;
+    const double A3_theta_dotsq = A3_theta_dot*theta_dot;
+    const double A3_theta_dot_A2_dot = A3_theta_dot*A2_dot;
+    const double A3_theta_dot_A3_dot = A3_theta_dot*A3_dot;
+    const double A3_theta_dot_A4_dot = A3_theta_dot*A4_dot;
+    const double A4_theta_dot = A4*theta_dot;
+    const double A4_theta_dotsq = A4_theta_dot*theta_dot;
+    const double A4_theta_dot_A3_dot = A4_theta_dot*A3_dot;
+    const double A4_theta_dot_A4_dot = A4_theta_dot*A4_dot;
+    const double B1_theta_dot = B1*theta_dot;
+    const double B1_theta_dotsq = B1_theta_dot*theta_dot;
+    const double B1_theta_dot_B1_dot = B1_theta_dot*B1_dot;
+    const double B1_theta_dot_B2_dot = B1_theta_dot*B2_dot;
+    const double B1_theta_dot_B3_dot = B1_theta_dot*B3_dot;
+    const double B1_theta_dot_B4_dot = B1_theta_dot*B4_dot;
+    const double B2_theta_dot = B2*theta_dot;
+    const double B2_theta_dotsq = B2_theta_dot*theta_dot;
+    const double B2_theta_dot_B1_dot = B2_theta_dot*B1_dot;
+    const double B2_theta_dot_B2_dot = B2_theta_dot*B2_dot;
+    const double B2_theta_dot_B3_dot = B2_theta_dot*B3_dot;
+    const double B2_theta_dot_B4_dot = B2_theta_dot*B4_dot;
+    const double B3_theta_dot = B3*theta_dot;
+    const double B3_theta_dotsq = B3_theta_dot*theta_dot;
+    const double B3_theta_dot_B1_dot = B3_theta_dot*B1_dot;
+    const double B3_theta_dot_B2_dot = B3_theta_dot*B2_dot;
+    const double B3_theta_dot_B3_dot = B3_theta_dot*B3_dot;
+    const double B3_theta_dot_B4_dot = B3_theta_dot*B4_dot;
+    const double B4_theta_dot = B4*theta_dot;
+    const double B4_theta_dotsq = B4_theta_dot*theta_dot;
+    const double B4_theta_dot_B1_dot = B4_theta_dot*B1_dot;
+    const double B4_theta_dot_B2_dot = B4_theta_dot*B2_dot;
+    const double B4_theta_dot_B3_dot = B4_theta_dot*B3_dot;
+    const double B4_theta_dot_B4_dot = B4_theta_dot*B4_dot;
+    out[0] = c[0]*tau + c[10]*theta_dot_A1_dot + c[11]*theta_dot_A2_dot + c[12]*theta_dot_A3_dot + c[13]*theta_dot_A4_dot + c[19]*A1_theta_dot_A1_dot + c[20]*A1_theta_dot_A2_dot + c[22]*A2_theta_dot_A1_dot + c[23]*A2_theta_dot_A2_dot + c[24]*A2_theta_dot_A3_dot + c[26]*A3_theta_dot_A2_dot + c[27]*A3_theta_dot_A3_dot + c[28]*A3_theta_dot_A4_dot + c[30]*A4_theta_dot_A3_dot + c[31]*A4_theta_dot_A4_dot + c[33]*B1_theta_dot_B1_dot + c[34]*B1_theta_dot_B2_dot + c[35]*B1_theta_dot_B3_dot + c[36]*B1_theta_dot_B4_dot + c[38]*B2_theta_dot_B1_dot + c[39]*B2_theta_dot_B2_dot + c[40]*B2_theta_dot_B3_dot + c[41]*B2_theta_dot_B4_dot + c[43]*B3_theta_dot_B1_dot + c[44]*B3_theta_dot_B2_dot + c[45]*B3_theta_dot_B3_dot + c[46]*B3_theta_dot_B4_dot + c[48]*B4_theta_dot_B1_dot + c[49]*B4_theta_dot_B2_dot + c[50]*B4_theta_dot_B3_dot + c[51]*B4_theta_dot_B4_dot;
+    out[1] = c[53]*A1 + c[54]*A2 + c[55]*A3 + c[56]*A4 + c[61]*theta_dotsq + c[66]*theta_dot_B1_dot + c[67]*theta_dot_B2_dot + c[68]*theta_dot_B3_dot + c[69]*theta_dot_B4_dot + c[70]*A1_theta_dotsq + c[73]*A2_theta_dotsq + c[77]*A3_theta_dotsq + c[81]*A4_theta_dotsq;
+    out[2] = c[105]*A1 + c[106]*A2 + c[107]*A3 + c[108]*A4 + c[113]*theta_dotsq + c[118]*theta_dot_B1_dot + c[119]*theta_dot_B2_dot + c[120]*theta_dot_B3_dot + c[121]*theta_dot_B4_dot + c[122]*A1_theta_dotsq + c[125]*A2_theta_dotsq + c[129]*A3_theta_dotsq + c[133]*A4_theta_dotsq;
+    out[3] = c[157]*A1 + c[158]*A2 + c[159]*A3 + c[160]*A4 + c[165]*theta_dotsq + c[170]*theta_dot_B1_dot + c[171]*theta_dot_B2_dot + c[172]*theta_dot_B3_dot + c[173]*theta_dot_B4_dot + c[174]*A1_theta_dotsq + c[177]*A2_theta_dotsq + c[181]*A3_theta_dotsq + c[185]*A4_theta_dotsq;
+    out[4] = c[209]*A1 + c[210]*A2 + c[211]*A3 + c[212]*A4 + c[217]*theta_dotsq + c[222]*theta_dot_B1_dot + c[223]*theta_dot_B2_dot + c[224]*theta_dot_B3_dot + c[225]*theta_dot_B4_dot + c[226]*A1_theta_dotsq + c[229]*A2_theta_dotsq + c[233]*A3_theta_dotsq + c[237]*A4_theta_dotsq;
+    out[5] = c[265]*B1 + c[266]*B2 + c[267]*B3 + c[268]*B4 + c[270]*theta_dot_A1_dot + c[271]*theta_dot_A2_dot + c[272]*theta_dot_A3_dot + c[273]*theta_dot_A4_dot + c[292]*B1_theta_dotsq + c[297]*B2_theta_dotsq + c[302]*B3_theta_dotsq + c[307]*B4_theta_dotsq;
+    out[6] = c[317]*B1 + c[318]*B2 + c[319]*B3 + c[320]*B4 + c[322]*theta_dot_A1_dot + c[323]*theta_dot_A2_dot + c[324]*theta_dot_A3_dot + c[325]*theta_dot_A4_dot + c[344]*B1_theta_dotsq + c[349]*B2_theta_dotsq + c[354]*B3_theta_dotsq + c[359]*B4_theta_dotsq;
+    out[7] = c[369]*B1 + c[370]*B2 + c[371]*B3 + c[372]*B4 + c[374]*theta_dot_A1_dot + c[375]*theta_dot_A2_dot + c[376]*theta_dot_A3_dot + c[377]*theta_dot_A4_dot + c[396]*B1_theta_dotsq + c[401]*B2_theta_dotsq + c[406]*B3_theta_dotsq + c[411]*B4_theta_dotsq;
+    out[8] = c[421]*B1 + c[422]*B2 + c[423]*B3 + c[424]*B4 + c[426]*theta_dot_A1_dot + c[427]*theta_dot_A2_dot + c[428]*theta_dot_A3_dot + c[429]*theta_dot_A4_dot + c[448]*B1_theta_dotsq + c[453]*B2_theta_dotsq + c[458]*B3_theta_dotsq + c[463]*B4_theta_dotsq;
+}
+
 /* mass_varying:(c[80],u[3],q[9],qd[9])->(M[81]) as mass, the entries that depend on q only */
 void fem_nx4_ny4_torque_first_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
@@ -1037,7 +1120,7 @@ extern const Variant fem_nx4_ny4_torque_first = {
     .mass_q_product = fem_nx4_ny4_torque_first_mass_q_product,
     .forces_u = fem_nx4_ny4_torque_first_forces_u,
     .tip = fem_nx4_ny4_torque_first_tip,
-    .forces_folded = nullptr,
+    .forces_folded = fem_nx4_ny4_torque_first_forces_folded,
 };
 
 }  // namespace hubbeam::generated

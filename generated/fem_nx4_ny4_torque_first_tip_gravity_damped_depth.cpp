@@ -1244,6 +1244,113 @@ void fem_nx4_ny4_torque_first_tip_gravity_damped_depth_forces_u(const double* c,
     out[0] = 1.0;
 }
 
+/* forces_folded:(c[164],u[5],q[9],qd[9])->(y[9]) y = P m, P (9 x 80, row-major) passed in the c slot: P = M^-1 F for a constant M; under hub torque, C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); the 206 entries that can be nonzero are read */
+void fem_nx4_ny4_torque_first_tip_gravity_damped_depth_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    const double tau = u[0];
+    const double sin_theta = u[3];
+    const double cos_theta = u[4];
+    const double A1 = q[1];
+    const double A2 = q[2];
+    const double A3 = q[3];
+    const double A4 = q[4];
+    const double B1 = q[5];
+    const double B2 = q[6];
+    const double B3 = q[7];
+    const double B4 = q[8];
+    const double theta_dot = qd[0];
+    const double A1_dot = qd[1];
+    const double A2_dot = qd[2];
+    const double A3_dot = qd[3];
+    const double A4_dot = qd[4];
+    const double B1_dot = qd[5];
+    const double B2_dot = qd[6];
+    const double B3_dot = qd[7];
+    const double B4_dot = qd[8];
+    const double sin_theta_B1 = sin_theta*B1;
+    const double sin_theta_B2 = sin_theta*B2;
+    const double sin_theta_B3 = sin_theta*B3;
+    const double sin_theta_B4 = sin_theta*B4;
+    const double cos_theta_A1 = cos_theta*A1;
+    const double cos_theta_A2 = cos_theta*A2;
+    const double cos_theta_A3 = cos_theta*A3;
+    const double cos_theta_A4 = cos_theta*A4;
+    const double theta_dotsq = theta_dot*theta_dot;
+    const double theta_dot_A1_dot = theta_dot*A1_dot;
+    const double theta_dot_A2_dot = theta_dot*A2_dot;
+    const double theta_dot_A3_dot = theta_dot*A3_dot;
+    const double theta_dot_A4_dot = theta_dot*A4_dot;
+    const double theta_dot_B1_dot = theta_dot*B1_dot;
+    const double theta_dot_B2_dot = theta_dot*B2_dot;
+    const double theta_dot_B3_dot = theta_dot*B3_dot;
+    const double theta_dot_B4_dot = theta_dot*B4_dot;
+    const double cos_theta_B1 = cos_theta*B1;
+    const double cos_theta_B1sq = cos_theta_B1*B1;
+    const double cos_theta_B1_B2 = cos_theta_B1*B2;
+    const double cos_theta_B1_B3 = cos_theta_B1*B3;
+    const double cos_theta_B1_B4 = cos_theta_B1*B4;
+    const double cos_theta_B2 = cos_theta*B2;
+    const double cos_theta_B2sq = cos_theta_B2*B2;
+    const double cos_theta_B2_B3 = cos_theta_B2*B3;
+    const double cos_theta_B2_B4 = cos_theta_B2*B4;
+    const double cos_theta_B3 = cos_theta*B3;
+    const double cos_theta_B3sq = cos_theta_B3*B3;
+    const double cos_theta_B3_B4 = cos_theta_B3*B4;
+    const double cos_theta_B4 = cos_theta*B4;
+    const double cos_theta_B4sq = cos_theta_B4*B4;
+    const double A1_theta_dot = A1*theta_dot;
+    const double A1_theta_dotsq = A1_theta_dot*theta_dot;
+    const double A1_theta_dot_A1_dot = A1_theta_dot*A1_dot;
+    const double A1_theta_dot_A2_dot = A1_theta_dot*A2_dot;
+    const double A2_theta_dot = A2*theta_dot;
+    const double A2_theta_dotsq = A2_theta_dot*theta_dot;
+    const double A2_theta_dot_A1_dot = A2_theta_dot*A1_dot;
+    const double A2_theta_dot_A2_dot = A2_theta_dot*A2_dot;
+    const double A2_theta_dot_A3_dot = A2_theta_dot*A3_dot;
+    const double A3_theta_dot = A3*theta_dot;
+    const double A3_theta_dotsq = A3_theta_dot*theta_dot;
+    const double A3_theta_dot_A2_dot = A3_theta_dot*A2_dot;
+    const double A3_theta_dot_A3_dot = A3_theta_dot*A3_dot;
+    const double A3_theta_dot_A4_dot = A3_theta_dot*A4_dot;
+    const double A4_theta_dot = A4*theta_dot;
+    const double A4_theta_dotsq = A4_theta_dot*theta_dot;
+    const double A4_theta_dot_A3_dot = A4_theta_dot*A3_dot;
+    const double A4_theta_dot_A4_dot = A4_theta_dot*A4_dot;
+    const double B1_theta_dot = B1*theta_dot;
+    const double B1_theta_dotsq = B1_theta_dot*theta_dot;
+    const double B1_theta_dot_B1_dot = B1_theta_dot*B1_dot;
+    const double B1_theta_dot_B2_dot = B1_theta_dot*B2_dot;
+    const double B1_theta_dot_B3_dot = B1_theta_dot*B3_dot;
+    const double B1_theta_dot_B4_dot = B1_theta_dot*B4_dot;
+    const double B2_theta_dot = B2*theta_dot;
+    const double B2_theta_dotsq = B2_theta_dot*theta_dot;
+    const double B2_theta_dot_B1_dot = B2_theta_dot*B1_dot;
+    const double B2_theta_dot_B2_dot = B2_theta_dot*B2_dot;
+    const double B2_theta_dot_B3_dot = B2_theta_dot*B3_dot;
+    const double B2_theta_dot_B4_dot = B2_theta_dot*B4_dot;
+    const double B3_theta_dot = B3*theta_dot;
+    const double B3_theta_dotsq = B3_theta_dot*theta_dot;
+    const double B3_theta_dot_B1_dot = B3_theta_dot*B1_dot;
+    const double B3_theta_dot_B2_dot = B3_theta_dot*B2_dot;
+    const double B3_theta_dot_B3_dot = B3_theta_dot*B3_dot;
+    const double B3_theta_dot_B4_dot = B3_theta_dot*B4_dot;
+    const double B4_theta_dot = B4*theta_dot;
+    const double B4_theta_dotsq = B4_theta_dot*theta_dot;
+    const double B4_theta_dot_B1_dot = B4_theta_dot*B1_dot;
+    const double B4_theta_dot_B2_dot = B4_theta_dot*B2_dot;
+    const double B4_theta_dot_B3_dot = B4_theta_dot*B3_dot;
+    const double B4_theta_dot_B4_dot = B4_theta_dot*B4_dot;
+    out[0] = c[0]*tau + c[2]*cos_theta + c[19]*sin_theta_B1 + c[20]*sin_theta_B2 + c[21]*sin_theta_B3 + c[22]*sin_theta_B4 + c[23]*cos_theta_A1 + c[24]*cos_theta_A2 + c[25]*cos_theta_A3 + c[26]*cos_theta_A4 + c[28]*theta_dot_A1_dot + c[29]*theta_dot_A2_dot + c[30]*theta_dot_A3_dot + c[31]*theta_dot_A4_dot + c[36]*cos_theta_B1sq + c[37]*cos_theta_B1_B2 + c[38]*cos_theta_B1_B3 + c[39]*cos_theta_B1_B4 + c[40]*cos_theta_B2sq + c[41]*cos_theta_B2_B3 + c[42]*cos_theta_B2_B4 + c[43]*cos_theta_B3sq + c[44]*cos_theta_B3_B4 + c[45]*cos_theta_B4sq + c[47]*A1_theta_dot_A1_dot + c[48]*A1_theta_dot_A2_dot + c[50]*A2_theta_dot_A1_dot + c[51]*A2_theta_dot_A2_dot + c[52]*A2_theta_dot_A3_dot + c[54]*A3_theta_dot_A2_dot + c[55]*A3_theta_dot_A3_dot + c[56]*A3_theta_dot_A4_dot + c[58]*A4_theta_dot_A3_dot + c[59]*A4_theta_dot_A4_dot + c[61]*B1_theta_dot_B1_dot + c[62]*B1_theta_dot_B2_dot + c[63]*B1_theta_dot_B3_dot + c[64]*B1_theta_dot_B4_dot + c[66]*B2_theta_dot_B1_dot + c[67]*B2_theta_dot_B2_dot + c[68]*B2_theta_dot_B3_dot + c[69]*B2_theta_dot_B4_dot + c[71]*B3_theta_dot_B1_dot + c[72]*B3_theta_dot_B2_dot + c[73]*B3_theta_dot_B3_dot + c[74]*B3_theta_dot_B4_dot + c[76]*B4_theta_dot_B1_dot + c[77]*B4_theta_dot_B2_dot + c[78]*B4_theta_dot_B3_dot + c[79]*B4_theta_dot_B4_dot;
+    out[1] = c[81]*sin_theta + c[83]*A1 + c[84]*A2 + c[85]*A3 + c[86]*A4 + c[91]*A1_dot + c[92]*A2_dot + c[93]*A3_dot + c[94]*A4_dot + c[107]*theta_dotsq + c[112]*theta_dot_B1_dot + c[113]*theta_dot_B2_dot + c[114]*theta_dot_B3_dot + c[115]*theta_dot_B4_dot + c[126]*A1_theta_dotsq + c[129]*A2_theta_dotsq + c[133]*A3_theta_dotsq + c[137]*A4_theta_dotsq;
+    out[2] = c[161]*sin_theta + c[163]*A1 + c[164]*A2 + c[165]*A3 + c[166]*A4 + c[171]*A1_dot + c[172]*A2_dot + c[173]*A3_dot + c[174]*A4_dot + c[187]*theta_dotsq + c[192]*theta_dot_B1_dot + c[193]*theta_dot_B2_dot + c[194]*theta_dot_B3_dot + c[195]*theta_dot_B4_dot + c[206]*A1_theta_dotsq + c[209]*A2_theta_dotsq + c[213]*A3_theta_dotsq + c[217]*A4_theta_dotsq;
+    out[3] = c[241]*sin_theta + c[243]*A1 + c[244]*A2 + c[245]*A3 + c[246]*A4 + c[251]*A1_dot + c[252]*A2_dot + c[253]*A3_dot + c[254]*A4_dot + c[267]*theta_dotsq + c[272]*theta_dot_B1_dot + c[273]*theta_dot_B2_dot + c[274]*theta_dot_B3_dot + c[275]*theta_dot_B4_dot + c[286]*A1_theta_dotsq + c[289]*A2_theta_dotsq + c[293]*A3_theta_dotsq + c[297]*A4_theta_dotsq;
+    out[4] = c[321]*sin_theta + c[323]*A1 + c[324]*A2 + c[325]*A3 + c[326]*A4 + c[331]*A1_dot + c[332]*A2_dot + c[333]*A3_dot + c[334]*A4_dot + c[347]*theta_dotsq + c[352]*theta_dot_B1_dot + c[353]*theta_dot_B2_dot + c[354]*theta_dot_B3_dot + c[355]*theta_dot_B4_dot + c[366]*A1_theta_dotsq + c[369]*A2_theta_dotsq + c[373]*A3_theta_dotsq + c[377]*A4_theta_dotsq;
+    out[5] = c[402]*cos_theta + c[407]*B1 + c[408]*B2 + c[409]*B3 + c[410]*B4 + c[415]*B1_dot + c[416]*B2_dot + c[417]*B3_dot + c[418]*B4_dot + c[419]*sin_theta_B1 + c[420]*sin_theta_B2 + c[421]*sin_theta_B3 + c[422]*sin_theta_B4 + c[428]*theta_dot_A1_dot + c[429]*theta_dot_A2_dot + c[430]*theta_dot_A3_dot + c[431]*theta_dot_A4_dot + c[460]*B1_theta_dotsq + c[465]*B2_theta_dotsq + c[470]*B3_theta_dotsq + c[475]*B4_theta_dotsq;
+    out[6] = c[482]*cos_theta + c[487]*B1 + c[488]*B2 + c[489]*B3 + c[490]*B4 + c[495]*B1_dot + c[496]*B2_dot + c[497]*B3_dot + c[498]*B4_dot + c[499]*sin_theta_B1 + c[500]*sin_theta_B2 + c[501]*sin_theta_B3 + c[502]*sin_theta_B4 + c[508]*theta_dot_A1_dot + c[509]*theta_dot_A2_dot + c[510]*theta_dot_A3_dot + c[511]*theta_dot_A4_dot + c[540]*B1_theta_dotsq + c[545]*B2_theta_dotsq + c[550]*B3_theta_dotsq + c[555]*B4_theta_dotsq;
+    out[7] = c[562]*cos_theta + c[567]*B1 + c[568]*B2 + c[569]*B3 + c[570]*B4 + c[575]*B1_dot + c[576]*B2_dot + c[577]*B3_dot + c[578]*B4_dot + c[579]*sin_theta_B1 + c[580]*sin_theta_B2 + c[581]*sin_theta_B3 + c[582]*sin_theta_B4 + c[588]*theta_dot_A1_dot + c[589]*theta_dot_A2_dot + c[590]*theta_dot_A3_dot + c[591]*theta_dot_A4_dot + c[620]*B1_theta_dotsq + c[625]*B2_theta_dotsq + c[630]*B3_theta_dotsq + c[635]*B4_theta_dotsq;
+    out[8] = c[642]*cos_theta + c[647]*B1 + c[648]*B2 + c[649]*B3 + c[650]*B4 + c[655]*B1_dot + c[656]*B2_dot + c[657]*B3_dot + c[658]*B4_dot + c[659]*sin_theta_B1 + c[660]*sin_theta_B2 + c[661]*sin_theta_B3 + c[662]*sin_theta_B4 + c[668]*theta_dot_A1_dot + c[669]*theta_dot_A2_dot + c[670]*theta_dot_A3_dot + c[671]*theta_dot_A4_dot + c[700]*B1_theta_dotsq + c[705]*B2_theta_dotsq + c[710]*B3_theta_dotsq + c[715]*B4_theta_dotsq;
+}
+
 /* mass_varying:(c[164],u[5],q[9],qd[9])->(M[81]) as mass, the entries that depend on q only */
 void fem_nx4_ny4_torque_first_tip_gravity_damped_depth_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
@@ -1374,7 +1481,7 @@ extern const Variant fem_nx4_ny4_torque_first_tip_gravity_damped_depth = {
     .mass_q_product = fem_nx4_ny4_torque_first_tip_gravity_damped_depth_mass_q_product,
     .forces_u = fem_nx4_ny4_torque_first_tip_gravity_damped_depth_forces_u,
     .tip = fem_nx4_ny4_torque_first_tip_gravity_damped_depth_tip,
-    .forces_folded = nullptr,
+    .forces_folded = fem_nx4_ny4_torque_first_tip_gravity_damped_depth_forces_folded,
 };
 
 }  // namespace hubbeam::generated

@@ -1452,6 +1452,110 @@ void fem_nx8_ny8_prescribed_first_forces_u(const double* c, const double* u, con
     out[47] = c[65] + c[24]*A6 + c[17]*A7 + c[33]*A8;
 }
 
+/* forces_folded:(c[116],u[3],q[16],qd[16])->(y[16]) y = P m, P (16 x 66, row-major) passed in the c slot: P = M^-1 F for a constant M; under hub torque, C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); the 528 entries that can be nonzero are read */
+void fem_nx8_ny8_prescribed_first_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    const double theta_dot = u[1];
+    const double theta_ddot = u[2];
+    const double A1 = q[0];
+    const double A2 = q[1];
+    const double A3 = q[2];
+    const double A4 = q[3];
+    const double A5 = q[4];
+    const double A6 = q[5];
+    const double A7 = q[6];
+    const double A8 = q[7];
+    const double B1 = q[8];
+    const double B2 = q[9];
+    const double B3 = q[10];
+    const double B4 = q[11];
+    const double B5 = q[12];
+    const double B6 = q[13];
+    const double B7 = q[14];
+    const double B8 = q[15];
+    const double A1_dot = qd[0];
+    const double A2_dot = qd[1];
+    const double A3_dot = qd[2];
+    const double A4_dot = qd[3];
+    const double A5_dot = qd[4];
+    const double A6_dot = qd[5];
+    const double A7_dot = qd[6];
+    const double A8_dot = qd[7];
+    const double B1_dot = qd[8];
+    const double B2_dot = qd[9];
+    const double B3_dot = qd[10];
+    const double B4_dot = qd[11];
+    const double B5_dot = qd[12];
+    const double B6_dot = qd[13];
+    const double B7_dot = qd[14];
+    const double B8_dot = qd[15];
+    const double theta_dotsq = theta_dot*theta_dot;
+    const double theta_dot_A1_dot = theta_dot*A1_dot;
+    const double theta_dot_A2_dot = theta_dot*A2_dot;
+    const double theta_dot_A3_dot = theta_dot*A3_dot;
+    const double theta_dot_A4_dot = theta_dot*A4_dot;
+    const double theta_dot_A5_dot = theta_dot*A5_dot;
+    const double theta_dot_A6_dot = theta_dot*A6_dot;
+    const double theta_dot_A7_dot = theta_dot*A7_dot;
+    const double theta_dot_A8_dot = theta_dot*A8_dot;
+    const double theta_dot_B1_dot = theta_dot*B1_dot;
+    const double theta_dot_B2_dot = theta_dot*B2_dot;
+    const double theta_dot_B3_dot = theta_dot*B3_dot;
+    const double theta_dot_B4_dot = theta_dot*B4_dot;
+    const double theta_dot_B5_dot = theta_dot*B5_dot;
+    const double theta_dot_B6_dot = theta_dot*B6_dot;
+    const double theta_dot_B7_dot = theta_dot*B7_dot;
+    const double theta_dot_B8_dot = theta_dot*B8_dot;
+    const double theta_ddot_A1 = theta_ddot*A1;
+    const double theta_ddot_A2 = theta_ddot*A2;
+    const double theta_ddot_A3 = theta_ddot*A3;
+    const double theta_ddot_A4 = theta_ddot*A4;
+    const double theta_ddot_A5 = theta_ddot*A5;
+    const double theta_ddot_A6 = theta_ddot*A6;
+    const double theta_ddot_A7 = theta_ddot*A7;
+    const double theta_ddot_A8 = theta_ddot*A8;
+    const double theta_ddot_B1 = theta_ddot*B1;
+    const double theta_ddot_B2 = theta_ddot*B2;
+    const double theta_ddot_B3 = theta_ddot*B3;
+    const double theta_ddot_B4 = theta_ddot*B4;
+    const double theta_ddot_B5 = theta_ddot*B5;
+    const double theta_ddot_B6 = theta_ddot*B6;
+    const double theta_ddot_B7 = theta_ddot*B7;
+    const double theta_ddot_B8 = theta_ddot*B8;
+    const double theta_dotsq_A1 = theta_dotsq*A1;
+    const double theta_dotsq_A2 = theta_dotsq*A2;
+    const double theta_dotsq_A3 = theta_dotsq*A3;
+    const double theta_dotsq_A4 = theta_dotsq*A4;
+    const double theta_dotsq_A5 = theta_dotsq*A5;
+    const double theta_dotsq_A6 = theta_dotsq*A6;
+    const double theta_dotsq_A7 = theta_dotsq*A7;
+    const double theta_dotsq_A8 = theta_dotsq*A8;
+    const double theta_dotsq_B1 = theta_dotsq*B1;
+    const double theta_dotsq_B2 = theta_dotsq*B2;
+    const double theta_dotsq_B3 = theta_dotsq*B3;
+    const double theta_dotsq_B4 = theta_dotsq*B4;
+    const double theta_dotsq_B5 = theta_dotsq*B5;
+    const double theta_dotsq_B6 = theta_dotsq*B6;
+    const double theta_dotsq_B7 = theta_dotsq*B7;
+    const double theta_dotsq_B8 = theta_dotsq*B8;
+    out[0] = c[1]*A1 + c[2]*A2 + c[3]*A3 + c[4]*A4 + c[5]*A5 + c[6]*A6 + c[7]*A7 + c[8]*A8 + c[17]*theta_dotsq + c[26]*theta_dot_B1_dot + c[27]*theta_dot_B2_dot + c[28]*theta_dot_B3_dot + c[29]*theta_dot_B4_dot + c[30]*theta_dot_B5_dot + c[31]*theta_dot_B6_dot + c[32]*theta_dot_B7_dot + c[33]*theta_dot_B8_dot + c[42]*theta_ddot_B1 + c[43]*theta_ddot_B2 + c[44]*theta_ddot_B3 + c[45]*theta_ddot_B4 + c[46]*theta_ddot_B5 + c[47]*theta_ddot_B6 + c[48]*theta_ddot_B7 + c[49]*theta_ddot_B8 + c[50]*theta_dotsq_A1 + c[51]*theta_dotsq_A2 + c[52]*theta_dotsq_A3 + c[53]*theta_dotsq_A4 + c[54]*theta_dotsq_A5 + c[55]*theta_dotsq_A6 + c[56]*theta_dotsq_A7 + c[57]*theta_dotsq_A8;
+    out[1] = c[67]*A1 + c[68]*A2 + c[69]*A3 + c[70]*A4 + c[71]*A5 + c[72]*A6 + c[73]*A7 + c[74]*A8 + c[83]*theta_dotsq + c[92]*theta_dot_B1_dot + c[93]*theta_dot_B2_dot + c[94]*theta_dot_B3_dot + c[95]*theta_dot_B4_dot + c[96]*theta_dot_B5_dot + c[97]*theta_dot_B6_dot + c[98]*theta_dot_B7_dot + c[99]*theta_dot_B8_dot + c[108]*theta_ddot_B1 + c[109]*theta_ddot_B2 + c[110]*theta_ddot_B3 + c[111]*theta_ddot_B4 + c[112]*theta_ddot_B5 + c[113]*theta_ddot_B6 + c[114]*theta_ddot_B7 + c[115]*theta_ddot_B8 + c[116]*theta_dotsq_A1 + c[117]*theta_dotsq_A2 + c[118]*theta_dotsq_A3 + c[119]*theta_dotsq_A4 + c[120]*theta_dotsq_A5 + c[121]*theta_dotsq_A6 + c[122]*theta_dotsq_A7 + c[123]*theta_dotsq_A8;
+    out[2] = c[133]*A1 + c[134]*A2 + c[135]*A3 + c[136]*A4 + c[137]*A5 + c[138]*A6 + c[139]*A7 + c[140]*A8 + c[149]*theta_dotsq + c[158]*theta_dot_B1_dot + c[159]*theta_dot_B2_dot + c[160]*theta_dot_B3_dot + c[161]*theta_dot_B4_dot + c[162]*theta_dot_B5_dot + c[163]*theta_dot_B6_dot + c[164]*theta_dot_B7_dot + c[165]*theta_dot_B8_dot + c[174]*theta_ddot_B1 + c[175]*theta_ddot_B2 + c[176]*theta_ddot_B3 + c[177]*theta_ddot_B4 + c[178]*theta_ddot_B5 + c[179]*theta_ddot_B6 + c[180]*theta_ddot_B7 + c[181]*theta_ddot_B8 + c[182]*theta_dotsq_A1 + c[183]*theta_dotsq_A2 + c[184]*theta_dotsq_A3 + c[185]*theta_dotsq_A4 + c[186]*theta_dotsq_A5 + c[187]*theta_dotsq_A6 + c[188]*theta_dotsq_A7 + c[189]*theta_dotsq_A8;
+    out[3] = c[199]*A1 + c[200]*A2 + c[201]*A3 + c[202]*A4 + c[203]*A5 + c[204]*A6 + c[205]*A7 + c[206]*A8 + c[215]*theta_dotsq + c[224]*theta_dot_B1_dot + c[225]*theta_dot_B2_dot + c[226]*theta_dot_B3_dot + c[227]*theta_dot_B4_dot + c[228]*theta_dot_B5_dot + c[229]*theta_dot_B6_dot + c[230]*theta_dot_B7_dot + c[231]*theta_dot_B8_dot + c[240]*theta_ddot_B1 + c[241]*theta_ddot_B2 + c[242]*theta_ddot_B3 + c[243]*theta_ddot_B4 + c[244]*theta_ddot_B5 + c[245]*theta_ddot_B6 + c[246]*theta_ddot_B7 + c[247]*theta_ddot_B8 + c[248]*theta_dotsq_A1 + c[249]*theta_dotsq_A2 + c[250]*theta_dotsq_A3 + c[251]*theta_dotsq_A4 + c[252]*theta_dotsq_A5 + c[253]*theta_dotsq_A6 + c[254]*theta_dotsq_A7 + c[255]*theta_dotsq_A8;
+    out[4] = c[265]*A1 + c[266]*A2 + c[267]*A3 + c[268]*A4 + c[269]*A5 + c[270]*A6 + c[271]*A7 + c[272]*A8 + c[281]*theta_dotsq + c[290]*theta_dot_B1_dot + c[291]*theta_dot_B2_dot + c[292]*theta_dot_B3_dot + c[293]*theta_dot_B4_dot + c[294]*theta_dot_B5_dot + c[295]*theta_dot_B6_dot + c[296]*theta_dot_B7_dot + c[297]*theta_dot_B8_dot + c[306]*theta_ddot_B1 + c[307]*theta_ddot_B2 + c[308]*theta_ddot_B3 + c[309]*theta_ddot_B4 + c[310]*theta_ddot_B5 + c[311]*theta_ddot_B6 + c[312]*theta_ddot_B7 + c[313]*theta_ddot_B8 + c[314]*theta_dotsq_A1 + c[315]*theta_dotsq_A2 + c[316]*theta_dotsq_A3 + c[317]*theta_dotsq_A4 + c[318]*theta_dotsq_A5 + c[319]*theta_dotsq_A6 + c[320]*theta_dotsq_A7 + c[321]*theta_dotsq_A8;
+    out[5] = c[331]*A1 + c[332]*A2 + c[333]*A3 + c[334]*A4 + c[335]*A5 + c[336]*A6 + c[337]*A7 + c[338]*A8 + c[347]*theta_dotsq + c[356]*theta_dot_B1_dot + c[357]*theta_dot_B2_dot + c[358]*theta_dot_B3_dot + c[359]*theta_dot_B4_dot + c[360]*theta_dot_B5_dot + c[361]*theta_dot_B6_dot + c[362]*theta_dot_B7_dot + c[363]*theta_dot_B8_dot + c[372]*theta_ddot_B1 + c[373]*theta_ddot_B2 + c[374]*theta_ddot_B3 + c[375]*theta_ddot_B4 + c[376]*theta_ddot_B5 + c[377]*theta_ddot_B6 + c[378]*theta_ddot_B7 + c[379]*theta_ddot_B8 + c[380]*theta_dotsq_A1 + c[381]*theta_dotsq_A2 + c[382]*theta_dotsq_A3 + c[383]*theta_dotsq_A4 + c[384]*theta_dotsq_A5 + c[385]*theta_dotsq_A6 + c[386]*theta_dotsq_A7 + c[387]*theta_dotsq_A8;
+    out[6] = c[397]*A1 + c[398]*A2 + c[399]*A3 + c[400]*A4 + c[401]*A5 + c[402]*A6 + c[403]*A7 + c[404]*A8 + c[413]*theta_dotsq + c[422]*theta_dot_B1_dot + c[423]*theta_dot_B2_dot + c[424]*theta_dot_B3_dot + c[425]*theta_dot_B4_dot + c[426]*theta_dot_B5_dot + c[427]*theta_dot_B6_dot + c[428]*theta_dot_B7_dot + c[429]*theta_dot_B8_dot + c[438]*theta_ddot_B1 + c[439]*theta_ddot_B2 + c[440]*theta_ddot_B3 + c[441]*theta_ddot_B4 + c[442]*theta_ddot_B5 + c[443]*theta_ddot_B6 + c[444]*theta_ddot_B7 + c[445]*theta_ddot_B8 + c[446]*theta_dotsq_A1 + c[447]*theta_dotsq_A2 + c[448]*theta_dotsq_A3 + c[449]*theta_dotsq_A4 + c[450]*theta_dotsq_A5 + c[451]*theta_dotsq_A6 + c[452]*theta_dotsq_A7 + c[453]*theta_dotsq_A8;
+    out[7] = c[463]*A1 + c[464]*A2 + c[465]*A3 + c[466]*A4 + c[467]*A5 + c[468]*A6 + c[469]*A7 + c[470]*A8 + c[479]*theta_dotsq + c[488]*theta_dot_B1_dot + c[489]*theta_dot_B2_dot + c[490]*theta_dot_B3_dot + c[491]*theta_dot_B4_dot + c[492]*theta_dot_B5_dot + c[493]*theta_dot_B6_dot + c[494]*theta_dot_B7_dot + c[495]*theta_dot_B8_dot + c[504]*theta_ddot_B1 + c[505]*theta_ddot_B2 + c[506]*theta_ddot_B3 + c[507]*theta_ddot_B4 + c[508]*theta_ddot_B5 + c[509]*theta_ddot_B6 + c[510]*theta_ddot_B7 + c[511]*theta_ddot_B8 + c[512]*theta_dotsq_A1 + c[513]*theta_dotsq_A2 + c[514]*theta_dotsq_A3 + c[515]*theta_dotsq_A4 + c[516]*theta_dotsq_A5 + c[517]*theta_dotsq_A6 + c[518]*theta_dotsq_A7 + c[519]*theta_dotsq_A8;
+    out[8] = c[528]*theta_ddot + c[537]*B1 + c[538]*B2 + c[539]*B3 + c[540]*B4 + c[541]*B5 + c[542]*B6 + c[543]*B7 + c[544]*B8 + c[546]*theta_dot_A1_dot + c[547]*theta_dot_A2_dot + c[548]*theta_dot_A3_dot + c[549]*theta_dot_A4_dot + c[550]*theta_dot_A5_dot + c[551]*theta_dot_A6_dot + c[552]*theta_dot_A7_dot + c[553]*theta_dot_A8_dot + c[562]*theta_ddot_A1 + c[563]*theta_ddot_A2 + c[564]*theta_ddot_A3 + c[565]*theta_ddot_A4 + c[566]*theta_ddot_A5 + c[567]*theta_ddot_A6 + c[568]*theta_ddot_A7 + c[569]*theta_ddot_A8 + c[586]*theta_dotsq_B1 + c[587]*theta_dotsq_B2 + c[588]*theta_dotsq_B3 + c[589]*theta_dotsq_B4 + c[590]*theta_dotsq_B5 + c[591]*theta_dotsq_B6 + c[592]*theta_dotsq_B7 + c[593]*theta_dotsq_B8;
+    out[9] = c[594]*theta_ddot + c[603]*B1 + c[604]*B2 + c[605]*B3 + c[606]*B4 + c[607]*B5 + c[608]*B6 + c[609]*B7 + c[610]*B8 + c[612]*theta_dot_A1_dot + c[613]*theta_dot_A2_dot + c[614]*theta_dot_A3_dot + c[615]*theta_dot_A4_dot + c[616]*theta_dot_A5_dot + c[617]*theta_dot_A6_dot + c[618]*theta_dot_A7_dot + c[619]*theta_dot_A8_dot + c[628]*theta_ddot_A1 + c[629]*theta_ddot_A2 + c[630]*theta_ddot_A3 + c[631]*theta_ddot_A4 + c[632]*theta_ddot_A5 + c[633]*theta_ddot_A6 + c[634]*theta_ddot_A7 + c[635]*theta_ddot_A8 + c[652]*theta_dotsq_B1 + c[653]*theta_dotsq_B2 + c[654]*theta_dotsq_B3 + c[655]*theta_dotsq_B4 + c[656]*theta_dotsq_B5 + c[657]*theta_dotsq_B6 + c[658]*theta_dotsq_B7 + c[659]*theta_dotsq_B8;
+    out[10] = c[660]*theta_ddot + c[669]*B1 + c[670]*B2 + c[671]*B3 + c[672]*B4 + c[673]*B5 + c[674]*B6 + c[675]*B7 + c[676]*B8 + c[678]*theta_dot_A1_dot + c[679]*theta_dot_A2_dot + c[680]*theta_dot_A3_dot + c[681]*theta_dot_A4_dot + c[682]*theta_dot_A5_dot + c[683]*theta_dot_A6_dot + c[684]*theta_dot_A7_dot + c[685]*theta_dot_A8_dot + c[694]*theta_ddot_A1 + c[695]*theta_ddot_A2 + c[696]*theta_ddot_A3 + c[697]*theta_ddot_A4 + c[698]*theta_ddot_A5 + c[699]*theta_ddot_A6 + c[700]*theta_ddot_A7 + c[701]*theta_ddot_A8 + c[718]*theta_dotsq_B1 + c[719]*theta_dotsq_B2 + c[720]*theta_dotsq_B3 + c[721]*theta_dotsq_B4 + c[722]*theta_dotsq_B5 + c[723]*theta_dotsq_B6 + c[724]*theta_dotsq_B7 + c[725]*theta_dotsq_B8;
+    out[11] = c[726]*theta_ddot + c[735]*B1 + c[736]*B2 + c[737]*B3 + c[738]*B4 + c[739]*B5 + c[740]*B6 + c[741]*B7 + c[742]*B8 + c[744]*theta_dot_A1_dot + c[745]*theta_dot_A2_dot + c[746]*theta_dot_A3_dot + c[747]*theta_dot_A4_dot + c[748]*theta_dot_A5_dot + c[749]*theta_dot_A6_dot + c[750]*theta_dot_A7_dot + c[751]*theta_dot_A8_dot + c[760]*theta_ddot_A1 + c[761]*theta_ddot_A2 + c[762]*theta_ddot_A3 + c[763]*theta_ddot_A4 + c[764]*theta_ddot_A5 + c[765]*theta_ddot_A6 + c[766]*theta_ddot_A7 + c[767]*theta_ddot_A8 + c[784]*theta_dotsq_B1 + c[785]*theta_dotsq_B2 + c[786]*theta_dotsq_B3 + c[787]*theta_dotsq_B4 + c[788]*theta_dotsq_B5 + c[789]*theta_dotsq_B6 + c[790]*theta_dotsq_B7 + c[791]*theta_dotsq_B8;
+    out[12] = c[792]*theta_ddot + c[801]*B1 + c[802]*B2 + c[803]*B3 + c[804]*B4 + c[805]*B5 + c[806]*B6 + c[807]*B7 + c[808]*B8 + c[810]*theta_dot_A1_dot + c[811]*theta_dot_A2_dot + c[812]*theta_dot_A3_dot + c[813]*theta_dot_A4_dot + c[814]*theta_dot_A5_dot + c[815]*theta_dot_A6_dot + c[816]*theta_dot_A7_dot + c[817]*theta_dot_A8_dot + c[826]*theta_ddot_A1 + c[827]*theta_ddot_A2 + c[828]*theta_ddot_A3 + c[829]*theta_ddot_A4 + c[830]*theta_ddot_A5 + c[831]*theta_ddot_A6 + c[832]*theta_ddot_A7 + c[833]*theta_ddot_A8 + c[850]*theta_dotsq_B1 + c[851]*theta_dotsq_B2 + c[852]*theta_dotsq_B3 + c[853]*theta_dotsq_B4 + c[854]*theta_dotsq_B5 + c[855]*theta_dotsq_B6 + c[856]*theta_dotsq_B7 + c[857]*theta_dotsq_B8;
+    out[13] = c[858]*theta_ddot + c[867]*B1 + c[868]*B2 + c[869]*B3 + c[870]*B4 + c[871]*B5 + c[872]*B6 + c[873]*B7 + c[874]*B8 + c[876]*theta_dot_A1_dot + c[877]*theta_dot_A2_dot + c[878]*theta_dot_A3_dot + c[879]*theta_dot_A4_dot + c[880]*theta_dot_A5_dot + c[881]*theta_dot_A6_dot + c[882]*theta_dot_A7_dot + c[883]*theta_dot_A8_dot + c[892]*theta_ddot_A1 + c[893]*theta_ddot_A2 + c[894]*theta_ddot_A3 + c[895]*theta_ddot_A4 + c[896]*theta_ddot_A5 + c[897]*theta_ddot_A6 + c[898]*theta_ddot_A7 + c[899]*theta_ddot_A8 + c[916]*theta_dotsq_B1 + c[917]*theta_dotsq_B2 + c[918]*theta_dotsq_B3 + c[919]*theta_dotsq_B4 + c[920]*theta_dotsq_B5 + c[921]*theta_dotsq_B6 + c[922]*theta_dotsq_B7 + c[923]*theta_dotsq_B8;
+    out[14] = c[924]*theta_ddot + c[933]*B1 + c[934]*B2 + c[935]*B3 + c[936]*B4 + c[937]*B5 + c[938]*B6 + c[939]*B7 + c[940]*B8 + c[942]*theta_dot_A1_dot + c[943]*theta_dot_A2_dot + c[944]*theta_dot_A3_dot + c[945]*theta_dot_A4_dot + c[946]*theta_dot_A5_dot + c[947]*theta_dot_A6_dot + c[948]*theta_dot_A7_dot + c[949]*theta_dot_A8_dot + c[958]*theta_ddot_A1 + c[959]*theta_ddot_A2 + c[960]*theta_ddot_A3 + c[961]*theta_ddot_A4 + c[962]*theta_ddot_A5 + c[963]*theta_ddot_A6 + c[964]*theta_ddot_A7 + c[965]*theta_ddot_A8 + c[982]*theta_dotsq_B1 + c[983]*theta_dotsq_B2 + c[984]*theta_dotsq_B3 + c[985]*theta_dotsq_B4 + c[986]*theta_dotsq_B5 + c[987]*theta_dotsq_B6 + c[988]*theta_dotsq_B7 + c[989]*theta_dotsq_B8;
+    out[15] = c[990]*theta_ddot + c[999]*B1 + c[1000]*B2 + c[1001]*B3 + c[1002]*B4 + c[1003]*B5 + c[1004]*B6 + c[1005]*B7 + c[1006]*B8 + c[1008]*theta_dot_A1_dot + c[1009]*theta_dot_A2_dot + c[1010]*theta_dot_A3_dot + c[1011]*theta_dot_A4_dot + c[1012]*theta_dot_A5_dot + c[1013]*theta_dot_A6_dot + c[1014]*theta_dot_A7_dot + c[1015]*theta_dot_A8_dot + c[1024]*theta_ddot_A1 + c[1025]*theta_ddot_A2 + c[1026]*theta_ddot_A3 + c[1027]*theta_ddot_A4 + c[1028]*theta_ddot_A5 + c[1029]*theta_ddot_A6 + c[1030]*theta_ddot_A7 + c[1031]*theta_ddot_A8 + c[1048]*theta_dotsq_B1 + c[1049]*theta_dotsq_B2 + c[1050]*theta_dotsq_B3 + c[1051]*theta_dotsq_B4 + c[1052]*theta_dotsq_B5 + c[1053]*theta_dotsq_B6 + c[1054]*theta_dotsq_B7 + c[1055]*theta_dotsq_B8;
+}
+
 }  // namespace
 
 extern const Variant fem_nx8_ny8_prescribed_first = {
@@ -1474,7 +1578,7 @@ extern const Variant fem_nx8_ny8_prescribed_first = {
     .mass_q_product = nullptr,
     .forces_u = fem_nx8_ny8_prescribed_first_forces_u,
     .tip = fem_nx8_ny8_prescribed_first_tip,
-    .forces_folded = nullptr,
+    .forces_folded = fem_nx8_ny8_prescribed_first_forces_folded,
 };
 
 }  // namespace hubbeam::generated
