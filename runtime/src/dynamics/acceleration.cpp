@@ -413,9 +413,27 @@ std::unique_ptr<RightHandSide> make_right_hand_side(const Model& model, const Mo
     for (int i = 1; i < n; ++i)
         for (int j = 1; j < n; ++j) hub_row_only = hub_row_only && pattern[static_cast<std::size_t>(i * n + j)] != 'v';
     if (!model.mass_is_constant() && hub_row_only && n > 1) {
-        // As above, with the hub's own folded row (K entries at most) on top of W_C's.
         auto hub = std::make_unique<HubSchur>(model, *terms, motion.at(0.0));
-        if (hub->nonzeros() <= forces_nonzeros() + dense_solve + K) return hub;
+        // With constant couplings, as above with the hub's own folded row (K entries at most) on top of W_C's. With
+        // varying ones, against what the mass solver pays per call: the forces and two solves with C (banded, by
+        // the mass solver's rule, or dense), the hub's row and the couplings.
+        if (hub->coupling_nonzeros() == 0) {
+            if (hub->nonzeros() <= forces_nonzeros() + dense_solve + K) return hub;
+        } else {
+            const int r = n - 1;
+            int p = 0;  // C's bandwidth
+            for (int i = 1; i < n; ++i)
+                for (int j = i + 1; j < n; ++j)
+                    if (pattern[static_cast<std::size_t>(i * n + j)] != '0') p = std::max(p, j - i);
+            // Instructions of one solve with C as measured against the kernel's (about 3 per entry): diagonal,
+            // GSL's banded Cholesky (with some 400 of its own per call), the dense one in loops.
+            const long solve = p == 0                            ? r
+                               : r >= 16 && 3 * (p + 1) <= r ? 4L * r * (p + 1) + 400
+                                                               : 2L * r * r;
+            // A walk over P costs about twice the unrolled kernel per entry, as much as the forces' own table form.
+            const long product = (hub->by_kernel() ? 1 : 2) * hub->nonzeros();
+            if (product + hub->coupling_nonzeros() <= forces_nonzeros() + 2 * solve + 4L * n) return hub;
+        }
     }
     return std::make_unique<MassSolved>(model);
 }

@@ -142,6 +142,9 @@ public:
     /// Nonzeros of the folded [g; W_C]: folding pays while they cost no more than the forces' terms plus a dense
     /// solve.
     long nonzeros() const { return product_->nonzeros(); }
+    /// Nonzeros of C^-1 at the varying couplings, applied per call.
+    long coupling_nonzeros() const { return static_cast<long>(z_.size()); }
+    bool by_kernel() const { return product_->by_kernel(); }
 
 private:
     std::unique_ptr<FoldedProduct> product_;
