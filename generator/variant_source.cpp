@@ -405,11 +405,15 @@ Kernels variant_kernels(const VariantKey& key, const Symbols& s, const Derivatio
     if (out.folded) {
         KernelSpec f = dense_kernel(
             "forces_folded", "y[" + n1 + "]",
-            "y = P m, P (" + n1 + " x " + nk + ", row-major) passed in the c slot: P = M^-1 F for a constant M; under " +
-                "hub torque, C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its " +
-                "constant couplings); the " + std::to_string(folded_terms) + " entries that can be nonzero are read",
+            "y = P m, P (" + n1 + " x " + nk + ") passed in the c slot by row pairs, P(i, k) at c[(j/2)*" +
+                std::to_string(2 * terms.terms.size()) + " + 2k + j%2], j = i" + (out.mass_varies ? " + 1" : "") +
+                ": M^-1 F for a constant M, else C^-1 F_C in " +
+                "the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); " +
+                "of the " + std::to_string(folded_terms) + " entries that can be nonzero, a pair of rows reads the " +
+                "columns either row has",
             terms.terms);
         f.rows = nq;
+        f.row_offset = out.mass_varies ? 1 : 0;  // the hub's row, which couples to every other, stays alone
         f.pattern = std::move(pattern);
         out.list.push_back(f);
     }
