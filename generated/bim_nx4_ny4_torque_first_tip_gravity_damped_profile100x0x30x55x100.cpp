@@ -2253,7 +2253,7 @@ void bim_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100_forces_u
     out[0] = 1.0;
 }
 
-/* forces_folded:(c[181],u[5],q[9],qd[9])->(y[9]) y = P m, P (9 x 86, row-major) passed in the c slot: P = M^-1 F for a constant M; under hub torque, C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); the 212 entries that can be nonzero are read */
+/* forces_folded:(c[181],u[5],q[9],qd[9])->(y[9]) y = P m, P (9 x 86) passed in the c slot by row pairs, P(i, k) at c[(j/2)*172 + 2k + j%2], j = i + 1: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 212 entries that can be nonzero, a pair of rows reads the columns either row has */
 void bim_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
@@ -2355,15 +2355,107 @@ void bim_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100_forces_f
     const double B4_theta_dot_B2_dot = B4_theta_dot*B2_dot;
     const double B4_theta_dot_B3_dot = B4_theta_dot*B3_dot;
     const double B4_theta_dot_B4_dot = B4_theta_dot*B4_dot;
-    out[0] = c[0]*tau + c[2]*cos_theta + c[19]*sin_theta_B1 + c[20]*sin_theta_B2 + c[21]*sin_theta_B3 + c[22]*sin_theta_B4 + c[23]*cos_theta_A1 + c[24]*cos_theta_A2 + c[25]*cos_theta_A3 + c[26]*cos_theta_A4 + c[28]*theta_dot_A1_dot + c[29]*theta_dot_A2_dot + c[30]*theta_dot_A3_dot + c[31]*theta_dot_A4_dot + c[36]*cos_theta_B1sq + c[37]*cos_theta_B1_B2 + c[38]*cos_theta_B1_B3 + c[39]*cos_theta_B1_B4 + c[40]*cos_theta_B2sq + c[41]*cos_theta_B2_B3 + c[42]*cos_theta_B2_B4 + c[43]*cos_theta_B3sq + c[44]*cos_theta_B3_B4 + c[45]*cos_theta_B4sq + c[47]*A1_theta_dot_A1_dot + c[48]*A1_theta_dot_A2_dot + c[49]*A1_theta_dot_A3_dot + c[50]*A1_theta_dot_A4_dot + c[52]*A2_theta_dot_A1_dot + c[53]*A2_theta_dot_A2_dot + c[54]*A2_theta_dot_A3_dot + c[55]*A2_theta_dot_A4_dot + c[57]*A3_theta_dot_A1_dot + c[58]*A3_theta_dot_A2_dot + c[59]*A3_theta_dot_A3_dot + c[60]*A3_theta_dot_A4_dot + c[62]*A4_theta_dot_A1_dot + c[63]*A4_theta_dot_A2_dot + c[64]*A4_theta_dot_A3_dot + c[65]*A4_theta_dot_A4_dot + c[67]*B1_theta_dot_B1_dot + c[68]*B1_theta_dot_B2_dot + c[69]*B1_theta_dot_B3_dot + c[70]*B1_theta_dot_B4_dot + c[72]*B2_theta_dot_B1_dot + c[73]*B2_theta_dot_B2_dot + c[74]*B2_theta_dot_B3_dot + c[75]*B2_theta_dot_B4_dot + c[77]*B3_theta_dot_B1_dot + c[78]*B3_theta_dot_B2_dot + c[79]*B3_theta_dot_B3_dot + c[80]*B3_theta_dot_B4_dot + c[82]*B4_theta_dot_B1_dot + c[83]*B4_theta_dot_B2_dot + c[84]*B4_theta_dot_B3_dot + c[85]*B4_theta_dot_B4_dot;
-    out[1] = c[87]*sin_theta + c[89]*A1 + c[90]*A2 + c[91]*A3 + c[92]*A4 + c[97]*A1_dot + c[98]*A2_dot + c[99]*A3_dot + c[100]*A4_dot + c[113]*theta_dotsq + c[118]*theta_dot_B1_dot + c[119]*theta_dot_B2_dot + c[120]*theta_dot_B3_dot + c[121]*theta_dot_B4_dot + c[132]*A1_theta_dotsq + c[137]*A2_theta_dotsq + c[142]*A3_theta_dotsq + c[147]*A4_theta_dotsq;
-    out[2] = c[173]*sin_theta + c[175]*A1 + c[176]*A2 + c[177]*A3 + c[178]*A4 + c[183]*A1_dot + c[184]*A2_dot + c[185]*A3_dot + c[186]*A4_dot + c[199]*theta_dotsq + c[204]*theta_dot_B1_dot + c[205]*theta_dot_B2_dot + c[206]*theta_dot_B3_dot + c[207]*theta_dot_B4_dot + c[218]*A1_theta_dotsq + c[223]*A2_theta_dotsq + c[228]*A3_theta_dotsq + c[233]*A4_theta_dotsq;
-    out[3] = c[259]*sin_theta + c[261]*A1 + c[262]*A2 + c[263]*A3 + c[264]*A4 + c[269]*A1_dot + c[270]*A2_dot + c[271]*A3_dot + c[272]*A4_dot + c[285]*theta_dotsq + c[290]*theta_dot_B1_dot + c[291]*theta_dot_B2_dot + c[292]*theta_dot_B3_dot + c[293]*theta_dot_B4_dot + c[304]*A1_theta_dotsq + c[309]*A2_theta_dotsq + c[314]*A3_theta_dotsq + c[319]*A4_theta_dotsq;
-    out[4] = c[345]*sin_theta + c[347]*A1 + c[348]*A2 + c[349]*A3 + c[350]*A4 + c[355]*A1_dot + c[356]*A2_dot + c[357]*A3_dot + c[358]*A4_dot + c[371]*theta_dotsq + c[376]*theta_dot_B1_dot + c[377]*theta_dot_B2_dot + c[378]*theta_dot_B3_dot + c[379]*theta_dot_B4_dot + c[390]*A1_theta_dotsq + c[395]*A2_theta_dotsq + c[400]*A3_theta_dotsq + c[405]*A4_theta_dotsq;
-    out[5] = c[432]*cos_theta + c[437]*B1 + c[438]*B2 + c[439]*B3 + c[440]*B4 + c[445]*B1_dot + c[446]*B2_dot + c[447]*B3_dot + c[448]*B4_dot + c[449]*sin_theta_B1 + c[450]*sin_theta_B2 + c[451]*sin_theta_B3 + c[452]*sin_theta_B4 + c[458]*theta_dot_A1_dot + c[459]*theta_dot_A2_dot + c[460]*theta_dot_A3_dot + c[461]*theta_dot_A4_dot + c[496]*B1_theta_dotsq + c[501]*B2_theta_dotsq + c[506]*B3_theta_dotsq + c[511]*B4_theta_dotsq;
-    out[6] = c[518]*cos_theta + c[523]*B1 + c[524]*B2 + c[525]*B3 + c[526]*B4 + c[531]*B1_dot + c[532]*B2_dot + c[533]*B3_dot + c[534]*B4_dot + c[535]*sin_theta_B1 + c[536]*sin_theta_B2 + c[537]*sin_theta_B3 + c[538]*sin_theta_B4 + c[544]*theta_dot_A1_dot + c[545]*theta_dot_A2_dot + c[546]*theta_dot_A3_dot + c[547]*theta_dot_A4_dot + c[582]*B1_theta_dotsq + c[587]*B2_theta_dotsq + c[592]*B3_theta_dotsq + c[597]*B4_theta_dotsq;
-    out[7] = c[604]*cos_theta + c[609]*B1 + c[610]*B2 + c[611]*B3 + c[612]*B4 + c[617]*B1_dot + c[618]*B2_dot + c[619]*B3_dot + c[620]*B4_dot + c[621]*sin_theta_B1 + c[622]*sin_theta_B2 + c[623]*sin_theta_B3 + c[624]*sin_theta_B4 + c[630]*theta_dot_A1_dot + c[631]*theta_dot_A2_dot + c[632]*theta_dot_A3_dot + c[633]*theta_dot_A4_dot + c[668]*B1_theta_dotsq + c[673]*B2_theta_dotsq + c[678]*B3_theta_dotsq + c[683]*B4_theta_dotsq;
-    out[8] = c[690]*cos_theta + c[695]*B1 + c[696]*B2 + c[697]*B3 + c[698]*B4 + c[703]*B1_dot + c[704]*B2_dot + c[705]*B3_dot + c[706]*B4_dot + c[707]*sin_theta_B1 + c[708]*sin_theta_B2 + c[709]*sin_theta_B3 + c[710]*sin_theta_B4 + c[716]*theta_dot_A1_dot + c[717]*theta_dot_A2_dot + c[718]*theta_dot_A3_dot + c[719]*theta_dot_A4_dot + c[754]*B1_theta_dotsq + c[759]*B2_theta_dotsq + c[764]*B3_theta_dotsq + c[769]*B4_theta_dotsq;
+    typedef double lanes __attribute__((vector_size(16)));
+    const auto pair = [c](int e) {
+        lanes v;
+        __builtin_memcpy(&v, c + e, sizeof v);
+        return v;
+    };
+    out[0] = c[1]*tau + c[5]*cos_theta + c[39]*sin_theta_B1 + c[41]*sin_theta_B2 + c[43]*sin_theta_B3 + c[45]*sin_theta_B4 + c[47]*cos_theta_A1 + c[49]*cos_theta_A2 + c[51]*cos_theta_A3 + c[53]*cos_theta_A4 + c[57]*theta_dot_A1_dot + c[59]*theta_dot_A2_dot + c[61]*theta_dot_A3_dot + c[63]*theta_dot_A4_dot + c[73]*cos_theta_B1sq + c[75]*cos_theta_B1_B2 + c[77]*cos_theta_B1_B3 + c[79]*cos_theta_B1_B4 + c[81]*cos_theta_B2sq + c[83]*cos_theta_B2_B3 + c[85]*cos_theta_B2_B4 + c[87]*cos_theta_B3sq + c[89]*cos_theta_B3_B4 + c[91]*cos_theta_B4sq + c[95]*A1_theta_dot_A1_dot + c[97]*A1_theta_dot_A2_dot + c[99]*A1_theta_dot_A3_dot + c[101]*A1_theta_dot_A4_dot + c[105]*A2_theta_dot_A1_dot + c[107]*A2_theta_dot_A2_dot + c[109]*A2_theta_dot_A3_dot + c[111]*A2_theta_dot_A4_dot + c[115]*A3_theta_dot_A1_dot + c[117]*A3_theta_dot_A2_dot + c[119]*A3_theta_dot_A3_dot + c[121]*A3_theta_dot_A4_dot + c[125]*A4_theta_dot_A1_dot + c[127]*A4_theta_dot_A2_dot + c[129]*A4_theta_dot_A3_dot + c[131]*A4_theta_dot_A4_dot + c[135]*B1_theta_dot_B1_dot + c[137]*B1_theta_dot_B2_dot + c[139]*B1_theta_dot_B3_dot + c[141]*B1_theta_dot_B4_dot + c[145]*B2_theta_dot_B1_dot + c[147]*B2_theta_dot_B2_dot + c[149]*B2_theta_dot_B3_dot + c[151]*B2_theta_dot_B4_dot + c[155]*B3_theta_dot_B1_dot + c[157]*B3_theta_dot_B2_dot + c[159]*B3_theta_dot_B3_dot + c[161]*B3_theta_dot_B4_dot + c[165]*B4_theta_dot_B1_dot + c[167]*B4_theta_dot_B2_dot + c[169]*B4_theta_dot_B3_dot + c[171]*B4_theta_dot_B4_dot;
+    {
+        lanes s = pair(174) * lanes{sin_theta, sin_theta};
+        s += pair(178) * lanes{A1, A1};
+        s += pair(180) * lanes{A2, A2};
+        s += pair(182) * lanes{A3, A3};
+        s += pair(184) * lanes{A4, A4};
+        s += pair(194) * lanes{A1_dot, A1_dot};
+        s += pair(196) * lanes{A2_dot, A2_dot};
+        s += pair(198) * lanes{A3_dot, A3_dot};
+        s += pair(200) * lanes{A4_dot, A4_dot};
+        s += pair(226) * lanes{theta_dotsq, theta_dotsq};
+        s += pair(236) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
+        s += pair(238) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
+        s += pair(240) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
+        s += pair(242) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
+        s += pair(264) * lanes{A1_theta_dotsq, A1_theta_dotsq};
+        s += pair(274) * lanes{A2_theta_dotsq, A2_theta_dotsq};
+        s += pair(284) * lanes{A3_theta_dotsq, A3_theta_dotsq};
+        s += pair(294) * lanes{A4_theta_dotsq, A4_theta_dotsq};
+        out[1] = s[0];
+        out[2] = s[1];
+    }
+    {
+        lanes s = pair(346) * lanes{sin_theta, sin_theta};
+        s += pair(350) * lanes{A1, A1};
+        s += pair(352) * lanes{A2, A2};
+        s += pair(354) * lanes{A3, A3};
+        s += pair(356) * lanes{A4, A4};
+        s += pair(366) * lanes{A1_dot, A1_dot};
+        s += pair(368) * lanes{A2_dot, A2_dot};
+        s += pair(370) * lanes{A3_dot, A3_dot};
+        s += pair(372) * lanes{A4_dot, A4_dot};
+        s += pair(398) * lanes{theta_dotsq, theta_dotsq};
+        s += pair(408) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
+        s += pair(410) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
+        s += pair(412) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
+        s += pair(414) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
+        s += pair(436) * lanes{A1_theta_dotsq, A1_theta_dotsq};
+        s += pair(446) * lanes{A2_theta_dotsq, A2_theta_dotsq};
+        s += pair(456) * lanes{A3_theta_dotsq, A3_theta_dotsq};
+        s += pair(466) * lanes{A4_theta_dotsq, A4_theta_dotsq};
+        out[3] = s[0];
+        out[4] = s[1];
+    }
+    {
+        lanes s = pair(520) * lanes{cos_theta, cos_theta};
+        s += pair(530) * lanes{B1, B1};
+        s += pair(532) * lanes{B2, B2};
+        s += pair(534) * lanes{B3, B3};
+        s += pair(536) * lanes{B4, B4};
+        s += pair(546) * lanes{B1_dot, B1_dot};
+        s += pair(548) * lanes{B2_dot, B2_dot};
+        s += pair(550) * lanes{B3_dot, B3_dot};
+        s += pair(552) * lanes{B4_dot, B4_dot};
+        s += pair(554) * lanes{sin_theta_B1, sin_theta_B1};
+        s += pair(556) * lanes{sin_theta_B2, sin_theta_B2};
+        s += pair(558) * lanes{sin_theta_B3, sin_theta_B3};
+        s += pair(560) * lanes{sin_theta_B4, sin_theta_B4};
+        s += pair(572) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
+        s += pair(574) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
+        s += pair(576) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
+        s += pair(578) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
+        s += pair(648) * lanes{B1_theta_dotsq, B1_theta_dotsq};
+        s += pair(658) * lanes{B2_theta_dotsq, B2_theta_dotsq};
+        s += pair(668) * lanes{B3_theta_dotsq, B3_theta_dotsq};
+        s += pair(678) * lanes{B4_theta_dotsq, B4_theta_dotsq};
+        out[5] = s[0];
+        out[6] = s[1];
+    }
+    {
+        lanes s = pair(692) * lanes{cos_theta, cos_theta};
+        s += pair(702) * lanes{B1, B1};
+        s += pair(704) * lanes{B2, B2};
+        s += pair(706) * lanes{B3, B3};
+        s += pair(708) * lanes{B4, B4};
+        s += pair(718) * lanes{B1_dot, B1_dot};
+        s += pair(720) * lanes{B2_dot, B2_dot};
+        s += pair(722) * lanes{B3_dot, B3_dot};
+        s += pair(724) * lanes{B4_dot, B4_dot};
+        s += pair(726) * lanes{sin_theta_B1, sin_theta_B1};
+        s += pair(728) * lanes{sin_theta_B2, sin_theta_B2};
+        s += pair(730) * lanes{sin_theta_B3, sin_theta_B3};
+        s += pair(732) * lanes{sin_theta_B4, sin_theta_B4};
+        s += pair(744) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
+        s += pair(746) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
+        s += pair(748) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
+        s += pair(750) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
+        s += pair(820) * lanes{B1_theta_dotsq, B1_theta_dotsq};
+        s += pair(830) * lanes{B2_theta_dotsq, B2_theta_dotsq};
+        s += pair(840) * lanes{B3_theta_dotsq, B3_theta_dotsq};
+        s += pair(850) * lanes{B4_theta_dotsq, B4_theta_dotsq};
+        out[7] = s[0];
+        out[8] = s[1];
+    }
 }
 
 /* mass_varying:(c[181],u[5],q[9],qd[9])->(M[81]) as mass, the entries that depend on q only */
@@ -2484,7 +2576,7 @@ void bim_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100_mass_q_p
 }  // namespace
 
 extern const Variant bim_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100 = {
-    .abi_version = 2,
+    .abi_version = 3,
     .name = "bim_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100",
     .nq = 9,
     .ncoeff = 181,

@@ -1055,7 +1055,7 @@ void bsim_nx4_ny4_torque_first_forces_u(const double* c, const double* u, const 
     out[0] = 1.0;
 }
 
-/* forces_folded:(c[125],u[3],q[9],qd[9])->(y[9]) y = P m, P (9 x 58, row-major) passed in the c slot: P = M^-1 F for a constant M; under hub torque, C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); the 137 entries that can be nonzero are read */
+/* forces_folded:(c[125],u[3],q[9],qd[9])->(y[9]) y = P m, P (9 x 58) passed in the c slot by row pairs, P(i, k) at c[(j/2)*116 + 2k + j%2], j = i + 1: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 137 entries that can be nonzero, a pair of rows reads the columns either row has */
 void bsim_nx4_ny4_torque_first_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
@@ -1133,15 +1133,79 @@ void bsim_nx4_ny4_torque_first_forces_folded(const double* c, const double* u, c
     const double B4_theta_dot_B2_dot = B4_theta_dot*B2_dot;
     const double B4_theta_dot_B3_dot = B4_theta_dot*B3_dot;
     const double B4_theta_dot_B4_dot = B4_theta_dot*B4_dot;
-    out[0] = c[0]*tau + c[10]*theta_dot_A1_dot + c[11]*theta_dot_A2_dot + c[12]*theta_dot_A3_dot + c[13]*theta_dot_A4_dot + c[19]*A1_theta_dot_A1_dot + c[20]*A1_theta_dot_A2_dot + c[21]*A1_theta_dot_A3_dot + c[22]*A1_theta_dot_A4_dot + c[24]*A2_theta_dot_A1_dot + c[25]*A2_theta_dot_A2_dot + c[26]*A2_theta_dot_A3_dot + c[27]*A2_theta_dot_A4_dot + c[29]*A3_theta_dot_A1_dot + c[30]*A3_theta_dot_A2_dot + c[31]*A3_theta_dot_A3_dot + c[32]*A3_theta_dot_A4_dot + c[34]*A4_theta_dot_A1_dot + c[35]*A4_theta_dot_A2_dot + c[36]*A4_theta_dot_A3_dot + c[37]*A4_theta_dot_A4_dot + c[39]*B1_theta_dot_B1_dot + c[40]*B1_theta_dot_B2_dot + c[41]*B1_theta_dot_B3_dot + c[42]*B1_theta_dot_B4_dot + c[44]*B2_theta_dot_B1_dot + c[45]*B2_theta_dot_B2_dot + c[46]*B2_theta_dot_B3_dot + c[47]*B2_theta_dot_B4_dot + c[49]*B3_theta_dot_B1_dot + c[50]*B3_theta_dot_B2_dot + c[51]*B3_theta_dot_B3_dot + c[52]*B3_theta_dot_B4_dot + c[54]*B4_theta_dot_B1_dot + c[55]*B4_theta_dot_B2_dot + c[56]*B4_theta_dot_B3_dot + c[57]*B4_theta_dot_B4_dot;
-    out[1] = c[59]*A1 + c[60]*A2 + c[61]*A3 + c[62]*A4 + c[67]*theta_dotsq + c[72]*theta_dot_B1_dot + c[73]*theta_dot_B2_dot + c[74]*theta_dot_B3_dot + c[75]*theta_dot_B4_dot + c[76]*A1_theta_dotsq + c[81]*A2_theta_dotsq + c[86]*A3_theta_dotsq + c[91]*A4_theta_dotsq;
-    out[2] = c[117]*A1 + c[118]*A2 + c[119]*A3 + c[120]*A4 + c[125]*theta_dotsq + c[130]*theta_dot_B1_dot + c[131]*theta_dot_B2_dot + c[132]*theta_dot_B3_dot + c[133]*theta_dot_B4_dot + c[134]*A1_theta_dotsq + c[139]*A2_theta_dotsq + c[144]*A3_theta_dotsq + c[149]*A4_theta_dotsq;
-    out[3] = c[175]*A1 + c[176]*A2 + c[177]*A3 + c[178]*A4 + c[183]*theta_dotsq + c[188]*theta_dot_B1_dot + c[189]*theta_dot_B2_dot + c[190]*theta_dot_B3_dot + c[191]*theta_dot_B4_dot + c[192]*A1_theta_dotsq + c[197]*A2_theta_dotsq + c[202]*A3_theta_dotsq + c[207]*A4_theta_dotsq;
-    out[4] = c[233]*A1 + c[234]*A2 + c[235]*A3 + c[236]*A4 + c[241]*theta_dotsq + c[246]*theta_dot_B1_dot + c[247]*theta_dot_B2_dot + c[248]*theta_dot_B3_dot + c[249]*theta_dot_B4_dot + c[250]*A1_theta_dotsq + c[255]*A2_theta_dotsq + c[260]*A3_theta_dotsq + c[265]*A4_theta_dotsq;
-    out[5] = c[295]*B1 + c[296]*B2 + c[297]*B3 + c[298]*B4 + c[300]*theta_dot_A1_dot + c[301]*theta_dot_A2_dot + c[302]*theta_dot_A3_dot + c[303]*theta_dot_A4_dot + c[328]*B1_theta_dotsq + c[333]*B2_theta_dotsq + c[338]*B3_theta_dotsq + c[343]*B4_theta_dotsq;
-    out[6] = c[353]*B1 + c[354]*B2 + c[355]*B3 + c[356]*B4 + c[358]*theta_dot_A1_dot + c[359]*theta_dot_A2_dot + c[360]*theta_dot_A3_dot + c[361]*theta_dot_A4_dot + c[386]*B1_theta_dotsq + c[391]*B2_theta_dotsq + c[396]*B3_theta_dotsq + c[401]*B4_theta_dotsq;
-    out[7] = c[411]*B1 + c[412]*B2 + c[413]*B3 + c[414]*B4 + c[416]*theta_dot_A1_dot + c[417]*theta_dot_A2_dot + c[418]*theta_dot_A3_dot + c[419]*theta_dot_A4_dot + c[444]*B1_theta_dotsq + c[449]*B2_theta_dotsq + c[454]*B3_theta_dotsq + c[459]*B4_theta_dotsq;
-    out[8] = c[469]*B1 + c[470]*B2 + c[471]*B3 + c[472]*B4 + c[474]*theta_dot_A1_dot + c[475]*theta_dot_A2_dot + c[476]*theta_dot_A3_dot + c[477]*theta_dot_A4_dot + c[502]*B1_theta_dotsq + c[507]*B2_theta_dotsq + c[512]*B3_theta_dotsq + c[517]*B4_theta_dotsq;
+    typedef double lanes __attribute__((vector_size(16)));
+    const auto pair = [c](int e) {
+        lanes v;
+        __builtin_memcpy(&v, c + e, sizeof v);
+        return v;
+    };
+    out[0] = c[1]*tau + c[21]*theta_dot_A1_dot + c[23]*theta_dot_A2_dot + c[25]*theta_dot_A3_dot + c[27]*theta_dot_A4_dot + c[39]*A1_theta_dot_A1_dot + c[41]*A1_theta_dot_A2_dot + c[43]*A1_theta_dot_A3_dot + c[45]*A1_theta_dot_A4_dot + c[49]*A2_theta_dot_A1_dot + c[51]*A2_theta_dot_A2_dot + c[53]*A2_theta_dot_A3_dot + c[55]*A2_theta_dot_A4_dot + c[59]*A3_theta_dot_A1_dot + c[61]*A3_theta_dot_A2_dot + c[63]*A3_theta_dot_A3_dot + c[65]*A3_theta_dot_A4_dot + c[69]*A4_theta_dot_A1_dot + c[71]*A4_theta_dot_A2_dot + c[73]*A4_theta_dot_A3_dot + c[75]*A4_theta_dot_A4_dot + c[79]*B1_theta_dot_B1_dot + c[81]*B1_theta_dot_B2_dot + c[83]*B1_theta_dot_B3_dot + c[85]*B1_theta_dot_B4_dot + c[89]*B2_theta_dot_B1_dot + c[91]*B2_theta_dot_B2_dot + c[93]*B2_theta_dot_B3_dot + c[95]*B2_theta_dot_B4_dot + c[99]*B3_theta_dot_B1_dot + c[101]*B3_theta_dot_B2_dot + c[103]*B3_theta_dot_B3_dot + c[105]*B3_theta_dot_B4_dot + c[109]*B4_theta_dot_B1_dot + c[111]*B4_theta_dot_B2_dot + c[113]*B4_theta_dot_B3_dot + c[115]*B4_theta_dot_B4_dot;
+    {
+        lanes s = pair(118) * lanes{A1, A1};
+        s += pair(120) * lanes{A2, A2};
+        s += pair(122) * lanes{A3, A3};
+        s += pair(124) * lanes{A4, A4};
+        s += pair(134) * lanes{theta_dotsq, theta_dotsq};
+        s += pair(144) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
+        s += pair(146) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
+        s += pair(148) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
+        s += pair(150) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
+        s += pair(152) * lanes{A1_theta_dotsq, A1_theta_dotsq};
+        s += pair(162) * lanes{A2_theta_dotsq, A2_theta_dotsq};
+        s += pair(172) * lanes{A3_theta_dotsq, A3_theta_dotsq};
+        s += pair(182) * lanes{A4_theta_dotsq, A4_theta_dotsq};
+        out[1] = s[0];
+        out[2] = s[1];
+    }
+    {
+        lanes s = pair(234) * lanes{A1, A1};
+        s += pair(236) * lanes{A2, A2};
+        s += pair(238) * lanes{A3, A3};
+        s += pair(240) * lanes{A4, A4};
+        s += pair(250) * lanes{theta_dotsq, theta_dotsq};
+        s += pair(260) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
+        s += pair(262) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
+        s += pair(264) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
+        s += pair(266) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
+        s += pair(268) * lanes{A1_theta_dotsq, A1_theta_dotsq};
+        s += pair(278) * lanes{A2_theta_dotsq, A2_theta_dotsq};
+        s += pair(288) * lanes{A3_theta_dotsq, A3_theta_dotsq};
+        s += pair(298) * lanes{A4_theta_dotsq, A4_theta_dotsq};
+        out[3] = s[0];
+        out[4] = s[1];
+    }
+    {
+        lanes s = pair(358) * lanes{B1, B1};
+        s += pair(360) * lanes{B2, B2};
+        s += pair(362) * lanes{B3, B3};
+        s += pair(364) * lanes{B4, B4};
+        s += pair(368) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
+        s += pair(370) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
+        s += pair(372) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
+        s += pair(374) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
+        s += pair(424) * lanes{B1_theta_dotsq, B1_theta_dotsq};
+        s += pair(434) * lanes{B2_theta_dotsq, B2_theta_dotsq};
+        s += pair(444) * lanes{B3_theta_dotsq, B3_theta_dotsq};
+        s += pair(454) * lanes{B4_theta_dotsq, B4_theta_dotsq};
+        out[5] = s[0];
+        out[6] = s[1];
+    }
+    {
+        lanes s = pair(474) * lanes{B1, B1};
+        s += pair(476) * lanes{B2, B2};
+        s += pair(478) * lanes{B3, B3};
+        s += pair(480) * lanes{B4, B4};
+        s += pair(484) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
+        s += pair(486) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
+        s += pair(488) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
+        s += pair(490) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
+        s += pair(540) * lanes{B1_theta_dotsq, B1_theta_dotsq};
+        s += pair(550) * lanes{B2_theta_dotsq, B2_theta_dotsq};
+        s += pair(560) * lanes{B3_theta_dotsq, B3_theta_dotsq};
+        s += pair(570) * lanes{B4_theta_dotsq, B4_theta_dotsq};
+        out[7] = s[0];
+        out[8] = s[1];
+    }
 }
 
 /* mass_varying:(c[125],u[3],q[9],qd[9])->(M[81]) as mass, the entries that depend on q only */
@@ -1262,7 +1326,7 @@ void bsim_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, 
 }  // namespace
 
 extern const Variant bsim_nx4_ny4_torque_first = {
-    .abi_version = 2,
+    .abi_version = 3,
     .name = "bsim_nx4_ny4_torque_first",
     .nq = 9,
     .ncoeff = 125,

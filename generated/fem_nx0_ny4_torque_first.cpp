@@ -489,7 +489,7 @@ void fem_nx0_ny4_torque_first_forces_u(const double* c, const double* u, const d
     out[0] = 1.0;
 }
 
-/* forces_folded:(c[53],u[3],q[5],qd[5])->(y[5]) y = P m, P (5 x 25, row-major) passed in the c slot: P = M^-1 F for a constant M; under hub torque, C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); the 57 entries that can be nonzero are read */
+/* forces_folded:(c[53],u[3],q[5],qd[5])->(y[5]) y = P m, P (5 x 25) passed in the c slot by row pairs, P(i, k) at c[(j/2)*50 + 2k + j%2], j = i + 1: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 57 entries that can be nonzero, a pair of rows reads the columns either row has */
 void fem_nx0_ny4_torque_first_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
@@ -526,11 +526,37 @@ void fem_nx0_ny4_torque_first_forces_folded(const double* c, const double* u, co
     const double B4_theta_dot_B2_dot = B4_theta_dot*B2_dot;
     const double B4_theta_dot_B3_dot = B4_theta_dot*B3_dot;
     const double B4_theta_dot_B4_dot = B4_theta_dot*B4_dot;
-    out[0] = c[0]*tau + c[1]*B1 + c[2]*B2 + c[3]*B3 + c[4]*B4 + c[5]*B1_theta_dotsq + c[6]*B1_theta_dot_B1_dot + c[7]*B1_theta_dot_B2_dot + c[8]*B1_theta_dot_B3_dot + c[9]*B1_theta_dot_B4_dot + c[10]*B2_theta_dotsq + c[11]*B2_theta_dot_B1_dot + c[12]*B2_theta_dot_B2_dot + c[13]*B2_theta_dot_B3_dot + c[14]*B2_theta_dot_B4_dot + c[15]*B3_theta_dotsq + c[16]*B3_theta_dot_B1_dot + c[17]*B3_theta_dot_B2_dot + c[18]*B3_theta_dot_B3_dot + c[19]*B3_theta_dot_B4_dot + c[20]*B4_theta_dotsq + c[21]*B4_theta_dot_B1_dot + c[22]*B4_theta_dot_B2_dot + c[23]*B4_theta_dot_B3_dot + c[24]*B4_theta_dot_B4_dot;
-    out[1] = c[26]*B1 + c[27]*B2 + c[28]*B3 + c[29]*B4 + c[30]*B1_theta_dotsq + c[35]*B2_theta_dotsq + c[40]*B3_theta_dotsq + c[45]*B4_theta_dotsq;
-    out[2] = c[51]*B1 + c[52]*B2 + c[53]*B3 + c[54]*B4 + c[55]*B1_theta_dotsq + c[60]*B2_theta_dotsq + c[65]*B3_theta_dotsq + c[70]*B4_theta_dotsq;
-    out[3] = c[76]*B1 + c[77]*B2 + c[78]*B3 + c[79]*B4 + c[80]*B1_theta_dotsq + c[85]*B2_theta_dotsq + c[90]*B3_theta_dotsq + c[95]*B4_theta_dotsq;
-    out[4] = c[101]*B1 + c[102]*B2 + c[103]*B3 + c[104]*B4 + c[105]*B1_theta_dotsq + c[110]*B2_theta_dotsq + c[115]*B3_theta_dotsq + c[120]*B4_theta_dotsq;
+    typedef double lanes __attribute__((vector_size(16)));
+    const auto pair = [c](int e) {
+        lanes v;
+        __builtin_memcpy(&v, c + e, sizeof v);
+        return v;
+    };
+    out[0] = c[1]*tau + c[3]*B1 + c[5]*B2 + c[7]*B3 + c[9]*B4 + c[11]*B1_theta_dotsq + c[13]*B1_theta_dot_B1_dot + c[15]*B1_theta_dot_B2_dot + c[17]*B1_theta_dot_B3_dot + c[19]*B1_theta_dot_B4_dot + c[21]*B2_theta_dotsq + c[23]*B2_theta_dot_B1_dot + c[25]*B2_theta_dot_B2_dot + c[27]*B2_theta_dot_B3_dot + c[29]*B2_theta_dot_B4_dot + c[31]*B3_theta_dotsq + c[33]*B3_theta_dot_B1_dot + c[35]*B3_theta_dot_B2_dot + c[37]*B3_theta_dot_B3_dot + c[39]*B3_theta_dot_B4_dot + c[41]*B4_theta_dotsq + c[43]*B4_theta_dot_B1_dot + c[45]*B4_theta_dot_B2_dot + c[47]*B4_theta_dot_B3_dot + c[49]*B4_theta_dot_B4_dot;
+    {
+        lanes s = pair(52) * lanes{B1, B1};
+        s += pair(54) * lanes{B2, B2};
+        s += pair(56) * lanes{B3, B3};
+        s += pair(58) * lanes{B4, B4};
+        s += pair(60) * lanes{B1_theta_dotsq, B1_theta_dotsq};
+        s += pair(70) * lanes{B2_theta_dotsq, B2_theta_dotsq};
+        s += pair(80) * lanes{B3_theta_dotsq, B3_theta_dotsq};
+        s += pair(90) * lanes{B4_theta_dotsq, B4_theta_dotsq};
+        out[1] = s[0];
+        out[2] = s[1];
+    }
+    {
+        lanes s = pair(102) * lanes{B1, B1};
+        s += pair(104) * lanes{B2, B2};
+        s += pair(106) * lanes{B3, B3};
+        s += pair(108) * lanes{B4, B4};
+        s += pair(110) * lanes{B1_theta_dotsq, B1_theta_dotsq};
+        s += pair(120) * lanes{B2_theta_dotsq, B2_theta_dotsq};
+        s += pair(130) * lanes{B3_theta_dotsq, B3_theta_dotsq};
+        s += pair(140) * lanes{B4_theta_dotsq, B4_theta_dotsq};
+        out[3] = s[0];
+        out[4] = s[1];
+    }
 }
 
 /* mass_varying:(c[53],u[3],q[5],qd[5])->(M[25]) as mass, the entries that depend on q only */
@@ -577,7 +603,7 @@ void fem_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, c
 }  // namespace
 
 extern const Variant fem_nx0_ny4_torque_first = {
-    .abi_version = 2,
+    .abi_version = 3,
     .name = "fem_nx0_ny4_torque_first",
     .nq = 5,
     .ncoeff = 53,

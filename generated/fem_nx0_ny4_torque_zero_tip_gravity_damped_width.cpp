@@ -574,7 +574,7 @@ void fem_nx0_ny4_torque_zero_tip_gravity_damped_width_forces_u(const double* c, 
     out[0] = 1.0;
 }
 
-/* forces_folded:(c[59],u[5],q[5],qd[5])->(y[5]) y = P m, P (5 x 34, row-major) passed in the c slot: P = M^-1 F for a constant M; under hub torque, C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); the 86 entries that can be nonzero are read */
+/* forces_folded:(c[59],u[5],q[5],qd[5])->(y[5]) y = P m, P (5 x 34) passed in the c slot by row pairs, P(i, k) at c[(j/2)*68 + 2k + j%2], j = i + 1: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 86 entries that can be nonzero, a pair of rows reads the columns either row has */
 void fem_nx0_ny4_torque_zero_tip_gravity_damped_width_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
@@ -617,11 +617,47 @@ void fem_nx0_ny4_torque_zero_tip_gravity_damped_width_forces_folded(const double
     const double B4_theta_dot_B2_dot = B4_theta_dot*B2_dot;
     const double B4_theta_dot_B3_dot = B4_theta_dot*B3_dot;
     const double B4_theta_dot_B4_dot = B4_theta_dot*B4_dot;
-    out[0] = c[0]*tau + c[1]*cos_theta + c[2]*B1 + c[3]*B2 + c[4]*B3 + c[5]*B4 + c[6]*B1_dot + c[7]*B2_dot + c[8]*B3_dot + c[9]*B4_dot + c[10]*sin_theta_B1 + c[11]*sin_theta_B2 + c[12]*sin_theta_B3 + c[13]*sin_theta_B4 + c[14]*B1_theta_dotsq + c[15]*B1_theta_dot_B1_dot + c[16]*B1_theta_dot_B2_dot + c[17]*B1_theta_dot_B3_dot + c[18]*B1_theta_dot_B4_dot + c[19]*B2_theta_dotsq + c[20]*B2_theta_dot_B1_dot + c[21]*B2_theta_dot_B2_dot + c[22]*B2_theta_dot_B3_dot + c[23]*B2_theta_dot_B4_dot + c[24]*B3_theta_dotsq + c[25]*B3_theta_dot_B1_dot + c[26]*B3_theta_dot_B2_dot + c[27]*B3_theta_dot_B3_dot + c[28]*B3_theta_dot_B4_dot + c[29]*B4_theta_dotsq + c[30]*B4_theta_dot_B1_dot + c[31]*B4_theta_dot_B2_dot + c[32]*B4_theta_dot_B3_dot + c[33]*B4_theta_dot_B4_dot;
-    out[1] = c[35]*cos_theta + c[36]*B1 + c[37]*B2 + c[38]*B3 + c[39]*B4 + c[40]*B1_dot + c[41]*B2_dot + c[42]*B3_dot + c[43]*B4_dot + c[48]*B1_theta_dotsq + c[53]*B2_theta_dotsq + c[58]*B3_theta_dotsq + c[63]*B4_theta_dotsq;
-    out[2] = c[69]*cos_theta + c[70]*B1 + c[71]*B2 + c[72]*B3 + c[73]*B4 + c[74]*B1_dot + c[75]*B2_dot + c[76]*B3_dot + c[77]*B4_dot + c[82]*B1_theta_dotsq + c[87]*B2_theta_dotsq + c[92]*B3_theta_dotsq + c[97]*B4_theta_dotsq;
-    out[3] = c[103]*cos_theta + c[104]*B1 + c[105]*B2 + c[106]*B3 + c[107]*B4 + c[108]*B1_dot + c[109]*B2_dot + c[110]*B3_dot + c[111]*B4_dot + c[116]*B1_theta_dotsq + c[121]*B2_theta_dotsq + c[126]*B3_theta_dotsq + c[131]*B4_theta_dotsq;
-    out[4] = c[137]*cos_theta + c[138]*B1 + c[139]*B2 + c[140]*B3 + c[141]*B4 + c[142]*B1_dot + c[143]*B2_dot + c[144]*B3_dot + c[145]*B4_dot + c[150]*B1_theta_dotsq + c[155]*B2_theta_dotsq + c[160]*B3_theta_dotsq + c[165]*B4_theta_dotsq;
+    typedef double lanes __attribute__((vector_size(16)));
+    const auto pair = [c](int e) {
+        lanes v;
+        __builtin_memcpy(&v, c + e, sizeof v);
+        return v;
+    };
+    out[0] = c[1]*tau + c[3]*cos_theta + c[5]*B1 + c[7]*B2 + c[9]*B3 + c[11]*B4 + c[13]*B1_dot + c[15]*B2_dot + c[17]*B3_dot + c[19]*B4_dot + c[21]*sin_theta_B1 + c[23]*sin_theta_B2 + c[25]*sin_theta_B3 + c[27]*sin_theta_B4 + c[29]*B1_theta_dotsq + c[31]*B1_theta_dot_B1_dot + c[33]*B1_theta_dot_B2_dot + c[35]*B1_theta_dot_B3_dot + c[37]*B1_theta_dot_B4_dot + c[39]*B2_theta_dotsq + c[41]*B2_theta_dot_B1_dot + c[43]*B2_theta_dot_B2_dot + c[45]*B2_theta_dot_B3_dot + c[47]*B2_theta_dot_B4_dot + c[49]*B3_theta_dotsq + c[51]*B3_theta_dot_B1_dot + c[53]*B3_theta_dot_B2_dot + c[55]*B3_theta_dot_B3_dot + c[57]*B3_theta_dot_B4_dot + c[59]*B4_theta_dotsq + c[61]*B4_theta_dot_B1_dot + c[63]*B4_theta_dot_B2_dot + c[65]*B4_theta_dot_B3_dot + c[67]*B4_theta_dot_B4_dot;
+    {
+        lanes s = pair(70) * lanes{cos_theta, cos_theta};
+        s += pair(72) * lanes{B1, B1};
+        s += pair(74) * lanes{B2, B2};
+        s += pair(76) * lanes{B3, B3};
+        s += pair(78) * lanes{B4, B4};
+        s += pair(80) * lanes{B1_dot, B1_dot};
+        s += pair(82) * lanes{B2_dot, B2_dot};
+        s += pair(84) * lanes{B3_dot, B3_dot};
+        s += pair(86) * lanes{B4_dot, B4_dot};
+        s += pair(96) * lanes{B1_theta_dotsq, B1_theta_dotsq};
+        s += pair(106) * lanes{B2_theta_dotsq, B2_theta_dotsq};
+        s += pair(116) * lanes{B3_theta_dotsq, B3_theta_dotsq};
+        s += pair(126) * lanes{B4_theta_dotsq, B4_theta_dotsq};
+        out[1] = s[0];
+        out[2] = s[1];
+    }
+    {
+        lanes s = pair(138) * lanes{cos_theta, cos_theta};
+        s += pair(140) * lanes{B1, B1};
+        s += pair(142) * lanes{B2, B2};
+        s += pair(144) * lanes{B3, B3};
+        s += pair(146) * lanes{B4, B4};
+        s += pair(148) * lanes{B1_dot, B1_dot};
+        s += pair(150) * lanes{B2_dot, B2_dot};
+        s += pair(152) * lanes{B3_dot, B3_dot};
+        s += pair(154) * lanes{B4_dot, B4_dot};
+        s += pair(164) * lanes{B1_theta_dotsq, B1_theta_dotsq};
+        s += pair(174) * lanes{B2_theta_dotsq, B2_theta_dotsq};
+        s += pair(184) * lanes{B3_theta_dotsq, B3_theta_dotsq};
+        s += pair(194) * lanes{B4_theta_dotsq, B4_theta_dotsq};
+        out[3] = s[0];
+        out[4] = s[1];
+    }
 }
 
 /* mass_varying:(c[59],u[5],q[5],qd[5])->(M[25]) as mass, the entries that depend on q only */
@@ -668,7 +704,7 @@ void fem_nx0_ny4_torque_zero_tip_gravity_damped_width_mass_q_product(const doubl
 }  // namespace
 
 extern const Variant fem_nx0_ny4_torque_zero_tip_gravity_damped_width = {
-    .abi_version = 2,
+    .abi_version = 3,
     .name = "fem_nx0_ny4_torque_zero_tip_gravity_damped_width",
     .nq = 5,
     .ncoeff = 59,

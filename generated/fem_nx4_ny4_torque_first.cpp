@@ -909,7 +909,7 @@ void fem_nx4_ny4_torque_first_forces_u(const double* c, const double* u, const d
     out[0] = 1.0;
 }
 
-/* forces_folded:(c[80],u[3],q[9],qd[9])->(y[9]) y = P m, P (9 x 52, row-major) passed in the c slot: P = M^-1 F for a constant M; under hub torque, C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); the 131 entries that can be nonzero are read */
+/* forces_folded:(c[80],u[3],q[9],qd[9])->(y[9]) y = P m, P (9 x 52) passed in the c slot by row pairs, P(i, k) at c[(j/2)*104 + 2k + j%2], j = i + 1: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 131 entries that can be nonzero, a pair of rows reads the columns either row has */
 void fem_nx4_ny4_torque_first_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
@@ -981,15 +981,79 @@ void fem_nx4_ny4_torque_first_forces_folded(const double* c, const double* u, co
     const double B4_theta_dot_B2_dot = B4_theta_dot*B2_dot;
     const double B4_theta_dot_B3_dot = B4_theta_dot*B3_dot;
     const double B4_theta_dot_B4_dot = B4_theta_dot*B4_dot;
-    out[0] = c[0]*tau + c[10]*theta_dot_A1_dot + c[11]*theta_dot_A2_dot + c[12]*theta_dot_A3_dot + c[13]*theta_dot_A4_dot + c[19]*A1_theta_dot_A1_dot + c[20]*A1_theta_dot_A2_dot + c[22]*A2_theta_dot_A1_dot + c[23]*A2_theta_dot_A2_dot + c[24]*A2_theta_dot_A3_dot + c[26]*A3_theta_dot_A2_dot + c[27]*A3_theta_dot_A3_dot + c[28]*A3_theta_dot_A4_dot + c[30]*A4_theta_dot_A3_dot + c[31]*A4_theta_dot_A4_dot + c[33]*B1_theta_dot_B1_dot + c[34]*B1_theta_dot_B2_dot + c[35]*B1_theta_dot_B3_dot + c[36]*B1_theta_dot_B4_dot + c[38]*B2_theta_dot_B1_dot + c[39]*B2_theta_dot_B2_dot + c[40]*B2_theta_dot_B3_dot + c[41]*B2_theta_dot_B4_dot + c[43]*B3_theta_dot_B1_dot + c[44]*B3_theta_dot_B2_dot + c[45]*B3_theta_dot_B3_dot + c[46]*B3_theta_dot_B4_dot + c[48]*B4_theta_dot_B1_dot + c[49]*B4_theta_dot_B2_dot + c[50]*B4_theta_dot_B3_dot + c[51]*B4_theta_dot_B4_dot;
-    out[1] = c[53]*A1 + c[54]*A2 + c[55]*A3 + c[56]*A4 + c[61]*theta_dotsq + c[66]*theta_dot_B1_dot + c[67]*theta_dot_B2_dot + c[68]*theta_dot_B3_dot + c[69]*theta_dot_B4_dot + c[70]*A1_theta_dotsq + c[73]*A2_theta_dotsq + c[77]*A3_theta_dotsq + c[81]*A4_theta_dotsq;
-    out[2] = c[105]*A1 + c[106]*A2 + c[107]*A3 + c[108]*A4 + c[113]*theta_dotsq + c[118]*theta_dot_B1_dot + c[119]*theta_dot_B2_dot + c[120]*theta_dot_B3_dot + c[121]*theta_dot_B4_dot + c[122]*A1_theta_dotsq + c[125]*A2_theta_dotsq + c[129]*A3_theta_dotsq + c[133]*A4_theta_dotsq;
-    out[3] = c[157]*A1 + c[158]*A2 + c[159]*A3 + c[160]*A4 + c[165]*theta_dotsq + c[170]*theta_dot_B1_dot + c[171]*theta_dot_B2_dot + c[172]*theta_dot_B3_dot + c[173]*theta_dot_B4_dot + c[174]*A1_theta_dotsq + c[177]*A2_theta_dotsq + c[181]*A3_theta_dotsq + c[185]*A4_theta_dotsq;
-    out[4] = c[209]*A1 + c[210]*A2 + c[211]*A3 + c[212]*A4 + c[217]*theta_dotsq + c[222]*theta_dot_B1_dot + c[223]*theta_dot_B2_dot + c[224]*theta_dot_B3_dot + c[225]*theta_dot_B4_dot + c[226]*A1_theta_dotsq + c[229]*A2_theta_dotsq + c[233]*A3_theta_dotsq + c[237]*A4_theta_dotsq;
-    out[5] = c[265]*B1 + c[266]*B2 + c[267]*B3 + c[268]*B4 + c[270]*theta_dot_A1_dot + c[271]*theta_dot_A2_dot + c[272]*theta_dot_A3_dot + c[273]*theta_dot_A4_dot + c[292]*B1_theta_dotsq + c[297]*B2_theta_dotsq + c[302]*B3_theta_dotsq + c[307]*B4_theta_dotsq;
-    out[6] = c[317]*B1 + c[318]*B2 + c[319]*B3 + c[320]*B4 + c[322]*theta_dot_A1_dot + c[323]*theta_dot_A2_dot + c[324]*theta_dot_A3_dot + c[325]*theta_dot_A4_dot + c[344]*B1_theta_dotsq + c[349]*B2_theta_dotsq + c[354]*B3_theta_dotsq + c[359]*B4_theta_dotsq;
-    out[7] = c[369]*B1 + c[370]*B2 + c[371]*B3 + c[372]*B4 + c[374]*theta_dot_A1_dot + c[375]*theta_dot_A2_dot + c[376]*theta_dot_A3_dot + c[377]*theta_dot_A4_dot + c[396]*B1_theta_dotsq + c[401]*B2_theta_dotsq + c[406]*B3_theta_dotsq + c[411]*B4_theta_dotsq;
-    out[8] = c[421]*B1 + c[422]*B2 + c[423]*B3 + c[424]*B4 + c[426]*theta_dot_A1_dot + c[427]*theta_dot_A2_dot + c[428]*theta_dot_A3_dot + c[429]*theta_dot_A4_dot + c[448]*B1_theta_dotsq + c[453]*B2_theta_dotsq + c[458]*B3_theta_dotsq + c[463]*B4_theta_dotsq;
+    typedef double lanes __attribute__((vector_size(16)));
+    const auto pair = [c](int e) {
+        lanes v;
+        __builtin_memcpy(&v, c + e, sizeof v);
+        return v;
+    };
+    out[0] = c[1]*tau + c[21]*theta_dot_A1_dot + c[23]*theta_dot_A2_dot + c[25]*theta_dot_A3_dot + c[27]*theta_dot_A4_dot + c[39]*A1_theta_dot_A1_dot + c[41]*A1_theta_dot_A2_dot + c[45]*A2_theta_dot_A1_dot + c[47]*A2_theta_dot_A2_dot + c[49]*A2_theta_dot_A3_dot + c[53]*A3_theta_dot_A2_dot + c[55]*A3_theta_dot_A3_dot + c[57]*A3_theta_dot_A4_dot + c[61]*A4_theta_dot_A3_dot + c[63]*A4_theta_dot_A4_dot + c[67]*B1_theta_dot_B1_dot + c[69]*B1_theta_dot_B2_dot + c[71]*B1_theta_dot_B3_dot + c[73]*B1_theta_dot_B4_dot + c[77]*B2_theta_dot_B1_dot + c[79]*B2_theta_dot_B2_dot + c[81]*B2_theta_dot_B3_dot + c[83]*B2_theta_dot_B4_dot + c[87]*B3_theta_dot_B1_dot + c[89]*B3_theta_dot_B2_dot + c[91]*B3_theta_dot_B3_dot + c[93]*B3_theta_dot_B4_dot + c[97]*B4_theta_dot_B1_dot + c[99]*B4_theta_dot_B2_dot + c[101]*B4_theta_dot_B3_dot + c[103]*B4_theta_dot_B4_dot;
+    {
+        lanes s = pair(106) * lanes{A1, A1};
+        s += pair(108) * lanes{A2, A2};
+        s += pair(110) * lanes{A3, A3};
+        s += pair(112) * lanes{A4, A4};
+        s += pair(122) * lanes{theta_dotsq, theta_dotsq};
+        s += pair(132) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
+        s += pair(134) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
+        s += pair(136) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
+        s += pair(138) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
+        s += pair(140) * lanes{A1_theta_dotsq, A1_theta_dotsq};
+        s += pair(146) * lanes{A2_theta_dotsq, A2_theta_dotsq};
+        s += pair(154) * lanes{A3_theta_dotsq, A3_theta_dotsq};
+        s += pair(162) * lanes{A4_theta_dotsq, A4_theta_dotsq};
+        out[1] = s[0];
+        out[2] = s[1];
+    }
+    {
+        lanes s = pair(210) * lanes{A1, A1};
+        s += pair(212) * lanes{A2, A2};
+        s += pair(214) * lanes{A3, A3};
+        s += pair(216) * lanes{A4, A4};
+        s += pair(226) * lanes{theta_dotsq, theta_dotsq};
+        s += pair(236) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
+        s += pair(238) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
+        s += pair(240) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
+        s += pair(242) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
+        s += pair(244) * lanes{A1_theta_dotsq, A1_theta_dotsq};
+        s += pair(250) * lanes{A2_theta_dotsq, A2_theta_dotsq};
+        s += pair(258) * lanes{A3_theta_dotsq, A3_theta_dotsq};
+        s += pair(266) * lanes{A4_theta_dotsq, A4_theta_dotsq};
+        out[3] = s[0];
+        out[4] = s[1];
+    }
+    {
+        lanes s = pair(322) * lanes{B1, B1};
+        s += pair(324) * lanes{B2, B2};
+        s += pair(326) * lanes{B3, B3};
+        s += pair(328) * lanes{B4, B4};
+        s += pair(332) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
+        s += pair(334) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
+        s += pair(336) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
+        s += pair(338) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
+        s += pair(376) * lanes{B1_theta_dotsq, B1_theta_dotsq};
+        s += pair(386) * lanes{B2_theta_dotsq, B2_theta_dotsq};
+        s += pair(396) * lanes{B3_theta_dotsq, B3_theta_dotsq};
+        s += pair(406) * lanes{B4_theta_dotsq, B4_theta_dotsq};
+        out[5] = s[0];
+        out[6] = s[1];
+    }
+    {
+        lanes s = pair(426) * lanes{B1, B1};
+        s += pair(428) * lanes{B2, B2};
+        s += pair(430) * lanes{B3, B3};
+        s += pair(432) * lanes{B4, B4};
+        s += pair(436) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
+        s += pair(438) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
+        s += pair(440) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
+        s += pair(442) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
+        s += pair(480) * lanes{B1_theta_dotsq, B1_theta_dotsq};
+        s += pair(490) * lanes{B2_theta_dotsq, B2_theta_dotsq};
+        s += pair(500) * lanes{B3_theta_dotsq, B3_theta_dotsq};
+        s += pair(510) * lanes{B4_theta_dotsq, B4_theta_dotsq};
+        out[7] = s[0];
+        out[8] = s[1];
+    }
 }
 
 /* mass_varying:(c[80],u[3],q[9],qd[9])->(M[81]) as mass, the entries that depend on q only */
@@ -1101,7 +1165,7 @@ void fem_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, c
 }  // namespace
 
 extern const Variant fem_nx4_ny4_torque_first = {
-    .abi_version = 2,
+    .abi_version = 3,
     .name = "fem_nx4_ny4_torque_first",
     .nq = 9,
     .ncoeff = 80,

@@ -1244,7 +1244,7 @@ void fem_nx4_ny4_torque_first_tip_gravity_damped_depth_forces_u(const double* c,
     out[0] = 1.0;
 }
 
-/* forces_folded:(c[164],u[5],q[9],qd[9])->(y[9]) y = P m, P (9 x 80, row-major) passed in the c slot: P = M^-1 F for a constant M; under hub torque, C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); the 206 entries that can be nonzero are read */
+/* forces_folded:(c[164],u[5],q[9],qd[9])->(y[9]) y = P m, P (9 x 80) passed in the c slot by row pairs, P(i, k) at c[(j/2)*160 + 2k + j%2], j = i + 1: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 206 entries that can be nonzero, a pair of rows reads the columns either row has */
 void fem_nx4_ny4_torque_first_tip_gravity_damped_depth_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
@@ -1340,15 +1340,107 @@ void fem_nx4_ny4_torque_first_tip_gravity_damped_depth_forces_folded(const doubl
     const double B4_theta_dot_B2_dot = B4_theta_dot*B2_dot;
     const double B4_theta_dot_B3_dot = B4_theta_dot*B3_dot;
     const double B4_theta_dot_B4_dot = B4_theta_dot*B4_dot;
-    out[0] = c[0]*tau + c[2]*cos_theta + c[19]*sin_theta_B1 + c[20]*sin_theta_B2 + c[21]*sin_theta_B3 + c[22]*sin_theta_B4 + c[23]*cos_theta_A1 + c[24]*cos_theta_A2 + c[25]*cos_theta_A3 + c[26]*cos_theta_A4 + c[28]*theta_dot_A1_dot + c[29]*theta_dot_A2_dot + c[30]*theta_dot_A3_dot + c[31]*theta_dot_A4_dot + c[36]*cos_theta_B1sq + c[37]*cos_theta_B1_B2 + c[38]*cos_theta_B1_B3 + c[39]*cos_theta_B1_B4 + c[40]*cos_theta_B2sq + c[41]*cos_theta_B2_B3 + c[42]*cos_theta_B2_B4 + c[43]*cos_theta_B3sq + c[44]*cos_theta_B3_B4 + c[45]*cos_theta_B4sq + c[47]*A1_theta_dot_A1_dot + c[48]*A1_theta_dot_A2_dot + c[50]*A2_theta_dot_A1_dot + c[51]*A2_theta_dot_A2_dot + c[52]*A2_theta_dot_A3_dot + c[54]*A3_theta_dot_A2_dot + c[55]*A3_theta_dot_A3_dot + c[56]*A3_theta_dot_A4_dot + c[58]*A4_theta_dot_A3_dot + c[59]*A4_theta_dot_A4_dot + c[61]*B1_theta_dot_B1_dot + c[62]*B1_theta_dot_B2_dot + c[63]*B1_theta_dot_B3_dot + c[64]*B1_theta_dot_B4_dot + c[66]*B2_theta_dot_B1_dot + c[67]*B2_theta_dot_B2_dot + c[68]*B2_theta_dot_B3_dot + c[69]*B2_theta_dot_B4_dot + c[71]*B3_theta_dot_B1_dot + c[72]*B3_theta_dot_B2_dot + c[73]*B3_theta_dot_B3_dot + c[74]*B3_theta_dot_B4_dot + c[76]*B4_theta_dot_B1_dot + c[77]*B4_theta_dot_B2_dot + c[78]*B4_theta_dot_B3_dot + c[79]*B4_theta_dot_B4_dot;
-    out[1] = c[81]*sin_theta + c[83]*A1 + c[84]*A2 + c[85]*A3 + c[86]*A4 + c[91]*A1_dot + c[92]*A2_dot + c[93]*A3_dot + c[94]*A4_dot + c[107]*theta_dotsq + c[112]*theta_dot_B1_dot + c[113]*theta_dot_B2_dot + c[114]*theta_dot_B3_dot + c[115]*theta_dot_B4_dot + c[126]*A1_theta_dotsq + c[129]*A2_theta_dotsq + c[133]*A3_theta_dotsq + c[137]*A4_theta_dotsq;
-    out[2] = c[161]*sin_theta + c[163]*A1 + c[164]*A2 + c[165]*A3 + c[166]*A4 + c[171]*A1_dot + c[172]*A2_dot + c[173]*A3_dot + c[174]*A4_dot + c[187]*theta_dotsq + c[192]*theta_dot_B1_dot + c[193]*theta_dot_B2_dot + c[194]*theta_dot_B3_dot + c[195]*theta_dot_B4_dot + c[206]*A1_theta_dotsq + c[209]*A2_theta_dotsq + c[213]*A3_theta_dotsq + c[217]*A4_theta_dotsq;
-    out[3] = c[241]*sin_theta + c[243]*A1 + c[244]*A2 + c[245]*A3 + c[246]*A4 + c[251]*A1_dot + c[252]*A2_dot + c[253]*A3_dot + c[254]*A4_dot + c[267]*theta_dotsq + c[272]*theta_dot_B1_dot + c[273]*theta_dot_B2_dot + c[274]*theta_dot_B3_dot + c[275]*theta_dot_B4_dot + c[286]*A1_theta_dotsq + c[289]*A2_theta_dotsq + c[293]*A3_theta_dotsq + c[297]*A4_theta_dotsq;
-    out[4] = c[321]*sin_theta + c[323]*A1 + c[324]*A2 + c[325]*A3 + c[326]*A4 + c[331]*A1_dot + c[332]*A2_dot + c[333]*A3_dot + c[334]*A4_dot + c[347]*theta_dotsq + c[352]*theta_dot_B1_dot + c[353]*theta_dot_B2_dot + c[354]*theta_dot_B3_dot + c[355]*theta_dot_B4_dot + c[366]*A1_theta_dotsq + c[369]*A2_theta_dotsq + c[373]*A3_theta_dotsq + c[377]*A4_theta_dotsq;
-    out[5] = c[402]*cos_theta + c[407]*B1 + c[408]*B2 + c[409]*B3 + c[410]*B4 + c[415]*B1_dot + c[416]*B2_dot + c[417]*B3_dot + c[418]*B4_dot + c[419]*sin_theta_B1 + c[420]*sin_theta_B2 + c[421]*sin_theta_B3 + c[422]*sin_theta_B4 + c[428]*theta_dot_A1_dot + c[429]*theta_dot_A2_dot + c[430]*theta_dot_A3_dot + c[431]*theta_dot_A4_dot + c[460]*B1_theta_dotsq + c[465]*B2_theta_dotsq + c[470]*B3_theta_dotsq + c[475]*B4_theta_dotsq;
-    out[6] = c[482]*cos_theta + c[487]*B1 + c[488]*B2 + c[489]*B3 + c[490]*B4 + c[495]*B1_dot + c[496]*B2_dot + c[497]*B3_dot + c[498]*B4_dot + c[499]*sin_theta_B1 + c[500]*sin_theta_B2 + c[501]*sin_theta_B3 + c[502]*sin_theta_B4 + c[508]*theta_dot_A1_dot + c[509]*theta_dot_A2_dot + c[510]*theta_dot_A3_dot + c[511]*theta_dot_A4_dot + c[540]*B1_theta_dotsq + c[545]*B2_theta_dotsq + c[550]*B3_theta_dotsq + c[555]*B4_theta_dotsq;
-    out[7] = c[562]*cos_theta + c[567]*B1 + c[568]*B2 + c[569]*B3 + c[570]*B4 + c[575]*B1_dot + c[576]*B2_dot + c[577]*B3_dot + c[578]*B4_dot + c[579]*sin_theta_B1 + c[580]*sin_theta_B2 + c[581]*sin_theta_B3 + c[582]*sin_theta_B4 + c[588]*theta_dot_A1_dot + c[589]*theta_dot_A2_dot + c[590]*theta_dot_A3_dot + c[591]*theta_dot_A4_dot + c[620]*B1_theta_dotsq + c[625]*B2_theta_dotsq + c[630]*B3_theta_dotsq + c[635]*B4_theta_dotsq;
-    out[8] = c[642]*cos_theta + c[647]*B1 + c[648]*B2 + c[649]*B3 + c[650]*B4 + c[655]*B1_dot + c[656]*B2_dot + c[657]*B3_dot + c[658]*B4_dot + c[659]*sin_theta_B1 + c[660]*sin_theta_B2 + c[661]*sin_theta_B3 + c[662]*sin_theta_B4 + c[668]*theta_dot_A1_dot + c[669]*theta_dot_A2_dot + c[670]*theta_dot_A3_dot + c[671]*theta_dot_A4_dot + c[700]*B1_theta_dotsq + c[705]*B2_theta_dotsq + c[710]*B3_theta_dotsq + c[715]*B4_theta_dotsq;
+    typedef double lanes __attribute__((vector_size(16)));
+    const auto pair = [c](int e) {
+        lanes v;
+        __builtin_memcpy(&v, c + e, sizeof v);
+        return v;
+    };
+    out[0] = c[1]*tau + c[5]*cos_theta + c[39]*sin_theta_B1 + c[41]*sin_theta_B2 + c[43]*sin_theta_B3 + c[45]*sin_theta_B4 + c[47]*cos_theta_A1 + c[49]*cos_theta_A2 + c[51]*cos_theta_A3 + c[53]*cos_theta_A4 + c[57]*theta_dot_A1_dot + c[59]*theta_dot_A2_dot + c[61]*theta_dot_A3_dot + c[63]*theta_dot_A4_dot + c[73]*cos_theta_B1sq + c[75]*cos_theta_B1_B2 + c[77]*cos_theta_B1_B3 + c[79]*cos_theta_B1_B4 + c[81]*cos_theta_B2sq + c[83]*cos_theta_B2_B3 + c[85]*cos_theta_B2_B4 + c[87]*cos_theta_B3sq + c[89]*cos_theta_B3_B4 + c[91]*cos_theta_B4sq + c[95]*A1_theta_dot_A1_dot + c[97]*A1_theta_dot_A2_dot + c[101]*A2_theta_dot_A1_dot + c[103]*A2_theta_dot_A2_dot + c[105]*A2_theta_dot_A3_dot + c[109]*A3_theta_dot_A2_dot + c[111]*A3_theta_dot_A3_dot + c[113]*A3_theta_dot_A4_dot + c[117]*A4_theta_dot_A3_dot + c[119]*A4_theta_dot_A4_dot + c[123]*B1_theta_dot_B1_dot + c[125]*B1_theta_dot_B2_dot + c[127]*B1_theta_dot_B3_dot + c[129]*B1_theta_dot_B4_dot + c[133]*B2_theta_dot_B1_dot + c[135]*B2_theta_dot_B2_dot + c[137]*B2_theta_dot_B3_dot + c[139]*B2_theta_dot_B4_dot + c[143]*B3_theta_dot_B1_dot + c[145]*B3_theta_dot_B2_dot + c[147]*B3_theta_dot_B3_dot + c[149]*B3_theta_dot_B4_dot + c[153]*B4_theta_dot_B1_dot + c[155]*B4_theta_dot_B2_dot + c[157]*B4_theta_dot_B3_dot + c[159]*B4_theta_dot_B4_dot;
+    {
+        lanes s = pair(162) * lanes{sin_theta, sin_theta};
+        s += pair(166) * lanes{A1, A1};
+        s += pair(168) * lanes{A2, A2};
+        s += pair(170) * lanes{A3, A3};
+        s += pair(172) * lanes{A4, A4};
+        s += pair(182) * lanes{A1_dot, A1_dot};
+        s += pair(184) * lanes{A2_dot, A2_dot};
+        s += pair(186) * lanes{A3_dot, A3_dot};
+        s += pair(188) * lanes{A4_dot, A4_dot};
+        s += pair(214) * lanes{theta_dotsq, theta_dotsq};
+        s += pair(224) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
+        s += pair(226) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
+        s += pair(228) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
+        s += pair(230) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
+        s += pair(252) * lanes{A1_theta_dotsq, A1_theta_dotsq};
+        s += pair(258) * lanes{A2_theta_dotsq, A2_theta_dotsq};
+        s += pair(266) * lanes{A3_theta_dotsq, A3_theta_dotsq};
+        s += pair(274) * lanes{A4_theta_dotsq, A4_theta_dotsq};
+        out[1] = s[0];
+        out[2] = s[1];
+    }
+    {
+        lanes s = pair(322) * lanes{sin_theta, sin_theta};
+        s += pair(326) * lanes{A1, A1};
+        s += pair(328) * lanes{A2, A2};
+        s += pair(330) * lanes{A3, A3};
+        s += pair(332) * lanes{A4, A4};
+        s += pair(342) * lanes{A1_dot, A1_dot};
+        s += pair(344) * lanes{A2_dot, A2_dot};
+        s += pair(346) * lanes{A3_dot, A3_dot};
+        s += pair(348) * lanes{A4_dot, A4_dot};
+        s += pair(374) * lanes{theta_dotsq, theta_dotsq};
+        s += pair(384) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
+        s += pair(386) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
+        s += pair(388) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
+        s += pair(390) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
+        s += pair(412) * lanes{A1_theta_dotsq, A1_theta_dotsq};
+        s += pair(418) * lanes{A2_theta_dotsq, A2_theta_dotsq};
+        s += pair(426) * lanes{A3_theta_dotsq, A3_theta_dotsq};
+        s += pair(434) * lanes{A4_theta_dotsq, A4_theta_dotsq};
+        out[3] = s[0];
+        out[4] = s[1];
+    }
+    {
+        lanes s = pair(484) * lanes{cos_theta, cos_theta};
+        s += pair(494) * lanes{B1, B1};
+        s += pair(496) * lanes{B2, B2};
+        s += pair(498) * lanes{B3, B3};
+        s += pair(500) * lanes{B4, B4};
+        s += pair(510) * lanes{B1_dot, B1_dot};
+        s += pair(512) * lanes{B2_dot, B2_dot};
+        s += pair(514) * lanes{B3_dot, B3_dot};
+        s += pair(516) * lanes{B4_dot, B4_dot};
+        s += pair(518) * lanes{sin_theta_B1, sin_theta_B1};
+        s += pair(520) * lanes{sin_theta_B2, sin_theta_B2};
+        s += pair(522) * lanes{sin_theta_B3, sin_theta_B3};
+        s += pair(524) * lanes{sin_theta_B4, sin_theta_B4};
+        s += pair(536) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
+        s += pair(538) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
+        s += pair(540) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
+        s += pair(542) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
+        s += pair(600) * lanes{B1_theta_dotsq, B1_theta_dotsq};
+        s += pair(610) * lanes{B2_theta_dotsq, B2_theta_dotsq};
+        s += pair(620) * lanes{B3_theta_dotsq, B3_theta_dotsq};
+        s += pair(630) * lanes{B4_theta_dotsq, B4_theta_dotsq};
+        out[5] = s[0];
+        out[6] = s[1];
+    }
+    {
+        lanes s = pair(644) * lanes{cos_theta, cos_theta};
+        s += pair(654) * lanes{B1, B1};
+        s += pair(656) * lanes{B2, B2};
+        s += pair(658) * lanes{B3, B3};
+        s += pair(660) * lanes{B4, B4};
+        s += pair(670) * lanes{B1_dot, B1_dot};
+        s += pair(672) * lanes{B2_dot, B2_dot};
+        s += pair(674) * lanes{B3_dot, B3_dot};
+        s += pair(676) * lanes{B4_dot, B4_dot};
+        s += pair(678) * lanes{sin_theta_B1, sin_theta_B1};
+        s += pair(680) * lanes{sin_theta_B2, sin_theta_B2};
+        s += pair(682) * lanes{sin_theta_B3, sin_theta_B3};
+        s += pair(684) * lanes{sin_theta_B4, sin_theta_B4};
+        s += pair(696) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
+        s += pair(698) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
+        s += pair(700) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
+        s += pair(702) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
+        s += pair(760) * lanes{B1_theta_dotsq, B1_theta_dotsq};
+        s += pair(770) * lanes{B2_theta_dotsq, B2_theta_dotsq};
+        s += pair(780) * lanes{B3_theta_dotsq, B3_theta_dotsq};
+        s += pair(790) * lanes{B4_theta_dotsq, B4_theta_dotsq};
+        out[7] = s[0];
+        out[8] = s[1];
+    }
 }
 
 /* mass_varying:(c[164],u[5],q[9],qd[9])->(M[81]) as mass, the entries that depend on q only */
@@ -1462,7 +1554,7 @@ void fem_nx4_ny4_torque_first_tip_gravity_damped_depth_mass_q_product(const doub
 }  // namespace
 
 extern const Variant fem_nx4_ny4_torque_first_tip_gravity_damped_depth = {
-    .abi_version = 2,
+    .abi_version = 3,
     .name = "fem_nx4_ny4_torque_first_tip_gravity_damped_depth",
     .nq = 9,
     .ncoeff = 164,

@@ -1813,7 +1813,7 @@ void fem_nx8_ny8_torque_first_forces_u(const double* c, const double* u, const d
     out[0] = 1.0;
 }
 
-/* forces_folded:(c[116],u[3],q[17],qd[17])->(y[17]) y = P m, P (17 x 112, row-major) passed in the c slot: P = M^-1 F for a constant M; under hub torque, C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); the 463 entries that can be nonzero are read */
+/* forces_folded:(c[116],u[3],q[17],qd[17])->(y[17]) y = P m, P (17 x 112) passed in the c slot by row pairs, P(i, k) at c[(j/2)*224 + 2k + j%2], j = i + 1: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 463 entries that can be nonzero, a pair of rows reads the columns either row has */
 void fem_nx8_ny8_torque_first_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
@@ -1961,23 +1961,241 @@ void fem_nx8_ny8_torque_first_forces_folded(const double* c, const double* u, co
     const double B8_theta_dot_B6_dot = B8_theta_dot*B6_dot;
     const double B8_theta_dot_B7_dot = B8_theta_dot*B7_dot;
     const double B8_theta_dot_B8_dot = B8_theta_dot*B8_dot;
-    out[0] = c[0]*tau + c[18]*theta_dot_A1_dot + c[19]*theta_dot_A2_dot + c[20]*theta_dot_A3_dot + c[21]*theta_dot_A4_dot + c[22]*theta_dot_A5_dot + c[23]*theta_dot_A6_dot + c[24]*theta_dot_A7_dot + c[25]*theta_dot_A8_dot + c[35]*A1_theta_dot_A1_dot + c[36]*A1_theta_dot_A2_dot + c[38]*A2_theta_dot_A1_dot + c[39]*A2_theta_dot_A2_dot + c[40]*A2_theta_dot_A3_dot + c[42]*A3_theta_dot_A2_dot + c[43]*A3_theta_dot_A3_dot + c[44]*A3_theta_dot_A4_dot + c[46]*A4_theta_dot_A3_dot + c[47]*A4_theta_dot_A4_dot + c[48]*A4_theta_dot_A5_dot + c[50]*A5_theta_dot_A4_dot + c[51]*A5_theta_dot_A5_dot + c[52]*A5_theta_dot_A6_dot + c[54]*A6_theta_dot_A5_dot + c[55]*A6_theta_dot_A6_dot + c[56]*A6_theta_dot_A7_dot + c[58]*A7_theta_dot_A6_dot + c[59]*A7_theta_dot_A7_dot + c[60]*A7_theta_dot_A8_dot + c[62]*A8_theta_dot_A7_dot + c[63]*A8_theta_dot_A8_dot + c[65]*B1_theta_dot_B1_dot + c[66]*B1_theta_dot_B2_dot + c[67]*B1_theta_dot_B3_dot + c[68]*B1_theta_dot_B4_dot + c[70]*B2_theta_dot_B1_dot + c[71]*B2_theta_dot_B2_dot + c[72]*B2_theta_dot_B3_dot + c[73]*B2_theta_dot_B4_dot + c[75]*B3_theta_dot_B1_dot + c[76]*B3_theta_dot_B2_dot + c[77]*B3_theta_dot_B3_dot + c[78]*B3_theta_dot_B4_dot + c[79]*B3_theta_dot_B5_dot + c[80]*B3_theta_dot_B6_dot + c[82]*B4_theta_dot_B1_dot + c[83]*B4_theta_dot_B2_dot + c[84]*B4_theta_dot_B3_dot + c[85]*B4_theta_dot_B4_dot + c[86]*B4_theta_dot_B5_dot + c[87]*B4_theta_dot_B6_dot + c[89]*B5_theta_dot_B3_dot + c[90]*B5_theta_dot_B4_dot + c[91]*B5_theta_dot_B5_dot + c[92]*B5_theta_dot_B6_dot + c[93]*B5_theta_dot_B7_dot + c[94]*B5_theta_dot_B8_dot + c[96]*B6_theta_dot_B3_dot + c[97]*B6_theta_dot_B4_dot + c[98]*B6_theta_dot_B5_dot + c[99]*B6_theta_dot_B6_dot + c[100]*B6_theta_dot_B7_dot + c[101]*B6_theta_dot_B8_dot + c[103]*B7_theta_dot_B5_dot + c[104]*B7_theta_dot_B6_dot + c[105]*B7_theta_dot_B7_dot + c[106]*B7_theta_dot_B8_dot + c[108]*B8_theta_dot_B5_dot + c[109]*B8_theta_dot_B6_dot + c[110]*B8_theta_dot_B7_dot + c[111]*B8_theta_dot_B8_dot;
-    out[1] = c[113]*A1 + c[114]*A2 + c[115]*A3 + c[116]*A4 + c[117]*A5 + c[118]*A6 + c[119]*A7 + c[120]*A8 + c[129]*theta_dotsq + c[138]*theta_dot_B1_dot + c[139]*theta_dot_B2_dot + c[140]*theta_dot_B3_dot + c[141]*theta_dot_B4_dot + c[142]*theta_dot_B5_dot + c[143]*theta_dot_B6_dot + c[144]*theta_dot_B7_dot + c[145]*theta_dot_B8_dot + c[146]*A1_theta_dotsq + c[149]*A2_theta_dotsq + c[153]*A3_theta_dotsq + c[157]*A4_theta_dotsq + c[161]*A5_theta_dotsq + c[165]*A6_theta_dotsq + c[169]*A7_theta_dotsq + c[173]*A8_theta_dotsq;
-    out[2] = c[225]*A1 + c[226]*A2 + c[227]*A3 + c[228]*A4 + c[229]*A5 + c[230]*A6 + c[231]*A7 + c[232]*A8 + c[241]*theta_dotsq + c[250]*theta_dot_B1_dot + c[251]*theta_dot_B2_dot + c[252]*theta_dot_B3_dot + c[253]*theta_dot_B4_dot + c[254]*theta_dot_B5_dot + c[255]*theta_dot_B6_dot + c[256]*theta_dot_B7_dot + c[257]*theta_dot_B8_dot + c[258]*A1_theta_dotsq + c[261]*A2_theta_dotsq + c[265]*A3_theta_dotsq + c[269]*A4_theta_dotsq + c[273]*A5_theta_dotsq + c[277]*A6_theta_dotsq + c[281]*A7_theta_dotsq + c[285]*A8_theta_dotsq;
-    out[3] = c[337]*A1 + c[338]*A2 + c[339]*A3 + c[340]*A4 + c[341]*A5 + c[342]*A6 + c[343]*A7 + c[344]*A8 + c[353]*theta_dotsq + c[362]*theta_dot_B1_dot + c[363]*theta_dot_B2_dot + c[364]*theta_dot_B3_dot + c[365]*theta_dot_B4_dot + c[366]*theta_dot_B5_dot + c[367]*theta_dot_B6_dot + c[368]*theta_dot_B7_dot + c[369]*theta_dot_B8_dot + c[370]*A1_theta_dotsq + c[373]*A2_theta_dotsq + c[377]*A3_theta_dotsq + c[381]*A4_theta_dotsq + c[385]*A5_theta_dotsq + c[389]*A6_theta_dotsq + c[393]*A7_theta_dotsq + c[397]*A8_theta_dotsq;
-    out[4] = c[449]*A1 + c[450]*A2 + c[451]*A3 + c[452]*A4 + c[453]*A5 + c[454]*A6 + c[455]*A7 + c[456]*A8 + c[465]*theta_dotsq + c[474]*theta_dot_B1_dot + c[475]*theta_dot_B2_dot + c[476]*theta_dot_B3_dot + c[477]*theta_dot_B4_dot + c[478]*theta_dot_B5_dot + c[479]*theta_dot_B6_dot + c[480]*theta_dot_B7_dot + c[481]*theta_dot_B8_dot + c[482]*A1_theta_dotsq + c[485]*A2_theta_dotsq + c[489]*A3_theta_dotsq + c[493]*A4_theta_dotsq + c[497]*A5_theta_dotsq + c[501]*A6_theta_dotsq + c[505]*A7_theta_dotsq + c[509]*A8_theta_dotsq;
-    out[5] = c[561]*A1 + c[562]*A2 + c[563]*A3 + c[564]*A4 + c[565]*A5 + c[566]*A6 + c[567]*A7 + c[568]*A8 + c[577]*theta_dotsq + c[586]*theta_dot_B1_dot + c[587]*theta_dot_B2_dot + c[588]*theta_dot_B3_dot + c[589]*theta_dot_B4_dot + c[590]*theta_dot_B5_dot + c[591]*theta_dot_B6_dot + c[592]*theta_dot_B7_dot + c[593]*theta_dot_B8_dot + c[594]*A1_theta_dotsq + c[597]*A2_theta_dotsq + c[601]*A3_theta_dotsq + c[605]*A4_theta_dotsq + c[609]*A5_theta_dotsq + c[613]*A6_theta_dotsq + c[617]*A7_theta_dotsq + c[621]*A8_theta_dotsq;
-    out[6] = c[673]*A1 + c[674]*A2 + c[675]*A3 + c[676]*A4 + c[677]*A5 + c[678]*A6 + c[679]*A7 + c[680]*A8 + c[689]*theta_dotsq + c[698]*theta_dot_B1_dot + c[699]*theta_dot_B2_dot + c[700]*theta_dot_B3_dot + c[701]*theta_dot_B4_dot + c[702]*theta_dot_B5_dot + c[703]*theta_dot_B6_dot + c[704]*theta_dot_B7_dot + c[705]*theta_dot_B8_dot + c[706]*A1_theta_dotsq + c[709]*A2_theta_dotsq + c[713]*A3_theta_dotsq + c[717]*A4_theta_dotsq + c[721]*A5_theta_dotsq + c[725]*A6_theta_dotsq + c[729]*A7_theta_dotsq + c[733]*A8_theta_dotsq;
-    out[7] = c[785]*A1 + c[786]*A2 + c[787]*A3 + c[788]*A4 + c[789]*A5 + c[790]*A6 + c[791]*A7 + c[792]*A8 + c[801]*theta_dotsq + c[810]*theta_dot_B1_dot + c[811]*theta_dot_B2_dot + c[812]*theta_dot_B3_dot + c[813]*theta_dot_B4_dot + c[814]*theta_dot_B5_dot + c[815]*theta_dot_B6_dot + c[816]*theta_dot_B7_dot + c[817]*theta_dot_B8_dot + c[818]*A1_theta_dotsq + c[821]*A2_theta_dotsq + c[825]*A3_theta_dotsq + c[829]*A4_theta_dotsq + c[833]*A5_theta_dotsq + c[837]*A6_theta_dotsq + c[841]*A7_theta_dotsq + c[845]*A8_theta_dotsq;
-    out[8] = c[897]*A1 + c[898]*A2 + c[899]*A3 + c[900]*A4 + c[901]*A5 + c[902]*A6 + c[903]*A7 + c[904]*A8 + c[913]*theta_dotsq + c[922]*theta_dot_B1_dot + c[923]*theta_dot_B2_dot + c[924]*theta_dot_B3_dot + c[925]*theta_dot_B4_dot + c[926]*theta_dot_B5_dot + c[927]*theta_dot_B6_dot + c[928]*theta_dot_B7_dot + c[929]*theta_dot_B8_dot + c[930]*A1_theta_dotsq + c[933]*A2_theta_dotsq + c[937]*A3_theta_dotsq + c[941]*A4_theta_dotsq + c[945]*A5_theta_dotsq + c[949]*A6_theta_dotsq + c[953]*A7_theta_dotsq + c[957]*A8_theta_dotsq;
-    out[9] = c[1017]*B1 + c[1018]*B2 + c[1019]*B3 + c[1020]*B4 + c[1021]*B5 + c[1022]*B6 + c[1023]*B7 + c[1024]*B8 + c[1026]*theta_dot_A1_dot + c[1027]*theta_dot_A2_dot + c[1028]*theta_dot_A3_dot + c[1029]*theta_dot_A4_dot + c[1030]*theta_dot_A5_dot + c[1031]*theta_dot_A6_dot + c[1032]*theta_dot_A7_dot + c[1033]*theta_dot_A8_dot + c[1072]*B1_theta_dotsq + c[1077]*B2_theta_dotsq + c[1082]*B3_theta_dotsq + c[1089]*B4_theta_dotsq + c[1096]*B5_theta_dotsq + c[1103]*B6_theta_dotsq + c[1110]*B7_theta_dotsq + c[1115]*B8_theta_dotsq;
-    out[10] = c[1129]*B1 + c[1130]*B2 + c[1131]*B3 + c[1132]*B4 + c[1133]*B5 + c[1134]*B6 + c[1135]*B7 + c[1136]*B8 + c[1138]*theta_dot_A1_dot + c[1139]*theta_dot_A2_dot + c[1140]*theta_dot_A3_dot + c[1141]*theta_dot_A4_dot + c[1142]*theta_dot_A5_dot + c[1143]*theta_dot_A6_dot + c[1144]*theta_dot_A7_dot + c[1145]*theta_dot_A8_dot + c[1184]*B1_theta_dotsq + c[1189]*B2_theta_dotsq + c[1194]*B3_theta_dotsq + c[1201]*B4_theta_dotsq + c[1208]*B5_theta_dotsq + c[1215]*B6_theta_dotsq + c[1222]*B7_theta_dotsq + c[1227]*B8_theta_dotsq;
-    out[11] = c[1241]*B1 + c[1242]*B2 + c[1243]*B3 + c[1244]*B4 + c[1245]*B5 + c[1246]*B6 + c[1247]*B7 + c[1248]*B8 + c[1250]*theta_dot_A1_dot + c[1251]*theta_dot_A2_dot + c[1252]*theta_dot_A3_dot + c[1253]*theta_dot_A4_dot + c[1254]*theta_dot_A5_dot + c[1255]*theta_dot_A6_dot + c[1256]*theta_dot_A7_dot + c[1257]*theta_dot_A8_dot + c[1296]*B1_theta_dotsq + c[1301]*B2_theta_dotsq + c[1306]*B3_theta_dotsq + c[1313]*B4_theta_dotsq + c[1320]*B5_theta_dotsq + c[1327]*B6_theta_dotsq + c[1334]*B7_theta_dotsq + c[1339]*B8_theta_dotsq;
-    out[12] = c[1353]*B1 + c[1354]*B2 + c[1355]*B3 + c[1356]*B4 + c[1357]*B5 + c[1358]*B6 + c[1359]*B7 + c[1360]*B8 + c[1362]*theta_dot_A1_dot + c[1363]*theta_dot_A2_dot + c[1364]*theta_dot_A3_dot + c[1365]*theta_dot_A4_dot + c[1366]*theta_dot_A5_dot + c[1367]*theta_dot_A6_dot + c[1368]*theta_dot_A7_dot + c[1369]*theta_dot_A8_dot + c[1408]*B1_theta_dotsq + c[1413]*B2_theta_dotsq + c[1418]*B3_theta_dotsq + c[1425]*B4_theta_dotsq + c[1432]*B5_theta_dotsq + c[1439]*B6_theta_dotsq + c[1446]*B7_theta_dotsq + c[1451]*B8_theta_dotsq;
-    out[13] = c[1465]*B1 + c[1466]*B2 + c[1467]*B3 + c[1468]*B4 + c[1469]*B5 + c[1470]*B6 + c[1471]*B7 + c[1472]*B8 + c[1474]*theta_dot_A1_dot + c[1475]*theta_dot_A2_dot + c[1476]*theta_dot_A3_dot + c[1477]*theta_dot_A4_dot + c[1478]*theta_dot_A5_dot + c[1479]*theta_dot_A6_dot + c[1480]*theta_dot_A7_dot + c[1481]*theta_dot_A8_dot + c[1520]*B1_theta_dotsq + c[1525]*B2_theta_dotsq + c[1530]*B3_theta_dotsq + c[1537]*B4_theta_dotsq + c[1544]*B5_theta_dotsq + c[1551]*B6_theta_dotsq + c[1558]*B7_theta_dotsq + c[1563]*B8_theta_dotsq;
-    out[14] = c[1577]*B1 + c[1578]*B2 + c[1579]*B3 + c[1580]*B4 + c[1581]*B5 + c[1582]*B6 + c[1583]*B7 + c[1584]*B8 + c[1586]*theta_dot_A1_dot + c[1587]*theta_dot_A2_dot + c[1588]*theta_dot_A3_dot + c[1589]*theta_dot_A4_dot + c[1590]*theta_dot_A5_dot + c[1591]*theta_dot_A6_dot + c[1592]*theta_dot_A7_dot + c[1593]*theta_dot_A8_dot + c[1632]*B1_theta_dotsq + c[1637]*B2_theta_dotsq + c[1642]*B3_theta_dotsq + c[1649]*B4_theta_dotsq + c[1656]*B5_theta_dotsq + c[1663]*B6_theta_dotsq + c[1670]*B7_theta_dotsq + c[1675]*B8_theta_dotsq;
-    out[15] = c[1689]*B1 + c[1690]*B2 + c[1691]*B3 + c[1692]*B4 + c[1693]*B5 + c[1694]*B6 + c[1695]*B7 + c[1696]*B8 + c[1698]*theta_dot_A1_dot + c[1699]*theta_dot_A2_dot + c[1700]*theta_dot_A3_dot + c[1701]*theta_dot_A4_dot + c[1702]*theta_dot_A5_dot + c[1703]*theta_dot_A6_dot + c[1704]*theta_dot_A7_dot + c[1705]*theta_dot_A8_dot + c[1744]*B1_theta_dotsq + c[1749]*B2_theta_dotsq + c[1754]*B3_theta_dotsq + c[1761]*B4_theta_dotsq + c[1768]*B5_theta_dotsq + c[1775]*B6_theta_dotsq + c[1782]*B7_theta_dotsq + c[1787]*B8_theta_dotsq;
-    out[16] = c[1801]*B1 + c[1802]*B2 + c[1803]*B3 + c[1804]*B4 + c[1805]*B5 + c[1806]*B6 + c[1807]*B7 + c[1808]*B8 + c[1810]*theta_dot_A1_dot + c[1811]*theta_dot_A2_dot + c[1812]*theta_dot_A3_dot + c[1813]*theta_dot_A4_dot + c[1814]*theta_dot_A5_dot + c[1815]*theta_dot_A6_dot + c[1816]*theta_dot_A7_dot + c[1817]*theta_dot_A8_dot + c[1856]*B1_theta_dotsq + c[1861]*B2_theta_dotsq + c[1866]*B3_theta_dotsq + c[1873]*B4_theta_dotsq + c[1880]*B5_theta_dotsq + c[1887]*B6_theta_dotsq + c[1894]*B7_theta_dotsq + c[1899]*B8_theta_dotsq;
+    typedef double lanes __attribute__((vector_size(16)));
+    const auto pair = [c](int e) {
+        lanes v;
+        __builtin_memcpy(&v, c + e, sizeof v);
+        return v;
+    };
+    out[0] = c[1]*tau + c[37]*theta_dot_A1_dot + c[39]*theta_dot_A2_dot + c[41]*theta_dot_A3_dot + c[43]*theta_dot_A4_dot + c[45]*theta_dot_A5_dot + c[47]*theta_dot_A6_dot + c[49]*theta_dot_A7_dot + c[51]*theta_dot_A8_dot + c[71]*A1_theta_dot_A1_dot + c[73]*A1_theta_dot_A2_dot + c[77]*A2_theta_dot_A1_dot + c[79]*A2_theta_dot_A2_dot + c[81]*A2_theta_dot_A3_dot + c[85]*A3_theta_dot_A2_dot + c[87]*A3_theta_dot_A3_dot + c[89]*A3_theta_dot_A4_dot + c[93]*A4_theta_dot_A3_dot + c[95]*A4_theta_dot_A4_dot + c[97]*A4_theta_dot_A5_dot + c[101]*A5_theta_dot_A4_dot + c[103]*A5_theta_dot_A5_dot + c[105]*A5_theta_dot_A6_dot + c[109]*A6_theta_dot_A5_dot + c[111]*A6_theta_dot_A6_dot + c[113]*A6_theta_dot_A7_dot + c[117]*A7_theta_dot_A6_dot + c[119]*A7_theta_dot_A7_dot + c[121]*A7_theta_dot_A8_dot + c[125]*A8_theta_dot_A7_dot + c[127]*A8_theta_dot_A8_dot + c[131]*B1_theta_dot_B1_dot + c[133]*B1_theta_dot_B2_dot + c[135]*B1_theta_dot_B3_dot + c[137]*B1_theta_dot_B4_dot + c[141]*B2_theta_dot_B1_dot + c[143]*B2_theta_dot_B2_dot + c[145]*B2_theta_dot_B3_dot + c[147]*B2_theta_dot_B4_dot + c[151]*B3_theta_dot_B1_dot + c[153]*B3_theta_dot_B2_dot + c[155]*B3_theta_dot_B3_dot + c[157]*B3_theta_dot_B4_dot + c[159]*B3_theta_dot_B5_dot + c[161]*B3_theta_dot_B6_dot + c[165]*B4_theta_dot_B1_dot + c[167]*B4_theta_dot_B2_dot + c[169]*B4_theta_dot_B3_dot + c[171]*B4_theta_dot_B4_dot + c[173]*B4_theta_dot_B5_dot + c[175]*B4_theta_dot_B6_dot + c[179]*B5_theta_dot_B3_dot + c[181]*B5_theta_dot_B4_dot + c[183]*B5_theta_dot_B5_dot + c[185]*B5_theta_dot_B6_dot + c[187]*B5_theta_dot_B7_dot + c[189]*B5_theta_dot_B8_dot + c[193]*B6_theta_dot_B3_dot + c[195]*B6_theta_dot_B4_dot + c[197]*B6_theta_dot_B5_dot + c[199]*B6_theta_dot_B6_dot + c[201]*B6_theta_dot_B7_dot + c[203]*B6_theta_dot_B8_dot + c[207]*B7_theta_dot_B5_dot + c[209]*B7_theta_dot_B6_dot + c[211]*B7_theta_dot_B7_dot + c[213]*B7_theta_dot_B8_dot + c[217]*B8_theta_dot_B5_dot + c[219]*B8_theta_dot_B6_dot + c[221]*B8_theta_dot_B7_dot + c[223]*B8_theta_dot_B8_dot;
+    {
+        lanes s = pair(226) * lanes{A1, A1};
+        s += pair(228) * lanes{A2, A2};
+        s += pair(230) * lanes{A3, A3};
+        s += pair(232) * lanes{A4, A4};
+        s += pair(234) * lanes{A5, A5};
+        s += pair(236) * lanes{A6, A6};
+        s += pair(238) * lanes{A7, A7};
+        s += pair(240) * lanes{A8, A8};
+        s += pair(258) * lanes{theta_dotsq, theta_dotsq};
+        s += pair(276) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
+        s += pair(278) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
+        s += pair(280) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
+        s += pair(282) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
+        s += pair(284) * lanes{theta_dot_B5_dot, theta_dot_B5_dot};
+        s += pair(286) * lanes{theta_dot_B6_dot, theta_dot_B6_dot};
+        s += pair(288) * lanes{theta_dot_B7_dot, theta_dot_B7_dot};
+        s += pair(290) * lanes{theta_dot_B8_dot, theta_dot_B8_dot};
+        s += pair(292) * lanes{A1_theta_dotsq, A1_theta_dotsq};
+        s += pair(298) * lanes{A2_theta_dotsq, A2_theta_dotsq};
+        s += pair(306) * lanes{A3_theta_dotsq, A3_theta_dotsq};
+        s += pair(314) * lanes{A4_theta_dotsq, A4_theta_dotsq};
+        s += pair(322) * lanes{A5_theta_dotsq, A5_theta_dotsq};
+        s += pair(330) * lanes{A6_theta_dotsq, A6_theta_dotsq};
+        s += pair(338) * lanes{A7_theta_dotsq, A7_theta_dotsq};
+        s += pair(346) * lanes{A8_theta_dotsq, A8_theta_dotsq};
+        out[1] = s[0];
+        out[2] = s[1];
+    }
+    {
+        lanes s = pair(450) * lanes{A1, A1};
+        s += pair(452) * lanes{A2, A2};
+        s += pair(454) * lanes{A3, A3};
+        s += pair(456) * lanes{A4, A4};
+        s += pair(458) * lanes{A5, A5};
+        s += pair(460) * lanes{A6, A6};
+        s += pair(462) * lanes{A7, A7};
+        s += pair(464) * lanes{A8, A8};
+        s += pair(482) * lanes{theta_dotsq, theta_dotsq};
+        s += pair(500) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
+        s += pair(502) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
+        s += pair(504) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
+        s += pair(506) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
+        s += pair(508) * lanes{theta_dot_B5_dot, theta_dot_B5_dot};
+        s += pair(510) * lanes{theta_dot_B6_dot, theta_dot_B6_dot};
+        s += pair(512) * lanes{theta_dot_B7_dot, theta_dot_B7_dot};
+        s += pair(514) * lanes{theta_dot_B8_dot, theta_dot_B8_dot};
+        s += pair(516) * lanes{A1_theta_dotsq, A1_theta_dotsq};
+        s += pair(522) * lanes{A2_theta_dotsq, A2_theta_dotsq};
+        s += pair(530) * lanes{A3_theta_dotsq, A3_theta_dotsq};
+        s += pair(538) * lanes{A4_theta_dotsq, A4_theta_dotsq};
+        s += pair(546) * lanes{A5_theta_dotsq, A5_theta_dotsq};
+        s += pair(554) * lanes{A6_theta_dotsq, A6_theta_dotsq};
+        s += pair(562) * lanes{A7_theta_dotsq, A7_theta_dotsq};
+        s += pair(570) * lanes{A8_theta_dotsq, A8_theta_dotsq};
+        out[3] = s[0];
+        out[4] = s[1];
+    }
+    {
+        lanes s = pair(674) * lanes{A1, A1};
+        s += pair(676) * lanes{A2, A2};
+        s += pair(678) * lanes{A3, A3};
+        s += pair(680) * lanes{A4, A4};
+        s += pair(682) * lanes{A5, A5};
+        s += pair(684) * lanes{A6, A6};
+        s += pair(686) * lanes{A7, A7};
+        s += pair(688) * lanes{A8, A8};
+        s += pair(706) * lanes{theta_dotsq, theta_dotsq};
+        s += pair(724) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
+        s += pair(726) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
+        s += pair(728) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
+        s += pair(730) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
+        s += pair(732) * lanes{theta_dot_B5_dot, theta_dot_B5_dot};
+        s += pair(734) * lanes{theta_dot_B6_dot, theta_dot_B6_dot};
+        s += pair(736) * lanes{theta_dot_B7_dot, theta_dot_B7_dot};
+        s += pair(738) * lanes{theta_dot_B8_dot, theta_dot_B8_dot};
+        s += pair(740) * lanes{A1_theta_dotsq, A1_theta_dotsq};
+        s += pair(746) * lanes{A2_theta_dotsq, A2_theta_dotsq};
+        s += pair(754) * lanes{A3_theta_dotsq, A3_theta_dotsq};
+        s += pair(762) * lanes{A4_theta_dotsq, A4_theta_dotsq};
+        s += pair(770) * lanes{A5_theta_dotsq, A5_theta_dotsq};
+        s += pair(778) * lanes{A6_theta_dotsq, A6_theta_dotsq};
+        s += pair(786) * lanes{A7_theta_dotsq, A7_theta_dotsq};
+        s += pair(794) * lanes{A8_theta_dotsq, A8_theta_dotsq};
+        out[5] = s[0];
+        out[6] = s[1];
+    }
+    {
+        lanes s = pair(898) * lanes{A1, A1};
+        s += pair(900) * lanes{A2, A2};
+        s += pair(902) * lanes{A3, A3};
+        s += pair(904) * lanes{A4, A4};
+        s += pair(906) * lanes{A5, A5};
+        s += pair(908) * lanes{A6, A6};
+        s += pair(910) * lanes{A7, A7};
+        s += pair(912) * lanes{A8, A8};
+        s += pair(930) * lanes{theta_dotsq, theta_dotsq};
+        s += pair(948) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
+        s += pair(950) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
+        s += pair(952) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
+        s += pair(954) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
+        s += pair(956) * lanes{theta_dot_B5_dot, theta_dot_B5_dot};
+        s += pair(958) * lanes{theta_dot_B6_dot, theta_dot_B6_dot};
+        s += pair(960) * lanes{theta_dot_B7_dot, theta_dot_B7_dot};
+        s += pair(962) * lanes{theta_dot_B8_dot, theta_dot_B8_dot};
+        s += pair(964) * lanes{A1_theta_dotsq, A1_theta_dotsq};
+        s += pair(970) * lanes{A2_theta_dotsq, A2_theta_dotsq};
+        s += pair(978) * lanes{A3_theta_dotsq, A3_theta_dotsq};
+        s += pair(986) * lanes{A4_theta_dotsq, A4_theta_dotsq};
+        s += pair(994) * lanes{A5_theta_dotsq, A5_theta_dotsq};
+        s += pair(1002) * lanes{A6_theta_dotsq, A6_theta_dotsq};
+        s += pair(1010) * lanes{A7_theta_dotsq, A7_theta_dotsq};
+        s += pair(1018) * lanes{A8_theta_dotsq, A8_theta_dotsq};
+        out[7] = s[0];
+        out[8] = s[1];
+    }
+    {
+        lanes s = pair(1138) * lanes{B1, B1};
+        s += pair(1140) * lanes{B2, B2};
+        s += pair(1142) * lanes{B3, B3};
+        s += pair(1144) * lanes{B4, B4};
+        s += pair(1146) * lanes{B5, B5};
+        s += pair(1148) * lanes{B6, B6};
+        s += pair(1150) * lanes{B7, B7};
+        s += pair(1152) * lanes{B8, B8};
+        s += pair(1156) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
+        s += pair(1158) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
+        s += pair(1160) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
+        s += pair(1162) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
+        s += pair(1164) * lanes{theta_dot_A5_dot, theta_dot_A5_dot};
+        s += pair(1166) * lanes{theta_dot_A6_dot, theta_dot_A6_dot};
+        s += pair(1168) * lanes{theta_dot_A7_dot, theta_dot_A7_dot};
+        s += pair(1170) * lanes{theta_dot_A8_dot, theta_dot_A8_dot};
+        s += pair(1248) * lanes{B1_theta_dotsq, B1_theta_dotsq};
+        s += pair(1258) * lanes{B2_theta_dotsq, B2_theta_dotsq};
+        s += pair(1268) * lanes{B3_theta_dotsq, B3_theta_dotsq};
+        s += pair(1282) * lanes{B4_theta_dotsq, B4_theta_dotsq};
+        s += pair(1296) * lanes{B5_theta_dotsq, B5_theta_dotsq};
+        s += pair(1310) * lanes{B6_theta_dotsq, B6_theta_dotsq};
+        s += pair(1324) * lanes{B7_theta_dotsq, B7_theta_dotsq};
+        s += pair(1334) * lanes{B8_theta_dotsq, B8_theta_dotsq};
+        out[9] = s[0];
+        out[10] = s[1];
+    }
+    {
+        lanes s = pair(1362) * lanes{B1, B1};
+        s += pair(1364) * lanes{B2, B2};
+        s += pair(1366) * lanes{B3, B3};
+        s += pair(1368) * lanes{B4, B4};
+        s += pair(1370) * lanes{B5, B5};
+        s += pair(1372) * lanes{B6, B6};
+        s += pair(1374) * lanes{B7, B7};
+        s += pair(1376) * lanes{B8, B8};
+        s += pair(1380) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
+        s += pair(1382) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
+        s += pair(1384) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
+        s += pair(1386) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
+        s += pair(1388) * lanes{theta_dot_A5_dot, theta_dot_A5_dot};
+        s += pair(1390) * lanes{theta_dot_A6_dot, theta_dot_A6_dot};
+        s += pair(1392) * lanes{theta_dot_A7_dot, theta_dot_A7_dot};
+        s += pair(1394) * lanes{theta_dot_A8_dot, theta_dot_A8_dot};
+        s += pair(1472) * lanes{B1_theta_dotsq, B1_theta_dotsq};
+        s += pair(1482) * lanes{B2_theta_dotsq, B2_theta_dotsq};
+        s += pair(1492) * lanes{B3_theta_dotsq, B3_theta_dotsq};
+        s += pair(1506) * lanes{B4_theta_dotsq, B4_theta_dotsq};
+        s += pair(1520) * lanes{B5_theta_dotsq, B5_theta_dotsq};
+        s += pair(1534) * lanes{B6_theta_dotsq, B6_theta_dotsq};
+        s += pair(1548) * lanes{B7_theta_dotsq, B7_theta_dotsq};
+        s += pair(1558) * lanes{B8_theta_dotsq, B8_theta_dotsq};
+        out[11] = s[0];
+        out[12] = s[1];
+    }
+    {
+        lanes s = pair(1586) * lanes{B1, B1};
+        s += pair(1588) * lanes{B2, B2};
+        s += pair(1590) * lanes{B3, B3};
+        s += pair(1592) * lanes{B4, B4};
+        s += pair(1594) * lanes{B5, B5};
+        s += pair(1596) * lanes{B6, B6};
+        s += pair(1598) * lanes{B7, B7};
+        s += pair(1600) * lanes{B8, B8};
+        s += pair(1604) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
+        s += pair(1606) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
+        s += pair(1608) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
+        s += pair(1610) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
+        s += pair(1612) * lanes{theta_dot_A5_dot, theta_dot_A5_dot};
+        s += pair(1614) * lanes{theta_dot_A6_dot, theta_dot_A6_dot};
+        s += pair(1616) * lanes{theta_dot_A7_dot, theta_dot_A7_dot};
+        s += pair(1618) * lanes{theta_dot_A8_dot, theta_dot_A8_dot};
+        s += pair(1696) * lanes{B1_theta_dotsq, B1_theta_dotsq};
+        s += pair(1706) * lanes{B2_theta_dotsq, B2_theta_dotsq};
+        s += pair(1716) * lanes{B3_theta_dotsq, B3_theta_dotsq};
+        s += pair(1730) * lanes{B4_theta_dotsq, B4_theta_dotsq};
+        s += pair(1744) * lanes{B5_theta_dotsq, B5_theta_dotsq};
+        s += pair(1758) * lanes{B6_theta_dotsq, B6_theta_dotsq};
+        s += pair(1772) * lanes{B7_theta_dotsq, B7_theta_dotsq};
+        s += pair(1782) * lanes{B8_theta_dotsq, B8_theta_dotsq};
+        out[13] = s[0];
+        out[14] = s[1];
+    }
+    {
+        lanes s = pair(1810) * lanes{B1, B1};
+        s += pair(1812) * lanes{B2, B2};
+        s += pair(1814) * lanes{B3, B3};
+        s += pair(1816) * lanes{B4, B4};
+        s += pair(1818) * lanes{B5, B5};
+        s += pair(1820) * lanes{B6, B6};
+        s += pair(1822) * lanes{B7, B7};
+        s += pair(1824) * lanes{B8, B8};
+        s += pair(1828) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
+        s += pair(1830) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
+        s += pair(1832) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
+        s += pair(1834) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
+        s += pair(1836) * lanes{theta_dot_A5_dot, theta_dot_A5_dot};
+        s += pair(1838) * lanes{theta_dot_A6_dot, theta_dot_A6_dot};
+        s += pair(1840) * lanes{theta_dot_A7_dot, theta_dot_A7_dot};
+        s += pair(1842) * lanes{theta_dot_A8_dot, theta_dot_A8_dot};
+        s += pair(1920) * lanes{B1_theta_dotsq, B1_theta_dotsq};
+        s += pair(1930) * lanes{B2_theta_dotsq, B2_theta_dotsq};
+        s += pair(1940) * lanes{B3_theta_dotsq, B3_theta_dotsq};
+        s += pair(1954) * lanes{B4_theta_dotsq, B4_theta_dotsq};
+        s += pair(1968) * lanes{B5_theta_dotsq, B5_theta_dotsq};
+        s += pair(1982) * lanes{B6_theta_dotsq, B6_theta_dotsq};
+        s += pair(1996) * lanes{B7_theta_dotsq, B7_theta_dotsq};
+        s += pair(2006) * lanes{B8_theta_dotsq, B8_theta_dotsq};
+        out[15] = s[0];
+        out[16] = s[1];
+    }
 }
 
 /* mass_varying:(c[116],u[3],q[17],qd[17])->(M[289]) as mass, the entries that depend on q only */
@@ -2195,7 +2413,7 @@ void fem_nx8_ny8_torque_first_mass_q_product(const double* c, const double* u, c
 }  // namespace
 
 extern const Variant fem_nx8_ny8_torque_first = {
-    .abi_version = 2,
+    .abi_version = 3,
     .name = "fem_nx8_ny8_torque_first",
     .nq = 17,
     .ncoeff = 116,
