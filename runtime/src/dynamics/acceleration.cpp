@@ -90,20 +90,26 @@ Eigen::MatrixXd folded_forces(const Model& model, const TermForces& terms, const
     return W;
 }
 
-FoldedProduct::FoldedProduct(const TermForces& terms, const FoldedForceKernel* kernel, RowMajorMatrix P)
-    : terms_(terms), kernel_(kernel), P_(std::move(P)), m_(static_cast<std::size_t>(P_.cols()))
+FoldedProduct::FoldedProduct(const TermForces& terms, const FoldedForceKernel* kernel, const RowMajorMatrix& P, int offset)
+    : terms_(terms), kernel_(kernel), m_(static_cast<std::size_t>(P.cols()))
 {
-    const auto rows = P_.rows(), K = P_.cols();
+    const auto rows = P.rows(), K = P.cols();
     start_.push_back(0);
     for (Eigen::Index i = 0; i < rows; ++i) {
         for (Eigen::Index k = 0; k < K; ++k)
-            if (P_(i, k) != 0.0) {
+            if (P(i, k) != 0.0) {
                 column_.push_back(static_cast<int>(k));
-                value_.push_back(P_(i, k));
+                value_.push_back(P(i, k));
             }
         start_.push_back(static_cast<int>(value_.size()));
     }
     if (kernel_ == nullptr) return;
+    // The kernel reads P by row pairs, row i in slot j = i + offset (generated_abi.h), padding slots zero.
+    pairs_.assign(static_cast<std::size_t>((rows + offset + 1) / 2 * 2 * K), 0.0);
+    for (Eigen::Index i = 0; i < rows; ++i) {
+        const Eigen::Index j = i + offset;
+        for (Eigen::Index k = 0; k < K; ++k) pairs_[static_cast<std::size_t>((j / 2) * 2 * K + 2 * k + j % 2)] = P(i, k);
+    }
     // The kernel reads only the entries its generator proved can be nonzero: it must agree with the walk over every
     // nonzero at a state where every monomial is (an older generator's object, or a pattern rule that missed an
     // entry, would not). The tolerance allows for the order of the sums only.
@@ -114,7 +120,7 @@ FoldedProduct::FoldedProduct(const TermForces& terms, const FoldedForceKernel* k
     }
     HubInput u;
     u.tau = 0.61, u.theta_dot = 0.83, u.theta_ddot = 0.29, u.theta = 0.47;
-    kernel_->accelerations(P_.data(), u, q.data(), qd.data(), by_kernel.data());
+    kernel_->accelerations(pairs_.data(), u, q.data(), qd.data(), by_kernel.data());
     terms_.terms(u, q.data(), qd.data(), m_.data());
     walk(m_.data(), by_walk.data());
     for (Eigen::Index i = 0; i < rows; ++i) {
@@ -127,7 +133,7 @@ FoldedProduct::FoldedProduct(const TermForces& terms, const FoldedForceKernel* k
             break;
         }
     }
-    if (kernel_ == nullptr) P_.resize(0, 0);
+    if (kernel_ == nullptr) pairs_.clear();
 }
 
 void FoldedProduct::walk(const double* m, double* y) const
@@ -237,7 +243,7 @@ HubSchur::HubSchur(const Model& model, const TermForces& terms, const HubInput& 
     RowMatrix P(n_, K);
     P.row(0) = g;
     P.bottomRows(r) = W;
-    product_ = std::make_unique<FoldedProduct>(terms, model.folded_kernel(), std::move(P));
+    product_ = std::make_unique<FoldedProduct>(terms, model.folded_kernel(), P, 1);
     columns_ = K;
     b_v_.resize(varying_.size());
     c_.resize(static_cast<std::size_t>(r));
