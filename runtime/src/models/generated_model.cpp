@@ -65,10 +65,10 @@ public:
         std::fill_n(F, nq() * v_.nterms, 0.0);
         call(v_.forces_matrix, HubInput{}, nullptr, nullptr, F);
     }
-    void accelerations(const double* W, const HubInput& u, const double* q, const double* qd,
-                       double* qdd) const override
+    void accelerations(const double* P, const HubInput& u, const double* q, const double* qd,
+                       double* y) const override
     {
-        v_.forces_folded(W, inputs(u, q).data(), q, qd, qdd);
+        v_.forces_folded(P, inputs(u, q).data(), q, qd, y);
     }
     void forces(const HubInput& u, const double* q, const double* qd, double* Q) const override
     {
