@@ -1373,6 +1373,211 @@ void amm_nx4_ny4_torque_first_tip_gravity_damped_width_forces_u(const double* c,
     out[0] = 1.0;
 }
 
+/* forces_folded:(c[189],u[5],q[9],qd[9])->(y[9]) y = P m, P (9 x 86) passed in the c slot by row pairs, P(i, k) at c[(j/2)*172 + 2k + j%2], j = i + 1: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 212 entries that can be nonzero, a pair of rows reads the columns either row has */
+void amm_nx4_ny4_torque_first_tip_gravity_damped_width_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    const double tau = u[0];
+    const double sin_theta = u[3];
+    const double cos_theta = u[4];
+    const double A1 = q[1];
+    const double A2 = q[2];
+    const double A3 = q[3];
+    const double A4 = q[4];
+    const double B1 = q[5];
+    const double B2 = q[6];
+    const double B3 = q[7];
+    const double B4 = q[8];
+    const double theta_dot = qd[0];
+    const double A1_dot = qd[1];
+    const double A2_dot = qd[2];
+    const double A3_dot = qd[3];
+    const double A4_dot = qd[4];
+    const double B1_dot = qd[5];
+    const double B2_dot = qd[6];
+    const double B3_dot = qd[7];
+    const double B4_dot = qd[8];
+    const double sin_theta_B1 = sin_theta*B1;
+    const double sin_theta_B2 = sin_theta*B2;
+    const double sin_theta_B3 = sin_theta*B3;
+    const double sin_theta_B4 = sin_theta*B4;
+    const double cos_theta_A1 = cos_theta*A1;
+    const double cos_theta_A2 = cos_theta*A2;
+    const double cos_theta_A3 = cos_theta*A3;
+    const double cos_theta_A4 = cos_theta*A4;
+    const double theta_dotsq = theta_dot*theta_dot;
+    const double theta_dot_A1_dot = theta_dot*A1_dot;
+    const double theta_dot_A2_dot = theta_dot*A2_dot;
+    const double theta_dot_A3_dot = theta_dot*A3_dot;
+    const double theta_dot_A4_dot = theta_dot*A4_dot;
+    const double theta_dot_B1_dot = theta_dot*B1_dot;
+    const double theta_dot_B2_dot = theta_dot*B2_dot;
+    const double theta_dot_B3_dot = theta_dot*B3_dot;
+    const double theta_dot_B4_dot = theta_dot*B4_dot;
+    const double cos_theta_B1 = cos_theta*B1;
+    const double cos_theta_B1sq = cos_theta_B1*B1;
+    const double cos_theta_B1_B2 = cos_theta_B1*B2;
+    const double cos_theta_B1_B3 = cos_theta_B1*B3;
+    const double cos_theta_B1_B4 = cos_theta_B1*B4;
+    const double cos_theta_B2 = cos_theta*B2;
+    const double cos_theta_B2sq = cos_theta_B2*B2;
+    const double cos_theta_B2_B3 = cos_theta_B2*B3;
+    const double cos_theta_B2_B4 = cos_theta_B2*B4;
+    const double cos_theta_B3 = cos_theta*B3;
+    const double cos_theta_B3sq = cos_theta_B3*B3;
+    const double cos_theta_B3_B4 = cos_theta_B3*B4;
+    const double cos_theta_B4 = cos_theta*B4;
+    const double cos_theta_B4sq = cos_theta_B4*B4;
+    const double A1_theta_dot = A1*theta_dot;
+    const double A1_theta_dotsq = A1_theta_dot*theta_dot;
+    const double A1_theta_dot_A1_dot = A1_theta_dot*A1_dot;
+    const double A1_theta_dot_A2_dot = A1_theta_dot*A2_dot;
+    const double A1_theta_dot_A3_dot = A1_theta_dot*A3_dot;
+    const double A1_theta_dot_A4_dot = A1_theta_dot*A4_dot;
+    const double A2_theta_dot = A2*theta_dot;
+    const double A2_theta_dotsq = A2_theta_dot*theta_dot;
+    const double A2_theta_dot_A1_dot = A2_theta_dot*A1_dot;
+    const double A2_theta_dot_A2_dot = A2_theta_dot*A2_dot;
+    const double A2_theta_dot_A3_dot = A2_theta_dot*A3_dot;
+    const double A2_theta_dot_A4_dot = A2_theta_dot*A4_dot;
+    const double A3_theta_dot = A3*theta_dot;
+    const double A3_theta_dotsq = A3_theta_dot*theta_dot;
+    const double A3_theta_dot_A1_dot = A3_theta_dot*A1_dot;
+    const double A3_theta_dot_A2_dot = A3_theta_dot*A2_dot;
+    const double A3_theta_dot_A3_dot = A3_theta_dot*A3_dot;
+    const double A3_theta_dot_A4_dot = A3_theta_dot*A4_dot;
+    const double A4_theta_dot = A4*theta_dot;
+    const double A4_theta_dotsq = A4_theta_dot*theta_dot;
+    const double A4_theta_dot_A1_dot = A4_theta_dot*A1_dot;
+    const double A4_theta_dot_A2_dot = A4_theta_dot*A2_dot;
+    const double A4_theta_dot_A3_dot = A4_theta_dot*A3_dot;
+    const double A4_theta_dot_A4_dot = A4_theta_dot*A4_dot;
+    const double B1_theta_dot = B1*theta_dot;
+    const double B1_theta_dotsq = B1_theta_dot*theta_dot;
+    const double B1_theta_dot_B1_dot = B1_theta_dot*B1_dot;
+    const double B1_theta_dot_B2_dot = B1_theta_dot*B2_dot;
+    const double B1_theta_dot_B3_dot = B1_theta_dot*B3_dot;
+    const double B1_theta_dot_B4_dot = B1_theta_dot*B4_dot;
+    const double B2_theta_dot = B2*theta_dot;
+    const double B2_theta_dotsq = B2_theta_dot*theta_dot;
+    const double B2_theta_dot_B1_dot = B2_theta_dot*B1_dot;
+    const double B2_theta_dot_B2_dot = B2_theta_dot*B2_dot;
+    const double B2_theta_dot_B3_dot = B2_theta_dot*B3_dot;
+    const double B2_theta_dot_B4_dot = B2_theta_dot*B4_dot;
+    const double B3_theta_dot = B3*theta_dot;
+    const double B3_theta_dotsq = B3_theta_dot*theta_dot;
+    const double B3_theta_dot_B1_dot = B3_theta_dot*B1_dot;
+    const double B3_theta_dot_B2_dot = B3_theta_dot*B2_dot;
+    const double B3_theta_dot_B3_dot = B3_theta_dot*B3_dot;
+    const double B3_theta_dot_B4_dot = B3_theta_dot*B4_dot;
+    const double B4_theta_dot = B4*theta_dot;
+    const double B4_theta_dotsq = B4_theta_dot*theta_dot;
+    const double B4_theta_dot_B1_dot = B4_theta_dot*B1_dot;
+    const double B4_theta_dot_B2_dot = B4_theta_dot*B2_dot;
+    const double B4_theta_dot_B3_dot = B4_theta_dot*B3_dot;
+    const double B4_theta_dot_B4_dot = B4_theta_dot*B4_dot;
+    typedef double lanes __attribute__((vector_size(16)));
+    const auto pair = [c](int e) {
+        lanes v;
+        __builtin_memcpy(&v, c + e, sizeof v);
+        return v;
+    };
+    out[0] = c[1]*tau + c[5]*cos_theta + c[39]*sin_theta_B1 + c[41]*sin_theta_B2 + c[43]*sin_theta_B3 + c[45]*sin_theta_B4 + c[47]*cos_theta_A1 + c[49]*cos_theta_A2 + c[51]*cos_theta_A3 + c[53]*cos_theta_A4 + c[57]*theta_dot_A1_dot + c[59]*theta_dot_A2_dot + c[61]*theta_dot_A3_dot + c[63]*theta_dot_A4_dot + c[73]*cos_theta_B1sq + c[75]*cos_theta_B1_B2 + c[77]*cos_theta_B1_B3 + c[79]*cos_theta_B1_B4 + c[81]*cos_theta_B2sq + c[83]*cos_theta_B2_B3 + c[85]*cos_theta_B2_B4 + c[87]*cos_theta_B3sq + c[89]*cos_theta_B3_B4 + c[91]*cos_theta_B4sq + c[95]*A1_theta_dot_A1_dot + c[97]*A1_theta_dot_A2_dot + c[99]*A1_theta_dot_A3_dot + c[101]*A1_theta_dot_A4_dot + c[105]*A2_theta_dot_A1_dot + c[107]*A2_theta_dot_A2_dot + c[109]*A2_theta_dot_A3_dot + c[111]*A2_theta_dot_A4_dot + c[115]*A3_theta_dot_A1_dot + c[117]*A3_theta_dot_A2_dot + c[119]*A3_theta_dot_A3_dot + c[121]*A3_theta_dot_A4_dot + c[125]*A4_theta_dot_A1_dot + c[127]*A4_theta_dot_A2_dot + c[129]*A4_theta_dot_A3_dot + c[131]*A4_theta_dot_A4_dot + c[135]*B1_theta_dot_B1_dot + c[137]*B1_theta_dot_B2_dot + c[139]*B1_theta_dot_B3_dot + c[141]*B1_theta_dot_B4_dot + c[145]*B2_theta_dot_B1_dot + c[147]*B2_theta_dot_B2_dot + c[149]*B2_theta_dot_B3_dot + c[151]*B2_theta_dot_B4_dot + c[155]*B3_theta_dot_B1_dot + c[157]*B3_theta_dot_B2_dot + c[159]*B3_theta_dot_B3_dot + c[161]*B3_theta_dot_B4_dot + c[165]*B4_theta_dot_B1_dot + c[167]*B4_theta_dot_B2_dot + c[169]*B4_theta_dot_B3_dot + c[171]*B4_theta_dot_B4_dot;
+    {
+        lanes s = pair(174) * lanes{sin_theta, sin_theta};
+        s += pair(178) * lanes{A1, A1};
+        s += pair(180) * lanes{A2, A2};
+        s += pair(182) * lanes{A3, A3};
+        s += pair(184) * lanes{A4, A4};
+        s += pair(194) * lanes{A1_dot, A1_dot};
+        s += pair(196) * lanes{A2_dot, A2_dot};
+        s += pair(198) * lanes{A3_dot, A3_dot};
+        s += pair(200) * lanes{A4_dot, A4_dot};
+        s += pair(226) * lanes{theta_dotsq, theta_dotsq};
+        s += pair(236) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
+        s += pair(238) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
+        s += pair(240) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
+        s += pair(242) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
+        s += pair(264) * lanes{A1_theta_dotsq, A1_theta_dotsq};
+        s += pair(274) * lanes{A2_theta_dotsq, A2_theta_dotsq};
+        s += pair(284) * lanes{A3_theta_dotsq, A3_theta_dotsq};
+        s += pair(294) * lanes{A4_theta_dotsq, A4_theta_dotsq};
+        out[1] = s[0];
+        out[2] = s[1];
+    }
+    {
+        lanes s = pair(346) * lanes{sin_theta, sin_theta};
+        s += pair(350) * lanes{A1, A1};
+        s += pair(352) * lanes{A2, A2};
+        s += pair(354) * lanes{A3, A3};
+        s += pair(356) * lanes{A4, A4};
+        s += pair(366) * lanes{A1_dot, A1_dot};
+        s += pair(368) * lanes{A2_dot, A2_dot};
+        s += pair(370) * lanes{A3_dot, A3_dot};
+        s += pair(372) * lanes{A4_dot, A4_dot};
+        s += pair(398) * lanes{theta_dotsq, theta_dotsq};
+        s += pair(408) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
+        s += pair(410) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
+        s += pair(412) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
+        s += pair(414) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
+        s += pair(436) * lanes{A1_theta_dotsq, A1_theta_dotsq};
+        s += pair(446) * lanes{A2_theta_dotsq, A2_theta_dotsq};
+        s += pair(456) * lanes{A3_theta_dotsq, A3_theta_dotsq};
+        s += pair(466) * lanes{A4_theta_dotsq, A4_theta_dotsq};
+        out[3] = s[0];
+        out[4] = s[1];
+    }
+    {
+        lanes s = pair(520) * lanes{cos_theta, cos_theta};
+        s += pair(530) * lanes{B1, B1};
+        s += pair(532) * lanes{B2, B2};
+        s += pair(534) * lanes{B3, B3};
+        s += pair(536) * lanes{B4, B4};
+        s += pair(546) * lanes{B1_dot, B1_dot};
+        s += pair(548) * lanes{B2_dot, B2_dot};
+        s += pair(550) * lanes{B3_dot, B3_dot};
+        s += pair(552) * lanes{B4_dot, B4_dot};
+        s += pair(554) * lanes{sin_theta_B1, sin_theta_B1};
+        s += pair(556) * lanes{sin_theta_B2, sin_theta_B2};
+        s += pair(558) * lanes{sin_theta_B3, sin_theta_B3};
+        s += pair(560) * lanes{sin_theta_B4, sin_theta_B4};
+        s += pair(572) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
+        s += pair(574) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
+        s += pair(576) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
+        s += pair(578) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
+        s += pair(648) * lanes{B1_theta_dotsq, B1_theta_dotsq};
+        s += pair(658) * lanes{B2_theta_dotsq, B2_theta_dotsq};
+        s += pair(668) * lanes{B3_theta_dotsq, B3_theta_dotsq};
+        s += pair(678) * lanes{B4_theta_dotsq, B4_theta_dotsq};
+        out[5] = s[0];
+        out[6] = s[1];
+    }
+    {
+        lanes s = pair(692) * lanes{cos_theta, cos_theta};
+        s += pair(702) * lanes{B1, B1};
+        s += pair(704) * lanes{B2, B2};
+        s += pair(706) * lanes{B3, B3};
+        s += pair(708) * lanes{B4, B4};
+        s += pair(718) * lanes{B1_dot, B1_dot};
+        s += pair(720) * lanes{B2_dot, B2_dot};
+        s += pair(722) * lanes{B3_dot, B3_dot};
+        s += pair(724) * lanes{B4_dot, B4_dot};
+        s += pair(726) * lanes{sin_theta_B1, sin_theta_B1};
+        s += pair(728) * lanes{sin_theta_B2, sin_theta_B2};
+        s += pair(730) * lanes{sin_theta_B3, sin_theta_B3};
+        s += pair(732) * lanes{sin_theta_B4, sin_theta_B4};
+        s += pair(744) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
+        s += pair(746) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
+        s += pair(748) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
+        s += pair(750) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
+        s += pair(820) * lanes{B1_theta_dotsq, B1_theta_dotsq};
+        s += pair(830) * lanes{B2_theta_dotsq, B2_theta_dotsq};
+        s += pair(840) * lanes{B3_theta_dotsq, B3_theta_dotsq};
+        s += pair(850) * lanes{B4_theta_dotsq, B4_theta_dotsq};
+        out[7] = s[0];
+        out[8] = s[1];
+    }
+}
+
 /* mass_varying:(c[189],u[5],q[9],qd[9])->(M[81]) as mass, the entries that depend on q only */
 void amm_nx4_ny4_torque_first_tip_gravity_damped_width_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
@@ -1491,7 +1696,7 @@ void amm_nx4_ny4_torque_first_tip_gravity_damped_width_mass_q_product(const doub
 }  // namespace
 
 extern const Variant amm_nx4_ny4_torque_first_tip_gravity_damped_width = {
-    .abi_version = 2,
+    .abi_version = 3,
     .name = "amm_nx4_ny4_torque_first_tip_gravity_damped_width",
     .nq = 9,
     .ncoeff = 189,
@@ -1510,7 +1715,7 @@ extern const Variant amm_nx4_ny4_torque_first_tip_gravity_damped_width = {
     .mass_q_product = amm_nx4_ny4_torque_first_tip_gravity_damped_width_mass_q_product,
     .forces_u = amm_nx4_ny4_torque_first_tip_gravity_damped_width_forces_u,
     .tip = amm_nx4_ny4_torque_first_tip_gravity_damped_width_tip,
-    .forces_folded = nullptr,
+    .forces_folded = amm_nx4_ny4_torque_first_tip_gravity_damped_width_forces_folded,
 };
 
 }  // namespace hubbeam::generated

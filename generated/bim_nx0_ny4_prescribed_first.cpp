@@ -359,7 +359,7 @@ void bim_nx0_ny4_prescribed_first_forces_u(const double* c, const double* u, con
     out[11] = -c[29];
 }
 
-/* forces_folded:(c[57],u[3],q[4],qd[4])->(qdd[4]) qdd = W m, W = M^-1 F (4 x 9, row-major) passed in the c slot */
+/* forces_folded:(c[57],u[3],q[4],qd[4])->(y[4]) y = P m, P (4 x 9) passed in the c slot by row pairs, P(i, k) at c[(j/2)*18 + 2k + j%2], j = i: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 36 entries that can be nonzero, a pair of rows reads the columns either row has */
 void bim_nx0_ny4_prescribed_first_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)qd;
@@ -374,16 +374,44 @@ void bim_nx0_ny4_prescribed_first_forces_folded(const double* c, const double* u
     const double theta_dotsq_B2 = theta_dotsq*B2;
     const double theta_dotsq_B3 = theta_dotsq*B3;
     const double theta_dotsq_B4 = theta_dotsq*B4;
-    out[0] = c[0]*theta_ddot + c[1]*B1 + c[2]*B2 + c[3]*B3 + c[4]*B4 + c[5]*theta_dotsq_B1 + c[6]*theta_dotsq_B2 + c[7]*theta_dotsq_B3 + c[8]*theta_dotsq_B4;
-    out[1] = c[9]*theta_ddot + c[10]*B1 + c[11]*B2 + c[12]*B3 + c[13]*B4 + c[14]*theta_dotsq_B1 + c[15]*theta_dotsq_B2 + c[16]*theta_dotsq_B3 + c[17]*theta_dotsq_B4;
-    out[2] = c[18]*theta_ddot + c[19]*B1 + c[20]*B2 + c[21]*B3 + c[22]*B4 + c[23]*theta_dotsq_B1 + c[24]*theta_dotsq_B2 + c[25]*theta_dotsq_B3 + c[26]*theta_dotsq_B4;
-    out[3] = c[27]*theta_ddot + c[28]*B1 + c[29]*B2 + c[30]*B3 + c[31]*B4 + c[32]*theta_dotsq_B1 + c[33]*theta_dotsq_B2 + c[34]*theta_dotsq_B3 + c[35]*theta_dotsq_B4;
+    typedef double lanes __attribute__((vector_size(16)));
+    const auto pair = [c](int e) {
+        lanes v;
+        __builtin_memcpy(&v, c + e, sizeof v);
+        return v;
+    };
+    {
+        lanes s = pair(0) * lanes{theta_ddot, theta_ddot};
+        s += pair(2) * lanes{B1, B1};
+        s += pair(4) * lanes{B2, B2};
+        s += pair(6) * lanes{B3, B3};
+        s += pair(8) * lanes{B4, B4};
+        s += pair(10) * lanes{theta_dotsq_B1, theta_dotsq_B1};
+        s += pair(12) * lanes{theta_dotsq_B2, theta_dotsq_B2};
+        s += pair(14) * lanes{theta_dotsq_B3, theta_dotsq_B3};
+        s += pair(16) * lanes{theta_dotsq_B4, theta_dotsq_B4};
+        out[0] = s[0];
+        out[1] = s[1];
+    }
+    {
+        lanes s = pair(18) * lanes{theta_ddot, theta_ddot};
+        s += pair(20) * lanes{B1, B1};
+        s += pair(22) * lanes{B2, B2};
+        s += pair(24) * lanes{B3, B3};
+        s += pair(26) * lanes{B4, B4};
+        s += pair(28) * lanes{theta_dotsq_B1, theta_dotsq_B1};
+        s += pair(30) * lanes{theta_dotsq_B2, theta_dotsq_B2};
+        s += pair(32) * lanes{theta_dotsq_B3, theta_dotsq_B3};
+        s += pair(34) * lanes{theta_dotsq_B4, theta_dotsq_B4};
+        out[2] = s[0];
+        out[3] = s[1];
+    }
 }
 
 }  // namespace
 
 extern const Variant bim_nx0_ny4_prescribed_first = {
-    .abi_version = 2,
+    .abi_version = 3,
     .name = "bim_nx0_ny4_prescribed_first",
     .nq = 4,
     .ncoeff = 57,

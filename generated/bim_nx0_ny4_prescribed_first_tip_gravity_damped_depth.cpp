@@ -497,7 +497,7 @@ void bim_nx0_ny4_prescribed_first_tip_gravity_damped_depth_forces_u(const double
     out[11] = -c[52];
 }
 
-/* forces_folded:(c[91],u[5],q[4],qd[4])->(qdd[4]) qdd = W m, W = M^-1 F (4 x 18, row-major) passed in the c slot */
+/* forces_folded:(c[91],u[5],q[4],qd[4])->(y[4]) y = P m, P (4 x 18) passed in the c slot by row pairs, P(i, k) at c[(j/2)*36 + 2k + j%2], j = i: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 72 entries that can be nonzero, a pair of rows reads the columns either row has */
 void bim_nx0_ny4_prescribed_first_tip_gravity_damped_depth_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -521,16 +521,62 @@ void bim_nx0_ny4_prescribed_first_tip_gravity_damped_depth_forces_folded(const d
     const double theta_dotsq_B2 = theta_dotsq*B2;
     const double theta_dotsq_B3 = theta_dotsq*B3;
     const double theta_dotsq_B4 = theta_dotsq*B4;
-    out[0] = c[0]*theta_ddot + c[1]*cos_theta + c[2]*B1 + c[3]*B2 + c[4]*B3 + c[5]*B4 + c[6]*B1_dot + c[7]*B2_dot + c[8]*B3_dot + c[9]*B4_dot + c[10]*sin_theta_B1 + c[11]*sin_theta_B2 + c[12]*sin_theta_B3 + c[13]*sin_theta_B4 + c[14]*theta_dotsq_B1 + c[15]*theta_dotsq_B2 + c[16]*theta_dotsq_B3 + c[17]*theta_dotsq_B4;
-    out[1] = c[18]*theta_ddot + c[19]*cos_theta + c[20]*B1 + c[21]*B2 + c[22]*B3 + c[23]*B4 + c[24]*B1_dot + c[25]*B2_dot + c[26]*B3_dot + c[27]*B4_dot + c[28]*sin_theta_B1 + c[29]*sin_theta_B2 + c[30]*sin_theta_B3 + c[31]*sin_theta_B4 + c[32]*theta_dotsq_B1 + c[33]*theta_dotsq_B2 + c[34]*theta_dotsq_B3 + c[35]*theta_dotsq_B4;
-    out[2] = c[36]*theta_ddot + c[37]*cos_theta + c[38]*B1 + c[39]*B2 + c[40]*B3 + c[41]*B4 + c[42]*B1_dot + c[43]*B2_dot + c[44]*B3_dot + c[45]*B4_dot + c[46]*sin_theta_B1 + c[47]*sin_theta_B2 + c[48]*sin_theta_B3 + c[49]*sin_theta_B4 + c[50]*theta_dotsq_B1 + c[51]*theta_dotsq_B2 + c[52]*theta_dotsq_B3 + c[53]*theta_dotsq_B4;
-    out[3] = c[54]*theta_ddot + c[55]*cos_theta + c[56]*B1 + c[57]*B2 + c[58]*B3 + c[59]*B4 + c[60]*B1_dot + c[61]*B2_dot + c[62]*B3_dot + c[63]*B4_dot + c[64]*sin_theta_B1 + c[65]*sin_theta_B2 + c[66]*sin_theta_B3 + c[67]*sin_theta_B4 + c[68]*theta_dotsq_B1 + c[69]*theta_dotsq_B2 + c[70]*theta_dotsq_B3 + c[71]*theta_dotsq_B4;
+    typedef double lanes __attribute__((vector_size(16)));
+    const auto pair = [c](int e) {
+        lanes v;
+        __builtin_memcpy(&v, c + e, sizeof v);
+        return v;
+    };
+    {
+        lanes s = pair(0) * lanes{theta_ddot, theta_ddot};
+        s += pair(2) * lanes{cos_theta, cos_theta};
+        s += pair(4) * lanes{B1, B1};
+        s += pair(6) * lanes{B2, B2};
+        s += pair(8) * lanes{B3, B3};
+        s += pair(10) * lanes{B4, B4};
+        s += pair(12) * lanes{B1_dot, B1_dot};
+        s += pair(14) * lanes{B2_dot, B2_dot};
+        s += pair(16) * lanes{B3_dot, B3_dot};
+        s += pair(18) * lanes{B4_dot, B4_dot};
+        s += pair(20) * lanes{sin_theta_B1, sin_theta_B1};
+        s += pair(22) * lanes{sin_theta_B2, sin_theta_B2};
+        s += pair(24) * lanes{sin_theta_B3, sin_theta_B3};
+        s += pair(26) * lanes{sin_theta_B4, sin_theta_B4};
+        s += pair(28) * lanes{theta_dotsq_B1, theta_dotsq_B1};
+        s += pair(30) * lanes{theta_dotsq_B2, theta_dotsq_B2};
+        s += pair(32) * lanes{theta_dotsq_B3, theta_dotsq_B3};
+        s += pair(34) * lanes{theta_dotsq_B4, theta_dotsq_B4};
+        out[0] = s[0];
+        out[1] = s[1];
+    }
+    {
+        lanes s = pair(36) * lanes{theta_ddot, theta_ddot};
+        s += pair(38) * lanes{cos_theta, cos_theta};
+        s += pair(40) * lanes{B1, B1};
+        s += pair(42) * lanes{B2, B2};
+        s += pair(44) * lanes{B3, B3};
+        s += pair(46) * lanes{B4, B4};
+        s += pair(48) * lanes{B1_dot, B1_dot};
+        s += pair(50) * lanes{B2_dot, B2_dot};
+        s += pair(52) * lanes{B3_dot, B3_dot};
+        s += pair(54) * lanes{B4_dot, B4_dot};
+        s += pair(56) * lanes{sin_theta_B1, sin_theta_B1};
+        s += pair(58) * lanes{sin_theta_B2, sin_theta_B2};
+        s += pair(60) * lanes{sin_theta_B3, sin_theta_B3};
+        s += pair(62) * lanes{sin_theta_B4, sin_theta_B4};
+        s += pair(64) * lanes{theta_dotsq_B1, theta_dotsq_B1};
+        s += pair(66) * lanes{theta_dotsq_B2, theta_dotsq_B2};
+        s += pair(68) * lanes{theta_dotsq_B3, theta_dotsq_B3};
+        s += pair(70) * lanes{theta_dotsq_B4, theta_dotsq_B4};
+        out[2] = s[0];
+        out[3] = s[1];
+    }
 }
 
 }  // namespace
 
 extern const Variant bim_nx0_ny4_prescribed_first_tip_gravity_damped_depth = {
-    .abi_version = 2,
+    .abi_version = 3,
     .name = "bim_nx0_ny4_prescribed_first_tip_gravity_damped_depth",
     .nq = 4,
     .ncoeff = 91,

@@ -842,7 +842,7 @@ void bim_nx4_ny4_prescribed_first_forces_u(const double* c, const double* u, con
     out[23] = -c[62] - c[25]*A1 - c[31]*A2 - c[35]*A3 - c[41]*A4;
 }
 
-/* forces_folded:(c[99],u[3],q[8],qd[8])->(qdd[8]) qdd = W m, W = M^-1 F (8 x 34, row-major) passed in the c slot */
+/* forces_folded:(c[99],u[3],q[8],qd[8])->(y[8]) y = P m, P (8 x 34) passed in the c slot by row pairs, P(i, k) at c[(j/2)*68 + 2k + j%2], j = i: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 136 entries that can be nonzero, a pair of rows reads the columns either row has */
 void bim_nx4_ny4_prescribed_first_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -888,20 +888,102 @@ void bim_nx4_ny4_prescribed_first_forces_folded(const double* c, const double* u
     const double theta_dotsq_B2 = theta_dotsq*B2;
     const double theta_dotsq_B3 = theta_dotsq*B3;
     const double theta_dotsq_B4 = theta_dotsq*B4;
-    out[0] = c[0]*theta_ddot + c[1]*A1 + c[2]*A2 + c[3]*A3 + c[4]*A4 + c[5]*B1 + c[6]*B2 + c[7]*B3 + c[8]*B4 + c[9]*theta_dotsq + c[10]*theta_dot_A1_dot + c[11]*theta_dot_A2_dot + c[12]*theta_dot_A3_dot + c[13]*theta_dot_A4_dot + c[14]*theta_dot_B1_dot + c[15]*theta_dot_B2_dot + c[16]*theta_dot_B3_dot + c[17]*theta_dot_B4_dot + c[18]*theta_ddot_A1 + c[19]*theta_ddot_A2 + c[20]*theta_ddot_A3 + c[21]*theta_ddot_A4 + c[22]*theta_ddot_B1 + c[23]*theta_ddot_B2 + c[24]*theta_ddot_B3 + c[25]*theta_ddot_B4 + c[26]*theta_dotsq_A1 + c[27]*theta_dotsq_A2 + c[28]*theta_dotsq_A3 + c[29]*theta_dotsq_A4 + c[30]*theta_dotsq_B1 + c[31]*theta_dotsq_B2 + c[32]*theta_dotsq_B3 + c[33]*theta_dotsq_B4;
-    out[1] = c[34]*theta_ddot + c[35]*A1 + c[36]*A2 + c[37]*A3 + c[38]*A4 + c[39]*B1 + c[40]*B2 + c[41]*B3 + c[42]*B4 + c[43]*theta_dotsq + c[44]*theta_dot_A1_dot + c[45]*theta_dot_A2_dot + c[46]*theta_dot_A3_dot + c[47]*theta_dot_A4_dot + c[48]*theta_dot_B1_dot + c[49]*theta_dot_B2_dot + c[50]*theta_dot_B3_dot + c[51]*theta_dot_B4_dot + c[52]*theta_ddot_A1 + c[53]*theta_ddot_A2 + c[54]*theta_ddot_A3 + c[55]*theta_ddot_A4 + c[56]*theta_ddot_B1 + c[57]*theta_ddot_B2 + c[58]*theta_ddot_B3 + c[59]*theta_ddot_B4 + c[60]*theta_dotsq_A1 + c[61]*theta_dotsq_A2 + c[62]*theta_dotsq_A3 + c[63]*theta_dotsq_A4 + c[64]*theta_dotsq_B1 + c[65]*theta_dotsq_B2 + c[66]*theta_dotsq_B3 + c[67]*theta_dotsq_B4;
-    out[2] = c[68]*theta_ddot + c[69]*A1 + c[70]*A2 + c[71]*A3 + c[72]*A4 + c[73]*B1 + c[74]*B2 + c[75]*B3 + c[76]*B4 + c[77]*theta_dotsq + c[78]*theta_dot_A1_dot + c[79]*theta_dot_A2_dot + c[80]*theta_dot_A3_dot + c[81]*theta_dot_A4_dot + c[82]*theta_dot_B1_dot + c[83]*theta_dot_B2_dot + c[84]*theta_dot_B3_dot + c[85]*theta_dot_B4_dot + c[86]*theta_ddot_A1 + c[87]*theta_ddot_A2 + c[88]*theta_ddot_A3 + c[89]*theta_ddot_A4 + c[90]*theta_ddot_B1 + c[91]*theta_ddot_B2 + c[92]*theta_ddot_B3 + c[93]*theta_ddot_B4 + c[94]*theta_dotsq_A1 + c[95]*theta_dotsq_A2 + c[96]*theta_dotsq_A3 + c[97]*theta_dotsq_A4 + c[98]*theta_dotsq_B1 + c[99]*theta_dotsq_B2 + c[100]*theta_dotsq_B3 + c[101]*theta_dotsq_B4;
-    out[3] = c[102]*theta_ddot + c[103]*A1 + c[104]*A2 + c[105]*A3 + c[106]*A4 + c[107]*B1 + c[108]*B2 + c[109]*B3 + c[110]*B4 + c[111]*theta_dotsq + c[112]*theta_dot_A1_dot + c[113]*theta_dot_A2_dot + c[114]*theta_dot_A3_dot + c[115]*theta_dot_A4_dot + c[116]*theta_dot_B1_dot + c[117]*theta_dot_B2_dot + c[118]*theta_dot_B3_dot + c[119]*theta_dot_B4_dot + c[120]*theta_ddot_A1 + c[121]*theta_ddot_A2 + c[122]*theta_ddot_A3 + c[123]*theta_ddot_A4 + c[124]*theta_ddot_B1 + c[125]*theta_ddot_B2 + c[126]*theta_ddot_B3 + c[127]*theta_ddot_B4 + c[128]*theta_dotsq_A1 + c[129]*theta_dotsq_A2 + c[130]*theta_dotsq_A3 + c[131]*theta_dotsq_A4 + c[132]*theta_dotsq_B1 + c[133]*theta_dotsq_B2 + c[134]*theta_dotsq_B3 + c[135]*theta_dotsq_B4;
-    out[4] = c[136]*theta_ddot + c[137]*A1 + c[138]*A2 + c[139]*A3 + c[140]*A4 + c[141]*B1 + c[142]*B2 + c[143]*B3 + c[144]*B4 + c[145]*theta_dotsq + c[146]*theta_dot_A1_dot + c[147]*theta_dot_A2_dot + c[148]*theta_dot_A3_dot + c[149]*theta_dot_A4_dot + c[150]*theta_dot_B1_dot + c[151]*theta_dot_B2_dot + c[152]*theta_dot_B3_dot + c[153]*theta_dot_B4_dot + c[154]*theta_ddot_A1 + c[155]*theta_ddot_A2 + c[156]*theta_ddot_A3 + c[157]*theta_ddot_A4 + c[158]*theta_ddot_B1 + c[159]*theta_ddot_B2 + c[160]*theta_ddot_B3 + c[161]*theta_ddot_B4 + c[162]*theta_dotsq_A1 + c[163]*theta_dotsq_A2 + c[164]*theta_dotsq_A3 + c[165]*theta_dotsq_A4 + c[166]*theta_dotsq_B1 + c[167]*theta_dotsq_B2 + c[168]*theta_dotsq_B3 + c[169]*theta_dotsq_B4;
-    out[5] = c[170]*theta_ddot + c[171]*A1 + c[172]*A2 + c[173]*A3 + c[174]*A4 + c[175]*B1 + c[176]*B2 + c[177]*B3 + c[178]*B4 + c[179]*theta_dotsq + c[180]*theta_dot_A1_dot + c[181]*theta_dot_A2_dot + c[182]*theta_dot_A3_dot + c[183]*theta_dot_A4_dot + c[184]*theta_dot_B1_dot + c[185]*theta_dot_B2_dot + c[186]*theta_dot_B3_dot + c[187]*theta_dot_B4_dot + c[188]*theta_ddot_A1 + c[189]*theta_ddot_A2 + c[190]*theta_ddot_A3 + c[191]*theta_ddot_A4 + c[192]*theta_ddot_B1 + c[193]*theta_ddot_B2 + c[194]*theta_ddot_B3 + c[195]*theta_ddot_B4 + c[196]*theta_dotsq_A1 + c[197]*theta_dotsq_A2 + c[198]*theta_dotsq_A3 + c[199]*theta_dotsq_A4 + c[200]*theta_dotsq_B1 + c[201]*theta_dotsq_B2 + c[202]*theta_dotsq_B3 + c[203]*theta_dotsq_B4;
-    out[6] = c[204]*theta_ddot + c[205]*A1 + c[206]*A2 + c[207]*A3 + c[208]*A4 + c[209]*B1 + c[210]*B2 + c[211]*B3 + c[212]*B4 + c[213]*theta_dotsq + c[214]*theta_dot_A1_dot + c[215]*theta_dot_A2_dot + c[216]*theta_dot_A3_dot + c[217]*theta_dot_A4_dot + c[218]*theta_dot_B1_dot + c[219]*theta_dot_B2_dot + c[220]*theta_dot_B3_dot + c[221]*theta_dot_B4_dot + c[222]*theta_ddot_A1 + c[223]*theta_ddot_A2 + c[224]*theta_ddot_A3 + c[225]*theta_ddot_A4 + c[226]*theta_ddot_B1 + c[227]*theta_ddot_B2 + c[228]*theta_ddot_B3 + c[229]*theta_ddot_B4 + c[230]*theta_dotsq_A1 + c[231]*theta_dotsq_A2 + c[232]*theta_dotsq_A3 + c[233]*theta_dotsq_A4 + c[234]*theta_dotsq_B1 + c[235]*theta_dotsq_B2 + c[236]*theta_dotsq_B3 + c[237]*theta_dotsq_B4;
-    out[7] = c[238]*theta_ddot + c[239]*A1 + c[240]*A2 + c[241]*A3 + c[242]*A4 + c[243]*B1 + c[244]*B2 + c[245]*B3 + c[246]*B4 + c[247]*theta_dotsq + c[248]*theta_dot_A1_dot + c[249]*theta_dot_A2_dot + c[250]*theta_dot_A3_dot + c[251]*theta_dot_A4_dot + c[252]*theta_dot_B1_dot + c[253]*theta_dot_B2_dot + c[254]*theta_dot_B3_dot + c[255]*theta_dot_B4_dot + c[256]*theta_ddot_A1 + c[257]*theta_ddot_A2 + c[258]*theta_ddot_A3 + c[259]*theta_ddot_A4 + c[260]*theta_ddot_B1 + c[261]*theta_ddot_B2 + c[262]*theta_ddot_B3 + c[263]*theta_ddot_B4 + c[264]*theta_dotsq_A1 + c[265]*theta_dotsq_A2 + c[266]*theta_dotsq_A3 + c[267]*theta_dotsq_A4 + c[268]*theta_dotsq_B1 + c[269]*theta_dotsq_B2 + c[270]*theta_dotsq_B3 + c[271]*theta_dotsq_B4;
+    typedef double lanes __attribute__((vector_size(16)));
+    const auto pair = [c](int e) {
+        lanes v;
+        __builtin_memcpy(&v, c + e, sizeof v);
+        return v;
+    };
+    {
+        lanes s = pair(2) * lanes{A1, A1};
+        s += pair(4) * lanes{A2, A2};
+        s += pair(6) * lanes{A3, A3};
+        s += pair(8) * lanes{A4, A4};
+        s += pair(18) * lanes{theta_dotsq, theta_dotsq};
+        s += pair(28) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
+        s += pair(30) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
+        s += pair(32) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
+        s += pair(34) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
+        s += pair(44) * lanes{theta_ddot_B1, theta_ddot_B1};
+        s += pair(46) * lanes{theta_ddot_B2, theta_ddot_B2};
+        s += pair(48) * lanes{theta_ddot_B3, theta_ddot_B3};
+        s += pair(50) * lanes{theta_ddot_B4, theta_ddot_B4};
+        s += pair(52) * lanes{theta_dotsq_A1, theta_dotsq_A1};
+        s += pair(54) * lanes{theta_dotsq_A2, theta_dotsq_A2};
+        s += pair(56) * lanes{theta_dotsq_A3, theta_dotsq_A3};
+        s += pair(58) * lanes{theta_dotsq_A4, theta_dotsq_A4};
+        out[0] = s[0];
+        out[1] = s[1];
+    }
+    {
+        lanes s = pair(70) * lanes{A1, A1};
+        s += pair(72) * lanes{A2, A2};
+        s += pair(74) * lanes{A3, A3};
+        s += pair(76) * lanes{A4, A4};
+        s += pair(86) * lanes{theta_dotsq, theta_dotsq};
+        s += pair(96) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
+        s += pair(98) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
+        s += pair(100) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
+        s += pair(102) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
+        s += pair(112) * lanes{theta_ddot_B1, theta_ddot_B1};
+        s += pair(114) * lanes{theta_ddot_B2, theta_ddot_B2};
+        s += pair(116) * lanes{theta_ddot_B3, theta_ddot_B3};
+        s += pair(118) * lanes{theta_ddot_B4, theta_ddot_B4};
+        s += pair(120) * lanes{theta_dotsq_A1, theta_dotsq_A1};
+        s += pair(122) * lanes{theta_dotsq_A2, theta_dotsq_A2};
+        s += pair(124) * lanes{theta_dotsq_A3, theta_dotsq_A3};
+        s += pair(126) * lanes{theta_dotsq_A4, theta_dotsq_A4};
+        out[2] = s[0];
+        out[3] = s[1];
+    }
+    {
+        lanes s = pair(136) * lanes{theta_ddot, theta_ddot};
+        s += pair(146) * lanes{B1, B1};
+        s += pair(148) * lanes{B2, B2};
+        s += pair(150) * lanes{B3, B3};
+        s += pair(152) * lanes{B4, B4};
+        s += pair(156) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
+        s += pair(158) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
+        s += pair(160) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
+        s += pair(162) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
+        s += pair(172) * lanes{theta_ddot_A1, theta_ddot_A1};
+        s += pair(174) * lanes{theta_ddot_A2, theta_ddot_A2};
+        s += pair(176) * lanes{theta_ddot_A3, theta_ddot_A3};
+        s += pair(178) * lanes{theta_ddot_A4, theta_ddot_A4};
+        s += pair(196) * lanes{theta_dotsq_B1, theta_dotsq_B1};
+        s += pair(198) * lanes{theta_dotsq_B2, theta_dotsq_B2};
+        s += pair(200) * lanes{theta_dotsq_B3, theta_dotsq_B3};
+        s += pair(202) * lanes{theta_dotsq_B4, theta_dotsq_B4};
+        out[4] = s[0];
+        out[5] = s[1];
+    }
+    {
+        lanes s = pair(204) * lanes{theta_ddot, theta_ddot};
+        s += pair(214) * lanes{B1, B1};
+        s += pair(216) * lanes{B2, B2};
+        s += pair(218) * lanes{B3, B3};
+        s += pair(220) * lanes{B4, B4};
+        s += pair(224) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
+        s += pair(226) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
+        s += pair(228) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
+        s += pair(230) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
+        s += pair(240) * lanes{theta_ddot_A1, theta_ddot_A1};
+        s += pair(242) * lanes{theta_ddot_A2, theta_ddot_A2};
+        s += pair(244) * lanes{theta_ddot_A3, theta_ddot_A3};
+        s += pair(246) * lanes{theta_ddot_A4, theta_ddot_A4};
+        s += pair(264) * lanes{theta_dotsq_B1, theta_dotsq_B1};
+        s += pair(266) * lanes{theta_dotsq_B2, theta_dotsq_B2};
+        s += pair(268) * lanes{theta_dotsq_B3, theta_dotsq_B3};
+        s += pair(270) * lanes{theta_dotsq_B4, theta_dotsq_B4};
+        out[6] = s[0];
+        out[7] = s[1];
+    }
 }
 
 }  // namespace
 
 extern const Variant bim_nx4_ny4_prescribed_first = {
-    .abi_version = 2,
+    .abi_version = 3,
     .name = "bim_nx4_ny4_prescribed_first",
     .nq = 8,
     .ncoeff = 99,

@@ -1084,7 +1084,7 @@ void bsim_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100_for
     out[23] = -c[122] + c[37]*A1 + c[53]*A2 + c[67]*A3 + c[79]*A4;
 }
 
-/* forces_folded:(c[188],u[5],q[8],qd[8])->(qdd[8]) qdd = W m, W = M^-1 F (8 x 48, row-major) passed in the c slot */
+/* forces_folded:(c[188],u[5],q[8],qd[8])->(y[8]) y = P m, P (8 x 48) passed in the c slot by row pairs, P(i, k) at c[(j/2)*96 + 2k + j%2], j = i: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 192 entries that can be nonzero, a pair of rows reads the columns either row has */
 void bsim_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -1136,20 +1136,130 @@ void bsim_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100_for
     const double theta_dotsq_B2 = theta_dotsq*B2;
     const double theta_dotsq_B3 = theta_dotsq*B3;
     const double theta_dotsq_B4 = theta_dotsq*B4;
-    out[0] = c[0]*theta_ddot + c[1]*sin_theta + c[2]*cos_theta + c[3]*A1 + c[4]*A2 + c[5]*A3 + c[6]*A4 + c[7]*B1 + c[8]*B2 + c[9]*B3 + c[10]*B4 + c[11]*A1_dot + c[12]*A2_dot + c[13]*A3_dot + c[14]*A4_dot + c[15]*B1_dot + c[16]*B2_dot + c[17]*B3_dot + c[18]*B4_dot + c[19]*theta_dotsq + c[20]*theta_dot_A1_dot + c[21]*theta_dot_A2_dot + c[22]*theta_dot_A3_dot + c[23]*theta_dot_A4_dot + c[24]*theta_dot_B1_dot + c[25]*theta_dot_B2_dot + c[26]*theta_dot_B3_dot + c[27]*theta_dot_B4_dot + c[28]*theta_ddot_A1 + c[29]*theta_ddot_A2 + c[30]*theta_ddot_A3 + c[31]*theta_ddot_A4 + c[32]*theta_ddot_B1 + c[33]*theta_ddot_B2 + c[34]*theta_ddot_B3 + c[35]*theta_ddot_B4 + c[36]*sin_theta_B1 + c[37]*sin_theta_B2 + c[38]*sin_theta_B3 + c[39]*sin_theta_B4 + c[40]*theta_dotsq_A1 + c[41]*theta_dotsq_A2 + c[42]*theta_dotsq_A3 + c[43]*theta_dotsq_A4 + c[44]*theta_dotsq_B1 + c[45]*theta_dotsq_B2 + c[46]*theta_dotsq_B3 + c[47]*theta_dotsq_B4;
-    out[1] = c[48]*theta_ddot + c[49]*sin_theta + c[50]*cos_theta + c[51]*A1 + c[52]*A2 + c[53]*A3 + c[54]*A4 + c[55]*B1 + c[56]*B2 + c[57]*B3 + c[58]*B4 + c[59]*A1_dot + c[60]*A2_dot + c[61]*A3_dot + c[62]*A4_dot + c[63]*B1_dot + c[64]*B2_dot + c[65]*B3_dot + c[66]*B4_dot + c[67]*theta_dotsq + c[68]*theta_dot_A1_dot + c[69]*theta_dot_A2_dot + c[70]*theta_dot_A3_dot + c[71]*theta_dot_A4_dot + c[72]*theta_dot_B1_dot + c[73]*theta_dot_B2_dot + c[74]*theta_dot_B3_dot + c[75]*theta_dot_B4_dot + c[76]*theta_ddot_A1 + c[77]*theta_ddot_A2 + c[78]*theta_ddot_A3 + c[79]*theta_ddot_A4 + c[80]*theta_ddot_B1 + c[81]*theta_ddot_B2 + c[82]*theta_ddot_B3 + c[83]*theta_ddot_B4 + c[84]*sin_theta_B1 + c[85]*sin_theta_B2 + c[86]*sin_theta_B3 + c[87]*sin_theta_B4 + c[88]*theta_dotsq_A1 + c[89]*theta_dotsq_A2 + c[90]*theta_dotsq_A3 + c[91]*theta_dotsq_A4 + c[92]*theta_dotsq_B1 + c[93]*theta_dotsq_B2 + c[94]*theta_dotsq_B3 + c[95]*theta_dotsq_B4;
-    out[2] = c[96]*theta_ddot + c[97]*sin_theta + c[98]*cos_theta + c[99]*A1 + c[100]*A2 + c[101]*A3 + c[102]*A4 + c[103]*B1 + c[104]*B2 + c[105]*B3 + c[106]*B4 + c[107]*A1_dot + c[108]*A2_dot + c[109]*A3_dot + c[110]*A4_dot + c[111]*B1_dot + c[112]*B2_dot + c[113]*B3_dot + c[114]*B4_dot + c[115]*theta_dotsq + c[116]*theta_dot_A1_dot + c[117]*theta_dot_A2_dot + c[118]*theta_dot_A3_dot + c[119]*theta_dot_A4_dot + c[120]*theta_dot_B1_dot + c[121]*theta_dot_B2_dot + c[122]*theta_dot_B3_dot + c[123]*theta_dot_B4_dot + c[124]*theta_ddot_A1 + c[125]*theta_ddot_A2 + c[126]*theta_ddot_A3 + c[127]*theta_ddot_A4 + c[128]*theta_ddot_B1 + c[129]*theta_ddot_B2 + c[130]*theta_ddot_B3 + c[131]*theta_ddot_B4 + c[132]*sin_theta_B1 + c[133]*sin_theta_B2 + c[134]*sin_theta_B3 + c[135]*sin_theta_B4 + c[136]*theta_dotsq_A1 + c[137]*theta_dotsq_A2 + c[138]*theta_dotsq_A3 + c[139]*theta_dotsq_A4 + c[140]*theta_dotsq_B1 + c[141]*theta_dotsq_B2 + c[142]*theta_dotsq_B3 + c[143]*theta_dotsq_B4;
-    out[3] = c[144]*theta_ddot + c[145]*sin_theta + c[146]*cos_theta + c[147]*A1 + c[148]*A2 + c[149]*A3 + c[150]*A4 + c[151]*B1 + c[152]*B2 + c[153]*B3 + c[154]*B4 + c[155]*A1_dot + c[156]*A2_dot + c[157]*A3_dot + c[158]*A4_dot + c[159]*B1_dot + c[160]*B2_dot + c[161]*B3_dot + c[162]*B4_dot + c[163]*theta_dotsq + c[164]*theta_dot_A1_dot + c[165]*theta_dot_A2_dot + c[166]*theta_dot_A3_dot + c[167]*theta_dot_A4_dot + c[168]*theta_dot_B1_dot + c[169]*theta_dot_B2_dot + c[170]*theta_dot_B3_dot + c[171]*theta_dot_B4_dot + c[172]*theta_ddot_A1 + c[173]*theta_ddot_A2 + c[174]*theta_ddot_A3 + c[175]*theta_ddot_A4 + c[176]*theta_ddot_B1 + c[177]*theta_ddot_B2 + c[178]*theta_ddot_B3 + c[179]*theta_ddot_B4 + c[180]*sin_theta_B1 + c[181]*sin_theta_B2 + c[182]*sin_theta_B3 + c[183]*sin_theta_B4 + c[184]*theta_dotsq_A1 + c[185]*theta_dotsq_A2 + c[186]*theta_dotsq_A3 + c[187]*theta_dotsq_A4 + c[188]*theta_dotsq_B1 + c[189]*theta_dotsq_B2 + c[190]*theta_dotsq_B3 + c[191]*theta_dotsq_B4;
-    out[4] = c[192]*theta_ddot + c[193]*sin_theta + c[194]*cos_theta + c[195]*A1 + c[196]*A2 + c[197]*A3 + c[198]*A4 + c[199]*B1 + c[200]*B2 + c[201]*B3 + c[202]*B4 + c[203]*A1_dot + c[204]*A2_dot + c[205]*A3_dot + c[206]*A4_dot + c[207]*B1_dot + c[208]*B2_dot + c[209]*B3_dot + c[210]*B4_dot + c[211]*theta_dotsq + c[212]*theta_dot_A1_dot + c[213]*theta_dot_A2_dot + c[214]*theta_dot_A3_dot + c[215]*theta_dot_A4_dot + c[216]*theta_dot_B1_dot + c[217]*theta_dot_B2_dot + c[218]*theta_dot_B3_dot + c[219]*theta_dot_B4_dot + c[220]*theta_ddot_A1 + c[221]*theta_ddot_A2 + c[222]*theta_ddot_A3 + c[223]*theta_ddot_A4 + c[224]*theta_ddot_B1 + c[225]*theta_ddot_B2 + c[226]*theta_ddot_B3 + c[227]*theta_ddot_B4 + c[228]*sin_theta_B1 + c[229]*sin_theta_B2 + c[230]*sin_theta_B3 + c[231]*sin_theta_B4 + c[232]*theta_dotsq_A1 + c[233]*theta_dotsq_A2 + c[234]*theta_dotsq_A3 + c[235]*theta_dotsq_A4 + c[236]*theta_dotsq_B1 + c[237]*theta_dotsq_B2 + c[238]*theta_dotsq_B3 + c[239]*theta_dotsq_B4;
-    out[5] = c[240]*theta_ddot + c[241]*sin_theta + c[242]*cos_theta + c[243]*A1 + c[244]*A2 + c[245]*A3 + c[246]*A4 + c[247]*B1 + c[248]*B2 + c[249]*B3 + c[250]*B4 + c[251]*A1_dot + c[252]*A2_dot + c[253]*A3_dot + c[254]*A4_dot + c[255]*B1_dot + c[256]*B2_dot + c[257]*B3_dot + c[258]*B4_dot + c[259]*theta_dotsq + c[260]*theta_dot_A1_dot + c[261]*theta_dot_A2_dot + c[262]*theta_dot_A3_dot + c[263]*theta_dot_A4_dot + c[264]*theta_dot_B1_dot + c[265]*theta_dot_B2_dot + c[266]*theta_dot_B3_dot + c[267]*theta_dot_B4_dot + c[268]*theta_ddot_A1 + c[269]*theta_ddot_A2 + c[270]*theta_ddot_A3 + c[271]*theta_ddot_A4 + c[272]*theta_ddot_B1 + c[273]*theta_ddot_B2 + c[274]*theta_ddot_B3 + c[275]*theta_ddot_B4 + c[276]*sin_theta_B1 + c[277]*sin_theta_B2 + c[278]*sin_theta_B3 + c[279]*sin_theta_B4 + c[280]*theta_dotsq_A1 + c[281]*theta_dotsq_A2 + c[282]*theta_dotsq_A3 + c[283]*theta_dotsq_A4 + c[284]*theta_dotsq_B1 + c[285]*theta_dotsq_B2 + c[286]*theta_dotsq_B3 + c[287]*theta_dotsq_B4;
-    out[6] = c[288]*theta_ddot + c[289]*sin_theta + c[290]*cos_theta + c[291]*A1 + c[292]*A2 + c[293]*A3 + c[294]*A4 + c[295]*B1 + c[296]*B2 + c[297]*B3 + c[298]*B4 + c[299]*A1_dot + c[300]*A2_dot + c[301]*A3_dot + c[302]*A4_dot + c[303]*B1_dot + c[304]*B2_dot + c[305]*B3_dot + c[306]*B4_dot + c[307]*theta_dotsq + c[308]*theta_dot_A1_dot + c[309]*theta_dot_A2_dot + c[310]*theta_dot_A3_dot + c[311]*theta_dot_A4_dot + c[312]*theta_dot_B1_dot + c[313]*theta_dot_B2_dot + c[314]*theta_dot_B3_dot + c[315]*theta_dot_B4_dot + c[316]*theta_ddot_A1 + c[317]*theta_ddot_A2 + c[318]*theta_ddot_A3 + c[319]*theta_ddot_A4 + c[320]*theta_ddot_B1 + c[321]*theta_ddot_B2 + c[322]*theta_ddot_B3 + c[323]*theta_ddot_B4 + c[324]*sin_theta_B1 + c[325]*sin_theta_B2 + c[326]*sin_theta_B3 + c[327]*sin_theta_B4 + c[328]*theta_dotsq_A1 + c[329]*theta_dotsq_A2 + c[330]*theta_dotsq_A3 + c[331]*theta_dotsq_A4 + c[332]*theta_dotsq_B1 + c[333]*theta_dotsq_B2 + c[334]*theta_dotsq_B3 + c[335]*theta_dotsq_B4;
-    out[7] = c[336]*theta_ddot + c[337]*sin_theta + c[338]*cos_theta + c[339]*A1 + c[340]*A2 + c[341]*A3 + c[342]*A4 + c[343]*B1 + c[344]*B2 + c[345]*B3 + c[346]*B4 + c[347]*A1_dot + c[348]*A2_dot + c[349]*A3_dot + c[350]*A4_dot + c[351]*B1_dot + c[352]*B2_dot + c[353]*B3_dot + c[354]*B4_dot + c[355]*theta_dotsq + c[356]*theta_dot_A1_dot + c[357]*theta_dot_A2_dot + c[358]*theta_dot_A3_dot + c[359]*theta_dot_A4_dot + c[360]*theta_dot_B1_dot + c[361]*theta_dot_B2_dot + c[362]*theta_dot_B3_dot + c[363]*theta_dot_B4_dot + c[364]*theta_ddot_A1 + c[365]*theta_ddot_A2 + c[366]*theta_ddot_A3 + c[367]*theta_ddot_A4 + c[368]*theta_ddot_B1 + c[369]*theta_ddot_B2 + c[370]*theta_ddot_B3 + c[371]*theta_ddot_B4 + c[372]*sin_theta_B1 + c[373]*sin_theta_B2 + c[374]*sin_theta_B3 + c[375]*sin_theta_B4 + c[376]*theta_dotsq_A1 + c[377]*theta_dotsq_A2 + c[378]*theta_dotsq_A3 + c[379]*theta_dotsq_A4 + c[380]*theta_dotsq_B1 + c[381]*theta_dotsq_B2 + c[382]*theta_dotsq_B3 + c[383]*theta_dotsq_B4;
+    typedef double lanes __attribute__((vector_size(16)));
+    const auto pair = [c](int e) {
+        lanes v;
+        __builtin_memcpy(&v, c + e, sizeof v);
+        return v;
+    };
+    {
+        lanes s = pair(2) * lanes{sin_theta, sin_theta};
+        s += pair(6) * lanes{A1, A1};
+        s += pair(8) * lanes{A2, A2};
+        s += pair(10) * lanes{A3, A3};
+        s += pair(12) * lanes{A4, A4};
+        s += pair(22) * lanes{A1_dot, A1_dot};
+        s += pair(24) * lanes{A2_dot, A2_dot};
+        s += pair(26) * lanes{A3_dot, A3_dot};
+        s += pair(28) * lanes{A4_dot, A4_dot};
+        s += pair(38) * lanes{theta_dotsq, theta_dotsq};
+        s += pair(48) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
+        s += pair(50) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
+        s += pair(52) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
+        s += pair(54) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
+        s += pair(64) * lanes{theta_ddot_B1, theta_ddot_B1};
+        s += pair(66) * lanes{theta_ddot_B2, theta_ddot_B2};
+        s += pair(68) * lanes{theta_ddot_B3, theta_ddot_B3};
+        s += pair(70) * lanes{theta_ddot_B4, theta_ddot_B4};
+        s += pair(80) * lanes{theta_dotsq_A1, theta_dotsq_A1};
+        s += pair(82) * lanes{theta_dotsq_A2, theta_dotsq_A2};
+        s += pair(84) * lanes{theta_dotsq_A3, theta_dotsq_A3};
+        s += pair(86) * lanes{theta_dotsq_A4, theta_dotsq_A4};
+        out[0] = s[0];
+        out[1] = s[1];
+    }
+    {
+        lanes s = pair(98) * lanes{sin_theta, sin_theta};
+        s += pair(102) * lanes{A1, A1};
+        s += pair(104) * lanes{A2, A2};
+        s += pair(106) * lanes{A3, A3};
+        s += pair(108) * lanes{A4, A4};
+        s += pair(118) * lanes{A1_dot, A1_dot};
+        s += pair(120) * lanes{A2_dot, A2_dot};
+        s += pair(122) * lanes{A3_dot, A3_dot};
+        s += pair(124) * lanes{A4_dot, A4_dot};
+        s += pair(134) * lanes{theta_dotsq, theta_dotsq};
+        s += pair(144) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
+        s += pair(146) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
+        s += pair(148) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
+        s += pair(150) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
+        s += pair(160) * lanes{theta_ddot_B1, theta_ddot_B1};
+        s += pair(162) * lanes{theta_ddot_B2, theta_ddot_B2};
+        s += pair(164) * lanes{theta_ddot_B3, theta_ddot_B3};
+        s += pair(166) * lanes{theta_ddot_B4, theta_ddot_B4};
+        s += pair(176) * lanes{theta_dotsq_A1, theta_dotsq_A1};
+        s += pair(178) * lanes{theta_dotsq_A2, theta_dotsq_A2};
+        s += pair(180) * lanes{theta_dotsq_A3, theta_dotsq_A3};
+        s += pair(182) * lanes{theta_dotsq_A4, theta_dotsq_A4};
+        out[2] = s[0];
+        out[3] = s[1];
+    }
+    {
+        lanes s = pair(192) * lanes{theta_ddot, theta_ddot};
+        s += pair(196) * lanes{cos_theta, cos_theta};
+        s += pair(206) * lanes{B1, B1};
+        s += pair(208) * lanes{B2, B2};
+        s += pair(210) * lanes{B3, B3};
+        s += pair(212) * lanes{B4, B4};
+        s += pair(222) * lanes{B1_dot, B1_dot};
+        s += pair(224) * lanes{B2_dot, B2_dot};
+        s += pair(226) * lanes{B3_dot, B3_dot};
+        s += pair(228) * lanes{B4_dot, B4_dot};
+        s += pair(232) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
+        s += pair(234) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
+        s += pair(236) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
+        s += pair(238) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
+        s += pair(248) * lanes{theta_ddot_A1, theta_ddot_A1};
+        s += pair(250) * lanes{theta_ddot_A2, theta_ddot_A2};
+        s += pair(252) * lanes{theta_ddot_A3, theta_ddot_A3};
+        s += pair(254) * lanes{theta_ddot_A4, theta_ddot_A4};
+        s += pair(264) * lanes{sin_theta_B1, sin_theta_B1};
+        s += pair(266) * lanes{sin_theta_B2, sin_theta_B2};
+        s += pair(268) * lanes{sin_theta_B3, sin_theta_B3};
+        s += pair(270) * lanes{sin_theta_B4, sin_theta_B4};
+        s += pair(280) * lanes{theta_dotsq_B1, theta_dotsq_B1};
+        s += pair(282) * lanes{theta_dotsq_B2, theta_dotsq_B2};
+        s += pair(284) * lanes{theta_dotsq_B3, theta_dotsq_B3};
+        s += pair(286) * lanes{theta_dotsq_B4, theta_dotsq_B4};
+        out[4] = s[0];
+        out[5] = s[1];
+    }
+    {
+        lanes s = pair(288) * lanes{theta_ddot, theta_ddot};
+        s += pair(292) * lanes{cos_theta, cos_theta};
+        s += pair(302) * lanes{B1, B1};
+        s += pair(304) * lanes{B2, B2};
+        s += pair(306) * lanes{B3, B3};
+        s += pair(308) * lanes{B4, B4};
+        s += pair(318) * lanes{B1_dot, B1_dot};
+        s += pair(320) * lanes{B2_dot, B2_dot};
+        s += pair(322) * lanes{B3_dot, B3_dot};
+        s += pair(324) * lanes{B4_dot, B4_dot};
+        s += pair(328) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
+        s += pair(330) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
+        s += pair(332) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
+        s += pair(334) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
+        s += pair(344) * lanes{theta_ddot_A1, theta_ddot_A1};
+        s += pair(346) * lanes{theta_ddot_A2, theta_ddot_A2};
+        s += pair(348) * lanes{theta_ddot_A3, theta_ddot_A3};
+        s += pair(350) * lanes{theta_ddot_A4, theta_ddot_A4};
+        s += pair(360) * lanes{sin_theta_B1, sin_theta_B1};
+        s += pair(362) * lanes{sin_theta_B2, sin_theta_B2};
+        s += pair(364) * lanes{sin_theta_B3, sin_theta_B3};
+        s += pair(366) * lanes{sin_theta_B4, sin_theta_B4};
+        s += pair(376) * lanes{theta_dotsq_B1, theta_dotsq_B1};
+        s += pair(378) * lanes{theta_dotsq_B2, theta_dotsq_B2};
+        s += pair(380) * lanes{theta_dotsq_B3, theta_dotsq_B3};
+        s += pair(382) * lanes{theta_dotsq_B4, theta_dotsq_B4};
+        out[6] = s[0];
+        out[7] = s[1];
+    }
 }
 
 }  // namespace
 
 extern const Variant bsim_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100 = {
-    .abi_version = 2,
+    .abi_version = 3,
     .name = "bsim_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100",
     .nq = 8,
     .ncoeff = 188,

@@ -985,7 +985,7 @@ void bsim_nx4_ny4_prescribed_zero_tip_gravity_damped_depth_forces_u(const double
     out[23] = -c[104] + c[37]*A1 + c[53]*A2 + c[67]*A3 + c[79]*A4;
 }
 
-/* forces_folded:(c[152],u[5],q[8],qd[8])->(qdd[8]) qdd = W m, W = M^-1 F (8 x 44, row-major) passed in the c slot */
+/* forces_folded:(c[152],u[5],q[8],qd[8])->(y[8]) y = P m, P (8 x 44) passed in the c slot by row pairs, P(i, k) at c[(j/2)*88 + 2k + j%2], j = i: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 176 entries that can be nonzero, a pair of rows reads the columns either row has */
 void bsim_nx4_ny4_prescribed_zero_tip_gravity_damped_depth_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
@@ -1033,20 +1033,122 @@ void bsim_nx4_ny4_prescribed_zero_tip_gravity_damped_depth_forces_folded(const d
     const double theta_dotsq_B2 = theta_dotsq*B2;
     const double theta_dotsq_B3 = theta_dotsq*B3;
     const double theta_dotsq_B4 = theta_dotsq*B4;
-    out[0] = c[0]*theta_ddot + c[1]*sin_theta + c[2]*cos_theta + c[3]*A1 + c[4]*A2 + c[5]*A3 + c[6]*A4 + c[7]*B1 + c[8]*B2 + c[9]*B3 + c[10]*B4 + c[11]*A1_dot + c[12]*A2_dot + c[13]*A3_dot + c[14]*A4_dot + c[15]*B1_dot + c[16]*B2_dot + c[17]*B3_dot + c[18]*B4_dot + c[19]*theta_dotsq + c[20]*theta_dot_A1_dot + c[21]*theta_dot_A2_dot + c[22]*theta_dot_A3_dot + c[23]*theta_dot_A4_dot + c[24]*theta_dot_B1_dot + c[25]*theta_dot_B2_dot + c[26]*theta_dot_B3_dot + c[27]*theta_dot_B4_dot + c[28]*theta_ddot_A1 + c[29]*theta_ddot_A2 + c[30]*theta_ddot_A3 + c[31]*theta_ddot_A4 + c[32]*theta_ddot_B1 + c[33]*theta_ddot_B2 + c[34]*theta_ddot_B3 + c[35]*theta_ddot_B4 + c[36]*theta_dotsq_A1 + c[37]*theta_dotsq_A2 + c[38]*theta_dotsq_A3 + c[39]*theta_dotsq_A4 + c[40]*theta_dotsq_B1 + c[41]*theta_dotsq_B2 + c[42]*theta_dotsq_B3 + c[43]*theta_dotsq_B4;
-    out[1] = c[44]*theta_ddot + c[45]*sin_theta + c[46]*cos_theta + c[47]*A1 + c[48]*A2 + c[49]*A3 + c[50]*A4 + c[51]*B1 + c[52]*B2 + c[53]*B3 + c[54]*B4 + c[55]*A1_dot + c[56]*A2_dot + c[57]*A3_dot + c[58]*A4_dot + c[59]*B1_dot + c[60]*B2_dot + c[61]*B3_dot + c[62]*B4_dot + c[63]*theta_dotsq + c[64]*theta_dot_A1_dot + c[65]*theta_dot_A2_dot + c[66]*theta_dot_A3_dot + c[67]*theta_dot_A4_dot + c[68]*theta_dot_B1_dot + c[69]*theta_dot_B2_dot + c[70]*theta_dot_B3_dot + c[71]*theta_dot_B4_dot + c[72]*theta_ddot_A1 + c[73]*theta_ddot_A2 + c[74]*theta_ddot_A3 + c[75]*theta_ddot_A4 + c[76]*theta_ddot_B1 + c[77]*theta_ddot_B2 + c[78]*theta_ddot_B3 + c[79]*theta_ddot_B4 + c[80]*theta_dotsq_A1 + c[81]*theta_dotsq_A2 + c[82]*theta_dotsq_A3 + c[83]*theta_dotsq_A4 + c[84]*theta_dotsq_B1 + c[85]*theta_dotsq_B2 + c[86]*theta_dotsq_B3 + c[87]*theta_dotsq_B4;
-    out[2] = c[88]*theta_ddot + c[89]*sin_theta + c[90]*cos_theta + c[91]*A1 + c[92]*A2 + c[93]*A3 + c[94]*A4 + c[95]*B1 + c[96]*B2 + c[97]*B3 + c[98]*B4 + c[99]*A1_dot + c[100]*A2_dot + c[101]*A3_dot + c[102]*A4_dot + c[103]*B1_dot + c[104]*B2_dot + c[105]*B3_dot + c[106]*B4_dot + c[107]*theta_dotsq + c[108]*theta_dot_A1_dot + c[109]*theta_dot_A2_dot + c[110]*theta_dot_A3_dot + c[111]*theta_dot_A4_dot + c[112]*theta_dot_B1_dot + c[113]*theta_dot_B2_dot + c[114]*theta_dot_B3_dot + c[115]*theta_dot_B4_dot + c[116]*theta_ddot_A1 + c[117]*theta_ddot_A2 + c[118]*theta_ddot_A3 + c[119]*theta_ddot_A4 + c[120]*theta_ddot_B1 + c[121]*theta_ddot_B2 + c[122]*theta_ddot_B3 + c[123]*theta_ddot_B4 + c[124]*theta_dotsq_A1 + c[125]*theta_dotsq_A2 + c[126]*theta_dotsq_A3 + c[127]*theta_dotsq_A4 + c[128]*theta_dotsq_B1 + c[129]*theta_dotsq_B2 + c[130]*theta_dotsq_B3 + c[131]*theta_dotsq_B4;
-    out[3] = c[132]*theta_ddot + c[133]*sin_theta + c[134]*cos_theta + c[135]*A1 + c[136]*A2 + c[137]*A3 + c[138]*A4 + c[139]*B1 + c[140]*B2 + c[141]*B3 + c[142]*B4 + c[143]*A1_dot + c[144]*A2_dot + c[145]*A3_dot + c[146]*A4_dot + c[147]*B1_dot + c[148]*B2_dot + c[149]*B3_dot + c[150]*B4_dot + c[151]*theta_dotsq + c[152]*theta_dot_A1_dot + c[153]*theta_dot_A2_dot + c[154]*theta_dot_A3_dot + c[155]*theta_dot_A4_dot + c[156]*theta_dot_B1_dot + c[157]*theta_dot_B2_dot + c[158]*theta_dot_B3_dot + c[159]*theta_dot_B4_dot + c[160]*theta_ddot_A1 + c[161]*theta_ddot_A2 + c[162]*theta_ddot_A3 + c[163]*theta_ddot_A4 + c[164]*theta_ddot_B1 + c[165]*theta_ddot_B2 + c[166]*theta_ddot_B3 + c[167]*theta_ddot_B4 + c[168]*theta_dotsq_A1 + c[169]*theta_dotsq_A2 + c[170]*theta_dotsq_A3 + c[171]*theta_dotsq_A4 + c[172]*theta_dotsq_B1 + c[173]*theta_dotsq_B2 + c[174]*theta_dotsq_B3 + c[175]*theta_dotsq_B4;
-    out[4] = c[176]*theta_ddot + c[177]*sin_theta + c[178]*cos_theta + c[179]*A1 + c[180]*A2 + c[181]*A3 + c[182]*A4 + c[183]*B1 + c[184]*B2 + c[185]*B3 + c[186]*B4 + c[187]*A1_dot + c[188]*A2_dot + c[189]*A3_dot + c[190]*A4_dot + c[191]*B1_dot + c[192]*B2_dot + c[193]*B3_dot + c[194]*B4_dot + c[195]*theta_dotsq + c[196]*theta_dot_A1_dot + c[197]*theta_dot_A2_dot + c[198]*theta_dot_A3_dot + c[199]*theta_dot_A4_dot + c[200]*theta_dot_B1_dot + c[201]*theta_dot_B2_dot + c[202]*theta_dot_B3_dot + c[203]*theta_dot_B4_dot + c[204]*theta_ddot_A1 + c[205]*theta_ddot_A2 + c[206]*theta_ddot_A3 + c[207]*theta_ddot_A4 + c[208]*theta_ddot_B1 + c[209]*theta_ddot_B2 + c[210]*theta_ddot_B3 + c[211]*theta_ddot_B4 + c[212]*theta_dotsq_A1 + c[213]*theta_dotsq_A2 + c[214]*theta_dotsq_A3 + c[215]*theta_dotsq_A4 + c[216]*theta_dotsq_B1 + c[217]*theta_dotsq_B2 + c[218]*theta_dotsq_B3 + c[219]*theta_dotsq_B4;
-    out[5] = c[220]*theta_ddot + c[221]*sin_theta + c[222]*cos_theta + c[223]*A1 + c[224]*A2 + c[225]*A3 + c[226]*A4 + c[227]*B1 + c[228]*B2 + c[229]*B3 + c[230]*B4 + c[231]*A1_dot + c[232]*A2_dot + c[233]*A3_dot + c[234]*A4_dot + c[235]*B1_dot + c[236]*B2_dot + c[237]*B3_dot + c[238]*B4_dot + c[239]*theta_dotsq + c[240]*theta_dot_A1_dot + c[241]*theta_dot_A2_dot + c[242]*theta_dot_A3_dot + c[243]*theta_dot_A4_dot + c[244]*theta_dot_B1_dot + c[245]*theta_dot_B2_dot + c[246]*theta_dot_B3_dot + c[247]*theta_dot_B4_dot + c[248]*theta_ddot_A1 + c[249]*theta_ddot_A2 + c[250]*theta_ddot_A3 + c[251]*theta_ddot_A4 + c[252]*theta_ddot_B1 + c[253]*theta_ddot_B2 + c[254]*theta_ddot_B3 + c[255]*theta_ddot_B4 + c[256]*theta_dotsq_A1 + c[257]*theta_dotsq_A2 + c[258]*theta_dotsq_A3 + c[259]*theta_dotsq_A4 + c[260]*theta_dotsq_B1 + c[261]*theta_dotsq_B2 + c[262]*theta_dotsq_B3 + c[263]*theta_dotsq_B4;
-    out[6] = c[264]*theta_ddot + c[265]*sin_theta + c[266]*cos_theta + c[267]*A1 + c[268]*A2 + c[269]*A3 + c[270]*A4 + c[271]*B1 + c[272]*B2 + c[273]*B3 + c[274]*B4 + c[275]*A1_dot + c[276]*A2_dot + c[277]*A3_dot + c[278]*A4_dot + c[279]*B1_dot + c[280]*B2_dot + c[281]*B3_dot + c[282]*B4_dot + c[283]*theta_dotsq + c[284]*theta_dot_A1_dot + c[285]*theta_dot_A2_dot + c[286]*theta_dot_A3_dot + c[287]*theta_dot_A4_dot + c[288]*theta_dot_B1_dot + c[289]*theta_dot_B2_dot + c[290]*theta_dot_B3_dot + c[291]*theta_dot_B4_dot + c[292]*theta_ddot_A1 + c[293]*theta_ddot_A2 + c[294]*theta_ddot_A3 + c[295]*theta_ddot_A4 + c[296]*theta_ddot_B1 + c[297]*theta_ddot_B2 + c[298]*theta_ddot_B3 + c[299]*theta_ddot_B4 + c[300]*theta_dotsq_A1 + c[301]*theta_dotsq_A2 + c[302]*theta_dotsq_A3 + c[303]*theta_dotsq_A4 + c[304]*theta_dotsq_B1 + c[305]*theta_dotsq_B2 + c[306]*theta_dotsq_B3 + c[307]*theta_dotsq_B4;
-    out[7] = c[308]*theta_ddot + c[309]*sin_theta + c[310]*cos_theta + c[311]*A1 + c[312]*A2 + c[313]*A3 + c[314]*A4 + c[315]*B1 + c[316]*B2 + c[317]*B3 + c[318]*B4 + c[319]*A1_dot + c[320]*A2_dot + c[321]*A3_dot + c[322]*A4_dot + c[323]*B1_dot + c[324]*B2_dot + c[325]*B3_dot + c[326]*B4_dot + c[327]*theta_dotsq + c[328]*theta_dot_A1_dot + c[329]*theta_dot_A2_dot + c[330]*theta_dot_A3_dot + c[331]*theta_dot_A4_dot + c[332]*theta_dot_B1_dot + c[333]*theta_dot_B2_dot + c[334]*theta_dot_B3_dot + c[335]*theta_dot_B4_dot + c[336]*theta_ddot_A1 + c[337]*theta_ddot_A2 + c[338]*theta_ddot_A3 + c[339]*theta_ddot_A4 + c[340]*theta_ddot_B1 + c[341]*theta_ddot_B2 + c[342]*theta_ddot_B3 + c[343]*theta_ddot_B4 + c[344]*theta_dotsq_A1 + c[345]*theta_dotsq_A2 + c[346]*theta_dotsq_A3 + c[347]*theta_dotsq_A4 + c[348]*theta_dotsq_B1 + c[349]*theta_dotsq_B2 + c[350]*theta_dotsq_B3 + c[351]*theta_dotsq_B4;
+    typedef double lanes __attribute__((vector_size(16)));
+    const auto pair = [c](int e) {
+        lanes v;
+        __builtin_memcpy(&v, c + e, sizeof v);
+        return v;
+    };
+    {
+        lanes s = pair(2) * lanes{sin_theta, sin_theta};
+        s += pair(6) * lanes{A1, A1};
+        s += pair(8) * lanes{A2, A2};
+        s += pair(10) * lanes{A3, A3};
+        s += pair(12) * lanes{A4, A4};
+        s += pair(22) * lanes{A1_dot, A1_dot};
+        s += pair(24) * lanes{A2_dot, A2_dot};
+        s += pair(26) * lanes{A3_dot, A3_dot};
+        s += pair(28) * lanes{A4_dot, A4_dot};
+        s += pair(38) * lanes{theta_dotsq, theta_dotsq};
+        s += pair(48) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
+        s += pair(50) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
+        s += pair(52) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
+        s += pair(54) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
+        s += pair(64) * lanes{theta_ddot_B1, theta_ddot_B1};
+        s += pair(66) * lanes{theta_ddot_B2, theta_ddot_B2};
+        s += pair(68) * lanes{theta_ddot_B3, theta_ddot_B3};
+        s += pair(70) * lanes{theta_ddot_B4, theta_ddot_B4};
+        s += pair(72) * lanes{theta_dotsq_A1, theta_dotsq_A1};
+        s += pair(74) * lanes{theta_dotsq_A2, theta_dotsq_A2};
+        s += pair(76) * lanes{theta_dotsq_A3, theta_dotsq_A3};
+        s += pair(78) * lanes{theta_dotsq_A4, theta_dotsq_A4};
+        out[0] = s[0];
+        out[1] = s[1];
+    }
+    {
+        lanes s = pair(90) * lanes{sin_theta, sin_theta};
+        s += pair(94) * lanes{A1, A1};
+        s += pair(96) * lanes{A2, A2};
+        s += pair(98) * lanes{A3, A3};
+        s += pair(100) * lanes{A4, A4};
+        s += pair(110) * lanes{A1_dot, A1_dot};
+        s += pair(112) * lanes{A2_dot, A2_dot};
+        s += pair(114) * lanes{A3_dot, A3_dot};
+        s += pair(116) * lanes{A4_dot, A4_dot};
+        s += pair(126) * lanes{theta_dotsq, theta_dotsq};
+        s += pair(136) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
+        s += pair(138) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
+        s += pair(140) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
+        s += pair(142) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
+        s += pair(152) * lanes{theta_ddot_B1, theta_ddot_B1};
+        s += pair(154) * lanes{theta_ddot_B2, theta_ddot_B2};
+        s += pair(156) * lanes{theta_ddot_B3, theta_ddot_B3};
+        s += pair(158) * lanes{theta_ddot_B4, theta_ddot_B4};
+        s += pair(160) * lanes{theta_dotsq_A1, theta_dotsq_A1};
+        s += pair(162) * lanes{theta_dotsq_A2, theta_dotsq_A2};
+        s += pair(164) * lanes{theta_dotsq_A3, theta_dotsq_A3};
+        s += pair(166) * lanes{theta_dotsq_A4, theta_dotsq_A4};
+        out[2] = s[0];
+        out[3] = s[1];
+    }
+    {
+        lanes s = pair(176) * lanes{theta_ddot, theta_ddot};
+        s += pair(180) * lanes{cos_theta, cos_theta};
+        s += pair(190) * lanes{B1, B1};
+        s += pair(192) * lanes{B2, B2};
+        s += pair(194) * lanes{B3, B3};
+        s += pair(196) * lanes{B4, B4};
+        s += pair(206) * lanes{B1_dot, B1_dot};
+        s += pair(208) * lanes{B2_dot, B2_dot};
+        s += pair(210) * lanes{B3_dot, B3_dot};
+        s += pair(212) * lanes{B4_dot, B4_dot};
+        s += pair(216) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
+        s += pair(218) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
+        s += pair(220) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
+        s += pair(222) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
+        s += pair(232) * lanes{theta_ddot_A1, theta_ddot_A1};
+        s += pair(234) * lanes{theta_ddot_A2, theta_ddot_A2};
+        s += pair(236) * lanes{theta_ddot_A3, theta_ddot_A3};
+        s += pair(238) * lanes{theta_ddot_A4, theta_ddot_A4};
+        s += pair(256) * lanes{theta_dotsq_B1, theta_dotsq_B1};
+        s += pair(258) * lanes{theta_dotsq_B2, theta_dotsq_B2};
+        s += pair(260) * lanes{theta_dotsq_B3, theta_dotsq_B3};
+        s += pair(262) * lanes{theta_dotsq_B4, theta_dotsq_B4};
+        out[4] = s[0];
+        out[5] = s[1];
+    }
+    {
+        lanes s = pair(264) * lanes{theta_ddot, theta_ddot};
+        s += pair(268) * lanes{cos_theta, cos_theta};
+        s += pair(278) * lanes{B1, B1};
+        s += pair(280) * lanes{B2, B2};
+        s += pair(282) * lanes{B3, B3};
+        s += pair(284) * lanes{B4, B4};
+        s += pair(294) * lanes{B1_dot, B1_dot};
+        s += pair(296) * lanes{B2_dot, B2_dot};
+        s += pair(298) * lanes{B3_dot, B3_dot};
+        s += pair(300) * lanes{B4_dot, B4_dot};
+        s += pair(304) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
+        s += pair(306) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
+        s += pair(308) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
+        s += pair(310) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
+        s += pair(320) * lanes{theta_ddot_A1, theta_ddot_A1};
+        s += pair(322) * lanes{theta_ddot_A2, theta_ddot_A2};
+        s += pair(324) * lanes{theta_ddot_A3, theta_ddot_A3};
+        s += pair(326) * lanes{theta_ddot_A4, theta_ddot_A4};
+        s += pair(344) * lanes{theta_dotsq_B1, theta_dotsq_B1};
+        s += pair(346) * lanes{theta_dotsq_B2, theta_dotsq_B2};
+        s += pair(348) * lanes{theta_dotsq_B3, theta_dotsq_B3};
+        s += pair(350) * lanes{theta_dotsq_B4, theta_dotsq_B4};
+        out[6] = s[0];
+        out[7] = s[1];
+    }
 }
 
 }  // namespace
 
 extern const Variant bsim_nx4_ny4_prescribed_zero_tip_gravity_damped_depth = {
-    .abi_version = 2,
+    .abi_version = 3,
     .name = "bsim_nx4_ny4_prescribed_zero_tip_gravity_damped_depth",
     .nq = 8,
     .ncoeff = 152,

@@ -2863,7 +2863,7 @@ void fem_nx16_ny16_prescribed_first_forces_u(const double* c, const double* u, c
 }  // namespace
 
 extern const Variant fem_nx16_ny16_prescribed_first = {
-    .abi_version = 2,
+    .abi_version = 3,
     .name = "fem_nx16_ny16_prescribed_first",
     .nq = 32,
     .ncoeff = 188,

@@ -4878,7 +4878,7 @@ void fem_nx32_ny32_prescribed_first_forces_u(const double* c, const double* u, c
 }  // namespace
 
 extern const Variant fem_nx32_ny32_prescribed_first = {
-    .abi_version = 2,
+    .abi_version = 3,
     .name = "fem_nx32_ny32_prescribed_first",
     .nq = 64,
     .ncoeff = 332,

@@ -1244,6 +1244,205 @@ void fem_nx4_ny4_torque_first_tip_gravity_damped_depth_forces_u(const double* c,
     out[0] = 1.0;
 }
 
+/* forces_folded:(c[164],u[5],q[9],qd[9])->(y[9]) y = P m, P (9 x 80) passed in the c slot by row pairs, P(i, k) at c[(j/2)*160 + 2k + j%2], j = i + 1: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 206 entries that can be nonzero, a pair of rows reads the columns either row has */
+void fem_nx4_ny4_torque_first_tip_gravity_damped_depth_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
+{
+    const double tau = u[0];
+    const double sin_theta = u[3];
+    const double cos_theta = u[4];
+    const double A1 = q[1];
+    const double A2 = q[2];
+    const double A3 = q[3];
+    const double A4 = q[4];
+    const double B1 = q[5];
+    const double B2 = q[6];
+    const double B3 = q[7];
+    const double B4 = q[8];
+    const double theta_dot = qd[0];
+    const double A1_dot = qd[1];
+    const double A2_dot = qd[2];
+    const double A3_dot = qd[3];
+    const double A4_dot = qd[4];
+    const double B1_dot = qd[5];
+    const double B2_dot = qd[6];
+    const double B3_dot = qd[7];
+    const double B4_dot = qd[8];
+    const double sin_theta_B1 = sin_theta*B1;
+    const double sin_theta_B2 = sin_theta*B2;
+    const double sin_theta_B3 = sin_theta*B3;
+    const double sin_theta_B4 = sin_theta*B4;
+    const double cos_theta_A1 = cos_theta*A1;
+    const double cos_theta_A2 = cos_theta*A2;
+    const double cos_theta_A3 = cos_theta*A3;
+    const double cos_theta_A4 = cos_theta*A4;
+    const double theta_dotsq = theta_dot*theta_dot;
+    const double theta_dot_A1_dot = theta_dot*A1_dot;
+    const double theta_dot_A2_dot = theta_dot*A2_dot;
+    const double theta_dot_A3_dot = theta_dot*A3_dot;
+    const double theta_dot_A4_dot = theta_dot*A4_dot;
+    const double theta_dot_B1_dot = theta_dot*B1_dot;
+    const double theta_dot_B2_dot = theta_dot*B2_dot;
+    const double theta_dot_B3_dot = theta_dot*B3_dot;
+    const double theta_dot_B4_dot = theta_dot*B4_dot;
+    const double cos_theta_B1 = cos_theta*B1;
+    const double cos_theta_B1sq = cos_theta_B1*B1;
+    const double cos_theta_B1_B2 = cos_theta_B1*B2;
+    const double cos_theta_B1_B3 = cos_theta_B1*B3;
+    const double cos_theta_B1_B4 = cos_theta_B1*B4;
+    const double cos_theta_B2 = cos_theta*B2;
+    const double cos_theta_B2sq = cos_theta_B2*B2;
+    const double cos_theta_B2_B3 = cos_theta_B2*B3;
+    const double cos_theta_B2_B4 = cos_theta_B2*B4;
+    const double cos_theta_B3 = cos_theta*B3;
+    const double cos_theta_B3sq = cos_theta_B3*B3;
+    const double cos_theta_B3_B4 = cos_theta_B3*B4;
+    const double cos_theta_B4 = cos_theta*B4;
+    const double cos_theta_B4sq = cos_theta_B4*B4;
+    const double A1_theta_dot = A1*theta_dot;
+    const double A1_theta_dotsq = A1_theta_dot*theta_dot;
+    const double A1_theta_dot_A1_dot = A1_theta_dot*A1_dot;
+    const double A1_theta_dot_A2_dot = A1_theta_dot*A2_dot;
+    const double A2_theta_dot = A2*theta_dot;
+    const double A2_theta_dotsq = A2_theta_dot*theta_dot;
+    const double A2_theta_dot_A1_dot = A2_theta_dot*A1_dot;
+    const double A2_theta_dot_A2_dot = A2_theta_dot*A2_dot;
+    const double A2_theta_dot_A3_dot = A2_theta_dot*A3_dot;
+    const double A3_theta_dot = A3*theta_dot;
+    const double A3_theta_dotsq = A3_theta_dot*theta_dot;
+    const double A3_theta_dot_A2_dot = A3_theta_dot*A2_dot;
+    const double A3_theta_dot_A3_dot = A3_theta_dot*A3_dot;
+    const double A3_theta_dot_A4_dot = A3_theta_dot*A4_dot;
+    const double A4_theta_dot = A4*theta_dot;
+    const double A4_theta_dotsq = A4_theta_dot*theta_dot;
+    const double A4_theta_dot_A3_dot = A4_theta_dot*A3_dot;
+    const double A4_theta_dot_A4_dot = A4_theta_dot*A4_dot;
+    const double B1_theta_dot = B1*theta_dot;
+    const double B1_theta_dotsq = B1_theta_dot*theta_dot;
+    const double B1_theta_dot_B1_dot = B1_theta_dot*B1_dot;
+    const double B1_theta_dot_B2_dot = B1_theta_dot*B2_dot;
+    const double B1_theta_dot_B3_dot = B1_theta_dot*B3_dot;
+    const double B1_theta_dot_B4_dot = B1_theta_dot*B4_dot;
+    const double B2_theta_dot = B2*theta_dot;
+    const double B2_theta_dotsq = B2_theta_dot*theta_dot;
+    const double B2_theta_dot_B1_dot = B2_theta_dot*B1_dot;
+    const double B2_theta_dot_B2_dot = B2_theta_dot*B2_dot;
+    const double B2_theta_dot_B3_dot = B2_theta_dot*B3_dot;
+    const double B2_theta_dot_B4_dot = B2_theta_dot*B4_dot;
+    const double B3_theta_dot = B3*theta_dot;
+    const double B3_theta_dotsq = B3_theta_dot*theta_dot;
+    const double B3_theta_dot_B1_dot = B3_theta_dot*B1_dot;
+    const double B3_theta_dot_B2_dot = B3_theta_dot*B2_dot;
+    const double B3_theta_dot_B3_dot = B3_theta_dot*B3_dot;
+    const double B3_theta_dot_B4_dot = B3_theta_dot*B4_dot;
+    const double B4_theta_dot = B4*theta_dot;
+    const double B4_theta_dotsq = B4_theta_dot*theta_dot;
+    const double B4_theta_dot_B1_dot = B4_theta_dot*B1_dot;
+    const double B4_theta_dot_B2_dot = B4_theta_dot*B2_dot;
+    const double B4_theta_dot_B3_dot = B4_theta_dot*B3_dot;
+    const double B4_theta_dot_B4_dot = B4_theta_dot*B4_dot;
+    typedef double lanes __attribute__((vector_size(16)));
+    const auto pair = [c](int e) {
+        lanes v;
+        __builtin_memcpy(&v, c + e, sizeof v);
+        return v;
+    };
+    out[0] = c[1]*tau + c[5]*cos_theta + c[39]*sin_theta_B1 + c[41]*sin_theta_B2 + c[43]*sin_theta_B3 + c[45]*sin_theta_B4 + c[47]*cos_theta_A1 + c[49]*cos_theta_A2 + c[51]*cos_theta_A3 + c[53]*cos_theta_A4 + c[57]*theta_dot_A1_dot + c[59]*theta_dot_A2_dot + c[61]*theta_dot_A3_dot + c[63]*theta_dot_A4_dot + c[73]*cos_theta_B1sq + c[75]*cos_theta_B1_B2 + c[77]*cos_theta_B1_B3 + c[79]*cos_theta_B1_B4 + c[81]*cos_theta_B2sq + c[83]*cos_theta_B2_B3 + c[85]*cos_theta_B2_B4 + c[87]*cos_theta_B3sq + c[89]*cos_theta_B3_B4 + c[91]*cos_theta_B4sq + c[95]*A1_theta_dot_A1_dot + c[97]*A1_theta_dot_A2_dot + c[101]*A2_theta_dot_A1_dot + c[103]*A2_theta_dot_A2_dot + c[105]*A2_theta_dot_A3_dot + c[109]*A3_theta_dot_A2_dot + c[111]*A3_theta_dot_A3_dot + c[113]*A3_theta_dot_A4_dot + c[117]*A4_theta_dot_A3_dot + c[119]*A4_theta_dot_A4_dot + c[123]*B1_theta_dot_B1_dot + c[125]*B1_theta_dot_B2_dot + c[127]*B1_theta_dot_B3_dot + c[129]*B1_theta_dot_B4_dot + c[133]*B2_theta_dot_B1_dot + c[135]*B2_theta_dot_B2_dot + c[137]*B2_theta_dot_B3_dot + c[139]*B2_theta_dot_B4_dot + c[143]*B3_theta_dot_B1_dot + c[145]*B3_theta_dot_B2_dot + c[147]*B3_theta_dot_B3_dot + c[149]*B3_theta_dot_B4_dot + c[153]*B4_theta_dot_B1_dot + c[155]*B4_theta_dot_B2_dot + c[157]*B4_theta_dot_B3_dot + c[159]*B4_theta_dot_B4_dot;
+    {
+        lanes s = pair(162) * lanes{sin_theta, sin_theta};
+        s += pair(166) * lanes{A1, A1};
+        s += pair(168) * lanes{A2, A2};
+        s += pair(170) * lanes{A3, A3};
+        s += pair(172) * lanes{A4, A4};
+        s += pair(182) * lanes{A1_dot, A1_dot};
+        s += pair(184) * lanes{A2_dot, A2_dot};
+        s += pair(186) * lanes{A3_dot, A3_dot};
+        s += pair(188) * lanes{A4_dot, A4_dot};
+        s += pair(214) * lanes{theta_dotsq, theta_dotsq};
+        s += pair(224) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
+        s += pair(226) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
+        s += pair(228) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
+        s += pair(230) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
+        s += pair(252) * lanes{A1_theta_dotsq, A1_theta_dotsq};
+        s += pair(258) * lanes{A2_theta_dotsq, A2_theta_dotsq};
+        s += pair(266) * lanes{A3_theta_dotsq, A3_theta_dotsq};
+        s += pair(274) * lanes{A4_theta_dotsq, A4_theta_dotsq};
+        out[1] = s[0];
+        out[2] = s[1];
+    }
+    {
+        lanes s = pair(322) * lanes{sin_theta, sin_theta};
+        s += pair(326) * lanes{A1, A1};
+        s += pair(328) * lanes{A2, A2};
+        s += pair(330) * lanes{A3, A3};
+        s += pair(332) * lanes{A4, A4};
+        s += pair(342) * lanes{A1_dot, A1_dot};
+        s += pair(344) * lanes{A2_dot, A2_dot};
+        s += pair(346) * lanes{A3_dot, A3_dot};
+        s += pair(348) * lanes{A4_dot, A4_dot};
+        s += pair(374) * lanes{theta_dotsq, theta_dotsq};
+        s += pair(384) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
+        s += pair(386) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
+        s += pair(388) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
+        s += pair(390) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
+        s += pair(412) * lanes{A1_theta_dotsq, A1_theta_dotsq};
+        s += pair(418) * lanes{A2_theta_dotsq, A2_theta_dotsq};
+        s += pair(426) * lanes{A3_theta_dotsq, A3_theta_dotsq};
+        s += pair(434) * lanes{A4_theta_dotsq, A4_theta_dotsq};
+        out[3] = s[0];
+        out[4] = s[1];
+    }
+    {
+        lanes s = pair(484) * lanes{cos_theta, cos_theta};
+        s += pair(494) * lanes{B1, B1};
+        s += pair(496) * lanes{B2, B2};
+        s += pair(498) * lanes{B3, B3};
+        s += pair(500) * lanes{B4, B4};
+        s += pair(510) * lanes{B1_dot, B1_dot};
+        s += pair(512) * lanes{B2_dot, B2_dot};
+        s += pair(514) * lanes{B3_dot, B3_dot};
+        s += pair(516) * lanes{B4_dot, B4_dot};
+        s += pair(518) * lanes{sin_theta_B1, sin_theta_B1};
+        s += pair(520) * lanes{sin_theta_B2, sin_theta_B2};
+        s += pair(522) * lanes{sin_theta_B3, sin_theta_B3};
+        s += pair(524) * lanes{sin_theta_B4, sin_theta_B4};
+        s += pair(536) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
+        s += pair(538) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
+        s += pair(540) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
+        s += pair(542) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
+        s += pair(600) * lanes{B1_theta_dotsq, B1_theta_dotsq};
+        s += pair(610) * lanes{B2_theta_dotsq, B2_theta_dotsq};
+        s += pair(620) * lanes{B3_theta_dotsq, B3_theta_dotsq};
+        s += pair(630) * lanes{B4_theta_dotsq, B4_theta_dotsq};
+        out[5] = s[0];
+        out[6] = s[1];
+    }
+    {
+        lanes s = pair(644) * lanes{cos_theta, cos_theta};
+        s += pair(654) * lanes{B1, B1};
+        s += pair(656) * lanes{B2, B2};
+        s += pair(658) * lanes{B3, B3};
+        s += pair(660) * lanes{B4, B4};
+        s += pair(670) * lanes{B1_dot, B1_dot};
+        s += pair(672) * lanes{B2_dot, B2_dot};
+        s += pair(674) * lanes{B3_dot, B3_dot};
+        s += pair(676) * lanes{B4_dot, B4_dot};
+        s += pair(678) * lanes{sin_theta_B1, sin_theta_B1};
+        s += pair(680) * lanes{sin_theta_B2, sin_theta_B2};
+        s += pair(682) * lanes{sin_theta_B3, sin_theta_B3};
+        s += pair(684) * lanes{sin_theta_B4, sin_theta_B4};
+        s += pair(696) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
+        s += pair(698) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
+        s += pair(700) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
+        s += pair(702) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
+        s += pair(760) * lanes{B1_theta_dotsq, B1_theta_dotsq};
+        s += pair(770) * lanes{B2_theta_dotsq, B2_theta_dotsq};
+        s += pair(780) * lanes{B3_theta_dotsq, B3_theta_dotsq};
+        s += pair(790) * lanes{B4_theta_dotsq, B4_theta_dotsq};
+        out[7] = s[0];
+        out[8] = s[1];
+    }
+}
+
 /* mass_varying:(c[164],u[5],q[9],qd[9])->(M[81]) as mass, the entries that depend on q only */
 void fem_nx4_ny4_torque_first_tip_gravity_damped_depth_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
@@ -1355,7 +1554,7 @@ void fem_nx4_ny4_torque_first_tip_gravity_damped_depth_mass_q_product(const doub
 }  // namespace
 
 extern const Variant fem_nx4_ny4_torque_first_tip_gravity_damped_depth = {
-    .abi_version = 2,
+    .abi_version = 3,
     .name = "fem_nx4_ny4_torque_first_tip_gravity_damped_depth",
     .nq = 9,
     .ncoeff = 164,
@@ -1374,7 +1573,7 @@ extern const Variant fem_nx4_ny4_torque_first_tip_gravity_damped_depth = {
     .mass_q_product = fem_nx4_ny4_torque_first_tip_gravity_damped_depth_mass_q_product,
     .forces_u = fem_nx4_ny4_torque_first_tip_gravity_damped_depth_forces_u,
     .tip = fem_nx4_ny4_torque_first_tip_gravity_damped_depth_tip,
-    .forces_folded = nullptr,
+    .forces_folded = fem_nx4_ny4_torque_first_tip_gravity_damped_depth_forces_folded,
 };
 
 }  // namespace hubbeam::generated

@@ -247,9 +247,14 @@ std::string print_outputs(const std::vector<Output>& outputs, const std::vector<
     return lines.str();
 }
 
-/// Stage "print" of a matrix-times-monomials kernel: out[i] = sum_k c[i*K + k] m_k, every m_k a monomial with
-/// coefficient 1 (KernelSpec::rows).
-std::string print_matrix_product(const std::vector<Output>& monomials, int rows, const MonomialPlan& plan, bool& uses_c)
+/// Stage "print" of a matrix-times-monomials kernel: out[i] = sum_k P(i, k) m_k over the entries pattern allows (all
+/// when empty), in increasing k, every m_k a monomial with coefficient 1 (KernelSpec::rows). The rows go in pairs,
+/// two lanes of one SSE2 register: with j = i + offset (offset 1 puts row 0 alone, beside a padding row), P's entry
+/// (i, k) is read at c[(j/2)*2K + 2k + j%2], so that a pair's two entries of a column are one load; each lane adds
+/// its own row's terms in the scalar order (an entry outside its row's pattern is zero and adds nothing), so the
+/// sums are the scalar ones to the bit. A row without a partner is scalar.
+std::string print_matrix_product(const std::vector<Output>& monomials, int rows, int offset,
+                                 const std::vector<bool>& pattern, const MonomialPlan& plan, bool& uses_c)
 {
     std::vector<std::string> names;
     for (const Output& m : monomials) {
@@ -258,14 +263,56 @@ std::string print_matrix_product(const std::vector<Output>& monomials, int rows,
         names.push_back(degree(m.begin()->first) == 0 ? "1.0" : plan.names.at(m.begin()->first));
     }
     const std::size_t K = names.size();
+    if (!pattern.empty() && pattern.size() != static_cast<std::size_t>(rows) * K)
+        throw EmitError("emit: a matrix-times-monomials kernel's pattern has " + std::to_string(pattern.size()) +
+                        " entries for " + std::to_string(rows) + " x " + std::to_string(K));
+    // Row of lane slot j (-1: padding).
+    const auto row = [&](int j) { return j - offset >= 0 && j - offset < rows ? j - offset : -1; };
+    const auto allowed = [&](int i, std::size_t k) {
+        return i >= 0 && (pattern.empty() || pattern[static_cast<std::size_t>(i) * K + k]);
+    };
     std::ostringstream lines;
-    for (int i = 0; i < rows; ++i) {
-        lines << "    out[" << i << "] =";
-        for (std::size_t k = 0; k < K; ++k)
-            lines << (k ? " + " : " ") << "c[" << static_cast<std::size_t>(i) * K + k << "]*" << names[k];
-        lines << (K == 0 ? " 0.0;\n" : ";\n");
+    uses_c = false;
+    const int slots = rows + offset;
+    bool pairs = false;
+    for (int j = 0; j + 1 < slots && !pairs; j += 2)
+        for (std::size_t k = 0; k < K && !pairs; ++k)
+            pairs = row(j) >= 0 && row(j + 1) >= 0 && (allowed(row(j), k) || allowed(row(j + 1), k));
+    if (pairs)
+        lines << "    typedef double lanes __attribute__((vector_size(16)));\n"
+              << "    const auto pair = [c](int e) {\n        lanes v;\n        __builtin_memcpy(&v, c + e, sizeof v);\n"
+              << "        return v;\n    };\n";
+    for (int j = 0; j < slots; j += 2) {
+        const std::size_t base = static_cast<std::size_t>(j / 2) * 2 * K;
+        if (row(j) < 0 || row(j + 1) < 0) {  // a row beside padding: scalar, in its lane
+            const int i = row(j) >= 0 ? row(j) : row(j + 1), lane = row(j) >= 0 ? 0 : 1;
+            if (i < 0) continue;
+            lines << "    out[" << i << "] =";
+            bool first = true;
+            for (std::size_t k = 0; k < K; ++k) {
+                if (!allowed(i, k)) continue;
+                lines << (first ? " " : " + ") << "c[" << base + 2 * k + static_cast<std::size_t>(lane) << "]*" << names[k];
+                first = false;
+            }
+            uses_c = uses_c || !first;
+            lines << (first ? " 0.0;\n" : ";\n");
+            continue;
+        }
+        const int i = row(j);
+        bool first = true;
+        for (std::size_t k = 0; k < K; ++k) {
+            if (!allowed(i, k) && !allowed(i + 1, k)) continue;
+            const std::string term = "pair(" + std::to_string(base + 2 * k) + ") * lanes{" + names[k] + ", " + names[k] + "}";
+            lines << (first ? "    {\n        lanes s = " : "        s += ") << term << ";\n";
+            first = false;
+        }
+        if (first) {
+            lines << "    out[" << i << "] = 0.0;\n    out[" << i + 1 << "] = 0.0;\n";
+            continue;
+        }
+        uses_c = true;
+        lines << "        out[" << i << "] = s[0];\n        out[" << i + 1 << "] = s[1];\n    }\n";
     }
-    uses_c = K > 0;
     return lines.str();
 }
 
@@ -494,7 +541,7 @@ EmittedCode emit_kernels(const std::string& prefix, const Signature& sig, std::v
         const MonomialPlan plan = plan_monomials(outputs, names_of(sig.state_inputs));
         if (plan.names.empty()) code.constant_kernels.push_back(k.name);
         bool uses_c = false;
-        const std::string lines = k.rows > 0 ? print_matrix_product(outputs, k.rows, plan, uses_c)
+        const std::string lines = k.rows > 0 ? print_matrix_product(outputs, k.rows, k.row_offset, k.pattern, plan, uses_c)
                                              : print_outputs(outputs, k.slots, plan, pool, uses_c);
         bodies.push_back(print_kernel(prefix, k, sig, plan, lines, uses_c));
     }

@@ -36,9 +36,14 @@ struct KernelSpec {
     /// Outputs already in polynomial form (over Signature's parameter and state inputs); they come before values.
     std::vector<Poly> polys = {};
     /// > 0: a matrix-times-monomials kernel. values are K monomials m_k of the state, and the kernel writes
-    /// out[i] = sum_k c[i*K + k] m_k for i < rows, reading its c argument as that row-major matrix (a runtime
-    /// product such as M^-1 F) instead of the coefficient pool.
+    /// out[i] = sum_k P(i, k) m_k for i < rows, reading its c argument as that matrix (a runtime product such as
+    /// M^-1 F) instead of the coefficient pool, in row pairs: with j = i + row_offset, P(i, k) at
+    /// c[(j/2)*2K + 2k + j%2] (row_offset 1 keeps row 0 out of the pairs).
     int rows = 0;
+    int row_offset = 0;
+    /// With rows > 0: which entries P(i, k) can be nonzero (row-major, rows x K); a pair of rows reads the columns
+    /// either row allows, the others are neither read nor multiplied. Empty: every entry.
+    std::vector<bool> pattern = {};
 };
 
 struct EmittedCode {

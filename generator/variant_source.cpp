@@ -1,6 +1,7 @@
 // Derivation of one variant end to end: energies, Lagrange's equations, the run-time inputs, and the file.
 #include "variant_source.hpp"
 
+#include <algorithm>
 #include <array>
 #include <sstream>
 #include <stdexcept>
@@ -308,6 +309,56 @@ KernelSpec tip_kernel(const VariantKey& key, const Symbols& s)
             tip_displacements(key, s)};
 }
 
+/// Which entries of the runtime's folded product P (nq x K, row-major) can be nonzero, or empty when the runtime
+/// folds nothing for this mass pattern. The constant rows C (those of M's entries that do not depend on q) hold
+/// C^-1 F_C: C^-1 is block diagonal over the connected components of C's graph, so row i is nonzero at most where
+/// some F row of its component is. A varying row (only the hub's, under torque, where every varying entry lies in
+/// row and column 0) holds F_0 - b^T C^-1 F_C over the couplings b that are constant, so its F row joined with the
+/// rows of C it couples to by a constant entry. The pattern is structural: it holds for every parameter value.
+std::vector<bool> folded_pattern(const std::string& mass_pattern, const std::vector<Poly>& F, int nq, std::size_t K)
+{
+    const auto at = [&](int i, int j) { return mass_pattern[static_cast<std::size_t>(i * nq + j)]; };
+    std::vector<bool> varying_row(static_cast<std::size_t>(nq), false);
+    for (int i = 0; i < nq; ++i)
+        for (int j = 0; j < nq; ++j)
+            if (at(i, j) == 'v') {
+                if (i != 0 && j != 0) return {};  // a varying entry off the hub's row: no fold
+                varying_row[0] = true;
+            }
+    // Components of C's graph by repeated relabelling (nq is small).
+    std::vector<int> component(static_cast<std::size_t>(nq));
+    for (int i = 0; i < nq; ++i) component[static_cast<std::size_t>(i)] = i;
+    for (bool changed = true; changed;) {
+        changed = false;
+        for (int i = 0; i < nq; ++i)
+            for (int j = 0; j < nq; ++j) {
+                auto& ci = component[static_cast<std::size_t>(i)];
+                auto& cj = component[static_cast<std::size_t>(j)];
+                if (varying_row[static_cast<std::size_t>(i)] || varying_row[static_cast<std::size_t>(j)] ||
+                    at(i, j) == '0' || ci == cj)
+                    continue;
+                ci = cj = std::min(ci, cj);
+                changed = true;
+            }
+    }
+    const auto F_nonzero = [&](int i, std::size_t k) { return !F[static_cast<std::size_t>(i) * K + k].is_zero(); };
+    std::vector<bool> pattern(static_cast<std::size_t>(nq) * K, false);
+    for (int i = 0; i < nq; ++i) {
+        if (varying_row[static_cast<std::size_t>(i)]) continue;
+        for (int j = 0; j < nq; ++j)
+            if (!varying_row[static_cast<std::size_t>(j)] && component[static_cast<std::size_t>(j)] == component[static_cast<std::size_t>(i)])
+                for (std::size_t k = 0; k < K; ++k)
+                    if (F_nonzero(j, k)) pattern[static_cast<std::size_t>(i) * K + k] = true;
+    }
+    if (varying_row[0])
+        for (std::size_t k = 0; k < K; ++k) {
+            bool nonzero = F_nonzero(0, k);
+            for (int j = 1; j < nq && !nonzero; ++j) nonzero = at(0, j) == 'c' && pattern[static_cast<std::size_t>(j) * K + k];
+            pattern[k] = nonzero;
+        }
+    return pattern;
+}
+
 /// Every kernel of a variant, in the order of its table row, and what the row says about them.
 struct Kernels {
     std::vector<KernelSpec> list;
@@ -345,14 +396,25 @@ Kernels variant_kernels(const VariantKey& key, const Symbols& s, const Derivatio
         sparse_kernel("forces_u", "dQdu[" + nu + "]", "row-major; out[i*3+j] = dQ_i/du_j, u = " + tuple(drive_value_names),
                       std::move(jac.forces_u)),
     };
-    // A constant M is folded into W = M^-1 F by the runtime; this kernel evaluates W m with W's entries at fixed
-    // places, unrolled, up to a size where unrolling stops paying (the runtime then loops).
-    out.folded = !out.mass_varies && nq * static_cast<int>(terms.terms.size()) <= 512;
+    // The runtime folds M's constant part into F once (folded_pattern); this kernel evaluates P m with P's entries at
+    // fixed places, unrolled over the entries that can be nonzero, up to a size where unrolling stops paying (the
+    // runtime then walks a table of P's nonzeros).
+    std::vector<bool> pattern = folded_pattern(out.mass_pattern, terms.matrix, nq, terms.terms.size());
+    const auto folded_terms = static_cast<std::size_t>(std::count(pattern.begin(), pattern.end(), true));
+    out.folded = !pattern.empty() && folded_terms <= 2000;
     if (out.folded) {
-        KernelSpec f = dense_kernel("forces_folded", "qdd[" + n1 + "]",
-                                    "qdd = W m, W = M^-1 F (" + n1 + " x " + nk + ", row-major) passed in the c slot",
-                                    terms.terms);
+        KernelSpec f = dense_kernel(
+            "forces_folded", "y[" + n1 + "]",
+            "y = P m, P (" + n1 + " x " + nk + ") passed in the c slot by row pairs, P(i, k) at c[(j/2)*" +
+                std::to_string(2 * terms.terms.size()) + " + 2k + j%2], j = i" + (out.mass_varies ? " + 1" : "") +
+                ": M^-1 F for a constant M, else C^-1 F_C in " +
+                "the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); " +
+                "of the " + std::to_string(folded_terms) + " entries that can be nonzero, a pair of rows reads the " +
+                "columns either row has",
+            terms.terms);
         f.rows = nq;
+        f.row_offset = out.mass_varies ? 1 : 0;  // the hub's row, which couples to every other, stays alone
+        f.pattern = std::move(pattern);
         out.list.push_back(f);
     }
     // A constant M has dM/dq = 0: no kernels, null pointers in the table row, and the runtime skips the terms.

@@ -7,7 +7,7 @@ namespace hubbeam::generated {
 /* The version of this interface. Every table row starts with the version of the generator that wrote it, and a
  * loader refuses a row of any other version before calling one of its kernels (an on-demand object outlives the
  * generator that made it). Raise it with any change to Variant, Kernel or CoefficientsKernel below. */
-inline constexpr int abi_version = 2;
+inline constexpr int abi_version = 3;
 
 /* out = f(c, u, q, qd). c: the variant's coefficients (from its coefficients kernel, once per parameter set);
  * u: the drive, indexed by DriveValue of model/interface.hpp (a torque variant reads tau, a prescribed variant
@@ -42,8 +42,13 @@ struct Variant {
     Kernel forces_u;          /* dQdu[nq*3], row-major: out[i*3+j] = dQ_i/du_j, u indexed by DriveValue; columns of
                                * drive values the variant does not read are zero */
     Kernel tip;               /* tip[3] = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B */
-    Kernel forces_folded;     /* qdd[nq] = W m with W = M^-1 F (nq x nterms, row-major) in the c slot; only for a
-                               * constant M of moderate size, else a null pointer */
+    Kernel forces_folded;     /* y[nq] = P m for the runtime's folded P (nq x nterms) in the c slot, by row pairs:
+                               * P(i, k) at c[(j/2)*2*nterms + 2k + j%2], j = i for a constant M, i + 1 else (row
+                               * 0 alone), padding rows zero.
+                               * P = M^-1 F for a constant M; with M varying in the hub's row only, the constant
+                               * block's inverse folded into its rows of F and the hub's row F_0 - b^T C^-1 F_C (b
+                               * its constant couplings). Reads only the entries that can be nonzero; a null pointer
+                               * for other mass patterns or beyond a size where unrolling pays */
 };
 
 extern const Variant* const variants[];

@@ -12,6 +12,7 @@
 #include <gsl/gsl_errno.h>
 
 #include "acceleration.hpp"
+#include "generated_model.hpp"
 #include "integrate.hpp"
 #include "make_model.hpp"
 #include "random_state.hpp"
@@ -172,14 +173,15 @@ TEST_CASE("every right-hand-side strategy solves M qdd = Q", "[stepping][strateg
             check_against_dense(sparse, *model, 3);
         }
     }
-    SECTION("the hub's row by its Schur complement")
+    SECTION("the hub's row by its Schur complement, with constant couplings (no axial coordinates) and varying ones")
     {
-        for (const Method method : {Method::amm, Method::fem, Method::bim, Method::bsim}) {
-            const auto model = make_model(key_of(method, 0, 4, Drive::torque), p, ModelSource::generated);
-            REQUIRE(model->term_forces() != nullptr);
-            HubSchur hub(*model, *model->term_forces(), rest);
-            check_against_dense(hub, *model, 4);
-        }
+        for (const int nx : {0, 4})
+            for (const Method method : {Method::amm, Method::fem, Method::bim, Method::bsim}) {
+                const auto model = make_model(key_of(method, nx, 4, Drive::torque), p, ModelSource::generated);
+                REQUIRE(model->term_forces() != nullptr);
+                HubSchur hub(*model, *model->term_forces(), rest);
+                check_against_dense(hub, *model, 4);
+            }
     }
     SECTION("the mass solver, for constant and varying M, generated and assembled")
     {
@@ -252,15 +254,59 @@ TEST_CASE("the factory picks the strategy from the model's structure", "[steppin
         const auto model = make_model(key, p, source);
         return std::shared_ptr<RightHandSide>(make_right_hand_side(*model, motion, axial).release());
     };
-    // The paper's spin-up with axial coordinates: W keeps M's block structure, mostly zeros: by rows.
-    CHECK(dynamic_cast<FoldedSparse*>(picks(key_of(Method::amm, 4, 4, Drive::prescribed), spin, Axial::dynamic, ModelSource::generated).get()));
-    // Without them W is dense; the generated kernel holds its entries at fixed places.
+    // The paper's spin-up, with and without axial coordinates: the generated kernel holds W's structural nonzeros.
+    CHECK(dynamic_cast<FoldedKernel*>(picks(key_of(Method::amm, 4, 4, Drive::prescribed), spin, Axial::dynamic, ModelSource::generated).get()));
     CHECK(dynamic_cast<FoldedKernel*>(picks(key_of(Method::amm, 0, 4, Drive::prescribed), spin, Axial::dynamic, ModelSource::generated).get()));
-    // A free hub without axial coordinates: only the hub entry of M varies.
+    // A free hub: M varies in the hub's row only (its entry, and with axial coordinates its couplings).
     CHECK(dynamic_cast<HubSchur*>(picks(key_of(Method::bim, 0, 4, Drive::torque), torque, Axial::dynamic, ModelSource::generated).get()));
-    // With axial coordinates under torque M varies beyond the hub entry; the assembled path has no term form.
-    CHECK(dynamic_cast<MassSolved*>(picks(key_of(Method::amm, 4, 4, Drive::torque), torque, Axial::dynamic, ModelSource::generated).get()));
+    CHECK(dynamic_cast<HubSchur*>(picks(key_of(Method::amm, 4, 4, Drive::torque), torque, Axial::dynamic, ModelSource::generated).get()));
+    // The assembled path has no term form.
+    CHECK(dynamic_cast<MassSolved*>(picks(key_of(Method::amm, 4, 4, Drive::torque), torque, Axial::dynamic, ModelSource::assembled).get()));
     CHECK(dynamic_cast<MassSolved*>(picks(key_of(Method::amm, 4, 4, Drive::prescribed), spin, Axial::dynamic, ModelSource::assembled).get()));
     CHECK(dynamic_cast<QuasiStaticAxial*>(picks(key_of(Method::amm, 4, 4, Drive::torque), torque, Axial::quasi_static, ModelSource::generated).get()));
     CHECK_THROWS_AS(picks(key_of(Method::amm, 0, 4, Drive::torque), torque, Axial::quasi_static, ModelSource::generated), std::invalid_argument);
+}
+
+TEST_CASE("every generated folded kernel reads every entry of the folded product that can be nonzero", "[stepping][strategy]")
+{
+    // The kernels skip the entries their generator proved structurally zero. Against the walk over every nonzero of
+    // the same P at random states (the same sums in the same order) and against a dense solve of M qdd = Q: a
+    // pattern that missed an entry would differ, and the start-up check would hand the work to the walk, which the
+    // describe() line gives away. Extra terms switched on, so that their entries are nonzero.
+    Parameters base;
+    base.a = 0.2, base.m_tip = 0.3, base.J_tip = 0.02, base.g = 9.81, base.alpha = 0.05, base.beta = 2e-4;
+    base.tip_ratio = 0.6;
+    std::mt19937 rng(7);
+    int kernels = 0;
+    for (const std::string& name : generated_variant_names()) {
+        const VariantKey key = VariantKey::parse(name);
+        const auto model = make_model(key, test::with_profile(key, base), ModelSource::generated);
+        if (model->folded_kernel() == nullptr) continue;
+        REQUIRE(model->term_forces() != nullptr);
+        const TermForces& terms = *model->term_forces();
+        const int n = model->nq();
+        INFO(name);
+        if (model->mass_is_constant()) {
+            const Eigen::MatrixXd W = folded_forces(*model, terms, HubInput{});
+            FoldedProduct by_kernel(terms, model->folded_kernel(), W), by_walk(terms, nullptr, W);
+            REQUIRE(by_kernel.by_kernel());
+            Eigen::VectorXd m(terms.term_count()), y_kernel(n), y_walk(n);
+            for (int trial = 0; trial < 3; ++trial) {
+                const test::State s = test::random_state_with_angle(key, rng);
+                by_kernel.apply(s.u, s.q.data(), s.qd.data(), y_kernel.data());
+                by_walk.apply(s.u, s.q.data(), s.qd.data(), y_walk.data());
+                terms.terms(s.u, s.q.data(), s.qd.data(), m.data());
+                const Eigen::VectorXd scale = W.cwiseAbs() * m.cwiseAbs();
+                for (int i = 0; i < n; ++i) CHECK(std::abs(y_kernel[i] - y_walk[i]) <= 1e-13 * scale[i]);
+            }
+            FoldedKernel folded(*model, *model->folded_kernel(), W);
+            check_against_dense(folded, *model, 8);
+        } else {
+            HubSchur hub(*model, terms, HubInput{});
+            CHECK(hub.describe().find("by the generated kernel") != std::string::npos);
+            check_against_dense(hub, *model, 9);
+        }
+        ++kernels;
+    }
+    CHECK(kernels >= 40);
 }

@@ -37,7 +37,8 @@ public:
     virtual void term_matrix(double* F) const = 0;
 };
 
-/// qdd = W m by a kernel with W's entries at fixed places, W = M^-1 F (nq x K, row-major) for a constant M.
+/// y = P m by a kernel with P's entries at fixed places: the runtime's folded P (nq x K; M^-1 F for a constant M)
+/// laid out by row pairs as generated_abi.h's forces_folded states.
 class FoldedForceKernel {
 public:
     virtual ~FoldedForceKernel() = default;

@@ -64,13 +64,16 @@ int Accelerations::derivative(const HubInput& u, const double* y, double* dydt)
 {
     const double* q = y;
     const double* qd = y + n_;
-    if (const int status = accelerations(u, q, qd, qdd_.data()); status != GSL_SUCCESS) return status;
+    double* qdd = dydt + n_;
+    if (const int status = accelerations(u, q, qd, qdd); status != GSL_SUCCESS) return status;
+    // One test for all entries: a product with zero is NaN exactly where an entry is not finite. (The copy shares
+    // the loop, which also keeps it from becoming a call to memmove.)
+    double probe = 0.0;
     for (int i = 0; i < n_; ++i) {
         dydt[i] = qd[i];
-        dydt[n_ + i] = qdd_[static_cast<std::size_t>(i)];
-        if (!std::isfinite(qdd_[static_cast<std::size_t>(i)])) return GSL_EBADFUNC;
+        probe += qdd[i] * 0.0;
     }
-    return GSL_SUCCESS;
+    return probe == 0.0 ? GSL_SUCCESS : GSL_EBADFUNC;
 }
 
 Eigen::MatrixXd folded_forces(const Model& model, const TermForces& terms, const HubInput& u0)
@@ -87,16 +90,90 @@ Eigen::MatrixXd folded_forces(const Model& model, const TermForces& terms, const
     return W;
 }
 
+FoldedProduct::FoldedProduct(const TermForces& terms, const FoldedForceKernel* kernel, const RowMajorMatrix& P, int offset)
+    : terms_(terms), kernel_(kernel), m_(static_cast<std::size_t>(P.cols()))
+{
+    const auto rows = P.rows(), K = P.cols();
+    start_.push_back(0);
+    for (Eigen::Index i = 0; i < rows; ++i) {
+        for (Eigen::Index k = 0; k < K; ++k)
+            if (P(i, k) != 0.0) {
+                column_.push_back(static_cast<int>(k));
+                value_.push_back(P(i, k));
+            }
+        start_.push_back(static_cast<int>(value_.size()));
+    }
+    if (kernel_ == nullptr) return;
+    // The kernel reads P by row pairs, row i in slot j = i + offset (generated_abi.h), padding slots zero.
+    pairs_.assign(static_cast<std::size_t>((rows + offset + 1) / 2 * 2 * K), 0.0);
+    for (Eigen::Index i = 0; i < rows; ++i) {
+        const Eigen::Index j = i + offset;
+        for (Eigen::Index k = 0; k < K; ++k) pairs_[static_cast<std::size_t>((j / 2) * 2 * K + 2 * k + j % 2)] = P(i, k);
+    }
+    // The kernel reads only the entries its generator proved can be nonzero: it must agree with the walk over every
+    // nonzero at a state where every monomial is (an older generator's object, or a pattern rule that missed an
+    // entry, would not). The tolerance allows for the order of the sums only.
+    std::vector<double> q(static_cast<std::size_t>(rows)), qd(q), by_kernel(q), by_walk(q);
+    for (std::size_t i = 0; i < q.size(); ++i) {
+        q[i] = 0.31 + 0.071 * static_cast<double>(i);
+        qd[i] = -0.23 + 0.057 * static_cast<double>(i);
+    }
+    HubInput u;
+    u.tau = 0.61, u.theta_dot = 0.83, u.theta_ddot = 0.29, u.theta = 0.47;
+    kernel_->accelerations(pairs_.data(), u, q.data(), qd.data(), by_kernel.data());
+    terms_.terms(u, q.data(), qd.data(), m_.data());
+    walk(m_.data(), by_walk.data());
+    for (Eigen::Index i = 0; i < rows; ++i) {
+        double scale = 0.0;
+        for (int e = start_[static_cast<std::size_t>(i)]; e < start_[static_cast<std::size_t>(i) + 1]; ++e)
+            scale += std::abs(value_[static_cast<std::size_t>(e)] * m_[static_cast<std::size_t>(column_[static_cast<std::size_t>(e)])]);
+        const auto at = static_cast<std::size_t>(i);
+        if (!(std::abs(by_kernel[at] - by_walk[at]) <= 1e-12 * scale)) {
+            kernel_ = nullptr;
+            break;
+        }
+    }
+    if (kernel_ == nullptr) pairs_.clear();
+}
+
+void FoldedProduct::walk(const double* m, double* y) const
+{
+    const double* value = value_.data();
+    const int* column = column_.data();
+    const std::size_t rows = start_.size() - 1;
+    for (std::size_t i = 0; i < rows; ++i) {
+        double sum = 0.0;
+        for (const double* end = value_.data() + start_[i + 1]; value != end; ++value, ++column) sum += *value * m[*column];
+        y[i] = sum;
+    }
+}
+
+namespace {
+
+const TermForces& terms_of(const Model& model)
+{
+    if (const TermForces* terms = model.term_forces()) return *terms;
+    throw std::logic_error("the folded kernel of " + model.key().name() + " comes without the forces' term form");
+}
+
+}  // namespace
+
+FoldedKernel::FoldedKernel(const Model& model, const FoldedForceKernel& kernel, const Eigen::MatrixXd& W)
+    : Accelerations(model), product_(terms_of(model), &kernel, W), columns_(W.cols())
+{
+}
+
 int FoldedKernel::accelerations(const HubInput& u, const double* q, const double* qd, double* qdd)
 {
-    kernel_.accelerations(W_.data(), u, q, qd, qdd);
+    product_.apply(u, q, qd, qdd);
     return GSL_SUCCESS;
 }
 
 std::string FoldedKernel::describe() const
 {
-    return "M^-1 folded into the forces once (" + std::to_string(n_) + " x " + std::to_string(W_.cols()) +
-           ", dense, by the generated kernel)";
+    return "M^-1 folded into the forces once (" + std::to_string(n_) + " x " + std::to_string(columns_) + ", " +
+           std::to_string(product_.nonzeros()) +
+           (product_.by_kernel() ? " nonzeros, by the generated kernel)" : " nonzeros, by rows: the kernel disagreed)");
 }
 
 int FoldedDense::accelerations(const HubInput& u, const double* q, const double* qd, double* qdd)
@@ -112,73 +189,106 @@ std::string FoldedDense::describe() const
 }
 
 FoldedSparse::FoldedSparse(const Model& model, const TermForces& terms, const Eigen::MatrixXd& W)
-    : Accelerations(model), terms_(terms), m_(W.cols())
+    : Accelerations(model), product_(terms, nullptr, W), columns_(W.cols())
 {
-    start_.push_back(0);
-    for (int i = 0; i < n_; ++i) {
-        for (Eigen::Index k = 0; k < W.cols(); ++k)
-            if (W(i, k) != 0.0) {
-                column_.push_back(static_cast<int>(k));
-                value_.push_back(W(i, k));
-            }
-        start_.push_back(static_cast<int>(value_.size()));
-    }
 }
 
 int FoldedSparse::accelerations(const HubInput& u, const double* q, const double* qd, double* qdd)
 {
-    terms_.terms(u, q, qd, m_.data());
-    for (int i = 0; i < n_; ++i) {
-        double sum = 0.0;
-        for (int e = start_[static_cast<std::size_t>(i)]; e < start_[static_cast<std::size_t>(i) + 1]; ++e)
-            sum += value_[static_cast<std::size_t>(e)] * m_[column_[static_cast<std::size_t>(e)]];
-        qdd[i] = sum;
-    }
+    product_.apply(u, q, qd, qdd);
     return GSL_SUCCESS;
 }
 
 std::string FoldedSparse::describe() const
 {
-    return "M^-1 folded into the forces once (" + std::to_string(n_) + " x " + std::to_string(m_.size()) + ", " +
-           std::to_string(value_.size()) + " nonzeros)";
+    return "M^-1 folded into the forces once (" + std::to_string(n_) + " x " + std::to_string(columns_) + ", " +
+           std::to_string(product_.nonzeros()) + " nonzeros)";
 }
 
-HubSchur::HubSchur(const Model& model, const TermForces& terms, const HubInput& u0)
-    : Accelerations(model), terms_(terms), m_(terms.term_count()), M_(n_, n_)
+HubSchur::HubSchur(const Model& model, const TermForces& terms, const HubInput& u0) : Accelerations(model), M_(n_, n_)
 {
-    const int K = terms.term_count();
+    const int K = terms.term_count(), r = n_ - 1;
+    const std::string pattern = model.mass_pattern();
+    for (int i = 1; i < n_; ++i)
+        for (int j = 1; j < n_; ++j)
+            if (pattern[static_cast<std::size_t>(i * n_ + j)] == 'v')
+                throw std::invalid_argument("the mass matrix of " + model.key().name() + " varies outside the hub's row");
     RowMatrix F(n_, K), M(n_, n_);
     terms.term_matrix(F.data());
     const std::vector<double> rest(static_cast<std::size_t>(n_), 0.0);
     model.mass(u0, rest.data(), M.data());
-    const int r = n_ - 1;
+    M_.setZero();
     const Eigen::MatrixXd C = M.bottomRightCorner(r, r).selfadjointView<Eigen::Upper>();
-    const Eigen::VectorXd b = M.row(0).tail(r).transpose();  // the upper triangle holds the coupling
+    Eigen::VectorXd b_c = Eigen::VectorXd::Zero(r);  // the upper triangle holds the coupling
+    for (int j = 1; j < n_; ++j) {
+        if (pattern[static_cast<std::size_t>(j)] == 'v') varying_.push_back(j);
+        else if (M(0, j) != 0.0) {
+            b_c[j - 1] = M(0, j);
+            constant_.push_back(j);
+        }
+    }
     const Eigen::LLT<Eigen::MatrixXd> llt(C);
     if (llt.info() != Eigen::Success)
         throw std::invalid_argument("the mass matrix of " + model.key().name() + " is not positive definite");
-    W_ = llt.solve(Eigen::MatrixXd(F.bottomRows(r)));
-    c_ = llt.solve(b);
-    g_ = F.row(0) - b.transpose() * W_;
-    s0_ = b.dot(c_);
+    const Eigen::MatrixXd W = llt.solve(Eigen::MatrixXd(F.bottomRows(r)));
+    c_c_ = llt.solve(b_c);
+    const Eigen::RowVectorXd g = F.row(0) - b_c.transpose() * W;
+    s0_ = b_c.dot(c_c_);
+    for (const int j : constant_) b_c_.push_back(b_c[j - 1]);
+    for (std::size_t v = 0; v < varying_.size(); ++v) {
+        const Eigen::VectorXd z = llt.solve(Eigen::VectorXd::Unit(r, varying_[v] - 1));
+        for (int i = 0; i < r; ++i)
+            if (z[i] != 0.0) z_.push_back({i, static_cast<int>(v), z[i]});
+    }
+    RowMatrix P(n_, K);
+    P.row(0) = g;
+    P.bottomRows(r) = W;
+    product_ = std::make_unique<FoldedProduct>(terms, model.folded_kernel(), P, 1);
+    columns_ = K;
+    b_v_.resize(varying_.size());
+    c_.resize(static_cast<std::size_t>(r));
+    y_.resize(static_cast<std::size_t>(n_));
 }
 
 int HubSchur::accelerations(const HubInput& u, const double* q, const double* qd, double* qdd)
 {
-    terms_.terms(u, q, qd, m_.data());
+    const int r = n_ - 1;
+    double* y = y_.data();
+    product_->apply(u, q, qd, y);
     model_.mass_varying(u, q, M_.data());
-    const double schur = M_(0, 0) - s0_;  // > 0 exactly when M is positive definite (C is)
-    if (!(schur > 0.0)) return indefinite_mass_at(q);
-    const double theta_ddot = g_.dot(m_) / schur;
+    const double* m0 = M_.data();  // the hub's row
+    double schur = m0[0] - s0_, numerator = y[0];
+    const double* c = c_c_.data();
+    if (const std::size_t nv = varying_.size(); nv > 0) {
+        // The varying couplings b_v: c = c_c + C^-1 b_v, the numerator loses b_v^T y_C, and the Schur complement is
+        // m00 - b^T c with b = b_c + b_v.
+        double* cv = c_.data();
+        double* bv = b_v_.data();
+        const int* j = varying_.data();
+        for (int i = 0; i < r; ++i) cv[i] = c[i];
+        for (std::size_t v = 0; v < nv; ++v) {
+            bv[v] = m0[j[v]];
+            numerator -= bv[v] * y[j[v]];
+        }
+        for (const ColumnEntry& e : z_) cv[e.row] += e.value * bv[e.column];
+        schur = m0[0];
+        for (std::size_t k = 0; k < constant_.size(); ++k) schur -= b_c_[k] * cv[constant_[k] - 1];
+        for (std::size_t v = 0; v < nv; ++v) schur -= bv[v] * cv[j[v] - 1];
+        c = cv;
+    }
+    if (!(schur > 0.0)) return indefinite_mass_at(q);  // > 0 exactly when M is positive definite (C is)
+    const double theta_ddot = numerator / schur;
     qdd[0] = theta_ddot;
-    Eigen::Map<Eigen::VectorXd>(qdd + 1, n_ - 1).noalias() = W_ * m_ - c_ * theta_ddot;
+    for (int i = 0; i < r; ++i) qdd[i + 1] = y[i + 1] - c[i] * theta_ddot;
     return GSL_SUCCESS;
 }
 
 std::string HubSchur::describe() const
 {
-    return "the hub's row by its Schur complement, the constant beam block's inverse folded into the forces once (" +
-           std::to_string(n_ - 1) + " x " + std::to_string(m_.size()) + ")";
+    return "the hub's row by its Schur complement, the constant block's inverse folded into the forces once (" +
+           std::to_string(n_) + " x " + std::to_string(columns_) + ", " + std::to_string(product_->nonzeros()) +
+           " nonzeros" + (product_->by_kernel() ? ", by the generated kernel" : "") +
+           (varying_.empty() ? ")" : "; the hub's varying couplings through C^-1's columns)");
 }
 
 int MassSolved::accelerations(const HubInput& u, const double* q, const double* qd, double* qdd)
@@ -294,21 +404,42 @@ std::unique_ptr<RightHandSide> make_right_hand_side(const Model& model, const Mo
     };
     if (model.mass_is_constant()) {
         Eigen::MatrixXd W = folded_forces(model, *terms, motion.at(0.0));
-        // Folding pays while W's nonzeros cost no more than the forces' own terms plus a dense solve; by rows only
-        // when that skips most of W.
+        // Folding pays while W's nonzeros cost no more than the forces' own terms plus a dense solve; the generated
+        // kernel reads W's structural nonzeros only, else by rows when that skips most of W.
         const long nnz = nonzeros(W);
         if (nnz <= forces_nonzeros() + dense_solve) {
-            if (2 * nnz < static_cast<long>(n) * K) return std::make_unique<FoldedSparse>(model, *terms, W);
             if (const FoldedForceKernel* kernel = model.folded_kernel())
                 return std::make_unique<FoldedKernel>(model, *kernel, W);
+            if (2 * nnz < static_cast<long>(n) * K) return std::make_unique<FoldedSparse>(model, *terms, W);
             return std::make_unique<FoldedDense>(model, *terms, std::move(W));
         }
     }
     const std::string pattern = model.mass_pattern();
-    const bool hub_only_varies = pattern[0] == 'v' && pattern.find('v', 1) == std::string::npos;
-    if (!model.mass_is_constant() && hub_only_varies && n > 1) {
+    bool hub_row_only = true;  // every varying entry of M in the hub's row (and column)
+    for (int i = 1; i < n; ++i)
+        for (int j = 1; j < n; ++j) hub_row_only = hub_row_only && pattern[static_cast<std::size_t>(i * n + j)] != 'v';
+    if (!model.mass_is_constant() && hub_row_only && n > 1) {
         auto hub = std::make_unique<HubSchur>(model, *terms, motion.at(0.0));
-        if (hub->nonzeros() <= forces_nonzeros() + dense_solve) return hub;
+        // With constant couplings, as above with the hub's own folded row (K entries at most) on top of W_C's. With
+        // varying ones, against what the mass solver pays per call: the forces and two solves with C (banded, by
+        // the mass solver's rule, or dense), the hub's row and the couplings.
+        if (hub->coupling_nonzeros() == 0) {
+            if (hub->nonzeros() <= forces_nonzeros() + dense_solve + K) return hub;
+        } else {
+            const int r = n - 1;
+            int p = 0;  // C's bandwidth
+            for (int i = 1; i < n; ++i)
+                for (int j = i + 1; j < n; ++j)
+                    if (pattern[static_cast<std::size_t>(i * n + j)] != '0') p = std::max(p, j - i);
+            // Instructions of one solve with C as measured against the kernel's (about 3 per entry): diagonal,
+            // GSL's banded Cholesky (with some 400 of its own per call), the dense one in loops.
+            const long solve = p == 0                            ? r
+                               : r >= 16 && 3 * (p + 1) <= r ? 4L * r * (p + 1) + 400
+                                                               : 2L * r * r;
+            // A walk over P costs about twice the unrolled kernel per entry, as much as the forces' own table form.
+            const long product = (hub->by_kernel() ? 1 : 2) * hub->nonzeros();
+            if (product + hub->coupling_nonzeros() <= forces_nonzeros() + 2 * solve + 4L * n) return hub;
+        }
     }
     return std::make_unique<MassSolved>(model);
 }

@@ -48,32 +48,54 @@ private:
 /// The strategies over the full state y = (q, qd): each computes qdd its own way.
 class Accelerations : public RightHandSide {
 public:
-    explicit Accelerations(const Model& model) : RightHandSide(model), qdd_(static_cast<std::size_t>(n_)) {}
+    explicit Accelerations(const Model& model) : RightHandSide(model) {}
     int derivative(const HubInput& u, const double* y, double* dydt) final;
-    /// qdd (nq) at (u, q, qd); GSL status as derivative().
+    /// qdd (nq) at (u, q, qd); GSL status as derivative(). qdd does not overlap q or qd.
     virtual int accelerations(const HubInput& u, const double* q, const double* qd, double* qdd) = 0;
-
-private:
-    std::vector<double> qdd_;
 };
 
 /// W = M^-1 F (nq x K, column-major) for a constant M and Q = F m (docs/model.md section 5.3: the prescribed-rotation
 /// M is constant), factored at the drive u0. Throws std::invalid_argument when M is not positive definite.
 Eigen::MatrixXd folded_forces(const Model& model, const TermForces& terms, const HubInput& u0);
 
+using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+/// y = P m for a P (nq x K) fixed for the run and the monomials m of the state: by the model's generated kernel,
+/// which holds P's structurally nonzero entries at fixed places, unrolled; else (no kernel, or one that disagrees
+/// with the walk at a test state, e.g. an on-demand object of an older generator) by a walk over P's nonzeros
+/// stored contiguously. No allocation per call.
+class FoldedProduct {
+public:
+    /// offset: the kernel's row offset in its pairs (generated_abi.h): 0 for a constant M, 1 where M varies.
+    FoldedProduct(const TermForces& terms, const FoldedForceKernel* kernel, const RowMajorMatrix& P, int offset = 0);
+    void apply(const HubInput& u, const double* q, const double* qd, double* y)
+    {
+        if (kernel_ != nullptr) return kernel_->accelerations(pairs_.data(), u, q, qd, y);
+        terms_.terms(u, q, qd, m_.data());
+        walk(m_.data(), y);
+    }
+    long nonzeros() const { return static_cast<long>(value_.size()); }
+    bool by_kernel() const { return kernel_ != nullptr; }
+
+private:
+    void walk(const double* m, double* y) const;
+    const TermForces& terms_;
+    const FoldedForceKernel* kernel_;
+    std::vector<double> pairs_;                  // the kernel's argument: P by row pairs, (i, k) at (j/2)*2K + 2k + j%2
+    std::vector<int> start_, column_;            // the walk: row i holds value_[start_[i] .. start_[i+1])
+    std::vector<double> value_, m_;
+};
+
 /// Constant M, qdd = W m by the generated kernel with W's entries at fixed places (model.folded_kernel()).
 class FoldedKernel final : public Accelerations {
 public:
-    FoldedKernel(const Model& model, const FoldedForceKernel& kernel, const Eigen::MatrixXd& W)
-        : Accelerations(model), kernel_(kernel), W_(W)
-    {
-    }
+    FoldedKernel(const Model& model, const FoldedForceKernel& kernel, const Eigen::MatrixXd& W);
     int accelerations(const HubInput& u, const double* q, const double* qd, double* qdd) override;
     std::string describe() const override;
 
 private:
-    const FoldedForceKernel& kernel_;
-    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> W_;
+    FoldedProduct product_;
+    Eigen::Index columns_;
 };
 
 /// Constant M, qdd = W m with W dense: one pass of multiply-adds.
@@ -93,7 +115,7 @@ private:
 };
 
 /// Constant M, qdd = W m with W stored by rows where it is mostly zeros (the prescribed M's axial and transverse
-/// blocks keep W block-structured): row i holds value[start[i] .. start[i+1]) in column.
+/// blocks keep W block-structured): the walk of FoldedProduct.
 class FoldedSparse final : public Accelerations {
 public:
     FoldedSparse(const Model& model, const TermForces& terms, const Eigen::MatrixXd& W);
@@ -101,33 +123,43 @@ public:
     std::string describe() const override;
 
 private:
-    const TermForces& terms_;
-    std::vector<int> start_, column_;
-    std::vector<double> value_;
-    Eigen::VectorXd m_;
+    FoldedProduct product_;
+    Eigen::Index columns_;
 };
 
-/// Hub torque where only M's hub entry m00(q) varies (no axial coordinates): with C the constant beam block and b
-/// the constant coupling column, W_B = C^-1 F_B, c = C^-1 b, g = F_0 - b^T W_B and s0 = b^T c once, then
-/// theta_ddot = g m / (m00(q) - s0) and B_ddot = W_B m - c theta_ddot. Besides saving the solves, the beam's
-/// ill-conditioned C (BIM) is applied through fixed products of smooth monomials: its round-off is the same at
-/// every evaluation instead of noise that an error control chases down to tiny steps. Throws
-/// std::invalid_argument when C is not positive definite.
+/// Hub torque where M's varying entries all lie in the hub's row (m00(q), and with axial coordinates the couplings
+/// b_v(q)); C, the rest of M, is constant. With b_c the constant couplings, W_C = C^-1 F_C, c_c = C^-1 b_c and
+/// g = F_0 - b_c^T W_C folded once, y = [g; W_C] m per call, then
+///   c = c_c + C^-1 b_v(q),   theta_ddot = (y_0 - b_v^T y_C) / (m00(q) - b^T c),   qdd_C = y_C - c theta_ddot,
+/// with C^-1 b_v from C^-1's columns at the varying couplings, stored by their nonzeros. Besides saving the
+/// solves, the beam's ill-conditioned C (BIM) is applied through fixed products of smooth monomials: its round-off
+/// is the same at every evaluation instead of noise that an error control chases down to tiny steps. Throws
+/// std::invalid_argument when C is not positive definite or a varying entry lies outside the hub's row.
 class HubSchur final : public Accelerations {
 public:
     HubSchur(const Model& model, const TermForces& terms, const HubInput& u0);
     int accelerations(const HubInput& u, const double* q, const double* qd, double* qdd) override;
     std::string describe() const override;
-    /// Nonzeros of W_B: folding pays while they cost no more than the forces' terms plus a dense solve.
-    long nonzeros() const { return static_cast<long>((W_.array() != 0.0).count()); }
+    /// Nonzeros of the folded [g; W_C]: folding pays while they cost no more than the forces' terms plus a dense
+    /// solve.
+    long nonzeros() const { return product_->nonzeros(); }
+    /// Nonzeros of C^-1 at the varying couplings, applied per call.
+    long coupling_nonzeros() const { return static_cast<long>(z_.size()); }
+    bool by_kernel() const { return product_->by_kernel(); }
 
 private:
-    const TermForces& terms_;
-    Eigen::MatrixXd W_;
-    Eigen::VectorXd c_, m_;
-    Eigen::RowVectorXd g_;
-    double s0_ = 0.0;
-    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> M_;  // the varying entry's evaluation
+    std::unique_ptr<FoldedProduct> product_;
+    std::vector<int> varying_, constant_;       // the coordinates j > 0 with m0j varying, and constant nonzero
+    struct ColumnEntry {
+        int row, column;  // row of C (0 .. n-2), index into varying_
+        double value;
+    };
+    std::vector<ColumnEntry> z_;                 // the nonzeros of C^-1's columns at the varying couplings
+    std::vector<double> b_c_, b_v_, c_, y_;      // b_c at constant_, b_v at varying_
+    Eigen::VectorXd c_c_;
+    double s0_ = 0.0;                            // b_c^T c_c
+    int columns_ = 0;                            // K
+    RowMajorMatrix M_;                           // the varying entries' evaluation
 };
 
 /// M evaluated and factored by the mass solver its pattern allows (mass_solver.hpp), then qdd = M^-1 Q.
@@ -163,9 +195,10 @@ private:
 };
 
 /// The strategy for a model and its hub motion, chosen from the model's data: quasi-static axial coordinates if
-/// asked; else, with a constant M and forces in term form, M^-1 folded into them (by the kernel, dense or by rows,
-/// as W's density decides) where W costs no more than the forces' terms plus a dense solve; else, where only the
-/// hub's entry of M varies, the Schur-folded hub row on the same condition; else the mass solver.
+/// asked; else, with a constant M and forces in term form, M^-1 folded into them (by the generated kernel where
+/// the model has one, else dense or by rows as W's density decides) where W costs no more than the forces' terms
+/// plus a dense solve; else, where M varies in the hub's row only, the Schur-folded hub row on the same condition;
+/// else the mass solver.
 std::unique_ptr<RightHandSide> make_right_hand_side(const Model& model, const Motion& motion, Axial axial);
 
 }  // namespace hubbeam

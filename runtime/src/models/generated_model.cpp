@@ -39,13 +39,13 @@ public:
     void mass(const HubInput& u, const double* q, double* M) const override
     {
         std::fill_n(M, nq() * nq(), 0.0);
-        call(v_.mass, u, q, q, M);
+        call_without_angle(v_.mass, u, q, q, M);
         for (const auto& [upper, lower] : mirrored_) M[lower] = M[upper];
     }
     void mass_varying(const HubInput& u, const double* q, double* M) const override
     {
         if (v_.mass_varying == nullptr) return;
-        call(v_.mass_varying, u, q, q, M);
+        call_without_angle(v_.mass_varying, u, q, q, M);
         for (const auto& [upper, lower] : mirrored_varying_) M[lower] = M[upper];
     }
     const TermForces* term_forces() const override
@@ -65,10 +65,10 @@ public:
         std::fill_n(F, nq() * v_.nterms, 0.0);
         call(v_.forces_matrix, HubInput{}, nullptr, nullptr, F);
     }
-    void accelerations(const double* W, const HubInput& u, const double* q, const double* qd,
-                       double* qdd) const override
+    void accelerations(const double* P, const HubInput& u, const double* q, const double* qd,
+                       double* y) const override
     {
-        v_.forces_folded(W, inputs(u, q).data(), q, qd, qdd);
+        v_.forces_folded(P, inputs(u, q).data(), q, qd, y);
     }
     void forces(const HubInput& u, const double* q, const double* qd, double* Q) const override
     {
@@ -125,13 +125,21 @@ public:
     {
         // The generator emits no kernel for a constant M (dM/dq = 0).
         std::fill_n(dMv, nq() * nq(), 0.0);
-        if (v_.mass_q_product != nullptr) call(v_.mass_q_product, u, q, v, dMv);
+        if (v_.mass_q_product != nullptr) call_without_angle(v_.mass_q_product, u, q, v, dMv);
     }
 
 private:
     void call(generated::Kernel k, const HubInput& u, const double* q, const double* qd, double* out) const
     {
         k(c_.data(), inputs(u, q).data(), q, qd, out);
+    }
+
+    /// A kernel of M: M depends on neither the drive nor the angle (the generator refuses a variant where it
+    /// would), so a gravity variant's sine and cosine are not computed for it.
+    void call_without_angle(generated::Kernel k, const HubInput& u, const double* q, const double* qd, double* out) const
+    {
+        const std::array<double, kernel_input_count> inputs{u.tau, u.theta_dot, u.theta_ddot, 0.0, 0.0};
+        k(c_.data(), inputs.data(), q, qd, out);
     }
 
     /// The kernels' u: the drive values, then for gravity sin and cos of the angle (a torque variant's q[0]; q is
