@@ -119,6 +119,7 @@ const std::vector<BenchColumn>& bench_columns()
         {"ny", [](const BenchRow& r) { return std::to_string(r.key.ny); }},
         {"order", [](const BenchRow& r) { return to_string(r.key.order); }},
         {"stepper", [](const BenchRow& r) { return r.stepper; }},
+        {"chosen", [](const BenchRow& r) { return r.chosen; }},
         {"rtol", [](const BenchRow& r) { return shortest(r.rtol); }},
         {"atol", [](const BenchRow& r) { return shortest(r.atol); }},
         {"time_error", [](const BenchRow& r) { return number(r.time_error); }},
@@ -238,13 +239,25 @@ const char* bench_header()
     return header.c_str();
 }
 
+namespace {
+
+/// stepper_names() and the automatic choice: what a figure's series can be.
+std::vector<std::string> steppers_and_auto()
+{
+    std::vector<std::string> names = stepper_names();
+    names.emplace_back(automatic_stepper_word);
+    return names;
+}
+
+}  // namespace
+
 BenchOptions parse_bench_options(const BenchArgs& args, const Scene& scene)
 {
     BenchOptions o;
     o.methods = parse_method_list<BenchOptionError>("--methods", args.methods);
     o.ny = parse_dof_list<BenchOptionError>("--ny", args.ny, 1);
     o.nx = args.nx.empty() ? std::vector<int>{scene.variant.nx} : parse_dof_list<BenchOptionError>("--nx", args.nx, 0);
-    const std::vector<std::string> known = stepper_names();
+    const std::vector<std::string> known = steppers_and_auto();  // the automatic choice measured against the others
     for (const std::string& s : split_list(args.steppers)) {
         if (std::find(known.begin(), known.end(), s) == known.end())
             bad("--steppers", "a comma-separated list of " + joined(known), s);
@@ -400,6 +413,7 @@ std::optional<BenchRow> measure_point(const Scene& scene, const VariantKey& k, c
     const Repeated runs = repeat(s, repeats, stop);
     const Collected& first = runs.first;
     if (!first.summary.completed && first.summary.failure == "interrupted by signal") return std::nullopt;
+    r.chosen = first.summary.stepper;
     r.repeats = static_cast<int>(runs.walls.size());
     r.wall_median = runs.median();
     r.wall_min = runs.walls.front();
@@ -677,7 +691,7 @@ struct FigureSeries {
 
 FigureSeries figure_series(const std::vector<FigurePoint>& points)
 {
-    const std::vector<std::string> all_steppers = stepper_names(), method_names = words<Method>();
+    const std::vector<std::string> all_steppers = steppers_and_auto(), method_names = words<Method>();
     const auto index = [](const std::vector<std::string>& names, const std::string& name) {
         return static_cast<std::size_t>(std::find(names.begin(), names.end(), name) - names.begin());
     };
@@ -703,7 +717,7 @@ std::string quoted(const std::string& s)
 /// type and dash pattern per stepper, so that no two lines look alike), and the Pareto front from PREFIX-front.dat.
 std::string work_plot(const std::string& prefix, const std::string& csv, const FigureSeries& series)
 {
-    const std::vector<std::string> all_steppers = stepper_names(), method_names = words<Method>();
+    const std::vector<std::string> all_steppers = steppers_and_auto(), method_names = words<Method>();
     static const char* const dashes[] = {"1", "2", "3", "4", "5", "(20,6,3,6,3,6)", "(4,8)", "(30,10)"};
     std::string work = "  plot ";
     for (std::size_t i = 0; i < series.lines.size(); ++i) {

@@ -60,6 +60,7 @@ std::vector<NamedPath> bench_outputs(const BenchOptions& options);
 struct BenchRow {
     VariantKey key;
     std::string stepper;
+    std::string chosen;  // the stepper that ran: stepper, or what "auto" chose
     double rtol = 0.0, atol = 0.0;
     double time_error = 0.0;  // max |tip_uy - same discretization at a tight tolerance|, m
     double disc_error = 0.0;  // max |tip_uy - converged reference|, m
