@@ -39,6 +39,10 @@ struct KernelSpec {
     /// out[i] = sum_k c[i*K + k] m_k for i < rows, reading its c argument as that row-major matrix (a runtime
     /// product such as M^-1 F) instead of the coefficient pool.
     int rows = 0;
+    /// Code added at the end of the kernel, after every output is written (e.g. loops that add to them), and the
+    /// parameter expressions that its placeholders stand for: each "$name" becomes the expression's pool entry.
+    std::string tail = {};
+    std::vector<std::pair<std::string, GiNaC::ex>> tail_coefficients = {};
 };
 
 struct EmittedCode {

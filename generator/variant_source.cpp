@@ -10,6 +10,7 @@
 #include "interface.hpp"
 #include "energy.hpp"
 #include "lagrange.hpp"
+#include "points.hpp"
 #include "structure.hpp"
 
 #ifndef HUBBEAM_VERSION
@@ -235,8 +236,9 @@ struct Derivation {
     std::size_t parameter_count = 0;
 };
 
-/// Lagrange's equations on the energies, over sig's parameter and state inputs.
-Derivation derive(const VariantKey& key, const Symbols& s, const Signature& sig)
+/// Lagrange's equations on the energies, over sig's parameter and state inputs; without_point_terms: of T without
+/// order full's terms beyond order first (points.hpp).
+Derivation derive(const VariantKey& key, const Symbols& s, const Signature& sig, bool without_point_terms = false)
 {
     const bool torque = key.drive == Drive::torque;
     std::vector<symbol> parameters, variables = sig.state_inputs_symbols();
@@ -267,7 +269,7 @@ Derivation derive(const VariantKey& key, const Symbols& s, const Signature& sig)
         c.angle_sin = v.sin_theta;
         c.angle_cos = v.cos_theta;
     }
-    const Energies en = derive_energies(key, s, reader);
+    const Energies en = derive_energies(key, s, reader, without_point_terms);
     c.dissipation = en.D;
     return {lagrange(en.T, en.U, c), v, c, parameters.size()};
 }
@@ -316,15 +318,25 @@ struct Kernels {
     bool mass_varies = false, folded = false;
 };
 
-Kernels variant_kernels(const VariantKey& key, const Symbols& s, const Derivation& d)
+/// base and points: where order full's foreshortening terms go to quadrature points, the equations without them
+/// and the points' code, which the mass, forces, energy and momentum kernels add; d's full equations then serve the
+/// Jacobians and Q = F m.
+Kernels variant_kernels(const VariantKey& key, const Symbols& s, const Derivation& d, const Derivation* base = nullptr,
+                        const PointCode* points = nullptr)
 {
     const PolyEquations& eq = d.eq;
+    const PolyEquations& own = base != nullptr ? base->eq : d.eq;
     const int nq = key.nq();
     const std::string n2 = std::to_string(nq * nq), n1 = std::to_string(nq);
     Kernels out;
     JacobianPieces jac = jacobian_pieces(eq, d.v, d.c, key.drive == Drive::torque);
     out.mass_pattern = mass_pattern(eq.M, d.v.q);
-    auto [mass, mass_varying] = mass_kernels(eq.M, out.mass_pattern, nq);
+    if (points != nullptr)
+        for (int k : points->mass_entries) {
+            out.mass_pattern[static_cast<std::size_t>(k)] = 'v';
+            out.mass_pattern[static_cast<std::size_t>(k % nq * nq + k / nq)] = 'v';
+        }
+    auto [mass, mass_varying] = mass_kernels(own.M, out.mass_pattern, nq);
     out.mass_varies = !mass_varying.polys.empty();
     // Q = F m lets the runtime fold M^-1 into F once: all of M where it is constant (prescribed rotation), the
     // constant beam block where only the hub's entry varies (hub torque without axial coordinates).
@@ -334,17 +346,29 @@ Kernels variant_kernels(const VariantKey& key, const Symbols& s, const Derivatio
     const std::string nu = std::to_string(nq * static_cast<int>(drive_value_count));
     out.list = {
         mass,
-        dense_kernel("forces", "Q[" + n1 + "]", "Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq", eq.Q),
+        dense_kernel("forces", "Q[" + n1 + "]", "Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq", own.Q),
         dense_kernel("forces_terms", "m[" + nk + "]", "the state monomials of Q: Q = F m", terms.terms),
         sparse_kernel("forces_matrix", "F[" + n1 + "*" + nk + "]", "row-major, state-free: Q = F m", terms.matrix),
-        dense_kernel("energy", "E[4]", "E = (T2, T1, T0, U), T split by degree in qd", {eq.T2, eq.T1, eq.T0, eq.U}),
-        dense_kernel("momentum", "h[1]", "h = dT/dtheta_dot, angular momentum about the hub axis", {eq.momentum}),
+        dense_kernel("energy", "E[4]", "E = (T2, T1, T0, U), T split by degree in qd", {own.T2, own.T1, own.T0, own.U}),
+        dense_kernel("momentum", "h[1]", "h = dT/dtheta_dot, angular momentum about the hub axis", {own.momentum}),
         tip_kernel(key, s),
         sparse_kernel("forces_q", "dQdq[" + n2 + "]", "row-major; out[i*" + n1 + "+k] = dQ_i/dq_k", std::move(jac.forces_q)),
         sparse_kernel("forces_qd", "dQdqd[" + n2 + "]", "row-major; out[i*" + n1 + "+k] = dQ_i/dqd_k", std::move(jac.forces_qd)),
         sparse_kernel("forces_u", "dQdu[" + nu + "]", "row-major; out[i*3+j] = dQ_i/du_j, u = " + tuple(drive_value_names),
                       std::move(jac.forces_u)),
     };
+    if (points != nullptr) {
+        const auto add = [&](KernelSpec& k, const std::string& tail) {
+            k.tail = tail;
+            k.tail_coefficients = points->coefficients;
+            k.doc += "; plus the quadrature points' terms";
+        };
+        add(out.list[0], points->mass);
+        add(mass_varying, points->mass);
+        add(out.list[1], points->forces);
+        add(out.list[4], points->energy);
+        add(out.list[5], points->momentum);
+    }
     // A constant M is folded into W = M^-1 F by the runtime; this kernel evaluates W m with W's entries at fixed
     // places, unrolled, up to a size where unrolling stops paying (the runtime then loops).
     out.folded = !out.mass_varies && nq * static_cast<int>(terms.terms.size()) <= 512;
@@ -406,12 +430,15 @@ std::string variant_source(const VariantKey& key, const EmitOptions& options)
     const Symbols s(key);
     const Signature sig = signature(s, key);
     const Derivation d = derive(key, s, sig);
-    Kernels kernels = variant_kernels(key, s, d);
+    const bool at_points = foreshortening_at_points(key);
+    const Derivation base = at_points ? derive(key, s, sig, true) : Derivation{};
+    const PointCode points = at_points ? point_code(key, s) : PointCode{};
+    Kernels kernels = at_points ? variant_kernels(key, s, d, &base, &points) : variant_kernels(key, s, d);
     const std::string name = key.name();
     const EmittedCode code = emit_kernels(name, sig, std::move(kernels.list), options);
     std::ostringstream f;
     f << banner(key, kernels.mass_varies) << "\n#include \"generated_abi.h\"\n\nnamespace hubbeam::generated {\n\nnamespace {\n"
-      << code.text << "\n}  // namespace\n\n"
+      << (at_points ? "\n" + points.tables : std::string()) << code.text << "\n}  // namespace\n\n"
       << table_row(name, key.nq(), code.ncoeff, kernels) << "\n}  // namespace hubbeam::generated\n";
     return f.str();
 }
