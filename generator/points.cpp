@@ -348,6 +348,92 @@ PointCode point_code(const VariantKey& key, const Symbols& s)
         }
         code.mass = before.str() + point_loop(key, body.str(), false, tip) + after.str();
     }
+    // The Jacobian pieces by the chain rule once more: each output is sum c(fields) u v^T over vectors u, v, plus
+    // c_H H(x_g)/L on the B block, where a vector holds the state (dh/dB = H/L, dk/dB_dot = H/L).
+    struct Matrix {
+        std::map<std::pair<std::string, std::string>, ex> outer;
+        ex H = 0;
+    };
+    const auto through = [&](const ex& c, bool rates, const std::string& row, Matrix& out) {
+        for (const PointField& f : fields) {
+            const ex dc = c.diff(f.sym);
+            if (dc.is_zero()) continue;
+            for (const auto& [v, sign] : rates ? f.dqd : f.dq) out.outer[{row, v}] += sign * dc;
+        }
+        // u_x2_ddot = -B_dot^T H B_dot / L: its gradient in the rates is -2 k.
+        if (rates) out.outer[{row, "k"}] += -2 * c.diff(ls.ux2_ddot);
+    };
+    Matrix dQdq, dQdqd, dMv;
+    for (const auto& [v, c] : Q) {
+        through(c, false, v, dQdq);
+        through(c, true, v, dQdqd);
+        if (v == "h") dQdq.H += c;
+        if (v == "k") dQdqd.H += c;
+    }
+    // sum_j dM_ij/dq_k z_j with z in the qd slot, so that the point fields of the rates are products with z: for
+    // M = sum m_uv u v^T it is sum_uv u d(m_uv (v . z))/dq + m_uv (v . z) du/dq, where a . z = u_x1_dot, p . z = u_y_dot,
+    // h . z = -u_x2_dot (whose q-gradient -k carries dh/dq z).
+    const std::map<std::string, ex> dot = {{"theta", ls.w}, {"a", ls.f.ux1_dot}, {"p", ls.f.uy_dot}, {"h", -ls.f.ux2_dot}};
+    for (const auto& [uv, m] : M) {
+        const auto& [u, v] = uv;
+        if (m.expand().is_zero()) continue;
+        through(m * dot.at(v), false, u, dMv);
+        if (u == "h") dMv.H += m * dot.at(v);
+    }
+    const auto matrix_body = [&](const Matrix& J, const std::string& stem) {
+        std::ostringstream body;
+        std::map<std::pair<int, int>, std::string> sums;
+        for (const auto& [uv, c] : J.outer) {
+            if (c.expand().is_zero()) continue;
+            const auto& [u, v] = uv;
+            const std::string name = stem + "_" + u + "_" + v;
+            body << "        const double " << name << " = W * (" << c_expression(c, ls) << ");\n";
+            std::string t = name;
+            if (!entry(u, "i").empty()) t += " * " + entry(u, "i");
+            if (!entry(v, "j").empty()) t += " * " + entry(v, "j");
+            std::string& sum = sums[{block_of(u), block_of(v)}];
+            sum += (sum.empty() ? "" : " + ") + t;
+        }
+        for (const auto& [blocks, sum] : sums) {
+            const auto [bu, bv] = blocks;
+            const std::string row = bu == 0 ? "0" : "(" + offset(bu) + " + i) * " + n, col = bv == 0 ? "0" : offset(bv) + " + j";
+            std::string indent = "        ";
+            if (bu != 0) {
+                body << indent << "for (int i = 0; i < " << size(bu) << "; ++i)\n";
+                indent += "    ";
+            }
+            if (bv != 0) {
+                body << indent << "for (int j = 0; j < " << size(bv) << "; ++j)\n";
+                indent += "    ";
+            }
+            body << indent << "out[" << row << " + " << col << "] += " << sum << ";\n";
+        }
+        if (!J.H.expand().is_zero())
+            body << "        const double " << stem << "_H = W * (" << c_expression(J.H, ls) << ") * $inv_L;\n"
+                 << "        for (int i = 0; i < NY; ++i)\n"
+                 << "            for (int j = 0; j < NY; ++j) out[(" << B0 << " + i) * " << n << " + " << B0 << " + j] += "
+                 << stem << "_H * point_H[g][i * NY + j];\n";
+        return body.str();
+    };
+    code.forces_q = point_loop(key, matrix_body(dQdq, "dq"), true, tip);
+    code.forces_qd = point_loop(key, matrix_body(dQdqd, "dqd"), true, tip);
+    code.mass_q_product = point_loop(key, matrix_body(dMv, "dm"), true, tip);
+    // dQ/du: the prescribed drive's theta_dot and theta_ddot (a torque variant's point terms hold no tau).
+    if (!torque) {
+        std::ostringstream body;
+        for (const auto& [v, c] : Q)
+            for (const auto& [input, column] : {std::pair{ex(ls.w), index(DriveValue::theta_dot)}, std::pair{ex(ls.w_dot), index(DriveValue::theta_ddot)}}) {
+                const ex dc = c.diff(ex_to<symbol>(input)).expand();
+                if (dc.is_zero()) continue;
+                const std::string name = "du_" + v + "_" + std::to_string(column);
+                body << "        const double " << name << " = W * (" << c_expression(dc, ls) << ");\n";
+                if (block_of(v) == 0) body << "        out[" << column << "] += " << name << ";\n";
+                else
+                    body << "        for (int i = 0; i < " << size(block_of(v)) << "; ++i) out[(" << offset(block_of(v))
+                         << " + i) * " << drive_value_count << " + " << column << "] += " << name << " * " << entry(v, "i") << ";\n";
+            }
+        code.forces_u = point_loop(key, body.str(), true, tip);
+    }
     // The energy split by degree in the rates, and the angular momentum de/dw.
     {
         const symbol lambda("lambda");

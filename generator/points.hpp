@@ -36,6 +36,7 @@ bool foreshortening_at_points(const VariantKey& key);
 struct PointCode {
     std::string tables;
     std::string mass, forces, energy, momentum;  // bodies appended to the kernels of those names
+    std::string forces_q, forces_qd, forces_u, mass_q_product;  // forces_u empty: no point terms (hub torque)
     std::vector<std::pair<std::string, GiNaC::ex>> coefficients;
     /// Entries (row-major, upper triangle) of M that the point terms add to: the runtime must treat them as varying.
     std::vector<int> mass_entries;

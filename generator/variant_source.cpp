@@ -318,14 +318,11 @@ struct Kernels {
     bool mass_varies = false, folded = false;
 };
 
-/// base and points: where order full's foreshortening terms go to quadrature points, the equations without them
-/// and the points' code, which the mass, forces, energy and momentum kernels add; d's full equations then serve the
-/// Jacobians and Q = F m.
-Kernels variant_kernels(const VariantKey& key, const Symbols& s, const Derivation& d, const Derivation* base = nullptr,
-                        const PointCode* points = nullptr)
+/// points: where order full's foreshortening terms go to quadrature points (d then holds the equations without
+/// them), the code that every kernel of M, Q, the energies and the Jacobian adds; Q then has no form F m.
+Kernels variant_kernels(const VariantKey& key, const Symbols& s, const Derivation& d, const PointCode* points = nullptr)
 {
     const PolyEquations& eq = d.eq;
-    const PolyEquations& own = base != nullptr ? base->eq : d.eq;
     const int nq = key.nq();
     const std::string n2 = std::to_string(nq * nq), n1 = std::to_string(nq);
     Kernels out;
@@ -336,21 +333,21 @@ Kernels variant_kernels(const VariantKey& key, const Symbols& s, const Derivatio
             out.mass_pattern[static_cast<std::size_t>(k)] = 'v';
             out.mass_pattern[static_cast<std::size_t>(k % nq * nq + k / nq)] = 'v';
         }
-    auto [mass, mass_varying] = mass_kernels(own.M, out.mass_pattern, nq);
+    auto [mass, mass_varying] = mass_kernels(eq.M, out.mass_pattern, nq);
     out.mass_varies = !mass_varying.polys.empty();
     // Q = F m lets the runtime fold M^-1 into F once: all of M where it is constant (prescribed rotation), the
     // constant beam block where only the hub's entry varies (hub torque without axial coordinates).
-    const TermMatrix terms = term_matrix(eq.Q, d.parameter_count);
+    const TermMatrix terms = points == nullptr ? term_matrix(eq.Q, d.parameter_count) : TermMatrix{};
     out.nterms = terms.terms.size();
     const std::string nk = std::to_string(terms.terms.size());
     const std::string nu = std::to_string(nq * static_cast<int>(drive_value_count));
     out.list = {
         mass,
-        dense_kernel("forces", "Q[" + n1 + "]", "Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq", own.Q),
+        dense_kernel("forces", "Q[" + n1 + "]", "Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq", eq.Q),
         dense_kernel("forces_terms", "m[" + nk + "]", "the state monomials of Q: Q = F m", terms.terms),
         sparse_kernel("forces_matrix", "F[" + n1 + "*" + nk + "]", "row-major, state-free: Q = F m", terms.matrix),
-        dense_kernel("energy", "E[4]", "E = (T2, T1, T0, U), T split by degree in qd", {own.T2, own.T1, own.T0, own.U}),
-        dense_kernel("momentum", "h[1]", "h = dT/dtheta_dot, angular momentum about the hub axis", {own.momentum}),
+        dense_kernel("energy", "E[4]", "E = (T2, T1, T0, U), T split by degree in qd", {eq.T2, eq.T1, eq.T0, eq.U}),
+        dense_kernel("momentum", "h[1]", "h = dT/dtheta_dot, angular momentum about the hub axis", {eq.momentum}),
         tip_kernel(key, s),
         sparse_kernel("forces_q", "dQdq[" + n2 + "]", "row-major; out[i*" + n1 + "+k] = dQ_i/dq_k", std::move(jac.forces_q)),
         sparse_kernel("forces_qd", "dQdqd[" + n2 + "]", "row-major; out[i*" + n1 + "+k] = dQ_i/dqd_k", std::move(jac.forces_qd)),
@@ -368,6 +365,9 @@ Kernels variant_kernels(const VariantKey& key, const Symbols& s, const Derivatio
         add(out.list[1], points->forces);
         add(out.list[4], points->energy);
         add(out.list[5], points->momentum);
+        add(out.list[7], points->forces_q);
+        add(out.list[8], points->forces_qd);
+        if (!points->forces_u.empty()) add(out.list[9], points->forces_u);
     }
     // A constant M is folded into W = M^-1 F by the runtime; this kernel evaluates W m with W's entries at fixed
     // places, unrolled, up to a size where unrolling stops paying (the runtime then loops).
@@ -385,6 +385,11 @@ Kernels variant_kernels(const VariantKey& key, const Symbols& s, const Derivatio
         out.list.push_back(sparse_kernel("mass_q_product", "dMv[" + n2 + "]",
                                          "row-major; v in the qd slot; out[i*" + n1 + "+k] = sum_j dM_ij/dq_k v_j",
                                          std::move(jac.mass_q_product)));
+        if (points != nullptr) {
+            out.list.back().tail = points->mass_q_product;
+            out.list.back().tail_coefficients = points->coefficients;
+            out.list.back().doc += "; plus the quadrature points' terms";
+        }
     }
     return out;
 }
@@ -429,11 +434,10 @@ std::string variant_source(const VariantKey& key, const EmitOptions& options)
 {
     const Symbols s(key);
     const Signature sig = signature(s, key);
-    const Derivation d = derive(key, s, sig);
     const bool at_points = foreshortening_at_points(key);
-    const Derivation base = at_points ? derive(key, s, sig, true) : Derivation{};
+    const Derivation d = derive(key, s, sig, at_points);
     const PointCode points = at_points ? point_code(key, s) : PointCode{};
-    Kernels kernels = at_points ? variant_kernels(key, s, d, &base, &points) : variant_kernels(key, s, d);
+    Kernels kernels = variant_kernels(key, s, d, at_points ? &points : nullptr);
     const std::string name = key.name();
     const EmittedCode code = emit_kernels(name, sig, std::move(kernels.list), options);
     std::ostringstream f;
