@@ -331,11 +331,11 @@ PointCode point_code(const VariantKey& key, const Symbols& s)
                       << "            double s[2][4] = {};\n"
                       << "            for (int g = 0; g < point_count; ++g)\n"
                       << "                for (int r = 0; r < 2; ++r)\n"
-                      << "                    for (int c = 0; c < 4; ++c) s[r][c] += scaled_h_at[g][i + r] * h_at[g][j + c];\n"
+                      << "                    for (int col = 0; col < 4; ++col) s[r][col] += scaled_h_at[g][i + r] * h_at[g][j + col];\n"
                       << "            for (int r = 0; r < 2; ++r)\n"
-                      << "                for (int c = 0; c < 4; ++c)\n"
-                      << "                    if (j + c >= i + r) out[(" << offset(bu) << " + i + r) * " << n << " + " << offset(bu)
-                      << " + j + c] += s[r][c];\n"
+                      << "                for (int col = 0; col < 4; ++col)\n"
+                      << "                    if (j + col >= i + r) out[(" << offset(bu) << " + i + r) * " << n << " + " << offset(bu)
+                      << " + j + col] += s[r][col];\n"
                       << "        }\n";
             } else {
                 const std::string name = bu == 1 ? "block_A" : "block_B", nb = std::to_string(size(bu));
@@ -460,7 +460,7 @@ PointCode point_code(const VariantKey& key, const Symbols& s)
       << (tip ? ", then the tip body at xi = 1" : "") << ":\n"
       << "// T += sum_g W_g e(fields at x_g), W_g = m L w_g" << (tip ? " (m_tip at the tip)" : "")
       << ", e = 1/2 (|r_dot|^2 of order full - of order first).\n"
-      << "constexpr int NX = " << nx << ", NY = " << ny << ";\n"
+      << (nx > 0 ? "constexpr int NX = " + std::to_string(nx) + ";\n" : std::string()) << "constexpr int NY = " << ny << ";\n"
       << "constexpr int beam_points = " << rule.xi.size() << ", point_count = " << xi.size() << ";\n";
     const auto row = [](const std::vector<double>& v) {
         std::string r;
