@@ -85,8 +85,8 @@ std::string c_expression(const ex& e, const LoopSymbols& ls)
     return s;
 }
 
-/// H(xi) = int_0^xi Phi_y'^T Phi_y' dxi (xi units, row-major), by Gauss-Legendre on the pieces: exact for a
-/// polynomial basis (d points on a piece of degree d), for AMM the integrals stage's converged composite rule.
+}  // namespace
+
 std::vector<double> coupling_at(const FieldBasis& t, double xi)
 {
     const int n = t.size();
@@ -113,6 +113,8 @@ std::vector<double> coupling_at(const FieldBasis& t, double xi)
     }
     return H;
 }
+
+namespace {
 
 /// Order full's |r_dot|^2 less order first's, halved (T = 1/2 int m |r_dot|^2): every term holds u_x2 or its rate.
 ex point_density(const VariantKey& key, const LoopSymbols& ls)

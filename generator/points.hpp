@@ -26,6 +26,10 @@ struct PointRule {
 };
 PointRule point_rule(const VariantKey& key);
 
+/// H(xi) = int_0^xi Phi_y'^T Phi_y' dxi (xi units, row-major), by Gauss-Legendre on the pieces: exact for a
+/// polynomial basis (d points on a piece of degree d), for AMM the integrals stage's converged composite rule.
+std::vector<double> coupling_at(const FieldBasis& transverse, double xi);
+
 /// Whether a variant's order-full terms go to the points: order full on a uniform beam (a tapered or tabulated
 /// section keeps the expanded form, whose integrals hold m(x)).
 bool foreshortening_at_points(const VariantKey& key);
