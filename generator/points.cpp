@@ -190,10 +190,11 @@ std::string point_loop(const VariantKey& key, const std::string& body, bool tip)
     const std::string a = std::to_string(key.first_a()), b = std::to_string(key.first_b());
     const std::string A = key.nx > 0 ? "q + " + a : "nullptr", A_dot = key.nx > 0 ? "qd + " + a : "nullptr";
     std::ostringstream s;
-    s << "    // Order full's foreshortening terms, summed over the quadrature points (point_fields above).\n";
-    s << "    for (int g = 0; g < point_count; ++g) {\n"
+    s << "    // Order full's foreshortening terms, summed over the quadrature points (point_fields above).\n"
+      << "    const PointVectors& HB = point_products(q + " << b << ");\n"
+      << "    for (int g = 0; g < point_count; ++g) {\n"
       << "        PointFields f;\n"
-      << "        point_fields<" << (vectors ? "true" : "false") << ">(g, $inv_L, " << A << ", q + " << b << ", " << A_dot
+      << "        point_fields<" << (vectors ? "true" : "false") << ">(g, $inv_L, HB[g], " << A << ", q + " << b << ", " << A_dot
       << ", qd + " << b << ", f);\n";
     if (tip) s << "        const double W = g < beam_points ? $m_L * point_weight[g] : $m_tip;\n";
     else s << "        const double W = $m_L * point_weight[g];\n";
@@ -320,24 +321,24 @@ PointCode point_code(const VariantKey& key, const Symbols& s)
                      << "            for (int j = 0; j < " << size(bv) << "; ++j) out[(" << offset(bu) << " + i) * " << n << " + "
                      << offset(bv) << " + j] += " << sum << ";\n";
             } else if (pairs.size() == 1 && pairs[0].first == pairs[0].second && pairs[0].first == "h" && ny % 4 == 0) {
-                // sum_g m_h_h(g) h_g h_g^T as a product of the points' vectors after the loop, two rows by four
-                // columns at a time in registers: a third of the instructions of a rank-one update per point.
+                // sum_g m_h_h(g) h_g h_g^T as a product of the points' vectors after the loop, a row by four
+                // columns at a time in registers: two thirds of the instructions of a rank-one update per point.
                 const std::string c = "m_h_h", nb = std::to_string(ny);
                 before << "    double h_at[point_count][NY], scaled_h_at[point_count][NY];  // h_g and " << c << "(g) h_g\n";
                 body << "        for (int i = 0; i < NY; ++i) {\n"
                      << "            h_at[g][i] = f.h[i];\n"
                      << "            scaled_h_at[g][i] = " << c << " * f.h[i];\n"
                      << "        }\n";
-                after << "    for (int i = 0; i < NY; i += 2)\n"
+                after << "    for (int i = 0; i < NY; ++i)\n"
                       << "        for (int j = i / 4 * 4; j < NY; j += 4) {\n"
-                      << "            double s[2][4] = {};\n"
-                      << "            for (int g = 0; g < point_count; ++g)\n"
-                      << "                for (int r = 0; r < 2; ++r)\n"
-                      << "                    for (int col = 0; col < 4; ++col) s[r][col] += scaled_h_at[g][i + r] * h_at[g][j + col];\n"
-                      << "            for (int r = 0; r < 2; ++r)\n"
-                      << "                for (int col = 0; col < 4; ++col)\n"
-                      << "                    if (j + col >= i + r) out[(" << offset(bu) << " + i + r) * " << n << " + " << offset(bu)
-                      << " + j + col] += s[r][col];\n"
+                      << "            double s[4] = {};\n"
+                      << "            for (int g = 0; g < point_count; ++g) {\n"
+                      << "                const double a = scaled_h_at[g][i];\n"
+                      << "                for (int col = 0; col < 4; ++col) s[col] += a * h_at[g][j + col];\n"
+                      << "            }\n"
+                      << "            for (int col = 0; col < 4; ++col)\n"
+                      << "                if (j + col >= i) out[(" << offset(bu) << " + i) * " << n << " + " << offset(bu)
+                      << " + j + col] += s[col];\n"
                       << "        }\n";
             } else {
                 const std::string name = bu == 1 ? "block_A" : "block_B", nb = std::to_string(size(bu));
@@ -488,57 +489,73 @@ PointCode point_code(const VariantKey& key, const Symbols& s)
     t << "};\n// H_xi(xi_g) = int_0^xi_g Phi_y'^T Phi_y' dxi, row-major.\nconstexpr double point_H[point_count][NY * NY] = {\n";
     for (double x : xi) t << "    {" << row(coupling_at(transverse, x)) << "},\n";
     t << "};\n\n"
+      << "using PointVectors = double[point_count][NY];\n\n"
+      << "/// H_xi(x_g) B at every point, for the last B this thread asked for: the mass and the forces of one right-hand\n"
+      << "/// side are evaluated at the same B and share these G Ny^2 products.\n"
+      << "const PointVectors& point_products(const double* B)\n{\n"
+      << "    thread_local double last[NY];\n"
+      << "    thread_local PointVectors products;\n"
+      << "    thread_local bool valid = false;\n"
+      << "    bool same = valid;\n"
+      << "    for (int i = 0; i < NY; ++i) same = same && B[i] == last[i];\n"
+      << "    if (same) return products;\n"
+      << "    double b[NY];\n"
+      << "    for (int i = 0; i < NY; ++i) b[i] = last[i] = B[i];\n"
+      << "    for (int g = 0; g < point_count; ++g) {\n"
+      << "        const double* H = point_H[g];\n";
+    // Four entries at a time over H's rows (H is symmetric), in registers, the sum over j unrolled (GCC and Clang
+    // read the pragma): copies of B and fixed-length inner loops keep them free of aliasing, so that the compiler
+    // vectorizes them at -O2; the loop's own instructions would cost half as much again.
+    const int blocked = ny / 4 * 4;
+    const auto rows = [&](const std::string& indent, const std::string& from, const std::string& to, const std::string& width,
+                          const std::string& vector, const std::string& out) {
+        t << indent << "for (int i = " << from << "; i < " << to << "; i += " << width << ") {\n"
+          << indent << "    double sum[" << width << "] = {};\n"
+          << "#pragma GCC unroll 32\n"
+          << indent << "    for (int j = 0; j < NY; ++j)\n"
+          << indent << "        for (int r = 0; r < " << width << "; ++r) sum[r] += H[j * NY + i + r] * " << vector << "[j];\n"
+          << indent << "    for (int r = 0; r < " << width << "; ++r) " << out << "[i + r] = sum[r];\n"
+          << indent << "}\n";
+    };
+    if (blocked > 0) rows("        ", "0", std::to_string(blocked), "4", "b", "products[g]");
+    if (blocked < ny) rows("        ", std::to_string(blocked), "NY", "1", "b", "products[g]");
+    t << "    }\n    valid = true;\n    return products;\n}\n\n"
       << "/// The fields at point g (docs/model.md section 2): u_x1, u_y, u_x2 = -1/2 B^T H B and their rates, with\n"
-      << "/// h = H B and (vectors) k = H B_dot and u_x2_ddot = -B_dot^T H B_dot, the rate of u_x2_dot at B_ddot = 0;\n"
-      << "/// H in x units (H_xi / L).\n"
+      << "/// h = H B (from HB = H_xi(x_g) B) and (vectors) k = H B_dot and u_x2_ddot = -B_dot^T H B_dot, the rate of u_x2_dot\n"
+      << "/// at B_ddot = 0; H in x units (H_xi / L).\n"
       << "struct PointFields {\n    double u_x1 = 0.0, u_x1_dot = 0.0, u_y = 0.0, u_y_dot = 0.0, u_x2 = 0.0, u_x2_dot = 0.0, "
          "u_x2_ddot = 0.0;\n    double h[NY], k[NY];\n};\n"
       << "template <bool vectors>\n"
-      << "void point_fields(int g, double inv_L, const double* A, const double* B, const double* A_dot, const double* B_dot,\n"
-      << "                  PointFields& f)\n{\n";
+      << "void point_fields(int g, double inv_L, const double* HB, const double* A, const double* B, const double* A_dot,\n"
+      << "                  const double* B_dot, PointFields& f)\n{\n";
     if (nx > 0)
       t << "    for (int i = 0; i < NX; ++i) {\n"
         << "        f.u_x1 += point_phi_x[g][i] * A[i];\n"
         << "        f.u_x1_dot += point_phi_x[g][i] * A_dot[i];\n    }\n";
     else t << "    (void)A;\n    (void)A_dot;\n";
-    // H B and H B_dot four entries at a time over H's rows (H is symmetric), in registers: copies of B and B_dot
-    // and fixed-length inner loops keep them free of aliasing, so that the compiler vectorizes them at -O2.
-    const int blocked = ny / 4 * 4;
-    t << "    double b[NY], b_dot[NY];\n"
+    t << "    double b[NY], b_dot[NY], k[NY];\n"
       << "    for (int i = 0; i < NY; ++i) {\n"
       << "        b[i] = B[i];\n"
       << "        b_dot[i] = B_dot[i];\n"
       << "    }\n"
-      << "    const double* H = point_H[g];\n"
-      << "    double u_y = 0.0, u_y_dot = 0.0, u_x2 = 0.0, u_x2_dot = 0.0, u_x2_ddot = 0.0;\n";
-    // H B and H B_dot: the sums over j unrolled (GCC and Clang read the pragma): the loop's own instructions would
-    // cost half as much again.
-    const auto rows = [&](const std::string& from, const std::string& to, const std::string& width) {
-        t << "    for (int i = " << from << "; i < " << to << "; i += " << width << ") {\n"
-          << "        double h[" << width << "] = {}, k[" << width << "] = {};\n"
-          << "#pragma GCC unroll 32\n"
-          << "        for (int j = 0; j < NY; ++j)\n"
-          << "            for (int r = 0; r < " << width << "; ++r) h[r] += H[j * NY + i + r] * b[j];\n"
-          << "        if constexpr (vectors) {\n"
-          << "#pragma GCC unroll 32\n"
-          << "            for (int j = 0; j < NY; ++j)\n"
-          << "                for (int r = 0; r < " << width << "; ++r) k[r] += H[j * NY + i + r] * b_dot[j];\n"
-          << "        }\n"
-          << "        for (int r = 0; r < " << width << "; ++r) {\n"
-          << "            f.h[i + r] = h[r] * inv_L;\n"
-          << "            f.k[i + r] = k[r] * inv_L;\n"
-          << "            u_x2 += b[i + r] * h[r];\n"
-          << "            u_x2_dot += b_dot[i + r] * h[r];\n"
-          << "            u_x2_ddot += b_dot[i + r] * k[r];\n"
-          << "        }\n"
-          << "    }\n";
-    };
-    if (blocked > 0) rows("0", std::to_string(blocked), "4");
-    if (blocked < ny) rows(std::to_string(blocked), "NY", "1");
-    t << "    for (int i = 0; i < NY; ++i) {\n"
+      << "    if constexpr (vectors) {\n"
+      << "        const double* H = point_H[g];\n";
+    if (blocked > 0) rows("        ", "0", std::to_string(blocked), "4", "b_dot", "k");
+    if (blocked < ny) rows("        ", std::to_string(blocked), "NY", "1", "b_dot", "k");
+    t << "    }\n"
+      << "    double u_y = 0.0, u_y_dot = 0.0, u_x2 = 0.0, u_x2_dot = 0.0, u_x2_ddot = 0.0;\n"
+      << "    for (int i = 0; i < NY; ++i) {\n"
       << "        u_y += point_phi_y[g][i] * b[i];\n"
       << "        u_y_dot += point_phi_y[g][i] * b_dot[i];\n"
+      << "        u_x2 += b[i] * HB[i];\n"
+      << "        u_x2_dot += b_dot[i] * HB[i];\n"
+      << "        f.h[i] = HB[i] * inv_L;\n"
       << "    }\n"
+      << "    if constexpr (vectors)\n"
+      << "        for (int i = 0; i < NY; ++i) {\n"
+      << "            u_x2_ddot += b_dot[i] * k[i];\n"
+      << "            f.k[i] = k[i] * inv_L;\n"
+      << "        }\n"
       << "    f.u_y = u_y;\n"
       << "    f.u_y_dot = u_y_dot;\n"
       << "    f.u_x2 = -0.5 * u_x2 * inv_L;\n"
