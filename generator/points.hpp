@@ -31,7 +31,7 @@ PointRule point_rule(const VariantKey& key);
 std::vector<double> coupling_at(const FieldBasis& transverse, double xi);
 
 /// Whether a variant's order-full terms go to the points: order full on a uniform beam (a tapered or tabulated
-/// section keeps the expanded form, whose integrals hold m(x)).
+/// section keeps the expanded form, whose integrals hold m(x)) with Ny >= 8 (below, the expanded form is cheaper).
 bool foreshortening_at_points(const VariantKey& key);
 
 /// The kernels' code for the point terms: tables and a helper (once per source), and the lines each kernel adds to
