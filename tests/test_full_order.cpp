@@ -17,11 +17,13 @@ using namespace hubbeam::test;
 
 namespace {
 
-/// Every method with axial coordinates (the u_x1 u_x2 coupling of order full), both drives.
+/// Every method with axial coordinates (the u_x1 u_x2 coupling of order full), both drives: expanded (Ny < 8) and
+/// with the foreshortening terms at quadrature points (Ny >= 8).
 std::vector<VariantKey> full_variants()
 {
     std::vector<VariantKey> keys;
-    for (const char* name : {"amm_nx2_ny3", "fem_nx2_ny4", "bim_nx2_ny3", "bsim_nx3_ny4"})
+    for (const char* name : {"amm_nx2_ny3", "fem_nx2_ny4", "bim_nx2_ny3", "bsim_nx3_ny4", "amm_nx2_ny8", "fem_nx2_ny8",
+                             "bim_nx2_ny8", "bsim_nx3_ny8"})
         for (const char* drive : {"prescribed", "torque"})
             keys.push_back(VariantKey::parse(std::string(name) + "_" + drive + "_full"));
     keys.push_back(VariantKey::parse("bsim_nx0_ny4_torque_full_open"));
@@ -83,7 +85,7 @@ TEST_CASE("order full at quadrature points equals the expanded form, the Jacobia
     p.a = 0.35;
     p.tip_ratio = 1.0;
     std::mt19937 rng(11);
-    for (const char* name : {"amm_nx2_ny3_torque_full", "bim_nx2_ny4_prescribed_full", "fem_nx0_ny4_torque_full"}) {
+    for (const char* name : {"amm_nx2_ny8_torque_full", "bim_nx2_ny8_prescribed_full", "fem_nx0_ny8_torque_full"}) {
         SECTION(name)
         {
             const VariantKey key = VariantKey::parse(name);
@@ -93,6 +95,9 @@ TEST_CASE("order full at quadrature points equals the expanded form, the Jacobia
             const auto expanded = make_model(expanded_key, p, ModelSource::generated);
             REQUIRE(points->jacobian() != nullptr);
             REQUIRE(expanded->jacobian() != nullptr);
+            // Two forms indeed: only the expanded one writes Q as F m.
+            CHECK(points->term_forces() == nullptr);
+            CHECK(expanded->term_forces() != nullptr);
             const int n = key.nq();
             for (int trial = 0; trial < 3; ++trial) {
                 State s = random_state(key, rng);
@@ -138,7 +143,7 @@ TEST_CASE("order full: the Jacobi integral is constant under a steady drive", "[
         double t_steady;
     };
     for (const Case& c : {Case{Method::amm, 0, 4, spin_up(4.0), 15.0}, Case{Method::fem, 2, 4, torque(10.0), 10.0},
-                          Case{Method::bim, 0, 4, torque(10.0), 10.0}}) {
+                          Case{Method::bim, 0, 4, torque(10.0), 10.0}, Case{Method::amm, 0, 8, torque(10.0), 10.0}}) {
         Scene s = paper_scene(c.method, c.nx, c.ny, c.motion);
         s.variant.order = Order::full;
         s.source = ModelSource::generated;
