@@ -503,6 +503,29 @@ std::string print_coefficients(const std::string& prefix, const Signature& sig, 
     return text.str();
 }
 
+/// A kernel's body with its tail before the closing brace, the tail's placeholders replaced by pool entries.
+std::string with_tail(std::string body, const KernelSpec& k, const PolyReader& read, CoefficientPool& pool)
+{
+    if (k.tail.empty()) return body;
+    std::string tail = k.tail;
+    for (const auto& [name, value] : k.tail_coefficients) {
+        const std::map<Exponents, Coefficient> terms = read(value).terms();
+        if (terms.size() != 1 || degree(terms.begin()->first) != 0)
+            throw EmitError("emit: the tail coefficient " + name + " is not free of the state");
+        const Coefficient& c = terms.begin()->second;
+        std::string text;
+        if (const auto number = CoefficientPool::pure_number(c)) text = c_number(*number);
+        else {
+            const auto [sign, ck] = pool.reference(c);
+            text = sign < 0 ? "(-" + ck + ")" : ck;
+        }
+        for (std::size_t at = tail.find(name); at != std::string::npos; at = tail.find(name, at + text.size()))
+            tail.replace(at, name.size(), text);
+    }
+    const std::size_t close = body.rfind("}\n");
+    return body.insert(close, tail);
+}
+
 std::vector<std::string> names_of(const std::vector<Input>& inputs)
 {
     std::vector<std::string> names;
@@ -534,16 +557,16 @@ EmittedCode emit_kernels(const std::string& prefix, const Signature& sig, std::v
             bool constant = true;
             for (const Output& o : outputs)
                 for (const auto& entry : o) constant = constant && degree(entry.first) == 0;
-            if (constant) code.constant_kernels.push_back(k.name);
-            bodies.push_back(print_tables(prefix, k, sig, outputs, pool));
+            if (constant && k.tail.empty()) code.constant_kernels.push_back(k.name);
+            bodies.push_back(with_tail(print_tables(prefix, k, sig, outputs, pool), k, read, pool));
             continue;
         }
         const MonomialPlan plan = plan_monomials(outputs, names_of(sig.state_inputs));
-        if (plan.names.empty()) code.constant_kernels.push_back(k.name);
+        if (plan.names.empty() && k.tail.empty()) code.constant_kernels.push_back(k.name);
         bool uses_c = false;
         const std::string lines = k.rows > 0 ? print_matrix_product(outputs, k.rows, k.row_offset, k.pattern, plan, uses_c)
                                              : print_outputs(outputs, k.slots, plan, pool, uses_c);
-        bodies.push_back(print_kernel(prefix, k, sig, plan, lines, uses_c));
+        bodies.push_back(with_tail(print_kernel(prefix, k, sig, plan, lines, uses_c), k, read, pool));
     }
     std::ostringstream text;
     std::size_t coefficient_terms = 0;

@@ -44,6 +44,10 @@ struct KernelSpec {
     /// With rows > 0: which entries P(i, k) can be nonzero (row-major, rows x K); a pair of rows reads the columns
     /// either row allows, the others are neither read nor multiplied. Empty: every entry.
     std::vector<bool> pattern = {};
+    /// Code added at the end of the kernel, after every output is written (e.g. loops that add to them), and the
+    /// parameter expressions that its placeholders stand for: each "$name" becomes the expression's pool entry.
+    std::string tail = {};
+    std::vector<std::pair<std::string, GiNaC::ex>> tail_coefficients = {};
 };
 
 struct EmittedCode {

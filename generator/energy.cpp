@@ -253,7 +253,7 @@ ex velocity_squared(Order order, const FieldSymbols& f, const ex& w)
     return kept;
 }
 
-Energies derive_energies(const VariantKey& key, const Symbols& s, const PolyReader& read)
+Energies derive_energies(const VariantKey& key, const Symbols& s, const PolyReader& read, bool without_point_terms)
 {
     if (const std::string why = key.dof_problem(); !why.empty()) throw std::invalid_argument(key.name() + ": " + why);
     const Extras& x = key.extras;
@@ -270,7 +270,7 @@ Energies derive_energies(const VariantKey& key, const Symbols& s, const PolyRead
     const ex mass = x.profile() ? ex(f.m_x) : s.m * area;
     const ex axial = x.profile() ? ex(f.ES_x) : s.ES * area;
     const ex bending = x.profile() ? ex(f.EI_x) : s.EI * moment;
-    const ex v2 = velocity_squared(key.order, f, s.theta_dot);
+    const ex v2 = velocity_squared(without_point_terms ? Order::first : key.order, f, s.theta_dot);
     Poly T = read(s.J_oh * pow(s.theta_dot, 2) / 2);
     T += integrate(mass * v2 / 2);
     Poly U = integrate((axial * pow(f.ux1_x, 2) + bending * pow(f.uy_xx, 2)) / 2);

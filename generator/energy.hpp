@@ -53,7 +53,8 @@ GiNaC::ex velocity_squared(Order order, const FieldSymbols& f, const GiNaC::ex& 
 
 /// T = 1/2 J_oh theta_dot^2 + 1/2 int m |r_dot|^2 dx and U = 1/2 int (ES u_x1'^2 + EI u_y''^2) dx, over the
 /// parameter and variable symbols of read; with the key's extras, the tip body's, gravity's, the taper's and the
-/// dissipation function's terms of docs/model.md section 11.
-Energies derive_energies(const VariantKey& key, const Symbols& s, const PolyReader& read);
+/// dissipation function's terms of docs/model.md section 11. without_point_terms: T without the terms of order
+/// full beyond order first (|r_dot|^2 of order first), which the points stage adds at quadrature points.
+Energies derive_energies(const VariantKey& key, const Symbols& s, const PolyReader& read, bool without_point_terms = false);
 
 }  // namespace hubbeam::gen

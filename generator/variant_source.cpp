@@ -11,6 +11,7 @@
 #include "interface.hpp"
 #include "energy.hpp"
 #include "lagrange.hpp"
+#include "points.hpp"
 #include "structure.hpp"
 
 #ifndef HUBBEAM_VERSION
@@ -236,8 +237,9 @@ struct Derivation {
     std::size_t parameter_count = 0;
 };
 
-/// Lagrange's equations on the energies, over sig's parameter and state inputs.
-Derivation derive(const VariantKey& key, const Symbols& s, const Signature& sig)
+/// Lagrange's equations on the energies, over sig's parameter and state inputs; without_point_terms: of T without
+/// order full's terms beyond order first (points.hpp).
+Derivation derive(const VariantKey& key, const Symbols& s, const Signature& sig, bool without_point_terms = false)
 {
     const bool torque = key.drive == Drive::torque;
     std::vector<symbol> parameters, variables = sig.state_inputs_symbols();
@@ -268,7 +270,7 @@ Derivation derive(const VariantKey& key, const Symbols& s, const Signature& sig)
         c.angle_sin = v.sin_theta;
         c.angle_cos = v.cos_theta;
     }
-    const Energies en = derive_energies(key, s, reader);
+    const Energies en = derive_energies(key, s, reader, without_point_terms);
     c.dissipation = en.D;
     return {lagrange(en.T, en.U, c), v, c, parameters.size()};
 }
@@ -367,7 +369,9 @@ struct Kernels {
     bool mass_varies = false, folded = false;
 };
 
-Kernels variant_kernels(const VariantKey& key, const Symbols& s, const Derivation& d)
+/// points: where order full's foreshortening terms go to quadrature points (d then holds the equations without
+/// them), the code that every kernel of M, Q, the energies and the Jacobian adds; Q then has no form F m.
+Kernels variant_kernels(const VariantKey& key, const Symbols& s, const Derivation& d, const PointCode* points = nullptr)
 {
     const PolyEquations& eq = d.eq;
     const int nq = key.nq();
@@ -375,11 +379,16 @@ Kernels variant_kernels(const VariantKey& key, const Symbols& s, const Derivatio
     Kernels out;
     JacobianPieces jac = jacobian_pieces(eq, d.v, d.c, key.drive == Drive::torque);
     out.mass_pattern = mass_pattern(eq.M, d.v.q);
+    if (points != nullptr)
+        for (int k : points->mass_entries) {
+            out.mass_pattern[static_cast<std::size_t>(k)] = 'v';
+            out.mass_pattern[static_cast<std::size_t>(k % nq * nq + k / nq)] = 'v';
+        }
     auto [mass, mass_varying] = mass_kernels(eq.M, out.mass_pattern, nq);
     out.mass_varies = !mass_varying.polys.empty();
     // Q = F m lets the runtime fold M^-1 into F once: all of M where it is constant (prescribed rotation), the
     // constant beam block where only the hub's entry varies (hub torque without axial coordinates).
-    const TermMatrix terms = term_matrix(eq.Q, d.parameter_count);
+    const TermMatrix terms = points == nullptr ? term_matrix(eq.Q, d.parameter_count) : TermMatrix{};
     out.nterms = terms.terms.size();
     const std::string nk = std::to_string(terms.terms.size());
     const std::string nu = std::to_string(nq * static_cast<int>(drive_value_count));
@@ -396,6 +405,21 @@ Kernels variant_kernels(const VariantKey& key, const Symbols& s, const Derivatio
         sparse_kernel("forces_u", "dQdu[" + nu + "]", "row-major; out[i*3+j] = dQ_i/du_j, u = " + tuple(drive_value_names),
                       std::move(jac.forces_u)),
     };
+    if (points != nullptr) {
+        const auto add = [&](KernelSpec& k, const std::string& tail) {
+            k.tail = tail;
+            k.tail_coefficients = points->coefficients;
+            k.doc += "; plus the quadrature points' terms";
+        };
+        add(out.list[0], points->mass);
+        add(mass_varying, points->mass);
+        add(out.list[1], points->forces);
+        add(out.list[4], points->energy);
+        add(out.list[5], points->momentum);
+        add(out.list[7], points->forces_q);
+        add(out.list[8], points->forces_qd);
+        if (!points->forces_u.empty()) add(out.list[9], points->forces_u);
+    }
     // The runtime folds M's constant part into F once (folded_pattern); this kernel evaluates P m with P's entries at
     // fixed places, unrolled over the entries that can be nonzero, up to a size where unrolling stops paying (the
     // runtime then walks a table of P's nonzeros).
@@ -423,6 +447,11 @@ Kernels variant_kernels(const VariantKey& key, const Symbols& s, const Derivatio
         out.list.push_back(sparse_kernel("mass_q_product", "dMv[" + n2 + "]",
                                          "row-major; v in the qd slot; out[i*" + n1 + "+k] = sum_j dM_ij/dq_k v_j",
                                          std::move(jac.mass_q_product)));
+        if (points != nullptr) {
+            out.list.back().tail = points->mass_q_product;
+            out.list.back().tail_coefficients = points->coefficients;
+            out.list.back().doc += "; plus the quadrature points' terms";
+        }
     }
     return out;
 }
@@ -467,13 +496,15 @@ std::string variant_source(const VariantKey& key, const EmitOptions& options)
 {
     const Symbols s(key);
     const Signature sig = signature(s, key);
-    const Derivation d = derive(key, s, sig);
-    Kernels kernels = variant_kernels(key, s, d);
+    const bool at_points = foreshortening_at_points(key);
+    const Derivation d = derive(key, s, sig, at_points);
+    const PointCode points = at_points ? point_code(key, s) : PointCode{};
+    Kernels kernels = variant_kernels(key, s, d, at_points ? &points : nullptr);
     const std::string name = key.name();
     const EmittedCode code = emit_kernels(name, sig, std::move(kernels.list), options);
     std::ostringstream f;
     f << banner(key, kernels.mass_varies) << "\n#include \"generated_abi.h\"\n\nnamespace hubbeam::generated {\n\nnamespace {\n"
-      << code.text << "\n}  // namespace\n\n"
+      << (at_points ? "\n" + points.tables : std::string()) << code.text << "\n}  // namespace\n\n"
       << table_row(name, key.nq(), code.ncoeff, kernels) << "\n}  // namespace hubbeam::generated\n";
     return f.str();
 }

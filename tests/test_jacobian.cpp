@@ -95,8 +95,10 @@ TEST_CASE("generated Jacobian equals central differences of the right-hand side"
     std::mt19937 rng(58);
     std::vector<std::string> names = generated_variant_names();
     REQUIRE(!names.empty());
-    // and order full, compiled on demand, where M depends on B under either drive (the mass_q_product kernel)
-    for (const char* full : {"amm_nx2_ny3_prescribed_full", "fem_nx2_ny4_torque_full", "bsim_nx3_ny4_prescribed_full"})
+    // and order full, compiled on demand, where M depends on B under either drive (the mass_q_product kernel); from
+    // Ny = 8 with its foreshortening terms at quadrature points, a tip body's at the tip
+    for (const char* full : {"amm_nx2_ny3_prescribed_full", "fem_nx2_ny4_torque_full", "bsim_nx3_ny4_prescribed_full",
+                             "amm_nx2_ny8_prescribed_full", "bsim_nx0_ny8_torque_full_tip_gravity"})
         names.emplace_back(full);
     // and the extra terms (docs/model.md section 11) under both drives, where gravity brings the angle into Q: under
     // torque through the coordinate theta (the generator's chain rule through sin and cos), prescribed through the

@@ -1,0 +1,573 @@
+// Order full's foreshortening terms at quadrature points: the rule, the tables of shape values and H(x_g), and the
+// kernels' loops, from the density's derivatives by the chain rule through the point fields.
+#include "points.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "basis/quadrature.hpp"
+#include "emit.hpp"
+#include "interface.hpp"
+
+namespace hubbeam::gen {
+
+using namespace GiNaC;
+
+namespace {
+
+/// The polynomial pieces of both fields: their common break points on [0, 1].
+std::vector<double> piece_cuts(const FieldBasis& axial, const FieldBasis& transverse)
+{
+    std::vector<double> cuts{0.0, 1.0};
+    for (const FieldBasis* f : {&axial, &transverse})
+        if (f->size() > 0)
+            for (int k = 1; k < f->intervals(); ++k) cuts.push_back(static_cast<double>(k) / f->intervals());
+    std::sort(cuts.begin(), cuts.end());
+    cuts.erase(std::unique(cuts.begin(), cuts.end(), [](double a, double b) { return b - a < 1e-14; }), cuts.end());
+    return cuts;
+}
+
+/// The point fields of the density (docs/model.md section 2): their symbols and how each depends on the state.
+/// A gradient is a list of (vector, sign): the vectors are theta (the hub's unit entry), a = Phi_x(x_g)^T (A block),
+/// p = Phi_y(x_g)^T, h = H(x_g) B and k = H(x_g) B_dot (B block); H in x units.
+struct PointField {
+    symbol sym;
+    std::vector<std::pair<std::string, int>> dq, dqd;
+    /// sum_j qd_j d2(field)/dq_j dqd: the rate of the qd-gradient along the motion.
+    std::vector<std::pair<std::string, int>> mixed;
+    ex rate;  // sum_j qd_j d(field)/dq_j: the field's time derivative at qdd = 0
+    bool rate_field = false;  // linear in qd (M's entries come from these)
+};
+
+/// The symbols the emitted loop names, with their C spellings.
+struct LoopSymbols {
+    FieldSymbols f;
+    symbol w{"w"}, w_dot{"w_dot"}, ux2_ddot{"u_x2_ddot"};
+    std::map<ex, std::string, ex_is_less> names;
+    LoopSymbols()
+    {
+        names = {{f.ux1, "f.u_x1"}, {f.ux1_dot, "f.u_x1_dot"}, {f.uy, "f.u_y"},         {f.uy_dot, "f.u_y_dot"},
+                 {f.ux2, "f.u_x2"}, {f.ux2_dot, "f.u_x2_dot"}, {ux2_ddot, "f.u_x2_ddot"}, {w, "w"},
+                 {w_dot, "w_dot"}};
+    }
+};
+
+/// A polynomial in the loop's symbols as C: "2.0*f.u_x1*f.u_x2 + f.u_x2*f.u_x2".
+std::string c_expression(const ex& e, const LoopSymbols& ls)
+{
+    const ex x = e.expand();
+    if (x.is_zero()) return "0.0";
+    std::string s;
+    for (const ex& term : is_a<add>(x) ? x : lst{x}) {
+        numeric c = 1;
+        std::string product;
+        for (const ex& factor : is_a<mul>(term) ? term : lst{term}) {
+            if (is_a<numeric>(factor)) {
+                c *= ex_to<numeric>(factor);
+                continue;
+            }
+            const ex base = is_a<power>(factor) ? factor.op(0) : factor;
+            const ex exponent = is_a<power>(factor) ? factor.op(1) : ex(1);
+            const auto it = ls.names.find(base);
+            if (it == ls.names.end() || !is_a<numeric>(exponent) || !ex_to<numeric>(exponent).is_pos_integer())
+                throw EmitError("points: cannot print a term of the density's derivatives");
+            for (int r = 0; r < ex_to<numeric>(exponent).to_int(); ++r) product += (product.empty() ? "" : "*") + it->second;
+        }
+        const bool negative = c < 0;
+        const numeric mag = negative ? -c : c;
+        std::string t = product.empty() ? c_number(mag) : mag == 1 ? product : c_number(mag) + "*" + product;
+        s += s.empty() ? (negative ? "-" + t : t) : (negative ? " - " : " + ") + t;
+    }
+    return s;
+}
+
+}  // namespace
+
+std::vector<double> coupling_at(const FieldBasis& t, double xi)
+{
+    const int n = t.size();
+    std::vector<double> H(static_cast<std::size_t>(n * n), 0.0);
+    std::vector<double> cuts;
+    int points = 0;
+    if (t.polynomial()) {
+        for (double c : piece_cuts(t, t))
+            if (c < xi) cuts.push_back(c);
+        points = t.degree();
+    } else {
+        const int panels = transcendental_panels(n);
+        for (int k = 0; k < panels && static_cast<double>(k) / panels < xi; ++k) cuts.push_back(static_cast<double>(k) / panels);
+        points = transcendental_points;
+    }
+    cuts.push_back(xi);
+    const QuadratureRule rule = composite_gauss_legendre(cuts, points);
+    std::vector<double> slope(static_cast<std::size_t>(n));
+    for (std::size_t r = 0; r < rule.nodes.size(); ++r) {
+        for (int j = 0; j < n; ++j) slope[static_cast<std::size_t>(j)] = t.at(j, rule.nodes[r]).d1;
+        for (int i = 0; i < n; ++i)
+            for (int j = 0; j < n; ++j)
+                H[static_cast<std::size_t>(i * n + j)] += rule.weights[r] * slope[static_cast<std::size_t>(i)] * slope[static_cast<std::size_t>(j)];
+    }
+    return H;
+}
+
+namespace {
+
+/// Order full's |r_dot|^2 less order first's, halved (T = 1/2 int m |r_dot|^2): every term holds u_x2 or its rate.
+ex point_density(const VariantKey& key, const LoopSymbols& ls)
+{
+    const FieldSymbols& f = ls.f;
+    ex e = ((velocity_squared(Order::full, f, ls.w) - velocity_squared(Order::first, f, ls.w)) / 2).expand();
+    if (key.nx == 0) e = e.subs(lst{f.ux1 == 0, f.ux1_dot == 0}).expand();
+    for (const symbol& other : {f.X, f.uy_x, f.uy_xx, f.ux1_x})
+        if (e.has(other)) throw std::logic_error("points: the density holds " + other.get_name());
+    return e;
+}
+
+/// The degree in xi of the density on one polynomial piece: the fields' degrees summed over its heaviest term.
+int density_degree(const ex& e, const VariantKey& key, const LoopSymbols& ls)
+{
+    const int dy = key.transverse_basis().degree(), dx = key.nx > 0 ? key.axial_basis().degree() : 0;
+    const FieldSymbols& f = ls.f;
+    const std::vector<std::pair<symbol, int>> degrees = {{f.ux1, dx}, {f.ux1_dot, dx},         {f.uy, dy},
+                                                         {f.uy_dot, dy}, {f.ux2, 2 * dy - 1}, {f.ux2_dot, 2 * dy - 1}};
+    int most = 0;
+    for (const ex& term : is_a<add>(e) ? e : lst{e}) {
+        int d = 0;
+        for (const auto& [sym, deg] : degrees) d += term.degree(sym) * deg;
+        most = std::max(most, d);
+    }
+    return most;
+}
+
+std::vector<PointField> point_fields(const VariantKey& key, const LoopSymbols& ls)
+{
+    const FieldSymbols& f = ls.f;
+    std::vector<PointField> fields;
+    if (key.drive == Drive::torque) fields.push_back({ls.w, {}, {{"theta", 1}}, {}, 0, true});
+    if (key.nx > 0) {
+        fields.push_back({f.ux1, {{"a", 1}}, {}, {}, f.ux1_dot, false});
+        fields.push_back({f.ux1_dot, {}, {{"a", 1}}, {}, 0, true});
+    }
+    fields.push_back({f.uy, {{"p", 1}}, {}, {}, f.uy_dot, false});
+    fields.push_back({f.uy_dot, {}, {{"p", 1}}, {}, 0, true});
+    // u_x2 = -1/2 B^T H B, u_x2_dot = -B^T H B_dot: d/dB = -H B, -H B_dot; d/dB_dot of the rate = -H B.
+    fields.push_back({f.ux2, {{"h", -1}}, {}, {}, f.ux2_dot, false});
+    fields.push_back({f.ux2_dot, {{"k", -1}}, {{"h", -1}}, {{"k", -1}}, ls.ux2_ddot, true});
+    return fields;
+}
+
+/// Which block of q a vector lives in, and its entry i as C.
+int block_of(const std::string& v) { return v == "theta" ? 0 : v == "a" ? 1 : 2; }
+std::string entry(const std::string& v, const std::string& i)
+{
+    if (v == "theta") return "";
+    if (v == "a") return "point_phi_x[g][" + i + "]";
+    if (v == "p") return "point_phi_y[g][" + i + "]";
+    return "f." + v + "[" + i + "]";
+}
+
+/// Whether code names the identifier (not as part of a longer name or a member).
+bool names(const std::string& code, const std::string& id)
+{
+    const auto part = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.'; };
+    for (std::size_t at = code.find(id); at != std::string::npos; at = code.find(id, at + 1)) {
+        const bool before = at > 0 && part(code[at - 1]), after = at + id.size() < code.size() && part(code[at + id.size()]);
+        if (!before && !after) return true;
+    }
+    return false;
+}
+
+/// The loop over the points around body: fields, weight, drive values as the body needs them; the vectors k and
+/// u_x2_ddot only where the body names them.
+std::string point_loop(const VariantKey& key, const std::string& body, bool tip)
+{
+    const bool vectors = body.find("f.k[") != std::string::npos || body.find("u_x2_ddot") != std::string::npos;
+    const bool torque = key.drive == Drive::torque;
+    const std::string a = std::to_string(key.first_a()), b = std::to_string(key.first_b());
+    const std::string A = key.nx > 0 ? "q + " + a : "nullptr", A_dot = key.nx > 0 ? "qd + " + a : "nullptr";
+    std::ostringstream s;
+    s << "    // Order full's foreshortening terms, summed over the quadrature points (point_fields above).\n"
+      << "    const PointVectors& HB = point_products(q + " << b << ");\n"
+      << "    for (int g = 0; g < point_count; ++g) {\n"
+      << "        PointFields f;\n"
+      << "        point_fields<" << (vectors ? "true" : "false") << ">(g, $inv_L, HB[g], " << A << ", q + " << b << ", " << A_dot
+      << ", qd + " << b << ", f);\n";
+    if (tip) s << "        const double W = g < beam_points ? $m_L * point_weight[g] : $m_tip;\n";
+    else s << "        const double W = $m_L * point_weight[g];\n";
+    if (names(body, "w"))
+        s << "        const double w = " << (torque ? std::string("qd[0]") : "u[" + std::to_string(index(DriveValue::theta_dot)) + "]") << ";\n";
+    if (names(body, "w_dot")) s << "        const double w_dot = u[" << index(DriveValue::theta_ddot) << "];\n";
+    s << body << "    }\n";
+    return s.str();
+}
+
+}  // namespace
+
+bool foreshortening_at_points(const VariantKey& key)
+{
+    // Below Ny = 8 the expanded form is the cheaper: AMM torque, instructions per right-hand side, expanded against
+    // points: 5.5 against 20 thousand at Ny = 4, 79 against 58 at Ny = 8, 2870 against 229 at Ny = 16.
+    return key.order == Order::full && key.ny >= 8 && key.extras.taper == Taper::uniform && !key.extras.profile();
+}
+
+PointRule point_rule(const VariantKey& key)
+{
+    const FieldBasis axial = key.axial_basis(), transverse = key.transverse_basis();
+    PointRule r;
+    QuadratureRule q;
+    if (transverse.polynomial() && axial.polynomial()) {
+        const LoopSymbols ls;
+        const int degree = density_degree(point_density(key, ls), key, ls);
+        q = composite_gauss_legendre(piece_cuts(axial, transverse), degree / 2 + 1);
+        r.exact = true;
+    } else {
+        // The highest modes' products oscillate about 4 b_n / (2 pi) times on [0, 1]; 4 n + 16 points reach
+        // round-off with a margin (3.5 n + 16 do, measured from n = 4 to 32).
+        q = gauss_legendre(4 * std::max(key.nx, key.ny) + 16);
+    }
+    r.xi = q.nodes;
+    r.weight = q.weights;
+    return r;
+}
+
+PointCode point_code(const VariantKey& key, const Symbols& s)
+{
+    const LoopSymbols ls;
+    const ex e = point_density(key, ls);
+    const bool torque = key.drive == Drive::torque, tip = key.extras.tip;
+    const std::vector<PointField> fields = point_fields(key, ls);
+    const PointRule rule = point_rule(key);
+    const int nq = key.nq(), nx = key.nx, ny = key.ny;
+
+    // Lagrange's equations of T_points = sum_g W_g e(fields(x_g)) by the chain rule:
+    //   M = sum e_ab dqd(a) dqd(b)^T over the rate fields,
+    //   Q = sum e_a dq(a) - D_a dqd(a) - e_a mixed(a),  D_a = sum_b e_ab rate(b) [+ de_a/dw w_dot, prescribed].
+    std::map<std::string, ex> Q;
+    std::map<std::pair<std::string, std::string>, ex> M;
+    for (const PointField& a : fields) {
+        const ex ea = e.diff(a.sym);
+        ex D = torque ? ex(0) : ea.diff(ls.w) * ls.w_dot;
+        for (const PointField& b : fields) D += ea.diff(b.sym) * b.rate;
+        for (const auto& [v, sign] : a.dq) Q[v] += sign * ea;
+        for (const auto& [v, sign] : a.dqd) Q[v] -= sign * D;
+        for (const auto& [v, sign] : a.mixed) Q[v] -= sign * ea;
+        if (!a.rate_field) continue;
+        for (const PointField& b : fields) {
+            if (!b.rate_field) continue;
+            const ex eab = ea.diff(b.sym);
+            for (const auto& [u, su] : a.dqd)
+                for (const auto& [v, sv] : b.dqd) M[{u, v}] += su * sv * eab;
+        }
+    }
+
+    PointCode code;
+    const std::string B0 = std::to_string(key.first_b()), A0 = std::to_string(key.first_a()), n = std::to_string(nq);
+    const auto offset = [&](int block) { return block == 0 ? std::string("0") : block == 1 ? A0 : B0; };
+    const auto size = [&](int block) { return block == 0 ? 1 : block == 1 ? nx : ny; };
+
+    // Q: one scalar per vector, then one loop per block.
+    {
+        std::ostringstream body, lines;
+        std::map<int, std::vector<std::string>> by_block;
+        for (const auto& [v, c] : Q) {
+            if (c.expand().is_zero()) continue;
+            lines << "        const double q_" << v << " = W * (" << c_expression(c, ls) << ");\n";
+            by_block[block_of(v)].push_back(v);
+        }
+        body << lines.str();
+        for (const auto& [block, vs] : by_block) {
+            std::string sum;
+            for (const std::string& v : vs) sum += (sum.empty() ? "" : " + ") + ("q_" + v + (v == "theta" ? "" : " * " + entry(v, "i")));
+            if (block == 0) body << "        out[0] += " << sum << ";\n";
+            else
+                body << "        for (int i = 0; i < " << size(block) << "; ++i) out[" << offset(block) << " + i] += " << sum << ";\n";
+        }
+        code.forces = point_loop(key, body.str(), tip);
+    }
+    // M: the upper triangle, one scalar per unordered pair of vectors. A diagonal block (A or B) accumulates in a
+    // local square over the points (a loop the compiler vectorizes) and adds its upper triangle at the end.
+    {
+        std::ostringstream body, before, after;
+        std::map<std::pair<int, int>, std::vector<std::pair<std::string, std::string>>> by_blocks;
+        for (const auto& [uv, c] : M) {
+            const auto& [u, v] = uv;
+            if (c.expand().is_zero() || block_of(u) > block_of(v)) continue;
+            if (block_of(u) == block_of(v) && u > v) continue;  // (v, u) carries it: same coefficient, both orders below
+            body << "        const double m_" << u << "_" << v << " = W * (" << c_expression(c, ls) << ");\n";
+            by_blocks[{block_of(u), block_of(v)}].push_back({u, v});
+        }
+        for (const auto& [blocks, pairs] : by_blocks) {
+            const auto [bu, bv] = blocks;
+            std::string sum;
+            for (const auto& [u, v] : pairs) {
+                std::string t = "m_" + u + "_" + v;
+                const auto times = [](const std::string& x) { return x.empty() ? std::string() : " * " + x; };
+                if (bu == bv && u != v)
+                    t += " * (" + entry(u, "i") + " * " + entry(v, "j") + " + " + entry(v, "i") + " * " + entry(u, "j") + ")";
+                else t += times(entry(u, "i")) + times(entry(v, "j"));
+                sum += (sum.empty() ? "" : " + ") + t;
+            }
+            for (int i = 0; i < size(bu); ++i)
+                for (int j = bu == bv ? i : 0; j < size(bv); ++j)
+                    code.mass_entries.push_back((std::stoi(offset(bu)) + i) * nq + std::stoi(offset(bv)) + j);
+            if (bu == 0 && bv == 0) {
+                body << "        out[0] += " << sum << ";\n";
+            } else if (bu == 0) {
+                body << "        for (int j = 0; j < " << size(bv) << "; ++j) out[" << offset(bv) << " + j] += " << sum << ";\n";
+            } else if (bu != bv) {
+                body << "        for (int i = 0; i < " << size(bu) << "; ++i)\n"
+                     << "            for (int j = 0; j < " << size(bv) << "; ++j) out[(" << offset(bu) << " + i) * " << n << " + "
+                     << offset(bv) << " + j] += " << sum << ";\n";
+            } else if (pairs.size() == 1 && pairs[0].first == pairs[0].second && pairs[0].first == "h" && ny % 4 == 0) {
+                // sum_g m_h_h(g) h_g h_g^T as a product of the points' vectors after the loop, a row by four
+                // columns at a time in registers: two thirds of the instructions of a rank-one update per point.
+                const std::string c = "m_h_h", nb = std::to_string(ny);
+                before << "    double h_at[point_count][NY], scaled_h_at[point_count][NY];  // h_g and " << c << "(g) h_g\n";
+                body << "        for (int i = 0; i < NY; ++i) {\n"
+                     << "            h_at[g][i] = f.h[i];\n"
+                     << "            scaled_h_at[g][i] = " << c << " * f.h[i];\n"
+                     << "        }\n";
+                after << "    for (int i = 0; i < NY; ++i)\n"
+                      << "        for (int j = i / 4 * 4; j < NY; j += 4) {\n"
+                      << "            double s[4] = {};\n"
+                      << "            for (int g = 0; g < point_count; ++g) {\n"
+                      << "                const double a = scaled_h_at[g][i];\n"
+                      << "                for (int col = 0; col < 4; ++col) s[col] += a * h_at[g][j + col];\n"
+                      << "            }\n"
+                      << "            for (int col = 0; col < 4; ++col)\n"
+                      << "                if (j + col >= i) out[(" << offset(bu) << " + i) * " << n << " + " << offset(bu)
+                      << " + j + col] += s[col];\n"
+                      << "        }\n";
+            } else {
+                const std::string name = bu == 1 ? "block_A" : "block_B", nb = std::to_string(size(bu));
+                before << "    double " << name << "[" << nb << " * " << nb << "] = {};  // this block's terms, square\n";
+                body << "        for (int i = 0; i < " << nb << "; ++i)\n"
+                     << "            for (int j = 0; j < " << nb << "; ++j) " << name << "[i * " << nb << " + j] += " << sum << ";\n";
+                after << "    for (int i = 0; i < " << nb << "; ++i)\n"
+                      << "        for (int j = i; j < " << nb << "; ++j) out[(" << offset(bu) << " + i) * " << n << " + "
+                      << offset(bu) << " + j] += " << name << "[i * " << nb << " + j];\n";
+            }
+        }
+        code.mass = before.str() + point_loop(key, body.str(), tip) + after.str();
+    }
+    // The Jacobian pieces by the chain rule once more: each output is sum c(fields) u v^T over vectors u, v, plus
+    // c_H H(x_g)/L on the B block, where a vector holds the state (dh/dB = H/L, dk/dB_dot = H/L).
+    struct Matrix {
+        std::map<std::pair<std::string, std::string>, ex> outer;
+        ex H = 0;
+    };
+    const auto through = [&](const ex& c, bool rates, const std::string& row, Matrix& out) {
+        for (const PointField& f : fields) {
+            const ex dc = c.diff(f.sym);
+            if (dc.is_zero()) continue;
+            for (const auto& [v, sign] : rates ? f.dqd : f.dq) out.outer[{row, v}] += sign * dc;
+        }
+        // u_x2_ddot = -B_dot^T H B_dot / L: its gradient in the rates is -2 k.
+        if (rates) out.outer[{row, "k"}] += -2 * c.diff(ls.ux2_ddot);
+    };
+    Matrix dQdq, dQdqd, dMv;
+    for (const auto& [v, c] : Q) {
+        through(c, false, v, dQdq);
+        through(c, true, v, dQdqd);
+        if (v == "h") dQdq.H += c;
+        if (v == "k") dQdqd.H += c;
+    }
+    // sum_j dM_ij/dq_k z_j with z in the qd slot, so that the point fields of the rates are products with z: for
+    // M = sum m_uv u v^T it is sum_uv u d(m_uv (v . z))/dq + m_uv (v . z) du/dq, where a . z = u_x1_dot, p . z = u_y_dot,
+    // h . z = -u_x2_dot (whose q-gradient -k carries dh/dq z).
+    const std::map<std::string, ex> dot = {{"theta", ls.w}, {"a", ls.f.ux1_dot}, {"p", ls.f.uy_dot}, {"h", -ls.f.ux2_dot}};
+    for (const auto& [uv, m] : M) {
+        const auto& [u, v] = uv;
+        if (m.expand().is_zero()) continue;
+        through(m * dot.at(v), false, u, dMv);
+        if (u == "h") dMv.H += m * dot.at(v);
+    }
+    const auto matrix_body = [&](const Matrix& J, const std::string& stem) {
+        std::ostringstream body;
+        std::map<std::pair<int, int>, std::string> sums;
+        for (const auto& [uv, c] : J.outer) {
+            if (c.expand().is_zero()) continue;
+            const auto& [u, v] = uv;
+            const std::string name = stem + "_" + u + "_" + v;
+            body << "        const double " << name << " = W * (" << c_expression(c, ls) << ");\n";
+            std::string t = name;
+            if (!entry(u, "i").empty()) t += " * " + entry(u, "i");
+            if (!entry(v, "j").empty()) t += " * " + entry(v, "j");
+            std::string& sum = sums[{block_of(u), block_of(v)}];
+            sum += (sum.empty() ? "" : " + ") + t;
+        }
+        for (const auto& [blocks, sum] : sums) {
+            const auto [bu, bv] = blocks;
+            const std::string row = bu == 0 ? "0" : "(" + offset(bu) + " + i) * " + n, col = bv == 0 ? "0" : offset(bv) + " + j";
+            std::string indent = "        ";
+            if (bu != 0) {
+                body << indent << "for (int i = 0; i < " << size(bu) << "; ++i)\n";
+                indent += "    ";
+            }
+            if (bv != 0) {
+                body << indent << "for (int j = 0; j < " << size(bv) << "; ++j)\n";
+                indent += "    ";
+            }
+            body << indent << "out[" << row << " + " << col << "] += " << sum << ";\n";
+        }
+        if (!J.H.expand().is_zero())
+            body << "        const double " << stem << "_H = W * (" << c_expression(J.H, ls) << ") * $inv_L;\n"
+                 << "        for (int i = 0; i < NY; ++i)\n"
+                 << "            for (int j = 0; j < NY; ++j) out[(" << B0 << " + i) * " << n << " + " << B0 << " + j] += "
+                 << stem << "_H * point_H[g][i * NY + j];\n";
+        return body.str();
+    };
+    code.forces_q = point_loop(key, matrix_body(dQdq, "dq"), tip);
+    code.forces_qd = point_loop(key, matrix_body(dQdqd, "dqd"), tip);
+    code.mass_q_product = point_loop(key, matrix_body(dMv, "dm"), tip);
+    // dQ/du: the prescribed drive's theta_dot and theta_ddot (a torque variant's point terms hold no tau).
+    if (!torque) {
+        std::ostringstream body;
+        for (const auto& [v, c] : Q)
+            for (const auto& [input, column] : {std::pair{ex(ls.w), index(DriveValue::theta_dot)}, std::pair{ex(ls.w_dot), index(DriveValue::theta_ddot)}}) {
+                const ex dc = c.diff(ex_to<symbol>(input)).expand();
+                if (dc.is_zero()) continue;
+                const std::string name = "du_" + v + "_" + std::to_string(column);
+                body << "        const double " << name << " = W * (" << c_expression(dc, ls) << ");\n";
+                if (block_of(v) == 0) body << "        out[" << column << "] += " << name << ";\n";
+                else
+                    body << "        for (int i = 0; i < " << size(block_of(v)) << "; ++i) out[(" << offset(block_of(v))
+                         << " + i) * " << drive_value_count << " + " << column << "] += " << name << " * " << entry(v, "i") << ";\n";
+            }
+        code.forces_u = point_loop(key, body.str(), tip);
+    }
+    // The energy split by degree in the rates, and the angular momentum de/dw.
+    {
+        const symbol lambda("lambda");
+        exmap scale;
+        for (const PointField& f : fields)
+            if (f.rate_field) scale[f.sym] = lambda * f.sym;
+        const ex el = e.subs(scale).expand();
+        std::ostringstream body;
+        for (int d = 2; d >= 0; --d)
+            if (!el.coeff(lambda, d).is_zero())
+                body << "        out[" << 2 - d << "] += W * (" << c_expression(el.coeff(lambda, d), ls) << ");\n";
+        code.energy = point_loop(key, body.str(), tip);
+        code.momentum = point_loop(key, "        out[0] += W * (" + c_expression(e.diff(ls.w), ls) + ");\n", tip);
+    }
+
+    // The tables: the rule's points (then the tip), shape values and H at each.
+    std::vector<double> xi = rule.xi;
+    if (tip) xi.push_back(1.0);
+    const FieldBasis axial = key.axial_basis(), transverse = key.transverse_basis();
+    std::ostringstream t;
+    t << "// Order full's foreshortening terms at " << rule.xi.size() << " Gauss-Legendre points x_g = L xi_g ("
+      << (rule.exact ? "exact for these polynomial integrands" : "converged to round-off for these modes") << ")"
+      << (tip ? ", then the tip body at xi = 1" : "") << ":\n"
+      << "// T += sum_g W_g e(fields at x_g), W_g = m L w_g" << (tip ? " (m_tip at the tip)" : "")
+      << ", e = 1/2 (|r_dot|^2 of order full - of order first).\n"
+      << (nx > 0 ? "constexpr int NX = " + std::to_string(nx) + ";\n" : std::string()) << "constexpr int NY = " << ny << ";\n"
+      << "constexpr int beam_points = " << rule.xi.size() << ", point_count = " << xi.size() << ";\n";
+    const auto row = [](const std::vector<double>& v) {
+        std::string r;
+        for (std::size_t i = 0; i < v.size(); ++i) r += (i ? ", " : "") + c_number(numeric(v[i]));
+        return r;
+    };
+    t << "constexpr double point_weight[beam_points] = {" << row(rule.weight) << "};\n";
+    if (nx > 0) {
+        t << "constexpr double point_phi_x[point_count][NX] = {\n";
+        for (double x : xi) {
+            std::vector<double> v;
+            for (int i = 0; i < nx; ++i) v.push_back(axial.at(i, x).v);
+            t << "    {" << row(v) << "},\n";
+        }
+        t << "};\n";
+    }
+    t << "constexpr double point_phi_y[point_count][NY] = {\n";
+    for (double x : xi) {
+        std::vector<double> v;
+        for (int j = 0; j < ny; ++j) v.push_back(transverse.at(j, x).v);
+        t << "    {" << row(v) << "},\n";
+    }
+    t << "};\n// H_xi(xi_g) = int_0^xi_g Phi_y'^T Phi_y' dxi, row-major.\nconstexpr double point_H[point_count][NY * NY] = {\n";
+    for (double x : xi) t << "    {" << row(coupling_at(transverse, x)) << "},\n";
+    t << "};\n\n"
+      << "using PointVectors = double[point_count][NY];\n\n"
+      << "/// H_xi(x_g) B at every point, for the last B this thread asked for: the mass and the forces of one right-hand\n"
+      << "/// side are evaluated at the same B and share these G Ny^2 products.\n"
+      << "const PointVectors& point_products(const double* B)\n{\n"
+      << "    thread_local double last[NY];\n"
+      << "    thread_local PointVectors products;\n"
+      << "    thread_local bool valid = false;\n"
+      << "    bool same = valid;\n"
+      << "    for (int i = 0; i < NY; ++i) same = same && B[i] == last[i];\n"
+      << "    if (same) return products;\n"
+      << "    double b[NY];\n"
+      << "    for (int i = 0; i < NY; ++i) b[i] = last[i] = B[i];\n"
+      << "    for (int g = 0; g < point_count; ++g) {\n"
+      << "        const double* H = point_H[g];\n";
+    // Four entries at a time over H's rows (H is symmetric), in registers, the sum over j unrolled (GCC and Clang
+    // read the pragma): copies of B and fixed-length inner loops keep them free of aliasing, so that the compiler
+    // vectorizes them at -O2; the loop's own instructions would cost half as much again.
+    const int blocked = ny / 4 * 4;
+    const auto rows = [&](const std::string& indent, const std::string& from, const std::string& to, const std::string& width,
+                          const std::string& vector, const std::string& out) {
+        t << indent << "for (int i = " << from << "; i < " << to << "; i += " << width << ") {\n"
+          << indent << "    double sum[" << width << "] = {};\n"
+          << "#pragma GCC unroll 32\n"
+          << indent << "    for (int j = 0; j < NY; ++j)\n"
+          << indent << "        for (int r = 0; r < " << width << "; ++r) sum[r] += H[j * NY + i + r] * " << vector << "[j];\n"
+          << indent << "    for (int r = 0; r < " << width << "; ++r) " << out << "[i + r] = sum[r];\n"
+          << indent << "}\n";
+    };
+    if (blocked > 0) rows("        ", "0", std::to_string(blocked), "4", "b", "products[g]");
+    if (blocked < ny) rows("        ", std::to_string(blocked), "NY", "1", "b", "products[g]");
+    t << "    }\n    valid = true;\n    return products;\n}\n\n"
+      << "/// The fields at point g (docs/model.md section 2): u_x1, u_y, u_x2 = -1/2 B^T H B and their rates, with\n"
+      << "/// h = H B (from HB = H_xi(x_g) B) and (vectors) k = H B_dot and u_x2_ddot = -B_dot^T H B_dot, the rate of u_x2_dot\n"
+      << "/// at B_ddot = 0; H in x units (H_xi / L).\n"
+      << "struct PointFields {\n    double u_x1 = 0.0, u_x1_dot = 0.0, u_y = 0.0, u_y_dot = 0.0, u_x2 = 0.0, u_x2_dot = 0.0, "
+         "u_x2_ddot = 0.0;\n    double h[NY], k[NY];\n};\n"
+      << "template <bool vectors>\n"
+      << "void point_fields(int g, double inv_L, const double* HB, const double* A, const double* B, const double* A_dot,\n"
+      << "                  const double* B_dot, PointFields& f)\n{\n";
+    if (nx > 0)
+      t << "    for (int i = 0; i < NX; ++i) {\n"
+        << "        f.u_x1 += point_phi_x[g][i] * A[i];\n"
+        << "        f.u_x1_dot += point_phi_x[g][i] * A_dot[i];\n    }\n";
+    else t << "    (void)A;\n    (void)A_dot;\n";
+    t << "    double b[NY], b_dot[NY], k[NY];\n"
+      << "    for (int i = 0; i < NY; ++i) {\n"
+      << "        b[i] = B[i];\n"
+      << "        b_dot[i] = B_dot[i];\n"
+      << "    }\n"
+      << "    if constexpr (vectors) {\n"
+      << "        const double* H = point_H[g];\n";
+    if (blocked > 0) rows("        ", "0", std::to_string(blocked), "4", "b_dot", "k");
+    if (blocked < ny) rows("        ", std::to_string(blocked), "NY", "1", "b_dot", "k");
+    t << "    }\n"
+      << "    double u_y = 0.0, u_y_dot = 0.0, u_x2 = 0.0, u_x2_dot = 0.0, u_x2_ddot = 0.0;\n"
+      << "    for (int i = 0; i < NY; ++i) {\n"
+      << "        u_y += point_phi_y[g][i] * b[i];\n"
+      << "        u_y_dot += point_phi_y[g][i] * b_dot[i];\n"
+      << "        u_x2 += b[i] * HB[i];\n"
+      << "        u_x2_dot += b_dot[i] * HB[i];\n"
+      << "        f.h[i] = HB[i] * inv_L;\n"
+      << "    }\n"
+      << "    if constexpr (vectors)\n"
+      << "        for (int i = 0; i < NY; ++i) {\n"
+      << "            u_x2_ddot += b_dot[i] * k[i];\n"
+      << "            f.k[i] = k[i] * inv_L;\n"
+      << "        }\n"
+      << "    f.u_y = u_y;\n"
+      << "    f.u_y_dot = u_y_dot;\n"
+      << "    f.u_x2 = -0.5 * u_x2 * inv_L;\n"
+      << "    f.u_x2_dot = -u_x2_dot * inv_L;\n"
+      << "    f.u_x2_ddot = -u_x2_ddot * inv_L;\n"
+      << "}\n";
+    code.tables = t.str();
+    code.coefficients = {{"$m_L", s.m * s.L}, {"$inv_L", 1 / s.L}};
+    if (tip) code.coefficients.emplace_back("$m_tip", s.m_tip);
+    return code;
+}
+
+}  // namespace hubbeam::gen
