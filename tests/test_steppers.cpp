@@ -92,7 +92,7 @@ TEST_CASE("the automatic choice is the candidate that does less work", "[stepper
         int nx, ny;
         Motion motion;
     };
-    const Point grid[] = {{Method::amm, 0, 4, spin_up(4.0)},
+    const Point grid[] = {{Method::amm, 0, 4, torque(1.0)},
                           {Method::amm, 4, 4, spin_up(4.0)},
                           {Method::fem, 0, 4, torque(1.0)},
                           {Method::amm, 4, 4, torque(1.0)}};
