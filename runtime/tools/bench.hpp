@@ -21,7 +21,7 @@ struct BenchArgs {
     std::string methods = "amm,fem,bim,bsim";
     std::string ny = "4,8";
     std::string nx;  // empty: the scene's
-    std::string steppers = "rk8pd,rk4imp,msadams";
+    std::string steppers = "rk8pd,gauss4,msadams";
     std::string rtols = "1e-6,1e-8,1e-10";
     std::string repeats = "3";
     std::string ref_ny = "12";

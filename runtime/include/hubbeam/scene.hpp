@@ -24,7 +24,7 @@ bool parse(std::string_view, ErrorCheck&);
 template <> std::vector<std::string> words<ErrorCheck>();
 
 struct SolverOptions {
-    std::string stepper = automatic_stepper_word;  // a GSL odeiv2 step type name (integrate.hpp), or automatic
+    std::string stepper = automatic_stepper_word;  // a name from stepper_names() (integrate.hpp), or automatic
     double rtol = 1e-8;
     double atol = 1e-10;
     double h0 = 1e-4;  // first trial step (s)

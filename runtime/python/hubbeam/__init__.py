@@ -196,7 +196,7 @@ def run(scene: Any, *, check: bool = False, torque: Any = None, **keys: Any) -> 
 def modes(scene: Any, omega: Any = 0.0, **keys: Any) -> dict[str, Any]:
     """Every natural mode of the scene's variant linearized about a steady spin at each rate of omega (rad/s):
     equal-length arrays omega, mode, kind, rad_s, hz, dimensionless, growth, undamped_rad_s, damping_ratio (zero
-    without damping), and the variant's name."""
+    without damping), and the variant's name; the closed loop's with [control]."""
     text, name = _source(scene)
     out = _core_call(_core.modes, text, name, _overrides(keys),
                      _rates(omega, "spin rates >= 0 (rad/s): a number or a list"))
@@ -206,7 +206,8 @@ def modes(scene: Any, omega: Any = 0.0, **keys: Any) -> dict[str, Any]:
 
 def linearize(scene: Any, omega: float, **keys: Any) -> dict[str, Any]:
     """x' = A x + B v, y = C x + D v about the steady spin omega (rad/s): A, B, C, D as arrays and the names of
-    the states, inputs and outputs (docs/python.md "Modes and linearized models")."""
+    the states, inputs and outputs (docs/python.md "Modes and linearized models"); with [control] the closed loop,
+    and the open loop under "open"."""
     text, name = _source(scene)
     if np.ndim(omega) != 0:
         raise ValueError(f"omega: expected a spin rate >= 0 (rad/s), got {printable(repr(omega), 120)}")
