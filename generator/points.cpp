@@ -473,22 +473,19 @@ PointCode point_code(const VariantKey& key, const Symbols& s)
         return r;
     };
     t << "constexpr double point_weight[beam_points] = {" << row(rule.weight) << "};\n";
-    if (nx > 0) {
-        t << "constexpr double point_phi_x[point_count][NX] = {\n";
+    // A basis's values at every point, as the table `name`[point_count][count].
+    const auto shape_table = [&](const char* name, const char* count, const auto& basis, int n) {
+        t << "constexpr double " << name << "[point_count][" << count << "] = {\n";
         for (double x : xi) {
             std::vector<double> v;
-            for (int i = 0; i < nx; ++i) v.push_back(axial.at(i, x).v);
+            for (int i = 0; i < n; ++i) v.push_back(basis.at(i, x).v);
             t << "    {" << row(v) << "},\n";
         }
         t << "};\n";
-    }
-    t << "constexpr double point_phi_y[point_count][NY] = {\n";
-    for (double x : xi) {
-        std::vector<double> v;
-        for (int j = 0; j < ny; ++j) v.push_back(transverse.at(j, x).v);
-        t << "    {" << row(v) << "},\n";
-    }
-    t << "};\n// H_xi(xi_g) = int_0^xi_g Phi_y'^T Phi_y' dxi, row-major.\nconstexpr double point_H[point_count][NY * NY] = {\n";
+    };
+    if (nx > 0) shape_table("point_phi_x", "NX", axial, nx);
+    shape_table("point_phi_y", "NY", transverse, ny);
+    t << "// H_xi(xi_g) = int_0^xi_g Phi_y'^T Phi_y' dxi, row-major.\nconstexpr double point_H[point_count][NY * NY] = {\n";
     for (double x : xi) t << "    {" << row(coupling_at(transverse, x)) << "},\n";
     t << "};\n\n"
       << "using PointVectors = double[point_count][NY];\n\n"
