@@ -327,6 +327,7 @@ private:
 
     RunSummary finish(std::string failure);
     std::string untrustworthy();
+    std::string check_stepper(CheckTolerance tol) const;
     std::string tolerance_as_cause(const std::string& failure);
 
     const Simulation& sim_;
@@ -653,6 +654,12 @@ RunSummary Simulation::Run::finish(std::string failure)
     return summary_;
 }
 
+/// The stepper of the checks' re-runs: the automatic choice at their tolerance.
+std::string Simulation::Run::check_stepper(CheckTolerance tol) const
+{
+    return automatic_stepper(model_, scene_.axial, tol.rtol, scene_.output.t_end, system_.auxiliary_count()).stepper;
+}
+
 /// For a run that reached t_end: why its rows cannot be trusted (empty if they can), from the invariant monitor
 /// and the error indicator; both find the tolerance too loose.
 std::string Simulation::Run::untrustworthy()
@@ -675,14 +682,14 @@ std::string Simulation::Run::untrustworthy()
     summary_.check_rtol = tol.rtol;
     summary_.check_atol = tol.atol;
     // The start window from rest: an error made at once (a fast mode excited by a loose tolerance) stays.
-    auto [measured, column] = window_error(scene_, model_, start_window_, peak_, tol, automatic_stepper(model_, scene_.axial, tol.rtol, scene_.output.t_end).stepper);
+    auto [measured, column] = window_error(scene_, model_, start_window_, peak_, tol, check_stepper(tol));
     const CheckWindow* where = &start_window_;
     double error = measured;
     if (measured >= 0.0 && !end_window_.rows.empty()) {
         // The error made in the last window, times the square root of the windows the run holds: the windows'
         // errors add up as independent ones would (a linear sum overstates the atol-sized noise of a coordinate
         // near zero eightfold in cases/torque_tau1.toml); a mode that the stepper amplifies shows in the window.
-        const auto [end_measured, end_column] = window_error(scene_, model_, end_window_, peak_, tol, automatic_stepper(model_, scene_.axial, tol.rtol, scene_.output.t_end).stepper);
+        const auto [end_measured, end_column] = window_error(scene_, model_, end_window_, peak_, tol, check_stepper(tol));
         const double t1 = end_window_.rows.back().t;
         const double scaled = end_measured < 0.0 ? -1.0 : end_measured * std::sqrt(t1 / (t1 - end_window_.t0));
         if (scaled < 0.0 || scaled > error) error = scaled, measured = end_measured, column = end_column, where = &end_window_;
@@ -719,7 +726,7 @@ std::string Simulation::Run::tolerance_as_cause(const std::string& failure)
     if (times.empty()) return failure;
     summary_.check_rtol = tol.rtol;
     summary_.check_atol = tol.atol;
-    const std::vector<Row> again = rerun(scene_, model_, 0.0, start_window_.y0, times, tol, automatic_stepper(model_, scene_.axial, tol.rtol, scene_.output.t_end).stepper);  // the run's start
+    const std::vector<Row> again = rerun(scene_, model_, 0.0, start_window_.y0, times, tol, check_stepper(tol));  // the run's start
     if (again.size() < times.size()) return failure;  // the model fails there at the tighter tolerance too
     // What happened, without the clauses that blame the model.
     std::string what = failure.substr(0, std::min({failure.find(" ("), failure.find("; "), failure.find(", above")}));
@@ -730,13 +737,21 @@ std::string Simulation::Run::tolerance_as_cause(const std::string& failure)
     return "untrustworthy: the run's error, not the model, stopped it (" + what + text;
 }
 
+namespace {
+
+/// The auxiliary states a run of scene carries (FirstOrderSystem::Auxiliary).
+int auxiliary_count(const Scene& scene) { return Auxiliary::of(scene.key(), scene.controller(), &scene.parameters).count(); }
+
+}  // namespace
+
 Simulation::Simulation(const Scene& scene, const std::function<void(const std::string&)>& note) : scene_(scene)
 {
     model_ = make_model(scene.key(), scene.parameters, scene.source, note);
     check_error_ = scene.solver.error_check == ErrorCheck::on;
     stepper_ = scene.solver.stepper;
     if (stepper_ == automatic_stepper_word) {
-        const StepperChoice choice = automatic_stepper(*model_, scene.axial, scene.solver.rtol, scene.output.t_end);
+        const StepperChoice choice = automatic_stepper(*model_, scene.axial, scene.solver.rtol, scene.output.t_end,
+                                                       auxiliary_count(scene));
         stepper_ = choice.stepper;
         stepper_why_ = choice.why;
     }
@@ -747,7 +762,8 @@ Simulation::~Simulation() = default;
 std::string Simulation::faster_stepper_hint() const
 {
     if (!stepper_why_.empty()) return {};  // chosen automatically already
-    const StepperChoice choice = automatic_stepper(*model_, scene_.axial, scene_.solver.rtol, scene_.output.t_end);
+    const StepperChoice choice = automatic_stepper(*model_, scene_.axial, scene_.solver.rtol, scene_.output.t_end,
+                                                   auxiliary_count(scene_));
     if (choice.stepper == stepper_) return {};
     return "--stepper " + choice.stepper + " suits this scene (" + choice.why.substr(choice.why.find(' ') + 1) + ")";
 }

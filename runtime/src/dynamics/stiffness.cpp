@@ -88,7 +88,7 @@ bool stable_at(const Model& model, double omega)
     const int n = model.nq(), first = model.key().first_a();
     HubInput u;
     std::vector<double> q(static_cast<std::size_t>(n), 0.0), qd(q);
-    if (model.key().drive == Drive::torque) qd[0] = omega;
+    if (model.key().drive == Drive::torque && model.key().method != Method::amm) qd[0] = omega;
     else u.theta_dot = omega;
     const int m = n - first;
     const Eigen::MatrixXd K = stiffness(model, u, q, qd).bottomRightCorner(m, m);
@@ -137,35 +137,45 @@ double lowest_frequency(const Model& model, Axial axial)
     return 0.0;
 }
 
-StepperCosts predicted_costs(const Model& model, Axial axial, double rtol, double t_end)
+StepperCosts predicted_costs(const Model& model, Axial axial, double rtol, double t_end, int auxiliary)
 {
     StepperCosts c;
     c.omega_max = highest_rate(model, axial);
     c.omega_1 = lowest_frequency(model, axial);
     const double m = 2.0 * static_cast<double>(kept_coordinates(model.key(), axial).size());
     // Steps: rk8pd's the more of accuracy (order 8: h omega_1 = 0.077 at rtol 1e-8, the paper's spin-up with AMM at
-    // Ny = 4) and stability (h omega_max = 3.1: stability_step_factor); gauss4's accuracy alone (order 4: h omega_1 =
-    // 0.073 at rtol 1e-8, same scene), times 2 for the stiff modes its step doubling sees excited: the median over
-    // the four methods at Ny 4 to 16, Nx 0 and Ny, both paper drives, rtol 1e-8 (AMM's smooth modes 1 to 1.9, BSIM's
-    // and FEM's 1.8 under the spin-up; FEM's 5 to 8 under the paper's torque, where rk8pd can be chosen wrongly).
+    // Ny = 4) and stability (h omega_max = 3.1: stability_step_factor). gauss4's what accuracy needs (order 4:
+    // h omega_1 = 0.073 at rtol 1e-8, same scene), twice that for the stiff modes its step doubling sees excited
+    // under a prescribed rotation, which starts and ends smoothly (AMM 1 to 1.9 times, BSIM and FEM 1.8, the four
+    // methods at Ny 4 to 16, Nx 0 and Ny, rtol 1e-8). A hub torque excites the highest bending modes of FEM, BIM and
+    // BSIM, modes of the discretization, and gauss4 must then resolve them as an explicit step must (at Nx = 0 it
+    // took 0.3 to 1.6 times rk8pd's steps); AMM's are the cantilever's own modes, whose response to the hub falls off
+    // fast (Ny = 16: 3984 steps against rk8pd's 19194), and the axial modes, which the torque reaches only through
+    // the centrifugal coupling, stay quiet in every method.
     const double scale = rtol / 1e-8;
     const double accuracy8 = t_end * c.omega_1 / (0.077 * std::pow(scale, 1.0 / 8.0));
     const double stability8 = t_end * c.omega_max / stability_step_factor("rk8pd");
     c.steps_rk8pd = std::max(accuracy8, stability8);
     c.stability_bound = stability8 > accuracy8;
     c.steps_gauss4 = 2.0 * t_end * c.omega_1 / (0.073 * std::pow(scale, 1.0 / 5.0));
+    if (model.key().drive == Drive::torque && model.key().method != Method::amm)
+        c.steps_gauss4 = std::max(c.steps_gauss4, t_end * highest_frequency(model, Axial::quasi_static) /
+                                                      stability_step_factor("rk8pd"));
     // Cost per step in flops, with a right-hand side of about 4 m^2 (the folded or dense products over m states):
-    // rk8pd's 13 evaluations; gauss4's 21 evaluations, 10 solves with the factored 2m x 2m Newton matrices and, every
-    // third step, their two factorizations (2 x 2/3 (2m)^3).
+    // rk8pd's 13 evaluations; gauss4's about 15 evaluations and 10 solves with its factored Newton matrices, and
+    // every fourth step their two factorizations (2 x 2/3 n^3), n = m where the Newton systems condense to the
+    // velocities (no auxiliary states), else 2m (measured on the paper's spin-up: 14.7 evaluations, a Jacobian
+    // every 5.3 steps).
     const double rhs = 4.0 * m * m;
+    const double n = auxiliary == 0 ? m : 2.0 * (m + auxiliary);
     c.rk8pd = c.steps_rk8pd * 13.0 * rhs;
-    c.gauss4 = c.steps_gauss4 * (21.0 * rhs + 10.0 * 2.0 * (2.0 * m) * (2.0 * m) + (2.0 * 2.0 / 3.0 * std::pow(2.0 * m, 3.0)) / 3.0);
+    c.gauss4 = c.steps_gauss4 * (15.0 * rhs + 10.0 * 2.0 * n * n + (2.0 * 2.0 / 3.0 * n * n * n) / 4.0);
     return c;
 }
 
-StepperChoice automatic_stepper(const Model& model, Axial axial, double rtol, double t_end)
+StepperChoice automatic_stepper(const Model& model, Axial axial, double rtol, double t_end, int auxiliary)
 {
-    const StepperCosts c = predicted_costs(model, axial, rtol, t_end);
+    const StepperCosts c = predicted_costs(model, axial, rtol, t_end, auxiliary);
     // Below rtol 1e-9 gauss4's step doubling compares results that agree to round-off in the stiff coordinates, and
     // its steps collapse (the paper's scenes with axial coordinates at rtol 1e-10, atol 1e-12): rk8pd, whatever it
     // costs.

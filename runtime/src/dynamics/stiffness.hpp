@@ -24,14 +24,15 @@ double highest_rate(const Model& model, Axial axial);
 double lowest_frequency(const Model& model, Axial axial);
 
 /// The predicted work of the automatic choice's candidates over a run of t_end s at rtol: steps from the stiffness,
-/// the tolerance and each method's order, times flops per step from the number of states.
+/// the tolerance and each method's order, times flops per step from the number of states (auxiliary: those beside
+/// q and qd, FirstOrderSystem::Auxiliary).
 struct StepperCosts {
     double omega_max = 0.0, omega_1 = 0.0;   // highest_rate, lowest_frequency
     double steps_rk8pd = 0.0, steps_gauss4 = 0.0;
     bool stability_bound = false;             // rk8pd's steps set by omega_max, not accuracy
     double rk8pd = 0.0, gauss4 = 0.0;         // flops
 };
-StepperCosts predicted_costs(const Model& model, Axial axial, double rtol, double t_end);
+StepperCosts predicted_costs(const Model& model, Axial axial, double rtol, double t_end, int auxiliary = 0);
 
 struct StepperChoice {
     std::string stepper;  // rk8pd or gauss4
@@ -44,7 +45,7 @@ inline constexpr double gauss4_tightest_rtol = 1e-9;
 /// The candidate of the lower predicted cost (predicted_costs): rk8pd, explicit, where the steps accuracy needs
 /// are not much shorter than stability allows; gauss4, implicit, where stiff modes (axial coordinates, fine FEM and
 /// B-spline meshes) would hold an explicit step far below what accuracy needs.
-StepperChoice automatic_stepper(const Model& model, Axial axial, double rtol, double t_end);
+StepperChoice automatic_stepper(const Model& model, Axial axial, double rtol, double t_end, int auxiliary = 0);
 
 /// The lowest hub rate (rad/s, up to 1000) at which the equations linearized about the straight beam lose
 /// stability: the effective stiffness -dQ/dq at q = qd = 0, steady spin, stops being positive definite (the
