@@ -88,7 +88,7 @@ bool stable_at(const Model& model, double omega)
     const int n = model.nq(), first = model.key().first_a();
     HubInput u;
     std::vector<double> q(static_cast<std::size_t>(n), 0.0), qd(q);
-    if (model.key().drive == Drive::torque && model.key().method != Method::amm) qd[0] = omega;
+    if (model.key().drive == Drive::torque) qd[0] = omega;
     else u.theta_dot = omega;
     const int m = n - first;
     const Eigen::MatrixXd K = stiffness(model, u, q, qd).bottomRightCorner(m, m);
