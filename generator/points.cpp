@@ -56,15 +56,17 @@ struct LoopSymbols {
     }
 };
 
-/// A polynomial in the loop's symbols as C: "2.0*f.u_x1*f.u_x2 + f.u_x2*f.u_x2".
+/// A polynomial in the loop's symbols as C: "2.0*f.u_x1*f.u_x2 + f.u_x2*f.u_x2". Factors and terms are sorted by
+/// their C text, so that the output does not depend on GiNaC's order of terms (its symbols' creation order), and the
+/// same variant is emitted byte for byte alike by every run.
 std::string c_expression(const ex& e, const LoopSymbols& ls)
 {
     const ex x = e.expand();
     if (x.is_zero()) return "0.0";
-    std::string s;
+    std::vector<std::pair<std::string, numeric>> terms;  // the product of named factors, its coefficient
     for (const ex& term : is_a<add>(x) ? x : lst{x}) {
         numeric c = 1;
-        std::string product;
+        std::vector<std::string> factors;
         for (const ex& factor : is_a<mul>(term) ? term : lst{term}) {
             if (is_a<numeric>(factor)) {
                 c *= ex_to<numeric>(factor);
@@ -75,8 +77,16 @@ std::string c_expression(const ex& e, const LoopSymbols& ls)
             const auto it = ls.names.find(base);
             if (it == ls.names.end() || !is_a<numeric>(exponent) || !ex_to<numeric>(exponent).is_pos_integer())
                 throw EmitError("points: cannot print a term of the density's derivatives");
-            for (int r = 0; r < ex_to<numeric>(exponent).to_int(); ++r) product += (product.empty() ? "" : "*") + it->second;
+            for (int r = 0; r < ex_to<numeric>(exponent).to_int(); ++r) factors.push_back(it->second);
         }
+        std::sort(factors.begin(), factors.end());
+        std::string product;
+        for (const std::string& f : factors) product += (product.empty() ? "" : "*") + f;
+        terms.emplace_back(product, c);
+    }
+    std::sort(terms.begin(), terms.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::string s;
+    for (const auto& [product, c] : terms) {
         const bool negative = c < 0;
         const numeric mag = negative ? -c : c;
         std::string t = product.empty() ? c_number(mag) : mag == 1 ? product : c_number(mag) + "*" + product;
@@ -516,8 +526,12 @@ PointCode point_code(const VariantKey& key, const Symbols& s)
           << indent << "    for (int r = 0; r < " << width << "; ++r) " << out << "[i + r] = sum[r];\n"
           << indent << "}\n";
     };
-    if (blocked > 0) rows("        ", "0", std::to_string(blocked), "4", "b", "products[g]");
-    if (blocked < ny) rows("        ", std::to_string(blocked), "NY", "1", "b", "products[g]");
+    // H times vector into out: four rows at a time, then the rest one by one.
+    const auto product = [&](const std::string& vector, const std::string& out) {
+        if (blocked > 0) rows("        ", "0", std::to_string(blocked), "4", vector, out);
+        if (blocked < ny) rows("        ", std::to_string(blocked), "NY", "1", vector, out);
+    };
+    product("b", "products[g]");
     t << "    }\n    valid = true;\n    return products;\n}\n\n"
       << "/// The fields at point g (docs/model.md section 2): u_x1, u_y, u_x2 = -1/2 B^T H B and their rates, with\n"
       << "/// h = H B (from HB = H_xi(x_g) B) and (vectors) k = H B_dot and u_x2_ddot = -B_dot^T H B_dot, the rate of u_x2_dot\n"
@@ -539,8 +553,7 @@ PointCode point_code(const VariantKey& key, const Symbols& s)
       << "    }\n"
       << "    if constexpr (vectors) {\n"
       << "        const double* H = point_H[g];\n";
-    if (blocked > 0) rows("        ", "0", std::to_string(blocked), "4", "b_dot", "k");
-    if (blocked < ny) rows("        ", std::to_string(blocked), "NY", "1", "b_dot", "k");
+    product("b_dot", "k");
     t << "    }\n"
       << "    double u_y = 0.0, u_y_dot = 0.0, u_x2 = 0.0, u_x2_dot = 0.0, u_x2_ddot = 0.0;\n"
       << "    for (int i = 0; i < NY; ++i) {\n"
