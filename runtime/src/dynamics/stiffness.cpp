@@ -176,9 +176,9 @@ StepperCosts predicted_costs(const Model& model, Axial axial, double rtol, doubl
 StepperChoice automatic_stepper(const Model& model, Axial axial, double rtol, double t_end, int auxiliary)
 {
     const StepperCosts c = predicted_costs(model, axial, rtol, t_end, auxiliary);
-    // Below rtol 1e-9 gauss4's step doubling compares results that agree to round-off in the stiff coordinates, and
-    // its steps collapse (the paper's scenes with axial coordinates at rtol 1e-10, atol 1e-12): rk8pd, whatever it
-    // costs.
+    // Below rtol 1e-10 gauss4's step doubling compares results that agree to round-off, amplified by cond(M) under a
+    // hub torque (2.5e5 for the paper's FEM beam with axial coordinates: its steps collapse at rtol 1e-11): rk8pd,
+    // whatever it costs.
     const bool implicit = c.gauss4 < c.rk8pd && rtol >= gauss4_tightest_rtol;
     char why[320];
     if (c.gauss4 < c.rk8pd && !implicit) {

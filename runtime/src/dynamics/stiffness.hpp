@@ -40,7 +40,7 @@ struct StepperChoice {
 };
 
 /// The tightest rtol at which the automatic choice takes gauss4.
-inline constexpr double gauss4_tightest_rtol = 1e-9;
+inline constexpr double gauss4_tightest_rtol = 1e-10;
 
 /// The candidate of the lower predicted cost (predicted_costs): rk8pd, explicit, where the steps accuracy needs
 /// are not much shorter than stability allows; gauss4, implicit, where stiff modes (axial coordinates, fine FEM and
