@@ -276,10 +276,6 @@ std::pair<double, double Row::*> window_error(const Scene& scene, const Model& m
     return worst;
 }
 
-}  // namespace
-
-namespace {
-
 /// The state at rest: the free hub at its initial angle (q[0], the first state: kept_coordinates keeps it first).
 std::vector<double> initial_state(const FirstOrderSystem& system, const Model& model, const Scene& scene)
 {

@@ -21,30 +21,37 @@ Eigen::MatrixXd stiffness(const Model& model, const HubInput& u, const std::vect
     return -force_q_jacobian(model, u, q, qd);
 }
 
+/// M at rest (symmetric: row- or column-major alike).
+Eigen::MatrixXd mass_at_rest(const Model& model)
+{
+    const std::vector<double> zero(static_cast<std::size_t>(model.nq()), 0.0);
+    Eigen::MatrixXd M(model.nq(), model.nq());
+    model.mass(HubInput{}, zero.data(), M.data());
+    return M;
+}
+
+/// omega^2 of K x = omega^2 M x at rest, no spin, ascending, with K = -dQ/dq symmetrized, the integrated
+/// coordinates only (with quasi-static axial coordinates their rows and columns are left out); empty when M is not
+/// positive definite.
+Eigen::VectorXd squared_frequencies(const Model& model, Axial axial)
+{
+    const std::vector<double> zero(static_cast<std::size_t>(model.nq()), 0.0);
+    const std::vector<int> kept = kept_coordinates(model.key(), axial);
+    const Eigen::MatrixXd K = stiffness(model, HubInput{}, zero, zero)(kept, kept);
+    const Eigen::MatrixXd M = mass_at_rest(model)(kept, kept);
+    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(0.5 * (K + K.transpose()), M,
+                                                                           Eigen::EigenvaluesOnly);
+    if (solver.info() != Eigen::Success) return {};
+    return solver.eigenvalues();
+}
+
 }  // namespace
 
 double highest_frequency(const Model& model, Axial axial)
 {
-    const int n = model.nq();
-    const VariantKey& key = model.key();
-    const HubInput rest;
-    const std::vector<double> zero(static_cast<std::size_t>(n), 0.0);
-    Eigen::MatrixXd M(n, n);
-    model.mass(rest, zero.data(), M.data());  // symmetric, so row- or column-major alike
-    const Eigen::MatrixXd K = stiffness(model, rest, zero, zero);
-    // The integrated coordinates only.
-    const std::vector<int> kept = kept_coordinates(key, axial);
-    const auto m = static_cast<Eigen::Index>(kept.size());
-    Eigen::MatrixXd Mk(m, m), Kk(m, m);
-    for (Eigen::Index i = 0; i < m; ++i)
-        for (Eigen::Index j = 0; j < m; ++j) {
-            Mk(i, j) = M(kept[static_cast<std::size_t>(i)], kept[static_cast<std::size_t>(j)]);
-            Kk(i, j) = 0.5 * (K(kept[static_cast<std::size_t>(i)], kept[static_cast<std::size_t>(j)]) +
-                              K(kept[static_cast<std::size_t>(j)], kept[static_cast<std::size_t>(i)]));
-        }
-    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(Kk, Mk, Eigen::EigenvaluesOnly);
-    if (solver.info() != Eigen::Success) return INFINITY;  // M not positive definite: treat as stiff
-    return std::sqrt(std::max(0.0, solver.eigenvalues().maxCoeff()));
+    const Eigen::VectorXd w2 = squared_frequencies(model, axial);
+    if (w2.size() == 0) return INFINITY;  // M not positive definite: treat as stiff
+    return std::sqrt(std::max(0.0, w2.maxCoeff()));
 }
 
 double highest_rate(const Model& model, Axial axial)
@@ -60,16 +67,7 @@ double highest_rate(const Model& model, Axial axial)
     // about beta omega^2, which bound an explicit step as a frequency does.
     const std::vector<int> kept = kept_coordinates(model.key(), axial);
     const auto m = static_cast<Eigen::Index>(kept.size());
-    Eigen::MatrixXd M(n, n), Mk(m, m), Kq(m, m), Kqd(m, m);
-    model.mass(rest, zero.data(), M.data());
-    for (Eigen::Index i = 0; i < m; ++i)
-        for (Eigen::Index j = 0; j < m; ++j) {
-            const auto a = static_cast<Eigen::Index>(kept[static_cast<std::size_t>(i)]);
-            const auto b = static_cast<Eigen::Index>(kept[static_cast<std::size_t>(j)]);
-            Mk(i, j) = M(a, b);
-            Kq(i, j) = J.q(a, b);
-            Kqd(i, j) = J.qd(a, b);
-        }
+    const Eigen::MatrixXd Mk = mass_at_rest(model)(kept, kept), Kq = J.q(kept, kept), Kqd = J.qd(kept, kept);
     const Eigen::LDLT<Eigen::MatrixXd> solve(Mk);
     Eigen::MatrixXd A = Eigen::MatrixXd::Zero(2 * m, 2 * m);
     A.topRightCorner(m, m).setIdentity();
@@ -112,28 +110,10 @@ double critical_spin(const Model& model)
 
 double lowest_frequency(const Model& model, Axial axial)
 {
-    const int n = model.nq();
-    const HubInput rest;
-    const std::vector<double> zero(static_cast<std::size_t>(n), 0.0);
-    Eigen::MatrixXd M(n, n);
-    model.mass(rest, zero.data(), M.data());
-    const Eigen::MatrixXd K = stiffness(model, rest, zero, zero);
-    const std::vector<int> kept = kept_coordinates(model.key(), axial);
-    const auto m = static_cast<Eigen::Index>(kept.size());
-    Eigen::MatrixXd Mk(m, m), Kk(m, m);
-    for (Eigen::Index i = 0; i < m; ++i)
-        for (Eigen::Index j = 0; j < m; ++j) {
-            const auto a = static_cast<Eigen::Index>(kept[static_cast<std::size_t>(i)]);
-            const auto b = static_cast<Eigen::Index>(kept[static_cast<std::size_t>(j)]);
-            Mk(i, j) = M(a, b);
-            Kk(i, j) = 0.5 * (K(a, b) + K(b, a));
-        }
-    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(Kk, Mk, Eigen::EigenvaluesOnly);
-    if (solver.info() != Eigen::Success) return 0.0;
+    const Eigen::VectorXd w2 = squared_frequencies(model, axial);
     // The hub angle under torque is a rigid mode (zero frequency): the lowest vibration is the first above it.
-    const double largest = solver.eigenvalues().maxCoeff();
-    for (Eigen::Index i = 0; i < m; ++i)
-        if (solver.eigenvalues()[i] > 1e-9 * largest) return std::sqrt(solver.eigenvalues()[i]);
+    for (const double v : w2)
+        if (v > 1e-9 * w2.maxCoeff()) return std::sqrt(v);
     return 0.0;
 }
 
@@ -197,11 +177,7 @@ StepperChoice automatic_stepper(const Model& model, Axial axial, double rtol, do
 
 double mass_condition(const Model& model)
 {
-    const int n = model.nq();
-    const std::vector<double> zero(static_cast<std::size_t>(n), 0.0);
-    Eigen::MatrixXd M(n, n);
-    model.mass(HubInput{}, zero.data(), M.data());
-    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(M, Eigen::EigenvaluesOnly);
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(mass_at_rest(model), Eigen::EigenvaluesOnly);
     const double lo = eig.eigenvalues().minCoeff(), hi = eig.eigenvalues().maxCoeff();
     return lo > 0.0 ? hi / lo : INFINITY;
 }
