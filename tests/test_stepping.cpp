@@ -165,9 +165,9 @@ TEST_CASE("every right-hand-side strategy solves M qdd = Q", "[stepping][strateg
             REQUIRE(model->term_forces() != nullptr);
             const TermForces& terms = *model->term_forces();
             const Eigen::MatrixXd W = folded_forces(*model, terms, rest);
-            FoldedKernel kernel(*model, *model->folded_kernel(), W);
+            Folded kernel(*model, terms, model->folded_kernel(), W);
             FoldedDense dense(*model, terms, W);
-            FoldedSparse sparse(*model, terms, W);
+            Folded sparse(*model, terms, nullptr, W);
             check_against_dense(kernel, *model, 1);
             check_against_dense(dense, *model, 2);
             check_against_dense(sparse, *model, 3);
@@ -255,8 +255,11 @@ TEST_CASE("the factory picks the strategy from the model's structure", "[steppin
         return std::shared_ptr<RightHandSide>(make_right_hand_side(*model, motion, axial).release());
     };
     // The paper's spin-up, with and without axial coordinates: the generated kernel holds W's structural nonzeros.
-    CHECK(dynamic_cast<FoldedKernel*>(picks(key_of(Method::amm, 4, 4, Drive::prescribed), spin, Axial::dynamic, ModelSource::generated).get()));
-    CHECK(dynamic_cast<FoldedKernel*>(picks(key_of(Method::amm, 0, 4, Drive::prescribed), spin, Axial::dynamic, ModelSource::generated).get()));
+    for (const int nx : {4, 0}) {
+        const auto folded = picks(key_of(Method::amm, nx, 4, Drive::prescribed), spin, Axial::dynamic, ModelSource::generated);
+        CHECK(dynamic_cast<Folded*>(folded.get()));
+        CHECK(folded->describe().find("by the generated kernel") != std::string::npos);
+    }
     // A free hub: M varies in the hub's row only (its entry, and with axial coordinates its couplings).
     CHECK(dynamic_cast<HubSchur*>(picks(key_of(Method::bim, 0, 4, Drive::torque), torque, Axial::dynamic, ModelSource::generated).get()));
     CHECK(dynamic_cast<HubSchur*>(picks(key_of(Method::amm, 4, 4, Drive::torque), torque, Axial::dynamic, ModelSource::generated).get()));
@@ -299,7 +302,7 @@ TEST_CASE("every generated folded kernel reads every entry of the folded product
                 const Eigen::VectorXd scale = W.cwiseAbs() * m.cwiseAbs();
                 for (int i = 0; i < n; ++i) CHECK(std::abs(y_kernel[i] - y_walk[i]) <= 1e-13 * scale[i]);
             }
-            FoldedKernel folded(*model, *model->folded_kernel(), W);
+            Folded folded(*model, terms, model->folded_kernel(), W);
             check_against_dense(folded, *model, 8);
         } else {
             HubSchur hub(*model, terms, HubInput{});

@@ -158,22 +158,22 @@ const TermForces& terms_of(const Model& model)
 
 }  // namespace
 
-FoldedKernel::FoldedKernel(const Model& model, const FoldedForceKernel& kernel, const Eigen::MatrixXd& W)
-    : Accelerations(model), product_(terms_of(model), &kernel, W), columns_(W.cols())
+Folded::Folded(const Model& model, const TermForces& terms, const FoldedForceKernel* kernel, const Eigen::MatrixXd& W)
+    : Accelerations(model), product_(terms, kernel, W), columns_(W.cols()), offered_(kernel != nullptr)
 {
 }
 
-int FoldedKernel::accelerations(const HubInput& u, const double* q, const double* qd, double* qdd)
+int Folded::accelerations(const HubInput& u, const double* q, const double* qd, double* qdd)
 {
     product_.apply(u, q, qd, qdd);
     return GSL_SUCCESS;
 }
 
-std::string FoldedKernel::describe() const
+std::string Folded::describe() const
 {
+    const char* how = !offered_ ? "" : product_.by_kernel() ? ", by the generated kernel" : ", by rows: the kernel disagreed";
     return "M^-1 folded into the forces once (" + std::to_string(n_) + " x " + std::to_string(columns_) + ", " +
-           std::to_string(product_.nonzeros()) +
-           (product_.by_kernel() ? " nonzeros, by the generated kernel)" : " nonzeros, by rows: the kernel disagreed)");
+           std::to_string(product_.nonzeros()) + " nonzeros" + how + ")";
 }
 
 int FoldedDense::accelerations(const HubInput& u, const double* q, const double* qd, double* qdd)
@@ -186,23 +186,6 @@ int FoldedDense::accelerations(const HubInput& u, const double* q, const double*
 std::string FoldedDense::describe() const
 {
     return "M^-1 folded into the forces once (" + std::to_string(n_) + " x " + std::to_string(W_.cols()) + ", dense)";
-}
-
-FoldedSparse::FoldedSparse(const Model& model, const TermForces& terms, const Eigen::MatrixXd& W)
-    : Accelerations(model), product_(terms, nullptr, W), columns_(W.cols())
-{
-}
-
-int FoldedSparse::accelerations(const HubInput& u, const double* q, const double* qd, double* qdd)
-{
-    product_.apply(u, q, qd, qdd);
-    return GSL_SUCCESS;
-}
-
-std::string FoldedSparse::describe() const
-{
-    return "M^-1 folded into the forces once (" + std::to_string(n_) + " x " + std::to_string(columns_) + ", " +
-           std::to_string(product_.nonzeros()) + " nonzeros)";
 }
 
 HubSchur::HubSchur(const Model& model, const TermForces& terms, const HubInput& u0) : Accelerations(model), M_(n_, n_)
@@ -408,9 +391,9 @@ std::unique_ptr<RightHandSide> make_right_hand_side(const Model& model, const Mo
         // kernel reads W's structural nonzeros only, else by rows when that skips most of W.
         const long nnz = nonzeros(W);
         if (nnz <= forces_nonzeros() + dense_solve) {
-            if (const FoldedForceKernel* kernel = model.folded_kernel())
-                return std::make_unique<FoldedKernel>(model, *kernel, W);
-            if (2 * nnz < static_cast<long>(n) * K) return std::make_unique<FoldedSparse>(model, *terms, W);
+            const FoldedForceKernel* kernel = model.folded_kernel();
+            if (kernel != nullptr || 2 * nnz < static_cast<long>(n) * K)
+                return std::make_unique<Folded>(model, *terms, kernel, W);
             return std::make_unique<FoldedDense>(model, *terms, std::move(W));
         }
     }

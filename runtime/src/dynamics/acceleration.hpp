@@ -86,16 +86,21 @@ private:
     std::vector<double> value_, m_;
 };
 
-/// Constant M, qdd = W m by the generated kernel with W's entries at fixed places (model.folded_kernel()).
-class FoldedKernel final : public Accelerations {
+/// Constant M, qdd = W m by FoldedProduct: the generated kernel with W's entries at fixed places where the model has
+/// one (model.folded_kernel()), else the walk over W's nonzeros stored by rows, where W is mostly zeros (the prescribed
+/// M's axial and transverse blocks keep W block-structured).
+class Folded final : public Accelerations {
 public:
-    FoldedKernel(const Model& model, const FoldedForceKernel& kernel, const Eigen::MatrixXd& W);
+    /// kernel: the model's folded kernel, or nullptr for the walk.
+    Folded(const Model& model, const TermForces& terms, const FoldedForceKernel* kernel, const Eigen::MatrixXd& W);
     int accelerations(const HubInput& u, const double* q, const double* qd, double* qdd) override;
     std::string describe() const override;
+    bool by_kernel() const { return product_.by_kernel(); }
 
 private:
     FoldedProduct product_;
     Eigen::Index columns_;
+    bool offered_;  // a kernel was given (by_kernel() false then: it disagreed with the walk)
 };
 
 /// Constant M, qdd = W m with W dense: one pass of multiply-adds.
@@ -112,19 +117,6 @@ private:
     const TermForces& terms_;
     Eigen::MatrixXd W_;
     Eigen::VectorXd m_;
-};
-
-/// Constant M, qdd = W m with W stored by rows where it is mostly zeros (the prescribed M's axial and transverse
-/// blocks keep W block-structured): the walk of FoldedProduct.
-class FoldedSparse final : public Accelerations {
-public:
-    FoldedSparse(const Model& model, const TermForces& terms, const Eigen::MatrixXd& W);
-    int accelerations(const HubInput& u, const double* q, const double* qd, double* qdd) override;
-    std::string describe() const override;
-
-private:
-    FoldedProduct product_;
-    Eigen::Index columns_;
 };
 
 /// Hub torque where M's varying entries all lie in the hub's row (m00(q), and with axial coordinates the couplings
