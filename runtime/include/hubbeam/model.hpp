@@ -58,6 +58,26 @@ public:
     virtual void mass_q_product(const HubInput& u, const double* q, const double* v, double* dMv) const = 0;
 };
 
+/// The derivatives of M, Q and the tip with respect to one physical parameter p_k (Param), the state and the drive
+/// held fixed: what forward sensitivity equations add to the state's (docs/sensitivities.md).
+class ParameterDerivatives {
+public:
+    virtual ~ParameterDerivatives() = default;
+    /// dM/dp_k at q, nq x nq row-major, both triangles.
+    virtual void mass_p(Param k, const HubInput& u, const double* q, double* dM) const = 0;
+    /// dQ/dp_k at (u, q, qd).
+    virtual void forces_p(Param k, const HubInput& u, const double* q, const double* qd, double* dQ) const = 0;
+    /// d(tip)/dp_k at fixed q (a shape function's scale may hold L).
+    virtual Tip tip_p(Param k, const double* q) const = 0;
+    /// dF/dp_k of the term form Q = F m (nq x K row-major, free of the state, so once per run), for a model whose
+    /// term_forces() is not null; false when this implementation has no such form.
+    virtual bool term_matrix_p(Param k, double* dF) const
+    {
+        (void)k, (void)dF;
+        return false;
+    }
+};
+
 /// The one interface the integrator sees. What only some models can do (the term form of Q, a folded kernel, exact
 /// Jacobians) is reached through an accessor that returns nullptr when the model cannot: a caller cannot call it
 /// without asking first.
@@ -96,6 +116,9 @@ public:
 
     /// The exact derivatives of M and Q (generated kernels), or nullptr: the integrator then differences Q.
     virtual const ExactJacobian* jacobian() const { return nullptr; }
+    /// The exact derivatives of M, Q and the tip with respect to the physical parameters (generated kernels), or
+    /// nullptr: a caller then differences models built at perturbed parameters.
+    virtual const ParameterDerivatives* parameter_derivatives() const { return nullptr; }
 
     /// dQ/dtheta of a prescribed variant with gravity, where the angle u.theta is an input (the time derivative of
     /// the implicit steppers' Jacobian gains dQ/dtheta theta_dot); zeros for every other variant.
