@@ -503,6 +503,79 @@ std::string print_coefficients(const std::string& prefix, const Signature& sig, 
     return text.str();
 }
 
+/// The p entries an input reads and, for each, the C text of d(input)/d(p entry): an input's read is "p[i]" or a
+/// product "p[i] * p[j]" (m = rho S), so its derivative by one factor is the product of the others ("1" alone).
+std::vector<std::pair<int, std::string>> read_derivatives(const std::string& read)
+{
+    std::vector<std::string> factors;
+    for (std::size_t at = 0; at <= read.size();) {
+        const std::size_t star = read.find(" * ", at);
+        factors.push_back(read.substr(at, star == std::string::npos ? std::string::npos : star - at));
+        if (star == std::string::npos) break;
+        at = star + 3;
+    }
+    std::vector<std::pair<int, std::string>> out;
+    for (std::size_t f = 0; f < factors.size(); ++f) {
+        const std::string& r = factors[f];
+        if (r.size() < 4 || r.compare(0, 2, "p[") != 0 || r.back() != ']')
+            throw EmitError("emit: cannot differentiate the parameter read " + read);
+        std::string rest;
+        for (std::size_t g = 0; g < factors.size(); ++g)
+            if (g != f) {
+                if (!rest.empty()) rest += '*';
+                rest += factors[g];
+            }
+        out.emplace_back(std::stoi(r.substr(2, r.size() - 3)), rest);
+    }
+    return out;
+}
+
+/// The coefficients' derivatives by the parameters, dc/dp, from the pool's entries (sums of number * parameter
+/// monomial) by the chain rule through the inputs' reads; written by p entry then c entry, nonzero entries only.
+std::string print_coefficients_p(const std::string& prefix, const Signature& sig, const CoefficientPool& pool)
+{
+    const Array& p = sig.parameters;
+    const std::vector<std::string>& names = pool.parameter_names();
+    const std::size_t nc = pool.texts().size();
+    // (p entry, c entry) -> terms number * text
+    std::map<std::pair<int, std::size_t>, std::vector<std::pair<numeric, std::string>>> terms;
+    std::vector<bool> used(names.size());
+    for (std::size_t i = 0; i < nc; ++i)
+        for (const auto& [pe, number] : pool.entries()[i])
+            for (std::size_t j = 0; j < pe.size(); ++j) {
+                if (pe[j] == 0) continue;
+                std::vector<int> e = pe;
+                --e[j];
+                for (std::size_t l = 0; l < e.size(); ++l) used[l] = used[l] || e[l] != 0;
+                const std::string num = product(e, names, true), den = product(e, names, false);
+                for (const auto& [k, d] : read_derivatives(sig.parameter_inputs[j].read)) {
+                    std::string mono = num;
+                    if (!d.empty()) mono = mono.empty() ? d : mono + "*" + d;
+                    if (!den.empty()) mono = (mono.empty() ? "1.0" : mono) + "/(" + den + ")";
+                    terms[{k, i}].emplace_back(number * pe[j], mono);
+                }
+            }
+    std::ostringstream text;
+    text << "\n/* coefficients_p:(" << p.name << "[" << p.size << "])->(dcdp[" << p.size << "*" << nc
+         << "]) out[k*" << nc << " + i] = dc_i/dp_k, by the chain rule on the coefficients above; nonzero entries "
+         << "only */\n";
+    text << "void " << prefix << "_coefficients_p(const double* " << p.name << ", double* out)\n{\n";
+    bool reads_p = false;
+    for (std::size_t j = 0; j < names.size(); ++j)
+        if (used[j]) {
+            text << "    const double " << names[j] << " = " << sig.parameter_inputs[j].read << ";\n";
+            reads_p = true;
+        }
+    for (const auto& [at, parts] : terms) {
+        for (const auto& part : parts) reads_p = reads_p || part.second.find(p.name + "[") != std::string::npos;
+        text << "    out[" << static_cast<std::size_t>(at.first) * nc + at.second << "] = " << signed_sum(parts) << ";\n";
+    }
+    if (!reads_p) text << "    (void)" << p.name << ";\n";
+    if (terms.empty()) text << "    (void)out;\n";
+    text << "}\n";
+    return text.str();
+}
+
 /// A kernel's body with its tail before the closing brace, the tail's placeholders replaced by pool entries.
 std::string with_tail(std::string body, const KernelSpec& k, const PolyReader& read, CoefficientPool& pool)
 {
@@ -576,6 +649,11 @@ EmittedCode emit_kernels(const std::string& prefix, const Signature& sig, std::v
                                   (options.form == Form::automatic &&
                                    coefficient_terms > static_cast<std::size_t>(options.table_threshold)));
     text << print_coefficients(prefix, sig, pool, coefficient_tables);
+    // Every kernel printed from polynomials reads each term's coefficient as one c[k] (or a pure number): it is
+    // affine in c, so its derivative by p_k is itself at c = dc/dp_k less itself at c = 0. Hand-written tails
+    // (order full's quadrature points) multiply coefficients: they have no such derivative.
+    code.affine = std::none_of(kernels.begin(), kernels.end(), [](const KernelSpec& k) { return !k.tail.empty(); });
+    if (code.affine) text << print_coefficients_p(prefix, sig, pool);
     for (std::size_t i = 0; i < kernels.size(); ++i) {
         text << "\n/* " << kernels[i].name << ":(c[" << pool.texts().size() << "]";
         for (const Array& a : sig.state) text << "," << a.name << "[" << a.size << "]";

@@ -53,6 +53,7 @@ struct KernelSpec {
 struct EmittedCode {
     std::string text;  // function definitions
     int ncoeff = 0;
+    bool affine = true;  // every kernel is affine in c: a coefficients_p kernel (dc/dp) was emitted
     bool constant(const std::string& kernel) const;  // the kernel's outputs depend on no variable
     std::vector<std::string> constant_kernels;
 };

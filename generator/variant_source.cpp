@@ -459,7 +459,7 @@ Kernels variant_kernels(const VariantKey& key, const Symbols& s, const Derivatio
 /// The variant's table row: designated initializers in the order of generated_abi.h's fields (C++20 requires
 /// that order), so that a field renamed, removed or moved there makes the generated source fail to compile
 /// instead of shifting every later pointer.
-std::string table_row(const std::string& name, int nq, int ncoeff, const Kernels& k)
+std::string table_row(const std::string& name, int nq, int ncoeff, bool affine, const Kernels& k)
 {
     const auto kernel = [&](const char* kernel) { return name + "_" + kernel; };
     const auto optional = [&](bool present, const char* kernel) { return present ? name + "_" + kernel : std::string("nullptr"); };
@@ -471,6 +471,7 @@ std::string table_row(const std::string& name, int nq, int ncoeff, const Kernels
         {"nterms", std::to_string(k.nterms)},
         {"mass_pattern", "\"" + k.mass_pattern + "\""},
         {"coefficients", kernel("coefficients")},
+        {"coefficients_p", optional(affine, "coefficients_p")},
         {"mass", kernel("mass")},
         {"mass_varying", optional(k.mass_varies, "mass_varying")},
         {"forces", kernel("forces")},
@@ -505,7 +506,7 @@ std::string variant_source(const VariantKey& key, const EmitOptions& options)
     std::ostringstream f;
     f << banner(key, kernels.mass_varies) << "\n#include \"generated_abi.h\"\n\nnamespace hubbeam::generated {\n\nnamespace {\n"
       << (at_points ? "\n" + points.tables : std::string()) << code.text << "\n}  // namespace\n\n"
-      << table_row(name, key.nq(), code.ncoeff, kernels) << "\n}  // namespace hubbeam::generated\n";
+      << table_row(name, key.nq(), code.ncoeff, code.affine, kernels) << "\n}  // namespace hubbeam::generated\n";
     return f.str();
 }
 

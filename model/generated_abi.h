@@ -7,7 +7,7 @@ namespace hubbeam::generated {
 /* The version of this interface. Every table row starts with the version of the generator that wrote it, and a
  * loader refuses a row of any other version before calling one of its kernels (an on-demand object outlives the
  * generator that made it). Raise it with any change to Variant, Kernel or CoefficientsKernel below. */
-inline constexpr int abi_version = 3;
+inline constexpr int abi_version = 4;
 
 /* out = f(c, u, q, qd). c: the variant's coefficients (from its coefficients kernel, once per parameter set);
  * u: the drive, indexed by DriveValue of model/interface.hpp (a torque variant reads tau, a prescribed variant
@@ -25,6 +25,11 @@ struct Variant {
     int nterms;               /* K, the number of state monomials of Q (forces_terms) */
     const char* mass_pattern; /* nq*nq characters, row-major: '0' zero, 'c' constant, 'v' depends on q */
     CoefficientsKernel coefficients;
+    CoefficientsKernel coefficients_p; /* dcdp[np*ncoeff] = dc/dp, out[k*ncoeff + i] = dc_i/dp_k over the np entries of
+                                        * p the variant reads; nonzero entries only. Every other kernel except
+                                        * forces_folded is affine in c, so its derivative by p_k is itself at
+                                        * c = dc/dp_k less itself at c = 0. A null pointer where a kernel is not
+                                        * (order full's sums over quadrature points) */
     Kernel mass;              /* M[nq*nq] = d2T/dqd2, symmetric: writes the upper triangle's nonzero entries only */
     Kernel mass_varying;      /* as mass, the 'v' entries only; a null pointer when M is constant */
     Kernel forces;            /* Q[nq]: tau e_theta + dT/dq - d(dT/dqd)/dt|_(qdd=0) - dU/dq */

@@ -15,13 +15,25 @@ namespace hubbeam {
 
 namespace {
 
-class GeneratedModel final : public Model, TermForces, FoldedForceKernel, ExactJacobian {
+class GeneratedModel final : public Model, TermForces, FoldedForceKernel, ExactJacobian, ParameterDerivatives {
 public:
     GeneratedModel(const VariantKey& key, const generated::Variant& v, const Parameters& p)
         : Model(key), v_(v), c_(static_cast<std::size_t>(v.ncoeff)), pattern_(v.mass_pattern),
           gravity_(key.extras.gravity), torque_(key.drive == Drive::torque)
     {
-        v_.coefficients(p.packed().data(), c_.data());
+        const std::vector<double> packed = p.packed();
+        v_.coefficients(packed.data(), c_.data());
+        if (v_.coefficients_p != nullptr) {
+            // The entries of p the variant reads (generator/variant_source.cpp, read_parameter_names): the paper's
+            // seven, or all with extra terms; the derivatives by the named ones are kept.
+            const std::size_t read = key.extras.any() ? packed.size() : paper_param_count;
+            std::vector<double> all(read * c_.size());
+            v_.coefficients_p(packed.data(), all.data());
+            dcdp_.assign(param_count * c_.size(), 0.0);
+            std::copy_n(all.begin(), std::min(read, param_count) * c_.size(), dcdp_.begin());
+            zero_c_.assign(c_.size(), 0.0);
+            scratch_.resize(static_cast<std::size_t>(v.nq) * std::max(v.nq, std::max(v.nterms, 3)));
+        }
         // The kernels write M's upper triangle: these lower entries are mirrored from it.
         const int n = v.nq;
         for (int i = 0; i < n; ++i)
@@ -54,6 +66,49 @@ public:
     }
     const FoldedForceKernel* folded_kernel() const override { return v_.forces_folded != nullptr ? this : nullptr; }
     const ExactJacobian* jacobian() const override { return this; }
+    const ParameterDerivatives* parameter_derivatives() const override { return dcdp_.empty() ? nullptr : this; }
+
+    // Each kernel is affine in c (generated_abi.h): its derivative by p_k is itself at c = dc/dp_k less itself at 0.
+    void mass_p(Param k, const HubInput& u, const double* q, double* dM) const override
+    {
+        const int n = nq() * nq();
+        std::fill_n(dM, n, 0.0);
+        std::fill_n(scratch_.data(), n, 0.0);
+        const std::array<double, kernel_input_count> in{u.tau, u.theta_dot, u.theta_ddot, 0.0, 0.0};
+        v_.mass(dc(k), in.data(), q, q, dM);
+        v_.mass(zero_c_.data(), in.data(), q, q, scratch_.data());
+        for (int i = 0; i < n; ++i) dM[i] -= scratch_[static_cast<std::size_t>(i)];
+        for (const auto& [upper, lower] : mirrored_) dM[lower] = dM[upper];
+    }
+    void forces_p(Param k, const HubInput& u, const double* q, const double* qd, double* dQ) const override
+    {
+        const std::array<double, kernel_input_count> in = inputs(u, q);
+        std::fill_n(dQ, nq(), 0.0);
+        std::fill_n(scratch_.data(), nq(), 0.0);
+        v_.forces(dc(k), in.data(), q, qd, dQ);
+        v_.forces(zero_c_.data(), in.data(), q, qd, scratch_.data());
+        for (int i = 0; i < nq(); ++i) dQ[i] -= scratch_[static_cast<std::size_t>(i)];
+    }
+    Tip tip_p(Param k, const double* q) const override
+    {
+        double t[3] = {}, t0[3] = {};
+        const std::array<double, kernel_input_count> in{};
+        v_.tip(dc(k), in.data(), q, q, t);
+        v_.tip(zero_c_.data(), in.data(), q, q, t0);
+        return {t[0] - t0[0], t[1] - t0[1], t[2] - t0[2]};
+    }
+    bool term_matrix_p(Param k, double* dF) const override
+    {
+        if (term_forces() == nullptr) return false;
+        const int n = nq() * v_.nterms;
+        std::fill_n(dF, n, 0.0);
+        std::fill_n(scratch_.data(), n, 0.0);
+        const std::array<double, kernel_input_count> in{};
+        v_.forces_matrix(dc(k), in.data(), nullptr, nullptr, dF);
+        v_.forces_matrix(zero_c_.data(), in.data(), nullptr, nullptr, scratch_.data());
+        for (int i = 0; i < n; ++i) dF[i] -= scratch_[static_cast<std::size_t>(i)];
+        return true;
+    }
 
     int term_count() const override { return v_.nterms; }
     void terms(const HubInput& u, const double* q, const double* qd, double* m) const override
@@ -156,8 +211,12 @@ private:
         return k;
     }
 
+    const double* dc(Param k) const { return dcdp_.data() + index(k) * c_.size(); }
+
     const generated::Variant& v_;
     std::vector<double> c_;
+    std::vector<double> dcdp_, zero_c_;  // dc/dp by Param, param_count x ncoeff (empty without coefficients_p); 0
+    mutable std::vector<double> scratch_;  // a kernel's part free of c, subtracted
     std::string pattern_;
     std::vector<std::pair<int, int>> mirrored_, mirrored_varying_;  // (upper, lower) entry pairs of M
     bool gravity_, torque_;
