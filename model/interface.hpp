@@ -72,6 +72,15 @@ struct Parameters {
     }
 };
 
+/// The value of parameter k in p (a reference into it): what a caller that moves one parameter changes.
+inline double& value(Parameters& p, Param k)
+{
+    double* const members[] = {&p.L, &p.rho, &p.S, &p.I, &p.E, &p.a, &p.J_oh,
+                               &p.m_tip, &p.J_tip, &p.g, &p.alpha, &p.beta, &p.tip_ratio};
+    static_assert(sizeof members / sizeof members[0] == param_count);
+    return *members[index(k)];
+}
+
 /// The drive at one instant. theta is the prescribed angle, read only by a prescribed variant with gravity (a
 /// torque variant's angle is its coordinate q[0]).
 struct HubInput {

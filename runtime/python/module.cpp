@@ -178,7 +178,7 @@ py::dict run(const std::string& text, const std::string& name, const Overrides& 
         // The integration touches no Python object: other Python threads run meanwhile.
         const py::gil_scoped_release release;
         rows.reserve(width * static_cast<std::size_t>(std::min(1e7, scene.output.t_end / scene.output.dt_out + 2.0)));
-        s = simulation->run([&rows, columns](const Row& r) {
+        s = simulation->run([&rows, &columns](const Row& r) {
             for_each_value(r, columns, [&rows](double v) { rows.push_back(v); });
         }, stop);
     }

@@ -103,13 +103,17 @@ class FirstOrderSystem {
 public:
     FirstOrderSystem(const Model& model, const Motion& motion, Axial axial = Axial::dynamic,
                      const Control* control = nullptr, const Parameters* parameters = nullptr);
-    ~FirstOrderSystem();
+    virtual ~FirstOrderSystem();
     FirstOrderSystem(const FirstOrderSystem&) = delete;
     FirstOrderSystem& operator=(const FirstOrderSystem&) = delete;
 
-    int size() const { return 2 * static_cast<int>(kept_.size()) + aux_.count(); }
-    /// The auxiliary states' count: they are the last entries of y.
-    int auxiliary_count() const { return aux_.count(); }
+    /// The length of y: the state's (state_size), and in a system that carries more (sensitivity.hpp) those too.
+    virtual int size() const { return state_size(); }
+    /// The model's states: the kept coordinates, their rates and the auxiliary states.
+    int state_size() const { return 2 * static_cast<int>(kept_.size()) + aux_.count(); }
+    /// The entries of y after the positions and rates (the auxiliary states, and whatever a derived system adds):
+    /// they are the last entries of y.
+    virtual int auxiliary_count() const { return aux_.count(); }
     const Auxiliary& auxiliary() const { return aux_; }
     /// Where an auxiliary state sits in y (-1 when absent).
     int integral_index() const { return integral_; }
@@ -122,11 +126,11 @@ public:
     /// with quasi-static ones, A solved from the axial equations and A_dot = 0.
     void full_state(double t, const double* y, double* q, double* qd);
     /// GSL status: GSL_SUCCESS, or GSL_EBADFUNC when M is not positive definite or the result is not finite.
-    int rhs(double t, const double* y, double* dydt);
+    virtual int rhs(double t, const double* y, double* dydt);
     /// Jacobian for the implicit steppers (row-major, as GSL wants): dfdy (size x size) and dfdt (size) from the
     /// model's exact derivatives when it has them (with the control's dtau/dy through dQ/dtau), else
     /// finite_difference_jacobian.
-    int jacobian(double t, const double* y, double* dfdy, double* dfdt);
+    virtual int jacobian(double t, const double* y, double* dfdy, double* dfdt);
     /// Central differences of rhs: the fallback for models without derivatives, and the tests' oracle.
     int finite_difference_jacobian(double t, const double* y, double* dfdy, double* dfdt);
     /// Evaluations of rhs, including those a finite-difference Jacobian makes.
@@ -139,6 +143,11 @@ public:
     /// The tip deflection u_y(L) of the last state at which M was found not positive definite (NaN if none): a
     /// failed step's cause, since GSL reports only that the function failed.
     double indefinite_mass_tip() const;
+
+protected:
+    /// A derived system's y is longer: GSL's drivers are told so.
+    void set_dimension(int size) { sys_.dimension = static_cast<std::size_t>(size); }
+    const Control* control() const { return control_; }
 
 private:
     struct Work;

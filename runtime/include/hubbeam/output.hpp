@@ -103,7 +103,7 @@ private:
 std::string csv_field(std::string_view text);
 
 /// One CSV line of row (no newline), columns as in row_header(columns): the text CsvWriter writes for it.
-std::string csv_line(const Row& row, ColumnSet columns = {});
+std::string csv_line(const Row& row, const ColumnSet& columns = {});
 
 /// Short multi-line summary of a run for the terminal: scene, variant and whether generated or assembled,
 /// stepper and tolerances, max |tip_uy|, steps, RHS evaluations, wall time and, if the run stopped early,

@@ -2,6 +2,8 @@
 // command-line overrides applied to the file's keys before anything is checked.
 #pragma once
 
+#include <array>
+#include <initializer_list>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -36,11 +38,17 @@ struct SolverOptions {
 /// The most rows a run may write (t_end / dt_out): 10^8 rows is about 20 GB of CSV.
 inline constexpr long max_output_rows = 100'000'000;
 
+/// The control gains a sensitivity can be taken by (beside the physical parameters, Param): [control]'s keys.
+inline constexpr std::array<const char*, 4> gain_names = {"kp", "kd", "ki", "k_tip"};
+
 struct OutputOptions {
     double t_end = 30.0;   // s
     double dt_out = 0.01;  // s; rows fall on exact multiples of dt_out
     std::string file;      // CSV path; empty: derived from the scene name by the command line (a file or an
                            // override cannot set it empty, nor put a NUL in it)
+    /// Parameters whose derivatives the run integrates and writes (docs/sensitivities.md): symbols of Param
+    /// (interface.hpp) and the control gains kp, kd, ki, k_tip; empty: none.
+    std::vector<std::string> sensitivities;
 };
 
 struct Scene {
@@ -65,9 +73,16 @@ struct Scene {
     {
         VariantKey k = variant;
         k.drive = drive();
-        k.extras.tip = parameters.m_tip != 0.0 || parameters.J_tip != 0.0;
-        k.extras.gravity = parameters.g != 0.0;
-        k.extras.damping = parameters.alpha != 0.0 || parameters.beta != 0.0;
+        // A sensitivity to a term's value needs the term, even at zero (where it reproduces the scene).
+        const auto wants = [this](std::initializer_list<const char*> names) {
+            for (const std::string& s : output.sensitivities)
+                for (const char* n : names)
+                    if (s == n) return true;
+            return false;
+        };
+        k.extras.tip = parameters.m_tip != 0.0 || parameters.J_tip != 0.0 || wants({"m_tip", "J_tip"});
+        k.extras.gravity = parameters.g != 0.0 || wants({"g"});
+        k.extras.damping = parameters.alpha != 0.0 || parameters.beta != 0.0 || wants({"alpha", "beta"});
         return k;
     }
 };

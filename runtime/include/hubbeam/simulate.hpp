@@ -22,6 +22,8 @@ struct RowExtras {
 struct Row {
     double t, theta, theta_dot, tip_uy, tip_ux1, tip_ux, kinetic, potential, momentum, jacobi;
     RowExtras extras{};
+    /// A sensitivity run's derivative columns (ColumnSet::derived names them), valid while the sink runs; else null.
+    const double* derived = nullptr;
 };
 
 /// One column of the output: its name in the CSV header and the Python module, its unit, what it holds.
@@ -69,33 +71,43 @@ inline constexpr OptionalColumn optional_columns[] = {
 };
 inline constexpr std::size_t optional_width = std::size(optional_columns);
 // Every member of Row has its column (a member added to Row and not here fails to compile).
-static_assert(sizeof(Row) == (row_width + optional_width) * sizeof(double));
+static_assert(sizeof(Row) == (row_width + optional_width) * sizeof(double) + sizeof(const double*));
 static_assert(sizeof(RowExtras) == optional_width * sizeof(double));
 
 /// Which optional columns a run's rows carry: bit i for optional_columns[i].
 struct ColumnSet {
     unsigned bits = 0;
+    /// The derivative columns after the optional ones, "d_OUTPUT/d_PARAM" (sensitivity_columns), read from Row::derived.
+    std::vector<std::string> derived = {};
     bool has(std::size_t i) const { return (bits >> i & 1u) != 0; }
     std::size_t count() const
     {
         std::size_t n = 0;
         for (std::size_t i = 0; i < optional_width; ++i) n += has(i) ? 1 : 0;
-        return n;
+        return n + derived.size();
     }
 };
 /// Calls value(x) for each value of row a CSV line or the Python module's array holds, in column order: row_columns',
 /// then the optional columns of set.
 template <class Value>
-void for_each_value(const Row& row, ColumnSet set, Value value)
+void for_each_value(const Row& row, const ColumnSet& set, Value value)
 {
     for (const RowColumn& c : row_columns) value(row.*c.member);
     for (std::size_t i = 0; set.bits != 0 && i < optional_width; ++i)
         if (set.has(i)) value(row.extras.*optional_columns[i].member);
+    for (std::size_t i = 0; i < set.derived.size(); ++i) value(row.derived[i]);
 }
+/// The outputs a sensitivity run differentiates, in column order: what a reader of the rows plots (the energies
+/// follow from these).
+inline constexpr const char* sensitivity_outputs[] = {"theta", "theta_dot", "tip_uy", "tip_ux1", "tip_ux"};
+/// The most derivative columns a row can carry: every output by every parameter and gain.
+inline constexpr std::size_t max_derived_columns = (param_count + gain_names.size()) * std::size(sensitivity_outputs);
+/// "d_OUTPUT/d_PARAM" for each parameter (in the order given), each output within it.
+std::vector<std::string> sensitivity_columns(const std::vector<std::string>& parameters);
 /// The optional columns of a scene's rows (none for the paper's scenes).
 ColumnSet optional_columns_of(const Scene& scene);
 /// The CSV header of rows with the optional columns of set: row_columns' names, then theirs, joined by commas.
-std::string row_header(ColumnSet set);
+std::string row_header(const ColumnSet& set);
 static_assert([] {
     for (std::size_t i = 0; i < row_width; ++i)
         for (std::size_t j = 0; j < i; ++j)

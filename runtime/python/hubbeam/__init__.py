@@ -26,7 +26,8 @@ except ImportError as _missing:
         f"use the Python it was built for (/usr/bin/python3 on Debian) or a virtual environment over it: "
         f"/usr/bin/python3 -m venv --system-site-packages DIR (docs/python.md)") from _missing
 
-__all__ = ["run", "modes", "linearize", "sweep", "Result", "RunStopped", "scene_keys", "generator_version", "printable"]
+__all__ = ["run", "modes", "linearize", "sweep", "Result", "RunStopped", "scene_keys", "generator_version", "printable",
+           "Objective", "max_deflection", "residual_vibration", "final_error", "PARAMETER_KEYS"]
 __version__ = _core.__version__
 
 _KEYS = dict(_core.scene_keys())                 # dotted name -> what it takes
@@ -92,6 +93,12 @@ class Result:
             setattr(self, name, value)
         for i, name in enumerate(self.columns):
             setattr(self, name, self.data[:, i])
+
+    def __getitem__(self, column: str) -> np.ndarray:
+        """A column by name, also those that are no Python name (r["d_tip_uy/d_E"])."""
+        if column not in self.columns:
+            raise KeyError(f"{printable(column, 80)}: expected one of the run's columns {', '.join(self.columns)}")
+        return self.data[:, self.columns.index(column)]
 
     def to_pandas(self):
         """The rows as a pandas DataFrame: one column per quantity (t, theta, ..., as .columns), the units in
@@ -171,7 +178,7 @@ def _source(scene: Any) -> tuple[str, str]:
     raise ValueError(f"scene: expected a scene file's path or a dict of tables, got {printable(type(scene).__name__)}")
 
 
-def run(scene: Any, *, check: bool = False, torque: Any = None, **keys: Any) -> Result:
+def run(scene: Any, *, check: bool = False, torque: Any = None, sensitivities: Any = None, **keys: Any) -> Result:
     """Runs a scene (a file's path, or a dict of tables) with scene keys overridden by keyword (ny=8,
     method="fem", rtol=1e-10, or dotted names via **{"discretization.ny": 8}).
 
@@ -183,14 +190,30 @@ def run(scene: Any, *, check: bool = False, torque: Any = None, **keys: Any) -> 
     Bad input raises ValueError with the command line's one-line message. A run that stops before t_end (unstable,
     untrustworthy, out of steps) returns its rows so far with completed False and the reason in .failure; with
     check=True it raises RunStopped instead. The GIL is released while integrating.
+
+    sensitivities=["E", "kp", ...] (parameter symbols, docs/sensitivities.md) integrates the derivatives of the
+    state by those parameters beside it: the rows gain the columns d_OUTPUT/d_PARAM (r["d_tip_uy/d_E"]) for the
+    outputs theta, theta_dot, tip_uy, tip_ux1 and tip_ux.
     """
     text, name = _source(scene)
+    if sensitivities is not None:
+        keys["output.sensitivities"] = _sensitivities(sensitivities)
     if torque is not None and not callable(torque):
         raise ValueError(f"torque: expected a callable f(t, state) -> tau (N m), got {printable(repr(torque), 120)}")
     result = Result(_core_call(_core.run, text, name, _overrides(keys), False, torque))
     if check and not result.completed:
         raise RunStopped(result)
     return result
+
+
+def _sensitivities(names: Any) -> str:
+    """sensitivities= as the scene key's text: a list of symbols, or one comma-separated string."""
+    if isinstance(names, str):
+        return names
+    if isinstance(names, (list, tuple)) and all(isinstance(n, str) and "," not in n for n in names):
+        return ",".join(names)
+    raise ValueError(f"sensitivities: expected a list of parameter symbols (docs/sensitivities.md), got "
+                     f"{printable(repr(names), 120)}")
 
 
 def modes(scene: Any, omega: Any = 0.0, **keys: Any) -> dict[str, Any]:
@@ -265,3 +288,6 @@ def sweep(*args: Any, **kwargs: Any):
     """Runs a parameter sweep on Dask (hubbeam.sweeps.run_sweep; docs/python.md, "Sweeps")."""
     from .sweeps import run_sweep
     return run_sweep(*args, **kwargs)
+
+
+from .design import PARAMETER_KEYS, Objective, final_error, max_deflection, residual_vibration  # noqa: E402

@@ -194,7 +194,7 @@ FirstOrderSystem::FirstOrderSystem(const Model& model, const Motion& motion, Axi
     w.dQdqd.resize(n_, n_);
     w.dQdu.resize(n_, static_cast<Eigen::Index>(drive_value_count));
     w.dMv.resize(n_, n_);
-    sys_ = {gsl_rhs, gsl_jacobian, static_cast<std::size_t>(size()), this};
+    sys_ = {gsl_rhs, gsl_jacobian, static_cast<std::size_t>(state_size()), this};
 }
 
 FirstOrderSystem::~FirstOrderSystem() = default;
@@ -335,7 +335,7 @@ int FirstOrderSystem::exact_jacobian(const ExactJacobian& exact, double t, const
         lower_t += u.theta_dot * dQdtheta;
     }
     w.solver->solve(lower_t.data());
-    const int m = size();
+    const int m = state_size();
     if (aux_.count() > 0) {
         std::fill_n(dfdy, m * m, 0.0);
         std::fill_n(dfdt, m, 0.0);
@@ -377,7 +377,7 @@ int FirstOrderSystem::exact_jacobian(const ExactJacobian& exact, double t, const
 int FirstOrderSystem::finite_difference_jacobian(double t, const double* y, double* dfdy, double* dfdt)
 {
     Work& w = *work_;
-    const int m = size();
+    const int m = state_size();
     w.y_plus.assign(y, y + m);
     w.y_minus.assign(y, y + m);
     w.f_plus.resize(m);
@@ -387,14 +387,14 @@ int FirstOrderSystem::finite_difference_jacobian(double t, const double* y, doub
         const double h = scale * std::max(std::abs(y[j]), 1e-3);
         w.y_plus[j] = y[j] + h;
         w.y_minus[j] = y[j] - h;
-        if (int s = rhs(t, w.y_plus.data(), w.f_plus.data()); s != GSL_SUCCESS) return s;
-        if (int s = rhs(t, w.y_minus.data(), w.f_minus.data()); s != GSL_SUCCESS) return s;
+        if (int s = FirstOrderSystem::rhs(t, w.y_plus.data(), w.f_plus.data()); s != GSL_SUCCESS) return s;
+        if (int s = FirstOrderSystem::rhs(t, w.y_minus.data(), w.f_minus.data()); s != GSL_SUCCESS) return s;
         for (int i = 0; i < m; ++i) dfdy[i * m + j] = (w.f_plus[i] - w.f_minus[i]) / (2.0 * h);
         w.y_plus[j] = w.y_minus[j] = y[j];
     }
     const double ht = scale * std::max(std::abs(t), 1.0);
-    if (int s = rhs(t + ht, y, w.f_plus.data()); s != GSL_SUCCESS) return s;
-    if (int s = rhs(t - ht, y, w.f_minus.data()); s != GSL_SUCCESS) return s;
+    if (int s = FirstOrderSystem::rhs(t + ht, y, w.f_plus.data()); s != GSL_SUCCESS) return s;
+    if (int s = FirstOrderSystem::rhs(t - ht, y, w.f_minus.data()); s != GSL_SUCCESS) return s;
     for (int i = 0; i < m; ++i) dfdt[i] = (w.f_plus[i] - w.f_minus[i]) / (2.0 * ht);
     return GSL_SUCCESS;
 }

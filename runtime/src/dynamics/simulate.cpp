@@ -15,6 +15,7 @@
 #include "integrate.hpp"
 #include "make_model.hpp"
 #include "shortest.hpp"
+#include "sensitivity.hpp"
 #include "stepper.hpp"
 #include "stiffness.hpp"
 
@@ -331,7 +332,11 @@ private:
     const Model& model_;
     const std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
     const QuietGsl quiet_;
-    FirstOrderSystem system_;
+    // The state's equations, or with the sensitivities beside them (then sensitivities_ is the same object).
+    const std::unique_ptr<FirstOrderSystem> owned_system_;
+    FirstOrderSystem& system_;
+    SensitivitySystem* const sensitivities_;
+    std::vector<double> derived_;  // a row's derivative columns
     std::vector<double> y_;
     std::unique_ptr<Stepper> stepper_;
     RowMaker make_row_;
@@ -352,7 +357,12 @@ private:
 
 Simulation::Run::Run(const Simulation& simulation)
     : sim_(simulation), scene_(simulation.scene_), model_(*simulation.model_),
-      system_(model_, scene_.motion, scene_.axial, scene_.controller(), &scene_.parameters),
+      owned_system_(scene_.output.sensitivities.empty()
+                        ? std::make_unique<FirstOrderSystem>(model_, scene_.motion, scene_.axial, scene_.controller(),
+                                                             &scene_.parameters)
+                        : std::make_unique<SensitivitySystem>(model_, scene_)),
+      system_(*owned_system_), sensitivities_(dynamic_cast<SensitivitySystem*>(owned_system_.get())),
+      derived_(sensitivity_columns(scene_.output.sensitivities).size()),
       y_(initial_state(system_, model_, scene_)),
       stepper_(make_stepper(system_, sim_.stepper_, 0.0, y_.data(), scene_.solver.h0, scene_.solver.atol,
                             scene_.solver.rtol)),
@@ -387,7 +397,10 @@ Simulation::Run::Run(const Simulation& simulation)
 RunSummary Simulation::Run::operator()(const RowSink& sink, const StopRequest& stop)
 {
     if (std::string failure = emit(0.0, y_.data(), sink); !failure.empty()) return finish(failure);
-    return finish(scene_.solver.stepping == Stepping::free ? free_steps(sink, stop) : row_steps(sink, stop));
+    // Sensitivities are integrated to every row: their interpolation inside a step would be the auxiliary states'
+    // cubic one, whose error check shortens the steps more than rows do.
+    const bool free = scene_.solver.stepping == Stepping::free && sensitivities_ == nullptr;
+    return finish(free ? free_steps(sink, stop) : row_steps(sink, stop));
 }
 
 // ---- Stepping ----
@@ -525,7 +538,11 @@ void Simulation::Run::restart() { stepper_->restart(t_, y_.data()); }
 /// The row at ti to the sink (the observer first), then the monitors; or why the run must stop.
 std::string Simulation::Run::emit(double ti, const double* state, const RowSink& sink)
 {
-    const Row r = make_row_(ti, state);
+    Row r = make_row_(ti, state);
+    if (sensitivities_ != nullptr) {
+        sensitivities_->outputs(ti, state, derived_.data());
+        r.derived = derived_.data();
+    }
     if (sim_.observer_) sim_.observer_(ti, make_row_.q());
     summary_.max_abs_tip_uy = std::max(summary_.max_abs_tip_uy, std::abs(r.tip_uy));
     sink(r);
@@ -786,14 +803,24 @@ ColumnSet optional_columns_of(const Scene& scene)
     ColumnSet set;
     for (std::size_t i = 0; i < optional_width; ++i)
         if (has[i]) set.bits |= 1u << i;
+    set.derived = sensitivity_columns(scene.output.sensitivities);
     return set;
 }
 
-std::string row_header(ColumnSet set)
+std::vector<std::string> sensitivity_columns(const std::vector<std::string>& parameters)
+{
+    std::vector<std::string> names;
+    for (const std::string& p : parameters)
+        for (const char* o : sensitivity_outputs) names.push_back(std::string("d_") + o + "/d_" + p);
+    return names;
+}
+
+std::string row_header(const ColumnSet& set)
 {
     std::string h = row_header();
     for (std::size_t i = 0; i < optional_width; ++i)
         if (set.has(i)) h += std::string(",") + optional_columns[i].name;
+    for (const std::string& d : set.derived) h += "," + d;
     return h;
 }
 

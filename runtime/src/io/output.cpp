@@ -22,7 +22,7 @@ namespace {
 constexpr std::size_t buffer_size = std::size_t{1} << 16;
 // The longest number is max_shortest_chars (-1.7976931348623157e+308): one per column, the commas between them
 // and the newline, and the scratch write_shortest may leave past the last number.
-constexpr std::size_t max_line = (row_width + optional_width) * (max_shortest_chars + 1) + shortest_room;
+constexpr std::size_t max_line = (row_width + optional_width + max_derived_columns) * (max_shortest_chars + 1) + shortest_room;
 // Buffered rows reach the file at the latest this long after the previous chunk: a long run's progress is
 // visible, and at most this much wall time of rows is lost if the process is killed outright.
 constexpr auto flush_interval = std::chrono::milliseconds(100);
@@ -47,7 +47,7 @@ std::string npy_header(long rows, std::size_t width)
 }
 
 /// Copies row's values, in column order, into out as little-endian doubles; returns the end.
-char* binary_row(char* out, const Row& row, ColumnSet set)
+char* binary_row(char* out, const Row& row, const ColumnSet& set)
 {
     for_each_value(row, set, [&](double v) {
         if constexpr (std::endian::native == std::endian::little) {
@@ -63,7 +63,7 @@ char* binary_row(char* out, const Row& row, ColumnSet set)
 
 /// Formats row's columns, then the optional ones of set, into out (room for max_line characters, no newline); returns
 /// the end.
-char* format_row(char* out, const Row& row, ColumnSet set)
+char* format_row(char* out, const Row& row, const ColumnSet& set)
 {
     const char* start = out;
     for_each_value(row, set, [&](double v) {
@@ -229,7 +229,7 @@ RowSink CsvWriter::sink()
     return [this](const Row& row) { write(row); };
 }
 
-std::string csv_line(const Row& row, ColumnSet columns)
+std::string csv_line(const Row& row, const ColumnSet& columns)
 {
     char line[max_line];
     return std::string(line, format_row(line, row, columns));

@@ -113,6 +113,9 @@ std::vector<SceneKey> make_scene_keys()
         {"output.t_end", "--t-end", K::number, "a number > 0 (end time, s)"},
         {"output.dt_out", "--dt-out", K::number, "a number > 0 and <= output.t_end (output interval, s)"},
         {"output.file", "-o,--output", K::text, "a file name"},
+        {"output.sensitivities", "--sensitivities", K::text,
+         "parameter symbols separated by commas, each once: L, rho, S, I, E, a, J_oh, m_tip, J_tip, g, alpha, beta, "
+         "tip_ratio, kp, kd, ki, k_tip"},
     };
 }
 
@@ -315,6 +318,29 @@ void set_override(toml::table& root, const std::string& file, const std::string&
     case SceneKey::Kind::word:
     case SceneKey::Kind::text: t.insert_or_assign(leaf, text); break;
     }
+}
+
+/// output.sensitivities: known symbols, each once, that this scene has (a gain needs [control], tip_ratio a taper),
+/// and a run the sensitivity equations can follow (dynamic axial coordinates, no torque law in code).
+void check_sensitivities(const Scene& s)
+{
+    const char* key = "output.sensitivities";
+    std::vector<std::string> seen;
+    for (const std::string& name : s.output.sensitivities) {
+        const bool gain = std::find(gain_names.begin(), gain_names.end(), name) != gain_names.end();
+        if (!gain && std::find(param_names.begin(), param_names.end(), name) == param_names.end())
+            fail(s.path, key, expected(key), "\"" + name + "\"");
+        if (std::find(seen.begin(), seen.end(), name) != seen.end())
+            fail(s.path, key, expected(key), "\"" + name + "\" twice");
+        seen.push_back(name);
+        if (gain && !s.control)
+            fail(s.path, key, "a control gain only with a [control] table", "\"" + name + "\"");
+        if (name == "tip_ratio" && s.variant.extras.taper == Taper::uniform)
+            fail(s.path, key, "tip_ratio only with beam.taper \"width\" or \"depth\"", "\"tip_ratio\"");
+    }
+    if (!s.output.sensitivities.empty() && s.axial == Axial::quasi_static)
+        fail(s.path, key, "model.axial \"dynamic\" (the sensitivity equations follow the axial coordinates' own "
+             "motion)", "model.axial \"quasi-static\"");
 }
 
 // Range checks of validate(), naming the key.
@@ -714,6 +740,10 @@ void read_output(const Section& output, OutputOptions& out)
         if (file->empty()) output.refuse("file", "an empty one");
         out.file = *file;
     }
+    if (const auto names = output.string("sensitivities")) {
+        out.sensitivities.clear();
+        for (const std::string& item : split_list(*names)) out.sensitivities.emplace_back(trimmed(item));
+    }
 }
 
 }  // namespace
@@ -950,6 +980,7 @@ void validate(const Scene& s)
     check_positive(s, s.solver.atol, "solver.atol");
     check_positive(s, s.solver.h0, "solver.h0");
 
+    check_sensitivities(s);
     check_positive(s, s.output.t_end, "output.t_end");
     if (!(s.output.dt_out > 0.0) || !(s.output.dt_out <= s.output.t_end))
         fail(s.path, "output.dt_out", expected("output.dt_out"),

@@ -1,0 +1,249 @@
+// Forward sensitivities integrated beside the state (sensitivity.hpp).
+#include "sensitivity.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <gsl/gsl_errno.h>
+#include <stdexcept>
+
+#include "make_model.hpp"
+#include "simulate.hpp"
+
+namespace hubbeam {
+
+/// One parameter p_j: a physical one (Param) or a control gain. The system integrates sigma_j = pbar_j s_j with pbar_j
+/// = |p_j| (1 where p_j = 0): in the state's units, so that the run's tolerances control it as they control the state
+/// (as CVODES scales by its pbar).
+struct SensitivitySystem::Parameter {
+    std::string name;
+    bool gain = false;
+    Param param = Param::L;
+    std::size_t gain_index = 0;
+    double scale = 1.0;
+    // Where the model has no generated derivatives: models at p_j -+ h, differenced.
+    std::unique_ptr<Model> down, up;
+    double h = 0.0;
+};
+
+struct SensitivitySystem::Work {
+    using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+    RowMatrix J, M, dM, other;
+    Eigen::VectorXd dfdt, r, dQ, other_Q, y_plus, y_minus, f_plus, f_minus;
+    Eigen::PartialPivLU<Eigen::MatrixXd> lu;
+};
+
+namespace {
+
+/// The index of a gain's name in gain_names.
+std::size_t gain_index(const std::string& name)
+{
+    return static_cast<std::size_t>(std::find(gain_names.begin(), gain_names.end(), name) - gain_names.begin());
+}
+
+}  // namespace
+
+SensitivitySystem::SensitivitySystem(const Model& model, const Scene& scene)
+    : FirstOrderSystem(model, scene.motion, scene.axial, scene.controller(), &scene.parameters), model_(model),
+      scene_(scene), work_(std::make_unique<Work>())
+{
+    if (scene.control && scene.control->law)
+        throw std::invalid_argument("--sensitivities: expected a scene whose torque is its [control]'s law or its "
+                                    "motion, got a torque law given as code (its derivatives are unknown)");
+    if (scene.axial != Axial::dynamic)
+        throw std::invalid_argument("--sensitivities: expected model.axial \"dynamic\", got \"quasi-static\"");
+    const std::vector<double> packed = scene.parameters.packed();
+    for (const std::string& name : scene.output.sensitivities) {
+        auto p = std::make_unique<Parameter>();
+        p->name = name;
+        if (const std::size_t g = gain_index(name); g < gain_names.size()) {
+            p->gain = true;
+            p->gain_index = g;
+            const Control& c = *scene.control;
+            const double values[] = {c.kp, c.kd, c.ki, c.k_tip};
+            p->scale = values[g] != 0.0 ? std::abs(values[g]) : 1.0;
+        } else {
+            const auto at = std::find(param_names.begin(), param_names.end(), name);
+            if (at == param_names.end()) throw std::invalid_argument("--sensitivities: unknown parameter " + name);
+            p->param = static_cast<Param>(at - param_names.begin());
+            const double v = packed[index(p->param)];
+            p->scale = v != 0.0 ? std::abs(v) : 1.0;
+            if (model.parameter_derivatives() == nullptr) {
+                // Central differences at 1e-6 of the value: an error of 1e-12 relative to the curvature's, round-off
+                // of 1e-10 (the assembled path, and order full's quadrature sums, have no generated derivatives).
+                p->h = 1e-6 * p->scale;
+                Parameters down = scene.parameters, up = scene.parameters;
+                value(down, p->param) -= p->h;
+                value(up, p->param) += p->h;
+                p->down = make_model(model.key(), down, scene.source);
+                p->up = make_model(model.key(), up, scene.source);
+            }
+        }
+        parameters_.push_back(std::move(p));
+    }
+    const int n = state_size(), nq = model.nq();
+    work_->J.resize(n, n);
+    work_->dfdt.resize(n);
+    work_->M.resize(nq, nq);
+    work_->dM.resize(nq, nq);
+    work_->other.resize(nq, nq);
+    work_->r.resize(nq);
+    work_->dQ.resize(nq);
+    work_->other_Q.resize(nq);
+    for (Eigen::VectorXd* v : {&work_->y_plus, &work_->y_minus, &work_->f_plus, &work_->f_minus}) v->resize(n);
+    set_dimension(size());
+}
+
+SensitivitySystem::~SensitivitySystem() = default;
+
+int SensitivitySystem::rhs(double t, const double* y, double* dydt)
+{
+    if (const int s = FirstOrderSystem::rhs(t, y, dydt); s != GSL_SUCCESS) return s;
+    Work& w = *work_;
+    const int n = state_size(), nq = model_.nq();
+    // J sigma_j: by the Jacobian (exact where the model has derivative kernels) when forming it costs less than
+    // two evaluations of f per parameter, else by central differences of f along sigma_j (as CVODES does by
+    // default), accurate to about 1e-10 of f: far below the tolerances.
+    const bool formed = 2 * count() >= n;
+    if (formed)
+        if (const int s = FirstOrderSystem::jacobian(t, y, w.J.data(), w.dfdt.data()); s != GSL_SUCCESS) return s;
+    double y_size = 1.0;
+    for (int i = 0; i < n; ++i) y_size = std::max(y_size, std::abs(y[i]));
+    const double* q = y;
+    const double* qd = y + nq;
+    const Eigen::Map<const Eigen::VectorXd> qdd(dydt + nq, nq);
+    // The model's input at this state, as the state's own equations had it.
+    const HubInput reference = scene_.motion.at(t);
+    HubInput u = reference;
+    if (control() != nullptr) {
+        u = HubInput{};
+        u.tau = torque(t, y);
+    }
+    model_.mass(u, q, w.M.data());
+    w.lu.compute(w.M);
+    for (int j = 0; j < count(); ++j) {
+        const Parameter& p = *parameters_[static_cast<std::size_t>(j)];
+        const Eigen::Map<const Eigen::VectorXd> sigma(y + n * (1 + j), n);
+        Eigen::Map<Eigen::VectorXd> out(dydt + n * (1 + j), n);
+        if (formed) {
+            out.noalias() = w.J * sigma;
+        } else {
+            const double size = sigma.lpNorm<Eigen::Infinity>();
+            if (size == 0.0) {
+                out.setZero();
+            } else {
+                // A step of eps^(1/3) of y's size balances the difference's truncation and round-off.
+                const double e = 6e-6 * y_size / size;
+                w.y_plus = Eigen::Map<const Eigen::VectorXd>(y, n) + e * sigma;
+                w.y_minus = Eigen::Map<const Eigen::VectorXd>(y, n) - e * sigma;
+                if (const int s = FirstOrderSystem::rhs(t, w.y_plus.data(), w.f_plus.data()); s != GSL_SUCCESS) return s;
+                if (const int s = FirstOrderSystem::rhs(t, w.y_minus.data(), w.f_minus.data()); s != GSL_SUCCESS) return s;
+                out = (w.f_plus - w.f_minus) / (2.0 * e);
+            }
+        }
+        // d(qdd)/dp = M^-1 (dQ/dp - dM/dp qdd), times the scale.
+        if (p.gain) {
+            const Control& c = *control();
+            const Tip tip = model_.tip(q);
+            const HubState s{q[0], qd[0], tip.uy, model_.tip(qd).uy};
+            const double z = integral_index() >= 0 ? y[integral_index()] : 0.0;
+            const double unclipped = c.unclipped(s, z, reference);
+            if (std::abs(unclipped) > c.tau_max) continue;  // saturated: the torque does not move with the gain
+            const double dtau[] = {-(s.theta - reference.theta), -(s.theta_dot - reference.theta_dot), -z, -s.tip_uy};
+            w.r.setZero();
+            w.r[0] = dtau[p.gain_index];  // Q = tau e_theta + ...
+        } else if (const ParameterDerivatives* d = model_.parameter_derivatives()) {
+            d->mass_p(p.param, u, q, w.dM.data());
+            d->forces_p(p.param, u, q, qd, w.dQ.data());
+            w.r = w.dQ - w.dM * qdd;
+        } else {
+            p.up->mass(u, q, w.dM.data());
+            p.down->mass(u, q, w.other.data());
+            p.up->forces(u, q, qd, w.dQ.data());
+            p.down->forces(u, q, qd, w.other_Q.data());
+            w.r = ((w.dQ - w.other_Q) - (w.dM - w.other) * qdd) / (2.0 * p.h);
+        }
+        out.segment(nq, nq) += p.scale * w.lu.solve(w.r);
+    }
+    for (int i = 0; i < size(); ++i)
+        if (!std::isfinite(dydt[i])) return GSL_EBADFUNC;
+    return GSL_SUCCESS;
+}
+
+int SensitivitySystem::jacobian(double t, const double* y, double* dfdy, double* dfdt)
+{
+    const int n = state_size(), m = size();
+    Work& w = *work_;
+    if (const int s = FirstOrderSystem::jacobian(t, y, w.J.data(), w.dfdt.data()); s != GSL_SUCCESS) return s;
+    std::fill_n(dfdy, static_cast<std::size_t>(m) * m, 0.0);
+    std::fill_n(dfdt, m, 0.0);
+    for (int b = 0; b <= count(); ++b)
+        for (int i = 0; i < n; ++i)
+            std::copy_n(w.J.data() + static_cast<std::ptrdiff_t>(i) * n, n,
+                        dfdy + static_cast<std::ptrdiff_t>(b * n + i) * m + b * n);
+    std::copy_n(w.dfdt.data(), n, dfdt);
+    // The blocks below the diagonal, d(J sigma_j + df/dp_j)/dy, by central differences of the sensitivity rows over
+    // the state: they hold the parameter's derivative of the stiffness (E's, L's), as stiff as the state's own J,
+    // and an iteration without them diverges unless the steps resolve the stiff modes.
+    if (count() > 0) {
+        std::vector<double> ya(y, y + m), fp(static_cast<std::size_t>(m)), fm(fp);
+        for (int i = 0; i < n; ++i) {
+            const double h = 1e-6 * std::max(std::abs(y[i]), 1e-3);
+            ya[static_cast<std::size_t>(i)] = y[i] + h;
+            if (const int s = rhs(t, ya.data(), fp.data()); s != GSL_SUCCESS) return s;
+            ya[static_cast<std::size_t>(i)] = y[i] - h;
+            if (const int s = rhs(t, ya.data(), fm.data()); s != GSL_SUCCESS) return s;
+            ya[static_cast<std::size_t>(i)] = y[i];
+            for (int r = n; r < m; ++r)
+                dfdy[static_cast<std::ptrdiff_t>(r) * m + i] =
+                    (fp[static_cast<std::size_t>(r)] - fm[static_cast<std::size_t>(r)]) / (2.0 * h);
+        }
+    }
+    return GSL_SUCCESS;
+}
+
+void SensitivitySystem::outputs(double t, const double* y, double* out)
+{
+    (void)t;
+    const int n = state_size(), nq = model_.nq();
+    const bool torque = model_.key().drive == Drive::torque;
+    std::vector<double> plus(static_cast<std::size_t>(nq)), minus(plus);
+    for (int j = 0; j < count(); ++j) {
+        const Parameter& p = *parameters_[static_cast<std::size_t>(j)];
+        const double* sigma = y + n * (1 + j);
+        double* o = out + j * static_cast<int>(std::size(sensitivity_outputs));
+        o[0] = torque ? sigma[0] / p.scale : 0.0;
+        o[1] = torque ? sigma[nq] / p.scale : 0.0;
+        // The tip is at most quadratic in q: a central difference along sigma is exact at any step; a unit step
+        // keeps its round-off at that of the tip itself.
+        double big = 0.0;
+        for (int i = 0; i < nq; ++i) big = std::max(big, std::abs(sigma[i]));
+        double d[3] = {0.0, 0.0, 0.0};
+        if (big > 0.0) {
+            for (int i = 0; i < nq; ++i) {
+                plus[static_cast<std::size_t>(i)] = y[i] + sigma[i] / big;
+                minus[static_cast<std::size_t>(i)] = y[i] - sigma[i] / big;
+            }
+            const Tip a = model_.tip(plus.data()), b = model_.tip(minus.data());
+            d[0] = (a.uy - b.uy) / 2.0 * big / p.scale;
+            d[1] = (a.ux1 - b.ux1) / 2.0 * big / p.scale;
+            d[2] = (a.ux - b.ux) / 2.0 * big / p.scale;
+        }
+        if (!p.gain) {  // the tip's own dependence on the parameter (a slope coordinate's scale)
+            Tip direct;
+            if (const ParameterDerivatives* pd = model_.parameter_derivatives()) direct = pd->tip_p(p.param, y);
+            else {
+                const Tip a = p.up->tip(y), b = p.down->tip(y);
+                direct = {(a.uy - b.uy) / (2.0 * p.h), (a.ux1 - b.ux1) / (2.0 * p.h), (a.ux - b.ux) / (2.0 * p.h)};
+            }
+            d[0] += direct.uy;
+            d[1] += direct.ux1;
+            d[2] += direct.ux;
+        }
+        o[2] = d[0];
+        o[3] = d[1];
+        o[4] = d[2];
+    }
+}
+
+}  // namespace hubbeam

@@ -1,0 +1,46 @@
+// Forward sensitivities: the state's equations with, beside them, the derivative of the state by each of a few
+// parameters, s_j' = J(t, y) s_j + df/dp_j, integrated as one system by whichever stepper the run uses
+// (docs/sensitivities.md).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "integrate.hpp"
+#include "scene.hpp"
+
+namespace hubbeam {
+
+/// y = (state, s_1, ..., s_k) with s_j = d(state)/dp_j, starting at 0 (a run starts from rest, whatever the
+/// parameters). J is the state's Jacobian (exact where the model has derivative kernels); df/dp_j comes from
+/// ParameterDerivatives (generated, or differences of models built at moved parameters) or, for a control gain, from
+/// the control law through dQ/dtau. Implicit steppers get J on each diagonal block: the sensitivities' own equations
+/// are linear, and their coupling to the state is left to the iteration.
+class SensitivitySystem final : public FirstOrderSystem {
+public:
+    /// The scene's run of model with the sensitivities of scene.output.sensitivities. Throws std::invalid_argument
+    /// for what the equations cannot follow (a torque law given as code).
+    SensitivitySystem(const Model& model, const Scene& scene);
+    ~SensitivitySystem() override;
+
+    int size() const override { return (1 + count()) * state_size(); }
+    int auxiliary_count() const override { return FirstOrderSystem::auxiliary_count() + count() * state_size(); }
+    int rhs(double t, const double* y, double* dydt) override;
+    int jacobian(double t, const double* y, double* dfdy, double* dfdt) override;
+
+    int count() const { return static_cast<int>(parameters_.size()); }
+    /// d(output)/dp for each parameter, each of sensitivity_outputs within it (simulate.hpp's column order), at the
+    /// state y at t; q is y's coordinates.
+    void outputs(double t, const double* y, double* out);
+
+private:
+    struct Parameter;
+    const Model& model_;
+    const Scene& scene_;
+    std::vector<std::unique_ptr<Parameter>> parameters_;
+    struct Work;
+    std::unique_ptr<Work> work_;
+};
+
+}  // namespace hubbeam
