@@ -29,6 +29,8 @@ Measure = Callable[[Any, Sequence[str]], "tuple[float, np.ndarray]"]
 
 def _derivatives(result: Any, column: str, names: Sequence[str]) -> np.ndarray:
     """The rows' d_COLUMN/d_NAME for each name, as an n x k array; KeyError naming what the run lacks."""
+    if not names:
+        return np.zeros((len(result.t), 0))
     missing = [f"d_{column}/d_{name}" for name in names if f"d_{column}/d_{name}" not in result.columns]
     if missing:
         raise KeyError(f"the run has no column {missing[0]}: run it with sensitivities={list(names)}")
@@ -83,8 +85,15 @@ class Objective:
         self.runs = 0
 
     def __call__(self, x: Sequence[float]) -> tuple[float, np.ndarray]:
+        return self._run(x, self.names)
+
+    def value(self, x: Sequence[float]) -> float:
+        """The measure alone, from a run without sensitivities (what an optimizer by finite differences calls)."""
+        return self._run(x, [])[0]
+
+    def _run(self, x: Sequence[float], sensitivities: list[str]) -> tuple[float, np.ndarray]:
         from . import run  # the package imports this module: import at call time
         values = {PARAMETER_KEYS[n]: float(v) for n, v in zip(self.names, np.atleast_1d(x))}
         self.runs += 1
-        result = run(self.scene, check=True, sensitivities=self.names, **self.keys, **values)
-        return self.measure(result, self.names)
+        result = run(self.scene, check=True, sensitivities=sensitivities or None, **self.keys, **values)
+        return self.measure(result, sensitivities)
