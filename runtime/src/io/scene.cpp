@@ -742,7 +742,8 @@ void read_output(const Section& output, OutputOptions& out)
     }
     if (const auto names = output.string("sensitivities")) {
         out.sensitivities.clear();
-        for (const std::string& item : split_list(*names)) out.sensitivities.emplace_back(trimmed(item));
+        if (!trimmed(*names).empty())  // "" asks for none
+            for (const std::string& item : split_list(*names)) out.sensitivities.emplace_back(trimmed(item));
     }
 }
 
