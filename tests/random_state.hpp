@@ -42,6 +42,21 @@ inline Parameters with_profile(const VariantKey& key, Parameters p)
     return p;
 }
 
+/// The paper's beam on a hub of radius 0.35 m with every extra term switched on at a size where it shows (a taper's
+/// tip ratio 0.6): so that each term's code, and each parameter's derivative, is exercised.
+inline Parameters with_every_term()
+{
+    Parameters p;
+    p.a = 0.35;
+    p.m_tip = 0.8;
+    p.J_tip = 0.05;
+    p.g = 9.81;
+    p.alpha = 0.3;
+    p.beta = 2e-3;
+    p.tip_ratio = 0.6;
+    return p;
+}
+
 /// random_state with a prescribed angle as well, in (-3, 3) rad (a prescribed variant with gravity reads it).
 inline State random_state_with_angle(const VariantKey& key, std::mt19937& rng)
 {

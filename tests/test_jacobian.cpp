@@ -90,8 +90,8 @@ Eigen::MatrixXd block(const RowMatrix& J, int n, int r, int c) { return J.block(
 
 TEST_CASE("generated Jacobian equals central differences of the right-hand side", "[jacobian]")
 {
-    Parameters p;
-    p.a = 0.35;  // nonzero, so that the hub-radius terms are exercised (the paper's cases have a = 0)
+    // the hub-radius terms (the paper's cases have a = 0) and every extra term exercised
+    const Parameters p = test::with_every_term();
     std::mt19937 rng(58);
     std::vector<std::string> names = generated_variant_names();
     REQUIRE(!names.empty());
@@ -106,12 +106,6 @@ TEST_CASE("generated Jacobian equals central differences of the right-hand side"
     for (const char* extra : {"amm_nx0_ny3_torque_first_tip_gravity_damped_width", "bim_nx2_ny3_prescribed_first_tip_gravity_damped_depth",
                               "fem_nx2_ny4_torque_full_tip_gravity"})
         names.emplace_back(extra);
-    p.m_tip = 0.8;
-    p.J_tip = 0.05;
-    p.g = 9.81;
-    p.alpha = 0.3;
-    p.beta = 2e-3;
-    p.tip_ratio = 0.6;
     for (const std::string& name : names) {
         const VariantKey key = VariantKey::parse(name);
         SECTION(key.name())
