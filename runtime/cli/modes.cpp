@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <memory>
 #include <ostream>
 #include <sstream>
@@ -11,8 +12,10 @@
 
 #include "csv_columns.hpp"
 #include "linearize.hpp"
+#include "npz.hpp"
 #include "option_lists.hpp"
 #include "output.hpp"
+#include "output_file.hpp"
 #include "output_file.hpp"
 #include "plot.hpp"
 #include "shortest.hpp"
@@ -182,6 +185,8 @@ void run_linearize(const Scene& scene, double omega, const std::string& prefix, 
     std::vector<NamedPath> outputs;
     for (const std::string& p : prefixes)
         for (const char* name : {"A", "B", "C", "D"}) outputs.push_back({p + "-" + name + ".csv", "-o"});
+    const std::size_t csv_count = outputs.size();
+    for (const std::string& p : prefixes) outputs.push_back({p + ".npz", "-o"});  // the same model for numpy
     check_outputs({{scene.path, "the scene itself"}}, outputs);  // before anything is computed
     check_steady(scene, {omega});
     const VariantKey key = scene.key();
@@ -194,8 +199,9 @@ void run_linearize(const Scene& scene, double omega, const std::string& prefix, 
     // One CSV per matrix: a header of column names, then each row led by its name. Each is put in place once all
     // are written; an exception on the way leaves all the old files as they were.
     std::vector<std::unique_ptr<CsvWriter>> files;
+    std::vector<std::unique_ptr<OutputFile>> archives;
     try {
-        for (std::size_t f = 0; f < outputs.size(); ++f) {
+        for (std::size_t f = 0; f < csv_count; ++f) {
             const StateSpace& sys = *systems[f / 4];
             const std::size_t m = f % 4;
             const Eigen::MatrixXd* X = std::array<const Eigen::MatrixXd*, 4>{&sys.A, &sys.B, &sys.C, &sys.D}[m];
@@ -213,12 +219,29 @@ void run_linearize(const Scene& scene, double omega, const std::string& prefix, 
                 files.back()->write_line(text);
             }
         }
+        for (std::size_t k = 0; k < systems.size(); ++k) {
+            const StateSpace& sys = *systems[k];
+            const std::string& path = outputs[csv_count + k].path;
+            archives.push_back(std::make_unique<OutputFile>(path));
+            const std::string bytes = npz_archive({{"A", npy_matrix(sys.A)},
+                                                   {"B", npy_matrix(sys.B)},
+                                                   {"C", npy_matrix(sys.C)},
+                                                   {"D", npy_matrix(sys.D)},
+                                                   {"states", npy_strings(sys.states)},
+                                                   {"inputs", npy_strings(sys.inputs)},
+                                                   {"outputs", npy_strings(sys.outputs)}});
+            if (const int error = archives.back()->write(bytes); error != 0)
+                throw std::runtime_error(path + ": cannot write: " + std::strerror(error));
+        }
     } catch (...) {
         for (const auto& f : files) f->discard();
+        for (const auto& a : archives) a->discard();
         throw;
     }
     for (const auto& f : files)
         if (!f->finish()) throw std::runtime_error(f->error());
+    for (const auto& a : archives)
+        if (std::string why = a->commit(); !why.empty()) throw std::runtime_error(why);
     out << "variant     " << key.name() << " (" << model->source() << ")\n";
     if (steady.held)
         out << "held        at theta = " << shortest(steady.u.theta) << " rad under gravity, tip_uy "
@@ -231,9 +254,11 @@ void run_linearize(const Scene& scene, double omega, const std::string& prefix, 
         << "input       " << ss.inputs[0] << (key.drive == Drive::torque ? " (N m)" : " (rad/s^2)") << "\n"
         << "outputs     tip_uy (m), theta (rad)\n"
         << "matrices    " << prefix << "-{A,B,C,D}.csv (x' = A x + B v, y = C x + D v, deviations from the "
-        << (steady.held ? "equilibrium" : "steady spin") << (scene.control ? "; the closed loop" : "") << ")\n";
+        << (steady.held ? "equilibrium" : "steady spin") << (scene.control ? "; the closed loop" : "") << ")\n"
+        << "numpy       " << prefix << ".npz (A, B, C, D, states, inputs, outputs)\n";
     if (scene.control)
-        out << "open loop   " << prefix << "-open-{A,B,C,D}.csv (input tau, N m: the hub without its controller)\n";
+        out << "open loop   " << prefix << "-open-{A,B,C,D}.csv and " << prefix
+            << "-open.npz (input tau, N m: the hub without its controller)\n";
 }
 
 }  // namespace hubbeam

@@ -1,5 +1,6 @@
 // CSV rows (buffered, written through an OutputFile: a temporary file renamed into place) and the run summary.
 #include "output.hpp"
+#include "npz.hpp"
 
 #include "shortest.hpp"
 
@@ -33,17 +34,9 @@ constexpr auto flush_interval = std::chrono::milliseconds(100);
 constexpr std::size_t npy_header_size = 128;
 
 /// The .npy header of rows x width little-endian doubles in C order.
-std::string npy_header(long rows, std::size_t width)
+std::string rows_npy_header(long rows, std::size_t width)
 {
-    std::string dict = "{'descr': '<f8', 'fortran_order': False, 'shape': (" + std::to_string(rows) + ", " +
-                       std::to_string(width) + "), }";
-    const std::size_t prefix = 10;  // "\x93NUMPY", 1, 0, the dict's length (2 bytes, little-endian)
-    dict.append(npy_header_size - prefix - 1 - dict.size(), ' ');
-    dict += '\n';
-    std::string h("\x93NUMPY\x01\x00", 8);
-    h += static_cast<char>(dict.size() & 0xff);
-    h += static_cast<char>(dict.size() >> 8);
-    return h + dict;
+    return npy_header("<f8", "(" + std::to_string(rows) + ", " + std::to_string(width) + ")", npy_header_size);
 }
 
 /// Copies row's values, in column order, into out as little-endian doubles; returns the end.
@@ -100,7 +93,7 @@ CsvWriter::CsvWriter(const std::string& path, ColumnSet columns, bool durable)
     if (const int error = columns_file_->write(names); error != 0)
         throw std::runtime_error(npy_columns_path(path) + ": cannot write: " + std::strerror(error));
     // A placeholder of the header's size now (the rows follow it), the count at finish().
-    const std::string header = npy_header(0, width_);
+    const std::string header = rows_npy_header(0, width_);
     std::memcpy(buffer_.get(), header.data(), header.size());
     used_ = header.size();
     flush();
@@ -210,7 +203,7 @@ bool CsvWriter::finish()
 
 void CsvWriter::write_npy_header()
 {
-    if (const int error = file_->write_at(0, npy_header(written_rows_, width_)); error != 0)
+    if (const int error = file_->write_at(0, rows_npy_header(written_rows_, width_)); error != 0)
         fail(std::string("write failed (the header): ") + std::strerror(error));
 }
 
