@@ -126,7 +126,7 @@ class RowMaker {
 public:
     RowMaker(const Model& model, const Motion& motion, FirstOrderSystem& system, const Control* control)
         : model_(model), motion_(motion), system_(system), control_(control), q_(static_cast<std::size_t>(model.nq())),
-          qd_(q_), extended_(control != nullptr || system.auxiliary_count() > 0)
+          qd_(q_), extended_(control != nullptr || system.auxiliary().count() > 0)
     {
     }
     /// The row of state y at t; q() is then its full coordinates.
@@ -308,6 +308,7 @@ private:
 
     std::string free_steps(const RowSink& sink, const StopRequest& stop);
     bool limit_interpolation(FreeStep& s);
+    void interpolate(const FreeStep& s, double t, double* y) const;
     std::string rows_in_step(FreeStep& s, long& i, const RowSink& sink, const StopRequest& stop);
     std::string row_steps(const RowSink& sink, const StopRequest& stop);
     const char* stop_requested(const StopRequest& stop);
@@ -382,7 +383,7 @@ Simulation::Run::Run(const Simulation& simulation)
     // constant: U_g changes with the prescribed angle.
     const std::vector<double> all_breaks = scene_.motion.breakpoints();
     summary_.t_steady = all_breaks.empty() ? 0.0 : *std::max_element(all_breaks.begin(), all_breaks.end());
-    summary_.energy_balance = system_.auxiliary_count() > 0 || scene_.control.has_value();
+    summary_.energy_balance = system_.auxiliary().count() > 0 || scene_.control.has_value();
     if (system_.auxiliary().work) summary_.t_steady = 0.0;
     const bool turning = scene_.motion.kind != Motion::Kind::held;
     if (model_.key().extras.gravity && model_.key().drive == Drive::prescribed && turning)
@@ -397,10 +398,7 @@ Simulation::Run::Run(const Simulation& simulation)
 RunSummary Simulation::Run::operator()(const RowSink& sink, const StopRequest& stop)
 {
     if (std::string failure = emit(0.0, y_.data(), sink); !failure.empty()) return finish(failure);
-    // Sensitivities are integrated to every row: their interpolation inside a step would be the auxiliary states'
-    // cubic one, whose error check shortens the steps more than rows do.
-    const bool free = scene_.solver.stepping == Stepping::free && sensitivities_ == nullptr;
-    return finish(free ? free_steps(sink, stop) : row_steps(sink, stop));
+    return finish(scene_.solver.stepping == Stepping::free ? free_steps(sink, stop) : row_steps(sink, stop));
 }
 
 // ---- Stepping ----
@@ -443,6 +441,15 @@ std::string Simulation::Run::free_steps(const RowSink& sink, const StopRequest& 
     return {};
 }
 
+/// The state at t inside the free step s (its end derivatives known), block by block: the state's own, then a
+/// sensitivity system's derivatives of it, each with the state's layout, so each gets the quintic of positions.
+void Simulation::Run::interpolate(const FreeStep& s, double t, double* y) const
+{
+    const int size = system_.size(), n = system_.state_size(), aux = system_.auxiliary().count();
+    for (int b = 0; b < size; b += n)
+        interpolate_state(s.t0, s.y0.data() + b, s.f0.data() + b, t_, y_.data() + b, s.f1.data() + b, t, n, y + b, aux);
+}
+
 /// For a step that holds rows: the interpolant's error at the step's middle bounds the next steps (h_max); false when
 /// the stepper's own middle state shows it exceeds the tolerance in this step.
 bool Simulation::Run::limit_interpolation(FreeStep& s)
@@ -452,20 +459,22 @@ bool Simulation::Run::limit_interpolation(FreeStep& s)
     system_.rhs(t_, y_.data(), s.f1.data());
     s.have_f0 = s.have_f1 = true;
     const double t_mid = 0.5 * (s.t0 + t_);
-    const int aux = system_.auxiliary_count();
-    interpolate_state(s.t0, s.y0.data(), s.f0.data(), t_, y_.data(), s.f1.data(), t_mid, size, s.y_mid.data(), aux);
+    interpolate(s, t_mid, s.y_mid.data());
+    // y is blocks of the state's layout: the state, then a sensitivity system's derivatives of it.
+    const int n = system_.state_size(), aux = system_.auxiliary().count();
     if (stepper_->midpoint(s.f_mid.data())) {
         // The stepper's own state at the middle: the interpolant's error there measured, not estimated from the
         // acceleration (whose stiff terms overstate a position error by (omega h)^2 / 24). An interpolated rate
         // differences the positions at the ends over h, so their round-off, 2 eps |p| / h at most twice over
         // (the quintic's weights at the middle are 1.875), is no error a shorter step could remove: it counts as
         // tolerance, or a large angle's rate would shrink the steps without end.
-        const int k = (size - system_.auxiliary_count()) / 2;
+        const int k = (n - aux) / 2;
         const double h = t_ - s.t0, eps = std::numeric_limits<double>::epsilon();
         double ratio = 0.0;
         for (int i = 0; i < size; ++i) {
             double tolerance = scene_.solver.atol + scene_.solver.rtol * std::abs(s.f_mid[i]);
-            if (i >= k && i < 2 * k) tolerance += 4.0 * eps * (std::abs(s.y0[i - k]) + std::abs(y_[i - k])) / h;
+            if (const int j = i % n; j >= k && j < 2 * k)
+                tolerance += 4.0 * eps * (std::abs(s.y0[i - k]) + std::abs(y_[i - k])) / h;
             ratio = std::max(ratio, std::abs(s.y_mid[i] - s.f_mid[i]) / tolerance);
         }
         s.h_max = h * std::min(4.0, 0.9 * std::pow(std::max(ratio, 1e-12), -1.0 / 5.0));
@@ -473,8 +482,11 @@ bool Simulation::Run::limit_interpolation(FreeStep& s)
     }
     // Estimated only: the step stands (GSL's steppers, whose output this has always been), the next ones obey h_max.
     system_.rhs(t_mid, s.y_mid.data(), s.f_mid.data());
-    const double ratio = interpolation_error(s.t0, s.y0.data(), s.f0.data(), t_, y_.data(), s.f1.data(), s.y_mid.data(),
-                                             s.f_mid.data(), size, scene_.solver.atol, scene_.solver.rtol, aux);
+    double ratio = 0.0;
+    for (int b = 0; b < size; b += n)
+        ratio = std::max(ratio, interpolation_error(s.t0, s.y0.data() + b, s.f0.data() + b, t_, y_.data() + b,
+                                                    s.f1.data() + b, s.y_mid.data() + b, s.f_mid.data() + b, n,
+                                                    scene_.solver.atol, scene_.solver.rtol, aux));
     s.h_max = (t_ - s.t0) * std::min(4.0, 0.9 * std::pow(std::max(ratio, 1e-12), -1.0 / 6.0));
     return true;
 }
@@ -490,8 +502,7 @@ std::string Simulation::Run::rows_in_step(FreeStep& s, long& i, const RowSink& s
             if (!s.have_f0) system_.rhs(s.t0, s.y0.data(), s.f0.data());
             if (!s.have_f1) system_.rhs(t_, y_.data(), s.f1.data());
             s.have_f0 = s.have_f1 = true;
-            interpolate_state(s.t0, s.y0.data(), s.f0.data(), t_, y_.data(), s.f1.data(), ti, system_.size(), s.yi.data(),
-                              system_.auxiliary_count());
+            interpolate(s, ti, s.yi.data());
             state = s.yi.data();
         }
         if (std::string failure = emit(ti, state, sink); !failure.empty()) return failure;
@@ -677,7 +688,7 @@ RunSummary Simulation::Run::finish(std::string failure)
 /// The stepper of the checks' re-runs: the automatic choice at their tolerance.
 std::string Simulation::Run::check_stepper(CheckTolerance tol) const
 {
-    return automatic_stepper(model_, scene_.axial, tol.rtol, scene_.output.t_end, system_.auxiliary_count()).stepper;
+    return automatic_stepper(model_, scene_.axial, tol.rtol, scene_.output.t_end, system_.auxiliary().count()).stepper;
 }
 
 /// For a run that reached t_end: why its rows cannot be trusted (empty if they can), from the invariant monitor
