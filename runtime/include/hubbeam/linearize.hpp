@@ -68,7 +68,14 @@ struct NaturalMode {
     double rad_s = 0.0, growth = 0.0;
     std::string kind;
     double undamped_rad_s = 0.0, damping_ratio = 0.0;
+    /// The mode's shape, to follow it from one spin rate to the next: its coordinates' rates weighted by the mass
+    /// matrix (U v with M = U^T U over the same coordinates), of unit length, so that mac() is mass-weighted.
+    Eigen::VectorXcd shape;
 };
+
+/// The modal assurance criterion of two modes' shapes, |a^H b|^2 (both of unit length): 1 for the same shape, 0 for
+/// shapes orthogonal in the mass. Throws std::invalid_argument for shapes of different sizes.
+double mac(const NaturalMode& a, const NaturalMode& b);
 
 /// The modes of the flexible coordinates about the steady spin, by increasing undamped frequency: the eigenvalues
 /// of the state matrix with the hub's own states left out (prescribed or held: theta and theta_dot are the drive's;
@@ -94,16 +101,41 @@ StateSpace closed_loop(const StateSpace& open, const Control& control);
 std::vector<NaturalMode> closed_loop_modes(const Model& model, const SteadySpin& steady, const Control& control);
 
 /// One row of a Campbell table: a natural mode about the steady spin omega, numbered 1, 2, ... by frequency among
-/// all the modes at that rate.
+/// all the modes at that rate, and the tracked mode it belongs to: its label ("bending 2", "axial 1", "hub 1"; the
+/// kind and order of its shape where the line begins) and the MAC between its shape here and at the line's previous
+/// rate (NaN where the line begins).
 struct SpinMode {
     double omega = 0.0;
     int number = 0;
     NaturalMode mode;
+    std::string label;
+    double mac = 0.0;
 };
 /// natural_modes about the steady spin at each rate of omegas, rate by rate (hubbeam modes, hubbeam.modes); theta
 /// is the held angle of a gravity variant (steady_spin); with a control, the closed loop's modes (closed_loop_modes).
+/// Rows in the order of omegas, each rate's by frequency. The modes are tracked from rate to rate in increasing
+/// omega: the modes of neighbouring rates are paired so that the sum of their MACs is largest (the assignment
+/// problem), and each pair continues a line. A mode left unpaired (the count changes where a mode turns overdamped
+/// or divergent) begins a line of its own. A line follows its shape: through a crossing, and through a veering that
+/// the rates step over, it keeps its label while the frequency order changes; through a veering the rates resolve,
+/// it follows its continuous branch, and its kind shows the exchange of shapes.
 std::vector<SpinMode> campbell(const Model& model, const std::vector<double>& omegas, Axial axial = Axial::dynamic,
                                double theta = 0.0, const Control* control = nullptr);
+
+/// Where a tracked mode meets an excitation line omega_mode = n Omega (a critical speed): the spin rate and the
+/// mode's frequency there (rad/s, = n omega).
+struct CriticalSpeed {
+    std::string label;
+    int harmonic = 0;
+    double omega = 0.0, rad_s = 0.0;
+};
+/// The critical speeds of campbell's rows for each harmonic n of harmonics: each place where a line's damped
+/// frequency minus n omega changes sign between two of its neighbouring rates, refined by regula falsi (Illinois)
+/// on the modes computed at rates between them, the mode followed by its MAC with the line's shape, to 1e-10 of
+/// omega. The same model and arguments as campbell's. By rate, then harmonic.
+std::vector<CriticalSpeed> critical_speeds(const Model& model, const std::vector<SpinMode>& rows,
+                                           const std::vector<int>& harmonics, Axial axial = Axial::dynamic,
+                                           double theta = 0.0, const Control* control = nullptr);
 
 /// The CSV header of the modes table (hubbeam modes writes it, hubbeam plot campbell reads it by column name).
 const char* modes_header();

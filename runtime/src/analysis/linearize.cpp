@@ -7,6 +7,11 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <array>
+#include <complex>
+#include <iterator>
+#include <limits>
+#include <map>
+#include <tuple>
 #include <numeric>
 #include <cmath>
 #include <stdexcept>
@@ -309,14 +314,29 @@ std::array<double, 3> energy_by_kind(const Model& model, const Eigen::MatrixXd& 
     return energy;
 }
 
-/// Whether the mode with eigenvector v of linearized_system's X holds more kinetic energy in the axial than in
-/// the transverse coordinates, from its rates.
-bool mostly_axial(const Model& model, const Eigen::MatrixXd& M, const std::vector<int>& R, const Eigen::VectorXcd& v)
+/// Whether a mode with these rates (of the coordinates R) holds more kinetic energy in the axial than in the
+/// transverse coordinates.
+bool mostly_axial(const Model& model, const Eigen::MatrixXd& M, const std::vector<int>& R, const Eigen::VectorXcd& rates)
 {
-    const auto r = static_cast<Eigen::Index>(R.size());
-    const Eigen::Index p = r - cyclic_angle(model, R);  // the rates follow the positions (a free hub's angle left out)
-    const std::array<double, 3> e = energy_by_kind(model, M, R, v.segment(p, r));
+    const std::array<double, 3> e = energy_by_kind(model, M, R, rates);
     return e[1] > e[2];
+}
+
+/// NaturalMode::shape of a mode with these rates: U rates with U the Cholesky factor of M over the same coordinates
+/// (M = U^T U), scaled to unit length.
+Eigen::VectorXcd weighted_shape(const Eigen::MatrixXd& U, const Eigen::VectorXcd& rates)
+{
+    Eigen::VectorXcd w = U.cast<std::complex<double>>() * rates;
+    const double length = w.norm();
+    return length > 0.0 ? Eigen::VectorXcd(w / length) : w;
+}
+
+/// The upper Cholesky factor U of M (M = U^T U); throws std::runtime_error if M is not positive definite.
+Eigen::MatrixXd cholesky_factor(const Eigen::MatrixXd& M)
+{
+    const Eigen::LLT<Eigen::MatrixXd> llt(M);
+    if (llt.info() != Eigen::Success) throw std::runtime_error("the mass matrix at the steady spin is not positive definite");
+    return llt.matrixU();
 }
 
 }  // namespace
@@ -336,6 +356,9 @@ std::vector<NaturalMode> natural_modes(const Model& model, const SteadySpin& s, 
     if (eig.info() != Eigen::Success) throw std::runtime_error("the eigenvalues of the linearized equations did not converge");
     const Eigen::VectorXcd lambda = eig.eigenvalues();
     const Eigen::MatrixXcd vectors = eig.eigenvectors();
+    const Eigen::MatrixXd U = cholesky_factor(submatrix(M, R, R));
+    const auto r = static_cast<Eigen::Index>(R.size());
+    const Eigen::Index first_rate = r - cyclic_angle(model, R);  // the rates follow the positions
     // The free hub's conserved angular momentum: one zero eigenvalue, the smallest (damping acts on the elastic
     // rates relative to the hub, so it conserves it too).
     Eigen::Index momentum = -1;
@@ -351,10 +374,11 @@ std::vector<NaturalMode> natural_modes(const Model& model, const SteadySpin& s, 
         // Without damping the equations are conservative (gyroscopic at most): a real part below 1e-6 of |lambda|
         // is the eigen solver's round-off, not damping.
         const double growth = !damped && std::abs(l.real()) <= 1e-6 * scale ? 0.0 : l.real();
-        const bool is_axial = mostly_axial(model, M, R, vectors.col(k));
+        const Eigen::VectorXcd rates = vectors.col(k).segment(first_rate, r);
+        const bool is_axial = mostly_axial(model, M, R, rates);
         const double magnitude = std::hypot(growth, oscillating ? l.imag() : 0.0);
         modes.push_back({oscillating ? l.imag() : 0.0, growth, is_axial ? "axial" : "bending", magnitude,
-                         magnitude > 0.0 ? -growth / magnitude : 0.0});
+                         magnitude > 0.0 ? -growth / magnitude : 0.0, weighted_shape(U, rates)});
     }
     // By frequency, divergent modes (rad_s 0) first; with damping by undamped frequency, so that an overdamped
     // mode keeps its place among the others.
@@ -403,6 +427,7 @@ std::vector<NaturalMode> closed_loop_modes(const Model& model, const SteadySpin&
     const Eigen::EigenSolver<Eigen::MatrixXd> eig(cl.A);
     if (eig.info() != Eigen::Success) throw std::runtime_error("the eigenvalues of the closed loop did not converge");
     const Eigen::MatrixXd M = mass_at(model, s.u, s.q);
+    const Eigen::MatrixXd U = cholesky_factor(M);
     const Eigen::Index m = M.rows();  // the state holds theta and the flexible coordinates, as q does under torque
     std::vector<int> all(static_cast<std::size_t>(m));
     std::iota(all.begin(), all.end(), 0);
@@ -412,28 +437,174 @@ std::vector<NaturalMode> closed_loop_modes(const Model& model, const SteadySpin&
         const double magnitude = std::abs(l), scale = std::max(1.0, magnitude);
         if (l.imag() < -1e-9 * scale || magnitude <= 1e-9) continue;  // a conjugate, or a neutral direction
         // The kind whose coordinates hold most of the mode's kinetic energy (the state's rates are q's, all of them).
-        const std::array<double, 3> energy = energy_by_kind(model, M, all, eig.eigenvectors().col(k).segment(m, m));
+        const Eigen::VectorXcd rates = eig.eigenvectors().col(k).segment(m, m);
+        const std::array<double, 3> energy = energy_by_kind(model, M, all, rates);
         const auto kind = std::max_element(energy.begin(), energy.end()) - energy.begin();
         const bool oscillating = l.imag() > 1e-9 * scale;
         modes.push_back({oscillating ? l.imag() : 0.0, l.real(), kind == 0 ? "hub" : kind == 1 ? "axial" : "bending",
-                         magnitude, -l.real() / magnitude});
+                         magnitude, -l.real() / magnitude, weighted_shape(U, rates)});
     }
     std::sort(modes.begin(), modes.end(),
               [](const NaturalMode& a, const NaturalMode& b) { return a.undamped_rad_s < b.undamped_rad_s; });
     return modes;
 }
 
+double mac(const NaturalMode& a, const NaturalMode& b)
+{
+    if (a.shape.size() != b.shape.size()) throw std::invalid_argument("mac: shapes of different sizes");
+    return std::norm(a.shape.dot(b.shape));  // dot conjugates a: a^H b
+}
+
+namespace {
+
+/// The modes about the steady spin at omega, as campbell takes them.
+std::vector<NaturalMode> modes_at(const Model& model, double omega, Axial axial, double theta, const Control* control)
+{
+    const SteadySpin s = steady_spin(model, omega, theta);
+    return control ? closed_loop_modes(model, s, *control) : natural_modes(model, s, axial);
+}
+
+/// The assignment of rows to columns that makes the sum of score(row, column) largest (Kuhn and Munkres' Hungarian
+/// method, O(n^3), on the square matrix padded with zeros): for each row, its column, or -1 where the padding took
+/// it (more rows than columns).
+std::vector<int> best_assignment(const Eigen::MatrixXd& score)
+{
+    const auto rows = static_cast<int>(score.rows()), cols = static_cast<int>(score.cols());
+    const int n = std::max(rows, cols);
+    const auto cost = [&](int i, int j) { return i < rows && j < cols ? -score(i, j) : 0.0; };  // 0-based
+    // Potentials u (rows) and v (columns), 1-based with 0 a sentinel; owner[j]: the row matched to column j.
+    const double infinity = std::numeric_limits<double>::infinity();
+    std::vector<double> u(static_cast<std::size_t>(n) + 1), v(static_cast<std::size_t>(n) + 1);
+    std::vector<int> owner(static_cast<std::size_t>(n) + 1), way(static_cast<std::size_t>(n) + 1);
+    const auto at = [](auto& x, int i) -> auto& { return x[static_cast<std::size_t>(i)]; };
+    for (int i = 1; i <= n; ++i) {
+        at(owner, 0) = i;
+        int j0 = 0;
+        std::vector<double> slack(static_cast<std::size_t>(n) + 1, infinity);
+        std::vector<char> used(static_cast<std::size_t>(n) + 1, 0);
+        do {  // grow an alternating tree from row i until it reaches a free column
+            at(used, j0) = 1;
+            const int i0 = at(owner, j0);
+            double delta = infinity;
+            int j1 = 0;
+            for (int j = 1; j <= n; ++j) {
+                if (at(used, j)) continue;
+                const double reduced = cost(i0 - 1, j - 1) - at(u, i0) - at(v, j);
+                if (reduced < at(slack, j)) at(slack, j) = reduced, at(way, j) = j0;
+                if (at(slack, j) < delta) delta = at(slack, j), j1 = j;
+            }
+            for (int j = 0; j <= n; ++j)
+                if (at(used, j)) at(u, at(owner, j)) += delta, at(v, j) -= delta;
+                else at(slack, j) -= delta;
+            j0 = j1;
+        } while (at(owner, j0) != 0);
+        do {  // augment along the path
+            const int j1 = at(way, j0);
+            at(owner, j0) = at(owner, j1);
+            j0 = j1;
+        } while (j0 != 0);
+    }
+    std::vector<int> column(static_cast<std::size_t>(rows), -1);
+    for (int j = 1; j <= n; ++j)
+        if (at(owner, j) <= rows && j <= cols) column[static_cast<std::size_t>(at(owner, j) - 1)] = j - 1;
+    return column;
+}
+
+}  // namespace
+
 std::vector<SpinMode> campbell(const Model& model, const std::vector<double>& omegas, Axial axial, double theta,
                                const Control* control)
 {
-    std::vector<SpinMode> rows;
+    std::vector<std::vector<SpinMode>> at_rate;  // per rate of omegas, its modes by frequency
     for (const double omega : omegas) {
+        std::vector<SpinMode>& rate = at_rate.emplace_back();
         int number = 0;
-        const SteadySpin s = steady_spin(model, omega, theta);
-        for (const NaturalMode& mode : control ? closed_loop_modes(model, s, *control) : natural_modes(model, s, axial))
-            rows.push_back({omega, ++number, mode});
+        for (NaturalMode& mode : modes_at(model, omega, axial, theta, control))
+            rate.push_back({omega, ++number, std::move(mode), "", std::numeric_limits<double>::quiet_NaN()});
     }
+    // Tracked in increasing omega: each rate's modes paired with the previous rate's by their MACs; a mode left
+    // unpaired begins a line labelled by its kind and how many lines of that kind began before it.
+    std::vector<std::size_t> order(omegas.size());
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return omegas[a] < omegas[b]; });
+    std::map<std::string, int> lines_of_kind;
+    const std::vector<SpinMode>* previous = nullptr;
+    for (const std::size_t k : order) {
+        std::vector<SpinMode>& current = at_rate[k];
+        if (previous != nullptr) {
+            Eigen::MatrixXd score(static_cast<Eigen::Index>(previous->size()), static_cast<Eigen::Index>(current.size()));
+            for (std::size_t i = 0; i < previous->size(); ++i)
+                for (std::size_t j = 0; j < current.size(); ++j)
+                    score(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = mac((*previous)[i].mode, current[j].mode);
+            const std::vector<int> paired = best_assignment(score);
+            for (std::size_t i = 0; i < paired.size(); ++i) {
+                if (paired[i] < 0) continue;  // the line ends here
+                SpinMode& next = current[static_cast<std::size_t>(paired[i])];
+                next.label = (*previous)[i].label;
+                next.mac = score(static_cast<Eigen::Index>(i), paired[i]);
+            }
+        }
+        for (SpinMode& m : current)
+            if (m.label.empty()) m.label = m.mode.kind + " " + std::to_string(++lines_of_kind[m.mode.kind]);
+        previous = &current;
+    }
+    std::vector<SpinMode> rows;
+    for (std::vector<SpinMode>& rate : at_rate) std::move(rate.begin(), rate.end(), std::back_inserter(rows));
     return rows;
+}
+
+std::vector<CriticalSpeed> critical_speeds(const Model& model, const std::vector<SpinMode>& rows,
+                                           const std::vector<int>& harmonics, Axial axial, double theta,
+                                           const Control* control)
+{
+    // Each line's rows in increasing omega.
+    std::map<std::string, std::vector<const SpinMode*>> lines;
+    for (const SpinMode& r : rows) lines[r.label].push_back(&r);
+    std::vector<CriticalSpeed> speeds;
+    for (auto& [label, line] : lines) {
+        std::stable_sort(line.begin(), line.end(), [](const SpinMode* a, const SpinMode* b) { return a->omega < b->omega; });
+        for (const int n : harmonics)
+            for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+                const SpinMode &a = *line[i], &b = *line[i + 1];
+                // The mode's frequency minus the excitation's, at omega: the line's mode there is the one of
+                // closest shape to its mode at a.
+                const auto gap = [&](double omega) {
+                    const std::vector<NaturalMode> modes = modes_at(model, omega, axial, theta, control);
+                    const auto best = std::max_element(modes.begin(), modes.end(), [&](const NaturalMode& x, const NaturalMode& y) {
+                        return mac(a.mode, x) < mac(a.mode, y);
+                    });
+                    return best->rad_s - n * omega;
+                };
+                double lo = a.omega, hi = b.omega;
+                double g_lo = a.mode.rad_s - n * lo, g_hi = b.mode.rad_s - n * hi;
+                if (g_lo == 0.0 && i > 0) continue;  // met at a, counted as the previous interval's end
+                if (!(g_lo * g_hi <= 0.0) || (g_lo == 0.0 && g_hi == 0.0)) continue;
+                // Regula falsi with Illinois' halving of the stale end's value: superlinear, and never leaves the
+                // bracket.
+                double omega = g_lo == 0.0 ? lo : hi;
+                int stale = 0;
+                for (int iteration = 0; iteration < 100 && g_lo != 0.0 && g_hi != 0.0; ++iteration) {
+                    omega = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
+                    if (hi - lo <= 1e-10 * std::max(1.0, std::abs(omega))) break;
+                    const double g = gap(omega);
+                    if (std::abs(g) <= 1e-13 * std::max(1.0, n * omega)) break;  // the eigenvalues' round-off
+                    if ((g < 0.0) == (g_lo < 0.0)) {
+                        lo = omega, g_lo = g;
+                        if (stale == -1) g_hi /= 2.0;
+                        stale = -1;
+                    } else {
+                        hi = omega, g_hi = g;
+                        if (stale == 1) g_lo /= 2.0;
+                        stale = 1;
+                    }
+                }
+                speeds.push_back({label, n, omega, n * omega});
+            }
+    }
+    std::sort(speeds.begin(), speeds.end(), [](const CriticalSpeed& x, const CriticalSpeed& y) {
+        return std::tie(x.omega, x.harmonic, x.label) < std::tie(y.omega, y.harmonic, y.label);
+    });
+    return speeds;
 }
 
 double frequency_unit(const Parameters& p) { return std::sqrt(p.E * p.I / (p.rho * p.S * std::pow(p.L, 4))); }
@@ -443,7 +614,7 @@ const char* modes_header()
     // The one list of the modes CSV's columns, in the order run_modes writes them; readers look them up by name.
     static const std::string h = csv_header({"method", "ny", "nx", "order", "drive", "omega", "mode", "kind", "rad_s",
                                              "hz", "dimensionless", "growth", "undamped_rad_s",
-                                             "damping_ratio"});
+                                             "damping_ratio", "label", "mac"});
     return h.c_str();
 }
 
