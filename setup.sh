@@ -88,7 +88,7 @@ case "$mode" in
       -o "$data/modes.csv" >/dev/null
     build/hubbeam modes cases/spinup_omega4.toml --methods bim --ny 14 --omega 0:12:0.25 \
       -o "$data/modes-all-converged.csv" >/dev/null  # converged: the reference the Ny = 4 lines approach
-    awk -F, 'NR == 1 || $7 <= 4' "$data/modes-all-converged.csv" > "$data/modes-converged.csv"  # its first four
+    awk -F, 'NR == 1 || $15 ~ /^bending [1-4]$/' "$data/modes-all-converged.csv" > "$data/modes-converged.csv"  # its first four
     build/hubbeam plot campbell "$data/modes.csv" "$data/modes-converged.csv" \
       --title "Campbell diagram: in-plane bending, Nx = 4; Ny = 4 and converged (BIM, Ny = 14)" -o "$dir/campbell"
     files=()

@@ -3,9 +3,11 @@
 // expressions that carry file names and labels with quotes into a script.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -73,8 +75,53 @@ TEST_CASE("campbell: a line per bending mode of each variant, through its rows i
     CHECK(script.find("title 'amm Ny = 4' noenhanced") != std::string::npos);
     CHECK(script.find("title 'fem Ny = 4' noenhanced") != std::string::npos);
     // amm's and fem's lines coincide to the eye: each its own open marker, amm's larger and wider under fem's
-    CHECK(script.find("$mode2 using 1:2 with linespoints lw 2.5 lc 1 dt 1 pt 6 ps 1.60 notitle") != std::string::npos);
-    CHECK(script.find("$mode4 using 1:2 with linespoints lw 2.1 lc 2 dt 1 pt 4 ps 1.35 notitle") != std::string::npos);
+    CHECK(script.find("$mode2 using 1:2 smooth unique with linespoints lw 2.5 lc 1 dt 1 pt 6 ps 1.60 notitle") != std::string::npos);
+    CHECK(script.find("$mode4 using 1:2 smooth unique with linespoints lw 2.1 lc 2 dt 1 pt 4 ps 1.35 notitle") != std::string::npos);
+}
+
+TEST_CASE("campbell: a line per tracked mode through a crossing, the excitation lines and their crossings marked")
+{
+    ScratchDir scratch;
+    // Two modes that cross between 0 and 10 rad/s: bending 1 rises from 1 to 2.5 Hz, bending 2 falls from 2 to
+    // 1.5 Hz, so the frequency numbers swap while the labels stay.
+    const fs::path file = scratch.dir / "crossing.csv";
+    std::ofstream(file) << "method,ny,nx,order,drive,omega,mode,kind,rad_s,hz,dimensionless,growth,undamped_rad_s,"
+                           "damping_ratio,label,mac\n"
+                           "amm,4,0,first,prescribed,0,1,bending,6.28,1,1,0,6.28,0,bending 1,nan\n"
+                           "amm,4,0,first,prescribed,0,2,bending,12.6,2,2,0,12.6,0,bending 2,nan\n"
+                           "amm,4,0,first,prescribed,10,1,bending,9.42,1.5,1.5,0,9.42,0,bending 2,0.99\n"
+                           "amm,4,0,first,prescribed,10,2,bending,15.7,2.5,2.5,0,15.7,0,bending 1,0.99\n";
+    PlotArgs args;
+    args.kind = "campbell";
+    args.files = {file.string()};
+    args.prefix = (scratch.dir / "campbell").string();
+    args.harmonics = "1";
+    const std::string script = plot_script(args);
+    CHECK(gnuplot_prints(scratch.dir, script, "print $mode1\nprint $mode2") == "0,1\n10,2.5\n\n0,2\n10,1.5\n\n");
+    // 1P only: bending 2 meets omega / 2 pi where the straight segment from (0, 2) to (10, 1.5) crosses it.
+    CHECK(script.find("x/(2*pi) with lines") != std::string::npos);
+    CHECK(script.find("2*x/(2*pi)") == std::string::npos);
+    const std::size_t block = script.find("$critical << EOD\n");
+    REQUIRE(block != std::string::npos);
+    std::istringstream marks(script.substr(block + 17));
+    double omega = 0.0, hz = 0.0;
+    char comma = 0;
+    marks >> omega >> comma >> hz;
+    const double gap0 = 2.0, gap10 = 1.5 - 10.0 / (2.0 * M_PI);
+    CHECK(omega == Approx(10.0 * gap0 / (gap0 - gap10)).epsilon(1e-12));
+    CHECK(hz == Approx(omega / (2.0 * M_PI)).epsilon(1e-12));
+    std::string next;
+    marks >> next;
+    CHECK(next == "EOD");  // one crossing: bending 1 stays above 1P
+    args.harmonics.clear();  // the default: 1P, 2P and 3P
+    CHECK(plot_script(args).find("3*x/(2*pi) with lines") != std::string::npos);
+    args.harmonics = "0";
+    CHECK_THROWS_WITH(plot_script(args), "--harmonics: expected a comma-separated list of integers from 1 to 1000, got 0");
+    // A modes CSV of an older hubbeam, without the label column: a line per frequency number of kind bending.
+    args.harmonics.clear();
+    args.files = {fixture("modes_untracked.csv")};
+    CHECK(gnuplot_prints(scratch.dir, plot_script(args), "print $mode1\nprint $mode2") ==
+          "0,0.46335\n4,0.53201\n\n0,2.9038\n4,3.075\n\n");
 }
 
 TEST_CASE("moment: each file's rows at the t closest to --time, by default at its last t")

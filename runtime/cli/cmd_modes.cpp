@@ -77,10 +77,17 @@ Command add_modes_command(CLI::App& app)
     modes_cmd
         ->add_option("--plot", o->args.plot, "Also draw the Campbell diagram PREFIX.png and PREFIX.svg (needs -o)")
         ->type_name("PREFIX");
+    modes_cmd
+        ->add_option("--harmonics", o->args.harmonics,
+                     "Excitation lines omega = n Omega whose crossings with the modes are printed as critical speeds "
+                     "(default 1,2,3)")
+        ->type_name("LIST");
+    modes_cmd->add_option("--critical", o->args.critical, "Also write the critical speeds as CSV to FILE")
+        ->type_name("FILE");
     modes_cmd->add_flag("-q,--quiet", o->args.quiet,
                         "Print only how many modes were written, not the table (the CSV has every mode)");
     add_linear_overrides(*modes_cmd, o->overrides, false);
-    modes_cmd->footer("Prints the table; writes a file only when asked (-o, --plot). docs/cli.md. "
+    modes_cmd->footer("Prints the table; writes a file only when asked (-o, --critical, --plot). docs/cli.md. "
                       "Exit code 2 for a bad option value or an output that is the scene, another output, not a "
                       "regular file, or being written by another hubbeam.");
     return {modes_cmd, [o] {

@@ -24,6 +24,9 @@ void add_plot_options(CLI::App& sub, PlotArgs& a)
     sub.add_option("--title", a.title, "Title (default: the kind's, then the scene's name)")->type_name("TEXT");
     sub.add_option("--time", a.time, "moment: the rows at the t closest to T (default: each file's last t)")
         ->type_name("T");
+    sub.add_option("--harmonics", a.harmonics,
+                   "campbell: the excitation lines omega = n Omega drawn, with their crossings (default 1,2,3)")
+        ->type_name("LIST");
 }
 
 /// hubbeam plot: returns the exit code.

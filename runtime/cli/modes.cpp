@@ -1,6 +1,7 @@
 // hubbeam modes and hubbeam linearize: the linearization of linearize.hpp applied to a scene's variants, as tables.
 #include "modes.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -68,6 +69,7 @@ std::vector<double> parse_spin_rates(const std::string& option, const std::strin
         for (long k = 0; k <= count; ++k) add_unique(rates, first + static_cast<double>(k) * step);
     }
     if (rates.size() > max_spin_rates) bad(option, "at most 10000 spin rates", std::to_string(rates.size()) + " of them");
+    std::sort(rates.begin(), rates.end());  // a Campbell table reads, and its modes are tracked, by increasing rate
     return rates;
 }
 
@@ -94,31 +96,63 @@ ModesOptions parse_modes_options(const ModesArgs& args, const Scene& scene)
             if (const std::string why = k.dof_problem(); !why.empty()) throw ModesOptionError("--ny: " + why);
         }
     if (!parse_int(args.count, 1, 64, o.count)) bad("--count", "an integer from 1 to 64", args.count);
+    o.harmonics = parse_harmonics<ModesOptionError>("--harmonics", args.harmonics);
     o.output = args.output;
     o.plot = args.plot;
+    o.critical = args.critical;
     o.quiet = args.quiet;
     if (!o.plot.empty() && o.output.empty())
         bad("--plot", "-o FILE as well (the diagram is drawn from that CSV)", printable(o.plot));
     // Every output checked before anything is computed: none may be the scene or another output.
-    std::vector<NamedPath> outputs = {{o.output, "-o"}};
+    std::vector<NamedPath> outputs = {{o.output, "-o"}, {o.critical, "--critical"}};
     if (!o.plot.empty())
         for (const char* ext : {".png", ".svg", ".gp"}) outputs.push_back({o.plot + ext, "--plot"});
     check_outputs({{scene.path, "the scene itself"}}, outputs);
     return o;
 }
 
+namespace {
+
+/// The critical speeds CSV's columns (--critical): the variant, the tracked mode, the harmonic n, the spin rate and
+/// the mode's frequency there.
+const char* critical_header()
+{
+    static const std::string h =
+        csv_header({"method", "ny", "nx", "order", "drive", "label", "harmonic", "omega", "rad_s", "hz"});
+    return h.c_str();
+}
+
+/// A modes or critical-speeds CSV row's first fields: the variant's method, ny, nx, order and drive.
+std::string variant_fields(const VariantKey& key)
+{
+    return to_string(key.method) + ',' + std::to_string(key.ny) + ',' + std::to_string(key.nx) + ',' +
+           to_string(key.order) + ',' + to_string(key.drive);
+}
+
+/// Below this MAC a line's pairing from one rate to the next is in doubt: the shapes changed more than between
+/// grid points that resolve them (a crossing's or veering's modes are about 0.5 apart when stepped over halfway).
+constexpr double doubtful_mac = 0.8;
+
+}  // namespace
+
 void run_modes(const Scene& scene, const ModesOptions& o, std::ostream& out)
 {
     const double unit = frequency_unit(scene.parameters);
-    // The table is printed; the CSV written only when asked for, and put in place only when complete.
+    // The table is printed; the CSVs written only when asked for, and put in place only when complete.
     std::unique_ptr<CsvWriter> csv = o.output.empty() ? nullptr : std::make_unique<CsvWriter>(o.output, modes_header());
-    long rows = 0;
+    std::unique_ptr<CsvWriter> critical_csv =
+        o.critical.empty() ? nullptr : std::make_unique<CsvWriter>(o.critical, critical_header());
+    long rows = 0, crossings = 0;
+    std::string harmonics;  // as typed for --plot, and for the table's heading
+    for (const int n : o.harmonics) harmonics += (harmonics.empty() ? "" : ",") + std::to_string(n);
+    std::string speeds_text, warnings;  // after the table: each variant's critical speeds and doubtful pairings
     try {
         char line[400];
         // Damping adds the undamped frequency |lambda| and the damping ratio to the printed table.
         const bool damped = scene.key().extras.damping || scene.control;
         if (!o.quiet)
-            out << "method  Ny  Nx  order  Omega rad/s  mode  kind        rad/s          Hz  dimensionless  growth 1/s"
+            out << "method  Ny  Nx  order  Omega rad/s  mode  kind     tracked          rad/s          Hz  dimensionless  "
+                   "growth 1/s"
                 << (damped ? "  undamped rad/s     zeta" : "") << "\n";
         for (Method method : o.methods)
             for (int ny : o.ny) {
@@ -126,28 +160,32 @@ void run_modes(const Scene& scene, const ModesOptions& o, std::ostream& out)
                 key.method = method;
                 key.ny = ny;
                 const std::unique_ptr<Model> model = make_model(key, scene.parameters, scene.source);
+                const std::vector<SpinMode> spin_modes =
+                    campbell(*model, o.omegas, scene.axial, held_angle(scene), scene.controller());
                 // Printed: the first `count` bending modes and the first axial one of each spin rate.
                 int shown_bending = 0;
                 bool shown_axial = false;
-                for (const auto& [omega, number, mode] : campbell(*model, o.omegas, scene.axial, held_angle(scene),
-                                                                      scene.controller())) {
+                const SpinMode* least = nullptr;  // the least certain pairing of a line from one rate to the next
+                for (const SpinMode& r : spin_modes) {
+                    const auto& [omega, number, mode, label, pairing] = r;
+                    if (pairing < (least ? least->mac : doubtful_mac)) least = &r;
                     if (number == 1) shown_bending = 0, shown_axial = false;
                     const double hz = mode.rad_s / (2.0 * M_PI);
                     std::ostringstream row;
-                    row << to_string(method) << ',' << ny << ',' << key.nx << ',' << to_string(key.order) << ','
-                        << to_string(key.drive) << ',' << shortest(omega) << ',' << number << ',' << mode.kind << ','
+                    row << variant_fields(key) << ',' << shortest(omega) << ',' << number << ',' << mode.kind << ','
                         << shortest(mode.rad_s) << ',' << shortest(hz) << ',' << shortest(mode.rad_s / unit) << ','
                         << shortest(mode.growth) << ',' << shortest(mode.undamped_rad_s) << ','
-                        << shortest(mode.damping_ratio);
+                        << shortest(mode.damping_ratio) << ',' << label << ',' << shortest(pairing);
                     if (csv) csv->write_line(row.str());
                     ++rows;
                     if (o.quiet) continue;
                     const bool enough =
                         mode.kind == "bending" ? shown_bending++ >= o.count : std::exchange(shown_axial, true);
                     if (enough) continue;
-                    std::snprintf(line, sizeof line, "%-6s %3d %3d  %-5s %12.4g  %4d  %-7s %11.6g %11.6g %14.6g  %10.3g",
+                    std::snprintf(line, sizeof line,
+                                  "%-6s %3d %3d  %-5s %12.4g  %4d  %-7s  %-11s %11.6g %11.6g %14.6g  %10.3g",
                                   to_string(method).c_str(), ny, key.nx, to_string(key.order).c_str(), omega, number,
-                                  mode.kind.c_str(), mode.rad_s, hz, mode.rad_s / unit, mode.growth);
+                                  mode.kind.c_str(), label.c_str(), mode.rad_s, hz, mode.rad_s / unit, mode.growth);
                     out << line;
                     if (damped) {
                         std::snprintf(line, sizeof line, "  %14.6g %8.4g", mode.undamped_rad_s, mode.damping_ratio);
@@ -155,22 +193,48 @@ void run_modes(const Scene& scene, const ModesOptions& o, std::ostream& out)
                     }
                     out << '\n';
                 }
+                const std::vector<CriticalSpeed> speeds = critical_speeds(
+                    *model, spin_modes, o.harmonics, scene.axial, held_angle(scene), scene.controller());
+                crossings += static_cast<long>(speeds.size());
+                for (const CriticalSpeed& c : speeds) {
+                    if (critical_csv)
+                        critical_csv->write_line(variant_fields(key) + ',' + c.label + ',' + std::to_string(c.harmonic) +
+                                                 ',' + shortest(c.omega) + ',' + shortest(c.rad_s) + ',' +
+                                                 shortest(c.rad_s / (2.0 * M_PI)));
+                    std::snprintf(line, sizeof line, "%-6s %3d %3d  %-11s meets %3dP at Omega = %-12.6g rad/s (%.6g Hz)\n",
+                                  to_string(method).c_str(), ny, key.nx, c.label.c_str(), c.harmonic, c.omega,
+                                  c.rad_s / (2.0 * M_PI));
+                    speeds_text += line;
+                }
+                if (least != nullptr)
+                    warnings += "note: " + key.name() + ": " + least->label + " continues at Omega = " +
+                             shortest(least->omega) + " rad/s with a MAC of only " + shortest(least->mac) +
+                             " to its shape at the rate before: the rates may step over a crossing or a veering; "
+                             "refine --omega there to follow it\n";
             }
     } catch (...) {
         if (csv) csv->discard();
+        if (critical_csv) critical_csv->discard();
         throw;
     }
     if (o.quiet)
         out << rows << " modes of " << o.methods.size() * o.ny.size() << " variant(s) at " << o.omegas.size()
-            << " spin rate(s)\n";
-    if (!csv) return;
-    if (!csv->finish()) throw std::runtime_error(csv->error());
-    out << "modes: " << o.output << "\n";
+            << " spin rate(s); " << crossings << " critical speed(s)\n";
+    else if (o.omegas.size() > 1)
+        out << "\ncritical speeds (a tracked mode meets the excitation n x the spin rate, n = " << harmonics
+            << "): " << (crossings == 0 ? "none between the rates\n" : "\n")
+            << speeds_text;
+    out << warnings;
+    for (CsvWriter* file : {csv.get(), critical_csv.get()})
+        if (file && !file->finish()) throw std::runtime_error(file->error());
+    if (csv) out << "modes: " << o.output << "\n";
+    if (critical_csv) out << "critical speeds: " << o.critical << "\n";
     if (!o.plot.empty()) {
         PlotArgs figure;
         figure.kind = "campbell";
         figure.files = {o.output};
         figure.prefix = o.plot;
+        figure.harmonics = harmonics;
         if (const std::string why = draw_plot(figure); !why.empty()) throw std::runtime_error(why);
         out << "figure: " << o.plot << ".{png,svg}\n";
     }

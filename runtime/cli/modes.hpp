@@ -16,8 +16,8 @@ struct ModesOptionError : OptionError {
     using OptionError::OptionError;
 };
 
-/// Spin rates from a comma-separated list whose items are numbers >= 0 (rad/s) or ranges FIRST:LAST:STEP;
-/// throws ModesOptionError naming option for a bad item or more than 10000 rates.
+/// Spin rates from a comma-separated list whose items are numbers >= 0 (rad/s) or ranges FIRST:LAST:STEP, each once,
+/// in increasing order; throws ModesOptionError naming option for a bad item or more than 10000 rates.
 std::vector<double> parse_spin_rates(const std::string& option, const std::string& text);
 
 /// The `modes` options as typed.
@@ -28,6 +28,8 @@ struct ModesArgs {
     std::string count = "4";
     std::string output;   // CSV; empty: none (the table is printed)
     std::string plot;     // PREFIX: the Campbell diagram PREFIX.{png,svg} (hubbeam plot campbell)
+    std::string harmonics = "1,2,3";  // the excitation lines omega = n Omega whose crossings are critical speeds
+    std::string critical;             // CSV of the critical speeds; empty: none (they are printed)
     bool quiet = false;   // the table to the CSV only, and one summary line printed
 };
 
@@ -36,7 +38,8 @@ struct ModesOptions {
     std::vector<Method> methods;
     std::vector<int> ny;
     int count = 4;
-    std::string output, plot;
+    std::vector<int> harmonics;
+    std::string output, plot, critical;
     bool quiet = false;
 };
 
@@ -45,8 +48,10 @@ ModesOptions parse_modes_options(const ModesArgs& args, const Scene& scene);
 
 /// For each method, Ny and spin rate: the scene's variant linearized about the steady spin, its first `count`
 /// bending modes and first axial mode printed to out (with options.quiet, only how many modes there are), and every
-/// mode written to options.output if given (atomically); with options.plot, the Campbell diagram. Throws
-/// std::runtime_error if the CSV or the figure cannot be written.
+/// mode written to options.output if given (atomically), each with its tracked label and MAC; then each variant's
+/// critical speeds (its modes' crossings with the harmonics' excitation lines) printed, and written to
+/// options.critical if given; with options.plot, the Campbell diagram. Throws std::runtime_error if a CSV or the
+/// figure cannot be written.
 void run_modes(const Scene& scene, const ModesOptions& options, std::ostream& out);
 
 /// hubbeam linearize: A, B, C and D about the steady spin omega written to PREFIX-A.csv ... PREFIX-D.csv, each

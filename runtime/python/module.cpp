@@ -193,31 +193,37 @@ py::dict run(const std::string& text, const std::string& name, const Overrides& 
 }
 
 /// Every mode of the scene's variant at each spin rate: columns of equal length.
-py::dict modes(const std::string& text, const std::string& name, const Overrides& overrides, const std::vector<double>& omegas)
+py::dict modes(const std::string& text, const std::string& name, const Overrides& overrides, const std::vector<double>& omegas,
+               const std::vector<int>& harmonics)
 {
     const Scene scene = scene_of(text, name, overrides);
     const VariantKey key = scene.key();
     const std::unique_ptr<Model> model = guarded(scene, [&] { return make_model(key, scene.parameters, scene.source); });
     std::vector<SpinMode> rows;
+    std::vector<CriticalSpeed> speeds;
     {
         const py::gil_scoped_release release;
         try {
             // Held at the initial angle under gravity; with [control], the closed loop's modes (as hubbeam modes).
             rows = campbell(*model, omegas, scene.axial, scene.motion.initial_theta(), scene.controller());
+            speeds = critical_speeds(*model, rows, harmonics, scene.axial, scene.motion.initial_theta(),
+                                     scene.controller());
         } catch (const std::runtime_error&) {
             // Name the rate that has no steady state (ValueError) if that is what failed.
             for (const double w : omegas) at_spin(w, [&] { return steady_spin(*model, w, scene.motion.initial_theta()); });
             throw;
         }
     }
-    std::vector<double> omega, rad_s, hz, dimensionless, growth, undamped, zeta;
+    std::vector<double> omega, rad_s, hz, dimensionless, growth, undamped, zeta, pairing;
     std::vector<int> number;
-    std::vector<std::string> kind;
+    std::vector<std::string> kind, label;
     const double unit = frequency_unit(scene.parameters);
-    for (const auto& [w, k, m] : rows) {
+    for (const auto& [w, k, m, l, mac] : rows) {
         omega.push_back(w);
         number.push_back(k);
         kind.push_back(m.kind);
+        label.push_back(l);
+        pairing.push_back(mac);
         rad_s.push_back(m.rad_s);
         hz.push_back(m.rad_s / (2.0 * M_PI));
         dimensionless.push_back(m.rad_s / unit);
@@ -236,6 +242,25 @@ py::dict modes(const std::string& text, const std::string& name, const Overrides
     out["growth"] = py::array(py::cast(growth));
     out["undamped_rad_s"] = py::array(py::cast(undamped));
     out["damping_ratio"] = py::array(py::cast(zeta));
+    out["label"] = label;
+    out["mac"] = py::array(py::cast(pairing));
+    std::vector<std::string> critical_label;
+    std::vector<int> critical_harmonic;
+    std::vector<double> critical_omega, critical_rad_s, critical_hz;
+    for (const CriticalSpeed& c : speeds) {
+        critical_label.push_back(c.label);
+        critical_harmonic.push_back(c.harmonic);
+        critical_omega.push_back(c.omega);
+        critical_rad_s.push_back(c.rad_s);
+        critical_hz.push_back(c.rad_s / (2.0 * M_PI));
+    }
+    py::dict critical;
+    critical["label"] = critical_label;
+    critical["harmonic"] = py::array(py::cast(critical_harmonic));
+    critical["omega"] = py::array(py::cast(critical_omega));
+    critical["rad_s"] = py::array(py::cast(critical_rad_s));
+    critical["hz"] = py::array(py::cast(critical_hz));
+    out["critical"] = critical;
     return out;
 }
 
@@ -294,7 +319,7 @@ PYBIND11_MODULE(_core, m)
           py::arg("name"), py::arg("overrides"), py::arg("cancellable") = false, py::arg("torque") = py::none());
     m.def("cancel_runs", [] { ++cancel_generation; }, "Stops every cancellable run in progress in this process");
     m.def("modes", &modes, "Every mode of a scene's variant at each spin rate", py::arg("text"), py::arg("name"),
-          py::arg("overrides"), py::arg("omegas"));
+          py::arg("overrides"), py::arg("omegas"), py::arg("harmonics"));
     m.def("linearize", &linearize, "State-space matrices about a steady spin", py::arg("text"), py::arg("name"),
           py::arg("overrides"), py::arg("omega"));
     m.def("check", [](const std::string& text, const std::string& name) { scene_of(text, name, {}); },

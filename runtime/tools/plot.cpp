@@ -149,6 +149,8 @@ public:
     Record(const CsvColumns& columns, const std::vector<std::string>& fields) : columns_(columns), fields_(fields) {}
     /// The field of column name (one of the kind's columns, which read_csv has checked are in the header).
     const std::string& operator[](std::string_view name) const { return fields_[columns_.at(name)]; }
+    /// Whether the header has column name (beyond the kind's columns, which it has).
+    bool has(std::string_view name) const { return columns_.has(name); }
     /// The same as a number (one of the kind's numeric columns, checked to hold one).
     double number(std::string_view name) const
     {
@@ -338,11 +340,13 @@ Figure axial_figure(const std::vector<std::string>& files, const std::vector<std
     return f;
 }
 
-/// A line of a Campbell diagram: one bending mode of one variant of one file.
+/// A line of a Campbell diagram: one bending mode of one variant of one file, a tracked mode (by its label) or, in
+/// a file without tracking, the bending modes of one frequency rank; and its points (omega, Hz).
 struct CampbellLine {
     std::size_t file;
     std::vector<std::string> variant;  // method, ny, nx, order, drive as the file writes them
-    std::string mode;
+    std::string column, mode;          // the column that tells the line's rows ("label" or "mode") and its value
+    std::vector<std::pair<double, double>> points;
 };
 
 /// The modes CSV columns that name a variant, and how the legend introduces each.
@@ -350,7 +354,9 @@ constexpr const char* variant_columns[] = {"method", "ny", "nx", "order", "drive
 constexpr const char* variant_names[] = {"", " Ny = ", " Nx = ", " order ", " drive "};
 constexpr std::size_t variant_size = std::size(variant_columns);
 
-/// The Campbell diagram's lines, in the order of the files and of their first rows. Throws PlotInputError for a file
+/// The Campbell diagram's lines, in the order of the files and of their first rows: each tracked mode labelled
+/// bending (its rows of every kind: through a veering its shape may turn axial), or in a file without the label
+/// column (an older hubbeam's) the rows of kind bending of each frequency rank. Throws PlotInputError for a file
 /// without bending rows.
 std::vector<CampbellLine> campbell_lines(const std::vector<std::string>& files, const Kind& kind)
 {
@@ -358,17 +364,40 @@ std::vector<CampbellLine> campbell_lines(const std::vector<std::string>& files, 
     for (std::size_t file = 0; file < files.size(); ++file) {
         const std::size_t before = lines.size();
         read_csv(files[file], kind, [&](const Record& r) {
-            if (r["kind"] != "bending") return;
-            CampbellLine l{file, {r["method"], r["ny"], r["nx"], r["order"], r["drive"]}, r["mode"]};
-            if (std::none_of(lines.begin() + static_cast<std::ptrdiff_t>(before), lines.end(),
-                             [&](const CampbellLine& o) { return o.variant == l.variant && o.mode == l.mode; }))
-                lines.push_back(l);
+            const bool tracked = r.has("label");
+            if (tracked ? r["label"].rfind("bending ", 0) != 0 : r["kind"] != "bending") return;
+            CampbellLine l{file, {r["method"], r["ny"], r["nx"], r["order"], r["drive"]}, tracked ? "label" : "mode",
+                           tracked ? r["label"] : r["mode"], {}};
+            auto same = std::find_if(lines.begin() + static_cast<std::ptrdiff_t>(before), lines.end(),
+                                     [&](const CampbellLine& o) { return o.variant == l.variant && o.mode == l.mode; });
+            if (same == lines.end()) same = lines.insert(lines.end(), l);
+            same->points.emplace_back(r.number("omega"), r.number("hz"));
         });
         if (lines.size() == before)
             throw PlotInputError(printable(files[file], 400) +
                                  ": expected rows of kind bending (the modes a Campbell diagram draws), got none");
     }
+    for (CampbellLine& l : lines) std::stable_sort(l.points.begin(), l.points.end());
     return lines;
+}
+
+/// Where line l meets the excitation line f = n omega / 2 pi between two of its points: (omega, Hz) where the
+/// straight segment between them crosses it, to the eye (hubbeam modes refines them on the eigenvalues themselves;
+/// the two agree as the rates are refined).
+std::vector<std::pair<double, double>> campbell_crossings(const CampbellLine& l, int n)
+{
+    std::vector<std::pair<double, double>> at;
+    const auto gap = [n](const std::pair<double, double>& p) { return p.second - n * p.first / (2.0 * M_PI); };
+    for (std::size_t i = 0; i + 1 < l.points.size(); ++i) {
+        const double ga = gap(l.points[i]), gb = gap(l.points[i + 1]);
+        if (ga == 0.0 || ga * gb >= 0.0) {
+            if (ga == 0.0) at.push_back(l.points[i]);
+            continue;
+        }
+        const double omega = l.points[i].first + (l.points[i + 1].first - l.points[i].first) * ga / (ga - gb);
+        at.emplace_back(omega, n * omega / (2.0 * M_PI));
+    }
+    return at;
 }
 
 /// Which variant columns the legend names: method and Ny always, Nx, order and drive when they vary.
@@ -386,7 +415,8 @@ std::string campbell_table(const std::string& block, const CampbellLine& l, cons
     std::string condition;
     for (std::size_t c = 0; c < variant_size; ++c)
         condition += "strcol('" + std::string(variant_columns[c]) + "') eq " + gnuplot_string(l.variant[c]) + " && ";
-    condition += "strcol('mode') eq " + gnuplot_string(l.mode) + " && strcol('kind') eq 'bending'";
+    condition += "strcol('" + l.column + "') eq " + gnuplot_string(l.mode);
+    if (l.column == "mode") condition += " && strcol('kind') eq 'bending'";
     return "set table " + block + " separator comma\nplot " + gnuplot_string(file) +
            " using 'omega':'hz' with table if (" + condition + ")\n";
 }
@@ -406,11 +436,12 @@ std::string campbell_style(std::size_t colour, std::size_t entry_index, std::siz
 }
 
 /// A Campbell diagram: the bending frequencies (Hz) against the spin rate, a line per file, variant (method, Ny,
-/// Nx, order, drive) and mode, a colour per method, with the spin frequency 1P. A mode's rows are interleaved with
+/// Nx, order, drive) and mode, a colour per method, with the excitation lines nP (f = n omega / 2 pi) of the
+/// harmonics and their crossings with the modes (the critical speeds) marked. A mode's rows are interleaved with
 /// the other modes' in the file, and gnuplot breaks a line at every row a condition leaves out: so each line's
 /// rows are first selected into a datablock of their own (`with table if`, gnuplot 5.4).
 Figure campbell_figure(const std::vector<std::string>& files, const std::vector<std::string>& labels, bool label_lines,
-                       const Kind& kind)
+                       const std::vector<int>& harmonics, const Kind& kind)
 {
     const std::vector<CampbellLine> lines = campbell_lines(files, kind);
     const std::vector<bool> named = named_columns(lines);
@@ -434,12 +465,27 @@ Figure campbell_figure(const std::vector<std::string>& files, const std::vector<
         std::string legend = label_lines ? labels[l.file] + ": " : "";
         for (std::size_t c = 0; c < variant_size; ++c)
             if (named[c]) legend += variant_names[c] + l.variant[c];
-        f.elements.push_back(block + " using 1:2 with linespoints " +
+        // smooth unique: the points by increasing rate, whatever the rows' order in the file
+        f.elements.push_back(block + " using 1:2 smooth unique with linespoints " +
                              campbell_style(colour, static_cast<std::size_t>(e - entries.begin()), l.file) +
                              (first ? title_of(legend) : std::string("notitle")));
     }
     f.data += "unset table\n";
-    f.elements.push_back("x/(2*pi) with lines lw 2 dt 2 lc rgb 'black' title '1P: spin frequency omega/2pi'");
+    std::string crossings;
+    for (const int n : harmonics) {
+        const std::string times = n == 1 ? "" : std::to_string(n) + "*";
+        // 1P black, the others grey, each its own dash pattern.
+        f.elements.push_back(times + "x/(2*pi) with lines lw " + (n == 1 ? "2" : "1") + " dt " +
+                             std::to_string((n - 1) % 4 + 2) + " lc rgb '" + (n == 1 ? "black" : "gray40") + "' title '" +
+                             std::to_string(n) + "P: " +
+                             (n == 1 ? "spin frequency omega" : times + "omega") + "/2pi'");
+        for (const CampbellLine& l : lines)
+            for (const auto& [omega, hz] : campbell_crossings(l, n)) crossings += shortest(omega) + ',' + shortest(hz) + '\n';
+    }
+    if (!crossings.empty()) {
+        f.data += "$critical << EOD\n" + crossings + "EOD\n";
+        f.elements.push_back("$critical using 1:2 with points pt 7 ps 1.2 lc rgb 'red' title 'critical speeds'");
+    }
     return f;
 }
 
@@ -565,6 +611,9 @@ const Kind& checked_kind(const PlotArgs& args)
     if (!args.time.empty() && args.kind != "moment")
         bad_option<PlotInputError>("--time", "no time for kind " + args.kind + " (only kind moment draws one time)",
                                    printable(args.time, 40));
+    if (!args.harmonics.empty() && args.kind != "campbell")
+        bad_option<PlotInputError>("--harmonics", "no harmonics for kind " + args.kind + " (only kind campbell draws them)",
+                                   printable(args.harmonics, 40));
     return *kind;
 }
 
@@ -596,7 +645,9 @@ Figure kind_figure(const Kind& kind, const PlotArgs& args, const std::vector<std
     if (name == "axial") return axial_figure(args.files, labels, kind);
     if (name == "campbell")
         // the labels name the lines once there is more than one file, or when given
-        return campbell_figure(args.files, labels, args.files.size() > 1 || !args.labels.empty(), kind);
+        return campbell_figure(args.files, labels, args.files.size() > 1 || !args.labels.empty(),
+                               parse_harmonics<PlotInputError>("--harmonics", args.harmonics.empty() ? "1,2,3" : args.harmonics),
+                               kind);
     return moment_figure(args.files, labels, args.time, kind);
 }
 

@@ -46,6 +46,7 @@ struct PlotArgs {
     std::string labels;              // comma-separated, one per file; empty: each file's stem
     std::string title;               // empty: the kind's
     std::string time;                // kind moment: draw the rows at the t closest to it; empty: each file's last t
+    std::string harmonics;           // kind campbell: the excitation lines omega = n Omega drawn; empty: 1,2,3
 };
 
 /// Bad input to `plot`: an argument, or a file that is not what its kind reads ("FILE: expected ..., got ...").

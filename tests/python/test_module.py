@@ -224,7 +224,7 @@ class DocsTest(unittest.TestCase):
         self.assertEqual(out.returncode, 0, out.stderr)
         first = out.stdout.splitlines()[0]
         # The first bending mode at rest: the cantilever's 1.8751^2 sqrt(EI/(m L^4)) / (2 pi) = 0.46327 Hz.
-        self.assertTrue(first.startswith("1 [0.4633"), first)
+        self.assertTrue(first.startswith("bending 1 [0.4633"), first)
 
 
 class TorqueLawTest(unittest.TestCase):
@@ -319,6 +319,25 @@ class ModesTest(unittest.TestCase):
             self.assertTrue(str(caught.exception).startswith("omega: expected"), str(caught.exception))
         self.assertEqual(len(hubbeam.modes(SPINUP, np.int64(2), nx=0)["omega"]), 4)  # numpy's numbers are rates
 
+    def test_critical_speeds_are_the_command_lines(self):
+        # The critical speeds of hubbeam.modes are those hubbeam modes --critical writes, for the harmonics asked.
+        with tempfile.TemporaryDirectory() as d:
+            out = os.path.join(d, "critical.csv")
+            p = cli("modes", SPINUP, "--nx", "0", "--omega", "0:6:1", "--harmonics", "1,2", "--critical", out, "-q")
+            self.assertEqual(p.returncode, 0, p.stderr)
+            with open(out, newline="") as f:
+                rows = list(csv.DictReader(f))
+        c = hubbeam.modes(SPINUP, np.arange(0.0, 6.5, 1.0), harmonics=[1, 2], nx=0)["critical"]
+        self.assertGreater(len(rows), 0)
+        self.assertEqual(list(c["label"]), [r["label"] for r in rows])
+        self.assertEqual(list(c["harmonic"]), [int(r["harmonic"]) for r in rows])
+        for column in ("omega", "rad_s", "hz"):
+            self.assertEqual(list(c[column]), [float(r[column]) for r in rows], column)
+        for bad in (0, [1, 1001], [1.5], "2", True, [[1]]):
+            with self.assertRaises(ValueError) as caught:
+                hubbeam.modes(SPINUP, 0.0, harmonics=bad, nx=0)
+            self.assertTrue(str(caught.exception).startswith("harmonics: expected"), str(caught.exception))
+
     def test_a_controlled_scene_gives_the_closed_loop_as_the_command_line_does(self):
         # The command line's modes CSV and linearize CSVs of a scene with [control] are the closed loop: the
         # controller's stiffness turns the free hub's rigid rotation into a mode of kind "hub".
@@ -336,8 +355,9 @@ class ModesTest(unittest.TestCase):
         self.assertEqual(list(m["kind"]), [r["kind"] for r in rows])
         self.assertIn("hub", list(m["kind"]))
         self.assertEqual(list(m["mode"]), [int(r["mode"]) for r in rows])
-        for column in ("omega", "rad_s", "hz", "dimensionless", "growth", "undamped_rad_s", "damping_ratio"):
-            self.assertEqual(list(m[column]), [float(r[column]) for r in rows], column)  # written round-trip exact
+        self.assertEqual(list(m["label"]), [r["label"] for r in rows])
+        for column in ("omega", "rad_s", "hz", "dimensionless", "growth", "undamped_rad_s", "damping_ratio", "mac"):
+            np.testing.assert_array_equal(m[column], [float(r[column]) for r in rows], column)  # round-trip exact
         lin = hubbeam.linearize(scene, 1.0)
         for name, (rows_, columns, values) in matrices.items():
             np.testing.assert_array_equal(lin[name], values, name)

@@ -117,4 +117,18 @@ std::vector<int> parse_dof_list(const std::string& option, const std::string& te
     return counts;
 }
 
+/// The harmonics n of a --harmonics list (a Campbell diagram's excitation lines omega = n Omega), integers from 1
+/// to 1000, each once; throws Error naming option.
+template <class Error>
+std::vector<int> parse_harmonics(const std::string& option, const std::string& text)
+{
+    std::vector<int> harmonics;
+    for (const std::string& s : split_list(text)) {
+        int n = 0;
+        if (!parse_int(s, 1, 1000, n)) bad_option<Error>(option, "a comma-separated list of integers from 1 to 1000", s);
+        add_unique(harmonics, n);
+    }
+    return harmonics;
+}
+
 }  // namespace hubbeam

@@ -216,14 +216,33 @@ def _sensitivities(names: Any) -> str:
                      f"{printable(repr(names), 120)}")
 
 
-def modes(scene: Any, omega: Any = 0.0, **keys: Any) -> dict[str, Any]:
+def modes(scene: Any, omega: Any = 0.0, harmonics: Any = (1, 2, 3), **keys: Any) -> dict[str, Any]:
     """Every natural mode of the scene's variant linearized about a steady spin at each rate of omega (rad/s):
     equal-length arrays omega, mode, kind, rad_s, hz, dimensionless, growth, undamped_rad_s, damping_ratio (zero
-    without damping), and the variant's name; the closed loop's with [control]."""
+    without damping), label (the tracked mode, "bending 1", ...) and mac (to its shape at the rate before, NaN
+    where it begins), and the variant's name; the closed loop's with [control]. Under "critical", the critical
+    speeds, where a tracked mode meets the excitation omega = n Omega for n in harmonics: arrays label, harmonic,
+    omega, rad_s and hz."""
     text, name = _source(scene)
     out = _core_call(_core.modes, text, name, _overrides(keys),
-                     _rates(omega, "spin rates >= 0 (rad/s): a number or a list"))
+                     _rates(omega, "spin rates >= 0 (rad/s): a number or a list"), _harmonics(harmonics))
+    return _modes_arrays(out)
+
+
+def _harmonics(harmonics: Any) -> list[int]:
+    """harmonics= as a list of integers from 1 to 1000, or ValueError naming what it got."""
+    values = list(np.atleast_1d(np.asarray(harmonics, dtype=object)))
+    if np.ndim(harmonics) > 1 or not values or not all(
+            isinstance(n, (int, np.integer)) and not isinstance(n, (bool, np.bool_)) and 1 <= n <= 1000 for n in values):
+        raise ValueError(f"harmonics: expected a list of integers from 1 to 1000, got {printable(repr(harmonics), 120)}")
+    return [int(n) for n in values]
+
+
+def _modes_arrays(out: dict[str, Any]) -> dict[str, Any]:
+    """modes' text columns as numpy arrays, as its numbers are."""
     out["kind"] = np.array(out["kind"])
+    out["label"] = np.array(out["label"])
+    out["critical"]["label"] = np.array(out["critical"]["label"])
     return out
 
 
@@ -275,9 +294,7 @@ def _cancel_runs() -> None:
 
 
 def _modes_text(text: str, name: str, keys: Mapping[str, Any], omegas: list[float]) -> dict[str, Any]:
-    out = _core_call(_core.modes, text, name, _overrides(keys), omegas)
-    out["kind"] = np.array(out["kind"])
-    return out
+    return _modes_arrays(_core_call(_core.modes, text, name, _overrides(keys), omegas, [1, 2, 3]))
 
 
 def _check_scene(text: str, name: str) -> None:
