@@ -152,6 +152,8 @@ int SensitivitySystem::rhs(double t, const double* y, double* dydt)
             const double dtau[] = {-(s.theta - reference.theta), -(s.theta_dot - reference.theta_dot), -z, -s.tip_uy};
             w.r.setZero();
             w.r[0] = dtau[p.gain_index];  // Q = tau e_theta + ...
+            // The hub's work, z' = tau theta_dot, moves with the gain too.
+            if (work_index() >= 0) out[work_index()] += p.scale * s.theta_dot * dtau[p.gain_index];
         } else if (const ParameterDerivatives* d = model_.parameter_derivatives()) {
             d->mass_p(p.param, u, q, w.dM.data());
             d->forces_p(p.param, u, q, qd, w.dQ.data());
