@@ -114,6 +114,11 @@ public:
     /// The entries of y after the positions and rates (the auxiliary states, and whatever a derived system adds):
     /// they are the last entries of y.
     virtual int auxiliary_count() const { return aux_.count(); }
+    /// How many blocks of state_size() entries y holds: 1, or in a system that carries the state's sensitivities
+    /// 1 + their count. The system is then block lower triangular: each later block's rates depend on the state and
+    /// on that block alone, linearly, through the state's Jacobian. A stepper may solve the state first, with this
+    /// class's own rhs and jacobian (FirstOrderSystem::rhs, called so), then each block with the state's matrices.
+    virtual int blocks() const { return 1; }
     const Auxiliary& auxiliary() const { return aux_; }
     /// Where an auxiliary state sits in y (-1 when absent).
     int integral_index() const { return integral_; }

@@ -38,10 +38,11 @@ struct Newton {
 class GaussStepper final : public Stepper {
 public:
     GaussStepper(FirstOrderSystem& system, double h0, double atol, double rtol)
-        : system_(system), m_(system.size()), h_(h0), h0_(h0), atol_(atol), rtol_(rtol),
-          y1_(m_), y_half_(m_), y2_(m_), w_(m_), stage_(m_), z_(2 * m_),
-          dz_(2 * m_), g_(2 * m_), f_(2 * m_), J_(m_, m_), dfdt_(m_), rows_(static_cast<std::size_t>(m_) * m_),
-          k_((m_ - system.auxiliary_count()) / 2), condensed_(system.auxiliary_count() == 0), rhs2_(2 * k_), dv_(2 * k_), mix_(k_)
+        : system_(system), m_(system.size()), blocks_(system.blocks()), n_(m_ / blocks_), h_(h0), h0_(h0),
+          atol_(atol), rtol_(rtol), y1_(m_), y_half_(m_), y2_(m_), w_(m_), stage_(m_), z_(2 * m_), dz_(2 * n_),
+          g_(2 * n_), f_(2 * m_), J_(n_, n_), dfdt_(n_), rows_(static_cast<std::size_t>(n_) * n_),
+          k_((n_ - system.FirstOrderSystem::auxiliary_count()) / 2),
+          condensed_(system.FirstOrderSystem::auxiliary_count() == 0), rhs2_(2 * k_), dv_(2 * k_), mix_(k_)
     {
     }
 
@@ -134,12 +135,19 @@ public:
 
 
 private:
-    int rhs(double t, const double* y, double* f) { return system_.rhs(t, y, f); }
+    /// The state's rates (the first block's; of all of y where there is one block).
+    int state_rhs(double t, const double* y, double* f)
+    {
+        return blocks_ > 1 ? system_.FirstOrderSystem::rhs(t, y, f) : system_.rhs(t, y, f);
+    }
 
+    /// The state's Jacobian (n_ x n_), which the Newton matrices of every block are made of.
     int jacobian(double t, const double* y)
     {
-        if (const int s = system_.jacobian(t, y, rows_.data(), dfdt_.data()); s != GSL_SUCCESS) return s;
-        J_ = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(rows_.data(), m_, m_);
+        const int s = blocks_ > 1 ? system_.FirstOrderSystem::jacobian(t, y, rows_.data(), dfdt_.data())
+                                  : system_.jacobian(t, y, rows_.data(), dfdt_.data());
+        if (s != GSL_SUCCESS) return s;
+        J_ = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(rows_.data(), n_, n_);
         if (condensed_) {
             Jq_ = J_.block(k_, 0, k_, k_);
             Jv_ = J_.block(k_, k_, k_, k_);
@@ -156,7 +164,7 @@ private:
     void factor(double h)
     {
         const auto factor_one = [&](double step, Newton& newton) {
-            const int k = condensed_ ? k_ : m_;
+            const int k = condensed_ ? k_ : n_;
             Eigen::MatrixXd N(2 * k, 2 * k);
             const double a[2][2] = {{a11, a12}, {a21, a22}};
             for (int i = 0; i < 2; ++i)
@@ -179,7 +187,8 @@ private:
         h_factored_ = h;
     }
 
-    /// The Newton correction of the stage residuals g (stage by stage, each (q, qd)) with newton's factored matrix.
+    /// The Newton correction dz_ of one block's stage residuals g_ (stage by stage, each (q, qd)) with newton's
+    /// factored matrix.
     void newton_solve(const Newton& newton)
     {
         if (!condensed_) {
@@ -189,15 +198,31 @@ private:
         // dQ_i = g_q,i + h sum_j a_ij dV_j, and the velocity rows with dQ substituted.
         const double h = newton.h, a[2][2] = {{a11, a12}, {a21, a22}};
         for (int i = 0; i < 2; ++i) {
-            mix_ = a[i][0] * g_.segment(0, k_) + a[i][1] * g_.segment(m_, k_);
-            rhs2_.segment(i * k_, k_) = g_.segment(i * m_ + k_, k_);
+            mix_ = a[i][0] * g_.segment(0, k_) + a[i][1] * g_.segment(n_, k_);
+            rhs2_.segment(i * k_, k_) = g_.segment(i * n_ + k_, k_);
             rhs2_.segment(i * k_, k_).noalias() += h * Jq_ * mix_;
         }
         dv_ = newton.lu.solve(rhs2_);
         for (int i = 0; i < 2; ++i) {
-            dz_.segment(i * m_, k_) = g_.segment(i * m_, k_) + h * (a[i][0] * dv_.head(k_) + a[i][1] * dv_.tail(k_));
-            dz_.segment(i * m_ + k_, k_) = dv_.segment(i * k_, k_);
+            dz_.segment(i * n_, k_) = g_.segment(i * n_, k_) + h * (a[i][0] * dv_.head(k_) + a[i][1] * dv_.tail(k_));
+            dz_.segment(i * n_ + k_, k_) = dv_.segment(i * k_, k_);
         }
+    }
+
+    /// One simplified Newton correction of block b's stage increments from the stage rates in f_: g_ = h (A (x) I)
+    /// F - Z, then Z += dz_; returns the correction's weighted norm.
+    double correct_block(int b, double h, const Newton& newton)
+    {
+        const auto f1 = f_.segment(b * n_, n_), f2 = f_.segment(m_ + b * n_, n_);
+        auto z1 = z_.segment(b * n_, n_), z2 = z_.segment(m_ + b * n_, n_);
+        g_.head(n_) = h * (a11 * f1 + a12 * f2) - z1;
+        g_.tail(n_) = h * (a21 * f1 + a22 * f2) - z2;
+        newton_solve(newton);
+        z1 += dz_.head(n_);
+        z2 += dz_.tail(n_);
+        double norm = 0.0;
+        for (int i = 0; i < 2 * n_; ++i) norm = std::max(norm, std::abs(dz_[i]) / w_[b * n_ + i % n_]);
+        return norm;
     }
 
     /// The stage increments' starting values for a step of h from the last step's end: that step's collocation
@@ -226,42 +251,52 @@ private:
 
     /// Simplified Newton on Z = (Y1 - y0, Y2 - y0): Z = h (A (x) I) F(y0 + Z), with the factored matrix lu, from the
     /// starting values in z_; y1 = y0 + d Z. The rate estimate carried from the last solve lets a linear step stop
-    /// after one iteration (RADAU5's test).
+    /// after one iteration (RADAU5's test). With more blocks than the state (sensitivities), the state's stages are
+    /// solved first and then the other blocks' together, each with the state's Newton matrix (the staggered
+    /// corrector of CVODES): their equations are linear in them, and the iteration converges as the state's does.
     int solve_stages(double t, const Eigen::Ref<const Eigen::VectorXd>& y0, double h,
                      const Newton& newton, Eigen::VectorXd& y1)
     {
-        double previous = 0.0;
         double eta = std::pow(std::max(eta_, std::numeric_limits<double>::epsilon()), 0.8);
-        for (int k = 0; k < 7; ++k) {
-            stage_ = y0 + z_.head(m_);
-            if (rhs(t + c1 * h, stage_.data(), f_.data()) != GSL_SUCCESS) return GSL_EBADFUNC;
-            stage_ = y0 + z_.tail(m_);
-            if (rhs(t + c2 * h, stage_.data(), f_.data() + m_) != GSL_SUCCESS) return GSL_EBADFUNC;
-            g_.head(m_) = h * (a11 * f_.head(m_) + a12 * f_.tail(m_)) - z_.head(m_);
-            g_.tail(m_) = h * (a21 * f_.head(m_) + a22 * f_.tail(m_)) - z_.tail(m_);
-            newton_solve(newton);
-            z_ += dz_;
-            double norm = 0.0;
-            for (int i = 0; i < 2 * m_; ++i) norm = std::max(norm, std::abs(dz_[i]) / w_[i % m_]);
-            if (!std::isfinite(norm)) return GSL_EBADFUNC;
-            if (k > 0) {
-                rate_ = norm / previous;
-                if (rate_ >= 0.99) return GSL_EMAXITER;
-                eta = rate_ / (1.0 - rate_);
+        const auto iterate = [&](bool state, double& eta_out) {
+            double previous = 0.0, eta_in = eta;
+            for (int k = 0; k < 7; ++k) {
+                stage_ = y0 + z_.head(m_);
+                const auto evaluate = [&](double at, double* f) {
+                    return state ? state_rhs(at, stage_.data(), f) : system_.rhs(at, stage_.data(), f);
+                };
+                if (evaluate(t + c1 * h, f_.data()) != GSL_SUCCESS) return GSL_EBADFUNC;
+                stage_ = y0 + z_.tail(m_);
+                if (evaluate(t + c2 * h, f_.data() + m_) != GSL_SUCCESS) return GSL_EBADFUNC;
+                double norm = 0.0;
+                for (int b = state ? 0 : 1; b < (state ? 1 : blocks_); ++b) norm = std::max(norm, correct_block(b, h, newton));
+                if (!std::isfinite(norm)) return GSL_EBADFUNC;
+                if (k > 0) {
+                    const double rate = norm / previous;
+                    if (state) rate_ = rate;
+                    if (rate >= 0.99) return GSL_EMAXITER;
+                    eta_in = rate / (1.0 - rate);
+                }
+                previous = norm;
+                if ((state || k > 0) && (eta_in * norm <= newton_tol || norm == 0.0)) {
+                    if (state && k == 0) rate_ = 0.0;
+                    eta_out = eta_in;
+                    return GSL_SUCCESS;
+                }
             }
-            previous = norm;
-            if (eta * norm <= newton_tol || norm == 0.0) {
-                eta_ = eta;
-                if (k == 0) rate_ = 0.0;
-                y1 = y0 + d1 * z_.head(m_) + d2 * z_.tail(m_);
-                return GSL_SUCCESS;
-            }
+            return GSL_EMAXITER;
+        };
+        if (const int s = iterate(true, eta_); s != GSL_SUCCESS) return s;
+        if (blocks_ > 1) {
+            double eta_blocks = 0.0;
+            if (const int s = iterate(false, eta_blocks); s != GSL_SUCCESS) return s;
         }
-        return GSL_EMAXITER;
+        y1 = y0 + d1 * z_.head(m_) + d2 * z_.tail(m_);
+        return GSL_SUCCESS;
     }
 
     FirstOrderSystem& system_;
-    int m_;
+    int m_, blocks_, n_;  // y's size; its blocks (the state, then its sensitivities) and their size
     double h_, h0_, atol_, rtol_;
     // The Newton iteration stops when its predicted remaining error is below this fraction of the tolerance: the
     // step-doubling estimate compares three solves, each converged well within it (0.03 measured as accurate as 1e-4

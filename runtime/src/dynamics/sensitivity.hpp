@@ -26,6 +26,7 @@ public:
 
     int size() const override { return (1 + count()) * state_size(); }
     int auxiliary_count() const override { return FirstOrderSystem::auxiliary_count() + count() * state_size(); }
+    int blocks() const override { return 1 + count(); }
     int rhs(double t, const double* y, double* dydt) override;
     int jacobian(double t, const double* y, double* dfdy, double* dfdt) override;
 
