@@ -278,7 +278,7 @@ private:
                     eta_in = rate / (1.0 - rate);
                 }
                 previous = norm;
-                if ((state || k > 0) && (eta_in * norm <= newton_tol || norm == 0.0)) {
+                if (eta_in * norm <= newton_tol || norm == 0.0) {
                     if (state && k == 0) rate_ = 0.0;
                     eta_out = eta_in;
                     return GSL_SUCCESS;
