@@ -14,6 +14,7 @@
 #include <complex>
 #include <functional>
 #include <map>
+#include <random>
 #include <string>
 #include <utility>
 #include <vector>
@@ -250,4 +251,52 @@ TEST_CASE("critical speeds are where a tracked mode meets n times the spin rate"
             INFO(c.label << " " << c.harmonic << "P at " << c.omega);
             CHECK(c.label == "bending 2");
         }
+}
+
+namespace {
+
+/// The largest sum of scores over the matchings of min(rows, cols) pairs, by trying every one.
+double best_sum(const Eigen::MatrixXd& score, Eigen::Index row, std::vector<bool>& used)
+{
+    if (row == score.rows()) return 0.0;
+    double best = -1.0;
+    for (Eigen::Index c = 0; c < score.cols(); ++c) {
+        if (used[static_cast<std::size_t>(c)]) continue;
+        used[static_cast<std::size_t>(c)] = true;
+        best = std::max(best, score(row, c) + best_sum(score, row + 1, used));
+        used[static_cast<std::size_t>(c)] = false;
+    }
+    if (score.rows() > score.cols()) best = std::max(best, best_sum(score, row + 1, used));  // the row left over
+    return best;
+}
+
+}  // namespace
+
+TEST_CASE("the modes' pairing is the assignment of the largest total MAC, square or not", "[campbell]")
+{
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> mac(0.0, 1.0);
+    for (int trial = 0; trial < 500; ++trial) {
+        const auto rows = static_cast<Eigen::Index>(1 + random() % 6), cols = static_cast<Eigen::Index>(1 + random() % 6);
+        Eigen::MatrixXd score(rows, cols);
+        for (Eigen::Index i = 0; i < rows; ++i)
+            for (Eigen::Index j = 0; j < cols; ++j) score(i, j) = mac(random);
+        const std::vector<int> column = best_assignment(score);
+        REQUIRE(column.size() == static_cast<std::size_t>(rows));
+        std::vector<bool> taken(static_cast<std::size_t>(cols), false);
+        double sum = 0.0;
+        int pairs = 0;
+        for (Eigen::Index i = 0; i < rows; ++i) {
+            const int c = column[static_cast<std::size_t>(i)];
+            if (c < 0) continue;
+            REQUIRE(c < cols);
+            CHECK_FALSE(taken[static_cast<std::size_t>(c)]);  // each column once
+            taken[static_cast<std::size_t>(c)] = true;
+            sum += score(i, c);
+            ++pairs;
+        }
+        CHECK(pairs == std::min(rows, cols));
+        std::vector<bool> used(static_cast<std::size_t>(cols), false);
+        CHECK(sum == Approx(best_sum(score, 0, used)).epsilon(1e-12));
+    }
 }

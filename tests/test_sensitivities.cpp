@@ -7,7 +7,9 @@
 #include <string>
 #include <vector>
 
+#include "make_model.hpp"
 #include "scene.hpp"
+#include "sensitivity.hpp"
 #include "simulate.hpp"
 
 using namespace hubbeam;
@@ -141,5 +143,64 @@ TEST_CASE("sensitivities to the controller's gains, on every stepper family", "[
         const bool implicit = std::string(stepper) == "gauss4" || std::string(stepper) == "rk4imp";
         check_against_differences("controlled_step.toml", {"kp", "kd", "J_oh"}, 3.0, stepper, 1e-10, 1e-5,
                                   implicit ? Overrides{{"control.tau_max", "1000"}} : Overrides{});
+    }
+}
+
+TEST_CASE("each row's derivative by a parameter is the difference of the state's equations at moved parameters",
+          "[sensitivities]")
+{
+    // With the sensitivities zero, a block's rates are pbar_j df/dp_j alone: row by row (the hub's work and the
+    // dissipated energy included), against central differences of the plain equations (FirstOrderSystem's rhs) of
+    // models and controls built at p_j -+ h, at a state of the test's choosing (the controlled hub unsaturated).
+    struct Case {
+        const char* file;
+        std::vector<std::string> names;
+    };
+    for (const Case& c : {Case{"damped_appendage.toml", {"E", "alpha", "beta", "rho", "J_oh", "L"}},
+                          Case{"controlled_step.toml", {"kp", "kd", "J_oh", "E"}}}) {
+        std::string names;
+        for (const std::string& p : c.names) names += (names.empty() ? "" : ",") + p;
+        const std::string path = std::string(HUBBEAM_SOURCE_DIR) + "/cases/" + c.file;
+        const Scene scene = load_scene(path, {{"output.sensitivities", names}});
+        const auto model = make_model(scene.key(), scene.parameters, scene.source);
+        SensitivitySystem system(*model, scene);
+        const int n = system.state_size(), nq = model->nq();
+        std::vector<double> y(static_cast<std::size_t>(system.size()), 0.0), f(y.size());
+        for (int i = 0; i < n; ++i) y[static_cast<std::size_t>(i)] = 0.01 * std::sin(1.0 + 3.7 * i);  // a state
+        y[0] = 0.45;   // the hub near its reference 0.5: the controller unsaturated
+        y[static_cast<std::size_t>(nq)] = 0.01;  // theta_dot
+        const double t = 0.7;
+        REQUIRE(system.rhs(t, y.data(), f.data()) == 0);
+        for (std::size_t j = 0; j < c.names.size(); ++j) {
+            const std::string& name = c.names[j];
+            const auto rates_at = [&](double delta, double& scale) {
+                Scene moved = scene;
+                moved.output.sensitivities.clear();
+                double* v = nullptr;
+                if (name == "kp") v = &moved.control->kp;
+                else if (name == "kd") v = &moved.control->kd;
+                else v = &value(moved.parameters,
+                                static_cast<Param>(std::find(param_names.begin(), param_names.end(), name) -
+                                                   param_names.begin()));
+                scale = *v != 0.0 ? std::abs(*v) : 1.0;
+                *v += delta * scale;
+                const auto m = make_model(moved.key(), moved.parameters, moved.source);
+                FirstOrderSystem plain(*m, moved.motion, moved.axial, moved.controller(), &moved.parameters);
+                REQUIRE(plain.state_size() == n);
+                std::vector<double> out(static_cast<std::size_t>(n));
+                REQUIRE(plain.rhs(t, y.data(), out.data()) == 0);
+                return out;
+            };
+            double scale = 1.0;
+            const double h = 1e-6;  // of the parameter's size
+            const std::vector<double> up = rates_at(h, scale), down = rates_at(-h, scale);
+            for (int i = 0; i < n; ++i) {
+                // d/dp_j times pbar_j = d/d(p_j / pbar_j): the difference over 2h of the scaled parameter
+                const double expected = (up[static_cast<std::size_t>(i)] - down[static_cast<std::size_t>(i)]) / (2.0 * h);
+                INFO(c.file << ": d(row " << i << ")/d_" << name);
+                CHECK(f[static_cast<std::size_t>(n * (1 + static_cast<int>(j)) + i)] ==
+                      Approx(expected).epsilon(1e-6).margin(1e-9 * (1.0 + std::abs(up[static_cast<std::size_t>(i)]))));
+            }
+        }
     }
 }

@@ -24,6 +24,11 @@ ForceJacobians force_jacobians(const Model& model, const HubInput& u, const std:
 Eigen::MatrixXd force_q_jacobian(const Model& model, const HubInput& u, const std::vector<double>& q,
                                  const std::vector<double>& qd);
 
+/// The Rayleigh damping matrix alpha M_ee + beta K_e of the model's elastic coordinates (nq x nq; the hub angle's
+/// row and column, not damped, zero), with M_ee and K_e those of the undeformed beam at rest (docs/model.md section
+/// 11.4): the dissipated energy's rate qd^T C qd, independent of the generated damping forces.
+Eigen::MatrixXd damping_matrix(const Model& model, const Parameters& parameters);
+
 /// d u_y(L) / dq_c for each of the coordinates c (indices into q), at q: u_y(L) is linear in B, so central
 /// differences at unit offsets are exact. The tip-deflection row of the state space's C and of a controller's
 /// tip feedback.
@@ -99,6 +104,11 @@ StateSpace closed_loop(const StateSpace& open, const Control& control);
 /// "hub", "axial" or "bending" by where the mode's kinetic energy lies; by increasing |lambda|. The hub's angle is a
 /// state here: the controller's stiffness turns the free hub's rigid rotation into a mode.
 std::vector<NaturalMode> closed_loop_modes(const Model& model, const SteadySpin& steady, const Control& control);
+
+/// The assignment of rows to columns that makes the sum of score(row, column) largest (Kuhn and Munkres' Hungarian
+/// method, O(n^3), on the square matrix padded with zeros): for each row, its column, or -1 where the padding took
+/// it (more rows than columns). campbell pairs the modes of neighbouring rates with it.
+std::vector<int> best_assignment(const Eigen::MatrixXd& score);
 
 /// One row of a Campbell table: a natural mode about the steady spin omega, numbered 1, 2, ... by frequency among
 /// all the modes at that rate, and the tracked mode it belongs to: its label ("bending 2", "axial 1", "hub 1"; the

@@ -107,6 +107,19 @@ Eigen::MatrixXd force_q_jacobian(const Model& model, const HubInput& u, const st
     return model.jacobian() != nullptr ? force_jacobians(model, u, q, qd).q : q_differences(model, u, q, qd);
 }
 
+Eigen::MatrixXd damping_matrix(const Model& model, const Parameters& parameters)
+{
+    const HubInput rest;
+    const std::vector<double> zero(static_cast<std::size_t>(model.nq()), 0.0);
+    const Eigen::MatrixXd M = mass_at(model, rest, zero);
+    const Eigen::MatrixXd K = -force_q_jacobian(model, rest, zero, zero);
+    Eigen::MatrixXd C = parameters.alpha * M + parameters.beta * 0.5 * (K + K.transpose());
+    const Eigen::Index elastic = model.key().first_a();  // the hub angle, a coordinate under torque, is not damped
+    C.topRows(elastic).setZero();
+    C.leftCols(elastic).setZero();
+    return C;
+}
+
 Eigen::VectorXd tip_uy_row(const Model& model, const std::vector<double>& q, const std::vector<int>& coordinates)
 {
     Eigen::VectorXd row(static_cast<Eigen::Index>(coordinates.size()));
@@ -464,9 +477,9 @@ std::vector<NaturalMode> modes_at(const Model& model, double omega, Axial axial,
     return control ? closed_loop_modes(model, s, *control) : natural_modes(model, s, axial);
 }
 
-/// The assignment of rows to columns that makes the sum of score(row, column) largest (Kuhn and Munkres' Hungarian
-/// method, O(n^3), on the square matrix padded with zeros): for each row, its column, or -1 where the padding took
-/// it (more rows than columns).
+
+}  // namespace
+
 std::vector<int> best_assignment(const Eigen::MatrixXd& score)
 {
     const auto rows = static_cast<int>(score.rows()), cols = static_cast<int>(score.cols());
@@ -509,8 +522,6 @@ std::vector<int> best_assignment(const Eigen::MatrixXd& score)
         if (at(owner, j) <= rows && j <= cols) column[static_cast<std::size_t>(at(owner, j) - 1)] = j - 1;
     return column;
 }
-
-}  // namespace
 
 std::vector<SpinMode> campbell(const Model& model, const std::vector<double>& omegas, Axial axial, double theta,
                                const Control* control)

@@ -171,20 +171,11 @@ FirstOrderSystem::FirstOrderSystem(const Model& model, const Motion& motion, Axi
         w.tip_row = tip_uy_row(model, zero, kept_);  // u_y(L) is linear in the kept coordinates
     }
     if (aux_.dissipated) {
-        // docs/model.md section 11.4: -(alpha M_ee + beta K_e) qd_e, M_ee and K_e of the undeformed beam at rest, from
-        // the parameters: an independent check of the generated damping forces.
-        const HubInput rest;
-        Eigen::MatrixXd M(n_, n_);
-        model.mass(rest, zero.data(), M.data());  // symmetric: row- or column-major alike
-        const Eigen::MatrixXd K = -force_q_jacobian(model, rest, zero, zero);
-        const Eigen::MatrixXd C = parameters->alpha * M + parameters->beta * 0.5 * (K + K.transpose());
-        w.dissipation = Eigen::MatrixXd::Zero(k, k);
-        const int elastic = key.first_a();  // the hub angle, a coordinate under torque, is not damped
+        const Eigen::MatrixXd C = damping_matrix(model, *parameters);
+        w.dissipation.resize(k, k);
         for (int i = 0; i < k; ++i)
-            for (int j = 0; j < k; ++j) {
-                const int a = kept_[static_cast<std::size_t>(i)], b = kept_[static_cast<std::size_t>(j)];
-                if (a >= elastic && b >= elastic) w.dissipation(i, j) = C(a, b);
-            }
+            for (int j = 0; j < k; ++j)
+                w.dissipation(i, j) = C(kept_[static_cast<std::size_t>(i)], kept_[static_cast<std::size_t>(j)]);
         w.product.resize(k);
     }
     w.rhs = make_right_hand_side(model, motion, axial);

@@ -7,6 +7,7 @@
 #include <gsl/gsl_errno.h>
 #include <stdexcept>
 
+#include "linearize.hpp"
 #include "make_model.hpp"
 #include "simulate.hpp"
 
@@ -24,6 +25,8 @@ struct SensitivitySystem::Parameter {
     // Where the model has no generated derivatives: models at p_j -+ h, differenced.
     std::unique_ptr<Model> down, up;
     double h = 0.0;
+    // With Rayleigh damping: d(damping_matrix)/dp_j, for the dissipated energy's rate qd^T C qd (empty without).
+    Eigen::MatrixXd dC;
 };
 
 struct SensitivitySystem::Work {
@@ -77,6 +80,17 @@ SensitivitySystem::SensitivitySystem(const Model& model, const Scene& scene)
                 value(up, p->param) += p->h;
                 p->down = make_model(model.key(), down, scene.source);
                 p->up = make_model(model.key(), up, scene.source);
+            }
+            if (dissipated_index() >= 0) {
+                // Central differences of C over p_j (C is linear in alpha and beta, smooth in the others; once per
+                // run).
+                const double h = 1e-6 * p->scale;
+                Parameters down = scene.parameters, up = scene.parameters;
+                value(down, p->param) -= h;
+                value(up, p->param) += h;
+                p->dC = (damping_matrix(*make_model(model.key(), up, scene.source), up) -
+                         damping_matrix(*make_model(model.key(), down, scene.source), down)) /
+                        (2.0 * h);
             }
         }
         parameters_.push_back(std::move(p));
@@ -166,6 +180,10 @@ int SensitivitySystem::rhs(double t, const double* y, double* dydt)
             w.r = ((w.dQ - w.other_Q) - (w.dM - w.other) * qdd) / (2.0 * p.h);
         }
         out.segment(nq, nq) += p.scale * w.lu.solve(w.r);
+        if (p.dC.size() > 0) {  // the dissipated energy's rate qd^T C qd moves with C's parameters
+            const Eigen::Map<const Eigen::VectorXd> rates(qd, nq);
+            out[dissipated_index()] += p.scale * rates.dot(p.dC * rates);
+        }
     }
     for (int i = 0; i < size(); ++i)
         if (!std::isfinite(dydt[i])) return GSL_EBADFUNC;
