@@ -127,6 +127,10 @@ public:
     /// The hub torque at (t, y) (N m): the control's (saturated) law, or the motion's tau; 0 for a prescribed
     /// rotation.
     double torque(double t, const double* y);
+    /// Whether a control's law clips the torque at (t, y): where that switches, the torque's derivatives by the
+    /// state jump (the simulation steps to the switch, as to the drive's breakpoints). False without a control, and
+    /// for a law given as code.
+    bool saturated(double t, const double* y);
     /// The model's full q and qd (nq each) of a state y at time t: y itself for dynamic axial coordinates;
     /// with quasi-static ones, A solved from the axial equations and A_dot = 0.
     void full_state(double t, const double* y, double* q, double* qd);

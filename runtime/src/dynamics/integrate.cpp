@@ -236,6 +236,12 @@ double FirstOrderSystem::torque(double t, const double* y)
     return std::copysign(control_->tau_max, tau);
 }
 
+bool FirstOrderSystem::saturated(double t, const double* y)
+{
+    torque(t, y);
+    return saturated_;
+}
+
 int FirstOrderSystem::extended_rhs(double t, const double* y, double* dydt)
 {
     Work& w = *work_;
