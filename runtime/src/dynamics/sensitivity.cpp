@@ -71,26 +71,24 @@ SensitivitySystem::SensitivitySystem(const Model& model, const Scene& scene)
             p->param = static_cast<Param>(at - param_names.begin());
             const double v = packed[index(p->param)];
             p->scale = v != 0.0 ? std::abs(v) : 1.0;
-            if (model.parameter_derivatives() == nullptr) {
-                // Central differences at 1e-6 of the value: an error of 1e-12 relative to the curvature's, round-off
-                // of 1e-10 (the assembled path, and order full's quadrature sums, have no generated derivatives).
+            const bool generated = model.parameter_derivatives() != nullptr, damped = dissipated_index() >= 0;
+            if (!generated || damped) {
+                // Models at p_j -+ h, h = 1e-6 of the value (an error of 1e-12 relative to the curvature's, round-off
+                // of 1e-10): differenced for df/dp where there are no generated derivatives (the assembled path,
+                // order full's quadrature sums), and for the damping matrix's derivative (C is linear in alpha and
+                // beta, smooth in the others; once per run).
                 p->h = 1e-6 * p->scale;
                 Parameters down = scene.parameters, up = scene.parameters;
                 value(down, p->param) -= p->h;
                 value(up, p->param) += p->h;
-                p->down = make_model(model.key(), down, scene.source);
-                p->up = make_model(model.key(), up, scene.source);
-            }
-            if (dissipated_index() >= 0) {
-                // Central differences of C over p_j (C is linear in alpha and beta, smooth in the others; once per
-                // run).
-                const double h = 1e-6 * p->scale;
-                Parameters down = scene.parameters, up = scene.parameters;
-                value(down, p->param) -= h;
-                value(up, p->param) += h;
-                p->dC = (damping_matrix(*make_model(model.key(), up, scene.source), up) -
-                         damping_matrix(*make_model(model.key(), down, scene.source), down)) /
-                        (2.0 * h);
+                std::unique_ptr<Model> model_down = make_model(model.key(), down, scene.source);
+                std::unique_ptr<Model> model_up = make_model(model.key(), up, scene.source);
+                if (damped)
+                    p->dC = (damping_matrix(*model_up, up) - damping_matrix(*model_down, down)) / (2.0 * p->h);
+                if (!generated) {
+                    p->down = std::move(model_down);
+                    p->up = std::move(model_up);
+                }
             }
         }
         parameters_.push_back(std::move(p));
