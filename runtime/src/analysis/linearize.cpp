@@ -288,17 +288,25 @@ Eigen::Index cyclic_angle(const Model& model, const std::vector<int>& R)
     return model.key().drive == Drive::torque && !R.empty() && R.front() == 0 ? 1 : 0;
 }
 
+/// The Cholesky factorization of a mass matrix at a steady spin (M = L L^T = U^T U): the solves of the linearized
+/// equations, and the weight of the modes' shapes. Throws std::runtime_error if M is not positive definite.
+Eigen::LLT<Eigen::MatrixXd> mass_factor(const Eigen::MatrixXd& M)
+{
+    Eigen::LLT<Eigen::MatrixXd> llt(M);
+    if (llt.info() != Eigen::Success) throw std::runtime_error("the mass matrix at the steady spin is not positive definite");
+    return llt;
+}
+
 /// The linearized equations about the steady spin s as a first-order system x' = X x over the kept coordinates
 /// R: the positions of R but a free hub's angle (cyclic), then all rates of R (a free hub's rate couples to the
-/// beam's): X = [[select, 0], [M^-1 Qq(:, positions), M^-1 Qqd]]. M is the mass matrix at s (all coordinates).
-/// Damping is in Qqd: X's eigenproblem is the damped (quadratic) one in first-order form.
-Eigen::MatrixXd linearized_system(const Model& model, const SteadySpin& s, const Eigen::MatrixXd& M,
+/// beam's): X = [[select, 0], [M^-1 Qq(:, positions), M^-1 Qqd]]. llt is the Cholesky factorization of the mass
+/// matrix at s over R (mass_factor). Damping is in Qqd: X's eigenproblem is the damped (quadratic) one in
+/// first-order form.
+Eigen::MatrixXd linearized_system(const Model& model, const SteadySpin& s, const Eigen::LLT<Eigen::MatrixXd>& llt,
                                   const std::vector<int>& R)
 {
     const ForceJacobians J = force_jacobians(model, s.u, s.q, s.qd);
     const Eigen::MatrixXd Qq = submatrix(J.q, R, R), Qqd = submatrix(J.qd, R, R);
-    const auto llt = submatrix(M, R, R).llt();
-    if (llt.info() != Eigen::Success) throw std::runtime_error("the mass matrix at the steady spin is not positive definite");
     const auto r = static_cast<Eigen::Index>(R.size());
     const Eigen::Index first = cyclic_angle(model, R), p = r - first;
     const Eigen::MatrixXd Aq = llt.solve(Qq), Aqd = llt.solve(Qqd);
@@ -335,8 +343,8 @@ bool mostly_axial(const Model& model, const Eigen::MatrixXd& M, const std::vecto
     return e[1] > e[2];
 }
 
-/// NaturalMode::shape of a mode with these rates: U rates with U the Cholesky factor of M over the same coordinates
-/// (M = U^T U), scaled to unit length.
+/// NaturalMode::shape of a mode with these rates: U rates with U the upper Cholesky factor of M over the same
+/// coordinates (mass_factor: M = U^T U), scaled to unit length.
 Eigen::VectorXcd weighted_shape(const Eigen::MatrixXd& U, const Eigen::VectorXcd& rates)
 {
     Eigen::VectorXcd w = U.cast<std::complex<double>>() * rates;
@@ -344,13 +352,6 @@ Eigen::VectorXcd weighted_shape(const Eigen::MatrixXd& U, const Eigen::VectorXcd
     return length > 0.0 ? Eigen::VectorXcd(w / length) : w;
 }
 
-/// The upper Cholesky factor U of M (M = U^T U); throws std::runtime_error if M is not positive definite.
-Eigen::MatrixXd cholesky_factor(const Eigen::MatrixXd& M)
-{
-    const Eigen::LLT<Eigen::MatrixXd> llt(M);
-    if (llt.info() != Eigen::Success) throw std::runtime_error("the mass matrix at the steady spin is not positive definite");
-    return llt.matrixU();
-}
 
 }  // namespace
 
@@ -365,11 +366,12 @@ std::vector<NaturalMode> natural_modes(const Model& model, const SteadySpin& s, 
     // angle is not among them.
     std::vector<int> R = kept_coordinates(model.key(), axial);
     if (torque && s.held) R.erase(R.begin());
-    const Eigen::EigenSolver<Eigen::MatrixXd> eig(linearized_system(model, s, M, R));
+    const Eigen::LLT<Eigen::MatrixXd> llt = mass_factor(submatrix(M, R, R));
+    const Eigen::EigenSolver<Eigen::MatrixXd> eig(linearized_system(model, s, llt, R));
     if (eig.info() != Eigen::Success) throw std::runtime_error("the eigenvalues of the linearized equations did not converge");
     const Eigen::VectorXcd lambda = eig.eigenvalues();
     const Eigen::MatrixXcd vectors = eig.eigenvectors();
-    const Eigen::MatrixXd U = cholesky_factor(submatrix(M, R, R));
+    const Eigen::MatrixXd U = llt.matrixU();
     const auto r = static_cast<Eigen::Index>(R.size());
     const Eigen::Index first_rate = r - cyclic_angle(model, R);  // the rates follow the positions
     // The free hub's conserved angular momentum: one zero eigenvalue, the smallest (damping acts on the elastic
@@ -440,7 +442,7 @@ std::vector<NaturalMode> closed_loop_modes(const Model& model, const SteadySpin&
     const Eigen::EigenSolver<Eigen::MatrixXd> eig(cl.A);
     if (eig.info() != Eigen::Success) throw std::runtime_error("the eigenvalues of the closed loop did not converge");
     const Eigen::MatrixXd M = mass_at(model, s.u, s.q);
-    const Eigen::MatrixXd U = cholesky_factor(M);
+    const Eigen::MatrixXd U = mass_factor(M).matrixU();
     const Eigen::Index m = M.rows();  // the state holds theta and the flexible coordinates, as q does under torque
     std::vector<int> all(static_cast<std::size_t>(m));
     std::iota(all.begin(), all.end(), 0);
@@ -476,7 +478,6 @@ std::vector<NaturalMode> modes_at(const Model& model, double omega, Axial axial,
     const SteadySpin s = steady_spin(model, omega, theta);
     return control ? closed_loop_modes(model, s, *control) : natural_modes(model, s, axial);
 }
-
 
 }  // namespace
 
@@ -580,11 +581,10 @@ std::vector<CriticalSpeed> critical_speeds(const Model& model, const std::vector
                 // The mode's frequency minus the excitation's, at omega: the line's mode there is the one of
                 // closest shape to its mode at a.
                 const auto gap = [&](double omega) {
-                    const std::vector<NaturalMode> modes = modes_at(model, omega, axial, theta, control);
-                    const auto best = std::max_element(modes.begin(), modes.end(), [&](const NaturalMode& x, const NaturalMode& y) {
-                        return mac(a.mode, x) < mac(a.mode, y);
-                    });
-                    return best->rad_s - n * omega;
+                    double best = -1.0, rad_s = 0.0;
+                    for (const NaturalMode& m : modes_at(model, omega, axial, theta, control))
+                        if (const double x = mac(a.mode, m); x > best) best = x, rad_s = m.rad_s;
+                    return rad_s - n * omega;
                 };
                 double lo = a.omega, hi = b.omega;
                 double g_lo = a.mode.rad_s - n * lo, g_hi = b.mode.rad_s - n * hi;
