@@ -28,7 +28,7 @@ struct ModesArgs {
     std::string count = "4";
     std::string output;   // CSV; empty: none (the table is printed)
     std::string plot;     // PREFIX: the Campbell diagram PREFIX.{png,svg} (hubbeam plot campbell)
-    std::string harmonics = "1,2,3";  // the excitation lines omega = n Omega whose crossings are critical speeds
+    std::string harmonics = default_harmonics;  // the lines omega = n Omega whose crossings are critical speeds
     std::string critical;             // CSV of the critical speeds; empty: none (they are printed)
     bool quiet = false;   // the table to the CSV only, and one summary line printed
 };

@@ -645,9 +645,10 @@ Figure kind_figure(const Kind& kind, const PlotArgs& args, const std::vector<std
     if (name == "axial") return axial_figure(args.files, labels, kind);
     if (name == "campbell")
         // the labels name the lines once there is more than one file, or when given
-        return campbell_figure(args.files, labels, args.files.size() > 1 || !args.labels.empty(),
-                               parse_harmonics<PlotInputError>("--harmonics", args.harmonics.empty() ? "1,2,3" : args.harmonics),
-                               kind);
+        return campbell_figure(
+            args.files, labels, args.files.size() > 1 || !args.labels.empty(),
+            parse_harmonics<PlotInputError>("--harmonics", args.harmonics.empty() ? default_harmonics : args.harmonics),
+            kind);
     return moment_figure(args.files, labels, args.time, kind);
 }
 

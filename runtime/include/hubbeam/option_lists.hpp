@@ -117,6 +117,9 @@ std::vector<int> parse_dof_list(const std::string& option, const std::string& te
     return counts;
 }
 
+/// The excitation lines a Campbell table and diagram take when --harmonics is not given: 1P, 2P and 3P.
+inline constexpr const char* default_harmonics = "1,2,3";
+
 /// The harmonics n of a --harmonics list (a Campbell diagram's excitation lines omega = n Omega), integers from 1
 /// to 1000, each once; throws Error naming option.
 template <class Error>
