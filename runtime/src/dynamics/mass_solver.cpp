@@ -7,8 +7,6 @@
 #include <vector>
 
 #include <Eigen/Dense>
-#include <gsl/gsl_linalg.h>
-#include <gsl/gsl_matrix.h>
 
 namespace hubbeam {
 
@@ -28,28 +26,31 @@ int bandwidth(const std::string& pattern, int n, const std::vector<int>& idx)
     return p;
 }
 
-/// Cholesky factorization A = L L^T of a small dense matrix in plain loops. Eigen's LLT costs about 470
-/// instructions to solve a 4 x 4 system through its dynamic-size machinery, several times the arithmetic;
-/// the mass matrices here are small and solved millions of times.
+/// Cholesky factorization A = L L^T in plain loops, confined to A's band (bandwidth p: A(i, j) = 0 for |i - j| > p;
+/// p = n - 1 is dense). Eigen's LLT costs about 470 instructions to solve a 4 x 4 system through its dynamic-size
+/// machinery, several times the arithmetic, and GSL's banded solve goes through the reference CBLAS (some 2000
+/// instructions for FEM's n = 32, p = 3, six times the arithmetic); the mass matrices here are small and solved
+/// millions of times.
 class SmallCholesky {
 public:
-    /// Factors the n x n matrix a(i, j); false when it is not positive definite.
+    /// Factors the n x n matrix a(i, j) of bandwidth p (-1: dense); false when it is not positive definite.
     template <class Access>
-    bool factor(int n, Access a)
+    bool factor(int n, Access a, int p = -1)
     {
         n_ = n;
+        p_ = p < 0 ? std::max(n - 1, 0) : std::min(p, std::max(n - 1, 0));
         L_.assign(static_cast<std::size_t>(n) * n, 0.0);
         inv_diag_.resize(static_cast<std::size_t>(n));
         for (int j = 0; j < n; ++j) {
             double d = a(j, j);
-            for (int k = 0; k < j; ++k) d -= L(j, k) * L(j, k);
+            for (int k = first(j); k < j; ++k) d -= L(j, k) * L(j, k);
             if (!(d > 0.0)) return false;
             const double ljj = std::sqrt(d);
             L(j, j) = ljj;
             inv_diag_[static_cast<std::size_t>(j)] = 1.0 / ljj;
-            for (int i = j + 1; i < n; ++i) {
+            for (int i = j + 1; i <= std::min(n - 1, j + p_); ++i) {
                 double s = a(i, j);
-                for (int k = 0; k < j; ++k) s -= L(i, k) * L(j, k);
+                for (int k = first(i); k < j; ++k) s -= L(i, k) * L(j, k);
                 L(i, j) = s / ljj;
             }
         }
@@ -60,20 +61,22 @@ public:
     {
         for (int i = 0; i < n_; ++i) {  // L y = b
             double s = b[i];
-            for (int k = 0; k < i; ++k) s -= L(i, k) * b[k];
+            for (int k = first(i); k < i; ++k) s -= L(i, k) * b[k];
             b[i] = s * inv_diag_[static_cast<std::size_t>(i)];
         }
-        for (int i = n_ - 1; i >= 0; --i) {  // L^T x = y
-            double s = b[i];
-            for (int k = i + 1; k < n_; ++k) s -= L(k, i) * b[k];
-            b[i] = s * inv_diag_[static_cast<std::size_t>(i)];
+        for (int i = n_ - 1; i >= 0; --i) {  // L^T x = y, by columns of L^T: row i of L, in the band
+            const double x = b[i] * inv_diag_[static_cast<std::size_t>(i)];
+            b[i] = x;
+            for (int k = first(i); k < i; ++k) b[k] -= L(i, k) * x;
         }
     }
+    int bandwidth() const { return p_; }
 
 private:
+    int first(int i) const { return std::max(0, i - p_); }
     double& L(int i, int j) { return L_[static_cast<std::size_t>(i) * n_ + j]; }
     double L(int i, int j) const { return L_[static_cast<std::size_t>(i) * n_ + j]; }
-    int n_ = 0;
+    int n_ = 0, p_ = 0;
     std::vector<double> L_, inv_diag_;
 };
 
@@ -88,56 +91,24 @@ public:
     virtual std::string describe() const = 0;
 };
 
-class DenseFactor final : public ConstantFactor {
+/// Cholesky in A's band: dense (p = -1), or banded, as the FEM and B-spline mass matrices are (bandwidth 3 or 4
+/// whatever their size).
+class CholeskyFactor final : public ConstantFactor {
 public:
+    explicit CholeskyFactor(int p = -1) : p_(p) {}
     bool factor(const MatrixXd& A) override
     {
-        return llt_.factor(static_cast<int>(A.rows()), [&](int i, int j) { return A(i, j); });
+        return llt_.factor(static_cast<int>(A.rows()), [&](int i, int j) { return A(i, j); }, p_);
     }
     void solve(double* b) const override { llt_.solve(b); }
-    std::string describe() const override { return "dense Cholesky"; }
-
-private:
-    SmallCholesky llt_;
-};
-
-/// GSL's banded Cholesky: the FEM and B-spline mass matrices have bandwidth 3 (or 1) whatever their size.
-class BandedFactor final : public ConstantFactor {
-public:
-    explicit BandedFactor(int p) : p_(p) {}
-    ~BandedFactor() override
+    std::string describe() const override
     {
-        if (band_) gsl_matrix_free(band_);
+        return p_ < 0 ? "dense Cholesky" : "banded Cholesky (bandwidth " + std::to_string(p_) + ")";
     }
-    BandedFactor(const BandedFactor&) = delete;
-    BandedFactor& operator=(const BandedFactor&) = delete;
-    bool factor(const MatrixXd& A) override
-    {
-        // A failed factorization is retried at the next prepare(): the band is reused, or replaced (and the old
-        // one freed) when A's size changed.
-        const auto n = static_cast<std::size_t>(A.rows());
-        if (band_ && band_->size1 != n) {
-            gsl_matrix_free(band_);
-            band_ = nullptr;
-        }
-        if (!band_) band_ = gsl_matrix_alloc(n, static_cast<std::size_t>(p_) + 1);
-        gsl_matrix_set_zero(band_);
-        // GSL's symmetric band storage: row i holds A(i, i), A(i+1, i), ..., A(i+p, i).
-        for (std::size_t i = 0; i < n; ++i)
-            for (std::size_t j = 0; j <= static_cast<std::size_t>(p_) && i + j < n; ++j)
-                gsl_matrix_set(band_, i, j, A(static_cast<Eigen::Index>(i + j), static_cast<Eigen::Index>(i)));
-        return gsl_linalg_cholesky_band_decomp(band_) == GSL_SUCCESS;
-    }
-    void solve(double* b) const override
-    {
-        gsl_vector_view x = gsl_vector_view_array(b, band_->size1);
-        gsl_linalg_cholesky_band_svx(band_, &x.vector);
-    }
-    std::string describe() const override { return "banded Cholesky (bandwidth " + std::to_string(p_) + ")"; }
 
 private:
     int p_;
-    gsl_matrix* band_ = nullptr;
+    SmallCholesky llt_;
 };
 
 /// A diagonal matrix (AMM's orthogonal modes): one multiplication per entry.
@@ -158,14 +129,12 @@ private:
     VectorXd inverse_;
 };
 
-/// Diagonal where the pattern is; banded where that saves work (at most a third of the matrix inside the
-/// band, and large enough that GSL's per-call overhead, some 400 instructions, is paid back); else dense.
+/// Diagonal where the pattern is; banded where the band leaves out part of the matrix; else dense.
 std::unique_ptr<ConstantFactor> constant_factor(const std::string& pattern, int n, const std::vector<int>& idx)
 {
     const int p = bandwidth(pattern, n, idx), size = static_cast<int>(idx.size());
     if (p == 0) return std::make_unique<DiagonalFactor>();
-    if (size >= 16 && 3 * (p + 1) <= size) return std::make_unique<BandedFactor>(p);
-    return std::make_unique<DenseFactor>();
+    return std::make_unique<CholeskyFactor>(p + 1 < size ? p : -1);
 }
 
 /// M(q) as the model writes it (row-major, symmetric, so read as column-major it is the same matrix).
@@ -240,8 +209,10 @@ private:
 ///   X = M_CC^-1 M_CR, S = M_RR - M_RC X (r x r), x_R = S^-1 (b_R - M_RC M_CC^-1 b_C), x_C = M_CC^-1 b_C - X x_R.
 class SchurSolver final : public MassSolver {
 public:
-    SchurSolver(const Model& model, std::vector<int> R, std::vector<int> C, std::unique_ptr<ConstantFactor> block)
-        : mass_(model), R_(std::move(R)), C_(std::move(C)), block_(std::move(block)),
+    /// constant_coupling: M_CR does not vary either (no axial coordinates under torque), so X is computed once.
+    SchurSolver(const Model& model, std::vector<int> R, std::vector<int> C, std::unique_ptr<ConstantFactor> block,
+                bool constant_coupling)
+        : mass_(model), R_(std::move(R)), C_(std::move(C)), block_(std::move(block)), constant_coupling_(constant_coupling),
           X_(static_cast<Eigen::Index>(C_.size()), static_cast<Eigen::Index>(R_.size())),
           z_(static_cast<Eigen::Index>(C_.size())), x_R_(static_cast<Eigen::Index>(R_.size()))
     {
@@ -250,17 +221,19 @@ public:
     {
         const MatrixXd& M = factored_ ? mass_.varying(u, q) : mass_.full(u, q);
         const auto r = static_cast<Eigen::Index>(R_.size()), c = static_cast<Eigen::Index>(C_.size());
-        if (!factored_) {
+        const bool first = !factored_;
+        if (first) {
             MatrixXd block(c, c);
             for (Eigen::Index i = 0; i < c; ++i)
                 for (Eigen::Index j = 0; j < c; ++j) block(i, j) = M(C_[i], C_[j]);
             if (!block_->factor(block)) return false;
             factored_ = true;
         }
-        for (Eigen::Index k = 0; k < r; ++k) {
-            for (Eigen::Index i = 0; i < c; ++i) X_(i, k) = M(C_[i], R_[k]);
-            block_->solve(X_.col(k).data());
-        }
+        if (first || !constant_coupling_)
+            for (Eigen::Index k = 0; k < r; ++k) {
+                for (Eigen::Index i = 0; i < c; ++i) X_(i, k) = M(C_[i], R_[k]);
+                block_->solve(X_.col(k).data());
+            }
         return schur_.factor(static_cast<int>(r), [&](int i, int j) {
             double s = M(R_[i], R_[j]);
             for (Eigen::Index k = 0; k < c; ++k) s -= M(R_[i], C_[k]) * X_(k, j);
@@ -295,6 +268,7 @@ private:
     Evaluated mass_;
     std::vector<int> R_, C_;
     std::unique_ptr<ConstantFactor> block_;
+    bool constant_coupling_;
     MatrixXd X_;
     mutable VectorXd z_, x_R_;
     SmallCholesky schur_;
@@ -331,7 +305,10 @@ std::unique_ptr<MassSolver> MassSolver::make(const Model& model)
     // r is small against n (a dense factorization costs n^3/6).
     if (!C.empty() && 4 * R.size() <= C.size()) {
         auto block = constant_factor(pattern, n, C);
-        return std::make_unique<SchurSolver>(model, std::move(R), std::move(C), std::move(block));
+        bool constant_coupling = true;
+        for (const int i : R)
+            for (const int j : C) constant_coupling = constant_coupling && !varies(i, j);
+        return std::make_unique<SchurSolver>(model, std::move(R), std::move(C), std::move(block), constant_coupling);
     }
     return std::make_unique<DenseSolver>(model);
 }
