@@ -2,6 +2,7 @@
 // scenes, gauss4's reuse of its Jacobian, and the automatic choice against the work each candidate measurably does.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 #include "runs.hpp"
@@ -120,4 +121,43 @@ TEST_CASE("the automatic choice is the candidate that does less work", "[stepper
     }
     CHECK(implicit > 0);
     CHECK(implicit < static_cast<int>(std::size(grid)));
+}
+
+TEST_CASE("under a hub torque the automatic choice measures gauss4's steps with a pilot run", "[steppers]")
+{
+    // The torque's start excites the mesh's highest modes, and how many steps gauss4 needs depends on how far above
+    // the tolerance they ring: the pilot measures the start of the run and extrapolates. Its premise is that the
+    // start is representative: the whole run's steps are its steps times t_end over its window.
+    const auto automatic = [](Scene s) {
+        s.solver.error_check = ErrorCheck::off;
+        return Simulation(s).run([](const Row&) {});
+    };
+    const auto number_after = [](const std::string& why, const std::string& said) {
+        const std::size_t at = why.find(said);
+        REQUIRE(at != std::string::npos);
+        return std::stod(why.substr(at + said.size()));
+    };
+    Scene s = paper_scene(Method::fem, 8, 8, torque(1.0));
+    s.output.t_end = 10.0;
+    const RunSummary stiff = automatic(s);
+    INFO(stiff.stepper_why);
+    CHECK(stiff.stepper == "gauss4");
+    const double pilot_steps = number_after(stiff.stepper_why, ", from ");
+    const double window = number_after(stiff.stepper_why, "in a pilot to t = ");
+    const double planned = std::max(s.output.t_end / 30.0, std::numbers::pi / number_after(stiff.stepper_why, "lowest frequency "));
+    CHECK(window == Approx(planned).epsilon(5e-3));
+    CHECK(number_after(stiff.stepper_why, "gauss4 about ") == Approx(pilot_steps * s.output.t_end / window).epsilon(1e-3));
+    INFO("whole run: " << stiff.steps << " steps");
+    CHECK(pilot_steps * s.output.t_end / window == Approx(static_cast<double>(stiff.steps)).epsilon(0.25));
+    // Without the axial modes rk8pd's steps are few: the pilot stops once gauss4 has taken more than would let it
+    // win, before its window ends.
+    s.variant.nx = 0;
+    const RunSummary explicit_run = automatic(s);
+    INFO(explicit_run.stepper_why);
+    CHECK(explicit_run.stepper == "rk8pd");
+    CHECK(number_after(explicit_run.stepper_why, "in a pilot to t = ") < 0.5 * planned);
+    // A prescribed rotation starts and ends smoothly: the rule predicts it, no pilot runs.
+    s = paper_scene(Method::fem, 0, 8, spin_up(4.0));
+    s.output.t_end = 10.0;
+    CHECK(automatic(s).stepper_why.find("pilot") == std::string::npos);
 }

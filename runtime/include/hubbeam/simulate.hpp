@@ -168,6 +168,8 @@ using RowSink = std::function<void(const Row&)>;
 using StopRequest = std::function<const char*()>;
 
 class Model;
+struct Pilot;
+struct StepperChoice;
 
 /// One run of a scene, in two steps so that everything that can refuse the scene (no model serves its
 /// variant) does so before the caller creates any output.
@@ -203,10 +205,13 @@ public:
 
 private:
     class Run;  // one call of run(): simulate.cpp
+    /// The automatic choice at rtol, with the pilot run (made once, at the first call that needs one).
+    StepperChoice automatic(double rtol) const;
     const Scene& scene_;
     std::unique_ptr<Model> model_;
     StateObserver observer_;
     std::string stepper_, stepper_why_;  // the scene's, or the automatic choice and why
+    mutable std::unique_ptr<Pilot> pilot_;  // gauss4's measured start under a hub torque (stiffness.hpp)
     bool check_error_ = true;
 };
 

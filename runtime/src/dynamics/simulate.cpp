@@ -285,6 +285,31 @@ std::vector<double> initial_state(const FirstOrderSystem& system, const Model& m
     return y;
 }
 
+/// gauss4 from rest over plan's window at the scene's tolerances, the drive's breakpoints stepped to as a run does,
+/// stopped once its steps exceed plan's budget (gauss4 has lost by then). Deterministic, as the choice must be.
+Pilot pilot_run(const Scene& scene, const Model& model, PilotPlan plan)
+{
+    FirstOrderSystem system(model, scene.motion, scene.axial, scene.controller(), &scene.parameters);
+    std::vector<double> y = initial_state(system, model, scene);
+    const QuietGsl quiet;
+    const std::unique_ptr<Stepper> stepper =
+        make_stepper(system, gauss_stepper, 0.0, y.data(), scene.solver.h0, scene.solver.atol, scene.solver.rtol);
+    Pilot pilot{.t = 0.0, .steps = 0, .rtol = scene.solver.rtol};
+    std::vector<double> stops = breaks_before(scene.motion, plan.t);
+    stops.push_back(plan.t);
+    for (const double stop : stops) {
+        while (pilot.t < stop && stepper->steps() <= plan.budget)
+            if (stepper->step(pilot.t, stop, y.data(), INFINITY) != GSL_SUCCESS) {
+                pilot.failed = true;
+                return pilot;
+            }
+        if (stepper->steps() > plan.budget) break;
+        stepper->restart(pilot.t, y.data());
+    }
+    pilot.steps = stepper->steps();
+    return pilot;
+}
+
 }  // namespace
 
 /// One run of Simulation::run: the integration's state, with one member function per job (setup, the two stepping
@@ -723,7 +748,7 @@ RunSummary Simulation::Run::finish(std::string failure)
 /// The stepper of the checks' re-runs: the automatic choice at their tolerance.
 std::string Simulation::Run::check_stepper(CheckTolerance tol) const
 {
-    return automatic_stepper(model_, scene_.axial, tol.rtol, scene_.output.t_end, system_.auxiliary().count()).stepper;
+    return sim_.automatic(tol.rtol).stepper;
 }
 
 /// For a run that reached t_end: why its rows cannot be trusted (empty if they can), from the invariant monitor
@@ -816,8 +841,7 @@ Simulation::Simulation(const Scene& scene, const std::function<void(const std::s
     check_error_ = scene.solver.error_check == ErrorCheck::on;
     stepper_ = scene.solver.stepper;
     if (stepper_ == automatic_stepper_word) {
-        const StepperChoice choice = automatic_stepper(*model_, scene.axial, scene.solver.rtol, scene.output.t_end,
-                                                       auxiliary_count(scene));
+        const StepperChoice choice = automatic(scene.solver.rtol);
         stepper_ = choice.stepper;
         stepper_why_ = choice.why;
     }
@@ -825,11 +849,22 @@ Simulation::Simulation(const Scene& scene, const std::function<void(const std::s
 
 Simulation::~Simulation() = default;
 
+StepperChoice Simulation::automatic(double rtol) const
+{
+    const double t_end = scene_.output.t_end;
+    const int auxiliary = auxiliary_count(scene_);
+    if (!pilot_ && needs_pilot(*model_, scene_.solver.rtol))
+        pilot_ = std::make_unique<Pilot>(pilot_run(scene_, *model_,
+                                                   pilot_plan(predicted_costs(*model_, scene_.axial, scene_.solver.rtol,
+                                                                              t_end, auxiliary),
+                                                              t_end)));
+    return automatic_stepper(*model_, scene_.axial, rtol, t_end, auxiliary, rtol >= gauss4_tightest_rtol ? pilot_.get() : nullptr);
+}
+
 std::string Simulation::faster_stepper_hint() const
 {
     if (!stepper_why_.empty()) return {};  // chosen automatically already
-    const StepperChoice choice = automatic_stepper(*model_, scene_.axial, scene_.solver.rtol, scene_.output.t_end,
-                                                   auxiliary_count(scene_));
+    const StepperChoice choice = automatic(scene_.solver.rtol);
     if (choice.stepper == stepper_) return {};
     return "--stepper " + choice.stepper + " suits this scene (" + choice.why.substr(choice.why.find(' ') + 1) + ")";
 }

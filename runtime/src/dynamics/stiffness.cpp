@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <numbers>
 #include <vector>
 
 #include "linearize.hpp"
@@ -117,7 +118,26 @@ double lowest_frequency(const Model& model, Axial axial)
     return 0.0;
 }
 
-StepperCosts predicted_costs(const Model& model, Axial axial, double rtol, double t_end, int auxiliary)
+bool needs_pilot(const Model& model, double rtol)
+{
+    // Where M's condition number passes 1e10 the round-off in the accelerations (1e-6 of them) rings in the undamped
+    // stiff modes and grows through the run, which the start does not show: BIM at Ny = 16 under torque (cond(M)
+    // 2e12) took 3.5 times its pilot's extrapolated steps. There the rule, which assumes the stiff modes resolved,
+    // is the safer prediction. The meshes the pilot serves stay far below (FEM and BSIM at Ny = 32: 1e8 to 4e8).
+    constexpr double condition_limit = 1e10;
+    return model.key().drive == Drive::torque && rtol >= gauss4_tightest_rtol && mass_condition(model) < condition_limit;
+}
+
+PilotPlan pilot_plan(const StepperCosts& c, double t_end)
+{
+    // Half the lowest period covers the phases of the motion accuracy follows; a thirtieth of the run keeps the
+    // pilot's cost within a few per cent of the run's. gauss4's first steps grow from h0: a few dozen steps more.
+    const double t = std::min(t_end, std::max(t_end / 30.0, c.omega_1 > 0.0 ? std::numbers::pi / c.omega_1 : 0.0));
+    const double break_even = c.rk8pd / c.gauss4_step * (t / t_end);
+    return {t, static_cast<long>(std::min(break_even, 1e12)) + 30};
+}
+
+StepperCosts predicted_costs(const Model& model, Axial axial, double rtol, double t_end, int auxiliary, const Pilot* pilot)
 {
     StepperCosts c;
     c.omega_max = highest_rate(model, axial);
@@ -131,16 +151,24 @@ StepperCosts predicted_costs(const Model& model, Axial axial, double rtol, doubl
     // BSIM, modes of the discretization, and gauss4 must then resolve them as an explicit step must (at Nx = 0 it
     // took 0.3 to 1.6 times rk8pd's steps); AMM's are the cantilever's own modes, whose response to the hub falls off
     // fast (Ny = 16: 3984 steps against rk8pd's 19194), and the axial modes, which the torque reaches only through
-    // the centrifugal coupling, stay quiet in every method.
+    // the centrifugal coupling, stay quiet in every method. That rule is only the fallback: a run under a hub torque
+    // measures gauss4's steps with a pilot (needs_pilot), for whether gauss4 must resolve the excited modes depends on
+    // how much the torque excites them (FEM Ny = 32: 35,000 steps where the rule predicted rk8pd's 124,000).
     const double scale = rtol / 1e-8;
     const double accuracy8 = t_end * c.omega_1 / (0.077 * std::pow(scale, 1.0 / 8.0));
     const double stability8 = t_end * c.omega_max / stability_step_factor("rk8pd");
     c.steps_rk8pd = std::max(accuracy8, stability8);
     c.stability_bound = stability8 > accuracy8;
     c.steps_gauss4 = 2.0 * t_end * c.omega_1 / (0.073 * std::pow(scale, 1.0 / 5.0));
-    if (model.key().drive == Drive::torque && model.key().method != Method::amm)
+    if (pilot != nullptr) {
+        c.piloted = true;
+        c.steps_gauss4 = pilot->failed || pilot->t <= 0.0
+                             ? INFINITY
+                             : static_cast<double>(pilot->steps) * (t_end / pilot->t) * std::pow(pilot->rtol / rtol, 0.2);
+    } else if (model.key().drive == Drive::torque && model.key().method != Method::amm) {
         c.steps_gauss4 = std::max(c.steps_gauss4, t_end * highest_frequency(model, Axial::quasi_static) /
                                                       stability_step_factor("rk8pd"));
+    }
     // Cost per step in flops, with a right-hand side of about 4 m^2 (the folded or dense products over m states):
     // rk8pd's 13 evaluations; gauss4's about 15 evaluations and 10 solves with its factored Newton matrices, and
     // every fourth step their two factorizations (2 x 2/3 n^3), n = m where the Newton systems condense to the
@@ -149,29 +177,38 @@ StepperCosts predicted_costs(const Model& model, Axial axial, double rtol, doubl
     const double rhs = 4.0 * m * m;
     const double n = auxiliary == 0 ? m : 2.0 * (m + auxiliary);
     c.rk8pd = c.steps_rk8pd * 13.0 * rhs;
-    c.gauss4 = c.steps_gauss4 * (15.0 * rhs + 10.0 * 2.0 * n * n + (2.0 * 2.0 / 3.0 * n * n * n) / 4.0);
+    c.gauss4_step = 15.0 * rhs + 10.0 * 2.0 * n * n + (2.0 * 2.0 / 3.0 * n * n * n) / 4.0;
+    c.gauss4 = c.steps_gauss4 * c.gauss4_step;
     return c;
 }
 
-StepperChoice automatic_stepper(const Model& model, Axial axial, double rtol, double t_end, int auxiliary)
+StepperChoice automatic_stepper(const Model& model, Axial axial, double rtol, double t_end, int auxiliary,
+                                const Pilot* pilot)
 {
-    const StepperCosts c = predicted_costs(model, axial, rtol, t_end, auxiliary);
+    const StepperCosts c = predicted_costs(model, axial, rtol, t_end, auxiliary, pilot);
     // Below rtol 1e-10 gauss4's step doubling compares results that agree to round-off, amplified by cond(M) under a
     // hub torque (2.5e5 for the paper's FEM beam with axial coordinates: its steps collapse at rtol 1e-11): rk8pd,
     // whatever it costs.
     const bool implicit = c.gauss4 < c.rk8pd && rtol >= gauss4_tightest_rtol;
-    char why[320];
+    std::string pilot_note;
+    if (pilot != nullptr) {
+        char text[120];
+        if (pilot->failed) std::snprintf(text, sizeof text, ": its pilot failed at t = %.3g s", pilot->t);
+        else std::snprintf(text, sizeof text, ", from %ld in a pilot to t = %.3g s", pilot->steps, pilot->t);
+        pilot_note = text;
+    }
+    char why[440];
     if (c.gauss4 < c.rk8pd && !implicit) {
         std::snprintf(why, sizeof why, "automatic: rtol %g is below gauss4's %g, where its error estimate meets "
                       "round-off", rtol, gauss4_tightest_rtol);
         return {"rk8pd", why};
     }
     std::snprintf(why, sizeof why,
-                  "automatic: predicted %.2g flops against %.2g for %s (rk8pd about %.0f steps, %s; gauss4 about %.0f; "
+                  "automatic: predicted %.2g flops against %.2g for %s (rk8pd about %.0f steps, %s; gauss4 about %.0f%s; "
                   "highest rate %.0f 1/s, lowest frequency %.3g rad/s)",
                   implicit ? c.gauss4 : c.rk8pd, implicit ? c.rk8pd : c.gauss4, implicit ? "rk8pd" : "gauss4",
                   c.steps_rk8pd, c.stability_bound ? "bound by stability" : "bound by accuracy", c.steps_gauss4,
-                  c.omega_max, c.omega_1);
+                  pilot_note.c_str(), c.omega_max, c.omega_1);
     return {implicit ? gauss_stepper : "rk8pd", why};
 }
 

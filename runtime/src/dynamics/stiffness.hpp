@@ -31,8 +31,38 @@ struct StepperCosts {
     double steps_rk8pd = 0.0, steps_gauss4 = 0.0;
     bool stability_bound = false;             // rk8pd's steps set by omega_max, not accuracy
     double rk8pd = 0.0, gauss4 = 0.0;         // flops
+    double gauss4_step = 0.0;                 // flops per gauss4 step
+    bool piloted = false;                     // steps_gauss4 measured by a pilot run, not predicted
 };
-StepperCosts predicted_costs(const Model& model, Axial axial, double rtol, double t_end, int auxiliary = 0);
+
+/// gauss4's steps over the start of the run, measured: a pilot run from rest. Under a hub torque the rule cannot
+/// predict them: the drive's kinks (the torque switching on and off) excite the discretization's high modes by
+/// amounts that decide whether gauss4 must resolve them, which the pilot sees.
+struct Pilot {
+    double t = 0.0;        // where it ended (s): its window's end, or earlier when it ran out of budget
+    long steps = 0;        // gauss4's steps to t
+    double rtol = 0.0;     // the tolerance it ran at
+    bool failed = false;   // a step failed: gauss4 cannot run the scene at rtol
+};
+
+/// What a pilot should cover, for a scene whose costs without one are c: its window (s) and the steps beyond which
+/// gauss4 has already lost to rk8pd.
+struct PilotPlan {
+    double t = 0.0;
+    long budget = 0;
+};
+
+/// Whether the automatic choice needs a pilot for a model at rtol: under a hub torque, where gauss4 is allowed.
+bool needs_pilot(const Model& model, double rtol);
+
+/// The pilot's window, the longer of a thirtieth of the run and half the lowest mode's period (but not past
+/// t_end), and its budget: the break-even steps of that window.
+PilotPlan pilot_plan(const StepperCosts& c, double t_end);
+
+/// The predicted costs; with a pilot, gauss4's steps are its steps extrapolated to t_end (and to rtol, as the
+/// accuracy of an order-4 method asks: rtol^(-1/5)).
+StepperCosts predicted_costs(const Model& model, Axial axial, double rtol, double t_end, int auxiliary = 0,
+                             const Pilot* pilot = nullptr);
 
 struct StepperChoice {
     std::string stepper;  // rk8pd or gauss4
@@ -45,7 +75,8 @@ inline constexpr double gauss4_tightest_rtol = 1e-10;
 /// The candidate of the lower predicted cost (predicted_costs): rk8pd, explicit, where the steps accuracy needs
 /// are not much shorter than stability allows; gauss4, implicit, where stiff modes (axial coordinates, fine FEM and
 /// B-spline meshes) would hold an explicit step far below what accuracy needs.
-StepperChoice automatic_stepper(const Model& model, Axial axial, double rtol, double t_end, int auxiliary = 0);
+StepperChoice automatic_stepper(const Model& model, Axial axial, double rtol, double t_end, int auxiliary = 0,
+                                const Pilot* pilot = nullptr);
 
 /// The lowest hub rate (rad/s, up to 1000) at which the equations linearized about the straight beam lose
 /// stability: the effective stiffness -dQ/dq at q = qd = 0, steady spin, stops being positive definite (the
