@@ -126,6 +126,7 @@ public:
     void retake(double, const double*) override { have_guess_ = false; }
 
     long steps() const override { return steps_; }
+    bool has_midpoint() const override { return true; }
     bool midpoint(double* y) const override
     {
         if (steps_ == 0) return false;
