@@ -9,14 +9,14 @@ set -euo pipefail
 cd "$(dirname "$0")"
 
 # GiNaC (symbolic derivation), Eigen (linear algebra), GSL (odeiv2 integrators), SUNDIALS (CVODE, the BDF
-# stepper family beside GSL's), Catch2 (tests), toml++
+# stepper family beside GSL's), LAPACK (band LU), Catch2 (tests), toml++
 # (scene files), CLI11 (command line), gnuplot (figures), pybind11 and numpy (the Python module), Dask's
 # distributed (sweeps), cryptography (the TLS certificates each local sweep cluster makes for itself; Dask does
 # not depend on it), pandas (Result.to_pandas, and its test), scipy (the optimization example under examples/ and
 # its test; scipy.signal reads linearize's .npz), zlib (the CRC-32 of a .npz's entries); cmake, ninja and g++
 # to build.
 packages=(build-essential cmake ninja-build pkg-config libginac-dev libeigen3-dev libgsl-dev catch2
-          libtomlplusplus-dev libcli11-dev libsundials-dev gnuplot-nox python3 python3-dev pybind11-dev python3-numpy
+          libtomlplusplus-dev libcli11-dev libsundials-dev liblapack-dev gnuplot-nox python3 python3-dev pybind11-dev python3-numpy
           python3-distributed python3-cryptography python3-pandas python3-scipy zlib1g-dev)
 mode=${1:-run}
 shift || true

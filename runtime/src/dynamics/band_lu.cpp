@@ -1,0 +1,138 @@
+// The bordered band LU: its ordering (reverse Cuthill-McKee), LAPACK's band factorization and the border's Schur
+// complement.
+#include "band_lu.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <queue>
+
+extern "C" {
+// LAPACK (Fortran): LU with partial pivoting of a band matrix.
+void dgbtrf_(const int* m, const int* n, const int* kl, const int* ku, double* ab, const int* ldab, int* ipiv, int* info);
+}
+
+namespace hubbeam {
+
+BorderedBandLU::BorderedBandLU(const std::vector<char>& pattern, int n) : n_(n)
+{
+    const auto at = [&](int i, int j) { return pattern[static_cast<std::size_t>(i) * n + j] != 0; };
+    // The symmetrized graph, without the diagonal; its dense vertices are the border.
+    std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            if (at(i, j)) entries_.emplace_back(i, j);
+            if (i != j && (at(i, j) || at(j, i))) neighbours[static_cast<std::size_t>(i)].push_back(j);
+        }
+    // A border vertex is coupled to over a third of the others and to three times as many as the median vertex.
+    const auto degree = [&](int i) { return neighbours[static_cast<std::size_t>(i)].size(); };
+    std::vector<std::size_t> degrees;
+    for (int i = 0; i < n; ++i) degrees.push_back(degree(i));
+    std::nth_element(degrees.begin(), degrees.begin() + n / 2, degrees.end());
+    const std::size_t median = n > 0 ? degrees[static_cast<std::size_t>(n / 2)] : 0;
+    std::vector<bool> border(static_cast<std::size_t>(n), false);
+    for (int i = 0; i < n; ++i)
+        border[static_cast<std::size_t>(i)] = 3 * degree(i) > static_cast<std::size_t>(n) && degree(i) > 3 * median;
+    // Cuthill-McKee over the band part, a component at a time from a vertex of least degree, then reversed.
+    std::vector<bool> seen(border);
+    std::vector<int> band;
+    for (;;) {
+        int start = -1;
+        for (int i = 0; i < n; ++i)
+            if (!seen[static_cast<std::size_t>(i)] && (start < 0 || degree(i) < degree(start))) start = i;
+        if (start < 0) break;
+        std::queue<int> next;
+        next.push(start);
+        seen[static_cast<std::size_t>(start)] = true;
+        while (!next.empty()) {
+            const int v = next.front();
+            next.pop();
+            band.push_back(v);
+            std::vector<int> fresh;
+            for (const int w : neighbours[static_cast<std::size_t>(v)])
+                if (!seen[static_cast<std::size_t>(w)]) fresh.push_back(w), seen[static_cast<std::size_t>(w)] = true;
+            std::stable_sort(fresh.begin(), fresh.end(), [&](int a, int b) { return degree(a) < degree(b); });
+            for (const int w : fresh) next.push(w);
+        }
+    }
+    std::reverse(band.begin(), band.end());
+    order_ = band;
+    for (int i = 0; i < n; ++i)
+        if (border[static_cast<std::size_t>(i)]) order_.push_back(i);
+    nb_ = static_cast<int>(band.size());
+    r_ = n - nb_;
+    position_.assign(static_cast<std::size_t>(n), 0);
+    for (int p = 0; p < n; ++p) position_[static_cast<std::size_t>(order_[static_cast<std::size_t>(p)])] = p;
+    for (const auto& [i, j] : entries_) {
+        const int pi = position_[static_cast<std::size_t>(i)], pj = position_[static_cast<std::size_t>(j)];
+        if (pi >= nb_ || pj >= nb_) continue;
+        kl_ = std::max(kl_, pi - pj);
+        ku_ = std::max(ku_, pj - pi);
+    }
+    ldab_ = 2 * kl_ + ku_ + 1;  // dgbtrf's fill-in needs kl_ rows above the band
+    band_.assign(static_cast<std::size_t>(ldab_) * std::max(nb_, 1), 0.0);
+    pivots_.assign(static_cast<std::size_t>(std::max(nb_, 1)), 0);
+    E_.resize(nb_, r_);
+    F_.resize(r_, nb_);
+    D_.resize(r_, r_);
+    x_.resize(n);
+}
+
+double BorderedBandLU::factor_flops() const
+{
+    const double nb = nb_, r = r_;
+    // The band's LU, its solves for the border's columns, and the border's dense LU and Schur complement.
+    return 2.0 * nb * kl_ * (kl_ + ku_ + 1) + r * 2.0 * nb * (2 * kl_ + ku_ + 1) + 2.0 * r * r * nb + 2.0 / 3.0 * r * r * r;
+}
+
+bool BorderedBandLU::factor_filled()
+{
+    int info = 0;
+    if (nb_ > 0) {
+        dgbtrf_(&nb_, &nb_, &kl_, &ku_, band_.data(), &ldab_, pivots_.data(), &info);
+        if (info != 0) return false;
+    }
+    if (r_ == 0) return true;
+    for (int c = 0; c < r_; ++c) band_solve(E_.col(c).data());
+    schur_.compute(D_ - F_ * E_);  // E_ now holds B^-1 E
+    // PartialPivLU does not report a zero pivot: a singular Schur complement shows as a non-finite determinant's
+    // inverse, or a zero determinant.
+    const double det = schur_.determinant();
+    return std::isfinite(det) && det != 0.0;
+}
+
+void BorderedBandLU::solve(double* b) const
+{
+    for (int p = 0; p < n_; ++p) x_[p] = b[order_[static_cast<std::size_t>(p)]];
+    band_solve(x_.data());
+    if (r_ > 0) {
+        // x_border = S^-1 (b_border - F B^-1 b_band), x_band = B^-1 b_band - (B^-1 E) x_border.
+        t_ = schur_.solve(x_.tail(r_) - F_ * x_.head(nb_));
+        x_.tail(r_) = t_;
+        x_.head(nb_).noalias() -= E_ * t_;
+    }
+    for (int p = 0; p < n_; ++p) b[order_[static_cast<std::size_t>(p)]] = x_[p];
+}
+
+void BorderedBandLU::band_solve(double* x) const
+{
+    // dgbtrs's algorithm in plain loops (LAPACK's goes through a BLAS call per column, costly at these sizes): the
+    // row interchanges and L's multipliers column by column, then U, whose kl + ku superdiagonals dgbtrf stored.
+    const int kd = kl_ + ku_;
+    const auto column = [&](int j) { return band_.data() + static_cast<std::ptrdiff_t>(j) * ldab_; };
+    for (int j = 0; j + 1 < nb_ && kl_ > 0; ++j) {
+        const int l = pivots_[static_cast<std::size_t>(j)] - 1;
+        if (l != j) std::swap(x[l], x[j]);
+        const double xj = x[j];
+        const double* multipliers = column(j) + kd + 1;
+        for (int i = 0, lm = std::min(kl_, nb_ - 1 - j); i < lm; ++i) x[j + 1 + i] -= multipliers[i] * xj;
+    }
+    for (int j = nb_ - 1; j >= 0; --j) {
+        const double* u = column(j);
+        const double xj = x[j] / u[kd];
+        x[j] = xj;
+        for (int i = std::max(0, j - kd); i < j; ++i) x[i] -= xj * u[kd + i - j];
+    }
+}
+
+}  // namespace hubbeam
