@@ -111,6 +111,7 @@ py::dict summary_dict(const RunSummary& s, const Scene& scene)
     out["algebra"] = s.algebra;
     out["stepper"] = s.stepper;
     out["stepper_why"] = s.stepper_why;
+    out["newton"] = s.newton;
     out["completed"] = s.completed;
     out["failure"] = s.failure;
     out["t_reached"] = s.t_reached;

@@ -140,6 +140,14 @@ public:
     /// model's exact derivatives when it has them (with the control's dtau/dy through dQ/dtau), else
     /// finite_difference_jacobian.
     virtual int jacobian(double t, const double* y, double* dfdy, double* dfdt);
+    /// Whether mass_form_jacobian serves: exact derivatives, every coordinate integrated, no control or auxiliary
+    /// states (y = (q, qd)).
+    bool has_mass_form() const;
+    /// The Jacobian's lower blocks before M^-1, each n x n row-major: M(q), K = dQ/dq - (dM/dq) qdd and C = dQ/dqd,
+    /// so that dqdd/dq = M^-1 K and dqdd/dqd = M^-1 C. Sparse where the Jacobian is dense (FEM and B-spline meshes:
+    /// banded, with the hub's row and column under torque), for Newton matrices kept in that form. Counts as a
+    /// Jacobian evaluation.
+    int mass_form_jacobian(double t, const double* y, double* M, double* K, double* C);
     /// Central differences of rhs: the fallback for models without derivatives, and the tests' oracle.
     int finite_difference_jacobian(double t, const double* y, double* dfdy, double* dfdt);
     /// Evaluations of rhs, including those a finite-difference Jacobian makes.
@@ -170,6 +178,8 @@ private:
     int integral_ = -1, dissipated_ = -1, work_at_ = -1;
     bool saturated_ = false;  // the last torque() was clipped: its derivatives by the state are zero
     int exact_jacobian(const ExactJacobian& exact, double t, const double* y, double* dfdy, double* dfdt);
+    /// M qdd = Q at y under u, linearized before M^-1: qdd, dQ/dq - (dM/dq) qdd, dQ/dqd and dQ/du into the Work.
+    int force_linearization(const ExactJacobian& exact, const HubInput& u, const double* y);
     /// rhs() of a system with a control or auxiliary states.
     int extended_rhs(double t, const double* y, double* dydt);
     /// u_y(L) and its rate of a state y (linear in the kept coordinates: tip_row).

@@ -133,6 +133,7 @@ struct RunSummary {
     std::string algebra;  // how accelerations are computed (FirstOrderSystem::linear_algebra())
     std::string stepper;      // the step type that ran
     std::string stepper_why;  // why, when it was chosen automatically (stiffness.hpp); else empty
+    std::string newton;       // how gauss4 solved its Newton systems (dense, or a bordered band); empty for the others
     bool completed = false;
     std::string failure;  // why the run stopped early (empty if completed)
     double t_reached = 0.0;

@@ -6,11 +6,14 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include <Eigen/Dense>
+#include <Eigen/SparseCore>
 #include <gsl/gsl_errno.h>
 
+#include "band_lu.hpp"
 #include "stepper.hpp"
 
 namespace hubbeam {
@@ -29,11 +32,21 @@ const double d1 = -root3, d2 = root3;
 double l1(double s) { return s * (s - c2) / (c1 * (c1 - c2)); }
 double l2(double s) { return s * (s - c1) / (c2 * (c2 - c1)); }
 
-/// A factored Newton matrix and the step it was formed for.
+/// A factored Newton matrix and the step it was formed for: dense, or in the mass form a bordered band (planned for
+/// a version of the pattern).
 struct Newton {
     Eigen::PartialPivLU<Eigen::MatrixXd> lu;
+    std::unique_ptr<BorderedBandLU> band;
+    int planned = -1;
     double h = 0.0;
 };
+
+/// The mass form of the condensed Newton matrices pays where M, K and C are banded but for the hub's row and column
+/// (FEM and B-spline meshes) and the system is large enough for the dense LU's n^3 to be the cost: it is used where
+/// its factorization takes at most a quarter of the dense one's flops.
+constexpr int mass_form_min_size = 16;
+constexpr double mass_form_max_share = 0.25;
+using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
 class GaussStepper final : public Stepper {
 public:
@@ -44,6 +57,7 @@ public:
           k_((n_ - system.FirstOrderSystem::auxiliary_count()) / 2),
           condensed_(system.FirstOrderSystem::auxiliary_count() == 0), rhs2_(2 * k_), dv_(2 * k_), mix_(k_)
     {
+        mass_form_ = condensed_ && k_ >= mass_form_min_size && system.has_mass_form();
     }
 
     int step(double& t, double target, double* y, double h_max) override
@@ -127,6 +141,15 @@ public:
 
     long steps() const override { return steps_; }
     bool has_midpoint() const override { return true; }
+    std::string newton_form() const override
+    {
+        const int size = 2 * (condensed_ ? k_ : n_);
+        if (!mass_form_ || !whole_.band) return "dense LU of " + std::to_string(size) + " x " + std::to_string(size);
+        const BorderedBandLU& b = *whole_.band;
+        return "mass form, band LU of " + std::to_string(size) + " x " + std::to_string(size) + " (half-widths " +
+               std::to_string(b.lower()) + " and " + std::to_string(b.upper()) + ", reverse Cuthill-McKee) bordered by " +
+               std::to_string(b.border()) + " dense rows";
+    }
     bool midpoint(double* y) const override
     {
         if (steps_ == 0) return false;
@@ -145,6 +168,10 @@ private:
     /// The state's Jacobian (n_ x n_), which the Newton matrices of every block are made of.
     int jacobian(double t, const double* y)
     {
+        if (mass_form_) {
+            const int s = mass_form_jacobian(t, y);
+            if (s != GSL_SUCCESS || mass_form_) return s;
+        }
         const int s = blocks_ > 1 ? system_.FirstOrderSystem::jacobian(t, y, rows_.data(), dfdt_.data())
                                   : system_.jacobian(t, y, rows_.data(), dfdt_.data());
         if (s != GSL_SUCCESS) return s;
@@ -159,11 +186,101 @@ private:
         return GSL_SUCCESS;
     }
 
+    /// The Jacobian's lower blocks in mass form, M^-1 K and M^-1 C with K and C kept apart from M (their union
+    /// pattern grows as entries appear: the centrifugal terms are zero at rest); the mass form is left for the
+    /// dense one where the pattern is too full to pay.
+    int mass_form_jacobian(double t, const double* y)
+    {
+        const int k = k_;
+        Md_.resize(k, k);
+        Kd_.resize(k, k);
+        Cd_.resize(k, k);
+        const int s = system_.mass_form_jacobian(t, y, Md_.data(), Kd_.data(), Cd_.data());
+        if (s != GSL_SUCCESS) return s;
+        if (pattern_.empty()) pattern_.assign(static_cast<std::size_t>(k) * k, 0);
+        bool grew = false;
+        for (int i = 0; i < k; ++i)
+            for (int j = 0; j < k; ++j) {
+                char& p = pattern_[static_cast<std::size_t>(i) * k + j];
+                if (!p && (Md_(i, j) != 0.0 || Kd_(i, j) != 0.0 || Cd_(i, j) != 0.0)) p = 1, grew = true;
+            }
+        if (grew) {
+            // The condensed system's pattern: every stage block has the coordinates' pattern.
+            pattern2_.assign(static_cast<std::size_t>(4) * k * k, 0);
+            for (int bi = 0; bi < 2; ++bi)
+                for (int bj = 0; bj < 2; ++bj)
+                    for (int i = 0; i < k; ++i)
+                        for (int j = 0; j < k; ++j)
+                            pattern2_[static_cast<std::size_t>(bi * k + i) * 2 * k + bj * k + j] =
+                                pattern_[static_cast<std::size_t>(i) * k + j];
+            const double dense = 2.0 / 3.0 * std::pow(2.0 * k, 3);
+            if (BorderedBandLU(pattern2_, 2 * k).factor_flops() > mass_form_max_share * dense) {
+                mass_form_ = false;  // no narrow band: the dense Newton matrices cost no more
+                return GSL_SUCCESS;
+            }
+            ++pattern_version_;
+        }
+        Ms_ = sparse_on_pattern(Md_);
+        Ks_ = sparse_on_pattern(Kd_);
+        fresh_jacobian_ = true;
+        stale_jacobian_ = false;
+        factored_ = false;
+        return GSL_SUCCESS;
+    }
+
+    /// The entries of a k_ x k_ matrix on the pattern, as a sparse row-major matrix for products.
+    Eigen::SparseMatrix<double, Eigen::RowMajor> sparse_on_pattern(const RowMatrix& A) const
+    {
+        std::vector<Eigen::Triplet<double>> entries;
+        for (int i = 0; i < k_; ++i)
+            for (int j = 0; j < k_; ++j)
+                if (pattern_[static_cast<std::size_t>(i) * k_ + j] && A(i, j) != 0.0) entries.emplace_back(i, j, A(i, j));
+        Eigen::SparseMatrix<double, Eigen::RowMajor> S(k_, k_);
+        S.setFromTriplets(entries.begin(), entries.end());
+        return S;
+    }
+
+    /// The condensed Newton matrix times I (x) M, I (x) M - h^2 A^2 (x) K - h A (x) C, factored as a bordered band.
+    bool factor_mass_form(double step, Newton& newton)
+    {
+        const int k = k_;
+        if (newton.planned != pattern_version_) {
+            newton.band = std::make_unique<BorderedBandLU>(pattern2_, 2 * k);
+            newton.planned = pattern_version_;
+        }
+        const double a[2][2] = {{a11, a12}, {a21, a22}};
+        double cm[2][2], ck[2][2], cc[2][2];
+        for (int bi = 0; bi < 2; ++bi)
+            for (int bj = 0; bj < 2; ++bj) {
+                cm[bi][bj] = bi == bj ? 1.0 : 0.0;
+                ck[bi][bj] = -step * step * (a[bi][0] * a[0][bj] + a[bi][1] * a[1][bj]);  // -h^2 (A^2)_ij
+                cc[bi][bj] = -step * a[bi][bj];
+            }
+        newton.h = step;
+        return newton.band->factor([&](int i, int j) {
+            const int bi = i / k, bj = j / k, r = i % k, c = j % k;
+            return cm[bi][bj] * Md_(r, c) + ck[bi][bj] * Kd_(r, c) + cc[bi][bj] * Cd_(r, c);
+        });
+    }
+
     /// The Newton matrices of the two stages for the whole step h and its halves, factored: I - h A (x) J, or where y
     /// is (q, qd) alone, so that J = [[0, I], [Jq, Jv]], its velocity part I - h^2 A^2 (x) Jq - h A (x) Jv, half the
-    /// size (an eighth of the factorization's work, a quarter of each solve's).
+    /// size (an eighth of the factorization's work, a quarter of each solve's); in the mass form that part times
+    /// I (x) M, sparse.
     void factor(double h)
     {
+        if (mass_form_) {
+            if (factor_mass_form(h, whole_) && factor_mass_form(0.5 * h, half_)) {
+                factored_ = true;
+                h_factored_ = h;
+                return;
+            }
+            // A singular band or border: the dense form, with its pivoting across the whole matrix, from here on.
+            mass_form_ = false;
+            J_.setZero();
+            Jq_ = Eigen::PartialPivLU<Eigen::MatrixXd>(Md_).solve(Kd_);
+            Jv_ = Eigen::PartialPivLU<Eigen::MatrixXd>(Md_).solve(Cd_);
+        }
         const auto factor_one = [&](double step, Newton& newton) {
             const int k = condensed_ ? k_ : n_;
             Eigen::MatrixXd N(2 * k, 2 * k);
@@ -196,14 +313,24 @@ private:
             dz_ = newton.lu.solve(g_);
             return;
         }
-        // dQ_i = g_q,i + h sum_j a_ij dV_j, and the velocity rows with dQ substituted.
+        // dQ_i = g_q,i + h sum_j a_ij dV_j, and the velocity rows with dQ substituted (in the mass form, times M).
         const double h = newton.h, a[2][2] = {{a11, a12}, {a21, a22}};
         for (int i = 0; i < 2; ++i) {
             mix_ = a[i][0] * g_.segment(0, k_) + a[i][1] * g_.segment(n_, k_);
-            rhs2_.segment(i * k_, k_) = g_.segment(i * n_ + k_, k_);
-            rhs2_.segment(i * k_, k_).noalias() += h * Jq_ * mix_;
+            if (mass_form_) {
+                rhs2_.segment(i * k_, k_).noalias() = Ms_ * g_.segment(i * n_ + k_, k_);
+                rhs2_.segment(i * k_, k_).noalias() += h * (Ks_ * mix_);
+            } else {
+                rhs2_.segment(i * k_, k_) = g_.segment(i * n_ + k_, k_);
+                rhs2_.segment(i * k_, k_).noalias() += h * Jq_ * mix_;
+            }
         }
-        dv_ = newton.lu.solve(rhs2_);
+        if (mass_form_) {
+            dv_ = rhs2_;
+            newton.band->solve(dv_.data());
+        } else {
+            dv_ = newton.lu.solve(rhs2_);
+        }
         for (int i = 0; i < 2; ++i) {
             dz_.segment(i * n_, k_) = g_.segment(i * n_, k_) + h * (a[i][0] * dv_.head(k_) + a[i][1] * dv_.tail(k_));
             dz_.segment(i * n_ + k_, k_) = dv_.segment(i * k_, k_);
@@ -314,6 +441,13 @@ private:
     int k_;
     bool condensed_;
     Eigen::MatrixXd Jq_, Jv_;
+    // The mass form (mass_form_jacobian): M, K and C, their union pattern (row-major, k_ x k_) and its version, and M
+    // and K sparse for the Newton corrections' products.
+    bool mass_form_ = false;
+    RowMatrix Md_, Kd_, Cd_;
+    std::vector<char> pattern_, pattern2_;  // the coordinates' (k_ x k_) and the condensed system's (2k_ x 2k_)
+    int pattern_version_ = 0;
+    Eigen::SparseMatrix<double, Eigen::RowMajor> Ms_, Ks_;
     Eigen::VectorXd rhs2_, dv_, mix_;
     bool have_guess_ = false, factored_ = false, fresh_jacobian_ = false, stale_jacobian_ = true;
     double h_factored_ = 0.0, h_last_ = 0.0, eta_ = 1.0, rate_ = 0.0;

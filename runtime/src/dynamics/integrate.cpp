@@ -293,14 +293,7 @@ int FirstOrderSystem::exact_jacobian(const ExactJacobian& exact, double t, const
     }
     const double* q = y;
     const double* qd = y + n_;
-    if (!w.solver->prepare(u, q)) return w.rhs->indefinite_mass_at(q);
-    model_.forces(u, q, qd, w.qdd.data());
-    w.solver->solve(w.qdd.data());
-    exact.force_derivatives(u, q, qd, w.dQdq.data(), w.dQdqd.data(), w.dQdu.data());
-    if (!model_.mass_is_constant()) {
-        exact.mass_q_product(u, q, w.qdd.data(), w.dMv.data());
-        w.dQdq -= w.dMv;
-    }
+    if (const int s = force_linearization(exact, u, y); s != GSL_SUCCESS) return s;
     Eigen::MatrixXd lower_q = w.dQdq, lower_qd = w.dQdqd;  // column-major copies, solved in place
     w.solver->solve(lower_q.data(), n_);
     w.solver->solve(lower_qd.data(), n_);
@@ -368,6 +361,42 @@ int FirstOrderSystem::exact_jacobian(const ExactJacobian& exact, double t, const
     }
     for (int i = 0; i < m * m; ++i)
         if (!std::isfinite(dfdy[i])) return GSL_EBADFUNC;
+    return GSL_SUCCESS;
+}
+
+int FirstOrderSystem::force_linearization(const ExactJacobian& exact, const HubInput& u, const double* y)
+{
+    Work& w = *work_;
+    const double* q = y;
+    const double* qd = y + n_;
+    if (!w.solver->prepare(u, q)) return w.rhs->indefinite_mass_at(q);
+    model_.forces(u, q, qd, w.qdd.data());
+    w.solver->solve(w.qdd.data());
+    exact.force_derivatives(u, q, qd, w.dQdq.data(), w.dQdqd.data(), w.dQdu.data());
+    if (!model_.mass_is_constant()) {
+        exact.mass_q_product(u, q, w.qdd.data(), w.dMv.data());
+        w.dQdq -= w.dMv;
+    }
+    return GSL_SUCCESS;
+}
+
+bool FirstOrderSystem::has_mass_form() const
+{
+    return model_.jacobian() != nullptr && axial_ == Axial::dynamic && control_ == nullptr && aux_.count() == 0;
+}
+
+int FirstOrderSystem::mass_form_jacobian(double t, const double* y, double* M, double* K, double* C)
+{
+    ++jacobian_evaluations_;
+    Work& w = *work_;
+    const HubInput u = drive_at(t);
+    if (const int s = force_linearization(*model_.jacobian(), u, y); s != GSL_SUCCESS) return s;
+    model_.mass(u, y, M);
+    const auto size = static_cast<std::ptrdiff_t>(n_) * n_;
+    std::copy_n(w.dQdq.data(), size, K);
+    std::copy_n(w.dQdqd.data(), size, C);
+    for (std::ptrdiff_t i = 0; i < size; ++i)
+        if (!std::isfinite(K[i]) || !std::isfinite(C[i]) || !std::isfinite(M[i])) return GSL_EBADFUNC;
     return GSL_SUCCESS;
 }
 

@@ -29,6 +29,8 @@ public:
     /// The state at the middle of the last step, where the stepper computed one (gauss4's step doubling does): false
     /// otherwise.
     virtual bool midpoint(double*) const { return false; }
+    /// How the Newton systems were solved, for the summary (empty for a stepper without them, or that does not say).
+    virtual std::string newton_form() const { return {}; }
     /// Whether midpoint() gives a computed state (then the simulation measures its interpolant's error against it).
     virtual bool has_midpoint() const { return false; }
     /// Steps taken since construction, through restarts.
