@@ -258,7 +258,7 @@ private:
             }
         newton.h = step;
         return newton.band->factor([&](int i, int j) {
-            const int bi = i / k, bj = j / k, r = i % k, c = j % k;
+            const int bi = i >= k, bj = j >= k, r = i - bi * k, c = j - bj * k;  // no division: called per entry
             return cm[bi][bj] * Md_(r, c) + ck[bi][bj] * Kd_(r, c) + cc[bi][bj] * Cd_(r, c);
         });
     }
