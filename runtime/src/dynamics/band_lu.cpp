@@ -70,6 +70,13 @@ BorderedBandLU::BorderedBandLU(const std::vector<char>& pattern, int n) : n_(n)
         ku_ = std::max(ku_, pj - pi);
     }
     ldab_ = 2 * kl_ + ku_ + 1;  // dgbtrf's fill-in needs kl_ rows above the band
+    for (const auto& [i, j] : entries_) {
+        const int pi = position_[static_cast<std::size_t>(i)], pj = position_[static_cast<std::size_t>(j)];
+        if (pi < nb_ && pj < nb_) places_.push_back({0, kl_ + ku_ + pi - pj + static_cast<std::ptrdiff_t>(pj) * ldab_});
+        else if (pi < nb_) places_.push_back({1, pi + static_cast<std::ptrdiff_t>(pj - nb_) * nb_});
+        else if (pj < nb_) places_.push_back({2, (pi - nb_) + static_cast<std::ptrdiff_t>(pj) * r_});
+        else places_.push_back({3, (pi - nb_) + static_cast<std::ptrdiff_t>(pj - nb_) * r_});
+    }
     band_.assign(static_cast<std::size_t>(ldab_) * std::max(nb_, 1), 0.0);
     pivots_.assign(static_cast<std::size_t>(std::max(nb_, 1)), 0);
     E_.resize(nb_, r_);

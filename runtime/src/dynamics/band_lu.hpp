@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <cstddef>
 #include <utility>
 #include <vector>
 
@@ -31,14 +32,9 @@ public:
         E_.setZero();
         F_.setZero();
         D_.setZero();
-        for (const auto& [i, j] : entries_) {
-            const int pi = position_[static_cast<std::size_t>(i)], pj = position_[static_cast<std::size_t>(j)];
-            const double v = a(i, j);
-            if (pi < nb_ && pj < nb_) band_[static_cast<std::size_t>(kl_ + ku_ + pi - pj + pj * ldab_)] = v;
-            else if (pi < nb_) E_(pi, pj - nb_) = v;
-            else if (pj < nb_) F_(pi - nb_, pj) = v;
-            else D_(pi - nb_, pj - nb_) = v;
-        }
+        double* const parts[4] = {band_.data(), E_.data(), F_.data(), D_.data()};
+        for (std::size_t e = 0; e < entries_.size(); ++e)
+            parts[places_[e].part][places_[e].offset] = a(entries_[e].first, entries_[e].second);
         return factor_filled();
     }
 
@@ -54,6 +50,11 @@ private:
     int kl_ = 0, ku_ = 0, ldab_ = 1;
     std::vector<int> order_, position_;        // order_[new] = old, position_[old] = new
     std::vector<std::pair<int, int>> entries_;  // the pattern's entries (old indices)
+    struct Place {
+        int part;                 // 0 the band, 1 E, 2 F, 3 D
+        std::ptrdiff_t offset;    // in that part's storage
+    };
+    std::vector<Place> places_;  // where each entry goes, found once: factor() is called at every refactorization
     std::vector<double> band_;                  // dgbtrf's storage: ldab_ x nb_, column-major
     std::vector<int> pivots_;
     Eigen::MatrixXd E_, F_, D_;  // band rows x border columns (then B^-1 E), border rows x band columns, border block
