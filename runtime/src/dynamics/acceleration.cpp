@@ -276,9 +276,8 @@ std::string HubSchur::describe() const
 
 int MassSolved::accelerations(const HubInput& u, const double* q, const double* qd, double* qdd)
 {
-    if (!solver_->prepare(u, q)) return indefinite_mass_at(q);
     model_.forces(u, q, qd, qdd);
-    solver_->solve(qdd);
+    if (!solver_->prepare_and_solve(u, q, qdd)) return indefinite_mass_at(q);
     return GSL_SUCCESS;
 }
 

@@ -56,6 +56,22 @@ public:
         }
         return true;
     }
+    /// a := A^-1 a and b := A^-1 b in one pass: two independent chains, so each hides the other's latency.
+    void solve_pair(double* a, double* b) const
+    {
+        for (int i = 0; i < n_; ++i) {
+            double s = a[i], t = b[i];
+            for (int k = first(i); k < i; ++k) s -= L(i, k) * a[k], t -= L(i, k) * b[k];
+            a[i] = s * inv_diag_[static_cast<std::size_t>(i)];
+            b[i] = t * inv_diag_[static_cast<std::size_t>(i)];
+        }
+        for (int i = n_ - 1; i >= 0; --i) {
+            const double x = a[i] * inv_diag_[static_cast<std::size_t>(i)], y = b[i] * inv_diag_[static_cast<std::size_t>(i)];
+            a[i] = x;
+            b[i] = y;
+            for (int k = first(i); k < i; ++k) a[k] -= L(i, k) * x, b[k] -= L(i, k) * y;
+        }
+    }
     /// b := A^-1 b.
     void solve(double* b) const
     {
@@ -88,6 +104,12 @@ public:
     virtual bool factor(const MatrixXd& A) = 0;
     /// b := A^-1 b, b of A's size.
     virtual void solve(double* b) const = 0;
+    /// Both solves; together where that is faster.
+    virtual void solve_pair(double* a, double* b) const
+    {
+        solve(a);
+        solve(b);
+    }
     virtual std::string describe() const = 0;
 };
 
@@ -101,6 +123,7 @@ public:
         return llt_.factor(static_cast<int>(A.rows()), [&](int i, int j) { return A(i, j); }, p_);
     }
     void solve(double* b) const override { llt_.solve(b); }
+    void solve_pair(double* a, double* b) const override { llt_.solve_pair(a, b); }
     std::string describe() const override
     {
         return p_ < 0 ? "dense Cholesky" : "banded Cholesky (bandwidth " + std::to_string(p_) + ")";
@@ -234,11 +257,23 @@ public:
                 for (Eigen::Index i = 0; i < c; ++i) X_(i, k) = M(C_[i], R_[k]);
                 block_->solve(X_.col(k).data());
             }
-        return schur_.factor(static_cast<int>(r), [&](int i, int j) {
-            double s = M(R_[i], R_[j]);
-            for (Eigen::Index k = 0; k < c; ++k) s -= M(R_[i], C_[k]) * X_(k, j);
-            return s;
-        });
+        return factor_schur();
+    }
+    /// Where the coupling varies with q and one row is eliminated (a free hub with axial coordinates), X's solve and
+    /// b's constant-block solve run as a pair.
+    bool prepare_and_solve(const HubInput& u, const double* q, double* b) override
+    {
+        if (!factored_ || constant_coupling_ || R_.size() != 1) return MassSolver::prepare_and_solve(u, q, b);
+        const MatrixXd& M = mass_.varying(u, q);
+        const auto c = static_cast<Eigen::Index>(C_.size());
+        for (Eigen::Index i = 0; i < c; ++i) {
+            X_(i, 0) = M(C_[i], R_[0]);
+            z_(i) = b[C_[i]];
+        }
+        block_->solve_pair(X_.col(0).data(), z_.data());
+        if (!factor_schur()) return false;
+        finish_solve(b, M);
+        return true;
     }
     void solve(double* b, int columns) const override
     {
@@ -248,14 +283,7 @@ public:
             double* x = b + static_cast<std::ptrdiff_t>(col) * (r + c);
             for (Eigen::Index i = 0; i < c; ++i) z_(i) = x[C_[i]];
             block_->solve(z_.data());
-            for (Eigen::Index i = 0; i < r; ++i) {
-                double s = x[R_[i]];
-                for (Eigen::Index k = 0; k < c; ++k) s -= M(R_[i], C_[k]) * z_(k);
-                x_R_(i) = s;
-            }
-            schur_.solve(x_R_.data());
-            for (Eigen::Index i = 0; i < r; ++i) x[R_[i]] = x_R_(i);
-            for (Eigen::Index i = 0; i < c; ++i) x[C_[i]] = z_(i) - X_.row(i).dot(x_R_);
+            finish_solve(x, M);
         }
     }
     std::string describe() const override
@@ -265,6 +293,31 @@ public:
     }
 
 private:
+    /// S = M_RR - M_RC X, factored.
+    bool factor_schur()
+    {
+        const MatrixXd& M = mass_.matrix();
+        const auto c = static_cast<Eigen::Index>(C_.size());
+        return schur_.factor(static_cast<int>(R_.size()), [&](int i, int j) {
+            double s = M(R_[i], R_[j]);
+            for (Eigen::Index k = 0; k < c; ++k) s -= M(R_[i], C_[k]) * X_(k, j);
+            return s;
+        });
+    }
+    /// The rest of x = M^-1 b once z_ = M_CC^-1 b_C: x_R from the Schur complement, then x_C.
+    void finish_solve(double* x, const MatrixXd& M) const
+    {
+        const auto r = static_cast<Eigen::Index>(R_.size()), c = static_cast<Eigen::Index>(C_.size());
+        for (Eigen::Index i = 0; i < r; ++i) {
+            double s = x[R_[i]];
+            for (Eigen::Index k = 0; k < c; ++k) s -= M(R_[i], C_[k]) * z_(k);
+            x_R_(i) = s;
+        }
+        schur_.solve(x_R_.data());
+        for (Eigen::Index i = 0; i < r; ++i) x[R_[i]] = x_R_(i);
+        for (Eigen::Index i = 0; i < c; ++i) x[C_[i]] = z_(i) - X_.row(i).dot(x_R_);
+    }
+
     Evaluated mass_;
     std::vector<int> R_, C_;
     std::unique_ptr<ConstantFactor> block_;

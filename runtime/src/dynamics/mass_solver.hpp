@@ -22,6 +22,14 @@ public:
     virtual bool prepare(const HubInput& u, const double* q) = 0;
     /// b := M^-1 b for the M of the last prepare(); b is n x columns, column-major.
     virtual void solve(double* b, int columns = 1) const = 0;
+    /// prepare(u, q), then solve(b) for one column: where the preparation itself solves with a factor, the two
+    /// solves run together (a banded solve is bound by the latency of its chain of multiply-adds, not their count).
+    virtual bool prepare_and_solve(const HubInput& u, const double* q, double* b)
+    {
+        if (!prepare(u, q)) return false;
+        solve(b);
+        return true;
+    }
     /// What was chosen, e.g. "banded Cholesky (bandwidth 3), factored once".
     virtual std::string describe() const = 0;
 };
