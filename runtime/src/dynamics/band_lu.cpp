@@ -79,6 +79,7 @@ BorderedBandLU::BorderedBandLU(const std::vector<char>& pattern, int n) : n_(n)
     }
     band_.assign(static_cast<std::size_t>(ldab_) * std::max(nb_, 1), 0.0);
     pivots_.assign(static_cast<std::size_t>(std::max(nb_, 1)), 0);
+    inverse_diagonal_.assign(static_cast<std::size_t>(std::max(nb_, 1)), 0.0);
     E_.resize(nb_, r_);
     F_.resize(r_, nb_);
     D_.resize(r_, r_);
@@ -98,6 +99,8 @@ bool BorderedBandLU::factor_filled()
     if (nb_ > 0) {
         dgbtrf_(&nb_, &nb_, &kl_, &ku_, band_.data(), &ldab_, pivots_.data(), &info);
         if (info != 0) return false;
+        for (int j = 0; j < nb_; ++j)  // U's diagonal, inverted once: the solves multiply
+            inverse_diagonal_[static_cast<std::size_t>(j)] = 1.0 / band_[static_cast<std::size_t>(kl_ + ku_ + j * ldab_)];
     }
     if (r_ == 0) return true;
     for (int c = 0; c < r_; ++c) band_solve(E_.col(c).data());
@@ -136,7 +139,7 @@ void BorderedBandLU::band_solve(double* x) const
     }
     for (int j = nb_ - 1; j >= 0; --j) {
         const double* u = column(j);
-        const double xj = x[j] / u[kd];
+        const double xj = x[j] * inverse_diagonal_[static_cast<std::size_t>(j)];
         x[j] = xj;
         for (int i = std::max(0, j - kd); i < j; ++i) x[i] -= xj * u[kd + i - j];
     }

@@ -57,6 +57,7 @@ private:
     std::vector<Place> places_;  // where each entry goes, found once: factor() is called at every refactorization
     std::vector<double> band_;                  // dgbtrf's storage: ldab_ x nb_, column-major
     std::vector<int> pivots_;
+    std::vector<double> inverse_diagonal_;  // of U
     Eigen::MatrixXd E_, F_, D_;  // band rows x border columns (then B^-1 E), border rows x band columns, border block
     Eigen::PartialPivLU<Eigen::MatrixXd> schur_;
     mutable Eigen::VectorXd x_, t_;
