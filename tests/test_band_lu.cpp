@@ -48,8 +48,8 @@ TEST_CASE("the bordered band LU solves shuffled band matrices with dense rows as
             std::vector<char> pattern;
             const Eigen::MatrixXd A = shuffled_band(n, 3, border, random, pattern);
             BorderedBandLU lu(pattern, n);
-            INFO("n = " << n << ", border " << border << ": planned half-widths " << lu.lower() << " and "
-                        << lu.upper() << ", border " << lu.border());
+            INFO("n = " << n << ", border " << border << ": planned half-widths " << lu.lower() << " and " << lu.upper()
+                        << ", border " << lu.border());
             // The plan undoes the shuffle: the band found is as narrow as the one hidden (reverse Cuthill-McKee
             // finds it exactly for a band; the border is found by its rows' fullness).
             CHECK(lu.border() == border);

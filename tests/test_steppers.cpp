@@ -144,9 +144,11 @@ TEST_CASE("under a hub torque the automatic choice measures gauss4's steps with 
     CHECK(stiff.stepper == "gauss4");
     const double pilot_steps = number_after(stiff.stepper_why, ", from ");
     const double window = number_after(stiff.stepper_why, "in a pilot to t = ");
-    const double planned = std::max(s.output.t_end / 30.0, std::numbers::pi / number_after(stiff.stepper_why, "lowest frequency "));
+    const double planned =
+        std::max(s.output.t_end / 30.0, std::numbers::pi / number_after(stiff.stepper_why, "lowest frequency "));
     CHECK(window == Approx(planned).epsilon(5e-3));
-    CHECK(number_after(stiff.stepper_why, "gauss4 about ") == Approx(pilot_steps * s.output.t_end / window).epsilon(1e-3));
+    CHECK(number_after(stiff.stepper_why, "gauss4 about ") ==
+          Approx(pilot_steps * s.output.t_end / window).epsilon(1e-3));
     INFO("whole run: " << stiff.steps << " steps");
     CHECK(pilot_steps * s.output.t_end / window == Approx(static_cast<double>(stiff.steps)).epsilon(0.25));
     // Without the axial modes rk8pd's steps are few: the pilot stops once gauss4 has taken more than would let it
@@ -211,8 +213,8 @@ TEST_CASE("gauss4's Newton matrices in mass form: a band LU for FEM, as accurate
             s.solver.error_check = ErrorCheck::off;
             const Collected c = completed_run(s);
             const bool torque_driven = motion.kind == Motion::Kind::torque;
-            INFO((torque_driven ? "torque" : "spin-up") << " rtol " << rtol << ": " << c.summary.newton << ", "
-                                                       << c.summary.steps << " steps");
+            INFO((torque_driven ? "torque" : "spin-up")
+                 << " rtol " << rtol << ": " << c.summary.newton << ", " << c.summary.steps << " steps");
             CHECK(c.summary.newton.find("mass form, band LU") == 0);
             CHECK(c.summary.newton.find(torque_driven ? "bordered by 2 dense rows" : "bordered by 0 dense rows") !=
                   std::string::npos);

@@ -9,7 +9,8 @@
 
 extern "C" {
 // LAPACK (Fortran): LU with partial pivoting of a band matrix.
-void dgbtrf_(const int* m, const int* n, const int* kl, const int* ku, double* ab, const int* ldab, int* ipiv, int* info);
+void dgbtrf_(const int* m, const int* n, const int* kl, const int* ku, double* ab, const int* ldab, int* ipiv,
+             int* info);
 }
 
 namespace hubbeam {
@@ -72,10 +73,14 @@ BorderedBandLU::BorderedBandLU(const std::vector<char>& pattern, int n) : n_(n)
     ldab_ = 2 * kl_ + ku_ + 1;  // dgbtrf's fill-in needs kl_ rows above the band
     for (const auto& [i, j] : entries_) {
         const int pi = position_[static_cast<std::size_t>(i)], pj = position_[static_cast<std::size_t>(j)];
-        if (pi < nb_ && pj < nb_) places_.push_back({0, kl_ + ku_ + pi - pj + static_cast<std::ptrdiff_t>(pj) * ldab_});
-        else if (pi < nb_) places_.push_back({1, pi + static_cast<std::ptrdiff_t>(pj - nb_) * nb_});
-        else if (pj < nb_) places_.push_back({2, (pi - nb_) + static_cast<std::ptrdiff_t>(pj) * r_});
-        else places_.push_back({3, (pi - nb_) + static_cast<std::ptrdiff_t>(pj - nb_) * r_});
+        if (pi < nb_ && pj < nb_)
+            places_.push_back({0, kl_ + ku_ + pi - pj + static_cast<std::ptrdiff_t>(pj) * ldab_});
+        else if (pi < nb_)
+            places_.push_back({1, pi + static_cast<std::ptrdiff_t>(pj - nb_) * nb_});
+        else if (pj < nb_)
+            places_.push_back({2, (pi - nb_) + static_cast<std::ptrdiff_t>(pj) * r_});
+        else
+            places_.push_back({3, (pi - nb_) + static_cast<std::ptrdiff_t>(pj - nb_) * r_});
     }
     band_.assign(static_cast<std::size_t>(ldab_) * std::max(nb_, 1), 0.0);
     pivots_.assign(static_cast<std::size_t>(std::max(nb_, 1)), 0);
@@ -90,7 +95,8 @@ double BorderedBandLU::factor_flops() const
 {
     const double nb = nb_, r = r_;
     // The band's LU, its solves for the border's columns, and the border's dense LU and Schur complement.
-    return 2.0 * nb * kl_ * (kl_ + ku_ + 1) + r * 2.0 * nb * (2 * kl_ + ku_ + 1) + 2.0 * r * r * nb + 2.0 / 3.0 * r * r * r;
+    return 2.0 * nb * kl_ * (kl_ + ku_ + 1) + r * 2.0 * nb * (2 * kl_ + ku_ + 1) + 2.0 * r * r * nb +
+           2.0 / 3.0 * r * r * r;
 }
 
 bool BorderedBandLU::factor_filled()
@@ -100,7 +106,8 @@ bool BorderedBandLU::factor_filled()
         dgbtrf_(&nb_, &nb_, &kl_, &ku_, band_.data(), &ldab_, pivots_.data(), &info);
         if (info != 0) return false;
         for (int j = 0; j < nb_; ++j)  // U's diagonal, inverted once: the solves multiply
-            inverse_diagonal_[static_cast<std::size_t>(j)] = 1.0 / band_[static_cast<std::size_t>(kl_ + ku_ + j * ldab_)];
+            inverse_diagonal_[static_cast<std::size_t>(j)] =
+                1.0 / band_[static_cast<std::size_t>(kl_ + ku_ + j * ldab_)];
     }
     if (r_ == 0) return true;
     for (int c = 0; c < r_; ++c) band_solve(E_.col(c).data());

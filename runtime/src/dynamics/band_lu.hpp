@@ -48,14 +48,14 @@ private:
 
     int n_, nb_ = 0, r_ = 0;  // size, the band part's size, the border's
     int kl_ = 0, ku_ = 0, ldab_ = 1;
-    std::vector<int> order_, position_;        // order_[new] = old, position_[old] = new
+    std::vector<int> order_, position_;         // order_[new] = old, position_[old] = new
     std::vector<std::pair<int, int>> entries_;  // the pattern's entries (old indices)
     struct Place {
-        int part;                 // 0 the band, 1 E, 2 F, 3 D
-        std::ptrdiff_t offset;    // in that part's storage
+        int part;               // 0 the band, 1 E, 2 F, 3 D
+        std::ptrdiff_t offset;  // in that part's storage
     };
     std::vector<Place> places_;  // where each entry goes, found once: factor() is called at every refactorization
-    std::vector<double> band_;                  // dgbtrf's storage: ldab_ x nb_, column-major
+    std::vector<double> band_;   // dgbtrf's storage: ldab_ x nb_, column-major
     std::vector<int> pivots_;
     std::vector<double> inverse_diagonal_;  // of U
     Eigen::MatrixXd E_, F_, D_;  // band rows x border columns (then B^-1 E), border rows x band columns, border block

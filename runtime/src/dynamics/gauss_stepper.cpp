@@ -147,8 +147,8 @@ public:
         if (!mass_form_ || !whole_.band) return "dense LU of " + std::to_string(size) + " x " + std::to_string(size);
         const BorderedBandLU& b = *whole_.band;
         return "mass form, band LU of " + std::to_string(size) + " x " + std::to_string(size) + " (half-widths " +
-               std::to_string(b.lower()) + " and " + std::to_string(b.upper()) + ", reverse Cuthill-McKee) bordered by " +
-               std::to_string(b.border()) + " dense rows";
+               std::to_string(b.lower()) + " and " + std::to_string(b.upper()) +
+               ", reverse Cuthill-McKee) bordered by " + std::to_string(b.border()) + " dense rows";
     }
     bool midpoint(double* y) const override
     {
@@ -234,7 +234,8 @@ private:
         std::vector<Eigen::Triplet<double>> entries;
         for (int i = 0; i < k_; ++i)
             for (int j = 0; j < k_; ++j)
-                if (pattern_[static_cast<std::size_t>(i) * k_ + j] && A(i, j) != 0.0) entries.emplace_back(i, j, A(i, j));
+                if (pattern_[static_cast<std::size_t>(i) * k_ + j] && A(i, j) != 0.0)
+                    entries.emplace_back(i, j, A(i, j));
         Eigen::SparseMatrix<double, Eigen::RowMajor> S(k_, k_);
         S.setFromTriplets(entries.begin(), entries.end());
         return S;

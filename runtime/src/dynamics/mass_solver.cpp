@@ -66,7 +66,8 @@ public:
             b[i] = t * inv_diag_[static_cast<std::size_t>(i)];
         }
         for (int i = n_ - 1; i >= 0; --i) {
-            const double x = a[i] * inv_diag_[static_cast<std::size_t>(i)], y = b[i] * inv_diag_[static_cast<std::size_t>(i)];
+            const double x = a[i] * inv_diag_[static_cast<std::size_t>(i)],
+                         y = b[i] * inv_diag_[static_cast<std::size_t>(i)];
             a[i] = x;
             b[i] = y;
             for (int k = first(i); k < i; ++k) a[k] -= L(i, k) * x, b[k] -= L(i, k) * y;
@@ -120,7 +121,8 @@ public:
     explicit CholeskyFactor(int p = -1) : p_(p) {}
     bool factor(const MatrixXd& A) override
     {
-        return llt_.factor(static_cast<int>(A.rows()), [&](int i, int j) { return A(i, j); }, p_);
+        return llt_.factor(
+            static_cast<int>(A.rows()), [&](int i, int j) { return A(i, j); }, p_);
     }
     void solve(double* b) const override { llt_.solve(b); }
     void solve_pair(double* a, double* b) const override { llt_.solve_pair(a, b); }
@@ -235,9 +237,14 @@ public:
     /// constant_coupling: M_CR does not vary either (no axial coordinates under torque), so X is computed once.
     SchurSolver(const Model& model, std::vector<int> R, std::vector<int> C, std::unique_ptr<ConstantFactor> block,
                 bool constant_coupling)
-        : mass_(model), R_(std::move(R)), C_(std::move(C)), block_(std::move(block)), constant_coupling_(constant_coupling),
+        : mass_(model),
+          R_(std::move(R)),
+          C_(std::move(C)),
+          block_(std::move(block)),
+          constant_coupling_(constant_coupling),
           X_(static_cast<Eigen::Index>(C_.size()), static_cast<Eigen::Index>(R_.size())),
-          z_(static_cast<Eigen::Index>(C_.size())), x_R_(static_cast<Eigen::Index>(R_.size()))
+          z_(static_cast<Eigen::Index>(C_.size())),
+          x_R_(static_cast<Eigen::Index>(R_.size()))
     {
     }
     bool prepare(const HubInput& u, const double* q) override

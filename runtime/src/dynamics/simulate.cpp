@@ -864,11 +864,11 @@ StepperChoice Simulation::automatic(double rtol) const
     const double t_end = scene_.output.t_end;
     const int auxiliary = auxiliary_count(scene_);
     if (!pilot_ && needs_pilot(*model_, scene_.solver.rtol))
-        pilot_ = std::make_unique<Pilot>(pilot_run(scene_, *model_,
-                                                   pilot_plan(predicted_costs(*model_, scene_.axial, scene_.solver.rtol,
-                                                                              t_end, auxiliary),
-                                                              t_end)));
-    return automatic_stepper(*model_, scene_.axial, rtol, t_end, auxiliary, rtol >= gauss4_tightest_rtol ? pilot_.get() : nullptr);
+        pilot_ = std::make_unique<Pilot>(
+            pilot_run(scene_, *model_,
+                      pilot_plan(predicted_costs(*model_, scene_.axial, scene_.solver.rtol, t_end, auxiliary), t_end)));
+    return automatic_stepper(*model_, scene_.axial, rtol, t_end, auxiliary,
+                             rtol >= gauss4_tightest_rtol ? pilot_.get() : nullptr);
 }
 
 std::string Simulation::faster_stepper_hint() const

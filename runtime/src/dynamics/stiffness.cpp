@@ -125,7 +125,8 @@ bool needs_pilot(const Model& model, double rtol)
     // 2e12) took 3.5 times its pilot's extrapolated steps. There the rule, which assumes the stiff modes resolved,
     // is the safer prediction. The meshes the pilot serves stay far below (FEM and BSIM at Ny = 32: 1e8 to 4e8).
     constexpr double condition_limit = 1e10;
-    return model.key().drive == Drive::torque && rtol >= gauss4_tightest_rtol && mass_condition(model) < condition_limit;
+    return model.key().drive == Drive::torque && rtol >= gauss4_tightest_rtol &&
+           mass_condition(model) < condition_limit;
 }
 
 PilotPlan pilot_plan(const StepperCosts& c, double t_end)
@@ -137,7 +138,8 @@ PilotPlan pilot_plan(const StepperCosts& c, double t_end)
     return {t, static_cast<long>(std::min(break_even, 1e12)) + 30};
 }
 
-StepperCosts predicted_costs(const Model& model, Axial axial, double rtol, double t_end, int auxiliary, const Pilot* pilot)
+StepperCosts predicted_costs(const Model& model, Axial axial, double rtol, double t_end, int auxiliary,
+                             const Pilot* pilot)
 {
     StepperCosts c;
     c.omega_max = highest_rate(model, axial);
@@ -161,10 +163,9 @@ StepperCosts predicted_costs(const Model& model, Axial axial, double rtol, doubl
     c.stability_bound = stability8 > accuracy8;
     c.steps_gauss4 = 2.0 * t_end * c.omega_1 / (0.073 * std::pow(scale, 1.0 / 5.0));
     if (pilot != nullptr) {
-        c.piloted = true;
-        c.steps_gauss4 = pilot->failed || pilot->t <= 0.0
-                             ? INFINITY
-                             : static_cast<double>(pilot->steps) * (t_end / pilot->t) * std::pow(pilot->rtol / rtol, 0.2);
+        c.steps_gauss4 = pilot->failed || pilot->t <= 0.0 ? INFINITY
+                                                          : static_cast<double>(pilot->steps) * (t_end / pilot->t) *
+                                                                std::pow(pilot->rtol / rtol, 0.2);
     } else if (model.key().drive == Drive::torque && model.key().method != Method::amm) {
         c.steps_gauss4 = std::max(c.steps_gauss4, t_end * highest_frequency(model, Axial::quasi_static) /
                                                       stability_step_factor("rk8pd"));
@@ -193,8 +194,10 @@ StepperChoice automatic_stepper(const Model& model, Axial axial, double rtol, do
     std::string pilot_note;
     if (pilot != nullptr) {
         char text[120];
-        if (pilot->failed) std::snprintf(text, sizeof text, ": its pilot failed at t = %.3g s", pilot->t);
-        else std::snprintf(text, sizeof text, ", from %ld in a pilot to t = %.3g s", pilot->steps, pilot->t);
+        if (pilot->failed)
+            std::snprintf(text, sizeof text, ": its pilot failed at t = %.3g s", pilot->t);
+        else
+            std::snprintf(text, sizeof text, ", from %ld in a pilot to t = %.3g s", pilot->steps, pilot->t);
         pilot_note = text;
     }
     char why[440];
@@ -203,12 +206,13 @@ StepperChoice automatic_stepper(const Model& model, Axial axial, double rtol, do
                       "round-off", rtol, gauss4_tightest_rtol);
         return {"rk8pd", why};
     }
-    std::snprintf(why, sizeof why,
-                  "automatic: predicted %.2g flops against %.2g for %s (rk8pd about %.0f steps, %s; gauss4 about %.0f%s; "
-                  "highest rate %.0f 1/s, lowest frequency %.3g rad/s)",
-                  implicit ? c.gauss4 : c.rk8pd, implicit ? c.rk8pd : c.gauss4, implicit ? "rk8pd" : "gauss4",
-                  c.steps_rk8pd, c.stability_bound ? "bound by stability" : "bound by accuracy", c.steps_gauss4,
-                  pilot_note.c_str(), c.omega_max, c.omega_1);
+    std::snprintf(
+        why, sizeof why,
+        "automatic: predicted %.2g flops against %.2g for %s (rk8pd about %.0f steps, %s; gauss4 about %.0f%s; "
+        "highest rate %.0f 1/s, lowest frequency %.3g rad/s)",
+        implicit ? c.gauss4 : c.rk8pd, implicit ? c.rk8pd : c.gauss4, implicit ? "rk8pd" : "gauss4", c.steps_rk8pd,
+        c.stability_bound ? "bound by stability" : "bound by accuracy", c.steps_gauss4, pilot_note.c_str(), c.omega_max,
+        c.omega_1);
     return {implicit ? gauss_stepper : "rk8pd", why};
 }
 

@@ -32,17 +32,16 @@ struct StepperCosts {
     bool stability_bound = false;             // rk8pd's steps set by omega_max, not accuracy
     double rk8pd = 0.0, gauss4 = 0.0;         // flops
     double gauss4_step = 0.0;                 // flops per gauss4 step
-    bool piloted = false;                     // steps_gauss4 measured by a pilot run, not predicted
 };
 
 /// gauss4's steps over the start of the run, measured: a pilot run from rest. Under a hub torque the rule cannot
 /// predict them: the drive's kinks (the torque switching on and off) excite the discretization's high modes by
 /// amounts that decide whether gauss4 must resolve them, which the pilot sees.
 struct Pilot {
-    double t = 0.0;        // where it ended (s): its window's end, or earlier when it ran out of budget
-    long steps = 0;        // gauss4's steps to t
-    double rtol = 0.0;     // the tolerance it ran at
-    bool failed = false;   // a step failed: gauss4 cannot run the scene at rtol
+    double t = 0.0;       // where it ended (s): its window's end, or earlier when it ran out of budget
+    long steps = 0;       // gauss4's steps to t
+    double rtol = 0.0;    // the tolerance it ran at
+    bool failed = false;  // a step failed: gauss4 cannot run the scene at rtol
 };
 
 /// What a pilot should cover, for a scene whose costs without one are c: its window (s) and the steps beyond which
