@@ -213,6 +213,7 @@ private:
     StateObserver observer_;
     std::string stepper_, stepper_why_;  // the scene's, or the automatic choice and why
     mutable std::unique_ptr<Pilot> pilot_;  // gauss4's measured start under a hub torque (stiffness.hpp)
+    mutable bool pilot_decided_ = false;    // whether the scene needs one was asked
     bool check_error_ = true;
 };
 

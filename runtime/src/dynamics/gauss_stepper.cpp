@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -32,11 +33,11 @@ const double d1 = -root3, d2 = root3;
 double l1(double s) { return s * (s - c2) / (c1 * (c1 - c2)); }
 double l2(double s) { return s * (s - c1) / (c2 * (c2 - c1)); }
 
-/// A factored Newton matrix and the step it was formed for: dense, or in the mass form a bordered band (planned for
-/// a version of the pattern).
+/// A factored Newton matrix and the step it was formed for: dense, or in the mass form a bordered band (a copy of the
+/// stepper's plan for a version of the pattern).
 struct Newton {
     Eigen::PartialPivLU<Eigen::MatrixXd> lu;
-    std::unique_ptr<BorderedBandLU> band;
+    std::optional<BorderedBandLU> band;
     int planned = -1;
     double h = 0.0;
 };
@@ -205,16 +206,18 @@ private:
                 if (!p && (Md_(i, j) != 0.0 || Kd_(i, j) != 0.0 || Cd_(i, j) != 0.0)) p = 1, grew = true;
             }
         if (grew) {
-            // The condensed system's pattern: every stage block has the coordinates' pattern.
-            pattern2_.assign(static_cast<std::size_t>(4) * k * k, 0);
+            // The condensed system's pattern: every stage block has the coordinates' pattern. Planned once here; the
+            // Newton matrices of h and h/2 take copies.
+            std::vector<char> stages(static_cast<std::size_t>(4) * k * k, 0);
             for (int bi = 0; bi < 2; ++bi)
                 for (int bj = 0; bj < 2; ++bj)
                     for (int i = 0; i < k; ++i)
                         for (int j = 0; j < k; ++j)
-                            pattern2_[static_cast<std::size_t>(bi * k + i) * 2 * k + bj * k + j] =
+                            stages[static_cast<std::size_t>(bi * k + i) * 2 * k + bj * k + j] =
                                 pattern_[static_cast<std::size_t>(i) * k + j];
+            plan_.emplace(stages, 2 * k);
             const double dense = 2.0 / 3.0 * std::pow(2.0 * k, 3);
-            if (BorderedBandLU(pattern2_, 2 * k).factor_flops() > mass_form_max_share * dense) {
+            if (plan_->factor_flops() > mass_form_max_share * dense) {
                 mass_form_ = false;  // no narrow band: the dense Newton matrices cost no more
                 return GSL_SUCCESS;
             }
@@ -246,7 +249,7 @@ private:
     {
         const int k = k_;
         if (newton.planned != pattern_version_) {
-            newton.band = std::make_unique<BorderedBandLU>(pattern2_, 2 * k);
+            newton.band = plan_;
             newton.planned = pattern_version_;
         }
         const double a[2][2] = {{a11, a12}, {a21, a22}};
@@ -278,9 +281,9 @@ private:
             }
             // A singular band or border: the dense form, with its pivoting across the whole matrix, from here on.
             mass_form_ = false;
-            J_.setZero();
-            Jq_ = Eigen::PartialPivLU<Eigen::MatrixXd>(Md_).solve(Kd_);
-            Jv_ = Eigen::PartialPivLU<Eigen::MatrixXd>(Md_).solve(Cd_);
+            const Eigen::PartialPivLU<Eigen::MatrixXd> mass(Md_);
+            Jq_ = mass.solve(Kd_);
+            Jv_ = mass.solve(Cd_);
         }
         const auto factor_one = [&](double step, Newton& newton) {
             const int k = condensed_ ? k_ : n_;
@@ -442,12 +445,13 @@ private:
     int k_;
     bool condensed_;
     Eigen::MatrixXd Jq_, Jv_;
-    // The mass form (mass_form_jacobian): M, K and C, their union pattern (row-major, k_ x k_) and its version, and M
-    // and K sparse for the Newton corrections' products.
+    // The mass form (mass_form_jacobian): M, K and C, their union pattern and its version, the band LU planned for it,
+    // and M and K sparse for the Newton corrections' products.
     bool mass_form_ = false;
     RowMatrix Md_, Kd_, Cd_;
-    std::vector<char> pattern_, pattern2_;  // the coordinates' (k_ x k_) and the condensed system's (2k_ x 2k_)
+    std::vector<char> pattern_;  // row-major, k_ x k_
     int pattern_version_ = 0;
+    std::optional<BorderedBandLU> plan_;  // for the condensed system's pattern (2k_ x 2k_) of pattern_version_
     Eigen::SparseMatrix<double, Eigen::RowMajor> Ms_, Ks_;
     Eigen::VectorXd rhs2_, dv_, mix_;
     bool have_guess_ = false, factored_ = false, fresh_jacobian_ = false, stale_jacobian_ = true;

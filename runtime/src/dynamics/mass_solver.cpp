@@ -87,7 +87,6 @@ public:
             for (int k = first(i); k < i; ++k) b[k] -= L(i, k) * x;
         }
     }
-    int bandwidth() const { return p_; }
 
 private:
     int first(int i) const { return std::max(0, i - p_); }

@@ -863,10 +863,11 @@ StepperChoice Simulation::automatic(double rtol) const
 {
     const double t_end = scene_.output.t_end;
     const int auxiliary = auxiliary_count(scene_);
-    if (!pilot_ && needs_pilot(*model_, scene_.solver.rtol))
+    if (!pilot_decided_ && needs_pilot(*model_, scene_.solver.rtol))
         pilot_ = std::make_unique<Pilot>(
             pilot_run(scene_, *model_,
                       pilot_plan(predicted_costs(*model_, scene_.axial, scene_.solver.rtol, t_end, auxiliary), t_end)));
+    pilot_decided_ = true;  // needs_pilot's eigenvalues once, not at every check's re-run
     return automatic_stepper(*model_, scene_.axial, rtol, t_end, auxiliary,
                              rtol >= gauss4_tightest_rtol ? pilot_.get() : nullptr);
 }
