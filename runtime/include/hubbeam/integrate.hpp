@@ -2,6 +2,7 @@
 // linear algebra chosen from the model's structure (mass_solver.hpp).
 #pragma once
 
+#include <array>
 #include <limits>
 #include <memory>
 #include <string>
@@ -184,11 +185,12 @@ private:
     int extended_rhs(double t, const double* y, double* dydt);
     /// u_y(L) and its rate of a state y (linear in the kept coordinates: tip_row).
     HubState hub_state(const double* y) const;
-    /// motion_.at(t), remembered for the last t.
+    /// motion_.at(t), remembered for the last two distinct t.
     const HubInput& drive_at(double t);
 
-    double drive_t_ = std::numeric_limits<double>::quiet_NaN();
-    HubInput drive_;
+    std::array<double, 2> drive_t_{std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN()};
+    std::array<HubInput, 2> drive_;
+    int drive_older_ = 0;  // the entry drive_at replaces next
     long evaluations_ = 0;
     long jacobian_evaluations_ = 0;
     std::unique_ptr<Work> work_;

@@ -192,13 +192,15 @@ FirstOrderSystem::~FirstOrderSystem() = default;
 
 const HubInput& FirstOrderSystem::drive_at(double t)
 {
-    // Multistep and implicit steppers evaluate several times at one t (predictor, corrector, Jacobian): the
-    // drive's sines are computed once per distinct t.
-    if (t != drive_t_) {
-        drive_ = motion_.at(t);
-        drive_t_ = t;
-    }
-    return drive_;
+    // Multistep and implicit steppers evaluate several times at one t (predictor, corrector, Jacobian), and gauss4's
+    // Newton iterations alternate between its two stages' times: the drive's sines are computed once per such t.
+    if (t == drive_t_[0]) return drive_[0];
+    if (t == drive_t_[1]) return drive_[1];
+    const int e = drive_older_;
+    drive_older_ = 1 - e;
+    drive_[e] = motion_.at(t);
+    drive_t_[e] = t;
+    return drive_[e];
 }
 
 std::string FirstOrderSystem::linear_algebra() const { return work_->rhs->describe(); }
