@@ -352,8 +352,13 @@ private:
         newton_solve(newton);
         z1 += dz_.head(n_);
         z2 += dz_.tail(n_);
+        // Stage by stage, so that no index needs a remainder (an integer division per entry).
         double norm = 0.0;
-        for (int i = 0; i < 2 * n_; ++i) norm = std::max(norm, std::abs(dz_[i]) / w_[b * n_ + i % n_]);
+        const double* const w = w_.data() + b * n_;
+        for (int stage = 0; stage < 2; ++stage) {
+            const double* const d = dz_.data() + stage * n_;
+            for (int i = 0; i < n_; ++i) norm = std::max(norm, std::abs(d[i]) / w[i]);
+        }
         return norm;
     }
 
