@@ -548,7 +548,11 @@ bool Simulation::Run::limit_interpolation(FreeStep& s)
                 tolerance += 4.0 * eps * (std::abs(s.y0[i - k]) + std::abs(y_[i - k])) / h;
             ratio = std::max(ratio, std::abs(s.y_mid[i] - s.f_mid[i]) / tolerance);
         }
-        s.h_max = h * std::min(4.0, 0.9 * std::pow(std::max(ratio, 1e-12), -1.0 / 5.0));
+        // A growth under a fifth is not taken, as for the stepper's own steps: h_max then stays put instead of
+        // creeping up to the step that fails this test, and the Newton matrices factored for it stay valid (the main
+        // job: 1,414 steps and 32 refactorizations, against 1,679 steps and 346).
+        const double growth = std::min(4.0, 0.9 * std::pow(std::max(ratio, 1e-12), -1.0 / 5.0));
+        s.h_max = h * (growth > 1.0 && growth < 1.2 ? 1.0 : growth);
         return ratio <= 1.0;
     }
     // Estimated only: the step stands (GSL's steppers, whose output this has always been), the next ones obey h_max.
