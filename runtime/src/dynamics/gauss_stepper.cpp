@@ -66,8 +66,12 @@ public:
         Eigen::Map<Eigen::VectorXd> y0(y, m_);
         bool bad_function = false;
         for (int attempt = 0;; ++attempt) {
-            double h = std::min({h_, h_max, target - t});
-            if (target - t - h < 0.01 * h) h = target - t;  // no sliver of a step before the target
+            // The steps to the target share its distance evenly (no sliver before it, and one Newton matrix for all of
+            // them: with rows every dt_out that steps end at, the clipped last step of each row interval was
+            // refactored for and then again for the next interval's first step).
+            const double reach = std::min(h_, h_max), distance = target - t;
+            const double pieces = distance <= 1.01 * reach ? 1.0 : std::ceil(distance / reach);
+            double h = pieces <= 1.0 ? distance : distance / pieces;
             // Out of steps to try: equations that failed to evaluate on the way are the cause (M not positive
             // definite, which GSL's steppers report at once).
             if (h <= 64.0 * std::numeric_limits<double>::epsilon() * std::max(std::abs(t), 1.0) || attempt > 60)
@@ -119,8 +123,11 @@ public:
             ++steps_;
             fresh_jacobian_ = false;
             stale_jacobian_ = rate_ > 0.05;
-            // A growth of less than a fifth is not taken (as RADAU5 does): the Newton matrices stay factored.
-            h_ = factor >= 1.0 && factor <= 1.2 ? h : h * factor;
+            // A growth of less than a fifth is not taken (as RADAU5 does): the Newton matrices stay factored. A step
+            // the target shortened says nothing against the step before it, which the next one resumes unless this
+            // one's error calls for less.
+            const double next = factor >= 1.0 && factor <= 1.2 ? h : h * factor;
+            h_ = h < h_ && factor >= 1.0 ? std::max(next, h_) : next;
             return GSL_SUCCESS;
         }
     }

@@ -471,7 +471,7 @@ std::string Simulation::Run::free_steps(const RowSink& sink, const StopRequest& 
         if (std::string failure = rows_in_step(s, i, sink, stop); !failure.empty()) return failure;
         std::swap(s.f0, s.f1);  // the derivative at this step's end starts the next step
         s.have_f0 = s.have_f1;
-        if (to_break && t_ >= target) {
+        if (to_break && t_ >= breaks_[next_break_]) {  // not a row that ended the step before the breakpoint
             ++next_break_;
             restart();
         }
