@@ -175,10 +175,15 @@ StepperCosts predicted_costs(const Model& model, Axial axial, double rtol, doubl
     // every fourth step their two factorizations (2 x 2/3 n^3), n = m where the Newton systems condense to the
     // velocities (no auxiliary states), else 2m (measured on the paper's spin-up: 14.7 evaluations, a Jacobian
     // every 5.3 steps).
+    // gauss4 also pays a step's bookkeeping of three stage solves (dynamic-size vector operations, the interpolation
+    // of starting values, the convergence tests): about 25,000 flops' time, measured as its time per step against
+    // rk8pd's at Ny = 8 and 16 with Nx = 0 on the spin-up (3 to 4.5 times rk8pd's, where the flops alone said 1.7).
+    constexpr double gauss4_step_overhead = 25000.0;
     const double rhs = 4.0 * m * m;
     const double n = auxiliary == 0 ? m : 2.0 * (m + auxiliary);
     c.rk8pd = c.steps_rk8pd * 13.0 * rhs;
-    c.gauss4_step = 15.0 * rhs + 10.0 * 2.0 * n * n + (2.0 * 2.0 / 3.0 * n * n * n) / 4.0;
+    c.gauss4_step =
+        15.0 * rhs + 10.0 * 2.0 * n * n + (2.0 * 2.0 / 3.0 * n * n * n) / 4.0 + gauss4_step_overhead;
     c.gauss4 = c.steps_gauss4 * c.gauss4_step;
     return c;
 }
