@@ -179,7 +179,12 @@ StepperCosts predicted_costs(const Model& model, Axial axial, double rtol, doubl
     // of starting values, the convergence tests): about 25,000 flops' time, measured as its time per step against
     // rk8pd's at Ny = 8 and 16 with Nx = 0 on the spin-up (3 to 4.5 times rk8pd's, where the flops alone said 1.7).
     constexpr double gauss4_step_overhead = 25000.0;
-    const double rhs = 4.0 * m * m;
+    // Order full's right-hand side pays the foreshortening's squares: expanded, of order Ny^4 terms (about order
+    // first's cost at Ny = 4); from Ny = 8 summed at some 4 Ny + 16 Gauss points, 18 to 40 times order first's at
+    // Ny = 8 (rk8pd's runs of the spin-up at Nx = 0, the four methods), taken as 25.
+    const int ny = model.key().ny;
+    const double full = model.key().order != Order::full ? 1.0 : ny >= 8 ? 25.0 : std::max(1.0, std::pow(ny / 4.0, 4));
+    const double rhs = 4.0 * m * m * full;
     const double n = auxiliary == 0 ? m : 2.0 * (m + auxiliary);
     c.rk8pd = c.steps_rk8pd * 13.0 * rhs;
     c.gauss4_step =
