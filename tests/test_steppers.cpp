@@ -190,9 +190,9 @@ TEST_CASE("gauss4 shares a target's distance evenly and resumes its step after o
     std::vector<double> y(static_cast<std::size_t>(system.size()), 0.0);
     double t = 0.0;
     const auto stepper = make_stepper(system, "gauss4", t, y.data(), 1e-4, 1e-10, 1e-8);
-    const auto step = [&](double target) {
+    const auto step = [&](double target, double h_max = INFINITY) {
         const double t0 = t;
-        REQUIRE(stepper->step(t, target, y.data(), INFINITY) == GSL_SUCCESS);
+        REQUIRE(stepper->step(t, target, y.data(), h_max) == GSL_SUCCESS);
         return t - t0;
     };
     double h = 0.0;
@@ -209,6 +209,15 @@ TEST_CASE("gauss4 shares a target's distance evenly and resumes its step after o
     const double h_before = step(5.0);
     CHECK(step(t + 1e-3 * h_before) == Approx(1e-3 * h_before).epsilon(1e-9));
     CHECK(step(5.0) >= 0.8 * h_before);
+    // Steps an interpolation bound h_max shortened: the step follows them, and grows from them (at most 4 times a
+    // step) once the bound lets go, rather than trying the longer step of before, to have it rejected.
+    const double h_free = step(5.0), bound = 0.1 * h_free;
+    for (int i = 0; i < 3; ++i) {
+        const double bounded = step(5.0, bound);  // the distance to 5 s shared evenly: a little under the bound
+        CHECK(bounded <= bound);
+        CHECK(bounded >= 0.99 * bound);
+    }
+    CHECK(step(5.0) <= 4.0 * bound * (1.0 + 1e-9));
 }
 
 TEST_CASE("a stiff mode ringing at the tolerance does not trap gauss4 in short steps", "[steppers]")

@@ -125,9 +125,12 @@ public:
             stale_jacobian_ = rate_ > 0.05;
             // A growth of less than a fifth is not taken (as RADAU5 does): the Newton matrices stay factored. A step
             // the target shortened says nothing against the step before it, which the next one resumes unless this
-            // one's error calls for less.
+            // one's error calls for less. Where h_max, not the target, shortened the step, h_ follows the step: held
+            // above the bound, it was tried, and rejected, each time the bound let go (FEM at Ny = 16, rtol 1e-10:
+            // 29,634 steps instead of 18,332).
             const double next = factor >= 1.0 && factor <= 1.2 ? h : h * factor;
-            h_ = h < h_ && factor >= 1.0 ? std::max(next, h_) : next;
+            const bool target_shortened = h < h_ && h_ <= h_max;
+            h_ = target_shortened && factor >= 1.0 ? std::max(next, h_) : next;
             return GSL_SUCCESS;
         }
     }
