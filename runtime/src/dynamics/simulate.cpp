@@ -677,7 +677,8 @@ void Simulation::Run::monitor(const Row& r)
     if (r.t > 0.0 && r.t <= check_window_ * (1.0 + same_instant)) start_window_.rows.push_back(r);
     else if (end_window_.t0 >= 0.0 && r.t > end_window_.t0) end_window_.rows.push_back(r);
     const double t_drive = drive_end_window_.t0;
-    if (t_drive >= 0.0 && r.t > t_drive * (1.0 + same_instant) && r.t <= (t_drive + drive_end_window_length_) * (1.0 + same_instant))
+    if (t_drive >= 0.0 && r.t > t_drive * (1.0 + same_instant) &&
+        r.t <= (t_drive + drive_end_window_length_) * (1.0 + same_instant))
         drive_end_window_.rows.push_back(r);
 }
 

@@ -187,8 +187,7 @@ StepperCosts predicted_costs(const Model& model, Axial axial, double rtol, doubl
     const double rhs = 4.0 * m * m * full;
     const double n = auxiliary == 0 ? m : 2.0 * (m + auxiliary);
     c.rk8pd = c.steps_rk8pd * 13.0 * rhs;
-    c.gauss4_step =
-        15.0 * rhs + 10.0 * 2.0 * n * n + (2.0 * 2.0 / 3.0 * n * n * n) / 4.0 + gauss4_step_overhead;
+    c.gauss4_step = 15.0 * rhs + 10.0 * 2.0 * n * n + (2.0 * 2.0 / 3.0 * n * n * n) / 4.0 + gauss4_step_overhead;
     c.gauss4 = c.steps_gauss4 * c.gauss4_step;
     return c;
 }
