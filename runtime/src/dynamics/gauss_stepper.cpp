@@ -110,6 +110,8 @@ public:
             const double factor = std::clamp(0.9 * std::pow(std::max(ratio, 1e-10), -0.2), 0.2, 4.0);
             if (!(ratio <= 1.0)) {
                 h_ = h * std::min(factor, 0.9);
+                calm_ = 0;
+                ++rejected_;
                 have_guess_ = false;
                 continue;
             }
@@ -128,7 +130,15 @@ public:
             // one's error calls for less. Where h_max, not the target, shortened the step, h_ follows the step: held
             // above the bound, it was tried, and rejected, each time the bound let go (FEM at Ny = 16, rtol 1e-10:
             // 29,634 steps instead of 18,332).
-            const double next = factor >= 1.0 && factor <= 1.2 ? h : h * factor;
+            // Once calm_steps steps in a row have passed, a decrease the error asks for after a step that passed (to
+            // no less than 0.9 of it) is not taken either, as CVODE keeps its step after a success: small decreases
+            // drifted the step until its Newton matrices had to be refactored, and the next growth refactored them
+            // again (FEM at Nx = Ny = 32 under torque: 28,371 steps in 1.5 s against 32,944 in 1.85 s). After a
+            // rejection they are taken until the steps are calm again: at once, FEM at Ny = 16, rtol 1e-10 took
+            // 32,537 steps instead of 19,880.
+            calm_ = std::min(calm_ + 1, calm_steps);
+            const double keep_from = calm_ == calm_steps ? 0.9 : 1.0;
+            const double next = factor >= keep_from && factor <= 1.2 ? h : h * factor;
             const bool target_shortened = h < h_ && h_ <= h_max;
             h_ = target_shortened && factor >= 1.0 ? std::max(next, h_) : next;
             return GSL_SUCCESS;
@@ -151,6 +161,7 @@ public:
     void retake(double, const double*) override { have_guess_ = false; }
 
     long steps() const override { return steps_; }
+    long rejected() const override { return rejected_; }
     bool has_midpoint() const override { return true; }
     std::string newton_form() const override
     {
@@ -451,6 +462,9 @@ private:
     // the main job, its tip as close to a tight run; keeping the Jacobian up to a rate of 0.2 saved 1 % more but let
     // the torque case's error reach 30 times its estimate).
     static constexpr double newton_tol = 0.03;
+    static constexpr int calm_steps = 5;
+    int calm_ = 0;  // steps accepted since the last rejection by the error test, up to calm_steps
+    long rejected_ = 0;
     Eigen::VectorXd y1_, y_half_, y2_, w_, stage_, z_, dz_, g_, f_, z_last_;
     Eigen::MatrixXd J_;
     Eigen::VectorXd dfdt_;

@@ -35,6 +35,8 @@ public:
     virtual bool has_midpoint() const { return false; }
     /// Steps taken since construction, through restarts.
     virtual long steps() const = 0;
+    /// Steps the error test rejected since construction (0 from a stepper that does not count them).
+    virtual long rejected() const { return 0; }
 };
 
 /// The integrator of system named stepper (stepper_names()), starting at (t0, y0) with initial step h0 and
