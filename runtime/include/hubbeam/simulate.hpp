@@ -170,6 +170,7 @@ using StopRequest = std::function<const char*()>;
 
 class Model;
 struct Pilot;
+struct RatesAtRest;
 struct StepperChoice;
 
 /// One run of a scene, in two steps so that everything that can refuse the scene (no model serves its
@@ -212,6 +213,7 @@ private:
     std::unique_ptr<Model> model_;
     StateObserver observer_;
     std::string stepper_, stepper_why_;  // the scene's, or the automatic choice and why
+    mutable std::unique_ptr<RatesAtRest> rates_;  // the model's rates at rest, once (stiffness.hpp)
     mutable std::unique_ptr<Pilot> pilot_;  // gauss4's measured start under a hub torque (stiffness.hpp)
     mutable bool pilot_decided_ = false;    // whether the scene needs one was asked
     bool check_error_ = true;

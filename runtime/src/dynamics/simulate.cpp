@@ -896,13 +896,15 @@ StepperChoice Simulation::automatic(double rtol) const
 {
     const double t_end = scene_.output.t_end;
     const int auxiliary = auxiliary_count(scene_);
-    if (!pilot_decided_ && needs_pilot(*model_, scene_.solver.rtol))
-        pilot_ = std::make_unique<Pilot>(
-            pilot_run(scene_, *model_,
-                      pilot_plan(predicted_costs(*model_, scene_.axial, scene_.solver.rtol, t_end, auxiliary), t_end)));
+    if (!rates_) rates_ = std::make_unique<RatesAtRest>(rates_at_rest(*model_, scene_.axial));
+    if (!pilot_decided_ && needs_pilot(*model_, scene_.solver.rtol)) {
+        const StepperCosts rule =
+            predicted_costs(*model_, scene_.axial, scene_.solver.rtol, t_end, auxiliary, nullptr, rates_.get());
+        pilot_ = std::make_unique<Pilot>(pilot_run(scene_, *model_, pilot_plan(rule, t_end)));
+    }
     pilot_decided_ = true;  // needs_pilot's eigenvalues once, not at every check's re-run
     return automatic_stepper(*model_, scene_.axial, rtol, t_end, auxiliary,
-                             rtol >= gauss4_tightest_rtol ? pilot_.get() : nullptr);
+                             rtol >= gauss4_tightest_rtol ? pilot_.get() : nullptr, rates_.get());
 }
 
 std::string Simulation::faster_stepper_hint() const

@@ -46,18 +46,34 @@ Eigen::VectorXd squared_frequencies(const Model& model, Axial axial)
     return solver.eigenvalues();
 }
 
-}  // namespace
-
-double highest_frequency(const Model& model, Axial axial)
+/// The highest frequency of squared frequencies w2 (squared_frequencies): infinite where M is not positive definite.
+double highest_of(const Eigen::VectorXd& w2)
 {
-    const Eigen::VectorXd w2 = squared_frequencies(model, axial);
     if (w2.size() == 0) return INFINITY;  // M not positive definite: treat as stiff
     return std::sqrt(std::max(0.0, w2.maxCoeff()));
 }
 
-double highest_rate(const Model& model, Axial axial)
+/// The lowest positive frequency of squared frequencies w2. The hub angle under torque is a rigid mode (zero
+/// frequency): the lowest vibration is the first above it.
+double lowest_of(const Eigen::VectorXd& w2)
 {
-    const double omega = highest_frequency(model, axial);
+    for (const double v : w2)
+        if (v > 1e-9 * w2.maxCoeff()) return std::sqrt(v);
+    return 0.0;
+}
+
+}  // namespace
+
+double highest_frequency(const Model& model, Axial axial)
+{
+    return highest_of(squared_frequencies(model, axial));
+}
+
+namespace {
+
+/// highest_rate of a model whose highest frequency is omega.
+double highest_rate_with(const Model& model, Axial axial, double omega)
+{
     const int n = model.nq();
     const std::vector<double> zero(static_cast<std::size_t>(n), 0.0);
     const HubInput rest;
@@ -77,6 +93,19 @@ double highest_rate(const Model& model, Axial axial)
     const Eigen::EigenSolver<Eigen::MatrixXd> eig(A, false);
     if (eig.info() != Eigen::Success) return INFINITY;
     return std::max(omega, eig.eigenvalues().cwiseAbs().maxCoeff());
+}
+
+}  // namespace
+
+double highest_rate(const Model& model, Axial axial)
+{
+    return highest_rate_with(model, axial, highest_frequency(model, axial));
+}
+
+RatesAtRest rates_at_rest(const Model& model, Axial axial)
+{
+    const Eigen::VectorXd w2 = squared_frequencies(model, axial);  // once for both
+    return {highest_rate_with(model, axial, highest_of(w2)), lowest_of(w2)};
 }
 
 namespace {
@@ -111,11 +140,7 @@ double critical_spin(const Model& model)
 
 double lowest_frequency(const Model& model, Axial axial)
 {
-    const Eigen::VectorXd w2 = squared_frequencies(model, axial);
-    // The hub angle under torque is a rigid mode (zero frequency): the lowest vibration is the first above it.
-    for (const double v : w2)
-        if (v > 1e-9 * w2.maxCoeff()) return std::sqrt(v);
-    return 0.0;
+    return lowest_of(squared_frequencies(model, axial));
 }
 
 bool needs_pilot(const Model& model, double rtol)
@@ -139,11 +164,12 @@ PilotPlan pilot_plan(const StepperCosts& c, double t_end)
 }
 
 StepperCosts predicted_costs(const Model& model, Axial axial, double rtol, double t_end, int auxiliary,
-                             const Pilot* pilot)
+                             const Pilot* pilot, const RatesAtRest* rates)
 {
     StepperCosts c;
-    c.omega_max = highest_rate(model, axial);
-    c.omega_1 = lowest_frequency(model, axial);
+    const RatesAtRest r = rates != nullptr ? *rates : rates_at_rest(model, axial);
+    c.omega_max = r.omega_max;
+    c.omega_1 = r.omega_1;
     const double m = 2.0 * static_cast<double>(kept_coordinates(model.key(), axial).size());
     // Steps: rk8pd's the more of accuracy (order 8: h omega_1 = 0.077 at rtol 1e-8, the paper's spin-up with AMM at
     // Ny = 4) and stability (h omega_max = 3.1: stability_step_factor). gauss4's what accuracy needs (order 4:
@@ -193,9 +219,9 @@ StepperCosts predicted_costs(const Model& model, Axial axial, double rtol, doubl
 }
 
 StepperChoice automatic_stepper(const Model& model, Axial axial, double rtol, double t_end, int auxiliary,
-                                const Pilot* pilot)
+                                const Pilot* pilot, const RatesAtRest* rates)
 {
-    const StepperCosts c = predicted_costs(model, axial, rtol, t_end, auxiliary, pilot);
+    const StepperCosts c = predicted_costs(model, axial, rtol, t_end, auxiliary, pilot, rates);
     // Below rtol 1e-10 gauss4's step doubling compares results that agree to round-off, amplified by cond(M) under a
     // hub torque (2.5e5 for the paper's FEM beam with axial coordinates: its steps collapse at rtol 1e-11): rk8pd,
     // whatever it costs.

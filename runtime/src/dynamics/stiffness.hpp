@@ -23,6 +23,14 @@ double highest_rate(const Model& model, Axial axial);
 /// (a free hub's rigid rotation left out): the motion the tolerance must follow.
 double lowest_frequency(const Model& model, Axial axial);
 
+/// highest_rate and lowest_frequency from one eigenproblem: what the automatic choice weighs, which depends on the
+/// model and the axial treatment only (a simulation computes it once for its choice, its pilot and its checks'
+/// re-runs).
+struct RatesAtRest {
+    double omega_max = 0.0, omega_1 = 0.0;
+};
+RatesAtRest rates_at_rest(const Model& model, Axial axial);
+
 /// The predicted work of the automatic choice's candidates over a run of t_end s at rtol: steps from the stiffness,
 /// the tolerance and each method's order, times flops per step from the number of states (auxiliary: those beside
 /// q and qd, FirstOrderSystem::Auxiliary).
@@ -59,9 +67,9 @@ bool needs_pilot(const Model& model, double rtol);
 PilotPlan pilot_plan(const StepperCosts& c, double t_end);
 
 /// The predicted costs; with a pilot, gauss4's steps are its steps extrapolated to t_end (and to rtol, as the
-/// accuracy of an order-4 method asks: rtol^(-1/5)).
+/// accuracy of an order-4 method asks: rtol^(-1/5)); rates, when given, are rates_at_rest(model, axial).
 StepperCosts predicted_costs(const Model& model, Axial axial, double rtol, double t_end, int auxiliary = 0,
-                             const Pilot* pilot = nullptr);
+                             const Pilot* pilot = nullptr, const RatesAtRest* rates = nullptr);
 
 struct StepperChoice {
     std::string stepper;  // rk8pd or gauss4
@@ -75,7 +83,7 @@ inline constexpr double gauss4_tightest_rtol = 1e-10;
 /// are not much shorter than stability allows; gauss4, implicit, where stiff modes (axial coordinates, fine FEM and
 /// B-spline meshes) would hold an explicit step far below what accuracy needs.
 StepperChoice automatic_stepper(const Model& model, Axial axial, double rtol, double t_end, int auxiliary = 0,
-                                const Pilot* pilot = nullptr);
+                                const Pilot* pilot = nullptr, const RatesAtRest* rates = nullptr);
 
 /// The lowest hub rate (rad/s, up to 1000) at which the equations linearized about the straight beam lose
 /// stability: the effective stiffness -dQ/dq at q = qd = 0, steady spin, stops being positive definite (the
