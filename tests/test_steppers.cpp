@@ -30,6 +30,33 @@ std::pair<double, double> tip_error(const std::vector<Row>& rows, const std::vec
     return {error, scale};
 }
 
+/// gauss4 alone, stepped by hand from rest: AMM at Ny = 4 at the cases' tolerances (rtol 1e-8, atol 1e-10).
+struct LoneGauss4 {
+    LoneGauss4(int nx, const Motion& drive)
+        : motion(drive),
+          model(make_model({.method = Method::amm, .nx = nx, .ny = 4, .drive = drive.drive(), .extras = {}},
+                           Parameters{}, ModelSource::automatic)),
+          system(*model, motion),
+          y(static_cast<std::size_t>(system.size()), 0.0),
+          stepper(make_stepper(system, "gauss4", t, y.data(), 1e-4, 1e-10, 1e-8))
+    {
+    }
+    /// One step toward target, no longer than h_max: its length.
+    double step(double target, double h_max = INFINITY)
+    {
+        const double t0 = t;
+        REQUIRE(stepper->step(t, target, y.data(), h_max) == GSL_SUCCESS);
+        return t - t0;
+    }
+
+    Motion motion;  // the system keeps a reference to it
+    std::unique_ptr<Model> model;
+    FirstOrderSystem system;
+    std::vector<double> y;
+    double t = 0.0;
+    std::unique_ptr<Stepper> stepper;
+};
+
 Scene spin_up_scene(int nx, double t_end)
 {
     Scene s = paper_scene(Method::amm, nx, 4, spin_up(4.0));
@@ -179,22 +206,9 @@ TEST_CASE("gauss4 shares a target's distance evenly and resumes its step after o
     // Steps end at rows and breakpoints. A last step clipped to reach one needed its own Newton matrix, and the next
     // step grew from it by at most 4 times a step, refactoring each time: a sliver before a row cost a dozen
     // refactorizations, and on BSIM's paper basis at Ny = 32 the steps never grew back (598,706 steps over 30 s).
-    VariantKey key;
-    key.method = Method::amm;
-    key.nx = 0;
-    key.ny = 4;
-    key.drive = Drive::prescribed;
-    const Motion motion = spin_up(4.0);
-    const auto model = make_model(key, Parameters{}, ModelSource::automatic);
-    FirstOrderSystem system(*model, motion);
-    std::vector<double> y(static_cast<std::size_t>(system.size()), 0.0);
-    double t = 0.0;
-    const auto stepper = make_stepper(system, "gauss4", t, y.data(), 1e-4, 1e-10, 1e-8);
-    const auto step = [&](double target, double h_max = INFINITY) {
-        const double t0 = t;
-        REQUIRE(stepper->step(t, target, y.data(), h_max) == GSL_SUCCESS);
-        return t - t0;
-    };
+    LoneGauss4 g(0, spin_up(4.0));
+    const auto step = [&](double target, double h_max = INFINITY) { return g.step(target, h_max); };
+    double& t = g.t;
     double h = 0.0;
     for (int i = 0; i < 40; ++i) h = step(5.0);  // grown to what the tolerance allows at t of a second or so
     INFO("step " << h << " at t = " << t);
@@ -225,32 +239,21 @@ TEST_CASE("gauss4 keeps its step after passing steps once they are calm", "[step
     // Small decreases after steps that passed drifted the step until its Newton matrices had to be refactored, and
     // the next growth refactored them again. Once five steps in a row have passed the error test, a step may not be
     // shorter than the one before; after a rejection it may, until five pass again.
-    VariantKey key;
-    key.method = Method::amm;
-    key.nx = 4;
-    key.ny = 4;
-    key.drive = Drive::torque;  // the torque excites the axial modes: steps bound by accuracy, hundreds of them
-    const auto model = make_model(key, Parameters{}, ModelSource::automatic);
-    const Motion motion = torque(1.0);  // the system keeps a reference to it
-    FirstOrderSystem system(*model, motion);
-    std::vector<double> y(static_cast<std::size_t>(system.size()), 0.0);
-    double t = 0.0;
-    const auto stepper = make_stepper(system, "gauss4", t, y.data(), 1e-4, 1e-10, 1e-8);
+    LoneGauss4 g(4, torque(1.0));  // the torque excites the axial modes: steps bound by accuracy, hundreds of them
+    const Stepper& stepper = *g.stepper;
     int calm = 0, calm_decreases = 0, other_decreases = 0;
     double h_last = 0.0;
-    while (t < 5.0) {
-        const double t0 = t;
-        const long rejected = stepper->rejected();
-        REQUIRE(stepper->step(t, 5.0, y.data(), INFINITY) == GSL_SUCCESS);
-        const double h = t - t0;
-        const bool shorter = h < h_last * (1.0 - 1e-9) && t < 5.0;  // the last step shares the distance to 5 s
-        if (stepper->rejected() > rejected) calm = 0;
+    while (g.t < 5.0) {
+        const long rejected = stepper.rejected();
+        const double h = g.step(5.0);
+        const bool shorter = h < h_last * (1.0 - 1e-9) && g.t < 5.0;  // the last step shares the distance to 5 s
+        if (stepper.rejected() > rejected) calm = 0;
         if (shorter) ++(calm >= 5 ? calm_decreases : other_decreases);
         ++calm;
         h_last = h;
     }
-    INFO(stepper->steps() << " steps, " << stepper->rejected() << " rejected");
-    CHECK(stepper->rejected() > 0);
+    INFO(stepper.steps() << " steps, " << stepper.rejected() << " rejected");
+    CHECK(stepper.rejected() > 0);
     CHECK(other_decreases > 0);  // decreases happen, after rejections
     CHECK(calm_decreases == 0);
 }
