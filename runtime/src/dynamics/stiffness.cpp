@@ -200,7 +200,9 @@ StepperCosts predicted_costs(const Model& model, Axial axial, double rtol, doubl
     // rk8pd's 13 evaluations; gauss4's about 15 evaluations and 10 solves with its factored Newton matrices, and
     // every fourth step their two factorizations (2 x 2/3 n^3), n = m where the Newton systems condense to the
     // velocities (no auxiliary states), else 2m (measured on the paper's spin-up: 14.7 evaluations, a Jacobian
-    // every 5.3 steps).
+    // every 5.3 steps; since gauss4 keeps its step sizes, the spin-up refactors every few dozen steps, a torque run on
+    // a fine mesh still every five or so: the model keeps the conservative every fourth, which the grids of
+    // docs/performance.md were measured with).
     // gauss4 also pays a step's bookkeeping of three stage solves (dynamic-size vector operations, the interpolation
     // of starting values, the convergence tests): about 25,000 flops' time, measured as its time per step against
     // rk8pd's at Ny = 8 and 16 with Nx = 0 on the spin-up (3 to 4.5 times rk8pd's, where the flops alone said 1.7).
