@@ -101,6 +101,8 @@ public:
     virtual std::string mass_pattern() const { return std::string(nq() * nq(), mass_is_constant() ? 'c' : 'v'); }
     /// Writes the entries of M(q) that the pattern marks 'v', in both triangles, and leaves the others.
     virtual void mass_varying(const HubInput& u, const double* q, double* M) const { mass(u, q, M); }
+    /// As mass_varying, for a caller that reads only the upper triangle: the lower one may be left as it was.
+    virtual void mass_varying_upper(const HubInput& u, const double* q, double* M) const { mass_varying(u, q, M); }
     /// Q in the form F m (F fixed for the run, m monomials of the state), or nullptr when the model has no such
     /// form: the integrator then calls forces() and solves with M.
     virtual const TermForces* term_forces() const { return nullptr; }

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <stdexcept>
 
 #include <gsl/gsl_errno.h>
@@ -42,6 +44,21 @@ void multiply(const Eigen::MatrixXd& W, const Eigen::VectorXd& x, double* y)
     }
 }
 
+/// True when no x[i] is infinite or NaN. On the bits, so that the loop vectorizes (a floating-point sum of
+/// x[i] * 0, which is NaN exactly where an entry is not finite, is a chain the compiler may not reorder): an
+/// exponent field of all ones, plus one in its lowest bit, carries into the sign bit.
+bool all_finite(const double* x, int n)
+{
+    constexpr std::uint64_t exponent = 0x7ff0000000000000, exponent_one = 0x0010000000000000;
+    std::uint64_t carry = 0;
+    for (int i = 0; i < n; ++i) {
+        std::uint64_t bits;
+        std::memcpy(&bits, x + i, sizeof bits);
+        carry |= (bits & exponent) + exponent_one;
+    }
+    return (carry >> 63) == 0;
+}
+
 /// Nonzero entries of a matrix.
 template <class Matrix> long nonzeros(const Matrix& A) { return static_cast<long>((A.array() != 0.0).count()); }
 
@@ -66,14 +83,8 @@ int Accelerations::derivative(const HubInput& u, const double* y, double* dydt)
     const double* qd = y + n_;
     double* qdd = dydt + n_;
     if (const int status = accelerations(u, q, qd, qdd); status != GSL_SUCCESS) return status;
-    // One test for all entries: a product with zero is NaN exactly where an entry is not finite. (The copy shares
-    // the loop, which also keeps it from becoming a call to memmove.)
-    double probe = 0.0;
-    for (int i = 0; i < n_; ++i) {
-        dydt[i] = qd[i];
-        probe += qdd[i] * 0.0;
-    }
-    return probe == 0.0 ? GSL_SUCCESS : GSL_EBADFUNC;
+    std::copy_n(qd, n_, dydt);
+    return all_finite(qdd, n_) ? GSL_SUCCESS : GSL_EBADFUNC;
 }
 
 Eigen::MatrixXd folded_forces(const Model& model, const TermForces& terms, const HubInput& u0)
@@ -196,39 +207,36 @@ HubSchur::HubSchur(const Model& model, const TermForces& terms, const HubInput& 
         for (int j = 1; j < n_; ++j)
             if (pattern[static_cast<std::size_t>(i * n_ + j)] == 'v')
                 throw std::invalid_argument("the mass matrix of " + model.key().name() + " varies outside the hub's row");
-    RowMatrix F(n_, K), M(n_, n_);
+    RowMatrix F(n_, K);
     terms.term_matrix(F.data());
     const std::vector<double> rest(static_cast<std::size_t>(n_), 0.0);
-    model.mass(u0, rest.data(), M.data());
-    M_.setZero();
-    const Eigen::MatrixXd C = M.bottomRightCorner(r, r).selfadjointView<Eigen::Upper>();
+    // Evaluated at rest once: the hub row's constant couplings stay in M_, where each call's varying entries join
+    // them, so that M_'s row holds the whole of b.
+    model.mass(u0, rest.data(), M_.data());
+    const Eigen::MatrixXd C = M_.bottomRightCorner(r, r).selfadjointView<Eigen::Upper>();
     Eigen::VectorXd b_c = Eigen::VectorXd::Zero(r);  // the upper triangle holds the coupling
     for (int j = 1; j < n_; ++j) {
-        if (pattern[static_cast<std::size_t>(j)] == 'v') varying_.push_back(j);
-        else if (M(0, j) != 0.0) {
-            b_c[j - 1] = M(0, j);
-            constant_.push_back(j);
-        }
+        const bool varies = pattern[static_cast<std::size_t>(j)] == 'v';
+        if (varies) varying_.push_back(j);
+        b_c[j - 1] = varies ? 0.0 : M_(0, j);
     }
     const Eigen::LLT<Eigen::MatrixXd> llt(C);
     if (llt.info() != Eigen::Success)
         throw std::invalid_argument("the mass matrix of " + model.key().name() + " is not positive definite");
     const Eigen::MatrixXd W = llt.solve(Eigen::MatrixXd(F.bottomRows(r)));
     c_c_ = llt.solve(b_c);
-    const Eigen::RowVectorXd g = F.row(0) - b_c.transpose() * W;
-    s0_ = b_c.dot(c_c_);
-    for (const int j : constant_) b_c_.push_back(b_c[j - 1]);
-    for (std::size_t v = 0; v < varying_.size(); ++v) {
-        const Eigen::VectorXd z = llt.solve(Eigen::VectorXd::Unit(r, varying_[v] - 1));
+    for (const int j : varying_) {
+        const Eigen::VectorXd z = llt.solve(Eigen::VectorXd::Unit(r, j - 1));
         for (int i = 0; i < r; ++i)
-            if (z[i] != 0.0) z_.push_back({i, static_cast<int>(v), z[i]});
+            if (z[i] != 0.0) z_.push_back({i, j, z[i]});
     }
     RowMatrix P(n_, K);
-    P.row(0) = g;
+    // With constant couplings only, b^T C^-1 F_C is folded into the hub's row too, and b^T c is the constant s0.
+    P.row(0) = varying_.empty() ? Eigen::RowVectorXd(F.row(0) - b_c.transpose() * W) : Eigen::RowVectorXd(F.row(0));
+    s0_ = b_c.dot(c_c_);
     P.bottomRows(r) = W;
     product_ = std::make_unique<FoldedProduct>(terms, model.folded_kernel(), P, 1);
     columns_ = K;
-    b_v_.resize(varying_.size());
     c_.resize(static_cast<std::size_t>(r));
     y_.resize(static_cast<std::size_t>(n_));
 }
@@ -238,31 +246,28 @@ int HubSchur::accelerations(const HubInput& u, const double* q, const double* qd
     const int r = n_ - 1;
     double* y = y_.data();
     product_->apply(u, q, qd, y);
-    model_.mass_varying(u, q, M_.data());
-    const double* m0 = M_.data();  // the hub's row
+    model_.mass_varying_upper(u, q, M_.data());
+    const double* m0 = M_.data();  // the hub's row: m00, then the couplings b
+    const double* y_C = y + 1;
     double schur = m0[0] - s0_, numerator = y[0];
     const double* c = c_c_.data();
-    if (const std::size_t nv = varying_.size(); nv > 0) {
-        // The varying couplings b_v: c = c_c + C^-1 b_v, the numerator loses b_v^T y_C, and the Schur complement is
-        // m00 - b^T c with b = b_c + b_v.
+    if (!varying_.empty()) {
+        // c = C^-1 b = c_c + C^-1 b_v, theta_ddot = (F_0 m - b^T y_C) / (m00 - b^T c).
         double* cv = c_.data();
-        double* bv = b_v_.data();
-        const int* j = varying_.data();
-        for (int i = 0; i < r; ++i) cv[i] = c[i];
-        for (std::size_t v = 0; v < nv; ++v) {
-            bv[v] = m0[j[v]];
-            numerator -= bv[v] * y[j[v]];
-        }
-        for (const ColumnEntry& e : z_) cv[e.row] += e.value * bv[e.column];
+        std::copy_n(c, r, cv);
+        for (const ColumnEntry& e : z_) cv[e.row] += e.value * m0[e.column];
+        const double* b = m0 + 1;
         schur = m0[0];
-        for (std::size_t k = 0; k < constant_.size(); ++k) schur -= b_c_[k] * cv[constant_[k] - 1];
-        for (std::size_t v = 0; v < nv; ++v) schur -= bv[v] * cv[j[v] - 1];
+        for (int i = 0; i < r; ++i) {
+            numerator -= b[i] * y_C[i];
+            schur -= b[i] * cv[i];
+        }
         c = cv;
     }
     if (!(schur > 0.0)) return indefinite_mass_at(q);  // > 0 exactly when M is positive definite (C is)
     const double theta_ddot = numerator / schur;
     qdd[0] = theta_ddot;
-    for (int i = 0; i < r; ++i) qdd[i + 1] = y[i + 1] - c[i] * theta_ddot;
+    for (int i = 0; i < r; ++i) qdd[i + 1] = y_C[i] - c[i] * theta_ddot;
     return GSL_SUCCESS;
 }
 

@@ -120,20 +120,22 @@ private:
 };
 
 /// Hub torque where M's varying entries all lie in the hub's row (m00(q), and with axial coordinates the couplings
-/// b_v(q)); C, the rest of M, is constant. With b_c the constant couplings, W_C = C^-1 F_C, c_c = C^-1 b_c and
-/// g = F_0 - b_c^T W_C folded once, y = [g; W_C] m per call, then
-///   c = c_c + C^-1 b_v(q),   theta_ddot = (y_0 - b_v^T y_C) / (m00(q) - b^T c),   qdd_C = y_C - c theta_ddot,
-/// with C^-1 b_v from C^-1's columns at the varying couplings, stored by their nonzeros. Besides saving the
-/// solves, the beam's ill-conditioned C (BIM) is applied through fixed products of smooth monomials: its round-off
-/// is the same at every evaluation instead of noise that an error control chases down to tiny steps. Throws
-/// std::invalid_argument when C is not positive definite or a varying entry lies outside the hub's row.
+/// b_v(q)); C, the rest of M, is constant. With b = b_c + b_v the couplings (b_c the constant ones),
+/// W_C = C^-1 F_C and c_c = C^-1 b_c folded once, y = [F_0; W_C] m per call, then
+///   c = c_c + C^-1 b_v(q),   theta_ddot = (y_0 - b^T y_C) / (m00(q) - b^T c),   qdd_C = y_C - c theta_ddot,
+/// with C^-1 b_v from C^-1's columns at the varying couplings, stored by their nonzeros. Without varying couplings
+/// the hub's row is folded too, g = F_0 - b_c^T W_C in place of F_0, and b^T c is a constant: theta_ddot =
+/// y_0 / (m00(q) - b_c^T c_c). Besides saving the solves, the beam's ill-conditioned C (BIM) is applied through
+/// fixed products of smooth monomials: its round-off is the same at every evaluation instead of noise that an error
+/// control chases down to tiny steps. Throws std::invalid_argument when C is not positive definite or a varying
+/// entry lies outside the hub's row.
 class HubSchur final : public Accelerations {
 public:
     HubSchur(const Model& model, const TermForces& terms, const HubInput& u0);
     int accelerations(const HubInput& u, const double* q, const double* qd, double* qdd) override;
     std::string describe() const override;
-    /// Nonzeros of the folded [g; W_C]: folding pays while they cost no more than the forces' terms plus a dense
-    /// solve.
+    /// Nonzeros of the folded [g; W_C] (or [F_0; W_C]): folding pays while they cost no more than the forces' terms
+    /// plus a dense solve.
     long nonzeros() const { return product_->nonzeros(); }
     /// Nonzeros of C^-1 at the varying couplings, applied per call.
     long coupling_nonzeros() const { return static_cast<long>(z_.size()); }
@@ -141,17 +143,17 @@ public:
 
 private:
     std::unique_ptr<FoldedProduct> product_;
-    std::vector<int> varying_, constant_;       // the coordinates j > 0 with m0j varying, and constant nonzero
+    std::vector<int> varying_;  // the coordinates j > 0 with m0j varying
     struct ColumnEntry {
-        int row, column;  // row of C (0 .. n-2), index into varying_
+        int row, column;  // row of C (0 .. n-2), and the coupling's column j of M
         double value;
     };
     std::vector<ColumnEntry> z_;                 // the nonzeros of C^-1's columns at the varying couplings
-    std::vector<double> b_c_, b_v_, c_, y_;      // b_c at constant_, b_v at varying_
-    Eigen::VectorXd c_c_;
+    std::vector<double> c_, y_;
+    Eigen::VectorXd c_c_;                        // C^-1 b_c, b_c the constant couplings
     double s0_ = 0.0;                            // b_c^T c_c
     int columns_ = 0;                            // K
-    RowMajorMatrix M_;                           // the varying entries' evaluation
+    RowMajorMatrix M_;                           // M at rest, its varying entries evaluated per call
 };
 
 /// M evaluated and factored by the mass solver its pattern allows (mass_solver.hpp), then qdd = M^-1 Q.

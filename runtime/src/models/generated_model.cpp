@@ -60,6 +60,10 @@ public:
         call_without_angle(v_.mass_varying, u, q, q, M);
         for (const auto& [upper, lower] : mirrored_varying_) M[lower] = M[upper];
     }
+    void mass_varying_upper(const HubInput& u, const double* q, double* M) const override
+    {
+        if (v_.mass_varying != nullptr) call_without_angle(v_.mass_varying, u, q, q, M);
+    }
     const TermForces* term_forces() const override
     {
         return v_.nterms > 0 && v_.forces_terms != nullptr && v_.forces_matrix != nullptr ? this : nullptr;
