@@ -1071,8 +1071,8 @@ void amm_nx0_ny4_prescribed_first_tip_gravity_damped_depth_forces_u(const double
     out[11] = -c[52];
 }
 
-/* forces_folded:(c[97],u[5],q[4],qd[4])->(y[4]) y = P m, P (4 x 18) passed in the c slot by row pairs, P(i, k) at c[(j/2)*36 + 2k + j%2], j = i: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 72 entries that can be nonzero, a pair of rows reads the columns either row has */
-void amm_nx0_ny4_prescribed_first_tip_gravity_damped_depth_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
+/* forces_folded:(c[97],u[5],q[4],qd[4])->(y[4]) y = P m, P (4 x 18) passed in the c slot by groups of 4 rows, P(i, k) at c[(j/4)*72 + 4k + j%4], j = i: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 72 entries that can be nonzero, a group of rows reads the columns any of its rows has */
+HUBBEAM_WIDE_KERNEL void amm_nx0_ny4_prescribed_first_tip_gravity_damped_depth_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
     const double theta_ddot = u[2];
@@ -1095,62 +1095,40 @@ void amm_nx0_ny4_prescribed_first_tip_gravity_damped_depth_forces_folded(const d
     const double theta_dotsq_B2 = theta_dotsq*B2;
     const double theta_dotsq_B3 = theta_dotsq*B3;
     const double theta_dotsq_B4 = theta_dotsq*B4;
-    typedef double lanes __attribute__((vector_size(16)));
-    const auto pair = [c](int e) {
-        lanes v;
-        __builtin_memcpy(&v, c + e, sizeof v);
-        return v;
-    };
+    typedef double lanes __attribute__((vector_size(32)));
+    typedef double lanes_at __attribute__((vector_size(32), aligned(8), may_alias));
+    // column[g*18 + k]: group g's entries of column k.
+    const lanes_at* const column = reinterpret_cast<const lanes_at*>(c);
     {
-        lanes s = pair(0) * lanes{theta_ddot, theta_ddot};
-        s += pair(2) * lanes{cos_theta, cos_theta};
-        s += pair(4) * lanes{B1, B1};
-        s += pair(6) * lanes{B2, B2};
-        s += pair(8) * lanes{B3, B3};
-        s += pair(10) * lanes{B4, B4};
-        s += pair(12) * lanes{B1_dot, B1_dot};
-        s += pair(14) * lanes{B2_dot, B2_dot};
-        s += pair(16) * lanes{B3_dot, B3_dot};
-        s += pair(18) * lanes{B4_dot, B4_dot};
-        s += pair(20) * lanes{sin_theta_B1, sin_theta_B1};
-        s += pair(22) * lanes{sin_theta_B2, sin_theta_B2};
-        s += pair(24) * lanes{sin_theta_B3, sin_theta_B3};
-        s += pair(26) * lanes{sin_theta_B4, sin_theta_B4};
-        s += pair(28) * lanes{theta_dotsq_B1, theta_dotsq_B1};
-        s += pair(30) * lanes{theta_dotsq_B2, theta_dotsq_B2};
-        s += pair(32) * lanes{theta_dotsq_B3, theta_dotsq_B3};
-        s += pair(34) * lanes{theta_dotsq_B4, theta_dotsq_B4};
+        lanes s = column[0] * theta_ddot;
+        s += column[1] * cos_theta;
+        s += column[2] * B1;
+        s += column[3] * B2;
+        s += column[4] * B3;
+        s += column[5] * B4;
+        s += column[6] * B1_dot;
+        s += column[7] * B2_dot;
+        s += column[8] * B3_dot;
+        s += column[9] * B4_dot;
+        s += column[10] * sin_theta_B1;
+        s += column[11] * sin_theta_B2;
+        s += column[12] * sin_theta_B3;
+        s += column[13] * sin_theta_B4;
+        s += column[14] * theta_dotsq_B1;
+        s += column[15] * theta_dotsq_B2;
+        s += column[16] * theta_dotsq_B3;
+        s += column[17] * theta_dotsq_B4;
         out[0] = s[0];
         out[1] = s[1];
-    }
-    {
-        lanes s = pair(36) * lanes{theta_ddot, theta_ddot};
-        s += pair(38) * lanes{cos_theta, cos_theta};
-        s += pair(40) * lanes{B1, B1};
-        s += pair(42) * lanes{B2, B2};
-        s += pair(44) * lanes{B3, B3};
-        s += pair(46) * lanes{B4, B4};
-        s += pair(48) * lanes{B1_dot, B1_dot};
-        s += pair(50) * lanes{B2_dot, B2_dot};
-        s += pair(52) * lanes{B3_dot, B3_dot};
-        s += pair(54) * lanes{B4_dot, B4_dot};
-        s += pair(56) * lanes{sin_theta_B1, sin_theta_B1};
-        s += pair(58) * lanes{sin_theta_B2, sin_theta_B2};
-        s += pair(60) * lanes{sin_theta_B3, sin_theta_B3};
-        s += pair(62) * lanes{sin_theta_B4, sin_theta_B4};
-        s += pair(64) * lanes{theta_dotsq_B1, theta_dotsq_B1};
-        s += pair(66) * lanes{theta_dotsq_B2, theta_dotsq_B2};
-        s += pair(68) * lanes{theta_dotsq_B3, theta_dotsq_B3};
-        s += pair(70) * lanes{theta_dotsq_B4, theta_dotsq_B4};
-        out[2] = s[0];
-        out[3] = s[1];
+        out[2] = s[2];
+        out[3] = s[3];
     }
 }
 
 }  // namespace
 
 extern const Variant amm_nx0_ny4_prescribed_first_tip_gravity_damped_depth = {
-    .abi_version = 4,
+    .abi_version = 5,
     .name = "amm_nx0_ny4_prescribed_first_tip_gravity_damped_depth",
     .nq = 4,
     .ncoeff = 97,

@@ -1041,8 +1041,8 @@ void amm_nx0_ny4_torque_zero_tip_gravity_damped_depth_forces_u(const double* c, 
     out[0] = 1.0;
 }
 
-/* forces_folded:(c[73],u[5],q[5],qd[5])->(y[5]) y = P m, P (5 x 34) passed in the c slot by row pairs, P(i, k) at c[(j/2)*68 + 2k + j%2], j = i + 1: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 86 entries that can be nonzero, a pair of rows reads the columns either row has */
-void amm_nx0_ny4_torque_zero_tip_gravity_damped_depth_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
+/* forces_folded:(c[73],u[5],q[5],qd[5])->(y[5]) y = P m, P (5 x 34) passed in the c slot by groups of 4 rows, P(i, k) at c[(j/4)*136 + 4k + j%4], j = i + 3: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 86 entries that can be nonzero, a group of rows reads the columns any of its rows has */
+HUBBEAM_WIDE_KERNEL void amm_nx0_ny4_torque_zero_tip_gravity_damped_depth_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
     const double sin_theta = u[3];
@@ -1084,46 +1084,29 @@ void amm_nx0_ny4_torque_zero_tip_gravity_damped_depth_forces_folded(const double
     const double B4_theta_dot_B2_dot = B4_theta_dot*B2_dot;
     const double B4_theta_dot_B3_dot = B4_theta_dot*B3_dot;
     const double B4_theta_dot_B4_dot = B4_theta_dot*B4_dot;
-    typedef double lanes __attribute__((vector_size(16)));
-    const auto pair = [c](int e) {
-        lanes v;
-        __builtin_memcpy(&v, c + e, sizeof v);
-        return v;
-    };
-    out[0] = c[1]*tau + c[3]*cos_theta + c[5]*B1 + c[7]*B2 + c[9]*B3 + c[11]*B4 + c[13]*B1_dot + c[15]*B2_dot + c[17]*B3_dot + c[19]*B4_dot + c[21]*sin_theta_B1 + c[23]*sin_theta_B2 + c[25]*sin_theta_B3 + c[27]*sin_theta_B4 + c[29]*B1_theta_dotsq + c[31]*B1_theta_dot_B1_dot + c[33]*B1_theta_dot_B2_dot + c[35]*B1_theta_dot_B3_dot + c[37]*B1_theta_dot_B4_dot + c[39]*B2_theta_dotsq + c[41]*B2_theta_dot_B1_dot + c[43]*B2_theta_dot_B2_dot + c[45]*B2_theta_dot_B3_dot + c[47]*B2_theta_dot_B4_dot + c[49]*B3_theta_dotsq + c[51]*B3_theta_dot_B1_dot + c[53]*B3_theta_dot_B2_dot + c[55]*B3_theta_dot_B3_dot + c[57]*B3_theta_dot_B4_dot + c[59]*B4_theta_dotsq + c[61]*B4_theta_dot_B1_dot + c[63]*B4_theta_dot_B2_dot + c[65]*B4_theta_dot_B3_dot + c[67]*B4_theta_dot_B4_dot;
+    typedef double lanes __attribute__((vector_size(32)));
+    typedef double lanes_at __attribute__((vector_size(32), aligned(8), may_alias));
+    // column[g*34 + k]: group g's entries of column k.
+    const lanes_at* const column = reinterpret_cast<const lanes_at*>(c);
+    out[0] = c[3]*tau + c[7]*cos_theta + c[11]*B1 + c[15]*B2 + c[19]*B3 + c[23]*B4 + c[27]*B1_dot + c[31]*B2_dot + c[35]*B3_dot + c[39]*B4_dot + c[43]*sin_theta_B1 + c[47]*sin_theta_B2 + c[51]*sin_theta_B3 + c[55]*sin_theta_B4 + c[59]*B1_theta_dotsq + c[63]*B1_theta_dot_B1_dot + c[67]*B1_theta_dot_B2_dot + c[71]*B1_theta_dot_B3_dot + c[75]*B1_theta_dot_B4_dot + c[79]*B2_theta_dotsq + c[83]*B2_theta_dot_B1_dot + c[87]*B2_theta_dot_B2_dot + c[91]*B2_theta_dot_B3_dot + c[95]*B2_theta_dot_B4_dot + c[99]*B3_theta_dotsq + c[103]*B3_theta_dot_B1_dot + c[107]*B3_theta_dot_B2_dot + c[111]*B3_theta_dot_B3_dot + c[115]*B3_theta_dot_B4_dot + c[119]*B4_theta_dotsq + c[123]*B4_theta_dot_B1_dot + c[127]*B4_theta_dot_B2_dot + c[131]*B4_theta_dot_B3_dot + c[135]*B4_theta_dot_B4_dot;
     {
-        lanes s = pair(70) * lanes{cos_theta, cos_theta};
-        s += pair(72) * lanes{B1, B1};
-        s += pair(74) * lanes{B2, B2};
-        s += pair(76) * lanes{B3, B3};
-        s += pair(78) * lanes{B4, B4};
-        s += pair(80) * lanes{B1_dot, B1_dot};
-        s += pair(82) * lanes{B2_dot, B2_dot};
-        s += pair(84) * lanes{B3_dot, B3_dot};
-        s += pair(86) * lanes{B4_dot, B4_dot};
-        s += pair(96) * lanes{B1_theta_dotsq, B1_theta_dotsq};
-        s += pair(106) * lanes{B2_theta_dotsq, B2_theta_dotsq};
-        s += pair(116) * lanes{B3_theta_dotsq, B3_theta_dotsq};
-        s += pair(126) * lanes{B4_theta_dotsq, B4_theta_dotsq};
+        lanes s = column[35] * cos_theta;
+        s += column[36] * B1;
+        s += column[37] * B2;
+        s += column[38] * B3;
+        s += column[39] * B4;
+        s += column[40] * B1_dot;
+        s += column[41] * B2_dot;
+        s += column[42] * B3_dot;
+        s += column[43] * B4_dot;
+        s += column[48] * B1_theta_dotsq;
+        s += column[53] * B2_theta_dotsq;
+        s += column[58] * B3_theta_dotsq;
+        s += column[63] * B4_theta_dotsq;
         out[1] = s[0];
         out[2] = s[1];
-    }
-    {
-        lanes s = pair(138) * lanes{cos_theta, cos_theta};
-        s += pair(140) * lanes{B1, B1};
-        s += pair(142) * lanes{B2, B2};
-        s += pair(144) * lanes{B3, B3};
-        s += pair(146) * lanes{B4, B4};
-        s += pair(148) * lanes{B1_dot, B1_dot};
-        s += pair(150) * lanes{B2_dot, B2_dot};
-        s += pair(152) * lanes{B3_dot, B3_dot};
-        s += pair(154) * lanes{B4_dot, B4_dot};
-        s += pair(164) * lanes{B1_theta_dotsq, B1_theta_dotsq};
-        s += pair(174) * lanes{B2_theta_dotsq, B2_theta_dotsq};
-        s += pair(184) * lanes{B3_theta_dotsq, B3_theta_dotsq};
-        s += pair(194) * lanes{B4_theta_dotsq, B4_theta_dotsq};
-        out[3] = s[0];
-        out[4] = s[1];
+        out[3] = s[2];
+        out[4] = s[3];
     }
 }
 
@@ -1171,7 +1154,7 @@ void amm_nx0_ny4_torque_zero_tip_gravity_damped_depth_mass_q_product(const doubl
 }  // namespace
 
 extern const Variant amm_nx0_ny4_torque_zero_tip_gravity_damped_depth = {
-    .abi_version = 4,
+    .abi_version = 5,
     .name = "amm_nx0_ny4_torque_zero_tip_gravity_damped_depth",
     .nq = 5,
     .ncoeff = 73,

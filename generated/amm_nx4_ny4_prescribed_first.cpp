@@ -1120,8 +1120,8 @@ void amm_nx4_ny4_prescribed_first_forces_u(const double* c, const double* u, con
     out[23] = c[62] + c[16]*A1 + c[26]*A2 + c[36]*A3 + c[46]*A4;
 }
 
-/* forces_folded:(c[110],u[3],q[8],qd[8])->(y[8]) y = P m, P (8 x 34) passed in the c slot by row pairs, P(i, k) at c[(j/2)*68 + 2k + j%2], j = i: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 100 entries that can be nonzero, a pair of rows reads the columns either row has */
-void amm_nx4_ny4_prescribed_first_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
+/* forces_folded:(c[110],u[3],q[8],qd[8])->(y[8]) y = P m, P (8 x 34) passed in the c slot by groups of 4 rows, P(i, k) at c[(j/4)*136 + 4k + j%4], j = i: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 100 entries that can be nonzero, a group of rows reads the columns any of its rows has */
+HUBBEAM_WIDE_KERNEL void amm_nx4_ny4_prescribed_first_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
     const double theta_ddot = u[2];
@@ -1166,90 +1166,62 @@ void amm_nx4_ny4_prescribed_first_forces_folded(const double* c, const double* u
     const double theta_dotsq_B2 = theta_dotsq*B2;
     const double theta_dotsq_B3 = theta_dotsq*B3;
     const double theta_dotsq_B4 = theta_dotsq*B4;
-    typedef double lanes __attribute__((vector_size(16)));
-    const auto pair = [c](int e) {
-        lanes v;
-        __builtin_memcpy(&v, c + e, sizeof v);
-        return v;
-    };
+    typedef double lanes __attribute__((vector_size(32)));
+    typedef double lanes_at __attribute__((vector_size(32), aligned(8), may_alias));
+    // column[g*34 + k]: group g's entries of column k.
+    const lanes_at* const column = reinterpret_cast<const lanes_at*>(c);
     {
-        lanes s = pair(2) * lanes{A1, A1};
-        s += pair(4) * lanes{A2, A2};
-        s += pair(18) * lanes{theta_dotsq, theta_dotsq};
-        s += pair(28) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
-        s += pair(30) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
-        s += pair(32) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
-        s += pair(34) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
-        s += pair(44) * lanes{theta_ddot_B1, theta_ddot_B1};
-        s += pair(46) * lanes{theta_ddot_B2, theta_ddot_B2};
-        s += pair(48) * lanes{theta_ddot_B3, theta_ddot_B3};
-        s += pair(50) * lanes{theta_ddot_B4, theta_ddot_B4};
-        s += pair(52) * lanes{theta_dotsq_A1, theta_dotsq_A1};
-        s += pair(54) * lanes{theta_dotsq_A2, theta_dotsq_A2};
+        lanes s = column[1] * A1;
+        s += column[2] * A2;
+        s += column[3] * A3;
+        s += column[4] * A4;
+        s += column[9] * theta_dotsq;
+        s += column[14] * theta_dot_B1_dot;
+        s += column[15] * theta_dot_B2_dot;
+        s += column[16] * theta_dot_B3_dot;
+        s += column[17] * theta_dot_B4_dot;
+        s += column[22] * theta_ddot_B1;
+        s += column[23] * theta_ddot_B2;
+        s += column[24] * theta_ddot_B3;
+        s += column[25] * theta_ddot_B4;
+        s += column[26] * theta_dotsq_A1;
+        s += column[27] * theta_dotsq_A2;
+        s += column[28] * theta_dotsq_A3;
+        s += column[29] * theta_dotsq_A4;
         out[0] = s[0];
         out[1] = s[1];
+        out[2] = s[2];
+        out[3] = s[3];
     }
     {
-        lanes s = pair(74) * lanes{A3, A3};
-        s += pair(76) * lanes{A4, A4};
-        s += pair(86) * lanes{theta_dotsq, theta_dotsq};
-        s += pair(96) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
-        s += pair(98) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
-        s += pair(100) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
-        s += pair(102) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
-        s += pair(112) * lanes{theta_ddot_B1, theta_ddot_B1};
-        s += pair(114) * lanes{theta_ddot_B2, theta_ddot_B2};
-        s += pair(116) * lanes{theta_ddot_B3, theta_ddot_B3};
-        s += pair(118) * lanes{theta_ddot_B4, theta_ddot_B4};
-        s += pair(124) * lanes{theta_dotsq_A3, theta_dotsq_A3};
-        s += pair(126) * lanes{theta_dotsq_A4, theta_dotsq_A4};
-        out[2] = s[0];
-        out[3] = s[1];
-    }
-    {
-        lanes s = pair(136) * lanes{theta_ddot, theta_ddot};
-        s += pair(146) * lanes{B1, B1};
-        s += pair(148) * lanes{B2, B2};
-        s += pair(156) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
-        s += pair(158) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
-        s += pair(160) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
-        s += pair(162) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
-        s += pair(172) * lanes{theta_ddot_A1, theta_ddot_A1};
-        s += pair(174) * lanes{theta_ddot_A2, theta_ddot_A2};
-        s += pair(176) * lanes{theta_ddot_A3, theta_ddot_A3};
-        s += pair(178) * lanes{theta_ddot_A4, theta_ddot_A4};
-        s += pair(196) * lanes{theta_dotsq_B1, theta_dotsq_B1};
-        s += pair(198) * lanes{theta_dotsq_B2, theta_dotsq_B2};
-        s += pair(200) * lanes{theta_dotsq_B3, theta_dotsq_B3};
-        s += pair(202) * lanes{theta_dotsq_B4, theta_dotsq_B4};
+        lanes s = column[34] * theta_ddot;
+        s += column[39] * B1;
+        s += column[40] * B2;
+        s += column[41] * B3;
+        s += column[42] * B4;
+        s += column[44] * theta_dot_A1_dot;
+        s += column[45] * theta_dot_A2_dot;
+        s += column[46] * theta_dot_A3_dot;
+        s += column[47] * theta_dot_A4_dot;
+        s += column[52] * theta_ddot_A1;
+        s += column[53] * theta_ddot_A2;
+        s += column[54] * theta_ddot_A3;
+        s += column[55] * theta_ddot_A4;
+        s += column[64] * theta_dotsq_B1;
+        s += column[65] * theta_dotsq_B2;
+        s += column[66] * theta_dotsq_B3;
+        s += column[67] * theta_dotsq_B4;
         out[4] = s[0];
         out[5] = s[1];
-    }
-    {
-        lanes s = pair(204) * lanes{theta_ddot, theta_ddot};
-        s += pair(218) * lanes{B3, B3};
-        s += pair(220) * lanes{B4, B4};
-        s += pair(224) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
-        s += pair(226) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
-        s += pair(228) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
-        s += pair(230) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
-        s += pair(240) * lanes{theta_ddot_A1, theta_ddot_A1};
-        s += pair(242) * lanes{theta_ddot_A2, theta_ddot_A2};
-        s += pair(244) * lanes{theta_ddot_A3, theta_ddot_A3};
-        s += pair(246) * lanes{theta_ddot_A4, theta_ddot_A4};
-        s += pair(264) * lanes{theta_dotsq_B1, theta_dotsq_B1};
-        s += pair(266) * lanes{theta_dotsq_B2, theta_dotsq_B2};
-        s += pair(268) * lanes{theta_dotsq_B3, theta_dotsq_B3};
-        s += pair(270) * lanes{theta_dotsq_B4, theta_dotsq_B4};
-        out[6] = s[0];
-        out[7] = s[1];
+        out[6] = s[2];
+        out[7] = s[3];
     }
 }
 
 }  // namespace
 
 extern const Variant amm_nx4_ny4_prescribed_first = {
-    .abi_version = 4,
+    .abi_version = 5,
     .name = "amm_nx4_ny4_prescribed_first",
     .nq = 8,
     .ncoeff = 110,

@@ -1235,8 +1235,8 @@ void amm_nx4_ny4_torque_first_forces_u(const double* c, const double* u, const d
     out[0] = 1.0;
 }
 
-/* forces_folded:(c[110],u[3],q[9],qd[9])->(y[9]) y = P m, P (9 x 46) passed in the c slot by row pairs, P(i, k) at c[(j/2)*92 + 2k + j%2], j = i + 1: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 89 entries that can be nonzero, a pair of rows reads the columns either row has */
-void amm_nx4_ny4_torque_first_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
+/* forces_folded:(c[110],u[3],q[9],qd[9])->(y[9]) y = P m, P (9 x 46) passed in the c slot by groups of 4 rows, P(i, k) at c[(j/4)*184 + 4k + j%4], j = i + 3: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 89 entries that can be nonzero, a group of rows reads the columns any of its rows has */
+HUBBEAM_WIDE_KERNEL void amm_nx4_ny4_torque_first_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
     const double A1 = q[1];
@@ -1301,66 +1301,47 @@ void amm_nx4_ny4_torque_first_forces_folded(const double* c, const double* u, co
     const double B4_theta_dot_B2_dot = B4_theta_dot*B2_dot;
     const double B4_theta_dot_B3_dot = B4_theta_dot*B3_dot;
     const double B4_theta_dot_B4_dot = B4_theta_dot*B4_dot;
-    typedef double lanes __attribute__((vector_size(16)));
-    const auto pair = [c](int e) {
-        lanes v;
-        __builtin_memcpy(&v, c + e, sizeof v);
-        return v;
-    };
-    out[0] = c[1]*tau + c[21]*theta_dot_A1_dot + c[23]*theta_dot_A2_dot + c[25]*theta_dot_A3_dot + c[27]*theta_dot_A4_dot + c[39]*A1_theta_dot_A1_dot + c[43]*A2_theta_dot_A2_dot + c[47]*A3_theta_dot_A3_dot + c[51]*A4_theta_dot_A4_dot + c[55]*B1_theta_dot_B1_dot + c[57]*B1_theta_dot_B2_dot + c[59]*B1_theta_dot_B3_dot + c[61]*B1_theta_dot_B4_dot + c[65]*B2_theta_dot_B1_dot + c[67]*B2_theta_dot_B2_dot + c[69]*B2_theta_dot_B3_dot + c[71]*B2_theta_dot_B4_dot + c[75]*B3_theta_dot_B1_dot + c[77]*B3_theta_dot_B2_dot + c[79]*B3_theta_dot_B3_dot + c[81]*B3_theta_dot_B4_dot + c[85]*B4_theta_dot_B1_dot + c[87]*B4_theta_dot_B2_dot + c[89]*B4_theta_dot_B3_dot + c[91]*B4_theta_dot_B4_dot;
+    typedef double lanes __attribute__((vector_size(32)));
+    typedef double lanes_at __attribute__((vector_size(32), aligned(8), may_alias));
+    // column[g*46 + k]: group g's entries of column k.
+    const lanes_at* const column = reinterpret_cast<const lanes_at*>(c);
+    out[0] = c[3]*tau + c[43]*theta_dot_A1_dot + c[47]*theta_dot_A2_dot + c[51]*theta_dot_A3_dot + c[55]*theta_dot_A4_dot + c[79]*A1_theta_dot_A1_dot + c[87]*A2_theta_dot_A2_dot + c[95]*A3_theta_dot_A3_dot + c[103]*A4_theta_dot_A4_dot + c[111]*B1_theta_dot_B1_dot + c[115]*B1_theta_dot_B2_dot + c[119]*B1_theta_dot_B3_dot + c[123]*B1_theta_dot_B4_dot + c[131]*B2_theta_dot_B1_dot + c[135]*B2_theta_dot_B2_dot + c[139]*B2_theta_dot_B3_dot + c[143]*B2_theta_dot_B4_dot + c[151]*B3_theta_dot_B1_dot + c[155]*B3_theta_dot_B2_dot + c[159]*B3_theta_dot_B3_dot + c[163]*B3_theta_dot_B4_dot + c[171]*B4_theta_dot_B1_dot + c[175]*B4_theta_dot_B2_dot + c[179]*B4_theta_dot_B3_dot + c[183]*B4_theta_dot_B4_dot;
     {
-        lanes s = pair(94) * lanes{A1, A1};
-        s += pair(96) * lanes{A2, A2};
-        s += pair(110) * lanes{theta_dotsq, theta_dotsq};
-        s += pair(120) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
-        s += pair(122) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
-        s += pair(124) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
-        s += pair(126) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
-        s += pair(128) * lanes{A1_theta_dotsq, A1_theta_dotsq};
-        s += pair(132) * lanes{A2_theta_dotsq, A2_theta_dotsq};
+        lanes s = column[47] * A1;
+        s += column[48] * A2;
+        s += column[49] * A3;
+        s += column[50] * A4;
+        s += column[55] * theta_dotsq;
+        s += column[60] * theta_dot_B1_dot;
+        s += column[61] * theta_dot_B2_dot;
+        s += column[62] * theta_dot_B3_dot;
+        s += column[63] * theta_dot_B4_dot;
+        s += column[64] * A1_theta_dotsq;
+        s += column[66] * A2_theta_dotsq;
+        s += column[68] * A3_theta_dotsq;
+        s += column[70] * A4_theta_dotsq;
         out[1] = s[0];
         out[2] = s[1];
+        out[3] = s[2];
+        out[4] = s[3];
     }
     {
-        lanes s = pair(190) * lanes{A3, A3};
-        s += pair(192) * lanes{A4, A4};
-        s += pair(202) * lanes{theta_dotsq, theta_dotsq};
-        s += pair(212) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
-        s += pair(214) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
-        s += pair(216) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
-        s += pair(218) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
-        s += pair(228) * lanes{A3_theta_dotsq, A3_theta_dotsq};
-        s += pair(232) * lanes{A4_theta_dotsq, A4_theta_dotsq};
-        out[3] = s[0];
-        out[4] = s[1];
-    }
-    {
-        lanes s = pair(286) * lanes{B1, B1};
-        s += pair(288) * lanes{B2, B2};
-        s += pair(296) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
-        s += pair(298) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
-        s += pair(300) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
-        s += pair(302) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
-        s += pair(328) * lanes{B1_theta_dotsq, B1_theta_dotsq};
-        s += pair(338) * lanes{B2_theta_dotsq, B2_theta_dotsq};
-        s += pair(348) * lanes{B3_theta_dotsq, B3_theta_dotsq};
-        s += pair(358) * lanes{B4_theta_dotsq, B4_theta_dotsq};
+        lanes s = column[97] * B1;
+        s += column[98] * B2;
+        s += column[99] * B3;
+        s += column[100] * B4;
+        s += column[102] * theta_dot_A1_dot;
+        s += column[103] * theta_dot_A2_dot;
+        s += column[104] * theta_dot_A3_dot;
+        s += column[105] * theta_dot_A4_dot;
+        s += column[118] * B1_theta_dotsq;
+        s += column[123] * B2_theta_dotsq;
+        s += column[128] * B3_theta_dotsq;
+        s += column[133] * B4_theta_dotsq;
         out[5] = s[0];
         out[6] = s[1];
-    }
-    {
-        lanes s = pair(382) * lanes{B3, B3};
-        s += pair(384) * lanes{B4, B4};
-        s += pair(388) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
-        s += pair(390) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
-        s += pair(392) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
-        s += pair(394) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
-        s += pair(420) * lanes{B1_theta_dotsq, B1_theta_dotsq};
-        s += pair(430) * lanes{B2_theta_dotsq, B2_theta_dotsq};
-        s += pair(440) * lanes{B3_theta_dotsq, B3_theta_dotsq};
-        s += pair(450) * lanes{B4_theta_dotsq, B4_theta_dotsq};
-        out[7] = s[0];
-        out[8] = s[1];
+        out[7] = s[2];
+        out[8] = s[3];
     }
 }
 
@@ -1476,7 +1457,7 @@ void amm_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, c
 }  // namespace
 
 extern const Variant amm_nx4_ny4_torque_first = {
-    .abi_version = 4,
+    .abi_version = 5,
     .name = "amm_nx4_ny4_torque_first",
     .nq = 9,
     .ncoeff = 110,

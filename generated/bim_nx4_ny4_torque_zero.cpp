@@ -1252,8 +1252,8 @@ void bim_nx4_ny4_torque_zero_forces_u(const double* c, const double* u, const do
     out[0] = 1.0;
 }
 
-/* forces_folded:(c[77],u[3],q[9],qd[9])->(y[9]) y = P m, P (9 x 58) passed in the c slot by row pairs, P(i, k) at c[(j/2)*116 + 2k + j%2], j = i + 1: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 137 entries that can be nonzero, a pair of rows reads the columns either row has */
-void bim_nx4_ny4_torque_zero_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
+/* forces_folded:(c[77],u[3],q[9],qd[9])->(y[9]) y = P m, P (9 x 58) passed in the c slot by groups of 4 rows, P(i, k) at c[(j/4)*232 + 4k + j%4], j = i + 3: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 137 entries that can be nonzero, a group of rows reads the columns any of its rows has */
+HUBBEAM_WIDE_KERNEL void bim_nx4_ny4_torque_zero_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
     const double A1 = q[1];
@@ -1330,78 +1330,47 @@ void bim_nx4_ny4_torque_zero_forces_folded(const double* c, const double* u, con
     const double B4_theta_dot_B2_dot = B4_theta_dot*B2_dot;
     const double B4_theta_dot_B3_dot = B4_theta_dot*B3_dot;
     const double B4_theta_dot_B4_dot = B4_theta_dot*B4_dot;
-    typedef double lanes __attribute__((vector_size(16)));
-    const auto pair = [c](int e) {
-        lanes v;
-        __builtin_memcpy(&v, c + e, sizeof v);
-        return v;
-    };
-    out[0] = c[1]*tau + c[21]*theta_dot_A1_dot + c[23]*theta_dot_A2_dot + c[25]*theta_dot_A3_dot + c[27]*theta_dot_A4_dot + c[39]*A1_theta_dot_A1_dot + c[41]*A1_theta_dot_A2_dot + c[43]*A1_theta_dot_A3_dot + c[45]*A1_theta_dot_A4_dot + c[49]*A2_theta_dot_A1_dot + c[51]*A2_theta_dot_A2_dot + c[53]*A2_theta_dot_A3_dot + c[55]*A2_theta_dot_A4_dot + c[59]*A3_theta_dot_A1_dot + c[61]*A3_theta_dot_A2_dot + c[63]*A3_theta_dot_A3_dot + c[65]*A3_theta_dot_A4_dot + c[69]*A4_theta_dot_A1_dot + c[71]*A4_theta_dot_A2_dot + c[73]*A4_theta_dot_A3_dot + c[75]*A4_theta_dot_A4_dot + c[79]*B1_theta_dot_B1_dot + c[81]*B1_theta_dot_B2_dot + c[83]*B1_theta_dot_B3_dot + c[85]*B1_theta_dot_B4_dot + c[89]*B2_theta_dot_B1_dot + c[91]*B2_theta_dot_B2_dot + c[93]*B2_theta_dot_B3_dot + c[95]*B2_theta_dot_B4_dot + c[99]*B3_theta_dot_B1_dot + c[101]*B3_theta_dot_B2_dot + c[103]*B3_theta_dot_B3_dot + c[105]*B3_theta_dot_B4_dot + c[109]*B4_theta_dot_B1_dot + c[111]*B4_theta_dot_B2_dot + c[113]*B4_theta_dot_B3_dot + c[115]*B4_theta_dot_B4_dot;
+    typedef double lanes __attribute__((vector_size(32)));
+    typedef double lanes_at __attribute__((vector_size(32), aligned(8), may_alias));
+    // column[g*58 + k]: group g's entries of column k.
+    const lanes_at* const column = reinterpret_cast<const lanes_at*>(c);
+    out[0] = c[3]*tau + c[43]*theta_dot_A1_dot + c[47]*theta_dot_A2_dot + c[51]*theta_dot_A3_dot + c[55]*theta_dot_A4_dot + c[79]*A1_theta_dot_A1_dot + c[83]*A1_theta_dot_A2_dot + c[87]*A1_theta_dot_A3_dot + c[91]*A1_theta_dot_A4_dot + c[99]*A2_theta_dot_A1_dot + c[103]*A2_theta_dot_A2_dot + c[107]*A2_theta_dot_A3_dot + c[111]*A2_theta_dot_A4_dot + c[119]*A3_theta_dot_A1_dot + c[123]*A3_theta_dot_A2_dot + c[127]*A3_theta_dot_A3_dot + c[131]*A3_theta_dot_A4_dot + c[139]*A4_theta_dot_A1_dot + c[143]*A4_theta_dot_A2_dot + c[147]*A4_theta_dot_A3_dot + c[151]*A4_theta_dot_A4_dot + c[159]*B1_theta_dot_B1_dot + c[163]*B1_theta_dot_B2_dot + c[167]*B1_theta_dot_B3_dot + c[171]*B1_theta_dot_B4_dot + c[179]*B2_theta_dot_B1_dot + c[183]*B2_theta_dot_B2_dot + c[187]*B2_theta_dot_B3_dot + c[191]*B2_theta_dot_B4_dot + c[199]*B3_theta_dot_B1_dot + c[203]*B3_theta_dot_B2_dot + c[207]*B3_theta_dot_B3_dot + c[211]*B3_theta_dot_B4_dot + c[219]*B4_theta_dot_B1_dot + c[223]*B4_theta_dot_B2_dot + c[227]*B4_theta_dot_B3_dot + c[231]*B4_theta_dot_B4_dot;
     {
-        lanes s = pair(118) * lanes{A1, A1};
-        s += pair(120) * lanes{A2, A2};
-        s += pair(122) * lanes{A3, A3};
-        s += pair(124) * lanes{A4, A4};
-        s += pair(134) * lanes{theta_dotsq, theta_dotsq};
-        s += pair(144) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
-        s += pair(146) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
-        s += pair(148) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
-        s += pair(150) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
-        s += pair(152) * lanes{A1_theta_dotsq, A1_theta_dotsq};
-        s += pair(162) * lanes{A2_theta_dotsq, A2_theta_dotsq};
-        s += pair(172) * lanes{A3_theta_dotsq, A3_theta_dotsq};
-        s += pair(182) * lanes{A4_theta_dotsq, A4_theta_dotsq};
+        lanes s = column[59] * A1;
+        s += column[60] * A2;
+        s += column[61] * A3;
+        s += column[62] * A4;
+        s += column[67] * theta_dotsq;
+        s += column[72] * theta_dot_B1_dot;
+        s += column[73] * theta_dot_B2_dot;
+        s += column[74] * theta_dot_B3_dot;
+        s += column[75] * theta_dot_B4_dot;
+        s += column[76] * A1_theta_dotsq;
+        s += column[81] * A2_theta_dotsq;
+        s += column[86] * A3_theta_dotsq;
+        s += column[91] * A4_theta_dotsq;
         out[1] = s[0];
         out[2] = s[1];
+        out[3] = s[2];
+        out[4] = s[3];
     }
     {
-        lanes s = pair(234) * lanes{A1, A1};
-        s += pair(236) * lanes{A2, A2};
-        s += pair(238) * lanes{A3, A3};
-        s += pair(240) * lanes{A4, A4};
-        s += pair(250) * lanes{theta_dotsq, theta_dotsq};
-        s += pair(260) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
-        s += pair(262) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
-        s += pair(264) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
-        s += pair(266) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
-        s += pair(268) * lanes{A1_theta_dotsq, A1_theta_dotsq};
-        s += pair(278) * lanes{A2_theta_dotsq, A2_theta_dotsq};
-        s += pair(288) * lanes{A3_theta_dotsq, A3_theta_dotsq};
-        s += pair(298) * lanes{A4_theta_dotsq, A4_theta_dotsq};
-        out[3] = s[0];
-        out[4] = s[1];
-    }
-    {
-        lanes s = pair(358) * lanes{B1, B1};
-        s += pair(360) * lanes{B2, B2};
-        s += pair(362) * lanes{B3, B3};
-        s += pair(364) * lanes{B4, B4};
-        s += pair(368) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
-        s += pair(370) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
-        s += pair(372) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
-        s += pair(374) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
-        s += pair(424) * lanes{B1_theta_dotsq, B1_theta_dotsq};
-        s += pair(434) * lanes{B2_theta_dotsq, B2_theta_dotsq};
-        s += pair(444) * lanes{B3_theta_dotsq, B3_theta_dotsq};
-        s += pair(454) * lanes{B4_theta_dotsq, B4_theta_dotsq};
+        lanes s = column[121] * B1;
+        s += column[122] * B2;
+        s += column[123] * B3;
+        s += column[124] * B4;
+        s += column[126] * theta_dot_A1_dot;
+        s += column[127] * theta_dot_A2_dot;
+        s += column[128] * theta_dot_A3_dot;
+        s += column[129] * theta_dot_A4_dot;
+        s += column[154] * B1_theta_dotsq;
+        s += column[159] * B2_theta_dotsq;
+        s += column[164] * B3_theta_dotsq;
+        s += column[169] * B4_theta_dotsq;
         out[5] = s[0];
         out[6] = s[1];
-    }
-    {
-        lanes s = pair(474) * lanes{B1, B1};
-        s += pair(476) * lanes{B2, B2};
-        s += pair(478) * lanes{B3, B3};
-        s += pair(480) * lanes{B4, B4};
-        s += pair(484) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
-        s += pair(486) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
-        s += pair(488) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
-        s += pair(490) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
-        s += pair(540) * lanes{B1_theta_dotsq, B1_theta_dotsq};
-        s += pair(550) * lanes{B2_theta_dotsq, B2_theta_dotsq};
-        s += pair(560) * lanes{B3_theta_dotsq, B3_theta_dotsq};
-        s += pair(570) * lanes{B4_theta_dotsq, B4_theta_dotsq};
-        out[7] = s[0];
-        out[8] = s[1];
+        out[7] = s[2];
+        out[8] = s[3];
     }
 }
 
@@ -1523,7 +1492,7 @@ void bim_nx4_ny4_torque_zero_mass_q_product(const double* c, const double* u, co
 }  // namespace
 
 extern const Variant bim_nx4_ny4_torque_zero = {
-    .abi_version = 4,
+    .abi_version = 5,
     .name = "bim_nx4_ny4_torque_zero",
     .nq = 9,
     .ncoeff = 77,

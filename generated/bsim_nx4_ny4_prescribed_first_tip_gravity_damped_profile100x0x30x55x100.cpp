@@ -2151,8 +2151,8 @@ void bsim_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100_for
     out[23] = -c[122] + c[37]*A1 + c[53]*A2 + c[67]*A3 + c[79]*A4;
 }
 
-/* forces_folded:(c[188],u[5],q[8],qd[8])->(y[8]) y = P m, P (8 x 48) passed in the c slot by row pairs, P(i, k) at c[(j/2)*96 + 2k + j%2], j = i: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 192 entries that can be nonzero, a pair of rows reads the columns either row has */
-void bsim_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
+/* forces_folded:(c[188],u[5],q[8],qd[8])->(y[8]) y = P m, P (8 x 48) passed in the c slot by groups of 4 rows, P(i, k) at c[(j/4)*192 + 4k + j%4], j = i: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 192 entries that can be nonzero, a group of rows reads the columns any of its rows has */
+HUBBEAM_WIDE_KERNEL void bsim_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
     const double theta_ddot = u[2];
@@ -2203,130 +2203,76 @@ void bsim_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100_for
     const double theta_dotsq_B2 = theta_dotsq*B2;
     const double theta_dotsq_B3 = theta_dotsq*B3;
     const double theta_dotsq_B4 = theta_dotsq*B4;
-    typedef double lanes __attribute__((vector_size(16)));
-    const auto pair = [c](int e) {
-        lanes v;
-        __builtin_memcpy(&v, c + e, sizeof v);
-        return v;
-    };
+    typedef double lanes __attribute__((vector_size(32)));
+    typedef double lanes_at __attribute__((vector_size(32), aligned(8), may_alias));
+    // column[g*48 + k]: group g's entries of column k.
+    const lanes_at* const column = reinterpret_cast<const lanes_at*>(c);
     {
-        lanes s = pair(2) * lanes{sin_theta, sin_theta};
-        s += pair(6) * lanes{A1, A1};
-        s += pair(8) * lanes{A2, A2};
-        s += pair(10) * lanes{A3, A3};
-        s += pair(12) * lanes{A4, A4};
-        s += pair(22) * lanes{A1_dot, A1_dot};
-        s += pair(24) * lanes{A2_dot, A2_dot};
-        s += pair(26) * lanes{A3_dot, A3_dot};
-        s += pair(28) * lanes{A4_dot, A4_dot};
-        s += pair(38) * lanes{theta_dotsq, theta_dotsq};
-        s += pair(48) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
-        s += pair(50) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
-        s += pair(52) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
-        s += pair(54) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
-        s += pair(64) * lanes{theta_ddot_B1, theta_ddot_B1};
-        s += pair(66) * lanes{theta_ddot_B2, theta_ddot_B2};
-        s += pair(68) * lanes{theta_ddot_B3, theta_ddot_B3};
-        s += pair(70) * lanes{theta_ddot_B4, theta_ddot_B4};
-        s += pair(80) * lanes{theta_dotsq_A1, theta_dotsq_A1};
-        s += pair(82) * lanes{theta_dotsq_A2, theta_dotsq_A2};
-        s += pair(84) * lanes{theta_dotsq_A3, theta_dotsq_A3};
-        s += pair(86) * lanes{theta_dotsq_A4, theta_dotsq_A4};
+        lanes s = column[1] * sin_theta;
+        s += column[3] * A1;
+        s += column[4] * A2;
+        s += column[5] * A3;
+        s += column[6] * A4;
+        s += column[11] * A1_dot;
+        s += column[12] * A2_dot;
+        s += column[13] * A3_dot;
+        s += column[14] * A4_dot;
+        s += column[19] * theta_dotsq;
+        s += column[24] * theta_dot_B1_dot;
+        s += column[25] * theta_dot_B2_dot;
+        s += column[26] * theta_dot_B3_dot;
+        s += column[27] * theta_dot_B4_dot;
+        s += column[32] * theta_ddot_B1;
+        s += column[33] * theta_ddot_B2;
+        s += column[34] * theta_ddot_B3;
+        s += column[35] * theta_ddot_B4;
+        s += column[40] * theta_dotsq_A1;
+        s += column[41] * theta_dotsq_A2;
+        s += column[42] * theta_dotsq_A3;
+        s += column[43] * theta_dotsq_A4;
         out[0] = s[0];
         out[1] = s[1];
+        out[2] = s[2];
+        out[3] = s[3];
     }
     {
-        lanes s = pair(98) * lanes{sin_theta, sin_theta};
-        s += pair(102) * lanes{A1, A1};
-        s += pair(104) * lanes{A2, A2};
-        s += pair(106) * lanes{A3, A3};
-        s += pair(108) * lanes{A4, A4};
-        s += pair(118) * lanes{A1_dot, A1_dot};
-        s += pair(120) * lanes{A2_dot, A2_dot};
-        s += pair(122) * lanes{A3_dot, A3_dot};
-        s += pair(124) * lanes{A4_dot, A4_dot};
-        s += pair(134) * lanes{theta_dotsq, theta_dotsq};
-        s += pair(144) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
-        s += pair(146) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
-        s += pair(148) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
-        s += pair(150) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
-        s += pair(160) * lanes{theta_ddot_B1, theta_ddot_B1};
-        s += pair(162) * lanes{theta_ddot_B2, theta_ddot_B2};
-        s += pair(164) * lanes{theta_ddot_B3, theta_ddot_B3};
-        s += pair(166) * lanes{theta_ddot_B4, theta_ddot_B4};
-        s += pair(176) * lanes{theta_dotsq_A1, theta_dotsq_A1};
-        s += pair(178) * lanes{theta_dotsq_A2, theta_dotsq_A2};
-        s += pair(180) * lanes{theta_dotsq_A3, theta_dotsq_A3};
-        s += pair(182) * lanes{theta_dotsq_A4, theta_dotsq_A4};
-        out[2] = s[0];
-        out[3] = s[1];
-    }
-    {
-        lanes s = pair(192) * lanes{theta_ddot, theta_ddot};
-        s += pair(196) * lanes{cos_theta, cos_theta};
-        s += pair(206) * lanes{B1, B1};
-        s += pair(208) * lanes{B2, B2};
-        s += pair(210) * lanes{B3, B3};
-        s += pair(212) * lanes{B4, B4};
-        s += pair(222) * lanes{B1_dot, B1_dot};
-        s += pair(224) * lanes{B2_dot, B2_dot};
-        s += pair(226) * lanes{B3_dot, B3_dot};
-        s += pair(228) * lanes{B4_dot, B4_dot};
-        s += pair(232) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
-        s += pair(234) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
-        s += pair(236) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
-        s += pair(238) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
-        s += pair(248) * lanes{theta_ddot_A1, theta_ddot_A1};
-        s += pair(250) * lanes{theta_ddot_A2, theta_ddot_A2};
-        s += pair(252) * lanes{theta_ddot_A3, theta_ddot_A3};
-        s += pair(254) * lanes{theta_ddot_A4, theta_ddot_A4};
-        s += pair(264) * lanes{sin_theta_B1, sin_theta_B1};
-        s += pair(266) * lanes{sin_theta_B2, sin_theta_B2};
-        s += pair(268) * lanes{sin_theta_B3, sin_theta_B3};
-        s += pair(270) * lanes{sin_theta_B4, sin_theta_B4};
-        s += pair(280) * lanes{theta_dotsq_B1, theta_dotsq_B1};
-        s += pair(282) * lanes{theta_dotsq_B2, theta_dotsq_B2};
-        s += pair(284) * lanes{theta_dotsq_B3, theta_dotsq_B3};
-        s += pair(286) * lanes{theta_dotsq_B4, theta_dotsq_B4};
+        lanes s = column[48] * theta_ddot;
+        s += column[50] * cos_theta;
+        s += column[55] * B1;
+        s += column[56] * B2;
+        s += column[57] * B3;
+        s += column[58] * B4;
+        s += column[63] * B1_dot;
+        s += column[64] * B2_dot;
+        s += column[65] * B3_dot;
+        s += column[66] * B4_dot;
+        s += column[68] * theta_dot_A1_dot;
+        s += column[69] * theta_dot_A2_dot;
+        s += column[70] * theta_dot_A3_dot;
+        s += column[71] * theta_dot_A4_dot;
+        s += column[76] * theta_ddot_A1;
+        s += column[77] * theta_ddot_A2;
+        s += column[78] * theta_ddot_A3;
+        s += column[79] * theta_ddot_A4;
+        s += column[84] * sin_theta_B1;
+        s += column[85] * sin_theta_B2;
+        s += column[86] * sin_theta_B3;
+        s += column[87] * sin_theta_B4;
+        s += column[92] * theta_dotsq_B1;
+        s += column[93] * theta_dotsq_B2;
+        s += column[94] * theta_dotsq_B3;
+        s += column[95] * theta_dotsq_B4;
         out[4] = s[0];
         out[5] = s[1];
-    }
-    {
-        lanes s = pair(288) * lanes{theta_ddot, theta_ddot};
-        s += pair(292) * lanes{cos_theta, cos_theta};
-        s += pair(302) * lanes{B1, B1};
-        s += pair(304) * lanes{B2, B2};
-        s += pair(306) * lanes{B3, B3};
-        s += pair(308) * lanes{B4, B4};
-        s += pair(318) * lanes{B1_dot, B1_dot};
-        s += pair(320) * lanes{B2_dot, B2_dot};
-        s += pair(322) * lanes{B3_dot, B3_dot};
-        s += pair(324) * lanes{B4_dot, B4_dot};
-        s += pair(328) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
-        s += pair(330) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
-        s += pair(332) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
-        s += pair(334) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
-        s += pair(344) * lanes{theta_ddot_A1, theta_ddot_A1};
-        s += pair(346) * lanes{theta_ddot_A2, theta_ddot_A2};
-        s += pair(348) * lanes{theta_ddot_A3, theta_ddot_A3};
-        s += pair(350) * lanes{theta_ddot_A4, theta_ddot_A4};
-        s += pair(360) * lanes{sin_theta_B1, sin_theta_B1};
-        s += pair(362) * lanes{sin_theta_B2, sin_theta_B2};
-        s += pair(364) * lanes{sin_theta_B3, sin_theta_B3};
-        s += pair(366) * lanes{sin_theta_B4, sin_theta_B4};
-        s += pair(376) * lanes{theta_dotsq_B1, theta_dotsq_B1};
-        s += pair(378) * lanes{theta_dotsq_B2, theta_dotsq_B2};
-        s += pair(380) * lanes{theta_dotsq_B3, theta_dotsq_B3};
-        s += pair(382) * lanes{theta_dotsq_B4, theta_dotsq_B4};
-        out[6] = s[0];
-        out[7] = s[1];
+        out[6] = s[2];
+        out[7] = s[3];
     }
 }
 
 }  // namespace
 
 extern const Variant bsim_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100 = {
-    .abi_version = 4,
+    .abi_version = 5,
     .name = "bsim_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100",
     .nq = 8,
     .ncoeff = 188,

@@ -2300,8 +2300,8 @@ void bsim_nx4_ny4_torque_first_tip_gravity_damped_depth_forces_u(const double* c
     out[0] = 1.0;
 }
 
-/* forces_folded:(c[187],u[5],q[9],qd[9])->(y[9]) y = P m, P (9 x 86) passed in the c slot by row pairs, P(i, k) at c[(j/2)*172 + 2k + j%2], j = i + 1: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 212 entries that can be nonzero, a pair of rows reads the columns either row has */
-void bsim_nx4_ny4_torque_first_tip_gravity_damped_depth_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
+/* forces_folded:(c[187],u[5],q[9],qd[9])->(y[9]) y = P m, P (9 x 86) passed in the c slot by groups of 4 rows, P(i, k) at c[(j/4)*344 + 4k + j%4], j = i + 3: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 212 entries that can be nonzero, a group of rows reads the columns any of its rows has */
+HUBBEAM_WIDE_KERNEL void bsim_nx4_ny4_torque_first_tip_gravity_damped_depth_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
     const double sin_theta = u[3];
@@ -2402,106 +2402,61 @@ void bsim_nx4_ny4_torque_first_tip_gravity_damped_depth_forces_folded(const doub
     const double B4_theta_dot_B2_dot = B4_theta_dot*B2_dot;
     const double B4_theta_dot_B3_dot = B4_theta_dot*B3_dot;
     const double B4_theta_dot_B4_dot = B4_theta_dot*B4_dot;
-    typedef double lanes __attribute__((vector_size(16)));
-    const auto pair = [c](int e) {
-        lanes v;
-        __builtin_memcpy(&v, c + e, sizeof v);
-        return v;
-    };
-    out[0] = c[1]*tau + c[5]*cos_theta + c[39]*sin_theta_B1 + c[41]*sin_theta_B2 + c[43]*sin_theta_B3 + c[45]*sin_theta_B4 + c[47]*cos_theta_A1 + c[49]*cos_theta_A2 + c[51]*cos_theta_A3 + c[53]*cos_theta_A4 + c[57]*theta_dot_A1_dot + c[59]*theta_dot_A2_dot + c[61]*theta_dot_A3_dot + c[63]*theta_dot_A4_dot + c[73]*cos_theta_B1sq + c[75]*cos_theta_B1_B2 + c[77]*cos_theta_B1_B3 + c[79]*cos_theta_B1_B4 + c[81]*cos_theta_B2sq + c[83]*cos_theta_B2_B3 + c[85]*cos_theta_B2_B4 + c[87]*cos_theta_B3sq + c[89]*cos_theta_B3_B4 + c[91]*cos_theta_B4sq + c[95]*A1_theta_dot_A1_dot + c[97]*A1_theta_dot_A2_dot + c[99]*A1_theta_dot_A3_dot + c[101]*A1_theta_dot_A4_dot + c[105]*A2_theta_dot_A1_dot + c[107]*A2_theta_dot_A2_dot + c[109]*A2_theta_dot_A3_dot + c[111]*A2_theta_dot_A4_dot + c[115]*A3_theta_dot_A1_dot + c[117]*A3_theta_dot_A2_dot + c[119]*A3_theta_dot_A3_dot + c[121]*A3_theta_dot_A4_dot + c[125]*A4_theta_dot_A1_dot + c[127]*A4_theta_dot_A2_dot + c[129]*A4_theta_dot_A3_dot + c[131]*A4_theta_dot_A4_dot + c[135]*B1_theta_dot_B1_dot + c[137]*B1_theta_dot_B2_dot + c[139]*B1_theta_dot_B3_dot + c[141]*B1_theta_dot_B4_dot + c[145]*B2_theta_dot_B1_dot + c[147]*B2_theta_dot_B2_dot + c[149]*B2_theta_dot_B3_dot + c[151]*B2_theta_dot_B4_dot + c[155]*B3_theta_dot_B1_dot + c[157]*B3_theta_dot_B2_dot + c[159]*B3_theta_dot_B3_dot + c[161]*B3_theta_dot_B4_dot + c[165]*B4_theta_dot_B1_dot + c[167]*B4_theta_dot_B2_dot + c[169]*B4_theta_dot_B3_dot + c[171]*B4_theta_dot_B4_dot;
+    typedef double lanes __attribute__((vector_size(32)));
+    typedef double lanes_at __attribute__((vector_size(32), aligned(8), may_alias));
+    // column[g*86 + k]: group g's entries of column k.
+    const lanes_at* const column = reinterpret_cast<const lanes_at*>(c);
+    out[0] = c[3]*tau + c[11]*cos_theta + c[79]*sin_theta_B1 + c[83]*sin_theta_B2 + c[87]*sin_theta_B3 + c[91]*sin_theta_B4 + c[95]*cos_theta_A1 + c[99]*cos_theta_A2 + c[103]*cos_theta_A3 + c[107]*cos_theta_A4 + c[115]*theta_dot_A1_dot + c[119]*theta_dot_A2_dot + c[123]*theta_dot_A3_dot + c[127]*theta_dot_A4_dot + c[147]*cos_theta_B1sq + c[151]*cos_theta_B1_B2 + c[155]*cos_theta_B1_B3 + c[159]*cos_theta_B1_B4 + c[163]*cos_theta_B2sq + c[167]*cos_theta_B2_B3 + c[171]*cos_theta_B2_B4 + c[175]*cos_theta_B3sq + c[179]*cos_theta_B3_B4 + c[183]*cos_theta_B4sq + c[191]*A1_theta_dot_A1_dot + c[195]*A1_theta_dot_A2_dot + c[199]*A1_theta_dot_A3_dot + c[203]*A1_theta_dot_A4_dot + c[211]*A2_theta_dot_A1_dot + c[215]*A2_theta_dot_A2_dot + c[219]*A2_theta_dot_A3_dot + c[223]*A2_theta_dot_A4_dot + c[231]*A3_theta_dot_A1_dot + c[235]*A3_theta_dot_A2_dot + c[239]*A3_theta_dot_A3_dot + c[243]*A3_theta_dot_A4_dot + c[251]*A4_theta_dot_A1_dot + c[255]*A4_theta_dot_A2_dot + c[259]*A4_theta_dot_A3_dot + c[263]*A4_theta_dot_A4_dot + c[271]*B1_theta_dot_B1_dot + c[275]*B1_theta_dot_B2_dot + c[279]*B1_theta_dot_B3_dot + c[283]*B1_theta_dot_B4_dot + c[291]*B2_theta_dot_B1_dot + c[295]*B2_theta_dot_B2_dot + c[299]*B2_theta_dot_B3_dot + c[303]*B2_theta_dot_B4_dot + c[311]*B3_theta_dot_B1_dot + c[315]*B3_theta_dot_B2_dot + c[319]*B3_theta_dot_B3_dot + c[323]*B3_theta_dot_B4_dot + c[331]*B4_theta_dot_B1_dot + c[335]*B4_theta_dot_B2_dot + c[339]*B4_theta_dot_B3_dot + c[343]*B4_theta_dot_B4_dot;
     {
-        lanes s = pair(174) * lanes{sin_theta, sin_theta};
-        s += pair(178) * lanes{A1, A1};
-        s += pair(180) * lanes{A2, A2};
-        s += pair(182) * lanes{A3, A3};
-        s += pair(184) * lanes{A4, A4};
-        s += pair(194) * lanes{A1_dot, A1_dot};
-        s += pair(196) * lanes{A2_dot, A2_dot};
-        s += pair(198) * lanes{A3_dot, A3_dot};
-        s += pair(200) * lanes{A4_dot, A4_dot};
-        s += pair(226) * lanes{theta_dotsq, theta_dotsq};
-        s += pair(236) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
-        s += pair(238) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
-        s += pair(240) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
-        s += pair(242) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
-        s += pair(264) * lanes{A1_theta_dotsq, A1_theta_dotsq};
-        s += pair(274) * lanes{A2_theta_dotsq, A2_theta_dotsq};
-        s += pair(284) * lanes{A3_theta_dotsq, A3_theta_dotsq};
-        s += pair(294) * lanes{A4_theta_dotsq, A4_theta_dotsq};
+        lanes s = column[87] * sin_theta;
+        s += column[89] * A1;
+        s += column[90] * A2;
+        s += column[91] * A3;
+        s += column[92] * A4;
+        s += column[97] * A1_dot;
+        s += column[98] * A2_dot;
+        s += column[99] * A3_dot;
+        s += column[100] * A4_dot;
+        s += column[113] * theta_dotsq;
+        s += column[118] * theta_dot_B1_dot;
+        s += column[119] * theta_dot_B2_dot;
+        s += column[120] * theta_dot_B3_dot;
+        s += column[121] * theta_dot_B4_dot;
+        s += column[132] * A1_theta_dotsq;
+        s += column[137] * A2_theta_dotsq;
+        s += column[142] * A3_theta_dotsq;
+        s += column[147] * A4_theta_dotsq;
         out[1] = s[0];
         out[2] = s[1];
+        out[3] = s[2];
+        out[4] = s[3];
     }
     {
-        lanes s = pair(346) * lanes{sin_theta, sin_theta};
-        s += pair(350) * lanes{A1, A1};
-        s += pair(352) * lanes{A2, A2};
-        s += pair(354) * lanes{A3, A3};
-        s += pair(356) * lanes{A4, A4};
-        s += pair(366) * lanes{A1_dot, A1_dot};
-        s += pair(368) * lanes{A2_dot, A2_dot};
-        s += pair(370) * lanes{A3_dot, A3_dot};
-        s += pair(372) * lanes{A4_dot, A4_dot};
-        s += pair(398) * lanes{theta_dotsq, theta_dotsq};
-        s += pair(408) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
-        s += pair(410) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
-        s += pair(412) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
-        s += pair(414) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
-        s += pair(436) * lanes{A1_theta_dotsq, A1_theta_dotsq};
-        s += pair(446) * lanes{A2_theta_dotsq, A2_theta_dotsq};
-        s += pair(456) * lanes{A3_theta_dotsq, A3_theta_dotsq};
-        s += pair(466) * lanes{A4_theta_dotsq, A4_theta_dotsq};
-        out[3] = s[0];
-        out[4] = s[1];
-    }
-    {
-        lanes s = pair(520) * lanes{cos_theta, cos_theta};
-        s += pair(530) * lanes{B1, B1};
-        s += pair(532) * lanes{B2, B2};
-        s += pair(534) * lanes{B3, B3};
-        s += pair(536) * lanes{B4, B4};
-        s += pair(546) * lanes{B1_dot, B1_dot};
-        s += pair(548) * lanes{B2_dot, B2_dot};
-        s += pair(550) * lanes{B3_dot, B3_dot};
-        s += pair(552) * lanes{B4_dot, B4_dot};
-        s += pair(554) * lanes{sin_theta_B1, sin_theta_B1};
-        s += pair(556) * lanes{sin_theta_B2, sin_theta_B2};
-        s += pair(558) * lanes{sin_theta_B3, sin_theta_B3};
-        s += pair(560) * lanes{sin_theta_B4, sin_theta_B4};
-        s += pair(572) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
-        s += pair(574) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
-        s += pair(576) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
-        s += pair(578) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
-        s += pair(648) * lanes{B1_theta_dotsq, B1_theta_dotsq};
-        s += pair(658) * lanes{B2_theta_dotsq, B2_theta_dotsq};
-        s += pair(668) * lanes{B3_theta_dotsq, B3_theta_dotsq};
-        s += pair(678) * lanes{B4_theta_dotsq, B4_theta_dotsq};
+        lanes s = column[174] * cos_theta;
+        s += column[179] * B1;
+        s += column[180] * B2;
+        s += column[181] * B3;
+        s += column[182] * B4;
+        s += column[187] * B1_dot;
+        s += column[188] * B2_dot;
+        s += column[189] * B3_dot;
+        s += column[190] * B4_dot;
+        s += column[191] * sin_theta_B1;
+        s += column[192] * sin_theta_B2;
+        s += column[193] * sin_theta_B3;
+        s += column[194] * sin_theta_B4;
+        s += column[200] * theta_dot_A1_dot;
+        s += column[201] * theta_dot_A2_dot;
+        s += column[202] * theta_dot_A3_dot;
+        s += column[203] * theta_dot_A4_dot;
+        s += column[238] * B1_theta_dotsq;
+        s += column[243] * B2_theta_dotsq;
+        s += column[248] * B3_theta_dotsq;
+        s += column[253] * B4_theta_dotsq;
         out[5] = s[0];
         out[6] = s[1];
-    }
-    {
-        lanes s = pair(692) * lanes{cos_theta, cos_theta};
-        s += pair(702) * lanes{B1, B1};
-        s += pair(704) * lanes{B2, B2};
-        s += pair(706) * lanes{B3, B3};
-        s += pair(708) * lanes{B4, B4};
-        s += pair(718) * lanes{B1_dot, B1_dot};
-        s += pair(720) * lanes{B2_dot, B2_dot};
-        s += pair(722) * lanes{B3_dot, B3_dot};
-        s += pair(724) * lanes{B4_dot, B4_dot};
-        s += pair(726) * lanes{sin_theta_B1, sin_theta_B1};
-        s += pair(728) * lanes{sin_theta_B2, sin_theta_B2};
-        s += pair(730) * lanes{sin_theta_B3, sin_theta_B3};
-        s += pair(732) * lanes{sin_theta_B4, sin_theta_B4};
-        s += pair(744) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
-        s += pair(746) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
-        s += pair(748) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
-        s += pair(750) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
-        s += pair(820) * lanes{B1_theta_dotsq, B1_theta_dotsq};
-        s += pair(830) * lanes{B2_theta_dotsq, B2_theta_dotsq};
-        s += pair(840) * lanes{B3_theta_dotsq, B3_theta_dotsq};
-        s += pair(850) * lanes{B4_theta_dotsq, B4_theta_dotsq};
-        out[7] = s[0];
-        out[8] = s[1];
+        out[7] = s[2];
+        out[8] = s[3];
     }
 }
 
@@ -2623,7 +2578,7 @@ void bsim_nx4_ny4_torque_first_tip_gravity_damped_depth_mass_q_product(const dou
 }  // namespace
 
 extern const Variant bsim_nx4_ny4_torque_first_tip_gravity_damped_depth = {
-    .abi_version = 4,
+    .abi_version = 5,
     .name = "bsim_nx4_ny4_torque_first_tip_gravity_damped_depth",
     .nq = 9,
     .ncoeff = 187,

@@ -534,8 +534,8 @@ void fem_nx0_ny4_prescribed_first_forces_u(const double* c, const double* u, con
     out[11] = c[25];
 }
 
-/* forces_folded:(c[53],u[3],q[4],qd[4])->(y[4]) y = P m, P (4 x 9) passed in the c slot by row pairs, P(i, k) at c[(j/2)*18 + 2k + j%2], j = i: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 36 entries that can be nonzero, a pair of rows reads the columns either row has */
-void fem_nx0_ny4_prescribed_first_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
+/* forces_folded:(c[53],u[3],q[4],qd[4])->(y[4]) y = P m, P (4 x 9) passed in the c slot by groups of 4 rows, P(i, k) at c[(j/4)*36 + 4k + j%4], j = i: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 36 entries that can be nonzero, a group of rows reads the columns any of its rows has */
+HUBBEAM_WIDE_KERNEL void fem_nx0_ny4_prescribed_first_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)qd;
     const double theta_dot = u[1];
@@ -549,44 +549,31 @@ void fem_nx0_ny4_prescribed_first_forces_folded(const double* c, const double* u
     const double theta_dotsq_B2 = theta_dotsq*B2;
     const double theta_dotsq_B3 = theta_dotsq*B3;
     const double theta_dotsq_B4 = theta_dotsq*B4;
-    typedef double lanes __attribute__((vector_size(16)));
-    const auto pair = [c](int e) {
-        lanes v;
-        __builtin_memcpy(&v, c + e, sizeof v);
-        return v;
-    };
+    typedef double lanes __attribute__((vector_size(32)));
+    typedef double lanes_at __attribute__((vector_size(32), aligned(8), may_alias));
+    // column[g*9 + k]: group g's entries of column k.
+    const lanes_at* const column = reinterpret_cast<const lanes_at*>(c);
     {
-        lanes s = pair(0) * lanes{theta_ddot, theta_ddot};
-        s += pair(2) * lanes{B1, B1};
-        s += pair(4) * lanes{B2, B2};
-        s += pair(6) * lanes{B3, B3};
-        s += pair(8) * lanes{B4, B4};
-        s += pair(10) * lanes{theta_dotsq_B1, theta_dotsq_B1};
-        s += pair(12) * lanes{theta_dotsq_B2, theta_dotsq_B2};
-        s += pair(14) * lanes{theta_dotsq_B3, theta_dotsq_B3};
-        s += pair(16) * lanes{theta_dotsq_B4, theta_dotsq_B4};
+        lanes s = column[0] * theta_ddot;
+        s += column[1] * B1;
+        s += column[2] * B2;
+        s += column[3] * B3;
+        s += column[4] * B4;
+        s += column[5] * theta_dotsq_B1;
+        s += column[6] * theta_dotsq_B2;
+        s += column[7] * theta_dotsq_B3;
+        s += column[8] * theta_dotsq_B4;
         out[0] = s[0];
         out[1] = s[1];
-    }
-    {
-        lanes s = pair(18) * lanes{theta_ddot, theta_ddot};
-        s += pair(20) * lanes{B1, B1};
-        s += pair(22) * lanes{B2, B2};
-        s += pair(24) * lanes{B3, B3};
-        s += pair(26) * lanes{B4, B4};
-        s += pair(28) * lanes{theta_dotsq_B1, theta_dotsq_B1};
-        s += pair(30) * lanes{theta_dotsq_B2, theta_dotsq_B2};
-        s += pair(32) * lanes{theta_dotsq_B3, theta_dotsq_B3};
-        s += pair(34) * lanes{theta_dotsq_B4, theta_dotsq_B4};
-        out[2] = s[0];
-        out[3] = s[1];
+        out[2] = s[2];
+        out[3] = s[3];
     }
 }
 
 }  // namespace
 
 extern const Variant fem_nx0_ny4_prescribed_first = {
-    .abi_version = 4,
+    .abi_version = 5,
     .name = "fem_nx0_ny4_prescribed_first",
     .nq = 4,
     .ncoeff = 53,

@@ -674,8 +674,8 @@ void fem_nx0_ny4_torque_first_forces_u(const double* c, const double* u, const d
     out[0] = 1.0;
 }
 
-/* forces_folded:(c[53],u[3],q[5],qd[5])->(y[5]) y = P m, P (5 x 25) passed in the c slot by row pairs, P(i, k) at c[(j/2)*50 + 2k + j%2], j = i + 1: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 57 entries that can be nonzero, a pair of rows reads the columns either row has */
-void fem_nx0_ny4_torque_first_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
+/* forces_folded:(c[53],u[3],q[5],qd[5])->(y[5]) y = P m, P (5 x 25) passed in the c slot by groups of 4 rows, P(i, k) at c[(j/4)*100 + 4k + j%4], j = i + 3: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 57 entries that can be nonzero, a group of rows reads the columns any of its rows has */
+HUBBEAM_WIDE_KERNEL void fem_nx0_ny4_torque_first_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
     const double B1 = q[1];
@@ -711,36 +711,24 @@ void fem_nx0_ny4_torque_first_forces_folded(const double* c, const double* u, co
     const double B4_theta_dot_B2_dot = B4_theta_dot*B2_dot;
     const double B4_theta_dot_B3_dot = B4_theta_dot*B3_dot;
     const double B4_theta_dot_B4_dot = B4_theta_dot*B4_dot;
-    typedef double lanes __attribute__((vector_size(16)));
-    const auto pair = [c](int e) {
-        lanes v;
-        __builtin_memcpy(&v, c + e, sizeof v);
-        return v;
-    };
-    out[0] = c[1]*tau + c[3]*B1 + c[5]*B2 + c[7]*B3 + c[9]*B4 + c[11]*B1_theta_dotsq + c[13]*B1_theta_dot_B1_dot + c[15]*B1_theta_dot_B2_dot + c[17]*B1_theta_dot_B3_dot + c[19]*B1_theta_dot_B4_dot + c[21]*B2_theta_dotsq + c[23]*B2_theta_dot_B1_dot + c[25]*B2_theta_dot_B2_dot + c[27]*B2_theta_dot_B3_dot + c[29]*B2_theta_dot_B4_dot + c[31]*B3_theta_dotsq + c[33]*B3_theta_dot_B1_dot + c[35]*B3_theta_dot_B2_dot + c[37]*B3_theta_dot_B3_dot + c[39]*B3_theta_dot_B4_dot + c[41]*B4_theta_dotsq + c[43]*B4_theta_dot_B1_dot + c[45]*B4_theta_dot_B2_dot + c[47]*B4_theta_dot_B3_dot + c[49]*B4_theta_dot_B4_dot;
+    typedef double lanes __attribute__((vector_size(32)));
+    typedef double lanes_at __attribute__((vector_size(32), aligned(8), may_alias));
+    // column[g*25 + k]: group g's entries of column k.
+    const lanes_at* const column = reinterpret_cast<const lanes_at*>(c);
+    out[0] = c[3]*tau + c[7]*B1 + c[11]*B2 + c[15]*B3 + c[19]*B4 + c[23]*B1_theta_dotsq + c[27]*B1_theta_dot_B1_dot + c[31]*B1_theta_dot_B2_dot + c[35]*B1_theta_dot_B3_dot + c[39]*B1_theta_dot_B4_dot + c[43]*B2_theta_dotsq + c[47]*B2_theta_dot_B1_dot + c[51]*B2_theta_dot_B2_dot + c[55]*B2_theta_dot_B3_dot + c[59]*B2_theta_dot_B4_dot + c[63]*B3_theta_dotsq + c[67]*B3_theta_dot_B1_dot + c[71]*B3_theta_dot_B2_dot + c[75]*B3_theta_dot_B3_dot + c[79]*B3_theta_dot_B4_dot + c[83]*B4_theta_dotsq + c[87]*B4_theta_dot_B1_dot + c[91]*B4_theta_dot_B2_dot + c[95]*B4_theta_dot_B3_dot + c[99]*B4_theta_dot_B4_dot;
     {
-        lanes s = pair(52) * lanes{B1, B1};
-        s += pair(54) * lanes{B2, B2};
-        s += pair(56) * lanes{B3, B3};
-        s += pair(58) * lanes{B4, B4};
-        s += pair(60) * lanes{B1_theta_dotsq, B1_theta_dotsq};
-        s += pair(70) * lanes{B2_theta_dotsq, B2_theta_dotsq};
-        s += pair(80) * lanes{B3_theta_dotsq, B3_theta_dotsq};
-        s += pair(90) * lanes{B4_theta_dotsq, B4_theta_dotsq};
+        lanes s = column[26] * B1;
+        s += column[27] * B2;
+        s += column[28] * B3;
+        s += column[29] * B4;
+        s += column[30] * B1_theta_dotsq;
+        s += column[35] * B2_theta_dotsq;
+        s += column[40] * B3_theta_dotsq;
+        s += column[45] * B4_theta_dotsq;
         out[1] = s[0];
         out[2] = s[1];
-    }
-    {
-        lanes s = pair(102) * lanes{B1, B1};
-        s += pair(104) * lanes{B2, B2};
-        s += pair(106) * lanes{B3, B3};
-        s += pair(108) * lanes{B4, B4};
-        s += pair(110) * lanes{B1_theta_dotsq, B1_theta_dotsq};
-        s += pair(120) * lanes{B2_theta_dotsq, B2_theta_dotsq};
-        s += pair(130) * lanes{B3_theta_dotsq, B3_theta_dotsq};
-        s += pair(140) * lanes{B4_theta_dotsq, B4_theta_dotsq};
-        out[3] = s[0];
-        out[4] = s[1];
+        out[3] = s[2];
+        out[4] = s[3];
     }
 }
 
@@ -788,7 +776,7 @@ void fem_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, c
 }  // namespace
 
 extern const Variant fem_nx0_ny4_torque_first = {
-    .abi_version = 4,
+    .abi_version = 5,
     .name = "fem_nx0_ny4_torque_first",
     .nq = 5,
     .ncoeff = 53,

@@ -3569,7 +3569,7 @@ void fem_nx16_ny16_prescribed_first_forces_u(const double* c, const double* u, c
 }  // namespace
 
 extern const Variant fem_nx16_ny16_prescribed_first = {
-    .abi_version = 4,
+    .abi_version = 5,
     .name = "fem_nx16_ny16_prescribed_first",
     .nq = 32,
     .ncoeff = 188,

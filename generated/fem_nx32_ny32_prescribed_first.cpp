@@ -6160,7 +6160,7 @@ void fem_nx32_ny32_prescribed_first_forces_u(const double* c, const double* u, c
 }  // namespace
 
 extern const Variant fem_nx32_ny32_prescribed_first = {
-    .abi_version = 4,
+    .abi_version = 5,
     .name = "fem_nx32_ny32_prescribed_first",
     .nq = 64,
     .ncoeff = 332,

@@ -8419,7 +8419,7 @@ void fem_nx32_ny32_torque_first_mass_q_product(const double* c, const double* u,
 }  // namespace
 
 extern const Variant fem_nx32_ny32_torque_first = {
-    .abi_version = 4,
+    .abi_version = 5,
     .name = "fem_nx32_ny32_torque_first",
     .nq = 65,
     .ncoeff = 333,

@@ -1561,8 +1561,8 @@ void fem_nx4_ny4_prescribed_zero_tip_gravity_damped_depth_forces_u(const double*
     out[23] = -c[88] + c[40]*A2 + c[54]*A3 + c[65]*A4;
 }
 
-/* forces_folded:(c[134],u[5],q[8],qd[8])->(y[8]) y = P m, P (8 x 44) passed in the c slot by row pairs, P(i, k) at c[(j/2)*88 + 2k + j%2], j = i: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 176 entries that can be nonzero, a pair of rows reads the columns either row has */
-void fem_nx4_ny4_prescribed_zero_tip_gravity_damped_depth_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
+/* forces_folded:(c[134],u[5],q[8],qd[8])->(y[8]) y = P m, P (8 x 44) passed in the c slot by groups of 4 rows, P(i, k) at c[(j/4)*176 + 4k + j%4], j = i: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 176 entries that can be nonzero, a group of rows reads the columns any of its rows has */
+HUBBEAM_WIDE_KERNEL void fem_nx4_ny4_prescribed_zero_tip_gravity_damped_depth_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
     const double theta_ddot = u[2];
@@ -1609,122 +1609,72 @@ void fem_nx4_ny4_prescribed_zero_tip_gravity_damped_depth_forces_folded(const do
     const double theta_dotsq_B2 = theta_dotsq*B2;
     const double theta_dotsq_B3 = theta_dotsq*B3;
     const double theta_dotsq_B4 = theta_dotsq*B4;
-    typedef double lanes __attribute__((vector_size(16)));
-    const auto pair = [c](int e) {
-        lanes v;
-        __builtin_memcpy(&v, c + e, sizeof v);
-        return v;
-    };
+    typedef double lanes __attribute__((vector_size(32)));
+    typedef double lanes_at __attribute__((vector_size(32), aligned(8), may_alias));
+    // column[g*44 + k]: group g's entries of column k.
+    const lanes_at* const column = reinterpret_cast<const lanes_at*>(c);
     {
-        lanes s = pair(2) * lanes{sin_theta, sin_theta};
-        s += pair(6) * lanes{A1, A1};
-        s += pair(8) * lanes{A2, A2};
-        s += pair(10) * lanes{A3, A3};
-        s += pair(12) * lanes{A4, A4};
-        s += pair(22) * lanes{A1_dot, A1_dot};
-        s += pair(24) * lanes{A2_dot, A2_dot};
-        s += pair(26) * lanes{A3_dot, A3_dot};
-        s += pair(28) * lanes{A4_dot, A4_dot};
-        s += pair(38) * lanes{theta_dotsq, theta_dotsq};
-        s += pair(48) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
-        s += pair(50) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
-        s += pair(52) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
-        s += pair(54) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
-        s += pair(64) * lanes{theta_ddot_B1, theta_ddot_B1};
-        s += pair(66) * lanes{theta_ddot_B2, theta_ddot_B2};
-        s += pair(68) * lanes{theta_ddot_B3, theta_ddot_B3};
-        s += pair(70) * lanes{theta_ddot_B4, theta_ddot_B4};
-        s += pair(72) * lanes{theta_dotsq_A1, theta_dotsq_A1};
-        s += pair(74) * lanes{theta_dotsq_A2, theta_dotsq_A2};
-        s += pair(76) * lanes{theta_dotsq_A3, theta_dotsq_A3};
-        s += pair(78) * lanes{theta_dotsq_A4, theta_dotsq_A4};
+        lanes s = column[1] * sin_theta;
+        s += column[3] * A1;
+        s += column[4] * A2;
+        s += column[5] * A3;
+        s += column[6] * A4;
+        s += column[11] * A1_dot;
+        s += column[12] * A2_dot;
+        s += column[13] * A3_dot;
+        s += column[14] * A4_dot;
+        s += column[19] * theta_dotsq;
+        s += column[24] * theta_dot_B1_dot;
+        s += column[25] * theta_dot_B2_dot;
+        s += column[26] * theta_dot_B3_dot;
+        s += column[27] * theta_dot_B4_dot;
+        s += column[32] * theta_ddot_B1;
+        s += column[33] * theta_ddot_B2;
+        s += column[34] * theta_ddot_B3;
+        s += column[35] * theta_ddot_B4;
+        s += column[36] * theta_dotsq_A1;
+        s += column[37] * theta_dotsq_A2;
+        s += column[38] * theta_dotsq_A3;
+        s += column[39] * theta_dotsq_A4;
         out[0] = s[0];
         out[1] = s[1];
+        out[2] = s[2];
+        out[3] = s[3];
     }
     {
-        lanes s = pair(90) * lanes{sin_theta, sin_theta};
-        s += pair(94) * lanes{A1, A1};
-        s += pair(96) * lanes{A2, A2};
-        s += pair(98) * lanes{A3, A3};
-        s += pair(100) * lanes{A4, A4};
-        s += pair(110) * lanes{A1_dot, A1_dot};
-        s += pair(112) * lanes{A2_dot, A2_dot};
-        s += pair(114) * lanes{A3_dot, A3_dot};
-        s += pair(116) * lanes{A4_dot, A4_dot};
-        s += pair(126) * lanes{theta_dotsq, theta_dotsq};
-        s += pair(136) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
-        s += pair(138) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
-        s += pair(140) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
-        s += pair(142) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
-        s += pair(152) * lanes{theta_ddot_B1, theta_ddot_B1};
-        s += pair(154) * lanes{theta_ddot_B2, theta_ddot_B2};
-        s += pair(156) * lanes{theta_ddot_B3, theta_ddot_B3};
-        s += pair(158) * lanes{theta_ddot_B4, theta_ddot_B4};
-        s += pair(160) * lanes{theta_dotsq_A1, theta_dotsq_A1};
-        s += pair(162) * lanes{theta_dotsq_A2, theta_dotsq_A2};
-        s += pair(164) * lanes{theta_dotsq_A3, theta_dotsq_A3};
-        s += pair(166) * lanes{theta_dotsq_A4, theta_dotsq_A4};
-        out[2] = s[0];
-        out[3] = s[1];
-    }
-    {
-        lanes s = pair(176) * lanes{theta_ddot, theta_ddot};
-        s += pair(180) * lanes{cos_theta, cos_theta};
-        s += pair(190) * lanes{B1, B1};
-        s += pair(192) * lanes{B2, B2};
-        s += pair(194) * lanes{B3, B3};
-        s += pair(196) * lanes{B4, B4};
-        s += pair(206) * lanes{B1_dot, B1_dot};
-        s += pair(208) * lanes{B2_dot, B2_dot};
-        s += pair(210) * lanes{B3_dot, B3_dot};
-        s += pair(212) * lanes{B4_dot, B4_dot};
-        s += pair(216) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
-        s += pair(218) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
-        s += pair(220) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
-        s += pair(222) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
-        s += pair(232) * lanes{theta_ddot_A1, theta_ddot_A1};
-        s += pair(234) * lanes{theta_ddot_A2, theta_ddot_A2};
-        s += pair(236) * lanes{theta_ddot_A3, theta_ddot_A3};
-        s += pair(238) * lanes{theta_ddot_A4, theta_ddot_A4};
-        s += pair(256) * lanes{theta_dotsq_B1, theta_dotsq_B1};
-        s += pair(258) * lanes{theta_dotsq_B2, theta_dotsq_B2};
-        s += pair(260) * lanes{theta_dotsq_B3, theta_dotsq_B3};
-        s += pair(262) * lanes{theta_dotsq_B4, theta_dotsq_B4};
+        lanes s = column[44] * theta_ddot;
+        s += column[46] * cos_theta;
+        s += column[51] * B1;
+        s += column[52] * B2;
+        s += column[53] * B3;
+        s += column[54] * B4;
+        s += column[59] * B1_dot;
+        s += column[60] * B2_dot;
+        s += column[61] * B3_dot;
+        s += column[62] * B4_dot;
+        s += column[64] * theta_dot_A1_dot;
+        s += column[65] * theta_dot_A2_dot;
+        s += column[66] * theta_dot_A3_dot;
+        s += column[67] * theta_dot_A4_dot;
+        s += column[72] * theta_ddot_A1;
+        s += column[73] * theta_ddot_A2;
+        s += column[74] * theta_ddot_A3;
+        s += column[75] * theta_ddot_A4;
+        s += column[84] * theta_dotsq_B1;
+        s += column[85] * theta_dotsq_B2;
+        s += column[86] * theta_dotsq_B3;
+        s += column[87] * theta_dotsq_B4;
         out[4] = s[0];
         out[5] = s[1];
-    }
-    {
-        lanes s = pair(264) * lanes{theta_ddot, theta_ddot};
-        s += pair(268) * lanes{cos_theta, cos_theta};
-        s += pair(278) * lanes{B1, B1};
-        s += pair(280) * lanes{B2, B2};
-        s += pair(282) * lanes{B3, B3};
-        s += pair(284) * lanes{B4, B4};
-        s += pair(294) * lanes{B1_dot, B1_dot};
-        s += pair(296) * lanes{B2_dot, B2_dot};
-        s += pair(298) * lanes{B3_dot, B3_dot};
-        s += pair(300) * lanes{B4_dot, B4_dot};
-        s += pair(304) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
-        s += pair(306) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
-        s += pair(308) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
-        s += pair(310) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
-        s += pair(320) * lanes{theta_ddot_A1, theta_ddot_A1};
-        s += pair(322) * lanes{theta_ddot_A2, theta_ddot_A2};
-        s += pair(324) * lanes{theta_ddot_A3, theta_ddot_A3};
-        s += pair(326) * lanes{theta_ddot_A4, theta_ddot_A4};
-        s += pair(344) * lanes{theta_dotsq_B1, theta_dotsq_B1};
-        s += pair(346) * lanes{theta_dotsq_B2, theta_dotsq_B2};
-        s += pair(348) * lanes{theta_dotsq_B3, theta_dotsq_B3};
-        s += pair(350) * lanes{theta_dotsq_B4, theta_dotsq_B4};
-        out[6] = s[0];
-        out[7] = s[1];
+        out[6] = s[2];
+        out[7] = s[3];
     }
 }
 
 }  // namespace
 
 extern const Variant fem_nx4_ny4_prescribed_zero_tip_gravity_damped_depth = {
-    .abi_version = 4,
+    .abi_version = 5,
     .name = "fem_nx4_ny4_prescribed_zero_tip_gravity_damped_depth",
     .nq = 8,
     .ncoeff = 134,

@@ -1183,8 +1183,8 @@ void fem_nx4_ny4_torque_first_forces_u(const double* c, const double* u, const d
     out[0] = 1.0;
 }
 
-/* forces_folded:(c[80],u[3],q[9],qd[9])->(y[9]) y = P m, P (9 x 52) passed in the c slot by row pairs, P(i, k) at c[(j/2)*104 + 2k + j%2], j = i + 1: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 131 entries that can be nonzero, a pair of rows reads the columns either row has */
-void fem_nx4_ny4_torque_first_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
+/* forces_folded:(c[80],u[3],q[9],qd[9])->(y[9]) y = P m, P (9 x 52) passed in the c slot by groups of 4 rows, P(i, k) at c[(j/4)*208 + 4k + j%4], j = i + 3: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 131 entries that can be nonzero, a group of rows reads the columns any of its rows has */
+HUBBEAM_WIDE_KERNEL void fem_nx4_ny4_torque_first_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
     const double A1 = q[1];
@@ -1255,78 +1255,47 @@ void fem_nx4_ny4_torque_first_forces_folded(const double* c, const double* u, co
     const double B4_theta_dot_B2_dot = B4_theta_dot*B2_dot;
     const double B4_theta_dot_B3_dot = B4_theta_dot*B3_dot;
     const double B4_theta_dot_B4_dot = B4_theta_dot*B4_dot;
-    typedef double lanes __attribute__((vector_size(16)));
-    const auto pair = [c](int e) {
-        lanes v;
-        __builtin_memcpy(&v, c + e, sizeof v);
-        return v;
-    };
-    out[0] = c[1]*tau + c[21]*theta_dot_A1_dot + c[23]*theta_dot_A2_dot + c[25]*theta_dot_A3_dot + c[27]*theta_dot_A4_dot + c[39]*A1_theta_dot_A1_dot + c[41]*A1_theta_dot_A2_dot + c[45]*A2_theta_dot_A1_dot + c[47]*A2_theta_dot_A2_dot + c[49]*A2_theta_dot_A3_dot + c[53]*A3_theta_dot_A2_dot + c[55]*A3_theta_dot_A3_dot + c[57]*A3_theta_dot_A4_dot + c[61]*A4_theta_dot_A3_dot + c[63]*A4_theta_dot_A4_dot + c[67]*B1_theta_dot_B1_dot + c[69]*B1_theta_dot_B2_dot + c[71]*B1_theta_dot_B3_dot + c[73]*B1_theta_dot_B4_dot + c[77]*B2_theta_dot_B1_dot + c[79]*B2_theta_dot_B2_dot + c[81]*B2_theta_dot_B3_dot + c[83]*B2_theta_dot_B4_dot + c[87]*B3_theta_dot_B1_dot + c[89]*B3_theta_dot_B2_dot + c[91]*B3_theta_dot_B3_dot + c[93]*B3_theta_dot_B4_dot + c[97]*B4_theta_dot_B1_dot + c[99]*B4_theta_dot_B2_dot + c[101]*B4_theta_dot_B3_dot + c[103]*B4_theta_dot_B4_dot;
+    typedef double lanes __attribute__((vector_size(32)));
+    typedef double lanes_at __attribute__((vector_size(32), aligned(8), may_alias));
+    // column[g*52 + k]: group g's entries of column k.
+    const lanes_at* const column = reinterpret_cast<const lanes_at*>(c);
+    out[0] = c[3]*tau + c[43]*theta_dot_A1_dot + c[47]*theta_dot_A2_dot + c[51]*theta_dot_A3_dot + c[55]*theta_dot_A4_dot + c[79]*A1_theta_dot_A1_dot + c[83]*A1_theta_dot_A2_dot + c[91]*A2_theta_dot_A1_dot + c[95]*A2_theta_dot_A2_dot + c[99]*A2_theta_dot_A3_dot + c[107]*A3_theta_dot_A2_dot + c[111]*A3_theta_dot_A3_dot + c[115]*A3_theta_dot_A4_dot + c[123]*A4_theta_dot_A3_dot + c[127]*A4_theta_dot_A4_dot + c[135]*B1_theta_dot_B1_dot + c[139]*B1_theta_dot_B2_dot + c[143]*B1_theta_dot_B3_dot + c[147]*B1_theta_dot_B4_dot + c[155]*B2_theta_dot_B1_dot + c[159]*B2_theta_dot_B2_dot + c[163]*B2_theta_dot_B3_dot + c[167]*B2_theta_dot_B4_dot + c[175]*B3_theta_dot_B1_dot + c[179]*B3_theta_dot_B2_dot + c[183]*B3_theta_dot_B3_dot + c[187]*B3_theta_dot_B4_dot + c[195]*B4_theta_dot_B1_dot + c[199]*B4_theta_dot_B2_dot + c[203]*B4_theta_dot_B3_dot + c[207]*B4_theta_dot_B4_dot;
     {
-        lanes s = pair(106) * lanes{A1, A1};
-        s += pair(108) * lanes{A2, A2};
-        s += pair(110) * lanes{A3, A3};
-        s += pair(112) * lanes{A4, A4};
-        s += pair(122) * lanes{theta_dotsq, theta_dotsq};
-        s += pair(132) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
-        s += pair(134) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
-        s += pair(136) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
-        s += pair(138) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
-        s += pair(140) * lanes{A1_theta_dotsq, A1_theta_dotsq};
-        s += pair(146) * lanes{A2_theta_dotsq, A2_theta_dotsq};
-        s += pair(154) * lanes{A3_theta_dotsq, A3_theta_dotsq};
-        s += pair(162) * lanes{A4_theta_dotsq, A4_theta_dotsq};
+        lanes s = column[53] * A1;
+        s += column[54] * A2;
+        s += column[55] * A3;
+        s += column[56] * A4;
+        s += column[61] * theta_dotsq;
+        s += column[66] * theta_dot_B1_dot;
+        s += column[67] * theta_dot_B2_dot;
+        s += column[68] * theta_dot_B3_dot;
+        s += column[69] * theta_dot_B4_dot;
+        s += column[70] * A1_theta_dotsq;
+        s += column[73] * A2_theta_dotsq;
+        s += column[77] * A3_theta_dotsq;
+        s += column[81] * A4_theta_dotsq;
         out[1] = s[0];
         out[2] = s[1];
+        out[3] = s[2];
+        out[4] = s[3];
     }
     {
-        lanes s = pair(210) * lanes{A1, A1};
-        s += pair(212) * lanes{A2, A2};
-        s += pair(214) * lanes{A3, A3};
-        s += pair(216) * lanes{A4, A4};
-        s += pair(226) * lanes{theta_dotsq, theta_dotsq};
-        s += pair(236) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
-        s += pair(238) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
-        s += pair(240) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
-        s += pair(242) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
-        s += pair(244) * lanes{A1_theta_dotsq, A1_theta_dotsq};
-        s += pair(250) * lanes{A2_theta_dotsq, A2_theta_dotsq};
-        s += pair(258) * lanes{A3_theta_dotsq, A3_theta_dotsq};
-        s += pair(266) * lanes{A4_theta_dotsq, A4_theta_dotsq};
-        out[3] = s[0];
-        out[4] = s[1];
-    }
-    {
-        lanes s = pair(322) * lanes{B1, B1};
-        s += pair(324) * lanes{B2, B2};
-        s += pair(326) * lanes{B3, B3};
-        s += pair(328) * lanes{B4, B4};
-        s += pair(332) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
-        s += pair(334) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
-        s += pair(336) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
-        s += pair(338) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
-        s += pair(376) * lanes{B1_theta_dotsq, B1_theta_dotsq};
-        s += pair(386) * lanes{B2_theta_dotsq, B2_theta_dotsq};
-        s += pair(396) * lanes{B3_theta_dotsq, B3_theta_dotsq};
-        s += pair(406) * lanes{B4_theta_dotsq, B4_theta_dotsq};
+        lanes s = column[109] * B1;
+        s += column[110] * B2;
+        s += column[111] * B3;
+        s += column[112] * B4;
+        s += column[114] * theta_dot_A1_dot;
+        s += column[115] * theta_dot_A2_dot;
+        s += column[116] * theta_dot_A3_dot;
+        s += column[117] * theta_dot_A4_dot;
+        s += column[136] * B1_theta_dotsq;
+        s += column[141] * B2_theta_dotsq;
+        s += column[146] * B3_theta_dotsq;
+        s += column[151] * B4_theta_dotsq;
         out[5] = s[0];
         out[6] = s[1];
-    }
-    {
-        lanes s = pair(426) * lanes{B1, B1};
-        s += pair(428) * lanes{B2, B2};
-        s += pair(430) * lanes{B3, B3};
-        s += pair(432) * lanes{B4, B4};
-        s += pair(436) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
-        s += pair(438) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
-        s += pair(440) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
-        s += pair(442) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
-        s += pair(480) * lanes{B1_theta_dotsq, B1_theta_dotsq};
-        s += pair(490) * lanes{B2_theta_dotsq, B2_theta_dotsq};
-        s += pair(500) * lanes{B3_theta_dotsq, B3_theta_dotsq};
-        s += pair(510) * lanes{B4_theta_dotsq, B4_theta_dotsq};
-        out[7] = s[0];
-        out[8] = s[1];
+        out[7] = s[2];
+        out[8] = s[3];
     }
 }
 
@@ -1439,7 +1408,7 @@ void fem_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, c
 }  // namespace
 
 extern const Variant fem_nx4_ny4_torque_first = {
-    .abi_version = 4,
+    .abi_version = 5,
     .name = "fem_nx4_ny4_torque_first",
     .nq = 9,
     .ncoeff = 80,

@@ -2076,8 +2076,8 @@ void fem_nx4_ny4_torque_first_tip_gravity_damped_depth_forces_u(const double* c,
     out[0] = 1.0;
 }
 
-/* forces_folded:(c[164],u[5],q[9],qd[9])->(y[9]) y = P m, P (9 x 80) passed in the c slot by row pairs, P(i, k) at c[(j/2)*160 + 2k + j%2], j = i + 1: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 206 entries that can be nonzero, a pair of rows reads the columns either row has */
-void fem_nx4_ny4_torque_first_tip_gravity_damped_depth_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
+/* forces_folded:(c[164],u[5],q[9],qd[9])->(y[9]) y = P m, P (9 x 80) passed in the c slot by groups of 4 rows, P(i, k) at c[(j/4)*320 + 4k + j%4], j = i + 3: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 206 entries that can be nonzero, a group of rows reads the columns any of its rows has */
+HUBBEAM_WIDE_KERNEL void fem_nx4_ny4_torque_first_tip_gravity_damped_depth_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
     const double sin_theta = u[3];
@@ -2172,106 +2172,61 @@ void fem_nx4_ny4_torque_first_tip_gravity_damped_depth_forces_folded(const doubl
     const double B4_theta_dot_B2_dot = B4_theta_dot*B2_dot;
     const double B4_theta_dot_B3_dot = B4_theta_dot*B3_dot;
     const double B4_theta_dot_B4_dot = B4_theta_dot*B4_dot;
-    typedef double lanes __attribute__((vector_size(16)));
-    const auto pair = [c](int e) {
-        lanes v;
-        __builtin_memcpy(&v, c + e, sizeof v);
-        return v;
-    };
-    out[0] = c[1]*tau + c[5]*cos_theta + c[39]*sin_theta_B1 + c[41]*sin_theta_B2 + c[43]*sin_theta_B3 + c[45]*sin_theta_B4 + c[47]*cos_theta_A1 + c[49]*cos_theta_A2 + c[51]*cos_theta_A3 + c[53]*cos_theta_A4 + c[57]*theta_dot_A1_dot + c[59]*theta_dot_A2_dot + c[61]*theta_dot_A3_dot + c[63]*theta_dot_A4_dot + c[73]*cos_theta_B1sq + c[75]*cos_theta_B1_B2 + c[77]*cos_theta_B1_B3 + c[79]*cos_theta_B1_B4 + c[81]*cos_theta_B2sq + c[83]*cos_theta_B2_B3 + c[85]*cos_theta_B2_B4 + c[87]*cos_theta_B3sq + c[89]*cos_theta_B3_B4 + c[91]*cos_theta_B4sq + c[95]*A1_theta_dot_A1_dot + c[97]*A1_theta_dot_A2_dot + c[101]*A2_theta_dot_A1_dot + c[103]*A2_theta_dot_A2_dot + c[105]*A2_theta_dot_A3_dot + c[109]*A3_theta_dot_A2_dot + c[111]*A3_theta_dot_A3_dot + c[113]*A3_theta_dot_A4_dot + c[117]*A4_theta_dot_A3_dot + c[119]*A4_theta_dot_A4_dot + c[123]*B1_theta_dot_B1_dot + c[125]*B1_theta_dot_B2_dot + c[127]*B1_theta_dot_B3_dot + c[129]*B1_theta_dot_B4_dot + c[133]*B2_theta_dot_B1_dot + c[135]*B2_theta_dot_B2_dot + c[137]*B2_theta_dot_B3_dot + c[139]*B2_theta_dot_B4_dot + c[143]*B3_theta_dot_B1_dot + c[145]*B3_theta_dot_B2_dot + c[147]*B3_theta_dot_B3_dot + c[149]*B3_theta_dot_B4_dot + c[153]*B4_theta_dot_B1_dot + c[155]*B4_theta_dot_B2_dot + c[157]*B4_theta_dot_B3_dot + c[159]*B4_theta_dot_B4_dot;
+    typedef double lanes __attribute__((vector_size(32)));
+    typedef double lanes_at __attribute__((vector_size(32), aligned(8), may_alias));
+    // column[g*80 + k]: group g's entries of column k.
+    const lanes_at* const column = reinterpret_cast<const lanes_at*>(c);
+    out[0] = c[3]*tau + c[11]*cos_theta + c[79]*sin_theta_B1 + c[83]*sin_theta_B2 + c[87]*sin_theta_B3 + c[91]*sin_theta_B4 + c[95]*cos_theta_A1 + c[99]*cos_theta_A2 + c[103]*cos_theta_A3 + c[107]*cos_theta_A4 + c[115]*theta_dot_A1_dot + c[119]*theta_dot_A2_dot + c[123]*theta_dot_A3_dot + c[127]*theta_dot_A4_dot + c[147]*cos_theta_B1sq + c[151]*cos_theta_B1_B2 + c[155]*cos_theta_B1_B3 + c[159]*cos_theta_B1_B4 + c[163]*cos_theta_B2sq + c[167]*cos_theta_B2_B3 + c[171]*cos_theta_B2_B4 + c[175]*cos_theta_B3sq + c[179]*cos_theta_B3_B4 + c[183]*cos_theta_B4sq + c[191]*A1_theta_dot_A1_dot + c[195]*A1_theta_dot_A2_dot + c[203]*A2_theta_dot_A1_dot + c[207]*A2_theta_dot_A2_dot + c[211]*A2_theta_dot_A3_dot + c[219]*A3_theta_dot_A2_dot + c[223]*A3_theta_dot_A3_dot + c[227]*A3_theta_dot_A4_dot + c[235]*A4_theta_dot_A3_dot + c[239]*A4_theta_dot_A4_dot + c[247]*B1_theta_dot_B1_dot + c[251]*B1_theta_dot_B2_dot + c[255]*B1_theta_dot_B3_dot + c[259]*B1_theta_dot_B4_dot + c[267]*B2_theta_dot_B1_dot + c[271]*B2_theta_dot_B2_dot + c[275]*B2_theta_dot_B3_dot + c[279]*B2_theta_dot_B4_dot + c[287]*B3_theta_dot_B1_dot + c[291]*B3_theta_dot_B2_dot + c[295]*B3_theta_dot_B3_dot + c[299]*B3_theta_dot_B4_dot + c[307]*B4_theta_dot_B1_dot + c[311]*B4_theta_dot_B2_dot + c[315]*B4_theta_dot_B3_dot + c[319]*B4_theta_dot_B4_dot;
     {
-        lanes s = pair(162) * lanes{sin_theta, sin_theta};
-        s += pair(166) * lanes{A1, A1};
-        s += pair(168) * lanes{A2, A2};
-        s += pair(170) * lanes{A3, A3};
-        s += pair(172) * lanes{A4, A4};
-        s += pair(182) * lanes{A1_dot, A1_dot};
-        s += pair(184) * lanes{A2_dot, A2_dot};
-        s += pair(186) * lanes{A3_dot, A3_dot};
-        s += pair(188) * lanes{A4_dot, A4_dot};
-        s += pair(214) * lanes{theta_dotsq, theta_dotsq};
-        s += pair(224) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
-        s += pair(226) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
-        s += pair(228) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
-        s += pair(230) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
-        s += pair(252) * lanes{A1_theta_dotsq, A1_theta_dotsq};
-        s += pair(258) * lanes{A2_theta_dotsq, A2_theta_dotsq};
-        s += pair(266) * lanes{A3_theta_dotsq, A3_theta_dotsq};
-        s += pair(274) * lanes{A4_theta_dotsq, A4_theta_dotsq};
+        lanes s = column[81] * sin_theta;
+        s += column[83] * A1;
+        s += column[84] * A2;
+        s += column[85] * A3;
+        s += column[86] * A4;
+        s += column[91] * A1_dot;
+        s += column[92] * A2_dot;
+        s += column[93] * A3_dot;
+        s += column[94] * A4_dot;
+        s += column[107] * theta_dotsq;
+        s += column[112] * theta_dot_B1_dot;
+        s += column[113] * theta_dot_B2_dot;
+        s += column[114] * theta_dot_B3_dot;
+        s += column[115] * theta_dot_B4_dot;
+        s += column[126] * A1_theta_dotsq;
+        s += column[129] * A2_theta_dotsq;
+        s += column[133] * A3_theta_dotsq;
+        s += column[137] * A4_theta_dotsq;
         out[1] = s[0];
         out[2] = s[1];
+        out[3] = s[2];
+        out[4] = s[3];
     }
     {
-        lanes s = pair(322) * lanes{sin_theta, sin_theta};
-        s += pair(326) * lanes{A1, A1};
-        s += pair(328) * lanes{A2, A2};
-        s += pair(330) * lanes{A3, A3};
-        s += pair(332) * lanes{A4, A4};
-        s += pair(342) * lanes{A1_dot, A1_dot};
-        s += pair(344) * lanes{A2_dot, A2_dot};
-        s += pair(346) * lanes{A3_dot, A3_dot};
-        s += pair(348) * lanes{A4_dot, A4_dot};
-        s += pair(374) * lanes{theta_dotsq, theta_dotsq};
-        s += pair(384) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
-        s += pair(386) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
-        s += pair(388) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
-        s += pair(390) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
-        s += pair(412) * lanes{A1_theta_dotsq, A1_theta_dotsq};
-        s += pair(418) * lanes{A2_theta_dotsq, A2_theta_dotsq};
-        s += pair(426) * lanes{A3_theta_dotsq, A3_theta_dotsq};
-        s += pair(434) * lanes{A4_theta_dotsq, A4_theta_dotsq};
-        out[3] = s[0];
-        out[4] = s[1];
-    }
-    {
-        lanes s = pair(484) * lanes{cos_theta, cos_theta};
-        s += pair(494) * lanes{B1, B1};
-        s += pair(496) * lanes{B2, B2};
-        s += pair(498) * lanes{B3, B3};
-        s += pair(500) * lanes{B4, B4};
-        s += pair(510) * lanes{B1_dot, B1_dot};
-        s += pair(512) * lanes{B2_dot, B2_dot};
-        s += pair(514) * lanes{B3_dot, B3_dot};
-        s += pair(516) * lanes{B4_dot, B4_dot};
-        s += pair(518) * lanes{sin_theta_B1, sin_theta_B1};
-        s += pair(520) * lanes{sin_theta_B2, sin_theta_B2};
-        s += pair(522) * lanes{sin_theta_B3, sin_theta_B3};
-        s += pair(524) * lanes{sin_theta_B4, sin_theta_B4};
-        s += pair(536) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
-        s += pair(538) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
-        s += pair(540) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
-        s += pair(542) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
-        s += pair(600) * lanes{B1_theta_dotsq, B1_theta_dotsq};
-        s += pair(610) * lanes{B2_theta_dotsq, B2_theta_dotsq};
-        s += pair(620) * lanes{B3_theta_dotsq, B3_theta_dotsq};
-        s += pair(630) * lanes{B4_theta_dotsq, B4_theta_dotsq};
+        lanes s = column[162] * cos_theta;
+        s += column[167] * B1;
+        s += column[168] * B2;
+        s += column[169] * B3;
+        s += column[170] * B4;
+        s += column[175] * B1_dot;
+        s += column[176] * B2_dot;
+        s += column[177] * B3_dot;
+        s += column[178] * B4_dot;
+        s += column[179] * sin_theta_B1;
+        s += column[180] * sin_theta_B2;
+        s += column[181] * sin_theta_B3;
+        s += column[182] * sin_theta_B4;
+        s += column[188] * theta_dot_A1_dot;
+        s += column[189] * theta_dot_A2_dot;
+        s += column[190] * theta_dot_A3_dot;
+        s += column[191] * theta_dot_A4_dot;
+        s += column[220] * B1_theta_dotsq;
+        s += column[225] * B2_theta_dotsq;
+        s += column[230] * B3_theta_dotsq;
+        s += column[235] * B4_theta_dotsq;
         out[5] = s[0];
         out[6] = s[1];
-    }
-    {
-        lanes s = pair(644) * lanes{cos_theta, cos_theta};
-        s += pair(654) * lanes{B1, B1};
-        s += pair(656) * lanes{B2, B2};
-        s += pair(658) * lanes{B3, B3};
-        s += pair(660) * lanes{B4, B4};
-        s += pair(670) * lanes{B1_dot, B1_dot};
-        s += pair(672) * lanes{B2_dot, B2_dot};
-        s += pair(674) * lanes{B3_dot, B3_dot};
-        s += pair(676) * lanes{B4_dot, B4_dot};
-        s += pair(678) * lanes{sin_theta_B1, sin_theta_B1};
-        s += pair(680) * lanes{sin_theta_B2, sin_theta_B2};
-        s += pair(682) * lanes{sin_theta_B3, sin_theta_B3};
-        s += pair(684) * lanes{sin_theta_B4, sin_theta_B4};
-        s += pair(696) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
-        s += pair(698) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
-        s += pair(700) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
-        s += pair(702) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
-        s += pair(760) * lanes{B1_theta_dotsq, B1_theta_dotsq};
-        s += pair(770) * lanes{B2_theta_dotsq, B2_theta_dotsq};
-        s += pair(780) * lanes{B3_theta_dotsq, B3_theta_dotsq};
-        s += pair(790) * lanes{B4_theta_dotsq, B4_theta_dotsq};
-        out[7] = s[0];
-        out[8] = s[1];
+        out[7] = s[2];
+        out[8] = s[3];
     }
 }
 
@@ -2386,7 +2341,7 @@ void fem_nx4_ny4_torque_first_tip_gravity_damped_depth_mass_q_product(const doub
 }  // namespace
 
 extern const Variant fem_nx4_ny4_torque_first_tip_gravity_damped_depth = {
-    .abi_version = 4,
+    .abi_version = 5,
     .name = "fem_nx4_ny4_torque_first_tip_gravity_damped_depth",
     .nq = 9,
     .ncoeff = 164,

@@ -2231,8 +2231,8 @@ void fem_nx8_ny8_torque_first_forces_u(const double* c, const double* u, const d
     out[0] = 1.0;
 }
 
-/* forces_folded:(c[116],u[3],q[17],qd[17])->(y[17]) y = P m, P (17 x 112) passed in the c slot by row pairs, P(i, k) at c[(j/2)*224 + 2k + j%2], j = i + 1: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 463 entries that can be nonzero, a pair of rows reads the columns either row has */
-void fem_nx8_ny8_torque_first_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
+/* forces_folded:(c[116],u[3],q[17],qd[17])->(y[17]) y = P m, P (17 x 112) passed in the c slot by groups of 4 rows, P(i, k) at c[(j/4)*448 + 4k + j%4], j = i + 3: M^-1 F for a constant M, else C^-1 F_C in the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); of the 463 entries that can be nonzero, a group of rows reads the columns any of its rows has */
+HUBBEAM_WIDE_KERNEL void fem_nx8_ny8_torque_first_forces_folded(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
     const double A1 = q[1];
@@ -2379,240 +2379,132 @@ void fem_nx8_ny8_torque_first_forces_folded(const double* c, const double* u, co
     const double B8_theta_dot_B6_dot = B8_theta_dot*B6_dot;
     const double B8_theta_dot_B7_dot = B8_theta_dot*B7_dot;
     const double B8_theta_dot_B8_dot = B8_theta_dot*B8_dot;
-    typedef double lanes __attribute__((vector_size(16)));
-    const auto pair = [c](int e) {
-        lanes v;
-        __builtin_memcpy(&v, c + e, sizeof v);
-        return v;
-    };
-    out[0] = c[1]*tau + c[37]*theta_dot_A1_dot + c[39]*theta_dot_A2_dot + c[41]*theta_dot_A3_dot + c[43]*theta_dot_A4_dot + c[45]*theta_dot_A5_dot + c[47]*theta_dot_A6_dot + c[49]*theta_dot_A7_dot + c[51]*theta_dot_A8_dot + c[71]*A1_theta_dot_A1_dot + c[73]*A1_theta_dot_A2_dot + c[77]*A2_theta_dot_A1_dot + c[79]*A2_theta_dot_A2_dot + c[81]*A2_theta_dot_A3_dot + c[85]*A3_theta_dot_A2_dot + c[87]*A3_theta_dot_A3_dot + c[89]*A3_theta_dot_A4_dot + c[93]*A4_theta_dot_A3_dot + c[95]*A4_theta_dot_A4_dot + c[97]*A4_theta_dot_A5_dot + c[101]*A5_theta_dot_A4_dot + c[103]*A5_theta_dot_A5_dot + c[105]*A5_theta_dot_A6_dot + c[109]*A6_theta_dot_A5_dot + c[111]*A6_theta_dot_A6_dot + c[113]*A6_theta_dot_A7_dot + c[117]*A7_theta_dot_A6_dot + c[119]*A7_theta_dot_A7_dot + c[121]*A7_theta_dot_A8_dot + c[125]*A8_theta_dot_A7_dot + c[127]*A8_theta_dot_A8_dot + c[131]*B1_theta_dot_B1_dot + c[133]*B1_theta_dot_B2_dot + c[135]*B1_theta_dot_B3_dot + c[137]*B1_theta_dot_B4_dot + c[141]*B2_theta_dot_B1_dot + c[143]*B2_theta_dot_B2_dot + c[145]*B2_theta_dot_B3_dot + c[147]*B2_theta_dot_B4_dot + c[151]*B3_theta_dot_B1_dot + c[153]*B3_theta_dot_B2_dot + c[155]*B3_theta_dot_B3_dot + c[157]*B3_theta_dot_B4_dot + c[159]*B3_theta_dot_B5_dot + c[161]*B3_theta_dot_B6_dot + c[165]*B4_theta_dot_B1_dot + c[167]*B4_theta_dot_B2_dot + c[169]*B4_theta_dot_B3_dot + c[171]*B4_theta_dot_B4_dot + c[173]*B4_theta_dot_B5_dot + c[175]*B4_theta_dot_B6_dot + c[179]*B5_theta_dot_B3_dot + c[181]*B5_theta_dot_B4_dot + c[183]*B5_theta_dot_B5_dot + c[185]*B5_theta_dot_B6_dot + c[187]*B5_theta_dot_B7_dot + c[189]*B5_theta_dot_B8_dot + c[193]*B6_theta_dot_B3_dot + c[195]*B6_theta_dot_B4_dot + c[197]*B6_theta_dot_B5_dot + c[199]*B6_theta_dot_B6_dot + c[201]*B6_theta_dot_B7_dot + c[203]*B6_theta_dot_B8_dot + c[207]*B7_theta_dot_B5_dot + c[209]*B7_theta_dot_B6_dot + c[211]*B7_theta_dot_B7_dot + c[213]*B7_theta_dot_B8_dot + c[217]*B8_theta_dot_B5_dot + c[219]*B8_theta_dot_B6_dot + c[221]*B8_theta_dot_B7_dot + c[223]*B8_theta_dot_B8_dot;
+    typedef double lanes __attribute__((vector_size(32)));
+    typedef double lanes_at __attribute__((vector_size(32), aligned(8), may_alias));
+    // column[g*112 + k]: group g's entries of column k.
+    const lanes_at* const column = reinterpret_cast<const lanes_at*>(c);
+    out[0] = c[3]*tau + c[75]*theta_dot_A1_dot + c[79]*theta_dot_A2_dot + c[83]*theta_dot_A3_dot + c[87]*theta_dot_A4_dot + c[91]*theta_dot_A5_dot + c[95]*theta_dot_A6_dot + c[99]*theta_dot_A7_dot + c[103]*theta_dot_A8_dot + c[143]*A1_theta_dot_A1_dot + c[147]*A1_theta_dot_A2_dot + c[155]*A2_theta_dot_A1_dot + c[159]*A2_theta_dot_A2_dot + c[163]*A2_theta_dot_A3_dot + c[171]*A3_theta_dot_A2_dot + c[175]*A3_theta_dot_A3_dot + c[179]*A3_theta_dot_A4_dot + c[187]*A4_theta_dot_A3_dot + c[191]*A4_theta_dot_A4_dot + c[195]*A4_theta_dot_A5_dot + c[203]*A5_theta_dot_A4_dot + c[207]*A5_theta_dot_A5_dot + c[211]*A5_theta_dot_A6_dot + c[219]*A6_theta_dot_A5_dot + c[223]*A6_theta_dot_A6_dot + c[227]*A6_theta_dot_A7_dot + c[235]*A7_theta_dot_A6_dot + c[239]*A7_theta_dot_A7_dot + c[243]*A7_theta_dot_A8_dot + c[251]*A8_theta_dot_A7_dot + c[255]*A8_theta_dot_A8_dot + c[263]*B1_theta_dot_B1_dot + c[267]*B1_theta_dot_B2_dot + c[271]*B1_theta_dot_B3_dot + c[275]*B1_theta_dot_B4_dot + c[283]*B2_theta_dot_B1_dot + c[287]*B2_theta_dot_B2_dot + c[291]*B2_theta_dot_B3_dot + c[295]*B2_theta_dot_B4_dot + c[303]*B3_theta_dot_B1_dot + c[307]*B3_theta_dot_B2_dot + c[311]*B3_theta_dot_B3_dot + c[315]*B3_theta_dot_B4_dot + c[319]*B3_theta_dot_B5_dot + c[323]*B3_theta_dot_B6_dot + c[331]*B4_theta_dot_B1_dot + c[335]*B4_theta_dot_B2_dot + c[339]*B4_theta_dot_B3_dot + c[343]*B4_theta_dot_B4_dot + c[347]*B4_theta_dot_B5_dot + c[351]*B4_theta_dot_B6_dot + c[359]*B5_theta_dot_B3_dot + c[363]*B5_theta_dot_B4_dot + c[367]*B5_theta_dot_B5_dot + c[371]*B5_theta_dot_B6_dot + c[375]*B5_theta_dot_B7_dot + c[379]*B5_theta_dot_B8_dot + c[387]*B6_theta_dot_B3_dot + c[391]*B6_theta_dot_B4_dot + c[395]*B6_theta_dot_B5_dot + c[399]*B6_theta_dot_B6_dot + c[403]*B6_theta_dot_B7_dot + c[407]*B6_theta_dot_B8_dot + c[415]*B7_theta_dot_B5_dot + c[419]*B7_theta_dot_B6_dot + c[423]*B7_theta_dot_B7_dot + c[427]*B7_theta_dot_B8_dot + c[435]*B8_theta_dot_B5_dot + c[439]*B8_theta_dot_B6_dot + c[443]*B8_theta_dot_B7_dot + c[447]*B8_theta_dot_B8_dot;
     {
-        lanes s = pair(226) * lanes{A1, A1};
-        s += pair(228) * lanes{A2, A2};
-        s += pair(230) * lanes{A3, A3};
-        s += pair(232) * lanes{A4, A4};
-        s += pair(234) * lanes{A5, A5};
-        s += pair(236) * lanes{A6, A6};
-        s += pair(238) * lanes{A7, A7};
-        s += pair(240) * lanes{A8, A8};
-        s += pair(258) * lanes{theta_dotsq, theta_dotsq};
-        s += pair(276) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
-        s += pair(278) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
-        s += pair(280) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
-        s += pair(282) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
-        s += pair(284) * lanes{theta_dot_B5_dot, theta_dot_B5_dot};
-        s += pair(286) * lanes{theta_dot_B6_dot, theta_dot_B6_dot};
-        s += pair(288) * lanes{theta_dot_B7_dot, theta_dot_B7_dot};
-        s += pair(290) * lanes{theta_dot_B8_dot, theta_dot_B8_dot};
-        s += pair(292) * lanes{A1_theta_dotsq, A1_theta_dotsq};
-        s += pair(298) * lanes{A2_theta_dotsq, A2_theta_dotsq};
-        s += pair(306) * lanes{A3_theta_dotsq, A3_theta_dotsq};
-        s += pair(314) * lanes{A4_theta_dotsq, A4_theta_dotsq};
-        s += pair(322) * lanes{A5_theta_dotsq, A5_theta_dotsq};
-        s += pair(330) * lanes{A6_theta_dotsq, A6_theta_dotsq};
-        s += pair(338) * lanes{A7_theta_dotsq, A7_theta_dotsq};
-        s += pair(346) * lanes{A8_theta_dotsq, A8_theta_dotsq};
+        lanes s = column[113] * A1;
+        s += column[114] * A2;
+        s += column[115] * A3;
+        s += column[116] * A4;
+        s += column[117] * A5;
+        s += column[118] * A6;
+        s += column[119] * A7;
+        s += column[120] * A8;
+        s += column[129] * theta_dotsq;
+        s += column[138] * theta_dot_B1_dot;
+        s += column[139] * theta_dot_B2_dot;
+        s += column[140] * theta_dot_B3_dot;
+        s += column[141] * theta_dot_B4_dot;
+        s += column[142] * theta_dot_B5_dot;
+        s += column[143] * theta_dot_B6_dot;
+        s += column[144] * theta_dot_B7_dot;
+        s += column[145] * theta_dot_B8_dot;
+        s += column[146] * A1_theta_dotsq;
+        s += column[149] * A2_theta_dotsq;
+        s += column[153] * A3_theta_dotsq;
+        s += column[157] * A4_theta_dotsq;
+        s += column[161] * A5_theta_dotsq;
+        s += column[165] * A6_theta_dotsq;
+        s += column[169] * A7_theta_dotsq;
+        s += column[173] * A8_theta_dotsq;
         out[1] = s[0];
         out[2] = s[1];
+        out[3] = s[2];
+        out[4] = s[3];
     }
     {
-        lanes s = pair(450) * lanes{A1, A1};
-        s += pair(452) * lanes{A2, A2};
-        s += pair(454) * lanes{A3, A3};
-        s += pair(456) * lanes{A4, A4};
-        s += pair(458) * lanes{A5, A5};
-        s += pair(460) * lanes{A6, A6};
-        s += pair(462) * lanes{A7, A7};
-        s += pair(464) * lanes{A8, A8};
-        s += pair(482) * lanes{theta_dotsq, theta_dotsq};
-        s += pair(500) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
-        s += pair(502) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
-        s += pair(504) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
-        s += pair(506) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
-        s += pair(508) * lanes{theta_dot_B5_dot, theta_dot_B5_dot};
-        s += pair(510) * lanes{theta_dot_B6_dot, theta_dot_B6_dot};
-        s += pair(512) * lanes{theta_dot_B7_dot, theta_dot_B7_dot};
-        s += pair(514) * lanes{theta_dot_B8_dot, theta_dot_B8_dot};
-        s += pair(516) * lanes{A1_theta_dotsq, A1_theta_dotsq};
-        s += pair(522) * lanes{A2_theta_dotsq, A2_theta_dotsq};
-        s += pair(530) * lanes{A3_theta_dotsq, A3_theta_dotsq};
-        s += pair(538) * lanes{A4_theta_dotsq, A4_theta_dotsq};
-        s += pair(546) * lanes{A5_theta_dotsq, A5_theta_dotsq};
-        s += pair(554) * lanes{A6_theta_dotsq, A6_theta_dotsq};
-        s += pair(562) * lanes{A7_theta_dotsq, A7_theta_dotsq};
-        s += pair(570) * lanes{A8_theta_dotsq, A8_theta_dotsq};
-        out[3] = s[0];
-        out[4] = s[1];
-    }
-    {
-        lanes s = pair(674) * lanes{A1, A1};
-        s += pair(676) * lanes{A2, A2};
-        s += pair(678) * lanes{A3, A3};
-        s += pair(680) * lanes{A4, A4};
-        s += pair(682) * lanes{A5, A5};
-        s += pair(684) * lanes{A6, A6};
-        s += pair(686) * lanes{A7, A7};
-        s += pair(688) * lanes{A8, A8};
-        s += pair(706) * lanes{theta_dotsq, theta_dotsq};
-        s += pair(724) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
-        s += pair(726) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
-        s += pair(728) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
-        s += pair(730) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
-        s += pair(732) * lanes{theta_dot_B5_dot, theta_dot_B5_dot};
-        s += pair(734) * lanes{theta_dot_B6_dot, theta_dot_B6_dot};
-        s += pair(736) * lanes{theta_dot_B7_dot, theta_dot_B7_dot};
-        s += pair(738) * lanes{theta_dot_B8_dot, theta_dot_B8_dot};
-        s += pair(740) * lanes{A1_theta_dotsq, A1_theta_dotsq};
-        s += pair(746) * lanes{A2_theta_dotsq, A2_theta_dotsq};
-        s += pair(754) * lanes{A3_theta_dotsq, A3_theta_dotsq};
-        s += pair(762) * lanes{A4_theta_dotsq, A4_theta_dotsq};
-        s += pair(770) * lanes{A5_theta_dotsq, A5_theta_dotsq};
-        s += pair(778) * lanes{A6_theta_dotsq, A6_theta_dotsq};
-        s += pair(786) * lanes{A7_theta_dotsq, A7_theta_dotsq};
-        s += pair(794) * lanes{A8_theta_dotsq, A8_theta_dotsq};
+        lanes s = column[225] * A1;
+        s += column[226] * A2;
+        s += column[227] * A3;
+        s += column[228] * A4;
+        s += column[229] * A5;
+        s += column[230] * A6;
+        s += column[231] * A7;
+        s += column[232] * A8;
+        s += column[241] * theta_dotsq;
+        s += column[250] * theta_dot_B1_dot;
+        s += column[251] * theta_dot_B2_dot;
+        s += column[252] * theta_dot_B3_dot;
+        s += column[253] * theta_dot_B4_dot;
+        s += column[254] * theta_dot_B5_dot;
+        s += column[255] * theta_dot_B6_dot;
+        s += column[256] * theta_dot_B7_dot;
+        s += column[257] * theta_dot_B8_dot;
+        s += column[258] * A1_theta_dotsq;
+        s += column[261] * A2_theta_dotsq;
+        s += column[265] * A3_theta_dotsq;
+        s += column[269] * A4_theta_dotsq;
+        s += column[273] * A5_theta_dotsq;
+        s += column[277] * A6_theta_dotsq;
+        s += column[281] * A7_theta_dotsq;
+        s += column[285] * A8_theta_dotsq;
         out[5] = s[0];
         out[6] = s[1];
+        out[7] = s[2];
+        out[8] = s[3];
     }
     {
-        lanes s = pair(898) * lanes{A1, A1};
-        s += pair(900) * lanes{A2, A2};
-        s += pair(902) * lanes{A3, A3};
-        s += pair(904) * lanes{A4, A4};
-        s += pair(906) * lanes{A5, A5};
-        s += pair(908) * lanes{A6, A6};
-        s += pair(910) * lanes{A7, A7};
-        s += pair(912) * lanes{A8, A8};
-        s += pair(930) * lanes{theta_dotsq, theta_dotsq};
-        s += pair(948) * lanes{theta_dot_B1_dot, theta_dot_B1_dot};
-        s += pair(950) * lanes{theta_dot_B2_dot, theta_dot_B2_dot};
-        s += pair(952) * lanes{theta_dot_B3_dot, theta_dot_B3_dot};
-        s += pair(954) * lanes{theta_dot_B4_dot, theta_dot_B4_dot};
-        s += pair(956) * lanes{theta_dot_B5_dot, theta_dot_B5_dot};
-        s += pair(958) * lanes{theta_dot_B6_dot, theta_dot_B6_dot};
-        s += pair(960) * lanes{theta_dot_B7_dot, theta_dot_B7_dot};
-        s += pair(962) * lanes{theta_dot_B8_dot, theta_dot_B8_dot};
-        s += pair(964) * lanes{A1_theta_dotsq, A1_theta_dotsq};
-        s += pair(970) * lanes{A2_theta_dotsq, A2_theta_dotsq};
-        s += pair(978) * lanes{A3_theta_dotsq, A3_theta_dotsq};
-        s += pair(986) * lanes{A4_theta_dotsq, A4_theta_dotsq};
-        s += pair(994) * lanes{A5_theta_dotsq, A5_theta_dotsq};
-        s += pair(1002) * lanes{A6_theta_dotsq, A6_theta_dotsq};
-        s += pair(1010) * lanes{A7_theta_dotsq, A7_theta_dotsq};
-        s += pair(1018) * lanes{A8_theta_dotsq, A8_theta_dotsq};
-        out[7] = s[0];
-        out[8] = s[1];
-    }
-    {
-        lanes s = pair(1138) * lanes{B1, B1};
-        s += pair(1140) * lanes{B2, B2};
-        s += pair(1142) * lanes{B3, B3};
-        s += pair(1144) * lanes{B4, B4};
-        s += pair(1146) * lanes{B5, B5};
-        s += pair(1148) * lanes{B6, B6};
-        s += pair(1150) * lanes{B7, B7};
-        s += pair(1152) * lanes{B8, B8};
-        s += pair(1156) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
-        s += pair(1158) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
-        s += pair(1160) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
-        s += pair(1162) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
-        s += pair(1164) * lanes{theta_dot_A5_dot, theta_dot_A5_dot};
-        s += pair(1166) * lanes{theta_dot_A6_dot, theta_dot_A6_dot};
-        s += pair(1168) * lanes{theta_dot_A7_dot, theta_dot_A7_dot};
-        s += pair(1170) * lanes{theta_dot_A8_dot, theta_dot_A8_dot};
-        s += pair(1248) * lanes{B1_theta_dotsq, B1_theta_dotsq};
-        s += pair(1258) * lanes{B2_theta_dotsq, B2_theta_dotsq};
-        s += pair(1268) * lanes{B3_theta_dotsq, B3_theta_dotsq};
-        s += pair(1282) * lanes{B4_theta_dotsq, B4_theta_dotsq};
-        s += pair(1296) * lanes{B5_theta_dotsq, B5_theta_dotsq};
-        s += pair(1310) * lanes{B6_theta_dotsq, B6_theta_dotsq};
-        s += pair(1324) * lanes{B7_theta_dotsq, B7_theta_dotsq};
-        s += pair(1334) * lanes{B8_theta_dotsq, B8_theta_dotsq};
+        lanes s = column[345] * B1;
+        s += column[346] * B2;
+        s += column[347] * B3;
+        s += column[348] * B4;
+        s += column[349] * B5;
+        s += column[350] * B6;
+        s += column[351] * B7;
+        s += column[352] * B8;
+        s += column[354] * theta_dot_A1_dot;
+        s += column[355] * theta_dot_A2_dot;
+        s += column[356] * theta_dot_A3_dot;
+        s += column[357] * theta_dot_A4_dot;
+        s += column[358] * theta_dot_A5_dot;
+        s += column[359] * theta_dot_A6_dot;
+        s += column[360] * theta_dot_A7_dot;
+        s += column[361] * theta_dot_A8_dot;
+        s += column[400] * B1_theta_dotsq;
+        s += column[405] * B2_theta_dotsq;
+        s += column[410] * B3_theta_dotsq;
+        s += column[417] * B4_theta_dotsq;
+        s += column[424] * B5_theta_dotsq;
+        s += column[431] * B6_theta_dotsq;
+        s += column[438] * B7_theta_dotsq;
+        s += column[443] * B8_theta_dotsq;
         out[9] = s[0];
         out[10] = s[1];
+        out[11] = s[2];
+        out[12] = s[3];
     }
     {
-        lanes s = pair(1362) * lanes{B1, B1};
-        s += pair(1364) * lanes{B2, B2};
-        s += pair(1366) * lanes{B3, B3};
-        s += pair(1368) * lanes{B4, B4};
-        s += pair(1370) * lanes{B5, B5};
-        s += pair(1372) * lanes{B6, B6};
-        s += pair(1374) * lanes{B7, B7};
-        s += pair(1376) * lanes{B8, B8};
-        s += pair(1380) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
-        s += pair(1382) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
-        s += pair(1384) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
-        s += pair(1386) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
-        s += pair(1388) * lanes{theta_dot_A5_dot, theta_dot_A5_dot};
-        s += pair(1390) * lanes{theta_dot_A6_dot, theta_dot_A6_dot};
-        s += pair(1392) * lanes{theta_dot_A7_dot, theta_dot_A7_dot};
-        s += pair(1394) * lanes{theta_dot_A8_dot, theta_dot_A8_dot};
-        s += pair(1472) * lanes{B1_theta_dotsq, B1_theta_dotsq};
-        s += pair(1482) * lanes{B2_theta_dotsq, B2_theta_dotsq};
-        s += pair(1492) * lanes{B3_theta_dotsq, B3_theta_dotsq};
-        s += pair(1506) * lanes{B4_theta_dotsq, B4_theta_dotsq};
-        s += pair(1520) * lanes{B5_theta_dotsq, B5_theta_dotsq};
-        s += pair(1534) * lanes{B6_theta_dotsq, B6_theta_dotsq};
-        s += pair(1548) * lanes{B7_theta_dotsq, B7_theta_dotsq};
-        s += pair(1558) * lanes{B8_theta_dotsq, B8_theta_dotsq};
-        out[11] = s[0];
-        out[12] = s[1];
-    }
-    {
-        lanes s = pair(1586) * lanes{B1, B1};
-        s += pair(1588) * lanes{B2, B2};
-        s += pair(1590) * lanes{B3, B3};
-        s += pair(1592) * lanes{B4, B4};
-        s += pair(1594) * lanes{B5, B5};
-        s += pair(1596) * lanes{B6, B6};
-        s += pair(1598) * lanes{B7, B7};
-        s += pair(1600) * lanes{B8, B8};
-        s += pair(1604) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
-        s += pair(1606) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
-        s += pair(1608) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
-        s += pair(1610) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
-        s += pair(1612) * lanes{theta_dot_A5_dot, theta_dot_A5_dot};
-        s += pair(1614) * lanes{theta_dot_A6_dot, theta_dot_A6_dot};
-        s += pair(1616) * lanes{theta_dot_A7_dot, theta_dot_A7_dot};
-        s += pair(1618) * lanes{theta_dot_A8_dot, theta_dot_A8_dot};
-        s += pair(1696) * lanes{B1_theta_dotsq, B1_theta_dotsq};
-        s += pair(1706) * lanes{B2_theta_dotsq, B2_theta_dotsq};
-        s += pair(1716) * lanes{B3_theta_dotsq, B3_theta_dotsq};
-        s += pair(1730) * lanes{B4_theta_dotsq, B4_theta_dotsq};
-        s += pair(1744) * lanes{B5_theta_dotsq, B5_theta_dotsq};
-        s += pair(1758) * lanes{B6_theta_dotsq, B6_theta_dotsq};
-        s += pair(1772) * lanes{B7_theta_dotsq, B7_theta_dotsq};
-        s += pair(1782) * lanes{B8_theta_dotsq, B8_theta_dotsq};
+        lanes s = column[457] * B1;
+        s += column[458] * B2;
+        s += column[459] * B3;
+        s += column[460] * B4;
+        s += column[461] * B5;
+        s += column[462] * B6;
+        s += column[463] * B7;
+        s += column[464] * B8;
+        s += column[466] * theta_dot_A1_dot;
+        s += column[467] * theta_dot_A2_dot;
+        s += column[468] * theta_dot_A3_dot;
+        s += column[469] * theta_dot_A4_dot;
+        s += column[470] * theta_dot_A5_dot;
+        s += column[471] * theta_dot_A6_dot;
+        s += column[472] * theta_dot_A7_dot;
+        s += column[473] * theta_dot_A8_dot;
+        s += column[512] * B1_theta_dotsq;
+        s += column[517] * B2_theta_dotsq;
+        s += column[522] * B3_theta_dotsq;
+        s += column[529] * B4_theta_dotsq;
+        s += column[536] * B5_theta_dotsq;
+        s += column[543] * B6_theta_dotsq;
+        s += column[550] * B7_theta_dotsq;
+        s += column[555] * B8_theta_dotsq;
         out[13] = s[0];
         out[14] = s[1];
-    }
-    {
-        lanes s = pair(1810) * lanes{B1, B1};
-        s += pair(1812) * lanes{B2, B2};
-        s += pair(1814) * lanes{B3, B3};
-        s += pair(1816) * lanes{B4, B4};
-        s += pair(1818) * lanes{B5, B5};
-        s += pair(1820) * lanes{B6, B6};
-        s += pair(1822) * lanes{B7, B7};
-        s += pair(1824) * lanes{B8, B8};
-        s += pair(1828) * lanes{theta_dot_A1_dot, theta_dot_A1_dot};
-        s += pair(1830) * lanes{theta_dot_A2_dot, theta_dot_A2_dot};
-        s += pair(1832) * lanes{theta_dot_A3_dot, theta_dot_A3_dot};
-        s += pair(1834) * lanes{theta_dot_A4_dot, theta_dot_A4_dot};
-        s += pair(1836) * lanes{theta_dot_A5_dot, theta_dot_A5_dot};
-        s += pair(1838) * lanes{theta_dot_A6_dot, theta_dot_A6_dot};
-        s += pair(1840) * lanes{theta_dot_A7_dot, theta_dot_A7_dot};
-        s += pair(1842) * lanes{theta_dot_A8_dot, theta_dot_A8_dot};
-        s += pair(1920) * lanes{B1_theta_dotsq, B1_theta_dotsq};
-        s += pair(1930) * lanes{B2_theta_dotsq, B2_theta_dotsq};
-        s += pair(1940) * lanes{B3_theta_dotsq, B3_theta_dotsq};
-        s += pair(1954) * lanes{B4_theta_dotsq, B4_theta_dotsq};
-        s += pair(1968) * lanes{B5_theta_dotsq, B5_theta_dotsq};
-        s += pair(1982) * lanes{B6_theta_dotsq, B6_theta_dotsq};
-        s += pair(1996) * lanes{B7_theta_dotsq, B7_theta_dotsq};
-        s += pair(2006) * lanes{B8_theta_dotsq, B8_theta_dotsq};
-        out[15] = s[0];
-        out[16] = s[1];
+        out[15] = s[2];
+        out[16] = s[3];
     }
 }
 
@@ -2831,7 +2723,7 @@ void fem_nx8_ny8_torque_first_mass_q_product(const double* c, const double* u, c
 }  // namespace
 
 extern const Variant fem_nx8_ny8_torque_first = {
-    .abi_version = 4,
+    .abi_version = 5,
     .name = "fem_nx8_ny8_torque_first",
     .nq = 17,
     .ncoeff = 116,

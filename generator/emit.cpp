@@ -9,6 +9,7 @@
 #include <set>
 #include <sstream>
 
+#include "generated_abi.h"
 #include "monomial_order.hpp"
 
 namespace hubbeam::gen {
@@ -248,14 +249,16 @@ std::string print_outputs(const std::vector<Output>& outputs, const std::vector<
 }
 
 /// Stage "print" of a matrix-times-monomials kernel: out[i] = sum_k P(i, k) m_k over the entries pattern allows (all
-/// when empty), in increasing k, every m_k a monomial with coefficient 1 (KernelSpec::rows). The rows go in pairs,
-/// two lanes of one SSE2 register: with j = i + offset (offset 1 puts row 0 alone, beside a padding row), P's entry
-/// (i, k) is read at c[(j/2)*2K + 2k + j%2], so that a pair's two entries of a column are one load; each lane adds
-/// its own row's terms in the scalar order (an entry outside its row's pattern is zero and adds nothing), so the
-/// sums are the scalar ones to the bit. A row without a partner is scalar.
+/// when empty), in increasing k, every m_k a monomial with coefficient 1 (KernelSpec::rows). The rows go in groups of
+/// W = generated::folded_lanes, the lanes of one AVX2 register (two SSE2 ones): with j = i + offset (offset W - 1
+/// puts row 0 alone, beside padding), P's entry (i, k) is read at c[(j/W)*W*K + W*k + j%W], so that a group's
+/// entries of a column are one load; each lane adds its own row's terms in the scalar order (an entry outside its
+/// row's pattern is zero and adds nothing), so the sums are the scalar ones to the bit. A row without a partner is
+/// scalar.
 std::string print_matrix_product(const std::vector<Output>& monomials, int rows, int offset,
                                  const std::vector<bool>& pattern, const MonomialPlan& plan, bool& uses_c)
 {
+    constexpr int W = generated::folded_lanes;
     std::vector<std::string> names;
     for (const Output& m : monomials) {
         if (m.size() != 1 || CoefficientPool::pure_number(m.begin()->second) != numeric(1))
@@ -271,47 +274,63 @@ std::string print_matrix_product(const std::vector<Output>& monomials, int rows,
     const auto allowed = [&](int i, std::size_t k) {
         return i >= 0 && (pattern.empty() || pattern[static_cast<std::size_t>(i) * K + k]);
     };
+    // The rows of group g's slots, and whether a column is read by any of them.
+    const auto group_rows = [&](int g) {
+        std::vector<int> r;
+        for (int l = 0; l < W; ++l)
+            if (row(g * W + l) >= 0) r.push_back(row(g * W + l));
+        return r;
+    };
+    const auto reads = [&](int g, std::size_t k) {
+        for (int l = 0; l < W; ++l)
+            if (allowed(row(g * W + l), k)) return true;
+        return false;
+    };
     std::ostringstream lines;
     uses_c = false;
-    const int slots = rows + offset;
-    bool pairs = false;
-    for (int j = 0; j + 1 < slots && !pairs; j += 2)
-        for (std::size_t k = 0; k < K && !pairs; ++k)
-            pairs = row(j) >= 0 && row(j + 1) >= 0 && (allowed(row(j), k) || allowed(row(j + 1), k));
-    if (pairs)
-        lines << "    typedef double lanes __attribute__((vector_size(16)));\n"
-              << "    const auto pair = [c](int e) {\n        lanes v;\n        __builtin_memcpy(&v, c + e, sizeof v);\n"
-              << "        return v;\n    };\n";
-    for (int j = 0; j < slots; j += 2) {
-        const std::size_t base = static_cast<std::size_t>(j / 2) * 2 * K;
-        if (row(j) < 0 || row(j + 1) < 0) {  // a row beside padding: scalar, in its lane
-            const int i = row(j) >= 0 ? row(j) : row(j + 1), lane = row(j) >= 0 ? 0 : 1;
-            if (i < 0) continue;
+    const int groups = (rows + offset + W - 1) / W;
+    bool vectors = false;
+    for (int g = 0; g < groups && !vectors; ++g)
+        for (std::size_t k = 0; k < K && !vectors; ++k) vectors = group_rows(g).size() > 1 && reads(g, k);
+    if (vectors)
+        lines << "    typedef double lanes __attribute__((vector_size(" << 8 * W << ")));\n"
+              << "    typedef double lanes_at __attribute__((vector_size(" << 8 * W << "), aligned(8), may_alias));\n"
+              << "    // column[g*" << K << " + k]: group g's entries of column k.\n"
+              << "    const lanes_at* const column = reinterpret_cast<const lanes_at*>(c);\n";
+    for (int g = 0; g < groups; ++g) {
+        const std::size_t base = static_cast<std::size_t>(g) * W * K;
+        const std::vector<int> in = group_rows(g);
+        if (in.empty()) continue;
+        if (in.size() == 1) {  // a row beside padding: scalar, in its lane
+            const int i = in[0], lane = i + offset - g * W;
             lines << "    out[" << i << "] =";
             bool first = true;
             for (std::size_t k = 0; k < K; ++k) {
                 if (!allowed(i, k)) continue;
-                lines << (first ? " " : " + ") << "c[" << base + 2 * k + static_cast<std::size_t>(lane) << "]*" << names[k];
+                lines << (first ? " " : " + ") << "c[" << base + W * k + static_cast<std::size_t>(lane) << "]*"
+                      << names[k];
                 first = false;
             }
             uses_c = uses_c || !first;
             lines << (first ? " 0.0;\n" : ";\n");
             continue;
         }
-        const int i = row(j);
         bool first = true;
         for (std::size_t k = 0; k < K; ++k) {
-            if (!allowed(i, k) && !allowed(i + 1, k)) continue;
-            const std::string term = "pair(" + std::to_string(base + 2 * k) + ") * lanes{" + names[k] + ", " + names[k] + "}";
+            if (!reads(g, k)) continue;
+            // A vector times a scalar multiplies every lane by it (GCC's vector extension).
+            const std::string term =
+                "column[" + std::to_string(static_cast<std::size_t>(g) * K + k) + "] * " + names[k];
             lines << (first ? "    {\n        lanes s = " : "        s += ") << term << ";\n";
             first = false;
         }
         if (first) {
-            lines << "    out[" << i << "] = 0.0;\n    out[" << i + 1 << "] = 0.0;\n";
+            for (const int i : in) lines << "    out[" << i << "] = 0.0;\n";
             continue;
         }
         uses_c = true;
-        lines << "        out[" << i << "] = s[0];\n        out[" << i + 1 << "] = s[1];\n    }\n";
+        for (const int i : in) lines << "        out[" << i << "] = s[" << i + offset - g * W << "];\n";
+        lines << "    }\n";
     }
     return lines.str();
 }
@@ -438,7 +457,8 @@ std::string print_kernel(const std::string& prefix, const KernelSpec& k, const S
                          const std::string& outputs, bool uses_c)
 {
     std::ostringstream f;
-    f << "void " << prefix << "_" << k.name << "(const double* c";
+    // A matrix-times-monomials kernel's lanes run four wide where the processor has AVX2 (generated_abi.h).
+    f << (k.rows > 0 ? "HUBBEAM_WIDE_KERNEL " : "") << "void " << prefix << "_" << k.name << "(const double* c";
     for (const Array& a : sig.state) f << ", const double* " << a.name;
     f << ", double* out)\n{\n";
     std::string reads;

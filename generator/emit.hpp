@@ -37,12 +37,12 @@ struct KernelSpec {
     std::vector<Poly> polys = {};
     /// > 0: a matrix-times-monomials kernel. values are K monomials m_k of the state, and the kernel writes
     /// out[i] = sum_k P(i, k) m_k for i < rows, reading its c argument as that matrix (a runtime product such as
-    /// M^-1 F) instead of the coefficient pool, in row pairs: with j = i + row_offset, P(i, k) at
-    /// c[(j/2)*2K + 2k + j%2] (row_offset 1 keeps row 0 out of the pairs).
+    /// M^-1 F) instead of the coefficient pool, in groups of W = generated::folded_lanes rows: with j = i +
+    /// row_offset, P(i, k) at c[(j/W)*W*K + W*k + j%W] (row_offset W - 1 keeps row 0 out of the groups).
     int rows = 0;
     int row_offset = 0;
-    /// With rows > 0: which entries P(i, k) can be nonzero (row-major, rows x K); a pair of rows reads the columns
-    /// either row allows, the others are neither read nor multiplied. Empty: every entry.
+    /// With rows > 0: which entries P(i, k) can be nonzero (row-major, rows x K); a group of rows reads the columns
+    /// any of its rows allows, the others are neither read nor multiplied. Empty: every entry.
     std::vector<bool> pattern = {};
     /// Code added at the end of the kernel, after every output is written (e.g. loops that add to them), and the
     /// parameter expressions that its placeholders stand for: each "$name" becomes the expression's pool entry.

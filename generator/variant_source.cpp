@@ -427,17 +427,20 @@ Kernels variant_kernels(const VariantKey& key, const Symbols& s, const Derivatio
     const auto folded_terms = static_cast<std::size_t>(std::count(pattern.begin(), pattern.end(), true));
     out.folded = !pattern.empty() && folded_terms <= 2000;
     if (out.folded) {
+        constexpr std::size_t W = generated::folded_lanes;
         KernelSpec f = dense_kernel(
             "forces_folded", "y[" + n1 + "]",
-            "y = P m, P (" + n1 + " x " + nk + ") passed in the c slot by row pairs, P(i, k) at c[(j/2)*" +
-                std::to_string(2 * terms.terms.size()) + " + 2k + j%2], j = i" + (out.mass_varies ? " + 1" : "") +
+            "y = P m, P (" + n1 + " x " + nk + ") passed in the c slot by groups of " + std::to_string(W) +
+                " rows, P(i, k) at c[(j/" + std::to_string(W) + ")*" + std::to_string(W * terms.terms.size()) + " + " +
+                std::to_string(W) + "k + j%" + std::to_string(W) + "], j = i" +
+                (out.mass_varies ? " + " + std::to_string(W - 1) : "") +
                 ": M^-1 F for a constant M, else C^-1 F_C in " +
                 "the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); " +
-                "of the " + std::to_string(folded_terms) + " entries that can be nonzero, a pair of rows reads the " +
-                "columns either row has",
+                "of the " + std::to_string(folded_terms) + " entries that can be nonzero, a group of rows reads the " +
+                "columns any of its rows has",
             terms.terms);
         f.rows = nq;
-        f.row_offset = out.mass_varies ? 1 : 0;  // the hub's row, which couples to every other, stays alone
+        f.row_offset = out.mass_varies ? W - 1 : 0;  // the hub's row, which couples to every other, stays alone
         f.pattern = std::move(pattern);
         out.list.push_back(f);
     }

@@ -7,7 +7,10 @@ namespace hubbeam::generated {
 /* The version of this interface. Every table row starts with the version of the generator that wrote it, and a
  * loader refuses a row of any other version before calling one of its kernels (an on-demand object outlives the
  * generator that made it). Raise it with any change to Variant, Kernel or CoefficientsKernel below. */
-inline constexpr int abi_version = 4;
+inline constexpr int abi_version = 5;
+
+/* forces_folded's lanes: the rows of P go in groups of this many, one group's entries of a column side by side. */
+inline constexpr int folded_lanes = 4;
 
 /* out = f(c, u, q, qd). c: the variant's coefficients (from its coefficients kernel, once per parameter set);
  * u: the drive, indexed by DriveValue of model/interface.hpp (a torque variant reads tau, a prescribed variant
@@ -47,14 +50,22 @@ struct Variant {
     Kernel forces_u;          /* dQdu[nq*3], row-major: out[i*3+j] = dQ_i/du_j, u indexed by DriveValue; columns of
                                * drive values the variant does not read are zero */
     Kernel tip;               /* tip[3] = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B */
-    Kernel forces_folded;     /* y[nq] = P m for the runtime's folded P (nq x nterms) in the c slot, by row pairs:
-                               * P(i, k) at c[(j/2)*2*nterms + 2k + j%2], j = i for a constant M, i + 1 else (row
-                               * 0 alone), padding rows zero.
+    Kernel forces_folded;     /* y[nq] = P m for the runtime's folded P (nq x nterms) in the c slot, by groups of
+                               * W = folded_lanes rows: P(i, k) at c[(j/W)*W*nterms + W*k + j%W], j = i for a
+                               * constant M, i + W - 1 else (row 0 alone), padding rows zero.
                                * P = M^-1 F for a constant M; with M varying in the hub's row only, the constant
                                * block's inverse folded into its rows of F and the hub's row F_0 - b^T C^-1 F_C (b
                                * its constant couplings). Reads only the entries that can be nonzero; a null pointer
                                * for other mass patterns or beyond a size where unrolling pays */
 };
+
+/* Marks forces_folded: GCC compiles it for AVX2 (four lanes in one register) and for the baseline (two registers of
+ * two), and the loader picks. AVX2 without FMA rounds as SSE2 does, so both give the same bits. */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define HUBBEAM_WIDE_KERNEL __attribute__((target_clones("avx2", "default")))
+#else
+#define HUBBEAM_WIDE_KERNEL
+#endif
 
 extern const Variant* const variants[];
 extern const int variant_count;

@@ -38,7 +38,7 @@ public:
 };
 
 /// y = P m by a kernel with P's entries at fixed places: the runtime's folded P (nq x K; M^-1 F for a constant M)
-/// laid out by row pairs as generated_abi.h's forces_folded states.
+/// laid out by groups of rows as generated_abi.h's forces_folded states.
 class FoldedForceKernel {
 public:
     virtual ~FoldedForceKernel() = default;

@@ -9,6 +9,8 @@
 
 #include <gsl/gsl_errno.h>
 
+#include "generated_abi.h"
+
 namespace hubbeam {
 
 namespace {
@@ -101,7 +103,8 @@ Eigen::MatrixXd folded_forces(const Model& model, const TermForces& terms, const
     return W;
 }
 
-FoldedProduct::FoldedProduct(const TermForces& terms, const FoldedForceKernel* kernel, const RowMajorMatrix& P, int offset)
+FoldedProduct::FoldedProduct(const TermForces& terms, const FoldedForceKernel* kernel, const RowMajorMatrix& P,
+                             bool hub_alone)
     : terms_(terms), kernel_(kernel), m_(static_cast<std::size_t>(P.cols()))
 {
     const auto rows = P.rows(), K = P.cols();
@@ -115,11 +118,14 @@ FoldedProduct::FoldedProduct(const TermForces& terms, const FoldedForceKernel* k
         start_.push_back(static_cast<int>(value_.size()));
     }
     if (kernel_ == nullptr) return;
-    // The kernel reads P by row pairs, row i in slot j = i + offset (generated_abi.h), padding slots zero.
-    pairs_.assign(static_cast<std::size_t>((rows + offset + 1) / 2 * 2 * K), 0.0);
+    // The kernel reads P by groups of W rows, row i in slot j = i + offset (generated_abi.h), padding slots zero.
+    constexpr Eigen::Index W = generated::folded_lanes;
+    const Eigen::Index offset = hub_alone ? W - 1 : 0;
+    groups_.assign(static_cast<std::size_t>((rows + offset + W - 1) / W * W * K), 0.0);
     for (Eigen::Index i = 0; i < rows; ++i) {
         const Eigen::Index j = i + offset;
-        for (Eigen::Index k = 0; k < K; ++k) pairs_[static_cast<std::size_t>((j / 2) * 2 * K + 2 * k + j % 2)] = P(i, k);
+        for (Eigen::Index k = 0; k < K; ++k)
+            groups_[static_cast<std::size_t>((j / W) * W * K + W * k + j % W)] = P(i, k);
     }
     // The kernel reads only the entries its generator proved can be nonzero: it must agree with the walk over every
     // nonzero at a state where every monomial is (an older generator's object, or a pattern rule that missed an
@@ -131,7 +137,7 @@ FoldedProduct::FoldedProduct(const TermForces& terms, const FoldedForceKernel* k
     }
     HubInput u;
     u.tau = 0.61, u.theta_dot = 0.83, u.theta_ddot = 0.29, u.theta = 0.47;
-    kernel_->accelerations(pairs_.data(), u, q.data(), qd.data(), by_kernel.data());
+    kernel_->accelerations(groups_.data(), u, q.data(), qd.data(), by_kernel.data());
     terms_.terms(u, q.data(), qd.data(), m_.data());
     walk(m_.data(), by_walk.data());
     for (Eigen::Index i = 0; i < rows; ++i) {
@@ -144,7 +150,7 @@ FoldedProduct::FoldedProduct(const TermForces& terms, const FoldedForceKernel* k
             break;
         }
     }
-    if (kernel_ == nullptr) pairs_.clear();
+    if (kernel_ == nullptr) groups_.clear();
 }
 
 void FoldedProduct::walk(const double* m, double* y) const
@@ -235,7 +241,7 @@ HubSchur::HubSchur(const Model& model, const TermForces& terms, const HubInput& 
     P.row(0) = varying_.empty() ? Eigen::RowVectorXd(F.row(0) - b_c.transpose() * W) : Eigen::RowVectorXd(F.row(0));
     s0_ = b_c.dot(c_c_);
     P.bottomRows(r) = W;
-    product_ = std::make_unique<FoldedProduct>(terms, model.folded_kernel(), P, 1);
+    product_ = std::make_unique<FoldedProduct>(terms, model.folded_kernel(), P, true);
     columns_ = K;
     c_.resize(static_cast<std::size_t>(r));
     y_.resize(static_cast<std::size_t>(n_));

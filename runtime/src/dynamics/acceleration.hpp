@@ -66,11 +66,13 @@ using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eig
 /// stored contiguously. No allocation per call.
 class FoldedProduct {
 public:
-    /// offset: the kernel's row offset in its pairs (generated_abi.h): 0 for a constant M, 1 where M varies.
-    FoldedProduct(const TermForces& terms, const FoldedForceKernel* kernel, const RowMajorMatrix& P, int offset = 0);
+    /// hub_alone: P's row 0 is the hub's, which the kernel of a variant with a varying M keeps out of its row
+    /// groups (generated_abi.h).
+    FoldedProduct(const TermForces& terms, const FoldedForceKernel* kernel, const RowMajorMatrix& P,
+                  bool hub_alone = false);
     void apply(const HubInput& u, const double* q, const double* qd, double* y)
     {
-        if (kernel_ != nullptr) return kernel_->accelerations(pairs_.data(), u, q, qd, y);
+        if (kernel_ != nullptr) return kernel_->accelerations(groups_.data(), u, q, qd, y);
         terms_.terms(u, q, qd, m_.data());
         walk(m_.data(), y);
     }
@@ -81,7 +83,7 @@ private:
     void walk(const double* m, double* y) const;
     const TermForces& terms_;
     const FoldedForceKernel* kernel_;
-    std::vector<double> pairs_;                  // the kernel's argument: P by row pairs, (i, k) at (j/2)*2K + 2k + j%2
+    std::vector<double> groups_;                 // the kernel's argument: P by groups of W rows (generated_abi.h)
     std::vector<int> start_, column_;            // the walk: row i holds value_[start_[i] .. start_[i+1])
     std::vector<double> value_, m_;
 };
