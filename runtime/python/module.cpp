@@ -124,6 +124,7 @@ py::dict summary_dict(const RunSummary& s, const Scene& scene)
     out["estimated_error"] = s.estimated_error;
     out["error_column"] = s.error_column;
     out["steps"] = s.steps;
+    out["rejected_steps"] = s.rejected_steps;
     out["rhs_evals"] = s.rhs_evals;
     out["jacobian_evals"] = s.jacobian_evals;
     out["wall_seconds"] = s.wall_seconds;

@@ -157,6 +157,7 @@ struct RunSummary {
     std::string error_column;  // where it is largest
     double check_rtol = 0.0, check_atol = 0.0;
     long steps = 0;
+    long rejected_steps = 0;  // steps the error test failed and the stepper took again shorter (not in steps)
     long rhs_evals = 0;
     long jacobian_evals = 0;
     double wall_seconds = 0.0;        // the integration's, without the error check

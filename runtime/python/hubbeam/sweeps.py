@@ -29,12 +29,12 @@ from typing import Any, Mapping, Sequence
 # What a sweep may keep per point: the run's summary values, its tip series (t, tip_uy), the bending frequencies
 # about the point's steady spin, and the invariant drift relative to the vibration energy.
 SUMMARY_VALUES = ("completed", "t_reached", "max_abs_tip_uy", "jacobi_drift", "vibration_energy", "steps",
-                  "rhs_evals", "jacobian_evals", "wall_seconds", "variant", "source", "stepper")
+                  "rejected_steps", "rhs_evals", "jacobian_evals", "wall_seconds", "variant", "source", "stepper")
 DERIVED_VALUES = ("relative_drift", "tip_series", "frequencies")
 DEFAULT_KEEP = ("max_abs_tip_uy", "relative_drift", "wall_seconds")
 # The type of each kept value as the table's text reads back (the rest are floats): hubbeam.sweep returns these.
 _TEXT_COLUMNS = {"point", "status", "variant", "source", "stepper"}
-_INT_COLUMNS = {"steps", "rhs_evals", "jacobian_evals"}
+_INT_COLUMNS = {"steps", "rejected_steps", "rhs_evals", "jacobian_evals"}
 
 
 class SweepError(ValueError):

@@ -763,6 +763,7 @@ std::string Simulation::Run::over_budget() const
 RunSummary Simulation::Run::finish(std::string failure)
 {
     summary_.steps = stepper_->steps();
+    summary_.rejected_steps = stepper_->rejected();
     summary_.newton = stepper_->newton_form();
     summary_.rhs_evals = system_.evaluations();
     summary_.jacobian_evals = system_.jacobian_evaluations();

@@ -43,15 +43,18 @@ public:
     void retake(double, const double*) override
     {
         past_ += static_cast<long>(driver_->e->count);
+        past_rejected_ += static_cast<long>(driver_->e->failed_steps);
         gsl_odeiv2_driver_reset(driver_);
     }
     long steps() const override { return past_ + static_cast<long>(driver_->e->count); }
+    // evolve_apply counts a step its control shortened and took again (an error test failed) in failed_steps.
+    long rejected() const override { return past_rejected_ + static_cast<long>(driver_->e->failed_steps); }
 
 private:
     FirstOrderSystem& system_;
     gsl_odeiv2_driver* driver_;
     double h_, h0_;
-    long past_ = 0;  // steps before the last restart (GSL's count starts again at a reset)
+    long past_ = 0, past_rejected_ = 0;  // before the last restart (GSL's counts start again at a reset)
 };
 
 /// CVODE's BDF (orders 1 to 5) with Newton iterations on a dense matrix I - gamma J. CVODE forms the Jacobian J from
@@ -101,6 +104,7 @@ public:
     void restart(double t, const double* y) override
     {
         past_ = steps();
+        past_rejected_ = rejected();
         std::copy_n(y, n_, N_VGetArrayPointer(y_));
         CVodeReInit(mem_, t, y_);
     }
@@ -110,6 +114,12 @@ public:
         long n = 0;
         CVodeGetNumSteps(mem_, &n);
         return past_ + n;
+    }
+    long rejected() const override
+    {
+        long n = 0;
+        CVodeGetNumErrTestFails(mem_, &n);
+        return past_rejected_ + n;
     }
 
 private:
@@ -165,7 +175,7 @@ private:
     SUNLinearSolver solver_ = nullptr;
     void* mem_ = nullptr;
     double h_max_ = INFINITY;
-    long past_ = 0;  // steps before the last restart (CVODE's count starts again at a re-initialisation)
+    long past_ = 0, past_rejected_ = 0;  // before the last restart (CVODE's counts start again at a re-initialisation)
 };
 
 }  // namespace

@@ -299,7 +299,7 @@ std::string format_summary(const RunSummary& r, const Scene& scene)
                       r.estimated_error, r.error_column.c_str(), r.check_rtol, r.check_atol);
         out << "error       " << line << "\n";
     }
-    out << "steps       " << r.steps << "\n";
+    out << "steps       " << r.steps << " accepted, " << r.rejected_steps << " rejected by the error test\n";
     out << "RHS evals   " << r.rhs_evals << "\n";
     std::snprintf(buf, sizeof buf, "%.3f", r.wall_seconds);
     out << "wall time   " << buf << " s";
