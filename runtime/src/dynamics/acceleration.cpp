@@ -3,8 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
-#include <cstring>
 #include <stdexcept>
 
 #include <gsl/gsl_errno.h>
@@ -46,23 +44,6 @@ void multiply(const Eigen::MatrixXd& W, const Eigen::VectorXd& x, double* y)
     }
 }
 
-/// dydt = qd, and true when no qdd[i] is infinite or NaN, in one loop (the copy alone would become a call to memcpy,
-/// which costs more than the loop at these sizes). The test works on the bits, so that the loop vectorizes (a
-/// floating-point sum of qdd[i] * 0, NaN exactly where an entry is not finite, is a chain the compiler may not
-/// reorder): an exponent field of all ones, plus one in its lowest bit, carries into the sign bit.
-bool copy_rates_and_test(const double* __restrict qd, const double* __restrict qdd, double* __restrict dydt, int n)
-{
-    constexpr std::uint64_t exponent = 0x7ff0000000000000, exponent_one = 0x0010000000000000;
-    std::uint64_t carry = 0;
-    for (int i = 0; i < n; ++i) {
-        dydt[i] = qd[i];
-        std::uint64_t bits;
-        std::memcpy(&bits, qdd + i, sizeof bits);
-        carry |= (bits & exponent) + exponent_one;
-    }
-    return (carry >> 63) == 0;
-}
-
 /// Nonzero entries of a matrix.
 template <class Matrix> long nonzeros(const Matrix& A) { return static_cast<long>((A.array() != 0.0).count()); }
 
@@ -87,7 +68,16 @@ int Accelerations::derivative(const HubInput& u, const double* y, double* dydt)
     const double* qd = y + n_;
     double* qdd = dydt + n_;
     if (const int status = accelerations(u, q, qd, qdd); status != GSL_SUCCESS) return status;
-    return copy_rates_and_test(qd, qdd, dydt, n_) ? GSL_SUCCESS : GSL_EBADFUNC;
+    // One test for all entries: a product with zero is NaN exactly where an entry is not finite. (The copy shares
+    // the loop, which also keeps it from becoming a call to memmove. Scalar on purpose: vector loads of qdd, just
+    // stored entry by entry, stall on store forwarding; vectorized on the bits, this loop took 8 % longer on torque
+    // AMM Nx = Ny = 4 under rk8pd, in fewer instructions.)
+    double probe = 0.0;
+    for (int i = 0; i < n_; ++i) {
+        dydt[i] = qd[i];
+        probe += qdd[i] * 0.0;
+    }
+    return probe == 0.0 ? GSL_SUCCESS : GSL_EBADFUNC;
 }
 
 Eigen::MatrixXd folded_forces(const Model& model, const TermForces& terms, const HubInput& u0)
