@@ -7,7 +7,9 @@
 #include <Eigen/Dense>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <gsl/gsl_errno.h>
@@ -152,6 +154,52 @@ void check_against_dense(RightHandSide& rhs, const Model& model, int seed)
 
 VariantKey key_of(Method method, int nx, int ny, Drive drive) { return {.method = method, .nx = nx, .ny = ny, .drive = drive, .extras = {}}; }
 
+/// A model that reports some of its hub couplings as varying although they are constant: varying and constant
+/// couplings at once, which no generated variant has. Like a generated model, it writes only the entries its
+/// pattern marks varying where asked for those.
+class SomeCouplingsVary final : public Model {
+public:
+    SomeCouplingsVary(std::unique_ptr<Model> inner, std::vector<int> varying)
+        : Model(inner->key()), inner_(std::move(inner)), varying_(std::move(varying))
+    {
+    }
+    const char* source() const override { return inner_->source(); }
+    bool mass_is_constant() const override { return false; }
+    std::string mass_pattern() const override
+    {
+        std::string p = inner_->mass_pattern();
+        for (const int j : varying_) p[static_cast<std::size_t>(j)] = p[static_cast<std::size_t>(j * nq())] = 'v';
+        return p;
+    }
+    void mass(const HubInput& u, const double* q, double* M) const override { inner_->mass(u, q, M); }
+    void mass_varying(const HubInput& u, const double* q, double* M) const override
+    {
+        std::vector<double> all(static_cast<std::size_t>(nq() * nq()));
+        inner_->mass(u, q, all.data());
+        const std::string p = mass_pattern();
+        for (std::size_t e = 0; e < all.size(); ++e)
+            if (p[e] == 'v') M[e] = all[e];
+    }
+    const TermForces* term_forces() const override { return inner_->term_forces(); }
+    void forces(const HubInput& u, const double* q, const double* qd, double* Q) const override
+    {
+        inner_->forces(u, q, qd, Q);
+    }
+    Energy energy(const HubInput& u, const double* q, const double* qd) const override
+    {
+        return inner_->energy(u, q, qd);
+    }
+    double momentum(const HubInput& u, const double* q, const double* qd) const override
+    {
+        return inner_->momentum(u, q, qd);
+    }
+    Tip tip(const double* q) const override { return inner_->tip(q); }
+
+private:
+    std::unique_ptr<Model> inner_;
+    std::vector<int> varying_;
+};
+
 }  // namespace
 
 TEST_CASE("every right-hand-side strategy solves M qdd = Q", "[stepping][strategy]")
@@ -183,6 +231,16 @@ TEST_CASE("every right-hand-side strategy solves M qdd = Q", "[stepping][strateg
                 HubSchur hub(*model, *model->term_forces(), rest);
                 check_against_dense(hub, *model, 4);
             }
+    }
+    SECTION("the hub's row by its Schur complement, with varying and constant couplings at once")
+    {
+        // Without axial coordinates every coupling is constant; two of them reported as varying take the path of
+        // varying couplings beside the constant ones (the constant ones must stay in the hub's row it reads).
+        SomeCouplingsVary model(make_model(key_of(Method::fem, 0, 4, Drive::torque), p, ModelSource::generated),
+                                {1, 3});
+        HubSchur hub(model, *model.term_forces(), rest);
+        REQUIRE(hub.coupling_nonzeros() > 0);
+        check_against_dense(hub, model, 10);
     }
     SECTION("the mass solver, for constant and varying M, generated and assembled")
     {
