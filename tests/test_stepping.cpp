@@ -307,20 +307,16 @@ TEST_CASE("a right-hand side whose accelerations are not finite says so, whichev
     // GSL_EBADFUNC is what makes a step fail instead of carrying NaN into the state (the run then stops with its
     // message). A rate of 1e200 overflows the velocity terms to infinity; NaN propagates from any coordinate.
     const Parameters p;
-    Motion spin;
-    spin.kind = Motion::Kind::spin_up;
-    spin.omega0 = 4.0;
-    Motion torque;
-    torque.kind = Motion::Kind::torque;
+    const Motion spin = spin_up(4.0), hub_torque = torque(1.0);
     struct Case {
         VariantKey key;
         const Motion& motion;
         ModelSource source;
     };
     for (const Case& c : {Case{key_of(Method::amm, 4, 4, Drive::prescribed), spin, ModelSource::generated},
-                          Case{key_of(Method::fem, 0, 4, Drive::torque), torque, ModelSource::generated},
-                          Case{key_of(Method::amm, 4, 4, Drive::torque), torque, ModelSource::generated},
-                          Case{key_of(Method::fem, 4, 4, Drive::torque), torque, ModelSource::assembled}}) {
+                          Case{key_of(Method::fem, 0, 4, Drive::torque), hub_torque, ModelSource::generated},
+                          Case{key_of(Method::amm, 4, 4, Drive::torque), hub_torque, ModelSource::generated},
+                          Case{key_of(Method::fem, 4, 4, Drive::torque), hub_torque, ModelSource::assembled}}) {
         const auto model = make_model(c.key, p, c.source);
         const auto rhs = make_right_hand_side(*model, c.motion, Axial::dynamic);
         INFO(c.key.name() << ": " << rhs->describe());
@@ -346,11 +342,7 @@ TEST_CASE("a right-hand side whose accelerations are not finite says so, whichev
 TEST_CASE("the factory picks the strategy from the model's structure", "[stepping][strategy]")
 {
     const Parameters p;
-    Motion spin;
-    spin.kind = Motion::Kind::spin_up;
-    spin.omega0 = 4.0;
-    Motion torque;
-    torque.kind = Motion::Kind::torque;
+    const Motion spin = spin_up(4.0), hub_torque = torque(1.0);
     const auto picks = [&](const VariantKey& key, const Motion& motion, Axial axial, ModelSource source) {
         const auto model = make_model(key, p, source);
         return std::shared_ptr<RightHandSide>(make_right_hand_side(*model, motion, axial).release());
@@ -362,13 +354,13 @@ TEST_CASE("the factory picks the strategy from the model's structure", "[steppin
         CHECK(folded->describe().find("by the generated kernel") != std::string::npos);
     }
     // A free hub: M varies in the hub's row only (its entry, and with axial coordinates its couplings).
-    CHECK(dynamic_cast<HubSchur*>(picks(key_of(Method::bim, 0, 4, Drive::torque), torque, Axial::dynamic, ModelSource::generated).get()));
-    CHECK(dynamic_cast<HubSchur*>(picks(key_of(Method::amm, 4, 4, Drive::torque), torque, Axial::dynamic, ModelSource::generated).get()));
+    CHECK(dynamic_cast<HubSchur*>(picks(key_of(Method::bim, 0, 4, Drive::torque), hub_torque, Axial::dynamic, ModelSource::generated).get()));
+    CHECK(dynamic_cast<HubSchur*>(picks(key_of(Method::amm, 4, 4, Drive::torque), hub_torque, Axial::dynamic, ModelSource::generated).get()));
     // The assembled path has no term form.
-    CHECK(dynamic_cast<MassSolved*>(picks(key_of(Method::amm, 4, 4, Drive::torque), torque, Axial::dynamic, ModelSource::assembled).get()));
+    CHECK(dynamic_cast<MassSolved*>(picks(key_of(Method::amm, 4, 4, Drive::torque), hub_torque, Axial::dynamic, ModelSource::assembled).get()));
     CHECK(dynamic_cast<MassSolved*>(picks(key_of(Method::amm, 4, 4, Drive::prescribed), spin, Axial::dynamic, ModelSource::assembled).get()));
-    CHECK(dynamic_cast<QuasiStaticAxial*>(picks(key_of(Method::amm, 4, 4, Drive::torque), torque, Axial::quasi_static, ModelSource::generated).get()));
-    CHECK_THROWS_AS(picks(key_of(Method::amm, 0, 4, Drive::torque), torque, Axial::quasi_static, ModelSource::generated), std::invalid_argument);
+    CHECK(dynamic_cast<QuasiStaticAxial*>(picks(key_of(Method::amm, 4, 4, Drive::torque), hub_torque, Axial::quasi_static, ModelSource::generated).get()));
+    CHECK_THROWS_AS(picks(key_of(Method::amm, 0, 4, Drive::torque), hub_torque, Axial::quasi_static, ModelSource::generated), std::invalid_argument);
 }
 
 TEST_CASE("every generated folded kernel reads every entry of the folded product that can be nonzero", "[stepping][strategy]")
