@@ -56,9 +56,8 @@ public:
     }
     void mass_varying(const HubInput& u, const double* q, double* M) const override
     {
-        if (v_.mass_varying == nullptr) return;
-        call_without_angle(v_.mass_varying, u, q, q, M);
-        for (const auto& [upper, lower] : mirrored_varying_) M[lower] = M[upper];
+        mass_varying_upper(u, q, M);
+        for (const auto& [upper, lower] : mirrored_varying_) M[lower] = M[upper];  // none without a kernel
     }
     void mass_varying_upper(const HubInput& u, const double* q, double* M) const override
     {
