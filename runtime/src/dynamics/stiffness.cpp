@@ -71,8 +71,8 @@ double highest_frequency(const Model& model, Axial axial)
 
 namespace {
 
-/// highest_rate of a model whose highest frequency is omega.
-double highest_rate_with(const Model& model, Axial axial, double omega)
+/// RatesAtRest::omega_max of a model whose highest frequency is omega.
+double highest_rate(const Model& model, Axial axial, double omega)
 {
     const int n = model.nq();
     const std::vector<double> zero(static_cast<std::size_t>(n), 0.0);
@@ -97,15 +97,10 @@ double highest_rate_with(const Model& model, Axial axial, double omega)
 
 }  // namespace
 
-double highest_rate(const Model& model, Axial axial)
-{
-    return highest_rate_with(model, axial, highest_frequency(model, axial));
-}
-
 RatesAtRest rates_at_rest(const Model& model, Axial axial)
 {
     const Eigen::VectorXd w2 = squared_frequencies(model, axial);  // once for both
-    return {highest_rate_with(model, axial, highest_of(w2)), lowest_of(w2)};
+    return {highest_rate(model, axial, highest_of(w2)), lowest_of(w2)};
 }
 
 namespace {
@@ -136,11 +131,6 @@ double critical_spin(const Model& model)
         (stable_at(model, mid) ? lo : hi) = mid;
     }
     return lo;
-}
-
-double lowest_frequency(const Model& model, Axial axial)
-{
-    return lowest_of(squared_frequencies(model, axial));
 }
 
 bool needs_pilot(const Model& model, double rtol)

@@ -14,20 +14,17 @@ namespace hubbeam {
 /// their rows and columns are left out (they are not integrated).
 double highest_frequency(const Model& model, Axial axial);
 
-/// The largest |lambda| (1/s) of the first-order equations linearized at rest, no spin: the highest frequency when
-/// the beam is undamped; with damping the fast decay rates count too (stiffness-proportional damping makes the
-/// stiff axial modes overdamped, their fast rate about beta omega^2). What bounds an explicit step.
-double highest_rate(const Model& model, Axial axial);
-
-/// The lowest positive natural frequency (rad/s) of the linearized equations at rest, no spin, kept coordinates only
-/// (a free hub's rigid rotation left out): the motion the tolerance must follow.
-double lowest_frequency(const Model& model, Axial axial);
-
-/// highest_rate and lowest_frequency from one eigenproblem: what the automatic choice weighs, which depends on the
-/// model and the axial treatment only (a simulation computes it once for its choice, its pilot and its checks'
-/// re-runs).
+/// What the automatic choice weighs, from one eigenproblem of the equations linearized at rest, no spin. It depends
+/// on the model and the axial treatment only: a simulation computes it once for its choice, its pilot and its
+/// checks' re-runs.
 struct RatesAtRest {
-    double omega_max = 0.0, omega_1 = 0.0;
+    /// The largest |lambda| (1/s) of the first-order equations: the highest frequency when the beam is undamped; with
+    /// damping the fast decay rates count too (stiffness-proportional damping makes the stiff axial modes overdamped,
+    /// their fast rate about beta omega^2). What bounds an explicit step.
+    double omega_max = 0.0;
+    /// The lowest positive natural frequency (rad/s), kept coordinates only (a free hub's rigid rotation left out):
+    /// the motion the tolerance must follow.
+    double omega_1 = 0.0;
 };
 RatesAtRest rates_at_rest(const Model& model, Axial axial);
 
@@ -35,7 +32,7 @@ RatesAtRest rates_at_rest(const Model& model, Axial axial);
 /// the tolerance and each method's order, times flops per step from the number of states (auxiliary: those beside
 /// q and qd, FirstOrderSystem::Auxiliary).
 struct StepperCosts {
-    double omega_max = 0.0, omega_1 = 0.0;   // highest_rate, lowest_frequency
+    double omega_max = 0.0, omega_1 = 0.0;   // RatesAtRest's
     double steps_rk8pd = 0.0, steps_gauss4 = 0.0;
     bool stability_bound = false;             // rk8pd's steps set by omega_max, not accuracy
     double rk8pd = 0.0, gauss4 = 0.0;         // flops
