@@ -7,20 +7,13 @@
 #include <cstddef>
 #include <queue>
 
+#include "generated_abi.h"  // HUBBEAM_WIDE_KERNEL
+
 extern "C" {
 // LAPACK (Fortran): LU with partial pivoting of a band matrix.
 void dgbtrf_(const int* m, const int* n, const int* kl, const int* ku, double* ab, const int* ldab, int* ipiv,
              int* info);
 }
-
-// The band solve's column loops run four wide where the processor has AVX2: GCC compiles it twice and picks at load
-// time. AVX2 without FMA rounds as SSE2 does, so the results are bitwise the same (a quarter fewer instructions for
-// FEM at Ny = 32).
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
-#define HUBBEAM_WIDE_VECTORS __attribute__((target_clones("avx2", "default")))
-#else
-#define HUBBEAM_WIDE_VECTORS
-#endif
 
 namespace hubbeam {
 
@@ -140,7 +133,9 @@ void BorderedBandLU::solve(double* b) const
     for (int p = 0; p < n_; ++p) b[order_[static_cast<std::size_t>(p)]] = x_[p];
 }
 
-HUBBEAM_WIDE_VECTORS void BorderedBandLU::band_solve(double* x) const
+// The band solve's column loops run four wide where the processor has AVX2, compiled twice as the generated folded
+// kernels are, with bitwise the same results (a quarter fewer instructions for FEM at Ny = 32).
+HUBBEAM_WIDE_KERNEL void BorderedBandLU::band_solve(double* x) const
 {
     // dgbtrs's algorithm in plain loops (LAPACK's goes through a BLAS call per column, costly at these sizes): the
     // row interchanges and L's multipliers column by column, then U, whose kl + ku superdiagonals dgbtrf stored.
