@@ -291,7 +291,8 @@ std::string print_matrix_product(const std::vector<Output>& monomials, int rows,
     const int groups = (rows + offset + W - 1) / W;
     bool vectors = false;
     for (int g = 0; g < groups && !vectors; ++g)
-        for (std::size_t k = 0; k < K && !vectors; ++k) vectors = group_rows(g).size() > 1 && reads(g, k);
+        if (group_rows(g).size() > 1)
+            for (std::size_t k = 0; k < K && !vectors; ++k) vectors = reads(g, k);
     if (vectors)
         lines << "    typedef double lanes __attribute__((vector_size(" << 8 * W << ")));\n"
               << "    typedef double lanes_at __attribute__((vector_size(" << 8 * W << "), aligned(8), may_alias));\n"
