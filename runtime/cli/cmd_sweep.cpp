@@ -30,7 +30,8 @@ int sweep(const std::vector<std::string>& args)
         "if sys.argv[1]: sys.path.insert(0, sys.argv[1])\n"
         "from hubbeam.sweeps import main\n"
         "sys.exit(main(sys.argv[2:]))\n";
-    std::vector<std::string> words = {HUBBEAM_PYTHON_EXECUTABLE, "-I", "-c", bootstrap, python_package_parent().string()};
+    std::vector<std::string> words = {HUBBEAM_PYTHON_EXECUTABLE, "-I", "-c", bootstrap,
+                                      python_package_parent().string()};
     words.insert(words.end(), args.begin(), args.end());
     std::vector<char*> argv;
     for (std::string& w : words) argv.push_back(w.data());

@@ -509,7 +509,8 @@ class InputsTest(unittest.TestCase):
             with open(big_scene, "a") as f:
                 f.write("#" * (1 << 20) + "\n")
             cases = [([fifo], "fifo.toml: cannot open: it is a FIFO"),
-                     ([write(os.path.join(d, "s.toml"), f'scene = "{fifo}"\n')], "fifo.toml: cannot open: it is a FIFO"),
+                     ([write(os.path.join(d, "s.toml"), f'scene = "{fifo}"\n')],
+                      "fifo.toml: cannot open: it is a FIFO"),
                      ([huge], "huge.toml: is larger than a sweep file can be (1024 KB)"),
                      ([write(os.path.join(d, "b.toml"), f'scene = "{big_scene}"\n')],
                       "big_scene.toml: is larger than a scene file can be (1024 KB)")]

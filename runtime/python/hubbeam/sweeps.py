@@ -955,7 +955,8 @@ def main(argv: Sequence[str] | None = None) -> int:
                                      "terminated (129 SIGHUP, 131 SIGQUIT; finished points kept; run again to "
                                      "resume).")
     parser.add_argument("sweep", help="SWEEP.toml: scene, grid and/or [[points]], keep, frequencies, output")
-    parser.add_argument("-o", "--output", help="CSV table (default: the sweep's output, else SWEEP.csv beside the sweep file)")
+    parser.add_argument("-o", "--output", help="CSV table (default: the sweep's output, else SWEEP.csv beside the "
+                        "sweep file)")
     parser.add_argument("--scheduler", help="a running Dask scheduler's address: tls://host:8786 with --tls-ca-file, "
                         "--tls-cert and --tls-key (tcp:// runs whatever any client sends); default: a local cluster "
                         "on 127.0.0.1 with TLS")
