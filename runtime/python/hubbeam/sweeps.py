@@ -514,7 +514,11 @@ class _Table:
                 raise SweepError(f"{shown}: expected a regular file for the sweep's table, got {_kind(held.st_mode)}")
             narrower = stat.S_IMODE(held.st_mode) & ~(0o777 & ~mode & 0o077)
             if narrower != stat.S_IMODE(held.st_mode):
-                os.fchmod(self.fd, narrower)  # rows of a private input go into a table no wider than it
+                try:
+                    os.fchmod(self.fd, narrower)  # rows of a private input go into a table no wider than it
+                except OSError as e:
+                    raise SweepError(f"{shown}: cannot narrow its permissions to mode {narrower:04o}, as the sweep's "
+                                     f"inputs are private: {e.strerror}; choose another output") from None
             if truncate_to is not None:
                 os.ftruncate(self.fd, truncate_to)
         except OSError as e:
