@@ -559,6 +559,13 @@ class StaleRowsTest(unittest.TestCase):
             for a, b in zip(stiff, doubled):
                 self.assertGreater(b["max_abs_tip_uy"] / a["max_abs_tip_uy"], 1.5)
             self.assertEqual(len(read(out)), 2)  # the stale rows are gone from the table, not left beside the new
+            # The command line, with the stiffness back as it was.
+            write(scene, original)
+            (code, err), = cli_all([spec, "-o", out, "--workers", "1"])
+            self.assertEqual(code, 0, err)
+            for row in read(out):
+                direct = hubbeam.run(scene, t_end=3.0, nx=0, ny=int(row["discretization.ny"]))
+                self.assertEqual(float(row["max_abs_tip_uy"]), direct.max_abs_tip_uy)
 
 
 class PathsTest(unittest.TestCase):
