@@ -1,6 +1,5 @@
 // hubbeam sweep: hands its arguments to the Python package's sweep, which runs a scene over parameters on Dask.
 #include <cerrno>
-#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
@@ -21,13 +20,18 @@ namespace {
 int sweep(const std::vector<std::string>& args)
 {
 #ifdef HUBBEAM_PYTHON_EXECUTABLE
-    // The package of this build or installation, found relative to this program (none: Python's own path).
-    const char* old = std::getenv("PYTHONPATH");
-    if (const std::filesystem::path package = python_package_parent(); !package.empty()) {
-        const std::string path = package.string() + (old != nullptr && *old != '\0' ? ":" + std::string(old) : "");
-        ::setenv("PYTHONPATH", path.c_str(), 1);
-    }
-    std::vector<std::string> words = {HUBBEAM_PYTHON_EXECUTABLE, "-m", "hubbeam.sweeps"};
+    // Isolated (-I): neither the current folder, nor PYTHONPATH or any other PYTHON* variable, nor the user's
+    // site-packages reach the path, so a csv.py or a hubbeam/ folder where the sweep starts is never imported (and
+    // Python's own children, such as multiprocessing's helpers, inherit -I). The package of this build or
+    // installation, found relative to this program, is put first on the path by the bootstrap below, which gets it as
+    // its first argument (empty: the package installed in Python's own path).
+    static constexpr const char* bootstrap =
+        "import sys\n"
+        "if sys.argv[1]: sys.path.insert(0, sys.argv[1])\n"
+        "from hubbeam.sweeps import main\n"
+        "sys.exit(main(sys.argv[2:]))\n";
+    std::vector<std::string> words = {HUBBEAM_PYTHON_EXECUTABLE, "-I", "-c", bootstrap,
+                                      python_package_parent().string()};
     words.insert(words.end(), args.begin(), args.end());
     std::vector<char*> argv;
     for (std::string& w : words) argv.push_back(w.data());

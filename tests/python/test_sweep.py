@@ -1,11 +1,14 @@
 """Sweeps on one local Dask cluster of 2 worker threads shared by the tests: the same table as sequential runs,
 typed values, a failing point reported while the rest finish, resume without recomputation and past a cut last
-line, tip series in files, a full disk, the command line over TLS with certificate files, and bad input that
-leaves every file as it was. Needs HUBBEAM and SOURCE_DIR."""
+line, tip series in files, a full disk, the command line over TLS with certificate files, bad input that leaves
+every file as it was, the files a sweep reads (never its table, which is never more readable than they are), stale
+rows of a changed scene, paths relative to the sweep file, Python isolated from the current folder, and signals.
+Needs HUBBEAM and SOURCE_DIR."""
 import csv
 import os
 import resource
 import shutil
+import signal
 import socket
 import subprocess
 import tempfile
@@ -250,7 +253,7 @@ class SweepTest(unittest.TestCase):
         # --no-resume wrote its new table beside the old one: the old table is whole, and no temporary file is left.
         self.assertEqual(code_replace, 2, err_replace)
         self.assertEqual(lines_of(old), before)
-        self.assertEqual([n for n in os.listdir(self.dir.name) if n.endswith(".partial")], [])
+        self.assertEqual(leftovers(self.dir.name), [])
         # The resume completes the table: every point once, every line whole.
         table = hubbeam.sweep(spec, output=fresh, scheduler=CLIENT, progress=False)
         self.assertEqual(len(table), 4)
@@ -297,7 +300,7 @@ class TipSeriesTest(unittest.TestCase):
             third = hubbeam.sweep(spec, output=out, scheduler=CLIENT, progress=False)
             self.assertTrue(np.array_equal(third[0]["tip_series"], table[0]["tip_series"]))
             self.assertEqual(third[1]["run_seconds"], table[1]["run_seconds"])
-            self.assertEqual(len(read(out)), 3)  # the resumed point's new row; the old row is ignored
+            self.assertEqual(len(read(out)), 2)  # the resumed point's new row replaces its old one
 
 
 class LockTest(unittest.TestCase):
@@ -379,4 +382,299 @@ class BadInputTest(unittest.TestCase):
                 self.assertEqual(lines_of(path), content, path)
             self.assertFalse(os.path.exists(unreachable))  # no header-only table
             self.assertIn("runs whatever any client", results[-2][1])  # a plain tcp:// scheduler is named unsafe
-            self.assertEqual([n for n in os.listdir(d) if n.endswith((".partial", ".lock"))], [])
+            self.assertEqual(leftovers(d), [])
+
+
+def write(path, text, mode=None):
+    with open(path, "w") as f:
+        f.write(text)
+    if mode is not None:
+        os.chmod(path, mode)
+    return path
+
+
+def leftovers(folder):
+    """The lock and temporary files a writer leaves beside its table while it writes (none once it has ended)."""
+    return sorted(n for n in os.listdir(folder) if n.endswith(".lock") or ".tmp-" in n or n.endswith(".partial"))
+
+
+class InputsTest(unittest.TestCase):
+    """Every file a sweep reads is an input: its table is never one of them, and never more readable than they are."""
+
+    def test_the_table_is_none_of_the_files_the_sweep_reads(self):
+        # The sweep file, its scene, the scene's profile and the points' motion tables; by name, as a hard link, and
+        # as the file a point reads through a symbolic link: refused in one line, exit 2, every file as it was.
+        with tempfile.TemporaryDirectory() as d:
+            for name in ("profile_blade.toml", "profile_blade.csv", "table_spinup.csv"):
+                shutil.copy(os.path.join(SOURCE, "cases", name), d)
+            shutil.copy(os.path.join(SOURCE, "cases", "table_spinup.csv"), os.path.join(d, "drive.csv"))
+            os.symlink("drive.csv", os.path.join(d, "drive_link.csv"))
+            os.link(os.path.join(d, "table_spinup.csv"), os.path.join(d, "table_hard.csv"))
+            spec = write(os.path.join(d, "s.toml"), 'scene = "profile_blade.toml"\n[set]\n"output.t_end" = 0.1\n'
+                         '"motion.kind" = "table"\n[[points]]\n"motion.file" = "table_spinup.csv"\n'
+                         '[[points]]\n"motion.file" = "drive_link.csv"\n')
+            files = {n: lines_of(os.path.join(d, n)) for n in os.listdir(d) if not os.path.islink(os.path.join(d, n))}
+            targets = ["s.toml", "profile_blade.toml", "profile_blade.csv", "table_spinup.csv", "table_hard.csv",
+                       "drive.csv"]
+            results = cli_all(*([spec, "-o", os.path.join(d, t), "--no-resume"] for t in targets))
+            for target, (code, err) in zip(targets, results):
+                self.assertEqual(code, 2, f"{target}: {err}")
+                self.assertEqual(len(err.strip().splitlines()), 1, err)
+                self.assertIn("same file", err, target)
+            for name, content in files.items():
+                self.assertEqual(lines_of(os.path.join(d, name)), content, name)
+            self.assertEqual(leftovers(d), [])
+
+    def test_a_symbolic_link_as_the_table_is_never_written_through(self):
+        with tempfile.TemporaryDirectory() as d:
+            spec = write(os.path.join(d, "s.toml"), f'scene = "{SPINUP}"\n[set]\n"output.t_end" = 0.1\n')
+            victim = write(os.path.join(d, "victim.csv"), "another user's file\n")
+            os.symlink(victim, os.path.join(d, "planted.csv"))
+            os.symlink(os.path.join(d, "nowhere.csv"), os.path.join(d, "dangling.csv"))
+            results = cli_all([spec, "-o", os.path.join(d, "planted.csv")],
+                              [spec, "-o", os.path.join(d, "planted.csv"), "--no-resume"],
+                              [spec, "-o", os.path.join(d, "dangling.csv"), "--no-resume"])
+            for code, err in results:
+                self.assertEqual(code, 2, err)
+                self.assertEqual(len(err.strip().splitlines()), 1, err)
+                self.assertIn("symbolic link", err)
+            self.assertEqual(lines_of(victim), b"another user's file\n")
+            self.assertTrue(os.path.islink(os.path.join(d, "planted.csv")))
+            self.assertFalse(os.path.exists(os.path.join(d, "nowhere.csv")))
+            self.assertEqual(leftovers(d), [])
+
+    def test_a_read_only_table_is_refused_as_every_writer_refuses_it(self):
+        with tempfile.TemporaryDirectory() as d:
+            spec = write(os.path.join(d, "s.toml"), f'scene = "{SPINUP}"\n[set]\n"output.t_end" = 0.1\n')
+            table = write(os.path.join(d, "kept.csv"), "a table you protected\n", 0o444)
+            results = cli_all([spec, "-o", table], [spec, "-o", table, "--no-resume"])
+            for code, err in results:
+                self.assertEqual(code, 2, err)
+                self.assertEqual(err, f"{table} is read-only (mode 0444): hubbeam does not replace a file you "
+                                      f"protected; chmod u+w it or choose another output\n")
+            self.assertEqual(lines_of(table), b"a table you protected\n")
+
+    def private_sweep(self, d):
+        """A sweep whose second point's motion table is a credentials file (0600), run under umask 022."""
+        secret = write(os.path.join(d, "credentials"), "token=hunter2-do-not-print\n", 0o600)
+        spec = {"scene": os.path.join(SOURCE, "cases", "table_spinup.toml"), "keep": ["max_abs_tip_uy", "tip_series"],
+                "set": {"output.t_end": 0.2, "nx": 0}, "points": [{"ny": 4}, {"ny": 4, "motion.file": secret}]}
+        old = os.umask(0o022)
+        try:
+            return spec, hubbeam.sweep(spec, output=os.path.join(d, "t.csv"), scheduler=CLIENT, progress=False)
+        finally:
+            os.umask(old)
+
+    def test_a_private_input_makes_a_private_table(self):
+        # The table (and a kept tip series) is no more readable than the most private file the sweep reads; a public
+        # sweep keeps the umask's permissions. A sweep's own messages never quote a file either.
+        with tempfile.TemporaryDirectory() as d:
+            spec, table = self.private_sweep(d)
+            self.assertEqual(table[0]["status"], "ok")
+            self.assertEqual(os.stat(os.path.join(d, "t.csv")).st_mode & 0o777, 0o600)
+            series = os.path.join(d, "t.series", table[0]["point"] + ".npy")
+            self.assertEqual(os.stat(series).st_mode & 0o777, 0o600)
+            umask = os.umask(0)
+            os.umask(umask)
+            hubbeam.sweep(dict(spec, points=[{"ny": 4}]), output=os.path.join(d, "public.csv"), scheduler=CLIENT,
+                          progress=False)
+            self.assertEqual(os.stat(os.path.join(d, "public.csv")).st_mode & 0o777, 0o666 & ~umask)
+            # Resuming onto a file that is not this sweep's table: refused without quoting its first line.
+            private = write(os.path.join(d, "private.txt"), "token=hunter2-do-not-print\n", 0o600)
+            with self.assertRaises(sweeps.SweepError) as caught:
+                hubbeam.sweep(spec, output=private, scheduler=CLIENT, progress=False)
+            self.assertNotIn("hunter2", str(caught.exception))
+            self.assertIn("private.txt: expected the table of this sweep", str(caught.exception))
+
+    def test_a_row_never_holds_the_content_of_a_file(self):
+        # The point whose motion table is the credentials file is an error row that says what was expected, not
+        # what the file holds (the sweep adds no file's content; the core's table readers quote none).
+        with tempfile.TemporaryDirectory() as d:
+            _, table = self.private_sweep(d)
+            self.assertTrue(table[1]["status"].startswith("error: "), table[1]["status"])
+            text = lines_of(os.path.join(d, "t.csv")).decode()
+            self.assertNotIn("hunter2", text)
+            self.assertNotIn("token", text)
+
+    def test_a_fifo_or_a_huge_file_is_refused_without_reading_it(self):
+        with tempfile.TemporaryDirectory() as d:
+            fifo = os.path.join(d, "fifo.toml")
+            os.mkfifo(fifo)
+            huge = os.path.join(d, "huge.toml")
+            with open(huge, "w") as f:
+                f.write(f'scene = "{SPINUP}"\n#')
+                f.truncate(1 << 30)  # 1 GB, sparse
+            big_scene = os.path.join(d, "big_scene.toml")
+            shutil.copy(SPINUP, big_scene)
+            with open(big_scene, "a") as f:
+                f.write("#" * (1 << 20) + "\n")
+            cases = [([fifo], "fifo.toml: cannot open: it is a FIFO"),
+                     ([write(os.path.join(d, "s.toml"), f'scene = "{fifo}"\n')],
+                      "fifo.toml: cannot open: it is a FIFO"),
+                     ([huge], "huge.toml: is larger than a sweep file can be (1024 KB)"),
+                     ([write(os.path.join(d, "b.toml"), f'scene = "{big_scene}"\n')],
+                      "big_scene.toml: is larger than a scene file can be (1024 KB)")]
+            start = time.perf_counter()
+            results = cli_all(*(c for c, _ in cases))
+            self.assertLess(time.perf_counter() - start, 60)
+            for (command, expected), (code, err) in zip(cases, results):
+                self.assertEqual(code, 2, f"{command}: {err}")
+                self.assertEqual(len(err.strip().splitlines()), 1, err)
+                self.assertIn(expected, err)
+            self.assertEqual(sorted(n for n in os.listdir(d) if n.endswith(".csv")), [])
+
+
+class StaleRowsTest(unittest.TestCase):
+    def test_a_changed_scene_or_table_recomputes_its_rows(self):
+        # The stiffness x100 leaves the tip's deflection 100 times smaller; a changed motion table changes the run:
+        # each resumed table equals a direct run of the scene as it is now, not the rows of the scene as it was.
+        with tempfile.TemporaryDirectory() as d:
+            scene = os.path.join(d, "scene.toml")
+            shutil.copy(os.path.join(SOURCE, "cases", "table_spinup.csv"), d)
+            with open(os.path.join(SOURCE, "cases", "table_spinup.toml")) as f:
+                original = f.read()
+            write(scene, original)
+            spec = write(os.path.join(d, "s.toml"), 'scene = "scene.toml"\nkeep = ["max_abs_tip_uy"]\n'
+                         '[set]\n"output.t_end" = 3.0\nnx = 0\n[grid]\nny = [4, 5]\n')
+            out = os.path.join(d, "s.csv")
+
+            def check():
+                table = hubbeam.sweep(spec, output=out, scheduler=CLIENT, progress=False)
+                for row in table:
+                    direct = hubbeam.run(scene, t_end=3.0, nx=0, ny=row["discretization.ny"])
+                    self.assertEqual(row["max_abs_tip_uy"], direct.max_abs_tip_uy)
+                return table
+
+            before = check()
+            write(scene, original.replace("youngs_modulus = 6.8952e10", "youngs_modulus = 6.8952e12"))
+            stiff = check()
+            for a, b in zip(before, stiff):
+                self.assertLess(b["max_abs_tip_uy"] / a["max_abs_tip_uy"], 0.1)
+            # The motion table: theta doubled.
+            with open(os.path.join(d, "table_spinup.csv")) as f:
+                rows = f.read().splitlines()
+            write(os.path.join(d, "table_spinup.csv"), "\n".join(
+                [rows[0]] + [f"{t},{2 * float(v)!r}" for t, v in (r.split(",") for r in rows[1:])]) + "\n")
+            doubled = check()
+            for a, b in zip(stiff, doubled):
+                self.assertGreater(b["max_abs_tip_uy"] / a["max_abs_tip_uy"], 1.5)
+            self.assertEqual(len(read(out)), 2)  # the stale rows are gone from the table, not left beside the new
+            # The command line, with the stiffness back as it was.
+            write(scene, original)
+            (code, err), = cli_all([spec, "-o", out, "--workers", "1"])
+            self.assertEqual(code, 0, err)
+            for row in read(out):
+                direct = hubbeam.run(scene, t_end=3.0, nx=0, ny=int(row["discretization.ny"]))
+                self.assertEqual(float(row["max_abs_tip_uy"]), direct.max_abs_tip_uy)
+
+
+class PathsTest(unittest.TestCase):
+    def test_every_path_in_a_sweep_file_is_relative_to_it(self):
+        # The sweep file in study/, its scene in scenes/, started from elsewhere/: the scene, the output and a
+        # point's motion table are all found beside the sweep file (elsewhere/ and scenes/ have a drive.csv too, each
+        # with a motion the run would not complete, so a table read from either is seen).
+        with tempfile.TemporaryDirectory() as d:
+            for sub in ("study", "scenes", "elsewhere"):
+                os.mkdir(os.path.join(d, sub))
+            for name in ("table_spinup.toml", "table_spinup.csv"):
+                shutil.copy(os.path.join(SOURCE, "cases", name), os.path.join(d, "scenes"))
+            shutil.copy(os.path.join(SOURCE, "cases", "table_spinup.csv"), os.path.join(d, "study", "drive.csv"))
+            for sub in ("scenes", "elsewhere"):
+                write(os.path.join(d, sub, "drive.csv"), "t, theta\n0, 0\n0.1, 1e9\n0.2, 0\n0.3, 1e9\n")
+            write(os.path.join(d, "study", "s.toml"),
+                  'scene = "../scenes/table_spinup.toml"\noutput = "out.csv"\nkeep = ["max_abs_tip_uy"]\n'
+                  '[set]\n"output.t_end" = 0.2\nnx = 0\n"motion.file" = "drive.csv"\n')
+            child = subprocess.run([HUBBEAM, "sweep", os.path.join("..", "study", "s.toml"), "--workers", "1"],
+                                   cwd=os.path.join(d, "elsewhere"), capture_output=True, text=True, timeout=120)
+            self.assertEqual(child.returncode, 0, child.stderr)
+            rows = read(os.path.join(d, "study", "out.csv"))
+            direct = hubbeam.run(os.path.join(d, "scenes", "table_spinup.toml"), t_end=0.2, nx=0,
+                                 **{"motion.file": os.path.join(d, "study", "drive.csv")})
+            self.assertEqual([r["status"] for r in rows], ["ok"])
+            self.assertEqual(float(rows[0]["max_abs_tip_uy"]), direct.max_abs_tip_uy)
+            self.assertEqual(rows[0]["motion.file"], "drive.csv")  # the point's value, as the sweep file gives it
+            self.assertFalse(os.path.exists(os.path.join(d, "elsewhere", "out.csv")))
+
+
+class IsolationTest(unittest.TestCase):
+    def test_python_in_the_current_folder_never_runs(self):
+        # A csv.py and a hubbeam/ package where the sweep starts, and a PYTHONPATH naming a folder of the same: none
+        # is imported; the sweep computes its point with this build's hubbeam.
+        with tempfile.TemporaryDirectory() as d:
+            marker = os.path.join(d, "ran")
+            planted = f"open({marker!r}, 'a').write(__name__ + '\\n')\n"
+            write(os.path.join(d, "csv.py"), planted)
+            os.mkdir(os.path.join(d, "hubbeam"))
+            write(os.path.join(d, "hubbeam", "__init__.py"), planted)
+            write(os.path.join(d, "hubbeam", "sweeps.py"), planted + "def main(argv=None):\n    return 0\n")
+            spec = write(os.path.join(d, "s.toml"), f'scene = "{SPINUP}"\n[set]\n"output.t_end" = 0.1\n')
+            env = dict(os.environ, PYTHONPATH=d + os.pathsep + os.environ.get("PYTHONPATH", ""), PYTHONSTARTUP=marker)
+            child = subprocess.run([HUBBEAM, "sweep", "s.toml", "-o", "t.csv", "--workers", "1"], cwd=d, env=env,
+                                   capture_output=True, text=True, timeout=120)
+            self.assertEqual(child.returncode, 0, child.stderr)
+            self.assertFalse(os.path.exists(marker), lines_of(marker) if os.path.exists(marker) else "")
+            self.assertEqual([r["status"] for r in read(os.path.join(d, "t.csv"))], ["ok"])
+
+
+class SignalTest(unittest.TestCase):
+    def test_signals_keep_the_rows_so_far_and_leave_no_lock_or_temporary_file(self):
+        # Two short points finish, a third runs for minutes: each signal ends the sweep with the two rows kept, the
+        # exit code 128 + the signal, and no lock or temporary file left (with --no-resume the old table stays).
+        long_point = '[[points]]\nny = 4\n"output.t_end" = 1e6\n"output.dt_out" = 1.0\n"solver.max_steps" = 1e12\n'
+        with tempfile.TemporaryDirectory() as d:
+            spec = write(os.path.join(d, "s.toml"), f'scene = "{SPINUP}"\nkeep = ["steps"]\n[set]\nnx = 0\n'
+                         f'"output.t_end" = 0.1\n[grid]\nny = [4, 5]\n' + long_point)
+            signals = [signal.SIGHUP, signal.SIGQUIT, signal.SIGTERM, signal.SIGINT]
+            tables = {s: os.path.join(d, f"{s.name}.csv") for s in signals}
+            old = write(os.path.join(d, "old.csv"), "the old table\n")
+            children = {s: subprocess.Popen([HUBBEAM, "sweep", spec, "-o", tables[s], "--workers", "2"],
+                                            stderr=subprocess.PIPE, text=True) for s in signals}
+            children["no-resume"] = subprocess.Popen([HUBBEAM, "sweep", spec, "-o", old, "--workers", "2",
+                                                      "--no-resume"], stderr=subprocess.PIPE, text=True)
+            temporaries = lambda: [n for n in os.listdir(d) if n.startswith(".old.csv.tmp-")]
+            try:
+                end = time.monotonic() + 120
+                while time.monotonic() < end and not (
+                        all(os.path.exists(t) and len(read(t)) == 2 for t in tables.values()) and temporaries() and
+                        len(lines_of(os.path.join(d, temporaries()[0])).splitlines()) == 3):
+                    time.sleep(0.2)
+                for s, child in children.items():
+                    child.send_signal(signal.SIGTERM if s == "no-resume" else s)
+                results = {s: (c.wait(timeout=60), c.stderr.read()) for s, c in children.items()}
+            finally:
+                for c in children.values():
+                    if c.poll() is None:
+                        c.kill()
+                        c.wait()
+            for s in signals:
+                code, err = results[s]
+                self.assertEqual(code, 128 + s, f"{s.name}: {err}")
+                self.assertIn("the finished points are in the table", err)
+                self.assertNotIn("Traceback", err)
+                self.assertEqual(sorted(r["discretization.ny"] for r in read(tables[s])), ["4", "5"], s.name)
+            self.assertEqual(results["no-resume"][0], 143, results["no-resume"][1])
+            self.assertEqual(lines_of(old), b"the old table\n")
+            self.assertEqual(leftovers(d), [])
+
+    def test_what_a_killed_sweep_left_is_cleaned_by_the_next_writer(self):
+        with tempfile.TemporaryDirectory() as d:
+            spec = write(os.path.join(d, "s.toml"), f'scene = "{SPINUP}"\nkeep = ["steps"]\n[set]\nnx = 0\n'
+                         f'"output.t_end" = 1e6\n"output.dt_out" = 1.0\n"solver.max_steps" = 1e12\n')
+            table = write(os.path.join(d, "t.csv"), "the old table\n")
+            child = subprocess.Popen([HUBBEAM, "sweep", spec, "-o", table, "--workers", "1", "--no-resume"],
+                                     stderr=subprocess.DEVNULL)
+            end = time.monotonic() + 120
+            while time.monotonic() < end and len(leftovers(d)) < 2:
+                time.sleep(0.2)
+            child.kill()
+            child.wait()
+            left = leftovers(d)
+            self.assertEqual(left, [".t.csv.lock", f".t.csv.tmp-{child.pid}"])
+            # A live process's temporary file (this test's own pid) is not the next writer's to remove.
+            alive = write(os.path.join(d, f".t.csv.tmp-{os.getpid()}"), "")
+            quick = write(os.path.join(d, "q.toml"), f'scene = "{SPINUP}"\nkeep = ["steps"]\n[set]\nnx = 0\n'
+                          f'"output.t_end" = 0.1\n')
+            (code, err), = cli_all([quick, "-o", table, "--no-resume", "--workers", "1"])
+            self.assertEqual(code, 0, err)
+            self.assertEqual(leftovers(d), [os.path.basename(alive)])
+            self.assertEqual(len(read(table)), 1)

@@ -4,13 +4,14 @@ A sweep is a base scene plus a grid and/or a list of overrides of any scene keys
 task, on a local cluster (worker threads of this process: the runs release the GIL) or on a running scheduler,
 and lands as one row of a CSV table: the point's keys, its status and the quantities kept. A point that fails is a
 row with its status; an interrupted sweep resumes without recomputing the points already in the table (keyed by
-the point's overrides and the generator's version). A kept tip series goes to one .npy file per point beside the
-table, and its cell names that file.
+the effective scene: the base scene's text, the content of the tables it names, the point's overrides and the
+model's version). A kept tip series goes to one .npy file per point beside the table, and its cell names that file.
 """
 from __future__ import annotations
 
 import argparse
 import csv
+import errno
 import fcntl
 import hashlib
 import io
@@ -18,6 +19,7 @@ import itertools
 import json
 import logging
 import os
+import re
 import signal
 import socket
 import stat
@@ -35,6 +37,12 @@ DEFAULT_KEEP = ("max_abs_tip_uy", "relative_drift", "wall_seconds")
 # The type of each kept value as the table's text reads back (the rest are floats): hubbeam.sweep returns these.
 _TEXT_COLUMNS = {"point", "status", "variant", "source", "stepper"}
 _INT_COLUMNS = {"steps", "rejected_steps", "rhs_evals", "jacobian_evals"}
+# The largest sweep file or base scene read: the core's max_scene_bytes (runtime/include/hubbeam/scene.hpp).
+MAX_SCENE_BYTES = 1 << 20
+# The scene keys that name a file, with the most bytes the core reads of it (runtime/src/io/scene.cpp:
+# max_profile_bytes, max_table_bytes). In a scene such a path is relative to the scene's folder; in a sweep file
+# (as every path there) relative to the sweep file's.
+_FILE_KEYS = {"beam.profile": 1 << 16, "motion.file": 16 << 20}
 
 
 class SweepError(ValueError):
@@ -52,23 +60,64 @@ def _fail(where: str, key: str, expected: str, got: Any) -> None:
                      f"{_printable(repr(got), 120)}")
 
 
+def _kind(mode: int) -> str:
+    """What a file that is not a regular file is, as the core says it (output_file.cpp's kind_of); "" for a regular
+    file."""
+    for test, name in ((stat.S_ISREG, ""), (stat.S_ISDIR, "a directory"), (stat.S_ISFIFO, "a FIFO"),
+                       (stat.S_ISCHR, "a character device"), (stat.S_ISBLK, "a block device"),
+                       (stat.S_ISSOCK, "a socket")):
+        if test(mode):
+            return name
+    return "not a regular file"
+
+
+def _read_input(path: str, cap: int, what: str) -> bytes:
+    """The bytes of an input file (the sweep file, its scene, a table), by the core's rules for inputs: a path that
+    is not a regular file is refused by stat before anything opens it (opening a FIFO blocks until a writer comes),
+    the file is opened non-blocking in case it was swapped meanwhile, and more than cap bytes are refused without
+    being read. SweepError naming the file otherwise."""
+    shown = _printable(path)
+    try:
+        kind = _kind(os.stat(path).st_mode)
+        if kind:
+            raise SweepError(f"{shown}: cannot open: it is {kind}, not a regular file")
+        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | os.O_CLOEXEC)
+    except OSError as e:
+        raise SweepError(f"{shown}: cannot open: {e.strerror}") from None
+    try:
+        st = os.fstat(fd)
+        if not stat.S_ISREG(st.st_mode):
+            raise SweepError(f"{shown}: cannot open: it is {_kind(st.st_mode)}, not a regular file")
+        chunks, size = [], 0
+        while size <= cap and st.st_size <= cap:
+            chunk = os.read(fd, min(1 << 20, cap + 1 - size))
+            if not chunk:
+                break
+            chunks.append(chunk)
+            size += len(chunk)
+    except OSError as e:
+        raise SweepError(f"{shown}: cannot read: {e.strerror}") from None
+    finally:
+        os.close(fd)
+    if st.st_size > cap or size > cap:
+        raise SweepError(f"{shown}: is larger than {what} can be ({cap >> 10} KB)")
+    return b"".join(chunks)
+
+
 def load_sweep(spec: str | os.PathLike | Mapping[str, Any]) -> dict[str, Any]:
-    """The sweep of a SWEEP.toml file or of a dict with the same keys, checked: scene (the base scene's path,
-    relative to the sweep file), set (key -> value for every point), grid (key -> list of values), points (list of
-    key -> value tables), keep (names from SUMMARY_VALUES and DERIVED_VALUES), frequencies (how many), output (the
-    CSV)."""
+    """The sweep of a SWEEP.toml file or of a dict with the same keys, checked: scene (the base scene's path),
+    set (key -> value for every point), grid (key -> list of values), points (list of key -> value tables), keep
+    (names from SUMMARY_VALUES and DERIVED_VALUES), frequencies (how many), output (the CSV; default the sweep
+    file's name with .csv). Every path a sweep file gives (scene, output, a file key's value) is relative to the
+    sweep file's folder, a dict's to the current folder: base is that folder."""
     if isinstance(spec, Mapping):
         where, base_dir, sweep = "<dict sweep>", os.getcwd(), dict(spec)
     else:
         where = os.fspath(spec)
         _check_path("sweep file", where)
+        data = _read_input(where, MAX_SCENE_BYTES, "a sweep file")
         try:
-            with open(where, "rb") as f:
-                if not stat.S_ISREG(os.fstat(f.fileno()).st_mode):
-                    raise SweepError(f"{_printable(where)}: expected a sweep file (TOML), got a directory or device")
-                sweep = tomllib.load(f)
-        except OSError as e:
-            raise SweepError(f"{_printable(where)}: cannot open: {e.strerror}") from None
+            sweep = tomllib.loads(data.decode("utf-8"))
         except (tomllib.TOMLDecodeError, UnicodeDecodeError) as e:
             raise SweepError(f"{_printable(where)}: {_printable(e)}") from None
         base_dir = os.path.dirname(os.path.abspath(where))
@@ -103,11 +152,13 @@ def load_sweep(spec: str | os.PathLike | Mapping[str, Any]) -> dict[str, Any]:
         _fail(where, "frequencies", "an integer from 1 to 64", frequencies)
     output = sweep.get("output")
     if output is None:
-        output = (os.path.splitext(os.path.basename(where))[0] if where != "<dict sweep>" else "sweep") + ".csv"
+        output = (os.path.splitext(where)[0] if where != "<dict sweep>" else "sweep") + ".csv"
     elif not isinstance(output, str) or not output or "\0" in output:
         _fail(where, "output", "a file name (not empty, no NUL character)", output)
-    return {"where": where, "scene": scene, "set": dict(common), "grid": dict(grid), "points": points, "keep": list(keep),
-            "frequencies": frequencies, "output": output}
+    else:
+        output = os.path.join(base_dir, output)
+    return {"where": where, "base": base_dir, "scene": scene, "set": dict(common), "grid": dict(grid),
+            "points": points, "keep": list(keep), "frequencies": frequencies, "output": output}
 
 
 def _full_key(name: str, where: str) -> str:
@@ -143,10 +194,58 @@ def expand(sweep: Mapping[str, Any]) -> list[dict[str, Any]]:
     return out
 
 
-def point_key(point: Mapping[str, Any], version: str) -> str:
-    """The point's identity for resuming: its overrides and the generator version that computes it."""
-    text = json.dumps(sorted(point.items()), default=str) + "\n" + version
+def _resolved(point: Mapping[str, Any], base: str) -> dict[str, Any]:
+    """The point's overrides as the core takes them: a file key's relative path joined to the sweep's folder."""
+    return {k: os.path.join(base, v) if k in _FILE_KEYS and isinstance(v, str) and v else v for k, v in point.items()}
+
+
+def _scene_files(scene_text: str, scene_path: str) -> dict[str, str]:
+    """The files the base scene names (file key -> path), resolved against the scene's folder as the core does."""
+    try:
+        scene = tomllib.loads(scene_text)
+    except tomllib.TOMLDecodeError:
+        return {}  # the core read it (toml++): a file key that tomllib cannot find leaves only the text in the key
+    out = {}
+    for key in _FILE_KEYS:
+        table, leaf = key.split(".")
+        value = scene.get(table, {}).get(leaf) if isinstance(scene.get(table), dict) else None
+        if isinstance(value, str) and value:
+            out[key] = os.path.join(os.path.dirname(scene_path), value)
+    return out
+
+
+def point_key(point: Mapping[str, Any], scene_text: str, files: Mapping[str, str], version: str) -> str:
+    """The point's identity for resuming: the effective scene it runs (the base scene's text, the digest of each
+    file it reads by file key, its overrides) and the version of the generator and module that compute it. A row
+    whose key differs from its point's is stale and is computed again."""
+    text = json.dumps({"scene": hashlib.sha256(scene_text.encode()).hexdigest(), "files": sorted(files.items()),
+                       "set": sorted(point.items()), "version": version}, default=str)
     return hashlib.sha256(text.encode()).hexdigest()[:16]
+
+
+class _Inputs:
+    """The files a sweep reads besides its sweep file and scene (the tables and profiles of every point), each read
+    once: its digest for the points' keys and its permissions for the table's."""
+
+    def __init__(self):
+        self.digests: dict[str, str] = {}
+        self.stats: dict[str, os.stat_result] = {}
+
+    def digest(self, path: str, cap: int) -> str:
+        if path not in self.digests:
+            try:
+                data = _read_input(path, cap, "a table")
+                self.stats[path] = os.stat(path)
+                self.digests[path] = hashlib.sha256(data).hexdigest()
+            except SweepError:
+                self.digests[path] = "unreadable"  # the point's run says why, in its row
+        return self.digests[path]
+
+    def of_point(self, point: Mapping[str, Any], base_files: Mapping[str, str]) -> dict[str, str]:
+        """file key -> digest of the files the point's run reads: its own file keys, else the base scene's."""
+        files = dict(base_files)
+        files.update({k: v for k, v in point.items() if k in _FILE_KEYS and isinstance(v, str) and v})
+        return {k: self.digest(path, _FILE_KEYS[k]) for k, path in files.items()}
 
 
 def _columns(keys: Sequence[str], keep: Sequence[str], frequencies: int) -> list[str]:
@@ -220,48 +319,105 @@ def _check_path(what: str, path: Any) -> None:
 
 
 def _same_file(a: str, b: str) -> bool:
-    """Whether a and b are one file: the same device and inode when both exist, else the same resolved path."""
+    """Whether a and b are one file: the same device and inode (through links); False when either does not exist."""
     try:
         sa, sb = os.stat(a), os.stat(b)
-        return (sa.st_dev, sa.st_ino) == (sb.st_dev, sb.st_ino)
     except OSError:
-        return os.path.realpath(a) == os.path.realpath(b)
+        return False
+    return (sa.st_dev, sa.st_ino) == (sb.st_dev, sb.st_ino)
 
 
-def _check_output(path: str, inputs: Mapping[str, str]) -> None:
-    """SweepError unless path can be the table: a regular file or a new name in an existing folder, and none of the
-    sweep's inputs (compared as files, not as names)."""
+def _check_output(path: str, inputs: Sequence[tuple[str, str]]) -> None:
+    """SweepError unless path can be the table: a regular file its owner may write, or a new name in an existing
+    folder; never a symbolic link (an attacker's link in a shared folder would point the table at their victim),
+    and none of the sweep's inputs (what, path), compared as files, not as names."""
     _check_path("--output", path)
     shown = _printable(path)
-    if os.path.isdir(path):
+    try:
+        st = os.lstat(path)
+    except FileNotFoundError:
+        st = None
+    except OSError as e:
+        raise SweepError(f"{shown}: cannot open for writing: {e.strerror}") from None
+    if st is not None and stat.S_ISLNK(st.st_mode):
+        raise SweepError(f"{shown}: expected a regular file or the name of a new one, got a symbolic link (hubbeam "
+                         f"does not write through a link: give the file it points to)")
+    if st is not None and stat.S_ISDIR(st.st_mode):
         raise SweepError(f"{shown}: expected a file for the sweep's table, got a directory (give -o DIR/NAME.csv)")
-    if os.path.exists(path) and not stat.S_ISREG(os.stat(path).st_mode):
-        raise SweepError(f"{shown}: expected a regular file for the sweep's table, got a device, pipe or socket")
+    if st is not None and not stat.S_ISREG(st.st_mode):
+        raise SweepError(f"{shown}: expected a regular file for the sweep's table, got {_kind(st.st_mode)}")
     folder = os.path.dirname(os.path.abspath(path))
     if not os.path.isdir(folder):
         raise SweepError(f"{shown}: expected a file in an existing folder, got a folder that does not exist")
-    if not os.access(folder, os.W_OK) or (os.path.exists(path) and not os.access(path, os.W_OK)):
+    if st is not None and not st.st_mode & stat.S_IWUSR:
+        # The rule of every hubbeam writer (output_file.cpp), root included.
+        raise SweepError(f"{shown} is read-only (mode {stat.S_IMODE(st.st_mode):04o}): hubbeam does not replace a "
+                         f"file you protected; chmod u+w it or choose another output")
+    if not os.access(folder, os.W_OK) or (st is not None and not os.access(path, os.W_OK)):
         raise SweepError(f"{shown}: cannot write there (permission denied)")
-    for what, other in inputs.items():
+    for what, other in inputs:
         if _same_file(path, other):
             raise SweepError(f"{shown}: expected an output other than the {what} ({_printable(other)}), got the "
                              f"same file")
+
+
+def _table_mode(inputs: Sequence[os.stat_result]) -> int:
+    """The permissions the table and its series files are created with (before the umask): read and write for
+    everyone, less group's if one input is not readable by its group and less others' if one is not readable by
+    others, so the table (whose rows come from those files) is never readable by someone who cannot read them."""
+    mode = 0o666
+    for st in inputs:
+        if not st.st_mode & stat.S_IRGRP:
+            mode &= ~0o070
+        if not st.st_mode & stat.S_IROTH:
+            mode &= ~0o007
+    return mode
+
+
+# DIR/.NAME.tmp-PID or .NAME.tmp-PID-N: a temporary file of a hubbeam writer (output_file.cpp names them so too).
+_TEMPORARY = re.compile(r"\.(.+)\.tmp-(\d+)(?:-\d+)?")
+
+
+def _clean_leftovers(folder: str, name: str | None) -> None:
+    """Removes the temporary files of name (every name when None) in folder that a killed writer left: its pid no
+    longer runs and the file is this user's. Called holding the table's lock, so no live hubbeam writes them."""
+    try:
+        entries = list(os.scandir(folder))
+    except OSError:
+        return
+    for entry in entries:
+        m = _TEMPORARY.fullmatch(entry.name)
+        if not m or (name is not None and m.group(1) != name) or int(m.group(2)) == os.getpid():
+            continue
+        try:
+            os.kill(int(m.group(2)), 0)
+            continue  # alive (or another user's): not ours to remove
+        except ProcessLookupError:
+            pass
+        except (PermissionError, OverflowError):
+            continue
+        try:
+            st = entry.stat(follow_symlinks=False)
+            if stat.S_ISREG(st.st_mode) and st.st_uid == os.geteuid():
+                os.remove(entry.path)
+        except OSError:
+            pass
 
 
 def _series_dir(path: str) -> str:
     return os.path.splitext(path)[0] + ".series"
 
 
-def _read_table(path: str, header: list[str], keep: Sequence[str]) -> tuple[dict[str, list[str]], int, bool]:
-    """An earlier run's table: its complete rows by point key, the byte length of its complete lines, and whether a
-    last line was cut (no newline at its end or a wrong number of fields: a write that did not finish). SweepError
-    if it is not this sweep's table."""
+def _read_table(path: str, header: list[str]) -> tuple[list[tuple[list[str], str]], int, bool]:
+    """An earlier run's table: its complete rows (fields and line), the byte length of its complete lines, and
+    whether a last line was cut (no newline at its end or a wrong number of fields: a write that did not finish).
+    SweepError if it is not this sweep's table (the message never quotes the file: it may be anybody's)."""
     shown = _printable(path)
     try:
         with open(path, "rb") as f:
             data = f.read()
     except FileNotFoundError:
-        return {}, 0, False
+        return [], 0, False
     except OSError as e:
         raise SweepError(f"{shown}: cannot read the table to resume: {e.strerror}") from None
     try:
@@ -270,20 +426,18 @@ def _read_table(path: str, header: list[str], keep: Sequence[str]) -> tuple[dict
         raise SweepError(f"{shown}: expected this sweep's CSV table (UTF-8 text) to resume, got bytes that are not "
                          f"text at byte {e.start}; remove it, choose another output or give --no-resume") from None
     if not text:
-        return {}, 0, False
+        return [], 0, False
     lines = text.split("\n")
     complete, tail = lines[:-1], lines[-1]
     if not complete and _csv_line(header).startswith(tail):  # a header cut before its newline: nothing finished
-        return {}, 0, True
-    found = next(csv.reader([complete[0] if complete else tail]))
+        return [], 0, True
+    found = next(csv.reader([complete[0] if complete else tail]), [])
     if found != header:
-        raise SweepError(f"{shown}: expected the table of this sweep to resume (header {','.join(header)}), got the "
-                         f"header {_printable(','.join(found), 200)}; remove it, choose another output or give "
-                         f"--no-resume")
-    done: dict[str, list[str]] = {}
+        raise SweepError(f"{shown}: expected the table of this sweep to resume (header {','.join(header)}), got a "
+                         f"file with another first line; remove it, choose another output or give --no-resume")
+    rows: list[tuple[list[str], str]] = []
     end = len(complete[0].encode()) + 1 if complete else 0
     cut = bool(tail)
-    folder = os.path.dirname(os.path.abspath(path))
     for n, line in enumerate(complete[1:], start=2):
         row = next(csv.reader([line]), [])
         if len(row) != len(header):
@@ -293,12 +447,8 @@ def _read_table(path: str, header: list[str], keep: Sequence[str]) -> tuple[dict
             raise SweepError(f"{shown}: line {n}: expected {len(header)} fields, got {len(row)}; remove the line or "
                              f"give --no-resume")
         end += len(line.encode()) + 1
-        values = dict(zip(header, row))
-        if "tip_series" in keep and values["tip_series"] and not os.path.exists(
-                os.path.join(folder, values["tip_series"])):
-            continue  # its series file is gone: the point runs again
-        done[row[0]] = row
-    return done, end, cut
+        rows.append((row, line + "\n"))
+    return rows, end, cut
 
 
 class _OutputLock:
@@ -344,16 +494,39 @@ class _OutputLock:
 class _Table:
     """The table file, appended one whole row at a time: each row is one write of one line, flushed, and a write
     that fails (a full disk) is cut back to the previous line before the error is raised, so the file never holds
-    half a row."""
+    half a row. Opened without following a symbolic link; a new file (new=True: created exclusively, as a
+    temporary file is) gets mode, and an existing one loses the permissions mode does not grant."""
 
-    def __init__(self, path: str, shown: str, truncate_to: int | None, header: str | None):
+    def __init__(self, path: str, shown: str, truncate_to: int | None, header: str | None, mode: int,
+                 new: bool = False):
         self.shown = shown
+        flags = os.O_WRONLY | os.O_CREAT | os.O_APPEND | os.O_CLOEXEC | os.O_NONBLOCK | os.O_NOFOLLOW
         try:
-            self.fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_APPEND | os.O_CLOEXEC | os.O_NONBLOCK, 0o666)
+            self.fd = os.open(path, flags | (os.O_EXCL if new else 0), mode)
         except OSError as e:
+            if e.errno == errno.ELOOP:
+                raise SweepError(f"{shown}: expected a regular file or the name of a new one, got a symbolic link "
+                                 f"(hubbeam does not write through a link: give the file it points to)") from None
             raise SweepError(f"{shown}: cannot open for writing: {e.strerror}") from None
-        if truncate_to is not None:
-            os.ftruncate(self.fd, truncate_to)
+        try:
+            held = os.fstat(self.fd)
+            if not stat.S_ISREG(held.st_mode):
+                raise SweepError(f"{shown}: expected a regular file for the sweep's table, got {_kind(held.st_mode)}")
+            narrower = stat.S_IMODE(held.st_mode) & ~(0o777 & ~mode & 0o077)
+            if narrower != stat.S_IMODE(held.st_mode):
+                try:
+                    os.fchmod(self.fd, narrower)  # rows of a private input go into a table no wider than it
+                except OSError as e:
+                    raise SweepError(f"{shown}: cannot narrow its permissions to mode {narrower:04o}, as the sweep's "
+                                     f"inputs are private: {e.strerror}; choose another output") from None
+            if truncate_to is not None:
+                os.ftruncate(self.fd, truncate_to)
+        except OSError as e:
+            os.close(self.fd)
+            raise SweepError(f"{shown}: cannot open for writing: {e.strerror}") from None
+        except BaseException:
+            os.close(self.fd)
+            raise
         if header is not None:
             self.append(header)
 
@@ -382,25 +555,31 @@ class _Table:
             os.close(self.fd)
 
 
-def _save_series(folder: str, name: str, series: Any) -> str:
-    """The series as folder/name.npy, written to a temporary file and renamed; returns its path relative to the
-    table's folder."""
+def _save_series(folder: str, name: str, series: Any, mode: int) -> str:
+    """The series as folder/name.npy (created with mode), written to a temporary file and renamed; returns its path
+    relative to the table's folder."""
     import numpy as np
 
     final = os.path.join(folder, name + ".npy")
-    temporary = os.path.join(folder, f".{name}.{os.getpid()}.tmp")
+    temporary = os.path.join(folder, f".{name}.npy.tmp-{os.getpid()}")
     try:
-        os.makedirs(folder, exist_ok=True)
-        with open(temporary, "wb") as f:
+        os.makedirs(folder, mode=0o700 | (mode & 0o044) | (mode & 0o044) >> 2, exist_ok=True)
+        if os.path.islink(folder) or not os.path.isdir(folder):
+            raise SweepError(f"{_printable(folder)}: expected the table's folder of tip series, got a symbolic link "
+                             f"or a file (hubbeam does not write through a link)")
+        fd = os.open(temporary, os.O_WRONLY | os.O_CREAT | os.O_EXCL | os.O_NOFOLLOW | os.O_CLOEXEC, mode)
+        with open(fd, "wb") as f:
             np.save(f, np.asarray(series, dtype=float))
         os.replace(temporary, final)
-    except OSError as e:
+    except BaseException as e:
         try:
             os.remove(temporary)
         except OSError:
             pass
-        raise SweepError(f"{_printable(final)}: cannot write the tip series: {e.strerror}; the table holds every "
-                         f"point finished before, run the sweep again to resume") from None
+        if isinstance(e, OSError):
+            raise SweepError(f"{_printable(final)}: cannot write the tip series: {e.strerror}; the table holds every "
+                             f"point finished before, run the sweep again to resume") from None
+        raise
     return os.path.join(os.path.basename(folder), name + ".npy")
 
 
@@ -575,44 +754,66 @@ def run_sweep(spec: str | os.PathLike | Mapping[str, Any], *, output: str | None
         raise SweepError(f"--workers: expected a number of worker threads >= 1, got {_printable(repr(workers))}")
     if batch is not None and (isinstance(batch, bool) or not isinstance(batch, int) or batch < 1):
         raise SweepError(f"batch: expected a number of points per task >= 1, got {_printable(repr(batch))}")
-    # Everything is checked before the table is touched: the sweep, its points, the base scene, the output.
+    # Everything is checked before the table is touched: the sweep, its points, the base scene, the files they
+    # read, the output.
     sweep = load_sweep(spec)
     if output is not None:
         _check_path("--output", output)
     path = os.fspath(output) if output is not None else sweep["output"]
     points = expand(sweep)
+    runs = [_resolved(p, sweep["base"]) for p in points]  # as the core takes them: file keys' paths resolved
     _check_path("scene", sweep["scene"])
     try:
-        with open(sweep["scene"], "rb") as f:
-            if not stat.S_ISREG(os.fstat(f.fileno()).st_mode):
-                raise SweepError(f"{_printable(sweep['scene'])}: expected a scene file, got a directory or device")
-            scene_text = f.read().decode("utf-8")
-    except OSError as e:
-        raise SweepError(f"{_printable(sweep['scene'])}: cannot open: {e.strerror}") from None
+        scene_text = _read_input(sweep["scene"], MAX_SCENE_BYTES, "a scene file").decode("utf-8")
     except UnicodeDecodeError:
         raise SweepError(f"{_printable(sweep['scene'])}: expected a scene file (UTF-8 TOML), got bytes that are not "
                          f"text") from None
     hubbeam._check_scene(scene_text, sweep["scene"])  # a bad base scene stops the sweep before any task
-    inputs = {"base scene": sweep["scene"]}
-    if sweep["where"] != "<dict sweep>":
-        inputs["sweep file"] = sweep["where"]
+    base_files = _scene_files(scene_text, sweep["scene"])
+    tables = _Inputs()
+    version = hubbeam.generator_version() + " " + hubbeam.__version__
+    ids = [point_key(p, scene_text, tables.of_point(r, base_files), version) for p, r in zip(points, runs)]
+    inputs = [("base scene", sweep["scene"])] + [("sweep file", sweep["where"])] * (sweep["where"] != "<dict sweep>")
+    inputs += [("table " + key, file) for key, file in base_files.items()]
+    inputs += [("table " + k, v) for r in runs for k, v in r.items() if k in _FILE_KEYS and isinstance(v, str) and v]
     _check_output(path, inputs)
+    readable = [os.stat(f) for _, f in inputs[:2] if os.path.exists(f)] + list(tables.stats.values())
+    mode = _table_mode(readable)
+    try:  # a table that replaces the old one is no wider than it either (the rule of every hubbeam writer)
+        replace_mode = mode & (stat.S_IMODE(os.stat(path).st_mode) | 0o600)
+    except OSError:
+        replace_mode = mode
     # Taken before the table is read: a second sweep (or a hubbeam command) writing the same table is refused.
     lock = _OutputLock(path, _printable(path))
     try:
         shown = _printable(path)
-        keys = list(dict.fromkeys(k for p in points for k in p))
-        header = _columns(keys, sweep["keep"], sweep["frequencies"])
-        version = hubbeam.generator_version()
-        ids = [point_key(p, version) for p in points]
-        done, good_end, cut = _read_table(path, header, sweep["keep"]) if resume else ({}, 0, False)
-        todo = [(i, p) for i, p in enumerate(points) if ids[i] not in done]
         folder = os.path.dirname(os.path.abspath(path))
         series_folder = _series_dir(os.path.abspath(path))
+        _clean_leftovers(folder, os.path.basename(path))  # what a killed writer of this table left
+        _clean_leftovers(series_folder, None)
+        keys = list(dict.fromkeys(k for p in points for k in p))
+        header = _columns(keys, sweep["keep"], sweep["frequencies"])
+        rows, good_end, cut = _read_table(path, header) if resume else ([], 0, False)
+        # A row is done when its key is a point's and its series file (if kept) is there. A row of a point of this
+        # sweep that is not done (its scene, tables or version changed, or its series is gone) is stale: dropped
+        # from the table when its point is written again. Rows of points not in this sweep stay as they are.
+        current = set(ids)
+        values_of = {tuple(_cell(p.get(k)) for k in keys) for p in points}
+        done: dict[str, list[str]] = {}
+        kept_lines: list[str] = []
+        for row, line in rows:
+            series = dict(zip(header, row)).get("tip_series")
+            if row[0] in current and not (series and not os.path.exists(os.path.join(folder, series))):
+                done[row[0]] = row
+            elif tuple(row[1:1 + len(keys)]) in values_of:
+                continue
+            kept_lines.append(line)
+        stale = len(kept_lines) < len(rows)
+        todo = [(i, p) for i, p in enumerate(runs) if ids[i] not in done]
         lines: dict[str, list[str]] = dict(done)
         if not todo and progress:
-            print(f"sweep: all {len(points)} points are in {shown} already (this generator version); --no-resume "
-                  f"recomputes them", file=sys.stderr)
+            print(f"sweep: all {len(points)} points are in {shown} already (the same scene, tables and version); "
+                  f"--no-resume recomputes them", file=sys.stderr)
         if todo:
             started_cluster = time.perf_counter()
             close = None
@@ -639,14 +840,24 @@ def run_sweep(spec: str | os.PathLike | Mapping[str, Any], *, output: str | None
                 start_up = time.perf_counter() - started_cluster
                 # Only now that the cluster answers is a file written: the table, or with resume=False a new table
                 # beside it that replaces the old one once complete.
-                if resume:
+                if resume and not stale:
                     if cut and progress:
                         print(f"sweep: {shown}: its last line was cut (a write that did not finish): dropped, that point "
                               f"runs again", file=sys.stderr)
-                    table = _Table(path, shown, good_end, _csv_line(header) if good_end == 0 else None)
+                    table = _Table(path, shown, good_end, _csv_line(header) if good_end == 0 else None, mode)
                 else:
-                    temporary = os.path.join(folder, f".{os.path.basename(path)}.{os.getpid()}.partial")
-                    table = _Table(temporary, shown, 0, _csv_line(header))
+                    # A new table beside the old one, which it replaces whole: with stale rows dropped it starts with
+                    # the rows kept; with resume=False it replaces the old table only once complete.
+                    temporary = os.path.join(folder, f".{os.path.basename(path)}.tmp-{os.getpid()}")
+                    table = _Table(temporary, shown, None, _csv_line(header) + "".join(kept_lines), replace_mode,
+                                   new=True)
+                    if resume:
+                        try:
+                            os.replace(temporary, path)
+                        except OSError as e:
+                            raise SweepError(f"{shown}: cannot replace the table without its stale rows: "
+                                             f"{e.strerror}") from None
+                        temporary = None
                 started = time.perf_counter()
                 run_total = 0.0
                 meter = _Progress(len(points), len(points) - len(todo), progress)
@@ -667,7 +878,7 @@ def run_sweep(spec: str | os.PathLike | Mapping[str, Any], *, output: str | None
                                     for _ in b]
                         for (i, _), row in zip(b, rows):
                             if row.get("tip_series") is not None:
-                                row["tip_series"] = _save_series(series_folder, ids[i], row["tip_series"])
+                                row["tip_series"] = _save_series(series_folder, ids[i], row["tip_series"], mode)
                             values = [ids[i], *(points[i].get(k) for k in keys)] + \
                                 [row.get(c) for c in header[len(keys) + 1:]]
                             line = _csv_line(values)
@@ -723,20 +934,33 @@ def run_sweep(spec: str | os.PathLike | Mapping[str, Any], *, output: str | None
 
 
 class _Terminated(KeyboardInterrupt):
-    """SIGTERM, raised where the sweep is so that the cluster closes and the table is left whole."""
+    """A signal that ends the sweep (SIGTERM, SIGHUP, SIGQUIT), raised where the sweep is so that the cluster closes,
+    the table is left whole and the lock and temporary files are removed."""
+
+    def __init__(self, signum: int):
+        super().__init__(signum)
+        self.signum = signum
+
+
+# The signals that end a sweep as Ctrl-C does, keeping its rows. SIGXFSZ stays ignored (Python's own setting): a
+# write past a file-size limit then fails with EFBIG, and the sweep ends as on a full disk, rows kept, exit 2.
+_ENDING_SIGNALS = (signal.SIGTERM, signal.SIGHUP, signal.SIGQUIT)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """hubbeam sweep: returns the exit code (0 done, 2 bad input, 130 interrupted, 143 terminated)."""
+    """hubbeam sweep: returns the exit code (0 done, 2 bad input, 130 interrupted, 128 + the signal when ended by
+    SIGTERM, SIGHUP or SIGQUIT)."""
     # The command's own lines say what went wrong; Dask's event loop may still report a shutdown timed out on a
     # loaded machine when its futures are collected at exit, which would add lines to a one-line message.
     logging.getLogger("asyncio").setLevel(logging.CRITICAL)
     parser = argparse.ArgumentParser(prog="hubbeam sweep", description="Runs a parameter sweep on Dask "
                                      "(docs/python.md). Exit codes: 0 every point has a row (whatever its status), "
                                      "2 bad input or an output that cannot be written, 130 interrupted, 143 "
-                                     "terminated (finished points kept; run again to resume).")
+                                     "terminated (129 SIGHUP, 131 SIGQUIT; finished points kept; run again to "
+                                     "resume).")
     parser.add_argument("sweep", help="SWEEP.toml: scene, grid and/or [[points]], keep, frequencies, output")
-    parser.add_argument("-o", "--output", help="CSV table (default: the sweep's output, else SWEEP.csv)")
+    parser.add_argument("-o", "--output", help="CSV table (default: the sweep's output, else SWEEP.csv beside the "
+                        "sweep file)")
     parser.add_argument("--scheduler", help="a running Dask scheduler's address: tls://host:8786 with --tls-ca-file, "
                         "--tls-cert and --tls-key (tcp:// runs whatever any client sends); default: a local cluster "
                         "on 127.0.0.1 with TLS")
@@ -751,9 +975,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = parser.parse_args(argv)
 
     def terminate(signum, frame):
-        raise _Terminated()
+        raise _Terminated(signum)
 
-    signal.signal(signal.SIGTERM, terminate)
+    for signum in _ENDING_SIGNALS:
+        signal.signal(signum, terminate)
+    signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
     try:
         security = _security_of_files(args.tls_ca_file, args.tls_cert, args.tls_key)
         run_sweep(args.sweep, output=args.output, scheduler=args.scheduler, workers=args.workers,
@@ -761,9 +987,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     except ValueError as e:  # SweepError and the core's bad-input errors: one line each
         print(e if isinstance(e, SweepError) else _printable(e), file=sys.stderr)
         return 2
-    except _Terminated:
-        print("hubbeam: sweep terminated; the finished points are in the table, run again to resume", file=sys.stderr)
-        return 143
+    except _Terminated as e:
+        print(f"hubbeam: sweep terminated by {signal.Signals(e.signum).name}; the finished points are in the table, "
+              f"run again to resume", file=sys.stderr)
+        return 128 + e.signum
     except KeyboardInterrupt:
         print("hubbeam: sweep interrupted; the finished points are in the table, run again to resume", file=sys.stderr)
         return 130
