@@ -181,7 +181,8 @@ bool plan_run(const CLI::App& sub, const RunOptions& o, RunPlan& plan)
         return false;
     }
     if (!plan.fields_file.empty() && extension(plan.fields_file) != ".csv") {
-        std::cerr << "--fields: expected a file name ending in .csv, got \"" << printable(plan.fields_file, 400) << "\"\n";
+        std::cerr << "--fields: expected a file name ending in .csv, got \"" << printable(plan.fields_file, 400)
+                  << "\"\n";
         return false;
     }
     return true;

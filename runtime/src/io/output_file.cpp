@@ -86,11 +86,11 @@ bool temp_name_of(const std::string& name, const std::string& target, long& pid)
     const std::string rest = name.substr(stem.size());
     const std::size_t dash = rest.find('-');
     const std::string digits = rest.substr(0, dash);
-    if (digits.empty() || digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) return false;
-    if (dash != std::string::npos) {
-        const std::string n = rest.substr(dash + 1);
-        if (n.empty() || n.size() > 3 || n.find_first_not_of("0123456789") != std::string::npos) return false;
-    }
+    const auto number = [](const std::string& t, std::size_t most) {
+        return !t.empty() && t.size() <= most && t.find_first_not_of("0123456789") == std::string::npos;
+    };
+    if (!number(digits, 9)) return false;
+    if (dash != std::string::npos && !number(rest.substr(dash + 1), 3)) return false;
     pid = std::stol(digits);
     return pid > 0;
 }
