@@ -3,7 +3,7 @@
 # or hung compilation leaves neither processes nor work folders behind.
 #   -DCASE=name -DHUBBEAM=exe -DGEN=hubbeam-gen -DCXX=compiler -DSCENE=scene.toml -DWORK=folder (emptied first)
 # Cases: foreign_owner, group_writable, no_home, symlinked_object, truncated_object, old_abi, timeout,
-#        killed_compile.
+#        killed_compile, untrusted_generator.
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
 set(CACHE_DIR ${WORK}/cache)
@@ -190,6 +190,20 @@ elseif(CASE STREQUAL "old_abi")
   hubbeam("HUBBEAM_CACHE_DIR=${CACHE_DIR};HUBBEAM_GEN=${WORK}/old-gen.sh" ${RUN})
   expect_refusal("an object of the unversioned layout"
                  "^hubbeam: [^\n]*/${VARIANT}.so was built by an older generator \\(one that recorded no interface version")
+
+elseif(CASE STREQUAL "untrusted_generator")
+  # $HUBBEAM_GEN passes the checks of the built-in generator: a file others may change, or a symbolic link (whose
+  # target whoever may change the link chooses), is never run. The stand-in would leave a mark if it ran.
+  file(WRITE ${WORK}/planted-gen.sh "#!/bin/sh\ntouch '${MARK}'\nexec '${GEN}' \"$@\"\n")
+  chmod(775 ${WORK}/planted-gen.sh)
+  hubbeam("HUBBEAM_CACHE_DIR=${CACHE_DIR};HUBBEAM_GEN=${WORK}/planted-gen.sh" ${RUN} --source generated)
+  expect_refusal("a group-writable HUBBEAM_GEN"
+                 "HUBBEAM_GEN: ${WORK}/planted-gen.sh is writable by other users: hubbeam runs a generator only if")
+  chmod(755 ${WORK}/planted-gen.sh)
+  file(CREATE_LINK ${WORK}/planted-gen.sh ${WORK}/linked-gen.sh SYMBOLIC)
+  hubbeam("HUBBEAM_CACHE_DIR=${CACHE_DIR};HUBBEAM_GEN=${WORK}/linked-gen.sh" ${RUN} --source generated)
+  expect_refusal("a HUBBEAM_GEN that is a symbolic link"
+                 "HUBBEAM_GEN: ${WORK}/linked-gen.sh is a symbolic link, which hubbeam does not follow")
 
 elseif(CASE STREQUAL "timeout")
   # A hung generator is stopped at the time limit, with its process group and work folder.

@@ -19,6 +19,10 @@
 #                                                             open() then fails the test instead of hanging it)
 #   -DSIGNAL=TERM|INT                                         sent once the run writes rows (send_signal.sh)
 #   -DFSIZE_BLOCKS=n                                          files larger than n blocks cannot be written
+#   -DFSIZE_SIGNAL=ON                                         ... and SIGXFSZ keeps its default action (it kills)
+#   -DSYMLINK=target|link                                     link made a symbolic link to target first
+#   -DREAD_ONLY=path                                          holds "old contents" and mode 0444 before, the
+#                                                             same contents after
 #   -DMAX_ROWS=n                                              at most n data rows
 #   -DWHOLE_ROWS=ON                                           every line has the header's fields and ends in a
 #                                                             newline, row k is at t = k * 0.01,
@@ -58,6 +62,20 @@ if(DEFINED HARD_LINK)
   file(REMOVE ${link_name})
   file(CREATE_LINK ${link_to} ${link_name})
 endif()
+if(DEFINED SYMLINK)
+  string(REPLACE "|" ";" link "${SYMLINK}")
+  list(GET link 0 link_to)
+  list(GET link 1 link_name)
+  file(REMOVE ${link_name})
+  file(CREATE_LINK ${link_to} ${link_name} SYMBOLIC)
+endif()
+if(DEFINED READ_ONLY)
+  if(EXISTS ${READ_ONLY})
+    file(CHMOD ${READ_ONLY} PERMISSIONS OWNER_READ OWNER_WRITE)  # (a test run before left it read-only)
+  endif()
+  file(WRITE ${READ_ONLY} "old contents\n")
+  file(CHMOD ${READ_ONLY} PERMISSIONS OWNER_READ GROUP_READ WORLD_READ)
+endif()
 if(DEFINED NO_FILE)
   file(REMOVE ${NO_FILE})  # what an earlier run left is not this run's
 endif()
@@ -80,6 +98,8 @@ endif()
 set(launcher "")
 if(DEFINED SIGNAL)
   set(launcher sh ${CMAKE_CURRENT_LIST_DIR}/send_signal.sh ${SIGNAL} ${CSV})
+elseif(DEFINED FSIZE_BLOCKS AND FSIZE_SIGNAL)
+  set(launcher sh -c "ulimit -f ${FSIZE_BLOCKS}\nexec \"$0\" \"$@\"")
 elseif(DEFINED FSIZE_BLOCKS)
   # A write beyond the limit fails with EFBIG, as on a full disk (SIGXFSZ ignored, else it kills the process).
   # (newlines, not ';', between the shell's commands: a ';' would split the CMake list)
@@ -138,6 +158,9 @@ if(DEFINED SAME_AS)
 endif()
 if(DEFINED NO_FILE AND EXISTS ${NO_FILE})
   message(FATAL_ERROR "hubbeam ${ARGS}: ${NO_FILE} should not exist")
+endif()
+if(DEFINED READ_ONLY)
+  list(APPEND keep_files ${READ_ONLY})
 endif()
 foreach(f IN LISTS keep_files)
   file(READ ${f} kept)

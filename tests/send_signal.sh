@@ -5,8 +5,9 @@
 # loaded machine: a signal before the handlers exist kills it with nothing written, correctly, but untested.
 sig=$1 csv=$2
 shift 2
-# A shell starts background jobs with SIGINT ignored: coreutils' env gives the command its default back.
-env --default-signal=INT "$@" &
+# A shell starts background jobs with SIGINT and SIGQUIT ignored: coreutils' env gives the command their defaults
+# back.
+env --default-signal=INT,QUIT "$@" &
 pid=$!
 tries=0
 while [ $tries -lt 600 ]; do

@@ -23,6 +23,7 @@
 
 #include <sys/resource.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "output.hpp"
@@ -452,6 +453,79 @@ TEST_CASE("same_file and check_outputs compare files, not spellings", "[output]"
     CHECK_THROWS_WITH(check_outputs({}, {{scratch / "no_such_dir/out.csv", "-o"}}),
                       scratch / "no_such_dir/out.csv" + ": cannot open for writing: No such file or directory");
     CHECK_NOTHROW(check_outputs({{scene, "the scene itself"}}, {{scratch / "out.csv", "-o"}, {"", "--fields"}}));
+}
+
+TEST_CASE("OutputFile removes the temporary files of a writer that was killed, and only those", "[output]")
+{
+    ScratchDir scratch;
+    const std::string out = scratch / "out.csv";
+    // A process that has ended: its pid names no process until the kernel hands it out again.
+    const pid_t dead = ::fork();
+    if (dead == 0) ::_exit(0);
+    REQUIRE(dead > 0);
+    REQUIRE(::waitpid(dead, nullptr, 0) == dead);
+    const std::string stale = scratch / (".out.csv.tmp-" + std::to_string(dead));
+    const std::string stale_n = stale + "-1";
+    const std::string alive = scratch / (".out.csv.tmp-" + std::to_string(::getppid()));  // a live process's
+    const std::string other = scratch / (".other.csv.tmp-" + std::to_string(dead));     // another target's
+    const std::string lock = scratch / ".out.csv.lock";                                 // held by nobody
+    for (const std::string& f : {stale, stale_n, alive, other, lock}) put(f, "left by a killed writer\n");
+    OutputFile file(out);
+    REQUIRE(file.write("new\n") == 0);
+    REQUIRE(file.commit().empty());
+    CHECK(contents(out) == "new\n");
+    CHECK_FALSE(fs::exists(stale));
+    CHECK_FALSE(fs::exists(stale_n));
+    CHECK_FALSE(fs::exists(lock));
+    CHECK(fs::exists(alive));
+    CHECK(fs::exists(other));
+}
+
+TEST_CASE("OutputFile refuses a symbolic link and a file its owner made read-only, leaving both alone", "[output]")
+{
+    ScratchDir scratch;
+    const std::string target = scratch / "target.csv", link = scratch / "link.csv", kept = scratch / "kept.csv";
+    put(target, "old\n");
+    fs::create_symlink(target, link);
+    CHECK_THROWS_MATCHES(OutputFile(link), OutputRefused,
+                         Catch::Matchers::Message(link + " is a symbolic link: hubbeam does not write through a link; "
+                                                         "name the file itself or choose another output"));
+    CHECK_THROWS_AS(check_outputs({}, {{link, "-o"}}), OutputRefused);
+    put(kept, "old\n");
+    ::chmod(kept.c_str(), 0444);
+    const std::string why = kept + " is read-only (mode 0444): hubbeam does not replace a file you protected; chmod "
+                                   "u+w it or choose another output";
+    CHECK_THROWS_MATCHES(OutputFile(kept), OutputRefused, Catch::Matchers::Message(why));
+    CHECK_THROWS_MATCHES(check_outputs({}, {{kept, "-o"}}), OutputRefused, Catch::Matchers::Message("-o: " + why));
+    CHECK(contents(target) == "old\n");
+    CHECK(contents(kept) == "old\n");
+    CHECK(fs::is_symlink(link));
+    CHECK(fs::directory_iterator(scratch.dir) != fs::directory_iterator());
+    for (const auto& e : fs::directory_iterator(scratch.dir))
+        CHECK(e.path().filename().string().front() != '.');  // no temporary or lock file left
+}
+
+TEST_CASE("commit_together puts a set in place only when every file is whole", "[output]")
+{
+    ScratchDir scratch;
+    const std::string a = scratch / "a.csv", b = scratch / "b.csv";
+    put(a, "old a\n");
+    put(b, "old b\n");
+    {
+        OutputFile fa(a), fb(b);
+        REQUIRE(fa.write("new a\n") == 0);
+        fb.fail("write failed: No space left on device");
+        const std::string why = commit_together({&fa, &fb});
+        CHECK(why == b + ": write failed: No space left on device (nothing written: the old files are as they were)");
+    }
+    CHECK(contents(a) == "old a\n");
+    CHECK(contents(b) == "old b\n");
+    OutputFile fa(a), fb(b);
+    REQUIRE(fa.write("new a\n") == 0);
+    REQUIRE(fb.write("new b\n") == 0);
+    CHECK(commit_together({&fa, &fb}).empty());
+    CHECK(contents(a) == "new a\n");
+    CHECK(contents(b) == "new b\n");
 }
 
 TEST_CASE("Simulation::run stops between rows when its StopRequest asks", "[output]")

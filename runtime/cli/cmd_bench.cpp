@@ -47,7 +47,7 @@ int bench(const std::string& scene_path, const BenchArgs& args)
     try {
         scene = load_scene(scene_path, {});
         options = parse_bench_options(args, scene);
-        check_outputs({{scene.path, "the scene itself"}}, bench_outputs(options));
+        check_outputs(scene_inputs(scene), bench_outputs(options));
     } catch (const OptionError& e) {  // BenchOptionError, OutputRefused
         std::cerr << e.what() << "\n";
         return exit_bad_input;

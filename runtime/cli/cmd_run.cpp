@@ -164,13 +164,25 @@ bool plan_run(const CLI::App& sub, const RunOptions& o, RunPlan& plan)
                                            [](const auto& kv) { return kv.first == "output.file"; });
     const std::string output_name = output_option ? "-o" : scene.path + ": output.file";
     try {
-        check_outputs({{scene.path, "the scene itself"}},
+        check_outputs(scene_inputs(scene),
                       {{scene.output.file, output_name},
                        {is_npy_path(scene.output.file) ? npy_columns_path(scene.output.file) : "",
                         output_name + "'s column names"},
                        {plan.fields_file, "--fields"}});
     } catch (const OutputRefused& e) {
         std::cerr << e.what() << "\n";
+        return false;
+    }
+    // Named by what it is, not only by where: a file called x.npz holding CSV text misleads whoever opens it.
+    const auto extension = [](const std::string& path) { return std::filesystem::path(path).extension().string(); };
+    if (const std::string ext = extension(scene.output.file); ext != ".csv" && ext != ".npy") {
+        std::cerr << output_name << ": expected a file name ending in .csv (CSV text) or .npy (a NumPy array), got "
+                  << "\"" << printable(scene.output.file, 400) << "\"\n";
+        return false;
+    }
+    if (!plan.fields_file.empty() && extension(plan.fields_file) != ".csv") {
+        std::cerr << "--fields: expected a file name ending in .csv, got \"" << printable(plan.fields_file, 400)
+                  << "\"\n";
         return false;
     }
     return true;
@@ -268,10 +280,11 @@ Command add_run_command(CLI::App& app)
     run_cmd->footer(
         "Options override the scene's keys. The CSV goes to -o FILE, else to the scene's output.file, else to "
         "NAME.csv in the current folder (NAME.toml's name); a FILE ending in .npy gets the rows as a NumPy array "
-        "(float64, rows x columns) and the column names in FILE's name with .columns.txt. Exit codes: 0 success, 1 "
-        "simulation stopped early (rows so far kept), 2 bad input (one line on stderr, nothing computed; also an "
-        "output that is the scene or the other output, a FIFO, device or directory, or a file another hubbeam is "
-        "writing), 130/143 interrupted by SIGINT/SIGTERM (rows so far kept). The output is written to "
+        "(float64, rows x columns) and the column names in FILE's name with .columns.txt; FILE must end in .csv or "
+        ".npy. Exit codes: 0 success, 1 simulation stopped early (rows so far kept), 2 bad input (one line on "
+        "stderr, nothing computed; also an output that is the scene, a table it reads or the other output, a FIFO, "
+        "device, directory, symbolic link or read-only file, or a file another hubbeam is writing), 129/130/131/143 "
+        "interrupted by SIGHUP/SIGINT/SIGQUIT/SIGTERM (rows so far kept). The output is written to "
         "DIR/.NAME.tmp-PID and renamed over FILE when the run ends.");
     add_run_options(*run_cmd, *options);
     return {run_cmd, [run_cmd, options] { return run(*run_cmd, *options); }};

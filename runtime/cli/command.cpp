@@ -11,10 +11,16 @@ namespace {
 /// (through the StopRequest), so that files are finished outside the handler.
 volatile std::sig_atomic_t stop_signal_number = 0;
 
-/// SIGINT / SIGTERM handler. A second signal while the first is being honoured kills at once (the default
-/// action), for a user who does not want to wait for the next row; the temporary file is then left behind.
+/// The stop signals' handler. A second signal while the first is being honoured kills at once (the default
+/// action), for a user who does not want to wait for the next row; the temporary file is then left behind (and
+/// removed by the next writer of that output). SIGXFSZ never kills: each write beyond the file size limit raises
+/// it again, and that write then fails with EFBIG, which the writer reports as it reports a full disk.
 extern "C" void on_stop_signal(int sig)
 {
+    if (sig == SIGXFSZ) {
+        if (stop_signal_number == 0) stop_signal_number = sig;
+        return;
+    }
     if (stop_signal_number != 0) {
         ::signal(sig, SIG_DFL);  // both async-signal-safe; sig is blocked until the handler returns
         ::raise(sig);
@@ -33,7 +39,9 @@ void catch_stop_signals()
     action.sa_handler = on_stop_signal;
     sigemptyset(&action.sa_mask);
     action.sa_flags = SA_RESTART;
-    for (const int sig : {SIGINT, SIGTERM}) {
+    // SIGHUP (the terminal closed), SIGQUIT (Ctrl-\) and SIGXFSZ (a file size limit) would otherwise end the
+    // process at once, losing the rows and leaving the temporary and lock files.
+    for (const int sig : {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGXFSZ}) {
         struct sigaction previous {};
         // A shell's background job ignores SIGINT, and should go on doing so.
         if (::sigaction(sig, nullptr, &previous) == 0 && previous.sa_handler == SIG_IGN) continue;

@@ -21,13 +21,13 @@ constexpr int exit_stopped = 1;     // the simulation stopped early or cannot be
 constexpr int exit_bad_input = 2;   // one line on stderr, nothing computed
 constexpr int exit_signal_base = 128;  // the shell's convention: 128 + the signal's number (130, 143)
 
-/// The failure a run stopped by SIGINT or SIGTERM reports.
+/// The failure a run stopped by a stop signal (catch_stop_signals) reports.
 inline constexpr const char* interrupted = "interrupted by signal";
 
 /// The signal that asked the command to stop, 0 if none.
 int stop_signal();
-/// Routes SIGINT and SIGTERM to a handler that only records them (the work stops between rows and finishes its
-/// files), except a signal the parent set to be ignored.
+/// Routes SIGINT, SIGTERM, SIGHUP, SIGQUIT and SIGXFSZ to a handler that only records them (the work stops between
+/// rows and finishes its files; exit 128 + the signal), except a signal the parent set to be ignored.
 void catch_stop_signals();
 /// A StopRequest that answers `interrupted` once a stop signal has come.
 StopRequest signal_stop();

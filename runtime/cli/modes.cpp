@@ -17,7 +17,6 @@
 #include "option_lists.hpp"
 #include "output.hpp"
 #include "output_file.hpp"
-#include "output_file.hpp"
 #include "plot.hpp"
 #include "shortest.hpp"
 
@@ -107,7 +106,7 @@ ModesOptions parse_modes_options(const ModesArgs& args, const Scene& scene)
     std::vector<NamedPath> outputs = {{o.output, "-o"}, {o.critical, "--critical"}};
     if (!o.plot.empty())
         for (const char* ext : {".png", ".svg", ".gp"}) outputs.push_back({o.plot + ext, "--plot"});
-    check_outputs({{scene.path, "the scene itself"}}, outputs);
+    check_outputs(scene_inputs(scene), outputs);
     return o;
 }
 
@@ -251,7 +250,7 @@ void run_linearize(const Scene& scene, double omega, const std::string& prefix, 
         for (const char* name : {"A", "B", "C", "D"}) outputs.push_back({p + "-" + name + ".csv", "-o"});
     const std::size_t csv_count = outputs.size();
     for (const std::string& p : prefixes) outputs.push_back({p + ".npz", "-o"});  // the same model for numpy
-    check_outputs({{scene.path, "the scene itself"}}, outputs);  // before anything is computed
+    check_outputs(scene_inputs(scene), outputs);  // before anything is computed
     check_steady(scene, {omega});
     const VariantKey key = scene.key();
     const std::unique_ptr<Model> model = make_model(key, scene.parameters, scene.source);
@@ -260,52 +259,44 @@ void run_linearize(const Scene& scene, double omega, const std::string& prefix, 
     const StateSpace ss = scene.control ? closed_loop(open, *scene.control) : open;
     std::vector<const StateSpace*> systems = {&ss};
     if (scene.control) systems.push_back(&open);
-    // One CSV per matrix: a header of column names, then each row led by its name. Each is put in place once all
-    // are written; an exception on the way leaves all the old files as they were.
-    std::vector<std::unique_ptr<CsvWriter>> files;
-    std::vector<std::unique_ptr<OutputFile>> archives;
-    try {
-        for (std::size_t f = 0; f < csv_count; ++f) {
+    // One CSV per matrix (a header of column names, then each row led by its name) and one archive per system,
+    // put in place together (commit_together) once all are written: a full disk leaves the old set whole.
+    std::vector<std::unique_ptr<OutputFile>> files;
+    for (std::size_t f = 0; f < outputs.size(); ++f) {
+        files.push_back(std::make_unique<OutputFile>(outputs[f].path));
+        std::string bytes;
+        if (f < csv_count) {
             const StateSpace& sys = *systems[f / 4];
             const std::size_t m = f % 4;
             const Eigen::MatrixXd* X = std::array<const Eigen::MatrixXd*, 4>{&sys.A, &sys.B, &sys.C, &sys.D}[m];
             const bool state_rows = m < 2, state_columns = m % 2 == 0;
             const std::vector<std::string>& rows = state_rows ? sys.states : sys.outputs;
-            std::string header = std::string(1, "ABCD"[m]);
-            for (const std::string& c : state_columns ? sys.states : sys.inputs) header += "," + c;
-            files.push_back(std::make_unique<CsvWriter>(outputs[f].path, header));
+            bytes = std::string(1, "ABCD"[m]);
+            for (const std::string& c : state_columns ? sys.states : sys.inputs) bytes += "," + c;
+            bytes += '\n';
             for (Eigen::Index i = 0; i < X->rows(); ++i) {
-                std::string text = rows[static_cast<std::size_t>(i)];
+                bytes += rows[static_cast<std::size_t>(i)];
                 for (Eigen::Index j = 0; j < X->cols(); ++j) {
-                    text += ',';
-                    append_shortest(text, (*X)(i, j));
+                    bytes += ',';
+                    append_shortest(bytes, (*X)(i, j));
                 }
-                files.back()->write_line(text);
+                bytes += '\n';
             }
+        } else {
+            const StateSpace& sys = *systems[f - csv_count];
+            bytes = npz_archive({{"A", npy_matrix(sys.A)},
+                                 {"B", npy_matrix(sys.B)},
+                                 {"C", npy_matrix(sys.C)},
+                                 {"D", npy_matrix(sys.D)},
+                                 {"states", npy_strings(sys.states)},
+                                 {"inputs", npy_strings(sys.inputs)},
+                                 {"outputs", npy_strings(sys.outputs)}});
         }
-        for (std::size_t k = 0; k < systems.size(); ++k) {
-            const StateSpace& sys = *systems[k];
-            const std::string& path = outputs[csv_count + k].path;
-            archives.push_back(std::make_unique<OutputFile>(path));
-            const std::string bytes = npz_archive({{"A", npy_matrix(sys.A)},
-                                                   {"B", npy_matrix(sys.B)},
-                                                   {"C", npy_matrix(sys.C)},
-                                                   {"D", npy_matrix(sys.D)},
-                                                   {"states", npy_strings(sys.states)},
-                                                   {"inputs", npy_strings(sys.inputs)},
-                                                   {"outputs", npy_strings(sys.outputs)}});
-            if (const int error = archives.back()->write(bytes); error != 0)
-                throw std::runtime_error(path + ": cannot write: " + std::strerror(error));
-        }
-    } catch (...) {
-        for (const auto& f : files) f->discard();
-        for (const auto& a : archives) a->discard();
-        throw;
+        (void)files.back()->write(bytes);  // a failed write is reported by commit_together, before any rename
     }
-    for (const auto& f : files)
-        if (!f->finish()) throw std::runtime_error(f->error());
-    for (const auto& a : archives)
-        if (std::string why = a->commit(); !why.empty()) throw std::runtime_error(why);
+    std::vector<OutputFile*> set;
+    for (const auto& f : files) set.push_back(f.get());
+    if (const std::string why = commit_together(set); !why.empty()) throw std::runtime_error(why);
     out << "variant     " << key.name() << " (" << model->source() << ")\n";
     if (steady.held)
         out << "held        at theta = " << shortest(steady.u.theta) << " rad under gravity, tip_uy "

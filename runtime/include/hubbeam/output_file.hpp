@@ -33,15 +33,22 @@ struct NamedPath {
     std::string name;
 };
 
+struct Scene;
+/// Every file a scene was read from, named for check_outputs: the scene file ("the scene itself") and its tables
+/// ("the scene's motion.file", "the scene's beam.profile").
+std::vector<NamedPath> scene_inputs(const Scene& scene);
+
 /// Checks a command's outputs before anything is computed or written: each must be a regular file or a new file
-/// in a folder that exists, none may be one of the inputs or another of the outputs (compared by same_file, so
-/// ./x/../scene.toml and a hard link are the scene). Throws OutputRefused: "OPTION: expected ..., got ...".
+/// in a folder that exists, neither a symbolic link nor a file without its owner's write bit, and none may be one of
+/// the inputs or another of the outputs (compared by same_file, so ./x/../scene.toml and a hard link are the scene).
+/// Throws OutputRefused: "OPTION: expected ..., got ..." or "OPTION: PATH is ...".
 /// Outputs with an empty path are skipped (an output not asked for).
 void check_outputs(const std::vector<NamedPath>& inputs, const std::vector<NamedPath>& outputs);
 
-/// One output file written atomically. The constructor refuses a target that exists and is not a regular file,
-/// takes an advisory lock (flock on DIR/.NAME.lock, removed again when released) so that a second hubbeam writing
-/// the same file is refused, and creates the temporary file DIR/.NAME.tmp-PID beside the target exclusively
+/// One output file written atomically. The constructor refuses a target that exists and is not a regular file, is
+/// a symbolic link or has no owner write bit, takes an advisory lock (flock on DIR/.NAME.lock, removed again when
+/// released) so that a second hubbeam writing the same file is refused, removes the temporary files of writers that
+/// died (killed outright), and creates the temporary file DIR/.NAME.tmp-PID beside the target exclusively
 /// (O_CREAT | O_EXCL, permissions from the umask, or the replaced file's). write() checks every write; commit()
 /// checks the temporary file's close and renames it over the target, so that a reader sees the old file or the
 /// complete new one. Until commit() succeeds the target is untouched; a failed or abandoned file is removed.
@@ -50,7 +57,8 @@ void check_outputs(const std::vector<NamedPath>& inputs, const std::vector<Named
 /// reader from a half-written file, and the kernel writes the data back when it likes.
 class OutputFile {
 public:
-    /// Throws OutputRefused for a target that is not a regular file or that another hubbeam is writing, and
+    /// Throws OutputRefused for a target that is not a regular file, a symbolic link, read-only to its owner, or
+    /// that another hubbeam is writing, and
     /// std::runtime_error "PATH: cannot open for writing: REASON" when the temporary file cannot be created. With
     /// temp given, that exact temporary path is created instead (for a program such as gnuplot that derives its
     /// output names from one prefix); TempExists if it is there already.
@@ -82,6 +90,9 @@ public:
     /// when only the rename failed: the complete file is then kept at temp_path(), and the message says so; or, durable,
     /// when only the folder's sync failed: the file is then in place, and the message says so).
     std::string commit();
+    /// The first half of commit(): closes the file and checks every write (durable: syncs it). Returns "" (then
+    /// commit() or discard() follows), or what failed, and then the temporary file is removed as by discard().
+    std::string close_checked();
     /// Removes the temporary file and releases the lock; the target stays as it was. Only the first of commit() and
     /// discard() acts.
     void discard();
@@ -91,18 +102,19 @@ public:
     const std::string& temp_path() const { return temp_; }
 
 private:
-    /// The file to replace (through a link, the file it points to), refusing what is not a regular file.
+    /// Refuses a target that is not a regular file, a symbolic link or read-only; notes the permissions to keep.
     void resolve_target();
     /// Takes the lock beside the target (DIR/.NAME.lock), refusing while another hubbeam holds it.
     void take_lock(const std::filesystem::path& dir, const std::string& name);
+    /// With the lock held: removes DIR/.NAME.tmp-PID[-N] files whose process no longer exists.
+    void remove_stale_temps(const std::filesystem::path& dir, const std::string& name) const;
     /// Creates the temporary file (temp, or DIR/.NAME.tmp-PID[-N]) with O_EXCL.
     void create_temp(const std::filesystem::path& dir, const std::string& name, const std::string& temp);
     void release_lock();
     /// fsync of the target's folder after the rename: "" or what failed.
     std::string sync_folder() const;
 
-    std::string path_;    // as given, for messages
-    std::string target_;  // path_ with a symbolic link resolved: the file that is replaced
+    std::string path_;    // as given, for messages; the name renamed over (never through a link)
     std::string temp_;
     std::string lock_;    // the lock file's path
     int fd_ = -1;
@@ -113,5 +125,10 @@ private:
     bool done_ = false;
     bool durable_ = false;
 };
+
+/// Puts a set of files in place together (a linearization's matrices): each is closed and checked first, and only
+/// when every one is whole are they renamed over their targets, so that a full disk leaves the old set whole. Returns
+/// "" or one line: "PATH: what failed (what is in place)".
+std::string commit_together(const std::vector<OutputFile*>& files);
 
 }  // namespace hubbeam

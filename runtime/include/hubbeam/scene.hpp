@@ -53,6 +53,9 @@ struct OutputOptions {
 
 struct Scene {
     std::string path;  // the file it came from, for messages
+    /// The other files it was read from, each with its key: {"beam.profile", FILE}, {"motion.file", FILE}. A
+    /// command's outputs are checked against these and path (output_file.hpp's scene_inputs).
+    std::vector<std::pair<std::string, std::string>> tables;
     Parameters parameters;
     Motion motion;
     std::optional<Control> control;  // [control]: motion is then the reference of a torque-driven hub

@@ -6,7 +6,9 @@
 #include <cstring>
 #include <filesystem>
 
+#include <dirent.h>
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -55,6 +57,44 @@ std::runtime_error cannot_open(const std::string& path, int error, const std::st
     return std::runtime_error(printable(path, 400) + ": cannot open for writing: " + std::strerror(error) + detail);
 }
 
+/// Why path may not be replaced although it is a regular file or a new name, or empty: a symbolic link (in a folder
+/// others may write, such as /tmp, an attacker's link would make hubbeam replace a file of the attacker's choosing,
+/// with hubbeam's rights), or a file its owner made read-only (the owner's way of saying "keep this").
+std::string protected_output(const std::string& path)
+{
+    struct stat st {};
+    if (::lstat(path.c_str(), &st) != 0) return {};
+    if (S_ISLNK(st.st_mode))
+        return printable(path, 400) + " is a symbolic link: hubbeam does not write through a link; name the file " +
+               "itself or choose another output";
+    if (S_ISREG(st.st_mode) && (st.st_mode & S_IWUSR) == 0) {
+        char mode[8];
+        std::snprintf(mode, sizeof mode, "%04o", static_cast<unsigned>(st.st_mode & 07777));
+        return printable(path, 400) + " is read-only (mode " + mode + "): hubbeam does not replace a file you " +
+               "protected; chmod u+w it or choose another output";
+    }
+    return {};
+}
+
+/// Whether name is a temporary file OutputFile makes for `target`: .TARGET.tmp-PID or .TARGET.tmp-PID-N; pid set.
+bool temp_name_of(const std::string& name, const std::string& target, long& pid)
+{
+    std::string stem = ".";  // appended piece by piece: GCC 12 warns falsely (-Wrestrict) about "." + string
+    stem += target;
+    stem += ".tmp-";
+    if (name.size() <= stem.size() || name.compare(0, stem.size(), stem) != 0) return false;
+    const std::string rest = name.substr(stem.size());
+    const std::size_t dash = rest.find('-');
+    const std::string digits = rest.substr(0, dash);
+    const auto number = [](const std::string& t, std::size_t most) {
+        return !t.empty() && t.size() <= most && t.find_first_not_of("0123456789") == std::string::npos;
+    };
+    if (!number(digits, 9)) return false;
+    if (dash != std::string::npos && !number(rest.substr(dash + 1), 3)) return false;
+    pid = std::stol(digits);
+    return pid > 0;
+}
+
 }  // namespace
 
 std::string not_a_regular_file(const std::string& path)
@@ -70,6 +110,13 @@ bool same_file(const std::string& a, const std::string& b)
     return x.known && y.known && x.dev == y.dev && x.ino == y.ino && x.name == y.name;
 }
 
+std::vector<NamedPath> scene_inputs(const Scene& scene)
+{
+    std::vector<NamedPath> inputs = {{scene.path, "the scene itself"}};
+    for (const auto& [key, file] : scene.tables) inputs.push_back({file, "the scene's " + key});
+    return inputs;
+}
+
 void check_outputs(const std::vector<NamedPath>& inputs, const std::vector<NamedPath>& outputs)
 {
     for (std::size_t k = 0; k < outputs.size(); ++k) {
@@ -81,6 +128,7 @@ void check_outputs(const std::vector<NamedPath>& inputs, const std::vector<Named
         const std::filesystem::path p(o.path);
         if (const std::string name = p.filename().string(); name.empty() || name == "." || name == "..")
             throw OutputRefused(o.name + ": expected a file name, got " + quoted(o.path));
+        if (const std::string why = protected_output(o.path); !why.empty()) throw OutputRefused(o.name + ": " + why);
         if (struct stat st {}; ::stat(o.path.c_str(), &st) != 0) {
             // A new file: its folder must exist (checked now, not after the computing).
             int error = errno;
@@ -99,10 +147,10 @@ void check_outputs(const std::vector<NamedPath>& inputs, const std::vector<Named
     }
 }
 
-OutputFile::OutputFile(const std::string& path, const std::string& temp) : path_(path), target_(path)
+OutputFile::OutputFile(const std::string& path, const std::string& temp) : path_(path)
 {
     resolve_target();
-    const std::filesystem::path target(target_);
+    const std::filesystem::path target(path_);
     const std::string name = target.filename().string();
     if (name.empty() || name == "." || name == "..") throw cannot_open(path_, EISDIR);
     const std::filesystem::path dir = target.parent_path();
@@ -121,13 +169,8 @@ void OutputFile::resolve_target()
         // Never opened: open() on a FIFO blocks until a reader comes, and renaming over a device replaces the node.
         throw OutputRefused(printable(path_, 400) + ": expected a regular file or the name of a new one, got " +
                             kind_of(st.st_mode));
+    if (const std::string why = protected_output(path_); !why.empty()) throw OutputRefused(why);
     if (exists) mode_ = static_cast<int>(st.st_mode & 07777);
-    struct stat link {};
-    if (exists && ::lstat(path_.c_str(), &link) == 0 && S_ISLNK(link.st_mode)) {
-        // Replace the file the link points to, not the link: what writing through it would do.
-        std::error_code ec;
-        if (const auto real = std::filesystem::canonical(path_, ec); !ec) target_ = real.string();
-    }
 }
 
 void OutputFile::take_lock(const std::filesystem::path& dir, const std::string& name)
@@ -158,7 +201,25 @@ void OutputFile::take_lock(const std::filesystem::path& dir, const std::string& 
             ::close(fd);
         if (lock_fd_ < 0 && attempt >= 100) throw cannot_open(path_, EAGAIN, " (its lock file keeps changing)");
     }
+    remove_stale_temps(dir, name);
+}
 
+void OutputFile::remove_stale_temps(const std::filesystem::path& dir, const std::string& name) const
+{
+    // Called with the lock held, so no hubbeam is writing this target now: a temporary file of it is what a
+    // writer killed outright (kill -9, a crash of the process) left. Removed only when its process is gone too, so
+    // that a file of the same pattern that a live process holds (whatever it is) is never touched.
+    DIR* folder = ::opendir(dir.empty() ? "." : dir.c_str());
+    if (folder == nullptr) return;
+    while (const dirent* entry = ::readdir(folder)) {
+        long pid = 0;
+        if (!temp_name_of(entry->d_name, name, pid)) continue;
+        if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;  // alive, or not ours to ask
+        struct stat st {};
+        if (::fstatat(::dirfd(folder), entry->d_name, &st, AT_SYMLINK_NOFOLLOW) == 0 && S_ISREG(st.st_mode))
+            (void)::unlinkat(::dirfd(folder), entry->d_name, 0);
+    }
+    ::closedir(folder);
 }
 
 void OutputFile::create_temp(const std::filesystem::path& dir, const std::string& name, const std::string& temp)
@@ -234,10 +295,10 @@ void OutputFile::fail(const std::string& why)
     if (failure_.empty()) failure_ = why;
 }
 
-std::string OutputFile::commit()
+std::string OutputFile::close_checked()
 {
     if (done_) return "already finished";
-    done_ = true;
+    if (fd_ < 0) return {};  // closed and checked already
     std::string problem;
     if (error_ != 0) problem = std::string("write failed: ") + std::strerror(error_);
     else if (!failure_.empty()) problem = failure_;
@@ -246,21 +307,55 @@ std::string OutputFile::commit()
     else if (durable_ && ::fsync(fd_) != 0) problem = std::string("write failed: ") + std::strerror(errno);
     if (::close(fd_) != 0 && problem.empty()) problem = std::string("write failed: ") + std::strerror(errno);
     fd_ = -1;
-    if (problem.empty() && std::rename(temp_.c_str(), target_.c_str()) != 0)
+    if (!problem.empty()) {
+        done_ = true;
+        ::unlink(temp_.c_str());  // what it holds cannot be trusted (it may end inside a line)
+        release_lock();
+    }
+    return problem;
+}
+
+std::string OutputFile::commit()
+{
+    if (done_) return "already finished";
+    std::string problem = close_checked();
+    if (!problem.empty()) return problem;
+    done_ = true;
+    if (std::rename(temp_.c_str(), path_.c_str()) != 0)
         problem = std::string("cannot replace it: ") + std::strerror(errno) + " (the complete file is " +
                   printable(temp_, 400) + ")";
-    else if (!problem.empty())
-        ::unlink(temp_.c_str());  // what it holds cannot be trusted (it may end inside a line)
     else if (durable_)
         problem = sync_folder();
     release_lock();
     return problem;
 }
 
+std::string commit_together(const std::vector<OutputFile*>& files)
+{
+    // Every file whole and closed first: a full disk shows itself here, while all the old files are still there.
+    for (OutputFile* f : files)
+        if (const std::string problem = f->close_checked(); !problem.empty()) {
+            for (OutputFile* g : files) g->discard();
+            return printable(f->path(), 400) + ": " + problem + " (nothing written: the old files are as they were)";
+        }
+    // Then the renames, which need no space: each replaces an entry of the folder by another already there.
+    std::string placed;
+    for (std::size_t k = 0; k < files.size(); ++k)
+        if (const std::string problem = files[k]->commit(); !problem.empty()) {
+            for (std::size_t j = k + 1; j < files.size(); ++j) files[j]->discard();
+            return printable(files[k]->path(), 400) + ": " + problem +
+                   (placed.empty() ? " (nothing replaced: the old files are as they were)"
+                                   : " (replaced already: " + placed + "; the others are as they were)");
+        } else {
+            placed += (placed.empty() ? "" : ", ") + printable(files[k]->path(), 400);
+        }
+    return {};
+}
+
 std::string OutputFile::sync_folder() const
 {
     // The rename is an entry of the folder: durable only once the folder itself is on disk.
-    const std::filesystem::path dir = std::filesystem::path(target_).parent_path();
+    const std::filesystem::path dir = std::filesystem::path(path_).parent_path();
     const std::string name = dir.empty() ? std::string(".") : dir.string();
     const int fd = ::open(name.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
     int error = fd < 0 ? errno : ::fsync(fd) != 0 ? errno : 0;

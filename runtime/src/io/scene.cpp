@@ -503,7 +503,7 @@ constexpr std::size_t max_profile_bytes = 1 << 16;
 /// beam.profile's table (docs/model.md section 11.2): stations x/L from 0 to 1, strictly increasing, and positive
 /// finite m, EI, ES at each, into the variant's stations (structure) and p.profile (run-time values). Every error
 /// names the scene, the key and the table's file and line.
-void read_profile(const std::string& scene_path, const std::string& name, Parameters& p, Extras& extras)
+std::string read_profile(const std::string& scene_path, const std::string& name, Parameters& p, Extras& extras)
 {
     const std::string file = (std::filesystem::path(scene_path).parent_path() / name).string();
     const std::string label = printable(file, 400);
@@ -541,12 +541,13 @@ void read_profile(const std::string& scene_path, const std::string& name, Parame
     p.S = 1.0;
     p.E = p.profile[static_cast<std::size_t>(ProfileValue::ES)];
     p.I = p.profile[static_cast<std::size_t>(ProfileValue::EI)] / p.E;
+    return file;
 }
 
 /// [beam]: docs/model.md section 1, the taper of section 11 (a taper kind without a ratio is refused: the default
 /// ratio 1 would make it uniform without a word) and the tabulated profile of section 11.2 (the section's keys and
-/// a taper with it are refused: the table gives the beam's distributions).
-void read_beam(const Section& beam, const std::string& scene_path, Parameters& p, Extras& extras)
+/// a taper with it are refused: the table gives the beam's distributions). Returns the profile table's file, or "".
+std::string read_beam(const Section& beam, const std::string& scene_path, Parameters& p, Extras& extras)
 {
     beam.only();
     p.L = beam.required_number("length");
@@ -556,8 +557,7 @@ void read_beam(const Section& beam, const std::string& scene_path, Parameters& p
                 throw SceneError::with_detail(scene_path, beam.path(key),
                                               "not used with beam.profile (its table gives m, EI and ES along the span): "
                                               "remove it");
-        read_profile(scene_path, *profile, p, extras);
-        return;
+        return read_profile(scene_path, *profile, p, extras);
     }
     p.rho = beam.required_number("density");
     p.S = beam.required_number("area");
@@ -568,6 +568,7 @@ void read_beam(const Section& beam, const std::string& scene_path, Parameters& p
     if (taper != Taper::uniform) p.tip_ratio = beam.required_number("tip_ratio", ", required for a taper");
     else if (const auto r = beam.number("tip_ratio"); r && *r != 1.0)
         beam.refuse("tip_ratio", shortest(*r) + " without beam.taper = \"width\" or \"depth\"");
+    return {};
 }
 
 /// [tip], [damping], [gravity]: the extra terms of docs/model.md section 11; absent tables leave them out.
@@ -910,9 +911,12 @@ Scene parse_scene(std::string_view text, const std::string& path, const Override
 
     Scene scene;
     scene.path = path;
-    read_beam(Section(path, root, "beam"), path, scene.parameters, scene.variant.extras);
+    if (std::string profile = read_beam(Section(path, root, "beam"), path, scene.parameters, scene.variant.extras);
+        !profile.empty())
+        scene.tables.emplace_back("beam.profile", std::move(profile));
     read_extras(root, path, scene.parameters);
     read_motion(Section(path, root, "motion"), path, scene.motion);
+    if (scene.motion.table) scene.tables.emplace_back("motion.file", scene.motion.table_file);
     read_control(Section(path, root, "control"), scene.control);
     read_hub(Section(path, root, "hub"), scene, scene.parameters);
     read_discretization(Section(path, root, "discretization"), scene, scene.variant);

@@ -51,7 +51,10 @@ fs::path code_folder()
 std::string untrusted_program(const fs::path& path)
 {
     struct stat st {};
-    if (::stat(path.c_str(), &st) != 0) return path.string() + " cannot be read";
+    if (::lstat(path.c_str(), &st) != 0) return path.string() + " cannot be read";
+    // Not followed: the link's target is what would run, and whoever may change the link chooses it.
+    if (S_ISLNK(st.st_mode)) return path.string() + " is a symbolic link, which hubbeam does not follow";
+    if (!S_ISREG(st.st_mode)) return path.string() + " is not a regular file";
     if (st.st_uid != 0 && st.st_uid != ::geteuid())
         return path.string() + " belongs to another user (uid " + std::to_string(st.st_uid) + ")";
     if ((st.st_mode & (S_IWGRP | S_IWOTH)) != 0) return path.string() + " is writable by other users";

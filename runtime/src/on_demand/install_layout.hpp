@@ -11,7 +11,7 @@ namespace hubbeam {
 std::filesystem::path code_folder();
 
 /// Why hubbeam must not run the program at path, or empty: a program it runs must be as safe as itself (owned by
-/// root or by this user, and not writable by group or others).
+/// root or by this user, not writable by group or others, a regular file and not a symbolic link).
 std::string untrusted_program(const std::filesystem::path& path);
 
 /// hubbeam-gen of this build or installation: the first trusted one of code_folder()'s layouts (beside an installed

@@ -88,11 +88,20 @@ std::vector<std::string> compiler_command()
     return words;
 }
 
-/// hubbeam-gen: $HUBBEAM_GEN, else the one of this build or installation (install_layout.hpp).
-std::string generator_path()
+/// hubbeam-gen: $HUBBEAM_GEN, else the one of this build or installation (install_layout.hpp); empty if none, and
+/// then, for a $HUBBEAM_GEN that is not run, why in *why. $HUBBEAM_GEN passes the checks of the built-in one
+/// (untrusted_program): a generator writes code that hubbeam loads, so it must be as safe as hubbeam itself.
+std::string generator_path(std::string* why = nullptr)
 {
-    if (const std::string g = env("HUBBEAM_GEN"); !g.empty()) return find_program(g);
-    return find_generator();
+    const std::string g = env("HUBBEAM_GEN");
+    if (g.empty()) return find_generator();
+    const std::string found = find_program(g);
+    const std::string problem = found.empty() ? std::string() : untrusted_program(found);
+    if (problem.empty()) return found;
+    if (why != nullptr)
+        *why = "HUBBEAM_GEN: " + problem + ": hubbeam runs a generator only if it belongs to root or to you and " +
+               "nobody else can change it";
+    return {};
 }
 
 // --- the cache's folders and files: private to the user, never followed through a symbolic link -------------------
@@ -601,7 +610,8 @@ std::string on_demand_problem()
         return cxx.empty() ? "no C++ compiler found (c++ is not on PATH; set CXX)"
                            : "no C++ compiler found (CXX=" + cxx + " is not an executable)";
     }
-    if (generator_path().empty()) return "the generator hubbeam-gen was not found (set HUBBEAM_GEN)";
+    if (std::string why; generator_path(&why).empty())
+        return why.empty() ? "the generator hubbeam-gen was not found (set HUBBEAM_GEN)" : why;
     return {};
 }
 
