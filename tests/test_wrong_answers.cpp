@@ -164,6 +164,16 @@ TEST_CASE("hub angles beyond max_hub_angle are refused, naming the key, the valu
     const std::string table = error_of(f.write("t.toml", with_motion("kind = \"table\"\nfile = \"m.csv\"\n")));
     INFO(table);
     CHECK(table.find((f.path / "m.csv").string() + ":4: expected |theta| <= 1e+06 rad") != std::string::npos);
+    // A run whose angle passes the bound stops there: the spin-up, 1.9e-3 rad in its first second, from 1e-3 rad below.
+    const Scene near = load_scene(f.write("n.toml", spin), {{"motion.theta0", "999999.999"}, {"output.t_end", "1"},
+                                                            {"discretization.nx", "0"}});
+    double last = 0.0;
+    const RunSummary summary = simulate(near, [&](const Row& r) { last = r.theta; });
+    INFO(summary.failure);
+    CHECK_FALSE(summary.completed);
+    CHECK(summary.failure.find("has passed 1e+06 rad, beyond which double precision") != std::string::npos);
+    CHECK(last > max_hub_angle);
+    CHECK(last < max_hub_angle + 0.05);  // the first row past it
 }
 
 TEST_CASE("a motion or profile table's message says what was expected and where, never what the file holds",
