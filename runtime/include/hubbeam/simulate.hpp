@@ -149,7 +149,7 @@ struct RunSummary {
     bool energy_balance = false;
     std::string monitor_off;
     // What vibration_energy is, as the summary and the untrustworthy message name it ("the vibration energy": the
-    // largest U under a prescribed rotation; the largest |T| + |U| of a free hub, whose U can stay <= 0 under gravity).
+    // largest U since t_steady; under gravity, whose potential can keep U <= 0, U's range since).
     std::string invariant_reference;
     // The error indicator: the rows of a window at the start and one at the end re-run from the run's own state
     // there at check_rtol, check_atol (ten times tighter), compared in every column the run writes.

@@ -413,6 +413,7 @@ private:
     double t_ = 0.0, last_row_ = 0.0;
     RunSummary summary_;
     double jacobi0_ = 0.0;
+    double u_min_ = INFINITY, u_max_ = -INFINITY;  // U's range since t_steady (the drift's reference under gravity)
     std::string model_failure_;  // set when a row broke a model limit
     // The error indicator's windows, the columns it compares and each one's largest |value|.
     double check_window_ = 0.0, drive_end_window_length_ = 0.0;
@@ -456,11 +457,12 @@ Simulation::Run::Run(const Simulation& simulation)
     if (summary_.monitor_off.empty() && summary_.t_steady >= t_last * (1.0 - same_instant))
         summary_.monitor_off = "the drive changes up to t = " + shortest(summary_.t_steady) + " s and the run ends at " +
                                shortest(t_last) + " s: no energy is constant while it does";
-    // The reference of the drift: under a prescribed rotation T0 cancels and U measures the vibration; a free hub's
-    // T + U is the invariant itself, and gravity can keep its U <= 0.
-    summary_.invariant_reference = summary_.energy_balance                ? "the largest energy in it"
-                                   : model_.key().drive == Drive::torque ? "the largest |T| + |U| since"
-                                                                          : "the vibration energy";
+    // The reference of the Jacobi integral's drift: the vibration energy, the largest U since; under gravity U holds
+    // the weight's potential, which can stay <= 0 (a free hub swinging below the horizontal), and its range since is
+    // the energy that T and U exchange.
+    summary_.invariant_reference = summary_.energy_balance       ? "the largest energy in it"
+                                   : model_.key().extras.gravity ? "the range of U since"
+                                                                 : "the vibration energy";
     const double t_end = scene_.output.t_end;
     check_window_ = std::min(t_end, std::max(t_end * check_window_fraction, scene_.output.dt_out));
     drive_end_window_length_ = std::max(check_window_ * drive_end_window_share, scene_.output.dt_out);
@@ -718,9 +720,10 @@ void Simulation::Run::monitor(const Row& r)
     } else if (summary_.monitor_off.empty() && r.t > 0.0 && r.t >= summary_.t_steady) {  // from the first row after rest
         if (summary_.vibration_energy < 0.0) jacobi0_ = r.jacobi, summary_.vibration_energy = 0.0;
         summary_.jacobi_drift = std::max(summary_.jacobi_drift, std::abs(r.jacobi - jacobi0_));
-        const double energy = model_.key().drive == Drive::torque ? std::abs(r.kinetic) + std::abs(r.potential)
-                                                                   : std::abs(r.potential);
-        summary_.vibration_energy = std::max(summary_.vibration_energy, energy);
+        u_min_ = std::min(u_min_, r.potential);
+        u_max_ = std::max(u_max_, r.potential);
+        summary_.vibration_energy =
+            std::max(summary_.vibration_energy, model_.key().extras.gravity ? u_max_ - u_min_ : r.potential);
     }
     if (!sim_.check_error_) return;
     for (std::size_t c = 0; c < peak_.size(); ++c) peak_[c] = std::max(peak_[c], std::abs(values_[c]));
