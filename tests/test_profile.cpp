@@ -382,7 +382,7 @@ TEST_CASE("profile: bad tables and scenes are refused naming the scene, the key,
     has(error_of(f, "x/L, m, EI, ES\n0, 1, 1, 1\n0.5, 1, 1, 1\n"), csv + ": the last station must be x/L = 1");
     has(error_of(f, "x/L, m, EI, ES\n0, 1, 1, 1\n"), csv + ": expected at least 2 stations, got 1");
     has(error_of(f, "x/L, m, EI, ES\n0, 1, 0, 1\n1, 1, 1, 1\n"), csv + ":2: expected EI > 0, got 0");
-    has(error_of(f, "x/L, m, EI, ES\n0, 1, 1, 1\n1, 1, 1, inf\n"), csv + ":3: expected a finite number in column ES, got \"inf\"");
+    has(error_of(f, "x/L, m, EI, ES\n0, 1, 1, 1\n1, 1, 1, inf\n"), csv + ":3: expected a finite number in column ES (axial stiffness, N), field 4 of the line");
     has(error_of(f, "x/L, m, EI, ES\n0, 1, 1, 1\n1, 1, 1\n"), csv + ":3: expected 4 fields as the header has, got 3");
     has(error_of(f, "x/L, m, EI, ES\n0, 1, 1, 1\n0.3333333, 1, 1, 1\n1, 1, 1, 1\n"),
         " is not a decimal with at most 6 digits after the point");

@@ -632,12 +632,15 @@ TEST_CASE("a bad [motion] of the new kinds, or a bad motion table, is refused na
     }
     SECTION("a value that is not a number, or not finite")
     {
-        names(table_error("t,theta\n0,0\n1,abc\n2,2\n"), "m.csv:3", "expected a finite number in column theta, got \"abc\"");
-        names(table_error("t,theta\n0,0\n1,0.5x\n2,2\n"), "m.csv:3", "got \"0.5x\"");
-        names(table_error("t,theta\n0,0\nnan,0.5\n2,2\n"), "m.csv:3", "expected a finite number in column t, got \"nan\"");
-        names(table_error("t,theta\n0,0\n1,inf\n2,2\n"), "m.csv:3", "got \"inf\"");
-        names(table_error("t,theta\n0,0\n1,1e999\n2,2\n"), "m.csv:3", "got \"1e999\"");
-        names(table_error("t,theta\n0,0\n1,\n2,2\n"), "m.csv:3", "got \"\"");
+        // Where, never what the file holds (docs/security.md): the field is named by its column and position.
+        const std::string theta = "expected a finite number in column theta (the hub angle, rad), field 2 of the line";
+        names(table_error("t,theta\n0,0\n1,abc\n2,2\n"), "m.csv:3", theta);
+        names(table_error("t,theta\n0,0\n1,0.5x\n2,2\n"), "m.csv:3", theta);
+        names(table_error("t,theta\n0,0\nnan,0.5\n2,2\n"), "m.csv:3",
+              "expected a finite number in column t (time, s), field 1 of the line");
+        names(table_error("theta,t\n0,0\n1,inf\n2,2\n"), "m.csv:3", "column t (time, s), field 2 of the line");
+        names(table_error("t,theta\n0,0\n1,1e999\n2,2\n"), "m.csv:3", theta);
+        names(table_error("t,theta\n0,0\n1,\n2,2\n"), "m.csv:3", theta);
     }
     SECTION("a row with too few or too many fields")
     {

@@ -58,6 +58,11 @@ private:
     double integral_from_start(double t) const;
 };
 
+/// The largest hub angle in size (rad) a scene may give and a run may reach. Double precision resolves an angle of
+/// this size to 1.2e-10 rad; far beyond it a slow hub's steps vanish in round-off (at 1e17 rad theta does not move
+/// at a rate of 2 rad/s while gravity, through sin and cos of it, acts on a frozen angle).
+inline constexpr double max_hub_angle = 1e6;
+
 struct Motion {
     /// spin_up, held and table prescribe the rotation; torque and torque_table drive a free hub; step (theta = angle
     /// from t = 0 on) is a reference only, of a controlled hub (docs/model.md section 11).

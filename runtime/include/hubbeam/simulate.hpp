@@ -142,14 +142,17 @@ struct RunSummary {
     // and the largest strain energy U; vibration_energy < 0 when no row came after t_steady.
     // With damping or a controlled hub the balance E + dissipated - work (E the Jacobi integral, T + U under torque)
     // is what stays constant (energy_balance); under a prescribed rotation with gravity nothing does and the monitor
-    // is off (monitor_off says why).
+    // is off (monitor_off says why), as it is for a run that ends before its drive does.
     double t_steady = 0.0;
     double jacobi_drift = 0.0;
     double vibration_energy = -1.0;
     bool energy_balance = false;
     std::string monitor_off;
+    // What vibration_energy is, as the summary and the untrustworthy message name it ("the vibration energy": the
+    // largest U since t_steady; under gravity, whose potential can keep U <= 0, U's range since).
+    std::string invariant_reference;
     // The error indicator: the rows of a window at the start and one at the end re-run from the run's own state
-    // there at check_rtol, check_atol (ten times tighter), compared in theta, theta_dot, tip_uy, tip_ux1 and tip_ux.
+    // there at check_rtol, check_atol (ten times tighter), compared in every column the run writes.
     // estimated_error is the largest difference relative to that column's largest value in the run, the end
     // window's scaled by the square root of the run's length over the window's (the windows' errors adding up
     // as independent ones); < 0 when not checked.

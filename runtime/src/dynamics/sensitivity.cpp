@@ -108,6 +108,8 @@ SensitivitySystem::SensitivitySystem(const Model& model, const Scene& scene)
 
 SensitivitySystem::~SensitivitySystem() = default;
 
+double SensitivitySystem::scale(int j) const { return parameters_[static_cast<std::size_t>(j)]->scale; }
+
 int SensitivitySystem::rhs(double t, const double* y, double* dydt)
 {
     if (const int s = FirstOrderSystem::rhs(t, y, dydt); s != GSL_SUCCESS) return s;

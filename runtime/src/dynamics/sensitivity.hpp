@@ -31,6 +31,8 @@ public:
     int jacobian(double t, const double* y, double* dfdy, double* dfdt) override;
 
     int count() const { return static_cast<int>(parameters_.size()); }
+    /// The size of parameter j (|p_j|, or 1 where it is 0): a derivative by it times this is a change of the output.
+    double scale(int j) const;
     /// d(output)/dp for each parameter, each of sensitivity_outputs within it (simulate.hpp's column order), at the
     /// state y at t; q is y's coordinates.
     void outputs(double t, const double* y, double* out);

@@ -12,6 +12,7 @@
 
 #include <gsl/gsl_errno.h>
 
+#include "column_check.hpp"
 #include "integrate.hpp"
 #include "make_model.hpp"
 #include "shortest.hpp"
@@ -120,16 +121,28 @@ private:
     long grid_rows_, last_ = 0;
 };
 
-/// Rows from states: the hub's angle and rate (prescribed, or coordinates under torque), the tip, the energies, and
-/// the optional columns of a scene that has them (the torque, the reference, the auxiliary states).
+/// The equations a run of scene integrates: the state's, or with the sensitivities of scene.output.sensitivities.
+std::unique_ptr<FirstOrderSystem> system_of(const Model& model, const Scene& scene)
+{
+    if (!scene.output.sensitivities.empty()) return std::make_unique<SensitivitySystem>(model, scene);
+    return std::make_unique<FirstOrderSystem>(model, scene.motion, scene.axial, scene.controller(), &scene.parameters);
+}
+
+/// Rows from states: the hub's angle and rate (prescribed, or coordinates under torque), the tip, the energies, the
+/// optional columns of a scene that has them (the torque, the reference, the auxiliary states) and a sensitivity
+/// system's derivative columns. The run's rows and the error indicator's re-runs both come from here.
 class RowMaker {
 public:
     RowMaker(const Model& model, const Motion& motion, FirstOrderSystem& system, const Control* control)
-        : model_(model), motion_(motion), system_(system), control_(control), q_(static_cast<std::size_t>(model.nq())),
-          qd_(q_), extended_(control != nullptr || system.auxiliary().count() > 0)
+        : model_(model), motion_(motion), system_(system), control_(control),
+          sensitivities_(dynamic_cast<SensitivitySystem*>(&system)), q_(static_cast<std::size_t>(model.nq())), qd_(q_),
+          derived_(sensitivities_ != nullptr ? static_cast<std::size_t>(sensitivities_->count()) *
+                                                   std::size(sensitivity_outputs)
+                                             : 0),
+          extended_(control != nullptr || system.auxiliary().count() > 0)
     {
     }
-    /// The row of state y at t; q() is then its full coordinates.
+    /// The row of state y at t (its derivative columns valid until the next call); q() is then its full coordinates.
     Row operator()(double t, const double* y)
     {
         system_.full_state(t, y, q_.data(), qd_.data());
@@ -153,8 +166,13 @@ public:
         const Tip tip = model_.tip(q);
         const Energy e = model_.energy(u, q, qd);
         const double theta = torque ? q[0] : u.theta, theta_dot = torque ? qd[0] : u.theta_dot;
-        return {t, theta, theta_dot, tip.uy, tip.ux1, tip.ux, e.kinetic(), e.U, model_.momentum(u, q, qd), e.T2 - e.T0 + e.U,
-                extras};
+        Row r{t, theta, theta_dot, tip.uy, tip.ux1, tip.ux, e.kinetic(), e.U, model_.momentum(u, q, qd), e.T2 - e.T0 + e.U,
+              extras};
+        if (sensitivities_ != nullptr) {
+            sensitivities_->outputs(t, y, derived_.data());
+            r.derived = derived_.data();
+        }
+        return r;
     }
     const double* q() const { return q_.data(); }
 
@@ -163,12 +181,13 @@ private:
     const Motion& motion_;
     FirstOrderSystem& system_;
     const Control* control_;
-    std::vector<double> q_, qd_;
+    SensitivitySystem* sensitivities_;  // null without sensitivities
+    std::vector<double> q_, qd_, derived_;
     bool extended_;
 };
 
 /// Why a row cannot stand, from the model's limits (empty if it can): the hub rate past the spin above which the
-/// straight beam is unstable, or a tip deflection beyond the beam's length.
+/// straight beam is unstable, a hub angle beyond max_hub_angle, or a tip deflection beyond the beam's length.
 std::string model_limit(const Row& r, double critical, double L)
 {
     char text[300];
@@ -178,6 +197,13 @@ std::string model_limit(const Row& r, double critical, double L)
                       "this model is unstable (its effective stiffness loses definiteness; order zero: the first "
                       "bending frequency) at t = %g s; order first or full stays stable",
                       r.theta_dot, critical, r.t);
+        return text;
+    }
+    if (std::abs(r.theta) > max_hub_angle) {
+        std::snprintf(text, sizeof text,
+                      "the hub angle %.4g rad has passed %g rad, beyond which double precision no longer resolves "
+                      "its small changes, at t = %g s",
+                      r.theta, max_hub_angle, r.t);
         return text;
     }
     if (!std::isfinite(r.tip_uy) || std::abs(r.tip_uy) > L)
@@ -198,22 +224,44 @@ constexpr double drive_end_window_share = 1.0 / 5.0;
 // that its own error is small beside the error it measures.
 constexpr double check_tightening = 10.0;
 
-/// The columns the error indicator compares: what a reader of the rows plots (the energies follow from these).
-constexpr double Row::*checked_columns[] = {&Row::theta, &Row::theta_dot, &Row::tip_uy, &Row::tip_ux1, &Row::tip_ux};
-constexpr std::size_t checked_count = std::size(checked_columns);
+// Below this size (m, rad, rad/s, J, N m, ... in SI units) a column's values are round-off, not a measure to be
+// relative to: its difference counts against this floor. A derivative by a parameter p counts against this floor
+// over |p|, a change of the output over a relative change of p.
+constexpr double round_off_floor = 1e-9;
 
-const char* column_name(double Row::*member)
+/// The columns the error indicator compares: every one the run writes (the CSV header's, from the same table).
+struct CheckedColumns {
+    ColumnSet set;
+    std::vector<std::string> names;
+    std::vector<double> floor;  // round_off_floor, in each column's units
+};
+CheckedColumns checked_columns(const Scene& scene, const FirstOrderSystem& system)
 {
-    for (const RowColumn& c : row_columns)
-        if (c.member == member) return c.name;
-    return "?";
+    CheckedColumns c{optional_columns_of(scene), {}, {}};
+    const std::string header = row_header(c.set);
+    for (std::size_t at = 0; at <= header.size();) {
+        const std::size_t comma = std::min(header.find(',', at), header.size());
+        c.names.push_back(header.substr(at, comma - at));
+        at = comma + 1;
+    }
+    c.floor.assign(c.names.size() - c.set.derived.size(), round_off_floor);
+    if (const auto* s = dynamic_cast<const SensitivitySystem*>(&system))
+        for (int j = 0; j < s->count(); ++j)
+            c.floor.insert(c.floor.end(), std::size(sensitivity_outputs), round_off_floor / s->scale(j));
+    return c;
 }
 
-/// A stretch of the run to re-run at the tighter tolerance: its start and the state there, and the run's rows in it.
+/// A stretch of the run to re-run at the tighter tolerance: its start and the state there, the times of the run's rows
+/// in it and their values (append_row_values, one row after the other).
 struct CheckWindow {
     double t0 = -1.0;  // < 0: not reached
     std::vector<double> y0;
-    std::vector<Row> rows;
+    std::vector<double> times, values;
+    void add(const Row& r, const ColumnSet& set)
+    {
+        times.push_back(r.t);
+        append_row_values(r, set, values);
+    }
 };
 
 /// The tighter tolerances of the error indicator's re-runs.
@@ -227,58 +275,46 @@ CheckTolerance check_tolerance(const SolverOptions& solver)
             std::min(solver.atol, defaults.atol) / check_tightening};
 }
 
-/// The rows of a re-run of the scene from state y (of system) at t0 to each of times (ascending, > t0), at tol with
-/// the stepper that suits the scene, a step ending at each row and breakpoint. Fewer rows than times: the re-run
-/// failed there (a step, or a model limit).
-std::vector<Row> rerun(const Scene& scene, const Model& model, double t0, std::vector<double> y,
-                       const std::vector<double>& times, CheckTolerance tol, const std::string& stepper_name)
+/// The rows' values (append_row_values with set) of a re-run of the scene from state y (of the run's system) at t0
+/// to each of times (ascending, > t0), at tol with the stepper that suits the scene, a step ending at each row and
+/// breakpoint. Fewer rows than times: the re-run failed there (a step, or a model limit).
+std::vector<double> rerun(const Scene& scene, const Model& model, double t0, std::vector<double> y,
+                          const std::vector<double>& times, CheckTolerance tol, const std::string& stepper_name,
+                          const ColumnSet& set)
 {
     const Control* control = scene.controller();
-    FirstOrderSystem system(model, scene.motion, scene.axial, control, &scene.parameters);
+    const std::unique_ptr<FirstOrderSystem> system = system_of(model, scene);
     const std::unique_ptr<Stepper> stepper =
-        make_stepper(system, stepper_name, t0, y.data(), scene.solver.h0, tol.atol, tol.rtol);
-    RowMaker make_row(model, scene.motion, system, control);
+        make_stepper(*system, stepper_name, t0, y.data(), scene.solver.h0, tol.atol, tol.rtol);
+    RowMaker make_row(model, scene.motion, *system, control);
     const std::vector<double> breaks = times.empty() ? std::vector<double>{} : breaks_before(scene.motion, times.back());
     auto next = std::upper_bound(breaks.begin(), breaks.end(), t0 * (1.0 + same_instant));
     const double critical = critical_spin(model);
-    std::vector<Row> rows;
+    std::vector<double> values;
     double t = t0;
     for (const double ti : times) {
         for (; next != breaks.end() && *next < ti * (1.0 - same_instant); ++next) {
-            if (stepper->advance(t, *next, y.data()) != GSL_SUCCESS) return rows;
+            if (stepper->advance(t, *next, y.data()) != GSL_SUCCESS) return values;
             stepper->restart(t, y.data());
         }
-        if (stepper->advance(t, ti, y.data()) != GSL_SUCCESS) return rows;
-        if (stepper->steps() > scene.solver.max_steps) return rows;
+        if (stepper->advance(t, ti, y.data()) != GSL_SUCCESS) return values;
+        if (stepper->steps() > scene.solver.max_steps) return values;
         const Row r = make_row(ti, y.data());
-        if (!model_limit(r, critical, scene.parameters.L).empty()) return rows;
-        rows.push_back(r);
+        if (!model_limit(r, critical, scene.parameters.L).empty()) return values;
+        append_row_values(r, set, values);
     }
-    return rows;
+    return values;
 }
 
-/// The largest difference of window's rows from a re-run of it, relative to each column's peak: the fraction and
-/// the column, or a negative fraction when the re-run failed.
-std::pair<double, double Row::*> window_error(const Scene& scene, const Model& model, const CheckWindow& window,
-                                              const std::array<double, checked_count>& peak, CheckTolerance tol,
-                                              const std::string& stepper)
+/// The largest difference of window's rows from a re-run of it, in any column, relative to the column's peak in the
+/// run (largest_difference); a negative fraction when the re-run failed.
+ColumnDifference window_error(const Scene& scene, const Model& model, const CheckWindow& window,
+                              const CheckedColumns& columns, const std::vector<double>& peak, CheckTolerance tol,
+                              const std::string& stepper)
 {
-    std::vector<double> times;
-    for (const Row& r : window.rows) times.push_back(r.t);
-    const std::vector<Row> again = rerun(scene, model, window.t0, window.y0, times, tol, stepper);
-    if (again.size() != window.rows.size()) return {-1.0, nullptr};
-    std::pair<double, double Row::*> worst{0.0, checked_columns[0]};
-    for (std::size_t i = 0; i < again.size(); ++i)
-        for (std::size_t c = 0; c < checked_count; ++c) {
-            if (peak[c] == 0.0) continue;  // a column the variant does not have (tip_ux1 without axial coordinates)
-            // A column whose values are round-off (tip_ux1 in the first 0.1 s of a spin-up peaks at 2e-15 m) has no
-            // error worth a relative measure: below 1e-9 (m, rad, rad/s) the difference counts against that floor.
-            constexpr double floor = 1e-9;
-            const double e = std::abs(window.rows[i].*checked_columns[c] - again[i].*checked_columns[c]) /
-                             std::max(peak[c], floor);
-            if (std::isnan(e) || e > worst.first) worst = {std::isnan(e) ? INFINITY : e, checked_columns[c]};
-        }
-    return worst;
+    const std::vector<double> again =
+        rerun(scene, model, window.t0, window.y0, window.times, tol, stepper, columns.set);
+    return largest_difference(window.values, again, peak, columns.floor);
 }
 
 /// The state at rest: the free hub at its initial angle (q[0], the first state: kept_coordinates keeps it first).
@@ -363,11 +399,9 @@ private:
     const Model& model_;
     const std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
     const QuietGsl quiet_;
-    // The state's equations, or with the sensitivities beside them (then sensitivities_ is the same object).
+    // The state's equations, or with the sensitivities beside them (system_of).
     const std::unique_ptr<FirstOrderSystem> owned_system_;
     FirstOrderSystem& system_;
-    SensitivitySystem* const sensitivities_;
-    std::vector<double> derived_;  // a row's derivative columns
     std::vector<double> y_;
     std::unique_ptr<Stepper> stepper_;
     RowMaker make_row_;
@@ -379,28 +413,25 @@ private:
     double t_ = 0.0, last_row_ = 0.0;
     RunSummary summary_;
     double jacobi0_ = 0.0;
+    double u_min_ = INFINITY, u_max_ = -INFINITY;  // U's range since t_steady (the drift's reference under gravity)
     std::string model_failure_;  // set when a row broke a model limit
-    // The error indicator's windows and each checked column's largest |value|.
+    // The error indicator's windows, the columns it compares and each one's largest |value|.
     double check_window_ = 0.0, drive_end_window_length_ = 0.0;
     CheckWindow start_window_, end_window_, drive_end_window_;
     double drive_end_ = -1.0;  // the drive's last breakpoint inside the run, where drive_end_window_ starts
-    std::array<double, checked_count> peak_{};
+    const CheckedColumns columns_;
+    std::vector<double> peak_, values_;  // values_: the last row's values (append_row_values)
+    bool non_finite_ = false;  // the run stopped at a row with a non-finite value, not written
 };
 
 Simulation::Run::Run(const Simulation& simulation)
     : sim_(simulation), scene_(simulation.scene_), model_(*simulation.model_),
-      owned_system_(scene_.output.sensitivities.empty()
-                        ? std::make_unique<FirstOrderSystem>(model_, scene_.motion, scene_.axial, scene_.controller(),
-                                                             &scene_.parameters)
-                        : std::make_unique<SensitivitySystem>(model_, scene_)),
-      system_(*owned_system_), sensitivities_(dynamic_cast<SensitivitySystem*>(owned_system_.get())),
-      derived_(sensitivity_columns(scene_.output.sensitivities).size()),
-      y_(initial_state(system_, model_, scene_)),
+      owned_system_(system_of(model_, scene_)), system_(*owned_system_), y_(initial_state(system_, model_, scene_)),
       stepper_(make_stepper(system_, sim_.stepper_, 0.0, y_.data(), scene_.solver.h0, scene_.solver.atol,
                             scene_.solver.rtol)),
       make_row_(model_, scene_.motion, system_, scene_.controller()), times_(scene_.output),
       breaks_(breaks_before(scene_.motion, times_(times_.last()))), critical_(critical_spin(model_)),
-      budget_(scene_.solver.max_steps)
+      budget_(scene_.solver.max_steps), columns_(checked_columns(scene_, system_)), peak_(columns_.names.size(), 0.0)
 {
     summary_.variant = model_.key().name();
     summary_.source = model_.source();
@@ -420,6 +451,18 @@ Simulation::Run::Run(const Simulation& simulation)
     if (model_.key().extras.gravity && model_.key().drive == Drive::prescribed && turning)
         summary_.monitor_off = "gravity under a prescribed rotation: U_g follows the prescribed angle, no energy is "
                                "constant";
+    // A drive that changes up to the run's end (a table to t_end, a spin-up longer than the run) leaves no row after
+    // which the Jacobi integral is constant: a drift of 0 J over a single row would check nothing.
+    const double t_last = times_(times_.last());
+    if (summary_.monitor_off.empty() && summary_.t_steady >= t_last * (1.0 - same_instant))
+        summary_.monitor_off = "the drive changes up to t = " + shortest(summary_.t_steady) + " s and the run ends at " +
+                               shortest(t_last) + " s: no energy is constant while it does";
+    // The reference of the Jacobi integral's drift: the vibration energy, the largest U since; under gravity U holds
+    // the weight's potential, which can stay <= 0 (a free hub swinging below the horizontal), and its range since is
+    // the energy that T and U exchange.
+    summary_.invariant_reference = summary_.energy_balance       ? "the largest energy in it"
+                                   : model_.key().extras.gravity ? "the range of U since"
+                                                                 : "the vibration energy";
     const double t_end = scene_.output.t_end;
     check_window_ = std::min(t_end, std::max(t_end * check_window_fraction, scene_.output.dt_out));
     drive_end_window_length_ = std::max(check_window_ * drive_end_window_share, scene_.output.dt_out);
@@ -638,14 +681,21 @@ void Simulation::Run::restart()
 /// The row at ti to the sink (the observer first), then the monitors; or why the run must stop.
 std::string Simulation::Run::emit(double ti, const double* state, const RowSink& sink)
 {
-    Row r = make_row_(ti, state);
-    if (sensitivities_ != nullptr) {
-        sensitivities_->outputs(ti, state, derived_.data());
-        r.derived = derived_.data();
-    }
+    const Row r = make_row_(ti, state);
+    values_.clear();
+    append_row_values(r, columns_.set, values_);
+    for (std::size_t c = 0; c < values_.size(); ++c)
+        if (!std::isfinite(values_[c])) {  // not a row to write: the run ends with the rows before it
+            model_failure_ = "unstable: the solution became non-finite" + at_time(ti) + " (" + columns_.names[c] +
+                             " is " + std::to_string(values_[c]) + ")";
+            non_finite_ = true;
+            t_ = ti;
+            return model_failure_;
+        }
     if (sim_.observer_) sim_.observer_(ti, make_row_.q());
     summary_.max_abs_tip_uy = std::max(summary_.max_abs_tip_uy, std::abs(r.tip_uy));
     sink(r);
+    last_row_ = ti;
     if (!(std::abs(r.theta_dot) > critical_)) monitor(r);
     model_failure_ = model_limit(r, critical_, scene_.parameters.L);
     if (!model_failure_.empty()) t_ = ti;  // the run ends with this row, whatever the step reached
@@ -670,16 +720,19 @@ void Simulation::Run::monitor(const Row& r)
     } else if (summary_.monitor_off.empty() && r.t > 0.0 && r.t >= summary_.t_steady) {  // from the first row after rest
         if (summary_.vibration_energy < 0.0) jacobi0_ = r.jacobi, summary_.vibration_energy = 0.0;
         summary_.jacobi_drift = std::max(summary_.jacobi_drift, std::abs(r.jacobi - jacobi0_));
-        summary_.vibration_energy = std::max(summary_.vibration_energy, r.potential);
+        u_min_ = std::min(u_min_, r.potential);
+        u_max_ = std::max(u_max_, r.potential);
+        summary_.vibration_energy =
+            std::max(summary_.vibration_energy, model_.key().extras.gravity ? u_max_ - u_min_ : r.potential);
     }
     if (!sim_.check_error_) return;
-    for (std::size_t c = 0; c < checked_count; ++c) peak_[c] = std::max(peak_[c], std::abs(r.*checked_columns[c]));
-    if (r.t > 0.0 && r.t <= check_window_ * (1.0 + same_instant)) start_window_.rows.push_back(r);
-    else if (end_window_.t0 >= 0.0 && r.t > end_window_.t0) end_window_.rows.push_back(r);
+    for (std::size_t c = 0; c < peak_.size(); ++c) peak_[c] = std::max(peak_[c], std::abs(values_[c]));
+    if (r.t > 0.0 && r.t <= check_window_ * (1.0 + same_instant)) start_window_.add(r, columns_.set);
+    else if (end_window_.t0 >= 0.0 && r.t > end_window_.t0) end_window_.add(r, columns_.set);
     const double t_drive = drive_end_window_.t0;
     if (t_drive >= 0.0 && r.t > t_drive * (1.0 + same_instant) &&
         r.t <= (t_drive + drive_end_window_length_) * (1.0 + same_instant))
-        drive_end_window_.rows.push_back(r);
+        drive_end_window_.add(r, columns_.set);
 }
 
 /// The error indicator's last window starts at the end of the step before it reaches t_end - window: a state the
@@ -773,6 +826,9 @@ RunSummary Simulation::Run::finish(std::string failure)
     if (failure.empty()) failure = untrustworthy();
     else if (!model_failure_.empty() || failure.rfind("unstable: the equations", 0) == 0)
         failure = tolerance_as_cause(failure);
+    if (non_finite_)
+        failure += last_row_ < t_ ? "; the rows up to t = " + shortest(last_row_) + " s are written, not this one"
+                                  : "; no row is written";
     if (summary_.check_rtol > 0.0)  // a check ran
         summary_.check_wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - checked).count();
     summary_.completed = failure.empty();
@@ -796,42 +852,45 @@ std::string Simulation::Run::untrustworthy()
         // What drifted: the balance with damping or control, else the Jacobi integral once the drive is steady.
         const bool balance = summary_.energy_balance;
         std::snprintf(text, sizeof text,
-                      "untrustworthy: the %s drifted by %.3g J %s t = %g s, %.2g of the %s (more than %g): the "
+                      "untrustworthy: the %s drifted by %.3g J %s t = %g s, %.2g of %s (more than %g): the "
                       "tolerance is too loose for the stepper; tighten --rtol/--atol",
                       balance ? "energy balance E + dissipated - work" : "Jacobi integral", summary_.jacobi_drift,
                       balance ? "from" : "after the drive ended at", summary_.t_steady, drift,
-                      balance ? "largest energy in it" : "vibration energy", invariant_tolerance);
+                      summary_.invariant_reference.c_str(), invariant_tolerance);
         return text;
     }
-    if (!sim_.check_error_ || start_window_.rows.empty()) return {};
+    if (!sim_.check_error_ || start_window_.times.empty()) return {};
     const CheckTolerance tol = check_tolerance(scene_.solver);
     summary_.check_rtol = tol.rtol;
     summary_.check_atol = tol.atol;
+    const auto compare = [&](const CheckWindow& w) {
+        const ColumnDifference d = window_error(scene_, model_, w, columns_, peak_, tol, check_stepper(tol));
+        return std::pair{d.fraction, d.column};
+    };
     // The start window from rest: an error made at once (a fast mode excited by a loose tolerance) stays.
-    auto [measured, column] = window_error(scene_, model_, start_window_, peak_, tol, check_stepper(tol));
+    auto [measured, column] = compare(start_window_);
     const CheckWindow* where = &start_window_;
     double error = measured;
-    if (measured >= 0.0 && !end_window_.rows.empty()) {
+    if (measured >= 0.0 && !end_window_.times.empty()) {
         // The error made in the last window, times the square root of the windows the run holds: the windows'
         // errors add up as independent ones would (a linear sum overstates the atol-sized noise of a coordinate
         // near zero eightfold in cases/torque_tau1.toml); a mode that the stepper amplifies shows in the window.
-        const auto [end_measured, end_column] = window_error(scene_, model_, end_window_, peak_, tol, check_stepper(tol));
-        const double t1 = end_window_.rows.back().t;
+        const auto [end_measured, end_column] = compare(end_window_);
+        const double t1 = end_window_.times.back();
         const double scaled = end_measured < 0.0 ? -1.0 : end_measured * std::sqrt(t1 / (t1 - end_window_.t0));
         if (scaled < 0.0 || scaled > error) error = scaled, measured = end_measured, column = end_column, where = &end_window_;
     }
-    if (error >= 0.0 && !drive_end_window_.rows.empty()) {
+    if (error >= 0.0 && !drive_end_window_.times.empty()) {
         // Across the drive's end (a torque switched off, a spin-up reaching its rate): the profile's kink, where the
         // stepper restarts, can make at once an error that then stays, as at a start from rest (most of the error
         // of cases/torque_tau1.toml's tip_ux1, which neither of the other windows sees).
-        const auto [kink_measured, kink_column] =
-            window_error(scene_, model_, drive_end_window_, peak_, tol, check_stepper(tol));
+        const auto [kink_measured, kink_column] = compare(drive_end_window_);
         if (kink_measured < 0.0 || kink_measured > error)
             error = kink_measured, measured = kink_measured, column = kink_column, where = &drive_end_window_;
     }
     summary_.estimated_error = error;
     if (error < 0.0) return {};  // the re-run failed where the run did not: nothing to compare
-    summary_.error_column = column_name(column);
+    summary_.error_column = columns_.names[column];
     if (!(error > error_tolerance)) return {};
     char rate[120] = "";
     if (where == &end_window_)
@@ -840,7 +899,7 @@ std::string Simulation::Run::untrustworthy()
                   "untrustworthy: the run's error exceeds %g: its %s differs by %.2g of its largest value from a re-run "
                   "at rtol %g, atol %g over t = %g to %g s%s; tighten --rtol/--atol",
                   error_tolerance, summary_.error_column.c_str(), measured, tol.rtol, tol.atol, where->t0,
-                  where->rows.back().t, rate);
+                  where->times.back(), rate);
     return text;
 }
 
@@ -861,8 +920,9 @@ std::string Simulation::Run::tolerance_as_cause(const std::string& failure)
     if (times.empty()) return failure;
     summary_.check_rtol = tol.rtol;
     summary_.check_atol = tol.atol;
-    const std::vector<Row> again = rerun(scene_, model_, 0.0, start_window_.y0, times, tol, check_stepper(tol));  // the run's start
-    if (again.size() < times.size()) return failure;  // the model fails there at the tighter tolerance too
+    const std::vector<double> again =  // from the run's start
+        rerun(scene_, model_, 0.0, start_window_.y0, times, tol, check_stepper(tol), columns_.set);
+    if (again.size() < times.size() * columns_.names.size()) return failure;  // the model fails there at the tighter tolerance too
     // What happened, without the clauses that blame the model.
     std::string what = failure.substr(0, std::min({failure.find(" ("), failure.find("; "), failure.find(", above")}));
     if (what.rfind("unstable: ", 0) == 0) what.erase(0, 10);

@@ -283,15 +283,20 @@ std::string format_summary(const RunSummary& r, const Scene& scene)
         out << "invariant   none checked: " << r.monitor_off << "\n";
     } else if (r.vibration_energy > 0.0 && r.energy_balance) {
         char line[200];
-        std::snprintf(line, sizeof line, "%.2g J from t = %g s, %.2g of the largest energy in it", r.jacobi_drift,
-                      r.t_steady, r.jacobi_drift / r.vibration_energy);
+        std::snprintf(line, sizeof line, "%.2g J from t = %g s, %.2g of %s", r.jacobi_drift, r.t_steady,
+                      r.jacobi_drift / r.vibration_energy, r.invariant_reference.c_str());
         out << "invariant   energy balance E + dissipated - work drift " << line << "\n";
     } else if (r.vibration_energy > 0.0) {
         char line[160];
         // As the untrustworthy message words it (simulate.cpp), so that the two agree.
-        std::snprintf(line, sizeof line, "%.2g J after t = %g s, %.2g of the vibration energy", r.jacobi_drift,
-                      r.t_steady, r.jacobi_drift / r.vibration_energy);
+        std::snprintf(line, sizeof line, "%.2g J after t = %g s, %.2g of %s", r.jacobi_drift, r.t_steady,
+                      r.jacobi_drift / r.vibration_energy, r.invariant_reference.c_str());
         out << "invariant   Jacobi integral drift " << line << "\n";
+    } else if (r.vibration_energy == 0.0) {  // nothing moved: no energy to measure a drift against
+        std::snprintf(buf, sizeof buf, "%.2g", r.jacobi_drift);
+        out << "invariant   " << (r.energy_balance ? "energy balance E + dissipated - work" : "Jacobi integral")
+            << " drift " << buf << " J " << (r.energy_balance ? "from" : "after") << " t = " << shortest(r.t_steady)
+            << " s, with no energy in the run to compare it with\n";
     }
     if (r.estimated_error >= 0.0) {
         char line[200];

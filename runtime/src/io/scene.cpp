@@ -320,8 +320,9 @@ void set_override(toml::table& root, const std::string& file, const std::string&
     }
 }
 
-/// output.sensitivities: known symbols, each once, that this scene has (a gain needs [control], tip_ratio a taper),
-/// and a run the sensitivity equations can follow (dynamic axial coordinates, no torque law in code).
+/// output.sensitivities: known symbols, each once, that this scene has (a gain needs [control], tip_ratio a taper,
+/// rho, S, I and E a beam without a profile), and a run the sensitivity equations can follow (dynamic axial
+/// coordinates, no torque law in code).
 void check_sensitivities(const Scene& s)
 {
     const char* key = "output.sensitivities";
@@ -337,10 +338,21 @@ void check_sensitivities(const Scene& s)
             fail(s.path, key, "a control gain only with a [control] table", "\"" + name + "\"");
         if (name == "tip_ratio" && s.variant.extras.taper == Taper::uniform)
             fail(s.path, key, "tip_ratio only with beam.taper \"width\" or \"depth\"", "\"tip_ratio\"");
+        // A profile's table replaces E, rho, S and I (read_profile sets them from its root for reports only): their
+        // derivatives would be columns of zeros.
+        if (!s.parameters.profile.empty() && (name == "E" || name == "rho" || name == "S" || name == "I"))
+            fail(s.path, key, "a parameter that the scene uses, not " + name + " with beam.profile (its table gives "
+                 "m, EI and ES along the span in place of rho, S, I and E)", "\"" + name + "\"");
     }
     if (!s.output.sensitivities.empty() && s.axial == Axial::quasi_static)
         fail(s.path, key, "model.axial \"dynamic\" (the sensitivity equations follow the axial coordinates' own "
              "motion)", "model.axial \"quasi-static\"");
+}
+
+/// The bound on a hub angle, as messages state it.
+std::string angle_bound()
+{
+    return shortest(max_hub_angle) + " rad (beyond it double precision no longer resolves an angle's small changes)";
 }
 
 // Range checks of validate(), naming the key.
@@ -351,6 +363,14 @@ void check_positive(const Scene& s, double v, const char* key)
 void check_finite(const Scene& s, double v, const char* key)
 {
     if (!std::isfinite(v)) fail(s.path, key, expected(key), shortest(v));
+}
+/// A hub angle: finite, and no larger than max_hub_angle, within which double precision resolves it.
+void check_angle(const Scene& s, double v, const char* key)
+{
+    check_finite(s, v, key);
+    if (std::abs(v) > max_hub_angle)
+        fail(s.path, key, "|" + std::string(key).substr(std::string(key).find('.') + 1) + "| <= " + angle_bound(),
+             shortest(v));
 }
 
 /// [control]'s ranges, and the motions it can follow: a step is a reference only, a torque drive is none.
@@ -409,7 +429,9 @@ std::string_view trimmed(std::string_view s)
 /// A numeric CSV table named by a scene key (beam.profile, motion.file): its header's column count and line and,
 /// for each row, the values of the wanted columns and the row's line. Read whole by read_file (FIFOs, devices and
 /// folders refused; at most cap bytes) and checked before anything runs; blank lines, lines starting with '#' and a
-/// spreadsheet's byte-order mark are skipped. Every problem is "SCENE: KEY: FILE[:LINE]: what".
+/// spreadsheet's byte-order mark are skipped. Every problem is "SCENE: KEY: FILE[:LINE]: what", what saying what was
+/// expected and where (line, column, field), never what the file holds: a scene may name any file its reader can
+/// read, and the message may reach someone who cannot.
 struct NumericTable {
     std::size_t header_columns = 0;
     long header_line = 0;                   // comment and blank lines may come before the header
@@ -424,11 +446,16 @@ struct NumericTable {
     throw SceneError::with_detail(scene, key, where + ": " + what);
 }
 
-/// Reads file (resolved already) as a table with the columns `wanted` (found by name in its header, among others;
-/// `meaning` says what they hold, for the message naming a missing one); each value a finite number.
+/// A column a table reader needs: its name in the header and what it holds (with its unit), for messages.
+struct WantedColumn {
+    std::string name;
+    std::string meaning;
+};
+
+/// Reads file (resolved already) as a table with the columns `wanted` (found by name in its header, among others,
+/// each once); each value a finite number.
 NumericTable read_numeric_table(const std::string& scene, const std::string& key, const std::string& file,
-                                std::size_t cap, const char* what_it_is, const std::vector<std::string>& wanted,
-                                const char* meaning)
+                                std::size_t cap, const char* what_it_is, const std::vector<WantedColumn>& wanted)
 {
     const std::string label = printable(file, 400);
     std::string text;
@@ -461,10 +488,16 @@ NumericTable read_numeric_table(const std::string& scene, const std::string& key
             std::string header;
             for (const std::string& f : fields) header += (header.empty() ? "" : ",") + f;
             columns.emplace(where, header);
-            try {
-                for (const std::string& name : wanted) at.push_back(columns->at(name, meaning));
-            } catch (const CsvColumnError& e) {
-                throw SceneError::with_detail(scene, key, e.what());
+            for (const WantedColumn& w : wanted) {
+                const std::vector<std::string>& names = columns->names();
+                const auto count = std::count(names.begin(), names.end(), w.name);
+                if (count != 1)  // a second column of the name would be ignored without a word
+                    table_problem(scene, key, where,
+                                  (count == 0 ? "expected a column " : "expected one column ") + w.name +
+                                      " in its header (" + w.meaning + "), got " +
+                                      (count == 0 ? "none among its " + std::to_string(names.size()) + " columns"
+                                                  : std::to_string(count)));
+                at.push_back(columns->at(w.name));
             }
             table.header_columns = columns->size();
             table.header_line = line_no;
@@ -481,7 +514,8 @@ NumericTable read_numeric_table(const std::string& scene, const std::string& key
             const auto [stop, ec] = std::from_chars(f.data(), f.data() + f.size(), x);
             if (ec != std::errc() || stop != f.data() + f.size() || !std::isfinite(x))
                 table_problem(scene, key, where,
-                              "expected a finite number in column " + wanted[c] + ", got \"" + printable(f, 40) + "\"");
+                              "expected a finite number in column " + wanted[c].name + " (" + wanted[c].meaning +
+                                  "), field " + std::to_string(at[c] + 1) + " of the line");
             row.push_back(x);
         }
         table.rows.push_back(std::move(row));
@@ -489,7 +523,7 @@ NumericTable read_numeric_table(const std::string& scene, const std::string& key
     }
     if (!columns) {
         std::string names;
-        for (const std::string& w : wanted) names += (names.empty() ? "" : ", ") + w;
+        for (const WantedColumn& w : wanted) names += (names.empty() ? "" : ", ") + w.name;
         table_problem(scene, key, label, "expected a header line with columns " + names + ", got an empty file");
     }
     return table;
@@ -510,9 +544,12 @@ std::string read_profile(const std::string& scene_path, const std::string& name,
     const auto bad = [&](long line, const std::string& what) {
         table_problem(scene_path, "beam.profile", label + (line > 0 ? ":" + std::to_string(line) : std::string()), what);
     };
-    const std::vector<std::string> want = {"x/L", "m", "EI", "ES"};
-    const NumericTable table = read_numeric_table(scene_path, "beam.profile", file, max_profile_bytes,
-                                                  "a profile table", want, "x/L, m kg/m, EI N m^2, ES N");
+    const std::vector<WantedColumn> want = {{"x/L", "the station along the span, 0 at the root to 1 at the tip"},
+                                            {"m", "mass per length, kg/m"},
+                                            {"EI", "bending stiffness, N m^2"},
+                                            {"ES", "axial stiffness, N"}};
+    const NumericTable table =
+        read_numeric_table(scene_path, "beam.profile", file, max_profile_bytes, "a profile table", want);
     if (table.header_columns != want.size())
         bad(table.header_line, "expected exactly the columns x/L, m, EI, ES in its header, got " +
                                    std::to_string(table.header_columns) + " columns");
@@ -523,7 +560,7 @@ std::string read_profile(const std::string& scene_path, const std::string& name,
         if (x.size() == max_profile_stations)
             bad(line, "more than " + std::to_string(max_profile_stations) + " stations");
         for (std::size_t c = 1; c < want.size(); ++c)
-            if (!(v[c] > 0.0)) bad(line, "expected " + want[c] + " > 0, got " + shortest(v[c]));
+            if (!(v[c] > 0.0)) bad(line, "expected " + want[c].name + " > 0, got " + shortest(v[c]));
         if (x.empty() && v[0] != 0.0) bad(line, "the first station must be x/L = 0, got " + shortest(v[0]));
         if (!x.empty() && !(v[0] > x.back()))
             bad(line, "the stations must increase strictly, got x/L = " + shortest(v[0]) + " after " + shortest(x.back()));
@@ -599,12 +636,15 @@ std::shared_ptr<const DriveTable> read_drive_table(const std::string& scene, con
                                                    DriveTable::Interpolation interpolation)
 {
     const std::string label = printable(file, 400);
-    const NumericTable table =
-        read_numeric_table(scene, "motion.file", file, max_table_bytes, "a motion table", {"t", column}, meaning);
+    const NumericTable table = read_numeric_table(scene, "motion.file", file, max_table_bytes, "a motion table",
+                                                  {{"t", "time, s"}, {column, meaning}});
     std::vector<double> t, v;
+    const bool angle = std::string_view(column) == "theta";
     for (std::size_t r = 0; r < table.rows.size(); ++r) {
         t.push_back(table.rows[r][0]);
         v.push_back(table.rows[r][1]);
+        if (angle && std::abs(v[r]) > max_hub_angle)
+            table_fail(scene, label + ":" + std::to_string(table.lines[r]), "expected |theta| <= " + angle_bound());
         if (r > 0 && !(t[r] > t[r - 1]))
             table_fail(scene, label + ":" + std::to_string(table.lines[r]),
                        "expected times that increase strictly, got t = " + shortest(t[r]) + " after t = " +
@@ -953,13 +993,13 @@ void validate(const Scene& s)
         check_positive(s, s.motion.torque_time, "motion.duration");
         break;
     case Motion::Kind::held:
-    case Motion::Kind::step: check_finite(s, s.motion.angle, "motion.angle"); break;
+    case Motion::Kind::step: check_angle(s, s.motion.angle, "motion.angle"); break;
     case Motion::Kind::table:
     case Motion::Kind::torque_table:
         if (!s.motion.table) fail(s.path, "motion.file", expected("motion.file"), missing);
         break;
     }
-    if (s.motion.kind != Motion::Kind::held) check_finite(s, s.motion.theta0, "motion.theta0");
+    if (s.motion.kind != Motion::Kind::held) check_angle(s, s.motion.theta0, "motion.theta0");
     check_control(s);
 
     // DOF counts: a problem that persists with nx = 0 is about ny.
