@@ -186,6 +186,17 @@ class InterruptTest(unittest.TestCase):
         main = float([line for line in out.splitlines() if line.startswith("KeyboardInterrupt at")][0].split()[-1])
         self.assertLess(max(ended) - main, 1.0, out)
 
+    def test_a_normal_exit_waits_for_the_runs_of_its_threads(self):
+        # Without Ctrl-C the interpreter waits for its (non-daemon) threads, as Python does: their runs complete.
+        script = ("import hubbeam, sys, threading\n"
+                  "def work():\n"
+                  "    r = hubbeam.run(sys.argv[1], nx=0, t_end=2e4, dt_out=1.0, max_steps=1e12)\n"
+                  "    sys.stdout.write('completed %s %g\\n' % (r.completed, r.t[-1]))\n"
+                  "threading.Thread(target=work).start()\n")
+        p = subprocess.run([sys.executable, "-c", script, SPINUP], capture_output=True, text=True, timeout=120)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        self.assertEqual(p.stdout, "completed True 20000\n")
+
     def test_exiting_while_a_daemon_thread_computes_does_not_abort(self):
         # Python ends a daemon thread that asks for the GIL during finalization by pthread_exit, whose unwinding
         # through C++ aborts: each of these exits while a daemon thread is deep in the core, several times over.
