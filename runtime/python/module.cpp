@@ -11,10 +11,10 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <exception>
-#include <algorithm>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -194,8 +194,8 @@ void set_sensitivities(Scene& scene, const std::vector<std::string>& names, cons
         throw py::value_error("sensitivities: got " + listed(names) + " where " +
                               (keyword.empty() ? printable(scene.path, 400) + " sets output.sensitivities"
                                                : "the keyword " + keyword + " sets output.sensitivities") +
-                              " = " + listed(scene.output.sensitivities) + ": expected one of the two, or the same "
-                              "parameters in both");
+                              " = " + listed(scene.output.sensitivities) +
+                              ": expected one of the two, or the same parameters in both");
     }
     scene.output.sensitivities = names;
     try {
@@ -499,7 +499,10 @@ std::vector<std::tuple<std::string, std::string, std::string>> keys()
     std::vector<std::tuple<std::string, std::string, std::string>> out;
     for (const SceneKey& k : scene_keys()) {
         using K = SceneKey::Kind;
-        const char* kind = k.kind == K::number ? "number" : k.kind == K::integer ? "integer" : k.kind == K::word ? "word" : "text";
+        const char* kind = k.kind == K::number    ? "number"
+                           : k.kind == K::integer ? "integer"
+                           : k.kind == K::word    ? "word"
+                                                  : "text";
         out.emplace_back(k.name, k.expected, kind);
     }
     return out;

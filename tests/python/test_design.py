@@ -50,8 +50,9 @@ class Sensitivities(unittest.TestCase):
             scene = os.path.join(d, "with_sensitivities.toml")
             with open(scene, "w") as f:
                 f.write(text.replace("[output]", '[output]\nsensitivities = "kd, E"', 1))
-            for call, where in ((lambda: hubbeam.run(CONTROLLED, sensitivities=["kp"], t_end=0.1,
-                                                     **{"output.sensitivities": "kd,E"}), "the keyword output.sensitivities"),
+            by_key = {"output.sensitivities": "kd,E"}
+            for call, where in ((lambda: hubbeam.run(CONTROLLED, sensitivities=["kp"], t_end=0.1, **by_key),
+                                 "the keyword output.sensitivities"),
                                 (lambda: hubbeam.run(scene, sensitivities="kp", t_end=0.1), scene)):
                 with self.assertRaises(ValueError) as caught:
                     call()
