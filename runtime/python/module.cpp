@@ -1,16 +1,26 @@
 // hubbeam._core: the Python module's C++ side (pybind11). Runs scenes given as TOML text into one numpy array
 // per run (rows appended in C++ with the GIL released, handed to numpy without a copy), and computes modes and
 // linearized models; runtime/python/hubbeam/__init__.py gives them their Python shape.
+//
+// Threads and the GIL: long work runs without the GIL and asks between rows or spin rates whether to stop (Ctrl-C
+// in the main thread, a cancelled sweep, an exiting interpreter). pybind11's gil_scoped_* classes are not used: a
+// daemon thread that asks for the GIL while the interpreter finalizes is ended by Python with pthread_exit, whose
+// unwinding through their noexcept destructors aborts the process; WithoutGil and WithGil park such a thread instead.
+#include <cxxabi.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <exception>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
+#include <thread>
+#include <tuple>
 #include <vector>
 
 #include "hubbeam.hpp"
@@ -23,15 +33,175 @@ using namespace hubbeam;
 
 namespace {
 
-
-/// The scene with the overrides set: the file at `text` when name is empty, else `text` itself (a scene written in
-/// code, named name in messages). Bad input raises ValueError with the command line's message.
-Scene scene_of(const std::string& text, const std::string& name, const Overrides& overrides)
+/// True once the interpreter finalizes; an atomic of the runtime, read without the GIL.
+bool finalizing()
 {
+#if PY_VERSION_HEX >= 0x030D0000
+    return Py_IsFinalizing() != 0;
+#else
+    return _Py_IsFinalizing() != 0;
+#endif
+}
+
+/// Where a thread that outlived the interpreter (a daemon thread) waits for the process to end: it touches nothing of
+/// Python's and unwinds nothing.
+[[noreturn]] void park()
+{
+    for (;;) std::this_thread::sleep_for(std::chrono::hours(1));
+}
+
+/// The GIL released for a scope and taken back at its end, or the thread parked if the interpreter finalizes
+/// meanwhile.
+class WithoutGil {
+public:
+    WithoutGil() : state_(PyEval_SaveThread()) {}
+    ~WithoutGil()
+    {
+        if (finalizing()) park();
+        try {
+            PyEval_RestoreThread(state_);
+        } catch (abi::__forced_unwind&) {  // finalizing began while this thread waited for the GIL
+            park();
+        }
+    }
+    WithoutGil(const WithoutGil&) = delete;
+    WithoutGil& operator=(const WithoutGil&) = delete;
+
+private:
+    PyThreadState* state_;
+};
+
+/// The GIL for a scope in a thread that runs without it (a callback from the integration), or the thread parked if
+/// the interpreter finalizes.
+class WithGil {
+public:
+    WithGil()
+    {
+        if (finalizing()) park();
+        try {
+            state_ = PyGILState_Ensure();
+        } catch (abi::__forced_unwind&) {
+            park();
+        }
+    }
+    ~WithGil() { PyGILState_Release(state_); }
+    WithGil(const WithGil&) = delete;
+    WithGil& operator=(const WithGil&) = delete;
+
+private:
+    PyGILState_STATE state_{};
+};
+
+/// Raised by cancel_runs(): a cancellable computation (a sweep's point) stops at its next check once this has changed
+/// since its start (an interrupted sweep's local workers are threads of this process: they stop instead of running
+/// on).
+std::atomic<long> cancel_generation{0};
+/// Set by interrupt_runs(), for good: every computation of this process stops at its next check and raises
+/// KeyboardInterrupt (the interpreter exits after Ctrl-C and would otherwise wait for its threads' runs to end).
+std::atomic<bool> exiting{false};
+
+/// Why a long computation stops early, asked between its rows or spin rates from the computing thread without the
+/// GIL: Ctrl-C (Python runs signal handlers in the main thread only: that thread takes the GIL for a moment every
+/// 0.1 s to let them run), a cancelled sweep, an exiting interpreter.
+class Interrupts {
+public:
+    /// With the GIL, in the thread that computes; cancellable: a sweep's point, which cancel_runs() stops.
+    explicit Interrupts(bool cancellable)
+        : generation_(cancellable ? cancel_generation.load() : -1),
+          main_thread_(PyThread_get_thread_ident() ==
+                       py::module_::import("threading").attr("main_thread")().attr("ident").cast<unsigned long>())
+    {
+    }
+
+    /// nullptr to go on, or why the computation stops.
+    const char* reason()
+    {
+        if (generation_ >= 0 && cancel_generation.load() != generation_) return "cancelled: the sweep was interrupted";
+        if (exiting.load() || finalizing()) {
+            exit_ = true;
+            return "interrupted: the interpreter is exiting";
+        }
+        if (!main_thread_) return nullptr;
+        const auto now = std::chrono::steady_clock::now();
+        if (now - asked_ < std::chrono::milliseconds(100)) return nullptr;
+        asked_ = now;
+        const WithGil gil;
+        if (PyErr_CheckSignals() != 0) {  // the handler's exception (KeyboardInterrupt) stays set for raise()
+            signalled_ = true;
+            return "interrupted by signal";
+        }
+        return nullptr;
+    }
+
+    /// With the GIL, once the computation has returned: raises what stopped it, unless a cancelled sweep did.
+    void raise() const
+    {
+        if (signalled_) throw py::error_already_set();
+        if (exit_) {
+            PyErr_SetString(PyExc_KeyboardInterrupt, "the interpreter is exiting");
+            throw py::error_already_set();
+        }
+    }
+
+private:
+    long generation_;
+    bool main_thread_;
+    bool signalled_ = false, exit_ = false;
+    std::chrono::steady_clock::time_point asked_ = std::chrono::steady_clock::now();
+};
+
+/// Scene keys set from Python: (dotted key, its value as the command line types it, the keyword that set it).
+using Keywords = std::vector<std::tuple<std::string, std::string, std::string>>;
+
+/// The keyword that set key, for messages: a Python user wrote ny=..., not --ny.
+std::string keyword_of(const Keywords& keywords, const std::string& key)
+{
+    for (const auto& [k, value, keyword] : keywords)
+        if (k == key) return keyword;
+    return "";
+}
+
+/// The scene with the keywords' keys set: the file at `text` when name is empty, else `text` itself (a scene written
+/// in code, named name in messages). Bad input raises ValueError with the command line's message, against the
+/// keyword where one set the key.
+Scene scene_of(const std::string& text, const std::string& name, const Keywords& keywords)
+{
+    Overrides overrides;
+    for (const auto& [key, value, keyword] : keywords) overrides.emplace_back(key, value);
     try {
         return name.empty() ? load_scene(text, overrides) : parse_scene(text, name, overrides);
     } catch (const SceneError& e) {
-        throw py::value_error(message_for(e, overrides));
+        const std::string keyword = keyword_of(keywords, e.key);
+        throw py::value_error(keyword.empty() ? e.what() : keyword + ": " + e.problem());
+    }
+}
+
+/// sensitivities= of hubbeam.run set on the scene: refused where the scene or a key already names other parameters
+/// (one of them would be dropped silently).
+void set_sensitivities(Scene& scene, const std::vector<std::string>& names, const Keywords& keywords)
+{
+    const auto sorted = [](std::vector<std::string> v) {
+        std::sort(v.begin(), v.end());
+        return v;
+    };
+    if (!scene.output.sensitivities.empty() && sorted(scene.output.sensitivities) != sorted(names)) {
+        const auto listed = [](const std::vector<std::string>& v) {
+            std::string out;
+            for (const std::string& n : v) out += (out.empty() ? "" : ",") + n;
+            return "\"" + printable(out, 200) + "\"";
+        };
+        const std::string keyword = keyword_of(keywords, "output.sensitivities");
+        throw py::value_error("sensitivities: got " + listed(names) + " where " +
+                              (keyword.empty() ? printable(scene.path, 400) + " sets output.sensitivities"
+                                               : "the keyword " + keyword + " sets output.sensitivities") +
+                              " = " + listed(scene.output.sensitivities) +
+                              ": expected one of the two, or the same parameters in both");
+    }
+    scene.output.sensitivities = names;
+    try {
+        validate(scene);
+    } catch (const SceneError& e) {
+        throw py::value_error((e.key == "output.sensitivities" ? "sensitivities: " + e.problem() : e.what()));
     }
 }
 
@@ -75,13 +245,18 @@ py::array_t<double> rows_array(std::vector<double>&& rows, std::size_t width)
 }
 
 /// A Python callable f(t, state) -> tau as a torque law: state is a dict with theta, theta_dot, tip_uy and
-/// tip_uy_dot. Each call takes the GIL (the integration runs without it). An exception in f, or a result that is not
-/// a number, is kept for the caller to raise and makes the torque NaN, which stops the run at once.
+/// tip_uy_dot. Each call takes the GIL (the integration runs without it). An exception in f, or a result that is no
+/// real number (int, float, or numpy's), is kept for the caller to raise (the latter as a TypeError naming f and what
+/// it returned) and makes the torque NaN, which stops the run at once.
 TorqueLaw python_law(py::object f, std::shared_ptr<std::exception_ptr> failure)
 {
-    auto held = std::make_shared<py::object>(std::move(f));
+    const py::module_ numpy = py::module_::import("numpy");
+    struct Held {
+        py::object f, integer, floating;
+    };
+    auto held = std::make_shared<Held>(Held{std::move(f), numpy.attr("integer"), numpy.attr("floating")});
     return [held, failure](double t, const HubState& s) -> double {
-        const py::gil_scoped_acquire acquire;
+        const WithGil gil;
         if (*failure) return std::numeric_limits<double>::quiet_NaN();
         try {
             py::dict state;
@@ -89,17 +264,29 @@ TorqueLaw python_law(py::object f, std::shared_ptr<std::exception_ptr> failure)
             state["theta_dot"] = s.theta_dot;
             state["tip_uy"] = s.tip_uy;
             state["tip_uy_dot"] = s.tip_uy_dot;
-            return (*held)(t, state).cast<double>();
+            const py::object tau = held->f(t, state);
+            PyObject* p = tau.ptr();
+            if (PyFloat_Check(p)) return PyFloat_AS_DOUBLE(p);
+            // A bool is an int to Python, a complex number has a float() in numpy: neither is a torque.
+            if ((PyLong_Check(p) && !PyBool_Check(p)) || py::isinstance(tau, held->integer) ||
+                py::isinstance(tau, held->floating)) {
+                const double value = PyFloat_AsDouble(p);
+                if (value == -1.0 && PyErr_Occurred()) throw py::error_already_set();
+                return value;
+            }
+            const py::object name = py::getattr(held->f, "__qualname__", py::repr(held->f));
+            throw py::type_error("torque law " + printable(py::str(name).cast<std::string>(), 120) + " returned " +
+                                 printable(py::str(py::repr(tau)).cast<std::string>(), 120) + " (" +
+                                 printable(py::str(py::type::handle_of(tau).attr("__name__")).cast<std::string>(), 80) +
+                                 "): expected a real number, the hub torque in N m");
+        } catch (abi::__forced_unwind&) {  // the interpreter finalized while f ran: see WithoutGil
+            park();
         } catch (...) {
             *failure = std::current_exception();
             return std::numeric_limits<double>::quiet_NaN();
         }
     };
 }
-
-/// Raised by cancel_runs(): a run started with cancellable set stops at its next row once this has changed since
-/// its start (an interrupted sweep's local workers are threads of this process: they stop instead of running on).
-std::atomic<long> cancel_generation{0};
 
 /// A run's summary as the Python result's attributes (the command line's summary lines, and its text).
 py::dict summary_dict(const RunSummary& s, const Scene& scene)
@@ -134,13 +321,14 @@ py::dict summary_dict(const RunSummary& s, const Scene& scene)
 }
 
 /// One run: the rows as an array and the summary's fields (hubbeam.run).
-py::dict run(const std::string& text, const std::string& name, const Overrides& overrides, bool cancellable,
-             const py::object& torque)
+py::dict run(const std::string& text, const std::string& name, const Keywords& keywords, bool cancellable,
+             const py::object& torque, const std::optional<std::vector<std::string>>& sensitivities)
 {
-    const long generation = cancel_generation.load();
+    Interrupts interrupts(cancellable);
     // What hubbeam run does in process, timed the same way: load, choose the model, integrate.
     const auto start = std::chrono::steady_clock::now();
-    Scene scene = scene_of(text, name, overrides);
+    Scene scene = scene_of(text, name, keywords);
+    if (sensitivities) set_sensitivities(scene, *sensitivities, keywords);
     const auto law_failure = std::make_shared<std::exception_ptr>();
     if (!torque.is_none()) {
         if (!PyCallable_Check(torque.ptr()))
@@ -155,36 +343,21 @@ py::dict run(const std::string& text, const std::string& name, const Overrides& 
     std::unique_ptr<Simulation> simulation;
     {
         // Choosing the model may compile a variant for seconds: a sweep's other worker threads run meanwhile.
-        const py::gil_scoped_release release;
+        const WithoutGil release;
         simulation = guarded(scene, [&] { return std::make_unique<Simulation>(scene); });
     }
     std::vector<double> rows;
     RunSummary s;
-    // Ctrl-C: Python's handler only marks the signal; every 0.1 s between rows the run takes the GIL back for a
-    // moment to let Python act on it, and stops on a KeyboardInterrupt, which is raised once the run returns.
-    bool interrupted = false;
-    auto asked = std::chrono::steady_clock::now();
-    const StopRequest stop = [&]() -> const char* {
-        if (cancellable && cancel_generation.load() != generation) return "cancelled: the sweep was interrupted";
-        const auto now = std::chrono::steady_clock::now();
-        if (now - asked < std::chrono::milliseconds(100)) return nullptr;
-        asked = now;
-        const py::gil_scoped_acquire acquire;
-        if (PyErr_CheckSignals() != 0) {
-            interrupted = true;
-            return "interrupted by signal";
-        }
-        return nullptr;
-    };
+    const StopRequest stop = [&interrupts] { return interrupts.reason(); };
     {
-        // The integration touches no Python object: other Python threads run meanwhile.
-        const py::gil_scoped_release release;
+        // The integration touches no Python object (but the torque law's): other Python threads run meanwhile.
+        const WithoutGil release;
         rows.reserve(width * static_cast<std::size_t>(std::min(1e7, scene.output.t_end / scene.output.dt_out + 2.0)));
         s = simulation->run([&rows, &columns](const Row& r) {
             for_each_value(r, columns, [&rows](double v) { rows.push_back(v); });
         }, stop);
     }
-    if (interrupted) throw py::error_already_set();  // the KeyboardInterrupt that PyErr_CheckSignals set
+    interrupts.raise();  // Ctrl-C or an exiting interpreter: KeyboardInterrupt; a cancelled sweep's point: its rows
     if (*law_failure) std::rethrow_exception(*law_failure);  // the torque law's own exception
     const double in_process = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     py::dict out = summary_dict(s, scene);
@@ -195,26 +368,37 @@ py::dict run(const std::string& text, const std::string& name, const Overrides& 
 }
 
 /// Every mode of the scene's variant at each spin rate: columns of equal length.
-py::dict modes(const std::string& text, const std::string& name, const Overrides& overrides, const std::vector<double>& omegas,
-               const std::vector<int>& harmonics)
+py::dict modes(const std::string& text, const std::string& name, const Keywords& keywords,
+               const std::vector<double>& omegas, const std::vector<int>& harmonics, bool cancellable)
 {
-    const Scene scene = scene_of(text, name, overrides);
+    Interrupts interrupts(cancellable);
+    const Scene scene = scene_of(text, name, keywords);
     const VariantKey key = scene.key();
-    const std::unique_ptr<Model> model = guarded(scene, [&] { return make_model(key, scene.parameters, scene.source); });
+    std::unique_ptr<Model> model;
     std::vector<SpinMode> rows;
     std::vector<CriticalSpeed> speeds;
-    {
-        const py::gil_scoped_release release;
+    struct Stopped {
+        const char* why;
+    };  // thrown by the check between spin rates: no std::exception, so nothing on the way catches it
+    try {
+        const WithoutGil release;
+        model = guarded(scene, [&] { return make_model(key, scene.parameters, scene.source); });
+        const auto check = [&interrupts] {
+            if (const char* why = interrupts.reason()) throw Stopped{why};
+        };
         try {
             // Held at the initial angle under gravity; with [control], the closed loop's modes (as hubbeam modes).
-            rows = campbell(*model, omegas, scene.axial, scene.motion.initial_theta(), scene.controller());
+            rows = campbell(*model, omegas, scene.axial, scene.motion.initial_theta(), scene.controller(), check);
             speeds = critical_speeds(*model, rows, harmonics, scene.axial, scene.motion.initial_theta(),
-                                     scene.controller());
+                                     scene.controller(), check);
         } catch (const std::runtime_error&) {
             // Name the rate that has no steady state (ValueError) if that is what failed.
             for (const double w : omegas) at_spin(w, [&] { return steady_spin(*model, w, scene.motion.initial_theta()); });
             throw;
         }
+    } catch (const Stopped& stopped) {
+        interrupts.raise();
+        throw std::runtime_error(stopped.why);  // a cancelled sweep's point
     }
     std::vector<double> omega, rad_s, hz, dimensionless, growth, undamped, zeta, pairing;
     std::vector<int> number;
@@ -278,11 +462,15 @@ py::array_t<double> matrix(const Eigen::MatrixXd& m)
 
 /// The state-space matrices and their names about the steady spin omega; a controlled hub's closed loop and open
 /// loop (hubbeam.linearize).
-py::dict linearize(const std::string& text, const std::string& name, const Overrides& overrides, double omega)
+py::dict linearize(const std::string& text, const std::string& name, const Keywords& keywords, double omega)
 {
-    const Scene scene = scene_of(text, name, overrides);
+    const Scene scene = scene_of(text, name, keywords);
     const VariantKey key = scene.key();
-    const std::unique_ptr<Model> model = guarded(scene, [&] { return make_model(key, scene.parameters, scene.source); });
+    std::unique_ptr<Model> model;
+    {
+        const WithoutGil release;  // choosing the model may compile a variant for seconds
+        model = guarded(scene, [&] { return make_model(key, scene.parameters, scene.source); });
+    }
     const StateSpace open =
         at_spin(omega, [&] { return state_space(*model, steady_spin(*model, omega, scene.motion.initial_theta())); });
     // A controlled hub: the closed loop (input: a torque added to the controller's), and under "open" the hub
@@ -304,11 +492,19 @@ py::dict linearize(const std::string& text, const std::string& name, const Overr
     return out;
 }
 
-/// Every scene key with what it takes, for the keyword arguments.
-std::vector<std::pair<std::string, std::string>> keys()
+/// Every scene key with what it takes and its kind ("number", "integer", "word" or "text"), for the keyword
+/// arguments.
+std::vector<std::tuple<std::string, std::string, std::string>> keys()
 {
-    std::vector<std::pair<std::string, std::string>> out;
-    for (const SceneKey& k : scene_keys()) out.emplace_back(k.name, k.expected);
+    std::vector<std::tuple<std::string, std::string, std::string>> out;
+    for (const SceneKey& k : scene_keys()) {
+        using K = SceneKey::Kind;
+        const char* kind = k.kind == K::number    ? "number"
+                           : k.kind == K::integer ? "integer"
+                           : k.kind == K::word    ? "word"
+                                                  : "text";
+        out.emplace_back(k.name, k.expected, kind);
+    }
     return out;
 }
 
@@ -318,10 +514,13 @@ PYBIND11_MODULE(_core, m)
 {
     m.doc() = "hubbeam's C++ core: use the functions of the hubbeam package instead";
     m.def("run", &run, "Runs a scene given as TOML text; returns the rows and the summary", py::arg("text"),
-          py::arg("name"), py::arg("overrides"), py::arg("cancellable") = false, py::arg("torque") = py::none());
+          py::arg("name"), py::arg("overrides"), py::arg("cancellable") = false, py::arg("torque") = py::none(),
+          py::arg("sensitivities") = py::none());
     m.def("cancel_runs", [] { ++cancel_generation; }, "Stops every cancellable run in progress in this process");
+    m.def("interrupt_runs", [] { exiting = true; },
+          "Stops every run and modes computation of this process, now and later, with KeyboardInterrupt");
     m.def("modes", &modes, "Every mode of a scene's variant at each spin rate", py::arg("text"), py::arg("name"),
-          py::arg("overrides"), py::arg("omegas"), py::arg("harmonics"));
+          py::arg("overrides"), py::arg("omegas"), py::arg("harmonics"), py::arg("cancellable") = false);
     m.def("linearize", &linearize, "State-space matrices about a steady spin", py::arg("text"), py::arg("name"),
           py::arg("overrides"), py::arg("omega"));
     m.def("check", [](const std::string& text, const std::string& name) { scene_of(text, name, {}); },

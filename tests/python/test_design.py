@@ -39,6 +39,51 @@ class Sensitivities(unittest.TestCase):
             hubbeam.run(os.path.join(SOURCE, "cases", "spinup_omega4.toml"), sensitivities=["kp"], t_end=0.1)
 
 
+    def test_sensitivities_that_conflict_with_the_scenes_or_a_keys_are_refused(self):
+        # sensitivities= and output.sensitivities (in the scene, or as a key) naming other parameters: one of them
+        # would be dropped silently, so the run is refused naming both; the same parameters in both are no conflict.
+        import tempfile
+
+        with open(CONTROLLED) as f:
+            text = f.read()
+        with tempfile.TemporaryDirectory() as d:
+            scene = os.path.join(d, "with_sensitivities.toml")
+            with open(scene, "w") as f:
+                f.write(text.replace("[output]", '[output]\nsensitivities = "kd, E"', 1))
+            by_key = {"output.sensitivities": "kd,E"}
+            for call, where in ((lambda: hubbeam.run(CONTROLLED, sensitivities=["kp"], t_end=0.1, **by_key),
+                                 "the keyword output.sensitivities"),
+                                (lambda: hubbeam.run(scene, sensitivities="kp", t_end=0.1), scene)):
+                with self.assertRaises(ValueError) as caught:
+                    call()
+                message = str(caught.exception)
+                self.assertTrue(message.startswith('sensitivities: got "kp"'), message)
+                self.assertIn(where, message)
+                self.assertIn('output.sensitivities = "kd,E"', message)
+            same = hubbeam.run(scene, sensitivities=["E", "kd"], t_end=0.1)
+            self.assertIn("d_tip_uy/d_kd", same.columns)
+            self.assertIn("d_tip_uy/d_E", same.columns)
+            # An Objective's runs take its names' sensitivities whatever the scene names.
+            f = hubbeam.Objective(scene, ["kp"], lambda r, n: hubbeam.final_error(r, n, "theta", 0.5), t_end=0.5)
+            value, gradient = f([60.0])
+            self.assertEqual(gradient.shape, (1,))
+
+    def test_an_objective_takes_one_value_per_name(self):
+        f = hubbeam.Objective(CONTROLLED, ["kp", "kd"], lambda r, n: hubbeam.final_error(r, n, "theta", 0.5),
+                              t_end=0.5)
+        for x in ([60.0], [60.0, 90.0, 1.0], 60.0):
+            with self.subTest(x=x):
+                with self.assertRaises(ValueError) as caught:
+                    f(x)
+                self.assertTrue(str(caught.exception).startswith("x: expected 2 values, one for each of kp, kd"),
+                                str(caught.exception))
+                with self.assertRaises(ValueError):
+                    f.value(x)
+        self.assertEqual(f.runs, 0)
+        with self.assertRaisesRegex(ValueError, "^sensitivities: expected no such keyword"):
+            hubbeam.Objective(CONTROLLED, ["kp"], lambda r, n: (0.0, 0.0), sensitivities=["kd"])
+
+
 class Gradients(unittest.TestCase):
     def check_measure(self, measure, **keys):
         names = ["kp", "kd"]

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -128,9 +129,11 @@ struct SpinMode {
 /// problem), and each pair continues a line. A mode left unpaired (the count changes where a mode turns overdamped
 /// or divergent) begins a line of its own. A line follows its shape: through a crossing, and through a veering that
 /// the rates step over, it keeps its label while the frequency order changes; through a veering the rates resolve,
-/// it follows its continuous branch, and its kind shows the exchange of shapes.
+/// it follows its continuous branch, and its kind shows the exchange of shapes. check, if given, is called before
+/// each rate's modes are computed and may throw to stop (the Python module's Ctrl-C).
 std::vector<SpinMode> campbell(const Model& model, const std::vector<double>& omegas, Axial axial = Axial::dynamic,
-                               double theta = 0.0, const Control* control = nullptr);
+                               double theta = 0.0, const Control* control = nullptr,
+                               const std::function<void()>& check = {});
 
 /// Where a tracked mode meets an excitation line omega_mode = n Omega (a critical speed): the spin rate and the
 /// mode's frequency there (rad/s, = n omega).
@@ -142,10 +145,11 @@ struct CriticalSpeed {
 /// The critical speeds of campbell's rows for each harmonic n of harmonics: each place where a line's damped
 /// frequency minus n omega changes sign between two of its neighbouring rates, refined by regula falsi (Illinois)
 /// on the modes computed at rates between them, the mode followed by its MAC with the line's shape, to 1e-10 of
-/// omega. The same model and arguments as campbell's. By rate, then harmonic.
+/// omega. The same model and arguments as campbell's, check too. By rate, then harmonic.
 std::vector<CriticalSpeed> critical_speeds(const Model& model, const std::vector<SpinMode>& rows,
                                            const std::vector<int>& harmonics, Axial axial = Axial::dynamic,
-                                           double theta = 0.0, const Control* control = nullptr);
+                                           double theta = 0.0, const Control* control = nullptr,
+                                           const std::function<void()>& check = {});
 
 /// The CSV header of the modes table (hubbeam modes writes it, hubbeam plot campbell reads it by column name).
 const char* modes_header();

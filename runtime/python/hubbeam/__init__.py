@@ -11,6 +11,7 @@ import json
 import math
 import os
 import sys
+import threading
 import unicodedata
 from typing import Any, Mapping
 
@@ -30,7 +31,8 @@ __all__ = ["run", "modes", "linearize", "sweep", "Result", "RunStopped", "scene_
            "Objective", "max_deflection", "residual_vibration", "final_error", "PARAMETER_KEYS"]
 __version__ = _core.__version__
 
-_KEYS = dict(_core.scene_keys())                 # dotted name -> what it takes
+_KEYS = {name: expected for name, expected, kind in _core.scene_keys()}  # dotted name -> what it takes
+_KINDS = {name: kind for name, expected, kind in _core.scene_keys()}     # -> "number", "integer", "word", "text"
 # "ny" -> "discretization.ny"; a leaf that several tables share ("inertia": hub and tip) maps to all of them, and a
 # keyword must then name its table.
 _LEAVES: dict[str, list[str]] = {}
@@ -119,19 +121,37 @@ class Result:
         return f"<hubbeam.Result {self.variant}, {len(self.data)} rows, {state}>"
 
 
-def _value_text(name: str, value: Any) -> str:
-    """A keyword's value as the command line would type it."""
-    if isinstance(value, bool):
-        raise ValueError(f"{name}: expected {_KEYS[name]}, got {value}")
-    if isinstance(value, float):
-        return repr(value)
-    if not isinstance(value, (int, str)) or (isinstance(value, str) and "\0" in value):
-        raise ValueError(f"{name}: expected {_KEYS[name]} (no NUL character), got {printable(repr(value), 120)}")
-    return str(value)
+def _plain(value: Any) -> Any:
+    """A numpy scalar or 0-d array as the Python number, bool or string it holds; an array as a list of them; anything
+    else as it is. Every value the package takes passes through it, so numpy's values go wherever Python's do."""
+    if isinstance(value, np.ndarray):
+        return value.tolist()  # 0-d: the scalar itself
+    if isinstance(value, np.generic):
+        return value.item()
+    return value
 
 
-def _overrides(keywords: Mapping[str, Any]) -> list[tuple[str, str]]:
-    """Keyword arguments (leaf names such as ny, or dotted names) as scene-key overrides."""
+def _value_text(keyword: str, key: str, value: Any) -> str:
+    """A keyword's value as the command line would type it; ValueError naming the keyword where the value is not of
+    the key's kind (a string is no number even where it reads as one)."""
+    value = _plain(value)
+    kind = _KINDS[key]
+    if isinstance(value, os.PathLike) and kind == "text":
+        value = os.fspath(value)
+    if kind in ("number", "integer"):
+        good = isinstance(value, int) if kind == "integer" else isinstance(value, (int, float))
+        if good and not isinstance(value, bool):
+            return repr(value) if isinstance(value, float) else str(value)
+    elif isinstance(value, str) and "\0" not in value:
+        return value
+    note = " (no NUL character)" if kind in ("word", "text") else ""
+    raise ValueError(f"{printable(keyword, 80)}: expected {_KEYS[key]}{note}, got "
+                     f"{'the string ' if isinstance(value, str) and not note else ''}{printable(repr(value), 120)}")
+
+
+def _overrides(keywords: Mapping[str, Any]) -> list[tuple[str, str, str]]:
+    """Keyword arguments (leaf names such as ny, or dotted names) as scene-key overrides: (dotted key, value as
+    text, the keyword, which messages name)."""
     out = []
     for name, value in keywords.items():
         keys = [name] if name in _KEYS else _LEAVES.get(name, [])
@@ -142,11 +162,12 @@ def _overrides(keywords: Mapping[str, Any]) -> list[tuple[str, str]]:
             raise ValueError(f"{name}: expected one scene key, got a name that " + " and ".join(keys) +
                              f" share: name the table, e.g. **{{\"{keys[0]}\": ...}}")
         key = keys[0]
-        out.append((key, _value_text(key, value)))
+        out.append((key, _value_text(name, key, value), name))
     return out
 
 
 def _toml_value(value: Any) -> str:
+    value = _plain(value)
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, int):
@@ -193,25 +214,28 @@ def run(scene: Any, *, check: bool = False, torque: Any = None, sensitivities: A
 
     sensitivities=["E", "kp", ...] (parameter symbols, docs/sensitivities.md) integrates the derivatives of the
     state by those parameters beside it: the rows gain the columns d_OUTPUT/d_PARAM (r["d_tip_uy/d_E"]) for the
-    outputs theta, theta_dot, tip_uy, tip_ux1 and tip_ux.
+    outputs theta, theta_dot, tip_uy, tip_ux1 and tip_ux. Where the scene or a key already sets
+    output.sensitivities to other parameters, ValueError names both.
+
+    Numbers may be numpy's (ny=np.int64(8)); a string is no number. Ctrl-C raises KeyboardInterrupt within 0.1 s.
     """
     text, name = _source(scene)
-    if sensitivities is not None:
-        keys["output.sensitivities"] = _sensitivities(sensitivities)
+    names = None if sensitivities is None else _sensitivities(sensitivities)
     if torque is not None and not callable(torque):
         raise ValueError(f"torque: expected a callable f(t, state) -> tau (N m), got {printable(repr(torque), 120)}")
-    result = Result(_core_call(_core.run, text, name, _overrides(keys), False, torque))
+    result = Result(_core_call(_core.run, text, name, _overrides(keys), False, torque, names))
     if check and not result.completed:
         raise RunStopped(result)
     return result
 
 
-def _sensitivities(names: Any) -> str:
-    """sensitivities= as the scene key's text: a list of symbols, or one comma-separated string."""
+def _sensitivities(names: Any) -> list[str]:
+    """sensitivities= as a list of symbols: from a list, tuple or array of them, or one comma-separated string."""
+    names = _plain(names)
     if isinstance(names, str):
-        return names
-    if isinstance(names, (list, tuple)) and all(isinstance(n, str) and "," not in n for n in names):
-        return ",".join(names)
+        return [n.strip() for n in names.split(",")] if names.strip() else []
+    if isinstance(names, (list, tuple)) and all(isinstance(n, str) and "," not in n and "\0" not in n for n in names):
+        return [n.strip() for n in names]
     raise ValueError(f"sensitivities: expected a list of parameter symbols (docs/sensitivities.md), got "
                      f"{printable(repr(names), 120)}")
 
@@ -294,11 +318,26 @@ def _cancel_runs() -> None:
 
 
 def _modes_text(text: str, name: str, keys: Mapping[str, Any], omegas: list[float]) -> dict[str, Any]:
-    return _modes_arrays(_core_call(_core.modes, text, name, _overrides(keys), omegas, [1, 2, 3]))
+    """modes() of a scene's text, for the sweep's workers; it stops early (RuntimeError) when _cancel_runs() is
+    called meanwhile."""
+    return _modes_arrays(_core_call(_core.modes, text, name, _overrides(keys), omegas, [1, 2, 3], True))
 
 
 def _check_scene(text: str, name: str) -> None:
     _core_call(_core.check, text, name)
+
+
+def _stop_runs_after_ctrl_c() -> None:
+    """At the interpreter's exit, before it waits for its threads: if the main thread ended on Ctrl-C, the runs of
+    other threads stop and raise KeyboardInterrupt too (Python delivers signals to the main thread only, and would
+    wait for those runs to end)."""
+    last = getattr(sys, "last_exc", None) or getattr(sys, "last_value", None)
+    if isinstance(last, KeyboardInterrupt):
+        _core.interrupt_runs()
+
+
+if hasattr(threading, "_register_atexit"):  # called before the non-daemon threads are joined
+    threading._register_atexit(_stop_runs_after_ctrl_c)
 
 
 def sweep(*args: Any, **kwargs: Any):

@@ -74,14 +74,20 @@ def final_error(result: Any, names: Sequence[str], column: str, target: float) -
 class Objective:
     """f(x) -> (value, gradient) for scipy.optimize.minimize(f, x0, jac=True): each call runs the scene with the
     parameters `names` (symbols of PARAMETER_KEYS) set to x and their sensitivities on, and applies measure(result,
-    names). Scene keys as keywords (ny=8, t_end=20.0) apply to every run. .runs counts the runs made; a run that
-    stops before t_end raises hubbeam.RunStopped."""
+    names). Scene keys as keywords (ny=8, t_end=20.0) apply to every run; the sensitivities are the names' alone (the
+    scene's output.sensitivities is replaced). x holds one value per name, or ValueError. .runs counts the runs made;
+    a run that stops before t_end raises hubbeam.RunStopped."""
 
     def __init__(self, scene: Any, names: Sequence[str], measure: Measure, **keys: Any):
+        names = [str(n) for n in np.atleast_1d(np.asarray(names, dtype=object))]
         unknown = [n for n in names if n not in PARAMETER_KEYS]
         if unknown:
             raise ValueError(f"names: expected parameters among {', '.join(PARAMETER_KEYS)}, got {unknown[0]!r}")
-        self.scene, self.names, self.measure, self.keys = scene, list(names), measure, dict(keys)
+        for key in ("sensitivities", "output.sensitivities"):
+            if key in keys:
+                raise ValueError(f"{key}: expected no such keyword: an Objective takes the sensitivities of its names "
+                                 f"({', '.join(names)})")
+        self.scene, self.names, self.measure, self.keys = scene, names, measure, dict(keys)
         self.runs = 0
 
     def __call__(self, x: Sequence[float]) -> tuple[float, np.ndarray]:
@@ -93,7 +99,12 @@ class Objective:
 
     def _run(self, x: Sequence[float], sensitivities: list[str]) -> tuple[float, np.ndarray]:
         from . import run  # the package imports this module: import at call time
-        values = {PARAMETER_KEYS[n]: float(v) for n, v in zip(self.names, np.atleast_1d(x))}
+        x = np.atleast_1d(np.asarray(x, dtype=float))
+        if x.ndim != 1 or len(x) != len(self.names):
+            raise ValueError(f"x: expected {len(self.names)} value{'s' if len(self.names) != 1 else ''}, one for each "
+                             f"of {', '.join(self.names)}, got {len(x) if x.ndim == 1 else x.shape}")
+        values = {PARAMETER_KEYS[n]: float(v) for n, v in zip(self.names, x)}
         self.runs += 1
-        result = run(self.scene, check=True, sensitivities=sensitivities or None, **self.keys, **values)
+        # The key, not sensitivities=: it replaces what the scene names, which this run does not need.
+        result = run(self.scene, check=True, **self.keys, **values, **{"output.sensitivities": ",".join(sensitivities)})
         return self.measure(result, sensitivities)

@@ -525,10 +525,11 @@ std::vector<int> best_assignment(const Eigen::MatrixXd& score)
 }
 
 std::vector<SpinMode> campbell(const Model& model, const std::vector<double>& omegas, Axial axial, double theta,
-                               const Control* control)
+                               const Control* control, const std::function<void()>& check)
 {
     std::vector<std::vector<SpinMode>> at_rate;  // per rate of omegas, its modes by frequency
     for (const double omega : omegas) {
+        if (check) check();
         std::vector<SpinMode>& rate = at_rate.emplace_back();
         int number = 0;
         for (NaturalMode& mode : modes_at(model, omega, axial, theta, control))
@@ -567,7 +568,7 @@ std::vector<SpinMode> campbell(const Model& model, const std::vector<double>& om
 
 std::vector<CriticalSpeed> critical_speeds(const Model& model, const std::vector<SpinMode>& rows,
                                            const std::vector<int>& harmonics, Axial axial, double theta,
-                                           const Control* control)
+                                           const Control* control, const std::function<void()>& check)
 {
     // Each line's rows in increasing omega.
     std::map<std::string, std::vector<const SpinMode*>> lines;
@@ -581,6 +582,7 @@ std::vector<CriticalSpeed> critical_speeds(const Model& model, const std::vector
                 // The mode's frequency minus the excitation's, at omega: the line's mode there is the one of
                 // closest shape to its mode at a.
                 const auto gap = [&](double omega) {
+                    if (check) check();
                     double best = -1.0, rad_s = 0.0;
                     for (const NaturalMode& m : modes_at(model, omega, axial, theta, control))
                         if (const double x = mac(a.mode, m); x > best) best = x, rad_s = m.rad_s;
