@@ -62,7 +62,7 @@ open(path, "w", encoding="utf-8").write(text.replace(old, new, 1))
     label="${1}: '$2' -> '$3'"
     if ! cmake --build "$build" --target $targets -j "$jobs" >"$build/mutate-build.log" 2>&1; then
         restore
-        echo "NO BUILD  $label (see $build/mutate-build.log)"
+        printf 'NO BUILD  %s (see %s)\n' "$label" "$build/mutate-build.log"
         return 3
     fi
     if [ -n "$regex" ]; then
@@ -76,15 +76,15 @@ open(path, "w", encoding="utf-8").write(text.replace(old, new, 1))
     seconds=$(($(date +%s) - start))
     if [ $status -eq 0 ]; then
         if grep -q "No tests were found" "$build/mutate-test.log"; then
-            echo "mutate.sh: no test matches '$regex'" >&2
+            printf "mutate.sh: no test matches '%s'\n" "$regex" >&2
             return 2
         fi
-        echo "SURVIVED  $label (${seconds} s)"
+        printf 'SURVIVED  %s (%s s)\n' "$label" "$seconds"
         return 1
     fi
     failed=$(sed -n '/tests FAILED:/,$s/^[[:space:]]*[0-9]* - \(.*\) ([^)]*)$/\1/p' "$build/mutate-test.log" |
-        paste -sd';' -)
-    echo "KILLED    $label (${seconds} s) by: $failed"
+        sed 's/$/;/' | paste -sd' ' - | sed 's/;$//')
+    printf 'KILLED    %s (%s s) by: %s\n' "$label" "$seconds" "$failed"
     return 0
 }
 
