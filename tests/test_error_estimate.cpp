@@ -34,12 +34,13 @@ double true_error(const std::vector<Row>& rows, const std::vector<Row>& referenc
 
 }  // namespace
 
-TEST_CASE("the error estimate of a run at the cases' tolerances is within a factor of 3 of its true error",
+TEST_CASE("the error estimate of a run at the cases' tolerances is within a factor of 5 of its true error",
           "[monitor]")
 {
     // The cases as cases/ sets them, against rk8pd at rtol 1e-12. Their errors are mostly atol-sized noise on a
-    // coordinate near zero, which the windows' estimates add as independent errors do, by the square root of their
-    // count: a linear sum overstates it several times over.
+    // coordinate near zero (tip_ux1), which the end window's estimate scales to the whole run as independent errors
+    // add, by the square root of the windows' count: on the spin-up it is then 2.8 times the true error, and a linear
+    // sum would make it 20 times.
     for (const char* name : {"torque_tau1", "spinup_omega4"}) {
         const Scene s = load_scene(std::string(HUBBEAM_SOURCE_DIR) + "/cases/" + name + ".toml");
         const test::Collected run = test::completed_run(s);
@@ -52,6 +53,6 @@ TEST_CASE("the error estimate of a run at the cases' tolerances is within a fact
         INFO(name << ": estimated " << run.summary.estimated_error << " (" << run.summary.error_column << "), true "
                   << error);
         CHECK(run.summary.estimated_error > error / 3.0);
-        CHECK(run.summary.estimated_error < 3.0 * error);
+        CHECK(run.summary.estimated_error < 5.0 * error);
     }
 }

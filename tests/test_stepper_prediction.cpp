@@ -12,10 +12,11 @@
 
 using namespace hubbeam;
 
-TEST_CASE("gauss4's predicted steps on a spin-up cover the steps it takes, within a factor of 2.5", "[stiffness][steppers]")
+TEST_CASE("gauss4's predicted steps on a spin-up are 0.8 to 2.5 times the steps it takes", "[stiffness][steppers]")
 {
     // stiffness.cpp: gauss4's step doubling takes 1 to 1.9 times the steps its accuracy alone needs; the
-    // prediction counts twice those. The four methods, without and with axial coordinates.
+    // prediction counts twice those (here 1.05 to 1.9 times the steps taken; without the factor 2, 0.52 to 0.94).
+    // The four methods, without and with axial coordinates.
     struct Point {
         Method method;
         int nx;
@@ -34,7 +35,7 @@ TEST_CASE("gauss4's predicted steps on a spin-up cover the steps it takes, withi
         const StepperCosts predicted = predicted_costs(*model, s.axial, s.solver.rtol, s.output.t_end);
         INFO(to_string(p.method) << " Nx = " << p.nx << ": gauss4 took " << run.steps << " steps, predicted "
                                  << predicted.steps_gauss4);
-        CHECK(predicted.steps_gauss4 >= static_cast<double>(run.steps));
+        CHECK(predicted.steps_gauss4 >= 0.8 * static_cast<double>(run.steps));
         CHECK(predicted.steps_gauss4 <= 2.5 * static_cast<double>(run.steps));
     }
 }
