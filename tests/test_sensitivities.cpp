@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "make_model.hpp"
@@ -61,12 +62,26 @@ std::string text(double v)
 /// The scene key that sets each parameter the cases below differentiate.
 std::string key_of(const std::string& p)
 {
-    if (p == "E") return "beam.youngs_modulus";
-    if (p == "L") return "beam.length";
-    if (p == "rho") return "beam.density";
-    if (p == "J_oh") return "hub.inertia";
-    if (p == "a") return "hub.radius";
+    static const std::pair<const char*, const char*> keys[] = {
+        {"E", "beam.youngs_modulus"}, {"L", "beam.length"}, {"rho", "beam.density"}, {"S", "beam.area"},
+        {"I", "beam.second_moment"}, {"tip_ratio", "beam.tip_ratio"}, {"J_oh", "hub.inertia"}, {"a", "hub.radius"},
+        {"m_tip", "tip.mass"}, {"J_tip", "tip.inertia"}, {"g", "gravity.g"}, {"alpha", "damping.mass_proportional"},
+        {"beta", "damping.stiffness_proportional"}};
+    for (const auto& [name, key] : keys)
+        if (p == name) return key;
     return "control." + p;
+}
+
+/// A parameter's or gain's value in scene.
+double value_of(const Scene& scene, const std::string& p)
+{
+    if (const auto at = std::find(param_names.begin(), param_names.end(), p); at != param_names.end()) {
+        Parameters values = scene.parameters;
+        return value(values, static_cast<Param>(at - param_names.begin()));
+    }
+    const Control& c = *scene.control;
+    const double gains[] = {c.kp, c.kd, c.ki, c.k_tip};
+    return gains[std::find(gain_names.begin(), gain_names.end(), p) - gain_names.begin()];
 }
 
 /// max |sensitivity - central difference| over the rows, relative to the difference's largest value, for the
@@ -90,12 +105,7 @@ void check_against_differences(const std::string& file, const std::vector<std::s
     const Scene scene = load_scene(path, with);
     const Table exact = run(scene);
     for (const std::string& p : parameters) {
-        Parameters values = scene.parameters;
-        double v = 0.0;
-        if (const auto at = std::find(param_names.begin(), param_names.end(), p); at != param_names.end())
-            v = value(values, static_cast<Param>(at - param_names.begin()));
-        else
-            v = p == "kp" ? scene.control->kp : scene.control->kd;
+        const double v = value_of(scene, p);
         // A step of 1e-4: the differences' truncation error is ~1e-8 of the derivative, and the runs' own errors
         // (rtol |y|, uncorrelated from run to run as their steps differ) are divided by 2h p ~ 1e-4 p, not less.
         const double h = 1e-4 * (v != 0.0 ? std::abs(v) : 1.0);
@@ -196,6 +206,99 @@ TEST_CASE("each row's derivative by a parameter is the difference of the state's
                 CHECK(f[static_cast<std::size_t>(n * (1 + static_cast<int>(j)) + i)] ==
                       Approx(expected).epsilon(1e-6).margin(1e-9 * (1.0 + std::abs(up[static_cast<std::size_t>(i)]))));
             }
+        }
+    }
+}
+
+TEST_CASE("sensitivities to every parameter and gain, at zero and at other values, equal differences of whole runs",
+          "[sensitivities]")
+{
+    // The controlled step of cases/controlled_step.toml, down (its torque saturates negative for the first second),
+    // with every term of the model: a tip body, gravity, Rayleigh damping, a tapered depth, an integral term and tip
+    // feedback. Short converged runs; a derivative read as 0 or off by a factor is off by its own size.
+    const std::string path = std::string(HUBBEAM_SOURCE_DIR) + "/cases/controlled_step.toml";
+    const Overrides every_term = {{"motion.angle", "-0.5"},  {"model.order", "zero"},
+                                  {"beam.taper", "depth"},    {"beam.tip_ratio", "0.7"},
+                                  {"hub.radius", "0.1"},      {"tip.mass", "0.5"},
+                                  {"tip.inertia", "0.02"},    {"gravity.g", "9.81"},
+                                  {"damping.mass_proportional", "0.05"}, {"damping.stiffness_proportional", "1e-3"},
+                                  {"control.ki", "5"},        {"control.k_tip", "20"},
+                                  {"output.t_end", "2"}};
+    const auto with = [](Overrides o, const Overrides& more) {
+        o.insert(o.end(), more.begin(), more.end());
+        return o;
+    };
+    const Overrides tight = {{"solver.rtol", "1e-12"}, {"solver.atol", "1e-14"}, {"solver.stepper", "rk8pd"}};
+    const std::vector<std::string> outputs = {"theta", "tip_uy"};
+    /// max |sensitivity - difference| / max |difference| over the rows, for each output, of p in scene's run; at a
+    /// value of zero, differences over 1e-4 of scale.
+    const auto check = [&](const Overrides& scene_overrides, const std::vector<std::string>& names, double scale = 1.0) {
+        std::string list;
+        for (const std::string& p : names) list += (list.empty() ? "" : ",") + p;
+        const Overrides base = with(scene_overrides, {{"output.sensitivities", list}});
+        const Scene scene = load_scene(path, with(base, {{"solver.rtol", "1e-10"}, {"solver.atol", "1e-12"}}));
+        const Table exact = run(scene);
+        for (const std::string& p : names) {
+            const double v = value_of(scene, p);
+            // Central differences, h = 1e-4 of the value (see check_against_differences); at 0, where most of these
+            // cannot go negative, one-sided ones of second order, (-3 y(0) + 4 y(h) - y(2h)) / (2h), h = 1e-4 of
+            // the parameter's size elsewhere in this test (beta 1e-3 s: at h = 1e-4 s their error was 1e-3).
+            const double h = 1e-4 * (v != 0.0 ? std::abs(v) : scale);
+            // The runs differenced carry no sensitivities (at 1e-12 they cost 50 times more), except at zero, where
+            // asking for p keeps its term in the variant.
+            const Overrides plain = with(with(scene_overrides, tight), {{"output.sensitivities", v != 0.0 ? "" : p}});
+            const auto at = [&](double x) { return run(load_scene(path, with(plain, {{key_of(p), text(x)}}))); };
+            const std::vector<Table> runs =
+                v != 0.0 ? std::vector<Table>{at(v + h), at(v - h)} : std::vector<Table>{at(0.0), at(h), at(2.0 * h)};
+            for (const std::string& out : outputs) {
+                std::vector<std::vector<double>> y;
+                for (const Table& t : runs) {
+                    REQUIRE(t.rows.size() == exact.rows.size());
+                    y.push_back(t.column(out));
+                }
+                const std::vector<double> d = exact.column("d_" + out + "/d_" + p);
+                double big = 0.0, err = 0.0;
+                for (std::size_t i = 0; i < d.size(); ++i) {
+                    const double fd = v != 0.0 ? (y[0][i] - y[1][i]) / (2.0 * h)
+                                               : (-3.0 * y[0][i] + 4.0 * y[1][i] - y[2][i]) / (2.0 * h);
+                    big = std::max(big, std::abs(fd));
+                    err = std::max(err, std::abs(d[i] - fd));
+                }
+                INFO("d_" << out << "/d_" << p << " at " << p << " = " << v << ": largest " << big << ", off by " << err);
+                CHECK(big > 0.0);
+                CHECK(err < 1e-4 * big);
+            }
+        }
+    };
+    SECTION("at non-zero values, a few at once")
+    {
+        // In groups: a run's cost grows with the square of its parameters' count (each block's Jacobian product).
+        check(every_term, {"m_tip", "J_tip", "g", "alpha"});
+        check(every_term, {"beta", "ki", "k_tip", "kp"});
+        check(every_term, {"kd", "S", "I", "tip_ratio"});
+        check(every_term, {"E", "rho", "L", "a", "J_oh"});
+    }
+    SECTION("at zero, each alone")
+    {
+        // Each parameter alone (another in the list would bring the term into the model by itself), at zero with the
+        // others of its term: the sensitivity must bring the term in.
+        const struct {
+            const char* name;
+            Overrides zero;
+        } cases[] = {
+            {"m_tip", {{"tip.mass", "0"}, {"tip.inertia", "0"}}},
+            {"J_tip", {{"tip.mass", "0"}, {"tip.inertia", "0"}}},
+            {"g", {{"gravity.g", "0"}}},
+            {"alpha", {{"damping.mass_proportional", "0"}, {"damping.stiffness_proportional", "0"}}},
+            {"beta", {{"damping.mass_proportional", "0"}, {"damping.stiffness_proportional", "0"}}},
+            {"ki", {{"control.ki", "0"}}},
+            {"k_tip", {{"control.k_tip", "0"}}},
+            {"a", {{"hub.radius", "0"}}},
+        };
+        const Scene sizes = load_scene(path, every_term);
+        for (const auto& c : cases) {
+            INFO(c.name << " at zero");
+            check(with(every_term, c.zero), {c.name}, value_of(sizes, c.name));
         }
     }
 }

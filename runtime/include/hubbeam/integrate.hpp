@@ -87,8 +87,10 @@ struct Auxiliary {
     bool integral = false, dissipated = false, work = false;
     int count() const { return int{integral} + int{dissipated} + int{work}; }
     /// Those a run of key needs, controlled by control (or nullptr), with the parameters whose damping it accounts
-    /// for (nullptr: the system keeps no energy account, as for the tests of its kernels alone).
-    static Auxiliary of(const VariantKey& key, const Control* control, const Parameters* parameters);
+    /// for (nullptr: the system keeps no energy account, as for the tests of its kernels alone); with integral, the
+    /// angle error's integral even at ki = 0 (where the sensitivity to ki is the integral's).
+    static Auxiliary of(const VariantKey& key, const Control* control, const Parameters* parameters,
+                        bool integral = false);
 };
 
 /// dy/dt = (qd, M(q)^-1 Q(t, q, qd), z') for one model and hub motion, by the right-hand-side strategy chosen for
@@ -103,7 +105,7 @@ struct Auxiliary {
 class FirstOrderSystem {
 public:
     FirstOrderSystem(const Model& model, const Motion& motion, Axial axial = Axial::dynamic,
-                     const Control* control = nullptr, const Parameters* parameters = nullptr);
+                     const Control* control = nullptr, const Parameters* parameters = nullptr, bool integral = false);
     virtual ~FirstOrderSystem();
     FirstOrderSystem(const FirstOrderSystem&) = delete;
     FirstOrderSystem& operator=(const FirstOrderSystem&) = delete;

@@ -72,17 +72,20 @@ struct Scene {
     /// The variant this scene runs: its discretization with the drive its motion and control imply and the extra
     /// terms its parameters use (either may have been changed in code since loading). A term whose values are all
     /// zero is left out: the paper's scenes run the paper's variants.
+    /// Whether output.sensitivities asks for any of names: a term (or the controller's integral) it asks for is
+    /// kept even where its value is zero.
+    bool wants(std::initializer_list<const char*> names) const
+    {
+        for (const std::string& s : output.sensitivities)
+            for (const char* n : names)
+                if (s == n) return true;
+        return false;
+    }
     VariantKey key() const
     {
         VariantKey k = variant;
         k.drive = drive();
         // A sensitivity to a term's value needs the term, even at zero (where it reproduces the scene).
-        const auto wants = [this](std::initializer_list<const char*> names) {
-            for (const std::string& s : output.sensitivities)
-                for (const char* n : names)
-                    if (s == n) return true;
-            return false;
-        };
         k.extras.tip = parameters.m_tip != 0.0 || parameters.J_tip != 0.0 || wants({"m_tip", "J_tip"});
         k.extras.gravity = parameters.g != 0.0 || wants({"g"});
         k.extras.damping = parameters.alpha != 0.0 || parameters.beta != 0.0 || wants({"alpha", "beta"});

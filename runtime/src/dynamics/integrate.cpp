@@ -142,24 +142,24 @@ struct FirstOrderSystem::Work {
     Eigen::VectorXd product;
 };
 
-Auxiliary Auxiliary::of(const VariantKey& key, const Control* control, const Parameters* parameters)
+Auxiliary Auxiliary::of(const VariantKey& key, const Control* control, const Parameters* parameters, bool integral)
 {
     Auxiliary a;
-    a.integral = control != nullptr && !control->law && control->ki != 0.0;
+    a.integral = control != nullptr && !control->law && (control->ki != 0.0 || integral);
     a.dissipated = key.extras.damping && parameters != nullptr;
     a.work = key.drive == Drive::torque && (control != nullptr || a.dissipated);
     return a;
 }
 
 FirstOrderSystem::FirstOrderSystem(const Model& model, const Motion& motion, Axial axial, const Control* control,
-                                   const Parameters* parameters)
+                                   const Parameters* parameters, bool integral)
     : model_(model), motion_(motion), n_(model.nq()), axial_(axial), control_(control), work_(std::make_unique<Work>())
 {
     const VariantKey& key = model.key();
     if (control_ != nullptr && key.drive != Drive::torque)
         throw std::invalid_argument("a controlled hub needs a torque variant, not " + key.name());
     kept_ = kept_coordinates(key, axial_);
-    aux_ = Auxiliary::of(key, control_, parameters);
+    aux_ = Auxiliary::of(key, control_, parameters, integral);
     const int k = static_cast<int>(kept_.size());
     int next = 2 * k;
     if (aux_.integral) integral_ = next++;

@@ -935,7 +935,10 @@ std::string Simulation::Run::tolerance_as_cause(const std::string& failure)
 namespace {
 
 /// The auxiliary states a run of scene carries (FirstOrderSystem::Auxiliary).
-int auxiliary_count(const Scene& scene) { return Auxiliary::of(scene.key(), scene.controller(), &scene.parameters).count(); }
+int auxiliary_count(const Scene& scene)
+{
+    return Auxiliary::of(scene.key(), scene.controller(), &scene.parameters, scene.wants({"ki"})).count();
+}
 
 }  // namespace
 
@@ -984,7 +987,7 @@ ColumnSet optional_columns_of(const Scene& scene)
 {
     const Control* control = scene.controller();
     const VariantKey key = scene.key();
-    const Auxiliary aux = Auxiliary::of(key, control, &scene.parameters);
+    const Auxiliary aux = Auxiliary::of(key, control, &scene.parameters, scene.wants({"ki"}));
     const bool torque = key.drive == Drive::torque && (control != nullptr || key.extras.damping);
     const bool has[] = {torque, control != nullptr && !control->law, aux.integral, aux.dissipated, aux.work};
     static_assert(std::size(has) == optional_width);
