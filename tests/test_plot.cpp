@@ -235,7 +235,7 @@ TEST_CASE("campbell: --modes, --kinds and --max-hz choose the lines; each its ow
     tip.files = {fixture("run_amm.csv")};
     tip.prefix = args.prefix;
     tip.max_hz = "50";
-    CHECK_THROWS_WITH(plot_script(tip), "--max-hz: expected no max-hz for kind tip (only kind campbell takes it), got 50");
+    CHECK_THROWS_WITH(plot_script(tip), "--max-hz: expected no max-hz for kind tip (only kind campbell draws them), got 50");
 }
 
 TEST_CASE("moment: each file's rows at the t closest to --time, by default at its last t")

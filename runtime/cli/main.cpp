@@ -60,8 +60,8 @@ std::string unknown_command(const std::vector<hubbeam::cli::Command>& commands, 
     std::size_t best = 0;
     for (const std::string& name : names)
         if (const std::size_t d = edit_distance(word, name); nearest.empty() || d < best) nearest = name, best = d;
-    // a typo: at most two edits, and fewer than half the word's letters (so that "xy" suggests nothing)
-    const bool typo = best <= 2 && 2 * best < word.size();
+    // a typo: at most two edits (a swap of two letters is two), fewer than the word has letters
+    const bool typo = best <= 2 && best < word.size();
     return "unknown command '" + hubbeam::printable(word, 40) + "'" +
            (typo ? " (did you mean '" + nearest + "'?)" : "") + "; expected " + list;
 }

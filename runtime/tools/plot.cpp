@@ -678,7 +678,7 @@ const Kind& checked_kind(const PlotArgs& args)
                                         {"--max-hz", args.max_hz}})
         if (!value.empty() && args.kind != "campbell")
             bad_option<PlotInputError>(option, "no " + std::string(option + 2) + " for kind " + args.kind +
-                                                   " (only kind campbell takes it)",
+                                                   " (only kind campbell draws them)",
                                        printable(value, 40));
     return *kind;
 }
