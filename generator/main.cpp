@@ -11,6 +11,10 @@
 
 #include "variant_source.hpp"
 
+#ifndef HUBBEAM_VERSION
+#define HUBBEAM_VERSION "dev"
+#endif
+
 namespace {
 
 void write(const std::filesystem::path& path, const std::string& text)
@@ -49,9 +53,12 @@ void add_options(CLI::App& app, Arguments& a)
         ->check(CLI::PositiveNumber)
         ->type_name("N");
     app.add_option("variants", a.names,
-                   "Variant names METHOD_nxN_nyN_DRIVE_ORDER[_open]: METHOD amm|fem|bim|bsim, Nx axial and Ny "
-                   "transverse coordinates, DRIVE prescribed|torque, ORDER zero|first|full, _open for BSIM's open "
-                   "uniform basis; e.g. bim_nx4_ny4_torque_first")
+                   std::string("Variant names ") + hubbeam::variant_name_grammar +
+                       ": METHOD amm|fem|bim|bsim, Nx axial and Ny transverse coordinates, DRIVE prescribed|torque, "
+                       "ORDER zero|first|full; _open: BSIM's open uniform basis; _tip: a tip body; _gravity; _damped: "
+                       "Rayleigh damping; _width|_depth: a linear taper; _profileDENxN0xN1...: a tabulated profile "
+                       "with stations x/L = N0/DEN, N1/DEN, ...; the suffixes in this order; "
+                       "e.g. bim_nx4_ny4_torque_first, amm_nx0_ny4_torque_first_tip_gravity")
         ->required()
         ->type_name("VARIANT");
     app.footer("Writes DIR/VARIANT.cpp for each variant, and DIR/registry.cpp (without --module) or DIR/generated_abi.h "
@@ -97,6 +104,7 @@ int main(int argc, char** argv)
     CLI::App app{"hubbeam-gen: derives the rotating hub-beam's equations of motion with GiNaC (Lagrange's equations of\n"
                  "T and U, docs/model.md) and emits C++ kernels for the named variants."};
     Arguments a;
+    app.set_version_flag("--version", "hubbeam-gen " HUBBEAM_VERSION, "Print the version and exit");
     add_options(app, a);
     try {
         app.parse(argc, argv);

@@ -164,8 +164,7 @@ VariantKey VariantKey::parse(std::string_view name)
     VariantKey k;
     const auto bad = [&](const std::string& what) {
         return std::invalid_argument("not a variant name: '" + std::string(name) + "': " + what +
-                                     " (expected METHOD_nxN_nyN_DRIVE_ORDER[_open][_tip][_gravity][_damped][_width|_depth][_profileDENxN0xN1...], "
-                                     "e.g. bim_nx4_ny4_torque_first)");
+                                     " (expected " + variant_name_grammar + ", e.g. bim_nx4_ny4_torque_first)");
     };
     if (parts.size() < 5) throw bad(std::to_string(parts.size()) + " parts separated by '_'");
     if (!hubbeam::parse(parts[0], k.method)) throw bad("method '" + parts[0] + "' is not one of " + joined(words<Method>()));

@@ -55,6 +55,10 @@ std::vector<double> station_positions(const Extras& e);
 /// not (e.g. "0.3333333 is not a decimal of at most 6 digits").
 std::string set_stations(const std::vector<double>& x, Extras& e);
 
+/// The grammar of a variant's name, as VariantKey::parse reads it (its messages and hubbeam-gen --help say it).
+inline constexpr const char* variant_name_grammar =
+    "METHOD_nxN_nyN_DRIVE_ORDER[_open][_tip][_gravity][_damped][_width|_depth][_profileDENxN0xN1...]";
+
 struct VariantKey {
     Method method = Method::amm;
     int nx = 0, ny = 4;

@@ -1,14 +1,20 @@
 // The documentation's facts about scenes, against the program: docs/scene.md's key table lists exactly the keys
 // of scene_keys() with what each accepts, its documented defaults are the defaults load_scene() applies, the
-// keys it calls required are refused when missing, the scenes the pages show parse, and docs/cli.md's `run`
-// table sets the key each option sets.
+// keys it calls required are refused when missing, the scenes the pages show parse, docs/cli.md's `run`
+// table sets the key each option sets; and across the pages: no changelog tone, the variant-name grammar the
+// parser reads, one spelling of the Dask commands, tip_ux as each order writes it.
 #include <catch2/catch.hpp>
+#include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <map>
+#include <regex>
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
+#include "fields.hpp"
 #include "scene.hpp"
 
 using namespace hubbeam;
@@ -250,4 +256,151 @@ TEST_CASE("the scenes shown in README.md and docs/scene.md are valid scenes", "[
         }
     }
     CHECK(shown >= 2);
+}
+
+namespace {
+
+/// The pages of the documentation: README.md and docs/*.md, by path relative to the source tree, with their text.
+std::vector<std::pair<std::string, std::string>> doc_pages()
+{
+    std::vector<std::pair<std::string, std::string>> pages;
+    std::vector<std::string> names = {"README.md"};
+    for (const auto& e : std::filesystem::directory_iterator(std::string(HUBBEAM_SOURCE_DIR) + "/docs"))
+        if (e.path().extension() == ".md") names.push_back("docs/" + e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    for (const std::string& name : names) {
+        std::ifstream in(std::string(HUBBEAM_SOURCE_DIR) + "/" + name);
+        REQUIRE(in);
+        std::stringstream text;
+        text << in.rdbuf();
+        pages.emplace_back(name, text.str());
+    }
+    return pages;
+}
+
+/// A page's prose: its text without code blocks and backquoted spans (a program's own output, quoted, may say
+/// anything), each line kept.
+std::string prose(const std::string& text)
+{
+    std::string out;
+    bool block = false;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) {
+        if (line.rfind("```", 0) == 0) {
+            block = !block;
+            out += "\n";
+            continue;
+        }
+        if (block) {
+            out += "\n";
+            continue;
+        }
+        bool quoted = false;
+        for (const char c : line) {
+            if (c == '`') quoted = !quoted;
+            else if (!quoted) out += c;
+        }
+        out += "\n";
+    }
+    return out;
+}
+
+/// The backquoted spans of a text.
+std::vector<std::string> quoted_spans(const std::string& text)
+{
+    std::vector<std::string> spans;
+    for (std::size_t at = text.find('`'); at != std::string::npos;) {
+        const std::size_t end = text.find('`', at + 1);
+        if (end == std::string::npos) break;
+        spans.push_back(text.substr(at + 1, end - at - 1));
+        at = text.find('`', end + 1);
+    }
+    return spans;
+}
+
+}  // namespace
+
+TEST_CASE("the docs describe the program as it is: no changelog tone, no undefined jobs", "[docs]")
+{
+    // Words that tell a history ("now", "no longer", "once chose") or name a run the page never defines.
+    const std::regex history(R"(\b(now|no longer|once (chose|took|was|did|had)|used to|previously|formerly|main job)\b)",
+                             std::regex::icase);
+    int pages = 0;
+    for (const auto& [name, text] : doc_pages()) {
+        std::istringstream in(prose(text));
+        int number = 0;
+        for (std::string line; std::getline(in, line);) {
+            ++number;
+            std::smatch m;
+            INFO(name << ":" << number << ": " << line);
+            CHECK_FALSE(std::regex_search(line, m, history));
+        }
+        ++pages;
+    }
+    CHECK(pages >= 10);
+}
+
+TEST_CASE("the docs give the variant-name grammar VariantKey::parse reads, every suffix", "[docs]")
+{
+    // the grammar as parse's message gives it: "... (expected GRAMMAR, e.g. ...)"
+    std::string grammar;
+    try {
+        VariantKey::parse("x");
+    } catch (const std::invalid_argument& e) {
+        const std::string what = e.what();
+        const std::size_t from = what.find("(expected ") + 10;
+        grammar = what.substr(from, what.find(", e.g.", from) - from);
+    }
+    REQUIRE(grammar.rfind("METHOD_nx", 0) == 0);
+    int shown = 0;
+    for (const auto& [name, text] : doc_pages())
+        for (const std::string& span : quoted_spans(text))
+            if (span.rfind("METHOD_nx", 0) == 0) {
+                INFO(name);
+                CHECK(span == grammar);
+                ++shown;
+            }
+    CHECK(shown >= 2);  // docs/cli.md (hubbeam-gen) and docs/development.md
+    // and each suffix of the grammar is one parse takes, in that order
+    for (const char* name : {"bsim_nx0_ny4_prescribed_first_open", "amm_nx0_ny4_torque_first_tip_gravity_damped_width",
+                             "fem_nx0_ny4_torque_full_depth", "amm_nx0_ny4_torque_zero_profile10x0x5x10"}) {
+        INFO(name);
+        CHECK(VariantKey::parse(name).name() == name);
+    }
+}
+
+TEST_CASE("the docs spell the Dask scheduler command one way, its alias once", "[docs]")
+{
+    int alias = 0;
+    for (const auto& [name, text] : doc_pages()) {
+        INFO(name);
+        for (const char* command : {"dask-scheduler", "dask-worker"}) {
+            const std::string backquoted = std::string("`") + command + "`";
+            for (std::size_t at = text.find(command); at != std::string::npos; at = text.find(command, at + 1)) {
+                const bool named = at > 0 && text.compare(at - 1, backquoted.size(), backquoted) == 0;
+                CHECK(named);  // only as the alias, in a sentence, never as a command to run
+                alias += named;
+            }
+        }
+    }
+    CHECK(alias == 2);  // "also installs these as `dask-scheduler` and `dask-worker`", once
+}
+
+TEST_CASE("docs/cli.md's tip_ux is what each order writes: u_x1(L) under order zero", "[docs]")
+{
+    const std::map<std::string, std::vector<std::string>> rows = table_rows("cli.md", "hubbeam run");
+    REQUIRE(rows.count("tip_ux") == 1);
+    const std::string meaning = rows.at("tip_ux")[1];
+    INFO(meaning);
+    CHECK(meaning.find("order `zero`") != std::string::npos);
+    CHECK(meaning.find("writes `u_x1(L)`") != std::string::npos);
+    // the program: a bent beam's tip under order zero, its stretch alone; under order first, foreshortened
+    const Parameters p;
+    const std::vector<double> A = {1e-4, -2e-5, 3e-6, 0.0}, B = {0.3, -0.05, 0.01, 0.002};
+    for (const Order order : {Order::zero, Order::first}) {
+        const VariantKey key{.method = Method::amm, .nx = 4, .ny = 4, .order = order, .drive = Drive::torque, .extras = {}};
+        const Tip tip = BeamFields(key, p).tip(A.data(), B.data());
+        if (order == Order::zero) CHECK(tip.ux == tip.ux1);
+        else CHECK(tip.ux < tip.ux1 - 1e-4);
+    }
 }

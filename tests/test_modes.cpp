@@ -313,3 +313,97 @@ TEST_CASE("linearize prints the state names it writes, separated by commas", "[m
     INFO(out.str());
     CHECK(out.str().find("\nstates      18 (" + names + ")\n") != std::string::npos);
 }
+
+namespace {
+
+/// A row of the table `hubbeam modes` prints: the columns it is read by.
+struct PrintedMode {
+    std::string kind, label;
+    double rad_s = 0.0, growth = 0.0, undamped = 0.0, zeta = 0.0;
+};
+
+/// The rows of the printed table (a damped one: its last two columns are |lambda| and zeta).
+std::vector<PrintedMode> printed_modes(const std::string& table)
+{
+    std::vector<PrintedMode> rows;
+    std::istringstream in(table);
+    std::string line;
+    std::getline(in, line);  // the heading
+    while (std::getline(in, line) && !line.empty()) {
+        std::istringstream f(line);
+        std::string method, order, label_number;
+        int ny = 0, nx = 0, number = 0;
+        double omega = 0.0, hz = 0.0, dimensionless = 0.0;
+        PrintedMode m;
+        f >> method >> ny >> nx >> order >> omega >> number >> m.kind >> m.label >> label_number >> m.rad_s >> hz >>
+            dimensionless >> m.growth >> m.undamped >> m.zeta;
+        REQUIRE(f);
+        m.label += " " + label_number;
+        rows.push_back(m);
+    }
+    return rows;
+}
+
+}  // namespace
+
+TEST_CASE("modes prints every kind up to --count: a PI loop's hub modes and a bar's axial modes", "[modes]")
+{
+    // tests/scenes/pi_stiff_arm.toml: a nearly rigid arm, so that its hub modes are the rigid closed loop's, the
+    // roots of J s^3 + kd s^2 + kp s + ki = 0 with J = J_oh + rho S L^3 / 3; and at rest its axial modes are a
+    // clamped-free bar's, (2k - 1) pi / (2 L) sqrt(E / rho) (assumed modes: the bar's own shapes, so exact).
+    const Scene scene = load_scene(std::string(HUBBEAM_SOURCE_DIR) + "/tests/scenes/pi_stiff_arm.toml");
+    const Parameters& p = scene.parameters;
+    REQUIRE(scene.control);
+    const double J = p.J_oh + p.rho * p.S * std::pow(p.L, 3) / 3.0;
+    const double kp = scene.control->kp, kd = scene.control->kd, ki = scene.control->ki;
+    // The cubic's real root by bisection between s = -kd / J - 1, where it is negative, and 0, where it is ki > 0;
+    // then the quadratic left after dividing it out.
+    const auto cubic = [&](double s) { return ((J * s + kd) * s + kp) * s + ki; };
+    double lo = -kd / J - 1.0, hi = 0.0;
+    REQUIRE(cubic(lo) < 0.0);
+    for (int k = 0; k < 200; ++k) (cubic(0.5 * (lo + hi)) < 0.0 ? lo : hi) = 0.5 * (lo + hi);
+    const double real_root = 0.5 * (lo + hi);
+    // J s^3 + kd s^2 + kp s + ki = (s - r)(J s^2 + b s + c)
+    const double b = kd + J * real_root, c = kp + b * real_root;
+    const double pair_undamped = std::sqrt(c / J), pair_zeta = b / (2.0 * std::sqrt(c * J));
+    const double bar = std::numbers::pi / (2.0 * p.L) * std::sqrt(p.E / p.rho);
+
+    ModesArgs args;
+    args.omega = "0";
+    args.count = "8";
+    std::ostringstream out;
+    run_modes(scene, parse_modes_options(args, scene), out);
+    INFO(out.str());
+    const std::vector<PrintedMode> rows = printed_modes(out.str());
+    std::vector<PrintedMode> hub, axial;
+    int bending = 0;
+    for (const PrintedMode& m : rows) {
+        if (m.kind == "hub") hub.push_back(m);
+        if (m.kind == "axial") axial.push_back(m);
+        bending += m.kind == "bending";
+    }
+    CHECK(bending == 4);
+    // the real root (a row of its own, rad_s 0, zeta 1) and the pair, by |lambda|
+    REQUIRE(hub.size() == 2);
+    CHECK(hub[0].rad_s == 0.0);
+    CHECK(hub[0].growth < 0.0);
+    CHECK(hub[0].undamped == Approx(-real_root).epsilon(1e-4));
+    CHECK(hub[0].zeta == 1.0);
+    CHECK(hub[1].undamped == Approx(pair_undamped).epsilon(1e-4));
+    CHECK(hub[1].zeta == Approx(pair_zeta).epsilon(2e-4));  // printed to 4 digits
+    CHECK(hub[1].rad_s == Approx(pair_undamped * std::sqrt(1.0 - pair_zeta * pair_zeta)).epsilon(1e-4));
+    CHECK(hub[0].label != hub[1].label);
+    REQUIRE(axial.size() == 2);
+    for (std::size_t k = 0; k < axial.size(); ++k) {
+        CHECK(axial[k].rad_s == Approx((2.0 * static_cast<double>(k) + 1.0) * bar).epsilon(1e-6));
+        CHECK(axial[k].label == "axial " + std::to_string(k + 1));
+    }
+
+    // --count N: the first N of each kind, by frequency
+    args.count = "1";
+    std::ostringstream one;
+    run_modes(scene, parse_modes_options(args, scene), one);
+    std::vector<std::string> kinds;
+    for (const PrintedMode& m : printed_modes(one.str())) kinds.push_back(m.kind);
+    CHECK(kinds == std::vector<std::string>{"hub", "bending", "axial"});
+}

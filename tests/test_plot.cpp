@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -71,12 +72,14 @@ TEST_CASE("campbell: a line per bending mode of each variant, through its rows i
     PlotArgs named = args;
     named.files = {(scratch.dir / "spinup_omega4-modes.csv").string()};
     CHECK(plot_script(named).find("set title 'Campbell diagram, spinup_omega4' noenhanced") != std::string::npos);
-    // a legend entry per method, not per mode
-    CHECK(script.find("title 'amm Ny = 4' noenhanced") != std::string::npos);
-    CHECK(script.find("title 'fem Ny = 4' noenhanced") != std::string::npos);
+    // a legend entry per line: its variant and its tracked label
+    CHECK(script.find("title 'amm Ny = 4, bending 1' noenhanced") != std::string::npos);
+    CHECK(script.find("title 'fem Ny = 4, bending 2' noenhanced") != std::string::npos);
     // amm's and fem's lines coincide to the eye: each its own open marker, amm's larger and wider under fem's
-    CHECK(script.find("$mode2 using 1:2 smooth unique with linespoints lw 2.5 lc 1 dt 1 pt 6 ps 1.60 notitle") != std::string::npos);
-    CHECK(script.find("$mode4 using 1:2 smooth unique with linespoints lw 2.1 lc 2 dt 1 pt 4 ps 1.35 notitle") != std::string::npos);
+    CHECK(script.find("$mode2 using 1:2 smooth unique with linespoints lw 2.5 lc rgb '") != std::string::npos);
+    CHECK(script.find("$mode4 using 1:2 smooth unique with linespoints lw 2.1 lc rgb '") != std::string::npos);
+    CHECK(script.find("dt 1 pt 6 ps 1.60 title 'amm Ny = 4, bending 2'") != std::string::npos);
+    CHECK(script.find("dt 1 pt 4 ps 1.35 title 'fem Ny = 4, bending 2'") != std::string::npos);
 }
 
 TEST_CASE("campbell: a line per tracked mode through a crossing, the excitation lines and their crossings marked")
@@ -122,6 +125,117 @@ TEST_CASE("campbell: a line per tracked mode through a crossing, the excitation 
     args.files = {fixture("modes_untracked.csv")};
     CHECK(gnuplot_prints(scratch.dir, plot_script(args), "print $mode1\nprint $mode2") ==
           "0,0.46335\n4,0.53201\n\n0,2.9038\n4,3.075\n\n");
+}
+
+namespace {
+
+/// What the plot command of a script draws: per element of the Campbell lines ($modeN), its datablock, its
+/// colour and its legend title.
+struct DrawnLine {
+    std::string block, colour, title;
+};
+std::vector<DrawnLine> drawn_lines(const std::string& script)
+{
+    std::vector<DrawnLine> lines;
+    for (std::size_t at = script.find("$mode"); at != std::string::npos; at = script.find("$mode", at + 1)) {
+        const std::size_t end = script.find('\n', at);
+        const std::string element = script.substr(at, end - at);
+        if (element.find(" using 1:2 smooth unique") == std::string::npos) continue;  // the datablock's definition
+        const std::size_t colour = element.find("lc rgb '") + 8, title = element.find("title '") + 7;
+        lines.push_back({element.substr(0, element.find(' ')),
+                         element.substr(colour, element.find('\'', colour) - colour),
+                         element.substr(title, element.find('\'', title) - title)});
+    }
+    return lines;
+}
+
+}  // namespace
+
+TEST_CASE("campbell: --modes, --kinds and --max-hz choose the lines; each its own colour and its label", "[plot]")
+{
+    ScratchDir scratch;
+    // A blade's Campbell table: one variant, bending lines at 10, 300, 900 and 1800 Hz at rest, an axial line and a
+    // hub line. Only bending 1 meets 1P (f = omega / 2 pi) between the rates: 10 + 0.05 omega = omega / 2 pi.
+    const fs::path file = scratch.dir / "blade-modes.csv";
+    std::ofstream table(file);
+    table << "method,ny,nx,order,drive,omega,mode,kind,rad_s,hz,dimensionless,growth,undamped_rad_s,damping_ratio,"
+             "label,mac\n";
+    const std::vector<std::pair<std::string, double>> at_rest = {
+        {"hub 1", 0.5}, {"bending 1", 10}, {"bending 2", 300}, {"bending 3", 900}, {"axial 1", 1200}, {"bending 4", 1800}};
+    for (const double omega : {0.0, 100.0, 200.0})
+        for (std::size_t m = 0; m < at_rest.size(); ++m) {
+            const auto& [label, hz] = at_rest[m];
+            const double f = hz + 0.05 * omega;
+            table << "amm,8,4,first,torque," << omega << ',' << m + 1 << ',' << label.substr(0, label.find(' ')) << ','
+                  << 2 * M_PI * f << ',' << f << ",1,0," << 2 * M_PI * f << ",0," << label << ",1\n";
+        }
+    table.close();
+    PlotArgs args;
+    args.kind = "campbell";
+    args.files = {file.string()};
+    args.prefix = (scratch.dir / "campbell").string();
+    args.harmonics = "1";
+
+    // By default every bending line: a colour each, its label the legend entry, the variant in the title
+    std::string script = plot_script(args);
+    std::vector<DrawnLine> lines = drawn_lines(script);
+    REQUIRE(lines.size() == 4);
+    std::set<std::string> colours;
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+        CHECK(lines[i].title == "bending " + std::to_string(i + 1));
+        colours.insert(lines[i].colour);
+    }
+    CHECK(colours.size() == 4);
+    CHECK(script.find("set title 'Campbell diagram, blade (amm, Ny = 8)' noenhanced") != std::string::npos);
+    CHECK(gnuplot_prints(scratch.dir, script, "print $mode1") == "0,10\n100,15\n200,20\n\n");
+
+    // --modes 2: the two lowest; --kinds adds the hub's and the axial line, ranked with the others by frequency
+    args.modes = "2";
+    lines = drawn_lines(plot_script(args));
+    REQUIRE(lines.size() == 2);
+    CHECK(lines[1].title == "bending 2");
+    args.kinds = "hub,bending,axial";
+    args.modes = "5";
+    lines = drawn_lines(plot_script(args));
+    std::vector<std::string> titles;
+    for (const DrawnLine& l : lines) titles.push_back(l.title);
+    CHECK(titles == std::vector<std::string>{"hub 1", "bending 1", "bending 2", "bending 3", "axial 1"});
+
+    // --max-hz 50: the axis ends there, the lines wholly above it are left out, the critical speed stays
+    args.kinds.clear();
+    args.modes.clear();
+    args.max_hz = "50";
+    script = plot_script(args);
+    lines = drawn_lines(script);
+    REQUIRE(lines.size() == 1);
+    CHECK(lines[0].title == "bending 1");
+    CHECK(script.find("set yrange [0:50]") != std::string::npos);
+    const std::size_t block = script.find("$critical << EOD\n");
+    REQUIRE(block != std::string::npos);
+    const double omega = std::stod(script.substr(block + 17));
+    CHECK(omega == Approx(10.0 / (1.0 / (2.0 * M_PI) - 0.05)).epsilon(1e-9));
+
+    // the options' bad values, and the options on another kind
+    args.max_hz = "0";
+    CHECK_THROWS_WITH(plot_script(args), "--max-hz: expected a frequency > 0 (Hz), got 0");
+    args.max_hz.clear();
+    args.modes = "0";
+    CHECK_THROWS_WITH(plot_script(args), "--modes: expected an integer from 1 to 1000, got 0");
+    args.modes.clear();
+    args.kinds = "bending,torsion";
+    CHECK_THROWS_WITH(plot_script(args), Catch::StartsWith("--kinds: expected a comma-separated list of bending, axial, hub"));
+    args.kinds = "hub";
+    args.files = {fixture("modes_untracked.csv")};
+    CHECK_THROWS_WITH(plot_script(args), Catch::Contains("modes_untracked.csv: expected rows of kind 'hub'"));
+    args.kinds = "axial";  // a file without tracking: the rows of that kind, a line per frequency number
+    CHECK(gnuplot_prints(scratch.dir, plot_script(args), "print $mode1\nprint $mode2") ==
+          "0,308.46\n4,308.46\n\n0,310.63\n4,310.63\n\n");
+    PlotArgs tip;
+    tip.kind = "tip";
+    tip.files = {fixture("run_amm.csv")};
+    tip.prefix = args.prefix;
+    tip.max_hz = "50";
+    CHECK_THROWS_WITH(plot_script(tip), "--max-hz: expected no max-hz for kind tip (only kind campbell draws them), got 50");
 }
 
 TEST_CASE("moment: each file's rows at the t closest to --time, by default at its last t")

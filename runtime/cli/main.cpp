@@ -15,11 +15,58 @@
 // each other before anything is computed. run writes NAME.csv into the current folder unless -o; modes writes a CSV
 // only with -o. Exit codes: 0 success; 1 the simulation stopped early (rows so far kept); 2 bad input (nothing
 // computed); 130 / 143 interrupted by SIGINT / SIGTERM (rows so far kept).
+#include <algorithm>
 #include <exception>
 #include <iostream>
+#include <string>
 #include <vector>
 
 #include "command.hpp"
+
+#ifndef HUBBEAM_VERSION
+#define HUBBEAM_VERSION "dev"
+#endif
+
+namespace {
+
+/// The number of single-character insertions, deletions and substitutions that turn a into b (Levenshtein).
+std::size_t edit_distance(const std::string& a, const std::string& b)
+{
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        std::size_t diagonal = row[0];
+        row[0] = i;
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            const std::size_t above = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+            diagonal = above;
+        }
+    }
+    return row[b.size()];
+}
+
+/// Why the first argument names no command (empty if it names one, or is an option such as --help): the word
+/// itself, the nearest command when it is a likely typo, and the list of commands.
+std::string unknown_command(const std::vector<hubbeam::cli::Command>& commands, int argc, char** argv)
+{
+    std::vector<std::string> names;
+    for (const hubbeam::cli::Command& c : commands) names.push_back(c.sub->get_name());
+    const std::string list = "one of " + hubbeam::joined(names) + " (hubbeam --help)";
+    if (argc < 2) return "a command is required: " + list;
+    const std::string word = argv[1];
+    if (word.rfind('-', 0) == 0 || std::find(names.begin(), names.end(), word) != names.end()) return {};
+    std::string nearest;
+    std::size_t best = 0;
+    for (const std::string& name : names)
+        if (const std::size_t d = edit_distance(word, name); nearest.empty() || d < best) nearest = name, best = d;
+    // a typo: at most two edits (a swap of two letters is two), fewer than the word has letters
+    const bool typo = best <= 2 && best < word.size();
+    return "unknown command '" + hubbeam::printable(word, 40) + "'" +
+           (typo ? " (did you mean '" + nearest + "'?)" : "") + "; expected " + list;
+}
+
+}  // namespace
 
 int main(int argc, char** argv)
 {
@@ -29,11 +76,16 @@ int main(int argc, char** argv)
         "Exit codes: 0 success, 1 simulation stopped early (rows so far kept), 2 bad input, 130/143 interrupted\n"
         "by SIGINT/SIGTERM (rows so far kept)."};
     app.require_subcommand(1);
+    app.set_version_flag("--version", "hubbeam " HUBBEAM_VERSION, "Print the version and exit");
     const std::vector<Command> commands = {
         add_run_command(app),   add_variants_command(app),  add_bench_command(app),
         add_stress_command(app), add_modes_command(app),     add_linearize_command(app),
         add_sweep_command(app), add_kernels_command(app),   add_plot_command(app),
     };
+    if (const std::string why = unknown_command(commands, argc, argv); !why.empty()) {
+        std::cerr << "hubbeam: " << why << "\n";
+        return exit_bad_input;
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <map>
 #include <memory>
 #include <ostream>
 #include <sstream>
@@ -161,14 +162,13 @@ void run_modes(const Scene& scene, const ModesOptions& o, std::ostream& out)
                 const std::unique_ptr<Model> model = make_model(key, scene.parameters, scene.source);
                 const std::vector<SpinMode> spin_modes =
                     campbell(*model, o.omegas, scene.axial, held_angle(scene), scene.controller());
-                // Printed: the first `count` bending modes and the first axial one of each spin rate.
-                int shown_bending = 0;
-                bool shown_axial = false;
+                // Printed: the first `count` modes of each kind (bending, axial, hub) of each spin rate.
+                std::map<std::string, int> shown;  // by kind, at the current rate
                 const SpinMode* least = nullptr;  // the least certain pairing of a line from one rate to the next
                 for (const SpinMode& r : spin_modes) {
                     const auto& [omega, number, mode, label, pairing] = r;
                     if (pairing < (least ? least->mac : doubtful_mac)) least = &r;
-                    if (number == 1) shown_bending = 0, shown_axial = false;
+                    if (number == 1) shown.clear();
                     const double hz = mode.rad_s / (2.0 * M_PI);
                     std::ostringstream row;
                     row << variant_fields(key) << ',' << shortest(omega) << ',' << number << ',' << mode.kind << ','
@@ -178,9 +178,7 @@ void run_modes(const Scene& scene, const ModesOptions& o, std::ostream& out)
                     if (csv) csv->write_line(row.str());
                     ++rows;
                     if (o.quiet) continue;
-                    const bool enough =
-                        mode.kind == "bending" ? shown_bending++ >= o.count : std::exchange(shown_axial, true);
-                    if (enough) continue;
+                    if (shown[mode.kind]++ >= o.count) continue;
                     std::snprintf(line, sizeof line,
                                   "%-6s %3d %3d  %-5s %12.4g  %4d  %-7s  %-11s %11.6g %11.6g %14.6g  %10.3g",
                                   to_string(method).c_str(), ny, key.nx, to_string(key.order).c_str(), omega, number,

@@ -25,7 +25,7 @@ struct ModesArgs {
     std::string omega;    // empty: 0 and the scene's steady rate (spin-up), or 0 (torque)
     std::string methods;  // empty: the scene's
     std::string ny;       // empty: the scene's
-    std::string count = "4";
+    std::string count = "4";  // modes printed per kind and spin rate
     std::string output;   // CSV; empty: none (the table is printed)
     std::string plot;     // PREFIX: the Campbell diagram PREFIX.{png,svg} (hubbeam plot campbell)
     std::string harmonics = default_harmonics;  // the lines omega = n Omega whose crossings are critical speeds
@@ -46,8 +46,8 @@ struct ModesOptions {
 /// Checks and converts the typed options against the scene; throws ModesOptionError.
 ModesOptions parse_modes_options(const ModesArgs& args, const Scene& scene);
 
-/// For each method, Ny and spin rate: the scene's variant linearized about the steady spin, its first `count`
-/// bending modes and first axial mode printed to out (with options.quiet, only how many modes there are), and every
+/// For each method, Ny and spin rate: the scene's variant linearized about the steady spin, the first `count` modes
+/// of each kind (bending, axial, hub) printed to out (with options.quiet, only how many modes there are), and every
 /// mode written to options.output if given (atomically), each with its tracked label and MAC; then each variant's
 /// critical speeds (its modes' crossings with the harmonics' excitation lines) printed, and written to
 /// options.critical if given; with options.plot, the Campbell diagram. Throws std::runtime_error if a CSV or the

@@ -340,12 +340,14 @@ Figure axial_figure(const std::vector<std::string>& files, const std::vector<std
     return f;
 }
 
-/// A line of a Campbell diagram: one bending mode of one variant of one file, a tracked mode (by its label) or, in
-/// a file without tracking, the bending modes of one frequency rank; and its points (omega, Hz).
+/// A line of a Campbell diagram: one mode of one variant of one file, a tracked mode (by its label) or, in a file
+/// without tracking, the modes of one kind and frequency rank; and its points (omega, Hz).
 struct CampbellLine {
     std::size_t file;
     std::vector<std::string> variant;  // method, ny, nx, order, drive as the file writes them
     std::string column, mode;          // the column that tells the line's rows ("label" or "mode") and its value
+    std::string kind;                  // the kind its rows are selected by in a file without tracking; empty: any
+    std::string name;                  // its legend entry: the label ("bending 2"), or "bending mode 2"
     std::vector<std::pair<double, double>> points;
 };
 
@@ -354,31 +356,74 @@ constexpr const char* variant_columns[] = {"method", "ny", "nx", "order", "drive
 constexpr const char* variant_names[] = {"", " Ny = ", " Nx = ", " order ", " drive "};
 constexpr std::size_t variant_size = std::size(variant_columns);
 
-/// The Campbell diagram's lines, in the order of the files and of their first rows: each tracked mode labelled
-/// bending (its rows of every kind: through a veering its shape may turn axial), or in a file without the label
-/// column (an older hubbeam's) the rows of kind bending of each frequency rank. Throws PlotInputError for a file
-/// without bending rows.
-std::vector<CampbellLine> campbell_lines(const std::vector<std::string>& files, const Kind& kind)
+/// The kinds of mode a modes CSV names (NaturalMode::kind).
+const std::vector<std::string>& mode_kinds()
+{
+    static const std::vector<std::string> k = {"bending", "axial", "hub"};
+    return k;
+}
+
+/// Which lines a Campbell diagram draws (plot's --kinds, --modes, --max-hz).
+struct CampbellChoice {
+    std::vector<std::string> kinds = {"bending"};
+    int modes = 0;                // the lowest this many lines of each variant; 0: all
+    double max_hz = HUGE_VAL;     // the frequency axis ends here, and lines wholly above it are left out
+};
+
+/// The Campbell diagram's lines, in the order of the files and of their first rows: each tracked mode whose label
+/// names one of choice's kinds (its rows of every kind: through a veering its shape may turn axial), or in a file
+/// without the label column (an older hubbeam's) the rows of one of those kinds of each frequency rank; then of
+/// each variant the `modes` lowest (by their frequency at their lowest rate), and those with a point at or below
+/// max_hz. Throws PlotInputError for a file without such rows.
+std::vector<CampbellLine> campbell_lines(const std::vector<std::string>& files, const Kind& kind,
+                                         const CampbellChoice& choice)
 {
     std::vector<CampbellLine> lines;
+    const auto chosen = [&](const std::string& k) {
+        return std::find(choice.kinds.begin(), choice.kinds.end(), k) != choice.kinds.end();
+    };
     for (std::size_t file = 0; file < files.size(); ++file) {
         const std::size_t before = lines.size();
         read_csv(files[file], kind, [&](const Record& r) {
             const bool tracked = r.has("label");
-            if (tracked ? r["label"].rfind("bending ", 0) != 0 : r["kind"] != "bending") return;
-            CampbellLine l{file, {r["method"], r["ny"], r["nx"], r["order"], r["drive"]}, tracked ? "label" : "mode",
-                           tracked ? r["label"] : r["mode"], {}};
+            const std::string& label = tracked ? r["label"] : r["kind"];
+            if (!chosen(tracked ? label.substr(0, label.find(' ')) : label)) return;
+            CampbellLine l{file,
+                           {r["method"], r["ny"], r["nx"], r["order"], r["drive"]},
+                           tracked ? "label" : "mode",
+                           tracked ? label : r["mode"],
+                           tracked ? "" : label,
+                           tracked ? label : label + " mode " + r["mode"],
+                           {}};
             auto same = std::find_if(lines.begin() + static_cast<std::ptrdiff_t>(before), lines.end(),
-                                     [&](const CampbellLine& o) { return o.variant == l.variant && o.mode == l.mode; });
+                                     [&](const CampbellLine& o) {
+                                         return o.variant == l.variant && o.mode == l.mode && o.kind == l.kind;
+                                     });
             if (same == lines.end()) same = lines.insert(lines.end(), l);
             same->points.emplace_back(r.number("omega"), r.number("hz"));
         });
         if (lines.size() == before)
-            throw PlotInputError(printable(files[file], 400) +
-                                 ": expected rows of kind bending (the modes a Campbell diagram draws), got none");
+            throw PlotInputError(printable(files[file], 400) + ": expected rows of kind " + joined(choice.kinds, "'") +
+                                 " (the modes the Campbell diagram draws, --kinds), got none");
     }
     for (CampbellLine& l : lines) std::stable_sort(l.points.begin(), l.points.end());
-    return lines;
+    // Of each file's variant, the lines ranked by their frequency at their lowest rate.
+    std::vector<bool> keep(lines.size(), true);
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+        int lower = 0;
+        for (std::size_t j = 0; j < lines.size(); ++j)
+            if (j != i && lines[j].file == lines[i].file && lines[j].variant == lines[i].variant &&
+                (lines[j].points.front().second < lines[i].points.front().second ||
+                 (lines[j].points.front().second == lines[i].points.front().second && j < i)))
+                ++lower;
+        const bool in_range = std::any_of(lines[i].points.begin(), lines[i].points.end(),
+                                          [&](const auto& p) { return p.second <= choice.max_hz; });
+        keep[i] = (choice.modes == 0 || lower < choice.modes) && in_range;
+    }
+    std::vector<CampbellLine> kept;
+    for (std::size_t i = 0; i < lines.size(); ++i)
+        if (keep[i]) kept.push_back(std::move(lines[i]));
+    return kept;
 }
 
 /// Where line l meets the excitation line f = n omega / 2 pi between two of its points: (omega, Hz) where the
@@ -416,59 +461,74 @@ std::string campbell_table(const std::string& block, const CampbellLine& l, cons
     for (std::size_t c = 0; c < variant_size; ++c)
         condition += "strcol('" + std::string(variant_columns[c]) + "') eq " + gnuplot_string(l.variant[c]) + " && ";
     condition += "strcol('" + l.column + "') eq " + gnuplot_string(l.mode);
-    if (l.column == "mode") condition += " && strcol('kind') eq 'bending'";
+    if (!l.kind.empty()) condition += " && strcol('kind') eq " + gnuplot_string(l.kind);
     return "set table " + block + " separator comma\nplot " + gnuplot_string(file) +
            " using 'omega':'hz' with table if (" + condition + ")\n";
 }
 
-/// The look of a Campbell line, by the index of its method (a colour each) and of its legend entry: an open marker
-/// of its own per legend entry, larger and the line wider the earlier the entry, so that variants whose frequencies
-/// coincide show as nested outlines; a dash type per file.
-std::string campbell_style(std::size_t colour, std::size_t entry_index, std::size_t file)
+/// The colours of a Campbell diagram's lines, one each (in turn, beyond a dozen), none of them the black and grey
+/// of the excitation lines or the red of the critical speeds.
+constexpr const char* line_colours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b", "#e377c2",
+                                        "#17becf", "#bcbd22", "#000080", "#808000", "#008080", "#ff00ff"};
+
+/// The look of a Campbell line: its own colour (by its index among the lines), an open marker of its own per
+/// variant (by the variant's index), larger and the line wider the earlier the variant, so that variants whose
+/// frequencies coincide show as nested outlines; a dash type per file.
+std::string campbell_style(std::size_t line, std::size_t variant_index, std::size_t file)
 {
     static const int open_points[] = {6, 4, 8, 12, 10, 14, 1, 2};
     char size[40];
-    std::snprintf(size, sizeof size, "lw %.1f", std::max(1.0, 2.5 - 0.4 * static_cast<double>(entry_index)));
+    std::snprintf(size, sizeof size, "lw %.1f", std::max(1.0, 2.5 - 0.4 * static_cast<double>(variant_index)));
     char points[40];
-    std::snprintf(points, sizeof points, " pt %d ps %.2f ", open_points[entry_index % std::size(open_points)],
-                  std::max(0.6, 1.6 - 0.25 * static_cast<double>(entry_index)));
-    return std::string(size) + " lc " + std::to_string(colour + 1) + " dt " + std::to_string(file % 5 + 1) + points;
+    std::snprintf(points, sizeof points, " pt %d ps %.2f ", open_points[variant_index % std::size(open_points)],
+                  std::max(0.6, 1.6 - 0.25 * static_cast<double>(variant_index)));
+    return std::string(size) + " lc rgb '" + line_colours[line % std::size(line_colours)] + "' dt " +
+           std::to_string(file % 5 + 1) + points;
 }
 
-/// A Campbell diagram: the bending frequencies (Hz) against the spin rate, a line per file, variant (method, Ny,
-/// Nx, order, drive) and mode, a colour per method, with the excitation lines nP (f = n omega / 2 pi) of the
-/// harmonics and their crossings with the modes (the critical speeds) marked. A mode's rows are interleaved with
-/// the other modes' in the file, and gnuplot breaks a line at every row a condition leaves out: so each line's
-/// rows are first selected into a datablock of their own (`with table if`, gnuplot 5.4).
+/// A Campbell diagram: the chosen modes' frequencies (Hz) against the spin rate, a line per file, variant (method,
+/// Ny, Nx, order, drive) and tracked mode, each its own colour and legend entry (its label, led by its variant when
+/// there are several), with the excitation lines nP (f = n omega / 2 pi) of the harmonics and their crossings with
+/// the modes (the critical speeds) marked; with a frequency limit, the axis ends there. A mode's rows are
+/// interleaved with the other modes' in the file, and gnuplot breaks a line at every row a condition leaves out: so
+/// each line's rows are first selected into a datablock of their own (`with table if`, gnuplot 5.4).
 Figure campbell_figure(const std::vector<std::string>& files, const std::vector<std::string>& labels, bool label_lines,
-                       const std::vector<int>& harmonics, const Kind& kind)
+                       const std::vector<int>& harmonics, const CampbellChoice& choice, const Kind& kind)
 {
-    const std::vector<CampbellLine> lines = campbell_lines(files, kind);
+    const std::vector<CampbellLine> lines = campbell_lines(files, kind, choice);
     const std::vector<bool> named = named_columns(lines);
     Figure f;
     f.axes = "set xlabel 'hub spin rate omega (rad/s)'\nset ylabel 'natural frequency f (Hz)'\n";
-    f.data = "# one datablock per line: the rows of one bending mode of one variant\n";
-    std::vector<std::string> methods;                                       // a colour each
-    std::vector<std::pair<std::size_t, std::vector<std::string>>> entries;  // (file, variant): a legend entry each
+    if (choice.max_hz < HUGE_VAL) f.axes += "set yrange [0:" + shortest(choice.max_hz) + "]\n";
+    f.data = "# one datablock per line: the rows of one tracked mode of one variant\n";
+    std::vector<std::pair<std::size_t, std::vector<std::string>>> variants;  // (file, variant): a marker each
+    for (const CampbellLine& l : lines)
+        if (std::find(variants.begin(), variants.end(), std::pair{l.file, l.variant}) == variants.end())
+            variants.emplace_back(l.file, l.variant);
+    // One variant: its name goes to the title, and the legend holds the modes' labels alone.
+    if (variants.size() == 1) {
+        std::string name;
+        for (std::size_t c = 0; c < variant_size; ++c)
+            if (named[c]) name += (c ? "," : "") + std::string(variant_names[c]) + lines.front().variant[c];
+        f.title_suffix = " (" + name + ")";
+    }
     for (std::size_t i = 0; i < lines.size(); ++i) {
         const CampbellLine& l = lines[i];
         const std::string block = "$mode" + std::to_string(i + 1);
         f.data += campbell_table(block, l, files[l.file]);
-
-        if (std::find(methods.begin(), methods.end(), l.variant[0]) == methods.end()) methods.push_back(l.variant[0]);
-        const std::size_t colour =
-            static_cast<std::size_t>(std::find(methods.begin(), methods.end(), l.variant[0]) - methods.begin());
-        const std::pair<std::size_t, std::vector<std::string>> entry{l.file, l.variant};
-        auto e = std::find(entries.begin(), entries.end(), entry);
-        const bool first = e == entries.end();
-        if (first) e = entries.insert(e, entry);
+        const auto v = std::find(variants.begin(), variants.end(), std::pair{l.file, l.variant});
         std::string legend = label_lines ? labels[l.file] + ": " : "";
-        for (std::size_t c = 0; c < variant_size; ++c)
-            if (named[c]) legend += variant_names[c] + l.variant[c];
+        if (variants.size() > 1) {
+            for (std::size_t c = 0; c < variant_size; ++c)
+                if (named[c]) legend += variant_names[c] + l.variant[c];
+            legend += ", ";
+        }
+        legend += l.name;
+        f.longest_label = std::max(f.longest_label, legend.size());
         // smooth unique: the points by increasing rate, whatever the rows' order in the file
         f.elements.push_back(block + " using 1:2 smooth unique with linespoints " +
-                             campbell_style(colour, static_cast<std::size_t>(e - entries.begin()), l.file) +
-                             (first ? title_of(legend) : std::string("notitle")));
+                             campbell_style(i, static_cast<std::size_t>(v - variants.begin()), l.file) +
+                             title_of(legend));
     }
     f.data += "unset table\n";
     std::string crossings;
@@ -480,7 +540,8 @@ Figure campbell_figure(const std::vector<std::string>& files, const std::vector<
                              std::to_string(n) + "P: " +
                              (n == 1 ? "spin frequency omega" : times + "omega") + "/2pi'");
         for (const CampbellLine& l : lines)
-            for (const auto& [omega, hz] : campbell_crossings(l, n)) crossings += shortest(omega) + ',' + shortest(hz) + '\n';
+            for (const auto& [omega, hz] : campbell_crossings(l, n))
+                if (hz <= choice.max_hz) crossings += shortest(omega) + ',' + shortest(hz) + '\n';
     }
     if (!crossings.empty()) {
         f.data += "$critical << EOD\n" + crossings + "EOD\n";
@@ -611,10 +672,36 @@ const Kind& checked_kind(const PlotArgs& args)
     if (!args.time.empty() && args.kind != "moment")
         bad_option<PlotInputError>("--time", "no time for kind " + args.kind + " (only kind moment draws one time)",
                                    printable(args.time, 40));
-    if (!args.harmonics.empty() && args.kind != "campbell")
-        bad_option<PlotInputError>("--harmonics", "no harmonics for kind " + args.kind + " (only kind campbell draws them)",
-                                   printable(args.harmonics, 40));
+    for (const auto& [option, value] : {std::pair<const char*, const std::string&>{"--harmonics", args.harmonics},
+                                        {"--kinds", args.kinds},
+                                        {"--modes", args.modes},
+                                        {"--max-hz", args.max_hz}})
+        if (!value.empty() && args.kind != "campbell")
+            bad_option<PlotInputError>(option, "no " + std::string(option + 2) + " for kind " + args.kind +
+                                                   " (only kind campbell draws them)",
+                                       printable(value, 40));
     return *kind;
+}
+
+/// The lines a Campbell diagram draws, from --kinds, --modes and --max-hz. Throws PlotInputError.
+CampbellChoice campbell_choice(const PlotArgs& args)
+{
+    CampbellChoice c;
+    if (!args.kinds.empty()) {
+        c.kinds.clear();
+        for (const std::string& k : split_list(args.kinds)) {
+            if (std::find(mode_kinds().begin(), mode_kinds().end(), k) == mode_kinds().end() ||
+                std::find(c.kinds.begin(), c.kinds.end(), k) != c.kinds.end())
+                bad_option<PlotInputError>("--kinds", "a comma-separated list of " + joined(mode_kinds()) + ", each once",
+                                           printable(args.kinds, 40));
+            c.kinds.push_back(k);
+        }
+    }
+    if (!args.modes.empty() && !parse_int(args.modes, 1, 1000, c.modes))
+        bad_option<PlotInputError>("--modes", "an integer from 1 to 1000", printable(args.modes, 40));
+    if (!args.max_hz.empty() && !parse_positive(args.max_hz, c.max_hz))
+        bad_option<PlotInputError>("--max-hz", "a frequency > 0 (Hz)", printable(args.max_hz, 40));
+    return c;
 }
 
 /// The legend's label per file: --labels, checked, or the files' stems. Throws PlotInputError.
@@ -648,7 +735,7 @@ Figure kind_figure(const Kind& kind, const PlotArgs& args, const std::vector<std
         return campbell_figure(
             args.files, labels, args.files.size() > 1 || !args.labels.empty(),
             parse_harmonics<PlotInputError>("--harmonics", args.harmonics.empty() ? default_harmonics : args.harmonics),
-            kind);
+            campbell_choice(args), kind);
     return moment_figure(args.files, labels, args.time, kind);
 }
 

@@ -47,6 +47,9 @@ struct PlotArgs {
     std::string title;               // empty: the kind's
     std::string time;                // kind moment: draw the rows at the t closest to it; empty: each file's last t
     std::string harmonics;           // kind campbell: the excitation lines omega = n Omega drawn; empty: 1,2,3
+    std::string kinds;               // kind campbell: the kinds of tracked mode drawn; empty: bending
+    std::string modes;               // kind campbell: the lowest N lines of each variant; empty: all
+    std::string max_hz;              // kind campbell: the top of the frequency axis (Hz); empty: the data's
 };
 
 /// Bad input to `plot`: an argument, or a file that is not what its kind reads ("FILE: expected ..., got ...").
