@@ -678,3 +678,22 @@ class SignalTest(unittest.TestCase):
             self.assertEqual(code, 0, err)
             self.assertEqual(leftovers(d), [os.path.basename(alive)])
             self.assertEqual(len(read(table)), 1)
+
+
+class InputFormsTest(unittest.TestCase):
+    def test_numpy_grids_and_a_sweep_file_with_a_byte_order_mark(self):
+        # A dict sweep's grid may be a numpy array and its values numpy numbers, as everywhere else in the package; a
+        # sweep file saved with a UTF-8 byte order mark reads like the same file without it, as a scene file does.
+        with tempfile.TemporaryDirectory() as d:
+            spec = {"scene": SPINUP, "set": {"output.t_end": np.float64(0.2), "nx": np.int64(0)},
+                    "grid": {"ny": np.array([4, 6])}, "keep": ["max_abs_tip_uy"]}
+            table = hubbeam.sweep(spec, output=os.path.join(d, "np.csv"), scheduler=CLIENT, progress=False)
+            rows = read(os.path.join(d, "np.csv"))
+            self.assertEqual([(int(r["discretization.ny"]), r["status"]) for r in rows], [(4, "ok"), (6, "ok")])
+            plain = os.path.join(d, "plain.toml")
+            text = f'scene = "{SPINUP}"\nkeep = ["max_abs_tip_uy"]\n[set]\n"output.t_end" = 0.2\nnx = 0\n'
+            write(plain, text)
+            with open(os.path.join(d, "bom.toml"), "wb") as f:
+                f.write(b"\xef\xbb\xbf" + text.encode())
+            self.assertEqual(sweeps.load_sweep(os.path.join(d, "bom.toml"))["set"], sweeps.load_sweep(plain)["set"])
+            del table

@@ -111,13 +111,20 @@ def load_sweep(spec: str | os.PathLike | Mapping[str, Any]) -> dict[str, Any]:
     file's name with .csv). Every path a sweep file gives (scene, output, a file key's value) is relative to the
     sweep file's folder, a dict's to the current folder: base is that folder."""
     if isinstance(spec, Mapping):
-        where, base_dir, sweep = "<dict sweep>", os.getcwd(), dict(spec)
+        from hubbeam import _plain  # numpy's numbers and arrays go into a dict sweep as into every other call
+
+        where, base_dir = "<dict sweep>", os.getcwd()
+        sweep = {k: {kk: _plain(vv) for kk, vv in v.items()} if isinstance(v, Mapping) else _plain(v)
+                 for k, v in spec.items()}
+        if isinstance(sweep.get("points"), list):
+            sweep["points"] = [{kk: _plain(vv) for kk, vv in p.items()} if isinstance(p, Mapping) else p
+                               for p in sweep["points"]]
     else:
         where = os.fspath(spec)
         _check_path("sweep file", where)
         data = _read_input(where, MAX_SCENE_BYTES, "a sweep file")
         try:
-            sweep = tomllib.loads(data.decode("utf-8"))
+            sweep = tomllib.loads(data.decode("utf-8-sig"))  # a byte order mark, as the scene reader takes it
         except (tomllib.TOMLDecodeError, UnicodeDecodeError) as e:
             raise SweepError(f"{_printable(where)}: {_printable(e)}") from None
         base_dir = os.path.dirname(os.path.abspath(where))
@@ -202,7 +209,7 @@ def _resolved(point: Mapping[str, Any], base: str) -> dict[str, Any]:
 def _scene_files(scene_text: str, scene_path: str) -> dict[str, str]:
     """The files the base scene names (file key -> path), resolved against the scene's folder as the core does."""
     try:
-        scene = tomllib.loads(scene_text)
+        scene = tomllib.loads(scene_text.removeprefix("\ufeff"))  # a byte order mark, as the core reads it
     except tomllib.TOMLDecodeError:
         return {}  # the core read it (toml++): a file key that tomllib cannot find leaves only the text in the key
     out = {}
