@@ -22,6 +22,7 @@
 #include "make_model.hpp"
 #include "random_state.hpp"
 #include "scene.hpp"
+#include "temp_folder.hpp"
 
 using namespace hubbeam;
 using Eigen::MatrixXd;
@@ -302,14 +303,8 @@ TEST_CASE("profile: static deflection under gravity is the unit-load integral", 
 namespace {
 
 /// A folder of its own for a scene and its profile table, removed afterwards.
-struct Folder {
-    std::filesystem::path path;
-    Folder() : path(std::filesystem::temp_directory_path() / ("hubbeam-test-profile-" + std::to_string(::getpid())))
-    {
-        std::filesystem::create_directories(path);
-    }
-    ~Folder() { std::filesystem::remove_all(path); }
-    void write(const std::string& name, const std::string& text) const { std::ofstream(path / name) << text; }
+struct Folder : TempFolder {
+    Folder() : TempFolder("profile") {}
     std::string scene() const { return (path / "blade.toml").string(); }
 };
 

@@ -12,6 +12,7 @@
 
 #include "output.hpp"
 #include "scene.hpp"
+#include "temp_folder.hpp"
 
 using namespace hubbeam;
 
@@ -44,26 +45,7 @@ void check_paper_common(const Scene& s)
     CHECK(s.output.file.empty());
 }
 
-/// A scratch directory, removed with everything in it at the end of the test.
-struct TempDir {
-    std::filesystem::path path;
-    TempDir()
-    {
-        path = std::filesystem::temp_directory_path() / ("hubbeam-test-scene-" + std::to_string(::getpid()));
-        std::filesystem::create_directories(path);
-    }
-    ~TempDir()
-    {
-        std::error_code ec;
-        std::filesystem::remove_all(path, ec);
-    }
-    std::string write(const std::string& name, const std::string& text) const
-    {
-        const std::string file = (path / name).string();
-        std::ofstream(file) << text;
-        return file;
-    }
-};
+using TempDir = TempFolder;
 
 // A small valid scene; the bad inputs below are edits of it.
 const std::string good_scene = R"([beam]

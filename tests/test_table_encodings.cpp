@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "scene.hpp"
+#include "temp_folder.hpp"
 
 using namespace hubbeam;
 
@@ -24,20 +25,7 @@ std::string read_text(const std::filesystem::path& p)
 }
 
 /// A folder of its own, removed afterwards.
-struct Folder {
-    std::filesystem::path path;
-    explicit Folder(const std::string& name)
-        : path(std::filesystem::temp_directory_path() / ("hubbeam-test-" + name + "-" + std::to_string(::getpid())))
-    {
-        std::filesystem::remove_all(path);
-        std::filesystem::create_directories(path);
-    }
-    ~Folder() { std::filesystem::remove_all(path); }
-    void write(const std::string& name, const std::string& text) const
-    {
-        std::ofstream(path / name, std::ios::binary) << text;
-    }
-};
+using Folder = TempFolder;
 
 /// text as an editor may save it: with a byte order mark, with CRLF line ends, or with comment and blank lines
 /// before the header, between the rows and at the end (a CSV's comments start with #, as a TOML file's do).

@@ -14,6 +14,7 @@
 #include "column_check.hpp"
 #include "scene.hpp"
 #include "simulate.hpp"
+#include "temp_folder.hpp"
 
 using namespace hubbeam;
 
@@ -21,26 +22,7 @@ namespace {
 
 const std::string cases = std::string(HUBBEAM_SOURCE_DIR) + "/cases/";
 
-/// A folder of its own for a test's files, removed afterwards.
-struct Folder {
-    std::filesystem::path path;
-    Folder()
-    {
-        path = std::filesystem::temp_directory_path() / ("hubbeam-test-answers-" + std::to_string(::getpid()));
-        std::filesystem::create_directories(path);
-    }
-    ~Folder()
-    {
-        std::error_code ec;
-        std::filesystem::remove_all(path, ec);
-    }
-    std::string write(const std::string& name, const std::string& text) const
-    {
-        const std::string file = (path / name).string();
-        std::ofstream(file) << text;
-        return file;
-    }
-};
+using Folder = TempFolder;
 
 /// The SceneError message of loading file (with overrides); fails the test when it loads.
 std::string error_of(const std::string& file, const Overrides& overrides = {})
