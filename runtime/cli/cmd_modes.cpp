@@ -70,7 +70,10 @@ Command add_modes_command(CLI::App& app)
                           "(default: 0 and the scene's steady rate)")->type_name("LIST");
     modes_cmd->add_option("--methods", o->args.methods, "Methods, comma-separated (default: the scene's)")->type_name("LIST");
     modes_cmd->add_option("--ny", o->args.ny, "Ny values, comma-separated (default: the scene's)")->type_name("LIST");
-    modes_cmd->add_option("--count", o->args.count, "Modes printed per kind (bending, axial, hub) and spin rate, the lowest first (default 4; the CSV has all)")
+    modes_cmd
+        ->add_option("--count", o->args.count,
+                     "Modes printed per kind (bending, axial, hub) and spin rate, the lowest first (default 4; the CSV "
+                     "has all)")
         ->type_name("N");
     modes_cmd->add_option("-o,--output", o->args.output, "Also write every mode as CSV to FILE (default: no file)")
         ->type_name("FILE");
@@ -109,8 +112,9 @@ Command add_linearize_command(CLI::App& app)
     linearize_cmd->add_option("scene", o->scene, "Scene file (TOML)")->required()->type_name("SCENE.toml");
     linearize_cmd->add_option("--omega", o->omega, "Steady spin rate (rad/s), >= 0")->required()->type_name("W");
     linearize_cmd
-        ->add_option("-o,--output", o->prefix, "Writes PREFIX-A.csv, PREFIX-B.csv, PREFIX-C.csv, PREFIX-D.csv and PREFIX.npz (all four for numpy); "
-                     "with [control] also PREFIX-open-*.csv and PREFIX-open.npz (the open loop)")
+        ->add_option("-o,--output", o->prefix,
+                     "Writes PREFIX-A.csv, PREFIX-B.csv, PREFIX-C.csv, PREFIX-D.csv and PREFIX.npz (all four for "
+                     "numpy); with [control] also PREFIX-open-*.csv and PREFIX-open.npz (the open loop)")
         ->type_name("PREFIX")
         ->required();
     add_linear_overrides(*linearize_cmd, o->overrides, true);

@@ -106,7 +106,9 @@ inline constexpr std::size_t max_derived_columns = (param_count + gain_names.siz
 std::vector<std::string> sensitivity_columns(const std::vector<std::string>& parameters);
 /// The optional columns of a scene's rows (none for the paper's scenes).
 ColumnSet optional_columns_of(const Scene& scene);
-/// The CSV header of rows with the optional columns of set: row_columns' names, then theirs, joined by commas.
+/// The column names of rows with the optional columns of set: row_columns', then theirs (for_each_value's order).
+std::vector<std::string> row_column_names(const ColumnSet& set);
+/// The CSV header of rows with the optional columns of set: row_column_names joined by commas.
 std::string row_header(const ColumnSet& set);
 static_assert([] {
     for (std::size_t i = 0; i < row_width; ++i)

@@ -229,7 +229,7 @@ constexpr double check_tightening = 10.0;
 // over |p|, a change of the output over a relative change of p.
 constexpr double round_off_floor = 1e-9;
 
-/// The columns the error indicator compares: every one the run writes (the CSV header's, from the same table).
+/// The columns the error indicator compares: every one the run writes (row_column_names, as the CSV header).
 struct CheckedColumns {
     ColumnSet set;
     std::vector<std::string> names;
@@ -238,12 +238,7 @@ struct CheckedColumns {
 CheckedColumns checked_columns(const Scene& scene, const FirstOrderSystem& system)
 {
     CheckedColumns c{optional_columns_of(scene), {}, {}};
-    const std::string header = row_header(c.set);
-    for (std::size_t at = 0; at <= header.size();) {
-        const std::size_t comma = std::min(header.find(',', at), header.size());
-        c.names.push_back(header.substr(at, comma - at));
-        at = comma + 1;
-    }
+    c.names = row_column_names(c.set);
     c.floor.assign(c.names.size() - c.set.derived.size(), round_off_floor);
     if (const auto* s = dynamic_cast<const SensitivitySystem*>(&system))
         for (int j = 0; j < s->count(); ++j)
@@ -1006,12 +1001,20 @@ std::vector<std::string> sensitivity_columns(const std::vector<std::string>& par
     return names;
 }
 
+std::vector<std::string> row_column_names(const ColumnSet& set)
+{
+    std::vector<std::string> names;
+    for (const RowColumn& c : row_columns) names.emplace_back(c.name);
+    for (std::size_t i = 0; i < optional_width; ++i)
+        if (set.has(i)) names.emplace_back(optional_columns[i].name);
+    names.insert(names.end(), set.derived.begin(), set.derived.end());
+    return names;
+}
+
 std::string row_header(const ColumnSet& set)
 {
-    std::string h = row_header();
-    for (std::size_t i = 0; i < optional_width; ++i)
-        if (set.has(i)) h += std::string(",") + optional_columns[i].name;
-    for (const std::string& d : set.derived) h += "," + d;
+    std::string h;
+    for (const std::string& name : row_column_names(set)) h += (h.empty() ? "" : ",") + name;
     return h;
 }
 
