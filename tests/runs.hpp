@@ -30,6 +30,31 @@ inline Scene paper_scene(Method method, int nx, int ny, Motion motion)
 inline Motion spin_up(double omega0) { return {Motion::Kind::spin_up, omega0, 15.0, 0.0, 10.0}; }
 inline Motion torque(double tau0) { return {Motion::Kind::torque, 0.0, 15.0, tau0, 10.0}; }
 
+/// The paper's beam made 10^4 times stiffer (first bending frequency near 290 rad/s), two transverse coordinates and
+/// no axial ones, on a free hub controlled to a step of angle by kp and kd, to t = 20 s: against a closed loop near
+/// 1 rad/s it moves as a rigid body of inertia rigid_inertia.
+inline Scene stiff_step(double angle, double kp, double kd)
+{
+    Motion m;
+    m.kind = Motion::Kind::step;
+    m.angle = angle;
+    Scene s = paper_scene(Method::amm, 0, 2, m);
+    s.parameters.E *= 1e4;
+    s.control = Control{};
+    s.control->kp = kp;
+    s.control->kd = kd;
+    s.output.t_end = 20.0;
+    s.output.dt_out = 0.05;
+    return s;
+}
+
+/// J_oh + J_ob, the whole inertia about the axis of the straight beam: J_ob = int_0^L rho S (a + x)^2 dx.
+inline double rigid_inertia(const Parameters& p)
+{
+    const double m = p.rho * p.S;
+    return p.J_oh + m * (std::pow(p.a + p.L, 3) - std::pow(p.a, 3)) / 3.0;
+}
+
 /// The rows of a run, complete or not, and its summary.
 struct Collected {
     std::vector<Row> rows;

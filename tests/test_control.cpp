@@ -20,26 +20,10 @@
 
 using namespace hubbeam;
 using hubbeam::test::paper_scene;
+using hubbeam::test::rigid_inertia;
+using hubbeam::test::stiff_step;
 
 namespace {
-
-/// The paper's beam made 10^4 times stiffer (first bending frequency near 290 rad/s), two transverse coordinates and
-/// no axial ones, on a free hub controlled to a step of angle: against a closed loop near 1 rad/s it moves as a rigid
-/// body of inertia J_oh + J_ob.
-Scene stiff_step(double angle, double kp, double kd)
-{
-    Motion m;
-    m.kind = Motion::Kind::step;
-    m.angle = angle;
-    Scene s = paper_scene(Method::amm, 0, 2, m);
-    s.parameters.E *= 1e4;
-    s.control = Control{};
-    s.control->kp = kp;
-    s.control->kd = kd;
-    s.output.t_end = 20.0;
-    s.output.dt_out = 0.05;
-    return s;
-}
 
 /// A PID-controlled spin-up to 1 rad/s of the paper's beam with mass-proportional damping, to t_end: every auxiliary
 /// state (the integral, the dissipated energy, the work) at once.
@@ -53,13 +37,6 @@ Scene controlled_damped_spin_up(double t_end)
     s.parameters.alpha = 0.1;
     s.output.t_end = t_end;
     return s;
-}
-
-/// J_oh + J_ob, the whole inertia about the axis of the straight beam: J_ob = int_0^L rho S (a + x)^2 dx.
-double rigid_inertia(const Parameters& p)
-{
-    const double m = p.rho * p.S;
-    return p.J_oh + m * (std::pow(p.a + p.L, 3) - std::pow(p.a, 3)) / 3.0;
 }
 
 /// The rows of a run (which must complete) and its summary.

@@ -14,6 +14,7 @@
 
 using namespace hubbeam;
 using hubbeam::test::paper_scene;
+using hubbeam::test::rigid_inertia;
 
 namespace {
 
@@ -28,26 +29,11 @@ struct Law {
 /// 290 rad/s) and two transverse coordinates: against loops near 1 rad/s it turns as a rigid body.
 Scene stiff_controlled(double angle, const Law& law, double J)
 {
-    Motion m;
-    m.kind = Motion::Kind::step;
-    m.angle = angle;
-    Scene s = paper_scene(Method::amm, 0, 2, m);
-    s.parameters.E *= 1e4;
-    s.control = Control{};
-    s.control->kp = law.kp * J;
-    s.control->kd = law.kd * J;
+    Scene s = test::stiff_step(angle, law.kp * J, law.kd * J);
     s.control->ki = law.ki * J;
     s.control->tau_max = law.tau_max;
     s.output.t_end = 10.0;
-    s.output.dt_out = 0.05;
     return s;
-}
-
-/// J_oh + J_ob of the straight beam: J_ob = int_0^L rho S (a + x)^2 dx.
-double rigid_inertia(const Parameters& p)
-{
-    const double m = p.rho * p.S;
-    return p.J_oh + m * (std::pow(p.a + p.L, 3) - std::pow(p.a, 3)) / 3.0;
 }
 
 /// The rigid closed loop J theta'' = clip(-kp (theta - angle) - kd theta' - ki int (theta - angle) dt, tau_max) by
