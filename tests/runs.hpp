@@ -7,7 +7,7 @@
 #include <cmath>
 #include <vector>
 
-#include "simulate.hpp"
+#include <hubbeam/simulate.hpp>
 
 namespace hubbeam::test {
 

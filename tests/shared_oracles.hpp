@@ -6,7 +6,7 @@
 #include <cmath>
 #include <vector>
 
-#include "model.hpp"
+#include <hubbeam/model.hpp>
 
 namespace hubbeam::test {
 

@@ -10,7 +10,7 @@
 
 #include "bench.hpp"
 #include "command.hpp"
-#include "output_file.hpp"
+#include "io/output_file.hpp"
 
 namespace hubbeam::cli {
 

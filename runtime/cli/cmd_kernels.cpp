@@ -4,7 +4,7 @@
 
 #include "command.hpp"
 #include "kernel_bench.hpp"
-#include "output_file.hpp"
+#include "io/output_file.hpp"
 
 namespace hubbeam::cli {
 

@@ -3,7 +3,7 @@
 #include <memory>
 
 #include "command.hpp"
-#include "output_file.hpp"
+#include "io/output_file.hpp"
 #include "plot.hpp"
 
 namespace hubbeam::cli {

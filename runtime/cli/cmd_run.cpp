@@ -13,11 +13,11 @@
 #include <unistd.h>
 
 #include "command.hpp"
-#include "fields.hpp"
+#include <hubbeam/fields.hpp>
 #include "modes.hpp"
-#include "output.hpp"
-#include "output_file.hpp"
-#include "shortest.hpp"
+#include "io/output.hpp"
+#include "io/output_file.hpp"
+#include "text/shortest.hpp"
 
 namespace hubbeam::cli {
 

@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "command.hpp"
-#include "output_file.hpp"
+#include "io/output_file.hpp"
 #include "stress.hpp"
 
 namespace hubbeam::cli {

@@ -9,7 +9,7 @@
 #include <unistd.h>
 
 #include "command.hpp"
-#include "install_layout.hpp"
+#include "on_demand/install_layout.hpp"
 
 namespace hubbeam::cli {
 

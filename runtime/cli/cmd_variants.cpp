@@ -3,8 +3,8 @@
 #include <string>
 
 #include "command.hpp"
-#include "generated_model.hpp"
-#include "on_demand.hpp"
+#include "models/generated_model.hpp"
+#include "on_demand/on_demand.hpp"
 
 namespace hubbeam::cli {
 

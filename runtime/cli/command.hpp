@@ -9,10 +9,10 @@
 #include <stdexcept>
 #include <string>
 
-#include "on_demand.hpp"
-#include "option_lists.hpp"
-#include "scene.hpp"
-#include "simulate.hpp"
+#include "on_demand/on_demand.hpp"
+#include "io/option_lists.hpp"
+#include <hubbeam/scene.hpp>
+#include <hubbeam/simulate.hpp>
 
 namespace hubbeam::cli {
 

@@ -12,14 +12,14 @@
 #include <sstream>
 #include <utility>
 
-#include "csv_columns.hpp"
-#include "linearize.hpp"
-#include "npz.hpp"
-#include "option_lists.hpp"
-#include "output.hpp"
-#include "output_file.hpp"
+#include "io/csv_columns.hpp"
+#include <hubbeam/linearize.hpp>
+#include "io/npz.hpp"
+#include "io/option_lists.hpp"
+#include "io/output.hpp"
+#include "io/output_file.hpp"
 #include "plot.hpp"
-#include "shortest.hpp"
+#include "text/shortest.hpp"
 
 namespace hubbeam {
 

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "option_lists.hpp"
-#include "scene.hpp"
+#include "io/option_lists.hpp"
+#include <hubbeam/scene.hpp>
 
 namespace hubbeam {
 

@@ -23,10 +23,11 @@
 #include <tuple>
 #include <vector>
 
-#include "hubbeam.hpp"
-#include "make_model.hpp"
-#include "on_demand.hpp"
-#include "shortest.hpp"
+#include <hubbeam/hubbeam.hpp>
+#include <hubbeam/make_model.hpp>
+#include "io/output.hpp"
+#include "on_demand/on_demand.hpp"
+#include "text/shortest.hpp"
 
 namespace py = pybind11;
 using namespace hubbeam;

@@ -13,15 +13,15 @@
 #include <ostream>
 #include <sstream>
 
-#include "csv_columns.hpp"
-#include "integrate.hpp"
-#include "option_lists.hpp"
+#include "io/csv_columns.hpp"
+#include "dynamics/integrate.hpp"
+#include "io/option_lists.hpp"
 #include "oscillation.hpp"
-#include "output.hpp"
-#include "output_file.hpp"
+#include "io/output.hpp"
+#include "io/output_file.hpp"
 #include "plot.hpp"
-#include "shortest.hpp"
-#include "stiffness.hpp"
+#include "text/shortest.hpp"
+#include "dynamics/stiffness.hpp"
 
 namespace hubbeam {
 

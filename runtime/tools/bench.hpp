@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "option_lists.hpp"
-#include "output_file.hpp"
-#include "scene.hpp"
-#include "simulate.hpp"
+#include "io/option_lists.hpp"
+#include "io/output_file.hpp"
+#include <hubbeam/scene.hpp>
+#include <hubbeam/simulate.hpp>
 
 namespace hubbeam {
 

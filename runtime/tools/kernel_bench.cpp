@@ -13,11 +13,11 @@
 #include <sstream>
 #include <string_view>
 
-#include "integrate.hpp"
-#include "make_model.hpp"
-#include "motion.hpp"
-#include "option_lists.hpp"
-#include "output.hpp"
+#include "dynamics/integrate.hpp"
+#include <hubbeam/make_model.hpp>
+#include <hubbeam/motion.hpp>
+#include "io/option_lists.hpp"
+#include "io/output.hpp"
 
 namespace hubbeam {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "option_lists.hpp"
+#include "io/option_lists.hpp"
 
 #include "variant.hpp"
 

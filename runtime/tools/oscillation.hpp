@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "simulate.hpp"
+#include <hubbeam/simulate.hpp>
 
 namespace hubbeam {
 

@@ -19,14 +19,14 @@
 
 #include <unistd.h>
 
-#include "csv_columns.hpp"
-#include "fields.hpp"
-#include "linearize.hpp"
-#include "option_lists.hpp"
-#include "output_file.hpp"
-#include "scene.hpp"
-#include "shortest.hpp"
-#include "simulate.hpp"
+#include "io/csv_columns.hpp"
+#include <hubbeam/fields.hpp>
+#include <hubbeam/linearize.hpp>
+#include "io/option_lists.hpp"
+#include "io/output_file.hpp"
+#include <hubbeam/scene.hpp>
+#include "text/shortest.hpp"
+#include <hubbeam/simulate.hpp>
 
 namespace hubbeam {
 

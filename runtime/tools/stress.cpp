@@ -7,11 +7,11 @@
 #include <ostream>
 #include <sstream>
 
-#include "make_model.hpp"
-#include "output.hpp"
-#include "scene.hpp"
-#include "shortest.hpp"
-#include "stiffness.hpp"
+#include <hubbeam/make_model.hpp>
+#include "io/output.hpp"
+#include <hubbeam/scene.hpp>
+#include "text/shortest.hpp"
+#include "dynamics/stiffness.hpp"
 
 namespace hubbeam {
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "simulate.hpp"
+#include <hubbeam/simulate.hpp>
 
 namespace hubbeam {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <string_view>
 
-#include "scene.hpp"
+#include <hubbeam/scene.hpp>
 
 namespace {
 

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "csv_columns.hpp"
-#include "model.hpp"
+#include "io/csv_columns.hpp"
+#include <hubbeam/model.hpp>
 
 namespace hubbeam {
 

@@ -6,8 +6,7 @@
 //   hubbeam::RunSummary summary = simulation.run([](const hubbeam::Row& row) { /* row.t, row.tip_uy, ... */ });
 #pragma once
 
-#include "fields.hpp"     // BeamFields, FieldRecorder: fields along the beam
-#include "linearize.hpp"  // steady_spin, state_space, natural_modes
-#include "output.hpp"     // CsvWriter, format_summary
-#include "scene.hpp"      // Scene, load_scene, parse_scene, validate, scene_keys
-#include "simulate.hpp"   // Simulation, Row, RunSummary
+#include <hubbeam/fields.hpp>     // BeamFields, FieldRecorder: fields along the beam
+#include <hubbeam/linearize.hpp>  // steady_spin, state_space, natural_modes
+#include <hubbeam/scene.hpp>      // Scene, load_scene, parse_scene, validate, scene_keys
+#include <hubbeam/simulate.hpp>   // Simulation, Row, RunSummary

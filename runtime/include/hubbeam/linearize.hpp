@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "integrate.hpp"
-#include "model.hpp"
-#include "motion.hpp"
+#include "dynamics/integrate.hpp"
+#include <hubbeam/model.hpp>
+#include <hubbeam/motion.hpp>
 
 namespace hubbeam {
 

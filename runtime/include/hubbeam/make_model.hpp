@@ -8,7 +8,7 @@
 #include <string_view>
 #include <vector>
 
-#include "model.hpp"
+#include <hubbeam/model.hpp>
 
 namespace hubbeam {
 

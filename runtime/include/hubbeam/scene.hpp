@@ -11,9 +11,9 @@
 #include <utility>
 #include <vector>
 
-#include "integrate.hpp"
-#include "make_model.hpp"
-#include "motion.hpp"
+#include "dynamics/integrate.hpp"
+#include <hubbeam/make_model.hpp>
+#include <hubbeam/motion.hpp>
 #include "variant.hpp"
 
 namespace hubbeam {

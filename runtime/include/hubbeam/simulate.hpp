@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "scene.hpp"
+#include <hubbeam/scene.hpp>
 
 namespace hubbeam {
 

@@ -1,8 +1,8 @@
 // The linearized hub-beam about a steady spin: force Jacobians, the steady stretch, the state-space matrices and
 // the natural modes (docs/model.md section 10).
-#include "linearize.hpp"
+#include <hubbeam/linearize.hpp>
 
-#include "csv_columns.hpp"
+#include "io/csv_columns.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>

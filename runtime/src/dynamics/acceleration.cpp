@@ -1,5 +1,5 @@
 // The right-hand-side strategies of FirstOrderSystem and the factory that picks one from the model's structure.
-#include "acceleration.hpp"
+#include "dynamics/acceleration.hpp"
 
 #include <algorithm>
 #include <cmath>

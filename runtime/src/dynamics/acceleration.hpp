@@ -11,8 +11,8 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Dense>
 
-#include "integrate.hpp"
-#include "mass_solver.hpp"
+#include "dynamics/integrate.hpp"
+#include "dynamics/mass_solver.hpp"
 
 namespace hubbeam {
 

@@ -1,6 +1,6 @@
 // The bordered band LU: its ordering (reverse Cuthill-McKee), LAPACK's band factorization and the border's Schur
 // complement.
-#include "band_lu.hpp"
+#include "dynamics/band_lu.hpp"
 
 #include <algorithm>
 #include <cmath>

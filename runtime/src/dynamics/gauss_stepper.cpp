@@ -14,8 +14,8 @@
 #include <Eigen/SparseCore>
 #include <gsl/gsl_errno.h>
 
-#include "band_lu.hpp"
-#include "stepper.hpp"
+#include "dynamics/band_lu.hpp"
+#include "dynamics/stepper.hpp"
 
 namespace hubbeam {
 

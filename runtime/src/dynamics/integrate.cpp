@@ -1,10 +1,10 @@
 // FirstOrderSystem: the right-hand side by the strategy acceleration.hpp chooses for the model, exact or
 // finite-difference Jacobians, and GSL glue.
-#include "integrate.hpp"
+#include "dynamics/integrate.hpp"
 
-#include "acceleration.hpp"
-#include "linearize.hpp"
-#include "mass_solver.hpp"
+#include "dynamics/acceleration.hpp"
+#include <hubbeam/linearize.hpp>
+#include "dynamics/mass_solver.hpp"
 
 #include <algorithm>
 #include <array>

@@ -11,8 +11,8 @@
 
 #include <gsl/gsl_odeiv2.h>
 
-#include "model.hpp"
-#include "motion.hpp"
+#include <hubbeam/model.hpp>
+#include <hubbeam/motion.hpp>
 
 namespace hubbeam {
 

@@ -1,5 +1,5 @@
 // The three mass solvers and the choice between them from the mass pattern.
-#include "mass_solver.hpp"
+#include "dynamics/mass_solver.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -7,7 +7,7 @@
 #include <memory>
 #include <string>
 
-#include "model.hpp"
+#include <hubbeam/model.hpp>
 
 namespace hubbeam {
 

@@ -1,5 +1,5 @@
 // Spin-up and torque profiles of docs/model.md section 6, the held hub, a step, and the tables' interpolants.
-#include "motion.hpp"
+#include <hubbeam/motion.hpp>
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_interp.h>

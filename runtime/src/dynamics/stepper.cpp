@@ -1,6 +1,6 @@
 // The stepper families behind Stepper: GSL odeiv2's evolve/driver pair, and SUNDIALS CVODE's variable-order BDF
 // with Newton iterations whose matrix is factored rarely and reused across steps.
-#include "stepper.hpp"
+#include "dynamics/stepper.hpp"
 
 #include <algorithm>
 #include <cmath>

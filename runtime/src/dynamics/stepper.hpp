@@ -5,7 +5,7 @@
 #include <memory>
 #include <string>
 
-#include "integrate.hpp"
+#include "dynamics/integrate.hpp"
 
 namespace hubbeam {
 

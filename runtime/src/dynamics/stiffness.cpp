@@ -1,5 +1,5 @@
 // Stiffness from the generalized eigenvalues of the stiffness and mass matrices at rest.
-#include "stiffness.hpp"
+#include "dynamics/stiffness.hpp"
 
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
@@ -9,7 +9,7 @@
 #include <numbers>
 #include <vector>
 
-#include "linearize.hpp"
+#include <hubbeam/linearize.hpp>
 
 namespace hubbeam {
 

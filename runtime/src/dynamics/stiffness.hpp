@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "integrate.hpp"
-#include "model.hpp"
+#include "dynamics/integrate.hpp"
+#include <hubbeam/model.hpp>
 
 namespace hubbeam {
 

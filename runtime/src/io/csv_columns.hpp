@@ -8,7 +8,7 @@
 #include <string_view>
 #include <vector>
 
-#include "option_lists.hpp"
+#include "io/option_lists.hpp"
 
 namespace hubbeam {
 

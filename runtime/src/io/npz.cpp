@@ -1,5 +1,5 @@
 // NumPy's .npy and .npz formats (npz.hpp).
-#include "npz.hpp"
+#include "io/npz.hpp"
 
 #include <algorithm>
 #include <bit>

@@ -1,8 +1,8 @@
 // CSV rows (buffered, written through an OutputFile: a temporary file renamed into place) and the run summary.
-#include "output.hpp"
-#include "npz.hpp"
+#include "io/output.hpp"
+#include "io/npz.hpp"
 
-#include "shortest.hpp"
+#include "text/shortest.hpp"
 
 #include <bit>
 #include <cerrno>

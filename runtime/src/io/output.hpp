@@ -7,9 +7,9 @@
 #include <string>
 #include <string_view>
 
-#include "output_file.hpp"
-#include "scene.hpp"
-#include "simulate.hpp"
+#include "io/output_file.hpp"
+#include <hubbeam/scene.hpp>
+#include <hubbeam/simulate.hpp>
 
 namespace hubbeam {
 

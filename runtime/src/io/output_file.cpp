@@ -1,5 +1,5 @@
 // OutputFile and the checks of a command's outputs: file identity, file type, the lock against a second writer.
-#include "output_file.hpp"
+#include "io/output_file.hpp"
 
 #include <cerrno>
 #include <cstdio>
@@ -13,7 +13,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "scene.hpp"  // printable
+#include <hubbeam/scene.hpp>  // printable
 
 namespace hubbeam {
 

@@ -1,9 +1,9 @@
 // Scene files: TOML read with toml++, overrides set on the parsed table, every key checked for presence,
 // type and range against one table of keys, every unknown key rejected. The format is documented in
 // docs/scene.md; the symbols are those of docs/model.md.
-#include "scene.hpp"
+#include <hubbeam/scene.hpp>
 
-#include "output_file.hpp"
+#include "io/output_file.hpp"
 
 #include <toml++/toml.h>
 
@@ -22,9 +22,9 @@
 #include <sstream>
 #include <string_view>
 
-#include "csv_columns.hpp"
-#include "integrate.hpp"
-#include "shortest.hpp"
+#include "io/csv_columns.hpp"
+#include "dynamics/integrate.hpp"
+#include "text/shortest.hpp"
 
 namespace hubbeam {
 
@@ -40,7 +40,7 @@ namespace {
 
 constexpr const char* missing = "nothing (the key is missing)";
 
-// The words of motion.kind; the key table's motion_kinds entries are among them (tests/test_scene.cpp).
+// The words of motion.kind; the key table's motion_kinds entries are among them (tests/io/test_scene.cpp).
 const WordTable<Motion::Kind, 6> kind_words = {{Motion::Kind::spin_up, "spin-up"},
                                                {Motion::Kind::torque, "torque"},
                                                {Motion::Kind::held, "held"},

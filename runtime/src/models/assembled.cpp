@@ -2,9 +2,9 @@
 // inside them), a tip body as point values of the shape functions at x = L, then M(q) and Q(q, qd) of Lagrange's
 // equations for orders first and zero, with gravity and Rayleigh damping, in torque form q = (theta, A, B) or
 // prescribed form q = (A, B).
-#include "assembled.hpp"
+#include "models/assembled.hpp"
 
-#include "fields.hpp"
+#include <hubbeam/fields.hpp>
 #include "profile.hpp"
 
 #include <algorithm>

@@ -7,7 +7,7 @@
 
 #include <Eigen/Dense>
 
-#include "model.hpp"
+#include <hubbeam/model.hpp>
 
 namespace hubbeam {
 

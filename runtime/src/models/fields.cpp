@@ -1,9 +1,9 @@
 // BeamFields: u_y, u_x1, u_x, EI u_y'' and ES u_x1' from the shape functions (docs/model.md section 5 outputs).
-#include "fields.hpp"
+#include <hubbeam/fields.hpp>
 
-#include "output.hpp"
+#include "io/output.hpp"
 #include "profile.hpp"
-#include "shortest.hpp"
+#include "text/shortest.hpp"
 
 #include <algorithm>
 #include <cmath>

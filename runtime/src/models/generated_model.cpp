@@ -1,6 +1,6 @@
 // GeneratedModel: a Model that calls one variant's generated kernels through the table row of
 // generated_abi.h, with the parameter-only coefficients computed once.
-#include "generated_model.hpp"
+#include "models/generated_model.hpp"
 
 #include <algorithm>
 #include <array>

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "model.hpp"
+#include <hubbeam/model.hpp>
 
 namespace hubbeam {
 

@@ -1,13 +1,13 @@
 // Model selection between the generated variants of this build and the hand-assembled fallback.
-#include "make_model.hpp"
+#include <hubbeam/make_model.hpp>
 
 #include <chrono>
 #include <cstdio>
 #include <stdexcept>
 
-#include "assembled.hpp"
-#include "generated_model.hpp"
-#include "on_demand.hpp"
+#include "models/assembled.hpp"
+#include "models/generated_model.hpp"
+#include "on_demand/on_demand.hpp"
 
 namespace hubbeam {
 

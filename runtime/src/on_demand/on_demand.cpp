@@ -2,7 +2,7 @@
 // own process group, each into a private work folder inside the cache; the finished object is recorded with its
 // SHA-256 in a manifest beside it, and no object is opened with dlopen before its file matches that record. Objects
 // stay loaded for the life of the process. docs/security.md, "The on-demand cache", states the rules.
-#include "on_demand.hpp"
+#include "on_demand/on_demand.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -29,9 +29,9 @@
 #include <unistd.h>
 
 #include "generated_abi.h"
-#include "generated_model.hpp"
-#include "install_layout.hpp"
-#include "sha256.hpp"
+#include "models/generated_model.hpp"
+#include "on_demand/install_layout.hpp"
+#include "on_demand/sha256.hpp"
 
 extern char** environ;
 

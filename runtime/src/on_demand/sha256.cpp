@@ -1,5 +1,5 @@
 // SHA-256 as FIPS 180-4 section 6.2 states it, one 64-byte block at a time.
-#include "sha256.hpp"
+#include "on_demand/sha256.hpp"
 
 #include <algorithm>
 #include <cstring>

@@ -7,7 +7,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "simulate.hpp"
+#include <hubbeam/simulate.hpp>
 
 namespace hubbeam {
 

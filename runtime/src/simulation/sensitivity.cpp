@@ -1,5 +1,5 @@
 // Forward sensitivities integrated beside the state (sensitivity.hpp).
-#include "sensitivity.hpp"
+#include "simulation/sensitivity.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -7,9 +7,9 @@
 #include <gsl/gsl_errno.h>
 #include <stdexcept>
 
-#include "linearize.hpp"
-#include "make_model.hpp"
-#include "simulate.hpp"
+#include <hubbeam/linearize.hpp>
+#include <hubbeam/make_model.hpp>
+#include <hubbeam/simulate.hpp>
 
 namespace hubbeam {
 

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "integrate.hpp"
-#include "scene.hpp"
+#include "dynamics/integrate.hpp"
+#include <hubbeam/scene.hpp>
 
 namespace hubbeam {
 

@@ -1,6 +1,6 @@
 // Simulation: steps the integrators (stepper.hpp) freely (rows interpolated) or from output time to output time,
 // through the drive's breakpoints, turning states into rows, and stops with a message when the solution goes bad.
-#include "simulate.hpp"
+#include <hubbeam/simulate.hpp>
 
 #include <algorithm>
 #include <array>
@@ -12,13 +12,13 @@
 
 #include <gsl/gsl_errno.h>
 
-#include "column_check.hpp"
-#include "integrate.hpp"
-#include "make_model.hpp"
-#include "shortest.hpp"
-#include "sensitivity.hpp"
-#include "stepper.hpp"
-#include "stiffness.hpp"
+#include "simulation/column_check.hpp"
+#include "dynamics/integrate.hpp"
+#include <hubbeam/make_model.hpp>
+#include "text/shortest.hpp"
+#include "simulation/sensitivity.hpp"
+#include "dynamics/stepper.hpp"
+#include "dynamics/stiffness.hpp"
 
 namespace hubbeam {
 

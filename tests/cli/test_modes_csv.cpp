@@ -1,0 +1,116 @@
+// hubbeam modes' CSV files read as a user reads them, by the header's names, each column checked by what it means:
+// the modes (-o) and the critical speeds (--critical), where a tracked mode's frequency is n times the spin rate.
+#include <catch2/catch.hpp>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "modes.hpp"
+#include <hubbeam/scene.hpp>
+
+using namespace hubbeam;
+
+namespace {
+
+/// A CSV's rows as maps from the header's names to the fields.
+std::vector<std::map<std::string, std::string>> read_csv(const std::filesystem::path& p)
+{
+    std::ifstream in(p);
+    std::string line;
+    REQUIRE(std::getline(in, line));
+    std::vector<std::string> names;
+    for (std::istringstream h(line); std::getline(h, line, ',');) names.push_back(line);
+    std::vector<std::map<std::string, std::string>> rows;
+    while (std::getline(in, line)) {
+        std::map<std::string, std::string> row;
+        std::istringstream fields(line);
+        for (const std::string& name : names) {
+            std::string f;
+            REQUIRE(std::getline(fields, f, ','));
+            row[name] = f;
+        }
+        rows.push_back(row);
+    }
+    return rows;
+}
+
+}  // namespace
+
+TEST_CASE("modes' CSV columns hold what their names say, the critical speeds' among them", "[modes][campbell]")
+{
+    // The paper's beam with two axial coordinates to 450 rad/s (cases/spinup_omega4.toml --nx 2), where bending and
+    // axial lines cross the excitation lines of 1P, 2P and 3P (their frequencies: test_campbell.cpp's oracle).
+    const auto folder =
+        std::filesystem::temp_directory_path() / ("hubbeam-test-modes-csv-" + std::to_string(::getpid()));
+    std::filesystem::remove_all(folder);
+    std::filesystem::create_directories(folder);
+    const Scene scene = load_scene(HUBBEAM_SOURCE_DIR "/cases/spinup_omega4.toml", {{"discretization.nx", "2"}});
+    ModesArgs args;
+    args.omega = "0:450:50";
+    args.output = (folder / "modes.csv").string();
+    args.critical = (folder / "critical.csv").string();
+    args.harmonics = "1,2,3";
+    std::ostringstream out;
+    run_modes(scene, parse_modes_options(args, scene), out);
+    const auto modes = read_csv(args.output), critical = read_csv(args.critical);
+    std::filesystem::remove_all(folder);
+
+    // The modes: hz is rad_s / 2 pi, undamped the same (no damping), the label names the kind, the modes of a
+    // rate in increasing frequency, the rates those asked for.
+    std::map<std::string, std::map<double, double>> lines;  // label -> omega -> rad_s
+    double previous_omega = -1.0, previous_rad_s = 0.0;
+    for (const auto& r : modes) {
+        const double omega = std::stod(r.at("omega")), rad_s = std::stod(r.at("rad_s"));
+        INFO("omega " << omega << ", mode " << r.at("mode") << ", " << r.at("label"));
+        CHECK(std::fmod(omega, 50.0) == 0.0);
+        CHECK(std::stod(r.at("hz")) == Approx(rad_s / (2.0 * M_PI)).epsilon(1e-12));
+        CHECK(std::stod(r.at("undamped_rad_s")) == Approx(rad_s).epsilon(1e-12));
+        CHECK(r.at("label").rfind(r.at("kind"), 0) == 0);
+        CHECK((r.at("kind") == "bending" || r.at("kind") == "axial"));
+        CHECK(std::stoi(r.at("ny")) == 4);
+        CHECK(std::stoi(r.at("nx")) == 2);
+        CHECK(r.at("method") == "amm");
+        if (omega == previous_omega) CHECK(rad_s >= previous_rad_s);
+        previous_omega = omega;
+        previous_rad_s = rad_s;
+        lines[r.at("label")][omega] = rad_s;
+    }
+    REQUIRE(modes.size() == 10 * 6);  // every mode of the 6 coordinates at each of the 10 rates
+
+    // The critical speeds: where the tracked line's frequency is harmonic x the spin rate, between the line's
+    // values at the grid rates around it; one for each change of sign of rad_s - n omega along a line.
+    std::multiset<std::pair<std::string, int>> expected, found;
+    for (const auto& [label, line] : lines)
+        for (int n = 1; n <= 3; ++n)
+            for (auto a = line.begin(), b = std::next(a); b != line.end(); ++a, ++b)
+                if ((a->second - n * a->first) * (b->second - n * b->first) < 0.0) expected.insert({label, n});
+    CHECK(!expected.empty());
+    for (const auto& r : critical) {
+        const double omega = std::stod(r.at("omega")), rad_s = std::stod(r.at("rad_s"));
+        const int n = std::stoi(r.at("harmonic"));
+        INFO(r.at("label") << " meets " << n << "P at " << omega << " rad/s, " << rad_s << " rad/s");
+        found.insert({r.at("label"), n});
+        CHECK(rad_s == Approx(n * omega).epsilon(1e-9));
+        CHECK(std::stod(r.at("hz")) == Approx(rad_s / (2.0 * M_PI)).epsilon(1e-12));
+        CHECK((r.at("method") == "amm" && r.at("ny") == "4" && r.at("nx") == "2" && r.at("drive") == "prescribed"));
+        REQUIRE(lines.count(r.at("label")) == 1);
+        const std::map<double, double>& line = lines.at(r.at("label"));
+        const auto above = line.upper_bound(omega);
+        REQUIRE(above != line.end());
+        REQUIRE(above != line.begin());
+        const auto below = std::prev(above);
+        CHECK((below->second - n * below->first) * (above->second - n * above->first) < 0.0);
+        CHECK(std::min(below->second, above->second) <= rad_s);
+        CHECK(rad_s <= std::max(below->second, above->second));
+    }
+    CHECK(found == expected);
+}

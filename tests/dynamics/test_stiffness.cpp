@@ -1,0 +1,93 @@
+// The automatic stepper (stiffness.hpp): the highest frequency at rest against the cantilever's exact values
+// (docs/model.md section 7), and the choice it makes for each kind of scene.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <numbers>
+
+#include <hubbeam/make_model.hpp>
+#include <hubbeam/scene.hpp>
+#include <hubbeam/simulate.hpp>
+#include "dynamics/stiffness.hpp"
+
+using namespace hubbeam;
+
+namespace {
+
+VariantKey amm_key(int nx, int ny, Drive drive) { return {.method = Method::amm, .nx = nx, .ny = ny, .drive = drive, .extras = {}}; }
+
+}  // namespace
+
+TEST_CASE("the highest frequency at rest is the cantilever's highest mode in the basis", "[stiffness]")
+{
+    const Parameters p;
+    const double m = p.rho * p.S, EI = p.E * p.I, ES = p.E * p.S;
+    // AMM's bases are the exact modes: bending beta_4 L = 10.9955407349 (1 + cos cosh = 0), axial (2i - 1) pi/2.
+    const double bending4 = std::pow(10.9955407349, 2) * std::sqrt(EI / (m * std::pow(p.L, 4)));
+    const double axial4 = 7.0 * std::numbers::pi / 2.0 * std::sqrt(ES / m) / p.L;
+    for (const ModelSource source : {ModelSource::generated, ModelSource::assembled}) {
+        const auto bending = make_model(amm_key(0, 4, Drive::prescribed), p, source);
+        CHECK(highest_frequency(*bending, Axial::dynamic) == Approx(bending4).epsilon(1e-8));
+        const auto both = make_model(amm_key(4, 4, Drive::prescribed), p, source);
+        CHECK(highest_frequency(*both, Axial::dynamic) == Approx(axial4).epsilon(1e-8));
+        // Quasi-static axial coordinates are not integrated: the bending modes are left.
+        CHECK(highest_frequency(*both, Axial::quasi_static) == Approx(bending4).epsilon(1e-8));
+    }
+}
+
+TEST_CASE("the automatic stepper follows the predicted cost", "[stiffness]")
+{
+    const Parameters p;
+    const auto choice = [&](int nx, int ny, Drive drive, Axial axial = Axial::dynamic) {
+        return automatic_stepper(*make_model(amm_key(nx, ny, drive), p), axial, 1e-8, 30.0).stepper;
+    };
+    // Without axial coordinates accuracy and stability ask for steps alike: explicit. With them the stiff axial
+    // modes hold an explicit step some 60 times below what accuracy needs: implicit.
+    CHECK(choice(0, 4, Drive::prescribed) == "rk8pd");
+    CHECK(choice(4, 4, Drive::prescribed) == "gauss4");
+    CHECK(choice(4, 4, Drive::prescribed, Axial::quasi_static) == "rk8pd");
+    CHECK(choice(4, 4, Drive::torque) == "gauss4");
+    CHECK(choice(0, 4, Drive::torque) == "rk8pd");
+    // The reason names the highest rate it judged by: here AMM's fourth axial mode, exactly
+    // 7 pi / 2 sqrt(E / rho) / L, printed to the nearest 1/s, and the lowest frequency, the first bending mode
+    // 1.8751^2 sqrt(EI / (m L^4)).
+    const StepperChoice stiff = automatic_stepper(*make_model(amm_key(4, 4, Drive::prescribed), p), Axial::dynamic, 1e-8, 30.0);
+    const auto number_after = [&](const std::string& said) {
+        const std::size_t at = stiff.why.find(said);
+        REQUIRE(at != std::string::npos);
+        return std::stod(stiff.why.substr(at + said.size()));
+    };
+    CHECK(std::abs(number_after("highest rate ") - 7.0 * std::numbers::pi / 2.0 * std::sqrt(p.E / p.rho) / p.L) <= 0.5);
+    const double first = std::pow(1.87510407, 2) * std::sqrt(p.E * p.I / (p.rho * p.S * std::pow(p.L, 4)));
+    CHECK(number_after("lowest frequency ") == Approx(first).epsilon(1e-3));
+}
+
+TEST_CASE("a long run's progress line names a faster stepper only when the scene chose a slower one", "[stiffness]")
+{
+    Scene s;
+    s.path = "test";
+    s.variant = amm_key(4, 4, Drive::prescribed);
+    s.solver.stepper = "msadams";
+    CHECK(Simulation(s).faster_stepper_hint().find("--stepper gauss4 suits this scene (predicted ") == 0);
+    s.solver.stepper = "gauss4";
+    CHECK(Simulation(s).faster_stepper_hint().empty());
+    s.solver.stepper = "auto";
+    CHECK(Simulation(s).faster_stepper_hint().empty());
+}
+
+TEST_CASE("the critical spin is the first frequency that the centrifugal softening cancels", "[stiffness]")
+{
+    // docs/model.md section 7: order zero's straight beam is unstable above the first bending frequency; orders
+    // first and full keep the geometric stiffening, and only the axial mode (softened by theta_dot^2 u_x1^2)
+    // goes at the first axial frequency. AMM's bases are the exact modes, so the values are exact.
+    const Parameters p;
+    const double m = p.rho * p.S, EI = p.E * p.I, ES = p.E * p.S;
+    const double bending1 = std::pow(1.8751040687, 2) * std::sqrt(EI / (m * std::pow(p.L, 4)));
+    const double axial1 = std::numbers::pi / 2.0 * std::sqrt(ES / m) / p.L;
+    for (const Drive drive : {Drive::prescribed, Drive::torque}) {
+        VariantKey zero = amm_key(0, 4, drive);
+        zero.order = Order::zero;
+        CHECK(critical_spin(*make_model(zero, p)) == Approx(bending1).epsilon(1e-7));
+        CHECK(std::isinf(critical_spin(*make_model(amm_key(0, 4, drive), p))));
+        CHECK(critical_spin(*make_model(amm_key(4, 4, drive), p)) == Approx(axial1).epsilon(1e-7));
+    }
+}

@@ -1,0 +1,304 @@
+// Forward sensitivities (sensitivity.hpp) against central differences of whole runs at moved parameters: the paper's
+// four cases and the controlled hub, and every stepper family on the controlled hub.
+#include <catch2/catch.hpp>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <hubbeam/make_model.hpp>
+#include <hubbeam/scene.hpp>
+#include "simulation/sensitivity.hpp"
+#include <hubbeam/simulate.hpp>
+
+using namespace hubbeam;
+
+namespace {
+
+/// The rows of a run of scene, each with its derivative columns after the row's own values.
+struct Table {
+    std::vector<std::vector<double>> rows;
+    std::vector<std::string> columns;
+    std::vector<double> column(const std::string& name) const
+    {
+        const auto at = static_cast<std::size_t>(std::find(columns.begin(), columns.end(), name) - columns.begin());
+        REQUIRE(at < columns.size());
+        std::vector<double> v;
+        for (const auto& r : rows) v.push_back(r[at]);
+        return v;
+    }
+};
+
+Table run(const Scene& scene)
+{
+    Table t;
+    const ColumnSet set = optional_columns_of(scene);
+    std::string header = row_header(set);
+    for (std::size_t at = 0; at != std::string::npos;) {
+        const std::size_t comma = header.find(',', at);
+        t.columns.push_back(header.substr(at, comma == std::string::npos ? std::string::npos : comma - at));
+        at = comma == std::string::npos ? comma : comma + 1;
+    }
+    Simulation sim(scene);
+    sim.check_error(false);
+    const RunSummary s = sim.run([&](const Row& r) {
+        std::vector<double> v;
+        for_each_value(r, set, [&](double x) { v.push_back(x); });
+        t.rows.push_back(std::move(v));
+    });
+    REQUIRE(s.completed);
+    return t;
+}
+
+std::string text(double v)
+{
+    char t[64];
+    std::snprintf(t, sizeof t, "%.17g", v);
+    return t;
+}
+
+/// The scene key that sets each parameter the cases below differentiate.
+std::string key_of(const std::string& p)
+{
+    static const std::pair<const char*, const char*> keys[] = {
+        {"E", "beam.youngs_modulus"}, {"L", "beam.length"}, {"rho", "beam.density"}, {"S", "beam.area"},
+        {"I", "beam.second_moment"}, {"tip_ratio", "beam.tip_ratio"}, {"J_oh", "hub.inertia"}, {"a", "hub.radius"},
+        {"m_tip", "tip.mass"}, {"J_tip", "tip.inertia"}, {"g", "gravity.g"}, {"alpha", "damping.mass_proportional"},
+        {"beta", "damping.stiffness_proportional"}};
+    for (const auto& [name, key] : keys)
+        if (p == name) return key;
+    return "control." + p;
+}
+
+/// A parameter's or gain's value in scene.
+double value_of(const Scene& scene, const std::string& p)
+{
+    if (const auto at = std::find(param_names.begin(), param_names.end(), p); at != param_names.end()) {
+        Parameters values = scene.parameters;
+        return value(values, static_cast<Param>(at - param_names.begin()));
+    }
+    const Control& c = *scene.control;
+    const double gains[] = {c.kp, c.kd, c.ki, c.k_tip};
+    return gains[std::find(gain_names.begin(), gain_names.end(), p) - gain_names.begin()];
+}
+
+/// max |sensitivity - central difference| over the rows, relative to the difference's largest value, for the
+/// outputs theta (under torque) and tip_uy.
+void check_against_differences(const std::string& file, const std::vector<std::string>& parameters, double t_end,
+                               const std::string& stepper, double rtol, double tolerance, Overrides base = {})
+{
+    base.insert(base.end(), {{"output.t_end", text(t_end)},
+                      {"solver.rtol", text(rtol)},
+                      {"solver.atol", text(rtol * 1e-2)},
+                      {"solver.stepper", stepper}});
+    // The differences are of converged runs (rk8pd at rtol 1e-12): an implicit stepper's runs at moved parameters
+    // converge their iterations differently, which differences divide by 2h.
+    Overrides converged = base;
+    converged.insert(converged.end(), {{"solver.rtol", "1e-12"}, {"solver.atol", "1e-14"}, {"solver.stepper", "rk8pd"}});
+    Overrides with = base;
+    std::string names;
+    for (const std::string& p : parameters) names += (names.empty() ? "" : ",") + p;
+    with.emplace_back("output.sensitivities", names);
+    const std::string path = std::string(HUBBEAM_SOURCE_DIR) + "/cases/" + file;
+    const Scene scene = load_scene(path, with);
+    const Table exact = run(scene);
+    for (const std::string& p : parameters) {
+        const double v = value_of(scene, p);
+        // A step of 1e-4: the differences' truncation error is ~1e-8 of the derivative, and the runs' own errors
+        // (rtol |y|, uncorrelated from run to run as their steps differ) are divided by 2h p ~ 1e-4 p, not less.
+        const double h = 1e-4 * (v != 0.0 ? std::abs(v) : 1.0);
+        Overrides up = converged, down = converged;
+        up.emplace_back(key_of(p), text(v + h));
+        down.emplace_back(key_of(p), text(v - h));
+        const Table a = run(load_scene(path, up)), b = run(load_scene(path, down));
+        REQUIRE(a.rows.size() == exact.rows.size());
+        for (const char* out : {"theta", "tip_uy"}) {
+            if (std::string(out) == "theta" && scene.drive() != Drive::torque) continue;
+            const std::vector<double> ya = a.column(out), yb = b.column(out), d = exact.column("d_" + std::string(out) + "/d_" + p);
+            double big = 0.0, err = 0.0;
+            for (std::size_t i = 0; i < d.size(); ++i) {
+                const double fd = (ya[i] - yb[i]) / (2.0 * h);
+                big = std::max(big, std::abs(fd));
+                err = std::max(err, std::abs(d[i] - fd));
+            }
+            INFO(file << " " << stepper << ": d_" << out << "/d_" << p << ", largest " << big);
+            CHECK(big > 0.0);
+            CHECK(err / big < tolerance);
+        }
+    }
+}
+
+}  // namespace
+
+TEST_CASE("sensitivities equal central differences of whole runs on the paper's cases", "[sensitivities]")
+{
+    // Converged runs (rtol 1e-10): the differences' own error is about 1e-10 / 1e-5 of the derivative's size.
+    check_against_differences("spinup_omega4.toml", {"E", "L", "rho"}, 2.0, "auto", 1e-10, 1e-5);
+    check_against_differences("spinup_omega10.toml", {"L", "a"}, 2.0, "auto", 1e-10, 1e-5, {{"hub.radius", "0.3"}});
+    check_against_differences("torque_tau1.toml", {"E", "J_oh"}, 2.0, "auto", 1e-10, 1e-5);
+    check_against_differences("torque_tau10.toml", {"L", "J_oh"}, 2.0, "auto", 1e-10, 1e-5);
+}
+
+TEST_CASE("sensitivities to the controller's gains, on every stepper family", "[sensitivities]")
+{
+    // The scene's torque saturates until t = 1.24 s. Where it lets go the sensitivities' rates jump (the gains' own
+    // terms and the torque's dependence on the state switch on), and a step across that kink has a first-order error
+    // that gauss4's step doubling does not estimate: it steps to the switch, a breakpoint the simulation locates
+    // (without, its sensitivities came 1e-5 to 2e-5 off at rtol 1e-9 and 1e-10).
+    for (const char* stepper : {"rk8pd", "msadams", "gauss4", "rk4imp"})
+        check_against_differences("controlled_step.toml", {"kp", "kd", "J_oh"}, 3.0, stepper, 1e-10, 1e-5);
+}
+
+TEST_CASE("each row's derivative by a parameter is the difference of the state's equations at moved parameters",
+          "[sensitivities]")
+{
+    // With the sensitivities zero, a block's rates are pbar_j df/dp_j alone: row by row (the hub's work and the
+    // dissipated energy included), against central differences of the plain equations (FirstOrderSystem's rhs) of
+    // models and controls built at p_j -+ h, at a state of the test's choosing (the controlled hub unsaturated).
+    struct Case {
+        const char* file;
+        std::vector<std::string> names;
+    };
+    for (const Case& c : {Case{"damped_appendage.toml", {"E", "alpha", "beta", "rho", "J_oh", "L"}},
+                          Case{"controlled_step.toml", {"kp", "kd", "J_oh", "E"}}}) {
+        std::string names;
+        for (const std::string& p : c.names) names += (names.empty() ? "" : ",") + p;
+        const std::string path = std::string(HUBBEAM_SOURCE_DIR) + "/cases/" + c.file;
+        const Scene scene = load_scene(path, {{"output.sensitivities", names}});
+        const auto model = make_model(scene.key(), scene.parameters, scene.source);
+        SensitivitySystem system(*model, scene);
+        const int n = system.state_size(), nq = model->nq();
+        std::vector<double> y(static_cast<std::size_t>(system.size()), 0.0), f(y.size());
+        for (int i = 0; i < n; ++i) y[static_cast<std::size_t>(i)] = 0.01 * std::sin(1.0 + 3.7 * i);  // a state
+        y[0] = 0.45;   // the hub near its reference 0.5: the controller unsaturated
+        y[static_cast<std::size_t>(nq)] = 0.01;  // theta_dot
+        const double t = 0.7;
+        REQUIRE(system.rhs(t, y.data(), f.data()) == 0);
+        for (std::size_t j = 0; j < c.names.size(); ++j) {
+            const std::string& name = c.names[j];
+            const auto rates_at = [&](double delta, double& scale) {
+                Scene moved = scene;
+                moved.output.sensitivities.clear();
+                double* v = nullptr;
+                if (name == "kp") v = &moved.control->kp;
+                else if (name == "kd") v = &moved.control->kd;
+                else v = &value(moved.parameters,
+                                static_cast<Param>(std::find(param_names.begin(), param_names.end(), name) -
+                                                   param_names.begin()));
+                scale = *v != 0.0 ? std::abs(*v) : 1.0;
+                *v += delta * scale;
+                const auto m = make_model(moved.key(), moved.parameters, moved.source);
+                FirstOrderSystem plain(*m, moved.motion, moved.axial, moved.controller(), &moved.parameters);
+                REQUIRE(plain.state_size() == n);
+                std::vector<double> out(static_cast<std::size_t>(n));
+                REQUIRE(plain.rhs(t, y.data(), out.data()) == 0);
+                return out;
+            };
+            double scale = 1.0;
+            const double h = 1e-6;  // of the parameter's size
+            const std::vector<double> up = rates_at(h, scale), down = rates_at(-h, scale);
+            for (int i = 0; i < n; ++i) {
+                // d/dp_j times pbar_j = d/d(p_j / pbar_j): the difference over 2h of the scaled parameter
+                const double expected = (up[static_cast<std::size_t>(i)] - down[static_cast<std::size_t>(i)]) / (2.0 * h);
+                INFO(c.file << ": d(row " << i << ")/d_" << name);
+                CHECK(f[static_cast<std::size_t>(n * (1 + static_cast<int>(j)) + i)] ==
+                      Approx(expected).epsilon(1e-6).margin(1e-9 * (1.0 + std::abs(up[static_cast<std::size_t>(i)]))));
+            }
+        }
+    }
+}
+
+TEST_CASE("sensitivities to every parameter and gain, at zero and at other values, equal differences of whole runs",
+          "[sensitivities]")
+{
+    // The controlled step of cases/controlled_step.toml, down (its torque saturates negative for the first second),
+    // with every term of the model: a tip body, gravity, Rayleigh damping, a tapered depth, an integral term and tip
+    // feedback. Short converged runs; a derivative read as 0 or off by a factor is off by its own size.
+    const std::string path = std::string(HUBBEAM_SOURCE_DIR) + "/cases/controlled_step.toml";
+    const Overrides every_term = {{"motion.angle", "-0.5"},  {"model.order", "zero"},
+                                  {"beam.taper", "depth"},    {"beam.tip_ratio", "0.7"},
+                                  {"hub.radius", "0.1"},      {"tip.mass", "0.5"},
+                                  {"tip.inertia", "0.02"},    {"gravity.g", "9.81"},
+                                  {"damping.mass_proportional", "0.05"}, {"damping.stiffness_proportional", "1e-3"},
+                                  {"control.ki", "5"},        {"control.k_tip", "20"},
+                                  {"output.t_end", "2"}};
+    const auto with = [](Overrides o, const Overrides& more) {
+        o.insert(o.end(), more.begin(), more.end());
+        return o;
+    };
+    const Overrides tight = {{"solver.rtol", "1e-12"}, {"solver.atol", "1e-14"}, {"solver.stepper", "rk8pd"}};
+    const std::vector<std::string> outputs = {"theta", "tip_uy"};
+    /// max |sensitivity - difference| / max |difference| over the rows, for each output, of p in scene's run; at a
+    /// value of zero, differences over 1e-4 of scale.
+    const auto check = [&](const Overrides& scene_overrides, const std::vector<std::string>& names, double scale = 1.0) {
+        std::string list;
+        for (const std::string& p : names) list += (list.empty() ? "" : ",") + p;
+        const Overrides base = with(scene_overrides, {{"output.sensitivities", list}});
+        const Scene scene = load_scene(path, with(base, {{"solver.rtol", "1e-10"}, {"solver.atol", "1e-12"}}));
+        const Table exact = run(scene);
+        for (const std::string& p : names) {
+            const double v = value_of(scene, p);
+            // Central differences, h = 1e-4 of the value (see check_against_differences); at 0, where most of these
+            // cannot go negative, one-sided ones of second order, (-3 y(0) + 4 y(h) - y(2h)) / (2h), h = 1e-4 of
+            // the parameter's size elsewhere in this test (beta 1e-3 s: at h = 1e-4 s their error was 1e-3).
+            const double h = 1e-4 * (v != 0.0 ? std::abs(v) : scale);
+            // The runs differenced carry no sensitivities (at 1e-12 they cost 50 times more), except at zero, where
+            // asking for p keeps its term in the variant.
+            const Overrides plain = with(with(scene_overrides, tight), {{"output.sensitivities", v != 0.0 ? "" : p}});
+            const auto at = [&](double x) { return run(load_scene(path, with(plain, {{key_of(p), text(x)}}))); };
+            const std::vector<Table> runs =
+                v != 0.0 ? std::vector<Table>{at(v + h), at(v - h)} : std::vector<Table>{at(0.0), at(h), at(2.0 * h)};
+            for (const std::string& out : outputs) {
+                std::vector<std::vector<double>> y;
+                for (const Table& t : runs) {
+                    REQUIRE(t.rows.size() == exact.rows.size());
+                    y.push_back(t.column(out));
+                }
+                const std::vector<double> d = exact.column("d_" + out + "/d_" + p);
+                double big = 0.0, err = 0.0;
+                for (std::size_t i = 0; i < d.size(); ++i) {
+                    const double fd = v != 0.0 ? (y[0][i] - y[1][i]) / (2.0 * h)
+                                               : (-3.0 * y[0][i] + 4.0 * y[1][i] - y[2][i]) / (2.0 * h);
+                    big = std::max(big, std::abs(fd));
+                    err = std::max(err, std::abs(d[i] - fd));
+                }
+                INFO("d_" << out << "/d_" << p << " at " << p << " = " << v << ": largest " << big << ", off by " << err);
+                CHECK(big > 0.0);
+                CHECK(err < 1e-4 * big);
+            }
+        }
+    };
+    SECTION("at non-zero values, a few at once")
+    {
+        // In groups: a run's cost grows with the square of its parameters' count (each block's Jacobian product).
+        check(every_term, {"m_tip", "J_tip", "g", "alpha"});
+        check(every_term, {"beta", "ki", "k_tip", "kp"});
+        check(every_term, {"kd", "S", "I", "tip_ratio"});
+        check(every_term, {"E", "rho", "L", "a", "J_oh"});
+    }
+    SECTION("at zero, each alone")
+    {
+        // Each parameter alone (another in the list would bring the term into the model by itself), at zero with the
+        // others of its term: the sensitivity must bring the term in.
+        const struct {
+            const char* name;
+            Overrides zero;
+        } cases[] = {
+            {"m_tip", {{"tip.mass", "0"}, {"tip.inertia", "0"}}},
+            {"J_tip", {{"tip.mass", "0"}, {"tip.inertia", "0"}}},
+            {"g", {{"gravity.g", "0"}}},
+            {"alpha", {{"damping.mass_proportional", "0"}, {"damping.stiffness_proportional", "0"}}},
+            {"beta", {{"damping.mass_proportional", "0"}, {"damping.stiffness_proportional", "0"}}},
+            {"ki", {{"control.ki", "0"}}},
+            {"k_tip", {{"control.k_tip", "0"}}},
+            {"a", {{"hub.radius", "0"}}},
+        };
+        const Scene sizes = load_scene(path, every_term);
+        for (const auto& c : cases) {
+            INFO(c.name << " at zero");
+            check(with(every_term, c.zero), {c.name}, value_of(sizes, c.name));
+        }
+    }
+}
