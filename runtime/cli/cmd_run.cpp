@@ -14,6 +14,7 @@
 
 #include "command.hpp"
 #include <hubbeam/fields.hpp>
+#include "io/field_recorder.hpp"
 #include "modes.hpp"
 #include "io/output.hpp"
 #include "io/output_file.hpp"

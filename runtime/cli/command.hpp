@@ -10,7 +10,7 @@
 #include <string>
 
 #include "on_demand/on_demand.hpp"
-#include "io/option_lists.hpp"
+#include "text/option_lists.hpp"
 #include <hubbeam/scene.hpp>
 #include <hubbeam/simulate.hpp>
 

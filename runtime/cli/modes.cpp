@@ -12,10 +12,10 @@
 #include <sstream>
 #include <utility>
 
-#include "io/csv_columns.hpp"
+#include "text/csv_columns.hpp"
 #include <hubbeam/linearize.hpp>
 #include "io/npz.hpp"
-#include "io/option_lists.hpp"
+#include "text/option_lists.hpp"
 #include "io/output.hpp"
 #include "io/output_file.hpp"
 #include "plot.hpp"

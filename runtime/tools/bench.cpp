@@ -13,9 +13,9 @@
 #include <ostream>
 #include <sstream>
 
-#include "io/csv_columns.hpp"
+#include "text/csv_columns.hpp"
 #include "dynamics/integrate.hpp"
-#include "io/option_lists.hpp"
+#include "text/option_lists.hpp"
 #include "oscillation.hpp"
 #include "io/output.hpp"
 #include "io/output_file.hpp"

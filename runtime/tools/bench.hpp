@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "io/option_lists.hpp"
+#include "text/option_lists.hpp"
 #include "io/output_file.hpp"
 #include <hubbeam/scene.hpp>
 #include <hubbeam/simulate.hpp>

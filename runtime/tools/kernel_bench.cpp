@@ -16,7 +16,7 @@
 #include "dynamics/integrate.hpp"
 #include <hubbeam/make_model.hpp>
 #include <hubbeam/motion.hpp>
-#include "io/option_lists.hpp"
+#include "text/option_lists.hpp"
 #include "io/output.hpp"
 
 namespace hubbeam {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "io/option_lists.hpp"
+#include "text/option_lists.hpp"
 
 #include "variant.hpp"
 

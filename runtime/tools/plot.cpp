@@ -19,10 +19,11 @@
 
 #include <unistd.h>
 
-#include "io/csv_columns.hpp"
+#include "text/csv_columns.hpp"
 #include <hubbeam/fields.hpp>
+#include "io/field_recorder.hpp"
 #include <hubbeam/linearize.hpp>
-#include "io/option_lists.hpp"
+#include "text/option_lists.hpp"
 #include "io/output_file.hpp"
 #include <hubbeam/scene.hpp>
 #include "text/shortest.hpp"

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "modes.hpp"
-#include "io/option_lists.hpp"
+#include "text/option_lists.hpp"
 
 using namespace hubbeam;
 

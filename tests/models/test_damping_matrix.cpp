@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <hubbeam/linearize.hpp>
+#include "models/model_operations.hpp"
 #include <hubbeam/make_model.hpp>
 
 using namespace hubbeam;

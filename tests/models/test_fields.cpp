@@ -9,6 +9,7 @@
 
 #include <hubbeam/fields.hpp>
 #include <hubbeam/linearize.hpp>
+#include "models/model_operations.hpp"
 #include <hubbeam/make_model.hpp>
 
 using namespace hubbeam;

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <hubbeam/fields.hpp>
+#include "io/field_recorder.hpp"
 #include "models/generated_model.hpp"
 #include <hubbeam/make_model.hpp>
 #include "random_state.hpp"

@@ -3,11 +3,9 @@
 #pragma once
 
 #include <Eigen/Dense>
-#include <memory>
 #include <string>
 #include <vector>
 
-#include "io/csv_columns.hpp"
 #include <hubbeam/model.hpp>
 
 namespace hubbeam {
@@ -64,40 +62,6 @@ private:
     std::vector<double> stations_, profile_;  // a tabulated profile's x/L and values (docs/model.md section 11.2)
     Eigen::RowVectorXd Phi_x_L_, Phi_y_L_;
     Eigen::MatrixXd H_L_;
-};
-
-class CsvWriter;
-
-/// The fields along the beam at chosen times, written as a second CSV by hubbeam run (docs/cli.md "hubbeam
-/// run"): at the first row at or after each time, u_y, u_x, slope, curvature, bending moment and axial force at
-/// `points` equally spaced abscissae, plus both sides of each interior piece boundary (where FEM's moment jumps).
-class FieldRecorder {
-public:
-    /// Opens path (atomically written, CsvWriter); times sorted, within the run.
-    FieldRecorder(const VariantKey& key, const Parameters& p, std::vector<double> times, int points, const std::string& path);
-    ~FieldRecorder();
-    /// The state at a row: records it if it is the first row at or after the next requested time.
-    void state(double t, const double* q);
-    /// Puts the file in place; false (and error()) if a write failed.
-    bool finish();
-    const std::string& error() const;
-    const std::string& path() const;
-
-    /// The CSV header: the one list of the field CSV's columns, which state() writes in this order and readers
-    /// (hubbeam plot moment) look up by name.
-    static const char* header()
-    {
-        static const std::string h =
-            csv_header({"t", "x", "uy", "ux", "slope", "curvature", "bending_moment", "axial_force"});
-        return h.c_str();
-    }
-
-private:
-    VariantKey key_;
-    BeamFields fields_;
-    std::vector<double> times_, xs_;
-    std::size_t next_ = 0;
-    std::unique_ptr<CsvWriter> csv_;
 };
 
 }  // namespace hubbeam

@@ -6,7 +6,7 @@
 //   hubbeam::RunSummary summary = simulation.run([](const hubbeam::Row& row) { /* row.t, row.tip_uy, ... */ });
 #pragma once
 
-#include <hubbeam/fields.hpp>     // BeamFields, FieldRecorder: fields along the beam
+#include <hubbeam/fields.hpp>     // BeamFields: fields along the beam
 #include <hubbeam/linearize.hpp>  // steady_spin, state_space, natural_modes
 #include <hubbeam/scene.hpp>      // Scene, load_scene, parse_scene, validate, scene_keys
 #include <hubbeam/simulate.hpp>   // Simulation, Row, RunSummary

@@ -3,7 +3,7 @@
 #include "dynamics/integrate.hpp"
 
 #include "dynamics/acceleration.hpp"
-#include <hubbeam/linearize.hpp>
+#include "models/model_operations.hpp"
 #include "dynamics/mass_solver.hpp"
 
 #include <algorithm>

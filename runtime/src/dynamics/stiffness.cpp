@@ -9,7 +9,7 @@
 #include <numbers>
 #include <vector>
 
-#include <hubbeam/linearize.hpp>
+#include "models/model_operations.hpp"
 
 namespace hubbeam {
 

@@ -22,7 +22,7 @@
 #include <sstream>
 #include <string_view>
 
-#include "io/csv_columns.hpp"
+#include "text/csv_columns.hpp"
 #include "dynamics/integrate.hpp"
 #include "text/shortest.hpp"
 

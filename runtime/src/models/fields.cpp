@@ -1,9 +1,7 @@
 // BeamFields: u_y, u_x1, u_x, EI u_y'' and ES u_x1' from the shape functions (docs/model.md section 5 outputs).
 #include <hubbeam/fields.hpp>
 
-#include "io/output.hpp"
 #include "profile.hpp"
-#include "text/shortest.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -137,49 +135,6 @@ std::vector<double> BeamFields::foreshortening(const double* B, const std::vecto
     }
     return out;
 }
-
-FieldRecorder::FieldRecorder(const VariantKey& key, const Parameters& p, std::vector<double> times, int points,
-                             const std::string& path)
-    : key_(key), fields_(key, p), times_(std::move(times))
-{
-    std::sort(times_.begin(), times_.end());
-    for (int i = 0; i < points; ++i) xs_.push_back(p.L * i / (points - 1));
-    // Both sides of each piece boundary, 1e-9 L apart: the moment's jump at FEM's nodes shows as a step.
-    for (double b : fields_.piece_boundaries()) {
-        xs_.push_back(b * (1.0 - 1e-9));
-        xs_.push_back(b * (1.0 + 1e-9));
-    }
-    std::sort(xs_.begin(), xs_.end());
-    xs_.erase(std::unique(xs_.begin(), xs_.end()), xs_.end());
-    csv_ = std::make_unique<CsvWriter>(path, header());
-}
-
-FieldRecorder::~FieldRecorder() = default;
-
-void FieldRecorder::state(double t, const double* q)
-{
-    if (next_ >= times_.size() || t < times_[next_] * (1.0 - 1e-12)) return;
-    while (next_ < times_.size() && times_[next_] <= t * (1.0 + 1e-12)) ++next_;  // one record for times a row covers
-    const double* A = key_.nx > 0 ? q + key_.first_a() : nullptr;
-    const double* B = q + key_.first_b();
-    const std::vector<double> ux = fields_.ux(A, B, xs_);
-    for (std::size_t i = 0; i < xs_.size(); ++i) {
-        const double x = xs_[i];
-        std::string line;
-        for (double v : {t, x, fields_.uy(B, x), ux[i], fields_.slope(B, x), fields_.curvature(B, x),
-                         fields_.bending_moment(B, x), fields_.axial_force(A, x)}) {
-            if (!line.empty()) line += ',';
-            append_shortest(line, v);
-        }
-        csv_->write_line(line);
-    }
-}
-
-bool FieldRecorder::finish() { return csv_->finish(); }
-
-const std::string& FieldRecorder::error() const { return csv_->error(); }
-
-const std::string& FieldRecorder::path() const { return csv_->path(); }
 
 double BeamFields::area_ratio(double x) const
 {

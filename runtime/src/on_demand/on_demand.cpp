@@ -29,9 +29,9 @@
 #include <unistd.h>
 
 #include "generated_abi.h"
-#include "models/generated_model.hpp"
 #include "on_demand/install_layout.hpp"
 #include "on_demand/sha256.hpp"
+#include "on_demand/variant_rows.hpp"
 
 extern char** environ;
 

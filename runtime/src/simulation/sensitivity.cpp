@@ -7,7 +7,7 @@
 #include <gsl/gsl_errno.h>
 #include <stdexcept>
 
-#include <hubbeam/linearize.hpp>
+#include "models/model_operations.hpp"
 #include <hubbeam/make_model.hpp>
 #include <hubbeam/simulate.hpp>
 

@@ -8,7 +8,7 @@
 #include <string_view>
 #include <vector>
 
-#include "io/option_lists.hpp"
+#include "text/option_lists.hpp"
 
 namespace hubbeam {
 

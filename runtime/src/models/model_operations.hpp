@@ -1,0 +1,36 @@
+// What is computed from a model alone (below dynamics and analysis): force Jacobians, M as a matrix, the Rayleigh
+// damping matrix, the tip-deflection row.
+#pragma once
+
+#include <Eigen/Dense>
+#include <vector>
+
+#include <hubbeam/model.hpp>
+
+namespace hubbeam {
+
+/// M(q), both triangles, as an Eigen matrix.
+Eigen::MatrixXd mass_at(const Model& model, const HubInput& u, const std::vector<double>& q);
+
+/// dQ/dq (nq x nq), dQ/dqd (nq x nq) and dQ/du (nq x 3, u indexed by DriveValue) at (u, q, qd): the model's
+/// derivative kernels when it has them, else central differences of Q.
+struct ForceJacobians {
+    Eigen::MatrixXd q, qd, u;
+};
+ForceJacobians force_jacobians(const Model& model, const HubInput& u, const std::vector<double>& q,
+                               const std::vector<double>& qd);
+/// dQ/dq alone, the same way (without differences in the rates and the drive where there are no kernels).
+Eigen::MatrixXd force_q_jacobian(const Model& model, const HubInput& u, const std::vector<double>& q,
+                                 const std::vector<double>& qd);
+
+/// The Rayleigh damping matrix alpha M_ee + beta K_e of the model's elastic coordinates (nq x nq; the hub angle's
+/// row and column, not damped, zero), with M_ee and K_e those of the undeformed beam at rest (docs/model.md section
+/// 11.4): the dissipated energy's rate qd^T C qd, independent of the generated damping forces.
+Eigen::MatrixXd damping_matrix(const Model& model, const Parameters& parameters);
+
+/// d u_y(L) / dq_c for each of the coordinates c (indices into q), at q: u_y(L) is linear in B, so central
+/// differences at unit offsets are exact. The tip-deflection row of the state space's C and of a controller's
+/// tip feedback.
+Eigen::VectorXd tip_uy_row(const Model& model, const std::vector<double>& q, const std::vector<int>& coordinates);
+
+}  // namespace hubbeam
