@@ -312,6 +312,74 @@ ColumnDifference window_error(const Scene& scene, const Model& model, const Chec
     return largest_difference(window.values, again, peak, columns.floor);
 }
 
+/// The whole run re-run alongside at the tighter tolerance (error_check full): a step to each row the run writes, as
+/// rerun steps, and each column's largest difference kept, so that it holds one row however long the run. Catches
+/// an error made anywhere, which the windows see only where they are (a multistep stepper's mid-run error).
+class WholeRunCheck {
+public:
+    WholeRunCheck(const Scene& scene, const Model& model, std::vector<double> y0, CheckTolerance tol,
+                  const std::string& stepper, const CheckedColumns& columns)
+        : scene_(scene), system_(system_of(model, scene)), y_(std::move(y0)),
+          stepper_(make_stepper(*system_, stepper, 0.0, y_.data(), scene.solver.h0, tol.atol, tol.rtol)),
+          make_row_(model, scene.motion, *system_, scene.controller()),
+          breaks_(breaks_before(scene.motion, INFINITY)), critical_(critical_spin(model)), columns_(columns),
+          worst_(columns.names.size(), 0.0), when_(worst_.size(), 0.0)
+    {
+    }
+    /// The re-run to the run's row at t (> the last one) and its values compared with the run's there; nothing once
+    /// the re-run has failed (a step, the step budget or a model limit).
+    void compare(double t, const std::vector<double>& values)
+    {
+        if (failed_ || !advance(t)) {
+            failed_ = true;
+            return;
+        }
+        again_.clear();
+        append_row_values(make_row_(t, y_.data()), columns_.set, again_);
+        for (std::size_t c = 0; c < worst_.size(); ++c) {
+            const double d = std::abs(values[c] - again_[c]);
+            if (std::isnan(d) || d > worst_[c]) worst_[c] = std::isnan(d) ? INFINITY : d, when_[c] = t;
+        }
+        t_compared_ = t;
+    }
+    /// The largest difference so far relative to the column's peak in the run (largest_difference's measure).
+    ColumnDifference largest(const std::vector<double>& peak) const
+    {
+        return largest_difference(worst_, std::vector<double>(worst_.size(), 0.0), peak, columns_.floor);
+    }
+    /// When column's largest difference was met.
+    double when(std::size_t column) const { return when_[column]; }
+    /// The last row compared (0: none).
+    double t_compared() const { return t_compared_; }
+
+private:
+    bool advance(double ti)
+    {
+        for (; next_ < breaks_.size() && breaks_[next_] < ti * (1.0 - same_instant); ++next_) {
+            // A breakpoint at the last row's time was reached there: only the restart is left.
+            const bool ahead = breaks_[next_] > t_ * (1.0 + same_instant);
+            if (ahead && stepper_->advance(t_, breaks_[next_], y_.data()) != GSL_SUCCESS) return false;
+            stepper_->restart(t_, y_.data());
+        }
+        if (stepper_->advance(t_, ti, y_.data()) != GSL_SUCCESS) return false;
+        if (stepper_->steps() > scene_.solver.max_steps) return false;
+        return model_limit(make_row_(ti, y_.data()), critical_, scene_.parameters.L).empty();
+    }
+
+    const Scene& scene_;
+    const std::unique_ptr<FirstOrderSystem> system_;
+    std::vector<double> y_;
+    const std::unique_ptr<Stepper> stepper_;
+    RowMaker make_row_;
+    const std::vector<double> breaks_;
+    std::size_t next_ = 0;
+    const double critical_;
+    const CheckedColumns& columns_;
+    std::vector<double> again_, worst_, when_;  // worst_: each column's largest |difference|, met at when_
+    double t_ = 0.0, t_compared_ = 0.0;
+    bool failed_ = false;
+};
+
 /// The state at rest: the free hub at its initial angle (q[0], the first state: kept_coordinates keeps it first).
 std::vector<double> initial_state(const FirstOrderSystem& system, const Model& model, const Scene& scene)
 {
@@ -386,6 +454,7 @@ private:
 
     RunSummary finish(std::string failure);
     std::string untrustworthy();
+    std::string whole_run_error(bool completed);
     std::string check_stepper(CheckTolerance tol) const;
     std::string tolerance_as_cause(const std::string& failure);
 
@@ -417,6 +486,8 @@ private:
     const CheckedColumns columns_;
     std::vector<double> peak_, values_;  // values_: the last row's values (append_row_values)
     bool non_finite_ = false;  // the run stopped at a row with a non-finite value, not written
+    std::unique_ptr<WholeRunCheck> whole_;  // error_check full, instead of the windows
+    double whole_seconds_ = 0.0;            // the time whole_ took, the error check's and not the integration's
 };
 
 Simulation::Run::Run(const Simulation& simulation)
@@ -464,6 +535,10 @@ Simulation::Run::Run(const Simulation& simulation)
     start_window_.t0 = 0.0;
     start_window_.y0 = y_;  // the initial state
     if (!breaks_.empty()) drive_end_ = breaks_.back();
+    if (sim_.check_error_ && sim_.whole_run_) {
+        const CheckTolerance tol = check_tolerance(scene_.solver);
+        whole_ = std::make_unique<WholeRunCheck>(scene_, model_, y_, tol, check_stepper(tol), columns_);
+    }
 }
 
 RunSummary Simulation::Run::operator()(const RowSink& sink, const StopRequest& stop)
@@ -722,6 +797,12 @@ void Simulation::Run::monitor(const Row& r)
     }
     if (!sim_.check_error_) return;
     for (std::size_t c = 0; c < peak_.size(); ++c) peak_[c] = std::max(peak_[c], std::abs(values_[c]));
+    if (whole_) {
+        const auto start = std::chrono::steady_clock::now();
+        if (r.t > 0.0) whole_->compare(r.t, values_);
+        whole_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        return;
+    }
     if (r.t > 0.0 && r.t <= check_window_ * (1.0 + same_instant)) start_window_.add(r, columns_.set);
     else if (end_window_.t0 >= 0.0 && r.t > end_window_.t0) end_window_.add(r, columns_.set);
     const double t_drive = drive_end_window_.t0;
@@ -817,7 +898,8 @@ RunSummary Simulation::Run::finish(std::string failure)
     summary_.jacobian_evals = system_.jacobian_evaluations();
     summary_.t_reached = t_;
     const auto checked = std::chrono::steady_clock::now();
-    summary_.wall_seconds = std::chrono::duration<double>(checked - start_).count();
+    summary_.wall_seconds = std::chrono::duration<double>(checked - start_).count() - whole_seconds_;
+    if (!failure.empty() && whole_) whole_run_error(false);  // the rows so far, for the summary: the run failed already
     if (failure.empty()) failure = untrustworthy();
     else if (!model_failure_.empty() || failure.rfind("unstable: the equations", 0) == 0)
         failure = tolerance_as_cause(failure);
@@ -825,7 +907,8 @@ RunSummary Simulation::Run::finish(std::string failure)
         failure += last_row_ < t_ ? "; the rows up to t = " + shortest(last_row_) + " s are written, not this one"
                                   : "; no row is written";
     if (summary_.check_rtol > 0.0)  // a check ran
-        summary_.check_wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - checked).count();
+        summary_.check_wall_seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - checked).count() + whole_seconds_;
     summary_.completed = failure.empty();
     summary_.failure = failure;
     return summary_;
@@ -854,6 +937,7 @@ std::string Simulation::Run::untrustworthy()
                       summary_.invariant_reference.c_str(), invariant_tolerance);
         return text;
     }
+    if (whole_) return whole_run_error(true);
     if (!sim_.check_error_ || start_window_.times.empty()) return {};
     const CheckTolerance tol = check_tolerance(scene_.solver);
     summary_.check_rtol = tol.rtol;
@@ -895,6 +979,31 @@ std::string Simulation::Run::untrustworthy()
                   "at rtol %g, atol %g over t = %g to %g s%s; tighten --rtol/--atol",
                   error_tolerance, summary_.error_column.c_str(), measured, tol.rtol, tol.atol, where->t0,
                   where->times.back(), rate);
+    return text;
+}
+
+/// Under error_check full: the run's largest difference from its re-run alongside, over the rows compared (all of them
+/// unless the re-run failed first), into the summary; for a completed run, why its rows cannot be trusted (empty if
+/// they can). Unscaled: the re-run measured the error at every row, where the windows extrapolate.
+std::string Simulation::Run::whole_run_error(bool completed)
+{
+    const double t1 = whole_->t_compared();
+    if (t1 <= 0.0) return {};  // no row after the start compared: the re-run failed at once, or the run did
+    const CheckTolerance tol = check_tolerance(scene_.solver);
+    summary_.check_rtol = tol.rtol;
+    summary_.check_atol = tol.atol;
+    const ColumnDifference d = whole_->largest(peak_);
+    summary_.estimated_error = d.fraction;
+    summary_.error_column = columns_.names[d.column];
+    const bool all = completed && t1 >= last_row_ * (1.0 - same_instant);
+    summary_.error_from = all ? "the whole run" : "the run to t = " + shortest(t1) + " s";
+    if (!completed || !(d.fraction > error_tolerance)) return {};
+    char text[400];
+    std::snprintf(text, sizeof text,
+                  "untrustworthy: the run's error exceeds %g: its %s differs by %.2g of its largest value at t = %g s "
+                  "from %s re-run at rtol %g, atol %g; tighten --rtol/--atol",
+                  error_tolerance, summary_.error_column.c_str(), d.fraction, whole_->when(d.column),
+                  summary_.error_from.c_str(), tol.rtol, tol.atol);
     return text;
 }
 
@@ -940,7 +1049,8 @@ int auxiliary_count(const Scene& scene)
 Simulation::Simulation(const Scene& scene, const std::function<void(const std::string&)>& note) : scene_(scene)
 {
     model_ = make_model(scene.key(), scene.parameters, scene.source, note);
-    check_error_ = scene.solver.error_check == ErrorCheck::on;
+    check_error_ = scene.solver.error_check != ErrorCheck::off;
+    whole_run_ = scene.solver.error_check == ErrorCheck::full;
     stepper_ = scene.solver.stepper;
     if (stepper_ == automatic_stepper_word) {
         const StepperChoice choice = automatic(scene.solver.rtol);
