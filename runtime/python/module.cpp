@@ -311,6 +311,7 @@ py::dict summary_dict(const RunSummary& s, const Scene& scene)
     out["monitor_off"] = s.monitor_off;
     out["estimated_error"] = s.estimated_error;
     out["error_column"] = s.error_column;
+    out["error_from"] = s.error_from;
     out["steps"] = s.steps;
     out["rejected_steps"] = s.rejected_steps;
     out["rhs_evals"] = s.rhs_evals;

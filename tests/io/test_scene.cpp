@@ -328,6 +328,25 @@ TEST_CASE("bad scene input throws SceneError naming the file and the key", "[sce
     }
 }
 
+TEST_CASE("solver.error_check takes on, off and full, from the file and as an override; other words are refused",
+          "[scene]")
+{
+    const TempDir dir;
+    CHECK(load_scene(dir.write("default.toml", good_scene)).solver.error_check == ErrorCheck::on);
+    for (const auto& [word, check] : {std::pair{"on", ErrorCheck::on}, {"off", ErrorCheck::off},
+                                      {"full", ErrorCheck::full}}) {
+        INFO(word);
+        const std::string text = good_scene + "\n[solver]\nerror_check = \"" + word + "\"\n";
+        CHECK(load_scene(dir.write(std::string(word) + ".toml", text)).solver.error_check == check);
+        const std::string file = dir.write("override.toml", good_scene);
+        CHECK(load_scene(file, {{"solver.error_check", word}}).solver.error_check == check);
+        CHECK(to_string(check) == word);
+    }
+    const std::string message = error_of(dir, good_scene + "\n[solver]\nerror_check = \"whole\"\n");
+    CHECK(message.find("solver.error_check: expected one of \"on\", \"off\", \"full\", got ") != std::string::npos);
+    CHECK(message.find("\"whole\"") != std::string::npos);
+}
+
 TEST_CASE("validate() re-checks a scene changed after loading", "[scene]")
 {
     Scene s = load_scene(case_path("spinup_omega4.toml"));

@@ -158,8 +158,10 @@ struct RunSummary {
     // estimated_error is the largest difference relative to that column's largest value in the run, the end
     // window's scaled by the square root of the run's length over the window's (the windows' errors adding up
     // as independent ones); < 0 when not checked.
+    // Under error_check full the whole run is re-run alongside and compared at every row instead, unscaled.
     double estimated_error = -1.0;
     std::string error_column;  // where it is largest
+    std::string error_from = "windows";  // what was re-run: "windows", "the whole run", or "the run to t = 7 s"
     double check_rtol = 0.0, check_atol = 0.0;
     long steps = 0;
     long rejected_steps = 0;  // steps the error test failed and the stepper took again shorter (not in steps)
@@ -223,6 +225,7 @@ private:
     mutable std::unique_ptr<Pilot> pilot_;  // gauss4's measured start under a hub torque (stiffness.hpp)
     mutable bool pilot_decided_ = false;    // whether the scene needs one was asked
     bool check_error_ = true;
+    bool whole_run_ = false;  // error_check full: the whole run re-run alongside, not windows
 };
 
 /// Simulation(scene).run(sink).

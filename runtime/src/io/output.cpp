@@ -299,9 +299,9 @@ std::string format_summary(const RunSummary& r, const Scene& scene)
             << " s, with no energy in the run to compare it with\n";
     }
     if (r.estimated_error >= 0.0) {
-        char line[200];
-        std::snprintf(line, sizeof line, "%.2g of the largest value (%s), from windows re-run at rtol %g, atol %g",
-                      r.estimated_error, r.error_column.c_str(), r.check_rtol, r.check_atol);
+        char line[240];
+        std::snprintf(line, sizeof line, "%.2g of the largest value (%s), from %s re-run at rtol %g, atol %g",
+                      r.estimated_error, r.error_column.c_str(), r.error_from.c_str(), r.check_rtol, r.check_atol);
         out << "error       " << line << "\n";
     }
     out << "steps       " << r.steps << " accepted, " << r.rejected_steps << " rejected by the error test\n";

@@ -29,7 +29,8 @@
 namespace hubbeam {
 
 namespace {
-const WordTable<ErrorCheck, 2> error_check_words = {{ErrorCheck::on, "on"}, {ErrorCheck::off, "off"}};
+const WordTable<ErrorCheck, 3> error_check_words = {
+    {ErrorCheck::on, "on"}, {ErrorCheck::off, "off"}, {ErrorCheck::full, "full"}};
 }  // namespace
 
 std::string to_string(ErrorCheck v) { return word_of(v, error_check_words); }

@@ -13,8 +13,10 @@
 #include <gsl/gsl_errno.h>
 
 #include "simulation/column_check.hpp"
+#include "simulation/error_check.hpp"
 #include "dynamics/integrate.hpp"
 #include <hubbeam/make_model.hpp>
+#include "simulation/run_rows.hpp"
 #include "text/shortest.hpp"
 #include "simulation/sensitivity.hpp"
 #include "dynamics/stepper.hpp"
@@ -23,10 +25,6 @@
 namespace hubbeam {
 
 namespace {
-
-// Times are compared relative to their size: an output time and a breakpoint closer than this are one
-// instant, and t_end / dt_out within this of an integer counts as that integer.
-constexpr double same_instant = 1e-12;
 
 /// GSL's error handler off for one scope (GSL's default aborts the process; odeiv2 failures must come
 /// back as status codes), restored afterwards so that the caller's handler is left as it was.
@@ -91,16 +89,6 @@ std::string step_failure(int status, double t, const std::string& hint)
            (hint.empty() ? "; try a looser rtol/atol" : "; " + hint);
 }
 
-/// The drive's breakpoints inside (0, t_last), in order.
-std::vector<double> breaks_before(const Motion& motion, double t_last)
-{
-    std::vector<double> breaks;
-    for (double b : motion.breakpoints())
-        if (b > 0.0 && b < t_last) breaks.push_back(b);
-    std::sort(breaks.begin(), breaks.end());
-    return breaks;
-}
-
 /// The run's output times: row 0 at t = 0, rows at multiples of dt_out, and a last one at t_end when dt_out does
 /// not divide it, so that a run that exits 0 has reached t_end.
 class OutputTimes {
@@ -120,197 +108,6 @@ private:
     double t_end_;
     long grid_rows_, last_ = 0;
 };
-
-/// The equations a run of scene integrates: the state's, or with the sensitivities of scene.output.sensitivities.
-std::unique_ptr<FirstOrderSystem> system_of(const Model& model, const Scene& scene)
-{
-    if (!scene.output.sensitivities.empty()) return std::make_unique<SensitivitySystem>(model, scene);
-    return std::make_unique<FirstOrderSystem>(model, scene.motion, scene.axial, scene.controller(), &scene.parameters);
-}
-
-/// Rows from states: the hub's angle and rate (prescribed, or coordinates under torque), the tip, the energies, the
-/// optional columns of a scene that has them (the torque, the reference, the auxiliary states) and a sensitivity
-/// system's derivative columns. The run's rows and the error indicator's re-runs both come from here.
-class RowMaker {
-public:
-    RowMaker(const Model& model, const Motion& motion, FirstOrderSystem& system, const Control* control)
-        : model_(model), motion_(motion), system_(system), control_(control),
-          sensitivities_(dynamic_cast<SensitivitySystem*>(&system)), q_(static_cast<std::size_t>(model.nq())), qd_(q_),
-          derived_(sensitivities_ != nullptr ? static_cast<std::size_t>(sensitivities_->count()) *
-                                                   std::size(sensitivity_outputs)
-                                             : 0),
-          extended_(control != nullptr || system.auxiliary().count() > 0)
-    {
-    }
-    /// The row of state y at t (its derivative columns valid until the next call); q() is then its full coordinates.
-    Row operator()(double t, const double* y)
-    {
-        system_.full_state(t, y, q_.data(), qd_.data());
-        const double* q = q_.data();
-        const double* qd = qd_.data();
-        const bool torque = model_.key().drive == Drive::torque;
-        HubInput u = motion_.at(t);
-        RowExtras extras;
-        if (extended_) {
-            if (torque) extras.tau = system_.torque(t, y);
-            if (control_ != nullptr) {
-                extras.theta_ref = u.theta;
-                u = HubInput{};  // the model's input: the torque alone
-                u.tau = extras.tau;
-            }
-            const auto at = [y](int i) { return i >= 0 ? y[i] : 0.0; };
-            extras.controller_integral = at(system_.integral_index());
-            extras.dissipated = at(system_.dissipated_index());
-            extras.work = at(system_.work_index());
-        }
-        const Tip tip = model_.tip(q);
-        const Energy e = model_.energy(u, q, qd);
-        const double theta = torque ? q[0] : u.theta, theta_dot = torque ? qd[0] : u.theta_dot;
-        Row r{t, theta, theta_dot, tip.uy, tip.ux1, tip.ux, e.kinetic(), e.U, model_.momentum(u, q, qd), e.T2 - e.T0 + e.U,
-              extras};
-        if (sensitivities_ != nullptr) {
-            sensitivities_->outputs(t, y, derived_.data());
-            r.derived = derived_.data();
-        }
-        return r;
-    }
-    const double* q() const { return q_.data(); }
-
-private:
-    const Model& model_;
-    const Motion& motion_;
-    FirstOrderSystem& system_;
-    const Control* control_;
-    SensitivitySystem* sensitivities_;  // null without sensitivities
-    std::vector<double> q_, qd_, derived_;
-    bool extended_;
-};
-
-/// Why a row cannot stand, from the model's limits (empty if it can): the hub rate past the spin above which the
-/// straight beam is unstable, a hub angle beyond max_hub_angle, or a tip deflection beyond the beam's length.
-std::string model_limit(const Row& r, double critical, double L)
-{
-    char text[300];
-    if (std::abs(r.theta_dot) > critical) {
-        std::snprintf(text, sizeof text,
-                      "unstable: the hub rate %.4g rad/s has passed %.4g rad/s, above which the straight beam of "
-                      "this model is unstable (its effective stiffness loses definiteness; order zero: the first "
-                      "bending frequency) at t = %g s; order first or full stays stable",
-                      r.theta_dot, critical, r.t);
-        return text;
-    }
-    if (std::abs(r.theta) > max_hub_angle) {
-        std::snprintf(text, sizeof text,
-                      "the hub angle %.4g rad has passed %g rad, beyond which double precision no longer resolves "
-                      "its small changes, at t = %g s",
-                      r.theta, max_hub_angle, r.t);
-        return text;
-    }
-    if (!std::isfinite(r.tip_uy) || std::abs(r.tip_uy) > L)
-        return "unstable: tip deflection " + std::to_string(r.tip_uy) + " m exceeds the beam length" + at_time(r.t) +
-               "; the small-deformation model no longer holds";
-    return {};
-}
-
-// The error indicator (RunSummary::estimated_error). Its windows are this fraction of the run (at least one row
-// interval): the run's own error accumulates over the run, and a window of a fiftieth measures its rate at a
-// sixth of a run's cost at the tighter tolerance (measured on the main job: 15 to 20 %).
-constexpr double check_window_fraction = 1.0 / 50.0;
-// The window across the drive's end is this fraction of the others: the error made at the kink shows in the rows
-// right after it and stays, so a short window sees it (cases/torque_tau1.toml's tip_ux1: 4.1e-6 of its peak with a
-// fifth, against a true error of 4.9e-6).
-constexpr double drive_end_window_share = 1.0 / 5.0;
-// The re-run's tolerances: this many times tighter than the run's, and than the scene defaults at the loosest, so
-// that its own error is small beside the error it measures.
-constexpr double check_tightening = 10.0;
-
-// Below this size (m, rad, rad/s, J, N m, ... in SI units) a column's values are round-off, not a measure to be
-// relative to: its difference counts against this floor. A derivative by a parameter p counts against this floor
-// over |p|, a change of the output over a relative change of p.
-constexpr double round_off_floor = 1e-9;
-
-/// The columns the error indicator compares: every one the run writes (row_column_names, as the CSV header).
-struct CheckedColumns {
-    ColumnSet set;
-    std::vector<std::string> names;
-    std::vector<double> floor;  // round_off_floor, in each column's units
-};
-CheckedColumns checked_columns(const Scene& scene, const FirstOrderSystem& system)
-{
-    CheckedColumns c{optional_columns_of(scene), {}, {}};
-    c.names = row_column_names(c.set);
-    c.floor.assign(c.names.size() - c.set.derived.size(), round_off_floor);
-    if (const auto* s = dynamic_cast<const SensitivitySystem*>(&system))
-        for (int j = 0; j < s->count(); ++j)
-            c.floor.insert(c.floor.end(), std::size(sensitivity_outputs), round_off_floor / s->scale(j));
-    return c;
-}
-
-/// A stretch of the run to re-run at the tighter tolerance: its start and the state there, the times of the run's rows
-/// in it and their values (append_row_values, one row after the other).
-struct CheckWindow {
-    double t0 = -1.0;  // < 0: not reached
-    std::vector<double> y0;
-    std::vector<double> times, values;
-    void add(const Row& r, const ColumnSet& set)
-    {
-        times.push_back(r.t);
-        append_row_values(r, set, values);
-    }
-};
-
-/// The tighter tolerances of the error indicator's re-runs.
-struct CheckTolerance {
-    double rtol, atol;
-};
-CheckTolerance check_tolerance(const SolverOptions& solver)
-{
-    const SolverOptions defaults;
-    return {std::max(std::min(solver.rtol, defaults.rtol) / check_tightening, 1e-13),
-            std::min(solver.atol, defaults.atol) / check_tightening};
-}
-
-/// The rows' values (append_row_values with set) of a re-run of the scene from state y (of the run's system) at t0
-/// to each of times (ascending, > t0), at tol with the stepper that suits the scene, a step ending at each row and
-/// breakpoint. Fewer rows than times: the re-run failed there (a step, or a model limit).
-std::vector<double> rerun(const Scene& scene, const Model& model, double t0, std::vector<double> y,
-                          const std::vector<double>& times, CheckTolerance tol, const std::string& stepper_name,
-                          const ColumnSet& set)
-{
-    const Control* control = scene.controller();
-    const std::unique_ptr<FirstOrderSystem> system = system_of(model, scene);
-    const std::unique_ptr<Stepper> stepper =
-        make_stepper(*system, stepper_name, t0, y.data(), scene.solver.h0, tol.atol, tol.rtol);
-    RowMaker make_row(model, scene.motion, *system, control);
-    const std::vector<double> breaks = times.empty() ? std::vector<double>{} : breaks_before(scene.motion, times.back());
-    auto next = std::upper_bound(breaks.begin(), breaks.end(), t0 * (1.0 + same_instant));
-    const double critical = critical_spin(model);
-    std::vector<double> values;
-    double t = t0;
-    for (const double ti : times) {
-        for (; next != breaks.end() && *next < ti * (1.0 - same_instant); ++next) {
-            if (stepper->advance(t, *next, y.data()) != GSL_SUCCESS) return values;
-            stepper->restart(t, y.data());
-        }
-        if (stepper->advance(t, ti, y.data()) != GSL_SUCCESS) return values;
-        if (stepper->steps() > scene.solver.max_steps) return values;
-        const Row r = make_row(ti, y.data());
-        if (!model_limit(r, critical, scene.parameters.L).empty()) return values;
-        append_row_values(r, set, values);
-    }
-    return values;
-}
-
-/// The largest difference of window's rows from a re-run of it, in any column, relative to the column's peak in the
-/// run (largest_difference); a negative fraction when the re-run failed.
-ColumnDifference window_error(const Scene& scene, const Model& model, const CheckWindow& window,
-                              const CheckedColumns& columns, const std::vector<double>& peak, CheckTolerance tol,
-                              const std::string& stepper)
-{
-    const std::vector<double> again =
-        rerun(scene, model, window.t0, window.y0, window.times, tol, stepper, columns.set);
-    return largest_difference(window.values, again, peak, columns.floor);
-}
 
 /// The state at rest: the free hub at its initial angle (q[0], the first state: kept_coordinates keeps it first).
 std::vector<double> initial_state(const FirstOrderSystem& system, const Model& model, const Scene& scene)
@@ -347,6 +144,93 @@ Pilot pilot_run(const Scene& scene, const Model& model, PilotPlan plan)
 
 }  // namespace
 
+// ---- What a run and the error check's re-runs share (run_rows.hpp) ----
+
+/// The drive's breakpoints inside (0, t_last), in order.
+std::vector<double> breaks_before(const Motion& motion, double t_last)
+{
+    std::vector<double> breaks;
+    for (double b : motion.breakpoints())
+        if (b > 0.0 && b < t_last) breaks.push_back(b);
+    std::sort(breaks.begin(), breaks.end());
+    return breaks;
+}
+
+/// The equations a run of scene integrates: the state's, or with the sensitivities of scene.output.sensitivities.
+std::unique_ptr<FirstOrderSystem> system_of(const Model& model, const Scene& scene)
+{
+    if (!scene.output.sensitivities.empty()) return std::make_unique<SensitivitySystem>(model, scene);
+    return std::make_unique<FirstOrderSystem>(model, scene.motion, scene.axial, scene.controller(), &scene.parameters);
+}
+
+RowMaker::RowMaker(const Model& model, const Motion& motion, FirstOrderSystem& system, const Control* control)
+    : model_(model), motion_(motion), system_(system), control_(control),
+      sensitivities_(dynamic_cast<SensitivitySystem*>(&system)), q_(static_cast<std::size_t>(model.nq())), qd_(q_),
+      derived_(sensitivities_ != nullptr ? static_cast<std::size_t>(sensitivities_->count()) *
+                                               std::size(sensitivity_outputs)
+                                         : 0),
+      extended_(control != nullptr || system.auxiliary().count() > 0)
+{
+}
+
+Row RowMaker::operator()(double t, const double* y)
+{
+    system_.full_state(t, y, q_.data(), qd_.data());
+    const double* q = q_.data();
+    const double* qd = qd_.data();
+    const bool torque = model_.key().drive == Drive::torque;
+    HubInput u = motion_.at(t);
+    RowExtras extras;
+    if (extended_) {
+        if (torque) extras.tau = system_.torque(t, y);
+        if (control_ != nullptr) {
+            extras.theta_ref = u.theta;
+            u = HubInput{};  // the model's input: the torque alone
+            u.tau = extras.tau;
+        }
+        const auto at = [y](int i) { return i >= 0 ? y[i] : 0.0; };
+        extras.controller_integral = at(system_.integral_index());
+        extras.dissipated = at(system_.dissipated_index());
+        extras.work = at(system_.work_index());
+    }
+    const Tip tip = model_.tip(q);
+    const Energy e = model_.energy(u, q, qd);
+    const double theta = torque ? q[0] : u.theta, theta_dot = torque ? qd[0] : u.theta_dot;
+    Row r{t, theta, theta_dot, tip.uy, tip.ux1, tip.ux, e.kinetic(), e.U, model_.momentum(u, q, qd), e.T2 - e.T0 + e.U,
+          extras};
+    if (sensitivities_ != nullptr) {
+        sensitivities_->outputs(t, y, derived_.data());
+        r.derived = derived_.data();
+    }
+    return r;
+}
+
+/// Why a row cannot stand, from the model's limits (empty if it can): the hub rate past the spin above which the
+/// straight beam is unstable, a hub angle beyond max_hub_angle, or a tip deflection beyond the beam's length.
+std::string model_limit(const Row& r, double critical, double L)
+{
+    char text[300];
+    if (std::abs(r.theta_dot) > critical) {
+        std::snprintf(text, sizeof text,
+                      "unstable: the hub rate %.4g rad/s has passed %.4g rad/s, above which the straight beam of "
+                      "this model is unstable (its effective stiffness loses definiteness; order zero: the first "
+                      "bending frequency) at t = %g s; order first or full stays stable",
+                      r.theta_dot, critical, r.t);
+        return text;
+    }
+    if (std::abs(r.theta) > max_hub_angle) {
+        std::snprintf(text, sizeof text,
+                      "the hub angle %.4g rad has passed %g rad, beyond which double precision no longer resolves "
+                      "its small changes, at t = %g s",
+                      r.theta, max_hub_angle, r.t);
+        return text;
+    }
+    if (!std::isfinite(r.tip_uy) || std::abs(r.tip_uy) > L)
+        return "unstable: tip deflection " + std::to_string(r.tip_uy) + " m exceeds the beam length" + at_time(r.t) +
+               "; the small-deformation model no longer holds";
+    return {};
+}
+
 /// One run of Simulation::run: the integration's state, with one member function per job (setup, the two stepping
 /// loops, rows to the sink, the diagnosis of a stop, the checks and the summary).
 class Simulation::Run {
@@ -377,7 +261,6 @@ private:
 
     std::string emit(double ti, const double* state, const RowSink& sink);
     void monitor(const Row& r);
-    void mark_end_window(double t, const std::vector<double>& y, double t_next);
 
     std::string why_failed(int status);
     std::string failure_hint() const;
@@ -386,7 +269,6 @@ private:
 
     RunSummary finish(std::string failure);
     std::string untrustworthy();
-    std::string check_stepper(CheckTolerance tol) const;
     std::string tolerance_as_cause(const std::string& failure);
 
     const Simulation& sim_;
@@ -410,12 +292,8 @@ private:
     double jacobi0_ = 0.0;
     double u_min_ = INFINITY, u_max_ = -INFINITY;  // U's range since t_steady (the drift's reference under gravity)
     std::string model_failure_;  // set when a row broke a model limit
-    // The error indicator's windows, the columns it compares and each one's largest |value|.
-    double check_window_ = 0.0, drive_end_window_length_ = 0.0;
-    CheckWindow start_window_, end_window_, drive_end_window_;
-    double drive_end_ = -1.0;  // the drive's last breakpoint inside the run, where drive_end_window_ starts
-    const CheckedColumns columns_;
-    std::vector<double> peak_, values_;  // values_: the last row's values (append_row_values)
+    RunErrorCheck check_;        // the error indicator; its columns are the ones a row writes
+    std::vector<double> values_;  // the last row's values (append_row_values)
     bool non_finite_ = false;  // the run stopped at a row with a non-finite value, not written
 };
 
@@ -426,7 +304,10 @@ Simulation::Run::Run(const Simulation& simulation)
                             scene_.solver.rtol)),
       make_row_(model_, scene_.motion, system_, scene_.controller()), times_(scene_.output),
       breaks_(breaks_before(scene_.motion, times_(times_.last()))), critical_(critical_spin(model_)),
-      budget_(scene_.solver.max_steps), columns_(checked_columns(scene_, system_)), peak_(columns_.names.size(), 0.0)
+      budget_(scene_.solver.max_steps),
+      check_(scene_, model_, system_, y_, times_(times_.last()),
+             !sim_.check_error_ ? ErrorCheck::off : sim_.whole_run_ ? ErrorCheck::full : ErrorCheck::on,
+             [&sim = sim_](double rtol) { return sim.automatic(rtol).stepper; })
 {
     summary_.variant = model_.key().name();
     summary_.source = model_.source();
@@ -458,12 +339,6 @@ Simulation::Run::Run(const Simulation& simulation)
     summary_.invariant_reference = summary_.energy_balance       ? "the largest energy in it"
                                    : model_.key().extras.gravity ? "the range of U since"
                                                                  : "the vibration energy";
-    const double t_end = scene_.output.t_end;
-    check_window_ = std::min(t_end, std::max(t_end * check_window_fraction, scene_.output.dt_out));
-    drive_end_window_length_ = std::max(check_window_ * drive_end_window_share, scene_.output.dt_out);
-    start_window_.t0 = 0.0;
-    start_window_.y0 = y_;  // the initial state
-    if (!breaks_.empty()) drive_end_ = breaks_.back();
 }
 
 RunSummary Simulation::Run::operator()(const RowSink& sink, const StopRequest& stop)
@@ -498,7 +373,7 @@ std::string Simulation::Run::free_steps(const RowSink& sink, const StopRequest& 
         const int status = stepper_->step(t_, target, y_.data(), to_row ? INFINITY : s.h_max);
         if (std::string failure = why_failed(status); !failure.empty()) return failure;
         if (std::string failure = over_budget(); !failure.empty()) return failure;
-        mark_end_window(s.t0, s.y0, t_);
+        check_.step_from(s.t0, s.y0, t_);
         s.have_f1 = false;
         if (times_(i) < t_ * (1.0 - same_instant) && !limit_interpolation(s)) {
             // Too long a step to interpolate its rows within the tolerance (the first step to reach a row after a
@@ -636,7 +511,7 @@ std::string Simulation::Run::row_steps(const RowSink& sink, const StopRequest& s
     for (long i = 1; i <= times_.last(); ++i) {
         if (const char* why = stop ? stop() : nullptr) return why;
         const double ti = times_(i);
-        mark_end_window(t_, y_, ti);
+        check_.step_from(t_, y_, ti);
         for (; next_break_ < breaks_.size() && breaks_[next_break_] <= ti * (1.0 + same_instant); ++next_break_) {
             const double b = breaks_[next_break_];
             const double tb = std::abs(b - ti) <= same_instant * ti ? ti : b;
@@ -663,12 +538,7 @@ const char* Simulation::Run::stop_requested(const StopRequest& stop)
 void Simulation::Run::restart()
 {
     stepper_->restart(t_, y_.data());
-    // Steps end at the breakpoint, so the window across the drive's end starts at a state the run computed.
-    if (sim_.check_error_ && drive_end_window_.t0 < 0.0 && drive_end_ > check_window_ &&
-        std::abs(t_ - drive_end_) <= same_instant * drive_end_) {
-        drive_end_window_.t0 = t_;
-        drive_end_window_.y0 = y_;
-    }
+    check_.restarted(t_, y_);
 }
 
 // ---- Rows ----
@@ -678,10 +548,10 @@ std::string Simulation::Run::emit(double ti, const double* state, const RowSink&
 {
     const Row r = make_row_(ti, state);
     values_.clear();
-    append_row_values(r, columns_.set, values_);
+    append_row_values(r, check_.columns().set, values_);
     for (std::size_t c = 0; c < values_.size(); ++c)
         if (!std::isfinite(values_[c])) {  // not a row to write: the run ends with the rows before it
-            model_failure_ = "unstable: the solution became non-finite" + at_time(ti) + " (" + columns_.names[c] +
+            model_failure_ = "unstable: the solution became non-finite" + at_time(ti) + " (" + check_.columns().names[c] +
                              " is " + std::to_string(values_[c]) + ")";
             non_finite_ = true;
             t_ = ti;
@@ -720,24 +590,7 @@ void Simulation::Run::monitor(const Row& r)
         summary_.vibration_energy =
             std::max(summary_.vibration_energy, model_.key().extras.gravity ? u_max_ - u_min_ : r.potential);
     }
-    if (!sim_.check_error_) return;
-    for (std::size_t c = 0; c < peak_.size(); ++c) peak_[c] = std::max(peak_[c], std::abs(values_[c]));
-    if (r.t > 0.0 && r.t <= check_window_ * (1.0 + same_instant)) start_window_.add(r, columns_.set);
-    else if (end_window_.t0 >= 0.0 && r.t > end_window_.t0) end_window_.add(r, columns_.set);
-    const double t_drive = drive_end_window_.t0;
-    if (t_drive >= 0.0 && r.t > t_drive * (1.0 + same_instant) &&
-        r.t <= (t_drive + drive_end_window_length_) * (1.0 + same_instant))
-        drive_end_window_.add(r, columns_.set);
-}
-
-/// The error indicator's last window starts at the end of the step before it reaches t_end - window: a state the
-/// run computed, not an interpolated one (whose error would excite the stiff modes the re-run then resolves).
-void Simulation::Run::mark_end_window(double t, const std::vector<double>& y, double t_next)
-{
-    if (!sim_.check_error_ || end_window_.t0 >= 0.0) return;
-    if (t_next < scene_.output.t_end - check_window_ || t <= check_window_) return;
-    end_window_.t0 = t;
-    end_window_.y0 = y;
+    check_.record(r, values_);
 }
 
 // ---- Why a run stops ----
@@ -817,7 +670,8 @@ RunSummary Simulation::Run::finish(std::string failure)
     summary_.jacobian_evals = system_.jacobian_evaluations();
     summary_.t_reached = t_;
     const auto checked = std::chrono::steady_clock::now();
-    summary_.wall_seconds = std::chrono::duration<double>(checked - start_).count();
+    summary_.wall_seconds = std::chrono::duration<double>(checked - start_).count() - check_.whole_run_seconds();
+    if (!failure.empty()) check_.rows_so_far(summary_);  // the run failed already: the summary's figure only
     if (failure.empty()) failure = untrustworthy();
     else if (!model_failure_.empty() || failure.rfind("unstable: the equations", 0) == 0)
         failure = tolerance_as_cause(failure);
@@ -825,16 +679,11 @@ RunSummary Simulation::Run::finish(std::string failure)
         failure += last_row_ < t_ ? "; the rows up to t = " + shortest(last_row_) + " s are written, not this one"
                                   : "; no row is written";
     if (summary_.check_rtol > 0.0)  // a check ran
-        summary_.check_wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - checked).count();
+        summary_.check_wall_seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - checked).count() + check_.whole_run_seconds();
     summary_.completed = failure.empty();
     summary_.failure = failure;
     return summary_;
-}
-
-/// The stepper of the checks' re-runs: the automatic choice at their tolerance.
-std::string Simulation::Run::check_stepper(CheckTolerance tol) const
-{
-    return sim_.automatic(tol.rtol).stepper;
 }
 
 /// For a run that reached t_end: why its rows cannot be trusted (empty if they can), from the invariant monitor
@@ -854,57 +703,13 @@ std::string Simulation::Run::untrustworthy()
                       summary_.invariant_reference.c_str(), invariant_tolerance);
         return text;
     }
-    if (!sim_.check_error_ || start_window_.times.empty()) return {};
-    const CheckTolerance tol = check_tolerance(scene_.solver);
-    summary_.check_rtol = tol.rtol;
-    summary_.check_atol = tol.atol;
-    const auto compare = [&](const CheckWindow& w) {
-        const ColumnDifference d = window_error(scene_, model_, w, columns_, peak_, tol, check_stepper(tol));
-        return std::pair{d.fraction, d.column};
-    };
-    // The start window from rest: an error made at once (a fast mode excited by a loose tolerance) stays.
-    auto [measured, column] = compare(start_window_);
-    const CheckWindow* where = &start_window_;
-    double error = measured;
-    if (measured >= 0.0 && !end_window_.times.empty()) {
-        // The error made in the last window, times the square root of the windows the run holds: the windows'
-        // errors add up as independent ones would (a linear sum overstates the atol-sized noise of a coordinate
-        // near zero eightfold in cases/torque_tau1.toml); a mode that the stepper amplifies shows in the window.
-        const auto [end_measured, end_column] = compare(end_window_);
-        const double t1 = end_window_.times.back();
-        const double scaled = end_measured < 0.0 ? -1.0 : end_measured * std::sqrt(t1 / (t1 - end_window_.t0));
-        if (scaled < 0.0 || scaled > error) error = scaled, measured = end_measured, column = end_column, where = &end_window_;
-    }
-    if (error >= 0.0 && !drive_end_window_.times.empty()) {
-        // Across the drive's end (a torque switched off, a spin-up reaching its rate): the profile's kink, where the
-        // stepper restarts, can make at once an error that then stays, as at a start from rest (most of the error
-        // of cases/torque_tau1.toml's tip_ux1, which neither of the other windows sees).
-        const auto [kink_measured, kink_column] = compare(drive_end_window_);
-        if (kink_measured < 0.0 || kink_measured > error)
-            error = kink_measured, measured = kink_measured, column = kink_column, where = &drive_end_window_;
-    }
-    summary_.estimated_error = error;
-    if (error < 0.0) return {};  // the re-run failed where the run did not: nothing to compare
-    summary_.error_column = columns_.names[column];
-    if (!(error > error_tolerance)) return {};
-    char rate[120] = "";
-    if (where == &end_window_)
-        std::snprintf(rate, sizeof rate, ", about %.2g over the run", error);
-    std::snprintf(text, sizeof text,
-                  "untrustworthy: the run's error exceeds %g: its %s differs by %.2g of its largest value from a re-run "
-                  "at rtol %g, atol %g over t = %g to %g s%s; tighten --rtol/--atol",
-                  error_tolerance, summary_.error_column.c_str(), measured, tol.rtol, tol.atol, where->t0,
-                  where->times.back(), rate);
-    return text;
+    return check_.verdict(summary_);
 }
 
 /// A run stopped by the model's limits or singular equations: if a re-run from rest at the tighter tolerance gets
 /// past that time, the run's own error and not the model caused it, and the message says so.
 std::string Simulation::Run::tolerance_as_cause(const std::string& failure)
 {
-    if (!sim_.check_error_) return failure;
-    const CheckTolerance tol = check_tolerance(scene_.solver);
-    if (tol.rtol >= scene_.solver.rtol && tol.atol >= scene_.solver.atol) return failure;  // as tight as it gets
     // The rows up to the failure: its row, or after a failed step the next row.
     std::vector<double> times;
     const bool at_row = !model_failure_.empty();
@@ -912,19 +717,7 @@ std::string Simulation::Run::tolerance_as_cause(const std::string& failure)
         times.push_back(times_(i));
         if (at_row ? times_(i) >= t_ * (1.0 - same_instant) : times_(i) > t_ * (1.0 + same_instant)) break;
     }
-    if (times.empty()) return failure;
-    summary_.check_rtol = tol.rtol;
-    summary_.check_atol = tol.atol;
-    const std::vector<double> again =  // from the run's start
-        rerun(scene_, model_, 0.0, start_window_.y0, times, tol, check_stepper(tol), columns_.set);
-    if (again.size() < times.size() * columns_.names.size()) return failure;  // the model fails there at the tighter tolerance too
-    // What happened, without the clauses that blame the model.
-    std::string what = failure.substr(0, std::min({failure.find(" ("), failure.find("; "), failure.find(", above")}));
-    if (what.rfind("unstable: ", 0) == 0) what.erase(0, 10);
-    char text[200];
-    std::snprintf(text, sizeof text, "): a re-run at rtol %g, atol %g passes t = %g s; tighten --rtol/--atol", tol.rtol,
-                  tol.atol, times.back());
-    return "untrustworthy: the run's error, not the model, stopped it (" + what + text;
+    return check_.tolerance_as_cause(failure, times, summary_);
 }
 
 namespace {
@@ -940,7 +733,8 @@ int auxiliary_count(const Scene& scene)
 Simulation::Simulation(const Scene& scene, const std::function<void(const std::string&)>& note) : scene_(scene)
 {
     model_ = make_model(scene.key(), scene.parameters, scene.source, note);
-    check_error_ = scene.solver.error_check == ErrorCheck::on;
+    check_error_ = scene.solver.error_check != ErrorCheck::off;
+    whole_run_ = scene.solver.error_check == ErrorCheck::full;
     stepper_ = scene.solver.stepper;
     if (stepper_ == automatic_stepper_word) {
         const StepperChoice choice = automatic(scene.solver.rtol);

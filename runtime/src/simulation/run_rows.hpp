@@ -1,0 +1,51 @@
+// What a run (simulate.cpp) and the error check's re-runs of it (error_check.cpp) share, so that both turn states
+// into rows, meet the drive's breakpoints and stop at the model's limits alike. Defined in simulate.cpp.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "dynamics/integrate.hpp"
+#include <hubbeam/scene.hpp>
+#include <hubbeam/simulate.hpp>
+
+namespace hubbeam {
+
+class SensitivitySystem;
+
+// Times are compared relative to their size: an output time and a breakpoint closer than this are one
+// instant, and t_end / dt_out within this of an integer counts as that integer.
+inline constexpr double same_instant = 1e-12;
+
+/// The equations a run of scene integrates: the state's, or with the sensitivities of scene.output.sensitivities.
+std::unique_ptr<FirstOrderSystem> system_of(const Model& model, const Scene& scene);
+
+/// The drive's breakpoints inside (0, t_last), in order.
+std::vector<double> breaks_before(const Motion& motion, double t_last);
+
+/// Why a row cannot stand, from the model's limits (empty if it can): the hub rate past the spin above which the
+/// straight beam is unstable, a hub angle beyond max_hub_angle, or a tip deflection beyond the beam's length.
+std::string model_limit(const Row& r, double critical, double L);
+
+/// Rows from states: the hub's angle and rate (prescribed, or coordinates under torque), the tip, the energies, the
+/// optional columns of a scene that has them (the torque, the reference, the auxiliary states) and a sensitivity
+/// system's derivative columns. The run's rows and the error indicator's re-runs both come from here.
+class RowMaker {
+public:
+    RowMaker(const Model& model, const Motion& motion, FirstOrderSystem& system, const Control* control);
+    /// The row of state y at t (its derivative columns valid until the next call); q() is then its full coordinates.
+    Row operator()(double t, const double* y);
+    const double* q() const { return q_.data(); }
+
+private:
+    const Model& model_;
+    const Motion& motion_;
+    FirstOrderSystem& system_;
+    const Control* control_;
+    SensitivitySystem* sensitivities_;  // null without sensitivities
+    std::vector<double> q_, qd_, derived_;
+    bool extended_;
+};
+
+}  // namespace hubbeam
