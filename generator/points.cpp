@@ -244,20 +244,20 @@ PointRule point_rule(const VariantKey& key)
     return r;
 }
 
-PointCode point_code(const VariantKey& key, const Symbols& s)
-{
-    const LoopSymbols ls;
-    const ex e = point_density(key, ls);
-    const bool torque = key.drive == Drive::torque, tip = key.extras.tip;
-    const std::vector<PointField> fields = point_fields(key, ls);
-    const PointRule rule = point_rule(key);
-    const int nq = key.nq(), nx = key.nx, ny = key.ny;
+namespace {
 
-    // Lagrange's equations of T_points = sum_g W_g e(fields(x_g)) by the chain rule:
-    //   M = sum e_ab dqd(a) dqd(b)^T over the rate fields,
-    //   Q = sum e_a dq(a) - D_a dqd(a) - e_a mixed(a),  D_a = sum_b e_ab rate(b) [+ de_a/dw w_dot, prescribed].
+/// Lagrange's equations of T_points = sum_g W_g e(fields(x_g)) by the chain rule, per vector (Q) and pair of vectors
+/// (M) of the point fields' gradients:
+///   M = sum e_ab dqd(a) dqd(b)^T over the rate fields,
+///   Q = sum e_a dq(a) - D_a dqd(a) - e_a mixed(a),  D_a = sum_b e_ab rate(b) [+ de_a/dw w_dot, prescribed].
+struct PointTerms {
     std::map<std::string, ex> Q;
     std::map<std::pair<std::string, std::string>, ex> M;
+};
+PointTerms point_terms(const ex& e, const std::vector<PointField>& fields, const LoopSymbols& ls, bool torque)
+{
+    PointTerms terms;
+    std::map<std::string, ex>& Q = terms.Q;
     for (const PointField& a : fields) {
         const ex ea = e.diff(a.sym);
         ex D = torque ? ex(0) : ea.diff(ls.w) * ls.w_dot;
@@ -270,235 +270,325 @@ PointCode point_code(const VariantKey& key, const Symbols& s)
             if (!b.rate_field) continue;
             const ex eab = ea.diff(b.sym);
             for (const auto& [u, su] : a.dqd)
-                for (const auto& [v, sv] : b.dqd) M[{u, v}] += su * sv * eab;
+                for (const auto& [v, sv] : b.dqd) terms.M[{u, v}] += su * sv * eab;
         }
     }
+    return terms;
+}
 
-    PointCode code;
-    const std::string B0 = std::to_string(key.first_b()), A0 = std::to_string(key.first_a()), n = std::to_string(nq);
-    const auto offset = [&](int block) { return block == 0 ? std::string("0") : block == 1 ? A0 : B0; };
-    const auto size = [&](int block) { return block == 0 ? 1 : block == 1 ? nx : ny; };
+/// Where the blocks of q (0: theta, 1: A, 2: B) lie in the kernels' arrays, as C text, and their sizes.
+struct Blocks {
+    int nq, nx, ny;
+    std::string A0, B0, n;
+    explicit Blocks(const VariantKey& key)
+        : nq(key.nq()), nx(key.nx), ny(key.ny), A0(std::to_string(key.first_a())), B0(std::to_string(key.first_b())),
+          n(std::to_string(key.nq()))
+    {
+    }
+    std::string offset(int block) const { return block == 0 ? std::string("0") : block == 1 ? A0 : B0; }
+    int size(int block) const { return block == 0 ? 1 : block == 1 ? nx : ny; }
+};
 
-    // Q: one scalar per vector, then one loop per block.
-    {
-        std::ostringstream body, lines;
-        std::map<int, std::vector<std::string>> by_block;
-        for (const auto& [v, c] : Q) {
-            if (c.expand().is_zero()) continue;
-            lines << "        const double q_" << v << " = W * (" << c_expression(c, ls) << ");\n";
-            by_block[block_of(v)].push_back(v);
-        }
-        body << lines.str();
-        for (const auto& [block, vs] : by_block) {
-            std::string sum;
-            for (const std::string& v : vs) sum += (sum.empty() ? "" : " + ") + ("q_" + v + (v == "theta" ? "" : " * " + entry(v, "i")));
-            if (block == 0) body << "        out[0] += " << sum << ";\n";
-            else
-                body << "        for (int i = 0; i < " << size(block) << "; ++i) out[" << offset(block) << " + i] += " << sum << ";\n";
-        }
-        code.forces = point_loop(key, body.str(), tip);
-    }
-    // M: the upper triangle, one scalar per unordered pair of vectors. A diagonal block (A or B) accumulates in a
-    // local square over the points (a loop the compiler vectorizes) and adds its upper triangle at the end.
-    {
-        std::ostringstream body, before, after;
-        std::map<std::pair<int, int>, std::vector<std::pair<std::string, std::string>>> by_blocks;
-        for (const auto& [uv, c] : M) {
-            const auto& [u, v] = uv;
-            if (c.expand().is_zero() || block_of(u) > block_of(v)) continue;
-            if (block_of(u) == block_of(v) && u > v) continue;  // (v, u) carries it: same coefficient, both orders below
-            body << "        const double m_" << u << "_" << v << " = W * (" << c_expression(c, ls) << ");\n";
-            by_blocks[{block_of(u), block_of(v)}].push_back({u, v});
-        }
-        for (const auto& [blocks, pairs] : by_blocks) {
-            const auto [bu, bv] = blocks;
-            std::string sum;
-            for (const auto& [u, v] : pairs) {
-                std::string t = "m_" + u + "_" + v;
-                const auto times = [](const std::string& x) { return x.empty() ? std::string() : " * " + x; };
-                if (bu == bv && u != v)
-                    t += " * (" + entry(u, "i") + " * " + entry(v, "j") + " + " + entry(v, "i") + " * " + entry(u, "j") + ")";
-                else t += times(entry(u, "i")) + times(entry(v, "j"));
-                sum += (sum.empty() ? "" : " + ") + t;
-            }
-            for (int i = 0; i < size(bu); ++i)
-                for (int j = bu == bv ? i : 0; j < size(bv); ++j)
-                    code.mass_entries.push_back((std::stoi(offset(bu)) + i) * nq + std::stoi(offset(bv)) + j);
-            if (bu == 0 && bv == 0) {
-                body << "        out[0] += " << sum << ";\n";
-            } else if (bu == 0) {
-                body << "        for (int j = 0; j < " << size(bv) << "; ++j) out[" << offset(bv) << " + j] += " << sum << ";\n";
-            } else if (bu != bv) {
-                body << "        for (int i = 0; i < " << size(bu) << "; ++i)\n"
-                     << "            for (int j = 0; j < " << size(bv) << "; ++j) out[(" << offset(bu) << " + i) * " << n << " + "
-                     << offset(bv) << " + j] += " << sum << ";\n";
-            } else if (pairs.size() == 1 && pairs[0].first == pairs[0].second && pairs[0].first == "h" && ny % 4 == 0) {
-                // sum_g m_h_h(g) h_g h_g^T as a product of the points' vectors after the loop, a row by four
-                // columns at a time in registers: two thirds of the instructions of a rank-one update per point.
-                const std::string c = "m_h_h", nb = std::to_string(ny);
-                before << "    double h_at[point_count][NY], scaled_h_at[point_count][NY];  // h_g and " << c << "(g) h_g\n";
-                body << "        for (int i = 0; i < NY; ++i) {\n"
-                     << "            h_at[g][i] = f.h[i];\n"
-                     << "            scaled_h_at[g][i] = " << c << " * f.h[i];\n"
-                     << "        }\n";
-                after << "    for (int i = 0; i < NY; ++i)\n"
-                      << "        for (int j = i / 4 * 4; j < NY; j += 4) {\n"
-                      << "            double s[4] = {};\n"
-                      << "            for (int g = 0; g < point_count; ++g) {\n"
-                      << "                const double a = scaled_h_at[g][i];\n"
-                      << "                for (int col = 0; col < 4; ++col) s[col] += a * h_at[g][j + col];\n"
-                      << "            }\n"
-                      << "            for (int col = 0; col < 4; ++col)\n"
-                      << "                if (j + col >= i) out[(" << offset(bu) << " + i) * " << n << " + " << offset(bu)
-                      << " + j + col] += s[col];\n"
-                      << "        }\n";
-            } else {
-                const std::string name = bu == 1 ? "block_A" : "block_B", nb = std::to_string(size(bu));
-                before << "    double " << name << "[" << nb << " * " << nb << "] = {};  // this block's terms, square\n";
-                body << "        for (int i = 0; i < " << nb << "; ++i)\n"
-                     << "            for (int j = 0; j < " << nb << "; ++j) " << name << "[i * " << nb << " + j] += " << sum << ";\n";
-                after << "    for (int i = 0; i < " << nb << "; ++i)\n"
-                      << "        for (int j = i; j < " << nb << "; ++j) out[(" << offset(bu) << " + i) * " << n << " + "
-                      << offset(bu) << " + j] += " << name << "[i * " << nb << " + j];\n";
-            }
-        }
-        code.mass = before.str() + point_loop(key, body.str(), tip) + after.str();
-    }
-    // The Jacobian pieces by the chain rule once more: each output is sum c(fields) u v^T over vectors u, v, plus
-    // c_H H(x_g)/L on the B block, where a vector holds the state (dh/dB = H/L, dk/dB_dot = H/L).
-    struct Matrix {
-        std::map<std::pair<std::string, std::string>, ex> outer;
-        ex H = 0;
-    };
-    const auto through = [&](const ex& c, bool rates, const std::string& row, Matrix& out) {
-        for (const PointField& f : fields) {
-            const ex dc = c.diff(f.sym);
-            if (dc.is_zero()) continue;
-            for (const auto& [v, sign] : rates ? f.dqd : f.dq) out.outer[{row, v}] += sign * dc;
-        }
-        // u_x2_ddot = -B_dot^T H B_dot / L: its gradient in the rates is -2 k.
-        if (rates) out.outer[{row, "k"}] += -2 * c.diff(ls.ux2_ddot);
-    };
-    Matrix dQdq, dQdqd, dMv;
+/// The forces' loop body: one scalar per vector, then one loop per block.
+std::string forces_body(const std::map<std::string, ex>& Q, const Blocks& b, const LoopSymbols& ls)
+{
+    std::ostringstream body, lines;
+    std::map<int, std::vector<std::string>> by_block;
     for (const auto& [v, c] : Q) {
-        through(c, false, v, dQdq);
-        through(c, true, v, dQdqd);
-        if (v == "h") dQdq.H += c;
-        if (v == "k") dQdqd.H += c;
+        if (c.expand().is_zero()) continue;
+        lines << "        const double q_" << v << " = W * (" << c_expression(c, ls) << ");\n";
+        by_block[block_of(v)].push_back(v);
+    }
+    body << lines.str();
+    for (const auto& [block, vs] : by_block) {
+        std::string sum;
+        for (const std::string& v : vs) sum += (sum.empty() ? "" : " + ") + ("q_" + v + (v == "theta" ? "" : " * " + entry(v, "i")));
+        if (block == 0) body << "        out[0] += " << sum << ";\n";
+        else
+            body << "        for (int i = 0; i < " << b.size(block) << "; ++i) out[" << b.offset(block) << " + i] += " << sum << ";\n";
+    }
+    return body.str();
+}
+
+/// The mass kernel's code: declarations before the loop over the points, the loop's body, the sums after it.
+struct MassCode {
+    std::ostringstream before, body, after;
+};
+
+/// The sum of the terms of the vector pairs of the blocks (bu, bv) at entry (i, j).
+std::string mass_sum(const std::vector<std::pair<std::string, std::string>>& pairs, int bu, int bv)
+{
+    std::string sum;
+    for (const auto& [u, v] : pairs) {
+        std::string t = "m_" + u + "_" + v;
+        const auto times = [](const std::string& x) { return x.empty() ? std::string() : " * " + x; };
+        if (bu == bv && u != v)
+            t += " * (" + entry(u, "i") + " * " + entry(v, "j") + " + " + entry(v, "i") + " * " + entry(u, "j") + ")";
+        else t += times(entry(u, "i")) + times(entry(v, "j"));
+        sum += (sum.empty() ? "" : " + ") + t;
+    }
+    return sum;
+}
+
+/// sum_g m_h_h(g) h_g h_g^T as a product of the points' vectors after the loop, a row by four columns at a time in
+/// registers: two thirds of the instructions of a rank-one update per point.
+void outer_h_mass(MassCode& m, const Blocks& b)
+{
+    const std::string c = "m_h_h", B0 = b.offset(2);
+    m.before << "    double h_at[point_count][NY], scaled_h_at[point_count][NY];  // h_g and " << c << "(g) h_g\n";
+    m.body << "        for (int i = 0; i < NY; ++i) {\n"
+           << "            h_at[g][i] = f.h[i];\n"
+           << "            scaled_h_at[g][i] = " << c << " * f.h[i];\n"
+           << "        }\n";
+    m.after << "    for (int i = 0; i < NY; ++i)\n"
+            << "        for (int j = i / 4 * 4; j < NY; j += 4) {\n"
+            << "            double s[4] = {};\n"
+            << "            for (int g = 0; g < point_count; ++g) {\n"
+            << "                const double a = scaled_h_at[g][i];\n"
+            << "                for (int col = 0; col < 4; ++col) s[col] += a * h_at[g][j + col];\n"
+            << "            }\n"
+            << "            for (int col = 0; col < 4; ++col)\n"
+            << "                if (j + col >= i) out[(" << B0 << " + i) * " << b.n << " + " << B0 << " + j + col] += s[col];\n"
+            << "        }\n";
+}
+
+/// A diagonal block (A or B) summed in a local square over the points (a loop the compiler vectorizes), its upper
+/// triangle added at the end.
+void square_mass_block(MassCode& m, int block, const std::string& sum, const Blocks& b)
+{
+    const std::string name = block == 1 ? "block_A" : "block_B", nb = std::to_string(b.size(block));
+    m.before << "    double " << name << "[" << nb << " * " << nb << "] = {};  // this block's terms, square\n";
+    m.body << "        for (int i = 0; i < " << nb << "; ++i)\n"
+           << "            for (int j = 0; j < " << nb << "; ++j) " << name << "[i * " << nb << " + j] += " << sum << ";\n";
+    m.after << "    for (int i = 0; i < " << nb << "; ++i)\n"
+            << "        for (int j = i; j < " << nb << "; ++j) out[(" << b.offset(block) << " + i) * " << b.n << " + "
+            << b.offset(block) << " + j] += " << name << "[i * " << nb << " + j];\n";
+}
+
+/// The code that adds the vector pairs of the blocks (bu, bv) to M's upper triangle.
+void mass_block(MassCode& m, int bu, int bv, const std::vector<std::pair<std::string, std::string>>& pairs,
+                const Blocks& b)
+{
+    const std::string sum = mass_sum(pairs, bu, bv);
+    if (bu == 0 && bv == 0) {
+        m.body << "        out[0] += " << sum << ";\n";
+    } else if (bu == 0) {
+        m.body << "        for (int j = 0; j < " << b.size(bv) << "; ++j) out[" << b.offset(bv) << " + j] += " << sum << ";\n";
+    } else if (bu != bv) {
+        m.body << "        for (int i = 0; i < " << b.size(bu) << "; ++i)\n"
+               << "            for (int j = 0; j < " << b.size(bv) << "; ++j) out[(" << b.offset(bu) << " + i) * " << b.n
+               << " + " << b.offset(bv) << " + j] += " << sum << ";\n";
+    } else if (pairs.size() == 1 && pairs[0].first == pairs[0].second && pairs[0].first == "h" && b.ny % 4 == 0) {
+        outer_h_mass(m, b);
+    } else {
+        square_mass_block(m, bu, sum, b);
+    }
+}
+
+/// M's point terms: the upper triangle, one scalar per unordered pair of vectors; entries collects the entries
+/// (row-major) they add to.
+std::string mass_code(const PointTerms& terms, const Blocks& b, const LoopSymbols& ls, const VariantKey& key,
+                      std::vector<int>& entries)
+{
+    MassCode m;
+    std::map<std::pair<int, int>, std::vector<std::pair<std::string, std::string>>> by_blocks;
+    for (const auto& [uv, c] : terms.M) {
+        const auto& [u, v] = uv;
+        if (c.expand().is_zero() || block_of(u) > block_of(v)) continue;
+        if (block_of(u) == block_of(v) && u > v) continue;  // (v, u) carries it: same coefficient, both orders below
+        m.body << "        const double m_" << u << "_" << v << " = W * (" << c_expression(c, ls) << ");\n";
+        by_blocks[{block_of(u), block_of(v)}].push_back({u, v});
+    }
+    for (const auto& [blocks, pairs] : by_blocks) {
+        const auto [bu, bv] = blocks;
+        for (int i = 0; i < b.size(bu); ++i)
+            for (int j = bu == bv ? i : 0; j < b.size(bv); ++j)
+                entries.push_back((std::stoi(b.offset(bu)) + i) * b.nq + std::stoi(b.offset(bv)) + j);
+        mass_block(m, bu, bv, pairs, b);
+    }
+    return m.before.str() + point_loop(key, m.body.str(), key.extras.tip) + m.after.str();
+}
+
+/// A Jacobian piece by the chain rule: sum c(fields) u v^T over vectors u, v, plus c_H H(x_g)/L on the B block,
+/// where a vector holds the state (dh/dB = H/L, dk/dB_dot = H/L).
+struct Matrix {
+    std::map<std::pair<std::string, std::string>, ex> outer;
+    ex H = 0;
+};
+
+/// Adds the gradient of c (the coefficient of row) in q, or in the rates, to out.
+void add_gradient(const ex& c, bool rates, const std::string& row, const std::vector<PointField>& fields,
+                  const LoopSymbols& ls, Matrix& out)
+{
+    for (const PointField& f : fields) {
+        const ex dc = c.diff(f.sym);
+        if (dc.is_zero()) continue;
+        for (const auto& [v, sign] : rates ? f.dqd : f.dq) out.outer[{row, v}] += sign * dc;
+    }
+    // u_x2_ddot = -B_dot^T H B_dot / L: its gradient in the rates is -2 k.
+    if (rates) out.outer[{row, "k"}] += -2 * c.diff(ls.ux2_ddot);
+}
+
+/// dQ/dq, dQ/dqd and sum_j dM_ij/dq_k z_j of the point terms.
+struct Jacobians {
+    Matrix dQdq, dQdqd, dMv;
+};
+Jacobians jacobians(const PointTerms& terms, const std::vector<PointField>& fields, const LoopSymbols& ls)
+{
+    Jacobians J;
+    for (const auto& [v, c] : terms.Q) {
+        add_gradient(c, false, v, fields, ls, J.dQdq);
+        add_gradient(c, true, v, fields, ls, J.dQdqd);
+        if (v == "h") J.dQdq.H += c;
+        if (v == "k") J.dQdqd.H += c;
     }
     // sum_j dM_ij/dq_k z_j with z in the qd slot, so that the point fields of the rates are products with z: for
     // M = sum m_uv u v^T it is sum_uv u d(m_uv (v . z))/dq + m_uv (v . z) du/dq, where a . z = u_x1_dot, p . z = u_y_dot,
     // h . z = -u_x2_dot (whose q-gradient -k carries dh/dq z).
     const std::map<std::string, ex> dot = {{"theta", ls.w}, {"a", ls.f.ux1_dot}, {"p", ls.f.uy_dot}, {"h", -ls.f.ux2_dot}};
-    for (const auto& [uv, m] : M) {
+    for (const auto& [uv, m] : terms.M) {
         const auto& [u, v] = uv;
         if (m.expand().is_zero()) continue;
-        through(m * dot.at(v), false, u, dMv);
-        if (u == "h") dMv.H += m * dot.at(v);
+        add_gradient(m * dot.at(v), false, u, fields, ls, J.dMv);
+        if (u == "h") J.dMv.H += m * dot.at(v);
     }
-    const auto matrix_body = [&](const Matrix& J, const std::string& stem) {
-        std::ostringstream body;
-        std::map<std::pair<int, int>, std::string> sums;
-        for (const auto& [uv, c] : J.outer) {
-            if (c.expand().is_zero()) continue;
-            const auto& [u, v] = uv;
-            const std::string name = stem + "_" + u + "_" + v;
-            body << "        const double " << name << " = W * (" << c_expression(c, ls) << ");\n";
-            std::string t = name;
-            if (!entry(u, "i").empty()) t += " * " + entry(u, "i");
-            if (!entry(v, "j").empty()) t += " * " + entry(v, "j");
-            std::string& sum = sums[{block_of(u), block_of(v)}];
-            sum += (sum.empty() ? "" : " + ") + t;
-        }
-        for (const auto& [blocks, sum] : sums) {
-            const auto [bu, bv] = blocks;
-            const std::string row = bu == 0 ? "0" : "(" + offset(bu) + " + i) * " + n, col = bv == 0 ? "0" : offset(bv) + " + j";
-            std::string indent = "        ";
-            if (bu != 0) {
-                body << indent << "for (int i = 0; i < " << size(bu) << "; ++i)\n";
-                indent += "    ";
-            }
-            if (bv != 0) {
-                body << indent << "for (int j = 0; j < " << size(bv) << "; ++j)\n";
-                indent += "    ";
-            }
-            body << indent << "out[" << row << " + " << col << "] += " << sum << ";\n";
-        }
-        if (!J.H.expand().is_zero())
-            body << "        const double " << stem << "_H = W * (" << c_expression(J.H, ls) << ") * $inv_L;\n"
-                 << "        for (int i = 0; i < NY; ++i)\n"
-                 << "            for (int j = 0; j < NY; ++j) out[(" << B0 << " + i) * " << n << " + " << B0 << " + j] += "
-                 << stem << "_H * point_H[g][i * NY + j];\n";
-        return body.str();
-    };
-    code.forces_q = point_loop(key, matrix_body(dQdq, "dq"), tip);
-    code.forces_qd = point_loop(key, matrix_body(dQdqd, "dqd"), tip);
-    code.mass_q_product = point_loop(key, matrix_body(dMv, "dm"), tip);
-    // dQ/du: the prescribed drive's theta_dot and theta_ddot (a torque variant's point terms hold no tau).
-    if (!torque) {
-        std::ostringstream body;
-        for (const auto& [v, c] : Q)
-            for (const auto& [input, column] : {std::pair{ex(ls.w), index(DriveValue::theta_dot)}, std::pair{ex(ls.w_dot), index(DriveValue::theta_ddot)}}) {
-                const ex dc = c.diff(ex_to<symbol>(input)).expand();
-                if (dc.is_zero()) continue;
-                const std::string name = "du_" + v + "_" + std::to_string(column);
-                body << "        const double " << name << " = W * (" << c_expression(dc, ls) << ");\n";
-                if (block_of(v) == 0) body << "        out[" << column << "] += " << name << ";\n";
-                else
-                    body << "        for (int i = 0; i < " << size(block_of(v)) << "; ++i) out[(" << offset(block_of(v))
-                         << " + i) * " << drive_value_count << " + " << column << "] += " << name << " * " << entry(v, "i") << ";\n";
-            }
-        code.forces_u = point_loop(key, body.str(), tip);
-    }
-    // The energy split by degree in the rates, and the angular momentum de/dw.
-    {
-        const symbol lambda("lambda");
-        exmap scale;
-        for (const PointField& f : fields)
-            if (f.rate_field) scale[f.sym] = lambda * f.sym;
-        const ex el = e.subs(scale).expand();
-        std::ostringstream body;
-        for (int d = 2; d >= 0; --d)
-            if (!el.coeff(lambda, d).is_zero())
-                body << "        out[" << 2 - d << "] += W * (" << c_expression(el.coeff(lambda, d), ls) << ");\n";
-        code.energy = point_loop(key, body.str(), tip);
-        code.momentum = point_loop(key, "        out[0] += W * (" + c_expression(e.diff(ls.w), ls) + ");\n", tip);
-    }
+    return J;
+}
 
-    // The tables: the rule's points (then the tip), shape values and H at each.
-    std::vector<double> xi = rule.xi;
-    if (tip) xi.push_back(1.0);
-    const FieldBasis axial = key.axial_basis(), transverse = key.transverse_basis();
-    std::ostringstream t;
+/// A Jacobian piece's loop body: one scalar per pair of vectors, one loop nest per pair of blocks, then H's term.
+std::string matrix_body(const Matrix& J, const std::string& stem, const Blocks& b, const LoopSymbols& ls)
+{
+    std::ostringstream body;
+    std::map<std::pair<int, int>, std::string> sums;
+    for (const auto& [uv, c] : J.outer) {
+        if (c.expand().is_zero()) continue;
+        const auto& [u, v] = uv;
+        const std::string name = stem + "_" + u + "_" + v;
+        body << "        const double " << name << " = W * (" << c_expression(c, ls) << ");\n";
+        std::string t = name;
+        if (!entry(u, "i").empty()) t += " * " + entry(u, "i");
+        if (!entry(v, "j").empty()) t += " * " + entry(v, "j");
+        std::string& sum = sums[{block_of(u), block_of(v)}];
+        sum += (sum.empty() ? "" : " + ") + t;
+    }
+    for (const auto& [blocks, sum] : sums) {
+        const auto [bu, bv] = blocks;
+        const std::string row = bu == 0 ? "0" : "(" + b.offset(bu) + " + i) * " + b.n, col = bv == 0 ? "0" : b.offset(bv) + " + j";
+        std::string indent = "        ";
+        if (bu != 0) {
+            body << indent << "for (int i = 0; i < " << b.size(bu) << "; ++i)\n";
+            indent += "    ";
+        }
+        if (bv != 0) {
+            body << indent << "for (int j = 0; j < " << b.size(bv) << "; ++j)\n";
+            indent += "    ";
+        }
+        body << indent << "out[" << row << " + " << col << "] += " << sum << ";\n";
+    }
+    if (!J.H.expand().is_zero())
+        body << "        const double " << stem << "_H = W * (" << c_expression(J.H, ls) << ") * $inv_L;\n"
+             << "        for (int i = 0; i < NY; ++i)\n"
+             << "            for (int j = 0; j < NY; ++j) out[(" << b.B0 << " + i) * " << b.n << " + " << b.B0 << " + j] += "
+             << stem << "_H * point_H[g][i * NY + j];\n";
+    return body.str();
+}
+
+/// dQ/du's loop body: the prescribed drive's theta_dot and theta_ddot (a torque variant's point terms hold no tau).
+std::string drive_body(const std::map<std::string, ex>& Q, const Blocks& b, const LoopSymbols& ls)
+{
+    std::ostringstream body;
+    for (const auto& [v, c] : Q)
+        for (const auto& [input, column] : {std::pair{ex(ls.w), index(DriveValue::theta_dot)}, std::pair{ex(ls.w_dot), index(DriveValue::theta_ddot)}}) {
+            const ex dc = c.diff(ex_to<symbol>(input)).expand();
+            if (dc.is_zero()) continue;
+            const std::string name = "du_" + v + "_" + std::to_string(column);
+            body << "        const double " << name << " = W * (" << c_expression(dc, ls) << ");\n";
+            if (block_of(v) == 0) body << "        out[" << column << "] += " << name << ";\n";
+            else
+                body << "        for (int i = 0; i < " << b.size(block_of(v)) << "; ++i) out[(" << b.offset(block_of(v))
+                     << " + i) * " << drive_value_count << " + " << column << "] += " << name << " * " << entry(v, "i") << ";\n";
+        }
+    return body.str();
+}
+
+/// The energy's loop body: the density split by degree in the rates (out[0] the quadratic part).
+std::string energy_body(const ex& e, const std::vector<PointField>& fields, const LoopSymbols& ls)
+{
+    const symbol lambda("lambda");
+    exmap scale;
+    for (const PointField& f : fields)
+        if (f.rate_field) scale[f.sym] = lambda * f.sym;
+    const ex el = e.subs(scale).expand();
+    std::ostringstream body;
+    for (int d = 2; d >= 0; --d)
+        if (!el.coeff(lambda, d).is_zero())
+            body << "        out[" << 2 - d << "] += W * (" << c_expression(el.coeff(lambda, d), ls) << ");\n";
+    return body.str();
+}
+
+/// A row of a C table: the numbers, comma-separated.
+std::string number_row(const std::vector<double>& v)
+{
+    std::string r;
+    for (std::size_t i = 0; i < v.size(); ++i) r += (i ? ", " : "") + c_number(numeric(v[i]));
+    return r;
+}
+
+/// The tables' head: what they are, the sizes and the rule's weights.
+void point_table_head(std::ostream& t, const VariantKey& key, const PointRule& rule, std::size_t point_count)
+{
+    const bool tip = key.extras.tip;
     t << "// Order full's foreshortening terms at " << rule.xi.size() << " Gauss-Legendre points x_g = L xi_g ("
       << (rule.exact ? "exact for these polynomial integrands" : "converged to round-off for these modes") << ")"
       << (tip ? ", then the tip body at xi = 1" : "") << ":\n"
       << "// T += sum_g W_g e(fields at x_g), W_g = m L w_g" << (tip ? " (m_tip at the tip)" : "")
       << ", e = 1/2 (|r_dot|^2 of order full - of order first).\n"
-      << (nx > 0 ? "constexpr int NX = " + std::to_string(nx) + ";\n" : std::string()) << "constexpr int NY = " << ny << ";\n"
-      << "constexpr int beam_points = " << rule.xi.size() << ", point_count = " << xi.size() << ";\n";
-    const auto row = [](const std::vector<double>& v) {
-        std::string r;
-        for (std::size_t i = 0; i < v.size(); ++i) r += (i ? ", " : "") + c_number(numeric(v[i]));
-        return r;
-    };
-    t << "constexpr double point_weight[beam_points] = {" << row(rule.weight) << "};\n";
-    // A basis's values at every point, as the table `name`[point_count][count].
-    const auto shape_table = [&](const char* name, const char* count, const auto& basis, int n) {
-        t << "constexpr double " << name << "[point_count][" << count << "] = {\n";
-        for (double x : xi) {
-            std::vector<double> v;
-            for (int i = 0; i < n; ++i) v.push_back(basis.at(i, x).v);
-            t << "    {" << row(v) << "},\n";
-        }
-        t << "};\n";
-    };
-    if (nx > 0) shape_table("point_phi_x", "NX", axial, nx);
-    shape_table("point_phi_y", "NY", transverse, ny);
-    t << "// H_xi(xi_g) = int_0^xi_g Phi_y'^T Phi_y' dxi, row-major.\nconstexpr double point_H[point_count][NY * NY] = {\n";
-    for (double x : xi) t << "    {" << row(coupling_at(transverse, x)) << "},\n";
-    t << "};\n\n"
-      << "using PointVectors = double[point_count][NY];\n\n"
+      << (key.nx > 0 ? "constexpr int NX = " + std::to_string(key.nx) + ";\n" : std::string()) << "constexpr int NY = " << key.ny << ";\n"
+      << "constexpr int beam_points = " << rule.xi.size() << ", point_count = " << point_count << ";\n";
+    t << "constexpr double point_weight[beam_points] = {" << number_row(rule.weight) << "};\n";
+}
+
+/// A basis's values at every point, as the table `name`[point_count][count].
+void shape_table(std::ostream& t, const char* name, const char* count, const FieldBasis& basis, int n,
+                 const std::vector<double>& xi)
+{
+    t << "constexpr double " << name << "[point_count][" << count << "] = {\n";
+    for (double x : xi) {
+        std::vector<double> v;
+        for (int i = 0; i < n; ++i) v.push_back(basis.at(i, x).v);
+        t << "    {" << number_row(v) << "},\n";
+    }
+    t << "};\n";
+}
+
+/// Rows from to to of H times vector into out, width at a time: in registers, the sum over j unrolled (GCC and
+/// Clang read the pragma).
+void h_rows(std::ostream& t, const std::string& indent, const std::string& from, const std::string& to,
+            const std::string& width, const std::string& vector, const std::string& out)
+{
+    t << indent << "for (int i = " << from << "; i < " << to << "; i += " << width << ") {\n"
+      << indent << "    double sum[" << width << "] = {};\n"
+      << "#pragma GCC unroll 32\n"
+      << indent << "    for (int j = 0; j < NY; ++j)\n"
+      << indent << "        for (int r = 0; r < " << width << "; ++r) sum[r] += H[j * NY + i + r] * " << vector << "[j];\n"
+      << indent << "    for (int r = 0; r < " << width << "; ++r) " << out << "[i + r] = sum[r];\n"
+      << indent << "}\n";
+}
+
+/// H times vector into out: four entries at a time over H's rows (H is symmetric), then the rest one by one. Copies
+/// of B and fixed-length inner loops keep them free of aliasing, so that the compiler vectorizes them at -O2; the
+/// loop's own instructions would cost half as much again.
+void h_product(std::ostream& t, int ny, const std::string& vector, const std::string& out)
+{
+    const int blocked = ny / 4 * 4;
+    if (blocked > 0) h_rows(t, "        ", "0", std::to_string(blocked), "4", vector, out);
+    if (blocked < ny) h_rows(t, "        ", std::to_string(blocked), "NY", "1", vector, out);
+}
+
+/// point_products(B): H_xi(x_g) B at every point, kept for the last B.
+void point_products_code(std::ostream& t, int ny)
+{
+    t << "using PointVectors = double[point_count][NY];\n\n"
       << "/// H_xi(x_g) B at every point, for the last B this thread asked for: the mass and the forces of one right-hand\n"
       << "/// side are evaluated at the same B and share these G Ny^2 products.\n"
       << "const PointVectors& point_products(const double* B)\n{\n"
@@ -512,28 +602,14 @@ PointCode point_code(const VariantKey& key, const Symbols& s)
       << "    for (int i = 0; i < NY; ++i) b[i] = last[i] = B[i];\n"
       << "    for (int g = 0; g < point_count; ++g) {\n"
       << "        const double* H = point_H[g];\n";
-    // Four entries at a time over H's rows (H is symmetric), in registers, the sum over j unrolled (GCC and Clang
-    // read the pragma): copies of B and fixed-length inner loops keep them free of aliasing, so that the compiler
-    // vectorizes them at -O2; the loop's own instructions would cost half as much again.
-    const int blocked = ny / 4 * 4;
-    const auto rows = [&](const std::string& indent, const std::string& from, const std::string& to, const std::string& width,
-                          const std::string& vector, const std::string& out) {
-        t << indent << "for (int i = " << from << "; i < " << to << "; i += " << width << ") {\n"
-          << indent << "    double sum[" << width << "] = {};\n"
-          << "#pragma GCC unroll 32\n"
-          << indent << "    for (int j = 0; j < NY; ++j)\n"
-          << indent << "        for (int r = 0; r < " << width << "; ++r) sum[r] += H[j * NY + i + r] * " << vector << "[j];\n"
-          << indent << "    for (int r = 0; r < " << width << "; ++r) " << out << "[i + r] = sum[r];\n"
-          << indent << "}\n";
-    };
-    // H times vector into out: four rows at a time, then the rest one by one.
-    const auto product = [&](const std::string& vector, const std::string& out) {
-        if (blocked > 0) rows("        ", "0", std::to_string(blocked), "4", vector, out);
-        if (blocked < ny) rows("        ", std::to_string(blocked), "NY", "1", vector, out);
-    };
-    product("b", "products[g]");
-    t << "    }\n    valid = true;\n    return products;\n}\n\n"
-      << "/// The fields at point g (docs/model.md section 2): u_x1, u_y, u_x2 = -1/2 B^T H B and their rates, with\n"
+    h_product(t, ny, "b", "products[g]");
+    t << "    }\n    valid = true;\n    return products;\n}\n\n";
+}
+
+/// point_fields<vectors>(g, ...): the point fields at point g from the state.
+void point_fields_code(std::ostream& t, int nx, int ny)
+{
+    t << "/// The fields at point g (docs/model.md section 2): u_x1, u_y, u_x2 = -1/2 B^T H B and their rates, with\n"
       << "/// h = H B (from HB = H_xi(x_g) B) and (vectors) k = H B_dot and u_x2_ddot = -B_dot^T H B_dot, the rate of u_x2_dot\n"
       << "/// at B_ddot = 0; H in x units (H_xi / L).\n"
       << "struct PointFields {\n    double u_x1 = 0.0, u_x1_dot = 0.0, u_y = 0.0, u_y_dot = 0.0, u_x2 = 0.0, u_x2_dot = 0.0, "
@@ -553,7 +629,7 @@ PointCode point_code(const VariantKey& key, const Symbols& s)
       << "    }\n"
       << "    if constexpr (vectors) {\n"
       << "        const double* H = point_H[g];\n";
-    product("b_dot", "k");
+    h_product(t, ny, "b_dot", "k");
     t << "    }\n"
       << "    double u_y = 0.0, u_y_dot = 0.0, u_x2 = 0.0, u_x2_dot = 0.0, u_x2_ddot = 0.0;\n"
       << "    for (int i = 0; i < NY; ++i) {\n"
@@ -574,7 +650,50 @@ PointCode point_code(const VariantKey& key, const Symbols& s)
       << "    f.u_x2_dot = -u_x2_dot * inv_L;\n"
       << "    f.u_x2_ddot = -u_x2_ddot * inv_L;\n"
       << "}\n";
-    code.tables = t.str();
+}
+
+/// The tables: the rule's points (then the tip), shape values and H at each; then point_products and point_fields.
+std::string point_tables(const VariantKey& key, const PointRule& rule)
+{
+    std::vector<double> xi = rule.xi;
+    if (key.extras.tip) xi.push_back(1.0);
+    const FieldBasis axial = key.axial_basis(), transverse = key.transverse_basis();
+    std::ostringstream t;
+    point_table_head(t, key, rule, xi.size());
+    if (key.nx > 0) shape_table(t, "point_phi_x", "NX", axial, key.nx, xi);
+    shape_table(t, "point_phi_y", "NY", transverse, key.ny, xi);
+    t << "// H_xi(xi_g) = int_0^xi_g Phi_y'^T Phi_y' dxi, row-major.\nconstexpr double point_H[point_count][NY * NY] = {\n";
+    for (double x : xi) t << "    {" << number_row(coupling_at(transverse, x)) << "},\n";
+    t << "};\n\n";
+    point_products_code(t, key.ny);
+    point_fields_code(t, key.nx, key.ny);
+    return t.str();
+}
+
+}  // namespace
+
+PointCode point_code(const VariantKey& key, const Symbols& s)
+{
+    const LoopSymbols ls;
+    const ex e = point_density(key, ls);
+    const bool torque = key.drive == Drive::torque, tip = key.extras.tip;
+    const std::vector<PointField> fields = point_fields(key, ls);
+    const PointRule rule = point_rule(key);  // its symbols made first: GiNaC orders symbols by creation
+    const PointTerms terms = point_terms(e, fields, ls, torque);
+    const Blocks blocks(key);
+
+    PointCode code;
+    code.forces = point_loop(key, forces_body(terms.Q, blocks, ls), tip);
+    code.mass = mass_code(terms, blocks, ls, key, code.mass_entries);
+    const Jacobians J = jacobians(terms, fields, ls);
+    code.forces_q = point_loop(key, matrix_body(J.dQdq, "dq", blocks, ls), tip);
+    code.forces_qd = point_loop(key, matrix_body(J.dQdqd, "dqd", blocks, ls), tip);
+    code.mass_q_product = point_loop(key, matrix_body(J.dMv, "dm", blocks, ls), tip);
+    if (!torque) code.forces_u = point_loop(key, drive_body(terms.Q, blocks, ls), tip);
+    // The energy split by degree in the rates, and the angular momentum de/dw.
+    code.energy = point_loop(key, energy_body(e, fields, ls), tip);
+    code.momentum = point_loop(key, "        out[0] += W * (" + c_expression(e.diff(ls.w), ls) + ");\n", tip);
+    code.tables = point_tables(key, rule);
     code.coefficients = {{"$m_L", s.m * s.L}, {"$inv_L", 1 / s.L}};
     if (tip) code.coefficients.emplace_back("$m_tip", s.m_tip);
     return code;

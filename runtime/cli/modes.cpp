@@ -9,15 +9,14 @@
 #include <map>
 #include <memory>
 #include <ostream>
-#include <sstream>
 #include <utility>
 
-#include "text/csv_columns.hpp"
 #include <hubbeam/linearize.hpp>
 #include "io/npz.hpp"
 #include "text/option_lists.hpp"
 #include "io/output.hpp"
 #include "io/output_file.hpp"
+#include "text/csv_columns.hpp"
 #include "plot.hpp"
 #include "text/shortest.hpp"
 
@@ -113,128 +112,175 @@ ModesOptions parse_modes_options(const ModesArgs& args, const Scene& scene)
 
 namespace {
 
-/// The critical speeds CSV's columns (--critical): the variant, the tracked mode, the harmonic n, the spin rate and
-/// the mode's frequency there.
-const char* critical_header()
-{
-    static const std::string h =
-        csv_header({"method", "ny", "nx", "order", "drive", "label", "harmonic", "omega", "rad_s", "hz"});
-    return h.c_str();
-}
-
-/// A modes or critical-speeds CSV row's first fields: the variant's method, ny, nx, order and drive.
-std::string variant_fields(const VariantKey& key)
-{
-    return to_string(key.method) + ',' + std::to_string(key.ny) + ',' + std::to_string(key.nx) + ',' +
-           to_string(key.order) + ',' + to_string(key.drive);
-}
-
 /// Below this MAC a line's pairing from one rate to the next is in doubt: the shapes changed more than between
 /// grid points that resolve them (a crossing's or veering's modes are about 0.5 apart when stepped over halfway).
 constexpr double doubtful_mac = 0.8;
+
+/// The least certain pairing of a line from one rate to the next among modes, or nullptr if none is in doubt.
+const SpinMode* least_certain(const std::vector<SpinMode>& modes)
+{
+    const SpinMode* least = nullptr;
+    for (const SpinMode& r : modes)
+        if (r.mac < (least ? least->mac : doubtful_mac)) least = &r;
+    return least;
+}
+
+/// What hubbeam modes makes of the table, variant by variant as its blocks come: the printed table, the CSVs
+/// (written only when asked for, and put in place only when complete), and after the table each variant's
+/// critical speeds and doubtful pairings, the files' names and the figure.
+class ModesReport {
+public:
+    ModesReport(const Scene& scene, const ModesOptions& o, std::ostream& out);
+    /// The printed table's column heads.
+    void heading() const;
+    /// A variant's block: its modes and critical speeds to the CSVs, its first `count` modes of each kind printed.
+    void add(const ModesBlock& block);
+    /// The CSVs dropped (the table could not be computed): the targets left as they were.
+    void discard();
+    /// After the last block: the critical speeds and notes printed, the CSVs put in place, the figure drawn.
+    void finish();
+
+private:
+    void add_modes(const ModesBlock& block);
+    void print_mode(const ModesBlock& block, const SpinMode& r) const;
+    void add_critical(const ModesBlock& block);
+    void print_ending() const;
+    void draw() const;
+
+    const ModesOptions& o_;
+    std::ostream& out_;
+    bool damped_;  // damping adds the undamped frequency |lambda| and the damping ratio to the printed table
+    std::unique_ptr<CsvWriter> csv_, critical_csv_;
+    long rows_ = 0, crossings_ = 0;
+    std::string harmonics_;                // as typed for --plot, and for the table's heading
+    std::string speeds_text_, warnings_;  // after the table: each variant's critical speeds and doubtful pairings
+};
+
+ModesReport::ModesReport(const Scene& scene, const ModesOptions& o, std::ostream& out)
+    : o_(o), out_(out), damped_(scene.key().extras.damping || scene.control)
+{
+    if (!o.output.empty()) csv_ = std::make_unique<CsvWriter>(o.output, modes_header());
+    if (!o.critical.empty()) critical_csv_ = std::make_unique<CsvWriter>(o.critical, critical_header());
+    for (const int n : o.harmonics) {
+        if (!harmonics_.empty()) harmonics_ += ',';
+        harmonics_ += std::to_string(n);
+    }
+}
+
+void ModesReport::heading() const
+{
+    if (o_.quiet) return;
+    out_ << "method  Ny  Nx  order  Omega rad/s  mode  kind     tracked          rad/s          Hz  dimensionless  "
+            "growth 1/s"
+         << (damped_ ? "  undamped rad/s     zeta" : "") << "\n";
+}
+
+void ModesReport::add(const ModesBlock& block)
+{
+    add_modes(block);
+    add_critical(block);
+    if (const SpinMode* least = least_certain(block.modes))
+        warnings_ += "note: " + block.key.name() + ": " + least->label + " continues at Omega = " +
+                     shortest(least->omega) + " rad/s with a MAC of only " + shortest(least->mac) +
+                     " to its shape at the rate before: the rates may step over a crossing or a veering; "
+                     "refine --omega there to follow it\n";
+}
+
+void ModesReport::add_modes(const ModesBlock& block)
+{
+    // Printed: the first `count` modes of each kind (bending, axial, hub) of each spin rate.
+    std::map<std::string, int> shown;  // by kind, at the current rate
+    for (const SpinMode& r : block.modes) {
+        if (r.number == 1) shown.clear();
+        if (csv_) csv_->write_line(modes_line(block, r));
+        ++rows_;
+        if (o_.quiet || shown[r.mode.kind]++ >= o_.count) continue;
+        print_mode(block, r);
+    }
+}
+
+void ModesReport::print_mode(const ModesBlock& block, const SpinMode& r) const
+{
+    const VariantKey& key = block.key;
+    const NaturalMode& mode = r.mode;
+    char line[400];
+    std::snprintf(line, sizeof line, "%-6s %3d %3d  %-5s %12.4g  %4d  %-7s  %-11s %11.6g %11.6g %14.6g  %10.3g",
+                  to_string(key.method).c_str(), key.ny, key.nx, to_string(key.order).c_str(), r.omega, r.number,
+                  mode.kind.c_str(), r.label.c_str(), mode.rad_s, mode.rad_s / (2.0 * M_PI), mode.rad_s / block.unit,
+                  mode.growth);
+    out_ << line;
+    if (damped_) {
+        std::snprintf(line, sizeof line, "  %14.6g %8.4g", mode.undamped_rad_s, mode.damping_ratio);
+        out_ << line;
+    }
+    out_ << '\n';
+}
+
+void ModesReport::add_critical(const ModesBlock& block)
+{
+    const VariantKey& key = block.key;
+    crossings_ += static_cast<long>(block.critical.size());
+    for (const CriticalSpeed& c : block.critical) {
+        if (critical_csv_) critical_csv_->write_line(critical_line(block, c));
+        char line[400];
+        std::snprintf(line, sizeof line, "%-6s %3d %3d  %-11s meets %3dP at Omega = %-12.6g rad/s (%.6g Hz)\n",
+                      to_string(key.method).c_str(), key.ny, key.nx, c.label.c_str(), c.harmonic, c.omega,
+                      c.rad_s / (2.0 * M_PI));
+        speeds_text_ += line;
+    }
+}
+
+void ModesReport::discard()
+{
+    if (csv_) csv_->discard();
+    if (critical_csv_) critical_csv_->discard();
+}
+
+void ModesReport::finish()
+{
+    print_ending();
+    for (CsvWriter* file : {csv_.get(), critical_csv_.get()})
+        if (file && !file->finish()) throw std::runtime_error(file->error());
+    if (csv_) out_ << "modes: " << o_.output << "\n";
+    if (critical_csv_) out_ << "critical speeds: " << o_.critical << "\n";
+    if (!o_.plot.empty()) draw();
+}
+
+void ModesReport::print_ending() const
+{
+    if (o_.quiet)
+        out_ << rows_ << " modes of " << o_.methods.size() * o_.ny.size() << " variant(s) at " << o_.omegas.size()
+             << " spin rate(s); " << crossings_ << " critical speed(s)\n";
+    else if (o_.omegas.size() > 1)
+        out_ << "\ncritical speeds (a tracked mode meets the excitation n x the spin rate, n = " << harmonics_
+             << "): " << (crossings_ == 0 ? "none between the rates\n" : "\n") << speeds_text_;
+    out_ << warnings_;
+}
+
+void ModesReport::draw() const
+{
+    PlotArgs figure;
+    figure.kind = "campbell";
+    figure.files = {o_.output};
+    figure.prefix = o_.plot;
+    figure.harmonics = harmonics_;
+    if (const std::string why = draw_plot(figure); !why.empty()) throw std::runtime_error(why);
+    out_ << "figure: " << o_.plot << ".{png,svg}\n";
+}
 
 }  // namespace
 
 void run_modes(const Scene& scene, const ModesOptions& o, std::ostream& out)
 {
-    const double unit = frequency_unit(scene.parameters);
-    // The table is printed; the CSVs written only when asked for, and put in place only when complete.
-    std::unique_ptr<CsvWriter> csv = o.output.empty() ? nullptr : std::make_unique<CsvWriter>(o.output, modes_header());
-    std::unique_ptr<CsvWriter> critical_csv =
-        o.critical.empty() ? nullptr : std::make_unique<CsvWriter>(o.critical, critical_header());
-    long rows = 0, crossings = 0;
-    std::string harmonics;  // as typed for --plot, and for the table's heading
-    for (const int n : o.harmonics) harmonics += (harmonics.empty() ? "" : ",") + std::to_string(n);
-    std::string speeds_text, warnings;  // after the table: each variant's critical speeds and doubtful pairings
+    ModesReport report(scene, o, out);
     try {
-        char line[400];
-        // Damping adds the undamped frequency |lambda| and the damping ratio to the printed table.
-        const bool damped = scene.key().extras.damping || scene.control;
-        if (!o.quiet)
-            out << "method  Ny  Nx  order  Omega rad/s  mode  kind     tracked          rad/s          Hz  dimensionless  "
-                   "growth 1/s"
-                << (damped ? "  undamped rad/s     zeta" : "") << "\n";
-        for (Method method : o.methods)
-            for (int ny : o.ny) {
-                VariantKey key = scene.key();
-                key.method = method;
-                key.ny = ny;
-                const std::unique_ptr<Model> model = make_model(key, scene.parameters, scene.source);
-                const std::vector<SpinMode> spin_modes =
-                    campbell(*model, o.omegas, scene.axial, held_angle(scene), scene.controller());
-                // Printed: the first `count` modes of each kind (bending, axial, hub) of each spin rate.
-                std::map<std::string, int> shown;  // by kind, at the current rate
-                const SpinMode* least = nullptr;  // the least certain pairing of a line from one rate to the next
-                for (const SpinMode& r : spin_modes) {
-                    const auto& [omega, number, mode, label, pairing] = r;
-                    if (pairing < (least ? least->mac : doubtful_mac)) least = &r;
-                    if (number == 1) shown.clear();
-                    const double hz = mode.rad_s / (2.0 * M_PI);
-                    std::ostringstream row;
-                    row << variant_fields(key) << ',' << shortest(omega) << ',' << number << ',' << mode.kind << ','
-                        << shortest(mode.rad_s) << ',' << shortest(hz) << ',' << shortest(mode.rad_s / unit) << ','
-                        << shortest(mode.growth) << ',' << shortest(mode.undamped_rad_s) << ','
-                        << shortest(mode.damping_ratio) << ',' << label << ',' << shortest(pairing);
-                    if (csv) csv->write_line(row.str());
-                    ++rows;
-                    if (o.quiet) continue;
-                    if (shown[mode.kind]++ >= o.count) continue;
-                    std::snprintf(line, sizeof line,
-                                  "%-6s %3d %3d  %-5s %12.4g  %4d  %-7s  %-11s %11.6g %11.6g %14.6g  %10.3g",
-                                  to_string(method).c_str(), ny, key.nx, to_string(key.order).c_str(), omega, number,
-                                  mode.kind.c_str(), label.c_str(), mode.rad_s, hz, mode.rad_s / unit, mode.growth);
-                    out << line;
-                    if (damped) {
-                        std::snprintf(line, sizeof line, "  %14.6g %8.4g", mode.undamped_rad_s, mode.damping_ratio);
-                        out << line;
-                    }
-                    out << '\n';
-                }
-                const std::vector<CriticalSpeed> speeds = critical_speeds(
-                    *model, spin_modes, o.harmonics, scene.axial, held_angle(scene), scene.controller());
-                crossings += static_cast<long>(speeds.size());
-                for (const CriticalSpeed& c : speeds) {
-                    if (critical_csv)
-                        critical_csv->write_line(variant_fields(key) + ',' + c.label + ',' + std::to_string(c.harmonic) +
-                                                 ',' + shortest(c.omega) + ',' + shortest(c.rad_s) + ',' +
-                                                 shortest(c.rad_s / (2.0 * M_PI)));
-                    std::snprintf(line, sizeof line, "%-6s %3d %3d  %-11s meets %3dP at Omega = %-12.6g rad/s (%.6g Hz)\n",
-                                  to_string(method).c_str(), ny, key.nx, c.label.c_str(), c.harmonic, c.omega,
-                                  c.rad_s / (2.0 * M_PI));
-                    speeds_text += line;
-                }
-                if (least != nullptr)
-                    warnings += "note: " + key.name() + ": " + least->label + " continues at Omega = " +
-                             shortest(least->omega) + " rad/s with a MAC of only " + shortest(least->mac) +
-                             " to its shape at the rate before: the rates may step over a crossing or a veering; "
-                             "refine --omega there to follow it\n";
-            }
+        report.heading();
+        modes_table(scene, o, [&report](const ModesBlock& block) { report.add(block); });
     } catch (...) {
-        if (csv) csv->discard();
-        if (critical_csv) critical_csv->discard();
+        report.discard();
         throw;
     }
-    if (o.quiet)
-        out << rows << " modes of " << o.methods.size() * o.ny.size() << " variant(s) at " << o.omegas.size()
-            << " spin rate(s); " << crossings << " critical speed(s)\n";
-    else if (o.omegas.size() > 1)
-        out << "\ncritical speeds (a tracked mode meets the excitation n x the spin rate, n = " << harmonics
-            << "): " << (crossings == 0 ? "none between the rates\n" : "\n")
-            << speeds_text;
-    out << warnings;
-    for (CsvWriter* file : {csv.get(), critical_csv.get()})
-        if (file && !file->finish()) throw std::runtime_error(file->error());
-    if (csv) out << "modes: " << o.output << "\n";
-    if (critical_csv) out << "critical speeds: " << o.critical << "\n";
-    if (!o.plot.empty()) {
-        PlotArgs figure;
-        figure.kind = "campbell";
-        figure.files = {o.output};
-        figure.prefix = o.plot;
-        figure.harmonics = harmonics;
-        if (const std::string why = draw_plot(figure); !why.empty()) throw std::runtime_error(why);
-        out << "figure: " << o.plot << ".{png,svg}\n";
-    }
+    report.finish();
 }
 
 void run_linearize(const Scene& scene, double omega, const std::string& prefix, std::ostream& out)

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/modes_table.hpp"
 #include "text/option_lists.hpp"
 #include <hubbeam/scene.hpp>
 
@@ -33,12 +34,9 @@ struct ModesArgs {
     bool quiet = false;   // the table to the CSV only, and one summary line printed
 };
 
-struct ModesOptions {
-    std::vector<double> omegas;
-    std::vector<Method> methods;
-    std::vector<int> ny;
+/// The table asked for (omegas, methods, ny, harmonics), and what of it is printed and written where.
+struct ModesOptions : ModesRequest {
     int count = 4;
-    std::vector<int> harmonics;
     std::string output, plot, critical;
     bool quiet = false;
 };

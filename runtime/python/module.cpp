@@ -21,13 +21,15 @@
 #include <string>
 #include <thread>
 #include <tuple>
+#include <variant>
 #include <vector>
 
 #include <hubbeam/hubbeam.hpp>
 #include <hubbeam/make_model.hpp>
-#include "io/output.hpp"
+#include "analysis/modes_table.hpp"
 #include "on_demand/on_demand.hpp"
 #include "text/shortest.hpp"
+#include "io/output.hpp"
 
 namespace py = pybind11;
 using namespace hubbeam;
@@ -369,30 +371,24 @@ py::dict run(const std::string& text, const std::string& name, const Keywords& k
     return out;
 }
 
-/// Every mode of the scene's variant at each spin rate: columns of equal length.
-py::dict modes(const std::string& text, const std::string& name, const Keywords& keywords,
-               const std::vector<double>& omegas, const std::vector<int>& harmonics, bool cancellable)
+/// The block of the scene's variant (hubbeam modes' own assembly), computed without the GIL and stopped between
+/// spin rates when interrupts say so.
+ModesBlock modes_of(const Scene& scene, const std::vector<double>& omegas, const std::vector<int>& harmonics,
+                    Interrupts& interrupts)
 {
-    Interrupts interrupts(cancellable);
-    const Scene scene = scene_of(text, name, keywords);
-    const VariantKey key = scene.key();
-    std::unique_ptr<Model> model;
-    std::vector<SpinMode> rows;
-    std::vector<CriticalSpeed> speeds;
     struct Stopped {
         const char* why;
     };  // thrown by the check between spin rates: no std::exception, so nothing on the way catches it
     try {
         const WithoutGil release;
-        model = guarded(scene, [&] { return make_model(key, scene.parameters, scene.source); });
+        const VariantKey key = scene.key();
+        const std::unique_ptr<Model> model =
+            guarded(scene, [&] { return make_model(key, scene.parameters, scene.source); });
         const auto check = [&interrupts] {
             if (const char* why = interrupts.reason()) throw Stopped{why};
         };
         try {
-            // Held at the initial angle under gravity; with [control], the closed loop's modes (as hubbeam modes).
-            rows = campbell(*model, omegas, scene.axial, scene.motion.initial_theta(), scene.controller(), check);
-            speeds = critical_speeds(*model, rows, harmonics, scene.axial, scene.motion.initial_theta(),
-                                     scene.controller(), check);
+            return modes_block(*model, key, scene, omegas, harmonics, check);
         } catch (const std::runtime_error&) {
             // Name the rate that has no steady state (ValueError) if that is what failed.
             for (const double w : omegas) at_spin(w, [&] { return steady_spin(*model, w, scene.motion.initial_theta()); });
@@ -402,52 +398,48 @@ py::dict modes(const std::string& text, const std::string& name, const Keywords&
         interrupts.raise();
         throw std::runtime_error(stopped.why);  // a cancelled sweep's point
     }
-    std::vector<double> omega, rad_s, hz, dimensionless, growth, undamped, zeta, pairing;
-    std::vector<int> number;
-    std::vector<std::string> kind, label;
-    const double unit = frequency_unit(scene.parameters);
-    for (const auto& [w, k, m, l, mac] : rows) {
-        omega.push_back(w);
-        number.push_back(k);
-        kind.push_back(m.kind);
-        label.push_back(l);
-        pairing.push_back(mac);
-        rad_s.push_back(m.rad_s);
-        hz.push_back(m.rad_s / (2.0 * M_PI));
-        dimensionless.push_back(m.rad_s / unit);
-        growth.push_back(m.growth);
-        undamped.push_back(m.undamped_rad_s);
-        zeta.push_back(m.damping_ratio);
+}
+
+/// One column's cells of rows, each a T.
+template <class T, class Row>
+std::vector<T> cells(const TableColumn<Row>& column, const ModesBlock& block, const std::vector<Row>& rows)
+{
+    std::vector<T> values;
+    values.reserve(rows.size());
+    for (const Row& r : rows) values.push_back(std::get<T>(column.cell(block, r)));
+    return values;
+}
+
+/// A table's columns, but the variant's, as entries of out by their names: numbers and integers as numpy arrays,
+/// texts as lists of str.
+template <class Row>
+void add_columns(py::dict& out, const std::vector<TableColumn<Row>>& columns, const ModesBlock& block,
+                 const std::vector<Row>& rows)
+{
+    for (const TableColumn<Row>& column : columns) {
+        if (column.of_variant) continue;
+        const TableCell kind = column.cell(block, Row{});
+        if (std::holds_alternative<double>(kind))
+            out[column.name] = py::array(py::cast(cells<double>(column, block, rows)));
+        else if (std::holds_alternative<int>(kind))
+            out[column.name] = py::array(py::cast(cells<int>(column, block, rows)));
+        else
+            out[column.name] = cells<std::string>(column, block, rows);
     }
+}
+
+/// Every mode of the scene's variant at each spin rate: columns of equal length, and the critical speeds'.
+py::dict modes(const std::string& text, const std::string& name, const Keywords& keywords,
+               const std::vector<double>& omegas, const std::vector<int>& harmonics, bool cancellable)
+{
+    Interrupts interrupts(cancellable);
+    const Scene scene = scene_of(text, name, keywords);
+    const ModesBlock block = modes_of(scene, omegas, harmonics, interrupts);
     py::dict out;
-    out["variant"] = key.name();
-    out["omega"] = py::array(py::cast(omega));
-    out["mode"] = py::array(py::cast(number));
-    out["kind"] = kind;
-    out["rad_s"] = py::array(py::cast(rad_s));
-    out["hz"] = py::array(py::cast(hz));
-    out["dimensionless"] = py::array(py::cast(dimensionless));
-    out["growth"] = py::array(py::cast(growth));
-    out["undamped_rad_s"] = py::array(py::cast(undamped));
-    out["damping_ratio"] = py::array(py::cast(zeta));
-    out["label"] = label;
-    out["mac"] = py::array(py::cast(pairing));
-    std::vector<std::string> critical_label;
-    std::vector<int> critical_harmonic;
-    std::vector<double> critical_omega, critical_rad_s, critical_hz;
-    for (const CriticalSpeed& c : speeds) {
-        critical_label.push_back(c.label);
-        critical_harmonic.push_back(c.harmonic);
-        critical_omega.push_back(c.omega);
-        critical_rad_s.push_back(c.rad_s);
-        critical_hz.push_back(c.rad_s / (2.0 * M_PI));
-    }
+    out["variant"] = block.key.name();
+    add_columns(out, modes_columns(), block, block.modes);
     py::dict critical;
-    critical["label"] = critical_label;
-    critical["harmonic"] = py::array(py::cast(critical_harmonic));
-    critical["omega"] = py::array(py::cast(critical_omega));
-    critical["rad_s"] = py::array(py::cast(critical_rad_s));
-    critical["hz"] = py::array(py::cast(critical_hz));
+    add_columns(critical, critical_columns(), block, block.critical);
     out["critical"] = critical;
     return out;
 }

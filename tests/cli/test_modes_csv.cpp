@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -14,8 +15,12 @@
 #include <utility>
 #include <vector>
 
+#include "text/csv_columns.hpp"
 #include "modes.hpp"
+#include "analysis/modes_table.hpp"
 #include <hubbeam/scene.hpp>
+#include "text/shortest.hpp"
+#include "temp_folder.hpp"
 
 using namespace hubbeam;
 
@@ -113,4 +118,58 @@ TEST_CASE("modes' CSV columns hold what their names say, the critical speeds' am
         CHECK(rad_s <= std::max(below->second, above->second));
     }
     CHECK(found == expected);
+}
+
+TEST_CASE("hubbeam modes' CSVs are the modes table's lines, variant by variant, each cell under its column's name",
+          "[modes][campbell]")
+{
+    // Two variants (two methods) of the paper's beam to 300 rad/s, where its lines cross 1P, 2P and 3P: what the
+    // command writes is the library's one table, whose cells stand under the names of what they hold.
+    const TempFolder folder("modes-table");
+    const Scene scene = load_scene(HUBBEAM_SOURCE_DIR "/cases/spinup_omega4.toml");
+    ModesArgs args;
+    args.omega = "0:300:50";
+    args.methods = "amm,bim";
+    args.output = (folder.path / "modes.csv").string();
+    args.critical = (folder.path / "critical.csv").string();
+    args.harmonics = "1,2,3";
+    args.quiet = true;
+    const ModesOptions options = parse_modes_options(args, scene);
+    std::ostringstream out;
+    run_modes(scene, options, out);
+
+    std::string modes = std::string(modes_header()) + "\n", critical = std::string(critical_header()) + "\n";
+    const CsvColumns m(args.output, modes_header()), c(args.critical, critical_header());
+    std::vector<std::string> methods;
+    modes_table(scene, options, [&](const ModesBlock& block) {
+        methods.push_back(to_string(block.key.method));
+        for (const SpinMode& r : block.modes) {
+            const std::string line = modes_line(block, r);
+            modes += line + "\n";
+            const std::vector<std::string> f = csv_fields(line);
+            CHECK(f[m.at("method")] == methods.back());
+            CHECK(f[m.at("omega")] == shortest(r.omega));
+            CHECK(f[m.at("mode")] == std::to_string(r.number));
+            CHECK(f[m.at("rad_s")] == shortest(r.mode.rad_s));
+            CHECK(f[m.at("hz")] == shortest(r.mode.rad_s / (2.0 * M_PI)));
+            CHECK(f[m.at("dimensionless")] == shortest(r.mode.rad_s / frequency_unit(scene.parameters)));
+            CHECK(f[m.at("label")] == r.label);
+        }
+        for (const CriticalSpeed& speed : block.critical) {
+            const std::string line = critical_line(block, speed);
+            critical += line + "\n";
+            const std::vector<std::string> f = csv_fields(line);
+            CHECK(f[c.at("harmonic")] == std::to_string(speed.harmonic));
+            CHECK(f[c.at("omega")] == shortest(speed.omega));
+            CHECK(f[c.at("hz")] == shortest(speed.rad_s / (2.0 * M_PI)));
+        }
+    });
+    CHECK(methods == std::vector<std::string>{"amm", "bim"});
+    CHECK(std::count(critical.begin(), critical.end(), '\n') > 2);  // crossings of both variants' lines
+    const auto text = [](const std::string& path) {
+        std::ifstream in(path, std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    CHECK(text(args.output) == modes);
+    CHECK(text(args.critical) == critical);
 }

@@ -506,6 +506,36 @@ class ModesTest(unittest.TestCase):
                 hubbeam.modes(SPINUP, 0.0, harmonics=bad, nx=0)
             self.assertTrue(str(caught.exception).startswith("harmonics: expected"), str(caught.exception))
 
+    def test_modes_is_the_command_lines_table_column_for_column(self):
+        # hubbeam.modes and hubbeam modes -o / --critical give one table: each CSV column but the variant's is a key
+        # of the result holding the same values (round-trip exact), and the result has no other columns. A damped
+        # scene, so that growth, undamped_rad_s and damping_ratio are not zero, to 6 rad/s past 1P, 2P and 3P.
+        scene = os.path.join(SOURCE, "cases", "damped_appendage.toml")
+        with tempfile.TemporaryDirectory() as d:
+            paths = {"modes": os.path.join(d, "modes.csv"), "critical": os.path.join(d, "critical.csv")}
+            p = cli("modes", scene, "--omega", "0:6:0.5", "-o", paths["modes"], "--critical", paths["critical"], "-q")
+            self.assertEqual(p.returncode, 0, p.stderr)
+            tables = {}
+            for name, path in paths.items():
+                with open(path, newline="") as f:
+                    reader = csv.DictReader(f)
+                    tables[name] = (reader.fieldnames, list(reader))
+        m = hubbeam.modes(scene, np.arange(0.0, 6.25, 0.5))
+        variant = ["method", "ny", "nx", "order", "drive"]
+        for name, result in (("modes", m), ("critical", m["critical"])):
+            header, rows = tables[name]
+            self.assertGreater(len(rows), 2, name)
+            self.assertEqual(header[:5], variant, name)
+            self.assertEqual(sorted(header[5:]), sorted(k for k in result if k not in ("variant", "critical")), name)
+            for column in header[5:]:
+                if result[column].dtype.kind == "U":
+                    self.assertEqual(list(result[column]), [r[column] for r in rows], column)
+                else:
+                    np.testing.assert_array_equal(result[column], [float(r[column]) for r in rows], column)
+            for r in rows:
+                self.assertTrue(m["variant"].startswith(f"{r['method']}_nx{r['nx']}_ny{r['ny']}_{r['drive']}_{r['order']}"))
+        self.assertTrue(np.all(m["growth"] < 0.0))  # the damping's decay
+
     def test_a_controlled_scene_gives_the_closed_loop_as_the_command_line_does(self):
         # The command line's modes CSV and linearize CSVs of a scene with [control] are the closed loop: the
         # controller's stiffness turns the free hub's rigid rotation into a mode of kind "hub".

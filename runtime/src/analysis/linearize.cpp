@@ -508,13 +508,4 @@ std::vector<CriticalSpeed> critical_speeds(const Model& model, const std::vector
 
 double frequency_unit(const Parameters& p) { return std::sqrt(p.E * p.I / (p.rho * p.S * std::pow(p.L, 4))); }
 
-const char* modes_header()
-{
-    // The one list of the modes CSV's columns, in the order run_modes writes them; readers look them up by name.
-    static const std::string h = csv_header({"method", "ny", "nx", "order", "drive", "omega", "mode", "kind", "rad_s",
-                                             "hz", "dimensionless", "growth", "undamped_rad_s",
-                                             "damping_ratio", "label", "mac"});
-    return h.c_str();
-}
-
 }  // namespace hubbeam

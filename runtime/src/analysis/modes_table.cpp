@@ -1,0 +1,139 @@
+// The modes table's one assembly (modes_table.hpp): hubbeam modes writes and prints it, hubbeam.modes converts it.
+#include "analysis/modes_table.hpp"
+
+#include <cmath>
+#include <initializer_list>
+#include <memory>
+
+#include <hubbeam/make_model.hpp>
+#include "text/shortest.hpp"
+
+namespace hubbeam {
+
+ModesBlock modes_block(const Model& model, const VariantKey& key, const Scene& scene,
+                       const std::vector<double>& omegas, const std::vector<int>& harmonics,
+                       const std::function<void()>& check)
+{
+    ModesBlock block{key, frequency_unit(scene.parameters), {}, {}};
+    const double theta = scene.motion.initial_theta();  // the held angle of a gravity variant
+    block.modes = campbell(model, omegas, scene.axial, theta, scene.controller(), check);
+    block.critical = critical_speeds(model, block.modes, harmonics, scene.axial, theta, scene.controller(), check);
+    return block;
+}
+
+void modes_table(const Scene& scene, const ModesRequest& request, const std::function<void(const ModesBlock&)>& done)
+{
+    for (const Method method : request.methods)
+        for (const int ny : request.ny) {
+            VariantKey key = scene.key();
+            key.method = method;
+            key.ny = ny;
+            const std::unique_ptr<Model> model = make_model(key, scene.parameters, scene.source);
+            done(modes_block(*model, key, scene, request.omegas, request.harmonics));
+        }
+}
+
+namespace {
+
+/// The variant's columns, then a table's own.
+template <class Row>
+std::vector<TableColumn<Row>> after_variant(std::initializer_list<TableColumn<Row>> own)
+{
+    using B = const ModesBlock&;
+    using R = const Row&;
+    std::vector<TableColumn<Row>> columns = {
+        {"method", [](B b, R) -> TableCell { return to_string(b.key.method); }, true},
+        {"ny", [](B b, R) -> TableCell { return b.key.ny; }, true},
+        {"nx", [](B b, R) -> TableCell { return b.key.nx; }, true},
+        {"order", [](B b, R) -> TableCell { return to_string(b.key.order); }, true},
+        {"drive", [](B b, R) -> TableCell { return to_string(b.key.drive); }, true}};
+    columns.insert(columns.end(), own);
+    return columns;
+}
+
+/// The header line of columns.
+template <class Row>
+std::string header_of(const std::vector<TableColumn<Row>>& columns)
+{
+    std::string header;
+    for (const TableColumn<Row>& column : columns) {
+        if (!header.empty()) header += ',';
+        header += column.name;
+    }
+    return header;
+}
+
+/// The CSV line of a block's row.
+template <class Row>
+std::string line_of(const std::vector<TableColumn<Row>>& columns, const ModesBlock& block, const Row& row)
+{
+    std::string line;
+    for (std::size_t i = 0; i < columns.size(); ++i) {
+        if (i > 0) line += ',';
+        const TableCell cell = columns[i].cell(block, row);
+        if (const double* v = std::get_if<double>(&cell))
+            append_shortest(line, *v);
+        else if (const int* n = std::get_if<int>(&cell))
+            line += std::to_string(*n);
+        else
+            line += std::get<std::string>(cell);
+    }
+    return line;
+}
+
+}  // namespace
+
+const std::vector<TableColumn<SpinMode>>& modes_columns()
+{
+    using B = const ModesBlock&;
+    using R = const SpinMode&;
+    static const std::vector<TableColumn<SpinMode>> columns = after_variant<SpinMode>({
+        {"omega", [](B, R r) -> TableCell { return r.omega; }},
+        {"mode", [](B, R r) -> TableCell { return r.number; }},
+        {"kind", [](B, R r) -> TableCell { return r.mode.kind; }},
+        {"rad_s", [](B, R r) -> TableCell { return r.mode.rad_s; }},
+        {"hz", [](B, R r) -> TableCell { return r.mode.rad_s / (2.0 * M_PI); }},
+        {"dimensionless", [](B b, R r) -> TableCell { return r.mode.rad_s / b.unit; }},
+        {"growth", [](B, R r) -> TableCell { return r.mode.growth; }},
+        {"undamped_rad_s", [](B, R r) -> TableCell { return r.mode.undamped_rad_s; }},
+        {"damping_ratio", [](B, R r) -> TableCell { return r.mode.damping_ratio; }},
+        {"label", [](B, R r) -> TableCell { return r.label; }},
+        {"mac", [](B, R r) -> TableCell { return r.mac; }},
+    });
+    return columns;
+}
+
+const std::vector<TableColumn<CriticalSpeed>>& critical_columns()
+{
+    using B = const ModesBlock&;
+    using R = const CriticalSpeed&;
+    static const std::vector<TableColumn<CriticalSpeed>> columns = after_variant<CriticalSpeed>({
+        {"label", [](B, R c) -> TableCell { return c.label; }},
+        {"harmonic", [](B, R c) -> TableCell { return c.harmonic; }},
+        {"omega", [](B, R c) -> TableCell { return c.omega; }},
+        {"rad_s", [](B, R c) -> TableCell { return c.rad_s; }},
+        {"hz", [](B, R c) -> TableCell { return c.rad_s / (2.0 * M_PI); }},
+    });
+    return columns;
+}
+
+const char* modes_header()
+{
+    static const std::string h = header_of(modes_columns());
+    return h.c_str();
+}
+
+const char* critical_header()
+{
+    static const std::string h = header_of(critical_columns());
+    return h.c_str();
+}
+
+std::string modes_line(const ModesBlock& block, const SpinMode& row) { return line_of(modes_columns(), block, row); }
+
+std::string critical_line(const ModesBlock& block, const CriticalSpeed& row)
+{
+    return line_of(critical_columns(), block, row);
+}
+
+}  // namespace hubbeam
