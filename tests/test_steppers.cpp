@@ -6,8 +6,6 @@
 #include <string>
 #include <vector>
 
-#include <gsl/gsl_errno.h>
-
 #include "make_model.hpp"
 #include "runs.hpp"
 #include "stepper.hpp"
@@ -47,7 +45,7 @@ struct LoneStepper {
     double step(double target, double h_max = INFINITY)
     {
         const double t0 = t;
-        REQUIRE(stepper->step(t, target, y.data(), h_max) == GSL_SUCCESS);
+        REQUIRE(stepper->step(t, target, y.data(), h_max) == StepStatus::success);
         return t - t0;
     }
 
