@@ -107,7 +107,7 @@ TEST_CASE("two threads running one generated model: the spin-up's rows and sensi
                                                           {"output.sensitivities", "E,L,rho"}});
     REQUIRE(scene.source != ModelSource::assembled);
     REQUIRE(std::string(make_model(scene.key(), scene.parameters)->source()) == "generated");
-    two_threads_equal_serial(scene, 4);
+    two_threads_equal_serial(scene, 12);
 }
 
 TEST_CASE("two threads running one model under torque with implicit steppers: rows equal a serial run's", "[threads]")
