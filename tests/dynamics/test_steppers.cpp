@@ -6,9 +6,8 @@
 #include <string>
 #include <vector>
 
-#include <gsl/gsl_errno.h>
-
 #include <hubbeam/make_model.hpp>
+#include <gsl/gsl_errno.h>
 #include "runs.hpp"
 #include "dynamics/stepper.hpp"
 #include "dynamics/stiffness.hpp"
@@ -47,7 +46,7 @@ struct LoneStepper {
     double step(double target, double h_max = INFINITY)
     {
         const double t0 = t;
-        REQUIRE(stepper->step(t, target, y.data(), h_max) == GSL_SUCCESS);
+        REQUIRE(stepper->step(t, target, y.data(), h_max) == StepStatus::success);
         return t - t0;
     }
 

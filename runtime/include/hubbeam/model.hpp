@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "interface.hpp"
 #include "variant.hpp"
@@ -80,12 +81,16 @@ public:
 
 /// The one interface the integrator sees. What only some models can do (the term form of Q, a folded kernel, exact
 /// Jacobians) is reached through an accessor that returns nullptr when the model cannot: a caller cannot call it
-/// without asking first.
+/// without asking first. Immutable once built (every evaluation is const and keeps no state between calls), so that
+/// one model serves the runs of several threads at once; a run's work arrays belong to the run.
 class Model {
 public:
     virtual ~Model() = default;
     const VariantKey& key() const { return key_; }
     int nq() const { return key_.nq(); }
+    /// The physical parameters the model's coefficients hold (Parameters::packed()), or empty for a model that does
+    /// not say: what a caller that shares one model between scenes compares with each scene's.
+    const std::vector<double>& parameters() const { return parameters_; }
     /// "generated" or "assembled".
     virtual const char* source() const = 0;
     /// Where a generated model's kernels come from ("built in", "cached", "compiled now in 2.1 s"), or why
@@ -132,9 +137,11 @@ public:
 
 protected:
     explicit Model(const VariantKey& key) : key_(key) {}
+    Model(const VariantKey& key, const Parameters& p) : key_(key), parameters_(p.packed()) {}
 
 private:
     VariantKey key_;
+    std::vector<double> parameters_;
     std::string origin_;
 };
 

@@ -188,6 +188,10 @@ public:
     /// Chooses the model (make_model, which tells note about an on-demand compilation or a fallback); throws
     /// std::invalid_argument if none can serve the scene's variant, CompileError if compiling it failed.
     explicit Simulation(const Scene& scene, const std::function<void(const std::string&)>& note = {});
+    /// Runs scene on model, which other runs, on other threads too, may share: a run only reads its model and owns
+    /// its work arrays. Throws std::invalid_argument if model is null, serves a variant other than the scene's, or
+    /// was built at other parameters.
+    Simulation(const Scene& scene, std::shared_ptr<const Model> model);
     ~Simulation();
     Simulation(const Simulation&) = delete;
     Simulation& operator=(const Simulation&) = delete;
@@ -215,10 +219,12 @@ public:
 
 private:
     class Run;  // one call of run(): simulate.cpp
+    /// The scene's stepper, or the automatic choice and why; whether the error is checked.
+    void choose_stepper();
     /// The automatic choice at rtol, with the pilot run (made once, at the first call that needs one).
     StepperChoice automatic(double rtol) const;
     const Scene& scene_;
-    std::unique_ptr<Model> model_;
+    std::shared_ptr<const Model> model_;
     StateObserver observer_;
     std::string stepper_, stepper_why_;  // the scene's, or the automatic choice and why
     mutable std::unique_ptr<RatesAtRest> rates_;  // the model's rates at rest, once (stiffness.hpp)

@@ -61,7 +61,29 @@ public:
         mass_form_ = condensed_ && k_ >= mass_form_min_size && system.has_mass_form();
     }
 
-    int step(double& t, double target, double* y, double h_max) override
+    StepStatus step(double& t, double target, double* y, double h_max) override
+    {
+        return from_gsl(take_step(t, target, y, h_max));
+    }
+
+    StepStatus advance(double& t, double t1, double* y) override
+    {
+        while (t < t1)
+            if (const StepStatus s = step(t, t1, y, INFINITY); s != StepStatus::success) return s;
+        return StepStatus::success;
+    }
+
+    void restart(double, const double*) override
+    {
+        have_guess_ = false;
+        stale_jacobian_ = true;
+        h_ = std::min(h_, h0_);
+    }
+
+private:
+    /// One step, with the statuses of the system's GSL interface (GSL_EBADFUNC, GSL_FAILURE when no step size met
+    /// the tolerance): step() translates them.
+    int take_step(double& t, double target, double* y, double h_max)
     {
         Eigen::Map<Eigen::VectorXd> y0(y, m_);
         bool bad_function = false;
@@ -145,19 +167,7 @@ public:
         }
     }
 
-    int advance(double& t, double t1, double* y) override
-    {
-        while (t < t1)
-            if (const int s = step(t, t1, y, INFINITY); s != GSL_SUCCESS) return s;
-        return GSL_SUCCESS;
-    }
-
-    void restart(double, const double*) override
-    {
-        have_guess_ = false;
-        stale_jacobian_ = true;
-        h_ = std::min(h_, h0_);
-    }
+public:
     void retake(double, const double*) override { have_guess_ = false; }
 
     long steps() const override { return steps_; }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 #include <stdexcept>
 #include <vector>
 
@@ -17,6 +18,31 @@ namespace hubbeam {
 
 namespace {
 
+/// GSL's error handler off while any GSL stepper lives (GSL's default aborts the process; odeiv2 failures must come
+/// back as statuses), the caller's handler restored when the last one ends. The handler is one per process: runs on
+/// several threads count their steppers under a lock, so that none restores the handler while another still steps
+/// (a handler swapped per run would be restored under the other run, and its next GSL error abort the process).
+class QuietGsl {
+public:
+    QuietGsl()
+    {
+        const std::lock_guard guard(mutex_);
+        if (users_++ == 0) previous_ = gsl_set_error_handler_off();
+    }
+    ~QuietGsl()
+    {
+        const std::lock_guard guard(mutex_);
+        if (--users_ == 0) gsl_set_error_handler(previous_);
+    }
+    QuietGsl(const QuietGsl&) = delete;
+    QuietGsl& operator=(const QuietGsl&) = delete;
+
+private:
+    static inline std::mutex mutex_;
+    static inline int users_ = 0;
+    static inline gsl_error_handler_t* previous_ = nullptr;
+};
+
 /// GSL's driver: evolve_apply for one step at a time, driver_apply to reach a time exactly.
 class GslStepper final : public Stepper {
 public:
@@ -29,12 +55,15 @@ public:
     GslStepper(const GslStepper&) = delete;
     GslStepper& operator=(const GslStepper&) = delete;
 
-    int step(double& t, double target, double* y, double h_max) override
+    StepStatus step(double& t, double target, double* y, double h_max) override
     {
         h_ = std::min(h_, h_max);
-        return gsl_odeiv2_evolve_apply(driver_->e, driver_->c, driver_->s, system_.gsl(), &t, target, &h_, y);
+        return from_gsl(gsl_odeiv2_evolve_apply(driver_->e, driver_->c, driver_->s, system_.gsl(), &t, target, &h_, y));
     }
-    int advance(double& t, double t1, double* y) override { return gsl_odeiv2_driver_apply(driver_, &t, t1, y); }
+    StepStatus advance(double& t, double t1, double* y) override
+    {
+        return from_gsl(gsl_odeiv2_driver_apply(driver_, &t, t1, y));
+    }
     void restart(double t, const double* y) override
     {
         retake(t, y);
@@ -51,6 +80,7 @@ public:
     long rejected() const override { return past_rejected_ + static_cast<long>(driver_->e->failed_steps); }
 
 private:
+    const QuietGsl quiet_;  // first: GSL's own allocations may report an error too
     FirstOrderSystem& system_;
     gsl_odeiv2_driver* driver_;
     double h_, h0_;
@@ -92,7 +122,7 @@ public:
     CvodeStepper(const CvodeStepper&) = delete;
     CvodeStepper& operator=(const CvodeStepper&) = delete;
 
-    int step(double& t, double target, double* y, double h_max) override
+    StepStatus step(double& t, double target, double* y, double h_max) override
     {
         if (h_max != h_max_) {
             CVodeSetMaxStep(mem_, std::isfinite(h_max) ? h_max : 0.0);  // 0: no limit
@@ -100,7 +130,7 @@ public:
         }
         return solve(t, target, y, CV_ONE_STEP);
     }
-    int advance(double& t, double t1, double* y) override { return solve(t, t1, y, CV_NORMAL); }
+    StepStatus advance(double& t, double t1, double* y) override { return solve(t, t1, y, CV_NORMAL); }
     void restart(double t, const double* y) override
     {
         past_ = steps();
@@ -123,18 +153,18 @@ public:
     }
 
 private:
-    int solve(double& t, double target, double* y, int task)
+    StepStatus solve(double& t, double target, double* y, int task)
     {
         CVodeSetStopTime(mem_, target);
         double reached = t;
         const int flag = CVode(mem_, target, y_, &reached, task);
-        if (flag < 0) return status(flag);
+        if (flag < 0) return from_gsl(status(flag));
         t = reached;
         std::copy_n(N_VGetArrayPointer(y_), n_, y);
-        return GSL_SUCCESS;
+        return StepStatus::success;
     }
 
-    /// CVODE's failures as the GSL statuses the simulation explains.
+    /// CVODE's failures as the GSL statuses of their kind, so that a failure's message reads alike in every family.
     static int status(int flag)
     {
         switch (flag) {
@@ -179,6 +209,21 @@ private:
 };
 
 }  // namespace
+
+StepStatus Stepper::from_gsl(int status)
+{
+    if (status == GSL_SUCCESS) return StepStatus::success;
+    StepStatus kind = StepStatus::other;
+    switch (status) {
+    case GSL_EBADFUNC: kind = StepStatus::equations_failed; break;
+    case GSL_FAILURE: kind = StepStatus::no_step; break;
+    case GSL_ENOPROG: kind = StepStatus::no_progress; break;
+    case GSL_EMAXITER: kind = StepStatus::not_converged; break;
+    default: break;
+    }
+    failure_ = {"GSL status " + std::to_string(status), kind == StepStatus::other ? gsl_strerror(status) : ""};
+    return kind;
+}
 
 std::unique_ptr<Stepper> make_stepper(FirstOrderSystem& system, const std::string& stepper, double t0, const double* y0,
                                       double h0, double atol, double rtol)

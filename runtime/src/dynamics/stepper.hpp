@@ -9,17 +9,34 @@
 
 namespace hubbeam {
 
-/// A stepper family's integrator of one FirstOrderSystem, with the run's tolerances. Statuses are GSL's
-/// (GSL_SUCCESS, GSL_EBADFUNC for equations that failed to evaluate, GSL_FAILURE when no step met the tolerance,
-/// GSL_EMAXITER when an implicit iteration did not converge), whatever the family, so that one message serves.
+/// How a step ended, in hubbeam's terms: each family translates its own codes (GSL's statuses, CVODE's flags) where it
+/// returns them, so that a caller tells apart the failures it explains without knowing which family stepped.
+enum class StepStatus {
+    success,
+    equations_failed,  // the equations failed to evaluate: M not positive definite, or a non-finite result
+    no_step,           // no step met the tolerance
+    no_progress,       // the step size fell to round-off without meeting the tolerance
+    not_converged,     // an implicit stepper's iteration did not converge
+    other,             // another failure of the family's: its code says which
+};
+
+/// A failed step in its family's own terms, for the run's message: the code ("GSL status -1": every family states
+/// its failures in GSL's numbering, CVODE's flags by the GSL status of their kind, so that one message serves) and,
+/// for StepStatus::other, the family's words for it.
+struct StepCode {
+    std::string code, words;
+};
+
+/// A stepper family's integrator of one FirstOrderSystem, with the run's tolerances. A stepper belongs to one run:
+/// it holds the run's step history and work arrays.
 class Stepper {
 public:
     virtual ~Stepper() = default;
     /// One step from t towards target, never past it: t and y advance to the step's end. No step is longer than
     /// h_max (the simulation's limit for interpolating rows inside a step).
-    virtual int step(double& t, double target, double* y, double h_max) = 0;
+    virtual StepStatus step(double& t, double target, double* y, double h_max) = 0;
     /// Steps from t to t1 exactly (a step ends at t1).
-    virtual int advance(double& t, double t1, double* y) = 0;
+    virtual StepStatus advance(double& t, double t1, double* y) = 0;
     /// Forgets the step history at (t, y): the drive's derivatives jump at a breakpoint, and a multistep or
     /// implicit method must not carry its past across. The next step starts from the initial step size again.
     virtual void restart(double t, const double* y) = 0;
@@ -37,6 +54,16 @@ public:
     virtual long steps() const = 0;
     /// Steps the error test rejected since construction (0 from a stepper that does not count them).
     virtual long rejected() const { return 0; }
+    /// The family's code of the last failure step() or advance() returned (empty before any).
+    const StepCode& failure_code() const { return failure_; }
+
+protected:
+    /// A GSL status (GSL's steppers', gauss4's from its system's, a CVODE flag's GSL kind) as a StepStatus; a
+    /// failure's code is kept for failure_code(). The one place that reads GSL's numbers (stepper.cpp).
+    StepStatus from_gsl(int status);
+
+private:
+    StepCode failure_;
 };
 
 /// The integrator of system named stepper (stepper_names()), starting at (t0, y0) with initial step h0 and

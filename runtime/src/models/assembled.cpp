@@ -163,7 +163,7 @@ namespace {
 class AssembledModel final : public Model {
 public:
     AssembledModel(const VariantKey& key, const Parameters& p)
-        : Model(key), fields_(key, p), nx_(key.nx), ny_(key.ny)
+        : Model(key, p), fields_(key, p), nx_(key.nx), ny_(key.ny)
     {
         const BeamMatrices c = assemble_matrices(key, p);
         const Extras& x = key.extras;

@@ -18,7 +18,7 @@ namespace {
 class GeneratedModel final : public Model, TermForces, FoldedForceKernel, ExactJacobian, ParameterDerivatives {
 public:
     GeneratedModel(const VariantKey& key, const generated::Variant& v, const Parameters& p)
-        : Model(key), v_(v), c_(static_cast<std::size_t>(v.ncoeff)), pattern_(v.mass_pattern),
+        : Model(key, p), v_(v), c_(static_cast<std::size_t>(v.ncoeff)), pattern_(v.mass_pattern),
           gravity_(key.extras.gravity), torque_(key.drive == Drive::torque)
     {
         const std::vector<double> packed = p.packed();
@@ -32,7 +32,6 @@ public:
             dcdp_.assign(param_count * c_.size(), 0.0);
             std::copy_n(all.begin(), std::min(read, param_count) * c_.size(), dcdp_.begin());
             zero_c_.assign(c_.size(), 0.0);
-            scratch_.resize(static_cast<std::size_t>(v.nq) * std::max(v.nq, std::max(v.nterms, 3)));
         }
         // The kernels write M's upper triangle: these lower entries are mirrored from it.
         const int n = v.nq;
@@ -72,25 +71,26 @@ public:
     const ParameterDerivatives* parameter_derivatives() const override { return dcdp_.empty() ? nullptr : this; }
 
     // Each kernel is affine in c (generated_abi.h): its derivative by p_k is itself at c = dc/dp_k less itself at 0.
+    // The part at 0 goes to an array of the call's own: a model is shared by the runs of several threads.
     void mass_p(Param k, const HubInput& u, const double* q, double* dM) const override
     {
         const int n = nq() * nq();
         std::fill_n(dM, n, 0.0);
-        std::fill_n(scratch_.data(), n, 0.0);
+        std::vector<double> at_zero(static_cast<std::size_t>(n), 0.0);
         const std::array<double, kernel_input_count> in{u.tau, u.theta_dot, u.theta_ddot, 0.0, 0.0};
         v_.mass(dc(k), in.data(), q, q, dM);
-        v_.mass(zero_c_.data(), in.data(), q, q, scratch_.data());
-        for (int i = 0; i < n; ++i) dM[i] -= scratch_[static_cast<std::size_t>(i)];
+        v_.mass(zero_c_.data(), in.data(), q, q, at_zero.data());
+        for (int i = 0; i < n; ++i) dM[i] -= at_zero[static_cast<std::size_t>(i)];
         for (const auto& [upper, lower] : mirrored_) dM[lower] = dM[upper];
     }
     void forces_p(Param k, const HubInput& u, const double* q, const double* qd, double* dQ) const override
     {
         const std::array<double, kernel_input_count> in = inputs(u, q);
         std::fill_n(dQ, nq(), 0.0);
-        std::fill_n(scratch_.data(), nq(), 0.0);
+        std::vector<double> at_zero(static_cast<std::size_t>(nq()), 0.0);
         v_.forces(dc(k), in.data(), q, qd, dQ);
-        v_.forces(zero_c_.data(), in.data(), q, qd, scratch_.data());
-        for (int i = 0; i < nq(); ++i) dQ[i] -= scratch_[static_cast<std::size_t>(i)];
+        v_.forces(zero_c_.data(), in.data(), q, qd, at_zero.data());
+        for (int i = 0; i < nq(); ++i) dQ[i] -= at_zero[static_cast<std::size_t>(i)];
     }
     Tip tip_p(Param k, const double* q) const override
     {
@@ -105,11 +105,11 @@ public:
         if (term_forces() == nullptr) return false;
         const int n = nq() * v_.nterms;
         std::fill_n(dF, n, 0.0);
-        std::fill_n(scratch_.data(), n, 0.0);
+        std::vector<double> at_zero(static_cast<std::size_t>(n), 0.0);
         const std::array<double, kernel_input_count> in{};
         v_.forces_matrix(dc(k), in.data(), nullptr, nullptr, dF);
-        v_.forces_matrix(zero_c_.data(), in.data(), nullptr, nullptr, scratch_.data());
-        for (int i = 0; i < n; ++i) dF[i] -= scratch_[static_cast<std::size_t>(i)];
+        v_.forces_matrix(zero_c_.data(), in.data(), nullptr, nullptr, at_zero.data());
+        for (int i = 0; i < n; ++i) dF[i] -= at_zero[static_cast<std::size_t>(i)];
         return true;
     }
 
@@ -219,7 +219,6 @@ private:
     const generated::Variant& v_;
     std::vector<double> c_;
     std::vector<double> dcdp_, zero_c_;  // dc/dp by Param, param_count x ncoeff (empty without coefficients_p); 0
-    mutable std::vector<double> scratch_;  // a kernel's part free of c, subtracted
     std::string pattern_;
     std::vector<std::pair<int, int>> mirrored_, mirrored_varying_;  // (upper, lower) entry pairs of M
     bool gravity_, torque_;

@@ -7,7 +7,6 @@
 #include <cmath>
 #include <utility>
 
-#include <gsl/gsl_errno.h>
 
 #include "simulation/column_check.hpp"
 #include "simulation/run_rows.hpp"
@@ -64,10 +63,10 @@ std::vector<double> rerun(const Scene& scene, const Model& model, double t0, std
     double t = t0;
     for (const double ti : times) {
         for (; next != breaks.end() && *next < ti * (1.0 - same_instant); ++next) {
-            if (stepper->advance(t, *next, y.data()) != GSL_SUCCESS) return values;
+            if (stepper->advance(t, *next, y.data()) != StepStatus::success) return values;
             stepper->restart(t, y.data());
         }
-        if (stepper->advance(t, ti, y.data()) != GSL_SUCCESS) return values;
+        if (stepper->advance(t, ti, y.data()) != StepStatus::success) return values;
         if (stepper->steps() > scene.solver.max_steps) return values;
         const Row r = make_row(ti, y.data());
         if (!model_limit(r, critical, scene.parameters.L).empty()) return values;
@@ -152,10 +151,10 @@ private:
         for (; next_ < breaks_.size() && breaks_[next_] < ti * (1.0 - same_instant); ++next_) {
             // A breakpoint at the last row's time was reached there: only the restart is left.
             const bool ahead = breaks_[next_] > t_ * (1.0 + same_instant);
-            if (ahead && stepper_->advance(t_, breaks_[next_], y_.data()) != GSL_SUCCESS) return false;
+            if (ahead && stepper_->advance(t_, breaks_[next_], y_.data()) != StepStatus::success) return false;
             stepper_->restart(t_, y_.data());
         }
-        if (stepper_->advance(t_, ti, y_.data()) != GSL_SUCCESS) return false;
+        if (stepper_->advance(t_, ti, y_.data()) != StepStatus::success) return false;
         if (stepper_->steps() > scene_.solver.max_steps) return false;
         return model_limit(make_row_(ti, y_.data()), critical_, scene_.parameters.L).empty();
     }

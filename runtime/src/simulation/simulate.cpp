@@ -8,36 +8,23 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 #include <utility>
 
-#include <gsl/gsl_errno.h>
-
 #include "simulation/column_check.hpp"
-#include "simulation/error_check.hpp"
 #include "dynamics/integrate.hpp"
 #include <hubbeam/make_model.hpp>
-#include "simulation/run_rows.hpp"
 #include "text/shortest.hpp"
 #include "simulation/sensitivity.hpp"
 #include "dynamics/stepper.hpp"
 #include "dynamics/stiffness.hpp"
+#include "simulation/error_check.hpp"
+#include "simulation/run_rows.hpp"
 
 namespace hubbeam {
 
 namespace {
 
-/// GSL's error handler off for one scope (GSL's default aborts the process; odeiv2 failures must come
-/// back as status codes), restored afterwards so that the caller's handler is left as it was.
-class QuietGsl {
-public:
-    QuietGsl() : previous_(gsl_set_error_handler_off()) {}
-    ~QuietGsl() { gsl_set_error_handler(previous_); }
-    QuietGsl(const QuietGsl&) = delete;
-    QuietGsl& operator=(const QuietGsl&) = delete;
-
-private:
-    gsl_error_handler_t* previous_;
-};
 
 /// Output time i * dt. A decimal dt = n / 10^d gives (i n) / 10^d, a quotient of exact integers and so the
 /// double nearest the decimal multiple (0.35, not 0.35000000000000003); other dt give i * dt.
@@ -70,22 +57,22 @@ std::string at_time(double t)
     return s.str();
 }
 
-/// The message for a failed step, or empty for success. hint says what to do: for GSL_EBADFUNC the cause the
-/// system found, otherwise a stepper that suits the scene (or nothing).
-std::string step_failure(int status, double t, const std::string& hint)
+/// The message for a failed step, or empty for success. code is the stepper's own for it; hint says what to do: for
+/// equations that failed to evaluate the cause the system found, otherwise a stepper that suits the scene (or nothing).
+std::string step_failure(StepStatus status, const StepCode& code, double t, const std::string& hint)
 {
-    if (status == GSL_SUCCESS) return {};
-    if (status == GSL_EBADFUNC)
+    if (status == StepStatus::success) return {};
+    if (status == StepStatus::equations_failed)
         return "unstable: the equations became singular or non-finite" + at_time(t) + " (" + hint + ")";
-    // GSL's own words ("failure", "no progress") say little: what they mean for a step.
+    // The families' own words ("failure", "no progress") say little: what they mean for a step.
     std::string what;
     switch (status) {
-    case GSL_FAILURE: what = "the stepper could not take a step that meets the tolerance"; break;
-    case GSL_ENOPROG: what = "the step size fell to round-off without meeting the tolerance"; break;
-    case GSL_EMAXITER: what = "the implicit stepper's iteration did not converge"; break;
-    default: what = gsl_strerror(status); break;
+    case StepStatus::no_step: what = "the stepper could not take a step that meets the tolerance"; break;
+    case StepStatus::no_progress: what = "the step size fell to round-off without meeting the tolerance"; break;
+    case StepStatus::not_converged: what = "the implicit stepper's iteration did not converge"; break;
+    default: what = code.words; break;
     }
-    return "integration failed" + at_time(t) + ": " + what + " (GSL status " + std::to_string(status) + ")" +
+    return "integration failed" + at_time(t) + ": " + what + " (" + code.code + ")" +
            (hint.empty() ? "; try a looser rtol/atol" : "; " + hint);
 }
 
@@ -123,7 +110,6 @@ Pilot pilot_run(const Scene& scene, const Model& model, PilotPlan plan)
 {
     FirstOrderSystem system(model, scene.motion, scene.axial, scene.controller(), &scene.parameters);
     std::vector<double> y = initial_state(system, model, scene);
-    const QuietGsl quiet;
     const std::unique_ptr<Stepper> stepper =
         make_stepper(system, gauss_stepper, 0.0, y.data(), scene.solver.h0, scene.solver.atol, scene.solver.rtol);
     Pilot pilot{.t = 0.0, .steps = 0, .rtol = scene.solver.rtol};
@@ -131,7 +117,7 @@ Pilot pilot_run(const Scene& scene, const Model& model, PilotPlan plan)
     stops.push_back(plan.t);
     for (const double stop : stops) {
         while (pilot.t < stop && stepper->steps() <= plan.budget)
-            if (stepper->step(pilot.t, stop, y.data(), INFINITY) != GSL_SUCCESS) {
+            if (stepper->step(pilot.t, stop, y.data(), INFINITY) != StepStatus::success) {
                 pilot.failed = true;
                 return pilot;
             }
@@ -262,7 +248,7 @@ private:
     std::string emit(double ti, const double* state, const RowSink& sink);
     void monitor(const Row& r);
 
-    std::string why_failed(int status);
+    std::string why_failed(StepStatus status);
     std::string failure_hint() const;
     std::string singular_cause() const;
     std::string over_budget() const;
@@ -275,7 +261,6 @@ private:
     const Scene& scene_;
     const Model& model_;
     const std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-    const QuietGsl quiet_;
     // The state's equations, or with the sensitivities beside them (system_of).
     const std::unique_ptr<FirstOrderSystem> owned_system_;
     FirstOrderSystem& system_;
@@ -370,7 +355,7 @@ std::string Simulation::Run::free_steps(const RowSink& sink, const StopRequest& 
         if (to_row && times_(i) < target) target = times_(i);
         s.t0 = t_;
         s.y0 = y_;
-        const int status = stepper_->step(t_, target, y_.data(), to_row ? INFINITY : s.h_max);
+        const StepStatus status = stepper_->step(t_, target, y_.data(), to_row ? INFINITY : s.h_max);
         if (std::string failure = why_failed(status); !failure.empty()) return failure;
         if (std::string failure = over_budget(); !failure.empty()) return failure;
         check_.step_from(s.t0, s.y0, t_);
@@ -596,10 +581,11 @@ void Simulation::Run::monitor(const Row& r)
 // ---- Why a run stops ----
 
 /// The message for a failed step (empty for success), with its likely cause.
-std::string Simulation::Run::why_failed(int status)
+std::string Simulation::Run::why_failed(StepStatus status)
 {
-    if (status == GSL_SUCCESS) return {};
-    return step_failure(status, t_, status == GSL_EBADFUNC ? singular_cause() : failure_hint());
+    if (status == StepStatus::success) return {};
+    return step_failure(status, stepper_->failure_code(), t_,
+                        status == StepStatus::equations_failed ? singular_cause() : failure_hint());
 }
 
 std::string Simulation::Run::failure_hint() const
@@ -730,14 +716,33 @@ int auxiliary_count(const Scene& scene)
 
 }  // namespace
 
-Simulation::Simulation(const Scene& scene, const std::function<void(const std::string&)>& note) : scene_(scene)
+Simulation::Simulation(const Scene& scene, const std::function<void(const std::string&)>& note)
+    : scene_(scene), model_(make_model(scene.key(), scene.parameters, scene.source, note))
 {
-    model_ = make_model(scene.key(), scene.parameters, scene.source, note);
-    check_error_ = scene.solver.error_check != ErrorCheck::off;
-    whole_run_ = scene.solver.error_check == ErrorCheck::full;
-    stepper_ = scene.solver.stepper;
+    choose_stepper();
+}
+
+Simulation::Simulation(const Scene& scene, std::shared_ptr<const Model> model) : scene_(scene), model_(std::move(model))
+{
+    const std::string variant = scene.key().name();
+    if (model_ == nullptr) throw std::invalid_argument("a simulation of variant " + variant + " was given no model");
+    if (!(model_->key() == scene.key()))
+        throw std::invalid_argument("a model of variant " + model_->key().name() + " cannot run a scene of variant " +
+                                    variant);
+    // A model holds its parameters in its coefficients: one built at others would run another beam.
+    if (!model_->parameters().empty() && model_->parameters() != scene.parameters.packed())
+        throw std::invalid_argument("the model of variant " + variant +
+                                    " was built at other physical parameters than the scene's");
+    choose_stepper();
+}
+
+void Simulation::choose_stepper()
+{
+    check_error_ = scene_.solver.error_check != ErrorCheck::off;
+    whole_run_ = scene_.solver.error_check == ErrorCheck::full;
+    stepper_ = scene_.solver.stepper;
     if (stepper_ == automatic_stepper_word) {
-        const StepperChoice choice = automatic(scene.solver.rtol);
+        const StepperChoice choice = automatic(scene_.solver.rtol);
         stepper_ = choice.stepper;
         stepper_why_ = choice.why;
     }
