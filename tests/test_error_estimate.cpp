@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "runs.hpp"
+#include "scene.hpp"
 #include "simulate.hpp"
 
 using namespace hubbeam;

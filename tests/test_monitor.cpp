@@ -10,6 +10,7 @@
 
 #include "output.hpp"
 #include "runs.hpp"
+#include "scene.hpp"
 #include "simulate.hpp"
 
 using namespace hubbeam;

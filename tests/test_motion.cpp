@@ -18,6 +18,7 @@
 #include "gauss_legendre.hpp"
 #include "motion.hpp"
 #include "runs.hpp"
+#include "scene.hpp"
 
 using namespace hubbeam;
 

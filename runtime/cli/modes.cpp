@@ -14,6 +14,7 @@
 
 #include "csv_columns.hpp"
 #include "linearize.hpp"
+#include "make_model.hpp"
 #include "npz.hpp"
 #include "option_lists.hpp"
 #include "output.hpp"

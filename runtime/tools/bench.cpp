@@ -15,6 +15,7 @@
 
 #include "csv_columns.hpp"
 #include "integrate.hpp"
+#include "make_model.hpp"
 #include "option_lists.hpp"
 #include "oscillation.hpp"
 #include "output.hpp"

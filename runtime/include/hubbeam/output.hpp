@@ -8,7 +8,7 @@
 #include <string_view>
 
 #include "output_file.hpp"
-#include "scene.hpp"
+#include "config.hpp"
 #include "simulate.hpp"
 
 namespace hubbeam {

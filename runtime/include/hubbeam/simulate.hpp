@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "scene.hpp"
+#include "config.hpp"
 
 namespace hubbeam {
 

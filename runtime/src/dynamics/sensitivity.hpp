@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "integrate.hpp"
-#include "scene.hpp"
+#include "config.hpp"
 
 namespace hubbeam {
 

@@ -2,6 +2,7 @@
 #include "output.hpp"
 #include "npz.hpp"
 
+#include "printable.hpp"
 #include "shortest.hpp"
 
 #include <bit>

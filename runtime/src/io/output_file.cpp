@@ -13,7 +13,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "scene.hpp"  // printable
+#include "config.hpp"
+#include "printable.hpp"
 
 namespace hubbeam {
 
