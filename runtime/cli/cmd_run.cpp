@@ -19,6 +19,7 @@
 #include "io/output.hpp"
 #include "io/output_file.hpp"
 #include "text/shortest.hpp"
+#include "text/printable.hpp"
 
 namespace hubbeam::cli {
 

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "command.hpp"
+#include "text/printable.hpp"
 
 #ifndef HUBBEAM_VERSION
 #define HUBBEAM_VERSION "dev"

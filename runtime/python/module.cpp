@@ -30,6 +30,7 @@
 #include "on_demand/on_demand.hpp"
 #include "text/shortest.hpp"
 #include "io/output.hpp"
+#include "text/printable.hpp"
 
 namespace py = pybind11;
 using namespace hubbeam;

@@ -28,6 +28,7 @@
 #include <hubbeam/scene.hpp>
 #include "text/shortest.hpp"
 #include <hubbeam/simulate.hpp>
+#include "text/printable.hpp"
 
 namespace hubbeam {
 

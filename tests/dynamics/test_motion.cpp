@@ -18,6 +18,7 @@
 #include "gauss_legendre.hpp"
 #include <hubbeam/motion.hpp>
 #include "runs.hpp"
+#include <hubbeam/scene.hpp>
 
 using namespace hubbeam;
 

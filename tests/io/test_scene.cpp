@@ -13,6 +13,7 @@
 #include "io/output.hpp"
 #include <hubbeam/scene.hpp>
 #include "temp_folder.hpp"
+#include "text/printable.hpp"
 
 using namespace hubbeam;
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "runs.hpp"
+#include <hubbeam/scene.hpp>
 #include <hubbeam/simulate.hpp>
 
 using namespace hubbeam;

@@ -10,6 +10,7 @@
 
 #include "io/output.hpp"
 #include "runs.hpp"
+#include <hubbeam/scene.hpp>
 #include <hubbeam/simulate.hpp>
 
 using namespace hubbeam;

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "dynamics/integrate.hpp"
+#include <hubbeam/config.hpp>
 #include <hubbeam/model.hpp>
 #include <hubbeam/motion.hpp>
 

@@ -8,15 +8,10 @@
 #include <string_view>
 #include <vector>
 
+#include <hubbeam/config.hpp>
 #include <hubbeam/model.hpp>
 
 namespace hubbeam {
-
-enum class ModelSource { automatic, generated, assembled };
-/// Words "auto", "generated", "assembled" (scene key model.source, option --source).
-std::string to_string(ModelSource);
-bool parse(std::string_view, ModelSource&);
-template <> std::vector<std::string> words<ModelSource>();
 
 /// Told one line about slow or surprising choices (an on-demand compilation, a fallback to the assembled path).
 using ModelNote = std::function<void(const std::string&)>;

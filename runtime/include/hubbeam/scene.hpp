@@ -1,99 +1,16 @@
-// Scene: everything one simulation needs, read and validated from a TOML file (format in docs/scene.md), with
-// command-line overrides applied to the file's keys before anything is checked.
+// Reading a scene: a Scene (config.hpp: everything one simulation needs) read and validated from a TOML file
+// (format in docs/scene.md), with command-line overrides applied to the file's keys before anything is checked.
 #pragma once
 
-#include <array>
-#include <initializer_list>
-#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
-#include "dynamics/integrate.hpp"
-#include <hubbeam/make_model.hpp>
-#include <hubbeam/motion.hpp>
-#include "variant.hpp"
+#include <hubbeam/config.hpp>
 
 namespace hubbeam {
-
-/// Whether a run checks its own error by re-running windows at a tighter tolerance (RunSummary::estimated_error):
-/// on by default; off saves its cost (about 13 % of the main job) where the tolerance is known to be adequate; full
-/// re-runs the whole run alongside, so that an error made between the windows is seen too (the whole process of a
-/// cases/ scene then takes 1.4 to 3.2 times as long).
-enum class ErrorCheck { on, off, full };
-std::string to_string(ErrorCheck);
-bool parse(std::string_view, ErrorCheck&);
-template <> std::vector<std::string> words<ErrorCheck>();
-
-struct SolverOptions {
-    std::string stepper = automatic_stepper_word;  // a name from stepper_names() (integrate.hpp), or automatic
-    double rtol = 1e-8;
-    double atol = 1e-10;
-    double h0 = 1e-4;  // first trial step (s)
-    Stepping stepping = Stepping::free;
-    long max_steps = 10'000'000;  // a run that needs more steps stops with the reason its steps are short
-    ErrorCheck error_check = ErrorCheck::on;
-};
-
-/// The most rows a run may write (t_end / dt_out): 10^8 rows is about 20 GB of CSV.
-inline constexpr long max_output_rows = 100'000'000;
-
-/// The control gains a sensitivity can be taken by (beside the physical parameters, Param): [control]'s keys.
-inline constexpr std::array<const char*, 4> gain_names = {"kp", "kd", "ki", "k_tip"};
-
-struct OutputOptions {
-    double t_end = 30.0;   // s
-    double dt_out = 0.01;  // s; rows fall on exact multiples of dt_out
-    std::string file;      // CSV path; empty: derived from the scene name by the command line (a file or an
-                           // override cannot set it empty, nor put a NUL in it)
-    /// Parameters whose derivatives the run integrates and writes (docs/sensitivities.md): symbols of Param
-    /// (interface.hpp) and the control gains kp, kd, ki, k_tip; empty: none.
-    std::vector<std::string> sensitivities;
-};
-
-struct Scene {
-    std::string path;  // the file it came from, for messages
-    /// The other files it was read from, each with its key: {"beam.profile", FILE}, {"motion.file", FILE}. A
-    /// command's outputs are checked against these and path (output_file.hpp's scene_inputs).
-    std::vector<std::pair<std::string, std::string>> tables;
-    Parameters parameters;
-    Motion motion;
-    std::optional<Control> control;  // [control]: motion is then the reference of a torque-driven hub
-    VariantKey variant;  // drive follows motion, or control
-    ModelSource source = ModelSource::automatic;
-    Axial axial = Axial::dynamic;  // quasi-static: A follows the axial equilibrium (integrate.hpp)
-    SolverOptions solver;
-    OutputOptions output;
-
-    /// The control, or nullptr: what the integrator and the linearization take.
-    const Control* controller() const { return control ? &*control : nullptr; }
-    /// The hub's drive: torque under a control (its motion is a reference), else the one the motion implies.
-    Drive drive() const { return control ? Drive::torque : motion.drive(); }
-    /// The variant this scene runs: its discretization with the drive its motion and control imply and the extra
-    /// terms its parameters use (either may have been changed in code since loading). A term whose values are all
-    /// zero is left out: the paper's scenes run the paper's variants.
-    /// Whether output.sensitivities asks for any of names: a term (or the controller's integral) it asks for is
-    /// kept even where its value is zero.
-    bool wants(std::initializer_list<const char*> names) const
-    {
-        for (const std::string& s : output.sensitivities)
-            for (const char* n : names)
-                if (s == n) return true;
-        return false;
-    }
-    VariantKey key() const
-    {
-        VariantKey k = variant;
-        k.drive = drive();
-        // A sensitivity to a term's value needs the term, even at zero (where it reproduces the scene).
-        k.extras.tip = parameters.m_tip != 0.0 || parameters.J_tip != 0.0 || wants({"m_tip", "J_tip"});
-        k.extras.gravity = parameters.g != 0.0 || wants({"g"});
-        k.extras.damping = parameters.alpha != 0.0 || parameters.beta != 0.0 || wants({"alpha", "beta"});
-        return k;
-    }
-};
 
 /// Bad scene input, as data: the file, the key ("discretization.ny"; empty when the file itself is the
 /// problem) and what was wrong, either as expected/got or as a sentence (detail).
@@ -111,12 +28,6 @@ private:
     struct Clean {};  // the fields are printable already
     SceneError(Clean, std::string file, std::string key, std::string expected, std::string got, std::string detail);
 };
-
-/// User text as it may be echoed on a terminal, in the forms of the Python module's hubbeam.printable: controls
-/// (C0, DEL, C1) as \xNN, format characters such as the bidirectional overrides and line separators as \uNNNN
-/// (or \UNNNNNNNN), bytes that are not UTF-8 as \xNN; cut after about `cap` bytes, between characters. Every
-/// message that quotes a value, a file name or an option given by the user passes it through here.
-std::string printable(std::string_view text, std::size_t cap = 120);
 
 /// The largest scene file read (bytes).
 inline constexpr std::size_t max_scene_bytes = 1 << 20;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include <hubbeam/config.hpp>
 #include <hubbeam/scene.hpp>
 
 namespace hubbeam {

@@ -8,6 +8,7 @@
 #include <gsl/gsl_errno.h>
 
 #include "generated_abi.h"
+#include "models/model_operations.hpp"
 
 namespace hubbeam {
 

@@ -44,20 +44,6 @@ int gsl_jacobian(double t, const double y[], double* dfdy, double dfdt[], void* 
 
 }  // namespace
 
-namespace {
-
-const WordTable<Axial, 2> axial_words = {{Axial::dynamic, "dynamic"}, {Axial::quasi_static, "quasi-static"}};
-const WordTable<Stepping, 2> stepping_words = {{Stepping::free, "free"}, {Stepping::rows, "rows"}};
-
-}  // namespace
-
-std::string to_string(Axial v) { return word_of(v, axial_words); }
-bool parse(std::string_view w, Axial& v) { return parse_word(w, axial_words, v); }
-template <> std::vector<std::string> words<Axial>() { return all_words(axial_words); }
-std::string to_string(Stepping v) { return word_of(v, stepping_words); }
-bool parse(std::string_view w, Stepping& v) { return parse_word(w, stepping_words, v); }
-template <> std::vector<std::string> words<Stepping>() { return all_words(stepping_words); }
-
 void interpolate_state(double t0, const double* y0, const double* f0, double t1, const double* y1, const double* f1,
                        double t, int size, double* y, int auxiliary)
 {

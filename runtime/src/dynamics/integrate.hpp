@@ -11,6 +11,7 @@
 
 #include <gsl/gsl_odeiv2.h>
 
+#include <hubbeam/config.hpp>
 #include <hubbeam/model.hpp>
 #include <hubbeam/motion.hpp>
 
@@ -26,38 +27,9 @@ inline constexpr const char* gauss_stepper = "gauss4";
 inline constexpr const char* cvode_stepper = "cvode";
 /// Whether name is one of stepper_names().
 bool is_stepper(const std::string& name);
-/// The stepper word that asks for the stepper of the scene's stiffness (stiffness.hpp).
-inline constexpr const char* automatic_stepper_word = "auto";
 
 /// The GSL step type of a name from stepper_names(), or nullptr (also for a family other than GSL's).
 const gsl_odeiv2_step_type* step_type(const std::string& name);
-
-/// How the axial coordinates A move: with their own inertia (the model as derived), or quasi-statically,
-/// following the axial equations' equilibrium at every instant (docs/model.md section 9).
-enum class Axial { dynamic, quasi_static };
-/// Words "dynamic", "quasi-static" (scene key model.axial, option --axial).
-std::string to_string(Axial);
-bool parse(std::string_view, Axial&);
-template <> std::vector<std::string> words<Axial>();
-/// The coordinates that keep their inertia and are states of the first-order system, in order: all of key's,
-/// or with quasi-static axial coordinates all but A (which then follows its equilibrium). The one definition
-/// for the integrator, the stiffness estimates and the linearization.
-inline std::vector<int> kept_coordinates(const VariantKey& key, Axial axial)
-{
-    std::vector<int> kept;
-    for (int i = 0; i < key.nq(); ++i)
-        if (axial == Axial::dynamic || i < key.first_a() || i >= key.first_b()) kept.push_back(i);
-    return kept;
-}
-
-/// Where steps end: free (the tolerance alone chooses them; rows between step ends are interpolated by
-/// interpolate_state) or at rows (every output time ends a step, as GSL's driver does: exact, but the row
-/// spacing caps the step).
-enum class Stepping { free, rows };
-/// Words "free", "rows" (scene key solver.stepping, option --stepping).
-std::string to_string(Stepping);
-bool parse(std::string_view, Stepping&);
-template <> std::vector<std::string> words<Stepping>();
 
 /// The state at t in [t0, t1] from the states y0, y1 and their derivatives f0, f1 at the ends of a step, for
 /// y = (positions, rates, z) of size 2k + auxiliary with f = (rates, accelerations, dz/dt): the positions by the

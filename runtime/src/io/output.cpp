@@ -2,6 +2,7 @@
 #include "io/output.hpp"
 #include "io/npz.hpp"
 
+#include "text/printable.hpp"
 #include "text/shortest.hpp"
 
 #include <bit>

@@ -8,8 +8,9 @@
 #include <string_view>
 
 #include "io/output_file.hpp"
-#include <hubbeam/scene.hpp>
+#include <hubbeam/config.hpp>
 #include <hubbeam/simulate.hpp>
+#include <hubbeam/scene.hpp>
 
 namespace hubbeam {
 

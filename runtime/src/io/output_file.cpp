@@ -13,6 +13,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <hubbeam/config.hpp>
+#include "text/printable.hpp"
 #include <hubbeam/scene.hpp>  // printable
 
 namespace hubbeam {

@@ -11,17 +11,6 @@
 
 namespace hubbeam {
 
-namespace {
-
-const WordTable<ModelSource, 3> sources = {
-    {ModelSource::automatic, "auto"}, {ModelSource::generated, "generated"}, {ModelSource::assembled, "assembled"}};
-
-}  // namespace
-
-std::string to_string(ModelSource v) { return word_of(v, sources); }
-bool parse(std::string_view w, ModelSource& v) { return parse_word(w, sources, v); }
-template <> std::vector<std::string> words<ModelSource>() { return all_words(sources); }
-
 std::unique_ptr<Model> make_model(const VariantKey& key, const Parameters& p, ModelSource source, const ModelNote& note)
 {
     if (const std::string why = key.dof_problem(); !why.empty()) throw std::invalid_argument(why);

@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 #include <vector>
 
+#include <hubbeam/config.hpp>
 #include <hubbeam/model.hpp>
 
 namespace hubbeam {
@@ -32,5 +33,17 @@ Eigen::MatrixXd damping_matrix(const Model& model, const Parameters& parameters)
 /// differences at unit offsets are exact. The tip-deflection row of the state space's C and of a controller's
 /// tip feedback.
 Eigen::VectorXd tip_uy_row(const Model& model, const std::vector<double>& q, const std::vector<int>& coordinates);
+
+
+/// The coordinates that keep their inertia and are states of the first-order system, in order: all of key's,
+/// or with quasi-static axial coordinates all but A (which then follows its equilibrium). The one definition
+/// for the integrator, the stiffness estimates and the linearization.
+inline std::vector<int> kept_coordinates(const VariantKey& key, Axial axial)
+{
+    std::vector<int> kept;
+    for (int i = 0; i < key.nq(); ++i)
+        if (axial == Axial::dynamic || i < key.first_a() || i >= key.first_b()) kept.push_back(i);
+    return kept;
+}
 
 }  // namespace hubbeam

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "dynamics/integrate.hpp"
+#include <hubbeam/config.hpp>
 #include <hubbeam/scene.hpp>
 
 namespace hubbeam {

@@ -20,6 +20,7 @@
 #include "dynamics/stiffness.hpp"
 #include "simulation/error_check.hpp"
 #include "simulation/run_rows.hpp"
+#include "models/model_operations.hpp"
 
 namespace hubbeam {
 

@@ -1,0 +1,30 @@
+// The words of a run configuration's enums (config.hpp): one table each, read by to_string, parse and words.
+#include <hubbeam/config.hpp>
+
+namespace hubbeam {
+
+namespace {
+
+const WordTable<Axial, 2> axial_words = {{Axial::dynamic, "dynamic"}, {Axial::quasi_static, "quasi-static"}};
+const WordTable<Stepping, 2> stepping_words = {{Stepping::free, "free"}, {Stepping::rows, "rows"}};
+const WordTable<ModelSource, 3> sources = {
+    {ModelSource::automatic, "auto"}, {ModelSource::generated, "generated"}, {ModelSource::assembled, "assembled"}};
+const WordTable<ErrorCheck, 3> error_check_words = {
+    {ErrorCheck::on, "on"}, {ErrorCheck::off, "off"}, {ErrorCheck::full, "full"}};
+
+}  // namespace
+
+std::string to_string(Axial v) { return word_of(v, axial_words); }
+bool parse(std::string_view w, Axial& v) { return parse_word(w, axial_words, v); }
+template <> std::vector<std::string> words<Axial>() { return all_words(axial_words); }
+std::string to_string(Stepping v) { return word_of(v, stepping_words); }
+bool parse(std::string_view w, Stepping& v) { return parse_word(w, stepping_words, v); }
+template <> std::vector<std::string> words<Stepping>() { return all_words(stepping_words); }
+std::string to_string(ModelSource v) { return word_of(v, sources); }
+bool parse(std::string_view w, ModelSource& v) { return parse_word(w, sources, v); }
+template <> std::vector<std::string> words<ModelSource>() { return all_words(sources); }
+std::string to_string(ErrorCheck v) { return word_of(v, error_check_words); }
+bool parse(std::string_view w, ErrorCheck& v) { return parse_word(w, error_check_words, v); }
+template <> std::vector<std::string> words<ErrorCheck>() { return all_words(error_check_words); }
+
+}  // namespace hubbeam

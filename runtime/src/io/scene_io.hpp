@@ -1,0 +1,49 @@
+// What the files of the scene reader share (scene.cpp reads a file's tables, scene_keys.cpp holds the key table,
+// scene_tables.cpp reads files and the CSV tables a scene names, scene_validate.cpp checks a Scene,
+// scene_messages.cpp words the errors): private to them.
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <hubbeam/scene.hpp>
+
+namespace hubbeam::scene_io {
+
+/// The "got" of a required key that is absent.
+inline constexpr const char* missing = "nothing (the key is missing)";
+
+/// The words of motion.kind, in table order; the key table's motion_kinds entries are among them.
+std::vector<std::string> motion_kinds();
+bool parse_kind(std::string_view w, Motion::Kind& k);
+std::string kind_word(Motion::Kind k);
+
+/// The key table's `expected` of a dotted key name.
+const std::string& expected(const std::string& key);
+
+/// Throws SceneError(file, key, expected, got).
+[[noreturn]] void fail(const std::string& file, const std::string& key, const std::string& expected,
+                       const std::string& got);
+/// The bound on a hub angle, as messages state it.
+std::string angle_bound();
+
+/// A file's text, at most cap + 1 bytes of it (the caller refuses more).
+std::string read_file(const std::string& path, std::size_t cap = max_scene_bytes);
+/// s without the blanks around it.
+std::string_view trimmed(std::string_view s);
+
+/// beam.profile's table into the variant's stations and p.profile; returns the table's file.
+std::string read_profile(const std::string& scene_path, const std::string& name, Parameters& p, Extras& extras);
+/// The table of motion.file (resolved already by table_path): columns t and `column`.
+std::shared_ptr<const DriveTable> read_drive_table(const std::string& scene, const std::string& file,
+                                                   const char* column, const char* meaning,
+                                                   DriveTable::Interpolation interpolation);
+/// motion.file as a path: relative to the scene file's folder.
+std::string table_path(const std::string& scene, const std::string& file);
+/// A motion table's problem: "SCENE: motion.file: WHERE: WHAT".
+[[noreturn]] void table_fail(const std::string& scene, const std::string& where, const std::string& what);
+
+}  // namespace hubbeam::scene_io

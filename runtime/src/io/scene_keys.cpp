@@ -1,0 +1,156 @@
+// The scene key table, the one definition of the keys (name, option, what each holds), and its lookups.
+#include <hubbeam/scene.hpp>
+
+#include <algorithm>
+
+#include "dynamics/integrate.hpp"
+#include "text/option_lists.hpp"
+#include "io/scene_io.hpp"
+
+namespace hubbeam {
+
+using scene_io::motion_kinds;
+
+namespace {
+
+// The words of motion.kind; the key table's motion_kinds entries are among them (tests/io/test_scene.cpp).
+const WordTable<Motion::Kind, 6> kind_words = {{Motion::Kind::spin_up, "spin-up"},
+                                               {Motion::Kind::torque, "torque"},
+                                               {Motion::Kind::held, "held"},
+                                               {Motion::Kind::table, "table"},
+                                               {Motion::Kind::torque_table, "torque-table"},
+                                               {Motion::Kind::step, "step"}};
+
+}  // namespace
+
+std::vector<std::string> scene_io::motion_kinds() { return all_words(kind_words); }
+
+bool scene_io::parse_kind(std::string_view w, Motion::Kind& k) { return parse_word(w, kind_words, k); }
+
+std::string scene_io::kind_word(Motion::Kind k) { return word_of(k, kind_words); }
+
+namespace {
+
+std::string one_of(const std::vector<std::string>& words) { return "one of " + joined(words, "\""); }
+
+/// "auto" (the stepper for the scene's stiffness), then every GSL step type.
+std::vector<std::string> stepper_words()
+{
+    std::vector<std::string> w = {automatic_stepper_word};
+    for (const std::string& s : stepper_names()) w.push_back(s);
+    return w;
+}
+
+std::vector<SceneKey> make_scene_keys()
+{
+    using K = SceneKey::Kind;
+    return {
+        {"beam.length", nullptr, K::number, "a number > 0 (L, m)"},
+        {"beam.density", nullptr, K::number, "a number > 0 (rho, kg/m^3)"},
+        {"beam.area", nullptr, K::number, "a number > 0 (S, m^2)"},
+        {"beam.second_moment", nullptr, K::number, "a number > 0 (I, m^4)"},
+        {"beam.youngs_modulus", nullptr, K::number, "a number > 0 (E, Pa)"},
+        {"beam.taper", nullptr, K::word, one_of(words<Taper>())},
+        {"beam.tip_ratio", nullptr, K::number, "a number > 0 (the tapered dimension at the tip over the root)"},
+        {"beam.profile", nullptr, K::text,
+         "a CSV file name relative to the scene's folder, with the columns x/L, m, EI, ES (m kg/m, EI N m^2, ES N); "
+         "empty: none"},
+        {"hub.radius", nullptr, K::number, "a number >= 0 (a, m)"},
+        {"hub.inertia", nullptr, K::number, "a number > 0 (J_oh, kg m^2)"},
+        {"tip.mass", nullptr, K::number, "a number >= 0 (m_tip, kg)"},
+        {"tip.inertia", nullptr, K::number, "a number >= 0 (J_tip, kg m^2)"},
+        {"damping.mass_proportional", nullptr, K::number, "a number >= 0 (alpha, 1/s)"},
+        {"damping.stiffness_proportional", nullptr, K::number, "a number >= 0 (beta, s)"},
+        {"gravity.g", nullptr, K::number, "a finite number (g, m/s^2)"},
+        {"motion.kind", nullptr, K::word, one_of(motion_kinds())},
+        {"motion.omega0", nullptr, K::number, "a finite number (Omega0, rad/s)", {"spin-up"}},
+        {"motion.tau0", nullptr, K::number, "a finite number (tau0, N m)", {"torque"}},
+        {"motion.duration", nullptr, K::number, "a number > 0 (T_s or T_t, s)", {"spin-up", "torque"}},
+        {"motion.theta0", nullptr, K::number, "a finite number (theta0, rad)", {"spin-up", "torque", "table", "torque-table"}},
+        {"motion.angle", nullptr, K::number, "a finite number (the hub angle, rad)", {"held", "step"}},
+        {"motion.file", nullptr, K::text, "a CSV file with columns t, theta (table) or t, tau (torque-table)",
+         {"table", "torque-table"}},
+        {"control.kp", nullptr, K::number, "a number >= 0 (kp, N m/rad)"},
+        {"control.kd", nullptr, K::number, "a number >= 0 (kd, N m s/rad)"},
+        {"control.ki", nullptr, K::number, "a number >= 0 (ki, N m/(rad s))"},
+        {"control.tau_max", nullptr, K::number, "a number > 0 or inf (tau_max, N m)"},
+        {"control.k_tip", nullptr, K::number, "a finite number (k_tip, N m/m)"},
+        {"discretization.method", "--method", K::word, one_of(words<Method>())},
+        {"discretization.ny", "--ny", K::integer, "an integer >= 1 (Ny)"},
+        {"discretization.nx", "--nx", K::integer, "an integer >= 0 (Nx)"},
+        {"discretization.spline_basis", "--spline-basis", K::word, one_of(words<SplineBasis>())},
+        {"model.order", "--order", K::word, one_of(words<Order>())},
+        {"model.source", "--source", K::word, one_of(words<ModelSource>())},
+        {"model.axial", "--axial", K::word, one_of(words<Axial>())},
+        {"solver.stepper", "--stepper", K::word, one_of(stepper_words())},
+        {"solver.rtol", "--rtol", K::number, "a number in (0, 1) (relative tolerance)"},
+        {"solver.atol", "--atol", K::number, "a number > 0 (absolute tolerance)"},
+        {"solver.h0", "--h0", K::number, "a number > 0 (first trial step, s)"},
+        {"solver.stepping", "--stepping", K::word, one_of(words<Stepping>())},
+        {"solver.max_steps", "--max-steps", K::number, "a whole number from 1 to 1e15 (step budget)"},
+        {"solver.error_check", "--error-check", K::word, one_of(words<ErrorCheck>())},
+        {"output.t_end", "--t-end", K::number, "a number > 0 (end time, s)"},
+        {"output.dt_out", "--dt-out", K::number, "a number > 0 and <= output.t_end (output interval, s)"},
+        {"output.file", "-o,--output", K::text, "a file name"},
+        {"output.sensitivities", "--sensitivities", K::text,
+         "parameter symbols separated by commas, each once: L, rho, S, I, E, a, J_oh, m_tip, J_tip, g, alpha, beta, "
+         "tip_ratio, kp, kd, ki, k_tip"},
+    };
+}
+
+}  // namespace
+
+const std::string& scene_io::expected(const std::string& key) { return scene_key(key).expected; }
+
+
+const std::vector<SceneKey>& scene_keys()
+{
+    static const std::vector<SceneKey> keys = make_scene_keys();
+    return keys;
+}
+
+const SceneKey& scene_key(const std::string& name)
+{
+    for (const SceneKey& k : scene_keys())
+        if (name == k.name) return k;
+    throw std::logic_error("no scene key " + name);
+}
+
+std::string SceneKey::table() const
+{
+    const std::string n = name;
+    return n.substr(0, n.find('.'));
+}
+
+std::string SceneKey::leaf() const
+{
+    const std::string n = name;
+    return n.substr(n.find('.') + 1);
+}
+
+std::vector<std::string> scene_tables()
+{
+    std::vector<std::string> tables;
+    for (const SceneKey& k : scene_keys())
+        if (std::find(tables.begin(), tables.end(), k.table()) == tables.end()) tables.push_back(k.table());
+    return tables;
+}
+
+std::vector<std::string> table_keys(const std::string& table, const std::string& motion_kind)
+{
+    std::vector<std::string> leaves;
+    for (const SceneKey& k : scene_keys())
+        if (k.table() == table && (k.motion_kinds.empty() || motion_kind.empty() ||
+                                   std::find(k.motion_kinds.begin(), k.motion_kinds.end(), motion_kind) != k.motion_kinds.end()))
+            leaves.push_back(k.leaf());
+    return leaves;
+}
+
+std::string option_name(const SceneKey& k)
+{
+    if (k.option == nullptr) return k.name;  // overridden from code (the Python module), not an option
+    const std::string names = k.option;
+    return names.substr(0, names.find(','));
+}
+
+}  // namespace hubbeam

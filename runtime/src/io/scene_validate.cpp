@@ -1,0 +1,193 @@
+// validate(): the ranges of a Scene's values and the checks that join keys, each failure naming its key.
+#include <hubbeam/scene.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "dynamics/integrate.hpp"
+#include "io/scene_io.hpp"
+#include "text/shortest.hpp"
+#include "text/printable.hpp"
+
+namespace hubbeam {
+
+using namespace scene_io;
+
+namespace {
+
+/// output.sensitivities: known symbols, each once, that this scene has (a gain needs [control], tip_ratio a taper,
+/// rho, S, I and E a beam without a profile), and a run the sensitivity equations can follow (dynamic axial
+/// coordinates, no torque law in code).
+void check_sensitivities(const Scene& s)
+{
+    const char* key = "output.sensitivities";
+    std::vector<std::string> seen;
+    for (const std::string& name : s.output.sensitivities) {
+        const bool gain = std::find(gain_names.begin(), gain_names.end(), name) != gain_names.end();
+        if (!gain && std::find(param_names.begin(), param_names.end(), name) == param_names.end())
+            fail(s.path, key, expected(key), "\"" + name + "\"");
+        if (std::find(seen.begin(), seen.end(), name) != seen.end())
+            fail(s.path, key, expected(key), "\"" + name + "\" twice");
+        seen.push_back(name);
+        if (gain && !s.control)
+            fail(s.path, key, "a control gain only with a [control] table", "\"" + name + "\"");
+        if (name == "tip_ratio" && s.variant.extras.taper == Taper::uniform)
+            fail(s.path, key, "tip_ratio only with beam.taper \"width\" or \"depth\"", "\"tip_ratio\"");
+        // A profile's table replaces E, rho, S and I (read_profile sets them from its root for reports only): their
+        // derivatives would be columns of zeros.
+        if (!s.parameters.profile.empty() && (name == "E" || name == "rho" || name == "S" || name == "I"))
+            fail(s.path, key, "a parameter that the scene uses, not " + name + " with beam.profile (its table gives "
+                 "m, EI and ES along the span in place of rho, S, I and E)", "\"" + name + "\"");
+    }
+    if (!s.output.sensitivities.empty() && s.axial == Axial::quasi_static)
+        fail(s.path, key, "model.axial \"dynamic\" (the sensitivity equations follow the axial coordinates' own "
+             "motion)", "model.axial \"quasi-static\"");
+}
+
+// Range checks of validate(), naming the key.
+void check_positive(const Scene& s, double v, const char* key)
+{
+    if (!(v > 0.0) || !std::isfinite(v)) fail(s.path, key, expected(key), shortest(v));
+}
+void check_finite(const Scene& s, double v, const char* key)
+{
+    if (!std::isfinite(v)) fail(s.path, key, expected(key), shortest(v));
+}
+/// A hub angle: finite, and no larger than max_hub_angle, within which double precision resolves it.
+void check_angle(const Scene& s, double v, const char* key)
+{
+    check_finite(s, v, key);
+    if (std::abs(v) > max_hub_angle)
+        fail(s.path, key, "|" + std::string(key).substr(std::string(key).find('.') + 1) + "| <= " + angle_bound(),
+             shortest(v));
+}
+
+/// [control]'s ranges, and the motions it can follow: a step is a reference only, a torque drive is none.
+void check_control(const Scene& s)
+{
+    if (!s.control) {
+        if (s.motion.kind == Motion::Kind::step)
+            fail(s.path, "motion.kind", "a motion of its own without a [control] section (a step is the reference of a "
+                 "controlled hub)", "\"step\"");
+        return;
+    }
+    if (s.motion.drive() == Drive::torque)
+        fail(s.path, "motion.kind", "a reference for [control]: \"spin-up\", \"held\", \"table\" or \"step\"",
+             "\"" + kind_word(s.motion.kind) + "\"");
+    const Control& c = *s.control;
+    for (const auto& [v, key] : {std::pair{c.kp, "control.kp"}, {c.kd, "control.kd"}, {c.ki, "control.ki"}})
+        if (!(v >= 0.0) || !std::isfinite(v)) fail(s.path, key, expected(key), shortest(v));
+    if (!(c.tau_max > 0.0)) fail(s.path, "control.tau_max", expected("control.tau_max"), shortest(c.tau_max));
+    check_finite(s, c.k_tip, "control.k_tip");
+}
+
+/// The beam's, hub's and extra terms' parameters (docs/model.md sections 1 and 11).
+void check_parameters(const Scene& s)
+{
+    const Parameters& p = s.parameters;
+    check_positive(s, p.L, "beam.length");
+    check_positive(s, p.rho, "beam.density");
+    check_positive(s, p.S, "beam.area");
+    check_positive(s, p.I, "beam.second_moment");
+    check_positive(s, p.E, "beam.youngs_modulus");
+    if (!(p.a >= 0.0) || !std::isfinite(p.a)) fail(s.path, "hub.radius", expected("hub.radius"), shortest(p.a));
+    check_positive(s, p.J_oh, "hub.inertia");
+    if (s.variant.extras.taper != Taper::uniform) check_positive(s, p.tip_ratio, "beam.tip_ratio");
+    for (const auto& [v, key] : {std::pair{p.m_tip, "tip.mass"}, {p.J_tip, "tip.inertia"},
+                                 {p.alpha, "damping.mass_proportional"}, {p.beta, "damping.stiffness_proportional"}})
+        if (!(v >= 0.0) || !std::isfinite(v)) fail(s.path, key, expected(key), shortest(v));
+    check_finite(s, p.g, "gravity.g");
+}
+
+/// The motion's values for its kind, its start angle and the control that follows it.
+void check_motion(const Scene& s)
+{
+    switch (s.motion.kind) {
+    case Motion::Kind::spin_up:
+        check_finite(s, s.motion.omega0, "motion.omega0");
+        check_positive(s, s.motion.spin_time, "motion.duration");
+        break;
+    case Motion::Kind::torque:
+        check_finite(s, s.motion.tau0, "motion.tau0");
+        check_positive(s, s.motion.torque_time, "motion.duration");
+        break;
+    case Motion::Kind::held:
+    case Motion::Kind::step: check_angle(s, s.motion.angle, "motion.angle"); break;
+    case Motion::Kind::table:
+    case Motion::Kind::torque_table:
+        if (!s.motion.table) fail(s.path, "motion.file", expected("motion.file"), missing);
+        break;
+    }
+    if (s.motion.kind != Motion::Kind::held) check_angle(s, s.motion.theta0, "motion.theta0");
+    check_control(s);
+}
+
+/// The DOF counts and the axial coordinates' treatment.
+void check_discretization(const Scene& s)
+{
+    // DOF counts: a problem that persists with nx = 0 is about ny.
+    const VariantKey& key = s.variant;
+    if (key.ny < 1) fail(s.path, "discretization.ny", expected("discretization.ny"), std::to_string(key.ny));
+    if (key.nx < 0) fail(s.path, "discretization.nx", expected("discretization.nx"), std::to_string(key.nx));
+    if (const std::string problem = key.dof_problem(); !problem.empty()) {
+        VariantKey without_axial = key;
+        without_axial.nx = 0;
+        const char* name = without_axial.dof_problem().empty() ? "discretization.nx" : "discretization.ny";
+        throw SceneError::with_detail(s.path, name, problem);
+    }
+
+    if (s.axial == Axial::quasi_static && key.nx == 0)
+        fail(s.path, "model.axial", "\"dynamic\" for a scene without axial coordinates (quasi-static needs nx > 0)",
+             "\"quasi-static\"");
+}
+
+/// The stepper's name and the tolerances.
+void check_solver(const Scene& s)
+{
+    if (s.solver.stepper != automatic_stepper_word && !is_stepper(s.solver.stepper))
+        fail(s.path, "solver.stepper", expected("solver.stepper"), "\"" + s.solver.stepper + "\"");
+    check_positive(s, s.solver.rtol, "solver.rtol");
+    if (!(s.solver.rtol < 1.0))  // a relative error of 100 % or more controls nothing
+        fail(s.path, "solver.rtol", "a number in (0, 1) (relative tolerance)", shortest(s.solver.rtol));
+    check_positive(s, s.solver.atol, "solver.atol");
+    check_positive(s, s.solver.h0, "solver.h0");
+}
+
+/// The sensitivities, the output times and the motion table's span.
+void check_output(const Scene& s)
+{
+    check_sensitivities(s);
+    check_positive(s, s.output.t_end, "output.t_end");
+    if (!(s.output.dt_out > 0.0) || !(s.output.dt_out <= s.output.t_end))
+        fail(s.path, "output.dt_out", expected("output.dt_out"),
+             shortest(s.output.dt_out) + " with t_end = " + shortest(s.output.t_end));
+    // A bound on the rows, checked before anything runs: beyond it the CSV would be gigabytes and the row
+    // clock's integer arithmetic would overflow.
+    if (s.output.t_end / s.output.dt_out > static_cast<double>(max_output_rows))
+        fail(s.path, "output.dt_out",
+             "at most " + std::to_string(max_output_rows) + " rows (output.t_end / output.dt_out)",
+             shortest(s.output.t_end / s.output.dt_out) + " rows (t_end = " + shortest(s.output.t_end) +
+                 ", dt_out = " + shortest(s.output.dt_out) + ")");
+
+    // A table is not extrapolated: a run past its rows would make up a drive no one wrote down.
+    const bool tabled = s.motion.kind == Motion::Kind::table || s.motion.kind == Motion::Kind::torque_table;
+    if (const DriveTable* t = s.motion.table.get();
+        tabled && (t->first_time() > 0.0 || t->last_time() < s.output.t_end))
+        table_fail(s.path, printable(s.motion.table_file, 400),
+                   "its rows cover t = " + shortest(t->first_time()) + " to " + shortest(t->last_time()) +
+                       " s, the run needs t = 0 to output.t_end = " + shortest(s.output.t_end) +
+                       " s (a table is not extrapolated: extend it or shorten the run)");
+}
+
+}  // namespace
+
+void validate(const Scene& s)
+{
+    check_parameters(s);
+    check_motion(s);
+    check_discretization(s);
+    check_solver(s);
+    check_output(s);
+}
+
+}  // namespace hubbeam
