@@ -126,12 +126,15 @@ std::vector<double> coupling_at(const FieldBasis& t, double xi)
 
 namespace {
 
+/// How many coordinates the variant's field of this kind holds.
+int field_count(const VariantKey& key, FieldKind kind) { return coordinate_layout(key).count(kind); }
+
 /// Order full's |r_dot|^2 less order first's, halved (T = 1/2 int m |r_dot|^2): every term holds u_x2 or its rate.
 ex point_density(const VariantKey& key, const LoopSymbols& ls)
 {
     const FieldSymbols& f = ls.f;
     ex e = ((velocity_squared(Order::full, f, ls.w) - velocity_squared(Order::first, f, ls.w)) / 2).expand();
-    if (key.nx == 0) e = e.subs(lst{f.ux1 == 0, f.ux1_dot == 0}).expand();
+    if (field_count(key, FieldKind::axial) == 0) e = e.subs(lst{f.ux1 == 0, f.ux1_dot == 0}).expand();
     for (const symbol& other : {f.X, f.uy_x, f.uy_xx, f.ux1_x})
         if (e.has(other)) throw std::logic_error("points: the density holds " + other.get_name());
     return e;
@@ -140,7 +143,7 @@ ex point_density(const VariantKey& key, const LoopSymbols& ls)
 /// The degree in xi of the density on one polynomial piece: the fields' degrees summed over its heaviest term.
 int density_degree(const ex& e, const VariantKey& key, const LoopSymbols& ls)
 {
-    const int dy = key.transverse_basis().degree(), dx = key.nx > 0 ? key.axial_basis().degree() : 0;
+    const int dy = key.transverse_basis().degree(), dx = field_count(key, FieldKind::axial) > 0 ? key.axial_basis().degree() : 0;
     const FieldSymbols& f = ls.f;
     const std::vector<std::pair<symbol, int>> degrees = {{f.ux1, dx}, {f.ux1_dot, dx},         {f.uy, dy},
                                                          {f.uy_dot, dy}, {f.ux2, 2 * dy - 1}, {f.ux2_dot, 2 * dy - 1}};
@@ -158,7 +161,7 @@ std::vector<PointField> point_fields(const VariantKey& key, const LoopSymbols& l
     const FieldSymbols& f = ls.f;
     std::vector<PointField> fields;
     if (key.drive == Drive::torque) fields.push_back({ls.w, {}, {{"theta", 1}}, {}, 0, true});
-    if (key.nx > 0) {
+    if (field_count(key, FieldKind::axial) > 0) {
         fields.push_back({f.ux1, {{"a", 1}}, {}, {}, f.ux1_dot, false});
         fields.push_back({f.ux1_dot, {}, {{"a", 1}}, {}, 0, true});
     }
@@ -170,8 +173,13 @@ std::vector<PointField> point_fields(const VariantKey& key, const LoopSymbols& l
     return fields;
 }
 
-/// Which block of q a vector lives in, and its entry i as C.
-int block_of(const std::string& v) { return v == "theta" ? 0 : v == "a" ? 1 : 2; }
+/// The field of q a vector lives in (theta: the hub angle, a: the axial field, the others: the in-plane field) as
+/// its index in layout.fields, and its entry i as C.
+int field_index(const CoordinateLayout& layout, const std::string& v)
+{
+    const FieldKind kind = v == "theta" ? FieldKind::hub_angle : v == "a" ? FieldKind::axial : FieldKind::inplane;
+    return static_cast<int>(layout.find(kind) - layout.fields.data());
+}
 std::string entry(const std::string& v, const std::string& i)
 {
     if (v == "theta") return "";
@@ -197,8 +205,10 @@ std::string point_loop(const VariantKey& key, const std::string& body, bool tip)
 {
     const bool vectors = body.find("f.k[") != std::string::npos || body.find("u_x2_ddot") != std::string::npos;
     const bool torque = key.drive == Drive::torque;
-    const std::string a = std::to_string(key.first_a()), b = std::to_string(key.first_b());
-    const std::string A = key.nx > 0 ? "q + " + a : "nullptr", A_dot = key.nx > 0 ? "qd + " + a : "nullptr";
+    const CoordinateLayout layout = coordinate_layout(key);
+    const CoordinateField &axial = *layout.find(FieldKind::axial), &inplane = *layout.find(FieldKind::inplane);
+    const std::string a = std::to_string(axial.first), b = std::to_string(inplane.first);
+    const std::string A = axial.count > 0 ? "q + " + a : "nullptr", A_dot = axial.count > 0 ? "qd + " + a : "nullptr";
     std::ostringstream s;
     s << "    // Order full's foreshortening terms, summed over the quadrature points (point_fields above).\n"
       << "    const PointVectors& HB = point_products(q + " << b << ");\n"
@@ -221,7 +231,7 @@ bool foreshortening_at_points(const VariantKey& key)
 {
     // Below Ny = 8 the expanded form is the cheaper: AMM torque, instructions per right-hand side, expanded against
     // points: 5.5 against 20 thousand at Ny = 4, 79 against 58 at Ny = 8, 2870 against 229 at Ny = 16.
-    return key.order == Order::full && key.ny >= 8 && key.extras.taper == Taper::uniform && !key.extras.profile();
+    return key.order == Order::full && field_count(key, FieldKind::inplane) >= 8 && key.extras.taper == Taper::uniform && !key.extras.profile();
 }
 
 PointRule point_rule(const VariantKey& key)
@@ -237,7 +247,10 @@ PointRule point_rule(const VariantKey& key)
     } else {
         // The highest modes' products oscillate about 4 b_n / (2 pi) times on [0, 1]; 4 n + 16 points reach
         // round-off with a margin (3.5 n + 16 do, measured from n = 4 to 32).
-        q = gauss_legendre(4 * std::max(key.nx, key.ny) + 16);
+        int most = 0;  // the largest count of a beam field
+        for (const CoordinateField& f : coordinate_layout(key).fields)
+            if (f.basis) most = std::max(most, f.count);
+        q = gauss_legendre(4 * most + 16);
     }
     r.xi = q.nodes;
     r.weight = q.weights;
@@ -251,7 +264,8 @@ PointCode point_code(const VariantKey& key, const Symbols& s)
     const bool torque = key.drive == Drive::torque, tip = key.extras.tip;
     const std::vector<PointField> fields = point_fields(key, ls);
     const PointRule rule = point_rule(key);
-    const int nq = key.nq(), nx = key.nx, ny = key.ny;
+    const CoordinateLayout layout = coordinate_layout(key);
+    const int nq = layout.size(), nx = layout.count(FieldKind::axial), ny = layout.count(FieldKind::inplane);
 
     // Lagrange's equations of T_points = sum_g W_g e(fields(x_g)) by the chain rule:
     //   M = sum e_ab dqd(a) dqd(b)^T over the rate fields,
@@ -275,9 +289,13 @@ PointCode point_code(const VariantKey& key, const Symbols& s)
     }
 
     PointCode code;
-    const std::string B0 = std::to_string(key.first_b()), A0 = std::to_string(key.first_a()), n = std::to_string(nq);
-    const auto offset = [&](int block) { return block == 0 ? std::string("0") : block == 1 ? A0 : B0; };
-    const auto size = [&](int block) { return block == 0 ? 1 : block == 1 ? nx : ny; };
+    // A block is a field of q, numbered by its place in layout.fields.
+    const std::string B0 = std::to_string(layout.first(FieldKind::inplane)), n = std::to_string(nq);
+    const auto block_of = [&](const std::string& v) { return field_index(layout, v); };
+    const auto field = [&](int block) -> const CoordinateField& { return layout.fields[static_cast<std::size_t>(block)]; };
+    const auto hub = [&](int block) { return field(block).kind == FieldKind::hub_angle; };
+    const auto offset = [&](int block) { return std::to_string(field(block).first); };
+    const auto size = [&](int block) { return field(block).count; };
 
     // Q: one scalar per vector, then one loop per block.
     {
@@ -292,7 +310,7 @@ PointCode point_code(const VariantKey& key, const Symbols& s)
         for (const auto& [block, vs] : by_block) {
             std::string sum;
             for (const std::string& v : vs) sum += (sum.empty() ? "" : " + ") + ("q_" + v + (v == "theta" ? "" : " * " + entry(v, "i")));
-            if (block == 0) body << "        out[0] += " << sum << ";\n";
+            if (hub(block)) body << "        out[0] += " << sum << ";\n";
             else
                 body << "        for (int i = 0; i < " << size(block) << "; ++i) out[" << offset(block) << " + i] += " << sum << ";\n";
         }
@@ -324,9 +342,9 @@ PointCode point_code(const VariantKey& key, const Symbols& s)
             for (int i = 0; i < size(bu); ++i)
                 for (int j = bu == bv ? i : 0; j < size(bv); ++j)
                     code.mass_entries.push_back((std::stoi(offset(bu)) + i) * nq + std::stoi(offset(bv)) + j);
-            if (bu == 0 && bv == 0) {
+            if (hub(bu) && hub(bv)) {
                 body << "        out[0] += " << sum << ";\n";
-            } else if (bu == 0) {
+            } else if (hub(bu)) {
                 body << "        for (int j = 0; j < " << size(bv) << "; ++j) out[" << offset(bv) << " + j] += " << sum << ";\n";
             } else if (bu != bv) {
                 body << "        for (int i = 0; i < " << size(bu) << "; ++i)\n"
@@ -353,7 +371,7 @@ PointCode point_code(const VariantKey& key, const Symbols& s)
                       << " + j + col] += s[col];\n"
                       << "        }\n";
             } else {
-                const std::string name = bu == 1 ? "block_A" : "block_B", nb = std::to_string(size(bu));
+                const std::string name = "block_" + field(bu).symbol, nb = std::to_string(size(bu));
                 before << "    double " << name << "[" << nb << " * " << nb << "] = {};  // this block's terms, square\n";
                 body << "        for (int i = 0; i < " << nb << "; ++i)\n"
                      << "            for (int j = 0; j < " << nb << "; ++j) " << name << "[i * " << nb << " + j] += " << sum << ";\n";
@@ -412,13 +430,13 @@ PointCode point_code(const VariantKey& key, const Symbols& s)
         }
         for (const auto& [blocks, sum] : sums) {
             const auto [bu, bv] = blocks;
-            const std::string row = bu == 0 ? "0" : "(" + offset(bu) + " + i) * " + n, col = bv == 0 ? "0" : offset(bv) + " + j";
+            const std::string row = hub(bu) ? "0" : "(" + offset(bu) + " + i) * " + n, col = hub(bv) ? "0" : offset(bv) + " + j";
             std::string indent = "        ";
-            if (bu != 0) {
+            if (!hub(bu)) {
                 body << indent << "for (int i = 0; i < " << size(bu) << "; ++i)\n";
                 indent += "    ";
             }
-            if (bv != 0) {
+            if (!hub(bv)) {
                 body << indent << "for (int j = 0; j < " << size(bv) << "; ++j)\n";
                 indent += "    ";
             }
@@ -443,7 +461,7 @@ PointCode point_code(const VariantKey& key, const Symbols& s)
                 if (dc.is_zero()) continue;
                 const std::string name = "du_" + v + "_" + std::to_string(column);
                 body << "        const double " << name << " = W * (" << c_expression(dc, ls) << ");\n";
-                if (block_of(v) == 0) body << "        out[" << column << "] += " << name << ";\n";
+                if (hub(block_of(v))) body << "        out[" << column << "] += " << name << ";\n";
                 else
                     body << "        for (int i = 0; i < " << size(block_of(v)) << "; ++i) out[(" << offset(block_of(v))
                          << " + i) * " << drive_value_count << " + " << column << "] += " << name << " * " << entry(v, "i") << ";\n";

@@ -8,6 +8,7 @@
 #include <string>
 #include <utility>
 
+#include "coordinates.hpp"
 #include "interface.hpp"
 #include "variant.hpp"
 
@@ -85,7 +86,9 @@ class Model {
 public:
     virtual ~Model() = default;
     const VariantKey& key() const { return key_; }
-    int nq() const { return key_.nq(); }
+    int nq() const { return nq_; }
+    /// The fields of q, in order (coordinates.hpp): every offset into q is read from here.
+    const CoordinateLayout& coordinates() const { return coordinates_; }
     /// "generated" or "assembled".
     virtual const char* source() const = 0;
     /// Where a generated model's kernels come from ("built in", "cached", "compiled now in 2.1 s"), or why
@@ -131,10 +134,12 @@ public:
     }
 
 protected:
-    explicit Model(const VariantKey& key) : key_(key) {}
+    explicit Model(const VariantKey& key) : key_(key), coordinates_(coordinate_layout(key)), nq_(coordinates_.size()) {}
 
 private:
     VariantKey key_;
+    CoordinateLayout coordinates_;
+    int nq_;
     std::string origin_;
 };
 
