@@ -160,7 +160,8 @@ void FieldRecorder::state(double t, const double* q)
 {
     if (next_ >= times_.size() || t < times_[next_] * (1.0 - 1e-12)) return;
     while (next_ < times_.size() && times_[next_] <= t * (1.0 + 1e-12)) ++next_;  // one record for times a row covers
-    const CoordinateField &axial = *coordinates_.find(FieldKind::axial), &inplane = *coordinates_.find(FieldKind::inplane);
+    const CoordinateField& axial = *coordinates_.find(FieldKind::axial);
+    const CoordinateField& inplane = *coordinates_.find(FieldKind::inplane);
     const double* A = axial.count > 0 ? q + axial.first : nullptr;
     const double* B = q + inplane.first;
     const std::vector<double> ux = fields_.ux(A, B, xs_);

@@ -114,7 +114,8 @@ Eigen::MatrixXd damping_matrix(const Model& model, const Parameters& parameters)
     const Eigen::MatrixXd M = mass_at(model, rest, zero);
     const Eigen::MatrixXd K = -force_q_jacobian(model, rest, zero, zero);
     Eigen::MatrixXd C = parameters.alpha * M + parameters.beta * 0.5 * (K + K.transpose());
-    const Eigen::Index elastic = model.coordinates().first_elastic();  // the hub angle, a coordinate under torque, is not damped
+    // The hub angle, a coordinate under torque, is not damped.
+    const Eigen::Index elastic = model.coordinates().first_elastic();
     C.topRows(elastic).setZero();
     C.leftCols(elastic).setZero();
     return C;
@@ -143,7 +144,8 @@ SteadySpin steady_spin(const Model& model, double omega, double theta)
                                         "with it: the motion is periodic); linearize about the held hub, Omega = 0");
         return held_equilibrium(model, theta);
     }
-    const int n = model.nq(), a0 = model.coordinates().first(FieldKind::axial), na = model.coordinates().count(FieldKind::axial);
+    const CoordinateField& axial = *model.coordinates().find(FieldKind::axial);
+    const int n = model.nq(), a0 = axial.first, na = axial.count;
     SteadySpin s;
     s.omega = omega;
     s.q.assign(static_cast<std::size_t>(n), 0.0);
@@ -407,7 +409,8 @@ std::vector<NaturalMode> natural_modes(const Model& model, const SteadySpin& s, 
         const Eigen::VectorXcd rates = vectors.col(k).segment(first_rate, r);
         const bool is_axial = mostly_axial(model, M, R, rates);
         const double magnitude = std::hypot(growth, oscillating ? l.imag() : 0.0);
-        modes.push_back({oscillating ? l.imag() : 0.0, growth, is_axial ? "axial" : "bending", magnitude,
+        const char* kind = mode_kind(is_axial ? FieldKind::axial : FieldKind::inplane);
+        modes.push_back({oscillating ? l.imag() : 0.0, growth, kind, magnitude,
                          magnitude > 0.0 ? -growth / magnitude : 0.0, weighted_shape(U, rates)});
     }
     // By frequency, divergent modes (rad_s 0) first; with damping by undamped frequency, so that an overdamped
@@ -471,7 +474,8 @@ std::vector<NaturalMode> closed_loop_modes(const Model& model, const SteadySpin&
         const std::vector<double> energy = energy_by_field(model, M, all, rates);
         const auto most = std::max_element(energy.begin(), energy.end()) - energy.begin();
         const bool oscillating = l.imag() > 1e-9 * scale;
-        modes.push_back({oscillating ? l.imag() : 0.0, l.real(), mode_kind(model.coordinates().fields[static_cast<std::size_t>(most)].kind),
+        const FieldKind kind = model.coordinates().fields[static_cast<std::size_t>(most)].kind;
+        modes.push_back({oscillating ? l.imag() : 0.0, l.real(), mode_kind(kind),
                          magnitude, -l.real() / magnitude, weighted_shape(U, rates)});
     }
     std::sort(modes.begin(), modes.end(),
