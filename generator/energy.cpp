@@ -81,13 +81,15 @@ public:
         const auto add = [&](const symbol& field, const ex& coef, const Factor& factor) {
             fields_[field].push_back(single_term(read, coef, {factor}));
         };
-        for (int i = 0; i < key.nx; ++i) {
+        const CoordinateLayout layout = coordinate_layout(key);
+        for (int i = 0; i < layout.count(FieldKind::axial); ++i) {
             add(f.ux1, s.A[i], {K::axial, i, 0, 0});
             add(f.ux1_dot, s.A_dot[i], {K::axial, i, 0, 0});
             add(f.ux1_x, s.A[i] * inv_L, {K::axial, i, 0, 1});
             add(f.ux1_x_dot, s.A_dot[i] * inv_L, {K::axial, i, 0, 1});
         }
-        for (int j = 0; j < key.ny; ++j) {
+        const int ny = layout.count(FieldKind::inplane);
+        for (int j = 0; j < ny; ++j) {
             add(f.uy, s.B[j], {K::transverse, j, 0, 0});
             add(f.uy_dot, s.B_dot[j], {K::transverse, j, 0, 0});
             add(f.uy_xx, s.B[j] * pow(inv_L, 2), {K::transverse, j, 0, 2});
@@ -95,7 +97,7 @@ public:
             add(f.uy_x_dot, s.B_dot[j] * inv_L, {K::transverse, j, 0, 1});
             add(f.uy_xx_dot, s.B_dot[j] * pow(inv_L, 2), {K::transverse, j, 0, 2});
             // u_x2 = -1/2 B^T H(x) B with H in x units = H_xi / L; its rate is -B^T H B_dot (H symmetric).
-            for (int k = 0; k < key.ny; ++k) {
+            for (int k = 0; k < ny; ++k) {
                 add(f.ux2, -s.B[j] * s.B[k] * inv_L / 2, {K::coupling, j, k, 0});
                 add(f.ux2_dot, -s.B[j] * s.B_dot[k] * inv_L, {K::coupling, j, k, 0});
             }
@@ -215,22 +217,42 @@ private:
 }  // namespace
 
 Symbols::Symbols(const VariantKey& key)
-    : A(numbered("A", key.nx)), B(numbered("B", key.ny)), A_dot(numbered("A", key.nx, "_dot")),
-      B_dot(numbered("B", key.ny, "_dot"))
 {
+    // Every coordinate's symbol, then every rate's (GiNaC orders terms by the symbols' creation, which the
+    // generated code's text follows), then the profile's.
+    const CoordinateLayout layout = coordinate_layout(key);
+    for (const CoordinateField& f : layout.fields)
+        if (f.kind != FieldKind::hub_angle) coordinates(f.kind) = numbered(f.symbol, f.count);
+    for (const CoordinateField& f : layout.fields)
+        if (f.kind != FieldKind::hub_angle) rates(f.kind) = numbered(f.symbol, f.count, "_dot");
     for (std::size_t k = 0; k < key.extras.stations.size(); ++k) {
         m_k.emplace_back("m_" + std::to_string(k));
         EI_k.emplace_back("EI_" + std::to_string(k));
         ES_k.emplace_back("ES_" + std::to_string(k));
     }
-    if (key.drive == Drive::torque) {
-        q.push_back(theta);
-        qd.push_back(theta_dot);
+    for (const CoordinateField& f : layout.fields) {
+        if (f.kind == FieldKind::hub_angle) {
+            q.push_back(theta);
+            qd.push_back(theta_dot);
+            continue;
+        }
+        q.insert(q.end(), coordinates(f.kind).begin(), coordinates(f.kind).end());
+        qd.insert(qd.end(), rates(f.kind).begin(), rates(f.kind).end());
     }
-    q.insert(q.end(), A.begin(), A.end());
-    q.insert(q.end(), B.begin(), B.end());
-    qd.insert(qd.end(), A_dot.begin(), A_dot.end());
-    qd.insert(qd.end(), B_dot.begin(), B_dot.end());
+}
+
+std::vector<symbol>& Symbols::coordinates(FieldKind kind)
+{
+    if (kind == FieldKind::axial) return A;
+    if (kind == FieldKind::inplane) return B;
+    throw std::logic_error("energy: the hub angle is one symbol, theta");
+}
+
+std::vector<symbol>& Symbols::rates(FieldKind kind)
+{
+    if (kind == FieldKind::axial) return A_dot;
+    if (kind == FieldKind::inplane) return B_dot;
+    throw std::logic_error("energy: the hub angle's rate is one symbol, theta_dot");
 }
 
 ex velocity_squared(Order order, const FieldSymbols& f, const ex& w)

@@ -6,6 +6,7 @@
 
 #include <ginac/ginac.h>
 
+#include "coordinates.hpp"
 #include "integrals.hpp"
 #include "poly.hpp"
 #include "variant.hpp"
@@ -25,11 +26,17 @@ struct Symbols {
     std::vector<GiNaC::symbol> m_k, EI_k, ES_k;
     GiNaC::symbol tau{"tau"}, theta_dot{"theta_dot"}, theta_ddot{"theta_ddot"};
     GiNaC::symbol theta{"theta"};
+    // The beam fields' coordinates and rates (axial A, in-plane B), named by their CoordinateField's symbol.
     std::vector<GiNaC::symbol> A, B, A_dot, B_dot;
-    // The variant's coordinates and rates: (theta, A, B) for a torque variant, (A, B) for a prescribed one.
+    // The variant's coordinates and rates in the order of coordinate_layout(key) (theta under torque, A, B).
     std::vector<GiNaC::symbol> q, qd;
 
     explicit Symbols(const VariantKey& key);
+
+private:
+    /// The coordinates and rates of a beam field of this kind.
+    std::vector<GiNaC::symbol>& coordinates(FieldKind kind);
+    std::vector<GiNaC::symbol>& rates(FieldKind kind);
 };
 
 /// T, U and the dissipation function D (zero without damping) as polynomials in the variables of the reader

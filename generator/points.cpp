@@ -126,12 +126,15 @@ std::vector<double> coupling_at(const FieldBasis& t, double xi)
 
 namespace {
 
+/// How many coordinates the variant's field of this kind holds.
+int field_count(const VariantKey& key, FieldKind kind) { return coordinate_layout(key).count(kind); }
+
 /// Order full's |r_dot|^2 less order first's, halved (T = 1/2 int m |r_dot|^2): every term holds u_x2 or its rate.
 ex point_density(const VariantKey& key, const LoopSymbols& ls)
 {
     const FieldSymbols& f = ls.f;
     ex e = ((velocity_squared(Order::full, f, ls.w) - velocity_squared(Order::first, f, ls.w)) / 2).expand();
-    if (key.nx == 0) e = e.subs(lst{f.ux1 == 0, f.ux1_dot == 0}).expand();
+    if (field_count(key, FieldKind::axial) == 0) e = e.subs(lst{f.ux1 == 0, f.ux1_dot == 0}).expand();
     for (const symbol& other : {f.X, f.uy_x, f.uy_xx, f.ux1_x})
         if (e.has(other)) throw std::logic_error("points: the density holds " + other.get_name());
     return e;
@@ -140,7 +143,7 @@ ex point_density(const VariantKey& key, const LoopSymbols& ls)
 /// The degree in xi of the density on one polynomial piece: the fields' degrees summed over its heaviest term.
 int density_degree(const ex& e, const VariantKey& key, const LoopSymbols& ls)
 {
-    const int dy = key.transverse_basis().degree(), dx = key.nx > 0 ? key.axial_basis().degree() : 0;
+    const int dy = key.transverse_basis().degree(), dx = field_count(key, FieldKind::axial) > 0 ? key.axial_basis().degree() : 0;
     const FieldSymbols& f = ls.f;
     const std::vector<std::pair<symbol, int>> degrees = {{f.ux1, dx}, {f.ux1_dot, dx},         {f.uy, dy},
                                                          {f.uy_dot, dy}, {f.ux2, 2 * dy - 1}, {f.ux2_dot, 2 * dy - 1}};
@@ -158,7 +161,7 @@ std::vector<PointField> point_fields(const VariantKey& key, const LoopSymbols& l
     const FieldSymbols& f = ls.f;
     std::vector<PointField> fields;
     if (key.drive == Drive::torque) fields.push_back({ls.w, {}, {{"theta", 1}}, {}, 0, true});
-    if (key.nx > 0) {
+    if (field_count(key, FieldKind::axial) > 0) {
         fields.push_back({f.ux1, {{"a", 1}}, {}, {}, f.ux1_dot, false});
         fields.push_back({f.ux1_dot, {}, {{"a", 1}}, {}, 0, true});
     }
@@ -170,8 +173,13 @@ std::vector<PointField> point_fields(const VariantKey& key, const LoopSymbols& l
     return fields;
 }
 
-/// Which block of q a vector lives in, and its entry i as C.
-int block_of(const std::string& v) { return v == "theta" ? 0 : v == "a" ? 1 : 2; }
+/// The field of q a vector lives in (theta: the hub angle, a: the axial field, the others: the in-plane field) as
+/// its index in layout.fields, and its entry i as C.
+int field_index(const CoordinateLayout& layout, const std::string& v)
+{
+    const FieldKind kind = v == "theta" ? FieldKind::hub_angle : v == "a" ? FieldKind::axial : FieldKind::inplane;
+    return static_cast<int>(layout.find(kind) - layout.fields.data());
+}
 std::string entry(const std::string& v, const std::string& i)
 {
     if (v == "theta") return "";
@@ -197,8 +205,10 @@ std::string point_loop(const VariantKey& key, const std::string& body, bool tip)
 {
     const bool vectors = body.find("f.k[") != std::string::npos || body.find("u_x2_ddot") != std::string::npos;
     const bool torque = key.drive == Drive::torque;
-    const std::string a = std::to_string(key.first_a()), b = std::to_string(key.first_b());
-    const std::string A = key.nx > 0 ? "q + " + a : "nullptr", A_dot = key.nx > 0 ? "qd + " + a : "nullptr";
+    const CoordinateLayout layout = coordinate_layout(key);
+    const CoordinateField &axial = *layout.find(FieldKind::axial), &inplane = *layout.find(FieldKind::inplane);
+    const std::string a = std::to_string(axial.first), b = std::to_string(inplane.first);
+    const std::string A = axial.count > 0 ? "q + " + a : "nullptr", A_dot = axial.count > 0 ? "qd + " + a : "nullptr";
     std::ostringstream s;
     s << "    // Order full's foreshortening terms, summed over the quadrature points (point_fields above).\n"
       << "    const PointVectors& HB = point_products(q + " << b << ");\n"
@@ -221,7 +231,7 @@ bool foreshortening_at_points(const VariantKey& key)
 {
     // Below Ny = 8 the expanded form is the cheaper: AMM torque, instructions per right-hand side, expanded against
     // points: 5.5 against 20 thousand at Ny = 4, 79 against 58 at Ny = 8, 2870 against 229 at Ny = 16.
-    return key.order == Order::full && key.ny >= 8 && key.extras.taper == Taper::uniform && !key.extras.profile();
+    return key.order == Order::full && field_count(key, FieldKind::inplane) >= 8 && key.extras.taper == Taper::uniform && !key.extras.profile();
 }
 
 PointRule point_rule(const VariantKey& key)
@@ -237,7 +247,10 @@ PointRule point_rule(const VariantKey& key)
     } else {
         // The highest modes' products oscillate about 4 b_n / (2 pi) times on [0, 1]; 4 n + 16 points reach
         // round-off with a margin (3.5 n + 16 do, measured from n = 4 to 32).
-        q = gauss_legendre(4 * std::max(key.nx, key.ny) + 16);
+        int most = 0;  // the largest count of a beam field
+        for (const CoordinateField& f : coordinate_layout(key).fields)
+            if (f.basis) most = std::max(most, f.count);
+        q = gauss_legendre(4 * most + 16);
     }
     r.xi = q.nodes;
     r.weight = q.weights;
@@ -276,17 +289,25 @@ PointTerms point_terms(const ex& e, const std::vector<PointField>& fields, const
     return terms;
 }
 
-/// Where the blocks of q (0: theta, 1: A, 2: B) lie in the kernels' arrays, as C text, and their sizes.
+/// Where the blocks of q (its fields, numbered by their place in the layout) lie in the kernels' arrays, as C text,
+/// and their sizes.
 struct Blocks {
+    CoordinateLayout layout;
     int nq, nx, ny;
-    std::string A0, B0, n;
+    std::string B0, n;
     explicit Blocks(const VariantKey& key)
-        : nq(key.nq()), nx(key.nx), ny(key.ny), A0(std::to_string(key.first_a())), B0(std::to_string(key.first_b())),
-          n(std::to_string(key.nq()))
+        : layout(coordinate_layout(key)), nq(layout.size()), nx(layout.count(FieldKind::axial)),
+          ny(layout.count(FieldKind::inplane)), B0(std::to_string(layout.first(FieldKind::inplane))),
+          n(std::to_string(nq))
     {
     }
-    std::string offset(int block) const { return block == 0 ? std::string("0") : block == 1 ? A0 : B0; }
-    int size(int block) const { return block == 0 ? 1 : block == 1 ? nx : ny; }
+    const CoordinateField& field(int block) const { return layout.fields[static_cast<std::size_t>(block)]; }
+    /// The block of the hub angle (one entry, at q[0]).
+    bool hub(int block) const { return field(block).kind == FieldKind::hub_angle; }
+    std::string offset(int block) const { return std::to_string(field(block).first); }
+    int size(int block) const { return field(block).count; }
+    /// The block a vector of the point terms lives in.
+    int block(const std::string& v) const { return field_index(layout, v); }
 };
 
 /// The forces' loop body: one scalar per vector, then one loop per block.
@@ -297,13 +318,13 @@ std::string forces_body(const std::map<std::string, ex>& Q, const Blocks& b, con
     for (const auto& [v, c] : Q) {
         if (c.expand().is_zero()) continue;
         lines << "        const double q_" << v << " = W * (" << c_expression(c, ls) << ");\n";
-        by_block[block_of(v)].push_back(v);
+        by_block[b.block(v)].push_back(v);
     }
     body << lines.str();
     for (const auto& [block, vs] : by_block) {
         std::string sum;
         for (const std::string& v : vs) sum += (sum.empty() ? "" : " + ") + ("q_" + v + (v == "theta" ? "" : " * " + entry(v, "i")));
-        if (block == 0) body << "        out[0] += " << sum << ";\n";
+        if (b.hub(block)) body << "        out[0] += " << sum << ";\n";
         else
             body << "        for (int i = 0; i < " << b.size(block) << "; ++i) out[" << b.offset(block) << " + i] += " << sum << ";\n";
     }
@@ -334,7 +355,7 @@ std::string mass_sum(const std::vector<std::pair<std::string, std::string>>& pai
 /// registers: two thirds of the instructions of a rank-one update per point.
 void outer_h_mass(MassCode& m, const Blocks& b)
 {
-    const std::string c = "m_h_h", B0 = b.offset(2);
+    const std::string c = "m_h_h", B0 = b.B0;
     m.before << "    double h_at[point_count][NY], scaled_h_at[point_count][NY];  // h_g and " << c << "(g) h_g\n";
     m.body << "        for (int i = 0; i < NY; ++i) {\n"
            << "            h_at[g][i] = f.h[i];\n"
@@ -356,7 +377,7 @@ void outer_h_mass(MassCode& m, const Blocks& b)
 /// triangle added at the end.
 void square_mass_block(MassCode& m, int block, const std::string& sum, const Blocks& b)
 {
-    const std::string name = block == 1 ? "block_A" : "block_B", nb = std::to_string(b.size(block));
+    const std::string name = "block_" + b.field(block).symbol, nb = std::to_string(b.size(block));
     m.before << "    double " << name << "[" << nb << " * " << nb << "] = {};  // this block's terms, square\n";
     m.body << "        for (int i = 0; i < " << nb << "; ++i)\n"
            << "            for (int j = 0; j < " << nb << "; ++j) " << name << "[i * " << nb << " + j] += " << sum << ";\n";
@@ -370,9 +391,9 @@ void mass_block(MassCode& m, int bu, int bv, const std::vector<std::pair<std::st
                 const Blocks& b)
 {
     const std::string sum = mass_sum(pairs, bu, bv);
-    if (bu == 0 && bv == 0) {
+    if (b.hub(bu) && b.hub(bv)) {
         m.body << "        out[0] += " << sum << ";\n";
-    } else if (bu == 0) {
+    } else if (b.hub(bu)) {
         m.body << "        for (int j = 0; j < " << b.size(bv) << "; ++j) out[" << b.offset(bv) << " + j] += " << sum << ";\n";
     } else if (bu != bv) {
         m.body << "        for (int i = 0; i < " << b.size(bu) << "; ++i)\n"
@@ -394,10 +415,10 @@ std::string mass_code(const PointTerms& terms, const Blocks& b, const LoopSymbol
     std::map<std::pair<int, int>, std::vector<std::pair<std::string, std::string>>> by_blocks;
     for (const auto& [uv, c] : terms.M) {
         const auto& [u, v] = uv;
-        if (c.expand().is_zero() || block_of(u) > block_of(v)) continue;
-        if (block_of(u) == block_of(v) && u > v) continue;  // (v, u) carries it: same coefficient, both orders below
+        if (c.expand().is_zero() || b.block(u) > b.block(v)) continue;
+        if (b.block(u) == b.block(v) && u > v) continue;  // (v, u) carries it: same coefficient, both orders below
         m.body << "        const double m_" << u << "_" << v << " = W * (" << c_expression(c, ls) << ");\n";
-        by_blocks[{block_of(u), block_of(v)}].push_back({u, v});
+        by_blocks[{b.block(u), b.block(v)}].push_back({u, v});
     }
     for (const auto& [blocks, pairs] : by_blocks) {
         const auto [bu, bv] = blocks;
@@ -468,18 +489,18 @@ std::string matrix_body(const Matrix& J, const std::string& stem, const Blocks& 
         std::string t = name;
         if (!entry(u, "i").empty()) t += " * " + entry(u, "i");
         if (!entry(v, "j").empty()) t += " * " + entry(v, "j");
-        std::string& sum = sums[{block_of(u), block_of(v)}];
+        std::string& sum = sums[{b.block(u), b.block(v)}];
         sum += (sum.empty() ? "" : " + ") + t;
     }
     for (const auto& [blocks, sum] : sums) {
         const auto [bu, bv] = blocks;
-        const std::string row = bu == 0 ? "0" : "(" + b.offset(bu) + " + i) * " + b.n, col = bv == 0 ? "0" : b.offset(bv) + " + j";
+        const std::string row = b.hub(bu) ? "0" : "(" + b.offset(bu) + " + i) * " + b.n, col = b.hub(bv) ? "0" : b.offset(bv) + " + j";
         std::string indent = "        ";
-        if (bu != 0) {
+        if (!b.hub(bu)) {
             body << indent << "for (int i = 0; i < " << b.size(bu) << "; ++i)\n";
             indent += "    ";
         }
-        if (bv != 0) {
+        if (!b.hub(bv)) {
             body << indent << "for (int j = 0; j < " << b.size(bv) << "; ++j)\n";
             indent += "    ";
         }
@@ -503,9 +524,9 @@ std::string drive_body(const std::map<std::string, ex>& Q, const Blocks& b, cons
             if (dc.is_zero()) continue;
             const std::string name = "du_" + v + "_" + std::to_string(column);
             body << "        const double " << name << " = W * (" << c_expression(dc, ls) << ");\n";
-            if (block_of(v) == 0) body << "        out[" << column << "] += " << name << ";\n";
+            if (b.hub(b.block(v))) body << "        out[" << column << "] += " << name << ";\n";
             else
-                body << "        for (int i = 0; i < " << b.size(block_of(v)) << "; ++i) out[(" << b.offset(block_of(v))
+                body << "        for (int i = 0; i < " << b.size(b.block(v)) << "; ++i) out[(" << b.offset(b.block(v))
                      << " + i) * " << drive_value_count << " + " << column << "] += " << name << " * " << entry(v, "i") << ";\n";
         }
     return body.str();

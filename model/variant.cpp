@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include "coordinates.hpp"
+
 namespace hubbeam {
 
 namespace {
@@ -138,6 +140,8 @@ bool parse(std::string_view w, SplineBasis& v) { return parse_word(w, splines, v
 template <> std::vector<std::string> words<Method>() { return all_words(methods); }
 template <> std::vector<std::string> words<Order>() { return all_words(orders); }
 template <> std::vector<std::string> words<SplineBasis>() { return all_words(splines); }
+
+int VariantKey::nq() const { return coordinate_layout(*this).size(); }
 
 std::string VariantKey::name() const
 {

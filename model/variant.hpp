@@ -61,17 +61,15 @@ inline constexpr const char* variant_name_grammar =
 
 struct VariantKey {
     Method method = Method::amm;
-    int nx = 0, ny = 4;
+    int nx = 0, ny = 4;  // the coordinate counts of the axial and in-plane fields (coordinates.hpp)
     Order order = Order::first;
     Drive drive = Drive::prescribed;
     SplineBasis spline = SplineBasis::paper;  // BSIM transverse basis; ignored by other methods
     Extras extras;
 
-    /// Number of generalized coordinates: theta (torque only), A (nx), B (ny).
-    int nq() const { return (drive == Drive::torque ? 1 : 0) + nx + ny; }
-    /// Index of A_1 and B_1 in q.
-    int first_a() const { return drive == Drive::torque ? 1 : 0; }
-    int first_b() const { return first_a() + nx; }
+    /// Number of generalized coordinates, the size of coordinate_layout(*this) (coordinates.hpp), which says
+    /// their order.
+    int nq() const;
 
     /// e.g. "bim_nx4_ny4_torque_first", "bsim_nx0_ny4_prescribed_first_open", "amm_nx0_ny4_torque_first_tip_gravity":
     /// a C identifier; the extras follow in the order tip, gravity, damped, width|depth, profileDENxN0xN1...

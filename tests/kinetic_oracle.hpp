@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "basis/basis.hpp"
+#include "coordinates.hpp"
 #include "interface.hpp"
 #include "variant.hpp"
 
@@ -59,10 +60,9 @@ public:
         const S w = torque ? qd[0] : theta_dot_prescribed;
         const S c = std::cos(theta), s = std::sin(theta);
         const double L = p_.L, m = p_.rho * p_.S;
-        const S* A = q + key_.first_a();
-        const S* B = q + key_.first_b();
-        const S* A_dot = qd + key_.first_a();
-        const S* B_dot = qd + key_.first_b();
+        const CoordinateLayout layout = coordinate_layout(key_);
+        const int a = layout.first(FieldKind::axial), b = layout.first(FieldKind::inplane);
+        const S *A = q + a, *B = q + b, *A_dot = qd + a, *B_dot = qd + b;
         S sum = 0.0;
         for (const Node& n : nodes_) {
             S ux1 = 0.0, ux1_dot = 0.0, uy = 0.0, uy_dot = 0.0;
@@ -99,11 +99,13 @@ public:
     template <class S> S potential(const S* q) const
     {
         const double L = p_.L, ES = p_.E * p_.S, EI = p_.E * p_.I;
+        const CoordinateLayout layout = coordinate_layout(key_);
+        const int a = layout.first(FieldKind::axial), b = layout.first(FieldKind::inplane);
         S sum = 0.0;
         for (const Node& n : nodes_) {
             S strain = 0.0, curvature = 0.0;
-            for (int i = 0; i < key_.nx; ++i) strain += q[key_.first_a() + i] * n.ax_d1[i] / L;
-            for (int j = 0; j < key_.ny; ++j) curvature += q[key_.first_b() + j] * n.tr_d2[j] / (L * L);
+            for (int i = 0; i < key_.nx; ++i) strain += q[a + i] * n.ax_d1[i] / L;
+            for (int j = 0; j < key_.ny; ++j) curvature += q[b + j] * n.tr_d2[j] / (L * L);
             sum += n.weight * (ES * strain * strain + EI * curvature * curvature);
         }
         return 0.5 * L * sum;

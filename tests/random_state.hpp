@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <random>
 
+#include "coordinates.hpp"
 #include "interface.hpp"
 #include "variant.hpp"
 
@@ -21,9 +22,10 @@ inline State random_state(const VariantKey& key, std::mt19937& rng)
 {
     std::uniform_real_distribution<double> r(-1.0, 1.0);
     State s{Eigen::VectorXd(key.nq()), Eigen::VectorXd(key.nq()), {0.7 * r(rng), 3.0 * r(rng), 0.5 * r(rng)}};
+    const CoordinateLayout layout = coordinate_layout(key);
     for (int i = 0; i < key.nq(); ++i) {
-        const bool axial = i >= key.first_a() && i < key.first_b();
-        const double size = i < key.first_a() ? 2.0 : axial ? 1e-3 : 0.1;
+        const FieldKind kind = layout.field_of(i).kind;
+        const double size = kind == FieldKind::hub_angle ? 2.0 : kind == FieldKind::axial ? 1e-3 : 0.1;
         s.q[i] = size * r(rng);
         s.qd[i] = 3.0 * size * r(rng);
     }

@@ -350,7 +350,8 @@ void run_linearize(const Scene& scene, double omega, const std::string& prefix, 
             << (key.drive == Drive::torque ? ", holding torque " + shortest(steady.u.tau) + " N m" : std::string());
     else
         out << "steady spin " << shortest(omega) << " rad/s";
-    if (key.nx > 0) out << ", axial stretch at the tip " << shortest(model->tip(steady.q.data()).ux1) << " m";
+    if (model->coordinates().count(FieldKind::axial) > 0)
+        out << ", axial stretch at the tip " << shortest(model->tip(steady.q.data()).ux1) << " m";
     out << "\nstates      " << ss.states.size() << " (" << joined(ss.states) << ")\n"
         << "input       " << ss.inputs[0] << (key.drive == Drive::torque ? " (N m)" : " (rad/s^2)") << "\n"
         << "outputs     tip_uy (m), theta (rad)\n"

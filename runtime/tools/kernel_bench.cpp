@@ -68,19 +68,18 @@ BenchDrive bench_drive(Drive d)
 /// be a valid state (M positive definite, finite results) of the size a real run sees.
 std::vector<double> bench_state(const VariantKey& key)
 {
-    const int n = key.nq();
+    const CoordinateLayout layout = coordinate_layout(key);
+    const int n = layout.size();
     std::vector<double> y(2 * static_cast<std::size_t>(n));
-    if (key.drive == Drive::torque) {
-        y[0] = 1.0;  // theta
-        y[n] = 1.0;  // theta_dot
-    }
-    for (int i = 0; i < key.nx; ++i) {
-        y[key.first_a() + i] = 1e-4 / (i + 1);
-        y[n + key.first_a() + i] = 1e-3 / (i + 1);  // axial rates: the axial field is stiff, its rates small
-    }
-    for (int i = 0; i < key.ny; ++i) {
-        y[key.first_b() + i] = 0.1 / (i + 1);
-        y[n + key.first_b() + i] = 1.0 / (i + 1);
+    for (const CoordinateField& f : layout.fields) {
+        // The hub turned and turning; the axial field stiff, its rates small; a bending field deflected.
+        const double size = f.kind == FieldKind::hub_angle ? 1.0 : f.kind == FieldKind::axial ? 1e-4 : 0.1;
+        const double rate = f.kind == FieldKind::hub_angle ? 1.0 : f.kind == FieldKind::axial ? 1e-3 : 1.0;
+        for (int i = 0; i < f.count; ++i) {
+            const double fall = f.kind == FieldKind::hub_angle ? 1.0 : i + 1.0;
+            y[static_cast<std::size_t>(f.first + i)] = size / fall;
+            y[static_cast<std::size_t>(n + f.first + i)] = rate / fall;
+        }
     }
     return y;
 }

@@ -70,7 +70,7 @@ Eigen::MatrixXd difference(const Model& model, double omega, const Eigen::Vector
 /// The modes at spin rate omega, by increasing frequency.
 std::vector<OracleMode> oracle_modes(const Model& model, double omega)
 {
-    const int n = nx + ny, a0 = model.key().first_a();
+    const int n = nx + ny, a0 = coordinate_layout(model.key()).first(FieldKind::axial);
     // The steady stretch: Newton on the axial rows of Q with the beam straight.
     Eigen::VectorXd q = Eigen::VectorXd::Zero(n);
     for (int iteration = 0; iteration < 20; ++iteration) {

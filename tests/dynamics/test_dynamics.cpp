@@ -196,7 +196,8 @@ TEST_CASE("the finite-difference Jacobian of the first-order system", "[dynamics
         // A deformed, moving state of the size the paper's cases reach: B ~ 0.1 m, A ~ 0.1 mm, theta ~ 1 rad.
         VectorXd y(m);
         for (int i = 0; i < n; ++i) {
-            const double size = i < key.first_a() ? 1.0 : i < key.first_b() ? 1e-4 : 0.1;
+            const FieldKind kind = coordinate_layout(key).field_of(i).kind;
+            const double size = kind == FieldKind::hub_angle ? 1.0 : kind == FieldKind::axial ? 1e-4 : 0.1;
             y(i) = size * std::sin(1.3 * i + 0.4);
             y(n + i) = 2.0 * size * std::cos(0.7 * i + 0.2);
         }

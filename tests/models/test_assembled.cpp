@@ -113,8 +113,8 @@ State random_state(const VariantKey& k, std::mt19937& rng)
     s.q.resize(k.nq());
     s.qd.resize(k.nq());
     for (int i = 0; i < k.nq(); ++i) {
-        const bool axial = i >= k.first_a() && i < k.first_b();
-        const bool hub = i < k.first_a();
+        const FieldKind kind = coordinate_layout(k).field_of(i).kind;
+        const bool axial = kind == FieldKind::axial, hub = kind == FieldKind::hub_angle;
         s.q(i) = (hub ? 3.0 : axial ? 1e-3 : 0.2) * unit(rng);
         s.qd(i) = (hub ? 3.0 : axial ? 0.1 : 0.5) * unit(rng);
     }

@@ -70,7 +70,7 @@ TEST_CASE("damping_matrix is -dQ/dqd at rest, on the axial coordinates too", "[l
         INFO(key.name() << "\nC =\n" << C << "\n-dQ/dqd =\n" << expected);
         REQUIRE(C.rows() == n);
         // The axial block is damped (the check this test exists for), and everything agrees.
-        const int a = key.first_a();
+        const int a = coordinate_layout(key).first(FieldKind::axial);
         CHECK(expected.block(a, a, c.nx, c.nx).norm() > 0.0);
         CHECK((C - expected).norm() < 1e-8 * expected.norm());
     }

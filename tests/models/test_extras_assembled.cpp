@@ -190,7 +190,7 @@ TEST_CASE("assembled extra terms: forces from the assembled energies and dissipa
             Parameters conservative = parameters_with(Term::all);
             conservative.alpha = conservative.beta = 0.0;
             const auto model = make_model(key, conservative, ModelSource::assembled);
-            const int n = key.nq(), o = key.first_a();
+            const int n = key.nq(), o = coordinate_layout(key).first(FieldKind::axial);
             for (int trial = 0; trial < 3; ++trial) {
                 const test::State s = test::random_state_with_angle(key, rng);
                 INFO("trial " << trial);

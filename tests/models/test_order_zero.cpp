@@ -55,7 +55,7 @@ Csv read_csv(const std::string& path)
 /// 1/2 B^T H(L) B of the state q: how far the tip of a foreshortened model would be pulled in.
 double tip_foreshortening(const VariantKey& key, const Parameters& p, const Eigen::VectorXd& q)
 {
-    const Eigen::VectorXd B = q.segment(key.first_b(), key.ny);
+    const Eigen::VectorXd B = q.segment(coordinate_layout(key).first(FieldKind::inplane), key.ny);
     return 0.5 * B.dot(BeamFields(key, p).H_L() * B);
 }
 
@@ -123,8 +123,8 @@ TEST_CASE("an order-zero run's fields CSV has u_x = u_x1 along the beam", "[orde
             INFO("t = " << row[t] << " x = " << row[x]);
             REQUIRE(states.count(row[t]) == 1);
             const Eigen::VectorXd& q = states.at(row[t]);
-            const double ux1 = fields.ux1(q.data() + key.first_a(), row[x]);
-            const double ux2 = fields.foreshortening(q.data() + key.first_b(), {row[x]})[0];
+            const double ux1 = fields.ux1(q.data() + coordinate_layout(key).first(FieldKind::axial), row[x]);
+            const double ux2 = fields.foreshortening(q.data() + coordinate_layout(key).first(FieldKind::inplane), {row[x]})[0];
             CHECK(row[ux] == ux1);
             // Where the beam is bent, the foreshortening a first-order model adds is thousands of times round-off.
             if (row[x] > 0.5 * scene.parameters.L) CHECK(std::abs(ux2) > 1e3 * 1e-16 * std::abs(ux1) + 1e-12);

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "coordinates.hpp"
 #include "interface.hpp"
 #include "variant.hpp"
 
@@ -87,7 +88,9 @@ class Model {
 public:
     virtual ~Model() = default;
     const VariantKey& key() const { return key_; }
-    int nq() const { return key_.nq(); }
+    int nq() const { return nq_; }
+    /// The fields of q, in order (coordinates.hpp): every offset into q is read from here.
+    const CoordinateLayout& coordinates() const { return coordinates_; }
     /// The physical parameters the model's coefficients hold (Parameters::packed()), or empty for a model that does
     /// not say: what a caller that shares one model between scenes compares with each scene's.
     const std::vector<double>& parameters() const { return parameters_; }
@@ -136,11 +139,16 @@ public:
     }
 
 protected:
-    explicit Model(const VariantKey& key) : key_(key) {}
-    Model(const VariantKey& key, const Parameters& p) : key_(key), parameters_(p.packed()) {}
+    explicit Model(const VariantKey& key) : key_(key), coordinates_(coordinate_layout(key)), nq_(coordinates_.size()) {}
+    Model(const VariantKey& key, const Parameters& p)
+        : key_(key), coordinates_(coordinate_layout(key)), nq_(coordinates_.size()), parameters_(p.packed())
+    {
+    }
 
 private:
     VariantKey key_;
+    CoordinateLayout coordinates_;
+    int nq_;
     std::vector<double> parameters_;
     std::string origin_;
 };

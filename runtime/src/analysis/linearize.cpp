@@ -29,7 +29,8 @@ SteadySpin steady_spin(const Model& model, double omega, double theta)
                                         "with it: the motion is periodic); linearize about the held hub, Omega = 0");
         return held_equilibrium(model, theta);
     }
-    const int n = model.nq(), a0 = key.first_a(), na = key.nx;
+    const CoordinateField& axial = *model.coordinates().find(FieldKind::axial);
+    const int n = model.nq(), a0 = axial.first, na = axial.count;
     SteadySpin s;
     s.omega = omega;
     s.q.assign(static_cast<std::size_t>(n), 0.0);
@@ -57,7 +58,7 @@ SteadySpin steady_spin(const Model& model, double omega, double theta)
 SteadySpin held_equilibrium(const Model& model, double theta)
 {
     const VariantKey& key = model.key();
-    const int n = model.nq(), e0 = key.first_a(), ne = n - e0;
+    const int n = model.nq(), e0 = model.coordinates().first_elastic(), ne = n - e0;
     SteadySpin s;
     s.held = true;
     s.u.theta = theta;
@@ -98,7 +99,7 @@ StateSpace state_space(const Model& model, const SteadySpin& s)
     const VariantKey& key = model.key();
     const int n = model.nq();
     const bool torque = key.drive == Drive::torque;
-    const int f0 = key.first_a();  // the first flexible coordinate in q
+    const int f0 = model.coordinates().first_elastic();  // the first flexible coordinate in q
     const int nf = n - f0;         // flexible coordinates
     const int m = nf + 1;          // theta and the flexible coordinates
     const ForceJacobians J = force_jacobians(model, s.u, s.q, s.qd);
@@ -144,11 +145,10 @@ StateSpace state_space(const Model& model, const SteadySpin& s)
     ss.C.block(0, 1, 1, m - 1) = tip_uy_row(model, s.q, flexible).transpose();
     ss.C(1, 0) = 1.0;
     ss.D = Eigen::MatrixXd::Zero(2, 1);
-    std::vector<std::string> names{"theta"};
-    // (Appending rather than "A" + std::to_string(i), which GCC 12 misreads as an overlapping copy: -Wrestrict.)
-    const auto indexed = [](char letter, int i) { return std::string(1, letter).append(std::to_string(i)); };
-    for (int i = 1; i <= key.nx; ++i) names.push_back(indexed('A', i));
-    for (int i = 1; i <= key.ny; ++i) names.push_back(indexed('B', i));
+    std::vector<std::string> names{"theta"};  // a state of a prescribed hub too
+    for (const CoordinateField& f : model.coordinates().fields)
+        if (f.kind != FieldKind::hub_angle)
+            for (int k = 0; k < f.count; ++k) names.push_back(f.name(k));
     ss.states = names;
     for (const std::string& name : names) ss.states.push_back(name + "_dot");
     ss.inputs = {torque ? "tau" : "theta_ddot"};
@@ -203,30 +203,46 @@ Eigen::MatrixXd linearized_system(const Model& model, const SteadySpin& s, const
     return X;
 }
 
-/// The kinetic energy of a mode's rates, v^H M v, split by the kind of coordinate: (the hub's angle, the axial, the
-/// transverse coordinates); coordinates[i] is the index in q of rates[i], and cross terms between kinds are left out.
-std::array<double, 3> energy_by_kind(const Model& model, const Eigen::MatrixXd& M, const std::vector<int>& coordinates,
-                                     const Eigen::VectorXcd& rates)
+/// The kinetic energy of a mode's rates, v^H M v, split by the fields of q (model.coordinates().fields, in their
+/// order); coordinates[i] is the index in q of rates[i], and cross terms between fields are left out.
+std::vector<double> energy_by_field(const Model& model, const Eigen::MatrixXd& M, const std::vector<int>& coordinates,
+                                    const Eigen::VectorXcd& rates)
 {
-    const int a0 = model.key().first_a(), b0 = model.key().first_b();
-    const auto kind = [&](int c) { return c < a0 ? 0 : c < b0 ? 1 : 2; };
-    std::array<double, 3> energy{};
+    const CoordinateLayout& layout = model.coordinates();
+    const auto field = [&](int c) { return static_cast<std::size_t>(&layout.field_of(c) - layout.fields.data()); };
+    std::vector<double> energy(layout.fields.size(), 0.0);
     for (std::size_t i = 0; i < coordinates.size(); ++i)
         for (std::size_t j = 0; j < coordinates.size(); ++j) {
             const int mi = coordinates[i], mj = coordinates[j];
-            if (kind(mi) != kind(mj)) continue;
-            energy[static_cast<std::size_t>(kind(mi))] +=
+            if (field(mi) != field(mj)) continue;
+            energy[field(mi)] +=
                 (std::conj(rates(static_cast<Eigen::Index>(i))) * M(mi, mj) * rates(static_cast<Eigen::Index>(j))).real();
         }
     return energy;
 }
 
+/// A mode's kind (the modes CSV's column) when most of its kinetic energy is in a field of this kind.
+const char* mode_kind(FieldKind kind)
+{
+    switch (kind) {
+    case FieldKind::hub_angle: return "hub";
+    case FieldKind::axial: return "axial";
+    case FieldKind::inplane: break;
+    }
+    return "bending";
+}
+
 /// Whether a mode with these rates (of the coordinates R) holds more kinetic energy in the axial than in the
-/// transverse coordinates.
+/// other elastic coordinates.
 bool mostly_axial(const Model& model, const Eigen::MatrixXd& M, const std::vector<int>& R, const Eigen::VectorXcd& rates)
 {
-    const std::array<double, 3> e = energy_by_kind(model, M, R, rates);
-    return e[1] > e[2];
+    const std::vector<double> e = energy_by_field(model, M, R, rates);
+    double axial = 0.0, other = 0.0;
+    for (std::size_t f = 0; f < e.size(); ++f) {
+        const FieldKind kind = model.coordinates().fields[f].kind;
+        if (kind != FieldKind::hub_angle) (kind == FieldKind::axial ? axial : other) += e[f];
+    }
+    return axial > other;
 }
 
 /// NaturalMode::shape of a mode with these rates: U rates with U the upper Cholesky factor of M over the same
@@ -278,7 +294,8 @@ std::vector<NaturalMode> natural_modes(const Model& model, const SteadySpin& s, 
         const Eigen::VectorXcd rates = vectors.col(k).segment(first_rate, r);
         const bool is_axial = mostly_axial(model, M, R, rates);
         const double magnitude = std::hypot(growth, oscillating ? l.imag() : 0.0);
-        modes.push_back({oscillating ? l.imag() : 0.0, growth, is_axial ? "axial" : "bending", magnitude,
+        const char* kind = mode_kind(is_axial ? FieldKind::axial : FieldKind::inplane);
+        modes.push_back({oscillating ? l.imag() : 0.0, growth, kind, magnitude,
                          magnitude > 0.0 ? -growth / magnitude : 0.0, weighted_shape(U, rates)});
     }
     // By frequency, divergent modes (rad_s 0) first; with damping by undamped frequency, so that an overdamped
@@ -339,10 +356,11 @@ std::vector<NaturalMode> closed_loop_modes(const Model& model, const SteadySpin&
         if (l.imag() < -1e-9 * scale || magnitude <= 1e-9) continue;  // a conjugate, or a neutral direction
         // The kind whose coordinates hold most of the mode's kinetic energy (the state's rates are q's, all of them).
         const Eigen::VectorXcd rates = eig.eigenvectors().col(k).segment(m, m);
-        const std::array<double, 3> energy = energy_by_kind(model, M, all, rates);
-        const auto kind = std::max_element(energy.begin(), energy.end()) - energy.begin();
+        const std::vector<double> energy = energy_by_field(model, M, all, rates);
+        const auto most = std::max_element(energy.begin(), energy.end()) - energy.begin();
         const bool oscillating = l.imag() > 1e-9 * scale;
-        modes.push_back({oscillating ? l.imag() : 0.0, l.real(), kind == 0 ? "hub" : kind == 1 ? "axial" : "bending",
+        const FieldKind kind = model.coordinates().fields[static_cast<std::size_t>(most)].kind;
+        modes.push_back({oscillating ? l.imag() : 0.0, l.real(), mode_kind(kind),
                          magnitude, -l.real() / magnitude, weighted_shape(U, rates)});
     }
     std::sort(modes.begin(), modes.end(),

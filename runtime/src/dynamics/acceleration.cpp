@@ -285,11 +285,11 @@ int MassSolved::accelerations(const HubInput& u, const double* q, const double* 
 }
 
 QuasiStaticAxial::QuasiStaticAxial(const Model& model)
-    : RightHandSide(model), q_(static_cast<std::size_t>(n_), 0.0), qd_(q_), A_(Eigen::VectorXd::Zero(model.key().nx)),
+    : RightHandSide(model), q_(static_cast<std::size_t>(n_), 0.0), qd_(q_), A_(Eigen::VectorXd::Zero(model.coordinates().count(FieldKind::axial))),
       Q_(n_), dQdq_(n_, n_), dQdqd_(n_, n_), dQdu_(n_, static_cast<Eigen::Index>(drive_value_count))
 {
     const VariantKey& key = model.key();
-    if (key.nx == 0) throw std::invalid_argument("quasi-static axial coordinates need axial coordinates (nx > 0)");
+    if (model.coordinates().count(FieldKind::axial) == 0) throw std::invalid_argument("quasi-static axial coordinates need axial coordinates (nx > 0)");
     kept_ = kept_coordinates(key, Axial::quasi_static);
 }
 
@@ -300,8 +300,8 @@ std::string QuasiStaticAxial::describe() const
 
 bool QuasiStaticAxial::full_state(const HubInput& u, const double* y, double* q, double* qd)
 {
-    const VariantKey& key = model_.key();
-    const int r = static_cast<int>(kept_.size()), a = key.first_a(), nx = key.nx;
+    const CoordinateField& axial = *model_.coordinates().find(FieldKind::axial);
+    const int r = static_cast<int>(kept_.size()), a = axial.first, nx = axial.count;
     for (int i = 0; i < r; ++i) {
         q[kept_[static_cast<std::size_t>(i)]] = y[i];
         qd[kept_[static_cast<std::size_t>(i)]] = y[r + i];

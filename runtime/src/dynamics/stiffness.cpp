@@ -108,7 +108,7 @@ namespace {
 /// Whether -dQ/dq at rest, spinning steadily at omega, is positive definite (the cyclic hub angle left out).
 bool stable_at(const Model& model, double omega)
 {
-    const int n = model.nq(), first = model.key().first_a();
+    const int n = model.nq(), first = model.coordinates().first_elastic();
     HubInput u;
     std::vector<double> q(static_cast<std::size_t>(n), 0.0), qd(q);
     if (model.key().drive == Drive::torque) qd[0] = omega;
@@ -200,7 +200,7 @@ StepperCosts predicted_costs(const Model& model, Axial axial, double rtol, doubl
     // Order full's right-hand side pays the foreshortening's squares: expanded, of order Ny^4 terms (about order
     // first's cost at Ny = 4); from Ny = 8 summed at some 4 Ny + 16 Gauss points, 18 to 40 times order first's at
     // Ny = 8 (rk8pd's runs of the spin-up at Nx = 0, the four methods), taken as 25.
-    const int ny = model.key().ny;
+    const int ny = model.coordinates().count(FieldKind::inplane);
     const double full = model.key().order != Order::full ? 1.0 : ny >= 8 ? 25.0 : std::max(1.0, std::pow(ny / 4.0, 4));
     const double rhs = 4.0 * m * m * full;
     const double n = auxiliary == 0 ? m : 2.0 * (m + auxiliary);

@@ -10,7 +10,7 @@ namespace hubbeam {
 
 FieldRecorder::FieldRecorder(const VariantKey& key, const Parameters& p, std::vector<double> times, int points,
                              const std::string& path)
-    : key_(key), fields_(key, p), times_(std::move(times))
+    : coordinates_(coordinate_layout(key)), fields_(key, p), times_(std::move(times))
 {
     std::sort(times_.begin(), times_.end());
     for (int i = 0; i < points; ++i) xs_.push_back(p.L * i / (points - 1));
@@ -30,8 +30,10 @@ void FieldRecorder::state(double t, const double* q)
 {
     if (next_ >= times_.size() || t < times_[next_] * (1.0 - 1e-12)) return;
     while (next_ < times_.size() && times_[next_] <= t * (1.0 + 1e-12)) ++next_;  // one record for times a row covers
-    const double* A = key_.nx > 0 ? q + key_.first_a() : nullptr;
-    const double* B = q + key_.first_b();
+    const CoordinateField& axial = *coordinates_.find(FieldKind::axial);
+    const CoordinateField& inplane = *coordinates_.find(FieldKind::inplane);
+    const double* A = axial.count > 0 ? q + axial.first : nullptr;
+    const double* B = q + inplane.first;
     const std::vector<double> ux = fields_.ux(A, B, xs_);
     for (std::size_t i = 0; i < xs_.size(); ++i) {
         const double x = xs_[i];

@@ -37,7 +37,7 @@ public:
     }
 
 private:
-    VariantKey key_;
+    CoordinateLayout coordinates_;
     BeamFields fields_;
     std::vector<double> times_, xs_;
     std::size_t next_ = 0;

@@ -163,7 +163,8 @@ namespace {
 class AssembledModel final : public Model {
 public:
     AssembledModel(const VariantKey& key, const Parameters& p)
-        : Model(key, p), fields_(key, p), nx_(key.nx), ny_(key.ny)
+        : Model(key, p), fields_(key, p), a_(coordinates().first(FieldKind::axial)), b_(coordinates().first(FieldKind::inplane)),
+          nx_(coordinates().count(FieldKind::axial)), ny_(coordinates().count(FieldKind::inplane))
     {
         const BeamMatrices c = assemble_matrices(key, p);
         const Extras& x = key.extras;
@@ -199,9 +200,9 @@ public:
         damped_ = alpha != 0.0 || beta != 0.0;
 
         if (key.drive == Drive::prescribed) {  // paper eq. 57: M = blockdiag(M1, M2r), constant
-            M_prescribed_ = RowMajorMatrix::Zero(nx_ + ny_, nx_ + ny_);
-            M_prescribed_.topLeftCorner(nx_, nx_) = M1_;
-            M_prescribed_.bottomRightCorner(ny_, ny_) = M2r_;
+            M_prescribed_ = RowMajorMatrix::Zero(nq(), nq());
+            M_prescribed_.block(a_, a_, nx_, nx_) = M1_;
+            M_prescribed_.block(b_, b_, ny_, ny_) = M2r_;
         }
     }
 
@@ -230,26 +231,25 @@ public:
             std::copy(M_prescribed_.data(), M_prescribed_.data() + n * n, M);
             return;
         }
-        const ConstVector A(q + 1, nx_), B(q + 1 + nx_, ny_);
+        const ConstVector A(q + a_, nx_), B(q + b_, ny_);
         Eigen::Map<RowMajorMatrix> Mm(M, n, n);
         Mm.setZero();
         Mm(0, 0) = M11(A, B);
         // Row 0: M12 = -(M3 B)^T, M13 = S_y + A^T M3; column 0 is its transpose (M21, M31).
-        Mm.row(0).segment(1, nx_).noalias() = -B.transpose() * M3_.transpose();
-        Mm.row(0).segment(1 + nx_, ny_).noalias() = A.transpose() * M3_;
-        Mm.row(0).segment(1 + nx_, ny_) += S_y_;
+        Mm.row(0).segment(a_, nx_).noalias() = -B.transpose() * M3_.transpose();
+        Mm.row(0).segment(b_, ny_).noalias() = A.transpose() * M3_;
+        Mm.row(0).segment(b_, ny_) += S_y_;
         Mm.col(0).tail(n - 1) = Mm.row(0).tail(n - 1).transpose();
-        Mm.block(1, 1, nx_, nx_) = M1_;
-        Mm.block(1 + nx_, 1 + nx_, ny_, ny_) = M2r_;
+        Mm.block(a_, a_, nx_, nx_) = M1_;
+        Mm.block(b_, b_, ny_, ny_) = M2r_;
     }
 
     void forces(const HubInput& u, const double* q, const double* qd, double* Q) const override
     {
-        const int o = key().first_a();
         const bool torque = key().drive == Drive::torque;
         const double theta_dot = torque ? qd[0] : u.theta_dot;
-        const ConstVector A(q + o, nx_), B(q + o + nx_, ny_), A_dot(qd + o, nx_), B_dot(qd + o + nx_, ny_);
-        Vector Q_A(Q + o, nx_), Q_B(Q + o + nx_, ny_);
+        const ConstVector A(q + a_, nx_), B(q + b_, ny_), A_dot(qd + a_, nx_), B_dot(qd + b_, ny_);
+        Vector Q_A(Q + a_, nx_), Q_B(Q + b_, ny_);
         const double w2 = theta_dot * theta_dot, w = 2.0 * theta_dot;
 
         // Q_A = theta_dot^2 (S_x^T + M1 A) + 2 theta_dot M3 B_dot - K1 A
@@ -293,8 +293,8 @@ public:
     {
         std::fill_n(dQdtheta, nq(), 0.0);
         if (g_ == 0.0 || key().drive == Drive::torque) return;
-        const ConstVector B(q + nx_, ny_);
-        Vector dA(dQdtheta, nx_), dB(dQdtheta + nx_, ny_);
+        const ConstVector B(q + b_, ny_);
+        Vector dA(dQdtheta + a_, nx_), dB(dQdtheta + b_, ny_);
         const double gs = g_ * std::sin(u.theta), gc = g_ * std::cos(u.theta);
         dA = -gc * W_x_.transpose();
         dB.noalias() = gc * (W_H_ * B);
@@ -303,10 +303,9 @@ public:
 
     Energy energy(const HubInput& u, const double* q, const double* qd) const override
     {
-        const int o = key().first_a();
         const bool torque = key().drive == Drive::torque;
         const double theta_dot = torque ? qd[0] : u.theta_dot;
-        const ConstVector A(q + o, nx_), B(q + o + nx_, ny_), A_dot(qd + o, nx_), B_dot(qd + o + nx_, ny_);
+        const ConstVector A(q + a_, nx_), B(q + b_, ny_), A_dot(qd + a_, nx_), B_dot(qd + b_, ny_);
 
         // T of docs/model.md section 5 (with section 11's tip body), by degree in the flexible rates.
         const double flexible = 0.5 * A_dot.dot(M1_.lazyProduct(A_dot)) + 0.5 * B_dot.dot(M2r_.lazyProduct(B_dot));
@@ -331,14 +330,13 @@ public:
 
     Tip tip(const double* q) const override
     {
-        return fields_.tip(nx_ > 0 ? q + key().first_a() : nullptr, q + key().first_b());
+        return fields_.tip(nx_ > 0 ? q + a_ : nullptr, q + b_);
     }
 
     double momentum(const HubInput& u, const double* q, const double* qd) const override
     {
-        const int o = key().first_a();
         const double theta_dot = key().drive == Drive::torque ? qd[0] : u.theta_dot;
-        const ConstVector A(q + o, nx_), B(q + o + nx_, ny_), A_dot(qd + o, nx_), B_dot(qd + o + nx_, ny_);
+        const ConstVector A(q + a_, nx_), B(q + b_, ny_), A_dot(qd + a_, nx_), B_dot(qd + b_, ny_);
         return M11(A, B) * theta_dot + gyroscopic(A, B, A_dot, B_dot);  // dT/dtheta_dot
     }
 
@@ -357,6 +355,7 @@ private:
     }
 
     BeamFields fields_;
+    int a_, b_;    // where A and B begin in q (coordinates())
     int nx_, ny_;
     // Section 5.2's matrices of the beam with its tip body (section 11.1).
     double J_o_ = 0.0;             // J_oh + J_ob + m_tip (a+L)^2 + J_tip

@@ -104,7 +104,8 @@ Eigen::MatrixXd damping_matrix(const Model& model, const Parameters& parameters)
     const Eigen::MatrixXd M = mass_at(model, rest, zero);
     const Eigen::MatrixXd K = -force_q_jacobian(model, rest, zero, zero);
     Eigen::MatrixXd C = parameters.alpha * M + parameters.beta * 0.5 * (K + K.transpose());
-    const Eigen::Index elastic = model.key().first_a();  // the hub angle, a coordinate under torque, is not damped
+    // The hub angle, a coordinate under torque, is not damped.
+    const Eigen::Index elastic = model.coordinates().first_elastic();
     C.topRows(elastic).setZero();
     C.leftCols(elastic).setZero();
     return C;

@@ -41,8 +41,9 @@ Eigen::VectorXd tip_uy_row(const Model& model, const std::vector<double>& q, con
 inline std::vector<int> kept_coordinates(const VariantKey& key, Axial axial)
 {
     std::vector<int> kept;
-    for (int i = 0; i < key.nq(); ++i)
-        if (axial == Axial::dynamic || i < key.first_a() || i >= key.first_b()) kept.push_back(i);
+    for (const CoordinateField& f : coordinate_layout(key).fields)
+        if (axial == Axial::dynamic || f.kind != FieldKind::axial)
+            for (int i = f.first; i < f.end(); ++i) kept.push_back(i);
     return kept;
 }
 

@@ -1,0 +1,68 @@
+// The order of a variant's generalized coordinates and the look-ups over it.
+#include "coordinates.hpp"
+
+#include <stdexcept>
+
+namespace hubbeam {
+
+std::string CoordinateField::name(int k) const
+{
+    return kind == FieldKind::hub_angle ? symbol : symbol + std::to_string(k + 1);
+}
+
+int CoordinateLayout::size() const { return fields.empty() ? 0 : fields.back().end(); }
+
+const CoordinateField* CoordinateLayout::find(FieldKind kind, int beam) const
+{
+    for (const CoordinateField& f : fields)
+        if (f.kind == kind && f.beam == beam) return &f;
+    return nullptr;
+}
+
+int CoordinateLayout::count(FieldKind kind, int beam) const
+{
+    const CoordinateField* f = find(kind, beam);
+    return f ? f->count : 0;
+}
+
+int CoordinateLayout::first(FieldKind kind, int beam) const
+{
+    if (const CoordinateField* f = find(kind, beam)) return f->first;
+    throw std::logic_error("coordinate_layout: the variant has no such field");
+}
+
+int CoordinateLayout::first_elastic() const
+{
+    const CoordinateField* hub = find(FieldKind::hub_angle);
+    return hub ? hub->end() : 0;
+}
+
+const CoordinateField& CoordinateLayout::field_of(int i) const
+{
+    for (const CoordinateField& f : fields)
+        if (f.holds(i)) return f;
+    throw std::out_of_range("coordinate_layout: no coordinate " + std::to_string(i));
+}
+
+std::vector<std::string> CoordinateLayout::names() const
+{
+    std::vector<std::string> n;
+    for (const CoordinateField& f : fields)
+        for (int k = 0; k < f.count; ++k) n.push_back(f.name(k));
+    return n;
+}
+
+CoordinateLayout coordinate_layout(const VariantKey& key)
+{
+    CoordinateLayout layout;
+    const auto add = [&](FieldKind kind, std::optional<FieldBasis> basis, int count, const char* symbol) {
+        layout.fields.push_back({kind, 0, std::move(basis), count, layout.size(), symbol});
+    };
+    // The hub angle is a coordinate only under an applied torque; a prescribed theta(t) is an input.
+    if (key.drive == Drive::torque) add(FieldKind::hub_angle, std::nullopt, 1, "theta");
+    add(FieldKind::axial, key.axial_basis(), key.nx, "A");
+    add(FieldKind::inplane, key.transverse_basis(), key.ny, "B");
+    return layout;
+}
+
+}  // namespace hubbeam
