@@ -2,6 +2,9 @@
 // term-by-term integration over the beam.
 #include "energy.hpp"
 
+#include "generator_terms.hpp"
+#include "terms.hpp"
+
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -284,34 +287,22 @@ Energies derive_energies(const VariantKey& key, const Symbols& s, const PolyRead
     ShapeIntegrals integrals(key.axial_basis(), key.transverse_basis(), stations);
     const FieldSymbols f;
     DensityIntegrator integrate(s, f, key, integrals, read);
-    // The section's area and second moment over the root's (docs/model.md section 11): a width taper scales both
-    // linearly, a depth taper the area linearly and the second moment as the cube.
-    const ex area = x.taper == Taper::uniform ? ex(1) : 1 + (s.tip_ratio - 1) * f.xi;
-    const ex moment = x.taper == Taper::depth ? pow(area, 3) : area;
-    // The distributions along the span: the root's values times the taper's ratios, or a profile's (section 11.2).
-    const ex mass = x.profile() ? ex(f.m_x) : s.m * area;
-    const ex axial = x.profile() ? ex(f.ES_x) : s.ES * area;
-    const ex bending = x.profile() ? ex(f.EI_x) : s.EI * moment;
+    // The distributions along the span: the root's values, or a section term's (a taper, a profile).
+    const std::vector<const TermInfo*> carried = carried_terms(x);
+    BeamSection beam = uniform_section(s);
+    for (const TermInfo* t : carried)
+        if (generator_part(*t).section) beam = generator_part(*t).section(s, f, x);
     const ex v2 = velocity_squared(without_point_terms ? Order::first : key.order, f, s.theta_dot);
-    Poly T = read(s.J_oh * pow(s.theta_dot, 2) / 2);
-    T += integrate(mass * v2 / 2);
-    Poly U = integrate((axial * pow(f.ux1_x, 2) + bending * pow(f.uy_xx, 2)) / 2);
-    Poly D;
-    if (x.tip) T += integrate.at_tip(s.m_tip * v2 / 2 + s.J_tip * pow(s.theta_dot + f.uy_x_dot, 2) / 2);
-    if (x.gravity) {
-        // The height of a point, p rotated by theta: sin(theta) (X + u_x) + cos(theta) u_y; order zero has no u_x2.
-        const ex ux = f.ux1 + (key.order == Order::zero ? ex(0) : ex(f.ux2));
-        const ex height = s.sin_theta * (f.X + ux) + s.cos_theta * f.uy;
-        U += integrate(s.g * mass * height);
-        if (x.tip) U += integrate.at_tip(s.g * s.m_tip * height);
-    }
-    if (x.damping) {
-        // Rayleigh: D = 1/2 qd_e^T (alpha M_ee + beta K_e) qd_e, M_ee and K_e of the undeformed beam (with its tip body).
-        const ex rates2 = pow(f.ux1_dot, 2) + pow(f.uy_dot, 2);
-        D += integrate((s.alpha * mass * rates2 + s.beta * (axial * pow(f.ux1_x_dot, 2) + bending * pow(f.uy_xx_dot, 2))) / 2);
-        if (x.tip) D += integrate.at_tip(s.alpha * (s.m_tip * rates2 + s.J_tip * pow(f.uy_x_dot, 2)) / 2);
-    }
-    return {T, U, D};
+    Energies e;
+    e.T = read(s.J_oh * pow(s.theta_dot, 2) / 2);
+    e.T += integrate(beam.mass * v2 / 2);
+    e.U = integrate((beam.axial * pow(f.ux1_x, 2) + beam.bending * pow(f.uy_xx, 2)) / 2);
+    // The terms' energies and dissipation (docs/model.md section 11), in registry order.
+    const TermContext context{key, s, f, beam, v2, [&](const ex& d) { return integrate(d); },
+                              [&](const ex& d) { return integrate.at_tip(d); }};
+    for (const TermInfo* t : carried)
+        if (generator_part(*t).energies) generator_part(*t).energies(context, e);
+    return e;
 }
 
 }  // namespace hubbeam::gen

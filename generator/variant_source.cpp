@@ -13,6 +13,7 @@
 #include "lagrange.hpp"
 #include "points.hpp"
 #include "structure.hpp"
+#include "terms.hpp"
 
 #ifndef HUBBEAM_VERSION
 #define HUBBEAM_VERSION "dev"
@@ -58,19 +59,11 @@ std::vector<std::string> input_names(bool gravity)
     return names;
 }
 
-/// " tip gravity damped width" words of the banner's variant line.
+/// " tip_body gravity rayleigh_damping taper=width" words of the banner's variant line (the registry's, terms.hpp).
 std::vector<std::string> extras_words(const Extras& x)
 {
     std::vector<std::string> w;
-    if (x.tip) w.emplace_back("tip_body");
-    if (x.gravity) w.emplace_back("gravity");
-    if (x.damping) w.emplace_back("rayleigh_damping");
-    if (x.taper != Taper::uniform) w.push_back("taper=" + to_string(x.taper));
-    if (x.profile()) {
-        std::string stations;
-        for (long long n : x.stations) stations += (stations.empty() ? "" : ",") + std::to_string(n);
-        w.push_back("profile_stations=(" + stations + ")/" + std::to_string(x.station_denominator));
-    }
+    for (const TermInfo* t : carried_terms(x)) w.push_back(t->summary(x));
     return w;
 }
 

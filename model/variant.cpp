@@ -1,6 +1,8 @@
 // VariantKey naming, parsing and DOF validity.
 #include "variant.hpp"
 
+#include "terms.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -21,28 +23,16 @@ const WordTable<Drive, 2> drives = {{Drive::prescribed, "prescribed"}, {Drive::t
 const WordTable<SplineBasis, 2> splines = {{SplineBasis::paper, "paper"}, {SplineBasis::open, "open"}};
 const WordTable<Taper, 3> tapers = {{Taper::uniform, "uniform"}, {Taper::width, "width"}, {Taper::depth, "depth"}};
 
-/// The name suffixes of the extras, in name order.
+/// The name suffixes of the extras, in name order (the registry's, terms.hpp).
 std::vector<std::string> extras_suffixes(const Extras& e)
 {
     std::vector<std::string> s;
-    if (e.tip) s.emplace_back("tip");
-    if (e.gravity) s.emplace_back("gravity");
-    if (e.damping) s.emplace_back("damped");
-    if (e.taper != Taper::uniform) s.push_back(word_of(e.taper, tapers));
-    if (e.profile()) {
-        std::string p = "profile";
-        p += std::to_string(e.station_denominator);
-        for (long long n : e.stations) {
-            p += 'x';
-            p += std::to_string(n);
-        }
-        s.push_back(std::move(p));
-    }
+    for (const TermInfo* t : carried_terms(e)) s.push_back(t->suffix(e));
     return s;
 }
 
-/// Why stations over a denominator are not a profile's (empty if they are): 0 first, the denominator last,
-/// strictly increasing, a power of ten no larger than needed, the suffix short enough.
+}  // namespace
+
 std::string stations_problem(const Extras& e)
 {
     const std::vector<long long>& n = e.stations;
@@ -59,8 +49,6 @@ std::string stations_problem(const Extras& e)
         return "the denominator must be the smallest power of ten that makes every station an integer";
     return {};
 }
-
-}  // namespace
 
 namespace {
 
@@ -191,30 +179,16 @@ VariantKey VariantKey::parse(std::string_view name)
     // The extras, each at most once and in name order: the name of a key is unique.
     const std::vector<std::string> rest(parts.begin() + static_cast<std::ptrdiff_t>(next), parts.end());
     for (const std::string& part : rest) {
-        if (part == "tip") k.extras.tip = true;
-        else if (part == "gravity") k.extras.gravity = true;
-        else if (part == "damped") k.extras.damping = true;
-        else if (Taper t; hubbeam::parse(part, t) && t != Taper::uniform) k.extras.taper = t;
-        else if (part.rfind("profile", 0) == 0 && part.size() > 7 && part.size() <= max_profile_suffix) {
-            // profileDENxN0xN1...: digits separated by 'x', each a number of at most 7 digits.
-            std::vector<long long> numbers;
-            std::string digits;
-            for (std::size_t c = 7; c <= part.size(); ++c) {
-                if (c == part.size() || part[c] == 'x') {
-                    if (digits.empty() || digits.size() > 7) throw bad("'" + part + "' is not profileDENxN0xN1...");
-                    numbers.push_back(std::stoll(digits));
-                    digits.clear();
-                } else if (part[c] >= '0' && part[c] <= '9') {
-                    digits += part[c];
-                } else {
-                    throw bad("'" + part + "' is not profileDENxN0xN1...");
-                }
+        bool known = false;
+        for (const TermInfo& t : terms()) {
+            try {
+                known = t.read_suffix(part, k.extras);
+            } catch (const std::invalid_argument& e) {
+                throw bad("'" + part + "'" + e.what());
             }
-            k.extras.station_denominator = numbers.front();
-            k.extras.stations.assign(numbers.begin() + 1, numbers.end());
-            if (const std::string why = stations_problem(k.extras); !why.empty()) throw bad("'" + part + "': " + why);
+            if (known) break;
         }
-        else throw bad("'" + part + "' is not a suffix");
+        if (!known) throw bad("'" + part + "' is not a suffix");
     }
     if (extras_suffixes(k.extras) != rest) throw bad("the suffixes are repeated or out of order");
     if (k.extras.profile() && k.extras.taper != Taper::uniform) throw bad("a profile and a taper together");

@@ -48,6 +48,9 @@ struct Extras {
 /// name stays a valid file name (its source and module files are named by it).
 inline constexpr std::size_t max_profile_suffix = 150;
 
+/// Why e's stations over its denominator are not a profile's (empty if they are): 0 first, the denominator last,
+/// strictly increasing, a power of ten no larger than needed.
+std::string stations_problem(const Extras& e);
 /// The stations x/L as doubles.
 std::vector<double> station_positions(const Extras& e);
 /// Sets e's stations from x/L values read from a table: each exact to 1e-12 as a decimal of at most 6 digits

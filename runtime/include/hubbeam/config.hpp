@@ -12,6 +12,7 @@
 
 #include "interface.hpp"
 #include <hubbeam/motion.hpp>
+#include "terms.hpp"
 #include "variant.hpp"
 
 namespace hubbeam {
@@ -113,9 +114,13 @@ struct Scene {
         VariantKey k = variant;
         k.drive = drive();
         // A sensitivity to a term's value needs the term, even at zero (where it reproduces the scene).
-        k.extras.tip = parameters.m_tip != 0.0 || parameters.J_tip != 0.0 || wants({"m_tip", "J_tip"});
-        k.extras.gravity = parameters.g != 0.0 || wants({"g"});
-        k.extras.damping = parameters.alpha != 0.0 || parameters.beta != 0.0 || wants({"alpha", "beta"});
+        const std::vector<double> p = parameters.packed();
+        for (const TermInfo& t : terms()) {
+            if (!t.selected_by_values) continue;
+            bool used = false;
+            for (Param q : t.params) used = used || p[index(q)] != 0.0 || wants({param_names[index(q)]});
+            t.set(k.extras, used);
+        }
         return k;
     }
 };

@@ -247,15 +247,11 @@ std::string read_beam(const Section& beam, const std::string& scene_path, Parame
 /// [tip], [damping], [gravity]: the extra terms of docs/model.md section 11; absent tables leave them out.
 void read_extras(const toml::table& root, const std::string& path, Parameters& p)
 {
-    const Section tip(path, root, "tip"), damping(path, root, "damping"), gravity(path, root, "gravity");
-    tip.only();
-    damping.only();
-    gravity.only();
-    p.m_tip = tip.number("mass", p.m_tip);
-    p.J_tip = tip.number("inertia", p.J_tip);
-    p.alpha = damping.number("mass_proportional", p.alpha);
-    p.beta = damping.number("stiffness_proportional", p.beta);
-    p.g = gravity.number("g", p.g);
+    // Each term's own table and keys are the registry's (terms.hpp): every table is checked before any is read.
+    for (const TermInfo& t : terms())
+        if (!t.scene_keys.empty()) Section(path, root, t.scene_keys.front().table).only();
+    for (const TermInfo& t : terms())
+        for (const TermSceneKey& k : t.scene_keys) value(p, k.param) = Section(path, root, k.table).number(k.key, value(p, k.param));
 }
 
 /// [motion]: paper eq. 58 (spin-up) or eq. 59 (torque), a held hub, or a table of theta or tau against time; the

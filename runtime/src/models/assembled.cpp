@@ -4,6 +4,7 @@
 // prescribed form q = (A, B).
 #include "models/assembled.hpp"
 
+#include "models/assembled_terms.hpp"
 #include <hubbeam/fields.hpp>
 #include "profile.hpp"
 
@@ -36,6 +37,91 @@ MatrixXd weighted_gram(const MatrixXd& P, const VectorXd& w)
     return 0.5 * (R + R.transpose());
 }
 
+/// Shape functions and their xi-derivatives at the quadrature nodes (one row per node).
+struct NodeValues {
+    MatrixXd X, X1, Y, Y1, Y2;
+};
+
+NodeValues node_values(const FieldBasis& axial, const FieldBasis& transverse, const QuadratureRule& rule)
+{
+    const int nn = static_cast<int>(rule.nodes.size()), nx = axial.size(), ny = transverse.size();
+    NodeValues v{MatrixXd(nn, nx), MatrixXd(nn, nx), MatrixXd(nn, ny), MatrixXd(nn, ny), MatrixXd(nn, ny)};
+    for (int r = 0; r < nn; ++r) {
+        const double xi = rule.nodes[r];
+        for (int i = 0; i < nx; ++i) {
+            const Jet<double> f = axial.at(i, xi);
+            v.X(r, i) = f.v;
+            v.X1(r, i) = f.d1;
+        }
+        for (int i = 0; i < ny; ++i) {
+            const Jet<double> f = transverse.at(i, xi);
+            v.Y(r, i) = f.v;
+            v.Y1(r, i) = f.d1;
+            v.Y2(r, i) = f.d2;
+        }
+    }
+    return v;
+}
+
+/// The beam's section at the nodes (docs/model.md section 11): m(x) = m s(xi), ES(x) = ES e(xi), EI(x) = EI i(xi),
+/// and the weights of C and D with the order of integration exchanged: H(x) is weighed by int_x^L m dt = m L above
+/// and by int_x^L m t dt = m L^2 above_x / 2.
+struct SectionAtNodes {
+    Eigen::ArrayXd s, i, e, above, above_x;
+    double r1 = 0.0;  // a taper's tip_ratio - 1 (0 for a uniform beam or a profile)
+    double first_moment = 0.0, second_moment = 0.0;  // a profile's int_0^1 m(xi) (a + L xi)^n dxi, n = 1, 2
+};
+
+/// A uniform or tapered section: s = 1 + (tip_ratio - 1) xi, i = s (width taper) or s^3 (depth taper); s = i = 1 for
+/// a uniform beam, whatever tip_ratio says.
+SectionAtNodes taper_at_nodes(const VariantKey& key, const Parameters& p, const Eigen::ArrayXd& xi)
+{
+    SectionAtNodes c;
+    const double r1 = key.extras.taper == Taper::uniform ? 0.0 : p.tip_ratio - 1.0;
+    c.r1 = r1;
+    c.s = 1.0 + r1 * xi;
+    c.i = key.extras.taper == Taper::depth ? Eigen::ArrayXd(c.s.cube()) : c.s;
+    c.e = c.s;  // ES(x) / ES
+    c.above = (1.0 - xi) + 0.5 * r1 * (1.0 - xi * xi);
+    c.above_x = (1.0 - xi * xi) + (2.0 / 3.0) * r1 * (1.0 - xi * xi * xi);
+    return c;
+}
+
+/// Section 11.2's profile: the table's distributions at the nodes (the reference values are 1), the tails
+/// int_xi^1 m(t) t^n dt by 3-point Gauss on each station interval (exact: m is linear there) and the moments.
+void profile_at_nodes(const std::vector<double>& stations, const Parameters& p, const Eigen::ArrayXd& xi,
+                      SectionAtNodes& c)
+{
+    const auto value = [&](ProfileValue j, double x) { return profile_value(stations, p.profile, j, x); };
+    const Eigen::Index nn = xi.size();
+    for (Eigen::Index r = 0; r < nn; ++r) {
+        c.s(r) = value(ProfileValue::m, xi(r));
+        c.i(r) = value(ProfileValue::EI, xi(r));
+        c.e(r) = value(ProfileValue::ES, xi(r));
+    }
+    const QuadratureRule g3 = gauss_legendre(3);
+    const auto tail = [&](double from, int n) {
+        double sum = 0.0;
+        for (std::size_t k = 0; k + 1 < stations.size(); ++k) {
+            const double lo = std::max(from, stations[k]), hi = stations[k + 1];
+            if (hi <= lo) continue;
+            for (int j = 0; j < 3; ++j) {
+                const double t = lo + (hi - lo) * g3.nodes[j];
+                sum += (hi - lo) * g3.weights[j] * value(ProfileValue::m, t) * std::pow(t, n);
+            }
+        }
+        return sum;
+    };
+    for (Eigen::Index r = 0; r < nn; ++r) {
+        c.above(r) = tail(xi(r), 0);
+        c.above_x(r) = 2.0 * tail(xi(r), 1);
+    }
+    // (a + L xi)^n = sum of xi powers: the moments of m over [0, 1].
+    const double a = p.a, L = p.L, t0 = tail(0.0, 0), t1 = tail(0.0, 1), t2 = tail(0.0, 2);
+    c.first_moment = a * t0 + L * t1;
+    c.second_moment = a * a * t0 + 2.0 * a * L * t1 + L * L * t2;
+}
+
 }  // namespace
 
 BeamMatrices assemble_matrices(const VariantKey& key, const Parameters& p)
@@ -50,23 +136,7 @@ BeamMatrices assemble_matrices(const VariantKey& key, const Parameters& p)
     const std::vector<double> stations = station_positions(key.extras);
     const QuadratureRule rule = product_rule(axial, transverse, stations);
     const int nn = static_cast<int>(rule.nodes.size());
-
-    // Shape functions and their xi-derivatives at the nodes (one row per node).
-    MatrixXd X(nn, nx), X1(nn, nx), Y(nn, ny), Y1(nn, ny), Y2(nn, ny);
-    for (int r = 0; r < nn; ++r) {
-        const double xi = rule.nodes[r];
-        for (int i = 0; i < nx; ++i) {
-            const Jet<double> f = axial.at(i, xi);
-            X(r, i) = f.v;
-            X1(r, i) = f.d1;
-        }
-        for (int i = 0; i < ny; ++i) {
-            const Jet<double> f = transverse.at(i, xi);
-            Y(r, i) = f.v;
-            Y1(r, i) = f.d1;
-            Y2(r, i) = f.d2;
-        }
-    }
+    const auto [X, X1, Y, Y1, Y2] = node_values(axial, transverse, rule);
 
     // docs/model.md section 5's integrals in xi: x = L xi, dx = L dxi, Phi' = (1/L) dPhi/dxi, Phi'' = (1/L^2) d2Phi/dxi2.
     const bool profile = key.extras.profile();
@@ -75,48 +145,9 @@ BeamMatrices assemble_matrices(const VariantKey& key, const Parameters& p)
                  ES = profile ? 1.0 : p.E * p.S;
     const Eigen::ArrayXd xi = Eigen::Map<const Eigen::ArrayXd>(rule.nodes.data(), nn);
     const VectorXd w = Eigen::Map<const VectorXd>(rule.weights.data(), nn);
-    // Section 11.2's profile: m(x) = m s(xi), ES(x) = ES s(xi), EI(x) = EI i(xi), s = 1 + (tip_ratio - 1) xi, i = s (width
-    // taper) or s^3 (depth taper); s = i = 1 for a uniform beam, whatever tip_ratio says.
-    const double r1 = key.extras.taper == Taper::uniform ? 0.0 : p.tip_ratio - 1.0;
-    Eigen::ArrayXd s = 1.0 + r1 * xi;
-    Eigen::ArrayXd i = key.extras.taper == Taper::depth ? Eigen::ArrayXd(s.cube()) : s;
-    Eigen::ArrayXd e = s;  // ES(x) / ES
-    // C and D with the order of integration exchanged: H(x) is weighed by int_x^L m dt = m L above and by
-    // int_x^L m t dt = m L^2 above_x / 2.
-    Eigen::ArrayXd above = (1.0 - xi) + 0.5 * r1 * (1.0 - xi * xi);
-    Eigen::ArrayXd above_x = (1.0 - xi * xi) + (2.0 / 3.0) * r1 * (1.0 - xi * xi * xi);
-    // A profile's int_0^1 m(xi) (a + L xi)^n dxi for n = 1, 2 (S_ob, J_ob).
-    double first_moment = 0.0, second_moment = 0.0;
-    if (profile) {
-        const auto value = [&](ProfileValue j, double x) { return profile_value(stations, p.profile, j, x); };
-        for (int r = 0; r < nn; ++r) {
-            s(r) = value(ProfileValue::m, xi(r));
-            i(r) = value(ProfileValue::EI, xi(r));
-            e(r) = value(ProfileValue::ES, xi(r));
-        }
-        // int_xi^1 m(t) t^n dt by 3-point Gauss on each station interval (exact: m is linear there).
-        const QuadratureRule g3 = gauss_legendre(3);
-        const auto tail = [&](double from, int n) {
-            double sum = 0.0;
-            for (std::size_t k = 0; k + 1 < stations.size(); ++k) {
-                const double lo = std::max(from, stations[k]), hi = stations[k + 1];
-                if (hi <= lo) continue;
-                for (int j = 0; j < 3; ++j) {
-                    const double t = lo + (hi - lo) * g3.nodes[j];
-                    sum += (hi - lo) * g3.weights[j] * value(ProfileValue::m, t) * std::pow(t, n);
-                }
-            }
-            return sum;
-        };
-        for (int r = 0; r < nn; ++r) {
-            above(r) = tail(xi(r), 0);
-            above_x(r) = 2.0 * tail(xi(r), 1);
-        }
-        // (a + L xi)^n = sum of xi powers: the moments of m over [0, 1].
-        const double t0 = tail(0.0, 0), t1 = tail(0.0, 1), t2 = tail(0.0, 2);
-        first_moment = a * t0 + L * t1;
-        second_moment = a * a * t0 + 2.0 * a * L * t1 + L * L * t2;
-    }
+    SectionAtNodes section = taper_at_nodes(key, p, xi);
+    if (profile) profile_at_nodes(stations, p, xi, section);
+    const auto& [s, i, e, above, above_x, r1, first_moment, second_moment] = section;
     const VectorXd w_s = (w.array() * s).matrix();                              // m(x) dx / (m L)
     const VectorXd w_e = (w.array() * e).matrix();                              // ES(x) dx / (ES L)
     const VectorXd w_i = (w.array() * i).matrix();                              // EI(x) dx / (EI L)
@@ -167,37 +198,28 @@ public:
           nx_(coordinates().count(FieldKind::axial)), ny_(coordinates().count(FieldKind::inplane))
     {
         const BeamMatrices c = assemble_matrices(key, p);
-        const Extras& x = key.extras;
-        const bool zero = key.order == Order::zero;
-        // A term the variant does not carry contributes nothing, whatever its parameter says (as in the generator).
-        const double m_t = x.tip ? p.m_tip : 0.0, J_t = x.tip ? p.J_tip : 0.0, R = p.a + p.L;
-        g_ = x.gravity ? p.g : 0.0;
-        const double alpha = x.damping ? p.alpha : 0.0, beta = x.damping ? p.beta : 0.0;
-
-        // Section 11.1: the tip body's T at x = L (order rules of section 3) in section 5.2's form.
-        J_o_ = p.J_oh + c.J_ob + m_t * R * R + J_t;
-        S_x_ = c.S_x + m_t * R * c.Phi_x_L;
-        S_y_ = c.S_y + m_t * R * c.Phi_y_L + J_t * c.Phi_y1_L;
-        M1_ = c.M1 + m_t * c.Phi_x_L.transpose() * c.Phi_x_L;
-        const MatrixXd M2 = c.M2 + m_t * c.Phi_y_L.transpose() * c.Phi_y_L;
-        M3_ = c.M3 + m_t * c.Phi_x_L.transpose() * c.Phi_y_L;
-        M2r_ = M2 + J_t * c.Phi_y1_L.transpose() * c.Phi_y1_L;
-        M2_G_ = zero ? M2 : MatrixXd(M2 - (c.G + m_t * R * c.H_L));
+        // The beam with the terms the variant carries (runtime/src/models/terms/); a term it does not carry
+        // contributes nothing, whatever its parameter says (as in the generator).
+        const ModelMatrices m = model_matrices({key, p, c});
+        J_o_ = m.J_o;
+        S_x_ = m.S_x;
+        S_y_ = m.S_y;
+        M1_ = m.M1;
+        M3_ = m.M3;
+        M2r_ = m.M2r;
+        M2_G_ = key.order == Order::zero ? m.M2 : MatrixXd(m.M2 - m.G);
         K1_ = c.K1;
         K2_ = c.K2;
         S_x_T_ = S_x_.transpose();
         S_y_T_ = S_y_.transpose();
-
-        // Section 11.3: U_g = g sin(theta) (W_o + W_x A - 1/2 B^T W_H B) + g cos(theta) W_y B.
-        W_o_ = c.S_ob + m_t * R;
-        W_x_ = c.P_x + m_t * c.Phi_x_L;
-        W_y_ = c.P_y + m_t * c.Phi_y_L;
-        W_H_ = zero ? MatrixXd::Zero(ny_, ny_) : MatrixXd(c.C + m_t * c.H_L);
-
-        // Section 11.4: -dD/dqd = -(alpha M_ee + beta K_e) qd_e with M_ee = blockdiag(M1, M2r) of the beam with its tip.
-        D_A_ = alpha * M1_ + beta * K1_;
-        D_B_ = alpha * M2r_ + beta * K2_;
-        damped_ = alpha != 0.0 || beta != 0.0;
+        g_ = m.g;
+        W_o_ = m.W_o;
+        W_x_ = m.W_x;
+        W_y_ = m.W_y;
+        W_H_ = m.W_H;
+        D_A_ = m.D_A;
+        D_B_ = m.D_B;
+        damped_ = m.damped;
 
         if (key.drive == Drive::prescribed) {  // paper eq. 57: M = blockdiag(M1, M2r), constant
             M_prescribed_ = RowMajorMatrix::Zero(nq(), nq());

@@ -1,0 +1,52 @@
+// The generator's part of each physics term (model/terms.hpp): its energies or dissipation given the beam's
+// fields, or its section (the distributions m(x), ES(x), EI(x) inside the beam's own T and U). One file per term,
+// generator/terms/NAME.cpp; the table in generator/terms/generator_terms.cpp lines them up with the registry, and
+// derive_energies loops over the terms a variant carries.
+#pragma once
+
+#include <functional>
+
+#include <ginac/ginac.h>
+
+#include "energy.hpp"
+#include "terms.hpp"
+
+namespace hubbeam::gen {
+
+/// The beam's distributions along the span: mass per length, axial and bending stiffness, in x (or xi).
+struct BeamSection {
+    GiNaC::ex mass, axial, bending;
+};
+
+/// What a term's energies are built from: the variant, its symbols, the field symbols, the beam's section and
+/// |r_dot|^2, and the two ways to turn a density into a polynomial (over the span, at the tip x = L).
+struct TermContext {
+    const VariantKey& key;
+    const Symbols& s;
+    const FieldSymbols& f;
+    const BeamSection& beam;
+    const GiNaC::ex& v2;
+    std::function<Poly(const GiNaC::ex&)> integrate, at_tip;
+};
+
+/// A term of the generator: section replaces the beam's distributions (a section term), energies adds to T, U, D.
+/// Either may be null.
+struct GeneratorTerm {
+    BeamSection (*section)(const Symbols&, const FieldSymbols&, const Extras&);
+    void (*energies)(const TermContext&, Energies&);
+};
+
+/// The generator's part of a registered term (model/terms.hpp).
+const GeneratorTerm& generator_part(const TermInfo& t);
+
+/// The uniform beam's section: m, ES, EI.
+BeamSection uniform_section(const Symbols& s);
+
+// One per term (generator/terms/NAME.cpp).
+void tip_energies(const TermContext& c, Energies& e);
+void gravity_energies(const TermContext& c, Energies& e);
+void damping_energies(const TermContext& c, Energies& e);
+BeamSection taper_section(const Symbols& s, const FieldSymbols& f, const Extras& x);
+BeamSection profile_section(const Symbols& s, const FieldSymbols& f, const Extras& x);
+
+}  // namespace hubbeam::gen

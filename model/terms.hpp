@@ -1,0 +1,54 @@
+// The physics terms beyond the paper's beam (docs/model.md section 11), registered in one table: each term's name
+// suffix, summary words, the parameters it owns, its scene keys and which of T, U, D it adds to. The variant's name,
+// the generated banner, the scene reader and the choice of a scene's variant read this table; the generator's
+// energies (generator/terms/) and the assembled twins (runtime/src/models/terms/) are one file per term.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "interface.hpp"
+#include "variant.hpp"
+
+namespace hubbeam {
+
+/// Which energies a term adds to (docs/model.md section 2): kinetic T, potential U, dissipation D; a section term
+/// changes the beam's distributions m(x), EI(x), ES(x) inside the beam's own T and U.
+enum TermEnergy : unsigned { adds_T = 1u, adds_U = 2u, adds_D = 4u, shapes_section = 8u };
+
+/// A scene key that sets one of a term's parameters: [table] key = value.
+struct TermSceneKey {
+    const char* table;
+    const char* key;
+    Param param;
+};
+
+/// One physics term of a variant.
+struct TermInfo {
+    const char* name;                     // the term, as docs/model.md section 11 calls it
+    unsigned energies;                    // TermEnergy bits
+    std::vector<Param> params;            // the entries of p it owns (read only by variants that carry it)
+    std::vector<TermSceneKey> scene_keys; // the scene keys of its own table (empty: it is read with [beam])
+    /// Whether a scene's parameters select it: any of its params nonzero (else the paper's variant runs); false
+    /// for a term chosen by the scene's words (taper, profile).
+    bool selected_by_values;
+    bool (*carried)(const Extras&);
+    /// Its suffix of the variant's name ("tip"); called only when carried.
+    std::string (*suffix)(const Extras&);
+    /// Sets the term in e from a name suffix; false if the suffix is not this term's. Throws std::invalid_argument
+    /// for a suffix of this term that is malformed, its what() the message's rest after the quoted suffix.
+    bool (*read_suffix)(std::string_view, Extras&);
+    /// Its words on the generated banner's variant line ("tip_body"); called only when carried.
+    std::string (*summary)(const Extras&);
+    /// Sets whether e carries the term (a term selected by values; a no-op for the others).
+    void (*set)(Extras&, bool);
+};
+
+/// Every term, in the order of the variant's name suffixes: tip, gravity, damped, width|depth, profile.
+const std::vector<TermInfo>& terms();
+
+/// The terms a variant carries, in registry order.
+std::vector<const TermInfo*> carried_terms(const Extras& e);
+
+}  // namespace hubbeam
