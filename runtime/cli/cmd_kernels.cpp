@@ -3,8 +3,8 @@
 #include <memory>
 
 #include "command.hpp"
-#include "kernel_bench.hpp"
 #include "io/output_file.hpp"
+#include "kernel_bench.hpp"
 
 namespace hubbeam::cli {
 

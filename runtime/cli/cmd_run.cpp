@@ -12,14 +12,14 @@
 
 #include <unistd.h>
 
-#include "command.hpp"
 #include <hubbeam/fields.hpp>
+#include "command.hpp"
 #include "io/field_recorder.hpp"
-#include "modes.hpp"
 #include "io/output.hpp"
 #include "io/output_file.hpp"
-#include "text/shortest.hpp"
+#include "modes.hpp"
 #include "text/printable.hpp"
+#include "text/shortest.hpp"
 
 namespace hubbeam::cli {
 

@@ -9,10 +9,10 @@
 #include <stdexcept>
 #include <string>
 
-#include "on_demand/on_demand.hpp"
-#include "text/option_lists.hpp"
 #include <hubbeam/scene.hpp>
 #include <hubbeam/simulate.hpp>
+#include "on_demand/on_demand.hpp"
+#include "text/option_lists.hpp"
 
 namespace hubbeam::cli {
 

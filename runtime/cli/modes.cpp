@@ -11,16 +11,16 @@
 #include <ostream>
 #include <utility>
 
-#include "text/csv_columns.hpp"
 #include <hubbeam/linearize.hpp>
 #include <hubbeam/make_model.hpp>
 #include "io/npz.hpp"
-#include "text/option_lists.hpp"
 #include "io/output.hpp"
 #include "io/output_file.hpp"
 #include "plot.hpp"
-#include "text/shortest.hpp"
+#include "text/csv_columns.hpp"
+#include "text/option_lists.hpp"
 #include "text/printable.hpp"
+#include "text/shortest.hpp"
 
 namespace hubbeam {
 

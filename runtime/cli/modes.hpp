@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
+#include <hubbeam/scene.hpp>
 #include "analysis/modes_table.hpp"
 #include "text/option_lists.hpp"
-#include <hubbeam/scene.hpp>
 
 namespace hubbeam {
 

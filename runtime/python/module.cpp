@@ -27,10 +27,10 @@
 #include <hubbeam/hubbeam.hpp>
 #include <hubbeam/make_model.hpp>
 #include "analysis/modes_table.hpp"
-#include "on_demand/on_demand.hpp"
-#include "text/shortest.hpp"
 #include "io/output.hpp"
+#include "on_demand/on_demand.hpp"
 #include "text/printable.hpp"
+#include "text/shortest.hpp"
 
 namespace py = pybind11;
 using namespace hubbeam;

@@ -8,14 +8,14 @@
 
 #include "bench_parts.hpp"
 #include "dynamics/integrate.hpp"
-#include "text/option_lists.hpp"
-#include "text/shortest.hpp"
-#include "text/csv_columns.hpp"
-#include "oscillation.hpp"
+#include "dynamics/stiffness.hpp"
 #include "io/output.hpp"
 #include "io/output_file.hpp"
+#include "oscillation.hpp"
 #include "plot.hpp"
-#include "dynamics/stiffness.hpp"
+#include "text/csv_columns.hpp"
+#include "text/option_lists.hpp"
+#include "text/shortest.hpp"
 
 namespace hubbeam {
 

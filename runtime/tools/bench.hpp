@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "text/option_lists.hpp"
-#include "io/output_file.hpp"
 #include <hubbeam/scene.hpp>
 #include <hubbeam/simulate.hpp>
+#include "io/output_file.hpp"
+#include "text/option_lists.hpp"
 
 namespace hubbeam {
 

@@ -9,9 +9,9 @@
 #include <map>
 #include <ostream>
 
-#include "text/csv_columns.hpp"
 #include "io/output_file.hpp"
 #include "plot.hpp"
+#include "text/csv_columns.hpp"
 #include "text/shortest.hpp"
 
 namespace hubbeam {

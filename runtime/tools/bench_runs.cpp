@@ -7,11 +7,11 @@
 #include <ostream>
 #include <stdexcept>
 
-#include "dynamics/integrate.hpp"
 #include <hubbeam/make_model.hpp>
+#include "dynamics/integrate.hpp"
+#include "dynamics/stiffness.hpp"
 #include "io/output.hpp"
 #include "text/shortest.hpp"
-#include "dynamics/stiffness.hpp"
 
 namespace hubbeam {
 

@@ -13,11 +13,11 @@
 #include <sstream>
 #include <string_view>
 
-#include "dynamics/integrate.hpp"
 #include <hubbeam/make_model.hpp>
 #include <hubbeam/motion.hpp>
-#include "text/option_lists.hpp"
+#include "dynamics/integrate.hpp"
 #include "io/output.hpp"
+#include "text/option_lists.hpp"
 
 namespace hubbeam {
 

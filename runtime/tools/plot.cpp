@@ -19,16 +19,16 @@
 
 #include <unistd.h>
 
-#include "text/csv_columns.hpp"
 #include <hubbeam/fields.hpp>
-#include "io/field_recorder.hpp"
 #include <hubbeam/linearize.hpp>
-#include "text/option_lists.hpp"
-#include "io/output_file.hpp"
 #include <hubbeam/scene.hpp>
-#include "text/shortest.hpp"
 #include <hubbeam/simulate.hpp>
+#include "io/field_recorder.hpp"
+#include "io/output_file.hpp"
+#include "text/csv_columns.hpp"
+#include "text/option_lists.hpp"
 #include "text/printable.hpp"
+#include "text/shortest.hpp"
 
 namespace hubbeam {
 

@@ -8,10 +8,10 @@
 #include <sstream>
 
 #include <hubbeam/make_model.hpp>
-#include "io/output.hpp"
 #include <hubbeam/scene.hpp>
-#include "text/shortest.hpp"
 #include "dynamics/stiffness.hpp"
+#include "io/output.hpp"
+#include "text/shortest.hpp"
 
 namespace hubbeam {
 

@@ -14,11 +14,11 @@
 #include <vector>
 
 #include <hubbeam/linearize.hpp>
-#include "dynamics/integrate.hpp"
 #include <hubbeam/make_model.hpp>
-#include "modes.hpp"
 #include <hubbeam/motion.hpp>
 #include <hubbeam/scene.hpp>
+#include "dynamics/integrate.hpp"
+#include "modes.hpp"
 
 using namespace hubbeam;
 

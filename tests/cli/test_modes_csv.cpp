@@ -15,12 +15,12 @@
 #include <utility>
 #include <vector>
 
-#include "text/csv_columns.hpp"
-#include "modes.hpp"
-#include "analysis/modes_table.hpp"
 #include <hubbeam/scene.hpp>
-#include "text/shortest.hpp"
+#include "analysis/modes_table.hpp"
+#include "modes.hpp"
 #include "temp_folder.hpp"
+#include "text/csv_columns.hpp"
+#include "text/shortest.hpp"
 
 using namespace hubbeam;
 

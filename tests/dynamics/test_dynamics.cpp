@@ -10,11 +10,11 @@
 
 #include <Eigen/Dense>
 
-#include "dynamics/integrate.hpp"
 #include <hubbeam/make_model.hpp>
-#include "runs.hpp"
-#include "oscillation.hpp"
 #include <hubbeam/simulate.hpp>
+#include "dynamics/integrate.hpp"
+#include "oscillation.hpp"
+#include "runs.hpp"
 
 using namespace hubbeam;
 using test::paper_scene;

@@ -10,11 +10,11 @@
 #include <string>
 #include <vector>
 
+#include <hubbeam/make_model.hpp>
+#include "dynamics/integrate.hpp"
+#include "dynamics/mass_solver.hpp"
 #include "models/assembled.hpp"
 #include "models/generated_model.hpp"
-#include "dynamics/integrate.hpp"
-#include <hubbeam/make_model.hpp>
-#include "dynamics/mass_solver.hpp"
 #include "random_state.hpp"
 
 using namespace hubbeam;

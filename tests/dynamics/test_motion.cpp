@@ -15,10 +15,10 @@
 #include <numbers>
 #include <vector>
 
-#include "gauss_legendre.hpp"
 #include <hubbeam/motion.hpp>
-#include "runs.hpp"
 #include <hubbeam/scene.hpp>
+#include "gauss_legendre.hpp"
+#include "runs.hpp"
 
 using namespace hubbeam;
 

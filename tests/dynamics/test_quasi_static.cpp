@@ -7,10 +7,10 @@
 #include <vector>
 
 #include <hubbeam/fields.hpp>
-#include "dynamics/integrate.hpp"
 #include <hubbeam/make_model.hpp>
-#include "runs.hpp"
 #include <hubbeam/simulate.hpp>
+#include "dynamics/integrate.hpp"
+#include "runs.hpp"
 
 using namespace hubbeam;
 using test::run;

@@ -6,9 +6,9 @@
 #include <string>
 
 #include <hubbeam/make_model.hpp>
-#include "runs.hpp"
 #include <hubbeam/simulate.hpp>
 #include "dynamics/stiffness.hpp"
+#include "runs.hpp"
 
 using namespace hubbeam;
 

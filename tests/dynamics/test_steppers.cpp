@@ -8,9 +8,9 @@
 
 #include <hubbeam/make_model.hpp>
 #include <gsl/gsl_errno.h>
-#include "runs.hpp"
 #include "dynamics/stepper.hpp"
 #include "dynamics/stiffness.hpp"
+#include "runs.hpp"
 
 using namespace hubbeam;
 using namespace hubbeam::test;

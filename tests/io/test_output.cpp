@@ -26,11 +26,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <hubbeam/scene.hpp>
+#include <hubbeam/simulate.hpp>
 #include "io/output.hpp"
 #include "io/output_file.hpp"
 #include "text/shortest.hpp"
-#include <hubbeam/scene.hpp>
-#include <hubbeam/simulate.hpp>
 
 using namespace hubbeam;
 namespace fs = std::filesystem;

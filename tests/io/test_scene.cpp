@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "io/output.hpp"
 #include <hubbeam/scene.hpp>
+#include "io/output.hpp"
 #include "temp_folder.hpp"
 #include "text/printable.hpp"
 

@@ -7,8 +7,8 @@
 #include <tuple>
 #include <vector>
 
-#include "coordinates.hpp"
 #include <hubbeam/make_model.hpp>
+#include "coordinates.hpp"
 
 using namespace hubbeam;
 

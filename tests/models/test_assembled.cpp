@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "models/assembled.hpp"
 #include <hubbeam/fields.hpp>
+#include "models/assembled.hpp"
 #include "shared_oracles.hpp"
 
 using namespace hubbeam;

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include <hubbeam/linearize.hpp>
-#include "models/model_operations.hpp"
 #include <hubbeam/make_model.hpp>
+#include "models/model_operations.hpp"
 
 using namespace hubbeam;
 

@@ -15,9 +15,9 @@
 #include <tuple>
 #include <vector>
 
+#include <hubbeam/make_model.hpp>
 #include "gauss_legendre.hpp"
 #include "models/generated_model.hpp"
-#include <hubbeam/make_model.hpp>
 #include "random_state.hpp"
 #include "shared_oracles.hpp"
 

@@ -9,8 +9,8 @@
 
 #include <hubbeam/fields.hpp>
 #include <hubbeam/linearize.hpp>
-#include "models/model_operations.hpp"
 #include <hubbeam/make_model.hpp>
+#include "models/model_operations.hpp"
 
 using namespace hubbeam;
 

@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "kinetic_oracle.hpp"
 #include <hubbeam/make_model.hpp>
 #include <hubbeam/model.hpp>
+#include "kinetic_oracle.hpp"
 #include "random_state.hpp"
 #include "runs.hpp"
 

@@ -6,8 +6,8 @@
 #include <Eigen/Dense>
 #include <random>
 
-#include "models/generated_model.hpp"
 #include <hubbeam/make_model.hpp>
+#include "models/generated_model.hpp"
 #include "random_state.hpp"
 
 using namespace hubbeam;

@@ -7,10 +7,10 @@
 #include <gsl/gsl_errno.h>
 #include <random>
 
-#include "models/generated_model.hpp"
-#include "dynamics/integrate.hpp"
-#include "random_state.hpp"
 #include <hubbeam/make_model.hpp>
+#include "dynamics/integrate.hpp"
+#include "models/generated_model.hpp"
+#include "random_state.hpp"
 
 using namespace hubbeam;
 

@@ -15,9 +15,9 @@
 #include <random>
 #include <vector>
 
-#include "gauss_legendre.hpp"
 #include <hubbeam/linearize.hpp>
 #include <hubbeam/make_model.hpp>
+#include "gauss_legendre.hpp"
 
 using namespace hubbeam;
 using Eigen::MatrixXd;

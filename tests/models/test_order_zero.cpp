@@ -12,12 +12,12 @@
 #include <vector>
 
 #include <hubbeam/fields.hpp>
+#include <hubbeam/make_model.hpp>
+#include <hubbeam/simulate.hpp>
 #include "io/field_recorder.hpp"
 #include "models/generated_model.hpp"
-#include <hubbeam/make_model.hpp>
 #include "random_state.hpp"
 #include "runs.hpp"
-#include <hubbeam/simulate.hpp>
 
 using namespace hubbeam;
 

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <random>
 
-#include "models/generated_model.hpp"
 #include <hubbeam/make_model.hpp>
+#include "models/generated_model.hpp"
 #include "random_state.hpp"
 
 using namespace hubbeam;

@@ -16,12 +16,12 @@
 #include <vector>
 
 #include <hubbeam/fields.hpp>
-#include "gauss_legendre.hpp"
 #include <hubbeam/linearize.hpp>
-#include "models/generated_model.hpp"
 #include <hubbeam/make_model.hpp>
-#include "random_state.hpp"
 #include <hubbeam/scene.hpp>
+#include "gauss_legendre.hpp"
+#include "models/generated_model.hpp"
+#include "random_state.hpp"
 #include "temp_folder.hpp"
 
 using namespace hubbeam;

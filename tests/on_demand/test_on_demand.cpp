@@ -10,10 +10,10 @@
 #include <random>
 #include <string>
 
-#include "generated_abi.h"
-#include "models/generated_model.hpp"
 #include <hubbeam/make_model.hpp>
 #include <hubbeam/model.hpp>
+#include "generated_abi.h"
+#include "models/generated_model.hpp"
 #include "on_demand/on_demand.hpp"
 #include "random_state.hpp"
 

@@ -12,11 +12,11 @@
 #include <random>
 #include <vector>
 
-#include "dynamics/integrate.hpp"
 #include <hubbeam/linearize.hpp>
 #include <hubbeam/make_model.hpp>
-#include "runs.hpp"
 #include <hubbeam/simulate.hpp>
+#include "dynamics/integrate.hpp"
+#include "runs.hpp"
 
 using namespace hubbeam;
 using hubbeam::test::paper_scene;

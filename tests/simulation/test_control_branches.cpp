@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "runs.hpp"
 #include <hubbeam/simulate.hpp>
+#include "runs.hpp"
 
 using namespace hubbeam;
 using hubbeam::test::paper_scene;

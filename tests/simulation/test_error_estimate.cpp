@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "runs.hpp"
 #include <hubbeam/scene.hpp>
 #include <hubbeam/simulate.hpp>
+#include "runs.hpp"
 
 using namespace hubbeam;
 

@@ -14,12 +14,12 @@
 #include <vector>
 
 #include <hubbeam/fields.hpp>
-#include "gauss_legendre.hpp"
 #include <hubbeam/linearize.hpp>
 #include <hubbeam/make_model.hpp>
+#include <hubbeam/simulate.hpp>
+#include "gauss_legendre.hpp"
 #include "runs.hpp"
 #include "shared_oracles.hpp"
-#include <hubbeam/simulate.hpp>
 
 using namespace hubbeam;
 

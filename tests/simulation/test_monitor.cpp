@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "io/output.hpp"
-#include "runs.hpp"
 #include <hubbeam/scene.hpp>
 #include <hubbeam/simulate.hpp>
+#include "io/output.hpp"
+#include "runs.hpp"
 
 using namespace hubbeam;
 using test::paper_scene;

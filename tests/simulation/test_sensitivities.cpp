@@ -10,8 +10,8 @@
 
 #include <hubbeam/make_model.hpp>
 #include <hubbeam/scene.hpp>
-#include "simulation/sensitivity.hpp"
 #include <hubbeam/simulate.hpp>
+#include "simulation/sensitivity.hpp"
 
 using namespace hubbeam;
 

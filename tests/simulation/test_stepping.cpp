@@ -14,10 +14,10 @@
 
 #include <gsl/gsl_errno.h>
 
-#include "dynamics/acceleration.hpp"
-#include "models/generated_model.hpp"
-#include "dynamics/integrate.hpp"
 #include <hubbeam/make_model.hpp>
+#include "dynamics/acceleration.hpp"
+#include "dynamics/integrate.hpp"
+#include "models/generated_model.hpp"
 #include "random_state.hpp"
 #include "runs.hpp"
 

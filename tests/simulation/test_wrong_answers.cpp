@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "simulation/column_check.hpp"
 #include <hubbeam/scene.hpp>
 #include <hubbeam/simulate.hpp>
+#include "simulation/column_check.hpp"
 #include "temp_folder.hpp"
 
 using namespace hubbeam;

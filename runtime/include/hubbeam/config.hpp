@@ -10,8 +10,8 @@
 #include <utility>
 #include <vector>
 
-#include "interface.hpp"
 #include <hubbeam/motion.hpp>
+#include "interface.hpp"
 #include "terms.hpp"
 #include "variant.hpp"
 

@@ -10,7 +10,6 @@
 #include <vector>
 
 #include <hubbeam/config.hpp>
-#include <hubbeam/scene.hpp>
 
 namespace hubbeam {
 

@@ -2,8 +2,8 @@
 // the natural modes (docs/model.md section 10).
 #include <hubbeam/linearize.hpp>
 
-#include "text/csv_columns.hpp"
 #include "models/model_operations.hpp"
+#include "text/csv_columns.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>

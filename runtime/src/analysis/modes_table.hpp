@@ -8,8 +8,8 @@
 #include <variant>
 #include <vector>
 
+#include <hubbeam/config.hpp>
 #include <hubbeam/linearize.hpp>
-#include <hubbeam/scene.hpp>
 
 namespace hubbeam {
 

@@ -3,8 +3,8 @@
 #include "dynamics/integrate.hpp"
 
 #include "dynamics/acceleration.hpp"
-#include "models/model_operations.hpp"
 #include "dynamics/mass_solver.hpp"
+#include "models/model_operations.hpp"
 
 #include <algorithm>
 #include <array>

@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "dynamics/integrate.hpp"
 #include <hubbeam/model.hpp>
+#include "dynamics/integrate.hpp"
 
 namespace hubbeam {
 

@@ -7,10 +7,10 @@
 #include <string>
 #include <string_view>
 
-#include "io/output_file.hpp"
 #include <hubbeam/config.hpp>
-#include <hubbeam/simulate.hpp>
 #include <hubbeam/scene.hpp>
+#include <hubbeam/simulate.hpp>
+#include "io/output_file.hpp"
 
 namespace hubbeam {
 

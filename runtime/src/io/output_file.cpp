@@ -14,8 +14,8 @@
 #include <unistd.h>
 
 #include <hubbeam/config.hpp>
-#include "text/printable.hpp"
 #include <hubbeam/scene.hpp>  // printable
+#include "text/printable.hpp"
 
 namespace hubbeam {
 

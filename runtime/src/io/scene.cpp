@@ -12,10 +12,10 @@
 #include <optional>
 #include <string_view>
 
-#include "text/option_lists.hpp"
 #include "io/scene_io.hpp"
-#include "text/shortest.hpp"
+#include "text/option_lists.hpp"
 #include "text/printable.hpp"
+#include "text/shortest.hpp"
 
 namespace hubbeam {
 

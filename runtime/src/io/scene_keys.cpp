@@ -4,8 +4,8 @@
 #include <algorithm>
 
 #include "dynamics/integrate.hpp"
-#include "text/option_lists.hpp"
 #include "io/scene_io.hpp"
+#include "text/option_lists.hpp"
 
 namespace hubbeam {
 

@@ -3,8 +3,8 @@
 #include <hubbeam/scene.hpp>
 
 #include "io/scene_io.hpp"
-#include "text/shortest.hpp"
 #include "text/printable.hpp"
+#include "text/shortest.hpp"
 
 namespace hubbeam {
 

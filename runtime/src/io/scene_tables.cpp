@@ -12,11 +12,11 @@
 #include <fstream>
 #include <optional>
 
-#include "text/csv_columns.hpp"
 #include "io/output_file.hpp"
 #include "io/scene_io.hpp"
-#include "text/shortest.hpp"
+#include "text/csv_columns.hpp"
 #include "text/printable.hpp"
+#include "text/shortest.hpp"
 
 namespace hubbeam {
 

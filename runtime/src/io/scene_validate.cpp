@@ -6,8 +6,8 @@
 
 #include "dynamics/integrate.hpp"
 #include "io/scene_io.hpp"
-#include "text/shortest.hpp"
 #include "text/printable.hpp"
+#include "text/shortest.hpp"
 
 namespace hubbeam {
 

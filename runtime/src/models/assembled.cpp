@@ -4,8 +4,8 @@
 // prescribed form q = (A, B).
 #include "models/assembled.hpp"
 
-#include "models/assembled_terms.hpp"
 #include <hubbeam/fields.hpp>
+#include "models/assembled_terms.hpp"
 #include "profile.hpp"
 
 #include <algorithm>

@@ -8,12 +8,12 @@
 #include <utility>
 
 
+#include "dynamics/stepper.hpp"
+#include "dynamics/stiffness.hpp"
 #include "simulation/column_check.hpp"
 #include "simulation/run_rows.hpp"
 #include "simulation/sensitivity.hpp"
 #include "text/shortest.hpp"
-#include "dynamics/stepper.hpp"
-#include "dynamics/stiffness.hpp"
 
 namespace hubbeam {
 

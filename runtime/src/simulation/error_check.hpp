@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "simulation/column_check.hpp"
-#include "dynamics/integrate.hpp"
-#include <hubbeam/scene.hpp>
+#include <hubbeam/config.hpp>
 #include <hubbeam/simulate.hpp>
+#include "dynamics/integrate.hpp"
+#include "simulation/column_check.hpp"
 
 namespace hubbeam {
 

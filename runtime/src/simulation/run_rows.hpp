@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "dynamics/integrate.hpp"
-#include <hubbeam/scene.hpp>
+#include <hubbeam/config.hpp>
 #include <hubbeam/simulate.hpp>
+#include "dynamics/integrate.hpp"
 
 namespace hubbeam {
 

@@ -7,9 +7,9 @@
 #include <gsl/gsl_errno.h>
 #include <stdexcept>
 
-#include "models/model_operations.hpp"
 #include <hubbeam/make_model.hpp>
 #include <hubbeam/simulate.hpp>
+#include "models/model_operations.hpp"
 
 namespace hubbeam {
 

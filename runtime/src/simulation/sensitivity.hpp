@@ -7,9 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "dynamics/integrate.hpp"
 #include <hubbeam/config.hpp>
-#include <hubbeam/scene.hpp>
+#include "dynamics/integrate.hpp"
 
 namespace hubbeam {
 

@@ -11,16 +11,16 @@
 #include <stdexcept>
 #include <utility>
 
-#include "simulation/column_check.hpp"
-#include "dynamics/integrate.hpp"
 #include <hubbeam/make_model.hpp>
-#include "text/shortest.hpp"
-#include "simulation/sensitivity.hpp"
+#include "dynamics/integrate.hpp"
 #include "dynamics/stepper.hpp"
 #include "dynamics/stiffness.hpp"
+#include "models/model_operations.hpp"
+#include "simulation/column_check.hpp"
 #include "simulation/error_check.hpp"
 #include "simulation/run_rows.hpp"
-#include "models/model_operations.hpp"
+#include "simulation/sensitivity.hpp"
+#include "text/shortest.hpp"
 
 namespace hubbeam {
 
