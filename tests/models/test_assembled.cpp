@@ -1,4 +1,4 @@
-// The hand-assembled path (runtime/src/models/assembled.*, runtime/src/analysis/fields.cpp) against independent computations and the
+// The hand-assembled path (runtime/src/models/assembled.*, runtime/src/models/fields.cpp) against independent computations and the
 // physics of docs/model.md section 7: coefficient matrices, cantilever frequencies, the mass matrix, steady spin,
 // energy and Lagrange consistency of the forces, and the beam fields under static tip loads.
 #include <catch2/catch.hpp>

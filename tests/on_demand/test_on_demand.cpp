@@ -1,4 +1,4 @@
-// On-demand variants (runtime/include/hubbeam/on_demand.hpp): compiled once into the cache, reused, safe when two
+// On-demand variants (runtime/src/on_demand/on_demand.hpp): compiled once into the cache, reused, safe when two
 // compilations race, and equal to the hand-assembled equations.
 #include <catch2/catch.hpp>
 #include <cstdio>

@@ -74,6 +74,19 @@ gsl_error_handler_t* current_handler()
 
 /// Two threads each run scene on one model built once; each thread's record must equal a serial run's (on a model
 /// of its own). Repeated, since a shared work array corrupts a run only where the threads' calls interleave.
+/// Runs scene on model on two threads at once (each making its own Simulation there: the automatic stepper's pilot
+/// run reads the model too) and requires both to equal serial.
+void run_on_two_threads(const Scene& scene, const std::shared_ptr<const Model>& model, const Record& serial)
+{
+    Record a, b;
+    std::thread first([&] { a = record(scene, std::make_unique<Simulation>(scene, model)); });
+    std::thread second([&] { b = record(scene, std::make_unique<Simulation>(scene, model)); });
+    first.join();
+    second.join();
+    require_equal(a, serial);
+    require_equal(b, serial);
+}
+
 void two_threads_equal_serial(const Scene& scene, int repeats)
 {
     const Record serial = record(scene, std::make_unique<Simulation>(scene));
@@ -82,14 +95,7 @@ void two_threads_equal_serial(const Scene& scene, int repeats)
     const std::shared_ptr<const Model> model = make_model(scene.key(), scene.parameters, scene.source);
     gsl_set_error_handler(caller_handler);
     for (int k = 0; k < repeats; ++k) {
-        Record a, b;
-        // The simulations are made on their threads too: the automatic stepper's pilot run reads the model.
-        std::thread first([&] { a = record(scene, std::make_unique<Simulation>(scene, model)); });
-        std::thread second([&] { b = record(scene, std::make_unique<Simulation>(scene, model)); });
-        first.join();
-        second.join();
-        require_equal(a, serial);
-        require_equal(b, serial);
+        run_on_two_threads(scene, model, serial);
         // A handler swapped per run would be left off here whenever the runs' ends crossed their starts.
         REQUIRE(current_handler() == &caller_handler);
     }
@@ -137,13 +143,7 @@ TEST_CASE("two threads whose GSL stepper fails: each run stops as a serial one d
     REQUIRE_THAT(serial.summary.failure, Catch::Contains("(GSL status -1)"));
     const std::shared_ptr<const Model> model = make_model(scene.key(), scene.parameters, scene.source);
     for (int k = 0; k < 2; ++k) {
-        Record a, b;
-        std::thread first([&] { a = record(scene, std::make_unique<Simulation>(scene, model)); });
-        std::thread second([&] { b = record(scene, std::make_unique<Simulation>(scene, model)); });
-        first.join();
-        second.join();
-        require_equal(a, serial);
-        require_equal(b, serial);
+        run_on_two_threads(scene, model, serial);
     }
 }
 
