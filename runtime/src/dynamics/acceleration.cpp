@@ -157,16 +157,6 @@ void FoldedProduct::walk(const double* m, double* y) const
     }
 }
 
-namespace {
-
-const TermForces& terms_of(const Model& model)
-{
-    if (const TermForces* terms = model.term_forces()) return *terms;
-    throw std::logic_error("the folded kernel of " + model.key().name() + " comes without the forces' term form");
-}
-
-}  // namespace
-
 Folded::Folded(const Model& model, const TermForces& terms, const FoldedForceKernel* kernel, const Eigen::MatrixXd& W)
     : Accelerations(model), product_(terms, kernel, W), columns_(W.cols()), offered_(kernel != nullptr)
 {
