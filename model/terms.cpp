@@ -86,7 +86,8 @@ std::vector<TermInfo> make_terms()
 
 const std::vector<TermInfo>& terms()
 {
-    static const std::vector<TermInfo> table = make_terms();
+    // Never destroyed: a thread still computing while the process exits (a Python daemon thread) may read it.
+    static const std::vector<TermInfo>& table = *new std::vector<TermInfo>(make_terms());
     return table;
 }
 

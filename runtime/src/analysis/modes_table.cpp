@@ -87,7 +87,8 @@ const std::vector<TableColumn<SpinMode>>& modes_columns()
 {
     using B = const ModesBlock&;
     using R = const SpinMode&;
-    static const std::vector<TableColumn<SpinMode>> columns = after_variant<SpinMode>({
+    // Never destroyed: a thread still computing while the process exits (a Python daemon thread) may read it.
+    static const std::vector<TableColumn<SpinMode>>& columns = *new std::vector<TableColumn<SpinMode>>(after_variant<SpinMode>({
         {"omega", [](B, R r) -> TableCell { return r.omega; }},
         {"mode", [](B, R r) -> TableCell { return r.number; }},
         {"kind", [](B, R r) -> TableCell { return r.mode.kind; }},
@@ -99,7 +100,7 @@ const std::vector<TableColumn<SpinMode>>& modes_columns()
         {"damping_ratio", [](B, R r) -> TableCell { return r.mode.damping_ratio; }},
         {"label", [](B, R r) -> TableCell { return r.label; }},
         {"mac", [](B, R r) -> TableCell { return r.mac; }},
-    });
+    }));
     return columns;
 }
 
@@ -107,13 +108,14 @@ const std::vector<TableColumn<CriticalSpeed>>& critical_columns()
 {
     using B = const ModesBlock&;
     using R = const CriticalSpeed&;
-    static const std::vector<TableColumn<CriticalSpeed>> columns = after_variant<CriticalSpeed>({
+    // Never destroyed: a thread still computing while the process exits (a Python daemon thread) may read it.
+    static const std::vector<TableColumn<CriticalSpeed>>& columns = *new std::vector<TableColumn<CriticalSpeed>>(after_variant<CriticalSpeed>({
         {"label", [](B, R c) -> TableCell { return c.label; }},
         {"harmonic", [](B, R c) -> TableCell { return c.harmonic; }},
         {"omega", [](B, R c) -> TableCell { return c.omega; }},
         {"rad_s", [](B, R c) -> TableCell { return c.rad_s; }},
         {"hz", [](B, R c) -> TableCell { return c.rad_s / (2.0 * M_PI); }},
-    });
+    }));
     return columns;
 }
 
