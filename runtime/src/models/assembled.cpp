@@ -200,31 +200,17 @@ public:
         const BeamMatrices c = assemble_matrices(key, p);
         // The beam with the terms the variant carries (runtime/src/models/terms/); a term it does not carry
         // contributes nothing, whatever its parameter says (as in the generator).
-        const ModelMatrices m = model_matrices({key, p, c});
-        J_o_ = m.J_o;
-        S_x_ = m.S_x;
-        S_y_ = m.S_y;
-        M1_ = m.M1;
-        M3_ = m.M3;
-        M2r_ = m.M2r;
-        M2_G_ = key.order == Order::zero ? m.M2 : MatrixXd(m.M2 - m.G);
+        m_ = model_matrices({key, p, c});
+        M2_G_ = key.order == Order::zero ? m_.M2 : MatrixXd(m_.M2 - m_.G);
         K1_ = c.K1;
         K2_ = c.K2;
-        S_x_T_ = S_x_.transpose();
-        S_y_T_ = S_y_.transpose();
-        g_ = m.g;
-        W_o_ = m.W_o;
-        W_x_ = m.W_x;
-        W_y_ = m.W_y;
-        W_H_ = m.W_H;
-        D_A_ = m.D_A;
-        D_B_ = m.D_B;
-        damped_ = m.damped;
+        S_x_T_ = m_.S_x.transpose();
+        S_y_T_ = m_.S_y.transpose();
 
         if (key.drive == Drive::prescribed) {  // paper eq. 57: M = blockdiag(M1, M2r), constant
             M_prescribed_ = RowMajorMatrix::Zero(nq(), nq());
-            M_prescribed_.block(a_, a_, nx_, nx_) = M1_;
-            M_prescribed_.block(b_, b_, ny_, ny_) = M2r_;
+            M_prescribed_.block(a_, a_, nx_, nx_) = m_.M1;
+            M_prescribed_.block(b_, b_, ny_, ny_) = m_.M2r;
         }
     }
 
@@ -258,12 +244,12 @@ public:
         Mm.setZero();
         Mm(0, 0) = M11(A, B);
         // Row 0: M12 = -(M3 B)^T, M13 = S_y + A^T M3; column 0 is its transpose (M21, M31).
-        Mm.row(0).segment(a_, nx_).noalias() = -B.transpose() * M3_.transpose();
-        Mm.row(0).segment(b_, ny_).noalias() = A.transpose() * M3_;
-        Mm.row(0).segment(b_, ny_) += S_y_;
+        Mm.row(0).segment(a_, nx_).noalias() = -B.transpose() * m_.M3.transpose();
+        Mm.row(0).segment(b_, ny_).noalias() = A.transpose() * m_.M3;
+        Mm.row(0).segment(b_, ny_) += m_.S_y;
         Mm.col(0).tail(n - 1) = Mm.row(0).tail(n - 1).transpose();
-        Mm.block(a_, a_, nx_, nx_) = M1_;
-        Mm.block(b_, b_, ny_, ny_) = M2r_;
+        Mm.block(a_, a_, nx_, nx_) = m_.M1;
+        Mm.block(b_, b_, ny_, ny_) = m_.M2r;
     }
 
     void forces(const HubInput& u, const double* q, const double* qd, double* Q) const override
@@ -275,38 +261,38 @@ public:
         const double w2 = theta_dot * theta_dot, w = 2.0 * theta_dot;
 
         // Q_A = theta_dot^2 (S_x^T + M1 A) + 2 theta_dot M3 B_dot - K1 A
-        Q_A.noalias() = w2 * (M1_ * A);
+        Q_A.noalias() = w2 * (m_.M1 * A);
         Q_A += w2 * S_x_T_;
-        Q_A.noalias() += w * (M3_ * B_dot);
+        Q_A.noalias() += w * (m_.M3 * B_dot);
         Q_A.noalias() -= K1_ * A;
         // Q_B = theta_dot^2 (M2 - G) B - 2 theta_dot M3^T A_dot - K2 B
         Q_B.noalias() = w2 * (M2_G_ * B);
-        Q_B.noalias() -= w * (M3_.transpose() * A_dot);
+        Q_B.noalias() -= w * (m_.M3.transpose() * A_dot);
         Q_B.noalias() -= K2_ * B;
 
         if (torque) {
             // Q_theta = tau - 2 theta_dot (S_x A_dot + A^T M1 A_dot + B^T (M2 - G) B_dot)
-            Q[0] = u.tau - w * (S_x_.dot(A_dot) + A.dot(M1_.lazyProduct(A_dot)) + B.dot(M2_G_.lazyProduct(B_dot)));
+            Q[0] = u.tau - w * (m_.S_x.dot(A_dot) + A.dot(m_.M1.lazyProduct(A_dot)) + B.dot(M2_G_.lazyProduct(B_dot)));
         } else {
             // Paper eq. 57: the known theta_ddot moves to the right: Q_A - M21 theta_ddot, Q_B - M31 theta_ddot.
-            Q_A.noalias() += u.theta_ddot * (M3_ * B);
-            Q_B.noalias() -= u.theta_ddot * (M3_.transpose() * A);
+            Q_A.noalias() += u.theta_ddot * (m_.M3 * B);
+            Q_B.noalias() -= u.theta_ddot * (m_.M3.transpose() * A);
             Q_B -= u.theta_ddot * S_y_T_;
         }
 
-        if (g_ != 0.0) {
+        if (m_.g != 0.0) {
             // -dU_g/dq (section 11.3): Q_A -= g sin W_x^T, Q_B += g (sin W_H B - cos W_y^T),
             // Q_theta -= g (cos (W_o + W_x A - 1/2 B^T W_H B) - sin W_y B).
-            const double theta = torque ? q[0] : u.theta, gs = g_ * std::sin(theta), gc = g_ * std::cos(theta);
-            Q_A -= gs * W_x_.transpose();
-            Q_B.noalias() += gs * (W_H_ * B);
-            Q_B -= gc * W_y_.transpose();
-            if (torque) Q[0] -= gc * (W_o_ + W_x_.dot(A) - 0.5 * B.dot(W_H_.lazyProduct(B))) - gs * W_y_.dot(B);
+            const double theta = torque ? q[0] : u.theta, gs = m_.g * std::sin(theta), gc = m_.g * std::cos(theta);
+            Q_A -= gs * m_.W_x.transpose();
+            Q_B.noalias() += gs * (m_.W_H * B);
+            Q_B -= gc * m_.W_y.transpose();
+            if (torque) Q[0] -= gc * (m_.W_o + m_.W_x.dot(A) - 0.5 * B.dot(m_.W_H.lazyProduct(B))) - gs * m_.W_y.dot(B);
         }
-        if (damped_) {
+        if (m_.damped) {
             // -dD/dqd (section 11.4): Rayleigh damping of the elastic rates; the hub's rate is not damped.
-            Q_A.noalias() -= D_A_ * A_dot;
-            Q_B.noalias() -= D_B_ * B_dot;
+            Q_A.noalias() -= m_.D_A * A_dot;
+            Q_B.noalias() -= m_.D_B * B_dot;
         }
     }
 
@@ -314,13 +300,13 @@ public:
     void forces_theta(const HubInput& u, const double* q, const double*, double* dQdtheta) const override
     {
         std::fill_n(dQdtheta, nq(), 0.0);
-        if (g_ == 0.0 || key().drive == Drive::torque) return;
+        if (m_.g == 0.0 || key().drive == Drive::torque) return;
         const ConstVector B(q + b_, ny_);
         Vector dA(dQdtheta + a_, nx_), dB(dQdtheta + b_, ny_);
-        const double gs = g_ * std::sin(u.theta), gc = g_ * std::cos(u.theta);
-        dA = -gc * W_x_.transpose();
-        dB.noalias() = gc * (W_H_ * B);
-        dB += gs * W_y_.transpose();
+        const double gs = m_.g * std::sin(u.theta), gc = m_.g * std::cos(u.theta);
+        dA = -gc * m_.W_x.transpose();
+        dB.noalias() = gc * (m_.W_H * B);
+        dB += gs * m_.W_y.transpose();
     }
 
     Energy energy(const HubInput& u, const double* q, const double* qd) const override
@@ -330,7 +316,7 @@ public:
         const ConstVector A(q + a_, nx_), B(q + b_, ny_), A_dot(qd + a_, nx_), B_dot(qd + b_, ny_);
 
         // T of docs/model.md section 5 (with section 11's tip body), by degree in the flexible rates.
-        const double flexible = 0.5 * A_dot.dot(M1_.lazyProduct(A_dot)) + 0.5 * B_dot.dot(M2r_.lazyProduct(B_dot));
+        const double flexible = 0.5 * A_dot.dot(m_.M1.lazyProduct(A_dot)) + 0.5 * B_dot.dot(m_.M2r.lazyProduct(B_dot));
         const double coupling = theta_dot * gyroscopic(A, B, A_dot, B_dot);
         const double spin = 0.5 * M11(A, B) * theta_dot * theta_dot;
         Energy e;
@@ -342,10 +328,10 @@ public:
             e.T0 = spin;
         }
         e.U = 0.5 * A.dot(K1_.lazyProduct(A)) + 0.5 * B.dot(K2_.lazyProduct(B));
-        if (g_ != 0.0) {
+        if (m_.g != 0.0) {
             const double theta = torque ? q[0] : u.theta;
-            e.U += g_ * std::sin(theta) * (W_o_ + W_x_.dot(A) - 0.5 * B.dot(W_H_.lazyProduct(B))) +
-                   g_ * std::cos(theta) * W_y_.dot(B);
+            e.U += m_.g * std::sin(theta) * (m_.W_o + m_.W_x.dot(A) - 0.5 * B.dot(m_.W_H.lazyProduct(B))) +
+                   m_.g * std::cos(theta) * m_.W_y.dot(B);
         }
         return e;
     }
@@ -366,33 +352,26 @@ private:
     /// M11 = J_o + 2 S_x A + A^T M1 A + B^T (M2 - G) B, J_o = J_oh + J_ob (+ the tip's m_tip (a+L)^2 + J_tip).
     double M11(const ConstVector& A, const ConstVector& B) const
     {
-        return J_o_ + 2.0 * S_x_.dot(A) + A.dot(M1_.lazyProduct(A)) + B.dot(M2_G_.lazyProduct(B));
+        return m_.J_o + 2.0 * m_.S_x.dot(A) + A.dot(m_.M1.lazyProduct(A)) + B.dot(M2_G_.lazyProduct(B));
     }
 
     /// The factor of theta_dot in T linear in the rates: (S_y + A^T M3) B_dot - B^T M3^T A_dot.
     double gyroscopic(const ConstVector& A, const ConstVector& B, const ConstVector& A_dot,
                       const ConstVector& B_dot) const
     {
-        return S_y_.dot(B_dot) + A.dot(M3_.lazyProduct(B_dot)) - A_dot.dot(M3_.lazyProduct(B));
+        return m_.S_y.dot(B_dot) + A.dot(m_.M3.lazyProduct(B_dot)) - A_dot.dot(m_.M3.lazyProduct(B));
     }
 
     BeamFields fields_;
     int a_, b_;    // where A and B begin in q (coordinates())
     int nx_, ny_;
-    // Section 5.2's matrices of the beam with its tip body (section 11.1).
-    double J_o_ = 0.0;             // J_oh + J_ob + m_tip (a+L)^2 + J_tip
-    Eigen::RowVectorXd S_x_, S_y_;
-    MatrixXd M1_, M3_, K1_, K2_;
-    MatrixXd M2r_;                 // the B-rate mass: M2 + J_tip Phi_y'(L)^T Phi_y'(L)
+    // Section 5.2's matrices of the beam with the terms the variant carries (tip body, weight, damping: section 11),
+    // as the terms' twins assembled them.
+    ModelMatrices m_;
+    MatrixXd K1_, K2_;
     MatrixXd M2_G_;                // M2 - G (first order) or M2 (zero order)
     VectorXd S_x_T_, S_y_T_;       // S_x^T, S_y^T as columns
     RowMajorMatrix M_prescribed_;  // blockdiag(M1, M2r) for the prescribed form
-    // Section 11.3's weight and 11.4's damping.
-    double g_ = 0.0, W_o_ = 0.0;
-    Eigen::RowVectorXd W_x_, W_y_;
-    MatrixXd W_H_;
-    MatrixXd D_A_, D_B_;           // alpha M1 + beta K1, alpha M2r + beta K2
-    bool damped_ = false;
 };
 
 }  // namespace
