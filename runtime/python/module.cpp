@@ -243,9 +243,53 @@ py::array_t<double> rows_array(std::vector<double>&& rows, std::size_t width)
     auto* owned = new std::vector<double>(std::move(rows));
     py::capsule free_rows(owned, [](void* p) { delete static_cast<std::vector<double>*>(p); });
     const auto n = static_cast<py::ssize_t>(owned->size() / width);
-    return py::array_t<double>({n, static_cast<py::ssize_t>(width)},
-                               {static_cast<py::ssize_t>(width * sizeof(double)), static_cast<py::ssize_t>(sizeof(double))},
-                               owned->data(), free_rows);
+    return py::array_t<double>(
+        {n, static_cast<py::ssize_t>(width)},
+        {static_cast<py::ssize_t>(width * sizeof(double)), static_cast<py::ssize_t>(sizeof(double))}, owned->data(),
+        free_rows);
+}
+
+/// f() with its thread parked if Python code it runs ends the thread. Python code may drop the GIL, and a daemon
+/// thread that asks for it back while the interpreter finalizes is ended with pthread_exit: its unwinding must meet no
+/// destructor that touches a Python object without the GIL (pybind11's objects and argument tuples do), so f holds
+/// Python objects by plain pointers only and the unwinding stops here.
+template <class F>
+auto parked_on_exit(F f)
+{
+    try {
+        return f();
+    } catch (abi::__forced_unwind&) {
+        park();
+    }
+}
+
+/// f(t, state) with state a dict of s: the result (a new reference), or nullptr with the Python error set.
+PyObject* call_law(PyObject* f, double t, const HubState& s)
+{
+    return parked_on_exit([&]() -> PyObject* {
+        PyObject* state = Py_BuildValue("{s:d,s:d,s:d,s:d}", "theta", s.theta, "theta_dot", s.theta_dot, "tip_uy",
+                                        s.tip_uy, "tip_uy_dot", s.tip_uy_dot);
+        if (state == nullptr) return nullptr;
+        return PyObject_CallFunction(f, "dN", t, state);  // N: the call owns state
+    });
+}
+
+/// o's attribute where it is a text, else repr(o) ("?" where both fail); both may run Python code.
+std::string name_of(PyObject* o, const char* attribute)
+{
+    return parked_on_exit([&] {
+        PyObject* r = attribute != nullptr ? PyObject_GetAttrString(o, attribute) : nullptr;
+        if (r == nullptr || !PyUnicode_Check(r)) {
+            Py_XDECREF(r);
+            PyErr_Clear();
+            r = PyObject_Repr(o);
+        }
+        const char* text = r != nullptr ? PyUnicode_AsUTF8(r) : nullptr;
+        std::string out = text != nullptr ? text : "?";
+        Py_XDECREF(r);
+        PyErr_Clear();
+        return out;
+    });
 }
 
 /// A Python callable f(t, state) -> tau as a torque law: state is a dict with theta, theta_dot, tip_uy and
@@ -263,28 +307,24 @@ TorqueLaw python_law(py::object f, std::shared_ptr<std::exception_ptr> failure)
         const WithGil gil;
         if (*failure) return std::numeric_limits<double>::quiet_NaN();
         try {
-            py::dict state;
-            state["theta"] = s.theta;
-            state["theta_dot"] = s.theta_dot;
-            state["tip_uy"] = s.tip_uy;
-            state["tip_uy_dot"] = s.tip_uy_dot;
-            const py::object tau = held->f(t, state);
+            const auto tau = py::reinterpret_steal<py::object>(call_law(held->f.ptr(), t, s));
+            if (!tau) throw py::error_already_set();
             PyObject* p = tau.ptr();
             if (PyFloat_Check(p)) return PyFloat_AS_DOUBLE(p);
-            // A bool is an int to Python, a complex number has a float() in numpy: neither is a torque.
-            if ((PyLong_Check(p) && !PyBool_Check(p)) || py::isinstance(tau, held->integer) ||
-                py::isinstance(tau, held->floating)) {
+            // A bool is an int to Python, a complex number has a float() in numpy: neither is a torque. The checks
+            // run no Python code (numpy's scalar types have no __instancecheck__).
+            if ((PyLong_Check(p) && !PyBool_Check(p)) ||
+                PyObject_TypeCheck(p, reinterpret_cast<PyTypeObject*>(held->integer.ptr())) ||
+                PyObject_TypeCheck(p, reinterpret_cast<PyTypeObject*>(held->floating.ptr()))) {
                 const double value = PyFloat_AsDouble(p);
                 if (value == -1.0 && PyErr_Occurred()) throw py::error_already_set();
                 return value;
             }
-            const py::object name = py::getattr(held->f, "__qualname__", py::repr(held->f));
-            throw py::type_error("torque law " + printable(py::str(name).cast<std::string>(), 120) + " returned " +
-                                 printable(py::str(py::repr(tau)).cast<std::string>(), 120) + " (" +
-                                 printable(py::str(py::type::handle_of(tau).attr("__name__")).cast<std::string>(), 80) +
+            const std::string type = Py_TYPE(p)->tp_name;  // a built-in type's is module.name: its __name__ follows
+            throw py::type_error("torque law " + printable(name_of(held->f.ptr(), "__qualname__"), 120) + " returned " +
+                                 printable(name_of(p, nullptr), 120) + " (" +
+                                 printable(type.substr(type.rfind('.') + 1), 80) +
                                  "): expected a real number, the hub torque in N m");
-        } catch (abi::__forced_unwind&) {  // the interpreter finalized while f ran: see WithoutGil
-            park();
         } catch (...) {
             *failure = std::current_exception();
             return std::numeric_limits<double>::quiet_NaN();
@@ -358,9 +398,9 @@ py::dict run(const std::string& text, const std::string& name, const Keywords& k
         // The integration touches no Python object (but the torque law's): other Python threads run meanwhile.
         const WithoutGil release;
         rows.reserve(width * static_cast<std::size_t>(std::min(1e7, scene.output.t_end / scene.output.dt_out + 2.0)));
-        s = simulation->run([&rows, &columns](const Row& r) {
-            for_each_value(r, columns, [&rows](double v) { rows.push_back(v); });
-        }, stop);
+        s = simulation->run(
+            [&rows, &columns](const Row& r) { for_each_value(r, columns, [&rows](double v) { rows.push_back(v); }); },
+            stop);
     }
     interrupts.raise();  // Ctrl-C or an exiting interpreter: KeyboardInterrupt; a cancelled sweep's point: its rows
     if (*law_failure) std::rethrow_exception(*law_failure);  // the torque law's own exception
@@ -392,7 +432,8 @@ ModesBlock modes_of(const Scene& scene, const std::vector<double>& omegas, const
             return modes_block(*model, key, scene, omegas, harmonics, check);
         } catch (const std::runtime_error&) {
             // Name the rate that has no steady state (ValueError) if that is what failed.
-            for (const double w : omegas) at_spin(w, [&] { return steady_spin(*model, w, scene.motion.initial_theta()); });
+            for (const double w : omegas)
+                at_spin(w, [&] { return steady_spin(*model, w, scene.motion.initial_theta()); });
             throw;
         }
     } catch (const Stopped& stopped) {
@@ -511,17 +552,21 @@ PYBIND11_MODULE(_core, m)
     m.def("run", &run, "Runs a scene given as TOML text; returns the rows and the summary", py::arg("text"),
           py::arg("name"), py::arg("overrides"), py::arg("cancellable") = false, py::arg("torque") = py::none(),
           py::arg("sensitivities") = py::none());
-    m.def("cancel_runs", [] { ++cancel_generation; }, "Stops every cancellable run in progress in this process");
-    m.def("interrupt_runs", [] { exiting = true; },
-          "Stops every run and modes computation of this process, now and later, with KeyboardInterrupt");
+    m.def(
+        "cancel_runs", [] { ++cancel_generation; }, "Stops every cancellable run in progress in this process");
+    m.def(
+        "interrupt_runs", [] { exiting = true; },
+        "Stops every run and modes computation of this process, now and later, with KeyboardInterrupt");
     m.def("modes", &modes, "Every mode of a scene's variant at each spin rate", py::arg("text"), py::arg("name"),
           py::arg("overrides"), py::arg("omegas"), py::arg("harmonics"), py::arg("cancellable") = false);
     m.def("linearize", &linearize, "State-space matrices about a steady spin", py::arg("text"), py::arg("name"),
           py::arg("overrides"), py::arg("omega"));
-    m.def("check", [](const std::string& text, const std::string& name) { scene_of(text, name, {}); },
-          "Parses and checks a scene (ValueError if it is bad)", py::arg("text"), py::arg("name"));
+    m.def(
+        "check", [](const std::string& text, const std::string& name) { scene_of(text, name, {}); },
+        "Parses and checks a scene (ValueError if it is bad)", py::arg("text"), py::arg("name"));
     m.def("scene_keys", &keys, "Every scene key (dotted name) and what it takes");
-    m.def("generator_version", [] { return variant_cache_dir().filename().string(); },
-          "The generator's version: on-demand variants are cached under it");
+    m.def(
+        "generator_version", [] { return variant_cache_dir().filename().string(); },
+        "The generator's version: on-demand variants are cached under it");
     m.attr("__version__") = HUBBEAM_VERSION;
 }

@@ -203,6 +203,8 @@ class InterruptTest(unittest.TestCase):
         long_run = "hubbeam.run(sys.argv[1], nx=0, t_end=1e6, dt_out=1.0, max_steps=1e12{})"
         for work in (long_run.format(""),
                      long_run.format(", torque=lambda t, s: -s['theta_dot']"),  # the GIL taken at every evaluation
+                     # Python code in the law drops the GIL: the thread may be ended inside the law's call
+                     long_run.format(", torque=lambda t, s: -s['theta_dot'] + 0.0 * sum(range(2000))"),
                      "hubbeam.modes(sys.argv[1], np.linspace(0.0, 4.0, 40000))"):
             script = ("import hubbeam, numpy as np, sys, threading, time\n"
                       f"threading.Thread(target=lambda: {work}, daemon=True).start()\n"
