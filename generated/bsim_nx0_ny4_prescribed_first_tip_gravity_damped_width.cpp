@@ -3,7 +3,7 @@
 //   cmake --build build --target regenerate
 // Variant: method=bsim Nx=0 Ny=4 order=first drive=prescribed spline_basis=paper tip_body gravity rayleigh_damping taper=width
 // q = (B1..B4), qd = d/dt q; u = (tau, theta_dot, theta_ddot, sin_theta, cos_theta), of which this variant reads theta_dot, theta_ddot, sin_theta, cos_theta;
-// p = (L, rho, S, I, E, a, J_oh, m_tip, J_tip, g, alpha, beta, tip_ratio) in SI units. Slope coordinates (FEM, BSIM) are d/dxi = L d/dx.
+// p = (L, rho, S, I, E, a, J_oh, m_tip, J_tip, g, alpha, beta, tip_ratio, I_flap, G, J_t, pitch, twist, precone, g_axis) in SI units. Slope coordinates (FEM, BSIM) are d/dxi = L d/dx.
 // Derived symbolically from T and U (docs/model.md sections 2-3) by Lagrange's equations of the second kind.
 // For implicit integrators, derivatives of the same M and Q: forces_q = dQ/dq, forces_qd = dQ/dqd, forces_u =
 // dQ/du; M is constant, so there is no mass_q_product.
@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[13])->(c[96]) p = (L, rho, S, I, E, a, J_oh, m_tip, J_tip, g, alpha, beta, tip_ratio); once per parameter set */
+/* coefficients:(p[20])->(c[96]) p = (L, rho, S, I, E, a, J_oh, m_tip, J_tip, g, alpha, beta, tip_ratio, I_flap, G, J_t, pitch, twist, precone, g_axis); once per parameter set */
 void bsim_nx0_ny4_prescribed_first_tip_gravity_damped_width_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -126,7 +126,7 @@ void bsim_nx0_ny4_prescribed_first_tip_gravity_damped_width_coefficients(const d
     c[95] = 0.1111111111111111*a*m_tip/(L) + 0.1111111111111111*m_tip + 0.0014109347442680777*m*a + 0.009700176366843033*m*a*tip_ratio + 0.0007838526357044876*L*m + 0.007093866353125612*L*m*tip_ratio;
 }
 
-/* coefficients_p:(p[13])->(dcdp[13*96]) out[k*96 + i] = dc_i/dp_k, by the chain rule on the coefficients above; nonzero entries only */
+/* coefficients_p:(p[20])->(dcdp[20*96]) out[k*96 + i] = dc_i/dp_k, by the chain rule on the coefficients above; nonzero entries only */
 void bsim_nx0_ny4_prescribed_first_tip_gravity_damped_width_coefficients_p(const double* p, double* out)
 {
     const double L = p[0];

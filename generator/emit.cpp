@@ -35,11 +35,16 @@ std::string signed_sum(const std::vector<std::pair<numeric, std::string>>& terms
         const bool negative = c < 0;
         const numeric mag = negative ? numeric(-c) : c;
         std::string t;
-        if (mono.empty()) t = c_number(mag);
-        else if (mag == 1) t = mono;
-        else t = c_number(mag) + "*" + mono;
-        if (s.empty()) s = negative ? "-" + t : t;
-        else s += (negative ? " - " : " + ") + t;
+        if (mono.empty())
+            t = c_number(mag);
+        else if (mag == 1)
+            t = mono;
+        else
+            t = c_number(mag) + "*" + mono;
+        if (s.empty())
+            s = negative ? "-" + t : t;
+        else
+            s += (negative ? " - " : " + ") + t;
     }
     return s.empty() ? "0.0" : s;
 }
@@ -50,8 +55,10 @@ std::string monomial_name(const std::vector<int>& e, const std::vector<std::stri
     for (std::size_t i = 0; i < e.size(); ++i) {
         if (e[i] == 0) continue;
         s += (s.empty() ? "" : "_") + names[i];
-        if (e[i] == 2) s += "sq";
-        else if (e[i] > 2) s += "p" + std::to_string(e[i]);
+        if (e[i] == 2)
+            s += "sq";
+        else if (e[i] > 2)
+            s += "p" + std::to_string(e[i]);
     }
     return s;
 }
@@ -157,7 +164,8 @@ std::vector<const Output::value_type*> reading_order(const Output& o)
     for (const auto& entry : o) terms.push_back(&entry);
     std::vector<const Output::value_type*> order;
     order.reserve(terms.size());
-    for (std::size_t i : reading_permutation(terms, [](const Output::value_type* t) -> const Exponents& { return t->first; }))
+    for (std::size_t i :
+         reading_permutation(terms, [](const Output::value_type* t) -> const Exponents& { return t->first; }))
         order.push_back(terms[i]);
     return order;
 }
@@ -166,8 +174,7 @@ std::vector<const Output::value_type*> reading_order(const Output& o)
 /// coefficients kernel, shared by all kernels of the variant (equal text, one entry).
 class CoefficientPool {
 public:
-    explicit CoefficientPool(std::vector<std::string> pnames)
-        : pnames_(std::move(pnames)), params_used_(pnames_.size())
+    explicit CoefficientPool(std::vector<std::string> pnames) : pnames_(std::move(pnames)), params_used_(pnames_.size())
     {
     }
 
@@ -385,8 +392,8 @@ struct TermTables {
     std::size_t nterms = 0;
 };
 
-TermTables term_tables(const KernelSpec& k, const std::vector<Output>& outputs, const std::map<std::vector<int>, int>& index,
-                       CoefficientPool& pool)
+TermTables term_tables(const KernelSpec& k, const std::vector<Output>& outputs,
+                       const std::map<std::vector<int>, int>& index, CoefficientPool& pool)
 {
     std::ostringstream terms, first, written;
     std::size_t nterms = 0;
@@ -399,7 +406,8 @@ TermTables term_tables(const KernelSpec& k, const std::vector<Output>& outputs, 
             // Pure numbers are pool entries too, so that a term is two integers: the signed entry and the monomial.
             const auto [sign, ck] = pool.reference(entry->second);
             const int coef = std::stoi(ck.substr(2));  // "c[k]"
-            terms << (nterms % 8 == 0 ? "\n        " : " ") << (sign > 0 ? coef : -coef - 1) << ", " << index.at(ve) << ",";
+            terms << (nterms % 8 == 0 ? "\n        " : " ") << (sign > 0 ? coef : -coef - 1) << ", " << index.at(ve)
+                  << ",";
             ++nterms;
         }
     }
@@ -424,7 +432,8 @@ std::string print_tables(const std::string& prefix, const KernelSpec& k, const S
     f << ", double* out)\n{\n";
     f << "    // Table form (" << t.nterms << " terms, " << ordered.size()
       << " monomials): m[0] = 1, m[k + 1] = m[chain[k][0]] * v[chain[k][1]];\n"
-      << "    // out[written[i]] = sum over terms t = first[i] .. first[i + 1] - 1 of c[k] * m[terms[2t + 1]], k = terms[2t],\n"
+      << "    // out[written[i]] = sum over terms t = first[i] .. first[i + 1] - 1 of c[k] * m[terms[2t + 1]], k = "
+         "terms[2t],\n"
       << "    // negated for k < 0 (entry -k - 1).\n";
     if (ordered.empty()) {  // a state-free kernel reads no state (its callers may pass null pointers)
         for (const Array& a : sig.state) f << "    (void)" << a.name << ";\n";
@@ -441,8 +450,10 @@ std::string print_tables(const std::string& prefix, const KernelSpec& k, const S
         f << "    (void)c;\n    (void)m;\n    (void)out;  // every entry is zero\n}\n";
         return f.str();
     }
-    if (t.nterms > 0) f << "    static const int terms[] = {" << t.terms << "\n    };\n";
-    else f << "    static const int terms[2] = {0, 0};  // no term: every written entry is zero\n    (void)m;\n";
+    if (t.nterms > 0)
+        f << "    static const int terms[] = {" << t.terms << "\n    };\n";
+    else
+        f << "    static const int terms[2] = {0, 0};  // no term: every written entry is zero\n    (void)m;\n";
     f << "    static const int written[] = {" << t.written << "};\n";
     f << "    static const int first[] = {" << t.first << "};\n";
     f << "    for (int i = 0; i < " << outputs.size() << "; ++i) {\n        double sum = 0.0;\n"
@@ -465,7 +476,8 @@ std::string print_kernel(const std::string& prefix, const KernelSpec& k, const S
     std::string reads;
     for (std::size_t v = 0; v < sig.state_inputs.size(); ++v)
         if (plan.variable_used[v])
-            reads += "    const double " + sig.state_inputs[v].symbol.get_name() + " = " + sig.state_inputs[v].read + ";\n";
+            reads +=
+                "    const double " + sig.state_inputs[v].symbol.get_name() + " = " + sig.state_inputs[v].read + ";\n";
     if (!uses_c) f << "    (void)c;\n";
     if (outputs.empty()) f << "    (void)out;  // every entry is zero\n";
     for (const Array& a : sig.state)
@@ -477,7 +489,8 @@ std::string print_kernel(const std::string& prefix, const KernelSpec& k, const S
 }
 
 /// The coefficients kernel: c[k] from the parameters, once per parameter set.
-std::string print_coefficients(const std::string& prefix, const Signature& sig, const CoefficientPool& pool, bool tables)
+std::string print_coefficients(const std::string& prefix, const Signature& sig, const CoefficientPool& pool,
+                               bool tables)
 {
     const Array& p = sig.parameters;
     std::ostringstream text;
@@ -487,8 +500,8 @@ std::string print_coefficients(const std::string& prefix, const Signature& sig, 
     bool any = false;
     for (std::size_t j = 0; j < sig.parameter_inputs.size(); ++j)
         if (pool.parameter_used(j)) {
-            text << "    const double " << sig.parameter_inputs[j].symbol.get_name() << " = " << sig.parameter_inputs[j].read
-                 << ";\n";
+            text << "    const double " << sig.parameter_inputs[j].symbol.get_name() << " = "
+                 << sig.parameter_inputs[j].read << ";\n";
             any = true;
         }
     if (!any) text << "    (void)" << p.name << ";\n";
@@ -510,7 +523,8 @@ std::string print_coefficients(const std::string& prefix, const Signature& sig, 
                               den = product(pe, pool.parameter_names(), false);
             pm[static_cast<std::size_t>(j)] = (num.empty() ? "1.0" : num) + (den.empty() ? "" : "/(" + den + ")");
         }
-        text << "    // Table form (" << nterms << " terms): c[t.entry] += t.number * pm[t.monomial] for each term t.\n";
+        text << "    // Table form (" << nterms
+             << " terms): c[t.entry] += t.number * pm[t.monomial] for each term t.\n";
         text << "    const double pm[] = {";
         for (std::size_t j = 0; j < pm.size(); ++j) text << (j ? ", " : "") << pm[j];
         text << "};\n    struct Term {\n        int entry, monomial;\n        double number;\n    };\n";
@@ -518,16 +532,40 @@ std::string print_coefficients(const std::string& prefix, const Signature& sig, 
         text << "    for (int k = 0; k < " << pool.texts().size() << "; ++k) c[k] = 0.0;\n";
         text << "    for (const Term& t : terms) c[t.entry] += t.number * pm[t.monomial];\n";
     } else {
-        for (std::size_t i = 0; i < pool.texts().size(); ++i) text << "    c[" << i << "] = " << pool.texts()[i] << ";\n";
+        for (std::size_t i = 0; i < pool.texts().size(); ++i)
+            text << "    c[" << i << "] = " << pool.texts()[i] << ";\n";
     }
     text << "}\n";
     return text.str();
 }
 
-/// The p entries an input reads and, for each, the C text of d(input)/d(p entry): an input's read is "p[i]" or a
-/// product "p[i] * p[j]" (m = rho S), so its derivative by one factor is the product of the others ("1" alone).
+/// The p entry of "p[i]", or -1 for any other text.
+int entry_of(const std::string& r)
+{
+    if (r.size() < 4 || r.compare(0, 2, "p[") != 0 || r.back() != ']') return -1;
+    return std::stoi(r.substr(2, r.size() - 3));
+}
+
+/// For a read "std::cos(ARG)" or "std::sin(ARG)" with ARG "p[i]" or "K * p[i]" (a pitch's, a precone's): i and the C
+/// text of the read's derivative by p[i]; {-1, ""} for any other read.
+std::pair<int, std::string> trigonometric_derivative(const std::string& read)
+{
+    const bool cos = read.rfind("std::cos(", 0) == 0, sin = read.rfind("std::sin(", 0) == 0;
+    if ((!cos && !sin) || read.back() != ')') return {-1, ""};
+    const std::string arg = read.substr(9, read.size() - 10);
+    const std::size_t star = arg.find(" * ");
+    const std::string factor = star == std::string::npos ? "" : arg.substr(0, star) + " * ";
+    const int i = entry_of(star == std::string::npos ? arg : arg.substr(star + 3));
+    if (i < 0) return {-1, ""};
+    return {i, cos ? "-" + factor + "std::sin(" + arg + ")" : factor + "std::cos(" + arg + ")"};
+}
+
+/// The p entries an input reads and, for each, the C text of d(input)/d(p entry): an input's read is "p[i]", a
+/// product "p[i] * p[j]" (m = rho S), whose derivative by one factor is the product of the others ("1" alone), or the
+/// cosine or sine of one entry (trigonometric_derivative).
 std::vector<std::pair<int, std::string>> read_derivatives(const std::string& read)
 {
+    if (const auto [i, d] = trigonometric_derivative(read); i >= 0) return {{i, d}};
     std::vector<std::string> factors;
     for (std::size_t at = 0; at <= read.size();) {
         const std::size_t star = read.find(" * ", at);
@@ -537,16 +575,15 @@ std::vector<std::pair<int, std::string>> read_derivatives(const std::string& rea
     }
     std::vector<std::pair<int, std::string>> out;
     for (std::size_t f = 0; f < factors.size(); ++f) {
-        const std::string& r = factors[f];
-        if (r.size() < 4 || r.compare(0, 2, "p[") != 0 || r.back() != ']')
-            throw EmitError("emit: cannot differentiate the parameter read " + read);
+        const int entry = entry_of(factors[f]);
+        if (entry < 0) throw EmitError("emit: cannot differentiate the parameter read " + read);
         std::string rest;
         for (std::size_t g = 0; g < factors.size(); ++g)
             if (g != f) {
                 if (!rest.empty()) rest += '*';
                 rest += factors[g];
             }
-        out.emplace_back(std::stoi(r.substr(2, r.size() - 3)), rest);
+        out.emplace_back(entry, rest);
     }
     return out;
 }
@@ -577,8 +614,8 @@ std::string print_coefficients_p(const std::string& prefix, const Signature& sig
                 }
             }
     std::ostringstream text;
-    text << "\n/* coefficients_p:(" << p.name << "[" << p.size << "])->(dcdp[" << p.size << "*" << nc
-         << "]) out[k*" << nc << " + i] = dc_i/dp_k, by the chain rule on the coefficients above; nonzero entries "
+    text << "\n/* coefficients_p:(" << p.name << "[" << p.size << "])->(dcdp[" << p.size << "*" << nc << "]) out[k*"
+         << nc << " + i] = dc_i/dp_k, by the chain rule on the coefficients above; nonzero entries "
          << "only */\n";
     text << "void " << prefix << "_coefficients_p(const double* " << p.name << ", double* out)\n{\n";
     bool reads_p = false;
@@ -589,7 +626,8 @@ std::string print_coefficients_p(const std::string& prefix, const Signature& sig
         }
     for (const auto& [at, parts] : terms) {
         for (const auto& part : parts) reads_p = reads_p || part.second.find(p.name + "[") != std::string::npos;
-        text << "    out[" << static_cast<std::size_t>(at.first) * nc + at.second << "] = " << signed_sum(parts) << ";\n";
+        text << "    out[" << static_cast<std::size_t>(at.first) * nc + at.second << "] = " << signed_sum(parts)
+             << ";\n";
     }
     if (!reads_p) text << "    (void)" << p.name << ";\n";
     if (terms.empty()) text << "    (void)out;\n";
@@ -608,7 +646,8 @@ std::string with_tail(std::string body, const KernelSpec& k, const PolyReader& r
             throw EmitError("emit: the tail coefficient " + name + " is not free of the state");
         const Coefficient& c = terms.begin()->second;
         std::string text;
-        if (const auto number = CoefficientPool::pure_number(c)) text = c_number(*number);
+        if (const auto number = CoefficientPool::pure_number(c))
+            text = c_number(*number);
         else {
             const auto [sign, ck] = pool.reference(c);
             text = sign < 0 ? "(-" + ck + ")" : ck;
@@ -658,22 +697,24 @@ EmittedCode emit_kernels(const std::string& prefix, const Signature& sig, std::v
         const MonomialPlan plan = plan_monomials(outputs, names_of(sig.state_inputs));
         if (plan.names.empty() && k.tail.empty()) code.constant_kernels.push_back(k.name);
         bool uses_c = false;
-        const std::string lines = k.rows > 0 ? print_matrix_product(outputs, k.rows, k.row_offset, k.pattern, plan, uses_c)
-                                             : print_outputs(outputs, k.slots, plan, pool, uses_c);
+        const std::string lines = k.rows > 0
+                                      ? print_matrix_product(outputs, k.rows, k.row_offset, k.pattern, plan, uses_c)
+                                      : print_outputs(outputs, k.slots, plan, pool, uses_c);
         bodies.push_back(with_tail(print_kernel(prefix, k, sig, plan, lines, uses_c), k, read, pool));
     }
     std::ostringstream text;
     std::size_t coefficient_terms = 0;
     for (const Coefficient& c : pool.entries()) coefficient_terms += c.size();
     const bool coefficient_tables =
-        !pool.texts().empty() && (options.form == Form::tables ||
-                                  (options.form == Form::automatic &&
-                                   coefficient_terms > static_cast<std::size_t>(options.table_threshold)));
+        !pool.texts().empty() &&
+        (options.form == Form::tables ||
+         (options.form == Form::automatic && coefficient_terms > static_cast<std::size_t>(options.table_threshold)));
     text << print_coefficients(prefix, sig, pool, coefficient_tables);
     // Every kernel printed from polynomials reads each term's coefficient as one c[k] (or a pure number): it is
     // affine in c, so its derivative by p_k is itself at c = dc/dp_k less itself at c = 0. Hand-written tails
     // (order full's quadrature points) multiply coefficients: they have no such derivative.
-    code.affine = std::none_of(kernels.begin(), kernels.end(), [](const KernelSpec& k) { return !k.tail.empty(); });
+    code.affine = options.parameter_derivatives &&
+                  std::none_of(kernels.begin(), kernels.end(), [](const KernelSpec& k) { return !k.tail.empty(); });
     if (code.affine) text << print_coefficients_p(prefix, sig, pool);
     for (std::size_t i = 0; i < kernels.size(); ++i) {
         text << "\n/* " << kernels[i].name << ":(c[" << pool.texts().size() << "]";

@@ -5,12 +5,12 @@
 // that is not a sum of numeric * symbol^integer products is an error, never printed approximately.
 #pragma once
 
+#include <ginac/ginac.h>
+
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <ginac/ginac.h>
 
 #include "poly.hpp"
 
@@ -68,8 +68,8 @@ struct Array {
 
 /// The caller's names for everything the kernels read: the emitter knows no physics.
 struct Signature {
-    Array parameters;             // read once, by the coefficients kernel
-    std::vector<Array> state;     // read by every other kernel, in argument order after c (e.g. u, q, qd)
+    Array parameters;                     // read once, by the coefficients kernel
+    std::vector<Array> state;             // read by every other kernel, in argument order after c (e.g. u, q, qd)
     std::vector<Input> parameter_inputs;  // symbols read from the parameter array ("p[1] * p[2]" may combine)
     std::vector<Input> state_inputs;      // symbols read from the state arrays
 
@@ -88,6 +88,9 @@ struct Signature {
 struct EmitOptions {
     enum class Form { automatic, unrolled, tables } form = Form::automatic;
     int table_threshold = 1000;
+    /// Whether to print coefficients_p (dc/dp). The caller turns it off where dc/dp would be far larger than the
+    /// rest (a pre-twist's series): the runtime then differences the model, as for order full.
+    bool parameter_derivatives = true;
 };
 
 /// Emits `<prefix>_coefficients(p, c)` and `<prefix>_<kernel>(c, state..., out)` for each kernel.

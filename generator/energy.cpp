@@ -2,12 +2,12 @@
 // term-by-term integration over the beam.
 #include "energy.hpp"
 
-#include "generator_terms.hpp"
-#include "terms.hpp"
-
 #include <map>
 #include <stdexcept>
 #include <string>
+
+#include "generator_terms.hpp"
+#include "terms.hpp"
 
 namespace hubbeam::gen {
 
@@ -105,12 +105,32 @@ public:
                 add(f.ux2_dot, -s.B[j] * s.B_dot[k] * inv_L, {K::coupling, j, k, 0});
             }
         }
+        // The flapwise field (docs/model.md section 12): like the in-plane one, and its slope shortens the beam too.
+        const int nz = layout.count(FieldKind::flap);
+        for (int j = 0; j < nz; ++j) {
+            add(f.uz, s.Z[j], {K::flap, j, 0, 0});
+            add(f.uz_dot, s.Z_dot[j], {K::flap, j, 0, 0});
+            add(f.uz_x, s.Z[j] * inv_L, {K::flap, j, 0, 1});
+            add(f.uz_xx, s.Z[j] * pow(inv_L, 2), {K::flap, j, 0, 2});
+            add(f.uz_xx_dot, s.Z_dot[j] * pow(inv_L, 2), {K::flap, j, 0, 2});
+            for (int k = 0; k < nz; ++k) {
+                add(f.ux2, -s.Z[j] * s.Z[k] * inv_L / 2, {K::flap_coupling, j, k, 0});
+                add(f.ux2_dot, -s.Z[j] * s.Z_dot[k] * inv_L, {K::flap_coupling, j, k, 0});
+            }
+        }
+        for (int i = 0; i < layout.count(FieldKind::twist); ++i) {
+            add(f.phi, s.P[i], {K::twist, i, 0, 0});
+            add(f.phi_dot, s.P_dot[i], {K::twist, i, 0, 0});
+            add(f.phi_x, s.P[i] * inv_L, {K::twist, i, 0, 1});
+            add(f.phi_x_dot, s.P_dot[i] * inv_L, {K::twist, i, 0, 1});
+        }
         // H is symmetric: B_j B_k H_jk and B_k B_j H_kj are one term (halves u_x2's expansion, quarters its square).
         for (auto& [field, expansion] : fields_) {
             std::map<std::pair<Exponents, std::vector<Factor>>, Coefficient> merged;
             for (Term& t : expansion) {
                 for (Factor& factor : t.factors)
-                    if (factor.kind == K::coupling && factor.i > factor.j) std::swap(factor.i, factor.j);
+                    if ((factor.kind == K::coupling || factor.kind == K::flap_coupling) && factor.i > factor.j)
+                        std::swap(factor.i, factor.j);
                 Coefficient& c = merged[{t.monomial, t.factors}];
                 c = sum(c, t.coefficient);
             }
@@ -125,10 +145,10 @@ public:
             add(f.EI_x, s.EI_k[k], hat);
             add(f.ES_x, s.ES_k[k], hat);
         }
-        fields_[f.ux1];  // present (possibly empty) so that nx = 0 makes its terms vanish
-        fields_[f.ux1_dot];
-        fields_[f.ux1_x];
-        fields_[f.ux1_x_dot];
+        // Present (possibly empty) so that nx = 0 (or a planar variant's missing fields) makes their terms vanish.
+        for (const symbol& absent : {f.ux1, f.ux1_dot, f.ux1_x, f.ux1_x_dot, f.uz, f.uz_dot, f.uz_x, f.uz_xx,
+                                     f.uz_xx_dot, f.phi, f.phi_dot, f.phi_x, f.phi_x_dot})
+            fields_[absent];
     }
 
     /// int_0^L density dx.
@@ -173,7 +193,8 @@ private:
     {
         const std::size_t next = chosen.size();
         if (next == occurrences.size()) {
-            const numeric shape = xi_power < 0 ? integrals_.at_tip(partial.factors) : integrals_.integrate(partial.factors, xi_power);
+            const numeric shape =
+                xi_power < 0 ? integrals_.at_tip(partial.factors) : integrals_.integrate(partial.factors, xi_power);
             const numeric value = shape * orderings(occurrences, chosen);
             if (!value.is_zero()) sum.add(partial.monomial, partial.coefficient, value);
             return;
@@ -233,6 +254,7 @@ Symbols::Symbols(const VariantKey& key)
         EI_k.emplace_back("EI_" + std::to_string(k));
         ES_k.emplace_back("ES_" + std::to_string(k));
     }
+    if (key.out_of_plane()) o = std::make_shared<const OutOfPlane>();
     for (const CoordinateField& f : layout.fields) {
         if (f.kind == FieldKind::hub_angle) {
             q.push_back(theta);
@@ -246,36 +268,115 @@ Symbols::Symbols(const VariantKey& key)
 
 std::vector<symbol>& Symbols::coordinates(FieldKind kind)
 {
-    if (kind == FieldKind::axial) return A;
-    if (kind == FieldKind::inplane) return B;
-    throw std::logic_error("energy: the hub angle is one symbol, theta");
+    switch (kind) {
+        case FieldKind::axial:
+            return A;
+        case FieldKind::inplane:
+            return B;
+        case FieldKind::flap:
+            return Z;
+        case FieldKind::twist:
+            return P;
+        default:
+            throw std::logic_error("energy: the hub angle is one symbol, theta");
+    }
 }
 
 std::vector<symbol>& Symbols::rates(FieldKind kind)
 {
-    if (kind == FieldKind::axial) return A_dot;
-    if (kind == FieldKind::inplane) return B_dot;
-    throw std::logic_error("energy: the hub angle's rate is one symbol, theta_dot");
+    switch (kind) {
+        case FieldKind::axial:
+            return A_dot;
+        case FieldKind::inplane:
+            return B_dot;
+        case FieldKind::flap:
+            return Z_dot;
+        case FieldKind::twist:
+            return P_dot;
+        default:
+            throw std::logic_error("energy: the hub angle's rate is one symbol, theta_dot");
+    }
 }
 
-ex velocity_squared(Order order, const FieldSymbols& f, const ex& w)
+Position position(Order order, const FieldSymbols& f, const Cone& cone)
 {
-    // p = (X + u_x, u_y) in the turning frame; |r_dot|^2 = w^2 |p|^2 + 2 w (p_x p_y' - p_y p_x') + |p'|^2.
     const bool shortening = order != Order::zero;
     const ex ux = f.ux1 + (shortening ? ex(f.ux2) : ex(0));
     const ex ux_dot = f.ux1_dot + (shortening ? ex(f.ux2_dot) : ex(0));
-    const ex px = f.X + ux, py = f.uy;
-    ex v2 = pow(w, 2) * (pow(px, 2) + pow(py, 2)) + 2 * w * (px * f.uy_dot - py * ux_dot) + pow(ux_dot, 2) +
-            pow(f.uy_dot, 2);
+    // X = a + x: the root at a i, the axis along e1 = cos i + sin k, the flapwise direction e3 = -sin i + cos k.
+    const ex along = f.X - cone.a + ux;
+    return {cone.a + along * cone.cos - f.uz * cone.sin, f.uy,     along * cone.sin + f.uz * cone.cos,
+            ux_dot * cone.cos - f.uz_dot * cone.sin,     f.uy_dot, ux_dot * cone.sin + f.uz_dot * cone.cos};
+}
+
+ex velocity_squared(Order order, const FieldSymbols& f, const ex& w, const Cone& cone)
+{
+    // In the frame turning with w about k: |r_dot|^2 = (p_i' - w p_j)^2 + (p_j' + w p_i)^2 + p_k'^2.
+    const Position p = position(order, f, cone);
+    ex v2 = pow(p.i_dot - w * p.j, 2) + pow(p.j_dot + w * p.i, 2) + pow(p.k_dot, 2);
     if (order == Order::full) return v2.expand();
-    // Keep terms up to 2nd order in the deformation: u_x1, u_y and rates 1st order, u_x2 and its rate 2nd.
+    // Keep terms up to 2nd order in the deformation: u_x1, u_y, u_z and rates 1st order, u_x2 and its rate 2nd.
     const symbol eps("eps");
-    v2 = v2.subs(lst{f.ux1 == eps * f.ux1, f.uy == eps * f.uy, f.ux1_dot == eps * f.ux1_dot,
-                     f.uy_dot == eps * f.uy_dot, f.ux2 == pow(eps, 2) * f.ux2, f.ux2_dot == pow(eps, 2) * f.ux2_dot})
+    v2 = v2.subs(lst{f.ux1 == eps * f.ux1, f.uy == eps * f.uy, f.ux1_dot == eps * f.ux1_dot, f.uy_dot == eps * f.uy_dot,
+                     f.uz == eps * f.uz, f.uz_dot == eps * f.uz_dot, f.ux2 == pow(eps, 2) * f.ux2,
+                     f.ux2_dot == pow(eps, 2) * f.ux2_dot})
              .expand();
     ex kept = 0;
     for (int k = 0; k <= 2; ++k) kept += v2.coeff(eps, k);
     return kept;
+}
+
+Cone cone_of(const VariantKey& key, const Symbols& s)
+{
+    if (!key.extras.cone) return {1, 0, 0};
+    return {s.o->cos_cone, s.o->sin_cone, s.a};
+}
+
+namespace {
+
+/// cos 2 beta(xi) and sin 2 beta(xi) of the chord angle beta = pitch + twist xi (docs/model.md section 12): the
+/// pre-twist's part as its Taylor series in twist xi, exact to round-off for |twist| <= max_twist (the scene's
+/// bound), so that the integrals over xi stay those of polynomials.
+std::pair<ex, ex> chord_angle(const VariantKey& key, const Symbols& s, const symbol& xi)
+{
+    const Extras& x = key.extras;
+    const ex cos_2pitch = x.pitch ? ex(s.o->cos_2pitch) : ex(1), sin_2pitch = x.pitch ? ex(s.o->sin_2pitch) : ex(0);
+    if (!x.twist) return {cos_2pitch, sin_2pitch};
+    ex c = 0, sn = 0, term = 1;  // term = (2 twist xi)^k / k!
+    for (int k = 0; k < twist_series_terms; ++k) {
+        if (k > 0) term = term * 2 * s.o->twist * xi / k;
+        const int sign = (k / 2) % 2 == 0 ? 1 : -1;
+        (k % 2 == 0 ? c : sn) += sign * term;
+    }
+    return {(cos_2pitch * c - sin_2pitch * sn).expand(), (sin_2pitch * c + cos_2pitch * sn).expand()};
+}
+
+}  // namespace
+
+ex bending_density(const VariantKey& key, const Symbols& s, const FieldSymbols& f, const ex& edge, const ex& y2,
+                   const ex& z2)
+{
+    if (!key.out_of_plane()) return edge * pow(y2, 2);
+    // EI_edge kappa_c^2 + EI_flap kappa_n^2, kappa_c = cos beta y'' + sin beta z'', kappa_n = -sin beta y'' + cos beta
+    // z''.
+    const ex flap = s.o->EI_flap;
+    const auto [c2, s2] = chord_angle(key, s, f.xi);
+    return pow(y2, 2) * (edge * (1 + c2) + flap * (1 - c2)) / 2 + pow(z2, 2) * (edge * (1 - c2) + flap * (1 + c2)) / 2 +
+           y2 * z2 * s2 * (edge - flap);
+}
+
+ex section_rotation(const VariantKey& key, const Symbols& s, const FieldSymbols& f)
+{
+    if (key.nt == 0) return 0;
+    // T_sec = 1/2 [j_p (phi_dot + w sin beta_c)^2 + w^2 cos^2 beta_c (j_c sin^2 psi + j_n cos^2 psi)], psi = beta +
+    // phi, to second order in phi (docs/model.md section 12).
+    const Symbols::OutOfPlane& o = *s.o;
+    const Cone cone = cone_of(key, s);
+    const auto [c2, s2] = chord_angle(key, s, f.xi);
+    const ex jp = o.j_n + o.j_c, w = s.theta_dot;
+    const ex about_k =
+        (o.j_c + o.j_n) / 2 + (o.j_n - o.j_c) * c2 / 2 + (o.j_c - o.j_n) * (s2 * f.phi + c2 * pow(f.phi, 2));
+    return (jp * pow(f.phi_dot + w * cone.sin, 2) + pow(w * cone.cos, 2) * about_k) / 2;
 }
 
 Energies derive_energies(const VariantKey& key, const Symbols& s, const PolyReader& read, bool without_point_terms)
@@ -284,7 +385,7 @@ Energies derive_energies(const VariantKey& key, const Symbols& s, const PolyRead
     const Extras& x = key.extras;
     std::vector<numeric> stations;
     for (long long n : x.stations) stations.push_back(numeric(n) / numeric(x.station_denominator));
-    ShapeIntegrals integrals(key.axial_basis(), key.transverse_basis(), stations);
+    ShapeIntegrals integrals(key.axial_basis(), key.transverse_basis(), stations, key.flap_basis(), key.twist_basis());
     const FieldSymbols f;
     DensityIntegrator integrate(s, f, key, integrals, read);
     // The distributions along the span: the root's values, or a section term's (a taper, a profile).
@@ -292,13 +393,22 @@ Energies derive_energies(const VariantKey& key, const Symbols& s, const PolyRead
     BeamSection beam = uniform_section(s);
     for (const TermInfo* t : carried)
         if (generator_part(*t).section) beam = generator_part(*t).section(s, f, x);
-    const ex v2 = velocity_squared(without_point_terms ? Order::first : key.order, f, s.theta_dot);
+    const ex v2 = velocity_squared(without_point_terms ? Order::first : key.order, f, s.theta_dot, cone_of(key, s));
     Energies e;
     e.T = read(s.J_oh * pow(s.theta_dot, 2) / 2);
     e.T += integrate(beam.mass * v2 / 2);
-    e.U = integrate((beam.axial * pow(f.ux1_x, 2) + beam.bending * pow(f.uy_xx, 2)) / 2);
+    e.U = integrate((beam.axial * pow(f.ux1_x, 2) + bending_density(key, s, f, beam.bending, f.uy_xx, f.uz_xx)) / 2);
+    if (key.nt > 0) {
+        e.T += integrate(section_rotation(key, s, f));
+        e.U += integrate(s.o->GJ * pow(f.phi_x, 2) / 2);
+    }
     // The terms' energies and dissipation (docs/model.md section 11), in registry order.
-    const TermContext context{key, s, f, beam, v2, [&](const ex& d) { return integrate(d); },
+    const TermContext context{key,
+                              s,
+                              f,
+                              beam,
+                              v2,
+                              [&](const ex& d) { return integrate(d); },
                               [&](const ex& d) { return integrate.at_tip(d); }};
     for (const TermInfo* t : carried)
         if (generator_part(*t).energies) generator_part(*t).energies(context, e);

@@ -2,9 +2,10 @@
 // rates and physical parameters, for any method (through ShapeIntegrals) and model order.
 #pragma once
 
-#include <vector>
-
 #include <ginac/ginac.h>
+
+#include <memory>
+#include <vector>
 
 #include "coordinates.hpp"
 #include "integrals.hpp"
@@ -28,8 +29,21 @@ struct Symbols {
     GiNaC::symbol theta{"theta"};
     // The beam fields' coordinates and rates (axial A, in-plane B), named by their CoordinateField's symbol.
     std::vector<GiNaC::symbol> A, B, A_dot, B_dot;
-    // The variant's coordinates and rates in the order of coordinate_layout(key) (theta under torque, A, B).
+    // The variant's coordinates and rates in the order of coordinate_layout(key) (theta under torque, A, B, Z, P).
     std::vector<GiNaC::symbol> q, qd;
+    // The flapwise (Z) and twist (P) coordinates and rates (docs/model.md section 12).
+    std::vector<GiNaC::symbol> Z, P, Z_dot, P_dot;
+    /// The out-of-plane model's parameters: the flapwise and torsional stiffness, the section's mass moments per
+    /// length about the chord's normal (j_n) and the chord (j_c), cos and sin of twice the pitch and of the precone,
+    /// the pre-twist (tip minus root), gravity's weight along -k.
+    struct OutOfPlane {
+        GiNaC::symbol EI_flap{"EI_flap"}, GJ{"GJ"}, j_n{"j_n"}, j_c{"j_c"};
+        GiNaC::symbol cos_2pitch{"cos_2pitch"}, sin_2pitch{"sin_2pitch"}, twist{"twist"};
+        GiNaC::symbol cos_cone{"cos_cone"}, sin_cone{"sin_cone"}, g_axis{"g_axis"};
+    };
+    /// Created last and only for a variant that leaves the plane (VariantKey::out_of_plane): GiNaC orders terms by
+    /// the symbols' serial numbers, so a planar variant's symbols and emitted code stay as they were.
+    std::shared_ptr<const OutOfPlane> o;
 
     explicit Symbols(const VariantKey& key);
 
@@ -55,13 +69,42 @@ struct FieldSymbols {
     GiNaC::symbol uy_x{"u_y_x"}, uy_x_dot{"u_y_x_dot"}, ux1_x_dot{"u_x1_x_dot"}, uy_xx_dot{"u_y_xx_dot"}, xi{"xi"};
     // A tabulated profile's distributions m(x), EI(x), ES(x): sum_k value_k N_k(xi) over the stations' hat functions.
     GiNaC::symbol m_x{"m_x"}, EI_x{"EI_x"}, ES_x{"ES_x"};
+    // The flapwise deflection u_z with its rate, slope and curvature (and their rates), the twist phi with its rate and
+    // derivative (docs/model.md section 12).
+    GiNaC::symbol uz{"u_z"}, uz_dot{"u_z_dot"}, uz_x{"u_z_x"}, uz_xx{"u_z_xx"}, uz_xx_dot{"u_z_xx_dot"};
+    GiNaC::symbol phi{"phi"}, phi_dot{"phi_dot"}, phi_x{"phi_x"}, phi_x_dot{"phi_x_dot"};
 };
-GiNaC::ex velocity_squared(Order order, const FieldSymbols& f, const GiNaC::ex& theta_dot);
+
+/// The beam's axis tilted by the precone beta_c (docs/model.md section 12): cos and sin of beta_c, and the hub
+/// radius a (the root stays at a i). {1, 0, 0}: no precone.
+struct Cone {
+    GiNaC::ex cos, sin, a;
+};
+/// A point's position p = a i + (x + u_x) e1 + u_y e2 + u_z e3 in the hub frame (i, j, k), and its rate in that frame.
+struct Position {
+    GiNaC::ex i, j, k, i_dot, j_dot, k_dot;
+};
+/// p and its rate in field symbols; order zero has no foreshortening u_x2.
+Position position(Order order, const FieldSymbols& f, const Cone& cone = {1, 0, 0});
+GiNaC::ex velocity_squared(Order order, const FieldSymbols& f, const GiNaC::ex& theta_dot,
+                           const Cone& cone = {1, 0, 0});
+
+/// The precone of a variant's symbols, {1, 0, 0} where it carries none.
+Cone cone_of(const VariantKey& key, const Symbols& s);
+
+/// The bending energy's density (twice it) for the curvatures y2 = u_y'' and z2 = u_z'' (or their rates, for damping):
+/// edge y2^2 in the plane; out of it EI_edge kappa_c^2 + EI_flap kappa_n^2 with the chord turned by pitch and twist
+/// (docs/model.md section 12).
+GiNaC::ex bending_density(const VariantKey& key, const Symbols& s, const FieldSymbols& f, const GiNaC::ex& edge,
+                          const GiNaC::ex& y2, const GiNaC::ex& z2);
+/// The section's rotary kinetic energy density T_sec (docs/model.md section 12), 0 without a twist field.
+GiNaC::ex section_rotation(const VariantKey& key, const Symbols& s, const FieldSymbols& f);
 
 /// T = 1/2 J_oh theta_dot^2 + 1/2 int m |r_dot|^2 dx and U = 1/2 int (ES u_x1'^2 + EI u_y''^2) dx, over the
 /// parameter and variable symbols of read; with the key's extras, the tip body's, gravity's, the taper's and the
 /// dissipation function's terms of docs/model.md section 11. without_point_terms: T without the terms of order
 /// full beyond order first (|r_dot|^2 of order first), which the points stage adds at quadrature points.
-Energies derive_energies(const VariantKey& key, const Symbols& s, const PolyReader& read, bool without_point_terms = false);
+Energies derive_energies(const VariantKey& key, const Symbols& s, const PolyReader& read,
+                         bool without_point_terms = false);
 
 }  // namespace hubbeam::gen

@@ -38,23 +38,37 @@ numeric integrate_polynomial(const ex& p, const symbol& xi, const numeric& lo, c
 
 }  // namespace
 
-ShapeIntegrals::ShapeIntegrals(FieldBasis axial, FieldBasis transverse, std::vector<numeric> stations)
-    : axial_(std::move(axial)), transverse_(std::move(transverse)),
-      exact_(axial_.polynomial() && transverse_.polynomial()), stations_(std::move(stations))
+/// Whether a factor is a coupling function H (of the in-plane or the flapwise field).
+static bool is_coupling(const Factor& f)
+{
+    return f.kind == Factor::Kind::coupling || f.kind == Factor::Kind::flap_coupling;
+}
+
+ShapeIntegrals::ShapeIntegrals(FieldBasis axial, FieldBasis transverse, std::vector<numeric> stations, FieldBasis flap,
+                               FieldBasis twist)
+    : axial_(std::move(axial)),
+      transverse_(std::move(transverse)),
+      flap_(std::move(flap)),
+      twist_(std::move(twist)),
+      exact_(axial_.polynomial() && transverse_.polynomial() && (flap_.size() == 0 || flap_.polynomial()) &&
+             (twist_.size() == 0 || twist_.polynomial())),
+      stations_(std::move(stations))
 {
     for (const numeric& x : stations_) station_values_.push_back(x.to_double());
     if (exact_) {
-        for (const FieldBasis* b : {&axial_, &transverse_}) {
+        for (const FieldBasis* b : {&axial_, &transverse_, &flap_, &twist_}) {
             if (b->size() == 0) continue;
             for (int k = 0; k <= b->intervals(); ++k) breaks_.push_back(numeric(k, b->intervals()));
         }
         breaks_.insert(breaks_.end(), stations_.begin(), stations_.end());
         std::sort(breaks_.begin(), breaks_.end(), [](const numeric& a, const numeric& b) { return a < b; });
-        breaks_.erase(std::unique(breaks_.begin(), breaks_.end(), [](const numeric& a, const numeric& b) { return a == b; }),
-                      breaks_.end());
+        breaks_.erase(
+            std::unique(breaks_.begin(), breaks_.end(), [](const numeric& a, const numeric& b) { return a == b; }),
+            breaks_.end());
         if (breaks_.empty()) breaks_ = {0, 1};
     } else {
-        const int panels = transcendental_panels(std::max(axial_.size(), transverse_.size()));
+        const int panels =
+            transcendental_panels(std::max({axial_.size(), transverse_.size(), flap_.size(), twist_.size()}));
         for (int k = 0; k <= panels; ++k) cuts_.push_back(static_cast<double>(k) / panels);
         if (!stations_.empty()) {
             // The stations become panel boundaries: each panel stays at most 1/panels wide, so the rule converges
@@ -62,7 +76,8 @@ ShapeIntegrals::ShapeIntegrals(FieldBasis axial, FieldBasis transverse, std::vec
             equal_panels_ = false;
             cuts_.insert(cuts_.end(), station_values_.begin(), station_values_.end());
             std::sort(cuts_.begin(), cuts_.end());
-            cuts_.erase(std::unique(cuts_.begin(), cuts_.end(), [](double u, double v) { return v - u < 1e-14; }), cuts_.end());
+            cuts_.erase(std::unique(cuts_.begin(), cuts_.end(), [](double u, double v) { return v - u < 1e-14; }),
+                        cuts_.end());
             cuts_.back() = 1.0;
         }
         const QuadratureRule rule = composite_gauss_legendre(cuts_, transcendental_points);
@@ -92,7 +107,17 @@ double ShapeIntegrals::hat_value(int i, double xi) const
 
 const FieldBasis& ShapeIntegrals::basis(const Factor& f) const
 {
-    return f.kind == Factor::Kind::axial ? axial_ : transverse_;
+    switch (f.kind) {
+        case Factor::Kind::axial:
+            return axial_;
+        case Factor::Kind::flap:
+        case Factor::Kind::flap_coupling:
+            return flap_;
+        case Factor::Kind::twist:
+            return twist_;
+        default:
+            return transverse_;
+    }
 }
 
 numeric ShapeIntegrals::integrate(std::vector<Factor> factors, int power)
@@ -111,8 +136,9 @@ numeric ShapeIntegrals::at_tip(const std::vector<Factor>& factors)
     for (const Factor& f : factors) {
         if (f.kind == Factor::Kind::hat) {
             product *= f.i + 1 == static_cast<int>(stations_.size()) ? 1 : 0;
-        } else if (f.kind == Factor::Kind::coupling) {  // H_ij(1) = int_0^1 phi_i' phi_j' dxi
-            product *= integrate({{Factor::Kind::transverse, f.i, 0, 1}, {Factor::Kind::transverse, f.j, 0, 1}}, 0);
+        } else if (is_coupling(f)) {  // H_ij(1) = int_0^1 phi_i' phi_j' dxi
+            const Factor::Kind field = f.kind == Factor::Kind::coupling ? Factor::Kind::transverse : Factor::Kind::flap;
+            product *= integrate({{field, f.i, 0, 1}, {field, f.j, 0, 1}}, 0);
         } else if (exact_) {
             const int n = basis(f).intervals();
             product *= ex_to<numeric>(piece(f, numeric(n - 1, n), 1).subs(xi_ == 1));
@@ -131,7 +157,7 @@ ex ShapeIntegrals::piece(const Factor& f, const numeric& lo, const numeric& hi)
     auto key = std::make_pair(f, k);
     if (auto it = pieces_.find(key); it != pieces_.end()) return it->second;
     ex p;
-    if (f.kind != Factor::Kind::coupling) {
+    if (!is_coupling(f)) {
         p = b.piece<ex>(f.i, k, xi_).diff(xi_, f.deriv).expand();
     } else {
         // H_ij on interval k: its value at the interval start plus the running integral inside it.
@@ -221,7 +247,7 @@ const std::vector<double>& ShapeIntegrals::values(const Factor& f)
     std::vector<double> v(nodes_.size());
     if (f.kind == Factor::Kind::hat) {
         for (std::size_t q = 0; q < nodes_.size(); ++q) v[q] = hat_value(f.i, nodes_[q]);
-    } else if (f.kind != Factor::Kind::coupling) {
+    } else if (!is_coupling(f)) {
         const FieldBasis& b = basis(f);
         for (std::size_t q = 0; q < nodes_.size(); ++q) {
             const Jet<double> j = b.at(f.i, nodes_[q]);
@@ -232,7 +258,8 @@ const std::vector<double>& ShapeIntegrals::values(const Factor& f)
         const QuadratureRule rule = gauss_legendre(transcendental_points);
         const int per_panel = transcendental_points;
         const int panels = static_cast<int>(nodes_.size()) / per_panel;
-        auto slope_product = [&](double x) { return transverse_.at(f.i, x).d1 * transverse_.at(f.j, x).d1; };
+        const FieldBasis& b = basis(f);
+        auto slope_product = [&](double x) { return b.at(f.i, x).d1 * b.at(f.j, x).d1; };
         double whole = 0.0;
         for (int p = 0; p < panels; ++p) {
             const double a = equal_panels_ ? static_cast<double>(p) / panels : cuts_[static_cast<std::size_t>(p)];
@@ -240,12 +267,14 @@ const std::vector<double>& ShapeIntegrals::values(const Factor& f)
                 const std::size_t q = static_cast<std::size_t>(p * per_panel + g);
                 const double width = nodes_[q] - a;
                 double part = 0.0;
-                for (int r = 0; r < per_panel; ++r) part += rule.weights[r] * width * slope_product(a + rule.nodes[r] * width);
+                for (int r = 0; r < per_panel; ++r)
+                    part += rule.weights[r] * width * slope_product(a + rule.nodes[r] * width);
                 v[q] = whole + part;
             }
             double full = 0.0;
             if (equal_panels_) {
-                for (int r = 0; r < per_panel; ++r) full += rule.weights[r] / panels * slope_product(a + rule.nodes[r] / panels);
+                for (int r = 0; r < per_panel; ++r)
+                    full += rule.weights[r] / panels * slope_product(a + rule.nodes[r] / panels);
             } else {
                 const double h = cuts_[static_cast<std::size_t>(p) + 1] - a;
                 for (int r = 0; r < per_panel; ++r) full += rule.weights[r] * h * slope_product(a + rule.nodes[r] * h);

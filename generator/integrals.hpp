@@ -3,21 +3,23 @@
 // Gauss-Legendre quadrature for AMM.
 #pragma once
 
+#include <ginac/ginac.h>
+
 #include <map>
 #include <utility>
 #include <vector>
-
-#include <ginac/ginac.h>
 
 #include "basis/basis.hpp"
 
 namespace hubbeam::gen {
 
 /// One factor of an integrand: d^deriv phi_i / dxi^deriv of a field, the coupling function
-/// H_ij(xi) = int_0^xi phi_yi' phi_yj' dxi' (xi units; docs/model.md section 2), or a tabulated profile's hat
-/// function N_i(xi) of station i (1 there, 0 at the other stations, linear between them; docs/model.md section 11.2).
+/// H_ij(xi) = int_0^xi phi_yi' phi_yj' dxi' (xi units; docs/model.md section 2) of the in-plane or the flapwise
+/// field, or a tabulated profile's hat function N_i(xi) of station i (1 there, 0 at the other stations, linear
+/// between them; docs/model.md section 11.2). The flapwise field has the transverse basis with nz functions, the
+/// twist field the axial basis with nt (docs/model.md section 12).
 struct Factor {
-    enum class Kind { axial, transverse, coupling, hat } kind;
+    enum class Kind { axial, transverse, coupling, hat, flap, flap_coupling, twist } kind;
     int i = 0, j = 0;
     int deriv = 0;
     auto operator<=>(const Factor&) const = default;
@@ -33,7 +35,9 @@ class ShapeIntegrals {
 public:
     /// stations: a profile's stations x/L (exact rationals from 0 to 1), or empty. They split the exact integrals
     /// and are panel boundaries of the quadrature, where the hat functions' kinks would spoil its convergence.
-    ShapeIntegrals(FieldBasis axial, FieldBasis transverse, std::vector<GiNaC::numeric> stations = {});
+    ShapeIntegrals(FieldBasis axial, FieldBasis transverse, std::vector<GiNaC::numeric> stations = {},
+                   FieldBasis flap = {Method::fem, Field::transverse, 0},
+                   FieldBasis twist = {Method::fem, Field::axial, 0});
 
     /// int_0^1 xi^power * prod(factors) dxi: exact when both bases are polynomial.
     GiNaC::numeric integrate(std::vector<Factor> factors, int power);
@@ -52,16 +56,16 @@ private:
     GiNaC::ex hat_piece(const Factor& f, const GiNaC::numeric& lo, const GiNaC::numeric& hi) const;
     double hat_value(int k, double xi) const;
 
-    FieldBasis axial_, transverse_;
+    FieldBasis axial_, transverse_, flap_, twist_;
     bool exact_;
     GiNaC::symbol xi_{"xi"};
     std::vector<GiNaC::numeric> stations_;
     std::vector<double> station_values_;  // stations_ as doubles
     std::vector<GiNaC::numeric> breaks_;  // common refinement of both fields' intervals and the stations
     std::map<std::pair<Factor, std::size_t>, std::vector<GiNaC::numeric>> hat_coefficients_;  // (hat, break interval)
-    std::vector<double> cuts_;             // panel boundaries of the composite rule (quadrature path)
-    bool equal_panels_ = true;             // no stations: cuts_[k] = k / panels
-    std::map<std::pair<Factor, int>, GiNaC::ex> pieces_;            // (factor, field interval) -> polynomial
+    std::vector<double> cuts_;                            // panel boundaries of the composite rule (quadrature path)
+    bool equal_panels_ = true;                            // no stations: cuts_[k] = k / panels
+    std::map<std::pair<Factor, int>, GiNaC::ex> pieces_;  // (factor, field interval) -> polynomial
     std::map<std::pair<Factor, int>, std::vector<GiNaC::numeric>> coefficients_;  // the same, as coefficients
     std::map<std::pair<std::vector<Factor>, int>, GiNaC::numeric> cache_;
     std::vector<double> nodes_, weights_;  // composite rule (quadrature path)

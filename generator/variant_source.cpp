@@ -5,11 +5,12 @@
 #include <array>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
 #include "emit.hpp"
+#include "energy.hpp"
 #include "generated_abi.h"
 #include "interface.hpp"
-#include "energy.hpp"
 #include "lagrange.hpp"
 #include "points.hpp"
 #include "structure.hpp"
@@ -36,10 +37,11 @@ std::string tuple(const Names& names)
 
 /// The parameters p a variant's coefficients kernel takes: the paper's seven, or all of them with extra terms
 /// (so that the paper's variants read, and say, what they always did).
-std::vector<std::string> read_parameter_names(const Extras& x)
+std::vector<std::string> read_parameter_names(const VariantKey& key)
 {
+    const Extras& x = key.extras;
     std::vector<std::string> names(param_names.begin(),
-                                   param_names.begin() + static_cast<std::ptrdiff_t>(x.any() ? param_count : paper_param_count));
+                                   param_names.begin() + static_cast<std::ptrdiff_t>(key.params_read()));
     for (std::size_t k = 0; k < x.stations.size(); ++k)
         for (const char* v : profile_value_names) names.push_back(std::string(v) + "_" + std::to_string(k));
     return names;
@@ -68,9 +70,18 @@ std::vector<std::string> extras_words(const Extras& x)
 }
 
 /// How generated code reads one entry of p or u.
-std::string read(Param p) { return "p[" + std::to_string(index(p)) + "]"; }
-std::string read(DriveValue u) { return "u[" + std::to_string(index(u)) + "]"; }
-std::string read(AngleValue u) { return "u[" + std::to_string(index(u)) + "]"; }
+std::string read(Param p)
+{
+    return "p[" + std::to_string(index(p)) + "]";
+}
+std::string read(DriveValue u)
+{
+    return "u[" + std::to_string(index(u)) + "]";
+}
+std::string read(AngleValue u)
+{
+    return "u[" + std::to_string(index(u)) + "]";
+}
 
 std::string range(const std::string& stem, int n, const std::string& suffix = "")
 {
@@ -84,7 +95,8 @@ std::string banner(const VariantKey& key, bool mass_varies)
     const bool torque = key.drive == Drive::torque;
     std::string coords;
     for (const CoordinateField& f : coordinate_layout(key).fields)
-        if (const std::string part = f.kind == FieldKind::hub_angle ? f.symbol : range(f.symbol, f.count); !part.empty())
+        if (const std::string part = f.kind == FieldKind::hub_angle ? f.symbol : range(f.symbol, f.count);
+            !part.empty())
             coords += (coords.empty() ? "" : ", ") + part;
     std::ostringstream b;
     b << "// " << key.name() << ": rotating hub-beam equations of motion M(q) qdd = Q(t, q, qd).\n"
@@ -96,14 +108,20 @@ std::string banner(const VariantKey& key, bool mass_varies)
     if (key.method == Method::bsim) b << " spline_basis=" << to_string(key.spline);
     for (const std::string& suffix : extras_words(key.extras)) b << " " << suffix;
     const bool gravity = key.extras.gravity;
-    b << "\n// q = (" << coords << "), qd = d/dt q; u = " << tuple(input_names(gravity)) << ", of which this variant reads "
+    b << "\n// q = (" << coords << "), qd = d/dt q; u = " << tuple(input_names(gravity))
+      << ", of which this variant reads "
       << (torque ? drive_value_names[index(DriveValue::tau)]
-                 : std::string(drive_value_names[index(DriveValue::theta_dot)]) + ", " + drive_value_names[index(DriveValue::theta_ddot)])
+                 : std::string(drive_value_names[index(DriveValue::theta_dot)]) + ", " +
+                       drive_value_names[index(DriveValue::theta_ddot)])
       << (gravity ? std::string(", sin_theta, cos_theta") + (torque ? " (of q[0])" : "") : std::string()) << ";\n"
-      << "// p = " << tuple(read_parameter_names(key.extras)) << " in SI units. Slope coordinates (FEM, BSIM) are d/dxi = L d/dx.\n"
-      << "// Derived symbolically from T and U (docs/model.md sections 2-3) by Lagrange's equations of the second kind.\n"
-      << "// For implicit integrators, derivatives of the same M and Q: forces_q = dQ/dq, forces_qd = dQ/dqd, forces_u =\n"
-      << "// dQ/du" << (mass_varies ? ", mass_q_product = (dM/dq) v.\n" : "; M is constant, so there is no mass_q_product.\n");
+      << "// p = " << tuple(read_parameter_names(key))
+      << " in SI units. Slope coordinates (FEM, BSIM) are d/dxi = L d/dx.\n"
+      << "// Derived symbolically from T and U (docs/model.md sections 2-3) by Lagrange's equations of the second "
+         "kind.\n"
+      << "// For implicit integrators, derivatives of the same M and Q: forces_q = dQ/dq, forces_qd = dQ/dqd, forces_u "
+         "=\n"
+      << "// dQ/du"
+      << (mass_varies ? ", mass_q_product = (dM/dq) v.\n" : "; M is constant, so there is no mass_q_product.\n");
     return b.str();
 }
 
@@ -128,23 +146,30 @@ KernelSpec sparse_kernel(std::string name, std::string out, std::string doc, std
 /// The tip displacements (docs/model.md section 5.4) u_y(L) = Phi_y(1) B, u_x1(L) = Phi_x(1) A and
 /// u_x(L) = u_x1(L) - 1/2 B^T H(L) B with H(L) = H_xi(1) / L: the shape values and integrals as numbers, so
 /// that the runtime needs no shape functions or quadrature for its rows. Order zero is the linear model
-/// (section 3), which has no foreshortening u_x2: its u_x is u_x1.
+/// (section 3), which has no foreshortening u_x2: its u_x is u_x1. A variant that leaves the plane adds
+/// u_z(L) = Phi_z(1) Z and phi(L) = Phi_t(1) P, and its u_x shortens with both slopes (section 12).
 std::vector<ex> tip_displacements(const VariantKey& key, const Symbols& s)
 {
-    const FieldBasis axial = key.axial_basis(), transverse = key.transverse_basis();
-    ShapeIntegrals integrals(axial, transverse);
-    const CoordinateLayout layout = coordinate_layout(key);
-    const int nx = layout.count(FieldKind::axial), ny = layout.count(FieldKind::inplane);
-    ex uy = 0, ux1 = 0, ux2 = 0;
-    for (int j = 0; j < ny; ++j) uy += numeric(transverse.at(j, 1.0).v) * s.B[static_cast<std::size_t>(j)];
-    for (int i = 0; i < nx; ++i) ux1 += numeric(axial.at(i, 1.0).v) * s.A[static_cast<std::size_t>(i)];
-    if (key.order == Order::zero) return {uy, ux1, ux1};
+    const FieldBasis axial = key.axial_basis(), transverse = key.transverse_basis(), flap = key.flap_basis(),
+                     twist = key.twist_basis();
+    ShapeIntegrals integrals(axial, transverse, {}, flap, twist);
+    const auto at_tip = [](const FieldBasis& basis, const std::vector<symbol>& coordinates) {
+        ex sum = 0;
+        for (int j = 0; j < basis.size(); ++j)
+            sum += numeric(basis.at(j, 1.0).v) * coordinates[static_cast<std::size_t>(j)];
+        return sum;
+    };
+    const ex uy = at_tip(transverse, s.B), ux1 = at_tip(axial, s.A);
+    ex ux2 = 0;
     using K = Factor::Kind;
-    for (int j = 0; j < ny; ++j)
-        for (int k = 0; k < ny; ++k)
-            ux2 -= integrals.integrate({{K::transverse, j, 0, 1}, {K::transverse, k, 0, 1}}, 0) *
-                   s.B[static_cast<std::size_t>(j)] * s.B[static_cast<std::size_t>(k)] / (2 * s.L);
-    return {uy, ux1, (ux1 + ux2).expand()};
+    for (const auto& [kind, basis, c] : {std::tuple{K::transverse, &transverse, &s.B}, {K::flap, &flap, &s.Z}})
+        for (int j = 0; j < basis->size(); ++j)
+            for (int k = 0; k < basis->size(); ++k)
+                ux2 -= integrals.integrate({{kind, j, 0, 1}, {kind, k, 0, 1}}, 0) * (*c)[static_cast<std::size_t>(j)] *
+                       (*c)[static_cast<std::size_t>(k)] / (2 * s.L);
+    const ex ux = key.order == Order::zero ? ux1 : (ux1 + ux2).expand();
+    if (!key.out_of_plane()) return {uy, ux1, ux};
+    return {uy, ux1, ux, at_tip(flap, s.Z), at_tip(twist, s.P)};
 }
 
 /// Variable indices of the Polys: the order of Signature::state_inputs.
@@ -167,12 +192,15 @@ JacobianPieces jacobian_pieces(const PolyEquations& eq, const Variables& v, cons
             j.forces_q[i * n + k] = c.d_dq(eq.Q[i], k);
             j.forces_qd[i * n + k] = eq.Q[i].diff(v.qd[k]);
             // v is read from the qd slot, so the rates' variables stand for v here.
-            for (std::size_t l = 0; l < n; ++l) j.mass_q_product[i * n + k] += c.d_dq(eq.M[i * n + l], k).times(v.qd[l]);
+            for (std::size_t l = 0; l < n; ++l)
+                j.mass_q_product[i * n + k] += c.d_dq(eq.M[i * n + l], k).times(v.qd[l]);
         }
     // dQ/du only for the drive values the variant reads: under torque theta_dot is the rate qd[0], not an input.
     std::vector<std::pair<DriveValue, int>> inputs;
-    if (torque) inputs.emplace_back(DriveValue::tau, v.tau);
-    else inputs.insert(inputs.end(), {{DriveValue::theta_dot, v.theta_dot}, {DriveValue::theta_ddot, v.theta_ddot}});
+    if (torque)
+        inputs.emplace_back(DriveValue::tau, v.tau);
+    else
+        inputs.insert(inputs.end(), {{DriveValue::theta_dot, v.theta_dot}, {DriveValue::theta_ddot, v.theta_ddot}});
     for (std::size_t i = 0; i < n; ++i)
         for (const auto& [u, var] : inputs) j.forces_u[i * drive_value_count + index(u)] = eq.Q[i].diff(var);
     // The runtime's dfdt = M^-1 dQ/du du/dt assumes M does not depend on the drive or on the rates.
@@ -181,7 +209,8 @@ JacobianPieces jacobian_pieces(const PolyEquations& eq, const Variables& v, cons
         if (d >= 0) not_in_M.push_back(d);
     for (const Poly& Mij : eq.M)
         for (int var : not_in_M)
-            if (Mij.has(var)) throw std::logic_error("lagrange: M depends on the rates or the drive; the Jacobian assumes not");
+            if (Mij.has(var))
+                throw std::logic_error("lagrange: M depends on the rates or the drive; the Jacobian assumes not");
     return j;
 }
 
@@ -191,7 +220,7 @@ Signature signature(const Symbols& s, const VariantKey& key)
     const bool torque = key.drive == Drive::torque;
     const int nq = key.nq();
     const Extras& x = key.extras;
-    const std::vector<std::string> p_names = read_parameter_names(x);
+    const std::vector<std::string> p_names = read_parameter_names(key);
     Signature sig;
     sig.parameters = {"p", static_cast<int>(p_names.size()), "p = " + tuple(p_names)};
     sig.state = {{"u", static_cast<int>(input_names(x.gravity).size()), ""}, {"q", nq, ""}, {"qd", nq, ""}};
@@ -209,11 +238,27 @@ Signature signature(const Symbols& s, const VariantKey& key)
                                                                  {s.alpha, read(Param::alpha)},
                                                                  {s.beta, read(Param::beta)},
                                                                  {s.tip_ratio, read(Param::tip_ratio)}});
+    if (s.o) {
+        // The out-of-plane model's (docs/model.md section 12): j_n = rho I, j_c = rho I_flap for a homogeneous section.
+        const Symbols::OutOfPlane& o = *s.o;
+        sig.parameter_inputs.insert(sig.parameter_inputs.end(),
+                                    {{o.EI_flap, read(Param::E) + " * " + read(Param::I_flap)},
+                                     {o.GJ, read(Param::G) + " * " + read(Param::J_t)},
+                                     {o.j_n, read(Param::rho) + " * " + read(Param::I)},
+                                     {o.j_c, read(Param::rho) + " * " + read(Param::I_flap)},
+                                     {o.cos_2pitch, "std::cos(2 * " + read(Param::pitch) + ")"},
+                                     {o.sin_2pitch, "std::sin(2 * " + read(Param::pitch) + ")"},
+                                     {o.twist, read(Param::twist)},
+                                     {o.cos_cone, "std::cos(" + read(Param::precone) + ")"},
+                                     {o.sin_cone, "std::sin(" + read(Param::precone) + ")"},
+                                     {o.g_axis, read(Param::g_axis)}});
+    }
     for (std::size_t k = 0; k < x.stations.size(); ++k)
         sig.parameter_inputs.insert(sig.parameter_inputs.end(), {{s.m_k[k], read_profile(k, ProfileValue::m)},
                                                                  {s.EI_k[k], read_profile(k, ProfileValue::EI)},
                                                                  {s.ES_k[k], read_profile(k, ProfileValue::ES)}});
-    if (torque) sig.state_inputs.push_back({s.tau, read(DriveValue::tau)});
+    if (torque)
+        sig.state_inputs.push_back({s.tau, read(DriveValue::tau)});
     else
         sig.state_inputs.insert(sig.state_inputs.end(), {{s.theta_dot, read(DriveValue::theta_dot)},
                                                          {s.theta_ddot, read(DriveValue::theta_ddot)}});
@@ -221,7 +266,8 @@ Signature signature(const Symbols& s, const VariantKey& key)
         sig.state_inputs.insert(sig.state_inputs.end(), {{s.sin_theta, read(AngleValue::sin_theta)},
                                                          {s.cos_theta, read(AngleValue::cos_theta)}});
     for (std::size_t i = 0; i < s.q.size(); ++i) sig.state_inputs.push_back({s.q[i], "q[" + std::to_string(i) + "]"});
-    for (std::size_t i = 0; i < s.qd.size(); ++i) sig.state_inputs.push_back({s.qd[i], "qd[" + std::to_string(i) + "]"});
+    for (std::size_t i = 0; i < s.qd.size(); ++i)
+        sig.state_inputs.push_back({s.qd[i], "qd[" + std::to_string(i) + "]"});
     return sig;
 }
 
@@ -259,8 +305,10 @@ Derivation derive(const VariantKey& key, const Symbols& s, const Signature& sig,
     c.qd = v.qd;
     c.force.resize(s.q.size());
     c.spin = torque ? v.qd[0] : v.theta_dot;
-    if (torque) c.force[0] = reader(s.tau);
-    else c.driven.emplace_back(v.theta_dot, v.theta_ddot);
+    if (torque)
+        c.force[0] = reader(s.tau);
+    else
+        c.driven.emplace_back(v.theta_dot, v.theta_ddot);
     if (torque && key.extras.gravity) {
         c.angle = 0;
         c.angle_sin = v.sin_theta;
@@ -301,6 +349,12 @@ std::pair<KernelSpec, KernelSpec> mass_kernels(const std::vector<Poly>& M, const
 
 KernelSpec tip_kernel(const VariantKey& key, const Symbols& s)
 {
+    if (key.out_of_plane())
+        return {"tip", "tip[5]",
+                key.order == Order::zero
+                    ? "tip = (u_y(L), u_x1(L), u_x(L), u_z(L), phi(L)), u_x = u_x1 (order zero: no foreshortening)"
+                    : "tip = (u_y(L), u_x1(L), u_x(L), u_z(L), phi(L)), u_x = u_x1 - 1/2 (B^T H(L) B + Z^T H_z(L) Z)",
+                tip_displacements(key, s)};
     return {"tip", "tip[3]",
             key.order == Order::zero ? "tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 (order zero: no foreshortening)"
                                      : "tip = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B",
@@ -344,14 +398,16 @@ std::vector<bool> folded_pattern(const std::string& mass_pattern, const std::vec
     for (int i = 0; i < nq; ++i) {
         if (varying_row[static_cast<std::size_t>(i)]) continue;
         for (int j = 0; j < nq; ++j)
-            if (!varying_row[static_cast<std::size_t>(j)] && component[static_cast<std::size_t>(j)] == component[static_cast<std::size_t>(i)])
+            if (!varying_row[static_cast<std::size_t>(j)] &&
+                component[static_cast<std::size_t>(j)] == component[static_cast<std::size_t>(i)])
                 for (std::size_t k = 0; k < K; ++k)
                     if (F_nonzero(j, k)) pattern[static_cast<std::size_t>(i) * K + k] = true;
     }
     if (varying_row[0])
         for (std::size_t k = 0; k < K; ++k) {
             bool nonzero = F_nonzero(0, k);
-            for (int j = 1; j < nq && !nonzero; ++j) nonzero = at(0, j) == 'c' && pattern[static_cast<std::size_t>(j) * K + k];
+            for (int j = 1; j < nq && !nonzero; ++j)
+                nonzero = at(0, j) == 'c' && pattern[static_cast<std::size_t>(j) * K + k];
             pattern[k] = nonzero;
         }
     return pattern;
@@ -396,10 +452,12 @@ Kernels variant_kernels(const VariantKey& key, const Symbols& s, const Derivatio
         dense_kernel("energy", "E[4]", "E = (T2, T1, T0, U), T split by degree in qd", {eq.T2, eq.T1, eq.T0, eq.U}),
         dense_kernel("momentum", "h[1]", "h = dT/dtheta_dot, angular momentum about the hub axis", {eq.momentum}),
         tip_kernel(key, s),
-        sparse_kernel("forces_q", "dQdq[" + n2 + "]", "row-major; out[i*" + n1 + "+k] = dQ_i/dq_k", std::move(jac.forces_q)),
-        sparse_kernel("forces_qd", "dQdqd[" + n2 + "]", "row-major; out[i*" + n1 + "+k] = dQ_i/dqd_k", std::move(jac.forces_qd)),
-        sparse_kernel("forces_u", "dQdu[" + nu + "]", "row-major; out[i*3+j] = dQ_i/du_j, u = " + tuple(drive_value_names),
-                      std::move(jac.forces_u)),
+        sparse_kernel("forces_q", "dQdq[" + n2 + "]", "row-major; out[i*" + n1 + "+k] = dQ_i/dq_k",
+                      std::move(jac.forces_q)),
+        sparse_kernel("forces_qd", "dQdqd[" + n2 + "]", "row-major; out[i*" + n1 + "+k] = dQ_i/dqd_k",
+                      std::move(jac.forces_qd)),
+        sparse_kernel("forces_u", "dQdu[" + nu + "]",
+                      "row-major; out[i*3+j] = dQ_i/du_j, u = " + tuple(drive_value_names), std::move(jac.forces_u)),
     };
     if (points != nullptr) {
         const auto add = [&](KernelSpec& k, const std::string& tail) {
@@ -461,7 +519,9 @@ Kernels variant_kernels(const VariantKey& key, const Symbols& s, const Derivatio
 std::string table_row(const std::string& name, int nq, int ncoeff, bool affine, const Kernels& k)
 {
     const auto kernel = [&](const char* kernel) { return name + "_" + kernel; };
-    const auto optional = [&](bool present, const char* kernel) { return present ? name + "_" + kernel : std::string("nullptr"); };
+    const auto optional = [&](bool present, const char* kernel) {
+        return present ? name + "_" + kernel : std::string("nullptr");
+    };
     const std::vector<std::pair<const char*, std::string>> row = {
         {"abi_version", std::to_string(generated::abi_version)},
         {"name", "\"" + name + "\""},
@@ -501,9 +561,16 @@ std::string variant_source(const VariantKey& key, const EmitOptions& options)
     const PointCode points = at_points ? point_code(key, s) : PointCode{};
     Kernels kernels = variant_kernels(key, s, d, at_points ? &points : nullptr);
     const std::string name = key.name();
-    const EmittedCode code = emit_kernels(name, sig, std::move(kernels.list), options);
+    EmitOptions emit_options = options;
+    // A pre-twist's series multiplies the coefficients' terms by twist_series_terms and their derivatives by p about
+    // tenfold again (4 MB of source at Ny = Nz = 8): its sensitivities are differenced instead.
+    emit_options.parameter_derivatives = options.parameter_derivatives && !key.extras.twist;
+    const EmittedCode code = emit_kernels(name, sig, std::move(kernels.list), emit_options);
     std::ostringstream f;
-    f << banner(key, kernels.mass_varies) << "\n#include \"generated_abi.h\"\n\nnamespace hubbeam::generated {\n\nnamespace {\n"
+    // std::cos and std::sin of the pitch and the precone, once per parameter set in the coefficients kernel.
+    const std::string cmath = key.out_of_plane() ? "\n#include <cmath>\n" : "";
+    f << banner(key, kernels.mass_varies) << cmath
+      << "\n#include \"generated_abi.h\"\n\nnamespace hubbeam::generated {\n\nnamespace {\n"
       << (at_points ? "\n" + points.tables : std::string()) << code.text << "\n}  // namespace\n\n"
       << table_row(name, key.nq(), code.ncoeff, code.affine, kernels) << "\n}  // namespace hubbeam::generated\n";
     return f.str();
@@ -512,7 +579,8 @@ std::string variant_source(const VariantKey& key, const EmitOptions& options)
 std::string module_entry_source(const std::string& name)
 {
     return "\n// The entry point of this source built as a shared object (an on-demand variant).\n"
-           "extern \"C\" __attribute__((visibility(\"default\"))) const hubbeam::generated::Variant* hubbeam_variant();\n"
+           "extern \"C\" __attribute__((visibility(\"default\"))) const hubbeam::generated::Variant* "
+           "hubbeam_variant();\n"
            "extern \"C\" const hubbeam::generated::Variant* hubbeam_variant() { return &hubbeam::generated::" +
            name + "; }\n";
 }
@@ -522,7 +590,8 @@ std::string registry_source(const std::vector<std::string>& names)
     std::ostringstream f;
     f << "// The table of generated variants compiled into this build.\n"
       << "// Generated by hubbeam-gen " HUBBEAM_VERSION ". Do not edit: regenerate with\n"
-      << "//   cmake --build build --target regenerate\n\n#include \"generated_abi.h\"\n\nnamespace hubbeam::generated {\n\n";
+      << "//   cmake --build build --target regenerate\n\n#include \"generated_abi.h\"\n\nnamespace hubbeam::generated "
+         "{\n\n";
     for (const std::string& n : names) f << "extern const Variant " << n << ";\n";
     f << "\nconst Variant* const variants[] = {\n";
     for (const std::string& n : names) f << "    &" << n << ",\n";

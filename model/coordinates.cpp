@@ -10,7 +10,10 @@ std::string CoordinateField::name(int k) const
     return kind == FieldKind::hub_angle ? symbol : symbol + std::to_string(k + 1);
 }
 
-int CoordinateLayout::size() const { return fields.empty() ? 0 : fields.back().end(); }
+int CoordinateLayout::size() const
+{
+    return fields.empty() ? 0 : fields.back().end();
+}
 
 const CoordinateField* CoordinateLayout::find(FieldKind kind, int beam) const
 {
@@ -62,6 +65,9 @@ CoordinateLayout coordinate_layout(const VariantKey& key)
     if (key.drive == Drive::torque) add(FieldKind::hub_angle, std::nullopt, 1, "theta");
     add(FieldKind::axial, key.axial_basis(), key.nx, "A");
     add(FieldKind::inplane, key.transverse_basis(), key.ny, "B");
+    // The out-of-plane fields are listed only where they hold coordinates: a planar variant's layout is the paper's.
+    if (key.nz > 0) add(FieldKind::flap, key.flap_basis(), key.nz, "Z");
+    if (key.nt > 0) add(FieldKind::twist, key.twist_basis(), key.nt, "P");
     return layout;
 }
 

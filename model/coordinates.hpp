@@ -1,6 +1,6 @@
 // A model's generalized coordinates as data: the list of its fields (the hub angle under torque; each beam's
-// axial and in-plane fields), each with its basis, count and place in q. coordinate_layout() is the one place
-// that decides their order; the generator, the kernels' table, the assembled path and the outputs read it.
+// axial, in-plane, flapwise and twist fields), each with its basis, count and place in q. coordinate_layout() is the
+// one place that decides their order; the generator, the kernels' table, the assembled path and the outputs read it.
 #pragma once
 
 #include <optional>
@@ -12,17 +12,18 @@
 
 namespace hubbeam {
 
-/// What a field of coordinates describes (docs/model.md sections 2 and 10).
-enum class FieldKind { hub_angle, axial, inplane };
+/// What a field of coordinates describes (docs/model.md sections 2 and 12): the hub angle, and a beam's axial,
+/// in-plane (lead-lag, u_y), flapwise (u_z) and twist (phi) fields.
+enum class FieldKind { hub_angle, axial, inplane, flap, twist };
 
 /// One field of q: its coordinates q[first] .. q[first + count - 1].
 struct CoordinateField {
     FieldKind kind;
-    int beam = 0;                      // the beam it belongs to (0 for the hub angle)
-    std::optional<FieldBasis> basis;   // the shape functions of a beam field; none for the hub angle
-    int count = 0;                     // may be 0 (nx = 0): the field is listed but holds no coordinate
+    int beam = 0;                     // the beam it belongs to (0 for the hub angle)
+    std::optional<FieldBasis> basis;  // the shape functions of a beam field; none for the hub angle
+    int count = 0;                    // may be 0 (nx = 0): the field is listed but holds no coordinate
     int first = 0;
-    std::string symbol;                // the letter of its coordinates in names and code: "theta", "A", "B"
+    std::string symbol;  // the letter of its coordinates in names and code: "theta", "A", "B", "Z", "P"
 
     int end() const { return first + count; }
     bool holds(int i) const { return i >= first && i < end(); }

@@ -11,9 +11,32 @@ namespace hubbeam {
 
 /// Index of each physical parameter in the packed vector p (SI units; docs/model.md section 1).
 /// The paper's seven come first; the rest (tip body, gravity, Rayleigh damping, taper; docs/model.md section 11)
-/// are read only by the variants that carry those terms, so the paper's variants read p[0..6] as before.
-enum class Param : std::size_t { L, rho, S, I, E, a, J_oh, m_tip, J_tip, g, alpha, beta, tip_ratio };
-inline constexpr std::size_t param_count = 13;
+/// are read only by the variants that carry those terms, so the paper's variants read p[0..6] only. The out-of-plane
+/// model's (docs/model.md section 12) follow: the flapwise second moment, the shear modulus and torsion constant, the
+/// pitch and pre-twist (tip minus root) of the section, the precone, and gravity's weight along the spin axis.
+enum class Param : std::size_t {
+    L,
+    rho,
+    S,
+    I,
+    E,
+    a,
+    J_oh,
+    m_tip,
+    J_tip,
+    g,
+    alpha,
+    beta,
+    tip_ratio,
+    I_flap,
+    G,
+    J_t,
+    pitch,
+    twist,
+    precone,
+    g_axis
+};
+inline constexpr std::size_t param_count = 20;
 /// A tabulated profile's values follow: p[param_count + 3 k + j] is station k's value j (docs/model.md section 11.2).
 enum class ProfileValue : std::size_t { m, EI, ES };
 inline constexpr std::size_t profile_value_count = 3;
@@ -21,8 +44,19 @@ inline constexpr std::array<const char*, profile_value_count> profile_value_name
 /// The paper's parameters: a variant without extra terms reads these only.
 inline constexpr std::size_t paper_param_count = 7;
 /// Names of p's entries in the order of Param, as they read in docs/model.md and in generated code.
-inline constexpr std::array<const char*, param_count> param_names = {"L", "rho", "S", "I", "E", "a", "J_oh",
-                                                                     "m_tip", "J_tip", "g", "alpha", "beta", "tip_ratio"};
+inline constexpr std::array<const char*, param_count> param_names = {
+    "L",     "rho",  "S",         "I",      "E", "a",   "J_oh",  "m_tip", "J_tip",   "g",
+    "alpha", "beta", "tip_ratio", "I_flap", "G", "J_t", "pitch", "twist", "precone", "g_axis"};
+
+/// The parameters of the out-of-plane fields (docs/model.md section 12), owned by no term: the flapwise field reads
+/// I_flap, the twist field all three.
+inline constexpr std::array<Param, 3> field_params = {Param::I_flap, Param::G, Param::J_t};
+
+/// The largest pre-twist |twist| (rad, tip minus root) a variant takes: the generator expands cos 2 beta(x) and
+/// sin 2 beta(x) in powers of twist x/L with twist_series_terms terms, whose remainder (2 max_twist)^n / n! is then
+/// below 1e-17.
+inline constexpr double max_twist = 0.5;
+inline constexpr int twist_series_terms = 20;
 
 /// Index of each drive value in u: a torque variant reads tau, a prescribed variant theta_dot, theta_ddot.
 enum class DriveValue : std::size_t { tau, theta_dot, theta_ddot };
@@ -34,18 +68,30 @@ enum class AngleValue : std::size_t { sin_theta = drive_value_count, cos_theta }
 inline constexpr std::size_t kernel_input_count = drive_value_count + 2;
 inline constexpr std::array<const char*, 2> angle_value_names = {"sin_theta", "cos_theta"};
 
-constexpr std::size_t index(Param p) { return static_cast<std::size_t>(p); }
-constexpr std::size_t index(DriveValue u) { return static_cast<std::size_t>(u); }
-constexpr std::size_t index(AngleValue u) { return static_cast<std::size_t>(u); }
+constexpr std::size_t index(Param p)
+{
+    return static_cast<std::size_t>(p);
+}
+constexpr std::size_t index(DriveValue u)
+{
+    return static_cast<std::size_t>(u);
+}
+constexpr std::size_t index(AngleValue u)
+{
+    return static_cast<std::size_t>(u);
+}
 
 /// Physical parameters (SI): beam length, density, cross-section, second moment, Young's modulus, hub
 /// radius, hub inertia. The defaults are the beam of Kane, Ryan & Banerjee (docs/model.md section 6). Then the
 /// extra terms' values (docs/model.md section 11): tip mass and rotary inertia, gravity, Rayleigh damping
 /// (alpha 1/s, beta s) and the taper's tip-to-root ratio of the tapered dimension; at these defaults a variant
-/// that carries the terms equals one that does not.
+/// that carries the terms equals one that does not. Then the out-of-plane section's (docs/model.md section 12): the
+/// flapwise second moment (m^4; the scene's default is I), shear modulus (Pa), torsion constant (m^4), pitch, pre-twist
+/// and precone (rad), and gravity along -k (m/s^2; g is along -j of the inertial plane).
 struct Parameters {
     double L = 8.0, rho = 2.7667e3, S = 7.2968e-5, I = 8.2189e-9, E = 6.8952e10, a = 0.0, J_oh = 30.0;
     double m_tip = 0.0, J_tip = 0.0, g = 0.0, alpha = 0.0, beta = 0.0, tip_ratio = 1.0;
+    double I_flap = 8.2189e-9, G = 0.0, J_t = 0.0, pitch = 0.0, twist = 0.0, precone = 0.0, g_axis = 0.0;
     /// A tabulated profile's values at its stations (VariantKey's extras hold the positions): mass per length
     /// (kg/m), EI (N m^2), ES (N), indexed by station then ProfileValue; empty without a profile.
     std::vector<double> profile = {};
@@ -68,6 +114,13 @@ struct Parameters {
         p[index(Param::alpha)] = alpha;
         p[index(Param::beta)] = beta;
         p[index(Param::tip_ratio)] = tip_ratio;
+        p[index(Param::I_flap)] = I_flap;
+        p[index(Param::G)] = G;
+        p[index(Param::J_t)] = J_t;
+        p[index(Param::pitch)] = pitch;
+        p[index(Param::twist)] = twist;
+        p[index(Param::precone)] = precone;
+        p[index(Param::g_axis)] = g_axis;
         return p;
     }
 };
@@ -75,8 +128,9 @@ struct Parameters {
 /// The value of parameter k in p (a reference into it): what a caller that moves one parameter changes.
 inline double& value(Parameters& p, Param k)
 {
-    double* const members[] = {&p.L, &p.rho, &p.S, &p.I, &p.E, &p.a, &p.J_oh,
-                               &p.m_tip, &p.J_tip, &p.g, &p.alpha, &p.beta, &p.tip_ratio};
+    double* const members[] = {&p.L,     &p.rho,   &p.S,     &p.I,     &p.E,       &p.a,         &p.J_oh,
+                               &p.m_tip, &p.J_tip, &p.g,     &p.alpha, &p.beta,    &p.tip_ratio, &p.I_flap,
+                               &p.G,     &p.J_t,   &p.pitch, &p.twist, &p.precone, &p.g_axis};
     static_assert(sizeof members / sizeof members[0] == param_count);
     return *members[index(k)];
 }

@@ -26,10 +26,10 @@ struct TermSceneKey {
 
 /// One physics term of a variant.
 struct TermInfo {
-    const char* name;                     // the term, as docs/model.md section 11 calls it
-    unsigned energies;                    // TermEnergy bits
-    std::vector<Param> params;            // the entries of p it owns (read only by variants that carry it)
-    std::vector<TermSceneKey> scene_keys; // the scene keys of its own table (empty: it is read with [beam])
+    const char* name;                      // the term, as docs/model.md section 11 calls it
+    unsigned energies;                     // TermEnergy bits
+    std::vector<Param> params;             // the entries of p it owns (read only by variants that carry it)
+    std::vector<TermSceneKey> scene_keys;  // the scene keys of its own table (empty: it is read with [beam])
     /// Whether a scene's parameters select it: any of its params nonzero (else the paper's variant runs); false
     /// for a term chosen by the scene's words (taper, profile).
     bool selected_by_values;

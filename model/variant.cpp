@@ -1,8 +1,6 @@
 // VariantKey naming, parsing and DOF validity.
 #include "variant.hpp"
 
-#include "terms.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -11,6 +9,8 @@
 #include <vector>
 
 #include "coordinates.hpp"
+#include "interface.hpp"
+#include "terms.hpp"
 
 namespace hubbeam {
 
@@ -88,8 +88,8 @@ std::string set_stations(const std::vector<double>& x, Extras& e)
     const std::vector<std::string> suffixes = extras_suffixes(t);
     if (suffixes.back().size() > max_profile_suffix)
         return std::to_string(x.size()) + " stations with " + std::to_string(suffixes.back().size() - 7) +
-               " characters of numerators make the variant's name too long (at most " + std::to_string(max_profile_suffix - 7) +
-               "): use fewer stations or fewer decimals";
+               " characters of numerators make the variant's name too long (at most " +
+               std::to_string(max_profile_suffix - 7) + "): use fewer stations or fewer decimals";
     e = std::move(t);
     return {};
 }
@@ -97,10 +97,13 @@ std::string set_stations(const std::vector<double>& x, Extras& e)
 int max_dof(Method m)
 {
     switch (m) {
-    case Method::amm: return 40;
-    case Method::bim: return 27;
-    case Method::fem:
-    case Method::bsim: return 64;
+        case Method::amm:
+            return 40;
+        case Method::bim:
+            return 27;
+        case Method::fem:
+        case Method::bsim:
+            return 64;
     }
     return 0;
 }
@@ -108,33 +111,92 @@ int max_dof(Method m)
 std::string max_dof_reason(Method m)
 {
     switch (m) {
-    case Method::bim: return "the Bernstein mass matrix loses definiteness in double precision from 28";
-    case Method::amm: return "the supported range; the highest modes' frequencies make runs slow beyond it";
-    default: return "the supported range: generation, compilation and every run grow quickly beyond it";
+        case Method::bim:
+            return "the Bernstein mass matrix loses definiteness in double precision from 28";
+        case Method::amm:
+            return "the supported range; the highest modes' frequencies make runs slow beyond it";
+        default:
+            return "the supported range: generation, compilation and every run grow quickly beyond it";
     }
 }
 
-std::string to_string(Method v) { return word_of(v, methods); }
-std::string to_string(Order v) { return word_of(v, orders); }
-std::string to_string(Drive v) { return word_of(v, drives); }
-std::string to_string(SplineBasis v) { return word_of(v, splines); }
-std::string to_string(Taper v) { return word_of(v, tapers); }
-bool parse(std::string_view w, Taper& v) { return parse_word(w, tapers, v); }
-template <> std::vector<std::string> words<Taper>() { return all_words(tapers); }
-bool parse(std::string_view w, Method& v) { return parse_word(w, methods, v); }
-bool parse(std::string_view w, Order& v) { return parse_word(w, orders, v); }
-bool parse(std::string_view w, Drive& v) { return parse_word(w, drives, v); }
-bool parse(std::string_view w, SplineBasis& v) { return parse_word(w, splines, v); }
-template <> std::vector<std::string> words<Method>() { return all_words(methods); }
-template <> std::vector<std::string> words<Order>() { return all_words(orders); }
-template <> std::vector<std::string> words<SplineBasis>() { return all_words(splines); }
+std::string to_string(Method v)
+{
+    return word_of(v, methods);
+}
+std::string to_string(Order v)
+{
+    return word_of(v, orders);
+}
+std::string to_string(Drive v)
+{
+    return word_of(v, drives);
+}
+std::string to_string(SplineBasis v)
+{
+    return word_of(v, splines);
+}
+std::string to_string(Taper v)
+{
+    return word_of(v, tapers);
+}
+bool parse(std::string_view w, Taper& v)
+{
+    return parse_word(w, tapers, v);
+}
+template <>
+std::vector<std::string> words<Taper>()
+{
+    return all_words(tapers);
+}
+bool parse(std::string_view w, Method& v)
+{
+    return parse_word(w, methods, v);
+}
+bool parse(std::string_view w, Order& v)
+{
+    return parse_word(w, orders, v);
+}
+bool parse(std::string_view w, Drive& v)
+{
+    return parse_word(w, drives, v);
+}
+bool parse(std::string_view w, SplineBasis& v)
+{
+    return parse_word(w, splines, v);
+}
+template <>
+std::vector<std::string> words<Method>()
+{
+    return all_words(methods);
+}
+template <>
+std::vector<std::string> words<Order>()
+{
+    return all_words(orders);
+}
+template <>
+std::vector<std::string> words<SplineBasis>()
+{
+    return all_words(splines);
+}
 
-int VariantKey::nq() const { return coordinate_layout(*this).size(); }
+int VariantKey::nq() const
+{
+    return coordinate_layout(*this).size();
+}
+
+std::size_t VariantKey::params_read() const
+{
+    return extras.any() || out_of_plane() ? param_count : paper_param_count;
+}
 
 std::string VariantKey::name() const
 {
-    std::string s = to_string(method) + "_nx" + std::to_string(nx) + "_ny" + std::to_string(ny) + "_" +
-                    to_string(drive) + "_" + to_string(order);
+    std::string s = to_string(method) + "_nx" + std::to_string(nx) + "_ny" + std::to_string(ny);
+    if (nz > 0) s += "_nz" + std::to_string(nz);
+    if (nt > 0) s += "_nt" + std::to_string(nt);
+    s += "_" + to_string(drive) + "_" + to_string(order);
     if (method == Method::bsim && spline == SplineBasis::open) s += "_open";
     for (const std::string& suffix : extras_suffixes(extras)) s += "_" + suffix;
     return s;
@@ -155,22 +217,33 @@ VariantKey VariantKey::parse(std::string_view name)
     parts.push_back(cur);
     VariantKey k;
     const auto bad = [&](const std::string& what) {
-        return std::invalid_argument("not a variant name: '" + std::string(name) + "': " + what +
-                                     " (expected " + variant_name_grammar + ", e.g. bim_nx4_ny4_torque_first)");
+        return std::invalid_argument("not a variant name: '" + std::string(name) + "': " + what + " (expected " +
+                                     variant_name_grammar + ", e.g. bim_nx4_ny4_torque_first)");
     };
     if (parts.size() < 5) throw bad(std::to_string(parts.size()) + " parts separated by '_'");
-    if (!hubbeam::parse(parts[0], k.method)) throw bad("method '" + parts[0] + "' is not one of " + joined(words<Method>()));
-    if (!hubbeam::parse(parts[3], k.drive)) throw bad("drive '" + parts[3] + "' is not one of prescribed, torque");
-    if (!hubbeam::parse(parts[4], k.order)) throw bad("order '" + parts[4] + "' is not one of " + joined(words<Order>()));
+    if (!hubbeam::parse(parts[0], k.method))
+        throw bad("method '" + parts[0] + "' is not one of " + joined(words<Method>()));
     const auto count = [&](const std::string& part, const char* stem, int& n) {
-        if (part.size() < 3 || part.rfind(stem, 0) != 0 || part.find_first_not_of("0123456789", 2) != std::string::npos ||
-            part.size() > 2 + 9)
+        if (part.size() < 3 || part.rfind(stem, 0) != 0 ||
+            part.find_first_not_of("0123456789", 2) != std::string::npos || part.size() > 2 + 9)
             throw bad("'" + part + "' is not " + stem + " followed by a count");
         n = std::stoi(part.substr(2));
     };
     count(parts[1], "nx", k.nx);
     count(parts[2], "ny", k.ny);
-    std::size_t next = 5;
+    std::size_t next = 3;
+    // nz and nt appear only where nonzero, so that each key has one name.
+    for (const auto& [stem, n] : {std::pair<const char*, int*>{"nz", &k.nz}, {"nt", &k.nt}})
+        if (parts.size() > next && parts[next].rfind(stem, 0) == 0) {
+            count(parts[next++], stem, *n);
+            if (*n == 0) throw bad(std::string("'") + stem + "0': a zero count is left out of the name");
+        }
+    if (parts.size() < next + 2) throw bad(std::to_string(parts.size()) + " parts separated by '_'");
+    if (!hubbeam::parse(parts[next], k.drive))
+        throw bad("drive '" + parts[next] + "' is not one of prescribed, torque");
+    if (!hubbeam::parse(parts[next + 1], k.order))
+        throw bad("order '" + parts[next + 1] + "' is not one of " + joined(words<Order>()));
+    next += 2;
     if (parts.size() > next && parts[next] == "open") {
         if (k.method != Method::bsim) throw bad("'open': only bsim takes the suffix _open");
         k.spline = SplineBasis::open;
@@ -199,24 +272,29 @@ std::string VariantKey::dof_problem() const
 {
     if (nx < 0) return "nx must be >= 0";
     if (ny < 1) return "ny must be >= 1";
+    if (nz < 0) return "nz must be >= 0";
+    if (nt < 0) return "nt must be >= 0";
     const int most = max_dof(method);
-    for (const auto& [name, n] : {std::pair<const char*, int>{"ny", ny}, {"nx", nx}})
+    for (const auto& [name, n] : {std::pair<const char*, int>{"ny", ny}, {"nx", nx}, {"nz", nz}, {"nt", nt}})
         if (n > most)
             return to_string(method) + " supports " + name + " up to " + std::to_string(most) + " (" +
                    max_dof_reason(method) + "), got " + std::to_string(n);
-    switch (method) {
-    case Method::fem:
-        if (ny % 2 != 0) return "FEM needs an even ny (a deflection and a slope per node), got " + std::to_string(ny);
-        break;
-    case Method::bsim:
-        if (spline == SplineBasis::paper && ny < 4)
-            return "BSIM with the paper's basis (eq. 41) needs ny >= 4 (n >= 3 intervals), got " + std::to_string(ny) +
-                   "; spline_basis = \"open\" takes ny >= 2";
-        if (spline == SplineBasis::open && ny < 2) return "BSIM needs ny >= 2, got " + std::to_string(ny);
-        if (nx != 0 && nx < 3) return "BSIM needs nx = 0 or nx >= 3 (n_x + 2 with n_x >= 1), got " + std::to_string(nx);
-        break;
-    default: break;
+    // The flapwise field takes the in-plane field's basis, the twist field the axial one: the same rules (0 allowed).
+    for (const auto& [name, n] : {std::pair<std::string, int>{"ny", ny}, {"nz", nz}}) {
+        const std::string got = ", got " + std::to_string(n);
+        if (n == 0) continue;
+        if (method == Method::fem && n % 2 != 0)
+            return "FEM needs an even " + name + " (a deflection and a slope per node)" + got;
+        if (method == Method::bsim && spline == SplineBasis::paper && n < 4)
+            return "BSIM with the paper's basis (eq. 41) needs " + name + " >= 4 (n >= 3 intervals)" + got +
+                   "; spline_basis = \"open\" takes " + name + " >= 2";
+        if (method == Method::bsim && spline == SplineBasis::open && n < 2) return "BSIM needs " + name + " >= 2" + got;
     }
+    for (const auto& [name, n] : {std::pair<std::string, int>{"nx", nx}, {"nt", nt}})
+        if (method == Method::bsim && n != 0 && n < 3)
+            return "BSIM needs " + name + " = 0 or " + name + " >= 3 (n_x + 2 with n_x >= 1), got " + std::to_string(n);
+    if (out_of_plane() && order == Order::full)
+        return "order full is derived for the planar model only (nz = nt = 0, no pitch or precone); use order first";
     return {};
 }
 

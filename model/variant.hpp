@@ -12,7 +12,7 @@
 
 namespace hubbeam {
 
-/// The largest DOF count (each of nx and ny) a method supports, and why (docs/scene.md "Every key").
+/// The largest DOF count (each of nx, ny, nz and nt) a method supports, and why (docs/scene.md "Every key").
 int max_dof(Method m);
 std::string max_dof_reason(Method m);
 
@@ -33,6 +33,9 @@ struct Extras {
     bool gravity = false;  // weight along -j of a vertical plane of motion (g)
     bool damping = false;  // Rayleigh damping of the elastic coordinates (alpha, beta)
     Taper taper = Taper::uniform;
+    bool pitch = false;  // the section's chord turned out of the plane by the pitch (docs/model.md section 12)
+    bool twist = false;  // and by a linear pre-twist, twist x/L
+    bool cone = false;   // the beam's axis tilted out of the plane by the precone
     // A tabulated profile's stations x/L = stations[k] / station_denominator (docs/model.md section 11.2): exact
     // rationals, so that the generator splits its integrals there exactly; empty without a profile. The values at
     // the stations (m, EI, ES) are run-time parameters, the positions are structure.
@@ -40,7 +43,10 @@ struct Extras {
     long long station_denominator = 1;
 
     bool profile() const { return !stations.empty(); }
-    bool any() const { return tip || gravity || damping || taper != Taper::uniform || profile(); }
+    bool any() const
+    {
+        return tip || gravity || damping || taper != Taper::uniform || profile() || pitch || twist || cone;
+    }
     bool operator==(const Extras&) const = default;
 };
 
@@ -60,11 +66,13 @@ std::string set_stations(const std::vector<double>& x, Extras& e);
 
 /// The grammar of a variant's name, as VariantKey::parse reads it (its messages and hubbeam-gen --help say it).
 inline constexpr const char* variant_name_grammar =
-    "METHOD_nxN_nyN_DRIVE_ORDER[_open][_tip][_gravity][_damped][_width|_depth][_profileDENxN0xN1...]";
+    "METHOD_nxN_nyN[_nzN][_ntN]_DRIVE_ORDER[_open][_tip][_gravity][_damped][_width|_depth][_profileDENxN0xN1...]"
+    "[_pitched][_twisted][_coned]";
 
 struct VariantKey {
     Method method = Method::amm;
     int nx = 0, ny = 4;  // the coordinate counts of the axial and in-plane fields (coordinates.hpp)
+    int nz = 0, nt = 0;  // of the flapwise and twist fields (docs/model.md section 12); 0 0: the planar model
     Order order = Order::first;
     Drive drive = Drive::prescribed;
     SplineBasis spline = SplineBasis::paper;  // BSIM transverse basis; ignored by other methods
@@ -74,9 +82,10 @@ struct VariantKey {
     /// their order.
     int nq() const;
 
-    /// e.g. "bim_nx4_ny4_torque_first", "bsim_nx0_ny4_prescribed_first_open", "amm_nx0_ny4_torque_first_tip_gravity":
-    /// a C identifier; the extras follow in the order tip, gravity, damped, width|depth, profileDENxN0xN1...
-    /// (a profile's stations x/L = N_k / DEN).
+    /// e.g. "bim_nx4_ny4_torque_first", "bsim_nx0_ny4_prescribed_first_open", "amm_nx0_ny4_torque_first_tip_gravity",
+    /// "fem_nx0_ny8_nz8_nt2_torque_first_pitched": a C identifier; nz and nt only where nonzero; the extras follow in
+    /// the order tip, gravity, damped, width|depth, profileDENxN0xN1... (a profile's stations x/L = N_k / DEN),
+    /// pitched, twisted, coned.
     std::string name() const;
     /// Inverse of name(); throws std::invalid_argument.
     static VariantKey parse(std::string_view name);
@@ -86,6 +95,14 @@ struct VariantKey {
 
     FieldBasis axial_basis() const { return {method, Field::axial, nx, SplineBasis::open}; }
     FieldBasis transverse_basis() const { return {method, Field::transverse, ny, spline}; }
+    FieldBasis flap_basis() const { return {method, Field::transverse, nz, spline}; }
+    FieldBasis twist_basis() const { return {method, Field::axial, nt, SplineBasis::open}; }
+    /// Whether the beam leaves the plane: a flapwise or twist field, a pitch or a precone.
+    bool out_of_plane() const { return nz > 0 || nt > 0 || extras.pitch || extras.twist || extras.cone; }
+
+    /// How many entries of p (model/interface.hpp) its kernels read: the paper's seven, or every Param (and then a
+    /// profile's values) for a variant with terms or fields beyond the paper's.
+    std::size_t params_read() const;
 
     bool operator==(const VariantKey&) const = default;
 };
@@ -93,10 +110,14 @@ struct VariantKey {
 /// Every word of enum E, in table order (e.g. words<Method>() = amm, fem, bim, bsim).
 template <class E>
 std::vector<std::string> words();
-template <> std::vector<std::string> words<Method>();
-template <> std::vector<std::string> words<Order>();
-template <> std::vector<std::string> words<SplineBasis>();
-template <> std::vector<std::string> words<Taper>();
+template <>
+std::vector<std::string> words<Method>();
+template <>
+std::vector<std::string> words<Order>();
+template <>
+std::vector<std::string> words<SplineBasis>();
+template <>
+std::vector<std::string> words<Taper>();
 
 std::string to_string(Method);
 std::string to_string(Order);

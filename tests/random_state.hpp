@@ -56,6 +56,15 @@ inline Parameters with_every_term()
     p.alpha = 0.3;
     p.beta = 2e-3;
     p.tip_ratio = 0.6;
+    // The out-of-plane section's (read by out-of-plane variants only): a flapwise second moment unlike I, torsion,
+    // pitch, pre-twist, precone and weight along the spin axis, none of them a special value.
+    p.I_flap = 2.3 * p.I;
+    p.G = 2.6e10;
+    p.J_t = 1.7e-8;
+    p.pitch = 0.3;
+    p.twist = -0.25;
+    p.precone = 0.05;
+    p.g_axis = 4.0;
     return p;
 }
 

@@ -7,14 +7,19 @@ namespace hubbeam::gen {
 
 const GeneratorTerm& generator_part(const TermInfo& t)
 {
-    // In the order of terms(): tip, gravity, damping, taper, profile.
+    // In the order of terms(): tip, gravity, damping, taper, profile, pitch, twist, precone. These three have no
+    // energy of their own: they turn the section's principal axes (bending_density, section_rotation) and the beam's
+    // axis (velocity_squared, position) inside the beam's T and U and the other terms' (energy.cpp).
     static const std::vector<GeneratorTerm> table = {
-        {nullptr, tip_energies}, {nullptr, gravity_energies}, {nullptr, damping_energies},
-        {taper_section, nullptr}, {profile_section, nullptr}};
+        {nullptr, tip_energies},    {nullptr, gravity_energies}, {nullptr, damping_energies}, {taper_section, nullptr},
+        {profile_section, nullptr}, {nullptr, nullptr},          {nullptr, nullptr},          {nullptr, nullptr}};
     if (table.size() != terms().size()) throw std::logic_error("generator_part: not one entry per registered term");
     return table.at(static_cast<std::size_t>(&t - terms().data()));
 }
 
-BeamSection uniform_section(const Symbols& s) { return {s.m, s.ES, s.EI}; }
+BeamSection uniform_section(const Symbols& s)
+{
+    return {s.m, s.ES, s.EI};
+}
 
 }  // namespace hubbeam::gen

@@ -1,5 +1,5 @@
-// Gravity's potential (docs/model.md section 11.3): the weight of the beam and of a tip body along -j of a vertical
-// plane of motion.
+// Gravity's potential (docs/model.md sections 11.3 and 12): the weight of the beam and of a tip body along -j of a
+// vertical plane of motion (g), and along the spin axis -k (g_axis, a variant that leaves the plane).
 #include "generator_terms.hpp"
 
 namespace hubbeam::gen {
@@ -9,12 +9,12 @@ using namespace GiNaC;
 void gravity_energies(const TermContext& c, Energies& e)
 {
     const Symbols& s = c.s;
-    const FieldSymbols& f = c.f;
-    // The height of a point, p rotated by theta: sin(theta) (X + u_x) + cos(theta) u_y; order zero has no u_x2.
-    const ex ux = f.ux1 + (c.key.order == Order::zero ? ex(0) : ex(f.ux2));
-    const ex height = s.sin_theta * (f.X + ux) + s.cos_theta * f.uy;
-    e.U += c.integrate(s.g * c.beam.mass * height);
-    if (c.key.extras.tip) e.U += c.at_tip(s.g * s.m_tip * height);
+    // The height of a point in the plane, p rotated by theta: sin(theta) p_i + cos(theta) p_j; order zero has no u_x2.
+    const Position p = position(c.key.order, c.f, cone_of(c.key, s));
+    ex weight = s.g * (s.sin_theta * p.i + s.cos_theta * p.j);
+    if (c.key.out_of_plane()) weight += s.o->g_axis * p.k;
+    e.U += c.integrate(c.beam.mass * weight);
+    if (c.key.extras.tip) e.U += c.at_tip(s.m_tip * weight);
 }
 
 }  // namespace hubbeam::gen

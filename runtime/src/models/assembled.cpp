@@ -4,15 +4,15 @@
 // prescribed form q = (A, B).
 #include "models/assembled.hpp"
 
-#include <hubbeam/fields.hpp>
-#include "models/assembled_terms.hpp"
-#include "profile.hpp"
-
 #include <algorithm>
 #include <cmath>
+#include <hubbeam/fields.hpp>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "models/assembled_terms.hpp"
+#include "profile.hpp"
 
 namespace hubbeam {
 
@@ -68,7 +68,7 @@ NodeValues node_values(const FieldBasis& axial, const FieldBasis& transverse, co
 /// and by int_x^L m t dt = m L^2 above_x / 2.
 struct SectionAtNodes {
     Eigen::ArrayXd s, i, e, above, above_x;
-    double r1 = 0.0;  // a taper's tip_ratio - 1 (0 for a uniform beam or a profile)
+    double r1 = 0.0;                                 // a taper's tip_ratio - 1 (0 for a uniform beam or a profile)
     double first_moment = 0.0, second_moment = 0.0;  // a profile's int_0^1 m(xi) (a + L xi)^n dxi, n = 1, 2
 };
 
@@ -138,7 +138,8 @@ BeamMatrices assemble_matrices(const VariantKey& key, const Parameters& p)
     const int nn = static_cast<int>(rule.nodes.size());
     const auto [X, X1, Y, Y1, Y2] = node_values(axial, transverse, rule);
 
-    // docs/model.md section 5's integrals in xi: x = L xi, dx = L dxi, Phi' = (1/L) dPhi/dxi, Phi'' = (1/L^2) d2Phi/dxi2.
+    // docs/model.md section 5's integrals in xi: x = L xi, dx = L dxi, Phi' = (1/L) dPhi/dxi, Phi'' = (1/L^2)
+    // d2Phi/dxi2.
     const bool profile = key.extras.profile();
     // With a profile (section 11.2) the reference values are 1 and the ratios below are its distributions.
     const double L = p.L, a = p.a, m = profile ? 1.0 : p.rho * p.S, EI = profile ? 1.0 : p.E * p.I,
@@ -148,17 +149,18 @@ BeamMatrices assemble_matrices(const VariantKey& key, const Parameters& p)
     SectionAtNodes section = taper_at_nodes(key, p, xi);
     if (profile) profile_at_nodes(stations, p, xi, section);
     const auto& [s, i, e, above, above_x, r1, first_moment, second_moment] = section;
-    const VectorXd w_s = (w.array() * s).matrix();                              // m(x) dx / (m L)
-    const VectorXd w_e = (w.array() * e).matrix();                              // ES(x) dx / (ES L)
-    const VectorXd w_i = (w.array() * i).matrix();                              // EI(x) dx / (EI L)
-    const VectorXd w_arm = (m * L * w_s.array() * (a + L * xi)).matrix();       // m(x) (a+x) dx
-    const VectorXd w_C = (m * w.array() * above).matrix();                      // m L above dx / L^2
-    const VectorXd w_D = (0.5 * m * L * w.array() * above_x).matrix();          // m L^2 above_x / 2 dx / L^2
+    const VectorXd w_s = (w.array() * s).matrix();                         // m(x) dx / (m L)
+    const VectorXd w_e = (w.array() * e).matrix();                         // ES(x) dx / (ES L)
+    const VectorXd w_i = (w.array() * i).matrix();                         // EI(x) dx / (EI L)
+    const VectorXd w_arm = (m * L * w_s.array() * (a + L * xi)).matrix();  // m(x) (a+x) dx
+    const VectorXd w_C = (m * w.array() * above).matrix();                 // m L above dx / L^2
+    const VectorXd w_D = (0.5 * m * L * w.array() * above_x).matrix();     // m L^2 above_x / 2 dx / L^2
 
     BeamMatrices b;
     // int_0^L m(x) (a+x)^2 dx and int_0^L m(x) (a+x) dx, in closed form for the taper.
     b.J_ob = profile ? L * second_moment
-                     : m * ((std::pow(a + L, 3) - std::pow(a, 3)) / 3.0 + r1 * L * (a * a / 2.0 + 2.0 * a * L / 3.0 + L * L / 4.0));
+                     : m * ((std::pow(a + L, 3) - std::pow(a, 3)) / 3.0 +
+                            r1 * L * (a * a / 2.0 + 2.0 * a * L / 3.0 + L * L / 4.0));
     b.S_ob = profile ? L * first_moment : m * (a * L + L * L / 2.0 + r1 * L * (a / 2.0 + L / 3.0));
     b.S_x = (X.transpose() * w_arm).transpose();
     b.S_y = (Y.transpose() * w_arm).transpose();
@@ -194,8 +196,12 @@ namespace {
 class AssembledModel final : public Model {
 public:
     AssembledModel(const VariantKey& key, const Parameters& p)
-        : Model(key, p), fields_(key, p), a_(coordinates().first(FieldKind::axial)), b_(coordinates().first(FieldKind::inplane)),
-          nx_(coordinates().count(FieldKind::axial)), ny_(coordinates().count(FieldKind::inplane))
+        : Model(key, p),
+          fields_(key, p),
+          a_(coordinates().first(FieldKind::axial)),
+          b_(coordinates().first(FieldKind::inplane)),
+          nx_(coordinates().count(FieldKind::axial)),
+          ny_(coordinates().count(FieldKind::inplane))
     {
         const BeamMatrices c = assemble_matrices(key, p);
         // The beam with the terms the variant carries (runtime/src/models/terms/); a term it does not carry
@@ -227,8 +233,7 @@ public:
         const bool torque = key().drive == Drive::torque;
         std::string pattern;
         for (int i = 0; i < n; ++i)
-            for (int j = 0; j < n; ++j)
-                pattern += torque && (i == 0 || j == 0) ? 'v' : M(i, j) == 0.0 ? '0' : 'c';
+            for (int j = 0; j < n; ++j) pattern += torque && (i == 0 || j == 0) ? 'v' : M(i, j) == 0.0 ? '0' : 'c';
         return pattern;
     }
 
@@ -336,10 +341,7 @@ public:
         return e;
     }
 
-    Tip tip(const double* q) const override
-    {
-        return fields_.tip(nx_ > 0 ? q + a_ : nullptr, q + b_);
-    }
+    Tip tip(const double* q) const override { return fields_.tip(nx_ > 0 ? q + a_ : nullptr, q + b_); }
 
     double momentum(const HubInput& u, const double* q, const double* qd) const override
     {
@@ -363,7 +365,7 @@ private:
     }
 
     BeamFields fields_;
-    int a_, b_;    // where A and B begin in q (coordinates())
+    int a_, b_;  // where A and B begin in q (coordinates())
     int nx_, ny_;
     // Section 5.2's matrices of the beam with the terms the variant carries (tip body, weight, damping: section 11),
     // as the terms' twins assembled them.
@@ -380,6 +382,11 @@ std::unique_ptr<Model> make_assembled_model(const VariantKey& key, const Paramet
 {
     if (key.order == Order::full)
         throw std::invalid_argument("full order has no hand-assembled form; it needs a generated variant");
+    if (key.out_of_plane())
+        throw std::invalid_argument(
+            "the hand-assembled path is the planar model's (nz = nt = 0, no pitch, pre-twist "
+            "or precone); variant " +
+            key.name() + " needs a generated model");
     return std::make_unique<AssembledModel>(key, p);
 }
 

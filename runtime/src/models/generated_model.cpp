@@ -18,15 +18,19 @@ namespace {
 class GeneratedModel final : public Model, TermForces, FoldedForceKernel, ExactJacobian, ParameterDerivatives {
 public:
     GeneratedModel(const VariantKey& key, const generated::Variant& v, const Parameters& p)
-        : Model(key, p), v_(v), c_(static_cast<std::size_t>(v.ncoeff)), pattern_(v.mass_pattern),
-          gravity_(key.extras.gravity), torque_(key.drive == Drive::torque)
+        : Model(key, p),
+          v_(v),
+          c_(static_cast<std::size_t>(v.ncoeff)),
+          pattern_(v.mass_pattern),
+          gravity_(key.extras.gravity),
+          torque_(key.drive == Drive::torque)
     {
         const std::vector<double> packed = p.packed();
         v_.coefficients(packed.data(), c_.data());
         if (v_.coefficients_p != nullptr) {
             // The entries of p the variant reads (generator/variant_source.cpp, read_parameter_names): the paper's
             // seven, or all with extra terms; the derivatives by the named ones are kept.
-            const std::size_t read = key.extras.any() ? packed.size() : paper_param_count;
+            const std::size_t read = key.params_read() == param_count ? packed.size() : key.params_read();
             std::vector<double> all(read * c_.size());
             v_.coefficients_p(packed.data(), all.data());
             dcdp_.assign(param_count * c_.size(), 0.0);
@@ -123,8 +127,7 @@ public:
         std::fill_n(F, nq() * v_.nterms, 0.0);
         call(v_.forces_matrix, HubInput{}, nullptr, nullptr, F);
     }
-    void accelerations(const double* P, const HubInput& u, const double* q, const double* qd,
-                       double* y) const override
+    void accelerations(const double* P, const HubInput& u, const double* q, const double* qd, double* y) const override
     {
         v_.forces_folded(P, inputs(u, q).data(), q, qd, y);
     }
@@ -194,7 +197,8 @@ private:
 
     /// A kernel of M: M depends on neither the drive nor the angle (the generator refuses a variant where it
     /// would), so a gravity variant's sine and cosine are not computed for it.
-    void call_without_angle(generated::Kernel k, const HubInput& u, const double* q, const double* qd, double* out) const
+    void call_without_angle(generated::Kernel k, const HubInput& u, const double* q, const double* qd,
+                            double* out) const
     {
         const std::array<double, kernel_input_count> inputs{u.tau, u.theta_dot, u.theta_ddot, 0.0, 0.0};
         k(c_.data(), inputs.data(), q, qd, out);

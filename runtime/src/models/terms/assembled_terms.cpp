@@ -8,8 +8,10 @@ namespace hubbeam {
 
 AssembledTerm assembled_part(const TermInfo& t)
 {
-    // In the order of terms(): tip, gravity, damping, taper, profile (the last two inside assemble_matrices).
-    static const std::array<AssembledTerm, 5> table = {add_tip, add_gravity, add_damping, nullptr, nullptr};
+    // In the order of terms(): tip, gravity, damping, taper, profile (the last two inside assemble_matrices), pitch,
+    // pre-twist and precone (out of the plane: the assembled path refuses those variants, assembled.cpp).
+    static const std::array<AssembledTerm, 8> table = {add_tip, add_gravity, add_damping, nullptr,
+                                                       nullptr, nullptr,     nullptr,     nullptr};
     if (table.size() != terms().size()) throw std::logic_error("assembled_part: not one entry per registered term");
     return table.at(static_cast<std::size_t>(&t - terms().data()));
 }
