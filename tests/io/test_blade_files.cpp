@@ -272,7 +272,8 @@ TEST_CASE("a blade file with a byte order mark, CRLF line ends, blank lines or c
             const bool after_header = elastodyn || k >= 4;
             out.push_back(lines[k] + (elastodyn && (how == "comments" || how == "all") ? "  ! note, 1, 2 # % " : ""));
             if (extras && after_header) out.push_back(" \t ");
-            if ((how == "comments" || how == "all") && elastodyn) out.insert(out.end(), {"! a comment line", "# 0 1"});
+            if ((how == "comments" || how == "all") && elastodyn)
+                out.insert(out.end(), {"! a comment line", "# 0 1", "% 2 3 4 5 6"});
         }
         std::string result = joined(out);
         if (how == "CRLF" || how == "all") {
