@@ -19,7 +19,7 @@ struct BladeTable {
     std::vector<double> EI_edge;           // N m^2: bending along the chord (edgewise)
     std::vector<double> GJ;                // N m^2: torsional stiffness (optional)
     std::vector<double> EA;                // N: axial stiffness (optional)
-    std::vector<double> twist;             // rad: structural pre-twist, the file's sign (positive to feather)
+    std::vector<double> twist;             // rad: structural pre-twist, with the file's sign (both formats share it)
     std::vector<double> mass_moment_flap;  // kg m: mass moment of inertia per length about the chord (optional)
     std::vector<double> mass_moment_edge;  // kg m: the same about the chord's normal (optional)
     std::string source;                    // the format read: bmodes_source or elastodyn_source
