@@ -49,7 +49,8 @@ struct Variant {
                                * a null pointer when M is constant (then dM/dq = 0) */
     Kernel forces_u;          /* dQdu[nq*3], row-major: out[i*3+j] = dQ_i/du_j, u indexed by DriveValue; columns of
                                * drive values the variant does not read are zero */
-    Kernel tip;               /* tip[3] = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B */
+    Kernel tip;               /* tip[3] = (u_y(L), u_x1(L), u_x(L)), u_x = u_x1 - 1/2 B^T H(L) B; a variant that
+                               * leaves the plane writes tip[5], adding (u_z(L), phi(L)) (docs/model.md section 12) */
     Kernel forces_folded;     /* y[nq] = P m for the runtime's folded P (nq x nterms) in the c slot, by groups of
                                * W = folded_lanes rows: P(i, k) at c[(j/W)*W*nterms + W*k + j%W], j = i for a
                                * constant M, i + W - 1 else (row 0 alone), padding rows zero.

@@ -21,9 +21,10 @@ struct Energy {
     double kinetic() const { return T2 + T1 + T0; }
 };
 
-/// Tip displacements u_y(L), u_x1(L) and u_x(L) = u_x1(L) - 1/2 B^T H(L) B (docs/model.md section 5.4).
+/// Tip displacements u_y(L), u_x1(L) and u_x(L) = u_x1(L) - 1/2 B^T H(L) B (docs/model.md section 5.4); out of the
+/// plane u_z(L), phi(L), and u_x shortened by both slopes (section 12); u_z and phi 0 in a planar variant.
 struct Tip {
-    double uy = 0.0, ux1 = 0.0, ux = 0.0;
+    double uy = 0.0, ux1 = 0.0, ux = 0.0, uz = 0.0, phi = 0.0;
 };
 
 /// Q = F m: F (nq x K, free of the state) fixed for the run, m the K monomials of the state Q is a sum of. What

@@ -98,11 +98,11 @@ public:
     }
     Tip tip_p(Param k, const double* q) const override
     {
-        double t[3] = {}, t0[3] = {};
+        double t[5] = {}, t0[5] = {};
         const std::array<double, kernel_input_count> in{};
         v_.tip(dc(k), in.data(), q, q, t);
         v_.tip(zero_c_.data(), in.data(), q, q, t0);
-        return {t[0] - t0[0], t[1] - t0[1], t[2] - t0[2]};
+        return {t[0] - t0[0], t[1] - t0[1], t[2] - t0[2], t[3] - t0[3], t[4] - t0[4]};
     }
     bool term_matrix_p(Param k, double* dF) const override
     {
@@ -150,9 +150,9 @@ public:
 
     Tip tip(const double* q) const override
     {
-        double t[3];
+        double t[5] = {};  // a planar variant's kernel writes the first three (generated_abi.h)
         call(v_.tip, HubInput{}, q, q, t);
-        return {t[0], t[1], t[2]};
+        return {t[0], t[1], t[2], t[3], t[4]};
     }
 
     void force_derivatives(const HubInput& u, const double* q, const double* qd, double* dQdq, double* dQdqd,
