@@ -361,13 +361,13 @@ constexpr std::size_t variant_size = std::size(variant_columns);
 /// The kinds of mode a modes CSV names (NaturalMode::kind).
 const std::vector<std::string>& mode_kinds()
 {
-    static const std::vector<std::string> k = {"bending", "axial", "hub"};
+    static const std::vector<std::string> k = {"bending", "edge", "flap", "twist", "axial", "hub"};
     return k;
 }
 
 /// Which lines a Campbell diagram draws (plot's --kinds, --modes, --max-hz).
 struct CampbellChoice {
-    std::vector<std::string> kinds = {"bending"};
+    std::vector<std::string> kinds = {"bending", "edge", "flap"};  // a planar beam's, or a blade's out of the plane
     int modes = 0;                // the lowest this many lines of each variant; 0: all
     double max_hz = HUGE_VAL;     // the frequency axis ends here, and lines wholly above it are left out
 };

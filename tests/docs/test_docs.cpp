@@ -123,6 +123,7 @@ void check_same(const Scene& a, const Scene& b)
     CHECK(a.parameters.E == b.parameters.E);
     CHECK(a.parameters.a == b.parameters.a);
     CHECK(a.parameters.J_oh == b.parameters.J_oh);
+    CHECK(a.parameters.packed() == b.parameters.packed());  // every parameter, the terms' and the section's too
     CHECK(a.motion.kind == b.motion.kind);
     CHECK(a.motion.omega0 == b.motion.omega0);
     CHECK(a.motion.spin_time == b.motion.spin_time);
@@ -178,7 +179,7 @@ TEST_CASE("docs/scene.md's defaults are the ones a scene gets, and its required 
 {
     // A default `V` is right when a scene without the key is valid and setting the key to V changes nothing; a
     // required key is refused when missing.
-    int defaults = 0, required = 0;
+    int defaults = 0, required = 0, derived = 0;
     for (const auto& [name, row] : table_rows("scene.md")) {
         if (name.find('.') == std::string::npos) continue;
         INFO(name);
@@ -194,6 +195,17 @@ TEST_CASE("docs/scene.md's defaults are the ones a scene gets, and its required 
             REQUIRE_NOTHROW(plain = parse_scene(without, "spin-up.toml"));
             check_same(parse_scene(without, "spin-up.toml", {{name, value}}), plain);
             ++defaults;
+        } else if (cell.rfind("as `", 0) == 0) {
+            // A default that is another key's value: setting the key to that value changes nothing.
+            const std::string other = cell.substr(4, cell.find('`', 4) - 4);
+            const std::string without = scene_text(spin_up, name);
+            std::string value;
+            for (const auto& line : spin_up)
+                if (line.first == other) value = line.second;
+            INFO("documented default: the value of " << other);
+            REQUIRE(!value.empty());
+            check_same(parse_scene(without, "spin-up.toml", {{name, value}}), parse_scene(without, "spin-up.toml"));
+            ++derived;
         } else if (cell.rfind("required", 0) == 0) {
             bool held = false;
             const SceneLines held_hub = other_motion({{"motion.kind", "\"held\""}, {"motion.angle", "0.5"}});
@@ -216,8 +228,9 @@ TEST_CASE("docs/scene.md's defaults are the ones a scene gets, and its required 
             ++required;
         }
     }
-    // Every key is one or the other but output.file, whose default is derived from the scene's name.
-    CHECK(defaults + required + 1 == static_cast<int>(scene_keys().size()));
+    // Every key is one or the other, or defaults to another key's value, but output.file, whose default is derived
+    // from the scene's name.
+    CHECK(defaults + required + derived + 1 == static_cast<int>(scene_keys().size()));
 }
 
 TEST_CASE("docs/cli.md's run options set the keys the program's options set", "[docs]")

@@ -62,51 +62,68 @@ TEST_CASE("the printer refuses what it cannot print exactly", "[emit]")
     CHECK_NOTHROW(emit(k * x + 1 / k));
 }
 
-TEST_CASE("|r_dot|^2 per model order matches docs/model.md section 3", "[energy]")
+TEST_CASE("|r_dot|^2 per model order matches docs/model.md sections 3 and 12", "[energy]")
 {
-    // The reference is derived here, not transcribed: r = Theta(theta) (X + u_x, u_y) (docs/model.md section 2,
-    // paper eqs. 4-5), differentiated in time by GiNaC through the chain rule, d/dt = sum_k qdot_k d/dq_k over
-    // q = (theta, u_x1, u_y, u_x2) with rates (w, u_x1_dot, u_y_dot, u_x2_dot); X = a + x is fixed.
+    // The reference is derived here, not transcribed: r = Theta(theta) p with p = a i + (x + u_x) e1 + u_y e2 + u_z e3,
+    // e1 = cos(b) i + sin(b) k, e3 = -sin(b) i + cos(b) k (docs/model.md sections 2 and 12, b the precone),
+    // differentiated in time by GiNaC through the chain rule, d/dt = sum_k qdot_k d/dq_k over
+    // q = (theta, u_x1, u_y, u_z, u_x2) with rates (w, u_x1_dot, u_y_dot, u_z_dot, u_x2_dot); X = a + x is fixed.
     const FieldSymbols f;
-    const symbol theta("theta"), w("w");
+    const symbol theta("theta"), w("w"), a("a"), b("b");
     const ex ux = f.ux1 + f.ux2;
-    const ex px = f.X + ux, py = f.uy;
+    const ex p[3] = {a + (f.X - a + ux) * cos(b) - f.uz * sin(b), f.uy, (f.X - a + ux) * sin(b) + f.uz * cos(b)};
     const ex c = cos(theta), s = sin(theta);
-    const ex r[2] = {c * px - s * py, s * px + c * py};
-    const std::pair<symbol, ex> rates[] = {{theta, w}, {f.ux1, f.ux1_dot}, {f.uy, f.uy_dot}, {f.ux2, f.ux2_dot}};
-    ex r_dot[2];
-    for (int i = 0; i < 2; ++i) {
-        r_dot[i] = 0;
-        for (const auto& [coordinate, rate] : rates) r_dot[i] += r[i].diff(coordinate) * rate;
+    const ex r[3] = {c * p[0] - s * p[1], s * p[0] + c * p[1], p[2]};
+    const std::pair<symbol, ex> rates[] = {
+        {theta, w}, {f.ux1, f.ux1_dot}, {f.uy, f.uy_dot}, {f.uz, f.uz_dot}, {f.ux2, f.ux2_dot}};
+    ex v2 = 0;
+    for (int i = 0; i < 3; ++i) {
+        ex r_dot = 0;
+        for (const auto& [coordinate, rate] : rates) r_dot += r[i].diff(coordinate) * rate;
+        v2 += pow(r_dot, 2);
     }
-    // |r_dot|^2 with cos^2 theta + sin^2 theta = 1 applied: what remains must be free of theta.
-    const ex v2_full = (pow(r_dot[0], 2) + pow(r_dot[1], 2))
-                           .expand()
-                           .subs(pow(s, 2) == 1 - pow(c, 2), subs_options::algebraic)
-                           .expand();
-    REQUIRE_FALSE(v2_full.has(theta));
-    INFO("|r_dot|^2 = " << v2_full);
-
-    // Order `first` keeps degrees 0..2 in the deformation, u_x1, u_y and their rates counting 1, u_x2 and its
-    // rate 2 (docs/model.md section 3).
+    // cos^2 + sin^2 = 1 applied to theta and to the precone: what remains must be free of theta.
+    const auto simplified = [](const ex& e, const ex& angle) {
+        return e.expand().subs(pow(sin(angle), 2) == 1 - pow(cos(angle), 2), subs_options::algebraic).expand();
+    };
+    const ex v2_cone = simplified(simplified(v2, theta), b);
+    REQUIRE_FALSE(v2_cone.has(theta));
+    // Order `first` keeps degrees 0..2 in the deformation, u_x1, u_y, u_z and their rates counting 1, u_x2 and its
+    // rate 2 (docs/model.md sections 3 and 12); order `zero` is `first` without the foreshortening.
     const symbol eps("eps");
-    const ex scaled = v2_full
-                          .subs(lst{f.ux1 == eps * f.ux1, f.uy == eps * f.uy, f.ux1_dot == eps * f.ux1_dot,
-                                    f.uy_dot == eps * f.uy_dot, f.ux2 == pow(eps, 2) * f.ux2,
-                                    f.ux2_dot == pow(eps, 2) * f.ux2_dot})
-                          .expand();
-    ex v2_first = 0;
-    for (int k = 0; k <= 2; ++k) v2_first += scaled.coeff(eps, k);
-    // Order `zero`: `first` without the foreshortening.
-    const ex v2_zero = v2_first.subs(lst{f.ux2 == 0, f.ux2_dot == 0});
-    // The truncation drops something (the terms section 3 lists), and the foreshortening reaches `first` only
-    // through the centrifugal term 2 w^2 X u_x2.
+    const auto first = [&](const ex& e) {
+        const ex scaled = e.subs(lst{f.ux1 == eps * f.ux1, f.uy == eps * f.uy, f.uz == eps * f.uz,
+                                     f.ux1_dot == eps * f.ux1_dot, f.uy_dot == eps * f.uy_dot, f.uz_dot == eps * f.uz_dot,
+                                     f.ux2 == pow(eps, 2) * f.ux2, f.ux2_dot == pow(eps, 2) * f.ux2_dot})
+                             .expand();
+        ex kept = 0;
+        for (int k = 0; k <= 2; ++k) kept += scaled.coeff(eps, k);
+        return kept;
+    };
+    const auto zero = [&](const ex& e) { return e.subs(lst{f.ux2 == 0, f.ux2_dot == 0}); };
+    const Cone cone{cos(b), sin(b), a};
+    const auto same = [&b](const ex& x, const ex& y) {
+        return (x - y).expand().subs(pow(sin(b), 2) == 1 - pow(cos(b), 2), subs_options::algebraic).expand().is_zero();
+    };
+    CHECK(same(velocity_squared(Order::full, f, w, cone), v2_cone));
+    CHECK(same(velocity_squared(Order::first, f, w, cone), first(v2_cone)));
+    CHECK(same(velocity_squared(Order::zero, f, w, cone), zero(first(v2_cone))));
+
+    // The plane (b = 0, u_z = 0): section 3's integrand. The truncation drops something (the terms section 3
+    // lists), and the foreshortening reaches `first` only through the centrifugal term 2 w^2 X u_x2.
+    const ex v2_full = v2_cone.subs(lst{b == 0, f.uz == 0, f.uz_dot == 0});
+    INFO("|r_dot|^2 = " << v2_full);
+    const ex v2_first = first(v2_full), v2_zero = zero(v2_first);
     REQUIRE_FALSE((v2_full - v2_first).expand().is_zero());
     CHECK((v2_first - v2_zero - 2 * pow(w, 2) * f.X * f.ux2).expand().is_zero());
-
-    CHECK((velocity_squared(Order::full, f, w) - v2_full).expand().is_zero());
-    CHECK((velocity_squared(Order::first, f, w) - v2_first).expand().is_zero());
-    CHECK((velocity_squared(Order::zero, f, w) - v2_zero).expand().is_zero());
+    const auto planar = [&](const ex& e) { return e.subs(lst{f.uz == 0, f.uz_dot == 0}); };
+    CHECK((planar(velocity_squared(Order::full, f, w)) - v2_full).expand().is_zero());
+    CHECK((planar(velocity_squared(Order::first, f, w)) - v2_first).expand().is_zero());
+    CHECK((planar(velocity_squared(Order::zero, f, w)) - v2_zero).expand().is_zero());
+    // With no precone the flapwise rate only adds its own square (no -Omega^2 softening, section 12).
+    CHECK((velocity_squared(Order::first, f, w) - planar(velocity_squared(Order::first, f, w)) - pow(f.uz_dot, 2))
+              .expand()
+              .is_zero());
 }
 
 TEST_CASE("exact integrals equal closed forms", "[integrals]")

@@ -15,6 +15,7 @@ namespace hubbeam {
 
 /// The values of a row's optional columns (optional_columns): those a scene does not have stay 0 and are not written.
 struct RowExtras {
+    double tip_uz = 0.0, tip_phi = 0.0;
     double tau = 0.0, theta_ref = 0.0, controller_integral = 0.0, dissipated = 0.0, work = 0.0;
 };
 
@@ -61,6 +62,8 @@ struct OptionalColumn {
     const char* when;  // which scenes have it
 };
 inline constexpr OptionalColumn optional_columns[] = {
+    {"tip_uz", "m", &RowExtras::tip_uz, "tip flapwise deflection u_z(L)", "nz > 0"},
+    {"tip_phi", "rad", &RowExtras::tip_phi, "tip twist phi(L)", "nt > 0"},
     {"tau", "N m", &RowExtras::tau, "hub torque applied (after saturation)",
      "a torque-driven hub under a controller or a torque law, or with damping"},
     {"theta_ref", "rad", &RowExtras::theta_ref, "the controller's reference angle", "[control]"},

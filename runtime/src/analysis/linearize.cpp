@@ -221,28 +221,37 @@ std::vector<double> energy_by_field(const Model& model, const Eigen::MatrixXd& M
     return energy;
 }
 
-/// A mode's kind (the modes CSV's column) when most of its kinetic energy is in a field of this kind.
-const char* mode_kind(FieldKind kind)
+/// A mode's kind (the modes CSV's column) when most of its kinetic energy is in a field of this kind: a planar
+/// beam's in-plane modes are "bending", a beam that leaves the plane has "edge" (lead-lag) and "flap" modes.
+const char* mode_kind(FieldKind kind, bool out_of_plane)
 {
     switch (kind) {
     case FieldKind::hub_angle: return "hub";
     case FieldKind::axial: return "axial";
+    case FieldKind::flap: return "flap";
+    case FieldKind::twist: return "twist";
     case FieldKind::inplane: break;
     }
-    return "bending";
+    return out_of_plane ? "edge" : "bending";
 }
 
-/// Whether a mode with these rates (of the coordinates R) holds more kinetic energy in the axial than in the
-/// other elastic coordinates.
-bool mostly_axial(const Model& model, const Eigen::MatrixXd& M, const std::vector<int>& R, const Eigen::VectorXcd& rates)
+/// The elastic field that holds the largest part of the kinetic energy of a mode with these rates (of the
+/// coordinates R); the in-plane field where the rates hold none.
+FieldKind dominant_field(const Model& model, const Eigen::MatrixXd& M, const std::vector<int>& R,
+                         const Eigen::VectorXcd& rates)
 {
     const std::vector<double> e = energy_by_field(model, M, R, rates);
-    double axial = 0.0, other = 0.0;
+    FieldKind dominant = FieldKind::inplane;
+    double largest = -1.0;
     for (std::size_t f = 0; f < e.size(); ++f) {
         const FieldKind kind = model.coordinates().fields[f].kind;
-        if (kind != FieldKind::hub_angle) (kind == FieldKind::axial ? axial : other) += e[f];
+        // Ties (a planar mode with no axial energy) go to the in-plane field, as before the axial one.
+        if (kind != FieldKind::hub_angle && (e[f] > largest || (e[f] == largest && kind == FieldKind::inplane))) {
+            largest = e[f];
+            dominant = kind;
+        }
     }
-    return axial > other;
+    return dominant;
 }
 
 /// NaturalMode::shape of a mode with these rates: U rates with U the upper Cholesky factor of M over the same
@@ -254,6 +263,39 @@ Eigen::VectorXcd weighted_shape(const Eigen::MatrixXd& U, const Eigen::VectorXcd
     return length > 0.0 ? Eigen::VectorXcd(w / length) : w;
 }
 
+/// Within each set of repeated eigenvalues (a uniform blade at rest: flap and lead-lag modes of one frequency), the
+/// eigen solver's vectors are any basis of the eigenspace; turns them into the basis that splits the in-plane field's
+/// kinetic energy from the rest, so that each mode is a pure flap or lead-lag mode and keeps its kind.
+void separate_repeated(const Model& model, const Eigen::MatrixXd& M, const std::vector<int>& R,
+                       const Eigen::VectorXcd& lambda, Eigen::MatrixXcd& rates)
+{
+    const CoordinateLayout& layout = model.coordinates();
+    const auto n = static_cast<Eigen::Index>(R.size());
+    Eigen::MatrixXd inplane = Eigen::MatrixXd::Zero(n, n);  // M over R, the in-plane field's block only
+    for (Eigen::Index i = 0; i < n; ++i)
+        for (Eigen::Index j = 0; j < n; ++j)
+            if (layout.field_of(R[static_cast<std::size_t>(i)]).kind == FieldKind::inplane &&
+                layout.field_of(R[static_cast<std::size_t>(j)]).kind == FieldKind::inplane)
+                inplane(i, j) = M(R[static_cast<std::size_t>(i)], R[static_cast<std::size_t>(j)]);
+    std::vector<bool> done(static_cast<std::size_t>(lambda.size()), false);
+    for (Eigen::Index k = 0; k < lambda.size(); ++k) {
+        if (done[static_cast<std::size_t>(k)]) continue;
+        std::vector<Eigen::Index> group;
+        for (Eigen::Index j = k; j < lambda.size(); ++j)
+            // Repeated to 1e-6: the eigen solver resolves a repeated pair to about 1e-9 of its value (BIM, Ny 12).
+            if (std::abs(lambda[j] - lambda[k]) <= 1e-6 * std::abs(lambda[k])) {
+                group.push_back(j);
+                done[static_cast<std::size_t>(j)] = true;
+            }
+        if (group.size() < 2) continue;
+        Eigen::MatrixXcd V(n, static_cast<Eigen::Index>(group.size()));
+        for (std::size_t g = 0; g < group.size(); ++g) V.col(static_cast<Eigen::Index>(g)) = rates.col(group[g]);
+        const Eigen::MatrixXcd E = V.adjoint() * inplane * V;
+        const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXcd> split(E);
+        const Eigen::MatrixXcd turned = V * split.eigenvectors();
+        for (std::size_t g = 0; g < group.size(); ++g) rates.col(group[g]) = turned.col(static_cast<Eigen::Index>(g));
+    }
+}
 
 }  // namespace
 
@@ -280,6 +322,8 @@ std::vector<NaturalMode> natural_modes(const Model& model, const SteadySpin& s, 
     // rates relative to the hub, so it conserves it too).
     Eigen::Index momentum = -1;
     if (cyclic_angle(model, R) == 1) lambda.cwiseAbs().minCoeff(&momentum);
+    Eigen::MatrixXcd rates_of = vectors.bottomRows(vectors.rows() - first_rate).topRows(r);
+    if (model.key().out_of_plane()) separate_repeated(model, M, R, lambda, rates_of);
     std::vector<NaturalMode> modes;
     for (Eigen::Index k = 0; k < lambda.size(); ++k) {
         const std::complex<double> l = lambda[k];
@@ -291,10 +335,9 @@ std::vector<NaturalMode> natural_modes(const Model& model, const SteadySpin& s, 
         // Without damping the equations are conservative (gyroscopic at most): a real part below 1e-6 of |lambda|
         // is the eigen solver's round-off, not damping.
         const double growth = !damped && std::abs(l.real()) <= 1e-6 * scale ? 0.0 : l.real();
-        const Eigen::VectorXcd rates = vectors.col(k).segment(first_rate, r);
-        const bool is_axial = mostly_axial(model, M, R, rates);
+        const Eigen::VectorXcd rates = rates_of.col(k);
         const double magnitude = std::hypot(growth, oscillating ? l.imag() : 0.0);
-        const char* kind = mode_kind(is_axial ? FieldKind::axial : FieldKind::inplane);
+        const char* kind = mode_kind(dominant_field(model, M, R, rates), model.key().out_of_plane());
         modes.push_back({oscillating ? l.imag() : 0.0, growth, kind, magnitude,
                          magnitude > 0.0 ? -growth / magnitude : 0.0, weighted_shape(U, rates)});
     }
@@ -360,7 +403,7 @@ std::vector<NaturalMode> closed_loop_modes(const Model& model, const SteadySpin&
         const auto most = std::max_element(energy.begin(), energy.end()) - energy.begin();
         const bool oscillating = l.imag() > 1e-9 * scale;
         const FieldKind kind = model.coordinates().fields[static_cast<std::size_t>(most)].kind;
-        modes.push_back({oscillating ? l.imag() : 0.0, l.real(), mode_kind(kind),
+        modes.push_back({oscillating ? l.imag() : 0.0, l.real(), mode_kind(kind, model.key().out_of_plane()),
                          magnitude, -l.real() / magnitude, weighted_shape(U, rates)});
     }
     std::sort(modes.begin(), modes.end(),

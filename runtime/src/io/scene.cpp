@@ -100,6 +100,9 @@ public:
         return static_cast<int>(i->get());
     }
 
+    /// An integer key that may be absent (fallback).
+    int integer(std::string_view key, int fallback) const { return get(key) ? required_integer(key) : fallback; }
+
     std::string required_string(std::string_view key) const
     {
         if (const auto v = string(key)) return *v;
@@ -217,6 +220,28 @@ void check_tables(const toml::table& root, const std::string& path)
             fail(path, required, std::string("a table [") + required + "]", "nothing (the table is missing)");
 }
 
+/// [beam]'s out-of-plane keys (docs/model.md section 12); a zero pitch, pre-twist or precone leaves its term out.
+void read_out_of_plane_section(const Section& beam, Parameters& p)
+{
+    p.G = beam.number("shear_modulus", p.G);
+    p.J_t = beam.number("torsion_constant", p.J_t);
+    p.pitch = beam.number("pitch", p.pitch);
+    p.twist = beam.number("twist", p.twist);
+    p.precone = beam.number("precone", p.precone);
+}
+
+/// [gravity] direction: "plane" (g along -j of the inertial plane) or "axis" (along -k): the weight goes to g or to
+/// g_axis (docs/model.md section 12).
+void read_gravity_direction(const Section& gravity, Parameters& p)
+{
+    if (gravity.absent()) return;
+    const auto direction = gravity.string("direction");
+    if (!direction || *direction == "plane") return;
+    if (*direction != "axis") gravity.refuse("direction", describe(*gravity.get("direction")));
+    p.g_axis = p.g;
+    p.g = 0.0;
+}
+
 /// [beam]: docs/model.md section 1, the taper of section 11 (a taper kind without a ratio is refused: the default
 /// ratio 1 would make it uniform without a word) and the tabulated profile of section 11.2 (the section's keys and
 /// a taper with it are refused: the table gives the beam's distributions). Returns the profile table's file, or "".
@@ -224,8 +249,10 @@ std::string read_beam(const Section& beam, const std::string& scene_path, Parame
 {
     beam.only();
     p.L = beam.required_number("length");
+    read_out_of_plane_section(beam, p);
     if (const auto profile = beam.string("profile"); profile && !profile->empty()) {
-        for (const char* key : {"density", "area", "second_moment", "youngs_modulus", "taper", "tip_ratio"})
+        for (const char* key : {"density", "area", "second_moment", "youngs_modulus", "taper", "tip_ratio",
+                                "second_moment_flap", "shear_modulus", "torsion_constant", "twist"})
             if (beam.get(key))
                 throw SceneError::with_detail(scene_path, beam.path(key),
                                               "not used with beam.profile (its table gives m, EI and ES along the span): "
@@ -235,6 +262,7 @@ std::string read_beam(const Section& beam, const std::string& scene_path, Parame
     p.rho = beam.required_number("density");
     p.S = beam.required_number("area");
     p.I = beam.required_number("second_moment");
+    p.I_flap = beam.number("second_moment_flap", p.I);
     p.E = beam.required_number("youngs_modulus");
     Taper& taper = extras.taper;
     taper = beam.word<Taper>("taper", parse_enum<Taper>).value_or(Taper::uniform);
@@ -323,6 +351,8 @@ void read_discretization(const Section& disc, const Scene& scene, VariantKey& ke
     key.method = disc.required_word<Method>("method", parse_enum<Method>);
     key.ny = disc.required_integer("ny");
     key.nx = disc.required_integer("nx");
+    key.nz = disc.integer("nz", key.nz);
+    key.nt = disc.integer("nt", key.nt);
     key.spline = disc.word<SplineBasis>("spline_basis", parse_enum<SplineBasis>).value_or(key.spline);
     key.drive = scene.drive();
 }
@@ -391,6 +421,7 @@ Scene parse_scene(std::string_view text, const std::string& path, const Override
         !profile.empty())
         scene.tables.emplace_back("beam.profile", std::move(profile));
     read_extras(root, path, scene.parameters);
+    read_gravity_direction(Section(path, root, "gravity"), scene.parameters);
     read_motion(Section(path, root, "motion"), path, scene.motion);
     if (scene.motion.table) scene.tables.emplace_back("motion.file", scene.motion.table_file);
     read_control(Section(path, root, "control"), scene.control);

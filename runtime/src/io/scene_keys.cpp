@@ -55,6 +55,13 @@ std::vector<SceneKey> make_scene_keys()
         {"beam.profile", nullptr, K::text,
          "a CSV file name relative to the scene's folder, with the columns x/L, m, EI, ES (m kg/m, EI N m^2, ES N); "
          "empty: none"},
+        {"beam.second_moment_flap", nullptr, K::number,
+         "a number > 0 (I_flap, m^4, bending out of the plane; default beam.second_moment)"},
+        {"beam.shear_modulus", nullptr, K::number, "a number >= 0 (G, Pa; > 0 needed with nt > 0)"},
+        {"beam.torsion_constant", nullptr, K::number, "a number >= 0 (J_t, m^4; > 0 needed with nt > 0)"},
+        {"beam.pitch", nullptr, K::number, "a finite number (the section's pitch, rad)"},
+        {"beam.twist", nullptr, K::number, "a number in [-0.5, 0.5] (the pre-twist, tip minus root, rad)"},
+        {"beam.precone", nullptr, K::number, "a number in (-1.5, 1.5) (the precone, rad; positive towards +k)"},
         {"hub.radius", nullptr, K::number, "a number >= 0 (a, m)"},
         {"hub.inertia", nullptr, K::number, "a number > 0 (J_oh, kg m^2)"},
         {"tip.mass", nullptr, K::number, "a number >= 0 (m_tip, kg)"},
@@ -62,6 +69,8 @@ std::vector<SceneKey> make_scene_keys()
         {"damping.mass_proportional", nullptr, K::number, "a number >= 0 (alpha, 1/s)"},
         {"damping.stiffness_proportional", nullptr, K::number, "a number >= 0 (beta, s)"},
         {"gravity.g", nullptr, K::number, "a finite number (g, m/s^2)"},
+        {"gravity.direction", nullptr, K::word,
+         "one of \"plane\" (along -j of a vertical plane of rotation) or \"axis\" (along -k, the spin axis vertical)"},
         {"motion.kind", nullptr, K::word, one_of(motion_kinds())},
         {"motion.omega0", nullptr, K::number, "a finite number (Omega0, rad/s)", {"spin-up"}},
         {"motion.tau0", nullptr, K::number, "a finite number (tau0, N m)", {"torque"}},
@@ -78,6 +87,8 @@ std::vector<SceneKey> make_scene_keys()
         {"discretization.method", "--method", K::word, one_of(words<Method>())},
         {"discretization.ny", "--ny", K::integer, "an integer >= 1 (Ny)"},
         {"discretization.nx", "--nx", K::integer, "an integer >= 0 (Nx)"},
+        {"discretization.nz", "--nz", K::integer, "an integer >= 0 (Nz, flapwise coordinates; 0: in the plane)"},
+        {"discretization.nt", "--nt", K::integer, "an integer >= 0 (Nt, twist coordinates)"},
         {"discretization.spline_basis", "--spline-basis", K::word, one_of(words<SplineBasis>())},
         {"model.order", "--order", K::word, one_of(words<Order>())},
         {"model.source", "--source", K::word, one_of(words<ModelSource>())},
@@ -94,7 +105,7 @@ std::vector<SceneKey> make_scene_keys()
         {"output.file", "-o,--output", K::text, "a file name"},
         {"output.sensitivities", "--sensitivities", K::text,
          "parameter symbols separated by commas, each once: L, rho, S, I, E, a, J_oh, m_tip, J_tip, g, alpha, beta, "
-         "tip_ratio, kp, kd, ki, k_tip"},
+         "tip_ratio, I_flap, G, J_t, pitch, twist, precone, g_axis, kp, kd, ki, k_tip"},
     };
 }
 

@@ -81,6 +81,31 @@ void check_control(const Scene& s)
     check_finite(s, c.k_tip, "control.k_tip");
 }
 
+/// The out-of-plane section's values and what it cannot be combined with (docs/model.md section 12).
+void check_out_of_plane(const Scene& s)
+{
+    const Parameters& p = s.parameters;
+    const VariantKey& key = s.variant;
+    check_positive(s, p.I_flap, "beam.second_moment_flap");
+    check_finite(s, p.pitch, "beam.pitch");
+    if (!(std::abs(p.twist) <= max_twist)) fail(s.path, "beam.twist", expected("beam.twist"), shortest(p.twist));
+    if (!(std::abs(p.precone) < 1.5)) fail(s.path, "beam.precone", expected("beam.precone"), shortest(p.precone));
+    if (key.nz < 0) fail(s.path, "discretization.nz", expected("discretization.nz"), std::to_string(key.nz));
+    if (key.nt < 0) fail(s.path, "discretization.nt", expected("discretization.nt"), std::to_string(key.nt));
+    for (const auto& [v, name] : {std::pair{p.G, "beam.shear_modulus"}, {p.J_t, "beam.torsion_constant"}}) {
+        if (!(v >= 0.0) || !std::isfinite(v)) fail(s.path, name, expected(name), shortest(v));
+        if (key.nt > 0 && v == 0.0)
+            fail(s.path, name, "a number > 0 with discretization.nt > 0 (the twist field's stiffness)", "0");
+    }
+    // A taper or a profile gives the in-plane section along the span, not the flapwise and torsional one.
+    const VariantKey k = s.key();
+    if (k.out_of_plane() && (k.extras.taper != Taper::uniform || k.extras.profile()))
+        fail(s.path, k.extras.profile() ? "beam.profile" : "beam.taper",
+             "a uniform section where the beam leaves the plane (nz, nt, pitch, twist or precone): a taper or a profile "
+             "gives no flapwise or torsional distribution",
+             k.extras.profile() ? "a profile" : "a taper");
+}
+
 /// The beam's, hub's and extra terms' parameters (docs/model.md sections 1 and 11).
 void check_parameters(const Scene& s)
 {
@@ -97,6 +122,7 @@ void check_parameters(const Scene& s)
                                  {p.alpha, "damping.mass_proportional"}, {p.beta, "damping.stiffness_proportional"}})
         if (!(v >= 0.0) || !std::isfinite(v)) fail(s.path, key, expected(key), shortest(v));
     check_finite(s, p.g, "gravity.g");
+    check_out_of_plane(s);
 }
 
 /// The motion's values for its kind, its start angle and the control that follows it.
@@ -125,14 +151,20 @@ void check_motion(const Scene& s)
 /// The DOF counts and the axial coordinates' treatment.
 void check_discretization(const Scene& s)
 {
-    // DOF counts: a problem that persists with nx = 0 is about ny.
+    // DOF counts: the key named is the first whose removal (a count of 0, ny 2) cures the problem.
     const VariantKey& key = s.variant;
     if (key.ny < 1) fail(s.path, "discretization.ny", expected("discretization.ny"), std::to_string(key.ny));
     if (key.nx < 0) fail(s.path, "discretization.nx", expected("discretization.nx"), std::to_string(key.nx));
-    if (const std::string problem = key.dof_problem(); !problem.empty()) {
-        VariantKey without_axial = key;
-        without_axial.nx = 0;
-        const char* name = without_axial.dof_problem().empty() ? "discretization.nx" : "discretization.ny";
+    if (const std::string problem = s.key().dof_problem(); !problem.empty()) {
+        const char* name = "discretization.ny";
+        for (const auto& [count, key_name] : {std::pair{&VariantKey::nx, "discretization.nx"},
+                                              {&VariantKey::nz, "discretization.nz"},
+                                              {&VariantKey::nt, "discretization.nt"}}) {
+            VariantKey without = s.key();
+            without.*count = 0;
+            if (without.dof_problem().empty()) name = key_name;
+        }
+        if (problem.rfind("order full", 0) == 0) name = "model.order";
         throw SceneError::with_detail(s.path, name, problem);
     }
 

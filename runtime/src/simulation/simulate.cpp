@@ -181,6 +181,8 @@ Row RowMaker::operator()(double t, const double* y)
         extras.work = at(system_.work_index());
     }
     const Tip tip = model_.tip(q);
+    extras.tip_uz = tip.uz;
+    extras.tip_phi = tip.phi;
     const Energy e = model_.energy(u, q, qd);
     const double theta = torque ? q[0] : u.theta, theta_dot = torque ? qd[0] : u.theta_dot;
     Row r{t, theta, theta_dot, tip.uy, tip.ux1, tip.ux, e.kinetic(), e.U, model_.momentum(u, q, qd), e.T2 - e.T0 + e.U,
@@ -784,7 +786,8 @@ ColumnSet optional_columns_of(const Scene& scene)
     const VariantKey key = scene.key();
     const Auxiliary aux = Auxiliary::of(key, control, &scene.parameters, scene.wants({"ki"}));
     const bool torque = key.drive == Drive::torque && (control != nullptr || key.extras.damping);
-    const bool has[] = {torque, control != nullptr && !control->law, aux.integral, aux.dissipated, aux.work};
+    const bool has[] = {key.nz > 0, key.nt > 0, torque, control != nullptr && !control->law, aux.integral,
+                        aux.dissipated, aux.work};
     static_assert(std::size(has) == optional_width);
     ColumnSet set;
     for (std::size_t i = 0; i < optional_width; ++i)

@@ -1,0 +1,170 @@
+// The facts of docs/model.md section 12 that any correct out-of-plane model reproduces, each from physics: the
+// rotating uniform blade's flap frequencies (Wright et al. 1982 as tabulated by Bir 2009), flap and lead-lag
+// related by omega_flap^2 = omega_lag^2 + Omega^2, torsion at rest and stiffened by the propeller moment, a pitch of
+// 90 degrees exchanging the flapwise and edgewise stiffness, the flap sag under gravity along the spin axis, and the
+// planar model as the special case nz = nt = 0. Generated models, compiled on demand where not built in.
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <hubbeam/linearize.hpp>
+#include <hubbeam/make_model.hpp>
+#include <string>
+#include <vector>
+
+using namespace hubbeam;
+
+namespace {
+
+/// A uniform blade in the units sqrt(EI/(m L^4)) = 1 (L = 1, m = 1, EI_edge = EI_flap = 1), clamped at the axis,
+/// with a torsion stiffness GJ = 1/2 and section mass moments j_n = rho I, j_c = rho I_flap.
+Parameters unit_blade()
+{
+    Parameters p;
+    p.L = 1.0, p.rho = 1.0, p.S = 1.0, p.I = 1.0, p.E = 1.0, p.a = 0.0, p.J_oh = 1.0;
+    p.I_flap = 1.0, p.G = 1.0, p.J_t = 0.5;
+    return p;
+}
+
+VariantKey blade_key(Method method, int n, int nt = 0, Extras extras = {})
+{
+    VariantKey key{.method = method, .nx = 0, .ny = n, .order = Order::first, .drive = Drive::prescribed};
+    key.nz = n;
+    key.nt = nt;
+    key.extras = extras;
+    return key;
+}
+
+/// The frequencies (rad/s) of the modes of one kind at spin omega, lowest first.
+std::vector<double> frequencies(const Model& model, double omega, const std::string& kind)
+{
+    std::vector<double> f;
+    for (const NaturalMode& m : natural_modes(model, steady_spin(model, omega)))
+        if (m.kind == kind) f.push_back(m.rad_s);
+    return f;
+}
+
+}  // namespace
+
+TEST_CASE("flap frequencies of a rotating uniform blade converge to the Wright/Bir table with every method",
+          "[out_of_plane]")
+{
+    // Bir 2009 (BModes verification), from Wright, Smith, Thresher & Wang 1982: modes 1-3 at Omega = 0, 6, 12.
+    const double omegas[] = {0.0, 6.0, 12.0};
+    const double table[3][3] = {{3.516, 22.035, 61.697}, {7.360, 26.809, 66.684}, {13.170, 37.603, 79.615}};
+    struct Case {
+        Method method;
+        int coarse, fine;
+    };
+    // Each method at two sizes: the finer one within the table's rounding (5e-4 of the value) on mode 1 and closer
+    // than the coarser on every mode.
+    for (const Case c :
+         {Case{Method::amm, 6, 10}, Case{Method::fem, 8, 16}, Case{Method::bim, 8, 12}, Case{Method::bsim, 8, 14}}) {
+        const Parameters p = unit_blade();
+        const auto coarse = make_model(blade_key(c.method, c.coarse), p, ModelSource::generated);
+        const auto fine = make_model(blade_key(c.method, c.fine), p, ModelSource::generated);
+        for (int w = 0; w < 3; ++w) {
+            const std::vector<double> f_coarse = frequencies(*coarse, omegas[w], "flap");
+            const std::vector<double> f_fine = frequencies(*fine, omegas[w], "flap");
+            REQUIRE(f_fine.size() >= 3);
+            for (int i = 0; i < 3; ++i) {
+                INFO(to_string(c.method) << " Omega " << omegas[w] << " mode " << i + 1 << ": " << f_coarse[i] << ", "
+                                         << f_fine[i] << " against " << table[w][i]);
+                const double e_coarse = std::abs(f_coarse[i] - table[w][i]), e_fine = std::abs(f_fine[i] - table[w][i]);
+                CHECK((e_fine <= e_coarse || e_fine <= 5e-4 * table[w][i]));
+                CHECK(e_fine <= (i == 0 ? 5e-4 : 2e-3) * table[w][i]);
+            }
+        }
+    }
+}
+
+TEST_CASE("flap and lead-lag of a uniform blade: omega_flap^2 = omega_lag^2 + Omega^2 mode by mode", "[out_of_plane]")
+{
+    // Nx = 0, order first, a = 0, no pitch or precone, EI_flap = EI_edge: the centrifugal stiffening is the same,
+    // lead-lag alone softened by -Omega^2 m (section 12). Holds for any discretization with nz = ny.
+    for (Method method : {Method::amm, Method::fem, Method::bim, Method::bsim}) {
+        const auto model = make_model(blade_key(method, 8), unit_blade(), ModelSource::generated);
+        for (double omega : {2.0, 6.0, 12.0}) {
+            const std::vector<double> flap = frequencies(*model, omega, "flap"),
+                                      edge = frequencies(*model, omega, "edge");
+            REQUIRE(flap.size() == edge.size());
+            for (std::size_t i = 0; i < 4; ++i) {
+                INFO(to_string(method) << " Omega " << omega << " mode " << i + 1);
+                CHECK(flap[i] * flap[i] == Approx(edge[i] * edge[i] + omega * omega).epsilon(1e-9));
+            }
+        }
+    }
+}
+
+TEST_CASE("torsion: (2i-1) pi/(2L) sqrt(GJ/j_p) at rest, and the propeller moment's Omega^2 (j_n - j_c)/j_p",
+          "[out_of_plane]")
+{
+    Parameters p = unit_blade();
+    p.I = 1.0, p.I_flap = 0.25;  // j_n = 1, j_c = 0.25, j_p = 1.25: the section resists turning from the plane
+    const double jp = p.rho * (p.I + p.I_flap), shift = (p.rho * p.I - p.rho * p.I_flap) / jp;
+    const double at_rest = M_PI / (2.0 * p.L) * std::sqrt(p.G * p.J_t / jp);
+    for (Method method : {Method::fem, Method::bsim, Method::amm, Method::bim}) {
+        const int nt = method == Method::bim ? 8 : 16;
+        const auto model = make_model(blade_key(method, 4, nt), p, ModelSource::generated);
+        const std::vector<double> rest = frequencies(*model, 0.0, "twist");
+        REQUIRE(rest.size() >= 2);
+        INFO(to_string(method) << ": " << rest[0] << ", " << rest[1]);
+        CHECK(rest[0] == Approx(at_rest).epsilon(method == Method::fem ? 2e-3 : 1e-6));
+        CHECK(rest[1] == Approx(3.0 * at_rest).epsilon(method == Method::fem ? 1e-2 : 1e-5));
+        for (double omega : {3.0, 10.0}) {
+            // The same discretization's twist frequencies, shifted exactly: the propeller moment is a stiffness
+            // proportional to the twist field's own mass.
+            const std::vector<double> spun = frequencies(*model, omega, "twist");
+            for (std::size_t i = 0; i < 2; ++i)
+                CHECK(spun[i] * spun[i] == Approx(rest[i] * rest[i] + omega * omega * shift).epsilon(1e-9));
+        }
+    }
+}
+
+TEST_CASE("a pitch of 90 degrees exchanges the flapwise and the edgewise stiffness", "[out_of_plane]")
+{
+    Parameters flat = unit_blade();
+    flat.I_flap = 0.2;  // a blade stiffer edgewise: I = 1, I_flap = 0.2
+    Parameters pitched = flat;
+    pitched.pitch = M_PI / 2;
+    Parameters swapped = flat;  // the stiffnesses exchanged at pitch 0 (with the mass moments kept: no twist field)
+    swapped.I = flat.I_flap, swapped.I_flap = flat.I;
+    swapped.S = flat.S;
+    for (Method method : {Method::fem, Method::amm}) {
+        const auto with_pitch =
+            make_model(blade_key(method, 6, 0, Extras{.pitch = true}), pitched, ModelSource::generated);
+        const auto exchanged = make_model(blade_key(method, 6), swapped, ModelSource::generated);
+        for (double omega : {0.0, 5.0}) {
+            std::vector<NaturalMode> a = natural_modes(*with_pitch, steady_spin(*with_pitch, omega));
+            std::vector<NaturalMode> b = natural_modes(*exchanged, steady_spin(*exchanged, omega));
+            REQUIRE(a.size() == b.size());
+            for (std::size_t i = 0; i < 8; ++i) {
+                INFO(to_string(method) << " Omega " << omega << " mode " << i + 1);
+                CHECK(a[i].rad_s == Approx(b[i].rad_s).epsilon(1e-10));
+                CHECK(a[i].kind == b[i].kind);
+            }
+        }
+        // And the edgewise modes of the flat blade are the flapwise ones of the pitched blade at rest.
+        const auto flat_model = make_model(blade_key(method, 6), flat, ModelSource::generated);
+        const std::vector<double> edge = frequencies(*flat_model, 0.0, "edge"),
+                                  flap = frequencies(*with_pitch, 0.0, "flap");
+        for (std::size_t i = 0; i < 3; ++i) CHECK(flap[i] == Approx(edge[i]).epsilon(1e-10));
+    }
+}
+
+TEST_CASE("a held blade sags -m g L^4/(8 EI_flap) under gravity along the spin axis", "[out_of_plane]")
+{
+    Parameters p = unit_blade();
+    p.I_flap = 0.3;
+    p.g_axis = 0.01;  // small: the linear sag of the first-order model
+    const double sag = -p.rho * p.S * p.g_axis * std::pow(p.L, 4) / (8.0 * p.E * p.I_flap);
+    // FEM's cubic Hermite elements hold the quartic deflection's nodal values exactly; AMM converges.
+    for (const auto& [method, n, tolerance] :
+         {std::tuple{Method::fem, 4, 1e-9}, {Method::bsim, 6, 1e-9}, {Method::bim, 6, 1e-9}, {Method::amm, 10, 1e-4}}) {
+        const auto model = make_model(blade_key(method, n, 0, Extras{.gravity = true}), p, ModelSource::generated);
+        const SteadySpin held = held_equilibrium(*model, 0.0);
+        const Tip tip = model->tip(held.q.data());
+        INFO(to_string(method) << ": " << tip.uz << " against " << sag);
+        CHECK(tip.uz == Approx(sag).epsilon(tolerance));
+        CHECK(std::abs(tip.uy) < 1e-12 * std::abs(sag));  // no weight in the plane
+    }
+}
