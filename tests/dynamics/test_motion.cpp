@@ -233,7 +233,7 @@ TEST_CASE("a table's acceleration rate is the derivative of its acceleration, pi
     CHECK(past.theta_ddot == Approx(end.theta_ddot + 1e-9 * m.rate(4.0).theta_ddot).margin(1e-15));
 }
 
-TEST_CASE("a torque table is linear between its rows, each row a breakpoint; its impulse the trapezoids", "[motion]")
+TEST_CASE("a torque table is linear between its rows, each row a breakpoint - its impulse the trapezoids", "[motion]")
 {
     const std::vector<double> t = {0.0, 1.0, 1.5, 3.0, 4.0}, tau = {0.0, 2.0, 2.0, -1.0, 0.0};
     Motion m = table_motion(std::make_shared<const DriveTable>(t, tau, DriveTable::Interpolation::linear),

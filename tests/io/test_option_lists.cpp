@@ -11,7 +11,7 @@
 
 using namespace hubbeam;
 
-TEST_CASE("a number in an option list may be written in any decimal form; zero is zero however written", "[options]")
+TEST_CASE("a number in an option list may be written in any decimal form - zero is zero however written", "[options]")
 {
     // The forms seq, printf and numpy write: "0.0" must mean what "0" means.
     for (const char* zero : {"0", "0.0", "0.", ".0", "0e0", "0.0e+00", "-0", "-0.0", "+0", "000"}) {

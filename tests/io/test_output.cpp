@@ -349,7 +349,7 @@ TEST_CASE("A run stopped early to .npy counts its rows in the header and equals 
     CHECK(contents(scratch / "run.columns.txt") == row_header(columns) + "\n");
 }
 
-TEST_CASE("OutputFile::write_at overwrites in place; durable or not, commit() puts the file in place", "[output]")
+TEST_CASE("OutputFile::write_at overwrites in place - durable or not, commit() puts the file in place", "[output]")
 {
     const ScratchDir scratch;
     for (const bool durable : {false, true}) {

@@ -329,7 +329,7 @@ TEST_CASE("bad scene input throws SceneError naming the file and the key", "[sce
     }
 }
 
-TEST_CASE("solver.error_check takes on, off and full, from the file and as an override; other words are refused",
+TEST_CASE("solver.error_check takes on, off and full, from the file and as an override - other words are refused",
           "[scene]")
 {
     const TempDir dir;

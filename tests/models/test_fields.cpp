@@ -42,7 +42,7 @@ double exact_moment(const Parameters& p, double x)
 
 }  // namespace
 
-TEST_CASE("FEM's bending moment jumps at its nodes, less as Ny grows; the other methods' is continuous", "[fields]")
+TEST_CASE("FEM's bending moment jumps at its nodes, less as Ny grows - the other methods' is continuous", "[fields]")
 {
     const Parameters p;
     const double root = std::abs(exact_moment(p, 0.0));

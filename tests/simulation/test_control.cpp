@@ -88,7 +88,7 @@ TEST_CASE("a rigid-like beam's controlled step follows J theta'' + kd theta' + k
     CHECK(worst < 2e-5 * angle);
 }
 
-TEST_CASE("saturation limits the torque column to tau_max; while saturated the hub accelerates at tau_max / J",
+TEST_CASE("saturation limits the torque column to tau_max - while saturated the hub accelerates at tau_max / J",
           "[control]")
 {
     const double angle = 0.5, tau_max = 5.0;

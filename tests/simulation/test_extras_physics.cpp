@@ -401,7 +401,7 @@ TEST_CASE("with gravity and neither damping nor torque, T + U (U holding the wei
     CHECK(drift < 1e-7 * largest_kinetic);
 }
 
-TEST_CASE("a beam held upright buckles under its own weight at Greenhill's load; hanging, it stiffens",
+TEST_CASE("a beam held upright buckles under its own weight at Greenhill's load - hanging, it stiffens",
           "[extras][gravity][modes]")
 {
     // Greenhill: the slope t(s) of an upright cantilever, s = L - x from the free tip, buckles when

@@ -151,7 +151,7 @@ std::vector<DrawnLine> drawn_lines(const std::string& script)
 
 }  // namespace
 
-TEST_CASE("campbell: --modes, --kinds and --max-hz choose the lines; each its own colour and its label", "[plot]")
+TEST_CASE("campbell: --modes, --kinds and --max-hz choose the lines - each its own colour and its label", "[plot]")
 {
     ScratchDir scratch;
     // A blade's Campbell table: one variant, bending lines at 10, 300, 900 and 1800 Hz at rest, an axial line and a
@@ -223,7 +223,7 @@ TEST_CASE("campbell: --modes, --kinds and --max-hz choose the lines; each its ow
     CHECK_THROWS_WITH(plot_script(args), "--modes: expected an integer from 1 to 1000, got 0");
     args.modes.clear();
     args.kinds = "bending,torsion";
-    CHECK_THROWS_WITH(plot_script(args), Catch::StartsWith("--kinds: expected a comma-separated list of bending, axial, hub"));
+    CHECK_THROWS_WITH(plot_script(args), Catch::StartsWith("--kinds: expected a comma-separated list of bending, edge, flap, twist, axial, hub"));
     args.kinds = "hub";
     args.files = {fixture("modes_untracked.csv")};
     CHECK_THROWS_WITH(plot_script(args), Catch::Contains("modes_untracked.csv: expected rows of kind 'hub'"));
