@@ -168,3 +168,24 @@ TEST_CASE("a held blade sags -m g L^4/(8 EI_flap) under gravity along the spin a
         CHECK(std::abs(tip.uy) < 1e-12 * std::abs(sag));  // no weight in the plane
     }
 }
+
+TEST_CASE("a pitched blade's steady twist under the propeller moment is the closed form of GJ phi'' - k^2 GJ phi = q",
+          "[out_of_plane]")
+{
+    // cases/pitched_propeller.toml's blade: q = 1/2 Omega^2 (j_n - j_c) sin 2 beta per length turns the section towards
+    // the plane, k^2 GJ = Omega^2 (j_n - j_c) cos 2 beta stiffens it; phi(0) = 0, phi'(L) = 0.
+    Parameters p;
+    p.L = 2.0, p.rho = 2700.0, p.S = 0.002, p.I = 4e-7, p.I_flap = 4e-8, p.E = 7e10, p.G = 2.6e10, p.J_t = 1.6e-8;
+    p.a = 0.1, p.pitch = 0.3;
+    const double omega = 100.0, GJ = p.G * p.J_t, dj = p.rho * (p.I - p.I_flap);
+    const double q = 0.5 * omega * omega * dj * std::sin(2 * p.pitch);
+    const double k = std::sqrt(omega * omega * dj * std::cos(2 * p.pitch) / GJ);
+    const double tip = -q / (k * k * GJ) * (1.0 - 1.0 / std::cosh(k * p.L));
+    for (const auto& [method, nt, tolerance] :
+         {std::tuple{Method::bim, 6, 1e-8}, {Method::amm, 12, 1e-4}, {Method::bsim, 8, 1e-5}, {Method::fem, 8, 1e-3}}) {
+        const auto model = make_model(blade_key(method, 4, nt, Extras{.pitch = true}), p, ModelSource::generated);
+        const SteadySpin s = steady_spin(*model, omega);
+        INFO(to_string(method) << ": " << model->tip(s.q.data()).phi << " against " << tip);
+        CHECK(model->tip(s.q.data()).phi == Approx(tip).epsilon(tolerance));
+    }
+}

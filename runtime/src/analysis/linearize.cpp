@@ -29,16 +29,18 @@ SteadySpin steady_spin(const Model& model, double omega, double theta)
                                         "with it: the motion is periodic); linearize about the held hub, Omega = 0");
         return held_equilibrium(model, theta);
     }
+    // Newton on the axial rows with the bending fields straight (the straight beam is an equilibrium by symmetry);
+    // out of the plane a pitch, pre-twist or precone bends and twists the steady beam (coning): on every elastic row.
     const CoordinateField& axial = *model.coordinates().find(FieldKind::axial);
-    const int n = model.nq(), a0 = axial.first, na = axial.count;
+    const int n = model.nq(), e0 = model.coordinates().first_elastic();
+    const int a0 = key.out_of_plane() ? e0 : axial.first, na = key.out_of_plane() ? n - e0 : axial.count;
     SteadySpin s;
     s.omega = omega;
     s.q.assign(static_cast<std::size_t>(n), 0.0);
     s.qd = s.q;
     if (key.drive == Drive::torque) s.qd[0] = omega;
     else s.u.theta_dot = omega;
-    // Newton on the axial equations with B = 0 (the straight beam is an equilibrium by symmetry); one step for
-    // the linear stretch of orders zero and first, a few for full.
+    // One step for the linear equations of orders zero and first, a few for full.
     for (int iteration = 0; na > 0 && iteration < 50; ++iteration) {
         std::vector<double> Q(static_cast<std::size_t>(n));
         model.forces(s.u, s.q.data(), s.qd.data(), Q.data());
@@ -49,7 +51,9 @@ SteadySpin steady_spin(const Model& model, double omega, double theta)
             s.q[static_cast<std::size_t>(a0 + i)] += dA[i];
             size = std::max(size, std::abs(s.q[static_cast<std::size_t>(a0 + i)]));
         }
-        if (!dA.allFinite()) throw std::runtime_error("the steady axial stretch at this spin has no solution");
+        if (!dA.allFinite())
+            throw std::runtime_error(key.out_of_plane() ? "the steady deflection at this spin has no solution"
+                                                        : "the steady axial stretch at this spin has no solution");
         if (dA.cwiseAbs().maxCoeff() <= 1e-14 * std::max(size, 1e-300)) break;
     }
     return s;
