@@ -89,7 +89,9 @@ TEST_CASE("flap and lead-lag of a uniform blade: omega_flap^2 = omega_lag^2 + Om
             REQUIRE(flap.size() == edge.size());
             for (std::size_t i = 0; i < 4; ++i) {
                 INFO(to_string(method) << " Omega " << omega << " mode " << i + 1);
-                CHECK(flap[i] * flap[i] == Approx(edge[i] * edge[i] + omega * omega).epsilon(1e-9));
+                // 1e-8: the eigen solver resolves the first-order (gyroscopic) form's frequencies to about 1e-9 of
+                // their square (BSIM's fourth pair 9.8e-10 at worst, docs/validation.md).
+                CHECK(flap[i] * flap[i] == Approx(edge[i] * edge[i] + omega * omega).epsilon(1e-8));
             }
         }
     }
