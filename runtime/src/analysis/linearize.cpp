@@ -23,7 +23,11 @@ namespace hubbeam {
 SteadySpin steady_spin(const Model& model, double omega, double theta)
 {
     const VariantKey& key = model.key();
-    if (key.extras.gravity) {
+    // Weight in the plane of rotation turns with the beam: no spin but 0 is steady. Along the spin axis it does not
+    // (section 12): the steady spin then holds the sag, found on every elastic row below.
+    const std::vector<double>& p = model.parameters();
+    const bool weight_in_plane = p.empty() || p[index(Param::g)] != 0.0 || !key.out_of_plane();
+    if (key.extras.gravity && (weight_in_plane || omega == 0.0)) {
         if (omega != 0.0)
             throw std::invalid_argument("with gravity a spin at a constant rate is not steady (the beam's weight turns "
                                         "with it: the motion is periodic); linearize about the held hub, Omega = 0");
