@@ -210,3 +210,28 @@ TEST_CASE("with gravity along the spin axis a steady spin holds the sag, as a da
     CHECK(model->tip(s.q.data()).uz == Approx(settled).epsilon(1e-6));
     CHECK(std::abs(settled) < 0.2 * std::abs(held));  // the spin's tension lifts the blade
 }
+
+TEST_CASE("a free hub with a pitched, coned, twisting blade keeps its energy and momentum once the torque ends",
+          "[out_of_plane]")
+{
+    // cases/torque_tau10.toml's beam given flap and twist fields and every angle: after the pulse (t > 10 s) nothing
+    // acts on the system, so T + U and the angular momentum h = int tau dt (zero: a full sine period) are constant.
+    Scene scene = load_scene(std::string(HUBBEAM_SOURCE_DIR) + "/cases/torque_tau10.toml");
+    scene.variant.method = Method::fem, scene.variant.nx = 0, scene.variant.ny = 4;
+    scene.variant.nz = 4, scene.variant.nt = 2;
+    Parameters& p = scene.parameters;
+    p.I_flap = 0.5 * p.I, p.G = 2.6e10, p.J_t = 2.0 * p.I, p.pitch = 0.3, p.twist = -0.2, p.precone = 0.05;
+    scene.output.t_end = 20.0;
+    double energy = 0.0, largest = 0.0, drift = 0.0, momentum = 0.0;
+    bool first = true;
+    simulate(scene, [&](const Row& r) {
+        largest = std::max(largest, std::abs(r.kinetic) + std::abs(r.potential));
+        if (r.t < 10.0) return;
+        if (first) energy = r.kinetic + r.potential, first = false;
+        drift = std::max(drift, std::abs(r.kinetic + r.potential - energy));
+        momentum = std::max(momentum, std::abs(r.momentum));
+    });
+    INFO("energy drift " << drift << " of " << largest << ", momentum " << momentum);
+    CHECK(drift < 1e-7 * largest);
+    CHECK(momentum < 1e-8);
+}
