@@ -576,3 +576,26 @@ class ModesTest(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+class OutOfPlaneTest(unittest.TestCase):
+    def test_blade_keys_columns_and_mode_kinds(self):
+        # The out-of-plane keys as keywords: the columns tip_uz and tip_phi appear, and modes names flap, edge and
+        # twist; flap and lead-lag of a uniform blade obey omega_flap^2 = omega_lag^2 + Omega^2 (docs/model.md 12).
+        blade = {"beam": {"length": 1.0, "density": 1.0, "area": 1.0, "second_moment": 1.0, "youngs_modulus": 1.0,
+                          "shear_modulus": 1.0, "torsion_constant": 0.5},
+                 "motion": {"kind": "spin-up", "omega0": 1.0, "duration": 1.0},
+                 "discretization": {"method": "fem", "ny": 4, "nx": 0},
+                 "output": {"t_end": 0.5}}
+        r = hubbeam.run(blade, nz=4, nt=2, pitch=0.1)
+        self.assertEqual(tuple(r.columns[-2:]), ("tip_uz", "tip_phi"))
+        self.assertEqual(tuple(hubbeam.run(blade).columns[-1:]), ("jacobi",))
+        m = hubbeam.modes(blade, [6.0], nz=4, nt=2)
+        kinds = set(m["kind"])
+        self.assertEqual(kinds, {"flap", "edge", "twist"})
+        flap = np.sort(m["rad_s"][m["kind"] == "flap"])[0]
+        edge = np.sort(m["rad_s"][m["kind"] == "edge"])[0]
+        self.assertAlmostEqual(flap ** 2, edge ** 2 + 36.0, delta=1e-8 * flap ** 2)
+        with self.assertRaises(ValueError) as caught:
+            hubbeam.run(blade, nt=2, shear_modulus=0.0)
+        self.assertIn("shear_modulus: expected a number > 0 with discretization.nt > 0", str(caught.exception))
