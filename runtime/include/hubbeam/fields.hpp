@@ -40,8 +40,9 @@ public:
     /// knots; none for AMM and BIM.
     std::vector<double> piece_boundaries() const;
 
-    /// Axial stretch displacement u_x1(x) = Phi_x(x) A.
+    /// Axial stretch displacement u_x1(x) = Phi_x(x) A, and its derivative u_x1'(x).
     double ux1(const double* A, double x) const;
+    double ux1_slope(const double* A, double x) const;
     /// Bending moment EI(x) u_y''(x), with a tapered beam's own EI(x) (docs/model.md section 11).
     double bending_moment(const double* B, double x) const;
     /// Axial force ES(x) u_x1'(x).

@@ -2,15 +2,31 @@
 #include "io/field_recorder.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "io/output.hpp"
 #include "text/shortest.hpp"
 
 namespace hubbeam {
 
+namespace {
+
+/// A key whose transverse basis is key's flapwise one and whose axial basis is its twist one: BeamFields of it
+/// gives u_z and phi as it gives u_y and u_x1.
+VariantKey flap_and_twist(VariantKey key)
+{
+    key.ny = key.nz;
+    key.nx = key.nt;
+    return key;
+}
+
+}  // namespace
+
 FieldRecorder::FieldRecorder(const VariantKey& key, const Parameters& p, std::vector<double> times, int points,
                              const std::string& path)
-    : coordinates_(coordinate_layout(key)), fields_(key, p), times_(std::move(times))
+    : coordinates_(coordinate_layout(key)), fields_(key, p), out_of_plane_(key.out_of_plane()),
+      foreshortened_(key.order != Order::zero),
+      flap_(flap_and_twist(key), p), p_(p), times_(std::move(times))
 {
     std::sort(times_.begin(), times_.end());
     for (int i = 0; i < points; ++i) xs_.push_back(p.L * i / (points - 1));
@@ -21,7 +37,7 @@ FieldRecorder::FieldRecorder(const VariantKey& key, const Parameters& p, std::ve
     }
     std::sort(xs_.begin(), xs_.end());
     xs_.erase(std::unique(xs_.begin(), xs_.end()), xs_.end());
-    csv_ = std::make_unique<CsvWriter>(path, header());
+    csv_ = std::make_unique<CsvWriter>(path, out_of_plane_ ? header_out_of_plane() : header());
 }
 
 FieldRecorder::~FieldRecorder() = default;
@@ -34,16 +50,52 @@ void FieldRecorder::state(double t, const double* q)
     const CoordinateField& inplane = *coordinates_.find(FieldKind::inplane);
     const double* A = axial.count > 0 ? q + axial.first : nullptr;
     const double* B = q + inplane.first;
-    const std::vector<double> ux = fields_.ux(A, B, xs_);
+    std::vector<double> ux = fields_.ux(A, B, xs_);
+    const CoordinateField* flap = coordinates_.find(FieldKind::flap);
+    if (flap != nullptr && foreshortened_) {  // both slopes shorten the beam (not in order zero, the linear model)
+        const std::vector<double> shortening = flap_.foreshortening(q + flap->first, xs_);
+        for (std::size_t i = 0; i < xs_.size(); ++i) ux[i] += shortening[i];
+    }
     for (std::size_t i = 0; i < xs_.size(); ++i) {
         const double x = xs_[i];
         std::string line;
-        for (double v : {t, x, fields_.uy(B, x), ux[i], fields_.slope(B, x), fields_.curvature(B, x),
-                         fields_.bending_moment(B, x), fields_.axial_force(A, x)}) {
+        const double moment = out_of_plane_ ? edge_moment(q, x) : fields_.bending_moment(B, x);
+        for (double v : {t, x, fields_.uy(B, x), ux[i], fields_.slope(B, x), fields_.curvature(B, x), moment,
+                         fields_.axial_force(A, x)}) {
             if (!line.empty()) line += ',';
             append_shortest(line, v);
         }
+        if (out_of_plane_) out_of_plane(q, x, line);
         csv_->write_line(line);
+    }
+}
+
+/// The chord's angle beta(x) = pitch + twist x/L (docs/model.md section 12).
+static double chord_angle(const Parameters& p, double x) { return p.pitch + p.twist * x / p.L; }
+
+double FieldRecorder::edge_moment(const double* q, double x) const
+{
+    const CoordinateField* flap = coordinates_.find(FieldKind::flap);
+    const double y2 = fields_.curvature(q + coordinates_.first(FieldKind::inplane), x);
+    const double z2 = flap != nullptr ? flap_.curvature(q + flap->first, x) : 0.0;
+    const double beta = chord_angle(p_, x);
+    return p_.E * p_.I * (std::cos(beta) * y2 + std::sin(beta) * z2);  // EI_edge kappa_c
+}
+
+void FieldRecorder::out_of_plane(const double* q, double x, std::string& line) const
+{
+    const CoordinateField* flap = coordinates_.find(FieldKind::flap);
+    const CoordinateField* twist = coordinates_.find(FieldKind::twist);
+    const double y2 = fields_.curvature(q + coordinates_.first(FieldKind::inplane), x);
+    const double z2 = flap != nullptr ? flap_.curvature(q + flap->first, x) : 0.0;
+    const double beta = chord_angle(p_, x);
+    const double uz = flap != nullptr ? flap_.uy(q + flap->first, x) : 0.0;
+    const double phi = twist != nullptr ? flap_.ux1(q + twist->first, x) : 0.0;
+    const double flap_moment = p_.E * p_.I_flap * (-std::sin(beta) * y2 + std::cos(beta) * z2);  // EI_flap kappa_n
+    const double torque = twist != nullptr ? p_.G * p_.J_t * flap_.ux1_slope(q + twist->first, x) : 0.0;
+    for (double v : {uz, phi, flap_moment, torque}) {
+        line += ',';
+        append_shortest(line, v);
     }
 }
 

@@ -28,17 +28,31 @@ public:
     const std::string& path() const;
 
     /// The CSV header: the one list of the field CSV's columns, which state() writes in this order and readers
-    /// (hubbeam plot moment) look up by name.
+    /// (hubbeam plot moment) look up by name; a beam out of the plane adds u_z, phi, the flapwise moment and the
+    /// torque (header_out_of_plane).
     static const char* header()
     {
         static const std::string h =
             csv_header({"t", "x", "uy", "ux", "slope", "curvature", "bending_moment", "axial_force"});
         return h.c_str();
     }
+    static const char* header_out_of_plane()
+    {
+        static const std::string h = std::string(header()) + "," + csv_header({"uz", "phi", "flap_moment", "torque"});
+        return h.c_str();
+    }
 
 private:
+    /// The out-of-plane columns at one abscissa, and the edgewise moment that replaces EI u_y'' (docs/model.md 12).
+    void out_of_plane(const double* q, double x, std::string& line) const;
+    /// The edgewise moment EI_edge kappa_c at x (EI u_y'' in the plane).
+    double edge_moment(const double* q, double x) const;
+
     CoordinateLayout coordinates_;
     BeamFields fields_;
+    bool out_of_plane_, foreshortened_;
+    BeamFields flap_;        // the flapwise field's basis as its transverse one, the twist field's as its axial one
+    Parameters p_;
     std::vector<double> times_, xs_;
     std::size_t next_ = 0;
     std::unique_ptr<CsvWriter> csv_;

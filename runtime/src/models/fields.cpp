@@ -69,6 +69,8 @@ double BeamFields::uy(const double* B, double x) const { return combination(tran
 
 double BeamFields::ux1(const double* A, double x) const { return combination(axial_, A, xi_of(x), 0); }
 
+double BeamFields::ux1_slope(const double* A, double x) const { return combination(axial_, A, xi_of(x), 1) / L_; }
+
 double BeamFields::bending_moment(const double* B, double x) const
 {
     // A profile's own EI(x), else the root's times the taper's ratio.
