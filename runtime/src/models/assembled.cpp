@@ -1,7 +1,7 @@
 // docs/model.md sections 5 and 11 assembled numerically: coefficient matrices by quadrature (a taper as a weight
 // inside them), a tip body as point values of the shape functions at x = L, then M(q) and Q(q, qd) of Lagrange's
 // equations for orders first and zero, with gravity and Rayleigh damping, in torque form q = (theta, A, B) or
-// prescribed form q = (A, B).
+// prescribed form q = (A, B). A beam that leaves the plane runs on section 12.3's forms (assembled_forms.cpp).
 #include "models/assembled.hpp"
 
 #include <algorithm>
@@ -392,11 +392,12 @@ std::unique_ptr<Model> make_assembled_model(const VariantKey& key, const Paramet
 {
     if (key.order == Order::full)
         throw std::invalid_argument("full order has no hand-assembled form; it needs a generated variant");
-    if (key.out_of_plane())
-        throw std::invalid_argument(
-            "the hand-assembled path is the planar model's (nz = nt = 0, no pitch, pre-twist "
-            "or precone); variant " +
-            key.name() + " needs a generated model");
+    // Out of the plane, section 12.3's forms: the precone's projections and the coupled bending have no place in
+    // section 5.2's blocks.
+    if (key.out_of_plane()) {
+        if (const std::string why = out_of_plane_problem(key); !why.empty()) throw std::invalid_argument(why);
+        return make_quadratic_form_model(key, p);
+    }
     return std::make_unique<AssembledModel>(key, p);
 }
 

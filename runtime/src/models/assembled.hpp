@@ -46,7 +46,13 @@ struct BeamMatrices {
 /// exactly symmetric. Throws std::invalid_argument if the variant's DOF counts are invalid for its method.
 BeamMatrices assemble_matrices(const VariantKey& key, const Parameters& p);
 
-/// docs/model.md sections 5 and 11 assembled numerically; orders zero and first only (throws std::invalid_argument).
+/// docs/model.md sections 5, 11 and 12 assembled numerically; orders zero and first only (throws
+/// std::invalid_argument). A planar variant gets section 5.2's block form, one that leaves the plane section 12.3's.
 std::unique_ptr<Model> make_assembled_model(const VariantKey& key, const Parameters& p);
+
+/// Section 12.3's form of the equations (T, U and D as quadratic forms in the elastic coordinates), for any variant
+/// of orders zero and first: what make_assembled_model returns out of the plane; on a planar variant it must equal
+/// the block form, which the tests check.
+std::unique_ptr<Model> make_quadratic_form_model(const VariantKey& key, const Parameters& p);
 
 }  // namespace hubbeam
