@@ -88,7 +88,7 @@ public:
         d.setZero();
         if (f_.g == 0.0 || key().drive == Drive::torque) return;
         const VectorXd qe = elastic(q);
-        d = -f_.g * std::cos(u.theta) * f_.V_i.gradient(qe) + f_.g * std::sin(u.theta) * f_.V_j.gradient(qe);
+        d.tail(ne_) = -f_.g * std::cos(u.theta) * f_.V_i.gradient(qe) + f_.g * std::sin(u.theta) * f_.V_j.gradient(qe);
     }
 
     Energy energy(const HubInput& u, const double* q, const double* qd) const override
