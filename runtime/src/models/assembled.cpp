@@ -1,7 +1,7 @@
 // docs/model.md sections 5 and 11 assembled numerically: coefficient matrices by quadrature (a taper as a weight
 // inside them), a tip body as point values of the shape functions at x = L, then M(q) and Q(q, qd) of Lagrange's
 // equations for orders first and zero, with gravity and Rayleigh damping, in torque form q = (theta, A, B) or
-// prescribed form q = (A, B).
+// prescribed form q = (A, B). A beam that leaves the plane runs on section 12.3's forms (assembled_forms.cpp).
 #include "models/assembled.hpp"
 
 #include <algorithm>
@@ -149,19 +149,24 @@ BeamMatrices assemble_matrices(const VariantKey& key, const Parameters& p)
     SectionAtNodes section = taper_at_nodes(key, p, xi);
     if (profile) profile_at_nodes(stations, p, xi, section);
     const auto& [s, i, e, above, above_x, r1, first_moment, second_moment] = section;
-    const VectorXd w_s = (w.array() * s).matrix();                         // m(x) dx / (m L)
-    const VectorXd w_e = (w.array() * e).matrix();                         // ES(x) dx / (ES L)
-    const VectorXd w_i = (w.array() * i).matrix();                         // EI(x) dx / (EI L)
-    const VectorXd w_arm = (m * L * w_s.array() * (a + L * xi)).matrix();  // m(x) (a+x) dx
-    const VectorXd w_C = (m * w.array() * above).matrix();                 // m L above dx / L^2
-    const VectorXd w_D = (0.5 * m * L * w.array() * above_x).matrix();     // m L^2 above_x / 2 dx / L^2
+    // A precone turns the beam out of the plane: a point's arm about the spin axis is R = a + x cb (section 12).
+    const double cb = key.extras.cone ? std::cos(p.precone) : 1.0;
+    const VectorXd w_s = (w.array() * s).matrix();                              // m(x) dx / (m L)
+    const VectorXd w_e = (w.array() * e).matrix();                              // ES(x) dx / (ES L)
+    const VectorXd w_i = (w.array() * i).matrix();                              // EI(x) dx / (EI L)
+    const VectorXd w_arm = (m * L * w_s.array() * (a + cb * L * xi)).matrix();  // m(x) R dx
+    const VectorXd w_C = (m * w.array() * above).matrix();                      // m L above dx / L^2
+    const VectorXd w_D = (0.5 * m * L * w.array() * above_x).matrix();          // m L^2 above_x / 2 dx / L^2
 
     BeamMatrices b;
-    // int_0^L m(x) (a+x)^2 dx and int_0^L m(x) (a+x) dx, in closed form for the taper.
-    b.J_ob = profile ? L * second_moment
-                     : m * ((std::pow(a + L, 3) - std::pow(a, 3)) / 3.0 +
-                            r1 * L * (a * a / 2.0 + 2.0 * a * L / 3.0 + L * L / 4.0));
-    b.S_ob = profile ? L * first_moment : m * (a * L + L * L / 2.0 + r1 * L * (a / 2.0 + L / 3.0));
+    b.cb = cb;
+    b.sb = key.extras.cone ? std::sin(p.precone) : 0.0;
+    // int_0^L m(x) R^2 dx and int_0^L m(x) R dx, in closed form for the taper (a precone comes on a uniform beam).
+    b.J_ob = profile           ? L * second_moment
+             : key.extras.cone ? m * L * (a * a + a * cb * L + cb * cb * L * L / 3.0)
+                               : m * ((std::pow(a + L, 3) - std::pow(a, 3)) / 3.0 +
+                                      r1 * L * (a * a / 2.0 + 2.0 * a * L / 3.0 + L * L / 4.0));
+    b.S_ob = profile ? L * first_moment : m * (a * L + cb * L * L / 2.0 + r1 * L * (a / 2.0 + L / 3.0));
     b.S_x = (X.transpose() * w_arm).transpose();
     b.S_y = (Y.transpose() * w_arm).transpose();
     b.M1 = m * L * weighted_gram(X, w_s);
@@ -171,7 +176,7 @@ BeamMatrices assemble_matrices(const VariantKey& key, const Parameters& p)
     b.K2 = EI / (L * L * L) * weighted_gram(Y2, w_i);
     b.C = weighted_gram(Y1, w_C);
     b.D = weighted_gram(Y1, w_D);
-    b.G = a * b.C + b.D;
+    b.G = a * b.C + cb * b.D;
 
     b.P_x = m * L * (X.transpose() * w_s).transpose();
     b.P_y = m * L * (Y.transpose() * w_s).transpose();
@@ -185,6 +190,11 @@ BeamMatrices assemble_matrices(const VariantKey& key, const Parameters& p)
         b.Phi_y1_L(k) = f.d1 / L;
     }
     b.H_L = weighted_gram(Y1, w) / L;
+    if (key.out_of_plane()) {
+        // Section 12.3: the flapwise and twist fields, and the in-plane bending about the chord turned by the pitch.
+        b.o = assemble_out_of_plane(key, p);
+        b.K2 = b.o.K_yy;
+    }
     return b;
 }
 
@@ -382,11 +392,12 @@ std::unique_ptr<Model> make_assembled_model(const VariantKey& key, const Paramet
 {
     if (key.order == Order::full)
         throw std::invalid_argument("full order has no hand-assembled form; it needs a generated variant");
-    if (key.out_of_plane())
-        throw std::invalid_argument(
-            "the hand-assembled path is the planar model's (nz = nt = 0, no pitch, pre-twist "
-            "or precone); variant " +
-            key.name() + " needs a generated model");
+    // Out of the plane, section 12.3's forms: the precone's projections and the coupled bending have no place in
+    // section 5.2's blocks.
+    if (key.out_of_plane()) {
+        if (const std::string why = out_of_plane_problem(key); !why.empty()) throw std::invalid_argument(why);
+        return make_quadratic_form_model(key, p);
+    }
     return std::make_unique<AssembledModel>(key, p);
 }
 

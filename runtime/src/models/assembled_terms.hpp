@@ -11,20 +11,26 @@
 
 namespace hubbeam {
 
-/// The constant matrices of M, Q and the energies: section 5.2's beam with its terms (sections 11.1, 11.3, 11.4).
+/// The constant matrices of M, Q and the energies: section 5.2's beam with its terms (sections 11.1, 11.3, 11.4), and
+/// section 12.3's out of the plane. R_L = a + L cos(beta_c) is the tip's arm (a + L without a precone).
 struct ModelMatrices {
-    double J_o = 0.0;               // J_oh + J_ob (+ m_tip (a+L)^2 + J_tip)
+    double J_o = 0.0;  // J_oh + J_ob (+ m_tip R_L^2 + J_tip)
     Eigen::RowVectorXd S_x, S_y;
     Eigen::MatrixXd M1, M2, M3;
-    Eigen::MatrixXd M2r;            // the B-rate mass: M2 (+ J_tip Phi_y'(L)^T Phi_y'(L))
-    Eigen::MatrixXd G;              // a C + D (+ m_tip (a+L) H(L))
+    Eigen::MatrixXd M2r;  // the B-rate mass: M2 (+ J_tip Phi_y'(L)^T Phi_y'(L))
+    Eigen::MatrixXd G;    // a C + cb D (+ m_tip R_L H(L))
     // Section 11.3's weight: U_g = g sin(theta) (W_o + W_x A - 1/2 B^T W_H B) + g cos(theta) W_y B.
     double g = 0.0, W_o = 0.0;
     Eigen::RowVectorXd W_x, W_y;
-    Eigen::MatrixXd W_H;            // C (+ m_tip H(L)); zero at order zero
+    Eigen::MatrixXd W_H;  // C (+ m_tip H(L)); zero at order zero
     // Section 11.4's damping: alpha M1 + beta K1, alpha M2r + beta K2; empty without it.
     Eigen::MatrixXd D_A, D_B;
     bool damped = false;
+    // Section 12.3: the flapwise and twist matrices with the tip body's point values, gravity along the spin axis
+    // (g_axis, read by a variant that leaves the plane) and the damping's factors, which weigh the whole mass and
+    // stiffness of the elastic coordinates there.
+    OutOfPlaneMatrices o;
+    double g_axis = 0.0, alpha = 0.0, beta = 0.0;
 };
 
 /// What a term's twin reads: the variant, its parameters and the beam's matrices.
@@ -46,6 +52,8 @@ ModelMatrices model_matrices(const AssemblyContext& a);
 
 // One per term (runtime/src/models/terms/NAME.cpp).
 void add_tip(const AssemblyContext& a, ModelMatrices& m);
+/// The tip body's part of section 12.3's matrices (nothing for a planar variant, whose flap field is empty).
+void add_tip_out_of_plane(const AssemblyContext& a, ModelMatrices& m);
 void add_gravity(const AssemblyContext& a, ModelMatrices& m);
 void add_damping(const AssemblyContext& a, ModelMatrices& m);
 

@@ -9,7 +9,8 @@ namespace hubbeam {
 AssembledTerm assembled_part(const TermInfo& t)
 {
     // In the order of terms(): tip, gravity, damping, taper, profile (the last two inside assemble_matrices), pitch,
-    // pre-twist and precone (out of the plane: the assembled path refuses those variants, assembled.cpp).
+    // pre-twist and precone (inside the beam's quadrature too: the chord's angle and the axis's tilt,
+    // out_of_plane_matrices.cpp and assemble_matrices).
     static const std::array<AssembledTerm, 8> table = {add_tip, add_gravity, add_damping, nullptr,
                                                        nullptr, nullptr,     nullptr,     nullptr};
     if (table.size() != terms().size()) throw std::logic_error("assembled_part: not one entry per registered term");
@@ -32,6 +33,7 @@ ModelMatrices beam_model_matrices(const AssemblyContext& a)
     m.W_x = c.P_x;
     m.W_y = c.P_y;
     m.W_H = a.key.order == Order::zero ? Eigen::MatrixXd::Zero(a.key.ny, a.key.ny) : c.C;
+    m.o = c.o;
     return m;
 }
 

@@ -10,6 +10,9 @@ void add_damping(const AssemblyContext& a, ModelMatrices& m)
     m.D_A = alpha * m.M1 + beta * a.c.K1;
     m.D_B = alpha * m.M2r + beta * a.c.K2;
     m.damped = alpha != 0.0 || beta != 0.0;
+    // Out of the plane (section 12.3) the same factors weigh the mass and stiffness of every elastic coordinate.
+    m.alpha = alpha;
+    m.beta = beta;
 }
 
 }  // namespace hubbeam

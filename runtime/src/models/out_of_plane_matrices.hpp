@@ -1,0 +1,48 @@
+// The hand-assembled path's integrals of the fields that leave the plane (docs/model.md section 12.3): the flapwise
+// field's mass, couplings and geometric stiffness, the bending stiffness about the chord turned by pitch and pre-twist,
+// the twist field's torsional stiffness and the section's rotary inertia, by Gauss-Legendre quadrature over the shape
+// functions. Written from the energies of section 12, not from the generator's expansion, so that it checks it.
+#pragma once
+
+#include <Eigen/Dense>
+#include <hubbeam/model.hpp>
+#include <string>
+
+namespace hubbeam {
+
+/// Section 12.3's matrices of the beam alone (the tip body's point values are added by its twin, terms/tip.cpp), in
+/// SI units ('= d/dx). R(x) = a + x cos(beta_c) is a point's distance from the spin axis (beta_c the precone, 0
+/// without one); c = cos beta(x), s = sin beta(x) of the chord angle beta = pitch + twist x/L; C2 = cos 2 beta,
+/// S2 = sin 2 beta. A matrix of an absent field has no rows (nz = 0 or nt = 0).
+struct OutOfPlaneMatrices {
+    Eigen::MatrixXd M_z;         // Nz x Nz, int m Phi_z^T Phi_z dx
+    Eigen::MatrixXd M_xz;        // Nx x Nz, int m Phi_x^T Phi_z dx
+    Eigen::MatrixXd M_zy;        // Nz x Ny, int m Phi_z^T Phi_y dx
+    Eigen::RowVectorXd S_z;      // 1 x Nz, int m R Phi_z dx
+    Eigen::RowVectorXd P_z;      // 1 x Nz, int m Phi_z dx
+    Eigen::MatrixXd C_z;         // Nz x Nz, int m H_z(x) dx = int m (L - x) Phi_z'^T Phi_z' dx
+    Eigen::MatrixXd G_z;         // Nz x Nz, int m R H_z(x) dx = a C_z + cos(beta_c) int m x H_z(x) dx
+    double X_ob = 0.0;           // int m x dx, the beam's first moment about its root along its axis
+    Eigen::MatrixXd K_yy;        // Ny x Ny, int (EI_e c^2 + EI_f s^2) Phi_y''^T Phi_y'' dx
+    Eigen::MatrixXd K_zz;        // Nz x Nz, int (EI_e s^2 + EI_f c^2) Phi_z''^T Phi_z'' dx
+    Eigen::MatrixXd K_yz;        // Ny x Nz, int (EI_e - EI_f) S2/2 Phi_y''^T Phi_z'' dx
+    Eigen::MatrixXd K_t;         // Nt x Nt, int GJ Phi_t'^T Phi_t' dx
+    Eigen::MatrixXd M_t;         // Nt x Nt, int j_p Phi_t^T Phi_t dx (the section's polar rotary inertia)
+    Eigen::RowVectorXd S_t;      // 1 x Nt, int j_p Phi_t dx
+    Eigen::RowVectorXd F_t;      // 1 x Nt, 1/2 int (j_c - j_n) S2 Phi_t dx (the propeller moment's drive)
+    Eigen::MatrixXd K_p;         // Nt x Nt, int (j_c - j_n) C2 Phi_t^T Phi_t dx (the propeller moment's stiffness)
+    double J_p = 0.0;            // int j_p dx
+    double J_n = 0.0;            // int ((j_c + j_n)/2 + (j_n - j_c) C2/2) dx: the section's inertia about k at phi = 0
+    Eigen::RowVectorXd Phi_z_L;  // 1 x Nz, Phi_z(L)
+    Eigen::MatrixXd H_z_L;       // Nz x Nz, H_z(L) = int Phi_z'^T Phi_z' dx
+    Eigen::RowVectorXd Phi_t_L;  // 1 x Nt, Phi_t(L)
+};
+
+/// Section 12.3's integrals of a variant that leaves the plane, on a uniform section (a taper or a tabulated profile
+/// with these fields throws std::invalid_argument: neither is part of section 12's model).
+OutOfPlaneMatrices assemble_out_of_plane(const VariantKey& key, const Parameters& p);
+
+/// Why the hand-assembled path cannot take key's out-of-plane variant, or empty: a taper or a profile.
+std::string out_of_plane_problem(const VariantKey& key);
+
+}  // namespace hubbeam
