@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "models/assembled.hpp"
+#include "model_values.hpp"
 #include "random_state.hpp"
 #include "shared_oracles.hpp"
 
@@ -27,32 +28,10 @@ using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eig
 
 namespace {
 
-MatrixXd mass_of(const Model& model, const test::State& s)
-{
-    RowMajorMatrix M(model.nq(), model.nq());
-    model.mass(s.u, s.q.data(), M.data());
-    return M;
-}
-
-VectorXd forces_of(const Model& model, const test::State& s)
-{
-    VectorXd Q(model.nq());
-    model.forces(s.u, s.q.data(), s.qd.data(), Q.data());
-    return Q;
-}
-
-VectorXd forces_theta_of(const Model& model, const test::State& s)
-{
-    VectorXd d(model.nq());
-    model.forces_theta(s.u, s.q.data(), s.qd.data(), d.data());
-    return d;
-}
-
-Eigen::Vector4d energy_of(const Model& model, const test::State& s)
-{
-    const Energy e = model.energy(s.u, s.q.data(), s.qd.data());
-    return {e.T2, e.T1, e.T0, e.U};
-}
+using test::energy_of;
+using test::forces_of;
+using test::forces_theta_of;
+using test::mass_of;
 
 Eigen::Matrix<double, 5, 1> tip_of(const Model& model, const test::State& s)
 {

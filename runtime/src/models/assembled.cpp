@@ -234,18 +234,8 @@ public:
     bool mass_is_constant() const override { return key().drive == Drive::prescribed; }
 
     /// Zeros of M1 and M2 (the bands of FEM and BSIM, AMM's orthogonality) are exact: the shape functions
-    /// vanish identically outside their support. Under torque the hub's row and column depend on q.
-    std::string mass_pattern() const override
-    {
-        const int n = nq();
-        RowMajorMatrix M(n, n);
-        mass(HubInput{}, std::vector<double>(static_cast<std::size_t>(n), 0.0).data(), M.data());
-        const bool torque = key().drive == Drive::torque;
-        std::string pattern;
-        for (int i = 0; i < n; ++i)
-            for (int j = 0; j < n; ++j) pattern += torque && (i == 0 || j == 0) ? 'v' : M(i, j) == 0.0 ? '0' : 'c';
-        return pattern;
-    }
+    /// vanish identically outside their support.
+    std::string mass_pattern() const override { return assembled_mass_pattern(*this); }
 
     void mass(const HubInput&, const double* q, double* M) const override
     {
@@ -387,6 +377,18 @@ private:
 };
 
 }  // namespace
+
+std::string assembled_mass_pattern(const Model& model)
+{
+    const int n = model.nq();
+    RowMajorMatrix M(n, n);
+    model.mass(HubInput{}, std::vector<double>(static_cast<std::size_t>(n), 0.0).data(), M.data());
+    const bool torque = model.key().drive == Drive::torque;
+    std::string pattern;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) pattern += torque && (i == 0 || j == 0) ? 'v' : M(i, j) == 0.0 ? '0' : 'c';
+    return pattern;
+}
 
 std::unique_ptr<Model> make_assembled_model(const VariantKey& key, const Parameters& p)
 {

@@ -46,6 +46,10 @@ struct BeamMatrices {
 /// exactly symmetric. Throws std::invalid_argument if the variant's DOF counts are invalid for its method.
 BeamMatrices assemble_matrices(const VariantKey& key, const Parameters& p);
 
+/// An assembled model's mass pattern: 'c' where M at q = 0 is nonzero and '0' where it is exactly zero (the shape
+/// functions vanish outside their support), and under torque 'v' in the hub's row and column, which depend on q.
+std::string assembled_mass_pattern(const Model& model);
+
 /// docs/model.md sections 5, 11 and 12 assembled numerically; orders zero and first only (throws
 /// std::invalid_argument). A planar variant gets section 5.2's block form, one that leaves the plane section 12.3's.
 std::unique_ptr<Model> make_assembled_model(const VariantKey& key, const Parameters& p);

@@ -35,19 +35,8 @@ public:
     const char* source() const override { return "assembled"; }
     bool mass_is_constant() const override { return key().drive == Drive::prescribed; }
 
-    /// Zeros of M are exact (shape functions vanish outside their support, fields with no mass coupling); under
-    /// torque the hub's row and column depend on q.
-    std::string mass_pattern() const override
-    {
-        const int n = nq();
-        RowMajorMatrix M(n, n);
-        mass(HubInput{}, std::vector<double>(static_cast<std::size_t>(n), 0.0).data(), M.data());
-        const bool torque = key().drive == Drive::torque;
-        std::string pattern;
-        for (int i = 0; i < n; ++i)
-            for (int j = 0; j < n; ++j) pattern += torque && (i == 0 || j == 0) ? 'v' : M(i, j) == 0.0 ? '0' : 'c';
-        return pattern;
-    }
+    /// Zeros of M are exact (shape functions vanish outside their support, fields with no mass coupling).
+    std::string mass_pattern() const override { return assembled_mass_pattern(*this); }
 
     void mass(const HubInput&, const double* q, double* M) const override
     {
