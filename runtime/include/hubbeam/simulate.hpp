@@ -103,10 +103,16 @@ void for_each_value(const Row& row, const ColumnSet& set, Value value)
 /// The outputs a sensitivity run differentiates, in column order: what a reader of the rows plots (the energies
 /// follow from these).
 inline constexpr const char* sensitivity_outputs[] = {"theta", "theta_dot", "tip_uy", "tip_ux1", "tip_ux"};
+/// A blade's outputs after them, where the variant has the field (docs/model.md section 12).
+inline constexpr const char* blade_sensitivity_outputs[] = {"tip_uz", "tip_phi"};
+/// The outputs a sensitivity run of key's variant differentiates: sensitivity_outputs, then tip_uz where nz > 0 and
+/// tip_phi where nt > 0.
+std::vector<std::string> sensitivity_outputs_of(const VariantKey& key);
 /// The most derivative columns a row can carry: every output by every parameter and gain.
-inline constexpr std::size_t max_derived_columns = (param_count + gain_names.size()) * std::size(sensitivity_outputs);
-/// "d_OUTPUT/d_PARAM" for each parameter (in the order given), each output within it.
-std::vector<std::string> sensitivity_columns(const std::vector<std::string>& parameters);
+inline constexpr std::size_t max_derived_columns =
+    (param_count + gain_names.size()) * (std::size(sensitivity_outputs) + std::size(blade_sensitivity_outputs));
+/// "d_OUTPUT/d_PARAM" for each parameter (in the order given), each output of key's variant within it.
+std::vector<std::string> sensitivity_columns(const std::vector<std::string>& parameters, const VariantKey& key);
 /// The optional columns of a scene's rows (none for the paper's scenes).
 ColumnSet optional_columns_of(const Scene& scene);
 /// The column names of rows with the optional columns of set: row_columns', then theirs (for_each_value's order).

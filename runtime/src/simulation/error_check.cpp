@@ -95,7 +95,7 @@ CheckedColumns checked_columns(const Scene& scene, const FirstOrderSystem& syste
     c.floor.assign(c.names.size() - c.set.derived.size(), round_off_floor);
     if (const auto* s = dynamic_cast<const SensitivitySystem*>(&system))
         for (int j = 0; j < s->count(); ++j)
-            c.floor.insert(c.floor.end(), std::size(sensitivity_outputs), round_off_floor / s->scale(j));
+            c.floor.insert(c.floor.end(), sensitivity_outputs_of(scene.key()).size(), round_off_floor / s->scale(j));
     return c;
 }
 

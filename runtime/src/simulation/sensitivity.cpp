@@ -231,14 +231,14 @@ void SensitivitySystem::outputs(double t, const double* y, double* out)
     for (int j = 0; j < count(); ++j) {
         const Parameter& p = *parameters_[static_cast<std::size_t>(j)];
         const double* sigma = y + n * (1 + j);
-        double* o = out + j * static_cast<int>(std::size(sensitivity_outputs));
+        double* o = out + j * static_cast<int>(sensitivity_outputs_of(model_.key()).size());
         o[0] = torque ? sigma[0] / p.scale : 0.0;
         o[1] = torque ? sigma[nq] / p.scale : 0.0;
         // The tip is at most quadratic in q: a central difference along sigma is exact at any step; a unit step
         // keeps its round-off at that of the tip itself.
         double big = 0.0;
         for (int i = 0; i < nq; ++i) big = std::max(big, std::abs(sigma[i]));
-        double d[3] = {0.0, 0.0, 0.0};
+        double d[5] = {0.0, 0.0, 0.0, 0.0, 0.0};  // u_y, u_x1, u_x, u_z, phi at the tip
         if (big > 0.0) {
             for (int i = 0; i < nq; ++i) {
                 plus[static_cast<std::size_t>(i)] = y[i] + sigma[i] / big;
@@ -248,21 +248,30 @@ void SensitivitySystem::outputs(double t, const double* y, double* out)
             d[0] = (a.uy - b.uy) / 2.0 * big / p.scale;
             d[1] = (a.ux1 - b.ux1) / 2.0 * big / p.scale;
             d[2] = (a.ux - b.ux) / 2.0 * big / p.scale;
+            d[3] = (a.uz - b.uz) / 2.0 * big / p.scale;
+            d[4] = (a.phi - b.phi) / 2.0 * big / p.scale;
         }
         if (!p.gain) {  // the tip's own dependence on the parameter (a slope coordinate's scale)
             Tip direct;
             if (const ParameterDerivatives* pd = model_.parameter_derivatives()) direct = pd->tip_p(p.param, y);
             else {
                 const Tip a = p.up->tip(y), b = p.down->tip(y);
-                direct = {(a.uy - b.uy) / (2.0 * p.h), (a.ux1 - b.ux1) / (2.0 * p.h), (a.ux - b.ux) / (2.0 * p.h)};
+                direct = {(a.uy - b.uy) / (2.0 * p.h), (a.ux1 - b.ux1) / (2.0 * p.h), (a.ux - b.ux) / (2.0 * p.h),
+                          (a.uz - b.uz) / (2.0 * p.h), (a.phi - b.phi) / (2.0 * p.h)};
             }
             d[0] += direct.uy;
             d[1] += direct.ux1;
             d[2] += direct.ux;
+            d[3] += direct.uz;
+            d[4] += direct.phi;
         }
         o[2] = d[0];
         o[3] = d[1];
         o[4] = d[2];
+        // A blade's, in sensitivity_outputs_of's order.
+        int next = static_cast<int>(std::size(sensitivity_outputs));
+        if (model_.key().nz > 0) o[next++] = d[3];
+        if (model_.key().nt > 0) o[next++] = d[4];
     }
 }
 

@@ -154,7 +154,7 @@ RowMaker::RowMaker(const Model& model, const Motion& motion, FirstOrderSystem& s
     : model_(model), motion_(motion), system_(system), control_(control),
       sensitivities_(dynamic_cast<SensitivitySystem*>(&system)), q_(static_cast<std::size_t>(model.nq())), qd_(q_),
       derived_(sensitivities_ != nullptr ? static_cast<std::size_t>(sensitivities_->count()) *
-                                               std::size(sensitivity_outputs)
+                                               sensitivity_outputs_of(model.key()).size()
                                          : 0),
       extended_(control != nullptr || system.auxiliary().count() > 0)
 {
@@ -792,15 +792,24 @@ ColumnSet optional_columns_of(const Scene& scene)
     ColumnSet set;
     for (std::size_t i = 0; i < optional_width; ++i)
         if (has[i]) set.bits |= 1u << i;
-    set.derived = sensitivity_columns(scene.output.sensitivities);
+    set.derived = sensitivity_columns(scene.output.sensitivities, key);
     return set;
 }
 
-std::vector<std::string> sensitivity_columns(const std::vector<std::string>& parameters)
+std::vector<std::string> sensitivity_outputs_of(const VariantKey& key)
+{
+    std::vector<std::string> outputs(std::begin(sensitivity_outputs), std::end(sensitivity_outputs));
+    if (key.nz > 0) outputs.emplace_back(blade_sensitivity_outputs[0]);
+    if (key.nt > 0) outputs.emplace_back(blade_sensitivity_outputs[1]);
+    return outputs;
+}
+
+std::vector<std::string> sensitivity_columns(const std::vector<std::string>& parameters, const VariantKey& key)
 {
     std::vector<std::string> names;
+    const std::vector<std::string> outputs = sensitivity_outputs_of(key);
     for (const std::string& p : parameters)
-        for (const char* o : sensitivity_outputs) names.push_back(std::string("d_") + o + "/d_" + p);
+        for (const std::string& o : outputs) names.push_back("d_" + o + "/d_" + p);
     return names;
 }
 
