@@ -3,6 +3,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <gsl/gsl_errno.h>
 #include <stdexcept>
@@ -222,48 +223,45 @@ int SensitivitySystem::jacobian(double t, const double* y, double* dfdy, double*
     return GSL_SUCCESS;
 }
 
+namespace {
+
+/// A tip's displacements in the order of the outputs: u_y, u_x1, u_x, u_z, phi.
+std::array<double, 5> tip_values(const Tip& t) { return {t.uy, t.ux1, t.ux, t.uz, t.phi}; }
+
+}  // namespace
+
 void SensitivitySystem::outputs(double t, const double* y, double* out)
 {
     (void)t;
     const int n = state_size(), nq = model_.nq();
     const bool torque = model_.key().drive == Drive::torque;
+    const int stride = static_cast<int>(sensitivity_outputs_of(model_.key()).size());
     std::vector<double> plus(static_cast<std::size_t>(nq)), minus(plus);
     for (int j = 0; j < count(); ++j) {
         const Parameter& p = *parameters_[static_cast<std::size_t>(j)];
         const double* sigma = y + n * (1 + j);
-        double* o = out + j * static_cast<int>(sensitivity_outputs_of(model_.key()).size());
+        double* o = out + j * stride;
         o[0] = torque ? sigma[0] / p.scale : 0.0;
         o[1] = torque ? sigma[nq] / p.scale : 0.0;
         // The tip is at most quadratic in q: a central difference along sigma is exact at any step; a unit step
         // keeps its round-off at that of the tip itself.
         double big = 0.0;
         for (int i = 0; i < nq; ++i) big = std::max(big, std::abs(sigma[i]));
-        double d[5] = {0.0, 0.0, 0.0, 0.0, 0.0};  // u_y, u_x1, u_x, u_z, phi at the tip
+        std::array<double, 5> d{};  // the tip's, in tip_values' order
         if (big > 0.0) {
             for (int i = 0; i < nq; ++i) {
                 plus[static_cast<std::size_t>(i)] = y[i] + sigma[i] / big;
                 minus[static_cast<std::size_t>(i)] = y[i] - sigma[i] / big;
             }
-            const Tip a = model_.tip(plus.data()), b = model_.tip(minus.data());
-            d[0] = (a.uy - b.uy) / 2.0 * big / p.scale;
-            d[1] = (a.ux1 - b.ux1) / 2.0 * big / p.scale;
-            d[2] = (a.ux - b.ux) / 2.0 * big / p.scale;
-            d[3] = (a.uz - b.uz) / 2.0 * big / p.scale;
-            d[4] = (a.phi - b.phi) / 2.0 * big / p.scale;
+            const auto a = tip_values(model_.tip(plus.data())), b = tip_values(model_.tip(minus.data()));
+            for (std::size_t k = 0; k < d.size(); ++k) d[k] = (a[k] - b[k]) / 2.0 * big / p.scale;
         }
         if (!p.gain) {  // the tip's own dependence on the parameter (a slope coordinate's scale)
-            Tip direct;
-            if (const ParameterDerivatives* pd = model_.parameter_derivatives()) direct = pd->tip_p(p.param, y);
-            else {
-                const Tip a = p.up->tip(y), b = p.down->tip(y);
-                direct = {(a.uy - b.uy) / (2.0 * p.h), (a.ux1 - b.ux1) / (2.0 * p.h), (a.ux - b.ux) / (2.0 * p.h),
-                          (a.uz - b.uz) / (2.0 * p.h), (a.phi - b.phi) / (2.0 * p.h)};
-            }
-            d[0] += direct.uy;
-            d[1] += direct.ux1;
-            d[2] += direct.ux;
-            d[3] += direct.uz;
-            d[4] += direct.phi;
+            const ParameterDerivatives* pd = model_.parameter_derivatives();
+            const auto a = tip_values(pd ? pd->tip_p(p.param, y) : p.up->tip(y));
+            const auto b = tip_values(pd ? Tip{} : p.down->tip(y));
+            const double step = pd ? 1.0 : 2.0 * p.h;
+            for (std::size_t k = 0; k < d.size(); ++k) d[k] += (a[k] - b[k]) / step;
         }
         o[2] = d[0];
         o[3] = d[1];
