@@ -26,8 +26,9 @@ FieldRecorder::FieldRecorder(const VariantKey& key, const Parameters& p, std::ve
                              const std::string& path)
     : coordinates_(coordinate_layout(key)), fields_(key, p), out_of_plane_(key.out_of_plane()),
       foreshortened_(key.order != Order::zero),
-      flap_(flap_and_twist(key), p), p_(p), times_(std::move(times))
+      p_(p), times_(std::move(times))
 {
+    if (out_of_plane_) flap_.emplace(flap_and_twist(key), p);
     std::sort(times_.begin(), times_.end());
     for (int i = 0; i < points; ++i) xs_.push_back(p.L * i / (points - 1));
     // Both sides of each piece boundary, 1e-9 L apart: the moment's jump at FEM's nodes shows as a step.
@@ -53,50 +54,43 @@ void FieldRecorder::state(double t, const double* q)
     std::vector<double> ux = fields_.ux(A, B, xs_);
     const CoordinateField* flap = coordinates_.find(FieldKind::flap);
     if (flap != nullptr && foreshortened_) {  // both slopes shorten the beam (not in order zero, the linear model)
-        const std::vector<double> shortening = flap_.foreshortening(q + flap->first, xs_);
+        const std::vector<double> shortening = flap_->foreshortening(q + flap->first, xs_);
         for (std::size_t i = 0; i < xs_.size(); ++i) ux[i] += shortening[i];
     }
     for (std::size_t i = 0; i < xs_.size(); ++i) {
-        const double x = xs_[i];
+        const double x = xs_[i], curvature = fields_.curvature(B, x);
+        const BladeValues blade = out_of_plane_ ? blade_at(q, x, curvature) : BladeValues{};
+        const double moment = out_of_plane_ ? blade.edge_moment : fields_.bending_moment(B, x);
         std::string line;
-        const double moment = out_of_plane_ ? edge_moment(q, x) : fields_.bending_moment(B, x);
-        for (double v : {t, x, fields_.uy(B, x), ux[i], fields_.slope(B, x), fields_.curvature(B, x), moment,
+        for (double v : {t, x, fields_.uy(B, x), ux[i], fields_.slope(B, x), curvature, moment,
                          fields_.axial_force(A, x)}) {
             if (!line.empty()) line += ',';
             append_shortest(line, v);
         }
-        if (out_of_plane_) out_of_plane(q, x, line);
+        if (out_of_plane_)
+            for (double v : {blade.uz, blade.phi, blade.flap_moment, blade.torque}) {
+                line += ',';
+                append_shortest(line, v);
+            }
         csv_->write_line(line);
     }
 }
 
-/// The chord's angle beta(x) = pitch + twist x/L (docs/model.md section 12).
-static double chord_angle(const Parameters& p, double x) { return p.pitch + p.twist * x / p.L; }
-
-double FieldRecorder::edge_moment(const double* q, double x) const
-{
-    const CoordinateField* flap = coordinates_.find(FieldKind::flap);
-    const double y2 = fields_.curvature(q + coordinates_.first(FieldKind::inplane), x);
-    const double z2 = flap != nullptr ? flap_.curvature(q + flap->first, x) : 0.0;
-    const double beta = chord_angle(p_, x);
-    return p_.E * p_.I * (std::cos(beta) * y2 + std::sin(beta) * z2);  // EI_edge kappa_c
-}
-
-void FieldRecorder::out_of_plane(const double* q, double x, std::string& line) const
+FieldRecorder::BladeValues FieldRecorder::blade_at(const double* q, double x, double y2) const
 {
     const CoordinateField* flap = coordinates_.find(FieldKind::flap);
     const CoordinateField* twist = coordinates_.find(FieldKind::twist);
-    const double y2 = fields_.curvature(q + coordinates_.first(FieldKind::inplane), x);
-    const double z2 = flap != nullptr ? flap_.curvature(q + flap->first, x) : 0.0;
-    const double beta = chord_angle(p_, x);
-    const double uz = flap != nullptr ? flap_.uy(q + flap->first, x) : 0.0;
-    const double phi = twist != nullptr ? flap_.ux1(q + twist->first, x) : 0.0;
-    const double flap_moment = p_.E * p_.I_flap * (-std::sin(beta) * y2 + std::cos(beta) * z2);  // EI_flap kappa_n
-    const double torque = twist != nullptr ? p_.G * p_.J_t * flap_.ux1_slope(q + twist->first, x) : 0.0;
-    for (double v : {uz, phi, flap_moment, torque}) {
-        line += ',';
-        append_shortest(line, v);
+    const double z2 = flap != nullptr ? flap_->curvature(q + flap->first, x) : 0.0;
+    const double beta = p_.pitch + p_.twist * x / p_.L;  // the chord's angle (docs/model.md section 12)
+    BladeValues b;
+    b.edge_moment = p_.E * p_.I * (std::cos(beta) * y2 + std::sin(beta) * z2);         // EI_edge kappa_c
+    b.flap_moment = p_.E * p_.I_flap * (-std::sin(beta) * y2 + std::cos(beta) * z2);  // EI_flap kappa_n
+    if (flap != nullptr) b.uz = flap_->uy(q + flap->first, x);
+    if (twist != nullptr) {
+        b.phi = flap_->ux1(q + twist->first, x);
+        b.torque = p_.G * p_.J_t * flap_->ux1_slope(q + twist->first, x);
     }
+    return b;
 }
 
 bool FieldRecorder::finish() { return csv_->finish(); }

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -43,15 +44,18 @@ public:
     }
 
 private:
-    /// The out-of-plane columns at one abscissa, and the edgewise moment that replaces EI u_y'' (docs/model.md 12).
-    void out_of_plane(const double* q, double x, std::string& line) const;
-    /// The edgewise moment EI_edge kappa_c at x (EI u_y'' in the plane).
-    double edge_moment(const double* q, double x) const;
+    /// A blade's values at x (docs/model.md section 12), given u_y''(x): the edgewise moment EI_edge kappa_c that
+    /// replaces EI u_y'', and the columns u_z, phi, EI_flap kappa_n and GJ phi'.
+    struct BladeValues {
+        double edge_moment = 0.0, uz = 0.0, phi = 0.0, flap_moment = 0.0, torque = 0.0;
+    };
+    BladeValues blade_at(const double* q, double x, double y2) const;
 
     CoordinateLayout coordinates_;
     BeamFields fields_;
     bool out_of_plane_, foreshortened_;
-    BeamFields flap_;        // the flapwise field's basis as its transverse one, the twist field's as its axial one
+    // A blade's: the flapwise field's basis as its transverse one, the twist field's as its axial one.
+    std::optional<BeamFields> flap_;
     Parameters p_;
     std::vector<double> times_, xs_;
     std::size_t next_ = 0;
