@@ -4,9 +4,9 @@
 // derive_energies loops over the terms a variant carries.
 #pragma once
 
-#include <functional>
-
 #include <ginac/ginac.h>
+
+#include <functional>
 
 #include "energy.hpp"
 #include "terms.hpp"

@@ -294,7 +294,8 @@ std::string VariantKey::dof_problem() const
         if (method == Method::bsim && n != 0 && n < 3)
             return "BSIM needs " + name + " = 0 or " + name + " >= 3 (n_x + 2 with n_x >= 1), got " + std::to_string(n);
     if (out_of_plane() && order == Order::full)
-        return "order full is derived for the planar model only (nz = nt = 0, no pitch, pre-twist or precone); use order first";
+        return "order full is derived for the planar model only (nz = nt = 0, no pitch, pre-twist or precone); use "
+               "order first";
     return {};
 }
 

@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "models/assembled.hpp"
 #include "model_values.hpp"
+#include "models/assembled.hpp"
 #include "random_state.hpp"
 #include "shared_oracles.hpp"
 

@@ -3,22 +3,22 @@
 // stations) against the hand-assembled path (the profile interpolated at quadrature nodes), against the uniform
 // beam (a constant table) and the width taper (a linear table), and the static deflection under gravity against
 // the unit-load integral of the beam's own EI(x) and weight.
-#include <catch2/catch.hpp>
+#include <unistd.h>
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <unistd.h>
-#include <random>
-#include <string>
-#include <vector>
-
 #include <hubbeam/fields.hpp>
 #include <hubbeam/linearize.hpp>
 #include <hubbeam/make_model.hpp>
 #include <hubbeam/scene.hpp>
+#include <random>
+#include <string>
+#include <vector>
+
 #include "gauss_legendre.hpp"
 #include "models/generated_model.hpp"
 #include "random_state.hpp"
@@ -38,7 +38,11 @@ const std::vector<double> stations = {0.0, 0.3, 0.55, 1.0};
 VariantKey profile_key(Method method, Drive drive, const std::vector<double>& x = stations, int ny = 4, int nx = 4,
                        Order order = Order::first)
 {
-    VariantKey k{.method = method, .nx = nx, .ny = ny, .order = order, .drive = drive,
+    VariantKey k{.method = method,
+                 .nx = nx,
+                 .ny = ny,
+                 .order = order,
+                 .drive = drive,
                  .extras = {.tip = true, .gravity = true, .damping = true}};
     const std::string why = set_stations(x, k.extras);
     REQUIRE(why.empty());
@@ -69,10 +73,10 @@ void tabulate(Parameters& p, const std::vector<double>& x, M m, EI ei, ES es)
 /// A profile unlike the paper's uniform beam: heavier and stiffer at the root, a bump at 0.55.
 void irregular(Parameters& p)
 {
-    p.profile = {0.35, 900.0, 7e6,   // x/L = 0
-                 0.20, 480.0, 4.2e6,  // 0.3
-                 0.26, 610.0, 5.1e6,  // 0.55
-                 0.09, 150.0, 2.4e6}; // 1
+    p.profile = {0.35, 900.0, 7e6,     // x/L = 0
+                 0.20, 480.0, 4.2e6,   // 0.3
+                 0.26, 610.0, 5.1e6,   // 0.55
+                 0.09, 150.0, 2.4e6};  // 1
 }
 
 /// M, Q, the energies, the momentum and dQ/dtheta of a model at a state, stacked.
@@ -147,9 +151,11 @@ TEST_CASE("profile: a constant table is the uniform beam", "[profile][generated]
             {
                 Parameters p;  // the paper's beam; the extra terms off, as the uniform variant has none
                 p.a = 0.35;
-                tabulate(p, stations, [&](double) { return p.rho * p.S; }, [&](double) { return p.E * p.I; },
-                         [&](double) { return p.E * p.S; });
-                const VariantKey uniform{.method = method, .nx = 4, .ny = 4, .order = Order::first, .drive = drive, .extras = {}};
+                tabulate(
+                    p, stations, [&](double) { return p.rho * p.S; }, [&](double) { return p.E * p.I; },
+                    [&](double) { return p.E * p.S; });
+                const VariantKey uniform{
+                    .method = method, .nx = 4, .ny = 4, .order = Order::first, .drive = drive, .extras = {}};
                 Parameters plain = p;
                 plain.profile.clear();
                 const auto reference = make_model(uniform, plain, ModelSource::generated);
@@ -168,7 +174,11 @@ TEST_CASE("profile: a linear table is the width taper", "[profile][generated][as
         for (Drive drive : {Drive::prescribed, Drive::torque}) {
             Parameters p = with_terms();
             const auto ratio = [&](double x) { return 1.0 + (r - 1.0) * x; };
-            VariantKey width{.method = method, .nx = 4, .ny = 4, .order = Order::first, .drive = drive,
+            VariantKey width{.method = method,
+                             .nx = 4,
+                             .ny = 4,
+                             .order = Order::first,
+                             .drive = drive,
                              .extras = {.tip = true, .gravity = true, .damping = true, .taper = Taper::width}};
             Parameters tapered = p;
             tapered.tip_ratio = r;
@@ -178,8 +188,10 @@ TEST_CASE("profile: a linear table is the width taper", "[profile][generated][as
                 const VariantKey key = profile_key(method, drive, x);
                 SECTION(key.name())
                 {
-                    tabulate(p, x, [&](double xi) { return p.rho * p.S * ratio(xi); },
-                             [&](double xi) { return p.E * p.I * ratio(xi); }, [&](double xi) { return p.E * p.S * ratio(xi); });
+                    tabulate(
+                        p, x, [&](double xi) { return p.rho * p.S * ratio(xi); },
+                        [&](double xi) { return p.E * p.I * ratio(xi); },
+                        [&](double xi) { return p.E * p.S * ratio(xi); });
                     compare(*make_model(key, p, ModelSource::assembled), *reference, 1e-12, rng);
                     if (x.size() == stations.size()) {
                         compare(*make_model(key, p, ModelSource::generated), *reference, 1e-12, rng);
@@ -270,8 +282,8 @@ TEST_CASE("profile: static deflection under gravity is the unit-load integral", 
                     const BeamFields fields(key, p);
                     for (double xi : {0.1, 0.4, 0.7, 0.85}) {
                         const double x = xi * p.L, statics = static_moment(p, at_nodes, x);
-                        INFO("x/L = " << xi << ": EI u_y'' = " << fields.bending_moment(held.q.data(), x) << ", statics "
-                                      << -statics);
+                        INFO("x/L = " << xi << ": EI u_y'' = " << fields.bending_moment(held.q.data(), x)
+                                      << ", statics " << -statics);
                         CHECK(std::abs(fields.bending_moment(held.q.data(), x) + statics) < 1e-3 * statics);
                     }
                 }
@@ -316,8 +328,9 @@ std::string scene_with(const std::string& beam)
            "nx = 4\n[output]\nt_end = 1.0\ndt_out = 0.1\n";
 }
 
-const std::string good_table = "x/L, m, EI, ES\n0, 0.35, 900, 7e6\n0.3, 0.2, 480, 4.2e6\n0.55, 0.26, 610, 5.1e6\n"
-                               "1, 0.09, 150, 2.4e6\n";
+const std::string good_table =
+    "x/L, m, EI, ES\n0, 0.35, 900, 7e6\n0.3, 0.2, 480, 4.2e6\n0.55, 0.26, 610, 5.1e6\n"
+    "1, 0.09, 150, 2.4e6\n";
 
 /// The message of the SceneError the scene raises, which names beam.profile or the key given.
 std::string error_of(const Folder& f, const std::string& table, const std::string& beam = "profile = \"blade.csv\"\n",
@@ -359,7 +372,8 @@ TEST_CASE("profile: a scene reads its table beside it", "[profile][scene]")
     CHECK_FALSE(load_scene(f.scene()).variant.extras.profile());
 }
 
-TEST_CASE("profile: bad tables and scenes are refused naming the scene, the key, the table and its line", "[profile][scene]")
+TEST_CASE("profile: bad tables and scenes are refused naming the scene, the key, the table and its line",
+          "[profile][scene]")
 {
     const Folder f;
     const std::string csv = (f.path / "blade.csv").string();
@@ -368,16 +382,19 @@ TEST_CASE("profile: bad tables and scenes are refused naming the scene, the key,
         CHECK(message.find(part) != std::string::npos);
     };
     has(error_of(f, "x/L, m, EI\n0, 1, 1\n1, 1, 1\n"), csv + ":1: expected a column ES in its header");
-    has(error_of(f, "x/L, m, EI, ES, GJ\n0, 1, 1, 1, 1\n1, 1, 1, 1, 1\n"), csv + ":1: expected exactly the columns x/L, m, EI, ES");
+    has(error_of(f, "x/L, m, EI, ES, GJ\n0, 1, 1, 1, 1\n1, 1, 1, 1, 1\n"),
+        csv + ":1: expected exactly the columns x/L, m, EI, ES");
     // Comment and blank lines before the header: the message names the header's own line.
     has(error_of(f, "# blade\n\n# x/L from root to tip\nx/L, m, EI, ES, GJ\n0, 1, 1, 1, 1\n1, 1, 1, 1, 1\n"),
         csv + ":4: expected exactly the columns x/L, m, EI, ES");
     has(error_of(f, "x/L, m, EI, ES\n0.1, 1, 1, 1\n1, 1, 1, 1\n"), csv + ":2: the first station must be x/L = 0");
-    has(error_of(f, "x/L, m, EI, ES\n0, 1, 1, 1\n0.5, 1, 1, 1\n0.5, 1, 1, 1\n1, 1, 1, 1\n"), csv + ":4: the stations must increase strictly");
+    has(error_of(f, "x/L, m, EI, ES\n0, 1, 1, 1\n0.5, 1, 1, 1\n0.5, 1, 1, 1\n1, 1, 1, 1\n"),
+        csv + ":4: the stations must increase strictly");
     has(error_of(f, "x/L, m, EI, ES\n0, 1, 1, 1\n0.5, 1, 1, 1\n"), csv + ": the last station must be x/L = 1");
     has(error_of(f, "x/L, m, EI, ES\n0, 1, 1, 1\n"), csv + ": expected at least 2 stations, got 1");
     has(error_of(f, "x/L, m, EI, ES\n0, 1, 0, 1\n1, 1, 1, 1\n"), csv + ":2: expected EI > 0, got 0");
-    has(error_of(f, "x/L, m, EI, ES\n0, 1, 1, 1\n1, 1, 1, inf\n"), csv + ":3: expected a finite number in column ES (axial stiffness, N), field 4 of the line");
+    has(error_of(f, "x/L, m, EI, ES\n0, 1, 1, 1\n1, 1, 1, inf\n"),
+        csv + ":3: expected a finite number in column ES (axial stiffness, N), field 4 of the line");
     has(error_of(f, "x/L, m, EI, ES\n0, 1, 1, 1\n1, 1, 1\n"), csv + ":3: expected 4 fields as the header has, got 3");
     has(error_of(f, "x/L, m, EI, ES\n0, 1, 1, 1\n0.3333333, 1, 1, 1\n1, 1, 1, 1\n"),
         " is not a decimal with at most 6 digits after the point");
@@ -387,7 +404,8 @@ TEST_CASE("profile: bad tables and scenes are refused naming the scene, the key,
     has(error_of(f, std::string(70000, '#')), "is larger than a profile table can be (64 KB)");
     has(error_of(f, good_table, "profile = \"missing.csv\"\n"), (f.path / "missing.csv").string() + ": cannot open");
     // The section's own keys and a taper do not go with a table.
-    has(error_of(f, good_table, "profile = \"blade.csv\"\ndensity = 2.7667e3\n", "beam.density"), "not used with beam.profile");
+    has(error_of(f, good_table, "profile = \"blade.csv\"\ndensity = 2.7667e3\n", "beam.density"),
+        "not used with beam.profile");
     has(error_of(f, good_table, "profile = \"blade.csv\"\ntaper = \"width\"\ntip_ratio = 0.5\n", "beam.taper"),
         "not used with beam.profile");
 }

@@ -7,12 +7,12 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <hubbeam/scene.hpp>
+#include <hubbeam/simulate.hpp>
 #include <limits>
 #include <string>
 #include <vector>
 
-#include <hubbeam/scene.hpp>
-#include <hubbeam/simulate.hpp>
 #include "simulation/column_check.hpp"
 #include "temp_folder.hpp"
 
@@ -54,7 +54,8 @@ TEST_CASE("the error check compares every column a run writes, a derived one per
           "[simulate][error]")
 {
     // A controlled hub with sensitivities: state, energy, optional (tau, theta_ref, work) and derivative columns.
-    Scene scene = load_scene(cases + "controlled_step.toml", {{"output.t_end", "0.05"}, {"output.sensitivities", "kp,J_oh"}});
+    Scene scene =
+        load_scene(cases + "controlled_step.toml", {{"output.t_end", "0.05"}, {"output.sensitivities", "kp,J_oh"}});
     const ColumnSet set = optional_columns_of(scene);
     const std::vector<std::string> names = fields(row_header(set));
     std::vector<double> row;
@@ -82,8 +83,7 @@ TEST_CASE("the error check compares every column a run writes, a derived one per
     CHECK(largest_difference(row, std::vector<double>(row.begin(), row.end() - 1), peak, floor).fraction < 0.0);
 }
 
-TEST_CASE("a row with a non-finite value is not written: the run stops at the rows before it and says so",
-          "[simulate]")
+TEST_CASE("a row with a non-finite value is not written: the run stops at the rows before it and says so", "[simulate]")
 {
     // A torque law that is NaN at one row's time only (the steps, with rk8pd's free stepping, never end there), so
     // the state stays finite and only that row's tau column would be NaN.
@@ -113,12 +113,14 @@ TEST_CASE("a row with a non-finite value is not written: the run stops at the ro
 TEST_CASE("a profile refuses sensitivities to rho, S, I and E, which its table replaces", "[scene][sensitivities]")
 {
     for (const char* p : {"rho", "S", "I", "E"}) {
-        const std::string message = error_of(cases + "profile_blade.toml", {{"output.sensitivities", std::string("L,") + p}});
+        const std::string message =
+            error_of(cases + "profile_blade.toml", {{"output.sensitivities", std::string("L,") + p}});
         INFO(message);
         CHECK(message.find("output.sensitivities: expected a parameter that the scene uses, not " + std::string(p) +
                            " with beam.profile") != std::string::npos);
     }
-    CHECK(load_scene(cases + "profile_blade.toml", {{"output.sensitivities", "L,J_oh"}}).output.sensitivities.size() == 2);
+    CHECK(load_scene(cases + "profile_blade.toml", {{"output.sensitivities", "L,J_oh"}}).output.sensitivities.size() ==
+          2);
 }
 
 TEST_CASE("hub angles beyond max_hub_angle are refused, naming the key, the value and the bound", "[scene]")
@@ -147,8 +149,8 @@ TEST_CASE("hub angles beyond max_hub_angle are refused, naming the key, the valu
     INFO(table);
     CHECK(table.find((f.path / "m.csv").string() + ":4: expected |theta| <= 1e+06 rad") != std::string::npos);
     // A run whose angle passes the bound stops there: the spin-up, 1.9e-3 rad in its first second, from 1e-3 rad below.
-    const Scene near = load_scene(f.write("n.toml", spin), {{"motion.theta0", "999999.999"}, {"output.t_end", "1"},
-                                                            {"discretization.nx", "0"}});
+    const Scene near = load_scene(f.write("n.toml", spin),
+                                  {{"motion.theta0", "999999.999"}, {"output.t_end", "1"}, {"discretization.nx", "0"}});
     double last = 0.0;
     const RunSummary summary = simulate(near, [&](const Row& r) { last = r.theta; });
     INFO(summary.failure);
@@ -180,12 +182,14 @@ TEST_CASE("a motion or profile table's message says what was expected and where,
     // A credentials file's first line is a header without the columns: neither it nor a field is echoed.
     has(message_of("user:s3cr3t:1000\n0,0\n"),
         csv + ":1: expected a column t in its header (time, s), got none among its 1 columns");
-    has(message_of("t,tau\n0,1\n1,s3cr3t\n"), csv + ":3: expected a finite number in column tau (the hub torque, N m), "
-                                                    "field 2 of the line");
+    has(message_of("t,tau\n0,1\n1,s3cr3t\n"), csv +
+                                                  ":3: expected a finite number in column tau (the hub torque, N m), "
+                                                  "field 2 of the line");
     // Each column is described by its own meaning, not the table's other column's.
     has(message_of("time,tau,s3cr3t\n0,1,2\n1,1,2\n"), "expected a column t in its header (time, s)");
     // A duplicated column would be read from its first copy without a word.
-    has(message_of("t,tau,tau\n0,1,2\n1,1,2\n"), csv + ":1: expected one column tau in its header (the hub torque, N m), got 2");
+    has(message_of("t,tau,tau\n0,1,2\n1,1,2\n"),
+        csv + ":1: expected one column tau in its header (the hub torque, N m), got 2");
     // The profile reader is the same reader.
     const std::string blade = f.write("blade.toml", [&] {
         std::ifstream b(cases + "profile_blade.toml");

@@ -24,9 +24,12 @@ VariantKey flap_and_twist(VariantKey key)
 
 FieldRecorder::FieldRecorder(const VariantKey& key, const Parameters& p, std::vector<double> times, int points,
                              const std::string& path)
-    : coordinates_(coordinate_layout(key)), fields_(key, p), out_of_plane_(key.out_of_plane()),
+    : coordinates_(coordinate_layout(key)),
+      fields_(key, p),
+      out_of_plane_(key.out_of_plane()),
       foreshortened_(key.order != Order::zero),
-      p_(p), times_(std::move(times))
+      p_(p),
+      times_(std::move(times))
 {
     if (out_of_plane_) flap_.emplace(flap_and_twist(key), p);
     std::sort(times_.begin(), times_.end());
@@ -62,8 +65,8 @@ void FieldRecorder::state(double t, const double* q)
         const BladeValues blade = out_of_plane_ ? blade_at(q, x, curvature) : BladeValues{};
         const double moment = out_of_plane_ ? blade.edge_moment : fields_.bending_moment(B, x);
         std::string line;
-        for (double v : {t, x, fields_.uy(B, x), ux[i], fields_.slope(B, x), curvature, moment,
-                         fields_.axial_force(A, x)}) {
+        for (double v :
+             {t, x, fields_.uy(B, x), ux[i], fields_.slope(B, x), curvature, moment, fields_.axial_force(A, x)}) {
             if (!line.empty()) line += ',';
             append_shortest(line, v);
         }
@@ -83,7 +86,7 @@ FieldRecorder::BladeValues FieldRecorder::blade_at(const double* q, double x, do
     const double z2 = flap != nullptr ? flap_->curvature(q + flap->first, x) : 0.0;
     const double beta = p_.pitch + p_.twist * x / p_.L;  // the chord's angle (docs/model.md section 12)
     BladeValues b;
-    b.edge_moment = p_.E * p_.I * (std::cos(beta) * y2 + std::sin(beta) * z2);         // EI_edge kappa_c
+    b.edge_moment = p_.E * p_.I * (std::cos(beta) * y2 + std::sin(beta) * z2);        // EI_edge kappa_c
     b.flap_moment = p_.E * p_.I_flap * (-std::sin(beta) * y2 + std::cos(beta) * z2);  // EI_flap kappa_n
     if (flap != nullptr) b.uz = flap_->uy(q + flap->first, x);
     if (twist != nullptr) {
@@ -93,10 +96,19 @@ FieldRecorder::BladeValues FieldRecorder::blade_at(const double* q, double x, do
     return b;
 }
 
-bool FieldRecorder::finish() { return csv_->finish(); }
+bool FieldRecorder::finish()
+{
+    return csv_->finish();
+}
 
-const std::string& FieldRecorder::error() const { return csv_->error(); }
+const std::string& FieldRecorder::error() const
+{
+    return csv_->error();
+}
 
-const std::string& FieldRecorder::path() const { return csv_->path(); }
+const std::string& FieldRecorder::path() const
+{
+    return csv_->path();
+}
 
 }  // namespace hubbeam

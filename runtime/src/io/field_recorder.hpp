@@ -1,12 +1,12 @@
 // The fields along the beam at chosen times, written as a CSV beside a run's rows (hubbeam run --fields-at).
 #pragma once
 
+#include <hubbeam/fields.hpp>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include <hubbeam/fields.hpp>
 #include "text/csv_columns.hpp"
 
 namespace hubbeam {
@@ -19,7 +19,8 @@ class CsvWriter;
 class FieldRecorder {
 public:
     /// Opens path (atomically written, CsvWriter); times sorted, within the run.
-    FieldRecorder(const VariantKey& key, const Parameters& p, std::vector<double> times, int points, const std::string& path);
+    FieldRecorder(const VariantKey& key, const Parameters& p, std::vector<double> times, int points,
+                  const std::string& path);
     ~FieldRecorder();
     /// The state at a row: records it if it is the first row at or after the next requested time.
     void state(double t, const double* q);

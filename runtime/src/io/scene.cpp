@@ -1,14 +1,13 @@
 // Scene files: TOML read with toml++, overrides set on the parsed table, every key checked for presence,
 // type and range against one table of keys (scene_keys.cpp), every unknown key rejected. The format is documented
 // in docs/scene.md; the symbols are those of docs/model.md.
-#include <hubbeam/scene.hpp>
-
 #include <toml++/toml.h>
 
 #include <algorithm>
 #include <charconv>
 #include <climits>
 #include <cmath>
+#include <hubbeam/scene.hpp>
 #include <optional>
 #include <string_view>
 
@@ -27,18 +26,27 @@ namespace {
 std::string describe(const toml::node& n)
 {
     switch (n.type()) {
-    case toml::node_type::string: {
-        return "a string \"" + printable(n.as_string()->get(), 40) + "\"";
-    }
-    case toml::node_type::integer: return "an integer " + std::to_string(n.as_integer()->get());
-    case toml::node_type::floating_point: return "a float " + shortest(n.as_floating_point()->get());
-    case toml::node_type::boolean: return std::string("a boolean ") + (n.as_boolean()->get() ? "true" : "false");
-    case toml::node_type::array: return "an array";
-    case toml::node_type::table: return "a table";
-    case toml::node_type::date: return "a date";
-    case toml::node_type::time: return "a time";
-    case toml::node_type::date_time: return "a date-time";
-    default: return "a value";
+        case toml::node_type::string: {
+            return "a string \"" + printable(n.as_string()->get(), 40) + "\"";
+        }
+        case toml::node_type::integer:
+            return "an integer " + std::to_string(n.as_integer()->get());
+        case toml::node_type::floating_point:
+            return "a float " + shortest(n.as_floating_point()->get());
+        case toml::node_type::boolean:
+            return std::string("a boolean ") + (n.as_boolean()->get() ? "true" : "false");
+        case toml::node_type::array:
+            return "an array";
+        case toml::node_type::table:
+            return "a table";
+        case toml::node_type::date:
+            return "a date";
+        case toml::node_type::time:
+            return "a time";
+        case toml::node_type::date_time:
+            return "a date-time";
+        default:
+            return "a value";
     }
 }
 
@@ -157,9 +165,9 @@ toml::table parse_toml(std::string_view text, const std::string& path)
     } catch (const toml::parse_error& e) {
         std::string description(e.description());
         std::replace(description.begin(), description.end(), '\n', ' ');
-        throw SceneError::with_detail(path + ":" + std::to_string(e.source().begin.line) + ":" +
-                                          std::to_string(e.source().begin.column),
-                                      "", description);
+        throw SceneError::with_detail(
+            path + ":" + std::to_string(e.source().begin.line) + ":" + std::to_string(e.source().begin.column), "",
+            description);
     }
 }
 
@@ -175,22 +183,24 @@ void set_override(toml::table& root, const std::string& file, const std::string&
     toml::table& t = *root[table].as_table();
     const auto bad = [&] { fail(file, name, key.expected, "\"" + text + "\""); };
     switch (key.kind) {
-    case SceneKey::Kind::integer: {
-        long long v = 0;
-        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-        if (ec != std::errc() || end != text.data() + text.size()) bad();
-        t.insert_or_assign(leaf, v);
-        break;
-    }
-    case SceneKey::Kind::number: {
-        double v = 0.0;
-        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-        if (ec != std::errc() || end != text.data() + text.size()) bad();
-        t.insert_or_assign(leaf, v);
-        break;
-    }
-    case SceneKey::Kind::word:
-    case SceneKey::Kind::text: t.insert_or_assign(leaf, text); break;
+        case SceneKey::Kind::integer: {
+            long long v = 0;
+            const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+            if (ec != std::errc() || end != text.data() + text.size()) bad();
+            t.insert_or_assign(leaf, v);
+            break;
+        }
+        case SceneKey::Kind::number: {
+            double v = 0.0;
+            const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+            if (ec != std::errc() || end != text.data() + text.size()) bad();
+            t.insert_or_assign(leaf, v);
+            break;
+        }
+        case SceneKey::Kind::word:
+        case SceneKey::Kind::text:
+            t.insert_or_assign(leaf, text);
+            break;
     }
 }
 
@@ -200,8 +210,8 @@ void set_override(toml::table& root, const std::string& file, const std::string&
 void check_size(std::string_view text, const std::string& path)
 {
     if (text.size() > max_scene_bytes)
-        throw SceneError::with_detail(path, "", "is larger than a scene file can be (" +
-                                                    std::to_string(max_scene_bytes / 1024) + " KB)");
+        throw SceneError::with_detail(
+            path, "", "is larger than a scene file can be (" + std::to_string(max_scene_bytes / 1024) + " KB)");
 }
 
 /// Every top-level name is one of the key table's tables and is a table; the tables without a default are there.
@@ -254,9 +264,10 @@ std::string read_beam(const Section& beam, const std::string& scene_path, Parame
         for (const char* key : {"density", "area", "second_moment", "youngs_modulus", "taper", "tip_ratio",
                                 "second_moment_flap", "shear_modulus", "torsion_constant", "twist"})
             if (beam.get(key))
-                throw SceneError::with_detail(scene_path, beam.path(key),
-                                              "not used with beam.profile (its table gives m, EI and ES along the span): "
-                                              "remove it");
+                throw SceneError::with_detail(
+                    scene_path, beam.path(key),
+                    "not used with beam.profile (its table gives m, EI and ES along the span): "
+                    "remove it");
         return read_profile(scene_path, *profile, p, extras);
     }
     p.rho = beam.required_number("density");
@@ -266,7 +277,8 @@ std::string read_beam(const Section& beam, const std::string& scene_path, Parame
     p.E = beam.required_number("youngs_modulus");
     Taper& taper = extras.taper;
     taper = beam.word<Taper>("taper", parse_enum<Taper>).value_or(Taper::uniform);
-    if (taper != Taper::uniform) p.tip_ratio = beam.required_number("tip_ratio", ", required for a taper");
+    if (taper != Taper::uniform)
+        p.tip_ratio = beam.required_number("tip_ratio", ", required for a taper");
     else if (const auto r = beam.number("tip_ratio"); r && *r != 1.0)
         beam.refuse("tip_ratio", shortest(*r) + " without beam.taper = \"width\" or \"depth\"");
     return {};
@@ -279,7 +291,8 @@ void read_extras(const toml::table& root, const std::string& path, Parameters& p
     for (const TermInfo& t : terms())
         if (!t.scene_keys.empty()) Section(path, root, t.scene_keys.front().table).only();
     for (const TermInfo& t : terms())
-        for (const TermSceneKey& k : t.scene_keys) value(p, k.param) = Section(path, root, k.table).number(k.key, value(p, k.param));
+        for (const TermSceneKey& k : t.scene_keys)
+            value(p, k.param) = Section(path, root, k.table).number(k.key, value(p, k.param));
 }
 
 /// [motion]: paper eq. 58 (spin-up) or eq. 59 (torque), a held hub, or a table of theta or tau against time; the
@@ -289,32 +302,35 @@ void read_motion(const Section& motion, const std::string& path, Motion& m)
     m.kind = motion.required_word<Motion::Kind>("kind", parse_kind);
     motion.only(kind_word(m.kind));
     switch (m.kind) {
-    case Motion::Kind::spin_up:
-        m.omega0 = motion.required_number("omega0");
-        m.spin_time = motion.required_number("duration");
-        break;
-    case Motion::Kind::torque:
-        m.tau0 = motion.required_number("tau0");
-        m.torque_time = motion.required_number("duration");
-        break;
-    case Motion::Kind::held: m.angle = motion.required_number("angle"); break;
-    case Motion::Kind::step:
-        m.angle = motion.required_number("angle");
-        m.omega0 = 0.0;  // no spin: what reads the final rate of a motion (modes' default rates) reads none
-        break;
-    case Motion::Kind::table:
-    case Motion::Kind::torque_table: {
-        const std::string file = motion.required_string("file");
-        if (file.empty()) motion.refuse("file", "an empty one");
-        const bool angle = m.kind == Motion::Kind::table;
-        m.table_file = table_path(path, file);
-        // The angle's rate and acceleration enter the equations: a C2 spline. A torque enters as it is, and a
-        // test rig's record is piecewise constant or linear: straight lines, each row a breakpoint, so a step
-        // stays a step (a spline would overshoot it).
-        m.table = read_drive_table(path, m.table_file, angle ? "theta" : "tau", angle ? "the hub angle, rad" : "the hub torque, N m",
-                                   angle ? DriveTable::Interpolation::cubic_spline : DriveTable::Interpolation::linear);
-        break;
-    }
+        case Motion::Kind::spin_up:
+            m.omega0 = motion.required_number("omega0");
+            m.spin_time = motion.required_number("duration");
+            break;
+        case Motion::Kind::torque:
+            m.tau0 = motion.required_number("tau0");
+            m.torque_time = motion.required_number("duration");
+            break;
+        case Motion::Kind::held:
+            m.angle = motion.required_number("angle");
+            break;
+        case Motion::Kind::step:
+            m.angle = motion.required_number("angle");
+            m.omega0 = 0.0;  // no spin: what reads the final rate of a motion (modes' default rates) reads none
+            break;
+        case Motion::Kind::table:
+        case Motion::Kind::torque_table: {
+            const std::string file = motion.required_string("file");
+            if (file.empty()) motion.refuse("file", "an empty one");
+            const bool angle = m.kind == Motion::Kind::table;
+            m.table_file = table_path(path, file);
+            // The angle's rate and acceleration enter the equations: a C2 spline. A torque enters as it is, and a
+            // test rig's record is piecewise constant or linear: straight lines, each row a breakpoint, so a step
+            // stays a step (a spline would overshoot it).
+            m.table = read_drive_table(
+                path, m.table_file, angle ? "theta" : "tau", angle ? "the hub angle, rad" : "the hub torque, N m",
+                angle ? DriveTable::Interpolation::cubic_spline : DriveTable::Interpolation::linear);
+            break;
+        }
     }
     m.theta0 = motion.number("theta0", m.theta0);
 }
@@ -338,10 +354,12 @@ void read_hub(const Section& hub, const Scene& scene, Parameters& p)
     hub.only();
     p.a = hub.number("radius", p.a);
     const Motion::Kind kind = scene.motion.kind;
-    if (scene.control) p.J_oh = hub.required_number("inertia", ", required for a controlled hub ([control])");
+    if (scene.control)
+        p.J_oh = hub.required_number("inertia", ", required for a controlled hub ([control])");
     else if (kind == Motion::Kind::torque || kind == Motion::Kind::torque_table)
         p.J_oh = hub.required_number("inertia", ", required for kind = \"" + kind_word(kind) + "\"");
-    else p.J_oh = hub.number("inertia", p.J_oh);
+    else
+        p.J_oh = hub.number("inertia", p.J_oh);
 }
 
 /// [discretization]: docs/model.md section 4; the variant's drive follows the motion.

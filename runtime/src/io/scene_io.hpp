@@ -4,12 +4,11 @@
 #pragma once
 
 #include <cstddef>
+#include <hubbeam/scene.hpp>
 #include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include <hubbeam/scene.hpp>
 
 namespace hubbeam::scene_io {
 

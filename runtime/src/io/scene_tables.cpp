@@ -1,15 +1,14 @@
 // The files a scene reads: the scene file itself and the CSV tables it names (beam.profile, motion.file), each
 // read whole and checked before anything runs.
-#include <hubbeam/scene.hpp>
-
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <hubbeam/scene.hpp>
 #include <optional>
 
 #include "io/output_file.hpp"
@@ -92,8 +91,8 @@ CsvColumns header_of(const std::string& scene, const std::string& key, const std
         const auto count = std::count(names.begin(), names.end(), w.name);
         if (count != 1)  // a second column of the name would be ignored without a word
             table_problem(scene, key, where,
-                          (count == 0 ? "expected a column " : "expected one column ") + w.name +
-                              " in its header (" + w.meaning + "), got " +
+                          (count == 0 ? "expected a column " : "expected one column ") + w.name + " in its header (" +
+                              w.meaning + "), got " +
                               (count == 0 ? "none among its " + std::to_string(names.size()) + " columns"
                                           : std::to_string(count)));
         at.push_back(columns.at(w.name));
@@ -133,9 +132,10 @@ NumericTable read_numeric_table(const std::string& scene, const std::string& key
         table_problem(scene, key, label, e.detail);
     }
     if (text.size() > cap)
-        table_problem(scene, key, label,
-                      "is larger than " + std::string(what_it_is) + " can be (" +
-                          (cap >= (1u << 20) ? std::to_string(cap >> 20) + " MB)" : std::to_string(cap >> 10) + " KB)"));
+        table_problem(
+            scene, key, label,
+            "is larger than " + std::string(what_it_is) + " can be (" +
+                (cap >= (1u << 20) ? std::to_string(cap >> 20) + " MB)" : std::to_string(cap >> 10) + " KB)"));
     if (text.rfind("\xef\xbb\xbf", 0) == 0) text.erase(0, 3);
 
     std::optional<CsvColumns> columns;
@@ -189,7 +189,8 @@ std::string scene_io::read_profile(const std::string& scene_path, const std::str
     const std::string file = (std::filesystem::path(scene_path).parent_path() / name).string();
     const std::string label = printable(file, 400);
     const auto bad = [&](long line, const std::string& what) {
-        table_problem(scene_path, "beam.profile", label + (line > 0 ? ":" + std::to_string(line) : std::string()), what);
+        table_problem(scene_path, "beam.profile", label + (line > 0 ? ":" + std::to_string(line) : std::string()),
+                      what);
     };
     const std::vector<WantedColumn> want = {{"x/L", "the station along the span, 0 at the root to 1 at the tip"},
                                             {"m", "mass per length, kg/m"},
@@ -210,7 +211,8 @@ std::string scene_io::read_profile(const std::string& scene_path, const std::str
             if (!(v[c] > 0.0)) bad(line, "expected " + want[c].name + " > 0, got " + shortest(v[c]));
         if (x.empty() && v[0] != 0.0) bad(line, "the first station must be x/L = 0, got " + shortest(v[0]));
         if (!x.empty() && !(v[0] > x.back()))
-            bad(line, "the stations must increase strictly, got x/L = " + shortest(v[0]) + " after " + shortest(x.back()));
+            bad(line,
+                "the stations must increase strictly, got x/L = " + shortest(v[0]) + " after " + shortest(x.back()));
         if (v[0] > 1.0) bad(line, "expected x/L <= 1, got " + shortest(v[0]));
         x.push_back(v[0]);
         values.insert(values.end(), {v[1], v[2], v[3]});
@@ -252,15 +254,15 @@ std::shared_ptr<const DriveTable> scene_io::read_drive_table(const std::string& 
             table_fail(scene, label + ":" + std::to_string(table.lines[r]), "expected |theta| <= " + angle_bound());
         if (r > 0 && !(t[r] > t[r - 1]))
             table_fail(scene, label + ":" + std::to_string(table.lines[r]),
-                       "expected times that increase strictly, got t = " + shortest(t[r]) + " after t = " +
-                           shortest(t[r - 1]) + " (line " + std::to_string(table.lines[r - 1]) + ")");
+                       "expected times that increase strictly, got t = " + shortest(t[r]) +
+                           " after t = " + shortest(t[r - 1]) + " (line " + std::to_string(table.lines[r - 1]) + ")");
     }
     const std::size_t need = DriveTable::min_rows(interpolation);
     if (t.size() < need)
         table_fail(scene, label,
                    "expected at least " + std::to_string(need) + " rows" +
-                       (interpolation == DriveTable::Interpolation::cubic_spline ? " (a cubic spline)" : "") + ", got " +
-                       std::to_string(t.size()));
+                       (interpolation == DriveTable::Interpolation::cubic_spline ? " (a cubic spline)" : "") +
+                       ", got " + std::to_string(t.size()));
     try {
         return std::make_shared<const DriveTable>(std::move(t), std::move(v), interpolation);
     } catch (const std::invalid_argument& e) {

@@ -1,8 +1,7 @@
 // validate(): the ranges of a Scene's values and the checks that join keys, each failure naming its key.
-#include <hubbeam/scene.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <hubbeam/scene.hpp>
 
 #include "dynamics/integrate.hpp"
 #include "io/scene_io.hpp"
@@ -29,19 +28,23 @@ void check_sensitivities(const Scene& s)
         if (std::find(seen.begin(), seen.end(), name) != seen.end())
             fail(s.path, key, expected(key), "\"" + name + "\" twice");
         seen.push_back(name);
-        if (gain && !s.control)
-            fail(s.path, key, "a control gain only with a [control] table", "\"" + name + "\"");
+        if (gain && !s.control) fail(s.path, key, "a control gain only with a [control] table", "\"" + name + "\"");
         if (name == "tip_ratio" && s.variant.extras.taper == Taper::uniform)
             fail(s.path, key, "tip_ratio only with beam.taper \"width\" or \"depth\"", "\"tip_ratio\"");
         // A profile's table replaces E, rho, S and I (read_profile sets them from its root for reports only): their
         // derivatives would be columns of zeros.
         if (!s.parameters.profile.empty() && (name == "E" || name == "rho" || name == "S" || name == "I"))
-            fail(s.path, key, "a parameter that the scene uses, not " + name + " with beam.profile (its table gives "
-                 "m, EI and ES along the span in place of rho, S, I and E)", "\"" + name + "\"");
+            fail(s.path, key,
+                 "a parameter that the scene uses, not " + name +
+                     " with beam.profile (its table gives "
+                     "m, EI and ES along the span in place of rho, S, I and E)",
+                 "\"" + name + "\"");
     }
     if (!s.output.sensitivities.empty() && s.axial == Axial::quasi_static)
-        fail(s.path, key, "model.axial \"dynamic\" (the sensitivity equations follow the axial coordinates' own "
-             "motion)", "model.axial \"quasi-static\"");
+        fail(s.path, key,
+             "model.axial \"dynamic\" (the sensitivity equations follow the axial coordinates' own "
+             "motion)",
+             "model.axial \"quasi-static\"");
 }
 
 // Range checks of validate(), naming the key.
@@ -67,8 +70,10 @@ void check_control(const Scene& s)
 {
     if (!s.control) {
         if (s.motion.kind == Motion::Kind::step)
-            fail(s.path, "motion.kind", "a motion of its own without a [control] section (a step is the reference of a "
-                 "controlled hub)", "\"step\"");
+            fail(s.path, "motion.kind",
+                 "a motion of its own without a [control] section (a step is the reference of a "
+                 "controlled hub)",
+                 "\"step\"");
         return;
     }
     if (s.motion.drive() == Drive::torque)
@@ -100,10 +105,11 @@ void check_out_of_plane(const Scene& s)
     // A taper or a profile gives the in-plane section along the span, not the flapwise and torsional one.
     const VariantKey k = s.key();
     if (k.out_of_plane() && (k.extras.taper != Taper::uniform || k.extras.profile()))
-        fail(s.path, k.extras.profile() ? "beam.profile" : "beam.taper",
-             "a uniform section where the beam leaves the plane (nz, nt, pitch, twist or precone): a taper or a profile "
-             "gives no flapwise or torsional distribution",
-             k.extras.profile() ? "a profile" : "a taper");
+        fail(
+            s.path, k.extras.profile() ? "beam.profile" : "beam.taper",
+            "a uniform section where the beam leaves the plane (nz, nt, pitch, twist or precone): a taper or a profile "
+            "gives no flapwise or torsional distribution",
+            k.extras.profile() ? "a profile" : "a taper");
 }
 
 /// The beam's, hub's and extra terms' parameters (docs/model.md sections 1 and 11).
@@ -118,8 +124,10 @@ void check_parameters(const Scene& s)
     if (!(p.a >= 0.0) || !std::isfinite(p.a)) fail(s.path, "hub.radius", expected("hub.radius"), shortest(p.a));
     check_positive(s, p.J_oh, "hub.inertia");
     if (s.variant.extras.taper != Taper::uniform) check_positive(s, p.tip_ratio, "beam.tip_ratio");
-    for (const auto& [v, key] : {std::pair{p.m_tip, "tip.mass"}, {p.J_tip, "tip.inertia"},
-                                 {p.alpha, "damping.mass_proportional"}, {p.beta, "damping.stiffness_proportional"}})
+    for (const auto& [v, key] : {std::pair{p.m_tip, "tip.mass"},
+                                 {p.J_tip, "tip.inertia"},
+                                 {p.alpha, "damping.mass_proportional"},
+                                 {p.beta, "damping.stiffness_proportional"}})
         if (!(v >= 0.0) || !std::isfinite(v)) fail(s.path, key, expected(key), shortest(v));
     check_finite(s, p.g, "gravity.g");
     check_out_of_plane(s);
@@ -129,20 +137,22 @@ void check_parameters(const Scene& s)
 void check_motion(const Scene& s)
 {
     switch (s.motion.kind) {
-    case Motion::Kind::spin_up:
-        check_finite(s, s.motion.omega0, "motion.omega0");
-        check_positive(s, s.motion.spin_time, "motion.duration");
-        break;
-    case Motion::Kind::torque:
-        check_finite(s, s.motion.tau0, "motion.tau0");
-        check_positive(s, s.motion.torque_time, "motion.duration");
-        break;
-    case Motion::Kind::held:
-    case Motion::Kind::step: check_angle(s, s.motion.angle, "motion.angle"); break;
-    case Motion::Kind::table:
-    case Motion::Kind::torque_table:
-        if (!s.motion.table) fail(s.path, "motion.file", expected("motion.file"), missing);
-        break;
+        case Motion::Kind::spin_up:
+            check_finite(s, s.motion.omega0, "motion.omega0");
+            check_positive(s, s.motion.spin_time, "motion.duration");
+            break;
+        case Motion::Kind::torque:
+            check_finite(s, s.motion.tau0, "motion.tau0");
+            check_positive(s, s.motion.torque_time, "motion.duration");
+            break;
+        case Motion::Kind::held:
+        case Motion::Kind::step:
+            check_angle(s, s.motion.angle, "motion.angle");
+            break;
+        case Motion::Kind::table:
+        case Motion::Kind::torque_table:
+            if (!s.motion.table) fail(s.path, "motion.file", expected("motion.file"), missing);
+            break;
     }
     if (s.motion.kind != Motion::Kind::held) check_angle(s, s.motion.theta0, "motion.theta0");
     check_control(s);

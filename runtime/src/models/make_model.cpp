@@ -1,8 +1,7 @@
 // Model selection between the generated variants of this build and the hand-assembled fallback.
-#include <hubbeam/make_model.hpp>
-
 #include <chrono>
 #include <cstdio>
+#include <hubbeam/make_model.hpp>
 #include <stdexcept>
 
 #include "models/assembled.hpp"
@@ -16,15 +15,17 @@ std::unique_ptr<Model> make_model(const VariantKey& key, const Parameters& p, Mo
     if (const std::string why = key.dof_problem(); !why.empty()) throw std::invalid_argument(why);
     // The kernels read the profile's values at p[param_count + 3 k + j]: a count that disagrees would read past p.
     if (p.profile.size() != profile_value_count * key.extras.stations.size())
-        throw std::invalid_argument("the parameters hold " + std::to_string(p.profile.size()) + " profile values, the variant " +
-                                    key.name() + " needs " + std::to_string(profile_value_count * key.extras.stations.size()));
+        throw std::invalid_argument("the parameters hold " + std::to_string(p.profile.size()) +
+                                    " profile values, the variant " + key.name() + " needs " +
+                                    std::to_string(profile_value_count * key.extras.stations.size()));
     if (source == ModelSource::assembled) return make_assembled_model(key, p);
     if (const generated::Variant* v = built_in_variant(key)) return make_generated_model(key, *v, p, "built in");
     if (const generated::Variant* v = load_cached_variant(key)) return make_generated_model(key, *v, p, "cached");
     if (const std::string why = on_demand_problem(); !why.empty()) {
         if (source == ModelSource::generated)
-            throw std::invalid_argument("variant " + key.name() + " is not built in and cannot be compiled on demand: " +
-                                        why + "; or use the hand-assembled model (source = \"assembled\")");
+            throw std::invalid_argument("variant " + key.name() +
+                                        " is not built in and cannot be compiled on demand: " + why +
+                                        "; or use the hand-assembled model (source = \"assembled\")");
         if (key.order == Order::full)
             throw std::invalid_argument("order full has no hand-assembled form, and variant " + key.name() +
                                         " cannot be compiled on demand: " + why);
