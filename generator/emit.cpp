@@ -602,11 +602,16 @@ std::string print_coefficients_p(const std::string& prefix, const Signature& sig
         for (const auto& [pe, number] : pool.entries()[i])
             for (std::size_t j = 0; j < pe.size(); ++j) {
                 if (pe[j] == 0) continue;
+                std::vector<std::pair<int, std::string>> by = read_derivatives(sig.parameter_inputs[j].read);
+                std::erase_if(by, [&](const auto& kd) {
+                    return sig.derivative_entries >= 0 && kd.first >= sig.derivative_entries;
+                });
+                if (by.empty()) continue;
                 std::vector<int> e = pe;
                 --e[j];
                 for (std::size_t l = 0; l < e.size(); ++l) used[l] = used[l] || e[l] != 0;
                 const std::string num = product(e, names, true), den = product(e, names, false);
-                for (const auto& [k, d] : read_derivatives(sig.parameter_inputs[j].read)) {
+                for (const auto& [k, d] : by) {
                     std::string mono = num;
                     if (!d.empty()) mono = mono.empty() ? d : mono + "*" + d;
                     if (!den.empty()) mono = (mono.empty() ? "1.0" : mono) + "/(" + den + ")";

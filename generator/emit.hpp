@@ -72,6 +72,9 @@ struct Signature {
     std::vector<Array> state;             // read by every other kernel, in argument order after c (e.g. u, q, qd)
     std::vector<Input> parameter_inputs;  // symbols read from the parameter array ("p[1] * p[2]" may combine)
     std::vector<Input> state_inputs;      // symbols read from the state arrays
+    // The parameter entries p[k], k < this, whose derivatives coefficients_p prints (the named parameters: a
+    // profile's station values have none); -1: all.
+    int derivative_entries = -1;
 
     std::vector<GiNaC::symbol> state_inputs_symbols() const
     {

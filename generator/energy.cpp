@@ -144,6 +144,21 @@ public:
             add(f.m_x, s.m_k[k], hat);
             add(f.EI_x, s.EI_k[k], hat);
             add(f.ES_x, s.ES_k[k], hat);
+            if (!s.o) continue;
+            // A blade's (docs/model.md section 12.4): the deviators at station k turned by its chord angle.
+            const Symbols::OutOfPlane& o = *s.o;
+            add(f.EI_flap_x, o.EI_flap_k[k], hat);
+            add(f.GJ_x, o.GJ_k[k], hat);
+            add(f.j_p_x, o.j_c_k[k], hat);
+            add(f.j_p_x, o.j_n_k[k], hat);
+            add(f.EI_cos_x, s.EI_k[k] * o.cos_2twist_k[k] / 2, hat);
+            add(f.EI_cos_x, -o.EI_flap_k[k] * o.cos_2twist_k[k] / 2, hat);
+            add(f.EI_sin_x, s.EI_k[k] * o.sin_2twist_k[k] / 2, hat);
+            add(f.EI_sin_x, -o.EI_flap_k[k] * o.sin_2twist_k[k] / 2, hat);
+            add(f.j_cos_x, o.j_n_k[k] * o.cos_2twist_k[k] / 2, hat);
+            add(f.j_cos_x, -o.j_c_k[k] * o.cos_2twist_k[k] / 2, hat);
+            add(f.j_sin_x, o.j_n_k[k] * o.sin_2twist_k[k] / 2, hat);
+            add(f.j_sin_x, -o.j_c_k[k] * o.sin_2twist_k[k] / 2, hat);
         }
         // Present (possibly empty) so that nx = 0 (or a planar variant's missing fields) makes their terms vanish.
         for (const symbol& absent : {f.ux1, f.ux1_dot, f.ux1_x, f.ux1_x_dot, f.uz, f.uz_dot, f.uz_x, f.uz_xx,
@@ -254,7 +269,7 @@ Symbols::Symbols(const VariantKey& key)
         EI_k.emplace_back("EI_" + std::to_string(k));
         ES_k.emplace_back("ES_" + std::to_string(k));
     }
-    if (key.out_of_plane()) o = std::make_shared<const OutOfPlane>();
+    if (key.out_of_plane()) o = std::make_shared<const OutOfPlane>(key.extras.stations.size());
     for (const CoordinateField& f : layout.fields) {
         if (f.kind == FieldKind::hub_angle) {
             q.push_back(theta);
@@ -263,6 +278,19 @@ Symbols::Symbols(const VariantKey& key)
         }
         q.insert(q.end(), coordinates(f.kind).begin(), coordinates(f.kind).end());
         qd.insert(qd.end(), rates(f.kind).begin(), rates(f.kind).end());
+    }
+}
+
+Symbols::OutOfPlane::OutOfPlane(std::size_t stations)
+{
+    for (std::size_t k = 0; k < stations; ++k) {
+        const std::string n = std::to_string(k);
+        EI_flap_k.emplace_back("EI_flap_" + n);
+        GJ_k.emplace_back("GJ_" + n);
+        j_c_k.emplace_back("j_c_" + n);
+        j_n_k.emplace_back("j_n_" + n);
+        cos_2twist_k.emplace_back("cos_2twist_" + n);
+        sin_2twist_k.emplace_back("sin_2twist_" + n);
     }
 }
 
@@ -332,13 +360,10 @@ Cone cone_of(const VariantKey& key, const Symbols& s)
     return {s.o->cos_cone, s.o->sin_cone, s.a};
 }
 
-namespace {
-
-/// cos 2 beta(xi) and sin 2 beta(xi) of the chord angle beta = pitch + twist xi (docs/model.md section 12): the
-/// pre-twist's part as its Taylor series in twist xi, exact to round-off for |twist| <= max_twist (the scene's
-/// bound), so that the integrals over xi stay those of polynomials.
 std::pair<ex, ex> chord_angle(const VariantKey& key, const Symbols& s, const symbol& xi)
 {
+    // The pre-twist's part as its Taylor series in twist xi, exact to round-off for |twist| <= max_twist (the scene's
+    // bound), so that the integrals over xi stay those of polynomials.
     const Extras& x = key.extras;
     const ex cos_2pitch = x.pitch ? ex(s.o->cos_2pitch) : ex(1), sin_2pitch = x.pitch ? ex(s.o->sin_2pitch) : ex(0);
     if (!x.twist) return {cos_2pitch, sin_2pitch};
@@ -351,32 +376,23 @@ std::pair<ex, ex> chord_angle(const VariantKey& key, const Symbols& s, const sym
     return {(cos_2pitch * c - sin_2pitch * sn).expand(), (sin_2pitch * c + cos_2pitch * sn).expand()};
 }
 
-}  // namespace
-
-ex bending_density(const VariantKey& key, const Symbols& s, const FieldSymbols& f, const ex& edge, const ex& y2,
-                   const ex& z2)
+ex bending_density(const VariantKey& key, const BeamSection& b, const ex& y2, const ex& z2)
 {
-    if (!key.out_of_plane()) return edge * pow(y2, 2);
+    if (!key.out_of_plane()) return b.bending * pow(y2, 2);
     // EI_edge kappa_c^2 + EI_flap kappa_n^2, kappa_c = cos beta y'' + sin beta z'', kappa_n = -sin beta y'' + cos beta
-    // z''.
-    const ex flap = s.o->EI_flap;
-    const auto [c2, s2] = chord_angle(key, s, f.xi);
-    return pow(y2, 2) * (edge * (1 + c2) + flap * (1 - c2)) / 2 + pow(z2, 2) * (edge * (1 - c2) + flap * (1 + c2)) / 2 +
-           y2 * z2 * s2 * (edge - flap);
+    // z'': mean (y''^2 + z''^2) + deviator (cos 2 beta (y''^2 - z''^2) + 2 sin 2 beta y'' z'').
+    return pow(y2, 2) * (b.bend_mean + b.bend_cos) + pow(z2, 2) * (b.bend_mean - b.bend_cos) + 2 * y2 * z2 * b.bend_sin;
 }
 
-ex section_rotation(const VariantKey& key, const Symbols& s, const FieldSymbols& f)
+ex section_rotation(const VariantKey& key, const Symbols& s, const FieldSymbols& f, const BeamSection& b)
 {
     if (key.nt == 0) return 0;
     // T_sec = 1/2 [j_p (phi_dot + w sin beta_c)^2 + w^2 cos^2 beta_c (j_c sin^2 psi + j_n cos^2 psi)], psi = beta +
     // phi, to second order in phi (docs/model.md section 12).
-    const Symbols::OutOfPlane& o = *s.o;
     const Cone cone = cone_of(key, s);
-    const auto [c2, s2] = chord_angle(key, s, f.xi);
-    const ex jp = o.j_n + o.j_c, w = s.theta_dot;
-    const ex about_k =
-        (o.j_c + o.j_n) / 2 + (o.j_n - o.j_c) * c2 / 2 + (o.j_c - o.j_n) * (s2 * f.phi + c2 * pow(f.phi, 2));
-    return (jp * pow(f.phi_dot + w * cone.sin, 2) + pow(w * cone.cos, 2) * about_k) / 2;
+    const ex w = s.theta_dot;
+    const ex about_k = b.polar / 2 + b.inertia_cos - 2 * (b.inertia_sin * f.phi + b.inertia_cos * pow(f.phi, 2));
+    return (b.polar * pow(f.phi_dot + w * cone.sin, 2) + pow(w * cone.cos, 2) * about_k) / 2;
 }
 
 Energies derive_energies(const VariantKey& key, const Symbols& s, const PolyReader& read, bool without_point_terms)
@@ -390,17 +406,17 @@ Energies derive_energies(const VariantKey& key, const Symbols& s, const PolyRead
     DensityIntegrator integrate(s, f, key, integrals, read);
     // The distributions along the span: the root's values, or a section term's (a taper, a profile).
     const std::vector<const TermInfo*> carried = carried_terms(x);
-    BeamSection beam = uniform_section(s);
+    BeamSection beam = uniform_section(key, s, f);
     for (const TermInfo* t : carried)
-        if (generator_part(*t).section) beam = generator_part(*t).section(s, f, x);
+        if (generator_part(*t).section) beam = generator_part(*t).section(key, s, f);
     const ex v2 = velocity_squared(without_point_terms ? Order::first : key.order, f, s.theta_dot, cone_of(key, s));
     Energies e;
     e.T = read(s.J_oh * pow(s.theta_dot, 2) / 2);
     e.T += integrate(beam.mass * v2 / 2);
-    e.U = integrate((beam.axial * pow(f.ux1_x, 2) + bending_density(key, s, f, beam.bending, f.uy_xx, f.uz_xx)) / 2);
+    e.U = integrate((beam.axial * pow(f.ux1_x, 2) + bending_density(key, beam, f.uy_xx, f.uz_xx)) / 2);
     if (key.nt > 0) {
-        e.T += integrate(section_rotation(key, s, f));
-        e.U += integrate(s.o->GJ * pow(f.phi_x, 2) / 2);
+        e.T += integrate(section_rotation(key, s, f, beam));
+        e.U += integrate(beam.torsion * pow(f.phi_x, 2) / 2);
     }
     // The terms' energies and dissipation (docs/model.md section 11), in registry order.
     const TermContext context{key,

@@ -40,6 +40,11 @@ struct Symbols {
         GiNaC::symbol EI_flap{"EI_flap"}, GJ{"GJ"}, j_n{"j_n"}, j_c{"j_c"};
         GiNaC::symbol cos_2pitch{"cos_2pitch"}, sin_2pitch{"sin_2pitch"}, twist{"twist"};
         GiNaC::symbol cos_cone{"cos_cone"}, sin_cone{"sin_cone"}, g_axis{"g_axis"};
+        /// A tabulated profile's blade values at station k (docs/model.md section 12.4): EI_flap, GJ, j_c, j_n, and
+        /// cos and sin of twice the chord's tabulated angle.
+        std::vector<GiNaC::symbol> EI_flap_k, GJ_k, j_c_k, j_n_k, cos_2twist_k, sin_2twist_k;
+
+        explicit OutOfPlane(std::size_t stations);
     };
     /// Created last and only for a variant that leaves the plane (VariantKey::out_of_plane): GiNaC orders terms by
     /// the symbols' serial numbers, so a planar variant's symbols and emitted code stay as they were.
@@ -73,7 +78,27 @@ struct FieldSymbols {
     // derivative (docs/model.md section 12).
     GiNaC::symbol uz{"u_z"}, uz_dot{"u_z_dot"}, uz_x{"u_z_x"}, uz_xx{"u_z_xx"}, uz_xx_dot{"u_z_xx_dot"};
     GiNaC::symbol phi{"phi"}, phi_dot{"phi_dot"}, phi_x{"phi_x"}, phi_x_dot{"phi_x_dot"};
+    // A tabulated blade's distributions over the stations' hat functions (docs/model.md section 12.4): EI_flap(x),
+    // GJ(x), j_c + j_n, and the deviators (EI - EI_flap)/2 and (j_n - j_c)/2 times cos and sin of twice the tabulated
+    // chord angle, each linear between stations.
+    GiNaC::symbol EI_flap_x{"EI_flap_x"}, GJ_x{"GJ_x"}, j_p_x{"j_p_x"}, EI_cos_x{"EI_cos_x"}, EI_sin_x{"EI_sin_x"},
+        j_cos_x{"j_cos_x"}, j_sin_x{"j_sin_x"};
 };
+
+/// The beam's distributions along the span, in x (or xi): mass per length, axial and (edgewise) bending stiffness.
+/// Out of the plane (docs/model.md section 12) also the bending stiffness's mean (EI + EI_flap)/2 and its deviator
+/// (EI - EI_flap)/2 turned by the chord's angle beta, as its cos 2 beta and sin 2 beta parts; the torsional stiffness
+/// GJ; the section's polar mass moment j_c + j_n and its deviator (j_n - j_c)/2 turned alike. 0 in the plane.
+struct BeamSection {
+    GiNaC::ex mass, axial, bending;
+    GiNaC::ex bend_mean = 0, bend_cos = 0, bend_sin = 0, torsion = 0, polar = 0, inertia_cos = 0, inertia_sin = 0;
+};
+
+/// The bending energy's density (twice it) for the curvatures y2 = u_y'' and z2 = u_z'' (or their rates, for damping):
+/// EI y2^2 in the plane; out of it EI_edge kappa_c^2 + EI_flap kappa_n^2 with the chord turned (docs/model.md 12).
+GiNaC::ex bending_density(const VariantKey& key, const BeamSection& b, const GiNaC::ex& y2, const GiNaC::ex& z2);
+/// The section's rotary kinetic energy density T_sec (docs/model.md section 12), 0 without a twist field.
+GiNaC::ex section_rotation(const VariantKey& key, const Symbols& s, const FieldSymbols& f, const BeamSection& b);
 
 /// The beam's axis tilted by the precone beta_c (docs/model.md section 12): cos and sin of beta_c, and the hub
 /// radius a (the root stays at a i). {1, 0, 0}: no precone.
@@ -92,13 +117,9 @@ GiNaC::ex velocity_squared(Order order, const FieldSymbols& f, const GiNaC::ex& 
 /// The precone of a variant's symbols, {1, 0, 0} where it carries none.
 Cone cone_of(const VariantKey& key, const Symbols& s);
 
-/// The bending energy's density (twice it) for the curvatures y2 = u_y'' and z2 = u_z'' (or their rates, for damping):
-/// edge y2^2 in the plane; out of it EI_edge kappa_c^2 + EI_flap kappa_n^2 with the chord turned by pitch and twist
-/// (docs/model.md section 12).
-GiNaC::ex bending_density(const VariantKey& key, const Symbols& s, const FieldSymbols& f, const GiNaC::ex& edge,
-                          const GiNaC::ex& y2, const GiNaC::ex& z2);
-/// The section's rotary kinetic energy density T_sec (docs/model.md section 12), 0 without a twist field.
-GiNaC::ex section_rotation(const VariantKey& key, const Symbols& s, const FieldSymbols& f);
+/// cos 2 beta(xi) and sin 2 beta(xi) of a uniform section's chord angle beta = pitch + twist xi (docs/model.md
+/// section 12): {1, 0} without either.
+std::pair<GiNaC::ex, GiNaC::ex> chord_angle(const VariantKey& key, const Symbols& s, const GiNaC::symbol& xi);
 
 /// T = 1/2 J_oh theta_dot^2 + 1/2 int m |r_dot|^2 dx and U = 1/2 int (ES u_x1'^2 + EI u_y''^2) dx, over the
 /// parameter and variable symbols of read; with the key's extras, the tip body's, gravity's, the taper's and the

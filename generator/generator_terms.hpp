@@ -13,11 +13,6 @@
 
 namespace hubbeam::gen {
 
-/// The beam's distributions along the span: mass per length, axial and bending stiffness, in x (or xi).
-struct BeamSection {
-    GiNaC::ex mass, axial, bending;
-};
-
 /// What a term's energies are built from: the variant, its symbols, the field symbols, the beam's section and
 /// |r_dot|^2, and the two ways to turn a density into a polynomial (over the span, at the tip x = L).
 struct TermContext {
@@ -32,21 +27,22 @@ struct TermContext {
 /// A term of the generator: section replaces the beam's distributions (a section term), energies adds to T, U, D.
 /// Either may be null.
 struct GeneratorTerm {
-    BeamSection (*section)(const Symbols&, const FieldSymbols&, const Extras&);
+    BeamSection (*section)(const VariantKey&, const Symbols&, const FieldSymbols&);
     void (*energies)(const TermContext&, Energies&);
 };
 
 /// The generator's part of a registered term (model/terms.hpp).
 const GeneratorTerm& generator_part(const TermInfo& t);
 
-/// The uniform beam's section: m, ES, EI.
-BeamSection uniform_section(const Symbols& s);
+/// The uniform beam's section: m, ES, EI and, out of the plane, E I_flap, G J_t, rho I and rho I_flap turned by the
+/// pitch and pre-twist.
+BeamSection uniform_section(const VariantKey& key, const Symbols& s, const FieldSymbols& f);
 
 // One per term (generator/terms/NAME.cpp).
 void tip_energies(const TermContext& c, Energies& e);
 void gravity_energies(const TermContext& c, Energies& e);
 void damping_energies(const TermContext& c, Energies& e);
-BeamSection taper_section(const Symbols& s, const FieldSymbols& f, const Extras& x);
-BeamSection profile_section(const Symbols& s, const FieldSymbols& f, const Extras& x);
+BeamSection taper_section(const VariantKey& key, const Symbols& s, const FieldSymbols& f);
+BeamSection profile_section(const VariantKey& key, const Symbols& s, const FieldSymbols& f);
 
 }  // namespace hubbeam::gen

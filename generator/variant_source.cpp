@@ -42,15 +42,19 @@ std::vector<std::string> read_parameter_names(const VariantKey& key)
     const Extras& x = key.extras;
     std::vector<std::string> names(param_names.begin(),
                                    param_names.begin() + static_cast<std::ptrdiff_t>(key.params_read()));
+    const std::size_t values = profile_value_count(key.out_of_plane());
     for (std::size_t k = 0; k < x.stations.size(); ++k)
-        for (const char* v : profile_value_names) names.push_back(std::string(v) + "_" + std::to_string(k));
+        for (std::size_t v = 0; v < values; ++v)
+            names.push_back(std::string(profile_value_names[v]) + "_" + std::to_string(k));
     return names;
 }
 
-/// How generated code reads station k's profile value v.
-std::string read_profile(std::size_t k, ProfileValue v)
+/// How generated code reads station k's profile value v (a variant that leaves the plane has more per station).
+std::string read_profile(const VariantKey& key, std::size_t k, ProfileValue v)
 {
-    return "p[" + std::to_string(param_count + profile_value_count * k + static_cast<std::size_t>(v)) + "]";
+    return "p[" +
+           std::to_string(param_count + profile_value_count(key.out_of_plane()) * k + static_cast<std::size_t>(v)) +
+           "]";
 }
 
 /// The kernels' u: the drive values, and for gravity sin and cos of the angle.
@@ -223,6 +227,7 @@ Signature signature(const Symbols& s, const VariantKey& key)
     const std::vector<std::string> p_names = read_parameter_names(key);
     Signature sig;
     sig.parameters = {"p", static_cast<int>(p_names.size()), "p = " + tuple(p_names)};
+    sig.derivative_entries = static_cast<int>(key.params_read());
     sig.state = {{"u", static_cast<int>(input_names(x.gravity).size()), ""}, {"q", nq, ""}, {"qd", nq, ""}};
     // m = rho S, EI and ES are formed from p once, in the coefficients kernel.
     sig.parameter_inputs = {{s.L, read(Param::L)},
@@ -253,10 +258,20 @@ Signature signature(const Symbols& s, const VariantKey& key)
                                      {o.sin_cone, "std::sin(" + read(Param::precone) + ")"},
                                      {o.g_axis, read(Param::g_axis)}});
     }
-    for (std::size_t k = 0; k < x.stations.size(); ++k)
-        sig.parameter_inputs.insert(sig.parameter_inputs.end(), {{s.m_k[k], read_profile(k, ProfileValue::m)},
-                                                                 {s.EI_k[k], read_profile(k, ProfileValue::EI)},
-                                                                 {s.ES_k[k], read_profile(k, ProfileValue::ES)}});
+    for (std::size_t k = 0; k < x.stations.size(); ++k) {
+        const auto at = [&](ProfileValue v) { return read_profile(key, k, v); };
+        sig.parameter_inputs.insert(
+            sig.parameter_inputs.end(),
+            {{s.m_k[k], at(ProfileValue::m)}, {s.EI_k[k], at(ProfileValue::EI)}, {s.ES_k[k], at(ProfileValue::ES)}});
+        if (s.o)  // a blade's table (docs/model.md section 12.4): cos and sin of twice its chord angle, once per p
+            sig.parameter_inputs.insert(sig.parameter_inputs.end(),
+                                        {{s.o->EI_flap_k[k], at(ProfileValue::EI_flap)},
+                                         {s.o->GJ_k[k], at(ProfileValue::GJ)},
+                                         {s.o->j_c_k[k], at(ProfileValue::j_c)},
+                                         {s.o->j_n_k[k], at(ProfileValue::j_n)},
+                                         {s.o->cos_2twist_k[k], "std::cos(2 * " + at(ProfileValue::twist) + ")"},
+                                         {s.o->sin_2twist_k[k], "std::sin(2 * " + at(ProfileValue::twist) + ")"}});
+    }
     if (torque)
         sig.state_inputs.push_back({s.tau, read(DriveValue::tau)});
     else
@@ -563,8 +578,10 @@ std::string variant_source(const VariantKey& key, const EmitOptions& options)
     const std::string name = key.name();
     EmitOptions emit_options = options;
     // A pre-twist's series multiplies the coefficients' terms by twist_series_terms and their derivatives by p about
-    // tenfold again (4 MB of source at Ny = Nz = 8): its sensitivities are differenced instead.
-    emit_options.parameter_derivatives = options.parameter_derivatives && !key.extras.twist;
+    // tenfold again (4 MB of source at Ny = Nz = 8); a blade's profile multiplies them by its stations (a minute of
+    // compiling dc/dp alone at 21 stations, Ny = Nz = 8): their sensitivities are differenced instead.
+    emit_options.parameter_derivatives =
+        options.parameter_derivatives && !key.extras.twist && !(key.out_of_plane() && key.extras.profile());
     const EmittedCode code = emit_kernels(name, sig, std::move(kernels.list), emit_options);
     std::ostringstream f;
     // std::cos and std::sin of the pitch and the precone, once per parameter set in the coefficients kernel.

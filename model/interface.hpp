@@ -37,10 +37,19 @@ enum class Param : std::size_t {
     g_axis
 };
 inline constexpr std::size_t param_count = 20;
-/// A tabulated profile's values follow: p[param_count + 3 k + j] is station k's value j (docs/model.md section 11.2).
-enum class ProfileValue : std::size_t { m, EI, ES };
-inline constexpr std::size_t profile_value_count = 3;
-inline constexpr std::array<const char*, profile_value_count> profile_value_names = {"m", "EI", "ES"};
+/// A tabulated profile's values follow: p[param_count + n k + j] is station k's value j (docs/model.md sections 11.2
+/// and 12.4), n = profile_value_count(out_of_plane): a planar beam's m, EI, ES; a blade's also its flapwise and
+/// torsional stiffness, the chord's angle (pre-twist, added to the pitch) and the mass moments per length about the
+/// chord and its normal.
+enum class ProfileValue : std::size_t { m, EI, ES, EI_flap, GJ, twist, j_c, j_n };
+inline constexpr std::size_t max_profile_value_count = 8;
+inline constexpr std::array<const char*, max_profile_value_count> profile_value_names = {
+    "m", "EI", "ES", "EI_flap", "GJ", "twist", "j_c", "j_n"};
+/// The values per station of a variant's profile: the first 3 in the plane, all 8 for a beam that leaves it.
+constexpr std::size_t profile_value_count(bool out_of_plane)
+{
+    return out_of_plane ? max_profile_value_count : 3;
+}
 /// The paper's parameters: a variant without extra terms reads these only.
 inline constexpr std::size_t paper_param_count = 7;
 /// Names of p's entries in the order of Param, as they read in docs/model.md and in generated code.
@@ -93,7 +102,8 @@ struct Parameters {
     double m_tip = 0.0, J_tip = 0.0, g = 0.0, alpha = 0.0, beta = 0.0, tip_ratio = 1.0;
     double I_flap = 8.2189e-9, G = 0.0, J_t = 0.0, pitch = 0.0, twist = 0.0, precone = 0.0, g_axis = 0.0;
     /// A tabulated profile's values at its stations (VariantKey's extras hold the positions): mass per length
-    /// (kg/m), EI (N m^2), ES (N), indexed by station then ProfileValue; empty without a profile.
+    /// (kg/m), EI (N m^2), ES (N) and, for a beam that leaves the plane, EI_flap, GJ (N m^2), the chord's angle (rad),
+    /// j_c and j_n (kg m), indexed by station then ProfileValue; empty without a profile.
     std::vector<double> profile = {};
 
     /// p, indexed by Param, then the profile's values.

@@ -9,15 +9,16 @@
 
 namespace hubbeam {
 
-/// Value j (ProfileValue) of a profile at xi in [0, 1]: values[3 k + j] at stations[k], linear between stations.
+/// Value j (ProfileValue) of a profile at xi in [0, 1]: values[w k + j] at stations[k] (w values per station, planar
+/// or not), linear between stations.
 inline double profile_value(const std::vector<double>& stations, const std::vector<double>& values, ProfileValue j,
                             double xi)
 {
-    const std::size_t n = stations.size(), v = static_cast<std::size_t>(j);
+    const std::size_t n = stations.size(), v = static_cast<std::size_t>(j), w = values.size() / n;
     std::size_t k = 0;
     while (k + 2 < n && xi > stations[k + 1]) ++k;
     const double t = (xi - stations[k]) / (stations[k + 1] - stations[k]);
-    return (1.0 - t) * values[profile_value_count * k + v] + t * values[profile_value_count * (k + 1) + v];
+    return (1.0 - t) * values[w * k + v] + t * values[w * (k + 1) + v];
 }
 
 }  // namespace hubbeam

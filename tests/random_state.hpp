@@ -33,13 +33,19 @@ inline State random_state(const VariantKey& key, std::mt19937& rng)
 }
 
 /// p with a table at the stations of key's profile, if it has one (and p none): the section of p's rho, S, I, E at
-/// the root, falling to half at the tip and with a bump between, so that no value is the uniform beam's.
+/// the root, falling to half at the tip and with a bump between, so that no value is the uniform beam's. A blade's
+/// (out of the plane) also has a flapwise stiffness that falls otherwise, a torsional stiffness, a chord angle that
+/// turns one way and back (0.6 rad at the root, -0.3 at the tip) and unequal mass moments.
 inline Parameters with_profile(const VariantKey& key, Parameters p)
 {
     if (!p.profile.empty()) return p;
     for (double x : station_positions(key.extras)) {
         const double s = 1.0 - 0.5 * x + 0.3 * x * (1.0 - x);
         p.profile.insert(p.profile.end(), {p.rho * p.S * s, p.E * p.I * s * s, p.E * p.S * s});
+        if (key.out_of_plane())
+            p.profile.insert(p.profile.end(),
+                             {p.E * p.I_flap * s * (1.0 + 0.4 * x), 0.4 * p.E * p.I * s * (1.0 + 0.2 * x),
+                              0.6 - 1.7 * x + 0.8 * x * x, p.rho * p.I_flap * s, p.rho * p.I * s * (1.2 - 0.3 * x)});
     }
     return p;
 }

@@ -14,10 +14,10 @@ void damping_energies(const TermContext& c, Energies& e)
     // the section's rotary inertia and torsional stiffness where the variant has a twist field (docs/model.md 12).
     const ex rates2 = pow(f.ux1_dot, 2) + pow(f.uy_dot, 2) + pow(f.uz_dot, 2);
     ex mass = b.mass * rates2,
-       stiffness = b.axial * pow(f.ux1_x_dot, 2) + bending_density(c.key, s, f, b.bending, f.uy_xx_dot, f.uz_xx_dot);
+       stiffness = b.axial * pow(f.ux1_x_dot, 2) + bending_density(c.key, b, f.uy_xx_dot, f.uz_xx_dot);
     if (c.key.nt > 0) {
-        mass += (s.o->j_n + s.o->j_c) * pow(f.phi_dot, 2);
-        stiffness += s.o->GJ * pow(f.phi_x_dot, 2);
+        mass += b.polar * pow(f.phi_dot, 2);
+        stiffness += b.torsion * pow(f.phi_x_dot, 2);
     }
     e.D += c.integrate((s.alpha * mass + s.beta * stiffness) / 2);
     if (c.key.extras.tip) e.D += c.at_tip(s.alpha * (s.m_tip * rates2 + s.J_tip * pow(f.uy_x_dot, 2)) / 2);

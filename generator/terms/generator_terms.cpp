@@ -5,6 +5,8 @@
 
 namespace hubbeam::gen {
 
+using namespace GiNaC;
+
 const GeneratorTerm& generator_part(const TermInfo& t)
 {
     // In the order of terms(): tip, gravity, damping, taper, profile, pitch, twist, precone. These three have no
@@ -17,9 +19,21 @@ const GeneratorTerm& generator_part(const TermInfo& t)
     return table.at(static_cast<std::size_t>(&t - terms().data()));
 }
 
-BeamSection uniform_section(const Symbols& s)
+BeamSection uniform_section(const VariantKey& key, const Symbols& s, const FieldSymbols& f)
 {
-    return {s.m, s.ES, s.EI};
+    BeamSection b{s.m, s.ES, s.EI};
+    if (!key.out_of_plane()) return b;
+    const Symbols::OutOfPlane& o = *s.o;
+    const auto [c2, s2] = chord_angle(key, s, f.xi);
+    const ex bend = (s.EI - o.EI_flap) / 2, inertia = (o.j_n - o.j_c) / 2;
+    b.bend_mean = (s.EI + o.EI_flap) / 2;
+    b.bend_cos = bend * c2;
+    b.bend_sin = bend * s2;
+    b.torsion = o.GJ;
+    b.polar = o.j_c + o.j_n;
+    b.inertia_cos = inertia * c2;
+    b.inertia_sin = inertia * s2;
+    return b;
 }
 
 }  // namespace hubbeam::gen

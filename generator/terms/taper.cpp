@@ -5,8 +5,9 @@ namespace hubbeam::gen {
 
 using namespace GiNaC;
 
-BeamSection taper_section(const Symbols& s, const FieldSymbols& f, const Extras& x)
+BeamSection taper_section(const VariantKey& key, const Symbols& s, const FieldSymbols& f)
 {
+    const Extras& x = key.extras;
     // The section's area and second moment over the root's: a width taper scales both linearly, a depth taper the
     // area linearly and the second moment as the cube.
     const ex area = 1 + (s.tip_ratio - 1) * f.xi;

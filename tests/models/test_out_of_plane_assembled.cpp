@@ -67,8 +67,9 @@ VariantKey key_of(Method method, int nx, int nz, int nt, Drive drive, Order orde
             .extras = extras};
 }
 
-/// Every term switched on, for every method under both drives and both orders (16), then each term alone (8): 24
-/// variants, each compiled once into the test's cache. nx = 0 and nx > 0, nz = 2 and 4, nt = 0, 2 and 3 (BSIM's
+/// Every term switched on, for every method under both drives and both orders (16), then each term alone (8), then a
+/// blade's profile with every term for each method and alone (5): 29 variants, each compiled once into the test's
+/// cache. nx = 0 and nx > 0, nz = 2 and 4, nt = 0, 2 and 3 (BSIM's
 /// least), BSIM in both constructions.
 std::vector<Case> cases()
 {
@@ -100,6 +101,24 @@ std::vector<Case> cases()
                   {"gravity along the axis", set([](Parameters& p) { p.g_axis = 0.0; })}}});
     c.push_back({key_of(Method::bsim, 3, 4, 3, Drive::torque, Order::first, {.damping = true}),
                  {{"damping", set([](Parameters& p) { p.alpha = p.beta = 0.0; })}}});
+    // A blade's profile (section 12.4), its stations where no method's pieces end, with every term but the linear
+    // pre-twist (its chord angles are the table's) and with its tabulated angles alone.
+    const Extras table{.stations = {0, 30, 55, 100}, .station_denominator = 100};
+    Extras blade = all;
+    blade.twist = false;
+    blade.stations = table.stations;
+    blade.station_denominator = table.station_denominator;
+    const auto untwisted = set([](Parameters& p) {
+        for (std::size_t k = static_cast<std::size_t>(ProfileValue::twist); k < p.profile.size(); k += 8)
+            p.profile[k] = 0.0;
+    });
+    for (Method method : {Method::amm, Method::fem, Method::bim, Method::bsim}) {
+        const bool bsim = method == Method::bsim;
+        c.push_back({key_of(method, bsim ? 3 : 2, 4, bsim ? 3 : 2, Drive::torque, Order::first, blade),
+                     {{"the tabulated chord angles", untwisted}}});
+    }
+    c.push_back({key_of(Method::fem, 0, 2, 2, Drive::prescribed, Order::zero, table),
+                 {{"the tabulated chord angles", untwisted}}});
     return c;
 }
 
@@ -130,11 +149,12 @@ double change(const Model& with, const Model& without, const test::State& s)
 
 TEST_CASE("generated and assembled agree out of the plane", "[out_of_plane_assembled][generated][assembled]")
 {
-    const Parameters p = test::with_every_term();
+    const Parameters every = test::with_every_term();
     std::mt19937 rng(1982);
     for (const Case& c : cases()) {
         SECTION(c.key.name())
         {
+            const Parameters p = test::with_profile(c.key, every);
             const auto gen = make_model(c.key, p, ModelSource::generated);
             const auto asm_ = make_model(c.key, p, ModelSource::assembled);
             REQUIRE(std::string(gen->source()) == "generated");
@@ -167,13 +187,13 @@ TEST_CASE("assembled out of the plane: forces from the assembled energies", "[ou
 {
     // Without damping T, U and U_g say everything: Q is Lagrange's from them, M is T's Hessian in the rates, and
     // dQ/dtheta the difference of Q along the prescribed angle (exact: Q is affine in sin theta and cos theta).
-    Parameters p = test::with_every_term();
-    p.alpha = p.beta = 0.0;
+    Parameters every = test::with_every_term();
+    every.alpha = every.beta = 0.0;
     std::mt19937 rng(1877);
     for (const Case& c : cases()) {
         SECTION(c.key.name())
         {
-            const auto model = make_model(c.key, p, ModelSource::assembled);
+            const auto model = make_model(c.key, test::with_profile(c.key, every), ModelSource::assembled);
             const int n = c.key.nq();
             for (int trial = 0; trial < 3; ++trial) {
                 const test::State s = test::random_state_with_angle(c.key, rng);
@@ -225,13 +245,13 @@ TEST_CASE("assembled forms equal the block form on planar variants", "[out_of_pl
                 }
 }
 
-TEST_CASE("assembled out of the plane refuses a taper or a profile", "[out_of_plane_assembled][assembled]")
+TEST_CASE("a taper out of the plane is refused, by the variant and by the assembled path",
+          "[out_of_plane_assembled][assembled]")
 {
-    for (Extras extras : {Extras{.taper = Taper::width}, Extras{.stations = {0, 1}, .station_denominator = 1}}) {
-        VariantKey key{.nx = 0, .ny = 4, .nz = 4, .extras = extras};
-        REQUIRE_THROWS_WITH(make_model(key, test::with_profile(key, Parameters{}), ModelSource::assembled),
-                            Catch::Contains("does not combine with a beam that leaves the plane"));
-    }
+    const VariantKey key{.nx = 0, .ny = 4, .nz = 4, .extras = Extras{.taper = Taper::width}};
+    REQUIRE_THROWS_WITH(make_model(key, Parameters{}, ModelSource::assembled), Catch::Contains("a taper is planar"));
+    REQUIRE_THROWS_WITH(assemble_out_of_plane(key, Parameters{}),
+                        Catch::Contains("does not combine with a beam that leaves the plane"));
 }
 
 namespace {

@@ -382,11 +382,16 @@ TEST_CASE("profile: bad tables and scenes are refused naming the scene, the key,
         CHECK(message.find(part) != std::string::npos);
     };
     has(error_of(f, "x/L, m, EI\n0, 1, 1\n1, 1, 1\n"), csv + ":1: expected a column ES in its header");
-    has(error_of(f, "x/L, m, EI, ES, GJ\n0, 1, 1, 1, 1\n1, 1, 1, 1, 1\n"),
-        csv + ":1: expected exactly the columns x/L, m, EI, ES");
+    has(error_of(f, "x/L, m, EI, ES, Q\n0, 1, 1, 1, 1\n1, 1, 1, 1, 1\n"),
+        csv +
+            ":1: expected the columns x/L, m, EI, ES and, for a blade, any of EI_flap, GJ, twist, j_c, j_n in its "
+            "header, got 1 other columns");
     // Comment and blank lines before the header: the message names the header's own line.
-    has(error_of(f, "# blade\n\n# x/L from root to tip\nx/L, m, EI, ES, GJ\n0, 1, 1, 1, 1\n1, 1, 1, 1, 1\n"),
-        csv + ":4: expected exactly the columns x/L, m, EI, ES");
+    has(error_of(f, "# blade\n\n# x/L from root to tip\nx/L, m, EI, ES, Q\n0, 1, 1, 1, 1\n1, 1, 1, 1, 1\n"),
+        csv + ":4: expected the columns x/L, m, EI, ES and");
+    // A blade's column in a planar scene would be ignored.
+    has(error_of(f, "x/L, m, EI, ES, GJ\n0, 1, 1, 1, 1\n1, 1, 1, 1, 1\n"),
+        csv + ": column GJ describes a blade that leaves the plane: expected discretization.nz or nt > 0");
     has(error_of(f, "x/L, m, EI, ES\n0.1, 1, 1, 1\n1, 1, 1, 1\n"), csv + ":2: the first station must be x/L = 0");
     has(error_of(f, "x/L, m, EI, ES\n0, 1, 1, 1\n0.5, 1, 1, 1\n0.5, 1, 1, 1\n1, 1, 1, 1\n"),
         csv + ":4: the stations must increase strictly");

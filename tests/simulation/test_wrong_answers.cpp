@@ -196,7 +196,8 @@ TEST_CASE("a motion or profile table's message says what was expected and where,
         return std::string((std::istreambuf_iterator<char>(b)), std::istreambuf_iterator<char>());
     }());
     f.write("profile_blade.csv", "x/L,m,EI,EI,ES\n0,1,1,1,1\n1,1,1,1,1\n");
-    has(error_of(blade), "expected one column EI in its header (bending stiffness, N m^2), got 2");
+    has(error_of(blade),
+        "expected one column EI in its header (bending stiffness (edgewise out of the plane), N m^2), got 2");
     f.write("profile_blade.csv", "root:s3cr3t\n");
     const std::string profile = error_of(blade);
     has(profile, "expected a column x/L in its header (the station along the span, 0 at the root to 1 at the tip)");

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <hubbeam/motion.hpp>
 #include <initializer_list>
 #include <optional>
 #include <string>
@@ -10,7 +11,6 @@
 #include <utility>
 #include <vector>
 
-#include <hubbeam/motion.hpp>
 #include "interface.hpp"
 #include "terms.hpp"
 #include "variant.hpp"
@@ -23,7 +23,8 @@ enum class Axial { dynamic, quasi_static };
 /// Words "dynamic", "quasi-static" (scene key model.axial, option --axial).
 std::string to_string(Axial);
 bool parse(std::string_view, Axial&);
-template <> std::vector<std::string> words<Axial>();
+template <>
+std::vector<std::string> words<Axial>();
 
 /// Where steps end: free (the tolerance alone chooses them; rows between step ends are interpolated by
 /// interpolate_state) or at rows (every output time ends a step, as GSL's driver does: exact, but the row
@@ -32,7 +33,8 @@ enum class Stepping { free, rows };
 /// Words "free", "rows" (scene key solver.stepping, option --stepping).
 std::string to_string(Stepping);
 bool parse(std::string_view, Stepping&);
-template <> std::vector<std::string> words<Stepping>();
+template <>
+std::vector<std::string> words<Stepping>();
 
 /// The stepper word that asks for the stepper of the scene's stiffness (stiffness.hpp).
 inline constexpr const char* automatic_stepper_word = "auto";
@@ -42,7 +44,8 @@ enum class ModelSource { automatic, generated, assembled };
 /// Words "auto", "generated", "assembled" (scene key model.source, option --source).
 std::string to_string(ModelSource);
 bool parse(std::string_view, ModelSource&);
-template <> std::vector<std::string> words<ModelSource>();
+template <>
+std::vector<std::string> words<ModelSource>();
 
 /// Whether a run checks its own error by re-running windows at a tighter tolerance (RunSummary::estimated_error):
 /// on by default; off saves its cost (about 13 % of the main job) where the tolerance is known to be adequate; full
@@ -51,7 +54,8 @@ template <> std::vector<std::string> words<ModelSource>();
 enum class ErrorCheck { on, off, full };
 std::string to_string(ErrorCheck);
 bool parse(std::string_view, ErrorCheck&);
-template <> std::vector<std::string> words<ErrorCheck>();
+template <>
+std::vector<std::string> words<ErrorCheck>();
 
 struct SolverOptions {
     std::string stepper = automatic_stepper_word;  // a name from stepper_names() (integrate.hpp), or automatic
@@ -81,13 +85,15 @@ struct OutputOptions {
 
 struct Scene {
     std::string path;  // the file it came from, for messages
-    /// The other files it was read from, each with its key: {"beam.profile", FILE}, {"motion.file", FILE}. A
-    /// command's outputs are checked against these and path (output_file.hpp's scene_inputs).
+    /// The other files it was read from, each with its key: {"beam.profile", FILE}, {"beam.blade_file", FILE},
+    /// {"motion.file", FILE}. A command's outputs are checked against these and path (output_file.hpp's scene_inputs).
     std::vector<std::pair<std::string, std::string>> tables;
+    /// beam.blade_stations: the stations a blade file was resampled at, 0 for its own (docs/scene.md).
+    int blade_stations = 0;
     Parameters parameters;
     Motion motion;
     std::optional<Control> control;  // [control]: motion is then the reference of a torque-driven hub
-    VariantKey variant;  // drive follows motion, or control
+    VariantKey variant;              // drive follows motion, or control
     ModelSource source = ModelSource::automatic;
     Axial axial = Axial::dynamic;  // quasi-static: A follows the axial equilibrium (integrate.hpp)
     SolverOptions solver;

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "io/output.hpp"
+#include "profile.hpp"
 #include "text/shortest.hpp"
 
 namespace hubbeam {
@@ -28,6 +29,7 @@ FieldRecorder::FieldRecorder(const VariantKey& key, const Parameters& p, std::ve
       fields_(key, p),
       out_of_plane_(key.out_of_plane()),
       foreshortened_(key.order != Order::zero),
+      stations_(station_positions(key.extras)),
       p_(p),
       times_(std::move(times))
 {
@@ -84,14 +86,21 @@ FieldRecorder::BladeValues FieldRecorder::blade_at(const double* q, double x, do
     const CoordinateField* flap = coordinates_.find(FieldKind::flap);
     const CoordinateField* twist = coordinates_.find(FieldKind::twist);
     const double z2 = flap != nullptr ? flap_->curvature(q + flap->first, x) : 0.0;
-    const double beta = p_.pitch + p_.twist * x / p_.L;  // the chord's angle (docs/model.md section 12)
+    // The section at x: uniform, or a profile's columns each linear between stations (docs/model.md section 12.4).
+    const double xi = x / p_.L;
+    const auto section = [&](ProfileValue v, double uniform) {
+        return stations_.empty() ? uniform : profile_value(stations_, p_.profile, v, xi);
+    };
+    const double beta = p_.pitch + section(ProfileValue::twist, p_.twist * xi);  // the chord's angle
+    const double EI_edge = section(ProfileValue::EI, p_.E * p_.I),
+                 EI_flap = section(ProfileValue::EI_flap, p_.E * p_.I_flap);
     BladeValues b;
-    b.edge_moment = p_.E * p_.I * (std::cos(beta) * y2 + std::sin(beta) * z2);        // EI_edge kappa_c
-    b.flap_moment = p_.E * p_.I_flap * (-std::sin(beta) * y2 + std::cos(beta) * z2);  // EI_flap kappa_n
+    b.edge_moment = EI_edge * (std::cos(beta) * y2 + std::sin(beta) * z2);   // EI_edge kappa_c
+    b.flap_moment = EI_flap * (-std::sin(beta) * y2 + std::cos(beta) * z2);  // EI_flap kappa_n
     if (flap != nullptr) b.uz = flap_->uy(q + flap->first, x);
     if (twist != nullptr) {
         b.phi = flap_->ux1(q + twist->first, x);
-        b.torque = p_.G * p_.J_t * flap_->ux1_slope(q + twist->first, x);
+        b.torque = section(ProfileValue::GJ, p_.G * p_.J_t) * flap_->ux1_slope(q + twist->first, x);
     }
     return b;
 }

@@ -254,21 +254,32 @@ void read_gravity_direction(const Section& gravity, Parameters& p)
 
 /// [beam]: docs/model.md section 1, the taper of section 11 (a taper kind without a ratio is refused: the default
 /// ratio 1 would make it uniform without a word) and the tabulated profile of section 11.2 (the section's keys and
-/// a taper with it are refused: the table gives the beam's distributions). Returns the profile table's file, or "".
-std::string read_beam(const Section& beam, const std::string& scene_path, Parameters& p, Extras& extras)
+/// a taper with it are refused: the table gives the beam's distributions). Returns the profile table, if any.
+std::optional<ProfileTable> read_beam(const Section& beam, const std::string& scene_path, Parameters& p, Extras& extras)
 {
     beam.only();
     p.L = beam.required_number("length");
     read_out_of_plane_section(beam, p);
-    if (const auto profile = beam.string("profile"); profile && !profile->empty()) {
+    const auto profile = beam.string("profile"), blade = beam.string("blade_file");
+    const bool tabulated = profile && !profile->empty(), from_file = blade && !blade->empty();
+    if (tabulated && from_file)
+        throw SceneError::with_detail(scene_path, beam.path("blade_file"),
+                                      "not used with beam.profile (one table gives the section): remove one");
+    const int resample = beam.integer("blade_stations", 0);
+    if (resample != 0 && !from_file)
+        throw SceneError::with_detail(scene_path, beam.path("blade_stations"),
+                                      "not used without beam.blade_file: remove it");
+    if (resample != 0 && (resample < 2 || resample > 64)) beam.refuse("blade_stations", std::to_string(resample));
+    if (tabulated || from_file) {
+        const char* by = tabulated ? "beam.profile" : "beam.blade_file";
         for (const char* key : {"density", "area", "second_moment", "youngs_modulus", "taper", "tip_ratio",
                                 "second_moment_flap", "shear_modulus", "torsion_constant", "twist"})
             if (beam.get(key))
                 throw SceneError::with_detail(
                     scene_path, beam.path(key),
-                    "not used with beam.profile (its table gives m, EI and ES along the span): "
-                    "remove it");
-        return read_profile(scene_path, *profile, p, extras);
+                    std::string("not used with ") + by + " (its table gives the section along the span): remove it");
+        if (tabulated) return read_profile(scene_path, *profile, p, extras);
+        return read_blade(scene_path, *blade, resample, p, extras);
     }
     p.rho = beam.required_number("density");
     p.S = beam.required_number("area");
@@ -281,7 +292,7 @@ std::string read_beam(const Section& beam, const std::string& scene_path, Parame
         p.tip_ratio = beam.required_number("tip_ratio", ", required for a taper");
     else if (const auto r = beam.number("tip_ratio"); r && *r != 1.0)
         beam.refuse("tip_ratio", shortest(*r) + " without beam.taper = \"width\" or \"depth\"");
-    return {};
+    return std::nullopt;
 }
 
 /// [tip], [damping], [gravity]: the extra terms of docs/model.md section 11; absent tables leave them out.
@@ -435,9 +446,10 @@ Scene parse_scene(std::string_view text, const std::string& path, const Override
 
     Scene scene;
     scene.path = path;
-    if (std::string profile = read_beam(Section(path, root, "beam"), path, scene.parameters, scene.variant.extras);
-        !profile.empty())
-        scene.tables.emplace_back("beam.profile", std::move(profile));
+    const std::optional<ProfileTable> profile =
+        read_beam(Section(path, root, "beam"), path, scene.parameters, scene.variant.extras);
+    if (profile) scene.tables.emplace_back(profile->key, profile->file);
+    if (profile) scene.blade_stations = profile->resample;
     read_extras(root, path, scene.parameters);
     read_gravity_direction(Section(path, root, "gravity"), scene.parameters);
     read_motion(Section(path, root, "motion"), path, scene.motion);
@@ -448,6 +460,7 @@ Scene parse_scene(std::string_view text, const std::string& path, const Override
     read_model(Section(path, root, "model"), scene);
     read_solver(Section(path, root, "solver"), scene.solver);
     read_output(Section(path, root, "output"), scene.output);
+    if (profile) fit_profile(path, *profile, scene.key(), scene.parameters);
     validate(scene);
     return scene;
 }

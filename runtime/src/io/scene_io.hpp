@@ -34,8 +34,22 @@ std::string read_file(const std::string& path, std::size_t cap = max_scene_bytes
 /// s without the blanks around it.
 std::string_view trimmed(std::string_view s);
 
-/// beam.profile's table into the variant's stations and p.profile; returns the table's file.
-std::string read_profile(const std::string& scene_path, const std::string& name, Parameters& p, Extras& extras);
+/// A profile table as read: the key that named it (beam.profile, beam.blade_file), its file, the blade columns it has
+/// (EI_flap, GJ, twist, j_c, j_n) and whether it gives ES (a blade file may not).
+struct ProfileTable {
+    std::string key, file;
+    std::vector<std::string> blade_columns;
+    bool axial = true;
+    int resample = 0;  // beam.blade_stations
+};
+/// beam.profile's table into the variant's stations and p.profile (every value per station; fit_profile keeps what
+/// the variant reads).
+ProfileTable read_profile(const std::string& scene_path, const std::string& name, Parameters& p, Extras& extras);
+/// beam.blade_file's BModes or ElastoDyn file as a profile (its stations, or `resample` equally spaced ones if > 0).
+ProfileTable read_blade(const std::string& scene_path, const std::string& name, int resample, Parameters& p,
+                        Extras& extras);
+/// p.profile as the scene's variant reads it, once the discretization and the beam's angles are known.
+void fit_profile(const std::string& scene_path, const ProfileTable& table, const VariantKey& key, Parameters& p);
 /// The table of motion.file (resolved already by table_path): columns t and `column`.
 std::shared_ptr<const DriveTable> read_drive_table(const std::string& scene, const std::string& file,
                                                    const char* column, const char* meaning,

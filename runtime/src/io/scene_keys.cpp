@@ -1,7 +1,6 @@
 // The scene key table, the one definition of the keys (name, option, what each holds), and its lookups.
-#include <hubbeam/scene.hpp>
-
 #include <algorithm>
+#include <hubbeam/scene.hpp>
 
 #include "dynamics/integrate.hpp"
 #include "io/scene_io.hpp"
@@ -23,15 +22,27 @@ const WordTable<Motion::Kind, 6> kind_words = {{Motion::Kind::spin_up, "spin-up"
 
 }  // namespace
 
-std::vector<std::string> scene_io::motion_kinds() { return all_words(kind_words); }
+std::vector<std::string> scene_io::motion_kinds()
+{
+    return all_words(kind_words);
+}
 
-bool scene_io::parse_kind(std::string_view w, Motion::Kind& k) { return parse_word(w, kind_words, k); }
+bool scene_io::parse_kind(std::string_view w, Motion::Kind& k)
+{
+    return parse_word(w, kind_words, k);
+}
 
-std::string scene_io::kind_word(Motion::Kind k) { return word_of(k, kind_words); }
+std::string scene_io::kind_word(Motion::Kind k)
+{
+    return word_of(k, kind_words);
+}
 
 namespace {
 
-std::string one_of(const std::vector<std::string>& words) { return "one of " + joined(words, "\""); }
+std::string one_of(const std::vector<std::string>& words)
+{
+    return "one of " + joined(words, "\"");
+}
 
 /// "auto" (the stepper for the scene's stiffness), then every GSL step type.
 std::vector<std::string> stepper_words()
@@ -53,8 +64,13 @@ std::vector<SceneKey> make_scene_keys()
         {"beam.taper", nullptr, K::word, one_of(words<Taper>())},
         {"beam.tip_ratio", nullptr, K::number, "a number > 0 (the tapered dimension at the tip over the root)"},
         {"beam.profile", nullptr, K::text,
-         "a CSV file name relative to the scene's folder, with the columns x/L, m, EI, ES (m kg/m, EI N m^2, ES N); "
-         "empty: none"},
+         "a CSV file name relative to the scene's folder, with the columns x/L, m, EI, ES (m kg/m, EI N m^2, ES N) "
+         "and, "
+         "for a blade, any of EI_flap, GJ, twist, j_c, j_n; empty: none"},
+        {"beam.blade_file", nullptr, K::text,
+         "a BModes section-properties file or an ElastoDyn blade file, relative to the scene's folder; empty: none"},
+        {"beam.blade_stations", nullptr, K::integer,
+         "0 (the file's own stations) or an integer from 2 to 64 (stations to resample beam.blade_file at)"},
         {"beam.second_moment_flap", nullptr, K::number,
          "a number > 0 (I_flap, m^4, bending out of the plane; default beam.second_moment)"},
         {"beam.shear_modulus", nullptr, K::number, "a number >= 0 (G, Pa; > 0 needed with nt > 0)"},
@@ -75,9 +91,16 @@ std::vector<SceneKey> make_scene_keys()
         {"motion.omega0", nullptr, K::number, "a finite number (Omega0, rad/s)", {"spin-up"}},
         {"motion.tau0", nullptr, K::number, "a finite number (tau0, N m)", {"torque"}},
         {"motion.duration", nullptr, K::number, "a number > 0 (T_s or T_t, s)", {"spin-up", "torque"}},
-        {"motion.theta0", nullptr, K::number, "a finite number (theta0, rad)", {"spin-up", "torque", "table", "torque-table"}},
+        {"motion.theta0",
+         nullptr,
+         K::number,
+         "a finite number (theta0, rad)",
+         {"spin-up", "torque", "table", "torque-table"}},
         {"motion.angle", nullptr, K::number, "a finite number (the hub angle, rad)", {"held", "step"}},
-        {"motion.file", nullptr, K::text, "a CSV file with columns t, theta (table) or t, tau (torque-table)",
+        {"motion.file",
+         nullptr,
+         K::text,
+         "a CSV file with columns t, theta (table) or t, tau (torque-table)",
          {"table", "torque-table"}},
         {"control.kp", nullptr, K::number, "a number >= 0 (kp, N m/rad)"},
         {"control.kd", nullptr, K::number, "a number >= 0 (kd, N m s/rad)"},
@@ -111,8 +134,10 @@ std::vector<SceneKey> make_scene_keys()
 
 }  // namespace
 
-const std::string& scene_io::expected(const std::string& key) { return scene_key(key).expected; }
-
+const std::string& scene_io::expected(const std::string& key)
+{
+    return scene_key(key).expected;
+}
 
 const std::vector<SceneKey>& scene_keys()
 {
@@ -151,8 +176,9 @@ std::vector<std::string> table_keys(const std::string& table, const std::string&
 {
     std::vector<std::string> leaves;
     for (const SceneKey& k : scene_keys())
-        if (k.table() == table && (k.motion_kinds.empty() || motion_kind.empty() ||
-                                   std::find(k.motion_kinds.begin(), k.motion_kinds.end(), motion_kind) != k.motion_kinds.end()))
+        if (k.table() == table &&
+            (k.motion_kinds.empty() || motion_kind.empty() ||
+             std::find(k.motion_kinds.begin(), k.motion_kinds.end(), motion_kind) != k.motion_kinds.end()))
             leaves.push_back(k.leaf());
     return leaves;
 }

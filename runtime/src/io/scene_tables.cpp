@@ -9,8 +9,10 @@
 #include <filesystem>
 #include <fstream>
 #include <hubbeam/scene.hpp>
+#include <limits>
 #include <optional>
 
+#include "io/blade_files.hpp"
 #include "io/output_file.hpp"
 #include "io/scene_io.hpp"
 #include "text/csv_columns.hpp"
@@ -72,13 +74,18 @@ struct NumericTable {
     throw SceneError::with_detail(scene, key, where + ": " + what);
 }
 
-/// A column a table reader needs: its name in the header and what it holds (with its unit), for messages.
+/// A column a table reader needs or takes: its name in the header and what it holds (with its unit), for messages.
 struct WantedColumn {
     std::string name;
     std::string meaning;
+    bool optional = false;
 };
 
-/// A table's header line (its fields trimmed): each wanted column found once by name, its place appended to at.
+/// A wanted column's place when an optional one is absent: its value reads as NaN.
+constexpr std::size_t absent_column = static_cast<std::size_t>(-1);
+
+/// A table's header line (its fields trimmed): each wanted column found once by name (an optional one at most once,
+/// absent_column if missing), its place appended to at.
 CsvColumns header_of(const std::string& scene, const std::string& key, const std::string& where,
                      const std::vector<std::string>& fields, const std::vector<WantedColumn>& wanted,
                      std::vector<std::size_t>& at)
@@ -89,6 +96,10 @@ CsvColumns header_of(const std::string& scene, const std::string& key, const std
     for (const WantedColumn& w : wanted) {
         const std::vector<std::string>& names = columns.names();
         const auto count = std::count(names.begin(), names.end(), w.name);
+        if (count == 0 && w.optional) {
+            at.push_back(absent_column);
+            continue;
+        }
         if (count != 1)  // a second column of the name would be ignored without a word
             table_problem(scene, key, where,
                           (count == 0 ? "expected a column " : "expected one column ") + w.name + " in its header (" +
@@ -107,6 +118,10 @@ std::vector<double> row_of(const std::string& scene, const std::string& key, con
 {
     std::vector<double> row;
     for (std::size_t c = 0; c < wanted.size(); ++c) {
+        if (at[c] == absent_column) {
+            row.push_back(std::numeric_limits<double>::quiet_NaN());
+            continue;
+        }
         const std::string& f = fields[at[c]];
         double x = 0.0;
         const auto [stop, ec] = std::from_chars(f.data(), f.data() + f.size(), x);
@@ -178,13 +193,26 @@ constexpr std::size_t max_profile_stations = 64;
 /// The largest profile table read: a blade table of max_profile_stations rows is a few kilobytes.
 constexpr std::size_t max_profile_bytes = 1 << 16;
 
+/// p.profile from a table's values (max_profile_value_count per station), and the root's values where a single value
+/// of the beam is reported (the frequency unit sqrt(EI / (m L^4))): S = 1 m^2 keeps the three products the table's.
+void set_profile(std::vector<double> values, Parameters& p)
+{
+    p.profile = std::move(values);
+    p.rho = p.profile[static_cast<std::size_t>(ProfileValue::m)];
+    p.S = 1.0;
+    p.E = p.profile[static_cast<std::size_t>(ProfileValue::ES)];
+    p.I = p.profile[static_cast<std::size_t>(ProfileValue::EI)] / p.E;
+    p.I_flap = p.profile[static_cast<std::size_t>(ProfileValue::EI_flap)] / p.E;
+}
+
 }  // namespace
 
-/// beam.profile's table (docs/model.md section 11.2): stations x/L from 0 to 1, strictly increasing, and positive
-/// finite m, EI, ES at each, into the variant's stations (structure) and p.profile (run-time values). Every error
-/// names the scene, the key and the table's file and line.
-std::string scene_io::read_profile(const std::string& scene_path, const std::string& name, Parameters& p,
-                                   Extras& extras)
+/// beam.profile's table (docs/model.md sections 11.2 and 12.4): stations x/L from 0 to 1, strictly increasing, and
+/// positive finite m, EI, ES at each, and a blade's optional columns, into the variant's stations (structure) and
+/// p.profile (run-time values, max_profile_value_count per station: absent blade columns at their defaults; fit_profile
+/// keeps what the variant reads). Every error names the scene, the key and the table's file and line.
+ProfileTable scene_io::read_profile(const std::string& scene_path, const std::string& name, Parameters& p,
+                                    Extras& extras)
 {
     const std::string file = (std::filesystem::path(scene_path).parent_path() / name).string();
     const std::string label = printable(file, 400);
@@ -192,42 +220,170 @@ std::string scene_io::read_profile(const std::string& scene_path, const std::str
         table_problem(scene_path, "beam.profile", label + (line > 0 ? ":" + std::to_string(line) : std::string()),
                       what);
     };
-    const std::vector<WantedColumn> want = {{"x/L", "the station along the span, 0 at the root to 1 at the tip"},
-                                            {"m", "mass per length, kg/m"},
-                                            {"EI", "bending stiffness, N m^2"},
-                                            {"ES", "axial stiffness, N"}};
+    // In the order of ProfileValue, after x/L.
+    const std::vector<WantedColumn> want = {
+        {"x/L", "the station along the span, 0 at the root to 1 at the tip"},
+        {"m", "mass per length, kg/m"},
+        {"EI", "bending stiffness (edgewise out of the plane), N m^2"},
+        {"ES", "axial stiffness, N"},
+        {"EI_flap", "flapwise bending stiffness, N m^2", true},
+        {"GJ", "torsional stiffness, N m^2", true},
+        {"twist", "the chord's angle added to beam.pitch, rad", true},
+        {"j_c", "mass moment of inertia per length about the chord, kg m", true},
+        {"j_n", "mass moment of inertia per length about the chord's normal, kg m", true}};
     const NumericTable table =
         read_numeric_table(scene_path, "beam.profile", file, max_profile_bytes, "a profile table", want);
-    if (table.header_columns != want.size())
-        bad(table.header_line, "expected exactly the columns x/L, m, EI, ES in its header, got " +
-                                   std::to_string(table.header_columns) + " columns");
+    ProfileTable read{"beam.profile", file, {}};
+    if (!table.rows.empty())
+        for (std::size_t c = 4; c < want.size(); ++c)
+            if (!std::isnan(table.rows.front()[c])) read.blade_columns.push_back(want[c].name);
+    if (table.header_columns != 4 + read.blade_columns.size())
+        bad(table.header_line,
+            "expected the columns x/L, m, EI, ES and, for a blade, any of EI_flap, GJ, twist, j_c, "
+            "j_n in its header, got " +
+                std::to_string(table.header_columns - 4 - read.blade_columns.size()) + " other columns");
     std::vector<double> x, values;
     for (std::size_t r = 0; r < table.rows.size(); ++r) {
         const std::vector<double>& v = table.rows[r];
         const long line = table.lines[r];
         if (x.size() == max_profile_stations)
             bad(line, "more than " + std::to_string(max_profile_stations) + " stations");
-        for (std::size_t c = 1; c < want.size(); ++c)
-            if (!(v[c] > 0.0)) bad(line, "expected " + want[c].name + " > 0, got " + shortest(v[c]));
+        for (std::size_t c = 1; c < want.size(); ++c) {
+            const std::string& col = want[c].name;
+            if (std::isnan(v[c]) || col == "twist") continue;
+            if (col == "GJ" || col == "j_c" || col == "j_n" ? !(v[c] >= 0.0) : !(v[c] > 0.0))
+                bad(line, "expected " + col + (col == "GJ" || col == "j_c" || col == "j_n" ? " >= 0" : " > 0") +
+                              ", got " + shortest(v[c]));
+        }
         if (x.empty() && v[0] != 0.0) bad(line, "the first station must be x/L = 0, got " + shortest(v[0]));
         if (!x.empty() && !(v[0] > x.back()))
             bad(line,
                 "the stations must increase strictly, got x/L = " + shortest(v[0]) + " after " + shortest(x.back()));
         if (v[0] > 1.0) bad(line, "expected x/L <= 1, got " + shortest(v[0]));
         x.push_back(v[0]);
-        values.insert(values.end(), {v[1], v[2], v[3]});
+        // Absent blade columns: EI_flap = EI, GJ, twist, j_c and j_n 0 (fit_profile asks for what the variant needs).
+        const auto given = [&](std::size_t c, double otherwise) { return std::isnan(v[c]) ? otherwise : v[c]; };
+        values.insert(values.end(),
+                      {v[1], v[2], v[3], given(4, v[2]), given(5, 0.0), given(6, 0.0), given(7, 0.0), given(8, 0.0)});
     }
     if (x.size() < 2) bad(0, "expected at least 2 stations, got " + std::to_string(x.size()));
     if (x.back() != 1.0) bad(0, "the last station must be x/L = 1, got " + shortest(x.back()));
     if (const std::string why = set_stations(x, extras); !why.empty()) bad(0, why);
-    p.profile = std::move(values);
-    // The root's values stand for rho S, E I and E S wherever a single value of the beam is reported (the
-    // frequency unit sqrt(EI / (m L^4))): S = 1 m^2 keeps the three products the table's.
-    p.rho = p.profile[static_cast<std::size_t>(ProfileValue::m)];
-    p.S = 1.0;
-    p.E = p.profile[static_cast<std::size_t>(ProfileValue::ES)];
-    p.I = p.profile[static_cast<std::size_t>(ProfileValue::EI)] / p.E;
-    return file;
+    set_profile(std::move(values), p);
+    return read;
+}
+
+/// beam.blade_file (docs/scene.md): a BModes section-properties file or an ElastoDyn blade file (read_blade_file) as
+/// a blade's profile, each of its columns where the profile has one; a file without EA gives a stand-in ES (fit_profile
+/// asks for nx = 0). resample > 0: the table linear between its stations, taken at resample equally spaced ones (4
+/// decimals), for a file whose stations the variant's name cannot carry.
+ProfileTable scene_io::read_blade(const std::string& scene_path, const std::string& name, int resample, Parameters& p,
+                                  Extras& extras)
+{
+    const std::string file = (std::filesystem::path(scene_path).parent_path() / name).string();
+    const auto bad = [&](const std::string& what) {
+        table_problem(scene_path, "beam.blade_file", printable(file, 400), what);
+    };
+    if (const std::string kind = not_a_regular_file(file); !kind.empty())
+        bad("cannot open: it is " + kind + ", not a regular file");
+    BladeTable b;
+    try {
+        b = read_blade_file(file);
+    } catch (const BladeFileError& e) {
+        throw SceneError::with_detail(scene_path, "beam.blade_file", e.what());
+    }
+    ProfileTable read{"beam.blade_file", file, {"EI_flap", "twist"}, !b.EA.empty(), resample};
+    if (!b.GJ.empty()) read.blade_columns.push_back("GJ");
+    if (!b.mass_moment_flap.empty()) read.blade_columns.insert(read.blade_columns.end(), {"j_c", "j_n"});
+    const std::size_t n = b.x_over_L.size();
+    if (n < 2 || b.x_over_L.front() != 0.0 || b.x_over_L.back() != 1.0)
+        bad("expected stations from x/L = 0 at the root to 1 at the tip, got " + std::to_string(n) + " from " +
+            shortest(b.x_over_L.front()) + " to " + shortest(b.x_over_L.back()));
+    // A stand-in ES where the file has none: 1e4 times the edgewise stiffness over L^2, never read with nx = 0.
+    const auto value = [&](std::size_t k, ProfileValue v) {
+        const auto optional = [&](const std::vector<double>& c) { return c.empty() ? 0.0 : c[k]; };
+        switch (v) {
+            case ProfileValue::m:
+                return b.mass_per_length[k];
+            case ProfileValue::EI:
+                return b.EI_edge[k];
+            case ProfileValue::ES:
+                return b.EA.empty() ? 1e4 * b.EI_edge[0] / (p.L * p.L) : b.EA[k];
+            case ProfileValue::EI_flap:
+                return b.EI_flap[k];
+            case ProfileValue::GJ:
+                return optional(b.GJ);
+            case ProfileValue::twist:
+                return b.twist[k];
+            case ProfileValue::j_c:
+                return optional(b.mass_moment_flap);
+            case ProfileValue::j_n:
+                return optional(b.mass_moment_edge);
+        }
+        return 0.0;
+    };
+    std::vector<double> x = b.x_over_L, values;
+    if (resample > 0) {
+        x.clear();
+        for (int k = 0; k < resample; ++k) x.push_back(std::round(1e4 * k / (resample - 1)) / 1e4);
+    }
+    for (double xk : x) {
+        // The file's interval that holds xk, and xk's place t in it (its own stations: t = 0).
+        std::size_t k = 0;
+        while (k + 2 < n && xk > b.x_over_L[k + 1]) ++k;
+        const double t = (xk - b.x_over_L[k]) / (b.x_over_L[k + 1] - b.x_over_L[k]);
+        for (std::size_t j = 0; j < max_profile_value_count; ++j) {
+            const auto v = static_cast<ProfileValue>(j);
+            values.push_back(t == 0.0 ? value(k, v) : (1.0 - t) * value(k, v) + t * value(k + 1, v));
+        }
+    }
+    if (x.size() > max_profile_stations)
+        bad("at most " + std::to_string(max_profile_stations) + " stations, got " + std::to_string(x.size()) +
+            ": set beam.blade_stations to resample it");
+    if (const std::string why = set_stations(x, extras); !why.empty())
+        bad(why + (resample > 0 ? std::string() : "; or set beam.blade_stations to resample the file's table"));
+    set_profile(std::move(values), p);
+    return read;
+}
+
+/// A profile's values as the scene's variant reads them (docs/model.md section 12.4): a planar beam's m, EI, ES per
+/// station (a blade column is refused: it would be ignored), a blade's all of them, with GJ, j_c and j_n given and
+/// GJ > 0, j_c + j_n > 0 at every station where it has a twist field.
+void scene_io::fit_profile(const std::string& scene_path, const ProfileTable& table, const VariantKey& key,
+                           Parameters& p)
+{
+    const auto bad = [&](const std::string& what) {
+        table_problem(scene_path, table.key, printable(table.file, 400), what);
+    };
+    const std::size_t n = max_profile_value_count, stations = p.profile.size() / n;
+    if (!table.axial && key.nx > 0)
+        bad("an axial stiffness (EA) for discretization.nx > 0: the file gives none; set nx = 0");
+    if (!key.out_of_plane()) {
+        if (!table.blade_columns.empty())
+            bad("column " + table.blade_columns.front() +
+                " describes a blade that leaves the plane: expected discretization.nz or nt > 0, a beam.pitch or a "
+                "beam.precone with it (or no such column)");
+        std::vector<double> planar;
+        for (std::size_t k = 0; k < stations; ++k)
+            planar.insert(planar.end(), p.profile.begin() + static_cast<std::ptrdiff_t>(n * k),
+                          p.profile.begin() + static_cast<std::ptrdiff_t>(n * k + profile_value_count(false)));
+        p.profile = std::move(planar);
+        return;
+    }
+    if (key.nt == 0) return;
+    for (const char* column : {"GJ", "j_c", "j_n"})
+        if (std::find(table.blade_columns.begin(), table.blade_columns.end(), column) == table.blade_columns.end())
+            bad(std::string("expected a column ") + column + " with discretization.nt > 0 (the twist field's " +
+                (column[0] == 'G' ? "stiffness)" : "inertia)"));
+    for (std::size_t k = 0; k < stations; ++k) {
+        const auto at = [&](ProfileValue v) { return p.profile[n * k + static_cast<std::size_t>(v)]; };
+        if (!(at(ProfileValue::GJ) > 0.0))
+            bad("expected GJ > 0 at every station with discretization.nt > 0, got 0 at station " +
+                std::to_string(k + 1));
+        if (!(at(ProfileValue::j_c) + at(ProfileValue::j_n) > 0.0))
+            bad("expected j_c + j_n > 0 at every station with discretization.nt > 0, got 0 at station " +
+                std::to_string(k + 1));
+    }
 }
 
 /// WHERE is the CSV file, with its line if one is at fault.

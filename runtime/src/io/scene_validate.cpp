@@ -31,13 +31,14 @@ void check_sensitivities(const Scene& s)
         if (gain && !s.control) fail(s.path, key, "a control gain only with a [control] table", "\"" + name + "\"");
         if (name == "tip_ratio" && s.variant.extras.taper == Taper::uniform)
             fail(s.path, key, "tip_ratio only with beam.taper \"width\" or \"depth\"", "\"tip_ratio\"");
-        // A profile's table replaces E, rho, S and I (read_profile sets them from its root for reports only): their
-        // derivatives would be columns of zeros.
-        if (!s.parameters.profile.empty() && (name == "E" || name == "rho" || name == "S" || name == "I"))
+        // A profile's table replaces E, rho, S, I and the blade's section (read_profile sets some from its root for
+        // reports only): their derivatives would be columns of zeros.
+        static const std::vector<std::string> tabulated = {"E", "rho", "S", "I", "I_flap", "G", "J_t", "twist"};
+        if (!s.parameters.profile.empty() && std::find(tabulated.begin(), tabulated.end(), name) != tabulated.end())
             fail(s.path, key,
                  "a parameter that the scene uses, not " + name +
                      " with beam.profile (its table gives "
-                     "m, EI and ES along the span in place of rho, S, I and E)",
+                     "the section along the span in place of rho, S, I, E, I_flap, G, J_t and twist)",
                  "\"" + name + "\"");
     }
     if (!s.output.sensitivities.empty() && s.axial == Axial::quasi_static)
@@ -99,17 +100,17 @@ void check_out_of_plane(const Scene& s)
     if (key.nt < 0) fail(s.path, "discretization.nt", expected("discretization.nt"), std::to_string(key.nt));
     for (const auto& [v, name] : {std::pair{p.G, "beam.shear_modulus"}, {p.J_t, "beam.torsion_constant"}}) {
         if (!(v >= 0.0) || !std::isfinite(v)) fail(s.path, name, expected(name), shortest(v));
-        if (key.nt > 0 && v == 0.0)
+        // A profile's GJ column (fit_profile) stands for both.
+        if (key.nt > 0 && v == 0.0 && !key.extras.profile())
             fail(s.path, name, "a number > 0 with discretization.nt > 0 (the twist field's stiffness)", "0");
     }
-    // A taper or a profile gives the in-plane section along the span, not the flapwise and torsional one.
+    // A taper scales the planar section only: a blade's distributions are a profile's columns.
     const VariantKey k = s.key();
-    if (k.out_of_plane() && (k.extras.taper != Taper::uniform || k.extras.profile()))
-        fail(
-            s.path, k.extras.profile() ? "beam.profile" : "beam.taper",
-            "a uniform section where the beam leaves the plane (nz, nt, pitch, twist or precone): a taper or a profile "
-            "gives no flapwise or torsional distribution",
-            k.extras.profile() ? "a profile" : "a taper");
+    if (k.out_of_plane() && k.extras.taper != Taper::uniform)
+        fail(s.path, "beam.taper",
+             "a uniform section or a beam.profile where the beam leaves the plane (nz, nt, pitch, twist or precone): a "
+             "taper gives no flapwise or torsional distribution",
+             "a taper");
 }
 
 /// The beam's, hub's and extra terms' parameters (docs/model.md sections 1 and 11).
@@ -195,10 +196,9 @@ void check_solver(const Scene& s)
     check_positive(s, s.solver.h0, "solver.h0");
 }
 
-/// The sensitivities, the output times and the motion table's span.
+/// The output times and the motion table's span.
 void check_output(const Scene& s)
 {
-    check_sensitivities(s);
     check_positive(s, s.output.t_end, "output.t_end");
     if (!(s.output.dt_out > 0.0) || !(s.output.dt_out <= s.output.t_end))
         fail(s.path, "output.dt_out", expected("output.dt_out"),
@@ -227,6 +227,8 @@ void validate(const Scene& s)
 {
     check_parameters(s);
     check_motion(s);
+    // Before the variant's own checks: a sensitivity keeps its term (Scene::key), which the variant may refuse.
+    check_sensitivities(s);
     check_discretization(s);
     check_solver(s);
     check_output(s);

@@ -89,7 +89,7 @@ SectionAtNodes taper_at_nodes(const VariantKey& key, const Parameters& p, const 
 
 /// Section 11.2's profile: the table's distributions at the nodes (the reference values are 1), the tails
 /// int_xi^1 m(t) t^n dt by 3-point Gauss on each station interval (exact: m is linear there) and the moments.
-void profile_at_nodes(const std::vector<double>& stations, const Parameters& p, const Eigen::ArrayXd& xi,
+void profile_at_nodes(const std::vector<double>& stations, const Parameters& p, double cb, const Eigen::ArrayXd& xi,
                       SectionAtNodes& c)
 {
     const auto value = [&](ProfileValue j, double x) { return profile_value(stations, p.profile, j, x); };
@@ -116,8 +116,8 @@ void profile_at_nodes(const std::vector<double>& stations, const Parameters& p, 
         c.above(r) = tail(xi(r), 0);
         c.above_x(r) = 2.0 * tail(xi(r), 1);
     }
-    // (a + L xi)^n = sum of xi powers: the moments of m over [0, 1].
-    const double a = p.a, L = p.L, t0 = tail(0.0, 0), t1 = tail(0.0, 1), t2 = tail(0.0, 2);
+    // (a + cb L xi)^n = sum of xi powers (cb: a precone's cosine, section 12): the moments of m over [0, 1].
+    const double a = p.a, L = cb * p.L, t0 = tail(0.0, 0), t1 = tail(0.0, 1), t2 = tail(0.0, 2);
     c.first_moment = a * t0 + L * t1;
     c.second_moment = a * a * t0 + 2.0 * a * L * t1 + L * L * t2;
 }
@@ -146,11 +146,11 @@ BeamMatrices assemble_matrices(const VariantKey& key, const Parameters& p)
                  ES = profile ? 1.0 : p.E * p.S;
     const Eigen::ArrayXd xi = Eigen::Map<const Eigen::ArrayXd>(rule.nodes.data(), nn);
     const VectorXd w = Eigen::Map<const VectorXd>(rule.weights.data(), nn);
-    SectionAtNodes section = taper_at_nodes(key, p, xi);
-    if (profile) profile_at_nodes(stations, p, xi, section);
-    const auto& [s, i, e, above, above_x, r1, first_moment, second_moment] = section;
     // A precone turns the beam out of the plane: a point's arm about the spin axis is R = a + x cb (section 12).
     const double cb = key.extras.cone ? std::cos(p.precone) : 1.0;
+    SectionAtNodes section = taper_at_nodes(key, p, xi);
+    if (profile) profile_at_nodes(stations, p, cb, xi, section);
+    const auto& [s, i, e, above, above_x, r1, first_moment, second_moment] = section;
     const VectorXd w_s = (w.array() * s).matrix();                              // m(x) dx / (m L)
     const VectorXd w_e = (w.array() * e).matrix();                              // ES(x) dx / (ES L)
     const VectorXd w_i = (w.array() * i).matrix();                              // EI(x) dx / (EI L)
@@ -161,7 +161,8 @@ BeamMatrices assemble_matrices(const VariantKey& key, const Parameters& p)
     BeamMatrices b;
     b.cb = cb;
     b.sb = key.extras.cone ? std::sin(p.precone) : 0.0;
-    // int_0^L m(x) R^2 dx and int_0^L m(x) R dx, in closed form for the taper (a precone comes on a uniform beam).
+    // int_0^L m(x) R^2 dx and int_0^L m(x) R dx, in closed form for the taper (a precone comes on a uniform beam or a
+    // profile).
     b.J_ob = profile           ? L * second_moment
              : key.extras.cone ? m * L * (a * a + a * cb * L + cb * cb * L * L / 3.0)
                                : m * ((std::pow(a + L, 3) - std::pow(a, 3)) / 3.0 +

@@ -4,6 +4,7 @@
 #include "models/out_of_plane_matrices.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -50,13 +51,13 @@ MatrixXd gram(const MatrixXd& P, const VectorXd& w)
     return 0.5 * (R + R.transpose());
 }
 
-/// Gauss-Legendre on the common refinement of the bases' pieces. A polynomial integrand here is a product of two
-/// pieces times at most a quadratic in xi (degree 2 max + 2), and the pre-twist multiplies products of two pieces
-/// (degree 2 max) by cos 2 beta(xi) or sin 2 beta(xi): with max + 10 points the rule is exact to degree 2 max + 19, so
-/// what it misses of their Taylor series in (2 twist xi), |2 twist| <= 1 (max_twist), is below 1/20! ~ 4e-19 of the
-/// integral. AMM: the composite rule converged to round-off for the highest mode, on which the slow cosine changes
-/// nothing.
-QuadratureRule section_rule(const std::vector<FieldBasis>& bases)
+/// Gauss-Legendre on the common refinement of the bases' pieces and a profile's stations. A polynomial integrand here
+/// is a product of two pieces times at most a quadratic in xi (degree 2 max + 2), or a profile's linear distribution
+/// (degree 2 max + 1), and the pre-twist multiplies products of two pieces (degree 2 max) by cos 2 beta(xi) or sin 2
+/// beta(xi): with max + 10 points the rule is exact to degree 2 max + 19, so what it misses of their Taylor series in
+/// (2 twist xi), |2 twist| <= 1 (max_twist), is below 1/20! ~ 4e-19 of the integral. AMM: the composite rule converged
+/// to round-off for the highest mode, on which the slow cosine and a profile's kinks (cuts) change nothing.
+QuadratureRule section_rule(const std::vector<FieldBasis>& bases, const std::vector<double>& stations)
 {
     int largest = 0, degree = 0;
     bool polynomial = true;
@@ -69,10 +70,100 @@ QuadratureRule section_rule(const std::vector<FieldBasis>& bases)
         degree = std::max(degree, b.degree());
         for (int k = 1; k < b.intervals(); ++k) cuts.push_back(static_cast<double>(k) / b.intervals());
     }
-    if (!polynomial) return transcendental_rule(largest);
+    if (!polynomial) {
+        if (stations.empty()) return transcendental_rule(largest);
+        const int panels = transcendental_panels(largest);
+        cuts.clear();
+        for (int k = 0; k <= panels; ++k) cuts.push_back(static_cast<double>(k) / panels);
+    }
+    cuts.insert(cuts.end(), stations.begin(), stations.end());
     std::sort(cuts.begin(), cuts.end());
     cuts.erase(std::unique(cuts.begin(), cuts.end(), [](double u, double v) { return v - u < 1e-14; }), cuts.end());
-    return composite_gauss_legendre(cuts, degree + 10);
+    cuts.back() = 1.0;
+    return composite_gauss_legendre(cuts, polynomial ? degree + 10 : transcendental_points);
+}
+
+/// The section at the nodes (docs/model.md sections 12 and 12.4): mass per length, the bending stiffness in the hub's
+/// axes (K_yy, K_zz, K_yz of EI_e kappa_c^2 + EI_f kappa_n^2 = K_yy u_y''^2 + K_zz u_z''^2 + 2 K_yz u_y'' u_z''), GJ,
+/// j_p = j_c + j_n, the inertia about k at phi = 0 (j_c s^2 + j_n c^2), the propeller moment's drive (j_c - j_n) s c
+/// and stiffness (j_c - j_n) C2; the tails int_xi^1 m dt and int_xi^1 m t dt; int_0^1 m t dt.
+struct BladeAtNodes {
+    ArrayXd m, K_yy, K_zz, K_yz, GJ, j_p, j_k, drive, stiffness, above, above_x;
+    double first_moment = 0.0;
+};
+
+/// The section's values of chord angle beta at one place, in the order of BladeAtNodes' first nine arrays.
+std::array<double, 9> turned(double m, double EI_e, double EI_f, double GJ, double j_c, double j_n, double beta)
+{
+    const double c = std::cos(beta), s = std::sin(beta);
+    return {m,         EI_e * c * c + EI_f * s * s, EI_e * s * s + EI_f * c * c, (EI_e - EI_f) * s * c,        GJ,
+            j_c + j_n, j_c * s * s + j_n * c * c,   (j_c - j_n) * s * c,         (j_c - j_n) * (c * c - s * s)};
+}
+
+/// A uniform section turned by pitch + twist xi at each node, or a profile's: its stations' sections turned by pitch +
+/// their tabulated angle, each value linear between stations (section 12.4).
+BladeAtNodes blade_at_nodes(const VariantKey& key, const Parameters& p, const std::vector<double>& stations,
+                            const ArrayXd& xi)
+{
+    const Eigen::Index nn = xi.size();
+    const double pitch = key.extras.pitch ? p.pitch : 0.0;
+    BladeAtNodes b;
+    for (ArrayXd* a :
+         {&b.m, &b.K_yy, &b.K_zz, &b.K_yz, &b.GJ, &b.j_p, &b.j_k, &b.drive, &b.stiffness, &b.above, &b.above_x})
+        a->resize(nn);
+    const auto store = [&](Eigen::Index r, const std::array<double, 9>& v) {
+        ArrayXd* arrays[] = {&b.m, &b.K_yy, &b.K_zz, &b.K_yz, &b.GJ, &b.j_p, &b.j_k, &b.drive, &b.stiffness};
+        for (std::size_t j = 0; j < v.size(); ++j) (*arrays[j])(r) = v[j];
+    };
+    if (stations.empty()) {
+        // Section 12's uniform section: EI_e = E I, EI_f = E I_flap, GJ = G J_t; j_n = rho I, j_c = rho I_flap.
+        const double m = p.rho * p.S, twist = key.extras.twist ? p.twist : 0.0;
+        for (Eigen::Index r = 0; r < nn; ++r)
+            store(r, turned(m, p.E * p.I, p.E * p.I_flap, p.G * p.J_t, p.rho * p.I_flap, p.rho * p.I,
+                            pitch + twist * xi(r)));
+        b.above = m * (1.0 - xi);
+        b.above_x = 0.5 * m * (1.0 - xi * xi);
+        b.first_moment = 0.5 * m;
+        return b;
+    }
+    const std::size_t n = stations.size(), w = p.profile.size() / n;
+    std::vector<std::array<double, 9>> at_station;
+    for (std::size_t k = 0; k < n; ++k) {
+        const auto v = [&](ProfileValue j) { return p.profile[w * k + static_cast<std::size_t>(j)]; };
+        at_station.push_back(turned(v(ProfileValue::m), v(ProfileValue::EI), v(ProfileValue::EI_flap),
+                                    v(ProfileValue::GJ), v(ProfileValue::j_c), v(ProfileValue::j_n),
+                                    pitch + v(ProfileValue::twist)));
+    }
+    // Linear between stations: interval k holds xi, t its place there.
+    const auto interpolated = [&](double x) {
+        std::size_t k = 0;
+        while (k + 2 < n && x > stations[k + 1]) ++k;
+        const double t = (x - stations[k]) / (stations[k + 1] - stations[k]);
+        std::array<double, 9> v;
+        for (std::size_t j = 0; j < v.size(); ++j) v[j] = (1.0 - t) * at_station[k][j] + t * at_station[k + 1][j];
+        return v;
+    };
+    for (Eigen::Index r = 0; r < nn; ++r) store(r, interpolated(xi(r)));
+    // The tails of the linear m by the trapezoid rule's exact cousin: 2-point Gauss on each piece (m t is quadratic).
+    const QuadratureRule g2 = gauss_legendre(2);
+    const auto tail = [&](double from, int power) {
+        double sum = 0.0;
+        for (std::size_t k = 0; k + 1 < n; ++k) {
+            const double lo = std::max(from, stations[k]), hi = stations[k + 1];
+            if (hi <= lo) continue;
+            for (int j = 0; j < 2; ++j) {
+                const double t = lo + (hi - lo) * g2.nodes[j];
+                sum += (hi - lo) * g2.weights[j] * interpolated(t)[0] * (power == 0 ? 1.0 : t);
+            }
+        }
+        return sum;
+    };
+    for (Eigen::Index r = 0; r < nn; ++r) {
+        b.above(r) = tail(xi(r), 0);
+        b.above_x(r) = tail(xi(r), 1);
+    }
+    b.first_moment = tail(0.0, 1);
+    return b;
 }
 
 /// Phi(1) of every function of a basis (1 x n).
@@ -87,9 +178,9 @@ Eigen::RowVectorXd at_tip(const FieldBasis& basis)
 
 std::string out_of_plane_problem(const VariantKey& key)
 {
-    if (!key.out_of_plane() || (key.extras.taper == Taper::uniform && !key.extras.profile())) return {};
-    return "a taper or a tabulated profile does not combine with a beam that leaves the plane (nz, nt, pitch, "
-           "pre-twist, precone: docs/model.md section 12), and variant " +
+    if (!key.out_of_plane() || key.extras.taper == Taper::uniform) return {};
+    return "a taper does not combine with a beam that leaves the plane (nz, nt, pitch, pre-twist, precone: "
+           "docs/model.md section 12), and variant " +
            key.name() + " has both";
 }
 
@@ -98,47 +189,40 @@ OutOfPlaneMatrices assemble_out_of_plane(const VariantKey& key, const Parameters
     if (const std::string why = out_of_plane_problem(key); !why.empty()) throw std::invalid_argument(why);
     const FieldBasis axial = key.axial_basis(), inplane = key.transverse_basis(), flap = key.flap_basis(),
                      twist = key.twist_basis();
-    const QuadratureRule rule = section_rule({axial, inplane, flap, twist});
+    const std::vector<double> stations = station_positions(key.extras);
+    const QuadratureRule rule = section_rule({axial, inplane, flap, twist}, stations);
     const int nn = static_cast<int>(rule.nodes.size());
     const ArrayXd xi = Eigen::Map<const ArrayXd>(rule.nodes.data(), nn);
     const VectorXd w = Eigen::Map<const VectorXd>(rule.weights.data(), nn);
     const AtNodes X = at_nodes(axial, rule), Y = at_nodes(inplane, rule), Z = at_nodes(flap, rule),
                   T = at_nodes(twist, rule);
-
-    // Section 12's section: EI_e = E I (the planar EI), EI_f = E I_flap, GJ = G J_t; j_n = rho I, j_c = rho I_flap.
-    const double L = p.L, a = p.a, m = p.rho * p.S, EI_e = p.E * p.I, EI_f = p.E * p.I_flap, GJ = p.G * p.J_t;
-    const double j_n = p.rho * p.I, j_c = p.rho * p.I_flap, j_p = j_n + j_c;
-    const double cb = key.extras.cone ? std::cos(p.precone) : 1.0;
-    const ArrayXd beta = (key.extras.pitch ? p.pitch : 0.0) + (key.extras.twist ? p.twist : 0.0) * xi;
-    const ArrayXd C2 = (2.0 * beta).cos(), S2 = (2.0 * beta).sin();
+    const BladeAtNodes b = blade_at_nodes(key, p, stations, xi);
+    const double L = p.L, a = p.a, cb = key.extras.cone ? std::cos(p.precone) : 1.0;
 
     // In xi: dx = L dxi, ' = (1/L) d/dxi; the weights below carry the section's factors and the powers of L.
     const auto weighed = [&](const ArrayXd& f) { return VectorXd((w.array() * f).matrix()); };
-    const ArrayXd one = ArrayXd::Ones(nn);
+    const VectorXd w_m = weighed(L * b.m);
     OutOfPlaneMatrices o;
-    o.M_z = m * L * gram(Z.v, w);
-    o.M_xz = m * L * product(X.v, w, Z.v);
-    o.M_zy = m * L * product(Z.v, w, Y.v);
-    o.S_z = (Z.v.transpose() * weighed(m * L * (a + cb * L * xi))).transpose();
-    o.P_z = (Z.v.transpose() * weighed(m * L * one)).transpose();
-    // H_z(x) weighed by int_x^L m dt = m L (1 - xi) and by int_x^L m t dt = m L^2 (1 - xi^2)/2, over dx / L^2.
-    o.C_z = gram(Z.d1, weighed(m * (1.0 - xi)));
-    o.G_z = a * o.C_z + cb * gram(Z.d1, weighed(0.5 * m * L * (1.0 - xi * xi)));
-    o.X_ob = 0.5 * m * L * L;
-    // EI_e kappa_c^2 + EI_f kappa_n^2 = u_y''^2 (EI_e c^2 + EI_f s^2) + u_z''^2 (EI_e s^2 + EI_f c^2)
-    //                                  + 2 u_y'' u_z'' s c (EI_e - EI_f), with c^2 = (1 + C2)/2, s^2 = (1 - C2)/2, 2 s
-    //                                  c = S2.
-    const double L3 = L * L * L, mean = 0.5 * (EI_e + EI_f), half_difference = 0.5 * (EI_e - EI_f);
-    o.K_yy = gram(Y.d2, weighed(mean + half_difference * C2)) / L3;
-    o.K_zz = gram(Z.d2, weighed(mean - half_difference * C2)) / L3;
-    o.K_yz = product(Y.d2, weighed(half_difference * S2), Z.d2) / L3;
-    o.K_t = GJ / L * gram(T.d1, w);
-    o.M_t = j_p * L * gram(T.v, w);
-    o.S_t = (T.v.transpose() * weighed(j_p * L * one)).transpose();
-    o.F_t = (T.v.transpose() * weighed(0.5 * (j_c - j_n) * L * S2)).transpose();
-    o.K_p = (j_c - j_n) * L * gram(T.v, weighed(C2));
-    o.J_p = j_p * L;
-    o.J_n = L * weighed(0.5 * (j_c + j_n) + 0.5 * (j_n - j_c) * C2).sum();
+    o.M_z = gram(Z.v, w_m);
+    o.M_xz = product(X.v, w_m, Z.v);
+    o.M_zy = product(Z.v, w_m, Y.v);
+    o.S_z = (Z.v.transpose() * weighed(L * b.m * (a + cb * L * xi))).transpose();
+    o.P_z = (Z.v.transpose() * w_m).transpose();
+    // H_z(x) weighed by int_x^L m dt = L above and by int_x^L m t dt = L^2 above_x, over dx / L^2.
+    o.C_z = gram(Z.d1, weighed(b.above));
+    o.G_z = a * o.C_z + cb * gram(Z.d1, weighed(L * b.above_x));
+    o.X_ob = L * L * b.first_moment;
+    const double L3 = L * L * L;
+    o.K_yy = gram(Y.d2, weighed(b.K_yy)) / L3;
+    o.K_zz = gram(Z.d2, weighed(b.K_zz)) / L3;
+    o.K_yz = product(Y.d2, weighed(b.K_yz), Z.d2) / L3;
+    o.K_t = gram(T.d1, weighed(b.GJ)) / L;
+    o.M_t = gram(T.v, weighed(L * b.j_p));
+    o.S_t = (T.v.transpose() * weighed(L * b.j_p)).transpose();
+    o.F_t = (T.v.transpose() * weighed(L * b.drive)).transpose();
+    o.K_p = gram(T.v, weighed(L * b.stiffness));
+    o.J_p = L * weighed(b.j_p).sum();
+    o.J_n = L * weighed(b.j_k).sum();
     o.Phi_z_L = at_tip(flap);
     o.H_z_L = gram(Z.d1, w) / L;
     o.Phi_t_L = at_tip(twist);

@@ -13,7 +13,8 @@ namespace hubbeam {
 /// Section 12.3's matrices of the beam alone (the tip body's point values are added by its twin, terms/tip.cpp), in
 /// SI units ('= d/dx). R(x) = a + x cos(beta_c) is a point's distance from the spin axis (beta_c the precone, 0
 /// without one); c = cos beta(x), s = sin beta(x) of the chord angle beta = pitch + twist x/L; C2 = cos 2 beta,
-/// S2 = sin 2 beta. A matrix of an absent field has no rows (nz = 0 or nt = 0).
+/// S2 = sin 2 beta. A profile's section (section 12.4) stands in the integrands as its stations' values turned by
+/// pitch + their tabulated angle, each product linear between stations. A matrix of an absent field has no rows.
 struct OutOfPlaneMatrices {
     Eigen::MatrixXd M_z;         // Nz x Nz, int m Phi_z^T Phi_z dx
     Eigen::MatrixXd M_xz;        // Nx x Nz, int m Phi_x^T Phi_z dx
@@ -38,11 +39,11 @@ struct OutOfPlaneMatrices {
     Eigen::RowVectorXd Phi_t_L;  // 1 x Nt, Phi_t(L)
 };
 
-/// Section 12.3's integrals of a variant that leaves the plane, on a uniform section (a taper or a tabulated profile
-/// with these fields throws std::invalid_argument: neither is part of section 12's model).
+/// Section 12.3's integrals of a variant that leaves the plane, on a uniform section or a tabulated profile (section
+/// 12.4; a taper throws std::invalid_argument: it is planar).
 OutOfPlaneMatrices assemble_out_of_plane(const VariantKey& key, const Parameters& p);
 
-/// Why the hand-assembled path cannot take key's out-of-plane variant, or empty: a taper or a profile.
+/// Why the hand-assembled path cannot take key's out-of-plane variant, or empty: a taper.
 std::string out_of_plane_problem(const VariantKey& key);
 
 }  // namespace hubbeam

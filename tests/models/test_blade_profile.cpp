@@ -1,0 +1,329 @@
+// A blade whose section is a table (docs/model.md section 12.4): the profile's columns EI_flap, GJ, twist, j_c and j_n
+// beside m, EI and ES. Against the uniform blade (a constant table, its chord angle added to the pitch), against the
+// linear pre-twist (a table of it converges at second order in the stations' spacing), against the unit-load
+// integral of a tabulated blade's flap sag, and the scene's reading and refusals of the columns.
+#include <Eigen/Dense>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <hubbeam/linearize.hpp>
+#include <hubbeam/make_model.hpp>
+#include <hubbeam/scene.hpp>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "gauss_legendre.hpp"
+#include "model_values.hpp"
+#include "random_state.hpp"
+#include "temp_folder.hpp"
+
+using namespace hubbeam;
+
+namespace {
+
+using test::forces_of;
+using test::mass_of;
+
+/// A uniform blade with every out-of-plane value unlike the others (test::with_every_term's).
+Parameters blade()
+{
+    Parameters p = test::with_every_term();
+    p.alpha = p.beta = 0.0;
+    return p;
+}
+
+/// p's uniform section as a table at stations x (chord angle `twist_at(x)` beside the pitch).
+template <class Twist>
+Parameters tabulated(Parameters p, const std::vector<double>& x, Twist twist_at)
+{
+    p.profile.clear();
+    for (double xk : x)
+        p.profile.insert(p.profile.end(), {p.rho * p.S, p.E * p.I, p.E * p.S, p.E * p.I_flap, p.G * p.J_t, twist_at(xk),
+                                           p.rho * p.I_flap, p.rho * p.I});
+    return p;
+}
+
+VariantKey with_stations(VariantKey key, const std::vector<double>& x)
+{
+    REQUIRE(set_stations(x, key.extras).empty());
+    return key;
+}
+
+/// The largest relative difference of M and Q of two models at a few random states.
+double difference(const Model& a, const Model& b, const VariantKey& key, std::mt19937& rng)
+{
+    double worst = 0.0;
+    for (int trial = 0; trial < 3; ++trial) {
+        const test::State s = test::random_state_with_angle(key, rng);
+        worst = std::max({worst, test::relative_error(mass_of(a, s).reshaped(), mass_of(b, s).reshaped()),
+                          test::relative_error(forces_of(a, s), forces_of(b, s))});
+    }
+    return worst;
+}
+
+}  // namespace
+
+TEST_CASE("blade profile: a constant table is the uniform blade, its chord angle added to the pitch",
+          "[profile][out_of_plane]")
+{
+    // Generated from the table against the hand-assembled uniform blade pitched by pitch + the table's angle: every
+    // column maps to its uniform value (EI_flap = E I_flap, GJ = G J_t, j_c = rho I_flap, j_n = rho I).
+    const Parameters p = blade();
+    Parameters uniform = p;
+    uniform.pitch = p.pitch + 0.35;
+    std::mt19937 rng(2009);
+    for (Method method : {Method::fem, Method::bsim}) {
+        const Extras extras{.gravity = true, .pitch = true, .cone = true};
+        const VariantKey plain{
+            .method = method, .nx = 3, .ny = 4, .nz = 4, .nt = 3, .drive = Drive::torque, .extras = extras};
+        const VariantKey table = with_stations(plain, {0.0, 1.0});
+        INFO(table.name());
+        const auto gen =
+            make_model(table, tabulated(p, {0.0, 1.0}, [](double) { return 0.35; }), ModelSource::generated);
+        const auto asm_ = make_model(plain, uniform, ModelSource::assembled);
+        CHECK(difference(*gen, *asm_, plain, rng) < 1e-11);
+    }
+}
+
+TEST_CASE("blade profile: a table of the linear pre-twist converges to it at second order in the spacing",
+          "[profile][out_of_plane]")
+{
+    // Between stations each component of the turned section is linear (section 12.4), the uniform blade's turns with
+    // x: their difference is (2 twist h)^2 / 8 of the deviator at most, a quarter for half the spacing.
+    Parameters p = blade();
+    p.twist = -0.5;
+    p.I_flap = 0.2 * p.I;  // a large deviator (EI - EI_flap)/2
+    const VariantKey plain{.method = Method::fem,
+                           .nx = 0,
+                           .ny = 4,
+                           .nz = 4,
+                           .nt = 2,
+                           .drive = Drive::prescribed,
+                           .extras = {.pitch = true, .twist = true}};
+    const auto exact = make_model(plain, p, ModelSource::assembled);
+    std::vector<double> errors;
+    for (int n : {4, 8, 16}) {
+        std::vector<double> x;
+        for (int k = 0; k <= n; ++k) x.push_back(static_cast<double>(k) / n);
+        VariantKey key = with_stations(plain, x);
+        key.extras.twist = false;
+        const Parameters t = tabulated(p, x, [&](double xk) { return p.twist * xk; });
+        std::mt19937 rng(1994);  // the same states for every spacing
+        errors.push_back(difference(*make_model(key, t, ModelSource::assembled), *exact, plain, rng));
+    }
+    INFO(errors[0] << ", " << errors[1] << ", " << errors[2]);
+    CHECK(errors[0] < 1e-2);
+    for (std::size_t i = 1; i < errors.size(); ++i) CHECK(errors[i - 1] / errors[i] == Approx(4.0).epsilon(0.15));
+}
+
+TEST_CASE("blade profile: a held blade's flap sag under gravity along the axis is the unit-load integral of its table",
+          "[profile][out_of_plane]")
+{
+    // m(x) and EI_flap(x) linear between three stations; u_z(L) = -int_0^L M(x) (L - x) / EI_flap(x) dx with the
+    // weight's moment M(x) = g_axis int_x^L m(s) (s - x) ds, by Gauss-Legendre on each interval (1/EI_flap is smooth
+    // there).
+    Parameters p = blade();
+    p.L = 2.0, p.a = 0.0, p.g = 0.0, p.g_axis = 0.01, p.pitch = 0.0;
+    const std::vector<double> x = {0.0, 0.4, 1.0};
+    const std::vector<double> m = {3.0, 2.0, 0.5}, EI_flap = {900.0, 400.0, 150.0};
+    p.profile.clear();
+    for (std::size_t k = 0; k < x.size(); ++k)
+        p.profile.insert(p.profile.end(), {m[k], 4.0 * EI_flap[k], 1e6, EI_flap[k], 0.0, 0.0, 0.0, 0.0});
+    const auto linear = [&](const std::vector<double>& v, double s) {
+        const double xi = s / p.L;
+        const std::size_t k = xi > x[1] ? 1 : 0;
+        const double t = (xi - x[k]) / (x[k + 1] - x[k]);
+        return (1.0 - t) * v[k] + t * v[k + 1];
+    };
+    const test::GaussRule g = test::gauss_legendre(12);  // on [-1, 1]
+    const auto integral = [&](double lo, double hi, auto f) {
+        double sum = 0.0;
+        std::vector<double> cuts = {lo};
+        for (double c : x)
+            if (c * p.L > lo && c * p.L < hi) cuts.push_back(c * p.L);
+        cuts.push_back(hi);
+        for (std::size_t k = 0; k + 1 < cuts.size(); ++k)
+            for (std::size_t j = 0; j < g.x.size(); ++j) {
+                const double half = 0.5 * (cuts[k + 1] - cuts[k]);
+                sum += half * g.w[j] * f(cuts[k] + half * (1.0 + g.x[j]));
+            }
+        return sum;
+    };
+    const auto moment = [&](double at) {
+        return p.g_axis * integral(at, p.L, [&](double s) { return linear(m, s) * (s - at); });
+    };
+    const double sag = -integral(0.0, p.L, [&](double s) { return moment(s) * (p.L - s) / linear(EI_flap, s); });
+    // FEM's nodal values are not exact where EI_flap varies: they converge, and BIM's (3.3e-5 at Nz = 12) with them.
+    std::vector<double> errors;
+    for (const auto& [method, n] :
+         {std::pair{Method::fem, 4}, {Method::fem, 8}, {Method::fem, 16}, {Method::bim, 12}}) {
+        VariantKey key{
+            .method = method, .nx = 0, .ny = 2, .nz = n, .drive = Drive::prescribed, .extras = {.gravity = true}};
+        key = with_stations(key, x);
+        const auto model = make_model(key, p, ModelSource::generated);
+        const double uz = model->tip(held_equilibrium(*model, 0.0).q.data()).uz;
+        INFO(to_string(method) << " " << n << ": " << uz << " against " << sag);
+        errors.push_back(std::abs(uz / sag - 1.0));
+        CHECK(errors.back() < 1e-3);
+    }
+    CHECK(errors[1] < errors[0] / 3.0);
+    CHECK(errors[2] < errors[1] / 3.0);
+    CHECK(errors[2] < 2e-5);
+    CHECK(errors[3] < 1e-4);  // one polynomial over the span: slower across the kink of EI_flap at x/L = 0.4
+}
+
+namespace {
+
+struct Folder : TempFolder {
+    Folder() : TempFolder("blade-profile") {}
+    std::string scene() const { return (path / "blade.toml").string(); }
+};
+
+/// A blade scene (nz = nt = 2 unless discretization says otherwise) whose [beam] has the lines given.
+std::string blade_scene(const std::string& beam, const std::string& discretization = "nz = 2\nnt = 2\n")
+{
+    return "[beam]\nlength = 2.0\n" + beam +
+           "\n[motion]\nkind = \"spin-up\"\nomega0 = 4.0\nduration = 1.0\n[discretization]\nmethod = \"fem\"\nny = 2\n"
+           "nx = 0\n" +
+           discretization + "[output]\nt_end = 1.0\ndt_out = 0.1\n";
+}
+
+const std::string blade_table =
+    "x/L, m, EI, ES, EI_flap, GJ, twist, j_c, j_n\n0, 3, 900, 1e6, 300, 50, 0.2, 0.01, 0.04\n"
+    "1, 1, 100, 1e6, 40, 20, -0.1, 0.002, 0.01\n";
+
+/// The SceneError's message of the scene, checked to name the scene and key.
+std::string error_of(const Folder& f, const std::string& table, const std::string& beam = "profile = \"blade.csv\"\n",
+                     const std::string& discretization = "nz = 2\nnt = 2\n", const std::string& key = "beam.profile")
+{
+    f.write("blade.csv", table);
+    f.write("blade.toml", blade_scene(beam, discretization));
+    try {
+        load_scene(f.scene());
+    } catch (const SceneError& e) {
+        CHECK(e.key == key);
+        return e.what();
+    }
+    FAIL("the scene was accepted");
+    return {};
+}
+
+}  // namespace
+
+TEST_CASE("blade profile: a scene reads the blade's columns, each absent one at its default", "[profile][scene]")
+{
+    const Folder f;
+    f.write("blade.csv", blade_table);
+    f.write("blade.toml", blade_scene("profile = \"blade.csv\"\npitch = 0.1\n"));
+    const Scene s = load_scene(f.scene());
+    CHECK(s.key().name() == "fem_nx0_ny2_nz2_nt2_prescribed_first_profile1x0x1_pitched");
+    CHECK(s.parameters.profile ==
+          std::vector<double>{3, 900, 1e6, 300, 50, 0.2, 0.01, 0.04, 1, 100, 1e6, 40, 20, -0.1, 0.002, 0.01});
+    // Without a twist field the torsional columns may be left out: EI_flap defaults to EI, the rest to 0.
+    f.write("blade.csv", "x/L, m, EI, ES\n0, 3, 900, 1e6\n1, 1, 100, 1e6\n");
+    f.write("blade.toml", blade_scene("profile = \"blade.csv\"\n", "nz = 2\n"));
+    CHECK(load_scene(f.scene()).parameters.profile ==
+          std::vector<double>{3, 900, 1e6, 900, 0, 0, 0, 0, 1, 100, 1e6, 100, 0, 0, 0, 0});
+    // A planar scene keeps the planar values.
+    f.write("blade.toml", blade_scene("profile = \"blade.csv\"\n", ""));
+    CHECK(load_scene(f.scene()).parameters.profile == std::vector<double>{3, 900, 1e6, 1, 100, 1e6});
+}
+
+TEST_CASE("blade profile: a table without what the blade needs is refused, naming the column", "[profile][scene]")
+{
+    const Folder f;
+    const std::string csv = (f.path / "blade.csv").string();
+    const auto has = [](const std::string& message, const std::string& part) {
+        INFO(message);
+        CHECK(message.find(part) != std::string::npos);
+    };
+    has(error_of(f, "x/L, m, EI, ES, EI_flap, j_c, j_n\n0, 1, 1, 1, 1, 1, 1\n1, 1, 1, 1, 1, 1, 1\n"),
+        csv + ": expected a column GJ with discretization.nt > 0 (the twist field's stiffness)");
+    has(error_of(f, "x/L, m, EI, ES, GJ, j_c\n0, 1, 1, 1, 1, 1\n1, 1, 1, 1, 1, 1\n"),
+        csv + ": expected a column j_n with discretization.nt > 0 (the twist field's inertia)");
+    has(error_of(f, "x/L, m, EI, ES, GJ, j_c, j_n\n0, 1, 1, 1, 1, 1, 1\n1, 1, 1, 1, 0, 1, 1\n"),
+        csv + ": expected GJ > 0 at every station with discretization.nt > 0, got 0 at station 2");
+    has(error_of(f, "x/L, m, EI, ES, GJ, j_c, j_n\n0, 1, 1, 1, 1, 0, 0\n1, 1, 1, 1, 1, 1, 1\n"),
+        csv + ": expected j_c + j_n > 0 at every station with discretization.nt > 0, got 0 at station 1");
+    has(error_of(f, "x/L, m, EI, ES, GJ, j_c, j_n\n0, 1, 1, 1, 1, -1, 2\n1, 1, 1, 1, 1, 1, 1\n"),
+        csv + ":2: expected j_c >= 0, got -1");
+    has(error_of(f, "x/L, m, EI, ES, EI_flap\n0, 1, 1, 1, 0\n1, 1, 1, 1, 1\n", "profile = \"blade.csv\"\n", "nz = 2\n"),
+        csv + ":2: expected EI_flap > 0, got 0");
+    has(error_of(f, "x/L, m, EI, ES, twist\n0, 1, 1, 1, nan\n1, 1, 1, 1, 0\n", "profile = \"blade.csv\"\n", "nz = 2\n"),
+        csv + ":2: expected a finite number in column twist (the chord's angle added to beam.pitch, rad)");
+    // The uniform section's keys do not go with a table: its columns give them.
+    for (const char* key :
+         {"second_moment_flap = 1e-8", "shear_modulus = 1e9", "torsion_constant = 1e-8", "twist = 0.1"}) {
+        const std::string name = std::string(key).substr(0, std::string(key).find(' '));
+        has(error_of(f, blade_table, std::string("profile = \"blade.csv\"\n") + key + "\n", "nz = 2\nnt = 2\n",
+                     "beam." + name),
+            "not used with beam.profile (its table gives the section along the span)");
+    }
+    // Nor do sensitivities to what the table replaces.
+    for (const char* name : {"I_flap", "G", "J_t", "twist"}) {
+        f.write("blade.csv", blade_table);
+        f.write("blade.toml", blade_scene("profile = \"blade.csv\"\n") + "sensitivities = \"" + name + "\"\n");
+        try {
+            load_scene(f.scene());
+            FAIL("accepted a sensitivity to " << name);
+        } catch (const SceneError& e) {
+            has(e.what(), std::string("not ") + name + " with beam.profile");
+        }
+    }
+}
+
+TEST_CASE("blade profile: a BModes or ElastoDyn file is read as the blade's table, resampled when asked",
+          "[profile][scene][blade_files]")
+{
+    const std::string blades = std::string(HUBBEAM_SOURCE_DIR) + "/tests/data/blades/";
+    const Folder f;
+    const auto scene = [&](const std::string& file, const std::string& more, const std::string& discretization) {
+        f.write("blade.toml", blade_scene("blade_file = \"" + blades + file + "\"\n" + more, discretization));
+        return f.scene();
+    };
+    // The file's rows (sec_loc 0.25: str_tw 30 deg, mass_den 300, flp_stff 2e9, edge_stff 6e9, tor_stff 5e8,
+    // axial_stff 4e9) in the profile's order m, EI (edgewise), ES, EI_flap, GJ, twist (rad).
+    const double deg = 3.14159265358979323846 / 180.0;
+    const Scene s = load_scene(scene("bmodes_blade.dat", "", "nz = 2\nnt = 2\n"));
+    CHECK(s.key().name() == "fem_nx0_ny2_nz2_nt2_prescribed_first_profile100x0x25x50x100");
+    const std::vector<double>& v = s.parameters.profile;
+    REQUIRE(v.size() == 4 * 8);
+    for (std::size_t j = 0; j < 6; ++j)
+        CHECK(v[8 + j] == Approx(std::vector<double>{300, 6e9, 4e9, 2e9, 5e8, 30 * deg}[j]));
+    CHECK(v[8 + 6] > 0.0);  // the mass moments, turned to the structural axes by the reader (tests/io)
+    // Resampled at 5 stations: 0.75 lies halfway between the file's 0.5 and 1.
+    const Scene r = load_scene(scene("bmodes_blade.dat", "blade_stations = 5\n", "nz = 2\nnt = 2\n"));
+    CHECK(r.key().name() == "fem_nx0_ny2_nz2_nt2_prescribed_first_profile100x0x25x50x75x100");
+    const std::vector<double>& w = r.parameters.profile;
+    for (std::size_t j = 0; j < 8; ++j) {
+        CHECK(w[8 + j] == Approx(v[8 + j]));                        // the file's own station 0.25
+        CHECK(w[24 + j] == Approx(0.5 * (v[16 + j] + v[24 + j])));  // 0.75
+    }
+    const auto refused = [&](const std::string& path, const std::string& key, const std::string& part) {
+        try {
+            load_scene(path);
+            FAIL("accepted " << path);
+        } catch (const SceneError& e) {
+            INFO(e.what());
+            CHECK(e.key == key);
+            CHECK(std::string(e.what()).find(part) != std::string::npos);
+        }
+    };
+    // OpenFAST's ElastoDyn has no EA, GJ or mass moments: a blade of flap and lead-lag only.
+    CHECK(load_scene(scene("elastodyn_openfast5.dat", "", "nz = 2\n")).parameters.profile.size() == 3 * 8);
+    refused(scene("elastodyn_openfast5.dat", "", "nz = 2\nnt = 2\n"), "beam.blade_file", "expected a column GJ");
+    std::string axial = blade_scene("blade_file = \"" + blades + "elastodyn_openfast5.dat\"\n", "nz = 2\n");
+    axial.replace(axial.find("nx = 0"), 6, "nx = 2");
+    f.write("axial.toml", axial);
+    refused((f.path / "axial.toml").string(), "beam.blade_file", "an axial stiffness (EA) for discretization.nx > 0");
+    refused(scene("bmodes_blade.dat", "", ""), "beam.blade_file", "describes a blade that leaves the plane");
+    refused(scene("bmodes_cg_offset.dat", "", "nz = 2\n"), "beam.blade_file", "bmodes_cg_offset.dat:");
+    refused(scene("bmodes_blade.dat", "blade_stations = 1\n", "nz = 2\n"), "beam.blade_stations",
+            "expected 0 (the file's own stations) or an integer from 2 to 64");
+    refused(scene("bmodes_blade.dat", "profile = \"blade.csv\"\n", "nz = 2\n"), "beam.blade_file",
+            "not used with beam.profile");
+    refused(scene("bmodes_blade.dat", "density = 1000\n", "nz = 2\n"), "beam.density", "not used with beam.blade_file");
+    f.write("alone.toml",
+            blade_scene("density = 1\narea = 1\nsecond_moment = 1\nyoungs_modulus = 1\nblade_stations = 4\n"));
+    refused((f.path / "alone.toml").string(), "beam.blade_stations", "not used without beam.blade_file");
+}
