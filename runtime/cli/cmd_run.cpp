@@ -15,8 +15,10 @@
 #include <hubbeam/fields.hpp>
 #include "command.hpp"
 #include "io/field_recorder.hpp"
+#include "io/metadata.hpp"
 #include "io/output.hpp"
 #include "io/output_file.hpp"
+#include "io/scene_print.hpp"
 #include "modes.hpp"
 #include "text/printable.hpp"
 #include "text/shortest.hpp"
@@ -33,6 +35,7 @@ struct RunOptions {
     // Not a scene key: whether the output must survive a power loss depends on the machine and the job, not on
     // what is simulated (the same scene runs on a laptop and in a batch queue).
     bool durable = false;
+    bool print_scene = false;  // print the effective scene as TOML instead of running it
 };
 
 
@@ -54,6 +57,9 @@ void add_run_options(CLI::App& sub, RunOptions& o)
                  "Sync the output to the disk before it replaces the old one, so that it survives a power loss (off: "
                  "the output still appears whole or not at all, but the last seconds of a run may be lost with the "
                  "machine)");
+    sub.add_flag("--print-scene", o.print_scene,
+                 "Print the effective scene as TOML (every key, defaults filled, the options applied) and exit without "
+                 "running; the printed scene runs as this one does");
 }
 
 /// The --fields-at times and --fields-points count checked against the scene; throws ModesOptionError naming the
@@ -149,6 +155,7 @@ bool plan_run(const CLI::App& sub, const RunOptions& o, RunPlan& plan)
     }
     Scene& scene = plan.scene;
     if (scene.output.file.empty()) scene.output.file = std::filesystem::path(scene.path).stem().string() + ".csv";
+    if (o.print_scene) return true;  // nothing is written: the outputs need no check
     plan.fields_file = o.fields_file;
     if (!o.fields_at.empty() || !plan.fields_file.empty()) {
         try {
@@ -170,6 +177,7 @@ bool plan_run(const CLI::App& sub, const RunOptions& o, RunPlan& plan)
                       {{scene.output.file, output_name},
                        {is_npy_path(scene.output.file) ? npy_columns_path(scene.output.file) : "",
                         output_name + "'s column names"},
+                       {metadata_path(scene.output.file), output_name + "'s metadata"},
                        {plan.fields_file, "--fields"}});
     } catch (const OutputRefused& e) {
         std::cerr << e.what() << "\n";
@@ -235,6 +243,10 @@ int run(const CLI::App& sub, const RunOptions& o)
 {
     RunPlan plan;
     if (!plan_run(sub, o, plan)) return exit_bad_input;
+    if (o.print_scene) {
+        std::cout << effective_scene_toml(plan.scene);
+        return exit_ok;
+    }
     std::unique_ptr<CsvWriter> csv;
     std::unique_ptr<FieldRecorder> recorder;
     const std::unique_ptr<Simulation> simulation = prepare(plan, o.durable, csv, recorder);
@@ -258,6 +270,16 @@ int run(const CLI::App& sub, const RunOptions& o)
         std::cerr << csv->error() << "\n";
         return exit_stopped;
     }
+    // Beside the rows once they are in place, whatever the run's end: a run stopped early says so in it too.
+    const std::string metadata = metadata_path(csv->path());
+    if (const std::string why = write_metadata(
+            metadata, run_metadata(plan.scene, summary, csv->path(), row_header(optional_columns_of(plan.scene)),
+                                   csv->rows()));
+        !why.empty()) {
+        std::cerr << why << "\n";
+        return exit_stopped;
+    }
+    std::cout << "metadata    " << metadata << "\n";
     if (recorder) {
         if (!recorder->finish()) {
             std::cerr << recorder->error() << "\n";
@@ -287,7 +309,8 @@ Command add_run_command(CLI::App& app)
         "stderr, nothing computed; also an output that is the scene, a table it reads or the other output, a FIFO, "
         "device, directory, symbolic link or read-only file, or a file another hubbeam is writing), 129/130/131/143 "
         "interrupted by SIGHUP/SIGINT/SIGQUIT/SIGTERM (rows so far kept). The output is written to "
-        "DIR/.NAME.tmp-PID and renamed over FILE when the run ends.");
+        "DIR/.NAME.tmp-PID and renamed over FILE when the run ends; FILE.hubbeam.json beside it says where it came "
+        "from (version, variant, effective scene, stepper, summary).");
     add_run_options(*run_cmd, *options);
     return {run_cmd, [run_cmd, options] { return run(*run_cmd, *options); }};
 }
