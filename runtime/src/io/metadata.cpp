@@ -5,8 +5,8 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-
 #include <hubbeam/scene.hpp>
+
 #include "io/output.hpp"
 #include "io/output_file.hpp"
 #include "io/scene_io.hpp"
@@ -47,7 +47,10 @@ std::string file_sha256(const std::string& path)
 
 }  // namespace
 
-std::string metadata_path(const std::string& output) { return output + metadata_suffix; }
+std::string metadata_path(const std::string& output)
+{
+    return output + metadata_suffix;
+}
 
 JsonObject& JsonObject::number(std::string_view key, double v)
 {
@@ -112,9 +115,15 @@ JsonObject scene_metadata(const std::string& command, const Scene& scene)
         if (tables.empty() || tables.back().first != table) tables.emplace_back(table, JsonObject{});
         JsonObject& t = tables.back().second;
         switch (v.kind) {
-        case SceneValue::Kind::number: t.number(leaf, v.number); break;
-        case SceneValue::Kind::integer: t.integer(leaf, v.integer); break;
-        case SceneValue::Kind::text: t.text(leaf, v.text); break;
+            case SceneValue::Kind::number:
+                t.number(leaf, v.number);
+                break;
+            case SceneValue::Kind::integer:
+                t.integer(leaf, v.integer);
+                break;
+            case SceneValue::Kind::text:
+                t.text(leaf, v.text);
+                break;
         }
     }
     JsonObject effective;

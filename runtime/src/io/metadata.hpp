@@ -4,12 +4,11 @@
 // (hubbeam.load in Python).
 #pragma once
 
+#include <hubbeam/config.hpp>
+#include <hubbeam/simulate.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include <hubbeam/config.hpp>
-#include <hubbeam/simulate.hpp>
 
 namespace hubbeam {
 
@@ -41,9 +40,9 @@ private:
     std::vector<std::pair<std::string, std::string>> entries_;
 };
 
-/// The parts every command's metadata shares: format, command, hubbeam's version (HUBBEAM_VERSION) and the generator's, the scene's
-/// file, the effective scene as {"table": {"key": value}} (effective_scene), and each table the scene reads by path
-/// and SHA-256 of its content.
+/// The parts every command's metadata shares: format, command, hubbeam's version (HUBBEAM_VERSION) and the generator's,
+/// the scene's file, the effective scene as {"table": {"key": value}} (effective_scene), and each table the scene reads
+/// by path and SHA-256 of its content.
 JsonObject scene_metadata(const std::string& command, const Scene& scene);
 
 /// A run's metadata: scene_metadata, the output's name (as given, and its rows and columns), the variant, the stepper

@@ -6,10 +6,10 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <hubbeam/scene.hpp>
 #include <optional>
 #include <stdexcept>
 
-#include <hubbeam/scene.hpp>
 #include "io/scene_io.hpp"
 #include "text/shortest.hpp"
 
@@ -17,9 +17,18 @@ namespace hubbeam {
 
 namespace {
 
-SceneValue number(const SceneKey& k, double v) { return {SceneValue::Kind::number, k.name, v, 0, {}}; }
-SceneValue integer(const SceneKey& k, long long v) { return {SceneValue::Kind::integer, k.name, 0.0, v, {}}; }
-SceneValue text(const SceneKey& k, std::string v) { return {SceneValue::Kind::text, k.name, 0.0, 0, std::move(v)}; }
+SceneValue number(const SceneKey& k, double v)
+{
+    return {SceneValue::Kind::number, k.name, v, 0, {}};
+}
+SceneValue integer(const SceneKey& k, long long v)
+{
+    return {SceneValue::Kind::integer, k.name, 0.0, v, {}};
+}
+SceneValue text(const SceneKey& k, std::string v)
+{
+    return {SceneValue::Kind::text, k.name, 0.0, 0, std::move(v)};
+}
 
 /// A table's file as an absolute path: the scene names it relative to its own folder, which a printed scene read
 /// from elsewhere does not share.
@@ -156,13 +165,12 @@ std::vector<SceneValue> effective_scene(const Scene& scene)
     std::vector<SceneValue> out;
     for (const SceneKey& k : scene_keys()) {
         const std::string table = k.table();
-        const std::optional<SceneValue> v = table == "beam"      ? beam_value(scene, k)
-                                            : table == "motion"  ? motion_value(scene, k)
-                                            : table == "control" ? control_value(scene, k)
-                                            : (table == "hub" || table == "tip" || table == "damping" ||
-                                               table == "gravity")
-                                                ? parameter_value(scene, k)
-                                                : run_value(scene, k);
+        const std::optional<SceneValue> v =
+            table == "beam"                                                                  ? beam_value(scene, k)
+            : table == "motion"                                                              ? motion_value(scene, k)
+            : table == "control"                                                             ? control_value(scene, k)
+            : (table == "hub" || table == "tip" || table == "damping" || table == "gravity") ? parameter_value(scene, k)
+                                                                                             : run_value(scene, k);
         if (v) out.push_back(*v);
     }
     return out;
@@ -183,13 +191,16 @@ std::string quoted_string(std::string_view s)
         if (c == '"' || c == '\\') {
             out += '\\';
             out += c;
-        } else if (c == '\n') out += "\\n";
-        else if (c == '\t') out += "\\t";
+        } else if (c == '\n')
+            out += "\\n";
+        else if (c == '\t')
+            out += "\\t";
         else if (u < 0x20 || u == 0x7f) {
             char code[8];
             std::snprintf(code, sizeof code, "\\u%04x", u);
             out += code;
-        } else out += c;
+        } else
+            out += c;
     }
     return out + "\"";
 }
@@ -205,9 +216,15 @@ std::string effective_scene_toml(const Scene& scene)
         }
         out += name.substr(name.find('.') + 1) + " = ";
         switch (v.kind) {
-        case SceneValue::Kind::number: out += toml_number(v.number); break;
-        case SceneValue::Kind::integer: out += std::to_string(v.integer); break;
-        case SceneValue::Kind::text: out += quoted_string(v.text); break;
+            case SceneValue::Kind::number:
+                out += toml_number(v.number);
+                break;
+            case SceneValue::Kind::integer:
+                out += std::to_string(v.integer);
+                break;
+            case SceneValue::Kind::text:
+                out += quoted_string(v.text);
+                break;
         }
         out += '\n';
     }

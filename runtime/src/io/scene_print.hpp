@@ -2,11 +2,10 @@
 // (hubbeam run --print-scene) and as the values the metadata beside an output records.
 #pragma once
 
+#include <hubbeam/config.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include <hubbeam/config.hpp>
 
 namespace hubbeam {
 
@@ -14,7 +13,7 @@ namespace hubbeam {
 struct SceneValue {
     enum class Kind { number, integer, text } kind;
     std::string key;
-    double number = 0.0;  // Kind::number
+    double number = 0.0;    // Kind::number
     long long integer = 0;  // Kind::integer
     std::string text;       // Kind::text: a word or a file name
 };
