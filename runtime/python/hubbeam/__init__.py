@@ -80,6 +80,7 @@ class RunStopped(RuntimeError):
 
 # The unit of each column of a run's rows (the columns themselves come from the core, in its order).
 UNITS = {"t": "s", "theta": "rad", "theta_dot": "rad/s", "tip_uy": "m", "tip_ux1": "m", "tip_ux": "m",
+         "tip_uz": "m", "tip_phi": "rad",
          "kinetic": "J", "potential": "J", "momentum": "kg m^2/s", "jacobi": "J",
          "tau": "N m", "theta_ref": "rad", "controller_integral": "rad s", "dissipated": "J", "work": "J"}
 
