@@ -104,7 +104,7 @@ class Campbell(unittest.TestCase):
                                     rtol=1e-6))
         self.assertEqual((ax.get_xlabel(), ax.get_ylabel()), ("spin rate Omega (rad/s)", "frequency (Hz)"))
         _, title = legend_texts(ax)
-        self.assertEqual(title, f"spinup_omega4, {m['variant']}")
+        self.assertEqual(title, f"spinup_omega4\n{m['variant']}")
 
     def test_kinds_and_harmonics_chosen(self):
         fig = hubbeam.plot_campbell(self.m, count=2, harmonics=[5])

@@ -124,6 +124,6 @@ def plot_campbell(m: dict, *, kinds: Sequence[str] | str = CAMPBELL_KINDS, count
     ax.set_xlabel("spin rate Omega (rad/s)")
     ax.set_ylabel("frequency (Hz)")
     ax.grid(True, alpha=0.3)
-    name = label if label is not None else f"{scene_name(m.get('scene_file', ''))}, {m['variant']}"
+    name = label if label is not None else f"{scene_name(m.get('scene_file', ''))}\n{m['variant']}"
     ax.legend(title=name, fontsize="small", title_fontsize="small", loc="upper left", bbox_to_anchor=(1.01, 1.0))
     return fig
