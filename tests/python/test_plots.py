@@ -125,3 +125,70 @@ class WithoutMatplotlib(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+class Animation(unittest.TestCase):
+    """hubbeam plot animate: the beam's points in each frame of the script, against the fields and the run's theta
+    turned here by numpy; the GIF's frames counted by PIL."""
+
+    HUBBEAM = os.environ.get("HUBBEAM", "")
+
+    def animate(self, scene, d, times, *, turned=True):
+        base = os.path.join(d, "run.csv")
+        subprocess.run([self.HUBBEAM, "run", scene, "--t-end", str(max(times)), "--fields-at",
+                        ",".join(map(str, times)), "--fields-points", "9", "-o", base], check=True,
+                       capture_output=True)
+        fields = os.path.join(d, "run-fields.csv")
+        files = [fields, base] if turned else [fields]
+        done = subprocess.run([self.HUBBEAM, "plot", "animate", *files, "-o", os.path.join(d, "anim")],
+                              capture_output=True, text=True)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        with open(os.path.join(d, "anim.gp")) as f:
+            script = f.read()
+        blocks = script.split("$beam << EOD\n")[1].split("EOD\n")[0].strip("\n").split("\n\n\n")
+        drawn = [np.loadtxt(b.splitlines(), ndmin=2) for b in blocks]
+        f = np.genfromtxt(fields, delimiter=",", names=True)
+        r = np.genfromtxt(base, delimiter=",", names=True)
+        return script, drawn, f, r
+
+    def test_plane_frames_are_the_fields_turned_by_theta(self):
+        times = [0, 5, 10, 15, 20]
+        with tempfile.TemporaryDirectory() as d:
+            script, drawn, f, r = self.animate(SPINUP, d, times)
+            from PIL import Image
+            with Image.open(os.path.join(d, "anim.gif")) as gif:
+                self.assertEqual(gif.n_frames, len(times))
+        self.assertEqual(len(drawn), len(times))
+        for k, t in enumerate(times):
+            rows = f[f["t"] == t]
+            th = r["theta"][np.argmin(abs(r["t"] - t))]
+            along = rows["x"] + rows["ux"]
+            x = np.cos(th) * along - np.sin(th) * rows["uy"]
+            y = np.sin(th) * along + np.cos(th) * rows["uy"]
+            self.assertTrue(np.allclose(drawn[k][:, 0], x, rtol=0, atol=1e-12))
+            self.assertTrue(np.allclose(drawn[k][:, 1], y, rtol=0, atol=1e-12))
+            self.assertTrue(np.all(drawn[k][:, 2] == 0))
+        for label in ("title 'hub'", "title 'tip path'", "title 'beam'", "X (m, inertial frame)"):
+            self.assertIn(label, script)
+        self.assertIn("plot $hub", script)
+
+    def test_a_blade_is_drawn_in_three_dimensions_with_its_flap(self):
+        with tempfile.TemporaryDirectory() as d:
+            script, drawn, f, _ = self.animate(os.path.join(SOURCE, "cases", "helicopter_blade.toml"), d, [0, 1],
+                                               turned=False)
+        self.assertIn("splot $hub", script)
+        self.assertIn("X (m, the hub", script)
+        for k, t in enumerate((0, 1)):
+            rows = f[f["t"] == t]
+            self.assertTrue(np.array_equal(drawn[k][:, 2], rows["uz"]))
+            self.assertTrue(np.allclose(drawn[k][:, 0], rows["x"] + rows["ux"], rtol=0, atol=1e-12))
+        self.assertLess(drawn[0][-1, 2], -0.01)  # the blade droops under its weight at rest
+
+    def test_a_run_csv_is_no_fields_csv(self):
+        with tempfile.TemporaryDirectory() as d:
+            self.animate(SPINUP, d, [0, 1])
+            done = subprocess.run([self.HUBBEAM, "plot", "animate", os.path.join(d, "run.csv"), "-o",
+                                   os.path.join(d, "bad")], capture_output=True, text=True)
+            self.assertEqual(done.returncode, 2)
+            self.assertIn("expected a column x in its header", done.stderr)
+            self.assertFalse(os.path.exists(os.path.join(d, "bad.gif")))
