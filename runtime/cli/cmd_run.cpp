@@ -277,16 +277,6 @@ int run(const CLI::App& sub, const RunOptions& o)
         std::cerr << csv->error() << "\n";
         return exit_stopped;
     }
-    // Beside the rows once they are in place, whatever the run's end: a run stopped early says so in it too.
-    const std::string metadata = metadata_path(csv->path());
-    if (const std::string why = write_metadata(
-            metadata,
-            run_metadata(plan.scene, summary, csv->path(), row_header(optional_columns_of(plan.scene)), csv->rows()));
-        !why.empty()) {
-        std::cerr << why << "\n";
-        return exit_stopped;
-    }
-    std::cout << "metadata    " << metadata << "\n";
     if (recorder) {
         if (!recorder->finish()) {
             std::cerr << recorder->error() << "\n";
@@ -294,6 +284,17 @@ int run(const CLI::App& sub, const RunOptions& o)
         }
         std::cout << "fields      " << recorder->path() << "\n";
     }
+    // Beside the rows once they (and the fields) are in place, whatever the run's end: a run stopped early says so
+    // in it too.
+    const std::string metadata = metadata_path(csv->path());
+    if (const std::string why = write_metadata(
+            metadata, run_metadata(plan.scene, summary, csv->path(), row_header(optional_columns_of(plan.scene)),
+                                   csv->rows(), recorder ? recorder->path() : ""));
+        !why.empty()) {
+        std::cerr << why << "\n";
+        return exit_stopped;
+    }
+    std::cout << "metadata    " << metadata << "\n";
     if (!summary.completed) {
         std::cerr << "hubbeam: stopped at t = " << summary.t_reached << " s: " << summary.failure << " (" << csv->rows()
                   << " rows kept in " << csv->path() << ")\n";

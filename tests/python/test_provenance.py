@@ -94,7 +94,7 @@ class Metadata(unittest.TestCase):
         scene = os.path.join(SOURCE, "cases", "table_spinup.toml")
         with tempfile.TemporaryDirectory() as d:
             out = os.path.join(d, "run.csv")
-            stdout = cli("run", scene, "--t-end", "1", "--rtol", "1e-9", "-o", out)
+            stdout = cli("run", scene, "--t-end", "1", "--rtol", "1e-9", "--fields-at", "0.5", "-o", out)
             with open(out + ".hubbeam.json") as f:
                 meta = json.load(f)
             with open(out) as f:
@@ -102,7 +102,7 @@ class Metadata(unittest.TestCase):
             self.assertEqual(meta["format"], "hubbeam-metadata 1")
             self.assertEqual(meta["hubbeam_version"], hubbeam.__version__)
             self.assertEqual(meta["generator_version"], hubbeam.generator_version())
-            self.assertEqual(meta["output"], "run.csv")
+            self.assertEqual((meta["output"], meta["fields"]), ("run.csv", "run-fields.csv"))
             self.assertEqual(meta["columns"], lines[0].split(","))
             self.assertEqual(meta["rows"], len(lines) - 1)
             self.assertEqual(meta["solver"]["rtol"], 1e-9)

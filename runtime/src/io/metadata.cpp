@@ -180,7 +180,7 @@ std::string summary_json(const RunSummary& s, const Scene& scene)
 }
 
 std::string run_metadata(const Scene& scene, const RunSummary& summary, const std::string& output,
-                         const std::string& columns, long rows)
+                         const std::string& columns, long rows, const std::string& fields)
 {
     JsonObject out = scene_metadata("run", scene);
     std::vector<std::string> names;
@@ -189,20 +189,19 @@ std::string run_metadata(const Scene& scene, const RunSummary& summary, const st
         names.push_back(columns.substr(start, comma - start));
         start = comma + 1;
     }
-    out.text("output", std::filesystem::path(output).filename().string())
-        .texts("columns", names)
-        .integer("rows", rows)
-        .raw("solver", JsonObject{}
-                           .text("stepper", summary.stepper)
-                           .text("asked", scene.solver.stepper)
-                           .text("why", summary.stepper_why)
-                           .number("rtol", scene.solver.rtol)
-                           .number("atol", scene.solver.atol)
-                           .number("h0", scene.solver.h0)
-                           .text("error_check", to_string(scene.solver.error_check))
-                           .number("check_rtol", summary.check_rtol)
-                           .number("check_atol", summary.check_atol)
-                           .str())
+    out.text("output", std::filesystem::path(output).filename().string()).texts("columns", names).integer("rows", rows);
+    if (!fields.empty()) out.text("fields", std::filesystem::path(fields).filename().string());
+    out.raw("solver", JsonObject{}
+                          .text("stepper", summary.stepper)
+                          .text("asked", scene.solver.stepper)
+                          .text("why", summary.stepper_why)
+                          .number("rtol", scene.solver.rtol)
+                          .number("atol", scene.solver.atol)
+                          .number("h0", scene.solver.h0)
+                          .text("error_check", to_string(scene.solver.error_check))
+                          .number("check_rtol", summary.check_rtol)
+                          .number("check_atol", summary.check_atol)
+                          .str())
         .number("wall_seconds", summary.wall_seconds + summary.check_wall_seconds)
         .raw("summary", summary_json(summary, scene));
     return out.str() + "\n";

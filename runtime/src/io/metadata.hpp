@@ -45,10 +45,11 @@ private:
 /// by path and SHA-256 of its content.
 JsonObject scene_metadata(const std::string& command, const Scene& scene);
 
-/// A run's metadata: scene_metadata, the output's name (as given, and its rows and columns), the variant, the stepper
+/// A run's metadata: scene_metadata, the output's name (as given, and its rows and columns), the fields CSV's name
+/// where one was written, the variant, the stepper
 /// and its tolerances, and the summary's fields under "summary" (those of the Python Result, with the summary's text).
 std::string run_metadata(const Scene& scene, const RunSummary& summary, const std::string& output,
-                         const std::string& columns, long rows);
+                         const std::string& columns, long rows, const std::string& fields = "");
 
 /// JSON of summary's fields as the Python module's Result holds them, and the summary's text.
 std::string summary_json(const RunSummary& summary, const Scene& scene);
