@@ -13,11 +13,13 @@ cd "$(dirname "$0")"
 # (scene files), CLI11 (command line), gnuplot (figures), pybind11 and numpy (the Python module), Dask's
 # distributed (sweeps), cryptography (the TLS certificates each local sweep cluster makes for itself; Dask does
 # not depend on it), pandas (Result.to_pandas, and its test), scipy (the optimization example under examples/ and
-# its test; scipy.signal reads linearize's .npz), zlib (the CRC-32 of a .npz's entries); cmake, ninja and g++
-# to build.
+# its test; scipy.signal reads linearize's .npz), zlib (the CRC-32 of a .npz's entries), matplotlib (Result.plot
+# and plot_campbell; the package imports without it), nbconvert and ipykernel (the suite runs examples/notebooks),
+# tqdm (a sweep's progress bar in a notebook); cmake, ninja and g++ to build.
 packages=(build-essential cmake ninja-build pkg-config libginac-dev libeigen3-dev libgsl-dev catch2
           libtomlplusplus-dev libcli11-dev libsundials-dev liblapack-dev gnuplot-nox python3 python3-dev pybind11-dev python3-numpy
-          python3-distributed python3-cryptography python3-pandas python3-scipy zlib1g-dev)
+          python3-distributed python3-cryptography python3-pandas python3-scipy zlib1g-dev python3-matplotlib
+          jupyter-nbconvert python3-ipykernel python3-tqdm)
 mode=${1:-run}
 shift || true
 [[ $mode == fuzz ]] && packages+=(clang)  # libFuzzer and the sanitizers' runtime come with Debian's clang

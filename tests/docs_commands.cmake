@@ -1,7 +1,8 @@
 # Every command the documentation shows as runnable runs and exits 0: the lines starting `build/hubbeam` in the
 # ```sh blocks of README.md and docs/cli.md (a line ending in \ continues), in page order, each through sh from
 # a fresh folder that holds `build` (this build) and `cases` (the scenes), so their files land there and a later
-# command can read an earlier one's. Then README's ```python block, when a Python interpreter is given. Every
+# command can read an earlier one's. Then README's ```python blocks, each in its own process, when a Python
+# interpreter is given. Every
 # command of `hubbeam --help` must be shown at least once, but sweep (it needs a sweep file and a Dask cluster:
 # tests/python runs it) and stress (its quick subset is the test cli_stress_quick, 15 s).
 # Run as cmake -DSRC=source-dir -DBUILD=build-dir -DWORK=scratch-dir [-DPYTHON=python3 -DPYTHONPATH=dir]
@@ -85,17 +86,23 @@ endforeach()
 set(python_ran "")
 if(PYTHON)
   file(READ ${SRC}/README.md readme)
-  string(REGEX MATCH "```python\n[^`]*```" block "${readme}")
-  if(NOT block)
+  string(REPLACE ";" "@SC@" readme "${readme}")  # a ; would split the list of blocks
+  string(REGEX MATCHALL "```python\n[^`]*```" blocks "${readme}")
+  if(NOT blocks)
     message(FATAL_ERROR "README.md has no ```python block")
   endif()
-  string(REGEX REPLACE "^```python\n" "" block "${block}")
-  string(REGEX REPLACE "```$" "" block "${block}")
-  execute_process(COMMAND ${CMAKE_COMMAND} -E env PYTHONPATH=${PYTHONPATH} ${PYTHON} -c "${block}"
-                  WORKING_DIRECTORY ${WORK} RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT code EQUAL 0)
-    message(FATAL_ERROR "README.md's Python example exited ${code}\n${block}\nstderr:\n${err}")
-  endif()
+  # Each block in a Python of its own, in page order, from the same folder: a later block is a new session that
+  # reads what an earlier one saved.
+  foreach(block IN LISTS blocks)
+    string(REPLACE "@SC@" ";" block "${block}")
+    string(REGEX REPLACE "^```python\n" "" block "${block}")
+    string(REGEX REPLACE "```$" "" block "${block}")
+    execute_process(COMMAND ${CMAKE_COMMAND} -E env PYTHONPATH=${PYTHONPATH} MPLBACKEND=Agg ${PYTHON} -c "${block}"
+                    WORKING_DIRECTORY ${WORK} RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+    if(NOT code EQUAL 0)
+      message(FATAL_ERROR "README.md's Python example exited ${code}\n${block}\nstderr:\n${err}")
+    endif()
+  endforeach()
   set(python_ran " and README's Python example")
 endif()
 message(STATUS "${count} documented commands${python_ran} ran and exited 0")

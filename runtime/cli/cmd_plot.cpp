@@ -14,7 +14,10 @@ namespace {
 /// naming it.
 void add_plot_options(CLI::App& sub, PlotArgs& a)
 {
-    sub.add_option("KIND", a.kind, "tip, axial (run CSVs), campbell (modes CSVs) or moment (field CSVs)")->required();
+    sub.add_option("KIND", a.kind,
+                   "tip, axial (run CSVs), campbell (modes CSVs), moment (field CSVs) or animate (a field CSV, and "
+                   "the run's CSV for the hub angle: PREFIX.gif)")
+        ->required();
     sub.add_option("FILE", a.files, "CSV files in the kind's format (docs/cli.md)")->required();
     sub.add_option("-o,--output", a.prefix, "Writes PREFIX.png, PREFIX.svg and the gnuplot script PREFIX.gp")
         ->type_name("PREFIX")
@@ -27,7 +30,9 @@ void add_plot_options(CLI::App& sub, PlotArgs& a)
     sub.add_option("--harmonics", a.harmonics,
                    "campbell: the excitation lines omega = n Omega drawn, with their crossings (default 1,2,3)")
         ->type_name("LIST");
-    sub.add_option("--kinds", a.kinds, "campbell: the kinds of mode drawn, of bending, edge, flap, twist, axial, hub (default bending, edge, flap)")
+    sub.add_option(
+           "--kinds", a.kinds,
+           "campbell: the kinds of mode drawn, of bending, edge, flap, twist, axial, hub (default bending, edge, flap)")
         ->type_name("LIST");
     sub.add_option("--modes", a.modes, "campbell: only the N lowest modes of each variant (default: all)")
         ->type_name("N");
@@ -39,8 +44,9 @@ void add_plot_options(CLI::App& sub, PlotArgs& a)
 /// hubbeam plot: returns the exit code.
 int plot(const PlotArgs& args)
 {
+    const bool animate = args.kind == "animate";
     try {
-        if (const std::string problem = draw_plot(args); !problem.empty()) {
+        if (const std::string problem = animate ? draw_animation(args) : draw_plot(args); !problem.empty()) {
             std::cerr << "hubbeam: " << problem << "\n";
             return exit_stopped;
         }
@@ -51,7 +57,7 @@ int plot(const PlotArgs& args)
         std::cerr << e.what() << "\n";
         return exit_bad_input;
     }
-    std::cout << "figure: " << args.prefix << ".{png,svg}\n";
+    std::cout << (animate ? "animation: " + args.prefix + ".gif\n" : "figure: " + args.prefix + ".{png,svg}\n");
     return exit_ok;
 }
 
@@ -61,10 +67,13 @@ Command add_plot_command(CLI::App& app)
 {
     auto args = std::make_shared<PlotArgs>();
     CLI::App* plot_cmd = app.add_subcommand(
-        "plot", "Figures from CSV files with gnuplot: tip deflection, axial tip, Campbell diagram, bending moment");
-    plot_cmd->footer("docs/cli.md. gnuplot draws into temporary files that replace the figures only when complete. "
-                     "Exit codes: 0 figure written, 1 gnuplot or the disk failed (old figures kept), 2 bad input (one "
-                     "line on stderr, nothing written).");
+        "plot",
+        "Figures from CSV files with gnuplot: tip deflection, axial tip, Campbell diagram, bending moment, the "
+        "deformed beam animated");
+    plot_cmd->footer(
+        "docs/cli.md. gnuplot draws into temporary files that replace the figures only when complete. "
+        "Exit codes: 0 figure written, 1 gnuplot or the disk failed (old figures kept), 2 bad input (one "
+        "line on stderr, nothing written).");
     add_plot_options(*plot_cmd, *args);
 
     return {plot_cmd, [args] { return plot(*args); }};

@@ -1,22 +1,24 @@
 // hubbeam run: a scene's response as CSV (and, asked for, the fields along the beam), the summary on standard
 // output. Options: one per scene key that has one (scene_keys()), plus the fields'.
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <hubbeam/fields.hpp>
 #include <iostream>
 #include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include <unistd.h>
-
-#include <hubbeam/fields.hpp>
 #include "command.hpp"
 #include "io/field_recorder.hpp"
+#include "io/metadata.hpp"
 #include "io/output.hpp"
 #include "io/output_file.hpp"
+#include "io/scene_print.hpp"
 #include "modes.hpp"
 #include "text/printable.hpp"
 #include "text/shortest.hpp"
@@ -33,8 +35,8 @@ struct RunOptions {
     // Not a scene key: whether the output must survive a power loss depends on the machine and the job, not on
     // what is simulated (the same scene runs on a laptop and in a batch queue).
     bool durable = false;
+    bool print_scene = false;  // print the effective scene as TOML instead of running it
 };
-
 
 /// Declares the `run` options on sub from the scene key table; the help text of each is its documentation.
 void add_run_options(CLI::App& sub, RunOptions& o)
@@ -45,8 +47,10 @@ void add_run_options(CLI::App& sub, RunOptions& o)
         if (keys[i].option) add_key_option(sub, keys[i], o.values[i]);
     sub.add_option("--fields-at", o.fields_at,
                    "Also write the fields along the beam (u_y, u_x, slope, curvature, bending moment, axial force) at "
-                   "these times (s, comma-separated; the first row at or after each)")->type_name("LIST");
-    sub.add_option("--fields-points", o.fields_points, "Equally spaced points along the beam for --fields-at (default 81)")
+                   "these times (s, comma-separated; the first row at or after each)")
+        ->type_name("LIST");
+    sub.add_option("--fields-points", o.fields_points,
+                   "Equally spaced points along the beam for --fields-at (default 81)")
         ->type_name("N");
     sub.add_option("--fields", o.fields_file, "CSV of the fields (default: the output's name with -fields.csv)")
         ->type_name("FILE");
@@ -54,6 +58,9 @@ void add_run_options(CLI::App& sub, RunOptions& o)
                  "Sync the output to the disk before it replaces the old one, so that it survives a power loss (off: "
                  "the output still appears whole or not at all, but the last seconds of a run may be lost with the "
                  "machine)");
+    sub.add_flag("--print-scene", o.print_scene,
+                 "Print the effective scene as TOML (every key, defaults filled, the options applied) and exit without "
+                 "running; the printed scene runs as this one does");
 }
 
 /// The --fields-at times and --fields-points count checked against the scene; throws ModesOptionError naming the
@@ -61,7 +68,8 @@ void add_run_options(CLI::App& sub, RunOptions& o)
 std::pair<std::vector<double>, int> field_request(const RunOptions& o, const Scene& scene)
 {
     std::vector<double> times;
-    const std::string expected = "a comma-separated list of times from 0 to t_end = " + shortest(scene.output.t_end) + " s";
+    const std::string expected =
+        "a comma-separated list of times from 0 to t_end = " + shortest(scene.output.t_end) + " s";
     for (const std::string& item : split_list(o.fields_at)) {
         double t = 0.0;
         if (!parse_non_negative(item, t) || t > scene.output.t_end)
@@ -72,8 +80,8 @@ std::pair<std::vector<double>, int> field_request(const RunOptions& o, const Sce
     if (!parse_int(o.fields_points, 2, 100000, points))
         bad_option<ModesOptionError>("--fields-points", "an integer from 2 to 100000", printable(o.fields_points));
     if (static_cast<double>(times.size()) * points > static_cast<double>(max_output_rows))
-        bad_option<ModesOptionError>("--fields-at", "at most " + std::to_string(max_output_rows) +
-                                                        " field rows (times x points)",
+        bad_option<ModesOptionError>("--fields-at",
+                                     "at most " + std::to_string(max_output_rows) + " field rows (times x points)",
                                      std::to_string(times.size()) + " times x " + std::to_string(points) + " points");
     return {times, points};
 }
@@ -89,15 +97,17 @@ Overrides given_overrides(const CLI::App& sub, const RunOptions& o)
     return overrides;
 }
 
-
 /// A long run's progress on a terminal: after the first second, at most twice a second, one line on standard
 /// error rewritten in place (simulated time, rate, time left, and a faster stepper if there is one); erased at the
 /// end.
 class Progress {
 public:
     Progress(double t_end, std::string hint)
-        : t_end_(t_end), hint_(std::move(hint)), enabled_(::isatty(STDERR_FILENO) != 0),
-          start_(std::chrono::steady_clock::now()), last_(start_)
+        : t_end_(t_end),
+          hint_(std::move(hint)),
+          enabled_(::isatty(STDERR_FILENO) != 0),
+          start_(std::chrono::steady_clock::now()),
+          last_(start_)
     {
     }
     ~Progress()
@@ -115,9 +125,9 @@ public:
         if (elapsed < 1.0 || std::chrono::duration<double>(now - last_).count() < 0.5 || t <= 0.0) return;
         last_ = now;
         const double rate = t / elapsed;
-        std::fprintf(stderr, "\rhubbeam: t = %.4g of %.4g s (%.0f %%), %.3g s simulated per s, about %.0f s left%s%s\033[K",
-                     t, t_end_, 100.0 * t / t_end_, rate, (t_end_ - t) / rate, hint_.empty() ? "" : "; ",
-                     hint_.c_str());
+        std::fprintf(stderr,
+                     "\rhubbeam: t = %.4g of %.4g s (%.0f %%), %.3g s simulated per s, about %.0f s left%s%s\033[K", t,
+                     t_end_, 100.0 * t / t_end_, rate, (t_end_ - t) / rate, hint_.empty() ? "" : "; ", hint_.c_str());
         std::fflush(stderr);
         shown_ = true;
     }
@@ -149,6 +159,7 @@ bool plan_run(const CLI::App& sub, const RunOptions& o, RunPlan& plan)
     }
     Scene& scene = plan.scene;
     if (scene.output.file.empty()) scene.output.file = std::filesystem::path(scene.path).stem().string() + ".csv";
+    if (o.print_scene) return true;  // nothing is written: the outputs need no check
     plan.fields_file = o.fields_file;
     if (!o.fields_at.empty() || !plan.fields_file.empty()) {
         try {
@@ -162,15 +173,15 @@ bool plan_run(const CLI::App& sub, const RunOptions& o, RunPlan& plan)
             plan.fields_file = (out.parent_path() / (out.stem().string() + "-fields.csv")).string();
         }
     }
-    const bool output_option = std::any_of(overrides.begin(), overrides.end(),
-                                           [](const auto& kv) { return kv.first == "output.file"; });
+    const bool output_option =
+        std::any_of(overrides.begin(), overrides.end(), [](const auto& kv) { return kv.first == "output.file"; });
     const std::string output_name = output_option ? "-o" : scene.path + ": output.file";
     try {
-        check_outputs(scene_inputs(scene),
-                      {{scene.output.file, output_name},
-                       {is_npy_path(scene.output.file) ? npy_columns_path(scene.output.file) : "",
-                        output_name + "'s column names"},
-                       {plan.fields_file, "--fields"}});
+        check_outputs(scene_inputs(scene), {{scene.output.file, output_name},
+                                            {is_npy_path(scene.output.file) ? npy_columns_path(scene.output.file) : "",
+                                             output_name + "'s column names"},
+                                            {metadata_path(scene.output.file), output_name + "'s metadata"},
+                                            {plan.fields_file, "--fields"}});
     } catch (const OutputRefused& e) {
         std::cerr << e.what() << "\n";
         return false;
@@ -198,9 +209,8 @@ std::unique_ptr<Simulation> prepare(const RunPlan& plan, bool durable, std::uniq
     const Scene& scene = plan.scene;
     std::unique_ptr<Simulation> simulation;
     try {
-        simulation = std::make_unique<Simulation>(scene, [](const std::string& note) {
-            std::cerr << "hubbeam: " << note << "\n";
-        });
+        simulation = std::make_unique<Simulation>(
+            scene, [](const std::string& note) { std::cerr << "hubbeam: " << note << "\n"; });
     } catch (const std::invalid_argument& e) {
         std::cerr << scene.path << ": " << e.what() << "\n";
         return nullptr;
@@ -219,8 +229,8 @@ std::unique_ptr<Simulation> prepare(const RunPlan& plan, bool durable, std::uniq
     }
     if (plan.fields_file.empty()) return simulation;
     try {
-        recorder = std::make_unique<FieldRecorder>(scene.key(), scene.parameters, plan.fields.first,
-                                                   plan.fields.second, plan.fields_file);
+        recorder = std::make_unique<FieldRecorder>(scene.key(), scene.parameters, plan.fields.first, plan.fields.second,
+                                                   plan.fields_file);
     } catch (const std::exception& e) {
         csv->discard();  // refused before any row: the old output stays as it was
         std::cerr << e.what() << "\n";
@@ -235,6 +245,10 @@ int run(const CLI::App& sub, const RunOptions& o)
 {
     RunPlan plan;
     if (!plan_run(sub, o, plan)) return exit_bad_input;
+    if (o.print_scene) {
+        std::cout << effective_scene_toml(plan.scene);
+        return exit_ok;
+    }
     std::unique_ptr<CsvWriter> csv;
     std::unique_ptr<FieldRecorder> recorder;
     const std::unique_ptr<Simulation> simulation = prepare(plan, o.durable, csv, recorder);
@@ -250,7 +264,12 @@ int run(const CLI::App& sub, const RunOptions& o)
     {
         Progress progress(plan.scene.output.t_end, ::isatty(STDERR_FILENO) ? simulation->faster_stepper_hint() : "");
         CsvWriter& writer = *csv;
-        summary = simulation->run([&](const Row& r) { writer.write(r); progress.row(r.t); }, stop);
+        summary = simulation->run(
+            [&](const Row& r) {
+                writer.write(r);
+                progress.row(r.t);
+            },
+            stop);
     }
     csv->finish();
     std::cout << format_summary(summary, plan.scene);
@@ -265,6 +284,17 @@ int run(const CLI::App& sub, const RunOptions& o)
         }
         std::cout << "fields      " << recorder->path() << "\n";
     }
+    // Beside the rows once they (and the fields) are in place, whatever the run's end: a run stopped early says so
+    // in it too.
+    const std::string metadata = metadata_path(csv->path());
+    if (const std::string why = write_metadata(
+            metadata, run_metadata(plan.scene, summary, csv->path(), row_header(optional_columns_of(plan.scene)),
+                                   csv->rows(), recorder ? recorder->path() : ""));
+        !why.empty()) {
+        std::cerr << why << "\n";
+        return exit_stopped;
+    }
+    std::cout << "metadata    " << metadata << "\n";
     if (!summary.completed) {
         std::cerr << "hubbeam: stopped at t = " << summary.t_reached << " s: " << summary.failure << " (" << csv->rows()
                   << " rows kept in " << csv->path() << ")\n";
@@ -287,7 +317,8 @@ Command add_run_command(CLI::App& app)
         "stderr, nothing computed; also an output that is the scene, a table it reads or the other output, a FIFO, "
         "device, directory, symbolic link or read-only file, or a file another hubbeam is writing), 129/130/131/143 "
         "interrupted by SIGHUP/SIGINT/SIGQUIT/SIGTERM (rows so far kept). The output is written to "
-        "DIR/.NAME.tmp-PID and renamed over FILE when the run ends.");
+        "DIR/.NAME.tmp-PID and renamed over FILE when the run ends; FILE.hubbeam.json beside it says where it came "
+        "from (version, variant, effective scene, stepper, summary).");
     add_run_options(*run_cmd, *options);
     return {run_cmd, [run_cmd, options] { return run(*run_cmd, *options); }};
 }

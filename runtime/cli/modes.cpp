@@ -3,16 +3,19 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
+#include <hubbeam/linearize.hpp>
+#include <hubbeam/make_model.hpp>
 #include <map>
 #include <memory>
 #include <ostream>
 #include <utility>
 
-#include <hubbeam/linearize.hpp>
-#include <hubbeam/make_model.hpp>
+#include "io/metadata.hpp"
 #include "io/npz.hpp"
 #include "io/output.hpp"
 #include "io/output_file.hpp"
@@ -35,15 +38,20 @@ constexpr std::size_t max_spin_rates = 10000;
 
 /// The angle a gravity scene's hub is held at for its modes (rad): the scene's angle at t = 0 (a held hub's
 /// angle, theta0 of the other drives; 0 is a horizontal beam).
-double held_angle(const Scene& scene) { return scene.motion.initial_theta(); }
+double held_angle(const Scene& scene)
+{
+    return scene.motion.initial_theta();
+}
 
 /// Refuses a spin rate for a scene with gravity: its beam's weight turns with the hub, so there is no steady spin.
 void check_steady(const Scene& scene, const std::vector<double>& omegas)
 {
     for (const double omega : omegas)
         if (scene.parameters.g != 0.0 && omega != 0.0)
-            throw ModesOptionError("--omega: with gravity only 0 (the hub held; at a spin rate the motion is periodic, "
-                                   "not steady), got " + shortest(omega));
+            throw ModesOptionError(
+                "--omega: with gravity only 0 (the hub held; at a spin rate the motion is periodic, "
+                "not steady), got " +
+                shortest(omega));
 }
 
 }  // namespace
@@ -69,7 +77,8 @@ std::vector<double> parse_spin_rates(const std::string& option, const std::strin
         const auto count = static_cast<long>(std::floor((last - first) / step * (1.0 + 1e-12)));
         for (long k = 0; k <= count; ++k) add_unique(rates, first + static_cast<double>(k) * step);
     }
-    if (rates.size() > max_spin_rates) bad(option, "at most 10000 spin rates", std::to_string(rates.size()) + " of them");
+    if (rates.size() > max_spin_rates)
+        bad(option, "at most 10000 spin rates", std::to_string(rates.size()) + " of them");
     std::sort(rates.begin(), rates.end());  // a Campbell table reads, and its modes are tracked, by increasing rate
     return rates;
 }
@@ -106,6 +115,10 @@ ModesOptions parse_modes_options(const ModesArgs& args, const Scene& scene)
         bad("--plot", "-o FILE as well (the diagram is drawn from that CSV)", printable(o.plot));
     // Every output checked before anything is computed: none may be the scene or another output.
     std::vector<NamedPath> outputs = {{o.output, "-o"}, {o.critical, "--critical"}};
+    for (const std::string& file : {o.output, o.critical})
+        if (!file.empty())
+            outputs.push_back(
+                {metadata_path(file), (file == o.output ? "-o" : "--critical") + std::string("'s metadata")});
     if (!o.plot.empty())
         for (const char* ext : {".png", ".svg", ".gp"}) outputs.push_back({o.plot + ext, "--plot"});
     check_outputs(scene_inputs(scene), outputs);
@@ -148,18 +161,23 @@ private:
     void add_critical(const ModesBlock& block);
     void print_ending() const;
     void draw() const;
+    /// The metadata beside each CSV written: the scene, the rates, methods, Ny and harmonics, the variants.
+    void write_metadata_files() const;
 
+    const Scene& scene_;
     const ModesOptions& o_;
     std::ostream& out_;
     bool damped_;  // damping adds the undamped frequency |lambda| and the damping ratio to the printed table
     std::unique_ptr<CsvWriter> csv_, critical_csv_;
     long rows_ = 0, crossings_ = 0;
-    std::string harmonics_;                // as typed for --plot, and for the table's heading
+    std::string harmonics_;               // as typed for --plot, and for the table's heading
     std::string speeds_text_, warnings_;  // after the table: each variant's critical speeds and doubtful pairings
+    std::vector<std::string> variants_;   // each block's variant, for the metadata
+    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
 ModesReport::ModesReport(const Scene& scene, const ModesOptions& o, std::ostream& out)
-    : o_(o), out_(out), damped_(scene.key().extras.damping || scene.control)
+    : scene_(scene), o_(o), out_(out), damped_(scene.key().extras.damping || scene.control)
 {
     if (!o.output.empty()) csv_ = std::make_unique<CsvWriter>(o.output, modes_header());
     if (!o.critical.empty()) critical_csv_ = std::make_unique<CsvWriter>(o.critical, critical_header());
@@ -179,11 +197,13 @@ void ModesReport::heading() const
 
 void ModesReport::add(const ModesBlock& block)
 {
+    variants_.push_back(block.key.name());
     add_modes(block);
     add_critical(block);
     if (const SpinMode* least = least_certain(block.modes))
-        warnings_ += "note: " + block.key.name() + ": " + least->label + " continues at Omega = " +
-                     shortest(least->omega) + " rad/s with a MAC of only " + shortest(least->mac) +
+        warnings_ += "note: " + block.key.name() + ": " + least->label +
+                     " continues at Omega = " + shortest(least->omega) + " rad/s with a MAC of only " +
+                     shortest(least->mac) +
                      " to its shape at the rate before: the rates may step over a crossing or a veering; "
                      "refine --omega there to follow it\n";
 }
@@ -243,9 +263,32 @@ void ModesReport::finish()
     print_ending();
     for (CsvWriter* file : {csv_.get(), critical_csv_.get()})
         if (file && !file->finish()) throw std::runtime_error(file->error());
+    write_metadata_files();
     if (csv_) out_ << "modes: " << o_.output << "\n";
     if (critical_csv_) out_ << "critical speeds: " << o_.critical << "\n";
     if (!o_.plot.empty()) draw();
+}
+
+void ModesReport::write_metadata_files() const
+{
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    std::vector<std::string> methods;
+    for (const Method m : o_.methods) methods.push_back(to_string(m));
+    std::vector<double> ny(o_.ny.begin(), o_.ny.end()), harmonics(o_.harmonics.begin(), o_.harmonics.end());
+    for (const CsvWriter* file : {csv_.get(), critical_csv_.get()}) {
+        if (!file) continue;
+        JsonObject m = scene_metadata("modes", scene_);
+        m.text("output", std::filesystem::path(file->path()).filename().string())
+            .integer("rows", file->rows())
+            .texts("variants", variants_)
+            .numbers("omega", o_.omegas)
+            .texts("methods", methods)
+            .numbers("ny", ny)
+            .numbers("harmonics", harmonics)
+            .number("wall_seconds", wall);
+        if (const std::string why = write_metadata(metadata_path(file->path()), m.str() + "\n"); !why.empty())
+            throw std::runtime_error(why);
+    }
 }
 
 void ModesReport::print_ending() const
@@ -296,7 +339,13 @@ void run_linearize(const Scene& scene, double omega, const std::string& prefix, 
         for (const char* name : {"A", "B", "C", "D"}) outputs.push_back({p + "-" + name + ".csv", "-o"});
     const std::size_t csv_count = outputs.size();
     for (const std::string& p : prefixes) outputs.push_back({p + ".npz", "-o"});  // the same model for numpy
-    check_outputs(scene_inputs(scene), outputs);  // before anything is computed
+    const std::string metadata = metadata_path(prefix);
+    check_outputs(scene_inputs(scene), [&] {
+        std::vector<NamedPath> all = outputs;
+        all.push_back({metadata, "-o's metadata"});
+        return all;
+    }());  // before anything is computed
+    const auto start = std::chrono::steady_clock::now();
     check_steady(scene, {omega});
     const VariantKey key = scene.key();
     const std::unique_ptr<Model> model = make_model(key, scene.parameters, scene.source);
@@ -343,6 +392,21 @@ void run_linearize(const Scene& scene, double omega, const std::string& prefix, 
     std::vector<OutputFile*> set;
     for (const auto& f : files) set.push_back(f.get());
     if (const std::string why = commit_together(set); !why.empty()) throw std::runtime_error(why);
+    {
+        std::vector<std::string> names;
+        for (const NamedPath& f : outputs) names.push_back(std::filesystem::path(f.path).filename().string());
+        JsonObject m = scene_metadata("linearize", scene);
+        m.texts("files", names)
+            .number("omega", omega)
+            .boolean("held", steady.held)
+            .text("source", model->source())
+            .texts("states", ss.states)
+            .texts("inputs", ss.inputs)
+            .texts("outputs", ss.outputs)
+            .number("wall_seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        if (const std::string why = write_metadata(metadata, m.str() + "\n"); !why.empty())
+            throw std::runtime_error(why);
+    }
     out << "variant     " << key.name() << " (" << model->source() << ")\n";
     if (steady.held)
         out << "held        at theta = " << shortest(steady.u.theta) << " rad under gravity, tip_uy "
@@ -357,7 +421,8 @@ void run_linearize(const Scene& scene, double omega, const std::string& prefix, 
         << "outputs     tip_uy (m), theta (rad)\n"
         << "matrices    " << prefix << "-{A,B,C,D}.csv (x' = A x + B v, y = C x + D v, deviations from the "
         << (steady.held ? "equilibrium" : "steady spin") << (scene.control ? "; the closed loop" : "") << ")\n"
-        << "numpy       " << prefix << ".npz (A, B, C, D, states, inputs, outputs)\n";
+        << "numpy       " << prefix << ".npz (A, B, C, D, states, inputs, outputs)\n"
+        << "metadata    " << metadata << "\n";
     if (scene.control)
         out << "open loop   " << prefix << "-open-{A,B,C,D}.csv and " << prefix
             << "-open.npz (input tau, N m: the hub without its controller)\n";

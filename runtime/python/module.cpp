@@ -15,6 +15,8 @@
 #include <atomic>
 #include <chrono>
 #include <exception>
+#include <hubbeam/hubbeam.hpp>
+#include <hubbeam/make_model.hpp>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -24,10 +26,11 @@
 #include <variant>
 #include <vector>
 
-#include <hubbeam/hubbeam.hpp>
-#include <hubbeam/make_model.hpp>
 #include "analysis/modes_table.hpp"
+#include "io/metadata.hpp"
 #include "io/output.hpp"
+#include "io/output_file.hpp"
+#include "io/scene_print.hpp"
 #include "on_demand/on_demand.hpp"
 #include "text/printable.hpp"
 #include "text/shortest.hpp"
@@ -407,6 +410,9 @@ py::dict run(const std::string& text, const std::string& name, const Keywords& k
     const double in_process = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     py::dict out = summary_dict(s, scene);
     out["columns"] = row_header(columns);
+    // Where the rows came from, as hubbeam run writes it beside its output (Result.save names the file).
+    out["metadata"] = run_metadata(scene, s, "", row_header(columns), static_cast<long>(rows.size() / width));
+    out["scene_file"] = scene.path;
     out["data"] = rows_array(std::move(rows), width);
     out["in_process_seconds"] = in_process;
     return out;
@@ -479,6 +485,7 @@ py::dict modes(const std::string& text, const std::string& name, const Keywords&
     const ModesBlock block = modes_of(scene, omegas, harmonics, interrupts);
     py::dict out;
     out["variant"] = block.key.name();
+    out["scene_file"] = scene.path;
     add_columns(out, modes_columns(), block, block.modes);
     py::dict critical;
     add_columns(critical, critical_columns(), block, block.critical);
@@ -528,6 +535,31 @@ py::dict linearize(const std::string& text, const std::string& name, const Keywo
     return out;
 }
 
+/// A run's rows saved as hubbeam run writes them, with their metadata (Result.save); ValueError for an output
+/// refused before anything is written, OSError for one that could not be written.
+void save(const std::string& path, const py::array_t<double, py::array::c_style | py::array::forcecast>& data,
+          const std::string& header, const std::string& metadata)
+{
+    if (data.ndim() != 2) throw py::value_error("data: expected a rows x columns array");
+    std::string why;
+    try {
+        why = save_rows(path, data.data(), static_cast<std::size_t>(data.shape(0)),
+                        static_cast<std::size_t>(data.shape(1)), header, metadata);
+    } catch (const OutputRefused& e) {
+        throw py::value_error(e.what());
+    }
+    if (!why.empty()) {
+        PyErr_SetString(PyExc_OSError, why.c_str());
+        throw py::error_already_set();
+    }
+}
+
+/// The effective scene as TOML: every key, defaults filled, the keywords applied (hubbeam.effective_scene).
+std::string effective_scene_text(const std::string& text, const std::string& name, const Keywords& keywords)
+{
+    return effective_scene_toml(scene_of(text, name, keywords));
+}
+
 /// Every scene key with what it takes and its kind ("number", "integer", "word" or "text"), for the keyword
 /// arguments.
 std::vector<std::tuple<std::string, std::string, std::string>> keys()
@@ -564,6 +596,10 @@ PYBIND11_MODULE(_core, m)
     m.def(
         "check", [](const std::string& text, const std::string& name) { scene_of(text, name, {}); },
         "Parses and checks a scene (ValueError if it is bad)", py::arg("text"), py::arg("name"));
+    m.def("save_rows", &save, "Writes a run's rows and metadata as hubbeam run does", py::arg("path"), py::arg("data"),
+          py::arg("header"), py::arg("metadata"));
+    m.def("effective_scene", &effective_scene_text, "The effective scene as TOML", py::arg("text"), py::arg("name"),
+          py::arg("overrides"));
     m.def("scene_keys", &keys, "Every scene key (dotted name) and what it takes");
     m.def(
         "generator_version", [] { return variant_cache_dir().filename().string(); },

@@ -69,4 +69,14 @@ std::string plot_script(const PlotArgs& args);
 /// written; returns what went wrong with gnuplot or the disk (the old figures kept), or empty.
 std::string draw_plot(const PlotArgs& args);
 
+/// hubbeam plot animate: the gnuplot script that draws the beam of a fields CSV (args.files[0]) frame by frame into
+/// the GIF gif, turned by the hub angle of a run CSV (args.files[1]) where given; in three dimensions where the
+/// fields have u_z (a blade). Reads and checks the files; throws PlotInputError.
+std::string animation_script(const PlotArgs& args, const std::string& gif);
+
+/// hubbeam plot animate: animation_script to PREFIX.gp, then gnuplot draws PREFIX.gif, put in place only when whole.
+/// Bad input throws PlotInputError, a refused output OutputRefused, nothing written; returns what went wrong with
+/// gnuplot or the disk (the old animation kept), or empty.
+std::string draw_animation(const PlotArgs& args);
+
 }  // namespace hubbeam

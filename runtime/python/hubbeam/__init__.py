@@ -4,6 +4,7 @@
     r = hubbeam.run("cases/spinup_omega4.toml", method="fem", ny=8)
     r.t, r.tip_uy          # numpy arrays (views of one array r.data, no copy per row)
     r.completed, r.variant, r.source, r.max_abs_tip_uy, r.jacobi_drift, r.wall_seconds
+    r.plot(); r.save("run.csv"); hubbeam.load("run.csv")   # a figure; the rows and their metadata, read back
 """
 from __future__ import annotations
 
@@ -27,8 +28,9 @@ except ImportError as _missing:
         f"use the Python it was built for (/usr/bin/python3 on Debian) or a virtual environment over it: "
         f"/usr/bin/python3 -m venv --system-site-packages DIR (docs/python.md)") from _missing
 
-__all__ = ["run", "modes", "linearize", "sweep", "Result", "RunStopped", "scene_keys", "generator_version", "printable",
-           "Objective", "max_deflection", "residual_vibration", "final_error", "PARAMETER_KEYS"]
+__all__ = ["run", "modes", "linearize", "sweep", "load", "plot_campbell", "effective_scene", "Result", "RunStopped",
+           "scene_keys", "generator_version", "printable", "Objective", "max_deflection", "residual_vibration",
+           "final_error", "PARAMETER_KEYS"]
 __version__ = _core.__version__
 
 _KEYS = {name: expected for name, expected, kind in _core.scene_keys()}  # dotted name -> what it takes
@@ -78,6 +80,7 @@ class RunStopped(RuntimeError):
 
 # The unit of each column of a run's rows (the columns themselves come from the core, in its order).
 UNITS = {"t": "s", "theta": "rad", "theta_dot": "rad/s", "tip_uy": "m", "tip_ux1": "m", "tip_ux": "m",
+         "tip_uz": "m", "tip_phi": "rad",
          "kinetic": "J", "potential": "J", "momentum": "kg m^2/s", "jacobi": "J",
          "tau": "N m", "theta_ref": "rad", "controller_integral": "rad s", "dissipated": "J", "work": "J"}
 
@@ -90,6 +93,9 @@ class Result:
         self.data: np.ndarray = raw.pop("data")
         self.columns: tuple[str, ...] = tuple(raw.pop("columns").split(","))
         self.summary_text: str = raw.pop("summary_text")
+        # Where the rows came from (the JSON hubbeam run writes beside its output): save() writes it, load() reads it.
+        self.metadata: dict = json.loads(raw.pop("metadata"))
+        self.scene_file: str = raw.pop("scene_file")
         self.summary: dict = raw
         for name, value in raw.items():
             setattr(self, name, value)
@@ -116,9 +122,93 @@ class Result:
         df.attrs["summary"] = dict(self.summary)
         return df
 
+    def plot(self, what: Any = "tip", *, ax: Any = None, label: str | None = None):
+        """Draws columns against time with matplotlib, one panel per unit, and returns the figure: what is "tip"
+        (tip_uy; tip_uz and tip_phi for a blade), "axial", "hub" (theta, theta_dot, tau), "energies", a column's
+        name or a list of them; ax draws into given Axes (one per panel) to compare runs; label names this run in
+        the legend (default: the scene's name and the variant). Needs matplotlib (python3-matplotlib)."""
+        from .plots import plot_result
+        return plot_result(self, what, ax=ax, label=label)
+
+    def save(self, path: str | os.PathLike) -> str:
+        """Writes the rows as hubbeam run does (CSV, or a NumPy array where path ends in .npy, with its column names
+        in NAME.columns.txt) and the metadata beside them in PATH.hubbeam.json, all put in place together;
+        hubbeam.load(path) reads them back. Refuses (ValueError) what hubbeam run refuses: a symbolic link, a
+        read-only file, a folder. Returns the path."""
+        path = os.fspath(path)
+        if not path.endswith((".csv", ".npy")):
+            raise ValueError(f"path: expected a file name ending in .csv or .npy, got {printable(repr(path), 200)}")
+        meta = dict(self.metadata, output=os.path.basename(path), rows=len(self.data))
+        meta.setdefault("scene", {}).setdefault("output", {})["file"] = path
+        _core.save_rows(path, self.data, ",".join(self.columns), json.dumps(meta, indent=2) + "\n")
+        return path
+
     def __repr__(self) -> str:
         state = "completed" if self.completed else f"stopped at t = {self.t_reached:g} s"
         return f"<hubbeam.Result {self.variant}, {len(self.data)} rows, {state}>"
+
+
+# The summary's numbers that the metadata may hold as "inf", "-inf" or "nan" (JSON has no such numbers).
+_SUMMARY_NUMBERS = ("t_reached", "max_abs_tip_uy", "t_steady", "jacobi_drift", "vibration_energy", "estimated_error",
+                    "wall_seconds", "check_wall_seconds")
+METADATA_SUFFIX = ".hubbeam.json"
+
+
+def load(path: str | os.PathLike) -> Result:
+    """Reads a run's output back, CSV or .npy, with the metadata written beside it (PATH.hubbeam.json, by hubbeam run
+    or Result.save) into the Result that hubbeam.run returned: its columns, summary, to_pandas() and plot(). Raises
+    FileNotFoundError without the metadata, ValueError where the metadata is not a run's or does not describe the
+    file (another row count or header: the file was changed or replaced since)."""
+    path = os.fspath(path)
+    meta_path = path + METADATA_SUFFIX
+    try:
+        with open(meta_path, encoding="utf-8") as f:
+            meta = json.load(f)
+    except FileNotFoundError:
+        raise FileNotFoundError(f"{printable(meta_path)}: not found: hubbeam.load reads a run's output with the "
+                                f"metadata that hubbeam run and Result.save write beside it") from None
+    except (json.JSONDecodeError, UnicodeDecodeError) as e:
+        raise ValueError(f"{printable(meta_path)}: expected hubbeam's metadata (JSON), got {printable(e)}") from None
+    if not isinstance(meta, dict) or meta.get("format") != "hubbeam-metadata 1":
+        raise ValueError(f"{printable(meta_path)}: expected \"format\": \"hubbeam-metadata 1\", got "
+                         f"{printable(repr(meta.get('format') if isinstance(meta, dict) else meta), 80)}")
+    if meta.get("command") != "run":
+        raise ValueError(f"{printable(meta_path)}: expected the metadata of a run, got that of "
+                         f"{printable(repr(meta.get('command')), 40)} (hubbeam.load reads runs)")
+    columns = list(meta["columns"])
+    if path.endswith(".npy"):
+        data = np.load(path, allow_pickle=False)
+        with open(os.path.splitext(path)[0] + ".columns.txt", encoding="utf-8") as f:
+            header = f.readline().rstrip("\n").split(",")
+    else:
+        with open(path, encoding="utf-8") as f:
+            header = f.readline().rstrip("\n").split(",")
+            data = np.loadtxt(f, delimiter=",", ndmin=2).reshape(-1, len(header))
+    if header != columns or data.ndim != 2 or data.shape != (meta["rows"], len(columns)):
+        raise ValueError(f"{printable(path)}: expected the {meta['rows']} rows of columns {','.join(columns)} that "
+                         f"{printable(meta_path)} describes, got {data.shape[0]} rows of {','.join(header)}: the file "
+                         f"was changed or replaced after its metadata was written")
+    raw = dict(meta["summary"])
+    for k in _SUMMARY_NUMBERS:
+        raw[k] = float(raw[k])
+    raw.update(data=np.ascontiguousarray(data, dtype=float), columns=",".join(columns),
+               metadata=json.dumps(meta), scene_file=meta["scene_file"])
+    return Result(raw)
+
+
+def effective_scene(scene: Any, **keys: Any) -> str:
+    """The scene as TOML with every key it runs with, defaults filled and the keywords applied (what
+    hubbeam run --print-scene prints); a file saved from it runs the same."""
+    text, name = _source(scene)
+    return _core_call(_core.effective_scene, text, name, _overrides(keys))
+
+
+def plot_campbell(m: dict, **options: Any):
+    """A Campbell diagram of modes(...) with matplotlib: the tracked modes' frequencies (Hz) against the spin rate,
+    the excitation lines n x Omega and the critical speeds; returns the figure (hubbeam.plots.plot_campbell for the
+    options: kinds, harmonics, ax, label). Needs matplotlib (python3-matplotlib)."""
+    from .plots import plot_campbell as draw
+    return draw(m, **options)
 
 
 def _plain(value: Any) -> Any:

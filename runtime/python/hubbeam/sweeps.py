@@ -612,18 +612,41 @@ def _typed(column: str, text: str, folder: str) -> Any:
 
 # --- the cluster --------------------------------------------------------------------------------------------------
 
+def _notebook_bar(total: int, before: int):
+    """A tqdm progress bar where the sweep runs in a notebook (an IPython kernel, whose standard error is no terminal
+    to rewrite a line on) and tqdm is installed (python3-tqdm); else None. tqdm's widget where ipywidgets is there
+    too, its text bar otherwise."""
+    if "ipykernel" not in sys.modules:
+        return None
+    try:
+        try:
+            import ipywidgets  # noqa: F401  (tqdm.notebook draws with it)
+            from tqdm.notebook import tqdm
+        except ImportError:
+            from tqdm import tqdm
+    except ImportError:
+        return None
+    return tqdm(total=total, initial=before, desc="sweep", unit="point", file=sys.stderr)
+
+
 class _Progress:
-    """One line on standard error per finished point, rewritten in place on a terminal."""
+    """One line on standard error per finished point, rewritten in place on a terminal; a tqdm bar in a notebook."""
 
     def __init__(self, total: int, before: int, enabled: bool):
         self.total, self.before, self.enabled = total, before, enabled
         self.done = self.failed = 0
         self.start = time.perf_counter()
         self.tty = enabled and sys.stderr.isatty()
+        self.bar = _notebook_bar(total, before) if enabled else None
 
     def point(self, ok: bool) -> None:
         self.done += 1
         self.failed += 0 if ok else 1
+        if self.bar is not None:
+            self.bar.update(1)
+            if self.failed:
+                self.bar.set_postfix(not_ok=self.failed)
+            return
         if not self.enabled:
             return
         elapsed = time.perf_counter() - self.start
@@ -633,7 +656,9 @@ class _Progress:
         print(("\r" + line + "\033[K") if self.tty else line, end="" if self.tty else "\n", file=sys.stderr, flush=True)
 
     def close(self) -> None:
-        if self.tty and self.done:
+        if self.bar is not None:
+            self.bar.close()
+        elif self.tty and self.done:
             print(file=sys.stderr)
 
 

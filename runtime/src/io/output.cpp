@@ -1,19 +1,19 @@
 // CSV rows (buffered, written through an OutputFile: a temporary file renamed into place) and the run summary.
 #include "io/output.hpp"
-#include "io/npz.hpp"
-
-#include "text/printable.hpp"
-#include "text/shortest.hpp"
 
 #include <bit>
 #include <cerrno>
-#include <cstdint>
 #include <charconv>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <sstream>
 #include <stdexcept>
 
+#include "io/metadata.hpp"
+#include "io/npz.hpp"
+#include "text/printable.hpp"
+#include "text/shortest.hpp"
 
 namespace hubbeam {
 
@@ -24,7 +24,8 @@ namespace {
 constexpr std::size_t buffer_size = std::size_t{1} << 16;
 // The longest number is max_shortest_chars (-1.7976931348623157e+308): one per column, the commas between them
 // and the newline, and the scratch write_shortest may leave past the last number.
-constexpr std::size_t max_line = (row_width + optional_width + max_derived_columns) * (max_shortest_chars + 1) + shortest_room;
+constexpr std::size_t max_line =
+    (row_width + optional_width + max_derived_columns) * (max_shortest_chars + 1) + shortest_room;
 // Buffered rows reach the file at the latest this long after the previous chunk: a long run's progress is
 // visible, and at most this much wall time of rows is lost if the process is killed outright.
 constexpr auto flush_interval = std::chrono::milliseconds(100);
@@ -71,7 +72,10 @@ char* format_row(char* out, const Row& row, const ColumnSet& set)
 
 CsvWriter::CsvWriter(const std::string& path) : CsvWriter(path, row_header()) {}
 
-bool is_npy_path(const std::string& path) { return std::filesystem::path(path).extension() == ".npy"; }
+bool is_npy_path(const std::string& path)
+{
+    return std::filesystem::path(path).extension() == ".npy";
+}
 
 std::string npy_columns_path(const std::string& path)
 {
@@ -111,20 +115,25 @@ void CsvWriter::write_header(const std::string& header)
 {
     // The header is written at once, so that an output that cannot take anything (a full disk) stops the run
     // at its first row instead of after all the computing.
-    if (header.size() >= buffer_size / 2) throw std::logic_error("CsvWriter: a header of " + std::to_string(header.size()) + " bytes");
+    if (header.size() >= buffer_size / 2)
+        throw std::logic_error("CsvWriter: a header of " + std::to_string(header.size()) + " bytes");
     std::memcpy(buffer_.get(), header.data(), header.size());
     used_ = header.size();
     buffer_[used_++] = '\n';
     flush();
 }
 
-const std::string& CsvWriter::writing_path() const { return file_->temp_path(); }
+const std::string& CsvWriter::writing_path() const
+{
+    return file_->temp_path();
+}
 
 void CsvWriter::write_line(std::string_view line)
 {
     if (columns_file_) throw std::logic_error("CsvWriter: a text line for an .npy file");
     if (!ok_ || finished_) return;
-    if (line.size() >= buffer_size / 2) throw std::logic_error("CsvWriter: a line of " + std::to_string(line.size()) + " bytes");
+    if (line.size() >= buffer_size / 2)
+        throw std::logic_error("CsvWriter: a line of " + std::to_string(line.size()) + " bytes");
     if (buffer_size - used_ <= line.size()) flush();
     std::memcpy(buffer_.get() + used_, line.data(), line.size());
     used_ += line.size();
@@ -229,6 +238,50 @@ std::string csv_line(const Row& row, const ColumnSet& columns)
     return std::string(line, format_row(line, row, columns));
 }
 
+std::string save_rows(const std::string& path, const double* data, std::size_t rows, std::size_t width,
+                      const std::string& header, const std::string& metadata)
+{
+    const bool npy = is_npy_path(path);
+    const std::string columns_path = npy ? npy_columns_path(path) : "", json_path = metadata_path(path);
+    check_outputs({}, {{path, path}, {columns_path, "its column names"}, {json_path, "its metadata"}});
+    std::string bytes;
+    if (npy) {
+        bytes = rows_npy_header(static_cast<long>(rows), width);
+        const std::size_t start = bytes.size();
+        bytes.resize(start + rows * width * sizeof(double));
+        char* out = bytes.data() + start;
+        for (std::size_t i = 0; i < rows * width; ++i) {
+            const auto bits = std::bit_cast<std::uint64_t>(data[i]);
+            for (int b = 0; b < 8; ++b) *out++ = static_cast<char>(bits >> (8 * b));  // '<f8' on any host
+        }
+    } else {
+        bytes = header + "\n";
+        for (std::size_t i = 0; i < rows; ++i) {
+            for (std::size_t j = 0; j < width; ++j) {
+                if (j > 0) bytes += ',';
+                append_shortest(bytes, data[i * width + j]);
+            }
+            bytes += '\n';
+        }
+    }
+    std::vector<std::unique_ptr<OutputFile>> files;
+    try {
+        files.push_back(std::make_unique<OutputFile>(path));
+        (void)files.back()->write(bytes);  // a failed write is reported by commit_together, before any rename
+        if (npy) {
+            files.push_back(std::make_unique<OutputFile>(columns_path));
+            (void)files.back()->write(header + "\n");
+        }
+        files.push_back(std::make_unique<OutputFile>(json_path));
+        (void)files.back()->write(metadata);
+    } catch (const std::exception& e) {
+        return e.what();
+    }
+    std::vector<OutputFile*> set;
+    for (const auto& f : files) set.push_back(f.get());
+    return commit_together(set);
+}
+
 std::string csv_field(std::string_view text)
 {
     if (text.find_first_of(",\"\n") == std::string_view::npos) return std::string(text);
@@ -247,20 +300,27 @@ std::string format_summary(const RunSummary& r, const Scene& scene)
     } else {
         std::ostringstream motion;  // " (what the motion is", closed below
         switch (m.kind) {
-        case Motion::Kind::spin_up:
-            motion << " (spin-up to Omega0 = " << shortest(m.omega0) << " rad/s in T_s = " << shortest(m.spin_time) << " s";
-            break;
-        case Motion::Kind::torque:
-            motion << " (hub torque tau0 = " << shortest(m.tau0) << " N m for T_t = " << shortest(m.torque_time) << " s";
-            break;
-        case Motion::Kind::held: motion << " (hub held at theta = " << shortest(m.angle) << " rad"; break;
-        case Motion::Kind::step: motion << " (step to " << shortest(m.angle) << " rad at t = 0"; break;
-        case Motion::Kind::table:
-        case Motion::Kind::torque_table:
-            motion << (m.kind == Motion::Kind::table ? " (hub angle from " : " (hub torque from ") << printable(m.table_file, 200)
-                << ", " << m.table->times().size() << " rows to t = " << shortest(m.table->last_time()) << " s, "
-                << (m.kind == Motion::Kind::table ? "natural cubic spline" : "linear between rows");
-            break;
+            case Motion::Kind::spin_up:
+                motion << " (spin-up to Omega0 = " << shortest(m.omega0) << " rad/s in T_s = " << shortest(m.spin_time)
+                       << " s";
+                break;
+            case Motion::Kind::torque:
+                motion << " (hub torque tau0 = " << shortest(m.tau0) << " N m for T_t = " << shortest(m.torque_time)
+                       << " s";
+                break;
+            case Motion::Kind::held:
+                motion << " (hub held at theta = " << shortest(m.angle) << " rad";
+                break;
+            case Motion::Kind::step:
+                motion << " (step to " << shortest(m.angle) << " rad at t = 0";
+                break;
+            case Motion::Kind::table:
+            case Motion::Kind::torque_table:
+                motion << (m.kind == Motion::Kind::table ? " (hub angle from " : " (hub torque from ")
+                       << printable(m.table_file, 200) << ", " << m.table->times().size()
+                       << " rows to t = " << shortest(m.table->last_time()) << " s, "
+                       << (m.kind == Motion::Kind::table ? "natural cubic spline" : "linear between rows");
+                break;
         }
         if (m.kind != Motion::Kind::held && m.theta0 != 0.0) motion << ", theta0 = " << shortest(m.theta0) << " rad";
         const std::string what = motion.str();
@@ -268,8 +328,9 @@ std::string format_summary(const RunSummary& r, const Scene& scene)
     }
     out << "variant     " << r.variant << " (" << r.source << ")\n";
     out << "algebra     " << r.algebra << "\n";
-    out << "stepper     " << r.stepper << (r.stepper_why.empty() ? "" : " (" + r.stepper_why + ")") << ", rtol " << shortest(scene.solver.rtol) << ", atol "
-        << shortest(scene.solver.atol) << ", h0 " << shortest(scene.solver.h0) << " s, "
+    out << "stepper     " << r.stepper << (r.stepper_why.empty() ? "" : " (" + r.stepper_why + ")") << ", rtol "
+        << shortest(scene.solver.rtol) << ", atol " << shortest(scene.solver.atol) << ", h0 "
+        << shortest(scene.solver.h0) << " s, "
         << (scene.solver.stepping == Stepping::free ? "free steps (rows interpolated)" : "a step ends at every row")
         << "\n";
     if (!r.newton.empty()) out << "newton      " << r.newton << "\n";

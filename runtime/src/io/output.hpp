@@ -3,13 +3,13 @@
 
 #include <chrono>
 #include <cstddef>
+#include <hubbeam/config.hpp>
+#include <hubbeam/scene.hpp>
+#include <hubbeam/simulate.hpp>
 #include <memory>
 #include <string>
 #include <string_view>
 
-#include <hubbeam/config.hpp>
-#include <hubbeam/scene.hpp>
-#include <hubbeam/simulate.hpp>
 #include "io/output_file.hpp"
 
 namespace hubbeam {
@@ -84,7 +84,7 @@ private:
     /// Writes the .npy header with the row count (at the start of the file, over the placeholder).
     void write_npy_header();
 
-    std::string path_;  // as given, for messages
+    std::string path_;   // as given, for messages
     ColumnSet columns_;  // a run's optional columns written by write(Row)
     std::unique_ptr<OutputFile> file_;
     std::unique_ptr<OutputFile> columns_file_;  // an .npy file's column names; null for CSV
@@ -105,6 +105,14 @@ std::string csv_field(std::string_view text);
 
 /// One CSV line of row (no newline), columns as in row_header(columns): the text CsvWriter writes for it.
 std::string csv_line(const Row& row, const ColumnSet& columns = {});
+
+/// A run's rows computed already (a Python Result) written as hubbeam run writes them: CSV with header as its first
+/// line, or an .npy file and its column names when is_npy_path(path), and metadata (JSON text) in
+/// metadata_path(path); rows x width doubles in C order at data. The outputs are checked as check_outputs does
+/// (OutputRefused) and put in place together: a failure leaves every target as it was. Returns "" or one line
+/// saying what failed.
+std::string save_rows(const std::string& path, const double* data, std::size_t rows, std::size_t width,
+                      const std::string& header, const std::string& metadata);
 
 /// Short multi-line summary of a run for the terminal: scene, variant and whether generated or assembled,
 /// stepper and tolerances, max |tip_uy|, steps, RHS evaluations, wall time and, if the run stopped early,

@@ -1,0 +1,194 @@
+"""Figures from Python (docs/python.md, "Figures"): what Result.plot and plot_campbell draw, read back from the
+figure's own lines and labels (never its bytes), and the package's import without matplotlib. Needs SOURCE_DIR."""
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+import matplotlib
+
+matplotlib.use("Agg")
+import numpy as np  # noqa: E402
+
+import hubbeam  # noqa: E402
+
+SOURCE = os.environ["SOURCE_DIR"]
+SPINUP = os.path.join(SOURCE, "cases", "spinup_omega4.toml")
+
+
+def legend_texts(ax):
+    legend = ax.get_legend()
+    return [t.get_text() for t in legend.get_texts()], legend.get_title().get_text()
+
+
+class RunFigures(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.r = hubbeam.run(SPINUP, t_end=3, nx=0)
+
+    def test_tip_draws_tip_uy_against_time_named_by_the_scene(self):
+        fig = self.r.plot()
+        (ax,) = fig.axes
+        (line,) = ax.get_lines()
+        self.assertTrue(np.array_equal(line.get_xdata(), self.r.t))
+        self.assertTrue(np.array_equal(line.get_ydata(), self.r.tip_uy))
+        self.assertEqual((ax.get_xlabel(), ax.get_ylabel()), ("t (s)", "tip_uy (m)"))
+        texts, _ = legend_texts(ax)
+        self.assertEqual(texts, [f"spinup_omega4, {self.r.variant}"])
+
+    def test_one_panel_per_unit(self):
+        fig = self.r.plot("hub")
+        self.assertEqual([a.get_ylabel() for a in fig.axes], ["theta (rad)", "theta_dot (rad/s)"])
+        self.assertTrue(np.array_equal(fig.axes[1].get_lines()[0].get_ydata(), self.r.theta_dot))
+        fig = self.r.plot("energies")
+        (ax,) = fig.axes
+        self.assertEqual(ax.get_ylabel(), "kinetic, potential, jacobi (J)")
+        drawn = {line.get_label().split(",")[0]: line.get_ydata() for line in ax.get_lines()}
+        self.assertEqual(set(drawn), {"kinetic", "potential", "jacobi"})
+        self.assertTrue(np.array_equal(drawn["potential"], self.r.potential))
+
+    def test_runs_compared_in_one_axes(self):
+        other = hubbeam.run(SPINUP, t_end=3, nx=0, method="fem", ny=6)
+        fig = self.r.plot(label="AMM")
+        other.plot(ax=fig.axes[0], label="FEM")
+        texts, _ = legend_texts(fig.axes[0])
+        self.assertEqual(texts, ["AMM", "FEM"])
+        self.assertTrue(np.array_equal(fig.axes[0].get_lines()[1].get_ydata(), other.tip_uy))
+
+    def test_a_blade_draws_its_flap_and_twist(self):
+        blade = hubbeam.run(os.path.join(SOURCE, "cases", "wind_turbine_blade.toml"), t_end=0.5)
+        fig = blade.plot("tip")
+        self.assertEqual([a.get_ylabel() for a in fig.axes], ["tip_uy, tip_uz (m)", "tip_phi (rad)"])
+        self.assertTrue(np.array_equal(fig.axes[0].get_lines()[1].get_ydata(), blade.tip_uz))
+
+    def test_bad_columns_are_refused(self):
+        with self.assertRaisesRegex(ValueError, "what: expected one of tip, axial, hub, energies or columns"):
+            self.r.plot("tau")  # no driven hub: no tau column
+        with self.assertRaisesRegex(ValueError, "ax: expected 2 Axes"):
+            self.r.plot("hub", ax=self.r.plot().axes[0])
+
+    def test_loaded_run_draws_the_same_figure(self):
+        with tempfile.TemporaryDirectory() as d:
+            back = hubbeam.load(self.r.save(os.path.join(d, "r.npy")))
+        a, b = self.r.plot("energies"), back.plot("energies")
+        for la, lb in zip(a.axes[0].get_lines(), b.axes[0].get_lines(), strict=True):
+            self.assertEqual(la.get_label(), lb.get_label())
+            self.assertTrue(np.array_equal(la.get_xydata(), lb.get_xydata()))
+
+
+class Campbell(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.m = hubbeam.modes(SPINUP, np.arange(0, 12.1, 1.0), method="bim", ny=8, nx=0)
+
+    def test_tracked_lines_excitation_lines_and_critical_speeds(self):
+        m = self.m
+        fig = hubbeam.plot_campbell(m)
+        (ax,) = fig.axes
+        lines = {line.get_label(): line for line in ax.get_lines()}
+        for k in range(1, 5):
+            pick = m["label"] == f"bending {k}"
+            self.assertTrue(np.array_equal(lines[f"bending {k}"].get_xdata(), m["omega"][pick]))
+            self.assertTrue(np.array_equal(lines[f"bending {k}"].get_ydata(), m["hz"][pick]))
+        self.assertNotIn("bending 5", lines)  # count=4 per kind
+        # n x Omega in Hz: at 12 rad/s, 12 n / (2 pi).
+        for n in (1, 2, 3):
+            self.assertAlmostEqual(lines[f"{n} x Omega"].get_ydata()[-1], 12.0 * n / (2 * np.pi), places=12)
+        crit = lines["critical speeds"]
+        c = m["critical"]
+        shown = np.isin(c["label"], [f"bending {k}" for k in range(1, 5)])
+        self.assertTrue(np.array_equal(crit.get_xdata(), c["omega"][shown]))
+        # Each marker sits on its excitation line: hz = n Omega / (2 pi), an independent check of the crossings.
+        self.assertTrue(np.allclose(crit.get_ydata(), c["harmonic"][shown] * c["omega"][shown] / (2 * np.pi),
+                                    rtol=1e-6))
+        self.assertEqual((ax.get_xlabel(), ax.get_ylabel()), ("spin rate Omega (rad/s)", "frequency (Hz)"))
+        _, title = legend_texts(ax)
+        self.assertEqual(title, f"spinup_omega4\n{m['variant']}")
+
+    def test_kinds_and_harmonics_chosen(self):
+        fig = hubbeam.plot_campbell(self.m, count=2, harmonics=[5])
+        labels = [line.get_label() for line in fig.axes[0].get_lines()]
+        self.assertEqual(labels[:3], ["bending 1", "bending 2", "5 x Omega"])
+
+
+class WithoutMatplotlib(unittest.TestCase):
+    def test_the_package_imports_and_a_figure_says_what_to_install(self):
+        code = ("import sys; sys.modules['matplotlib'] = None; sys.modules['matplotlib.pyplot'] = None\n"
+                "import hubbeam\n"
+                f"r = hubbeam.run({SPINUP!r}, t_end=0.1, nx=0)\n"
+                "try:\n    r.plot()\nexcept ImportError as e:\n    print(e)\n")
+        done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        self.assertIn("figures need matplotlib: install python3-matplotlib", done.stdout)
+
+
+if __name__ == "__main__":
+    unittest.main()
+
+
+class Animation(unittest.TestCase):
+    """hubbeam plot animate: the beam's points in each frame of the script, against the fields and the run's theta
+    turned here by numpy; the GIF's frames counted by PIL."""
+
+    HUBBEAM = os.environ.get("HUBBEAM", "")
+
+    def animate(self, scene, d, times, *, turned=True):
+        base = os.path.join(d, "run.csv")
+        subprocess.run([self.HUBBEAM, "run", scene, "--t-end", str(max(times)), "--fields-at",
+                        ",".join(map(str, times)), "--fields-points", "9", "-o", base], check=True,
+                       capture_output=True)
+        fields = os.path.join(d, "run-fields.csv")
+        files = [fields, base] if turned else [fields]
+        done = subprocess.run([self.HUBBEAM, "plot", "animate", *files, "-o", os.path.join(d, "anim")],
+                              capture_output=True, text=True)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        with open(os.path.join(d, "anim.gp")) as f:
+            script = f.read()
+        blocks = script.split("$beam << EOD\n")[1].split("EOD\n")[0].strip("\n").split("\n\n\n")
+        drawn = [np.loadtxt(b.splitlines(), ndmin=2) for b in blocks]
+        f = np.genfromtxt(fields, delimiter=",", names=True)
+        r = np.genfromtxt(base, delimiter=",", names=True)
+        return script, drawn, f, r
+
+    def test_plane_frames_are_the_fields_turned_by_theta(self):
+        times = [0, 5, 10, 15, 20]
+        with tempfile.TemporaryDirectory() as d:
+            script, drawn, f, r = self.animate(SPINUP, d, times)
+            from PIL import Image
+            with Image.open(os.path.join(d, "anim.gif")) as gif:
+                self.assertEqual(gif.n_frames, len(times))
+        self.assertEqual(len(drawn), len(times))
+        for k, t in enumerate(times):
+            rows = f[f["t"] == t]
+            th = r["theta"][np.argmin(abs(r["t"] - t))]
+            along = rows["x"] + rows["ux"]
+            x = np.cos(th) * along - np.sin(th) * rows["uy"]
+            y = np.sin(th) * along + np.cos(th) * rows["uy"]
+            self.assertTrue(np.allclose(drawn[k][:, 0], x, rtol=0, atol=1e-12))
+            self.assertTrue(np.allclose(drawn[k][:, 1], y, rtol=0, atol=1e-12))
+            self.assertTrue(np.all(drawn[k][:, 2] == 0))
+        for label in ("title 'hub'", "title 'tip path'", "title 'beam'", "X (m, inertial frame)"):
+            self.assertIn(label, script)
+        self.assertIn("plot $hub", script)
+
+    def test_a_blade_is_drawn_in_three_dimensions_with_its_flap(self):
+        with tempfile.TemporaryDirectory() as d:
+            script, drawn, f, _ = self.animate(os.path.join(SOURCE, "cases", "helicopter_blade.toml"), d, [0, 1],
+                                               turned=False)
+        self.assertIn("splot $hub", script)
+        self.assertIn("X (m, the hub", script)
+        for k, t in enumerate((0, 1)):
+            rows = f[f["t"] == t]
+            self.assertTrue(np.array_equal(drawn[k][:, 2], rows["uz"]))
+            self.assertTrue(np.allclose(drawn[k][:, 0], rows["x"] + rows["ux"], rtol=0, atol=1e-12))
+        self.assertLess(drawn[1][-1, 2], -0.01)  # released undeformed at t = 0, the blade droops under its weight
+
+    def test_a_run_csv_is_no_fields_csv(self):
+        with tempfile.TemporaryDirectory() as d:
+            self.animate(SPINUP, d, [0, 1])
+            done = subprocess.run([self.HUBBEAM, "plot", "animate", os.path.join(d, "run.csv"), "-o",
+                                   os.path.join(d, "bad")], capture_output=True, text=True)
+            self.assertEqual(done.returncode, 2)
+            self.assertIn("expected a column x in its header", done.stderr)
+            self.assertFalse(os.path.exists(os.path.join(d, "bad.gif")))
