@@ -300,9 +300,6 @@ std::string VariantKey::dof_problem() const
                "beam.profile's "
                "columns";
     if (extras.profile() && extras.twist) return "a profile's pre-twist is its twist column, not beam.twist";
-    if (out_of_plane() && order == Order::full)
-        return "order full is derived for the planar model only (nz = nt = 0, no pitch, pre-twist or precone); use "
-               "order first";
     return {};
 }
 

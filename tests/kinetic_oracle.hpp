@@ -2,12 +2,15 @@
 // expansion: T and U by quadrature of the beam's position r = R(theta) (a + x + u_x, u_y) along the beam, with
 // the foreshortening u_x2(x) = -1/2 int_0^x (u_y')^2 as a nested quadrature, and Lagrange's equations by
 // numerical differentiation that is exact to round-off (central differences in the rates, in which T is
-// quadratic; complex steps in the coordinates).
+// quadratic; complex steps in the coordinates). A blade's flapwise field and precone (docs/model.md section 12) are
+// taken too: r = R(theta) (a + (x + u_x) cb - u_z sb, u_y, (x + u_x) sb + u_z cb), u_z' in u_x2 beside u_y'; a twist
+// field, a pitch or a pre-twist (whose terms no order changes) are not.
 #pragma once
 
 #include <Eigen/Dense>
 #include <algorithm>
 #include <complex>
+#include <stdexcept>
 #include <vector>
 
 #include "basis/basis.hpp"
@@ -20,13 +23,16 @@ namespace hubbeam::test {
 class KineticOracle {
 public:
     KineticOracle(const VariantKey& key, const Parameters& p)
-        : key_(key), p_(p), axial_(key.axial_basis()), transverse_(key.transverse_basis())
+        : key_(key), p_(p), axial_(key.axial_basis()), transverse_(key.transverse_basis()), flap_(key.flap_basis())
     {
+        if (key.nt > 0 || key.extras.pitch || key.extras.twist)
+            throw std::invalid_argument("KineticOracle: no twist field, pitch or pre-twist");
         // Outer rule: Gauss on every polynomial piece, with points enough for |r_dot|^2 of degree about
         // 4 * degree (u_x2 squared); AMM: the converged composite rule.
         const FieldBasis& t = transverse_;
-        const QuadratureRule outer = t.polynomial() ? pieces_rule(0.0, 1.0, 2 * std::max(t.degree(), axial_.degree()) + 4)
-                                                    : transcendental_rule(key.ny + key.nx);
+        const QuadratureRule outer = t.polynomial()
+                                         ? pieces_rule(0.0, 1.0, 2 * std::max(t.degree(), axial_.degree()) + 4)
+                                         : transcendental_rule(key.ny + key.nx + key.nz);
         for (std::size_t g = 0; g < outer.nodes.size(); ++g) {
             Node n;
             n.xi = outer.nodes[g];
@@ -41,19 +47,26 @@ public:
                 n.tr.push_back(y.v);
                 n.tr_d2.push_back(y.d2);
             }
+            for (int j = 0; j < key.nz; ++j) {
+                const Jet<double> z = flap_.at(j, n.xi);
+                n.fl.push_back(z.v);
+                n.fl_d2.push_back(z.d2);
+            }
             // Inner rule on [0, xi] for int (u_y')^2: (u_y')^2 has degree 2 (degree - 1).
-            const QuadratureRule inner =
-                t.polynomial() ? pieces_rule(0.0, n.xi, t.degree() + 1) : scaled(transcendental_rule(key.ny), n.xi);
+            const QuadratureRule inner = t.polynomial() ? pieces_rule(0.0, n.xi, t.degree() + 1)
+                                                        : scaled(transcendental_rule(std::max(key.ny, key.nz)), n.xi);
             for (std::size_t k = 0; k < inner.nodes.size(); ++k) {
                 n.inner_weight.push_back(inner.weights[k]);
                 for (int j = 0; j < key.ny; ++j) n.inner_slope.push_back(transverse_.at(j, inner.nodes[k]).d1);
+                for (int j = 0; j < key.nz; ++j) n.inner_flap_slope.push_back(flap_.at(j, inner.nodes[k]).d1);
             }
             nodes_.push_back(std::move(n));
         }
     }
 
     /// T at coordinates q, rates qd and (prescribed drive) hub rate theta_dot, any scalar type.
-    template <class S> S kinetic(const S* q, const S* qd, const S& theta_dot_prescribed) const
+    template <class S>
+    S kinetic(const S* q, const S* qd, const S& theta_dot_prescribed) const
     {
         const bool torque = key_.drive == Drive::torque;
         const S theta = torque ? q[0] : S(0.3);  // the energy does not depend on theta; any angle serves
@@ -62,10 +75,17 @@ public:
         const double L = p_.L, m = p_.rho * p_.S;
         const CoordinateLayout layout = coordinate_layout(key_);
         const int a = layout.first(FieldKind::axial), b = layout.first(FieldKind::inplane);
-        const S *A = q + a, *B = q + b, *A_dot = qd + a, *B_dot = qd + b;
+        const int z = key_.nz > 0 ? layout.first(FieldKind::flap) : 0;
+        const S *A = q + a, *B = q + b, *A_dot = qd + a, *B_dot = qd + b, *Z = q + z, *Z_dot = qd + z;
+        const double cb = key_.extras.cone ? std::cos(p_.precone) : 1.0,
+                     sb = key_.extras.cone ? std::sin(p_.precone) : 0.0;
         S sum = 0.0;
         for (const Node& n : nodes_) {
-            S ux1 = 0.0, ux1_dot = 0.0, uy = 0.0, uy_dot = 0.0;
+            S ux1 = 0.0, ux1_dot = 0.0, uy = 0.0, uy_dot = 0.0, uz = 0.0, uz_dot = 0.0;
+            for (int j = 0; j < key_.nz; ++j) {
+                uz += Z[j] * n.fl[j];
+                uz_dot += Z_dot[j] * n.fl[j];
+            }
             for (int i = 0; i < key_.nx; ++i) {
                 ux1 += A[i] * n.ax[i];
                 ux1_dot += A_dot[i] * n.ax[i];
@@ -82,31 +102,41 @@ public:
                     slope += B[j] * n.inner_slope[k * key_.ny + j];
                     slope_dot += B_dot[j] * n.inner_slope[k * key_.ny + j];
                 }
-                ux2 -= n.inner_weight[k] * slope * slope / (2.0 * L);
-                ux2_dot -= n.inner_weight[k] * slope * slope_dot / L;
+                S flap = 0.0, flap_dot = 0.0;
+                for (int j = 0; j < key_.nz; ++j) {
+                    flap += Z[j] * n.inner_flap_slope[k * key_.nz + j];
+                    flap_dot += Z_dot[j] * n.inner_flap_slope[k * key_.nz + j];
+                }
+                ux2 -= n.inner_weight[k] * (slope * slope + flap * flap) / (2.0 * L);
+                ux2_dot -= n.inner_weight[k] * (slope * slope_dot + flap * flap_dot) / L;
             }
-            // r = R(theta) p with p = (a + x + u_x, u_y); r_dot = w R'(theta) p + R(theta) p_dot.
-            const S px = p_.a + L * n.xi + ux1 + ux2, py = uy;
-            const S px_dot = ux1_dot + ux2_dot, py_dot = uy_dot;
+            // r = R(theta) p with p = (a + (x + u_x) cb - u_z sb, u_y, (x + u_x) sb + u_z cb); r_dot = w R'(theta) p +
+            // R(theta) p_dot, and the component along the axis p_z_dot.
+            const S along = L * n.xi + ux1 + ux2, along_dot = ux1_dot + ux2_dot;
+            const S px = p_.a + along * cb - uz * sb, py = uy;
+            const S px_dot = along_dot * cb - uz_dot * sb, py_dot = uy_dot, pz_dot = along_dot * sb + uz_dot * cb;
             const S rx_dot = w * (-s * px - c * py) + (c * px_dot - s * py_dot);
             const S ry_dot = w * (c * px - s * py) + (s * px_dot + c * py_dot);
-            sum += n.weight * m * (rx_dot * rx_dot + ry_dot * ry_dot);
+            sum += n.weight * m * (rx_dot * rx_dot + ry_dot * ry_dot + pz_dot * pz_dot);
         }
         return 0.5 * p_.J_oh * w * w + 0.5 * L * sum;
     }
 
-    /// U = 1/2 int (ES u_x1'^2 + EI u_y''^2) dx.
-    template <class S> S potential(const S* q) const
+    /// U = 1/2 int (ES u_x1'^2 + EI u_y''^2 + EI_flap u_z''^2) dx.
+    template <class S>
+    S potential(const S* q) const
     {
-        const double L = p_.L, ES = p_.E * p_.S, EI = p_.E * p_.I;
+        const double L = p_.L, ES = p_.E * p_.S, EI = p_.E * p_.I, EI_flap = p_.E * p_.I_flap;
         const CoordinateLayout layout = coordinate_layout(key_);
         const int a = layout.first(FieldKind::axial), b = layout.first(FieldKind::inplane);
+        const int z = key_.nz > 0 ? layout.first(FieldKind::flap) : 0;
         S sum = 0.0;
         for (const Node& n : nodes_) {
-            S strain = 0.0, curvature = 0.0;
+            S strain = 0.0, curvature = 0.0, flap = 0.0;
             for (int i = 0; i < key_.nx; ++i) strain += q[a + i] * n.ax_d1[i] / L;
             for (int j = 0; j < key_.ny; ++j) curvature += q[b + j] * n.tr_d2[j] / (L * L);
-            sum += n.weight * (ES * strain * strain + EI * curvature * curvature);
+            for (int j = 0; j < key_.nz; ++j) flap += q[z + j] * n.fl_d2[j] / (L * L);
+            sum += n.weight * (ES * strain * strain + EI * curvature * curvature + EI_flap * flap * flap);
         }
         return 0.5 * L * sum;
     }
@@ -168,16 +198,17 @@ public:
 private:
     struct Node {
         double xi, weight;
-        std::vector<double> ax, ax_d1, tr, tr_d2;
+        std::vector<double> ax, ax_d1, tr, tr_d2, fl, fl_d2;
         std::vector<double> inner_weight, inner_slope;  // slope of function j at inner node k: [k * ny + j]
+        std::vector<double> inner_flap_slope;           // the flapwise field's: [k * nz + j]
     };
 
     /// Gauss with `points` nodes on each piece of [lo, hi] between the bases' interval ends.
     QuadratureRule pieces_rule(double lo, double hi, int points) const
     {
         std::vector<double> cuts{lo, hi};
-        for (const FieldBasis* f : {&axial_, &transverse_})
-            for (int k = 1; k < f->intervals(); ++k) {
+        for (const FieldBasis* f : {&axial_, &transverse_, &flap_})
+            for (int k = 1; f->size() > 0 && k < f->intervals(); ++k) {
                 const double c = static_cast<double>(k) / f->intervals();
                 if (c > lo && c < hi) cuts.push_back(c);
             }
@@ -197,7 +228,7 @@ private:
 
     VariantKey key_;
     Parameters p_;
-    FieldBasis axial_, transverse_;
+    FieldBasis axial_, transverse_, flap_;
     std::vector<Node> nodes_;
 };
 

@@ -216,22 +216,48 @@ TEST_CASE("a free hub with a pitched, coned, twisting blade keeps its energy and
 {
     // cases/torque_tau10.toml's beam given flap and twist fields and every angle: after the pulse (t > 10 s) nothing
     // acts on the system, so T + U and the angular momentum h = int tau dt (zero: a full sine period) are constant.
-    Scene scene = load_scene(std::string(HUBBEAM_SOURCE_DIR) + "/cases/torque_tau10.toml");
-    scene.variant.method = Method::fem, scene.variant.nx = 0, scene.variant.ny = 4;
-    scene.variant.nz = 4, scene.variant.nt = 2;
-    Parameters& p = scene.parameters;
-    p.I_flap = 0.5 * p.I, p.G = 2.6e10, p.J_t = 2.0 * p.I, p.pitch = 0.3, p.twist = -0.2, p.precone = 0.05;
-    scene.output.t_end = 20.0;
-    double energy = 0.0, largest = 0.0, drift = 0.0, momentum = 0.0;
-    bool first = true;
-    simulate(scene, [&](const Row& r) {
-        largest = std::max(largest, std::abs(r.kinetic) + std::abs(r.potential));
-        if (r.t < 10.0) return;
-        if (first) energy = r.kinetic + r.potential, first = false;
-        drift = std::max(drift, std::abs(r.kinetic + r.potential - energy));
-        momentum = std::max(momentum, std::abs(r.momentum));
-    });
-    INFO("energy drift " << drift << " of " << largest << ", momentum " << momentum);
-    CHECK(drift < 1e-7 * largest);
-    CHECK(momentum < 1e-8);
+    // Order full too: its extra terms are conservative.
+    for (Order order : {Order::first, Order::full}) {
+        Scene scene = load_scene(std::string(HUBBEAM_SOURCE_DIR) + "/cases/torque_tau10.toml");
+        scene.variant.method = Method::fem, scene.variant.nx = 0, scene.variant.ny = 4;
+        scene.variant.nz = 4, scene.variant.nt = 2, scene.variant.order = order;
+        Parameters& p = scene.parameters;
+        p.I_flap = 0.5 * p.I, p.G = 2.6e10, p.J_t = 2.0 * p.I, p.pitch = 0.3, p.twist = -0.2, p.precone = 0.05;
+        scene.output.t_end = 20.0;
+        double energy = 0.0, largest = 0.0, drift = 0.0, momentum = 0.0;
+        bool first = true;
+        simulate(scene, [&](const Row& r) {
+            largest = std::max(largest, std::abs(r.kinetic) + std::abs(r.potential));
+            if (r.t < 10.0) return;
+            if (first) energy = r.kinetic + r.potential, first = false;
+            drift = std::max(drift, std::abs(r.kinetic + r.potential - energy));
+            momentum = std::max(momentum, std::abs(r.momentum));
+        });
+        INFO(to_string(order) << ": energy drift " << drift << " of " << largest << ", momentum " << momentum);
+        CHECK(drift < 1e-7 * largest);
+        CHECK(momentum < 1e-8);
+    }
+}
+
+TEST_CASE("order full and order first share a blade's frequencies about its straight steady spin",
+          "[out_of_plane][full]")
+{
+    // Order full's terms beyond order first are of third order and above in the bending (u_x2 squared, u_x2 times u_y
+    // or u_z): about a steady spin that bends nothing (no precone, no gravity, nx = 0; a steady twist bends nothing)
+    // the linearizations are one.
+    Parameters p = unit_blade();
+    p.I_flap = 0.4, p.pitch = 0.3, p.twist = -0.2, p.a = 0.1;
+    for (VariantKey key : {blade_key(Method::fem, 4, 2, Extras{.pitch = true, .twist = true}),
+                           blade_key(Method::bim, 4, 0, Extras{.pitch = true})}) {
+        VariantKey full = key;
+        full.order = Order::full;
+        const auto a = make_model(key, p, ModelSource::generated), b = make_model(full, p, ModelSource::generated);
+        for (double omega : {0.0, 6.0}) {
+            const std::vector<NaturalMode> ma = natural_modes(*a, steady_spin(*a, omega)),
+                                           mb = natural_modes(*b, steady_spin(*b, omega));
+            INFO(full.name() << " at " << omega);
+            REQUIRE(ma.size() == mb.size());
+            for (std::size_t i = 0; i < ma.size(); ++i) CHECK(mb[i].rad_s == Approx(ma[i].rad_s).epsilon(1e-9));
+        }
+    }
 }

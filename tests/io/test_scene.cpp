@@ -439,7 +439,8 @@ TEST_CASE("a table accepts exactly the keys the key table gives it, [motion] tho
     } catch (const SceneError& e) {
         CHECK(e.key == "beam.ny");
         CHECK(e.expected == "one of length, density, area, second_moment, youngs_modulus, taper, tip_ratio, profile, "
-                            "second_moment_flap, shear_modulus, torsion_constant, pitch, twist, precone");
+                            "blade_file, blade_stations, second_moment_flap, shear_modulus, torsion_constant, pitch, "
+                            "twist, precone");
         CHECK(e.got == "an unknown key");
     }
     // The parameters of the paper's two motions: Omega0 and T_s (eq. 58), tau0 and T_t (eq. 59).

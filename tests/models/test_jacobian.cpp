@@ -110,7 +110,8 @@ TEST_CASE("generated Jacobian equals central differences of the right-hand side"
     for (const char* blade : {"fem_nx2_ny4_nz4_nt2_torque_first_tip_gravity_damped_pitched_twisted_coned",
                               "amm_nx0_ny3_nz3_nt2_prescribed_first_tip_gravity_damped_pitched_coned",
                               "bsim_nx3_ny4_nz4_nt3_torque_zero_gravity_pitched_twisted",
-                              "bim_nx0_ny3_nz3_prescribed_first_coned"})
+                              "bim_nx0_ny3_nz3_prescribed_first_coned",
+                              "bim_nx2_ny3_nz3_nt2_torque_full_tip_gravity_damped_pitched_coned"})
         names.emplace_back(blade);
     for (const std::string& name : names) {
         const VariantKey key = VariantKey::parse(name);

@@ -43,7 +43,7 @@ class EffectiveScene(unittest.TestCase):
                 for table, keys in given.items():
                     for key, value in keys.items():
                         got = effective[table][key]
-                        if key in ("file", "profile") and table in ("motion", "beam"):
+                        if key in ("file", "profile", "blade_file") and table in ("motion", "beam"):
                             self.assertTrue(os.path.isabs(got))
                             self.assertTrue(os.path.samefile(got, os.path.join(os.path.dirname(scene), value)))
                         elif isinstance(value, str):
