@@ -3,7 +3,7 @@
 //   cmake --build build --target regenerate
 // Variant: method=bsim Nx=0 Ny=4 order=first drive=prescribed spline_basis=open
 // q = (B1..B4), qd = d/dt q; u = (tau, theta_dot, theta_ddot), of which this variant reads theta_dot, theta_ddot;
-// p = (L, rho, S, I, E, a, J_oh) in SI units. Slope coordinates (FEM, BSIM) are d/dxi = L d/dx.
+// p = (L, rho, S, I, E, a, J_oh) in SI units. End slope coordinates (BSIM) are per knot interval, h d/dx, h = L/n.
 // Derived symbolically from T and U (docs/model.md sections 2-3) by Lagrange's equations of the second kind.
 // For implicit integrators, derivatives of the same M and Q: forces_q = dQ/dq, forces_qd = dQ/dqd, forces_u =
 // dQ/du; M is constant, so there is no mass_q_product.

@@ -3,7 +3,7 @@
 //   cmake --build build --target regenerate
 // Variant: method=bsim Nx=0 Ny=4 order=zero drive=torque spline_basis=open tip_body gravity rayleigh_damping taper=width
 // q = (theta, B1..B4), qd = d/dt q; u = (tau, theta_dot, theta_ddot, sin_theta, cos_theta), of which this variant reads tau, sin_theta, cos_theta (of q[0]);
-// p = (L, rho, S, I, E, a, J_oh, m_tip, J_tip, g, alpha, beta, tip_ratio, I_flap, G, J_t, pitch, twist, precone, g_axis) in SI units. Slope coordinates (FEM, BSIM) are d/dxi = L d/dx.
+// p = (L, rho, S, I, E, a, J_oh, m_tip, J_tip, g, alpha, beta, tip_ratio, I_flap, G, J_t, pitch, twist, precone, g_axis) in SI units. End slope coordinates (BSIM) are per knot interval, h d/dx, h = L/n.
 // Derived symbolically from T and U (docs/model.md sections 2-3) by Lagrange's equations of the second kind.
 // For implicit integrators, derivatives of the same M and Q: forces_q = dQ/dq, forces_qd = dQ/dqd, forces_u =
 // dQ/du, mass_q_product = (dM/dq) v.

@@ -119,7 +119,9 @@ std::string banner(const VariantKey& key, bool mass_varies)
                        drive_value_names[index(DriveValue::theta_ddot)])
       << (gravity ? std::string(", sin_theta, cos_theta") + (torque ? " (of q[0])" : "") : std::string()) << ";\n"
       << "// p = " << tuple(read_parameter_names(key))
-      << " in SI units. Slope coordinates (FEM, BSIM) are d/dxi = L d/dx.\n"
+      << (key.method == Method::bsim
+              ? " in SI units. End slope coordinates (BSIM) are per knot interval, h d/dx, h = L/n.\n"
+              : " in SI units. Slope coordinates (FEM, BSIM) are d/dxi = L d/dx.\n")
       << "// Derived symbolically from T and U (docs/model.md sections 2-3) by Lagrange's equations of the second "
          "kind.\n"
       << "// For implicit integrators, derivatives of the same M and Q: forces_q = dQ/dq, forces_qd = dQ/dqd, forces_u "

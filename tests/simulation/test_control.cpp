@@ -237,6 +237,70 @@ TEST_CASE("the exact Jacobian of a controlled, damped system equals central diff
     }
 }
 
+TEST_CASE("the mass form of a controlled, damped system: M^-1 K and M^-1 C equal central differences, saturated or not",
+          "[control][jacobian]")
+{
+    // gauss4 keeps a mesh's Newton matrices as I (x) M - h^2 A^2 (x) K - h A (x) C: the control's torque, a law of the
+    // hub angle, its rate and the tip deflection, must be in K and C (before M^-1), and nothing of it where it
+    // saturates. The oracle: central differences of the accelerations. The work and dissipated energy are quadratures
+    // beside them; the controller's integral, which the torque reads, leaves the mass form to the dense Jacobian.
+    Motion m;
+    m.kind = Motion::Kind::spin_up;
+    m.omega0 = 2.0;
+    Parameters p;
+    p.alpha = 0.05;
+    p.beta = 1e-3;
+    VariantKey key;
+    key.method = Method::amm;
+    key.nx = 0;
+    key.ny = 3;
+    key.drive = Drive::torque;
+    key.extras.damping = true;
+    const auto model = make_model(key, p, ModelSource::generated);
+    REQUIRE(model->jacobian() != nullptr);
+    const int nq = model->nq();
+    for (const double tau_max : {std::numeric_limits<double>::infinity(), 1e-3}) {
+        Control c;
+        c.kp = 40.0;
+        c.kd = 30.0;
+        c.k_tip = 25.0;
+        c.tau_max = tau_max;
+        FirstOrderSystem sys(*model, m, Axial::dynamic, &c, &p);
+        REQUIRE(sys.has_mass_form());
+        REQUIRE(sys.auxiliary_are_quadratures());
+        const int n = sys.size();
+        REQUIRE(n == 2 * nq + 2);  // the dissipated energy, the work
+        std::mt19937 rng(11);
+        std::uniform_real_distribution<double> u(-0.3, 0.3);
+        for (int trial = 0; trial < 5; ++trial) {
+            std::vector<double> y(static_cast<std::size_t>(n));
+            for (double& v : y) v = u(rng);
+            const double t = 3.0 + trial;
+            std::vector<double> fd(static_cast<std::size_t>(n * n)), dt_fd(static_cast<std::size_t>(n));
+            REQUIRE(sys.finite_difference_jacobian(t, y.data(), fd.data(), dt_fd.data()) == 0);
+            using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+            RowMatrix M(nq, nq), K(nq, nq), C(nq, nq);
+            REQUIRE(sys.mass_form_jacobian(t, y.data(), M.data(), K.data(), C.data()) == 0);
+            const Eigen::MatrixXd dq = M.llt().solve(Eigen::MatrixXd(K)), dqd = M.llt().solve(Eigen::MatrixXd(C));
+            double scale = 0.0;
+            for (double v : fd) scale = std::max(scale, std::abs(v));
+            for (int i = 0; i < nq; ++i)
+                for (int j = 0; j < nq; ++j) {
+                    INFO("tau_max " << tau_max << ", acceleration " << i << " by coordinate " << j);
+                    const auto at = [&](int col) { return fd[static_cast<std::size_t>((nq + i) * n + col)]; };
+                    CHECK(dq(i, j) == Approx(at(j)).epsilon(1e-6).margin(1e-8 * scale));
+                    CHECK(dqd(i, j) == Approx(at(nq + j)).epsilon(1e-6).margin(1e-8 * scale));
+                }
+        }
+    }
+    Control with_integral;
+    with_integral.kp = 40.0;
+    with_integral.ki = 7.0;
+    const FirstOrderSystem integral(*model, m, Axial::dynamic, &with_integral, &p);
+    CHECK_FALSE(integral.has_mass_form());
+    CHECK_FALSE(integral.auxiliary_are_quadratures());
+}
+
 TEST_CASE("interpolated rows of the auxiliary states agree with steps that end at every row", "[control]")
 {
     Scene s = controlled_damped_spin_up(10.0);

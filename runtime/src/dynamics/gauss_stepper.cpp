@@ -55,10 +55,16 @@ public:
         : system_(system), m_(system.size()), blocks_(system.blocks()), n_(m_ / blocks_), h_(h0), h0_(h0),
           atol_(atol), rtol_(rtol), y1_(m_), y_half_(m_), y2_(m_), w_(m_), stage_(m_), z_(2 * m_), dz_(2 * n_),
           g_(2 * n_), f_(2 * m_), J_(n_, n_), dfdt_(n_), rows_(static_cast<std::size_t>(n_) * n_),
-          k_((n_ - system.FirstOrderSystem::auxiliary_count()) / 2),
-          condensed_(system.FirstOrderSystem::auxiliary_count() == 0), rhs2_(2 * k_), dv_(2 * k_), mix_(k_)
+          k_((n_ - system.FirstOrderSystem::auxiliary_count()) / 2), aux_(system.FirstOrderSystem::auxiliary_count()),
+          rhs2_(2 * k_), dv_(2 * k_), mix_(k_)
     {
-        mass_form_ = condensed_ && k_ >= mass_form_min_size && system.has_mass_form();
+        mass_form_ = k_ >= mass_form_min_size && system.has_mass_form();
+        // Auxiliary states that are quadratures of the state (a controlled or damped hub's work and dissipated energy)
+        // leave the Newton systems of (q, qd) as they are: on a mesh, where the mass form pays, they are integrated
+        // from the state's stages and the Newton systems stay condensed and banded; elsewhere they stay in the dense
+        // Newton matrix, as the controller's integral, which the torque reads, must.
+        condensed_ = aux_ == 0 || (blocks_ == 1 && mass_form_ && system.auxiliary_are_quadratures());
+        mass_form_ = mass_form_ && condensed_;
     }
 
     StepStatus step(double& t, double target, double* y, double h_max) override
@@ -369,6 +375,9 @@ private:
         for (int i = 0; i < 2; ++i) {
             dz_.segment(i * n_, k_) = g_.segment(i * n_, k_) + h * (a[i][0] * dv_.head(k_) + a[i][1] * dv_.tail(k_));
             dz_.segment(i * n_ + k_, k_) = dv_.segment(i * k_, k_);
+            // Quadratures: Z = h (A (x) I) g(stages) solves their stage equations once the state's stages are known,
+            // so their correction is their residual (a step behind the state's, which the convergence test sees).
+            if (aux_ > 0) dz_.segment(i * n_ + 2 * k_, aux_) = g_.segment(i * n_ + 2 * k_, aux_);
         }
     }
 
@@ -480,9 +489,10 @@ private:
     Eigen::VectorXd dfdt_;
     std::vector<double> rows_;  // the system's row-major Jacobian
     Newton whole_, half_;  // the Newton matrices of h and h/2
-    // y = (q, qd) alone (no auxiliary states): the Newton systems condensed to the velocities, with J's lower blocks.
-    int k_;
-    bool condensed_;
+    // y = (q, qd) with no auxiliary states, or only quadratures of the state: the Newton systems condensed to the
+    // velocities, with J's lower blocks.
+    int k_, aux_;
+    bool condensed_ = false;
     Eigen::MatrixXd Jq_, Jv_;
     // The mass form (mass_form_jacobian): M, K and C, their union pattern and its version, the band LU planned for it,
     // and M and K sparse for the Newton corrections' products.

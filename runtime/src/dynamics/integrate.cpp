@@ -370,19 +370,43 @@ int FirstOrderSystem::force_linearization(const ExactJacobian& exact, const HubI
 
 bool FirstOrderSystem::has_mass_form() const
 {
-    return model_.jacobian() != nullptr && axial_ == Axial::dynamic && control_ == nullptr && aux_.count() == 0;
+    const bool law_as_code = control_ != nullptr && control_->law;
+    return model_.jacobian() != nullptr && axial_ == Axial::dynamic && !law_as_code && integral_ < 0;
+}
+
+bool FirstOrderSystem::auxiliary_are_quadratures() const
+{
+    return integral_ < 0;
 }
 
 int FirstOrderSystem::mass_form_jacobian(double t, const double* y, double* M, double* K, double* C)
 {
     ++jacobian_evaluations_;
     Work& w = *work_;
-    const HubInput u = drive_at(t);
+    HubInput u = drive_at(t);
+    if (control_ != nullptr) {  // a torque variant reads tau alone, the control's law of the state
+        u = HubInput{};
+        u.tau = torque(t, y);
+    }
     if (const int s = force_linearization(*model_.jacobian(), u, y); s != GSL_SUCCESS) return s;
     model_.mass(u, y, M);
     const auto size = static_cast<std::ptrdiff_t>(n_) * n_;
     std::copy_n(w.dQdq.data(), size, K);
     std::copy_n(w.dQdqd.data(), size, C);
+    if (control_ != nullptr && !saturated_) {
+        // The law's torque moves with the state: dQ/dtau dtau/dq joins K and dQ/dtau dtau/dqd joins C (as in
+        // exact_jacobian, before M^-1). dQ/dtau is the hub's column, dtau/dq the hub angle and the tip coordinates: the
+        // hub's row, which the band LU borders, gains them.
+        const auto tau = static_cast<Eigen::Index>(index(DriveValue::tau));
+        for (int i = 0; i < n_; ++i) {
+            const double b = w.dQdu(i, tau);
+            if (b == 0.0) continue;
+            for (int j = 0; j < n_; ++j)
+                K[static_cast<std::ptrdiff_t>(i) * n_ + j] -= b * control_->k_tip * w.tip_row[j];
+            K[static_cast<std::ptrdiff_t>(i) * n_] -= b * control_->kp;
+            C[static_cast<std::ptrdiff_t>(i) * n_] -= b * control_->kd;
+        }
+    }
     for (std::ptrdiff_t i = 0; i < size; ++i)
         if (!std::isfinite(K[i]) || !std::isfinite(C[i]) || !std::isfinite(M[i])) return GSL_EBADFUNC;
     return GSL_SUCCESS;

@@ -115,13 +115,18 @@ public:
     /// model's exact derivatives when it has them (with the control's dtau/dy through dQ/dtau), else
     /// finite_difference_jacobian.
     virtual int jacobian(double t, const double* y, double* dfdy, double* dfdt);
-    /// Whether mass_form_jacobian serves: exact derivatives, every coordinate integrated, no control or auxiliary
-    /// states (y = (q, qd)).
+    /// Whether mass_form_jacobian serves: exact derivatives, every coordinate integrated, a control (if any) given
+    /// by its gains, not as code, and no auxiliary state that feeds back into the accelerations (the controller's
+    /// integral).
     bool has_mass_form() const;
-    /// The Jacobian's lower blocks before M^-1, each n x n row-major: M(q), K = dQ/dq - (dM/dq) qdd and C = dQ/dqd,
-    /// so that dqdd/dq = M^-1 K and dqdd/dqd = M^-1 C. Sparse where the Jacobian is dense (FEM and B-spline meshes:
-    /// banded, with the hub's row and column under torque), for Newton matrices kept in that form. Counts as a
-    /// Jacobian evaluation.
+    /// Whether every auxiliary state is a quadrature of the state, z' = g(t, q, qd), that no rate of q or qd reads
+    /// (the dissipated energy and the hub's work; not the controller's integral, which the torque reads): an implicit
+    /// stepper may then solve for (q, qd) alone and integrate z from their stages.
+    bool auxiliary_are_quadratures() const;
+    /// The Jacobian's lower blocks before M^-1, each n x n row-major: M(q), K = dQ/dq - (dM/dq) qdd and C = dQ/dqd
+    /// (with a control's dQ/dtau dtau/dq and dQ/dtau dtau/dqd, zero where it saturates), so that dqdd/dq = M^-1 K and
+    /// dqdd/dqd = M^-1 C. Sparse where the Jacobian is dense (FEM and B-spline meshes: banded, with the hub's row and
+    /// column under torque), for Newton matrices kept in that form. Counts as a Jacobian evaluation.
     int mass_form_jacobian(double t, const double* y, double* M, double* K, double* C);
     /// Central differences of rhs: the fallback for models without derivatives, and the tests' oracle.
     int finite_difference_jacobian(double t, const double* y, double* dfdy, double* dfdt);
