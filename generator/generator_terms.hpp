@@ -37,6 +37,10 @@ const GeneratorTerm& generator_part(const TermInfo& t);
 /// The uniform beam's section: m, ES, EI and, out of the plane, E I_flap, G J_t, rho I and rho I_flap turned by the
 /// pitch and pre-twist.
 BeamSection uniform_section(const VariantKey& key, const Symbols& s, const FieldSymbols& f);
+/// b (its m, ES and edgewise EI) with the distributions EI_flap, GJ, j_c and j_n turned by the pitch and pre-twist
+/// (docs/model.md section 12), where the variant leaves the plane.
+BeamSection turned_section(const VariantKey& key, const Symbols& s, const FieldSymbols& f, BeamSection b,
+                           const GiNaC::ex& EI_flap, const GiNaC::ex& GJ, const GiNaC::ex& j_c, const GiNaC::ex& j_n);
 
 // One per term (generator/terms/NAME.cpp).
 void tip_energies(const TermContext& c, Energies& e);

@@ -293,12 +293,7 @@ std::string VariantKey::dof_problem() const
     for (const auto& [name, n] : {std::pair<std::string, int>{"nx", nx}, {"nt", nt}})
         if (method == Method::bsim && n != 0 && n < 3)
             return "BSIM needs " + name + " = 0 or " + name + " >= 3 (n_x + 2 with n_x >= 1), got " + std::to_string(n);
-    // A taper scales the planar section only; a blade's distributions are a profile's columns (docs/model.md 12.4),
-    // whose chord angles are its pre-twist.
-    if (out_of_plane() && extras.taper != Taper::uniform)
-        return "a taper is planar (nz = nt = 0, no pitch, pre-twist or precone); give a blade's section as "
-               "beam.profile's "
-               "columns";
+    // A profile's chord angles are its pre-twist (docs/model.md 12.4).
     if (extras.profile() && extras.twist) return "a profile's pre-twist is its twist column, not beam.twist";
     return {};
 }

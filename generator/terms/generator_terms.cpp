@@ -19,21 +19,27 @@ const GeneratorTerm& generator_part(const TermInfo& t)
     return table.at(static_cast<std::size_t>(&t - terms().data()));
 }
 
-BeamSection uniform_section(const VariantKey& key, const Symbols& s, const FieldSymbols& f)
+BeamSection turned_section(const VariantKey& key, const Symbols& s, const FieldSymbols& f, BeamSection b,
+                           const ex& EI_flap, const ex& GJ, const ex& j_c, const ex& j_n)
 {
-    BeamSection b{s.m, s.ES, s.EI};
     if (!key.out_of_plane()) return b;
-    const Symbols::OutOfPlane& o = *s.o;
     const auto [c2, s2] = chord_angle(key, s, f.xi);
-    const ex bend = (s.EI - o.EI_flap) / 2, inertia = (o.j_n - o.j_c) / 2;
-    b.bend_mean = (s.EI + o.EI_flap) / 2;
+    const ex bend = (b.bending - EI_flap) / 2, inertia = (j_n - j_c) / 2;
+    b.bend_mean = (b.bending + EI_flap) / 2;
     b.bend_cos = bend * c2;
     b.bend_sin = bend * s2;
-    b.torsion = o.GJ;
-    b.polar = o.j_c + o.j_n;
+    b.torsion = GJ;
+    b.polar = j_c + j_n;
     b.inertia_cos = inertia * c2;
     b.inertia_sin = inertia * s2;
     return b;
+}
+
+BeamSection uniform_section(const VariantKey& key, const Symbols& s, const FieldSymbols& f)
+{
+    if (!key.out_of_plane()) return {s.m, s.ES, s.EI};
+    const Symbols::OutOfPlane& o = *s.o;
+    return turned_section(key, s, f, {s.m, s.ES, s.EI}, o.EI_flap, o.GJ, o.j_c, o.j_n);
 }
 
 }  // namespace hubbeam::gen

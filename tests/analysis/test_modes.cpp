@@ -407,3 +407,28 @@ TEST_CASE("modes prints every kind up to --count: a PI loop's hub modes and a ba
     for (const PrintedMode& m : printed_modes(one.str())) kinds.push_back(m.kind);
     CHECK(kinds == std::vector<std::string>{"hub", "bending", "axial"});
 }
+
+TEST_CASE("a blade's state space also puts out tip_uz and tip_phi, the tip's values of the flapwise and twist bases",
+          "[modes][out_of_plane]")
+{
+    // u_z(L) = Phi_z(1) Z and phi(L) = Phi_t(1) P: their rows of C hold the bases' values at the tip in Z's and P's
+    // columns (and nothing else), after tip_uy and theta, whose rows a planar scene has alone.
+    Parameters p;
+    p.I_flap = 0.5 * p.I, p.G = 2.6e10, p.J_t = p.I, p.pitch = 0.2;
+    const VariantKey key{.method = Method::bim, .nx = 0, .ny = 3, .nz = 3, .nt = 2, .drive = Drive::torque,
+                         .extras = {.pitch = true}};
+    const auto model = make_model(key, p, ModelSource::generated);
+    const StateSpace ss = state_space(*model, steady_spin(*model, 3.0));
+    REQUIRE(ss.outputs == std::vector<std::string>{"tip_uy", "theta", "tip_uz", "tip_phi"});
+    REQUIRE(ss.C.rows() == 4);
+    CHECK(ss.D.rows() == 4);
+    const CoordinateLayout layout = coordinate_layout(key);
+    for (const auto& [row, kind, basis] : {std::tuple{2, FieldKind::flap, key.flap_basis()},
+                                           std::tuple{3, FieldKind::twist, key.twist_basis()}}) {
+        Eigen::RowVectorXd expected = Eigen::RowVectorXd::Zero(ss.C.cols());
+        const CoordinateField* f = layout.find(kind);
+        for (int i = 0; i < f->count; ++i) expected(f->first + i) = basis.at(i, 1.0).v;  // theta is state 0 and q[0]
+        INFO(ss.outputs[static_cast<std::size_t>(row)]);
+        CHECK((ss.C.row(row) - expected).norm() < 1e-12 * expected.norm());
+    }
+}

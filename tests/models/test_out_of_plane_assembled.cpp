@@ -68,8 +68,8 @@ VariantKey key_of(Method method, int nx, int nz, int nt, Drive drive, Order orde
 }
 
 /// Every term switched on, for every method under both drives and both orders (16), then each term alone (8), then a
-/// blade's profile with every term for each method and alone (5): 29 variants, each compiled once into the test's
-/// cache. nx = 0 and nx > 0, nz = 2 and 4, nt = 0, 2 and 3 (BSIM's
+/// taper of either kind with every term (2), then a blade's profile with every term for each method and alone (5):
+/// 31 variants, each compiled once into the test's cache. nx = 0 and nx > 0, nz = 2 and 4, nt = 0, 2 and 3 (BSIM's
 /// least), BSIM in both constructions.
 std::vector<Case> cases()
 {
@@ -117,6 +117,15 @@ std::vector<Case> cases()
         c.push_back({key_of(method, bsim ? 3 : 2, 4, bsim ? 3 : 2, Drive::torque, Order::first, blade),
                      {{"the tabulated chord angles", untwisted}}});
     }
+    // A taper out of the plane: the width (flapwise thickness) and the depth (chord), every term but the profile.
+    Extras width = all, depth = all;
+    width.taper = Taper::width;
+    depth.taper = Taper::depth;
+    depth.twist = false;
+    const auto untapered = set([](Parameters& p) { p.tip_ratio = 1.0; });
+    c.push_back({key_of(Method::fem, 2, 4, 2, Drive::torque, Order::first, width), {{"the width taper", untapered}}});
+    c.push_back(
+        {key_of(Method::bsim, 0, 4, 3, Drive::prescribed, Order::zero, depth), {{"the depth taper", untapered}}});
     c.push_back({key_of(Method::fem, 0, 2, 2, Drive::prescribed, Order::zero, table),
                  {{"the tabulated chord angles", untwisted}}});
     return c;
@@ -243,15 +252,6 @@ TEST_CASE("assembled forms equal the block form on planar variants", "[out_of_pl
                         CHECK(difference(*blocks, *forms, s) < 1e-13);
                     }
                 }
-}
-
-TEST_CASE("a taper out of the plane is refused, by the variant and by the assembled path",
-          "[out_of_plane_assembled][assembled]")
-{
-    const VariantKey key{.nx = 0, .ny = 4, .nz = 4, .extras = Extras{.taper = Taper::width}};
-    REQUIRE_THROWS_WITH(make_model(key, Parameters{}, ModelSource::assembled), Catch::Contains("a taper is planar"));
-    REQUIRE_THROWS_WITH(assemble_out_of_plane(key, Parameters{}),
-                        Catch::Contains("does not combine with a beam that leaves the plane"));
 }
 
 namespace {

@@ -38,7 +38,8 @@ SteadySpin held_equilibrium(const Model& model, double theta);
 /// it. States: theta, the axial and transverse coordinates, then their rates (theta_dot first). Input v: the hub
 /// torque tau (free hub; about a held equilibrium, beyond the holding torque) or the hub's angular acceleration
 /// theta_ddot (prescribed rotation, where theta and theta_dot are states driven by it; under gravity theta enters
-/// the forces through Model::forces_theta). Outputs: tip_uy and theta.
+/// the forces through Model::forces_theta). Outputs: tip_uy and theta, then tip_uz and tip_phi where the variant has
+/// a flapwise and a twist field.
 struct StateSpace {
     Eigen::MatrixXd A, B, C, D;
     std::vector<std::string> states, inputs, outputs;

@@ -147,12 +147,20 @@ StateSpace state_space(const Model& model, const SteadySpin& s)
         const Eigen::VectorXd column = llt.solve(Eigen::Map<const Eigen::VectorXd>(dtheta.data(), n));
         for (int r = 1; r < m; ++r) ss.A(m + r, 0) = column[model_index(r)];
     }
-    ss.C = Eigen::MatrixXd::Zero(2, 2 * m);
+    // Outputs tip_uy and theta, then a blade's tip_uz and tip_phi where it has those fields (docs/model.md 12.1).
+    ss.outputs = {"tip_uy", "theta"};
+    std::vector<double Tip::*> tip_values = {&Tip::uy};
+    if (key.nz > 0) ss.outputs.emplace_back("tip_uz"), tip_values.push_back(&Tip::uz);
+    if (key.nt > 0) ss.outputs.emplace_back("tip_phi"), tip_values.push_back(&Tip::phi);
+    const auto outputs = static_cast<Eigen::Index>(ss.outputs.size());
+    ss.C = Eigen::MatrixXd::Zero(outputs, 2 * m);
     std::vector<int> flexible;  // the state's flexible coordinates 1..m-1 among q's
     for (int c = 1; c < m; ++c) flexible.push_back(model_index(c));
-    ss.C.block(0, 1, 1, m - 1) = tip_uy_row(model, s.q, flexible).transpose();
+    for (std::size_t k = 0; k < tip_values.size(); ++k)
+        ss.C.block(k == 0 ? 0 : static_cast<Eigen::Index>(k + 1), 1, 1, m - 1) =
+            tip_row(model, s.q, flexible, tip_values[k]).transpose();
     ss.C(1, 0) = 1.0;
-    ss.D = Eigen::MatrixXd::Zero(2, 1);
+    ss.D = Eigen::MatrixXd::Zero(outputs, 1);
     std::vector<std::string> names{"theta"};  // a state of a prescribed hub too
     for (const CoordinateField& f : model.coordinates().fields)
         if (f.kind != FieldKind::hub_angle)
@@ -160,7 +168,6 @@ StateSpace state_space(const Model& model, const SteadySpin& s)
     ss.states = names;
     for (const std::string& name : names) ss.states.push_back(name + "_dot");
     ss.inputs = {torque ? "tau" : "theta_ddot"};
-    ss.outputs = {"tip_uy", "theta"};
     return ss;
 }
 

@@ -154,7 +154,7 @@ FirstOrderSystem::FirstOrderSystem(const Model& model, const Motion& motion, Axi
     Work& w = *work_;
     const std::vector<double> zero(static_cast<std::size_t>(n_), 0.0);
     if (control_ != nullptr) {
-        w.tip_row = tip_uy_row(model, zero, kept_);  // u_y(L) is linear in the kept coordinates
+        w.tip_row = tip_row(model, zero, kept_, &Tip::uy);  // u_y(L) is linear in the kept coordinates
     }
     if (aux_.dissipated) {
         const Eigen::MatrixXd C = damping_matrix(model, *parameters);

@@ -30,6 +30,7 @@ FieldRecorder::FieldRecorder(const VariantKey& key, const Parameters& p, std::ve
       out_of_plane_(key.out_of_plane()),
       foreshortened_(key.order != Order::zero),
       stations_(station_positions(key.extras)),
+      taper_(key.extras.taper),
       p_(p),
       times_(std::move(times))
 {
@@ -88,19 +89,22 @@ FieldRecorder::BladeValues FieldRecorder::blade_at(const double* q, double x, do
     const double z2 = flap != nullptr ? flap_->curvature(q + flap->first, x) : 0.0;
     // The section at x: uniform, or a profile's columns each linear between stations (docs/model.md section 12.4).
     const double xi = x / p_.L;
+    // A taper's ratios (docs/model.md section 12): the edgewise i_e and the flapwise i_f of s = 1 + (tip_ratio - 1) xi.
+    const double s = taper_ == Taper::uniform ? 1.0 : 1.0 + (p_.tip_ratio - 1.0) * xi, cube = s * s * s;
+    const double i_e = taper_ == Taper::depth ? cube : s, i_f = taper_ == Taper::width ? cube : s;
     const auto section = [&](ProfileValue v, double uniform) {
         return stations_.empty() ? uniform : profile_value(stations_, p_.profile, v, xi);
     };
     const double beta = p_.pitch + section(ProfileValue::twist, p_.twist * xi);  // the chord's angle
-    const double EI_edge = section(ProfileValue::EI, p_.E * p_.I),
-                 EI_flap = section(ProfileValue::EI_flap, p_.E * p_.I_flap);
+    const double EI_edge = section(ProfileValue::EI, p_.E * p_.I * i_e),
+                 EI_flap = section(ProfileValue::EI_flap, p_.E * p_.I_flap * i_f);
     BladeValues b;
     b.edge_moment = EI_edge * (std::cos(beta) * y2 + std::sin(beta) * z2);   // EI_edge kappa_c
     b.flap_moment = EI_flap * (-std::sin(beta) * y2 + std::cos(beta) * z2);  // EI_flap kappa_n
     if (flap != nullptr) b.uz = flap_->uy(q + flap->first, x);
     if (twist != nullptr) {
         b.phi = flap_->ux1(q + twist->first, x);
-        b.torque = section(ProfileValue::GJ, p_.G * p_.J_t) * flap_->ux1_slope(q + twist->first, x);
+        b.torque = section(ProfileValue::GJ, p_.G * p_.J_t * i_f) * flap_->ux1_slope(q + twist->first, x);
     }
     return b;
 }

@@ -104,13 +104,6 @@ void check_out_of_plane(const Scene& s)
         if (key.nt > 0 && v == 0.0 && !key.extras.profile())
             fail(s.path, name, "a number > 0 with discretization.nt > 0 (the twist field's stiffness)", "0");
     }
-    // A taper scales the planar section only: a blade's distributions are a profile's columns.
-    const VariantKey k = s.key();
-    if (k.out_of_plane() && k.extras.taper != Taper::uniform)
-        fail(s.path, "beam.taper",
-             "a uniform section or a beam.profile where the beam leaves the plane (nz, nt, pitch, twist or precone): a "
-             "taper gives no flapwise or torsional distribution",
-             "a taper");
 }
 
 /// The beam's, hub's and extra terms' parameters (docs/model.md sections 1 and 11).

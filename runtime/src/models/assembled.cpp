@@ -161,13 +161,14 @@ BeamMatrices assemble_matrices(const VariantKey& key, const Parameters& p)
     BeamMatrices b;
     b.cb = cb;
     b.sb = key.extras.cone ? std::sin(p.precone) : 0.0;
-    // int_0^L m(x) R^2 dx and int_0^L m(x) R dx, in closed form for the taper (a precone comes on a uniform beam or a
-    // profile).
+    // int_0^L m(x) R^2 dx and int_0^L m(x) R dx, in closed form for the taper (with a precone's R = a + x cb).
     b.J_ob = profile           ? L * second_moment
-             : key.extras.cone ? m * L * (a * a + a * cb * L + cb * cb * L * L / 3.0)
+             : key.extras.cone ? m * L *
+                                     (a * a * (1.0 + 0.5 * r1) + a * cb * L * (1.0 + 2.0 * r1 / 3.0) +
+                                      cb * cb * L * L * (1.0 / 3.0 + 0.25 * r1))
                                : m * ((std::pow(a + L, 3) - std::pow(a, 3)) / 3.0 +
                                       r1 * L * (a * a / 2.0 + 2.0 * a * L / 3.0 + L * L / 4.0));
-    b.S_ob = profile ? L * first_moment : m * (a * L + cb * L * L / 2.0 + r1 * L * (a / 2.0 + L / 3.0));
+    b.S_ob = profile ? L * first_moment : m * (a * L + cb * L * L / 2.0 + r1 * L * (a / 2.0 + cb * L / 3.0));
     b.S_x = (X.transpose() * w_arm).transpose();
     b.S_y = (Y.transpose() * w_arm).transpose();
     b.M1 = m * L * weighted_gram(X, w_s);
@@ -398,7 +399,6 @@ std::unique_ptr<Model> make_assembled_model(const VariantKey& key, const Paramet
     // Out of the plane, section 12.3's forms: the precone's projections and the coupled bending have no place in
     // section 5.2's blocks.
     if (key.out_of_plane()) {
-        if (const std::string why = out_of_plane_problem(key); !why.empty()) throw std::invalid_argument(why);
         return make_quadratic_form_model(key, p);
     }
     return std::make_unique<AssembledModel>(key, p);

@@ -111,7 +111,8 @@ Eigen::MatrixXd damping_matrix(const Model& model, const Parameters& parameters)
     return C;
 }
 
-Eigen::VectorXd tip_uy_row(const Model& model, const std::vector<double>& q, const std::vector<int>& coordinates)
+Eigen::VectorXd tip_row(const Model& model, const std::vector<double>& q, const std::vector<int>& coordinates,
+                        double Tip::* value)
 {
     Eigen::VectorXd row(static_cast<Eigen::Index>(coordinates.size()));
     std::vector<double> plus = q, minus = q;
@@ -119,7 +120,7 @@ Eigen::VectorXd tip_uy_row(const Model& model, const std::vector<double>& q, con
         const auto c = static_cast<std::size_t>(coordinates[i]);
         plus[c] += 1.0;
         minus[c] -= 1.0;
-        row[static_cast<Eigen::Index>(i)] = 0.5 * (model.tip(plus.data()).uy - model.tip(minus.data()).uy);
+        row[static_cast<Eigen::Index>(i)] = 0.5 * (model.tip(plus.data()).*value - model.tip(minus.data()).*value);
         plus[c] = minus[c] = q[c];
     }
     return row;

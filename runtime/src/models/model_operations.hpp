@@ -29,10 +29,11 @@ Eigen::MatrixXd force_q_jacobian(const Model& model, const HubInput& u, const st
 /// 11.4): the dissipated energy's rate qd^T C qd, independent of the generated damping forces.
 Eigen::MatrixXd damping_matrix(const Model& model, const Parameters& parameters);
 
-/// d u_y(L) / dq_c for each of the coordinates c (indices into q), at q: u_y(L) is linear in B, so central
-/// differences at unit offsets are exact. The tip-deflection row of the state space's C and of a controller's
-/// tip feedback.
-Eigen::VectorXd tip_uy_row(const Model& model, const std::vector<double>& q, const std::vector<int>& coordinates);
+/// d value(L) / dq_c for each of the coordinates c (indices into q), at q, value a tip displacement linear in the
+/// coordinates (u_y, u_z, phi: Tip::uy, Tip::uz, Tip::phi), so that central differences at unit offsets are exact.
+/// The tip rows of the state space's C and the row of a controller's tip feedback.
+Eigen::VectorXd tip_row(const Model& model, const std::vector<double>& q, const std::vector<int>& coordinates,
+                        double Tip::* value);
 
 
 /// The coordinates that keep their inertia and are states of the first-order system, in order: all of key's,

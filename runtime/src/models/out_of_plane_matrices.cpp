@@ -116,14 +116,21 @@ BladeAtNodes blade_at_nodes(const VariantKey& key, const Parameters& p, const st
         for (std::size_t j = 0; j < v.size(); ++j) (*arrays[j])(r) = v[j];
     };
     if (stations.empty()) {
-        // Section 12's uniform section: EI_e = E I, EI_f = E I_flap, GJ = G J_t; j_n = rho I, j_c = rho I_flap.
+        // Section 12's uniform section: EI_e = E I, EI_f = E I_flap, GJ = G J_t; j_n = rho I, j_c = rho I_flap; a taper
+        // scales the area by s = 1 + r1 xi, the edgewise values by i_e and the flapwise ones and GJ by i_f (width: the
+        // flapwise thickness, i_e = s, i_f = s^3; depth: the chord, i_e = s^3, i_f = s).
         const double m = p.rho * p.S, twist = key.extras.twist ? p.twist : 0.0;
-        for (Eigen::Index r = 0; r < nn; ++r)
-            store(r, turned(m, p.E * p.I, p.E * p.I_flap, p.G * p.J_t, p.rho * p.I_flap, p.rho * p.I,
-                            pitch + twist * xi(r)));
-        b.above = m * (1.0 - xi);
-        b.above_x = 0.5 * m * (1.0 - xi * xi);
-        b.first_moment = 0.5 * m;
+        const Taper taper = key.extras.taper;
+        const double r1 = taper == Taper::uniform ? 0.0 : p.tip_ratio - 1.0;
+        for (Eigen::Index r = 0; r < nn; ++r) {
+            const double s = 1.0 + r1 * xi(r), cube = s * s * s;
+            const double i_e = taper == Taper::depth ? cube : s, i_f = taper == Taper::width ? cube : s;
+            store(r, turned(m * s, p.E * p.I * i_e, p.E * p.I_flap * i_f, p.G * p.J_t * i_f, p.rho * p.I_flap * i_f,
+                            p.rho * p.I * i_e, pitch + twist * xi(r)));
+        }
+        b.above = m * ((1.0 - xi) + 0.5 * r1 * (1.0 - xi * xi));
+        b.above_x = m * (0.5 * (1.0 - xi * xi) + r1 * (1.0 - xi * xi * xi) / 3.0);
+        b.first_moment = m * (0.5 + r1 / 3.0);
         return b;
     }
     const std::size_t n = stations.size(), w = p.profile.size() / n;
@@ -176,17 +183,8 @@ Eigen::RowVectorXd at_tip(const FieldBasis& basis)
 
 }  // namespace
 
-std::string out_of_plane_problem(const VariantKey& key)
-{
-    if (!key.out_of_plane() || key.extras.taper == Taper::uniform) return {};
-    return "a taper does not combine with a beam that leaves the plane (nz, nt, pitch, pre-twist, precone: "
-           "docs/model.md section 12), and variant " +
-           key.name() + " has both";
-}
-
 OutOfPlaneMatrices assemble_out_of_plane(const VariantKey& key, const Parameters& p)
 {
-    if (const std::string why = out_of_plane_problem(key); !why.empty()) throw std::invalid_argument(why);
     const FieldBasis axial = key.axial_basis(), inplane = key.transverse_basis(), flap = key.flap_basis(),
                      twist = key.twist_basis();
     const std::vector<double> stations = station_positions(key.extras);

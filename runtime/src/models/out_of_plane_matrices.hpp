@@ -39,11 +39,8 @@ struct OutOfPlaneMatrices {
     Eigen::RowVectorXd Phi_t_L;  // 1 x Nt, Phi_t(L)
 };
 
-/// Section 12.3's integrals of a variant that leaves the plane, on a uniform section or a tabulated profile (section
-/// 12.4; a taper throws std::invalid_argument: it is planar).
+/// Section 12.3's integrals of a variant that leaves the plane, on a uniform or tapered section or a tabulated profile
+/// (section 12.4).
 OutOfPlaneMatrices assemble_out_of_plane(const VariantKey& key, const Parameters& p);
-
-/// Why the hand-assembled path cannot take key's out-of-plane variant, or empty: a taper.
-std::string out_of_plane_problem(const VariantKey& key);
 
 }  // namespace hubbeam
