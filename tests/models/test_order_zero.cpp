@@ -14,6 +14,7 @@
 #include <hubbeam/fields.hpp>
 #include <hubbeam/make_model.hpp>
 #include <hubbeam/simulate.hpp>
+#include "csv_file.hpp"
 #include "io/field_recorder.hpp"
 #include "models/generated_model.hpp"
 #include "random_state.hpp"
@@ -23,34 +24,8 @@ using namespace hubbeam;
 
 namespace {
 
-/// One CSV file as its header's names and its rows of numbers.
-struct Csv {
-    std::vector<std::string> names;
-    std::vector<std::vector<double>> rows;
-    std::size_t column(const std::string& name) const
-    {
-        for (std::size_t i = 0; i < names.size(); ++i)
-            if (names[i] == name) return i;
-        FAIL("no column " << name);
-        return 0;
-    }
-};
-
-Csv read_csv(const std::string& path)
-{
-    std::ifstream in(path);
-    REQUIRE(in);
-    Csv csv;
-    std::string line, cell;
-    std::getline(in, line);
-    for (std::istringstream s(line); std::getline(s, cell, ',');) csv.names.push_back(cell);
-    while (std::getline(in, line)) {
-        std::vector<double> row;
-        for (std::istringstream s(line); std::getline(s, cell, ',');) row.push_back(std::stod(cell));
-        csv.rows.push_back(row);
-    }
-    return csv;
-}
+using test::Csv;
+using test::read_csv;
 
 /// 1/2 B^T H(L) B of the state q: how far the tip of a foreshortened model would be pulled in.
 double tip_foreshortening(const VariantKey& key, const Parameters& p, const Eigen::VectorXd& q)
