@@ -58,41 +58,44 @@ bool read_taper_suffix(std::string_view part, Extras& e)
     return true;
 }
 
+// The suffix and banner words of the terms a flag of Extras switches on and off.
+constexpr char tip_word[] = "tip", tip_summary[] = "tip_body";
+constexpr char gravity_word[] = "gravity";
+constexpr char damped_word[] = "damped", damped_summary[] = "rayleigh_damping";
+constexpr char pitched_word[] = "pitched", pitched_summary[] = "pitch";
+constexpr char twisted_word[] = "twisted", twisted_summary[] = "pre_twist";
+constexpr char coned_word[] = "coned", coned_summary[] = "precone";
+
+/// A term selected by its values and carried where the flag `member` of Extras is set, named by the suffix `word`
+/// and by `summary` on the banner.
+template <bool Extras::*member, const char* word, const char* summary>
+TermInfo switched(const char* name, unsigned energies, std::vector<Param> params, std::vector<TermSceneKey> keys = {})
+{
+    return {name,
+            energies,
+            std::move(params),
+            std::move(keys),
+            true,
+            [](const Extras& e) { return e.*member; },
+            [](const Extras&) { return std::string(word); },
+            [](std::string_view s, Extras& e) { return is(s, word) && (e.*member = true); },
+            [](const Extras&) { return std::string(summary); },
+            [](Extras& e, bool on) { e.*member = on; }};
+}
+
 std::vector<TermInfo> make_terms()
 {
     using P = Param;
     const auto never = [](Extras&, bool) {};
     return {
-        {"tip body (section 11.1)",
-         adds_T | adds_U | adds_D,
-         {P::m_tip, P::J_tip},
-         {{"tip", "mass", P::m_tip}, {"tip", "inertia", P::J_tip}},
-         true,
-         [](const Extras& e) { return e.tip; },
-         [](const Extras&) { return std::string("tip"); },
-         [](std::string_view s, Extras& e) { return is(s, "tip") && (e.tip = true); },
-         [](const Extras&) { return std::string("tip_body"); },
-         [](Extras& e, bool on) { e.tip = on; }},
-        {"gravity (section 11.3)",
-         adds_U,
-         {P::g, P::g_axis},
-         {{"gravity", "g", P::g}},
-         true,
-         [](const Extras& e) { return e.gravity; },
-         [](const Extras&) { return std::string("gravity"); },
-         [](std::string_view s, Extras& e) { return is(s, "gravity") && (e.gravity = true); },
-         [](const Extras&) { return std::string("gravity"); },
-         [](Extras& e, bool on) { e.gravity = on; }},
-        {"Rayleigh damping (section 11.4)",
-         adds_D,
-         {P::alpha, P::beta},
-         {{"damping", "mass_proportional", P::alpha}, {"damping", "stiffness_proportional", P::beta}},
-         true,
-         [](const Extras& e) { return e.damping; },
-         [](const Extras&) { return std::string("damped"); },
-         [](std::string_view s, Extras& e) { return is(s, "damped") && (e.damping = true); },
-         [](const Extras&) { return std::string("rayleigh_damping"); },
-         [](Extras& e, bool on) { e.damping = on; }},
+        switched<&Extras::tip, tip_word, tip_summary>("tip body (section 11.1)", adds_T | adds_U | adds_D,
+                                                      {P::m_tip, P::J_tip},
+                                                      {{"tip", "mass", P::m_tip}, {"tip", "inertia", P::J_tip}}),
+        switched<&Extras::gravity, gravity_word, gravity_word>("gravity (section 11.3)", adds_U, {P::g, P::g_axis},
+                                                               {{"gravity", "g", P::g}}),
+        switched<&Extras::damping, damped_word, damped_summary>(
+            "Rayleigh damping (section 11.4)", adds_D, {P::alpha, P::beta},
+            {{"damping", "mass_proportional", P::alpha}, {"damping", "stiffness_proportional", P::beta}}),
         {"taper (section 11)",
          shapes_section,
          {P::tip_ratio},
@@ -113,36 +116,9 @@ std::vector<TermInfo> make_terms()
          read_profile_suffix,
          profile_summary,
          never},
-        {"pitch (section 12)",
-         adds_U | adds_T,
-         {P::pitch},
-         {},
-         true,
-         [](const Extras& e) { return e.pitch; },
-         [](const Extras&) { return std::string("pitched"); },
-         [](std::string_view s, Extras& e) { return is(s, "pitched") && (e.pitch = true); },
-         [](const Extras&) { return std::string("pitch"); },
-         [](Extras& e, bool on) { e.pitch = on; }},
-        {"pre-twist (section 12)",
-         adds_U | adds_T,
-         {P::twist},
-         {},
-         true,
-         [](const Extras& e) { return e.twist; },
-         [](const Extras&) { return std::string("twisted"); },
-         [](std::string_view s, Extras& e) { return is(s, "twisted") && (e.twist = true); },
-         [](const Extras&) { return std::string("pre_twist"); },
-         [](Extras& e, bool on) { e.twist = on; }},
-        {"precone (section 12)",
-         adds_T | adds_U,
-         {P::precone},
-         {},
-         true,
-         [](const Extras& e) { return e.cone; },
-         [](const Extras&) { return std::string("coned"); },
-         [](std::string_view s, Extras& e) { return is(s, "coned") && (e.cone = true); },
-         [](const Extras&) { return std::string("precone"); },
-         [](Extras& e, bool on) { e.cone = on; }},
+        switched<&Extras::pitch, pitched_word, pitched_summary>("pitch (section 12)", adds_U | adds_T, {P::pitch}),
+        switched<&Extras::twist, twisted_word, twisted_summary>("pre-twist (section 12)", adds_U | adds_T, {P::twist}),
+        switched<&Extras::cone, coned_word, coned_summary>("precone (section 12)", adds_T | adds_U, {P::precone}),
     };
 }
 
