@@ -360,20 +360,27 @@ Cone cone_of(const VariantKey& key, const Symbols& s)
     return {s.o->cos_cone, s.o->sin_cone, s.a};
 }
 
+std::pair<ex, ex> turned_by_pitch(const VariantKey& key, const Symbols& s, const ex& c, const ex& sn)
+{
+    if (!key.extras.pitch) return {c, sn};
+    // cos 2 (pitch + beta) = cos 2 pitch cos 2 beta - sin 2 pitch sin 2 beta, and sin 2 (pitch + beta) likewise.
+    const ex cp = s.o->cos_2pitch, sp = s.o->sin_2pitch;
+    return {cp * c - sp * sn, sp * c + cp * sn};
+}
+
 std::pair<ex, ex> chord_angle(const VariantKey& key, const Symbols& s, const symbol& xi)
 {
+    if (!key.extras.twist) return turned_by_pitch(key, s, 1, 0);
     // The pre-twist's part as its Taylor series in twist xi, exact to round-off for |twist| <= max_twist (the scene's
     // bound), so that the integrals over xi stay those of polynomials.
-    const Extras& x = key.extras;
-    const ex cos_2pitch = x.pitch ? ex(s.o->cos_2pitch) : ex(1), sin_2pitch = x.pitch ? ex(s.o->sin_2pitch) : ex(0);
-    if (!x.twist) return {cos_2pitch, sin_2pitch};
     ex c = 0, sn = 0, term = 1;  // term = (2 twist xi)^k / k!
     for (int k = 0; k < twist_series_terms; ++k) {
         if (k > 0) term = term * 2 * s.o->twist * xi / k;
         const int sign = (k / 2) % 2 == 0 ? 1 : -1;
         (k % 2 == 0 ? c : sn) += sign * term;
     }
-    return {(cos_2pitch * c - sin_2pitch * sn).expand(), (sin_2pitch * c + cos_2pitch * sn).expand()};
+    const auto [cos_2beta, sin_2beta] = turned_by_pitch(key, s, c, sn);
+    return {cos_2beta.expand(), sin_2beta.expand()};
 }
 
 ex bending_density(const VariantKey& key, const BeamSection& b, const ex& y2, const ex& z2)

@@ -117,6 +117,10 @@ GiNaC::ex velocity_squared(Order order, const FieldSymbols& f, const GiNaC::ex& 
 /// The precone of a variant's symbols, {1, 0, 0} where it carries none.
 Cone cone_of(const VariantKey& key, const Symbols& s);
 
+/// (c, s) = (cos 2 beta, sin 2 beta), or a deviator's parts proportional to them, turned further by the section's
+/// pitch: cos 2 (pitch + beta) and sin 2 (pitch + beta); (c, s) itself without a pitch.
+std::pair<GiNaC::ex, GiNaC::ex> turned_by_pitch(const VariantKey& key, const Symbols& s, const GiNaC::ex& c,
+                                                const GiNaC::ex& sn);
 /// cos 2 beta(xi) and sin 2 beta(xi) of a uniform section's chord angle beta = pitch + twist xi (docs/model.md
 /// section 12): {1, 0} without either.
 std::pair<GiNaC::ex, GiNaC::ex> chord_angle(const VariantKey& key, const Symbols& s, const GiNaC::symbol& xi);

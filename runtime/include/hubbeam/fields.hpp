@@ -51,6 +51,9 @@ public:
     /// for the area of either taper, s for the second moment of a width taper and s^3 of a depth taper.
     double area_ratio(double x) const;
     double moment_ratio(double x) const;
+    /// The flapwise second moment's ratio of a blade (docs/model.md section 12: the width is its thickness, the depth
+    /// its chord): s^3 for a width taper, s for a depth taper.
+    double flap_moment_ratio(double x) const;
 
 private:
     double xi_of(double x) const;

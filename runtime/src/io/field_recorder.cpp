@@ -30,7 +30,6 @@ FieldRecorder::FieldRecorder(const VariantKey& key, const Parameters& p, std::ve
       out_of_plane_(key.out_of_plane()),
       foreshortened_(key.order != Order::zero),
       stations_(station_positions(key.extras)),
-      taper_(key.extras.taper),
       p_(p),
       times_(std::move(times))
 {
@@ -89,9 +88,8 @@ FieldRecorder::BladeValues FieldRecorder::blade_at(const double* q, double x, do
     const double z2 = flap != nullptr ? flap_->curvature(q + flap->first, x) : 0.0;
     // The section at x: uniform, or a profile's columns each linear between stations (docs/model.md section 12.4).
     const double xi = x / p_.L;
-    // A taper's ratios (docs/model.md section 12): the edgewise i_e and the flapwise i_f of s = 1 + (tip_ratio - 1) xi.
-    const double s = taper_ == Taper::uniform ? 1.0 : 1.0 + (p_.tip_ratio - 1.0) * xi, cube = s * s * s;
-    const double i_e = taper_ == Taper::depth ? cube : s, i_f = taper_ == Taper::width ? cube : s;
+    // A taper's edgewise and flapwise ratios (docs/model.md section 12).
+    const double i_e = fields_.moment_ratio(x), i_f = fields_.flap_moment_ratio(x);
     const auto section = [&](ProfileValue v, double uniform) {
         return stations_.empty() ? uniform : profile_value(stations_, p_.profile, v, xi);
     };

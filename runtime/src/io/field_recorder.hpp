@@ -58,7 +58,6 @@ private:
     // A blade's: the flapwise field's basis as its transverse one, the twist field's as its axial one.
     std::optional<BeamFields> flap_;
     std::vector<double> stations_;  // a profile's, x/L
-    Taper taper_;
     Parameters p_;
     std::vector<double> times_, xs_;
     std::size_t next_ = 0;

@@ -272,8 +272,7 @@ std::optional<ProfileTable> read_beam(const Section& beam, const std::string& sc
     if (resample != 0 && (resample < 2 || resample > 64)) beam.refuse("blade_stations", std::to_string(resample));
     if (tabulated || from_file) {
         const char* by = tabulated ? "beam.profile" : "beam.blade_file";
-        for (const char* key : {"density", "area", "second_moment", "youngs_modulus", "taper", "tip_ratio",
-                                "second_moment_flap", "shear_modulus", "torsion_constant", "twist"})
+        for (const char* key : keys_a_table_replaces)
             if (beam.get(key))
                 throw SceneError::with_detail(
                     scene_path, beam.path(key),
@@ -448,8 +447,10 @@ Scene parse_scene(std::string_view text, const std::string& path, const Override
     scene.path = path;
     const std::optional<ProfileTable> profile =
         read_beam(Section(path, root, "beam"), path, scene.parameters, scene.variant.extras);
-    if (profile) scene.tables.emplace_back(profile->key, profile->file);
-    if (profile) scene.blade_stations = profile->resample;
+    if (profile) {
+        scene.tables.emplace_back(profile->key, profile->file);
+        scene.blade_stations = profile->resample;
+    }
     read_extras(root, path, scene.parameters);
     read_gravity_direction(Section(path, root, "gravity"), scene.parameters);
     read_motion(Section(path, root, "motion"), path, scene.motion);

@@ -3,6 +3,7 @@
 // scene_messages.cpp words the errors): private to them.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <hubbeam/scene.hpp>
 #include <memory>
@@ -33,6 +34,19 @@ std::string angle_bound();
 std::string read_file(const std::string& path, std::size_t cap = max_scene_bytes);
 /// s without the blanks around it.
 std::string_view trimmed(std::string_view s);
+
+/// The [beam] keys a table (beam.profile, beam.blade_file) replaces: parsing refuses them beside it, the effective
+/// scene leaves them out.
+inline constexpr std::array<const char*, 10> keys_a_table_replaces = {"density",
+                                                                      "area",
+                                                                      "second_moment",
+                                                                      "youngs_modulus",
+                                                                      "taper",
+                                                                      "tip_ratio",
+                                                                      "second_moment_flap",
+                                                                      "shear_modulus",
+                                                                      "torsion_constant",
+                                                                      "twist"};
 
 /// A profile table as read: the key that named it (beam.profile, beam.blade_file), its file, the blade columns it has
 /// (EI_flap, GJ, twist, j_c, j_n) and whether it gives ES (a blade file may not).

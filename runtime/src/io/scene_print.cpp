@@ -51,13 +51,11 @@ std::string joined_names(const std::vector<std::string>& names)
     return out;
 }
 
-/// The keys of [beam] that a profile's table replaces (parse_scene refuses them beside beam.profile).
+/// The keys of [beam] that a profile's table replaces.
 bool given_by_profile(const std::string& leaf)
 {
-    for (const char* k : {"density", "area", "second_moment", "youngs_modulus", "taper", "tip_ratio",
-                          "second_moment_flap", "shear_modulus", "torsion_constant", "twist"})
-        if (leaf == k) return true;
-    return false;
+    return std::find(scene_io::keys_a_table_replaces.begin(), scene_io::keys_a_table_replaces.end(), leaf) !=
+           scene_io::keys_a_table_replaces.end();
 }
 
 std::optional<SceneValue> beam_value(const Scene& s, const SceneKey& k)

@@ -15,6 +15,7 @@
 #include "io/blade_files.hpp"
 #include "io/output_file.hpp"
 #include "io/scene_io.hpp"
+#include "profile.hpp"
 #include "text/csv_columns.hpp"
 #include "text/printable.hpp"
 #include "text/shortest.hpp"
@@ -251,9 +252,10 @@ ProfileTable scene_io::read_profile(const std::string& scene_path, const std::st
         for (std::size_t c = 1; c < want.size(); ++c) {
             const std::string& col = want[c].name;
             if (std::isnan(v[c]) || col == "twist") continue;
-            if (col == "GJ" || col == "j_c" || col == "j_n" ? !(v[c] >= 0.0) : !(v[c] > 0.0))
-                bad(line, "expected " + col + (col == "GJ" || col == "j_c" || col == "j_n" ? " >= 0" : " > 0") +
-                              ", got " + shortest(v[c]));
+            // The torsional values may be 0 (a blade without a twist field); fit_profile asks for more with one.
+            const bool zero_allowed = col == "GJ" || col == "j_c" || col == "j_n";
+            if (zero_allowed ? !(v[c] >= 0.0) : !(v[c] > 0.0))
+                bad(line, "expected " + col + (zero_allowed ? " >= 0" : " > 0") + ", got " + shortest(v[c]));
         }
         if (x.empty() && v[0] != 0.0) bad(line, "the first station must be x/L = 0, got " + shortest(v[0]));
         if (!x.empty() && !(v[0] > x.back()))
@@ -322,20 +324,20 @@ ProfileTable scene_io::read_blade(const std::string& scene_path, const std::stri
         }
         return 0.0;
     };
-    std::vector<double> x = b.x_over_L, values;
+    std::vector<double> values;
+    for (std::size_t k = 0; k < n; ++k)
+        for (std::size_t j = 0; j < max_profile_value_count; ++j)
+            values.push_back(value(k, static_cast<ProfileValue>(j)));
+    std::vector<double> x = b.x_over_L;
     if (resample > 0) {
+        // The file's table linear between its stations, at the new ones.
         x.clear();
         for (int k = 0; k < resample; ++k) x.push_back(std::round(1e4 * k / (resample - 1)) / 1e4);
-    }
-    for (double xk : x) {
-        // The file's interval that holds xk, and xk's place t in it (its own stations: t = 0).
-        std::size_t k = 0;
-        while (k + 2 < n && xk > b.x_over_L[k + 1]) ++k;
-        const double t = (xk - b.x_over_L[k]) / (b.x_over_L[k + 1] - b.x_over_L[k]);
-        for (std::size_t j = 0; j < max_profile_value_count; ++j) {
-            const auto v = static_cast<ProfileValue>(j);
-            values.push_back(t == 0.0 ? value(k, v) : (1.0 - t) * value(k, v) + t * value(k + 1, v));
-        }
+        std::vector<double> resampled;
+        for (double xk : x)
+            for (std::size_t j = 0; j < max_profile_value_count; ++j)
+                resampled.push_back(linear_between(b.x_over_L, values, j, xk));
+        values = std::move(resampled);
     }
     if (x.size() > max_profile_stations)
         bad("at most " + std::to_string(max_profile_stations) + " stations, got " + std::to_string(x.size()) +

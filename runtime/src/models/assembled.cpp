@@ -99,19 +99,7 @@ void profile_at_nodes(const std::vector<double>& stations, const Parameters& p, 
         c.i(r) = value(ProfileValue::EI, xi(r));
         c.e(r) = value(ProfileValue::ES, xi(r));
     }
-    const QuadratureRule g3 = gauss_legendre(3);
-    const auto tail = [&](double from, int n) {
-        double sum = 0.0;
-        for (std::size_t k = 0; k + 1 < stations.size(); ++k) {
-            const double lo = std::max(from, stations[k]), hi = stations[k + 1];
-            if (hi <= lo) continue;
-            for (int j = 0; j < 3; ++j) {
-                const double t = lo + (hi - lo) * g3.nodes[j];
-                sum += (hi - lo) * g3.weights[j] * value(ProfileValue::m, t) * std::pow(t, n);
-            }
-        }
-        return sum;
-    };
+    const auto tail = [&](double from, int n) { return mass_tail(stations, p.profile, from, n); };
     for (Eigen::Index r = 0; r < nn; ++r) {
         c.above(r) = tail(xi(r), 0);
         c.above_x(r) = 2.0 * tail(xi(r), 1);

@@ -149,4 +149,10 @@ double BeamFields::moment_ratio(double x) const
     return taper_ == Taper::depth ? s * s * s : s;
 }
 
+double BeamFields::flap_moment_ratio(double x) const
+{
+    const double s = area_ratio(x);
+    return taper_ == Taper::width ? s * s * s : s;
+}
+
 }  // namespace hubbeam

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "profile.hpp"
+
 namespace hubbeam {
 
 namespace {
@@ -133,43 +135,24 @@ BladeAtNodes blade_at_nodes(const VariantKey& key, const Parameters& p, const st
         b.first_moment = m * (0.5 + r1 / 3.0);
         return b;
     }
+    // The stations' sections turned, one row of nine each, linear between stations.
     const std::size_t n = stations.size(), w = p.profile.size() / n;
-    std::vector<std::array<double, 9>> at_station;
+    std::vector<double> at_station;
     for (std::size_t k = 0; k < n; ++k) {
         const auto v = [&](ProfileValue j) { return p.profile[w * k + static_cast<std::size_t>(j)]; };
-        at_station.push_back(turned(v(ProfileValue::m), v(ProfileValue::EI), v(ProfileValue::EI_flap),
-                                    v(ProfileValue::GJ), v(ProfileValue::j_c), v(ProfileValue::j_n),
-                                    pitch + v(ProfileValue::twist)));
+        const std::array<double, 9> row =
+            turned(v(ProfileValue::m), v(ProfileValue::EI), v(ProfileValue::EI_flap), v(ProfileValue::GJ),
+                   v(ProfileValue::j_c), v(ProfileValue::j_n), pitch + v(ProfileValue::twist));
+        at_station.insert(at_station.end(), row.begin(), row.end());
     }
-    // Linear between stations: interval k holds xi, t its place there.
-    const auto interpolated = [&](double x) {
-        std::size_t k = 0;
-        while (k + 2 < n && x > stations[k + 1]) ++k;
-        const double t = (x - stations[k]) / (stations[k + 1] - stations[k]);
-        std::array<double, 9> v;
-        for (std::size_t j = 0; j < v.size(); ++j) v[j] = (1.0 - t) * at_station[k][j] + t * at_station[k + 1][j];
-        return v;
-    };
-    for (Eigen::Index r = 0; r < nn; ++r) store(r, interpolated(xi(r)));
-    // The tails of the linear m by the trapezoid rule's exact cousin: 2-point Gauss on each piece (m t is quadratic).
-    const QuadratureRule g2 = gauss_legendre(2);
-    const auto tail = [&](double from, int power) {
-        double sum = 0.0;
-        for (std::size_t k = 0; k + 1 < n; ++k) {
-            const double lo = std::max(from, stations[k]), hi = stations[k + 1];
-            if (hi <= lo) continue;
-            for (int j = 0; j < 2; ++j) {
-                const double t = lo + (hi - lo) * g2.nodes[j];
-                sum += (hi - lo) * g2.weights[j] * interpolated(t)[0] * (power == 0 ? 1.0 : t);
-            }
-        }
-        return sum;
-    };
     for (Eigen::Index r = 0; r < nn; ++r) {
-        b.above(r) = tail(xi(r), 0);
-        b.above_x(r) = tail(xi(r), 1);
+        std::array<double, 9> row;
+        for (std::size_t j = 0; j < row.size(); ++j) row[j] = linear_between(stations, at_station, j, xi(r));
+        store(r, row);
+        b.above(r) = mass_tail(stations, p.profile, xi(r), 0);
+        b.above_x(r) = mass_tail(stations, p.profile, xi(r), 1);
     }
-    b.first_moment = tail(0.0, 1);
+    b.first_moment = mass_tail(stations, p.profile, 0.0, 1);
     return b;
 }
 
