@@ -43,6 +43,26 @@ Scene controlled_damped_spin_up(double t_end)
 using Ran = test::Collected;
 Ran run_scene(const Scene& s) { return test::completed_run(s); }
 
+/// The free-hub, Rayleigh-damped AMM arm (Ny = 3) the controlled Jacobians are checked on, spinning up to 2 rad/s as
+/// its reference. No axial coordinates: their stiffness's entries (1e6) would hide the control's terms in a common
+/// margin.
+struct DampedArm {
+    Motion motion;
+    Parameters p;
+    std::unique_ptr<Model> model;
+
+    DampedArm()
+    {
+        motion.kind = Motion::Kind::spin_up;
+        motion.omega0 = 2.0;
+        p.alpha = 0.05;
+        p.beta = 1e-3;
+        const VariantKey key{.method = Method::amm, .nx = 0, .ny = 3, .drive = Drive::torque, .extras = {.damping = true}};
+        model = make_model(key, p, ModelSource::generated);
+        REQUIRE(model->jacobian() != nullptr);
+    }
+};
+
 }  // namespace
 
 TEST_CASE("a controlled step settles to the reference within the rigid closed loop's envelope", "[control]")
@@ -188,20 +208,10 @@ TEST_CASE("with damping, E + dissipated - work stays constant, and the run's mon
 TEST_CASE("the exact Jacobian of a controlled, damped system equals central differences, saturated or not",
           "[control][jacobian]")
 {
-    Motion m;
-    m.kind = Motion::Kind::spin_up;
-    m.omega0 = 2.0;
-    Parameters p;
-    p.alpha = 0.05;
-    p.beta = 1e-3;
-    VariantKey key;
-    key.method = Method::amm;
-    key.nx = 0;  // the axial stiffness's entries (1e6) would hide the control's terms in a common margin
-    key.ny = 3;
-    key.drive = Drive::torque;
-    key.extras.damping = true;
-    const auto model = make_model(key, p, ModelSource::generated);
-    REQUIRE(model->jacobian() != nullptr);
+    const DampedArm arm;
+    const Motion& m = arm.motion;
+    const Parameters& p = arm.p;
+    const auto& model = arm.model;
     for (const double tau_max : {std::numeric_limits<double>::infinity(), 1e-3}) {
         Control c;
         c.kp = 40.0;
@@ -244,20 +254,10 @@ TEST_CASE("the mass form of a controlled, damped system: M^-1 K and M^-1 C equal
     // hub angle, its rate and the tip deflection, must be in K and C (before M^-1), and nothing of it where it
     // saturates. The oracle: central differences of the accelerations. The work and dissipated energy are quadratures
     // beside them; the controller's integral, which the torque reads, leaves the mass form to the dense Jacobian.
-    Motion m;
-    m.kind = Motion::Kind::spin_up;
-    m.omega0 = 2.0;
-    Parameters p;
-    p.alpha = 0.05;
-    p.beta = 1e-3;
-    VariantKey key;
-    key.method = Method::amm;
-    key.nx = 0;
-    key.ny = 3;
-    key.drive = Drive::torque;
-    key.extras.damping = true;
-    const auto model = make_model(key, p, ModelSource::generated);
-    REQUIRE(model->jacobian() != nullptr);
+    const DampedArm arm;
+    const Motion& m = arm.motion;
+    const Parameters& p = arm.p;
+    const auto& model = arm.model;
     const int nq = model->nq();
     for (const double tau_max : {std::numeric_limits<double>::infinity(), 1e-3}) {
         Control c;
