@@ -57,6 +57,15 @@ bool parse(std::string_view, ErrorCheck&);
 template <>
 std::vector<std::string> words<ErrorCheck>();
 
+/// Whether the step-size control weighs a run's sensitivities beside its state (docs/sensitivities.md): on by default;
+/// off lets the state alone choose the steps, as CVODES's errconS = false, at an accuracy of the sensitivities that
+/// the error check measures.
+enum class SensitivityErrorControl { on, off };
+std::string to_string(SensitivityErrorControl);
+bool parse(std::string_view, SensitivityErrorControl&);
+template <>
+std::vector<std::string> words<SensitivityErrorControl>();
+
 struct SolverOptions {
     std::string stepper = automatic_stepper_word;  // a name from stepper_names() (integrate.hpp), or automatic
     double rtol = 1e-8;
@@ -65,6 +74,7 @@ struct SolverOptions {
     Stepping stepping = Stepping::free;
     long max_steps = 10'000'000;  // a run that needs more steps stops with the reason its steps are short
     ErrorCheck error_check = ErrorCheck::on;
+    SensitivityErrorControl sensitivity_error_control = SensitivityErrorControl::on;
 };
 
 /// The most rows a run may write (t_end / dt_out): 10^8 rows is about 20 GB of CSV.

@@ -11,6 +11,8 @@ const WordTable<ModelSource, 3> sources = {
     {ModelSource::automatic, "auto"}, {ModelSource::generated, "generated"}, {ModelSource::assembled, "assembled"}};
 const WordTable<ErrorCheck, 3> error_check_words = {
     {ErrorCheck::on, "on"}, {ErrorCheck::off, "off"}, {ErrorCheck::full, "full"}};
+const WordTable<SensitivityErrorControl, 2> sensitivity_control_words = {
+    {SensitivityErrorControl::on, "on"}, {SensitivityErrorControl::off, "off"}};
 
 }  // namespace
 
@@ -26,5 +28,8 @@ template <> std::vector<std::string> words<ModelSource>() { return all_words(sou
 std::string to_string(ErrorCheck v) { return word_of(v, error_check_words); }
 bool parse(std::string_view w, ErrorCheck& v) { return parse_word(w, error_check_words, v); }
 template <> std::vector<std::string> words<ErrorCheck>() { return all_words(error_check_words); }
+std::string to_string(SensitivityErrorControl v) { return word_of(v, sensitivity_control_words); }
+bool parse(std::string_view w, SensitivityErrorControl& v) { return parse_word(w, sensitivity_control_words, v); }
+template <> std::vector<std::string> words<SensitivityErrorControl>() { return all_words(sensitivity_control_words); }
 
 }  // namespace hubbeam

@@ -52,7 +52,8 @@ using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::R
 class GaussStepper final : public Stepper {
 public:
     GaussStepper(FirstOrderSystem& system, double h0, double atol, double rtol)
-        : system_(system), m_(system.size()), blocks_(system.blocks()), n_(m_ / blocks_), h_(h0), h0_(h0),
+        : system_(system), m_(system.size()), blocks_(system.blocks()), n_(m_ / blocks_),
+          controlled_(system.controlled_size()), h_(h0), h0_(h0),
           atol_(atol), rtol_(rtol), y1_(m_), y_half_(m_), y2_(m_), w_(m_), stage_(m_), z_(2 * m_), dz_(2 * n_),
           g_(2 * n_), f_(2 * m_), J_(n_, n_), dfdt_(n_), rows_(static_cast<std::size_t>(n_) * n_),
           k_((n_ - system.FirstOrderSystem::auxiliary_count()) / 2), aux_(system.FirstOrderSystem::auxiliary_count()),
@@ -132,7 +133,7 @@ private:
                 continue;
             }
             double ratio = 0.0;
-            for (int i = 0; i < m_; ++i)
+            for (int i = 0; i < controlled_; ++i)
                 ratio = std::max(ratio, std::abs(y2_[i] - y1_[i]) / 15.0 /
                                             (atol_ + rtol_ * std::max(std::abs(y[i]), std::abs(y2_[i]))));
             const double factor = std::clamp(0.9 * std::pow(std::max(ratio, 1e-10), -0.2), 0.2, 4.0);
@@ -474,6 +475,7 @@ private:
 
     FirstOrderSystem& system_;
     int m_, blocks_, n_;  // y's size; its blocks (the state, then its sensitivities) and their size
+    int controlled_;      // the leading entries of y the error test weighs (FirstOrderSystem::controlled_size)
     double h_, h0_, atol_, rtol_;
     // The Newton iteration stops when its predicted remaining error is below this fraction of the tolerance: the
     // step-doubling estimate compares three solves, each converged well within it (0.03 measured as accurate as 1e-4

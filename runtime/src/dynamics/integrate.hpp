@@ -94,6 +94,9 @@ public:
     /// on that block alone, linearly, through the state's Jacobian. A stepper may solve the state first, with this
     /// class's own rhs and jacobian (FirstOrderSystem::rhs, called so), then each block with the state's matrices.
     virtual int blocks() const { return 1; }
+    /// The leading entries of y whose error the step-size control weighs: all of them, or in a system whose
+    /// sensitivities are left out of it (solver.sensitivity_error_control = "off") the state's alone.
+    virtual int controlled_size() const { return size(); }
     const Auxiliary& auxiliary() const { return aux_; }
     /// Where an auxiliary state sits in y (-1 when absent).
     int integral_index() const { return integral_; }

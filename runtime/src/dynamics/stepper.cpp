@@ -43,11 +43,47 @@ private:
     static inline gsl_error_handler_t* previous_ = nullptr;
 };
 
+/// A GSL step-size control that applies another (GSL's own, on y) to the leading entries of y only: the error of the
+/// others never shortens a step, in GSL's error test (hadjust) as in its multistep steppers' (errlevel, infinite
+/// for them). The state's steps are then exactly those of a run without the trailing entries.
+struct LeadingControl {
+    gsl_odeiv2_control* inner = nullptr;
+    std::size_t controlled = 0;
+
+    static void* alloc() { return new LeadingControl; }
+    static int init(void* s, double eps_abs, double eps_rel, double a_y, double a_dydt)
+    {
+        return gsl_odeiv2_control_init(self(s).inner, eps_abs, eps_rel, a_y, a_dydt);
+    }
+    static int hadjust(void* s, std::size_t, unsigned int order, const double y[], const double yerr[],
+                       const double yp[], double* h)
+    {
+        const gsl_odeiv2_control& c = *self(s).inner;
+        return c.type->hadjust(c.state, self(s).controlled, order, y, yerr, yp, h);
+    }
+    static int errlevel(void* s, double y, double dydt, double h, std::size_t i, double* level)
+    {
+        if (i >= self(s).controlled) {
+            *level = INFINITY;
+            return GSL_SUCCESS;
+        }
+        return gsl_odeiv2_control_errlevel(self(s).inner, y, dydt, h, i, level);
+    }
+    static int set_driver(void* s, const gsl_odeiv2_driver* d) { return gsl_odeiv2_control_set_driver(self(s).inner, d); }
+    static void free(void* s)
+    {
+        gsl_odeiv2_control_free(self(s).inner);
+        delete &self(s);
+    }
+    static LeadingControl& self(void* s) { return *static_cast<LeadingControl*>(s); }
+    static inline const gsl_odeiv2_control_type type = {"leading", alloc, init, hadjust, errlevel, set_driver, free};
+};
+
 /// GSL's driver: evolve_apply for one step at a time, driver_apply to reach a time exactly.
 class GslStepper final : public Stepper {
 public:
     GslStepper(FirstOrderSystem& system, const gsl_odeiv2_step_type* type, double h0, double atol, double rtol)
-        : system_(system), driver_(gsl_odeiv2_driver_alloc_y_new(system.gsl(), type, h0, atol, rtol)), h_(h0), h0_(h0)
+        : system_(system), driver_(make_driver(system, type, h0, atol, rtol)), h_(h0), h0_(h0)
     {
         if (driver_ == nullptr) throw std::runtime_error(std::string("GSL could not allocate the ") + type->name + " driver");
     }
@@ -80,6 +116,22 @@ public:
     long rejected() const override { return past_rejected_ + static_cast<long>(driver_->e->failed_steps); }
 
 private:
+    /// GSL's driver with the control on y (atol + rtol |y_i|), restricted to the leading entries the system's error
+    /// control weighs (controlled_size, LeadingControl).
+    static gsl_odeiv2_driver* make_driver(FirstOrderSystem& system, const gsl_odeiv2_step_type* type, double h0,
+                                          double atol, double rtol)
+    {
+        gsl_odeiv2_driver* d = gsl_odeiv2_driver_alloc_y_new(system.gsl(), type, h0, atol, rtol);
+        if (d != nullptr && system.controlled_size() < system.size()) {
+            gsl_odeiv2_control* leading = gsl_odeiv2_control_alloc(&LeadingControl::type);
+            auto* state = static_cast<LeadingControl*>(leading->state);
+            state->inner = d->c;
+            state->controlled = static_cast<std::size_t>(system.controlled_size());
+            d->c = leading;
+        }
+        return d;
+    }
+
     const QuietGsl quiet_;  // first: GSL's own allocations may report an error too
     FirstOrderSystem& system_;
     gsl_odeiv2_driver* driver_;
@@ -105,11 +157,25 @@ public:
         std::copy_n(y0, n_, N_VGetArrayPointer(y_));
         const bool ok = CVodeSetErrHandlerFn(mem_, quiet, nullptr) == CV_SUCCESS &&
                         CVodeInit(mem_, rhs, t0, y_) == CV_SUCCESS && CVodeSetUserData(mem_, this) == CV_SUCCESS &&
-                        CVodeSStolerances(mem_, rtol, atol) == CV_SUCCESS &&
+                        set_tolerances(rtol, atol, system.controlled_size()) &&
                         CVodeSetLinearSolver(mem_, solver_, matrix_) == CV_SUCCESS &&
                         CVodeSetJacFn(mem_, jacobian) == CV_SUCCESS && CVodeSetInitStep(mem_, h0) == CV_SUCCESS &&
                         CVodeSetMaxNumSteps(mem_, -1) == CV_SUCCESS;
         if (!ok) throw std::runtime_error("CVODE could not be set up");
+    }
+    /// CVODE's tolerances: atol for every entry of y, or infinite for those the system leaves out of the control
+    /// (their weight in CVODE's error norm is then 0).
+    bool set_tolerances(double rtol, double atol, int controlled)
+    {
+        if (controlled == n_) return CVodeSStolerances(mem_, rtol, atol) == CV_SUCCESS;
+        N_Vector tolerances = N_VNew_Serial(n_, context_);
+        if (tolerances == nullptr) return false;
+        double* a = N_VGetArrayPointer(tolerances);
+        std::fill_n(a, controlled, atol);
+        std::fill(a + controlled, a + n_, INFINITY);
+        const bool ok = CVodeSVtolerances(mem_, rtol, tolerances) == CV_SUCCESS;  // CVODE keeps a copy
+        N_VDestroy(tolerances);
+        return ok;
     }
     ~CvodeStepper() override
     {

@@ -199,6 +199,7 @@ std::string run_metadata(const Scene& scene, const RunSummary& summary, const st
                           .number("atol", scene.solver.atol)
                           .number("h0", scene.solver.h0)
                           .text("error_check", to_string(scene.solver.error_check))
+                          .text("sensitivity_error_control", to_string(scene.solver.sensitivity_error_control))
                           .number("check_rtol", summary.check_rtol)
                           .number("check_atol", summary.check_atol)
                           .str())

@@ -404,6 +404,9 @@ void read_solver(const Section& solver, SolverOptions& so)
     so.h0 = solver.number("h0", so.h0);
     so.stepping = solver.word<Stepping>("stepping", parse_enum<Stepping>).value_or(so.stepping);
     so.error_check = solver.word<ErrorCheck>("error_check", parse_enum<ErrorCheck>).value_or(so.error_check);
+    so.sensitivity_error_control =
+        solver.word<SensitivityErrorControl>("sensitivity_error_control", parse_enum<SensitivityErrorControl>)
+            .value_or(so.sensitivity_error_control);
     if (const auto budget = solver.number("max_steps")) {  // 1e7 reads better than 10000000: a float is accepted
         if (!(*budget >= 1.0 && *budget <= 1e15 && *budget == std::floor(*budget)))
             solver.refuse("max_steps", shortest(*budget));

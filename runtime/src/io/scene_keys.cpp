@@ -123,6 +123,8 @@ std::vector<SceneKey> make_scene_keys()
         {"solver.stepping", "--stepping", K::word, one_of(words<Stepping>())},
         {"solver.max_steps", "--max-steps", K::number, "a whole number from 1 to 1e15 (step budget)"},
         {"solver.error_check", "--error-check", K::word, one_of(words<ErrorCheck>())},
+        {"solver.sensitivity_error_control", "--sensitivity-error-control", K::word,
+         one_of(words<SensitivityErrorControl>())},
         {"output.t_end", "--t-end", K::number, "a number > 0 (end time, s)"},
         {"output.dt_out", "--dt-out", K::number, "a number > 0 and <= output.t_end (output interval, s)"},
         {"output.file", "-o,--output", K::text, "a file name"},

@@ -150,6 +150,7 @@ std::optional<SceneValue> run_value(const Scene& s, const SceneKey& k)
     if (name == "solver.stepping") return text(k, to_string(so.stepping));
     if (name == "solver.max_steps") return integer(k, so.max_steps);
     if (name == "solver.error_check") return text(k, to_string(so.error_check));
+    if (name == "solver.sensitivity_error_control") return text(k, to_string(so.sensitivity_error_control));
     const OutputOptions& o = s.output;
     if (name == "output.t_end") return number(k, o.t_end);
     if (name == "output.dt_out") return number(k, o.dt_out);

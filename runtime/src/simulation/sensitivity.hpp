@@ -27,6 +27,7 @@ public:
     int size() const override { return (1 + count()) * state_size(); }
     int auxiliary_count() const override { return FirstOrderSystem::auxiliary_count() + count() * state_size(); }
     int blocks() const override { return 1 + count(); }
+    int controlled_size() const override { return controlled_ ? size() : state_size(); }
     int rhs(double t, const double* y, double* dydt) override;
     int jacobian(double t, const double* y, double* dfdy, double* dfdt) override;
 
@@ -41,6 +42,7 @@ private:
     struct Parameter;
     const Model& model_;
     const Scene& scene_;
+    bool controlled_;  // solver.sensitivity_error_control: whether the steps weigh the sensitivities' error
     std::vector<std::unique_ptr<Parameter>> parameters_;
     struct Work;
     std::unique_ptr<Work> work_;

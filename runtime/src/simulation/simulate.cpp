@@ -431,7 +431,9 @@ void Simulation::Run::interpolate(const FreeStep& s, double t, double* y) const
 /// the stepper's own middle state shows it exceeds the tolerance in this step.
 bool Simulation::Run::limit_interpolation(FreeStep& s)
 {
-    const int size = system_.size();
+    // The interpolant's error is weighed where the steps' is (controlled_size): the sensitivities' only when their
+    // error is controlled.
+    const int controlled = system_.controlled_size();
     if (!s.have_f0) system_.rhs(s.t0, s.y0.data(), s.f0.data());
     system_.rhs(t_, y_.data(), s.f1.data());
     s.have_f0 = s.have_f1 = true;
@@ -448,7 +450,7 @@ bool Simulation::Run::limit_interpolation(FreeStep& s)
         const int k = (n - aux) / 2;
         const double h = t_ - s.t0, eps = std::numeric_limits<double>::epsilon();
         double ratio = 0.0;
-        for (int i = 0; i < size; ++i) {
+        for (int i = 0; i < controlled; ++i) {
             double tolerance = scene_.solver.atol + scene_.solver.rtol * std::abs(s.f_mid[i]);
             if (const int j = i % n; j >= k && j < 2 * k)
                 tolerance += 4.0 * eps * (std::abs(s.y0[i - k]) + std::abs(y_[i - k])) / h;
@@ -464,7 +466,7 @@ bool Simulation::Run::limit_interpolation(FreeStep& s)
     // Estimated only: the step stands (GSL's steppers, whose output this has always been), the next ones obey h_max.
     system_.rhs(t_mid, s.y_mid.data(), s.f_mid.data());
     double ratio = 0.0;
-    for (int b = 0; b < size; b += n)
+    for (int b = 0; b < controlled; b += n)
         ratio = std::max(ratio, interpolation_error(s.t0, s.y0.data() + b, s.f0.data() + b, t_, y_.data() + b,
                                                     s.f1.data() + b, s.y_mid.data() + b, s.f_mid.data() + b, n,
                                                     scene_.solver.atol, scene_.solver.rtol, aux));
