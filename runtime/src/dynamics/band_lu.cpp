@@ -5,17 +5,42 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <dlfcn.h>
 #include <queue>
+#include <stdexcept>
+#include <string>
 
 #include "generated_abi.h"  // HUBBEAM_WIDE_KERNEL
 
-extern "C" {
-// LAPACK (Fortran): LU with partial pivoting of a band matrix.
-void dgbtrf_(const int* m, const int* n, const int* kl, const int* ku, double* ab, const int* ldab, int* ipiv,
-             int* info);
+namespace hubbeam {
+
+namespace {
+
+/// LAPACK's (Fortran) LU with partial pivoting of a band matrix.
+using BandFactorization = void(const int* m, const int* n, const int* kl, const int* ku, double* ab, const int* ldab,
+                               int* ipiv, int* info);
+
+/// dgbtrf, from LAPACK opened at its first use, once per process: LAPACK is linked with immediate binding, and loaded
+/// with the program it cost every run 1,760 symbol bindings (its own and the BLAS's), about a quarter of the start-up's
+/// instructions, where only gauss4's banded Newton matrices on fine meshes call it (docs/performance.md, start-up).
+/// The library is found as the program's own would be (the system's library path; HUBBEAM_LAPACK, set at build).
+BandFactorization& dgbtrf()
+{
+    static BandFactorization* const function = [] {
+        void* lapack = ::dlopen(HUBBEAM_LAPACK, RTLD_NOW | RTLD_LOCAL);
+        void* symbol = lapack != nullptr ? ::dlsym(lapack, "dgbtrf_") : nullptr;
+        if (symbol == nullptr) {
+            const char* why = ::dlerror();
+            throw std::runtime_error(std::string("gauss4's band LU needs LAPACK's dgbtrf from ") + HUBBEAM_LAPACK +
+                                     ", which could not be loaded" + (why != nullptr ? std::string(": ") + why : "") +
+                                     " (install liblapack3, or give --stepper rk8pd)");
+        }
+        return reinterpret_cast<BandFactorization*>(symbol);
+    }();
+    return *function;
 }
 
-namespace hubbeam {
+}  // namespace
 
 BorderedBandLU::BorderedBandLU(const std::vector<char>& pattern, int n) : n_(n)
 {
@@ -105,7 +130,7 @@ bool BorderedBandLU::factor_filled()
 {
     int info = 0;
     if (nb_ > 0) {
-        dgbtrf_(&nb_, &nb_, &kl_, &ku_, band_.data(), &ldab_, pivots_.data(), &info);
+        dgbtrf()(&nb_, &nb_, &kl_, &ku_, band_.data(), &ldab_, pivots_.data(), &info);
         if (info != 0) return false;
         for (int j = 0; j < nb_; ++j)  // U's diagonal, inverted once: the solves multiply
             inverse_diagonal_[static_cast<std::size_t>(j)] =
