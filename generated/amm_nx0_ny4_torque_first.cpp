@@ -15,7 +15,7 @@ namespace hubbeam::generated {
 namespace {
 
 /* coefficients:(p[7])->(c[54]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
-void amm_nx0_ny4_torque_first_coefficients(const double* p, double* c)
+HUBBEAM_ONCE_KERNEL void amm_nx0_ny4_torque_first_coefficients(const double* p, double* c)
 {
     const double L = p[0];
     const double m = p[1] * p[2];
@@ -79,7 +79,7 @@ void amm_nx0_ny4_torque_first_coefficients(const double* p, double* c)
 }
 
 /* coefficients_p:(p[7])->(dcdp[7*54]) out[k*54 + i] = dc_i/dp_k, by the chain rule on the coefficients above; nonzero entries only */
-void amm_nx0_ny4_torque_first_coefficients_p(const double* p, double* out)
+HUBBEAM_ONCE_KERNEL void amm_nx0_ny4_torque_first_coefficients_p(const double* p, double* out)
 {
     const double L = p[0];
     const double m = p[1] * p[2];

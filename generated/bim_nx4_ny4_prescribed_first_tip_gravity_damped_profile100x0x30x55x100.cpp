@@ -15,7 +15,7 @@ namespace hubbeam::generated {
 namespace {
 
 /* coefficients:(p[32])->(c[181]) p = (L, rho, S, I, E, a, J_oh, m_tip, J_tip, g, alpha, beta, tip_ratio, I_flap, G, J_t, pitch, twist, precone, g_axis, m_0, EI_0, ES_0, m_1, EI_1, ES_1, m_2, EI_2, ES_2, m_3, EI_3, ES_3); once per parameter set */
-void bim_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100_coefficients(const double* p, double* c)
+HUBBEAM_ONCE_KERNEL void bim_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100_coefficients(const double* p, double* c)
 {
     const double L = p[0];
     const double a = p[5];
@@ -1104,7 +1104,7 @@ void bim_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100_coef
 }
 
 /* coefficients_p:(p[32])->(dcdp[32*181]) out[k*181 + i] = dc_i/dp_k, by the chain rule on the coefficients above; nonzero entries only */
-void bim_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100_coefficients_p(const double* p, double* out)
+HUBBEAM_ONCE_KERNEL void bim_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100_coefficients_p(const double* p, double* out)
 {
     const double L = p[0];
     const double a = p[5];

@@ -15,7 +15,7 @@ namespace hubbeam::generated {
 namespace {
 
 /* coefficients:(p[7])->(c[77]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
-void bim_nx4_ny4_torque_zero_coefficients(const double* p, double* c)
+HUBBEAM_ONCE_KERNEL void bim_nx4_ny4_torque_zero_coefficients(const double* p, double* c)
 {
     const double L = p[0];
     const double m = p[1] * p[2];
@@ -103,7 +103,7 @@ void bim_nx4_ny4_torque_zero_coefficients(const double* p, double* c)
 }
 
 /* coefficients_p:(p[7])->(dcdp[7*77]) out[k*77 + i] = dc_i/dp_k, by the chain rule on the coefficients above; nonzero entries only */
-void bim_nx4_ny4_torque_zero_coefficients_p(const double* p, double* out)
+HUBBEAM_ONCE_KERNEL void bim_nx4_ny4_torque_zero_coefficients_p(const double* p, double* out)
 {
     const double L = p[0];
     const double m = p[1] * p[2];

@@ -15,7 +15,7 @@ namespace hubbeam::generated {
 namespace {
 
 /* coefficients:(p[7])->(c[61]) p = (L, rho, S, I, E, a, J_oh); once per parameter set */
-void bsim_nx0_ny4_prescribed_first_open_coefficients(const double* p, double* c)
+HUBBEAM_ONCE_KERNEL void bsim_nx0_ny4_prescribed_first_open_coefficients(const double* p, double* c)
 {
     const double L = p[0];
     const double m = p[1] * p[2];
@@ -86,7 +86,7 @@ void bsim_nx0_ny4_prescribed_first_open_coefficients(const double* p, double* c)
 }
 
 /* coefficients_p:(p[7])->(dcdp[7*61]) out[k*61 + i] = dc_i/dp_k, by the chain rule on the coefficients above; nonzero entries only */
-void bsim_nx0_ny4_prescribed_first_open_coefficients_p(const double* p, double* out)
+HUBBEAM_ONCE_KERNEL void bsim_nx0_ny4_prescribed_first_open_coefficients_p(const double* p, double* out)
 {
     const double L = p[0];
     const double m = p[1] * p[2];

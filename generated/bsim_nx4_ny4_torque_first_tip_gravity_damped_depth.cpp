@@ -15,7 +15,7 @@ namespace hubbeam::generated {
 namespace {
 
 /* coefficients:(p[20])->(c[187]) p = (L, rho, S, I, E, a, J_oh, m_tip, J_tip, g, alpha, beta, tip_ratio, I_flap, G, J_t, pitch, twist, precone, g_axis); once per parameter set */
-void bsim_nx4_ny4_torque_first_tip_gravity_damped_depth_coefficients(const double* p, double* c)
+HUBBEAM_ONCE_KERNEL void bsim_nx4_ny4_torque_first_tip_gravity_damped_depth_coefficients(const double* p, double* c)
 {
     const double L = p[0];
     const double m = p[1] * p[2];
@@ -219,7 +219,7 @@ void bsim_nx4_ny4_torque_first_tip_gravity_damped_depth_coefficients(const doubl
 }
 
 /* coefficients_p:(p[20])->(dcdp[20*187]) out[k*187 + i] = dc_i/dp_k, by the chain rule on the coefficients above; nonzero entries only */
-void bsim_nx4_ny4_torque_first_tip_gravity_damped_depth_coefficients_p(const double* p, double* out)
+HUBBEAM_ONCE_KERNEL void bsim_nx4_ny4_torque_first_tip_gravity_damped_depth_coefficients_p(const double* p, double* out)
 {
     const double L = p[0];
     const double m = p[1] * p[2];

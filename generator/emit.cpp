@@ -496,7 +496,7 @@ std::string print_coefficients(const std::string& prefix, const Signature& sig, 
     std::ostringstream text;
     text << "\n/* coefficients:(" << p.name << "[" << p.size << "])->(c[" << pool.texts().size() << "]) " << p.doc
          << "; once per parameter set */\n";
-    text << "void " << prefix << "_coefficients(const double* " << p.name << ", double* c)\n{\n";
+    text << "HUBBEAM_ONCE_KERNEL void " << prefix << "_coefficients(const double* " << p.name << ", double* c)\n{\n";
     bool any = false;
     for (std::size_t j = 0; j < sig.parameter_inputs.size(); ++j)
         if (pool.parameter_used(j)) {
@@ -622,7 +622,7 @@ std::string print_coefficients_p(const std::string& prefix, const Signature& sig
     text << "\n/* coefficients_p:(" << p.name << "[" << p.size << "])->(dcdp[" << p.size << "*" << nc << "]) out[k*"
          << nc << " + i] = dc_i/dp_k, by the chain rule on the coefficients above; nonzero entries "
          << "only */\n";
-    text << "void " << prefix << "_coefficients_p(const double* " << p.name << ", double* out)\n{\n";
+    text << "HUBBEAM_ONCE_KERNEL void " << prefix << "_coefficients_p(const double* " << p.name << ", double* out)\n{\n";
     bool reads_p = false;
     for (std::size_t j = 0; j < names.size(); ++j)
         if (used[j]) {

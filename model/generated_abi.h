@@ -69,6 +69,19 @@ struct Variant {
 #define HUBBEAM_WIDE_KERNEL
 #endif
 
+/* Marks coefficients and coefficients_p, which run once per parameter set (a model's construction), not per step:
+ * compiled without optimization. They are long straight-line sums (AMM at Ny = 16 with four terms: 850 KB of the
+ * 1.1 MB source), whose optimization took most of an on-demand compilation (31.5 s with it, 5.9 s without, one
+ * measurement on a loaded machine) for no gain a run could see. Without -ffast-math or FMA, unoptimized code rounds as optimized code
+ * does: the coefficients are the same bits. */
+#if defined(__clang__)
+#define HUBBEAM_ONCE_KERNEL __attribute__((optnone))
+#elif defined(__GNUC__)
+#define HUBBEAM_ONCE_KERNEL __attribute__((optimize("O0")))
+#else
+#define HUBBEAM_ONCE_KERNEL
+#endif
+
 extern const Variant* const variants[];
 extern const int variant_count;
 
