@@ -227,7 +227,7 @@ public:
     void check_error(bool on) { check_error_ = on; }
 
 private:
-    class Run;  // one call of run(): simulate.cpp
+    class Run;  // one call of run(): simulation/run.hpp
     /// The scene's stepper, or the automatic choice and why; whether the error is checked.
     void choose_stepper();
     /// The automatic choice at rtol, with the pilot run (made once, at the first call that needs one).

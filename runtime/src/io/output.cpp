@@ -350,7 +350,7 @@ std::string format_summary(const RunSummary& r, const Scene& scene)
         out << "invariant   energy balance E + dissipated - work drift " << line << "\n";
     } else if (r.vibration_energy > 0.0) {
         char line[160];
-        // As the untrustworthy message words it (simulate.cpp), so that the two agree.
+        // As the untrustworthy message words it (run_monitor.cpp), so that the two agree.
         std::snprintf(line, sizeof line, "%.2g J after t = %g s, %.2g of %s", r.jacobi_drift, r.t_steady,
                       r.jacobi_drift / r.vibration_energy, r.invariant_reference.c_str());
         out << "invariant   Jacobi integral drift " << line << "\n";

@@ -1,5 +1,5 @@
-// The error indicator's comparison (simulate.cpp): every value a row writes, from the run and from a re-run of the
-// same stretch, each column's difference relative to its largest value in the run.
+// The error indicator's comparison (a run's rows, run_rows.cpp): every value a row writes, from the run and from a
+// re-run of the same stretch, each column's difference relative to its largest value in the run.
 #pragma once
 
 #include <algorithm>

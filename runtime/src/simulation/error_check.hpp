@@ -1,5 +1,5 @@
 // The error indicator of a run (RunSummary::estimated_error): windows of the run, or the whole run, re-run at a
-// tenfold tighter tolerance and compared in every column the run writes (column_check.hpp). simulate.cpp feeds it
+// tenfold tighter tolerance and compared in every column the run writes (column_check.hpp). A run (run.hpp) feeds it
 // the run's rows and states and asks it, at the end, whether the rows can be trusted.
 #pragma once
 

@@ -1,5 +1,6 @@
-// What a run (simulate.cpp) and the error check's re-runs of it (error_check.cpp) share, so that both turn states
-// into rows, meet the drive's breakpoints and stop at the model's limits alike. Defined in simulate.cpp.
+// What a run (run.hpp) and the error check's re-runs of it (error_check.cpp) share, so that both turn states
+// into rows, meet the drive's breakpoints and stop at the model's limits alike. Defined in run_rows.cpp (model_limit
+// in run_stops.cpp).
 #pragma once
 
 #include <memory>

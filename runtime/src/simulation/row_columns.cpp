@@ -1,0 +1,77 @@
+// A run's columns by name (simulate.hpp): the optional columns a scene has, the sensitivities' derivative columns,
+// and the CSV header made of them.
+#include <hubbeam/simulate.hpp>
+
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include <hubbeam/config.hpp>
+#include "dynamics/integrate.hpp"
+
+namespace hubbeam {
+
+ColumnSet optional_columns_of(const Scene& scene)
+{
+    const Control* control = scene.controller();
+    const VariantKey key = scene.key();
+    const Auxiliary aux = Auxiliary::of(key, control, &scene.parameters, scene.wants({"ki"}));
+    const bool torque = key.drive == Drive::torque && (control != nullptr || key.extras.damping);
+    const bool has[] = {key.nz > 0,   key.nt > 0,     torque,  control != nullptr && !control->law,
+                        aux.integral, aux.dissipated, aux.work};
+    static_assert(std::size(has) == optional_width);
+    ColumnSet set;
+    for (std::size_t i = 0; i < optional_width; ++i)
+        if (has[i]) set.bits |= 1u << i;
+    set.derived = sensitivity_columns(scene.output.sensitivities, key);
+    return set;
+}
+
+std::vector<std::string> sensitivity_outputs_of(const VariantKey& key)
+{
+    std::vector<std::string> outputs(std::begin(sensitivity_outputs), std::end(sensitivity_outputs));
+    if (key.nz > 0) outputs.emplace_back(blade_sensitivity_outputs[0]);
+    if (key.nt > 0) outputs.emplace_back(blade_sensitivity_outputs[1]);
+    return outputs;
+}
+
+std::vector<std::string> sensitivity_columns(const std::vector<std::string>& parameters, const VariantKey& key)
+{
+    std::vector<std::string> names;
+    const std::vector<std::string> outputs = sensitivity_outputs_of(key);
+    for (const std::string& p : parameters)
+        for (const std::string& o : outputs) names.push_back("d_" + o + "/d_" + p);
+    return names;
+}
+
+std::vector<std::string> row_column_names(const ColumnSet& set)
+{
+    std::vector<std::string> names;
+    for (const RowColumn& c : row_columns) names.emplace_back(c.name);
+    for (std::size_t i = 0; i < optional_width; ++i)
+        if (set.has(i)) names.emplace_back(optional_columns[i].name);
+    names.insert(names.end(), set.derived.begin(), set.derived.end());
+    return names;
+}
+
+std::string row_header(const ColumnSet& set)
+{
+    std::string h;
+    for (const std::string& name : row_column_names(set)) h += (h.empty() ? "" : ",") + name;
+    return h;
+}
+
+const char* row_header()
+{
+    static const std::string header = [] {
+        std::string h;
+        for (const RowColumn& c : row_columns) {
+            if (!h.empty()) h += ',';
+            h += c.name;
+        }
+        return h;
+    }();
+    return header.c_str();
+}
+
+}  // namespace hubbeam

@@ -1,0 +1,118 @@
+// States to rows (RowMaker, shared with the error check's re-runs) and a run's rows to its sink (Simulation::Run).
+#include "simulation/run_rows.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <hubbeam/simulate.hpp>
+#include "dynamics/integrate.hpp"
+#include "simulation/column_check.hpp"
+#include "simulation/run.hpp"
+#include "simulation/sensitivity.hpp"
+
+namespace hubbeam {
+
+/// The drive's breakpoints inside (0, t_last), in order.
+std::vector<double> breaks_before(const Motion& motion, double t_last)
+{
+    std::vector<double> breaks;
+    for (double b : motion.breakpoints())
+        if (b > 0.0 && b < t_last) breaks.push_back(b);
+    std::sort(breaks.begin(), breaks.end());
+    return breaks;
+}
+
+/// The equations a run of scene integrates: the state's, or with the sensitivities of scene.output.sensitivities.
+std::unique_ptr<FirstOrderSystem> system_of(const Model& model, const Scene& scene)
+{
+    if (!scene.output.sensitivities.empty()) return std::make_unique<SensitivitySystem>(model, scene);
+    return std::make_unique<FirstOrderSystem>(model, scene.motion, scene.axial, scene.controller(), &scene.parameters);
+}
+
+RowMaker::RowMaker(const Model& model, const Motion& motion, FirstOrderSystem& system, const Control* control)
+    : model_(model),
+      motion_(motion),
+      system_(system),
+      control_(control),
+      sensitivities_(dynamic_cast<SensitivitySystem*>(&system)),
+      q_(static_cast<std::size_t>(model.nq())),
+      qd_(q_),
+      derived_(sensitivities_ != nullptr
+                   ? static_cast<std::size_t>(sensitivities_->count()) * sensitivity_outputs_of(model.key()).size()
+                   : 0),
+      extended_(control != nullptr || system.auxiliary().count() > 0)
+{
+}
+
+Row RowMaker::operator()(double t, const double* y)
+{
+    system_.full_state(t, y, q_.data(), qd_.data());
+    const double* q = q_.data();
+    const double* qd = qd_.data();
+    const bool torque = model_.key().drive == Drive::torque;
+    HubInput u = motion_.at(t);
+    RowExtras extras;
+    if (extended_) {
+        if (torque) extras.tau = system_.torque(t, y);
+        if (control_ != nullptr) {
+            extras.theta_ref = u.theta;
+            u = HubInput{};  // the model's input: the torque alone
+            u.tau = extras.tau;
+        }
+        const auto at = [y](int i) { return i >= 0 ? y[i] : 0.0; };
+        extras.controller_integral = at(system_.integral_index());
+        extras.dissipated = at(system_.dissipated_index());
+        extras.work = at(system_.work_index());
+    }
+    const Tip tip = model_.tip(q);
+    extras.tip_uz = tip.uz;
+    extras.tip_phi = tip.phi;
+    const Energy e = model_.energy(u, q, qd);
+    const double theta = torque ? q[0] : u.theta, theta_dot = torque ? qd[0] : u.theta_dot;
+    Row r{t,
+          theta,
+          theta_dot,
+          tip.uy,
+          tip.ux1,
+          tip.ux,
+          e.kinetic(),
+          e.U,
+          model_.momentum(u, q, qd),
+          e.T2 - e.T0 + e.U,
+          extras};
+    if (sensitivities_ != nullptr) {
+        sensitivities_->outputs(t, y, derived_.data());
+        r.derived = derived_.data();
+    }
+    return r;
+}
+
+/// The row at ti to the sink (the observer first), then the monitors; or why the run must stop.
+std::string Simulation::Run::emit(double ti, const double* state, const RowSink& sink)
+{
+    const Row r = make_row_(ti, state);
+    values_.clear();
+    append_row_values(r, check_.columns().set, values_);
+    for (std::size_t c = 0; c < values_.size(); ++c)
+        if (!std::isfinite(values_[c])) {  // not a row to write: the run ends with the rows before it
+            model_failure_ = "unstable: the solution became non-finite" + at_time(ti) + " (" +
+                             check_.columns().names[c] + " is " + std::to_string(values_[c]) + ")";
+            non_finite_ = true;
+            t_ = ti;
+            return model_failure_;
+        }
+    if (sim_.observer_) sim_.observer_(ti, make_row_.q());
+    summary_.max_abs_tip_uy = std::max(summary_.max_abs_tip_uy, std::abs(r.tip_uy));
+    sink(r);
+    last_row_ = ti;
+    if (!(std::abs(r.theta_dot) > critical_)) monitor(r);
+    model_failure_ = model_limit(r, critical_, scene_.parameters.L);
+    if (!model_failure_.empty()) t_ = ti;  // the run ends with this row, whatever the step reached
+    return model_failure_;
+}
+
+}  // namespace hubbeam
