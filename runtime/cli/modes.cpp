@@ -328,20 +328,132 @@ void run_modes(const Scene& scene, const ModesOptions& o, std::ostream& out)
     report.finish();
 }
 
-void run_linearize(const Scene& scene, double omega, const std::string& prefix, std::ostream& out)
+namespace {
+
+/// linearize's files: the four matrices' CSVs of each system (the closed loop's, then a controlled hub's open loop's),
+/// then each system's .npz; csv_count says where the archives start.
+struct LinearizeFiles {
+    std::vector<NamedPath> outputs;
+    std::size_t csv_count = 0;
+};
+
+/// The files linearize writes under prefix for scene.
+LinearizeFiles linearize_files(const Scene& scene, const std::string& prefix)
 {
     // A controlled hub: the closed loop (input: a torque added to the controller's) in PREFIX-*.csv, and the open
     // loop (input tau), what a control design starts from, in PREFIX-open-*.csv.
     std::vector<std::string> prefixes = {prefix};
     if (scene.control) prefixes.push_back(prefix + "-open");
-    std::vector<NamedPath> outputs;
+    LinearizeFiles files;
+    std::vector<NamedPath>& outputs = files.outputs;
     for (const std::string& p : prefixes)
         for (const char* name : {"A", "B", "C", "D"}) outputs.push_back({p + "-" + name + ".csv", "-o"});
-    const std::size_t csv_count = outputs.size();
+    files.csv_count = outputs.size();
     for (const std::string& p : prefixes) outputs.push_back({p + ".npz", "-o"});  // the same model for numpy
+    return files;
+}
+
+/// Matrix m (0 to 3: A, B, C, D) of sys as CSV: a header of column names, then each row led by its name.
+std::string matrix_csv(const StateSpace& sys, std::size_t m)
+{
+    const Eigen::MatrixXd* X = std::array<const Eigen::MatrixXd*, 4>{&sys.A, &sys.B, &sys.C, &sys.D}[m];
+    const bool state_rows = m < 2, state_columns = m % 2 == 0;
+    const std::vector<std::string>& rows = state_rows ? sys.states : sys.outputs;
+    std::string bytes = std::string(1, "ABCD"[m]);
+    for (const std::string& c : state_columns ? sys.states : sys.inputs) bytes += "," + c;
+    bytes += '\n';
+    for (Eigen::Index i = 0; i < X->rows(); ++i) {
+        bytes += rows[static_cast<std::size_t>(i)];
+        for (Eigen::Index j = 0; j < X->cols(); ++j) {
+            bytes += ',';
+            append_shortest(bytes, (*X)(i, j));
+        }
+        bytes += '\n';
+    }
+    return bytes;
+}
+
+/// sys as a numpy archive: its matrices and the names of its states, inputs and outputs.
+std::string state_space_npz(const StateSpace& sys)
+{
+    return npz_archive({{"A", npy_matrix(sys.A)},
+                        {"B", npy_matrix(sys.B)},
+                        {"C", npy_matrix(sys.C)},
+                        {"D", npy_matrix(sys.D)},
+                        {"states", npy_strings(sys.states)},
+                        {"inputs", npy_strings(sys.inputs)},
+                        {"outputs", npy_strings(sys.outputs)}});
+}
+
+/// The systems' CSVs and archives, put in place together (commit_together) once all are written: a full disk leaves
+/// the old set whole.
+void write_state_spaces(const LinearizeFiles& files, const std::vector<const StateSpace*>& systems)
+{
+    std::vector<std::unique_ptr<OutputFile>> written;
+    for (std::size_t f = 0; f < files.outputs.size(); ++f) {
+        written.push_back(std::make_unique<OutputFile>(files.outputs[f].path));
+        const std::string bytes =
+            f < files.csv_count ? matrix_csv(*systems[f / 4], f % 4) : state_space_npz(*systems[f - files.csv_count]);
+        (void)written.back()->write(bytes);  // a failed write is reported by commit_together, before any rename
+    }
+    std::vector<OutputFile*> set;
+    for (const auto& f : written) set.push_back(f.get());
+    if (const std::string why = commit_together(set); !why.empty()) throw std::runtime_error(why);
+}
+
+/// linearize's metadata beside its files: the scene, the spin, the model's source and the system's names.
+void write_linearize_metadata(const std::string& metadata, const Scene& scene, const LinearizeFiles& files,
+                              double omega, const SteadySpin& steady, const Model& model, const StateSpace& ss,
+                              std::chrono::steady_clock::time_point start)
+{
+    std::vector<std::string> names;
+    for (const NamedPath& f : files.outputs) names.push_back(std::filesystem::path(f.path).filename().string());
+    JsonObject m = scene_metadata("linearize", scene);
+    m.texts("files", names)
+        .number("omega", omega)
+        .boolean("held", steady.held)
+        .text("source", model.source())
+        .texts("states", ss.states)
+        .texts("inputs", ss.inputs)
+        .texts("outputs", ss.outputs)
+        .number("wall_seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    if (const std::string why = write_metadata(metadata, m.str() + "\n"); !why.empty()) throw std::runtime_error(why);
+}
+
+/// What linearize reports: the variant, the steady state, the system's sizes and names, and where its files are.
+void print_linearization(std::ostream& out, const Scene& scene, const Model& model, const SteadySpin& steady,
+                         double omega, const StateSpace& ss, const std::string& prefix, const std::string& metadata)
+{
+    const VariantKey key = scene.key();
+    out << "variant     " << key.name() << " (" << model.source() << ")\n";
+    if (steady.held)
+        out << "held        at theta = " << shortest(steady.u.theta) << " rad under gravity, tip_uy "
+            << shortest(model.tip(steady.q.data()).uy) << " m"
+            << (key.drive == Drive::torque ? ", holding torque " + shortest(steady.u.tau) + " N m" : std::string());
+    else
+        out << "steady spin " << shortest(omega) << " rad/s";
+    if (model.coordinates().count(FieldKind::axial) > 0)
+        out << ", axial stretch at the tip " << shortest(model.tip(steady.q.data()).ux1) << " m";
+    out << "\nstates      " << ss.states.size() << " (" << joined(ss.states) << ")\n"
+        << "input       " << ss.inputs[0] << (key.drive == Drive::torque ? " (N m)" : " (rad/s^2)") << "\n"
+        << "outputs     tip_uy (m), theta (rad)\n"
+        << "matrices    " << prefix << "-{A,B,C,D}.csv (x' = A x + B v, y = C x + D v, deviations from the "
+        << (steady.held ? "equilibrium" : "steady spin") << (scene.control ? "; the closed loop" : "") << ")\n"
+        << "numpy       " << prefix << ".npz (A, B, C, D, states, inputs, outputs)\n"
+        << "metadata    " << metadata << "\n";
+    if (scene.control)
+        out << "open loop   " << prefix << "-open-{A,B,C,D}.csv and " << prefix
+            << "-open.npz (input tau, N m: the hub without its controller)\n";
+}
+
+}  // namespace
+
+void run_linearize(const Scene& scene, double omega, const std::string& prefix, std::ostream& out)
+{
+    const LinearizeFiles files = linearize_files(scene, prefix);
     const std::string metadata = metadata_path(prefix);
     check_outputs(scene_inputs(scene), [&] {
-        std::vector<NamedPath> all = outputs;
+        std::vector<NamedPath> all = files.outputs;
         all.push_back({metadata, "-o's metadata"});
         return all;
     }());  // before anything is computed
@@ -354,78 +466,9 @@ void run_linearize(const Scene& scene, double omega, const std::string& prefix, 
     const StateSpace ss = scene.control ? closed_loop(open, *scene.control) : open;
     std::vector<const StateSpace*> systems = {&ss};
     if (scene.control) systems.push_back(&open);
-    // One CSV per matrix (a header of column names, then each row led by its name) and one archive per system,
-    // put in place together (commit_together) once all are written: a full disk leaves the old set whole.
-    std::vector<std::unique_ptr<OutputFile>> files;
-    for (std::size_t f = 0; f < outputs.size(); ++f) {
-        files.push_back(std::make_unique<OutputFile>(outputs[f].path));
-        std::string bytes;
-        if (f < csv_count) {
-            const StateSpace& sys = *systems[f / 4];
-            const std::size_t m = f % 4;
-            const Eigen::MatrixXd* X = std::array<const Eigen::MatrixXd*, 4>{&sys.A, &sys.B, &sys.C, &sys.D}[m];
-            const bool state_rows = m < 2, state_columns = m % 2 == 0;
-            const std::vector<std::string>& rows = state_rows ? sys.states : sys.outputs;
-            bytes = std::string(1, "ABCD"[m]);
-            for (const std::string& c : state_columns ? sys.states : sys.inputs) bytes += "," + c;
-            bytes += '\n';
-            for (Eigen::Index i = 0; i < X->rows(); ++i) {
-                bytes += rows[static_cast<std::size_t>(i)];
-                for (Eigen::Index j = 0; j < X->cols(); ++j) {
-                    bytes += ',';
-                    append_shortest(bytes, (*X)(i, j));
-                }
-                bytes += '\n';
-            }
-        } else {
-            const StateSpace& sys = *systems[f - csv_count];
-            bytes = npz_archive({{"A", npy_matrix(sys.A)},
-                                 {"B", npy_matrix(sys.B)},
-                                 {"C", npy_matrix(sys.C)},
-                                 {"D", npy_matrix(sys.D)},
-                                 {"states", npy_strings(sys.states)},
-                                 {"inputs", npy_strings(sys.inputs)},
-                                 {"outputs", npy_strings(sys.outputs)}});
-        }
-        (void)files.back()->write(bytes);  // a failed write is reported by commit_together, before any rename
-    }
-    std::vector<OutputFile*> set;
-    for (const auto& f : files) set.push_back(f.get());
-    if (const std::string why = commit_together(set); !why.empty()) throw std::runtime_error(why);
-    {
-        std::vector<std::string> names;
-        for (const NamedPath& f : outputs) names.push_back(std::filesystem::path(f.path).filename().string());
-        JsonObject m = scene_metadata("linearize", scene);
-        m.texts("files", names)
-            .number("omega", omega)
-            .boolean("held", steady.held)
-            .text("source", model->source())
-            .texts("states", ss.states)
-            .texts("inputs", ss.inputs)
-            .texts("outputs", ss.outputs)
-            .number("wall_seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-        if (const std::string why = write_metadata(metadata, m.str() + "\n"); !why.empty())
-            throw std::runtime_error(why);
-    }
-    out << "variant     " << key.name() << " (" << model->source() << ")\n";
-    if (steady.held)
-        out << "held        at theta = " << shortest(steady.u.theta) << " rad under gravity, tip_uy "
-            << shortest(model->tip(steady.q.data()).uy) << " m"
-            << (key.drive == Drive::torque ? ", holding torque " + shortest(steady.u.tau) + " N m" : std::string());
-    else
-        out << "steady spin " << shortest(omega) << " rad/s";
-    if (model->coordinates().count(FieldKind::axial) > 0)
-        out << ", axial stretch at the tip " << shortest(model->tip(steady.q.data()).ux1) << " m";
-    out << "\nstates      " << ss.states.size() << " (" << joined(ss.states) << ")\n"
-        << "input       " << ss.inputs[0] << (key.drive == Drive::torque ? " (N m)" : " (rad/s^2)") << "\n"
-        << "outputs     tip_uy (m), theta (rad)\n"
-        << "matrices    " << prefix << "-{A,B,C,D}.csv (x' = A x + B v, y = C x + D v, deviations from the "
-        << (steady.held ? "equilibrium" : "steady spin") << (scene.control ? "; the closed loop" : "") << ")\n"
-        << "numpy       " << prefix << ".npz (A, B, C, D, states, inputs, outputs)\n"
-        << "metadata    " << metadata << "\n";
-    if (scene.control)
-        out << "open loop   " << prefix << "-open-{A,B,C,D}.csv and " << prefix
-            << "-open.npz (input tau, N m: the hub without its controller)\n";
+    write_state_spaces(files, systems);
+    write_linearize_metadata(metadata, scene, files, omega, steady, *model, ss, start);
+    print_linearization(out, scene, *model, steady, omega, ss, prefix, metadata);
 }
 
 }  // namespace hubbeam
