@@ -220,36 +220,29 @@ JacobianPieces jacobian_pieces(const PolyEquations& eq, const Variables& v, cons
     return j;
 }
 
-/// The kernels' inputs: the parameters p, read once by the coefficients kernel, and the state u, q, qd.
-Signature signature(const Symbols& s, const VariantKey& key)
+/// The symbols the coefficients kernel reads from p: the beam's, the extra terms' (all of them for any extra), the
+/// out-of-plane model's, then each profile station's.
+std::vector<Input> parameter_inputs(const Symbols& s, const VariantKey& key)
 {
-    const bool torque = key.drive == Drive::torque;
-    const int nq = key.nq();
     const Extras& x = key.extras;
-    const std::vector<std::string> p_names = read_parameter_names(key);
-    Signature sig;
-    sig.parameters = {"p", static_cast<int>(p_names.size()), "p = " + tuple(p_names)};
-    sig.derivative_entries = static_cast<int>(key.params_read());
-    sig.state = {{"u", static_cast<int>(input_names(x.gravity).size()), ""}, {"q", nq, ""}, {"qd", nq, ""}};
     // m = rho S, EI and ES are formed from p once, in the coefficients kernel.
-    sig.parameter_inputs = {{s.L, read(Param::L)},
-                            {s.m, read(Param::rho) + " * " + read(Param::S)},
-                            {s.EI, read(Param::E) + " * " + read(Param::I)},
-                            {s.ES, read(Param::E) + " * " + read(Param::S)},
-                            {s.a, read(Param::a)},
-                            {s.J_oh, read(Param::J_oh)}};
+    std::vector<Input> inputs = {{s.L, read(Param::L)},
+                                 {s.m, read(Param::rho) + " * " + read(Param::S)},
+                                 {s.EI, read(Param::E) + " * " + read(Param::I)},
+                                 {s.ES, read(Param::E) + " * " + read(Param::S)},
+                                 {s.a, read(Param::a)},
+                                 {s.J_oh, read(Param::J_oh)}};
     if (x.any())
-        sig.parameter_inputs.insert(sig.parameter_inputs.end(), {{s.m_tip, read(Param::m_tip)},
-                                                                 {s.J_tip, read(Param::J_tip)},
-                                                                 {s.g, read(Param::g)},
-                                                                 {s.alpha, read(Param::alpha)},
-                                                                 {s.beta, read(Param::beta)},
-                                                                 {s.tip_ratio, read(Param::tip_ratio)}});
+        inputs.insert(inputs.end(), {{s.m_tip, read(Param::m_tip)},
+                                     {s.J_tip, read(Param::J_tip)},
+                                     {s.g, read(Param::g)},
+                                     {s.alpha, read(Param::alpha)},
+                                     {s.beta, read(Param::beta)},
+                                     {s.tip_ratio, read(Param::tip_ratio)}});
     if (s.o) {
         // The out-of-plane model's (docs/model.md section 12): j_n = rho I, j_c = rho I_flap for a homogeneous section.
         const Symbols::OutOfPlane& o = *s.o;
-        sig.parameter_inputs.insert(sig.parameter_inputs.end(),
-                                    {{o.EI_flap, read(Param::E) + " * " + read(Param::I_flap)},
+        inputs.insert(inputs.end(), {{o.EI_flap, read(Param::E) + " * " + read(Param::I_flap)},
                                      {o.GJ, read(Param::G) + " * " + read(Param::J_t)},
                                      {o.j_n, read(Param::rho) + " * " + read(Param::I)},
                                      {o.j_c, read(Param::rho) + " * " + read(Param::I_flap)},
@@ -262,29 +255,49 @@ Signature signature(const Symbols& s, const VariantKey& key)
     }
     for (std::size_t k = 0; k < x.stations.size(); ++k) {
         const auto at = [&](ProfileValue v) { return read_profile(key, k, v); };
-        sig.parameter_inputs.insert(
-            sig.parameter_inputs.end(),
+        inputs.insert(
+            inputs.end(),
             {{s.m_k[k], at(ProfileValue::m)}, {s.EI_k[k], at(ProfileValue::EI)}, {s.ES_k[k], at(ProfileValue::ES)}});
         if (s.o)  // a blade's table (docs/model.md section 12.4): cos and sin of twice its chord angle, once per p
-            sig.parameter_inputs.insert(sig.parameter_inputs.end(),
-                                        {{s.o->EI_flap_k[k], at(ProfileValue::EI_flap)},
+            inputs.insert(inputs.end(), {{s.o->EI_flap_k[k], at(ProfileValue::EI_flap)},
                                          {s.o->GJ_k[k], at(ProfileValue::GJ)},
                                          {s.o->j_c_k[k], at(ProfileValue::j_c)},
                                          {s.o->j_n_k[k], at(ProfileValue::j_n)},
                                          {s.o->cos_2twist_k[k], "std::cos(2 * " + at(ProfileValue::twist) + ")"},
                                          {s.o->sin_2twist_k[k], "std::sin(2 * " + at(ProfileValue::twist) + ")"}});
     }
-    if (torque)
-        sig.state_inputs.push_back({s.tau, read(DriveValue::tau)});
+    return inputs;
+}
+
+/// The symbols every other kernel reads from u, q and qd: the drive values the variant reads, gravity's sin and cos
+/// of the angle, then the coordinates and their rates.
+std::vector<Input> state_inputs(const Symbols& s, const VariantKey& key)
+{
+    std::vector<Input> inputs;
+    if (key.drive == Drive::torque)
+        inputs.push_back({s.tau, read(DriveValue::tau)});
     else
-        sig.state_inputs.insert(sig.state_inputs.end(), {{s.theta_dot, read(DriveValue::theta_dot)},
-                                                         {s.theta_ddot, read(DriveValue::theta_ddot)}});
-    if (x.gravity)
-        sig.state_inputs.insert(sig.state_inputs.end(), {{s.sin_theta, read(AngleValue::sin_theta)},
-                                                         {s.cos_theta, read(AngleValue::cos_theta)}});
-    for (std::size_t i = 0; i < s.q.size(); ++i) sig.state_inputs.push_back({s.q[i], "q[" + std::to_string(i) + "]"});
-    for (std::size_t i = 0; i < s.qd.size(); ++i)
-        sig.state_inputs.push_back({s.qd[i], "qd[" + std::to_string(i) + "]"});
+        inputs.insert(inputs.end(),
+                      {{s.theta_dot, read(DriveValue::theta_dot)}, {s.theta_ddot, read(DriveValue::theta_ddot)}});
+    if (key.extras.gravity)
+        inputs.insert(inputs.end(),
+                      {{s.sin_theta, read(AngleValue::sin_theta)}, {s.cos_theta, read(AngleValue::cos_theta)}});
+    for (std::size_t i = 0; i < s.q.size(); ++i) inputs.push_back({s.q[i], "q[" + std::to_string(i) + "]"});
+    for (std::size_t i = 0; i < s.qd.size(); ++i) inputs.push_back({s.qd[i], "qd[" + std::to_string(i) + "]"});
+    return inputs;
+}
+
+/// The kernels' inputs: the parameters p, read once by the coefficients kernel, and the state u, q, qd.
+Signature signature(const Symbols& s, const VariantKey& key)
+{
+    const int nq = key.nq();
+    const std::vector<std::string> p_names = read_parameter_names(key);
+    Signature sig;
+    sig.parameters = {"p", static_cast<int>(p_names.size()), "p = " + tuple(p_names)};
+    sig.derivative_entries = static_cast<int>(key.params_read());
+    sig.state = {{"u", static_cast<int>(input_names(key.extras.gravity).size()), ""}, {"q", nq, ""}, {"qd", nq, ""}};
+    sig.parameter_inputs = parameter_inputs(s, key);
+    sig.state_inputs = state_inputs(s, key);
     return sig;
 }
 
@@ -438,30 +451,29 @@ struct Kernels {
     bool mass_varies = false, folded = false;
 };
 
-/// points: where order full's foreshortening terms go to quadrature points (d then holds the equations without
-/// them), the code that every kernel of M, Q, the energies and the Jacobian adds; Q then has no form F m.
-Kernels variant_kernels(const VariantKey& key, const Symbols& s, const Derivation& d, const PointCode* points = nullptr)
+/// M's pattern ('0', 'c', 'v' per entry, mass_pattern), order full's quadrature points making the entries their
+/// code adds to (and the mirror ones) varying.
+std::string mass_pattern_with_points(const Derivation& d, int nq, const PointCode* points)
 {
-    const PolyEquations& eq = d.eq;
-    const int nq = key.nq();
-    const std::string n2 = std::to_string(nq * nq), n1 = std::to_string(nq);
-    Kernels out;
-    JacobianPieces jac = jacobian_pieces(eq, d.v, d.c, key.drive == Drive::torque);
-    out.mass_pattern = mass_pattern(eq.M, d.v.q);
+    std::string pattern = mass_pattern(d.eq.M, d.v.q);
     if (points != nullptr)
         for (int k : points->mass_entries) {
-            out.mass_pattern[static_cast<std::size_t>(k)] = 'v';
-            out.mass_pattern[static_cast<std::size_t>(k % nq * nq + k / nq)] = 'v';
+            pattern[static_cast<std::size_t>(k)] = 'v';
+            pattern[static_cast<std::size_t>(k % nq * nq + k / nq)] = 'v';
         }
-    auto [mass, mass_varying] = mass_kernels(eq.M, out.mass_pattern, nq);
-    out.mass_varies = !mass_varying.polys.empty();
-    // Q = F m lets the runtime fold M^-1 into F once: all of M where it is constant (prescribed rotation), the
-    // constant beam block where only the hub's entry varies (hub torque without axial coordinates).
-    const TermMatrix terms = points == nullptr ? term_matrix(eq.Q, d.parameter_count) : TermMatrix{};
-    out.nterms = terms.terms.size();
+    return pattern;
+}
+
+/// The kernels every variant has, in its table row's order: M, Q and its form F m, the energies, the momentum, the
+/// tip and the Jacobian's derivatives of Q (taken from jac).
+std::vector<KernelSpec> common_kernels(const VariantKey& key, const Symbols& s, const PolyEquations& eq,
+                                       const KernelSpec& mass, const TermMatrix& terms, JacobianPieces& jac)
+{
+    const int nq = key.nq();
+    const std::string n2 = std::to_string(nq * nq), n1 = std::to_string(nq);
     const std::string nk = std::to_string(terms.terms.size());
     const std::string nu = std::to_string(nq * static_cast<int>(drive_value_count));
-    out.list = {
+    return {
         mass,
         dense_kernel("forces", "Q[" + n1 + "]", "Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq", eq.Q),
         dense_kernel("forces_terms", "m[" + nk + "]", "the state monomials of Q: Q = F m", terms.terms),
@@ -476,57 +488,94 @@ Kernels variant_kernels(const VariantKey& key, const Symbols& s, const Derivatio
         sparse_kernel("forces_u", "dQdu[" + nu + "]",
                       "row-major; out[i*3+j] = dQ_i/du_j, u = " + tuple(drive_value_names), std::move(jac.forces_u)),
     };
-    if (points != nullptr) {
-        const auto add = [&](KernelSpec& k, const std::string& tail) {
-            k.tail = tail;
-            k.tail_coefficients = points->coefficients;
-            k.doc += "; plus the quadrature points' terms";
-        };
-        add(out.list[0], points->mass);
-        add(mass_varying, points->mass);
-        add(out.list[1], points->forces);
-        add(out.list[4], points->energy);
-        add(out.list[5], points->momentum);
-        add(out.list[7], points->forces_q);
-        add(out.list[8], points->forces_qd);
-        if (!points->forces_u.empty()) add(out.list[9], points->forces_u);
-    }
+}
+
+/// Order full's code for its quadrature points' terms, added to the kernels of list (common_kernels' order) and to
+/// M's varying entries.
+void add_point_terms(std::vector<KernelSpec>& list, KernelSpec& mass_varying, const PointCode& points)
+{
+    const auto add = [&](KernelSpec& k, const std::string& tail) {
+        k.tail = tail;
+        k.tail_coefficients = points.coefficients;
+        k.doc += "; plus the quadrature points' terms";
+    };
+    add(list[0], points.mass);
+    add(mass_varying, points.mass);
+    add(list[1], points.forces);
+    add(list[4], points.energy);
+    add(list[5], points.momentum);
+    add(list[7], points.forces_q);
+    add(list[8], points.forces_qd);
+    if (!points.forces_u.empty()) add(list[9], points.forces_u);
+}
+
+/// The kernel of P m, added to out where the runtime folds M's constant part into F (folded_pattern) and unrolling
+/// still pays; out.folded says whether it was.
+void add_folded_kernel(Kernels& out, const TermMatrix& terms, int nq)
+{
+    const std::string n1 = std::to_string(nq), nk = std::to_string(terms.terms.size());
     // The runtime folds M's constant part into F once (folded_pattern); this kernel evaluates P m with P's entries at
     // fixed places, unrolled over the entries that can be nonzero, up to a size where unrolling stops paying (the
     // runtime then walks a table of P's nonzeros).
     std::vector<bool> pattern = folded_pattern(out.mass_pattern, terms.matrix, nq, terms.terms.size());
     const auto folded_terms = static_cast<std::size_t>(std::count(pattern.begin(), pattern.end(), true));
     out.folded = !pattern.empty() && folded_terms <= 2000;
-    if (out.folded) {
-        constexpr std::size_t W = generated::folded_lanes;
-        KernelSpec f = dense_kernel(
-            "forces_folded", "y[" + n1 + "]",
-            "y = P m, P (" + n1 + " x " + nk + ") passed in the c slot by groups of " + std::to_string(W) +
-                " rows, P(i, k) at c[(j/" + std::to_string(W) + ")*" + std::to_string(W * terms.terms.size()) + " + " +
-                std::to_string(W) + "k + j%" + std::to_string(W) + "], j = i" +
-                (out.mass_varies ? " + " + std::to_string(W - 1) : "") +
-                ": M^-1 F for a constant M, else C^-1 F_C in " +
-                "the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); " +
-                "of the " + std::to_string(folded_terms) + " entries that can be nonzero, a group of rows reads the " +
-                "columns any of its rows has",
-            terms.terms);
-        f.rows = nq;
-        f.row_offset = out.mass_varies ? W - 1 : 0;  // the hub's row, which couples to every other, stays alone
-        f.pattern = std::move(pattern);
-        out.list.push_back(f);
+    if (!out.folded) return;
+    constexpr std::size_t W = generated::folded_lanes;
+    KernelSpec f = dense_kernel(
+        "forces_folded", "y[" + n1 + "]",
+        "y = P m, P (" + n1 + " x " + nk + ") passed in the c slot by groups of " + std::to_string(W) +
+            " rows, P(i, k) at c[(j/" + std::to_string(W) + ")*" + std::to_string(W * terms.terms.size()) + " + " +
+            std::to_string(W) + "k + j%" + std::to_string(W) + "], j = i" +
+            (out.mass_varies ? " + " + std::to_string(W - 1) : "") + ": M^-1 F for a constant M, else C^-1 F_C in " +
+            "the rows of M's constant block C and F_0 - b^T C^-1 F_C in the hub's (b its constant couplings); " +
+            "of the " + std::to_string(folded_terms) + " entries that can be nonzero, a group of rows reads the " +
+            "columns any of its rows has",
+        terms.terms);
+    f.rows = nq;
+    f.row_offset = out.mass_varies ? W - 1 : 0;  // the hub's row, which couples to every other, stays alone
+    f.pattern = std::move(pattern);
+    out.list.push_back(f);
+}
+
+/// M's varying entries and (dM/dq) v, added to out for a mass matrix that depends on q (with order full's points'
+/// terms where it has them).
+void add_varying_mass_kernels(Kernels& out, int nq, KernelSpec mass_varying, std::vector<Poly> mass_q_product,
+                              const PointCode* points)
+{
+    const std::string n2 = std::to_string(nq * nq), n1 = std::to_string(nq);
+    out.list.push_back(std::move(mass_varying));
+    out.list.push_back(sparse_kernel("mass_q_product", "dMv[" + n2 + "]",
+                                     "row-major; v in the qd slot; out[i*" + n1 + "+k] = sum_j dM_ij/dq_k v_j",
+                                     std::move(mass_q_product)));
+    if (points != nullptr) {
+        out.list.back().tail = points->mass_q_product;
+        out.list.back().tail_coefficients = points->coefficients;
+        out.list.back().doc += "; plus the quadrature points' terms";
     }
+}
+
+/// points: where order full's foreshortening terms go to quadrature points (d then holds the equations without
+/// them), the code that every kernel of M, Q, the energies and the Jacobian adds; Q then has no form F m.
+Kernels variant_kernels(const VariantKey& key, const Symbols& s, const Derivation& d, const PointCode* points = nullptr)
+{
+    const PolyEquations& eq = d.eq;
+    const int nq = key.nq();
+    Kernels out;
+    JacobianPieces jac = jacobian_pieces(eq, d.v, d.c, key.drive == Drive::torque);
+    out.mass_pattern = mass_pattern_with_points(d, nq, points);
+    auto [mass, mass_varying] = mass_kernels(eq.M, out.mass_pattern, nq);
+    out.mass_varies = !mass_varying.polys.empty();
+    // Q = F m lets the runtime fold M^-1 into F once: all of M where it is constant (prescribed rotation), the
+    // constant beam block where only the hub's entry varies (hub torque without axial coordinates).
+    const TermMatrix terms = points == nullptr ? term_matrix(eq.Q, d.parameter_count) : TermMatrix{};
+    out.nterms = terms.terms.size();
+    out.list = common_kernels(key, s, eq, mass, terms, jac);
+    if (points != nullptr) add_point_terms(out.list, mass_varying, *points);
+    add_folded_kernel(out, terms, nq);
     // A constant M has dM/dq = 0: no kernels, null pointers in the table row, and the runtime skips the terms.
-    if (out.mass_varies) {
-        out.list.push_back(std::move(mass_varying));
-        out.list.push_back(sparse_kernel("mass_q_product", "dMv[" + n2 + "]",
-                                         "row-major; v in the qd slot; out[i*" + n1 + "+k] = sum_j dM_ij/dq_k v_j",
-                                         std::move(jac.mass_q_product)));
-        if (points != nullptr) {
-            out.list.back().tail = points->mass_q_product;
-            out.list.back().tail_coefficients = points->coefficients;
-            out.list.back().doc += "; plus the quadrature points' terms";
-        }
-    }
+    if (out.mass_varies)
+        add_varying_mass_kernels(out, nq, std::move(mass_varying), std::move(jac.mass_q_product), points);
     return out;
 }
 
