@@ -79,18 +79,53 @@ public:
                       const PolyReader& read)
         : s_(s), f_(f), integrals_(integrals), read_(read)
     {
+        const CoordinateLayout layout = coordinate_layout(key);
+        expand_axial(layout);
+        expand_inplane(layout);
+        expand_flap(layout);
+        expand_twist(layout);
+        merge_symmetric_couplings();
+        expand_profile(key);
+        // Present (possibly empty) so that nx = 0 (or a planar variant's missing fields) makes their terms vanish.
+        for (const symbol& absent : {f.ux1, f.ux1_dot, f.ux1_x, f.ux1_x_dot, f.uz, f.uz_dot, f.uz_x, f.uz_xx,
+                                     f.uz_xx_dot, f.phi, f.phi_dot, f.phi_x, f.phi_x_dot})
+            fields_[absent];
+    }
+
+    /// int_0^L density dx.
+    Poly operator()(const ex& density) { return evaluate(density, false); }
+    /// The density at x = L (a tip body's energies): no integral.
+    Poly at_tip(const ex& density) { return evaluate(density, true); }
+
+private:
+    /// Adds one term of field's expansion: coef (coordinates over powers of L) times a factor of shape functions.
+    void add(const symbol& field, const ex& coef, const Factor& factor)
+    {
+        fields_[field].push_back(single_term(read_, coef, {factor}));
+    }
+
+    /// The axial field's expansion: u_x1, its rate and their slopes.
+    void expand_axial(const CoordinateLayout& layout)
+    {
+        const Symbols& s = s_;
+        const FieldSymbols& f = f_;
         using K = Factor::Kind;
         const ex inv_L = 1 / s.L;
-        const auto add = [&](const symbol& field, const ex& coef, const Factor& factor) {
-            fields_[field].push_back(single_term(read, coef, {factor}));
-        };
-        const CoordinateLayout layout = coordinate_layout(key);
         for (int i = 0; i < layout.count(FieldKind::axial); ++i) {
             add(f.ux1, s.A[i], {K::axial, i, 0, 0});
             add(f.ux1_dot, s.A_dot[i], {K::axial, i, 0, 0});
             add(f.ux1_x, s.A[i] * inv_L, {K::axial, i, 0, 1});
             add(f.ux1_x_dot, s.A_dot[i] * inv_L, {K::axial, i, 0, 1});
         }
+    }
+
+    /// The in-plane field's expansion: u_y, its rate, slopes and curvatures, and its foreshortening u_x2.
+    void expand_inplane(const CoordinateLayout& layout)
+    {
+        const Symbols& s = s_;
+        const FieldSymbols& f = f_;
+        using K = Factor::Kind;
+        const ex inv_L = 1 / s.L;
         const int ny = layout.count(FieldKind::inplane);
         for (int j = 0; j < ny; ++j) {
             add(f.uy, s.B[j], {K::transverse, j, 0, 0});
@@ -105,7 +140,16 @@ public:
                 add(f.ux2_dot, -s.B[j] * s.B_dot[k] * inv_L, {K::coupling, j, k, 0});
             }
         }
-        // The flapwise field (docs/model.md section 12): like the in-plane one, and its slope shortens the beam too.
+    }
+
+    /// The flapwise field's expansion (docs/model.md section 12).
+    void expand_flap(const CoordinateLayout& layout)
+    {
+        const Symbols& s = s_;
+        const FieldSymbols& f = f_;
+        using K = Factor::Kind;
+        const ex inv_L = 1 / s.L;
+        // Like the in-plane one, and its slope shortens the beam too.
         const int nz = layout.count(FieldKind::flap);
         for (int j = 0; j < nz; ++j) {
             add(f.uz, s.Z[j], {K::flap, j, 0, 0});
@@ -118,12 +162,27 @@ public:
                 add(f.ux2_dot, -s.Z[j] * s.Z_dot[k] * inv_L, {K::flap_coupling, j, k, 0});
             }
         }
+    }
+
+    /// The twist field's expansion: phi, its rate and their slopes.
+    void expand_twist(const CoordinateLayout& layout)
+    {
+        const Symbols& s = s_;
+        const FieldSymbols& f = f_;
+        using K = Factor::Kind;
+        const ex inv_L = 1 / s.L;
         for (int i = 0; i < layout.count(FieldKind::twist); ++i) {
             add(f.phi, s.P[i], {K::twist, i, 0, 0});
             add(f.phi_dot, s.P_dot[i], {K::twist, i, 0, 0});
             add(f.phi_x, s.P[i] * inv_L, {K::twist, i, 0, 1});
             add(f.phi_x_dot, s.P_dot[i] * inv_L, {K::twist, i, 0, 1});
         }
+    }
+
+    /// The couplings' terms merged where H's symmetry makes two one.
+    void merge_symmetric_couplings()
+    {
+        using K = Factor::Kind;
         // H is symmetric: B_j B_k H_jk and B_k B_j H_kj are one term (halves u_x2's expansion, quarters its square).
         for (auto& [field, expansion] : fields_) {
             std::map<std::pair<Exponents, std::vector<Factor>>, Coefficient> merged;
@@ -138,7 +197,14 @@ public:
             for (auto& [key, c] : merged)
                 if (!c.empty()) expansion.push_back({key.first, c, key.second});
         }
-        // A profile's distributions: station k's value times its hat function.
+    }
+
+    /// A profile's distributions along the beam: each station's values times its hat function.
+    void expand_profile(const VariantKey& key)
+    {
+        const Symbols& s = s_;
+        const FieldSymbols& f = f_;
+        using K = Factor::Kind;
         for (std::size_t k = 0; k < key.extras.stations.size(); ++k) {
             const Factor hat{K::hat, static_cast<int>(k), 0, 0};
             add(f.m_x, s.m_k[k], hat);
@@ -160,24 +226,14 @@ public:
             add(f.j_sin_x, o.j_n_k[k] * o.sin_2twist_k[k] / 2, hat);
             add(f.j_sin_x, -o.j_c_k[k] * o.sin_2twist_k[k] / 2, hat);
         }
-        // Present (possibly empty) so that nx = 0 (or a planar variant's missing fields) makes their terms vanish.
-        for (const symbol& absent : {f.ux1, f.ux1_dot, f.ux1_x, f.ux1_x_dot, f.uz, f.uz_dot, f.uz_x, f.uz_xx,
-                                     f.uz_xx_dot, f.phi, f.phi_dot, f.phi_x, f.phi_x_dot})
-            fields_[absent];
     }
 
-    /// int_0^L density dx.
-    Poly operator()(const ex& density) { return evaluate(density, false); }
-    /// The density at x = L (a tip body's energies): no integral.
-    Poly at_tip(const ex& density) { return evaluate(density, true); }
-
-private:
     Poly evaluate(const ex& density, bool tip)
     {
         const symbol& xi = f_.xi;
         const ex d = density.subs(f_.X == s_.a + s_.L * xi).subs(xi == (tip ? ex(1) : ex(xi))).expand();
         Poly sum;
-        for (const ex& term : is_a<add>(d) ? d : lst{d}) {
+        for (const ex& term : is_a<GiNaC::add>(d) ? d : lst{d}) {
             ex coef = tip ? ex(1) : ex(s_.L);  // dx = L dxi
             int xi_power = 0;
             std::vector<const Expansion*> occurrences;

@@ -290,57 +290,56 @@ std::string csv_field(std::string_view text)
     return q + "\"";
 }
 
-std::string format_summary(const RunSummary& r, const Scene& scene)
+namespace {
+
+/// " (what the motion is": the drive's words for the summary's scene line, left open for what follows.
+std::string motion_words(const Motion& m)
 {
-    std::ostringstream out;
-    const Motion& m = scene.motion;
+    std::ostringstream motion;
+    switch (m.kind) {
+        case Motion::Kind::spin_up:
+            motion << " (spin-up to Omega0 = " << shortest(m.omega0) << " rad/s in T_s = " << shortest(m.spin_time)
+                   << " s";
+            break;
+        case Motion::Kind::torque:
+            motion << " (hub torque tau0 = " << shortest(m.tau0) << " N m for T_t = " << shortest(m.torque_time)
+                   << " s";
+            break;
+        case Motion::Kind::held:
+            motion << " (hub held at theta = " << shortest(m.angle) << " rad";
+            break;
+        case Motion::Kind::step:
+            motion << " (step to " << shortest(m.angle) << " rad at t = 0";
+            break;
+        case Motion::Kind::table:
+        case Motion::Kind::torque_table:
+            motion << (m.kind == Motion::Kind::table ? " (hub angle from " : " (hub torque from ")
+                   << printable(m.table_file, 200) << ", " << m.table->times().size()
+                   << " rows to t = " << shortest(m.table->last_time()) << " s, "
+                   << (m.kind == Motion::Kind::table ? "natural cubic spline" : "linear between rows");
+            break;
+    }
+    if (m.kind != Motion::Kind::held && m.theta0 != 0.0) motion << ", theta0 = " << shortest(m.theta0) << " rad";
+    return motion.str();
+}
+
+/// The summary's scene line: the file and what drives the hub.
+void print_scene(std::ostream& out, const Scene& scene)
+{
     out << "scene       " << scene.path;
     if (scene.control && scene.control->law) {
         out << " (hub torque from a torque law)\n";
     } else {
-        std::ostringstream motion;  // " (what the motion is", closed below
-        switch (m.kind) {
-            case Motion::Kind::spin_up:
-                motion << " (spin-up to Omega0 = " << shortest(m.omega0) << " rad/s in T_s = " << shortest(m.spin_time)
-                       << " s";
-                break;
-            case Motion::Kind::torque:
-                motion << " (hub torque tau0 = " << shortest(m.tau0) << " N m for T_t = " << shortest(m.torque_time)
-                       << " s";
-                break;
-            case Motion::Kind::held:
-                motion << " (hub held at theta = " << shortest(m.angle) << " rad";
-                break;
-            case Motion::Kind::step:
-                motion << " (step to " << shortest(m.angle) << " rad at t = 0";
-                break;
-            case Motion::Kind::table:
-            case Motion::Kind::torque_table:
-                motion << (m.kind == Motion::Kind::table ? " (hub angle from " : " (hub torque from ")
-                       << printable(m.table_file, 200) << ", " << m.table->times().size()
-                       << " rows to t = " << shortest(m.table->last_time()) << " s, "
-                       << (m.kind == Motion::Kind::table ? "natural cubic spline" : "linear between rows");
-                break;
-        }
-        if (m.kind != Motion::Kind::held && m.theta0 != 0.0) motion << ", theta0 = " << shortest(m.theta0) << " rad";
-        const std::string what = motion.str();
+        const std::string what = motion_words(scene.motion);
         out << (scene.control ? " (controlled hub, reference: " + what.substr(2) : what) << ")\n";
     }
-    out << "variant     " << r.variant << " (" << r.source << ")\n";
-    out << "algebra     " << r.algebra << "\n";
-    out << "stepper     " << r.stepper << (r.stepper_why.empty() ? "" : " (" + r.stepper_why + ")") << ", rtol "
-        << shortest(scene.solver.rtol) << ", atol " << shortest(scene.solver.atol) << ", h0 "
-        << shortest(scene.solver.h0) << " s, "
-        << (scene.solver.stepping == Stepping::free ? "free steps (rows interpolated)" : "a step ends at every row")
-        << "\n";
-    if (!r.newton.empty()) out << "newton      " << r.newton << "\n";
-    out << "time        0 to " << shortest(r.t_reached) << " s of " << shortest(scene.output.t_end) << " s, rows every "
-        << shortest(scene.output.dt_out) << " s";
-    if (!scene.output.file.empty()) out << " in " << scene.output.file;
-    out << "\n";
+}
+
+/// The summary's invariant line: the monitor's drift against its reference, or why it checked none (no line when it
+/// measured nothing).
+void print_invariant(std::ostream& out, const RunSummary& r)
+{
     char buf[32];
-    std::snprintf(buf, sizeof buf, "%.6g", r.max_abs_tip_uy);
-    out << "max |tip_uy| " << buf << " m\n";
     if (!r.monitor_off.empty()) {
         out << "invariant   none checked: " << r.monitor_off << "\n";
     } else if (r.vibration_energy > 0.0 && r.energy_balance) {
@@ -360,6 +359,43 @@ std::string format_summary(const RunSummary& r, const Scene& scene)
             << " drift " << buf << " J " << (r.energy_balance ? "from" : "after") << " t = " << shortest(r.t_steady)
             << " s, with no energy in the run to compare it with\n";
     }
+}
+
+/// The summary's wall time line: the run's, and the error check's where one ran.
+void print_wall_time(std::ostream& out, const RunSummary& r)
+{
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3f", r.wall_seconds);
+    out << "wall time   " << buf << " s";
+    if (r.check_wall_seconds > 0.0) {
+        std::snprintf(buf, sizeof buf, "%.3f", r.check_wall_seconds);
+        out << " and " << buf << " s for the error check";
+    }
+    out << "\n";
+}
+
+}  // namespace
+
+std::string format_summary(const RunSummary& r, const Scene& scene)
+{
+    std::ostringstream out;
+    print_scene(out, scene);
+    out << "variant     " << r.variant << " (" << r.source << ")\n";
+    out << "algebra     " << r.algebra << "\n";
+    out << "stepper     " << r.stepper << (r.stepper_why.empty() ? "" : " (" + r.stepper_why + ")") << ", rtol "
+        << shortest(scene.solver.rtol) << ", atol " << shortest(scene.solver.atol) << ", h0 "
+        << shortest(scene.solver.h0) << " s, "
+        << (scene.solver.stepping == Stepping::free ? "free steps (rows interpolated)" : "a step ends at every row")
+        << "\n";
+    if (!r.newton.empty()) out << "newton      " << r.newton << "\n";
+    out << "time        0 to " << shortest(r.t_reached) << " s of " << shortest(scene.output.t_end) << " s, rows every "
+        << shortest(scene.output.dt_out) << " s";
+    if (!scene.output.file.empty()) out << " in " << scene.output.file;
+    out << "\n";
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.6g", r.max_abs_tip_uy);
+    out << "max |tip_uy| " << buf << " m\n";
+    print_invariant(out, r);
     if (r.estimated_error >= 0.0) {
         char line[240];
         std::snprintf(line, sizeof line, "%.2g of the largest value (%s), from %s re-run at rtol %g, atol %g",
@@ -368,13 +404,7 @@ std::string format_summary(const RunSummary& r, const Scene& scene)
     }
     out << "steps       " << r.steps << " accepted, " << r.rejected_steps << " rejected by the error test\n";
     out << "RHS evals   " << r.rhs_evals << "\n";
-    std::snprintf(buf, sizeof buf, "%.3f", r.wall_seconds);
-    out << "wall time   " << buf << " s";
-    if (r.check_wall_seconds > 0.0) {
-        std::snprintf(buf, sizeof buf, "%.3f", r.check_wall_seconds);
-        out << " and " << buf << " s for the error check";
-    }
-    out << "\n";
+    print_wall_time(out, r);
     if (!r.completed) out << "STOPPED     at t = " << shortest(r.t_reached) << " s: " << r.failure << "\n";
     return out.str();
 }
