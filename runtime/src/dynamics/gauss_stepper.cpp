@@ -30,8 +30,14 @@ const double d1 = -root3, d2 = root3;
 
 /// The collocation polynomial u(s) over a step (s in units of it) has degree 2, u(0) = y0 and u(c_i) = y0 + Z_i:
 /// the Lagrange weights of Z1 and Z2, for the next step's starting values.
-double l1(double s) { return s * (s - c2) / (c1 * (c1 - c2)); }
-double l2(double s) { return s * (s - c1) / (c2 * (c2 - c1)); }
+double l1(double s)
+{
+    return s * (s - c2) / (c1 * (c1 - c2));
+}
+double l2(double s)
+{
+    return s * (s - c1) / (c2 * (c2 - c1));
+}
 
 /// A factored Newton matrix and the step it was formed for: dense, or in the mass form a bordered band (a copy of the
 /// stepper's plan for a version of the pattern).
@@ -52,12 +58,32 @@ using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::R
 class GaussStepper final : public Stepper {
 public:
     GaussStepper(FirstOrderSystem& system, double h0, double atol, double rtol)
-        : system_(system), m_(system.size()), blocks_(system.blocks()), n_(m_ / blocks_),
-          controlled_(system.controlled_size()), h_(h0), h0_(h0),
-          atol_(atol), rtol_(rtol), y1_(m_), y_half_(m_), y2_(m_), w_(m_), stage_(m_), z_(2 * m_), dz_(2 * n_),
-          g_(2 * n_), f_(2 * m_), J_(n_, n_), dfdt_(n_), rows_(static_cast<std::size_t>(n_) * n_),
-          k_((n_ - system.FirstOrderSystem::auxiliary_count()) / 2), aux_(system.FirstOrderSystem::auxiliary_count()),
-          rhs2_(2 * k_), dv_(2 * k_), mix_(k_)
+        : system_(system),
+          m_(system.size()),
+          blocks_(system.blocks()),
+          n_(m_ / blocks_),
+          controlled_(system.controlled_size()),
+          h_(h0),
+          h0_(h0),
+          atol_(atol),
+          rtol_(rtol),
+          y1_(m_),
+          y_half_(m_),
+          y2_(m_),
+          w_(m_),
+          stage_(m_),
+          z_(2 * m_),
+          dz_(2 * n_),
+          g_(2 * n_),
+          f_(2 * m_),
+          J_(n_, n_),
+          dfdt_(n_),
+          rows_(static_cast<std::size_t>(n_) * n_),
+          k_((n_ - system.FirstOrderSystem::auxiliary_count()) / 2),
+          aux_(system.FirstOrderSystem::auxiliary_count()),
+          rhs2_(2 * k_),
+          dv_(2 * k_),
+          mix_(k_)
     {
         mass_form_ = k_ >= mass_form_min_size && system.has_mass_form();
         // Auxiliary states that are quadratures of the state (a controlled or damped hub's work and dissipated energy)
@@ -95,12 +121,7 @@ private:
         Eigen::Map<Eigen::VectorXd> y0(y, m_);
         bool bad_function = false;
         for (int attempt = 0;; ++attempt) {
-            // The steps to the target share its distance evenly (no sliver before it, and one Newton matrix for all of
-            // them: with rows every dt_out that steps end at, the clipped last step of each row interval was
-            // refactored for and then again for the next interval's first step).
-            const double reach = std::min(h_, h_max), distance = target - t;
-            const double pieces = distance <= 1.01 * reach ? 1.0 : std::ceil(distance / reach);
-            double h = pieces <= 1.0 ? distance : distance / pieces;
+            const double h = share_of(t, target, h_max);
             // Out of steps to try: equations that failed to evaluate on the way are the cause (M not positive
             // definite, which GSL's steppers report at once).
             if (h <= 64.0 * std::numeric_limits<double>::epsilon() * std::max(std::abs(t), 1.0) || attempt > 60)
@@ -110,32 +131,17 @@ private:
             // A Newton matrix of a step within a fifth of this one still converges fast: refactored only beyond that.
             if (!factored_ || std::abs(h / h_factored_ - 1.0) > 0.2) factor(h);
             for (int i = 0; i < m_; ++i) w_[i] = atol_ + rtol_ * std::abs(y[i]);
-            // One step of h and two of h/2 from the same start; the halves' result is kept, and their difference
-            // from the whole step, (2^4 - 1) times the halves' error, is the estimate.
-            guess(h);
-            int status = solve_stages(t, y0, h, whole_, y1_);
-            if (status == GSL_SUCCESS) {
-                // The whole step's collocation polynomial, inside its interval, starts the halves' iterations.
-                z_last_ = z_;
-                h_last_ = h;
-                interpolate(0.0);
-                status = solve_stages(t, y0, 0.5 * h, half_, y_half_);
-                if (status == GSL_SUCCESS) {
-                    interpolate(0.5);
-                    status = solve_stages(t + 0.5 * h, y_half_, 0.5 * h, half_, y2_);
-                }
-            }
-            if (status != GSL_SUCCESS) {  // no convergence: a fresh Jacobian, then a shorter step
+            if (const int status = whole_and_halves(t, y0, h); status != GSL_SUCCESS) {
+                // no convergence: a fresh Jacobian, then a shorter step
                 bad_function = bad_function || status == GSL_EBADFUNC;
-                if (!fresh_jacobian_) stale_jacobian_ = true;
-                else h_ = 0.5 * h;
+                if (!fresh_jacobian_)
+                    stale_jacobian_ = true;
+                else
+                    h_ = 0.5 * h;
                 have_guess_ = false;
                 continue;
             }
-            double ratio = 0.0;
-            for (int i = 0; i < controlled_; ++i)
-                ratio = std::max(ratio, std::abs(y2_[i] - y1_[i]) / 15.0 /
-                                            (atol_ + rtol_ * std::max(std::abs(y[i]), std::abs(y2_[i]))));
+            const double ratio = error_ratio(y);
             const double factor = std::clamp(0.9 * std::pow(std::max(ratio, 1e-10), -0.2), 0.2, 4.0);
             if (!(ratio <= 1.0)) {
                 h_ = h * std::min(factor, 0.9);
@@ -144,34 +150,84 @@ private:
                 have_guess_ = false;
                 continue;
             }
-            // Accepted. The Jacobian is kept while the iteration converges fast; the second half's polynomial
-            // extrapolates to the next step's starting values.
-            z_last_ = z_;
-            h_last_ = 0.5 * h;
-            have_guess_ = true;
-            t = h == target - t ? target : t + h;
-            y0 = y2_;
-            ++steps_;
-            fresh_jacobian_ = false;
-            stale_jacobian_ = rate_ > 0.05;
-            // A growth of less than a fifth is not taken (as RADAU5 does): the Newton matrices stay factored. A step
-            // the target shortened says nothing against the step before it, which the next one resumes unless this
-            // one's error calls for less. Where h_max, not the target, shortened the step, h_ follows the step: held
-            // above the bound, it was tried, and rejected, each time the bound let go (FEM at Ny = 16, rtol 1e-10:
-            // 29,634 steps instead of 18,332).
-            // Once calm_steps steps in a row have passed, a decrease the error asks for after a step that passed (to
-            // no less than 0.9 of it) is not taken either, as CVODE keeps its step after a success: small decreases
-            // drifted the step until its Newton matrices had to be refactored, and the next growth refactored them
-            // again (FEM at Nx = Ny = 32 under torque: 28,371 steps in 1.5 s against 32,944 in 1.85 s). After a
-            // rejection they are taken until the steps are calm again: at once, FEM at Ny = 16, rtol 1e-10 took
-            // 32,537 steps instead of 19,880.
-            calm_ = std::min(calm_ + 1, calm_steps);
-            const double keep_from = calm_ == calm_steps ? 0.9 : 1.0;
-            const double next = factor >= keep_from && factor <= 1.2 ? h : h * factor;
-            const bool target_shortened = h < h_ && h_ <= h_max;
-            h_ = target_shortened && factor >= 1.0 ? std::max(next, h_) : next;
+            accept(t, target, y0, h, factor, h_max);
             return GSL_SUCCESS;
         }
+    }
+
+    /// The next step's length toward target, no longer than h_ and h_max.
+    double share_of(double t, double target, double h_max) const
+    {
+        // The steps to the target share its distance evenly (no sliver before it, and one Newton matrix for all of
+        // them: with rows every dt_out that steps end at, the clipped last step of each row interval was
+        // refactored for and then again for the next interval's first step).
+        const double reach = std::min(h_, h_max), distance = target - t;
+        const double pieces = distance <= 1.01 * reach ? 1.0 : std::ceil(distance / reach);
+        return pieces <= 1.0 ? distance : distance / pieces;
+    }
+
+    /// One step of h and two of h/2 from (t, y0): the whole step's end in y1_, the halves' in y2_; GSL_SUCCESS when
+    /// all three converged.
+    int whole_and_halves(double t, const Eigen::Map<Eigen::VectorXd>& y0, double h)
+    {
+        // The halves' result is kept, and their difference from the whole step, (2^4 - 1) times the halves' error,
+        // is the estimate.
+        guess(h);
+        int status = solve_stages(t, y0, h, whole_, y1_);
+        if (status == GSL_SUCCESS) {
+            // The whole step's collocation polynomial, inside its interval, starts the halves' iterations.
+            z_last_ = z_;
+            h_last_ = h;
+            interpolate(0.0);
+            status = solve_stages(t, y0, 0.5 * h, half_, y_half_);
+            if (status == GSL_SUCCESS) {
+                interpolate(0.5);
+                status = solve_stages(t + 0.5 * h, y_half_, 0.5 * h, half_, y2_);
+            }
+        }
+        return status;
+    }
+
+    /// The step's error against the tolerance at its ends (at most 1 passes) in the entries it weighs (controlled_):
+    /// the halves' error, (y2 - y1) / 15.
+    double error_ratio(const double* y) const
+    {
+        double ratio = 0.0;
+        for (int i = 0; i < controlled_; ++i)
+            ratio = std::max(
+                ratio, std::abs(y2_[i] - y1_[i]) / 15.0 / (atol_ + rtol_ * std::max(std::abs(y[i]), std::abs(y2_[i]))));
+        return ratio;
+    }
+
+    /// An accepted step of h from t: t and y0 at its end, and the next step's length h_ from the error's factor.
+    void accept(double& t, double target, Eigen::Map<Eigen::VectorXd>& y0, double h, double factor, double h_max)
+    {
+        // Accepted. The Jacobian is kept while the iteration converges fast; the second half's polynomial
+        // extrapolates to the next step's starting values.
+        z_last_ = z_;
+        h_last_ = 0.5 * h;
+        have_guess_ = true;
+        t = h == target - t ? target : t + h;
+        y0 = y2_;
+        ++steps_;
+        fresh_jacobian_ = false;
+        stale_jacobian_ = rate_ > 0.05;
+        // A growth of less than a fifth is not taken (as RADAU5 does): the Newton matrices stay factored. A step
+        // the target shortened says nothing against the step before it, which the next one resumes unless this
+        // one's error calls for less. Where h_max, not the target, shortened the step, h_ follows the step: held
+        // above the bound, it was tried, and rejected, each time the bound let go (FEM at Ny = 16, rtol 1e-10:
+        // 29,634 steps instead of 18,332).
+        // Once calm_steps steps in a row have passed, a decrease the error asks for after a step that passed (to
+        // no less than 0.9 of it) is not taken either, as CVODE keeps its step after a success: small decreases
+        // drifted the step until its Newton matrices had to be refactored, and the next growth refactored them
+        // again (FEM at Nx = Ny = 32 under torque: 28,371 steps in 1.5 s against 32,944 in 1.85 s). After a
+        // rejection they are taken until the steps are calm again: at once, FEM at Ny = 16, rtol 1e-10 took
+        // 32,537 steps instead of 19,880.
+        calm_ = std::min(calm_ + 1, calm_steps);
+        const double keep_from = calm_ == calm_steps ? 0.9 : 1.0;
+        const double next = factor >= keep_from && factor <= 1.2 ? h : h * factor;
+        const bool target_shortened = h < h_ && h_ <= h_max;
+        h_ = target_shortened && factor >= 1.0 ? std::max(next, h_) : next;
     }
 
 public:
@@ -196,7 +252,6 @@ public:
         return true;
     }
 
-
 private:
     /// The state's rates (the first block's; of all of y where there is one block).
     int state_rhs(double t, const double* y, double* f)
@@ -214,7 +269,8 @@ private:
         const int s = blocks_ > 1 ? system_.FirstOrderSystem::jacobian(t, y, rows_.data(), dfdt_.data())
                                   : system_.jacobian(t, y, rows_.data(), dfdt_.data());
         if (s != GSL_SUCCESS) return s;
-        J_ = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(rows_.data(), n_, n_);
+        J_ = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(rows_.data(), n_,
+                                                                                                      n_);
         if (condensed_) {
             Jq_ = J_.block(k_, 0, k_, k_);
             Jv_ = J_.block(k_, k_, k_, k_);
@@ -432,8 +488,8 @@ private:
     /// after one iteration (RADAU5's test). With more blocks than the state (sensitivities), the state's stages are
     /// solved first and then the other blocks' together, each with the state's Newton matrix (the staggered
     /// corrector of CVODES): their equations are linear in them, and the iteration converges as the state's does.
-    int solve_stages(double t, const Eigen::Ref<const Eigen::VectorXd>& y0, double h,
-                     const Newton& newton, Eigen::VectorXd& y1)
+    int solve_stages(double t, const Eigen::Ref<const Eigen::VectorXd>& y0, double h, const Newton& newton,
+                     Eigen::VectorXd& y1)
     {
         double eta = std::pow(std::max(eta_, std::numeric_limits<double>::epsilon()), 0.8);
         const auto iterate = [&](bool state, double& eta_out) {
@@ -447,7 +503,8 @@ private:
                 stage_ = y0 + z_.tail(m_);
                 if (evaluate(t + c2 * h, f_.data() + m_) != GSL_SUCCESS) return GSL_EBADFUNC;
                 double norm = 0.0;
-                for (int b = state ? 0 : 1; b < (state ? 1 : blocks_); ++b) norm = std::max(norm, correct_block(b, h, newton));
+                for (int b = state ? 0 : 1; b < (state ? 1 : blocks_); ++b)
+                    norm = std::max(norm, correct_block(b, h, newton));
                 if (!std::isfinite(norm)) return GSL_EBADFUNC;
                 if (k > 0) {
                     const double rate = norm / previous;
@@ -490,7 +547,7 @@ private:
     Eigen::MatrixXd J_;
     Eigen::VectorXd dfdt_;
     std::vector<double> rows_;  // the system's row-major Jacobian
-    Newton whole_, half_;  // the Newton matrices of h and h/2
+    Newton whole_, half_;       // the Newton matrices of h and h/2
     // y = (q, qd) with no auxiliary states, or only quadratures of the state: the Newton systems condensed to the
     // velocities, with J's lower blocks.
     int k_, aux_;

@@ -50,8 +50,8 @@ void interpolate_state(double t0, const double* y0, const double* f0, double t1,
     const double h = t1 - t0, s = (t - t0) / h, s2 = s * s, s3 = s2 * s, s4 = s3 * s, s5 = s4 * s;
     // Quintic Hermite basis on [0, 1] (value, first and second derivative at 0, then at 1) and its derivative.
     const double h0 = 1 - 10 * s3 + 15 * s4 - 6 * s5, h1 = s - 6 * s3 + 8 * s4 - 3 * s5,
-                 h2 = 0.5 * (s2 - 3 * s3 + 3 * s4 - s5), h3 = 10 * s3 - 15 * s4 + 6 * s5, h4 = -4 * s3 + 7 * s4 - 3 * s5,
-                 h5 = 0.5 * (s3 - 2 * s4 + s5);
+                 h2 = 0.5 * (s2 - 3 * s3 + 3 * s4 - s5), h3 = 10 * s3 - 15 * s4 + 6 * s5,
+                 h4 = -4 * s3 + 7 * s4 - 3 * s5, h5 = 0.5 * (s3 - 2 * s4 + s5);
     const double d0 = -30 * s2 + 60 * s3 - 30 * s4, d1 = 1 - 18 * s2 + 32 * s3 - 15 * s4,
                  d2 = 0.5 * (2 * s - 9 * s2 + 12 * s3 - 5 * s4), d3 = 30 * s2 - 60 * s3 + 30 * s4,
                  d4 = -12 * s2 + 28 * s3 - 15 * s4, d5 = 0.5 * (3 * s2 - 8 * s3 + 5 * s4);
@@ -116,7 +116,8 @@ const gsl_odeiv2_step_type* step_type(const std::string& name)
 struct FirstOrderSystem::Work {
     using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
     std::unique_ptr<RightHandSide> rhs;
-    // The exact Jacobian's own solves of M, and its buffers: row-major like the kernels (RowMajor maps them as written).
+    // The exact Jacobian's own solves of M, and its buffers: row-major like the kernels (RowMajor maps them as
+    // written).
     std::unique_ptr<MassSolver> solver;
     Eigen::VectorXd qdd;
     RowMatrix dQdq, dQdqd, dQdu, dMv;
@@ -189,9 +190,15 @@ const HubInput& FirstOrderSystem::drive_at(double t)
     return drive_[e];
 }
 
-std::string FirstOrderSystem::linear_algebra() const { return work_->rhs->describe(); }
+std::string FirstOrderSystem::linear_algebra() const
+{
+    return work_->rhs->describe();
+}
 
-double FirstOrderSystem::indefinite_mass_tip() const { return work_->rhs->indefinite_mass_tip(); }
+double FirstOrderSystem::indefinite_mass_tip() const
+{
+    return work_->rhs->indefinite_mass_tip();
+}
 
 int FirstOrderSystem::rhs(double t, const double* y, double* dydt)
 {
@@ -265,6 +272,81 @@ void FirstOrderSystem::full_state(double t, const double* y, double* q, double* 
     work_->rhs->full_state(drive_at(t), y, q, qd);
 }
 
+namespace {
+
+/// A controller's torque's derivatives by the state (q, qd, the integral z) and by t.
+struct TorqueDerivatives {
+    Eigen::VectorXd dq, dqd;
+    double dz = 0.0, dt = 0.0;
+};
+
+/// The torque's derivatives of the PD(I) law unsaturated at reference (tip_row: its tip feedback's row); zero without
+/// a control or where it saturates (a law given as code is differenced by finite_difference_jacobian instead).
+TorqueDerivatives torque_derivatives(const Control* control, bool saturated, const Eigen::VectorXd& tip_row,
+                                     const HubInput& reference, int n)
+{
+    TorqueDerivatives d{Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n)};
+    if (control != nullptr && !saturated) {
+        d.dq = -control->k_tip * tip_row;
+        d.dq[0] -= control->kp;
+        d.dqd[0] = -control->kd;
+        d.dz = -control->ki;
+        d.dt = control->kp * reference.theta_dot + control->kd * reference.theta_ddot;
+    }
+    return d;
+}
+
+/// The first-order Jacobian's rows of the state (q, qd), row-major in m columns: dfdy = [[0, I], [lower_q, lower_qd]]
+/// and dfdt = (0, lower_t); with an integral state at column integral, its column b dtau/dz in the lower rows.
+void write_state_rows(const Eigen::MatrixXd& lower_q, const Eigen::MatrixXd& lower_qd, const Eigen::VectorXd& lower_t,
+                      const Eigen::VectorXd& b, double dtau_dz, int integral, int n, int m, double* dfdy, double* dfdt)
+{
+    for (int i = 0; i < n; ++i) {
+        for (int j = 0; j < n; ++j) {
+            dfdy[i * m + j] = 0.0;
+            dfdy[i * m + n + j] = i == j ? 1.0 : 0.0;
+            dfdy[(n + i) * m + j] = lower_q(i, j);
+            dfdy[(n + i) * m + n + j] = lower_qd(i, j);
+        }
+        dfdt[i] = 0.0;
+        dfdt[n + i] = lower_t[i];
+        if (integral >= 0) dfdy[(n + i) * m + integral] = b[i] * dtau_dz;
+    }
+}
+
+/// Where a system's auxiliary states sit in y (-1: not carried).
+struct AuxiliaryAt {
+    int integral, dissipated, work;
+};
+
+/// The auxiliary states' rows of the Jacobian (their rates' derivatives), row-major in m columns: the controller's
+/// integral, the dissipated energy (dissipation: C) and the hub's work, at qd under the torque tau.
+void write_auxiliary_rows(const AuxiliaryAt& at, int n, int m, const Eigen::MatrixXd& dissipation, const double* qd,
+                          double tau, double theta_dot_ref, double tau_rate, const TorqueDerivatives& dtau,
+                          double* dfdy, double* dfdt)
+{
+    if (at.integral >= 0) {  // z' = theta - theta_ref(t)
+        dfdy[at.integral * m + 0] = 1.0;
+        dfdt[at.integral] = -theta_dot_ref;
+    }
+    if (at.dissipated >= 0) {  // z' = qd^T C qd
+        const Eigen::VectorXd g = 2.0 * (dissipation * Eigen::Map<const Eigen::VectorXd>(qd, n));
+        for (int j = 0; j < n; ++j) dfdy[at.dissipated * m + n + j] = g[j];
+    }
+    if (at.work >= 0) {  // z' = tau theta_dot
+        const double theta_dot = qd[0];
+        for (int j = 0; j < n; ++j) {
+            dfdy[at.work * m + j] = theta_dot * dtau.dq[j];
+            dfdy[at.work * m + n + j] = theta_dot * dtau.dqd[j];
+        }
+        dfdy[at.work * m + n] += tau;
+        if (at.integral >= 0) dfdy[at.work * m + at.integral] = theta_dot * dtau.dz;
+        dfdt[at.work] = theta_dot * tau_rate;  // the law's dtau/dt under a control
+    }
+}
+
+}  // namespace
+
 int FirstOrderSystem::exact_jacobian(const ExactJacobian& exact, double t, const double* y, double* dfdy, double* dfdt)
 {
     // y = (q, qd), f = (qd, qdd) with M(q) qdd = Q(t, q, qd) (docs/model.md section 5.1). Differentiating
@@ -285,26 +367,16 @@ int FirstOrderSystem::exact_jacobian(const ExactJacobian& exact, double t, const
     Eigen::MatrixXd lower_q = w.dQdq, lower_qd = w.dQdqd;  // column-major copies, solved in place
     w.solver->solve(lower_q.data(), n_);
     w.solver->solve(lower_qd.data(), n_);
-    // The torque's derivatives by q, qd, the integral and t (the PD(I) law unsaturated; a law given as code is
-    // differenced by finite_difference_jacobian instead).
-    Eigen::VectorXd dtau_dq = Eigen::VectorXd::Zero(n_), dtau_dqd = Eigen::VectorXd::Zero(n_);
-    double dtau_dz = 0.0, dtau_dt = 0.0;
-    if (control_ != nullptr && !saturated_) {
-        dtau_dq = -control_->k_tip * w.tip_row;
-        dtau_dq[0] -= control_->kp;
-        dtau_dqd[0] = -control_->kd;
-        dtau_dz = -control_->ki;
-        dtau_dt = control_->kp * reference.theta_dot + control_->kd * reference.theta_ddot;
-    }
+    const TorqueDerivatives dtau = torque_derivatives(control_, saturated_, w.tip_row, reference, n_);
     Eigen::VectorXd b = Eigen::VectorXd::Zero(n_);  // M^-1 dQ/dtau
     if (control_ != nullptr) {
         b = w.dQdu.col(static_cast<Eigen::Index>(index(DriveValue::tau)));
         w.solver->solve(b.data());
-        lower_q += b * dtau_dq.transpose();
-        lower_qd += b * dtau_dqd.transpose();
+        lower_q += b * dtau.dq.transpose();
+        lower_qd += b * dtau.dqd.transpose();
     }
     std::array<double, drive_value_count> du = motion_.rate(t).packed();
-    if (control_ != nullptr) du = {dtau_dt, 0.0, 0.0};
+    if (control_ != nullptr) du = {dtau.dt, 0.0, 0.0};
     const Eigen::VectorXd dudt = Eigen::Map<const Eigen::VectorXd>(du.data(), static_cast<Eigen::Index>(du.size()));
     Eigen::VectorXd lower_t = w.dQdu * dudt;
     if (model_.key().extras.gravity && model_.key().drive == Drive::prescribed) {
@@ -318,35 +390,9 @@ int FirstOrderSystem::exact_jacobian(const ExactJacobian& exact, double t, const
         std::fill_n(dfdy, m * m, 0.0);
         std::fill_n(dfdt, m, 0.0);
     }
-    for (int i = 0; i < n_; ++i) {
-        for (int j = 0; j < n_; ++j) {
-            dfdy[i * m + j] = 0.0;
-            dfdy[i * m + n_ + j] = i == j ? 1.0 : 0.0;
-            dfdy[(n_ + i) * m + j] = lower_q(i, j);
-            dfdy[(n_ + i) * m + n_ + j] = lower_qd(i, j);
-        }
-        dfdt[i] = 0.0;
-        dfdt[n_ + i] = lower_t[i];
-        if (integral_ >= 0) dfdy[(n_ + i) * m + integral_] = b[i] * dtau_dz;
-    }
-    if (integral_ >= 0) {  // z' = theta - theta_ref(t)
-        dfdy[integral_ * m + 0] = 1.0;
-        dfdt[integral_] = -reference.theta_dot;
-    }
-    if (dissipated_ >= 0) {  // z' = qd^T C qd
-        const Eigen::VectorXd g = 2.0 * (w.dissipation * Eigen::Map<const Eigen::VectorXd>(qd, n_));
-        for (int j = 0; j < n_; ++j) dfdy[dissipated_ * m + n_ + j] = g[j];
-    }
-    if (work_at_ >= 0) {  // z' = tau theta_dot
-        const double theta_dot = qd[0];
-        for (int j = 0; j < n_; ++j) {
-            dfdy[work_at_ * m + j] = theta_dot * dtau_dq[j];
-            dfdy[work_at_ * m + n_ + j] = theta_dot * dtau_dqd[j];
-        }
-        dfdy[work_at_ * m + n_] += u.tau;
-        if (integral_ >= 0) dfdy[work_at_ * m + integral_] = theta_dot * dtau_dz;
-        dfdt[work_at_] = theta_dot * du[index(DriveValue::tau)];  // the law's dtau/dt under a control
-    }
+    write_state_rows(lower_q, lower_qd, lower_t, b, dtau.dz, integral_, n_, m, dfdy, dfdt);
+    write_auxiliary_rows({integral_, dissipated_, work_at_}, n_, m, w.dissipation, qd, u.tau, reference.theta_dot,
+                         du[index(DriveValue::tau)], dtau, dfdy, dfdt);
     for (int i = 0; i < m * m; ++i)
         if (!std::isfinite(dfdy[i])) return GSL_EBADFUNC;
     return GSL_SUCCESS;
