@@ -262,83 +262,126 @@ std::string print_outputs(const std::vector<Output>& outputs, const std::vector<
 /// entries of a column are one load; each lane adds its own row's terms in the scalar order (an entry outside its
 /// row's pattern is zero and adds nothing), so the sums are the scalar ones to the bit. A row without a partner is
 /// scalar.
-std::string print_matrix_product(const std::vector<Output>& monomials, int rows, int offset,
-                                 const std::vector<bool>& pattern, const MonomialPlan& plan, bool& uses_c)
+/// The names print_matrix_product multiplies P's columns by: each monomial's (1.0 for the constant one), which must
+/// have coefficient 1.
+std::vector<std::string> monomial_names(const std::vector<Output>& monomials, const MonomialPlan& plan)
 {
-    constexpr int W = generated::folded_lanes;
     std::vector<std::string> names;
     for (const Output& m : monomials) {
         if (m.size() != 1 || CoefficientPool::pure_number(m.begin()->second) != numeric(1))
             throw EmitError("emit: a matrix-times-monomials kernel takes monomials with coefficient 1");
         names.push_back(degree(m.begin()->first) == 0 ? "1.0" : plan.names.at(m.begin()->first));
     }
-    const std::size_t K = names.size();
-    if (!pattern.empty() && pattern.size() != static_cast<std::size_t>(rows) * K)
-        throw EmitError("emit: a matrix-times-monomials kernel's pattern has " + std::to_string(pattern.size()) +
-                        " entries for " + std::to_string(rows) + " x " + std::to_string(K));
-    // Row of lane slot j (-1: padding).
-    const auto row = [&](int j) { return j - offset >= 0 && j - offset < rows ? j - offset : -1; };
-    const auto allowed = [&](int i, std::size_t k) {
+    return names;
+}
+
+/// The rows of a matrix-times-monomials kernel in groups of W lanes (print_matrix_product): which row each lane
+/// slot holds, and which entries of P its pattern allows.
+struct LaneGroups {
+    static constexpr int W = generated::folded_lanes;
+    int rows, offset;
+    const std::vector<bool>& pattern;
+    std::size_t K;
+
+    /// Row of lane slot j (-1: padding).
+    int row(int j) const { return j - offset >= 0 && j - offset < rows ? j - offset : -1; }
+    /// Whether P's entry (i, k) can be nonzero.
+    bool allowed(int i, std::size_t k) const
+    {
         return i >= 0 && (pattern.empty() || pattern[static_cast<std::size_t>(i) * K + k]);
-    };
-    // The rows of group g's slots, and whether a column is read by any of them.
-    const auto group_rows = [&](int g) {
+    }
+    /// The rows of group g's slots.
+    std::vector<int> group_rows(int g) const
+    {
         std::vector<int> r;
         for (int l = 0; l < W; ++l)
             if (row(g * W + l) >= 0) r.push_back(row(g * W + l));
         return r;
-    };
-    const auto reads = [&](int g, std::size_t k) {
+    }
+    /// Whether column k is read by any of group g's rows.
+    bool reads(int g, std::size_t k) const
+    {
         for (int l = 0; l < W; ++l)
             if (allowed(row(g * W + l), k)) return true;
         return false;
-    };
+    }
+    int count() const { return (rows + offset + W - 1) / W; }
+    /// Whether any group of more than one row reads a column: the kernel then needs the lane types.
+    bool any_vector() const
+    {
+        bool vectors = false;
+        for (int g = 0; g < count() && !vectors; ++g)
+            if (group_rows(g).size() > 1)
+                for (std::size_t k = 0; k < K && !vectors; ++k) vectors = reads(g, k);
+        return vectors;
+    }
+};
+
+/// Row i alone in group g (beside padding): a scalar sum in its lane's entries; whether it read c.
+bool print_scalar_row(std::ostringstream& lines, const LaneGroups& groups, int g, int i,
+                      const std::vector<std::string>& names)
+{
+    constexpr int W = LaneGroups::W;
+    const std::size_t base = static_cast<std::size_t>(g) * W * groups.K;
+    const int lane = i + groups.offset - g * W;
+    lines << "    out[" << i << "] =";
+    bool first = true;
+    for (std::size_t k = 0; k < groups.K; ++k) {
+        if (!groups.allowed(i, k)) continue;
+        lines << (first ? " " : " + ") << "c[" << base + W * k + static_cast<std::size_t>(lane) << "]*" << names[k];
+        first = false;
+    }
+    lines << (first ? " 0.0;\n" : ";\n");
+    return !first;
+}
+
+/// The rows in of group g: one vector sum over the columns the group reads, each lane written to its row; whether it
+/// read c.
+bool print_lane_group(std::ostringstream& lines, const LaneGroups& groups, int g, const std::vector<int>& in,
+                      const std::vector<std::string>& names)
+{
+    constexpr int W = LaneGroups::W;
+    bool first = true;
+    for (std::size_t k = 0; k < groups.K; ++k) {
+        if (!groups.reads(g, k)) continue;
+        // A vector times a scalar multiplies every lane by it (GCC's vector extension).
+        const std::string term =
+            "column[" + std::to_string(static_cast<std::size_t>(g) * groups.K + k) + "] * " + names[k];
+        lines << (first ? "    {\n        lanes s = " : "        s += ") << term << ";\n";
+        first = false;
+    }
+    if (first) {
+        for (const int i : in) lines << "    out[" << i << "] = 0.0;\n";
+        return false;
+    }
+    for (const int i : in) lines << "        out[" << i << "] = s[" << i + groups.offset - g * W << "];\n";
+    lines << "    }\n";
+    return true;
+}
+
+std::string print_matrix_product(const std::vector<Output>& monomials, int rows, int offset,
+                                 const std::vector<bool>& pattern, const MonomialPlan& plan, bool& uses_c)
+{
+    constexpr int W = generated::folded_lanes;
+    const std::vector<std::string> names = monomial_names(monomials, plan);
+    const std::size_t K = names.size();
+    if (!pattern.empty() && pattern.size() != static_cast<std::size_t>(rows) * K)
+        throw EmitError("emit: a matrix-times-monomials kernel's pattern has " + std::to_string(pattern.size()) +
+                        " entries for " + std::to_string(rows) + " x " + std::to_string(K));
+    const LaneGroups groups{rows, offset, pattern, K};
     std::ostringstream lines;
     uses_c = false;
-    const int groups = (rows + offset + W - 1) / W;
-    bool vectors = false;
-    for (int g = 0; g < groups && !vectors; ++g)
-        if (group_rows(g).size() > 1)
-            for (std::size_t k = 0; k < K && !vectors; ++k) vectors = reads(g, k);
-    if (vectors)
+    if (groups.any_vector())
         lines << "    typedef double lanes __attribute__((vector_size(" << 8 * W << ")));\n"
               << "    typedef double lanes_at __attribute__((vector_size(" << 8 * W << "), aligned(8), may_alias));\n"
               << "    // column[g*" << K << " + k]: group g's entries of column k.\n"
               << "    const lanes_at* const column = reinterpret_cast<const lanes_at*>(c);\n";
-    for (int g = 0; g < groups; ++g) {
-        const std::size_t base = static_cast<std::size_t>(g) * W * K;
-        const std::vector<int> in = group_rows(g);
+    for (int g = 0; g < groups.count(); ++g) {
+        const std::vector<int> in = groups.group_rows(g);
         if (in.empty()) continue;
-        if (in.size() == 1) {  // a row beside padding: scalar, in its lane
-            const int i = in[0], lane = i + offset - g * W;
-            lines << "    out[" << i << "] =";
-            bool first = true;
-            for (std::size_t k = 0; k < K; ++k) {
-                if (!allowed(i, k)) continue;
-                lines << (first ? " " : " + ") << "c[" << base + W * k + static_cast<std::size_t>(lane) << "]*"
-                      << names[k];
-                first = false;
-            }
-            uses_c = uses_c || !first;
-            lines << (first ? " 0.0;\n" : ";\n");
-            continue;
-        }
-        bool first = true;
-        for (std::size_t k = 0; k < K; ++k) {
-            if (!reads(g, k)) continue;
-            // A vector times a scalar multiplies every lane by it (GCC's vector extension).
-            const std::string term =
-                "column[" + std::to_string(static_cast<std::size_t>(g) * K + k) + "] * " + names[k];
-            lines << (first ? "    {\n        lanes s = " : "        s += ") << term << ";\n";
-            first = false;
-        }
-        if (first) {
-            for (const int i : in) lines << "    out[" << i << "] = 0.0;\n";
-            continue;
-        }
-        uses_c = true;
-        for (const int i : in) lines << "        out[" << i << "] = s[" << i + offset - g * W << "];\n";
-        lines << "    }\n";
+        const bool read_c = in.size() == 1 ? print_scalar_row(lines, groups, g, in[0], names)
+                                           : print_lane_group(lines, groups, g, in, names);
+        uses_c = uses_c || read_c;
     }
     return lines.str();
 }
