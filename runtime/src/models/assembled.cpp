@@ -110,6 +110,36 @@ void profile_at_nodes(const std::vector<double>& stations, const Parameters& p, 
     c.second_moment = a * a * t0 + 2.0 * a * L * t1 + L * L * t2;
 }
 
+/// The hub's integrals of the beam's mass: J_ob = int_0^L m(x) R^2 dx and S_ob = int_0^L m(x) R dx (R = a + x cb),
+/// from section's taper or profile (m: the reference mass per length, 1 with a profile).
+void hub_moments(BeamMatrices& b, bool profile, bool cone, double m, double L, double a, double cb,
+                 const SectionAtNodes& section)
+{
+    const double r1 = section.r1, first_moment = section.first_moment, second_moment = section.second_moment;
+    // In closed form for the taper (with a precone's R = a + x cb).
+    b.J_ob = profile ? L * second_moment
+             : cone  ? m * L *
+                          (a * a * (1.0 + 0.5 * r1) + a * cb * L * (1.0 + 2.0 * r1 / 3.0) +
+                           cb * cb * L * L * (1.0 / 3.0 + 0.25 * r1))
+                    : m * ((std::pow(a + L, 3) - std::pow(a, 3)) / 3.0 +
+                           r1 * L * (a * a / 2.0 + 2.0 * a * L / 3.0 + L * L / 4.0));
+    b.S_ob = profile ? L * first_moment : m * (a * L + cb * L * L / 2.0 + r1 * L * (a / 2.0 + cb * L / 3.0));
+}
+
+/// The shape functions at the tip, for the tip's displacements and slope: Phi_x(L), Phi_y(L) and Phi_y'(L).
+void tip_shape_values(BeamMatrices& b, const FieldBasis& axial, const FieldBasis& transverse, int nx, int ny, double L)
+{
+    b.Phi_x_L.resize(nx);
+    b.Phi_y_L.resize(ny);
+    b.Phi_y1_L.resize(ny);
+    for (int k = 0; k < nx; ++k) b.Phi_x_L(k) = axial.at(k, 1.0).v;
+    for (int k = 0; k < ny; ++k) {
+        const Jet<double> f = transverse.at(k, 1.0);
+        b.Phi_y_L(k) = f.v;
+        b.Phi_y1_L(k) = f.d1 / L;
+    }
+}
+
 }  // namespace
 
 BeamMatrices assemble_matrices(const VariantKey& key, const Parameters& p)
@@ -149,14 +179,7 @@ BeamMatrices assemble_matrices(const VariantKey& key, const Parameters& p)
     BeamMatrices b;
     b.cb = cb;
     b.sb = key.extras.cone ? std::sin(p.precone) : 0.0;
-    // int_0^L m(x) R^2 dx and int_0^L m(x) R dx, in closed form for the taper (with a precone's R = a + x cb).
-    b.J_ob = profile           ? L * second_moment
-             : key.extras.cone ? m * L *
-                                     (a * a * (1.0 + 0.5 * r1) + a * cb * L * (1.0 + 2.0 * r1 / 3.0) +
-                                      cb * cb * L * L * (1.0 / 3.0 + 0.25 * r1))
-                               : m * ((std::pow(a + L, 3) - std::pow(a, 3)) / 3.0 +
-                                      r1 * L * (a * a / 2.0 + 2.0 * a * L / 3.0 + L * L / 4.0));
-    b.S_ob = profile ? L * first_moment : m * (a * L + cb * L * L / 2.0 + r1 * L * (a / 2.0 + cb * L / 3.0));
+    hub_moments(b, profile, key.extras.cone, m, L, a, cb, section);
     b.S_x = (X.transpose() * w_arm).transpose();
     b.S_y = (Y.transpose() * w_arm).transpose();
     b.M1 = m * L * weighted_gram(X, w_s);
@@ -170,15 +193,7 @@ BeamMatrices assemble_matrices(const VariantKey& key, const Parameters& p)
 
     b.P_x = m * L * (X.transpose() * w_s).transpose();
     b.P_y = m * L * (Y.transpose() * w_s).transpose();
-    b.Phi_x_L.resize(nx);
-    b.Phi_y_L.resize(ny);
-    b.Phi_y1_L.resize(ny);
-    for (int k = 0; k < nx; ++k) b.Phi_x_L(k) = axial.at(k, 1.0).v;
-    for (int k = 0; k < ny; ++k) {
-        const Jet<double> f = transverse.at(k, 1.0);
-        b.Phi_y_L(k) = f.v;
-        b.Phi_y1_L(k) = f.d1 / L;
-    }
+    tip_shape_values(b, axial, transverse, nx, ny, L);
     b.H_L = weighted_gram(Y1, w) / L;
     if (key.out_of_plane()) {
         // Section 12.3: the flapwise and twist fields, and the in-plane bending about the chord turned by the pitch.
