@@ -42,17 +42,35 @@ BandFactorization& dgbtrf()
 
 }  // namespace
 
-BorderedBandLU::BorderedBandLU(const std::vector<char>& pattern, int n) : n_(n)
+namespace {
+
+using Graph = std::vector<std::vector<int>>;
+
+/// The pattern's entries (row-major flags of an n x n matrix), row by row.
+std::vector<std::pair<int, int>> pattern_entries(const std::vector<char>& pattern, int n)
+{
+    std::vector<std::pair<int, int>> entries;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j)
+            if (pattern[static_cast<std::size_t>(i) * n + j] != 0) entries.emplace_back(i, j);
+    return entries;
+}
+
+/// The pattern's symmetrized graph, without the diagonal: each vertex's neighbours in increasing order.
+Graph symmetric_graph(const std::vector<char>& pattern, int n)
 {
     const auto at = [&](int i, int j) { return pattern[static_cast<std::size_t>(i) * n + j] != 0; };
-    // The symmetrized graph, without the diagonal; its dense vertices are the border.
-    std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(n));
+    Graph neighbours(static_cast<std::size_t>(n));
     for (int i = 0; i < n; ++i)
-        for (int j = 0; j < n; ++j) {
-            if (at(i, j)) entries_.emplace_back(i, j);
+        for (int j = 0; j < n; ++j)
             if (i != j && (at(i, j) || at(j, i))) neighbours[static_cast<std::size_t>(i)].push_back(j);
-        }
-    // A border vertex is coupled to over a third of the others and to three times as many as the median vertex.
+    return neighbours;
+}
+
+/// The graph's dense vertices, the border: each coupled to over a third of the others and to three times as many
+/// as the median vertex.
+std::vector<bool> border_vertices(const Graph& neighbours, int n)
+{
     const auto degree = [&](int i) { return neighbours[static_cast<std::size_t>(i)].size(); };
     std::vector<std::size_t> degrees;
     for (int i = 0; i < n; ++i) degrees.push_back(degree(i));
@@ -61,7 +79,14 @@ BorderedBandLU::BorderedBandLU(const std::vector<char>& pattern, int n) : n_(n)
     std::vector<bool> border(static_cast<std::size_t>(n), false);
     for (int i = 0; i < n; ++i)
         border[static_cast<std::size_t>(i)] = 3 * degree(i) > static_cast<std::size_t>(n) && degree(i) > 3 * median;
-    // Cuthill-McKee over the band part, a component at a time from a vertex of least degree, then reversed.
+    return border;
+}
+
+/// The band part's vertices (those not in border) in reverse Cuthill-McKee order.
+std::vector<int> reverse_cuthill_mckee(const Graph& neighbours, const std::vector<bool>& border, int n)
+{
+    const auto degree = [&](int i) { return neighbours[static_cast<std::size_t>(i)].size(); };
+    // Cuthill-McKee, a component at a time from a vertex of least degree, then reversed.
     std::vector<bool> seen(border);
     std::vector<int> band;
     for (;;) {
@@ -84,6 +109,17 @@ BorderedBandLU::BorderedBandLU(const std::vector<char>& pattern, int n) : n_(n)
         }
     }
     std::reverse(band.begin(), band.end());
+    return band;
+}
+
+}  // namespace
+
+BorderedBandLU::BorderedBandLU(const std::vector<char>& pattern, int n) : n_(n)
+{
+    entries_ = pattern_entries(pattern, n);
+    const Graph neighbours = symmetric_graph(pattern, n);
+    const std::vector<bool> border = border_vertices(neighbours, n);
+    const std::vector<int> band = reverse_cuthill_mckee(neighbours, border, n);
     order_ = band;
     for (int i = 0; i < n; ++i)
         if (border[static_cast<std::size_t>(i)]) order_.push_back(i);
