@@ -19,7 +19,6 @@
 
 namespace hubbeam {
 
-
 SteadySpin steady_spin(const Model& model, double omega, double theta)
 {
     const VariantKey& key = model.key();
@@ -29,8 +28,9 @@ SteadySpin steady_spin(const Model& model, double omega, double theta)
     const bool weight_in_plane = p.empty() || p[index(Param::g)] != 0.0 || !key.out_of_plane();
     if (key.extras.gravity && (weight_in_plane || omega == 0.0)) {
         if (omega != 0.0)
-            throw std::invalid_argument("with gravity a spin at a constant rate is not steady (the beam's weight turns "
-                                        "with it: the motion is periodic); linearize about the held hub, Omega = 0");
+            throw std::invalid_argument(
+                "with gravity a spin at a constant rate is not steady (the beam's weight turns "
+                "with it: the motion is periodic); linearize about the held hub, Omega = 0");
         return held_equilibrium(model, theta);
     }
     // Newton on the axial rows with the bending fields straight (the straight beam is an equilibrium by symmetry);
@@ -42,8 +42,10 @@ SteadySpin steady_spin(const Model& model, double omega, double theta)
     s.omega = omega;
     s.q.assign(static_cast<std::size_t>(n), 0.0);
     s.qd = s.q;
-    if (key.drive == Drive::torque) s.qd[0] = omega;
-    else s.u.theta_dot = omega;
+    if (key.drive == Drive::torque)
+        s.qd[0] = omega;
+    else
+        s.u.theta_dot = omega;
     // One step for the linear equations of orders zero and first, a few for full.
     for (int iteration = 0; na > 0 && iteration < 50; ++iteration) {
         std::vector<double> Q(static_cast<std::size_t>(n));
@@ -102,18 +104,62 @@ SteadySpin held_equilibrium(const Model& model, double theta)
     return s;
 }
 
+namespace {
+
+/// The row and column among q's of state coordinate c (0 = theta, 1.. = flexible): the model's own index, or none
+/// (-1) for a prescribed hub (theta is not among q).
+int model_index(bool torque, int c)
+{
+    return torque ? c : c - 1;
+}
+
+/// The state space's outputs (C, D and their names) about the steady state s, m the state's coordinates: tip_uy and
+/// theta, then a blade's tip_uz and tip_phi where it has those fields (docs/model.md 12.1).
+void add_outputs(StateSpace& ss, const Model& model, const SteadySpin& s, int m)
+{
+    const VariantKey& key = model.key();
+    const bool torque = key.drive == Drive::torque;
+    ss.outputs = {"tip_uy", "theta"};
+    std::vector<double Tip::*> tip_values = {&Tip::uy};
+    if (key.nz > 0) ss.outputs.emplace_back("tip_uz"), tip_values.push_back(&Tip::uz);
+    if (key.nt > 0) ss.outputs.emplace_back("tip_phi"), tip_values.push_back(&Tip::phi);
+    const auto outputs = static_cast<Eigen::Index>(ss.outputs.size());
+    ss.C = Eigen::MatrixXd::Zero(outputs, 2 * m);
+    std::vector<int> flexible;  // the state's flexible coordinates 1..m-1 among q's
+    for (int c = 1; c < m; ++c) flexible.push_back(model_index(torque, c));
+    for (std::size_t k = 0; k < tip_values.size(); ++k)
+        ss.C.block(k == 0 ? 0 : static_cast<Eigen::Index>(k + 1), 1, 1, m - 1) =
+            tip_row(model, s.q, flexible, tip_values[k]).transpose();
+    ss.C(1, 0) = 1.0;
+    ss.D = Eigen::MatrixXd::Zero(outputs, 1);
+}
+
+/// The state's names: theta (a state of a prescribed hub too) and the flexible coordinates, then their rates.
+void name_states(StateSpace& ss, const Model& model)
+{
+    std::vector<std::string> names{"theta"};  // a state of a prescribed hub too
+    for (const CoordinateField& f : model.coordinates().fields)
+        if (f.kind != FieldKind::hub_angle)
+            for (int k = 0; k < f.count; ++k) names.push_back(f.name(k));
+    ss.states = names;
+    for (const std::string& name : names) ss.states.push_back(name + "_dot");
+}
+
+}  // namespace
+
 StateSpace state_space(const Model& model, const SteadySpin& s)
 {
     const VariantKey& key = model.key();
     const int n = model.nq();
     const bool torque = key.drive == Drive::torque;
     const int f0 = model.coordinates().first_elastic();  // the first flexible coordinate in q
-    const int nf = n - f0;         // flexible coordinates
-    const int m = nf + 1;          // theta and the flexible coordinates
+    const int nf = n - f0;                               // flexible coordinates
+    const int m = nf + 1;                                // theta and the flexible coordinates
     const ForceJacobians J = force_jacobians(model, s.u, s.q, s.qd);
     const Eigen::MatrixXd M = mass_at(model, s.u, s.q);
     const auto llt = M.llt();
-    if (llt.info() != Eigen::Success) throw std::runtime_error("the mass matrix at the steady spin is not positive definite");
+    if (llt.info() != Eigen::Success)
+        throw std::runtime_error("the mass matrix at the steady spin is not positive definite");
     // M^-1 of Q's derivatives: qdd = M^-1 (Qq dq + Qqd dqd + Qu du) about the steady state (its qdd is 0, so
     // dM/dq does not enter).
     const Eigen::MatrixXd Aq = llt.solve(J.q), Aqd = llt.solve(J.qd), Au = llt.solve(J.u);
@@ -121,9 +167,7 @@ StateSpace state_space(const Model& model, const SteadySpin& s)
     ss.A = Eigen::MatrixXd::Zero(2 * m, 2 * m);
     ss.B = Eigen::MatrixXd::Zero(2 * m, 1);
     ss.A.topRightCorner(m, m).setIdentity();
-    // Row and column of state coordinate c (0 = theta, 1.. = flexible) among q's rows: the model's own index, or
-    // none for a prescribed hub (theta is not among q).
-    const auto model_index = [&](int c) { return torque ? c : c - 1; };
+    const auto model_index = [&](int c) { return hubbeam::model_index(torque, c); };
     const int dv_theta_dot = static_cast<int>(DriveValue::theta_dot);
     for (int r = 0; r < m; ++r) {
         const int i = model_index(r);
@@ -137,7 +181,8 @@ StateSpace state_space(const Model& model, const SteadySpin& s)
                 ss.A(m + r, m + c) = Au(i, dv_theta_dot);
             }
         }
-        ss.B(m + r, 0) = torque ? Au(i, static_cast<int>(DriveValue::tau)) : Au(i, static_cast<int>(DriveValue::theta_ddot));
+        ss.B(m + r, 0) =
+            torque ? Au(i, static_cast<int>(DriveValue::tau)) : Au(i, static_cast<int>(DriveValue::theta_ddot));
     }
     if (!torque) ss.B(m, 0) = 1.0;  // theta_ddot = v
     if (!torque && key.extras.gravity) {
@@ -147,26 +192,8 @@ StateSpace state_space(const Model& model, const SteadySpin& s)
         const Eigen::VectorXd column = llt.solve(Eigen::Map<const Eigen::VectorXd>(dtheta.data(), n));
         for (int r = 1; r < m; ++r) ss.A(m + r, 0) = column[model_index(r)];
     }
-    // Outputs tip_uy and theta, then a blade's tip_uz and tip_phi where it has those fields (docs/model.md 12.1).
-    ss.outputs = {"tip_uy", "theta"};
-    std::vector<double Tip::*> tip_values = {&Tip::uy};
-    if (key.nz > 0) ss.outputs.emplace_back("tip_uz"), tip_values.push_back(&Tip::uz);
-    if (key.nt > 0) ss.outputs.emplace_back("tip_phi"), tip_values.push_back(&Tip::phi);
-    const auto outputs = static_cast<Eigen::Index>(ss.outputs.size());
-    ss.C = Eigen::MatrixXd::Zero(outputs, 2 * m);
-    std::vector<int> flexible;  // the state's flexible coordinates 1..m-1 among q's
-    for (int c = 1; c < m; ++c) flexible.push_back(model_index(c));
-    for (std::size_t k = 0; k < tip_values.size(); ++k)
-        ss.C.block(k == 0 ? 0 : static_cast<Eigen::Index>(k + 1), 1, 1, m - 1) =
-            tip_row(model, s.q, flexible, tip_values[k]).transpose();
-    ss.C(1, 0) = 1.0;
-    ss.D = Eigen::MatrixXd::Zero(outputs, 1);
-    std::vector<std::string> names{"theta"};  // a state of a prescribed hub too
-    for (const CoordinateField& f : model.coordinates().fields)
-        if (f.kind != FieldKind::hub_angle)
-            for (int k = 0; k < f.count; ++k) names.push_back(f.name(k));
-    ss.states = names;
-    for (const std::string& name : names) ss.states.push_back(name + "_dot");
+    add_outputs(ss, model, s, m);
+    name_states(ss, model);
     ss.inputs = {torque ? "tau" : "theta_ddot"};
     return ss;
 }
@@ -194,7 +221,8 @@ Eigen::Index cyclic_angle(const Model& model, const std::vector<int>& R)
 Eigen::LLT<Eigen::MatrixXd> mass_factor(const Eigen::MatrixXd& M)
 {
     Eigen::LLT<Eigen::MatrixXd> llt(M);
-    if (llt.info() != Eigen::Success) throw std::runtime_error("the mass matrix at the steady spin is not positive definite");
+    if (llt.info() != Eigen::Success)
+        throw std::runtime_error("the mass matrix at the steady spin is not positive definite");
     return llt;
 }
 
@@ -231,7 +259,8 @@ std::vector<double> energy_by_field(const Model& model, const Eigen::MatrixXd& M
             const int mi = coordinates[i], mj = coordinates[j];
             if (field(mi) != field(mj)) continue;
             energy[field(mi)] +=
-                (std::conj(rates(static_cast<Eigen::Index>(i))) * M(mi, mj) * rates(static_cast<Eigen::Index>(j))).real();
+                (std::conj(rates(static_cast<Eigen::Index>(i))) * M(mi, mj) * rates(static_cast<Eigen::Index>(j)))
+                    .real();
         }
     return energy;
 }
@@ -241,11 +270,16 @@ std::vector<double> energy_by_field(const Model& model, const Eigen::MatrixXd& M
 const char* mode_kind(FieldKind kind, bool out_of_plane)
 {
     switch (kind) {
-    case FieldKind::hub_angle: return "hub";
-    case FieldKind::axial: return "axial";
-    case FieldKind::flap: return "flap";
-    case FieldKind::twist: return "twist";
-    case FieldKind::inplane: break;
+        case FieldKind::hub_angle:
+            return "hub";
+        case FieldKind::axial:
+            return "axial";
+        case FieldKind::flap:
+            return "flap";
+        case FieldKind::twist:
+            return "twist";
+        case FieldKind::inplane:
+            break;
     }
     return out_of_plane ? "edge" : "bending";
 }
@@ -327,7 +361,8 @@ std::vector<NaturalMode> natural_modes(const Model& model, const SteadySpin& s, 
     if (torque && s.held) R.erase(R.begin());
     const Eigen::LLT<Eigen::MatrixXd> llt = mass_factor(submatrix(M, R, R));
     const Eigen::EigenSolver<Eigen::MatrixXd> eig(linearized_system(model, s, llt, R));
-    if (eig.info() != Eigen::Success) throw std::runtime_error("the eigenvalues of the linearized equations did not converge");
+    if (eig.info() != Eigen::Success)
+        throw std::runtime_error("the eigenvalues of the linearized equations did not converge");
     const Eigen::VectorXcd lambda = eig.eigenvalues();
     const Eigen::MatrixXcd vectors = eig.eigenvectors();
     const Eigen::MatrixXd U = llt.matrixU();
@@ -346,7 +381,8 @@ std::vector<NaturalMode> natural_modes(const Model& model, const SteadySpin& s, 
         const double scale = std::max(1.0, std::abs(l));
         const bool oscillating = l.imag() > 1e-9 * scale, real = std::abs(l.imag()) <= 1e-9 * scale;
         const bool divergent = real && l.real() > 0.0, overdamped = damped && real && l.real() < 0.0;
-        if (!oscillating && !divergent && !overdamped) continue;  // the conjugate, or the stable twin of a divergent pair
+        if (!oscillating && !divergent && !overdamped)
+            continue;  // the conjugate, or the stable twin of a divergent pair
         // Without damping the equations are conservative (gyroscopic at most): a real part below 1e-6 of |lambda|
         // is the eigen solver's round-off, not damping.
         const double growth = !damped && std::abs(l.real()) <= 1e-6 * scale ? 0.0 : l.real();
@@ -418,8 +454,8 @@ std::vector<NaturalMode> closed_loop_modes(const Model& model, const SteadySpin&
         const auto most = std::max_element(energy.begin(), energy.end()) - energy.begin();
         const bool oscillating = l.imag() > 1e-9 * scale;
         const FieldKind kind = model.coordinates().fields[static_cast<std::size_t>(most)].kind;
-        modes.push_back({oscillating ? l.imag() : 0.0, l.real(), mode_kind(kind, model.key().out_of_plane()),
-                         magnitude, -l.real() / magnitude, weighted_shape(U, rates)});
+        modes.push_back({oscillating ? l.imag() : 0.0, l.real(), mode_kind(kind, model.key().out_of_plane()), magnitude,
+                         -l.real() / magnitude, weighted_shape(U, rates)});
     }
     std::sort(modes.begin(), modes.end(),
               [](const NaturalMode& a, const NaturalMode& b) { return a.undamped_rad_s < b.undamped_rad_s; });
@@ -452,7 +488,10 @@ std::vector<int> best_assignment(const Eigen::MatrixXd& score)
     const double infinity = std::numeric_limits<double>::infinity();
     std::vector<double> u(static_cast<std::size_t>(n) + 1), v(static_cast<std::size_t>(n) + 1);
     std::vector<int> owner(static_cast<std::size_t>(n) + 1), way(static_cast<std::size_t>(n) + 1);
-    const auto at = [](auto& x, int i) -> auto& { return x[static_cast<std::size_t>(i)]; };
+    const auto at = [](auto& x, int i) -> auto&
+    {
+        return x[static_cast<std::size_t>(i)];
+    };
     for (int i = 1; i <= n; ++i) {
         at(owner, 0) = i;
         int j0 = 0;
@@ -470,8 +509,10 @@ std::vector<int> best_assignment(const Eigen::MatrixXd& score)
                 if (at(slack, j) < delta) delta = at(slack, j), j1 = j;
             }
             for (int j = 0; j <= n; ++j)
-                if (at(used, j)) at(u, at(owner, j)) += delta, at(v, j) -= delta;
-                else at(slack, j) -= delta;
+                if (at(used, j))
+                    at(u, at(owner, j)) += delta, at(v, j) -= delta;
+                else
+                    at(slack, j) -= delta;
             j0 = j1;
         } while (at(owner, j0) != 0);
         do {  // augment along the path
@@ -507,10 +548,12 @@ std::vector<SpinMode> campbell(const Model& model, const std::vector<double>& om
     for (const std::size_t k : order) {
         std::vector<SpinMode>& current = at_rate[k];
         if (previous != nullptr) {
-            Eigen::MatrixXd score(static_cast<Eigen::Index>(previous->size()), static_cast<Eigen::Index>(current.size()));
+            Eigen::MatrixXd score(static_cast<Eigen::Index>(previous->size()),
+                                  static_cast<Eigen::Index>(current.size()));
             for (std::size_t i = 0; i < previous->size(); ++i)
                 for (std::size_t j = 0; j < current.size(); ++j)
-                    score(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = mac((*previous)[i].mode, current[j].mode);
+                    score(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) =
+                        mac((*previous)[i].mode, current[j].mode);
             const std::vector<int> paired = best_assignment(score);
             for (std::size_t i = 0; i < paired.size(); ++i) {
                 if (paired[i] < 0) continue;  // the line ends here
@@ -537,7 +580,8 @@ std::vector<CriticalSpeed> critical_speeds(const Model& model, const std::vector
     for (const SpinMode& r : rows) lines[r.label].push_back(&r);
     std::vector<CriticalSpeed> speeds;
     for (auto& [label, line] : lines) {
-        std::stable_sort(line.begin(), line.end(), [](const SpinMode* a, const SpinMode* b) { return a->omega < b->omega; });
+        std::stable_sort(line.begin(), line.end(),
+                         [](const SpinMode* a, const SpinMode* b) { return a->omega < b->omega; });
         for (const int n : harmonics)
             for (std::size_t i = 0; i + 1 < line.size(); ++i) {
                 const SpinMode &a = *line[i], &b = *line[i + 1];
@@ -582,6 +626,9 @@ std::vector<CriticalSpeed> critical_speeds(const Model& model, const std::vector
     return speeds;
 }
 
-double frequency_unit(const Parameters& p) { return std::sqrt(p.E * p.I / (p.rho * p.S * std::pow(p.L, 4))); }
+double frequency_unit(const Parameters& p)
+{
+    return std::sqrt(p.E * p.I / (p.rho * p.S * std::pow(p.L, 4)));
+}
 
 }  // namespace hubbeam
