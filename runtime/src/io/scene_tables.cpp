@@ -275,6 +275,60 @@ ProfileTable scene_io::read_profile(const std::string& scene_path, const std::st
     return read;
 }
 
+namespace {
+
+/// Station k's value v of blade file b as a profile holds it (L: the beam's length, for a stand-in ES).
+double blade_value(const BladeTable& b, std::size_t k, ProfileValue v, double L)
+{
+    const auto optional = [&](const std::vector<double>& c) { return c.empty() ? 0.0 : c[k]; };
+    switch (v) {
+        case ProfileValue::m:
+            return b.mass_per_length[k];
+        case ProfileValue::EI:
+            return b.EI_edge[k];
+        case ProfileValue::ES:
+            // A stand-in ES where the file has none: 1e4 times the edgewise stiffness over L^2, never read with nx = 0.
+            return b.EA.empty() ? 1e4 * b.EI_edge[0] / (L * L) : b.EA[k];
+        case ProfileValue::EI_flap:
+            return b.EI_flap[k];
+        case ProfileValue::GJ:
+            return optional(b.GJ);
+        case ProfileValue::twist:
+            return b.twist[k];
+        case ProfileValue::j_c:
+            return optional(b.mass_moment_flap);
+        case ProfileValue::j_n:
+            return optional(b.mass_moment_edge);
+    }
+    return 0.0;
+}
+
+/// Blade file b's table as a profile's values, station after station (max_profile_value_count each).
+std::vector<double> blade_values(const BladeTable& b, double L)
+{
+    std::vector<double> values;
+    for (std::size_t k = 0; k < b.x_over_L.size(); ++k)
+        for (std::size_t j = 0; j < max_profile_value_count; ++j)
+            values.push_back(blade_value(b, k, static_cast<ProfileValue>(j), L));
+    return values;
+}
+
+/// The table (stations x, values as blade_values) linear between its stations, taken at count equally spaced ones
+/// (4 decimals), which replace x and values.
+void resample_table(std::vector<double>& x, std::vector<double>& values, int count)
+{
+    const std::vector<double> from = x;
+    x.clear();
+    for (int k = 0; k < count; ++k) x.push_back(std::round(1e4 * k / (count - 1)) / 1e4);
+    std::vector<double> resampled;
+    for (double xk : x)
+        for (std::size_t j = 0; j < max_profile_value_count; ++j)
+            resampled.push_back(linear_between(from, values, j, xk));
+    values = std::move(resampled);
+}
+
+}  // namespace
+
 /// beam.blade_file (docs/scene.md): a BModes section-properties file or an ElastoDyn blade file (read_blade_file) as
 /// a blade's profile, each of its columns where the profile has one; a file without EA gives a stand-in ES (fit_profile
 /// asks for nx = 0). resample > 0: the table linear between its stations, taken at resample equally spaced ones (4
@@ -301,44 +355,9 @@ ProfileTable scene_io::read_blade(const std::string& scene_path, const std::stri
     if (n < 2 || b.x_over_L.front() != 0.0 || b.x_over_L.back() != 1.0)
         bad("expected stations from x/L = 0 at the root to 1 at the tip, got " + std::to_string(n) + " from " +
             shortest(b.x_over_L.front()) + " to " + shortest(b.x_over_L.back()));
-    // A stand-in ES where the file has none: 1e4 times the edgewise stiffness over L^2, never read with nx = 0.
-    const auto value = [&](std::size_t k, ProfileValue v) {
-        const auto optional = [&](const std::vector<double>& c) { return c.empty() ? 0.0 : c[k]; };
-        switch (v) {
-            case ProfileValue::m:
-                return b.mass_per_length[k];
-            case ProfileValue::EI:
-                return b.EI_edge[k];
-            case ProfileValue::ES:
-                return b.EA.empty() ? 1e4 * b.EI_edge[0] / (p.L * p.L) : b.EA[k];
-            case ProfileValue::EI_flap:
-                return b.EI_flap[k];
-            case ProfileValue::GJ:
-                return optional(b.GJ);
-            case ProfileValue::twist:
-                return b.twist[k];
-            case ProfileValue::j_c:
-                return optional(b.mass_moment_flap);
-            case ProfileValue::j_n:
-                return optional(b.mass_moment_edge);
-        }
-        return 0.0;
-    };
-    std::vector<double> values;
-    for (std::size_t k = 0; k < n; ++k)
-        for (std::size_t j = 0; j < max_profile_value_count; ++j)
-            values.push_back(value(k, static_cast<ProfileValue>(j)));
+    std::vector<double> values = blade_values(b, p.L);
     std::vector<double> x = b.x_over_L;
-    if (resample > 0) {
-        // The file's table linear between its stations, at the new ones.
-        x.clear();
-        for (int k = 0; k < resample; ++k) x.push_back(std::round(1e4 * k / (resample - 1)) / 1e4);
-        std::vector<double> resampled;
-        for (double xk : x)
-            for (std::size_t j = 0; j < max_profile_value_count; ++j)
-                resampled.push_back(linear_between(b.x_over_L, values, j, xk));
-        values = std::move(resampled);
-    }
+    if (resample > 0) resample_table(x, values, resample);  // the file's table linear between its stations
     if (x.size() > max_profile_stations)
         bad("at most " + std::to_string(max_profile_stations) + " stations, got " + std::to_string(x.size()) +
             ": set beam.blade_stations to resample it");
