@@ -202,7 +202,10 @@ std::string VariantKey::name() const
     return s;
 }
 
-VariantKey VariantKey::parse(std::string_view name)
+namespace {
+
+/// A variant name's parts between its '_'.
+std::vector<std::string> name_parts(std::string_view name)
 {
     std::vector<std::string> parts;
     std::string cur;
@@ -215,29 +218,71 @@ VariantKey VariantKey::parse(std::string_view name)
         }
     }
     parts.push_back(cur);
-    VariantKey k;
-    const auto bad = [&](const std::string& what) {
-        return std::invalid_argument("not a variant name: '" + std::string(name) + "': " + what + " (expected " +
-                                     variant_name_grammar + ", e.g. bim_nx4_ny4_torque_first)");
-    };
-    if (parts.size() < 5) throw bad(std::to_string(parts.size()) + " parts separated by '_'");
-    if (!hubbeam::parse(parts[0], k.method))
-        throw bad("method '" + parts[0] + "' is not one of " + joined(words<Method>()));
-    const auto count = [&](const std::string& part, const char* stem, int& n) {
-        if (part.size() < 3 || part.rfind(stem, 0) != 0 ||
-            part.find_first_not_of("0123456789", 2) != std::string::npos || part.size() > 2 + 9)
-            throw bad("'" + part + "' is not " + stem + " followed by a count");
-        n = std::stoi(part.substr(2));
-    };
-    count(parts[1], "nx", k.nx);
-    count(parts[2], "ny", k.ny);
+    return parts;
+}
+
+/// The error for a name that is not a variant's: what is wrong, and the grammar.
+std::invalid_argument not_a_name(std::string_view name, const std::string& what)
+{
+    return std::invalid_argument("not a variant name: '" + std::string(name) + "': " + what + " (expected " +
+                                 variant_name_grammar + ", e.g. bim_nx4_ny4_torque_first)");
+}
+
+/// n from a part stem followed by a count ("nx4").
+void read_count(std::string_view name, const std::string& part, const char* stem, int& n)
+{
+    if (part.size() < 3 || part.rfind(stem, 0) != 0 || part.find_first_not_of("0123456789", 2) != std::string::npos ||
+        part.size() > 2 + 9)
+        throw not_a_name(name, "'" + part + "' is not " + stem + " followed by a count");
+    n = std::stoi(part.substr(2));
+}
+
+/// The counts nx, ny and, where the name has them, nz and nt, from parts[1] on; the index of the part after them.
+std::size_t read_counts(std::string_view name, const std::vector<std::string>& parts, VariantKey& k)
+{
+    read_count(name, parts[1], "nx", k.nx);
+    read_count(name, parts[2], "ny", k.ny);
     std::size_t next = 3;
     // nz and nt appear only where nonzero, so that each key has one name.
     for (const auto& [stem, n] : {std::pair<const char*, int*>{"nz", &k.nz}, {"nt", &k.nt}})
         if (parts.size() > next && parts[next].rfind(stem, 0) == 0) {
-            count(parts[next++], stem, *n);
-            if (*n == 0) throw bad(std::string("'") + stem + "0': a zero count is left out of the name");
+            read_count(name, parts[next++], stem, *n);
+            if (*n == 0) throw not_a_name(name, std::string("'") + stem + "0': a zero count is left out of the name");
         }
+    return next;
+}
+
+/// The extras from the name's suffixes rest, each at most once and in name order: the name of a key is unique.
+void read_extras(std::string_view name, const std::vector<std::string>& rest, VariantKey& k)
+{
+    for (const std::string& part : rest) {
+        bool known = false;
+        for (const TermInfo& t : terms()) {
+            try {
+                known = t.read_suffix(part, k.extras);
+            } catch (const std::invalid_argument& e) {
+                throw not_a_name(name, "'" + part + "'" + e.what());
+            }
+            if (known) break;
+        }
+        if (!known) throw not_a_name(name, "'" + part + "' is not a suffix");
+    }
+    if (extras_suffixes(k.extras) != rest) throw not_a_name(name, "the suffixes are repeated or out of order");
+    if (k.extras.profile() && k.extras.taper != Taper::uniform)
+        throw not_a_name(name, "a profile and a taper together");
+}
+
+}  // namespace
+
+VariantKey VariantKey::parse(std::string_view name)
+{
+    const std::vector<std::string> parts = name_parts(name);
+    VariantKey k;
+    const auto bad = [&](const std::string& what) { return not_a_name(name, what); };
+    if (parts.size() < 5) throw bad(std::to_string(parts.size()) + " parts separated by '_'");
+    if (!hubbeam::parse(parts[0], k.method))
+        throw bad("method '" + parts[0] + "' is not one of " + joined(words<Method>()));
+    std::size_t next = read_counts(name, parts, k);
     if (parts.size() < next + 2) throw bad(std::to_string(parts.size()) + " parts separated by '_'");
     if (!hubbeam::parse(parts[next], k.drive))
         throw bad("drive '" + parts[next] + "' is not one of prescribed, torque");
@@ -249,22 +294,7 @@ VariantKey VariantKey::parse(std::string_view name)
         k.spline = SplineBasis::open;
         ++next;
     }
-    // The extras, each at most once and in name order: the name of a key is unique.
-    const std::vector<std::string> rest(parts.begin() + static_cast<std::ptrdiff_t>(next), parts.end());
-    for (const std::string& part : rest) {
-        bool known = false;
-        for (const TermInfo& t : terms()) {
-            try {
-                known = t.read_suffix(part, k.extras);
-            } catch (const std::invalid_argument& e) {
-                throw bad("'" + part + "'" + e.what());
-            }
-            if (known) break;
-        }
-        if (!known) throw bad("'" + part + "' is not a suffix");
-    }
-    if (extras_suffixes(k.extras) != rest) throw bad("the suffixes are repeated or out of order");
-    if (k.extras.profile() && k.extras.taper != Taper::uniform) throw bad("a profile and a taper together");
+    read_extras(name, std::vector<std::string>(parts.begin() + static_cast<std::ptrdiff_t>(next), parts.end()), k);
     return k;
 }
 
