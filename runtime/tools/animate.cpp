@@ -122,32 +122,30 @@ std::string number(double v)
     return shortest(v);
 }
 
-}  // namespace
-
-std::string animation_script(const PlotArgs& args, const std::string& gif)
-{
-    if (args.files.empty() || args.files.size() > 2)
-        throw PlotInputError(
-            "FILE: expected a fields CSV (hubbeam run --fields-at), and optionally the run's CSV "
-            "for the hub angle, got " +
-            std::to_string(args.files.size()) + " files");
-    bool blade = false;
-    const std::vector<Frame> frames = frames_of(args, blade);
+/// How far the frames reach: the largest distance from the axis in the plane, padded by 8 % (1 m if none), and the
+/// range of u_z.
+struct Extent {
     double reach = 0.0, zlo = 0.0, zhi = 0.0;
+};
+
+/// The frames' extent (Extent).
+Extent extent_of(const std::vector<Frame>& frames)
+{
+    Extent e;
     for (const Frame& f : frames)
         for (std::size_t i = 0; i < f.x.size(); ++i) {
-            reach = std::max({reach, std::abs(f.x[i]), std::abs(f.y[i])});
-            zlo = std::min(zlo, f.z[i]);
-            zhi = std::max(zhi, f.z[i]);
+            e.reach = std::max({e.reach, std::abs(f.x[i]), std::abs(f.y[i])});
+            e.zlo = std::min(e.zlo, f.z[i]);
+            e.zhi = std::max(e.zhi, f.z[i]);
         }
-    reach = reach > 0.0 ? 1.08 * reach : 1.0;
-    const bool turned = args.files.size() == 2;
-    std::ostringstream s;
-    s << "# hubbeam plot animate: " << frames.size() << " frames of " << printable(args.files[0], 400)
-      << (turned ? ", turned by theta(t) of " + printable(args.files[1], 400) : std::string(", in the hub's frame"))
-      << "\n# $beam: one block per frame (x y z, m); $tip: the tip at each frame; $hub: the hub's outline.\n";
-    s << "set terminal gif animate delay 8 size 900,720 font 'Sans,11' noenhanced\nset output " << gnuplot_string(gif)
-      << "\n";
+    e.reach = e.reach > 0.0 ? 1.08 * e.reach : 1.0;
+    return e;
+}
+
+/// The script's data: the beam at each frame ($beam), the tip's path ($tip), the hub's outline ($hub) and the
+/// frames' times (T).
+void print_data_blocks(std::ostringstream& s, const std::vector<Frame>& frames, double reach)
+{
     s << "$beam << EOD\n";
     for (const Frame& f : frames) {
         for (std::size_t i = 0; i < f.x.size(); ++i)
@@ -164,7 +162,12 @@ std::string animation_script(const PlotArgs& args, const std::string& gif)
     s << "EOD\narray T[" << frames.size() << "] = [";
     for (std::size_t i = 0; i < frames.size(); ++i) s << (i ? "," : "") << number(frames[i].t);
     s << "]\n";
-    const std::string title = args.title.empty() ? std::string("Deformed beam") : args.title;
+}
+
+/// The script's key, grid and axes: the plane seen from above, or a blade's flapwise deflection in 3-D.
+void print_axes(std::ostringstream& s, const Extent& extent, bool blade, bool turned)
+{
+    const double reach = extent.reach, zlo = extent.zlo, zhi = extent.zhi;
     s << "set key outside right top box\nset grid\n";
     s << "set xrange [" << number(-reach) << ":" << number(reach) << "]\nset yrange [" << number(-reach) << ":"
       << number(reach) << "]\n";
@@ -177,7 +180,12 @@ std::string animation_script(const PlotArgs& args, const std::string& gif)
     } else {
         s << "set size ratio -1\nset xlabel " << gnuplot_string("X (m, " + frame + ")") << "\nset ylabel 'Y (m)'\n";
     }
-    s << "do for [i=1:" << frames.size() << "] {\n  set title sprintf('%s, t = %.3f s', " << gnuplot_string(title)
+}
+
+/// The script's loop over the frames: the hub, the tip's path so far and the beam, titled by the time.
+void print_frame_loop(std::ostringstream& s, std::size_t frame_count, bool blade, const std::string& title)
+{
+    s << "do for [i=1:" << frame_count << "] {\n  set title sprintf('%s, t = %.3f s', " << gnuplot_string(title)
       << ", T[i])\n";
     const char* cmd = blade ? "splot" : "plot";
     const char* cols = blade ? "1:2:3" : "1:2";
@@ -185,6 +193,31 @@ std::string animation_script(const PlotArgs& args, const std::string& gif)
       << "    $tip every ::0::i-1 using " << cols << " with lines lc rgb '#d62728' title 'tip path', \\\n"
       << "    $beam index i-1 using " << cols << " with linespoints lw 3 pt 7 ps 0.6 lc rgb '#1f77b4' title 'beam'\n}\n"
       << "unset output\n";
+}
+
+}  // namespace
+
+std::string animation_script(const PlotArgs& args, const std::string& gif)
+{
+    if (args.files.empty() || args.files.size() > 2)
+        throw PlotInputError(
+            "FILE: expected a fields CSV (hubbeam run --fields-at), and optionally the run's CSV "
+            "for the hub angle, got " +
+            std::to_string(args.files.size()) + " files");
+    bool blade = false;
+    const std::vector<Frame> frames = frames_of(args, blade);
+    const Extent extent = extent_of(frames);
+    const bool turned = args.files.size() == 2;
+    std::ostringstream s;
+    s << "# hubbeam plot animate: " << frames.size() << " frames of " << printable(args.files[0], 400)
+      << (turned ? ", turned by theta(t) of " + printable(args.files[1], 400) : std::string(", in the hub's frame"))
+      << "\n# $beam: one block per frame (x y z, m); $tip: the tip at each frame; $hub: the hub's outline.\n";
+    s << "set terminal gif animate delay 8 size 900,720 font 'Sans,11' noenhanced\nset output " << gnuplot_string(gif)
+      << "\n";
+    print_data_blocks(s, frames, extent.reach);
+    const std::string title = args.title.empty() ? std::string("Deformed beam") : args.title;
+    print_axes(s, extent, blade, turned);
+    print_frame_loop(s, frames.size(), blade, title);
     return s.str();
 }
 
