@@ -1,5 +1,5 @@
-// Simulation: steps the integrators (stepper.hpp) freely (rows interpolated) or from output time to output time,
-// through the drive's breakpoints, turning states into rows, and stops with a message when the solution goes bad.
+// Simulation: a scene's model and the stepper chosen for it (the automatic choice, with its pilot run), and its runs,
+// each a Simulation::Run (run.hpp).
 #include <hubbeam/simulate.hpp>
 
 #include <cmath>
