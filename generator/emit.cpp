@@ -665,7 +665,8 @@ std::string print_coefficients_p(const std::string& prefix, const Signature& sig
     text << "\n/* coefficients_p:(" << p.name << "[" << p.size << "])->(dcdp[" << p.size << "*" << nc << "]) out[k*"
          << nc << " + i] = dc_i/dp_k, by the chain rule on the coefficients above; nonzero entries "
          << "only */\n";
-    text << "HUBBEAM_ONCE_KERNEL void " << prefix << "_coefficients_p(const double* " << p.name << ", double* out)\n{\n";
+    text << "HUBBEAM_ONCE_KERNEL void " << prefix << "_coefficients_p(const double* " << p.name
+         << ", double* out)\n{\n";
     bool reads_p = false;
     for (std::size_t j = 0; j < names.size(); ++j)
         if (used[j]) {

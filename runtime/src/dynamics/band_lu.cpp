@@ -40,10 +40,6 @@ BandFactorization& dgbtrf()
     return *function;
 }
 
-}  // namespace
-
-namespace {
-
 using Graph = std::vector<std::vector<int>>;
 
 /// The pattern's entries (row-major flags of an n x n matrix), row by row.
