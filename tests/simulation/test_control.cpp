@@ -247,6 +247,54 @@ TEST_CASE("the exact Jacobian of a controlled, damped system equals central diff
     }
 }
 
+TEST_CASE("Jacobian products J v + (0, M^-1 g) equal central differences times v, controlled or not, saturated or not",
+          "[control][jacobian][sensitivities]")
+{
+    // The sensitivities' products (jacobian_product) against the central differences' Jacobian and a dense solve with
+    // M from the model's kernel: no code in common but the right-hand side the differences evaluate.
+    const DampedArm arm;
+    const auto& model = arm.model;
+    const int nq = model->nq();
+    Control c;
+    c.kp = 40.0;
+    c.kd = 30.0;
+    c.ki = 7.0;
+    c.k_tip = 25.0;
+    Control saturating = c;
+    saturating.tau_max = 1e-3;
+    for (const Control* control : std::initializer_list<const Control*>{nullptr, &c, &saturating}) {
+        FirstOrderSystem sys(*model, arm.motion, Axial::dynamic, control, &arm.p);
+        REQUIRE(sys.has_jacobian_product());
+        const int n = sys.size(), k = 3;
+        std::mt19937 rng(11);
+        std::uniform_real_distribution<double> u(-0.3, 0.3);
+        std::vector<double> y(static_cast<std::size_t>(n)), v(static_cast<std::size_t>(n * k)),
+            g(static_cast<std::size_t>(nq * k)), out(v.size()), fd(static_cast<std::size_t>(n * n)),
+            dt(static_cast<std::size_t>(n));
+        for (double& x : y) x = u(rng);
+        for (double& x : v) x = u(rng);
+        for (double& x : g) x = u(rng);
+        const double t = 4.0;
+        REQUIRE(sys.jacobian_product(t, y.data(), k, v.data(), g.data(), out.data()) == 0);
+        REQUIRE(sys.finite_difference_jacobian(t, y.data(), fd.data(), dt.data()) == 0);
+        HubInput input = arm.motion.at(t);
+        if (control != nullptr) input = HubInput{.tau = sys.torque(t, y.data())};
+        Eigen::MatrixXd M(nq, nq);
+        model->mass(input, y.data(), M.data());  // symmetric: row- or column-major alike
+        const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> J(fd.data(), n, n);
+        for (int j = 0; j < k; ++j) {
+            Eigen::VectorXd expected = J * Eigen::Map<const Eigen::VectorXd>(v.data() + j * n, n);
+            expected.segment(nq, nq) += M.lu().solve(Eigen::Map<const Eigen::VectorXd>(g.data() + j * nq, nq));
+            const double scale = expected.lpNorm<Eigen::Infinity>();
+            for (int i = 0; i < n; ++i) {
+                INFO((control == nullptr ? "no control" : control->tau_max < 1 ? "saturated" : "controlled")
+                     << ", vector " << j << ", row " << i);
+                CHECK(out[static_cast<std::size_t>(j * n + i)] == Approx(expected[i]).epsilon(1e-6).margin(1e-7 * scale));
+            }
+        }
+    }
+}
+
 TEST_CASE("the mass form of a controlled, damped system: M^-1 K and M^-1 C equal central differences, saturated or not",
           "[control][jacobian]")
 {

@@ -127,6 +127,11 @@ struct FirstOrderSystem::Work {
     Eigen::VectorXd tip_row;
     Eigen::MatrixXd dissipation;
     Eigen::VectorXd product;
+    // jacobian_product's: the auxiliary states' rows of dfdy as exact_jacobian writes them (zero elsewhere), and a
+    // product's acceleration rows, a column per vector.
+    RowMatrix auxiliary_rows;
+    std::vector<double> auxiliary_dfdt;
+    Eigen::MatrixXd directions;
 };
 
 Auxiliary Auxiliary::of(const VariantKey& key, const Control* control, const Parameters* parameters, bool integral)
@@ -395,6 +400,57 @@ int FirstOrderSystem::exact_jacobian(const ExactJacobian& exact, double t, const
                          du[index(DriveValue::tau)], dtau, dfdy, dfdt);
     for (int i = 0; i < m * m; ++i)
         if (!std::isfinite(dfdy[i])) return GSL_EBADFUNC;
+    return GSL_SUCCESS;
+}
+
+bool FirstOrderSystem::has_jacobian_product() const
+{
+    return model_.jacobian() != nullptr && axial_ == Axial::dynamic && !(control_ != nullptr && control_->law);
+}
+
+int FirstOrderSystem::jacobian_product(double t, const double* y, int k, const double* v, const double* g, double* out)
+{
+    const ExactJacobian* exact = model_.jacobian();
+    // The lower rows: M^-1 (g + K v_q + C v_qd + dQ/dtau (dtau/dy . v)), K and C as mass_form_jacobian's, the
+    // products exact_jacobian's matrices would give, at one solve per vector instead of 2n + 1 per Jacobian.
+    Work& w = *work_;
+    const HubInput reference = drive_at(t);
+    HubInput u = reference;
+    if (control_ != nullptr) {
+        u = HubInput{};
+        u.tau = torque(t, y);
+    }
+    if (const int s = force_linearization(*exact, u, y); s != GSL_SUCCESS) return s;
+    const TorqueDerivatives dtau = torque_derivatives(control_, saturated_, w.tip_row, reference, n_);
+    const int m = state_size();
+    if (aux_.count() > 0) {
+        if (w.auxiliary_rows.rows() != m) {
+            w.auxiliary_rows = Work::RowMatrix::Zero(m, m);
+            w.auxiliary_dfdt.assign(static_cast<std::size_t>(m), 0.0);
+        }
+        // Their rows by y only: the time derivatives, written to a scratch, are not part of J v.
+        write_auxiliary_rows({integral_, dissipated_, work_at_}, n_, m, w.dissipation, y + n_, u.tau,
+                             reference.theta_dot, 0.0, dtau, w.auxiliary_rows.data(), w.auxiliary_dfdt.data());
+    }
+    // All k at once, as matrix products: the vectors' positions and rates are strided columns of v.
+    using Strided = Eigen::Map<const Eigen::MatrixXd, 0, Eigen::OuterStride<>>;
+    const Strided vq(v, n_, k, Eigen::OuterStride<>(m)), vqd(v + n_, n_, k, Eigen::OuterStride<>(m));
+    w.directions = Eigen::Map<const Eigen::MatrixXd>(g, n_, k);
+    w.directions.noalias() += w.dQdq * vq;
+    w.directions.noalias() += w.dQdqd * vqd;
+    if (control_ != nullptr) {
+        Eigen::RowVectorXd dtau_v = dtau.dq.transpose() * vq;
+        dtau_v.noalias() += dtau.dqd.transpose() * vqd;
+        if (integral_ >= 0) dtau_v += dtau.dz * Strided(v + integral_, 1, k, Eigen::OuterStride<>(m));
+        w.directions.noalias() += w.dQdu.col(static_cast<Eigen::Index>(index(DriveValue::tau))) * dtau_v;
+    }
+    w.solver->solve(w.directions.data(), k);
+    Eigen::Map<Eigen::MatrixXd> product(out, m, k);
+    product.topRows(n_) = vqd;
+    product.middleRows(n_, n_) = w.directions;
+    if (m > 2 * n_)
+        product.bottomRows(m - 2 * n_).noalias() =
+            w.auxiliary_rows.bottomRows(m - 2 * n_) * Eigen::Map<const Eigen::MatrixXd>(v, m, k);
     return GSL_SUCCESS;
 }
 

@@ -33,6 +33,9 @@ struct SensitivitySystem::Parameter {
 struct SensitivitySystem::Work {
     using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
     RowMatrix J, M, dM, other;
+    Eigen::MatrixXd R;                // the forcing r_j of each parameter, a column each (nq x count)
+    std::vector<char> forced;         // whether parameter j has a forcing at this state (a saturated gain has none)
+    std::vector<double> work_rates;   // the hub's work's rate's derivative by gain j
     Eigen::VectorXd dfdt, r, dQ, other_Q, y_plus, y_minus, f_plus, f_minus;
     Eigen::PartialPivLU<Eigen::MatrixXd> lu;
 };
@@ -105,6 +108,9 @@ SensitivitySystem::SensitivitySystem(const Model& model, const Scene& scene)
     work_->dQ.resize(nq);
     work_->other_Q.resize(nq);
     for (Eigen::VectorXd* v : {&work_->y_plus, &work_->y_minus, &work_->f_plus, &work_->f_minus}) v->resize(n);
+    work_->R.resize(nq, count());
+    work_->forced.resize(static_cast<std::size_t>(count()));
+    work_->work_rates.resize(static_cast<std::size_t>(count()));
     set_dimension(size());
 }
 
@@ -112,22 +118,71 @@ SensitivitySystem::~SensitivitySystem() = default;
 
 double SensitivitySystem::scale(int j) const { return parameters_[static_cast<std::size_t>(j)]->scale; }
 
+bool SensitivitySystem::forcing(int j, const double* y, const double* qdd_at, const HubInput& u,
+                                const HubInput& reference, double* r_at, double& work_rate) const
+{
+    const Parameter& p = *parameters_[static_cast<std::size_t>(j)];
+    Work& w = *work_;
+    const int nq = model_.nq();
+    const double* q = y;
+    const double* qd = y + nq;
+    Eigen::Map<Eigen::VectorXd> r(r_at, nq);
+    const Eigen::Map<const Eigen::VectorXd> qdd(qdd_at, nq);
+    work_rate = 0.0;
+    if (p.gain) {
+        const Control& c = *control();
+        const Tip tip = model_.tip(q);
+        const HubState s{q[0], qd[0], tip.uy, model_.tip(qd).uy};
+        const double z = integral_index() >= 0 ? y[integral_index()] : 0.0;
+        const double unclipped = c.unclipped(s, z, reference);
+        if (std::abs(unclipped) > c.tau_max) return false;  // saturated: the torque does not move with the gain
+        const double dtau[] = {-(s.theta - reference.theta), -(s.theta_dot - reference.theta_dot), -z, -s.tip_uy};
+        r.setZero();
+        r[0] = dtau[p.gain_index];  // Q = tau e_theta + ...
+        // The hub's work, z' = tau theta_dot, moves with the gain too.
+        if (work_index() >= 0) work_rate = p.scale * s.theta_dot * dtau[p.gain_index];
+    } else if (const ParameterDerivatives* d = model_.parameter_derivatives()) {
+        d->mass_p(p.param, u, q, w.dM.data());
+        d->forces_p(p.param, u, q, qd, w.dQ.data());
+        r = w.dQ - w.dM * qdd;
+    } else {
+        p.up->mass(u, q, w.dM.data());
+        p.down->mass(u, q, w.other.data());
+        p.up->forces(u, q, qd, w.dQ.data());
+        p.down->forces(u, q, qd, w.other_Q.data());
+        r = ((w.dQ - w.other_Q) - (w.dM - w.other) * qdd) / (2.0 * p.h);
+    }
+    return true;
+}
+
+int SensitivitySystem::product_by_differences(double t, const double* y, int j, double* out_at)
+{
+    Work& w = *work_;
+    const int n = state_size();
+    const Eigen::Map<const Eigen::VectorXd> sigma(y + n * (1 + j), n);
+    Eigen::Map<Eigen::VectorXd> out(out_at, n);
+    const double size = sigma.lpNorm<Eigen::Infinity>();
+    if (size == 0.0) {
+        out.setZero();
+        return GSL_SUCCESS;
+    }
+    double y_size = 1.0;
+    for (int i = 0; i < n; ++i) y_size = std::max(y_size, std::abs(y[i]));
+    // A step of eps^(1/3) of y's size balances the difference's truncation and round-off.
+    const double e = 6e-6 * y_size / size;
+    w.y_plus = Eigen::Map<const Eigen::VectorXd>(y, n) + e * sigma;
+    w.y_minus = Eigen::Map<const Eigen::VectorXd>(y, n) - e * sigma;
+    if (const int s = FirstOrderSystem::rhs(t, w.y_plus.data(), w.f_plus.data()); s != GSL_SUCCESS) return s;
+    if (const int s = FirstOrderSystem::rhs(t, w.y_minus.data(), w.f_minus.data()); s != GSL_SUCCESS) return s;
+    out = (w.f_plus - w.f_minus) / (2.0 * e);
+    return GSL_SUCCESS;
+}
+
 int SensitivitySystem::rhs(double t, const double* y, double* dydt)
 {
     if (const int s = FirstOrderSystem::rhs(t, y, dydt); s != GSL_SUCCESS) return s;
     Work& w = *work_;
-    const int n = state_size(), nq = model_.nq();
-    // J sigma_j: by the Jacobian (exact where the model has derivative kernels) when forming it costs less than
-    // two evaluations of f per parameter, else by central differences of f along sigma_j (as CVODES does by
-    // default), accurate to about 1e-10 of f: far below the tolerances.
-    const bool formed = 2 * count() >= n;
-    if (formed)
-        if (const int s = FirstOrderSystem::jacobian(t, y, w.J.data(), w.dfdt.data()); s != GSL_SUCCESS) return s;
-    double y_size = 1.0;
-    for (int i = 0; i < n; ++i) y_size = std::max(y_size, std::abs(y[i]));
-    const double* q = y;
-    const double* qd = y + nq;
-    const Eigen::Map<const Eigen::VectorXd> qdd(dydt + nq, nq);
+    const int n = state_size(), nq = model_.nq(), k = count();
     // The model's input at this state, as the state's own equations had it.
     const HubInput reference = scene_.motion.at(t);
     HubInput u = reference;
@@ -135,55 +190,38 @@ int SensitivitySystem::rhs(double t, const double* y, double* dydt)
         u = HubInput{};
         u.tau = torque(t, y);
     }
-    model_.mass(u, q, w.M.data());
-    w.lu.compute(w.M);
-    for (int j = 0; j < count(); ++j) {
+    // sigma_j' = J sigma_j + (0, M^-1 r_j, ...) times p_j's scale, r_j = dQ/dp_j - dM/dp_j qdd (forcing).
+    for (int j = 0; j < k; ++j)
+        w.forced[static_cast<std::size_t>(j)] = forcing(j, y, dydt + nq, u, reference, w.R.col(j).data(),
+                                                        w.work_rates[static_cast<std::size_t>(j)]);
+    // J sigma_j: exact products from one linearization of the forces, with the forcing's solves, where the model
+    // has derivative kernels (jacobian_product); else by the Jacobian when forming it costs less than two
+    // evaluations of f per parameter, or by central differences of f along sigma_j (as CVODES does by default),
+    // accurate to about 1e-10 of f: far below the tolerances.
+    if (has_jacobian_product()) {
+        for (int j = 0; j < k; ++j) w.R.col(j) *= w.forced[static_cast<std::size_t>(j)] ? scale(j) : 0.0;
+        if (const int s = jacobian_product(t, y, k, y + n, w.R.data(), dydt + n); s != GSL_SUCCESS) return s;
+    } else {
+        const bool formed = 2 * k >= n;
+        if (formed)
+            if (const int s = FirstOrderSystem::jacobian(t, y, w.J.data(), w.dfdt.data()); s != GSL_SUCCESS) return s;
+        model_.mass(u, y, w.M.data());
+        w.lu.compute(w.M);
+        for (int j = 0; j < k; ++j) {
+            Eigen::Map<Eigen::VectorXd> out(dydt + n * (1 + j), n);
+            if (formed) out.noalias() = w.J * Eigen::Map<const Eigen::VectorXd>(y + n * (1 + j), n);
+            else if (const int s = product_by_differences(t, y, j, out.data()); s != GSL_SUCCESS) return s;
+            if (w.forced[static_cast<std::size_t>(j)]) out.segment(nq, nq) += scale(j) * w.lu.solve(w.R.col(j));
+        }
+    }
+    for (int j = 0; j < k; ++j) {
         const Parameter& p = *parameters_[static_cast<std::size_t>(j)];
-        const Eigen::Map<const Eigen::VectorXd> sigma(y + n * (1 + j), n);
-        Eigen::Map<Eigen::VectorXd> out(dydt + n * (1 + j), n);
-        if (formed) {
-            out.noalias() = w.J * sigma;
-        } else {
-            const double size = sigma.lpNorm<Eigen::Infinity>();
-            if (size == 0.0) {
-                out.setZero();
-            } else {
-                // A step of eps^(1/3) of y's size balances the difference's truncation and round-off.
-                const double e = 6e-6 * y_size / size;
-                w.y_plus = Eigen::Map<const Eigen::VectorXd>(y, n) + e * sigma;
-                w.y_minus = Eigen::Map<const Eigen::VectorXd>(y, n) - e * sigma;
-                if (const int s = FirstOrderSystem::rhs(t, w.y_plus.data(), w.f_plus.data()); s != GSL_SUCCESS) return s;
-                if (const int s = FirstOrderSystem::rhs(t, w.y_minus.data(), w.f_minus.data()); s != GSL_SUCCESS) return s;
-                out = (w.f_plus - w.f_minus) / (2.0 * e);
-            }
-        }
-        // d(qdd)/dp = M^-1 (dQ/dp - dM/dp qdd), times the scale.
-        if (p.gain) {
-            const Control& c = *control();
-            const Tip tip = model_.tip(q);
-            const HubState s{q[0], qd[0], tip.uy, model_.tip(qd).uy};
-            const double z = integral_index() >= 0 ? y[integral_index()] : 0.0;
-            const double unclipped = c.unclipped(s, z, reference);
-            if (std::abs(unclipped) > c.tau_max) continue;  // saturated: the torque does not move with the gain
-            const double dtau[] = {-(s.theta - reference.theta), -(s.theta_dot - reference.theta_dot), -z, -s.tip_uy};
-            w.r.setZero();
-            w.r[0] = dtau[p.gain_index];  // Q = tau e_theta + ...
-            // The hub's work, z' = tau theta_dot, moves with the gain too.
-            if (work_index() >= 0) out[work_index()] += p.scale * s.theta_dot * dtau[p.gain_index];
-        } else if (const ParameterDerivatives* d = model_.parameter_derivatives()) {
-            d->mass_p(p.param, u, q, w.dM.data());
-            d->forces_p(p.param, u, q, qd, w.dQ.data());
-            w.r = w.dQ - w.dM * qdd;
-        } else {
-            p.up->mass(u, q, w.dM.data());
-            p.down->mass(u, q, w.other.data());
-            p.up->forces(u, q, qd, w.dQ.data());
-            p.down->forces(u, q, qd, w.other_Q.data());
-            w.r = ((w.dQ - w.other_Q) - (w.dM - w.other) * qdd) / (2.0 * p.h);
-        }
-        out.segment(nq, nq) += p.scale * w.lu.solve(w.r);
-        if (p.dC.size() > 0) {  // the dissipated energy's rate qd^T C qd moves with C's parameters
-            const Eigen::Map<const Eigen::VectorXd> rates(qd, nq);
+        double* out = dydt + n * (1 + j);
+        if (!w.forced[static_cast<std::size_t>(j)]) continue;
+        if (p.gain && work_index() >= 0) out[work_index()] += w.work_rates[static_cast<std::size_t>(j)];
+        if (p.dC.size() > 0) {
+            // the dissipated energy's rate qd^T C qd moves with C's parameters
+            const Eigen::Map<const Eigen::VectorXd> rates(y + nq, nq);
             out[dissipated_index()] += p.scale * rates.dot(p.dC * rates);
         }
     }

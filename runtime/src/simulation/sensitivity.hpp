@@ -39,6 +39,13 @@ public:
     void outputs(double t, const double* y, double* out);
 
 private:
+    /// Parameter j's forcing before M^-1, r = dQ/dp_j - dM/dp_j qdd (unscaled), at the state y with accelerations
+    /// qdd under the input u; false for a gain while the torque saturates (it has none). work_rate: the derivative of
+    /// the hub's work's rate by a gain, scaled.
+    bool forcing(int j, const double* y, const double* qdd, const HubInput& u, const HubInput& reference, double* r,
+                 double& work_rate) const;
+    /// J sigma_j by central differences of the state's right-hand side along sigma_j, into out.
+    int product_by_differences(double t, const double* y, int j, double* out);
     struct Parameter;
     const Model& model_;
     const Scene& scene_;
