@@ -69,7 +69,10 @@ struct LeadingControl {
         }
         return gsl_odeiv2_control_errlevel(self(s).inner, y, dydt, h, i, level);
     }
-    static int set_driver(void* s, const gsl_odeiv2_driver* d) { return gsl_odeiv2_control_set_driver(self(s).inner, d); }
+    static int set_driver(void* s, const gsl_odeiv2_driver* d)
+    {
+        return gsl_odeiv2_control_set_driver(self(s).inner, d);
+    }
     static void free(void* s)
     {
         gsl_odeiv2_control_free(self(s).inner);

@@ -53,7 +53,8 @@ std::size_t gain_index(const std::string& name)
 SensitivitySystem::SensitivitySystem(const Model& model, const Scene& scene)
     : FirstOrderSystem(model, scene.motion, scene.axial, scene.controller(), &scene.parameters, scene.wants({"ki"})),
       model_(model), scene_(scene),
-      controlled_(scene.solver.sensitivity_error_control == SensitivityErrorControl::on), work_(std::make_unique<Work>())
+      controlled_(scene.solver.sensitivity_error_control == SensitivityErrorControl::on),
+      work_(std::make_unique<Work>())
 {
     if (scene.control && scene.control->law)
         throw std::invalid_argument("--sensitivities: expected a scene whose torque is its [control]'s law or its "
