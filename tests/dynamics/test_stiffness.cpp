@@ -91,3 +91,44 @@ TEST_CASE("the critical spin is the first frequency that the centrifugal softeni
         CHECK(critical_spin(*make_model(amm_key(4, 4, drive), p)) == Approx(axial1).epsilon(1e-7));
     }
 }
+
+TEST_CASE("a pilot that factored banded Newton matrices prices gauss4's solves and factorizations by their flops",
+          "[stiffness]")
+{
+    // gauss4's price per step: 15 right-hand sides, 10 solves and, every fourth step, two factorizations of its
+    // Newton matrices (stiffness.cpp). Dense, the condensed stage system of m = 2 nq unknowns costs 2 m^2 a solve and
+    // 2/3 m^3 a factorization; a pilot that ran them banded (the mass form of a mesh) brings its own flops instead.
+    const Parameters p;
+    const auto model = make_model({.method = Method::fem, .nx = 0, .ny = 32, .drive = Drive::torque, .extras = {}}, p,
+                                  ModelSource::assembled);
+    const double m = 2.0 * model->nq();
+    Pilot dense{.t = 1.0, .steps = 1000, .rtol = 1e-8};
+    Pilot banded = dense;
+    banded.band_factor_flops = 1.0e5;
+    banded.band_solve_flops = 2.0e4;
+    const StepperCosts a = predicted_costs(*model, Axial::dynamic, 1e-8, 10.0, 0, &dense);
+    const StepperCosts b = predicted_costs(*model, Axial::dynamic, 1e-8, 10.0, 0, &banded);
+    CHECK(a.steps_gauss4 == b.steps_gauss4);
+    CHECK(a.gauss4_step - b.gauss4_step ==
+          Approx(10.0 * (2.0 * m * m - 2.0e4) + 2.0 * (2.0 / 3.0 * m * m * m - 1.0e5) / 4.0).epsilon(1e-12));
+}
+
+TEST_CASE("auto takes gauss4 for a damped, controlled fine mesh, whose banded Newton matrices its pilot prices",
+          "[stiffness]")
+{
+    // FEM at Ny = 64 under a saturating PD hub with gravity and a little stiffness-proportional damping: the start's
+    // ringing decays, and gauss4 takes 16,837 steps over 10 s where rk8pd, bound by stability, takes 231,228
+    // (docs/performance.md, fine meshes). Its Newton matrices are a band of half-width 7 to 9 in 130 unknowns: priced
+    // as dense LUs (2/3 130^3 a factorization) gauss4 lost to rk8pd, priced by the pilot's band it wins.
+    const std::string path = std::string(HUBBEAM_SOURCE_DIR) + "/cases/controlled_gravity.toml";
+    Scene s = load_scene(path, {{"discretization.method", "fem"},
+                                {"discretization.ny", "64"},
+                                {"damping.stiffness_proportional", "1e-5"},
+                                {"output.t_end", "10"},
+                                {"solver.max_steps", "1"},
+                                {"solver.error_check", "off"}});
+    Simulation sim(s);
+    const RunSummary r = sim.run([](const Row&) {});
+    INFO(r.stepper_why);
+    CHECK(r.stepper == "gauss4");
+}

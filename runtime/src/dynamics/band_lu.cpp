@@ -158,6 +158,14 @@ double BorderedBandLU::factor_flops() const
            2.0 / 3.0 * r * r * r;
 }
 
+double BorderedBandLU::solve_flops() const
+{
+    const double nb = nb_, r = r_;
+    // The band's two triangular solves (L's kl and U's kl + ku entries per column), the border's coupling both ways
+    // and its dense solve.
+    return 2.0 * nb * (2 * kl_ + ku_ + 1) + 4.0 * r * nb + 2.0 * r * r;
+}
+
 bool BorderedBandLU::factor_filled()
 {
     int info = 0;

@@ -19,6 +19,8 @@ public:
 
     /// Flops of one factorization, to weigh against a dense LU's 2/3 n^3.
     double factor_flops() const;
+    /// Flops of one solve with the factors, to weigh against a dense LU's 2 n^2.
+    double solve_flops() const;
     /// The band's half-widths below and above the diagonal, and the border's size.
     int lower() const { return kl_; }
     int upper() const { return ku_; }

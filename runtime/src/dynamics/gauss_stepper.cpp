@@ -245,6 +245,11 @@ public:
                std::to_string(b.lower()) + " and " + std::to_string(b.upper()) +
                ", reverse Cuthill-McKee) bordered by " + std::to_string(b.border()) + " dense rows";
     }
+    std::optional<std::pair<double, double>> banded_newton_flops() const override
+    {
+        if (!mass_form_ || !whole_.band) return std::nullopt;
+        return std::pair(whole_.band->factor_flops(), whole_.band->solve_flops());
+    }
     bool midpoint(double* y) const override
     {
         if (steps_ == 0) return false;

@@ -47,6 +47,9 @@ struct Pilot {
     long steps = 0;       // gauss4's steps to t
     double rtol = 0.0;    // the tolerance it ran at
     bool failed = false;  // a step failed: gauss4 cannot run the scene at rtol
+    /// Where its Newton matrices were banded (the mass form, fine meshes): the flops of one factorization and of one
+    /// solve, which price its steps in place of a dense LU's; 0 where they were dense.
+    double band_factor_flops = 0.0, band_solve_flops = 0.0;
 };
 
 /// What a pilot should cover, for a scene whose costs without one are c: its window (s) and the steps beyond which

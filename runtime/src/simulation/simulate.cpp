@@ -40,6 +40,10 @@ Pilot pilot_run(const Scene& scene, const Model& model, PilotPlan plan)
         stepper->restart(pilot.t, y.data());
     }
     pilot.steps = stepper->steps();
+    if (const auto band = stepper->banded_newton_flops()) {
+        pilot.band_factor_flops = band->first;
+        pilot.band_solve_flops = band->second;
+    }
     return pilot;
 }
 
