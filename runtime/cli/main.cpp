@@ -16,8 +16,10 @@
 // only with -o. Exit codes: 0 success; 1 the simulation stopped early (rows so far kept); 2 bad input (nothing
 // computed); 130 / 143 interrupted by SIGINT / SIGTERM (rows so far kept).
 #include <algorithm>
+#include <array>
 #include <exception>
 #include <iostream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -67,6 +69,36 @@ std::string unknown_command(const std::vector<hubbeam::cli::Command>& commands, 
            (typo ? " (did you mean '" + nearest + "'?)" : "") + "; expected " + list;
 }
 
+/// The commands, each with the function that adds it to the app.
+const std::array<std::pair<const char*, hubbeam::cli::Command (*)(CLI::App&)>, 9> command_table = {{
+    {"run", hubbeam::cli::add_run_command},
+    {"variants", hubbeam::cli::add_variants_command},
+    {"bench", hubbeam::cli::add_bench_command},
+    {"stress", hubbeam::cli::add_stress_command},
+    {"modes", hubbeam::cli::add_modes_command},
+    {"linearize", hubbeam::cli::add_linearize_command},
+    {"sweep", hubbeam::cli::add_sweep_command},
+    {"kernels", hubbeam::cli::add_kernels_command},
+    {"plot", hubbeam::cli::add_plot_command},
+}};
+
+/// The commands added to app: only the one argv names when it names one (its options alone are built: a run's
+/// start-up pays for no other command's option tables, about 0.9 million instructions), else all of them (for
+/// --help, --version, and the message for an unknown command).
+std::vector<hubbeam::cli::Command> add_commands(CLI::App& app, int argc, char** argv)
+{
+    std::vector<hubbeam::cli::Command> commands;
+    for (const auto& [name, add] : command_table)
+        if (argc >= 2 && std::string(argv[1]) == name) commands.push_back(add(app));
+    if (commands.empty())
+        for (const auto& entry : command_table) commands.push_back(entry.second(app));
+    for (std::size_t i = 0; i < commands.size(); ++i)
+        if (commands.size() == command_table.size() && commands[i].sub->get_name() != command_table[i].first)
+            throw std::logic_error("command_table names " + std::string(command_table[i].first) + " where the command is " +
+                                   commands[i].sub->get_name());
+    return commands;
+}
+
 }  // namespace
 
 int main(int argc, char** argv)
@@ -78,11 +110,7 @@ int main(int argc, char** argv)
         "by SIGINT/SIGTERM (rows so far kept)."};
     app.require_subcommand(1);
     app.set_version_flag("--version", "hubbeam " HUBBEAM_VERSION, "Print the version and exit");
-    const std::vector<Command> commands = {
-        add_run_command(app),   add_variants_command(app),  add_bench_command(app),
-        add_stress_command(app), add_modes_command(app),     add_linearize_command(app),
-        add_sweep_command(app), add_kernels_command(app),   add_plot_command(app),
-    };
+    const std::vector<Command> commands = add_commands(app, argc, argv);
     if (const std::string why = unknown_command(commands, argc, argv); !why.empty()) {
         std::cerr << "hubbeam: " << why << "\n";
         return exit_bad_input;
