@@ -242,16 +242,20 @@ bool FirstOrderSystem::saturated(double t, const double* y)
     return saturated_;
 }
 
+HubInput FirstOrderSystem::input_at(double t, const double* y)
+{
+    if (control_ == nullptr) return drive_at(t);
+    HubInput u;  // a torque variant reads tau alone (and its angle from q), the control's law of the state
+    u.tau = torque(t, y);
+    return u;
+}
+
 int FirstOrderSystem::extended_rhs(double t, const double* y, double* dydt)
 {
     Work& w = *work_;
     const int k = static_cast<int>(kept_.size());
-    HubInput u = drive_at(t);
-    if (control_ != nullptr) {
-        u = HubInput{};  // a torque variant reads tau alone (and its angle from q)
-        u.tau = torque(t, y);
-        if (!std::isfinite(u.tau)) return GSL_EBADFUNC;
-    }
+    const HubInput u = input_at(t, y);
+    if (control_ != nullptr && !std::isfinite(u.tau)) return GSL_EBADFUNC;
     if (const int status = w.rhs->derivative(u, y, dydt); status != GSL_SUCCESS) return status;
     if (integral_ >= 0) dydt[integral_] = y[0] - drive_at(t).theta;
     if (dissipated_ >= 0) {
@@ -361,11 +365,7 @@ int FirstOrderSystem::exact_jacobian(const ExactJacobian& exact, double t, const
     // auxiliary states' rows are their rates' derivatives.
     Work& w = *work_;
     const HubInput reference = drive_at(t);
-    HubInput u = reference;
-    if (control_ != nullptr) {
-        u = HubInput{};
-        u.tau = torque(t, y);
-    }
+    const HubInput u = input_at(t, y);
     const double* q = y;
     const double* qd = y + n_;
     if (const int s = force_linearization(exact, u, y); s != GSL_SUCCESS) return s;
@@ -415,11 +415,7 @@ int FirstOrderSystem::jacobian_product(double t, const double* y, int k, const d
     // products exact_jacobian's matrices would give, at one solve per vector instead of 2n + 1 per Jacobian.
     Work& w = *work_;
     const HubInput reference = drive_at(t);
-    HubInput u = reference;
-    if (control_ != nullptr) {
-        u = HubInput{};
-        u.tau = torque(t, y);
-    }
+    const HubInput u = input_at(t, y);
     if (const int s = force_linearization(*exact, u, y); s != GSL_SUCCESS) return s;
     const TorqueDerivatives dtau = torque_derivatives(control_, saturated_, w.tip_row, reference, n_);
     const int m = state_size();
@@ -485,11 +481,7 @@ int FirstOrderSystem::mass_form_jacobian(double t, const double* y, double* M, d
 {
     ++jacobian_evaluations_;
     Work& w = *work_;
-    HubInput u = drive_at(t);
-    if (control_ != nullptr) {  // a torque variant reads tau alone, the control's law of the state
-        u = HubInput{};
-        u.tau = torque(t, y);
-    }
+    const HubInput u = input_at(t, y);
     if (const int s = force_linearization(*model_.jacobian(), u, y); s != GSL_SUCCESS) return s;
     model_.mass(u, y, M);
     const auto size = static_cast<std::ptrdiff_t>(n_) * n_;

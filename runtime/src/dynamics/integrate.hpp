@@ -105,6 +105,9 @@ public:
     /// The hub torque at (t, y) (N m): the control's (saturated) law, or the motion's tau; 0 for a prescribed
     /// rotation.
     double torque(double t, const double* y);
+    /// The model's input at the state y: the drive's at t, or under a control the torque its law gives (the hub's
+    /// angle and rate are then states, not inputs).
+    HubInput input_at(double t, const double* y);
     /// Whether a control's law clips the torque at (t, y): where that switches, the torque's derivatives by the
     /// state jump (the simulation steps to the switch, as to the drive's breakpoints). False without a control, and
     /// for a law given as code.

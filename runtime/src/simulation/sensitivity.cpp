@@ -186,11 +186,7 @@ int SensitivitySystem::rhs(double t, const double* y, double* dydt)
     const int n = state_size(), nq = model_.nq(), k = count();
     // The model's input at this state, as the state's own equations had it.
     const HubInput reference = scene_.motion.at(t);
-    HubInput u = reference;
-    if (control() != nullptr) {
-        u = HubInput{};
-        u.tau = torque(t, y);
-    }
+    const HubInput u = input_at(t, y);
     // sigma_j' = J sigma_j + (0, M^-1 r_j, ...) times p_j's scale, r_j = dQ/dp_j - dM/dp_j qdd (forcing).
     for (int j = 0; j < k; ++j)
         w.forced[static_cast<std::size_t>(j)] = forcing(j, y, dydt + nq, u, reference, w.R.col(j).data(),
