@@ -119,7 +119,8 @@ std::vector<TermInfo> make_terms()
          never},
         switched<&Extras::pitch, pitched_word, pitched_summary>("pitch (section 12)", adds_U | adds_T, {P::pitch}),
         switched<&Extras::twist, twisted_word, twisted_summary>("pre-twist (section 12)", adds_U | adds_T, {P::twist}),
-        switched<&Extras::cone, coned_word, coned_summary>("precone (section 12)", adds_T | adds_U, {P::precone}),
+        // The precone tilts the axis: its own module moves the beam's points (T); the tilted weight is gravity's U.
+        switched<&Extras::cone, coned_word, coned_summary>("precone (section 12)", adds_T, {P::precone}),
     };
 }
 

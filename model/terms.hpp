@@ -13,8 +13,9 @@
 
 namespace hubbeam {
 
-/// Which energies a term adds to (docs/model.md section 2): kinetic T, potential U, dissipation D; a section term
-/// changes the beam's distributions m(x), EI(x), ES(x) inside the beam's own T and U. A term whose U reads the hub
+/// Which energies a term's own module adds to (docs/model.md section 2): kinetic T, potential U, dissipation D (what
+/// it adds only with another term, as the tip body's weight, is that term's); a section term changes the beam's
+/// distributions m(x), EI(x), ES(x) inside the beam's own T and U. A term whose U reads the hub
 /// angle does so linearly in sin theta and cos theta, which the kernels take as inputs (generated_model.cpp's
 /// forces_theta relies on the linearity).
 enum TermEnergy : unsigned { adds_T = 1u, adds_U = 2u, adds_D = 4u, shapes_section = 8u, reads_hub_angle = 16u };
