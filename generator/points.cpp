@@ -12,6 +12,7 @@
 #include "basis/quadrature.hpp"
 #include "emit.hpp"
 #include "interface.hpp"
+#include "terms.hpp"
 
 namespace hubbeam::gen {
 
@@ -231,9 +232,10 @@ bool foreshortening_at_points(const VariantKey& key)
 {
     // Below Ny = 8 the expanded form is the cheaper: AMM torque, instructions per right-hand side, expanded against
     // points: 5.5 against 20 thousand at Ny = 4, 79 against 58 at Ny = 8, 2870 against 229 at Ny = 16.
-    // The points' code knows the planar fields only: a beam that leaves the plane takes the expanded form.
-    return key.order == Order::full && field_count(key, FieldKind::inplane) >= 8 && key.extras.taper == Taper::uniform &&
-           !key.extras.profile() && !key.out_of_plane();
+    // The points' code knows the planar fields of a uniform section only: a beam that leaves the plane, or whose
+    // section a term shapes (a taper, a profile), takes the expanded form.
+    return key.order == Order::full && field_count(key, FieldKind::inplane) >= 8 && !shaped_section(key) &&
+           !key.out_of_plane();
 }
 
 PointRule point_rule(const VariantKey& key)

@@ -57,11 +57,11 @@ std::string read_profile(const VariantKey& key, std::size_t k, ProfileValue v)
            "]";
 }
 
-/// The kernels' u: the drive values, and for gravity sin and cos of the angle.
-std::vector<std::string> input_names(bool gravity)
+/// The kernels' u: the drive values, and where U reads the hub angle (terms.hpp) sin and cos of it.
+std::vector<std::string> input_names(bool reads_angle)
 {
     std::vector<std::string> names(drive_value_names.begin(), drive_value_names.end());
-    if (gravity) names.insert(names.end(), angle_value_names.begin(), angle_value_names.end());
+    if (reads_angle) names.insert(names.end(), angle_value_names.begin(), angle_value_names.end());
     return names;
 }
 
@@ -111,13 +111,13 @@ std::string banner(const VariantKey& key, bool mass_varies)
       << " order=" << to_string(key.order) << " drive=" << to_string(key.drive);
     if (key.method == Method::bsim) b << " spline_basis=" << to_string(key.spline);
     for (const std::string& suffix : extras_words(key.extras)) b << " " << suffix;
-    const bool gravity = key.extras.gravity;
-    b << "\n// q = (" << coords << "), qd = d/dt q; u = " << tuple(input_names(gravity))
+    const bool reads_angle = potential_reads_angle(key);
+    b << "\n// q = (" << coords << "), qd = d/dt q; u = " << tuple(input_names(reads_angle))
       << ", of which this variant reads "
       << (torque ? drive_value_names[index(DriveValue::tau)]
                  : std::string(drive_value_names[index(DriveValue::theta_dot)]) + ", " +
                        drive_value_names[index(DriveValue::theta_ddot)])
-      << (gravity ? std::string(", sin_theta, cos_theta") + (torque ? " (of q[0])" : "") : std::string()) << ";\n"
+      << (reads_angle ? std::string(", sin_theta, cos_theta") + (torque ? " (of q[0])" : "") : std::string()) << ";\n"
       << "// p = " << tuple(read_parameter_names(key))
       << (key.method == Method::bsim
               ? " in SI units. End slope coordinates (BSIM) are per knot interval, h d/dx, h = L/n.\n"
@@ -279,7 +279,7 @@ std::vector<Input> state_inputs(const Symbols& s, const VariantKey& key)
     else
         inputs.insert(inputs.end(),
                       {{s.theta_dot, read(DriveValue::theta_dot)}, {s.theta_ddot, read(DriveValue::theta_ddot)}});
-    if (key.extras.gravity)
+    if (potential_reads_angle(key))
         inputs.insert(inputs.end(),
                       {{s.sin_theta, read(AngleValue::sin_theta)}, {s.cos_theta, read(AngleValue::cos_theta)}});
     for (std::size_t i = 0; i < s.q.size(); ++i) inputs.push_back({s.q[i], "q[" + std::to_string(i) + "]"});
@@ -295,7 +295,8 @@ Signature signature(const Symbols& s, const VariantKey& key)
     Signature sig;
     sig.parameters = {"p", static_cast<int>(p_names.size()), "p = " + tuple(p_names)};
     sig.derivative_entries = static_cast<int>(key.params_read());
-    sig.state = {{"u", static_cast<int>(input_names(key.extras.gravity).size()), ""}, {"q", nq, ""}, {"qd", nq, ""}};
+    sig.state = {
+        {"u", static_cast<int>(input_names(potential_reads_angle(key)).size()), ""}, {"q", nq, ""}, {"qd", nq, ""}};
     sig.parameter_inputs = parameter_inputs(s, key);
     sig.state_inputs = state_inputs(s, key);
     return sig;
@@ -339,7 +340,7 @@ Derivation derive(const VariantKey& key, const Symbols& s, const Signature& sig,
         c.force[0] = reader(s.tau);
     else
         c.driven.emplace_back(v.theta_dot, v.theta_ddot);
-    if (torque && key.extras.gravity) {
+    if (torque && potential_reads_angle(key)) {
         c.angle = 0;
         c.angle_sin = v.sin_theta;
         c.angle_cos = v.cos_theta;

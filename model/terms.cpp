@@ -88,11 +88,12 @@ std::vector<TermInfo> make_terms()
     using P = Param;
     const auto never = [](Extras&, bool) {};
     return {
-        switched<&Extras::tip, tip_word, tip_summary>("tip body (section 11.1)", adds_T | adds_U | adds_D,
-                                                      {P::m_tip, P::J_tip},
+        // The tip body's weight and damping are gravity's and damping's terms (generator/terms/tip.cpp): a tip body
+        // alone adds to T only.
+        switched<&Extras::tip, tip_word, tip_summary>("tip body (section 11.1)", adds_T, {P::m_tip, P::J_tip},
                                                       {{"tip", "mass", P::m_tip}, {"tip", "inertia", P::J_tip}}),
-        switched<&Extras::gravity, gravity_word, gravity_word>("gravity (section 11.3)", adds_U, {P::g, P::g_axis},
-                                                               {{"gravity", "g", P::g}}),
+        switched<&Extras::gravity, gravity_word, gravity_word>("gravity (section 11.3)", adds_U | reads_hub_angle,
+                                                               {P::g, P::g_axis}, {{"gravity", "g", P::g}}),
         switched<&Extras::damping, damped_word, damped_summary>(
             "Rayleigh damping (section 11.4)", adds_D, {P::alpha, P::beta},
             {{"damping", "mass_proportional", P::alpha}, {"damping", "stiffness_proportional", P::beta}}),
@@ -118,7 +119,8 @@ std::vector<TermInfo> make_terms()
          never},
         switched<&Extras::pitch, pitched_word, pitched_summary>("pitch (section 12)", adds_U | adds_T, {P::pitch}),
         switched<&Extras::twist, twisted_word, twisted_summary>("pre-twist (section 12)", adds_U | adds_T, {P::twist}),
-        switched<&Extras::cone, coned_word, coned_summary>("precone (section 12)", adds_T | adds_U, {P::precone}),
+        // The precone tilts the axis: its own module moves the beam's points (T); the tilted weight is gravity's U.
+        switched<&Extras::cone, coned_word, coned_summary>("precone (section 12)", adds_T, {P::precone}),
     };
 }
 
@@ -137,6 +139,38 @@ std::vector<const TermInfo*> carried_terms(const Extras& e)
     for (const TermInfo& t : terms())
         if (t.carried(e)) carried.push_back(&t);
     return carried;
+}
+
+namespace {
+
+/// Whether a term the variant carries has one of the TermEnergy bits.
+bool carries_a_term_that(const VariantKey& key, unsigned bits)
+{
+    for (const TermInfo& t : terms())
+        if ((t.energies & bits) != 0 && t.carried(key.extras)) return true;
+    return false;
+}
+
+}  // namespace
+
+bool dissipates(const VariantKey& key)
+{
+    return carries_a_term_that(key, adds_D);
+}
+
+bool potential_reads_angle(const VariantKey& key)
+{
+    return carries_a_term_that(key, reads_hub_angle);
+}
+
+bool angle_dependent_potential(const VariantKey& key)
+{
+    return key.drive == Drive::prescribed && potential_reads_angle(key);
+}
+
+bool shaped_section(const VariantKey& key)
+{
+    return carries_a_term_that(key, shapes_section);
 }
 
 }  // namespace hubbeam

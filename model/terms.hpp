@@ -13,9 +13,12 @@
 
 namespace hubbeam {
 
-/// Which energies a term adds to (docs/model.md section 2): kinetic T, potential U, dissipation D; a section term
-/// changes the beam's distributions m(x), EI(x), ES(x) inside the beam's own T and U.
-enum TermEnergy : unsigned { adds_T = 1u, adds_U = 2u, adds_D = 4u, shapes_section = 8u };
+/// Which energies a term's own module adds to (docs/model.md section 2): kinetic T, potential U, dissipation D (what
+/// it adds only with another term, as the tip body's weight, is that term's); a section term changes the beam's
+/// distributions m(x), EI(x), ES(x) inside the beam's own T and U. A term whose U reads the hub
+/// angle does so linearly in sin theta and cos theta, which the kernels take as inputs (generated_model.cpp's
+/// forces_theta relies on the linearity).
+enum TermEnergy : unsigned { adds_T = 1u, adds_U = 2u, adds_D = 4u, shapes_section = 8u, reads_hub_angle = 16u };
 
 /// A scene key that sets one of a term's parameters: [table] key = value.
 struct TermSceneKey {
@@ -50,5 +53,21 @@ const std::vector<TermInfo>& terms();
 
 /// The terms a variant carries, in registry order.
 std::vector<const TermInfo*> carried_terms(const Extras& e);
+
+// The questions the runtime and the generator ask about a variant's structure, answered from the registry's bits
+// of the terms it carries, so that a new term with those bits needs no branch of its own where they are used.
+
+/// Whether the variant has a dissipation function D (a carried term adds to it): its runs carry the dissipated
+/// energy (and, under an applied torque, the hub's work) as states, its linearization a damping matrix.
+bool dissipates(const VariantKey& key);
+/// Whether U reads the hub angle (a carried term's does): the kernels take sin theta and cos theta, U holds more
+/// than the beam's strain (it can stay below 0), and a spin at a constant rate is not steady.
+bool potential_reads_angle(const VariantKey& key);
+/// Whether U depends on the prescribed angle, an input of the kernels (potential_reads_angle under a prescribed
+/// drive): dQ/dtheta theta_dot enters dQ/dt, and no energy is constant while the hub turns.
+bool angle_dependent_potential(const VariantKey& key);
+/// Whether a carried term shapes the section (m(x), EI(x), ES(x) vary along the span): the generator's point terms
+/// for order full know a uniform section only.
+bool shaped_section(const VariantKey& key);
 
 }  // namespace hubbeam

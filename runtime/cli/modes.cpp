@@ -20,6 +20,7 @@
 #include "io/output.hpp"
 #include "io/output_file.hpp"
 #include "plot.hpp"
+#include "terms.hpp"
 #include "text/csv_columns.hpp"
 #include "text/option_lists.hpp"
 #include "text/printable.hpp"
@@ -177,7 +178,7 @@ private:
 };
 
 ModesReport::ModesReport(const Scene& scene, const ModesOptions& o, std::ostream& out)
-    : scene_(scene), o_(o), out_(out), damped_(scene.key().extras.damping || scene.control)
+    : scene_(scene), o_(o), out_(out), damped_(dissipates(scene.key()) || scene.control)
 {
     if (!o.output.empty()) csv_ = std::make_unique<CsvWriter>(o.output, modes_header());
     if (!o.critical.empty()) critical_csv_ = std::make_unique<CsvWriter>(o.critical, critical_header());

@@ -3,6 +3,7 @@
 #include <hubbeam/linearize.hpp>
 
 #include "models/model_operations.hpp"
+#include "terms.hpp"
 #include "text/csv_columns.hpp"
 
 #include <Eigen/Eigenvalues>
@@ -26,7 +27,7 @@ SteadySpin steady_spin(const Model& model, double omega, double theta)
     // (section 12): the steady spin then holds the sag, found on every elastic row below.
     const std::vector<double>& p = model.parameters();
     const bool weight_in_plane = p.empty() || p[index(Param::g)] != 0.0 || !key.out_of_plane();
-    if (key.extras.gravity && (weight_in_plane || omega == 0.0)) {
+    if (potential_reads_angle(key) && (weight_in_plane || omega == 0.0)) {
         if (omega != 0.0)
             throw std::invalid_argument(
                 "with gravity a spin at a constant rate is not steady (the beam's weight turns "
@@ -185,7 +186,7 @@ StateSpace state_space(const Model& model, const SteadySpin& s)
             torque ? Au(i, static_cast<int>(DriveValue::tau)) : Au(i, static_cast<int>(DriveValue::theta_ddot));
     }
     if (!torque) ss.B(m, 0) = 1.0;  // theta_ddot = v
-    if (!torque && key.extras.gravity) {
+    if (angle_dependent_potential(key)) {
         // A prescribed hub's angle is an input of the weight's terms: its column is M^-1 dQ/dtheta.
         std::vector<double> dtheta(static_cast<std::size_t>(n));
         model.forces_theta(s.u, s.q.data(), s.qd.data(), dtheta.data());
@@ -350,7 +351,7 @@ void separate_repeated(const Model& model, const Eigen::MatrixXd& M, const std::
 
 std::vector<NaturalMode> natural_modes(const Model& model, const SteadySpin& s, Axial axial)
 {
-    const bool torque = model.key().drive == Drive::torque, damped = model.key().extras.damping;
+    const bool torque = model.key().drive == Drive::torque, damped = dissipates(model.key());
     const Eigen::MatrixXd M = mass_at(model, s.u, s.q);
     // The coordinates that keep their inertia: all, or with quasi-static axial coordinates all but A. A then
     // follows its own rows with A_dot = A_ddot = 0 (docs/model.md section 9), and the other rows drop A's rates;

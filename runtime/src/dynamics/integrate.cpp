@@ -5,6 +5,7 @@
 #include "dynamics/acceleration.hpp"
 #include "dynamics/mass_solver.hpp"
 #include "models/model_operations.hpp"
+#include "terms.hpp"
 
 #include <algorithm>
 #include <array>
@@ -138,7 +139,7 @@ Auxiliary Auxiliary::of(const VariantKey& key, const Control* control, const Par
 {
     Auxiliary a;
     a.integral = control != nullptr && !control->law && (control->ki != 0.0 || integral);
-    a.dissipated = key.extras.damping && parameters != nullptr;
+    a.dissipated = dissipates(key) && parameters != nullptr;
     a.work = key.drive == Drive::torque && (control != nullptr || a.dissipated);
     return a;
 }
@@ -384,7 +385,7 @@ int FirstOrderSystem::exact_jacobian(const ExactJacobian& exact, double t, const
     if (control_ != nullptr) du = {dtau.dt, 0.0, 0.0};
     const Eigen::VectorXd dudt = Eigen::Map<const Eigen::VectorXd>(du.data(), static_cast<Eigen::Index>(du.size()));
     Eigen::VectorXd lower_t = w.dQdu * dudt;
-    if (model_.key().extras.gravity && model_.key().drive == Drive::prescribed) {
+    if (angle_dependent_potential(model_.key())) {
         Eigen::VectorXd dQdtheta(n_);  // the angle is an input too: dQ/dtheta theta_dot
         model_.forces_theta(u, q, qd, dQdtheta.data());
         lower_t += u.theta_dot * dQdtheta;

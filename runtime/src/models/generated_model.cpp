@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "generated_abi.h"
+#include "terms.hpp"
 
 namespace hubbeam {
 
@@ -22,7 +23,7 @@ public:
           v_(v),
           c_(static_cast<std::size_t>(v.ncoeff)),
           pattern_(v.mass_pattern),
-          gravity_(key.extras.gravity),
+          reads_angle_(potential_reads_angle(key)),
           torque_(key.drive == Drive::torque)
     {
         const std::vector<double> packed = p.packed();
@@ -169,9 +170,9 @@ public:
     void forces_theta(const HubInput& u, const double* q, const double* qd, double* dQdtheta) const override
     {
         std::fill_n(dQdtheta, nq(), 0.0);
-        if (!gravity_ || torque_) return;
-        // Q is affine in (sin theta, cos theta) (only U_g holds them, linearly): dQ/dtheta = cos dQ/dsin - sin dQ/dcos
-        // is Q at (cos theta, -sin theta) less Q at (0, 0).
+        if (!reads_angle_ || torque_) return;
+        // Q is affine in (sin theta, cos theta) (only U holds them, linearly: terms.hpp): dQ/dtheta = cos dQ/dsin - sin
+        // dQ/dcos is Q at (cos theta, -sin theta) less Q at (0, 0).
         std::array<double, kernel_input_count> k = inputs(u, q);
         const double s = k[index(AngleValue::sin_theta)], c = k[index(AngleValue::cos_theta)];
         std::vector<double> base(static_cast<std::size_t>(nq()));
@@ -196,7 +197,7 @@ private:
     }
 
     /// A kernel of M: M depends on neither the drive nor the angle (the generator refuses a variant where it
-    /// would), so a gravity variant's sine and cosine are not computed for it.
+    /// would), so a variant's sine and cosine of the angle are not computed for it.
     void call_without_angle(generated::Kernel k, const HubInput& u, const double* q, const double* qd,
                             double* out) const
     {
@@ -204,13 +205,13 @@ private:
         k(c_.data(), inputs.data(), q, qd, out);
     }
 
-    /// The kernels' u: the drive values, then for gravity sin and cos of the angle (a torque variant's q[0]; q is
-    /// null only for the state-free F, which holds no angle).
+    /// The kernels' u: the drive values, then where U reads it (gravity) sin and cos of the angle (a torque variant's
+    /// q[0]; q is null only for the state-free F, which holds no angle).
     std::array<double, kernel_input_count> inputs(const HubInput& u, const double* q) const
     {
         const std::array<double, drive_value_count> d = u.packed();
         std::array<double, kernel_input_count> k{d[0], d[1], d[2], 0.0, 0.0};
-        if (gravity_) {
+        if (reads_angle_) {
             const double theta = torque_ ? (q != nullptr ? q[0] : 0.0) : u.theta;
             k[index(AngleValue::sin_theta)] = std::sin(theta);
             k[index(AngleValue::cos_theta)] = std::cos(theta);
@@ -225,7 +226,7 @@ private:
     std::vector<double> dcdp_, zero_c_;  // dc/dp by Param, param_count x ncoeff (empty without coefficients_p); 0
     std::string pattern_;
     std::vector<std::pair<int, int>> mirrored_, mirrored_varying_;  // (upper, lower) entry pairs of M
-    bool gravity_, torque_;
+    bool reads_angle_, torque_;  // whether U reads the hub angle (terms.hpp), whether it is q[0]
 };
 
 }  // namespace

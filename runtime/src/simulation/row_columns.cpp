@@ -8,6 +8,7 @@
 
 #include <hubbeam/config.hpp>
 #include "dynamics/integrate.hpp"
+#include "terms.hpp"
 
 namespace hubbeam {
 
@@ -16,7 +17,7 @@ ColumnSet optional_columns_of(const Scene& scene)
     const Control* control = scene.controller();
     const VariantKey key = scene.key();
     const Auxiliary aux = Auxiliary::of(key, control, &scene.parameters, scene.wants({"ki"}));
-    const bool torque = key.drive == Drive::torque && (control != nullptr || key.extras.damping);
+    const bool torque = key.drive == Drive::torque && (control != nullptr || dissipates(key));
     const bool has[] = {key.nz > 0,   key.nt > 0,     torque,  control != nullptr && !control->law,
                         aux.integral, aux.dissipated, aux.work};
     static_assert(std::size(has) == optional_width);

@@ -12,6 +12,7 @@
 #include <hubbeam/simulate.hpp>
 #include "simulation/error_check.hpp"
 #include "simulation/run_rows.hpp"
+#include "terms.hpp"
 #include "text/shortest.hpp"
 
 namespace hubbeam {
@@ -35,7 +36,7 @@ void Simulation::Run::start_summary()
     summary_.energy_balance = system_.auxiliary().count() > 0 || scene_.control.has_value();
     if (system_.auxiliary().work) summary_.t_steady = 0.0;
     const bool turning = scene_.motion.kind != Motion::Kind::held;
-    if (model_.key().extras.gravity && model_.key().drive == Drive::prescribed && turning)
+    if (angle_dependent_potential(model_.key()) && turning)
         summary_.monitor_off =
             "gravity under a prescribed rotation: U_g follows the prescribed angle, no energy is "
             "constant";
@@ -48,9 +49,9 @@ void Simulation::Run::start_summary()
     // The reference of the Jacobi integral's drift: the vibration energy, the largest U since; under gravity U holds
     // the weight's potential, which can stay <= 0 (a free hub swinging below the horizontal), and its range since is
     // the energy that T and U exchange.
-    summary_.invariant_reference = summary_.energy_balance       ? "the largest energy in it"
-                                   : model_.key().extras.gravity ? "the range of U since"
-                                                                 : "the vibration energy";
+    summary_.invariant_reference = summary_.energy_balance               ? "the largest energy in it"
+                                   : potential_reads_angle(model_.key()) ? "the range of U since"
+                                                                         : "the vibration energy";
 }
 
 /// The invariant monitor (docs/model.md section 7): once the drive is steady (after its last breakpoint) the Jacobi
@@ -76,7 +77,7 @@ void Simulation::Run::monitor(const Row& r)
         u_min_ = std::min(u_min_, r.potential);
         u_max_ = std::max(u_max_, r.potential);
         summary_.vibration_energy =
-            std::max(summary_.vibration_energy, model_.key().extras.gravity ? u_max_ - u_min_ : r.potential);
+            std::max(summary_.vibration_energy, potential_reads_angle(model_.key()) ? u_max_ - u_min_ : r.potential);
     }
     check_.record(r, values_);
 }
