@@ -61,6 +61,18 @@ struct DampedArm {
         model = make_model(key, p, ModelSource::generated);
         REQUIRE(model->jacobian() != nullptr);
     }
+
+    /// The PID law with tip feedback its Jacobians are checked with, clipped at tau_max (ki = 0: no integral state).
+    static Control law(double tau_max, double ki = 7.0)
+    {
+        Control c;
+        c.kp = 40.0;
+        c.kd = 30.0;
+        c.ki = ki;
+        c.k_tip = 25.0;
+        c.tau_max = tau_max;
+        return c;
+    }
 };
 
 }  // namespace
@@ -213,12 +225,7 @@ TEST_CASE("the exact Jacobian of a controlled, damped system equals central diff
     const Parameters& p = arm.p;
     const auto& model = arm.model;
     for (const double tau_max : {std::numeric_limits<double>::infinity(), 1e-3}) {
-        Control c;
-        c.kp = 40.0;
-        c.kd = 30.0;
-        c.ki = 7.0;
-        c.k_tip = 25.0;
-        c.tau_max = tau_max;
+        const Control c = DampedArm::law(tau_max);
         FirstOrderSystem sys(*model, m, Axial::dynamic, &c, &p);
         const int n = sys.size();
         REQUIRE(n == 2 * model->nq() + 3);  // the integral, the dissipated energy, the work
@@ -255,16 +262,10 @@ TEST_CASE("Jacobian products J v + (0, M^-1 g) equal central differences times v
     const DampedArm arm;
     const auto& model = arm.model;
     const int nq = model->nq();
-    Control c;
-    c.kp = 40.0;
-    c.kd = 30.0;
-    c.ki = 7.0;
-    c.k_tip = 25.0;
-    Control saturating = c;
-    saturating.tau_max = 1e-3;
+    const Control c = DampedArm::law(std::numeric_limits<double>::infinity()), saturating = DampedArm::law(1e-3);
     for (const Control* control : std::initializer_list<const Control*>{nullptr, &c, &saturating}) {
         FirstOrderSystem sys(*model, arm.motion, Axial::dynamic, control, &arm.p);
-        REQUIRE(sys.has_jacobian_product());
+        REQUIRE(sys.has_exact_jacobian());
         const int n = sys.size(), k = 3;
         std::mt19937 rng(11);
         std::uniform_real_distribution<double> u(-0.3, 0.3);
@@ -281,7 +282,8 @@ TEST_CASE("Jacobian products J v + (0, M^-1 g) equal central differences times v
         if (control != nullptr) input = HubInput{.tau = sys.torque(t, y.data())};
         Eigen::MatrixXd M(nq, nq);
         model->mass(input, y.data(), M.data());  // symmetric: row- or column-major alike
-        const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> J(fd.data(), n, n);
+        using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+        const Eigen::Map<const RowMatrix> J(fd.data(), n, n);
         for (int j = 0; j < k; ++j) {
             Eigen::VectorXd expected = J * Eigen::Map<const Eigen::VectorXd>(v.data() + j * n, n);
             expected.segment(nq, nq) += M.lu().solve(Eigen::Map<const Eigen::VectorXd>(g.data() + j * nq, nq));
@@ -289,7 +291,8 @@ TEST_CASE("Jacobian products J v + (0, M^-1 g) equal central differences times v
             for (int i = 0; i < n; ++i) {
                 INFO((control == nullptr ? "no control" : control->tau_max < 1 ? "saturated" : "controlled")
                      << ", vector " << j << ", row " << i);
-                CHECK(out[static_cast<std::size_t>(j * n + i)] == Approx(expected[i]).epsilon(1e-6).margin(1e-7 * scale));
+                CHECK(out[static_cast<std::size_t>(j * n + i)] ==
+                      Approx(expected[i]).epsilon(1e-6).margin(1e-7 * scale));
             }
         }
     }
@@ -308,11 +311,7 @@ TEST_CASE("the mass form of a controlled, damped system: M^-1 K and M^-1 C equal
     const auto& model = arm.model;
     const int nq = model->nq();
     for (const double tau_max : {std::numeric_limits<double>::infinity(), 1e-3}) {
-        Control c;
-        c.kp = 40.0;
-        c.kd = 30.0;
-        c.k_tip = 25.0;
-        c.tau_max = tau_max;
+        const Control c = DampedArm::law(tau_max, 0.0);
         FirstOrderSystem sys(*model, m, Axial::dynamic, &c, &p);
         REQUIRE(sys.has_mass_form());
         REQUIRE(sys.auxiliary_are_quadratures());

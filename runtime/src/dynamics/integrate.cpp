@@ -271,9 +271,7 @@ int FirstOrderSystem::extended_rhs(double t, const double* y, double* dydt)
 int FirstOrderSystem::jacobian(double t, const double* y, double* dfdy, double* dfdt)
 {
     ++jacobian_evaluations_;
-    const bool law_as_code = control_ != nullptr && control_->law;
-    if (const ExactJacobian* exact = model_.jacobian(); exact != nullptr && axial_ == Axial::dynamic && !law_as_code)
-        return exact_jacobian(*exact, t, y, dfdy, dfdt);
+    if (has_exact_jacobian()) return exact_jacobian(*model_.jacobian(), t, y, dfdy, dfdt);
     return finite_difference_jacobian(t, y, dfdy, dfdt);
 }
 
@@ -404,7 +402,7 @@ int FirstOrderSystem::exact_jacobian(const ExactJacobian& exact, double t, const
     return GSL_SUCCESS;
 }
 
-bool FirstOrderSystem::has_jacobian_product() const
+bool FirstOrderSystem::has_exact_jacobian() const
 {
     return model_.jacobian() != nullptr && axial_ == Axial::dynamic && !(control_ != nullptr && control_->law);
 }
@@ -469,8 +467,7 @@ int FirstOrderSystem::force_linearization(const ExactJacobian& exact, const HubI
 
 bool FirstOrderSystem::has_mass_form() const
 {
-    const bool law_as_code = control_ != nullptr && control_->law;
-    return model_.jacobian() != nullptr && axial_ == Axial::dynamic && !law_as_code && integral_ < 0;
+    return has_exact_jacobian() && integral_ < 0;
 }
 
 bool FirstOrderSystem::auxiliary_are_quadratures() const

@@ -134,12 +134,12 @@ public:
     /// dqdd/dqd = M^-1 C. Sparse where the Jacobian is dense (FEM and B-spline meshes: banded, with the hub's row and
     /// column under torque), for Newton matrices kept in that form. Counts as a Jacobian evaluation.
     int mass_form_jacobian(double t, const double* y, double* M, double* K, double* C);
-    /// Whether jacobian_product serves: where jacobian() is exact (the model's derivative kernels, dynamic axial
-    /// coordinates, a control by its gains).
-    bool has_jacobian_product() const;
+    /// Whether jacobian() is exact and jacobian_product serves: the model's derivative kernels, dynamic axial
+    /// coordinates, a control (if any) given by its gains, not as code.
+    bool has_exact_jacobian() const;
     /// J v_j + (0, M^-1 g_j, 0) for k vectors v_j of state_size() entries, one after another in v, and k forcings
     /// g_j of nq entries in g, into out as v: the Jacobian's products from one linearization of the forces, with one
-    /// solve with M per vector. Needs has_jacobian_product(). GSL status.
+    /// solve with M per vector. Needs has_exact_jacobian(). GSL status.
     int jacobian_product(double t, const double* y, int k, const double* v, const double* g, double* out);
     /// Central differences of rhs: the fallback for models without derivatives, and the tests' oracle.
     int finite_difference_jacobian(double t, const double* y, double* dfdy, double* dfdt);

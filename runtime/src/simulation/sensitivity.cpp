@@ -36,7 +36,7 @@ struct SensitivitySystem::Work {
     Eigen::MatrixXd R;                // the forcing r_j of each parameter, a column each (nq x count)
     std::vector<char> forced;         // whether parameter j has a forcing at this state (a saturated gain has none)
     std::vector<double> work_rates;   // the hub's work's rate's derivative by gain j
-    Eigen::VectorXd dfdt, r, dQ, other_Q, y_plus, y_minus, f_plus, f_minus;
+    Eigen::VectorXd dfdt, dQ, other_Q, y_plus, y_minus, f_plus, f_minus;
     Eigen::PartialPivLU<Eigen::MatrixXd> lu;
 };
 
@@ -105,7 +105,6 @@ SensitivitySystem::SensitivitySystem(const Model& model, const Scene& scene)
     work_->M.resize(nq, nq);
     work_->dM.resize(nq, nq);
     work_->other.resize(nq, nq);
-    work_->r.resize(nq);
     work_->dQ.resize(nq);
     work_->other_Q.resize(nq);
     for (Eigen::VectorXd* v : {&work_->y_plus, &work_->y_minus, &work_->f_plus, &work_->f_minus}) v->resize(n);
@@ -195,7 +194,7 @@ int SensitivitySystem::rhs(double t, const double* y, double* dydt)
     // has derivative kernels (jacobian_product); else by the Jacobian when forming it costs less than two
     // evaluations of f per parameter, or by central differences of f along sigma_j (as CVODES does by default),
     // accurate to about 1e-10 of f: far below the tolerances.
-    if (has_jacobian_product()) {
+    if (has_exact_jacobian()) {
         for (int j = 0; j < k; ++j) w.R.col(j) *= w.forced[static_cast<std::size_t>(j)] ? scale(j) : 0.0;
         if (const int s = jacobian_product(t, y, k, y + n, w.R.data(), dydt + n); s != GSL_SUCCESS) return s;
     } else {
