@@ -77,6 +77,17 @@ std::vector<Row> reference_run(Scene s, double rtol = 1e-13)
     return run(s);
 }
 
+/// A run of s by gauss4 at rtol (atol rtol / 100), without the run's own error check: the tests compare it with their
+/// own reference.
+Collected gauss4_run(Scene s, double rtol)
+{
+    s.solver.stepper = "gauss4";
+    s.solver.rtol = rtol;
+    s.solver.atol = rtol / 100.0;
+    s.solver.error_check = ErrorCheck::off;
+    return completed_run(s);
+}
+
 }  // namespace
 
 TEST_CASE("gauss4 and cvode agree with a tight reference, with and without the stiff axial modes", "[steppers]")
@@ -320,11 +331,7 @@ TEST_CASE("gauss4's Newton matrices in mass form: a band LU for FEM, as accurate
         // rk8pd at 1e-11: at 1e-13 its steps meet round-off on this stiff mesh.
         const std::vector<Row> reference = reference_run(s, 1e-11);
         for (const double rtol : {1e-7, 1e-9}) {
-            s.solver.stepper = "gauss4";
-            s.solver.rtol = rtol;
-            s.solver.atol = rtol / 100.0;
-            s.solver.error_check = ErrorCheck::off;
-            const Collected c = completed_run(s);
+            const Collected c = gauss4_run(s, rtol);
             const bool torque_driven = motion.kind == Motion::Kind::torque;
             INFO((torque_driven ? "torque" : "spin-up")
                  << " rtol " << rtol << ": " << c.summary.newton << ", " << c.summary.steps << " steps");
@@ -363,11 +370,7 @@ TEST_CASE("gauss4's mass form under a control: the work and dissipated energy in
     }
     REQUIRE(dissipated_scale > 0.0);
     for (const double rtol : {1e-7, 1e-9}) {
-        s.solver.stepper = "gauss4";
-        s.solver.rtol = rtol;
-        s.solver.atol = rtol / 100.0;
-        s.solver.error_check = ErrorCheck::off;
-        const Collected c = completed_run(s);
+        const Collected c = gauss4_run(s, rtol);
         INFO("rtol " << rtol << ": " << c.summary.newton << ", " << c.summary.steps << " steps");
         CHECK(c.summary.newton.find("mass form, band LU") == 0);
         const auto [error, scale] = tip_error(c.rows, reference);
