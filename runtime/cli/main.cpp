@@ -87,15 +87,17 @@ const std::array<std::pair<const char*, hubbeam::cli::Command (*)(CLI::App&)>, 9
 /// --help, --version, and the message for an unknown command).
 std::vector<hubbeam::cli::Command> add_commands(CLI::App& app, int argc, char** argv)
 {
-    std::vector<hubbeam::cli::Command> commands;
+    const auto added = [&](const char* name, hubbeam::cli::Command (*add)(CLI::App&)) {
+        hubbeam::cli::Command c = add(app);
+        if (c.sub->get_name() != name)
+            throw std::logic_error("command_table names " + std::string(name) + " where the command is " +
+                                   c.sub->get_name());
+        return c;
+    };
     for (const auto& [name, add] : command_table)
-        if (argc >= 2 && std::string(argv[1]) == name) commands.push_back(add(app));
-    if (commands.empty())
-        for (const auto& entry : command_table) commands.push_back(entry.second(app));
-    for (std::size_t i = 0; i < commands.size(); ++i)
-        if (commands.size() == command_table.size() && commands[i].sub->get_name() != command_table[i].first)
-            throw std::logic_error("command_table names " + std::string(command_table[i].first) + " where the command is " +
-                                   commands[i].sub->get_name());
+        if (argc >= 2 && std::string(argv[1]) == name) return {added(name, add)};
+    std::vector<hubbeam::cli::Command> commands;
+    for (const auto& [name, add] : command_table) commands.push_back(added(name, add));
     return commands;
 }
 
