@@ -8,6 +8,7 @@
 #include <hubbeam/scene.hpp>
 #include <hubbeam/simulate.hpp>
 #include "dynamics/stiffness.hpp"
+#include "models/model_operations.hpp"
 
 using namespace hubbeam;
 
@@ -89,6 +90,52 @@ TEST_CASE("the critical spin is the first frequency that the centrifugal softeni
         CHECK(critical_spin(*make_model(zero, p)) == Approx(bending1).epsilon(1e-7));
         CHECK(std::isinf(critical_spin(*make_model(amm_key(0, 4, drive), p))));
         CHECK(critical_spin(*make_model(amm_key(4, 4, drive), p)) == Approx(axial1).epsilon(1e-7));
+    }
+}
+
+TEST_CASE("the critical spin from one eigenproblem is the bisection's on positive definiteness", "[stiffness]")
+{
+    // critical_spin takes K(omega) = K0 + omega^2 D; a bisection that only asks whether -dQ/dq is positive definite
+    // at each rate checks the eigenproblem's setup (its D, its sign, its square root) with no such assumption.
+    Parameters p;
+    p.a = 0.4;
+    p.m_tip = 0.3;
+    p.J_tip = 0.002;
+    const auto both_ways = [](const Model& model) {
+        const auto stable = [&](double omega) {
+            const int n = model.nq(), first = model.coordinates().first_elastic(), m = n - first;
+            HubInput u;
+            std::vector<double> q(static_cast<std::size_t>(n), 0.0), qd(q);
+            (model.key().drive == Drive::torque ? qd[0] : u.theta_dot) = omega;
+            const Eigen::MatrixXd K = -force_q_jacobian(model, u, q, qd).bottomRightCorner(m, m);
+            return Eigen::LLT<Eigen::MatrixXd>(0.5 * (K + K.transpose())).info() == Eigen::Success;
+        };
+        double lo = 0.0, hi = 1000.0;
+        REQUIRE(stable(lo));
+        REQUIRE(!stable(hi));
+        while (hi - lo > 1e-10 * hi) (stable(0.5 * (lo + hi)) ? lo : hi) = 0.5 * (lo + hi);
+        CHECK(critical_spin(model) == Approx(lo).epsilon(1e-8));
+    };
+    for (const Drive drive : {Drive::prescribed, Drive::torque}) {
+        VariantKey zero{.method = Method::fem, .nx = 0, .ny = 6, .drive = drive, .extras = {}};
+        zero.order = Order::zero;
+        zero.extras.tip = true;
+        both_ways(*make_model(zero, p));
+        for (const Method method : {Method::amm, Method::bim, Method::bsim}) {
+            VariantKey axial{.method = method, .nx = 3, .ny = 4, .drive = drive, .extras = {}};
+            axial.extras.tip = true;
+            both_ways(*make_model(axial, p));
+        }
+        // A blade out of the plane, coned and pitched: the flap and twist fields' centrifugal terms.
+        Parameters blade = p;
+        blade.G = 2.6e10;
+        blade.J_t = 2.0 * p.I;
+        blade.precone = 0.05;
+        blade.pitch = 0.1;
+        VariantKey coned{.method = Method::amm, .nx = 3, .ny = 4, .nz = 3, .nt = 2, .drive = drive, .extras = {}};
+        coned.extras.cone = true;
+        coned.extras.pitch = true;
+        both_ways(*make_model(coned, blade));
     }
 }
 

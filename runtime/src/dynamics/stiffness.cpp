@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <map>
 #include <numbers>
+#include <stdexcept>
 #include <vector>
 
 #include "models/model_operations.hpp"
@@ -105,8 +106,8 @@ RatesAtRest rates_at_rest(const Model& model, Axial axial)
 
 namespace {
 
-/// Whether -dQ/dq at rest, spinning steadily at omega, is positive definite (the cyclic hub angle left out).
-bool stable_at(const Model& model, double omega)
+/// -dQ/dq at rest, spinning steadily at omega, symmetrized, the cyclic hub angle left out.
+Eigen::MatrixXd spinning_stiffness(const Model& model, double omega)
 {
     const int n = model.nq(), first = model.coordinates().first_elastic();
     HubInput u;
@@ -115,22 +116,33 @@ bool stable_at(const Model& model, double omega)
     else u.theta_dot = omega;
     const int m = n - first;
     const Eigen::MatrixXd K = stiffness(model, u, q, qd).bottomRightCorner(m, m);
-    const Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (K + K.transpose()));
-    return llt.info() == Eigen::Success;
+    return 0.5 * (K + K.transpose());
+}
+
+bool positive_definite(const Eigen::MatrixXd& K)
+{
+    return Eigen::LLT<Eigen::MatrixXd>(K).info() == Eigen::Success;
 }
 
 }  // namespace
 
 double critical_spin(const Model& model)
 {
-    double lo = 0.0, hi = 1000.0;
-    if (stable_at(model, hi)) return INFINITY;
-    if (!stable_at(model, lo)) return 0.0;
-    for (int i = 0; i < 60 && hi - lo > 1e-9 * hi; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        (stable_at(model, mid) ? lo : hi) = mid;
-    }
-    return lo;
+    constexpr double hi = 1000.0;
+    const Eigen::MatrixXd K0 = spinning_stiffness(model, 0.0), Khi = spinning_stiffness(model, hi);
+    if (positive_definite(Khi)) return INFINITY;
+    if (!positive_definite(K0)) return 0.0;
+    // At rest the forces are quadratic in the velocities (the kinetic energy is), and the elastic ones are still:
+    // K(omega) = K0 + omega^2 D. It stops being positive definite where 1 + omega^2 mu = 0 for the most negative mu
+    // of D x = mu K0 x: one eigenproblem in place of a bisection's sixty factorizations. Checked at the bound, so
+    // that a term whose forces at rest depended on the rate otherwise would fail its tests here.
+    const Eigen::MatrixXd D = spinning_stiffness(model, 1.0) - K0;
+    const double scale = std::max(K0.cwiseAbs().maxCoeff(), Khi.cwiseAbs().maxCoeff());
+    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(D, K0, Eigen::EigenvaluesOnly);
+    const double mu = solver.info() == Eigen::Success ? solver.eigenvalues().minCoeff() : 0.0;
+    if ((K0 + hi * hi * D - Khi).cwiseAbs().maxCoeff() > 1e-9 * scale || !(mu < 0.0))
+        throw std::logic_error(model.key().name() + ": the stiffness at rest is not quadratic in the hub's rate");
+    return std::min(hi, std::sqrt(-1.0 / mu));
 }
 
 bool needs_pilot(const Model& model, double rtol)
