@@ -25,15 +25,19 @@ std::string json_number(double v)
     return shortest(v);
 }
 
-/// text indented by two spaces after each newline: a nested object inside its parent.
-std::string indented(const std::string& text)
+/// Appends text to out indented by two spaces after each newline: a nested object inside its parent. A line at a
+/// time, for the scene's objects nest the effective scene's twice.
+void append_indented(std::string& out, std::string_view text)
 {
-    std::string out;
-    for (const char c : text) {
-        out += c;
-        if (c == '\n') out += "  ";
+    for (std::size_t start = 0;;) {
+        const std::size_t newline = text.find('\n', start);
+        if (newline == std::string_view::npos) {
+            out.append(text.substr(start));
+            return;
+        }
+        out.append(text.substr(start, newline + 1 - start)).append("  ");
+        start = newline + 1;
     }
-    return out;
 }
 
 /// The SHA-256 of a table's file, or "" where it cannot be read (it was read moments ago to load the scene).
@@ -100,10 +104,17 @@ JsonObject& JsonObject::raw(std::string_view key, const std::string& json)
 
 std::string JsonObject::str() const
 {
-    std::string out = "{";
-    for (std::size_t i = 0; i < entries_.size(); ++i)
-        out += (i ? ",\n  " : "\n  ") + quoted_string(entries_[i].first) + ": " + indented(entries_[i].second);
-    return out + "\n}";
+    std::size_t size = 3;
+    for (const auto& [key, value] : entries_) size += key.size() + 2 * value.size() + 8;
+    std::string out;
+    out.reserve(size);
+    out += '{';
+    for (std::size_t i = 0; i < entries_.size(); ++i) {
+        out.append(i ? ",\n  " : "\n  ").append(quoted_string(entries_[i].first)).append(": ");
+        append_indented(out, entries_[i].second);
+    }
+    out.append("\n}");
+    return out;
 }
 
 JsonObject scene_metadata(const std::string& command, const Scene& scene)

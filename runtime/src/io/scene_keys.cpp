@@ -156,14 +156,14 @@ const SceneKey& scene_key(const std::string& name)
 
 std::string SceneKey::table() const
 {
-    const std::string n = name;
-    return n.substr(0, n.find('.'));
+    const std::string_view n = name;
+    return std::string(n.substr(0, n.find('.')));
 }
 
 std::string SceneKey::leaf() const
 {
-    const std::string n = name;
-    return n.substr(n.find('.') + 1);
+    const std::string_view n = name;
+    return std::string(n.substr(n.find('.') + 1));
 }
 
 std::vector<std::string> scene_tables()

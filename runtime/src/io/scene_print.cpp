@@ -186,9 +186,16 @@ std::string toml_number(double v)
 
 std::string quoted_string(std::string_view s)
 {
-    std::string out = "\"";
-    for (const char c : s) {
+    std::string out;
+    out.reserve(s.size() + 2);
+    out += '"';
+    std::size_t plain = 0;  // where the run of characters written as they are began
+    for (std::size_t i = 0; i < s.size(); ++i) {
+        const char c = s[i];
         const auto u = static_cast<unsigned char>(c);
+        if (u >= 0x20 && u != 0x7f && c != '"' && c != '\\') continue;
+        out.append(s.substr(plain, i - plain));
+        plain = i + 1;
         if (c == '"' || c == '\\') {
             out += '\\';
             out += c;
@@ -196,14 +203,15 @@ std::string quoted_string(std::string_view s)
             out += "\\n";
         else if (c == '\t')
             out += "\\t";
-        else if (u < 0x20 || u == 0x7f) {
+        else {
             char code[8];
             std::snprintf(code, sizeof code, "\\u%04x", u);
             out += code;
-        } else
-            out += c;
+        }
     }
-    return out + "\"";
+    out.append(s.substr(plain));
+    out += '"';
+    return out;
 }
 
 std::string effective_scene_toml(const Scene& scene)
