@@ -114,6 +114,16 @@ const gsl_odeiv2_step_type* step_type(const std::string& name)
     return nullptr;
 }
 
+namespace {
+
+/// A controller's torque's derivatives by the state (q, qd, the integral z) and by t.
+struct TorqueDerivatives {
+    Eigen::VectorXd dq, dqd;
+    double dz = 0.0, dt = 0.0;
+};
+
+}  // namespace
+
 struct FirstOrderSystem::Work {
     using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
     std::unique_ptr<RightHandSide> rhs;
@@ -133,6 +143,10 @@ struct FirstOrderSystem::Work {
     RowMatrix auxiliary_rows;
     std::vector<double> auxiliary_dfdt;
     Eigen::MatrixXd directions;
+    // A control's torque derivatives, and their products with jacobian_product's vectors: kept, for a right-hand
+    // side's worth of work must not allocate.
+    TorqueDerivatives dtau;
+    Eigen::RowVectorXd dtau_v;
 };
 
 Auxiliary Auxiliary::of(const VariantKey& key, const Control* control, const Parameters* parameters, bool integral)
@@ -282,18 +296,14 @@ void FirstOrderSystem::full_state(double t, const double* y, double* q, double* 
 
 namespace {
 
-/// A controller's torque's derivatives by the state (q, qd, the integral z) and by t.
-struct TorqueDerivatives {
-    Eigen::VectorXd dq, dqd;
-    double dz = 0.0, dt = 0.0;
-};
-
 /// The torque's derivatives of the PD(I) law unsaturated at reference (tip_row: its tip feedback's row); zero without
 /// a control or where it saturates (a law given as code is differenced by finite_difference_jacobian instead).
-TorqueDerivatives torque_derivatives(const Control* control, bool saturated, const Eigen::VectorXd& tip_row,
-                                     const HubInput& reference, int n)
+const TorqueDerivatives& torque_derivatives(const Control* control, bool saturated, const Eigen::VectorXd& tip_row,
+                                            const HubInput& reference, int n, TorqueDerivatives& d)
 {
-    TorqueDerivatives d{Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n)};
+    d.dq.setZero(n);
+    d.dqd.setZero(n);
+    d.dz = d.dt = 0.0;
     if (control != nullptr && !saturated) {
         d.dq = -control->k_tip * tip_row;
         d.dq[0] -= control->kp;
@@ -371,7 +381,7 @@ int FirstOrderSystem::exact_jacobian(const ExactJacobian& exact, double t, const
     Eigen::MatrixXd lower_q = w.dQdq, lower_qd = w.dQdqd;  // column-major copies, solved in place
     w.solver->solve(lower_q.data(), n_);
     w.solver->solve(lower_qd.data(), n_);
-    const TorqueDerivatives dtau = torque_derivatives(control_, saturated_, w.tip_row, reference, n_);
+    const TorqueDerivatives& dtau = torque_derivatives(control_, saturated_, w.tip_row, reference, n_, w.dtau);
     Eigen::VectorXd b = Eigen::VectorXd::Zero(n_);  // M^-1 dQ/dtau
     if (control_ != nullptr) {
         b = w.dQdu.col(static_cast<Eigen::Index>(index(DriveValue::tau)));
@@ -416,7 +426,7 @@ int FirstOrderSystem::jacobian_product(double t, const double* y, int k, const d
     const HubInput reference = drive_at(t);
     const HubInput u = input_at(t, y);
     if (const int s = force_linearization(*exact, u, y); s != GSL_SUCCESS) return s;
-    const TorqueDerivatives dtau = torque_derivatives(control_, saturated_, w.tip_row, reference, n_);
+    const TorqueDerivatives& dtau = torque_derivatives(control_, saturated_, w.tip_row, reference, n_, w.dtau);
     const int m = state_size();
     if (aux_.count() > 0) {
         if (w.auxiliary_rows.rows() != m) {
@@ -434,7 +444,8 @@ int FirstOrderSystem::jacobian_product(double t, const double* y, int k, const d
     w.directions.noalias() += w.dQdq * vq;
     w.directions.noalias() += w.dQdqd * vqd;
     if (control_ != nullptr) {
-        Eigen::RowVectorXd dtau_v = dtau.dq.transpose() * vq;
+        Eigen::RowVectorXd& dtau_v = w.dtau_v;
+        dtau_v.noalias() = dtau.dq.transpose() * vq;
         dtau_v.noalias() += dtau.dqd.transpose() * vqd;
         if (integral_ >= 0) dtau_v += dtau.dz * Strided(v + integral_, 1, k, Eigen::OuterStride<>(m));
         w.directions.noalias() += w.dQdu.col(static_cast<Eigen::Index>(index(DriveValue::tau))) * dtau_v;

@@ -97,6 +97,30 @@ public:
         v_.forces(zero_c_.data(), in.data(), q, qd, at_zero.data());
         for (int i = 0; i < nq(); ++i) dQ[i] -= at_zero[static_cast<std::size_t>(i)];
     }
+    void derivatives_p(const Param* ks, int count, int n, const HubInput& u, const double* q, const double* qd,
+                       double* dM, double* dQ) const override
+    {
+        // M and Q at c = 0 once for all the parameters, then as mass_p and forces_p.
+        const int nn = n * n;
+        std::vector<double> zero(static_cast<std::size_t>(nn + n), 0.0);
+        double* const M0 = zero.data();
+        double* const Q0 = M0 + nn;
+        const std::array<double, kernel_input_count> mass_in{u.tau, u.theta_dot, u.theta_ddot, 0.0, 0.0};
+        const std::array<double, kernel_input_count> in = inputs(u, q);
+        v_.mass(zero_c_.data(), mass_in.data(), q, q, M0);
+        v_.forces(zero_c_.data(), in.data(), q, qd, Q0);
+        for (int j = 0; j < count; ++j) {
+            double* const M = dM + static_cast<std::ptrdiff_t>(j) * nn;
+            double* const Q = dQ + static_cast<std::ptrdiff_t>(j) * n;
+            std::fill_n(M, nn, 0.0);
+            std::fill_n(Q, n, 0.0);
+            v_.mass(dc(ks[j]), mass_in.data(), q, q, M);
+            v_.forces(dc(ks[j]), in.data(), q, qd, Q);
+            for (int i = 0; i < nn; ++i) M[i] -= M0[i];
+            for (const auto& [upper, lower] : mirrored_) M[lower] = M[upper];
+            for (int i = 0; i < n; ++i) Q[i] -= Q0[i];
+        }
+    }
     Tip tip_p(Param k, const double* q) const override
     {
         double t[5] = {}, t0[5] = {};

@@ -38,6 +38,11 @@ struct SensitivitySystem::Work {
     std::vector<double> work_rates;   // the hub's work's rate's derivative by gain j
     Eigen::VectorXd dfdt, dQ, other_Q, y_plus, y_minus, f_plus, f_minus;
     Eigen::PartialPivLU<Eigen::MatrixXd> lu;
+    // The physical parameters' derivatives of M and Q at the right-hand side's state, from one call of the model's
+    // derivatives_p (where it has them): the parameters, each one's place among them (-1: a gain), and the results.
+    std::vector<Param> derived;
+    std::vector<int> derived_at;
+    std::vector<double> dMs, dQs;
 };
 
 namespace {
@@ -111,6 +116,12 @@ SensitivitySystem::SensitivitySystem(const Model& model, const Scene& scene)
     work_->R.resize(nq, count());
     work_->forced.resize(static_cast<std::size_t>(count()));
     work_->work_rates.resize(static_cast<std::size_t>(count()));
+    for (const auto& p : parameters_) {
+        work_->derived_at.push_back(p->gain ? -1 : static_cast<int>(work_->derived.size()));
+        if (!p->gain) work_->derived.push_back(p->param);
+    }
+    work_->dMs.resize(work_->derived.size() * static_cast<std::size_t>(nq) * nq);
+    work_->dQs.resize(work_->derived.size() * static_cast<std::size_t>(nq));
     set_dimension(size());
 }
 
@@ -141,10 +152,11 @@ bool SensitivitySystem::forcing(int j, const double* y, const double* qdd_at, co
         r[0] = dtau[p.gain_index];  // Q = tau e_theta + ...
         // The hub's work, z' = tau theta_dot, moves with the gain too.
         if (work_index() >= 0) work_rate = p.scale * s.theta_dot * dtau[p.gain_index];
-    } else if (const ParameterDerivatives* d = model_.parameter_derivatives()) {
-        d->mass_p(p.param, u, q, w.dM.data());
-        d->forces_p(p.param, u, q, qd, w.dQ.data());
-        r = w.dQ - w.dM * qdd;
+    } else if (model_.parameter_derivatives() != nullptr) {
+        const int at = w.derived_at[static_cast<std::size_t>(j)];
+        const Eigen::Map<const Work::RowMatrix> dM(w.dMs.data() + static_cast<std::ptrdiff_t>(at) * nq * nq, nq, nq);
+        const Eigen::Map<const Eigen::VectorXd> dQ(w.dQs.data() + static_cast<std::ptrdiff_t>(at) * nq, nq);
+        r = dQ - dM * qdd;
     } else {
         p.up->mass(u, q, w.dM.data());
         p.down->mass(u, q, w.other.data());
@@ -187,6 +199,9 @@ int SensitivitySystem::rhs(double t, const double* y, double* dydt)
     const HubInput reference = scene_.motion.at(t);
     const HubInput u = input_at(t, y);
     // sigma_j' = J sigma_j + (0, M^-1 r_j, ...) times p_j's scale, r_j = dQ/dp_j - dM/dp_j qdd (forcing).
+    if (const ParameterDerivatives* d = model_.parameter_derivatives(); d != nullptr && !w.derived.empty())
+        d->derivatives_p(w.derived.data(), static_cast<int>(w.derived.size()), nq, u, y, y + nq, w.dMs.data(),
+                         w.dQs.data());
     for (int j = 0; j < k; ++j)
         w.forced[static_cast<std::size_t>(j)] = forcing(j, y, dydt + nq, u, reference, w.R.col(j).data(),
                                                         w.work_rates[static_cast<std::size_t>(j)]);
