@@ -114,6 +114,19 @@ TEST_CASE("generated parameter derivatives equal central differences of models a
                 if (base.F.size() > 0)
                     CHECK(error(exact.F, d(&Values::F), base.F.lpNorm<Eigen::Infinity>() / pk * 1e-3) < 1e-7);
             }
+            // All the parameters at once (the sensitivities' call), last first: each one's mass_p and forces_p.
+            std::vector<Param> ks;
+            for (std::size_t j = read; j-- > 0;) ks.push_back(static_cast<Param>(j));
+            const int n = model->nq(), count = static_cast<int>(ks.size());
+            std::vector<double> dMs(static_cast<std::size_t>(count * n * n)), dQs(static_cast<std::size_t>(count * n));
+            model->parameter_derivatives()->derivatives_p(ks.data(), count, n, u, s.q.data(), s.qd.data(),
+                                                          dMs.data(), dQs.data());
+            for (int j = 0; j < count; ++j) {
+                INFO("parameter " << param_names[index(ks[static_cast<std::size_t>(j)])] << " of several");
+                const Values one = derivatives(*model, ks[static_cast<std::size_t>(j)], u, s.q, s.qd);
+                CHECK(Eigen::Map<const Eigen::MatrixXd>(dMs.data() + j * n * n, n, n) == one.M);
+                CHECK(Eigen::Map<const Eigen::VectorXd>(dQs.data() + j * n, n) == one.Q);
+            }
         }
     }
 }

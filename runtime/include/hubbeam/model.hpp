@@ -73,13 +73,7 @@ public:
     /// mass_p and forces_p of count parameters ks at one state, what they share computed once: dM holds count nq x nq
     /// row-major matrices one after the other, dQ count vectors of nq.
     virtual void derivatives_p(const Param* ks, int count, int nq, const HubInput& u, const double* q,
-                               const double* qd, double* dM, double* dQ) const
-    {
-        for (int j = 0; j < count; ++j) {
-            mass_p(ks[j], u, q, dM + static_cast<std::ptrdiff_t>(j) * nq * nq);
-            forces_p(ks[j], u, q, qd, dQ + static_cast<std::ptrdiff_t>(j) * nq);
-        }
-    }
+                               const double* qd, double* dM, double* dQ) const = 0;
     /// d(tip)/dp_k at fixed q (a shape function's scale may hold L).
     virtual Tip tip_p(Param k, const double* q) const = 0;
     /// dF/dp_k of the term form Q = F m (nq x K row-major, free of the state, so once per run), for a model whose
