@@ -7,9 +7,9 @@
 //   section 4     AMM, Ny = 4 clamped-free cantilever modes, no axial field (u_x1 = 0);
 //   section 5     Lagrange's equations, derived below from T and U;
 //   section 5.4   the outputs (docs/cli.md's CSV columns).
-// The integration is hubbeam's for `--stepper rk8pd` (docs/cli.md, run_stepping.cpp): GSL's rk8pd stepping freely
-// under the standard control on y, a restart at the drive's breakpoint T_s, and rows interpolated inside the steps
-// by the quintic Hermite polynomial of the positions, rates and accelerations at both ends, the steps kept short
+// The integration is hubbeam's for `--stepper rk8pd` (runtime/src/simulation/run_stepping.cpp): GSL's rk8pd stepping
+// freely under the standard control on y, a restart at the drive's breakpoint T_s, and rows interpolated inside the
+// steps by the quintic Hermite polynomial of the positions, rates and accelerations at both ends, the steps kept short
 // enough for it. So both take the same steps, and their times compare like for like.
 //
 // Usage: handwritten_spinup OUT.csv [--rtol X] [--atol X]     (the scene's 1e-8 and 1e-10 by default)
@@ -130,7 +130,7 @@ struct Mode {
 ///   H(L) = int_0^L Phi'^T Phi' dx                 = 1/L    int phi_i' phi_j' dxi
 ///   J_ob = int m x^2 dx                           = m L^3/3
 struct Beam {
-    Mat M2{}, K2{}, G{}, H_L{};
+    Mat M2{}, K2{}, G{}, H_L{}, M2_minus_G{};
     Vec S_y{}, Phi_L{};
     double J_ob = m * L * L * L / 3;
 };
@@ -162,7 +162,10 @@ Beam beam_matrices()
                 }
             }
         }
-    for (int i = 0; i < ny; ++i) beam.Phi_L[i] = modes[i].phi(1.0);
+    for (int i = 0; i < ny; ++i) {
+        beam.Phi_L[i] = modes[i].phi(1.0);
+        for (int j = 0; j < ny; ++j) beam.M2_minus_G[i][j] = beam.M2[i][j] - beam.G[i][j];
+    }
     return beam;
 }
 
@@ -222,10 +225,7 @@ struct Equations {
     explicit Equations(const Beam& beam)
     {
         const Mat Minv = inverse(beam.M2);
-        Mat M2_minus_G;
-        for (int i = 0; i < ny; ++i)
-            for (int j = 0; j < ny; ++j) M2_minus_G[i][j] = beam.M2[i][j] - beam.G[i][j];
-        P = product(Minv, M2_minus_G);
+        P = product(Minv, beam.M2_minus_G);
         Q = product(Minv, beam.K2);
         for (int i = 0; i < ny; ++i)
             for (int j = 0; j < ny; ++j) s[i] += Minv[i][j] * beam.S_y[j];
@@ -298,10 +298,7 @@ void write_row(std::string& out, const Beam& beam, double t, const double* y)
         tip_uy += beam.Phi_L[i] * B[i];
         S_y_Bd += beam.S_y[i] * Bd[i];
     }
-    Mat M2_minus_G;
-    for (int i = 0; i < ny; ++i)
-        for (int j = 0; j < ny; ++j) M2_minus_G[i][j] = beam.M2[i][j] - beam.G[i][j];
-    const double spin_inertia = J_oh + beam.J_ob + quadratic(M2_minus_G, B, B);  // d2T/dtheta_dot2
+    const double spin_inertia = J_oh + beam.J_ob + quadratic(beam.M2_minus_G, B, B);  // d2T/dtheta_dot2
     const double T2 = 0.5 * quadratic(beam.M2, Bd, Bd), T1 = d.theta_dot * S_y_Bd,
                  T0 = 0.5 * spin_inertia * d.theta_dot * d.theta_dot, U = 0.5 * quadratic(beam.K2, B, B);
     const double values[] = {t,
