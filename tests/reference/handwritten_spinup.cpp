@@ -99,7 +99,7 @@ double cantilever_root(int i)
 }
 
 /// A clamped-free mode phi(xi) = cos(b xi) - cosh(b xi) + g (sin(b xi) - sinh(b xi)), g = -(cos b + cosh b)/(sin b +
-/// sinh b) (section 4, eq. 10), with its first and second derivatives by xi. At b < 11 the cancellation between cosh
+/// sinh b) (section 4), with its first and second derivatives by xi. At b < 11 the cancellation between cosh
 /// and sinh costs under 1e-11.
 struct Mode {
     double b, g;
