@@ -43,10 +43,22 @@ double l2(double s)
 /// stepper's plan for a version of the pattern).
 struct Newton {
     Eigen::PartialPivLU<Eigen::MatrixXd> lu;
+    Eigen::MatrixXd inverse;  // where the matrix is small enough for its inverse to pay (small_inverse_size)
     std::optional<BorderedBandLU> band;
     int planned = -1;
     double h = 0.0;
 };
+
+/// Up to this size a dense Newton matrix is applied as its inverse, one matrix-vector product, where its LU's two
+/// triangular solves of dynamic size cost several times the flops (the paper's spin-up with axial coordinates: 16).
+constexpr int small_inverse_size = 64;
+
+/// newton's matrix's solution of b.
+Eigen::VectorXd solve_with(const Newton& newton, const Eigen::VectorXd& b)
+{
+    if (newton.inverse.size() > 0) return newton.inverse * b;
+    return newton.lu.solve(b);
+}
 
 /// The mass form of the condensed Newton matrices pays where M, K and C are banded but for the hub's row and column
 /// (FEM and B-spline meshes) and the system is large enough for the dense LU's n^3 to be the cost: it is used where
@@ -400,6 +412,8 @@ private:
                     if (i == j) block.diagonal().array() += 1.0;
                 }
             newton.lu.compute(N);
+            if (N.rows() <= small_inverse_size) newton.inverse = newton.lu.inverse();
+            else newton.inverse.resize(0, 0);
             newton.h = step;
         };
         factor_one(h, whole_);
@@ -413,7 +427,7 @@ private:
     void newton_solve(const Newton& newton)
     {
         if (!condensed_) {
-            dz_ = newton.lu.solve(g_);
+            dz_ = solve_with(newton, g_);
             return;
         }
         // dQ_i = g_q,i + h sum_j a_ij dV_j, and the velocity rows with dQ substituted (in the mass form, times M).
@@ -432,7 +446,7 @@ private:
             dv_ = rhs2_;
             newton.band->solve(dv_.data());
         } else {
-            dv_ = newton.lu.solve(rhs2_);
+            dv_ = solve_with(newton, rhs2_);
         }
         for (int i = 0; i < 2; ++i) {
             dz_.segment(i * n_, k_) = g_.segment(i * n_, k_) + h * (a[i][0] * dv_.head(k_) + a[i][1] * dv_.tail(k_));
