@@ -53,11 +53,11 @@ struct Newton {
 /// triangular solves of dynamic size cost several times the flops (the paper's spin-up with axial coordinates: 16).
 constexpr int small_inverse_size = 64;
 
-/// newton's matrix's solution of b.
-Eigen::VectorXd solve_with(const Newton& newton, const Eigen::VectorXd& b)
+/// x = newton's matrix's solution of b (x of b's size, so that no call allocates).
+void solve_with(const Newton& newton, const Eigen::VectorXd& b, Eigen::VectorXd& x)
 {
-    if (newton.inverse.size() > 0) return newton.inverse * b;
-    return newton.lu.solve(b);
+    if (newton.inverse.size() > 0) x.noalias() = newton.inverse * b;
+    else x = newton.lu.solve(b);
 }
 
 /// The mass form of the condensed Newton matrices pays where M, K and C are banded but for the hub's row and column
@@ -427,7 +427,7 @@ private:
     void newton_solve(const Newton& newton)
     {
         if (!condensed_) {
-            dz_ = solve_with(newton, g_);
+            solve_with(newton, g_, dz_);
             return;
         }
         // dQ_i = g_q,i + h sum_j a_ij dV_j, and the velocity rows with dQ substituted (in the mass form, times M).
@@ -446,7 +446,7 @@ private:
             dv_ = rhs2_;
             newton.band->solve(dv_.data());
         } else {
-            dv_ = solve_with(newton, rhs2_);
+            solve_with(newton, rhs2_, dv_);
         }
         for (int i = 0; i < 2; ++i) {
             dz_.segment(i * n_, k_) = g_.segment(i * n_, k_) + h * (a[i][0] * dv_.head(k_) + a[i][1] * dv_.tail(k_));
