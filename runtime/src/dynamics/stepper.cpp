@@ -1,5 +1,5 @@
-// The stepper families behind Stepper: GSL odeiv2's evolve/driver pair, and SUNDIALS CVODE's variable-order BDF
-// with Newton iterations whose matrix is factored rarely and reused across steps.
+// The stepper families behind Stepper: GSL odeiv2's evolve/driver pair, and SUNDIALS CVODES's variable-order BDF
+// with Newton iterations whose matrix is factored rarely and reused across steps (and its staggered sensitivities).
 #include "dynamics/stepper.hpp"
 
 #include <algorithm>
@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include <cvode/cvode.h>
+#include <cvodes/cvodes.h>
 #include <gsl/gsl_errno.h>
 #include <nvector/nvector_serial.h>
 #include <sunlinsol/sunlinsol_dense.h>
@@ -145,43 +145,52 @@ private:
 /// CVODE's BDF (orders 1 to 5) with Newton iterations on a dense matrix I - gamma J. CVODE forms the Jacobian J from
 /// the system's (exact where the model has derivatives) only when its Newton iteration converges slowly or every
 /// 51 steps, and refactors I - gamma J when gamma changes by more than 30 % or every 20 steps: on the hub-beam's
-/// equations, linear in (q, qd) once a prescribed drive is steady, most steps reuse both.
+/// equations, linear in (q, qd) once a prescribed drive is steady, most steps reuse both. A system with sensitivity
+/// blocks (FirstOrderSystem::blocks) integrates them by CVODES's staggered corrector: the state's Newton iteration
+/// converged first, then the sensitivities', linear, with the state's matrix, as gauss4 does; they are left out of
+/// the error test where the system leaves them out of its control (errconS).
 class CvodeStepper final : public Stepper {
 public:
     CvodeStepper(FirstOrderSystem& system, double t0, const double* y0, double h0, double atol, double rtol)
-        : system_(system), n_(system.size()), dfdy_(static_cast<std::size_t>(n_) * n_), dfdt_(static_cast<std::size_t>(n_))
+        : system_(system),
+          n_(system.size()),
+          state_(n_ / system.blocks()),
+          dfdy_(static_cast<std::size_t>(state_) * state_),
+          dfdt_(static_cast<std::size_t>(state_))
     {
         if (SUNContext_Create(nullptr, &context_) != 0) throw std::runtime_error("SUNDIALS could not create a context");
-        y_ = N_VNew_Serial(n_, context_);
-        matrix_ = SUNDenseMatrix(n_, n_, context_);
+        y_ = N_VNew_Serial(state_, context_);
+        matrix_ = SUNDenseMatrix(state_, state_, context_);
         mem_ = CVodeCreate(CV_BDF, context_);
         if (y_ == nullptr || matrix_ == nullptr || mem_ == nullptr) throw std::runtime_error("CVODE could not allocate");
         solver_ = SUNLinSol_Dense(y_, matrix_, context_);
-        std::copy_n(y0, n_, N_VGetArrayPointer(y_));
+        std::copy_n(y0, state_, N_VGetArrayPointer(y_));
         const bool ok = CVodeSetErrHandlerFn(mem_, quiet, nullptr) == CV_SUCCESS &&
                         CVodeInit(mem_, rhs, t0, y_) == CV_SUCCESS && CVodeSetUserData(mem_, this) == CV_SUCCESS &&
-                        set_tolerances(rtol, atol, system.controlled_size()) &&
+                        CVodeSStolerances(mem_, rtol, atol) == CV_SUCCESS &&
                         CVodeSetLinearSolver(mem_, solver_, matrix_) == CV_SUCCESS &&
                         CVodeSetJacFn(mem_, jacobian) == CV_SUCCESS && CVodeSetInitStep(mem_, h0) == CV_SUCCESS &&
-                        CVodeSetMaxNumSteps(mem_, -1) == CV_SUCCESS;
+                        CVodeSetMaxNumSteps(mem_, -1) == CV_SUCCESS && (state_ == n_ || init_sensitivities(y0, rtol, atol));
         if (!ok) throw std::runtime_error("CVODE could not be set up");
     }
-    /// CVODE's tolerances: atol for every entry of y, or infinite for those the system leaves out of the control
-    /// (their weight in CVODE's error norm is then 0).
-    bool set_tolerances(double rtol, double atol, int controlled)
+    /// The sensitivity blocks of y0 as CVODES's staggered sensitivities, under the state's tolerances (the system
+    /// scales them to the state's units), in the error test where the system controls them.
+    bool init_sensitivities(const double* y0, double rtol, double atol)
     {
-        if (controlled == n_) return CVodeSStolerances(mem_, rtol, atol) == CV_SUCCESS;
-        N_Vector tolerances = N_VNew_Serial(n_, context_);
-        if (tolerances == nullptr) return false;
-        double* a = N_VGetArrayPointer(tolerances);
-        std::fill_n(a, controlled, atol);
-        std::fill(a + controlled, a + n_, INFINITY);
-        const bool ok = CVodeSVtolerances(mem_, rtol, tolerances) == CV_SUCCESS;  // CVODE keeps a copy
-        N_VDestroy(tolerances);
-        return ok;
+        const int count = n_ / state_ - 1;
+        sensitivities_ = N_VCloneVectorArray(count, y_);
+        if (sensitivities_ == nullptr) return false;
+        scratch_.resize(static_cast<std::size_t>(n_));
+        rates_.resize(static_cast<std::size_t>(n_));
+        copy_sensitivities_in(y0);
+        std::vector<double> atols(static_cast<std::size_t>(count), atol);
+        return CVodeSensInit(mem_, count, CV_STAGGERED, sensitivity_rhs, sensitivities_) == CV_SUCCESS &&
+               CVodeSensSStolerances(mem_, rtol, atols.data()) == CV_SUCCESS &&
+               CVodeSetSensErrCon(mem_, system_.controlled_size() == n_ ? SUNTRUE : SUNFALSE) == CV_SUCCESS;
     }
     ~CvodeStepper() override
     {
+        if (sensitivities_ != nullptr) N_VDestroyVectorArray(sensitivities_, n_ / state_ - 1);
         CVodeFree(&mem_);
         SUNLinSolFree(solver_);
         SUNMatDestroy(matrix_);
@@ -204,8 +213,12 @@ public:
     {
         past_ = steps();
         past_rejected_ = rejected();
-        std::copy_n(y, n_, N_VGetArrayPointer(y_));
+        std::copy_n(y, state_, N_VGetArrayPointer(y_));
         CVodeReInit(mem_, t, y_);
+        if (sensitivities_ != nullptr) {
+            copy_sensitivities_in(y);
+            CVodeSensReInit(mem_, CV_STAGGERED, sensitivities_);
+        }
     }
     void retake(double t, const double* y) override { restart(t, y); }
     long steps() const override
@@ -229,8 +242,20 @@ private:
         const int flag = CVode(mem_, target, y_, &reached, task);
         if (flag < 0) return from_gsl(status(flag));
         t = reached;
-        std::copy_n(N_VGetArrayPointer(y_), n_, y);
+        std::copy_n(N_VGetArrayPointer(y_), state_, y);
+        if (sensitivities_ != nullptr) {
+            if (CVodeGetSens(mem_, &reached, sensitivities_) != CV_SUCCESS) return from_gsl(GSL_FAILURE);
+            for (int j = 0; j < n_ / state_ - 1; ++j)
+                std::copy_n(N_VGetArrayPointer(sensitivities_[j]), state_, y + static_cast<std::ptrdiff_t>(j + 1) * state_);
+        }
         return StepStatus::success;
+    }
+
+    /// y's sensitivity blocks into CVODES's vectors.
+    void copy_sensitivities_in(const double* y)
+    {
+        for (int j = 0; j < n_ / state_ - 1; ++j)
+            std::copy_n(y + static_cast<std::ptrdiff_t>(j + 1) * state_, state_, N_VGetArrayPointer(sensitivities_[j]));
     }
 
     /// CVODE's failures as the GSL statuses of their kind, so that a failure's message reads alike in every family.
@@ -252,22 +277,47 @@ private:
     static int rhs(double t, N_Vector y, N_Vector ydot, void* self)
     {
         auto& s = *static_cast<CvodeStepper*>(self);
-        return s.system_.rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot)) == GSL_SUCCESS ? 0 : 1;
+        const int status = s.sensitivities_ != nullptr
+                               ? s.system_.FirstOrderSystem::rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot))
+                               : s.system_.rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
+        return status == GSL_SUCCESS ? 0 : 1;
+    }
+    /// Every sensitivity's rate at once, from the system's right-hand side of the whole y (the state's and the
+    /// sensitivities' together).
+    static int sensitivity_rhs(int count, double t, N_Vector y, N_Vector, N_Vector* sensitivities, N_Vector* rates,
+                               void* self, N_Vector, N_Vector)
+    {
+        auto& s = *static_cast<CvodeStepper*>(self);
+        const int n = s.state_;
+        std::copy_n(N_VGetArrayPointer(y), n, s.scratch_.data());
+        for (int j = 0; j < count; ++j)
+            std::copy_n(N_VGetArrayPointer(sensitivities[j]), n, s.scratch_.data() + static_cast<std::ptrdiff_t>(j + 1) * n);
+        if (s.system_.rhs(t, s.scratch_.data(), s.rates_.data()) != GSL_SUCCESS) return 1;
+        for (int j = 0; j < count; ++j)
+            std::copy_n(s.rates_.data() + static_cast<std::ptrdiff_t>(j + 1) * n, n, N_VGetArrayPointer(rates[j]));
+        return 0;
     }
     static int jacobian(double t, N_Vector y, N_Vector, SUNMatrix J, void* self, N_Vector, N_Vector, N_Vector)
     {
         auto& s = *static_cast<CvodeStepper*>(self);
-        if (s.system_.jacobian(t, N_VGetArrayPointer(y), s.dfdy_.data(), s.dfdt_.data()) != GSL_SUCCESS) return 1;
+        const int status = s.sensitivities_ != nullptr
+                               ? s.system_.FirstOrderSystem::jacobian(t, N_VGetArrayPointer(y), s.dfdy_.data(),
+                                                                      s.dfdt_.data())
+                               : s.system_.jacobian(t, N_VGetArrayPointer(y), s.dfdy_.data(), s.dfdt_.data());
+        if (status != GSL_SUCCESS) return 1;
+        const int n = s.state_;
         double* column_major = SUNDenseMatrix_Data(J);
-        for (int i = 0; i < s.n_; ++i)
-            for (int j = 0; j < s.n_; ++j) column_major[j * s.n_ + i] = s.dfdy_[static_cast<std::size_t>(i * s.n_ + j)];
+        for (int i = 0; i < n; ++i)
+            for (int j = 0; j < n; ++j) column_major[j * n + i] = s.dfdy_[static_cast<std::size_t>(i * n + j)];
         return 0;
     }
     static void quiet(int, const char*, const char*, char*, void*) {}  // failures come back as statuses
 
     FirstOrderSystem& system_;
-    int n_;
-    std::vector<double> dfdy_, dfdt_;  // the system's row-major Jacobian, before it is copied column-major
+    int n_, state_;                    // y's size, and its state's (y's whole size without sensitivity blocks)
+    std::vector<double> dfdy_, dfdt_;  // the state's row-major Jacobian, before it is copied column-major
+    N_Vector* sensitivities_ = nullptr;
+    std::vector<double> scratch_, rates_;  // a whole y and its rates, for the sensitivities' right-hand side
     SUNContext context_ = nullptr;
     N_Vector y_ = nullptr;
     SUNMatrix matrix_ = nullptr;
