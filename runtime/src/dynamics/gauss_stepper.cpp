@@ -104,6 +104,8 @@ public:
         // Newton matrix, as the controller's integral, which the torque reads, must.
         condensed_ = aux_ == 0 || (blocks_ == 1 && mass_form_ && system.auxiliary_are_quadratures());
         mass_form_ = mass_form_ && condensed_;
+        linear_blocks_ = blocks_ > 1 && system.has_exact_jacobian() && n_ <= small_inverse_size;
+        if (linear_blocks_) stage_f_.resize(m_);
     }
 
     StepStatus step(double& t, double target, double* y, double h_max) override
@@ -515,12 +517,15 @@ private:
             double previous = 0.0, eta_in = eta;
             for (int k = 0; k < 7; ++k) {
                 stage_ = y0 + z_.head(m_);
-                const auto evaluate = [&](double at, double* f) {
-                    return state ? state_rhs(at, stage_.data(), f) : system_.rhs(at, stage_.data(), f);
+                const auto evaluate = [&](int i, double at, double* f) -> int {
+                    if (state) return state_rhs(at, stage_.data(), f);
+                    if (!linear_blocks_) return system_.rhs(at, stage_.data(), f);
+                    blocks_rates(i, f);
+                    return GSL_SUCCESS;
                 };
-                if (evaluate(t + c1 * h, f_.data()) != GSL_SUCCESS) return GSL_EBADFUNC;
+                if (evaluate(0, t + c1 * h, f_.data()) != GSL_SUCCESS) return GSL_EBADFUNC;
                 stage_ = y0 + z_.tail(m_);
-                if (evaluate(t + c2 * h, f_.data() + m_) != GSL_SUCCESS) return GSL_EBADFUNC;
+                if (evaluate(1, t + c2 * h, f_.data() + m_) != GSL_SUCCESS) return GSL_EBADFUNC;
                 double norm = 0.0;
                 for (int b = state ? 0 : 1; b < (state ? 1 : blocks_); ++b)
                     norm = std::max(norm, correct_block(b, h, newton));
@@ -541,12 +546,41 @@ private:
             return GSL_EMAXITER;
         };
         if (const int s = iterate(true, eta_); s != GSL_SUCCESS) return s;
+        if (linear_blocks_)
+            if (const int s = linearize_stages(t, y0, h); s != GSL_SUCCESS) return s;
         if (blocks_ > 1) {
             double eta_blocks = 0.0;
             if (const int s = iterate(false, eta_blocks); s != GSL_SUCCESS) return s;
         }
         y1 = y0 + d1 * z_.head(m_) + d2 * z_.tail(m_);
         return GSL_SUCCESS;
+    }
+
+    /// The later blocks' rates at the converged state stages are J(Y_i) sigma + b(Y_i) (FirstOrderSystem::blocks):
+    /// each stage's Jacobian, and its rates at sigma = 0, once, for the blocks' iteration.
+    int linearize_stages(double t, const Eigen::Ref<const Eigen::VectorXd>& y0, double h)
+    {
+        const double c[2] = {c1, c2};
+        for (int i = 0; i < 2; ++i) {
+            stage_ = y0 + z_.segment(i * m_, m_);
+            stage_.tail(m_ - n_).setZero();
+            stage_J_[i].resize(n_, n_);
+            if (system_.FirstOrderSystem::jacobian(t + c[i] * h, stage_.data(), stage_J_[i].data(), dfdt_.data()) !=
+                    GSL_SUCCESS ||
+                system_.rhs(t + c[i] * h, stage_.data(), stage_f_.data()) != GSL_SUCCESS)
+                return GSL_EBADFUNC;
+            stage_b_[i] = Eigen::Map<const Eigen::MatrixXd>(stage_f_.data() + n_, n_, blocks_ - 1);
+        }
+        return GSL_SUCCESS;
+    }
+
+    /// The later blocks' rates at stage i from the sensitivities in stage_ (linearize_stages), into f.
+    void blocks_rates(int i, double* f) const
+    {
+        Eigen::Map<Eigen::MatrixXd> rates(f + n_, n_, blocks_ - 1);
+        const Eigen::Map<const Eigen::MatrixXd> sigma(stage_.data() + n_, n_, blocks_ - 1);
+        rates.noalias() = stage_J_[i].lazyProduct(sigma);  // coefficient by coefficient: small, no packing
+        rates += stage_b_[i];
     }
 
     FirstOrderSystem& system_;
@@ -563,6 +597,12 @@ private:
     int calm_ = 0;  // steps accepted since the last rejection by the error test, up to calm_steps
     long rejected_ = 0;
     Eigen::VectorXd y1_, y_half_, y2_, w_, stage_, z_, dz_, g_, f_, z_last_;
+    // Where the later blocks' rates are linear and the state small (linearize_stages): each stage's Jacobian, and
+    // its blocks' rates at sigma = 0, a column per block; a whole right-hand side's scratch.
+    bool linear_blocks_ = false;
+    RowMatrix stage_J_[2];
+    Eigen::MatrixXd stage_b_[2];
+    Eigen::VectorXd stage_f_;
     Eigen::MatrixXd J_;
     Eigen::VectorXd dfdt_;
     std::vector<double> rows_;  // the system's row-major Jacobian
