@@ -1,7 +1,8 @@
 // handwritten_spinup: the scene cases/spinup_omega4.toml without axial coordinates (Nx = 0), written by hand from
 // docs/model.md: an oracle for hubbeam's generated equations and its row output, and the yardstick of its speed.
 //
-// It shares no code with hubbeam (GSL and the C++ library only). The model, section by section of docs/model.md:
+// It shares no code with hubbeam (GSL, the C++ library and the tests' own Gauss-Legendre rule only). The model,
+// section by section of docs/model.md:
 //   section 1, 6  a uniform beam clamped at the axis of a hub (a = 0) whose rotation is prescribed (eq. 58);
 //   section 3     order "first": |r_dot|^2 keeps terms of degree <= 2, u_x2 only in 2 theta_dot^2 x u_x2;
 //   section 4     AMM, Ny = 4 clamped-free cantilever modes, no axial field (u_x1 = 0);
@@ -25,6 +26,8 @@
 #include <numbers>
 #include <string>
 #include <vector>
+
+#include "gauss_legendre.hpp"
 
 namespace {
 
@@ -56,30 +59,18 @@ Drive drive(double t)
             omega0 * (t / T_s - std::sin(w * t) / (2 * pi)), omega0 / T_s * (1 - std::cos(w * t))};
 }
 
-/// Gauss-Legendre nodes and weights on [0, 1]: the roots of the Legendre polynomial P_k by Newton's method from
-/// Tricomi's estimates, P_k and P_k' by the three-term recurrence.
+/// Gauss-Legendre nodes and weights on [0, 1], from the tests' own rule on [-1, 1] (tests/gauss_legendre.hpp,
+/// which no hubbeam code uses).
 struct Rule {
     std::vector<double> x, w;
 };
 Rule gauss_legendre(int k)
 {
+    const hubbeam::test::GaussRule on_symmetric = hubbeam::test::gauss_legendre(k);
     Rule r;
-    for (int i = 1; i <= k; ++i) {
-        double z = std::cos(pi * (i - 0.25) / (k + 0.5)), dp = 0.0;
-        for (int it = 0; it < 100; ++it) {
-            double p0 = 1.0, p1 = z;
-            for (int j = 2; j <= k; ++j) {
-                const double p2 = ((2 * j - 1) * z * p1 - (j - 1) * p0) / j;
-                p0 = p1;
-                p1 = p2;
-            }
-            dp = k * (z * p1 - p0) / (z * z - 1);
-            const double dz = p1 / dp;
-            z -= dz;
-            if (std::abs(dz) < 1e-16) break;
-        }
-        r.x.push_back(0.5 * (1 - z));
-        r.w.push_back(1.0 / ((1 - z * z) * dp * dp));  // 2 / ((1 - z^2) P'^2), halved for [0, 1]
+    for (std::size_t i = 0; i < on_symmetric.x.size(); ++i) {
+        r.x.push_back(0.5 * (1 - on_symmetric.x[i]));
+        r.w.push_back(0.5 * on_symmetric.w[i]);
     }
     return r;
 }
