@@ -17,7 +17,8 @@ namespace {
 
 /// -dQ/dq at (u, q, qd) (exact by differences too for the linear restoring forces about the straight beam, where it
 /// is used).
-Eigen::MatrixXd stiffness(const Model& model, const HubInput& u, const std::vector<double>& q, const std::vector<double>& qd)
+Eigen::MatrixXd stiffness(const Model& model, const HubInput& u, const std::vector<double>& q,
+                          const std::vector<double>& qd)
 {
     return -force_q_jacobian(model, u, q, qd);
 }
@@ -111,8 +112,10 @@ bool stable_at(const Model& model, double omega)
     const int n = model.nq(), first = model.coordinates().first_elastic();
     HubInput u;
     std::vector<double> q(static_cast<std::size_t>(n), 0.0), qd(q);
-    if (model.key().drive == Drive::torque) qd[0] = omega;
-    else u.theta_dot = omega;
+    if (model.key().drive == Drive::torque)
+        qd[0] = omega;
+    else
+        u.theta_dot = omega;
     const int m = n - first;
     const Eigen::MatrixXd K = stiffness(model, u, q, qd).bottomRightCorner(m, m);
     const Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (K + K.transpose()));
@@ -153,6 +156,17 @@ PilotPlan pilot_plan(const StepperCosts& c, double t_end)
     return {t, static_cast<long>(std::min(break_even, 1e12)) + 30};
 }
 
+double pilot_extrapolated_steps(const Pilot& pilot, double t_end)
+{
+    const double second_half = static_cast<double>(pilot.steps - pilot.steps_to_half);
+    return static_cast<double>(pilot.steps) + second_half / (0.5 * pilot.t) * (t_end - pilot.t);
+}
+
+bool pilot_lost(const StepperCosts& c)
+{
+    return !(c.gauss4 < c.rk8pd);
+}
+
 StepperCosts predicted_costs(const Model& model, Axial axial, double rtol, double t_end, int auxiliary,
                              const Pilot* pilot, const RatesAtRest* rates)
 {
@@ -179,12 +193,12 @@ StepperCosts predicted_costs(const Model& model, Axial axial, double rtol, doubl
     c.stability_bound = stability8 > accuracy8;
     c.steps_gauss4 = 2.0 * t_end * c.omega_1 / (0.073 * std::pow(scale, 1.0 / 5.0));
     if (pilot != nullptr) {
-        c.steps_gauss4 = pilot->failed || pilot->t <= 0.0 ? INFINITY
-                                                          : static_cast<double>(pilot->steps) * (t_end / pilot->t) *
-                                                                std::pow(pilot->rtol / rtol, 0.2);
+        c.steps_gauss4 = pilot->failed || pilot->t <= 0.0
+                             ? INFINITY
+                             : pilot_extrapolated_steps(*pilot, t_end) * std::pow(pilot->rtol / rtol, 0.2);
     } else if (model.key().drive == Drive::torque && model.key().method != Method::amm) {
-        c.steps_gauss4 = std::max(c.steps_gauss4, t_end * highest_frequency(model, Axial::quasi_static) /
-                                                      stability_step_factor("rk8pd"));
+        c.steps_gauss4 = std::max(
+            c.steps_gauss4, t_end * highest_frequency(model, Axial::quasi_static) / stability_step_factor("rk8pd"));
     }
     // Cost per step in flops, with a right-hand side of about 4 m^2 (the folded or dense products over m states):
     // rk8pd's 13 evaluations; gauss4's about 15 evaluations and 10 solves with its factored Newton matrices, and
@@ -205,10 +219,11 @@ StepperCosts predicted_costs(const Model& model, Axial axial, double rtol, doubl
     const double rhs = 4.0 * m * m * full;
     const double n = auxiliary == 0 ? m : 2.0 * (m + auxiliary);
     c.rk8pd = c.steps_rk8pd * 13.0 * rhs;
-    // A pilot that factored banded Newton matrices (gauss4's mass form) prices its solves and factorizations.
-    const bool banded = pilot != nullptr && pilot->band_factor_flops > 0.0;
-    const double solve = banded ? pilot->band_solve_flops : 2.0 * n * n;
-    const double factor = banded ? pilot->band_factor_flops : 2.0 / 3.0 * n * n * n;
+    // A pilot prices the Newton matrices it factored: banded in gauss4's mass form, and condensed to the velocities
+    // where a damped or controlled hub's auxiliary states are quadratures of the state (which n above does not know).
+    const bool measured = pilot != nullptr && pilot->newton_factor_flops > 0.0;
+    const double solve = measured ? pilot->newton_solve_flops : 2.0 * n * n;
+    const double factor = measured ? pilot->newton_factor_flops : 2.0 / 3.0 * n * n * n;
     c.gauss4_step = 15.0 * rhs + 10.0 * solve + 2.0 * factor / 4.0 + gauss4_step_overhead;
     c.gauss4 = c.steps_gauss4 * c.gauss4_step;
     return c;
@@ -228,13 +243,16 @@ StepperChoice automatic_stepper(const Model& model, Axial axial, double rtol, do
         if (pilot->failed)
             std::snprintf(text, sizeof text, ": its pilot failed at t = %.3g s", pilot->t);
         else
-            std::snprintf(text, sizeof text, ", from %ld in a pilot to t = %.3g s", pilot->steps, pilot->t);
+            std::snprintf(text, sizeof text, ", from %ld in a pilot to t = %.3g s, %ld in its second half",
+                          pilot->steps, pilot->t, pilot->steps - pilot->steps_to_half);
         pilot_note = text;
     }
     char why[440];
     if (c.gauss4 < c.rk8pd && !implicit) {
-        std::snprintf(why, sizeof why, "automatic: rtol %g is below gauss4's %g, where its error estimate meets "
-                      "round-off", rtol, gauss4_tightest_rtol);
+        std::snprintf(why, sizeof why,
+                      "automatic: rtol %g is below gauss4's %g, where its error estimate meets "
+                      "round-off",
+                      rtol, gauss4_tightest_rtol);
         return {"rk8pd", why};
     }
     std::snprintf(
