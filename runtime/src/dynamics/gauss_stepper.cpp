@@ -245,14 +245,10 @@ public:
                std::to_string(b.lower()) + " and " + std::to_string(b.upper()) +
                ", reverse Cuthill-McKee) bordered by " + std::to_string(b.border()) + " dense rows";
     }
-    std::optional<std::pair<double, double>> newton_flops() const override
+    std::optional<std::pair<double, double>> banded_newton_flops() const override
     {
-        if (mass_form_ && whole_.band) return std::pair(whole_.band->factor_flops(), whole_.band->solve_flops());
-        if (mass_form_) return std::nullopt;  // banded or dense: its first Jacobian's pattern decides
-        // Condensed, the stage system has the velocities' 2 k unknowns, with a damped or controlled hub's quadratures
-        // integrated beside it; else all 2 n of the stages.
-        const double size = 2.0 * (condensed_ ? k_ : n_);
-        return std::pair(2.0 / 3.0 * size * size * size, 2.0 * size * size);
+        if (!mass_form_ || !whole_.band) return std::nullopt;
+        return std::pair(whole_.band->factor_flops(), whole_.band->solve_flops());
     }
     bool midpoint(double* y) const override
     {

@@ -50,10 +50,9 @@ public:
     virtual bool midpoint(double*) const { return false; }
     /// How the Newton systems were solved, for the summary (empty for a stepper without them, or that does not say).
     virtual std::string newton_form() const { return {}; }
-    /// The flops of one factorization and one solve of its Newton matrices as it factors them (a band's in gauss4's
-    /// mass form, else a dense LU's of its stage system's size), for pricing the stepper (stiffness.hpp's Pilot); none
-    /// where it has none, or has not yet chosen their form.
-    virtual std::optional<std::pair<double, double>> newton_flops() const { return std::nullopt; }
+    /// The flops of one factorization and one solve of its Newton matrices where they are banded (gauss4's mass form),
+    /// for pricing the stepper (stiffness.hpp's Pilot); none where they are dense or it has none.
+    virtual std::optional<std::pair<double, double>> banded_newton_flops() const { return std::nullopt; }
     /// Whether midpoint() gives a computed state (then the simulation measures its interpolant's error against it).
     virtual bool has_midpoint() const { return false; }
     /// Steps taken since construction, through restarts.

@@ -219,11 +219,10 @@ StepperCosts predicted_costs(const Model& model, Axial axial, double rtol, doubl
     const double rhs = 4.0 * m * m * full;
     const double n = auxiliary == 0 ? m : 2.0 * (m + auxiliary);
     c.rk8pd = c.steps_rk8pd * 13.0 * rhs;
-    // A pilot prices the Newton matrices it factored: banded in gauss4's mass form, and condensed to the velocities
-    // where a damped or controlled hub's auxiliary states are quadratures of the state (which n above does not know).
-    const bool measured = pilot != nullptr && pilot->newton_factor_flops > 0.0;
-    const double solve = measured ? pilot->newton_solve_flops : 2.0 * n * n;
-    const double factor = measured ? pilot->newton_factor_flops : 2.0 / 3.0 * n * n * n;
+    // A pilot that factored banded Newton matrices (gauss4's mass form) prices its solves and factorizations.
+    const bool banded = pilot != nullptr && pilot->band_factor_flops > 0.0;
+    const double solve = banded ? pilot->band_solve_flops : 2.0 * n * n;
+    const double factor = banded ? pilot->band_factor_flops : 2.0 / 3.0 * n * n * n;
     c.gauss4_step = 15.0 * rhs + 10.0 * solve + 2.0 * factor / 4.0 + gauss4_step_overhead;
     c.gauss4 = c.steps_gauss4 * c.gauss4_step;
     return c;

@@ -48,10 +48,9 @@ struct Pilot {
     long steps_to_half = 0;  // of which those that ended by t / 2: the rest, its second half's, give the rate it prices
     double rtol = 0.0;       // the tolerance it ran at
     bool failed = false;     // a step failed: gauss4 cannot run the scene at rtol
-    /// The flops of one factorization and of one solve of the Newton matrices it factored (Stepper::newton_flops: a
-    /// band's in the mass form of a fine mesh, else a dense LU's of the size gauss4 gave them), which price its steps;
-    /// 0 where it did not say (the rule's dense LU then).
-    double newton_factor_flops = 0.0, newton_solve_flops = 0.0;
+    /// Where its Newton matrices were banded (the mass form, fine meshes): the flops of one factorization and of one
+    /// solve, which price its steps in place of a dense LU's; 0 where they were dense.
+    double band_factor_flops = 0.0, band_solve_flops = 0.0;
 };
 
 /// gauss4's steps over a run of t_end s at the pilot's tolerance: its own steps, and the rest of the run at the rate

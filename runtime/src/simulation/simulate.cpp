@@ -35,9 +35,9 @@ Pilot pilot_run(const Scene& scene, const Model& model, PilotPlan plan,
     const auto observe = [&] {
         pilot.steps = stepper->steps();
         pilot.steps_to_half = std::upper_bound(ends.begin(), ends.end(), 0.5 * pilot.t) - ends.begin();
-        if (const auto flops = stepper->newton_flops()) {
-            pilot.newton_factor_flops = flops->first;
-            pilot.newton_solve_flops = flops->second;
+        if (const auto band = stepper->banded_newton_flops()) {
+            pilot.band_factor_flops = band->first;
+            pilot.band_solve_flops = band->second;
         }
     };
     std::vector<double> stops = breaks_before(scene.motion, plan.t);
