@@ -158,26 +158,6 @@ TEST_CASE(
     CHECK(predicted < 2.0 * static_cast<double>(r.steps));
 }
 
-TEST_CASE("a pilot's budget is priced by the banded Newton matrices it factors", "[stiffness]")
-{
-    // BSIM at Nx = 0, Ny = 32 under the damped, controlled hub. Before its pilot has factored a Newton matrix, the
-    // plan's budget prices gauss4's steps as dense LUs: 838 steps, which the start's ringing takes by t = 0.1 s, when
-    // the second half's rate still predicts 57,000 steps. Priced by its band, the break-even steps of its window are
-    // 3,500, and the pilot runs on to the window's end, where its steps have thinned out: auto takes gauss4 (0.64 s
-    // against rk8pd's 1.7 s, docs/performance.md, fine meshes).
-    const std::string path = std::string(HUBBEAM_SOURCE_DIR) + "/cases/controlled_gravity.toml";
-    Scene s = load_scene(path, {{"discretization.method", "bsim"},
-                                {"discretization.ny", "32"},
-                                {"damping.stiffness_proportional", "1e-5"},
-                                {"output.t_end", "10"},
-                                {"solver.max_steps", "1"},
-                                {"solver.error_check", "off"}});
-    const RunSummary r = Simulation(s).run([](const Row&) {});
-    INFO(r.stepper_why);
-    CHECK(r.stepper == "gauss4");
-    CHECK(r.newton.find("band") != std::string::npos);
-}
-
 TEST_CASE("auto takes gauss4 for a damped, controlled fine mesh, whose banded Newton matrices its pilot prices",
           "[stiffness]")
 {

@@ -162,9 +162,9 @@ double pilot_extrapolated_steps(const Pilot& pilot, double t_end)
     return static_cast<double>(pilot.steps) + second_half / (0.5 * pilot.t) * (t_end - pilot.t);
 }
 
-bool pilot_lost(const Pilot& pilot, const StepperCosts& c, double t_end)
+bool pilot_lost(const StepperCosts& c)
 {
-    return pilot.steps > pilot_plan(c, t_end).budget && !(c.gauss4 < c.rk8pd);
+    return !(c.gauss4 < c.rk8pd);
 }
 
 StepperCosts predicted_costs(const Model& model, Axial axial, double rtol, double t_end, int auxiliary,

@@ -74,12 +74,11 @@ bool needs_pilot(const Model& model, double rtol);
 /// t_end), and its budget: the break-even steps of that window at the rule's price of a step.
 PilotPlan pilot_plan(const StepperCosts& c, double t_end);
 
-/// Whether gauss4 has lost by what pilot has seen, c being predicted_costs with it: past the break-even steps of its
-/// window, priced as c prices a step, its steps extrapolated cost more than rk8pd's run. The pilot stops there, and
-/// until then runs on: where its steps thin out (a damped start, pilot_extrapolated_steps) past the break-even steps
-/// at the rate of its window. Priced by the pilot's own Newton matrices, a band on a fine mesh, its budget is up to
-/// 8 times the plan's, which priced a dense LU (the damped controlled hub of docs/performance.md at Ny = 32).
-bool pilot_lost(const Pilot& pilot, const StepperCosts& c, double t_end);
+/// Whether a pilot's costs so far (predicted_costs with it) have gauss4 lost: past its budget the pilot stops there, so
+/// that it costs no more than the choice it serves, and runs on while its steps extrapolated still win. At its budget
+/// the steps of a damped start still fall (pilot_extrapolated_steps), and its price of a step is the pilot's own
+/// factorization, a band's on a fine mesh where the budget priced a dense LU.
+bool pilot_lost(const StepperCosts& c);
 
 /// The predicted costs; with a pilot, gauss4's steps are pilot_extrapolated_steps (scaled to rtol, as the accuracy of
 /// an order-4 method asks: rtol^(-1/5)); rates, when given, are rates_at_rest(model, axial).

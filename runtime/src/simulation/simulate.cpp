@@ -21,8 +21,8 @@ namespace hubbeam {
 namespace {
 
 /// gauss4 from rest over plan's window at the scene's tolerances, the drive's breakpoints stepped to as a run does;
-/// past plan's budget (at the rule's price of a step) it stops once gauss4 has lost (pilot_lost with the costs of the
-/// pilot so far). Deterministic, as the choice must be.
+/// past plan's budget it stops once gauss4 has lost (pilot_lost with the costs of the pilot so far). Deterministic, as
+/// the choice must be.
 Pilot pilot_run(const Scene& scene, const Model& model, PilotPlan plan,
                 const std::function<StepperCosts(const Pilot&)>& costs)
 {
@@ -52,7 +52,7 @@ Pilot pilot_run(const Scene& scene, const Model& model, PilotPlan plan,
             ends.push_back(pilot.t);
             if (stepper->steps() > plan.budget) {
                 observe();
-                lost = pilot_lost(pilot, costs(pilot), scene.output.t_end);
+                lost = pilot_lost(costs(pilot));
             }
         }
         if (lost) break;
