@@ -2,11 +2,11 @@
 // (docs/model.md section 7), and the choice it makes for each kind of scene.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <numbers>
+
 #include <hubbeam/make_model.hpp>
 #include <hubbeam/scene.hpp>
 #include <hubbeam/simulate.hpp>
-#include <numbers>
-
 #include "dynamics/stiffness.hpp"
 
 using namespace hubbeam;

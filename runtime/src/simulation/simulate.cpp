@@ -1,15 +1,16 @@
 // Simulation: a scene's model and the stepper chosen for it (the automatic choice, with its pilot run), and its runs,
 // each a Simulation::Run (run.hpp).
+#include <hubbeam/simulate.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
-#include <hubbeam/make_model.hpp>
-#include <hubbeam/simulate.hpp>
 #include <memory>
 #include <stdexcept>
 #include <utility>
 #include <vector>
 
+#include <hubbeam/make_model.hpp>
 #include "dynamics/integrate.hpp"
 #include "dynamics/stepper.hpp"
 #include "dynamics/stiffness.hpp"
