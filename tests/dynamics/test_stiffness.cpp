@@ -158,6 +158,26 @@ TEST_CASE(
     CHECK(predicted < 2.0 * static_cast<double>(r.steps));
 }
 
+TEST_CASE("a pilot whose steps thin out fast runs on past its budget", "[stiffness]")
+{
+    // BSIM at Nx = 0, Ny = 32 under the damped, controlled hub. The plan's budget, gauss4's steps priced as dense LUs
+    // before the pilot has factored a band, is 838 steps, which the start's ringing takes by t = 0.1 s; its second
+    // half's rate then still predicts 57,000 steps, which lose, but it is 0.55 of its first half's. The pilot runs on
+    // (up to the 3,500 break-even steps of its window at the band's price), to its window's end, where its steps have
+    // thinned out: auto takes gauss4 (0.60 s against rk8pd's 1.5 s, docs/performance.md, fine meshes).
+    const std::string path = std::string(HUBBEAM_SOURCE_DIR) + "/cases/controlled_gravity.toml";
+    Scene s = load_scene(path, {{"discretization.method", "bsim"},
+                                {"discretization.ny", "32"},
+                                {"damping.stiffness_proportional", "1e-5"},
+                                {"output.t_end", "10"},
+                                {"solver.max_steps", "1"},
+                                {"solver.error_check", "off"}});
+    const RunSummary r = Simulation(s).run([](const Row&) {});
+    INFO(r.stepper_why);
+    CHECK(r.stepper == "gauss4");
+    CHECK(r.newton.find("band") != std::string::npos);
+}
+
 TEST_CASE("auto takes gauss4 for a damped, controlled fine mesh, whose banded Newton matrices its pilot prices",
           "[stiffness]")
 {

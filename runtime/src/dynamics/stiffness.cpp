@@ -162,9 +162,13 @@ double pilot_extrapolated_steps(const Pilot& pilot, double t_end)
     return static_cast<double>(pilot.steps) + second_half / (0.5 * pilot.t) * (t_end - pilot.t);
 }
 
-bool pilot_lost(const StepperCosts& c)
+bool pilot_lost(const Pilot& pilot, const StepperCosts& c, double t_end)
 {
-    return !(c.gauss4 < c.rk8pd);
+    if (c.gauss4 < c.rk8pd) return false;
+    constexpr double thinning = 0.7;
+    const auto first_half = static_cast<double>(pilot.steps_to_half);
+    const auto second_half = static_cast<double>(pilot.steps - pilot.steps_to_half);
+    return !(second_half < thinning * first_half && pilot.steps <= pilot_plan(c, t_end).budget);
 }
 
 StepperCosts predicted_costs(const Model& model, Axial axial, double rtol, double t_end, int auxiliary,

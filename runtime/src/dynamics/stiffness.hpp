@@ -75,11 +75,16 @@ bool needs_pilot(const Model& model, double rtol);
 /// t_end), and its budget: the break-even steps of that window at the rule's price of a step.
 PilotPlan pilot_plan(const StepperCosts& c, double t_end);
 
-/// Whether a pilot's costs so far (predicted_costs with it) have gauss4 lost: past its budget the pilot stops there, so
-/// that it costs no more than the choice it serves, and runs on while its steps extrapolated still win. At its budget
-/// the steps of a damped start still fall (pilot_extrapolated_steps), and its price of a step is the pilot's own
-/// factorization, a band's on a fine mesh where the budget priced a dense LU.
-bool pilot_lost(const StepperCosts& c);
+/// Whether gauss4 has lost by what pilot has seen, c being predicted_costs with it: its steps extrapolated cost more
+/// than rk8pd's run, and its steps no longer thin out fast. Past its budget the pilot stops there, so that it costs
+/// no more than the choice it serves, and runs on while its extrapolation still wins (at its budget a damped start's
+/// steps still thin out, pilot_extrapolated_steps, and c prices a step by the pilot's own Newton matrices, a band's
+/// on a fine mesh where the budget priced a dense LU). While its second half's rate is below 0.7 of its first
+/// half's, a decaying start whose end the second half cannot see yet, it runs on too, up to the break-even steps of
+/// its window at c's price: at the budget the damped controlled hub of docs/performance.md at Ny = 32, Nx = 0 thins
+/// out to 0.55 and 0.59 (BSIM, FEM), the undamped one and the grids' torque pulses to 0.77 and more (the first
+/// steps' growth from h0).
+bool pilot_lost(const Pilot& pilot, const StepperCosts& c, double t_end);
 
 /// The predicted costs; with a pilot, gauss4's steps are pilot_extrapolated_steps (scaled to rtol, as the accuracy of
 /// an order-4 method asks: rtol^(-1/5)); rates, when given, are rates_at_rest(model, axial).

@@ -53,7 +53,7 @@ Pilot pilot_run(const Scene& scene, const Model& model, PilotPlan plan,
             ends.push_back(pilot.t);
             if (stepper->steps() > plan.budget) {
                 observe();
-                lost = pilot_lost(costs(pilot));
+                lost = pilot_lost(pilot, costs(pilot), scene.output.t_end);
             }
         }
         if (lost) break;
