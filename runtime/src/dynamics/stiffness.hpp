@@ -82,8 +82,8 @@ PilotPlan pilot_plan(const StepperCosts& c, double t_end);
 /// on a fine mesh where the budget priced a dense LU). While its second half's rate is below 0.7 of its first
 /// half's, a decaying start whose end the second half cannot see yet, it runs on too, up to the break-even steps of
 /// its window at c's price: at the budget the damped controlled hub of docs/performance.md at Ny = 32, Nx = 0 thins
-/// out to 0.55 and 0.59 (BSIM, FEM), the undamped one and the grids' torque pulses to 0.77 and more (the first
-/// steps' growth from h0).
+/// out to 0.55 and 0.59 (BSIM, FEM), the other pilots of its grids to 0.72 and more (the first steps' growth from
+/// h0), but the undamped hub at FEM Nx = Ny = 16, 0.61, whose dense Newton matrices price its budget as the plan did.
 bool pilot_lost(const Pilot& pilot, const StepperCosts& c, double t_end);
 
 /// The predicted costs; with a pilot, gauss4's steps are pilot_extrapolated_steps (scaled to rtol, as the accuracy of
