@@ -14,7 +14,10 @@ using namespace hubbeam;
 
 namespace {
 
-VariantKey amm_key(int nx, int ny, Drive drive) { return {.method = Method::amm, .nx = nx, .ny = ny, .drive = drive, .extras = {}}; }
+VariantKey amm_key(int nx, int ny, Drive drive)
+{
+    return {.method = Method::amm, .nx = nx, .ny = ny, .drive = drive, .extras = {}};
+}
 
 }  // namespace
 
@@ -51,7 +54,8 @@ TEST_CASE("the automatic stepper follows the predicted cost", "[stiffness]")
     // The reason names the highest rate it judged by: here AMM's fourth axial mode, exactly
     // 7 pi / 2 sqrt(E / rho) / L, printed to the nearest 1/s, and the lowest frequency, the first bending mode
     // 1.8751^2 sqrt(EI / (m L^4)).
-    const StepperChoice stiff = automatic_stepper(*make_model(amm_key(4, 4, Drive::prescribed), p), Axial::dynamic, 1e-8, 30.0);
+    const StepperChoice stiff =
+        automatic_stepper(*make_model(amm_key(4, 4, Drive::prescribed), p), Axial::dynamic, 1e-8, 30.0);
     const auto number_after = [&](const std::string& said) {
         const std::size_t at = stiff.why.find(said);
         REQUIRE(at != std::string::npos);
@@ -158,6 +162,67 @@ TEST_CASE("a pilot that factored banded Newton matrices prices gauss4's solves a
     CHECK(a.steps_gauss4 == b.steps_gauss4);
     CHECK(a.gauss4_step - b.gauss4_step ==
           Approx(10.0 * (2.0 * m * m - 2.0e4) + 2.0 * (2.0 / 3.0 * m * m * m - 1.0e5) / 4.0).epsilon(1e-12));
+}
+
+TEST_CASE("a pilot's steps extrapolate at its second half's rate", "[stiffness]")
+{
+    // At a steady rate the second half's rate is the mean rate: the extrapolation is the pilot's steps times t_end
+    // over its window, whatever the window.
+    for (const double t : {0.25, 1.0, 3.0}) {
+        const Pilot steady{.t = t, .steps = 4000, .steps_to_half = 2000, .rtol = 1e-8};
+        CHECK(pilot_extrapolated_steps(steady, 30.0) == Approx(4000.0 * 30.0 / t).epsilon(1e-14));
+    }
+    // A start whose steps thin out (3000 in the first half-second, 1000 in the second): the rest of a 10 s run at
+    // 2000 steps a second, not at the mean 4000.
+    const Pilot thinning{.t = 1.0, .steps = 4000, .steps_to_half = 3000, .rtol = 1e-8};
+    CHECK(pilot_extrapolated_steps(thinning, 10.0) == Approx(4000.0 + 2000.0 * 9.0).epsilon(1e-14));
+}
+
+TEST_CASE(
+    "a damped start thins gauss4's steps: its pilot runs on past its budget and prices the rest at its later rate",
+    "[stiffness]")
+{
+    // The controlled hub of cases/controlled_gravity.toml, FEM at Nx = 16, Ny = 32, with stiffness-proportional damping
+    // 1e-5: the start excites the mesh's highest modes and the damping takes them, so gauss4's steps thin out through
+    // the run. Its pilot's budget (the break-even steps of its 0.75 s window, priced as a dense LU) ended it at
+    // t = 0.09 s, whose steps, extrapolated linearly, were 8 times the run's, and auto took rk8pd (2.8 s against
+    // gauss4's 1.0 s, docs/performance.md). Past the budget the pilot runs on while its steps, priced by its banded
+    // Newton matrices and extrapolated at its second half's rate, still win; over its whole window that rate still
+    // overestimates the run's (the steps thin out further), but by less than twice.
+    const std::string path = std::string(HUBBEAM_SOURCE_DIR) + "/cases/controlled_gravity.toml";
+    Scene s = load_scene(path, {{"discretization.method", "fem"},
+                                {"discretization.nx", "16"},
+                                {"discretization.ny", "32"},
+                                {"damping.stiffness_proportional", "1e-5"},
+                                {"output.t_end", "10"},
+                                {"solver.error_check", "off"}});
+    const RunSummary r = Simulation(s).run([](const Row&) {});
+    INFO(r.stepper_why << "; " << r.steps << " steps");
+    REQUIRE(r.stepper == "gauss4");
+    const std::string said = "gauss4 about ";
+    const double predicted = std::stod(r.stepper_why.substr(r.stepper_why.find(said) + said.size()));
+    CHECK(predicted > static_cast<double>(r.steps));
+    CHECK(predicted < 2.0 * static_cast<double>(r.steps));
+}
+
+TEST_CASE("a pilot whose steps thin out fast runs on past its budget", "[stiffness]")
+{
+    // BSIM at Nx = 0, Ny = 32 under the damped, controlled hub. The plan's budget, gauss4's steps priced as dense LUs
+    // before the pilot has factored a band, is 838 steps, which the start's ringing takes by t = 0.1 s; its second
+    // half's rate then still predicts 57,000 steps, which lose, but it is 0.55 of its first half's. The pilot runs on
+    // (up to the 3,500 break-even steps of its window at the band's price), to its window's end, where its steps have
+    // thinned out: auto takes gauss4 (0.60 s against rk8pd's 1.5 s, docs/performance.md, fine meshes).
+    const std::string path = std::string(HUBBEAM_SOURCE_DIR) + "/cases/controlled_gravity.toml";
+    Scene s = load_scene(path, {{"discretization.method", "bsim"},
+                                {"discretization.ny", "32"},
+                                {"damping.stiffness_proportional", "1e-5"},
+                                {"output.t_end", "10"},
+                                {"solver.max_steps", "1"},
+                                {"solver.error_check", "off"}});
+    const RunSummary r = Simulation(s).run([](const Row&) {});
+    INFO(r.stepper_why);
+    CHECK(r.stepper == "gauss4");
+    CHECK(r.newton.find("band") != std::string::npos);
 }
 
 TEST_CASE("auto takes gauss4 for a damped, controlled fine mesh, whose banded Newton matrices its pilot prices",

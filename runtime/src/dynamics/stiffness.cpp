@@ -18,7 +18,8 @@ namespace {
 
 /// -dQ/dq at (u, q, qd) (exact by differences too for the linear restoring forces about the straight beam, where it
 /// is used).
-Eigen::MatrixXd stiffness(const Model& model, const HubInput& u, const std::vector<double>& q, const std::vector<double>& qd)
+Eigen::MatrixXd stiffness(const Model& model, const HubInput& u, const std::vector<double>& q,
+                          const std::vector<double>& qd)
 {
     return -force_q_jacobian(model, u, q, qd);
 }
@@ -112,8 +113,10 @@ Eigen::MatrixXd spinning_stiffness(const Model& model, double omega)
     const int n = model.nq(), first = model.coordinates().first_elastic();
     HubInput u;
     std::vector<double> q(static_cast<std::size_t>(n), 0.0), qd(q);
-    if (model.key().drive == Drive::torque) qd[0] = omega;
-    else u.theta_dot = omega;
+    if (model.key().drive == Drive::torque)
+        qd[0] = omega;
+    else
+        u.theta_dot = omega;
     const int m = n - first;
     const Eigen::MatrixXd K = stiffness(model, u, q, qd).bottomRightCorner(m, m);
     return 0.5 * (K + K.transpose());
@@ -165,6 +168,21 @@ PilotPlan pilot_plan(const StepperCosts& c, double t_end)
     return {t, static_cast<long>(std::min(break_even, 1e12)) + 30};
 }
 
+double pilot_extrapolated_steps(const Pilot& pilot, double t_end)
+{
+    const double second_half = static_cast<double>(pilot.steps - pilot.steps_to_half);
+    return static_cast<double>(pilot.steps) + second_half / (0.5 * pilot.t) * (t_end - pilot.t);
+}
+
+bool pilot_lost(const Pilot& pilot, const StepperCosts& c, double t_end)
+{
+    if (c.gauss4 < c.rk8pd) return false;
+    constexpr double thinning = 0.7;
+    const auto first_half = static_cast<double>(pilot.steps_to_half);
+    const auto second_half = static_cast<double>(pilot.steps - pilot.steps_to_half);
+    return !(second_half < thinning * first_half && pilot.steps <= pilot_plan(c, t_end).budget);
+}
+
 StepperCosts predicted_costs(const Model& model, Axial axial, double rtol, double t_end, int auxiliary,
                              const Pilot* pilot, const RatesAtRest* rates)
 {
@@ -191,12 +209,12 @@ StepperCosts predicted_costs(const Model& model, Axial axial, double rtol, doubl
     c.stability_bound = stability8 > accuracy8;
     c.steps_gauss4 = 2.0 * t_end * c.omega_1 / (0.073 * std::pow(scale, 1.0 / 5.0));
     if (pilot != nullptr) {
-        c.steps_gauss4 = pilot->failed || pilot->t <= 0.0 ? INFINITY
-                                                          : static_cast<double>(pilot->steps) * (t_end / pilot->t) *
-                                                                std::pow(pilot->rtol / rtol, 0.2);
+        c.steps_gauss4 = pilot->failed || pilot->t <= 0.0
+                             ? INFINITY
+                             : pilot_extrapolated_steps(*pilot, t_end) * std::pow(pilot->rtol / rtol, 0.2);
     } else if (model.key().drive == Drive::torque && model.key().method != Method::amm) {
-        c.steps_gauss4 = std::max(c.steps_gauss4, t_end * highest_frequency(model, Axial::quasi_static) /
-                                                      stability_step_factor("rk8pd"));
+        c.steps_gauss4 = std::max(
+            c.steps_gauss4, t_end * highest_frequency(model, Axial::quasi_static) / stability_step_factor("rk8pd"));
     }
     // Cost per step in flops, with a right-hand side of about 4 m^2 (the folded or dense products over m states):
     // rk8pd's 13 evaluations; gauss4's about 15 evaluations and 10 solves with its factored Newton matrices, and
@@ -240,13 +258,16 @@ StepperChoice automatic_stepper(const Model& model, Axial axial, double rtol, do
         if (pilot->failed)
             std::snprintf(text, sizeof text, ": its pilot failed at t = %.3g s", pilot->t);
         else
-            std::snprintf(text, sizeof text, ", from %ld in a pilot to t = %.3g s", pilot->steps, pilot->t);
+            std::snprintf(text, sizeof text, ", from %ld in a pilot to t = %.3g s, %ld in its second half",
+                          pilot->steps, pilot->t, pilot->steps - pilot->steps_to_half);
         pilot_note = text;
     }
     char why[440];
     if (c.gauss4 < c.rk8pd && !implicit) {
-        std::snprintf(why, sizeof why, "automatic: rtol %g is below gauss4's %g, where its error estimate meets "
-                      "round-off", rtol, gauss4_tightest_rtol);
+        std::snprintf(why, sizeof why,
+                      "automatic: rtol %g is below gauss4's %g, where its error estimate meets "
+                      "round-off",
+                      rtol, gauss4_tightest_rtol);
         return {"rk8pd", why};
     }
     std::snprintf(

@@ -32,28 +32,37 @@ RatesAtRest rates_at_rest(const Model& model, Axial axial);
 /// the tolerance and each method's order, times flops per step from the number of states (auxiliary: those beside
 /// q and qd, FirstOrderSystem::Auxiliary).
 struct StepperCosts {
-    double omega_max = 0.0, omega_1 = 0.0;   // RatesAtRest's
+    double omega_max = 0.0, omega_1 = 0.0;  // RatesAtRest's
     double steps_rk8pd = 0.0, steps_gauss4 = 0.0;
-    bool stability_bound = false;             // rk8pd's steps set by omega_max, not accuracy
-    double rk8pd = 0.0, gauss4 = 0.0;         // flops
-    double gauss4_step = 0.0;                 // flops per gauss4 step
+    bool stability_bound = false;      // rk8pd's steps set by omega_max, not accuracy
+    double rk8pd = 0.0, gauss4 = 0.0;  // flops
+    double gauss4_step = 0.0;          // flops per gauss4 step
 };
 
 /// gauss4's steps over the start of the run, measured: a pilot run from rest. Under a hub torque the rule cannot
 /// predict them: the drive's kinks (the torque switching on and off) excite the discretization's high modes by
 /// amounts that decide whether gauss4 must resolve them, which the pilot sees.
 struct Pilot {
-    double t = 0.0;       // where it ended (s): its window's end, or earlier when it ran out of budget
-    long steps = 0;       // gauss4's steps to t
-    double rtol = 0.0;    // the tolerance it ran at
-    bool failed = false;  // a step failed: gauss4 cannot run the scene at rtol
+    double t = 0.0;          // where it ended (s): its window's end, or earlier once gauss4 had lost
+    long steps = 0;          // gauss4's steps to t
+    long steps_to_half = 0;  // of which those that ended by t / 2: the rest, its second half's, give the rate it prices
+    double rtol = 0.0;       // the tolerance it ran at
+    bool failed = false;     // a step failed: gauss4 cannot run the scene at rtol
     /// Where its Newton matrices were banded (the mass form, fine meshes): the flops of one factorization and of one
     /// solve, which price its steps in place of a dense LU's; 0 where they were dense.
     double band_factor_flops = 0.0, band_solve_flops = 0.0;
 };
 
+/// gauss4's steps over a run of t_end s at the pilot's tolerance: its own steps, and the rest of the run at the rate
+/// of its second half. The start is no sample of the run: the first steps grow from h0, and where damping takes the
+/// modes the start excites, the steps lengthen as they decay (the controlled hub with stiffness-proportional damping
+/// of docs/performance.md, FEM at Nx = 16, Ny = 64: 5,800 steps a second over the first half of its 0.75 s pilot,
+/// 2,500 over the second, 1,500 over the rest of the run). The second half's rate is what the pilot has seen last;
+/// where the steps lengthen further it still overestimates.
+double pilot_extrapolated_steps(const Pilot& pilot, double t_end);
+
 /// What a pilot should cover, for a scene whose costs without one are c: its window (s) and the steps beyond which
-/// gauss4 has already lost to rk8pd.
+/// gauss4 may have lost to rk8pd, from where the pilot asks whether it has (pilot_lost).
 struct PilotPlan {
     double t = 0.0;
     long budget = 0;
@@ -63,11 +72,22 @@ struct PilotPlan {
 bool needs_pilot(const Model& model, double rtol);
 
 /// The pilot's window, the longer of a thirtieth of the run and half the lowest mode's period (but not past
-/// t_end), and its budget: the break-even steps of that window.
+/// t_end), and its budget: the break-even steps of that window at the rule's price of a step.
 PilotPlan pilot_plan(const StepperCosts& c, double t_end);
 
-/// The predicted costs; with a pilot, gauss4's steps are its steps extrapolated to t_end (and to rtol, as the
-/// accuracy of an order-4 method asks: rtol^(-1/5)); rates, when given, are rates_at_rest(model, axial).
+/// Whether gauss4 has lost by what pilot has seen, c being predicted_costs with it: its steps extrapolated cost more
+/// than rk8pd's run, and its steps no longer thin out fast. Past its budget the pilot stops there, so that it costs
+/// no more than the choice it serves, and runs on while its extrapolation still wins (at its budget a damped start's
+/// steps still thin out, pilot_extrapolated_steps, and c prices a step by the pilot's own Newton matrices, a band's
+/// on a fine mesh where the budget priced a dense LU). While its second half's rate is below 0.7 of its first
+/// half's, a decaying start whose end the second half cannot see yet, it runs on too, up to the break-even steps of
+/// its window at c's price: at the budget the damped controlled hub of docs/performance.md at Ny = 32, Nx = 0 thins
+/// out to 0.55 and 0.59 (BSIM, FEM), the other pilots of its grids to 0.72 and more (the first steps' growth from
+/// h0), but the undamped hub at FEM Nx = Ny = 16, 0.61, whose dense Newton matrices price its budget as the plan did.
+bool pilot_lost(const Pilot& pilot, const StepperCosts& c, double t_end);
+
+/// The predicted costs; with a pilot, gauss4's steps are pilot_extrapolated_steps (scaled to rtol, as the accuracy of
+/// an order-4 method asks: rtol^(-1/5)); rates, when given, are rates_at_rest(model, axial).
 StepperCosts predicted_costs(const Model& model, Axial axial, double rtol, double t_end, int auxiliary = 0,
                              const Pilot* pilot = nullptr, const RatesAtRest* rates = nullptr);
 

@@ -2,7 +2,9 @@
 // each a Simulation::Run (run.hpp).
 #include <hubbeam/simulate.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <utility>
@@ -19,31 +21,45 @@ namespace hubbeam {
 
 namespace {
 
-/// gauss4 from rest over plan's window at the scene's tolerances, the drive's breakpoints stepped to as a run does,
-/// stopped once its steps exceed plan's budget (gauss4 has lost by then). Deterministic, as the choice must be.
-Pilot pilot_run(const Scene& scene, const Model& model, PilotPlan plan)
+/// gauss4 from rest over plan's window at the scene's tolerances, the drive's breakpoints stepped to as a run does;
+/// past plan's budget it stops once gauss4 has lost (pilot_lost with the costs of the pilot so far). Deterministic, as
+/// the choice must be.
+Pilot pilot_run(const Scene& scene, const Model& model, PilotPlan plan,
+                const std::function<StepperCosts(const Pilot&)>& costs)
 {
     FirstOrderSystem system(model, scene.motion, scene.axial, scene.controller(), &scene.parameters);
     std::vector<double> y = initial_state(system, model, scene);
     const std::unique_ptr<Stepper> stepper =
         make_stepper(system, gauss_stepper, 0.0, y.data(), scene.solver.h0, scene.solver.atol, scene.solver.rtol);
     Pilot pilot{.t = 0.0, .steps = 0, .rtol = scene.solver.rtol};
+    std::vector<double> ends;  // of its steps, for the count of its first half
+    const auto observe = [&] {
+        pilot.steps = stepper->steps();
+        pilot.steps_to_half = std::upper_bound(ends.begin(), ends.end(), 0.5 * pilot.t) - ends.begin();
+        if (const auto band = stepper->banded_newton_flops()) {
+            pilot.band_factor_flops = band->first;
+            pilot.band_solve_flops = band->second;
+        }
+    };
     std::vector<double> stops = breaks_before(scene.motion, plan.t);
     stops.push_back(plan.t);
+    bool lost = false;
     for (const double stop : stops) {
-        while (pilot.t < stop && stepper->steps() <= plan.budget)
+        while (pilot.t < stop && !lost) {
             if (stepper->step(pilot.t, stop, y.data(), INFINITY) != StepStatus::success) {
                 pilot.failed = true;
                 return pilot;
             }
-        if (stepper->steps() > plan.budget) break;
+            ends.push_back(pilot.t);
+            if (stepper->steps() > plan.budget) {
+                observe();
+                lost = pilot_lost(pilot, costs(pilot), scene.output.t_end);
+            }
+        }
+        if (lost) break;
         stepper->restart(pilot.t, y.data());
     }
-    pilot.steps = stepper->steps();
-    if (const auto band = stepper->banded_newton_flops()) {
-        pilot.band_factor_flops = band->first;
-        pilot.band_solve_flops = band->second;
-    }
+    observe();
     return pilot;
 }
 
@@ -97,7 +113,10 @@ StepperChoice Simulation::automatic(double rtol) const
     if (!pilot_decided_ && needs_pilot(*model_, scene_.solver.rtol)) {
         const StepperCosts rule =
             predicted_costs(*model_, scene_.axial, scene_.solver.rtol, t_end, auxiliary, nullptr, rates_.get());
-        pilot_ = std::make_unique<Pilot>(pilot_run(scene_, *model_, pilot_plan(rule, t_end)));
+        const auto costs = [&](const Pilot& p) {
+            return predicted_costs(*model_, scene_.axial, scene_.solver.rtol, t_end, auxiliary, &p, rates_.get());
+        };
+        pilot_ = std::make_unique<Pilot>(pilot_run(scene_, *model_, pilot_plan(rule, t_end), costs));
     }
     pilot_decided_ = true;  // needs_pilot's eigenvalues once, not at every check's re-run
     return automatic_stepper(*model_, scene_.axial, rtol, t_end, auxiliary,
