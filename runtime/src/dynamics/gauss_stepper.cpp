@@ -43,19 +43,28 @@ double l2(double s)
 /// stepper's plan for a version of the pattern).
 struct Newton {
     Eigen::PartialPivLU<Eigen::MatrixXd> lu;
-    Eigen::MatrixXd inverse;  // where the matrix is small enough for its inverse to pay (small_inverse_size)
+    // The matrix's inverse, formed once the LU has served twice as many solves as the matrix has rows (solve_with).
+    mutable Eigen::MatrixXd inverse;
+    mutable int solves = 0;
     std::optional<BorderedBandLU> band;
     int planned = -1;
     double h = 0.0;
 };
 
-/// Up to this size a dense Newton matrix is applied as its inverse, one matrix-vector product, where its LU's two
-/// triangular solves of dynamic size cost several times the flops (the paper's spin-up with axial coordinates: 16).
+/// Up to this size a dense Newton matrix that serves many solves is applied as its inverse, one matrix-vector
+/// product, where its LU's two triangular solves of dynamic size cost several times the flops.
 constexpr int small_inverse_size = 64;
 
-/// x = newton's matrix's solution of b (x of b's size, so that no call allocates).
+/// x = newton's matrix's solution of b (x of b's size, so that no call allocates). Forming the inverse costs about as
+/// many solves as the matrix has rows: it is formed after twice that many, so that a matrix refactored every step or
+/// two (a torque on a fine mesh, its steps often rejected: BIM at Nx = Ny = 8 under the torque pulse, 34 x 34, took
+/// 1.38 times the CPU time with the inverse formed at once, 0.99 so) keeps its LU, and one kept for many steps (the
+/// paper's spin-up with axial coordinates, 16 x 16: 0.89) gets its inverse.
 void solve_with(const Newton& newton, const Eigen::VectorXd& b, Eigen::VectorXd& x)
 {
+    const Eigen::Index n = newton.lu.rows();
+    if (newton.inverse.size() == 0 && n <= small_inverse_size && ++newton.solves > 2 * n)
+        newton.inverse = newton.lu.inverse();
     if (newton.inverse.size() > 0) x.noalias() = newton.inverse * b;
     else x = newton.lu.solve(b);
 }
@@ -416,8 +425,8 @@ private:
                     if (i == j) block.diagonal().array() += 1.0;
                 }
             newton.lu.compute(N);
-            if (N.rows() <= small_inverse_size) newton.inverse = newton.lu.inverse();
-            else newton.inverse.resize(0, 0);
+            newton.inverse.resize(0, 0);
+            newton.solves = 0;
             newton.h = step;
         };
         factor_one(h, whole_);
