@@ -14,6 +14,20 @@ using namespace hubbeam;
 
 namespace {
 
+/// cases/controlled_gravity.toml's hub (PD with tip feedback, a torque limit, gravity) with stiffness-proportional
+/// damping 1e-5 on a FEM or BSIM mesh, 10 s, no error check; one step alone where only the choice matters.
+Scene damped_controlled_hub(const char* method, int nx, int ny, bool choice_only = false)
+{
+    std::vector<std::pair<std::string, std::string>> overrides = {{"discretization.method", method},
+                                                                   {"discretization.nx", std::to_string(nx)},
+                                                                   {"discretization.ny", std::to_string(ny)},
+                                                                   {"damping.stiffness_proportional", "1e-5"},
+                                                                   {"output.t_end", "10"},
+                                                                   {"solver.error_check", "off"}};
+    if (choice_only) overrides.emplace_back("solver.max_steps", "1");
+    return load_scene(std::string(HUBBEAM_SOURCE_DIR) + "/cases/controlled_gravity.toml", overrides);
+}
+
 VariantKey amm_key(int nx, int ny, Drive drive)
 {
     return {.method = Method::amm, .nx = nx, .ny = ny, .drive = drive, .extras = {}};
@@ -189,14 +203,7 @@ TEST_CASE(
     // gauss4's 1.0 s, docs/performance.md). Past the budget the pilot runs on while its steps, priced by its banded
     // Newton matrices and extrapolated at its second half's rate, still win; over its whole window that rate still
     // overestimates the run's (the steps thin out further), but by less than twice.
-    const std::string path = std::string(HUBBEAM_SOURCE_DIR) + "/cases/controlled_gravity.toml";
-    Scene s = load_scene(path, {{"discretization.method", "fem"},
-                                {"discretization.nx", "16"},
-                                {"discretization.ny", "32"},
-                                {"damping.stiffness_proportional", "1e-5"},
-                                {"output.t_end", "10"},
-                                {"solver.error_check", "off"}});
-    const RunSummary r = Simulation(s).run([](const Row&) {});
+    const RunSummary r = Simulation(damped_controlled_hub("fem", 16, 32)).run([](const Row&) {});
     INFO(r.stepper_why << "; " << r.steps << " steps");
     REQUIRE(r.stepper == "gauss4");
     const std::string said = "gauss4 about ";
@@ -212,14 +219,7 @@ TEST_CASE("a pilot whose steps thin out fast runs on past its budget", "[stiffne
     // half's rate then still predicts 57,000 steps, which lose, but it is 0.55 of its first half's. The pilot runs on
     // (up to the 3,500 break-even steps of its window at the band's price), to its window's end, where its steps have
     // thinned out: auto takes gauss4 (0.60 s against rk8pd's 1.5 s, docs/performance.md, fine meshes).
-    const std::string path = std::string(HUBBEAM_SOURCE_DIR) + "/cases/controlled_gravity.toml";
-    Scene s = load_scene(path, {{"discretization.method", "bsim"},
-                                {"discretization.ny", "32"},
-                                {"damping.stiffness_proportional", "1e-5"},
-                                {"output.t_end", "10"},
-                                {"solver.max_steps", "1"},
-                                {"solver.error_check", "off"}});
-    const RunSummary r = Simulation(s).run([](const Row&) {});
+    const RunSummary r = Simulation(damped_controlled_hub("bsim", 0, 32, true)).run([](const Row&) {});
     INFO(r.stepper_why);
     CHECK(r.stepper == "gauss4");
     CHECK(r.newton.find("band") != std::string::npos);
@@ -232,14 +232,7 @@ TEST_CASE("auto takes gauss4 for a damped, controlled fine mesh, whose banded Ne
     // ringing decays, and gauss4 takes 16,837 steps over 10 s where rk8pd, bound by stability, takes 231,228
     // (docs/performance.md, fine meshes). Its Newton matrices are a band of half-width 7 to 9 in 130 unknowns: priced
     // as dense LUs (2/3 130^3 a factorization) gauss4 lost to rk8pd, priced by the pilot's band it wins.
-    const std::string path = std::string(HUBBEAM_SOURCE_DIR) + "/cases/controlled_gravity.toml";
-    Scene s = load_scene(path, {{"discretization.method", "fem"},
-                                {"discretization.ny", "64"},
-                                {"damping.stiffness_proportional", "1e-5"},
-                                {"output.t_end", "10"},
-                                {"solver.max_steps", "1"},
-                                {"solver.error_check", "off"}});
-    Simulation sim(s);
+    Simulation sim(damped_controlled_hub("fem", 0, 64, true));
     const RunSummary r = sim.run([](const Row&) {});
     INFO(r.stepper_why);
     CHECK(r.stepper == "gauss4");
