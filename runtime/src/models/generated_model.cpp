@@ -79,46 +79,29 @@ public:
     // The part at 0 goes to an array of the call's own: a model is shared by the runs of several threads.
     void mass_p(Param k, const HubInput& u, const double* q, double* dM) const override
     {
-        const int n = nq() * nq();
-        std::fill_n(dM, n, 0.0);
-        std::vector<double> at_zero(static_cast<std::size_t>(n), 0.0);
-        const std::array<double, kernel_input_count> in{u.tau, u.theta_dot, u.theta_ddot, 0.0, 0.0};
-        v_.mass(dc(k), in.data(), q, q, dM);
-        v_.mass(zero_c_.data(), in.data(), q, q, at_zero.data());
-        for (int i = 0; i < n; ++i) dM[i] -= at_zero[static_cast<std::size_t>(i)];
-        for (const auto& [upper, lower] : mirrored_) dM[lower] = dM[upper];
+        std::vector<double> at_zero(static_cast<std::size_t>(nq()) * nq());
+        mass_at(zero_c_.data(), u, q, at_zero.data());
+        mass_derivative(dc(k), u, q, at_zero.data(), dM);
     }
     void forces_p(Param k, const HubInput& u, const double* q, const double* qd, double* dQ) const override
     {
         const std::array<double, kernel_input_count> in = inputs(u, q);
-        std::fill_n(dQ, nq(), 0.0);
-        std::vector<double> at_zero(static_cast<std::size_t>(nq()), 0.0);
-        v_.forces(dc(k), in.data(), q, qd, dQ);
-        v_.forces(zero_c_.data(), in.data(), q, qd, at_zero.data());
-        for (int i = 0; i < nq(); ++i) dQ[i] -= at_zero[static_cast<std::size_t>(i)];
+        std::vector<double> at_zero(static_cast<std::size_t>(nq()));
+        forces_at(zero_c_.data(), in, q, qd, at_zero.data());
+        forces_derivative(dc(k), in, q, qd, at_zero.data(), dQ);
     }
     void derivatives_p(const Param* ks, int count, int n, const HubInput& u, const double* q, const double* qd,
                        double* dM, double* dQ) const override
     {
-        // M and Q at c = 0 once for all the parameters, then as mass_p and forces_p.
+        // M and Q at c = 0 once for all the parameters.
         const int nn = n * n;
-        std::vector<double> zero(static_cast<std::size_t>(nn + n), 0.0);
-        double* const M0 = zero.data();
-        double* const Q0 = M0 + nn;
-        const std::array<double, kernel_input_count> mass_in{u.tau, u.theta_dot, u.theta_ddot, 0.0, 0.0};
+        std::vector<double> at_zero(static_cast<std::size_t>(nn + n));
         const std::array<double, kernel_input_count> in = inputs(u, q);
-        v_.mass(zero_c_.data(), mass_in.data(), q, q, M0);
-        v_.forces(zero_c_.data(), in.data(), q, qd, Q0);
+        mass_at(zero_c_.data(), u, q, at_zero.data());
+        forces_at(zero_c_.data(), in, q, qd, at_zero.data() + nn);
         for (int j = 0; j < count; ++j) {
-            double* const M = dM + static_cast<std::ptrdiff_t>(j) * nn;
-            double* const Q = dQ + static_cast<std::ptrdiff_t>(j) * n;
-            std::fill_n(M, nn, 0.0);
-            std::fill_n(Q, n, 0.0);
-            v_.mass(dc(ks[j]), mass_in.data(), q, q, M);
-            v_.forces(dc(ks[j]), in.data(), q, qd, Q);
-            for (int i = 0; i < nn; ++i) M[i] -= M0[i];
-            for (const auto& [upper, lower] : mirrored_) M[lower] = M[upper];
-            for (int i = 0; i < n; ++i) Q[i] -= Q0[i];
+            mass_derivative(dc(ks[j]), u, q, at_zero.data(), dM + static_cast<std::ptrdiff_t>(j) * nn);
+            forces_derivative(dc(ks[j]), in, q, qd, at_zero.data() + nn, dQ + static_cast<std::ptrdiff_t>(j) * n);
         }
     }
     Tip tip_p(Param k, const double* q) const override
@@ -225,8 +208,39 @@ private:
     void call_without_angle(generated::Kernel k, const HubInput& u, const double* q, const double* qd,
                             double* out) const
     {
-        const std::array<double, kernel_input_count> inputs{u.tau, u.theta_dot, u.theta_ddot, 0.0, 0.0};
-        k(c_.data(), inputs.data(), q, qd, out);
+        k(c_.data(), mass_inputs(u).data(), q, qd, out);
+    }
+    static std::array<double, kernel_input_count> mass_inputs(const HubInput& u)
+    {
+        return {u.tau, u.theta_dot, u.theta_ddot, 0.0, 0.0};
+    }
+
+    /// M's kernel at the coefficients c (its entries; the mirrored ones zero).
+    void mass_at(const double* c, const HubInput& u, const double* q, double* M) const
+    {
+        std::fill_n(M, nq() * nq(), 0.0);
+        v_.mass(c, mass_inputs(u).data(), q, q, M);
+    }
+    /// dM/dp_k, both triangles: M's kernel at c = dc/dp_k less at_zero, its mass_at at c = 0.
+    void mass_derivative(const double* c, const HubInput& u, const double* q, const double* at_zero, double* dM) const
+    {
+        mass_at(c, u, q, dM);
+        for (int i = 0; i < nq() * nq(); ++i) dM[i] -= at_zero[i];
+        for (const auto& [upper, lower] : mirrored_) dM[lower] = dM[upper];
+    }
+    /// Q's kernel at the coefficients c, the kernels' inputs in.
+    void forces_at(const double* c, const std::array<double, kernel_input_count>& in, const double* q,
+                   const double* qd, double* Q) const
+    {
+        std::fill_n(Q, nq(), 0.0);
+        v_.forces(c, in.data(), q, qd, Q);
+    }
+    /// dQ/dp_k: Q's kernel at c = dc/dp_k less at_zero, its forces_at at c = 0.
+    void forces_derivative(const double* c, const std::array<double, kernel_input_count>& in, const double* q,
+                           const double* qd, const double* at_zero, double* dQ) const
+    {
+        forces_at(c, in, q, qd, dQ);
+        for (int i = 0; i < nq(); ++i) dQ[i] -= at_zero[i];
     }
 
     /// The kernels' u: the drive values, then where U reads it (gravity) sin and cos of the angle (a torque variant's
