@@ -500,14 +500,15 @@ int FirstOrderSystem::mass_form_jacobian(double t, const double* y, double* M, d
         // The law's torque moves with the state: dQ/dtau dtau/dq joins K and dQ/dtau dtau/dqd joins C (as in
         // exact_jacobian, before M^-1). dQ/dtau is the hub's column, dtau/dq the hub angle and the tip coordinates: the
         // hub's row, which the band LU borders, gains them.
+        const TorqueDerivatives& dtau = torque_derivatives(control_, saturated_, w.tip_row, drive_at(t), n_, w.dtau);
         const auto tau = static_cast<Eigen::Index>(index(DriveValue::tau));
         for (int i = 0; i < n_; ++i) {
             const double b = w.dQdu(i, tau);
             if (b == 0.0) continue;
-            for (int j = 0; j < n_; ++j)
-                K[static_cast<std::ptrdiff_t>(i) * n_ + j] -= b * control_->k_tip * w.tip_row[j];
-            K[static_cast<std::ptrdiff_t>(i) * n_] -= b * control_->kp;
-            C[static_cast<std::ptrdiff_t>(i) * n_] -= b * control_->kd;
+            for (int j = 0; j < n_; ++j) {
+                K[static_cast<std::ptrdiff_t>(i) * n_ + j] += b * dtau.dq[j];
+                C[static_cast<std::ptrdiff_t>(i) * n_ + j] += b * dtau.dqd[j];
+            }
         }
     }
     for (std::ptrdiff_t i = 0; i < size; ++i)
