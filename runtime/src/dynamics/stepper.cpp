@@ -155,6 +155,7 @@ public:
         : system_(system),
           n_(system.size()),
           state_(n_ / system.blocks()),
+          count_(system.blocks() - 1),
           dfdy_(static_cast<std::size_t>(state_) * state_),
           dfdt_(static_cast<std::size_t>(state_))
     {
@@ -170,27 +171,27 @@ public:
                         CVodeSStolerances(mem_, rtol, atol) == CV_SUCCESS &&
                         CVodeSetLinearSolver(mem_, solver_, matrix_) == CV_SUCCESS &&
                         CVodeSetJacFn(mem_, jacobian) == CV_SUCCESS && CVodeSetInitStep(mem_, h0) == CV_SUCCESS &&
-                        CVodeSetMaxNumSteps(mem_, -1) == CV_SUCCESS && (state_ == n_ || init_sensitivities(y0, rtol, atol));
+                        CVodeSetMaxNumSteps(mem_, -1) == CV_SUCCESS &&
+                        (count_ == 0 || init_sensitivities(y0, rtol, atol));
         if (!ok) throw std::runtime_error("CVODE could not be set up");
     }
     /// The sensitivity blocks of y0 as CVODES's staggered sensitivities, under the state's tolerances (the system
     /// scales them to the state's units), in the error test where the system controls them.
     bool init_sensitivities(const double* y0, double rtol, double atol)
     {
-        const int count = n_ / state_ - 1;
-        sensitivities_ = N_VCloneVectorArray(count, y_);
+        sensitivities_ = N_VCloneVectorArray(count_, y_);
         if (sensitivities_ == nullptr) return false;
         scratch_.resize(static_cast<std::size_t>(n_));
         rates_.resize(static_cast<std::size_t>(n_));
-        copy_sensitivities_in(y0);
-        std::vector<double> atols(static_cast<std::size_t>(count), atol);
-        return CVodeSensInit(mem_, count, CV_STAGGERED, sensitivity_rhs, sensitivities_) == CV_SUCCESS &&
+        blocks_to_vectors(y0, sensitivities_);
+        std::vector<double> atols(static_cast<std::size_t>(count_), atol);
+        return CVodeSensInit(mem_, count_, CV_STAGGERED, sensitivity_rhs, sensitivities_) == CV_SUCCESS &&
                CVodeSensSStolerances(mem_, rtol, atols.data()) == CV_SUCCESS &&
                CVodeSetSensErrCon(mem_, system_.controlled_size() == n_ ? SUNTRUE : SUNFALSE) == CV_SUCCESS;
     }
     ~CvodeStepper() override
     {
-        if (sensitivities_ != nullptr) N_VDestroyVectorArray(sensitivities_, n_ / state_ - 1);
+        if (sensitivities_ != nullptr) N_VDestroyVectorArray(sensitivities_, count_);
         CVodeFree(&mem_);
         SUNLinSolFree(solver_);
         SUNMatDestroy(matrix_);
@@ -216,7 +217,7 @@ public:
         std::copy_n(y, state_, N_VGetArrayPointer(y_));
         CVodeReInit(mem_, t, y_);
         if (sensitivities_ != nullptr) {
-            copy_sensitivities_in(y);
+            blocks_to_vectors(y, sensitivities_);
             CVodeSensReInit(mem_, CV_STAGGERED, sensitivities_);
         }
     }
@@ -245,17 +246,21 @@ private:
         std::copy_n(N_VGetArrayPointer(y_), state_, y);
         if (sensitivities_ != nullptr) {
             if (CVodeGetSens(mem_, &reached, sensitivities_) != CV_SUCCESS) return from_gsl(GSL_FAILURE);
-            for (int j = 0; j < n_ / state_ - 1; ++j)
-                std::copy_n(N_VGetArrayPointer(sensitivities_[j]), state_, y + static_cast<std::ptrdiff_t>(j + 1) * state_);
+            vectors_to_blocks(sensitivities_, y);
         }
         return StepStatus::success;
     }
 
-    /// y's sensitivity blocks into CVODES's vectors.
-    void copy_sensitivities_in(const double* y)
+    /// A whole y's sensitivity blocks (those after the state's) into CVODES's vectors, and back.
+    void blocks_to_vectors(const double* y, N_Vector* vectors) const
     {
-        for (int j = 0; j < n_ / state_ - 1; ++j)
-            std::copy_n(y + static_cast<std::ptrdiff_t>(j + 1) * state_, state_, N_VGetArrayPointer(sensitivities_[j]));
+        for (int j = 0; j < count_; ++j)
+            std::copy_n(y + static_cast<std::ptrdiff_t>(j + 1) * state_, state_, N_VGetArrayPointer(vectors[j]));
+    }
+    void vectors_to_blocks(N_Vector* vectors, double* y) const
+    {
+        for (int j = 0; j < count_; ++j)
+            std::copy_n(N_VGetArrayPointer(vectors[j]), state_, y + static_cast<std::ptrdiff_t>(j + 1) * state_);
     }
 
     /// CVODE's failures as the GSL statuses of their kind, so that a failure's message reads alike in every family.
@@ -284,17 +289,14 @@ private:
     }
     /// Every sensitivity's rate at once, from the system's right-hand side of the whole y (the state's and the
     /// sensitivities' together).
-    static int sensitivity_rhs(int count, double t, N_Vector y, N_Vector, N_Vector* sensitivities, N_Vector* rates,
+    static int sensitivity_rhs(int, double t, N_Vector y, N_Vector, N_Vector* sensitivities, N_Vector* rates,
                                void* self, N_Vector, N_Vector)
     {
         auto& s = *static_cast<CvodeStepper*>(self);
-        const int n = s.state_;
-        std::copy_n(N_VGetArrayPointer(y), n, s.scratch_.data());
-        for (int j = 0; j < count; ++j)
-            std::copy_n(N_VGetArrayPointer(sensitivities[j]), n, s.scratch_.data() + static_cast<std::ptrdiff_t>(j + 1) * n);
+        std::copy_n(N_VGetArrayPointer(y), s.state_, s.scratch_.data());
+        s.vectors_to_blocks(sensitivities, s.scratch_.data());
         if (s.system_.rhs(t, s.scratch_.data(), s.rates_.data()) != GSL_SUCCESS) return 1;
-        for (int j = 0; j < count; ++j)
-            std::copy_n(s.rates_.data() + static_cast<std::ptrdiff_t>(j + 1) * n, n, N_VGetArrayPointer(rates[j]));
+        s.blocks_to_vectors(s.rates_.data(), rates);
         return 0;
     }
     static int jacobian(double t, N_Vector y, N_Vector, SUNMatrix J, void* self, N_Vector, N_Vector, N_Vector)
@@ -314,7 +316,7 @@ private:
     static void quiet(int, const char*, const char*, char*, void*) {}  // failures come back as statuses
 
     FirstOrderSystem& system_;
-    int n_, state_;                    // y's size, and its state's (y's whole size without sensitivity blocks)
+    int n_, state_, count_;            // y's size, its state's (y without sensitivity blocks), the sensitivity blocks
     std::vector<double> dfdy_, dfdt_;  // the state's row-major Jacobian, before it is copied column-major
     N_Vector* sensitivities_ = nullptr;
     std::vector<double> scratch_, rates_;  // a whole y and its rates, for the sensitivities' right-hand side
