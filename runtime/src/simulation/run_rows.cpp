@@ -54,15 +54,11 @@ Row RowMaker::operator()(double t, const double* y)
     const double* q = q_.data();
     const double* qd = qd_.data();
     const bool torque = model_.key().drive == Drive::torque;
-    HubInput u = motion_.at(t);
+    const HubInput u = system_.input_at(t, y);  // under a control, the torque alone
     RowExtras extras;
     if (extended_) {
-        if (torque) extras.tau = system_.torque(t, y);
-        if (control_ != nullptr) {
-            extras.theta_ref = u.theta;
-            u = HubInput{};  // the model's input: the torque alone
-            u.tau = extras.tau;
-        }
+        if (torque) extras.tau = u.tau;
+        if (control_ != nullptr) extras.theta_ref = motion_.at(t).theta;
         const auto at = [y](int i) { return i >= 0 ? y[i] : 0.0; };
         extras.controller_integral = at(system_.integral_index());
         extras.dissipated = at(system_.dissipated_index());
