@@ -55,6 +55,13 @@ struct Newton {
 /// product, where its LU's two triangular solves of dynamic size cost several times the flops.
 constexpr int small_inverse_size = 64;
 
+/// The larger of a running maximum and e, and NaN from the first NaN on: std::max drops a NaN, so that a Newton
+/// correction of NaNs would pass as converged and a step of NaNs pass the error test.
+double max_keeping_nan(double maximum, double e)
+{
+    return e > maximum || std::isnan(e) ? e : maximum;
+}
+
 /// x = newton's matrix's solution of b (x of b's size, so that no call allocates). Forming the inverse costs about as
 /// many solves as the matrix has rows: it is formed after twice that many, so that a matrix refactored every step or
 /// two (a torque on a fine mesh, its steps often rejected: BIM at Nx = Ny = 8 under the torque pulse, 34 x 34, took
@@ -91,7 +98,7 @@ public:
           y1_(m_),
           y_half_(m_),
           y2_(m_),
-          w_(m_),
+          inverse_w_(m_),
           stage_(m_),
           z_(2 * m_),
           dz_(2 * n_),
@@ -155,7 +162,7 @@ private:
                 if (const int s = jacobian(t, y); s != GSL_SUCCESS) return s;
             // A Newton matrix of a step within a fifth of this one still converges fast: refactored only beyond that.
             if (!factored_ || std::abs(h / h_factored_ - 1.0) > 0.2) factor(h);
-            for (int i = 0; i < m_; ++i) w_[i] = atol_ + rtol_ * std::abs(y[i]);
+            for (int i = 0; i < m_; ++i) inverse_w_[i] = 1.0 / (atol_ + rtol_ * std::abs(y[i]));
             if (const int status = whole_and_halves(t, y0, h); status != GSL_SUCCESS) {
                 // no convergence: a fresh Jacobian, then a shorter step
                 bad_function = bad_function || status == GSL_EBADFUNC;
@@ -219,7 +226,7 @@ private:
     {
         double ratio = 0.0;
         for (int i = 0; i < controlled_; ++i)
-            ratio = std::max(
+            ratio = max_keeping_nan(
                 ratio, std::abs(y2_[i] - y1_[i]) / 15.0 / (atol_ + rtol_ * std::max(std::abs(y[i]), std::abs(y2_[i]))));
         return ratio;
     }
@@ -444,15 +451,20 @@ private:
             return;
         }
         // dQ_i = g_q,i + h sum_j a_ij dV_j, and the velocity rows with dQ substituted (in the mass form, times M).
+        // Loops on raw entries: at these sizes Eigen's expressions of segments cost more than their arithmetic.
+        const int k = k_, n = n_;
         const double h = newton.h, a[2][2] = {{a11, a12}, {a21, a22}};
+        const double* const g = g_.data();
+        double* const mix = mix_.data();
+        double* const rhs2 = rhs2_.data();
         for (int i = 0; i < 2; ++i) {
-            mix_ = a[i][0] * g_.segment(0, k_) + a[i][1] * g_.segment(n_, k_);
+            for (int j = 0; j < k; ++j) mix[j] = a[i][0] * g[j] + a[i][1] * g[n + j];
             if (mass_form_) {
-                rhs2_.segment(i * k_, k_).noalias() = Ms_ * g_.segment(i * n_ + k_, k_);
-                rhs2_.segment(i * k_, k_).noalias() += h * (Ks_ * mix_);
+                rhs2_.segment(i * k, k).noalias() = Ms_ * g_.segment(i * n + k, k);
+                rhs2_.segment(i * k, k).noalias() += h * (Ks_ * mix_);
             } else {
-                rhs2_.segment(i * k_, k_) = g_.segment(i * n_ + k_, k_);
-                rhs2_.segment(i * k_, k_).noalias() += h * Jq_ * mix_;
+                std::copy_n(g + i * n + k, k, rhs2 + i * k);
+                Eigen::Map<Eigen::VectorXd>(rhs2 + i * k, k).noalias() += h * Jq_ * mix_;
             }
         }
         if (mass_form_) {
@@ -461,12 +473,14 @@ private:
         } else {
             solve_with(newton, rhs2_, dv_);
         }
+        const double* const dv = dv_.data();
+        double* const dz = dz_.data();
         for (int i = 0; i < 2; ++i) {
-            dz_.segment(i * n_, k_) = g_.segment(i * n_, k_) + h * (a[i][0] * dv_.head(k_) + a[i][1] * dv_.tail(k_));
-            dz_.segment(i * n_ + k_, k_) = dv_.segment(i * k_, k_);
+            for (int j = 0; j < k; ++j) dz[i * n + j] = g[i * n + j] + h * (a[i][0] * dv[j] + a[i][1] * dv[k + j]);
+            std::copy_n(dv + i * k, k, dz + i * n + k);
             // Quadratures: Z = h (A (x) I) g(stages) solves their stage equations once the state's stages are known,
             // so their correction is their residual (a step behind the state's, which the convergence test sees).
-            if (aux_ > 0) dz_.segment(i * n_ + 2 * k_, aux_) = g_.segment(i * n_ + 2 * k_, aux_);
+            std::copy_n(g + i * n + 2 * k, aux_, dz + i * n + 2 * k);
         }
     }
 
@@ -474,21 +488,31 @@ private:
     /// F - Z, then Z += dz_; returns the correction's weighted norm.
     double correct_block(int b, double h, const Newton& newton)
     {
-        const auto f1 = f_.segment(b * n_, n_), f2 = f_.segment(m_ + b * n_, n_);
-        auto z1 = z_.segment(b * n_, n_), z2 = z_.segment(m_ + b * n_, n_);
-        g_.head(n_) = h * (a11 * f1 + a12 * f2) - z1;
-        g_.tail(n_) = h * (a21 * f1 + a22 * f2) - z2;
-        newton_solve(newton);
-        z1 += dz_.head(n_);
-        z2 += dz_.tail(n_);
-        // Stage by stage, so that no index needs a remainder (an integer division per entry).
-        double norm = 0.0;
-        const double* const w = w_.data() + b * n_;
-        for (int stage = 0; stage < 2; ++stage) {
-            const double* const d = dz_.data() + stage * n_;
-            for (int i = 0; i < n_; ++i) norm = std::max(norm, std::abs(d[i]) / w[i]);
+        const int n = n_;
+        const double* const f1 = f_.data() + b * n;
+        const double* const f2 = f1 + m_;
+        double* const z1 = z_.data() + b * n;
+        double* const z2 = z1 + m_;
+        double* const g = g_.data();
+        for (int i = 0; i < n; ++i) {
+            g[i] = h * (a11 * f1[i] + a12 * f2[i]) - z1[i];
+            g[n + i] = h * (a21 * f1[i] + a22 * f2[i]) - z2[i];
         }
-        return norm;
+        newton_solve(newton);
+        // The weighted norm by the weights' reciprocals and without branches (a division and a mispredicted jump per
+        // entry cost more than the correction's arithmetic); the sum catches a NaN or infinity, which the maximum
+        // would drop, so that a correction of NaNs cannot pass as converged.
+        const double* const d = dz_.data();
+        const double* const inverse_w = inverse_w_.data() + b * n;
+        double norm = 0.0, sum = 0.0;
+        for (int i = 0; i < n; ++i) {
+            z1[i] += d[i];
+            z2[i] += d[n + i];
+            const double e = std::max(std::abs(d[i]), std::abs(d[n + i])) * inverse_w[i];
+            norm = std::max(norm, e);
+            sum += e;
+        }
+        return std::isfinite(sum) ? norm : sum;
     }
 
     /// The stage increments' starting values for a step of h from the last step's end: that step's collocation
@@ -606,7 +630,7 @@ private:
     static constexpr int calm_steps = 5;
     int calm_ = 0;  // steps accepted since the last rejection by the error test, up to calm_steps
     long rejected_ = 0;
-    Eigen::VectorXd y1_, y_half_, y2_, w_, stage_, z_, dz_, g_, f_, z_last_;
+    Eigen::VectorXd y1_, y_half_, y2_, inverse_w_, stage_, z_, dz_, g_, f_, z_last_;
     // Where the later blocks' rates are linear and the state small (linearize_stage): each stage's Jacobian, its
     // blocks' rates at sigma = 0, and the sensitivities of its last whole right-hand side, a column per block.
     static constexpr int whole_evaluations = 1;
