@@ -597,24 +597,34 @@ private:
     }
 
     /// The later blocks' rates at the converged state stage i are J(Y_i) sigma + b_i (FirstOrderSystem::blocks):
-    /// its Jacobian, and b_i from the rates f the last whole right-hand side gave at the sensitivities sigma_[i].
+    /// its Jacobian, and b_i from the rates f the last whole right-hand side gave at the sensitivities sigma_[i]. The
+    /// positions' rows of J are (0 I 0) and their b is zero (their rates are the velocities' sensitivities): only the
+    /// rows below them are kept.
     int linearize_stage(int i, double at, const double* f)
     {
-        stage_J_[i].resize(n_, n_);
-        if (system_.FirstOrderSystem::jacobian(at, stage_.data(), stage_J_[i].data(), dfdt_.data()) != GSL_SUCCESS)
+        if (system_.FirstOrderSystem::jacobian(at, stage_.data(), rows_.data(), dfdt_.data()) != GSL_SUCCESS)
             return GSL_EBADFUNC;
-        stage_b_[i] = Eigen::Map<const Eigen::MatrixXd>(f + n_, n_, blocks_ - 1);
-        stage_b_[i].noalias() -= stage_J_[i] * sigma_[i];
+        const int below = n_ - k_, p = blocks_ - 1;
+        stage_J_[i] = Eigen::Map<const RowMatrix>(rows_.data(), n_, n_).bottomRows(below);
+        stage_b_[i] = Eigen::Map<const Eigen::MatrixXd>(f + n_, n_, p).bottomRows(below);
+        for (int c = 0; c < p; ++c) stage_b_[i].col(c).noalias() -= stage_J_[i] * sigma_[i].col(c);
         return GSL_SUCCESS;
     }
 
     /// The later blocks' rates at stage i from the sensitivities in stage_ (linearize_stage), into f.
     void blocks_rates(int i, double* f) const
     {
-        Eigen::Map<Eigen::MatrixXd> rates(f + n_, n_, blocks_ - 1);
-        const Eigen::Map<const Eigen::MatrixXd> sigma(stage_.data() + n_, n_, blocks_ - 1);
-        rates.noalias() = stage_J_[i].lazyProduct(sigma);  // coefficient by coefficient: small, no packing
-        rates += stage_b_[i];
+        const int below = n_ - k_, p = blocks_ - 1;
+        Eigen::Map<Eigen::MatrixXd> rates(f + n_, n_, p);
+        const Eigen::Map<const Eigen::MatrixXd> sigma(stage_.data() + n_, n_, p);
+        rates.topRows(k_) = sigma.middleRows(k_, k_);
+        // A matrix-vector product per column: Eigen's matrix-matrix products pack their operands first, which costs
+        // more than these small products themselves.
+        for (int c = 0; c < p; ++c) {
+            auto column = rates.col(c).bottomRows(below);
+            column = stage_b_[i].col(c);
+            column.noalias() += stage_J_[i] * sigma.col(c);
+        }
     }
 
     FirstOrderSystem& system_;
@@ -631,12 +641,12 @@ private:
     int calm_ = 0;  // steps accepted since the last rejection by the error test, up to calm_steps
     long rejected_ = 0;
     Eigen::VectorXd y1_, y_half_, y2_, inverse_w_, stage_, z_, dz_, g_, f_, z_last_;
-    // Where the later blocks' rates are linear and the state small (linearize_stage): each stage's Jacobian, its
-    // blocks' rates at sigma = 0, and the sensitivities of its last whole right-hand side, a column per block.
+    // Where the later blocks' rates are linear and the state small (linearize_stage): each stage's Jacobian and its
+    // blocks' rates at sigma = 0, both below the positions' rows, and the sensitivities of its last whole right-hand
+    // side, a column per block.
     static constexpr int whole_evaluations = 1;
     bool linear_blocks_ = false;
-    RowMatrix stage_J_[2];
-    Eigen::MatrixXd stage_b_[2], sigma_[2];
+    Eigen::MatrixXd stage_J_[2], stage_b_[2], sigma_[2];
     Eigen::MatrixXd J_;
     Eigen::VectorXd dfdt_;
     std::vector<double> rows_;  // the system's row-major Jacobian
