@@ -2,6 +2,10 @@
 // undamped stiff modes it does not resolve) with simplified Newton iterations that reuse the Jacobian and the factored
 // Newton matrices across steps (Hairer & Wanner, Solving ODEs II, section IV.8, the design of RADAU5), and its error
 // from step doubling, as GSL's rk4imp, which factors and forms its Jacobian at every step.
+#include <gsl/gsl_errno.h>
+
+#include <Eigen/Dense>
+#include <Eigen/SparseCore>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -9,10 +13,6 @@
 #include <memory>
 #include <optional>
 #include <vector>
-
-#include <Eigen/Dense>
-#include <Eigen/SparseCore>
-#include <gsl/gsl_errno.h>
 
 #include "dynamics/band_lu.hpp"
 #include "dynamics/stepper.hpp"
@@ -72,8 +72,10 @@ void solve_with(const Newton& newton, const Eigen::VectorXd& b, Eigen::VectorXd&
     const Eigen::Index n = newton.lu.rows();
     if (newton.inverse.size() == 0 && n <= small_inverse_size && ++newton.solves > 2 * n)
         newton.inverse = newton.lu.inverse();
-    if (newton.inverse.size() > 0) x.noalias() = newton.inverse * b;
-    else x = newton.lu.solve(b);
+    if (newton.inverse.size() > 0)
+        x.noalias() = newton.inverse * b;
+    else
+        x = newton.lu.solve(b);
 }
 
 /// The mass form of the condensed Newton matrices pays where M, K and C are banded but for the hub's row and column
@@ -120,10 +122,12 @@ public:
         // Newton matrix, as the controller's integral, which the torque reads, must.
         condensed_ = aux_ == 0 || (blocks_ == 1 && mass_form_ && system.auxiliary_are_quadratures());
         mass_form_ = mass_form_ && condensed_;
-        // Sensitivities left out of the error test ride the state's longer steps, and their iteration takes about
-        // four corrections (the spin-up with axial coordinates): their rates are then linearized once per stage.
-        // Controlled, they set shorter steps, converge in one or two, and whole right-hand sides cost less.
-        linear_blocks_ = blocks_ > 1 && controlled_ < m_ && system.has_exact_jacobian() && n_ <= small_inverse_size;
+        // Sensitivities left out of the error test ride the state's longer steps, where a simplified Newton iteration
+        // on them took about four corrections per stage solve (the spin-up with axial coordinates) and at times did
+        // not converge: their linear stage equations are solved exactly instead (solve_blocks). Controlled, their
+        // steps are short, the iteration converges in one or two corrections with whole right-hand sides, and the
+        // exact solve took 1.5 to 3.4 times the instructions.
+        direct_blocks_ = blocks_ > 1 && controlled_ < m_ && system.has_exact_jacobian() && n_ <= small_inverse_size;
     }
 
     StepStatus step(double& t, double target, double* y, double h_max) override
@@ -542,8 +546,8 @@ private:
     /// Simplified Newton on Z = (Y1 - y0, Y2 - y0): Z = h (A (x) I) F(y0 + Z), with the factored matrix lu, from the
     /// starting values in z_; y1 = y0 + d Z. The rate estimate carried from the last solve lets a linear step stop
     /// after one iteration (RADAU5's test). With more blocks than the state (sensitivities), the state's stages are
-    /// solved first and then the other blocks' together, each with the state's Newton matrix (the staggered
-    /// corrector of CVODES): their equations are linear in them, and the iteration converges as the state's does.
+    /// solved first and then the other blocks' together (the staggered corrector of CVODES), each with the state's
+    /// Newton matrix, or exactly (solve_blocks).
     int solve_stages(double t, const Eigen::Ref<const Eigen::VectorXd>& y0, double h, const Newton& newton,
                      Eigen::VectorXd& y1)
     {
@@ -552,22 +556,12 @@ private:
             double previous = 0.0, eta_in = eta;
             for (int k = 0; k < 7; ++k) {
                 stage_ = y0 + z_.head(m_);
-                // The later blocks: a whole right-hand side first, then (linear_blocks_) their rates at the converged
-                // state stages, linear in them (linearize_stage).
-                const auto evaluate = [&](int i, double at, double* f) -> int {
-                    if (state) return state_rhs(at, stage_.data(), f);
-                    if (!linear_blocks_ || k < whole_evaluations) {
-                        if (linear_blocks_)
-                            sigma_[i] = Eigen::Map<const Eigen::MatrixXd>(stage_.data() + n_, n_, blocks_ - 1);
-                        return system_.rhs(at, stage_.data(), f);
-                    }
-                    if (k == whole_evaluations && linearize_stage(i, at, f) != GSL_SUCCESS) return GSL_EBADFUNC;
-                    blocks_rates(i, f);
-                    return GSL_SUCCESS;
+                const auto evaluate = [&](double at, double* f) {
+                    return state ? state_rhs(at, stage_.data(), f) : system_.rhs(at, stage_.data(), f);
                 };
-                if (evaluate(0, t + c1 * h, f_.data()) != GSL_SUCCESS) return GSL_EBADFUNC;
+                if (evaluate(t + c1 * h, f_.data()) != GSL_SUCCESS) return GSL_EBADFUNC;
                 stage_ = y0 + z_.tail(m_);
-                if (evaluate(1, t + c2 * h, f_.data() + m_) != GSL_SUCCESS) return GSL_EBADFUNC;
+                if (evaluate(t + c2 * h, f_.data() + m_) != GSL_SUCCESS) return GSL_EBADFUNC;
                 double norm = 0.0;
                 for (int b = state ? 0 : 1; b < (state ? 1 : blocks_); ++b)
                     norm = std::max(norm, correct_block(b, h, newton));
@@ -588,7 +582,11 @@ private:
             return GSL_EMAXITER;
         };
         if (const int s = iterate(true, eta_); s != GSL_SUCCESS) return s;
-        if (blocks_ > 1) {
+        if (direct_blocks_) {
+            // The whole step's result serves the error estimate alone, which does not weigh these blocks.
+            if (&newton != &whole_)
+                if (const int s = solve_blocks(t, y0, h); s != GSL_SUCCESS) return s;
+        } else if (blocks_ > 1) {
             double eta_blocks = 0.0;
             if (const int s = iterate(false, eta_blocks); s != GSL_SUCCESS) return s;
         }
@@ -596,35 +594,75 @@ private:
         return GSL_SUCCESS;
     }
 
-    /// The later blocks' rates at the converged state stage i are J(Y_i) sigma + b_i (FirstOrderSystem::blocks):
-    /// its Jacobian, and b_i from the rates f the last whole right-hand side gave at the sensitivities sigma_[i]. The
-    /// positions' rows of J are (0 I 0) and their b is zero (their rates are the velocities' sensitivities): only the
-    /// rows below them are kept.
-    int linearize_stage(int i, double at, const double* f)
+    /// The later blocks' stage increments solved exactly, once the state's stages have converged: their equations
+    /// Z_i = h sum_j a_ij (J_j (s0 + Z_j) + b_j) are linear, with J_j = J(Y_j) and b_j their forcing
+    /// (FirstOrderSystem::blocks_forcing). The positions' rows of J_j are (0 I 0) and their b_j zero, so only the rows
+    /// below them are kept. Condensed as the state's Newton systems are: the positions' increments are
+    /// Q_i = h c_i v0 + h sum_j a_ij V_j, and the rows below them, W_i = (V_i, auxiliary), solve
+    /// W_i - h sum_l (a_il Lw_l + h (A diag(Lq) A)_il) W_l = h sum_j a_ij (J_j s0 + b_j + h c_j Lq_j v0), with
+    /// J_j's lower rows split into the positions' columns Lq_j and the rest Lw_j: one LU of twice their count for all
+    /// blocks, in place of a simplified Newton iteration per block.
+    int solve_blocks(double t, const Eigen::Ref<const Eigen::VectorXd>& y0, double h)
     {
-        if (system_.FirstOrderSystem::jacobian(at, stage_.data(), rows_.data(), dfdt_.data()) != GSL_SUCCESS)
-            return GSL_EBADFUNC;
-        const int below = n_ - k_, p = blocks_ - 1;
-        stage_J_[i] = Eigen::Map<const RowMatrix>(rows_.data(), n_, n_).bottomRows(below);
-        stage_b_[i] = Eigen::Map<const Eigen::MatrixXd>(f + n_, n_, p).bottomRows(below);
-        for (int c = 0; c < p; ++c) stage_b_[i].col(c).noalias() -= stage_J_[i] * sigma_[i].col(c);
-        return GSL_SUCCESS;
-    }
-
-    /// The later blocks' rates at stage i from the sensitivities in stage_ (linearize_stage), into f.
-    void blocks_rates(int i, double* f) const
-    {
-        const int below = n_ - k_, p = blocks_ - 1;
-        Eigen::Map<Eigen::MatrixXd> rates(f + n_, n_, p);
-        const Eigen::Map<const Eigen::MatrixXd> sigma(stage_.data() + n_, n_, p);
-        rates.topRows(k_) = sigma.middleRows(k_, k_);
-        // A matrix-vector product per column: Eigen's matrix-matrix products pack their operands first, which costs
-        // more than these small products themselves.
-        for (int c = 0; c < p; ++c) {
-            auto column = rates.col(c).bottomRows(below);
-            column = stage_b_[i].col(c);
-            column.noalias() += stage_J_[i] * sigma.col(c);
+        const int k = k_, r = n_ - k_, p = blocks_ - 1;
+        const double a[2][2] = {{a11, a12}, {a21, a22}}, c[2] = {c1, c2};
+        for (int i = 0; i < 2; ++i) {
+            stage_ = y0 + z_.segment(i * m_, m_);
+            const double at = t + c[i] * h;
+            double* const f = f_.data() + i * m_;
+            if (system_.blocks_forcing(at, stage_.data(), f) != GSL_SUCCESS ||
+                system_.FirstOrderSystem::jacobian(at, stage_.data(), rows_.data(), dfdt_.data()) != GSL_SUCCESS)
+                return GSL_EBADFUNC;
+            stage_J_[i] = Eigen::Map<const RowMatrix>(rows_.data(), n_, n_).bottomRows(r);
+            stage_b_[i].resize(r, p);
+            for (int b = 0; b < p; ++b) stage_b_[i].col(b) = Eigen::Map<const Eigen::VectorXd>(f + (b + 1) * n_ + k, r);
         }
+        // The matrix, entry by entry (Eigen's expressions of blocks cost more than the arithmetic at these sizes).
+        Eigen::MatrixXd& N = blocks_matrix_;
+        N.resize(2 * r, 2 * r);
+        for (int i = 0; i < 2; ++i)
+            for (int l = 0; l < 2; ++l) {
+                const double wl = -h * a[i][l];
+                const double q0 = -h * h * a[i][0] * a[0][l], q1 = -h * h * a[i][1] * a[1][l];
+                for (int col = 0; col < r; ++col) {
+                    double* const to = N.data() + (l * r + col) * 2 * r + i * r;
+                    const double* const w = stage_J_[l].data() + (k + col) * r;
+                    for (int row = 0; row < r; ++row) to[row] = wl * w[row];
+                    if (col < k) {
+                        const double* const j0 = stage_J_[0].data() + col * r;
+                        const double* const j1 = stage_J_[1].data() + col * r;
+                        for (int row = 0; row < r; ++row) to[row] += q0 * j0[row] + q1 * j1[row];
+                    }
+                    if (i == l) to[col] += 1.0;
+                }
+            }
+        blocks_lu_.compute(N);
+        // All blocks at once: U_j = J_j S_j + B_j, S_j the blocks' starting values with their positions moved on by
+        // h c_j times their velocities (the positions' increments' known part), then the right-hand sides
+        // h sum_j a_ij U_j and one solve.
+        const Eigen::Map<const Eigen::MatrixXd> s0(y0.data() + n_, n_, p);
+        blocks_rhs_.resize(2 * r, p);
+        for (int j = 0; j < 2; ++j) {
+            blocks_s_ = s0;
+            blocks_s_.topRows(k) += (h * c[j]) * s0.middleRows(k, k);
+            blocks_u_[j].noalias() = stage_J_[j] * blocks_s_;
+            blocks_u_[j] += stage_b_[j];
+        }
+        for (int i = 0; i < 2; ++i)
+            blocks_rhs_.middleRows(i * r, r) = h * (a[i][0] * blocks_u_[0] + a[i][1] * blocks_u_[1]);
+        blocks_w_.resize(2 * r, p);
+        for (int b = 0; b < p; ++b) blocks_w_.col(b) = blocks_lu_.solve(blocks_rhs_.col(b));  // vector solves: cheaper
+        for (int b = 1; b <= p; ++b) {
+            const auto v0 = s0.col(b - 1).segment(k, k);
+            const auto w = blocks_w_.col(b - 1);
+            for (int i = 0; i < 2; ++i) {
+                auto z = z_.segment(i * m_ + b * n_, n_);
+                z.head(k) = h * c[i] * v0 + h * (a[i][0] * w.head(k) + a[i][1] * w.segment(r, k));
+                z.tail(r) = w.segment(i * r, r);
+            }
+        }
+        if (!blocks_w_.allFinite()) return GSL_EBADFUNC;
+        return GSL_SUCCESS;
     }
 
     FirstOrderSystem& system_;
@@ -641,12 +679,11 @@ private:
     int calm_ = 0;  // steps accepted since the last rejection by the error test, up to calm_steps
     long rejected_ = 0;
     Eigen::VectorXd y1_, y_half_, y2_, inverse_w_, stage_, z_, dz_, g_, f_, z_last_;
-    // Where the later blocks' rates are linear and the state small (linearize_stage): each stage's Jacobian and its
-    // blocks' rates at sigma = 0, both below the positions' rows, and the sensitivities of its last whole right-hand
-    // side, a column per block.
-    static constexpr int whole_evaluations = 1;
-    bool linear_blocks_ = false;
-    Eigen::MatrixXd stage_J_[2], stage_b_[2], sigma_[2];
+    // The later blocks solved exactly (solve_blocks): each stage's Jacobian and forcing below the positions' rows,
+    // the condensed matrix and its LU, and scratch.
+    bool direct_blocks_ = false;
+    Eigen::MatrixXd stage_J_[2], stage_b_[2], blocks_matrix_, blocks_s_, blocks_u_[2], blocks_rhs_, blocks_w_;
+    Eigen::PartialPivLU<Eigen::MatrixXd> blocks_lu_;
     Eigen::MatrixXd J_;
     Eigen::VectorXd dfdt_;
     std::vector<double> rows_;  // the system's row-major Jacobian

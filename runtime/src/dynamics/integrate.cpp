@@ -2,20 +2,20 @@
 // finite-difference Jacobians, and GSL glue.
 #include "dynamics/integrate.hpp"
 
-#include "dynamics/acceleration.hpp"
-#include "dynamics/mass_solver.hpp"
-#include "models/model_operations.hpp"
-#include "terms.hpp"
+#include <gsl/gsl_errno.h>
 
+#include <Eigen/Cholesky>
+#include <Eigen/Dense>
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
-#include <Eigen/Cholesky>
-#include <Eigen/Dense>
-#include <gsl/gsl_errno.h>
+#include "dynamics/acceleration.hpp"
+#include "dynamics/mass_solver.hpp"
+#include "models/model_operations.hpp"
+#include "terms.hpp"
 
 namespace hubbeam {
 
@@ -457,6 +457,21 @@ int FirstOrderSystem::jacobian_product(double t, const double* y, int k, const d
     if (m > 2 * n_)
         product.bottomRows(m - 2 * n_).noalias() =
             w.auxiliary_rows.bottomRows(m - 2 * n_) * Eigen::Map<const Eigen::MatrixXd>(v, m, k);
+    return GSL_SUCCESS;
+}
+
+int FirstOrderSystem::blocks_forcing(double t, const double* y, double* dydt)
+{
+    std::vector<double> zeroed(static_cast<std::size_t>(size()), 0.0);
+    std::copy_n(y, state_size(), zeroed.begin());
+    return rhs(t, zeroed.data(), dydt);
+}
+
+int FirstOrderSystem::mass_solve(double t, const double* y, int k, double* columns)
+{
+    Work& w = *work_;
+    if (!w.solver->prepare(input_at(t, y), y)) return w.rhs->indefinite_mass_at(y);
+    w.solver->solve(columns, k);
     return GSL_SUCCESS;
 }
 

@@ -2,18 +2,17 @@
 // linear algebra chosen from the model's structure (mass_solver.hpp).
 #pragma once
 
+#include <gsl/gsl_odeiv2.h>
+
 #include <array>
+#include <hubbeam/config.hpp>
+#include <hubbeam/model.hpp>
+#include <hubbeam/motion.hpp>
 #include <limits>
 #include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include <gsl/gsl_odeiv2.h>
-
-#include <hubbeam/config.hpp>
-#include <hubbeam/model.hpp>
-#include <hubbeam/motion.hpp>
 
 namespace hubbeam {
 
@@ -141,6 +140,12 @@ public:
     /// g_j of nq entries in g, into out as v: the Jacobian's products from one linearization of the forces, with one
     /// solve with M per vector. Needs has_exact_jacobian(). GSL status.
     int jacobian_product(double t, const double* y, int k, const double* v, const double* g, double* out);
+    /// The later blocks' rates at zero sensitivities: b in their rates J sigma + b (blocks), into dydt's later
+    /// blocks, with the state's rates in its first (y's later blocks are not read). A stepper that forms J at a stage
+    /// then has the blocks' linear equations whole. The default evaluates rhs with those blocks zeroed.
+    virtual int blocks_forcing(double t, const double* y, double* dydt);
+    /// M(q)^-1 times k columns of nq entries, in place, at the state y. Needs has_exact_jacobian(). GSL status.
+    int mass_solve(double t, const double* y, int k, double* columns);
     /// Central differences of rhs: the fallback for models without derivatives, and the tests' oracle.
     int finite_difference_jacobian(double t, const double* y, double* dfdy, double* dfdt);
     /// Evaluations of rhs, including those a finite-difference Jacobian makes.

@@ -1,15 +1,16 @@
 // Forward sensitivities integrated beside the state (sensitivity.hpp).
 #include "simulation/sensitivity.hpp"
 
+#include <gsl/gsl_errno.h>
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <gsl/gsl_errno.h>
-#include <stdexcept>
-
 #include <hubbeam/make_model.hpp>
 #include <hubbeam/simulate.hpp>
+#include <stdexcept>
+
 #include "models/model_operations.hpp"
 
 namespace hubbeam {
@@ -33,9 +34,9 @@ struct SensitivitySystem::Parameter {
 struct SensitivitySystem::Work {
     using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
     RowMatrix J, M, dM, other;
-    Eigen::MatrixXd R;                // the forcing r_j of each parameter, a column each (nq x count)
-    std::vector<char> forced;         // whether parameter j has a forcing at this state (a saturated gain has none)
-    std::vector<double> work_rates;   // the hub's work's rate's derivative by gain j
+    Eigen::MatrixXd R;               // the forcing r_j of each parameter, a column each (nq x count)
+    std::vector<char> forced;        // whether parameter j has a forcing at this state (a saturated gain has none)
+    std::vector<double> work_rates;  // the hub's work's rate's derivative by gain j
     Eigen::VectorXd dfdt, dQ, other_Q, y_plus, y_minus, f_plus, f_minus;
     Eigen::PartialPivLU<Eigen::MatrixXd> lu;
     // The physical parameters' derivatives of M and Q at the right-hand side's state, from one call of the model's
@@ -57,13 +58,15 @@ std::size_t gain_index(const std::string& name)
 
 SensitivitySystem::SensitivitySystem(const Model& model, const Scene& scene)
     : FirstOrderSystem(model, scene.motion, scene.axial, scene.controller(), &scene.parameters, scene.wants({"ki"})),
-      model_(model), scene_(scene),
+      model_(model),
+      scene_(scene),
       controlled_(scene.solver.sensitivity_error_control == SensitivityErrorControl::on),
       work_(std::make_unique<Work>())
 {
     if (scene.control && scene.control->law)
-        throw std::invalid_argument("--sensitivities: expected a scene whose torque is its [control]'s law or its "
-                                    "motion, got a torque law given as code (its derivatives are unknown)");
+        throw std::invalid_argument(
+            "--sensitivities: expected a scene whose torque is its [control]'s law or its "
+            "motion, got a torque law given as code (its derivatives are unknown)");
     if (scene.axial != Axial::dynamic)
         throw std::invalid_argument("--sensitivities: expected model.axial \"dynamic\", got \"quasi-static\"");
     const std::vector<double> packed = scene.parameters.packed();
@@ -94,8 +97,7 @@ SensitivitySystem::SensitivitySystem(const Model& model, const Scene& scene)
                 value(up, p->param) += p->h;
                 std::unique_ptr<Model> model_down = make_model(model.key(), down, scene.source);
                 std::unique_ptr<Model> model_up = make_model(model.key(), up, scene.source);
-                if (damped)
-                    p->dC = (damping_matrix(*model_up, up) - damping_matrix(*model_down, down)) / (2.0 * p->h);
+                if (damped) p->dC = (damping_matrix(*model_up, up) - damping_matrix(*model_down, down)) / (2.0 * p->h);
                 if (!generated) {
                     p->down = std::move(model_down);
                     p->up = std::move(model_up);
@@ -127,7 +129,10 @@ SensitivitySystem::SensitivitySystem(const Model& model, const Scene& scene)
 
 SensitivitySystem::~SensitivitySystem() = default;
 
-double SensitivitySystem::scale(int j) const { return parameters_[static_cast<std::size_t>(j)]->scale; }
+double SensitivitySystem::scale(int j) const
+{
+    return parameters_[static_cast<std::size_t>(j)]->scale;
+}
 
 bool SensitivitySystem::forcing(int j, const double* y, const double* qdd_at, const HubInput& u,
                                 const HubInput& reference, double* r_at, double& work_rate) const
@@ -190,11 +195,11 @@ int SensitivitySystem::product_by_differences(double t, const double* y, int j, 
     return GSL_SUCCESS;
 }
 
-int SensitivitySystem::rhs(double t, const double* y, double* dydt)
+int SensitivitySystem::state_and_forcings(double t, const double* y, double* dydt)
 {
     if (const int s = FirstOrderSystem::rhs(t, y, dydt); s != GSL_SUCCESS) return s;
     Work& w = *work_;
-    const int n = state_size(), nq = model_.nq(), k = count();
+    const int nq = model_.nq(), k = count();
     // The model's input at this state, as the state's own equations had it.
     const HubInput reference = scene_.motion.at(t);
     const HubInput u = input_at(t, y);
@@ -203,29 +208,18 @@ int SensitivitySystem::rhs(double t, const double* y, double* dydt)
         d->derivatives_p(w.derived.data(), static_cast<int>(w.derived.size()), nq, u, y, y + nq, w.dMs.data(),
                          w.dQs.data());
     for (int j = 0; j < k; ++j)
-        w.forced[static_cast<std::size_t>(j)] = forcing(j, y, dydt + nq, u, reference, w.R.col(j).data(),
-                                                        w.work_rates[static_cast<std::size_t>(j)]);
-    // J sigma_j: exact products from one linearization of the forces, with the forcing's solves, where the model
-    // has derivative kernels (jacobian_product); else by the Jacobian when forming it costs less than two
-    // evaluations of f per parameter, or by central differences of f along sigma_j (as CVODES does by default),
-    // accurate to about 1e-10 of f: far below the tolerances.
-    if (has_exact_jacobian()) {
+        w.forced[static_cast<std::size_t>(j)] =
+            forcing(j, y, dydt + nq, u, reference, w.R.col(j).data(), w.work_rates[static_cast<std::size_t>(j)]);
+    if (has_exact_jacobian())
         for (int j = 0; j < k; ++j) w.R.col(j) *= w.forced[static_cast<std::size_t>(j)] ? scale(j) : 0.0;
-        if (const int s = jacobian_product(t, y, k, y + n, w.R.data(), dydt + n); s != GSL_SUCCESS) return s;
-    } else {
-        const bool formed = 2 * k >= n;
-        if (formed)
-            if (const int s = FirstOrderSystem::jacobian(t, y, w.J.data(), w.dfdt.data()); s != GSL_SUCCESS) return s;
-        model_.mass(u, y, w.M.data());
-        w.lu.compute(w.M);
-        for (int j = 0; j < k; ++j) {
-            Eigen::Map<Eigen::VectorXd> out(dydt + n * (1 + j), n);
-            if (formed) out.noalias() = w.J * Eigen::Map<const Eigen::VectorXd>(y + n * (1 + j), n);
-            else if (const int s = product_by_differences(t, y, j, out.data()); s != GSL_SUCCESS) return s;
-            if (w.forced[static_cast<std::size_t>(j)]) out.segment(nq, nq) += scale(j) * w.lu.solve(w.R.col(j));
-        }
-    }
-    for (int j = 0; j < k; ++j) {
+    return GSL_SUCCESS;
+}
+
+void SensitivitySystem::add_energy_forcings(const double* y, double* dydt) const
+{
+    const Work& w = *work_;
+    const int n = state_size(), nq = model_.nq();
+    for (int j = 0; j < count(); ++j) {
         const Parameter& p = *parameters_[static_cast<std::size_t>(j)];
         double* out = dydt + n * (1 + j);
         if (!w.forced[static_cast<std::size_t>(j)]) continue;
@@ -236,6 +230,53 @@ int SensitivitySystem::rhs(double t, const double* y, double* dydt)
             out[dissipated_index()] += p.scale * rates.dot(p.dC * rates);
         }
     }
+}
+
+int SensitivitySystem::rhs(double t, const double* y, double* dydt)
+{
+    if (const int s = state_and_forcings(t, y, dydt); s != GSL_SUCCESS) return s;
+    Work& w = *work_;
+    const int n = state_size(), nq = model_.nq(), k = count();
+    // J sigma_j: exact products from one linearization of the forces, with the forcing's solves, where the model
+    // has derivative kernels (jacobian_product); else by the Jacobian when forming it costs less than two
+    // evaluations of f per parameter, or by central differences of f along sigma_j (as CVODES does by default),
+    // accurate to about 1e-10 of f: far below the tolerances.
+    if (has_exact_jacobian()) {
+        if (const int s = jacobian_product(t, y, k, y + n, w.R.data(), dydt + n); s != GSL_SUCCESS) return s;
+    } else {
+        const bool formed = 2 * k >= n;
+        if (formed)
+            if (const int s = FirstOrderSystem::jacobian(t, y, w.J.data(), w.dfdt.data()); s != GSL_SUCCESS) return s;
+        model_.mass(input_at(t, y), y, w.M.data());
+        w.lu.compute(w.M);
+        for (int j = 0; j < k; ++j) {
+            Eigen::Map<Eigen::VectorXd> out(dydt + n * (1 + j), n);
+            if (formed)
+                out.noalias() = w.J * Eigen::Map<const Eigen::VectorXd>(y + n * (1 + j), n);
+            else if (const int s = product_by_differences(t, y, j, out.data()); s != GSL_SUCCESS)
+                return s;
+            if (w.forced[static_cast<std::size_t>(j)]) out.segment(nq, nq) += scale(j) * w.lu.solve(w.R.col(j));
+        }
+    }
+    add_energy_forcings(y, dydt);
+    for (int i = 0; i < size(); ++i)
+        if (!std::isfinite(dydt[i])) return GSL_EBADFUNC;
+    return GSL_SUCCESS;
+}
+
+int SensitivitySystem::blocks_forcing(double t, const double* y, double* dydt)
+{
+    if (!has_exact_jacobian()) return FirstOrderSystem::blocks_forcing(t, y, dydt);
+    if (const int s = state_and_forcings(t, y, dydt); s != GSL_SUCCESS) return s;
+    Work& w = *work_;
+    const int n = state_size(), nq = model_.nq(), k = count();
+    if (const int s = mass_solve(t, y, k, w.R.data()); s != GSL_SUCCESS) return s;
+    for (int j = 0; j < k; ++j) {
+        double* out = dydt + n * (1 + j);
+        std::fill_n(out, n, 0.0);
+        std::copy_n(w.R.col(j).data(), nq, out + nq);
+    }
+    add_energy_forcings(y, dydt);
     for (int i = 0; i < size(); ++i)
         if (!std::isfinite(dydt[i])) return GSL_EBADFUNC;
     return GSL_SUCCESS;
@@ -276,7 +317,10 @@ int SensitivitySystem::jacobian(double t, const double* y, double* dfdy, double*
 namespace {
 
 /// A tip's displacements in the order of the outputs: u_y, u_x1, u_x, u_z, phi.
-std::array<double, 5> tip_values(const Tip& t) { return {t.uy, t.ux1, t.ux, t.uz, t.phi}; }
+std::array<double, 5> tip_values(const Tip& t)
+{
+    return {t.uy, t.ux1, t.ux, t.uz, t.phi};
+}
 
 }  // namespace
 

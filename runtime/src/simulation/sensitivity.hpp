@@ -3,11 +3,11 @@
 // (docs/sensitivities.md).
 #pragma once
 
+#include <hubbeam/config.hpp>
 #include <memory>
 #include <string>
 #include <vector>
 
-#include <hubbeam/config.hpp>
 #include "dynamics/integrate.hpp"
 
 namespace hubbeam {
@@ -30,6 +30,8 @@ public:
     int controlled_size() const override { return controlled_ ? size() : state_size(); }
     int rhs(double t, const double* y, double* dydt) override;
     int jacobian(double t, const double* y, double* dfdy, double* dfdt) override;
+    /// With derivative kernels: the forcings' solves with M alone, no linearization of the forces.
+    int blocks_forcing(double t, const double* y, double* dydt) override;
 
     int count() const { return static_cast<int>(parameters_.size()); }
     /// The size of parameter j (|p_j|, or 1 where it is 0): a derivative by it times this is a change of the output.
@@ -44,6 +46,12 @@ private:
     /// the hub's work's rate by a gain, scaled.
     bool forcing(int j, const double* y, const double* qdd, const HubInput& u, const HubInput& reference, double* r,
                  double& work_rate) const;
+    /// The state's rates into dydt, and each parameter's forcing before M^-1 into the Work's R (scaled, and zero
+    /// where it has none, with derivative kernels; unscaled otherwise), with the hub's work's rates. GSL status.
+    int state_and_forcings(double t, const double* y, double* dydt);
+    /// The forcings' terms outside M^-1 (the hub's work by a gain, the dissipated energy by C's parameters) added to
+    /// each block's rates in dydt.
+    void add_energy_forcings(const double* y, double* dydt) const;
     /// J sigma_j by central differences of the state's right-hand side along sigma_j, into out.
     int product_by_differences(double t, const double* y, int j, double* out);
     struct Parameter;
