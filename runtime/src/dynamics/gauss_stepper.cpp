@@ -2,10 +2,6 @@
 // undamped stiff modes it does not resolve) with simplified Newton iterations that reuse the Jacobian and the factored
 // Newton matrices across steps (Hairer & Wanner, Solving ODEs II, section IV.8, the design of RADAU5), and its error
 // from step doubling, as GSL's rk4imp, which factors and forms its Jacobian at every step.
-#include <gsl/gsl_errno.h>
-
-#include <Eigen/Dense>
-#include <Eigen/SparseCore>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -13,6 +9,10 @@
 #include <memory>
 #include <optional>
 #include <vector>
+
+#include <Eigen/Dense>
+#include <Eigen/SparseCore>
+#include <gsl/gsl_errno.h>
 
 #include "dynamics/band_lu.hpp"
 #include "dynamics/stepper.hpp"

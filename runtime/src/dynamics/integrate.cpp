@@ -2,20 +2,20 @@
 // finite-difference Jacobians, and GSL glue.
 #include "dynamics/integrate.hpp"
 
-#include <gsl/gsl_errno.h>
+#include "dynamics/acceleration.hpp"
+#include "dynamics/mass_solver.hpp"
+#include "models/model_operations.hpp"
+#include "terms.hpp"
 
-#include <Eigen/Cholesky>
-#include <Eigen/Dense>
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
-#include "dynamics/acceleration.hpp"
-#include "dynamics/mass_solver.hpp"
-#include "models/model_operations.hpp"
-#include "terms.hpp"
+#include <Eigen/Cholesky>
+#include <Eigen/Dense>
+#include <gsl/gsl_errno.h>
 
 namespace hubbeam {
 

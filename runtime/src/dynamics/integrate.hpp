@@ -2,17 +2,18 @@
 // linear algebra chosen from the model's structure (mass_solver.hpp).
 #pragma once
 
-#include <gsl/gsl_odeiv2.h>
-
 #include <array>
-#include <hubbeam/config.hpp>
-#include <hubbeam/model.hpp>
-#include <hubbeam/motion.hpp>
 #include <limits>
 #include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include <gsl/gsl_odeiv2.h>
+
+#include <hubbeam/config.hpp>
+#include <hubbeam/model.hpp>
+#include <hubbeam/motion.hpp>
 
 namespace hubbeam {
 

@@ -1,16 +1,15 @@
 // Forward sensitivities integrated beside the state (sensitivity.hpp).
 #include "simulation/sensitivity.hpp"
 
-#include <gsl/gsl_errno.h>
-
 #include <Eigen/Dense>
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <hubbeam/make_model.hpp>
-#include <hubbeam/simulate.hpp>
+#include <gsl/gsl_errno.h>
 #include <stdexcept>
 
+#include <hubbeam/make_model.hpp>
+#include <hubbeam/simulate.hpp>
 #include "models/model_operations.hpp"
 
 namespace hubbeam {

@@ -3,11 +3,11 @@
 // (docs/sensitivities.md).
 #pragma once
 
-#include <hubbeam/config.hpp>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include <hubbeam/config.hpp>
 #include "dynamics/integrate.hpp"
 
 namespace hubbeam {
