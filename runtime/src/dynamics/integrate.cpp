@@ -143,6 +143,10 @@ struct FirstOrderSystem::Work {
     RowMatrix auxiliary_rows;
     std::vector<double> auxiliary_dfdt;
     Eigen::MatrixXd directions;
+    // exact_jacobian's lower blocks M^-1 (dQ/dq - (dM/dq) qdd) and M^-1 dQ/dqd, and M^-1 dQ/dtau, M^-1 dQ/dt and
+    // dQ/dtheta.
+    Eigen::MatrixXd lower_q, lower_qd;
+    Eigen::VectorXd lower_tau, lower_t, dQdtheta;
     // A control's torque derivatives, and their products with jacobian_product's vectors: kept, for a right-hand
     // side's worth of work must not allocate.
     TorqueDerivatives dtau;
@@ -378,11 +382,15 @@ int FirstOrderSystem::exact_jacobian(const ExactJacobian& exact, double t, const
     const double* q = y;
     const double* qd = y + n_;
     if (const int s = force_linearization(exact, u, y); s != GSL_SUCCESS) return s;
-    Eigen::MatrixXd lower_q = w.dQdq, lower_qd = w.dQdqd;  // column-major copies, solved in place
+    // In the Work, so that a Jacobian allocates nothing (gauss4 forms two per stage solve for sensitivities).
+    Eigen::MatrixXd &lower_q = w.lower_q, &lower_qd = w.lower_qd;  // column-major copies, solved in place
+    lower_q = w.dQdq;
+    lower_qd = w.dQdqd;
     w.solver->solve(lower_q.data(), n_);
     w.solver->solve(lower_qd.data(), n_);
     const TorqueDerivatives& dtau = torque_derivatives(control_, saturated_, w.tip_row, reference, n_, w.dtau);
-    Eigen::VectorXd b = Eigen::VectorXd::Zero(n_);  // M^-1 dQ/dtau
+    Eigen::VectorXd& b = w.lower_tau;  // M^-1 dQ/dtau
+    b.setZero(n_);
     if (control_ != nullptr) {
         b = w.dQdu.col(static_cast<Eigen::Index>(index(DriveValue::tau)));
         w.solver->solve(b.data());
@@ -391,12 +399,13 @@ int FirstOrderSystem::exact_jacobian(const ExactJacobian& exact, double t, const
     }
     std::array<double, drive_value_count> du = motion_.rate(t).packed();
     if (control_ != nullptr) du = {dtau.dt, 0.0, 0.0};
-    const Eigen::VectorXd dudt = Eigen::Map<const Eigen::VectorXd>(du.data(), static_cast<Eigen::Index>(du.size()));
-    Eigen::VectorXd lower_t = w.dQdu * dudt;
+    const Eigen::Map<const Eigen::VectorXd> dudt(du.data(), static_cast<Eigen::Index>(du.size()));
+    Eigen::VectorXd& lower_t = w.lower_t;
+    lower_t.noalias() = w.dQdu * dudt;
     if (angle_dependent_potential(model_.key())) {
-        Eigen::VectorXd dQdtheta(n_);  // the angle is an input too: dQ/dtheta theta_dot
-        model_.forces_theta(u, q, qd, dQdtheta.data());
-        lower_t += u.theta_dot * dQdtheta;
+        w.dQdtheta.resize(n_);  // the angle is an input too: dQ/dtheta theta_dot
+        model_.forces_theta(u, q, qd, w.dQdtheta.data());
+        lower_t += u.theta_dot * w.dQdtheta;
     }
     w.solver->solve(lower_t.data());
     const int m = state_size();
