@@ -4,6 +4,8 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <memory>
 #include <hubbeam/make_model.hpp>
 #include <hubbeam/scene.hpp>
 #include <hubbeam/simulate.hpp>
@@ -218,6 +220,31 @@ TEST_CASE("cvode's staggered sensitivities start again from the state a restart 
     const auto again = step_from_start();
     CHECK(again.first == first.first);
     CHECK(again.second == first.second);
+}
+
+TEST_CASE("a gain saturated at the first right-hand side has no forcing whatever the memory held", "[sensitivities]")
+{
+    // The controlled hub's torque starts at its limit, so the gains' forcings are zero there and their columns of
+    // the forcings are not written. Scaled by zero instead of zeroed, a column that held a NaN (the heap's bytes at
+    // the first right-hand side) made the rates NaN: a notebook's run stopped at t = 0, "non-finite", now and then.
+    // Blocks of the column's size filled with NaN are freed just before the system is made, so that the allocator
+    // hands one of them to the forcings.
+    const std::string path = std::string(HUBBEAM_SOURCE_DIR) + "/cases/controlled_step.toml";
+    const Scene scene = load_scene(path, {{"output.sensitivities", "kp,kd"}});
+    const auto model = make_model(scene.key(), scene.parameters, scene.source);
+    const std::size_t column_size = static_cast<std::size_t>(model->nq()) * 2;
+    {
+        std::vector<std::unique_ptr<double[]>> poisoned;
+        for (int i = 0; i < 64; ++i) {
+            poisoned.emplace_back(new double[column_size]);
+            std::fill_n(poisoned.back().get(), column_size, std::numeric_limits<double>::quiet_NaN());
+        }
+    }
+    SensitivitySystem system(*model, scene);
+    std::vector<double> y(static_cast<std::size_t>(system.size()), 0.0), f(y.size());
+    REQUIRE(system.saturated(0.0, y.data()));
+    REQUIRE(system.rhs(0.0, y.data(), f.data()) == 0);
+    for (const double v : f) CHECK(std::isfinite(v));
 }
 
 TEST_CASE("each row's derivative by a parameter is the difference of the state's equations at moved parameters",

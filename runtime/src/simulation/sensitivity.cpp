@@ -209,8 +209,13 @@ int SensitivitySystem::state_and_forcings(double t, const double* y, double* dyd
     for (int j = 0; j < k; ++j)
         w.forced[static_cast<std::size_t>(j)] =
             forcing(j, y, dydt + nq, u, reference, w.R.col(j).data(), w.work_rates[static_cast<std::size_t>(j)]);
+    // A gain's forcing writes nothing while the torque saturates: its column is zeroed, not scaled by zero, for what
+    // it held may be anything (at the first right-hand side the heap's bytes: NaN times zero stopped a run at t = 0).
     if (has_exact_jacobian())
-        for (int j = 0; j < k; ++j) w.R.col(j) *= w.forced[static_cast<std::size_t>(j)] ? scale(j) : 0.0;
+        for (int j = 0; j < k; ++j) {
+            if (w.forced[static_cast<std::size_t>(j)]) w.R.col(j) *= scale(j);
+            else w.R.col(j).setZero();
+        }
     return GSL_SUCCESS;
 }
 
