@@ -55,8 +55,8 @@ struct Newton {
 /// product, where its LU's two triangular solves of dynamic size cost several times the flops.
 constexpr int small_inverse_size = 64;
 
-/// The larger of a running maximum and e, and NaN from the first NaN on: std::max drops a NaN, so that a Newton
-/// correction of NaNs would pass as converged and a step of NaNs pass the error test.
+/// The larger of a running maximum and e, and NaN from the first NaN on: std::max drops a NaN, so that a step of
+/// NaNs would pass the error test.
 double max_keeping_nan(double maximum, double e)
 {
     return e > maximum || std::isnan(e) ? e : maximum;
