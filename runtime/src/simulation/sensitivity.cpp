@@ -219,7 +219,7 @@ int SensitivitySystem::state_and_forcings(double t, const double* y, double* dyd
     return GSL_SUCCESS;
 }
 
-void SensitivitySystem::add_energy_forcings(const double* y, double* dydt) const
+int SensitivitySystem::finish_rates(const double* y, double* dydt) const
 {
     const Work& w = *work_;
     const int n = state_size(), nq = model_.nq();
@@ -234,6 +234,9 @@ void SensitivitySystem::add_energy_forcings(const double* y, double* dydt) const
             out[dissipated_index()] += p.scale * rates.dot(p.dC * rates);
         }
     }
+    for (int i = 0; i < size(); ++i)
+        if (!std::isfinite(dydt[i])) return GSL_EBADFUNC;
+    return GSL_SUCCESS;
 }
 
 int SensitivitySystem::rhs(double t, const double* y, double* dydt)
@@ -262,10 +265,7 @@ int SensitivitySystem::rhs(double t, const double* y, double* dydt)
             if (w.forced[static_cast<std::size_t>(j)]) out.segment(nq, nq) += scale(j) * w.lu.solve(w.R.col(j));
         }
     }
-    add_energy_forcings(y, dydt);
-    for (int i = 0; i < size(); ++i)
-        if (!std::isfinite(dydt[i])) return GSL_EBADFUNC;
-    return GSL_SUCCESS;
+    return finish_rates(y, dydt);
 }
 
 int SensitivitySystem::blocks_forcing(double t, const double* y, double* dydt)
@@ -280,10 +280,7 @@ int SensitivitySystem::blocks_forcing(double t, const double* y, double* dydt)
         std::fill_n(out, n, 0.0);
         std::copy_n(w.R.col(j).data(), nq, out + nq);
     }
-    add_energy_forcings(y, dydt);
-    for (int i = 0; i < size(); ++i)
-        if (!std::isfinite(dydt[i])) return GSL_EBADFUNC;
-    return GSL_SUCCESS;
+    return finish_rates(y, dydt);
 }
 
 int SensitivitySystem::jacobian(double t, const double* y, double* dfdy, double* dfdt)

@@ -50,8 +50,8 @@ private:
     /// where it has none, with derivative kernels; unscaled otherwise), with the hub's work's rates. GSL status.
     int state_and_forcings(double t, const double* y, double* dydt);
     /// The forcings' terms outside M^-1 (the hub's work by a gain, the dissipated energy by C's parameters) added to
-    /// each block's rates in dydt.
-    void add_energy_forcings(const double* y, double* dydt) const;
+    /// each block's rates in dydt; GSL_EBADFUNC where any rate of dydt is not finite.
+    int finish_rates(const double* y, double* dydt) const;
     /// J sigma_j by central differences of the state's right-hand side along sigma_j, into out.
     int product_by_differences(double t, const double* y, int j, double* out);
     struct Parameter;
