@@ -1806,436 +1806,393 @@ void fem_nx32_ny32_prescribed_first_mass(const double* c, const double* u, const
 /* forces:(c[332],u[3],q[64],qd[64])->(Q[64]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
 void fem_nx32_ny32_prescribed_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
-    // Table form (1146 terms, 259 monomials): m[0] = 1, m[k + 1] = m[chain[k][0]] * v[chain[k][1]];
-    // out[written[i]] = sum over terms t = first[i] .. first[i + 1] - 1 of c[k] * m[terms[2t + 1]], k = terms[2t],
-    // negated for k < 0 (entry -k - 1).
-    static const int chain[][2] = {
-        {0, 0},
-        {0, 1},
-        {0, 2},
-        {0, 3},
-        {0, 4},
-        {0, 5},
-        {0, 6},
-        {0, 7},
-        {0, 8},
-        {0, 9},
-        {0, 10},
-        {0, 11},
-        {0, 12},
-        {0, 13},
-        {0, 14},
-        {0, 15},
-        {0, 16},
-        {0, 17},
-        {0, 18},
-        {0, 19},
-        {0, 20},
-        {0, 21},
-        {0, 22},
-        {0, 23},
-        {0, 24},
-        {0, 25},
-        {0, 26},
-        {0, 27},
-        {0, 28},
-        {0, 29},
-        {0, 30},
-        {0, 31},
-        {0, 32},
-        {0, 33},
-        {0, 34},
-        {0, 35},
-        {0, 36},
-        {0, 37},
-        {0, 38},
-        {0, 39},
-        {0, 40},
-        {0, 41},
-        {0, 42},
-        {0, 43},
-        {0, 44},
-        {0, 45},
-        {0, 46},
-        {0, 47},
-        {0, 48},
-        {0, 49},
-        {0, 50},
-        {0, 51},
-        {0, 52},
-        {0, 53},
-        {0, 54},
-        {0, 55},
-        {0, 56},
-        {0, 57},
-        {0, 58},
-        {0, 59},
-        {0, 60},
-        {0, 61},
-        {0, 62},
-        {0, 63},
-        {0, 64},
-        {0, 65},
-        {1, 0},
-        {1, 66},
-        {1, 67},
-        {1, 68},
-        {1, 69},
-        {1, 70},
-        {1, 71},
-        {1, 72},
-        {1, 73},
-        {1, 74},
-        {1, 75},
-        {1, 76},
-        {1, 77},
-        {1, 78},
-        {1, 79},
-        {1, 80},
-        {1, 81},
-        {1, 82},
-        {1, 83},
-        {1, 84},
-        {1, 85},
-        {1, 86},
-        {1, 87},
-        {1, 88},
-        {1, 89},
-        {1, 90},
-        {1, 91},
-        {1, 92},
-        {1, 93},
-        {1, 94},
-        {1, 95},
-        {1, 96},
-        {1, 97},
-        {1, 98},
-        {1, 99},
-        {1, 100},
-        {1, 101},
-        {1, 102},
-        {1, 103},
-        {1, 104},
-        {1, 105},
-        {1, 106},
-        {1, 107},
-        {1, 108},
-        {1, 109},
-        {1, 110},
-        {1, 111},
-        {1, 112},
-        {1, 113},
-        {1, 114},
-        {1, 115},
-        {1, 116},
-        {1, 117},
-        {1, 118},
-        {1, 119},
-        {1, 120},
-        {1, 121},
-        {1, 122},
-        {1, 123},
-        {1, 124},
-        {1, 125},
-        {1, 126},
-        {1, 127},
-        {1, 128},
-        {1, 129},
-        {2, 2},
-        {2, 3},
-        {2, 4},
-        {2, 5},
-        {2, 6},
-        {2, 7},
-        {2, 8},
-        {2, 9},
-        {2, 10},
-        {2, 11},
-        {2, 12},
-        {2, 13},
-        {2, 14},
-        {2, 15},
-        {2, 16},
-        {2, 17},
-        {2, 18},
-        {2, 19},
-        {2, 20},
-        {2, 21},
-        {2, 22},
-        {2, 23},
-        {2, 24},
-        {2, 25},
-        {2, 26},
-        {2, 27},
-        {2, 28},
-        {2, 29},
-        {2, 30},
-        {2, 31},
-        {2, 32},
-        {2, 33},
-        {2, 34},
-        {2, 35},
-        {2, 36},
-        {2, 37},
-        {2, 38},
-        {2, 39},
-        {2, 40},
-        {2, 41},
-        {2, 42},
-        {2, 43},
-        {2, 44},
-        {2, 45},
-        {2, 46},
-        {2, 47},
-        {2, 48},
-        {2, 49},
-        {2, 50},
-        {2, 51},
-        {2, 52},
-        {2, 53},
-        {2, 54},
-        {2, 55},
-        {2, 56},
-        {2, 57},
-        {2, 58},
-        {2, 59},
-        {2, 60},
-        {2, 61},
-        {2, 62},
-        {2, 63},
-        {2, 64},
-        {2, 65},
-        {67, 2},
-        {67, 3},
-        {67, 4},
-        {67, 5},
-        {67, 6},
-        {67, 7},
-        {67, 8},
-        {67, 9},
-        {67, 10},
-        {67, 11},
-        {67, 12},
-        {67, 13},
-        {67, 14},
-        {67, 15},
-        {67, 16},
-        {67, 17},
-        {67, 18},
-        {67, 19},
-        {67, 20},
-        {67, 21},
-        {67, 22},
-        {67, 23},
-        {67, 24},
-        {67, 25},
-        {67, 26},
-        {67, 27},
-        {67, 28},
-        {67, 29},
-        {67, 30},
-        {67, 31},
-        {67, 32},
-        {67, 33},
-        {67, 34},
-        {67, 35},
-        {67, 36},
-        {67, 37},
-        {67, 38},
-        {67, 39},
-        {67, 40},
-        {67, 41},
-        {67, 42},
-        {67, 43},
-        {67, 44},
-        {67, 45},
-        {67, 46},
-        {67, 47},
-        {67, 48},
-        {67, 49},
-        {67, 50},
-        {67, 51},
-        {67, 52},
-        {67, 53},
-        {67, 54},
-        {67, 55},
-        {67, 56},
-        {67, 57},
-        {67, 58},
-        {67, 59},
-        {67, 60},
-        {67, 61},
-        {67, 62},
-        {67, 63},
-        {67, 64},
-        {67, 65},
-    };
-    const double v[] = {u[1], u[2], q[0], q[1], q[2], q[3], q[4], q[5], q[6], q[7], q[8], q[9], q[10], q[11], q[12], q[13], q[14], q[15], q[16], q[17], q[18], q[19], q[20], q[21], q[22], q[23], q[24], q[25], q[26], q[27], q[28], q[29], q[30], q[31], q[32], q[33], q[34], q[35], q[36], q[37], q[38], q[39], q[40], q[41], q[42], q[43], q[44], q[45], q[46], q[47], q[48], q[49], q[50], q[51], q[52], q[53], q[54], q[55], q[56], q[57], q[58], q[59], q[60], q[61], q[62], q[63], qd[0], qd[1], qd[2], qd[3], qd[4], qd[5], qd[6], qd[7], qd[8], qd[9], qd[10], qd[11], qd[12], qd[13], qd[14], qd[15], qd[16], qd[17], qd[18], qd[19], qd[20], qd[21], qd[22], qd[23], qd[24], qd[25], qd[26], qd[27], qd[28], qd[29], qd[30], qd[31], qd[32], qd[33], qd[34], qd[35], qd[36], qd[37], qd[38], qd[39], qd[40], qd[41], qd[42], qd[43], qd[44], qd[45], qd[46], qd[47], qd[48], qd[49], qd[50], qd[51], qd[52], qd[53], qd[54], qd[55], qd[56], qd[57], qd[58], qd[59], qd[60], qd[61], qd[62], qd[63]};
-    double m[260];
-    m[0] = 1.0;
-    for (int k = 0; k < 259; ++k) m[k + 1] = m[chain[k][0]] * v[chain[k][1]];
-    static const int terms[] = {
-        -12, 3, 12, 4, 13, 67, 14, 100, -16, 101, 16, 164, -18, 165, 0, 196,
-        1, 197, 12, 3, -12, 4, 12, 5, 18, 67, 19, 100, 20, 102, -22, 103,
-        22, 164, 23, 166, -25, 167, 1, 196, 0, 197, 1, 198, 12, 4, -12, 5,
-        12, 6, 25, 67, 14, 100, 15, 101, 14, 102, -16, 103, 16, 164, 17, 165,
-        16, 166, -18, 167, 1, 197, 0, 198, 1, 199, 12, 5, -12, 6, 12, 7,
-        26, 67, 20, 100, 21, 101, 19, 102, 20, 104, -22, 105, 23, 164, 24, 165,
-        22, 166, 23, 168, -25, 169, 1, 198, 0, 199, 1, 200, 12, 6, -12, 7,
-        12, 8, 27, 67, 14, 102, 15, 103, 14, 104, -16, 105, 16, 166, 17, 167,
-        16, 168, -18, 169, 1, 199, 0, 200, 1, 201, 12, 7, -12, 8, 12, 9,
-        28, 67, 20, 102, 21, 103, 19, 104, 20, 106, -22, 107, 23, 166, 24, 167,
-        22, 168, 23, 170, -25, 171, 1, 200, 0, 201, 1, 202, 12, 8, -12, 9,
-        12, 10, 29, 67, 14, 104, 15, 105, 14, 106, -16, 107, 16, 168, 17, 169,
-        16, 170, -18, 171, 1, 201, 0, 202, 1, 203, 12, 9, -12, 10, 12, 11,
-        30, 67, 20, 104, 21, 105, 19, 106, 20, 108, -22, 109, 23, 168, 24, 169,
-        22, 170, 23, 172, -25, 173, 1, 202, 0, 203, 1, 204, 12, 10, -12, 11,
-        12, 12, 31, 67, 14, 106, 15, 107, 14, 108, -16, 109, 16, 170, 17, 171,
-        16, 172, -18, 173, 1, 203, 0, 204, 1, 205, 12, 11, -12, 12, 12, 13,
-        32, 67, 20, 106, 21, 107, 19, 108, 20, 110, -22, 111, 23, 170, 24, 171,
-        22, 172, 23, 174, -25, 175, 1, 204, 0, 205, 1, 206, 12, 12, -12, 13,
-        12, 14, 33, 67, 14, 108, 15, 109, 14, 110, -16, 111, 16, 172, 17, 173,
-        16, 174, -18, 175, 1, 205, 0, 206, 1, 207, 12, 13, -12, 14, 12, 15,
-        34, 67, 20, 108, 21, 109, 19, 110, 20, 112, -22, 113, 23, 172, 24, 173,
-        22, 174, 23, 176, -25, 177, 1, 206, 0, 207, 1, 208, 12, 14, -12, 15,
-        12, 16, 35, 67, 14, 110, 15, 111, 14, 112, -16, 113, 16, 174, 17, 175,
-        16, 176, -18, 177, 1, 207, 0, 208, 1, 209, 12, 15, -12, 16, 12, 17,
-        36, 67, 20, 110, 21, 111, 19, 112, 20, 114, -22, 115, 23, 174, 24, 175,
-        22, 176, 23, 178, -25, 179, 1, 208, 0, 209, 1, 210, 12, 16, -12, 17,
-        12, 18, 37, 67, 14, 112, 15, 113, 14, 114, -16, 115, 16, 176, 17, 177,
-        16, 178, -18, 179, 1, 209, 0, 210, 1, 211, 12, 17, -12, 18, 12, 19,
-        38, 67, 20, 112, 21, 113, 19, 114, 20, 116, -22, 117, 23, 176, 24, 177,
-        22, 178, 23, 180, -25, 181, 1, 210, 0, 211, 1, 212, 12, 18, -12, 19,
-        12, 20, 39, 67, 14, 114, 15, 115, 14, 116, -16, 117, 16, 178, 17, 179,
-        16, 180, -18, 181, 1, 211, 0, 212, 1, 213, 12, 19, -12, 20, 12, 21,
-        40, 67, 20, 114, 21, 115, 19, 116, 20, 118, -22, 119, 23, 178, 24, 179,
-        22, 180, 23, 182, -25, 183, 1, 212, 0, 213, 1, 214, 12, 20, -12, 21,
-        12, 22, 41, 67, 14, 116, 15, 117, 14, 118, -16, 119, 16, 180, 17, 181,
-        16, 182, -18, 183, 1, 213, 0, 214, 1, 215, 12, 21, -12, 22, 12, 23,
-        42, 67, 20, 116, 21, 117, 19, 118, 20, 120, -22, 121, 23, 180, 24, 181,
-        22, 182, 23, 184, -25, 185, 1, 214, 0, 215, 1, 216, 12, 22, -12, 23,
-        12, 24, 43, 67, 14, 118, 15, 119, 14, 120, -16, 121, 16, 182, 17, 183,
-        16, 184, -18, 185, 1, 215, 0, 216, 1, 217, 12, 23, -12, 24, 12, 25,
-        44, 67, 20, 118, 21, 119, 19, 120, 20, 122, -22, 123, 23, 182, 24, 183,
-        22, 184, 23, 186, -25, 187, 1, 216, 0, 217, 1, 218, 12, 24, -12, 25,
-        12, 26, 45, 67, 14, 120, 15, 121, 14, 122, -16, 123, 16, 184, 17, 185,
-        16, 186, -18, 187, 1, 217, 0, 218, 1, 219, 12, 25, -12, 26, 12, 27,
-        46, 67, 20, 120, 21, 121, 19, 122, 20, 124, -22, 125, 23, 184, 24, 185,
-        22, 186, 23, 188, -25, 189, 1, 218, 0, 219, 1, 220, 12, 26, -12, 27,
-        12, 28, 47, 67, 14, 122, 15, 123, 14, 124, -16, 125, 16, 186, 17, 187,
-        16, 188, -18, 189, 1, 219, 0, 220, 1, 221, 12, 27, -12, 28, 12, 29,
-        48, 67, 20, 122, 21, 123, 19, 124, 20, 126, -22, 127, 23, 186, 24, 187,
-        22, 188, 23, 190, -25, 191, 1, 220, 0, 221, 1, 222, 12, 28, -12, 29,
-        12, 30, 49, 67, 14, 124, 15, 125, 14, 126, -16, 127, 16, 188, 17, 189,
-        16, 190, -18, 191, 1, 221, 0, 222, 1, 223, 12, 29, -12, 30, 12, 31,
-        50, 67, 20, 124, 21, 125, 19, 126, 20, 128, -22, 129, 23, 188, 24, 189,
-        22, 190, 23, 192, -25, 193, 1, 222, 0, 223, 1, 224, 12, 30, -12, 31,
-        12, 32, 51, 67, 14, 126, 15, 127, 14, 128, -16, 129, 16, 190, 17, 191,
-        16, 192, -18, 193, 1, 223, 0, 224, 1, 225, 12, 31, -12, 32, 12, 33,
-        52, 67, 20, 126, 21, 127, 19, 128, 20, 130, -22, 131, 23, 190, 24, 191,
-        22, 192, 23, 194, -25, 195, 1, 224, 0, 225, 1, 226, 12, 32, -12, 33,
-        12, 34, 53, 67, 14, 128, 15, 129, 14, 130, -16, 131, 16, 192, 17, 193,
-        16, 194, -18, 195, 1, 225, 0, 226, 1, 227, 12, 33, -13, 34, 54, 67,
-        20, 128, 21, 129, 22, 130, -56, 131, 23, 192, 24, 193, 56, 194, -58, 195,
-        1, 226, 2, 227, -59, 2, -60, 35, 60, 37, -62, 38, -15, 68, -20, 69,
-        -15, 70, -21, 71, -17, 132, -23, 133, -17, 134, -24, 135, -63, 228, 63, 229,
-        64, 230, -66, 231, -67, 2, -68, 36, 61, 37, -69, 38, 15, 68, -16, 70,
-        -22, 71, 17, 132, -18, 134, -25, 135, 63, 228, -70, 229, 70, 230, 71, 231,
-        -73, 2, 60, 35, 61, 36, -60, 37, 60, 39, -62, 40, -21, 69, -15, 70,
-        -20, 71, -15, 72, -21, 73, -24, 133, -17, 134, -23, 135, -17, 136, -24, 137,
-        64, 228, 70, 229, -74, 230, 74, 231, 75, 232, -71, 233, -67, 2, -62, 35,
-        -69, 36, -68, 38, 61, 39, -69, 40, 21, 69, 15, 70, -16, 72, -22, 73,
-        24, 133, 17, 134, -18, 136, -25, 137, -66, 228, 71, 229, 74, 230, -77, 231,
-        77, 232, 78, 233, -80, 2, 60, 37, 61, 38, -60, 39, 60, 41, -62, 42,
-        -21, 71, -15, 72, -20, 73, -15, 74, -21, 75, -24, 135, -17, 136, -23, 137,
-        -17, 138, -24, 139, 75, 230, 77, 231, -81, 232, 81, 233, 82, 234, -78, 235,
-        -67, 2, -62, 37, -69, 38, -68, 40, 61, 41, -69, 42, 21, 71, 15, 72,
-        -16, 74, -22, 75, 24, 135, 17, 136, -18, 138, -25, 139, -71, 230, 78, 231,
-        81, 232, -84, 233, 84, 234, 85, 235, -87, 2, 60, 39, 61, 40, -60, 41,
-        60, 43, -62, 44, -21, 73, -15, 74, -20, 75, -15, 76, -21, 77, -24, 137,
-        -17, 138, -23, 139, -17, 140, -24, 141, 82, 232, 84, 233, -88, 234, 88, 235,
-        89, 236, -85, 237, -67, 2, -62, 39, -69, 40, -68, 42, 61, 43, -69, 44,
-        21, 73, 15, 74, -16, 76, -22, 77, 24, 137, 17, 138, -18, 140, -25, 141,
-        -78, 232, 85, 233, 88, 234, -91, 235, 91, 236, 92, 237, -94, 2, 60, 41,
-        61, 42, -60, 43, 60, 45, -62, 46, -21, 75, -15, 76, -20, 77, -15, 78,
-        -21, 79, -24, 139, -17, 140, -23, 141, -17, 142, -24, 143, 89, 234, 91, 235,
-        -95, 236, 95, 237, 96, 238, -92, 239, -67, 2, -62, 41, -69, 42, -68, 44,
-        61, 45, -69, 46, 21, 75, 15, 76, -16, 78, -22, 79, 24, 139, 17, 140,
-        -18, 142, -25, 143, -85, 234, 92, 235, 95, 236, -98, 237, 98, 238, 99, 239,
-        -101, 2, 60, 43, 61, 44, -60, 45, 60, 47, -62, 48, -21, 77, -15, 78,
-        -20, 79, -15, 80, -21, 81, -24, 141, -17, 142, -23, 143, -17, 144, -24, 145,
-        96, 236, 98, 237, -102, 238, 102, 239, 103, 240, -99, 241, -67, 2, -62, 43,
-        -69, 44, -68, 46, 61, 47, -69, 48, 21, 77, 15, 78, -16, 80, -22, 81,
-        24, 141, 17, 142, -18, 144, -25, 145, -92, 236, 99, 237, 102, 238, -105, 239,
-        105, 240, 106, 241, -108, 2, 60, 45, 61, 46, -60, 47, 60, 49, -62, 50,
-        -21, 79, -15, 80, -20, 81, -15, 82, -21, 83, -24, 143, -17, 144, -23, 145,
-        -17, 146, -24, 147, 103, 238, 105, 239, -109, 240, 109, 241, 110, 242, -106, 243,
-        -67, 2, -62, 45, -69, 46, -68, 48, 61, 49, -69, 50, 21, 79, 15, 80,
-        -16, 82, -22, 83, 24, 143, 17, 144, -18, 146, -25, 147, -99, 238, 106, 239,
-        109, 240, -112, 241, 112, 242, 113, 243, -115, 2, 60, 47, 61, 48, -60, 49,
-        60, 51, -62, 52, -21, 81, -15, 82, -20, 83, -15, 84, -21, 85, -24, 145,
-        -17, 146, -23, 147, -17, 148, -24, 149, 110, 240, 112, 241, -116, 242, 116, 243,
-        117, 244, -113, 245, -67, 2, -62, 47, -69, 48, -68, 50, 61, 51, -69, 52,
-        21, 81, 15, 82, -16, 84, -22, 85, 24, 145, 17, 146, -18, 148, -25, 149,
-        -106, 240, 113, 241, 116, 242, -119, 243, 119, 244, 120, 245, -122, 2, 60, 49,
-        61, 50, -60, 51, 60, 53, -62, 54, -21, 83, -15, 84, -20, 85, -15, 86,
-        -21, 87, -24, 147, -17, 148, -23, 149, -17, 150, -24, 151, 117, 242, 119, 243,
-        -123, 244, 123, 245, 124, 246, -120, 247, -67, 2, -62, 49, -69, 50, -68, 52,
-        61, 53, -69, 54, 21, 83, 15, 84, -16, 86, -22, 87, 24, 147, 17, 148,
-        -18, 150, -25, 151, -113, 242, 120, 243, 123, 244, -126, 245, 126, 246, 127, 247,
-        -129, 2, 60, 51, 61, 52, -60, 53, 60, 55, -62, 56, -21, 85, -15, 86,
-        -20, 87, -15, 88, -21, 89, -24, 149, -17, 150, -23, 151, -17, 152, -24, 153,
-        124, 244, 126, 245, -130, 246, 130, 247, 131, 248, -127, 249, -67, 2, -62, 51,
-        -69, 52, -68, 54, 61, 55, -69, 56, 21, 85, 15, 86, -16, 88, -22, 89,
-        24, 149, 17, 150, -18, 152, -25, 153, -120, 244, 127, 245, 130, 246, -133, 247,
-        133, 248, 134, 249, -136, 2, 60, 53, 61, 54, -60, 55, 60, 57, -62, 58,
-        -21, 87, -15, 88, -20, 89, -15, 90, -21, 91, -24, 151, -17, 152, -23, 153,
-        -17, 154, -24, 155, 131, 246, 133, 247, -137, 248, 137, 249, 138, 250, -134, 251,
-        -67, 2, -62, 53, -69, 54, -68, 56, 61, 57, -69, 58, 21, 87, 15, 88,
-        -16, 90, -22, 91, 24, 151, 17, 152, -18, 154, -25, 155, -127, 246, 134, 247,
-        137, 248, -140, 249, 140, 250, 141, 251, -143, 2, 60, 55, 61, 56, -60, 57,
-        60, 59, -62, 60, -21, 89, -15, 90, -20, 91, -15, 92, -21, 93, -24, 153,
-        -17, 154, -23, 155, -17, 156, -24, 157, 138, 248, 140, 249, -144, 250, 144, 251,
-        145, 252, -141, 253, -67, 2, -62, 55, -69, 56, -68, 58, 61, 59, -69, 60,
-        21, 89, 15, 90, -16, 92, -22, 93, 24, 153, 17, 154, -18, 156, -25, 157,
-        -134, 248, 141, 249, 144, 250, -147, 251, 147, 252, 148, 253, -150, 2, 60, 57,
-        61, 58, -60, 59, 60, 61, -62, 62, -21, 91, -15, 92, -20, 93, -15, 94,
-        -21, 95, -24, 155, -17, 156, -23, 157, -17, 158, -24, 159, 145, 250, 147, 251,
-        -151, 252, 151, 253, 152, 254, -148, 255, -67, 2, -62, 57, -69, 58, -68, 60,
-        61, 61, -69, 62, 21, 91, 15, 92, -16, 94, -22, 95, 24, 155, 17, 156,
-        -18, 158, -25, 159, -141, 250, 148, 251, 151, 252, -154, 253, 154, 254, 155, 255,
-        -157, 2, 60, 59, 61, 60, -60, 61, 60, 63, -62, 64, -21, 93, -15, 94,
-        -20, 95, -15, 96, -21, 97, -24, 157, -17, 158, -23, 159, -17, 160, -24, 161,
-        152, 252, 154, 253, -158, 254, 158, 255, 159, 256, -155, 257, -67, 2, -62, 59,
-        -69, 60, -68, 62, 61, 63, -69, 64, 21, 93, 15, 94, -16, 96, -22, 97,
-        24, 157, 17, 158, -18, 160, -25, 161, -148, 252, 155, 253, 158, 254, -161, 255,
-        161, 256, 162, 257, -164, 2, 60, 61, 61, 62, -60, 63, 60, 65, -62, 66,
-        -21, 95, -15, 96, -20, 97, -15, 98, -21, 99, -24, 159, -17, 160, -23, 161,
-        -17, 162, -24, 163, 159, 254, 161, 255, -165, 256, 165, 257, 166, 258, -162, 259,
-        -67, 2, -62, 61, -69, 62, -68, 64, 61, 65, -69, 66, 21, 95, 15, 96,
-        -16, 98, -22, 99, 24, 159, 17, 160, -18, 162, -25, 163, -155, 254, 162, 255,
-        165, 256, -168, 257, 168, 258, 169, 259, -171, 2, 60, 63, 61, 64, -61, 65,
-        61, 66, -21, 97, -15, 98, -23, 99, -24, 161, -17, 162, -57, 163, 166, 256,
-        168, 257, -172, 258, 172, 259, 173, 2, -62, 63, -69, 64, 61, 65, -175, 66,
-        21, 97, 15, 98, 55, 99, 24, 161, 17, 162, 57, 163, -162, 256, 169, 257,
-        172, 258, -176, 259,
-    };
-    static const int written[] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15,
-        16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31,
-        32, 33, 34, 35, 36, 37, 38, 39, 40, 41, 42, 43, 44, 45, 46, 47,
-        48, 49, 50, 51, 52, 53, 54, 55, 56, 57, 58, 59, 60, 61, 62, 63};
-    static const int first[] = {0, 9, 22, 37, 54, 69, 86, 101, 118, 133, 150, 165, 182, 197, 214, 229,
-        246, 261, 278, 293, 310, 325, 342, 357, 374, 389, 406, 421, 438, 453, 470, 485,
-        498, 514, 528, 550, 570, 592, 612, 634, 654, 676, 696, 718, 738, 760, 780, 802,
-        822, 844, 864, 886, 906, 928, 948, 970, 990, 1012, 1032, 1054, 1074, 1096, 1116, 1131, 1146};
-    for (int i = 0; i < 64; ++i) {
-        double sum = 0.0;
-        for (int t = first[i]; t < first[i + 1]; ++t) {
-            const int k = terms[2 * t];
-            sum += (k >= 0 ? c[k] : -c[-k - 1]) * m[terms[2 * t + 1]];
-        }
-        out[written[i]] = sum;
-    }
+    const double theta_dot = u[1];
+    const double theta_ddot = u[2];
+    const double A1 = q[0];
+    const double A2 = q[1];
+    const double A3 = q[2];
+    const double A4 = q[3];
+    const double A5 = q[4];
+    const double A6 = q[5];
+    const double A7 = q[6];
+    const double A8 = q[7];
+    const double A9 = q[8];
+    const double A10 = q[9];
+    const double A11 = q[10];
+    const double A12 = q[11];
+    const double A13 = q[12];
+    const double A14 = q[13];
+    const double A15 = q[14];
+    const double A16 = q[15];
+    const double A17 = q[16];
+    const double A18 = q[17];
+    const double A19 = q[18];
+    const double A20 = q[19];
+    const double A21 = q[20];
+    const double A22 = q[21];
+    const double A23 = q[22];
+    const double A24 = q[23];
+    const double A25 = q[24];
+    const double A26 = q[25];
+    const double A27 = q[26];
+    const double A28 = q[27];
+    const double A29 = q[28];
+    const double A30 = q[29];
+    const double A31 = q[30];
+    const double A32 = q[31];
+    const double B1 = q[32];
+    const double B2 = q[33];
+    const double B3 = q[34];
+    const double B4 = q[35];
+    const double B5 = q[36];
+    const double B6 = q[37];
+    const double B7 = q[38];
+    const double B8 = q[39];
+    const double B9 = q[40];
+    const double B10 = q[41];
+    const double B11 = q[42];
+    const double B12 = q[43];
+    const double B13 = q[44];
+    const double B14 = q[45];
+    const double B15 = q[46];
+    const double B16 = q[47];
+    const double B17 = q[48];
+    const double B18 = q[49];
+    const double B19 = q[50];
+    const double B20 = q[51];
+    const double B21 = q[52];
+    const double B22 = q[53];
+    const double B23 = q[54];
+    const double B24 = q[55];
+    const double B25 = q[56];
+    const double B26 = q[57];
+    const double B27 = q[58];
+    const double B28 = q[59];
+    const double B29 = q[60];
+    const double B30 = q[61];
+    const double B31 = q[62];
+    const double B32 = q[63];
+    const double A1_dot = qd[0];
+    const double A2_dot = qd[1];
+    const double A3_dot = qd[2];
+    const double A4_dot = qd[3];
+    const double A5_dot = qd[4];
+    const double A6_dot = qd[5];
+    const double A7_dot = qd[6];
+    const double A8_dot = qd[7];
+    const double A9_dot = qd[8];
+    const double A10_dot = qd[9];
+    const double A11_dot = qd[10];
+    const double A12_dot = qd[11];
+    const double A13_dot = qd[12];
+    const double A14_dot = qd[13];
+    const double A15_dot = qd[14];
+    const double A16_dot = qd[15];
+    const double A17_dot = qd[16];
+    const double A18_dot = qd[17];
+    const double A19_dot = qd[18];
+    const double A20_dot = qd[19];
+    const double A21_dot = qd[20];
+    const double A22_dot = qd[21];
+    const double A23_dot = qd[22];
+    const double A24_dot = qd[23];
+    const double A25_dot = qd[24];
+    const double A26_dot = qd[25];
+    const double A27_dot = qd[26];
+    const double A28_dot = qd[27];
+    const double A29_dot = qd[28];
+    const double A30_dot = qd[29];
+    const double A31_dot = qd[30];
+    const double A32_dot = qd[31];
+    const double B1_dot = qd[32];
+    const double B2_dot = qd[33];
+    const double B3_dot = qd[34];
+    const double B4_dot = qd[35];
+    const double B5_dot = qd[36];
+    const double B6_dot = qd[37];
+    const double B7_dot = qd[38];
+    const double B8_dot = qd[39];
+    const double B9_dot = qd[40];
+    const double B10_dot = qd[41];
+    const double B11_dot = qd[42];
+    const double B12_dot = qd[43];
+    const double B13_dot = qd[44];
+    const double B14_dot = qd[45];
+    const double B15_dot = qd[46];
+    const double B16_dot = qd[47];
+    const double B17_dot = qd[48];
+    const double B18_dot = qd[49];
+    const double B19_dot = qd[50];
+    const double B20_dot = qd[51];
+    const double B21_dot = qd[52];
+    const double B22_dot = qd[53];
+    const double B23_dot = qd[54];
+    const double B24_dot = qd[55];
+    const double B25_dot = qd[56];
+    const double B26_dot = qd[57];
+    const double B27_dot = qd[58];
+    const double B28_dot = qd[59];
+    const double B29_dot = qd[60];
+    const double B30_dot = qd[61];
+    const double B31_dot = qd[62];
+    const double B32_dot = qd[63];
+    const double theta_dotsq = theta_dot*theta_dot;
+    const double theta_dot_A1_dot = theta_dot*A1_dot;
+    const double theta_dot_A2_dot = theta_dot*A2_dot;
+    const double theta_dot_A3_dot = theta_dot*A3_dot;
+    const double theta_dot_A4_dot = theta_dot*A4_dot;
+    const double theta_dot_A5_dot = theta_dot*A5_dot;
+    const double theta_dot_A6_dot = theta_dot*A6_dot;
+    const double theta_dot_A7_dot = theta_dot*A7_dot;
+    const double theta_dot_A8_dot = theta_dot*A8_dot;
+    const double theta_dot_A9_dot = theta_dot*A9_dot;
+    const double theta_dot_A10_dot = theta_dot*A10_dot;
+    const double theta_dot_A11_dot = theta_dot*A11_dot;
+    const double theta_dot_A12_dot = theta_dot*A12_dot;
+    const double theta_dot_A13_dot = theta_dot*A13_dot;
+    const double theta_dot_A14_dot = theta_dot*A14_dot;
+    const double theta_dot_A15_dot = theta_dot*A15_dot;
+    const double theta_dot_A16_dot = theta_dot*A16_dot;
+    const double theta_dot_A17_dot = theta_dot*A17_dot;
+    const double theta_dot_A18_dot = theta_dot*A18_dot;
+    const double theta_dot_A19_dot = theta_dot*A19_dot;
+    const double theta_dot_A20_dot = theta_dot*A20_dot;
+    const double theta_dot_A21_dot = theta_dot*A21_dot;
+    const double theta_dot_A22_dot = theta_dot*A22_dot;
+    const double theta_dot_A23_dot = theta_dot*A23_dot;
+    const double theta_dot_A24_dot = theta_dot*A24_dot;
+    const double theta_dot_A25_dot = theta_dot*A25_dot;
+    const double theta_dot_A26_dot = theta_dot*A26_dot;
+    const double theta_dot_A27_dot = theta_dot*A27_dot;
+    const double theta_dot_A28_dot = theta_dot*A28_dot;
+    const double theta_dot_A29_dot = theta_dot*A29_dot;
+    const double theta_dot_A30_dot = theta_dot*A30_dot;
+    const double theta_dot_A31_dot = theta_dot*A31_dot;
+    const double theta_dot_A32_dot = theta_dot*A32_dot;
+    const double theta_dot_B1_dot = theta_dot*B1_dot;
+    const double theta_dot_B2_dot = theta_dot*B2_dot;
+    const double theta_dot_B3_dot = theta_dot*B3_dot;
+    const double theta_dot_B4_dot = theta_dot*B4_dot;
+    const double theta_dot_B5_dot = theta_dot*B5_dot;
+    const double theta_dot_B6_dot = theta_dot*B6_dot;
+    const double theta_dot_B7_dot = theta_dot*B7_dot;
+    const double theta_dot_B8_dot = theta_dot*B8_dot;
+    const double theta_dot_B9_dot = theta_dot*B9_dot;
+    const double theta_dot_B10_dot = theta_dot*B10_dot;
+    const double theta_dot_B11_dot = theta_dot*B11_dot;
+    const double theta_dot_B12_dot = theta_dot*B12_dot;
+    const double theta_dot_B13_dot = theta_dot*B13_dot;
+    const double theta_dot_B14_dot = theta_dot*B14_dot;
+    const double theta_dot_B15_dot = theta_dot*B15_dot;
+    const double theta_dot_B16_dot = theta_dot*B16_dot;
+    const double theta_dot_B17_dot = theta_dot*B17_dot;
+    const double theta_dot_B18_dot = theta_dot*B18_dot;
+    const double theta_dot_B19_dot = theta_dot*B19_dot;
+    const double theta_dot_B20_dot = theta_dot*B20_dot;
+    const double theta_dot_B21_dot = theta_dot*B21_dot;
+    const double theta_dot_B22_dot = theta_dot*B22_dot;
+    const double theta_dot_B23_dot = theta_dot*B23_dot;
+    const double theta_dot_B24_dot = theta_dot*B24_dot;
+    const double theta_dot_B25_dot = theta_dot*B25_dot;
+    const double theta_dot_B26_dot = theta_dot*B26_dot;
+    const double theta_dot_B27_dot = theta_dot*B27_dot;
+    const double theta_dot_B28_dot = theta_dot*B28_dot;
+    const double theta_dot_B29_dot = theta_dot*B29_dot;
+    const double theta_dot_B30_dot = theta_dot*B30_dot;
+    const double theta_dot_B31_dot = theta_dot*B31_dot;
+    const double theta_dot_B32_dot = theta_dot*B32_dot;
+    const double theta_ddot_A1 = theta_ddot*A1;
+    const double theta_ddot_A2 = theta_ddot*A2;
+    const double theta_ddot_A3 = theta_ddot*A3;
+    const double theta_ddot_A4 = theta_ddot*A4;
+    const double theta_ddot_A5 = theta_ddot*A5;
+    const double theta_ddot_A6 = theta_ddot*A6;
+    const double theta_ddot_A7 = theta_ddot*A7;
+    const double theta_ddot_A8 = theta_ddot*A8;
+    const double theta_ddot_A9 = theta_ddot*A9;
+    const double theta_ddot_A10 = theta_ddot*A10;
+    const double theta_ddot_A11 = theta_ddot*A11;
+    const double theta_ddot_A12 = theta_ddot*A12;
+    const double theta_ddot_A13 = theta_ddot*A13;
+    const double theta_ddot_A14 = theta_ddot*A14;
+    const double theta_ddot_A15 = theta_ddot*A15;
+    const double theta_ddot_A16 = theta_ddot*A16;
+    const double theta_ddot_A17 = theta_ddot*A17;
+    const double theta_ddot_A18 = theta_ddot*A18;
+    const double theta_ddot_A19 = theta_ddot*A19;
+    const double theta_ddot_A20 = theta_ddot*A20;
+    const double theta_ddot_A21 = theta_ddot*A21;
+    const double theta_ddot_A22 = theta_ddot*A22;
+    const double theta_ddot_A23 = theta_ddot*A23;
+    const double theta_ddot_A24 = theta_ddot*A24;
+    const double theta_ddot_A25 = theta_ddot*A25;
+    const double theta_ddot_A26 = theta_ddot*A26;
+    const double theta_ddot_A27 = theta_ddot*A27;
+    const double theta_ddot_A28 = theta_ddot*A28;
+    const double theta_ddot_A29 = theta_ddot*A29;
+    const double theta_ddot_A30 = theta_ddot*A30;
+    const double theta_ddot_A31 = theta_ddot*A31;
+    const double theta_ddot_A32 = theta_ddot*A32;
+    const double theta_ddot_B1 = theta_ddot*B1;
+    const double theta_ddot_B2 = theta_ddot*B2;
+    const double theta_ddot_B3 = theta_ddot*B3;
+    const double theta_ddot_B4 = theta_ddot*B4;
+    const double theta_ddot_B5 = theta_ddot*B5;
+    const double theta_ddot_B6 = theta_ddot*B6;
+    const double theta_ddot_B7 = theta_ddot*B7;
+    const double theta_ddot_B8 = theta_ddot*B8;
+    const double theta_ddot_B9 = theta_ddot*B9;
+    const double theta_ddot_B10 = theta_ddot*B10;
+    const double theta_ddot_B11 = theta_ddot*B11;
+    const double theta_ddot_B12 = theta_ddot*B12;
+    const double theta_ddot_B13 = theta_ddot*B13;
+    const double theta_ddot_B14 = theta_ddot*B14;
+    const double theta_ddot_B15 = theta_ddot*B15;
+    const double theta_ddot_B16 = theta_ddot*B16;
+    const double theta_ddot_B17 = theta_ddot*B17;
+    const double theta_ddot_B18 = theta_ddot*B18;
+    const double theta_ddot_B19 = theta_ddot*B19;
+    const double theta_ddot_B20 = theta_ddot*B20;
+    const double theta_ddot_B21 = theta_ddot*B21;
+    const double theta_ddot_B22 = theta_ddot*B22;
+    const double theta_ddot_B23 = theta_ddot*B23;
+    const double theta_ddot_B24 = theta_ddot*B24;
+    const double theta_ddot_B25 = theta_ddot*B25;
+    const double theta_ddot_B26 = theta_ddot*B26;
+    const double theta_ddot_B27 = theta_ddot*B27;
+    const double theta_ddot_B28 = theta_ddot*B28;
+    const double theta_ddot_B29 = theta_ddot*B29;
+    const double theta_ddot_B30 = theta_ddot*B30;
+    const double theta_ddot_B31 = theta_ddot*B31;
+    const double theta_ddot_B32 = theta_ddot*B32;
+    const double theta_dotsq_A1 = theta_dotsq*A1;
+    const double theta_dotsq_A2 = theta_dotsq*A2;
+    const double theta_dotsq_A3 = theta_dotsq*A3;
+    const double theta_dotsq_A4 = theta_dotsq*A4;
+    const double theta_dotsq_A5 = theta_dotsq*A5;
+    const double theta_dotsq_A6 = theta_dotsq*A6;
+    const double theta_dotsq_A7 = theta_dotsq*A7;
+    const double theta_dotsq_A8 = theta_dotsq*A8;
+    const double theta_dotsq_A9 = theta_dotsq*A9;
+    const double theta_dotsq_A10 = theta_dotsq*A10;
+    const double theta_dotsq_A11 = theta_dotsq*A11;
+    const double theta_dotsq_A12 = theta_dotsq*A12;
+    const double theta_dotsq_A13 = theta_dotsq*A13;
+    const double theta_dotsq_A14 = theta_dotsq*A14;
+    const double theta_dotsq_A15 = theta_dotsq*A15;
+    const double theta_dotsq_A16 = theta_dotsq*A16;
+    const double theta_dotsq_A17 = theta_dotsq*A17;
+    const double theta_dotsq_A18 = theta_dotsq*A18;
+    const double theta_dotsq_A19 = theta_dotsq*A19;
+    const double theta_dotsq_A20 = theta_dotsq*A20;
+    const double theta_dotsq_A21 = theta_dotsq*A21;
+    const double theta_dotsq_A22 = theta_dotsq*A22;
+    const double theta_dotsq_A23 = theta_dotsq*A23;
+    const double theta_dotsq_A24 = theta_dotsq*A24;
+    const double theta_dotsq_A25 = theta_dotsq*A25;
+    const double theta_dotsq_A26 = theta_dotsq*A26;
+    const double theta_dotsq_A27 = theta_dotsq*A27;
+    const double theta_dotsq_A28 = theta_dotsq*A28;
+    const double theta_dotsq_A29 = theta_dotsq*A29;
+    const double theta_dotsq_A30 = theta_dotsq*A30;
+    const double theta_dotsq_A31 = theta_dotsq*A31;
+    const double theta_dotsq_A32 = theta_dotsq*A32;
+    const double theta_dotsq_B1 = theta_dotsq*B1;
+    const double theta_dotsq_B2 = theta_dotsq*B2;
+    const double theta_dotsq_B3 = theta_dotsq*B3;
+    const double theta_dotsq_B4 = theta_dotsq*B4;
+    const double theta_dotsq_B5 = theta_dotsq*B5;
+    const double theta_dotsq_B6 = theta_dotsq*B6;
+    const double theta_dotsq_B7 = theta_dotsq*B7;
+    const double theta_dotsq_B8 = theta_dotsq*B8;
+    const double theta_dotsq_B9 = theta_dotsq*B9;
+    const double theta_dotsq_B10 = theta_dotsq*B10;
+    const double theta_dotsq_B11 = theta_dotsq*B11;
+    const double theta_dotsq_B12 = theta_dotsq*B12;
+    const double theta_dotsq_B13 = theta_dotsq*B13;
+    const double theta_dotsq_B14 = theta_dotsq*B14;
+    const double theta_dotsq_B15 = theta_dotsq*B15;
+    const double theta_dotsq_B16 = theta_dotsq*B16;
+    const double theta_dotsq_B17 = theta_dotsq*B17;
+    const double theta_dotsq_B18 = theta_dotsq*B18;
+    const double theta_dotsq_B19 = theta_dotsq*B19;
+    const double theta_dotsq_B20 = theta_dotsq*B20;
+    const double theta_dotsq_B21 = theta_dotsq*B21;
+    const double theta_dotsq_B22 = theta_dotsq*B22;
+    const double theta_dotsq_B23 = theta_dotsq*B23;
+    const double theta_dotsq_B24 = theta_dotsq*B24;
+    const double theta_dotsq_B25 = theta_dotsq*B25;
+    const double theta_dotsq_B26 = theta_dotsq*B26;
+    const double theta_dotsq_B27 = theta_dotsq*B27;
+    const double theta_dotsq_B28 = theta_dotsq*B28;
+    const double theta_dotsq_B29 = theta_dotsq*B29;
+    const double theta_dotsq_B30 = theta_dotsq*B30;
+    const double theta_dotsq_B31 = theta_dotsq*B31;
+    const double theta_dotsq_B32 = theta_dotsq*B32;
+    out[0] = -c[11]*A1 + c[12]*A2 + c[13]*theta_dotsq + c[14]*theta_dot_B1_dot - c[15]*theta_dot_B2_dot + c[16]*theta_ddot_B1 - c[17]*theta_ddot_B2 + c[0]*theta_dotsq_A1 + c[1]*theta_dotsq_A2;
+    out[1] = c[12]*A1 - c[11]*A2 + c[12]*A3 + c[18]*theta_dotsq + c[19]*theta_dot_B1_dot + c[20]*theta_dot_B3_dot - c[21]*theta_dot_B4_dot + c[22]*theta_ddot_B1 + c[23]*theta_ddot_B3 - c[24]*theta_ddot_B4 + c[1]*theta_dotsq_A1 + c[0]*theta_dotsq_A2 + c[1]*theta_dotsq_A3;
+    out[2] = c[12]*A2 - c[11]*A3 + c[12]*A4 + c[25]*theta_dotsq + c[14]*theta_dot_B1_dot + c[15]*theta_dot_B2_dot + c[14]*theta_dot_B3_dot - c[15]*theta_dot_B4_dot + c[16]*theta_ddot_B1 + c[17]*theta_ddot_B2 + c[16]*theta_ddot_B3 - c[17]*theta_ddot_B4 + c[1]*theta_dotsq_A2 + c[0]*theta_dotsq_A3 + c[1]*theta_dotsq_A4;
+    out[3] = c[12]*A3 - c[11]*A4 + c[12]*A5 + c[26]*theta_dotsq + c[20]*theta_dot_B1_dot + c[21]*theta_dot_B2_dot + c[19]*theta_dot_B3_dot + c[20]*theta_dot_B5_dot - c[21]*theta_dot_B6_dot + c[23]*theta_ddot_B1 + c[24]*theta_ddot_B2 + c[22]*theta_ddot_B3 + c[23]*theta_ddot_B5 - c[24]*theta_ddot_B6 + c[1]*theta_dotsq_A3 + c[0]*theta_dotsq_A4 + c[1]*theta_dotsq_A5;
+    out[4] = c[12]*A4 - c[11]*A5 + c[12]*A6 + c[27]*theta_dotsq + c[14]*theta_dot_B3_dot + c[15]*theta_dot_B4_dot + c[14]*theta_dot_B5_dot - c[15]*theta_dot_B6_dot + c[16]*theta_ddot_B3 + c[17]*theta_ddot_B4 + c[16]*theta_ddot_B5 - c[17]*theta_ddot_B6 + c[1]*theta_dotsq_A4 + c[0]*theta_dotsq_A5 + c[1]*theta_dotsq_A6;
+    out[5] = c[12]*A5 - c[11]*A6 + c[12]*A7 + c[28]*theta_dotsq + c[20]*theta_dot_B3_dot + c[21]*theta_dot_B4_dot + c[19]*theta_dot_B5_dot + c[20]*theta_dot_B7_dot - c[21]*theta_dot_B8_dot + c[23]*theta_ddot_B3 + c[24]*theta_ddot_B4 + c[22]*theta_ddot_B5 + c[23]*theta_ddot_B7 - c[24]*theta_ddot_B8 + c[1]*theta_dotsq_A5 + c[0]*theta_dotsq_A6 + c[1]*theta_dotsq_A7;
+    out[6] = c[12]*A6 - c[11]*A7 + c[12]*A8 + c[29]*theta_dotsq + c[14]*theta_dot_B5_dot + c[15]*theta_dot_B6_dot + c[14]*theta_dot_B7_dot - c[15]*theta_dot_B8_dot + c[16]*theta_ddot_B5 + c[17]*theta_ddot_B6 + c[16]*theta_ddot_B7 - c[17]*theta_ddot_B8 + c[1]*theta_dotsq_A6 + c[0]*theta_dotsq_A7 + c[1]*theta_dotsq_A8;
+    out[7] = c[12]*A7 - c[11]*A8 + c[12]*A9 + c[30]*theta_dotsq + c[20]*theta_dot_B5_dot + c[21]*theta_dot_B6_dot + c[19]*theta_dot_B7_dot + c[20]*theta_dot_B9_dot - c[21]*theta_dot_B10_dot + c[23]*theta_ddot_B5 + c[24]*theta_ddot_B6 + c[22]*theta_ddot_B7 + c[23]*theta_ddot_B9 - c[24]*theta_ddot_B10 + c[1]*theta_dotsq_A7 + c[0]*theta_dotsq_A8 + c[1]*theta_dotsq_A9;
+    out[8] = c[12]*A8 - c[11]*A9 + c[12]*A10 + c[31]*theta_dotsq + c[14]*theta_dot_B7_dot + c[15]*theta_dot_B8_dot + c[14]*theta_dot_B9_dot - c[15]*theta_dot_B10_dot + c[16]*theta_ddot_B7 + c[17]*theta_ddot_B8 + c[16]*theta_ddot_B9 - c[17]*theta_ddot_B10 + c[1]*theta_dotsq_A8 + c[0]*theta_dotsq_A9 + c[1]*theta_dotsq_A10;
+    out[9] = c[12]*A9 - c[11]*A10 + c[12]*A11 + c[32]*theta_dotsq + c[20]*theta_dot_B7_dot + c[21]*theta_dot_B8_dot + c[19]*theta_dot_B9_dot + c[20]*theta_dot_B11_dot - c[21]*theta_dot_B12_dot + c[23]*theta_ddot_B7 + c[24]*theta_ddot_B8 + c[22]*theta_ddot_B9 + c[23]*theta_ddot_B11 - c[24]*theta_ddot_B12 + c[1]*theta_dotsq_A9 + c[0]*theta_dotsq_A10 + c[1]*theta_dotsq_A11;
+    out[10] = c[12]*A10 - c[11]*A11 + c[12]*A12 + c[33]*theta_dotsq + c[14]*theta_dot_B9_dot + c[15]*theta_dot_B10_dot + c[14]*theta_dot_B11_dot - c[15]*theta_dot_B12_dot + c[16]*theta_ddot_B9 + c[17]*theta_ddot_B10 + c[16]*theta_ddot_B11 - c[17]*theta_ddot_B12 + c[1]*theta_dotsq_A10 + c[0]*theta_dotsq_A11 + c[1]*theta_dotsq_A12;
+    out[11] = c[12]*A11 - c[11]*A12 + c[12]*A13 + c[34]*theta_dotsq + c[20]*theta_dot_B9_dot + c[21]*theta_dot_B10_dot + c[19]*theta_dot_B11_dot + c[20]*theta_dot_B13_dot - c[21]*theta_dot_B14_dot + c[23]*theta_ddot_B9 + c[24]*theta_ddot_B10 + c[22]*theta_ddot_B11 + c[23]*theta_ddot_B13 - c[24]*theta_ddot_B14 + c[1]*theta_dotsq_A11 + c[0]*theta_dotsq_A12 + c[1]*theta_dotsq_A13;
+    out[12] = c[12]*A12 - c[11]*A13 + c[12]*A14 + c[35]*theta_dotsq + c[14]*theta_dot_B11_dot + c[15]*theta_dot_B12_dot + c[14]*theta_dot_B13_dot - c[15]*theta_dot_B14_dot + c[16]*theta_ddot_B11 + c[17]*theta_ddot_B12 + c[16]*theta_ddot_B13 - c[17]*theta_ddot_B14 + c[1]*theta_dotsq_A12 + c[0]*theta_dotsq_A13 + c[1]*theta_dotsq_A14;
+    out[13] = c[12]*A13 - c[11]*A14 + c[12]*A15 + c[36]*theta_dotsq + c[20]*theta_dot_B11_dot + c[21]*theta_dot_B12_dot + c[19]*theta_dot_B13_dot + c[20]*theta_dot_B15_dot - c[21]*theta_dot_B16_dot + c[23]*theta_ddot_B11 + c[24]*theta_ddot_B12 + c[22]*theta_ddot_B13 + c[23]*theta_ddot_B15 - c[24]*theta_ddot_B16 + c[1]*theta_dotsq_A13 + c[0]*theta_dotsq_A14 + c[1]*theta_dotsq_A15;
+    out[14] = c[12]*A14 - c[11]*A15 + c[12]*A16 + c[37]*theta_dotsq + c[14]*theta_dot_B13_dot + c[15]*theta_dot_B14_dot + c[14]*theta_dot_B15_dot - c[15]*theta_dot_B16_dot + c[16]*theta_ddot_B13 + c[17]*theta_ddot_B14 + c[16]*theta_ddot_B15 - c[17]*theta_ddot_B16 + c[1]*theta_dotsq_A14 + c[0]*theta_dotsq_A15 + c[1]*theta_dotsq_A16;
+    out[15] = c[12]*A15 - c[11]*A16 + c[12]*A17 + c[38]*theta_dotsq + c[20]*theta_dot_B13_dot + c[21]*theta_dot_B14_dot + c[19]*theta_dot_B15_dot + c[20]*theta_dot_B17_dot - c[21]*theta_dot_B18_dot + c[23]*theta_ddot_B13 + c[24]*theta_ddot_B14 + c[22]*theta_ddot_B15 + c[23]*theta_ddot_B17 - c[24]*theta_ddot_B18 + c[1]*theta_dotsq_A15 + c[0]*theta_dotsq_A16 + c[1]*theta_dotsq_A17;
+    out[16] = c[12]*A16 - c[11]*A17 + c[12]*A18 + c[39]*theta_dotsq + c[14]*theta_dot_B15_dot + c[15]*theta_dot_B16_dot + c[14]*theta_dot_B17_dot - c[15]*theta_dot_B18_dot + c[16]*theta_ddot_B15 + c[17]*theta_ddot_B16 + c[16]*theta_ddot_B17 - c[17]*theta_ddot_B18 + c[1]*theta_dotsq_A16 + c[0]*theta_dotsq_A17 + c[1]*theta_dotsq_A18;
+    out[17] = c[12]*A17 - c[11]*A18 + c[12]*A19 + c[40]*theta_dotsq + c[20]*theta_dot_B15_dot + c[21]*theta_dot_B16_dot + c[19]*theta_dot_B17_dot + c[20]*theta_dot_B19_dot - c[21]*theta_dot_B20_dot + c[23]*theta_ddot_B15 + c[24]*theta_ddot_B16 + c[22]*theta_ddot_B17 + c[23]*theta_ddot_B19 - c[24]*theta_ddot_B20 + c[1]*theta_dotsq_A17 + c[0]*theta_dotsq_A18 + c[1]*theta_dotsq_A19;
+    out[18] = c[12]*A18 - c[11]*A19 + c[12]*A20 + c[41]*theta_dotsq + c[14]*theta_dot_B17_dot + c[15]*theta_dot_B18_dot + c[14]*theta_dot_B19_dot - c[15]*theta_dot_B20_dot + c[16]*theta_ddot_B17 + c[17]*theta_ddot_B18 + c[16]*theta_ddot_B19 - c[17]*theta_ddot_B20 + c[1]*theta_dotsq_A18 + c[0]*theta_dotsq_A19 + c[1]*theta_dotsq_A20;
+    out[19] = c[12]*A19 - c[11]*A20 + c[12]*A21 + c[42]*theta_dotsq + c[20]*theta_dot_B17_dot + c[21]*theta_dot_B18_dot + c[19]*theta_dot_B19_dot + c[20]*theta_dot_B21_dot - c[21]*theta_dot_B22_dot + c[23]*theta_ddot_B17 + c[24]*theta_ddot_B18 + c[22]*theta_ddot_B19 + c[23]*theta_ddot_B21 - c[24]*theta_ddot_B22 + c[1]*theta_dotsq_A19 + c[0]*theta_dotsq_A20 + c[1]*theta_dotsq_A21;
+    out[20] = c[12]*A20 - c[11]*A21 + c[12]*A22 + c[43]*theta_dotsq + c[14]*theta_dot_B19_dot + c[15]*theta_dot_B20_dot + c[14]*theta_dot_B21_dot - c[15]*theta_dot_B22_dot + c[16]*theta_ddot_B19 + c[17]*theta_ddot_B20 + c[16]*theta_ddot_B21 - c[17]*theta_ddot_B22 + c[1]*theta_dotsq_A20 + c[0]*theta_dotsq_A21 + c[1]*theta_dotsq_A22;
+    out[21] = c[12]*A21 - c[11]*A22 + c[12]*A23 + c[44]*theta_dotsq + c[20]*theta_dot_B19_dot + c[21]*theta_dot_B20_dot + c[19]*theta_dot_B21_dot + c[20]*theta_dot_B23_dot - c[21]*theta_dot_B24_dot + c[23]*theta_ddot_B19 + c[24]*theta_ddot_B20 + c[22]*theta_ddot_B21 + c[23]*theta_ddot_B23 - c[24]*theta_ddot_B24 + c[1]*theta_dotsq_A21 + c[0]*theta_dotsq_A22 + c[1]*theta_dotsq_A23;
+    out[22] = c[12]*A22 - c[11]*A23 + c[12]*A24 + c[45]*theta_dotsq + c[14]*theta_dot_B21_dot + c[15]*theta_dot_B22_dot + c[14]*theta_dot_B23_dot - c[15]*theta_dot_B24_dot + c[16]*theta_ddot_B21 + c[17]*theta_ddot_B22 + c[16]*theta_ddot_B23 - c[17]*theta_ddot_B24 + c[1]*theta_dotsq_A22 + c[0]*theta_dotsq_A23 + c[1]*theta_dotsq_A24;
+    out[23] = c[12]*A23 - c[11]*A24 + c[12]*A25 + c[46]*theta_dotsq + c[20]*theta_dot_B21_dot + c[21]*theta_dot_B22_dot + c[19]*theta_dot_B23_dot + c[20]*theta_dot_B25_dot - c[21]*theta_dot_B26_dot + c[23]*theta_ddot_B21 + c[24]*theta_ddot_B22 + c[22]*theta_ddot_B23 + c[23]*theta_ddot_B25 - c[24]*theta_ddot_B26 + c[1]*theta_dotsq_A23 + c[0]*theta_dotsq_A24 + c[1]*theta_dotsq_A25;
+    out[24] = c[12]*A24 - c[11]*A25 + c[12]*A26 + c[47]*theta_dotsq + c[14]*theta_dot_B23_dot + c[15]*theta_dot_B24_dot + c[14]*theta_dot_B25_dot - c[15]*theta_dot_B26_dot + c[16]*theta_ddot_B23 + c[17]*theta_ddot_B24 + c[16]*theta_ddot_B25 - c[17]*theta_ddot_B26 + c[1]*theta_dotsq_A24 + c[0]*theta_dotsq_A25 + c[1]*theta_dotsq_A26;
+    out[25] = c[12]*A25 - c[11]*A26 + c[12]*A27 + c[48]*theta_dotsq + c[20]*theta_dot_B23_dot + c[21]*theta_dot_B24_dot + c[19]*theta_dot_B25_dot + c[20]*theta_dot_B27_dot - c[21]*theta_dot_B28_dot + c[23]*theta_ddot_B23 + c[24]*theta_ddot_B24 + c[22]*theta_ddot_B25 + c[23]*theta_ddot_B27 - c[24]*theta_ddot_B28 + c[1]*theta_dotsq_A25 + c[0]*theta_dotsq_A26 + c[1]*theta_dotsq_A27;
+    out[26] = c[12]*A26 - c[11]*A27 + c[12]*A28 + c[49]*theta_dotsq + c[14]*theta_dot_B25_dot + c[15]*theta_dot_B26_dot + c[14]*theta_dot_B27_dot - c[15]*theta_dot_B28_dot + c[16]*theta_ddot_B25 + c[17]*theta_ddot_B26 + c[16]*theta_ddot_B27 - c[17]*theta_ddot_B28 + c[1]*theta_dotsq_A26 + c[0]*theta_dotsq_A27 + c[1]*theta_dotsq_A28;
+    out[27] = c[12]*A27 - c[11]*A28 + c[12]*A29 + c[50]*theta_dotsq + c[20]*theta_dot_B25_dot + c[21]*theta_dot_B26_dot + c[19]*theta_dot_B27_dot + c[20]*theta_dot_B29_dot - c[21]*theta_dot_B30_dot + c[23]*theta_ddot_B25 + c[24]*theta_ddot_B26 + c[22]*theta_ddot_B27 + c[23]*theta_ddot_B29 - c[24]*theta_ddot_B30 + c[1]*theta_dotsq_A27 + c[0]*theta_dotsq_A28 + c[1]*theta_dotsq_A29;
+    out[28] = c[12]*A28 - c[11]*A29 + c[12]*A30 + c[51]*theta_dotsq + c[14]*theta_dot_B27_dot + c[15]*theta_dot_B28_dot + c[14]*theta_dot_B29_dot - c[15]*theta_dot_B30_dot + c[16]*theta_ddot_B27 + c[17]*theta_ddot_B28 + c[16]*theta_ddot_B29 - c[17]*theta_ddot_B30 + c[1]*theta_dotsq_A28 + c[0]*theta_dotsq_A29 + c[1]*theta_dotsq_A30;
+    out[29] = c[12]*A29 - c[11]*A30 + c[12]*A31 + c[52]*theta_dotsq + c[20]*theta_dot_B27_dot + c[21]*theta_dot_B28_dot + c[19]*theta_dot_B29_dot + c[20]*theta_dot_B31_dot - c[21]*theta_dot_B32_dot + c[23]*theta_ddot_B27 + c[24]*theta_ddot_B28 + c[22]*theta_ddot_B29 + c[23]*theta_ddot_B31 - c[24]*theta_ddot_B32 + c[1]*theta_dotsq_A29 + c[0]*theta_dotsq_A30 + c[1]*theta_dotsq_A31;
+    out[30] = c[12]*A30 - c[11]*A31 + c[12]*A32 + c[53]*theta_dotsq + c[14]*theta_dot_B29_dot + c[15]*theta_dot_B30_dot + c[14]*theta_dot_B31_dot - c[15]*theta_dot_B32_dot + c[16]*theta_ddot_B29 + c[17]*theta_ddot_B30 + c[16]*theta_ddot_B31 - c[17]*theta_ddot_B32 + c[1]*theta_dotsq_A30 + c[0]*theta_dotsq_A31 + c[1]*theta_dotsq_A32;
+    out[31] = c[12]*A31 - c[12]*A32 + c[54]*theta_dotsq + c[20]*theta_dot_B29_dot + c[21]*theta_dot_B30_dot + c[22]*theta_dot_B31_dot - c[55]*theta_dot_B32_dot + c[23]*theta_ddot_B29 + c[24]*theta_ddot_B30 + c[56]*theta_ddot_B31 - c[57]*theta_ddot_B32 + c[1]*theta_dotsq_A31 + c[2]*theta_dotsq_A32;
+    out[32] = -c[58]*theta_ddot - c[59]*B1 + c[60]*B3 - c[61]*B4 - c[14]*theta_dot_A1_dot - c[19]*theta_dot_A2_dot - c[14]*theta_dot_A3_dot - c[20]*theta_dot_A4_dot - c[16]*theta_ddot_A1 - c[22]*theta_ddot_A2 - c[16]*theta_ddot_A3 - c[23]*theta_ddot_A4 - c[62]*theta_dotsq_B1 + c[63]*theta_dotsq_B2 + c[64]*theta_dotsq_B3 - c[65]*theta_dotsq_B4;
+    out[33] = -c[66]*theta_ddot - c[67]*B2 + c[61]*B3 - c[68]*B4 + c[15]*theta_dot_A1_dot - c[15]*theta_dot_A3_dot - c[21]*theta_dot_A4_dot + c[17]*theta_ddot_A1 - c[17]*theta_ddot_A3 - c[24]*theta_ddot_A4 + c[63]*theta_dotsq_B1 - c[69]*theta_dotsq_B2 + c[70]*theta_dotsq_B3 + c[71]*theta_dotsq_B4;
+    out[34] = -c[72]*theta_ddot + c[60]*B1 + c[61]*B2 - c[59]*B3 + c[60]*B5 - c[61]*B6 - c[20]*theta_dot_A2_dot - c[14]*theta_dot_A3_dot - c[19]*theta_dot_A4_dot - c[14]*theta_dot_A5_dot - c[20]*theta_dot_A6_dot - c[23]*theta_ddot_A2 - c[16]*theta_ddot_A3 - c[22]*theta_ddot_A4 - c[16]*theta_ddot_A5 - c[23]*theta_ddot_A6 + c[64]*theta_dotsq_B1 + c[70]*theta_dotsq_B2 - c[73]*theta_dotsq_B3 + c[74]*theta_dotsq_B4 + c[75]*theta_dotsq_B5 - c[70]*theta_dotsq_B6;
+    out[35] = -c[66]*theta_ddot - c[61]*B1 - c[68]*B2 - c[67]*B4 + c[61]*B5 - c[68]*B6 + c[21]*theta_dot_A2_dot + c[15]*theta_dot_A3_dot - c[15]*theta_dot_A5_dot - c[21]*theta_dot_A6_dot + c[24]*theta_ddot_A2 + c[17]*theta_ddot_A3 - c[17]*theta_ddot_A5 - c[24]*theta_ddot_A6 - c[65]*theta_dotsq_B1 + c[71]*theta_dotsq_B2 + c[74]*theta_dotsq_B3 - c[76]*theta_dotsq_B4 + c[77]*theta_dotsq_B5 + c[78]*theta_dotsq_B6;
+    out[36] = -c[79]*theta_ddot + c[60]*B3 + c[61]*B4 - c[59]*B5 + c[60]*B7 - c[61]*B8 - c[20]*theta_dot_A4_dot - c[14]*theta_dot_A5_dot - c[19]*theta_dot_A6_dot - c[14]*theta_dot_A7_dot - c[20]*theta_dot_A8_dot - c[23]*theta_ddot_A4 - c[16]*theta_ddot_A5 - c[22]*theta_ddot_A6 - c[16]*theta_ddot_A7 - c[23]*theta_ddot_A8 + c[75]*theta_dotsq_B3 + c[77]*theta_dotsq_B4 - c[80]*theta_dotsq_B5 + c[81]*theta_dotsq_B6 + c[82]*theta_dotsq_B7 - c[77]*theta_dotsq_B8;
+    out[37] = -c[66]*theta_ddot - c[61]*B3 - c[68]*B4 - c[67]*B6 + c[61]*B7 - c[68]*B8 + c[21]*theta_dot_A4_dot + c[15]*theta_dot_A5_dot - c[15]*theta_dot_A7_dot - c[21]*theta_dot_A8_dot + c[24]*theta_ddot_A4 + c[17]*theta_ddot_A5 - c[17]*theta_ddot_A7 - c[24]*theta_ddot_A8 - c[70]*theta_dotsq_B3 + c[78]*theta_dotsq_B4 + c[81]*theta_dotsq_B5 - c[83]*theta_dotsq_B6 + c[84]*theta_dotsq_B7 + c[85]*theta_dotsq_B8;
+    out[38] = -c[86]*theta_ddot + c[60]*B5 + c[61]*B6 - c[59]*B7 + c[60]*B9 - c[61]*B10 - c[20]*theta_dot_A6_dot - c[14]*theta_dot_A7_dot - c[19]*theta_dot_A8_dot - c[14]*theta_dot_A9_dot - c[20]*theta_dot_A10_dot - c[23]*theta_ddot_A6 - c[16]*theta_ddot_A7 - c[22]*theta_ddot_A8 - c[16]*theta_ddot_A9 - c[23]*theta_ddot_A10 + c[82]*theta_dotsq_B5 + c[84]*theta_dotsq_B6 - c[87]*theta_dotsq_B7 + c[88]*theta_dotsq_B8 + c[89]*theta_dotsq_B9 - c[84]*theta_dotsq_B10;
+    out[39] = -c[66]*theta_ddot - c[61]*B5 - c[68]*B6 - c[67]*B8 + c[61]*B9 - c[68]*B10 + c[21]*theta_dot_A6_dot + c[15]*theta_dot_A7_dot - c[15]*theta_dot_A9_dot - c[21]*theta_dot_A10_dot + c[24]*theta_ddot_A6 + c[17]*theta_ddot_A7 - c[17]*theta_ddot_A9 - c[24]*theta_ddot_A10 - c[77]*theta_dotsq_B5 + c[85]*theta_dotsq_B6 + c[88]*theta_dotsq_B7 - c[90]*theta_dotsq_B8 + c[91]*theta_dotsq_B9 + c[92]*theta_dotsq_B10;
+    out[40] = -c[93]*theta_ddot + c[60]*B7 + c[61]*B8 - c[59]*B9 + c[60]*B11 - c[61]*B12 - c[20]*theta_dot_A8_dot - c[14]*theta_dot_A9_dot - c[19]*theta_dot_A10_dot - c[14]*theta_dot_A11_dot - c[20]*theta_dot_A12_dot - c[23]*theta_ddot_A8 - c[16]*theta_ddot_A9 - c[22]*theta_ddot_A10 - c[16]*theta_ddot_A11 - c[23]*theta_ddot_A12 + c[89]*theta_dotsq_B7 + c[91]*theta_dotsq_B8 - c[94]*theta_dotsq_B9 + c[95]*theta_dotsq_B10 + c[96]*theta_dotsq_B11 - c[91]*theta_dotsq_B12;
+    out[41] = -c[66]*theta_ddot - c[61]*B7 - c[68]*B8 - c[67]*B10 + c[61]*B11 - c[68]*B12 + c[21]*theta_dot_A8_dot + c[15]*theta_dot_A9_dot - c[15]*theta_dot_A11_dot - c[21]*theta_dot_A12_dot + c[24]*theta_ddot_A8 + c[17]*theta_ddot_A9 - c[17]*theta_ddot_A11 - c[24]*theta_ddot_A12 - c[84]*theta_dotsq_B7 + c[92]*theta_dotsq_B8 + c[95]*theta_dotsq_B9 - c[97]*theta_dotsq_B10 + c[98]*theta_dotsq_B11 + c[99]*theta_dotsq_B12;
+    out[42] = -c[100]*theta_ddot + c[60]*B9 + c[61]*B10 - c[59]*B11 + c[60]*B13 - c[61]*B14 - c[20]*theta_dot_A10_dot - c[14]*theta_dot_A11_dot - c[19]*theta_dot_A12_dot - c[14]*theta_dot_A13_dot - c[20]*theta_dot_A14_dot - c[23]*theta_ddot_A10 - c[16]*theta_ddot_A11 - c[22]*theta_ddot_A12 - c[16]*theta_ddot_A13 - c[23]*theta_ddot_A14 + c[96]*theta_dotsq_B9 + c[98]*theta_dotsq_B10 - c[101]*theta_dotsq_B11 + c[102]*theta_dotsq_B12 + c[103]*theta_dotsq_B13 - c[98]*theta_dotsq_B14;
+    out[43] = -c[66]*theta_ddot - c[61]*B9 - c[68]*B10 - c[67]*B12 + c[61]*B13 - c[68]*B14 + c[21]*theta_dot_A10_dot + c[15]*theta_dot_A11_dot - c[15]*theta_dot_A13_dot - c[21]*theta_dot_A14_dot + c[24]*theta_ddot_A10 + c[17]*theta_ddot_A11 - c[17]*theta_ddot_A13 - c[24]*theta_ddot_A14 - c[91]*theta_dotsq_B9 + c[99]*theta_dotsq_B10 + c[102]*theta_dotsq_B11 - c[104]*theta_dotsq_B12 + c[105]*theta_dotsq_B13 + c[106]*theta_dotsq_B14;
+    out[44] = -c[107]*theta_ddot + c[60]*B11 + c[61]*B12 - c[59]*B13 + c[60]*B15 - c[61]*B16 - c[20]*theta_dot_A12_dot - c[14]*theta_dot_A13_dot - c[19]*theta_dot_A14_dot - c[14]*theta_dot_A15_dot - c[20]*theta_dot_A16_dot - c[23]*theta_ddot_A12 - c[16]*theta_ddot_A13 - c[22]*theta_ddot_A14 - c[16]*theta_ddot_A15 - c[23]*theta_ddot_A16 + c[103]*theta_dotsq_B11 + c[105]*theta_dotsq_B12 - c[108]*theta_dotsq_B13 + c[109]*theta_dotsq_B14 + c[110]*theta_dotsq_B15 - c[105]*theta_dotsq_B16;
+    out[45] = -c[66]*theta_ddot - c[61]*B11 - c[68]*B12 - c[67]*B14 + c[61]*B15 - c[68]*B16 + c[21]*theta_dot_A12_dot + c[15]*theta_dot_A13_dot - c[15]*theta_dot_A15_dot - c[21]*theta_dot_A16_dot + c[24]*theta_ddot_A12 + c[17]*theta_ddot_A13 - c[17]*theta_ddot_A15 - c[24]*theta_ddot_A16 - c[98]*theta_dotsq_B11 + c[106]*theta_dotsq_B12 + c[109]*theta_dotsq_B13 - c[111]*theta_dotsq_B14 + c[112]*theta_dotsq_B15 + c[113]*theta_dotsq_B16;
+    out[46] = -c[114]*theta_ddot + c[60]*B13 + c[61]*B14 - c[59]*B15 + c[60]*B17 - c[61]*B18 - c[20]*theta_dot_A14_dot - c[14]*theta_dot_A15_dot - c[19]*theta_dot_A16_dot - c[14]*theta_dot_A17_dot - c[20]*theta_dot_A18_dot - c[23]*theta_ddot_A14 - c[16]*theta_ddot_A15 - c[22]*theta_ddot_A16 - c[16]*theta_ddot_A17 - c[23]*theta_ddot_A18 + c[110]*theta_dotsq_B13 + c[112]*theta_dotsq_B14 - c[115]*theta_dotsq_B15 + c[116]*theta_dotsq_B16 + c[117]*theta_dotsq_B17 - c[112]*theta_dotsq_B18;
+    out[47] = -c[66]*theta_ddot - c[61]*B13 - c[68]*B14 - c[67]*B16 + c[61]*B17 - c[68]*B18 + c[21]*theta_dot_A14_dot + c[15]*theta_dot_A15_dot - c[15]*theta_dot_A17_dot - c[21]*theta_dot_A18_dot + c[24]*theta_ddot_A14 + c[17]*theta_ddot_A15 - c[17]*theta_ddot_A17 - c[24]*theta_ddot_A18 - c[105]*theta_dotsq_B13 + c[113]*theta_dotsq_B14 + c[116]*theta_dotsq_B15 - c[118]*theta_dotsq_B16 + c[119]*theta_dotsq_B17 + c[120]*theta_dotsq_B18;
+    out[48] = -c[121]*theta_ddot + c[60]*B15 + c[61]*B16 - c[59]*B17 + c[60]*B19 - c[61]*B20 - c[20]*theta_dot_A16_dot - c[14]*theta_dot_A17_dot - c[19]*theta_dot_A18_dot - c[14]*theta_dot_A19_dot - c[20]*theta_dot_A20_dot - c[23]*theta_ddot_A16 - c[16]*theta_ddot_A17 - c[22]*theta_ddot_A18 - c[16]*theta_ddot_A19 - c[23]*theta_ddot_A20 + c[117]*theta_dotsq_B15 + c[119]*theta_dotsq_B16 - c[122]*theta_dotsq_B17 + c[123]*theta_dotsq_B18 + c[124]*theta_dotsq_B19 - c[119]*theta_dotsq_B20;
+    out[49] = -c[66]*theta_ddot - c[61]*B15 - c[68]*B16 - c[67]*B18 + c[61]*B19 - c[68]*B20 + c[21]*theta_dot_A16_dot + c[15]*theta_dot_A17_dot - c[15]*theta_dot_A19_dot - c[21]*theta_dot_A20_dot + c[24]*theta_ddot_A16 + c[17]*theta_ddot_A17 - c[17]*theta_ddot_A19 - c[24]*theta_ddot_A20 - c[112]*theta_dotsq_B15 + c[120]*theta_dotsq_B16 + c[123]*theta_dotsq_B17 - c[125]*theta_dotsq_B18 + c[126]*theta_dotsq_B19 + c[127]*theta_dotsq_B20;
+    out[50] = -c[128]*theta_ddot + c[60]*B17 + c[61]*B18 - c[59]*B19 + c[60]*B21 - c[61]*B22 - c[20]*theta_dot_A18_dot - c[14]*theta_dot_A19_dot - c[19]*theta_dot_A20_dot - c[14]*theta_dot_A21_dot - c[20]*theta_dot_A22_dot - c[23]*theta_ddot_A18 - c[16]*theta_ddot_A19 - c[22]*theta_ddot_A20 - c[16]*theta_ddot_A21 - c[23]*theta_ddot_A22 + c[124]*theta_dotsq_B17 + c[126]*theta_dotsq_B18 - c[129]*theta_dotsq_B19 + c[130]*theta_dotsq_B20 + c[131]*theta_dotsq_B21 - c[126]*theta_dotsq_B22;
+    out[51] = -c[66]*theta_ddot - c[61]*B17 - c[68]*B18 - c[67]*B20 + c[61]*B21 - c[68]*B22 + c[21]*theta_dot_A18_dot + c[15]*theta_dot_A19_dot - c[15]*theta_dot_A21_dot - c[21]*theta_dot_A22_dot + c[24]*theta_ddot_A18 + c[17]*theta_ddot_A19 - c[17]*theta_ddot_A21 - c[24]*theta_ddot_A22 - c[119]*theta_dotsq_B17 + c[127]*theta_dotsq_B18 + c[130]*theta_dotsq_B19 - c[132]*theta_dotsq_B20 + c[133]*theta_dotsq_B21 + c[134]*theta_dotsq_B22;
+    out[52] = -c[135]*theta_ddot + c[60]*B19 + c[61]*B20 - c[59]*B21 + c[60]*B23 - c[61]*B24 - c[20]*theta_dot_A20_dot - c[14]*theta_dot_A21_dot - c[19]*theta_dot_A22_dot - c[14]*theta_dot_A23_dot - c[20]*theta_dot_A24_dot - c[23]*theta_ddot_A20 - c[16]*theta_ddot_A21 - c[22]*theta_ddot_A22 - c[16]*theta_ddot_A23 - c[23]*theta_ddot_A24 + c[131]*theta_dotsq_B19 + c[133]*theta_dotsq_B20 - c[136]*theta_dotsq_B21 + c[137]*theta_dotsq_B22 + c[138]*theta_dotsq_B23 - c[133]*theta_dotsq_B24;
+    out[53] = -c[66]*theta_ddot - c[61]*B19 - c[68]*B20 - c[67]*B22 + c[61]*B23 - c[68]*B24 + c[21]*theta_dot_A20_dot + c[15]*theta_dot_A21_dot - c[15]*theta_dot_A23_dot - c[21]*theta_dot_A24_dot + c[24]*theta_ddot_A20 + c[17]*theta_ddot_A21 - c[17]*theta_ddot_A23 - c[24]*theta_ddot_A24 - c[126]*theta_dotsq_B19 + c[134]*theta_dotsq_B20 + c[137]*theta_dotsq_B21 - c[139]*theta_dotsq_B22 + c[140]*theta_dotsq_B23 + c[141]*theta_dotsq_B24;
+    out[54] = -c[142]*theta_ddot + c[60]*B21 + c[61]*B22 - c[59]*B23 + c[60]*B25 - c[61]*B26 - c[20]*theta_dot_A22_dot - c[14]*theta_dot_A23_dot - c[19]*theta_dot_A24_dot - c[14]*theta_dot_A25_dot - c[20]*theta_dot_A26_dot - c[23]*theta_ddot_A22 - c[16]*theta_ddot_A23 - c[22]*theta_ddot_A24 - c[16]*theta_ddot_A25 - c[23]*theta_ddot_A26 + c[138]*theta_dotsq_B21 + c[140]*theta_dotsq_B22 - c[143]*theta_dotsq_B23 + c[144]*theta_dotsq_B24 + c[145]*theta_dotsq_B25 - c[140]*theta_dotsq_B26;
+    out[55] = -c[66]*theta_ddot - c[61]*B21 - c[68]*B22 - c[67]*B24 + c[61]*B25 - c[68]*B26 + c[21]*theta_dot_A22_dot + c[15]*theta_dot_A23_dot - c[15]*theta_dot_A25_dot - c[21]*theta_dot_A26_dot + c[24]*theta_ddot_A22 + c[17]*theta_ddot_A23 - c[17]*theta_ddot_A25 - c[24]*theta_ddot_A26 - c[133]*theta_dotsq_B21 + c[141]*theta_dotsq_B22 + c[144]*theta_dotsq_B23 - c[146]*theta_dotsq_B24 + c[147]*theta_dotsq_B25 + c[148]*theta_dotsq_B26;
+    out[56] = -c[149]*theta_ddot + c[60]*B23 + c[61]*B24 - c[59]*B25 + c[60]*B27 - c[61]*B28 - c[20]*theta_dot_A24_dot - c[14]*theta_dot_A25_dot - c[19]*theta_dot_A26_dot - c[14]*theta_dot_A27_dot - c[20]*theta_dot_A28_dot - c[23]*theta_ddot_A24 - c[16]*theta_ddot_A25 - c[22]*theta_ddot_A26 - c[16]*theta_ddot_A27 - c[23]*theta_ddot_A28 + c[145]*theta_dotsq_B23 + c[147]*theta_dotsq_B24 - c[150]*theta_dotsq_B25 + c[151]*theta_dotsq_B26 + c[152]*theta_dotsq_B27 - c[147]*theta_dotsq_B28;
+    out[57] = -c[66]*theta_ddot - c[61]*B23 - c[68]*B24 - c[67]*B26 + c[61]*B27 - c[68]*B28 + c[21]*theta_dot_A24_dot + c[15]*theta_dot_A25_dot - c[15]*theta_dot_A27_dot - c[21]*theta_dot_A28_dot + c[24]*theta_ddot_A24 + c[17]*theta_ddot_A25 - c[17]*theta_ddot_A27 - c[24]*theta_ddot_A28 - c[140]*theta_dotsq_B23 + c[148]*theta_dotsq_B24 + c[151]*theta_dotsq_B25 - c[153]*theta_dotsq_B26 + c[154]*theta_dotsq_B27 + c[155]*theta_dotsq_B28;
+    out[58] = -c[156]*theta_ddot + c[60]*B25 + c[61]*B26 - c[59]*B27 + c[60]*B29 - c[61]*B30 - c[20]*theta_dot_A26_dot - c[14]*theta_dot_A27_dot - c[19]*theta_dot_A28_dot - c[14]*theta_dot_A29_dot - c[20]*theta_dot_A30_dot - c[23]*theta_ddot_A26 - c[16]*theta_ddot_A27 - c[22]*theta_ddot_A28 - c[16]*theta_ddot_A29 - c[23]*theta_ddot_A30 + c[152]*theta_dotsq_B25 + c[154]*theta_dotsq_B26 - c[157]*theta_dotsq_B27 + c[158]*theta_dotsq_B28 + c[159]*theta_dotsq_B29 - c[154]*theta_dotsq_B30;
+    out[59] = -c[66]*theta_ddot - c[61]*B25 - c[68]*B26 - c[67]*B28 + c[61]*B29 - c[68]*B30 + c[21]*theta_dot_A26_dot + c[15]*theta_dot_A27_dot - c[15]*theta_dot_A29_dot - c[21]*theta_dot_A30_dot + c[24]*theta_ddot_A26 + c[17]*theta_ddot_A27 - c[17]*theta_ddot_A29 - c[24]*theta_ddot_A30 - c[147]*theta_dotsq_B25 + c[155]*theta_dotsq_B26 + c[158]*theta_dotsq_B27 - c[160]*theta_dotsq_B28 + c[161]*theta_dotsq_B29 + c[162]*theta_dotsq_B30;
+    out[60] = -c[163]*theta_ddot + c[60]*B27 + c[61]*B28 - c[59]*B29 + c[60]*B31 - c[61]*B32 - c[20]*theta_dot_A28_dot - c[14]*theta_dot_A29_dot - c[19]*theta_dot_A30_dot - c[14]*theta_dot_A31_dot - c[20]*theta_dot_A32_dot - c[23]*theta_ddot_A28 - c[16]*theta_ddot_A29 - c[22]*theta_ddot_A30 - c[16]*theta_ddot_A31 - c[23]*theta_ddot_A32 + c[159]*theta_dotsq_B27 + c[161]*theta_dotsq_B28 - c[164]*theta_dotsq_B29 + c[165]*theta_dotsq_B30 + c[166]*theta_dotsq_B31 - c[161]*theta_dotsq_B32;
+    out[61] = -c[66]*theta_ddot - c[61]*B27 - c[68]*B28 - c[67]*B30 + c[61]*B31 - c[68]*B32 + c[21]*theta_dot_A28_dot + c[15]*theta_dot_A29_dot - c[15]*theta_dot_A31_dot - c[21]*theta_dot_A32_dot + c[24]*theta_ddot_A28 + c[17]*theta_ddot_A29 - c[17]*theta_ddot_A31 - c[24]*theta_ddot_A32 - c[154]*theta_dotsq_B27 + c[162]*theta_dotsq_B28 + c[165]*theta_dotsq_B29 - c[167]*theta_dotsq_B30 + c[168]*theta_dotsq_B31 + c[169]*theta_dotsq_B32;
+    out[62] = -c[170]*theta_ddot + c[60]*B29 + c[61]*B30 - c[60]*B31 + c[61]*B32 - c[20]*theta_dot_A30_dot - c[14]*theta_dot_A31_dot - c[22]*theta_dot_A32_dot - c[23]*theta_ddot_A30 - c[16]*theta_ddot_A31 - c[56]*theta_ddot_A32 + c[166]*theta_dotsq_B29 + c[168]*theta_dotsq_B30 - c[171]*theta_dotsq_B31 + c[172]*theta_dotsq_B32;
+    out[63] = c[173]*theta_ddot - c[61]*B29 - c[68]*B30 + c[61]*B31 - c[174]*B32 + c[21]*theta_dot_A30_dot + c[15]*theta_dot_A31_dot + c[55]*theta_dot_A32_dot + c[24]*theta_ddot_A30 + c[17]*theta_ddot_A31 + c[57]*theta_ddot_A32 - c[161]*theta_dotsq_B29 + c[169]*theta_dotsq_B30 + c[172]*theta_dotsq_B31 - c[175]*theta_dotsq_B32;
 }
 
 /* forces_terms:(c[332],u[3],q[64],qd[64])->(m[258]) the state monomials of Q: Q = F m */

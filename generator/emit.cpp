@@ -732,9 +732,10 @@ EmittedCode emit_kernels(const std::string& prefix, const Signature& sig, std::v
         if (!k.slots.empty() && k.slots.size() != outputs.size())
             throw EmitError("emit: kernel " + k.name + " has " + std::to_string(outputs.size()) + " values but " +
                             std::to_string(k.slots.size()) + " slots");
+        const int threshold = k.every_right_hand_side ? options.rhs_table_threshold : options.table_threshold;
         const bool tables = k.rows == 0 && (options.form == Form::tables ||
                                             (options.form == Form::automatic &&
-                                             term_count(outputs) > static_cast<std::size_t>(options.table_threshold)));
+                                             term_count(outputs) > static_cast<std::size_t>(threshold)));
         if (tables) {
             bool constant = true;
             for (const Output& o : outputs)

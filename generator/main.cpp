@@ -52,6 +52,11 @@ void add_options(CLI::App& app, Arguments& a)
                                                                      "(default 1000)")
         ->check(CLI::PositiveNumber)
         ->type_name("N");
+    app.add_option("--rhs-table-threshold", a.options.rhs_table_threshold,
+                   "Terms above which auto prints a kernel called at every right-hand side (the forces, the mass "
+                   "matrix) as tables (default 4000)")
+        ->check(CLI::PositiveNumber)
+        ->type_name("N");
     app.add_option("variants", a.names,
                    std::string("Variant names ") + hubbeam::variant_name_grammar +
                        ": METHOD amm|fem|bim|bsim, Nx axial and Ny transverse (in-plane) coordinates, Nz flapwise and "

@@ -365,6 +365,7 @@ std::pair<KernelSpec, KernelSpec> mass_kernels(const std::vector<Poly>& M, const
     const std::string n2 = std::to_string(nq * nq);
     KernelSpec mass{"mass", "M[" + n2 + "]", "row-major; M = d2T/dqd2, upper triangle, nonzero entries only", {}};
     KernelSpec mass_varying{"mass_varying", "M[" + n2 + "]", "as mass, the entries that depend on q only", {}};
+    mass.every_right_hand_side = mass_varying.every_right_hand_side = true;
     for (int i = 0; i < nq; ++i)
         for (int j = i; j < nq; ++j) {
             const char kind = pattern[static_cast<std::size_t>(i * nq + j)];
@@ -474,10 +475,14 @@ std::vector<KernelSpec> common_kernels(const VariantKey& key, const Symbols& s, 
     const std::string n2 = std::to_string(nq * nq), n1 = std::to_string(nq);
     const std::string nk = std::to_string(terms.terms.size());
     const std::string nu = std::to_string(nq * static_cast<int>(drive_value_count));
+    KernelSpec forces =
+        dense_kernel("forces", "Q[" + n1 + "]", "Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq", eq.Q);
+    KernelSpec forces_terms = dense_kernel("forces_terms", "m[" + nk + "]", "the state monomials of Q: Q = F m", terms.terms);
+    forces.every_right_hand_side = forces_terms.every_right_hand_side = true;
     return {
         mass,
-        dense_kernel("forces", "Q[" + n1 + "]", "Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq", eq.Q),
-        dense_kernel("forces_terms", "m[" + nk + "]", "the state monomials of Q: Q = F m", terms.terms),
+        std::move(forces),
+        std::move(forces_terms),
         sparse_kernel("forces_matrix", "F[" + n1 + "*" + nk + "]", "row-major, state-free: Q = F m", terms.matrix),
         dense_kernel("energy", "E[4]", "E = (T2, T1, T0, U), T split by degree in qd", {eq.T2, eq.T1, eq.T0, eq.U}),
         dense_kernel("momentum", "h[1]", "h = dT/dtheta_dot, angular momentum about the hub axis", {eq.momentum}),

@@ -50,6 +50,26 @@ TEST_CASE("kernels: coefficients hoisted, monomials formed once, one write per o
     CHECK(code.text.find("    out[0] = c[0] - c[1]*xsq_y;\n") != std::string::npos);
 }
 
+TEST_CASE("a kernel of every right-hand side stays unrolled up to its own threshold", "[emit]")
+{
+    const symbol k("k"), x("x"), y("y");
+    const Signature sig{{"p", 1, ""}, {{"q", 1, ""}, {"qd", 1, ""}}, {{k, "p[0]"}}, {{x, "q[0]"}, {y, "qd[0]"}}};
+    const ex five_terms = k * x + k * y + k * x * y + k * x * x + k * y * y;
+    EmitOptions options;
+    options.table_threshold = 4;
+    options.rhs_table_threshold = 5;
+    const auto tables = [&](bool every_right_hand_side, int rhs_threshold) {
+        KernelSpec spec{"f", "out[1]", "", {five_terms}};
+        spec.every_right_hand_side = every_right_hand_side;
+        options.rhs_table_threshold = rhs_threshold;
+        const EmittedCode code = emit_kernels("t", sig, {spec}, options);
+        return code.text.find("Table form") != std::string::npos;
+    };
+    CHECK(tables(false, 5));  // five terms, above the threshold of 4
+    CHECK_FALSE(tables(true, 5));
+    CHECK(tables(true, 4));
+}
+
 TEST_CASE("the printer refuses what it cannot print exactly", "[emit]")
 {
     const symbol x("x"), k("k");
