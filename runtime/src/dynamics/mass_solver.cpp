@@ -76,6 +76,8 @@ public:
     /// b := A^-1 b.
     void solve(double* b) const
     {
+        if (p_ == 3) return band_solve<3>(b);  // FEM's and the cubic B-splines' bands
+        if (p_ == 4) return band_solve<4>(b);
         for (int i = 0; i < n_; ++i) {  // L y = b
             double s = b[i];
             for (int k = first(i); k < i; ++k) s -= L(i, k) * b[k];
@@ -89,6 +91,50 @@ public:
     }
 
 private:
+    /// solve() at bandwidth P, the same operations in the same order (so the same bits), with the P values a row
+    /// reads held in registers: solve()'s loops read each back from b just after storing it, and that store-to-load
+    /// forwarding lay on every row's dependency chain (FEM at Ny = 64: 0.64 us a solve, a third of the run).
+    template <int P>
+    void band_solve(double* b) const
+    {
+        const double* inv = inv_diag_.data();
+        for (int i = 0; i < P; ++i) {  // L y = b: the first rows, shorter than the band
+            double s = b[i];
+            for (int k = 0; k < i; ++k) s -= L(i, k) * b[k];
+            b[i] = s * inv[i];
+        }
+        double w[P];  // y_(i-P) .. y_(i-1)
+        for (int k = 0; k < P; ++k) w[k] = b[k];
+        for (int i = P; i < n_; ++i) {
+            const double* row = &L_[static_cast<std::size_t>(i) * n_ + i - P];
+            double s = b[i];
+            for (int k = 0; k < P; ++k) s -= row[k] * w[k];
+            const double y = s * inv[i];
+            b[i] = y;
+            for (int k = 0; k + 1 < P; ++k) w[k] = w[k + 1];
+            w[P - 1] = y;
+        }
+        // L^T x = y, rows from the last: pending holds b(i) and window b(i-P) .. b(i-1), each updated by the rows
+        // after it in the same order as solve()'s column loop.
+        double pending = b[n_ - 1], window[P];
+        for (int k = 0; k < P; ++k) window[k] = b[n_ - 1 - P + k];
+        for (int i = n_ - 1; i >= P; --i) {
+            const double x = pending * inv[i];
+            b[i] = x;
+            const double* row = &L_[static_cast<std::size_t>(i) * n_ + i - P];
+            for (int k = 0; k < P; ++k) window[k] -= row[k] * x;
+            pending = window[P - 1];
+            for (int k = P - 1; k > 0; --k) window[k] = window[k - 1];
+            window[0] = i - 1 - P >= 0 ? b[i - 1 - P] : 0.0;
+        }
+        b[P - 1] = pending;
+        for (int k = 1; k < P; ++k) b[k - 1] = window[k];
+        for (int i = P - 1; i >= 0; --i) {
+            const double x = b[i] * inv[i];
+            b[i] = x;
+            for (int k = 0; k < i; ++k) b[k] -= L(i, k) * x;
+        }
+    }
     int first(int i) const { return std::max(0, i - p_); }
     double& L(int i, int j) { return L_[static_cast<std::size_t>(i) * n_ + j]; }
     double L(int i, int j) const { return L_[static_cast<std::size_t>(i) * n_ + j]; }
