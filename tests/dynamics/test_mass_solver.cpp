@@ -54,6 +54,9 @@ void check_solver(const Model& model, std::mt19937& rng)
         REQUIRE(solver->prepare(u, q.data()));
         solver->solve(X.data(), 3);
         CHECK(test::relative_error(X, M.partialPivLu().solve(B)) < 1e-11);
+        MatrixXd x = B.col(0);  // the right-hand side's path: prepared and solved in one call (two solves as a pair)
+        REQUIRE(solver->prepare_and_solve(u, q.data(), x.data()));
+        CHECK(test::relative_error(x, M.partialPivLu().solve(B.col(0))) < 1e-11);
     }
 }
 

@@ -59,6 +59,9 @@ public:
     /// a := A^-1 a and b := A^-1 b in one pass: two independent chains, so each hides the other's latency.
     void solve_pair(double* a, double* b) const
     {
+        double* const v[2] = {a, b};
+        if (p_ == 3) return band_solve<3>(v);
+        if (p_ == 4) return band_solve<4>(v);
         for (int i = 0; i < n_; ++i) {
             double s = a[i], t = b[i];
             for (int k = first(i); k < i; ++k) s -= L(i, k) * a[k], t -= L(i, k) * b[k];
@@ -76,8 +79,9 @@ public:
     /// b := A^-1 b.
     void solve(double* b) const
     {
-        if (p_ == 3) return band_solve<3>(b);  // FEM's and the cubic B-splines' bands
-        if (p_ == 4) return band_solve<4>(b);
+        double* const v[1] = {b};
+        if (p_ == 3) return band_solve<3>(v);  // FEM's and the cubic B-splines' bands
+        if (p_ == 4) return band_solve<4>(v);
         for (int i = 0; i < n_; ++i) {  // L y = b
             double s = b[i];
             for (int k = first(i); k < i; ++k) s -= L(i, k) * b[k];
@@ -91,49 +95,62 @@ public:
     }
 
 private:
-    /// solve() at bandwidth P, the same operations in the same order (so the same bits), with the P values a row
-    /// reads held in registers: solve()'s loops read each back from b just after storing it, and that store-to-load
-    /// forwarding lay on every row's dependency chain (FEM at Ny = 64: 0.64 us a solve, a third of the run).
-    template <int P>
-    void band_solve(double* b) const
+    /// solve() at bandwidth P on C vectors at once (C = 2: solve_pair), the same operations in the same order (so
+    /// the same bits), with the P values a row reads held in registers: solve()'s loops read each back from b just
+    /// after storing it, and that store-to-load forwarding lay on every row's dependency chain (FEM at Ny = 64:
+    /// 0.64 us a solve, a third of the run).
+    template <int P, int C>
+    void band_solve(double* const (&v)[C]) const
     {
         const double* inv = inv_diag_.data();
-        for (int i = 0; i < P; ++i) {  // L y = b: the first rows, shorter than the band
-            double s = b[i];
-            for (int k = 0; k < i; ++k) s -= L(i, k) * b[k];
-            b[i] = s * inv[i];
-        }
-        double w[P];  // y_(i-P) .. y_(i-1)
-        for (int k = 0; k < P; ++k) w[k] = b[k];
+        for (int i = 0; i < P; ++i)  // L y = b: the first rows, shorter than the band
+            for (double* b : v) {
+                double s = b[i];
+                for (int k = 0; k < i; ++k) s -= L(i, k) * b[k];
+                b[i] = s * inv[i];
+            }
+        double w[C][P];  // y_(i-P) .. y_(i-1)
+        for (int c = 0; c < C; ++c)
+            for (int k = 0; k < P; ++k) w[c][k] = v[c][k];
         for (int i = P; i < n_; ++i) {
             const double* row = &L_[static_cast<std::size_t>(i) * n_ + i - P];
-            double s = b[i];
-            for (int k = 0; k < P; ++k) s -= row[k] * w[k];
-            const double y = s * inv[i];
-            b[i] = y;
-            for (int k = 0; k + 1 < P; ++k) w[k] = w[k + 1];
-            w[P - 1] = y;
+            for (int c = 0; c < C; ++c) {
+                double s = v[c][i];
+                for (int k = 0; k < P; ++k) s -= row[k] * w[c][k];
+                const double y = s * inv[i];
+                v[c][i] = y;
+                for (int k = 0; k + 1 < P; ++k) w[c][k] = w[c][k + 1];
+                w[c][P - 1] = y;
+            }
         }
         // L^T x = y, rows from the last: pending holds b(i) and window b(i-P) .. b(i-1), each updated by the rows
         // after it in the same order as solve()'s column loop.
-        double pending = b[n_ - 1], window[P];
-        for (int k = 0; k < P; ++k) window[k] = b[n_ - 1 - P + k];
+        double pending[C], window[C][P];
+        for (int c = 0; c < C; ++c) {
+            pending[c] = v[c][n_ - 1];
+            for (int k = 0; k < P; ++k) window[c][k] = v[c][n_ - 1 - P + k];
+        }
         for (int i = n_ - 1; i >= P; --i) {
-            const double x = pending * inv[i];
-            b[i] = x;
             const double* row = &L_[static_cast<std::size_t>(i) * n_ + i - P];
-            for (int k = 0; k < P; ++k) window[k] -= row[k] * x;
-            pending = window[P - 1];
-            for (int k = P - 1; k > 0; --k) window[k] = window[k - 1];
-            window[0] = i - 1 - P >= 0 ? b[i - 1 - P] : 0.0;
+            for (int c = 0; c < C; ++c) {
+                const double x = pending[c] * inv[i];
+                v[c][i] = x;
+                for (int k = 0; k < P; ++k) window[c][k] -= row[k] * x;
+                pending[c] = window[c][P - 1];
+                for (int k = P - 1; k > 0; --k) window[c][k] = window[c][k - 1];
+                window[c][0] = i - 1 - P >= 0 ? v[c][i - 1 - P] : 0.0;
+            }
         }
-        b[P - 1] = pending;
-        for (int k = 1; k < P; ++k) b[k - 1] = window[k];
-        for (int i = P - 1; i >= 0; --i) {
-            const double x = b[i] * inv[i];
-            b[i] = x;
-            for (int k = 0; k < i; ++k) b[k] -= L(i, k) * x;
+        for (int c = 0; c < C; ++c) {
+            v[c][P - 1] = pending[c];
+            for (int k = 1; k < P; ++k) v[c][k - 1] = window[c][k];
         }
+        for (int i = P - 1; i >= 0; --i)
+            for (double* b : v) {
+                const double x = b[i] * inv[i];
+                b[i] = x;
+                for (int k = 0; k < i; ++k) b[k] -= L(i, k) * x;
+            }
     }
     int first(int i) const { return std::max(0, i - p_); }
     double& L(int i, int j) { return L_[static_cast<std::size_t>(i) * n_ + j]; }
