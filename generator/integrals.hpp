@@ -66,6 +66,8 @@ private:
     std::vector<double> cuts_;                            // panel boundaries of the composite rule (quadrature path)
     bool equal_panels_ = true;                            // no stations: cuts_[k] = k / panels
     std::map<std::pair<Factor, int>, GiNaC::ex> pieces_;  // (factor, field interval) -> polynomial
+    /// A coupling H_ij at the start of a field interval: the integral of phi_i' phi_j' over the intervals before it.
+    std::map<std::pair<Factor, int>, GiNaC::numeric> coupling_starts_;
     std::map<std::pair<Factor, int>, std::vector<GiNaC::numeric>> coefficients_;  // the same, as coefficients
     std::map<std::pair<std::vector<Factor>, int>, GiNaC::numeric> cache_;
     std::vector<double> nodes_, weights_;  // composite rule (quadrature path)
