@@ -481,6 +481,24 @@ TEST_CASE("OutputFile removes the temporary files of a writer that was killed, a
     CHECK(fs::exists(other));
 }
 
+TEST_CASE("OutputFile reads the folder for a killed writer's files only where its lock file shows one", "[output]")
+{
+    // A writer removes its lock file as it finishes, so without one no writer was killed holding it: a temporary
+    // file there is one a failed rename left on purpose (the message names it as the complete file), kept.
+    ScratchDir scratch;
+    const pid_t dead = ::fork();
+    if (dead == 0) ::_exit(0);
+    REQUIRE(dead > 0);
+    REQUIRE(::waitpid(dead, nullptr, 0) == dead);
+    const std::string kept = scratch / (".out.csv.tmp-" + std::to_string(dead));
+    put(kept, "the complete file of a rename that failed\n");
+    OutputFile file(scratch / "out.csv");
+    REQUIRE(file.write("new\n") == 0);
+    REQUIRE(file.commit().empty());
+    CHECK(fs::exists(kept));
+    CHECK_FALSE(fs::exists(scratch / ".out.csv.lock"));
+}
+
 TEST_CASE("OutputFile refuses a symbolic link and a file its owner made read-only, leaving both alone", "[output]")
 {
     ScratchDir scratch;

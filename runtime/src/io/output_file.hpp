@@ -106,7 +106,8 @@ private:
     void resolve_target();
     /// Takes the lock beside the target (DIR/.NAME.lock), refusing while another hubbeam holds it.
     void take_lock(const std::filesystem::path& dir, const std::string& name);
-    /// With the lock held: removes DIR/.NAME.tmp-PID[-N] files whose process no longer exists.
+    /// With the lock held, where a killed writer left it: removes DIR/.NAME.tmp-PID[-N] files whose process no
+    /// longer exists.
     void remove_stale_temps(const std::filesystem::path& dir, const std::string& name) const;
     /// Creates the temporary file (temp, or DIR/.NAME.tmp-PID[-N]) with O_EXCL.
     void create_temp(const std::filesystem::path& dir, const std::string& name, const std::string& temp);
