@@ -59,6 +59,16 @@ std::string contents(const std::string& path)
 
 void put(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
 
+/// The pid of a process that has ended: it names no process until the kernel hands it out again.
+pid_t ended_process()
+{
+    const pid_t pid = ::fork();
+    if (pid == 0) ::_exit(0);
+    REQUIRE(pid > 0);
+    REQUIRE(::waitpid(pid, nullptr, 0) == pid);
+    return pid;
+}
+
 Row row_at(double t) { return {t, 2 * t, 3.0, -t, 1e-300, 0.1, 0.3, 1e20, -0.0, 12345.678}; }
 
 /// What the file should hold after the header and these rows.
@@ -459,11 +469,7 @@ TEST_CASE("OutputFile removes the temporary files of a writer that was killed, a
 {
     ScratchDir scratch;
     const std::string out = scratch / "out.csv";
-    // A process that has ended: its pid names no process until the kernel hands it out again.
-    const pid_t dead = ::fork();
-    if (dead == 0) ::_exit(0);
-    REQUIRE(dead > 0);
-    REQUIRE(::waitpid(dead, nullptr, 0) == dead);
+    const pid_t dead = ended_process();
     const std::string stale = scratch / (".out.csv.tmp-" + std::to_string(dead));
     const std::string stale_n = stale + "-1";
     const std::string alive = scratch / (".out.csv.tmp-" + std::to_string(::getppid()));  // a live process's
@@ -486,10 +492,7 @@ TEST_CASE("OutputFile reads the folder for a killed writer's files only where it
     // A writer removes its lock file as it finishes, so without one no writer was killed holding it: a temporary
     // file there is one a failed rename left on purpose (the message names it as the complete file), kept.
     ScratchDir scratch;
-    const pid_t dead = ::fork();
-    if (dead == 0) ::_exit(0);
-    REQUIRE(dead > 0);
-    REQUIRE(::waitpid(dead, nullptr, 0) == dead);
+    const pid_t dead = ended_process();
     const std::string kept = scratch / (".out.csv.tmp-" + std::to_string(dead));
     put(kept, "the complete file of a rename that failed\n");
     OutputFile file(scratch / "out.csv");
