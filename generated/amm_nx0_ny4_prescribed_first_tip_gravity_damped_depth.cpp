@@ -714,7 +714,7 @@ void amm_nx0_ny4_prescribed_first_tip_gravity_damped_depth_mass(const double* c,
 }
 
 /* forces:(c[97],u[5],q[4],qd[4])->(Q[4]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
-void amm_nx0_ny4_prescribed_first_tip_gravity_damped_depth_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void amm_nx0_ny4_prescribed_first_tip_gravity_damped_depth_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
     const double theta_ddot = u[2];
@@ -744,7 +744,7 @@ void amm_nx0_ny4_prescribed_first_tip_gravity_damped_depth_forces(const double* 
 }
 
 /* forces_terms:(c[97],u[5],q[4],qd[4])->(m[18]) the state monomials of Q: Q = F m */
-void amm_nx0_ny4_prescribed_first_tip_gravity_damped_depth_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void amm_nx0_ny4_prescribed_first_tip_gravity_damped_depth_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
     const double theta_dot = u[1];

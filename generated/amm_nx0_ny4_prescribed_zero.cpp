@@ -146,7 +146,7 @@ void amm_nx0_ny4_prescribed_zero_mass(const double* c, const double* u, const do
 }
 
 /* forces:(c[23],u[3],q[4],qd[4])->(Q[4]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
-void amm_nx0_ny4_prescribed_zero_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void amm_nx0_ny4_prescribed_zero_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)qd;
     const double theta_dot = u[1];
@@ -167,7 +167,7 @@ void amm_nx0_ny4_prescribed_zero_forces(const double* c, const double* u, const 
 }
 
 /* forces_terms:(c[23],u[3],q[4],qd[4])->(m[9]) the state monomials of Q: Q = F m */
-void amm_nx0_ny4_prescribed_zero_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void amm_nx0_ny4_prescribed_zero_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
     (void)qd;

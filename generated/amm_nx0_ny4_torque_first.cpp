@@ -262,7 +262,7 @@ HUBBEAM_ONCE_KERNEL void amm_nx0_ny4_torque_first_coefficients_p(const double* p
 }
 
 /* mass:(c[54],u[3],q[5],qd[5])->(M[25]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
-void amm_nx0_ny4_torque_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void amm_nx0_ny4_torque_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)qd;
@@ -292,7 +292,7 @@ void amm_nx0_ny4_torque_first_mass(const double* c, const double* u, const doubl
 }
 
 /* forces:(c[54],u[3],q[5],qd[5])->(Q[5]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
-void amm_nx0_ny4_torque_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void amm_nx0_ny4_torque_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
     const double B1 = q[1];
@@ -336,7 +336,7 @@ void amm_nx0_ny4_torque_first_forces(const double* c, const double* u, const dou
 }
 
 /* forces_terms:(c[54],u[3],q[5],qd[5])->(m[25]) the state monomials of Q: Q = F m */
-void amm_nx0_ny4_torque_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void amm_nx0_ny4_torque_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
     const double tau = u[0];
@@ -713,7 +713,7 @@ HUBBEAM_WIDE_KERNEL void amm_nx0_ny4_torque_first_forces_folded(const double* c,
 }
 
 /* mass_varying:(c[54],u[3],q[5],qd[5])->(M[25]) as mass, the entries that depend on q only */
-void amm_nx0_ny4_torque_first_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void amm_nx0_ny4_torque_first_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)qd;

@@ -512,7 +512,7 @@ void amm_nx4_ny4_prescribed_first_mass(const double* c, const double* u, const d
 }
 
 /* forces:(c[110],u[3],q[8],qd[8])->(Q[8]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
-void amm_nx4_ny4_prescribed_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void amm_nx4_ny4_prescribed_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
     const double theta_ddot = u[2];
@@ -568,7 +568,7 @@ void amm_nx4_ny4_prescribed_first_forces(const double* c, const double* u, const
 }
 
 /* forces_terms:(c[110],u[3],q[8],qd[8])->(m[34]) the state monomials of Q: Q = F m */
-void amm_nx4_ny4_prescribed_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void amm_nx4_ny4_prescribed_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
     const double theta_dot = u[1];

@@ -1770,7 +1770,7 @@ void amm_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100_mass
 }
 
 /* forces:(c[189],u[5],q[8],qd[8])->(Q[8]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
-void amm_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void amm_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
     const double theta_ddot = u[2];
@@ -1832,7 +1832,7 @@ void amm_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100_forc
 }
 
 /* forces_terms:(c[189],u[5],q[8],qd[8])->(m[48]) the state monomials of Q: Q = F m */
-void amm_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void amm_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
     const double theta_dot = u[1];

@@ -496,7 +496,7 @@ HUBBEAM_ONCE_KERNEL void amm_nx4_ny4_torque_first_coefficients_p(const double* p
 }
 
 /* mass:(c[110],u[3],q[9],qd[9])->(M[81]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
-void amm_nx4_ny4_torque_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void amm_nx4_ny4_torque_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)qd;
@@ -542,7 +542,7 @@ void amm_nx4_ny4_torque_first_mass(const double* c, const double* u, const doubl
 }
 
 /* forces:(c[110],u[3],q[9],qd[9])->(Q[9]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
-void amm_nx4_ny4_torque_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void amm_nx4_ny4_torque_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
     const double A1 = q[1];
@@ -619,7 +619,7 @@ void amm_nx4_ny4_torque_first_forces(const double* c, const double* u, const dou
 }
 
 /* forces_terms:(c[110],u[3],q[9],qd[9])->(m[46]) the state monomials of Q: Q = F m */
-void amm_nx4_ny4_torque_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void amm_nx4_ny4_torque_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
     const double tau = u[0];
@@ -1346,7 +1346,7 @@ HUBBEAM_WIDE_KERNEL void amm_nx4_ny4_torque_first_forces_folded(const double* c,
 }
 
 /* mass_varying:(c[110],u[3],q[9],qd[9])->(M[81]) as mass, the entries that depend on q only */
-void amm_nx4_ny4_torque_first_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void amm_nx4_ny4_torque_first_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)qd;

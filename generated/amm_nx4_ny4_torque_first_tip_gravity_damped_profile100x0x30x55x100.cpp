@@ -1742,7 +1742,7 @@ HUBBEAM_ONCE_KERNEL void amm_nx4_ny4_torque_first_tip_gravity_damped_profile100x
 }
 
 /* mass:(c[189],u[5],q[9],qd[9])->(M[81]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
-void amm_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void amm_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)qd;
@@ -1806,7 +1806,7 @@ void amm_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100_mass(con
 }
 
 /* forces:(c[189],u[5],q[9],qd[9])->(Q[9]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
-void amm_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void amm_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
     const double sin_theta = u[3];
@@ -1919,7 +1919,7 @@ void amm_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100_forces(c
 }
 
 /* forces_terms:(c[189],u[5],q[9],qd[9])->(m[86]) the state monomials of Q: Q = F m */
-void amm_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void amm_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
     const double tau = u[0];
@@ -3055,7 +3055,7 @@ HUBBEAM_WIDE_KERNEL void amm_nx4_ny4_torque_first_tip_gravity_damped_profile100x
 }
 
 /* mass_varying:(c[189],u[5],q[9],qd[9])->(M[81]) as mass, the entries that depend on q only */
-void amm_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void amm_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)qd;

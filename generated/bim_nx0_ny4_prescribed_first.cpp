@@ -300,7 +300,7 @@ void bim_nx0_ny4_prescribed_first_mass(const double* c, const double* u, const d
 }
 
 /* forces:(c[57],u[3],q[4],qd[4])->(Q[4]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
-void bim_nx0_ny4_prescribed_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bim_nx0_ny4_prescribed_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)qd;
     const double theta_dot = u[1];
@@ -321,7 +321,7 @@ void bim_nx0_ny4_prescribed_first_forces(const double* c, const double* u, const
 }
 
 /* forces_terms:(c[57],u[3],q[4],qd[4])->(m[9]) the state monomials of Q: Q = F m */
-void bim_nx0_ny4_prescribed_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bim_nx0_ny4_prescribed_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
     (void)qd;

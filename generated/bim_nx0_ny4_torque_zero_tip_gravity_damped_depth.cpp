@@ -433,7 +433,7 @@ HUBBEAM_ONCE_KERNEL void bim_nx0_ny4_torque_zero_tip_gravity_damped_depth_coeffi
 }
 
 /* mass:(c[62],u[5],q[5],qd[5])->(M[25]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
-void bim_nx0_ny4_torque_zero_tip_gravity_damped_depth_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bim_nx0_ny4_torque_zero_tip_gravity_damped_depth_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)qd;
@@ -469,7 +469,7 @@ void bim_nx0_ny4_torque_zero_tip_gravity_damped_depth_mass(const double* c, cons
 }
 
 /* forces:(c[62],u[5],q[5],qd[5])->(Q[5]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
-void bim_nx0_ny4_torque_zero_tip_gravity_damped_depth_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bim_nx0_ny4_torque_zero_tip_gravity_damped_depth_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
     const double sin_theta = u[3];
@@ -519,7 +519,7 @@ void bim_nx0_ny4_torque_zero_tip_gravity_damped_depth_forces(const double* c, co
 }
 
 /* forces_terms:(c[62],u[5],q[5],qd[5])->(m[34]) the state monomials of Q: Q = F m */
-void bim_nx0_ny4_torque_zero_tip_gravity_damped_depth_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bim_nx0_ny4_torque_zero_tip_gravity_damped_depth_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
     const double tau = u[0];
@@ -987,7 +987,7 @@ HUBBEAM_WIDE_KERNEL void bim_nx0_ny4_torque_zero_tip_gravity_damped_depth_forces
 }
 
 /* mass_varying:(c[62],u[5],q[5],qd[5])->(M[25]) as mass, the entries that depend on q only */
-void bim_nx0_ny4_torque_zero_tip_gravity_damped_depth_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bim_nx0_ny4_torque_zero_tip_gravity_damped_depth_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)qd;

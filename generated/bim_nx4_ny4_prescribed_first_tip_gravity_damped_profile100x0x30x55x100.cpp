@@ -1508,7 +1508,7 @@ void bim_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100_mass
 }
 
 /* forces:(c[181],u[5],q[8],qd[8])->(Q[8]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
-void bim_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bim_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
     const double theta_ddot = u[2];
@@ -1570,7 +1570,7 @@ void bim_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100_forc
 }
 
 /* forces_terms:(c[181],u[5],q[8],qd[8])->(m[48]) the state monomials of Q: Q = F m */
-void bim_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bim_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
     const double theta_dot = u[1];

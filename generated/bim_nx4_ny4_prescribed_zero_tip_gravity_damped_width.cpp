@@ -954,7 +954,7 @@ void bim_nx4_ny4_prescribed_zero_tip_gravity_damped_width_mass(const double* c, 
 }
 
 /* forces:(c[150],u[5],q[8],qd[8])->(Q[8]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
-void bim_nx4_ny4_prescribed_zero_tip_gravity_damped_width_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bim_nx4_ny4_prescribed_zero_tip_gravity_damped_width_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
     const double theta_ddot = u[2];
@@ -1012,7 +1012,7 @@ void bim_nx4_ny4_prescribed_zero_tip_gravity_damped_width_forces(const double* c
 }
 
 /* forces_terms:(c[150],u[5],q[8],qd[8])->(m[44]) the state monomials of Q: Q = F m */
-void bim_nx4_ny4_prescribed_zero_tip_gravity_damped_width_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bim_nx4_ny4_prescribed_zero_tip_gravity_damped_width_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
     const double theta_dot = u[1];

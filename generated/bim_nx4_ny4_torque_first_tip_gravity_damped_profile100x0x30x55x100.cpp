@@ -1480,7 +1480,7 @@ HUBBEAM_ONCE_KERNEL void bim_nx4_ny4_torque_first_tip_gravity_damped_profile100x
 }
 
 /* mass:(c[181],u[5],q[9],qd[9])->(M[81]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
-void bim_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bim_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)qd;
@@ -1544,7 +1544,7 @@ void bim_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100_mass(con
 }
 
 /* forces:(c[181],u[5],q[9],qd[9])->(Q[9]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
-void bim_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bim_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
     const double sin_theta = u[3];
@@ -1657,7 +1657,7 @@ void bim_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100_forces(c
 }
 
 /* forces_terms:(c[181],u[5],q[9],qd[9])->(m[86]) the state monomials of Q: Q = F m */
-void bim_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bim_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
     const double tau = u[0];
@@ -2790,7 +2790,7 @@ HUBBEAM_WIDE_KERNEL void bim_nx4_ny4_torque_first_tip_gravity_damped_profile100x
 }
 
 /* mass_varying:(c[181],u[5],q[9],qd[9])->(M[81]) as mass, the entries that depend on q only */
-void bim_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bim_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)qd;

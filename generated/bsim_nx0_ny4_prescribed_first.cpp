@@ -314,7 +314,7 @@ void bsim_nx0_ny4_prescribed_first_mass(const double* c, const double* u, const 
 }
 
 /* forces:(c[62],u[3],q[4],qd[4])->(Q[4]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
-void bsim_nx0_ny4_prescribed_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bsim_nx0_ny4_prescribed_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)qd;
     const double theta_dot = u[1];
@@ -335,7 +335,7 @@ void bsim_nx0_ny4_prescribed_first_forces(const double* c, const double* u, cons
 }
 
 /* forces_terms:(c[62],u[3],q[4],qd[4])->(m[9]) the state monomials of Q: Q = F m */
-void bsim_nx0_ny4_prescribed_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bsim_nx0_ny4_prescribed_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
     (void)qd;

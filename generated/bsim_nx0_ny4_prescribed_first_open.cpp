@@ -310,7 +310,7 @@ void bsim_nx0_ny4_prescribed_first_open_mass(const double* c, const double* u, c
 }
 
 /* forces:(c[61],u[3],q[4],qd[4])->(Q[4]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
-void bsim_nx0_ny4_prescribed_first_open_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bsim_nx0_ny4_prescribed_first_open_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)qd;
     const double theta_dot = u[1];
@@ -331,7 +331,7 @@ void bsim_nx0_ny4_prescribed_first_open_forces(const double* c, const double* u,
 }
 
 /* forces_terms:(c[61],u[3],q[4],qd[4])->(m[9]) the state monomials of Q: Q = F m */
-void bsim_nx0_ny4_prescribed_first_open_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bsim_nx0_ny4_prescribed_first_open_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
     (void)qd;

@@ -661,7 +661,7 @@ void bsim_nx0_ny4_prescribed_first_tip_gravity_damped_width_mass(const double* c
 }
 
 /* forces:(c[96],u[5],q[4],qd[4])->(Q[4]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
-void bsim_nx0_ny4_prescribed_first_tip_gravity_damped_width_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bsim_nx0_ny4_prescribed_first_tip_gravity_damped_width_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
     const double theta_ddot = u[2];
@@ -691,7 +691,7 @@ void bsim_nx0_ny4_prescribed_first_tip_gravity_damped_width_forces(const double*
 }
 
 /* forces_terms:(c[96],u[5],q[4],qd[4])->(m[18]) the state monomials of Q: Q = F m */
-void bsim_nx0_ny4_prescribed_first_tip_gravity_damped_width_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bsim_nx0_ny4_prescribed_first_tip_gravity_damped_width_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
     const double theta_dot = u[1];

@@ -296,7 +296,7 @@ HUBBEAM_ONCE_KERNEL void bsim_nx0_ny4_torque_first_coefficients_p(const double* 
 }
 
 /* mass:(c[62],u[3],q[5],qd[5])->(M[25]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
-void bsim_nx0_ny4_torque_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bsim_nx0_ny4_torque_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)qd;
@@ -332,7 +332,7 @@ void bsim_nx0_ny4_torque_first_mass(const double* c, const double* u, const doub
 }
 
 /* forces:(c[62],u[3],q[5],qd[5])->(Q[5]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
-void bsim_nx0_ny4_torque_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bsim_nx0_ny4_torque_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
     const double B1 = q[1];
@@ -376,7 +376,7 @@ void bsim_nx0_ny4_torque_first_forces(const double* c, const double* u, const do
 }
 
 /* forces_terms:(c[62],u[3],q[5],qd[5])->(m[25]) the state monomials of Q: Q = F m */
-void bsim_nx0_ny4_torque_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bsim_nx0_ny4_torque_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
     const double tau = u[0];
@@ -771,7 +771,7 @@ HUBBEAM_WIDE_KERNEL void bsim_nx0_ny4_torque_first_forces_folded(const double* c
 }
 
 /* mass_varying:(c[62],u[3],q[5],qd[5])->(M[25]) as mass, the entries that depend on q only */
-void bsim_nx0_ny4_torque_first_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bsim_nx0_ny4_torque_first_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)qd;

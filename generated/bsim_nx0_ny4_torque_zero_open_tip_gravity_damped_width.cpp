@@ -438,7 +438,7 @@ HUBBEAM_ONCE_KERNEL void bsim_nx0_ny4_torque_zero_open_tip_gravity_damped_width_
 }
 
 /* mass:(c[63],u[5],q[5],qd[5])->(M[25]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
-void bsim_nx0_ny4_torque_zero_open_tip_gravity_damped_width_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bsim_nx0_ny4_torque_zero_open_tip_gravity_damped_width_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)qd;
@@ -474,7 +474,7 @@ void bsim_nx0_ny4_torque_zero_open_tip_gravity_damped_width_mass(const double* c
 }
 
 /* forces:(c[63],u[5],q[5],qd[5])->(Q[5]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
-void bsim_nx0_ny4_torque_zero_open_tip_gravity_damped_width_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bsim_nx0_ny4_torque_zero_open_tip_gravity_damped_width_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
     const double sin_theta = u[3];
@@ -524,7 +524,7 @@ void bsim_nx0_ny4_torque_zero_open_tip_gravity_damped_width_forces(const double*
 }
 
 /* forces_terms:(c[63],u[5],q[5],qd[5])->(m[34]) the state monomials of Q: Q = F m */
-void bsim_nx0_ny4_torque_zero_open_tip_gravity_damped_width_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bsim_nx0_ny4_torque_zero_open_tip_gravity_damped_width_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
     const double tau = u[0];
@@ -992,7 +992,7 @@ HUBBEAM_WIDE_KERNEL void bsim_nx0_ny4_torque_zero_open_tip_gravity_damped_width_
 }
 
 /* mass_varying:(c[63],u[5],q[5],qd[5])->(M[25]) as mass, the entries that depend on q only */
-void bsim_nx0_ny4_torque_zero_open_tip_gravity_damped_width_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bsim_nx0_ny4_torque_zero_open_tip_gravity_damped_width_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)qd;

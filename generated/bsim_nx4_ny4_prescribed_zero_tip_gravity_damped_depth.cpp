@@ -956,7 +956,7 @@ void bsim_nx4_ny4_prescribed_zero_tip_gravity_damped_depth_mass(const double* c,
 }
 
 /* forces:(c[152],u[5],q[8],qd[8])->(Q[8]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
-void bsim_nx4_ny4_prescribed_zero_tip_gravity_damped_depth_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bsim_nx4_ny4_prescribed_zero_tip_gravity_damped_depth_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
     const double theta_ddot = u[2];
@@ -1014,7 +1014,7 @@ void bsim_nx4_ny4_prescribed_zero_tip_gravity_damped_depth_forces(const double* 
 }
 
 /* forces_terms:(c[152],u[5],q[8],qd[8])->(m[44]) the state monomials of Q: Q = F m */
-void bsim_nx4_ny4_prescribed_zero_tip_gravity_damped_depth_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bsim_nx4_ny4_prescribed_zero_tip_gravity_damped_depth_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
     const double theta_dot = u[1];

@@ -558,7 +558,7 @@ HUBBEAM_ONCE_KERNEL void bsim_nx4_ny4_torque_first_coefficients_p(const double* 
 }
 
 /* mass:(c[125],u[3],q[9],qd[9])->(M[81]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
-void bsim_nx4_ny4_torque_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bsim_nx4_ny4_torque_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)qd;
@@ -622,7 +622,7 @@ void bsim_nx4_ny4_torque_first_mass(const double* c, const double* u, const doub
 }
 
 /* forces:(c[125],u[3],q[9],qd[9])->(Q[9]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
-void bsim_nx4_ny4_torque_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bsim_nx4_ny4_torque_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
     const double A1 = q[1];
@@ -711,7 +711,7 @@ void bsim_nx4_ny4_torque_first_forces(const double* c, const double* u, const do
 }
 
 /* forces_terms:(c[125],u[3],q[9],qd[9])->(m[58]) the state monomials of Q: Q = F m */
-void bsim_nx4_ny4_torque_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bsim_nx4_ny4_torque_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
     const double tau = u[0];
@@ -1585,7 +1585,7 @@ HUBBEAM_WIDE_KERNEL void bsim_nx4_ny4_torque_first_forces_folded(const double* c
 }
 
 /* mass_varying:(c[125],u[3],q[9],qd[9])->(M[81]) as mass, the entries that depend on q only */
-void bsim_nx4_ny4_torque_first_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bsim_nx4_ny4_torque_first_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)qd;

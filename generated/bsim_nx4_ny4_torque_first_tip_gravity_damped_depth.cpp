@@ -1151,7 +1151,7 @@ HUBBEAM_ONCE_KERNEL void bsim_nx4_ny4_torque_first_tip_gravity_damped_depth_coef
 }
 
 /* mass:(c[187],u[5],q[9],qd[9])->(M[81]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
-void bsim_nx4_ny4_torque_first_tip_gravity_damped_depth_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bsim_nx4_ny4_torque_first_tip_gravity_damped_depth_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)qd;
@@ -1215,7 +1215,7 @@ void bsim_nx4_ny4_torque_first_tip_gravity_damped_depth_mass(const double* c, co
 }
 
 /* forces:(c[187],u[5],q[9],qd[9])->(Q[9]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
-void bsim_nx4_ny4_torque_first_tip_gravity_damped_depth_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bsim_nx4_ny4_torque_first_tip_gravity_damped_depth_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
     const double sin_theta = u[3];
@@ -1328,7 +1328,7 @@ void bsim_nx4_ny4_torque_first_tip_gravity_damped_depth_forces(const double* c, 
 }
 
 /* forces_terms:(c[187],u[5],q[9],qd[9])->(m[86]) the state monomials of Q: Q = F m */
-void bsim_nx4_ny4_torque_first_tip_gravity_damped_depth_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bsim_nx4_ny4_torque_first_tip_gravity_damped_depth_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
     const double tau = u[0];
@@ -2461,7 +2461,7 @@ HUBBEAM_WIDE_KERNEL void bsim_nx4_ny4_torque_first_tip_gravity_damped_depth_forc
 }
 
 /* mass_varying:(c[187],u[5],q[9],qd[9])->(M[81]) as mass, the entries that depend on q only */
-void bsim_nx4_ny4_torque_first_tip_gravity_damped_depth_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bsim_nx4_ny4_torque_first_tip_gravity_damped_depth_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)qd;

@@ -605,7 +605,7 @@ HUBBEAM_ONCE_KERNEL void bsim_nx4_ny4_torque_first_tip_gravity_damped_profile100
 }
 
 /* mass:(c[188],u[5],q[9],qd[9])->(M[81]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
-void bsim_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bsim_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)qd;
@@ -669,7 +669,7 @@ void bsim_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100_mass(co
 }
 
 /* forces:(c[188],u[5],q[9],qd[9])->(Q[9]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
-void bsim_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bsim_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
     const double sin_theta = u[3];
@@ -782,7 +782,7 @@ void bsim_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100_forces(
 }
 
 /* forces_terms:(c[188],u[5],q[9],qd[9])->(m[86]) the state monomials of Q: Q = F m */
-void bsim_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bsim_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
     const double tau = u[0];
@@ -1915,7 +1915,7 @@ HUBBEAM_WIDE_KERNEL void bsim_nx4_ny4_torque_first_tip_gravity_damped_profile100
 }
 
 /* mass_varying:(c[188],u[5],q[9],qd[9])->(M[81]) as mass, the entries that depend on q only */
-void bsim_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void bsim_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)qd;

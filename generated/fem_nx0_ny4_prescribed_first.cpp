@@ -280,7 +280,7 @@ void fem_nx0_ny4_prescribed_first_mass(const double* c, const double* u, const d
 }
 
 /* forces:(c[53],u[3],q[4],qd[4])->(Q[4]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
-void fem_nx0_ny4_prescribed_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void fem_nx0_ny4_prescribed_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)qd;
     const double theta_dot = u[1];
@@ -301,7 +301,7 @@ void fem_nx0_ny4_prescribed_first_forces(const double* c, const double* u, const
 }
 
 /* forces_terms:(c[53],u[3],q[4],qd[4])->(m[9]) the state monomials of Q: Q = F m */
-void fem_nx0_ny4_prescribed_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void fem_nx0_ny4_prescribed_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
     (void)qd;

@@ -410,7 +410,7 @@ HUBBEAM_ONCE_KERNEL void fem_nx0_ny4_torque_zero_tip_gravity_damped_width_coeffi
 }
 
 /* mass:(c[59],u[5],q[5],qd[5])->(M[25]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
-void fem_nx0_ny4_torque_zero_tip_gravity_damped_width_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void fem_nx0_ny4_torque_zero_tip_gravity_damped_width_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)qd;
@@ -446,7 +446,7 @@ void fem_nx0_ny4_torque_zero_tip_gravity_damped_width_mass(const double* c, cons
 }
 
 /* forces:(c[59],u[5],q[5],qd[5])->(Q[5]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
-void fem_nx0_ny4_torque_zero_tip_gravity_damped_width_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void fem_nx0_ny4_torque_zero_tip_gravity_damped_width_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
     const double sin_theta = u[3];
@@ -496,7 +496,7 @@ void fem_nx0_ny4_torque_zero_tip_gravity_damped_width_forces(const double* c, co
 }
 
 /* forces_terms:(c[59],u[5],q[5],qd[5])->(m[34]) the state monomials of Q: Q = F m */
-void fem_nx0_ny4_torque_zero_tip_gravity_damped_width_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void fem_nx0_ny4_torque_zero_tip_gravity_damped_width_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
     const double tau = u[0];
@@ -964,7 +964,7 @@ HUBBEAM_WIDE_KERNEL void fem_nx0_ny4_torque_zero_tip_gravity_damped_width_forces
 }
 
 /* mass_varying:(c[59],u[5],q[5],qd[5])->(M[25]) as mass, the entries that depend on q only */
-void fem_nx0_ny4_torque_zero_tip_gravity_damped_width_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void fem_nx0_ny4_torque_zero_tip_gravity_damped_width_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)qd;

@@ -920,7 +920,7 @@ HUBBEAM_ONCE_KERNEL void fem_nx16_ny16_torque_first_coefficients_p(const double*
 }
 
 /* mass:(c[188],u[3],q[33],qd[33])->(M[1089]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
-void fem_nx16_ny16_torque_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void fem_nx16_ny16_torque_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)qd;
@@ -1151,7 +1151,7 @@ void fem_nx16_ny16_torque_first_mass(const double* c, const double* u, const dou
 }
 
 /* forces:(c[188],u[3],q[33],qd[33])->(Q[33]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
-void fem_nx16_ny16_torque_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void fem_nx16_ny16_torque_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
     const double A1 = q[1];
@@ -1486,7 +1486,7 @@ void fem_nx16_ny16_torque_first_forces(const double* c, const double* u, const d
 }
 
 /* forces_terms:(c[188],u[3],q[33],qd[33])->(m[232]) the state monomials of Q: Q = F m */
-void fem_nx16_ny16_torque_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void fem_nx16_ny16_torque_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
     const double tau = u[0];
@@ -5071,7 +5071,7 @@ HUBBEAM_WIDE_KERNEL void fem_nx16_ny16_torque_first_forces_folded(const double* 
 }
 
 /* mass_varying:(c[188],u[3],q[33],qd[33])->(M[1089]) as mass, the entries that depend on q only */
-void fem_nx16_ny16_torque_first_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void fem_nx16_ny16_torque_first_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)qd;

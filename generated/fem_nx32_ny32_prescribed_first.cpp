@@ -1804,7 +1804,7 @@ void fem_nx32_ny32_prescribed_first_mass(const double* c, const double* u, const
 }
 
 /* forces:(c[332],u[3],q[64],qd[64])->(Q[64]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
-void fem_nx32_ny32_prescribed_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void fem_nx32_ny32_prescribed_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
     const double theta_ddot = u[2];
@@ -2196,7 +2196,7 @@ void fem_nx32_ny32_prescribed_first_forces(const double* c, const double* u, con
 }
 
 /* forces_terms:(c[332],u[3],q[64],qd[64])->(m[258]) the state monomials of Q: Q = F m */
-void fem_nx32_ny32_prescribed_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void fem_nx32_ny32_prescribed_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
     const double theta_dot = u[1];

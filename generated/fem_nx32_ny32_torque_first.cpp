@@ -1641,7 +1641,7 @@ HUBBEAM_ONCE_KERNEL void fem_nx32_ny32_torque_first_coefficients_p(const double*
 }
 
 /* mass:(c[333],u[3],q[65],qd[65])->(M[4225]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
-void fem_nx32_ny32_torque_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void fem_nx32_ny32_torque_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)qd;
@@ -2104,7 +2104,7 @@ void fem_nx32_ny32_torque_first_mass(const double* c, const double* u, const dou
 }
 
 /* forces:(c[333],u[3],q[65],qd[65])->(Q[65]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
-void fem_nx32_ny32_torque_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void fem_nx32_ny32_torque_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
     const double A1 = q[1];
@@ -2775,7 +2775,7 @@ void fem_nx32_ny32_torque_first_forces(const double* c, const double* u, const d
 }
 
 /* forces_terms:(c[333],u[3],q[65],qd[65])->(m[472]) the state monomials of Q: Q = F m */
-void fem_nx32_ny32_torque_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void fem_nx32_ny32_torque_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
     const double tau = u[0];
@@ -7525,7 +7525,7 @@ void fem_nx32_ny32_torque_first_forces_u(const double* c, const double* u, const
 }
 
 /* mass_varying:(c[333],u[3],q[65],qd[65])->(M[4225]) as mass, the entries that depend on q only */
-void fem_nx32_ny32_torque_first_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void fem_nx32_ny32_torque_first_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)qd;

@@ -404,7 +404,7 @@ void fem_nx4_ny4_prescribed_first_mass(const double* c, const double* u, const d
 }
 
 /* forces:(c[80],u[3],q[8],qd[8])->(Q[8]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
-void fem_nx4_ny4_prescribed_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void fem_nx4_ny4_prescribed_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
     const double theta_ddot = u[2];
@@ -460,7 +460,7 @@ void fem_nx4_ny4_prescribed_first_forces(const double* c, const double* u, const
 }
 
 /* forces_terms:(c[80],u[3],q[8],qd[8])->(m[34]) the state monomials of Q: Q = F m */
-void fem_nx4_ny4_prescribed_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void fem_nx4_ny4_prescribed_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
     const double theta_dot = u[1];

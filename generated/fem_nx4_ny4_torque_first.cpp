@@ -380,7 +380,7 @@ HUBBEAM_ONCE_KERNEL void fem_nx4_ny4_torque_first_coefficients_p(const double* p
 }
 
 /* mass:(c[80],u[3],q[9],qd[9])->(M[81]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
-void fem_nx4_ny4_torque_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void fem_nx4_ny4_torque_first_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)qd;
@@ -437,7 +437,7 @@ void fem_nx4_ny4_torque_first_mass(const double* c, const double* u, const doubl
 }
 
 /* forces:(c[80],u[3],q[9],qd[9])->(Q[9]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
-void fem_nx4_ny4_torque_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void fem_nx4_ny4_torque_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
     const double A1 = q[1];
@@ -520,7 +520,7 @@ void fem_nx4_ny4_torque_first_forces(const double* c, const double* u, const dou
 }
 
 /* forces_terms:(c[80],u[3],q[9],qd[9])->(m[52]) the state monomials of Q: Q = F m */
-void fem_nx4_ny4_torque_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void fem_nx4_ny4_torque_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
     const double tau = u[0];
@@ -1300,7 +1300,7 @@ HUBBEAM_WIDE_KERNEL void fem_nx4_ny4_torque_first_forces_folded(const double* c,
 }
 
 /* mass_varying:(c[80],u[3],q[9],qd[9])->(M[81]) as mass, the entries that depend on q only */
-void fem_nx4_ny4_torque_first_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void fem_nx4_ny4_torque_first_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)qd;

@@ -1028,7 +1028,7 @@ HUBBEAM_ONCE_KERNEL void fem_nx4_ny4_torque_first_tip_gravity_damped_depth_coeff
 }
 
 /* mass:(c[164],u[5],q[9],qd[9])->(M[81]) row-major; M = d2T/dqd2, upper triangle, nonzero entries only */
-void fem_nx4_ny4_torque_first_tip_gravity_damped_depth_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void fem_nx4_ny4_torque_first_tip_gravity_damped_depth_mass(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)qd;
@@ -1086,7 +1086,7 @@ void fem_nx4_ny4_torque_first_tip_gravity_damped_depth_mass(const double* c, con
 }
 
 /* forces:(c[164],u[5],q[9],qd[9])->(Q[9]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
-void fem_nx4_ny4_torque_first_tip_gravity_damped_depth_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void fem_nx4_ny4_torque_first_tip_gravity_damped_depth_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double tau = u[0];
     const double sin_theta = u[3];
@@ -1193,7 +1193,7 @@ void fem_nx4_ny4_torque_first_tip_gravity_damped_depth_forces(const double* c, c
 }
 
 /* forces_terms:(c[164],u[5],q[9],qd[9])->(m[80]) the state monomials of Q: Q = F m */
-void fem_nx4_ny4_torque_first_tip_gravity_damped_depth_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void fem_nx4_ny4_torque_first_tip_gravity_damped_depth_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
     const double tau = u[0];
@@ -2231,7 +2231,7 @@ HUBBEAM_WIDE_KERNEL void fem_nx4_ny4_torque_first_tip_gravity_damped_depth_force
 }
 
 /* mass_varying:(c[164],u[5],q[9],qd[9])->(M[81]) as mass, the entries that depend on q only */
-void fem_nx4_ny4_torque_first_tip_gravity_damped_depth_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void fem_nx4_ny4_torque_first_tip_gravity_damped_depth_mass_varying(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)u;
     (void)qd;

@@ -604,7 +604,7 @@ void fem_nx8_ny8_prescribed_first_mass(const double* c, const double* u, const d
 }
 
 /* forces:(c[116],u[3],q[16],qd[16])->(Q[16]) Q = tau e_theta + dT/dq - d(dT/dqd)/dt at qdd = 0 - dU/dq */
-void fem_nx8_ny8_prescribed_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void fem_nx8_ny8_prescribed_first_forces(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     const double theta_dot = u[1];
     const double theta_ddot = u[2];
@@ -708,7 +708,7 @@ void fem_nx8_ny8_prescribed_first_forces(const double* c, const double* u, const
 }
 
 /* forces_terms:(c[116],u[3],q[16],qd[16])->(m[66]) the state monomials of Q: Q = F m */
-void fem_nx8_ny8_prescribed_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
+HUBBEAM_WIDE_KERNEL void fem_nx8_ny8_prescribed_first_forces_terms(const double* c, const double* u, const double* q, const double* qd, double* out)
 {
     (void)c;
     const double theta_dot = u[1];

@@ -60,9 +60,9 @@ struct Variant {
                                * for other mass patterns or beyond a size where unrolling pays */
 };
 
-/* Marks forces_folded (and the runtime's band solve): GCC compiles it for AVX2 (four lanes in one register) and for
- * the baseline (two registers of two), and the loader picks. AVX2 without FMA rounds as SSE2 does, so both give the
- * same bits. */
+/* Marks forces_folded, the unrolled kernels of every right-hand side (and the runtime's band solve): GCC compiles
+ * them for AVX2 (four lanes in one register, three-operand forms) and for the baseline (two registers of two), and
+ * the loader picks. AVX2 without FMA rounds as SSE2 does, so both give the same bits. */
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
 #define HUBBEAM_WIDE_KERNEL __attribute__((target_clones("avx2", "default")))
 #else
