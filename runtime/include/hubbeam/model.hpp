@@ -107,7 +107,7 @@ public:
     void set_origin(std::string origin) { origin_ = std::move(origin); }
     /// True when M does not depend on q (prescribed rotation, first and zero order): factor it once.
     virtual bool mass_is_constant() const = 0;
-    /// M(q), nq x nq row-major.
+    /// M(q), nq x nq row-major, symmetric to the bit (the solvers read either triangle).
     virtual void mass(const HubInput& u, const double* q, double* M) const = 0;
     /// M's structure, row-major, one character per entry: '0' zero, 'c' constant, 'v' depends on q. The
     /// integrator chooses its linear algebra from it; by default every entry is 'c' or every entry 'v'.
