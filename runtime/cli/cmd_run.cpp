@@ -31,6 +31,8 @@ namespace {
 struct RunOptions {
     std::string scene;
     std::vector<std::string> values = std::vector<std::string>(scene_keys().size());
+    // Each key's option (null for a key without one): asked whether it was given, without a search by name.
+    std::vector<const CLI::Option*> given = std::vector<const CLI::Option*>(scene_keys().size());
     std::string fields_at, fields_points = "81", fields_file;  // the fields along the beam (not scene keys)
     // Not a scene key: whether the output must survive a power loss depends on the machine and the job, not on
     // what is simulated (the same scene runs on a laptop and in a batch queue).
@@ -44,7 +46,7 @@ void add_run_options(CLI::App& sub, RunOptions& o)
     sub.add_option("scene", o.scene, "Scene file (TOML; format in docs/scene.md, examples in cases/)")->required();
     const std::vector<SceneKey>& keys = scene_keys();
     for (std::size_t i = 0; i < keys.size(); ++i)
-        if (keys[i].option) add_key_option(sub, keys[i], o.values[i]);
+        if (keys[i].option) o.given[i] = add_key_option(sub, keys[i], o.values[i]);
     sub.add_option("--fields-at", o.fields_at,
                    "Also write the fields along the beam (u_y, u_x, slope, curvature, bending moment, axial force) at "
                    "these times (s, comma-separated; the first row at or after each)")
@@ -87,12 +89,12 @@ std::pair<std::vector<double>, int> field_request(const RunOptions& o, const Sce
 }
 
 /// The options that were given, as overrides of their scene keys.
-Overrides given_overrides(const CLI::App& sub, const RunOptions& o)
+Overrides given_overrides(const RunOptions& o)
 {
     Overrides overrides;
     const std::vector<SceneKey>& keys = scene_keys();
     for (std::size_t i = 0; i < keys.size(); ++i)
-        if (keys[i].option && sub.get_option(option_name(keys[i]))->count() > 0)
+        if (o.given[i] != nullptr && o.given[i]->count() > 0)
             overrides.emplace_back(keys[i].name, o.values[i]);
     return overrides;
 }
@@ -148,9 +150,9 @@ struct RunPlan {
 
 /// The scene with the options, its outputs named and checked against it and each other (as files: ./x/../scene.toml,
 /// a hard link); prints the refusal and returns false when there is one.
-bool plan_run(const CLI::App& sub, const RunOptions& o, RunPlan& plan)
+bool plan_run(const RunOptions& o, RunPlan& plan)
 {
-    const Overrides overrides = given_overrides(sub, o);
+    const Overrides overrides = given_overrides(o);
     try {
         plan.scene = load_scene(o.scene, overrides);
     } catch (const SceneError& e) {
@@ -241,10 +243,10 @@ std::unique_ptr<Simulation> prepare(const RunPlan& plan, bool durable, std::uniq
 }
 
 /// hubbeam run: returns the exit code.
-int run(const CLI::App& sub, const RunOptions& o)
+int run(const RunOptions& o)
 {
     RunPlan plan;
-    if (!plan_run(sub, o, plan)) return exit_bad_input;
+    if (!plan_run(o, plan)) return exit_bad_input;
     if (o.print_scene) {
         std::cout << effective_scene_toml(plan.scene);
         return exit_ok;
@@ -320,7 +322,7 @@ Command add_run_command(CLI::App& app)
         "DIR/.NAME.tmp-PID and renamed over FILE when the run ends; FILE.hubbeam.json beside it says where it came "
         "from (version, variant, effective scene, stepper, summary).");
     add_run_options(*run_cmd, *options);
-    return {run_cmd, [run_cmd, options] { return run(*run_cmd, *options); }};
+    return {run_cmd, [options] { return run(*options); }};
 }
 
 }  // namespace hubbeam::cli

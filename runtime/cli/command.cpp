@@ -54,12 +54,12 @@ StopRequest signal_stop()
     return []() -> const char* { return stop_signal_number != 0 ? interrupted : nullptr; };
 }
 
-void add_key_option(CLI::App& sub, const SceneKey& key, std::string& value, const std::string& note)
+CLI::Option* add_key_option(CLI::App& sub, const SceneKey& key, std::string& value, const std::string& note)
 {
     static const char* const type_names[] = {"X", "N", "WORD", "FILE"};  // by SceneKey::Kind
     // A text key is a file name, or (output.sensitivities) a list of names: the placeholder says which.
     const bool list = key.kind == SceneKey::Kind::text && key.expected.find("separated by commas") != std::string::npos;
-    sub.add_option(key.option, value, std::string("Sets ") + key.name + ": " + key.expected + note)
+    return sub.add_option(key.option, value, std::string("Sets ") + key.name + ": " + key.expected + note)
         ->type_name(list ? "LIST" : type_names[static_cast<int>(key.kind)]);
 }
 

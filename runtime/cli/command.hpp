@@ -32,8 +32,8 @@ void catch_stop_signals();
 /// A StopRequest that answers `interrupted` once a stop signal has come.
 StopRequest signal_stop();
 
-/// Declares key's option on sub, its help text from the key table (with note after it), setting value.
-void add_key_option(CLI::App& sub, const SceneKey& key, std::string& value, const std::string& note = "");
+/// Declares key's option on sub, its help text from the key table (with note after it), setting value; returns it.
+CLI::Option* add_key_option(CLI::App& sub, const SceneKey& key, std::string& value, const std::string& note = "");
 
 /// Runs a command's work; its refusals become one line and exit 2: a bad option value, a scene that no model can
 /// serve (named by scene_path), an on-demand variant that failed to compile.
