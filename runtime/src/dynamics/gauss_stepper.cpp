@@ -15,8 +15,8 @@
 #include <gsl/gsl_errno.h>
 
 #include "dynamics/band_lu.hpp"
+#include "dynamics/small_product.hpp"
 #include "dynamics/stepper.hpp"
-#include "generated_abi.h"  // HUBBEAM_WIDE_KERNEL
 
 namespace hubbeam {
 
@@ -68,54 +68,13 @@ double max_keeping_nan(double maximum, double e)
 /// two (a torque on a fine mesh, its steps often rejected: BIM at Nx = Ny = 8 under the torque pulse, 34 x 34, took
 /// 1.38 times the CPU time with the inverse formed at once, 0.99 so) keeps its LU, and one kept for many steps (the
 /// paper's spin-up with axial coordinates, 16 x 16: 0.89) gets its inverse.
-typedef double lanes __attribute__((vector_size(32)));
-typedef double lanes_at __attribute__((vector_size(32), aligned(8), may_alias));
-
-/// Rows i0 .. i0 + 4 B - 1 of product(): B groups of four rows, each with its own sum, over the columns at once.
-template <int B>
-[[gnu::always_inline]] inline void product_rows(const double* a, int rows, int cols, const double* x, double alpha,
-                                                bool add, double* out)
-{
-    lanes sum[B];
-    for (int b = 0; b < B; ++b) sum[b] = lanes{0.0, 0.0, 0.0, 0.0};
-    for (int j = 0; j < cols; ++j, a += rows)
-        for (int b = 0; b < B; ++b) sum[b] += *reinterpret_cast<const lanes_at*>(a + 4 * b) * x[j];
-    for (int b = 0; b < B; ++b) {
-        lanes_at& to = *reinterpret_cast<lanes_at*>(out + 4 * b);
-        to = (add ? to : lanes{0.0, 0.0, 0.0, 0.0}) + sum[b] * alpha;
-    }
-}
-
-/// out = init + alpha (A x) for a column-major A, init being out (add) or zero: Eigen's matrix-vector product's
-/// arithmetic (GeneralMatrixVector.h below 128 columns: each row's sum from 0.0 over the columns in order, then
-/// times alpha, then added), so the same bits, without its dispatch, which cost 380 instructions a call on the main
-/// scene's 8 x 8 and 16 x 16 products. Compiled for AVX2 as well, four rows a register.
-HUBBEAM_WIDE_KERNEL void product(const Eigen::MatrixXd& A, const double* x, double alpha, bool add, double* out)
-{
-    const int rows = static_cast<int>(A.rows()), cols = static_cast<int>(A.cols());
-    const double* const a = A.data();
-    int i = 0;
-    for (; i + 16 <= rows; i += 16) product_rows<4>(a + i, rows, cols, x, alpha, add, out + i);
-    switch ((rows - i) / 4) {
-        case 3: product_rows<3>(a + i, rows, cols, x, alpha, add, out + i); break;
-        case 2: product_rows<2>(a + i, rows, cols, x, alpha, add, out + i); break;
-        case 1: product_rows<1>(a + i, rows, cols, x, alpha, add, out + i); break;
-        default: break;
-    }
-    for (i += (rows - i) / 4 * 4; i < rows; ++i) {
-        double sum = 0.0;
-        for (int j = 0; j < cols; ++j) sum += a[j * rows + i] * x[j];
-        out[i] = (add ? out[i] : 0.0) + sum * alpha;
-    }
-}
-
 void solve_with(const Newton& newton, const Eigen::VectorXd& b, Eigen::VectorXd& x)
 {
     const Eigen::Index n = newton.lu.rows();
     if (newton.inverse.size() == 0 && n <= small_inverse_size && ++newton.solves > 2 * n)
         newton.inverse = newton.lu.inverse();
     if (newton.inverse.size() > 0)
-        product(newton.inverse, b.data(), 1.0, false, x.data());
+        small_product(newton.inverse, b.data(), 1.0, false, x.data());
     else
         x = newton.lu.solve(b);
 }
@@ -510,10 +469,7 @@ private:
                 rhs2_.segment(i * k, k).noalias() += h * (Ks_ * mix_);
             } else {
                 std::copy_n(g + i * n + k, k, rhs2 + i * k);
-                if (k <= small_inverse_size)
-                    product(Jq_, mix_.data(), h, true, rhs2 + i * k);
-                else
-                    Eigen::Map<Eigen::VectorXd>(rhs2 + i * k, k).noalias() += h * Jq_ * mix_;
+                small_product(Jq_, mix_.data(), h, true, rhs2 + i * k);
             }
         }
         if (mass_form_) {
