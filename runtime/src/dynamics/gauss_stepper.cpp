@@ -73,8 +73,10 @@ void solve_with(const Newton& newton, const Eigen::VectorXd& b, Eigen::VectorXd&
     const Eigen::Index n = newton.lu.rows();
     if (newton.inverse.size() == 0 && n <= small_inverse_size && ++newton.solves > 2 * n)
         newton.inverse = newton.lu.inverse();
-    if (newton.inverse.size() > 0)
+    if (newton.inverse.size() > 0) {
+        x.resize(b.size());  // sized by its callers already: no allocation
         small_product(newton.inverse, b.data(), 1.0, false, x.data());
+    }
     else
         x = newton.lu.solve(b);
 }
