@@ -49,7 +49,8 @@ struct KernelSpec {
     std::string tail = {};
     std::vector<std::pair<std::string, GiNaC::ex>> tail_coefficients = {};
     /// Called at every right-hand side (the forces, the mass matrix), where a run spends its time, rather than once
-    /// per Jacobian or per row: printed as tables only above EmitOptions::rhs_table_threshold.
+    /// per Jacobian or per row: printed as tables only above EmitOptions::rhs_table_threshold, and unrolled, compiled
+    /// for AVX2 as well (HUBBEAM_WIDE_KERNEL) unless it has a tail.
     bool every_right_hand_side = false;
 };
 
