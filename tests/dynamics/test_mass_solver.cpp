@@ -120,6 +120,18 @@ TEST_CASE("mass solvers equal a dense solve, for every structure they are chosen
                 check_solver(*model, rng);
             }
     }
+    SECTION("a Schur complement over a block in no narrow band, its couplings varying")
+    {
+        // Bernstein's full blocks (bandwidth 5 at Ny = 6): the Cholesky factor's general loops, solve_pair's among them.
+        const auto model =
+            make_assembled_model({.method = Method::bim, .nx = 4, .ny = 6, .drive = Drive::torque, .extras = {}}, p);
+        const std::string how = MassSolver::make(*model)->describe();
+        INFO(how);
+        CHECK(how.find("Schur") != std::string::npos);
+        CHECK(how.find("bandwidth 3") == std::string::npos);
+        CHECK(how.find("bandwidth 4") == std::string::npos);
+        check_solver(*model, rng);
+    }
     SECTION("dense when nothing else applies")
     {
         VariantKey key;

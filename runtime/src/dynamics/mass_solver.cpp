@@ -60,44 +60,39 @@ public:
     void solve_pair(double* a, double* b) const
     {
         double* const v[2] = {a, b};
-        if (p_ == 3) return band_solve<3>(v);
-        if (p_ == 4) return band_solve<4>(v);
-        for (int i = 0; i < n_; ++i) {
-            double s = a[i], t = b[i];
-            for (int k = first(i); k < i; ++k) s -= L(i, k) * a[k], t -= L(i, k) * b[k];
-            a[i] = s * inv_diag_[static_cast<std::size_t>(i)];
-            b[i] = t * inv_diag_[static_cast<std::size_t>(i)];
-        }
-        for (int i = n_ - 1; i >= 0; --i) {
-            const double x = a[i] * inv_diag_[static_cast<std::size_t>(i)],
-                         y = b[i] * inv_diag_[static_cast<std::size_t>(i)];
-            a[i] = x;
-            b[i] = y;
-            for (int k = first(i); k < i; ++k) a[k] -= L(i, k) * x, b[k] -= L(i, k) * y;
-        }
+        solve_all(v);
     }
     /// b := A^-1 b.
     void solve(double* b) const
     {
         double* const v[1] = {b};
-        if (p_ == 3) return band_solve<3>(v);  // FEM's and the cubic B-splines' bands
-        if (p_ == 4) return band_solve<4>(v);
-        for (int i = 0; i < n_; ++i) {  // L y = b
-            double s = b[i];
-            for (int k = first(i); k < i; ++k) s -= L(i, k) * b[k];
-            b[i] = s * inv_diag_[static_cast<std::size_t>(i)];
-        }
-        for (int i = n_ - 1; i >= 0; --i) {  // L^T x = y, by columns of L^T: row i of L, in the band
-            const double x = b[i] * inv_diag_[static_cast<std::size_t>(i)];
-            b[i] = x;
-            for (int k = first(i); k < i; ++k) b[k] -= L(i, k) * x;
-        }
+        solve_all(v);
     }
 
 private:
-    /// solve() at bandwidth P on C vectors at once (C = 2: solve_pair), the same operations in the same order (so
-    /// the same bits), with the P values a row reads held in registers: solve()'s loops read each back from b just
-    /// after storing it, and that store-to-load forwarding lay on every row's dependency chain (FEM at Ny = 64:
+    /// A^-1 on C vectors at once, each by the same operations in the same order as alone.
+    template <int C>
+    void solve_all(double* const (&v)[C]) const
+    {
+        if (p_ == 3) return band_solve<3>(v);  // FEM's and the cubic B-splines' bands
+        if (p_ == 4) return band_solve<4>(v);
+        const double* inv = inv_diag_.data();
+        for (int i = 0; i < n_; ++i) {  // L y = b
+            double s[C];
+            for (int c = 0; c < C; ++c) s[c] = v[c][i];
+            for (int k = first(i); k < i; ++k)
+                for (int c = 0; c < C; ++c) s[c] -= L(i, k) * v[c][k];
+            for (int c = 0; c < C; ++c) v[c][i] = s[c] * inv[i];
+        }
+        for (int i = n_ - 1; i >= 0; --i) {  // L^T x = y, by columns of L^T: row i of L, in the band
+            double x[C];
+            for (int c = 0; c < C; ++c) v[c][i] = x[c] = v[c][i] * inv[i];
+            for (int k = first(i); k < i; ++k)
+                for (int c = 0; c < C; ++c) v[c][k] -= L(i, k) * x[c];
+        }
+    }
+    /// solve_all at bandwidth P, the same operations in the same order (so the same bits), with the P values a row
+    /// reads held in registers: the general loops read each back from b just after storing it, and that store-to-load forwarding lay on every row's dependency chain (FEM at Ny = 64:
     /// 0.64 us a solve, a third of the run).
     template <int P, int C>
     void band_solve(double* const (&v)[C]) const
