@@ -12,6 +12,7 @@
 
 #include <hubbeam/scene.hpp>
 #include "io/output.hpp"
+#include "io/scene_print.hpp"
 #include "temp_folder.hpp"
 #include "text/printable.hpp"
 
@@ -230,6 +231,11 @@ TEST_CASE("bad scene input throws SceneError naming the file and the key", "[sce
     SECTION("negative length")
     {
         names(edited("length = 8.0", "length = -8.0"), "beam.length", "got -8");
+    }
+    SECTION("a pitch of more than a turn, either way")
+    {
+        names(edited("length = 8.0", "length = 8.0\npitch = 1e308"), "beam.pitch", "from -2 pi to 2 pi");
+        names(edited("length = 8.0", "length = 8.0\npitch = -6.3"), "beam.pitch", "got -6.3");
     }
     SECTION("non-positive density")
     {
@@ -514,6 +520,25 @@ TEST_CASE("messages quoting a scene value escape it, from the file or from an ov
             CHECK(m.find("got \"x\\x1b[31m\\u202e\"") == m.size() - std::string("got \"x\\x1b[31m\\u202e\"").size());
         }
     }
+}
+
+TEST_CASE("the printed scene escapes what could drive a terminal, in TOML's and JSON's forms, and reads back",
+          "[scene]")
+{
+    // By hand: U+202E (a right-to-left override), U+E0001 (a language tag: beyond U+FFFF, where TOML writes
+    // \U and JSON a surrogate pair: 0xE0001 - 0x10000 = 0xD0001, whose top ten bits 0x340 and low ten 0x001).
+    CHECK(quoted_string("a\xe2\x80\xae" "b") == "\"a\\u202eb\"");
+    CHECK(quoted_string("\xf3\xa0\x80\x81", Quoting::toml) == "\"\\U000e0001\"");
+    CHECK(quoted_string("\xf3\xa0\x80\x81", Quoting::json) == "\"\\udb40\\udc01\"");
+    CHECK(quoted_string("\x1b\x9b\"\\\n\t\xc3\xa9") == "\"\\u001b\\u009b\\\"\\\\\\n\\t\xc3\xa9\"");
+    // --print-scene's text: the override's U+202E escaped, and the printed scene reads back to the same name.
+    const TempDir dir;
+    const std::string name = (dir.path / "x\xe2\x80\xae.csv").string();
+    const Scene s = load_scene(case_path("spinup_omega4.toml"), {{"output.file", name}});
+    const std::string toml = effective_scene_toml(s);
+    CHECK(toml.find("\xe2\x80\xae") == std::string::npos);
+    CHECK(toml.find("x\\u202e.csv\"") != std::string::npos);
+    CHECK(load_scene(dir.write("printed.toml", toml)).output.file == name);
 }
 
 TEST_CASE("output.file holds a file name: no NUL inside, not empty", "[scene]")

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "io/scene_io.hpp"
+#include "text/printable.hpp"
 #include "text/shortest.hpp"
 
 namespace hubbeam {
@@ -184,32 +185,36 @@ std::string toml_number(double v)
     return shortest(v);
 }
 
-std::string quoted_string(std::string_view s)
+std::string quoted_string(std::string_view s, Quoting quoting)
 {
     std::string out;
     out.reserve(s.size() + 2);
     out += '"';
-    std::size_t plain = 0;  // where the run of characters written as they are began
-    for (std::size_t i = 0; i < s.size(); ++i) {
-        const char c = s[i];
-        const auto u = static_cast<unsigned char>(c);
-        if (u >= 0x20 && u != 0x7f && c != '"' && c != '\\') continue;
-        out.append(s.substr(plain, i - plain));
-        plain = i + 1;
-        if (c == '"' || c == '\\') {
+    for (std::size_t i = 0; i < s.size();) {
+        const TextChar c = text_char(s, i);
+        if (c.code == '"' || c.code == '\\') {
             out += '\\';
-            out += c;
-        } else if (c == '\n')
+            out += static_cast<char>(c.code);
+        } else if (c.code == '\n')
             out += "\\n";
-        else if (c == '\t')
+        else if (c.code == '\t')
             out += "\\t";
-        else {
-            char code[8];
-            std::snprintf(code, sizeof code, "\\u%04x", u);
+        else if (!c.escaped)
+            out.append(s.substr(i, c.length));
+        else {  // a control, a bidirectional override, a byte that is not UTF-8: never sent to the terminal as it is
+            char code[16];
+            const auto u = static_cast<unsigned long>(c.code);
+            if (u < 0x10000)
+                std::snprintf(code, sizeof code, "\\u%04lx", u);
+            else if (quoting == Quoting::toml)
+                std::snprintf(code, sizeof code, "\\U%08lx", u);
+            else
+                std::snprintf(code, sizeof code, "\\u%04lx\\u%04lx", 0xd800 + ((u - 0x10000) >> 10),
+                              0xdc00 + (u & 0x3ff));
             out += code;
         }
+        i += c.length;
     }
-    out.append(s.substr(plain));
     out += '"';
     return out;
 }

@@ -29,9 +29,14 @@ std::vector<SceneValue> effective_scene(const Scene& scene);
 /// shortest round-trip form. Loading it gives a Scene whose effective_scene_toml is the same text.
 std::string effective_scene_toml(const Scene& scene);
 
-/// s as a quoted basic string that TOML and JSON both read back as s: quote, backslash and the control characters
-/// escaped.
-std::string quoted_string(std::string_view s);
+/// The language a quoted string is for: they spell a character beyond U+FFFF differently (TOML \UXXXXXXXX, JSON
+/// a surrogate pair of \uXXXX).
+enum class Quoting { toml, json };
+/// s as a quoted basic string that TOML (or JSON) reads back as s: quote and backslash escaped, and every character
+/// printable escapes (controls, bidirectional overrides, ...) written as an escape, so that printing the string
+/// never drives a terminal. A byte that is not UTF-8 (a file name's, from the command line) is written as the code
+/// point of its value, which reads back as that character, not the byte.
+std::string quoted_string(std::string_view s, Quoting quoting = Quoting::toml);
 
 /// A number as TOML writes it: the shortest round-trip form, inf and nan as TOML's words.
 std::string toml_number(double v);

@@ -18,10 +18,14 @@ std::pair<char32_t, std::size_t> decode_utf8(std::string_view text, std::size_t 
     if (b0 < 0x80) return {b0, 1};
     std::size_t n = 0;
     char32_t cp = 0, min = 0;
-    if (b0 >= 0xc2 && b0 <= 0xdf) n = 2, cp = b0 & 0x1f, min = 0x80;
-    else if (b0 >= 0xe0 && b0 <= 0xef) n = 3, cp = b0 & 0x0f, min = 0x800;
-    else if (b0 >= 0xf0 && b0 <= 0xf4) n = 4, cp = b0 & 0x07, min = 0x10000;
-    else return {0, 0};
+    if (b0 >= 0xc2 && b0 <= 0xdf)
+        n = 2, cp = b0 & 0x1f, min = 0x80;
+    else if (b0 >= 0xe0 && b0 <= 0xef)
+        n = 3, cp = b0 & 0x0f, min = 0x800;
+    else if (b0 >= 0xf0 && b0 <= 0xf4)
+        n = 4, cp = b0 & 0x07, min = 0x10000;
+    else
+        return {0, 0};
     if (i + n > text.size()) return {0, 0};
     for (std::size_t k = 1; k < n; ++k) {
         if ((byte(i + k) & 0xc0) != 0x80) return {0, 0};
@@ -41,11 +45,11 @@ bool needs_escape(char32_t c)
         char32_t first, last;
     };
     static constexpr Range ranges[] = {
-        {0x0000, 0x001f},   {0x007f, 0x009f},   {0x00ad, 0x00ad},   {0x0600, 0x0605},   {0x061c, 0x061c},
-        {0x06dd, 0x06dd},   {0x070f, 0x070f},   {0x0890, 0x0891},   {0x08e2, 0x08e2},   {0x180e, 0x180e},
-        {0x200b, 0x200f},   {0x2028, 0x202e},   {0x2060, 0x2064},   {0x2066, 0x206f},   {0xe000, 0xf8ff},
-        {0xfdd0, 0xfdef},   {0xfeff, 0xfeff},   {0xfff9, 0xfffb},   {0x110bd, 0x110bd}, {0x110cd, 0x110cd},
-        {0x13430, 0x1343f}, {0x1bca0, 0x1bca3}, {0x1d173, 0x1d17a}, {0xe0001, 0xe0001}, {0xe0020, 0xe007f},
+        {0x0000, 0x001f},    {0x007f, 0x009f},   {0x00ad, 0x00ad},   {0x0600, 0x0605},   {0x061c, 0x061c},
+        {0x06dd, 0x06dd},    {0x070f, 0x070f},   {0x0890, 0x0891},   {0x08e2, 0x08e2},   {0x180e, 0x180e},
+        {0x200b, 0x200f},    {0x2028, 0x202e},   {0x2060, 0x2064},   {0x2066, 0x206f},   {0xe000, 0xf8ff},
+        {0xfdd0, 0xfdef},    {0xfeff, 0xfeff},   {0xfff9, 0xfffb},   {0x110bd, 0x110bd}, {0x110cd, 0x110cd},
+        {0x13430, 0x1343f},  {0x1bca0, 0x1bca3}, {0x1d173, 0x1d17a}, {0xe0001, 0xe0001}, {0xe0020, 0xe007f},
         {0xf0000, 0x10ffff},
     };
     if ((c & 0xfffe) == 0xfffe) return true;  // U+FFFE, U+FFFF and their copies in every plane
@@ -55,6 +59,13 @@ bool needs_escape(char32_t c)
 }
 
 }  // namespace
+
+TextChar text_char(std::string_view text, std::size_t i)
+{
+    const auto [cp, n] = decode_utf8(text, i);
+    if (n == 0) return {static_cast<unsigned char>(text[i]), 1, true};
+    return {cp, n, needs_escape(cp)};
+}
 
 std::string printable(std::string_view text, std::size_t cap)
 {
@@ -69,13 +80,17 @@ std::string printable(std::string_view text, std::size_t cap)
             ++i;
             continue;
         }
-        if (!needs_escape(cp)) out.append(text.substr(i, n));
+        if (!needs_escape(cp))
+            out.append(text.substr(i, n));
         else {
             const auto u = static_cast<unsigned long>(cp);
             // The forms of Python's repr, as hubbeam.printable writes them: \x1b, \u202e, \U000e0001.
-            if (u < 0x100) std::snprintf(escape, sizeof escape, "\\x%02lx", u);
-            else if (u < 0x10000) std::snprintf(escape, sizeof escape, "\\u%04lx", u);
-            else std::snprintf(escape, sizeof escape, "\\U%08lx", u);
+            if (u < 0x100)
+                std::snprintf(escape, sizeof escape, "\\x%02lx", u);
+            else if (u < 0x10000)
+                std::snprintf(escape, sizeof escape, "\\u%04lx", u);
+            else
+                std::snprintf(escape, sizeof escape, "\\U%08lx", u);
             out += escape;
         }
         i += n;

@@ -14,4 +14,14 @@ namespace hubbeam {
 /// message that quotes a value, a file name or an option given by the user passes it through here.
 std::string printable(std::string_view text, std::size_t cap = 120);
 
+/// The character at text[i] for a writer with escapes of its own (a TOML string's): its code point and length in
+/// bytes, and whether printable escapes it. A byte that starts no well-formed UTF-8 sequence is a character of
+/// length 1 whose code point is the byte's value, escaped.
+struct TextChar {
+    char32_t code;
+    std::size_t length;
+    bool escaped;
+};
+TextChar text_char(std::string_view text, std::size_t i);
+
 }  // namespace hubbeam
