@@ -94,8 +94,7 @@ Overrides given_overrides(const RunOptions& o)
     Overrides overrides;
     const std::vector<SceneKey>& keys = scene_keys();
     for (std::size_t i = 0; i < keys.size(); ++i)
-        if (o.given[i] != nullptr && o.given[i]->count() > 0)
-            overrides.emplace_back(keys[i].name, o.values[i]);
+        if (o.given[i] != nullptr && o.given[i]->count() > 0) overrides.emplace_back(keys[i].name, o.values[i]);
     return overrides;
 }
 
@@ -206,7 +205,7 @@ bool plan_run(const RunOptions& o, RunPlan& plan)
 /// The model chosen and the output files opened, or the refusal printed and nullptr: everything that can refuse the
 /// run does so before the output is touched.
 std::unique_ptr<Simulation> prepare(const RunPlan& plan, bool durable, std::unique_ptr<CsvWriter>& csv,
-                                    std::unique_ptr<FieldRecorder>& recorder)
+                                    std::unique_ptr<MetadataFile>& metadata, std::unique_ptr<FieldRecorder>& recorder)
 {
     const Scene& scene = plan.scene;
     std::unique_ptr<Simulation> simulation;
@@ -225,7 +224,9 @@ std::unique_ptr<Simulation> prepare(const RunPlan& plan, bool durable, std::uniq
     catch_stop_signals();
     try {
         csv = std::make_unique<CsvWriter>(scene.output.file, optional_columns_of(scene), durable);
-    } catch (const std::exception& e) {  // OutputRefused (another hubbeam writes it), or cannot create
+        metadata = std::make_unique<MetadataFile>(scene.output.file);
+    } catch (const std::exception& e) {  // OutputRefused (another hubbeam writes it, a planted lock), or cannot create
+        if (csv) csv->discard();         // refused before any row: the old output stays as it was
         std::cerr << e.what() << "\n";
         return nullptr;
     }
@@ -252,8 +253,9 @@ int run(const RunOptions& o)
         return exit_ok;
     }
     std::unique_ptr<CsvWriter> csv;
+    std::unique_ptr<MetadataFile> sidecar;
     std::unique_ptr<FieldRecorder> recorder;
-    const std::unique_ptr<Simulation> simulation = prepare(plan, o.durable, csv, recorder);
+    const std::unique_ptr<Simulation> simulation = prepare(plan, o.durable, csv, sidecar, recorder);
     if (!simulation) return exit_bad_input;
 
     // An exception out of run() unwinds through ~CsvWriter, which finishes the file the same way.
@@ -288,15 +290,14 @@ int run(const RunOptions& o)
     }
     // Beside the rows once they (and the fields) are in place, whatever the run's end: a run stopped early says so
     // in it too.
-    const std::string metadata = metadata_path(csv->path());
-    if (const std::string why = write_metadata(
-            metadata, run_metadata(plan.scene, summary, csv->path(), row_header(optional_columns_of(plan.scene)),
-                                   csv->rows(), recorder ? recorder->path() : ""));
+    if (const std::string why =
+            sidecar->write(run_metadata(plan.scene, summary, csv->path(), row_header(optional_columns_of(plan.scene)),
+                                        csv->rows(), recorder ? recorder->path() : ""));
         !why.empty()) {
         std::cerr << why << "\n";
         return exit_stopped;
     }
-    std::cout << "metadata    " << metadata << "\n";
+    std::cout << "metadata    " << sidecar->path() << "\n";
     if (!summary.completed) {
         std::cerr << "hubbeam: stopped at t = " << summary.t_reached << " s: " << summary.failure << " (" << csv->rows()
                   << " rows kept in " << csv->path() << ")\n";
@@ -315,10 +316,10 @@ Command add_run_command(CLI::App& app)
         "Options override the scene's keys. The CSV goes to -o FILE, else to the scene's output.file, else to "
         "NAME.csv in the current folder (NAME.toml's name); a FILE ending in .npy gets the rows as a NumPy array "
         "(float64, rows x columns) and the column names in FILE's name with .columns.txt; FILE must end in .csv or "
-        ".npy. Exit codes: 0 success, 1 simulation stopped early (rows so far kept), 2 bad input (one line on "
-        "stderr, nothing computed; also an output that is the scene, a table it reads or the other output, a FIFO, "
-        "device, directory, symbolic link or read-only file, or a file another hubbeam is writing), 129/130/131/143 "
-        "interrupted by SIGHUP/SIGINT/SIGQUIT/SIGTERM (rows so far kept). The output is written to "
+        ".npy. An output that is the scene, a table it reads or the other output, a FIFO, device, directory, "
+        "symbolic link or read-only file, or a file another hubbeam is writing, is bad input. " +
+        std::string(exit_codes_help) +
+        " The output is written to "
         "DIR/.NAME.tmp-PID and renamed over FILE when the run ends; FILE.hubbeam.json beside it says where it came "
         "from (version, variant, effective scene, stepper, summary).");
     add_run_options(*run_cmd, *options);

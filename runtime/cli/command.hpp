@@ -17,9 +17,15 @@
 namespace hubbeam::cli {
 
 constexpr int exit_ok = 0;
-constexpr int exit_stopped = 1;     // the simulation stopped early or cannot be trusted (rows so far kept)
-constexpr int exit_bad_input = 2;   // one line on stderr, nothing computed
+constexpr int exit_stopped = 1;        // the simulation stopped early or cannot be trusted (rows so far kept)
+constexpr int exit_bad_input = 2;      // one line on stderr, nothing computed
 constexpr int exit_signal_base = 128;  // the shell's convention: 128 + the signal's number (130, 143)
+/// The exit codes in one sentence, for hubbeam --help and run --help alike (docs/cli.md's table and README.md list
+/// the same codes: tests/docs/test_docs.cpp).
+inline constexpr const char* exit_codes_help =
+    "Exit codes: 0 done, 1 the simulation stopped early or cannot be trusted (rows so far kept), 2 bad input (one line "
+    "on stderr naming the file or option, nothing computed), 129/130/131/143 interrupted by SIGHUP/SIGINT/SIGQUIT/"
+    "SIGTERM (rows so far kept).";
 
 /// The failure a run stopped by a stop signal (catch_stop_signals) reports.
 inline constexpr const char* interrupted = "interrupted by signal";

@@ -13,8 +13,7 @@
 //
 // Every file is written through OutputFile (output_file.hpp); outputs are checked against the command's inputs and
 // each other before anything is computed. run writes NAME.csv into the current folder unless -o; modes writes a CSV
-// only with -o. Exit codes: 0 success; 1 the simulation stopped early (rows so far kept); 2 bad input (nothing
-// computed); 130 / 143 interrupted by SIGINT / SIGTERM (rows so far kept).
+// only with -o. Exit codes: command.hpp's exit_codes_help.
 #include <algorithm>
 #include <array>
 #include <exception>
@@ -49,6 +48,17 @@ std::size_t edit_distance(const std::string& a, const std::string& b)
     return row[b.size()];
 }
 
+/// The one of names nearest to word when word is a likely typo of it (at most two edits, a swap of two letters
+/// being two, and fewer than word has letters), else empty.
+std::string nearest_name(const std::string& word, const std::vector<std::string>& names)
+{
+    std::string nearest;
+    std::size_t best = 0;
+    for (const std::string& name : names)
+        if (const std::size_t d = edit_distance(word, name); nearest.empty() || d < best) nearest = name, best = d;
+    return best <= 2 && best < word.size() ? nearest : std::string();
+}
+
 /// Why the first argument names no command (empty if it names one, or is an option such as --help): the word
 /// itself, the nearest command when it is a likely typo, and the list of commands.
 std::string unknown_command(const std::vector<hubbeam::cli::Command>& commands, int argc, char** argv)
@@ -59,14 +69,29 @@ std::string unknown_command(const std::vector<hubbeam::cli::Command>& commands, 
     if (argc < 2) return "a command is required: " + list;
     const std::string word = argv[1];
     if (word.rfind('-', 0) == 0 || std::find(names.begin(), names.end(), word) != names.end()) return {};
-    std::string nearest;
-    std::size_t best = 0;
-    for (const std::string& name : names)
-        if (const std::size_t d = edit_distance(word, name); nearest.empty() || d < best) nearest = name, best = d;
-    // a typo: at most two edits (a swap of two letters is two), fewer than the word has letters
-    const bool typo = best <= 2 && best < word.size();
+    const std::string nearest = nearest_name(word, names);
     return "unknown command '" + hubbeam::printable(word, 40) + "'" +
-           (typo ? " (did you mean '" + nearest + "'?)" : "") + "; expected " + list;
+           (nearest.empty() ? "" : " (did you mean '" + nearest + "'?)") + "; expected " + list;
+}
+
+/// For arguments the command does not take (CLI11's ExtrasError): the first that looks like an option, with the
+/// command's option nearest to it when it is a likely typo ("--methd": did you mean '--method'?); empty otherwise.
+std::string unknown_option(const CLI::App& command, const std::vector<std::string>& extras)
+{
+    std::vector<std::string> names;
+    for (const CLI::Option* o : command.get_options()) {
+        for (const std::string& l : o->get_lnames()) names.push_back("--" + l);
+        for (const std::string& s : o->get_snames()) names.push_back("-" + s);
+    }
+    for (const std::string& word : extras) {
+        if (word.rfind('-', 0) != 0) continue;
+        const std::string name = word.substr(0, word.find('='));  // --methd=fem
+        const std::string nearest = nearest_name(name, names);
+        return "unknown option '" + hubbeam::printable(name, 40) + "'" +
+               (nearest.empty() ? "" : " (did you mean '" + nearest + "'?)") + "; " + command.get_name() +
+               " --help lists its options";
+    }
+    return {};
 }
 
 /// The commands, each with the function that adds it to the app.
@@ -106,10 +131,8 @@ std::vector<hubbeam::cli::Command> add_commands(CLI::App& app, int argc, char** 
 int main(int argc, char** argv)
 {
     using namespace hubbeam::cli;
-    CLI::App app{
-        "hubbeam: rotating flexible hub-beam simulator (equations derived by GiNaC, integrated by GSL).\n"
-        "Exit codes: 0 success, 1 simulation stopped early (rows so far kept), 2 bad input, 130/143 interrupted\n"
-        "by SIGINT/SIGTERM (rows so far kept)."};
+    CLI::App app{"hubbeam: rotating flexible hub-beam simulator (equations derived by GiNaC, integrated by GSL).\n" +
+                 std::string(exit_codes_help)};
     app.require_subcommand(1);
     app.set_version_flag("--version", "hubbeam " HUBBEAM_VERSION, "Print the version and exit");
     const std::vector<Command> commands = add_commands(app, argc, argv);
@@ -121,7 +144,11 @@ int main(int argc, char** argv)
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         if (e.get_exit_code() == 0) return app.exit(e);  // --help
-        std::cerr << "hubbeam: " << e.what() << "\n";
+        std::string why;
+        if (dynamic_cast<const CLI::ExtrasError*>(&e) != nullptr)
+            for (const Command& c : commands)
+                if (c.sub->parsed() && why.empty()) why = unknown_option(*c.sub, c.sub->remaining());
+        std::cerr << "hubbeam: " << (why.empty() ? std::string(e.what()) : why) << "\n";
         return exit_bad_input;
     }
     try {

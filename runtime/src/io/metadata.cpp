@@ -21,7 +21,7 @@ namespace {
 
 std::string json_number(double v)
 {
-    if (!std::isfinite(v)) return quoted_string(toml_number(v));
+    if (!std::isfinite(v)) return quoted_string(toml_number(v), Quoting::json);
     return shortest(v);
 }
 
@@ -76,14 +76,14 @@ JsonObject& JsonObject::boolean(std::string_view key, bool v)
 
 JsonObject& JsonObject::text(std::string_view key, std::string_view v)
 {
-    entries_.emplace_back(key, quoted_string(v));
+    entries_.emplace_back(key, quoted_string(v, Quoting::json));
     return *this;
 }
 
 JsonObject& JsonObject::texts(std::string_view key, const std::vector<std::string>& v)
 {
     std::string list = "[";
-    for (std::size_t i = 0; i < v.size(); ++i) list += (i ? ", " : "") + quoted_string(v[i]);
+    for (std::size_t i = 0; i < v.size(); ++i) list += (i ? ", " : "") + quoted_string(v[i], Quoting::json);
     entries_.emplace_back(key, list + "]");
     return *this;
 }
@@ -110,7 +110,7 @@ std::string JsonObject::str() const
     out.reserve(size);
     out += '{';
     for (std::size_t i = 0; i < entries_.size(); ++i) {
-        out.append(i ? ",\n  " : "\n  ").append(quoted_string(entries_[i].first)).append(": ");
+        out.append(i ? ",\n  " : "\n  ").append(quoted_string(entries_[i].first, Quoting::json)).append(": ");
         append_indented(out, entries_[i].second);
     }
     out.append("\n}");
@@ -219,16 +219,41 @@ std::string run_metadata(const Scene& scene, const RunSummary& summary, const st
     return out.str() + "\n";
 }
 
+namespace {
+
+/// json into file and file in place: "" or one line naming path.
+std::string put(OutputFile& file, const std::string& path, const std::string& json)
+{
+    if (const int error = file.write(json); error != 0) return path + ": cannot write: " + std::strerror(error);
+    if (const std::string why = file.commit(); !why.empty()) return path + ": " + why;
+    return {};
+}
+
+}  // namespace
+
 std::string write_metadata(const std::string& path, const std::string& json)
 {
     try {
         OutputFile file(path);
-        if (const int error = file.write(json); error != 0) return path + ": cannot write: " + std::strerror(error);
-        if (const std::string why = file.commit(); !why.empty()) return path + ": " + why;
+        return put(file, path, json);
     } catch (const std::exception& e) {
         return e.what();
     }
-    return {};
+}
+
+MetadataFile::MetadataFile(const std::string& output)
+    : path_(metadata_path(output)), file_(std::make_unique<OutputFile>(path_))
+{
+}
+
+MetadataFile::~MetadataFile() = default;
+
+std::string MetadataFile::write(const std::string& json)
+{
+    if (!file_) throw std::logic_error("MetadataFile::write called twice");
+    const std::string why = put(*file_, path_, json);
+    file_.reset();  // removes the temporary file if the commit failed
+    return why;
 }
 
 }  // namespace hubbeam

@@ -6,6 +6,7 @@
 
 #include <hubbeam/config.hpp>
 #include <hubbeam/simulate.hpp>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -57,5 +58,26 @@ std::string summary_json(const RunSummary& summary, const Scene& scene);
 /// Writes json to path atomically (OutputFile: beside it, renamed over it); returns "" or one line saying what
 /// failed.
 std::string write_metadata(const std::string& path, const std::string& json);
+
+class OutputFile;
+/// The metadata file of an output, opened with the output itself, before anything is computed: its lock is taken
+/// and its temporary file made at once, so a sidecar that cannot be written (a planted link as its lock, another
+/// hubbeam writing it) refuses the command up front, never after the run has put a new output beside an old sidecar.
+class MetadataFile {
+public:
+    /// Opens metadata_path(output); throws OutputRefused or std::runtime_error as OutputFile's constructor does.
+    explicit MetadataFile(const std::string& output);
+    ~MetadataFile();
+    MetadataFile(const MetadataFile&) = delete;
+    MetadataFile& operator=(const MetadataFile&) = delete;
+
+    const std::string& path() const { return path_; }
+    /// Writes json and puts the file in place; returns "" or one line saying what failed. Once only.
+    std::string write(const std::string& json);
+
+private:
+    std::string path_;
+    std::unique_ptr<OutputFile> file_;
+};
 
 }  // namespace hubbeam
