@@ -280,6 +280,9 @@ TEST_CASE("blade profile: a table without what the blade needs is refused, namin
         csv + ":2: expected EI_flap > 0, got 0");
     has(error_of(f, "x/L, m, EI, ES, twist\n0, 1, 1, 1, nan\n1, 1, 1, 1, 0\n", "profile = \"blade.csv\"\n", "nz = 2\n"),
         csv + ":2: expected a finite number in column twist (the chord's angle added to beam.pitch, rad)");
+    // An angle of more than a turn names no other section, and 1e308 only loses the digits of its cosine.
+    has(error_of(f, "x/L, m, EI, ES, twist\n0, 1, 1, 1, 0\n1, 1, 1, 1, -1e308\n", "profile = \"blade.csv\"\n", "nz = 2\n"),
+        csv + ":3: expected twist from -2 pi to 2 pi (rad: one turn either way)");
     // The uniform section's keys do not go with a table: its columns give them.
     for (const char* key :
          {"second_moment_flap = 1e-8", "shear_modulus = 1e9", "torsion_constant = 1e-8", "twist = 0.1"}) {

@@ -33,6 +33,9 @@ private:
 inline constexpr std::size_t max_scene_bytes = 1 << 20;
 /// The largest motion table read (bytes): about half a million rows, a test rig's kilohertz record of minutes.
 inline constexpr std::size_t max_table_bytes = 16 << 20;
+/// The largest angle a section may be turned by, beam.pitch or a table's twist, either way: one turn (rad). An angle
+/// beyond it names the same section as one within it, and a huge one (1e308) only loses every digit of its cosine.
+inline constexpr double max_section_angle = 6.283185307179586;
 
 /// A scene key: its dotted name, what it must hold, and the command-line option that sets it (or null).
 /// One table of these serves reading, validation (the keys a table may hold), messages, the command line and

@@ -37,9 +37,10 @@
 //   OpenFAST v5 form, without the column, reads.
 // - Values: stations from 0 to 1, strictly increasing (hubbeam's profile table's rule, and ElastoDyn's); mass and
 //   stiffnesses finite and > 0 (after the adjustment factors, themselves > 0); mass moments of inertia >= 0 (files
-//   give 0 where rotary inertia is neglected); twist any finite value (ElastoDyn asks for -180 to 180 deg, which
-//   hubbeam needs not); offsets, pre-curve, pre-sweep and Alpha exactly 0; at least two stations (ElastoDyn takes
-//   one, a uniform blade, which stations at 0 and 1 cannot be). Numbers as Fortran writes them: 1.5D+03, +2., .5.
+//   give 0 where rotary inertia is neglected); twist from -360 to 360 deg (ElastoDyn asks for -180 to 180 deg, which
+//   hubbeam needs not; one turn is max_section_angle, and a larger value names no other section); offsets, pre-curve,
+//   pre-sweep and Alpha exactly 0; at least two stations (ElastoDyn takes one, a uniform blade, which stations at 0 and
+//   1 cannot be). Numbers as Fortran writes them: 1.5D+03, +2., .5.
 // - Both formats' twist keeps its sign (pyBModes copies ElastoDyn's StrcTwst into BModes' str_tw unchanged).
 #include "io/blade_files.hpp"
 
@@ -223,9 +224,10 @@ bool has_words(std::string_view line, std::string_view words)
     return found != line.end();
 }
 
-/// What a column's values must be: a station, any finite number (twist), > 0 (mass, stiffness), >= 0 (mass moments
-/// of inertia), 0 (what hubbeam does not model), or one value along the span (a pitch axis).
-enum class Rule { station, any, positive, non_negative, zero, constant };
+/// What a column's values must be: a station, an angle of at most one turn either way (twist, degrees), > 0 (mass,
+/// stiffness), >= 0 (mass moments of inertia), 0 (what hubbeam does not model), or one value along the span (a pitch
+/// axis).
+enum class Rule { station, angle, positive, non_negative, zero, constant };
 
 /// A column of a format's table: its name there, what it holds (with its unit, for messages), its rule and, for
 /// zero and constant, why hubbeam refuses another value.
@@ -244,8 +246,8 @@ constexpr const char* one_chord_point =
 /// BModes' 13 columns, in the order BModes reads them (BModes.f90).
 constexpr std::array<Column, 13> bmodes_columns = {{
     {"sec_loc", "station, 0 at the root to 1 at the tip", Rule::station},
-    {"str_tw", "structural twist, deg", Rule::any},
-    {"tw_iner", "twist of the inertia axes, deg", Rule::any},
+    {"str_tw", "structural twist, deg", Rule::angle},
+    {"tw_iner", "twist of the inertia axes, deg", Rule::angle},
     {"mass_den", "mass per length, kg/m", Rule::positive},
     {"flp_iner", "flap mass moment of inertia per length, kg m", Rule::non_negative},
     {"edge_iner", "edge mass moment of inertia per length, kg m", Rule::non_negative},
@@ -264,7 +266,7 @@ constexpr std::array<Column, 13> bmodes_columns = {{
 /// are required.
 constexpr std::array<Column, 18> elastodyn_columns = {{
     {"BlFract", "station, 0 at the root to 1 at the tip", Rule::station},
-    {"StrcTwst", "structural twist, deg", Rule::any},
+    {"StrcTwst", "structural twist, deg", Rule::angle},
     {"BMassDen", "mass per length times AdjBlMs, kg/m", Rule::positive},
     {"FlpStff", "flap bending stiffness times AdjFlSt, N m^2", Rule::positive},
     {"EdgStff", "edge bending stiffness times AdjEdSt, N m^2", Rule::positive},
@@ -356,7 +358,9 @@ void check_value(const BladeText& t, const Column& col, const std::vector<double
             if (x != v[0])
                 bad(std::string("the first station's value at every station (") + col.meaning + "): " + col.why);
             break;
-        case Rule::any:
+        case Rule::angle:
+            // One turn either way (max_section_angle), in the file's degrees.
+            if (!(std::abs(x) <= 360.0)) bad(std::string("a value from -360 to 360 (") + col.meaning + ", one turn)");
             break;
     }
 }

@@ -251,7 +251,12 @@ ProfileTable scene_io::read_profile(const std::string& scene_path, const std::st
             bad(line, "more than " + std::to_string(max_profile_stations) + " stations");
         for (std::size_t c = 1; c < want.size(); ++c) {
             const std::string& col = want[c].name;
-            if (std::isnan(v[c]) || col == "twist") continue;
+            if (std::isnan(v[c])) continue;
+            if (col == "twist") {
+                if (!(std::abs(v[c]) <= max_section_angle))
+                    bad(line, "expected twist from -2 pi to 2 pi (rad: one turn either way)");
+                continue;
+            }
             // The torsional values may be 0 (a blade without a twist field); fit_profile asks for more with one.
             const bool zero_allowed = col == "GJ" || col == "j_c" || col == "j_n";
             if (zero_allowed ? !(v[c] >= 0.0) : !(v[c] > 0.0))

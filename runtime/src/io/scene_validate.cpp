@@ -93,7 +93,8 @@ void check_out_of_plane(const Scene& s)
     const Parameters& p = s.parameters;
     const VariantKey& key = s.variant;
     check_positive(s, p.I_flap, "beam.second_moment_flap");
-    check_finite(s, p.pitch, "beam.pitch");
+    if (!(std::abs(p.pitch) <= max_section_angle))
+        fail(s.path, "beam.pitch", expected("beam.pitch"), shortest(p.pitch));
     if (!(std::abs(p.twist) <= max_twist)) fail(s.path, "beam.twist", expected("beam.twist"), shortest(p.twist));
     if (!(std::abs(p.precone) < 1.5)) fail(s.path, "beam.precone", expected("beam.precone"), shortest(p.precone));
     if (key.nz < 0) fail(s.path, "discretization.nz", expected("discretization.nz"), std::to_string(key.nz));
