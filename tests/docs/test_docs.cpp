@@ -16,6 +16,7 @@
 
 #include <hubbeam/fields.hpp>
 #include <hubbeam/scene.hpp>
+#include "command.hpp"
 
 using namespace hubbeam;
 
@@ -416,4 +417,88 @@ TEST_CASE("docs/cli.md's tip_ux is what each order writes: u_x1(L) under order z
         if (order == Order::zero) CHECK(tip.ux == tip.ux1);
         else CHECK(tip.ux < tip.ux1 - 1e-4);
     }
+}
+
+namespace {
+
+/// The exit codes a text lists: every number of two or three digits or one digit standing alone, in "0 done, 1
+/// ..., 129/130/131/143 ..." or a table's "| 129, 130, 131, 143 |".
+std::set<int> codes_in(const std::string& text)
+{
+    std::set<int> codes;
+    const std::regex number(R"((^|[ |/,(])([0-9]{1,3})(?=[ |/,]))");
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), number); it != std::sregex_iterator(); ++it)
+        codes.insert(std::stoi((*it)[2]));
+    return codes;
+}
+
+/// The text of a page from the line starting with `from` to the first blank line after it.
+std::string paragraph(const std::string& page, const std::string& from)
+{
+    const std::string text = [&] {
+        std::ifstream in(std::string(HUBBEAM_SOURCE_DIR) + "/" + page);
+        std::stringstream t;
+        t << in.rdbuf();
+        return t.str();
+    }();
+    const std::size_t start = text.find(from);
+    REQUIRE(start != std::string::npos);
+    const std::size_t end = text.find("\n\n", start);
+    return text.substr(start, end - start);
+}
+
+}  // namespace
+
+TEST_CASE("the exit codes are one list: --help's sentence, docs/cli.md's table and README.md's line", "[docs]")
+{
+    const std::set<int> program = codes_in(std::string(" ") + cli::exit_codes_help);
+    CHECK(program == std::set<int>{0, 1, 2, 129, 130, 131, 143});
+    std::string table;
+    {
+        std::ifstream in(std::string(HUBBEAM_SOURCE_DIR) + "/docs/cli.md");
+        bool inside = false;
+        for (std::string line; std::getline(in, line);) {
+            if (line.rfind("Exit codes, for every command", 0) == 0) inside = true;
+            else if (inside && line.rfind("## ", 0) == 0) break;
+            else if (inside && line.rfind("| ", 0) == 0) table += " " + cells(line)[0] + " |";
+        }
+    }
+    CHECK(codes_in(table) == program);
+    CHECK(codes_in(" " + paragraph("README.md", "Exit codes:")) == program);
+}
+
+TEST_CASE("a scene in cases/ cites sections of docs/model.md that exist, a table's section by its name", "[docs]")
+{
+    std::map<std::string, std::string> titles;  // "11.3" -> its title, lower case
+    {
+        std::ifstream in(std::string(HUBBEAM_SOURCE_DIR) + "/docs/model.md");
+        const std::regex heading(R"(^#{2,3} ([0-9]+(\.[0-9]+)?)\.? (.*)$)");
+        for (std::string line; std::getline(in, line);)
+            if (std::smatch m; std::regex_match(line, m, heading)) {
+                std::string title = m[3];
+                std::transform(title.begin(), title.end(), title.begin(), ::tolower);
+                titles[m[1]] = title;
+            }
+    }
+    REQUIRE(titles.size() > 20);
+    const std::regex cite(R"(docs/model\.md section ([0-9]+(\.[0-9]+)?))");
+    const std::regex table_cite(R"(\[([a-z]+)\][^;()]*; docs/model\.md section ([0-9]+(\.[0-9]+)?))");
+    int cites = 0;
+    for (const auto& e : std::filesystem::directory_iterator(std::string(HUBBEAM_SOURCE_DIR) + "/cases")) {
+        if (e.path().extension() != ".toml") continue;
+        std::ifstream in(e.path());
+        int number = 0;
+        for (std::string line; std::getline(in, line);) {
+            ++number;
+            INFO(e.path().filename().string() << ":" << number << ": " << line);
+            for (auto it = std::sregex_iterator(line.begin(), line.end(), cite); it != std::sregex_iterator(); ++it) {
+                CHECK(titles.count((*it)[1]) == 1);
+                ++cites;
+            }
+            // "([gravity] g; docs/model.md section 11.3)": the section that the scene's table is about.
+            if (std::smatch m; std::regex_search(line, m, table_cite) && titles.count(m[2]))
+                CHECK(titles[m[2]].find(m[1]) != std::string::npos);
+        }
+    }
+    CHECK(cites >= 15);
 }
