@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "temp_folder.hpp"
+
 using namespace hubbeam;
 
 namespace {
@@ -120,6 +122,46 @@ TEST_CASE("torsion: (2i-1) pi/(2L) sqrt(GJ/j_p) at rest, and the propeller momen
             const std::vector<double> spun = frequencies(*model, omega, "twist");
             for (std::size_t i = 0; i < 2; ++i)
                 CHECK(spun[i] * spun[i] == Approx(rest[i] * rest[i] + omega * omega * shift).epsilon(1e-9));
+        }
+    }
+}
+
+TEST_CASE("a blade file's flap and edge mass moments are the section's about the chord and its normal, by the "
+          "propeller moment",
+          "[out_of_plane][blade_files]")
+{
+    // BModes' flp_iner and ElastoDyn's FlpIner are the mass moment about the chord (flap: the section turning about
+    // it), edg_iner and EdgIner about its normal. A uniform blade with the flap one 1/4 and the edge one 1 resists
+    // turning from the plane of rotation: its twist frequencies rise by Omega^2 (1 - 1/4)/(1 + 1/4) exactly (the
+    // facts' test above), and would fall by as much were the two read the wrong way round.
+    const TempFolder folder("inertia-columns");
+    const std::string bmodes =
+        "uniform blade\n2 n_secs\n\nsec_loc str_tw tw_iner mass_den flp_iner edge_iner flp_stff edge_stff tor_stff "
+        "axial_stff cg_offst sc_offst tc_offst\n(-) (deg) (deg) (kg/m) (kg-m) (kg-m) (Nm^2) (Nm^2) (Nm^2) (N) (m) (m) "
+        "(m)\n0 0 0 1 0.25 1 1 4 0.5 1e4 0 0 0\n1 0 0 1 0.25 1 1 4 0.5 1e4 0 0 0\n";
+    const std::string elastodyn =
+        "---\n--- FAST INDIVIDUAL BLADE FILE ---\nuniform blade\n--- BLADE PARAMETERS ---\n2 NBlInpSt - stations\n"
+        "F CalcBMode - x\n1 BldFlDmp(1) - x\n1 BldFlDmp(2) - x\n1 BldEdDmp(1) - x\n--- BLADE ADJUSTMENT FACTORS ---\n"
+        "1 FlStTunr(1) - x\n1 FlStTunr(2) - x\n1 AdjBlMs - x\n1 AdjFlSt - x\n1 AdjEdSt - x\n"
+        "--- DISTRIBUTED BLADE PROPERTIES ---\n"
+        "BlFract AeroCent StrcTwst BMassDen FlpStff EdgStff GJStff EAStff Alpha FlpIner EdgIner PrecrvRef PreswpRef "
+        "FlpcgOf EdgcgOf FlpEAOf EdgEAOf\n(-) (-) (deg) (kg/m) (Nm^2) (Nm^2) (Nm^2) (N) (-) (kg m) (kg m) (m) (m) (m) (m) "
+        "(m) (m)\n0 0.25 0 1 1 4 0.5 1e4 0 0.25 1 0 0 0 0 0 0\n1 0.25 0 1 1 4 0.5 1e4 0 0.25 1 0 0 0 0 0 0\n"
+        "--- BLADE MODE SHAPES ---\n";
+    for (const auto& [name, text] : {std::pair{"bmodes.dat", bmodes}, {"elastodyn.dat", elastodyn}}) {
+        folder.write(name, text);
+        const std::string scene = folder.write(
+            "blade.toml", "[beam]\nlength = 1.0\nblade_file = \"" + std::string(name) +
+                              "\"\n[motion]\nkind = \"spin-up\"\nomega0 = 1.0\nduration = 1.0\n[discretization]\n"
+                              "method = \"fem\"\nnx = 0\nny = 4\nnz = 4\nnt = 8\n[output]\nt_end = 1.0\n");
+        const Scene s = load_scene(scene);
+        const auto model = make_model(s.key(), s.parameters, ModelSource::assembled);
+        const std::vector<double> rest = frequencies(*model, 0.0, "twist"), spun = frequencies(*model, 5.0, "twist");
+        REQUIRE(rest.size() >= 2);
+        REQUIRE(spun.size() >= 2);
+        for (std::size_t i = 0; i < 2; ++i) {
+            INFO(name << " twist mode " << i + 1 << ": " << rest[i] << " at rest, " << spun[i] << " at 5 rad/s");
+            CHECK(spun[i] * spun[i] == Approx(rest[i] * rest[i] + 25.0 * 0.75 / 1.25).epsilon(1e-9));
         }
     }
 }
