@@ -31,10 +31,9 @@
 //   more header line, and CalcBMode); the damping, FlStTunr (tuners of ElastoDyn's own mode shapes) and the mode
 //   shapes are not read. The units line is not read either: ElastoDyn takes StrcTwst in degrees whatever it says.
 // - PitchAxis (FAST v7: AeroCent) places the chord, so the aerodynamic centre, about the pitch axis; ElastoDyn derives
-//   no structural property from it. A pitch axis that moves along the chord from station to station is refused
-//   nonetheless, a constant one read: hubbeam's sections share one straight reference axis at one chord point. This
-//   refuses the 6-column NREL 5 MW blade files (their pitch axis moves from 25 % to 37.5 % of the chord); their
-//   OpenFAST v5 form, without the column, reads.
+//   no structural property from it (its stiffnesses and masses are about the reference axis already), and neither
+//   does hubbeam: it is read as a number and not used, constant or not (the NREL 5 MW blade's moves from 25 % to
+//   37.5 % of the chord).
 // - Values: stations from 0 to 1, strictly increasing (hubbeam's profile table's rule, and ElastoDyn's); mass and
 //   stiffnesses finite and > 0 (after the adjustment factors, themselves > 0); mass moments of inertia >= 0 (files
 //   give 0 where rotary inertia is neglected); twist from -360 to 360 deg (ElastoDyn asks for -180 to 180 deg, which
@@ -225,12 +224,12 @@ bool has_words(std::string_view line, std::string_view words)
 }
 
 /// What a column's values must be: a station, an angle of at most one turn either way (twist, degrees), > 0 (mass,
-/// stiffness), >= 0 (mass moments of inertia), 0 (what hubbeam does not model), or one value along the span (a pitch
-/// axis).
-enum class Rule { station, angle, positive, non_negative, zero, constant };
+/// stiffness), >= 0 (mass moments of inertia), 0 (what hubbeam does not model), or any number (what no structural
+/// property depends on: a pitch axis).
+enum class Rule { station, angle, positive, non_negative, zero, unused };
 
 /// A column of a format's table: its name there, what it holds (with its unit, for messages), its rule and, for
-/// zero and constant, why hubbeam refuses another value.
+/// zero, why hubbeam refuses another value.
 struct Column {
     const char* name;
     const char* meaning;
@@ -240,8 +239,6 @@ struct Column {
 
 constexpr const char* no_cg_offset = "hubbeam models no offset of the centre of mass from the reference axis";
 constexpr const char* straight_axis = "hubbeam's blade has a straight reference axis";
-constexpr const char* one_chord_point =
-    "hubbeam's sections share one straight reference axis through one point of the chord";
 
 /// BModes' 13 columns, in the order BModes reads them (BModes.f90).
 constexpr std::array<Column, 13> bmodes_columns = {{
@@ -270,8 +267,8 @@ constexpr std::array<Column, 18> elastodyn_columns = {{
     {"BMassDen", "mass per length times AdjBlMs, kg/m", Rule::positive},
     {"FlpStff", "flap bending stiffness times AdjFlSt, N m^2", Rule::positive},
     {"EdgStff", "edge bending stiffness times AdjEdSt, N m^2", Rule::positive},
-    {"PitchAxis", "pitch axis, fraction of the chord from the leading edge", Rule::constant, one_chord_point},
-    {"AeroCent", "aerodynamic centre about the pitch axis, fraction of the chord", Rule::constant, one_chord_point},
+    {"PitchAxis", "pitch axis, fraction of the chord from the leading edge", Rule::unused},
+    {"AeroCent", "aerodynamic centre about the pitch axis, fraction of the chord", Rule::unused},
     {"GJStff", "torsional stiffness, N m^2", Rule::positive},
     {"EAStff", "axial stiffness, N", Rule::positive},
     {"Alpha", "flap-twist coupling coefficient", Rule::zero, "hubbeam models no coupling of bending and twist"},
@@ -354,9 +351,7 @@ void check_value(const BladeText& t, const Column& col, const std::vector<double
         case Rule::zero:
             if (x != 0.0) bad(std::string("0 (") + col.meaning + "): " + col.why);
             break;
-        case Rule::constant:
-            if (x != v[0])
-                bad(std::string("the first station's value at every station (") + col.meaning + "): " + col.why);
+        case Rule::unused:
             break;
         case Rule::angle:
             // One turn either way (max_section_angle), in the file's degrees.
