@@ -185,3 +185,17 @@ TEST_CASE("a shared model is refused by a scene of another variant or other para
     const std::shared_ptr<const Model> assembled = make_model(scene.key(), scene.parameters, ModelSource::assembled);
     CHECK_THROWS_WITH(Simulation(longer, assembled), Catch::Contains("other physical parameters"));
 }
+
+TEST_CASE("a simulation runs the scene it was given, whatever becomes of the caller's object", "[threads]")
+{
+    // Its own copy: a scene changed after the simulation was made (or a temporary, gone) does not reach the run.
+    Scene scene = case_scene("spinup_omega4.toml", {{"output.t_end", "0.5"}, {"solver.error_check", "off"}});
+    Simulation simulation(scene);
+    scene.output.t_end = 3.0;
+    scene.output.dt_out = 0.5;
+    std::vector<double> times;
+    const RunSummary summary = simulation.run([&](const Row& row) { times.push_back(row.t); });
+    CHECK(summary.completed);
+    REQUIRE(times.size() == 51);  // rows every 0.01 s to 0.5 s, as the scene said when the simulation was made
+    CHECK(times.back() == 0.5);
+}

@@ -194,7 +194,8 @@ struct StepperChoice;
 /// variant) does so before the caller creates any output.
 class Simulation {
 public:
-    /// Chooses the model (make_model, which tells note about an on-demand compilation or a fallback); throws
+    /// Keeps its own copy of scene, which the caller may then change or let go. Chooses the model (make_model, which
+    /// tells note about an on-demand compilation or a fallback); throws
     /// std::invalid_argument if none can serve the scene's variant, CompileError if compiling it failed.
     explicit Simulation(const Scene& scene, const std::function<void(const std::string&)>& note = {});
     /// Runs scene on model, which other runs, on other threads too, may share: a run only reads its model and owns
@@ -232,10 +233,12 @@ private:
     void choose_stepper();
     /// The automatic choice at rtol, with the pilot run (made once, at the first call that needs one).
     StepperChoice automatic(double rtol) const;
-    const Scene& scene_;
+    const Scene scene_;  // its own copy: a caller's scene may be a temporary, or change after
     std::shared_ptr<const Model> model_;
     StateObserver observer_;
     std::string stepper_, stepper_why_;  // the scene's, or the automatic choice and why
+    // Worked out at the first question that needs them (the automatic stepper's, faster_stepper_hint's) and kept: a
+    // memo, which is why const questions may fill it. A Simulation is one run's, never shared between threads.
     mutable std::unique_ptr<RatesAtRest> rates_;  // the model's rates at rest, once (stiffness.hpp)
     mutable std::unique_ptr<Pilot> pilot_;  // gauss4's measured start under a hub torque (stiffness.hpp)
     mutable bool pilot_decided_ = false;    // whether the scene needs one was asked
