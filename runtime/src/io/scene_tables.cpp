@@ -191,8 +191,6 @@ NumericTable read_numeric_table(const std::string& scene, const std::string& key
 
 /// The most stations a profile table may have: the generator's cost and the variant's name grow with them.
 constexpr std::size_t max_profile_stations = 64;
-/// The largest profile table read: a blade table of max_profile_stations rows is a few kilobytes.
-constexpr std::size_t max_profile_bytes = 1 << 16;
 
 /// p.profile from a table's values (max_profile_value_count per station), and the root's values where a single value
 /// of the beam is reported (the frequency unit sqrt(EI / (m L^4))): S = 1 m^2 keeps the three products the table's.
