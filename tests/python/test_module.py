@@ -84,7 +84,7 @@ class RunTest(unittest.TestCase):
         with self.assertRaises(ValueError) as caught:
             hubbeam.run(SPINUP, lenght=8)
         self.assertIn("lenght", str(caught.exception))
-        with self.assertRaises(ValueError):
+        with self.assertRaises(FileNotFoundError):  # as open() says it (test_a_missing_scene_file_is_filenotfounderror)
             hubbeam.run(os.path.join(SOURCE, "no_such_scene.toml"))
 
     def test_a_stopped_run_is_flagged_or_raises(self):

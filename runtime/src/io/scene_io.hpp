@@ -71,7 +71,8 @@ void fit_profile(const std::string& scene_path, const ProfileTable& table, const
 std::shared_ptr<const DriveTable> read_drive_table(const std::string& scene, const std::string& file,
                                                    const char* column, const char* meaning,
                                                    DriveTable::Interpolation interpolation);
-/// motion.file as a path: relative to the scene file's folder.
+/// A file key's value as the path its reader opens and scene_files lists (one resolution for both): relative to
+/// the scene file's folder.
 std::string table_path(const std::string& scene, const std::string& file);
 /// A motion table's problem: "SCENE: motion.file: WHERE: WHAT".
 [[noreturn]] void table_fail(const std::string& scene, const std::string& where, const std::string& what);

@@ -213,7 +213,7 @@ void set_profile(std::vector<double> values, Parameters& p)
 ProfileTable scene_io::read_profile(const std::string& scene_path, const std::string& name, Parameters& p,
                                     Extras& extras)
 {
-    const std::string file = (std::filesystem::path(scene_path).parent_path() / name).string();
+    const std::string file = table_path(scene_path, name);  // as scene_files names it: what writers leave alone
     const std::string label = printable(file, 400);
     const auto bad = [&](long line, const std::string& what) {
         table_problem(scene_path, "beam.profile", label + (line > 0 ? ":" + std::to_string(line) : std::string()),
@@ -334,7 +334,7 @@ void resample_table(std::vector<double>& x, std::vector<double>& values, int cou
 ProfileTable scene_io::read_blade(const std::string& scene_path, const std::string& name, int resample, Parameters& p,
                                   Extras& extras)
 {
-    const std::string file = (std::filesystem::path(scene_path).parent_path() / name).string();
+    const std::string file = table_path(scene_path, name);  // as scene_files names it: what writers leave alone
     const auto bad = [&](const std::string& what) {
         table_problem(scene_path, "beam.blade_file", printable(file, 400), what);
     };
