@@ -56,7 +56,7 @@ StopRequest signal_stop()
 
 CLI::Option* add_key_option(CLI::App& sub, const SceneKey& key, std::string& value, const std::string& note)
 {
-    static const char* const type_names[] = {"X", "N", "WORD", "FILE"};  // by SceneKey::Kind
+    static const char* const type_names[] = {"X", "N", "WORD", "FILE", "FILE"};  // by SceneKey::Kind
     // A text key is a file name, or (output.sensitivities) a list of names: the placeholder says which.
     const bool list = key.kind == SceneKey::Kind::text && key.expected.find("separated by commas") != std::string::npos;
     return sub.add_option(key.option, value, std::string("Sets ") + key.name + ": " + key.expected + note)

@@ -335,6 +335,15 @@ TorqueLaw python_law(py::object f, std::shared_ptr<std::exception_ptr> failure)
     };
 }
 
+/// The files a scene was read from, as scene_inputs names them for check_outputs: (path, name) pairs, which
+/// Result.save hands back so that it never replaces one of them.
+std::vector<std::pair<std::string, std::string>> inputs_of(const Scene& scene)
+{
+    std::vector<std::pair<std::string, std::string>> out;
+    for (const NamedPath& p : scene_inputs(scene)) out.emplace_back(p.path, p.name);
+    return out;
+}
+
 /// A run's summary as the Python result's attributes (the command line's summary lines, and its text).
 py::dict summary_dict(const RunSummary& s, const Scene& scene)
 {
@@ -413,6 +422,7 @@ py::dict run(const std::string& text, const std::string& name, const Keywords& k
     // Where the rows came from, as hubbeam run writes it beside its output (Result.save names the file).
     out["metadata"] = run_metadata(scene, s, "", row_header(columns), static_cast<long>(rows.size() / width));
     out["scene_file"] = scene.path;
+    out["inputs"] = inputs_of(scene);
     out["data"] = rows_array(std::move(rows), width);
     out["in_process_seconds"] = in_process;
     return out;
@@ -537,14 +547,18 @@ py::dict linearize(const std::string& text, const std::string& name, const Keywo
 
 /// A run's rows saved as hubbeam run writes them, with their metadata (Result.save); ValueError for an output
 /// refused before anything is written, OSError for one that could not be written.
+/// inputs: the files the rows came from, (path, name) as run() gives them, which the outputs may not be.
 void save(const std::string& path, const py::array_t<double, py::array::c_style | py::array::forcecast>& data,
-          const std::string& header, const std::string& metadata)
+          const std::string& header, const std::string& metadata,
+          const std::vector<std::pair<std::string, std::string>>& inputs)
 {
     if (data.ndim() != 2) throw py::value_error("data: expected a rows x columns array");
+    std::vector<NamedPath> named;
+    for (const auto& [file, name] : inputs) named.push_back({file, name});
     std::string why;
     try {
         why = save_rows(path, data.data(), static_cast<std::size_t>(data.shape(0)),
-                        static_cast<std::size_t>(data.shape(1)), header, metadata);
+                        static_cast<std::size_t>(data.shape(1)), header, metadata, named);
     } catch (const OutputRefused& e) {
         throw py::value_error(e.what());
     }
@@ -560,20 +574,37 @@ std::string effective_scene_text(const std::string& text, const std::string& nam
     return effective_scene_toml(scene_of(text, name, keywords));
 }
 
-/// Every scene key with what it takes and its kind ("number", "integer", "word" or "text"), for the keyword
-/// arguments.
-std::vector<std::tuple<std::string, std::string, std::string>> keys()
+/// Every scene key with what it takes, its kind ("number", "integer", "word", "text" or "file": the name of a file
+/// the scene reads) and, for a file, the most bytes the core reads of it (0 otherwise): the keyword arguments, and
+/// the one list of a scene's file keys that Result.save and the sweeps use.
+std::vector<std::tuple<std::string, std::string, std::string, std::size_t>> keys()
 {
-    std::vector<std::tuple<std::string, std::string, std::string>> out;
+    std::vector<std::tuple<std::string, std::string, std::string, std::size_t>> out;
     for (const SceneKey& k : scene_keys()) {
         using K = SceneKey::Kind;
         const char* kind = k.kind == K::number    ? "number"
                            : k.kind == K::integer ? "integer"
                            : k.kind == K::word    ? "word"
+                           : k.kind == K::file    ? "file"
                                                   : "text";
-        out.emplace_back(k.name, k.expected, kind);
+        out.emplace_back(k.name, k.expected, kind, k.max_bytes);
     }
     return out;
+}
+
+/// The files the scene text `text` (the file `name`'s) names with the keywords' keys set, as (file key, path)
+/// (scene.hpp's scene_files): what a sweep's point reads, even where the point is refused for another key.
+std::vector<std::pair<std::string, std::string>> files_of(const std::string& text, const std::string& name,
+                                                          const Keywords& keywords)
+{
+    Overrides overrides;
+    for (const auto& [key, value, keyword] : keywords) overrides.emplace_back(key, value);
+    try {
+        return scene_files(text, name, overrides);
+    } catch (const SceneError& e) {
+        const std::string keyword = keyword_of(keywords, e.key);
+        throw py::value_error(keyword.empty() ? e.what() : keyword + ": " + e.problem());
+    }
 }
 
 }  // namespace
@@ -597,10 +628,12 @@ PYBIND11_MODULE(_core, m)
         "check", [](const std::string& text, const std::string& name) { scene_of(text, name, {}); },
         "Parses and checks a scene (ValueError if it is bad)", py::arg("text"), py::arg("name"));
     m.def("save_rows", &save, "Writes a run's rows and metadata as hubbeam run does", py::arg("path"), py::arg("data"),
-          py::arg("header"), py::arg("metadata"));
+          py::arg("header"), py::arg("metadata"), py::arg("inputs"));
+    m.def("scene_files", &files_of, "The files a scene names, by file key", py::arg("text"), py::arg("name"),
+          py::arg("overrides"));
     m.def("effective_scene", &effective_scene_text, "The effective scene as TOML", py::arg("text"), py::arg("name"),
           py::arg("overrides"));
-    m.def("scene_keys", &keys, "Every scene key (dotted name) and what it takes");
+    m.def("scene_keys", &keys, "Every scene key (dotted name), what it takes, its kind and a file's byte limit");
     m.def(
         "generator_version", [] { return variant_cache_dir().filename().string(); },
         "The generator's version: on-demand variants are cached under it");

@@ -2,6 +2,7 @@
 views without copies, the GIL released while integrating. Needs HUBBEAM (the executable) and SOURCE_DIR."""
 import csv
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -83,7 +84,7 @@ class RunTest(unittest.TestCase):
         with self.assertRaises(ValueError) as caught:
             hubbeam.run(SPINUP, lenght=8)
         self.assertIn("lenght", str(caught.exception))
-        with self.assertRaises(ValueError):
+        with self.assertRaises(FileNotFoundError):  # as open() says it (test_a_missing_scene_file_is_filenotfounderror)
             hubbeam.run(os.path.join(SOURCE, "no_such_scene.toml"))
 
     def test_a_stopped_run_is_flagged_or_raises(self):
@@ -243,6 +244,36 @@ class MessagesTest(unittest.TestCase):
         with self.assertRaises(ValueError) as caught:
             hubbeam.run(SPINUP, **{"output.file": "a\u0000b.csv"})
         self.assertIn("NUL", str(caught.exception))
+
+    def test_a_misspelt_keyword_gets_the_nearest_key(self):
+        # A leaf name or a dotted name one or two letters off: the message names the key meant; a word far from
+        # every key gets no guess.
+        for call, meant in ((lambda: hubbeam.run(SPINUP, lenght=8.0), "length"),
+                            (lambda: hubbeam.modes(SPINUP, 0.0, **{"discretisation.ny": 4}), "discretization.ny"),
+                            (lambda: hubbeam.effective_scene(SPINUP, omgea0=2.0), "omega0"),
+                            (lambda: hubbeam.run(SPINUP, sensitivites=["E"]), "sensitivities")):
+            with self.assertRaises(ValueError) as caught:
+                call()
+            self.assertRegex(str(caught.exception), rf": expected a scene key \(docs/scene.md; hubbeam.scene_keys\(\)\), "
+                                                    rf"got an unknown keyword \(did you mean {re.escape(meant)}\?\)$")
+        with self.assertRaises(ValueError) as caught:
+            hubbeam.run(SPINUP, zzzzzz=1)
+        self.assertTrue(str(caught.exception).endswith("got an unknown keyword"), str(caught.exception))
+
+    def test_a_missing_scene_file_is_filenotfounderror(self):
+        # As open() says it, for every function that reads a scene; a file that is there but bad stays a ValueError.
+        with tempfile.TemporaryDirectory() as d:
+            missing = os.path.join(d, "nope.toml")
+            for call in (lambda: hubbeam.run(missing), lambda: hubbeam.modes(missing), lambda: hubbeam.linearize(missing, 1.0),
+                         lambda: hubbeam.effective_scene(missing), lambda: hubbeam.scene_files(missing)):
+                with self.assertRaises(FileNotFoundError) as caught:
+                    call()
+                self.assertEqual(str(caught.exception), f"[Errno 2] {missing}: no such scene file: '{missing}'")
+            bad = os.path.join(d, "bad.toml")
+            with open(bad, "w") as f:
+                f.write("[beam\n")
+            with self.assertRaises(ValueError):
+                hubbeam.run(bad)
 
 
 class NumpyInputTest(unittest.TestCase):

@@ -1,5 +1,6 @@
 """Figures from Python (docs/python.md, "Figures"): what Result.plot and plot_campbell draw, read back from the
 figure's own lines and labels (never its bytes), and the package's import without matplotlib. Needs SOURCE_DIR."""
+import json
 import os
 import subprocess
 import sys
@@ -110,6 +111,106 @@ class Campbell(unittest.TestCase):
         fig = hubbeam.plot_campbell(self.m, count=2, harmonics=[5])
         labels = [line.get_label() for line in fig.axes[0].get_lines()]
         self.assertEqual(labels[:3], ["bending 1", "bending 2", "5 x Omega"])
+
+
+class CampbellOfADampedBlade(unittest.TestCase):
+    """A damped blade's modes (cases/helicopter_blade.toml): overdamped modes have frequency 0, which the diagram
+    never draws nor lets meet an excitation line; a tabulated blade's long variant name; the lines told apart."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.m = hubbeam.modes(os.path.join(SOURCE, "cases", "helicopter_blade.toml"), np.arange(0.0, 30.1, 5.0),
+                              source="assembled")
+
+    def test_an_overdamped_mode_is_not_drawn_and_meets_no_line(self):
+        m = self.m
+        self.assertTrue((m["hz"] == 0).any(), "the damped blade has overdamped modes (else this test shows nothing)")
+        fig = hubbeam.plot_campbell(m, kinds="all", count=64)
+        lines = {line.get_label(): line for line in fig.axes[0].get_lines()}
+        drawn = [(label, line) for label, line in lines.items() if " x Omega" not in label and label != "critical speeds"]
+        self.assertTrue(drawn)
+        for label, line in drawn:
+            self.assertTrue((np.asarray(line.get_ydata()) > 0).all(), label)
+            pick = (m["label"] == label) & (m["hz"] > 0)
+            self.assertTrue(np.array_equal(line.get_xdata(), m["omega"][pick]), label)
+        c = m["critical"]
+        if "critical speeds" in lines:
+            self.assertTrue((np.asarray(lines["critical speeds"].get_ydata()) > 0).all())
+            self.assertEqual(len(lines["critical speeds"].get_xdata()), int((np.asarray(c["hz"]) > 0).sum()))
+
+    def test_the_excitation_lines_are_dashed_apart(self):
+        fig = hubbeam.plot_campbell(self.m, harmonics=[1, 2, 3, 4])
+        styles = [(line.get_linestyle(), tuple(line._dash_pattern[1] or ())) for line in fig.axes[0].get_lines()
+                  if line.get_label().endswith(" x Omega")]
+        self.assertEqual(len(styles), 4)
+        self.assertEqual(len(set(styles)), 4, styles)
+
+    def test_a_long_variant_name_is_cut_and_the_axes_stay_in_the_figure(self):
+        blade = os.path.join(SOURCE, "cases", "blade_from_file.toml")
+        # Resampled at 24 stations, the blade's variant name spells them: 186 characters.
+        m = hubbeam.modes(blade, [0.0, 1.0, 2.0], source="assembled", g=0.0, blade_stations=24)  # no weight: steady
+        r = hubbeam.run(blade, t_end=0.1, source="assembled", blade_stations=24)
+        self.assertGreater(len(r.variant), 180)
+        for fig, text in ((hubbeam.plot_campbell(m), lambda ax: legend_texts(ax)[1]),
+                          (r.plot(), lambda ax: legend_texts(ax)[0][0])):
+            ax = fig.axes[0]
+            shown = text(ax)
+            self.assertLessEqual(max(len(part) for part in shown.split("\n")), 80, shown)  # column, scene, 48
+            self.assertIn("\u2026", shown)
+            fig.canvas.draw()
+            box = ax.get_position()
+            self.assertGreater(box.width, 0.45, "the legend pushed the axes aside")
+            self.assertTrue(0.0 <= box.x0 and box.x1 <= 1.0)
+
+    def test_a_result_is_no_modes_table(self):
+        r = hubbeam.run(SPINUP, t_end=0.1, nx=0)
+        with self.assertRaisesRegex(ValueError, r"^m: expected the modes of hubbeam.modes\(scene, omega=\[...\]\) "
+                                                r"\(a dict with omega, hz, label, kind and critical\), got a run's Result"):
+            hubbeam.plot_campbell(r)
+        with self.assertRaisesRegex(ValueError, r"got a list$"):
+            hubbeam.plot_campbell([1, 2])
+
+
+class NotebookDisplay(unittest.TestCase):
+    def test_in_a_notebook_each_figure_is_one_image(self):
+        # Cells run by nbconvert: a figure returned by the cell's last line, kept in a name, or drawn by a line that
+        # ends in a semicolon, shows as one image, never two; a figure of the user's that a plot draws into as well.
+        try:
+            import nbconvert  # noqa: F401
+            import ipykernel  # noqa: F401
+        except ImportError as e:
+            self.fail(f"the notebooks run with nbconvert and ipykernel: apt-get install jupyter-nbconvert "
+                      f"python3-ipykernel ({e})")
+        cells = ["import hubbeam, matplotlib.pyplot as plt",
+                 f"r = hubbeam.run({SPINUP!r}, t_end=0.1, nx=0)\nm = hubbeam.modes({SPINUP!r}, [0.0, 1.0], nx=0)",
+                 "r.plot()", "fig = r.plot('hub')", "r.plot('energies');", "hubbeam.plot_campbell(m)",
+                 "fig, ax = plt.subplots()\nr.plot(ax=ax);"]
+        nb = {"cells": [{"cell_type": "code", "execution_count": None, "metadata": {}, "outputs": [],
+                         "source": c} for c in cells],
+              "metadata": {"kernelspec": {"name": "python3", "display_name": "Python 3", "language": "python"}},
+              "nbformat": 4, "nbformat_minor": 5}
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "once.ipynb")
+            with open(path, "w") as f:
+                json.dump(nb, f)
+            done = subprocess.run([sys.executable, "-m", "nbconvert", "--to", "notebook", "--execute", "--output-dir",
+                                   d, "--output", "out.ipynb", path], capture_output=True, text=True,
+                                  env=dict(os.environ, PYDEVD_DISABLE_FILE_VALIDATION="1"), timeout=300)
+            self.assertEqual(done.returncode, 0, done.stderr[-3000:])
+            with open(os.path.join(d, "out.ipynb")) as f:
+                out = json.load(f)["cells"]
+        for cell in out[2:]:
+            images = [o for o in cell["outputs"] if "image/png" in o.get("data", {})]
+            self.assertEqual(len(images), 1, cell["source"])
+
+    def test_outside_a_notebook_the_figure_is_matplotlibs_own_in_pyplot(self):
+        # plt.show() shows it: a figure of pyplot's, of matplotlib's Figure class.
+        import matplotlib.pyplot as plt
+        from matplotlib.figure import Figure
+        fig = hubbeam.run(SPINUP, t_end=0.1, nx=0).plot()
+        self.assertIs(type(fig), Figure)
+        self.assertIn(fig.number, plt.get_fignums())
+        plt.close(fig)
 
 
 class WithoutMatplotlib(unittest.TestCase):

@@ -6,6 +6,7 @@ rows of a changed scene, paths relative to the sweep file, Python isolated from 
 Needs HUBBEAM and SOURCE_DIR."""
 import csv
 import os
+import re
 import resource
 import shutil
 import signal
@@ -522,6 +523,151 @@ class InputsTest(unittest.TestCase):
                 self.assertEqual(len(err.strip().splitlines()), 1, err)
                 self.assertIn(expected, err)
             self.assertEqual(sorted(n for n in os.listdir(d) if n.endswith(".csv")), [])
+
+
+# For each file key of the scene's schema, a scene of cases/ that sets it and the file it names there.
+SCENE_SETTING = {"beam.profile": ("profile_blade.toml", "profile_blade.csv"),
+                 "beam.blade_file": ("blade_from_file.toml", "blade_sections.dat"),
+                 "motion.file": ("table_spinup.toml", "table_spinup.csv")}
+
+
+def blade_study(d, mode=0o644, **extra):
+    """cases/blade_from_file.toml and a copy of its blade file (mode) in d, and a sweep of two coning angles that
+    keeps the three lowest frequencies (hand-assembled model, a short run, without gravity: a steady spin to take
+    the modes about)."""
+    scene = os.path.join(d, "blade_from_file.toml")
+    shutil.copy(os.path.join(SOURCE, "cases", "blade_from_file.toml"), scene)
+    blade = os.path.join(d, "blade_sections.dat")
+    shutil.copy(os.path.join(SOURCE, "cases", "blade_sections.dat"), blade)
+    os.chmod(blade, mode)
+    keep = extra.pop("keep", ["frequencies", "max_abs_tip_uy"])
+    spec = write(os.path.join(d, "sw.toml"), f'scene = "blade_from_file.toml"\nkeep = {keep!r}\nfrequencies = '
+                 f'{extra.pop("frequencies", 3)}\n[set]\n"output.t_end" = 0.05\n"model.source" = "assembled"\n'
+                 '"gravity.g" = 0.0\n'
+                 '[grid]\nprecone = [0.05, 0.1]\n')
+    return scene, blade, spec
+
+
+class FileKeysTest(unittest.TestCase):
+    """Every file key of the core's key table is an input of the sweep: never its table, part of each point's key
+    for resuming, and as private as the table; a blade file (beam.blade_file) as every other."""
+
+    def test_every_file_key_is_an_input_the_table_may_not_be(self):
+        self.assertEqual(set(hubbeam.file_keys()), set(SCENE_SETTING), "a file key with no scene in SCENE_SETTING")
+        with tempfile.TemporaryDirectory() as d:
+            for key, (scene_name, file_name) in SCENE_SETTING.items():
+                with self.subTest(key=key):
+                    for name in (scene_name, file_name):
+                        shutil.copy(os.path.join(SOURCE, "cases", name), d)
+                    file = os.path.join(d, file_name)
+                    before = lines_of(file)
+                    spec = {"scene": os.path.join(d, scene_name), "set": {"output.t_end": 0.05}}
+                    with self.assertRaisesRegex(sweeps.SweepError, rf": expected an output other than the scene's "
+                                                                   rf"{re.escape(key)} \(.*\), got the same file$"):
+                        hubbeam.sweep(spec, output=file, resume=False, scheduler=CLIENT, progress=False)
+                    self.assertEqual(lines_of(file), before)
+                    # Named by a point rather than the scene: the same.
+                    point = {"scene": os.path.join(SOURCE, "cases", scene_name), "points": [{key: file}],
+                             "set": {"output.t_end": 0.05}}
+                    with self.assertRaisesRegex(sweeps.SweepError, "got the same file$"):
+                        hubbeam.sweep(point, output=file, resume=False, scheduler=CLIENT, progress=False)
+                    self.assertEqual(lines_of(file), before)
+
+    def test_the_command_line_never_writes_over_the_blade_file(self):
+        with tempfile.TemporaryDirectory() as d:
+            _, blade, spec = blade_study(d)
+            before = lines_of(blade)
+            (code, err), = cli_all([spec, "-o", blade, "--no-resume"])
+            self.assertEqual(code, 2, err)
+            self.assertEqual(err, f"{blade}: expected an output other than the scene's beam.blade_file ({blade}), got "
+                                  f"the same file\n")
+            self.assertEqual(lines_of(blade), before)
+            self.assertEqual(leftovers(d), [])
+
+    def test_a_changed_blade_file_recomputes_its_rows(self):
+        # The flapwise stiffness x4 doubles the flap frequencies (the lowest is then edge 1, 2.77 Hz, where flap 1
+        # was 1.62 Hz): the resumed table holds the rows of the file as it is now (those of a new sweep, and of a
+        # direct run), not the rows of the file as it was.
+        with tempfile.TemporaryDirectory() as d:
+            scene, blade, spec = blade_study(d)
+            out = os.path.join(d, "sb.csv")
+            before = hubbeam.sweep(spec, output=out, scheduler=CLIENT, progress=False)
+            self.assertEqual([r["status"] for r in before], ["ok", "ok"])
+            with open(blade) as f:
+                lines = f.read().split("\n")
+            for i in range(5, 16):  # the 11 sections: flp_stff, the 7th column, x4
+                cells = lines[i].split()
+                cells[6] = repr(4 * float(cells[6]))
+                lines[i] = "  ".join(cells)
+            write(blade, "\n".join(lines))
+            (code, err), = cli_all([spec, "-o", out, *tls_options()])
+            self.assertEqual(code, 0, err)
+            self.assertNotIn("already", err)
+            after = read(out)
+            self.assertEqual(len(after), 2)
+            fresh = hubbeam.sweep(spec, output=os.path.join(d, "fresh.csv"), resume=False, scheduler=CLIENT,
+                                  progress=False)
+            for a, b, c in zip(before, after, fresh):
+                self.assertEqual([float(b[f"f{i}_hz"]) for i in (1, 2, 3)], [c[f"f{i}_hz"] for i in (1, 2, 3)])
+                self.assertAlmostEqual(float(b["f1_hz"]) / a["f1_hz"], 2.77 / 1.62, delta=0.02)
+                direct = hubbeam.run(scene, t_end=0.05, source="assembled", g=0.0, precone=a["beam.precone"])
+                self.assertEqual(float(b["max_abs_tip_uy"]), direct.max_abs_tip_uy)
+            again = hubbeam.sweep(spec, output=out, scheduler=CLIENT, progress=False)  # nothing changed: kept
+            self.assertEqual([r["f1_hz"] for r in again], [float(r["f1_hz"]) for r in after])
+
+    def test_a_private_blade_file_makes_a_private_table(self):
+        with tempfile.TemporaryDirectory() as d:
+            _, _, spec = blade_study(d, mode=0o600)
+            old = os.umask(0o022)
+            try:
+                hubbeam.sweep(spec, output=os.path.join(d, "sb.csv"), scheduler=CLIENT, progress=False)
+            finally:
+                os.umask(old)
+            self.assertEqual(os.stat(os.path.join(d, "sb.csv")).st_mode & 0o777, 0o600)
+
+
+class BladeFrequenciesTest(unittest.TestCase):
+    def test_a_blades_frequencies_are_its_lowest_elastic_modes(self):
+        # cases/blade_from_file.toml's own comment: at rest flap 1.62 Hz, edge 2.77 Hz, flap 5.39 Hz (the short
+        # run leaves the hub at a few thousandths of a rad/s).
+        with tempfile.TemporaryDirectory() as d:
+            _, _, spec = blade_study(d)
+            table = hubbeam.sweep(spec, output=os.path.join(d, "sb.csv"), scheduler=CLIENT, progress=False)
+        for row in table:
+            self.assertEqual(row["status"], "ok")
+            self.assertEqual([round(row[f"f{i}_hz"], 2) for i in (1, 2, 3)], [1.62, 2.77, 5.39])
+
+    def test_frequencies_the_variant_has_not_are_no_ok_row(self):
+        # 64 asked for, fewer modes that oscillate: the row says so rather than "ok" with empty cells.
+        with tempfile.TemporaryDirectory() as d:
+            _, _, spec = blade_study(d, frequencies=64)
+            table = hubbeam.sweep(spec, output=os.path.join(d, "sb.csv"), scheduler=CLIENT, progress=False)
+        for row in table:
+            self.assertRegex(row["status"], r"^error: frequencies: expected 64, got \d+: ")
+            self.assertIsNotNone(row["f1_hz"])
+            self.assertIsNone(row["f64_hz"])
+
+
+class DaskConfigurationTest(unittest.TestCase):
+    def test_the_command_line_reads_no_dask_configuration(self):
+        # A preload in ~/.config/dask, in $DASK_CONFIG and in a DASK_ variable would each run a Python file in the
+        # sweep's process (scheduler, worker and client alike): none runs, and the sweep computes its point.
+        with tempfile.TemporaryDirectory() as d:
+            marker = os.path.join(d, "ran")
+            plant = write(os.path.join(d, "plant.py"), f"open({marker!r}, 'a').write('preloaded\\n')\n")
+            config = "distributed:\n" + "".join(f"  {part}:\n    preload: [{plant!r}]\n"
+                                                for part in ("scheduler", "worker", "client"))
+            for folder in (os.path.join(d, "home", ".config", "dask"), os.path.join(d, "config")):
+                os.makedirs(folder)
+                write(os.path.join(folder, "dask.yaml"), config)
+            spec = write(os.path.join(d, "s.toml"), f'scene = "{SPINUP}"\n[set]\n"output.t_end" = 0.1\n')
+            env = dict(os.environ, HOME=os.path.join(d, "home"), DASK_CONFIG=os.path.join(d, "config"),
+                       DASK_DISTRIBUTED__WORKER__PRELOAD=f"[{plant!r}]")
+            child = subprocess.run([HUBBEAM, "sweep", spec, "-o", os.path.join(d, "t.csv"), "--workers", "1"],
+                                   env=env, capture_output=True, text=True, timeout=120)
+            self.assertEqual(child.returncode, 0, child.stderr)
+            self.assertFalse(os.path.exists(marker), lines_of(marker) if os.path.exists(marker) else "")
+            self.assertEqual([r["status"] for r in read(os.path.join(d, "t.csv"))], ["ok"])
 
 
 class StaleRowsTest(unittest.TestCase):

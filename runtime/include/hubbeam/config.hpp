@@ -96,7 +96,8 @@ struct OutputOptions {
 struct Scene {
     std::string path;  // the file it came from, for messages
     /// The other files it was read from, each with its key: {"beam.profile", FILE}, {"beam.blade_file", FILE},
-    /// {"motion.file", FILE}. A command's outputs are checked against these and path (output_file.hpp's scene_inputs).
+    /// {"motion.file", FILE}, as scene.hpp's scene_files lists them from the key table's file keys. A command's outputs
+    /// are checked against these and path (output_file.hpp's scene_inputs).
     std::vector<std::pair<std::string, std::string>> tables;
     /// beam.blade_stations: the stations a blade file was resampled at, 0 for its own (docs/scene.md).
     int blade_stations = 0;

@@ -2,6 +2,7 @@
 // (format in docs/scene.md), with command-line overrides applied to the file's keys before anything is checked.
 #pragma once
 
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -39,13 +40,17 @@ inline constexpr double max_section_angle = 6.283185307179586;
 
 /// A scene key: its dotted name, what it must hold, and the command-line option that sets it (or null).
 /// One table of these serves reading, validation (the keys a table may hold), messages, the command line and
-/// its --help.
+/// its --help, and says which files a scene reads (the keys of Kind::file: scene_files, output_file.hpp's
+/// scene_inputs, the Python module and its sweeps).
 struct SceneKey {
     const char* name;    // "discretization.ny"
     const char* option;  // "--ny", or nullptr; CLI11's form ("-o,--output"): messages use the first name
-    enum class Kind { number, integer, word, text } kind;
+    /// file: the name of a file the scene reads (relative to the scene's folder), which every writer must leave
+    /// alone and a sweep's resuming keys by content; text: any other string (a word list, an output's name).
+    enum class Kind { number, integer, word, text, file } kind;
     std::string expected;  // "an integer >= 1 (Ny)", or for words "one of \"amm\", \"fem\", ..."
     std::vector<std::string> motion_kinds = {};  // the [motion] kinds that take the key ("spin-up", ...); empty: all
+    std::size_t max_bytes = 0;                   // Kind::file: the most bytes the reader reads of the file
 
     /// "discretization" of "discretization.ny".
     std::string table() const;
@@ -59,6 +64,9 @@ const SceneKey& scene_key(const std::string& name);
 std::vector<std::string> scene_tables();
 /// The keys table may hold (leaf names, in the key table's order); for [motion], those motion_kind takes.
 std::vector<std::string> table_keys(const std::string& table, const std::string& motion_kind = "");
+
+/// The keys of the table that name a file the scene reads (Kind::file), in the table's order.
+std::vector<const SceneKey*> file_keys();
 
 /// Key name -> value as typed on the command line, e.g. {"discretization.ny", "8"}.
 using Overrides = std::vector<std::pair<std::string, std::string>>;
@@ -74,6 +82,12 @@ std::string message_for(const SceneError& e, const Overrides& overrides);
 Scene load_scene(const std::string& path, const Overrides& overrides = {});
 /// load_scene of a scene's text; path names it in messages.
 Scene parse_scene(std::string_view text, const std::string& path, const Overrides& overrides = {});
+/// The files a scene's text names with the overrides set, as {file key, path} in the key table's order: every
+/// Kind::file key that holds a non-empty string, resolved against the scene's folder as the reader opens it. Nothing
+/// else is read or checked (a scene refused for another key still names its files): what a sweep keys its points by.
+/// Throws SceneError for text that is no TOML or an override of the wrong kind.
+std::vector<std::pair<std::string, std::string>> scene_files(std::string_view text, const std::string& path,
+                                                             const Overrides& overrides = {});
 /// Re-checks a scene changed in code (ranges, DOF counts, tolerances, times); throws SceneError naming the key.
 void validate(const Scene& scene);
 

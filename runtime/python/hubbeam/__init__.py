@@ -8,8 +8,11 @@
 """
 from __future__ import annotations
 
+import difflib
+import errno
 import json
 import math
+import stat
 import os
 import sys
 import threading
@@ -33,8 +36,11 @@ __all__ = ["run", "modes", "linearize", "sweep", "load", "plot_campbell", "effec
            "final_error", "PARAMETER_KEYS"]
 __version__ = _core.__version__
 
-_KEYS = {name: expected for name, expected, kind in _core.scene_keys()}  # dotted name -> what it takes
-_KINDS = {name: kind for name, expected, kind in _core.scene_keys()}     # -> "number", "integer", "word", "text"
+_KEYS = {name: expected for name, expected, kind, cap in _core.scene_keys()}  # dotted name -> what it takes
+_KINDS = {name: kind for name, expected, kind, cap in _core.scene_keys()}  # "number", "integer", "word", "text", "file"
+# The keys that name a file the scene reads, with the most bytes the core reads of it: the core's key table says
+# which (Kind::file), so a file key added there is an input of every writer here too.
+_FILE_KEYS = {name: cap for name, expected, kind, cap in _core.scene_keys() if kind == "file"}
 # "ny" -> "discretization.ny"; a leaf that several tables share ("inertia": hub and tip) maps to all of them, and a
 # keyword must then name its table.
 _LEAVES: dict[str, list[str]] = {}
@@ -65,6 +71,22 @@ def scene_keys() -> dict[str, str]:
     return dict(_KEYS)
 
 
+def file_keys() -> dict[str, int]:
+    """The scene keys that name a file the scene reads (beam.profile, beam.blade_file, motion.file), each with the
+    most bytes hubbeam reads of that file: what every writer leaves alone and a sweep keys its points by."""
+    return dict(_FILE_KEYS)
+
+
+def scene_files(scene: Any, **keys: Any) -> dict[str, str]:
+    """The files a scene (a file's path, or a dict of tables) reads besides itself with the keywords' keys set, as
+    file key -> path resolved as hubbeam opens it (relative to the scene's folder). Only the scene's text is read:
+    a scene refused for another key still names its files."""
+    text, name = _source(scene)
+    if not name:
+        text, name = _scene_file_text(text), text
+    return dict(_core_call(_core.scene_files, text, name, _overrides(keys)))
+
+
 def generator_version() -> str:
     """The generator's version: on-demand variants and sweep results are keyed by it."""
     return _core.generator_version()
@@ -87,7 +109,8 @@ UNITS = {"t": "s", "theta": "rad", "theta_dot": "rad/s", "tip_uy": "m", "tip_ux1
 
 class Result:
     """One run: its rows as columns (numpy views of .data, n x 10, more with a scene's optional columns such as tau)
-    and its summary as attributes."""
+    and its summary as attributes. A column or summary name never replaces one of Result's own attributes (save,
+    plot, data, ...): the core's names never do, and hubbeam.load refuses a file whose names would."""
 
     def __init__(self, raw: dict):
         self.data: np.ndarray = raw.pop("data")
@@ -96,7 +119,14 @@ class Result:
         # Where the rows came from (the JSON hubbeam run writes beside its output): save() writes it, load() reads it.
         self.metadata: dict = json.loads(raw.pop("metadata"))
         self.scene_file: str = raw.pop("scene_file")
+        # The files the rows came from, (path, what), as the core's scene_inputs names them: save() never replaces
+        # one of them.
+        self.inputs: list[tuple[str, str]] = [tuple(i) for i in raw.pop("inputs", [])]
         self.summary: dict = raw
+        for name in [*raw, *self.columns]:
+            if name in _RESERVED:
+                raise ValueError(f"{printable(name, 80)}: expected a summary value or column name that is none of "
+                                 f"Result's own attributes (data, columns, save, plot, ...)")
         for name, value in raw.items():
             setattr(self, name, value)
         for i, name in enumerate(self.columns):
@@ -134,13 +164,15 @@ class Result:
         """Writes the rows as hubbeam run does (CSV, or a NumPy array where path ends in .npy, with its column names
         in NAME.columns.txt) and the metadata beside them in PATH.hubbeam.json, all put in place together;
         hubbeam.load(path) reads them back. Refuses (ValueError) what hubbeam run refuses: a symbolic link, a
-        read-only file, a folder. Returns the path."""
+        read-only file, a folder, and any file the run read (its scene, profile, blade file or motion table, compared
+        as files, not as names). Returns the path."""
         path = os.fspath(path)
         if not path.endswith((".csv", ".npy")):
             raise ValueError(f"path: expected a file name ending in .csv or .npy, got {printable(repr(path), 200)}")
         meta = dict(self.metadata, output=os.path.basename(path), rows=len(self.data))
         meta.setdefault("scene", {}).setdefault("output", {})["file"] = path
-        _core.save_rows(path, self.data, ",".join(self.columns), json.dumps(meta, indent=2) + "\n")
+        _core.save_rows(path, self.data, ",".join(self.columns), json.dumps(meta, indent=2) + "\n",
+                        [(file, what) for file, what in self.inputs])
         return path
 
     def __repr__(self) -> str:
@@ -148,51 +180,226 @@ class Result:
         return f"<hubbeam.Result {self.variant}, {len(self.data)} rows, {state}>"
 
 
-# The summary's numbers that the metadata may hold as "inf", "-inf" or "nan" (JSON has no such numbers).
+# Result's own attributes and methods, which no column or summary value may replace (r.save is always the method).
+_RESERVED = frozenset(dir(Result)) | {"data", "columns", "summary_text", "metadata", "scene_file", "inputs", "summary"}
+
+# The summary's values by type, as the core writes them (metadata.cpp's summary_json): numbers, which the metadata
+# may hold as "inf", "-inf" or "nan" (JSON has no such numbers), texts, booleans and counts. Those Result itself reads
+# (__repr__, RunStopped, plot) must be there; any of the others must be of its type where it is; any other key a
+# number, a text or a boolean.
 _SUMMARY_NUMBERS = ("t_reached", "max_abs_tip_uy", "t_steady", "jacobi_drift", "vibration_energy", "estimated_error",
                     "wall_seconds", "check_wall_seconds")
+_SUMMARY_TEXTS = ("variant", "source", "algebra", "stepper", "stepper_why", "newton", "failure", "monitor_off",
+                  "error_column", "error_from", "summary_text")
+_SUMMARY_BOOLEANS = ("completed", "energy_balance")
+_SUMMARY_COUNTS = ("steps", "rejected_steps", "rhs_evals", "jacobian_evals")
+_SUMMARY_REQUIRED = ("completed", "failure", "variant", "summary_text", *_SUMMARY_NUMBERS)
 METADATA_SUFFIX = ".hubbeam.json"
+# The largest scene file read: the core's max_scene_bytes (runtime/include/hubbeam/scene.hpp).
+_MAX_SCENE_BYTES = 1 << 20
+# The largest metadata file read: a run's is a few kilobytes (its effective scene, summary and files).
+MAX_METADATA_BYTES = 1 << 20
+
+
+def _read_regular(path: str, cap: int | None, what: str) -> bytes:
+    """The bytes of an input file, by the rules of every hubbeam reader: a path that is not a regular file (a FIFO,
+    a device, a folder) is refused by stat before anything opens it (opening a FIFO blocks until a writer comes), the
+    file is opened non-blocking in case it was swapped for one meanwhile, and more than cap bytes are refused without
+    being read. FileNotFoundError where there is no file; ValueError naming the file (never quoting it) otherwise."""
+    shown = printable(path)
+    try:
+        st = os.stat(path)
+        if not stat.S_ISREG(st.st_mode):
+            raise ValueError(f"{shown}: expected {what} (a regular file), got {_file_kind(st.st_mode)}")
+        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | os.O_CLOEXEC)
+    except FileNotFoundError:
+        raise FileNotFoundError(errno.ENOENT, f"{shown}: not found: expected {what}", path) from None
+    except OSError as e:
+        raise ValueError(f"{shown}: cannot open {what}: {e.strerror}") from None
+    try:
+        st = os.fstat(fd)
+        if not stat.S_ISREG(st.st_mode):
+            raise ValueError(f"{shown}: expected {what} (a regular file), got {_file_kind(st.st_mode)}")
+        chunks, size = [], 0
+        while cap is None or size <= cap:
+            chunk = os.read(fd, 1 << 20 if cap is None else min(1 << 20, cap + 1 - size))
+            if not chunk:
+                break
+            chunks.append(chunk)
+            size += len(chunk)
+    except OSError as e:
+        raise ValueError(f"{shown}: cannot read {what}: {e.strerror}") from None
+    finally:
+        os.close(fd)
+    if cap is not None and size > cap:
+        raise ValueError(f"{shown}: expected {what} of at most {cap >> 10} KB, got a larger file")
+    return b"".join(chunks)
+
+
+def _scene_file_text(path: str) -> str:
+    """A scene file's text, read as the core reads one (at most its max_scene_bytes, never opening a FIFO)."""
+    return _text_of(_read_regular(path, _MAX_SCENE_BYTES, "a scene file"), path, "a scene file")
+
+
+def _file_kind(mode: int) -> str:
+    """What a file that is not a regular file is, as the core's messages say it."""
+    for test, name in ((stat.S_ISDIR, "a directory"), (stat.S_ISFIFO, "a FIFO"), (stat.S_ISCHR, "a character device"),
+                       (stat.S_ISBLK, "a block device"), (stat.S_ISSOCK, "a socket")):
+        if test(mode):
+            return name
+    return "not a regular file"
+
+
+def _text_of(data: bytes, path: str, what: str) -> str:
+    """data as UTF-8 text, or ValueError naming the file and the byte where it is not (never the bytes)."""
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as e:
+        raise ValueError(f"{printable(path)}: expected {what} (UTF-8 text), got bytes that are not text at byte "
+                         f"{e.start}") from None
+
+
+def _metadata_of(meta_path: str) -> dict:
+    """A run's metadata file, read and checked key by key: every value load() and Result use has its type, and no
+    name would replace an attribute of Result. ValueError naming the file and the key (never the file's values)."""
+    text = _text_of(_read_regular(meta_path, MAX_METADATA_BYTES, "hubbeam's metadata"), meta_path,
+                    "hubbeam's metadata")
+    shown = printable(meta_path)
+    try:
+        meta = json.loads(text)
+    except json.JSONDecodeError as e:
+        raise ValueError(f"{shown}: line {e.lineno}, column {e.colno}: expected hubbeam's metadata (JSON)") from None
+    except RecursionError:
+        raise ValueError(f"{shown}: expected hubbeam's metadata (JSON), got values nested too deeply") from None
+
+    def bad(key: str, expected: str):
+        return ValueError(f"{shown}: {printable(key, 80)}: expected {expected}")
+
+    if not isinstance(meta, dict) or meta.get("format") != "hubbeam-metadata 1":
+        raise bad("format", "\"hubbeam-metadata 1\" (hubbeam.load reads the metadata hubbeam run writes)")
+    if meta.get("command") != "run":
+        raise bad("command", "\"run\" (hubbeam.load reads the metadata of a run)")
+    columns = meta.get("columns")
+    if not isinstance(columns, list) or not columns or not all(isinstance(c, str) and c for c in columns) or \
+            columns[0] != "t":
+        raise bad("columns", "a list of column names, the first t")
+    if len(set(columns)) != len(columns):
+        raise bad("columns", "a list of column names, each once")
+    rows = meta.get("rows")
+    if not isinstance(rows, int) or isinstance(rows, bool) or rows < 0:
+        raise bad("rows", "a number of rows (an integer >= 0)")
+    if not isinstance(meta.get("scene_file"), str):
+        raise bad("scene_file", "the scene file's name (a string)")
+    tables = meta.get("tables", {})
+    if not isinstance(tables, dict) or not all(isinstance(t, dict) and isinstance(t.get("path"), str)
+                                               for t in tables.values()):
+        raise bad("tables", "a table of the files the scene read, each with its \"path\"")
+    summary = meta.get("summary")
+    if not isinstance(summary, dict):
+        raise bad("summary", "a table of the run's summary values")
+    for key in _SUMMARY_REQUIRED:
+        if key not in summary:
+            raise bad(f"summary.{key}", "a value (the key is missing)")
+    for key, value in summary.items():
+        where = f"summary.{key}"
+        if key in _SUMMARY_NUMBERS:
+            if not (isinstance(value, (int, float)) and not isinstance(value, bool)) and \
+                    value not in ("inf", "-inf", "nan"):
+                raise bad(where, "a number (or \"inf\", \"-inf\", \"nan\")")
+        elif key in _SUMMARY_TEXTS:
+            if not isinstance(value, str):
+                raise bad(where, "a text")
+        elif key in _SUMMARY_BOOLEANS:
+            if not isinstance(value, bool):
+                raise bad(where, "true or false")
+        elif key in _SUMMARY_COUNTS:
+            if not isinstance(value, int) or isinstance(value, bool):
+                raise bad(where, "an integer")
+        elif not isinstance(value, (str, int, float, bool)):
+            raise bad(where, "a number, a text or a boolean")
+    for name in [*(k for k in summary if k != "summary_text"), *columns]:  # Result keeps summary_text as itself
+        if name in _RESERVED:
+            raise bad(name, "a summary value or column name that is none of Result's own attributes (data, columns, "
+                            "save, plot, ...)")
+    if set(summary) & set(columns):
+        raise bad(sorted(set(summary) & set(columns))[0], "a name that is a column or a summary value, not both")
+    return meta
+
+
+def _csv_rows(path: str) -> tuple[list[str], np.ndarray]:
+    """A run CSV's header and rows (an n x width array), or ValueError naming the file and the line and column
+    where it is not one (never a cell's text: the file may be anyone's)."""
+    shown = printable(path)
+    text = _text_of(_read_regular(path, None, "a run's CSV"), path, "a run's CSV")
+    lines = text.split("\n")
+    header = lines[0].rstrip("\r").split(",")
+    body = lines[1:]
+    if body and body[-1] == "":
+        body.pop()  # the newline that ends the last row
+    try:
+        data = np.loadtxt(body, delimiter=",", ndmin=2, dtype=float) if body else np.empty((0, len(header)))
+    except ValueError:
+        # Where it failed, found again here: numpy's message quotes the cell.
+        for n, line in enumerate(body, start=2):
+            cells = line.rstrip("\r").split(",")
+            if len(cells) != len(header):
+                raise ValueError(f"{shown}: line {n}: expected {len(header)} fields, got {len(cells)}") from None
+            for c, cell in enumerate(cells, start=1):
+                try:
+                    float(cell)
+                except ValueError:
+                    raise ValueError(f"{shown}: line {n}, column {c}: expected a number") from None
+        raise ValueError(f"{shown}: expected rows of numbers separated by commas") from None
+    return header, data
+
+
+def _npy_rows(path: str) -> tuple[list[str], np.ndarray]:
+    """A run's .npy rows and the column names of NAME.columns.txt beside them, or ValueError naming the file."""
+    import io
+
+    try:
+        data = np.load(io.BytesIO(_read_regular(path, None, "a run's .npy rows")), allow_pickle=False)
+    except (ValueError, OSError, EOFError) as e:
+        if isinstance(e, FileNotFoundError):
+            raise
+        raise ValueError(f"{printable(path)}: expected a run's rows as a .npy array of numbers") from None
+    if not isinstance(data, np.ndarray) or data.dtype.kind not in "fiu":
+        raise ValueError(f"{printable(path)}: expected a run's rows as a .npy array of numbers")
+    columns = os.path.splitext(path)[0] + ".columns.txt"
+    text = _text_of(_read_regular(columns, MAX_METADATA_BYTES, "the rows' column names"), columns,
+                    "the rows' column names")
+    return text.split("\n", 1)[0].rstrip("\r").split(","), data
 
 
 def load(path: str | os.PathLike) -> Result:
     """Reads a run's output back, CSV or .npy, with the metadata written beside it (PATH.hubbeam.json, by hubbeam run
     or Result.save) into the Result that hubbeam.run returned: its columns, summary, to_pandas() and plot(). Raises
-    FileNotFoundError without the metadata, ValueError where the metadata is not a run's or does not describe the
-    file (another row count or header: the file was changed or replaced since)."""
+    FileNotFoundError without the metadata, ValueError where the metadata is not a run's (a key missing or of
+    another type, a name that is one of Result's own attributes) or does not describe the file (another row count or
+    header: the file was changed or replaced since), or where a file is not a regular file (a FIFO is refused
+    without being opened). No message quotes a file's content: the file, the line and column or key, and what was
+    expected."""
     path = os.fspath(path)
     meta_path = path + METADATA_SUFFIX
     try:
-        with open(meta_path, encoding="utf-8") as f:
-            meta = json.load(f)
+        meta = _metadata_of(meta_path)
     except FileNotFoundError:
-        raise FileNotFoundError(f"{printable(meta_path)}: not found: hubbeam.load reads a run's output with the "
-                                f"metadata that hubbeam run and Result.save write beside it") from None
-    except (json.JSONDecodeError, UnicodeDecodeError) as e:
-        raise ValueError(f"{printable(meta_path)}: expected hubbeam's metadata (JSON), got {printable(e)}") from None
-    if not isinstance(meta, dict) or meta.get("format") != "hubbeam-metadata 1":
-        raise ValueError(f"{printable(meta_path)}: expected \"format\": \"hubbeam-metadata 1\", got "
-                         f"{printable(repr(meta.get('format') if isinstance(meta, dict) else meta), 80)}")
-    if meta.get("command") != "run":
-        raise ValueError(f"{printable(meta_path)}: expected the metadata of a run, got that of "
-                         f"{printable(repr(meta.get('command')), 40)} (hubbeam.load reads runs)")
-    columns = list(meta["columns"])
-    if path.endswith(".npy"):
-        data = np.load(path, allow_pickle=False)
-        with open(os.path.splitext(path)[0] + ".columns.txt", encoding="utf-8") as f:
-            header = f.readline().rstrip("\n").split(",")
-    else:
-        with open(path, encoding="utf-8") as f:
-            header = f.readline().rstrip("\n").split(",")
-            data = np.loadtxt(f, delimiter=",", ndmin=2).reshape(-1, len(header))
+        raise FileNotFoundError(errno.ENOENT, f"{printable(meta_path)}: not found: hubbeam.load reads a run's output "
+                                f"with the metadata that hubbeam run and Result.save write beside it", meta_path) \
+            from None
+    columns = meta["columns"]
+    header, data = _npy_rows(path) if path.endswith(".npy") else _csv_rows(path)
     if header != columns or data.ndim != 2 or data.shape != (meta["rows"], len(columns)):
-        raise ValueError(f"{printable(path)}: expected the {meta['rows']} rows of columns {','.join(columns)} that "
-                         f"{printable(meta_path)} describes, got {data.shape[0]} rows of {','.join(header)}: the file "
-                         f"was changed or replaced after its metadata was written")
+        raise ValueError(f"{printable(path)}: expected the rows and columns that {printable(meta_path)} describes, "
+                         f"got {'another header' if header != columns else 'another number of rows or columns'}: the "
+                         f"file was changed or replaced after its metadata was written")
     raw = dict(meta["summary"])
     for k in _SUMMARY_NUMBERS:
         raw[k] = float(raw[k])
+    inputs = [(meta["scene_file"], "the scene itself")]
+    inputs += [(t["path"], f"the scene's {key}") for key, t in meta.get("tables", {}).items()]
     raw.update(data=np.ascontiguousarray(data, dtype=float), columns=",".join(columns),
-               metadata=json.dumps(meta), scene_file=meta["scene_file"])
+               metadata=json.dumps(meta), scene_file=meta["scene_file"], inputs=inputs)
     return Result(raw)
 
 
@@ -239,6 +446,14 @@ def _value_text(keyword: str, key: str, value: Any) -> str:
                      f"{'the string ' if isinstance(value, str) and not note else ''}{printable(repr(value), 120)}")
 
 
+def _nearest_key(name: str) -> str:
+    """ " (did you mean NAME?)" for a keyword that looks like a typo of a scene key's leaf or dotted name, else ""."""
+    if not isinstance(name, str):
+        return ""
+    near = difflib.get_close_matches(name, [*_LEAVES, *_KEYS], n=1, cutoff=0.75)
+    return f" (did you mean {near[0]}?)" if near else ""
+
+
 def _overrides(keywords: Mapping[str, Any]) -> list[tuple[str, str, str]]:
     """Keyword arguments (leaf names such as ny, or dotted names) as scene-key overrides: (dotted key, value as
     text, the keyword, which messages name)."""
@@ -247,7 +462,7 @@ def _overrides(keywords: Mapping[str, Any]) -> list[tuple[str, str, str]]:
         keys = [name] if name in _KEYS else _LEAVES.get(name, [])
         if not keys:
             raise ValueError(f"{printable(name, 80)}: expected a scene key (docs/scene.md; hubbeam.scene_keys()), "
-                             f"got an unknown keyword")
+                             f"got an unknown keyword{_nearest_key(name)}")
         if len(keys) > 1:
             raise ValueError(f"{name}: expected one scene key, got a name that " + " and ".join(keys) +
                              f" share: name the table, e.g. **{{\"{keys[0]}\": ...}}")
@@ -281,9 +496,18 @@ def _scene_text(scene: Mapping[str, Mapping[str, Any]]) -> str:
 
 
 def _source(scene: Any) -> tuple[str, str]:
-    """(text, name) for the core: a path with an empty name (the core reads it), or a dict's TOML."""
+    """(text, name) for the core: a path with an empty name (the core reads it), or a dict's TOML. FileNotFoundError
+    for a path where there is no file, as open() raises it (the core's other refusals of a path are ValueErrors)."""
     if isinstance(scene, (str, os.PathLike)):
-        return os.fspath(scene), ""
+        path = os.fspath(scene)
+        if isinstance(path, str) and path and "\0" not in path:
+            try:
+                os.stat(path)
+            except FileNotFoundError:  # also a link to nothing; any other failure is the core's to word
+                raise FileNotFoundError(errno.ENOENT, f"{printable(path)}: no such scene file", path) from None
+            except OSError:
+                pass
+        return path, ""
     if isinstance(scene, Mapping):
         return _scene_text(scene), "<dict scene>"
     raise ValueError(f"scene: expected a scene file's path or a dict of tables, got {printable(type(scene).__name__)}")

@@ -28,21 +28,29 @@ import time
 import tomllib
 from typing import Any, Mapping, Sequence
 
-# What a sweep may keep per point: the run's summary values, its tip series (t, tip_uy), the bending frequencies
-# about the point's steady spin, and the invariant drift relative to the vibration energy.
+# What a sweep may keep per point: the run's summary values, its tip series (t, tip_uy), the elastic modes'
+# frequencies about the point's steady spin, and the invariant drift relative to the vibration energy.
 SUMMARY_VALUES = ("completed", "t_reached", "max_abs_tip_uy", "jacobi_drift", "vibration_energy", "steps",
                   "rejected_steps", "rhs_evals", "jacobian_evals", "wall_seconds", "variant", "source", "stepper")
 DERIVED_VALUES = ("relative_drift", "tip_series", "frequencies")
 DEFAULT_KEEP = ("max_abs_tip_uy", "relative_drift", "wall_seconds")
+# The mode kinds whose frequencies "frequencies" keeps: the beam's elastic modes as the core labels them (a planar
+# beam's bending, a blade's edge, flap and twist), as the Campbell diagram draws them (plots.CAMPBELL_KINDS).
+ELASTIC_KINDS = ("bending", "edge", "flap", "twist")
 # The type of each kept value as the table's text reads back (the rest are floats): hubbeam.sweep returns these.
 _TEXT_COLUMNS = {"point", "status", "variant", "source", "stepper"}
 _INT_COLUMNS = {"steps", "rejected_steps", "rhs_evals", "jacobian_evals"}
 # The largest sweep file or base scene read: the core's max_scene_bytes (runtime/include/hubbeam/scene.hpp).
 MAX_SCENE_BYTES = 1 << 20
-# The scene keys that name a file, with the most bytes the core reads of it (runtime/src/io/scene.cpp:
-# max_profile_bytes, max_table_bytes). In a scene such a path is relative to the scene's folder; in a sweep file
-# (as every path there) relative to the sweep file's.
-_FILE_KEYS = {"beam.profile": 1 << 16, "motion.file": 16 << 20}
+
+
+def _file_keys() -> dict[str, int]:
+    """The scene keys that name a file the scene reads, with the most bytes the core reads of it: the core's key
+    table says which (hubbeam.file_keys()). In a scene such a path is relative to the scene's folder; in a sweep file
+    (as every path there) relative to the sweep file's."""
+    import hubbeam
+
+    return hubbeam.file_keys()
 
 
 class SweepError(ValueError):
@@ -203,22 +211,35 @@ def expand(sweep: Mapping[str, Any]) -> list[dict[str, Any]]:
 
 def _resolved(point: Mapping[str, Any], base: str) -> dict[str, Any]:
     """The point's overrides as the core takes them: a file key's relative path joined to the sweep's folder."""
-    return {k: os.path.join(base, v) if k in _FILE_KEYS and isinstance(v, str) and v else v for k, v in point.items()}
+    files = _file_keys()
+    return {k: os.path.join(base, v) if k in files and isinstance(v, str) and v else v for k, v in point.items()}
 
 
-def _scene_files(scene_text: str, scene_path: str) -> dict[str, str]:
-    """The files the base scene names (file key -> path), resolved against the scene's folder as the core does."""
-    try:
-        scene = tomllib.loads(scene_text.removeprefix("\ufeff"))  # a byte order mark, as the core reads it
-    except tomllib.TOMLDecodeError:
-        return {}  # the core read it (toml++): a file key that tomllib cannot find leaves only the text in the key
-    out = {}
-    for key in _FILE_KEYS:
-        table, leaf = key.split(".")
-        value = scene.get(table, {}).get(leaf) if isinstance(scene.get(table), dict) else None
-        if isinstance(value, str) and value:
-            out[key] = os.path.join(os.path.dirname(scene_path), value)
-    return out
+class _SceneFiles:
+    """The files each point's run reads (file key -> path), as the core lists them for the base scene with the
+    point's overrides (hubbeam.scene_files: the key table's file keys, resolved as the core opens them). Only a
+    point's file keys change the list, so it is asked once per distinct set of them."""
+
+    def __init__(self, scene_text: str, scene_path: str):
+        import hubbeam
+
+        self.text, self.path = scene_text, scene_path
+        self.files = hubbeam._FILE_KEYS
+        self.known: dict[tuple, dict[str, str]] = {}
+        self.base = self.of_point({})
+
+    def of_point(self, point: Mapping[str, Any]) -> dict[str, str]:
+        import hubbeam
+
+        own = tuple(sorted((k, v) for k, v in point.items() if k in self.files))
+        if own not in self.known:
+            try:
+                self.known[own] = dict(hubbeam._core_call(hubbeam._core.scene_files, self.text, self.path,
+                                                          hubbeam._overrides(dict(own))))
+            except ValueError:
+                # A file key of the wrong kind: the point's run is refused for it whatever the files hold.
+                self.known[own] = dict(self.base) if own else {}
+        return self.known[own]
 
 
 def point_key(point: Mapping[str, Any], scene_text: str, files: Mapping[str, str], version: str) -> str:
@@ -248,11 +269,10 @@ class _Inputs:
                 self.digests[path] = "unreadable"  # the point's run says why, in its row
         return self.digests[path]
 
-    def of_point(self, point: Mapping[str, Any], base_files: Mapping[str, str]) -> dict[str, str]:
-        """file key -> digest of the files the point's run reads: its own file keys, else the base scene's."""
-        files = dict(base_files)
-        files.update({k: v for k, v in point.items() if k in _FILE_KEYS and isinstance(v, str) and v})
-        return {k: self.digest(path, _FILE_KEYS[k]) for k, path in files.items()}
+    def of_point(self, files: Mapping[str, str]) -> dict[str, str]:
+        """file key -> digest of the files the point's run reads (_SceneFiles.of_point)."""
+        caps = _file_keys()
+        return {k: self.digest(path, caps[k]) for k, path in files.items()}
 
 
 def _columns(keys: Sequence[str], keep: Sequence[str], frequencies: int) -> list[str]:
@@ -293,9 +313,15 @@ def run_point(scene_text: str, scene_name: str, point: Mapping[str, Any], keep: 
                 # About the point's steady spin: the rate the hub ends at when prescribed, at rest for a free hub.
                 omega = 0.0 if "_torque_" in r.variant else abs(float(r.theta_dot[-1]))
                 m = hubbeam._modes_text(scene_text, scene_name, point, [omega])
-                hz = m["hz"][m["kind"] == "bending"][:frequencies]
+                # The beam's elastic modes as the core labels them (a planar beam's "bending", a blade's "edge",
+                # "flap" and "twist"; not the axial ones, hundreds of times higher, nor the hub's), those that
+                # oscillate (an overdamped mode's frequency is 0), lowest first.
+                hz = np.sort(m["hz"][np.isin(m["kind"], ELASTIC_KINDS) & (m["hz"] > 0)])[:frequencies]
                 for i in range(frequencies):
                     row[f"f{i + 1}_hz"] = float(hz[i]) if i < len(hz) else None
+                if len(hz) < frequencies:
+                    row["status"] = (f"error: frequencies: expected {frequencies}, got {len(hz)}: the point's "
+                                     f"variant has {len(hz)} oscillating {', '.join(ELASTIC_KINDS)} modes")
         row["run_seconds"] = r.in_process_seconds  # as hubbeam run spends in process: load, model, integrate
     except ValueError as e:
         row["status"] = "error: " + hubbeam.printable(e)
@@ -801,13 +827,15 @@ def run_sweep(spec: str | os.PathLike | Mapping[str, Any], *, output: str | None
         raise SweepError(f"{_printable(sweep['scene'])}: expected a scene file (UTF-8 TOML), got bytes that are not "
                          f"text") from None
     hubbeam._check_scene(scene_text, sweep["scene"])  # a bad base scene stops the sweep before any task
-    base_files = _scene_files(scene_text, sweep["scene"])
+    # What every point reads (the core's list: every file key of the scene's schema), by content for its key, by
+    # identity for the output checks, by permissions for the table's.
+    scene_files = _SceneFiles(scene_text, sweep["scene"])
+    point_files = [scene_files.of_point(r) for r in runs]
     tables = _Inputs()
     version = hubbeam.generator_version() + " " + hubbeam.__version__
-    ids = [point_key(p, scene_text, tables.of_point(r, base_files), version) for p, r in zip(points, runs)]
+    ids = [point_key(p, scene_text, tables.of_point(f), version) for p, f in zip(points, point_files)]
     inputs = [("base scene", sweep["scene"])] + [("sweep file", sweep["where"])] * (sweep["where"] != "<dict sweep>")
-    inputs += [("table " + key, file) for key, file in base_files.items()]
-    inputs += [("table " + k, v) for r in runs for k, v in r.items() if k in _FILE_KEYS and isinstance(v, str) and v]
+    inputs += list(dict.fromkeys((f"scene's {k}", v) for f in point_files for k, v in f.items()))
     _check_output(path, inputs)
     readable = [os.stat(f) for _, f in inputs[:2] if os.path.exists(f)] + list(tables.stats.values())
     mode = _table_mode(readable)
@@ -979,9 +1007,42 @@ class _Terminated(KeyboardInterrupt):
 _ENDING_SIGNALS = (signal.SIGTERM, signal.SIGHUP, signal.SIGQUIT)
 
 
+def _ignore_dask_configuration() -> None:
+    """Dask with its own defaults only, for `hubbeam sweep`: no configuration file (~/.config/dask, $DASK_CONFIG,
+    /etc/dask) and no DASK_* variable is read. Dask's configuration can name Python to run in this process (a
+    scheduler's, worker's or client's "preload": a module, a file, a URL), and `hubbeam sweep` runs only hubbeam's
+    Python (its interpreter is isolated, python3 -I). Importing dask.config reads the files: where this runs first
+    (as in `hubbeam sweep`) it is imported with HOME and DASK_ROOT_CONFIG pointing at an empty private folder, so
+    that none is even parsed; in any case the configuration is then reset to the defaults and the search path
+    emptied for any later refresh, before a scheduler, worker or client reads it."""
+    import shutil
+    import tempfile
+
+    for name in [n for n in os.environ if n.startswith("DASK_")]:
+        del os.environ[name]
+    if "dask.config" not in sys.modules:
+        empty = tempfile.mkdtemp(prefix="hubbeam-no-dask-config-")
+        home = os.environ.get("HOME")
+        os.environ.update(HOME=empty, DASK_ROOT_CONFIG=empty)
+        try:
+            import dask.config  # noqa: F401
+        finally:
+            del os.environ["DASK_ROOT_CONFIG"]
+            if home is None:
+                del os.environ["HOME"]
+            else:
+                os.environ["HOME"] = home  # the variant cache's default folder is under it
+            shutil.rmtree(empty, ignore_errors=True)
+    import dask.config
+
+    dask.config.paths[:] = []  # collect()'s default: a later refresh() reads no file either
+    dask.config.refresh(paths=[], env={})
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """hubbeam sweep: returns the exit code (0 done, 2 bad input, 130 interrupted, 128 + the signal when ended by
     SIGTERM, SIGHUP or SIGQUIT)."""
+    _ignore_dask_configuration()
     # The command's own lines say what went wrong; Dask's event loop may still report a shutdown timed out on a
     # loaded machine when its futures are collected at exit, which would add lines to a one-line message.
     logging.getLogger("asyncio").setLevel(logging.CRITICAL)

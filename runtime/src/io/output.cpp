@@ -239,11 +239,11 @@ std::string csv_line(const Row& row, const ColumnSet& columns)
 }
 
 std::string save_rows(const std::string& path, const double* data, std::size_t rows, std::size_t width,
-                      const std::string& header, const std::string& metadata)
+                      const std::string& header, const std::string& metadata, const std::vector<NamedPath>& inputs)
 {
     const bool npy = is_npy_path(path);
     const std::string columns_path = npy ? npy_columns_path(path) : "", json_path = metadata_path(path);
-    check_outputs({}, {{path, path}, {columns_path, "its column names"}, {json_path, "its metadata"}});
+    check_outputs(inputs, {{path, path}, {columns_path, "its column names"}, {json_path, "its metadata"}});
     std::string bytes;
     if (npy) {
         bytes = rows_npy_header(static_cast<long>(rows), width);

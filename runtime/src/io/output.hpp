@@ -109,10 +109,10 @@ std::string csv_line(const Row& row, const ColumnSet& columns = {});
 /// A run's rows computed already (a Python Result) written as hubbeam run writes them: CSV with header as its first
 /// line, or an .npy file and its column names when is_npy_path(path), and metadata (JSON text) in
 /// metadata_path(path); rows x width doubles in C order at data. The outputs are checked as check_outputs does
-/// (OutputRefused) and put in place together: a failure leaves every target as it was. Returns "" or one line
-/// saying what failed.
+/// against inputs, the files the rows came from (the run's scene_inputs), with OutputRefused, and put in place
+/// together: a failure leaves every target as it was. Returns "" or one line saying what failed.
 std::string save_rows(const std::string& path, const double* data, std::size_t rows, std::size_t width,
-                      const std::string& header, const std::string& metadata);
+                      const std::string& header, const std::string& metadata, const std::vector<NamedPath>& inputs);
 
 /// Short multi-line summary of a run for the terminal: scene, variant and whether generated or assembled,
 /// stepper and tolerances, max |tip_uy|, steps, RHS evaluations, wall time and, if the run stopped early,

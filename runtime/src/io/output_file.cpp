@@ -1,6 +1,7 @@
 // OutputFile and the checks of a command's outputs: file identity, file type, the lock against a second writer.
 #include "io/output_file.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -114,8 +115,15 @@ bool same_file(const std::string& a, const std::string& b)
 
 std::vector<NamedPath> scene_inputs(const Scene& scene)
 {
+    // The key table's file keys say what a scene reads (scene.hpp's scene_files fills Scene::tables from them): a
+    // file held under any other name would be one no writer knows to leave alone.
     std::vector<NamedPath> inputs = {{scene.path, "the scene itself"}};
-    for (const auto& [key, file] : scene.tables) inputs.push_back({file, "the scene's " + key});
+    const std::vector<const SceneKey*> keys = file_keys();
+    for (const auto& [key, file] : scene.tables) {
+        if (std::none_of(keys.begin(), keys.end(), [&](const SceneKey* k) { return key == k->name; }))
+            throw std::logic_error("the scene read " + key + ", which the key table does not name as a file key");
+        inputs.push_back({file, "the scene's " + key});
+    }
     return inputs;
 }
 

@@ -199,9 +199,28 @@ void set_override(toml::table& root, const std::string& file, const std::string&
         }
         case SceneKey::Kind::word:
         case SceneKey::Kind::text:
+        case SceneKey::Kind::file:
             t.insert_or_assign(leaf, text);
             break;
     }
+}
+
+/// The files root names: scene_files of a parsed scene, the one list of what a scene reads besides itself (the
+/// readers of [beam] and [motion] open these same names).
+std::vector<std::pair<std::string, std::string>> named_files(const toml::table& root, const std::string& path)
+{
+    std::vector<std::pair<std::string, std::string>> files;
+    for (const SceneKey* k : file_keys()) {
+        const std::string_view name = k->name;
+        const std::size_t dot = name.find('.');
+        const toml::node* table = root.get(name.substr(0, dot));
+        const toml::node* value = table != nullptr && table->is_table() ? table->as_table()->get(name.substr(dot + 1))
+                                                                        : nullptr;
+        if (value == nullptr || !value->is_string()) continue;  // absent, or of the wrong type: the reader says so
+        const std::string& file = value->as_string()->get();
+        if (!file.empty()) files.emplace_back(k->name, table_path(path, file));
+    }
+    return files;
 }
 
 // The parts of parse_scene, in the order it calls them: the file as a whole, then one table each. A table's
@@ -450,14 +469,11 @@ Scene parse_scene(std::string_view text, const std::string& path, const Override
     scene.path = path;
     const std::optional<ProfileTable> profile =
         read_beam(Section(path, root, "beam"), path, scene.parameters, scene.variant.extras);
-    if (profile) {
-        scene.tables.emplace_back(profile->key, profile->file);
-        scene.blade_stations = profile->resample;
-    }
+    scene.tables = named_files(root, path);
+    if (profile) scene.blade_stations = profile->resample;
     read_extras(root, path, scene.parameters);
     read_gravity_direction(Section(path, root, "gravity"), scene.parameters);
     read_motion(Section(path, root, "motion"), path, scene.motion);
-    if (scene.motion.table) scene.tables.emplace_back("motion.file", scene.motion.table_file);
     read_control(Section(path, root, "control"), scene.control);
     read_hub(Section(path, root, "hub"), scene, scene.parameters);
     read_discretization(Section(path, root, "discretization"), scene, scene.variant);
@@ -467,6 +483,15 @@ Scene parse_scene(std::string_view text, const std::string& path, const Override
     if (profile) fit_profile(path, *profile, scene.key(), scene.parameters);
     validate(scene);
     return scene;
+}
+
+std::vector<std::pair<std::string, std::string>> scene_files(std::string_view text, const std::string& path,
+                                                             const Overrides& overrides)
+{
+    check_size(text, path);
+    toml::table root = parse_toml(text, path);
+    for (const auto& [name, value] : overrides) set_override(root, path, name, value);
+    return named_files(root, path);
 }
 
 }  // namespace hubbeam

@@ -48,6 +48,9 @@ inline constexpr std::array<const char*, 10> keys_a_table_replaces = {"density",
                                                                       "torsion_constant",
                                                                       "twist"};
 
+/// The largest profile table read (beam.profile): a blade table of 64 stations is a few kilobytes.
+inline constexpr std::size_t max_profile_bytes = 1 << 16;
+
 /// A profile table as read: the key that named it (beam.profile, beam.blade_file), its file, the blade columns it has
 /// (EI_flap, GJ, twist, j_c, j_n) and whether it gives ES (a blade file may not).
 struct ProfileTable {
@@ -68,7 +71,8 @@ void fit_profile(const std::string& scene_path, const ProfileTable& table, const
 std::shared_ptr<const DriveTable> read_drive_table(const std::string& scene, const std::string& file,
                                                    const char* column, const char* meaning,
                                                    DriveTable::Interpolation interpolation);
-/// motion.file as a path: relative to the scene file's folder.
+/// A file key's value as the path its reader opens and scene_files lists (one resolution for both): relative to
+/// the scene file's folder.
 std::string table_path(const std::string& scene, const std::string& file);
 /// A motion table's problem: "SCENE: motion.file: WHERE: WHAT".
 [[noreturn]] void table_fail(const std::string& scene, const std::string& where, const std::string& what);

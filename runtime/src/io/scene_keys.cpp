@@ -3,6 +3,7 @@
 #include <hubbeam/scene.hpp>
 
 #include "dynamics/integrate.hpp"
+#include "io/blade_files.hpp"
 #include "io/scene_io.hpp"
 #include "text/option_lists.hpp"
 
@@ -63,12 +64,16 @@ std::vector<SceneKey> make_scene_keys()
         {"beam.youngs_modulus", nullptr, K::number, "a number > 0 (E, Pa)"},
         {"beam.taper", nullptr, K::word, one_of(words<Taper>())},
         {"beam.tip_ratio", nullptr, K::number, "a number > 0 (the tapered dimension at the tip over the root)"},
-        {"beam.profile", nullptr, K::text,
+        {"beam.profile", nullptr, K::file,
          "a CSV file name relative to the scene's folder, with the columns x/L, m, EI, ES (m kg/m, EI N m^2, ES N) "
          "and, "
-         "for a blade, any of EI_flap, GJ, twist, j_c, j_n; empty: none"},
-        {"beam.blade_file", nullptr, K::text,
-         "a BModes section-properties file or an ElastoDyn blade file, relative to the scene's folder; empty: none"},
+         "for a blade, any of EI_flap, GJ, twist, j_c, j_n; empty: none",
+         {},
+         scene_io::max_profile_bytes},
+        {"beam.blade_file", nullptr, K::file,
+         "a BModes section-properties file or an ElastoDyn blade file, relative to the scene's folder; empty: none",
+         {},
+         max_blade_file_bytes},
         {"beam.blade_stations", nullptr, K::integer,
          "0 (the file's own stations) or an integer from 2 to 64 (stations to resample beam.blade_file at)"},
         {"beam.second_moment_flap", nullptr, K::number,
@@ -100,9 +105,10 @@ std::vector<SceneKey> make_scene_keys()
         {"motion.angle", nullptr, K::number, "a finite number (the hub angle, rad)", {"held", "step"}},
         {"motion.file",
          nullptr,
-         K::text,
+         K::file,
          "a CSV file with columns t, theta (table) or t, tau (torque-table)",
-         {"table", "torque-table"}},
+         {"table", "torque-table"},
+         max_table_bytes},
         {"control.kp", nullptr, K::number, "a number >= 0 (kp, N m/rad)"},
         {"control.kd", nullptr, K::number, "a number >= 0 (kd, N m s/rad)"},
         {"control.ki", nullptr, K::number, "a number >= 0 (ki, N m/(rad s))"},
@@ -153,6 +159,14 @@ const SceneKey& scene_key(const std::string& name)
     for (const SceneKey& k : scene_keys())
         if (name == k.name) return k;
     throw std::logic_error("no scene key " + name);
+}
+
+std::vector<const SceneKey*> file_keys()
+{
+    std::vector<const SceneKey*> out;
+    for (const SceneKey& k : scene_keys())
+        if (k.kind == SceneKey::Kind::file) out.push_back(&k);
+    return out;
 }
 
 std::string SceneKey::table() const

@@ -191,8 +191,6 @@ NumericTable read_numeric_table(const std::string& scene, const std::string& key
 
 /// The most stations a profile table may have: the generator's cost and the variant's name grow with them.
 constexpr std::size_t max_profile_stations = 64;
-/// The largest profile table read: a blade table of max_profile_stations rows is a few kilobytes.
-constexpr std::size_t max_profile_bytes = 1 << 16;
 
 /// p.profile from a table's values (max_profile_value_count per station), and the root's values where a single value
 /// of the beam is reported (the frequency unit sqrt(EI / (m L^4))): S = 1 m^2 keeps the three products the table's.
@@ -215,7 +213,7 @@ void set_profile(std::vector<double> values, Parameters& p)
 ProfileTable scene_io::read_profile(const std::string& scene_path, const std::string& name, Parameters& p,
                                     Extras& extras)
 {
-    const std::string file = (std::filesystem::path(scene_path).parent_path() / name).string();
+    const std::string file = table_path(scene_path, name);  // as scene_files names it: what writers leave alone
     const std::string label = printable(file, 400);
     const auto bad = [&](long line, const std::string& what) {
         table_problem(scene_path, "beam.profile", label + (line > 0 ? ":" + std::to_string(line) : std::string()),
@@ -341,7 +339,7 @@ void resample_table(std::vector<double>& x, std::vector<double>& values, int cou
 ProfileTable scene_io::read_blade(const std::string& scene_path, const std::string& name, int resample, Parameters& p,
                                   Extras& extras)
 {
-    const std::string file = (std::filesystem::path(scene_path).parent_path() / name).string();
+    const std::string file = table_path(scene_path, name);  // as scene_files names it: what writers leave alone
     const auto bad = [&](const std::string& what) {
         table_problem(scene_path, "beam.blade_file", printable(file, 400), what);
     };
