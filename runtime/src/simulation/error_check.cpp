@@ -204,8 +204,8 @@ RunErrorCheck::RunErrorCheck(const Scene& scene, const Model& model, const First
     // the 51 runs of cases/ by msadams, cvode and gauss4 that exited 0 were 1.1 to 31 % off (dissipated mostly;
     // blade_from_file's tip_ux 1.4 % at t = 5 s with gauss4, 0.05 % at its end), their windows' estimates 5e-5 to
     // 0.009. Only a re-run from the start through the error sees it, so such a run is compared with the whole run
-    // re-run, as under full. It costs a run at the check's tolerance, no more than the defaults' tenth for any
-    // looser run; a run at the defaults or tighter keeps the windows and their cost.
+    // re-run, as under full. That costs a run at the check's tolerance (the defaults' tenth for every looser run),
+    // more than the loose run itself; a run at the defaults or tighter keeps the windows and their cost.
     if (on_ && (mode == ErrorCheck::full || looser_than_defaults(scene.solver))) {
         const CheckTolerance tol = check_tolerance(scene.solver);
         whole_ = std::make_unique<WholeRunCheck>(scene, model, y0, tol, stepper_at_(tol.rtol), columns_);
