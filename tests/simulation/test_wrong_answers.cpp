@@ -1,7 +1,7 @@
 // Answers that must never come out wrong with exit 0: the error check covers every column a run writes (and every
 // row of a run looser than the defaults, whose error can add up between its windows), a row with a non-finite value
-// is never written, scenes whose parameters or angles would give silent nonsense are
-// refused, and a table's messages say where the problem is without echoing what the file holds.
+// is never written, scenes whose parameters or angles would give silent nonsense are refused, and a table's messages
+// say where the problem is without echoing what the file holds.
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
