@@ -47,10 +47,10 @@ bool parse(std::string_view, ModelSource&);
 template <>
 std::vector<std::string> words<ModelSource>();
 
-/// Whether a run checks its own error by re-running windows at a tighter tolerance (RunSummary::estimated_error):
-/// on by default; off saves its cost (about 13 % of the main job) where the tolerance is known to be adequate; full
-/// re-runs the whole run alongside, so that an error made between the windows is seen too (the whole process of a
-/// cases/ scene then takes 1.4 to 3.2 times as long).
+/// Whether a run checks its own error by re-running windows at a tighter tolerance, or the whole run if it is looser
+/// than the defaults (RunSummary::estimated_error): on by default; off saves its cost (about 13 % of the main job)
+/// where the tolerance is known to be adequate; full re-runs the whole run alongside at any tolerance, so that an
+/// error made between the windows is seen too (the whole process of a cases/ scene then takes 1.4 to 3.2 times).
 enum class ErrorCheck { on, off, full };
 std::string to_string(ErrorCheck);
 bool parse(std::string_view, ErrorCheck&);

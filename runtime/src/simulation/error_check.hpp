@@ -1,6 +1,7 @@
-// The error indicator of a run (RunSummary::estimated_error): windows of the run, or the whole run, re-run at a
-// tenfold tighter tolerance and compared in every column the run writes (column_check.hpp). A run (run.hpp) feeds it
-// the run's rows and states and asks it, at the end, whether the rows can be trusted.
+// The error indicator of a run (RunSummary::estimated_error): windows of the run, or the whole run (error_check full,
+// or a run looser than the defaults), re-run at a tenfold tighter tolerance and compared in every column the run
+// writes (column_check.hpp). A run (run.hpp) feeds it the run's rows and states and asks it, at the end, whether the
+// rows can be trusted.
 #pragma once
 
 #include <functional>
@@ -45,7 +46,8 @@ class RunErrorCheck {
 public:
     /// The stepper the re-runs use at a tolerance (the automatic choice there).
     using StepperAt = std::function<std::string(double rtol)>;
-    /// For a run of scene from state y0 whose rows end at t_last; mode off records nothing but the columns.
+    /// For a run of scene from state y0 whose rows end at t_last; mode off records nothing but the columns, on the
+    /// windows (the whole run for a run looser than the defaults), full the whole run.
     RunErrorCheck(const Scene& scene, const Model& model, const FirstOrderSystem& system, const std::vector<double>& y0,
                   double t_last, ErrorCheck mode, StepperAt stepper_at);
     ~RunErrorCheck();
