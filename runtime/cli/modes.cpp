@@ -191,8 +191,8 @@ ModesReport::ModesReport(const Scene& scene, const ModesOptions& o, std::ostream
 void ModesReport::heading() const
 {
     if (o_.quiet) return;
-    out_ << "method  Ny  Nx  order  Omega rad/s  mode  kind     tracked          rad/s          Hz  dimensionless  "
-            "growth 1/s"
+    out_ << "method  Ny  Nx  order  Omega rad/s  mode  kind        tracked              rad/s          Hz  "
+            "dimensionless  growth 1/s"
          << (damped_ ? "  undamped rad/s     zeta" : "") << "\n";
 }
 
@@ -227,7 +227,7 @@ void ModesReport::print_mode(const ModesBlock& block, const SpinMode& r) const
     const VariantKey& key = block.key;
     const NaturalMode& mode = r.mode;
     char line[400];
-    std::snprintf(line, sizeof line, "%-6s %3d %3d  %-5s %12.4g  %4d  %-7s  %-11s %11.6g %11.6g %14.6g  %10.3g",
+    std::snprintf(line, sizeof line, "%-6s %3d %3d  %-5s %12.4g  %4d  %-10s  %-13s %11.6g %11.6g %14.6g  %10.3g",
                   to_string(key.method).c_str(), key.ny, key.nx, to_string(key.order).c_str(), r.omega, r.number,
                   mode.kind.c_str(), r.label.c_str(), mode.rad_s, mode.rad_s / (2.0 * M_PI), mode.rad_s / block.unit,
                   mode.growth);
@@ -246,7 +246,7 @@ void ModesReport::add_critical(const ModesBlock& block)
     for (const CriticalSpeed& c : block.critical) {
         if (critical_csv_) critical_csv_->write_line(critical_line(block, c));
         char line[400];
-        std::snprintf(line, sizeof line, "%-6s %3d %3d  %-11s meets %3dP at Omega = %-12.6g rad/s (%.6g Hz)\n",
+        std::snprintf(line, sizeof line, "%-6s %3d %3d  %-13s meets %3dP at Omega = %-12.6g rad/s (%.6g Hz)\n",
                       to_string(key.method).c_str(), key.ny, key.nx, c.label.c_str(), c.harmonic, c.omega,
                       c.rad_s / (2.0 * M_PI));
         speeds_text_ += line;

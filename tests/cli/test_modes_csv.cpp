@@ -1,5 +1,6 @@
 // hubbeam modes' CSV files read as a user reads them, by the header's names, each column checked by what it means:
-// the modes (-o) and the critical speeds (--critical), where a tracked mode's frequency is n times the spin rate.
+// the modes (-o) and the critical speeds (--critical), where a tracked mode's frequency is n times the spin rate;
+// the CLI's table, CSVs and the library's core agree on a damped blade.
 #include <catch2/catch.hpp>
 #include <unistd.h>
 
@@ -172,4 +173,58 @@ TEST_CASE("hubbeam modes' CSVs are the modes table's lines, variant by variant, 
     };
     CHECK(text(args.output) == modes);
     CHECK(text(args.critical) == critical);
+}
+
+TEST_CASE("a damped blade's printed critical speeds, its --critical CSV and the core's are the same five",
+          "[modes][campbell]")
+{
+    // cases/helicopter_blade.toml from rest to 30 rad/s: its overdamped modes (rows of kind overdamped) meet no
+    // excitation line; what hubbeam modes prints and writes is the core's (modes_block, which hubbeam.modes calls).
+    const TempFolder folder("modes-blade");
+    const Scene scene = load_scene(HUBBEAM_SOURCE_DIR "/cases/helicopter_blade.toml");
+    ModesArgs args;
+    args.omega = "0:30:5";
+    args.output = (folder.path / "modes.csv").string();
+    args.critical = (folder.path / "critical.csv").string();
+    const ModesOptions options = parse_modes_options(args, scene);
+    std::ostringstream out;
+    run_modes(scene, options, out);
+    INFO(out.str());
+    std::vector<std::string> core;  // the core's critical speeds as CSV lines
+    int overdamped_rows = 0;
+    modes_table(scene, options, [&](const ModesBlock& block) {
+        for (const CriticalSpeed& c : block.critical) core.push_back(critical_line(block, c));
+        for (const SpinMode& r : block.modes) overdamped_rows += r.mode.kind == "overdamped";
+    });
+    CHECK(core.size() == 5);
+    const auto critical = read_csv(args.critical);
+    REQUIRE(critical.size() == core.size());
+    std::ifstream lines(args.critical);
+    std::string line;
+    std::getline(lines, line);  // the header
+    for (const std::string& expected : core) {
+        REQUIRE(std::getline(lines, line));
+        CHECK(line == expected);
+    }
+    // Printed: one line per critical speed, none at rest, each as the CSV has it.
+    const std::string text = out.str();
+    CHECK(text.find("Omega = 0 ") == std::string::npos);
+    std::size_t printed = 0;
+    for (std::size_t at = text.find("P at Omega = "); at != std::string::npos; at = text.find("P at Omega = ", at + 1))
+        ++printed;
+    CHECK(printed == core.size());
+    for (const auto& c : critical)
+        CHECK(text.find(c.at("label") + std::string(13 - c.at("label").size(), ' ') + " meets   " + c.at("harmonic") +
+                        "P at Omega = ") != std::string::npos);
+    // The modes CSV's overdamped rows: frequency 0, damping ratio 1, as the core's.
+    int csv_overdamped = 0;
+    for (const auto& r : read_csv(args.output))
+        if (r.at("kind") == "overdamped") {
+            ++csv_overdamped;
+            CHECK(r.at("rad_s") == "0");
+            CHECK(r.at("damping_ratio") == "1");
+            CHECK(std::stod(r.at("growth")) < 0.0);
+        }
+    CHECK(csv_overdamped == overdamped_rows);
+    CHECK(csv_overdamped > 0);
 }
