@@ -98,13 +98,16 @@ ModesOptions parse_modes_options(const ModesArgs& args, const Scene& scene)
     o.methods = args.methods.empty() ? std::vector<Method>{scene.variant.method}
                                      : parse_method_list<ModesOptionError>("--methods", args.methods);
     o.ny = args.ny.empty() ? std::vector<int>{scene.variant.ny} : parse_dof_list<ModesOptionError>("--ny", args.ny, 1);
-    // Every (method, Ny) must be a variant the method can take, checked before anything is computed.
+    // Every (method, Ny) must be a variant the method can take, checked before anything is computed. The message
+    // names --methods when the method cannot take the scene's own counts (an odd Nz for FEM), else --ny.
     for (Method m : o.methods)
         for (int ny : o.ny) {
             VariantKey k = scene.variant;
             k.method = m;
+            const std::string with_scene_ny = k.dof_problem();
             k.ny = ny;
-            if (const std::string why = k.dof_problem(); !why.empty()) throw ModesOptionError("--ny: " + why);
+            if (const std::string why = k.dof_problem(); !why.empty())
+                throw ModesOptionError((with_scene_ny.empty() ? "--ny: " : "--methods: ") + why);
         }
     if (!parse_int(args.count, 1, 64, o.count)) bad("--count", "an integer from 1 to 64", args.count);
     o.harmonics = parse_harmonics<ModesOptionError>("--harmonics", args.harmonics);
