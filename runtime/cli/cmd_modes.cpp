@@ -72,8 +72,8 @@ Command add_modes_command(CLI::App& app)
     modes_cmd->add_option("--ny", o->args.ny, "Ny values, comma-separated (default: the scene's)")->type_name("LIST");
     modes_cmd
         ->add_option("--count", o->args.count,
-                     "Modes printed per kind (bending or edge and flap, twist, axial, hub) and spin rate, the lowest first (default 4; the CSV "
-                     "has all)")
+                     "Modes printed per kind (bending or edge and flap, twist, axial, hub, overdamped) and spin rate, "
+                     "the lowest first (default 4; the CSV has all)")
         ->type_name("N");
     modes_cmd->add_option("-o,--output", o->args.output, "Also write every mode as CSV to FILE (default: no file)")
         ->type_name("FILE");

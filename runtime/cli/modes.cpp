@@ -214,7 +214,8 @@ void ModesReport::add(const ModesBlock& block)
 
 void ModesReport::add_modes(const ModesBlock& block)
 {
-    // Printed: the first `count` modes of each kind (bending or edge and flap, twist, axial, hub) of each spin rate.
+    // Printed: the first `count` modes of each kind (bending or edge and flap, twist, axial, hub, overdamped) of each
+    // spin rate.
     std::map<std::string, int> shown;  // by kind, at the current rate
     for (const SpinMode& r : block.modes) {
         if (r.number == 1) shown.clear();
