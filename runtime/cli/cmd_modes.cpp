@@ -12,8 +12,8 @@ namespace hubbeam::cli {
 
 namespace {
 
-/// The scene keys that `modes` and `linearize` take as options ("--nx", "--order", "--source"), as overrides; the
-/// options, their help and their checks are the key table's.
+/// The scene keys that `modes` and `linearize` take as options ("--nx", "--nz", "--nt", "--order", "--source"), as
+/// overrides, as `run` takes them; the options, their help and their checks are the key table's.
 struct LinearOverrides {
     std::vector<std::string> keys, values;  // scene key names, and the values typed (empty: not given)
     Overrides overrides() const
@@ -27,7 +27,7 @@ struct LinearOverrides {
 
 void add_linear_overrides(CLI::App& sub, LinearOverrides& o, bool single_variant)
 {
-    o.keys = {"discretization.nx", "model.order", "model.source"};
+    o.keys = {"discretization.nx", "discretization.nz", "discretization.nt", "model.order", "model.source"};
     if (single_variant) o.keys.insert(o.keys.end(), {"discretization.method", "discretization.ny"});
     o.values.assign(o.keys.size(), "");  // sized before the options hold references into it
     for (std::size_t i = 0; i < o.keys.size(); ++i)
@@ -72,8 +72,8 @@ Command add_modes_command(CLI::App& app)
     modes_cmd->add_option("--ny", o->args.ny, "Ny values, comma-separated (default: the scene's)")->type_name("LIST");
     modes_cmd
         ->add_option("--count", o->args.count,
-                     "Modes printed per kind (bending or edge and flap, twist, axial, hub) and spin rate, the lowest first (default 4; the CSV "
-                     "has all)")
+                     "Modes printed per kind (bending or edge and flap, twist, axial, hub, overdamped) and spin rate, "
+                     "the lowest first (default 4; the CSV has all)")
         ->type_name("N");
     modes_cmd->add_option("-o,--output", o->args.output, "Also write every mode as CSV to FILE (default: no file)")
         ->type_name("FILE");

@@ -1,7 +1,11 @@
 // The command line's shared parts: the stop signals and the options declared from the scene key table.
 #include "command.hpp"
 
+#include <poll.h>
 #include <signal.h>
+#include <unistd.h>
+
+#include <cstdio>
 
 namespace hubbeam::cli {
 
@@ -29,7 +33,37 @@ extern "C" void on_stop_signal(int sig)
     stop_signal_number = sig;
 }
 
+/// SIGPIPE's handler: nothing to do. A write to a pipe without a reader then fails with EPIPE instead of ending
+/// the process, which would lose the output files not yet put in place. A handler rather than SIG_IGN: a program
+/// hubbeam starts (gnuplot, the compiler, the sweep's Python) gets the default action back at exec.
+extern "C" void on_broken_pipe(int) {}
+
+/// Whether standard output is a pipe or socket whose reader has gone (poll's POLLERR or POLLHUP on the writing
+/// end), as opposed to a file that failed (a full disk).
+bool reader_gone()
+{
+    pollfd out{};
+    out.fd = STDOUT_FILENO;
+    out.events = POLLOUT;
+    return ::poll(&out, 1, 0) == 1 && (out.revents & (POLLERR | POLLHUP)) != 0;
+}
+
 }  // namespace
+
+int with_standard_output(const std::function<int()>& work)
+{
+    struct sigaction action {};
+    action.sa_handler = on_broken_pipe;
+    sigemptyset(&action.sa_mask);
+    action.sa_flags = SA_RESTART;
+    ::sigaction(SIGPIPE, &action, nullptr);
+    const int code = work();
+    std::cout.flush();
+    const bool written = !std::cout.fail() && std::fflush(stdout) == 0 && std::ferror(stdout) == 0;
+    if (written || code != exit_ok || reader_gone()) return code;
+    std::cerr << "hubbeam: standard output could not be written: the printed text is incomplete\n";
+    return exit_stopped;
+}
 
 int stop_signal() { return stop_signal_number; }
 

@@ -38,6 +38,13 @@ void catch_stop_signals();
 /// A StopRequest that answers `interrupted` once a stop signal has come.
 StopRequest signal_stop();
 
+/// Runs a command's work (its exit code) so that what happens to standard output costs no file: a reader that
+/// closes it early (hubbeam modes -o FILE | head) no longer ends the process by SIGPIPE, the work goes on, its
+/// files are written whole and put in place, and the code is the work's own (0 when done; the rest of the printed
+/// text is dropped). Standard output that cannot be written for another reason (a full disk) is reported on
+/// standard error: exit 1 if the work succeeded.
+int with_standard_output(const std::function<int()>& work);
+
 /// Declares key's option on sub, its help text from the key table (with note after it), setting value; returns it.
 CLI::Option* add_key_option(CLI::App& sub, const SceneKey& key, std::string& value, const std::string& note = "");
 

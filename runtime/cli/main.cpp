@@ -153,7 +153,7 @@ int main(int argc, char** argv)
     }
     try {
         for (const Command& c : commands)
-            if (c.sub->parsed()) return c.run();
+            if (c.sub->parsed()) return with_standard_output(c.run);
     } catch (const std::exception& e) {
         std::cerr << "hubbeam: " << e.what() << "\n";
         return exit_stopped;

@@ -98,13 +98,16 @@ ModesOptions parse_modes_options(const ModesArgs& args, const Scene& scene)
     o.methods = args.methods.empty() ? std::vector<Method>{scene.variant.method}
                                      : parse_method_list<ModesOptionError>("--methods", args.methods);
     o.ny = args.ny.empty() ? std::vector<int>{scene.variant.ny} : parse_dof_list<ModesOptionError>("--ny", args.ny, 1);
-    // Every (method, Ny) must be a variant the method can take, checked before anything is computed.
+    // Every (method, Ny) must be a variant the method can take, checked before anything is computed. The message
+    // names --methods when the method cannot take the scene's own counts (an odd Nz for FEM), else --ny.
     for (Method m : o.methods)
         for (int ny : o.ny) {
             VariantKey k = scene.variant;
             k.method = m;
+            const std::string with_scene_ny = k.dof_problem();
             k.ny = ny;
-            if (const std::string why = k.dof_problem(); !why.empty()) throw ModesOptionError("--ny: " + why);
+            if (const std::string why = k.dof_problem(); !why.empty())
+                throw ModesOptionError((with_scene_ny.empty() ? "--ny: " : "--methods: ") + why);
         }
     if (!parse_int(args.count, 1, 64, o.count)) bad("--count", "an integer from 1 to 64", args.count);
     o.harmonics = parse_harmonics<ModesOptionError>("--harmonics", args.harmonics);
@@ -191,8 +194,8 @@ ModesReport::ModesReport(const Scene& scene, const ModesOptions& o, std::ostream
 void ModesReport::heading() const
 {
     if (o_.quiet) return;
-    out_ << "method  Ny  Nx  order  Omega rad/s  mode  kind     tracked          rad/s          Hz  dimensionless  "
-            "growth 1/s"
+    out_ << "method  Ny  Nx  order  Omega rad/s  mode  kind        tracked              rad/s          Hz  "
+            "dimensionless  growth 1/s"
          << (damped_ ? "  undamped rad/s     zeta" : "") << "\n";
 }
 
@@ -211,7 +214,8 @@ void ModesReport::add(const ModesBlock& block)
 
 void ModesReport::add_modes(const ModesBlock& block)
 {
-    // Printed: the first `count` modes of each kind (bending or edge and flap, twist, axial, hub) of each spin rate.
+    // Printed: the first `count` modes of each kind (bending or edge and flap, twist, axial, hub, overdamped) of each
+    // spin rate.
     std::map<std::string, int> shown;  // by kind, at the current rate
     for (const SpinMode& r : block.modes) {
         if (r.number == 1) shown.clear();
@@ -227,7 +231,7 @@ void ModesReport::print_mode(const ModesBlock& block, const SpinMode& r) const
     const VariantKey& key = block.key;
     const NaturalMode& mode = r.mode;
     char line[400];
-    std::snprintf(line, sizeof line, "%-6s %3d %3d  %-5s %12.4g  %4d  %-7s  %-11s %11.6g %11.6g %14.6g  %10.3g",
+    std::snprintf(line, sizeof line, "%-6s %3d %3d  %-5s %12.4g  %4d  %-10s  %-13s %11.6g %11.6g %14.6g  %10.3g",
                   to_string(key.method).c_str(), key.ny, key.nx, to_string(key.order).c_str(), r.omega, r.number,
                   mode.kind.c_str(), r.label.c_str(), mode.rad_s, mode.rad_s / (2.0 * M_PI), mode.rad_s / block.unit,
                   mode.growth);
@@ -246,7 +250,7 @@ void ModesReport::add_critical(const ModesBlock& block)
     for (const CriticalSpeed& c : block.critical) {
         if (critical_csv_) critical_csv_->write_line(critical_line(block, c));
         char line[400];
-        std::snprintf(line, sizeof line, "%-6s %3d %3d  %-11s meets %3dP at Omega = %-12.6g rad/s (%.6g Hz)\n",
+        std::snprintf(line, sizeof line, "%-6s %3d %3d  %-13s meets %3dP at Omega = %-12.6g rad/s (%.6g Hz)\n",
                       to_string(key.method).c_str(), key.ny, key.nx, c.label.c_str(), c.harmonic, c.omega,
                       c.rad_s / (2.0 * M_PI));
         speeds_text_ += line;

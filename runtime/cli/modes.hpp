@@ -45,9 +45,10 @@ struct ModesOptions : ModesRequest {
 ModesOptions parse_modes_options(const ModesArgs& args, const Scene& scene);
 
 /// For each method, Ny and spin rate: the scene's variant linearized about the steady spin, the first `count` modes
-/// of each kind (bending or edge and flap, twist, axial, hub) printed to out (with options.quiet, only how many modes there are), and every
-/// mode written to options.output if given (atomically), each with its tracked label and MAC; then each variant's
-/// critical speeds (its modes' crossings with the harmonics' excitation lines) printed, and written to
+/// of each kind (bending or edge and flap, twist, axial, hub, overdamped) printed to out (with options.quiet, only
+/// how many modes there are), and every mode written to options.output if given (atomically), each with its
+/// tracked label and MAC; then each variant's critical speeds (the crossings of its modes that oscillate with the
+/// harmonics' excitation lines) printed, and written to
 /// options.critical if given; with options.plot, the Campbell diagram. Throws std::runtime_error if a CSV or the
 /// figure cannot be written.
 void run_modes(const Scene& scene, const ModesOptions& options, std::ostream& out);

@@ -1,7 +1,13 @@
 // hubbeam modes' CSV files read as a user reads them, by the header's names, each column checked by what it means:
-// the modes (-o) and the critical speeds (--critical), where a tracked mode's frequency is n times the spin rate.
+// the modes (-o) and the critical speeds (--critical), where a tracked mode's frequency is n times the spin rate;
+// the CLI's table, CSVs and the library's core agree on a damped blade; and the files of every command that prints
+// and writes are whole whatever becomes of standard output.
 #include <catch2/catch.hpp>
+#include <fcntl.h>
+#include <sys/wait.h>
 #include <unistd.h>
+
+#include <csignal>
 
 #include <algorithm>
 #include <cmath>
@@ -172,4 +178,167 @@ TEST_CASE("hubbeam modes' CSVs are the modes table's lines, variant by variant, 
     };
     CHECK(text(args.output) == modes);
     CHECK(text(args.critical) == critical);
+}
+
+TEST_CASE("a damped blade's printed critical speeds, its --critical CSV and the core's are the same five",
+          "[modes][campbell]")
+{
+    // cases/helicopter_blade.toml from rest to 30 rad/s: its overdamped modes (rows of kind overdamped) meet no
+    // excitation line; what hubbeam modes prints and writes is the core's (modes_block, which hubbeam.modes calls).
+    const TempFolder folder("modes-blade");
+    const Scene scene = load_scene(HUBBEAM_SOURCE_DIR "/cases/helicopter_blade.toml");
+    ModesArgs args;
+    args.omega = "0:30:5";
+    args.output = (folder.path / "modes.csv").string();
+    args.critical = (folder.path / "critical.csv").string();
+    const ModesOptions options = parse_modes_options(args, scene);
+    std::ostringstream out;
+    run_modes(scene, options, out);
+    INFO(out.str());
+    std::vector<std::string> core;  // the core's critical speeds as CSV lines
+    int overdamped_rows = 0;
+    modes_table(scene, options, [&](const ModesBlock& block) {
+        for (const CriticalSpeed& c : block.critical) core.push_back(critical_line(block, c));
+        for (const SpinMode& r : block.modes) overdamped_rows += r.mode.kind == "overdamped";
+    });
+    CHECK(core.size() == 5);
+    const auto critical = read_csv(args.critical);
+    REQUIRE(critical.size() == core.size());
+    std::ifstream lines(args.critical);
+    std::string line;
+    std::getline(lines, line);  // the header
+    for (const std::string& expected : core) {
+        REQUIRE(std::getline(lines, line));
+        CHECK(line == expected);
+    }
+    // Printed: one line per critical speed, none at rest, each as the CSV has it.
+    const std::string text = out.str();
+    CHECK(text.find("Omega = 0 ") == std::string::npos);
+    std::size_t printed = 0;
+    for (std::size_t at = text.find("P at Omega = "); at != std::string::npos; at = text.find("P at Omega = ", at + 1))
+        ++printed;
+    CHECK(printed == core.size());
+    for (const auto& c : critical)
+        CHECK(text.find(c.at("label") + std::string(13 - c.at("label").size(), ' ') + " meets   " + c.at("harmonic") +
+                        "P at Omega = ") != std::string::npos);
+    // The modes CSV's overdamped rows: frequency 0, damping ratio 1, as the core's.
+    int csv_overdamped = 0;
+    for (const auto& r : read_csv(args.output))
+        if (r.at("kind") == "overdamped") {
+            ++csv_overdamped;
+            CHECK(r.at("rad_s") == "0");
+            CHECK(r.at("damping_ratio") == "1");
+            CHECK(std::stod(r.at("growth")) < 0.0);
+        }
+    CHECK(csv_overdamped == overdamped_rows);
+    CHECK(csv_overdamped > 0);
+}
+
+namespace {
+
+/// What a hubbeam command line did: its exit code (128 + the signal that ended it, if one did) and its stderr.
+struct Ended {
+    int code;
+    std::string stderr_text;
+};
+
+/// Runs the hubbeam program with args in folder, its standard output the writing end of a pipe whose reader has
+/// gone (a `| head` that has stopped reading) or the file stdout_file (/dev/full), SIGPIPE's action the default.
+Ended run_hubbeam(const std::filesystem::path& folder, const std::vector<std::string>& args,
+                  const char* stdout_file = nullptr)
+{
+    int ends[2];
+    REQUIRE(::pipe(ends) == 0);
+    ::close(ends[0]);  // the reader gone before the first write
+    const std::string errors = (folder / "stderr.txt").string();
+    const pid_t pid = ::fork();
+    REQUIRE(pid >= 0);
+    if (pid == 0) {
+        const int out = stdout_file ? ::open(stdout_file, O_WRONLY) : ends[1];
+        const int err = ::open(errors.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+        if (out < 0 || err < 0 || ::dup2(out, 1) < 0 || ::dup2(err, 2) < 0 || ::chdir(folder.c_str()) != 0) ::_exit(99);
+        std::signal(SIGPIPE, SIG_DFL);
+        std::vector<char*> argv = {const_cast<char*>(HUBBEAM_PROGRAM)};
+        for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+        argv.push_back(nullptr);
+        ::execv(argv[0], argv.data());
+        ::_exit(98);
+    }
+    ::close(ends[1]);
+    int status = 0;
+    REQUIRE(::waitpid(pid, &status, 0) == pid);
+    std::ifstream in(errors);
+    const std::string text((std::istreambuf_iterator<char>(in)), {});
+    return {WIFSIGNALED(status) ? 128 + WTERMSIG(status) : WEXITSTATUS(status), text};
+}
+
+/// The text of a file, empty if there is none.
+std::string file_text(const std::filesystem::path& p)
+{
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+}  // namespace
+
+TEST_CASE("a standard output closed by its reader costs no file: modes, run, linearize, kernels", "[modes][cli]")
+{
+    const TempFolder folder("closed-stdout");
+    const std::string cases = HUBBEAM_SOURCE_DIR "/cases/";
+    SECTION("modes: a table of 41 rates, far longer than a pipe's buffer, and both CSVs")
+    {
+        const std::vector<std::string> args = {"modes", cases + "spinup_omega4.toml", "--omega", "0:20:0.5",
+                                               "-o", "m.csv", "--critical", "c.csv"};
+        const Ended ended = run_hubbeam(folder.path, args);
+        INFO(ended.stderr_text);
+        CHECK(ended.code == 0);
+        CHECK(ended.stderr_text.empty());
+        // The files are those of the same command whose output is read to its end.
+        const std::string modes = file_text(folder.path / "m.csv"), critical = file_text(folder.path / "c.csv");
+        CHECK(std::count(modes.begin(), modes.end(), '\n') == 1 + 41 * 8);
+        CHECK(!file_text(folder.path / "m.csv.hubbeam.json").empty());
+        const Scene scene = load_scene(cases + "spinup_omega4.toml");
+        ModesArgs again;
+        again.omega = "0:20:0.5";
+        again.output = (folder.path / "again.csv").string();
+        again.critical = (folder.path / "again-critical.csv").string();
+        std::ostringstream out;
+        run_modes(scene, parse_modes_options(again, scene), out);
+        CHECK(modes == file_text(again.output));
+        CHECK(critical == file_text(again.critical));
+        CHECK(std::count(critical.begin(), critical.end(), '\n') > 1);
+    }
+    SECTION("run")
+    {
+        const Ended ended = run_hubbeam(folder.path, {"run", cases + "spinup_omega4.toml", "--t-end", "1", "-o", "r.csv"});
+        INFO(ended.stderr_text);
+        CHECK(ended.code == 0);
+        const std::string rows = file_text(folder.path / "r.csv");
+        CHECK(std::count(rows.begin(), rows.end(), '\n') == 1 + 101);
+    }
+    SECTION("linearize")
+    {
+        const Ended ended = run_hubbeam(folder.path, {"linearize", cases + "torque_tau10.toml", "--omega", "2", "-o", "lin"});
+        INFO(ended.stderr_text);
+        CHECK(ended.code == 0);
+        for (const char* f : {"lin-A.csv", "lin-B.csv", "lin-C.csv", "lin-D.csv", "lin.npz", "lin.hubbeam.json"})
+            CHECK(!file_text(folder.path / f).empty());
+    }
+    SECTION("kernels")
+    {
+        const Ended ended = run_hubbeam(folder.path, {"kernels", "--ny", "4", "--methods", "amm", "--samples", "3", "-o", "k.csv"});
+        INFO(ended.stderr_text);
+        CHECK(ended.code == 0);
+        CHECK(file_text(folder.path / "k.csv").rfind("method,drive,order,", 0) == 0);
+    }
+    SECTION("a standard output that fails otherwise (a full disk) is exit 1 and a message, the files whole")
+    {
+        const Ended ended = run_hubbeam(folder.path,
+                                        {"modes", cases + "spinup_omega4.toml", "--omega", "0:20:0.5", "-o", "m.csv"},
+                                        "/dev/full");
+        CHECK(ended.code == 1);
+        CHECK(ended.stderr_text == "hubbeam: standard output could not be written: the printed text is incomplete\n");
+        const std::string modes = file_text(folder.path / "m.csv");
+        CHECK(std::count(modes.begin(), modes.end(), '\n') == 1 + 41 * 8);
+    }
 }

@@ -48,8 +48,9 @@ StateSpace state_space(const Model& model, const SteadySpin& steady);
 
 /// One natural mode of the linearized equations: eigenvalue lambda = growth +- i rad_s (rad_s the damped
 /// frequency); undamped_rad_s = |lambda| and damping_ratio = -growth / |lambda| (zeta; a real eigenvalue of an
-/// overdamped mode has rad_s 0 and zeta 1, each of its two eigenvalues a row); kind "bending" or "axial" by where
-/// its kinetic energy lies.
+/// overdamped mode has rad_s 0 and zeta 1, each of its two eigenvalues a row); kind "bending" or "axial" (a blade:
+/// "edge", "flap", "twist") by where its kinetic energy lies, or "overdamped" for a real decaying eigenvalue, which
+/// does not oscillate (a divergent mode, real and growing, keeps the kind of its field).
 struct NaturalMode {
     double rad_s = 0.0, growth = 0.0;
     std::string kind;
@@ -82,7 +83,8 @@ StateSpace closed_loop(const StateSpace& open, const Control& control);
 
 /// The modes of a controlled hub about a steady spin: the eigenvalues of closed_loop's A, each pair a row with
 /// its damped frequency, growth, |lambda| and damping ratio (a real eigenvalue a row of its own, rad_s 0), kind
-/// "hub", "axial" or "bending" by where the mode's kinetic energy lies; by increasing |lambda|. The hub's angle is a
+/// "hub", "axial" or "bending" by where the mode's kinetic energy lies ("overdamped" for a real decaying
+/// eigenvalue); by increasing |lambda|. The hub's angle is a
 /// state here: the controller's stiffness turns the free hub's rigid rotation into a mode.
 std::vector<NaturalMode> closed_loop_modes(const Model& model, const SteadySpin& steady, const Control& control);
 
@@ -125,7 +127,8 @@ struct CriticalSpeed {
 /// The critical speeds of campbell's rows for each harmonic n of harmonics: each place where a line's damped
 /// frequency minus n omega changes sign between two of its neighbouring rates, refined by regula falsi (Illinois)
 /// on the modes computed at rates between them, the mode followed by its MAC with the line's shape, to 1e-10 of
-/// omega. The same model and arguments as campbell's, check too. By rate, then harmonic.
+/// omega. A mode of frequency 0 (overdamped, divergent) meets no line, at rest either: every critical speed is
+/// where a mode that oscillates has the frequency n omega > 0. The same model and arguments as campbell's, check too. By rate, then harmonic.
 std::vector<CriticalSpeed> critical_speeds(const Model& model, const std::vector<SpinMode>& rows,
                                            const std::vector<int>& harmonics, Axial axial = Axial::dynamic,
                                            double theta = 0.0, const Control* control = nullptr,

@@ -266,6 +266,11 @@ std::vector<double> energy_by_field(const Model& model, const Eigen::MatrixXd& M
     return energy;
 }
 
+/// The kind of a real, decaying eigenvalue (a mode that does not oscillate: frequency 0, zeta 1), whatever field
+/// holds its energy: it has no place on a Campbell diagram and meets no excitation line, and its kind says so
+/// rather than pass it for the next bending, edge or flap mode.
+constexpr const char* overdamped_kind = "overdamped";
+
 /// A mode's kind (the modes CSV's column) when most of its kinetic energy is in a field of this kind: a planar
 /// beam's in-plane modes are "bending", a beam that leaves the plane has "edge" (lead-lag) and "flap" modes.
 const char* mode_kind(FieldKind kind, bool out_of_plane)
@@ -389,7 +394,8 @@ std::vector<NaturalMode> natural_modes(const Model& model, const SteadySpin& s, 
         const double growth = !damped && std::abs(l.real()) <= 1e-6 * scale ? 0.0 : l.real();
         const Eigen::VectorXcd rates = rates_of.col(k);
         const double magnitude = std::hypot(growth, oscillating ? l.imag() : 0.0);
-        const char* kind = mode_kind(dominant_field(model, M, R, rates), model.key().out_of_plane());
+        const char* kind =
+            overdamped ? overdamped_kind : mode_kind(dominant_field(model, M, R, rates), model.key().out_of_plane());
         modes.push_back({oscillating ? l.imag() : 0.0, growth, kind, magnitude,
                          magnitude > 0.0 ? -growth / magnitude : 0.0, weighted_shape(U, rates)});
     }
@@ -455,7 +461,9 @@ std::vector<NaturalMode> closed_loop_modes(const Model& model, const SteadySpin&
         const auto most = std::max_element(energy.begin(), energy.end()) - energy.begin();
         const bool oscillating = l.imag() > 1e-9 * scale;
         const FieldKind kind = model.coordinates().fields[static_cast<std::size_t>(most)].kind;
-        modes.push_back({oscillating ? l.imag() : 0.0, l.real(), mode_kind(kind, model.key().out_of_plane()), magnitude,
+        const bool overdamped = !oscillating && l.real() < 0.0;  // a real root of the loop that decays
+        modes.push_back({oscillating ? l.imag() : 0.0, l.real(),
+                         overdamped ? overdamped_kind : mode_kind(kind, model.key().out_of_plane()), magnitude,
                          -l.real() / magnitude, weighted_shape(U, rates)});
     }
     std::sort(modes.begin(), modes.end(),
@@ -597,19 +605,30 @@ std::vector<CriticalSpeed> critical_speeds(const Model& model, const std::vector
                 };
                 double lo = a.omega, hi = b.omega;
                 double g_lo = a.mode.rad_s - n * lo, g_hi = b.mode.rad_s - n * hi;
-                if (g_lo == 0.0 && i > 0) continue;  // met at a, counted as the previous interval's end
-                if (!(g_lo * g_hi <= 0.0) || (g_lo == 0.0 && g_hi == 0.0)) continue;
+                // A mode of frequency 0 (overdamped or divergent) meets no excitation line: it lies below every
+                // line n Omega > 0, and at rest, where the line is 0 as well, it is below too, not on it (a
+                // critical speed is where a mode that oscillates has the line's frequency). Its gap at rest is 0 by
+                // the formula: that end counts as below, with no value, and the bracket is halved until it has one.
+                const bool below_at_rest = a.mode.rad_s == 0.0 && g_lo == 0.0;
+                if (g_lo == 0.0 && !below_at_rest && i > 0) continue;  // met at a, the previous interval's end
+                const double sign_lo = below_at_rest ? -1.0 : g_lo;
+                if (!(sign_lo * g_hi <= 0.0) || (sign_lo == 0.0 && g_hi == 0.0)) continue;
                 // Regula falsi with Illinois' halving of the stale end's value: superlinear, and never leaves the
                 // bracket.
-                double omega = g_lo == 0.0 ? lo : hi;
+                double omega = g_lo == 0.0 && !below_at_rest ? lo : hi;
+                bool halving = below_at_rest && g_hi != 0.0;  // the low end has no value yet
                 int stale = 0;
-                for (int iteration = 0; iteration < 100 && g_lo != 0.0 && g_hi != 0.0; ++iteration) {
-                    omega = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
+                for (int iteration = 0; iteration < 100 && (g_lo != 0.0 || halving) && g_hi != 0.0; ++iteration) {
+                    omega = halving ? 0.5 * (lo + hi) : (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
                     if (hi - lo <= 1e-10 * std::max(1.0, std::abs(omega))) break;
                     const double g = gap(omega);
-                    if (std::abs(g) <= 1e-13 * std::max(1.0, n * omega)) break;  // the eigenvalues' round-off
-                    if ((g < 0.0) == (g_lo < 0.0)) {
+                    if (std::abs(g) <= 1e-13 * std::max(1.0, n * omega)) {  // the eigenvalues' round-off
+                        halving = false;
+                        break;
+                    }
+                    if ((g < 0.0) != (g_hi < 0.0)) {  // on the low end's side (the ends' signs differ)
                         lo = omega, g_lo = g;
+                        halving = false;
                         if (stale == -1) g_hi /= 2.0;
                         stale = -1;
                     } else {
@@ -618,6 +637,9 @@ std::vector<CriticalSpeed> critical_speeds(const Model& model, const std::vector
                         stale = 1;
                     }
                 }
+                // Halved onto rest with the mode above the line at every rate tried: it leaves rest above the
+                // line, and never meets it in this interval.
+                if (halving) continue;
                 speeds.push_back({label, n, omega, n * omega});
             }
     }
