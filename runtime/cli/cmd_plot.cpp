@@ -39,6 +39,10 @@ void add_plot_options(CLI::App& sub, PlotArgs& a)
     sub.add_option("--max-hz", a.max_hz,
                    "campbell: the frequency axis from 0 to F Hz, without the modes wholly above it (default: all)")
         ->type_name("F");
+    sub.add_option("--column", a.column,
+                   "tip: tip_uy (default), a blade's tip_uz or tip_phi; moment: bending_moment (default), a blade's "
+                   "flap_moment or torque")
+        ->type_name("NAME");
 }
 
 /// hubbeam plot: returns the exit code.
