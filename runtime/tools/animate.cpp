@@ -33,8 +33,8 @@ constexpr std::size_t max_frames = 2000;
 constexpr std::size_t max_field_rows = 200000;
 /// The most rows of the run CSV read for the hub angle: a run of 1000 s written every millisecond (2 s to read).
 constexpr std::size_t max_run_rows = 1000000;
-/// The largest file read, in bytes: a run CSV of max_run_rows rows of a blade's 13 columns is about 230 MiB, a fields CSV
-/// of max_field_rows rows of 12 columns 60 MiB. Checked before the file is read, so that a huge file costs nothing.
+/// The largest file read, in bytes: a run CSV of max_run_rows rows of a blade's 13 columns is about 230 MiB, a fields
+/// CSV of max_field_rows rows of 12 columns 60 MiB. Checked before the file is read, so that a huge file costs nothing.
 constexpr std::uintmax_t max_bytes = 256u << 20;
 
 /// The beam at one time: each point's place (m), and the tip's (the point farthest along the beam).
@@ -136,21 +136,24 @@ double theta_at(const std::vector<std::pair<double, double>>& run, double t, con
 std::vector<Frame> frames_of(const PlotArgs& args, bool& out_of_plane)
 {
     const std::string& fields = args.files[0];
-    const Table f = read_table(fields,
-                               {"a fields CSV of hubbeam run --fields-at",
-                                {{"t", "time, s"}, {"x", "position, m"}, {"uy", "m"}, {"ux", "m"}, {"uz", "a blade's flap, m"}},
-                                max_field_rows},
-                               "uz");
+    const Table f =
+        read_table(fields,
+                   {"a fields CSV of hubbeam run --fields-at",
+                    {{"t", "time, s"}, {"x", "position, m"}, {"uy", "m"}, {"ux", "m"}, {"uz", "a blade's flap, m"}},
+                    max_field_rows},
+                   "uz");
     out_of_plane = f.names.size() == 5;
     std::vector<std::pair<double, double>> run;
     if (args.files.size() == 2) {
         const std::string& run_file = args.files[1];
-        const Table r = read_table(run_file, {"a run CSV of hubbeam run", {{"t", "time, s"}, {"theta", "the hub angle"}}, max_run_rows});
+        const Table r = read_table(
+            run_file, {"a run CSV of hubbeam run", {{"t", "time, s"}, {"theta", "the hub angle"}}, max_run_rows});
         for (std::size_t k = 0; k < r.rows.size(); ++k) {
             if (k > 0 && !(r.rows[k][0] > r.rows[k - 1][0]))
-                throw PlotInputError(printable(run_file, 400) + ": line " + std::to_string(r.lines[k]) +
-                                     ": expected times t increasing from row to row, as hubbeam run writes them, got " +
-                                     (r.rows[k][0] == r.rows[k - 1][0] ? "the time of the row before" : "an earlier time"));
+                throw PlotInputError(
+                    printable(run_file, 400) + ": line " + std::to_string(r.lines[k]) +
+                    ": expected times t increasing from row to row, as hubbeam run writes them, got " +
+                    (r.rows[k][0] == r.rows[k - 1][0] ? "the time of the row before" : "an earlier time"));
             run.emplace_back(r.rows[k][0], r.rows[k][1]);
         }
         if (run.empty()) throw PlotInputError(printable(run_file, 400) + ": expected rows, got none");
@@ -248,8 +251,8 @@ void print_axes(std::ostringstream& s, const Extent& extent, bool blade, bool tu
 /// The script's loop over the frames: the hub, the tip's path so far and the beam, titled by the time.
 void print_frame_loop(std::ostringstream& s, std::size_t frame_count, bool blade, const std::string& title)
 {
-    s << "do for [i=1:" << frame_count << "] {\n  set title sprintf('%s, t = %.3f s', " << gnuplot_string(title, "--title")
-      << ", T[i])\n";
+    s << "do for [i=1:" << frame_count << "] {\n  set title sprintf('%s, t = %.3f s', "
+      << gnuplot_string(title, "--title") << ", T[i])\n";
     const char* cmd = blade ? "splot" : "plot";
     const char* cols = blade ? "1:2:3" : "1:2";
     s << "  " << cmd << " $hub using " << cols << " with lines lw 2 lc rgb '#555555' title 'hub', \\\n"

@@ -60,8 +60,8 @@ void check_prefix(const std::string& option, const std::string& prefix)
     // DIR/.png or the names ..png, ...png beside it.
     if (const std::string name = std::filesystem::path(prefix).filename().string();
         name.empty() || name == "." || name == "..")
-        throw OutputRefused(option + ": expected a path prefix that ends in a file name (as DIR/NAME for DIR/NAME.png), "
-                            "got \"" + printable(prefix, 400) + "\", which names a folder");
+        throw OutputRefused(option + ": expected a path prefix that ends in a file name (as DIR/NAME for " +
+                            "DIR/NAME.png), got \"" + printable(prefix, 400) + "\", which names a folder");
 }
 
 std::string figure_style()
@@ -419,7 +419,8 @@ Figure axial_figure(const std::vector<std::string>& files, const std::vector<std
         const std::string colour = " dt " + std::to_string(i % 5 + 1) + " lc " + std::to_string(i + 1) + " ";
         f.elements.push_back(gnuplot_string(files[i], "FILE") + " using 't':'tip_ux' with lines" + line_style(i) +
                              title_of(labels[i] + ": u_x (foreshortened)"));
-        f.elements.push_back(gnuplot_string(files[i], "FILE") + " using 't':'tip_ux1' with linespoints lw 1 pi 250 pt " +
+        f.elements.push_back(gnuplot_string(files[i], "FILE") +
+                             " using 't':'tip_ux1' with linespoints lw 1 pi 250 pt " +
                              std::to_string(2 * i + 4) + " ps 1" + colour + title_of(labels[i] + ": u_x1 (stretch)"));
         f.longest_label = std::max(f.longest_label, legend_size(labels[i] + ": u_x (foreshortened)") + 1);
     }
@@ -575,7 +576,7 @@ std::vector<std::string> line_colours_for(std::size_t lines)
             continue;
         }
         const std::size_t k = i - std::size(line_colours);
-        const double saturation = 0.9 - 0.2 * static_cast<double>(k % 3), value = 0.85 - 0.2 * static_cast<double>(k % 3);
+        const double shade = 0.2 * static_cast<double>(k % 3), saturation = 0.9 - shade, value = 0.85 - shade;
         double hue = 40.0 + std::fmod(static_cast<double>(k) * 137.50776, 280.0);
         for (std::string colour;; hue = 40.0 + std::fmod(hue - 40.0 + 1.0, 280.0)) {
             // HSV to RGB (hue in degrees)
@@ -921,7 +922,10 @@ std::vector<std::string> file_labels(const PlotArgs& args)
 Figure kind_figure(const Kind& kind, const PlotArgs& args, const std::vector<std::string>& labels)
 {
     const std::string name = kind.name;
-    if (name == "tip") return tip_figure(args.files, labels, reading(kind, chosen_quantity(kind, args)), chosen_quantity(kind, args));
+    if (name == "tip") {
+        const Quantity& q = chosen_quantity(kind, args);
+        return tip_figure(args.files, labels, reading(kind, q), q);
+    }
     if (name == "axial") return axial_figure(args.files, labels, kind);
     if (name == "campbell")
         // the labels name the lines once there is more than one file, or when given

@@ -1,20 +1,19 @@
 // hubbeam plot's scripts run through gnuplot: the rows each figure draws (a Campbell line per bending mode and
 // variant, never an axial mode; the bending moment at the time closest to --time, else the last), and the string
 // expressions that carry file names and labels with quotes into a script.
-#include <catch2/catch.hpp>
+#include <unistd.h>
 
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <hubbeam/simulate.hpp>
 #include <set>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include <unistd.h>
-
-#include <hubbeam/simulate.hpp>
 #include "io/output_file.hpp"
 #include "plot.hpp"
 #include "text/printable.hpp"
@@ -485,13 +484,15 @@ TEST_CASE("text handed to gnuplot: a control or format character is refused, and
 {
     // the one check (printable.hpp): what printable() would escape, at its byte, and nothing else of the text
     CHECK(unsafe_character("").empty());
-    CHECK(unsafe_character("runs/blade \xc3\xbc 'it''s' `ls` $HOME @m.csv").empty());  // quotes and all: gnuplot_string's
+    CHECK(
+        unsafe_character("runs/blade \xc3\xbc 'it''s' `ls` $HOME @m.csv").empty());  // quotes and all: gnuplot_string's
     CHECK(unsafe_character("x\n!touch pwned") == "a control character (\\x0a) at byte 2");
     CHECK(unsafe_character("ok\x1b[2J") == "a control character (\\x1b) at byte 3");
     CHECK(unsafe_character("a\rb") == "a control character (\\x0d) at byte 2");
     CHECK(unsafe_character("a\x7f") == "a control character (\\x7f) at byte 2");
     CHECK(unsafe_character("\xc2\x85") == "a control character (\\x85) at byte 1");  // NEL, a C1 control
-    CHECK(unsafe_character("ab\xe2\x80\xae" "cd") == "an invisible or format character (\\u202e) at byte 3");
+    CHECK(unsafe_character("ab\xe2\x80\xae"
+                           "cd") == "an invisible or format character (\\u202e) at byte 3");
     CHECK(unsafe_character("a\xe2\x80\xa8") == "an invisible or format character (\\u2028) at byte 2");
     CHECK(unsafe_character("a\xff") == "a byte that is not UTF-8 (\\xff) at byte 2");
     CHECK(unsafe_character(std::string("a\0b", 3)) == "a control character (\\x00) at byte 2");
@@ -518,7 +519,8 @@ TEST_CASE("text handed to gnuplot: a control or format character is refused, and
         args.prefix = (scratch.dir / "d\n!touch pwned\n" / "tip").string();
         CHECK(thrown([&] { plot_script(args); }) ==
               "-o: expected a path prefix without control or format characters, got a control character (\\x0a) at "
-              "byte " + std::to_string(scratch.dir.string().size() + 3));
+              "byte " +
+                  std::to_string(scratch.dir.string().size() + 3));
     }
     SECTION("the title")
     {
@@ -539,7 +541,8 @@ TEST_CASE("text handed to gnuplot: a control or format character is refused, and
         args.files = {fixture("run_amm.csv") + "\n!touch pwned"};
         CHECK(thrown([&] { plot_script(args); }) ==
               "FILE: expected a file name without control or format characters, got a control character (\\x0a) at "
-              "byte " + std::to_string(fixture("run_amm.csv").size() + 1));
+              "byte " +
+                  std::to_string(fixture("run_amm.csv").size() + 1));
     }
     SECTION("a modes CSV's text cells, which go into the script: named by line and column, never quoted")
     {
@@ -555,9 +558,10 @@ TEST_CASE("text handed to gnuplot: a control or format character is refused, and
         args.kind = "campbell";
         args.files = {file.string()};
         const std::string message = thrown([&] { plot_script(args); });
-        CHECK(message == file.string() + ": line 3, column 15 (label): expected text without control or format "
-                                         "characters (it goes into the gnuplot script), got a control character "
-                                         "(\\x07) at byte 10");
+        CHECK(message == file.string() +
+                             ": line 3, column 15 (label): expected text without control or format "
+                             "characters (it goes into the gnuplot script), got a control character "
+                             "(\\x07) at byte 10");
     }
 }
 
@@ -595,8 +599,8 @@ TEST_CASE("a prefix that names a folder is refused: no hidden DIR/.png", "[plot]
     PlotArgs args;
     args.kind = "tip";
     args.files = {fixture("run_amm.csv")};
-    for (const std::string& folder : {(scratch.dir / "").string(), (scratch.dir / ".").string(),
-                                      (scratch.dir / "..").string(), std::string(".")}) {
+    for (const std::string& folder :
+         {(scratch.dir / "").string(), (scratch.dir / ".").string(), (scratch.dir / "..").string(), std::string(".")}) {
         INFO(folder);
         args.prefix = folder;
         CHECK(thrown([&] { draw_plot(args); }) ==
@@ -645,8 +649,9 @@ TEST_CASE("plot messages name a bad file's line and column, never its content", 
     }
     args.files = {run.string()};
     message = thrown([&] { plot_script(args); });
-    CHECK(message == run.string() + ": line 4, column 4 (tip_uy): expected a number (as 0.25 or -1.5e-3), got 40 "
-                                    "characters that are not one");
+    CHECK(message == run.string() +
+                         ": line 4, column 4 (tip_uy): expected a number (as 0.25 or -1.5e-3), got 40 "
+                         "characters that are not one");
     // plot animate: a cell of 40 characters, and a header without the columns it reads
     const fs::path fields = scratch.dir / "secret-fields.csv";
     {
@@ -661,8 +666,9 @@ TEST_CASE("plot messages name a bad file's line and column, never its content", 
     args.kind = "animate";
     args.files = {fields.string()};
     message = thrown([&] { draw_animation(args); });
-    CHECK(message == fields.string() + ": line 3, column 3 (uy): expected a finite number, got 40 characters that "
-                                       "are not a number");
+    CHECK(message == fields.string() +
+                         ": line 3, column 3 (uy): expected a finite number, got 40 characters that "
+                         "are not a number");
     args.files = {secret.string()};
     message = thrown([&] { draw_animation(args); });
     CHECK(message == printable(secret.string(), 400) +
@@ -723,8 +729,9 @@ TEST_CASE("plot animate: finite numbers, times in order, and a file of a sensibl
             const std::string got = std::string(bad) == "nan" || std::string(bad) == "NaN" ? "NaN" : "an infinity";
             const std::string message = thrown([&] { animation_script(args, gif); });
             if (std::string(bad) == "1e999")  // out of range: from_chars reads no number
-                CHECK(message == fields.string() + ": line 3, column 3 (uy): expected a finite number, got 5 "
-                                                   "characters that are not a number");
+                CHECK(message == fields.string() +
+                                     ": line 3, column 3 (uy): expected a finite number, got 5 "
+                                     "characters that are not a number");
             else
                 CHECK(message == fields.string() + ": line 3, column 3 (uy): expected a finite number, got " + got);
         }
@@ -737,12 +744,14 @@ TEST_CASE("plot animate: finite numbers, times in order, and a file of a sensibl
     {
         write_csv(run, "t,theta", {{"0", "0"}, {"1", "0.5"}, {"0.5", "0.25"}});
         CHECK(thrown([&] { animation_script(args, gif); }) ==
-              run.string() + ": line 4: expected times t increasing from row to row, as hubbeam run writes them, got "
-                             "an earlier time");
+              run.string() +
+                  ": line 4: expected times t increasing from row to row, as hubbeam run writes them, got "
+                  "an earlier time");
         write_csv(run, "t,theta", {{"0", "0"}, {"0", "0.5"}, {"1", "0.25"}});
         CHECK(thrown([&] { animation_script(args, gif); }) ==
-              run.string() + ": line 3: expected times t increasing from row to row, as hubbeam run writes them, got "
-                             "the time of the row before");
+              run.string() +
+                  ": line 3: expected times t increasing from row to row, as hubbeam run writes them, got "
+                  "the time of the row before");
     }
     SECTION("fields whose frames go back in time are refused")
     {
@@ -750,8 +759,9 @@ TEST_CASE("plot animate: finite numbers, times in order, and a file of a sensibl
         rows.push_back({"0", "0", "0", "0", "0", "0", "0", "0"});
         write_csv(fields, fields_header, rows);
         CHECK(thrown([&] { animation_script(args, gif); }) ==
-              fields.string() + ": line 6: expected the frames' times t increasing (the rows of a time together, as "
-                                "hubbeam run writes them), got an earlier time");
+              fields.string() +
+                  ": line 6: expected the frames' times t increasing (the rows of a time together, as "
+                  "hubbeam run writes them), got an earlier time");
     }
     SECTION("a file too large is refused before it is read, one of too many rows at the first row past the limit")
     {
@@ -762,8 +772,9 @@ TEST_CASE("plot animate: finite numbers, times in order, and a file of a sensibl
         }
         fs::resize_file(fields, (257u << 20));
         CHECK(thrown([&] { animation_script(args, gif); }) ==
-              fields.string() + ": expected a fields CSV of hubbeam run --fields-at of at most 256 MiB (plot animate's "
-                                "limit), got 257 MiB");
+              fields.string() +
+                  ": expected a fields CSV of hubbeam run --fields-at of at most 256 MiB (plot animate's "
+                  "limit), got 257 MiB");
         // 200,001 rows: 1000 frames of 200 points and one more
         {
             std::ofstream out(fields);
@@ -811,12 +822,14 @@ TEST_CASE("plot tip --column draws a blade's tip_uz or tip_phi, its axis and tit
     CHECK(script.find("set ylabel 'tip flapwise deflection u_z(L) (m)'") != std::string::npos);
     CHECK(script.find("set ylabel 'u_z(L) - A (m)' noenhanced") != std::string::npos);
     CHECK(script.find("set title 'Tip flapwise deflection, blade' noenhanced") != std::string::npos);
-    CHECK(gnuplot_prints(scratch.dir, script, "print $difference2") == "0,0\n1,0.0078125\n2,0.015625\n3,0.0234375\n4,0.03125\n\n");
+    CHECK(gnuplot_prints(scratch.dir, script, "print $difference2") ==
+          "0,0\n1,0.0078125\n2,0.015625\n3,0.0234375\n4,0.03125\n\n");
     args.column = "tip_phi";
     script = plot_script(args);
     CHECK(script.find("set ylabel 'tip twist phi(L) (rad)'") != std::string::npos);
     CHECK(script.find("set ylabel 'phi(L) - A (rad)' noenhanced") != std::string::npos);
-    CHECK(gnuplot_prints(scratch.dir, script, "print $difference2") == "0,0\n1,0.0009765625\n2,0.001953125\n3,0.0029296875\n4,0.00390625\n\n");
+    CHECK(gnuplot_prints(scratch.dir, script, "print $difference2") ==
+          "0,0\n1,0.0009765625\n2,0.001953125\n3,0.0029296875\n4,0.00390625\n\n");
     // a planar run has no tip_uz: refused, naming the column
     args.files = {fixture("run_amm.csv")};
     args.labels.clear();
@@ -825,14 +838,18 @@ TEST_CASE("plot tip --column draws a blade's tip_uz or tip_phi, its axis and tit
           fixture("run_amm.csv") + ": expected a run CSV for kind tip (header " + row_header() +
               "; it needs the column tip_uz), got a first line of 10 comma-separated fields, none of them tip_uz");
     args.column = "tip_ux";
-    CHECK(thrown([&] { plot_script(args); }) == "--column: expected one of tip_uy, tip_uz, tip_phi for kind tip, got tip_ux");
+    CHECK(thrown([&] { plot_script(args); }) ==
+          "--column: expected one of tip_uy, tip_uz, tip_phi for kind tip, got tip_ux");
     args.kind = "axial";
     args.column = "tip_uz";
-    CHECK(thrown([&] { plot_script(args); }) ==
-          "--column: expected no column for kind axial (only kinds tip and moment draw a column of choice), got tip_uz");
+    CHECK(
+        thrown([&] { plot_script(args); }) ==
+        "--column: expected no column for kind axial (only kinds tip and moment draw a column of choice), got tip_uz");
 }
 
-TEST_CASE("plot moment --column draws a blade's flapwise moment or torque, and says a blade's bending moment is edgewise", "[plot]")
+TEST_CASE(
+    "plot moment --column draws a blade's flapwise moment or torque, and says a blade's bending moment is edgewise",
+    "[plot]")
 {
     ScratchDir scratch;
     const fs::path file = scratch.dir / "blade-fields.csv";
@@ -876,7 +893,8 @@ TEST_CASE("plot's unknown KIND names every kind, animate too", "[plot]")
     args.kind = "spectrum";
     args.files = {fixture("modes.csv")};
     args.prefix = "never-written";
-    CHECK(thrown([&] { plot_script(args); }) == "KIND: expected one of tip, axial, campbell, moment, animate, got spectrum");
+    CHECK(thrown([&] { plot_script(args); }) ==
+          "KIND: expected one of tip, axial, campbell, moment, animate, got spectrum");
     CHECK(plot_kinds() == std::vector<std::string>{"tip", "axial", "campbell", "moment", "animate"});
     args.kind = "animate";
     args.labels = "a";

@@ -92,7 +92,8 @@ std::string unsafe_character(std::string_view text)
         const std::string at = " at byte " + std::to_string(i + 1);
         if (n == 0) return "a byte that is not UTF-8 (" + escaped(static_cast<unsigned char>(text[i])) + ")" + at;
         if (needs_escape(cp))
-            return std::string(cp < 0x20 || (cp >= 0x7f && cp <= 0x9f) ? "a control character (" : "an invisible or format character (") +
+            return std::string(cp < 0x20 || (cp >= 0x7f && cp <= 0x9f) ? "a control character ("
+                                                                       : "an invisible or format character (") +
                    escaped(cp) + ")" + at;
         i += n;
     }
