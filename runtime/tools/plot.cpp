@@ -617,8 +617,8 @@ std::string campbell_style(const std::string& colour, std::size_t variant_index,
 /// dashes, short dashes, dots, dash-dot, ...) so that 1P, 2P and 3P are told apart in the figure as in the legend.
 std::string harmonic_style(int n)
 {
-    static const char* const dashes[] = {"(18,6)", "(7,5)", "(2,4)", "(18,5,2,5)", "(18,5,2,5,2,5)", "(7,5,2,5)"};
-    static const char* const greys[] = {"black", "gray25", "gray45"};
+    static const char* const dashes[] = {"(18,6)", "(12,8)", "(2,5)", "(18,5,2,5)", "(18,5,2,5,2,5)", "(7,5,2,5)"};
+    static const char* const greys[] = {"black", "#404040", "#808080"};  // (gnuplot's gray25 draws lighter)
     const std::size_t k = static_cast<std::size_t>(n - 1);
     return std::string("lw ") + (n == 1 ? "2" : "1.5") + " dt " + dashes[k % std::size(dashes)] + " lc rgb '" +
            (k == 0 ? greys[0] : greys[1 + (k + 1) % 2]) + "'";
