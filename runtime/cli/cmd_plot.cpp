@@ -32,7 +32,8 @@ void add_plot_options(CLI::App& sub, PlotArgs& a)
         ->type_name("LIST");
     sub.add_option(
            "--kinds", a.kinds,
-           "campbell: the kinds of mode drawn, of bending, edge, flap, twist, axial, hub (default bending, edge, flap)")
+           "campbell: the kinds of mode drawn, of bending, edge, flap, twist, axial, hub, overdamped (default "
+           "bending, edge, flap)")
         ->type_name("LIST");
     sub.add_option("--modes", a.modes, "campbell: only the N lowest modes of each variant (default: all)")
         ->type_name("N");

@@ -444,10 +444,12 @@ constexpr const char* variant_columns[] = {"method", "ny", "nx", "order", "drive
 constexpr const char* variant_names[] = {"", " Ny = ", " Nx = ", " order ", " drive "};
 constexpr std::size_t variant_size = std::size(variant_columns);
 
-/// The kinds of mode a modes CSV names (NaturalMode::kind).
+/// The kinds of mode a modes CSV names (NaturalMode::kind). A table that marks a real decaying eigenvalue's rows as
+/// kind overdamped labels a mode that begins so "overdamped N": --kinds overdamped draws such lines where they
+/// oscillate (campbell_lines leaves out every row of frequency 0, whatever its kind).
 const std::vector<std::string>& mode_kinds()
 {
-    static const std::vector<std::string> k = {"bending", "edge", "flap", "twist", "axial", "hub"};
+    static const std::vector<std::string> k = {"bending", "edge", "flap", "twist", "axial", "hub", "overdamped"};
     return k;
 }
 

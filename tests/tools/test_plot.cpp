@@ -939,6 +939,22 @@ TEST_CASE("campbell: overdamped rows (0 Hz) draw no line and no critical speed, 
     titles.clear();
     for (const DrawnLine& l : drawn_lines(plot_script(args))) titles.push_back(l.title);
     CHECK(titles == std::vector<std::string>{"edge 2", "flap 2"});
+    // a mode that begins overdamped (labelled so, as a table that names the kind labels it) and oscillates later:
+    // not among the default kinds; --kinds overdamped draws it where it oscillates
+    args.modes.clear();
+    std::ofstream(file, std::ios::app) << "fem,8,0,first,prescribed,0,6,overdamped,0,0,0,-1,1,1,overdamped 1,nan\n"
+                                          "fem,8,0,first,prescribed,5,6,flap,12.6,2,1,-1,13,0.3,overdamped 1,0.9\n"
+                                          "fem,8,0,first,prescribed,10,6,flap,18.8,3,1,-1,19,0.3,overdamped 1,0.9\n";
+    titles.clear();
+    for (const DrawnLine& l : drawn_lines(plot_script(args))) titles.push_back(l.title);
+    CHECK(titles == std::vector<std::string>{"edge 2", "flap 3", "flap 2"});
+    args.kinds = "overdamped";
+    script = plot_script(args);
+    titles.clear();
+    for (const DrawnLine& l : drawn_lines(script)) titles.push_back(l.title);
+    CHECK(titles == std::vector<std::string>{"overdamped 1"});
+    CHECK(gnuplot_prints(scratch.dir, script, "print $mode1") == "5,2\n10,3\n\n");
+    args.kinds.clear();
     // a file of overdamped rows alone has nothing to draw
     args.modes.clear();
     args.kinds = "edge";
