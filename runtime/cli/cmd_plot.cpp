@@ -30,10 +30,9 @@ void add_plot_options(CLI::App& sub, PlotArgs& a)
     sub.add_option("--harmonics", a.harmonics,
                    "campbell: the excitation lines omega = n Omega drawn, with their crossings (default 1,2,3)")
         ->type_name("LIST");
-    sub.add_option(
-           "--kinds", a.kinds,
-           "campbell: the kinds of mode drawn, of bending, edge, flap, twist, axial, hub, overdamped (default "
-           "bending, edge, flap)")
+    sub.add_option("--kinds", a.kinds,
+                   "campbell: the kinds of mode drawn, of bending, edge, flap, twist, axial, hub, overdamped (default "
+                   "bending, edge, flap)")
         ->type_name("LIST");
     sub.add_option("--modes", a.modes, "campbell: only the N lowest modes of each variant (default: all)")
         ->type_name("N");
