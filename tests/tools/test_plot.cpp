@@ -789,6 +789,17 @@ TEST_CASE("plot animate: finite numbers, times in order, and a file of a sensibl
         // 200,000 rows are read
         fs::resize_file(fields, fs::file_size(fields) - std::string("1000,0,0,0,0,0,0,0\n").size());
         CHECK(animation_script(args, gif).find("array T[1000]") != std::string::npos);
+        // the run CSV: 1,000,001 rows are refused, 1,000,000 read
+        write_csv(fields, fields_header, good);
+        {
+            std::ofstream out(run);
+            out << "t,theta\n";
+            for (int k = 0; k <= 1000000; ++k) out << k << ",0\n";
+        }
+        CHECK(thrown([&] { animation_script(args, gif); }) ==
+              run.string() + ": expected at most 1000000 rows (plot animate's limit), got more");
+        fs::resize_file(run, fs::file_size(run) - std::string("1000000,0\n").size());
+        CHECK_NOTHROW(animation_script(args, gif));
     }
 }
 
