@@ -30,15 +30,19 @@ void add_plot_options(CLI::App& sub, PlotArgs& a)
     sub.add_option("--harmonics", a.harmonics,
                    "campbell: the excitation lines omega = n Omega drawn, with their crossings (default 1,2,3)")
         ->type_name("LIST");
-    sub.add_option(
-           "--kinds", a.kinds,
-           "campbell: the kinds of mode drawn, of bending, edge, flap, twist, axial, hub (default bending, edge, flap)")
+    sub.add_option("--kinds", a.kinds,
+                   "campbell: the kinds of mode drawn, of bending, edge, flap, twist, axial, hub, overdamped (default "
+                   "bending, edge, flap)")
         ->type_name("LIST");
     sub.add_option("--modes", a.modes, "campbell: only the N lowest modes of each variant (default: all)")
         ->type_name("N");
     sub.add_option("--max-hz", a.max_hz,
                    "campbell: the frequency axis from 0 to F Hz, without the modes wholly above it (default: all)")
         ->type_name("F");
+    sub.add_option("--column", a.column,
+                   "tip: tip_uy (default), a blade's tip_uz or tip_phi; moment: bending_moment (default), a blade's "
+                   "flap_moment or torque")
+        ->type_name("NAME");
 }
 
 /// hubbeam plot: returns the exit code.

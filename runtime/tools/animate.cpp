@@ -1,11 +1,13 @@
 // hubbeam plot animate: the deformed beam over time as an animated GIF, drawn by gnuplot's gif terminal from a
 // fields CSV (hubbeam run --fields-at), in the plane or, for a blade with flap u_z, in three dimensions; with the
 // run's CSV beside it, in the inertial frame, turned by the hub angle theta(t).
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -23,8 +25,17 @@ namespace hubbeam {
 
 namespace {
 
-/// The most frames an animation takes: a GIF of 2000 frames is some megabytes already.
+/// The most frames an animation takes: a GIF of 2000 frames (160 s at 12.5 frames a second) is some megabytes
+/// already.
 constexpr std::size_t max_frames = 2000;
+/// The most rows (points of all frames) a fields CSV may hold: 2000 frames of 100 points. gnuplot's time grows with
+/// the frames and their points: 2000 frames of 81 points cost it 27 s, of 196 points 39 s (docs/cli.md).
+constexpr std::size_t max_field_rows = 200000;
+/// The most rows of the run CSV read for the hub angle: a run of 1000 s written every millisecond (2 s to read).
+constexpr std::size_t max_run_rows = 1000000;
+/// The largest file read, in bytes: a run CSV of max_run_rows rows of a blade's 13 columns is about 230 MiB, a fields
+/// CSV of max_field_rows rows of 12 columns 60 MiB. Checked before the file is read, so that a huge file costs nothing.
+constexpr std::uintmax_t max_bytes = 256u << 20;
 
 /// The beam at one time: each point's place (m), and the tip's (the point farthest along the beam).
 struct Frame {
@@ -32,40 +43,80 @@ struct Frame {
     std::vector<double> x, y, z;
 };
 
-/// A CSV file's header and numeric rows; PlotInputError naming the file, line and column of a cell that is no number.
-struct Table {
-    std::string header;
-    std::vector<std::vector<double>> rows;
+/// What a CSV of the animation is ("a fields CSV of hubbeam run --fields-at"), the columns read from it (by name,
+/// with what each is for a message), and how many rows it may hold.
+struct TableFormat {
+    const char* what;
+    std::vector<std::pair<const char*, const char*>> columns;  // (name, meaning)
+    std::size_t max_rows;
 };
 
-Table read_table(const std::string& path, const char* what)
+/// The columns of a table that the animation reads (TableFormat's, a missing optional one absent), per row.
+struct Table {
+    std::vector<std::string> names;  // of the columns read, in the format's order
+    std::vector<std::vector<double>> rows;
+    std::vector<long> lines;  // each row's line number in the file, for messages
+};
+
+/// Reads format's columns of path, every value a finite number; a file larger than max_bytes, with more than
+/// format.max_rows rows, a column missing or a value that is no finite number throws PlotInputError naming the file
+/// (and the line, the column's number and name), never quoting it. optional names a column that may be absent.
+Table read_table(const std::string& path, const TableFormat& format, const char* optional = nullptr)
 {
+    const std::string file = printable(path, 400);
+    const auto bad = [&](const std::string& why) { throw PlotInputError(file + ": " + why); };
     if (const std::string kind = not_a_regular_file(path); !kind.empty())
-        throw PlotInputError(printable(path, 400) + ": expected " + what + ", got " + kind);
-    std::ifstream in(path);
-    if (!in) throw PlotInputError(printable(path, 400) + ": cannot open: " + std::strerror(errno));
+        bad("expected " + std::string(format.what) + ", got " + kind);
+    if (struct stat st {}; ::stat(path.c_str(), &st) == 0 && static_cast<std::uintmax_t>(st.st_size) > max_bytes)
+        bad("expected " + std::string(format.what) + " of at most " + std::to_string(max_bytes >> 20) +
+            " MiB (plot animate's limit), got " + std::to_string(static_cast<std::uintmax_t>(st.st_size) >> 20) +
+            " MiB");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) bad(std::string("cannot open: ") + std::strerror(errno));
+    std::string header;
+    std::getline(in, header);
+    if (!header.empty() && header.back() == '\r') header.pop_back();
+    const CsvColumns columns(file, header);
     Table t;
-    std::getline(in, t.header);
-    if (!t.header.empty() && t.header.back() == '\r') t.header.pop_back();
+    std::vector<std::size_t> at;
+    for (const auto& [name, meaning] : format.columns) {
+        if (optional != nullptr && std::string_view(name) == optional && !columns.has(name)) continue;
+        at.push_back(columns.at(name, meaning));
+        t.names.emplace_back(name);
+    }
     std::string line;
     for (long n = 2; std::getline(in, line); ++n) {
         if (!line.empty() && line.back() == '\r') line.pop_back();
         if (line.empty()) continue;
+        if (t.rows.size() == format.max_rows)
+            bad("expected at most " + std::to_string(format.max_rows) + " rows (plot animate's limit), got more");
+        const std::vector<std::string> cells = csv_fields(line);
+        if (cells.size() != columns.size())
+            bad("line " + std::to_string(n) + ": expected " + std::to_string(columns.size()) +
+                " comma-separated fields as in the header, got " + std::to_string(cells.size()));
         std::vector<double> row;
-        for (const std::string& cell : csv_fields(line)) {
+        for (std::size_t k = 0; k < at.size(); ++k) {
+            const std::string& cell = cells[at[k]];
             double v = 0.0;
             const auto [end, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), v);
+            // Named by line, column number and name, never quoted (a message quotes no file's content). NaN or an
+            // infinity would reach gnuplot as a point it cannot place, and fail the whole animation there.
+            const std::string where = "line " + std::to_string(n) + ", column " + std::to_string(at[k] + 1) + " (" +
+                                      t.names[k] + "): expected a finite number, got ";
             if (ec != std::errc() || end != cell.data() + cell.size())
-                throw PlotInputError(printable(path, 400) + ":" + std::to_string(n) + ": expected numbers (" + what +
-                                     "), got \"" + printable(cell, 40) + "\"");
+                bad(where + (cell.empty() ? std::string("an empty field")
+                                          : std::to_string(cell.size()) + " characters that are not a number"));
+            if (!std::isfinite(v)) bad(where + (std::isnan(v) ? "NaN" : "an infinity"));
             row.push_back(v);
         }
         t.rows.push_back(std::move(row));
+        t.lines.push_back(n);
     }
+    if (in.bad()) bad(std::string("cannot read: ") + std::strerror(errno));
     return t;
 }
 
-/// theta at t from a run's rows (t, theta): exact at a row's time, linear between rows.
+/// theta at t from a run's rows (t, theta), their times increasing: exact at a row's time, linear between rows.
 double theta_at(const std::vector<std::pair<double, double>>& run, double t, const std::string& file)
 {
     const auto it = std::lower_bound(run.begin(), run.end(), t, [](const auto& r, double v) { return r.first < v; });
@@ -79,39 +130,54 @@ double theta_at(const std::vector<std::pair<double, double>>& run, double t, con
     return a + (b - a) * (t - t0) / (t1 - t0);
 }
 
-/// The frames of a fields CSV, turned by the run's theta(t) where a run CSV is given.
+/// The frames of a fields CSV, turned by the run's theta(t) where a run CSV is given. The frames' times must
+/// increase (the rows of one time together), and so must the run's rows' times: theta_at looks them up by bisection,
+/// and a run CSV out of order would turn the beam by the wrong angle without a word.
 std::vector<Frame> frames_of(const PlotArgs& args, bool& out_of_plane)
 {
     const std::string& fields = args.files[0];
-    const Table f = read_table(fields, "a fields CSV of hubbeam run --fields-at");
-    const CsvColumns c(printable(fields, 400), f.header);
-    const std::size_t it = c.at("t"), ix = c.at("x"), iuy = c.at("uy"), iux = c.at("ux");
-    out_of_plane = f.header.find(",uz") != std::string::npos;
-    const std::size_t iuz = out_of_plane ? c.at("uz") : 0;
+    const Table f =
+        read_table(fields,
+                   {"a fields CSV of hubbeam run --fields-at",
+                    {{"t", "time, s"}, {"x", "position, m"}, {"uy", "m"}, {"ux", "m"}, {"uz", "a blade's flap, m"}},
+                    max_field_rows},
+                   "uz");
+    out_of_plane = f.names.size() == 5;
     std::vector<std::pair<double, double>> run;
     if (args.files.size() == 2) {
-        const Table r = read_table(args.files[1], "a run CSV of hubbeam run");
-        const CsvColumns rc(printable(args.files[1], 400), r.header);
-        const std::size_t rt = rc.at("t"), rth = rc.at("theta", "the hub angle");
-        for (const auto& row : r.rows) run.emplace_back(row.at(rt), row.at(rth));
-        if (run.empty()) throw PlotInputError(printable(args.files[1], 400) + ": expected rows, got none");
+        const std::string& run_file = args.files[1];
+        const Table r = read_table(
+            run_file, {"a run CSV of hubbeam run", {{"t", "time, s"}, {"theta", "the hub angle"}}, max_run_rows});
+        for (std::size_t k = 0; k < r.rows.size(); ++k) {
+            if (k > 0 && !(r.rows[k][0] > r.rows[k - 1][0]))
+                throw PlotInputError(
+                    printable(run_file, 400) + ": line " + std::to_string(r.lines[k]) +
+                    ": expected times t increasing from row to row, as hubbeam run writes them, got " +
+                    (r.rows[k][0] == r.rows[k - 1][0] ? "the time of the row before" : "an earlier time"));
+            run.emplace_back(r.rows[k][0], r.rows[k][1]);
+        }
+        if (run.empty()) throw PlotInputError(printable(run_file, 400) + ": expected rows, got none");
     }
     std::vector<Frame> frames;
-    for (const auto& row : f.rows) {
-        if (row.size() <= std::max({it, ix, iuy, iux, iuz}))
-            throw PlotInputError(printable(fields, 400) + ": expected every row as long as its header");
-        if (frames.empty() || frames.back().t != row[it]) {
+    for (std::size_t k = 0; k < f.rows.size(); ++k) {
+        const std::vector<double>& row = f.rows[k];
+        const double t = row[0], x = row[1], uy = row[2], ux = row[3];
+        if (frames.empty() || frames.back().t != t) {
+            if (!frames.empty() && !(t > frames.back().t))
+                throw PlotInputError(printable(fields, 400) + ": line " + std::to_string(f.lines[k]) +
+                                     ": expected the frames' times t increasing (the rows of a time together, as "
+                                     "hubbeam run writes them), got an earlier time");
             if (frames.size() == max_frames)
                 throw PlotInputError(printable(fields, 400) + ": expected at most " + std::to_string(max_frames) +
-                                     " times (frames), got more");
-            frames.push_back({row[it], run.empty() ? 0.0 : theta_at(run, row[it], args.files[1]), {}, {}, {}});
+                                     " times (frames; plot animate's limit), got more");
+            frames.push_back({t, run.empty() ? 0.0 : theta_at(run, t, args.files[1]), {}, {}, {}});
         }
         Frame& fr = frames.back();
         // The point's place in the hub's frame (x + u_x along the beam, u_y across it), turned by theta.
-        const double along = row[ix] + row[iux], across = row[iuy];
+        const double along = x + ux, across = uy;
         fr.x.push_back(std::cos(fr.theta) * along - std::sin(fr.theta) * across);
         fr.y.push_back(std::sin(fr.theta) * along + std::cos(fr.theta) * across);
-        fr.z.push_back(out_of_plane ? row[iuz] : 0.0);
+        fr.z.push_back(out_of_plane ? row[4] : 0.0);
     }
     if (frames.empty()) throw PlotInputError(printable(fields, 400) + ": expected rows, got none");
     return frames;
@@ -185,8 +251,8 @@ void print_axes(std::ostringstream& s, const Extent& extent, bool blade, bool tu
 /// The script's loop over the frames: the hub, the tip's path so far and the beam, titled by the time.
 void print_frame_loop(std::ostringstream& s, std::size_t frame_count, bool blade, const std::string& title)
 {
-    s << "do for [i=1:" << frame_count << "] {\n  set title sprintf('%s, t = %.3f s', " << gnuplot_string(title)
-      << ", T[i])\n";
+    s << "do for [i=1:" << frame_count << "] {\n  set title sprintf('%s, t = %.3f s', "
+      << gnuplot_string(title, "--title") << ", T[i])\n";
     const char* cmd = blade ? "splot" : "plot";
     const char* cols = blade ? "1:2:3" : "1:2";
     s << "  " << cmd << " $hub using " << cols << " with lines lw 2 lc rgb '#555555' title 'hub', \\\n"
@@ -199,6 +265,7 @@ void print_frame_loop(std::ostringstream& s, std::size_t frame_count, bool blade
 
 std::string animation_script(const PlotArgs& args, const std::string& gif)
 {
+    check_plot_args(args);
     if (args.files.empty() || args.files.size() > 2)
         throw PlotInputError(
             "FILE: expected a fields CSV (hubbeam run --fields-at), and optionally the run's CSV "
@@ -212,8 +279,8 @@ std::string animation_script(const PlotArgs& args, const std::string& gif)
     s << "# hubbeam plot animate: " << frames.size() << " frames of " << printable(args.files[0], 400)
       << (turned ? ", turned by theta(t) of " + printable(args.files[1], 400) : std::string(", in the hub's frame"))
       << "\n# $beam: one block per frame (x y z, m); $tip: the tip at each frame; $hub: the hub's outline.\n";
-    s << "set terminal gif animate delay 8 size 900,720 font 'Sans,11' noenhanced\nset output " << gnuplot_string(gif)
-      << "\n";
+    s << "set terminal gif animate delay 8 size 900,720 font 'Sans,11' noenhanced\nset output "
+      << gnuplot_string(gif, "-o") << "\n";
     print_data_blocks(s, frames, extent.reach);
     const std::string title = args.title.empty() ? std::string("Deformed beam") : args.title;
     print_axes(s, extent, blade, turned);
@@ -223,9 +290,9 @@ std::string animation_script(const PlotArgs& args, const std::string& gif)
 
 std::string draw_animation(const PlotArgs& args)
 {
+    check_plot_args(args);  // the prefix and every text the script holds, before anything is read or written
     std::vector<NamedPath> inputs;
     for (const std::string& f : args.files) inputs.push_back({f, "the input " + printable(f, 400)});
-    if (args.prefix.empty()) throw PlotInputError("-o: expected a path prefix for PREFIX.gif, got \"\"");
     check_outputs(inputs, {{args.prefix + ".gp", "-o"}, {args.prefix + ".gif", "-o"}});
     std::string script;
     try {

@@ -32,8 +32,11 @@
 
 namespace hubbeam {
 
-std::string gnuplot_string(std::string_view text)
+std::string gnuplot_string(std::string_view text, const std::string& name)
 {
+    // Inside single quotes gnuplot reads every byte as it is but a quote (below) and the line's end: a newline in
+    // a name would end the string's command, and the next line is gnuplot's to run ('!' hands it to the shell).
+    check_handed_text<PlotInputError>(name, text, "text");
     if (text.find('\'') == std::string_view::npos) return "'" + std::string(text) + "'";
     // Not 'it''s': gnuplot 5.4 misreads two doubled quotes in a row. Each quote is a "'" of its own, concatenated
     // (a double-quoted string holding more would run any `command` in backquotes).
@@ -47,6 +50,18 @@ std::string gnuplot_string(std::string_view text)
         s += (s.size() > 1 ? "." : "") + std::string("\"'\"");
         start = quote + 1;
     }
+}
+
+void check_prefix(const std::string& option, const std::string& prefix)
+{
+    if (prefix.empty()) bad_option<OutputRefused>(option, "a path prefix for the figure's files", "");
+    check_handed_text<OutputRefused>(option, prefix, "a path prefix");
+    // The files are PREFIX.png and so on: a prefix that names a folder (DIR/, DIR/., ..) would make them the hidden
+    // DIR/.png or the names ..png, ...png beside it.
+    if (const std::string name = std::filesystem::path(prefix).filename().string();
+        name.empty() || name == "." || name == "..")
+        throw OutputRefused(option + ": expected a path prefix that ends in a file name (as DIR/NAME for " +
+                            "DIR/NAME.png), got \"" + printable(prefix, 400) + "\", which names a folder");
 }
 
 std::string figure_style()
@@ -99,28 +114,59 @@ const CsvFormat run_csv{"a run CSV", row_header};
 const CsvFormat modes_csv{"a modes CSV", modes_header};
 const CsvFormat field_csv{"a field CSV", FieldRecorder::header};
 
-/// A kind of figure: the format it reads, the columns it reads (by name), those of them that must be numbers, and
-/// its default title (followed by what the files' names say the scene is).
+/// A column a kind can draw (--column): its axis label, the symbol and unit of the difference panel, and the
+/// figure's default title (followed by what the files' names say the scene is).
+struct Quantity {
+    const char* column;
+    const char* axis;    // "tip deflection u_y(L) (m)"
+    const char* symbol;  // "u_y(L)"
+    const char* unit;    // "m"
+    const char* title;
+};
+
+/// A kind of figure: the format it reads, the columns it reads (by name) beside the one it draws, those of them that
+/// must be numbers, those whose text goes into the script (checked row by row, so that a message can name the
+/// line), its default title, and the columns it can draw, the default first (none: its columns are fixed).
 struct Kind {
     const char* name;
     const CsvFormat* format;
     std::vector<std::string> columns;
     std::vector<std::string> numeric;
+    std::vector<std::string> texts;
     const char* title;
+    std::vector<Quantity> quantities;
 };
 
 const std::vector<Kind>& kinds()
 {
     static const std::vector<Kind> table{
-        {"tip", &run_csv, {"t", "tip_uy"}, {"t", "tip_uy"}, "Tip deflection"},
-        {"axial", &run_csv, {"t", "tip_ux1", "tip_ux"}, {"t", "tip_ux1", "tip_ux"},
-         "Longitudinal tip deformation with and without foreshortening"},
+        {"tip", &run_csv, {"t"}, {"t"}, {}, "Tip deflection",
+         {{"tip_uy", "tip deflection u_y(L) (m)", "u_y(L)", "m", "Tip deflection"},
+          // a blade's (docs/model.md section 12): its run CSV has them where the blade has the field
+          {"tip_uz", "tip flapwise deflection u_z(L) (m)", "u_z(L)", "m", "Tip flapwise deflection"},
+          {"tip_phi", "tip twist phi(L) (rad)", "phi(L)", "rad", "Tip twist"}}},
+        {"axial", &run_csv, {"t", "tip_ux1", "tip_ux"}, {"t", "tip_ux1", "tip_ux"}, {},
+         "Longitudinal tip deformation with and without foreshortening", {}},
+        // label is optional (a modes CSV of an older hubbeam has none); its text goes into the script where it is
         {"campbell", &modes_csv, {"method", "ny", "nx", "order", "drive", "omega", "mode", "kind", "hz"},
-         {"ny", "omega", "mode", "hz"}, "Campbell diagram"},
-        {"moment", &field_csv, {"t", "x", "bending_moment"}, {"t", "x", "bending_moment"},
-         "Bending moment along the beam"},
+         {"ny", "omega", "mode", "hz"}, {"method", "nx", "order", "drive", "kind", "label"}, "Campbell diagram", {}},
+        {"moment", &field_csv, {"t", "x"}, {"t", "x"}, {}, "Bending moment along the beam",
+         // bending_moment is EI u_y'' of a beam in the plane; moment_figure labels a blade's as the edgewise moment
+         {{"bending_moment", "bending moment M = EI d^2u_y/dx^2 (N m)", "M", "N m", "Bending moment along the beam"},
+          {"flap_moment", "flapwise bending moment EI_{flap} kappa_n (N m)", "M_flap", "N m",
+           "Flapwise bending moment along the blade"},
+          {"torque", "torque GJ dphi/dx (N m)", "T", "N m", "Torque along the blade"}}},
     };
     return table;
+}
+
+/// kind reading column q as well (a copy: the table stays as it is).
+Kind reading(const Kind& kind, const Quantity& q)
+{
+    Kind k = kind;
+    k.columns.emplace_back(q.column);
+    k.numeric.emplace_back(q.column);
+    return k;
 }
 
 bool is_number(const std::string& s, double& v)
@@ -130,17 +176,23 @@ bool is_number(const std::string& s, double& v)
     return ec == std::errc() && ptr == end;
 }
 
-/// What a header is, for the message when it is not the expected one: another format the kinds read, or the line.
-std::string header_seen(const std::string& header)
+/// What a header without the column `missing` is, for the message: another format the kinds read, or its count of
+/// fields. Never the line itself: a message quotes no file's content (that of a file the user was not meant to
+/// read, named by mistake or by someone else).
+std::string header_seen(const std::string& header, const Kind& kind, const std::string& missing)
 {
     std::vector<std::string> readers;
     const CsvFormat* format = nullptr;
     for (const Kind& k : kinds())
-        if (header == k.format->header()) {
+        if (header == k.format->header() && k.format != kind.format) {
             format = k.format;
             readers.emplace_back(k.name);
         }
-    if (format == nullptr) return "the header '" + printable(header, 120) + "'";
+    if (format == nullptr) {
+        const std::size_t n = csv_fields(header).size();
+        return "a first line of " + std::to_string(n) + " comma-separated field" + (n == 1 ? "" : "s") +
+               ", none of them " + missing;
+    }
     return "the header of " + std::string(format->name) + ", which kind" + (readers.size() > 1 ? "s " : " ") +
            joined(readers) + " read" + (readers.size() > 1 ? "" : "s");
 }
@@ -185,7 +237,8 @@ void read_csv(const std::string& path, const Kind& kind, const std::function<voi
     if (!line.empty() && line.back() == '\r') line.pop_back();
     const CsvColumns columns(file, line);
     for (const std::string& name : kind.columns)
-        if (!columns.has(name)) bad(expected + "; it needs the column " + name + "), got " + header_seen(line));
+        if (!columns.has(name))
+            bad(expected + "; it needs the column " + name + "), got " + header_seen(line, kind, name));
     long line_number = 1, rows = 0;
     while (std::getline(in, line)) {
         ++line_number;
@@ -196,22 +249,27 @@ void read_csv(const std::string& path, const Kind& kind, const std::function<voi
         if (fields.size() != columns.size())
             bad(at + "expected " + std::to_string(columns.size()) + " comma-separated fields as in the header, got " +
                 std::to_string(fields.size()));
+        // A cell is named by its line, column number and name, never quoted (a message quotes no file's content).
+        const auto cell = [&](const std::string& name) {
+            return "line " + std::to_string(line_number) + ", column " + std::to_string(columns.at(name) + 1) + " (" +
+                   name + "): ";
+        };
         for (const std::string& name : kind.numeric)
             if (double v = 0.0; !is_number(fields[columns.at(name)], v))
-                bad(at + "expected a number in column " + name + ", got '" + printable(fields[columns.at(name)], 40) +
-                    "'");
+                bad(cell(name) + "expected a number (as 0.25 or -1.5e-3), got " +
+                    (fields[columns.at(name)].empty() ? std::string("an empty field")
+                                                      : std::to_string(fields[columns.at(name)].size()) +
+                                                            " characters that are not one"));
+        for (const std::string& name : kind.texts)
+            if (columns.has(name))
+                if (const std::string why = unsafe_character(fields[columns.at(name)]); !why.empty())
+                    bad(cell(name) + "expected text without control or format characters (it goes into the gnuplot "
+                                     "script), got " + why);
         row(Record(columns, fields));
         ++rows;
     }
     if (in.bad()) bad(std::string("cannot read: ") + std::strerror(errno));
     if (rows == 0) bad("expected rows after the header, got none");
-}
-
-/// Text typed for the figure (a label, a title, a path): one line of a script, so no control characters.
-void check_text(const std::string& option, const std::string& text, const char* what)
-{
-    if (std::any_of(text.begin(), text.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }))
-        bad_option<PlotInputError>(option, std::string(what) + " without control characters", printable(text, 120));
 }
 
 /// A figure of plot_script: what gnuplot computes before drawing, the axes, and the plot command's elements; and,
@@ -226,9 +284,35 @@ struct Figure {
     std::size_t longest_label = 0;  // characters of the longest legend entry
 };
 
-std::string title_of(const std::string& text)
+/// The most characters of a legend entry: a longer one (a long file name, a tabulated blade's variant) would widen
+/// the legend's box on the right until it pushed the axes out of the figure.
+constexpr std::size_t legend_cap = 60;
+/// The most characters of the scene's name in a default title.
+constexpr std::size_t title_cap = 80;
+
+/// text cut to at most cap characters (UTF-8 code points) by "..." in its middle, so that its start and its end
+/// (a file's name, then the mode's label) both stay.
+std::string shortened(const std::string& text, std::size_t cap)
 {
-    return "title " + gnuplot_string(text) + " noenhanced";
+    std::vector<std::size_t> starts;  // where each character begins
+    for (std::size_t i = 0; i < text.size(); ++i)
+        if ((static_cast<unsigned char>(text[i]) & 0xc0) != 0x80) starts.push_back(i);
+    if (starts.size() <= cap) return text;
+    const std::size_t head = (cap - 3) / 2, tail = cap - 3 - head;
+    return text.substr(0, starts[head]) + "..." + text.substr(starts[starts.size() - tail]);
+}
+
+/// A legend entry: its text shortened to legend_cap characters, as it is otherwise (noenhanced: no _ or ^ read as a
+/// subscript or superscript). name is the option or file the text comes from, for gnuplot_string's message.
+std::string title_of(const std::string& text, const std::string& name = "--labels")
+{
+    return "title " + gnuplot_string(shortened(text, legend_cap), name) + " noenhanced";
+}
+
+/// The characters of a legend entry as title_of writes it.
+std::size_t legend_size(const std::string& text)
+{
+    return std::min(text.size(), legend_cap);
 }
 
 /// The line style of the i-th file's curve in figures of a line per file: its own colour, its own dash pattern,
@@ -280,7 +364,7 @@ constexpr double coincide_fraction = 0.02;
 /// Adds the panel of the differences of series[1..] against series[0], if any of them stays within
 /// coincide_fraction of the figure's range (otherwise the curves are told apart where they are drawn).
 void add_difference_panel(Figure& f, const std::vector<Series>& series, const std::vector<std::string>& labels,
-                          const std::string& quantity)
+                          const std::string& quantity, const std::string& unit)
 {
     if (series.size() < 2) return;
     double lo = HUGE_VAL, hi = -HUGE_VAL;
@@ -295,8 +379,8 @@ void add_difference_panel(Figure& f, const std::vector<Series>& series, const st
         coincide = coincide || largest <= coincide_fraction * (hi - lo);
     }
     if (!coincide) return;
-    f.lower_axes = "set xlabel 'time t (s)'\nset ylabel " + gnuplot_string(quantity + " - " + labels[0] + " (m)") +
-                   " noenhanced\n";
+    f.lower_axes = "set xlabel 'time t (s)'\nset ylabel " +
+                   gnuplot_string(quantity + " - " + labels[0] + " (" + unit + ")", "--labels") + " noenhanced\n";
     f.data += "# the differences against " + printable(labels[0], 80) + "'s curve, for the panel below\n";
     for (std::size_t i = 1; i < series.size(); ++i) {
         const std::string block = "$difference" + std::to_string(i + 1);
@@ -305,22 +389,23 @@ void add_difference_panel(Figure& f, const std::vector<Series>& series, const st
         f.data += "EOD\n";
         f.lower_elements.push_back(block + " using 1:2 with lines" + line_style(i) +
                                    title_of(labels[i] + " - " + labels[0]));
-        f.longest_label = std::max(f.longest_label, labels[i].size() + 3 + labels[0].size());
+        f.longest_label = std::max(f.longest_label, legend_size(labels[i] + " - " + labels[0]));
     }
 }
 
-/// Figures 3-4, 7-8 and 9-12 of the paper: tip_uy against t, a line per file.
-Figure tip_figure(const std::vector<std::string>& files, const std::vector<std::string>& labels, const Kind& kind)
+/// Figures 3-4, 7-8 and 9-12 of the paper: tip_uy against t, a line per file; or a blade's tip_uz or tip_phi (q).
+Figure tip_figure(const std::vector<std::string>& files, const std::vector<std::string>& labels, const Kind& kind,
+                  const Quantity& q)
 {
     Figure f;
-    f.axes = "set xlabel 'time t (s)'\nset ylabel 'tip deflection u_y(L) (m)'\n";
+    f.axes = "set xlabel 'time t (s)'\nset ylabel " + gnuplot_string(q.axis) + "\n";
     for (std::size_t i = 0; i < files.size(); ++i)
     {
-        f.elements.push_back(gnuplot_string(files[i]) + " using 't':'tip_uy' with lines" + line_style(i) +
-                             title_of(labels[i]));
-        f.longest_label = std::max(f.longest_label, labels[i].size());
+        f.elements.push_back(gnuplot_string(files[i], "FILE") + " using 't':'" + q.column + "' with lines" +
+                             line_style(i) + title_of(labels[i]));
+        f.longest_label = std::max(f.longest_label, legend_size(labels[i]));
     }
-    add_difference_panel(f, read_series(files, kind, "tip_uy"), labels, "u_y(L)");
+    add_difference_panel(f, read_series(files, kind, q.column), labels, q.symbol, q.unit);
     return f;
 }
 
@@ -332,13 +417,14 @@ Figure axial_figure(const std::vector<std::string>& files, const std::vector<std
     f.axes = "set xlabel 'time t (s)'\nset ylabel 'longitudinal tip deformation (m)'\n";
     for (std::size_t i = 0; i < files.size(); ++i) {
         const std::string colour = " dt " + std::to_string(i % 5 + 1) + " lc " + std::to_string(i + 1) + " ";
-        f.elements.push_back(gnuplot_string(files[i]) + " using 't':'tip_ux' with lines" + line_style(i) +
+        f.elements.push_back(gnuplot_string(files[i], "FILE") + " using 't':'tip_ux' with lines" + line_style(i) +
                              title_of(labels[i] + ": u_x (foreshortened)"));
-        f.elements.push_back(gnuplot_string(files[i]) + " using 't':'tip_ux1' with linespoints lw 1 pi 250 pt " +
+        f.elements.push_back(gnuplot_string(files[i], "FILE") +
+                             " using 't':'tip_ux1' with linespoints lw 1 pi 250 pt " +
                              std::to_string(2 * i + 4) + " ps 1" + colour + title_of(labels[i] + ": u_x1 (stretch)"));
-        f.longest_label = std::max(f.longest_label, labels[i].size() + 22);
+        f.longest_label = std::max(f.longest_label, legend_size(labels[i] + ": u_x (foreshortened)") + 1);
     }
-    add_difference_panel(f, read_series(files, kind, "tip_ux"), labels, "u_x(L)");
+    add_difference_panel(f, read_series(files, kind, "tip_ux"), labels, "u_x(L)", "m");
     return f;
 }
 
@@ -358,10 +444,12 @@ constexpr const char* variant_columns[] = {"method", "ny", "nx", "order", "drive
 constexpr const char* variant_names[] = {"", " Ny = ", " Nx = ", " order ", " drive "};
 constexpr std::size_t variant_size = std::size(variant_columns);
 
-/// The kinds of mode a modes CSV names (NaturalMode::kind).
+/// The kinds of mode a modes CSV names (NaturalMode::kind). A table that marks a real decaying eigenvalue's rows as
+/// kind overdamped labels a mode that begins so "overdamped N": --kinds overdamped draws such lines where they
+/// oscillate (campbell_lines leaves out every row of frequency 0, whatever its kind).
 const std::vector<std::string>& mode_kinds()
 {
-    static const std::vector<std::string> k = {"bending", "edge", "flap", "twist", "axial", "hub"};
+    static const std::vector<std::string> k = {"bending", "edge", "flap", "twist", "axial", "hub", "overdamped"};
     return k;
 }
 
@@ -376,7 +464,8 @@ struct CampbellChoice {
 /// names one of choice's kinds (its rows of every kind: through a veering its shape may turn axial), or in a file
 /// without the label column (an older hubbeam's) the rows of one of those kinds of each frequency rank; then of
 /// each variant the `modes` lowest (by their frequency at their lowest rate), and those with a point at or below
-/// max_hz. Throws PlotInputError for a file without such rows.
+/// max_hz. A row of frequency 0 (an overdamped mode: it does not oscillate) is no point of any line, whether or not
+/// the table lists it. Throws PlotInputError for a file without such rows.
 std::vector<CampbellLine> campbell_lines(const std::vector<std::string>& files, const Kind& kind,
                                          const CampbellChoice& choice)
 {
@@ -387,6 +476,9 @@ std::vector<CampbellLine> campbell_lines(const std::vector<std::string>& files, 
     for (std::size_t file = 0; file < files.size(); ++file) {
         const std::size_t before = lines.size();
         read_csv(files[file], kind, [&](const Record& r) {
+            // An overdamped mode has no frequency to draw, and no critical speed: drawn at 0 Hz it would meet every
+            // excitation line at rest and rank lowest for --modes (the same test as campbell_table's).
+            if (!(r.number("hz") > 0.0)) return;
             const bool tracked = r.has("label");
             const std::string& label = tracked ? r["label"] : r["kind"];
             if (!chosen(tracked ? label.substr(0, label.find(' ')) : label)) return;
@@ -406,7 +498,7 @@ std::vector<CampbellLine> campbell_lines(const std::vector<std::string>& files, 
         });
         if (lines.size() == before)
             throw PlotInputError(printable(files[file], 400) + ": expected rows of kind " + joined(choice.kinds, "'") +
-                                 " (the modes the Campbell diagram draws, --kinds), got none");
+                                 " with a frequency above 0 (the modes the Campbell diagram draws, --kinds), got none");
     }
     for (CampbellLine& l : lines) std::stable_sort(l.points.begin(), l.points.end());
     // Of each file's variant, the lines ranked by their frequency at their lowest rate.
@@ -464,19 +556,54 @@ std::string campbell_table(const std::string& block, const CampbellLine& l, cons
         condition += "strcol('" + std::string(variant_columns[c]) + "') eq " + gnuplot_string(l.variant[c]) + " && ";
     condition += "strcol('" + l.column + "') eq " + gnuplot_string(l.mode);
     if (!l.kind.empty()) condition += " && strcol('kind') eq " + gnuplot_string(l.kind);
+    condition += " && column('hz') > 0";  // not an overdamped row (campbell_lines)
     return "set table " + block + " separator comma\nplot " + gnuplot_string(file) +
            " using 'omega':'hz' with table if (" + condition + ")\n";
 }
 
-/// The colours of a Campbell diagram's lines, one each (in turn, beyond a dozen), none of them the black and grey
-/// of the excitation lines or the red of the critical speeds.
+/// The first colours of a Campbell diagram's lines, none of them the black and grey of the excitation lines or the
+/// red of the critical speeds.
 constexpr const char* line_colours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b", "#e377c2",
                                         "#17becf", "#bcbd22", "#000080", "#808000", "#008080", "#ff00ff"};
 
-/// The look of a Campbell line: its own colour (by its index among the lines), an open marker of its own per
-/// variant (by the variant's index), larger and the line wider the earlier the variant, so that variants whose
-/// frequencies coincide show as nested outlines; a dash type per file.
-std::string campbell_style(std::size_t line, std::size_t variant_index, std::size_t file)
+/// The colour of a Campbell diagram's line `line`, its own however many lines there are (a blade's table has
+/// dozens of modes): line_colours first, then hues a golden angle apart, kept from the reds (within 40 degrees of
+/// hue 0) and from grey, at three saturations and brightnesses in turn; a colour taken already moves on by a degree.
+std::vector<std::string> line_colours_for(std::size_t lines)
+{
+    std::vector<std::string> colours;
+    for (std::size_t i = 0; i < lines; ++i) {
+        if (i < std::size(line_colours)) {
+            colours.emplace_back(line_colours[i]);
+            continue;
+        }
+        const std::size_t k = i - std::size(line_colours);
+        const double shade = 0.2 * static_cast<double>(k % 3), saturation = 0.9 - shade, value = 0.85 - shade;
+        double hue = 40.0 + std::fmod(static_cast<double>(k) * 137.50776, 280.0);
+        for (std::string colour;; hue = 40.0 + std::fmod(hue - 40.0 + 1.0, 280.0)) {
+            // HSV to RGB (hue in degrees)
+            const double c = value * saturation, h = hue / 60.0, x = c * (1.0 - std::abs(std::fmod(h, 2.0) - 1.0));
+            const int sector = static_cast<int>(h) % 6;
+            const double r = sector == 0 || sector == 5 ? c : sector == 1 || sector == 4 ? x : 0.0;
+            const double g = sector == 1 || sector == 2 ? c : sector == 0 || sector == 3 ? x : 0.0;
+            const double b = sector == 3 || sector == 4 ? c : sector == 2 || sector == 5 ? x : 0.0;
+            const auto byte = [&](double v) { return static_cast<unsigned>(std::lround(255.0 * (v + value - c))); };
+            char hex[8];
+            std::snprintf(hex, sizeof hex, "#%02x%02x%02x", byte(r), byte(g), byte(b));
+            colour = hex;
+            if (std::find(colours.begin(), colours.end(), colour) == colours.end()) {
+                colours.push_back(colour);
+                break;
+            }
+        }
+    }
+    return colours;
+}
+
+/// The look of a Campbell line: its own colour (line_colours_for), an open marker of its own per variant (by the
+/// variant's index), larger and the line wider the earlier the variant, so that variants whose frequencies coincide
+/// show as nested outlines; a dash type per file.
+std::string campbell_style(const std::string& colour, std::size_t variant_index, std::size_t file)
 {
     static const int open_points[] = {6, 4, 8, 12, 10, 14, 1, 2};
     char size[40];
@@ -484,8 +611,19 @@ std::string campbell_style(std::size_t line, std::size_t variant_index, std::siz
     char points[40];
     std::snprintf(points, sizeof points, " pt %d ps %.2f ", open_points[variant_index % std::size(open_points)],
                   std::max(0.6, 1.6 - 0.25 * static_cast<double>(variant_index)));
-    return std::string(size) + " lc rgb '" + line_colours[line % std::size(line_colours)] + "' dt " +
+    return std::string(size) + " lc rgb '" + colour + "' dt " +
            std::to_string(file % 5 + 1) + points;
+}
+
+/// The look of the excitation line nP: 1P black and widest, the others in greys, each its own dash pattern (long
+/// dashes, short dashes, dots, dash-dot, ...) so that 1P, 2P and 3P are told apart in the figure as in the legend.
+std::string harmonic_style(int n)
+{
+    static const char* const dashes[] = {"(18,6)", "(12,8)", "(2,5)", "(18,5,2,5)", "(18,5,2,5,2,5)", "(7,5,2,5)"};
+    static const char* const greys[] = {"black", "#404040", "#808080"};  // (gnuplot's gray25 draws lighter)
+    const std::size_t k = static_cast<std::size_t>(n - 1);
+    return std::string("lw ") + (n == 1 ? "2" : "1.5") + " dt " + dashes[k % std::size(dashes)] + " lc rgb '" +
+           (k == 0 ? greys[0] : greys[1 + (k + 1) % 2]) + "'";
 }
 
 /// A Campbell diagram: the chosen modes' frequencies (Hz) against the spin rate, a line per file, variant (method,
@@ -514,6 +652,7 @@ Figure campbell_figure(const std::vector<std::string>& files, const std::vector<
             if (named[c]) name += (c ? "," : "") + std::string(variant_names[c]) + lines.front().variant[c];
         f.title_suffix = " (" + name + ")";
     }
+    const std::vector<std::string> colours = line_colours_for(lines.size());
     for (std::size_t i = 0; i < lines.size(); ++i) {
         const CampbellLine& l = lines[i];
         const std::string block = "$mode" + std::to_string(i + 1);
@@ -526,21 +665,33 @@ Figure campbell_figure(const std::vector<std::string>& files, const std::vector<
             legend += ", ";
         }
         legend += l.name;
-        f.longest_label = std::max(f.longest_label, legend.size());
+        f.longest_label = std::max(f.longest_label, legend_size(legend));
         // smooth unique: the points by increasing rate, whatever the rows' order in the file
         f.elements.push_back(block + " using 1:2 smooth unique with linespoints " +
-                             campbell_style(i, static_cast<std::size_t>(v - variants.begin()), l.file) +
-                             title_of(legend));
+                             campbell_style(colours[i], static_cast<std::size_t>(v - variants.begin()), l.file) +
+                             title_of(legend, "a modes CSV's label"));
     }
     f.data += "unset table\n";
+    // Where the excitation lines leave the figure: the highest rate, and the top of the frequency axis (--max-hz,
+    // else at least the highest point drawn; gnuplot's autoscale only rounds it up to a tic).
+    double omega_top = 0.0, hz_top = 0.0;
+    for (const CampbellLine& l : lines)
+        for (const auto& [omega, hz] : l.points) omega_top = std::max(omega_top, omega), hz_top = std::max(hz_top, hz);
+    for (const int n : harmonics) hz_top = std::max(hz_top, n * omega_top / (2.0 * M_PI));
+    if (choice.max_hz < HUGE_VAL) hz_top = choice.max_hz;
     std::string crossings;
     for (const int n : harmonics) {
         const std::string times = n == 1 ? "" : std::to_string(n) + "*";
-        // 1P black, the others grey, each its own dash pattern.
-        f.elements.push_back(times + "x/(2*pi) with lines lw " + (n == 1 ? "2" : "1") + " dt " +
-                             std::to_string((n - 1) % 4 + 2) + " lc rgb '" + (n == 1 ? "black" : "gray40") + "' title '" +
-                             std::to_string(n) + "P: " +
-                             (n == 1 ? "spin frequency omega" : times + "omega") + "/2pi'");
+        f.elements.push_back(times + "x/(2*pi) with lines " + harmonic_style(n) + " title '" + std::to_string(n) +
+                             "P: " + (n == 1 ? "spin frequency omega" : times + "omega") + "/2pi'");
+        // Its name at its end inside the figure, so that each line is told without the legend.
+        if (omega_top > 0.0) {
+            const double hz_end = n * omega_top / (2.0 * M_PI);
+            const bool leaves_at_top = hz_end > hz_top;
+            const double x = leaves_at_top ? hz_top * 2.0 * M_PI / n : omega_top, y = leaves_at_top ? hz_top : hz_end;
+            f.axes += "set label '" + std::to_string(n) + "P' at " + shortest(x) + "," + shortest(y) +
+                      (leaves_at_top ? " right offset -0.6,-0.9" : " right offset -0.6,0.9") + " front\n";
+        }
         for (const CampbellLine& l : lines)
             for (const auto& [omega, hz] : campbell_crossings(l, n))
                 if (hz <= choice.max_hz) crossings += shortest(omega) + ',' + shortest(hz) + '\n';
@@ -552,20 +703,24 @@ Figure campbell_figure(const std::vector<std::string>& files, const std::vector<
     return f;
 }
 
-/// The bending moment EI u_y'' against x at one time per file, lines with small points: FEM's moment jumps at
-/// the element nodes (u_y'' of cubic elements is not continuous there), the other methods' is continuous. The
-/// rows of that time go to a datablock first, so that their order in the file does not matter.
+/// The bending moment EI u_y'' (or a blade's flapwise moment or torque, q) against x at one time per file, lines
+/// with small points: FEM's moment jumps at the element nodes (u_y'' of cubic elements is not continuous there), the
+/// other methods' is continuous. The rows of that time go to a datablock first, so that their order in the file does
+/// not matter.
 Figure moment_figure(const std::vector<std::string>& files, const std::vector<std::string>& labels,
-                     const std::string& time, const Kind& kind)
+                     const std::string& time, const Kind& kind, const Quantity& q)
 {
     double wanted = 0.0;
     if (!time.empty() && (!is_number(time, wanted) || !std::isfinite(wanted)))
         bad_option<PlotInputError>("--time", "a time in seconds", printable(time, 40));
     std::vector<std::string> chosen;  // per file, its t as the file writes it
+    std::size_t blades = 0;           // files of a blade (fields out of the plane: flap_moment among them)
     for (const std::string& file : files) {
         std::string best;
         double best_t = 0.0;
+        bool blade = false;
         read_csv(file, kind, [&](const Record& r) {
+            blade = r.has("flap_moment");
             const double t = r.number("t");
             // without --time the last t, with it the closest (the earlier of two as close)
             if (best.empty() || (time.empty() ? t >= best_t : std::abs(t - wanted) < std::abs(best_t - wanted))) {
@@ -574,18 +729,24 @@ Figure moment_figure(const std::vector<std::string>& files, const std::vector<st
             }
         });
         chosen.push_back(best);
+        blades += blade ? 1 : 0;
     }
+    // A blade's bending_moment is the edgewise moment about its turned chord, not EI u_y'' (docs/cli.md, the fields
+    // CSV): the axis says what is drawn.
+    std::string axis = q.axis;
+    if (std::string_view(q.column) == "bending_moment" && blades > 0)
+        axis = blades == files.size() ? "edgewise bending moment EI_{edge} kappa_c (N m)"
+                                      : "bending moment: EI d^2u_y/dx^2 in the plane, a blade's edgewise (N m)";
     const bool one_time =
         std::all_of(chosen.begin(), chosen.end(), [&](const std::string& t) { return t == chosen[0]; });
     Figure f;
     if (one_time) f.title_suffix = " at t = " + chosen[0] + " s";
-    f.axes = "set xlabel 'position along the beam x (m)'\nset ylabel " +
-             gnuplot_string("bending moment M = EI d^2u_y/dx^2 (N m)") + "\n";
+    f.axes = "set xlabel 'position along the beam x (m)'\nset ylabel " + gnuplot_string(axis) + "\n";
     f.data = "# one datablock per file: its rows at the time drawn\n";
     for (std::size_t i = 0; i < files.size(); ++i) {
         const std::string block = "$moment" + std::to_string(i + 1);
-        f.data += "set table " + block + " separator comma\nplot " + gnuplot_string(files[i]) +
-                  " using 'x':'bending_moment' with table if (strcol('t') eq " + gnuplot_string(chosen[i]) + ")\n";
+        f.data += "set table " + block + " separator comma\nplot " + gnuplot_string(files[i], "FILE") +
+                  " using 'x':'" + q.column + "' with table if (strcol('t') eq " + gnuplot_string(chosen[i]) + ")\n";
         f.elements.push_back(block + " using 1:2 with linespoints" + line_style(i) + "pt 7 ps 0.5 " +
                              title_of(one_time ? labels[i] : labels[i] + ", t = " + chosen[i] + " s"));
     }
@@ -653,36 +814,70 @@ const std::vector<std::string>& plot_kinds()
     static const std::vector<std::string> names = [] {
         std::vector<std::string> n;
         for (const Kind& k : kinds()) n.push_back(k.name);
+        n.emplace_back("animate");  // draw_animation's, apart from the figures of the table
         return n;
     }();
     return names;
 }
 
-namespace {
-
-/// Checks args' kind, files, prefix and texts (labels aside); returns the kind. Throws PlotInputError.
-const Kind& checked_kind(const PlotArgs& args)
+std::vector<std::string> plot_columns(const std::string& kind)
 {
-    const auto kind = std::find_if(kinds().begin(), kinds().end(), [&](const Kind& k) { return args.kind == k.name; });
-    if (kind == kinds().end())
+    std::vector<std::string> columns;
+    for (const Kind& k : kinds())
+        if (kind == k.name)
+            for (const Quantity& q : k.quantities) columns.emplace_back(q.column);
+    return columns;
+}
+
+void check_plot_args(const PlotArgs& args)
+{
+    if (std::find(plot_kinds().begin(), plot_kinds().end(), args.kind) == plot_kinds().end())
         bad_option<PlotInputError>("KIND", "one of " + joined(plot_kinds()), printable(args.kind, 40));
     if (args.files.empty()) bad_option<PlotInputError>("FILE", "at least one CSV file", "none");
-    if (args.prefix.empty()) bad_option<PlotInputError>("-o", "a path prefix for PREFIX.png and PREFIX.svg", "");
-    check_text("-o", args.prefix, "a path prefix");
-    for (const std::string& f : args.files) check_text("FILE", f, "a file name");
-    check_text("--title", args.title, "a title");
-    if (!args.time.empty() && args.kind != "moment")
-        bad_option<PlotInputError>("--time", "no time for kind " + args.kind + " (only kind moment draws one time)",
-                                   printable(args.time, 40));
+    // Every text that goes into the script, checked here with its option's name; gnuplot_string checks it again
+    // where it is quoted, so that none can be missed.
+    check_prefix("-o", args.prefix);
+    for (const std::string& f : args.files) check_handed_text<PlotInputError>("FILE", f, "a file name");
+    check_handed_text<PlotInputError>("--title", args.title, "a title");
+    check_handed_text<PlotInputError>("--labels", args.labels, "labels");
+    const auto only = [&](const char* option, const std::string& value, const std::vector<std::string>& takers,
+                          const std::string& what) {
+        if (!value.empty() && std::find(takers.begin(), takers.end(), args.kind) == takers.end())
+            bad_option<PlotInputError>(option, "no " + std::string(option + 2) + " for kind " + args.kind + " (only " +
+                                                   what + ")",
+                                       printable(value, 40));
+    };
+    only("--time", args.time, {"moment"}, "kind moment draws one time");
     for (const auto& [option, value] : {std::pair<const char*, const std::string&>{"--harmonics", args.harmonics},
                                         {"--kinds", args.kinds},
                                         {"--modes", args.modes},
                                         {"--max-hz", args.max_hz}})
-        if (!value.empty() && args.kind != "campbell")
-            bad_option<PlotInputError>(option, "no " + std::string(option + 2) + " for kind " + args.kind +
-                                                   " (only kind campbell draws them)",
-                                       printable(value, 40));
+        only(option, value, {"campbell"}, "kind campbell draws them");
+    only("--column", args.column, {"tip", "moment"}, "kinds tip and moment draw a column of choice");
+    only("--labels", args.labels, {"tip", "axial", "campbell", "moment"}, "kinds of a line per file take them");
+}
+
+namespace {
+
+/// Checks args (check_plot_args) for a kind of the table; returns the kind. Throws PlotInputError.
+const Kind& checked_kind(const PlotArgs& args)
+{
+    check_plot_args(args);
+    const auto kind = std::find_if(kinds().begin(), kinds().end(), [&](const Kind& k) { return args.kind == k.name; });
+    if (kind == kinds().end())  // animate, which draw_animation draws
+        bad_option<PlotInputError>("KIND", "one of " + joined(plot_kinds()) + " (animate draws PREFIX.gif alone)",
+                                   printable(args.kind, 40));
     return *kind;
+}
+
+/// The column kind draws: --column, checked, or the kind's default. Throws PlotInputError.
+const Quantity& chosen_quantity(const Kind& kind, const PlotArgs& args)
+{
+    if (args.column.empty()) return kind.quantities.front();
+    for (const Quantity& q : kind.quantities)
+        if (args.column == q.column) return q;
+    bad_option<PlotInputError>("--column", "one of " + joined(plot_columns(kind.name)) + " for kind " + kind.name,
+                               printable(args.column, 40));
 }
 
 /// The lines a Campbell diagram draws, from --kinds, --modes and --max-hz. Throws PlotInputError.
@@ -721,7 +916,6 @@ std::vector<std::string> file_labels(const PlotArgs& args)
                                    std::to_string(labels.size()) + " (" + printable(args.labels, 120) + ")");
     for (const std::string& l : labels) {
         if (l.empty()) bad_option<PlotInputError>("--labels", "a non-empty label per file", "");
-        check_text("--labels", l, "labels");
     }
     return labels;
 }
@@ -730,7 +924,10 @@ std::vector<std::string> file_labels(const PlotArgs& args)
 Figure kind_figure(const Kind& kind, const PlotArgs& args, const std::vector<std::string>& labels)
 {
     const std::string name = kind.name;
-    if (name == "tip") return tip_figure(args.files, labels, kind);
+    if (name == "tip") {
+        const Quantity& q = chosen_quantity(kind, args);
+        return tip_figure(args.files, labels, reading(kind, q), q);
+    }
     if (name == "axial") return axial_figure(args.files, labels, kind);
     if (name == "campbell")
         // the labels name the lines once there is more than one file, or when given
@@ -738,7 +935,8 @@ Figure kind_figure(const Kind& kind, const PlotArgs& args, const std::vector<std
             args.files, labels, args.files.size() > 1 || !args.labels.empty(),
             parse_harmonics<PlotInputError>("--harmonics", args.harmonics.empty() ? default_harmonics : args.harmonics),
             campbell_choice(args), kind);
-    return moment_figure(args.files, labels, args.time, kind);
+    const Quantity& q = chosen_quantity(kind, args);
+    return moment_figure(args.files, labels, args.time, reading(kind, q), q);
 }
 
 /// A plot command of the elements.
@@ -772,10 +970,13 @@ std::string plot_script(const PlotArgs& args)
     const std::vector<std::string> labels = file_labels(args);
     const Figure figure = kind_figure(kind, args, labels);
     const std::string title =
-        args.title.empty() ? kind.title + (", " + scene_of(args.files)) + figure.title_suffix : args.title;
+        args.title.empty() ? (kind.quantities.empty() ? kind.title : chosen_quantity(kind, args).title) +
+                                 (", " + shortened(scene_of(args.files), title_cap)) + figure.title_suffix
+                           : args.title;
+    // The comment's names escaped as a message's are (printable): a comment line must stay one line too.
     std::string script = "# gnuplot script written by hubbeam plot " + std::string(kind.name) + " (redraw: gnuplot " +
-                         args.prefix + ".gp), from";
-    for (const std::string& f : args.files) script += " " + f;
+                         printable(args.prefix, 4096) + ".gp), from";
+    for (const std::string& f : args.files) script += " " + printable(f, 4096);
     return script + "\n" + figure_style() + figure.data + in_png_and_svg(figure_body(figure, args.prefix, title));
 }
 
@@ -808,6 +1009,7 @@ std::string draw_figures(const std::vector<std::string>& prefixes, const std::st
     std::vector<std::unique_ptr<OutputFile>> figures;
     std::vector<std::string> temp_prefixes;
     for (const std::string& prefix : prefixes) {
+        check_prefix("PREFIX", prefix);  // for every caller (plot, bench --plot, modes --plot), whatever it checked
         const std::filesystem::path p(prefix);
         for (int attempt = 0;; ++attempt) {
             std::string name = ".";
@@ -848,7 +1050,7 @@ std::string draw_figures(const std::vector<std::string>& prefixes, const std::st
 
 std::string draw_plot(const PlotArgs& args)
 {
-    const std::string script = plot_script(args);
+    const std::string script = plot_script(args);  // checks args first (check_plot_args)
     std::vector<NamedPath> inputs;
     for (const std::string& f : args.files) inputs.push_back({f, "the input " + printable(f, 400)});
     check_outputs(inputs, {{args.prefix + ".gp", "-o"}, {args.prefix + ".png", "-o"}, {args.prefix + ".svg", "-o"}});

@@ -9,11 +9,26 @@
 #include <string_view>
 #include <vector>
 
+#include "text/option_lists.hpp"
+
 namespace hubbeam {
 
+/// Bad input to `plot`: an argument, or a file that is not what its kind reads ("FILE: expected ..., got ..."). An
+/// OptionError, so that every command that draws (bench --plot, modes --plot) exits 2 for it.
+struct PlotInputError : OptionError {
+    using OptionError::OptionError;
+};
+
 /// text as a gnuplot string expression that reads back as it is: 'text' (no escapes, no substitutions), or with
-/// quotes in it ('it'."'".'s').
-std::string gnuplot_string(std::string_view text);
+/// quotes in it ('it'."'".'s'). Every string of every script passes through here, so here it is checked
+/// (check_handed_text): text with a control or format character throws PlotInputError("NAME: expected text without
+/// ..."), so that no path, title or label can end the script's line and start a command of its own.
+std::string gnuplot_string(std::string_view text, const std::string& name = "a string for gnuplot");
+
+/// Checks an output prefix (PREFIX.png, PREFIX.svg, PREFIX.gif, PREFIX.gp) before anything is computed: text a
+/// script may hold (check_handed_text) with a file name after its last '/' (DIR/ would write the hidden DIR/.png,
+/// DIR/. the file DIR/..png). Throws OutputRefused naming option.
+void check_prefix(const std::string& option, const std::string& prefix);
 
 /// The settings every figure starts with: comma-separated data (the CSV files), the legend boxed outside on the
 /// right, where it covers no curve, and a grid.
@@ -50,15 +65,21 @@ struct PlotArgs {
     std::string kinds;               // kind campbell: the kinds of tracked mode drawn; empty: bending
     std::string modes;               // kind campbell: the lowest N lines of each variant; empty: all
     std::string max_hz;              // kind campbell: the top of the frequency axis (Hz); empty: the data's
+    std::string column;              // kinds tip and moment: the column drawn; empty: tip_uy, bending_moment
 };
 
-/// Bad input to `plot`: an argument, or a file that is not what its kind reads ("FILE: expected ..., got ...").
-struct PlotInputError : std::invalid_argument {
-    using std::invalid_argument::invalid_argument;
-};
-
-/// The kinds of figure: tip, axial (run CSVs), campbell (modes CSVs), moment (field CSVs).
+/// The kinds of figure: tip, axial (run CSVs), campbell (modes CSVs), moment (field CSVs), animate (a field CSV).
 const std::vector<std::string>& plot_kinds();
+
+/// Checks what every kind takes before a file is read: a kind of plot_kinds(), at least one file, the prefix
+/// (check_prefix), the files' names, --title and --labels as text a script may hold, and no option that args' kind
+/// does not take (--time but for moment, --harmonics, --kinds, --modes, --max-hz but for campbell, --column but for tip
+/// and moment, --labels for animate). Throws PlotInputError, or OutputRefused for the prefix.
+void check_plot_args(const PlotArgs& args);
+
+/// The columns kind draws, one at a time (--column), the default first: tip_uy, tip_uz, tip_phi for tip,
+/// bending_moment, flap_moment, torque for moment; none for the others.
+std::vector<std::string> plot_columns(const std::string& kind);
 
 /// The gnuplot script of args' figure. Checks the arguments and reads every file through first: its header must
 /// be exactly its kind's, and every row must hold numbers where the figure reads them. Throws PlotInputError.

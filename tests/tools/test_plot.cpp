@@ -1,20 +1,23 @@
 // hubbeam plot's scripts run through gnuplot: the rows each figure draws (a Campbell line per bending mode and
 // variant, never an axial mode; the bending moment at the time closest to --time, else the last), and the string
 // expressions that carry file names and labels with quotes into a script.
-#include <catch2/catch.hpp>
+#include <unistd.h>
 
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <hubbeam/simulate.hpp>
 #include <set>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include <unistd.h>
-
+#include "io/output_file.hpp"
 #include "plot.hpp"
+#include "text/printable.hpp"
+#include "text/shortest.hpp"
 
 using namespace hubbeam;
 namespace fs = std::filesystem;
@@ -452,4 +455,604 @@ TEST_CASE("legend entries fit their box: the key is widened for proportional fon
     args.prefix = "never-written";
     const std::string script = plot_script(args);
     CHECK(script.find("set key outside right top box width 2") != std::string::npos);
+}
+
+namespace {
+
+/// The message of what f throws (an exception derived from std::exception), or "" when it throws nothing.
+template <class F>
+std::string thrown(F&& f)
+{
+    try {
+        f();
+    } catch (const std::exception& e) {
+        return e.what();
+    }
+    return "";
+}
+
+/// The current folder changed to dir while it lives (gnuplot runs a shell command in the folder it was started in).
+struct InFolder {
+    fs::path before = fs::current_path();
+    explicit InFolder(const fs::path& dir) { fs::current_path(dir); }
+    ~InFolder() { fs::current_path(before); }
+};
+
+}  // namespace
+
+TEST_CASE("text handed to gnuplot: a control or format character is refused, and said where", "[plot]")
+{
+    // the one check (printable.hpp): what printable() would escape, at its byte, and nothing else of the text
+    CHECK(unsafe_character("").empty());
+    CHECK(
+        unsafe_character("runs/blade \xc3\xbc 'it''s' `ls` $HOME @m.csv").empty());  // quotes and all: gnuplot_string's
+    CHECK(unsafe_character("x\n!touch pwned") == "a control character (\\x0a) at byte 2");
+    CHECK(unsafe_character("ok\x1b[2J") == "a control character (\\x1b) at byte 3");
+    CHECK(unsafe_character("a\rb") == "a control character (\\x0d) at byte 2");
+    CHECK(unsafe_character("a\x7f") == "a control character (\\x7f) at byte 2");
+    CHECK(unsafe_character("\xc2\x85") == "a control character (\\x85) at byte 1");  // NEL, a C1 control
+    CHECK(unsafe_character("ab\xe2\x80\xae"
+                           "cd") == "an invisible or format character (\\u202e) at byte 3");
+    CHECK(unsafe_character("a\xe2\x80\xa8") == "an invisible or format character (\\u2028) at byte 2");
+    CHECK(unsafe_character("a\xff") == "a byte that is not UTF-8 (\\xff) at byte 2");
+    CHECK(unsafe_character(std::string("a\0b", 3)) == "a control character (\\x00) at byte 2");
+    CHECK(thrown([] { gnuplot_string("a\nb", "--title"); }) ==
+          "--title: expected text without control or format characters, got a control character (\\x0a) at byte 2");
+    CHECK_THROWS_AS(gnuplot_string("a\nb"), PlotInputError);
+
+    ScratchDir scratch;
+    PlotArgs args;
+    args.kind = "tip";
+    args.files = {fixture("run_amm.csv")};
+    args.prefix = (scratch.dir / "tip").string();
+    REQUIRE_NOTHROW(plot_script(args));
+    SECTION("the prefix")
+    {
+        args.prefix = "x\n!touch pwned\n";
+        CHECK_THROWS_AS(plot_script(args), OutputRefused);
+        CHECK(thrown([&] { plot_script(args); }) ==
+              "-o: expected a path prefix without control or format characters, got a control character (\\x0a) at "
+              "byte 2");
+    }
+    SECTION("a folder of the prefix")
+    {
+        args.prefix = (scratch.dir / "d\n!touch pwned\n" / "tip").string();
+        CHECK(thrown([&] { plot_script(args); }) ==
+              "-o: expected a path prefix without control or format characters, got a control character (\\x0a) at "
+              "byte " +
+                  std::to_string(scratch.dir.string().size() + 3));
+    }
+    SECTION("the title")
+    {
+        args.title = "Tip\n!touch pwned";
+        CHECK(thrown([&] { plot_script(args); }) ==
+              "--title: expected a title without control or format characters, got a control character (\\x0a) at "
+              "byte 4");
+    }
+    SECTION("the labels")
+    {
+        args.labels = "AMM\xe2\x80\xae";
+        CHECK(thrown([&] { plot_script(args); }) ==
+              "--labels: expected labels without control or format characters, got an invisible or format character "
+              "(\\u202e) at byte 4");
+    }
+    SECTION("a file's name")
+    {
+        args.files = {fixture("run_amm.csv") + "\n!touch pwned"};
+        CHECK(thrown([&] { plot_script(args); }) ==
+              "FILE: expected a file name without control or format characters, got a control character (\\x0a) at "
+              "byte " +
+                  std::to_string(fixture("run_amm.csv").size() + 1));
+    }
+    SECTION("a modes CSV's text cells, which go into the script: named by line and column, never quoted")
+    {
+        const fs::path file = scratch.dir / "bell-modes.csv";
+        std::ifstream in(fixture("modes.csv"));
+        std::ofstream out(file);
+        std::string line;
+        for (int n = 1; std::getline(in, line); ++n) {
+            if (n == 3) line.replace(line.rfind(",bending 2,"), 11, ",bending 2\x07SECRET,");
+            out << line << "\n";
+        }
+        out.close();
+        args.kind = "campbell";
+        args.files = {file.string()};
+        const std::string message = thrown([&] { plot_script(args); });
+        CHECK(message == file.string() +
+                             ": line 3, column 15 (label): expected text without control or format "
+                             "characters (it goes into the gnuplot script), got a control character "
+                             "(\\x07) at byte 10");
+    }
+}
+
+TEST_CASE("the attack: a prefix or a folder with a newline and '!' runs no shell command", "[plot]")
+{
+    ScratchDir scratch;
+    const InFolder in(scratch.dir);
+    PlotArgs args;
+    args.kind = "animate";
+    args.files = {fixture("fields_amm.csv"), fixture("run_amm.csv")};
+    args.prefix = "x\n!touch pwned\n";
+    CHECK_THROWS_AS(draw_animation(args), OutputRefused);
+    CHECK_FALSE(fs::exists(scratch.dir / "pwned"));
+    // a folder named so, which exists: the prefix is refused before gnuplot sees it
+    fs::create_directory(scratch.dir / "d\n!touch pwned\n");
+    args.prefix = "d\n!touch pwned\n/anim";
+    CHECK_THROWS_AS(draw_animation(args), OutputRefused);
+    args.kind = "tip";
+    args.files = {fixture("run_amm.csv")};
+    CHECK_THROWS_AS(draw_plot(args), OutputRefused);
+    args.prefix = "fig";
+    args.title = "Tip\n!touch pwned\n";
+    CHECK_THROWS_AS(draw_plot(args), PlotInputError);
+    args.kind = "animate";
+    args.files = {fixture("fields_amm.csv")};
+    CHECK_THROWS_AS(draw_animation(args), PlotInputError);
+    CHECK_FALSE(fs::exists(scratch.dir / "pwned"));
+    CHECK(fs::directory_iterator(scratch.dir / "d\n!touch pwned\n") == fs::directory_iterator());
+    CHECK_FALSE(fs::exists(scratch.dir / "fig.gp"));
+}
+
+TEST_CASE("a prefix that names a folder is refused: no hidden DIR/.png", "[plot]")
+{
+    ScratchDir scratch;
+    PlotArgs args;
+    args.kind = "tip";
+    args.files = {fixture("run_amm.csv")};
+    for (const std::string& folder :
+         {(scratch.dir / "").string(), (scratch.dir / ".").string(), (scratch.dir / "..").string(), std::string(".")}) {
+        INFO(folder);
+        args.prefix = folder;
+        CHECK(thrown([&] { draw_plot(args); }) ==
+              "-o: expected a path prefix that ends in a file name (as DIR/NAME for DIR/NAME.png), got \"" + folder +
+                  "\", which names a folder");
+    }
+    args.prefix = (scratch.dir / "").string();
+    args.kind = "animate";
+    args.files = {fixture("fields_amm.csv")};
+    CHECK_THROWS_AS(draw_animation(args), OutputRefused);
+    CHECK(fs::directory_iterator(scratch.dir) == fs::directory_iterator());  // no .png, .svg, .gp, .gif
+    CHECK_THROWS_AS(draw_figures({(scratch.dir / "").string()}, (scratch.dir / "x.gp").string(), "",
+                                 [](const std::vector<std::string>&) { return std::string(); }),
+                    OutputRefused);
+}
+
+TEST_CASE("plot messages name a bad file's line and column, never its content", "[plot]")
+{
+    ScratchDir scratch;
+    PlotArgs args;
+    args.kind = "tip";
+    args.prefix = (scratch.dir / "p").string();
+    // a file that is no CSV at all: its first line is not quoted
+    const fs::path secret = scratch.dir / "secret";
+    std::ofstream(secret) << "TOPSECRET password=hunter2\nmore\n";
+    args.files = {secret.string()};
+    std::string message = thrown([&] { plot_script(args); });
+    CHECK(message == secret.string() + ": expected a run CSV for kind tip (header " + std::string(row_header()) +
+                         "; it needs the column t), got a first line of 1 comma-separated field, none of them t");
+    CHECK(message.find("TOPSECRET") == std::string::npos);
+    // a run CSV whose tip_uy cell is text
+    const fs::path run = scratch.dir / "run.csv";
+    {
+        std::ifstream in(fixture("run_amm.csv"));
+        std::ofstream out(run);
+        std::string line;
+        for (int n = 1; std::getline(in, line); ++n) {
+            if (n == 4) {
+                std::vector<std::string> cells = csv_rows(fixture("run_amm.csv"))[3];
+                cells[3] = "SECRETSECRETSECRETSECRETSECRETSECRETSECR";  // 40 characters
+                line.clear();
+                for (std::size_t i = 0; i < cells.size(); ++i) line += (i ? "," : "") + cells[i];
+            }
+            out << line << "\n";
+        }
+    }
+    args.files = {run.string()};
+    message = thrown([&] { plot_script(args); });
+    CHECK(message == run.string() +
+                         ": line 4, column 4 (tip_uy): expected a number (as 0.25 or -1.5e-3), got 40 "
+                         "characters that are not one");
+    // plot animate: a cell of 40 characters, and a header without the columns it reads
+    const fs::path fields = scratch.dir / "secret-fields.csv";
+    {
+        std::ifstream in(fixture("fields_amm.csv"));
+        std::ofstream out(fields);
+        std::string line;
+        for (int n = 1; std::getline(in, line); ++n) {
+            if (n == 3) line = "0.5,1,SECRETSECRETSECRETSECRETSECRETSECRETSECR,0,0,0,0,0";
+            out << line << "\n";
+        }
+    }
+    args.kind = "animate";
+    args.files = {fields.string()};
+    message = thrown([&] { draw_animation(args); });
+    CHECK(message == fields.string() +
+                         ": line 3, column 3 (uy): expected a finite number, got 40 characters that "
+                         "are not a number");
+    args.files = {secret.string()};
+    message = thrown([&] { draw_animation(args); });
+    CHECK(message == printable(secret.string(), 400) +
+                         ": expected a column t in its header (time, s), got none among its 1 columns");
+    CHECK_FALSE(fs::exists(scratch.dir / "p.gif"));
+}
+
+namespace {
+
+/// Writes a CSV: header, then rows of numbers as text.
+void write_csv(const fs::path& path, const std::string& header, const std::vector<std::vector<std::string>>& rows)
+{
+    std::ofstream out(path);
+    out << header << "\n";
+    for (const auto& r : rows) {
+        for (std::size_t i = 0; i < r.size(); ++i) out << (i ? "," : "") << r[i];
+        out << "\n";
+    }
+}
+
+const char* const fields_header = "t,x,uy,ux,slope,curvature,bending_moment,axial_force";
+
+}  // namespace
+
+TEST_CASE("plot animate: finite numbers, times in order, and a file of a sensible size", "[plot]")
+{
+    ScratchDir scratch;
+    PlotArgs args;
+    args.kind = "animate";
+    const fs::path fields = scratch.dir / "f.csv", run = scratch.dir / "r.csv";
+    const std::string gif = (scratch.dir / "a.gif").string();
+    args.prefix = (scratch.dir / "a").string();
+    // two frames of two points; the run's theta at t = 0 and 1
+    const std::vector<std::vector<std::string>> good = {{"0", "0", "0", "0", "0", "0", "0", "0"},
+                                                        {"0", "1", "0.1", "0", "0", "0", "0", "0"},
+                                                        {"1", "0", "0", "0", "0", "0", "0", "0"},
+                                                        {"1", "1", "0.2", "0", "0", "0", "0", "0"}};
+    write_csv(fields, fields_header, good);
+    write_csv(run, "t,theta", {{"0", "0"}, {"0.5", "0.25"}, {"1", "0.5"}});
+    args.files = {fields.string(), run.string()};
+    const std::string script = animation_script(args, gif);
+    // the tip of frame 1, (x + ux, uy) = (1, 0.1) at theta(0) = 0; of frame 2, (1, 0.2) turned by theta(1) = 0.5
+    const std::string first = "$tip << EOD\n1 0.1 0\n";
+    REQUIRE(script.find(first) != std::string::npos);
+    const std::size_t at = script.find(first) + first.size();
+    double x = 0.0, y = 0.0;
+    std::istringstream(script.substr(at)) >> x >> y;
+    CHECK(x == Approx(std::cos(0.5) - std::sin(0.5) * 0.2).epsilon(1e-15));
+    CHECK(y == Approx(std::sin(0.5) + std::cos(0.5) * 0.2).epsilon(1e-15));
+
+    SECTION("NaN and infinities, in the fields or the run, are refused by line and column")
+    {
+        for (const char* bad : {"nan", "NaN", "inf", "-inf", "1e999"}) {
+            INFO(bad);
+            auto rows = good;
+            rows[1][2] = bad;
+            write_csv(fields, fields_header, rows);
+            const std::string got = std::string(bad) == "nan" || std::string(bad) == "NaN" ? "NaN" : "an infinity";
+            const std::string message = thrown([&] { animation_script(args, gif); });
+            if (std::string(bad) == "1e999")  // out of range: from_chars reads no number
+                CHECK(message == fields.string() +
+                                     ": line 3, column 3 (uy): expected a finite number, got 5 "
+                                     "characters that are not a number");
+            else
+                CHECK(message == fields.string() + ": line 3, column 3 (uy): expected a finite number, got " + got);
+        }
+        write_csv(fields, fields_header, good);
+        write_csv(run, "t,theta", {{"0", "0"}, {"0.5", "nan"}, {"1", "0.5"}});
+        CHECK(thrown([&] { animation_script(args, gif); }) ==
+              run.string() + ": line 3, column 2 (theta): expected a finite number, got NaN");
+    }
+    SECTION("a run CSV whose times do not increase is refused (the hub angle would be wrong)")
+    {
+        write_csv(run, "t,theta", {{"0", "0"}, {"1", "0.5"}, {"0.5", "0.25"}});
+        CHECK(thrown([&] { animation_script(args, gif); }) ==
+              run.string() +
+                  ": line 4: expected times t increasing from row to row, as hubbeam run writes them, got "
+                  "an earlier time");
+        write_csv(run, "t,theta", {{"0", "0"}, {"0", "0.5"}, {"1", "0.25"}});
+        CHECK(thrown([&] { animation_script(args, gif); }) ==
+              run.string() +
+                  ": line 3: expected times t increasing from row to row, as hubbeam run writes them, got "
+                  "the time of the row before");
+    }
+    SECTION("fields whose frames go back in time are refused")
+    {
+        auto rows = good;
+        rows.push_back({"0", "0", "0", "0", "0", "0", "0", "0"});
+        write_csv(fields, fields_header, rows);
+        CHECK(thrown([&] { animation_script(args, gif); }) ==
+              fields.string() +
+                  ": line 6: expected the frames' times t increasing (the rows of a time together, as "
+                  "hubbeam run writes them), got an earlier time");
+    }
+    SECTION("a file too large is refused before it is read, one of too many rows at the first row past the limit")
+    {
+        // 257 MiB, sparse: no disk is used, and the size alone refuses it
+        {
+            std::ofstream out(fields);
+            out << fields_header << "\n";
+        }
+        fs::resize_file(fields, (257u << 20));
+        CHECK(thrown([&] { animation_script(args, gif); }) ==
+              fields.string() +
+                  ": expected a fields CSV of hubbeam run --fields-at of at most 256 MiB (plot animate's "
+                  "limit), got 257 MiB");
+        // 200,001 rows: 1000 frames of 200 points and one more
+        {
+            std::ofstream out(fields);
+            out << fields_header << "\n";
+            for (int frame = 0; frame <= 1000; ++frame)
+                for (int point = 0; point < (frame < 1000 ? 200 : 1); ++point)
+                    out << frame << "," << point << ",0,0,0,0,0,0\n";
+        }
+        write_csv(run, "t,theta", {{"0", "0"}, {"3000", "1"}});
+        CHECK(thrown([&] { animation_script(args, gif); }) ==
+              fields.string() + ": expected at most 200000 rows (plot animate's limit), got more");
+        // 200,000 rows are read
+        fs::resize_file(fields, fs::file_size(fields) - std::string("1000,0,0,0,0,0,0,0\n").size());
+        CHECK(animation_script(args, gif).find("array T[1000]") != std::string::npos);
+        // the run CSV: 1,000,001 rows are refused, 1,000,000 read
+        write_csv(fields, fields_header, good);
+        {
+            std::ofstream out(run);
+            out << "t,theta\n";
+            for (int k = 0; k <= 1000000; ++k) out << k << ",0\n";
+        }
+        CHECK(thrown([&] { animation_script(args, gif); }) ==
+              run.string() + ": expected at most 1000000 rows (plot animate's limit), got more");
+        fs::resize_file(run, fs::file_size(run) - std::string("1000000,0\n").size());
+        CHECK_NOTHROW(animation_script(args, gif));
+    }
+}
+
+TEST_CASE("plot tip --column draws a blade's tip_uz or tip_phi, its axis and title naming it", "[plot]")
+{
+    ScratchDir scratch;
+    // two blade runs whose tips coincide to the eye: the panel below holds B's minus A's, of the column drawn
+    const std::string header = std::string(row_header()) + ",tip_uz,tip_phi";
+    const auto run = [&](const char* name, double uz, double phi) {
+        std::vector<std::vector<std::string>> rows;
+        for (int k = 0; k <= 4; ++k) {
+            std::vector<std::string> r(10, "0");
+            r[0] = std::to_string(k);
+            r[3] = std::to_string(0.5 * k);  // tip_uy
+            r.push_back(shortest(uz * k));
+            r.push_back(shortest(phi * k));
+            rows.push_back(r);
+        }
+        write_csv(scratch.dir / name, header, rows);
+        return (scratch.dir / name).string();
+    };
+    PlotArgs args;
+    args.kind = "tip";
+    args.files = {run("blade-a.csv", 1.0, 0.25), run("blade-b.csv", 1.0078125, 0.2509765625)};  // + 2^-7, 2^-10
+    args.labels = "A,B";
+    args.prefix = (scratch.dir / "tip").string();
+    args.column = "tip_uz";
+    std::string script = plot_script(args);
+    CHECK(script.find("using 't':'tip_uz' with lines") != std::string::npos);
+    CHECK(script.find("'tip_uy'") == std::string::npos);
+    CHECK(script.find("set ylabel 'tip flapwise deflection u_z(L) (m)'") != std::string::npos);
+    CHECK(script.find("set ylabel 'u_z(L) - A (m)' noenhanced") != std::string::npos);
+    CHECK(script.find("set title 'Tip flapwise deflection, blade' noenhanced") != std::string::npos);
+    CHECK(gnuplot_prints(scratch.dir, script, "print $difference2") ==
+          "0,0\n1,0.0078125\n2,0.015625\n3,0.0234375\n4,0.03125\n\n");
+    args.column = "tip_phi";
+    script = plot_script(args);
+    CHECK(script.find("set ylabel 'tip twist phi(L) (rad)'") != std::string::npos);
+    CHECK(script.find("set ylabel 'phi(L) - A (rad)' noenhanced") != std::string::npos);
+    CHECK(gnuplot_prints(scratch.dir, script, "print $difference2") ==
+          "0,0\n1,0.0009765625\n2,0.001953125\n3,0.0029296875\n4,0.00390625\n\n");
+    // a planar run has no tip_uz: refused, naming the column
+    args.files = {fixture("run_amm.csv")};
+    args.labels.clear();
+    args.column = "tip_uz";
+    CHECK(thrown([&] { plot_script(args); }) ==
+          fixture("run_amm.csv") + ": expected a run CSV for kind tip (header " + row_header() +
+              "; it needs the column tip_uz), got a first line of 10 comma-separated fields, none of them tip_uz");
+    args.column = "tip_ux";
+    CHECK(thrown([&] { plot_script(args); }) ==
+          "--column: expected one of tip_uy, tip_uz, tip_phi for kind tip, got tip_ux");
+    args.kind = "axial";
+    args.column = "tip_uz";
+    CHECK(
+        thrown([&] { plot_script(args); }) ==
+        "--column: expected no column for kind axial (only kinds tip and moment draw a column of choice), got tip_uz");
+}
+
+TEST_CASE(
+    "plot moment --column draws a blade's flapwise moment or torque, and says a blade's bending moment is edgewise",
+    "[plot]")
+{
+    ScratchDir scratch;
+    const fs::path file = scratch.dir / "blade-fields.csv";
+    // t, x, uy, ux, slope, curvature, bending_moment, axial_force, uz, phi, flap_moment, torque
+    write_csv(file, std::string(fields_header) + ",uz,phi,flap_moment,torque",
+              {{"1", "0", "0", "0", "0", "0", "-5", "0", "0", "0", "7", "0.25"},
+               {"1", "2", "0", "0", "0", "0", "-2", "0", "0", "0", "3", "0.125"},
+               {"2", "0", "0", "0", "0", "0", "-6", "0", "0", "0", "8", "0.5"},
+               {"2", "2", "0", "0", "0", "0", "-3", "0", "0", "0", "4", "0.375"}});
+    PlotArgs args;
+    args.kind = "moment";
+    args.files = {file.string()};
+    args.prefix = (scratch.dir / "moment").string();
+    args.time = "1";
+    std::string script = plot_script(args);
+    CHECK(script.find("set ylabel 'edgewise bending moment EI_{edge} kappa_c (N m)'") != std::string::npos);
+    CHECK(gnuplot_prints(scratch.dir, script, "print $moment1") == "0,-5\n2,-2\n\n");
+    args.column = "flap_moment";
+    script = plot_script(args);
+    CHECK(script.find("set ylabel 'flapwise bending moment EI_{flap} kappa_n (N m)'") != std::string::npos);
+    CHECK(script.find("set title 'Flapwise bending moment along the blade, blade at t = 1 s' noenhanced") !=
+          std::string::npos);
+    CHECK(gnuplot_prints(scratch.dir, script, "print $moment1") == "0,7\n2,3\n\n");
+    args.column = "torque";
+    args.time.clear();
+    script = plot_script(args);
+    CHECK(script.find("set ylabel 'torque GJ dphi/dx (N m)'") != std::string::npos);
+    CHECK(gnuplot_prints(scratch.dir, script, "print $moment1") == "0,0.5\n2,0.375\n\n");
+    // a beam in the plane: EI u_y'', as before
+    args.files = {fixture("fields_amm.csv")};
+    args.column.clear();
+    CHECK(plot_script(args).find("set ylabel 'bending moment M = EI d^2u_y/dx^2 (N m)'") != std::string::npos);
+    args.column = "flap_moment";
+    CHECK_THROWS_WITH(plot_script(args), Catch::Contains("it needs the column flap_moment), got a first line of 8 "
+                                                         "comma-separated fields, none of them flap_moment"));
+}
+
+TEST_CASE("plot's unknown KIND names every kind, animate too", "[plot]")
+{
+    PlotArgs args;
+    args.kind = "spectrum";
+    args.files = {fixture("modes.csv")};
+    args.prefix = "never-written";
+    CHECK(thrown([&] { plot_script(args); }) ==
+          "KIND: expected one of tip, axial, campbell, moment, animate, got spectrum");
+    CHECK(plot_kinds() == std::vector<std::string>{"tip", "axial", "campbell", "moment", "animate"});
+    args.kind = "animate";
+    args.labels = "a";
+    CHECK(thrown([&] { draw_animation(args); }) ==
+          "--labels: expected no labels for kind animate (only kinds of a line per file take them), got a");
+}
+
+TEST_CASE("campbell: overdamped rows (0 Hz) draw no line and no critical speed, whatever --modes", "[plot]")
+{
+    ScratchDir scratch;
+    // A damped blade's table at 0, 5 and 10 rad/s: a flap and an edge mode overdamped throughout (0 Hz), a flap mode
+    // overdamped at rest only, and edge and flap modes oscillating at 3 and 5 Hz. None meets 1P (f = omega / 2 pi
+    // stays below 1.6 Hz up to 10 rad/s) but a mode at 0 Hz at rest would: that crossing is spurious.
+    const fs::path file = scratch.dir / "damped-modes.csv";
+    std::ofstream table(file);
+    table << "method,ny,nx,order,drive,omega,mode,kind,rad_s,hz,dimensionless,growth,undamped_rad_s,damping_ratio,"
+             "label,mac\n";
+    for (const int omega : {0, 5, 10}) {
+        const std::vector<std::pair<std::string, double>> modes = {
+            {"flap 1", 0}, {"edge 1", 0}, {"flap 2", omega == 0 ? 0.0 : 4.0}, {"edge 2", 3.0}, {"flap 3", 5.0}};
+        for (std::size_t m = 0; m < modes.size(); ++m) {
+            const auto& [label, hz] = modes[m];
+            table << "fem,8,0,first,prescribed," << omega << ',' << m + 1 << ',' << label.substr(0, label.find(' '))
+                  << ',' << 2 * M_PI * hz << ',' << hz << ",1,-1," << 2 * M_PI * hz << ",1.5," << label << ",1\n";
+        }
+    }
+    table.close();
+    PlotArgs args;
+    args.kind = "campbell";
+    args.files = {file.string()};
+    args.prefix = (scratch.dir / "campbell").string();
+    args.harmonics = "1";
+    std::string script = plot_script(args);
+    std::vector<std::string> titles;
+    for (const DrawnLine& l : drawn_lines(script)) titles.push_back(l.title);
+    CHECK(titles == std::vector<std::string>{"edge 2", "flap 3", "flap 2"});  // by their first row drawn
+    CHECK(script.find("$critical") == std::string::npos);
+    // flap 2's line starts where it oscillates: its row at rest, 0 Hz, is not in its datablock
+    CHECK(gnuplot_prints(scratch.dir, script, "print $mode1\nprint $mode3") == "0,3\n5,3\n10,3\n\n5,4\n10,4\n\n");
+    // --modes 2: the two lowest that oscillate
+    args.modes = "2";
+    titles.clear();
+    for (const DrawnLine& l : drawn_lines(plot_script(args))) titles.push_back(l.title);
+    CHECK(titles == std::vector<std::string>{"edge 2", "flap 2"});
+    // a mode that begins overdamped (labelled so, as a table that names the kind labels it) and oscillates later:
+    // not among the default kinds; --kinds overdamped draws it where it oscillates
+    args.modes.clear();
+    std::ofstream(file, std::ios::app) << "fem,8,0,first,prescribed,0,6,overdamped,0,0,0,-1,1,1,overdamped 1,nan\n"
+                                          "fem,8,0,first,prescribed,5,6,flap,12.6,2,1,-1,13,0.3,overdamped 1,0.9\n"
+                                          "fem,8,0,first,prescribed,10,6,flap,18.8,3,1,-1,19,0.3,overdamped 1,0.9\n";
+    titles.clear();
+    for (const DrawnLine& l : drawn_lines(plot_script(args))) titles.push_back(l.title);
+    CHECK(titles == std::vector<std::string>{"edge 2", "flap 3", "flap 2"});
+    args.kinds = "overdamped";
+    script = plot_script(args);
+    titles.clear();
+    for (const DrawnLine& l : drawn_lines(script)) titles.push_back(l.title);
+    CHECK(titles == std::vector<std::string>{"overdamped 1"});
+    CHECK(gnuplot_prints(scratch.dir, script, "print $mode1") == "5,2\n10,3\n\n");
+    args.kinds.clear();
+    // a file of overdamped rows alone has nothing to draw
+    args.modes.clear();
+    args.kinds = "edge";
+    std::ofstream(file) << "method,ny,nx,order,drive,omega,mode,kind,rad_s,hz,dimensionless,growth,undamped_rad_s,"
+                           "damping_ratio,label,mac\nfem,8,0,first,prescribed,0,1,edge,0,0,0,-1,1,1.5,edge 1,1\n";
+    CHECK_THROWS_WITH(plot_script(args), Catch::Contains("damped-modes.csv: expected rows of kind 'edge' with a "
+                                                         "frequency above 0"));
+}
+
+TEST_CASE("campbell: every line its own colour however many, 1P, 2P and 3P each their own look and name", "[plot]")
+{
+    ScratchDir scratch;
+    const fs::path file = scratch.dir / "many-modes.csv";
+    std::ofstream table(file);
+    table << "method,ny,nx,order,drive,omega,mode,kind,rad_s,hz,dimensionless,growth,undamped_rad_s,damping_ratio,"
+             "label,mac\n";
+    constexpr std::size_t modes = 60;
+    for (const int omega : {0, 30})
+        for (std::size_t m = 1; m <= modes; ++m)
+            table << "fem,8,0,first,prescribed," << omega << ',' << m << ",bending," << 2 * M_PI * m << ',' << m
+                  << ",1,0," << 2 * M_PI * m << ",0,bending " << m << ",1\n";
+    table.close();
+    PlotArgs args;
+    args.kind = "campbell";
+    args.files = {file.string()};
+    args.prefix = (scratch.dir / "campbell").string();
+    const std::string script = plot_script(args);
+    const std::vector<DrawnLine> lines = drawn_lines(script);
+    REQUIRE(lines.size() == modes);
+    std::set<std::string> colours;
+    for (const DrawnLine& l : lines) {
+        colours.insert(l.colour);
+        // none of them the excitation lines' black and greys nor the critical speeds' red
+        CHECK(l.colour.size() == 7);
+        CHECK(l.colour != "#ff0000");
+        const unsigned rgb = std::stoul(l.colour.substr(1), nullptr, 16);
+        const unsigned r = rgb >> 16, g = rgb >> 8 & 0xff, b = rgb & 0xff;
+        CHECK(std::max({r, g, b}) - std::min({r, g, b}) > 40);  // not a grey
+    }
+    CHECK(colours.size() == modes);
+    // the excitation lines: three looks (dash pattern and grey), three names at their ends
+    std::set<std::string> looks, dashes;
+    for (const std::string n : {"", "2*", "3*"}) {
+        const std::size_t start = script.find("  " + n + "x/(2*pi) with lines ");
+        REQUIRE(start != std::string::npos);
+        const std::size_t from = script.find("with lines ", start) + 11;
+        looks.insert(script.substr(from, script.find(" title", from) - from));
+        const std::size_t dash = script.find(" dt ", from) + 4;
+        dashes.insert(script.substr(dash, script.find(' ', dash) - dash));
+    }
+    CHECK(looks.size() == 3);
+    CHECK(dashes.size() == 3);  // told apart in black and white too
+    CHECK(looks.count("lw 2 dt (18,6) lc rgb 'black'") == 1);
+    for (const char* name : {"1P", "2P", "3P"}) {
+        INFO(name);
+        CHECK(count(script, std::string("set label '") + name + "' at ") == 1);
+    }
+    // 1P ends at the highest rate inside the figure (30 / 2 pi Hz, far below the modes' 60 Hz)
+    CHECK(script.find("set label '1P' at 30," + shortest(30 / (2 * M_PI)) + " right") != std::string::npos);
+}
+
+TEST_CASE("a long file name is cut in its middle in the legend and the title, so the axes keep their room", "[plot]")
+{
+    ScratchDir scratch;
+    // a tabulated blade's variant name, 190 characters, as a run's file name
+    std::string stem = "fem_nx0_ny8_nz8_nt2_prescribed_first_profile1000";
+    while (stem.size() < 190) {
+        stem += 'x';  // appended piece by piece: GCC 12 warns falsely (-Wrestrict) about "x" + string
+        stem += std::to_string(stem.size());
+    }
+    stem.resize(190);
+    fs::copy_file(fixture("run_amm.csv"), scratch.dir / (stem + ".csv"));
+    fs::copy_file(fixture("run_fem.csv"), scratch.dir / (stem + "-b.csv"));
+    PlotArgs args;
+    args.kind = "tip";
+    args.files = {(scratch.dir / (stem + ".csv")).string(), (scratch.dir / (stem + "-b.csv")).string()};
+    args.prefix = (scratch.dir / "tip").string();
+    const std::string script = plot_script(args);
+    // the legend entries: 60 characters, the start and the end of the name kept
+    const std::string first = stem.substr(0, 28) + "..." + stem.substr(190 - 29);
+    CHECK(first.size() == 60);
+    CHECK(script.find("title '" + first + "' noenhanced") != std::string::npos);
+    CHECK(script.find("title '" + stem.substr(0, 28) + "..." + (stem + "-b").substr(192 - 29) + "' noenhanced") !=
+          std::string::npos);
+    // the title: the kind's, then the shared name cut to 80 characters
+    const std::string title = "Tip deflection, " + stem.substr(0, 38) + "..." + stem.substr(190 - 39);
+    CHECK(script.find("set title '" + title + "' noenhanced") != std::string::npos);
+    // so the panels' right edge stays where a 60-character entry puts it
+    CHECK(script.find("set rmargin at screen 0.550") != std::string::npos);
 }

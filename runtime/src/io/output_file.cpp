@@ -132,6 +132,10 @@ void check_outputs(const std::vector<NamedPath>& inputs, const std::vector<Named
     for (std::size_t k = 0; k < outputs.size(); ++k) {
         const NamedPath& o = outputs[k];
         if (o.path.empty()) continue;
+        // The one check of text handed on (printable.hpp), for every writer: a name with a newline becomes a line
+        // of its own in a gnuplot script (one that starts with '!' runs in the shell), and a name in a message or a
+        // listing must show what it is.
+        check_handed_text<OutputRefused>(o.name, o.path, "a file name");
         if (const std::string kind = not_a_regular_file(o.path); !kind.empty())
             throw OutputRefused(o.name + ": expected a regular file or the name of a new one, got " + quoted(o.path) +
                                 ", " + kind);

@@ -38,9 +38,11 @@ struct Scene;
 /// ("the scene's motion.file", "the scene's beam.profile").
 std::vector<NamedPath> scene_inputs(const Scene& scene);
 
-/// Checks a command's outputs before anything is computed or written: each must be a regular file or a new file
-/// in a folder that exists, neither a symbolic link nor a file without its owner's write bit, and none may be one of
-/// the inputs or another of the outputs (compared by same_file, so ./x/../scene.toml and a hard link are the scene).
+/// Checks a command's outputs before anything is computed or written: each must be a name without control or format
+/// characters (check_handed_text, the one check of text handed to another program such as gnuplot), a regular file
+/// or a new file in a folder that exists, neither a symbolic link nor a file without its owner's write bit, and none
+/// may be one of the inputs or another of the outputs (compared by same_file, so ./x/../scene.toml and a hard link
+/// are the scene).
 /// Throws OutputRefused: "OPTION: expected ..., got ..." or "OPTION: PATH is ...".
 /// Outputs with an empty path are skipped (an output not asked for).
 void check_outputs(const std::vector<NamedPath>& inputs, const std::vector<NamedPath>& outputs);

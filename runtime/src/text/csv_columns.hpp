@@ -35,17 +35,15 @@ public:
     CsvColumns(std::string file, std::string_view header) : file_(std::move(file)), names_(csv_fields(header)) {}
 
     /// The position of column name; throws CsvColumnError "FILE: expected a column NAME in its header (what), got
-    /// the header HEADER" when the header has none.
+    /// none among its N columns" when the header has none. The header itself is not quoted: a message quotes no
+    /// file's content (the file may be one the user was not meant to read, named by mistake or by someone else).
     std::size_t at(std::string_view name, std::string_view what = {}) const
     {
         for (std::size_t i = 0; i < names_.size(); ++i)
             if (names_[i] == name) return i;
-        std::string header;
-        for (const std::string& n : names_) header += (header.empty() ? "" : ",") + n;
-        if (header.size() > 200) header = header.substr(0, 200) + "...";
         throw CsvColumnError(file_ + ": expected a column " + std::string(name) + " in its header" +
-                             (what.empty() ? std::string() : " (" + std::string(what) + ")") + ", got the header '" +
-                             header + "'");
+                             (what.empty() ? std::string() : " (" + std::string(what) + ")") + ", got none among its " +
+                             std::to_string(names_.size()) + " columns");
     }
     /// Whether the header has column name.
     bool has(std::string_view name) const

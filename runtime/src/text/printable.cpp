@@ -1,5 +1,5 @@
 // printable (printable.hpp): user text escaped, as the Python module's hubbeam.printable does, so that a
-// message quoting it cannot drive the terminal.
+// message quoting it cannot drive the terminal; and unsafe_character, which finds what printable would escape.
 #include "text/printable.hpp"
 
 #include <cstdio>
@@ -58,6 +58,17 @@ bool needs_escape(char32_t c)
     return false;
 }
 
+/// A code point as Python's repr writes it, as hubbeam.printable does: \x1b, \u202e, \U000e0001.
+std::string escaped(char32_t cp)
+{
+    char escape[16];
+    const auto u = static_cast<unsigned long>(cp);
+    if (u < 0x100) std::snprintf(escape, sizeof escape, "\\x%02lx", u);
+    else if (u < 0x10000) std::snprintf(escape, sizeof escape, "\\u%04lx", u);
+    else std::snprintf(escape, sizeof escape, "\\U%08lx", u);
+    return escape;
+}
+
 }  // namespace
 
 TextChar text_char(std::string_view text, std::size_t i)
@@ -70,32 +81,34 @@ TextChar text_char(std::string_view text, std::size_t i)
 std::string printable(std::string_view text, std::size_t cap)
 {
     std::string out;
-    char escape[16];
     for (std::size_t i = 0; i < text.size();) {
         if (out.size() >= cap) return out + "...";
         const auto [cp, n] = decode_utf8(text, i);
         if (n == 0) {  // not UTF-8: the byte itself
-            std::snprintf(escape, sizeof escape, "\\x%02x", static_cast<unsigned>(static_cast<unsigned char>(text[i])));
-            out += escape;
+            out += escaped(static_cast<unsigned char>(text[i]));
             ++i;
             continue;
         }
-        if (!needs_escape(cp))
-            out.append(text.substr(i, n));
-        else {
-            const auto u = static_cast<unsigned long>(cp);
-            // The forms of Python's repr, as hubbeam.printable writes them: \x1b, \u202e, \U000e0001.
-            if (u < 0x100)
-                std::snprintf(escape, sizeof escape, "\\x%02lx", u);
-            else if (u < 0x10000)
-                std::snprintf(escape, sizeof escape, "\\u%04lx", u);
-            else
-                std::snprintf(escape, sizeof escape, "\\U%08lx", u);
-            out += escape;
-        }
+        if (!needs_escape(cp)) out.append(text.substr(i, n));
+        else out += escaped(cp);
         i += n;
     }
     return out;
+}
+
+std::string unsafe_character(std::string_view text)
+{
+    for (std::size_t i = 0; i < text.size();) {
+        const auto [cp, n] = decode_utf8(text, i);
+        const std::string at = " at byte " + std::to_string(i + 1);
+        if (n == 0) return "a byte that is not UTF-8 (" + escaped(static_cast<unsigned char>(text[i])) + ")" + at;
+        if (needs_escape(cp))
+            return std::string(cp < 0x20 || (cp >= 0x7f && cp <= 0x9f) ? "a control character ("
+                                                                       : "an invisible or format character (") +
+                   escaped(cp) + ")" + at;
+        i += n;
+    }
+    return {};
 }
 
 }  // namespace hubbeam

@@ -1,5 +1,6 @@
 // printable: user text made safe to echo on a terminal, for every message that quotes a value, a file name or an
-// option given by the user.
+// option given by the user; and the one check of text handed to another program (a gnuplot script's strings, an
+// output's name), which refuses what printable would have to escape.
 #pragma once
 
 #include <cstddef>
@@ -23,5 +24,21 @@ struct TextChar {
     bool escaped;
 };
 TextChar text_char(std::string_view text, std::size_t i);
+
+/// Why text may not be handed to another program as it is (a string in a gnuplot script, a file name it opens, an
+/// output's name), or empty when it may: its first character that printable() would escape, as "a control character
+/// (\x0a) at byte 3". Such a character could end a script's line and start another (gnuplot runs a line that begins
+/// with '!' in the shell), or show a reader of a name or a script something other than what is there. The answer
+/// quotes no other byte of text, so that a message may give it for text read from a file.
+std::string unsafe_character(std::string_view text);
+
+/// The one check of text handed to another program and of an output's name: throws Error("NAME: expected WHAT
+/// without control or format characters, got ...") naming unsafe_character(text) when it finds one.
+template <class Error>
+void check_handed_text(const std::string& name, std::string_view text, const std::string& what)
+{
+    if (const std::string why = unsafe_character(text); !why.empty())
+        throw Error(name + ": expected " + what + " without control or format characters, got " + why);
+}
 
 }  // namespace hubbeam
