@@ -426,6 +426,23 @@ class InputsTest(unittest.TestCase):
                 self.assertEqual(lines_of(os.path.join(d, name)), content, name)
             self.assertEqual(leftovers(d), [])
 
+    def test_a_symbolic_link_as_the_series_folder_is_refused_before_the_table_is_written(self):
+        with tempfile.TemporaryDirectory() as d:
+            spec = write(os.path.join(d, "s.toml"), f'scene = "{SPINUP}"\nkeep = ["tip_series"]\n[set]\n'
+                                                    f'"output.t_end" = 0.1\n')
+            elsewhere = os.path.join(d, "elsewhere")
+            os.mkdir(elsewhere)
+            # A killed writer's leftover in the folder the link names: not the sweep's to remove through a link.
+            planted = write(os.path.join(elsewhere, ".x.npy.tmp-999999999"), "another user's file\n")
+            os.symlink(elsewhere, os.path.join(d, "t.series"))
+            code, err = cli_all([spec, "-o", os.path.join(d, "t.csv")])[0]
+            self.assertEqual(code, 2, err)
+            self.assertEqual(len(err.strip().splitlines()), 1, err)
+            self.assertIn("t.series: expected the table's folder of tip series, got a symbolic link", err)
+            self.assertFalse(os.path.exists(os.path.join(d, "t.csv")))  # no table, not even its header
+            self.assertEqual(os.listdir(elsewhere), [os.path.basename(planted)])
+            self.assertEqual(leftovers(d), [])
+
     def test_a_symbolic_link_as_the_table_is_never_written_through(self):
         with tempfile.TemporaryDirectory() as d:
             spec = write(os.path.join(d, "s.toml"), f'scene = "{SPINUP}"\n[set]\n"output.t_end" = 0.1\n')

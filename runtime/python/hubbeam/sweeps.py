@@ -849,8 +849,15 @@ def run_sweep(spec: str | os.PathLike | Mapping[str, Any], *, output: str | None
         shown = _printable(path)
         folder = os.path.dirname(os.path.abspath(path))
         series_folder = _series_dir(os.path.abspath(path))
+        # A series folder that is a link or no folder is refused before anything is written or removed (the table's
+        # header included), not at the first point's series; one the sweep keeps no series in is left alone.
+        if os.path.islink(series_folder) or (os.path.lexists(series_folder) and not os.path.isdir(series_folder)):
+            if "tip_series" in sweep["keep"]:
+                raise SweepError(f"{_printable(series_folder)}: expected the table's folder of tip series, got a "
+                                 f"symbolic link or a file (hubbeam does not write through a link)")
+        else:
+            _clean_leftovers(series_folder, None)
         _clean_leftovers(folder, os.path.basename(path))  # what a killed writer of this table left
-        _clean_leftovers(series_folder, None)
         keys = list(dict.fromkeys(k for p in points for k in p))
         header = _columns(keys, sweep["keep"], sweep["frequencies"])
         rows, good_end, cut = _read_table(path, header) if resume else ([], 0, False)
