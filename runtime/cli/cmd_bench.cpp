@@ -11,6 +11,7 @@
 #include "bench.hpp"
 #include "command.hpp"
 #include "io/output_file.hpp"
+#include "plot.hpp"
 
 namespace hubbeam::cli {
 
@@ -47,6 +48,7 @@ int bench(const std::string& scene_path, const BenchArgs& args)
     try {
         scene = load_scene(scene_path, {});
         options = parse_bench_options(args, scene);
+        if (!options.plot.empty()) check_prefix("--plot", options.plot);  // before the bench runs, not at drawing
         check_outputs(scene_inputs(scene), bench_outputs(options));
     } catch (const OptionError& e) {  // BenchOptionError, OutputRefused
         std::cerr << e.what() << "\n";

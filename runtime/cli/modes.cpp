@@ -123,8 +123,10 @@ ModesOptions parse_modes_options(const ModesArgs& args, const Scene& scene)
         if (!file.empty())
             outputs.push_back(
                 {metadata_path(file), (file == o.output ? "-o" : "--critical") + std::string("'s metadata")});
-    if (!o.plot.empty())
+    if (!o.plot.empty()) {
+        check_prefix("--plot", o.plot);  // before the table is computed and written, not when the figure is drawn
         for (const char* ext : {".png", ".svg", ".gp"}) outputs.push_back({o.plot + ext, "--plot"});
+    }
     check_outputs(scene_inputs(scene), outputs);
     return o;
 }
@@ -173,6 +175,7 @@ private:
     std::ostream& out_;
     bool damped_;  // damping adds the undamped frequency |lambda| and the damping ratio to the printed table
     std::unique_ptr<CsvWriter> csv_, critical_csv_;
+    std::unique_ptr<MetadataFile> csv_metadata_, critical_metadata_;  // opened with their CSVs, before the modes
     long rows_ = 0, crossings_ = 0;
     std::string harmonics_;               // as typed for --plot, and for the table's heading
     std::string speeds_text_, warnings_;  // after the table: each variant's critical speeds and doubtful pairings
@@ -183,8 +186,19 @@ private:
 ModesReport::ModesReport(const Scene& scene, const ModesOptions& o, std::ostream& out)
     : scene_(scene), o_(o), out_(out), damped_(dissipates(scene.key()) || scene.control)
 {
-    if (!o.output.empty()) csv_ = std::make_unique<CsvWriter>(o.output, modes_header());
-    if (!o.critical.empty()) critical_csv_ = std::make_unique<CsvWriter>(o.critical, critical_header());
+    try {
+        if (!o.output.empty()) {
+            csv_ = std::make_unique<CsvWriter>(o.output, modes_header());
+            csv_metadata_ = std::make_unique<MetadataFile>(o.output);
+        }
+        if (!o.critical.empty()) {
+            critical_csv_ = std::make_unique<CsvWriter>(o.critical, critical_header());
+            critical_metadata_ = std::make_unique<MetadataFile>(o.critical);
+        }
+    } catch (const std::exception& e) {  // an output refused or that cannot be created: bad input, nothing replaced
+        discard();
+        throw OutputRefused(e.what());
+    }
     for (const int n : o.harmonics) {
         if (!harmonics_.empty()) harmonics_ += ',';
         harmonics_ += std::to_string(n);
@@ -280,7 +294,8 @@ void ModesReport::write_metadata_files() const
     std::vector<std::string> methods;
     for (const Method m : o_.methods) methods.push_back(to_string(m));
     std::vector<double> ny(o_.ny.begin(), o_.ny.end()), harmonics(o_.harmonics.begin(), o_.harmonics.end());
-    for (const CsvWriter* file : {csv_.get(), critical_csv_.get()}) {
+    for (const auto& [file, metadata] : {std::pair{csv_.get(), csv_metadata_.get()},
+                                         std::pair{critical_csv_.get(), critical_metadata_.get()}}) {
         if (!file) continue;
         JsonObject m = scene_metadata("modes", scene_);
         m.text("output", std::filesystem::path(file->path()).filename().string())
@@ -291,8 +306,7 @@ void ModesReport::write_metadata_files() const
             .numbers("ny", ny)
             .numbers("harmonics", harmonics)
             .number("wall_seconds", wall);
-        if (const std::string why = write_metadata(metadata_path(file->path()), m.str() + "\n"); !why.empty())
-            throw std::runtime_error(why);
+        if (const std::string why = metadata->write(m.str() + "\n"); !why.empty()) throw std::runtime_error(why);
     }
 }
 
@@ -390,16 +404,33 @@ std::string state_space_npz(const StateSpace& sys)
                         {"outputs", npy_strings(sys.outputs)}});
 }
 
-/// The systems' CSVs and archives, put in place together (commit_together) once all are written: a full disk leaves
-/// the old set whole.
-void write_state_spaces(const LinearizeFiles& files, const std::vector<const StateSpace*>& systems)
+/// linearize's files and their metadata, opened (locks taken, temporary files made) before anything is computed;
+/// one that is refused or cannot be created is bad input (OutputRefused), and nothing is written.
+struct LinearizeOutputs {
+    std::vector<std::unique_ptr<OutputFile>> files;  // as LinearizeFiles::outputs
+    std::unique_ptr<MetadataFile> metadata;
+};
+LinearizeOutputs open_linearize_outputs(const LinearizeFiles& files, const std::string& prefix)
 {
-    std::vector<std::unique_ptr<OutputFile>> written;
+    LinearizeOutputs out;
+    try {
+        for (const NamedPath& f : files.outputs) out.files.push_back(std::make_unique<OutputFile>(f.path));
+        out.metadata = std::make_unique<MetadataFile>(prefix);
+    } catch (const std::exception& e) {  // those opened already are discarded with out
+        throw OutputRefused(e.what());
+    }
+    return out;
+}
+
+/// The systems' CSVs and archives into written (open_linearize_outputs), put in place together (commit_together) once
+/// all are written: a full disk leaves the old set whole.
+void write_state_spaces(const std::vector<std::unique_ptr<OutputFile>>& written, const LinearizeFiles& files,
+                        const std::vector<const StateSpace*>& systems)
+{
     for (std::size_t f = 0; f < files.outputs.size(); ++f) {
-        written.push_back(std::make_unique<OutputFile>(files.outputs[f].path));
         const std::string bytes =
             f < files.csv_count ? matrix_csv(*systems[f / 4], f % 4) : state_space_npz(*systems[f - files.csv_count]);
-        (void)written.back()->write(bytes);  // a failed write is reported by commit_together, before any rename
+        (void)written[f]->write(bytes);  // a failed write is reported by commit_together, before any rename
     }
     std::vector<OutputFile*> set;
     for (const auto& f : written) set.push_back(f.get());
@@ -407,7 +438,7 @@ void write_state_spaces(const LinearizeFiles& files, const std::vector<const Sta
 }
 
 /// linearize's metadata beside its files: the scene, the spin, the model's source and the system's names.
-void write_linearize_metadata(const std::string& metadata, const Scene& scene, const LinearizeFiles& files,
+void write_linearize_metadata(MetadataFile& metadata, const Scene& scene, const LinearizeFiles& files,
                               double omega, const SteadySpin& steady, const Model& model, const StateSpace& ss,
                               std::chrono::steady_clock::time_point start)
 {
@@ -422,7 +453,7 @@ void write_linearize_metadata(const std::string& metadata, const Scene& scene, c
         .texts("inputs", ss.inputs)
         .texts("outputs", ss.outputs)
         .number("wall_seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-    if (const std::string why = write_metadata(metadata, m.str() + "\n"); !why.empty()) throw std::runtime_error(why);
+    if (const std::string why = metadata.write(m.str() + "\n"); !why.empty()) throw std::runtime_error(why);
 }
 
 /// What linearize reports: the variant, the steady state, the system's sizes and names, and where its files are.
@@ -464,6 +495,7 @@ void run_linearize(const Scene& scene, double omega, const std::string& prefix, 
     }());  // before anything is computed
     const auto start = std::chrono::steady_clock::now();
     check_steady(scene, {omega});
+    const LinearizeOutputs outputs = open_linearize_outputs(files, prefix);
     const VariantKey key = scene.key();
     const std::unique_ptr<Model> model = make_model(key, scene.parameters, scene.source);
     const SteadySpin steady = steady_spin(*model, omega, held_angle(scene));
@@ -471,8 +503,8 @@ void run_linearize(const Scene& scene, double omega, const std::string& prefix, 
     const StateSpace ss = scene.control ? closed_loop(open, *scene.control) : open;
     std::vector<const StateSpace*> systems = {&ss};
     if (scene.control) systems.push_back(&open);
-    write_state_spaces(files, systems);
-    write_linearize_metadata(metadata, scene, files, omega, steady, *model, ss, start);
+    write_state_spaces(outputs.files, files, systems);
+    write_linearize_metadata(*outputs.metadata, scene, files, omega, steady, *model, ss, start);
     print_linearization(out, scene, *model, steady, omega, ss, prefix, metadata);
 }
 

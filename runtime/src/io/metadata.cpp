@@ -219,28 +219,6 @@ std::string run_metadata(const Scene& scene, const RunSummary& summary, const st
     return out.str() + "\n";
 }
 
-namespace {
-
-/// json into file and file in place: "" or one line naming path.
-std::string put(OutputFile& file, const std::string& path, const std::string& json)
-{
-    if (const int error = file.write(json); error != 0) return path + ": cannot write: " + std::strerror(error);
-    if (const std::string why = file.commit(); !why.empty()) return path + ": " + why;
-    return {};
-}
-
-}  // namespace
-
-std::string write_metadata(const std::string& path, const std::string& json)
-{
-    try {
-        OutputFile file(path);
-        return put(file, path, json);
-    } catch (const std::exception& e) {
-        return e.what();
-    }
-}
-
 MetadataFile::MetadataFile(const std::string& output)
     : path_(metadata_path(output)), file_(std::make_unique<OutputFile>(path_))
 {
@@ -251,8 +229,10 @@ MetadataFile::~MetadataFile() = default;
 std::string MetadataFile::write(const std::string& json)
 {
     if (!file_) throw std::logic_error("MetadataFile::write called twice");
-    const std::string why = put(*file_, path_, json);
-    file_.reset();  // removes the temporary file if the commit failed
+    std::string why;
+    if (const int error = file_->write(json); error != 0) why = path_ + ": cannot write: " + std::strerror(error);
+    else if (const std::string failed = file_->commit(); !failed.empty()) why = path_ + ": " + failed;
+    file_.reset();  // removes the temporary file if the write or the commit failed
     return why;
 }
 

@@ -55,12 +55,9 @@ std::string run_metadata(const Scene& scene, const RunSummary& summary, const st
 /// JSON of summary's fields as the Python module's Result holds them, and the summary's text.
 std::string summary_json(const RunSummary& summary, const Scene& scene);
 
-/// Writes json to path atomically (OutputFile: beside it, renamed over it); returns "" or one line saying what
-/// failed.
-std::string write_metadata(const std::string& path, const std::string& json);
-
 class OutputFile;
-/// The metadata file of an output, opened with the output itself, before anything is computed: its lock is taken
+/// The metadata file of an output, written atomically (OutputFile: beside it, renamed over it) and opened with the
+/// output itself, before anything is computed: its lock is taken
 /// and its temporary file made at once, so a sidecar that cannot be written (a planted link as its lock, another
 /// hubbeam writing it) refuses the command up front, never after the run has put a new output beside an old sidecar.
 class MetadataFile {
