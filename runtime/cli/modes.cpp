@@ -44,14 +44,14 @@ double held_angle(const Scene& scene)
     return scene.motion.initial_theta();
 }
 
-/// Refuses a spin rate for a scene with gravity: its beam's weight turns with the hub, so there is no steady spin.
+/// Refuses, before anything is computed, a spin rate about which the scene has no steady state (unsteady_spin).
 void check_steady(const Scene& scene, const std::vector<double>& omegas)
 {
     for (const double omega : omegas)
-        if (scene.parameters.g != 0.0 && omega != 0.0)
+        if (!unsteady_spin(scene.key(), scene.parameters.packed(), omega).empty())
             throw ModesOptionError(
-                "--omega: with gravity only 0 (the hub held; at a spin rate the motion is periodic, "
-                "not steady), got " +
+                "--omega: with gravity in the plane of rotation only 0 (the hub held; at a spin rate the motion is "
+                "periodic, not steady), got " +
                 shortest(omega));
 }
 

@@ -166,6 +166,52 @@ TEST_CASE("a blade file's flap and edge mass moments are the section's about the
     }
 }
 
+TEST_CASE("the library refuses a spin about which weight in the plane of rotation allows no steady state",
+          "[out_of_plane][modes]")
+{
+    // The wind turbine's blade: its weight in a vertical plane of rotation turns with it, so a spin at a rate is
+    // periodic (every caller of the library, Python's hubbeam.modes too, meets the refusal, not the command line
+    // alone); held (Omega = 0) it has its static equilibrium.
+    const Scene s = load_scene(std::string(HUBBEAM_SOURCE_DIR) + "/cases/wind_turbine_blade.toml");
+    const auto model = make_model(s.key(), s.parameters, ModelSource::assembled);
+    CHECK_THROWS_WITH(steady_spin(*model, 3.0), Catch::Contains("not steady"));
+    CHECK_FALSE(unsteady_spin(s.key(), s.parameters.packed(), 3.0).empty());
+    CHECK(steady_spin(*model, 0.0).held);
+    // Weight along the spin axis does not turn: a blade holds its sag at any spin.
+    Parameters p = unit_blade();
+    p.g_axis = 0.2;
+    const VariantKey key = blade_key(Method::fem, 4, 0, {.gravity = true});
+    const auto axial_weight = make_model(key, p, ModelSource::assembled);
+    CHECK(unsteady_spin(key, p.packed(), 3.0).empty());
+    const SteadySpin spun = steady_spin(*axial_weight, 3.0);
+    CHECK_FALSE(spun.held);
+    CHECK(spun.omega == 3.0);
+}
+
+TEST_CASE("a blade's in-plane modes are edge modes whatever takes it out of the plane: twist alone, a pitch alone",
+          "[out_of_plane][modes]")
+{
+    // Lead-lag is "edge" on a blade (docs/cli.md's kinds), "bending" only on a planar beam; a twist field without a
+    // flapwise one, or a pitch with neither, makes a blade as much as flap does.
+    Parameters p = unit_blade();
+    p.pitch = 0.3;
+    for (const auto& [nz, nt, extras] : {std::tuple{0, 4, Extras{}}, {0, 0, Extras{.pitch = true}}, {4, 0, Extras{}}}) {
+        VariantKey key = blade_key(Method::fem, 4, nt, extras);
+        key.nz = nz;
+        const auto model = make_model(key, p, ModelSource::assembled);
+        INFO("nz " << nz << ", nt " << nt << ", pitch " << extras.pitch);
+        const std::vector<double> edge = frequencies(*model, 0.0, "edge"), bending = frequencies(*model, 0.0, "bending");
+        CHECK(edge.size() >= 2);
+        CHECK(bending.empty());
+    }
+    // The planar beam keeps "bending".
+    VariantKey planar_key = blade_key(Method::fem, 4);
+    planar_key.nz = 0;
+    const auto planar = make_model(planar_key, unit_blade(), ModelSource::assembled);
+    CHECK(frequencies(*planar, 0.0, "edge").empty());
+    CHECK(frequencies(*planar, 0.0, "bending").size() >= 2);
+}
+
 TEST_CASE("a pitch of 90 degrees exchanges the flapwise and the edgewise stiffness", "[out_of_plane]")
 {
     Parameters flat = unit_blade();

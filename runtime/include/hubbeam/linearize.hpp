@@ -25,6 +25,11 @@ struct SteadySpin {
     /// u.tau is the torque that holds it there.
     bool held = false;
 };
+/// Why a spin at omega is no steady state of variant key at the physical parameters p (Parameters::packed), or empty
+/// when it is one: weight in the plane of rotation turns with the beam, so under it only omega = 0 (the hub held) is
+/// steady, and the motion at a spin rate is periodic; weight along the spin axis does not turn, and a blade holds its
+/// sag at any spin. The one rule steady_spin and the command line's early check of --omega apply.
+std::string unsteady_spin(const VariantKey& key, const std::vector<double>& p, double omega);
 /// The steady spin at omega; a gravity variant has one at omega = 0 only (held_equilibrium at theta) and throws
 /// std::invalid_argument for a spin rate: its motion is then periodic, not steady. theta is read by gravity alone.
 SteadySpin steady_spin(const Model& model, double omega, double theta = 0.0);

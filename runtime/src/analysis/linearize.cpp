@@ -20,20 +20,31 @@
 
 namespace hubbeam {
 
+namespace {
+
+/// Whether the variant's weight turns with the beam (in the plane of rotation): then only the held hub is steady.
+/// Along the spin axis it does not (section 12): the steady spin holds the sag, found on every elastic row.
+bool weight_turns_with_spin(const VariantKey& key, const std::vector<double>& p)
+{
+    return potential_reads_angle(key) && (p.empty() || p[index(Param::g)] != 0.0 || !key.out_of_plane());
+}
+
+}  // namespace
+
+std::string unsteady_spin(const VariantKey& key, const std::vector<double>& p, double omega)
+{
+    if (omega == 0.0 || !weight_turns_with_spin(key, p)) return {};
+    return "with gravity in the plane of rotation a spin at a constant rate is not steady (the beam's weight turns "
+           "with it: the motion is periodic); linearize about the held hub, Omega = 0";
+}
+
 SteadySpin steady_spin(const Model& model, double omega, double theta)
 {
     const VariantKey& key = model.key();
-    // Weight in the plane of rotation turns with the beam: no spin but 0 is steady. Along the spin axis it does not
-    // (section 12): the steady spin then holds the sag, found on every elastic row below.
     const std::vector<double>& p = model.parameters();
-    const bool weight_in_plane = p.empty() || p[index(Param::g)] != 0.0 || !key.out_of_plane();
-    if (potential_reads_angle(key) && (weight_in_plane || omega == 0.0)) {
-        if (omega != 0.0)
-            throw std::invalid_argument(
-                "with gravity a spin at a constant rate is not steady (the beam's weight turns "
-                "with it: the motion is periodic); linearize about the held hub, Omega = 0");
+    if (const std::string why = unsteady_spin(key, p, omega); !why.empty()) throw std::invalid_argument(why);
+    if (potential_reads_angle(key) && (omega == 0.0 || weight_turns_with_spin(key, p)))
         return held_equilibrium(model, theta);
-    }
     // Newton on the axial rows with the bending fields straight (the straight beam is an equilibrium by symmetry);
     // out of the plane a pitch, pre-twist or precone bends and twists the steady beam (coning): on every elastic row.
     const CoordinateField& axial = *model.coordinates().find(FieldKind::axial);
@@ -272,8 +283,9 @@ std::vector<double> energy_by_field(const Model& model, const Eigen::MatrixXd& M
 constexpr const char* overdamped_kind = "overdamped";
 
 /// A mode's kind (the modes CSV's column) when most of its kinetic energy is in a field of this kind: a planar
-/// beam's in-plane modes are "bending", a beam that leaves the plane has "edge" (lead-lag) and "flap" modes.
-const char* mode_kind(FieldKind kind, bool out_of_plane)
+/// beam's in-plane modes are "bending", a beam that leaves the plane (VariantKey::out_of_plane: flap or twist
+/// coordinates, a pitch, a pre-twist or a precone) has "edge" (lead-lag) and "flap" modes.
+const char* mode_kind(FieldKind kind, const VariantKey& key)
 {
     switch (kind) {
         case FieldKind::hub_angle:
@@ -287,7 +299,7 @@ const char* mode_kind(FieldKind kind, bool out_of_plane)
         case FieldKind::inplane:
             break;
     }
-    return out_of_plane ? "edge" : "bending";
+    return key.out_of_plane() ? "edge" : "bending";
 }
 
 /// The elastic field that holds the largest part of the kinetic energy of a mode with these rates (of the
@@ -395,7 +407,7 @@ std::vector<NaturalMode> natural_modes(const Model& model, const SteadySpin& s, 
         const Eigen::VectorXcd rates = rates_of.col(k);
         const double magnitude = std::hypot(growth, oscillating ? l.imag() : 0.0);
         const char* kind =
-            overdamped ? overdamped_kind : mode_kind(dominant_field(model, M, R, rates), model.key().out_of_plane());
+            overdamped ? overdamped_kind : mode_kind(dominant_field(model, M, R, rates), model.key());
         modes.push_back({oscillating ? l.imag() : 0.0, growth, kind, magnitude,
                          magnitude > 0.0 ? -growth / magnitude : 0.0, weighted_shape(U, rates)});
     }
@@ -463,7 +475,7 @@ std::vector<NaturalMode> closed_loop_modes(const Model& model, const SteadySpin&
         const FieldKind kind = model.coordinates().fields[static_cast<std::size_t>(most)].kind;
         const bool overdamped = !oscillating && l.real() < 0.0;  // a real root of the loop that decays
         modes.push_back({oscillating ? l.imag() : 0.0, l.real(),
-                         overdamped ? overdamped_kind : mode_kind(kind, model.key().out_of_plane()), magnitude,
+                         overdamped ? overdamped_kind : mode_kind(kind, model.key()), magnitude,
                          -l.real() / magnitude, weighted_shape(U, rates)});
     }
     std::sort(modes.begin(), modes.end(),
