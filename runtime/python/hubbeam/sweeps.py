@@ -63,53 +63,27 @@ def _printable(text: Any, cap: int = 400) -> str:
     return hubbeam.printable(text, cap)
 
 
+def _file_kind(mode: int) -> str:
+    """What a file that is not a regular file is, as every reader and writer says it (hubbeam._file_kind)."""
+    import hubbeam
+
+    return hubbeam._file_kind(mode)
+
+
 def _fail(where: str, key: str, expected: str, got: Any) -> None:
     raise SweepError(f"{_printable(where)}: {_printable(key, 80)}: expected {expected}, got "
                      f"{_printable(repr(got), 120)}")
 
 
-def _kind(mode: int) -> str:
-    """What a file that is not a regular file is, as the core says it (output_file.cpp's kind_of); "" for a regular
-    file."""
-    for test, name in ((stat.S_ISREG, ""), (stat.S_ISDIR, "a directory"), (stat.S_ISFIFO, "a FIFO"),
-                       (stat.S_ISCHR, "a character device"), (stat.S_ISBLK, "a block device"),
-                       (stat.S_ISSOCK, "a socket")):
-        if test(mode):
-            return name
-    return "not a regular file"
-
-
 def _read_input(path: str, cap: int, what: str) -> bytes:
-    """The bytes of an input file (the sweep file, its scene, a table), by the core's rules for inputs: a path that
-    is not a regular file is refused by stat before anything opens it (opening a FIFO blocks until a writer comes),
-    the file is opened non-blocking in case it was swapped meanwhile, and more than cap bytes are refused without
-    being read. SweepError naming the file otherwise."""
-    shown = _printable(path)
+    """The bytes of an input file (the sweep file, its scene, a table) by the rules of every hubbeam reader
+    (hubbeam._read_regular: no FIFO opened, no more than cap bytes read); SweepError naming the file otherwise."""
+    import hubbeam
+
     try:
-        kind = _kind(os.stat(path).st_mode)
-        if kind:
-            raise SweepError(f"{shown}: cannot open: it is {kind}, not a regular file")
-        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | os.O_CLOEXEC)
-    except OSError as e:
-        raise SweepError(f"{shown}: cannot open: {e.strerror}") from None
-    try:
-        st = os.fstat(fd)
-        if not stat.S_ISREG(st.st_mode):
-            raise SweepError(f"{shown}: cannot open: it is {_kind(st.st_mode)}, not a regular file")
-        chunks, size = [], 0
-        while size <= cap and st.st_size <= cap:
-            chunk = os.read(fd, min(1 << 20, cap + 1 - size))
-            if not chunk:
-                break
-            chunks.append(chunk)
-            size += len(chunk)
-    except OSError as e:
-        raise SweepError(f"{shown}: cannot read: {e.strerror}") from None
-    finally:
-        os.close(fd)
-    if st.st_size > cap or size > cap:
-        raise SweepError(f"{shown}: is larger than {what} can be ({cap >> 10} KB)")
-    return b"".join(chunks)
+        return hubbeam._read_regular(path, cap, what)
+    except (OSError, ValueError) as e:  # FileNotFoundError among them
+        raise SweepError(e.strerror if isinstance(e, OSError) and e.strerror else str(e)) from None
 
 
 def load_sweep(spec: str | os.PathLike | Mapping[str, Any]) -> dict[str, Any]:
@@ -378,7 +352,7 @@ def _check_output(path: str, inputs: Sequence[tuple[str, str]]) -> None:
     if st is not None and stat.S_ISDIR(st.st_mode):
         raise SweepError(f"{shown}: expected a file for the sweep's table, got a directory (give -o DIR/NAME.csv)")
     if st is not None and not stat.S_ISREG(st.st_mode):
-        raise SweepError(f"{shown}: expected a regular file for the sweep's table, got {_kind(st.st_mode)}")
+        raise SweepError(f"{shown}: expected a regular file for the sweep's table, got {_file_kind(st.st_mode)}")
     folder = os.path.dirname(os.path.abspath(path))
     if not os.path.isdir(folder):
         raise SweepError(f"{shown}: expected a file in an existing folder, got a folder that does not exist")
@@ -544,7 +518,8 @@ class _Table:
         try:
             held = os.fstat(self.fd)
             if not stat.S_ISREG(held.st_mode):
-                raise SweepError(f"{shown}: expected a regular file for the sweep's table, got {_kind(held.st_mode)}")
+                raise SweepError(f"{shown}: expected a regular file for the sweep's table, got "
+                                 f"{_file_kind(held.st_mode)}")
             narrower = stat.S_IMODE(held.st_mode) & ~(0o777 & ~mode & 0o077)
             if narrower != stat.S_IMODE(held.st_mode):
                 try:
