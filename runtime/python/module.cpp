@@ -629,6 +629,11 @@ PYBIND11_MODULE(_core, m)
         "Parses and checks a scene (ValueError if it is bad)", py::arg("text"), py::arg("name"));
     m.def("save_rows", &save, "Writes a run's rows and metadata as hubbeam run does", py::arg("path"), py::arg("data"),
           py::arg("header"), py::arg("metadata"), py::arg("inputs"));
+    m.def(
+        "unsafe_character", [](const py::bytes& text) { return unsafe_character(std::string(text)); },
+        "Why a name may not be an output's or be handed to another program (its first control or format character, "
+        "or byte that is not UTF-8), or an empty string: the one check every writer makes",
+        py::arg("text"));
     m.def("scene_files", &files_of, "The files a scene names, by file key", py::arg("text"), py::arg("name"),
           py::arg("overrides"));
     m.def("effective_scene", &effective_scene_text, "The effective scene as TOML", py::arg("text"), py::arg("name"),

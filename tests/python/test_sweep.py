@@ -443,6 +443,21 @@ class InputsTest(unittest.TestCase):
             self.assertEqual(os.listdir(elsewhere), [os.path.basename(planted)])
             self.assertEqual(leftovers(d), [])
 
+    def test_a_table_name_with_a_control_or_format_character_is_refused(self):
+        # The one check of an output's name that every hubbeam writer makes: a newline, ESC, U+202E or a byte that is
+        # not UTF-8 in the name is refused before anything is computed, and nothing is created.
+        with tempfile.TemporaryDirectory() as d:
+            spec = write(os.path.join(d, "s.toml"), f'scene = "{SPINUP}"\n[set]\n"output.t_end" = 0.1\n')
+            names = ["t\n!touch pwned\n.csv", "t\x1b[31m.csv", "t\u202e.csv", os.fsdecode(b"t\xff.csv")]
+            results = cli_all(*([spec, "-o", os.path.join(d, n)] for n in names))
+            for name, (code, err) in zip(names, results):
+                self.assertEqual(code, 2, err)
+                self.assertEqual(len(err.strip().splitlines()), 1, err)
+                self.assertIn("-o: expected a file name without control or format characters, got ", err)
+            with self.assertRaisesRegex(sweeps.SweepError, "without control or format characters"):
+                hubbeam.sweep(spec, output=os.path.join(d, names[0]), scheduler=CLIENT, progress=False)
+            self.assertEqual(sorted(os.listdir(d)), ["s.toml"])
+
     def test_a_symbolic_link_as_the_table_is_never_written_through(self):
         with tempfile.TemporaryDirectory() as d:
             spec = write(os.path.join(d, "s.toml"), f'scene = "{SPINUP}"\n[set]\n"output.t_end" = 0.1\n')

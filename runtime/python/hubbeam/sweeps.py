@@ -339,6 +339,10 @@ def _check_output(path: str, inputs: Sequence[tuple[str, str]]) -> None:
     folder; never a symbolic link (an attacker's link in a shared folder would point the table at their victim),
     and none of the sweep's inputs (what, path), compared as files, not as names."""
     _check_path("--output", path)
+    from hubbeam import _core  # the one check of an output's name, every writer's (printable.hpp)
+
+    if why := _core.unsafe_character(os.fsencode(path)):
+        raise SweepError(f"-o: expected a file name without control or format characters, got {why}")
     shown = _printable(path)
     try:
         st = os.lstat(path)
