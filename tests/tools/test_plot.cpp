@@ -26,6 +26,33 @@ namespace {
 
 std::string fixture(const char* name) { return std::string(HUBBEAM_SOURCE_DIR) + "/tests/plots/" + name; }
 
+/// plot campbell's arguments for the modes table file, the figure in dir, the excitation 1P alone.
+PlotArgs campbell_of(const fs::path& file, const fs::path& dir)
+{
+    PlotArgs args;
+    args.kind = "campbell";
+    args.files = {file.string()};
+    args.prefix = (dir / "campbell").string();
+    args.harmonics = "1";
+    return args;
+}
+
+/// A modes CSV's header, as hubbeam modes writes it.
+constexpr const char* modes_csv_header =
+    "method,ny,nx,order,drive,omega,mode,kind,rad_s,hz,dimensionless,growth,undamped_rad_s,damping_ratio,label,mac\n";
+
+/// One row of a modes CSV for a test's table: variant ("amm,8,4,first,torque"), spin, mode number, label ("edge 2",
+/// whose first word is the kind), frequency, growth rate and damping ratio; the undamped rate |lambda| is taken as
+/// 2 pi hz.
+std::string modes_csv_row(const std::string& variant, double omega, std::size_t mode, const std::string& label,
+                          double hz, double growth, double zeta)
+{
+    std::ostringstream row;
+    row << variant << ',' << omega << ',' << mode << ',' << label.substr(0, label.find(' ')) << ',' << 2 * M_PI * hz
+        << ',' << hz << ",1," << growth << ',' << 2 * M_PI * hz << ',' << zeta << ',' << label << ",1\n";
+    return row.str();
+}
+
 /// A folder for one test case's figures, removed afterwards.
 struct ScratchDir {
     fs::path dir = fs::temp_directory_path() / ("hubbeam_test_plot_" + std::to_string(::getpid()));
@@ -161,23 +188,16 @@ TEST_CASE("campbell: --modes, --kinds and --max-hz choose the lines - each its o
     // hub line. Only bending 1 meets 1P (f = omega / 2 pi) between the rates: 10 + 0.05 omega = omega / 2 pi.
     const fs::path file = scratch.dir / "blade-modes.csv";
     std::ofstream table(file);
-    table << "method,ny,nx,order,drive,omega,mode,kind,rad_s,hz,dimensionless,growth,undamped_rad_s,damping_ratio,"
-             "label,mac\n";
+    table << modes_csv_header;
     const std::vector<std::pair<std::string, double>> at_rest = {
         {"hub 1", 0.5}, {"bending 1", 10}, {"bending 2", 300}, {"bending 3", 900}, {"axial 1", 1200}, {"bending 4", 1800}};
     for (const double omega : {0.0, 100.0, 200.0})
         for (std::size_t m = 0; m < at_rest.size(); ++m) {
             const auto& [label, hz] = at_rest[m];
-            const double f = hz + 0.05 * omega;
-            table << "amm,8,4,first,torque," << omega << ',' << m + 1 << ',' << label.substr(0, label.find(' ')) << ','
-                  << 2 * M_PI * f << ',' << f << ",1,0," << 2 * M_PI * f << ",0," << label << ",1\n";
+            table << modes_csv_row("amm,8,4,first,torque", omega, m + 1, label, hz + 0.05 * omega, 0.0, 0.0);
         }
     table.close();
-    PlotArgs args;
-    args.kind = "campbell";
-    args.files = {file.string()};
-    args.prefix = (scratch.dir / "campbell").string();
-    args.harmonics = "1";
+    PlotArgs args = campbell_of(file, scratch.dir);
 
     // By default every bending line: a colour each, its label the legend entry, the variant in the title
     std::string script = plot_script(args);
@@ -921,23 +941,17 @@ TEST_CASE("campbell: overdamped rows (0 Hz) draw no line and no critical speed, 
     // stays below 1.6 Hz up to 10 rad/s) but a mode at 0 Hz at rest would: that crossing is spurious.
     const fs::path file = scratch.dir / "damped-modes.csv";
     std::ofstream table(file);
-    table << "method,ny,nx,order,drive,omega,mode,kind,rad_s,hz,dimensionless,growth,undamped_rad_s,damping_ratio,"
-             "label,mac\n";
+    table << modes_csv_header;
     for (const int omega : {0, 5, 10}) {
         const std::vector<std::pair<std::string, double>> modes = {
             {"flap 1", 0}, {"edge 1", 0}, {"flap 2", omega == 0 ? 0.0 : 4.0}, {"edge 2", 3.0}, {"flap 3", 5.0}};
         for (std::size_t m = 0; m < modes.size(); ++m) {
             const auto& [label, hz] = modes[m];
-            table << "fem,8,0,first,prescribed," << omega << ',' << m + 1 << ',' << label.substr(0, label.find(' '))
-                  << ',' << 2 * M_PI * hz << ',' << hz << ",1,-1," << 2 * M_PI * hz << ",1.5," << label << ",1\n";
+            table << modes_csv_row("fem,8,0,first,prescribed", omega, m + 1, label, hz, -1.0, 1.5);
         }
     }
     table.close();
-    PlotArgs args;
-    args.kind = "campbell";
-    args.files = {file.string()};
-    args.prefix = (scratch.dir / "campbell").string();
-    args.harmonics = "1";
+    PlotArgs args = campbell_of(file, scratch.dir);
     std::string script = plot_script(args);
     std::vector<std::string> titles;
     for (const DrawnLine& l : drawn_lines(script)) titles.push_back(l.title);
@@ -980,13 +994,12 @@ TEST_CASE("campbell: every line its own colour however many, 1P, 2P and 3P each 
     ScratchDir scratch;
     const fs::path file = scratch.dir / "many-modes.csv";
     std::ofstream table(file);
-    table << "method,ny,nx,order,drive,omega,mode,kind,rad_s,hz,dimensionless,growth,undamped_rad_s,damping_ratio,"
-             "label,mac\n";
+    table << modes_csv_header;
     constexpr std::size_t modes = 60;
     for (const int omega : {0, 30})
         for (std::size_t m = 1; m <= modes; ++m)
-            table << "fem,8,0,first,prescribed," << omega << ',' << m << ",bending," << 2 * M_PI * m << ',' << m
-                  << ",1,0," << 2 * M_PI * m << ",0,bending " << m << ",1\n";
+            table << modes_csv_row("fem,8,0,first,prescribed", omega, m, "bending " + std::to_string(m),
+                                   static_cast<double>(m), 0.0, 0.0);
     table.close();
     PlotArgs args;
     args.kind = "campbell";
