@@ -40,8 +40,6 @@ ELASTIC_KINDS = ("bending", "edge", "flap", "twist")
 # The type of each kept value as the table's text reads back (the rest are floats): hubbeam.sweep returns these.
 _TEXT_COLUMNS = {"point", "status", "variant", "source", "stepper"}
 _INT_COLUMNS = {"steps", "rejected_steps", "rhs_evals", "jacobian_evals"}
-# The largest sweep file or base scene read: the core's max_scene_bytes (runtime/include/hubbeam/scene.hpp).
-MAX_SCENE_BYTES = 1 << 20
 
 
 def _file_keys() -> dict[str, int]:
@@ -83,7 +81,12 @@ def _read_input(path: str, cap: int, what: str) -> bytes:
     try:
         return hubbeam._read_regular(path, cap, what)
     except (OSError, ValueError) as e:  # FileNotFoundError among them
-        raise SweepError(e.strerror if isinstance(e, OSError) and e.strerror else str(e)) from None
+        raise _sweep_error(e) from None
+
+
+def _sweep_error(e: Exception) -> SweepError:
+    """A reader's refusal (hubbeam's FileNotFoundError or ValueError, its one line) as the sweep's."""
+    return SweepError(e.strerror if isinstance(e, OSError) and e.strerror else str(e))
 
 
 def load_sweep(spec: str | os.PathLike | Mapping[str, Any]) -> dict[str, Any]:
@@ -104,7 +107,9 @@ def load_sweep(spec: str | os.PathLike | Mapping[str, Any]) -> dict[str, Any]:
     else:
         where = os.fspath(spec)
         _check_path("sweep file", where)
-        data = _read_input(where, MAX_SCENE_BYTES, "a sweep file")
+        from hubbeam import _MAX_SCENE_BYTES  # a sweep file is read as a scene file is
+
+        data = _read_input(where, _MAX_SCENE_BYTES, "a sweep file")
         try:
             sweep = tomllib.loads(data.decode("utf-8-sig"))  # a byte order mark, as the scene reader takes it
         except (tomllib.TOMLDecodeError, UnicodeDecodeError) as e:
@@ -801,10 +806,9 @@ def run_sweep(spec: str | os.PathLike | Mapping[str, Any], *, output: str | None
     runs = [_resolved(p, sweep["base"]) for p in points]  # as the core takes them: file keys' paths resolved
     _check_path("scene", sweep["scene"])
     try:
-        scene_text = _read_input(sweep["scene"], MAX_SCENE_BYTES, "a scene file").decode("utf-8")
-    except UnicodeDecodeError:
-        raise SweepError(f"{_printable(sweep['scene'])}: expected a scene file (UTF-8 TOML), got bytes that are not "
-                         f"text") from None
+        scene_text = hubbeam._scene_file_text(sweep["scene"])  # as hubbeam.run reads a scene
+    except (OSError, ValueError) as e:
+        raise _sweep_error(e) from None
     hubbeam._check_scene(scene_text, sweep["scene"])  # a bad base scene stops the sweep before any task
     # What every point reads (the core's list: every file key of the scene's schema), by content for its key, by
     # identity for the output checks, by permissions for the table's.
