@@ -103,11 +103,9 @@ std::vector<Case> cases()
                  {{"damping", set([](Parameters& p) { p.alpha = p.beta = 0.0; })}}});
     // A blade's profile (section 12.4), its stations where no method's pieces end, with every term but the linear
     // pre-twist (its chord angles are the table's) and with its tabulated angles alone.
-    const Extras table{.stations = {0, 30, 55, 100}, .station_denominator = 100};
     Extras blade = all;
     blade.twist = false;
-    blade.stations = table.stations;
-    blade.station_denominator = table.station_denominator;
+    blade.tabulated = true;
     const auto untwisted = set([](Parameters& p) {
         for (std::size_t k = static_cast<std::size_t>(ProfileValue::twist); k < p.profile.size(); k += 8)
             p.profile[k] = 0.0;
@@ -126,7 +124,7 @@ std::vector<Case> cases()
     c.push_back({key_of(Method::fem, 2, 4, 2, Drive::torque, Order::first, width), {{"the width taper", untapered}}});
     c.push_back(
         {key_of(Method::bsim, 0, 4, 3, Drive::prescribed, Order::zero, depth), {{"the depth taper", untapered}}});
-    c.push_back({key_of(Method::fem, 0, 2, 2, Drive::prescribed, Order::zero, table),
+    c.push_back({key_of(Method::fem, 0, 2, 2, Drive::prescribed, Order::zero, Extras{.tabulated = true}),
                  {{"the tabulated chord angles", untwisted}}});
     return c;
 }

@@ -75,7 +75,7 @@ std::vector<SceneKey> make_scene_keys()
          {},
          max_blade_file_bytes},
         {"beam.blade_stations", nullptr, K::integer,
-         "0 (the file's own stations) or an integer from 2 to 64 (stations to resample beam.blade_file at)"},
+         "0 (the file's own stations) or an integer from 2 to 10000 (stations to resample beam.blade_file at)"},
         {"beam.second_moment_flap", nullptr, K::number,
          "a number > 0 (I_flap, m^4, bending out of the plane; default beam.second_moment)"},
         {"beam.shear_modulus", nullptr, K::number, "a number >= 0 (G, Pa; > 0 needed with nt > 0)"},

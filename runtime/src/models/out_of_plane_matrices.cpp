@@ -170,7 +170,7 @@ OutOfPlaneMatrices assemble_out_of_plane(const VariantKey& key, const Parameters
 {
     const FieldBasis axial = key.axial_basis(), inplane = key.transverse_basis(), flap = key.flap_basis(),
                      twist = key.twist_basis();
-    const std::vector<double> stations = station_positions(key.extras);
+    const std::vector<double> stations = p.stations;
     const QuadratureRule rule = section_rule({axial, inplane, flap, twist}, stations);
     const int nn = static_cast<int>(rule.nodes.size());
     const ArrayXd xi = Eigen::Map<const ArrayXd>(rule.nodes.data(), nn);
