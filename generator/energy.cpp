@@ -88,7 +88,7 @@ public:
         expand_flap(layout);
         expand_twist(layout);
         merge_symmetric_couplings();
-        expand_profile(key);
+        expand_sections(key);
         // Present (possibly empty) so that nx = 0 (or a planar variant's missing fields) makes their terms vanish.
         for (const symbol& absent : {f.ux1, f.ux1_dot, f.ux1_x, f.ux1_x_dot, f.uz, f.uz_dot, f.uz_x, f.uz_xx,
                                      f.uz_xx_dot, f.phi, f.phi_dot, f.phi_x, f.phi_x_dot})
@@ -202,15 +202,20 @@ private:
         }
     }
 
-    /// A profile's distributions along the beam: each a factor whose integrals against the basis are run-time data.
-    void expand_profile(const VariantKey& key)
+    /// A profile's distributions along the beam, or a pre-twist's cos and sin: each a factor whose integrals against
+    /// the basis are run-time data.
+    void expand_sections(const VariantKey& key)
     {
-        if (!key.extras.profile()) return;
         const FieldSymbols& f = f_;
         using D = SectionDistribution;
         const auto distribution = [&](const symbol& field, D d) {
             add(field, 1, {Factor::Kind::section, static_cast<int>(d), 0, 0});
         };
+        if (key.extras.twist) {
+            distribution(f.cos_2twist_x, D::cos_2twist);
+            distribution(f.sin_2twist_x, D::sin_2twist);
+        }
+        if (!key.extras.profile()) return;
         distribution(f.m_x, D::m);
         distribution(f.EI_x, D::EI);
         distribution(f.ES_x, D::ES);
@@ -368,7 +373,7 @@ Symbols::Symbols(const VariantKey& key)
         q.insert(q.end(), coordinates(f.kind).begin(), coordinates(f.kind).end());
         qd.insert(qd.end(), rates(f.kind).begin(), rates(f.kind).end());
     }
-    if (!key.extras.profile()) return;
+    if (!has_section_integrals(key)) return;
     // The first pass: the energies over every symbol they can hold, keeping only which section integrals they meet.
     std::vector<symbol> variables = {tau, theta_dot, theta_ddot, sin_theta, cos_theta};
     for (const symbol& x : q)
@@ -469,19 +474,18 @@ std::pair<ex, ex> turned_by_pitch(const VariantKey& key, const Symbols& s, const
     return {cp * c - sp * sn, sp * c + cp * sn};
 }
 
-std::pair<ex, ex> chord_angle(const VariantKey& key, const Symbols& s, const symbol& xi)
+std::pair<ex, ex> chord_angle(const VariantKey& key, const Symbols& s, const FieldSymbols& f)
 {
     if (!key.extras.twist) return turned_by_pitch(key, s, 1, 0);
-    // The pre-twist's part as its Taylor series in twist xi, exact to round-off for |twist| <= max_twist (the scene's
-    // bound), so that the integrals over xi stay those of polynomials.
-    ex c = 0, sn = 0, term = 1;  // term = (2 twist xi)^k / k!
-    for (int k = 0; k < twist_series_terms; ++k) {
-        if (k > 0) term = term * 2 * s.o->twist * xi / k;
-        const int sign = (k / 2) % 2 == 0 ? 1 : -1;
-        (k % 2 == 0 ? c : sn) += sign * term;
-    }
-    const auto [cos_2beta, sin_2beta] = turned_by_pitch(key, s, c, sn);
+    // The pre-twist's cos and sin are section distributions: the runtime integrates them against the basis for any
+    // twist, where a series in twist xi held only for small ones.
+    const auto [cos_2beta, sin_2beta] = turned_by_pitch(key, s, f.cos_2twist_x, f.sin_2twist_x);
     return {cos_2beta.expand(), sin_2beta.expand()};
+}
+
+bool has_section_integrals(const VariantKey& key)
+{
+    return key.extras.profile() || key.extras.twist;
 }
 
 ex bending_density(const VariantKey& key, const BeamSection& b, const ex& y2, const ex& z2)

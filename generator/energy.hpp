@@ -95,6 +95,8 @@ struct FieldSymbols {
     // stations (SectionDistribution).
     GiNaC::symbol EI_flap_x{"EI_flap_x"}, GJ_x{"GJ_x"}, j_p_x{"j_p_x"}, EI_cos_x{"EI_cos_x"}, EI_sin_x{"EI_sin_x"},
         j_cos_x{"j_cos_x"}, j_sin_x{"j_sin_x"};
+    // A uniform blade's pre-twist: cos 2 twist xi and sin 2 twist xi (section distributions).
+    GiNaC::symbol cos_2twist_x{"cos_2twist_x"}, sin_2twist_x{"sin_2twist_x"};
 };
 
 /// The beam's distributions along the span, in x (or xi): mass per length, axial and (edgewise) bending stiffness.
@@ -134,8 +136,12 @@ Cone cone_of(const VariantKey& key, const Symbols& s);
 std::pair<GiNaC::ex, GiNaC::ex> turned_by_pitch(const VariantKey& key, const Symbols& s, const GiNaC::ex& c,
                                                 const GiNaC::ex& sn);
 /// cos 2 beta(xi) and sin 2 beta(xi) of a uniform section's chord angle beta = pitch + twist xi (docs/model.md
-/// section 12): {1, 0} without either.
-std::pair<GiNaC::ex, GiNaC::ex> chord_angle(const VariantKey& key, const Symbols& s, const GiNaC::symbol& xi);
+/// section 12): {1, 0} without either; the pre-twist's part is the section distributions cos 2 twist xi and sin 2
+/// twist xi, whose integrals are run-time data.
+std::pair<GiNaC::ex, GiNaC::ex> chord_angle(const VariantKey& key, const Symbols& s, const FieldSymbols& f);
+
+/// Whether a variant's kernels read section integrals: a profile's, or a pre-twist's.
+bool has_section_integrals(const VariantKey& key);
 
 /// T = 1/2 J_oh theta_dot^2 + 1/2 int m |r_dot|^2 dx and U = 1/2 int (ES u_x1'^2 + EI u_y''^2) dx, over the
 /// parameter and variable symbols of read; with the key's extras, the tip body's, gravity's, the taper's and the

@@ -58,47 +58,33 @@ std::string read_section(std::size_t n)
     return "p[" + std::to_string(param_count + n) + "]";
 }
 
-/// The ABI's word for a factor's kind (generated_abi.h's SectionFactorKind).
-const char* abi_kind(Factor::Kind k)
+/// A factor kind's word in the ABI (generated_abi.h's SectionFactorKind) and the letter of its field's coordinates.
+struct FactorWords {
+    Factor::Kind kind;
+    const char* abi;
+    const char* field;
+};
+constexpr FactorWords factor_words[] = {{Factor::Kind::axial, "axial_factor", "A"},
+                                        {Factor::Kind::transverse, "transverse_factor", "B"},
+                                        {Factor::Kind::coupling, "coupling_factor", "B"},
+                                        {Factor::Kind::flap, "flap_factor", "Z"},
+                                        {Factor::Kind::flap_coupling, "flap_coupling_factor", "Z"},
+                                        {Factor::Kind::twist, "twist_factor", "P"}};
+
+const FactorWords& words_of(Factor::Kind k)
 {
-    switch (k) {
-        case Factor::Kind::axial:
-            return "axial_factor";
-        case Factor::Kind::transverse:
-            return "transverse_factor";
-        case Factor::Kind::coupling:
-            return "coupling_factor";
-        case Factor::Kind::flap:
-            return "flap_factor";
-        case Factor::Kind::flap_coupling:
-            return "flap_coupling_factor";
-        case Factor::Kind::twist:
-            return "twist_factor";
-        case Factor::Kind::section:
-            break;
-    }
+    for (const FactorWords& w : factor_words)
+        if (w.kind == k) return w;
     throw std::logic_error("variant_source: a section distribution is not a factor of its own integral");
 }
 
 /// A readable name of a factor for the table's comments: phi of the field's coordinate with primes, or H.
 std::string factor_text(const Factor& f)
 {
-    const auto field = [](Factor::Kind k) -> std::string {
-        switch (k) {
-            case Factor::Kind::axial:
-                return "A";
-            case Factor::Kind::flap:
-            case Factor::Kind::flap_coupling:
-                return "Z";
-            case Factor::Kind::twist:
-                return "P";
-            default:
-                return "B";
-        }
-    };
+    const std::string field = words_of(f.kind).field;
     if (f.kind == Factor::Kind::coupling || f.kind == Factor::Kind::flap_coupling)
-        return "H(" + field(f.kind) + std::to_string(f.i + 1) + "," + field(f.kind) + std::to_string(f.j + 1) + ")";
-    return "phi_" + field(f.kind) + std::to_string(f.i + 1) + std::string(static_cast<std::size_t>(f.deriv), '\'');
+        return "H(" + field + std::to_string(f.i + 1) + "," + field + std::to_string(f.j + 1) + ")";
+    return "phi_" + field + std::to_string(f.i + 1) + std::string(static_cast<std::size_t>(f.deriv), '\'');
 }
 
 /// A profile variant's section integrals as the table the runtime computes them from (generated_abi.h).
@@ -117,7 +103,7 @@ std::string section_table(const std::string& name, const Symbols& s)
         if (k.power > 0) text += " xi" + (k.power > 1 ? "^" + std::to_string(k.power) : std::string());
         for (std::size_t i = 0; i < k.factors.size(); ++i) {
             const Factor& f = k.factors[i];
-            t << (i ? ", " : "") << "{" << abi_kind(f.kind) << ", " << f.i << ", " << f.j << ", " << f.deriv << "}";
+            t << (i ? ", " : "") << "{" << words_of(f.kind).abi << ", " << f.i << ", " << f.j << ", " << f.deriv << "}";
             text += " " + factor_text(f);
         }
         t << "}},  // s_" << n << ": " << text << "\n";
@@ -694,9 +680,9 @@ std::string variant_source(const VariantKey& key, const EmitOptions& options)
     Kernels kernels = variant_kernels(key, s, d, at_points ? &points : nullptr);
     const std::string name = key.name();
     EmitOptions emit_options = options;
-    // A pre-twist's series multiplies the coefficients' terms by twist_series_terms and their derivatives by p about
-    // tenfold again (4 MB of source at Ny = Nz = 8); a blade's profile multiplies them by its stations (a minute of
-    // compiling dc/dp alone at 21 stations, Ny = Nz = 8): their sensitivities are differenced instead.
+    // The pre-twist enters through section integrals, which dc/dp does not see (they are data, not parameters): a
+    // twisted variant's sensitivities are differenced, which recomputes them; so are a tabulated blade's, whose
+    // coefficients are long sums over its section integrals.
     emit_options.parameter_derivatives =
         options.parameter_derivatives && !key.extras.twist && !(key.out_of_plane() && key.extras.profile());
     const EmittedCode code = emit_kernels(name, sig, std::move(kernels.list), emit_options);

@@ -51,11 +51,17 @@ constexpr std::size_t profile_value_count(bool out_of_plane)
 }
 /// The distributions along the span a profile variant's kernels integrate (docs/model.md sections 11.2 and 12.4), each
 /// linear between the table's stations: mass per length, EI, ES; out of the plane EI_flap, GJ, the polar mass moment
-/// j_c + j_n, and the deviators (EI - EI_flap)/2 and (j_n - j_c)/2 times cos and sin of twice the chord's angle.
-enum class SectionDistribution : int { m, EI, ES, EI_flap, GJ, j_p, EI_cos, EI_sin, j_cos, j_sin };
-inline constexpr std::size_t section_distribution_count = 10;
+/// j_c + j_n, and the deviators (EI - EI_flap)/2 and (j_n - j_c)/2 times cos and sin of twice the chord's angle. Then
+/// a uniform blade's linear pre-twist (Param::twist, docs/model.md section 12): cos 2 twist xi and sin 2 twist xi.
+enum class SectionDistribution : int { m, EI, ES, EI_flap, GJ, j_p, EI_cos, EI_sin, j_cos, j_sin, cos_2twist, sin_2twist };
+inline constexpr std::size_t section_distribution_count = 12;
 inline constexpr std::array<const char*, section_distribution_count> section_distribution_names = {
-    "m", "EI", "ES", "EI_flap", "GJ", "j_p", "EI_cos", "EI_sin", "j_cos", "j_sin"};
+    "m", "EI", "ES", "EI_flap", "GJ", "j_p", "EI_cos", "EI_sin", "j_cos", "j_sin", "cos_2twist", "sin_2twist"};
+/// Whether a distribution is a table's (linear between its stations), not the pre-twist's.
+constexpr bool tabulated(SectionDistribution d)
+{
+    return d < SectionDistribution::cos_2twist;
+}
 
 /// A profile variant's kernels read its section integrals after the parameters: p[param_count + n] is
 /// Variant::section_integrals[n] of the run's table (runtime/src/models/section_integrals.hpp computes them).
@@ -70,12 +76,6 @@ inline constexpr std::array<const char*, param_count> param_names = {
 /// The parameters of the out-of-plane fields (docs/model.md section 12), owned by no term: the flapwise field reads
 /// I_flap, the twist field all three.
 inline constexpr std::array<Param, 3> field_params = {Param::I_flap, Param::G, Param::J_t};
-
-/// The largest pre-twist |twist| (rad, tip minus root) a variant takes: the generator expands cos 2 beta(x) and
-/// sin 2 beta(x) in powers of twist x/L with twist_series_terms terms, whose remainder (2 max_twist)^n / n! is then
-/// below 1e-17.
-inline constexpr double max_twist = 0.5;
-inline constexpr int twist_series_terms = 20;
 
 /// Index of each drive value in u: a torque variant reads tau, a prescribed variant theta_dot, theta_ddot.
 enum class DriveValue : std::size_t { tau, theta_dot, theta_ddot };

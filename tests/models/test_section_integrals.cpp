@@ -22,10 +22,12 @@ namespace {
 
 const std::vector<double> stations = {0.0, 0.13, 0.3, 0.55, 0.71, 1.0};
 
-/// A blade's table at the stations: every column different and varying, a chord angle that turns by more than a radian.
+/// A blade's table at the stations: every column different and varying, a chord angle that turns by more than a
+/// radian; and a pre-twist of more than a radian (a variant has one or the other; the integrals take both).
 Parameters blade_table()
 {
     Parameters p;
+    p.twist = -2.8;  // a propeller's pre-twist, far beyond a series in twist xi
     p.stations = stations;
     for (double x : stations)
         p.profile.insert(p.profile.end(), {0.4 - 0.2 * x + 0.1 * x * x, 900.0 - 500.0 * x, 7e6 * (1.0 - 0.4 * x),
@@ -34,9 +36,12 @@ Parameters blade_table()
     return p;
 }
 
-/// Distribution d at xi from the table's columns (model.md sections 11.2 and 12.4), linear between stations.
+/// Distribution d at xi from the table's columns (model.md sections 11.2 and 12.4), linear between stations; or the
+/// pre-twist's cos 2 twist xi and sin 2 twist xi.
 long double distribution(const Parameters& p, int d, long double xi)
 {
+    if (d == static_cast<int>(SectionDistribution::cos_2twist)) return std::cos(2.0L * p.twist * xi);
+    if (d == static_cast<int>(SectionDistribution::sin_2twist)) return std::sin(2.0L * p.twist * xi);
     std::size_t k = 0;
     while (k + 2 < p.stations.size() && xi > p.stations[k + 1]) ++k;
     const long double t = (xi - p.stations[k]) / (p.stations[k + 1] - p.stations[k]);

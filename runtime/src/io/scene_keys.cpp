@@ -82,7 +82,7 @@ std::vector<SceneKey> make_scene_keys()
         {"beam.torsion_constant", nullptr, K::number, "a number >= 0 (J_t, m^4; > 0 needed with nt > 0)"},
         {"beam.pitch", nullptr, K::number,
          "a number from -2 pi to 2 pi (the section's pitch, rad: one turn either way)"},
-        {"beam.twist", nullptr, K::number, "a number in [-0.5, 0.5] (the pre-twist, tip minus root, rad)"},
+        {"beam.twist", nullptr, K::number, "a number from -2 pi to 2 pi (the pre-twist, tip minus root, rad: one turn either way)"},
         {"beam.precone", nullptr, K::number, "a number in (-1.5, 1.5) (the precone, rad; positive towards +k)"},
         {"hub.radius", nullptr, K::number, "a number >= 0 (a, m)"},
         {"hub.inertia", nullptr, K::number, "a number > 0 (J_oh, kg m^2)"},

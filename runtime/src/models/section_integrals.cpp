@@ -65,11 +65,13 @@ int degree(const Bases& b, const SectionFactor& f)
 }
 
 /// The cuts of [0, 1] on which every integrand is smooth (a polynomial, or analytic for AMM): the stations, where the
-/// distributions have kinks, and the bases' intervals (AMM: equal panels narrow enough for its highest mode).
-std::vector<double> cuts_of(const Bases& b, const std::vector<double>& stations)
+/// distributions have kinks, and the bases' intervals (AMM: equal panels narrow enough for its highest mode); and
+/// `panels` equal ones, on each of which a pre-twist's 2 twist xi turns by at most 1 rad.
+std::vector<double> cuts_of(const Bases& b, const std::vector<double>& stations, int panels)
 {
     std::vector<double> cuts(stations.begin(), stations.end());
     cuts.insert(cuts.end(), {0.0, 1.0});
+    for (int k = 1; k < panels; ++k) cuts.push_back(static_cast<double>(k) / panels);
     if (b.polynomial()) {
         for (const FieldBasis* f : {&b.axial, &b.transverse, &b.flap, &b.twist})
             for (int k = 1; f->size() > 0 && k < f->intervals(); ++k)
@@ -151,6 +153,7 @@ private:
 std::vector<double> section_distribution(const VariantKey& key, const Parameters& p, SectionDistribution d)
 {
     const std::size_t n = p.stations.size(), w = profile_value_count(key.out_of_plane());
+    if (!tabulated(d)) throw std::logic_error("section integrals: the pre-twist's distributions are no table's");
     if (n == 0 || p.profile.size() != n * w)
         throw std::invalid_argument("section integrals: the profile holds " + std::to_string(p.profile.size()) +
                                     " values for " + std::to_string(n) + " stations, the variant " + key.name() +
@@ -178,6 +181,7 @@ std::vector<double> section_distribution(const VariantKey& key, const Parameters
             case D::EI_sin: out[k] = turned((v(ProfileValue::EI) - v(ProfileValue::EI_flap)) / 2.0, true); break;
             case D::j_cos: out[k] = turned((v(ProfileValue::j_n) - v(ProfileValue::j_c)) / 2.0, false); break;
             case D::j_sin: out[k] = turned((v(ProfileValue::j_n) - v(ProfileValue::j_c)) / 2.0, true); break;
+            default: break;
         }
     }
     return out;
@@ -187,11 +191,21 @@ std::vector<double> section_integrals(const VariantKey& key, const SectionIntegr
                                       const Parameters& p)
 {
     if (count == 0) return {};
-    if (const std::string why = stations_problem(p.stations); !why.empty())
+    bool table = false, twist = false;
+    for (int n = 0; n < count; ++n) {
+        const int d = list[n].distribution;
+        if (d < 0 || d >= static_cast<int>(section_distribution_count))
+            throw std::invalid_argument("section integrals: unknown distribution " + std::to_string(d));
+        (tabulated(static_cast<SectionDistribution>(d)) ? table : twist) = true;
+    }
+    if (const std::string why = stations_problem(p.stations); table && !why.empty())
         throw std::invalid_argument("section integrals: " + why);
     const Bases b(key);
-    const std::vector<double>& stations = p.stations;
-    const std::vector<double> cuts = cuts_of(b, stations);
+    const std::vector<double> stations = table ? p.stations : std::vector<double>{};
+    // cos 2 twist xi and sin 2 twist xi turn by at most 1 rad on each piece: with 8 points more than the polynomial
+    // part needs, what the rule misses of them is below 1e-20 of the integrand (Gauss's remainder for h omega <= 1).
+    const int twist_panels = twist ? std::max(1, static_cast<int>(std::ceil(2.0 * std::abs(p.twist)))) : 1;
+    const std::vector<double> cuts = cuts_of(b, stations, twist_panels);
     // Polynomial bases: enough points per interval for the integrands' highest degree (the distribution is linear
     // there), so that the rule is exact; AMM: the points that converge its modes on a panel.
     int points = transcendental_points, coupling_points = transcendental_points;
@@ -209,7 +223,7 @@ std::vector<double> section_integrals(const VariantKey& key, const SectionIntegr
             }
             highest = std::max(highest, d);
         }
-        points = highest / 2 + 1;  // 2 points - 1 >= highest
+        points = highest / 2 + 1 + (twist ? 8 : 0);  // 2 points - 1 >= highest
         coupling_points = slopes / 2 + 1;
     }
     FactorColumns columns(b, cuts, points, coupling_points);
@@ -218,10 +232,16 @@ std::vector<double> section_integrals(const VariantKey& key, const SectionIntegr
     std::map<int, std::vector<double>> at_nodes;
     const auto distribution = [&](int d) -> const std::vector<double>& {
         if (auto it = at_nodes.find(d); it != at_nodes.end()) return it->second;
-        if (d < 0 || d >= static_cast<int>(section_distribution_count))
-            throw std::invalid_argument("section integrals: unknown distribution " + std::to_string(d));
-        const std::vector<double> v = section_distribution(key, p, static_cast<SectionDistribution>(d));
         std::vector<double> out(rule.nodes.size());
+        const auto which = static_cast<SectionDistribution>(d);
+        if (!tabulated(which)) {
+            for (std::size_t q = 0; q < out.size(); ++q) {
+                const double angle = 2.0 * p.twist * rule.nodes[q];
+                out[q] = which == SectionDistribution::cos_2twist ? std::cos(angle) : std::sin(angle);
+            }
+            return at_nodes.emplace(d, std::move(out)).first->second;
+        }
+        const std::vector<double> v = section_distribution(key, p, which);
         std::size_t k = 0;
         for (std::size_t q = 0; q < out.size(); ++q) {
             const double x = rule.nodes[q];
