@@ -2,7 +2,7 @@
 #include <algorithm>
 #include <hubbeam/scene.hpp>
 
-#include "dynamics/integrate.hpp"
+#include "dynamics/stepper_names.hpp"
 #include "io/blade_files.hpp"
 #include "io/scene_io.hpp"
 #include "text/option_lists.hpp"

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <hubbeam/scene.hpp>
 
-#include "dynamics/integrate.hpp"
+#include "dynamics/stepper_names.hpp"
 #include "io/scene_io.hpp"
 #include "text/printable.hpp"
 #include "text/shortest.hpp"
