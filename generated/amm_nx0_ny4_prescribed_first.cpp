@@ -548,7 +548,7 @@ HUBBEAM_WIDE_KERNEL void amm_nx0_ny4_prescribed_first_forces_folded(const double
 }  // namespace
 
 extern const Variant amm_nx0_ny4_prescribed_first = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "amm_nx0_ny4_prescribed_first",
     .nq = 4,
     .ncoeff = 54,
@@ -569,6 +569,8 @@ extern const Variant amm_nx0_ny4_prescribed_first = {
     .forces_u = amm_nx0_ny4_prescribed_first_forces_u,
     .tip = amm_nx0_ny4_prescribed_first_tip,
     .forces_folded = amm_nx0_ny4_prescribed_first_forces_folded,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

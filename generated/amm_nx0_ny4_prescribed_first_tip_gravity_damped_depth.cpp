@@ -1128,7 +1128,7 @@ HUBBEAM_WIDE_KERNEL void amm_nx0_ny4_prescribed_first_tip_gravity_damped_depth_f
 }  // namespace
 
 extern const Variant amm_nx0_ny4_prescribed_first_tip_gravity_damped_depth = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "amm_nx0_ny4_prescribed_first_tip_gravity_damped_depth",
     .nq = 4,
     .ncoeff = 97,
@@ -1149,6 +1149,8 @@ extern const Variant amm_nx0_ny4_prescribed_first_tip_gravity_damped_depth = {
     .forces_u = amm_nx0_ny4_prescribed_first_tip_gravity_damped_depth_forces_u,
     .tip = amm_nx0_ny4_prescribed_first_tip_gravity_damped_depth_tip,
     .forces_folded = amm_nx0_ny4_prescribed_first_tip_gravity_damped_depth_forces_folded,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

@@ -375,7 +375,7 @@ HUBBEAM_WIDE_KERNEL void amm_nx0_ny4_prescribed_zero_forces_folded(const double*
 }  // namespace
 
 extern const Variant amm_nx0_ny4_prescribed_zero = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "amm_nx0_ny4_prescribed_zero",
     .nq = 4,
     .ncoeff = 23,
@@ -396,6 +396,8 @@ extern const Variant amm_nx0_ny4_prescribed_zero = {
     .forces_u = amm_nx0_ny4_prescribed_zero_forces_u,
     .tip = amm_nx0_ny4_prescribed_zero_tip,
     .forces_folded = amm_nx0_ny4_prescribed_zero_forces_folded,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

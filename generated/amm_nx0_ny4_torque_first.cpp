@@ -756,7 +756,7 @@ void amm_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, c
 }  // namespace
 
 extern const Variant amm_nx0_ny4_torque_first = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "amm_nx0_ny4_torque_first",
     .nq = 5,
     .ncoeff = 54,
@@ -777,6 +777,8 @@ extern const Variant amm_nx0_ny4_torque_first = {
     .forces_u = amm_nx0_ny4_torque_first_forces_u,
     .tip = amm_nx0_ny4_torque_first_tip,
     .forces_folded = amm_nx0_ny4_torque_first_forces_folded,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

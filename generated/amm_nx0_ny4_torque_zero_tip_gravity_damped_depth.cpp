@@ -1154,7 +1154,7 @@ void amm_nx0_ny4_torque_zero_tip_gravity_damped_depth_mass_q_product(const doubl
 }  // namespace
 
 extern const Variant amm_nx0_ny4_torque_zero_tip_gravity_damped_depth = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "amm_nx0_ny4_torque_zero_tip_gravity_damped_depth",
     .nq = 5,
     .ncoeff = 73,
@@ -1175,6 +1175,8 @@ extern const Variant amm_nx0_ny4_torque_zero_tip_gravity_damped_depth = {
     .forces_u = amm_nx0_ny4_torque_zero_tip_gravity_damped_depth_forces_u,
     .tip = amm_nx0_ny4_torque_zero_tip_gravity_damped_depth_tip,
     .forces_folded = amm_nx0_ny4_torque_zero_tip_gravity_damped_depth_forces_folded,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

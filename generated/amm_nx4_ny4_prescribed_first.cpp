@@ -1221,7 +1221,7 @@ HUBBEAM_WIDE_KERNEL void amm_nx4_ny4_prescribed_first_forces_folded(const double
 }  // namespace
 
 extern const Variant amm_nx4_ny4_prescribed_first = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "amm_nx4_ny4_prescribed_first",
     .nq = 8,
     .ncoeff = 110,
@@ -1242,6 +1242,8 @@ extern const Variant amm_nx4_ny4_prescribed_first = {
     .forces_u = amm_nx4_ny4_prescribed_first_forces_u,
     .tip = amm_nx4_ny4_prescribed_first_tip,
     .forces_folded = amm_nx4_ny4_prescribed_first_forces_folded,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

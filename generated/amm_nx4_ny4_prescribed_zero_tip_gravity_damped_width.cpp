@@ -2056,7 +2056,7 @@ HUBBEAM_WIDE_KERNEL void amm_nx4_ny4_prescribed_zero_tip_gravity_damped_width_fo
 }  // namespace
 
 extern const Variant amm_nx4_ny4_prescribed_zero_tip_gravity_damped_width = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "amm_nx4_ny4_prescribed_zero_tip_gravity_damped_width",
     .nq = 8,
     .ncoeff = 165,
@@ -2077,6 +2077,8 @@ extern const Variant amm_nx4_ny4_prescribed_zero_tip_gravity_damped_width = {
     .forces_u = amm_nx4_ny4_prescribed_zero_tip_gravity_damped_width_forces_u,
     .tip = amm_nx4_ny4_prescribed_zero_tip_gravity_damped_width_tip,
     .forces_folded = amm_nx4_ny4_prescribed_zero_tip_gravity_damped_width_forces_folded,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

@@ -1457,7 +1457,7 @@ void amm_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, c
 }  // namespace
 
 extern const Variant amm_nx4_ny4_torque_first = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "amm_nx4_ny4_torque_first",
     .nq = 9,
     .ncoeff = 110,
@@ -1478,6 +1478,8 @@ extern const Variant amm_nx4_ny4_torque_first = {
     .forces_u = amm_nx4_ny4_torque_first_forces_u,
     .tip = amm_nx4_ny4_torque_first_tip,
     .forces_folded = amm_nx4_ny4_torque_first_forces_folded,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

@@ -2708,7 +2708,7 @@ void amm_nx4_ny4_torque_first_tip_gravity_damped_width_mass_q_product(const doub
 }  // namespace
 
 extern const Variant amm_nx4_ny4_torque_first_tip_gravity_damped_width = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "amm_nx4_ny4_torque_first_tip_gravity_damped_width",
     .nq = 9,
     .ncoeff = 189,
@@ -2729,6 +2729,8 @@ extern const Variant amm_nx4_ny4_torque_first_tip_gravity_damped_width = {
     .forces_u = amm_nx4_ny4_torque_first_tip_gravity_damped_width_forces_u,
     .tip = amm_nx4_ny4_torque_first_tip_gravity_damped_width_tip,
     .forces_folded = amm_nx4_ny4_torque_first_tip_gravity_damped_width_forces_folded,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

@@ -598,7 +598,7 @@ HUBBEAM_WIDE_KERNEL void bim_nx0_ny4_prescribed_first_forces_folded(const double
 }  // namespace
 
 extern const Variant bim_nx0_ny4_prescribed_first = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "bim_nx0_ny4_prescribed_first",
     .nq = 4,
     .ncoeff = 57,
@@ -619,6 +619,8 @@ extern const Variant bim_nx0_ny4_prescribed_first = {
     .forces_u = bim_nx0_ny4_prescribed_first_forces_u,
     .tip = bim_nx0_ny4_prescribed_first_tip,
     .forces_folded = bim_nx0_ny4_prescribed_first_forces_folded,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

@@ -1068,7 +1068,7 @@ HUBBEAM_WIDE_KERNEL void bim_nx0_ny4_prescribed_first_tip_gravity_damped_depth_f
 }  // namespace
 
 extern const Variant bim_nx0_ny4_prescribed_first_tip_gravity_damped_depth = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "bim_nx0_ny4_prescribed_first_tip_gravity_damped_depth",
     .nq = 4,
     .ncoeff = 91,
@@ -1089,6 +1089,8 @@ extern const Variant bim_nx0_ny4_prescribed_first_tip_gravity_damped_depth = {
     .forces_u = bim_nx0_ny4_prescribed_first_tip_gravity_damped_depth_forces_u,
     .tip = bim_nx0_ny4_prescribed_first_tip_gravity_damped_depth_tip,
     .forces_folded = bim_nx0_ny4_prescribed_first_tip_gravity_damped_depth_forces_folded,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

@@ -800,7 +800,7 @@ void bim_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, c
 }  // namespace
 
 extern const Variant bim_nx0_ny4_torque_first = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "bim_nx0_ny4_torque_first",
     .nq = 5,
     .ncoeff = 57,
@@ -821,6 +821,8 @@ extern const Variant bim_nx0_ny4_torque_first = {
     .forces_u = bim_nx0_ny4_torque_first_forces_u,
     .tip = bim_nx0_ny4_torque_first_tip,
     .forces_folded = bim_nx0_ny4_torque_first_forces_folded,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

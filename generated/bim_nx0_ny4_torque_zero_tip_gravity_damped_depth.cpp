@@ -1030,7 +1030,7 @@ void bim_nx0_ny4_torque_zero_tip_gravity_damped_depth_mass_q_product(const doubl
 }  // namespace
 
 extern const Variant bim_nx0_ny4_torque_zero_tip_gravity_damped_depth = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "bim_nx0_ny4_torque_zero_tip_gravity_damped_depth",
     .nq = 5,
     .ncoeff = 62,
@@ -1051,6 +1051,8 @@ extern const Variant bim_nx0_ny4_torque_zero_tip_gravity_damped_depth = {
     .forces_u = bim_nx0_ny4_torque_zero_tip_gravity_damped_depth_forces_u,
     .tip = bim_nx0_ny4_torque_zero_tip_gravity_damped_depth_tip,
     .forces_folded = bim_nx0_ny4_torque_zero_tip_gravity_damped_depth_forces_folded,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

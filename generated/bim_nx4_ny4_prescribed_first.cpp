@@ -1278,7 +1278,7 @@ HUBBEAM_WIDE_KERNEL void bim_nx4_ny4_prescribed_first_forces_folded(const double
 }  // namespace
 
 extern const Variant bim_nx4_ny4_prescribed_first = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "bim_nx4_ny4_prescribed_first",
     .nq = 8,
     .ncoeff = 99,
@@ -1299,6 +1299,8 @@ extern const Variant bim_nx4_ny4_prescribed_first = {
     .forces_u = bim_nx4_ny4_prescribed_first_forces_u,
     .tip = bim_nx4_ny4_prescribed_first_tip,
     .forces_folded = bim_nx4_ny4_prescribed_first_forces_folded,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

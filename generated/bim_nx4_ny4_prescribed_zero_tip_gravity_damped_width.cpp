@@ -1840,7 +1840,7 @@ HUBBEAM_WIDE_KERNEL void bim_nx4_ny4_prescribed_zero_tip_gravity_damped_width_fo
 }  // namespace
 
 extern const Variant bim_nx4_ny4_prescribed_zero_tip_gravity_damped_width = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "bim_nx4_ny4_prescribed_zero_tip_gravity_damped_width",
     .nq = 8,
     .ncoeff = 150,
@@ -1861,6 +1861,8 @@ extern const Variant bim_nx4_ny4_prescribed_zero_tip_gravity_damped_width = {
     .forces_u = bim_nx4_ny4_prescribed_zero_tip_gravity_damped_width_forces_u,
     .tip = bim_nx4_ny4_prescribed_zero_tip_gravity_damped_width_tip,
     .forces_folded = bim_nx4_ny4_prescribed_zero_tip_gravity_damped_width_forces_folded,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

@@ -2556,7 +2556,7 @@ void bim_nx4_ny4_torque_first_tip_gravity_damped_width_mass_q_product(const doub
 }  // namespace
 
 extern const Variant bim_nx4_ny4_torque_first_tip_gravity_damped_width = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "bim_nx4_ny4_torque_first_tip_gravity_damped_width",
     .nq = 9,
     .ncoeff = 179,
@@ -2577,6 +2577,8 @@ extern const Variant bim_nx4_ny4_torque_first_tip_gravity_damped_width = {
     .forces_u = bim_nx4_ny4_torque_first_tip_gravity_damped_width_forces_u,
     .tip = bim_nx4_ny4_torque_first_tip_gravity_damped_width_tip,
     .forces_folded = bim_nx4_ny4_torque_first_tip_gravity_damped_width_forces_folded,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

@@ -1492,7 +1492,7 @@ void bim_nx4_ny4_torque_zero_mass_q_product(const double* c, const double* u, co
 }  // namespace
 
 extern const Variant bim_nx4_ny4_torque_zero = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "bim_nx4_ny4_torque_zero",
     .nq = 9,
     .ncoeff = 77,
@@ -1513,6 +1513,8 @@ extern const Variant bim_nx4_ny4_torque_zero = {
     .forces_u = bim_nx4_ny4_torque_zero_forces_u,
     .tip = bim_nx4_ny4_torque_zero_tip,
     .forces_folded = bim_nx4_ny4_torque_zero_forces_folded,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

@@ -608,7 +608,7 @@ HUBBEAM_WIDE_KERNEL void bsim_nx0_ny4_prescribed_first_open_forces_folded(const 
 }  // namespace
 
 extern const Variant bsim_nx0_ny4_prescribed_first_open = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "bsim_nx0_ny4_prescribed_first_open",
     .nq = 4,
     .ncoeff = 61,
@@ -629,6 +629,8 @@ extern const Variant bsim_nx0_ny4_prescribed_first_open = {
     .forces_u = bsim_nx0_ny4_prescribed_first_open_forces_u,
     .tip = bsim_nx0_ny4_prescribed_first_open_tip,
     .forces_folded = bsim_nx0_ny4_prescribed_first_open_forces_folded,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

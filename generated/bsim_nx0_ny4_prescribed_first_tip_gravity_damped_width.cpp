@@ -1075,7 +1075,7 @@ HUBBEAM_WIDE_KERNEL void bsim_nx0_ny4_prescribed_first_tip_gravity_damped_width_
 }  // namespace
 
 extern const Variant bsim_nx0_ny4_prescribed_first_tip_gravity_damped_width = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "bsim_nx0_ny4_prescribed_first_tip_gravity_damped_width",
     .nq = 4,
     .ncoeff = 96,
@@ -1096,6 +1096,8 @@ extern const Variant bsim_nx0_ny4_prescribed_first_tip_gravity_damped_width = {
     .forces_u = bsim_nx0_ny4_prescribed_first_tip_gravity_damped_width_forces_u,
     .tip = bsim_nx0_ny4_prescribed_first_tip_gravity_damped_width_tip,
     .forces_folded = bsim_nx0_ny4_prescribed_first_tip_gravity_damped_width_forces_folded,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

@@ -814,7 +814,7 @@ void bsim_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, 
 }  // namespace
 
 extern const Variant bsim_nx0_ny4_torque_first = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "bsim_nx0_ny4_torque_first",
     .nq = 5,
     .ncoeff = 62,
@@ -835,6 +835,8 @@ extern const Variant bsim_nx0_ny4_torque_first = {
     .forces_u = bsim_nx0_ny4_torque_first_forces_u,
     .tip = bsim_nx0_ny4_torque_first_tip,
     .forces_folded = bsim_nx0_ny4_torque_first_forces_folded,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

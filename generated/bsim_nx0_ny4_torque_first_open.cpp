@@ -810,7 +810,7 @@ void bsim_nx0_ny4_torque_first_open_mass_q_product(const double* c, const double
 }  // namespace
 
 extern const Variant bsim_nx0_ny4_torque_first_open = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "bsim_nx0_ny4_torque_first_open",
     .nq = 5,
     .ncoeff = 61,
@@ -831,6 +831,8 @@ extern const Variant bsim_nx0_ny4_torque_first_open = {
     .forces_u = bsim_nx0_ny4_torque_first_open_forces_u,
     .tip = bsim_nx0_ny4_torque_first_open_tip,
     .forces_folded = bsim_nx0_ny4_torque_first_open_forces_folded,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

@@ -1035,7 +1035,7 @@ void bsim_nx0_ny4_torque_zero_open_tip_gravity_damped_width_mass_q_product(const
 }  // namespace
 
 extern const Variant bsim_nx0_ny4_torque_zero_open_tip_gravity_damped_width = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "bsim_nx0_ny4_torque_zero_open_tip_gravity_damped_width",
     .nq = 5,
     .ncoeff = 63,
@@ -1056,6 +1056,8 @@ extern const Variant bsim_nx0_ny4_torque_zero_open_tip_gravity_damped_width = {
     .forces_u = bsim_nx0_ny4_torque_zero_open_tip_gravity_damped_width_forces_u,
     .tip = bsim_nx0_ny4_torque_zero_open_tip_gravity_damped_width_tip,
     .forces_folded = bsim_nx0_ny4_torque_zero_open_tip_gravity_damped_width_forces_folded,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

@@ -1376,7 +1376,7 @@ HUBBEAM_WIDE_KERNEL void bsim_nx4_ny4_prescribed_first_forces_folded(const doubl
 }  // namespace
 
 extern const Variant bsim_nx4_ny4_prescribed_first = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "bsim_nx4_ny4_prescribed_first",
     .nq = 8,
     .ncoeff = 125,
@@ -1397,6 +1397,8 @@ extern const Variant bsim_nx4_ny4_prescribed_first = {
     .forces_u = bsim_nx4_ny4_prescribed_first_forces_u,
     .tip = bsim_nx4_ny4_prescribed_first_tip,
     .forces_folded = bsim_nx4_ny4_prescribed_first_forces_folded,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

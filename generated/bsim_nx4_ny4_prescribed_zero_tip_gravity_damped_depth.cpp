@@ -1842,7 +1842,7 @@ HUBBEAM_WIDE_KERNEL void bsim_nx4_ny4_prescribed_zero_tip_gravity_damped_depth_f
 }  // namespace
 
 extern const Variant bsim_nx4_ny4_prescribed_zero_tip_gravity_damped_depth = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "bsim_nx4_ny4_prescribed_zero_tip_gravity_damped_depth",
     .nq = 8,
     .ncoeff = 152,
@@ -1863,6 +1863,8 @@ extern const Variant bsim_nx4_ny4_prescribed_zero_tip_gravity_damped_depth = {
     .forces_u = bsim_nx4_ny4_prescribed_zero_tip_gravity_damped_depth_forces_u,
     .tip = bsim_nx4_ny4_prescribed_zero_tip_gravity_damped_depth_tip,
     .forces_folded = bsim_nx4_ny4_prescribed_zero_tip_gravity_damped_depth_forces_folded,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

@@ -1702,7 +1702,7 @@ void bsim_nx4_ny4_torque_first_mass_q_product(const double* c, const double* u, 
 }  // namespace
 
 extern const Variant bsim_nx4_ny4_torque_first = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "bsim_nx4_ny4_torque_first",
     .nq = 9,
     .ncoeff = 125,
@@ -1723,6 +1723,8 @@ extern const Variant bsim_nx4_ny4_torque_first = {
     .forces_u = bsim_nx4_ny4_torque_first_forces_u,
     .tip = bsim_nx4_ny4_torque_first_tip,
     .forces_folded = bsim_nx4_ny4_torque_first_forces_folded,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

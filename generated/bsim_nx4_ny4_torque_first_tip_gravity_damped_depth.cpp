@@ -2578,7 +2578,7 @@ void bsim_nx4_ny4_torque_first_tip_gravity_damped_depth_mass_q_product(const dou
 }  // namespace
 
 extern const Variant bsim_nx4_ny4_torque_first_tip_gravity_damped_depth = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "bsim_nx4_ny4_torque_first_tip_gravity_damped_depth",
     .nq = 9,
     .ncoeff = 187,
@@ -2599,6 +2599,8 @@ extern const Variant bsim_nx4_ny4_torque_first_tip_gravity_damped_depth = {
     .forces_u = bsim_nx4_ny4_torque_first_tip_gravity_damped_depth_forces_u,
     .tip = bsim_nx4_ny4_torque_first_tip_gravity_damped_depth_tip,
     .forces_folded = bsim_nx4_ny4_torque_first_tip_gravity_damped_depth_forces_folded,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

@@ -573,7 +573,7 @@ HUBBEAM_WIDE_KERNEL void fem_nx0_ny4_prescribed_first_forces_folded(const double
 }  // namespace
 
 extern const Variant fem_nx0_ny4_prescribed_first = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "fem_nx0_ny4_prescribed_first",
     .nq = 4,
     .ncoeff = 53,
@@ -594,6 +594,8 @@ extern const Variant fem_nx0_ny4_prescribed_first = {
     .forces_u = fem_nx0_ny4_prescribed_first_forces_u,
     .tip = fem_nx0_ny4_prescribed_first_tip,
     .forces_folded = fem_nx0_ny4_prescribed_first_forces_folded,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

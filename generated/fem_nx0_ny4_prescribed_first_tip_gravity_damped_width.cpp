@@ -1040,7 +1040,7 @@ HUBBEAM_WIDE_KERNEL void fem_nx0_ny4_prescribed_first_tip_gravity_damped_width_f
 }  // namespace
 
 extern const Variant fem_nx0_ny4_prescribed_first_tip_gravity_damped_width = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "fem_nx0_ny4_prescribed_first_tip_gravity_damped_width",
     .nq = 4,
     .ncoeff = 89,
@@ -1061,6 +1061,8 @@ extern const Variant fem_nx0_ny4_prescribed_first_tip_gravity_damped_width = {
     .forces_u = fem_nx0_ny4_prescribed_first_tip_gravity_damped_width_forces_u,
     .tip = fem_nx0_ny4_prescribed_first_tip_gravity_damped_width_tip,
     .forces_folded = fem_nx0_ny4_prescribed_first_tip_gravity_damped_width_forces_folded,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

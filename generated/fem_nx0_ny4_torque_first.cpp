@@ -776,7 +776,7 @@ void fem_nx0_ny4_torque_first_mass_q_product(const double* c, const double* u, c
 }  // namespace
 
 extern const Variant fem_nx0_ny4_torque_first = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "fem_nx0_ny4_torque_first",
     .nq = 5,
     .ncoeff = 53,
@@ -797,6 +797,8 @@ extern const Variant fem_nx0_ny4_torque_first = {
     .forces_u = fem_nx0_ny4_torque_first_forces_u,
     .tip = fem_nx0_ny4_torque_first_tip,
     .forces_folded = fem_nx0_ny4_torque_first_forces_folded,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

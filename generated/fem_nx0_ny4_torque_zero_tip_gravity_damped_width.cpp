@@ -1007,7 +1007,7 @@ void fem_nx0_ny4_torque_zero_tip_gravity_damped_width_mass_q_product(const doubl
 }  // namespace
 
 extern const Variant fem_nx0_ny4_torque_zero_tip_gravity_damped_width = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "fem_nx0_ny4_torque_zero_tip_gravity_damped_width",
     .nq = 5,
     .ncoeff = 59,
@@ -1028,6 +1028,8 @@ extern const Variant fem_nx0_ny4_torque_zero_tip_gravity_damped_width = {
     .forces_u = fem_nx0_ny4_torque_zero_tip_gravity_damped_width_forces_u,
     .tip = fem_nx0_ny4_torque_zero_tip_gravity_damped_width_tip,
     .forces_folded = fem_nx0_ny4_torque_zero_tip_gravity_damped_width_forces_folded,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

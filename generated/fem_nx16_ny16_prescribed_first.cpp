@@ -3569,7 +3569,7 @@ void fem_nx16_ny16_prescribed_first_forces_u(const double* c, const double* u, c
 }  // namespace
 
 extern const Variant fem_nx16_ny16_prescribed_first = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "fem_nx16_ny16_prescribed_first",
     .nq = 32,
     .ncoeff = 188,
@@ -3590,6 +3590,8 @@ extern const Variant fem_nx16_ny16_prescribed_first = {
     .forces_u = fem_nx16_ny16_prescribed_first_forces_u,
     .tip = fem_nx16_ny16_prescribed_first_tip,
     .forces_folded = nullptr,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

@@ -5497,7 +5497,7 @@ void fem_nx16_ny16_torque_first_mass_q_product(const double* c, const double* u,
 }  // namespace
 
 extern const Variant fem_nx16_ny16_torque_first = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "fem_nx16_ny16_torque_first",
     .nq = 33,
     .ncoeff = 188,
@@ -5518,6 +5518,8 @@ extern const Variant fem_nx16_ny16_torque_first = {
     .forces_u = fem_nx16_ny16_torque_first_forces_u,
     .tip = fem_nx16_ny16_torque_first_tip,
     .forces_folded = fem_nx16_ny16_torque_first_forces_folded,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

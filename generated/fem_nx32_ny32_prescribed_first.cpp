@@ -6117,7 +6117,7 @@ void fem_nx32_ny32_prescribed_first_forces_u(const double* c, const double* u, c
 }  // namespace
 
 extern const Variant fem_nx32_ny32_prescribed_first = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "fem_nx32_ny32_prescribed_first",
     .nq = 64,
     .ncoeff = 332,
@@ -6138,6 +6138,8 @@ extern const Variant fem_nx32_ny32_prescribed_first = {
     .forces_u = fem_nx32_ny32_prescribed_first_forces_u,
     .tip = fem_nx32_ny32_prescribed_first_tip,
     .forces_folded = nullptr,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

@@ -8375,7 +8375,7 @@ void fem_nx32_ny32_torque_first_mass_q_product(const double* c, const double* u,
 }  // namespace
 
 extern const Variant fem_nx32_ny32_torque_first = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "fem_nx32_ny32_torque_first",
     .nq = 65,
     .ncoeff = 333,
@@ -8396,6 +8396,8 @@ extern const Variant fem_nx32_ny32_torque_first = {
     .forces_u = fem_nx32_ny32_torque_first_forces_u,
     .tip = fem_nx32_ny32_torque_first_tip,
     .forces_folded = nullptr,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

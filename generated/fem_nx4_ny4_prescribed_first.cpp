@@ -1123,7 +1123,7 @@ HUBBEAM_WIDE_KERNEL void fem_nx4_ny4_prescribed_first_forces_folded(const double
 }  // namespace
 
 extern const Variant fem_nx4_ny4_prescribed_first = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "fem_nx4_ny4_prescribed_first",
     .nq = 8,
     .ncoeff = 80,
@@ -1144,6 +1144,8 @@ extern const Variant fem_nx4_ny4_prescribed_first = {
     .forces_u = fem_nx4_ny4_prescribed_first_forces_u,
     .tip = fem_nx4_ny4_prescribed_first_tip,
     .forces_folded = fem_nx4_ny4_prescribed_first_forces_folded,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

@@ -1674,7 +1674,7 @@ HUBBEAM_WIDE_KERNEL void fem_nx4_ny4_prescribed_zero_tip_gravity_damped_depth_fo
 }  // namespace
 
 extern const Variant fem_nx4_ny4_prescribed_zero_tip_gravity_damped_depth = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "fem_nx4_ny4_prescribed_zero_tip_gravity_damped_depth",
     .nq = 8,
     .ncoeff = 134,
@@ -1695,6 +1695,8 @@ extern const Variant fem_nx4_ny4_prescribed_zero_tip_gravity_damped_depth = {
     .forces_u = fem_nx4_ny4_prescribed_zero_tip_gravity_damped_depth_forces_u,
     .tip = fem_nx4_ny4_prescribed_zero_tip_gravity_damped_depth_tip,
     .forces_folded = fem_nx4_ny4_prescribed_zero_tip_gravity_damped_depth_forces_folded,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

@@ -2341,7 +2341,7 @@ void fem_nx4_ny4_torque_first_tip_gravity_damped_depth_mass_q_product(const doub
 }  // namespace
 
 extern const Variant fem_nx4_ny4_torque_first_tip_gravity_damped_depth = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "fem_nx4_ny4_torque_first_tip_gravity_damped_depth",
     .nq = 9,
     .ncoeff = 164,
@@ -2362,6 +2362,8 @@ extern const Variant fem_nx4_ny4_torque_first_tip_gravity_damped_depth = {
     .forces_u = fem_nx4_ny4_torque_first_tip_gravity_damped_depth_forces_u,
     .tip = fem_nx4_ny4_torque_first_tip_gravity_damped_depth_tip,
     .forces_folded = fem_nx4_ny4_torque_first_tip_gravity_damped_depth_forces_folded,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

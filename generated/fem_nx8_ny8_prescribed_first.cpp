@@ -2121,7 +2121,7 @@ HUBBEAM_WIDE_KERNEL void fem_nx8_ny8_prescribed_first_forces_folded(const double
 }  // namespace
 
 extern const Variant fem_nx8_ny8_prescribed_first = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "fem_nx8_ny8_prescribed_first",
     .nq = 16,
     .ncoeff = 116,
@@ -2142,6 +2142,8 @@ extern const Variant fem_nx8_ny8_prescribed_first = {
     .forces_u = fem_nx8_ny8_prescribed_first_forces_u,
     .tip = fem_nx8_ny8_prescribed_first_tip,
     .forces_folded = fem_nx8_ny8_prescribed_first_forces_folded,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

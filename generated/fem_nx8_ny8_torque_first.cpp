@@ -2723,7 +2723,7 @@ void fem_nx8_ny8_torque_first_mass_q_product(const double* c, const double* u, c
 }  // namespace
 
 extern const Variant fem_nx8_ny8_torque_first = {
-    .abi_version = 5,
+    .abi_version = 6,
     .name = "fem_nx8_ny8_torque_first",
     .nq = 17,
     .ncoeff = 116,
@@ -2744,6 +2744,8 @@ extern const Variant fem_nx8_ny8_torque_first = {
     .forces_u = fem_nx8_ny8_torque_first_forces_u,
     .tip = fem_nx8_ny8_torque_first_tip,
     .forces_folded = fem_nx8_ny8_torque_first_forces_folded,
+    .nsection = 0,
+    .section_integrals = nullptr,
 };
 
 }  // namespace hubbeam::generated

@@ -48,14 +48,14 @@ extern const Variant bsim_nx4_ny4_torque_first_tip_gravity_damped_depth;
 extern const Variant bsim_nx0_ny4_prescribed_first_tip_gravity_damped_width;
 extern const Variant bsim_nx4_ny4_prescribed_zero_tip_gravity_damped_depth;
 extern const Variant bsim_nx0_ny4_torque_zero_open_tip_gravity_damped_width;
-extern const Variant amm_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100;
-extern const Variant amm_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100;
-extern const Variant fem_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100;
-extern const Variant fem_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100;
-extern const Variant bim_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100;
-extern const Variant bim_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100;
-extern const Variant bsim_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100;
-extern const Variant bsim_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100;
+extern const Variant amm_nx4_ny4_prescribed_first_tip_gravity_damped_profile;
+extern const Variant amm_nx4_ny4_torque_first_tip_gravity_damped_profile;
+extern const Variant fem_nx4_ny4_prescribed_first_tip_gravity_damped_profile;
+extern const Variant fem_nx4_ny4_torque_first_tip_gravity_damped_profile;
+extern const Variant bim_nx4_ny4_prescribed_first_tip_gravity_damped_profile;
+extern const Variant bim_nx4_ny4_torque_first_tip_gravity_damped_profile;
+extern const Variant bsim_nx4_ny4_prescribed_first_tip_gravity_damped_profile;
+extern const Variant bsim_nx4_ny4_torque_first_tip_gravity_damped_profile;
 
 const Variant* const variants[] = {
     &amm_nx0_ny4_prescribed_first,
@@ -100,14 +100,14 @@ const Variant* const variants[] = {
     &bsim_nx0_ny4_prescribed_first_tip_gravity_damped_width,
     &bsim_nx4_ny4_prescribed_zero_tip_gravity_damped_depth,
     &bsim_nx0_ny4_torque_zero_open_tip_gravity_damped_width,
-    &amm_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100,
-    &amm_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100,
-    &fem_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100,
-    &fem_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100,
-    &bim_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100,
-    &bim_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100,
-    &bsim_nx4_ny4_prescribed_first_tip_gravity_damped_profile100x0x30x55x100,
-    &bsim_nx4_ny4_torque_first_tip_gravity_damped_profile100x0x30x55x100,
+    &amm_nx4_ny4_prescribed_first_tip_gravity_damped_profile,
+    &amm_nx4_ny4_torque_first_tip_gravity_damped_profile,
+    &fem_nx4_ny4_prescribed_first_tip_gravity_damped_profile,
+    &fem_nx4_ny4_torque_first_tip_gravity_damped_profile,
+    &bim_nx4_ny4_prescribed_first_tip_gravity_damped_profile,
+    &bim_nx4_ny4_torque_first_tip_gravity_damped_profile,
+    &bsim_nx4_ny4_prescribed_first_tip_gravity_damped_profile,
+    &bsim_nx4_ny4_torque_first_tip_gravity_damped_profile,
 };
 const int variant_count = 50;
 

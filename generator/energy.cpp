@@ -2,7 +2,9 @@
 // term-by-term integration over the beam.
 #include "energy.hpp"
 
+#include <algorithm>
 #include <map>
+#include <set>
 #include <stdexcept>
 #include <string>
 
@@ -75,9 +77,10 @@ Term single_term(const PolyReader& read, const ex& e, std::vector<Factor> factor
 /// expansions reach 10^5 terms for order full; as GiNaC products they cost seconds).
 class DensityIntegrator {
 public:
+    /// found: where a first pass collects the section integrals the energies meet (Symbols::section_keys), or null.
     DensityIntegrator(const Symbols& s, const FieldSymbols& f, const VariantKey& key, ShapeIntegrals& integrals,
-                      const PolyReader& read)
-        : s_(s), f_(f), integrals_(integrals), read_(read)
+                      const PolyReader& read, std::set<SectionKey>* found)
+        : s_(s), f_(f), integrals_(integrals), read_(read), found_(found)
     {
         const CoordinateLayout layout = coordinate_layout(key);
         expand_axial(layout);
@@ -85,7 +88,7 @@ public:
         expand_flap(layout);
         expand_twist(layout);
         merge_symmetric_couplings();
-        expand_profile(key);
+        expand_sections(key);
         // Present (possibly empty) so that nx = 0 (or a planar variant's missing fields) makes their terms vanish.
         for (const symbol& absent : {f.ux1, f.ux1_dot, f.ux1_x, f.ux1_x_dot, f.uz, f.uz_dot, f.uz_x, f.uz_xx,
                                      f.uz_xx_dot, f.phi, f.phi_dot, f.phi_x, f.phi_x_dot})
@@ -199,33 +202,31 @@ private:
         }
     }
 
-    /// A profile's distributions along the beam: each station's values times its hat function.
-    void expand_profile(const VariantKey& key)
+    /// A profile's distributions along the beam, or a pre-twist's cos and sin: each a factor whose integrals against
+    /// the basis are run-time data.
+    void expand_sections(const VariantKey& key)
     {
-        const Symbols& s = s_;
         const FieldSymbols& f = f_;
-        using K = Factor::Kind;
-        for (std::size_t k = 0; k < key.extras.stations.size(); ++k) {
-            const Factor hat{K::hat, static_cast<int>(k), 0, 0};
-            add(f.m_x, s.m_k[k], hat);
-            add(f.EI_x, s.EI_k[k], hat);
-            add(f.ES_x, s.ES_k[k], hat);
-            if (!s.o) continue;
-            // A blade's (docs/model.md section 12.4): the deviators at station k turned by its chord angle.
-            const Symbols::OutOfPlane& o = *s.o;
-            add(f.EI_flap_x, o.EI_flap_k[k], hat);
-            add(f.GJ_x, o.GJ_k[k], hat);
-            add(f.j_p_x, o.j_c_k[k], hat);
-            add(f.j_p_x, o.j_n_k[k], hat);
-            add(f.EI_cos_x, s.EI_k[k] * o.cos_2twist_k[k] / 2, hat);
-            add(f.EI_cos_x, -o.EI_flap_k[k] * o.cos_2twist_k[k] / 2, hat);
-            add(f.EI_sin_x, s.EI_k[k] * o.sin_2twist_k[k] / 2, hat);
-            add(f.EI_sin_x, -o.EI_flap_k[k] * o.sin_2twist_k[k] / 2, hat);
-            add(f.j_cos_x, o.j_n_k[k] * o.cos_2twist_k[k] / 2, hat);
-            add(f.j_cos_x, -o.j_c_k[k] * o.cos_2twist_k[k] / 2, hat);
-            add(f.j_sin_x, o.j_n_k[k] * o.sin_2twist_k[k] / 2, hat);
-            add(f.j_sin_x, -o.j_c_k[k] * o.sin_2twist_k[k] / 2, hat);
+        using D = SectionDistribution;
+        const auto distribution = [&](const symbol& field, D d) {
+            add(field, 1, {Factor::Kind::section, static_cast<int>(d), 0, 0});
+        };
+        if (key.extras.twist) {
+            distribution(f.cos_2twist_x, D::cos_2twist);
+            distribution(f.sin_2twist_x, D::sin_2twist);
         }
+        if (!key.extras.profile()) return;
+        distribution(f.m_x, D::m);
+        distribution(f.EI_x, D::EI);
+        distribution(f.ES_x, D::ES);
+        if (!s_.o) return;
+        distribution(f.EI_flap_x, D::EI_flap);
+        distribution(f.GJ_x, D::GJ);
+        distribution(f.j_p_x, D::j_p);
+        distribution(f.EI_cos_x, D::EI_cos);
+        distribution(f.EI_sin_x, D::EI_sin);
+        distribution(f.j_cos_x, D::j_cos);
+        distribution(f.j_sin_x, D::j_sin);
     }
 
     Poly evaluate(const ex& density, bool tip)
@@ -263,6 +264,10 @@ private:
                 std::vector<std::size_t>& chosen)
     {
         const std::size_t next = chosen.size();
+        if (next == occurrences.size() && has_section(partial.factors)) {
+            add_section_integral(sum, partial, xi_power, orderings(occurrences, chosen));
+            return;
+        }
         if (next == occurrences.size()) {
             const numeric shape =
                 xi_power < 0 ? integrals_.at_tip(partial.factors) : integrals_.integrate(partial.factors, xi_power);
@@ -281,6 +286,39 @@ private:
             expand(sum, occurrences, p, xi_power, chosen);
             chosen.pop_back();
         }
+    }
+
+    static bool has_section(const std::vector<Factor>& factors)
+    {
+        return std::any_of(factors.begin(), factors.end(),
+                           [](const Factor& f) { return f.kind == Factor::Kind::section; });
+    }
+
+    /// A term whose integral holds a section distribution: its run-time integral's symbol s_n times the term's
+    /// coefficient (or, in the first pass, the integral's key collected).
+    void add_section_integral(Poly& sum, const Term& partial, int xi_power, const numeric& weight)
+    {
+        if (xi_power < 0) throw std::logic_error("energy: a section distribution at the tip");
+        SectionKey key{-1, xi_power, {}};
+        for (const Factor& f : partial.factors) {
+            if (f.kind != Factor::Kind::section) {
+                key.factors.push_back(f);
+            } else if (key.distribution >= 0) {
+                throw std::logic_error("energy: a product of two section distributions");
+            } else {
+                key.distribution = f.i;
+            }
+        }
+        std::sort(key.factors.begin(), key.factors.end());
+        if (!integrals_.overlaps(key.factors)) return;
+        if (found_) {
+            found_->insert(std::move(key));
+            return;
+        }
+        const auto it = s_.section_index.find(key);
+        if (it == s_.section_index.end()) throw std::logic_error("energy: a section integral the first pass missed");
+        const Term s = single_term(read_, s_.section[it->second], {});
+        sum.add(partial.monomial, product(partial.coefficient, s.coefficient), weight);
     }
 
     /// The number of orderings of the chosen indices within each run of repeated occurrences: r! / prod(count!).
@@ -306,8 +344,13 @@ private:
     const FieldSymbols& f_;
     ShapeIntegrals& integrals_;
     const PolyReader& read_;
+    std::set<SectionKey>* found_;
     std::map<ex, Expansion, ex_is_less> fields_;
 };
+
+/// derive_energies, or with found its first pass over a profile variant: the section integrals the energies meet.
+Energies energies(const VariantKey& key, const Symbols& s, const PolyReader& read, bool without_point_terms,
+                  std::set<SectionKey>* found);
 
 }  // namespace
 
@@ -320,12 +363,7 @@ Symbols::Symbols(const VariantKey& key)
         if (f.kind != FieldKind::hub_angle) coordinates(f.kind) = numbered(f.symbol, f.count);
     for (const CoordinateField& f : layout.fields)
         if (f.kind != FieldKind::hub_angle) rates(f.kind) = numbered(f.symbol, f.count, "_dot");
-    for (std::size_t k = 0; k < key.extras.stations.size(); ++k) {
-        m_k.emplace_back("m_" + std::to_string(k));
-        EI_k.emplace_back("EI_" + std::to_string(k));
-        ES_k.emplace_back("ES_" + std::to_string(k));
-    }
-    if (key.out_of_plane()) o = std::make_shared<const OutOfPlane>(key.extras.stations.size());
+    if (key.out_of_plane()) o = std::make_shared<const OutOfPlane>();
     for (const CoordinateField& f : layout.fields) {
         if (f.kind == FieldKind::hub_angle) {
             q.push_back(theta);
@@ -335,19 +373,31 @@ Symbols::Symbols(const VariantKey& key)
         q.insert(q.end(), coordinates(f.kind).begin(), coordinates(f.kind).end());
         qd.insert(qd.end(), rates(f.kind).begin(), rates(f.kind).end());
     }
+    if (!has_section_integrals(key)) return;
+    // The first pass: the energies over every symbol they can hold, keeping only which section integrals they meet.
+    std::vector<symbol> variables = {tau, theta_dot, theta_ddot, sin_theta, cos_theta};
+    for (const symbol& x : q)
+        if (!x.is_equal(theta)) variables.push_back(x);
+    variables.push_back(theta);
+    for (const symbol& x : qd)
+        if (!x.is_equal(theta_dot)) variables.push_back(x);
+    std::set<SectionKey> found;
+    energies(key, *this, PolyReader(parameters(), variables), false, &found);
+    section_keys.assign(found.begin(), found.end());
+    for (std::size_t n = 0; n < section_keys.size(); ++n) {
+        section.emplace_back("s_" + std::to_string(n));
+        section_index.emplace(section_keys[n], n);
+    }
 }
 
-Symbols::OutOfPlane::OutOfPlane(std::size_t stations)
+std::vector<symbol> Symbols::parameters() const
 {
-    for (std::size_t k = 0; k < stations; ++k) {
-        const std::string n = std::to_string(k);
-        EI_flap_k.emplace_back("EI_flap_" + n);
-        GJ_k.emplace_back("GJ_" + n);
-        j_c_k.emplace_back("j_c_" + n);
-        j_n_k.emplace_back("j_n_" + n);
-        cos_2twist_k.emplace_back("cos_2twist_" + n);
-        sin_2twist_k.emplace_back("sin_2twist_" + n);
-    }
+    std::vector<symbol> p = {L, m, EI, ES, a, J_oh, m_tip, J_tip, g, alpha, beta, tip_ratio};
+    if (o)
+        p.insert(p.end(), {o->EI_flap, o->GJ, o->j_n, o->j_c, o->cos_2pitch, o->sin_2pitch, o->twist, o->cos_cone,
+                           o->sin_cone, o->g_axis});
+    p.insert(p.end(), section.begin(), section.end());
+    return p;
 }
 
 std::vector<symbol>& Symbols::coordinates(FieldKind kind)
@@ -424,19 +474,18 @@ std::pair<ex, ex> turned_by_pitch(const VariantKey& key, const Symbols& s, const
     return {cp * c - sp * sn, sp * c + cp * sn};
 }
 
-std::pair<ex, ex> chord_angle(const VariantKey& key, const Symbols& s, const symbol& xi)
+std::pair<ex, ex> chord_angle(const VariantKey& key, const Symbols& s, const FieldSymbols& f)
 {
     if (!key.extras.twist) return turned_by_pitch(key, s, 1, 0);
-    // The pre-twist's part as its Taylor series in twist xi, exact to round-off for |twist| <= max_twist (the scene's
-    // bound), so that the integrals over xi stay those of polynomials.
-    ex c = 0, sn = 0, term = 1;  // term = (2 twist xi)^k / k!
-    for (int k = 0; k < twist_series_terms; ++k) {
-        if (k > 0) term = term * 2 * s.o->twist * xi / k;
-        const int sign = (k / 2) % 2 == 0 ? 1 : -1;
-        (k % 2 == 0 ? c : sn) += sign * term;
-    }
-    const auto [cos_2beta, sin_2beta] = turned_by_pitch(key, s, c, sn);
+    // The pre-twist's cos and sin are section distributions: the runtime integrates them against the basis for any
+    // twist, where a series in twist xi held only for small ones.
+    const auto [cos_2beta, sin_2beta] = turned_by_pitch(key, s, f.cos_2twist_x, f.sin_2twist_x);
     return {cos_2beta.expand(), sin_2beta.expand()};
+}
+
+bool has_section_integrals(const VariantKey& key)
+{
+    return key.extras.profile() || key.extras.twist;
 }
 
 ex bending_density(const VariantKey& key, const BeamSection& b, const ex& y2, const ex& z2)
@@ -460,13 +509,19 @@ ex section_rotation(const VariantKey& key, const Symbols& s, const FieldSymbols&
 
 Energies derive_energies(const VariantKey& key, const Symbols& s, const PolyReader& read, bool without_point_terms)
 {
+    return energies(key, s, read, without_point_terms, nullptr);
+}
+
+namespace {
+
+Energies energies(const VariantKey& key, const Symbols& s, const PolyReader& read, bool without_point_terms,
+                  std::set<SectionKey>* found)
+{
     if (const std::string why = key.dof_problem(); !why.empty()) throw std::invalid_argument(key.name() + ": " + why);
     const Extras& x = key.extras;
-    std::vector<numeric> stations;
-    for (long long n : x.stations) stations.push_back(numeric(n) / numeric(x.station_denominator));
-    ShapeIntegrals integrals(key.axial_basis(), key.transverse_basis(), stations, key.flap_basis(), key.twist_basis());
+    ShapeIntegrals integrals(key.axial_basis(), key.transverse_basis(), key.flap_basis(), key.twist_basis());
     const FieldSymbols f;
-    DensityIntegrator integrate(s, f, key, integrals, read);
+    DensityIntegrator integrate(s, f, key, integrals, read, found);
     // The distributions along the span: the root's values, or a section term's (a taper, a profile).
     const std::vector<const TermInfo*> carried = carried_terms(x);
     BeamSection beam = uniform_section(key, s, f);
@@ -493,5 +548,7 @@ Energies derive_energies(const VariantKey& key, const Symbols& s, const PolyRead
         if (generator_part(*t).energies) generator_part(*t).energies(context, e);
     return e;
 }
+
+}  // namespace
 
 }  // namespace hubbeam::gen

@@ -4,6 +4,7 @@
 
 #include <ginac/ginac.h>
 
+#include <map>
 #include <memory>
 #include <vector>
 
@@ -14,6 +15,14 @@
 
 namespace hubbeam::gen {
 
+/// A run-time section integral: int_0^1 xi^power d(xi) prod(factors) dxi of distribution d (SectionDistribution),
+/// factors sorted and free of the section.
+struct SectionKey {
+    int distribution = 0, power = 0;
+    std::vector<Factor> factors;
+    auto operator<=>(const SectionKey&) const = default;
+};
+
 /// Every symbol a variant's equations can contain, named as in docs/model.md and in the emitted code.
 struct Symbols {
     // Physical parameters; m = rho S, EI and ES are formed from p = (L, rho, S, I, E, a, J_oh).
@@ -23,8 +32,6 @@ struct Symbols {
     // A gravity variant's sin(theta) and cos(theta): inputs, or under torque functions of the coordinate theta.
     GiNaC::symbol sin_theta{"sin_theta"}, cos_theta{"cos_theta"};
     // The drive u = (tau, theta_dot, theta_ddot).
-    // A tabulated profile's values at station k: mass per length, EI and ES (p[13 + 3k], p[14 + 3k], p[15 + 3k]).
-    std::vector<GiNaC::symbol> m_k, EI_k, ES_k;
     GiNaC::symbol tau{"tau"}, theta_dot{"theta_dot"}, theta_ddot{"theta_ddot"};
     GiNaC::symbol theta{"theta"};
     // The beam fields' coordinates and rates (axial A, in-plane B), named by their CoordinateField's symbol.
@@ -40,17 +47,22 @@ struct Symbols {
         GiNaC::symbol EI_flap{"EI_flap"}, GJ{"GJ"}, j_n{"j_n"}, j_c{"j_c"};
         GiNaC::symbol cos_2pitch{"cos_2pitch"}, sin_2pitch{"sin_2pitch"}, twist{"twist"};
         GiNaC::symbol cos_cone{"cos_cone"}, sin_cone{"sin_cone"}, g_axis{"g_axis"};
-        /// A tabulated profile's blade values at station k (docs/model.md section 12.4): EI_flap, GJ, j_c, j_n, and
-        /// cos and sin of twice the chord's tabulated angle.
-        std::vector<GiNaC::symbol> EI_flap_k, GJ_k, j_c_k, j_n_k, cos_2twist_k, sin_2twist_k;
-
-        explicit OutOfPlane(std::size_t stations);
     };
     /// Created last and only for a variant that leaves the plane (VariantKey::out_of_plane): GiNaC orders terms by
     /// the symbols' serial numbers, so a planar variant's symbols and emitted code stay as they were.
     std::shared_ptr<const OutOfPlane> o;
+    /// A profile variant's run-time section integrals (generated_abi.h's SectionIntegral), in the order of their index
+    /// n, and their symbols s_n, which the coefficients kernel reads at p[param_count + n]; empty without a profile.
+    /// Found by a first pass over the energies (the integrals a variant needs are those its energies meet).
+    std::vector<SectionKey> section_keys;
+    std::vector<GiNaC::symbol> section;
+    std::map<SectionKey, std::size_t> section_index;
 
     explicit Symbols(const VariantKey& key);
+
+    /// Every parameter symbol the energies can hold: the beam's, the terms', the out-of-plane model's (where it has
+    /// one) and the section integrals' (a profile's).
+    std::vector<GiNaC::symbol> parameters() const;
 
 private:
     /// The coordinates and rates of a beam field of this kind.
@@ -72,17 +84,19 @@ struct FieldSymbols {
     // The slope and its rate (a tip body's rotation), the strain rates (stiffness-proportional damping), and
     // the span coordinate xi = x / L that a taper's section varies with.
     GiNaC::symbol uy_x{"u_y_x"}, uy_x_dot{"u_y_x_dot"}, ux1_x_dot{"u_x1_x_dot"}, uy_xx_dot{"u_y_xx_dot"}, xi{"xi"};
-    // A tabulated profile's distributions m(x), EI(x), ES(x): sum_k value_k N_k(xi) over the stations' hat functions.
+    // A tabulated profile's distributions m(x), EI(x), ES(x), linear between its stations (run-time data).
     GiNaC::symbol m_x{"m_x"}, EI_x{"EI_x"}, ES_x{"ES_x"};
     // The flapwise deflection u_z with its rate, slope and curvature (and their rates), the twist phi with its rate and
     // derivative (docs/model.md section 12).
     GiNaC::symbol uz{"u_z"}, uz_dot{"u_z_dot"}, uz_x{"u_z_x"}, uz_xx{"u_z_xx"}, uz_xx_dot{"u_z_xx_dot"};
     GiNaC::symbol phi{"phi"}, phi_dot{"phi_dot"}, phi_x{"phi_x"}, phi_x_dot{"phi_x_dot"};
-    // A tabulated blade's distributions over the stations' hat functions (docs/model.md section 12.4): EI_flap(x),
-    // GJ(x), j_c + j_n, and the deviators (EI - EI_flap)/2 and (j_n - j_c)/2 times cos and sin of twice the tabulated
-    // chord angle, each linear between stations.
+    // A tabulated blade's distributions (docs/model.md section 12.4): EI_flap(x), GJ(x), j_c + j_n, and the deviators
+    // (EI - EI_flap)/2 and (j_n - j_c)/2 times cos and sin of twice the tabulated chord angle, each linear between
+    // stations (SectionDistribution).
     GiNaC::symbol EI_flap_x{"EI_flap_x"}, GJ_x{"GJ_x"}, j_p_x{"j_p_x"}, EI_cos_x{"EI_cos_x"}, EI_sin_x{"EI_sin_x"},
         j_cos_x{"j_cos_x"}, j_sin_x{"j_sin_x"};
+    // A uniform blade's pre-twist: cos 2 twist xi and sin 2 twist xi (section distributions).
+    GiNaC::symbol cos_2twist_x{"cos_2twist_x"}, sin_2twist_x{"sin_2twist_x"};
 };
 
 /// The beam's distributions along the span, in x (or xi): mass per length, axial and (edgewise) bending stiffness.
@@ -122,8 +136,12 @@ Cone cone_of(const VariantKey& key, const Symbols& s);
 std::pair<GiNaC::ex, GiNaC::ex> turned_by_pitch(const VariantKey& key, const Symbols& s, const GiNaC::ex& c,
                                                 const GiNaC::ex& sn);
 /// cos 2 beta(xi) and sin 2 beta(xi) of a uniform section's chord angle beta = pitch + twist xi (docs/model.md
-/// section 12): {1, 0} without either.
-std::pair<GiNaC::ex, GiNaC::ex> chord_angle(const VariantKey& key, const Symbols& s, const GiNaC::symbol& xi);
+/// section 12): {1, 0} without either; the pre-twist's part is the section distributions cos 2 twist xi and sin 2
+/// twist xi, whose integrals are run-time data.
+std::pair<GiNaC::ex, GiNaC::ex> chord_angle(const VariantKey& key, const Symbols& s, const FieldSymbols& f);
+
+/// Whether a variant's kernels read section integrals: a profile's, or a pre-twist's.
+bool has_section_integrals(const VariantKey& key);
 
 /// T = 1/2 J_oh theta_dot^2 + 1/2 int m |r_dot|^2 dx and U = 1/2 int (ES u_x1'^2 + EI u_y''^2) dx, over the
 /// parameter and variable symbols of read; with the key's extras, the tip body's, gravity's, the taper's and the

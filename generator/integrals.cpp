@@ -44,23 +44,19 @@ static bool is_coupling(const Factor& f)
     return f.kind == Factor::Kind::coupling || f.kind == Factor::Kind::flap_coupling;
 }
 
-ShapeIntegrals::ShapeIntegrals(FieldBasis axial, FieldBasis transverse, std::vector<numeric> stations, FieldBasis flap,
-                               FieldBasis twist)
+ShapeIntegrals::ShapeIntegrals(FieldBasis axial, FieldBasis transverse, FieldBasis flap, FieldBasis twist)
     : axial_(std::move(axial)),
       transverse_(std::move(transverse)),
       flap_(std::move(flap)),
       twist_(std::move(twist)),
       exact_(axial_.polynomial() && transverse_.polynomial() && (flap_.size() == 0 || flap_.polynomial()) &&
-             (twist_.size() == 0 || twist_.polynomial())),
-      stations_(std::move(stations))
+             (twist_.size() == 0 || twist_.polynomial()))
 {
-    for (const numeric& x : stations_) station_values_.push_back(x.to_double());
     if (exact_) {
         for (const FieldBasis* b : {&axial_, &transverse_, &flap_, &twist_}) {
             if (b->size() == 0) continue;
             for (int k = 0; k <= b->intervals(); ++k) breaks_.push_back(numeric(k, b->intervals()));
         }
-        breaks_.insert(breaks_.end(), stations_.begin(), stations_.end());
         std::sort(breaks_.begin(), breaks_.end(), [](const numeric& a, const numeric& b) { return a < b; });
         breaks_.erase(
             std::unique(breaks_.begin(), breaks_.end(), [](const numeric& a, const numeric& b) { return a == b; }),
@@ -70,39 +66,10 @@ ShapeIntegrals::ShapeIntegrals(FieldBasis axial, FieldBasis transverse, std::vec
         const int panels =
             transcendental_panels(std::max({axial_.size(), transverse_.size(), flap_.size(), twist_.size()}));
         for (int k = 0; k <= panels; ++k) cuts_.push_back(static_cast<double>(k) / panels);
-        if (!stations_.empty()) {
-            // The stations become panel boundaries: each panel stays at most 1/panels wide, so the rule converges
-            // as before on every smooth piece of the integrand.
-            equal_panels_ = false;
-            cuts_.insert(cuts_.end(), station_values_.begin(), station_values_.end());
-            std::sort(cuts_.begin(), cuts_.end());
-            cuts_.erase(std::unique(cuts_.begin(), cuts_.end(), [](double u, double v) { return v - u < 1e-14; }),
-                        cuts_.end());
-            cuts_.back() = 1.0;
-        }
         const QuadratureRule rule = composite_gauss_legendre(cuts_, transcendental_points);
         nodes_ = rule.nodes;
         weights_ = rule.weights;
     }
-}
-
-ex ShapeIntegrals::hat_piece(const Factor& f, const numeric& lo, const numeric& hi) const
-{
-    const std::size_t k = static_cast<std::size_t>(f.i);
-    if (k > 0 && stations_[k - 1] <= lo && hi <= stations_[k])
-        return ((xi_ - stations_[k - 1]) / (stations_[k] - stations_[k - 1])).expand();
-    if (k + 1 < stations_.size() && stations_[k] <= lo && hi <= stations_[k + 1])
-        return ((stations_[k + 1] - xi_) / (stations_[k + 1] - stations_[k])).expand();
-    return 0;
-}
-
-double ShapeIntegrals::hat_value(int i, double xi) const
-{
-    const std::vector<double>& x = station_values_;
-    const std::size_t k = static_cast<std::size_t>(i);
-    if (k > 0 && xi >= x[k - 1] && xi <= x[k]) return (xi - x[k - 1]) / (x[k] - x[k - 1]);
-    if (k + 1 < x.size() && xi >= x[k] && xi <= x[k + 1]) return (x[k + 1] - xi) / (x[k + 1] - x[k]);
-    return 0.0;
 }
 
 const FieldBasis& ShapeIntegrals::basis(const Factor& f) const
@@ -134,8 +101,8 @@ numeric ShapeIntegrals::at_tip(const std::vector<Factor>& factors)
 {
     numeric product = 1;
     for (const Factor& f : factors) {
-        if (f.kind == Factor::Kind::hat) {
-            product *= f.i + 1 == static_cast<int>(stations_.size()) ? 1 : 0;
+        if (f.kind == Factor::Kind::section) {
+            throw std::logic_error("integrals: a section distribution at the tip is a run-time value");
         } else if (is_coupling(f)) {  // H_ij(1) = int_0^1 phi_i' phi_j' dxi
             const Factor::Kind field = f.kind == Factor::Kind::coupling ? Factor::Kind::transverse : Factor::Kind::flap;
             product *= integrate({{field, f.i, 0, 1}, {field, f.j, 0, 1}}, 0);
@@ -188,14 +155,6 @@ ex ShapeIntegrals::piece(const Factor& f, const numeric& lo, const numeric& hi)
 const std::vector<numeric>& ShapeIntegrals::piece_coefficients(const Factor& f, std::size_t interval)
 {
     const numeric &lo = breaks_[interval], &hi = breaks_[interval + 1];
-    if (f.kind == Factor::Kind::hat) {
-        auto key = std::make_pair(f, interval);
-        if (auto it = hat_coefficients_.find(key); it != hat_coefficients_.end()) return it->second;
-        const ex p = hat_piece(f, lo, hi);
-        std::vector<numeric> c;
-        if (!p.is_zero()) c = {ex_to<numeric>(p.coeff(xi_, 0)), ex_to<numeric>(p.coeff(xi_, 1))};
-        return hat_coefficients_.emplace(std::move(key), std::move(c)).first->second;
-    }
     const FieldBasis& b = basis(f);
     const int k = b.interval_of(((lo + hi) / 2).to_double());
     auto key = std::make_pair(f, k);
@@ -211,6 +170,16 @@ const std::vector<numeric>& ShapeIntegrals::piece_coefficients(const Factor& f, 
         }
     }
     return coefficients_.emplace(std::move(key), std::move(c)).first->second;
+}
+
+bool ShapeIntegrals::overlaps(const std::vector<Factor>& factors)
+{
+    if (!exact_) return true;  // AMM's modes vanish on no interval
+    for (std::size_t s = 0; s + 1 < breaks_.size(); ++s)
+        if (std::all_of(factors.begin(), factors.end(),
+                        [&](const Factor& f) { return !piece_coefficients(f, s).empty(); }))
+            return true;
+    return false;
 }
 
 numeric ShapeIntegrals::exact(const std::vector<Factor>& factors, int power)
@@ -250,9 +219,7 @@ const std::vector<double>& ShapeIntegrals::values(const Factor& f)
 {
     if (auto it = node_values_.find(f); it != node_values_.end()) return it->second;
     std::vector<double> v(nodes_.size());
-    if (f.kind == Factor::Kind::hat) {
-        for (std::size_t q = 0; q < nodes_.size(); ++q) v[q] = hat_value(f.i, nodes_[q]);
-    } else if (!is_coupling(f)) {
+    if (!is_coupling(f)) {
         const FieldBasis& b = basis(f);
         for (std::size_t q = 0; q < nodes_.size(); ++q) {
             const Jet<double> j = b.at(f.i, nodes_[q]);
@@ -267,7 +234,7 @@ const std::vector<double>& ShapeIntegrals::values(const Factor& f)
         auto slope_product = [&](double x) { return b.at(f.i, x).d1 * b.at(f.j, x).d1; };
         double whole = 0.0;
         for (int p = 0; p < panels; ++p) {
-            const double a = equal_panels_ ? static_cast<double>(p) / panels : cuts_[static_cast<std::size_t>(p)];
+            const double a = static_cast<double>(p) / panels;
             for (int g = 0; g < per_panel; ++g) {
                 const std::size_t q = static_cast<std::size_t>(p * per_panel + g);
                 const double width = nodes_[q] - a;
@@ -277,13 +244,8 @@ const std::vector<double>& ShapeIntegrals::values(const Factor& f)
                 v[q] = whole + part;
             }
             double full = 0.0;
-            if (equal_panels_) {
-                for (int r = 0; r < per_panel; ++r)
-                    full += rule.weights[r] / panels * slope_product(a + rule.nodes[r] / panels);
-            } else {
-                const double h = cuts_[static_cast<std::size_t>(p) + 1] - a;
-                for (int r = 0; r < per_panel; ++r) full += rule.weights[r] * h * slope_product(a + rule.nodes[r] * h);
-            }
+            for (int r = 0; r < per_panel; ++r)
+                full += rule.weights[r] / panels * slope_product(a + rule.nodes[r] / panels);
             whole += full;
         }
     }

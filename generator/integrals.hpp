@@ -15,11 +15,11 @@ namespace hubbeam::gen {
 
 /// One factor of an integrand: d^deriv phi_i / dxi^deriv of a field, the coupling function
 /// H_ij(xi) = int_0^xi phi_yi' phi_yj' dxi' (xi units; docs/model.md section 2) of the in-plane or the flapwise
-/// field, or a tabulated profile's hat function N_i(xi) of station i (1 there, 0 at the other stations, linear
-/// between them; docs/model.md section 11.2). The flapwise field has the transverse basis with nz functions, the
-/// twist field the axial basis with nt (docs/model.md section 12).
+/// field, or a tabulated profile's section distribution i (SectionDistribution of model/interface.hpp; docs/model.md
+/// section 11.2), whose integrals are run-time data. The flapwise field has the transverse basis with nz functions,
+/// the twist field the axial basis with nt (docs/model.md section 12).
 struct Factor {
-    enum class Kind { axial, transverse, coupling, hat, flap, flap_coupling, twist } kind;
+    enum class Kind { axial, transverse, coupling, section, flap, flap_coupling, twist } kind;
     int i = 0, j = 0;
     int deriv = 0;
     auto operator<=>(const Factor&) const = default;
@@ -33,14 +33,14 @@ constexpr double cancellation_bound = 1e-13;
 
 class ShapeIntegrals {
 public:
-    /// stations: a profile's stations x/L (exact rationals from 0 to 1), or empty. They split the exact integrals
-    /// and are panel boundaries of the quadrature, where the hat functions' kinks would spoil its convergence.
-    ShapeIntegrals(FieldBasis axial, FieldBasis transverse, std::vector<GiNaC::numeric> stations = {},
-                   FieldBasis flap = {Method::fem, Field::transverse, 0},
+    ShapeIntegrals(FieldBasis axial, FieldBasis transverse, FieldBasis flap = {Method::fem, Field::transverse, 0},
                    FieldBasis twist = {Method::fem, Field::axial, 0});
 
     /// int_0^1 xi^power * prod(factors) dxi: exact when both bases are polynomial.
     GiNaC::numeric integrate(std::vector<Factor> factors, int power);
+    /// Whether prod(factors) can be nonzero somewhere on [0, 1] (its pieces all nonzero on one interval): a
+    /// profile's integral of it against a section distribution is then a run-time number, else zero.
+    bool overlaps(const std::vector<Factor>& factors);
     /// prod(factors) at xi = 1, the beam's tip (a tip body's energies): exact when both bases are polynomial.
     GiNaC::numeric at_tip(const std::vector<Factor>& factors);
 
@@ -52,19 +52,12 @@ private:
     const std::vector<GiNaC::numeric>& piece_coefficients(const Factor& f, std::size_t interval);
     const std::vector<double>& values(const Factor& f);
     const FieldBasis& basis(const Factor& f) const;
-    /// The hat function of station f.i on [lo, hi] (inside one station interval) as a polynomial in xi_.
-    GiNaC::ex hat_piece(const Factor& f, const GiNaC::numeric& lo, const GiNaC::numeric& hi) const;
-    double hat_value(int k, double xi) const;
 
     FieldBasis axial_, transverse_, flap_, twist_;
     bool exact_;
     GiNaC::symbol xi_{"xi"};
-    std::vector<GiNaC::numeric> stations_;
-    std::vector<double> station_values_;  // stations_ as doubles
-    std::vector<GiNaC::numeric> breaks_;  // common refinement of both fields' intervals and the stations
-    std::map<std::pair<Factor, std::size_t>, std::vector<GiNaC::numeric>> hat_coefficients_;  // (hat, break interval)
-    std::vector<double> cuts_;                            // panel boundaries of the composite rule (quadrature path)
-    bool equal_panels_ = true;                            // no stations: cuts_[k] = k / panels
+    std::vector<GiNaC::numeric> breaks_;  // common refinement of the fields' intervals
+    std::vector<double> cuts_;            // panel boundaries of the composite rule (quadrature path)
     std::map<std::pair<Factor, int>, GiNaC::ex> pieces_;  // (factor, field interval) -> polynomial
     /// A coupling H_ij at the start of a field interval: the integral of phi_i' phi_j' over the intervals before it.
     std::map<std::pair<Factor, int>, GiNaC::numeric> coupling_starts_;

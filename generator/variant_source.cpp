@@ -39,22 +39,76 @@ std::string tuple(const Names& names)
 /// (so that the paper's variants read, and say, what they always did).
 std::vector<std::string> read_parameter_names(const VariantKey& key)
 {
-    const Extras& x = key.extras;
-    std::vector<std::string> names(param_names.begin(),
-                                   param_names.begin() + static_cast<std::ptrdiff_t>(key.params_read()));
-    const std::size_t values = profile_value_count(key.out_of_plane());
-    for (std::size_t k = 0; k < x.stations.size(); ++k)
-        for (std::size_t v = 0; v < values; ++v)
-            names.push_back(std::string(profile_value_names[v]) + "_" + std::to_string(k));
-    return names;
+    return {param_names.begin(), param_names.begin() + static_cast<std::ptrdiff_t>(key.params_read())};
 }
 
-/// How generated code reads station k's profile value v (a variant that leaves the plane has more per station).
-std::string read_profile(const VariantKey& key, std::size_t k, ProfileValue v)
+/// p's entries as the banner and the coefficients kernel's comment say them: the parameters, then a profile
+/// variant's section integrals s_0..s_(n-1).
+std::string parameter_tuple(const VariantKey& key, std::size_t sections)
 {
-    return "p[" +
-           std::to_string(param_count + profile_value_count(key.out_of_plane()) * k + static_cast<std::size_t>(v)) +
-           "]";
+    std::string t = tuple(read_parameter_names(key));
+    if (sections == 0) return t;
+    t.pop_back();
+    return t + ", s_0.." + "s_" + std::to_string(sections - 1) + ")";
+}
+
+/// How generated code reads a profile variant's section integral n.
+std::string read_section(std::size_t n)
+{
+    return "p[" + std::to_string(param_count + n) + "]";
+}
+
+/// A factor kind's word in the ABI (generated_abi.h's SectionFactorKind) and the letter of its field's coordinates.
+struct FactorWords {
+    Factor::Kind kind;
+    const char* abi;
+    const char* field;
+};
+constexpr FactorWords factor_words[] = {{Factor::Kind::axial, "axial_factor", "A"},
+                                        {Factor::Kind::transverse, "transverse_factor", "B"},
+                                        {Factor::Kind::coupling, "coupling_factor", "B"},
+                                        {Factor::Kind::flap, "flap_factor", "Z"},
+                                        {Factor::Kind::flap_coupling, "flap_coupling_factor", "Z"},
+                                        {Factor::Kind::twist, "twist_factor", "P"}};
+
+const FactorWords& words_of(Factor::Kind k)
+{
+    for (const FactorWords& w : factor_words)
+        if (w.kind == k) return w;
+    throw std::logic_error("variant_source: a section distribution is not a factor of its own integral");
+}
+
+/// A readable name of a factor for the table's comments: phi of the field's coordinate with primes, or H.
+std::string factor_text(const Factor& f)
+{
+    const std::string field = words_of(f.kind).field;
+    if (f.kind == Factor::Kind::coupling || f.kind == Factor::Kind::flap_coupling)
+        return "H(" + field + std::to_string(f.i + 1) + "," + field + std::to_string(f.j + 1) + ")";
+    return "phi_" + field + std::to_string(f.i + 1) + std::string(static_cast<std::size_t>(f.deriv), '\'');
+}
+
+/// A profile variant's section integrals as the table the runtime computes them from (generated_abi.h).
+std::string section_table(const std::string& name, const Symbols& s)
+{
+    std::ostringstream t;
+    t << "/* The section integrals s_n = int_0^1 xi^power d(xi) prod(factors) dxi that the coefficients kernel reads at p["
+      << param_count << " + n]: {distribution, power, count, {{kind, i, j, deriv}, ...}}, generated_abi.h. */\n"
+      << "const SectionIntegral " << name << "_section_integrals[] = {\n";
+    for (std::size_t n = 0; n < s.section_keys.size(); ++n) {
+        const SectionKey& k = s.section_keys[n];
+        if (k.factors.size() > static_cast<std::size_t>(generated::max_section_factors))
+            throw std::logic_error("variant_source: a section integral of more factors than the ABI holds");
+        t << "    {" << k.distribution << ", " << k.power << ", " << k.factors.size() << ", {";
+        std::string text = section_distribution_names[static_cast<std::size_t>(k.distribution)];
+        if (k.power > 0) text += " xi" + (k.power > 1 ? "^" + std::to_string(k.power) : std::string());
+        for (std::size_t i = 0; i < k.factors.size(); ++i) {
+            const Factor& f = k.factors[i];
+            t << (i ? ", " : "") << "{" << words_of(f.kind).abi << ", " << f.i << ", " << f.j << ", " << f.deriv << "}";
+            text += " " + factor_text(f);
+        }
+        t << "}},  // s_" << n << ": " << text << "\n";
+    }
+    return t.str() + "};\n";
 }
 
 /// The kernels' u: the drive values, and where U reads the hub angle (terms.hpp) sin and cos of it.
@@ -94,7 +148,7 @@ std::string range(const std::string& stem, int n, const std::string& suffix = ""
     return stem + "1" + suffix + ".." + stem + std::to_string(n) + suffix;
 }
 
-std::string banner(const VariantKey& key, bool mass_varies)
+std::string banner(const VariantKey& key, bool mass_varies, std::size_t sections)
 {
     const bool torque = key.drive == Drive::torque;
     std::string coords;
@@ -118,7 +172,7 @@ std::string banner(const VariantKey& key, bool mass_varies)
                  : std::string(drive_value_names[index(DriveValue::theta_dot)]) + ", " +
                        drive_value_names[index(DriveValue::theta_ddot)])
       << (reads_angle ? std::string(", sin_theta, cos_theta") + (torque ? " (of q[0])" : "") : std::string()) << ";\n"
-      << "// p = " << tuple(read_parameter_names(key))
+      << "// p = " << parameter_tuple(key, sections)
       << (key.method == Method::bsim
               ? " in SI units. End slope coordinates (BSIM) are per knot interval, h d/dx, h = L/n.\n"
               : " in SI units. Slope coordinates (FEM, BSIM) are d/dxi = L d/dx.\n")
@@ -158,7 +212,7 @@ std::vector<ex> tip_displacements(const VariantKey& key, const Symbols& s)
 {
     const FieldBasis axial = key.axial_basis(), transverse = key.transverse_basis(), flap = key.flap_basis(),
                      twist = key.twist_basis();
-    ShapeIntegrals integrals(axial, transverse, {}, flap, twist);
+    ShapeIntegrals integrals(axial, transverse, flap, twist);
     const auto at_tip = [](const FieldBasis& basis, const std::vector<symbol>& coordinates) {
         ex sum = 0;
         for (int j = 0; j < basis.size(); ++j)
@@ -253,19 +307,7 @@ std::vector<Input> parameter_inputs(const Symbols& s, const VariantKey& key)
                                      {o.sin_cone, "std::sin(" + read(Param::precone) + ")"},
                                      {o.g_axis, read(Param::g_axis)}});
     }
-    for (std::size_t k = 0; k < x.stations.size(); ++k) {
-        const auto at = [&](ProfileValue v) { return read_profile(key, k, v); };
-        inputs.insert(
-            inputs.end(),
-            {{s.m_k[k], at(ProfileValue::m)}, {s.EI_k[k], at(ProfileValue::EI)}, {s.ES_k[k], at(ProfileValue::ES)}});
-        if (s.o)  // a blade's table (docs/model.md section 12.4): cos and sin of twice its chord angle, once per p
-            inputs.insert(inputs.end(), {{s.o->EI_flap_k[k], at(ProfileValue::EI_flap)},
-                                         {s.o->GJ_k[k], at(ProfileValue::GJ)},
-                                         {s.o->j_c_k[k], at(ProfileValue::j_c)},
-                                         {s.o->j_n_k[k], at(ProfileValue::j_n)},
-                                         {s.o->cos_2twist_k[k], "std::cos(2 * " + at(ProfileValue::twist) + ")"},
-                                         {s.o->sin_2twist_k[k], "std::sin(2 * " + at(ProfileValue::twist) + ")"}});
-    }
+    for (std::size_t n = 0; n < s.section.size(); ++n) inputs.push_back({s.section[n], read_section(n)});
     return inputs;
 }
 
@@ -291,9 +333,9 @@ std::vector<Input> state_inputs(const Symbols& s, const VariantKey& key)
 Signature signature(const Symbols& s, const VariantKey& key)
 {
     const int nq = key.nq();
-    const std::vector<std::string> p_names = read_parameter_names(key);
+    const std::size_t p_count = read_parameter_names(key).size() + s.section.size();
     Signature sig;
-    sig.parameters = {"p", static_cast<int>(p_names.size()), "p = " + tuple(p_names)};
+    sig.parameters = {"p", static_cast<int>(p_count), "p = " + parameter_tuple(key, s.section.size())};
     sig.derivative_entries = static_cast<int>(key.params_read());
     sig.state = {
         {"u", static_cast<int>(input_names(potential_reads_angle(key)).size()), ""}, {"q", nq, ""}, {"qd", nq, ""}};
@@ -588,7 +630,7 @@ Kernels variant_kernels(const VariantKey& key, const Symbols& s, const Derivatio
 /// The variant's table row: designated initializers in the order of generated_abi.h's fields (C++20 requires
 /// that order), so that a field renamed, removed or moved there makes the generated source fail to compile
 /// instead of shifting every later pointer.
-std::string table_row(const std::string& name, int nq, int ncoeff, bool affine, const Kernels& k)
+std::string table_row(const std::string& name, int nq, int ncoeff, bool affine, const Kernels& k, std::size_t sections)
 {
     const auto kernel = [&](const char* kernel) { return name + "_" + kernel; };
     const auto optional = [&](bool present, const char* kernel) {
@@ -617,8 +659,12 @@ std::string table_row(const std::string& name, int nq, int ncoeff, bool affine, 
         {"tip", kernel("tip")},
         {"forces_folded", optional(k.folded, "forces_folded")},
     };
+    std::vector<std::pair<const char*, std::string>> fields = row;
+    fields.insert(fields.end(),
+                  {{"nsection", std::to_string(sections)},
+                   {"section_integrals", sections > 0 ? name + "_section_integrals" : std::string("nullptr")}});
     std::string text = "extern const Variant " + name + " = {\n";
-    for (const auto& [field, value] : row) text += "    ." + std::string(field) + " = " + value + ",\n";
+    for (const auto& [field, value] : fields) text += "    ." + std::string(field) + " = " + value + ",\n";
     return text + "};\n";
 }
 
@@ -634,19 +680,22 @@ std::string variant_source(const VariantKey& key, const EmitOptions& options)
     Kernels kernels = variant_kernels(key, s, d, at_points ? &points : nullptr);
     const std::string name = key.name();
     EmitOptions emit_options = options;
-    // A pre-twist's series multiplies the coefficients' terms by twist_series_terms and their derivatives by p about
-    // tenfold again (4 MB of source at Ny = Nz = 8); a blade's profile multiplies them by its stations (a minute of
-    // compiling dc/dp alone at 21 stations, Ny = Nz = 8): their sensitivities are differenced instead.
+    // The pre-twist enters through section integrals, which dc/dp does not see (they are data, not parameters): a
+    // twisted variant's sensitivities are differenced, which recomputes them; so are a tabulated blade's, whose
+    // coefficients are long sums over its section integrals.
     emit_options.parameter_derivatives =
         options.parameter_derivatives && !key.extras.twist && !(key.out_of_plane() && key.extras.profile());
     const EmittedCode code = emit_kernels(name, sig, std::move(kernels.list), emit_options);
     std::ostringstream f;
     // std::cos and std::sin of the pitch and the precone, once per parameter set in the coefficients kernel.
     const std::string cmath = key.out_of_plane() ? "\n#include <cmath>\n" : "";
-    f << banner(key, kernels.mass_varies) << cmath
+    const std::size_t sections = s.section.size();
+    f << banner(key, kernels.mass_varies, sections) << cmath
       << "\n#include \"generated_abi.h\"\n\nnamespace hubbeam::generated {\n\nnamespace {\n"
-      << (at_points ? "\n" + points.tables : std::string()) << code.text << "\n}  // namespace\n\n"
-      << table_row(name, key.nq(), code.ncoeff, code.affine, kernels) << "\n}  // namespace hubbeam::generated\n";
+      << (at_points ? "\n" + points.tables : std::string()) << code.text
+      << (sections > 0 ? "\n" + section_table(name, s) : std::string()) << "\n}  // namespace\n\n"
+      << table_row(name, key.nq(), code.ncoeff, code.affine, kernels, sections)
+      << "\n}  // namespace hubbeam::generated\n";
     return f.str();
 }
 

@@ -7,7 +7,7 @@ namespace hubbeam::generated {
 /* The version of this interface. Every table row starts with the version of the generator that wrote it, and a
  * loader refuses a row of any other version before calling one of its kernels (an on-demand object outlives the
  * generator that made it). Raise it with any change to Variant, Kernel or CoefficientsKernel below. */
-inline constexpr int abi_version = 5;
+inline constexpr int abi_version = 6;
 
 /* forces_folded's lanes: the rows of P go in groups of this many, one group's entries of a column side by side. */
 inline constexpr int folded_lanes = 4;
@@ -18,6 +18,23 @@ inline constexpr int folded_lanes = 4;
 using Kernel = void (*)(const double* c, const double* u, const double* q, const double* qd, double* out);
 /* c = f(p), p: the physical parameters in SI units, indexed by Param of model/interface.hpp. */
 using CoefficientsKernel = void (*)(const double* p, double* c);
+
+/* A profile variant's run-time section integrals (docs/model.md section 11.2): entry n is
+ *   int_0^1 xi^power d(xi) prod_f factor_f(xi) dxi,
+ * d the SectionDistribution `distribution` of model/interface.hpp (linear between the table's stations) and each factor
+ * a shape function's derivative, a coupling function H or the section itself, named by the kinds below. The runtime
+ * computes them from the run's table and passes them to the coefficients kernel after the parameters. */
+enum SectionFactorKind { axial_factor, transverse_factor, coupling_factor, flap_factor, flap_coupling_factor,
+                         twist_factor };
+/* phi_i^(deriv) of the field of `kind`; a coupling H_ij (deriv 0) of the in-plane or flapwise field. */
+struct SectionFactor {
+    int kind, i, j, deriv;
+};
+inline constexpr int max_section_factors = 6;
+struct SectionIntegral {
+    int distribution, power, count; /* count: the factors used of `factors` */
+    SectionFactor factors[max_section_factors];
+};
 
 /* One variant's row, filled by designated initializers (field names, not positions) in the generated source. */
 struct Variant {
@@ -58,6 +75,8 @@ struct Variant {
                                * block's inverse folded into its rows of F and the hub's row F_0 - b^T C^-1 F_C (b
                                * its constant couplings). Reads only the entries that can be nonzero; a null pointer
                                * for other mass patterns or beyond a size where unrolling pays */
+    int nsection;             /* a profile variant's number of section integrals (0 without a profile) */
+    const SectionIntegral* section_integrals; /* their definitions, nsection of them; a null pointer without */
 };
 
 /* Marks forces_folded, the unrolled kernels of every right-hand side (and the runtime's band solve): GCC compiles

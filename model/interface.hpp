@@ -37,10 +37,9 @@ enum class Param : std::size_t {
     g_axis
 };
 inline constexpr std::size_t param_count = 20;
-/// A tabulated profile's values follow: p[param_count + n k + j] is station k's value j (docs/model.md sections 11.2
-/// and 12.4), n = profile_value_count(out_of_plane): a planar beam's m, EI, ES; a blade's also its flapwise and
-/// torsional stiffness, the chord's angle (pre-twist, added to the pitch) and the mass moments per length about the
-/// chord and its normal.
+/// A tabulated profile's values at each station (docs/model.md sections 11.2 and 12.4): a planar beam's m, EI, ES;
+/// a blade's also its flapwise and torsional stiffness, the chord's angle (pre-twist, added to the pitch) and the mass
+/// moments per length about the chord and its normal.
 enum class ProfileValue : std::size_t { m, EI, ES, EI_flap, GJ, twist, j_c, j_n };
 inline constexpr std::size_t max_profile_value_count = 8;
 inline constexpr std::array<const char*, max_profile_value_count> profile_value_names = {
@@ -50,6 +49,23 @@ constexpr std::size_t profile_value_count(bool out_of_plane)
 {
     return out_of_plane ? max_profile_value_count : 3;
 }
+/// The distributions along the span a profile variant's kernels integrate (docs/model.md sections 11.2 and 12.4), each
+/// linear between the table's stations: mass per length, EI, ES; out of the plane EI_flap, GJ, the polar mass moment
+/// j_c + j_n, and the deviators (EI - EI_flap)/2 and (j_n - j_c)/2 times cos and sin of twice the chord's angle. Then
+/// a uniform blade's linear pre-twist (Param::twist, docs/model.md section 12): cos 2 twist xi and sin 2 twist xi.
+enum class SectionDistribution : int { m, EI, ES, EI_flap, GJ, j_p, EI_cos, EI_sin, j_cos, j_sin, cos_2twist, sin_2twist };
+inline constexpr std::size_t section_distribution_count = 12;
+inline constexpr std::array<const char*, section_distribution_count> section_distribution_names = {
+    "m", "EI", "ES", "EI_flap", "GJ", "j_p", "EI_cos", "EI_sin", "j_cos", "j_sin", "cos_2twist", "sin_2twist"};
+/// Whether a distribution is a table's (linear between its stations), not the pre-twist's.
+constexpr bool tabulated(SectionDistribution d)
+{
+    return d < SectionDistribution::cos_2twist;
+}
+
+/// A profile variant's kernels read its section integrals after the parameters: p[param_count + n] is
+/// Variant::section_integrals[n] of the run's table (runtime/src/models/section_integrals.hpp computes them).
+
 /// The paper's parameters: a variant without extra terms reads these only.
 inline constexpr std::size_t paper_param_count = 7;
 /// Names of p's entries in the order of Param, as they read in docs/model.md and in generated code.
@@ -60,12 +76,6 @@ inline constexpr std::array<const char*, param_count> param_names = {
 /// The parameters of the out-of-plane fields (docs/model.md section 12), owned by no term: the flapwise field reads
 /// I_flap, the twist field all three.
 inline constexpr std::array<Param, 3> field_params = {Param::I_flap, Param::G, Param::J_t};
-
-/// The largest pre-twist |twist| (rad, tip minus root) a variant takes: the generator expands cos 2 beta(x) and
-/// sin 2 beta(x) in powers of twist x/L with twist_series_terms terms, whose remainder (2 max_twist)^n / n! is then
-/// below 1e-17.
-inline constexpr double max_twist = 0.5;
-inline constexpr int twist_series_terms = 20;
 
 /// Index of each drive value in u: a torque variant reads tau, a prescribed variant theta_dot, theta_ddot.
 enum class DriveValue : std::size_t { tau, theta_dot, theta_ddot };
@@ -101,16 +111,16 @@ struct Parameters {
     double L = 8.0, rho = 2.7667e3, S = 7.2968e-5, I = 8.2189e-9, E = 6.8952e10, a = 0.0, J_oh = 30.0;
     double m_tip = 0.0, J_tip = 0.0, g = 0.0, alpha = 0.0, beta = 0.0, tip_ratio = 1.0;
     double I_flap = 8.2189e-9, G = 0.0, J_t = 0.0, pitch = 0.0, twist = 0.0, precone = 0.0, g_axis = 0.0;
-    /// A tabulated profile's values at its stations (VariantKey's extras hold the positions): mass per length
-    /// (kg/m), EI (N m^2), ES (N) and, for a beam that leaves the plane, EI_flap, GJ (N m^2), the chord's angle (rad),
-    /// j_c and j_n (kg m), indexed by station then ProfileValue; empty without a profile.
+    /// A tabulated profile's stations x/L (from 0 to 1, increasing; empty without a profile) and its values there:
+    /// mass per length (kg/m), EI (N m^2), ES (N) and, for a beam that leaves the plane, EI_flap, GJ (N m^2), the
+    /// chord's angle (rad), j_c and j_n (kg m), indexed by station then ProfileValue.
+    std::vector<double> stations = {};
     std::vector<double> profile = {};
 
-    /// p, indexed by Param, then the profile's values.
+    /// p, indexed by Param (a profile variant's kernels read its section integrals after these).
     std::vector<double> packed() const
     {
-        std::vector<double> p(param_count + profile.size());
-        std::copy(profile.begin(), profile.end(), p.begin() + static_cast<std::ptrdiff_t>(param_count));
+        std::vector<double> p(param_count);
         p[index(Param::L)] = L;
         p[index(Param::rho)] = rho;
         p[index(Param::S)] = S;

@@ -18,8 +18,9 @@ inline double linear_between(const std::vector<double>& stations, const std::vec
                              double xi)
 {
     const std::size_t n = stations.size(), w = values.size() / n;
-    std::size_t k = 0;
-    while (k + 2 < n && xi > stations[k + 1]) ++k;
+    // The interval [stations[k], stations[k + 1]] that holds xi (the first or last one beyond the ends).
+    const auto above = std::upper_bound(stations.begin() + 1, stations.end() - 1, xi);
+    const std::size_t k = static_cast<std::size_t>(above - stations.begin()) - 1;
     const double t = (xi - stations[k]) / (stations[k + 1] - stations[k]);
     return (1.0 - t) * values[w * k + j] + t * values[w * (k + 1) + j];
 }

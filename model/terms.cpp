@@ -13,43 +13,6 @@ bool is(std::string_view part, const char* word)
     return part == word;
 }
 
-/// profileDENxN0xN1...: digits separated by 'x', each a number of at most 7 digits (docs/model.md section 11.2).
-bool read_profile_suffix(std::string_view part, Extras& e)
-{
-    if (part.rfind("profile", 0) != 0 || part.size() <= 7 || part.size() > max_profile_suffix) return false;
-    std::vector<long long> numbers;
-    std::string digits;
-    for (std::size_t c = 7; c <= part.size(); ++c) {
-        if (c == part.size() || part[c] == 'x') {
-            if (digits.empty() || digits.size() > 7) throw std::invalid_argument(" is not profileDENxN0xN1...");
-            numbers.push_back(std::stoll(digits));
-            digits.clear();
-        } else if (part[c] >= '0' && part[c] <= '9') {
-            digits += part[c];
-        } else {
-            throw std::invalid_argument(" is not profileDENxN0xN1...");
-        }
-    }
-    e.station_denominator = numbers.front();
-    e.stations.assign(numbers.begin() + 1, numbers.end());
-    if (const std::string why = stations_problem(e); !why.empty()) throw std::invalid_argument(": " + why);
-    return true;
-}
-
-std::string profile_suffix(const Extras& e)
-{
-    std::string p = "profile" + std::to_string(e.station_denominator);
-    for (long long n : e.stations) p += 'x' + std::to_string(n);
-    return p;
-}
-
-std::string profile_summary(const Extras& e)
-{
-    std::string stations;
-    for (long long n : e.stations) stations += (stations.empty() ? "" : ",") + std::to_string(n);
-    return "profile_stations=(" + stations + ")/" + std::to_string(e.station_denominator);
-}
-
 bool read_taper_suffix(std::string_view part, Extras& e)
 {
     Taper t;
@@ -113,9 +76,9 @@ std::vector<TermInfo> make_terms()
          {},
          false,
          [](const Extras& e) { return e.profile(); },
-         profile_suffix,
-         read_profile_suffix,
-         profile_summary,
+         [](const Extras&) { return std::string("profile"); },
+         [](std::string_view part, Extras& e) { return part == "profile" && (e.tabulated = true); },
+         [](const Extras&) { return std::string("tabulated_profile"); },
          never},
         switched<&Extras::pitch, pitched_word, pitched_summary>("pitch (section 12)", adds_U | adds_T, {P::pitch}),
         switched<&Extras::twist, twisted_word, twisted_summary>("pre-twist (section 12)", adds_U | adds_T, {P::twist}),

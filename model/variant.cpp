@@ -33,64 +33,12 @@ std::vector<std::string> extras_suffixes(const Extras& e)
 
 }  // namespace
 
-std::string stations_problem(const Extras& e)
+std::string stations_problem(const std::vector<double>& x)
 {
-    const std::vector<long long>& n = e.stations;
-    if (n.size() < 2) return "a profile needs at least 2 stations";
-    long long d = e.station_denominator;
-    bool power_of_ten = d >= 1;
-    for (long long r = d; power_of_ten && r > 1; r /= 10)
-        if (r % 10 != 0) power_of_ten = false;
-    if (!power_of_ten || d > 1000000) return "the denominator must be a power of ten up to 10^6";
-    if (n.front() != 0 || n.back() != d) return "the stations must start at 0 and end at 1";
-    for (std::size_t k = 1; k < n.size(); ++k)
-        if (n[k] <= n[k - 1]) return "the stations must increase strictly";
-    if (d > 1 && std::all_of(n.begin(), n.end(), [](long long v) { return v % 10 == 0; }))
-        return "the denominator must be the smallest power of ten that makes every station an integer";
-    return {};
-}
-
-namespace {
-
-std::string text_of(double v)
-{
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.17g", v);
-    return buf;
-}
-
-}  // namespace
-
-std::vector<double> station_positions(const Extras& e)
-{
-    std::vector<double> x;
-    for (long long n : e.stations) x.push_back(static_cast<double>(n) / static_cast<double>(e.station_denominator));
-    return x;
-}
-
-std::string set_stations(const std::vector<double>& x, Extras& e)
-{
-    long long d = 1;
-    for (double v : x) {
-        // The fewest decimals that hold v to 1e-12 (below a double's resolution of the table's text).
-        long long dv = 1;
-        while (dv <= 1000000 && std::abs(v * static_cast<double>(dv) - std::round(v * static_cast<double>(dv))) >
-                                    1e-12 * static_cast<double>(dv))
-            dv *= 10;
-        if (dv > 1000000) return text_of(v) + " is not a decimal with at most 6 digits after the point";
-        d = std::max(d, dv);
-    }
-    Extras t = e;
-    t.station_denominator = d;
-    t.stations.clear();
-    for (double v : x) t.stations.push_back(std::llround(v * static_cast<double>(d)));
-    if (std::string why = stations_problem(t); !why.empty()) return why;
-    const std::vector<std::string> suffixes = extras_suffixes(t);
-    if (suffixes.back().size() > max_profile_suffix)
-        return std::to_string(x.size()) + " stations with " + std::to_string(suffixes.back().size() - 7) +
-               " characters of numerators make the variant's name too long (at most " +
-               std::to_string(max_profile_suffix - 7) + "): use fewer stations or fewer decimals";
-    e = std::move(t);
+    if (x.size() < 2) return "a profile needs at least 2 stations";
+    if (x.front() != 0.0 || x.back() != 1.0) return "the stations must start at 0 and end at 1";
+    for (std::size_t k = 1; k < x.size(); ++k)
+        if (!(x[k] > x[k - 1])) return "the stations must increase strictly";
     return {};
 }
 

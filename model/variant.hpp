@@ -36,13 +36,13 @@ struct Extras {
     bool pitch = false;  // the section's chord turned out of the plane by the pitch (docs/model.md section 12)
     bool twist = false;  // and by a linear pre-twist, twist x/L
     bool cone = false;   // the beam's axis tilted out of the plane by the precone
-    // A tabulated profile's stations x/L = stations[k] / station_denominator (docs/model.md section 11.2): exact
-    // rationals, so that the generator splits its integrals there exactly; empty without a profile. The values at
-    // the stations (m, EI, ES) are run-time parameters, the positions are structure.
-    std::vector<long long> stations = {};
-    long long station_denominator = 1;
+    // A tabulated profile (docs/model.md section 11.2): the section's distributions are a table's values, linear
+    // between its stations. Only that there is a table is structure; its stations and values are run-time data
+    // (Parameters::stations, Parameters::profile) that reach the kernels as the integrals of the section data times
+    // the basis (Variant::section_integrals).
+    bool tabulated = false;
 
-    bool profile() const { return !stations.empty(); }
+    bool profile() const { return tabulated; }
     bool any() const
     {
         return tip || gravity || damping || taper != Taper::uniform || profile() || pitch || twist || cone;
@@ -50,23 +50,12 @@ struct Extras {
     bool operator==(const Extras&) const = default;
 };
 
-/// The most characters a profile's name suffix may take ("profile" DEN "x" N0 "x" ...), so that a variant's
-/// name stays a valid file name (its source and module files are named by it).
-inline constexpr std::size_t max_profile_suffix = 150;
-
-/// Why e's stations over its denominator are not a profile's (empty if they are): 0 first, the denominator last,
-/// strictly increasing, a power of ten no larger than needed.
-std::string stations_problem(const Extras& e);
-/// The stations x/L as doubles.
-std::vector<double> station_positions(const Extras& e);
-/// Sets e's stations from x/L values read from a table: each exact to 1e-12 as a decimal of at most 6 digits
-/// after the point (the smallest common power of ten is the denominator). Empty if they are accepted, else why
-/// not (e.g. "0.3333333 is not a decimal of at most 6 digits").
-std::string set_stations(const std::vector<double>& x, Extras& e);
+/// Why stations x/L are not a profile's (empty if they are): at least 2, 0 first, 1 last, strictly increasing.
+std::string stations_problem(const std::vector<double>& x);
 
 /// The grammar of a variant's name, as VariantKey::parse reads it (its messages and hubbeam-gen --help say it).
 inline constexpr const char* variant_name_grammar =
-    "METHOD_nxN_nyN[_nzN][_ntN]_DRIVE_ORDER[_open][_tip][_gravity][_damped][_width|_depth][_profileDENxN0xN1...]"
+    "METHOD_nxN_nyN[_nzN][_ntN]_DRIVE_ORDER[_open][_tip][_gravity][_damped][_width|_depth][_profile]"
     "[_pitched][_twisted][_coned]";
 
 struct VariantKey {
@@ -84,7 +73,7 @@ struct VariantKey {
 
     /// e.g. "bim_nx4_ny4_torque_first", "bsim_nx0_ny4_prescribed_first_open", "amm_nx0_ny4_torque_first_tip_gravity",
     /// "fem_nx0_ny8_nz8_nt2_torque_first_pitched": a C identifier; nz and nt only where nonzero; the extras follow in
-    /// the order tip, gravity, damped, width|depth, profileDENxN0xN1... (a profile's stations x/L = N_k / DEN),
+    /// the order tip, gravity, damped, width|depth, profile,
     /// pitched, twisted, coned.
     std::string name() const;
     /// Inverse of name(); throws std::invalid_argument.

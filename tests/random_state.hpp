@@ -32,14 +32,16 @@ inline State random_state(const VariantKey& key, std::mt19937& rng)
     return s;
 }
 
-/// p with a table at the stations of key's profile, if it has one (and p none): the section of p's rho, S, I, E at
+/// p with a table where key has a profile (and p none), at p's stations or else at x/L = 0, 0.3, 0.55, 1 (irregular, none
+/// at a piece boundary of FEM's or BSIM's Ny = 4 bases): the section of p's rho, S, I, E at
 /// the root, falling to half at the tip and with a bump between, so that no value is the uniform beam's. A blade's
 /// (out of the plane) also has a flapwise stiffness that falls otherwise, a torsional stiffness, a chord angle that
 /// turns one way and back (0.6 rad at the root, -0.3 at the tip) and unequal mass moments.
 inline Parameters with_profile(const VariantKey& key, Parameters p)
 {
-    if (!p.profile.empty()) return p;
-    for (double x : station_positions(key.extras)) {
+    if (!key.extras.profile() || !p.profile.empty()) return p;
+    if (p.stations.empty()) p.stations = {0.0, 0.3, 0.55, 1.0};
+    for (double x : p.stations) {
         const double s = 1.0 - 0.5 * x + 0.3 * x * (1.0 - x);
         p.profile.insert(p.profile.end(), {p.rho * p.S * s, p.E * p.I * s * s, p.E * p.S * s});
         if (key.out_of_plane())

@@ -23,7 +23,7 @@ BeamSection turned_section(const VariantKey& key, const Symbols& s, const FieldS
                            const ex& EI_flap, const ex& GJ, const ex& j_c, const ex& j_n)
 {
     if (!key.out_of_plane()) return b;
-    const auto [c2, s2] = chord_angle(key, s, f.xi);
+    const auto [c2, s2] = chord_angle(key, s, f);
     const ex bend = (b.bending - EI_flap) / 2, inertia = (j_n - j_c) / 2;
     b.bend_mean = (b.bending + EI_flap) / 2;
     b.bend_cos = bend * c2;

@@ -237,6 +237,11 @@ TEST_CASE("bad scene input throws SceneError naming the file and the key", "[sce
         names(edited("length = 8.0", "length = 8.0\npitch = 1e308"), "beam.pitch", "from -2 pi to 2 pi");
         names(edited("length = 8.0", "length = 8.0\npitch = -6.3"), "beam.pitch", "got -6.3");
     }
+    SECTION("a pre-twist of more than a turn, either way (a propeller's of a radian and more is taken)")
+    {
+        names(edited("length = 8.0", "length = 8.0\ntwist = 6.3"), "beam.twist", "from -2 pi to 2 pi");
+        names(edited("length = 8.0", "length = 8.0\ntwist = -1e308"), "beam.twist", "got -1e+308");
+    }
     SECTION("non-positive density")
     {
         names(edited("density = 2.7667e3", "density = -1"), "beam.density", "> 0");

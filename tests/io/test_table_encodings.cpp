@@ -53,8 +53,8 @@ std::string encoded(const std::string& text, const std::string& how)
 std::vector<double> what_was_read(const Scene& s)
 {
     std::vector<double> v = s.parameters.packed();
-    for (const long long x : s.variant.extras.stations) v.push_back(static_cast<double>(x));
-    v.push_back(static_cast<double>(s.variant.extras.station_denominator));
+    v.insert(v.end(), s.parameters.profile.begin(), s.parameters.profile.end());
+    v.insert(v.end(), s.parameters.stations.begin(), s.parameters.stations.end());
     for (double t = 0.0; t <= 40.0; t += 0.37) {
         const HubInput u = s.motion.at(t);
         v.insert(v.end(), {u.tau, u.theta, u.theta_dot, u.theta_ddot});

@@ -33,8 +33,8 @@ def pyplot():
     return plt
 
 
-# The longest variant name a legend shows whole: a tabulated blade's name spells its stations (190 characters), which
-# would push the axes out of the figure; a longer one is cut with an ellipsis (the whole name is r.variant).
+# The longest variant name a legend shows whole: a blade's with every term runs past 60 characters, which would
+# push the axes out of the figure; a longer one is cut with an ellipsis (the whole name is r.variant).
 LEGEND_NAME_CHARS = 48
 
 # The excitation lines n x Omega drawn apart by their dashes, in order of n (then again, thinner).

@@ -15,18 +15,9 @@
 #include <hubbeam/model.hpp>
 #include <hubbeam/motion.hpp>
 
-namespace hubbeam {
+#include "dynamics/stepper_names.hpp"
 
-/// The stepper names the integrator accepts, in table order: GSL odeiv2's step types ("msadams", "rk8pd", ...),
-/// then hubbeam's Gauss-Legendre stepper (gauss_stepper) and SUNDIALS CVODE's BDF (cvode_stepper).
-std::vector<std::string> stepper_names();
-/// The two-stage Gauss-Legendre method (order 4, A-stable, no numerical damping) with the Jacobian and the factored
-/// Newton matrix reused across steps and an embedded error estimate.
-inline constexpr const char* gauss_stepper = "gauss4";
-/// SUNDIALS CVODE's variable-order BDF with Newton iterations that reuse their factored matrix across steps.
-inline constexpr const char* cvode_stepper = "cvode";
-/// Whether name is one of stepper_names().
-bool is_stepper(const std::string& name);
+namespace hubbeam {
 
 /// The GSL step type of a name from stepper_names(), or nullptr (also for a family other than GSL's).
 const gsl_odeiv2_step_type* step_type(const std::string& name);

@@ -29,7 +29,7 @@ FieldRecorder::FieldRecorder(const VariantKey& key, const Parameters& p, std::ve
       fields_(key, p),
       out_of_plane_(key.out_of_plane()),
       foreshortened_(key.order != Order::zero),
-      stations_(station_positions(key.extras)),
+      stations_(p.stations),
       p_(p),
       times_(std::move(times))
 {

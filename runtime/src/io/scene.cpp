@@ -288,7 +288,7 @@ std::optional<ProfileTable> read_beam(const Section& beam, const std::string& sc
     if (resample != 0 && !from_file)
         throw SceneError::with_detail(scene_path, beam.path("blade_stations"),
                                       "not used without beam.blade_file: remove it");
-    if (resample != 0 && (resample < 2 || resample > 64)) beam.refuse("blade_stations", std::to_string(resample));
+    if (resample != 0 && (resample < 2 || resample > static_cast<int>(scene_io::max_profile_stations))) beam.refuse("blade_stations", std::to_string(resample));
     if (tabulated || from_file) {
         const char* by = tabulated ? "beam.profile" : "beam.blade_file";
         for (const char* key : keys_a_table_replaces)

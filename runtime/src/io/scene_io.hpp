@@ -48,8 +48,10 @@ inline constexpr std::array<const char*, 10> keys_a_table_replaces = {"density",
                                                                       "torsion_constant",
                                                                       "twist"};
 
-/// The largest profile table read (beam.profile): a blade table of 64 stations is a few kilobytes.
-inline constexpr std::size_t max_profile_bytes = 1 << 16;
+/// The largest profile table read (beam.profile): 10,000 stations of nine columns at full precision.
+inline constexpr std::size_t max_profile_bytes = 1 << 22;
+/// The most stations a profile table or blade file may have (scene_tables.cpp says why).
+inline constexpr std::size_t max_profile_stations = 10000;
 
 /// A profile table as read: the key that named it (beam.profile, beam.blade_file), its file, the blade columns it has
 /// (EI_flap, GJ, twist, j_c, j_n) and whether it gives ES (a blade file may not).

@@ -2,7 +2,7 @@
 #include <algorithm>
 #include <hubbeam/scene.hpp>
 
-#include "dynamics/integrate.hpp"
+#include "dynamics/stepper_names.hpp"
 #include "io/blade_files.hpp"
 #include "io/scene_io.hpp"
 #include "text/option_lists.hpp"
@@ -75,14 +75,14 @@ std::vector<SceneKey> make_scene_keys()
          {},
          max_blade_file_bytes},
         {"beam.blade_stations", nullptr, K::integer,
-         "0 (the file's own stations) or an integer from 2 to 64 (stations to resample beam.blade_file at)"},
+         "0 (the file's own stations) or an integer from 2 to 10000 (stations to resample beam.blade_file at)"},
         {"beam.second_moment_flap", nullptr, K::number,
          "a number > 0 (I_flap, m^4, bending out of the plane; default beam.second_moment)"},
         {"beam.shear_modulus", nullptr, K::number, "a number >= 0 (G, Pa; > 0 needed with nt > 0)"},
         {"beam.torsion_constant", nullptr, K::number, "a number >= 0 (J_t, m^4; > 0 needed with nt > 0)"},
         {"beam.pitch", nullptr, K::number,
          "a number from -2 pi to 2 pi (the section's pitch, rad: one turn either way)"},
-        {"beam.twist", nullptr, K::number, "a number in [-0.5, 0.5] (the pre-twist, tip minus root, rad)"},
+        {"beam.twist", nullptr, K::number, "a number from -2 pi to 2 pi (the pre-twist, tip minus root, rad: one turn either way)"},
         {"beam.precone", nullptr, K::number, "a number in (-1.5, 1.5) (the precone, rad; positive towards +k)"},
         {"hub.radius", nullptr, K::number, "a number >= 0 (a, m)"},
         {"hub.inertia", nullptr, K::number, "a number > 0 (J_oh, kg m^2)"},

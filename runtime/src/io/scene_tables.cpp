@@ -189,8 +189,9 @@ NumericTable read_numeric_table(const std::string& scene, const std::string& key
     return table;
 }
 
-/// The most stations a profile table may have: the generator's cost and the variant's name grow with them.
-constexpr std::size_t max_profile_stations = 64;
+/// The most stations a profile table may have: a model's construction integrates the table once, in time linear in
+/// its stations (about 0.1 s at this bound for a blade of Ny = Nz = 16), and no variant depends on them.
+constexpr std::size_t max_profile_stations = scene_io::max_profile_stations;
 
 /// p.profile from a table's values (max_profile_value_count per station), and the root's values where a single value
 /// of the beam is reported (the frequency unit sqrt(EI / (m L^4))): S = 1 m^2 keeps the three products the table's.
@@ -207,8 +208,7 @@ void set_profile(std::vector<double> values, Parameters& p)
 }  // namespace
 
 /// beam.profile's table (docs/model.md sections 11.2 and 12.4): stations x/L from 0 to 1, strictly increasing, and
-/// positive finite m, EI, ES at each, and a blade's optional columns, into the variant's stations (structure) and
-/// p.profile (run-time values, max_profile_value_count per station: absent blade columns at their defaults; fit_profile
+/// positive finite m, EI, ES at each, and a blade's optional columns, into p.stations and p.profile (run-time values, max_profile_value_count per station: absent blade columns at their defaults; fit_profile
 /// keeps what the variant reads). Every error names the scene, the key and the table's file and line.
 ProfileTable scene_io::read_profile(const std::string& scene_path, const std::string& name, Parameters& p,
                                     Extras& extras)
@@ -273,7 +273,8 @@ ProfileTable scene_io::read_profile(const std::string& scene_path, const std::st
     }
     if (x.size() < 2) bad(0, "expected at least 2 stations, got " + std::to_string(x.size()));
     if (x.back() != 1.0) bad(0, "the last station must be x/L = 1, got " + shortest(x.back()));
-    if (const std::string why = set_stations(x, extras); !why.empty()) bad(0, why);
+    extras.tabulated = true;
+    p.stations = std::move(x);
     set_profile(std::move(values), p);
     return read;
 }
@@ -316,13 +317,13 @@ std::vector<double> blade_values(const BladeTable& b, double L)
     return values;
 }
 
-/// The table (stations x, values as blade_values) linear between its stations, taken at count equally spaced ones
-/// (4 decimals), which replace x and values.
+/// The table (stations x, values as blade_values) linear between its stations, taken at count equally spaced ones,
+/// which replace x and values.
 void resample_table(std::vector<double>& x, std::vector<double>& values, int count)
 {
     const std::vector<double> from = x;
     x.clear();
-    for (int k = 0; k < count; ++k) x.push_back(std::round(1e4 * k / (count - 1)) / 1e4);
+    for (int k = 0; k < count; ++k) x.push_back(k + 1 == count ? 1.0 : static_cast<double>(k) / (count - 1));
     std::vector<double> resampled;
     for (double xk : x)
         for (std::size_t j = 0; j < max_profile_value_count; ++j)
@@ -334,8 +335,8 @@ void resample_table(std::vector<double>& x, std::vector<double>& values, int cou
 
 /// beam.blade_file (docs/scene.md): a BModes section-properties file or an ElastoDyn blade file (read_blade_file) as
 /// a blade's profile, each of its columns where the profile has one; a file without EA gives a stand-in ES (fit_profile
-/// asks for nx = 0). resample > 0: the table linear between its stations, taken at resample equally spaced ones (4
-/// decimals), for a file whose stations the variant's name cannot carry.
+/// asks for nx = 0). resample > 0: the table linear between its stations, taken at resample equally spaced ones (a
+/// coarser table, a user's choice).
 ProfileTable scene_io::read_blade(const std::string& scene_path, const std::string& name, int resample, Parameters& p,
                                   Extras& extras)
 {
@@ -364,8 +365,11 @@ ProfileTable scene_io::read_blade(const std::string& scene_path, const std::stri
     if (x.size() > max_profile_stations)
         bad("at most " + std::to_string(max_profile_stations) + " stations, got " + std::to_string(x.size()) +
             ": set beam.blade_stations to resample it");
-    if (const std::string why = set_stations(x, extras); !why.empty())
-        bad(why + (resample > 0 ? std::string() : "; or set beam.blade_stations to resample the file's table"));
+    for (std::size_t k = 1; k < x.size(); ++k)
+        if (!(x[k] > x[k - 1]))
+            bad("the stations must increase strictly, got x/L = " + shortest(x[k]) + " after " + shortest(x[k - 1]));
+    extras.tabulated = true;
+    p.stations = std::move(x);
     set_profile(std::move(values), p);
     return read;
 }

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <hubbeam/scene.hpp>
 
-#include "dynamics/integrate.hpp"
+#include "dynamics/stepper_names.hpp"
 #include "io/scene_io.hpp"
 #include "text/printable.hpp"
 #include "text/shortest.hpp"
@@ -95,7 +95,7 @@ void check_out_of_plane(const Scene& s)
     check_positive(s, p.I_flap, "beam.second_moment_flap");
     if (!(std::abs(p.pitch) <= max_section_angle))
         fail(s.path, "beam.pitch", expected("beam.pitch"), shortest(p.pitch));
-    if (!(std::abs(p.twist) <= max_twist)) fail(s.path, "beam.twist", expected("beam.twist"), shortest(p.twist));
+    if (!(std::abs(p.twist) <= max_section_angle)) fail(s.path, "beam.twist", expected("beam.twist"), shortest(p.twist));
     if (!(std::abs(p.precone) < 1.5)) fail(s.path, "beam.precone", expected("beam.precone"), shortest(p.precone));
     if (key.nz < 0) fail(s.path, "discretization.nz", expected("discretization.nz"), std::to_string(key.nz));
     if (key.nt < 0) fail(s.path, "discretization.nt", expected("discretization.nt"), std::to_string(key.nt));

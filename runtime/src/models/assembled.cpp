@@ -151,7 +151,7 @@ BeamMatrices assemble_matrices(const VariantKey& key, const Parameters& p)
     // 2 max(degree) + 3, and no integrand below exceeds the product of two pieces times a cubic in xi (the depth
     // taper's i(xi) times two second derivatives; the weights of D and G); AMM's rule is converged to round-off.
     // A profile's stations are cuts too: its values are linear on each interval between them.
-    const std::vector<double> stations = station_positions(key.extras);
+    const std::vector<double> stations = p.stations;
     const QuadratureRule rule = product_rule(axial, transverse, stations);
     const int nn = static_cast<int>(rule.nodes.size());
     const auto [X, X1, Y, Y1, Y2] = node_values(axial, transverse, rule);

@@ -13,7 +13,7 @@ namespace hubbeam {
 BeamFields::BeamFields(const VariantKey& key, const Parameters& p)
     : axial_(key.axial_basis()), transverse_(key.transverse_basis()), foreshortened_(key.order != Order::zero), L_(p.L),
       EI_(p.E * p.I), ES_(p.E * p.S), taper_(key.extras.taper), tip_ratio_(p.tip_ratio),
-      stations_(station_positions(key.extras)), profile_(p.profile),
+      stations_(p.stations), profile_(p.profile),
       Phi_x_L_(axial_.size()), Phi_y_L_(transverse_.size()), H_L_(Eigen::MatrixXd::Zero(transverse_.size(), transverse_.size()))
 {
     for (int i = 0; i < axial_.size(); ++i) Phi_x_L_(i) = axial_.at(i, 1.0).v;

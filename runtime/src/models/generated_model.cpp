@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "generated_abi.h"
+#include "models/section_integrals.hpp"
 #include "terms.hpp"
 
 namespace hubbeam {
@@ -26,12 +27,15 @@ public:
           reads_angle_(potential_reads_angle(key)),
           torque_(key.drive == Drive::torque)
     {
-        const std::vector<double> packed = p.packed();
+        // A profile variant reads its section integrals after the parameters (model/interface.hpp).
+        std::vector<double> packed = p.packed();
+        const std::vector<double> sections = section_integrals(key, v.section_integrals, v.nsection, p);
+        packed.insert(packed.end(), sections.begin(), sections.end());
         v_.coefficients(packed.data(), c_.data());
         if (v_.coefficients_p != nullptr) {
             // The entries of p the variant reads (generator/variant_source.cpp, read_parameter_names): the paper's
             // seven, or all with extra terms; the derivatives by the named ones are kept.
-            const std::size_t read = key.params_read() == param_count ? packed.size() : key.params_read();
+            const std::size_t read = key.params_read();
             std::vector<double> all(read * c_.size());
             v_.coefficients_p(packed.data(), all.data());
             dcdp_.assign(param_count * c_.size(), 0.0);

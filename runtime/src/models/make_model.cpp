@@ -13,11 +13,18 @@ namespace hubbeam {
 std::unique_ptr<Model> make_model(const VariantKey& key, const Parameters& p, ModelSource source, const ModelNote& note)
 {
     if (const std::string why = key.dof_problem(); !why.empty()) throw std::invalid_argument(why);
-    // The kernels read the profile's values at p[param_count + n k + j]: a count that disagrees would read past p.
-    const std::size_t values = profile_value_count(key.out_of_plane()) * key.extras.stations.size();
-    if (p.profile.size() != values)
-        throw std::invalid_argument("the parameters hold " + std::to_string(p.profile.size()) +
-                                    " profile values, the variant " + key.name() + " needs " + std::to_string(values));
+    // A profile variant integrates the table against its basis; a table it would not read is a caller's mistake.
+    if (key.extras.profile()) {
+        if (const std::string why = stations_problem(p.stations); !why.empty())
+            throw std::invalid_argument("the profile's stations: " + why);
+        const std::size_t values = profile_value_count(key.out_of_plane()) * p.stations.size();
+        if (p.profile.size() != values)
+            throw std::invalid_argument("the parameters hold " + std::to_string(p.profile.size()) +
+                                        " profile values at " + std::to_string(p.stations.size()) +
+                                        " stations, the variant " + key.name() + " needs " + std::to_string(values));
+    } else if (!p.stations.empty() || !p.profile.empty()) {
+        throw std::invalid_argument("the parameters hold a profile, the variant " + key.name() + " has none");
+    }
     if (source == ModelSource::assembled) return make_assembled_model(key, p);
     if (const generated::Variant* v = built_in_variant(key)) return make_generated_model(key, *v, p, "built in");
     if (const generated::Variant* v = load_cached_variant(key)) return make_generated_model(key, *v, p, "cached");

@@ -56,10 +56,11 @@ MatrixXd gram(const MatrixXd& P, const VectorXd& w)
 /// Gauss-Legendre on the common refinement of the bases' pieces and a profile's stations. A polynomial integrand here
 /// is a product of two pieces times at most a quadratic in xi (degree 2 max + 2), or a profile's linear distribution
 /// (degree 2 max + 1), and the pre-twist multiplies products of two pieces (degree 2 max) by cos 2 beta(xi) or sin 2
-/// beta(xi): with max + 10 points the rule is exact to degree 2 max + 19, so what it misses of their Taylor series in
-/// (2 twist xi), |2 twist| <= 1 (max_twist), is below 1/20! ~ 4e-19 of the integral. AMM: the composite rule converged
-/// to round-off for the highest mode, on which the slow cosine and a profile's kinks (cuts) change nothing.
-QuadratureRule section_rule(const std::vector<FieldBasis>& bases, const std::vector<double>& stations)
+/// beta(xi): cut into pieces on each of which 2 twist xi turns by at most 1 rad, with max + 10 points the rule is exact
+/// to degree 2 max + 19 there, so what it misses of their Taylor series about the piece's start is below 1/20! ~ 4e-19
+/// of the integral. AMM: the composite rule converged to round-off for the highest mode, on which the slow cosine (its
+/// panels no wider than the pieces) and a profile's kinks (cuts) change nothing.
+QuadratureRule section_rule(const std::vector<FieldBasis>& bases, const std::vector<double>& stations, double twist)
 {
     int largest = 0, degree = 0;
     bool polynomial = true;
@@ -79,6 +80,8 @@ QuadratureRule section_rule(const std::vector<FieldBasis>& bases, const std::vec
         for (int k = 0; k <= panels; ++k) cuts.push_back(static_cast<double>(k) / panels);
     }
     cuts.insert(cuts.end(), stations.begin(), stations.end());
+    const int turns = static_cast<int>(std::ceil(2.0 * std::abs(twist)));
+    for (int k = 1; k < turns; ++k) cuts.push_back(static_cast<double>(k) / turns);
     std::sort(cuts.begin(), cuts.end());
     cuts.erase(std::unique(cuts.begin(), cuts.end(), [](double u, double v) { return v - u < 1e-14; }), cuts.end());
     cuts.back() = 1.0;
@@ -170,8 +173,8 @@ OutOfPlaneMatrices assemble_out_of_plane(const VariantKey& key, const Parameters
 {
     const FieldBasis axial = key.axial_basis(), inplane = key.transverse_basis(), flap = key.flap_basis(),
                      twist = key.twist_basis();
-    const std::vector<double> stations = station_positions(key.extras);
-    const QuadratureRule rule = section_rule({axial, inplane, flap, twist}, stations);
+    const std::vector<double> stations = p.stations;
+    const QuadratureRule rule = section_rule({axial, inplane, flap, twist}, stations, key.extras.twist ? p.twist : 0.0);
     const int nn = static_cast<int>(rule.nodes.size());
     const ArrayXd xi = Eigen::Map<const ArrayXd>(rule.nodes.data(), nn);
     const VectorXd w = Eigen::Map<const VectorXd>(rule.weights.data(), nn);

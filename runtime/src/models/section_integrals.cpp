@@ -1,0 +1,272 @@
+// Section integrals by Gauss-Legendre on the common refinement of the stations and the bases' intervals.
+#include "models/section_integrals.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+
+
+namespace hubbeam {
+
+namespace {
+
+using generated::SectionFactor;
+using generated::SectionIntegral;
+
+/// The bases of a variant's four fields, by the factor kinds that name them.
+struct Bases {
+    FieldBasis axial, transverse, flap, twist;
+
+    explicit Bases(const VariantKey& key)
+        : axial(key.axial_basis()),
+          transverse(key.transverse_basis()),
+          flap(key.flap_basis()),
+          twist(key.twist_basis())
+    {
+    }
+
+    const FieldBasis& of(int kind) const
+    {
+        switch (kind) {
+            case generated::axial_factor:
+                return axial;
+            case generated::transverse_factor:
+            case generated::coupling_factor:
+                return transverse;
+            case generated::flap_factor:
+            case generated::flap_coupling_factor:
+                return flap;
+            case generated::twist_factor:
+                return twist;
+        }
+        throw std::invalid_argument("section integrals: unknown factor kind " + std::to_string(kind));
+    }
+
+    bool polynomial() const
+    {
+        const auto poly = [](const FieldBasis& b) { return b.size() == 0 || b.polynomial(); };
+        return poly(axial) && poly(transverse) && poly(flap) && poly(twist);
+    }
+};
+
+bool is_coupling(const SectionFactor& f)
+{
+    return f.kind == generated::coupling_factor || f.kind == generated::flap_coupling_factor;
+}
+
+/// The polynomial degree of a factor on one interval: H_ij integrates a product of two slopes.
+int degree(const Bases& b, const SectionFactor& f)
+{
+    const int d = b.of(f.kind).degree();
+    return is_coupling(f) ? 2 * d - 1 : std::max(0, d - f.deriv);
+}
+
+/// The cuts of [0, 1] on which every integrand is smooth (a polynomial, or analytic for AMM): the stations, where the
+/// distributions have kinks, and the bases' intervals (AMM: equal panels narrow enough for its highest mode); and
+/// `panels` equal ones, on each of which a pre-twist's 2 twist xi turns by at most 1 rad.
+std::vector<double> cuts_of(const Bases& b, const std::vector<double>& stations, int panels)
+{
+    std::vector<double> cuts(stations.begin(), stations.end());
+    cuts.insert(cuts.end(), {0.0, 1.0});
+    for (int k = 1; k < panels; ++k) cuts.push_back(static_cast<double>(k) / panels);
+    if (b.polynomial()) {
+        for (const FieldBasis* f : {&b.axial, &b.transverse, &b.flap, &b.twist})
+            for (int k = 1; f->size() > 0 && k < f->intervals(); ++k)
+                cuts.push_back(static_cast<double>(k) / f->intervals());
+    } else {
+        const int panels = transcendental_panels(
+            std::max({b.axial.size(), b.transverse.size(), b.flap.size(), b.twist.size()}));
+        for (int k = 1; k < panels; ++k) cuts.push_back(static_cast<double>(k) / panels);
+    }
+    std::sort(cuts.begin(), cuts.end());
+    cuts.erase(std::unique(cuts.begin(), cuts.end(), [](double u, double v) { return v - u < 1e-14; }), cuts.end());
+    cuts.back() = 1.0;
+    return cuts;
+}
+
+/// The values of every factor at the rule's nodes, computed once per factor.
+class FactorColumns {
+public:
+    FactorColumns(const Bases& b, const std::vector<double>& cuts, int points, int coupling_points)
+        : b_(b), cuts_(cuts), points_(points), inner_(gauss_legendre(coupling_points))
+    {
+        const QuadratureRule rule = composite_gauss_legendre(cuts, points);
+        nodes_ = rule.nodes;
+    }
+
+    const std::vector<double>& nodes() const { return nodes_; }
+
+    const std::vector<double>& operator()(const SectionFactor& f)
+    {
+        const auto key = std::make_tuple(f.kind, f.i, is_coupling(f) ? f.j : 0, f.deriv);
+        if (auto it = columns_.find(key); it != columns_.end()) return it->second;
+        const FieldBasis& basis = b_.of(f.kind);
+        if (f.i < 0 || f.i >= basis.size() || (is_coupling(f) && (f.j < 0 || f.j >= basis.size())) || f.deriv < 0 ||
+            f.deriv > 2)
+            throw std::invalid_argument("section integrals: a factor outside the variant's bases");
+        std::vector<double> v(nodes_.size());
+        if (!is_coupling(f)) {
+            for (std::size_t q = 0; q < nodes_.size(); ++q) {
+                const Jet<double> j = basis.at(f.i, nodes_[q]);
+                v[q] = f.deriv == 0 ? j.v : f.deriv == 1 ? j.d1 : j.d2;
+            }
+        } else {
+            coupling(basis, f, v);
+        }
+        return columns_.emplace(key, std::move(v)).first->second;
+    }
+
+private:
+    /// H_ij(xi) = int_0^xi phi_i' phi_j': the whole intervals before a node's plus a Gauss rule from its start.
+    void coupling(const FieldBasis& basis, const SectionFactor& f, std::vector<double>& v) const
+    {
+        const auto slopes = [&](double x) { return basis.at(f.i, x).d1 * basis.at(f.j, x).d1; };
+        const auto integral = [&](double lo, double hi) {
+            double sum = 0.0;
+            for (std::size_t r = 0; r < inner_.nodes.size(); ++r)
+                sum += inner_.weights[r] * slopes(lo + (hi - lo) * inner_.nodes[r]);
+            return sum * (hi - lo);
+        };
+        double whole = 0.0;
+        for (std::size_t k = 0; k + 1 < cuts_.size(); ++k) {
+            for (int g = 0; g < points_; ++g) {
+                const std::size_t q = k * static_cast<std::size_t>(points_) + static_cast<std::size_t>(g);
+                v[q] = whole + integral(cuts_[k], nodes_[q]);
+            }
+            whole += integral(cuts_[k], cuts_[k + 1]);
+        }
+    }
+
+    const Bases& b_;
+    const std::vector<double>& cuts_;
+    int points_;
+    QuadratureRule inner_;
+    std::vector<double> nodes_;
+    std::map<std::tuple<int, int, int, int>, std::vector<double>> columns_;
+};
+
+}  // namespace
+
+std::vector<double> section_distribution(const VariantKey& key, const Parameters& p, SectionDistribution d)
+{
+    const std::size_t n = p.stations.size(), w = profile_value_count(key.out_of_plane());
+    if (!tabulated(d)) throw std::logic_error("section integrals: the pre-twist's distributions are no table's");
+    if (n == 0 || p.profile.size() != n * w)
+        throw std::invalid_argument("section integrals: the profile holds " + std::to_string(p.profile.size()) +
+                                    " values for " + std::to_string(n) + " stations, the variant " + key.name() +
+                                    " needs " + std::to_string(w) + " per station");
+    if (w < max_profile_value_count && d > SectionDistribution::ES)
+        throw std::invalid_argument("section integrals: a planar profile has no distribution " +
+                                    std::string(section_distribution_names[static_cast<std::size_t>(d)]));
+    std::vector<double> out(n);
+    for (std::size_t k = 0; k < n; ++k) {
+        const auto v = [&](ProfileValue j) { return p.profile[w * k + static_cast<std::size_t>(j)]; };
+        // The deviators turned by twice the chord's tabulated angle (docs/model.md section 12.4).
+        const auto turned = [&](double deviator, bool sine) {
+            const double angle = 2.0 * v(ProfileValue::twist);
+            return deviator * (sine ? std::sin(angle) : std::cos(angle));
+        };
+        using D = SectionDistribution;
+        switch (d) {
+            case D::m: out[k] = v(ProfileValue::m); break;
+            case D::EI: out[k] = v(ProfileValue::EI); break;
+            case D::ES: out[k] = v(ProfileValue::ES); break;
+            case D::EI_flap: out[k] = v(ProfileValue::EI_flap); break;
+            case D::GJ: out[k] = v(ProfileValue::GJ); break;
+            case D::j_p: out[k] = v(ProfileValue::j_c) + v(ProfileValue::j_n); break;
+            case D::EI_cos: out[k] = turned((v(ProfileValue::EI) - v(ProfileValue::EI_flap)) / 2.0, false); break;
+            case D::EI_sin: out[k] = turned((v(ProfileValue::EI) - v(ProfileValue::EI_flap)) / 2.0, true); break;
+            case D::j_cos: out[k] = turned((v(ProfileValue::j_n) - v(ProfileValue::j_c)) / 2.0, false); break;
+            case D::j_sin: out[k] = turned((v(ProfileValue::j_n) - v(ProfileValue::j_c)) / 2.0, true); break;
+            default: break;
+        }
+    }
+    return out;
+}
+
+std::vector<double> section_integrals(const VariantKey& key, const SectionIntegral* list, int count,
+                                      const Parameters& p)
+{
+    if (count == 0) return {};
+    bool table = false, twist = false;
+    for (int n = 0; n < count; ++n) {
+        const int d = list[n].distribution;
+        if (d < 0 || d >= static_cast<int>(section_distribution_count))
+            throw std::invalid_argument("section integrals: unknown distribution " + std::to_string(d));
+        (tabulated(static_cast<SectionDistribution>(d)) ? table : twist) = true;
+    }
+    if (const std::string why = stations_problem(p.stations); table && !why.empty())
+        throw std::invalid_argument("section integrals: " + why);
+    const Bases b(key);
+    const std::vector<double> stations = table ? p.stations : std::vector<double>{};
+    // cos 2 twist xi and sin 2 twist xi turn by at most 1 rad on each piece: with 8 points more than the polynomial
+    // part needs, what the rule misses of them is below 1e-20 of the integrand (Gauss's remainder for h omega <= 1).
+    const int twist_panels = twist ? std::max(1, static_cast<int>(std::ceil(2.0 * std::abs(p.twist)))) : 1;
+    const std::vector<double> cuts = cuts_of(b, stations, twist_panels);
+    // Polynomial bases: enough points per interval for the integrands' highest degree (the distribution is linear
+    // there), so that the rule is exact; AMM: the points that converge its modes on a panel.
+    int points = transcendental_points, coupling_points = transcendental_points;
+    if (b.polynomial()) {
+        int highest = 0, slopes = 0;
+        for (int n = 0; n < count; ++n) {
+            const SectionIntegral& s = list[n];
+            if (s.count < 0 || s.count > generated::max_section_factors)
+                throw std::invalid_argument("section integrals: an integral of " + std::to_string(s.count) +
+                                            " factors");
+            int d = 1 + s.power;
+            for (int f = 0; f < s.count; ++f) {
+                d += degree(b, s.factors[f]);
+                if (is_coupling(s.factors[f])) slopes = std::max(slopes, 2 * b.of(s.factors[f].kind).degree() - 2);
+            }
+            highest = std::max(highest, d);
+        }
+        points = highest / 2 + 1 + (twist ? 8 : 0);  // 2 points - 1 >= highest
+        coupling_points = slopes / 2 + 1;
+    }
+    FactorColumns columns(b, cuts, points, coupling_points);
+    const QuadratureRule rule = composite_gauss_legendre(cuts, points);
+    // Each distribution at the nodes: linear on each interval, which lies between two stations.
+    std::map<int, std::vector<double>> at_nodes;
+    const auto distribution = [&](int d) -> const std::vector<double>& {
+        if (auto it = at_nodes.find(d); it != at_nodes.end()) return it->second;
+        std::vector<double> out(rule.nodes.size());
+        const auto which = static_cast<SectionDistribution>(d);
+        if (!tabulated(which)) {
+            for (std::size_t q = 0; q < out.size(); ++q) {
+                const double angle = 2.0 * p.twist * rule.nodes[q];
+                out[q] = which == SectionDistribution::cos_2twist ? std::cos(angle) : std::sin(angle);
+            }
+            return at_nodes.emplace(d, std::move(out)).first->second;
+        }
+        const std::vector<double> v = section_distribution(key, p, which);
+        std::size_t k = 0;
+        for (std::size_t q = 0; q < out.size(); ++q) {
+            const double x = rule.nodes[q];
+            while (k + 2 < stations.size() && x > stations[k + 1]) ++k;
+            const double t = (x - stations[k]) / (stations[k + 1] - stations[k]);
+            out[q] = (1.0 - t) * v[k] + t * v[k + 1];
+        }
+        return at_nodes.emplace(d, std::move(out)).first->second;
+    };
+    std::vector<double> out(static_cast<std::size_t>(count));
+    std::vector<double> product(rule.nodes.size());
+    for (int n = 0; n < count; ++n) {
+        const SectionIntegral& s = list[n];
+        const std::vector<double>& d = distribution(s.distribution);
+        for (std::size_t q = 0; q < product.size(); ++q)
+            product[q] = rule.weights[q] * std::pow(rule.nodes[q], s.power) * d[q];
+        for (int f = 0; f < s.count; ++f) {
+            const std::vector<double>& c = columns(s.factors[f]);
+            for (std::size_t q = 0; q < product.size(); ++q) product[q] *= c[q];
+        }
+        double sum = 0.0;
+        for (double v : product) sum += v;
+        out[static_cast<std::size_t>(n)] = sum;
+    }
+    return out;
+}
+
+}  // namespace hubbeam
