@@ -32,21 +32,43 @@ inline double profile_value(const std::vector<double>& stations, const std::vect
     return linear_between(stations, values, static_cast<std::size_t>(j), xi);
 }
 
-/// int_from^1 m(t) t^n dt of a profile's mass per length: 3-point Gauss-Legendre on each interval between stations,
-/// exact for n <= 4 (m is linear there).
-inline double mass_tail(const std::vector<double>& stations, const std::vector<double>& values, double from, int n)
-{
-    const QuadratureRule g3 = gauss_legendre(3);
-    double sum = 0.0;
-    for (std::size_t k = 0; k + 1 < stations.size(); ++k) {
-        const double lo = std::max(from, stations[k]), hi = stations[k + 1];
-        if (hi <= lo) continue;
+/// int_from^1 m(t) t^n dt of a profile's mass per length, for any `from`: each station interval's integral once
+/// (3-point Gauss-Legendre, exact for n <= 4: m is linear there) summed from the tip, so that a tail costs one
+/// interval's rule and a search, not a sum over every station (a table of 10,000 at as many nodes).
+class MassTail {
+public:
+    MassTail(const std::vector<double>& stations, const std::vector<double>& values, int n)
+        : stations_(stations), values_(values), n_(n), after_(stations.size(), 0.0)
+    {
+        for (std::size_t k = stations.size() - 1; k-- > 0;)
+            after_[k] = after_[k + 1] + piece(stations[k], stations[k + 1]);
+    }
+
+    double operator()(double from) const
+    {
+        if (from >= stations_.back()) return 0.0;
+        if (from <= stations_.front()) return after_.front();
+        const std::size_t k =
+            static_cast<std::size_t>(std::upper_bound(stations_.begin(), stations_.end(), from) - stations_.begin()) - 1;
+        return piece(from, stations_[k + 1]) + after_[k + 1];
+    }
+
+private:
+    double piece(double lo, double hi) const
+    {
+        static const QuadratureRule g3 = gauss_legendre(3);
+        double sum = 0.0;
         for (int j = 0; j < 3; ++j) {
             const double t = lo + (hi - lo) * g3.nodes[j];
-            sum += (hi - lo) * g3.weights[j] * profile_value(stations, values, ProfileValue::m, t) * std::pow(t, n);
+            sum += (hi - lo) * g3.weights[j] * profile_value(stations_, values_, ProfileValue::m, t) * std::pow(t, n_);
         }
+        return sum;
     }
-    return sum;
-}
+
+    const std::vector<double>& stations_;
+    const std::vector<double>& values_;
+    int n_;
+    std::vector<double> after_;  // after_[k] = int_(stations_[k])^1 m t^n dt
+};
 
 }  // namespace hubbeam

@@ -190,7 +190,7 @@ NumericTable read_numeric_table(const std::string& scene, const std::string& key
 }
 
 /// The most stations a profile table may have: a model's construction integrates the table once, in time linear in
-/// its stations (about 0.1 s at this bound for a blade of Ny = Nz = 16), and no variant depends on them.
+/// its stations (under a second at this bound for a blade of Ny = Nz = 16), and no variant depends on them.
 constexpr std::size_t max_profile_stations = scene_io::max_profile_stations;
 
 /// p.profile from a table's values (max_profile_value_count per station), and the root's values where a single value

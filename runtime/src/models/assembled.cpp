@@ -99,13 +99,13 @@ void profile_at_nodes(const std::vector<double>& stations, const Parameters& p, 
         c.i(r) = value(ProfileValue::EI, xi(r));
         c.e(r) = value(ProfileValue::ES, xi(r));
     }
-    const auto tail = [&](double from, int n) { return mass_tail(stations, p.profile, from, n); };
+    const MassTail tail0(stations, p.profile, 0), tail1(stations, p.profile, 1), tail2(stations, p.profile, 2);
     for (Eigen::Index r = 0; r < nn; ++r) {
-        c.above(r) = tail(xi(r), 0);
-        c.above_x(r) = 2.0 * tail(xi(r), 1);
+        c.above(r) = tail0(xi(r));
+        c.above_x(r) = 2.0 * tail1(xi(r));
     }
     // (a + cb L xi)^n = sum of xi powers (cb: a precone's cosine, section 12): the moments of m over [0, 1].
-    const double a = p.a, L = cb * p.L, t0 = tail(0.0, 0), t1 = tail(0.0, 1), t2 = tail(0.0, 2);
+    const double a = p.a, L = cb * p.L, t0 = tail0(0.0), t1 = tail1(0.0), t2 = tail2(0.0);
     c.first_moment = a * t0 + L * t1;
     c.second_moment = a * a * t0 + 2.0 * a * L * t1 + L * L * t2;
 }

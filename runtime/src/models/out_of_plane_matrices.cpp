@@ -148,14 +148,15 @@ BladeAtNodes blade_at_nodes(const VariantKey& key, const Parameters& p, const st
                    v(ProfileValue::j_c), v(ProfileValue::j_n), pitch + v(ProfileValue::twist));
         at_station.insert(at_station.end(), row.begin(), row.end());
     }
+    const MassTail tail0(stations, p.profile, 0), tail1(stations, p.profile, 1);
     for (Eigen::Index r = 0; r < nn; ++r) {
         std::array<double, 9> row;
         for (std::size_t j = 0; j < row.size(); ++j) row[j] = linear_between(stations, at_station, j, xi(r));
         store(r, row);
-        b.above(r) = mass_tail(stations, p.profile, xi(r), 0);
-        b.above_x(r) = mass_tail(stations, p.profile, xi(r), 1);
+        b.above(r) = tail0(xi(r));
+        b.above_x(r) = tail1(xi(r));
     }
-    b.first_moment = mass_tail(stations, p.profile, 0.0, 1);
+    b.first_moment = tail1(0.0);
     return b;
 }
 

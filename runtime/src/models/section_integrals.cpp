@@ -2,6 +2,7 @@
 #include "models/section_integrals.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <stdexcept>
@@ -87,19 +88,42 @@ std::vector<double> cuts_of(const Bases& b, const std::vector<double>& stations,
     return cuts;
 }
 
+/// A factor's values at the rule's nodes, and the nodes [first, last) outside which they are zero: a local basis's
+/// support, where an integral's sum need only go (the stations make many nodes; a FEM function spans two elements).
+struct Column {
+    std::vector<double> v;
+    std::size_t first = 0, last = 0;
+};
+
 /// The values of every factor at the rule's nodes, computed once per factor.
 class FactorColumns {
 public:
+    /// coupling_points: the Gauss nodes of a piece that H_ij's integrand is interpolated through (more than its
+    /// degree for the polynomial bases).
     FactorColumns(const Bases& b, const std::vector<double>& cuts, int points, int coupling_points)
         : b_(b), cuts_(cuts), points_(points), inner_(gauss_legendre(coupling_points))
     {
         const QuadratureRule rule = composite_gauss_legendre(cuts, points);
         nodes_ = rule.nodes;
+        // running_[g][r] = int_0^(t_g) l_r(t) dt: the Lagrange polynomial l_r of the inner nodes integrated from a
+        // piece's start to its g-th node (both scaled to [0, 1]), by a Gauss rule exact for its degree.
+        const QuadratureRule outer = gauss_legendre(points), exact = gauss_legendre(coupling_points);
+        const std::vector<double>& t = inner_.nodes;
+        running_.assign(static_cast<std::size_t>(points), std::vector<double>(t.size(), 0.0));
+        for (std::size_t g = 0; g < outer.nodes.size(); ++g)
+            for (std::size_t r = 0; r < t.size(); ++r)
+                for (std::size_t s = 0; s < exact.nodes.size(); ++s) {
+                    const double x = outer.nodes[g] * exact.nodes[s];
+                    double l = 1.0;
+                    for (std::size_t k = 0; k < t.size(); ++k)
+                        if (k != r) l *= (x - t[k]) / (t[r] - t[k]);
+                    running_[g][r] += outer.nodes[g] * exact.weights[s] * l;
+                }
     }
 
     const std::vector<double>& nodes() const { return nodes_; }
 
-    const std::vector<double>& operator()(const SectionFactor& f)
+    const Column& operator()(const SectionFactor& f)
     {
         const auto key = std::make_tuple(f.kind, f.i, is_coupling(f) ? f.j : 0, f.deriv);
         if (auto it = columns_.find(key); it != columns_.end()) return it->second;
@@ -116,36 +140,54 @@ public:
         } else {
             coupling(basis, f, v);
         }
-        return columns_.emplace(key, std::move(v)).first->second;
+        Column c{std::move(v), 0, 0};
+        while (c.first < c.v.size() && c.v[c.first] == 0.0) ++c.first;
+        c.last = c.v.size();
+        while (c.last > c.first && c.v[c.last - 1] == 0.0) --c.last;
+        return columns_.emplace(key, std::move(c)).first->second;
     }
 
 private:
-    /// H_ij(xi) = int_0^xi phi_i' phi_j': the whole intervals before a node's plus a Gauss rule from its start.
-    void coupling(const FieldBasis& basis, const SectionFactor& f, std::vector<double>& v) const
+    /// H_ij(xi) = int_0^xi phi_i' phi_j', piece by piece: its value at the piece's start plus the integral of the
+    /// polynomial through phi_i' phi_j' at the piece's inner nodes, to each node (exact where the product is a
+    /// polynomial of lower degree than their count; converged for AMM's smooth modes). Zero on the pieces before both
+    /// slopes are nonzero, constant after: only the pieces where both are cost anything.
+    void coupling(const FieldBasis& basis, const SectionFactor& f, std::vector<double>& v)
     {
-        const auto slopes = [&](double x) { return basis.at(f.i, x).d1 * basis.at(f.j, x).d1; };
-        const auto integral = [&](double lo, double hi) {
-            double sum = 0.0;
-            for (std::size_t r = 0; r < inner_.nodes.size(); ++r)
-                sum += inner_.weights[r] * slopes(lo + (hi - lo) * inner_.nodes[r]);
-            return sum * (hi - lo);
-        };
+        const int slope_kind =
+            f.kind == generated::coupling_factor ? generated::transverse_factor : generated::flap_factor;
+        const Column& a = (*this)({slope_kind, f.i, 0, 1});
+        const Column& b = (*this)({slope_kind, f.j, 0, 1});
+        const std::size_t P = static_cast<std::size_t>(points_);
+        const std::size_t from = std::max(a.first, b.first) / P;
+        const std::size_t to = std::max(from, (std::min(a.last, b.last) + P - 1) / P);  // pieces [from, to)
+        std::vector<double> slopes(inner_.nodes.size());
         double whole = 0.0;
-        for (std::size_t k = 0; k + 1 < cuts_.size(); ++k) {
-            for (int g = 0; g < points_; ++g) {
-                const std::size_t q = k * static_cast<std::size_t>(points_) + static_cast<std::size_t>(g);
-                v[q] = whole + integral(cuts_[k], nodes_[q]);
+        for (std::size_t k = from; k < to; ++k) {
+            const double lo = cuts_[k], h = cuts_[k + 1] - lo;
+            for (std::size_t r = 0; r < slopes.size(); ++r) {
+                const double x = lo + h * inner_.nodes[r];
+                slopes[r] = basis.at(f.i, x).d1 * basis.at(f.j, x).d1;
             }
-            whole += integral(cuts_[k], cuts_[k + 1]);
+            for (std::size_t g = 0; g < P; ++g) {
+                double part = 0.0;
+                for (std::size_t r = 0; r < slopes.size(); ++r) part += running_[g][r] * slopes[r];
+                v[k * P + g] = whole + h * part;
+            }
+            double full = 0.0;
+            for (std::size_t r = 0; r < slopes.size(); ++r) full += inner_.weights[r] * slopes[r];
+            whole += h * full;
         }
+        for (std::size_t q = to * P; q < v.size(); ++q) v[q] = whole;
     }
 
     const Bases& b_;
     const std::vector<double>& cuts_;
     int points_;
     QuadratureRule inner_;
+    std::vector<std::vector<double>> running_;
     std::vector<double> nodes_;
-    std::map<std::tuple<int, int, int, int>, std::vector<double>> columns_;
+    std::map<std::tuple<int, int, int, int>, Column> columns_;
 };
 
 }  // namespace
@@ -224,7 +266,7 @@ std::vector<double> section_integrals(const VariantKey& key, const SectionIntegr
             highest = std::max(highest, d);
         }
         points = highest / 2 + 1 + (twist ? 8 : 0);  // 2 points - 1 >= highest
-        coupling_points = slopes / 2 + 1;
+        coupling_points = slopes + 1;                 // interpolates phi_i' phi_j' of degree `slopes` exactly
     }
     FactorColumns columns(b, cuts, points, coupling_points);
     const QuadratureRule rule = composite_gauss_legendre(cuts, points);
@@ -251,19 +293,33 @@ std::vector<double> section_integrals(const VariantKey& key, const SectionIntegr
         }
         return at_nodes.emplace(d, std::move(out)).first->second;
     };
+    // The weights times xi^power, once per power.
+    std::map<int, std::vector<double>> weighted;
+    const auto weights = [&](int power) -> const std::vector<double>& {
+        if (auto it = weighted.find(power); it != weighted.end()) return it->second;
+        std::vector<double> w(rule.nodes.size());
+        for (std::size_t q = 0; q < w.size(); ++q) w[q] = rule.weights[q] * std::pow(rule.nodes[q], power);
+        return weighted.emplace(power, std::move(w)).first->second;
+    };
     std::vector<double> out(static_cast<std::size_t>(count));
-    std::vector<double> product(rule.nodes.size());
     for (int n = 0; n < count; ++n) {
         const SectionIntegral& s = list[n];
         const std::vector<double>& d = distribution(s.distribution);
-        for (std::size_t q = 0; q < product.size(); ++q)
-            product[q] = rule.weights[q] * std::pow(rule.nodes[q], s.power) * d[q];
+        const std::vector<double>& w = weights(s.power);
+        std::array<const std::vector<double>*, generated::max_section_factors> factors{};
+        std::size_t first = 0, last = rule.nodes.size();
         for (int f = 0; f < s.count; ++f) {
-            const std::vector<double>& c = columns(s.factors[f]);
-            for (std::size_t q = 0; q < product.size(); ++q) product[q] *= c[q];
+            const Column& c = columns(s.factors[f]);
+            factors[static_cast<std::size_t>(f)] = &c.v;
+            first = std::max(first, c.first);
+            last = std::min(last, c.last);
         }
         double sum = 0.0;
-        for (double v : product) sum += v;
+        for (std::size_t q = first; q < last; ++q) {
+            double v = w[q] * d[q];
+            for (int f = 0; f < s.count; ++f) v *= (*factors[static_cast<std::size_t>(f)])[q];
+            sum += v;
+        }
         out[static_cast<std::size_t>(n)] = sum;
     }
     return out;
