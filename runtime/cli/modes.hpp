@@ -26,6 +26,7 @@ struct ModesArgs {
     std::string omega;    // empty: 0 and the scene's steady rate (spin-up), or 0 (torque)
     std::string methods;  // empty: the scene's
     std::string ny;       // empty: the scene's
+    std::string nz, nt;   // empty: the scene's
     std::string count = "4";  // modes printed per kind and spin rate
     std::string output;   // CSV; empty: none (the table is printed)
     std::string plot;     // PREFIX: the Campbell diagram PREFIX.{png,svg} (hubbeam plot campbell)
@@ -34,7 +35,7 @@ struct ModesArgs {
     bool quiet = false;   // the table to the CSV only, and one summary line printed
 };
 
-/// The table asked for (omegas, methods, ny, harmonics), and what of it is printed and written where.
+/// The table asked for (omegas, methods, ny, nz, nt, harmonics), and what of it is printed and written where.
 struct ModesOptions : ModesRequest {
     int count = 4;
     std::string output, plot, critical;

@@ -534,10 +534,15 @@ class ModesTest(unittest.TestCase):
         self.assertEqual(list(c["harmonic"]), [int(r["harmonic"]) for r in rows])
         for column in ("omega", "rad_s", "hz"):
             self.assertEqual(list(c[column]), [float(r[column]) for r in rows], column)
-        for bad in (0, [1, 1001], [1.5], "2", True, [[1]]):
+        for bad in (0, [1, 1001], [1.5], "2", True, [[1]], [], "None"):
             with self.assertRaises(ValueError) as caught:
                 hubbeam.modes(SPINUP, 0.0, harmonics=bad, nx=0)
             self.assertTrue(str(caught.exception).startswith("harmonics: expected"), str(caught.exception))
+        # None searches no critical speed: the same modes, and no crossing though the rates pass 1P and 2P.
+        for none in (None, "none"):
+            n = hubbeam.modes(SPINUP, np.arange(0.0, 6.5, 1.0), harmonics=none, nx=0)
+            self.assertEqual(len(n["critical"]["omega"]), 0)
+            np.testing.assert_array_equal(n["rad_s"], hubbeam.modes(SPINUP, np.arange(0.0, 6.5, 1.0), nx=0)["rad_s"])
 
     def test_modes_is_the_command_lines_table_column_for_column(self):
         # hubbeam.modes and hubbeam modes -o / --critical give one table: each CSV column but the variant's is a key
@@ -554,13 +559,14 @@ class ModesTest(unittest.TestCase):
                     reader = csv.DictReader(f)
                     tables[name] = (reader.fieldnames, list(reader))
         m = hubbeam.modes(scene, np.arange(0.0, 6.25, 0.5))
-        variant = ["method", "ny", "nx", "order", "drive"]
+        variant = ["method", "ny", "nx", "nz", "nt", "order", "drive"]
         for name, result in (("modes", m), ("critical", m["critical"])):
             header, rows = tables[name]
             self.assertGreater(len(rows), 2, name)
-            self.assertEqual(header[:5], variant, name)
-            self.assertEqual(sorted(header[5:]), sorted(k for k in result if k not in ("variant", "critical", "scene_file")), name)
-            for column in header[5:]:
+            self.assertEqual(header[:len(variant)], variant, name)
+            own = header[len(variant):]
+            self.assertEqual(sorted(own), sorted(k for k in result if k not in ("variant", "critical", "scene_file")), name)
+            for column in own:
                 if result[column].dtype.kind == "U":
                     self.assertEqual(list(result[column]), [r[column] for r in rows], column)
                 else:

@@ -560,7 +560,7 @@ def modes(scene: Any, omega: Any = 0.0, harmonics: Any = (1, 2, 3), **keys: Any)
     without damping), label (the tracked mode, "bending 1", ...) and mac (to its shape at the rate before, NaN
     where it begins), and the variant's name; the closed loop's with [control]. Under "critical", the critical
     speeds, where a tracked mode meets the excitation omega = n Omega for n in harmonics: arrays label, harmonic,
-    omega, rad_s and hz."""
+    omega, rad_s and hz; harmonics=None (or "none") searches none, and they are empty."""
     text, name = _source(scene)
     out = _core_call(_core.modes, text, name, _overrides(keys),
                      _rates(omega, "spin rates >= 0 (rad/s): a number or a list"), _harmonics(harmonics))
@@ -568,11 +568,15 @@ def modes(scene: Any, omega: Any = 0.0, harmonics: Any = (1, 2, 3), **keys: Any)
 
 
 def _harmonics(harmonics: Any) -> list[int]:
-    """harmonics= as a list of integers from 1 to 1000, or ValueError naming what it got."""
+    """harmonics= as a list of integers from 1 to 1000 (None or "none": no critical speed searched, an empty list),
+    or ValueError naming what it got."""
+    if harmonics is None or (isinstance(harmonics, str) and harmonics == "none"):
+        return []
     values = list(np.atleast_1d(np.asarray(harmonics, dtype=object)))
     if np.ndim(harmonics) > 1 or not values or not all(
             isinstance(n, (int, np.integer)) and not isinstance(n, (bool, np.bool_)) and 1 <= n <= 1000 for n in values):
-        raise ValueError(f"harmonics: expected a list of integers from 1 to 1000, got {printable(repr(harmonics), 120)}")
+        raise ValueError(f"harmonics: expected a list of integers from 1 to 1000, or None, got "
+                         f"{printable(repr(harmonics), 120)}")
     return [int(n) for n in values]
 
 
