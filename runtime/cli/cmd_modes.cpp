@@ -99,10 +99,16 @@ Command add_modes_command(CLI::App& app)
         ->type_name("LIST");
     modes_cmd->add_option("--critical", o->args.critical, "Also write the critical speeds as CSV to FILE")
         ->type_name("FILE");
+    modes_cmd
+        ->add_option("--elastodyn", o->args.elastodyn,
+                     "Also write the blade's mode shapes at the first --omega as ElastoDyn's BLADE MODE SHAPES section "
+                     "(BldFl1Sh, BldFl2Sh, BldEdgSh: polynomials x^2..x^6 fitted to flap 1, flap 2, edge 1) to FILE; "
+                     "one variant, nz > 0")
+        ->type_name("FILE");
     modes_cmd->add_flag("-q,--quiet", o->args.quiet,
                         "Print only how many modes were written, not the table (the CSV has every mode)");
     add_linear_overrides(*modes_cmd, o->overrides, false);
-    modes_cmd->footer("Prints the table; writes a file only when asked (-o, --critical, --plot). docs/cli.md. "
+    modes_cmd->footer("Prints the table; writes a file only when asked (-o, --critical, --plot, --elastodyn). docs/cli.md. "
                       "Exit code 2 for a bad option value or an output that is the scene, another output, not a "
                       "regular file, or being written by another hubbeam.");
     return {modes_cmd, [o] {

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <hubbeam/linearize.hpp>
 #include <hubbeam/make_model.hpp>
+#include <hubbeam/mode_shapes.hpp>
 #include <map>
 #include <memory>
 #include <ostream>
@@ -148,18 +149,29 @@ ModesOptions parse_modes_options(const ModesArgs& args, const Scene& scene)
     o.output = args.output;
     o.plot = args.plot;
     o.critical = args.critical;
+    o.elastodyn = args.elastodyn;
     o.quiet = args.quiet;
+    if (!o.elastodyn.empty()) {
+        // One variant, and a blade that leaves the plane: its flap modes are u_z's.
+        const std::size_t variants = o.methods.size() * o.ny.size() * o.nz.size() * o.nt.size();
+        if (variants != 1)
+            bad("--elastodyn", "one variant (one method, Ny, Nz and Nt) whose mode shapes it holds",
+                std::to_string(variants) + " variants");
+        if (o.nz.front() == 0)
+            bad("--elastodyn",
+                "a blade with flapwise coordinates (discretization.nz or --nz > 0: the flap modes' shapes are u_z)",
+                "nz = 0");
+    }
     if (!o.critical.empty() && o.harmonics.empty())
         bad("--critical", "harmonics whose critical speeds it holds (--harmonics none searches none)",
             printable(o.critical));
     if (!o.plot.empty() && o.output.empty())
         bad("--plot", "-o FILE as well (the diagram is drawn from that CSV)", printable(o.plot));
     // Every output checked before anything is computed: none may be the scene or another output.
-    std::vector<NamedPath> outputs = {{o.output, "-o"}, {o.critical, "--critical"}};
-    for (const std::string& file : {o.output, o.critical})
-        if (!file.empty())
-            outputs.push_back(
-                {metadata_path(file), (file == o.output ? "-o" : "--critical") + std::string("'s metadata")});
+    std::vector<NamedPath> outputs = {{o.output, "-o"}, {o.critical, "--critical"}, {o.elastodyn, "--elastodyn"}};
+    const std::vector<NamedPath> asked = outputs;
+    for (const NamedPath& file : asked)
+        if (!file.path.empty()) outputs.push_back({metadata_path(file.path), file.name + "'s metadata"});
     if (!o.plot.empty()) {
         check_prefix("--plot", o.plot);  // before the table is computed and written, not when the figure is drawn
         for (const char* ext : {".png", ".svg", ".gp"}) outputs.push_back({o.plot + ext, "--plot"});
@@ -392,8 +404,87 @@ void ModesReport::draw() const
 
 }  // namespace
 
+namespace {
+
+/// --elastodyn's file and its metadata: opened (locks taken, temporary files made) before anything is computed,
+/// written once the shapes are, and put in place together after the table.
+class ElastoDynFile {
+public:
+    ElastoDynFile(const Scene& scene, const ModesOptions& o) : scene_(scene), o_(o)
+    {
+        if (o.elastodyn.empty()) return;
+        try {
+            file_ = std::make_unique<OutputFile>(o.elastodyn);
+            metadata_ = std::make_unique<MetadataFile>(o.elastodyn);
+        } catch (const std::exception& e) {  // refused, or cannot be created: bad input, nothing replaced
+            file_.reset();
+            throw OutputRefused(e.what());
+        }
+    }
+
+    /// The shapes at the first spin rate of the one variant asked for, before the table is computed: a blade whose
+    /// modes lack one of them stops here, with nothing written.
+    void compute()
+    {
+        if (!file_) return;
+        VariantKey key = scene_.key();
+        key.method = o_.methods.front();
+        key.ny = o_.ny.front();
+        key.nz = o_.nz.front();
+        key.nt = o_.nt.front();
+        const std::unique_ptr<Model> model = make_model(key, scene_.parameters, scene_.source);
+        shapes_ = elastodyn_mode_shapes(*model, scene_.parameters, o_.omegas.front(), scene_.axial,
+                                        held_angle(scene_));
+        variant_ = key.name();
+    }
+
+    /// The section and the metadata in place, together; what was written printed to out.
+    void finish(std::ostream& out)
+    {
+        if (!file_) return;
+        (void)file_->write(elastodyn_section(shapes_));  // a failed write is reported by commit_together
+        std::vector<std::string> names;
+        std::vector<double> hz, residuals;
+        for (const BladeModeShape* s : {&shapes_.flap1, &shapes_.flap2, &shapes_.edge1}) {
+            names.push_back(s->name);
+            hz.push_back(s->rad_s / (2.0 * M_PI));
+            residuals.push_back(s->fit.residual);
+        }
+        JsonObject m = scene_metadata("modes", scene_);
+        m.text("output", std::filesystem::path(o_.elastodyn).filename().string())
+            .text("variant", variant_)
+            .number("omega", shapes_.omega)
+            .texts("modes", names)
+            .numbers("hz", hz)
+            .numbers("residuals", residuals);
+        if (const std::string why = metadata_->write(m.str() + "\n"); !why.empty()) throw std::runtime_error(why);
+        if (const std::string why = file_->commit(); !why.empty()) throw std::runtime_error(why);
+        out << "elastodyn: " << o_.elastodyn << " (BLADE MODE SHAPES of " << variant_ << " at Omega = "
+            << shortest(shapes_.omega) << " rad/s" << (o_.omegas.size() > 1 ? ", the first spin rate" : "") << ")\n";
+        const char* file_names[] = {"BldFl1Sh", "BldFl2Sh", "BldEdgSh"};
+        for (std::size_t i = 0; i < 3; ++i) {
+            char line[200];
+            std::snprintf(line, sizeof line, "  %s  %-7s %11.6g Hz  fit residual %.3g of the tip deflection\n",
+                          file_names[i], names[i].c_str(), hz[i], residuals[i]);
+            out << line;
+        }
+    }
+
+private:
+    const Scene& scene_;
+    const ModesOptions& o_;
+    std::unique_ptr<OutputFile> file_;
+    std::unique_ptr<MetadataFile> metadata_;
+    ElastoDynShapes shapes_;
+    std::string variant_;
+};
+
+}  // namespace
+
 void run_modes(const Scene& scene, const ModesOptions& o, std::ostream& out)
 {
+    ElastoDynFile elastodyn(scene, o);
+    elastodyn.compute();
     ModesReport report(scene, o, out);
     try {
         report.heading();
@@ -403,6 +494,7 @@ void run_modes(const Scene& scene, const ModesOptions& o, std::ostream& out)
         throw;
     }
     report.finish();
+    elastodyn.finish(out);
 }
 
 namespace {

@@ -615,6 +615,48 @@ if __name__ == "__main__":
     unittest.main()
 
 
+class ElastoDynTest(unittest.TestCase):
+    UNIFORM = os.path.join(SOURCE, "tests", "scenes", "uniform_blade.toml")
+
+    def test_mode_shapes_are_the_command_lines_file_and_fit_the_closed_form(self):
+        # hubbeam.elastodyn_mode_shapes gives the coefficients hubbeam modes --elastodyn writes, each set summing
+        # to 1; the uniform blade's flap 1 (AMM: its basis holds the clamped-free mode) is the closed form's fit,
+        # here by numpy's least squares with c_6 eliminated (no code of hubbeam's).
+        r = hubbeam.elastodyn_mode_shapes(self.UNIFORM, omega=0.0)
+        with tempfile.TemporaryDirectory() as d:
+            out = os.path.join(d, "blade_modes.dat")
+            p = cli("modes", self.UNIFORM, "--omega", "0", "--elastodyn", out, "-q")
+            self.assertEqual(p.returncode, 0, p.stderr)
+            with open(out) as f:
+                lines = f.read().splitlines()
+        self.assertEqual(lines, r["section"].splitlines())
+        self.assertEqual(len(lines), 16)
+        for i, name in enumerate(("BldFl1Sh", "BldFl2Sh", "BldEdgSh")):
+            written = [float(line.split()[0]) for line in lines[1 + 5 * i:6 + 5 * i]]
+            self.assertEqual(written, list(r[name]["coefficients"]), name)
+            self.assertAlmostEqual(sum(written), 1.0, delta=1e-12)
+        self.assertEqual(r["BldFl1Sh"]["mode"], "flap 1")
+        bl = 1.8751040687119611664
+        sigma = (np.cosh(bl) + np.cos(bl)) / (np.sinh(bl) + np.sin(bl))
+        x = np.linspace(0.0, 1.0, 201)
+        phi = np.cosh(bl * x) - np.cos(bl * x) - sigma * (np.sinh(bl * x) - np.sin(bl * x))
+        phi /= phi[-1]
+        A = np.stack([x ** k - x ** 6 for k in range(2, 6)], axis=1)
+        c = np.linalg.lstsq(A, phi - x ** 6, rcond=None)[0]
+        exact = np.append(c, 1.0 - c.sum())
+        # A coefficient moves by at most ||A^+|| sqrt(201) times the shape's error, below 1e-9 of the tip for AMM.
+        tolerance = 2.0 / np.linalg.svd(A, compute_uv=False).min() * np.sqrt(201.0) * 1e-9
+        np.testing.assert_allclose(r["BldFl1Sh"]["coefficients"], exact, rtol=0, atol=tolerance)
+        self.assertAlmostEqual(r["BldFl1Sh"]["residual"], np.sqrt(np.mean((A @ c + x ** 6 - phi) ** 2)), delta=1e-9)
+        np.testing.assert_allclose(r["BldFl1Sh"]["phi"], phi, rtol=0, atol=1e-9)
+
+    def test_a_beam_in_the_plane_has_no_flap_mode_shapes(self):
+        with self.assertRaises(ValueError) as caught:
+            hubbeam.elastodyn_mode_shapes(SPINUP)
+        self.assertIn("discretization.nz > 0", str(caught.exception))
+        self.assertEqual(len(hubbeam.elastodyn_mode_shapes(SPINUP, nz=2)["BldEdgSh"]["coefficients"]), 5)
+
+
 class OutOfPlaneTest(unittest.TestCase):
     def test_blade_keys_columns_and_mode_kinds(self):
         # The out-of-plane keys as keywords: the columns tip_uz and tip_phi appear, and modes names flap, edge and

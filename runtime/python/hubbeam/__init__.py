@@ -31,7 +31,7 @@ except ImportError as _missing:
         f"use the Python it was built for (/usr/bin/python3 on Debian) or a virtual environment over it: "
         f"/usr/bin/python3 -m venv --system-site-packages DIR (docs/python.md)") from _missing
 
-__all__ = ["run", "modes", "linearize", "sweep", "load", "plot_campbell", "effective_scene", "Result", "RunStopped",
+__all__ = ["run", "modes", "linearize", "elastodyn_mode_shapes", "sweep", "load", "plot_campbell", "effective_scene", "Result", "RunStopped",
            "scene_keys", "generator_version", "printable", "Objective", "max_deflection", "residual_vibration",
            "final_error", "PARAMETER_KEYS"]
 __version__ = _core.__version__
@@ -596,6 +596,19 @@ def linearize(scene: Any, omega: float, **keys: Any) -> dict[str, Any]:
     if np.ndim(omega) != 0:
         raise ValueError(f"omega: expected a spin rate >= 0 (rad/s), got {printable(repr(omega), 120)}")
     return _core_call(_core.linearize, text, name, _overrides(keys), _rates(omega, "a spin rate >= 0 (rad/s)")[0])
+
+
+def elastodyn_mode_shapes(scene: Any, omega: float = 0.0, **keys: Any) -> dict[str, Any]:
+    """A blade's mode shapes about the steady spin omega (rad/s) fitted as ElastoDyn takes them (hubbeam modes
+    --elastodyn; docs/python.md): under "BldFl1Sh", "BldFl2Sh" and "BldEdgSh" (flap 1, flap 2, edge 1) the mode's
+    name, rad_s, hz, coefficients (of x^2 .. x^6, summing to 1), residual (the fit's RMS error, a fraction of the tip
+    deflection) and the samples xi, phi (normalised to 1 at the tip); "section", the blade file's BLADE MODE SHAPES
+    lines. ValueError for a scene without flapwise coordinates (discretization.nz = 0)."""
+    text, name = _source(scene)
+    if np.ndim(omega) != 0:
+        raise ValueError(f"omega: expected a spin rate >= 0 (rad/s), got {printable(repr(omega), 120)}")
+    return _core_call(_core.elastodyn_mode_shapes, text, name, _overrides(keys),
+                      _rates(omega, "a spin rate >= 0 (rad/s)")[0])
 
 
 def _core_call(function, *args):

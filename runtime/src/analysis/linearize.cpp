@@ -2,6 +2,7 @@
 // the natural modes (docs/model.md section 10).
 #include <hubbeam/linearize.hpp>
 
+#include "analysis/modal_coordinates.hpp"
 #include "models/model_operations.hpp"
 #include "terms.hpp"
 #include "text/csv_columns.hpp"
@@ -32,6 +33,13 @@ bool weight_turns_with_spin(const VariantKey& key, const std::vector<double>& p)
 }
 
 }  // namespace
+
+std::vector<int> modal_coordinates(const Model& model, const SteadySpin& s, Axial axial)
+{
+    std::vector<int> R = kept_coordinates(model.key(), axial);
+    if (model.key().drive == Drive::torque && s.held) R.erase(R.begin());
+    return R;
+}
 
 std::string unsteady_spin(const VariantKey& key, const std::vector<double>& p, double omega)
 {
@@ -238,15 +246,6 @@ Eigen::LLT<Eigen::MatrixXd> mass_factor(const Eigen::MatrixXd& M)
     if (llt.info() != Eigen::Success)
         throw std::runtime_error("the mass matrix at the steady spin is not positive definite");
     return llt;
-}
-
-/// The coordinates of the modes about s, indices into q: kept_coordinates, without a held hub's angle (not a degree
-/// of freedom there).
-std::vector<int> modal_coordinates(const Model& model, const SteadySpin& s, Axial axial)
-{
-    std::vector<int> R = kept_coordinates(model.key(), axial);
-    if (model.key().drive == Drive::torque && s.held) R.erase(R.begin());
-    return R;
 }
 
 /// The linearized equations about the steady spin s as a first-order system x' = X x over the kept coordinates
