@@ -521,6 +521,9 @@ std::vector<NaturalMode> modes_at(const Model& model, double omega, Axial axial,
 /// projections on a shape of unit length sum to at most about 1 where the shapes are nearly orthogonal in the mass).
 constexpr double followed_mac = 0.5;
 
+/// Above this damping ratio a mode is nearly critically damped: its damped frequency below 4.5 % of |lambda|.
+constexpr double nearly_critical = 0.999;
+
 /// A mode's eigenvalue growth + i rad_s (the one of positive frequency of its pair).
 std::complex<double> eigenvalue(const NaturalMode& m)
 {
@@ -621,17 +624,26 @@ private:
         Eigen::MatrixXcd x = x0, y = guess * x0;
         cd sigma = guess, lambda = guess;
         bool converged = false;
-        for (int shift = 0; shift < 4 && !converged; ++shift) {
+        // A few steps at the predicted shift bring x near the mode's vector; then the shift moves onto the estimate
+        // (Rayleigh quotient iteration), where each step gains many digits.
+        for (int shift = 0; shift < 5 && !converged; ++shift) {
             const Eigen::PartialPivLU<Eigen::MatrixXcd> lu = factor(sigma);
-            for (int iteration = 0; iteration < 12 && !converged; ++iteration) {
+            double step = HUGE_VAL;  // the estimate's last move, relative to it
+            for (int iteration = 0; iteration < (shift == 0 ? 3 : 8) && !converged; ++iteration) {
                 apply(lu, sigma, x, y);
                 const double size = std::sqrt(x.squaredNorm() + y.squaredNorm());
                 if (!(size > 0.0) || !std::isfinite(size)) return std::nullopt;
                 x /= size;
                 y /= size;
                 const cd next = rayleigh(x.col(0), lambda);
-                // Converged when the estimate moves by round-off of |lambda|.
-                converged = iteration > 0 && std::abs(next - lambda) <= 1e-14 * std::abs(next);
+                // Converged when the estimate moves by round-off; or, once the shift is the estimate (each step
+                // then gains digits), when its moves stop shrinking at a level that is round-off of the pencil's
+                // quadratic forms: 1e-11 of |lambda| for FEM Ny = Nz = 64, whose K spans twelve orders of
+                // magnitude. At the predicted shift the moves may shrink slowly, and stopping there would not be
+                // converged.
+                const double moved = std::abs(next - lambda) / std::abs(next);
+                converged = iteration > 0 && (moved <= 1e-14 || (shift > 0 && moved <= 1e-9 && moved > 0.5 * step));
+                step = moved;
                 lambda = next;
             }
             sigma = lambda;
@@ -766,6 +778,11 @@ std::vector<CriticalSpeed> critical_speeds(const Model& model, const std::vector
                 // of nearly equal eigenvalues, the slow roots of overdamped modes about -1/beta) follows no one mode
                 // there: its change of sign is between two modes, not a crossing of one.
                 if (!(b.mac > followed_mac)) continue;
+                // Nearly critically damped at both rates: the damped frequency of so nearly defective a pair is fixed
+                // by the eigenvalues only to about the square root of round-off of |lambda| (1e-5 of it), and lies
+                // in a cluster of the overdamped modes' roots, so no crossing with it can be refined; nor does a
+                // mode so damped resonate.
+                if (a.mode.damping_ratio > nearly_critical && b.mode.damping_ratio > nearly_critical) continue;
                 double lo = a.omega, hi = b.omega;
                 double g_lo = a.mode.rad_s - n * lo, g_hi = b.mode.rad_s - n * hi;
                 // A mode of frequency 0 (overdamped or divergent) meets no excitation line: it lies below every
