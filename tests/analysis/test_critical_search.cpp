@@ -78,3 +78,21 @@ TEST_CASE("critical speeds cost a few eigen solutions of the whole system, not o
     INFO("search " << search << " s, one full solution " << full << " s");
     CHECK(search < 12.0 * full);
 }
+
+TEST_CASE("a line whose pairing between two rates is in doubt is not searched there", "[modes][campbell]")
+{
+    // The helicopter blade's flap 1 line at 0 and 30 rad/s meets 3P and 2P. Its pairing's MAC at 30 set to 1/2 (a
+    // line that passes to a mode of another shape between the rates) leaves the interval out; just above 1/2 the
+    // line is searched and both crossings are found.
+    const Scene scene = load_scene(HUBBEAM_SOURCE_DIR "/cases/helicopter_blade.toml");
+    const auto model = make_model(scene.key(), scene.parameters, scene.source);
+    const double theta = scene.motion.initial_theta();
+    std::vector<SpinMode> rows;
+    for (const SpinMode& r : campbell(*model, {0.0, 30.0}, scene.axial, theta))
+        if (r.label == "flap 1") rows.push_back(r);
+    REQUIRE(rows.size() == 2);
+    rows[1].mac = 0.5;
+    CHECK(critical_speeds(*model, rows, {1, 2, 3}, scene.axial, theta).empty());
+    rows[1].mac = 0.51;
+    CHECK(critical_speeds(*model, rows, {1, 2, 3}, scene.axial, theta).size() == 2);
+}
