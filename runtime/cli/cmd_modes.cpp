@@ -12,8 +12,9 @@ namespace hubbeam::cli {
 
 namespace {
 
-/// The scene keys that `modes` and `linearize` take as options ("--nx", "--nz", "--nt", "--order", "--source"), as
-/// overrides, as `run` takes them; the options, their help and their checks are the key table's.
+/// The scene keys that `modes` and `linearize` take as options ("--nx", "--order", "--source"; linearize also
+/// "--method", "--ny", "--nz", "--nt"), as overrides, as `run` takes them; the options, their help and their checks
+/// are the key table's. modes takes --ny, --nz and --nt as lists of its own.
 struct LinearOverrides {
     std::vector<std::string> keys, values;  // scene key names, and the values typed (empty: not given)
     Overrides overrides() const
@@ -27,8 +28,10 @@ struct LinearOverrides {
 
 void add_linear_overrides(CLI::App& sub, LinearOverrides& o, bool single_variant)
 {
-    o.keys = {"discretization.nx", "discretization.nz", "discretization.nt", "model.order", "model.source"};
-    if (single_variant) o.keys.insert(o.keys.end(), {"discretization.method", "discretization.ny"});
+    o.keys = {"discretization.nx", "model.order", "model.source"};
+    if (single_variant)
+        o.keys.insert(o.keys.end(),
+                      {"discretization.method", "discretization.ny", "discretization.nz", "discretization.nt"});
     o.values.assign(o.keys.size(), "");  // sized before the options hold references into it
     for (std::size_t i = 0; i < o.keys.size(); ++i)
         add_key_option(sub, scene_key(o.keys[i]), o.values[i], " (default: the scene's)");
@@ -71,6 +74,15 @@ Command add_modes_command(CLI::App& app)
     modes_cmd->add_option("--methods", o->args.methods, "Methods, comma-separated (default: the scene's)")->type_name("LIST");
     modes_cmd->add_option("--ny", o->args.ny, "Ny values, comma-separated (default: the scene's)")->type_name("LIST");
     modes_cmd
+        ->add_option("--nz", o->args.nz,
+                     "Nz values (flapwise coordinates: a blade's edge and flap modes), comma-separated (default: the "
+                     "scene's)")
+        ->type_name("LIST");
+    modes_cmd
+        ->add_option("--nt", o->args.nt, "Nt values (twist coordinates: twist modes), comma-separated (default: the "
+                                         "scene's)")
+        ->type_name("LIST");
+    modes_cmd
         ->add_option("--count", o->args.count,
                      "Modes printed per kind (bending or edge and flap, twist, axial, hub, overdamped) and spin rate, "
                      "the lowest first (default 4; the CSV has all)")
@@ -83,14 +95,20 @@ Command add_modes_command(CLI::App& app)
     modes_cmd
         ->add_option("--harmonics", o->args.harmonics,
                      "Excitation lines omega = n Omega whose crossings with the modes are printed as critical speeds "
-                     "(default 1,2,3)")
+                     "(default 1,2,3; none: no critical speed searched)")
         ->type_name("LIST");
     modes_cmd->add_option("--critical", o->args.critical, "Also write the critical speeds as CSV to FILE")
+        ->type_name("FILE");
+    modes_cmd
+        ->add_option("--elastodyn", o->args.elastodyn,
+                     "Also write the blade's mode shapes at the first --omega as ElastoDyn's BLADE MODE SHAPES section "
+                     "(BldFl1Sh, BldFl2Sh, BldEdgSh: polynomials x^2..x^6 fitted to flap 1, flap 2, edge 1) to FILE; "
+                     "one variant, nz > 0")
         ->type_name("FILE");
     modes_cmd->add_flag("-q,--quiet", o->args.quiet,
                         "Print only how many modes were written, not the table (the CSV has every mode)");
     add_linear_overrides(*modes_cmd, o->overrides, false);
-    modes_cmd->footer("Prints the table; writes a file only when asked (-o, --critical, --plot). docs/cli.md. "
+    modes_cmd->footer("Prints the table; writes a file only when asked (-o, --critical, --plot, --elastodyn). docs/cli.md. "
                       "Exit code 2 for a bad option value or an output that is the scene, another output, not a "
                       "regular file, or being written by another hubbeam.");
     return {modes_cmd, [o] {

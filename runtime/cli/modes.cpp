@@ -10,9 +10,11 @@
 #include <filesystem>
 #include <hubbeam/linearize.hpp>
 #include <hubbeam/make_model.hpp>
+#include <hubbeam/mode_shapes.hpp>
 #include <map>
 #include <memory>
 #include <ostream>
+#include <span>
 #include <utility>
 
 #include "io/metadata.hpp"
@@ -53,6 +55,47 @@ void check_steady(const Scene& scene, const std::vector<double>& omegas)
                 "--omega: with gravity in the plane of rotation only 0 (the hub held; at a spin rate the motion is "
                 "periodic, not steady), got " +
                 shortest(omega));
+}
+
+/// Every (method, Ny, Nz, Nt) of the request must be a variant of the scene, checked before anything is computed.
+/// A count the method cannot take is named by its option: the first of --ny, --nz and --nt whose value alone (the
+/// other counts the scene's) the method refuses; where none does, the method cannot take the scene's own counts (an
+/// odd Nz for FEM), and --methods is named. A combination the scene refuses otherwise (a twist field without
+/// beam.shear_modulus) is the scene's message, naming its file and key.
+void check_variants(const Scene& scene, const ModesRequest& o)
+{
+    struct Count {
+        const char* option;
+        int VariantKey::* member;
+    };
+    const Count counts[] = {{"--ny", &VariantKey::ny}, {"--nz", &VariantKey::nz}, {"--nt", &VariantKey::nt}};
+    for (const Method m : o.methods)
+        for (const int ny : o.ny)
+            for (const int nz : o.nz)
+                for (const int nt : o.nt) {
+                    Scene s = scene;
+                    s.variant.method = m;
+                    s.variant.ny = ny;
+                    s.variant.nz = nz;
+                    s.variant.nt = nt;
+                    if (const std::string why = s.variant.dof_problem(); !why.empty()) {
+                        VariantKey own_counts = scene.variant;
+                        own_counts.method = m;
+                        for (const Count& c : own_counts.dof_problem().empty() ? std::span<const Count>(counts) : std::span<const Count>()) {
+                            VariantKey alone = scene.variant;
+                            alone.method = m;
+                            alone.*c.member = s.variant.*c.member;
+                            if (const std::string own = alone.dof_problem(); !own.empty())
+                                throw ModesOptionError(std::string(c.option) + ": " + own);
+                        }
+                        throw ModesOptionError("--methods: " + why);
+                    }
+                    try {
+                        validate(s);
+                    } catch (const SceneError& e) {
+                        throw ModesOptionError(e.what());
+                    }
+                }
 }
 
 }  // namespace
@@ -98,31 +141,37 @@ ModesOptions parse_modes_options(const ModesArgs& args, const Scene& scene)
     o.methods = args.methods.empty() ? std::vector<Method>{scene.variant.method}
                                      : parse_method_list<ModesOptionError>("--methods", args.methods);
     o.ny = args.ny.empty() ? std::vector<int>{scene.variant.ny} : parse_dof_list<ModesOptionError>("--ny", args.ny, 1);
-    // Every (method, Ny) must be a variant the method can take, checked before anything is computed. The message
-    // names --methods when the method cannot take the scene's own counts (an odd Nz for FEM), else --ny.
-    for (Method m : o.methods)
-        for (int ny : o.ny) {
-            VariantKey k = scene.variant;
-            k.method = m;
-            const std::string with_scene_ny = k.dof_problem();
-            k.ny = ny;
-            if (const std::string why = k.dof_problem(); !why.empty())
-                throw ModesOptionError((with_scene_ny.empty() ? "--ny: " : "--methods: ") + why);
-        }
+    o.nz = args.nz.empty() ? std::vector<int>{scene.variant.nz} : parse_dof_list<ModesOptionError>("--nz", args.nz, 0);
+    o.nt = args.nt.empty() ? std::vector<int>{scene.variant.nt} : parse_dof_list<ModesOptionError>("--nt", args.nt, 0);
+    check_variants(scene, o);
     if (!parse_int(args.count, 1, 64, o.count)) bad("--count", "an integer from 1 to 64", args.count);
     o.harmonics = parse_harmonics<ModesOptionError>("--harmonics", args.harmonics);
     o.output = args.output;
     o.plot = args.plot;
     o.critical = args.critical;
+    o.elastodyn = args.elastodyn;
     o.quiet = args.quiet;
+    if (!o.elastodyn.empty()) {
+        // One variant, and a blade that leaves the plane: its flap modes are u_z's.
+        const std::size_t variants = o.methods.size() * o.ny.size() * o.nz.size() * o.nt.size();
+        if (variants != 1)
+            bad("--elastodyn", "one variant (one method, Ny, Nz and Nt) whose mode shapes it holds",
+                std::to_string(variants) + " variants");
+        if (o.nz.front() == 0)
+            bad("--elastodyn",
+                "a blade with flapwise coordinates (discretization.nz or --nz > 0: the flap modes' shapes are u_z)",
+                "nz = 0");
+    }
+    if (!o.critical.empty() && o.harmonics.empty())
+        bad("--critical", "harmonics whose critical speeds it holds (--harmonics none searches none)",
+            printable(o.critical));
     if (!o.plot.empty() && o.output.empty())
         bad("--plot", "-o FILE as well (the diagram is drawn from that CSV)", printable(o.plot));
     // Every output checked before anything is computed: none may be the scene or another output.
-    std::vector<NamedPath> outputs = {{o.output, "-o"}, {o.critical, "--critical"}};
-    for (const std::string& file : {o.output, o.critical})
-        if (!file.empty())
-            outputs.push_back(
-                {metadata_path(file), (file == o.output ? "-o" : "--critical") + std::string("'s metadata")});
+    std::vector<NamedPath> outputs = {{o.output, "-o"}, {o.critical, "--critical"}, {o.elastodyn, "--elastodyn"}};
+    const std::vector<NamedPath> asked = outputs;
+    for (const NamedPath& file : asked)
+        if (!file.path.empty()) outputs.push_back({metadata_path(file.path), file.name + "'s metadata"});
     if (!o.plot.empty()) {
         check_prefix("--plot", o.plot);  // before the table is computed and written, not when the figure is drawn
         for (const char* ext : {".png", ".svg", ".gp"}) outputs.push_back({o.plot + ext, "--plot"});
@@ -164,6 +213,8 @@ public:
 private:
     void add_modes(const ModesBlock& block);
     void print_mode(const ModesBlock& block, const SpinMode& r) const;
+    /// A printed line's variant: method, Ny, Nx, and Nz and Nt where several are asked for.
+    std::string counts(const VariantKey& key) const;
     void add_critical(const ModesBlock& block);
     void print_ending() const;
     void draw() const;
@@ -174,6 +225,7 @@ private:
     const ModesOptions& o_;
     std::ostream& out_;
     bool damped_;  // damping adds the undamped frequency |lambda| and the damping ratio to the printed table
+    bool counts_;  // several Nz or Nt asked for: the printed lines name them, to tell the variants apart
     std::unique_ptr<CsvWriter> csv_, critical_csv_;
     std::unique_ptr<MetadataFile> csv_metadata_, critical_metadata_;  // opened with their CSVs, before the modes
     long rows_ = 0, crossings_ = 0;
@@ -184,7 +236,8 @@ private:
 };
 
 ModesReport::ModesReport(const Scene& scene, const ModesOptions& o, std::ostream& out)
-    : scene_(scene), o_(o), out_(out), damped_(dissipates(scene.key()) || scene.control)
+    : scene_(scene), o_(o), out_(out), damped_(dissipates(scene.key()) || scene.control),
+      counts_(o.nz.size() > 1 || o.nt.size() > 1)
 {
     try {
         if (!o.output.empty()) {
@@ -203,12 +256,13 @@ ModesReport::ModesReport(const Scene& scene, const ModesOptions& o, std::ostream
         if (!harmonics_.empty()) harmonics_ += ',';
         harmonics_ += std::to_string(n);
     }
+    if (harmonics_.empty()) harmonics_ = "none";  // as typed: the diagram draws no excitation line either
 }
 
 void ModesReport::heading() const
 {
     if (o_.quiet) return;
-    out_ << "method  Ny  Nx  order  Omega rad/s  mode  kind        tracked              rad/s          Hz  "
+    out_ << "method  Ny  Nx" << (counts_ ? "  Nz  Nt" : "") << "  order  Omega rad/s  mode  kind        tracked              rad/s          Hz  "
             "dimensionless  growth 1/s"
          << (damped_ ? "  undamped rad/s     zeta" : "") << "\n";
 }
@@ -240,15 +294,26 @@ void ModesReport::add_modes(const ModesBlock& block)
     }
 }
 
+std::string ModesReport::counts(const VariantKey& key) const
+{
+    char line[100];
+    if (counts_)
+        std::snprintf(line, sizeof line, "%-6s %3d %3d %3d %3d", to_string(key.method).c_str(), key.ny, key.nx, key.nz,
+                      key.nt);
+    else
+        std::snprintf(line, sizeof line, "%-6s %3d %3d", to_string(key.method).c_str(), key.ny, key.nx);
+    return line;
+}
+
 void ModesReport::print_mode(const ModesBlock& block, const SpinMode& r) const
 {
     const VariantKey& key = block.key;
     const NaturalMode& mode = r.mode;
     char line[400];
-    std::snprintf(line, sizeof line, "%-6s %3d %3d  %-5s %12.4g  %4d  %-10s  %-13s %11.6g %11.6g %14.6g  %10.3g",
-                  to_string(key.method).c_str(), key.ny, key.nx, to_string(key.order).c_str(), r.omega, r.number,
-                  mode.kind.c_str(), r.label.c_str(), mode.rad_s, mode.rad_s / (2.0 * M_PI), mode.rad_s / block.unit,
-                  mode.growth);
+    out_ << counts(key);
+    std::snprintf(line, sizeof line, "  %-5s %12.4g  %4d  %-10s  %-13s %11.6g %11.6g %14.6g  %10.3g",
+                  to_string(key.order).c_str(), r.omega, r.number, mode.kind.c_str(), r.label.c_str(), mode.rad_s,
+                  mode.rad_s / (2.0 * M_PI), mode.rad_s / block.unit, mode.growth);
     out_ << line;
     if (damped_) {
         std::snprintf(line, sizeof line, "  %14.6g %8.4g", mode.undamped_rad_s, mode.damping_ratio);
@@ -264,10 +329,9 @@ void ModesReport::add_critical(const ModesBlock& block)
     for (const CriticalSpeed& c : block.critical) {
         if (critical_csv_) critical_csv_->write_line(critical_line(block, c));
         char line[400];
-        std::snprintf(line, sizeof line, "%-6s %3d %3d  %-13s meets %3dP at Omega = %-12.6g rad/s (%.6g Hz)\n",
-                      to_string(key.method).c_str(), key.ny, key.nx, c.label.c_str(), c.harmonic, c.omega,
-                      c.rad_s / (2.0 * M_PI));
-        speeds_text_ += line;
+        std::snprintf(line, sizeof line, "  %-13s meets %3dP at Omega = %-12.6g rad/s (%.6g Hz)\n", c.label.c_str(),
+                      c.harmonic, c.omega, c.rad_s / (2.0 * M_PI));
+        speeds_text_ += counts(key) + line;
     }
 }
 
@@ -294,6 +358,7 @@ void ModesReport::write_metadata_files() const
     std::vector<std::string> methods;
     for (const Method m : o_.methods) methods.push_back(to_string(m));
     std::vector<double> ny(o_.ny.begin(), o_.ny.end()), harmonics(o_.harmonics.begin(), o_.harmonics.end());
+    const std::vector<double> nz(o_.nz.begin(), o_.nz.end()), nt(o_.nt.begin(), o_.nt.end());
     for (const auto& [file, metadata] : {std::pair{csv_.get(), csv_metadata_.get()},
                                          std::pair{critical_csv_.get(), critical_metadata_.get()}}) {
         if (!file) continue;
@@ -304,6 +369,8 @@ void ModesReport::write_metadata_files() const
             .numbers("omega", o_.omegas)
             .texts("methods", methods)
             .numbers("ny", ny)
+            .numbers("nz", nz)
+            .numbers("nt", nt)
             .numbers("harmonics", harmonics)
             .number("wall_seconds", wall);
         if (const std::string why = metadata->write(m.str() + "\n"); !why.empty()) throw std::runtime_error(why);
@@ -312,10 +379,13 @@ void ModesReport::write_metadata_files() const
 
 void ModesReport::print_ending() const
 {
+    const bool searched = !o_.harmonics.empty();  // --harmonics none: no critical speed searched, none printed
     if (o_.quiet)
-        out_ << rows_ << " modes of " << o_.methods.size() * o_.ny.size() << " variant(s) at " << o_.omegas.size()
-             << " spin rate(s); " << crossings_ << " critical speed(s)\n";
-    else if (o_.omegas.size() > 1)
+        out_ << rows_ << " modes of " << variants_.size()
+             << " variant(s) at " << o_.omegas.size()
+             << " spin rate(s); "
+             << (searched ? std::to_string(crossings_) + " critical speed(s)" : "critical speeds not searched") << "\n";
+    else if (o_.omegas.size() > 1 && searched)
         out_ << "\ncritical speeds (a tracked mode meets the excitation n x the spin rate, n = " << harmonics_
              << "): " << (crossings_ == 0 ? "none between the rates\n" : "\n") << speeds_text_;
     out_ << warnings_;
@@ -334,8 +404,87 @@ void ModesReport::draw() const
 
 }  // namespace
 
+namespace {
+
+/// --elastodyn's file and its metadata: opened (locks taken, temporary files made) before anything is computed,
+/// written once the shapes are, and put in place together after the table.
+class ElastoDynFile {
+public:
+    ElastoDynFile(const Scene& scene, const ModesOptions& o) : scene_(scene), o_(o)
+    {
+        if (o.elastodyn.empty()) return;
+        try {
+            file_ = std::make_unique<OutputFile>(o.elastodyn);
+            metadata_ = std::make_unique<MetadataFile>(o.elastodyn);
+        } catch (const std::exception& e) {  // refused, or cannot be created: bad input, nothing replaced
+            file_.reset();
+            throw OutputRefused(e.what());
+        }
+    }
+
+    /// The shapes at the first spin rate of the one variant asked for, before the table is computed: a blade whose
+    /// modes lack one of them stops here, with nothing written.
+    void compute()
+    {
+        if (!file_) return;
+        VariantKey key = scene_.key();
+        key.method = o_.methods.front();
+        key.ny = o_.ny.front();
+        key.nz = o_.nz.front();
+        key.nt = o_.nt.front();
+        const std::unique_ptr<Model> model = make_model(key, scene_.parameters, scene_.source);
+        shapes_ = elastodyn_mode_shapes(*model, scene_.parameters, o_.omegas.front(), scene_.axial,
+                                        held_angle(scene_));
+        variant_ = key.name();
+    }
+
+    /// The section and the metadata in place, together; what was written printed to out.
+    void finish(std::ostream& out)
+    {
+        if (!file_) return;
+        (void)file_->write(elastodyn_section(shapes_));  // a failed write is reported by commit_together
+        std::vector<std::string> names;
+        std::vector<double> hz, residuals;
+        for (const BladeModeShape* s : {&shapes_.flap1, &shapes_.flap2, &shapes_.edge1}) {
+            names.push_back(s->name);
+            hz.push_back(s->rad_s / (2.0 * M_PI));
+            residuals.push_back(s->fit.residual);
+        }
+        JsonObject m = scene_metadata("modes", scene_);
+        m.text("output", std::filesystem::path(o_.elastodyn).filename().string())
+            .text("variant", variant_)
+            .number("omega", shapes_.omega)
+            .texts("modes", names)
+            .numbers("hz", hz)
+            .numbers("residuals", residuals);
+        if (const std::string why = metadata_->write(m.str() + "\n"); !why.empty()) throw std::runtime_error(why);
+        if (const std::string why = file_->commit(); !why.empty()) throw std::runtime_error(why);
+        out << "elastodyn: " << o_.elastodyn << " (BLADE MODE SHAPES of " << variant_ << " at Omega = "
+            << shortest(shapes_.omega) << " rad/s" << (o_.omegas.size() > 1 ? ", the first spin rate" : "") << ")\n";
+        const char* file_names[] = {"BldFl1Sh", "BldFl2Sh", "BldEdgSh"};
+        for (std::size_t i = 0; i < 3; ++i) {
+            char line[200];
+            std::snprintf(line, sizeof line, "  %s  %-7s %11.6g Hz  fit residual %.3g of the tip deflection\n",
+                          file_names[i], names[i].c_str(), hz[i], residuals[i]);
+            out << line;
+        }
+    }
+
+private:
+    const Scene& scene_;
+    const ModesOptions& o_;
+    std::unique_ptr<OutputFile> file_;
+    std::unique_ptr<MetadataFile> metadata_;
+    ElastoDynShapes shapes_;
+    std::string variant_;
+};
+
+}  // namespace
+
 void run_modes(const Scene& scene, const ModesOptions& o, std::ostream& out)
 {
+    ElastoDynFile elastodyn(scene, o);
+    elastodyn.compute();
     ModesReport report(scene, o, out);
     try {
         report.heading();
@@ -345,6 +494,7 @@ void run_modes(const Scene& scene, const ModesOptions& o, std::ostream& out)
         throw;
     }
     report.finish();
+    elastodyn.finish(out);
 }
 
 namespace {

@@ -26,18 +26,20 @@ struct ModesArgs {
     std::string omega;    // empty: 0 and the scene's steady rate (spin-up), or 0 (torque)
     std::string methods;  // empty: the scene's
     std::string ny;       // empty: the scene's
+    std::string nz, nt;   // empty: the scene's
     std::string count = "4";  // modes printed per kind and spin rate
     std::string output;   // CSV; empty: none (the table is printed)
     std::string plot;     // PREFIX: the Campbell diagram PREFIX.{png,svg} (hubbeam plot campbell)
     std::string harmonics = default_harmonics;  // the lines omega = n Omega whose crossings are critical speeds
     std::string critical;             // CSV of the critical speeds; empty: none (they are printed)
+    std::string elastodyn;            // ElastoDyn's BLADE MODE SHAPES section; empty: none
     bool quiet = false;   // the table to the CSV only, and one summary line printed
 };
 
-/// The table asked for (omegas, methods, ny, harmonics), and what of it is printed and written where.
+/// The table asked for (omegas, methods, ny, nz, nt, harmonics), and what of it is printed and written where.
 struct ModesOptions : ModesRequest {
     int count = 4;
-    std::string output, plot, critical;
+    std::string output, plot, critical, elastodyn;
     bool quiet = false;
 };
 
@@ -49,8 +51,9 @@ ModesOptions parse_modes_options(const ModesArgs& args, const Scene& scene);
 /// how many modes there are), and every mode written to options.output if given (atomically), each with its
 /// tracked label and MAC; then each variant's critical speeds (the crossings of its modes that oscillate with the
 /// harmonics' excitation lines) printed, and written to
-/// options.critical if given; with options.plot, the Campbell diagram. Throws std::runtime_error if a CSV or the
-/// figure cannot be written.
+/// options.critical if given; with options.plot, the Campbell diagram; with options.elastodyn, the blade's mode shapes'
+/// polynomials at the first spin rate in ElastoDyn's layout (elastodyn_section) and each fit's residual printed.
+/// Throws std::runtime_error if a file or the figure cannot be written.
 void run_modes(const Scene& scene, const ModesOptions& options, std::ostream& out);
 
 /// hubbeam linearize: A, B, C and D about the steady spin omega written to PREFIX-A.csv ... PREFIX-D.csv, each

@@ -545,6 +545,44 @@ py::dict linearize(const std::string& text, const std::string& name, const Keywo
     return out;
 }
 
+/// The blade's mode shapes at the steady spin omega and their ElastoDyn polynomials (hubbeam modes --elastodyn):
+/// under BldFl1Sh, BldFl2Sh and BldEdgSh the mode's name, frequency, coefficients of x^2 .. x^6, fit residual and
+/// samples; the file's section as text. ValueError for a variant without flapwise coordinates or a rate without a
+/// steady state.
+py::dict elastodyn_shapes(const std::string& text, const std::string& name, const Keywords& keywords, double omega)
+{
+    const Scene scene = scene_of(text, name, keywords);
+    const VariantKey key = scene.key();
+    std::unique_ptr<Model> model;
+    {
+        const WithoutGil release;  // choosing the model may compile a variant for seconds
+        model = guarded(scene, [&] { return make_model(key, scene.parameters, scene.source); });
+    }
+    const ElastoDynShapes shapes = at_spin(omega, [&] {
+        const WithoutGil release;
+        return elastodyn_mode_shapes(*model, scene.parameters, omega, scene.axial, scene.motion.initial_theta());
+    });
+    py::dict out;
+    out["variant"] = key.name();
+    out["omega"] = shapes.omega;
+    for (const auto& [file_name, shape] : {std::pair<const char*, const BladeModeShape*>{"BldFl1Sh", &shapes.flap1},
+                                           {"BldFl2Sh", &shapes.flap2},
+                                           {"BldEdgSh", &shapes.edge1}}) {
+        py::dict s;
+        s["mode"] = shape->name;
+        s["rad_s"] = shape->rad_s;
+        s["hz"] = shape->rad_s / (2.0 * M_PI);
+        s["coefficients"] = py::array(py::cast(std::vector<double>(shape->fit.coefficients.begin(),
+                                                                   shape->fit.coefficients.end())));
+        s["residual"] = shape->fit.residual;
+        s["xi"] = py::array(py::cast(shape->xi));
+        s["phi"] = py::array(py::cast(shape->phi));
+        out[file_name] = s;
+    }
+    out["section"] = elastodyn_section(shapes);
+    return out;
+}
+
 /// A run's rows saved as hubbeam run writes them, with their metadata (Result.save); ValueError for an output
 /// refused before anything is written, OSError for one that could not be written.
 /// inputs: the files the rows came from, (path, name) as run() gives them, which the outputs may not be.
@@ -624,6 +662,8 @@ PYBIND11_MODULE(_core, m)
           py::arg("overrides"), py::arg("omegas"), py::arg("harmonics"), py::arg("cancellable") = false);
     m.def("linearize", &linearize, "State-space matrices about a steady spin", py::arg("text"), py::arg("name"),
           py::arg("overrides"), py::arg("omega"));
+    m.def("elastodyn_mode_shapes", &elastodyn_shapes, "A blade's mode shapes and their ElastoDyn polynomials",
+          py::arg("text"), py::arg("name"), py::arg("overrides"), py::arg("omega"));
     m.def(
         "check", [](const std::string& text, const std::string& name) { scene_of(text, name, {}); },
         "Parses and checks a scene (ValueError if it is bad)", py::arg("text"), py::arg("name"));

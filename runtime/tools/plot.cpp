@@ -432,7 +432,8 @@ Figure axial_figure(const std::vector<std::string>& files, const std::vector<std
 /// without tracking, the modes of one kind and frequency rank; and its points (omega, Hz).
 struct CampbellLine {
     std::size_t file;
-    std::vector<std::string> variant;  // method, ny, nx, order, drive as the file writes them
+    std::vector<std::string> variant;  // method, ny, nx, nz, nt, order, drive as the file writes them (nz, nt: empty
+                                       // in a file without them, an older hubbeam's)
     std::string column, mode;          // the column that tells the line's rows ("label" or "mode") and its value
     std::string kind;                  // the kind its rows are selected by in a file without tracking; empty: any
     std::string name;                  // its legend entry: the label ("bending 2"), or "bending mode 2"
@@ -440,8 +441,8 @@ struct CampbellLine {
 };
 
 /// The modes CSV columns that name a variant, and how the legend introduces each.
-constexpr const char* variant_columns[] = {"method", "ny", "nx", "order", "drive"};
-constexpr const char* variant_names[] = {"", " Ny = ", " Nx = ", " order ", " drive "};
+constexpr const char* variant_columns[] = {"method", "ny", "nx", "nz", "nt", "order", "drive"};
+constexpr const char* variant_names[] = {"", " Ny = ", " Nx = ", " Nz = ", " Nt = ", " order ", " drive "};
 constexpr std::size_t variant_size = std::size(variant_columns);
 
 /// The kinds of mode a modes CSV names (NaturalMode::kind). A table that marks a real decaying eigenvalue's rows as
@@ -483,7 +484,8 @@ std::vector<CampbellLine> campbell_lines(const std::vector<std::string>& files, 
             const std::string& label = tracked ? r["label"] : r["kind"];
             if (!chosen(tracked ? label.substr(0, label.find(' ')) : label)) return;
             CampbellLine l{file,
-                           {r["method"], r["ny"], r["nx"], r["order"], r["drive"]},
+                           {r["method"], r["ny"], r["nx"], r.has("nz") ? r["nz"] : "", r.has("nt") ? r["nt"] : "",
+                            r["order"], r["drive"]},
                            tracked ? "label" : "mode",
                            tracked ? label : r["mode"],
                            tracked ? "" : label,
@@ -539,10 +541,10 @@ std::vector<std::pair<double, double>> campbell_crossings(const CampbellLine& l,
     return at;
 }
 
-/// Which variant columns the legend names: method and Ny always, Nx, order and drive when they vary.
+/// Which variant columns the legend names: method and Ny always, Nx, Nz, Nt, order and drive when they vary.
 std::vector<bool> named_columns(const std::vector<CampbellLine>& lines)
 {
-    std::vector<bool> named = {true, true, false, false, false};
+    std::vector<bool> named = {true, true, false, false, false, false, false};
     for (const CampbellLine& l : lines)
         for (std::size_t c = 2; c < variant_size; ++c) named[c] = named[c] || l.variant[c] != lines.front().variant[c];
     return named;
@@ -553,7 +555,8 @@ std::string campbell_table(const std::string& block, const CampbellLine& l, cons
 {
     std::string condition;
     for (std::size_t c = 0; c < variant_size; ++c)
-        condition += "strcol('" + std::string(variant_columns[c]) + "') eq " + gnuplot_string(l.variant[c]) + " && ";
+        if (!l.variant[c].empty())  // a column the file has
+            condition += "strcol('" + std::string(variant_columns[c]) + "') eq " + gnuplot_string(l.variant[c]) + " && ";
     condition += "strcol('" + l.column + "') eq " + gnuplot_string(l.mode);
     if (!l.kind.empty()) condition += " && strcol('kind') eq " + gnuplot_string(l.kind);
     condition += " && column('hz') > 0";  // not an overdamped row (campbell_lines)

@@ -534,10 +534,15 @@ class ModesTest(unittest.TestCase):
         self.assertEqual(list(c["harmonic"]), [int(r["harmonic"]) for r in rows])
         for column in ("omega", "rad_s", "hz"):
             self.assertEqual(list(c[column]), [float(r[column]) for r in rows], column)
-        for bad in (0, [1, 1001], [1.5], "2", True, [[1]]):
+        for bad in (0, [1, 1001], [1.5], "2", True, [[1]], [], "None"):
             with self.assertRaises(ValueError) as caught:
                 hubbeam.modes(SPINUP, 0.0, harmonics=bad, nx=0)
             self.assertTrue(str(caught.exception).startswith("harmonics: expected"), str(caught.exception))
+        # None searches no critical speed: the same modes, and no crossing though the rates pass 1P and 2P.
+        for none in (None, "none"):
+            n = hubbeam.modes(SPINUP, np.arange(0.0, 6.5, 1.0), harmonics=none, nx=0)
+            self.assertEqual(len(n["critical"]["omega"]), 0)
+            np.testing.assert_array_equal(n["rad_s"], hubbeam.modes(SPINUP, np.arange(0.0, 6.5, 1.0), nx=0)["rad_s"])
 
     def test_modes_is_the_command_lines_table_column_for_column(self):
         # hubbeam.modes and hubbeam modes -o / --critical give one table: each CSV column but the variant's is a key
@@ -554,13 +559,14 @@ class ModesTest(unittest.TestCase):
                     reader = csv.DictReader(f)
                     tables[name] = (reader.fieldnames, list(reader))
         m = hubbeam.modes(scene, np.arange(0.0, 6.25, 0.5))
-        variant = ["method", "ny", "nx", "order", "drive"]
+        variant = ["method", "ny", "nx", "nz", "nt", "order", "drive"]
         for name, result in (("modes", m), ("critical", m["critical"])):
             header, rows = tables[name]
             self.assertGreater(len(rows), 2, name)
-            self.assertEqual(header[:5], variant, name)
-            self.assertEqual(sorted(header[5:]), sorted(k for k in result if k not in ("variant", "critical", "scene_file")), name)
-            for column in header[5:]:
+            self.assertEqual(header[:len(variant)], variant, name)
+            own = header[len(variant):]
+            self.assertEqual(sorted(own), sorted(k for k in result if k not in ("variant", "critical", "scene_file")), name)
+            for column in own:
                 if result[column].dtype.kind == "U":
                     self.assertEqual(list(result[column]), [r[column] for r in rows], column)
                 else:
@@ -607,6 +613,48 @@ class ModesTest(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+class ElastoDynTest(unittest.TestCase):
+    UNIFORM = os.path.join(SOURCE, "tests", "scenes", "uniform_blade.toml")
+
+    def test_mode_shapes_are_the_command_lines_file_and_fit_the_closed_form(self):
+        # hubbeam.elastodyn_mode_shapes gives the coefficients hubbeam modes --elastodyn writes, each set summing
+        # to 1; the uniform blade's flap 1 (AMM: its basis holds the clamped-free mode) is the closed form's fit,
+        # here by numpy's least squares with c_6 eliminated (no code of hubbeam's).
+        r = hubbeam.elastodyn_mode_shapes(self.UNIFORM, omega=0.0)
+        with tempfile.TemporaryDirectory() as d:
+            out = os.path.join(d, "blade_modes.dat")
+            p = cli("modes", self.UNIFORM, "--omega", "0", "--elastodyn", out, "-q")
+            self.assertEqual(p.returncode, 0, p.stderr)
+            with open(out) as f:
+                lines = f.read().splitlines()
+        self.assertEqual(lines, r["section"].splitlines())
+        self.assertEqual(len(lines), 16)
+        for i, name in enumerate(("BldFl1Sh", "BldFl2Sh", "BldEdgSh")):
+            written = [float(line.split()[0]) for line in lines[1 + 5 * i:6 + 5 * i]]
+            self.assertEqual(written, list(r[name]["coefficients"]), name)
+            self.assertAlmostEqual(sum(written), 1.0, delta=1e-12)
+        self.assertEqual(r["BldFl1Sh"]["mode"], "flap 1")
+        bl = 1.8751040687119611664
+        sigma = (np.cosh(bl) + np.cos(bl)) / (np.sinh(bl) + np.sin(bl))
+        x = np.linspace(0.0, 1.0, 201)
+        phi = np.cosh(bl * x) - np.cos(bl * x) - sigma * (np.sinh(bl * x) - np.sin(bl * x))
+        phi /= phi[-1]
+        A = np.stack([x ** k - x ** 6 for k in range(2, 6)], axis=1)
+        c = np.linalg.lstsq(A, phi - x ** 6, rcond=None)[0]
+        exact = np.append(c, 1.0 - c.sum())
+        # A coefficient moves by at most ||A^+|| sqrt(201) times the shape's error, below 1e-9 of the tip for AMM.
+        tolerance = 2.0 / np.linalg.svd(A, compute_uv=False).min() * np.sqrt(201.0) * 1e-9
+        np.testing.assert_allclose(r["BldFl1Sh"]["coefficients"], exact, rtol=0, atol=tolerance)
+        self.assertAlmostEqual(r["BldFl1Sh"]["residual"], np.sqrt(np.mean((A @ c + x ** 6 - phi) ** 2)), delta=1e-9)
+        np.testing.assert_allclose(r["BldFl1Sh"]["phi"], phi, rtol=0, atol=1e-9)
+
+    def test_a_beam_in_the_plane_has_no_flap_mode_shapes(self):
+        with self.assertRaises(ValueError) as caught:
+            hubbeam.elastodyn_mode_shapes(SPINUP)
+        self.assertIn("discretization.nz > 0", str(caught.exception))
+        self.assertEqual(len(hubbeam.elastodyn_mode_shapes(SPINUP, nz=2)["BldEdgSh"]["coefficients"]), 5)
 
 
 class OutOfPlaneTest(unittest.TestCase):

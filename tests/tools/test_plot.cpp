@@ -149,7 +149,7 @@ TEST_CASE("campbell: a line per tracked mode through a crossing, the excitation 
     args.harmonics.clear();  // the default: 1P, 2P and 3P
     CHECK(plot_script(args).find("3*x/(2*pi) with lines") != std::string::npos);
     args.harmonics = "0";
-    CHECK_THROWS_WITH(plot_script(args), "--harmonics: expected a comma-separated list of integers from 1 to 1000, got 0");
+    CHECK_THROWS_WITH(plot_script(args), "--harmonics: expected a comma-separated list of integers from 1 to 1000, or none, got 0");
     // A modes CSV of an older hubbeam, without the label column: a line per frequency number of kind bending.
     args.harmonics.clear();
     args.files = {fixture("modes_untracked.csv")};
@@ -579,7 +579,7 @@ TEST_CASE("text handed to gnuplot: a control or format character is refused, and
         args.files = {file.string()};
         const std::string message = thrown([&] { plot_script(args); });
         CHECK(message == file.string() +
-                             ": line 3, column 15 (label): expected text without control or format "
+                             ": line 3, column 17 (label): expected text without control or format "
                              "characters (it goes into the gnuplot script), got a control character "
                              "(\\x07) at byte 10");
     }

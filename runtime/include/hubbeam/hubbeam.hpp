@@ -8,5 +8,6 @@
 
 #include <hubbeam/fields.hpp>     // BeamFields: fields along the beam
 #include <hubbeam/linearize.hpp>  // steady_spin, state_space, natural_modes
+#include <hubbeam/mode_shapes.hpp>  // a blade's mode shapes and their ElastoDyn polynomials
 #include <hubbeam/scene.hpp>      // Scene, load_scene, parse_scene, validate, scene_keys
 #include <hubbeam/simulate.hpp>   // Simulation, Row, RunSummary

@@ -129,11 +129,16 @@ struct CriticalSpeed {
     int harmonic = 0;
     double omega = 0.0, rad_s = 0.0;
 };
-/// The critical speeds of campbell's rows for each harmonic n of harmonics: each place where a line's damped
-/// frequency minus n omega changes sign between two of its neighbouring rates, refined by regula falsi (Illinois)
-/// on the modes computed at rates between them, the mode followed by its MAC with the line's shape, to 1e-10 of
-/// omega. A mode of frequency 0 (overdamped, divergent) meets no line, at rest either: every critical speed is
-/// where a mode that oscillates has the frequency n omega > 0. The same model and arguments as campbell's, check too. By rate, then harmonic.
+/// The critical speeds of campbell's rows for each harmonic n of harmonics (none when it is empty): each place where
+/// a line's damped frequency minus n omega changes sign between two of its neighbouring rates, the line following
+/// one mode there (the MAC of its modes at the two rates above 1/2) that is not nearly critically damped at both
+/// (damping ratio above 0.999: so nearly defective a pair has a damped frequency fixed only to about 1e-5 of
+/// |lambda|), refined by regula falsi (Illinois) to 1e-10 of omega. At each rate tried the line's mode is the one whose eigenvalue lies nearest the eigenvalue interpolated
+/// between the bracket's ends, found by inverse iteration with one r x r factorization (r coordinates), when its MAC
+/// with the line's shape is above 1/2; else (a cluster of nearly equal eigenvalues) and under control, the mode of
+/// largest MAC among all the modes there. A mode of frequency 0 (overdamped, divergent) meets no line, at rest
+/// either: every critical speed is where a mode that oscillates has the frequency n omega > 0. The same model and
+/// arguments as campbell's, check too. By rate, then harmonic.
 std::vector<CriticalSpeed> critical_speeds(const Model& model, const std::vector<SpinMode>& rows,
                                            const std::vector<int>& harmonics, Axial axial = Axial::dynamic,
                                            double theta = 0.0, const Control* control = nullptr,

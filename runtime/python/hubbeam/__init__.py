@@ -31,7 +31,7 @@ except ImportError as _missing:
         f"use the Python it was built for (/usr/bin/python3 on Debian) or a virtual environment over it: "
         f"/usr/bin/python3 -m venv --system-site-packages DIR (docs/python.md)") from _missing
 
-__all__ = ["run", "modes", "linearize", "sweep", "load", "plot_campbell", "effective_scene", "Result", "RunStopped",
+__all__ = ["run", "modes", "linearize", "elastodyn_mode_shapes", "sweep", "load", "plot_campbell", "effective_scene", "Result", "RunStopped",
            "scene_keys", "generator_version", "printable", "Objective", "max_deflection", "residual_vibration",
            "final_error", "PARAMETER_KEYS"]
 __version__ = _core.__version__
@@ -560,7 +560,7 @@ def modes(scene: Any, omega: Any = 0.0, harmonics: Any = (1, 2, 3), **keys: Any)
     without damping), label (the tracked mode, "bending 1", ...) and mac (to its shape at the rate before, NaN
     where it begins), and the variant's name; the closed loop's with [control]. Under "critical", the critical
     speeds, where a tracked mode meets the excitation omega = n Omega for n in harmonics: arrays label, harmonic,
-    omega, rad_s and hz."""
+    omega, rad_s and hz; harmonics=None (or "none") searches none, and they are empty."""
     text, name = _source(scene)
     out = _core_call(_core.modes, text, name, _overrides(keys),
                      _rates(omega, "spin rates >= 0 (rad/s): a number or a list"), _harmonics(harmonics))
@@ -568,11 +568,15 @@ def modes(scene: Any, omega: Any = 0.0, harmonics: Any = (1, 2, 3), **keys: Any)
 
 
 def _harmonics(harmonics: Any) -> list[int]:
-    """harmonics= as a list of integers from 1 to 1000, or ValueError naming what it got."""
+    """harmonics= as a list of integers from 1 to 1000 (None or "none": no critical speed searched, an empty list),
+    or ValueError naming what it got."""
+    if harmonics is None or (isinstance(harmonics, str) and harmonics == "none"):
+        return []
     values = list(np.atleast_1d(np.asarray(harmonics, dtype=object)))
     if np.ndim(harmonics) > 1 or not values or not all(
             isinstance(n, (int, np.integer)) and not isinstance(n, (bool, np.bool_)) and 1 <= n <= 1000 for n in values):
-        raise ValueError(f"harmonics: expected a list of integers from 1 to 1000, got {printable(repr(harmonics), 120)}")
+        raise ValueError(f"harmonics: expected a list of integers from 1 to 1000, or None, got "
+                         f"{printable(repr(harmonics), 120)}")
     return [int(n) for n in values]
 
 
@@ -592,6 +596,19 @@ def linearize(scene: Any, omega: float, **keys: Any) -> dict[str, Any]:
     if np.ndim(omega) != 0:
         raise ValueError(f"omega: expected a spin rate >= 0 (rad/s), got {printable(repr(omega), 120)}")
     return _core_call(_core.linearize, text, name, _overrides(keys), _rates(omega, "a spin rate >= 0 (rad/s)")[0])
+
+
+def elastodyn_mode_shapes(scene: Any, omega: float = 0.0, **keys: Any) -> dict[str, Any]:
+    """A blade's mode shapes about the steady spin omega (rad/s) fitted as ElastoDyn takes them (hubbeam modes
+    --elastodyn; docs/python.md): under "BldFl1Sh", "BldFl2Sh" and "BldEdgSh" (flap 1, flap 2, edge 1) the mode's
+    name, rad_s, hz, coefficients (of x^2 .. x^6, summing to 1), residual (the fit's RMS error, a fraction of the tip
+    deflection) and the samples xi, phi (normalised to 1 at the tip); "section", the blade file's BLADE MODE SHAPES
+    lines. ValueError for a scene without flapwise coordinates (discretization.nz = 0)."""
+    text, name = _source(scene)
+    if np.ndim(omega) != 0:
+        raise ValueError(f"omega: expected a spin rate >= 0 (rad/s), got {printable(repr(omega), 120)}")
+    return _core_call(_core.elastodyn_mode_shapes, text, name, _overrides(keys),
+                      _rates(omega, "a spin rate >= 0 (rad/s)")[0])
 
 
 def _core_call(function, *args):

@@ -2,6 +2,7 @@
 // the natural modes (docs/model.md section 10).
 #include <hubbeam/linearize.hpp>
 
+#include "analysis/modal_coordinates.hpp"
 #include "models/model_operations.hpp"
 #include "terms.hpp"
 #include "text/csv_columns.hpp"
@@ -10,12 +11,14 @@
 #include <algorithm>
 #include <array>
 #include <complex>
+#include <deque>
 #include <iterator>
 #include <limits>
 #include <map>
 #include <tuple>
 #include <numeric>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 namespace hubbeam {
@@ -30,6 +33,13 @@ bool weight_turns_with_spin(const VariantKey& key, const std::vector<double>& p)
 }
 
 }  // namespace
+
+std::vector<int> modal_coordinates(const Model& model, const SteadySpin& s, Axial axial)
+{
+    std::vector<int> R = kept_coordinates(model.key(), axial);
+    if (model.key().drive == Drive::torque && s.held) R.erase(R.begin());
+    return R;
+}
 
 std::string unsteady_spin(const VariantKey& key, const std::vector<double>& p, double omega)
 {
@@ -58,7 +68,10 @@ SteadySpin steady_spin(const Model& model, double omega, double theta)
         s.qd[0] = omega;
     else
         s.u.theta_dot = omega;
-    // One step for the linear equations of orders zero and first, a few for full.
+    // One step for the linear equations of orders zero and first, a few for full. Converged when the step is
+    // round-off of the stretch, or stops shrinking at a level that is round-off of the forces (a FEM blade of
+    // Ny = Nz = 32 stalls near 1e-12 of its coning: 50 steps of an LU each, before this test, at every rate).
+    double previous = HUGE_VAL;
     for (int iteration = 0; na > 0 && iteration < 50; ++iteration) {
         std::vector<double> Q(static_cast<std::size_t>(n));
         model.forces(s.u, s.q.data(), s.qd.data(), Q.data());
@@ -72,7 +85,9 @@ SteadySpin steady_spin(const Model& model, double omega, double theta)
         if (!dA.allFinite())
             throw std::runtime_error(key.out_of_plane() ? "the steady deflection at this spin has no solution"
                                                         : "the steady axial stretch at this spin has no solution");
-        if (dA.cwiseAbs().maxCoeff() <= 1e-14 * std::max(size, 1e-300)) break;
+        const double step = dA.cwiseAbs().maxCoeff();
+        if (step <= 1e-14 * std::max(size, 1e-300) || (step <= 1e-10 * size && step >= 0.5 * previous)) break;
+        previous = step;
     }
     return s;
 }
@@ -264,16 +279,20 @@ std::vector<double> energy_by_field(const Model& model, const Eigen::MatrixXd& M
                                     const Eigen::VectorXcd& rates)
 {
     const CoordinateLayout& layout = model.coordinates();
-    const auto field = [&](int c) { return static_cast<std::size_t>(&layout.field_of(c) - layout.fields.data()); };
-    std::vector<double> energy(layout.fields.size(), 0.0);
+    // Each coordinate's field looked up once, not once per pair (a tenth of a Campbell table's time at Ny = 64).
+    std::vector<std::size_t> field(coordinates.size());
     for (std::size_t i = 0; i < coordinates.size(); ++i)
+        field[i] = static_cast<std::size_t>(&layout.field_of(coordinates[i]) - layout.fields.data());
+    std::vector<double> energy(layout.fields.size(), 0.0);
+    for (std::size_t i = 0; i < coordinates.size(); ++i) {
+        const std::complex<double> ri = rates(static_cast<Eigen::Index>(i));
         for (std::size_t j = 0; j < coordinates.size(); ++j) {
-            const int mi = coordinates[i], mj = coordinates[j];
-            if (field(mi) != field(mj)) continue;
-            energy[field(mi)] +=
-                (std::conj(rates(static_cast<Eigen::Index>(i))) * M(mi, mj) * rates(static_cast<Eigen::Index>(j)))
-                    .real();
+            if (field[i] != field[j]) continue;
+            const std::complex<double> rj = rates(static_cast<Eigen::Index>(j));
+            // Re(conj(ri) M rj), written out: std::complex's product checks for NaN at every call.
+            energy[field[i]] += M(coordinates[i], coordinates[j]) * (ri.real() * rj.real() + ri.imag() * rj.imag());
         }
+    }
     return energy;
 }
 
@@ -325,7 +344,13 @@ FieldKind dominant_field(const Model& model, const Eigen::MatrixXd& M, const std
 /// coordinates (mass_factor: M = U^T U), scaled to unit length.
 Eigen::VectorXcd weighted_shape(const Eigen::MatrixXd& U, const Eigen::VectorXcd& rates)
 {
-    Eigen::VectorXcd w = U.cast<std::complex<double>>() * rates;
+    // Real and imaginary parts apart: a real matrix times a real vector twice, not U cast to complex (a copy of U and
+    // a complex product per mode, a third of a Campbell table's time at Ny = 64).
+    const auto upper = U.triangularView<Eigen::Upper>();
+    const Eigen::VectorXd re = upper * rates.real(), im = upper * rates.imag();
+    Eigen::VectorXcd w(re.size());
+    w.real() = re;
+    w.imag() = im;
     const double length = w.norm();
     return length > 0.0 ? Eigen::VectorXcd(w / length) : w;
 }
@@ -368,15 +393,14 @@ void separate_repeated(const Model& model, const Eigen::MatrixXd& M, const std::
 
 std::vector<NaturalMode> natural_modes(const Model& model, const SteadySpin& s, Axial axial)
 {
-    const bool torque = model.key().drive == Drive::torque, damped = dissipates(model.key());
+    const bool damped = dissipates(model.key());
     const Eigen::MatrixXd M = mass_at(model, s.u, s.q);
     // The coordinates that keep their inertia: all, or with quasi-static axial coordinates all but A. A then
     // follows its own rows with A_dot = A_ddot = 0 (docs/model.md section 9), and the other rows drop A's rates;
     // they do not depend on A itself at the straight beam (Q_B is odd in B, Q_theta holds A only with rates), so
     // A's deviation drops out of them and the condensed equations are R's rows and columns alone. A held hub's
     // angle is not among them.
-    std::vector<int> R = kept_coordinates(model.key(), axial);
-    if (torque && s.held) R.erase(R.begin());
+    const std::vector<int> R = modal_coordinates(model, s, axial);
     const Eigen::LLT<Eigen::MatrixXd> llt = mass_factor(submatrix(M, R, R));
     const Eigen::EigenSolver<Eigen::MatrixXd> eig(linearized_system(model, s, llt, R));
     if (eig.info() != Eigen::Success)
@@ -498,6 +522,155 @@ std::vector<NaturalMode> modes_at(const Model& model, double omega, Axial axial,
     return control ? closed_loop_modes(model, s, *control) : natural_modes(model, s, axial);
 }
 
+/// Above this MAC with a line's shape a mode is the line's: no other mode can have as large a MAC (their squared
+/// projections on a shape of unit length sum to at most about 1 where the shapes are nearly orthogonal in the mass).
+constexpr double followed_mac = 0.5;
+
+/// Above this damping ratio a mode is nearly critically damped: its damped frequency below 4.5 % of |lambda|.
+constexpr double nearly_critical = 0.999;
+
+/// A mode's eigenvalue growth + i rad_s (the one of positive frequency of its pair).
+std::complex<double> eigenvalue(const NaturalMode& m)
+{
+    return {m.growth, m.rad_s};
+}
+
+/// The open loop's linearized equations about a steady spin as the quadratic pencil of the modal coordinates R:
+/// lambda^2 M x = K x + lambda C x with K = dQ/dq, C = dQ/dqd over R (linearized_system's eigenproblem without its
+/// M^-1), and U with M = U^T U, the weight of a mode's shape.
+struct Pencil {
+    Eigen::MatrixXd M, C, K, U;
+};
+
+Pencil pencil_at(const Model& model, const SteadySpin& s, Axial axial)
+{
+    const std::vector<int> R = modal_coordinates(model, s, axial);
+    const ForceJacobians J = force_jacobians(model, s.u, s.q, s.qd);
+    Pencil p{submatrix(mass_at(model, s.u, s.q), R, R), submatrix(J.qd, R, R), submatrix(J.q, R, R), {}};
+    // A free hub's angle is cyclic: linearized_system leaves its column of K out (its zero eigenvalue is the
+    // conserved momentum's), and so does the pencil.
+    if (cyclic_angle(model, R) == 1) p.K.col(0).setZero();
+    p.U = mass_factor(p.M).matrixU();
+    return p;
+}
+
+/// The open loop's modes about a steady spin near a predicted eigenvalue, one factorization per shift: the
+/// eigenproblem is the companion pencil A - lambda B, A = [[0, I], [K, C]], B = diag(I, M), of the state
+/// z = (x, lambda x) (Pencil), shifted and inverted, (A - sigma B)^-1 B, whose solves are those of the r x r matrix
+/// P(sigma) = sigma^2 M - sigma C - K. Where natural_modes finds every eigenvalue of 2r x 2r with its vector, this
+/// factors r x r once and solves with it.
+class ModesNear {
+public:
+    ModesNear(const Model& model, double omega, Axial axial, double theta)
+        : p_(pencil_at(model, steady_spin(model, omega, theta), axial)),
+          M_(p_.M.cast<cd>()), C_(p_.C.cast<cd>()), K_(p_.K.cast<cd>())
+    {
+    }
+
+    /// The mode nearest guess (growth + i rad_s) of the line whose shape is reference, the iteration started at start
+    /// (a shape of the line): inverse iteration, the shift moved onto the estimate where it is slow (Rayleigh
+    /// quotient iteration). Empty where it does not converge or finds another mode (MAC with reference at most
+    /// followed_mac: in a cluster of nearly equal eigenvalues, such as the slow roots of overdamped modes about
+    /// -1/beta, the nearest eigenvalue need not be the line's).
+    std::optional<NaturalMode> line_mode(std::complex<double> guess, const Eigen::VectorXcd& start,
+                                         const Eigen::VectorXcd& reference) const
+    {
+        if (start.size() != p_.M.rows() || reference.size() != p_.M.rows()) return std::nullopt;
+        std::optional<NaturalMode> m = polished(guess, positions(start));
+        return m && std::norm(reference.dot(m->shape)) > followed_mac ? m : std::nullopt;
+    }
+
+private:
+    using cd = std::complex<double>;
+
+    /// The positions x of a shape's rates (U^-1 shape, the same direction).
+    Eigen::VectorXcd positions(const Eigen::VectorXcd& shape) const
+    {
+        const auto upper = p_.U.triangularView<Eigen::Upper>();
+        Eigen::VectorXcd x(shape.size());
+        x.real() = upper.solve(Eigen::VectorXd(shape.real()));
+        x.imag() = upper.solve(Eigen::VectorXd(shape.imag()));
+        return x;
+    }
+
+    /// NaturalMode::shape of the eigenpair (lambda, x): its rates lambda x weighted by U.
+    Eigen::VectorXcd shape(cd lambda, const Eigen::VectorXcd& x) const { return weighted_shape(p_.U, lambda * x); }
+
+    /// P(sigma)'s LU.
+    Eigen::PartialPivLU<Eigen::MatrixXcd> factor(cd sigma) const
+    {
+        return Eigen::PartialPivLU<Eigen::MatrixXcd>(sigma * sigma * M_ - sigma * C_ - K_);
+    }
+
+    /// (A - sigma B)^-1 B z for the states z = (x, y), columns of X and Y: P(sigma) w_x = C x - M (sigma x + y),
+    /// w_y = x + sigma w_x.
+    void apply(const Eigen::PartialPivLU<Eigen::MatrixXcd>& lu, cd sigma, Eigen::MatrixXcd& X,
+               Eigen::MatrixXcd& Y) const
+    {
+        const Eigen::MatrixXcd wx = lu.solve(C_ * X - M_ * (sigma * X + Y));
+        Y = X + sigma * wx;
+        X = wx;
+    }
+
+    /// The root of a l^2 - b l - c = 0 nearest near, a, b, c the pencil's quadratic forms of x: the eigenvalue whose
+    /// vector x is (the quadratic Rayleigh quotient).
+    cd rayleigh(const Eigen::VectorXcd& x, cd near) const
+    {
+        const cd a = x.dot(M_ * x), b = x.dot(C_ * x), c = x.dot(K_ * x);
+        const cd root = std::sqrt(b * b + 4.0 * a * c);
+        const cd l1 = (b + root) / (2.0 * a), l2 = (b - root) / (2.0 * a);
+        return std::abs(l1 - near) <= std::abs(l2 - near) ? l1 : l2;
+    }
+
+    /// The eigenpair nearest guess from the positions x0 by inverse iteration, as a mode; empty if it does not
+    /// converge to round-off (its residual P(lambda) x against the pencil's scale).
+    std::optional<NaturalMode> polished(cd guess, const Eigen::VectorXcd& x0) const
+    {
+        Eigen::MatrixXcd x = x0, y = guess * x0;
+        cd sigma = guess, lambda = guess;
+        bool converged = false;
+        // A few steps at the predicted shift bring x near the mode's vector; then the shift moves onto the estimate
+        // (Rayleigh quotient iteration), where each step gains many digits.
+        for (int shift = 0; shift < 5 && !converged; ++shift) {
+            const Eigen::PartialPivLU<Eigen::MatrixXcd> lu = factor(sigma);
+            double step = HUGE_VAL;  // the estimate's last move, relative to it
+            for (int iteration = 0; iteration < (shift == 0 ? 3 : 8) && !converged; ++iteration) {
+                apply(lu, sigma, x, y);
+                const double size = std::sqrt(x.squaredNorm() + y.squaredNorm());
+                if (!(size > 0.0) || !std::isfinite(size)) return std::nullopt;
+                x /= size;
+                y /= size;
+                const cd next = rayleigh(x.col(0), lambda);
+                // Converged when the estimate moves by round-off; or, once the shift is the estimate (each step
+                // then gains digits), when its moves stop shrinking at a level that is round-off of the pencil's
+                // quadratic forms: 1e-11 of |lambda| for FEM Ny = Nz = 64, whose K spans twelve orders of
+                // magnitude. At the predicted shift the moves may shrink slowly, and stopping there would not be
+                // converged.
+                const double moved = std::abs(next - lambda) / std::abs(next);
+                converged = iteration > 0 && (moved <= 1e-14 || (shift > 0 && moved <= 1e-9 && moved > 0.5 * step));
+                step = moved;
+                lambda = next;
+            }
+            sigma = lambda;
+        }
+        Eigen::VectorXcd v = x.col(0);
+        const Eigen::VectorXcd residual = lambda * lambda * (M_ * v) - lambda * (C_ * v) - K_ * v;
+        const double scale = std::norm(lambda) * p_.M.norm() + std::abs(lambda) * p_.C.norm() + p_.K.norm();
+        if (!converged || !(residual.norm() <= 1e-8 * scale * v.norm())) return std::nullopt;
+        if (lambda.imag() < 0.0) {  // the conjugate of the mode's eigenvalue: its pair's other member
+            lambda = std::conj(lambda);
+            v = v.conjugate();
+        }
+        const bool oscillating = lambda.imag() > 1e-9 * std::max(1.0, std::abs(lambda));
+        const double rad_s = oscillating ? lambda.imag() : 0.0, magnitude = std::hypot(lambda.real(), rad_s);
+        return NaturalMode{rad_s, lambda.real(), "", magnitude, magnitude > 0.0 ? -lambda.real() / magnitude : 0.0,
+                           shape(lambda, v)};
+    }
+
+    Pencil p_;
+    Eigen::MatrixXcd M_, C_, K_;
+};
+
 }  // namespace
 
 std::vector<int> best_assignment(const Eigen::MatrixXd& score)
@@ -606,15 +779,15 @@ std::vector<CriticalSpeed> critical_speeds(const Model& model, const std::vector
         for (const int n : harmonics)
             for (std::size_t i = 0; i + 1 < line.size(); ++i) {
                 const SpinMode &a = *line[i], &b = *line[i + 1];
-                // The mode's frequency minus the excitation's, at omega: the line's mode there is the one of
-                // closest shape to its mode at a.
-                const auto gap = [&](double omega) {
-                    if (check) check();
-                    double best = -1.0, rad_s = 0.0;
-                    for (const NaturalMode& m : modes_at(model, omega, axial, theta, control))
-                        if (const double x = mac(a.mode, m); x > best) best = x, rad_s = m.rad_s;
-                    return rad_s - n * omega;
-                };
+                // A line that passes to a mode of another shape between a and b (their MAC 1/2 or less: a cluster
+                // of nearly equal eigenvalues, the slow roots of overdamped modes about -1/beta) follows no one mode
+                // there: its change of sign is between two modes, not a crossing of one.
+                if (!(b.mac > followed_mac)) continue;
+                // Nearly critically damped at both rates: the damped frequency of so nearly defective a pair is fixed
+                // by the eigenvalues only to about the square root of round-off of |lambda| (1e-5 of it), and lies
+                // in a cluster of the overdamped modes' roots, so no crossing with it can be refined; nor does a
+                // mode so damped resonate.
+                if (a.mode.damping_ratio > nearly_critical && b.mode.damping_ratio > nearly_critical) continue;
                 double lo = a.omega, hi = b.omega;
                 double g_lo = a.mode.rad_s - n * lo, g_hi = b.mode.rad_s - n * hi;
                 // A mode of frequency 0 (overdamped or divergent) meets no excitation line: it lies below every
@@ -625,6 +798,29 @@ std::vector<CriticalSpeed> critical_speeds(const Model& model, const std::vector
                 if (g_lo == 0.0 && !below_at_rest && i > 0) continue;  // met at a, the previous interval's end
                 const double sign_lo = below_at_rest ? -1.0 : g_lo;
                 if (!(sign_lo * g_hi <= 0.0) || (sign_lo == 0.0 && g_hi == 0.0)) continue;
+                // The line's eigenvalue and shape at the bracket's ends: the next rate's is predicted between them.
+                std::complex<double> l_lo = eigenvalue(a.mode), l_hi = eigenvalue(b.mode);
+                const Eigen::VectorXcd *shape_lo = &a.mode.shape, *shape_hi = &b.mode.shape;
+                std::deque<NaturalMode> tried;  // the modes found inside the bracket (the ends' shapes point here)
+                // The mode's frequency minus the excitation's at omega, the mode there being the line's: the mode
+                // nearest the eigenvalue interpolated between the bracket's ends (mode_near, one factorization),
+                // taken when its MAC with the line's mode at a is above 1/2 (then no other mode's is as large); else,
+                // and under control, the mode of largest MAC among all the modes there.
+                const auto gap = [&](double omega) {
+                    if (check) check();
+                    const double t = hi > lo ? (omega - lo) / (hi - lo) : 0.5;
+                    std::optional<NaturalMode> near;
+                    if (control == nullptr)
+                        near = ModesNear(model, omega, axial, theta)
+                                   .line_mode(l_lo + t * (l_hi - l_lo), t < 0.5 ? *shape_lo : *shape_hi, a.mode.shape);
+                    if (!near) {
+                        double best = -1.0;
+                        for (NaturalMode& m : modes_at(model, omega, axial, theta, control))
+                            if (const double x = mac(a.mode, m); x > best) best = x, near = std::move(m);
+                    }
+                    tried.push_back(std::move(*near));
+                    return tried.back().rad_s - n * omega;
+                };
                 // Regula falsi with Illinois' halving of the stale end's value: superlinear, and never leaves the
                 // bracket.
                 double omega = g_lo == 0.0 && !below_at_rest ? lo : hi;
@@ -638,13 +834,14 @@ std::vector<CriticalSpeed> critical_speeds(const Model& model, const std::vector
                         halving = false;
                         break;
                     }
+                    const NaturalMode& found = tried.back();
                     if ((g < 0.0) != (g_hi < 0.0)) {  // on the low end's side (the ends' signs differ)
-                        lo = omega, g_lo = g;
+                        lo = omega, g_lo = g, l_lo = eigenvalue(found), shape_lo = &found.shape;
                         halving = false;
                         if (stale == -1) g_hi /= 2.0;
                         stale = -1;
                     } else {
-                        hi = omega, g_hi = g;
+                        hi = omega, g_hi = g, l_hi = eigenvalue(found), shape_hi = &found.shape;
                         if (stale == 1) g_lo /= 2.0;
                         stale = 1;
                     }

@@ -23,14 +23,21 @@ ModesBlock modes_block(const Model& model, const VariantKey& key, const Scene& s
 
 void modes_table(const Scene& scene, const ModesRequest& request, const std::function<void(const ModesBlock&)>& done)
 {
+    const auto or_scene = [](const std::vector<int>& counts, int own) {
+        return counts.empty() ? std::vector<int>{own} : counts;
+    };
     for (const Method method : request.methods)
-        for (const int ny : request.ny) {
-            VariantKey key = scene.key();
-            key.method = method;
-            key.ny = ny;
-            const std::unique_ptr<Model> model = make_model(key, scene.parameters, scene.source);
-            done(modes_block(*model, key, scene, request.omegas, request.harmonics));
-        }
+        for (const int ny : request.ny)
+            for (const int nz : or_scene(request.nz, scene.variant.nz))
+                for (const int nt : or_scene(request.nt, scene.variant.nt)) {
+                    VariantKey key = scene.key();
+                    key.method = method;
+                    key.ny = ny;
+                    key.nz = nz;
+                    key.nt = nt;
+                    const std::unique_ptr<Model> model = make_model(key, scene.parameters, scene.source);
+                    done(modes_block(*model, key, scene, request.omegas, request.harmonics));
+                }
 }
 
 namespace {
@@ -45,6 +52,8 @@ std::vector<TableColumn<Row>> after_variant(std::initializer_list<TableColumn<Ro
         {"method", [](B b, R) -> TableCell { return to_string(b.key.method); }, true},
         {"ny", [](B b, R) -> TableCell { return b.key.ny; }, true},
         {"nx", [](B b, R) -> TableCell { return b.key.nx; }, true},
+        {"nz", [](B b, R) -> TableCell { return b.key.nz; }, true},
+        {"nt", [](B b, R) -> TableCell { return b.key.nt; }, true},
         {"order", [](B b, R) -> TableCell { return to_string(b.key.order); }, true},
         {"drive", [](B b, R) -> TableCell { return to_string(b.key.drive); }, true}};
     columns.insert(columns.end(), own);

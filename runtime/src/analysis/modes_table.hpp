@@ -13,13 +13,14 @@
 
 namespace hubbeam {
 
-/// What a modes table covers: each method of methods with each Ny of ny in place of the scene's own (by method,
-/// then Ny), at each spin rate of omegas (increasing: the modes are tracked in that order), and the harmonics n
-/// whose excitation lines omega = n Omega give the critical speeds.
+/// What a modes table covers: each method of methods with each Ny of ny, Nz of nz and Nt of nt in place of the
+/// scene's own (by method, then Ny, Nz, Nt), at each spin rate of omegas (increasing: the modes are tracked in that
+/// order), and the harmonics n whose excitation lines omega = n Omega give the critical speeds (none: empty). An
+/// empty nz or nt list stands for the scene's own count.
 struct ModesRequest {
     std::vector<double> omegas;
     std::vector<Method> methods;
-    std::vector<int> ny;
+    std::vector<int> ny, nz, nt;
     std::vector<int> harmonics;
 };
 
@@ -49,8 +50,8 @@ void modes_table(const Scene& scene, const ModesRequest& request, const std::fun
 using TableCell = std::variant<double, int, std::string>;
 
 /// A column of the modes table (Row SpinMode) or of the critical speeds (Row CriticalSpeed): its name, in the CSV
-/// header and as the Python module's key, and its cell of a block's row. The variant's columns (method, ny, nx,
-/// order, drive) lead either table's lines; the Python module gives the variant's name instead.
+/// header and as the Python module's key, and its cell of a block's row. The variant's columns (method, ny, nx, nz,
+/// nt, order, drive) lead either table's lines; the Python module gives the variant's name instead.
 template <class Row>
 struct TableColumn {
     const char* name;

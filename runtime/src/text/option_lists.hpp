@@ -121,14 +121,17 @@ std::vector<int> parse_dof_list(const std::string& option, const std::string& te
 inline constexpr const char* default_harmonics = "1,2,3";
 
 /// The harmonics n of a --harmonics list (a Campbell diagram's excitation lines omega = n Omega), integers from 1
-/// to 1000, each once; throws Error naming option.
+/// to 1000, each once, or none at all for the word none (no critical speed searched, no line drawn); throws Error
+/// naming option.
 template <class Error>
 std::vector<int> parse_harmonics(const std::string& option, const std::string& text)
 {
     std::vector<int> harmonics;
+    if (text == "none") return harmonics;
     for (const std::string& s : split_list(text)) {
         int n = 0;
-        if (!parse_int(s, 1, 1000, n)) bad_option<Error>(option, "a comma-separated list of integers from 1 to 1000", s);
+        if (!parse_int(s, 1, 1000, n))
+            bad_option<Error>(option, "a comma-separated list of integers from 1 to 1000, or none", s);
         add_unique(harmonics, n);
     }
     return harmonics;
