@@ -192,6 +192,7 @@ class _TableOutput:
 
     def open(self, earlier: _Earlier, header: list[str], resume: bool, mode: int, replace_mode: int,
              progress: bool) -> _Table:
+        """The table to append to: the old one past its complete lines, or its replacement holding the rows kept."""
         if resume and not earlier.stale:
             if earlier.cut and progress:
                 print(f"sweep: {self.shown}: its last line was cut (a write that did not finish): dropped, that point "

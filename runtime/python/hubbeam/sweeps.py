@@ -30,7 +30,7 @@ from .sweep_spec import (DEFAULT_KEEP, DERIVED_VALUES, ELASTIC_KINDS, SUMMARY_VA
 from .sweep_table import (_columns, _csv_line, _Earlier, _earlier_rows, _save_series, _Table, _TableOutput,
                           _typed_rows)
 
-# The names of the sweep's parts that are this module's as well (hubbeam.sweeps.load_sweep, ...).
+# The public names of the sweeps module, those of its parts among them (hubbeam.sweeps.load_sweep, expand, ...).
 __all__ = ["DEFAULT_KEEP", "DERIVED_VALUES", "ELASTIC_KINDS", "SUMMARY_VALUES", "SweepError", "expand", "last_timing",
            "load_sweep", "local_cluster", "main", "point_key", "run_point", "run_points", "run_sweep"]
 
