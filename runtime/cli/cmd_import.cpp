@@ -22,13 +22,12 @@ int import_scene(const std::string& input, const std::string& output)
     std::string text;
     ImportedBlade blade;
     try {
-        // The output is checked first, against the input and its blade file as soon as they are known: a refused
-        // name costs no reading, and no input is ever written over.
-        check_outputs({{input, "the input file"}}, {{output, "-o"}});
+        // Named by what it holds, as run's outputs are: a scene file ends in .toml.
         if (std::filesystem::path(output).extension() != ".toml")
             throw OutputRefused("-o: expected a scene file name ending in .toml, got \"" + printable(output, 400) +
                                 "\"");
         blade = read_main_input(input);
+        // Against both files read, once the blade file is known: no input is ever written over.
         check_outputs({{input, "the input file"}, {blade.blade_file, "its blade file"}}, {{output, "-o"}});
         text = imported_scene_toml(blade, output);
     } catch (const OutputRefused& e) {
