@@ -26,9 +26,10 @@ int import_scene(const std::string& input, const std::string& output)
         if (std::filesystem::path(output).extension() != ".toml")
             throw OutputRefused("-o: expected a scene file name ending in .toml, got \"" + printable(output, 400) +
                                 "\"");
+        // Against each file read, before it is read: no input is ever written over.
+        check_outputs({{input, "the input file"}}, {{output, "-o"}});
         blade = read_main_input(input);
-        // Against both files read, once the blade file is known: no input is ever written over.
-        check_outputs({{input, "the input file"}, {blade.blade_file, "its blade file"}}, {{output, "-o"}});
+        check_outputs({{blade.blade_file, "its blade file"}}, {{output, "-o"}});
         text = imported_scene_toml(blade, output);
     } catch (const OutputRefused& e) {
         std::cerr << e.what() << "\n";

@@ -306,14 +306,17 @@ TEST_CASE("a missing or malformed blade file is refused naming its file and line
 {
     TempFolder folder("import");
     // The .bmi as it is, without its section file beside it.
-    const std::string bmi = folder.write("lonely.bmi", text_of(data("bmodes/Test01_hubbeam.bmi")));
-    const ImportedBlade b = read_main_input(bmi);
-    try {
-        (void)imported_scene_toml(b, (folder.path / "out.toml").string());
-        FAIL("a missing section file was accepted");
-    } catch (const BladeFileError& e) {
-        CHECK_THAT(e.what(), Catch::Contains("blade_sec_props_no_offsets.dat: expected an existing file"));
-    }
+    const MainInputError lonely =
+        refusal_of(folder.write("lonely.bmi", text_of(data("bmodes/Test01_hubbeam.bmi"))));
+    CHECK(lonely.line == 30);
+    CHECK(lonely.setting == "sec_props_file");
+    CHECK_THAT(lonely.what(), Catch::EndsWith("blade_sec_props_no_offsets.dat"));
+    std::filesystem::create_directories(folder.path / "main");
+    const MainInputError no_blade = refusal_of(
+        folder.write("main/ed.dat", text_of(data("5MW_Land_DLL_WTurb/NRELOffshrBsline5MW_Onshore_ElastoDyn.dat"))));
+    CHECK(no_blade.line == 86);
+    CHECK(no_blade.setting == "BldFile(1)");
+    CHECK_THAT(no_blade.what(), Catch::Contains("ed.dat:86: BldFile(1): expected a file that exists"));
     // CertTest's own section file has centre-of-mass offsets, which hubbeam refuses at their line and column.
     const std::string certtest = folder.write(
         "certtest.bmi", with_line(text_of(data("bmodes/Test01_nonunif_blade.bmi")), 8, "1.0       romg_mult:"));

@@ -162,6 +162,18 @@ std::string resolved(const std::string& main_file, const std::string& name)
     return (std::filesystem::path(main_file).parent_path() / p).string();
 }
 
+/// Refuses, at the line that names it, a section or blade file that is not there: the message names the setting
+/// the user edits, not only the file it could not find.
+void check_named_file(const InputText& t, const InputSetting& s, const std::string& path)
+{
+    std::error_code ec;
+    const std::filesystem::file_type type = std::filesystem::status(path, ec).type();
+    if (type == std::filesystem::file_type::not_found)
+        fail(t, s.line, s.name, "a file that exists, relative to this file's folder, got " + printable(path, 400));
+    if (!ec && type != std::filesystem::file_type::regular)
+        fail(t, s.line, s.name, "a regular file (not a folder, FIFO or device), got " + printable(path, 400));
+}
+
 // ---- BModes ----------------------------------------------------------------------------------------------------
 
 /// Walks a .bmi as BModes' reading routines do: ReadCom takes the next line whatever it holds, ReadVar the next line
@@ -285,6 +297,7 @@ ImportedBlade parse_bmodes(const InputText& t)
     require(t, c.number_var({"id_mat"}, "material type"), 1, "an isotropic material (BModes' only one)");
     b.blade_file_setting = c.var({"sec_props_file"}, "the section properties file");
     b.blade_file = resolved(t.path, b.blade_file_setting.text);
+    check_named_file(t, b.blade_file_setting, b.blade_file);
     c.skip("a blank line");
     c.skip("the property scaling factors line");
     // hubbeam has no scene key for any of them: a value other than 1 would change the blade without the scene saying.
@@ -467,6 +480,7 @@ ImportedBlade parse_elastodyn(const InputText& t)
     b.tip_inertia = {"", 0, "0", 0.0};
     b.blade_file_setting = need("BldFile(1)", "BLADE");
     b.blade_file = resolved(t.path, b.blade_file_setting.text);
+    check_named_file(t, b.blade_file_setting, b.blade_file);
     // hubbeam takes one blade; the others must be that blade, or the rotor the scene stands for is not the file's.
     for (int k = 2; k <= static_cast<int>(blades.value); ++k)
         for (const auto& [name, section_name] :
