@@ -337,3 +337,24 @@ TEST_CASE("a missing or malformed blade file is refused naming its file and line
         CHECK_THAT(e.what(), Catch::EndsWith("absent.bmi: expected an existing file"));
     }
 }
+
+TEST_CASE("a BModes v3 file, with rot_rpm and a cm_axial line, reads alike, and an axial offset is refused", "[import]")
+{
+    TempFolder folder("import");
+    std::filesystem::copy_file(data("bmodes/blade_sec_props_no_offsets.dat"),
+                               folder.path / "blade_sec_props_no_offsets.dat");
+    std::string text = text_of(data("bmodes/Test01_hubbeam.bmi"));
+    text = with_line(text, 7, "60.0      rot_rpm:    rotor speed (rpm)");
+    text = with_line(text, 8, "1.0       rpm_mult:   rotor speed multiplicative factor (-)");
+    text = with_line(text, 20, "0.        cm_loc      tip-mass c.m. offset (m)\n"
+                               "0.        cm_axial    tip-mass c.m. axial offset (m)");
+    const Scene scene = imported(folder.write("v3.bmi", text), folder);
+    CHECK(scene.motion.omega0 == Approx(60.0 * pi / 30).epsilon(1e-15));
+    CHECK(scene.parameters.J_tip == 0.0);
+
+    const MainInputError e =
+        refusal_of(folder.write("v3_offset.bmi", with_line(text, 21, "0.2       cm_axial    tip-mass c.m. axial offset")));
+    CHECK(e.line == 21);
+    CHECK(e.setting == "cm_axial");
+    CHECK_THAT(e.what(), Catch::Contains("centre of mass on the blade's end"));
+}
