@@ -595,10 +595,10 @@ std::string imported_scene_toml(const ImportedBlade& b, const std::string& scene
     s += "#\n";
     s += "# Its natural modes about the steady spin of " + toml_number(b.rotor_speed.value) + " rpm (" +
          toml_number(omega) + " rad/s):\n";
-    s += "#   hubbeam modes " + quoted_string(std::filesystem::path(scene_path).filename().string()) +
-         " --omega " + toml_number(omega) + "\n";
-    s += "# (or --omega 0:" + toml_number(std::ceil(2.0 * omega * 10.0) / 10.0) +
-         ":0.1 for a Campbell diagram). Every value below names the setting it came from.\n";
+    s += "#   hubbeam modes " + quoted_string(scene_path) + " --omega " + toml_number(omega) + "\n";
+    if (omega > 0.0)  // a range up to twice the speed, in steps that resolve a blade's first modes
+        s += "# (or --omega 0:" + toml_number(std::ceil(2.0 * omega * 10.0) / 10.0) + ":0.1 for a Campbell diagram).\n";
+    s += "# Every value below names the setting it came from.\n";
     if (!b.damping.empty()) {
         s += "#\n# Structural damping in " + b.damping_file + ", not modelled yet: this scene is undamped.\n";
         for (const InputSetting& d : b.damping)
