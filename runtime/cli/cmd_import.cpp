@@ -81,10 +81,11 @@ Command add_import_command(CLI::App& app)
         ->required()
         ->type_name("FILE");
     cmd->add_option("-o,--output", o->output, "The scene to write (ending in .toml)")->required()->type_name("SCENE");
-    cmd->footer("Reads the settings that make one blade (docs/import.md) and refuses, in one line naming the file, "
-                "line and setting, one that hubbeam does not model (exit 2, nothing written). The scene is written "
-                "to DIR/.NAME.tmp-PID and renamed over SCENE; the input, its blade file, a link, a FIFO or a "
-                "read-only file are refused as SCENE.");
+    cmd->footer(
+        "Reads the settings that make one blade (docs/import.md) and refuses, in one line naming the file, "
+        "line and setting, one that hubbeam does not model (exit 2, nothing written). The scene is written "
+        "to DIR/.NAME.tmp-PID and renamed over SCENE; the input, its blade file, a link, a FIFO or a "
+        "read-only file are refused as SCENE.");
     return {cmd, [o] { return import_scene(o->input, o->output); }};
 }
 

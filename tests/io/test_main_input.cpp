@@ -5,12 +5,12 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <hubbeam/scene.hpp>
 #include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include <hubbeam/scene.hpp>
 #include "io/blade_files.hpp"
 #include "io/main_input.hpp"
 #include "temp_folder.hpp"
@@ -213,7 +213,8 @@ TEST_CASE("every setting hubbeam does not model is refused naming the file, the 
         {bmi.input, 24, "0.1       ixy_tip     cross product", 24, "ixy_tip", "not modelled"},
         {bmi.input, 29, "2         id_mat:     material_type", 29, "id_mat", "isotropic"},
         {bmi.input, 33, "1.1       sec_mass_mult:   mass density multiplier (-)", 33, "sec_mass_mult", "multiplier"},
-        {bmi.input, 38, "0.9       tor_stff_mult:   torsion stiffness multiplier (-)", 38, "tor_stff_mult", "expected 1"},
+        {bmi.input, 38, "0.9       tor_stff_mult:   torsion stiffness multiplier (-)", 38, "tor_stff_mult",
+         "expected 1"},
         {bmi.input, 42, "0.0       tc_offst_mult:   tension center multiplier (-)", 42, "tc_offst_mult", "expected 1"},
         {bmi.input, 7, "fast      romg:       rotor speed (rpm)", 7, "romg", "a finite number"},
         {bmi.input, 9, "35.0      hub_rad:    swapped", 9, "radius", "by position"},
@@ -232,7 +233,8 @@ TEST_CASE("every setting hubbeam does not model is refused naming the file, the 
         const MainInputError e = refusal_of(input);
         CHECK(e.line == c.refused_line);
         CHECK(e.setting == c.setting);
-        CHECK(std::string(e.what()).starts_with(e.file + ":" + std::to_string(c.refused_line) + ": " + c.setting + ": "));
+        CHECK(
+            std::string(e.what()).starts_with(e.file + ":" + std::to_string(c.refused_line) + ": " + c.setting + ": "));
         CHECK_THAT(e.what(), Catch::Contains(c.says));
         CHECK(std::string(e.what()).find('\n') == std::string::npos);
     }
@@ -269,8 +271,8 @@ TEST_CASE("an ElastoDyn setting hubbeam does not model, or blades unlike blade 1
                                    folder.path / "5MW_Baseline/NRELOffshrBsline5MW_Blade.dat");
         std::string text = text_of(data("5MW_Land_DLL_WTurb/NRELOffshrBsline5MW_Onshore_ElastoDyn.dat"));
         if (std::string(c.setting) == "PreCone(1)")  // all three alike, so that the scene's bound refuses it
-            for (int line : {47, 48, 49}) text = with_line(text, line, "        100   PreCone(" +
-                                                                         std::to_string(line - 46) + ")  - cone");
+            for (int line : {47, 48, 49})
+                text = with_line(text, line, "        100   PreCone(" + std::to_string(line - 46) + ")  - cone");
         else
             text = with_line(text, c.line, c.by);
         const MainInputError e = refusal_of(folder.write("main/ed.dat", text));
@@ -281,7 +283,8 @@ TEST_CASE("an ElastoDyn setting hubbeam does not model, or blades unlike blade 1
     }
 }
 
-TEST_CASE("a blade file's modal tuner other than 1 is refused, and two blades leave blade 3's settings unread", "[import]")
+TEST_CASE("a blade file's modal tuner other than 1 is refused, and two blades leave blade 3's settings unread",
+          "[import]")
 {
     TempFolder folder("import");
     std::filesystem::create_directories(folder.path / "5MW_Baseline");
@@ -306,8 +309,7 @@ TEST_CASE("a missing or malformed blade file is refused naming its file and line
 {
     TempFolder folder("import");
     // The .bmi as it is, without its section file beside it.
-    const MainInputError lonely =
-        refusal_of(folder.write("lonely.bmi", text_of(data("bmodes/Test01_hubbeam.bmi"))));
+    const MainInputError lonely = refusal_of(folder.write("lonely.bmi", text_of(data("bmodes/Test01_hubbeam.bmi"))));
     CHECK(lonely.line == 30);
     CHECK(lonely.setting == "sec_props_file");
     CHECK_THAT(lonely.what(), Catch::EndsWith("blade_sec_props_no_offsets.dat"));
@@ -346,14 +348,15 @@ TEST_CASE("a BModes v3 file, with rot_rpm and a cm_axial line, reads alike, and 
     std::string text = text_of(data("bmodes/Test01_hubbeam.bmi"));
     text = with_line(text, 7, "60.0      rot_rpm:    rotor speed (rpm)");
     text = with_line(text, 8, "1.0       rpm_mult:   rotor speed multiplicative factor (-)");
-    text = with_line(text, 20, "0.        cm_loc      tip-mass c.m. offset (m)\n"
-                               "0.        cm_axial    tip-mass c.m. axial offset (m)");
+    text = with_line(text, 20,
+                     "0.        cm_loc      tip-mass c.m. offset (m)\n"
+                     "0.        cm_axial    tip-mass c.m. axial offset (m)");
     const Scene scene = imported(folder.write("v3.bmi", text), folder);
     CHECK(scene.motion.omega0 == Approx(60.0 * pi / 30).epsilon(1e-15));
     CHECK(scene.parameters.J_tip == 0.0);
 
-    const MainInputError e =
-        refusal_of(folder.write("v3_offset.bmi", with_line(text, 21, "0.2       cm_axial    tip-mass c.m. axial offset")));
+    const MainInputError e = refusal_of(
+        folder.write("v3_offset.bmi", with_line(text, 21, "0.2       cm_axial    tip-mass c.m. axial offset")));
     CHECK(e.line == 21);
     CHECK(e.setting == "cm_axial");
     CHECK_THAT(e.what(), Catch::Contains("centre of mass on the blade's end"));

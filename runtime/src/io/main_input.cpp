@@ -42,13 +42,13 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <hubbeam/scene.hpp>
 #include <map>
 #include <numbers>
 #include <optional>
 #include <sstream>
 #include <string_view>
 
-#include <hubbeam/scene.hpp>
 #include "io/blade_files.hpp"
 #include "io/scene_print.hpp"
 #include "text/printable.hpp"
@@ -302,7 +302,7 @@ ImportedBlade parse_bmodes(const InputText& t)
     c.skip("the property scaling factors line");
     // hubbeam has no scene key for any of them: a value other than 1 would change the blade without the scene saying.
     constexpr std::array<const char*, 10> multipliers = {
-        "sec_mass_mult",  "flp_iner_mult", "lag_iner_mult", "flp_stff_mult", "edge_stff_mult",
+        "sec_mass_mult", "flp_iner_mult",   "lag_iner_mult", "flp_stff_mult", "edge_stff_mult",
         "tor_stff_mult", "axial_stff_mult", "cg_offst_mult", "sc_offst_mult", "tc_offst_mult"};
     for (const char* m : multipliers)
         require(t, c.number_var({m}, "a property multiplier"), 1,
@@ -347,21 +347,30 @@ const std::map<std::string, std::vector<EdSetting>>& elastodyn_sections()
           {"PtfmRoll", Use::ignored},
           {"PtfmPitch", Use::ignored},
           {"PtfmYaw", Use::ignored}}},
-        {"TURBINE CONFIGURATION",
-         {{"NumBl", Use::read},     {"TipRad", Use::read},    {"HubRad", Use::read},    {"PreCone", Use::read},
-          {"HubCM", Use::ignored},  {"UndSling", Use::ignored}, {"Delta3", Use::ignored}, {"AzimB1Up", Use::ignored},
-          {"OverHang", Use::ignored}, {"ShftGagL", Use::ignored}, {"ShftTilt", Use::ignored},
-          {"NacCMxn", Use::ignored}, {"NacCMyn", Use::ignored}, {"NacCMzn", Use::ignored}, {"NcIMUxn", Use::ignored},
-          {"NcIMUyn", Use::ignored}, {"NcIMUzn", Use::ignored}, {"Twr2Shft", Use::ignored}, {"TowerHt", Use::ignored},
-          {"TowerBsHt", Use::ignored}, {"TwrRBHt", Use::ignored}, {"TwrDraft", Use::ignored},
-          {"PtfmCMxt", Use::ignored}, {"PtfmCMyt", Use::ignored}, {"PtfmCMzt", Use::ignored},
-          {"PtfmRefzt", Use::ignored}, {"PtfmRef", Use::ignored}}},
+        {"TURBINE CONFIGURATION", {{"NumBl", Use::read},       {"TipRad", Use::read},       {"HubRad", Use::read},
+                                   {"PreCone", Use::read},     {"HubCM", Use::ignored},     {"UndSling", Use::ignored},
+                                   {"Delta3", Use::ignored},   {"AzimB1Up", Use::ignored},  {"OverHang", Use::ignored},
+                                   {"ShftGagL", Use::ignored}, {"ShftTilt", Use::ignored},  {"NacCMxn", Use::ignored},
+                                   {"NacCMyn", Use::ignored},  {"NacCMzn", Use::ignored},   {"NcIMUxn", Use::ignored},
+                                   {"NcIMUyn", Use::ignored},  {"NcIMUzn", Use::ignored},   {"Twr2Shft", Use::ignored},
+                                   {"TowerHt", Use::ignored},  {"TowerBsHt", Use::ignored}, {"TwrRBHt", Use::ignored},
+                                   {"TwrDraft", Use::ignored}, {"PtfmCMxt", Use::ignored},  {"PtfmCMyt", Use::ignored},
+                                   {"PtfmCMzt", Use::ignored}, {"PtfmRefzt", Use::ignored}, {"PtfmRef", Use::ignored}}},
         {"MASS AND INERTIA",
-         {{"TipMass", Use::read},    {"HubMass", Use::ignored},   {"HubIner", Use::ignored},
-          {"GenIner", Use::ignored}, {"NacMass", Use::ignored},   {"NacYIner", Use::ignored},
-          {"YawBrMass", Use::ignored}, {"PtfmMass", Use::ignored}, {"PtfmRIner", Use::ignored},
-          {"PtfmPIner", Use::ignored}, {"PtfmYIner", Use::ignored}, {"PtfmXYIner", Use::ignored},
-          {"PtfmYZIner", Use::ignored}, {"PtfmXZIner", Use::ignored}}},
+         {{"TipMass", Use::read},
+          {"HubMass", Use::ignored},
+          {"HubIner", Use::ignored},
+          {"GenIner", Use::ignored},
+          {"NacMass", Use::ignored},
+          {"NacYIner", Use::ignored},
+          {"YawBrMass", Use::ignored},
+          {"PtfmMass", Use::ignored},
+          {"PtfmRIner", Use::ignored},
+          {"PtfmPIner", Use::ignored},
+          {"PtfmYIner", Use::ignored},
+          {"PtfmXYIner", Use::ignored},
+          {"PtfmYZIner", Use::ignored},
+          {"PtfmXZIner", Use::ignored}}},
         {"BLADE", {{"BldNodes", Use::ignored}, {"BldFile", Use::read}}},
     };
     return sections;
@@ -460,13 +469,13 @@ ImportedBlade parse_elastodyn(const InputText& t)
     const auto need = [&](const std::string& name, const char* section_name) -> const InputSetting& {
         const auto it = read.find(name);
         if (it == read.end())
-            fail(t, 0, name,
-                 std::string("a line with ") + name + " in section " + section_name + " (an ElastoDyn main input file)");
+            fail(
+                t, 0, name,
+                std::string("a line with ") + name + " in section " + section_name + " (an ElastoDyn main input file)");
         return it->second;
     };
     const InputSetting& blades = need("NumBl", "TURBINE CONFIGURATION");
-    if (blades.value != 1 && blades.value != 2 && blades.value != 3)
-        fail(t, blades.line, "NumBl", "1, 2 or 3 blades");
+    if (blades.value != 1 && blades.value != 2 && blades.value != 3) fail(t, blades.line, "NumBl", "1, 2 or 3 blades");
     b.tip_radius = need("TipRad", "TURBINE CONFIGURATION");
     b.hub_radius = need("HubRad", "TURBINE CONFIGURATION");
     if (!(b.hub_radius.value >= 0.0)) fail(t, b.hub_radius.line, "HubRad", "a value >= 0 (the hub radius, m)");
@@ -483,9 +492,10 @@ ImportedBlade parse_elastodyn(const InputText& t)
     check_named_file(t, b.blade_file_setting, b.blade_file);
     // hubbeam takes one blade; the others must be that blade, or the rotor the scene stands for is not the file's.
     for (int k = 2; k <= static_cast<int>(blades.value); ++k)
-        for (const auto& [name, section_name] :
-             {std::pair<const char*, const char*>{"BlPitch", "INITIAL CONDITIONS"},
-              {"PreCone", "TURBINE CONFIGURATION"}, {"TipMass", "MASS AND INERTIA"}, {"BldFile", "BLADE"}}) {
+        for (const auto& [name, section_name] : {std::pair<const char*, const char*>{"BlPitch", "INITIAL CONDITIONS"},
+                                                 {"PreCone", "TURBINE CONFIGURATION"},
+                                                 {"TipMass", "MASS AND INERTIA"},
+                                                 {"BldFile", "BLADE"}}) {
             const std::string kth = std::string(name) + "(" + std::to_string(k) + ")";
             const InputSetting& first = need(std::string(name) + "(1)", section_name);
             const InputSetting& other = need(kth, section_name);
@@ -516,7 +526,9 @@ std::string origin(const ImportedBlade& b, const InputSetting& s, const std::str
 std::string key_line(const std::string& key, const std::string& value, const std::string& comment)
 {
     std::string line = key + " = " + value;
-    if (!comment.empty()) line += std::string(std::max<std::size_t>(1, 32 - std::min<std::size_t>(line.size(), 31)), ' ') + "# " + comment;
+    if (!comment.empty())
+        line +=
+            std::string(std::max<std::size_t>(1, 32 - std::min<std::size_t>(line.size(), 31)), ' ') + "# " + comment;
     return line + "\n";
 }
 
@@ -533,7 +545,9 @@ std::string name_from_scene(const std::string& blade_file, const std::string& sc
     if (ec) return blade.string();
     // Relative when the two share a folder below the root (a project's tree, which moves as a whole); a path that
     // climbs to the root and down again is clearer absolute.
-    const auto top = [](const fs::path& p) { return p.relative_path().empty() ? fs::path() : *p.relative_path().begin(); };
+    const auto top = [](const fs::path& p) {
+        return p.relative_path().empty() ? fs::path() : *p.relative_path().begin();
+    };
     const fs::path relative = blade.lexically_relative(base);
     return relative.empty() || top(blade) != top(base) ? blade.string() : relative.string();
 }
@@ -578,12 +592,11 @@ std::string imported_scene_toml(const ImportedBlade& b, const std::string& scene
     const bool bmodes = b.format == main_input_bmodes;
     // The section file first: a refusal of it names its own line and column (blade_files.cpp).
     const BladeTable table = read_blade_file(b.blade_file);
-    const bool twist_field = !table.GJ.empty() && !table.mass_moment_flap.empty() &&
-                             [&] {
-                                 for (std::size_t k = 0; k < table.x_over_L.size(); ++k)
-                                     if (!(table.mass_moment_flap[k] + table.mass_moment_edge[k] > 0.0)) return false;
-                                 return true;
-                             }();
+    const bool twist_field = !table.GJ.empty() && !table.mass_moment_flap.empty() && [&] {
+        for (std::size_t k = 0; k < table.x_over_L.size(); ++k)
+            if (!(table.mass_moment_flap[k] + table.mass_moment_edge[k] > 0.0)) return false;
+        return true;
+    }();
     const int resample = stations_to_resample(table);
     const std::string input = printable(std::filesystem::path(b.file).filename().string(), 200);
     const double omega = b.rotor_speed.value * rpm;
@@ -608,9 +621,9 @@ std::string imported_scene_toml(const ImportedBlade& b, const std::string& scene
 
     s += "\n[beam]\n";
     const double length = b.tip_radius.value - b.hub_radius.value;
-    s += key_line("length", toml_number(length), "m: " + radius_names + " (lines " +
-                                                      std::to_string(b.tip_radius.line) + ", " +
-                                                      std::to_string(b.hub_radius.line) + ")");
+    s += key_line("length", toml_number(length),
+                  "m: " + radius_names + " (lines " + std::to_string(b.tip_radius.line) + ", " +
+                      std::to_string(b.hub_radius.line) + ")");
     s += key_line("blade_file", quoted_string(name_from_scene(b.blade_file, scene_path)),
                   origin(b, b.blade_file_setting, ""));
     if (resample > 0)
@@ -633,7 +646,8 @@ std::string imported_scene_toml(const ImportedBlade& b, const std::string& scene
 
     if (b.has_gravity) {
         s += "\n# " + origin(b, b.gravity, "m/s^2") + ": the rotor turns in a vertical plane. hubbeam modes takes\n";
-        s += "# the modes about a steady spin without gravity (under its weight a spinning blade moves periodically);\n";
+        s +=
+            "# the modes about a steady spin without gravity (under its weight a spinning blade moves periodically);\n";
         s += "# for hubbeam run, uncomment:\n";
         s += "# [gravity]\n# g = " + toml_number(b.gravity.value) + "\n";
     }
@@ -657,9 +671,9 @@ std::string imported_scene_toml(const ImportedBlade& b, const std::string& scene
 
     // Checked by hubbeam's own reader, as `hubbeam run` will read it: a value out of the scene's range is refused
     // here, against the input's line, before anything is written.
-    const Origins origins = {{"beam.length", &b.tip_radius}, {"beam.pitch", &b.pitch},
-                             {"beam.precone", &b.precone},   {"hub.radius", &b.hub_radius},
-                             {"tip.mass", &b.tip_mass},      {"tip.inertia", &b.tip_inertia},
+    const Origins origins = {{"beam.length", &b.tip_radius},   {"beam.pitch", &b.pitch},
+                             {"beam.precone", &b.precone},     {"hub.radius", &b.hub_radius},
+                             {"tip.mass", &b.tip_mass},        {"tip.inertia", &b.tip_inertia},
                              {"motion.omega0", &b.rotor_speed}};
     try {
         (void)parse_scene(s, scene_path);

@@ -19,9 +19,9 @@ struct InputSetting {
 /// What a main input file says of one blade, in the file's own units (rpm, degrees), each value with the line that
 /// gave it, so that a scene key it becomes can be traced back to the file.
 struct ImportedBlade {
-    std::string format;        // main_input_bmodes or main_input_elastodyn
-    std::string file;          // the main input file, as given
-    std::string blade_file;    // the section file it names, resolved against the main file's folder
+    std::string format;      // main_input_bmodes or main_input_elastodyn
+    std::string file;        // the main input file, as given
+    std::string blade_file;  // the section file it names, resolved against the main file's folder
     InputSetting blade_file_setting;
     InputSetting rotor_speed;  // rpm
     InputSetting tip_radius;   // m, from the axis (BModes' radius, ElastoDyn's TipRad)
@@ -31,7 +31,7 @@ struct ImportedBlade {
     InputSetting tip_mass;     // kg
     InputSetting tip_inertia;  // kg m^2, the tip body's lag inertia (BModes' ixx_tip; ElastoDyn has none: 0)
     bool has_gravity = false;
-    InputSetting gravity;      // m/s^2 (ElastoDyn up to FAST v8: Gravity)
+    InputSetting gravity;  // m/s^2 (ElastoDyn up to FAST v8: Gravity)
     /// The blade file's structural damping ratios (ElastoDyn's BldFlDmp(1), BldFlDmp(2), BldEdDmp(1), percent of
     /// critical), which hubbeam does not model: the scene states them in a comment, and is undamped.
     std::string damping_file;
