@@ -80,5 +80,6 @@ Command add_linearize_command(CLI::App& app);
 Command add_sweep_command(CLI::App& app);
 Command add_kernels_command(CLI::App& app);
 Command add_plot_command(CLI::App& app);
+Command add_import_command(CLI::App& app);
 
 }  // namespace hubbeam::cli

@@ -9,6 +9,7 @@
 //   hubbeam linearize SCENE.toml --omega W -o PREFIX
 //   hubbeam sweep SWEEP.toml [-o FILE] [--scheduler tls://HOST:PORT --tls-ca-file --tls-cert --tls-key]
 //                 [--workers N] [--dashboard] [--no-resume]                                (runtime/python: Dask)
+//   hubbeam import FILE -o SCENE.toml                  (a BModes .bmi or ElastoDyn main file into a scene)
 //   hubbeam kernels [--ny LIST] [--methods LIST] [--drives LIST] [--orders LIST] [--nx LIST] [--samples N] [-o FILE]
 //
 // Every file is written through OutputFile (output_file.hpp); outputs are checked against the command's inputs and
@@ -95,7 +96,7 @@ std::string unknown_option(const CLI::App& command, const std::vector<std::strin
 }
 
 /// The commands, each with the function that adds it to the app.
-const std::array<std::pair<const char*, hubbeam::cli::Command (*)(CLI::App&)>, 9> command_table = {{
+const std::array<std::pair<const char*, hubbeam::cli::Command (*)(CLI::App&)>, 10> command_table = {{
     {"run", hubbeam::cli::add_run_command},
     {"variants", hubbeam::cli::add_variants_command},
     {"bench", hubbeam::cli::add_bench_command},
@@ -105,6 +106,7 @@ const std::array<std::pair<const char*, hubbeam::cli::Command (*)(CLI::App&)>, 9
     {"sweep", hubbeam::cli::add_sweep_command},
     {"kernels", hubbeam::cli::add_kernels_command},
     {"plot", hubbeam::cli::add_plot_command},
+    {"import", hubbeam::cli::add_import_command},
 }};
 
 /// The commands added to app: only the one argv names when it names one (its options alone are built: a run's
