@@ -1,4 +1,4 @@
-// The field's own blade files as they come (docs/validation.md), byte for byte in tests/data/blades/, run at all their
+// The field's own blade files as they come (docs/validation.md), byte for byte in tests/data/, run at all their
 // stations with no resampling, converged: OpenFAST's NREL 5-MW blade file of its regression tests (49 stations) against
 // the frequencies the NREL 5-MW definition (Jonkman et al. 2009, NREL/TP-500-38060, Table 9-1) reports, and the IEA
 // 15-MW reference turbine's ElastoDyn blade file (50 stations, a PitchAxis column) against Gaertner et al. 2020,
@@ -24,7 +24,7 @@ std::vector<double> blade_modes(const TempFolder& folder, const std::string& fil
 {
     const std::string scene = folder.write(
         "blade.toml", "[beam]\nlength = " + std::to_string(length) + "\nblade_file = \"" +
-                          std::string(HUBBEAM_SOURCE_DIR) + "/tests/data/blades/" + file + "\"\n[hub]\nradius = " +
+                          std::string(HUBBEAM_SOURCE_DIR) + "/tests/data/" + file + "\"\n[hub]\nradius = " +
                           std::to_string(hub) + "\n[motion]\nkind = \"spin-up\"\nomega0 = 1.0\nduration = 1.0\n"
                           "[discretization]\nmethod = \"fem\"\nnx = 0\nny = " + std::to_string(n) + "\nnz = " +
                           std::to_string(n) + "\n[output]\nt_end = 1.0\n");
@@ -42,7 +42,7 @@ std::vector<double> blade_modes(const TempFolder& folder, const std::string& fil
 /// The NREL 5-MW blade: 61.5 m on a hub of 1.5 m (TipRad 63 m), 49 stations.
 std::vector<double> nrel5mw(const TempFolder& folder, int n, double omega)
 {
-    return blade_modes(folder, "NRELOffshrBsline5MW_Blade.dat", 49, 61.5, 1.5, n, omega);
+    return blade_modes(folder, "import/5MW_Baseline/NRELOffshrBsline5MW_Blade.dat", 49, 61.5, 1.5, n, omega);
 }
 
 }  // namespace
@@ -87,7 +87,7 @@ TEST_CASE("the IEA 15-MW ElastoDyn blade file runs unchanged and has the definit
     // the mesh and the solver). The blade is 117 m long (Table 2.1), on the hub of 3.97 m (its diameter 7.94 m).
     const TempFolder folder("iea15mw");
     const auto modes = [&](int n) {
-        return blade_modes(folder, "IEA-15-240-RWT_ElastoDyn_blade.dat", 50, 117.0, 3.97, n, 0.0);
+        return blade_modes(folder, "blades/IEA-15-240-RWT_ElastoDyn_blade.dat", 50, 117.0, 3.97, n, 0.0);
     };
     const std::vector<double> coarse = modes(32), fine = modes(64);
     for (std::size_t i = 0; i < 2; ++i) CHECK(std::abs(coarse[i] - fine[i]) < 2e-4 * fine[i]);

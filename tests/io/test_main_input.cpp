@@ -152,8 +152,9 @@ TEST_CASE("the NREL 5 MW ElastoDyn files become a scene with their values, and t
     CHECK(p.m_tip == value_before(text, "TipMass(1)"));
     REQUIRE(scene.tables.size() == 1);
     CHECK(std::filesystem::equivalent(scene.tables[0].second, data("5MW_Baseline/NRELOffshrBsline5MW_Blade.dat")));
-    // 49 stations of 5 decimals: more than a variant's name carries, so resampled; no EA, GJ or mass moments.
-    CHECK(scene.blade_stations > 0);
+    // Its 49 stations read as they are (no resampling); no EA, GJ or mass moments.
+    CHECK(scene.blade_stations == 0);
+    CHECK(scene.parameters.stations.size() == 49);
     CHECK(scene.variant.nx == 0);
     CHECK(scene.variant.nt == 0);
     CHECK(scene.variant.nz > 0);

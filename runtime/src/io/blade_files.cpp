@@ -188,16 +188,6 @@ std::vector<std::string_view> fields(std::string_view s)
     return out;
 }
 
-/// A field as a finite number, in Fortran's forms too (1.5D+03, +2., .5); false when it is none.
-bool number(std::string_view field, double& x)
-{
-    if (field.starts_with('+')) field.remove_prefix(1);
-    std::string s(field);
-    std::replace_if(
-        s.begin(), s.end(), [](char c) { return c == 'd' || c == 'D'; }, 'e');
-    const auto [stop, ec] = std::from_chars(s.data(), s.data() + s.size(), x);
-    return ec == std::errc() && stop == s.data() + s.size() && std::isfinite(x);
-}
 
 /// A field as a whole number >= 0 (a count of stations); false when it is none.
 bool count(std::string_view field, long& n)
@@ -296,7 +286,7 @@ bool is_row(std::string_view text, std::size_t columns)
 {
     const std::vector<std::string_view> f = fields(text);
     double x = 0.0;
-    return f.size() == columns && std::all_of(f.begin(), f.end(), [&](std::string_view s) { return number(s, x); });
+    return f.size() == columns && std::all_of(f.begin(), f.end(), [&](std::string_view s) { return fortran_number(s, x); });
 }
 
 /// Reads the n rows of a table with `columns` from the lines next gives, each row one line of finite numbers, and
@@ -313,13 +303,13 @@ Rows read_rows(const BladeText& t, Next&& next, const std::vector<const Column*>
         if (!next(line)) fail(t, 0, "", 0, rows_wanted + ", the file ends after " + std::to_string(r));
         const std::vector<std::string_view> f = fields(line.text);
         double x = 0.0;
-        if (f.empty() || !number(f[0], x))
+        if (f.empty() || !fortran_number(f[0], x))
             fail(t, line.number, "", 0, rows_wanted + ", found " + std::to_string(r) + " before this line");
         if (f.size() != columns.size())
             fail(t, line.number, "", 0,
                  std::to_string(columns.size()) + " numbers on a row, one per column, got " + std::to_string(f.size()));
         for (std::size_t c = 0; c < columns.size(); ++c) {
-            if (!number(f[c], x))
+            if (!fortran_number(f[c], x))
                 fail(t, line.number, columns[c]->name, r + 1,
                      std::string("a finite number (") + columns[c]->meaning + ")");
             rows.by_column[c].push_back(x);
@@ -381,7 +371,7 @@ void skip_units(const BladeText& t, Next&& next, const char* example)
     if (!next(line)) fail(t, 0, "", 0, wanted + ", then the table's rows");
     double x = 0.0;
     const std::vector<std::string_view> f = fields(line.text);
-    if (!f.empty() && number(f[0], x)) fail(t, line.number, "", 0, wanted + ", before the first row");
+    if (!f.empty() && fortran_number(f[0], x)) fail(t, line.number, "", 0, wanted + ", before the first row");
 }
 
 /// The names of BModes' columns, for messages.
@@ -516,7 +506,7 @@ ElastoDynParameters elastodyn_parameters(const BladeText& t, Next&& next)
         if (k == 0 && !count(w.value, p.stations)) fail(t, w.line, "", 0, "a whole number before " + what);
         if (k == 0 && p.stations < 2)
             fail(t, w.line, "", 0, "NBlInpSt >= 2 (a station at the root and one at the tip)");
-        if (k > 0 && (!number(w.value, *factors[k]) || !(*factors[k] > 0.0)))
+        if (k > 0 && (!fortran_number(w.value, *factors[k]) || !(*factors[k] > 0.0)))
             fail(t, w.line, "", 0, "a number > 0 before " + what);
     }
     return p;
@@ -635,6 +625,16 @@ BladeTable read_blade_file(const std::string& path)
     if (elastodyn) return parse_elastodyn(t);
     if (bmodes) return parse_bmodes(t);
     fail(t, 0, "", 0, formats);
+}
+
+bool fortran_number(std::string_view field, double& x)
+{
+    if (field.starts_with('+')) field.remove_prefix(1);
+    std::string s(field);
+    std::replace_if(
+        s.begin(), s.end(), [](char c) { return c == 'd' || c == 'D'; }, 'e');
+    const auto [stop, ec] = std::from_chars(s.data(), s.data() + s.size(), x);
+    return ec == std::errc() && stop == s.data() + s.size() && std::isfinite(x);
 }
 
 }  // namespace hubbeam

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace hubbeam {
@@ -62,5 +63,9 @@ BladeTable read_elastodyn_blade(const std::string& path);
 /// Reads a blade file of either format, recognised from its content (an ElastoDyn file has a DISTRIBUTED BLADE
 /// PROPERTIES section, a BModes file the column titles str_tw ... mass_den). Throws BladeFileError.
 BladeTable read_blade_file(const std::string& path);
+
+/// A field of the field's input files as a finite number, in Fortran's forms too (1.5D+03, +2., .5); false when it is
+/// none (BModes' and ElastoDyn's blade and main files alike).
+bool fortran_number(std::string_view field, double& x);
 
 }  // namespace hubbeam

@@ -135,17 +135,6 @@ std::vector<std::string> fields(std::string_view s)
     return out;
 }
 
-/// A field as a finite number, in Fortran's forms too (1.5D+03, +2., .5); false when it is none.
-bool number(std::string_view field, double& x)
-{
-    if (field.starts_with('+')) field.remove_prefix(1);
-    std::string s(field);
-    std::replace_if(
-        s.begin(), s.end(), [](char c) { return c == 'd' || c == 'D'; }, 'e');
-    const auto [stop, ec] = std::from_chars(s.data(), s.data() + s.size(), x);
-    return ec == std::errc() && stop == s.data() + s.size() && std::isfinite(x);
-}
-
 /// Whether a and b are the same name in any case.
 bool same_name(std::string_view a, std::string_view b)
 {
@@ -223,7 +212,7 @@ public:
     InputSetting number_var(std::initializer_list<const char*> names, const char* meaning)
     {
         InputSetting s = var(names, meaning);
-        if (!number(s.text, s.value)) fail(t_, s.line, s.name, std::string("a finite number (") + meaning + ")");
+        if (!fortran_number(s.text, s.value)) fail(t_, s.line, s.name, std::string("a finite number (") + meaning + ")");
         return s;
     }
 
@@ -421,7 +410,7 @@ void read_blade_parameters(const std::string& path, ImportedBlade& b)
         const bool tuner = f[1] == "FlStTunr(1)" || f[1] == "FlStTunr(2)";
         if (!damping && !tuner) continue;
         InputSetting s{f[1], line, f[0], 0.0};
-        if (!number(s.text, s.value) || (damping && !(s.value >= 0.0)))
+        if (!fortran_number(s.text, s.value) || (damping && !(s.value >= 0.0)))
             fail(t, line, s.name, damping ? "a number >= 0 (structural damping, percent of critical)" : "a number");
         if (tuner)
             require(t, s, 1,
@@ -462,7 +451,7 @@ ImportedBlade parse_elastodyn(const InputText& t)
         if (setting->use == Use::ignored) continue;
         InputSetting s{f[1], line, f[0], 0.0};
         if (read.count(f[1]) != 0) fail(t, line, f[1], "the setting once, not a second time");
-        if (!same_name(base, "BldFile") && !number(s.text, s.value)) fail(t, line, f[1], "a finite number");
+        if (!same_name(base, "BldFile") && !fortran_number(s.text, s.value)) fail(t, line, f[1], "a finite number");
         if (setting->use == Use::zero && s.value != 0.0) fail(t, line, f[1], std::string("0: ") + setting->why);
         read[f[1]] = s;
     }
@@ -552,15 +541,6 @@ std::string name_from_scene(const std::string& blade_file, const std::string& sc
     return relative.empty() || top(blade) != top(base) ? blade.string() : relative.string();
 }
 
-/// beam.blade_stations for a table whose stations the variant's name cannot carry (0: the file's own stations).
-int stations_to_resample(const BladeTable& table)
-{
-    Extras e;
-    if (table.x_over_L.size() <= 64 && set_stations(table.x_over_L, e).empty()) return 0;
-    // Every 5 % of the span: two decimals, which every variant name carries; a user wanting more edits the key.
-    return 21;
-}
-
 /// The scene's key that each input setting set, to report a scene refusal against the file's line.
 using Origins = std::map<std::string, const InputSetting*>;
 
@@ -597,7 +577,6 @@ std::string imported_scene_toml(const ImportedBlade& b, const std::string& scene
             if (!(table.mass_moment_flap[k] + table.mass_moment_edge[k] > 0.0)) return false;
         return true;
     }();
-    const int resample = stations_to_resample(table);
     const std::string input = printable(std::filesystem::path(b.file).filename().string(), 200);
     const double omega = b.rotor_speed.value * rpm;
     const std::string radius_names = bmodes ? "radius - hub_rad" : "TipRad - HubRad";
@@ -626,10 +605,6 @@ std::string imported_scene_toml(const ImportedBlade& b, const std::string& scene
                       std::to_string(b.hub_radius.line) + ")");
     s += key_line("blade_file", quoted_string(name_from_scene(b.blade_file, scene_path)),
                   origin(b, b.blade_file_setting, ""));
-    if (resample > 0)
-        s += key_line("blade_stations", std::to_string(resample),
-                      "the file's " + std::to_string(table.x_over_L.size()) +
-                          " stations, more than a variant's name carries, resampled every 5 % of the span");
     s += key_line("pitch", toml_number(b.pitch.value * degree), "rad: " + origin(b, b.pitch, "deg"));
     s += key_line("precone", toml_number(b.precone.value * degree), "rad: " + origin(b, b.precone, "deg"));
 
