@@ -100,11 +100,10 @@ class FactorColumns {
 public:
     /// coupling_points: the Gauss nodes of a piece that H_ij's integrand is interpolated through (more than its
     /// degree for the polynomial bases).
-    FactorColumns(const Bases& b, const std::vector<double>& cuts, int points, int coupling_points)
-        : b_(b), cuts_(cuts), points_(points), inner_(gauss_legendre(coupling_points))
+    FactorColumns(const Bases& b, const std::vector<double>& cuts, const std::vector<double>& nodes, int points,
+                  int coupling_points)
+        : b_(b), cuts_(cuts), points_(points), inner_(gauss_legendre(coupling_points)), nodes_(nodes)
     {
-        const QuadratureRule rule = composite_gauss_legendre(cuts, points);
-        nodes_ = rule.nodes;
         // running_[g][r] = int_0^(t_g) l_r(t) dt: the Lagrange polynomial l_r of the inner nodes integrated from a
         // piece's start to its g-th node (both scaled to [0, 1]), by a Gauss rule exact for its degree.
         const QuadratureRule outer = gauss_legendre(points), exact = gauss_legendre(coupling_points);
@@ -120,8 +119,6 @@ public:
                     running_[g][r] += outer.nodes[g] * exact.weights[s] * l;
                 }
     }
-
-    const std::vector<double>& nodes() const { return nodes_; }
 
     const Column& operator()(const SectionFactor& f)
     {
@@ -186,7 +183,7 @@ private:
     int points_;
     QuadratureRule inner_;
     std::vector<std::vector<double>> running_;
-    std::vector<double> nodes_;
+    const std::vector<double>& nodes_;
     std::map<std::tuple<int, int, int, int>, Column> columns_;
 };
 
@@ -238,6 +235,9 @@ std::vector<double> section_integrals(const VariantKey& key, const SectionIntegr
         const int d = list[n].distribution;
         if (d < 0 || d >= static_cast<int>(section_distribution_count))
             throw std::invalid_argument("section integrals: unknown distribution " + std::to_string(d));
+        if (list[n].count < 0 || list[n].count > generated::max_section_factors)
+            throw std::invalid_argument("section integrals: an integral of " + std::to_string(list[n].count) +
+                                        " factors");
         (tabulated(static_cast<SectionDistribution>(d)) ? table : twist) = true;
     }
     if (const std::string why = stations_problem(p.stations); table && !why.empty())
@@ -255,9 +255,6 @@ std::vector<double> section_integrals(const VariantKey& key, const SectionIntegr
         int highest = 0, slopes = 0;
         for (int n = 0; n < count; ++n) {
             const SectionIntegral& s = list[n];
-            if (s.count < 0 || s.count > generated::max_section_factors)
-                throw std::invalid_argument("section integrals: an integral of " + std::to_string(s.count) +
-                                            " factors");
             int d = 1 + s.power;
             for (int f = 0; f < s.count; ++f) {
                 d += degree(b, s.factors[f]);
@@ -268,8 +265,8 @@ std::vector<double> section_integrals(const VariantKey& key, const SectionIntegr
         points = highest / 2 + 1 + (twist ? 8 : 0);  // 2 points - 1 >= highest
         coupling_points = slopes + 1;                 // interpolates phi_i' phi_j' of degree `slopes` exactly
     }
-    FactorColumns columns(b, cuts, points, coupling_points);
     const QuadratureRule rule = composite_gauss_legendre(cuts, points);
+    FactorColumns columns(b, cuts, rule.nodes, points, coupling_points);
     // Each distribution at the nodes: linear on each interval, which lies between two stations.
     std::map<int, std::vector<double>> at_nodes;
     const auto distribution = [&](int d) -> const std::vector<double>& {
