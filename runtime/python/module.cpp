@@ -513,17 +513,20 @@ py::array_t<double> matrix(const Eigen::MatrixXd& m)
     return a;
 }
 
+/// The scene's model, chosen without the GIL: choosing it may compile a variant for seconds.
+std::unique_ptr<Model> model_without_gil(const Scene& scene)
+{
+    const WithoutGil release;
+    return guarded(scene, [&] { return make_model(scene.key(), scene.parameters, scene.source); });
+}
+
 /// The state-space matrices and their names about the steady spin omega; a controlled hub's closed loop and open
 /// loop (hubbeam.linearize).
 py::dict linearize(const std::string& text, const std::string& name, const Keywords& keywords, double omega)
 {
     const Scene scene = scene_of(text, name, keywords);
     const VariantKey key = scene.key();
-    std::unique_ptr<Model> model;
-    {
-        const WithoutGil release;  // choosing the model may compile a variant for seconds
-        model = guarded(scene, [&] { return make_model(key, scene.parameters, scene.source); });
-    }
+    const std::unique_ptr<Model> model = model_without_gil(scene);
     const StateSpace open =
         at_spin(omega, [&] { return state_space(*model, steady_spin(*model, omega, scene.motion.initial_theta())); });
     // A controlled hub: the closed loop (input: a torque added to the controller's), and under "open" the hub
@@ -553,11 +556,7 @@ py::dict elastodyn_shapes(const std::string& text, const std::string& name, cons
 {
     const Scene scene = scene_of(text, name, keywords);
     const VariantKey key = scene.key();
-    std::unique_ptr<Model> model;
-    {
-        const WithoutGil release;  // choosing the model may compile a variant for seconds
-        model = guarded(scene, [&] { return make_model(key, scene.parameters, scene.source); });
-    }
+    const std::unique_ptr<Model> model = model_without_gil(scene);
     const ElastoDynShapes shapes = at_spin(omega, [&] {
         const WithoutGil release;
         return elastodyn_mode_shapes(*model, scene.parameters, omega, scene.axial, scene.motion.initial_theta());
