@@ -7,7 +7,7 @@ namespace hubbeam {
 
 std::string CoordinateField::name(int k) const
 {
-    return kind == FieldKind::hub_angle ? symbol : symbol + std::to_string(k + 1);
+    return kind == FieldKind::hub_angle ? symbol : symbol + std::to_string(k + 1) + suffix;
 }
 
 int CoordinateLayout::size() const
@@ -55,19 +55,26 @@ std::vector<std::string> CoordinateLayout::names() const
     return n;
 }
 
-CoordinateLayout coordinate_layout(const VariantKey& key)
+CoordinateLayout coordinate_layout(const VariantKey& key, int blades)
 {
+    if (blades < 1) throw std::invalid_argument("coordinate_layout: a rotor has at least one blade");
     CoordinateLayout layout;
+    int beam = 0;
+    std::string suffix;
     const auto add = [&](FieldKind kind, std::optional<FieldBasis> basis, int count, const char* symbol) {
-        layout.fields.push_back({kind, 0, std::move(basis), count, layout.size(), symbol});
+        layout.fields.push_back({kind, beam, std::move(basis), count, layout.size(), symbol, suffix});
     };
     // The hub angle is a coordinate only under an applied torque; a prescribed theta(t) is an input.
     if (key.drive == Drive::torque) add(FieldKind::hub_angle, std::nullopt, 1, "theta");
-    add(FieldKind::axial, key.axial_basis(), key.nx, "A");
-    add(FieldKind::inplane, key.transverse_basis(), key.ny, "B");
-    // The out-of-plane fields are listed only where they hold coordinates: a planar variant's layout is the paper's.
-    if (key.nz > 0) add(FieldKind::flap, key.flap_basis(), key.nz, "Z");
-    if (key.nt > 0) add(FieldKind::twist, key.twist_basis(), key.nt, "P");
+    for (beam = 0; beam < blades; ++beam) {
+        suffix = blades > 1 ? "_" + std::to_string(beam + 1) : "";
+        add(FieldKind::axial, key.axial_basis(), key.nx, "A");
+        add(FieldKind::inplane, key.transverse_basis(), key.ny, "B");
+        // The out-of-plane fields are listed only where they hold coordinates: a planar variant's layout is the
+        // paper's.
+        if (key.nz > 0) add(FieldKind::flap, key.flap_basis(), key.nz, "Z");
+        if (key.nt > 0) add(FieldKind::twist, key.twist_basis(), key.nt, "P");
+    }
     return layout;
 }
 

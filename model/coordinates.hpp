@@ -24,10 +24,12 @@ struct CoordinateField {
     int count = 0;                    // may be 0 (nx = 0): the field is listed but holds no coordinate
     int first = 0;
     std::string symbol;  // the letter of its coordinates in names and code: "theta", "A", "B", "Z", "P"
+    std::string suffix;  // a rotor's blade in names: "_2" for blade 2 of several blades; "" for one blade
+
 
     int end() const { return first + count; }
     bool holds(int i) const { return i >= first && i < end(); }
-    /// The name of its coordinate k (0-based): "theta", "A3".
+    /// The name of its coordinate k (0-based): "theta", "A3", "B2_3" (blade 3 of a rotor).
     std::string name(int k) const;
 };
 
@@ -51,7 +53,9 @@ struct CoordinateLayout {
     std::vector<std::string> names() const;
 };
 
-/// The layout of a variant's q: the single place where the order of fields is decided.
-CoordinateLayout coordinate_layout(const VariantKey& key);
+/// The layout of a variant's q: the single place where the order of fields is decided. A rotor of `blades` blades
+/// (docs/model.md section 13) lists the hub angle once, then each blade's fields in turn (beam b - 1 for blade b,
+/// their names suffixed "_b"); one blade is the variant's own layout.
+CoordinateLayout coordinate_layout(const VariantKey& key, int blades = 1);
 
 }  // namespace hubbeam

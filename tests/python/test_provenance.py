@@ -51,6 +51,8 @@ class EffectiveScene(unittest.TestCase):
                             self.assertTrue(os.path.samefile(got, os.path.join(os.path.dirname(scene), value)))
                         elif isinstance(value, str):
                             self.assertEqual(got, value, f"{table}.{key}")
+                        elif isinstance(value, list):
+                            self.assertEqual([float(x) for x in got], [float(x) for x in value], f"{table}.{key}")
                         else:
                             self.assertEqual(float(got), float(value), f"{table}.{key}")
 

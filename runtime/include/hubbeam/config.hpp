@@ -93,6 +93,24 @@ struct OutputOptions {
     std::vector<std::string> sensitivities;
 };
 
+/// The most blades a rotor may have ([rotor] blades): rotors in the field have 1 to 8; the bound keeps a mistyped
+/// count from building a model of a million blades.
+inline constexpr int max_blades = 64;
+
+/// A rotor of identical blades on one hub (docs/model.md section 13): blade b (1-based) at azimuth
+/// theta + 2 pi (b - 1)/blades, with its own pitch increment and tip mass. One blade: the scene's beam alone.
+struct Rotor {
+    int blades = 1;
+    std::vector<double> pitch_offsets;  // rad, one per blade, added to the pitch; empty: none
+    std::vector<double> tip_masses;     // kg, one per blade, in place of tip.mass; empty: tip.mass on every blade
+
+    /// Blade b's azimuth offset from theta, 2 pi b / blades (b 0-based).
+    double azimuth(int b) const;
+    /// Blade b's parameters (b 0-based): the scene's, with its pitch increment and tip mass, and the hub's inertia on
+    /// blade 0 alone (each blade's model carries the hub terms it is given; the rotor sums them once).
+    Parameters blade(const Parameters& p, int b) const;
+};
+
 struct Scene {
     std::string path;  // the file it came from, for messages
     /// The other files it was read from, each with its key: {"beam.profile", FILE}, {"beam.blade_file", FILE},
@@ -109,6 +127,7 @@ struct Scene {
     Axial axial = Axial::dynamic;  // quasi-static: A follows the axial equilibrium (integrate.hpp)
     SolverOptions solver;
     OutputOptions output;
+    Rotor rotor;
 
     /// The control, or nullptr: what the integrator and the linearization take.
     const Control* controller() const { return control ? &*control : nullptr; }
@@ -131,11 +150,14 @@ struct Scene {
         VariantKey k = variant;
         k.drive = drive();
         // A sensitivity to a term's value needs the term, even at zero (where it reproduces the scene).
-        const std::vector<double> p = parameters.packed();
+        // A rotor's blades run one variant: a term is carried when any blade's values use it.
         for (const TermInfo& t : terms()) {
             if (!t.selected_by_values) continue;
             bool used = false;
-            for (Param q : t.params) used = used || p[index(q)] != 0.0 || wants({param_names[index(q)]});
+            for (int b = 0; b < rotor.blades; ++b) {
+                const std::vector<double> p = (rotor.blades > 1 ? rotor.blade(parameters, b) : parameters).packed();
+                for (Param q : t.params) used = used || p[index(q)] != 0.0 || wants({param_names[index(q)]});
+            }
             t.set(k.extras, used);
         }
         return k;

@@ -21,4 +21,13 @@ using ModelNote = std::function<void(const std::string&)>;
 std::unique_ptr<Model> make_model(const VariantKey& key, const Parameters& p,
                                   ModelSource source = ModelSource::automatic, const ModelNote& note = {});
 
+/// The model a scene runs: its variant's (make_model), or for a rotor of several blades ([rotor] blades > 1) one
+/// model of the variant per blade, each at its blade's parameters and azimuth, joined through the hub (rotor_model.hpp).
+std::unique_ptr<Model> make_scene_model(const Scene& scene, const ModelNote& note = {});
+
+/// Blade b's tip (b 0-based) at coordinates q of a scene's model: the model's tip for a single blade.
+Tip blade_tip(const Model& model, const double* q, int b);
+/// The number of blades of a scene's model (1 for every model but a rotor's).
+int blade_count(const Model& model);
+
 }  // namespace hubbeam

@@ -145,6 +145,11 @@ public:
 
 protected:
     explicit Model(const VariantKey& key) : key_(key), coordinates_(coordinate_layout(key)), nq_(coordinates_.size()) {}
+    /// A model whose q is laid out otherwise than its variant's (a rotor's blades, each of the variant).
+    Model(const VariantKey& key, CoordinateLayout layout, const Parameters& p)
+        : key_(key), coordinates_(std::move(layout)), nq_(coordinates_.size()), parameters_(p.packed())
+    {
+    }
     Model(const VariantKey& key, const Parameters& p)
         : key_(key), coordinates_(coordinate_layout(key)), nq_(coordinates_.size()), parameters_(p.packed())
     {

@@ -47,7 +47,8 @@ struct SceneKey {
     const char* option;  // "--ny", or nullptr; CLI11's form ("-o,--output"): messages use the first name
     /// file: the name of a file the scene reads (relative to the scene's folder), which every writer must leave
     /// alone and a sweep's resuming keys by content; text: any other string (a word list, an output's name).
-    enum class Kind { number, integer, word, text, file } kind;
+    /// numbers: a TOML array of numbers (an override: numbers separated by commas).
+    enum class Kind { number, integer, word, text, file, numbers } kind;
     std::string expected;  // "an integer >= 1 (Ny)", or for words "one of \"amm\", \"fem\", ..."
     std::vector<std::string> motion_kinds = {};  // the [motion] kinds that take the key ("spin-up", ...); empty: all
     std::size_t max_bytes = 0;                   // Kind::file: the most bytes the reader reads of the file

@@ -25,6 +25,9 @@ struct Row {
     RowExtras extras{};
     /// A sensitivity run's derivative columns (ColumnSet::derived names them), valid while the sink runs; else null.
     const double* derived = nullptr;
+    /// A rotor's blades 2 .. N: each blade's tip columns (ColumnSet::blade_columns), valid while the sink runs; else
+    /// null.
+    const double* blades = nullptr;
 };
 
 /// One column of the output: its name in the CSV header and the Python module, its unit, what it holds.
@@ -74,7 +77,7 @@ inline constexpr OptionalColumn optional_columns[] = {
 };
 inline constexpr std::size_t optional_width = std::size(optional_columns);
 // Every member of Row has its column (a member added to Row and not here fails to compile).
-static_assert(sizeof(Row) == (row_width + optional_width) * sizeof(double) + sizeof(const double*));
+static_assert(sizeof(Row) == (row_width + optional_width) * sizeof(double) + 2 * sizeof(const double*));
 static_assert(sizeof(RowExtras) == optional_width * sizeof(double));
 
 /// Which optional columns a run's rows carry: bit i for optional_columns[i].
@@ -82,12 +85,17 @@ struct ColumnSet {
     unsigned bits = 0;
     /// The derivative columns after the optional ones, "d_OUTPUT/d_PARAM" (sensitivity_columns), read from Row::derived.
     std::vector<std::string> derived = {};
+    /// A rotor's blades (docs/model.md section 13): with more than one, the tip columns carry the blade's number
+    /// ("tip_uy_1"), and blades 2 .. N's follow the optional ones, read from Row::blades.
+    int blades = 1;
     bool has(std::size_t i) const { return (bits >> i & 1u) != 0; }
+    /// The tip columns of one blade: tip_uy, tip_ux1, tip_ux and the optional tip_uz, tip_phi the run has.
+    std::size_t blade_columns() const { return 3 + (has(0) ? 1 : 0) + (has(1) ? 1 : 0); }
     std::size_t count() const
     {
         std::size_t n = 0;
         for (std::size_t i = 0; i < optional_width; ++i) n += has(i) ? 1 : 0;
-        return n + derived.size();
+        return n + static_cast<std::size_t>(blades - 1) * blade_columns() + derived.size();
     }
 };
 /// Calls value(x) for each value of row a CSV line or the Python module's array holds, in column order: row_columns',
@@ -98,6 +106,8 @@ void for_each_value(const Row& row, const ColumnSet& set, Value value)
     for (const RowColumn& c : row_columns) value(row.*c.member);
     for (std::size_t i = 0; set.bits != 0 && i < optional_width; ++i)
         if (set.has(i)) value(row.extras.*optional_columns[i].member);
+    const std::size_t blade_values = static_cast<std::size_t>(set.blades - 1) * set.blade_columns();
+    for (std::size_t i = 0; i < blade_values; ++i) value(row.blades[i]);
     for (std::size_t i = 0; i < set.derived.size(); ++i) value(row.derived[i]);
 }
 /// The outputs a sensitivity run differentiates, in column order: what a reader of the rows plots (the energies

@@ -36,7 +36,7 @@ bool weight_turns_with_spin(const VariantKey& key, const std::vector<double>& p)
 
 std::vector<int> modal_coordinates(const Model& model, const SteadySpin& s, Axial axial)
 {
-    std::vector<int> R = kept_coordinates(model.key(), axial);
+    std::vector<int> R = kept_coordinates(model.coordinates(), axial);
     if (model.key().drive == Drive::torque && s.held) R.erase(R.begin());
     return R;
 }
@@ -57,9 +57,14 @@ SteadySpin steady_spin(const Model& model, double omega, double theta)
         return held_equilibrium(model, theta);
     // Newton on the axial rows with the bending fields straight (the straight beam is an equilibrium by symmetry);
     // out of the plane a pitch, pre-twist or precone bends and twists the steady beam (coning): on every elastic row.
-    const CoordinateField& axial = *model.coordinates().find(FieldKind::axial);
-    const int n = model.nq(), e0 = model.coordinates().first_elastic();
-    const int a0 = key.out_of_plane() ? e0 : axial.first, na = key.out_of_plane() ? n - e0 : axial.count;
+    // The rows solved: every elastic one out of the plane, else every axial field's (each blade's, on a rotor).
+    const int n = model.nq();
+    std::vector<int> rows;
+    for (const CoordinateField& f : model.coordinates().fields)
+        if (f.kind != FieldKind::hub_angle && (key.out_of_plane() || f.kind == FieldKind::axial))
+            for (int i = f.first; i < f.end(); ++i) rows.push_back(i);
+    const int na = static_cast<int>(rows.size());
+    const Eigen::VectorXi at = Eigen::Map<const Eigen::VectorXi>(rows.data(), na);
     SteadySpin s;
     s.omega = omega;
     s.q.assign(static_cast<std::size_t>(n), 0.0);
@@ -75,12 +80,12 @@ SteadySpin steady_spin(const Model& model, double omega, double theta)
     for (int iteration = 0; na > 0 && iteration < 50; ++iteration) {
         std::vector<double> Q(static_cast<std::size_t>(n));
         model.forces(s.u, s.q.data(), s.qd.data(), Q.data());
-        const Eigen::MatrixXd K = force_q_jacobian(model, s.u, s.q, s.qd).block(a0, a0, na, na);
-        const Eigen::VectorXd dA = K.partialPivLu().solve(-Eigen::Map<const Eigen::VectorXd>(Q.data() + a0, na));
+        const Eigen::MatrixXd K = force_q_jacobian(model, s.u, s.q, s.qd)(at, at);
+        const Eigen::VectorXd dA = K.partialPivLu().solve(-Eigen::Map<const Eigen::VectorXd>(Q.data(), n)(at));
         double size = 0.0;
         for (int i = 0; i < na; ++i) {
-            s.q[static_cast<std::size_t>(a0 + i)] += dA[i];
-            size = std::max(size, std::abs(s.q[static_cast<std::size_t>(a0 + i)]));
+            s.q[static_cast<std::size_t>(at[i])] += dA[i];
+            size = std::max(size, std::abs(s.q[static_cast<std::size_t>(at[i])]));
         }
         if (!dA.allFinite())
             throw std::runtime_error(key.out_of_plane() ? "the steady deflection at this spin has no solution"

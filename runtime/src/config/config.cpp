@@ -33,3 +33,21 @@ bool parse(std::string_view w, SensitivityErrorControl& v) { return parse_word(w
 template <> std::vector<std::string> words<SensitivityErrorControl>() { return all_words(sensitivity_control_words); }
 
 }  // namespace hubbeam
+
+namespace hubbeam {
+
+double Rotor::azimuth(int b) const
+{
+    return 2.0 * 3.14159265358979323846 * b / blades;
+}
+
+Parameters Rotor::blade(const Parameters& p, int b) const
+{
+    Parameters out = p;
+    if (!pitch_offsets.empty()) out.pitch += pitch_offsets.at(static_cast<std::size_t>(b));
+    if (!tip_masses.empty()) out.m_tip = tip_masses.at(static_cast<std::size_t>(b));
+    if (b > 0) out.J_oh = 0.0;  // the hub's inertia once, with blade 1
+    return out;
+}
+
+}  // namespace hubbeam

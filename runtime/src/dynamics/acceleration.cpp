@@ -280,7 +280,7 @@ QuasiStaticAxial::QuasiStaticAxial(const Model& model)
 {
     const VariantKey& key = model.key();
     if (model.coordinates().count(FieldKind::axial) == 0) throw std::invalid_argument("quasi-static axial coordinates need axial coordinates (nx > 0)");
-    kept_ = kept_coordinates(key, Axial::quasi_static);
+    kept_ = kept_coordinates(model.coordinates(), Axial::quasi_static);
 }
 
 std::string QuasiStaticAxial::describe() const

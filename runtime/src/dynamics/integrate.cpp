@@ -169,7 +169,7 @@ FirstOrderSystem::FirstOrderSystem(const Model& model, const Motion& motion, Axi
     const VariantKey& key = model.key();
     if (control_ != nullptr && key.drive != Drive::torque)
         throw std::invalid_argument("a controlled hub needs a torque variant, not " + key.name());
-    kept_ = kept_coordinates(key, axial_);
+    kept_ = kept_coordinates(model.coordinates(), axial_);
     aux_ = Auxiliary::of(key, control_, parameters, integral);
     const int k = static_cast<int>(kept_.size());
     int next = 2 * k;

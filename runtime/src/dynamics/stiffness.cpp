@@ -39,7 +39,7 @@ Eigen::MatrixXd mass_at_rest(const Model& model)
 Eigen::VectorXd squared_frequencies(const Model& model, Axial axial)
 {
     const std::vector<double> zero(static_cast<std::size_t>(model.nq()), 0.0);
-    const std::vector<int> kept = kept_coordinates(model.key(), axial);
+    const std::vector<int> kept = kept_coordinates(model.coordinates(), axial);
     const Eigen::MatrixXd K = stiffness(model, HubInput{}, zero, zero)(kept, kept);
     const Eigen::MatrixXd M = mass_at_rest(model)(kept, kept);
     const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(0.5 * (K + K.transpose()), M,
@@ -84,7 +84,7 @@ double highest_rate(const Model& model, Axial axial, double omega)
     // Damped: the eigenvalues of the first-order system x' = [[0, I], [M^-1 dQ/dq, M^-1 dQ/dqd]] x at rest, kept
     // coordinates only. Stiffness-proportional damping turns the stiff axial modes into fast real decays of rate
     // about beta omega^2, which bound an explicit step as a frequency does.
-    const std::vector<int> kept = kept_coordinates(model.key(), axial);
+    const std::vector<int> kept = kept_coordinates(model.coordinates(), axial);
     const auto m = static_cast<Eigen::Index>(kept.size());
     const Eigen::MatrixXd Mk = mass_at_rest(model)(kept, kept), Kq = J.q(kept, kept), Kqd = J.qd(kept, kept);
     const Eigen::LDLT<Eigen::MatrixXd> solve(Mk);
@@ -190,7 +190,7 @@ StepperCosts predicted_costs(const Model& model, Axial axial, double rtol, doubl
     const RatesAtRest r = rates != nullptr ? *rates : rates_at_rest(model, axial);
     c.omega_max = r.omega_max;
     c.omega_1 = r.omega_1;
-    const double m = 2.0 * static_cast<double>(kept_coordinates(model.key(), axial).size());
+    const double m = 2.0 * static_cast<double>(kept_coordinates(model.coordinates(), axial).size());
     // Steps: rk8pd's the more of accuracy (order 8: h omega_1 = 0.077 at rtol 1e-8, the paper's spin-up with AMM at
     // Ny = 4) and stability (h omega_max = 3.1: stability_step_factor). gauss4's what accuracy needs (order 4:
     // h omega_1 = 0.073 at rtol 1e-8, same scene), twice that for the stiff modes its step doubling sees excited

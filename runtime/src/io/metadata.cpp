@@ -135,6 +135,9 @@ JsonObject scene_metadata(const std::string& command, const Scene& scene)
             case SceneValue::Kind::text:
                 t.text(leaf, v.text);
                 break;
+            case SceneValue::Kind::numbers:
+                t.numbers(leaf, v.numbers);
+                break;
         }
     }
     JsonObject effective;

@@ -98,6 +98,25 @@ public:
         fail(file_, path(key), expected(path(key)) + why, missing);
     }
 
+    /// An array of numbers (TOML integers or floats), or nullopt if the key is absent.
+    std::optional<std::vector<double>> numbers(std::string_view key) const
+    {
+        const toml::node* n = get(key);
+        if (!n) return std::nullopt;
+        const toml::array* a = n->as_array();
+        if (!a) fail(file_, path(key), expected(path(key)), describe(*n));
+        std::vector<double> out;
+        for (const toml::node& e : *a) {
+            if (const auto* i = e.as_integer())
+                out.push_back(static_cast<double>(i->get()));
+            else if (const auto* f = e.as_floating_point())
+                out.push_back(f->get());
+            else
+                fail(file_, path(key), expected(path(key)), "an array holding " + describe(e));
+        }
+        return out;
+    }
+
     /// A TOML integer that fits an int (floats such as 4.0 are rejected: a DOF count is a count).
     int required_integer(std::string_view key) const
     {
@@ -202,6 +221,21 @@ void set_override(toml::table& root, const std::string& file, const std::string&
         case SceneKey::Kind::file:
             t.insert_or_assign(leaf, text);
             break;
+        case SceneKey::Kind::numbers: {
+            // "0, 0.1, 0" or as TOML writes it, "[0, 0.1, 0]"; "[]" is none.
+            std::string list(trimmed(text));
+            if (list.size() >= 2 && list.front() == '[' && list.back() == ']') list = list.substr(1, list.size() - 2);
+            toml::array a;
+            for (const std::string& item : trimmed(list).empty() ? std::vector<std::string>{} : split_list(list)) {
+                const std::string v(trimmed(item));
+                double x = 0.0;
+                const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), x);
+                if (v.empty() || ec != std::errc() || end != v.data() + v.size()) bad();
+                a.push_back(x);
+            }
+            t.insert_or_assign(leaf, std::move(a));
+            break;
+        }
     }
 }
 
@@ -391,6 +425,15 @@ void read_hub(const Section& hub, const Scene& scene, Parameters& p)
         p.J_oh = hub.number("inertia", p.J_oh);
 }
 
+/// [rotor]: docs/model.md section 13; its arrays' lengths and ranges are validate()'s.
+void read_rotor(const Section& rotor, Rotor& r)
+{
+    rotor.only();
+    r.blades = rotor.integer("blades", r.blades);
+    r.pitch_offsets = rotor.numbers("pitch_offsets").value_or(r.pitch_offsets);
+    r.tip_masses = rotor.numbers("tip_masses").value_or(r.tip_masses);
+}
+
 /// [discretization]: docs/model.md section 4; the variant's drive follows the motion.
 void read_discretization(const Section& disc, const Scene& scene, VariantKey& key)
 {
@@ -476,6 +519,7 @@ Scene parse_scene(std::string_view text, const std::string& path, const Override
     read_motion(Section(path, root, "motion"), path, scene.motion);
     read_control(Section(path, root, "control"), scene.control);
     read_hub(Section(path, root, "hub"), scene, scene.parameters);
+    read_rotor(Section(path, root, "rotor"), scene.rotor);
     read_discretization(Section(path, root, "discretization"), scene, scene.variant);
     read_model(Section(path, root, "model"), scene);
     read_solver(Section(path, root, "solver"), scene.solver);

@@ -30,6 +30,22 @@ SceneValue text(const SceneKey& k, std::string v)
 {
     return {SceneValue::Kind::text, k.name, 0.0, 0, std::move(v)};
 }
+SceneValue numbers(const SceneKey& k, std::vector<double> v)
+{
+    return {SceneValue::Kind::numbers, k.name, 0.0, 0, {}, std::move(v)};
+}
+
+/// [rotor], only for a rotor of several blades (a single blade's scene prints as it always has); an array left out
+/// of the file is not printed.
+std::optional<SceneValue> rotor_value(const Scene& s, const SceneKey& k)
+{
+    const Rotor& r = s.rotor;
+    if (r.blades <= 1) return std::nullopt;
+    const std::string leaf = k.leaf();
+    if (leaf == "blades") return integer(k, r.blades);
+    const std::vector<double>& v = leaf == "pitch_offsets" ? r.pitch_offsets : r.tip_masses;
+    return v.empty() ? std::nullopt : std::optional(numbers(k, v));
+}
 
 /// A table's file as an absolute path: the scene names it relative to its own folder, which a printed scene read
 /// from elsewhere does not share.
@@ -171,6 +187,7 @@ std::vector<SceneValue> effective_scene(const Scene& scene)
             table == "beam"                                                                  ? beam_value(scene, k)
             : table == "motion"                                                              ? motion_value(scene, k)
             : table == "control"                                                             ? control_value(scene, k)
+            : table == "rotor"                                                               ? rotor_value(scene, k)
             : (table == "hub" || table == "tip" || table == "damping" || table == "gravity") ? parameter_value(scene, k)
                                                                                              : run_value(scene, k);
         if (v) out.push_back(*v);
@@ -238,6 +255,11 @@ std::string effective_scene_toml(const Scene& scene)
                 break;
             case SceneValue::Kind::text:
                 out += quoted_string(v.text);
+                break;
+            case SceneValue::Kind::numbers:
+                out += '[';
+                for (std::size_t i = 0; i < v.numbers.size(); ++i) out += (i ? ", " : "") + toml_number(v.numbers[i]);
+                out += ']';
                 break;
         }
         out += '\n';

@@ -11,11 +11,12 @@ namespace hubbeam {
 
 /// One key of an effective scene: its dotted name (the key table's) and its value.
 struct SceneValue {
-    enum class Kind { number, integer, text } kind;
+    enum class Kind { number, integer, text, numbers } kind;
     std::string key;
     double number = 0.0;    // Kind::number
     long long integer = 0;  // Kind::integer
     std::string text;       // Kind::text: a word or a file name
+    std::vector<double> numbers = {};  // Kind::numbers
 };
 
 /// Every key of scene_keys() that applies to the scene, in the key table's order, with the value the scene runs

@@ -215,10 +215,43 @@ void check_output(const Scene& s)
                        " s (a table is not extrapolated: extend it or shorten the run)");
 }
 
+/// [rotor]: a count of blades, and arrays of one value per blade. A rotor's run has no sensitivities (the derivatives
+/// by one parameter of all blades at once are not a blade's): refused, not run wrong.
+void check_rotor(const Scene& s)
+{
+    const Rotor& r = s.rotor;
+    if (r.blades < 1 || r.blades > max_blades) fail(s.path, "rotor.blades", expected("rotor.blades"), std::to_string(r.blades));
+    const auto per_blade = [&](const std::vector<double>& v, const char* key) {
+        if (!v.empty() && v.size() != static_cast<std::size_t>(r.blades))
+            fail(s.path, key, expected(key),
+                 "an array of " + std::to_string(v.size()) + " with rotor.blades = " + std::to_string(r.blades));
+    };
+    per_blade(r.pitch_offsets, "rotor.pitch_offsets");
+    per_blade(r.tip_masses, "rotor.tip_masses");
+    for (std::size_t b = 0; b < r.pitch_offsets.size(); ++b) {
+        const double pitch = s.parameters.pitch + r.pitch_offsets[b];
+        if (!std::isfinite(r.pitch_offsets[b]) || std::abs(pitch) > max_section_angle)
+            fail(s.path, "rotor.pitch_offsets", expected("rotor.pitch_offsets"),
+                 shortest(r.pitch_offsets[b]) + " for blade " + std::to_string(b + 1) + " (its pitch " +
+                     shortest(pitch) + " rad)");
+    }
+    for (std::size_t b = 0; b < r.tip_masses.size(); ++b)
+        if (!(r.tip_masses[b] >= 0.0) || !std::isfinite(r.tip_masses[b]))
+            fail(s.path, "rotor.tip_masses", expected("rotor.tip_masses"),
+                 shortest(r.tip_masses[b]) + " for blade " + std::to_string(b + 1));
+    if (!r.tip_masses.empty() && s.parameters.m_tip != 0.0)
+        fail(s.path, "rotor.tip_masses", "no tip.mass beside it (each blade's tip mass replaces it): remove one",
+             "both");
+    if (r.blades > 1 && !s.output.sensitivities.empty())
+        fail(s.path, "output.sensitivities", "none for a rotor of several blades (rotor.blades > 1)",
+             "\"" + s.output.sensitivities.front() + "\"");
+}
+
 }  // namespace
 
 void validate(const Scene& s)
 {
+    check_rotor(s);
     check_parameters(s);
     check_motion(s);
     // Before the variant's own checks: a sensitivity keeps its term (Scene::key), which the variant may refuse.

@@ -36,13 +36,13 @@ Eigen::VectorXd tip_row(const Model& model, const std::vector<double>& q, const 
                         double Tip::* value);
 
 
-/// The coordinates that keep their inertia and are states of the first-order system, in order: all of key's,
-/// or with quasi-static axial coordinates all but A (which then follows its equilibrium). The one definition
-/// for the integrator, the stiffness estimates and the linearization.
-inline std::vector<int> kept_coordinates(const VariantKey& key, Axial axial)
+/// The coordinates that keep their inertia and are states of the first-order system, in order: all of a model's
+/// (its layout: a rotor's holds every blade), or with quasi-static axial coordinates all but A (which then follows
+/// its equilibrium). The one definition for the integrator, the stiffness estimates and the linearization.
+inline std::vector<int> kept_coordinates(const CoordinateLayout& layout, Axial axial)
 {
     std::vector<int> kept;
-    for (const CoordinateField& f : coordinate_layout(key).fields)
+    for (const CoordinateField& f : layout.fields)
         if (axial == Axial::dynamic || f.kind != FieldKind::axial)
             for (int i = f.first; i < f.end(); ++i) kept.push_back(i);
     return kept;

@@ -25,6 +25,7 @@ ColumnSet optional_columns_of(const Scene& scene)
     for (std::size_t i = 0; i < optional_width; ++i)
         if (has[i]) set.bits |= 1u << i;
     set.derived = sensitivity_columns(scene.output.sensitivities, key);
+    set.blades = scene.rotor.blades;
     return set;
 }
 
@@ -48,9 +49,18 @@ std::vector<std::string> sensitivity_columns(const std::vector<std::string>& par
 std::vector<std::string> row_column_names(const ColumnSet& set)
 {
     std::vector<std::string> names;
-    for (const RowColumn& c : row_columns) names.emplace_back(c.name);
+    // A rotor's tip columns are each blade's: blade 1's in their places, suffixed "_1", the others' after.
+    const auto blade = [&](const char* name, int b) {
+        const std::string n = name;
+        return set.blades > 1 && n.rfind("tip_", 0) == 0 ? n + "_" + std::to_string(b) : n;
+    };
+    for (const RowColumn& c : row_columns) names.push_back(blade(c.name, 1));
     for (std::size_t i = 0; i < optional_width; ++i)
-        if (set.has(i)) names.emplace_back(optional_columns[i].name);
+        if (set.has(i)) names.push_back(blade(optional_columns[i].name, 1));
+    for (int b = 2; b <= set.blades; ++b)
+        for (const char* tip : {"tip_uy", "tip_ux1", "tip_ux", "tip_uz", "tip_phi"})
+            if ((std::string(tip) != "tip_uz" || set.has(0)) && (std::string(tip) != "tip_phi" || set.has(1)))
+                names.push_back(blade(tip, b));
     names.insert(names.end(), set.derived.begin(), set.derived.end());
     return names;
 }

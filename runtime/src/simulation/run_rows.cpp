@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include <hubbeam/make_model.hpp>
 #include <hubbeam/simulate.hpp>
 #include "dynamics/integrate.hpp"
 #include "simulation/column_check.hpp"
@@ -83,6 +84,17 @@ Row RowMaker::operator()(double t, const double* y)
     if (sensitivities_ != nullptr) {
         sensitivities_->outputs(t, y, derived_.data());
         r.derived = derived_.data();
+    }
+    if (const int blades = blade_count(model_); blades > 1) {
+        // Blades 2 .. N's tip columns, in ColumnSet::blade_columns' order.
+        blades_.clear();
+        for (int b = 1; b < blades; ++b) {
+            const Tip tb = blade_tip(model_, q, b);
+            blades_.insert(blades_.end(), {tb.uy, tb.ux1, tb.ux});
+            if (model_.key().nz > 0) blades_.push_back(tb.uz);
+            if (model_.key().nt > 0) blades_.push_back(tb.phi);
+        }
+        r.blades = blades_.data();
     }
     return r;
 }

@@ -45,7 +45,7 @@ private:
     FirstOrderSystem& system_;
     const Control* control_;
     SensitivitySystem* sensitivities_;  // null without sensitivities
-    std::vector<double> q_, qd_, derived_;
+    std::vector<double> q_, qd_, derived_, blades_;
     bool extended_;
 };
 

@@ -72,7 +72,7 @@ int auxiliary_count(const Scene& scene)
 }  // namespace
 
 Simulation::Simulation(const Scene& scene, const std::function<void(const std::string&)>& note)
-    : scene_(scene), model_(make_model(scene.key(), scene.parameters, scene.source, note))
+    : scene_(scene), model_(make_scene_model(scene, note))
 {
     choose_stepper();
 }
