@@ -360,14 +360,20 @@ Symbols::Symbols(const VariantKey& key)
     // generated code's text follows), then the profile's.
     const CoordinateLayout layout = coordinate_layout(key);
     for (const CoordinateField& f : layout.fields)
-        if (f.kind != FieldKind::hub_angle) coordinates(f.kind) = numbered(f.symbol, f.count);
+        if (f.basis) coordinates(f.kind) = numbered(f.symbol, f.count);
     for (const CoordinateField& f : layout.fields)
-        if (f.kind != FieldKind::hub_angle) rates(f.kind) = numbered(f.symbol, f.count, "_dot");
+        if (f.basis) rates(f.kind) = numbered(f.symbol, f.count, "_dot");
     if (key.out_of_plane()) o = std::make_shared<const OutOfPlane>();
+    if (key.extras.hub) h = std::make_shared<const MovingHub>();
     for (const CoordinateField& f : layout.fields) {
         if (f.kind == FieldKind::hub_angle) {
             q.push_back(theta);
             qd.push_back(theta_dot);
+            continue;
+        }
+        if (f.kind == FieldKind::hub_x || f.kind == FieldKind::hub_y) {
+            q.push_back(f.kind == FieldKind::hub_x ? h->x : h->y);
+            qd.push_back(f.kind == FieldKind::hub_x ? h->x_dot : h->y_dot);
             continue;
         }
         q.insert(q.end(), coordinates(f.kind).begin(), coordinates(f.kind).end());
@@ -396,6 +402,7 @@ std::vector<symbol> Symbols::parameters() const
     if (o)
         p.insert(p.end(), {o->EI_flap, o->GJ, o->j_n, o->j_c, o->cos_2pitch, o->sin_2pitch, o->twist, o->cos_cone,
                            o->sin_cone, o->g_axis});
+    if (h) p.insert(p.end(), {h->m, h->k_x, h->k_y, h->c_x, h->c_y});
     p.insert(p.end(), section.begin(), section.end());
     return p;
 }

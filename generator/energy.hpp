@@ -51,6 +51,13 @@ struct Symbols {
     /// Created last and only for a variant that leaves the plane (VariantKey::out_of_plane): GiNaC orders terms by
     /// the symbols' serial numbers, so a planar variant's symbols and emitted code stay as they were.
     std::shared_ptr<const OutOfPlane> o;
+    /// A moving hub's coordinates, rates and parameters (docs/model.md section 13), created after o and only for a
+    /// variant that carries it (Extras::hub), for the same reason.
+    struct MovingHub {
+        GiNaC::symbol x{"x_h"}, y{"y_h"}, x_dot{"x_h_dot"}, y_dot{"y_h_dot"};
+        GiNaC::symbol m{"m_hub"}, k_x{"k_x"}, k_y{"k_y"}, c_x{"c_x"}, c_y{"c_y"};
+    };
+    std::shared_ptr<const MovingHub> h;
     /// A profile variant's run-time section integrals (generated_abi.h's SectionIntegral), in the order of their index
     /// n, and their symbols s_n, which the coefficients kernel reads at p[param_count + n]; empty without a profile.
     /// Found by a first pass over the energies (the integrals a variant needs are those its energies meet).

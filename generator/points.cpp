@@ -235,7 +235,7 @@ bool foreshortening_at_points(const VariantKey& key)
     // The points' code knows the planar fields of a uniform section only: a beam that leaves the plane, or whose
     // section a term shapes (a taper, a profile), takes the expanded form.
     return key.order == Order::full && field_count(key, FieldKind::inplane) >= 8 && !shaped_section(key) &&
-           !key.out_of_plane();
+           !key.out_of_plane() && !key.extras.hub;
 }
 
 PointRule point_rule(const VariantKey& key)

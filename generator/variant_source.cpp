@@ -153,7 +153,7 @@ std::string banner(const VariantKey& key, bool mass_varies, std::size_t sections
     const bool torque = key.drive == Drive::torque;
     std::string coords;
     for (const CoordinateField& f : coordinate_layout(key).fields)
-        if (const std::string part = f.kind == FieldKind::hub_angle ? f.symbol : range(f.symbol, f.count);
+        if (const std::string part = !f.basis ? f.symbol : range(f.symbol, f.count);
             !part.empty())
             coords += (coords.empty() ? "" : ", ") + part;
     std::ostringstream b;
@@ -165,7 +165,7 @@ std::string banner(const VariantKey& key, bool mass_varies, std::size_t sections
       << " order=" << to_string(key.order) << " drive=" << to_string(key.drive);
     if (key.method == Method::bsim) b << " spline_basis=" << to_string(key.spline);
     for (const std::string& suffix : extras_words(key.extras)) b << " " << suffix;
-    const bool reads_angle = potential_reads_angle(key);
+    const bool reads_angle = kernels_read_angle(key);
     b << "\n// q = (" << coords << "), qd = d/dt q; u = " << tuple(input_names(reads_angle))
       << ", of which this variant reads "
       << (torque ? drive_value_names[index(DriveValue::tau)]
@@ -264,9 +264,13 @@ JacobianPieces jacobian_pieces(const PolyEquations& eq, const Variables& v, cons
     for (std::size_t i = 0; i < n; ++i)
         for (const auto& [u, var] : inputs) j.forces_u[i * drive_value_count + index(u)] = eq.Q[i].diff(var);
     // The runtime's dfdt = M^-1 dQ/du du/dt assumes M does not depend on the drive or on the rates.
+    // Under torque the angle's sine and cosine are functions of q[0] (a moving hub's M holds them): d_dq follows them.
     std::vector<int> not_in_M = v.qd;
-    for (int d : {v.tau, v.theta_dot, v.theta_ddot, v.sin_theta, v.cos_theta})
+    for (int d : {v.tau, v.theta_dot, v.theta_ddot})
         if (d >= 0) not_in_M.push_back(d);
+    if (c.angle < 0)
+        for (int d : {v.sin_theta, v.cos_theta})
+            if (d >= 0) not_in_M.push_back(d);
     for (const Poly& Mij : eq.M)
         for (int var : not_in_M)
             if (Mij.has(var))
@@ -307,6 +311,14 @@ std::vector<Input> parameter_inputs(const Symbols& s, const VariantKey& key)
                                      {o.sin_cone, "std::sin(" + read(Param::precone) + ")"},
                                      {o.g_axis, read(Param::g_axis)}});
     }
+    if (s.h) {
+        const Symbols::MovingHub& h = *s.h;
+        inputs.insert(inputs.end(), {{h.m, read(Param::m_hub)},
+                                     {h.k_x, read(Param::k_x)},
+                                     {h.k_y, read(Param::k_y)},
+                                     {h.c_x, read(Param::c_x)},
+                                     {h.c_y, read(Param::c_y)}});
+    }
     for (std::size_t n = 0; n < s.section.size(); ++n) inputs.push_back({s.section[n], read_section(n)});
     return inputs;
 }
@@ -321,7 +333,7 @@ std::vector<Input> state_inputs(const Symbols& s, const VariantKey& key)
     else
         inputs.insert(inputs.end(),
                       {{s.theta_dot, read(DriveValue::theta_dot)}, {s.theta_ddot, read(DriveValue::theta_ddot)}});
-    if (potential_reads_angle(key))
+    if (kernels_read_angle(key))
         inputs.insert(inputs.end(),
                       {{s.sin_theta, read(AngleValue::sin_theta)}, {s.cos_theta, read(AngleValue::cos_theta)}});
     for (std::size_t i = 0; i < s.q.size(); ++i) inputs.push_back({s.q[i], "q[" + std::to_string(i) + "]"});
@@ -338,7 +350,7 @@ Signature signature(const Symbols& s, const VariantKey& key)
     sig.parameters = {"p", static_cast<int>(p_count), "p = " + parameter_tuple(key, s.section.size())};
     sig.derivative_entries = static_cast<int>(key.params_read());
     sig.state = {
-        {"u", static_cast<int>(input_names(potential_reads_angle(key)).size()), ""}, {"q", nq, ""}, {"qd", nq, ""}};
+        {"u", static_cast<int>(input_names(kernels_read_angle(key)).size()), ""}, {"q", nq, ""}, {"qd", nq, ""}};
     sig.parameter_inputs = parameter_inputs(s, key);
     sig.state_inputs = state_inputs(s, key);
     return sig;
@@ -382,7 +394,7 @@ Derivation derive(const VariantKey& key, const Symbols& s, const Signature& sig,
         c.force[0] = reader(s.tau);
     else
         c.driven.emplace_back(v.theta_dot, v.theta_ddot);
-    if (torque && potential_reads_angle(key)) {
+    if (torque && kernels_read_angle(key)) {
         c.angle = 0;
         c.angle_sin = v.sin_theta;
         c.angle_cos = v.cos_theta;
@@ -499,7 +511,10 @@ struct Kernels {
 /// code adds to (and the mirror ones) varying.
 std::string mass_pattern_with_points(const Derivation& d, int nq, const PointCode* points)
 {
-    std::string pattern = mass_pattern(d.eq.M, d.v.q);
+    // An entry that holds the angle's sine or cosine varies with the coordinate theta (a moving hub's couplings).
+    std::vector<int> varying = d.v.q;
+    if (d.c.angle >= 0) varying.insert(varying.end(), {d.v.sin_theta, d.v.cos_theta});
+    std::string pattern = mass_pattern(d.eq.M, varying);
     if (points != nullptr)
         for (int k : points->mass_entries) {
             pattern[static_cast<std::size_t>(k)] = 'v';

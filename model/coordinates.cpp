@@ -7,7 +7,7 @@ namespace hubbeam {
 
 std::string CoordinateField::name(int k) const
 {
-    return kind == FieldKind::hub_angle ? symbol : symbol + std::to_string(k + 1) + suffix;
+    return !basis ? symbol : symbol + std::to_string(k + 1) + suffix;
 }
 
 int CoordinateLayout::size() const
@@ -40,6 +40,13 @@ int CoordinateLayout::first_elastic() const
     return hub ? hub->end() : 0;
 }
 
+int CoordinateLayout::first_beam() const
+{
+    for (const CoordinateField& f : fields)
+        if (f.basis) return f.first;
+    return size();
+}
+
 const CoordinateField& CoordinateLayout::field_of(int i) const
 {
     for (const CoordinateField& f : fields)
@@ -66,6 +73,10 @@ CoordinateLayout coordinate_layout(const VariantKey& key, int blades)
     };
     // The hub angle is a coordinate only under an applied torque; a prescribed theta(t) is an input.
     if (key.drive == Drive::torque) add(FieldKind::hub_angle, std::nullopt, 1, "theta");
+    if (key.extras.hub) {
+        add(FieldKind::hub_x, std::nullopt, 1, "x_h");
+        add(FieldKind::hub_y, std::nullopt, 1, "y_h");
+    }
     for (beam = 0; beam < blades; ++beam) {
         suffix = blades > 1 ? "_" + std::to_string(beam + 1) : "";
         add(FieldKind::axial, key.axial_basis(), key.nx, "A");

@@ -14,7 +14,8 @@ namespace hubbeam {
 
 /// What a field of coordinates describes (docs/model.md sections 2 and 12): the hub angle, and a beam's axial,
 /// in-plane (lead-lag, u_y), flapwise (u_z) and twist (phi) fields.
-enum class FieldKind { hub_angle, axial, inplane, flap, twist };
+/// A moving hub's translation x_h, y_h (docs/model.md section 13) follows the hub angle.
+enum class FieldKind { hub_angle, hub_x, hub_y, axial, inplane, flap, twist };
 
 /// One field of q: its coordinates q[first] .. q[first + count - 1].
 struct CoordinateField {
@@ -47,6 +48,8 @@ struct CoordinateLayout {
     int first(FieldKind kind, int beam = 0) const;
     /// The first coordinate that is not the hub angle's (the elastic coordinates run from here to size()).
     int first_elastic() const;
+    /// The first coordinate of a beam's field: after the hub's angle and a moving hub's translation.
+    int first_beam() const;
     /// The field that holds coordinate i.
     const CoordinateField& field_of(int i) const;
     /// Every coordinate's name in q's order ("theta", "A1", ..., "B1", ...).

@@ -34,9 +34,14 @@ enum class Param : std::size_t {
     pitch,
     twist,
     precone,
-    g_axis
+    g_axis,
+    m_hub,
+    k_x,
+    k_y,
+    c_x,
+    c_y
 };
-inline constexpr std::size_t param_count = 20;
+inline constexpr std::size_t param_count = 25;
 /// A tabulated profile's values at each station (docs/model.md sections 11.2 and 12.4): a planar beam's m, EI, ES;
 /// a blade's also its flapwise and torsional stiffness, the chord's angle (pre-twist, added to the pitch) and the mass
 /// moments per length about the chord and its normal.
@@ -71,7 +76,8 @@ inline constexpr std::size_t paper_param_count = 7;
 /// Names of p's entries in the order of Param, as they read in docs/model.md and in generated code.
 inline constexpr std::array<const char*, param_count> param_names = {
     "L",     "rho",  "S",         "I",      "E", "a",   "J_oh",  "m_tip", "J_tip",   "g",
-    "alpha", "beta", "tip_ratio", "I_flap", "G", "J_t", "pitch", "twist", "precone", "g_axis"};
+    "alpha", "beta", "tip_ratio", "I_flap", "G", "J_t", "pitch", "twist", "precone", "g_axis",
+    "m_hub", "k_x",  "k_y",       "c_x",    "c_y"};
 
 /// The parameters of the out-of-plane fields (docs/model.md section 12), owned by no term: the flapwise field reads
 /// I_flap, the twist field all three.
@@ -106,11 +112,13 @@ constexpr std::size_t index(AngleValue u)
 /// (alpha 1/s, beta s) and the taper's tip-to-root ratio of the tapered dimension; at these defaults a variant
 /// that carries the terms equals one that does not. Then the out-of-plane section's (docs/model.md section 12): the
 /// flapwise second moment (m^4; the scene's default is I), shear modulus (Pa), torsion constant (m^4), pitch, pre-twist
-/// and precone (rad), and gravity along -k (m/s^2; g is along -j of the inertial plane).
+/// and precone (rad), and gravity along -k (m/s^2; g is along -j of the inertial plane). Then a moving hub's (docs/model.md
+/// section 13): its translating mass (kg), the support's stiffness (N/m) and damping (N s/m) along the inertial x and y.
 struct Parameters {
     double L = 8.0, rho = 2.7667e3, S = 7.2968e-5, I = 8.2189e-9, E = 6.8952e10, a = 0.0, J_oh = 30.0;
     double m_tip = 0.0, J_tip = 0.0, g = 0.0, alpha = 0.0, beta = 0.0, tip_ratio = 1.0;
     double I_flap = 8.2189e-9, G = 0.0, J_t = 0.0, pitch = 0.0, twist = 0.0, precone = 0.0, g_axis = 0.0;
+    double m_hub = 0.0, k_x = 0.0, k_y = 0.0, c_x = 0.0, c_y = 0.0;
     /// A tabulated profile's stations x/L (from 0 to 1, increasing; empty without a profile) and its values there:
     /// mass per length (kg/m), EI (N m^2), ES (N) and, for a beam that leaves the plane, EI_flap, GJ (N m^2), the
     /// chord's angle (rad), j_c and j_n (kg m), indexed by station then ProfileValue.
@@ -141,6 +149,11 @@ struct Parameters {
         p[index(Param::twist)] = twist;
         p[index(Param::precone)] = precone;
         p[index(Param::g_axis)] = g_axis;
+        p[index(Param::m_hub)] = m_hub;
+        p[index(Param::k_x)] = k_x;
+        p[index(Param::k_y)] = k_y;
+        p[index(Param::c_x)] = c_x;
+        p[index(Param::c_y)] = c_y;
         return p;
     }
 };
@@ -150,7 +163,8 @@ inline double& value(Parameters& p, Param k)
 {
     double* const members[] = {&p.L,     &p.rho,   &p.S,     &p.I,     &p.E,       &p.a,         &p.J_oh,
                                &p.m_tip, &p.J_tip, &p.g,     &p.alpha, &p.beta,    &p.tip_ratio, &p.I_flap,
-                               &p.G,     &p.J_t,   &p.pitch, &p.twist, &p.precone, &p.g_axis};
+                               &p.G,     &p.J_t,   &p.pitch, &p.twist, &p.precone, &p.g_axis,
+                               &p.m_hub, &p.k_x,   &p.k_y,   &p.c_x,   &p.c_y};
     static_assert(sizeof members / sizeof members[0] == param_count);
     return *members[index(k)];
 }

@@ -84,6 +84,22 @@ std::vector<TermInfo> make_terms()
         switched<&Extras::twist, twisted_word, twisted_summary>("pre-twist (section 12)", adds_U | adds_T, {P::twist}),
         // The precone tilts the axis: its own module moves the beam's points (T); the tilted weight is gravity's U.
         switched<&Extras::cone, coned_word, coned_summary>("precone (section 12)", adds_T, {P::precone}),
+        // A moving hub is chosen by the scene's [support] table, not by values: a free-floating hub (stiffness 0)
+        // still translates. Its kinetic energy reads theta's sine and cosine (the hub's velocity in the blade's frame).
+        // Its mass is [hub]'s (hub.mass, read with the hub's other keys).
+        {"moving hub (section 13)",
+         adds_T | adds_U | adds_D | kinetic_reads_angle,
+         {P::m_hub, P::k_x, P::k_y, P::c_x, P::c_y},
+         {{"support", "stiffness_x", P::k_x},
+          {"support", "stiffness_y", P::k_y},
+          {"support", "damping_x", P::c_x},
+          {"support", "damping_y", P::c_y}},
+         false,
+         [](const Extras& e) { return e.hub; },
+         [](const Extras&) { return std::string("hub"); },
+         [](std::string_view part, Extras& e) { return part == "hub" && (e.hub = true); },
+         [](const Extras&) { return std::string("moving_hub"); },
+         never},
     };
 }
 
@@ -124,6 +140,11 @@ bool dissipates(const VariantKey& key)
 bool potential_reads_angle(const VariantKey& key)
 {
     return carries_a_term_that(key, reads_hub_angle);
+}
+
+bool kernels_read_angle(const VariantKey& key)
+{
+    return carries_a_term_that(key, reads_hub_angle | kinetic_reads_angle);
 }
 
 bool angle_dependent_potential(const VariantKey& key)

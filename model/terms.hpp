@@ -18,7 +18,16 @@ namespace hubbeam {
 /// distributions m(x), EI(x), ES(x) inside the beam's own T and U. A term whose U reads the hub
 /// angle does so linearly in sin theta and cos theta, which the kernels take as inputs (generated_model.cpp's
 /// forces_theta relies on the linearity).
-enum TermEnergy : unsigned { adds_T = 1u, adds_U = 2u, adds_D = 4u, shapes_section = 8u, reads_hub_angle = 16u };
+/// A term whose T reads the hub angle (a moving hub: the hub's velocity in the blade's frame) has kinetic_reads_angle;
+/// the kernels then take sin theta and cos theta too, and M holds them.
+enum TermEnergy : unsigned {
+    adds_T = 1u,
+    adds_U = 2u,
+    adds_D = 4u,
+    shapes_section = 8u,
+    reads_hub_angle = 16u,
+    kinetic_reads_angle = 32u
+};
 
 /// A scene key that sets one of a term's parameters: [table] key = value.
 struct TermSceneKey {
@@ -48,7 +57,8 @@ struct TermInfo {
     void (*set)(Extras&, bool);
 };
 
-/// Every term, in the order of the variant's name suffixes: tip, gravity, damped, width|depth, profile.
+/// Every term, in the order of the variant's name suffixes: tip, gravity, damped, width|depth, profile, pitched,
+/// twisted, coned, hub.
 const std::vector<TermInfo>& terms();
 
 /// The terms a variant carries, in registry order.
@@ -63,6 +73,8 @@ bool dissipates(const VariantKey& key);
 /// Whether U reads the hub angle (a carried term's does): the kernels take sin theta and cos theta, U holds more
 /// than the beam's strain (it can stay below 0), and a spin at a constant rate is not steady.
 bool potential_reads_angle(const VariantKey& key);
+/// Whether the kernels take sin theta and cos theta: U reads the angle (potential_reads_angle) or T does (a moving hub).
+bool kernels_read_angle(const VariantKey& key);
 /// Whether U depends on the prescribed angle, an input of the kernels (potential_reads_angle under a prescribed
 /// drive): dQ/dtheta theta_dot enters dQ/dt, and no energy is constant while the hub turns.
 bool angle_dependent_potential(const VariantKey& key);

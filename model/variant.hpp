@@ -41,11 +41,13 @@ struct Extras {
     // (Parameters::stations, Parameters::profile) that reach the kernels as the integrals of the section data times
     // the basis (Variant::section_integrals).
     bool tabulated = false;
+    // A hub that translates in the plane of rotation on a support (docs/model.md section 13): coordinates x_h, y_h.
+    bool hub = false;
 
     bool profile() const { return tabulated; }
     bool any() const
     {
-        return tip || gravity || damping || taper != Taper::uniform || profile() || pitch || twist || cone;
+        return tip || gravity || damping || taper != Taper::uniform || profile() || pitch || twist || cone || hub;
     }
     bool operator==(const Extras&) const = default;
 };
@@ -56,7 +58,7 @@ std::string stations_problem(const std::vector<double>& x);
 /// The grammar of a variant's name, as VariantKey::parse reads it (its messages and hubbeam-gen --help say it).
 inline constexpr const char* variant_name_grammar =
     "METHOD_nxN_nyN[_nzN][_ntN]_DRIVE_ORDER[_open][_tip][_gravity][_damped][_width|_depth][_profile]"
-    "[_pitched][_twisted][_coned]";
+    "[_pitched][_twisted][_coned][_hub]";
 
 struct VariantKey {
     Method method = Method::amm;

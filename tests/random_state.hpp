@@ -73,6 +73,12 @@ inline Parameters with_every_term()
     p.twist = -0.25;
     p.precone = 0.05;
     p.g_axis = 4.0;
+    // A moving hub's (read by variants with a [support] only).
+    p.m_hub = 12.0;
+    p.k_x = 3.1e3;
+    p.k_y = 4.7e3;
+    p.c_x = 15.0;
+    p.c_y = 22.0;
     return p;
 }
 

@@ -14,7 +14,8 @@ const GeneratorTerm& generator_part(const TermInfo& t)
     // axis (velocity_squared, position) inside the beam's T and U and the other terms' (energy.cpp).
     static const std::vector<GeneratorTerm> table = {
         {nullptr, tip_energies},    {nullptr, gravity_energies}, {nullptr, damping_energies}, {taper_section, nullptr},
-        {profile_section, nullptr}, {nullptr, nullptr},          {nullptr, nullptr},          {nullptr, nullptr}};
+        {profile_section, nullptr}, {nullptr, nullptr},          {nullptr, nullptr},          {nullptr, nullptr},
+        {nullptr, hub_energies}};
     if (table.size() != terms().size()) throw std::logic_error("generator_part: not one entry per registered term");
     return table.at(static_cast<std::size_t>(&t - terms().data()));
 }

@@ -190,8 +190,14 @@ TEST_CASE("docs/scene.md's defaults are the ones a scene gets, and its required 
             std::string value = cell.substr(1, cell.find('`', 1) - 1);
             if (value.size() >= 2 && value.front() == '"' && value.back() == '"') value = value.substr(1, value.size() - 2);
             INFO("documented default " << value);
-            // A [control] key's default is the one a controlled scene gets (in another, the key would add [control]).
-            const std::string without = scene_text(name.rfind("control.", 0) == 0 ? controlled_step() : spin_up, name);
+            // A [control] key's default is the one a controlled scene gets (in another, the key would add [control]);
+            // a [support] key's and hub.mass's the one a torque-driven scene with a [support] gets.
+            SceneLines base = name.rfind("control.", 0) == 0 ? controlled_step() : spin_up;
+            if (name.rfind("support.", 0) == 0 || name == "hub.mass") {
+                base = torque_scene();
+                base.emplace_back(name == "support.stiffness_x" ? "support.stiffness_y" : "support.stiffness_x", "0");
+            }
+            const std::string without = scene_text(base, name);
             Scene plain;
             REQUIRE_NOTHROW(plain = parse_scene(without, "spin-up.toml"));
             check_same(parse_scene(without, "spin-up.toml", {{name, value}}), plain);

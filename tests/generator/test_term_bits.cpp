@@ -25,6 +25,10 @@ Extras alone(const TermInfo& t)
             e.taper = Taper::uniform;
             e.tabulated = true;
         }
+        if (!t.carried(e)) {  // the moving hub's, chosen by a [support] table
+            e.tabulated = false;
+            e.hub = true;
+        }
     }
     REQUIRE(carried_terms(e) == std::vector<const TermInfo*>{&t});
     return e;
@@ -65,6 +69,7 @@ TEST_CASE("each term's registry bits say what its energies add: D, an angle in U
                            .order = Order::first,
                            .drive = drive};
             key.extras = alone(t);
+            if (!key.dof_problem().empty()) continue;  // a moving hub under a prescribed angle: refused
             INFO(t.name << ", " << key.name());
             const Symbols s(key);
             const Derived d = derived(key, s);
@@ -83,6 +88,9 @@ TEST_CASE("each term's registry bits say what its energies add: D, an angle in U
             const bool angle = d.en.U.has(d.sin_theta) || d.en.U.has(d.cos_theta);
             CHECK(potential_reads_angle(key) == angle);
             CHECK(((t.energies & reads_hub_angle) != 0) == angle);
+            const bool kinetic_angle = d.en.T.has(d.sin_theta) || d.en.T.has(d.cos_theta);
+            CHECK(((t.energies & kinetic_reads_angle) != 0) == kinetic_angle);
+            CHECK(kernels_read_angle(key) == (angle || kinetic_angle));
             CHECK(angle_dependent_potential(key) == (angle && drive == Drive::prescribed));
             CHECK(shaped_section(key) == ((t.energies & shapes_section) != 0));
             if ((t.energies & shapes_section) == 0 && blade > 0) {

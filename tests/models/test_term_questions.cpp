@@ -32,6 +32,9 @@ TEST_CASE("dissipates and the angle in U answer as the assembled model's forces 
     for (const Drive drive : {Drive::prescribed, Drive::torque}) {
         for (const TermInfo& t : terms()) {
             if (t.params.empty()) continue;  // a profile: its values are a table (tests/generator/test_term_bits.cpp)
+            // The moving hub has no assembled form yet; its bits are checked on the generator's energies
+            // (tests/generator/test_term_bits.cpp).
+            if ((t.energies & kinetic_reads_angle) != 0) continue;
             // On a blade (flapwise and twist fields), where pitch, pre-twist and precone act too; every parameter of
             // the term nonzero.
             VariantKey key{

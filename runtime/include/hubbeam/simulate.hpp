@@ -17,6 +17,7 @@ namespace hubbeam {
 struct RowExtras {
     double tip_uz = 0.0, tip_phi = 0.0;
     double tau = 0.0, theta_ref = 0.0, controller_integral = 0.0, dissipated = 0.0, work = 0.0;
+    double hub_x = 0.0, hub_y = 0.0, hub_fx = 0.0, hub_fy = 0.0;
 };
 
 /// One output row: the columns of row_columns, in that order, then the optional ones its scene has.
@@ -74,6 +75,10 @@ inline constexpr OptionalColumn optional_columns[] = {
      "[control] with ki > 0"},
     {"dissipated", "J", &RowExtras::dissipated, "energy dissipated by damping, int 2 D dt", "damping"},
     {"work", "J", &RowExtras::work, "work of the hub torque, int tau theta_dot dt", "as tau"},
+    {"hub_x", "m", &RowExtras::hub_x, "the hub centre's displacement x_h along the inertial x", "[support]"},
+    {"hub_y", "m", &RowExtras::hub_y, "the hub centre's displacement y_h along the inertial y", "[support]"},
+    {"hub_fx", "N", &RowExtras::hub_fx, "the support's force on the hub along x, -(k_x x_h + c_x x_h_dot)", "[support]"},
+    {"hub_fy", "N", &RowExtras::hub_fy, "the support's force on the hub along y, -(k_y y_h + c_y y_h_dot)", "[support]"},
 };
 inline constexpr std::size_t optional_width = std::size(optional_columns);
 // Every member of Row has its column (a member added to Row and not here fails to compile).

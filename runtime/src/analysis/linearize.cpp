@@ -43,6 +43,10 @@ std::vector<int> modal_coordinates(const Model& model, const SteadySpin& s, Axia
 
 std::string unsteady_spin(const VariantKey& key, const std::vector<double>& p, double omega)
 {
+    // A hub that translates sees the blade at an azimuth that turns: about a spin its equations are periodic.
+    if (omega != 0.0 && key.extras.hub)
+        return "with a moving hub ([support]) a spin at a constant rate is not steady in the blade's frame (the "
+               "support is fixed, the blade turns: the linear equations are periodic); linearize at rest, Omega = 0";
     if (omega == 0.0 || !weight_turns_with_spin(key, p)) return {};
     return "with gravity in the plane of rotation a spin at a constant rate is not steady (the beam's weight turns "
            "with it: the motion is periodic); linearize about the held hub, Omega = 0";
@@ -314,6 +318,10 @@ const char* mode_kind(FieldKind kind, const VariantKey& key)
     switch (kind) {
         case FieldKind::hub_angle:
             return "hub";
+        case FieldKind::hub_x:
+            return "hub x";
+        case FieldKind::hub_y:
+            return "hub y";
         case FieldKind::axial:
             return "axial";
         case FieldKind::flap:

@@ -46,7 +46,10 @@ Parameters Rotor::blade(const Parameters& p, int b) const
     Parameters out = p;
     if (!pitch_offsets.empty()) out.pitch += pitch_offsets.at(static_cast<std::size_t>(b));
     if (!tip_masses.empty()) out.m_tip = tip_masses.at(static_cast<std::size_t>(b));
-    if (b > 0) out.J_oh = 0.0;  // the hub's inertia once, with blade 1
+    if (b > 0) {  // the hub's inertia, translating mass and support once, with blade 1
+        out.J_oh = 0.0;
+        out.m_hub = out.k_x = out.k_y = out.c_x = out.c_y = 0.0;
+    }
     return out;
 }
 

@@ -107,10 +107,11 @@ RatesAtRest rates_at_rest(const Model& model, Axial axial)
 
 namespace {
 
-/// -dQ/dq at rest, spinning steadily at omega, symmetrized, the cyclic hub angle left out.
+/// -dQ/dq at rest, spinning steadily at omega, symmetrized, the beam's rows alone: the cyclic hub angle and a moving
+/// hub's translation (a free-floating hub has no stiffness) left out.
 Eigen::MatrixXd spinning_stiffness(const Model& model, double omega)
 {
-    const int n = model.nq(), first = model.coordinates().first_elastic();
+    const int n = model.nq(), first = model.coordinates().first_beam();
     HubInput u;
     std::vector<double> q(static_cast<std::size_t>(n), 0.0), qd(q);
     if (model.key().drive == Drive::torque)

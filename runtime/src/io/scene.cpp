@@ -416,6 +416,10 @@ void read_hub(const Section& hub, const Scene& scene, Parameters& p)
 {
     hub.only();
     p.a = hub.number("radius", p.a);
+    if (hub.get("mass") && !scene.variant.extras.hub)
+        throw SceneError::with_detail(scene.path, hub.path("mass"),
+                                      "only with a [support] table (the hub translates on its support): add one");
+    p.m_hub = hub.number("mass", p.m_hub);
     const Motion::Kind kind = scene.motion.kind;
     if (scene.control)
         p.J_oh = hub.required_number("inertia", ", required for a controlled hub ([control])");
@@ -515,6 +519,8 @@ Scene parse_scene(std::string_view text, const std::string& path, const Override
     scene.tables = named_files(root, path);
     if (profile) scene.blade_stations = profile->resample;
     read_extras(root, path, scene.parameters);
+    // [support] makes the hub translate (docs/model.md section 13), at any stiffness: 0 is a free-floating hub.
+    scene.variant.extras.hub = !Section(path, root, "support").absent();
     read_gravity_direction(Section(path, root, "gravity"), scene.parameters);
     read_motion(Section(path, root, "motion"), path, scene.motion);
     read_control(Section(path, root, "control"), scene.control);

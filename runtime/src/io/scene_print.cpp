@@ -137,6 +137,9 @@ std::optional<SceneValue> parameter_value(const Scene& s, const SceneKey& k)
     if (name == "hub.inertia") return number(k, p.J_oh);
     if (name == "gravity.g") return number(k, p.g_axis != 0.0 ? p.g_axis : p.g);
     if (name == "gravity.direction") return text(k, p.g_axis != 0.0 ? "axis" : "plane");
+    // A moving hub's keys only where there is one: every other scene prints as it always has.
+    if ((k.table() == "support" || name == "hub.mass") && !s.variant.extras.hub) return std::nullopt;
+    if (name == "hub.mass") return number(k, p.m_hub);
     for (const TermInfo& t : terms())
         for (const TermSceneKey& tk : t.scene_keys)
             if (name == std::string(tk.table) + "." + tk.key) {
@@ -188,7 +191,8 @@ std::vector<SceneValue> effective_scene(const Scene& scene)
             : table == "motion"                                                              ? motion_value(scene, k)
             : table == "control"                                                             ? control_value(scene, k)
             : table == "rotor"                                                               ? rotor_value(scene, k)
-            : (table == "hub" || table == "tip" || table == "damping" || table == "gravity") ? parameter_value(scene, k)
+            : (table == "hub" || table == "tip" || table == "damping" || table == "gravity" || table == "support")
+                ? parameter_value(scene, k)
                                                                                              : run_value(scene, k);
         if (v) out.push_back(*v);
     }

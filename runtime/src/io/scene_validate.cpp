@@ -239,6 +239,25 @@ void check_rotor(const Scene& s)
         if (!(r.tip_masses[b] >= 0.0) || !std::isfinite(r.tip_masses[b]))
             fail(s.path, "rotor.tip_masses", expected("rotor.tip_masses"),
                  shortest(r.tip_masses[b]) + " for blade " + std::to_string(b + 1));
+    if (s.variant.extras.hub) {
+        for (const char* key : {"hub.mass", "support.stiffness_x", "support.stiffness_y", "support.damping_x",
+                                "support.damping_y"}) {
+            const std::string leaf = std::string(key).substr(std::string(key).find('.') + 1);
+            const Param p = leaf == "mass"          ? Param::m_hub
+                            : leaf == "stiffness_x" ? Param::k_x
+                            : leaf == "stiffness_y" ? Param::k_y
+                            : leaf == "damping_x"   ? Param::c_x
+                                                    : Param::c_y;
+            Parameters copy = s.parameters;
+            const double v = value(copy, p);
+            if (!(v >= 0.0) || !std::isfinite(v)) fail(s.path, key, expected(key), shortest(v));
+        }
+        if (s.drive() != Drive::torque)
+            fail(s.path, "support",
+                 "a hub angle that is a coordinate with a [support] (motion.kind \"torque\" or \"torque-table\", or a "
+                 "[control])",
+                 "a prescribed hub angle (motion.kind \"" + kind_word(s.motion.kind) + "\")");
+    }
     if (!r.tip_masses.empty() && s.parameters.m_tip != 0.0)
         fail(s.path, "rotor.tip_masses", "no tip.mass beside it (each blade's tip mass replaces it): remove one",
              "both");

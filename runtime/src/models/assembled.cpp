@@ -399,6 +399,9 @@ std::unique_ptr<Model> make_assembled_model(const VariantKey& key, const Paramet
 {
     if (key.order == Order::full)
         throw std::invalid_argument("full order has no hand-assembled form; it needs a generated variant");
+    if (key.extras.hub)
+        throw std::invalid_argument("a moving hub ([support]) has no hand-assembled form yet; it needs a generated "
+                                    "variant");
     // Out of the plane, section 12.3's forms: the precone's projections and the coupled bending have no place in
     // section 5.2's blocks.
     if (key.out_of_plane()) {

@@ -24,7 +24,7 @@ public:
           v_(v),
           c_(static_cast<std::size_t>(v.ncoeff)),
           pattern_(v.mass_pattern),
-          reads_angle_(potential_reads_angle(key)),
+          reads_angle_(kernels_read_angle(key)),
           torque_(key.drive == Drive::torque)
     {
         // A profile variant reads its section integrals after the parameters (model/interface.hpp).
@@ -207,15 +207,17 @@ private:
         k(c_.data(), inputs(u, q).data(), q, qd, out);
     }
 
-    /// A kernel of M: M depends on neither the drive nor the angle (the generator refuses a variant where it
-    /// would), so a variant's sine and cosine of the angle are not computed for it.
+    /// A kernel of M: M depends on no drive value, and on the angle only where the hub translates (its velocity in
+    /// the blade's frame turns with theta, a coordinate: docs/model.md section 13); elsewhere the sine and cosine
+    /// are not computed for it.
     void call_without_angle(generated::Kernel k, const HubInput& u, const double* q, const double* qd,
                             double* out) const
     {
-        k(c_.data(), mass_inputs(u).data(), q, qd, out);
+        k(c_.data(), mass_inputs(u, q).data(), q, qd, out);
     }
-    static std::array<double, kernel_input_count> mass_inputs(const HubInput& u)
+    std::array<double, kernel_input_count> mass_inputs(const HubInput& u, const double* q) const
     {
+        if (key().extras.hub) return inputs(u, q);
         return {u.tau, u.theta_dot, u.theta_ddot, 0.0, 0.0};
     }
 
@@ -223,7 +225,7 @@ private:
     void mass_at(const double* c, const HubInput& u, const double* q, double* M) const
     {
         std::fill_n(M, nq() * nq(), 0.0);
-        v_.mass(c, mass_inputs(u).data(), q, q, M);
+        v_.mass(c, mass_inputs(u, q).data(), q, q, M);
     }
     /// dM/dp_k, both triangles: M's kernel at c = dc/dp_k less at_zero, its mass_at at c = 0.
     void mass_derivative(const double* c, const HubInput& u, const double* q, const double* at_zero, double* dM) const

@@ -104,10 +104,14 @@ Eigen::MatrixXd damping_matrix(const Model& model, const Parameters& parameters)
     const Eigen::MatrixXd M = mass_at(model, rest, zero);
     const Eigen::MatrixXd K = -force_q_jacobian(model, rest, zero, zero);
     Eigen::MatrixXd C = parameters.alpha * M + parameters.beta * 0.5 * (K + K.transpose());
-    // The hub angle, a coordinate under torque, is not damped.
-    const Eigen::Index elastic = model.coordinates().first_elastic();
-    C.topRows(elastic).setZero();
-    C.leftCols(elastic).setZero();
+    // The hub angle, a coordinate under torque, is not damped; a moving hub's translation only by its support.
+    for (const CoordinateField& f : model.coordinates().fields)
+        if (!f.basis) {
+            C.middleRows(f.first, f.count).setZero();
+            C.middleCols(f.first, f.count).setZero();
+            if (f.kind == FieldKind::hub_x) C(f.first, f.first) = parameters.c_x;
+            if (f.kind == FieldKind::hub_y) C(f.first, f.first) = parameters.c_y;
+        }
     return C;
 }
 

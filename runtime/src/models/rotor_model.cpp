@@ -77,10 +77,13 @@ RotorModel::RotorModel(std::vector<std::unique_ptr<Model>> blades, std::vector<d
     : Model(blades.at(0)->key(), coordinate_layout(blades.at(0)->key(), static_cast<int>(blades.size())), p),
       blades_(std::move(blades)),
       azimuths_(std::move(azimuths)),
-      hub_(key().drive == Drive::torque ? 1 : 0),
+      hub_(0),
+      torque_(key().drive == Drive::torque),
       local_(blades_.front()->nq())
 {
     if (azimuths_.size() != blades_.size()) throw std::invalid_argument("RotorModel: one azimuth per blade");
+    for (const CoordinateField& f : blades_.front()->coordinates().fields)
+        if (!f.basis) hub_ = f.end();
     bool exact = true;
     for (const auto& b : blades_) {
         if (!(b->key() == key())) throw std::invalid_argument("RotorModel: blades of different variants");
@@ -116,7 +119,7 @@ HubInput RotorModel::blade_input(const HubInput& u, int b) const
 void RotorModel::gather(const double* q, int b, double* local, bool angle) const
 {
     for (int i = 0; i < local_; ++i) local[i] = q[global_index(b, i)];
-    if (hub_ == 1 && angle) local[0] += azimuths_[static_cast<std::size_t>(b)];
+    if (torque_ && angle) local[0] += azimuths_[static_cast<std::size_t>(b)];
 }
 
 void RotorModel::scatter_add(const double* local, int b, double* global) const

@@ -9,9 +9,10 @@
 
 namespace hubbeam {
 
-/// q = (theta under a torque, blade 1's fields, ..., blade N's): coordinate_layout(key, N). Blade b's model sees its
-/// own q with the hub angle theta + psi_b; its forces and mass scatter into the rotor's. Blades couple through theta
-/// alone, so M is block-arrowhead: each blade's block on the diagonal, the hub's row and column dense.
+/// q = (theta under a torque, a moving hub's x_h, y_h, blade 1's fields, ..., blade N's): coordinate_layout(key, N).
+/// Blade b's model sees its own q with the hub angle theta + psi_b; its forces and mass scatter into the rotor's.
+/// Blades couple through the hub's coordinates alone, so M is block-arrowhead: each blade's block on the diagonal,
+/// the hub's rows and columns dense.
 class RotorModel final : public Model {
 public:
     /// blades[b]: blade b's model (its parameters: Rotor::blade), all of one variant; azimuths[b]: psi_b - theta.
@@ -48,7 +49,8 @@ private:
     class Jacobian;
     std::vector<std::unique_ptr<Model>> blades_;
     std::vector<double> azimuths_;
-    int hub_;    // 1 under a torque (theta is q[0]), else 0
+    int hub_;       // the hub's coordinates, first in every blade's q and in the rotor's: theta (under a torque), x_h, y_h
+    bool torque_;   // theta is q[0]
     int local_;  // a blade's nq
     std::string pattern_;
     std::unique_ptr<ExactJacobian> jacobian_;

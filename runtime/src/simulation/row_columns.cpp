@@ -18,8 +18,10 @@ ColumnSet optional_columns_of(const Scene& scene)
     const VariantKey key = scene.key();
     const Auxiliary aux = Auxiliary::of(key, control, &scene.parameters, scene.wants({"ki"}));
     const bool torque = key.drive == Drive::torque && (control != nullptr || dissipates(key));
-    const bool has[] = {key.nz > 0,   key.nt > 0,     torque,  control != nullptr && !control->law,
-                        aux.integral, aux.dissipated, aux.work};
+    const bool hub = key.extras.hub;
+    const bool has[] = {key.nz > 0,   key.nt > 0,     torque,   control != nullptr && !control->law,
+                        aux.integral, aux.dissipated, aux.work, hub,
+                        hub,          hub,            hub};
     static_assert(std::size(has) == optional_width);
     ColumnSet set;
     for (std::size_t i = 0; i < optional_width; ++i)

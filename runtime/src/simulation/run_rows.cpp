@@ -65,6 +65,14 @@ Row RowMaker::operator()(double t, const double* y)
         extras.dissipated = at(system_.dissipated_index());
         extras.work = at(system_.work_index());
     }
+    if (const CoordinateField* x = model_.coordinates().find(FieldKind::hub_x)) {
+        const int ix = x->first, iy = model_.coordinates().first(FieldKind::hub_y);
+        const std::vector<double>& p = model_.parameters();
+        extras.hub_x = q[ix];
+        extras.hub_y = q[iy];
+        extras.hub_fx = -(p[index(Param::k_x)] * q[ix] + p[index(Param::c_x)] * qd[ix]);
+        extras.hub_fy = -(p[index(Param::k_y)] * q[iy] + p[index(Param::c_y)] * qd[iy]);
+    }
     const Tip tip = model_.tip(q);
     extras.tip_uz = tip.uz;
     extras.tip_phi = tip.phi;
