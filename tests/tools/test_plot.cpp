@@ -195,7 +195,7 @@ std::vector<DrawnLine> drawn_lines(const std::string& script)
 
 }  // namespace
 
-TEST_CASE("campbell: --modes, --kinds and --max-hz choose the lines - each its own colour and its label", "[plot]")
+TEST_CASE("campbell: --modes, --kinds and --max-frequency choose the lines - each its shade and its label", "[plot]")
 {
     ScratchDir scratch;
     // A blade's Campbell table: one variant, bending lines at 10, 300, 900 and 1800 Hz at rest, an axial line and a
