@@ -26,7 +26,7 @@ const std::vector<std::string>& mode_kinds()
 
 namespace {
 
-/// Revolutions per minute in a rad/s: the spin axis's factor in rpm.
+/// The rpm of 1 rad/s: the spin axis's factor in rpm.
 constexpr double rpm_per_rad_s = 60.0 / (2.0 * M_PI);
 
 /// The words a mode's kind or label may begin with to name its whirl (a rotor of several blades: backward,
@@ -324,9 +324,10 @@ struct Campbell {
     }
 };
 
-/// Adds the chosen modes' lines to both panels, each in its family's shade and its whirl's dashes, named at its end
-/// (once per name: a mode of several variants or files ends in one label, its variants told by their markers in
-/// the key; one variant's name goes to the title instead). A mode unstable anywhere says so in its label.
+/// Adds the chosen modes' lines to both panels, each in its family's shade and its whirl's dashes, a marker at
+/// every rate up to 12 and at about 12 of them beyond, named at its end (once per name: a mode of several variants or
+/// files ends in one label, the variants told by their markers in the key, led by their file's label when
+/// label_lines; one variant's name goes to the title instead). A mode unstable anywhere says so in its label.
 void add_mode_lines(Campbell& c, const std::vector<std::string>& files, const std::vector<std::string>& labels,
                     bool label_lines)
 {
@@ -359,11 +360,12 @@ void add_mode_lines(Campbell& c, const std::vector<std::string>& files, const st
         const std::string colour = family_colour(l.family.family, l.family.number);
         // smooth unique: the points by increasing rate, whatever the rows' order in the file
         const std::string look = " using 1:2 smooth unique with linespoints " +
-                                 campbell_style(colour, l.family.whirl, v, variants.size() == 1) + " notitle";
+                                 campbell_style(colour, l.family.whirl, v, variants.size() == 1) + " pi " +
+                                 std::to_string((l.points.size() + 11) / 12) + " notitle";
         c.f.elements.push_back(block + look);
         c.f.lower_elements.push_back(zeta + look);
         const bool unstable = std::any_of(l.points.begin(), l.points.end(), [](const auto& p) { return p.unstable(); });
-        const std::string text = (label_lines ? labels[l.file] + ": " : "") + l.name + (unstable ? " (unstable)" : "");
+        const std::string text = l.name + (unstable ? " (unstable)" : "");
         if (std::none_of(ends.begin(), ends.end(), [&](const EndLabel& e) { return e.text == text; }))
             ends.push_back({text, colour, l.points.back().hz});
     }

@@ -120,8 +120,8 @@ TEST_CASE("campbell: a line per bending mode of each variant, through its rows i
     // amm's and fem's lines coincide to the eye: each its own open marker, amm's larger and wider under fem's
     CHECK(script.find("$mode2 using 1:2 smooth unique with linespoints lw 2.5 lc rgb '") != std::string::npos);
     CHECK(script.find("$mode4 using 1:2 smooth unique with linespoints lw 2.1 lc rgb '") != std::string::npos);
-    CHECK(count(script, "dt solid pt 6 ps 1.60 notitle") == 2 * 2);  // amm's two lines, in both panels
-    CHECK(count(script, "dt solid pt 4 ps 1.35 notitle") == 2 * 2);
+    CHECK(count(script, "dt solid pt 6 ps 1.60 pi 1 notitle") == 2 * 2);  // amm's two lines, in both panels
+    CHECK(count(script, "dt solid pt 4 ps 1.35 pi 1 notitle") == 2 * 2);
 }
 
 TEST_CASE("campbell: a line per tracked mode through a crossing, the excitation lines and their crossings marked")
