@@ -34,12 +34,9 @@ def pyplot():
     return plt
 
 
-# The longest variant name a legend shows whole: a blade's with every term runs past 60 characters, which would
-# push the axes out of the figure; a longer one is cut with an ellipsis (the whole name is r.variant).
+# The longest variant name a legend or a Campbell diagram's title shows whole: a blade's with every term runs past 60
+# characters, which would push the axes out of the figure; a longer one is cut with an ellipsis (the whole name is r.variant).
 LEGEND_NAME_CHARS = 48
-
-# The excitation lines n x Omega drawn apart by their dashes, in order of n (then again, thinner).
-HARMONIC_STYLES = ("--", "-.", ":", (0, (5, 2, 1, 2, 1, 2)), (0, (8, 3)), (0, (1, 4)))
 
 
 def short_name(name: str, cap: int = LEGEND_NAME_CHARS) -> str:
