@@ -1,5 +1,6 @@
-// hubbeam plot campbell: the Campbell diagram of modes CSVs, a line per tracked mode of each variant, each its own
-// colour and marker, with the excitation lines nP and the critical speeds where they cross the modes.
+// hubbeam plot campbell: the Campbell diagram of modes CSVs as rotor engineers draw it, a line per tracked mode of
+// each variant in its family's shade and its whirl's dashes, named at its end, with the per-rev lines kP, the critical
+// speeds where they cross the modes, the damping ratios and instabilities in a panel below, the operating range.
 #include "plot_figures.hpp"
 
 #include <algorithm>
@@ -51,7 +52,8 @@ ModeName mode_name(const std::string& text)
     }
     ModeName n;
     std::size_t first = 0;
-    if (!words.empty() && std::find(std::begin(whirl_words), std::end(whirl_words), words.front()) != std::end(whirl_words))
+    if (!words.empty() &&
+        std::find(std::begin(whirl_words), std::end(whirl_words), words.front()) != std::end(whirl_words))
         n.whirl = words[first++];
     if (first < words.size()) n.family = words[first];
     if (words.size() > first + 1) parse_int(words.back(), 0, 1000000, n.number);
@@ -118,10 +120,9 @@ std::vector<CampbellLine> campbell_lines(const std::vector<std::string>& files, 
                            tracked ? label : label + " mode " + r["mode"],
                            family,
                            {}};
-            auto same = std::find_if(lines.begin() + static_cast<std::ptrdiff_t>(before), lines.end(),
-                                     [&](const CampbellLine& o) {
-                                         return o.variant == l.variant && o.mode == l.mode && o.kind == l.kind;
-                                     });
+            auto same = std::find_if(
+                lines.begin() + static_cast<std::ptrdiff_t>(before), lines.end(),
+                [&](const CampbellLine& o) { return o.variant == l.variant && o.mode == l.mode && o.kind == l.kind; });
             if (same == lines.end()) same = lines.insert(lines.end(), l);
             same->points.push_back({r.number("omega"), r.number("hz"), r.number("damping_ratio"), r.number("growth")});
         });
@@ -202,7 +203,8 @@ std::string campbell_table(const std::string& block, const std::string& zeta_blo
     std::string condition;
     for (std::size_t c = 0; c < variant_size; ++c)
         if (!l.variant[c].empty())  // a column the file has
-            condition += "strcol('" + std::string(variant_columns[c]) + "') eq " + gnuplot_string(l.variant[c]) + " && ";
+            condition +=
+                "strcol('" + std::string(variant_columns[c]) + "') eq " + gnuplot_string(l.variant[c]) + " && ";
     condition += "strcol('" + l.column + "') eq " + gnuplot_string(l.mode);
     if (!l.kind.empty()) condition += " && strcol('kind') eq " + gnuplot_string(l.kind);
     condition += " && column('hz') > 0";  // not an overdamped row (campbell_lines)
@@ -233,8 +235,8 @@ constexpr Family families[] = {
 /// The colour of mode `number` of a family: the family's hue, darker the lower the mode (shades cycle past 5).
 std::string family_colour(const std::string& family, int number)
 {
-    const Family* f = std::find_if(std::begin(families), std::end(families) - 1,
-                                   [&](const Family& g) { return family == g.name; });
+    const Family* f =
+        std::find_if(std::begin(families), std::end(families) - 1, [&](const Family& g) { return family == g.name; });
     return f->shades[static_cast<std::size_t>(std::max(number, 1) - 1) % std::size(f->shades)];
 }
 
@@ -262,7 +264,8 @@ std::string campbell_style(const std::string& colour, const std::string& whirl, 
 {
     char look[96];
     if (one_variant) {
-        std::snprintf(look, sizeof look, "lw 2 lc rgb '%s' %s pt 7 ps 0.5", colour.c_str(), whirl_dashes(whirl).c_str());
+        std::snprintf(look, sizeof look, "lw 2 lc rgb '%s' %s pt 7 ps 0.5", colour.c_str(),
+                      whirl_dashes(whirl).c_str());
         return look;
     }
     std::snprintf(look, sizeof look, "lw %.1f lc rgb '%s' %s pt %d ps %.2f",
@@ -335,8 +338,9 @@ void add_mode_lines(Campbell& c, const std::vector<std::string>& files, const st
     const std::vector<bool> named = named_columns(lines);
     // Fixed ranges while the rows are selected: an autoscaled one warns of a column of one value (an undamped
     // table's damping ratios, a table at one rate), and `with table` keeps every row whatever the ranges.
-    c.f.data = "# two datablocks per line: the rows of one tracked mode of one variant, Hz ($modeN) and damping ratio "
-               "in % ($zetaN)\nset xrange [-1:1]\nset yrange [-1:1]\n";
+    c.f.data =
+        "# two datablocks per line: the rows of one tracked mode of one variant, Hz ($modeN) and damping ratio "
+        "in % ($zetaN)\nset xrange [-1:1]\nset yrange [-1:1]\n";
     std::vector<std::pair<std::size_t, std::vector<std::string>>> variants;  // (file, variant): a marker each
     for (const CampbellLine& l : lines)
         if (std::find(variants.begin(), variants.end(), std::pair{l.file, l.variant}) == variants.end())
@@ -436,9 +440,9 @@ void add_per_rev(Campbell& c, const std::vector<int>& harmonics)
                 if (hz <= c.top) crossings.emplace_back(c.spin.of(omega), hz);
     }
     if (c.choice.blades > 1)
-        c.add_key("lines " + per_rev_style(c.choice.blades, c.choice.blades),
-                  std::to_string(c.choice.blades) + "P and its multiples (" + std::to_string(c.choice.blades) +
-                      " blades)");
+        c.add_key(
+            "lines " + per_rev_style(c.choice.blades, c.choice.blades),
+            std::to_string(c.choice.blades) + "P and its multiples (" + std::to_string(c.choice.blades) + " blades)");
     if (!crossings.empty()) {
         c.f.data += datablock("$critical", crossings);
         c.f.elements.push_back("$critical using 1:2 with points pt 7 ps 1.2 lc rgb 'red' notitle");
@@ -466,10 +470,13 @@ Figure campbell_figure(const std::vector<std::string>& files, const std::vector<
                        const std::vector<int>& harmonics, const CampbellChoice& choice, const Kind& kind)
 {
     std::vector<CampbellLine> lines = campbell_lines(files, kind, choice);
-    double omega_lo = HUGE_VAL, omega_hi = 0.0, hz_hi = 0.0, lowest_at_rest = HUGE_VAL, lowest_top = 0.0;
+    double omega_lo = HUGE_VAL, omega_hi = 0.0, hz_lo = HUGE_VAL, hz_hi = 0.0, lowest_at_rest = HUGE_VAL,
+           lowest_top = 0.0;
     for (const CampbellLine& l : lines) {
-        for (const CampbellPoint& p : l.points)
-            omega_lo = std::min(omega_lo, p.omega), omega_hi = std::max(omega_hi, p.omega), hz_hi = std::max(hz_hi, p.hz);
+        for (const CampbellPoint& p : l.points) {
+            omega_lo = std::min(omega_lo, p.omega), omega_hi = std::max(omega_hi, p.omega);
+            hz_lo = std::min(hz_lo, p.hz), hz_hi = std::max(hz_hi, p.hz);
+        }
         if (l.points.front().hz < lowest_at_rest) {
             lowest_at_rest = l.points.front().hz;
             lowest_top = std::max_element(l.points.begin(), l.points.end(), [](const auto& a, const auto& b) {
@@ -478,9 +485,12 @@ Figure campbell_figure(const std::vector<std::string>& files, const std::vector<
         }
     }
     const int highest = harmonics.empty() ? 0 : *std::max_element(harmonics.begin(), harmonics.end());
-    const double cutoff =
-        choice.max_hz < HUGE_VAL ? choice.max_hz : campbell_cutoff(highest, omega_hi, lowest_top);
+    const double cutoff = choice.max_hz < HUGE_VAL ? choice.max_hz : campbell_cutoff(highest, omega_hi, lowest_top);
     lines = lines_below(std::move(lines), cutoff);
+    if (lines.empty())  // a cutoff given below every mode (the automatic one keeps the lowest)
+        bad_option<PlotInputError>("--max-frequency",
+                                   "a frequency at or above the lowest mode drawn (" + shortest(hz_lo) + " Hz)",
+                                   shortest(cutoff));
     Figure f;
     Campbell c{lines, choice, SpinAxis{choice.rpm}, cutoff < HUGE_VAL ? cutoff : 1.05 * hz_hi, f, {}};
     const std::string spin_label = "'hub spin rate Omega (" + c.spin.unit() + ")'";
@@ -502,11 +512,12 @@ Figure campbell_figure(const std::vector<std::string>& files, const std::vector<
     double zeta_lo = 0.0, zeta_hi = 0.0;
     for (const CampbellLine& l : lines)
         for (const CampbellPoint& p : l.points)
-            if (std::isfinite(p.zeta)) zeta_lo = std::min(zeta_lo, 100.0 * p.zeta), zeta_hi = std::max(zeta_hi, 100.0 * p.zeta);
+            if (std::isfinite(p.zeta))
+                zeta_lo = std::min(zeta_lo, 100.0 * p.zeta), zeta_hi = std::max(zeta_hi, 100.0 * p.zeta);
     const double pad = zeta_hi > zeta_lo ? 0.08 * (zeta_hi - zeta_lo) : 1.0;
     f.lower_axes = "unset label\nset xlabel " + spin_label + "\nset ylabel 'damping ratio zeta (%)'\nset yrange [" +
-                   shortest(zeta_lo - pad) + ":" + shortest(zeta_hi + pad) + "]\n" +
-                   "set key at screen " + shortest(std::stod(right_edge(f)) + 0.02) + ", screen 0.33 left top Left reverse samplen 2 box\n";
+                   shortest(zeta_lo - pad) + ":" + shortest(zeta_hi + pad) + "]\n" + "set key at screen " +
+                   shortest(std::stod(right_edge(f)) + 0.02) + ", screen 0.33 left top Left reverse samplen 2 box\n";
     f.lower_elements.push_back("0 with lines lw 1 lc rgb 'black' notitle");
     for (const std::string& k : c.key) f.lower_elements.push_back(k);
     return f;

@@ -147,9 +147,10 @@ struct CampbellChoice {
 /// (n = 0) or at rest alone (Omega_max = 0).
 double campbell_cutoff(int highest_per_rev, double omega_max, double lowest_top);
 
-/// A Campbell diagram: the chosen modes' frequencies (Hz) against the spin rate, a line per file, variant and tracked
-/// mode, with the excitation lines of the harmonics and the critical speeds marked; the labels name the lines'
-/// files when label_lines.
+/// A Campbell diagram: the chosen modes' frequencies (Hz) against the spin rate (choice.rpm: in rpm) above and their
+/// damping ratios (%) below, a line per file, variant and tracked mode, named at its end; the per-rev lines of the
+/// harmonics, the critical speeds, the unstable points and the operating range marked; the key names the variants by
+/// their files' labels when label_lines.
 Figure campbell_figure(const std::vector<std::string>& files, const std::vector<std::string>& labels, bool label_lines,
                        const std::vector<int>& harmonics, const CampbellChoice& choice, const Kind& kind);
 

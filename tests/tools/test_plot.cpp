@@ -1222,6 +1222,11 @@ TEST_CASE("campbell as rotor engineers draw it: rpm, per-rev lines, cutoff, damp
     for (const DrawnLine& l : drawn_lines(plot_script(low))) titles.push_back(l.title);
     CHECK(titles == std::vector<std::string>{"flap 1", "BW edge 1", "FW edge 1"});
 
+    // a cutoff below every mode leaves nothing to draw: refused, naming the lowest
+    low.max_hz = "0.5";
+    CHECK_THROWS_WITH(plot_script(low), "--max-frequency: expected a frequency at or above the lowest mode drawn (" +
+                                            shortest(flap1(0.0)) + " Hz), got 0.5");
+
     // rad/s, the default: the rows as the table has them
     PlotArgs rad = args;
     rad.spin_unit.clear();
