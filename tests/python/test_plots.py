@@ -333,6 +333,9 @@ class CampbellOfASyntheticRotor(unittest.TestCase):
             hubbeam.plot_campbell(self.path, blades=0)
         with self.assertRaisesRegex(ValueError, r"^max_frequency: expected a frequency > 0 \(Hz\), got -1$"):
             hubbeam.plot_campbell(self.path, max_frequency=-1)
+        with self.assertRaisesRegex(ValueError, r"^max_frequency: expected a frequency at or above the lowest mode "
+                                                r"drawn \(1 Hz\), got 0.5$"):
+            hubbeam.plot_campbell(self.path, max_frequency=0.5)
 
 
 class NotebookDisplay(unittest.TestCase):

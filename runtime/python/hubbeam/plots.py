@@ -337,6 +337,9 @@ def plot_campbell(m: Any, *, kinds: Sequence[str] | str = CAMPBELL_KINDS, count:
     top = float(max_frequency) if max_frequency is not None else \
         campbell_cutoff(max(harmonics, default=0), omega_max, lowest_top)
     drawn = [line for line in drawn if (hz[keep & (labels == line)] <= top).any()]
+    if not drawn and keep.any():  # a cutoff given below every mode (the default keeps the lowest)
+        raise ValueError(f"max_frequency: expected a frequency at or above the lowest mode drawn "
+                         f"({float(hz[keep].min()):g} Hz), got {printable(repr(max_frequency), 80)}")
     keep &= np.isin(labels, drawn)
     if not math.isfinite(top):
         top = 1.05 * float(hz[keep].max()) if keep.any() else 1.0
