@@ -17,7 +17,8 @@ struct PlotArgs {
     std::string labels;              // comma-separated, one per file; empty: each file's stem
     std::string title;               // empty: the kind's
     std::string time;                // kind moment: draw the rows at the t closest to it; empty: each file's last t
-    std::string harmonics;           // kind campbell: the excitation lines omega = n Omega drawn; empty: 1,2,3
+    std::string harmonics;           // kind campbell: the per-rev lines f = n Omega / 2 pi drawn; empty: 1 to 6 (or
+                                     // to N of --blades N)
     std::string kinds;               // kind campbell: the kinds of tracked mode drawn; empty: bending
     std::string modes;               // kind campbell: the lowest N lines of each variant; empty: all
     std::string max_hz;              // kind campbell: the top of the frequency axis (Hz); empty: a little above the

@@ -256,6 +256,7 @@ class CampbellOfASyntheticRotor(unittest.TestCase):
         fig, ax, below, _ = self.draw()
         self.assertEqual(len(fig.axes), 2)
         self.assertEqual(below.get_ylabel(), "damping ratio (%)")
+        self.assertEqual(ax.get_title(), "rotor, amm, Ny = 8")
         self.assertEqual(texts_outside(fig), [])
         # the modes named at their ends, none in a legend box over the axes
         names = [t.get_text() for t in ax.texts]

@@ -248,7 +248,7 @@ def modes_from_csv(path: Any) -> dict:
     m["kind"] = np.array([r["kind"] for r in rows])
     m["label"] = np.array([r["label"] if r.get("label") else f"{r['kind']} mode {r['mode']}" for r in rows])
     (variant,) = variants
-    m["variant"] = " ".join(f"{c} {v}" if c != "method" else v for c, v in zip(_CSV_VARIANT, variant) if v)
+    m["variant"] = f"{variant[0]}, Ny = {variant[1]}"  # as the command line's figure names one variant
     stem = os.path.splitext(os.path.basename(os.fspath(path)))[0]
     m["scene_file"] = stem[:-len("-modes")] if stem.endswith("-modes") else stem
     return m
