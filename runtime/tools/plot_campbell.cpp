@@ -92,9 +92,10 @@ constexpr std::size_t variant_size = std::size(variant_columns);
 /// through a veering its shape may turn axial), or in a file without the label column (an older hubbeam's) the rows
 /// of one of those kinds of each frequency rank; then of each variant the `modes` lowest (by their frequency at
 /// their lowest rate). A row of frequency 0 (an overdamped mode: it does not oscillate) is no point of any line,
-/// whether or not the table lists it. Throws PlotInputError for a file without such rows.
+/// whether or not the table lists it; the rates of those that grow (a divergence: a real root in the right
+/// half-plane) go to `divergent`. Throws PlotInputError for a file without such rows.
 std::vector<CampbellLine> campbell_lines(const std::vector<std::string>& files, const Kind& kind,
-                                         const CampbellChoice& choice)
+                                         const CampbellChoice& choice, std::vector<double>& divergent)
 {
     std::vector<CampbellLine> lines;
     const auto chosen = [&](const std::string& k) {
@@ -105,7 +106,11 @@ std::vector<CampbellLine> campbell_lines(const std::vector<std::string>& files, 
         read_csv(files[file], kind, [&](const Record& r) {
             // An overdamped mode has no frequency to draw, and no critical speed: drawn at 0 Hz it would meet every
             // excitation line at rest and rank lowest for --modes (the same test as campbell_table's).
-            if (!(r.number("hz") > 0.0)) return;
+            if (!(r.number("hz") > 0.0)) {
+                // A real root that grows (a divergence) is an instability all the same, whatever its kind.
+                if (r.number("growth") > 0.0) divergent.push_back(r.number("omega"));
+                return;
+            }
             const bool tracked = r.has("label");
             const std::string& label = tracked ? r["label"] : r["kind"];
             ModeName family = mode_name(label);
@@ -318,6 +323,7 @@ struct Campbell {
     double top;  // the frequency axis's top (Hz)
     Figure& f;
     std::vector<std::string> key;  // the key's entries (plot elements drawing nothing but their sample)
+    std::vector<double> divergent;  // the rates (rad/s) of a divergence: a real root that grows, at 0 Hz
 
     /// Adds an entry to the key: the sample `look` draws (of NaN: nothing in the panel), named text.
     void add_key(const std::string& look, const std::string& text)
@@ -398,8 +404,9 @@ void add_mode_lines(Campbell& c, const std::vector<std::string>& files, const st
             c.add_key("lines lw 1.5 lc rgb '#404040' " + whirl_dashes(whirl), name);
 }
 
-/// Marks every point where a mode is unstable (a negative damping ratio, a positive real part) in both panels, with
-/// a red cross of its own in the key.
+/// Marks every point where a mode is unstable (a negative damping ratio, a positive real part) in both panels, and
+/// every divergence at 0 Hz in the upper one (its damping ratio, -1, would squash the lower), with a red cross of its
+/// own in the key.
 void add_instabilities(Campbell& c)
 {
     std::vector<std::pair<double, double>> hz, zeta;
@@ -409,11 +416,15 @@ void add_instabilities(Campbell& c)
                 hz.emplace_back(c.spin.of(p.omega), p.hz);
                 zeta.emplace_back(c.spin.of(p.omega), 100.0 * p.zeta);
             }
+    for (const double omega : c.divergent) hz.emplace_back(c.spin.of(omega), 0.0);
     if (hz.empty()) return;
-    c.f.data += datablock("$unstable", hz) + datablock("$unstable_zeta", zeta);
     const std::string look = " using 1:2 with points pt 2 ps 2 lw 2.5 lc rgb '#b2182b' notitle";
+    c.f.data += datablock("$unstable", hz);
     c.f.elements.push_back("$unstable" + look);
-    c.f.lower_elements.push_back("$unstable_zeta" + look);
+    if (!zeta.empty()) {
+        c.f.data += datablock("$unstable_zeta", zeta);
+        c.f.lower_elements.push_back("$unstable_zeta" + look);
+    }
     c.add_key("points pt 2 ps 2 lw 2.5 lc rgb '#b2182b'", "unstable");
 }
 
@@ -469,7 +480,8 @@ double campbell_cutoff(int highest_per_rev, double omega_max, double lowest_top)
 Figure campbell_figure(const std::vector<std::string>& files, const std::vector<std::string>& labels, bool label_lines,
                        const std::vector<int>& harmonics, const CampbellChoice& choice, const Kind& kind)
 {
-    std::vector<CampbellLine> lines = campbell_lines(files, kind, choice);
+    std::vector<double> divergent;
+    std::vector<CampbellLine> lines = campbell_lines(files, kind, choice, divergent);
     double omega_lo = HUGE_VAL, omega_hi = 0.0, hz_lo = HUGE_VAL, hz_hi = 0.0, lowest_at_rest = HUGE_VAL,
            lowest_top = 0.0;
     for (const CampbellLine& l : lines) {
@@ -492,7 +504,7 @@ Figure campbell_figure(const std::vector<std::string>& files, const std::vector<
                                    "a frequency at or above the lowest mode drawn (" + shortest(hz_lo) + " Hz)",
                                    shortest(cutoff));
     Figure f;
-    Campbell c{lines, choice, SpinAxis{choice.rpm}, cutoff < HUGE_VAL ? cutoff : 1.05 * hz_hi, f, {}};
+    Campbell c{lines, choice, SpinAxis{choice.rpm}, cutoff < HUGE_VAL ? cutoff : 1.05 * hz_hi, f, {}, divergent};
     const std::string spin_label = "'hub spin rate Omega (" + c.spin.unit() + ")'";
     f.axes = "set key off\nset xlabel " + spin_label + "\nset ylabel 'natural frequency f (Hz)'\n";
     f.axes += "set yrange [0:" + shortest(c.top) + "]\n";

@@ -239,6 +239,8 @@ class CampbellOfASyntheticRotor(unittest.TestCase):
                     ("flap 3", 40.0, -0.1, 0.01)], start=1):
                 rows.append(f"amm,8,0,first,prescribed,{w!r},{n},{label.split()[-2]},{2 * np.pi * hz!r},{hz!r},1,"
                             f"{growth!r},{2 * np.pi * hz!r},{zeta!r},{label},1")
+        # and at the highest rate a divergence: a real root that grows (0 Hz, damping ratio -1)
+        rows.append(f"amm,8,0,first,prescribed,{cls.REVS[-1]!r},6,overdamped,0,0,0,0.3,0.3,-1,overdamped 1,1")
         with open(cls.path, "w") as f:
             f.write("\n".join(rows) + "\n")
 
@@ -301,10 +303,14 @@ class CampbellOfASyntheticRotor(unittest.TestCase):
     def test_unstable_marked_damping_below_whirl_dashed(self):
         fig, ax, below, lines = self.draw()
         rpm_max = 180.0
-        unstable = lines["unstable"]
-        self.assertTrue(np.allclose(unstable.get_xdata(), [rpm_max]))
-        self.assertTrue(np.allclose(unstable.get_ydata(), [self.flap2(self.REVS[-1])]))
-        self.assertEqual(unstable.get_marker(), "x")
+        marks = [line for line in ax.get_lines() if line.get_label() == "unstable"]
+        self.assertEqual(len(marks), 2)  # flap 2's, and the divergence's at 0 Hz
+        self.assertTrue(np.allclose(marks[0].get_xdata(), [rpm_max]))
+        self.assertTrue(np.allclose(marks[0].get_ydata(), [self.flap2(self.REVS[-1])]))
+        self.assertTrue(np.allclose(marks[1].get_xdata(), [rpm_max]))
+        self.assertTrue(np.array_equal(marks[1].get_ydata(), [0.0]))
+        for mark in marks:
+            self.assertEqual(mark.get_marker(), "x")
         damping = {line.get_label(): line for line in below.get_lines()}
         self.assertTrue(np.allclose(damping["flap 2"].get_ydata(), [1.0, 1.0, 1.0, -0.5]))
         self.assertTrue(np.allclose(damping["unstable"].get_ydata(), [-0.5]))

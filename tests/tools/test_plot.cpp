@@ -1100,6 +1100,8 @@ TEST_CASE("campbell as rotor engineers draw it: rpm, per-rev lines, cutoff, damp
                                last ? -0.005 : 0.01, 17)
               << modes_csv_row("amm,8,0,first,prescribed", w, 5, "flap 3", 40.0, -0.1, 0.01, 17);
     }
+    // and at the highest rate a divergence: a real root that grows (0 Hz, damping ratio -1)
+    table << modes_csv_row("amm,8,0,first,prescribed", revs[3], 6, "overdamped 1", 0.0, 0.3, -1.0, 17);
     table.close();
     PlotArgs args;
     args.kind = "campbell";
@@ -1168,11 +1170,14 @@ TEST_CASE("campbell as rotor engineers draw it: rpm, per-rev lines, cutoff, damp
     CHECK(flap2_zeta[3].second == Approx(-0.5));   // -0.005
     CHECK(flap2_zeta[3].first == Approx(rpm_max));
 
-    // The unstable point: flap 2 at 180 rpm, a cross in both panels, and its label says so
+    // The unstable point: flap 2 at 180 rpm, a cross in both panels, and its label says so; the divergence a cross at
+    // 0 Hz, in the upper panel alone
     const auto unstable = inline_points(script, "$unstable");
-    REQUIRE(unstable.size() == 1);
+    REQUIRE(unstable.size() == 2);
     CHECK(unstable[0].first == Approx(rpm_max).epsilon(1e-12));
     CHECK(unstable[0].second == Approx(flap2(omega_max)).epsilon(1e-12));
+    CHECK(unstable[1].first == Approx(rpm_max).epsilon(1e-12));
+    CHECK(unstable[1].second == 0.0);
     CHECK(inline_points(script, "$unstable_zeta") == std::vector<std::pair<double, double>>{{unstable[0].first, -0.5}});
     CHECK(script.find("$unstable using 1:2 with points pt 2 ") != std::string::npos);
     CHECK(script.find("$unstable_zeta using 1:2 with points pt 2 ", lower) != std::string::npos);
@@ -1234,6 +1239,14 @@ TEST_CASE("campbell as rotor engineers draw it: rpm, per-rev lines, cutoff, damp
     const std::string rad_script = plot_script(rad);
     CHECK(rad_script.find("set xlabel 'hub spin rate Omega (rad/s)'") != std::string::npos);
     CHECK(inline_points(rad_script, "$unstable")[0].first == Approx(omega_max).epsilon(1e-12));
+    // a divergence alone: its cross above, nothing below
+    PlotArgs diverging = rad;
+    diverging.kinds = "edge";
+    const std::string diverging_script = plot_script(diverging);
+    CHECK(inline_points(diverging_script, "$unstable") ==
+          std::vector<std::pair<double, double>>{{inline_points(rad_script, "$unstable")[1]}});
+    CHECK(diverging_script.find("$unstable_zeta") == std::string::npos);
+    CHECK(diverging_script.find("title 'unstable'") != std::string::npos);
     CHECK(rad_script.find("  3*x/(2*pi) with lines lw 2.5 ") != std::string::npos);
 
     // Bad values name the option and what it takes

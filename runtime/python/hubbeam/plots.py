@@ -364,6 +364,13 @@ def plot_campbell(m: Any, *, kinds: Sequence[str] | str = CAMPBELL_KINDS, count:
                          markeredgewidth=2, color=UNSTABLE_COLOUR, label="unstable")
         ends.append((line + (" (unstable)" if unstable.any() else ""), colour, f[-1]))
 
+    # A divergence (a real root that grows, at 0 Hz; any kind) is an instability too: a cross at 0 Hz, above only (its
+    # damping ratio, -1, would squash the lower panel).
+    divergent = ~oscillates & (growth > 0)
+    if divergent.any():
+        ax.plot(omega[divergent] * scale, np.zeros(int(divergent.sum())), linestyle="none", marker="x", markersize=9,
+                markeredgewidth=2, color=UNSTABLE_COLOUR, label="unstable", clip_on=False)
+
     # The per-rev lines and their crossings with the modes (refined ones from hubbeam.modes where it searched that
     # harmonic, else where the straight segments between rates cross them), each line named at its end.
     w_lo = float(omega[keep].min()) if keep.any() else 0.0
@@ -421,7 +428,7 @@ def plot_campbell(m: Any, *, kinds: Sequence[str] | str = CAMPBELL_KINDS, count:
     key = []
     if cw:
         key.append(Line2D([], [], linestyle="none", marker="o", color=CRITICAL_COLOUR, label="critical speeds"))
-    if any(text.endswith(" (unstable)") for text, _, _ in ends):
+    if divergent.any() or any(text.endswith(" (unstable)") for text, _, _ in ends):
         key.append(Line2D([], [], linestyle="none", marker="x", markersize=9, markeredgewidth=2,
                           color=UNSTABLE_COLOUR, label="unstable"))
     if blades > 1:
