@@ -322,7 +322,7 @@ struct Campbell {
     SpinAxis spin;
     double top;  // the frequency axis's top (Hz)
     Figure& f;
-    std::vector<std::string> key;  // the key's entries (plot elements drawing nothing but their sample)
+    std::vector<std::string> key;   // the key's entries (plot elements drawing nothing but their sample)
     std::vector<double> divergent;  // the rates (rad/s) of a divergence: a real root that grows, at 0 Hz
 
     /// Adds an entry to the key: the sample `look` draws (of NaN: nothing in the panel), named text.
@@ -506,7 +506,7 @@ Figure campbell_figure(const std::vector<std::string>& files, const std::vector<
     Figure f;
     Campbell c{lines, choice, SpinAxis{choice.rpm}, cutoff < HUGE_VAL ? cutoff : 1.05 * hz_hi, f, {}, divergent};
     const std::string spin_label = "'hub spin rate Omega (" + c.spin.unit() + ")'";
-    f.axes = "set key off\nset xlabel " + spin_label + "\nset ylabel 'natural frequency f (Hz)'\n";
+    f.axes = "set key off\nset ytics autofreq\nset xlabel " + spin_label + "\nset ylabel 'natural frequency f (Hz)'\n";
     f.axes += "set yrange [0:" + shortest(c.top) + "]\n";
     f.axes += omega_hi > omega_lo
                   ? "set xrange [" + shortest(c.spin.of(omega_lo)) + ":" + shortest(c.spin.of(omega_hi)) + "]\n"
@@ -527,9 +527,17 @@ Figure campbell_figure(const std::vector<std::string>& files, const std::vector<
             if (std::isfinite(p.zeta))
                 zeta_lo = std::min(zeta_lo, 100.0 * p.zeta), zeta_hi = std::max(zeta_hi, 100.0 * p.zeta);
     const double pad = zeta_hi > zeta_lo ? 0.08 * (zeta_hi - zeta_lo) : 1.0;
+    // About four tics in the low panel: 1, 2 or 5 times a power of 10 (gnuplot's own crowd it with ten).
+    const double raw = (zeta_hi - zeta_lo + 2.0 * pad) / 4.0, decade = std::pow(10.0, std::floor(std::log10(raw)));
+    const double tic = raw <= decade         ? decade
+                       : raw <= 2.0 * decade ? 2.0 * decade
+                       : raw <= 5.0 * decade ? 5.0 * decade
+                                             : 10.0 * decade;
     f.lower_axes = "unset label\nset xlabel " + spin_label + "\nset ylabel 'damping ratio zeta (%)'\nset yrange [" +
-                   shortest(zeta_lo - pad) + ":" + shortest(zeta_hi + pad) + "]\n" + "set key at screen " +
-                   shortest(std::stod(right_edge(f)) + 0.02) + ", screen 0.33 left top Left reverse samplen 2 box\n";
+                   shortest(zeta_lo - pad) + ":" + shortest(zeta_hi + pad) + "]\nset ytics " + shortest(tic) + "\n" +
+                   (c.key.empty() ? std::string("unset key\n")
+                                  : "set key at screen " + shortest(std::stod(right_edge(f)) + 0.02) +
+                                        ", screen 0.33 left top Left reverse samplen 2 box\n");
     f.lower_elements.push_back("0 with lines lw 1 lc rgb 'black' notitle");
     for (const std::string& k : c.key) f.lower_elements.push_back(k);
     return f;
