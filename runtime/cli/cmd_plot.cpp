@@ -28,7 +28,8 @@ void add_plot_options(CLI::App& sub, PlotArgs& a)
     sub.add_option("--time", a.time, "moment: the rows at the t closest to T (default: each file's last t)")
         ->type_name("T");
     sub.add_option("--harmonics", a.harmonics,
-                   "campbell: the excitation lines omega = n Omega drawn, with their crossings (default 1,2,3)")
+                   "campbell: the per-rev lines f = n Omega / 2 pi drawn, with their crossings (default 1 to 6, or to "
+                   "N with --blades N)")
         ->type_name("LIST");
     sub.add_option("--kinds", a.kinds,
                    "campbell: the kinds of mode drawn, of bending, edge, flap, twist, axial, hub, overdamped (default "
@@ -36,9 +37,17 @@ void add_plot_options(CLI::App& sub, PlotArgs& a)
         ->type_name("LIST");
     sub.add_option("--modes", a.modes, "campbell: only the N lowest modes of each variant (default: all)")
         ->type_name("N");
-    sub.add_option("--max-hz", a.max_hz,
-                   "campbell: the frequency axis from 0 to F Hz, without the modes wholly above it (default: all)")
-        ->type_name("F");
+    sub.add_option("--max-frequency,--max-hz", a.max_hz,
+                   "campbell: the frequency axis from 0 to HZ, without the modes wholly above it (default: 1.1 times "
+                   "the highest per-rev line at the highest rate)")
+        ->type_name("HZ");
+    sub.add_option("--spin-unit", a.spin_unit, "campbell: the spin axis in rpm or rad/s (default rad/s)")
+        ->type_name("UNIT");
+    sub.add_option("--blades", a.blades, "campbell: the rotor's N blades: the per-rev lines NP, 2NP, ... drawn heavier")
+        ->type_name("N");
+    sub.add_option("--operating-range", a.operating_range,
+                   "campbell: the operating range LO:HI shaded, in the spin unit")
+        ->type_name("LO:HI");
     sub.add_option("--column", a.column,
                    "tip: tip_uy (default), a blade's tip_uz or tip_phi; moment: bending_moment (default), a blade's "
                    "flap_moment or torque")

@@ -15,9 +15,23 @@
 
 namespace hubbeam {
 
+namespace plotting {
+
+std::string right_edge(const Figure& f)
+{
+    const double chars = static_cast<double>(f.longest_label);
+    const double edge = std::clamp(0.93 - 0.0085 * chars - 0.06, 0.55, 0.85);
+    char buf[16];
+    std::snprintf(buf, sizeof buf, "%.3f", edge);
+    return buf;
+}
+
+}  // namespace plotting
+
 using plotting::axial_figure;
 using plotting::campbell_figure;
 using plotting::CampbellChoice;
+using plotting::default_per_rev;
 using plotting::Figure;
 using plotting::Kind;
 using plotting::kinds;
@@ -25,6 +39,7 @@ using plotting::mode_kinds;
 using plotting::moment_figure;
 using plotting::Quantity;
 using plotting::reading;
+using plotting::right_edge;
 using plotting::shortened;
 using plotting::tip_figure;
 
@@ -76,16 +91,6 @@ std::string indented(const std::string& lines)
     return out;
 }
 
-/// Where the panels of a two-panel figure end on the right (screen fraction): room for the widest legend entry.
-std::string right_edge(const Figure& f)
-{
-    const double chars = static_cast<double>(f.longest_label);
-    const double edge = std::clamp(0.93 - 0.0085 * chars - 0.06, 0.55, 0.85);
-    char buf[16];
-    std::snprintf(buf, sizeof buf, "%.3f", edge);
-    return buf;
-}
-
 }  // namespace
 
 const std::vector<std::string>& plot_kinds()
@@ -130,7 +135,10 @@ void check_plot_args(const PlotArgs& args)
     for (const auto& [option, value] : {std::pair<const char*, const std::string&>{"--harmonics", args.harmonics},
                                         {"--kinds", args.kinds},
                                         {"--modes", args.modes},
-                                        {"--max-hz", args.max_hz}})
+                                        {"--max-frequency", args.max_hz},
+                                        {"--spin-unit", args.spin_unit},
+                                        {"--blades", args.blades},
+                                        {"--operating-range", args.operating_range}})
         only(option, value, {"campbell"}, "kind campbell draws them");
     only("--column", args.column, {"tip", "moment"}, "kinds tip and moment draw a column of choice");
     only("--labels", args.labels, {"tip", "axial", "campbell", "moment"}, "kinds of a line per file take them");
@@ -176,7 +184,24 @@ CampbellChoice campbell_choice(const PlotArgs& args)
     if (!args.modes.empty() && !parse_int(args.modes, 1, 1000, c.modes))
         bad_option<PlotInputError>("--modes", "an integer from 1 to 1000", printable(args.modes, 40));
     if (!args.max_hz.empty() && !parse_positive(args.max_hz, c.max_hz))
-        bad_option<PlotInputError>("--max-hz", "a frequency > 0 (Hz)", printable(args.max_hz, 40));
+        bad_option<PlotInputError>("--max-frequency", "a frequency > 0 (Hz)", printable(args.max_hz, 40));
+    if (!args.spin_unit.empty() && args.spin_unit != "rpm" && args.spin_unit != "rad/s")
+        bad_option<PlotInputError>("--spin-unit", "rpm or rad/s", printable(args.spin_unit, 40));
+    c.rpm = args.spin_unit == "rpm";
+    if (!args.blades.empty() && !parse_int(args.blades, 1, 1000, c.blades))
+        bad_option<PlotInputError>("--blades", "an integer from 1 to 1000", printable(args.blades, 40));
+    if (!args.operating_range.empty()) {
+        const std::size_t colon = args.operating_range.find(':');
+        const std::string unit = c.rpm ? "rpm" : "rad/s";
+        if (colon == std::string::npos ||
+            !parse_non_negative(std::string_view(args.operating_range).substr(0, colon), c.range_lo) ||
+            !parse_non_negative(std::string_view(args.operating_range).substr(colon + 1), c.range_hi) ||
+            !(c.range_lo < c.range_hi))
+            bad_option<PlotInputError>("--operating-range",
+                                       "LO:HI, two spin rates >= 0 (" + unit + ", the --spin-unit) with LO < HI",
+                                       printable(args.operating_range, 40));
+        c.has_range = true;
+    }
     return c;
 }
 
@@ -208,12 +233,19 @@ Figure kind_figure(const Kind& kind, const PlotArgs& args, const std::vector<std
         return tip_figure(args.files, labels, reading(kind, q), q);
     }
     if (name == "axial") return axial_figure(args.files, labels, kind);
-    if (name == "campbell")
+    if (name == "campbell") {
+        const CampbellChoice choice = campbell_choice(args);
+        // By default the per-rev lines 1P to 6P, or to NP for a rotor of more blades.
+        std::string per_rev = args.harmonics;
+        if (per_rev.empty())
+            for (int k = 1; k <= std::max(default_per_rev, choice.blades); ++k) {
+                if (k > 1) per_rev += ',';
+                per_rev += std::to_string(k);
+            }
         // the labels name the lines once there is more than one file, or when given
-        return campbell_figure(
-            args.files, labels, args.files.size() > 1 || !args.labels.empty(),
-            parse_harmonics<PlotInputError>("--harmonics", args.harmonics.empty() ? default_harmonics : args.harmonics),
-            campbell_choice(args), kind);
+        return campbell_figure(args.files, labels, args.files.size() > 1 || !args.labels.empty(),
+                               parse_harmonics<PlotInputError>("--harmonics", per_rev), choice, kind);
+    }
     const Quantity& q = chosen_quantity(kind, args);
     return moment_figure(args.files, labels, args.time, reading(kind, q), q);
 }

@@ -17,10 +17,15 @@ struct PlotArgs {
     std::string labels;              // comma-separated, one per file; empty: each file's stem
     std::string title;               // empty: the kind's
     std::string time;                // kind moment: draw the rows at the t closest to it; empty: each file's last t
-    std::string harmonics;           // kind campbell: the excitation lines omega = n Omega drawn; empty: 1,2,3
+    std::string harmonics;           // kind campbell: the per-rev lines f = n Omega / 2 pi drawn; empty: 1 to 6 (or
+                                     // to N of --blades N)
     std::string kinds;               // kind campbell: the kinds of tracked mode drawn; empty: bending
     std::string modes;               // kind campbell: the lowest N lines of each variant; empty: all
-    std::string max_hz;              // kind campbell: the top of the frequency axis (Hz); empty: the data's
+    std::string max_hz;              // kind campbell: the top of the frequency axis (Hz); empty: a little above the
+                                     // highest per-rev line (plotting::campbell_cutoff)
+    std::string spin_unit;           // kind campbell: the spin axis's unit, rpm or rad/s; empty: rad/s
+    std::string blades;              // kind campbell: the rotor's blades N, whose per-rev multiples kN are drawn heavier
+    std::string operating_range;     // kind campbell: LO:HI, the operating range shaded (in the spin unit)
     std::string column;              // kinds tip and moment: the column drawn; empty: tip_uy, bending_moment
 };
 
@@ -29,8 +34,8 @@ const std::vector<std::string>& plot_kinds();
 
 /// Checks what every kind takes before a file is read: a kind of plot_kinds(), at least one file, the prefix
 /// (check_prefix), the files' names, --title and --labels as text a script may hold, and no option that args' kind
-/// does not take (--time but for moment, --harmonics, --kinds, --modes, --max-hz but for campbell, --column but for tip
-/// and moment, --labels for animate). Throws PlotInputError, or OutputRefused for the prefix.
+/// does not take (--time but for moment, --harmonics, --kinds, --modes, --max-frequency, --spin-unit, --blades,
+/// --operating-range but for campbell, --column but for tip and moment, --labels for animate). Throws PlotInputError, or OutputRefused for the prefix.
 void check_plot_args(const PlotArgs& args);
 
 /// The columns kind draws, one at a time (--column), the default first: tip_uy, tip_uz, tip_phi for tip,

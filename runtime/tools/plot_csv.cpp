@@ -36,8 +36,9 @@ const std::vector<Kind>& kinds()
         {"axial", &run_csv, {"t", "tip_ux1", "tip_ux"}, {"t", "tip_ux1", "tip_ux"}, {},
          "Longitudinal tip deformation with and without foreshortening", {}},
         // label is optional (a modes CSV of an older hubbeam has none); its text goes into the script where it is
-        {"campbell", &modes_csv, {"method", "ny", "nx", "order", "drive", "omega", "mode", "kind", "hz"},
-         {"ny", "omega", "mode", "hz"}, {"method", "nx", "order", "drive", "kind", "label"}, "Campbell diagram", {}},
+        {"campbell", &modes_csv,
+         {"method", "ny", "nx", "order", "drive", "omega", "mode", "kind", "hz", "growth", "damping_ratio"},
+         {"ny", "omega", "mode", "hz", "growth", "damping_ratio"}, {"method", "nx", "order", "drive", "kind", "label"}, "Campbell diagram", {}},
         {"moment", &field_csv, {"t", "x"}, {"t", "x"}, {}, "Bending moment along the beam",
          // bending_moment is EI u_y'' of a beam in the plane; moment_figure labels a blade's as the edgewise moment
          {{"bending_moment", "bending moment M = EI d^2u_y/dx^2 (N m)", "M", "N m", "Bending moment along the beam"},

@@ -90,6 +90,13 @@ struct Figure {
     std::size_t longest_label = 0;  // characters of the longest legend entry
 };
 
+/// The most characters of a legend entry or a line's end label (title_of).
+inline constexpr std::size_t legend_cap = 60;
+
+/// Where the panels of a two-panel figure end on the right (screen fraction, as gnuplot reads it): room in the
+/// margin for the longest legend entry or label.
+std::string right_edge(const Figure& f);
+
 /// text cut to at most cap characters (UTF-8 code points) by "..." in its middle, so that its start and its end
 /// (a file's name, then the mode's label) both stay.
 std::string shortened(const std::string& text, std::size_t cap);
@@ -117,16 +124,33 @@ Figure moment_figure(const std::vector<std::string>& files, const std::vector<st
 /// The kinds of mode a modes CSV names (NaturalMode::kind), which --kinds chooses from.
 const std::vector<std::string>& mode_kinds();
 
-/// Which lines a Campbell diagram draws (plot's --kinds, --modes, --max-hz).
+/// The per-rev lines a Campbell diagram draws when --harmonics is not given: 1P to this (or to NP for N blades
+/// beyond it).
+inline constexpr int default_per_rev = 6;
+
+/// Which lines a Campbell diagram draws and how (plot's --kinds, --modes, --max-frequency, --spin-unit, --blades,
+/// --operating-range).
 struct CampbellChoice {
     std::vector<std::string> kinds = {"bending", "edge", "flap"};  // a planar beam's, or a blade's out of the plane
     int modes = 0;                // the lowest this many lines of each variant; 0: all
-    double max_hz = HUGE_VAL;     // the frequency axis ends here, and lines wholly above it are left out
+    double max_hz = HUGE_VAL;     // the frequency axis ends here, and lines wholly above it are left out; HUGE_VAL:
+                                  // campbell_cutoff's
+    bool rpm = false;             // the spin axis in rpm, else rad/s
+    int blades = 0;               // N > 1: the per-rev lines kN (the rotor's N-per-rev) drawn heavier
+    bool has_range = false;       // the operating range [range_lo, range_hi] shaded, in the spin axis's unit
+    double range_lo = 0.0, range_hi = 0.0;
 };
 
-/// A Campbell diagram: the chosen modes' frequencies (Hz) against the spin rate, a line per file, variant and tracked
-/// mode, with the excitation lines of the harmonics and the critical speeds marked; the labels name the lines'
-/// files when label_lines.
+/// The frequency (Hz) above which a Campbell diagram leaves its lines out when none is given: 1.1 n Omega_max / 2 pi,
+/// a little above the highest per-rev line nP drawn at the highest rate, raised to 1.1 times the highest frequency
+/// of the lowest line (lowest_top) so that at least one mode is drawn; HUGE_VAL (every line) without a per-rev line
+/// (n = 0) or at rest alone (Omega_max = 0).
+double campbell_cutoff(int highest_per_rev, double omega_max, double lowest_top);
+
+/// A Campbell diagram: the chosen modes' frequencies (Hz) against the spin rate (choice.rpm: in rpm) above and their
+/// damping ratios (%) below, a line per file, variant and tracked mode, named at its end; the per-rev lines of the
+/// harmonics, the critical speeds, the unstable points and the operating range marked; the key names the variants by
+/// their files' labels when label_lines.
 Figure campbell_figure(const std::vector<std::string>& files, const std::vector<std::string>& labels, bool label_lines,
                        const std::vector<int>& harmonics, const CampbellChoice& choice, const Kind& kind);
 

@@ -15,13 +15,6 @@
 
 namespace hubbeam::plotting {
 
-namespace {
-
-/// The most characters of a legend entry: a longer one (a long file name, a tabulated blade's variant) would widen
-/// the legend's box on the right until it pushed the axes out of the figure.
-constexpr std::size_t legend_cap = 60;
-
-}  // namespace
 
 std::string shortened(const std::string& text, std::size_t cap)
 {

@@ -2,6 +2,7 @@
 figure's own lines and labels (never its bytes), and the package's import without matplotlib. Needs SOURCE_DIR."""
 import json
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -78,6 +79,31 @@ class RunFigures(unittest.TestCase):
             self.assertTrue(np.array_equal(la.get_xydata(), lb.get_xydata()))
 
 
+def texts_outside(fig):
+    """The texts of fig (titles, axis labels, annotations, legends) whose drawn extent leaves the figure: a label or
+    a key cut off."""
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    texts = list(fig.texts)
+    for a in fig.axes:
+        texts += [a.title, a.xaxis.label, a.yaxis.label, *a.texts]
+        if a.get_legend() is not None:
+            texts += [*a.get_legend().get_texts(), a.get_legend().get_title()]
+    box = fig.bbox
+    outside = []
+    for t in texts:
+        if not t.get_visible() or not t.get_text():
+            continue
+        e = t.get_window_extent(renderer)
+        if not (e.x0 >= box.x0 - 0.5 and e.x1 <= box.x1 + 0.5 and e.y0 >= box.y0 - 0.5 and e.y1 <= box.y1 + 0.5):
+            outside.append(t.get_text())
+    return outside
+
+
+def per_rev_lines(ax):
+    return {line.get_label(): line for line in ax.get_lines() if re.fullmatch(r"\d+P", line.get_label())}
+
+
 class Campbell(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
@@ -85,17 +111,19 @@ class Campbell(unittest.TestCase):
 
     def test_tracked_lines_excitation_lines_and_critical_speeds(self):
         m = self.m
-        fig = hubbeam.plot_campbell(m)
-        (ax,) = fig.axes
+        fig = hubbeam.plot_campbell(m, harmonics=[1, 2, 3], max_frequency=1000.0)
+        ax, below = fig.axes
         lines = {line.get_label(): line for line in ax.get_lines()}
+        damping = {line.get_label(): line for line in below.get_lines()}
         for k in range(1, 5):
             pick = m["label"] == f"bending {k}"
             self.assertTrue(np.array_equal(lines[f"bending {k}"].get_xdata(), m["omega"][pick]))
             self.assertTrue(np.array_equal(lines[f"bending {k}"].get_ydata(), m["hz"][pick]))
+            self.assertTrue(np.array_equal(damping[f"bending {k}"].get_ydata(), 100 * m["damping_ratio"][pick]))
         self.assertNotIn("bending 5", lines)  # count=4 per kind
-        # n x Omega in Hz: at 12 rad/s, 12 n / (2 pi).
+        # n P in Hz: at 12 rad/s, 12 n / (2 pi).
         for n in (1, 2, 3):
-            self.assertAlmostEqual(lines[f"{n} x Omega"].get_ydata()[-1], 12.0 * n / (2 * np.pi), places=12)
+            self.assertAlmostEqual(lines[f"{n}P"].get_ydata()[-1], 12.0 * n / (2 * np.pi), places=12)
         crit = lines["critical speeds"]
         c = m["critical"]
         shown = np.isin(c["label"], [f"bending {k}" for k in range(1, 5)])
@@ -103,14 +131,14 @@ class Campbell(unittest.TestCase):
         # Each marker sits on its excitation line: hz = n Omega / (2 pi), an independent check of the crossings.
         self.assertTrue(np.allclose(crit.get_ydata(), c["harmonic"][shown] * c["omega"][shown] / (2 * np.pi),
                                     rtol=1e-6))
-        self.assertEqual((ax.get_xlabel(), ax.get_ylabel()), ("spin rate Omega (rad/s)", "frequency (Hz)"))
-        _, title = legend_texts(ax)
-        self.assertEqual(title, f"spinup_omega4\n{m['variant']}")
+        self.assertEqual((below.get_xlabel(), ax.get_ylabel()), ("spin rate Omega (rad/s)", "frequency (Hz)"))
+        self.assertEqual(ax.get_title(), f"spinup_omega4, {hubbeam.plots.short_name(m['variant'])}")
+        self.assertEqual(texts_outside(fig), [])
 
     def test_kinds_and_harmonics_chosen(self):
         fig = hubbeam.plot_campbell(self.m, count=2, harmonics=[5])
         labels = [line.get_label() for line in fig.axes[0].get_lines()]
-        self.assertEqual(labels[:3], ["bending 1", "bending 2", "5 x Omega"])
+        self.assertEqual(labels[:3], ["bending 1", "bending 2", "5P"])
 
 
 class CampbellOfADampedBlade(unittest.TestCase):
@@ -125,9 +153,10 @@ class CampbellOfADampedBlade(unittest.TestCase):
     def test_an_overdamped_mode_is_not_drawn_and_meets_no_line(self):
         m = self.m
         self.assertTrue((m["hz"] == 0).any(), "the damped blade has overdamped modes (else this test shows nothing)")
-        fig = hubbeam.plot_campbell(m, kinds="all", count=64)
+        fig = hubbeam.plot_campbell(m, kinds="all", count=64, harmonics=[1, 2, 3], max_frequency=1e6)
         lines = {line.get_label(): line for line in fig.axes[0].get_lines()}
-        drawn = [(label, line) for label, line in lines.items() if " x Omega" not in label and label != "critical speeds"]
+        drawn = [(label, line) for label, line in lines.items()
+                 if not re.fullmatch(r"\d+P", label) and label not in ("critical speeds", "unstable")]
         self.assertTrue(drawn)
         for label, line in drawn:
             self.assertTrue((np.asarray(line.get_ydata()) > 0).all(), label)
@@ -137,13 +166,21 @@ class CampbellOfADampedBlade(unittest.TestCase):
         if "critical speeds" in lines:
             self.assertTrue((np.asarray(lines["critical speeds"].get_ydata()) > 0).all())
             self.assertEqual(len(lines["critical speeds"].get_xdata()), int((np.asarray(c["hz"]) > 0).sum()))
+        # every mode named at its end, none of the names cut off however many
+        self.assertEqual(texts_outside(fig), [])
 
-    def test_the_excitation_lines_are_dashed_apart(self):
-        fig = hubbeam.plot_campbell(self.m, harmonics=[1, 2, 3, 4])
-        styles = [(line.get_linestyle(), tuple(line._dash_pattern[1] or ())) for line in fig.axes[0].get_lines()
-                  if line.get_label().endswith(" x Omega")]
-        self.assertEqual(len(styles), 4)
-        self.assertEqual(len(set(styles)), 4, styles)
+    def test_the_per_rev_lines_are_named_and_the_blades_multiples_heavier(self):
+        fig = hubbeam.plot_campbell(self.m, harmonics=[1, 2, 3, 4], blades=2)
+        ax = fig.axes[0]
+        widths = {label: line.get_linewidth() for label, line in per_rev_lines(ax).items()}
+        self.assertEqual(set(widths), {"1P", "2P", "3P", "4P"})
+        self.assertGreater(widths["2P"], widths["1P"])
+        self.assertEqual(widths["2P"], widths["4P"])
+        self.assertEqual(widths["1P"], widths["3P"])
+        names = [t.get_text() for t in ax.texts]
+        for k in range(1, 5):
+            self.assertEqual(names.count(f"{k}P"), 1)
+        self.assertIn("2P and its multiples (2 blades)", [t.get_text() for t in fig.axes[1].get_legend().get_texts()])
 
     def test_a_long_variant_name_is_cut_and_the_axes_stay_in_the_figure(self):
         blade = os.path.join(SOURCE, "cases", "blade_from_file.toml")
@@ -151,7 +188,7 @@ class CampbellOfADampedBlade(unittest.TestCase):
         m = hubbeam.modes(blade, [0.0, 1.0, 2.0], source="assembled", g=0.0)  # no weight: steady
         r = hubbeam.run(blade, t_end=0.1, source="assembled")
         self.assertGreater(len(r.variant), 60)
-        for fig, text in ((hubbeam.plot_campbell(m), lambda ax: legend_texts(ax)[1]),
+        for fig, text in ((hubbeam.plot_campbell(m), lambda ax: ax.get_title()),
                           (r.plot(), lambda ax: legend_texts(ax)[0][0])):
             ax = fig.axes[0]
             shown = text(ax)
@@ -165,10 +202,147 @@ class CampbellOfADampedBlade(unittest.TestCase):
     def test_a_result_is_no_modes_table(self):
         r = hubbeam.run(SPINUP, t_end=0.1, nx=0)
         with self.assertRaisesRegex(ValueError, r"^m: expected the modes of hubbeam.modes\(scene, omega=\[...\]\) "
-                                                r"\(a dict with omega, hz, label, kind and critical\), got a run's Result"):
+                                                r"\(a dict with omega, hz, label, kind and critical\) or a modes CSV's "
+                                                r"path, got a run's Result"):
             hubbeam.plot_campbell(r)
         with self.assertRaisesRegex(ValueError, r"got a list$"):
             hubbeam.plot_campbell([1, 2])
+
+
+class CampbellOfASyntheticRotor(unittest.TestCase):
+    """The table of tests/tools/test_plot.cpp's rotor, from its CSV: two flap modes (the second unstable at the
+    highest rate), an edge mode in backward and forward whirl, a flap mode at 40 Hz above the cutoff; at 0, 1, 2 and
+    3 revolutions per second."""
+
+    REVS = 2 * np.pi * np.arange(4.0)
+
+    @staticmethod
+    def flap1(w):
+        return 1.0 + 0.1 * w
+
+    @staticmethod
+    def flap2(w):
+        return 5.0 + 0.05 * w
+
+    @classmethod
+    def setUpClass(cls):
+        cls.dir = tempfile.TemporaryDirectory()
+        cls.path = os.path.join(cls.dir.name, "rotor-modes.csv")
+        rows = ["method,ny,nx,order,drive,omega,mode,kind,rad_s,hz,dimensionless,growth,undamped_rad_s,"
+                "damping_ratio,label,mac"]
+        for w in cls.REVS:
+            last = w == cls.REVS[-1]
+            for n, (label, hz, growth, zeta) in enumerate([
+                    ("flap 1", cls.flap1(w), -0.1, 0.02), ("BW edge 1", 3.0 - 0.05 * w, -0.1, 0.01),
+                    ("FW edge 1", 3.0 + 0.05 * w, -0.1, 0.01),
+                    ("flap 2", cls.flap2(w), 0.2 if last else -0.1, -0.005 if last else 0.01),
+                    ("flap 3", 40.0, -0.1, 0.01)], start=1):
+                rows.append(f"amm,8,0,first,prescribed,{w!r},{n},{label.split()[-2]},{2 * np.pi * hz!r},{hz!r},1,"
+                            f"{growth!r},{2 * np.pi * hz!r},{zeta!r},{label},1")
+        # and at the highest rate a divergence: a real root that grows (0 Hz, damping ratio -1)
+        rows.append(f"amm,8,0,first,prescribed,{cls.REVS[-1]!r},6,overdamped,0,0,0,0.3,0.3,-1,overdamped 1,1")
+        with open(cls.path, "w") as f:
+            f.write("\n".join(rows) + "\n")
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.dir.cleanup()
+
+    def draw(self, **options):
+        options = {"spin_unit": "rpm", "blades": 3, "operating_range": (150.0, 180.0), **options}
+        fig = hubbeam.plot_campbell(self.path, **options)
+        ax, below = fig.axes
+        return fig, ax, below, {line.get_label(): line for line in ax.get_lines()}
+
+    def test_two_panels_every_label_inside_the_figure(self):
+        fig, ax, below, _ = self.draw()
+        self.assertEqual(len(fig.axes), 2)
+        self.assertEqual(below.get_ylabel(), "damping ratio (%)")
+        self.assertEqual(ax.get_title(), "rotor, amm, Ny = 8")
+        self.assertEqual(texts_outside(fig), [])
+        # the modes named at their ends, none in a legend box over the axes
+        names = [t.get_text() for t in ax.texts]
+        for name in ("flap 1", "flap 2 (unstable)", "BW edge 1", "FW edge 1"):
+            self.assertEqual(names.count(name), 1, name)
+        self.assertIsNone(ax.get_legend())
+
+    def test_rpm_per_rev_lines_and_cutoff(self):
+        fig, ax, below, lines = self.draw()
+        w_max = self.REVS[-1]
+        rpm = self.REVS * 60 / (2 * np.pi)
+        self.assertTrue(np.allclose(lines["flap 1"].get_xdata(), [0, 60, 120, 180], rtol=0, atol=1e-12))
+        self.assertTrue(np.allclose(lines["flap 1"].get_ydata(), self.flap1(self.REVS)))
+        self.assertAlmostEqual(ax.get_xlim()[1], 180.0, places=9)
+        self.assertEqual(below.get_xlabel(), "spin rate Omega (rpm)")
+        # 1P to 6P by default, each f = k Omega / 2 pi, the multiples of 3 blades heavier
+        per_rev = per_rev_lines(ax)
+        self.assertEqual(sorted(per_rev, key=lambda k: int(k[:-1])), [f"{k}P" for k in range(1, 7)])
+        for k in range(1, 7):
+            line = per_rev[f"{k}P"]
+            self.assertAlmostEqual(line.get_xdata()[-1], rpm[-1], places=9)
+            self.assertAlmostEqual(line.get_ydata()[-1], k * w_max / (2 * np.pi), places=9)
+            self.assertEqual(line.get_linewidth() > 2, k % 3 == 0, k)
+        # the cutoff 1.1 x 6P at the highest rate: flap 3 (40 Hz) left out
+        self.assertAlmostEqual(ax.get_ylim()[1], 1.1 * 6 * w_max / (2 * np.pi), places=9)
+        self.assertNotIn("flap 3", lines)
+        self.assertNotIn("flap 3", [t.get_text() for t in ax.texts])
+        # flap 1 meets 1P where 1 + 0.1 omega = omega / 2 pi: marked, in rpm
+        meets = 1.0 / (1.0 / (2 * np.pi) - 0.1)
+        crit = lines["critical speeds"]
+        self.assertTrue(np.any(np.isclose(crit.get_xdata(), meets * 60 / (2 * np.pi), rtol=1e-12)
+                               & np.isclose(crit.get_ydata(), meets / (2 * np.pi), rtol=1e-12)))
+        # a lower cutoff: only the lines with a point at or below 4 Hz (flap 2 starts at 5 Hz)
+        _, ax4, _, lines4 = self.draw(max_frequency=4.0)
+        self.assertEqual([k for k in lines4 if k.endswith(" 1") or k.endswith(" 2")], ["flap 1", "BW edge 1", "FW edge 1"])
+        self.assertEqual(ax4.get_ylim()[1], 4.0)
+        # rad/s: the rates as the table has them
+        _, _, below_rad, lines_rad = self.draw(spin_unit="rad/s", operating_range=None)
+        self.assertTrue(np.allclose(lines_rad["flap 1"].get_xdata(), self.REVS))
+        self.assertEqual(below_rad.get_xlabel(), "spin rate Omega (rad/s)")
+
+    def test_unstable_marked_damping_below_whirl_dashed(self):
+        fig, ax, below, lines = self.draw()
+        rpm_max = 180.0
+        marks = [line for line in ax.get_lines() if line.get_label() == "unstable"]
+        self.assertEqual(len(marks), 2)  # flap 2's, and the divergence's at 0 Hz
+        self.assertTrue(np.allclose(marks[0].get_xdata(), [rpm_max]))
+        self.assertTrue(np.allclose(marks[0].get_ydata(), [self.flap2(self.REVS[-1])]))
+        self.assertTrue(np.allclose(marks[1].get_xdata(), [rpm_max]))
+        self.assertTrue(np.array_equal(marks[1].get_ydata(), [0.0]))
+        for mark in marks:
+            self.assertEqual(mark.get_marker(), "x")
+        damping = {line.get_label(): line for line in below.get_lines()}
+        self.assertTrue(np.allclose(damping["flap 2"].get_ydata(), [1.0, 1.0, 1.0, -0.5]))
+        self.assertTrue(np.allclose(damping["unstable"].get_ydata(), [-0.5]))
+        self.assertEqual(lines["BW edge 1"].get_linestyle(), "--")
+        self.assertEqual(lines["FW edge 1"].get_linestyle(), ":")
+        self.assertEqual(lines["flap 1"].get_linestyle(), "-")
+        self.assertEqual(lines["BW edge 1"].get_color(), lines["FW edge 1"].get_color())
+        self.assertNotEqual(lines["flap 1"].get_color(), lines["flap 2"].get_color())
+        key = [t.get_text() for t in below.get_legend().get_texts()]
+        for entry in ("critical speeds", "unstable", "3P and its multiples (3 blades)", "backward whirl (BW)",
+                      "forward whirl (FW)", "operating range"):
+            self.assertIn(entry, key)
+        # the operating range shaded in both panels, from 150 to 180 rpm
+        for a in (ax, below):
+            spans = [p for p in a.patches if p.get_label() == "operating range"]
+            self.assertEqual(len(spans), 1)
+            x = a.transData.inverted().transform(spans[0].get_verts())[:, 0]  # its corners, in data x
+            self.assertTrue(np.allclose((x.min(), x.max()), (150.0, 180.0), rtol=0, atol=1e-9))
+
+    def test_bad_options_are_refused(self):
+        with self.assertRaisesRegex(ValueError, r"^spin_unit: expected 'rad/s' or 'rpm', got 'hz'$"):
+            hubbeam.plot_campbell(self.path, spin_unit="hz")
+        with self.assertRaisesRegex(ValueError, r"^operating_range: expected \(lo, hi\), two spin rates >= 0 in the "
+                                                r"spin_unit \(rad/s\) with lo < hi, got \(180, 150\)$"):
+            hubbeam.plot_campbell(self.path, operating_range=(180, 150))
+        with self.assertRaisesRegex(ValueError, r"^blades: expected an integer >= 1, got 0$"):
+            hubbeam.plot_campbell(self.path, blades=0)
+        with self.assertRaisesRegex(ValueError, r"^max_frequency: expected a frequency > 0 \(Hz\), got -1$"):
+            hubbeam.plot_campbell(self.path, max_frequency=-1)
+        with self.assertRaisesRegex(ValueError, r"^max_frequency: expected a frequency at or above the lowest mode "
+                                                r"drawn \(1 Hz\), got 0.5$"):
+            hubbeam.plot_campbell(self.path, max_frequency=0.5)
 
 
 class NotebookDisplay(unittest.TestCase):

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <hubbeam/simulate.hpp>
+#include <map>
 #include <set>
 #include <sstream>
 #include <string>
@@ -42,15 +43,24 @@ constexpr const char* modes_csv_header =
     "method,ny,nx,order,drive,omega,mode,kind,rad_s,hz,dimensionless,growth,undamped_rad_s,damping_ratio,label,mac\n";
 
 /// One row of a modes CSV for a test's table: variant ("amm,8,4,first,torque"), spin, mode number, label ("edge 2",
-/// whose first word is the kind), frequency, growth rate and damping ratio; the undamped rate |lambda| is taken as
-/// 2 pi hz.
+/// whose first word is the kind), frequency, growth rate and damping ratio, each number to `digits` significant
+/// digits (17: as written); the undamped rate |lambda| is taken as 2 pi hz.
 std::string modes_csv_row(const std::string& variant, double omega, std::size_t mode, const std::string& label,
-                          double hz, double growth, double zeta)
+                          double hz, double growth, double zeta, int digits = 6)
 {
     std::ostringstream row;
+    row.precision(digits);
     row << variant << ',' << omega << ',' << mode << ',' << label.substr(0, label.find(' ')) << ',' << 2 * M_PI * hz
         << ',' << hz << ",1," << growth << ',' << 2 * M_PI * hz << ',' << zeta << ',' << label << ",1\n";
     return row.str();
+}
+
+/// How many times text occurs in s.
+std::size_t count(const std::string& s, const std::string& text)
+{
+    std::size_t n = 0;
+    for (std::size_t at = s.find(text); at != std::string::npos; at = s.find(text, at + 1)) ++n;
+    return n;
 }
 
 /// A folder for one test case's figures, removed afterwards.
@@ -102,14 +112,16 @@ TEST_CASE("campbell: a line per bending mode of each variant, through its rows i
     PlotArgs named = args;
     named.files = {(scratch.dir / "spinup_omega4-modes.csv").string()};
     CHECK(plot_script(named).find("set title 'Campbell diagram, spinup_omega4' noenhanced") != std::string::npos);
-    // a legend entry per line: its variant and its tracked label
-    CHECK(script.find("title 'amm Ny = 4, bending 1' noenhanced") != std::string::npos);
-    CHECK(script.find("title 'fem Ny = 4, bending 2' noenhanced") != std::string::npos);
+    // each tracked label once at the lines' end, whichever variants draw it; the variants in the key by their markers
+    CHECK(count(script, "set label 'bending 1' at graph 1, first ") == 1);
+    CHECK(count(script, "set label 'bending 2' at graph 1, first ") == 1);
+    CHECK(script.find("NaN with points pt 6 ps 1.60 lc rgb '#404040' title 'amm Ny = 4' noenhanced") != std::string::npos);
+    CHECK(script.find("NaN with points pt 4 ps 1.35 lc rgb '#404040' title 'fem Ny = 4' noenhanced") != std::string::npos);
     // amm's and fem's lines coincide to the eye: each its own open marker, amm's larger and wider under fem's
     CHECK(script.find("$mode2 using 1:2 smooth unique with linespoints lw 2.5 lc rgb '") != std::string::npos);
     CHECK(script.find("$mode4 using 1:2 smooth unique with linespoints lw 2.1 lc rgb '") != std::string::npos);
-    CHECK(script.find("dt 1 pt 6 ps 1.60 title 'amm Ny = 4, bending 2'") != std::string::npos);
-    CHECK(script.find("dt 1 pt 4 ps 1.35 title 'fem Ny = 4, bending 2'") != std::string::npos);
+    CHECK(count(script, "dt solid pt 6 ps 1.60 pi 1 notitle") == 2 * 2);  // amm's two lines, in both panels
+    CHECK(count(script, "dt solid pt 4 ps 1.35 pi 1 notitle") == 2 * 2);
 }
 
 TEST_CASE("campbell: a line per tracked mode through a crossing, the excitation lines and their crossings marked")
@@ -160,7 +172,7 @@ TEST_CASE("campbell: a line per tracked mode through a crossing, the excitation 
 namespace {
 
 /// What the plot command of a script draws: per element of the Campbell lines ($modeN), its datablock, its
-/// colour and its legend title.
+/// colour and the tracked label its rows are selected by.
 struct DrawnLine {
     std::string block, colour, title;
 };
@@ -171,17 +183,19 @@ std::vector<DrawnLine> drawn_lines(const std::string& script)
         const std::size_t end = script.find('\n', at);
         const std::string element = script.substr(at, end - at);
         if (element.find(" using 1:2 smooth unique") == std::string::npos) continue;  // the datablock's definition
-        const std::size_t colour = element.find("lc rgb '") + 8, title = element.find("title '") + 7;
-        lines.push_back({element.substr(0, element.find(' ')),
-                         element.substr(colour, element.find('\'', colour) - colour),
-                         element.substr(title, element.find('\'', title) - title)});
+        const std::string block = element.substr(0, element.find(' '));
+        const std::size_t colour = element.find("lc rgb '") + 8;
+        const std::size_t table = script.find("set table " + block + " separator comma\n");
+        const std::size_t label = script.find("strcol('label') eq '", table) + 20;
+        lines.push_back({block, element.substr(colour, element.find('\'', colour) - colour),
+                         script.substr(label, script.find('\'', label) - label)});
     }
     return lines;
 }
 
 }  // namespace
 
-TEST_CASE("campbell: --modes, --kinds and --max-hz choose the lines - each its own colour and its label", "[plot]")
+TEST_CASE("campbell: --modes, --kinds and --max-frequency choose the lines - each its shade and its label", "[plot]")
 {
     ScratchDir scratch;
     // A blade's Campbell table: one variant, bending lines at 10, 300, 900 and 1800 Hz at rest, an axial line and a
@@ -199,13 +213,23 @@ TEST_CASE("campbell: --modes, --kinds and --max-hz choose the lines - each its o
     table.close();
     PlotArgs args = campbell_of(file, scratch.dir);
 
-    // By default every bending line: a colour each, its label the legend entry, the variant in the title
+    // By default the lines below 1.1 times 1P's frequency at the highest rate (200 rad/s: 35 Hz), or bending 1's
+    // highest (20 Hz) if it were higher: bending 1 alone
     std::string script = plot_script(args);
     std::vector<DrawnLine> lines = drawn_lines(script);
+    REQUIRE(lines.size() == 1);
+    CHECK(lines[0].title == "bending 1");
+    CHECK(script.find("set yrange [0:" + shortest(1.1 * (200.0 / (2.0 * M_PI))) + "]") != std::string::npos);
+
+    // Below 2000 Hz every bending line: a shade each, its label at its end, the variant in the title
+    args.max_hz = "2000";
+    script = plot_script(args);
+    lines = drawn_lines(script);
     REQUIRE(lines.size() == 4);
     std::set<std::string> colours;
     for (std::size_t i = 0; i < lines.size(); ++i) {
         CHECK(lines[i].title == "bending " + std::to_string(i + 1));
+        CHECK(count(script, "set label 'bending " + std::to_string(i + 1) + "' at graph 1") == 1);
         colours.insert(lines[i].colour);
     }
     CHECK(colours.size() == 4);
@@ -240,7 +264,7 @@ TEST_CASE("campbell: --modes, --kinds and --max-hz choose the lines - each its o
 
     // the options' bad values, and the options on another kind
     args.max_hz = "0";
-    CHECK_THROWS_WITH(plot_script(args), "--max-hz: expected a frequency > 0 (Hz), got 0");
+    CHECK_THROWS_WITH(plot_script(args), "--max-frequency: expected a frequency > 0 (Hz), got 0");
     args.max_hz.clear();
     args.modes = "0";
     CHECK_THROWS_WITH(plot_script(args), "--modes: expected an integer from 1 to 1000, got 0");
@@ -258,7 +282,7 @@ TEST_CASE("campbell: --modes, --kinds and --max-hz choose the lines - each its o
     tip.files = {fixture("run_amm.csv")};
     tip.prefix = args.prefix;
     tip.max_hz = "50";
-    CHECK_THROWS_WITH(plot_script(tip), "--max-hz: expected no max-hz for kind tip (only kind campbell draws them), got 50");
+    CHECK_THROWS_WITH(plot_script(tip), "--max-frequency: expected no max-frequency for kind tip (only kind campbell draws them), got 50");
 }
 
 TEST_CASE("moment: each file's rows at the t closest to --time, by default at its last t")
@@ -363,14 +387,6 @@ void write_permuted(const std::vector<std::vector<std::string>>& rows, const std
         for (std::size_t i = 0; i < order.size(); ++i) out << (i ? "," : "") << r[order[i]];
         out << "\n";
     }
-}
-
-/// How many times text occurs in s.
-std::size_t count(const std::string& s, const std::string& text)
-{
-    std::size_t n = 0;
-    for (std::size_t at = s.find(text); at != std::string::npos; at = s.find(text, at + 1)) ++n;
-    return n;
 }
 
 }  // namespace
@@ -952,6 +968,7 @@ TEST_CASE("campbell: overdamped rows (0 Hz) draw no line and no critical speed, 
     }
     table.close();
     PlotArgs args = campbell_of(file, scratch.dir);
+    args.max_hz = "50";  // above every line (the default cutoff, 1.1 x the lowest line's 3 Hz, leaves out the others)
     std::string script = plot_script(args);
     std::vector<std::string> titles;
     for (const DrawnLine& l : drawn_lines(script)) titles.push_back(l.title);
@@ -989,7 +1006,7 @@ TEST_CASE("campbell: overdamped rows (0 Hz) draw no line and no critical speed, 
                                                          "frequency above 0"));
 }
 
-TEST_CASE("campbell: every line its own colour however many, 1P, 2P and 3P each their own look and name", "[plot]")
+TEST_CASE("campbell: every line its family's shade by mode number, the per-rev lines named at their ends", "[plot]")
 {
     ScratchDir scratch;
     const fs::path file = scratch.dir / "many-modes.csv";
@@ -1005,39 +1022,256 @@ TEST_CASE("campbell: every line its own colour however many, 1P, 2P and 3P each 
     args.kind = "campbell";
     args.files = {file.string()};
     args.prefix = (scratch.dir / "campbell").string();
+    args.max_hz = "100";
     const std::string script = plot_script(args);
     const std::vector<DrawnLine> lines = drawn_lines(script);
     REQUIRE(lines.size() == modes);
     std::set<std::string> colours;
-    for (const DrawnLine& l : lines) {
-        colours.insert(l.colour);
-        // none of them the excitation lines' black and greys nor the critical speeds' red
-        CHECK(l.colour.size() == 7);
-        CHECK(l.colour != "#ff0000");
-        const unsigned rgb = std::stoul(l.colour.substr(1), nullptr, 16);
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+        const std::string& colour = lines[i].colour;
+        colours.insert(colour);
+        // a green (a planar beam's in-plane bending, as a blade's edge): neither the per-rev lines' greys nor the red
+        // of the critical speeds and the instabilities
+        REQUIRE(colour.size() == 7);
+        const unsigned rgb = std::stoul(colour.substr(1), nullptr, 16);
         const unsigned r = rgb >> 16, g = rgb >> 8 & 0xff, b = rgb & 0xff;
+        CHECK((g > r && g > b));
         CHECK(std::max({r, g, b}) - std::min({r, g, b}) > 40);  // not a grey
+        if (i > 0) CHECK(colour != lines[i - 1].colour);       // the next mode its next shade
     }
-    CHECK(colours.size() == modes);
-    // the excitation lines: three looks (dash pattern and grey), three names at their ends
-    std::set<std::string> looks, dashes;
-    for (const std::string n : {"", "2*", "3*"}) {
-        const std::size_t start = script.find("  " + n + "x/(2*pi) with lines ");
-        REQUIRE(start != std::string::npos);
-        const std::size_t from = script.find("with lines ", start) + 11;
-        looks.insert(script.substr(from, script.find(" title", from) - from));
-        const std::size_t dash = script.find(" dt ", from) + 4;
-        dashes.insert(script.substr(dash, script.find(' ', dash) - dash));
+    CHECK(colours.size() == 5);  // five shades, darkest first, again from mode 6
+    CHECK(lines[5].colour == lines[0].colour);
+    // the per-rev lines 1P to 6P by default, thin, solid and grey, each named once at its end
+    for (int k = 1; k <= 6; ++k) {
+        INFO(k);
+        const std::string per_rev = (k == 1 ? "" : std::to_string(k) + "*") + "x/(2*pi) with lines ";
+        CHECK(script.find("  " + per_rev + "lw 1 dt solid lc rgb '#909090' notitle") != std::string::npos);
+        CHECK(count(script, "set label '" + std::to_string(k) + "P' at ") == 1);
     }
-    CHECK(looks.size() == 3);
-    CHECK(dashes.size() == 3);  // told apart in black and white too
-    CHECK(looks.count("lw 2 dt (18,6) lc rgb 'black'") == 1);
-    for (const char* name : {"1P", "2P", "3P"}) {
-        INFO(name);
-        CHECK(count(script, std::string("set label '") + name + "' at ") == 1);
-    }
+    CHECK(script.find("7*x/(2*pi)") == std::string::npos);
     // 1P ends at the highest rate inside the figure (30 / 2 pi Hz, far below the modes' 60 Hz)
     CHECK(script.find("set label '1P' at 30," + shortest(30 / (2 * M_PI)) + " right") != std::string::npos);
+}
+
+namespace {
+
+/// The rows "x,y" of what gnuplot prints for one datablock, as numbers.
+std::vector<std::pair<double, double>> printed_points(const std::string& printed)
+{
+    std::vector<std::pair<double, double>> points;
+    std::istringstream in(printed);
+    for (std::string line; std::getline(in, line) && !line.empty();) {
+        const std::size_t comma = line.find(',');
+        points.emplace_back(std::stod(line.substr(0, comma)), std::stod(line.substr(comma + 1)));
+    }
+    return points;
+}
+
+/// The points of an inline datablock NAME << EOD ... EOD of a script.
+std::vector<std::pair<double, double>> inline_points(const std::string& script, const std::string& name)
+{
+    const std::size_t start = script.find(name + " << EOD\n");
+    if (start == std::string::npos) return {};
+    const std::size_t from = start + name.size() + 8;
+    return printed_points(script.substr(from, script.find("EOD\n", from) - from));
+}
+
+}  // namespace
+
+TEST_CASE("campbell as rotor engineers draw it: rpm, per-rev lines, cutoff, damping panel, instabilities, whirl",
+          "[plot]")
+{
+    ScratchDir scratch;
+    // A rotor's synthetic table at 0, 1, 2 and 3 revolutions per second (0, 2 pi, 4 pi, 6 pi rad/s): two flap modes
+    // (the second losing its damping and unstable at the highest rate), an edge mode split into its backward and
+    // forward whirl (3 Hz at rest, -/+ 0.05 Hz per rad/s), and a flap mode at 40 Hz above the default cutoff.
+    const fs::path file = scratch.dir / "rotor-modes.csv";
+    std::ofstream table(file);
+    table << modes_csv_header;
+    const double revs[] = {0.0, 2.0 * M_PI, 4.0 * M_PI, 6.0 * M_PI};
+    const auto flap1 = [](double w) { return 1.0 + 0.1 * w; };
+    const auto flap2 = [](double w) { return 5.0 + 0.05 * w; };
+    for (const double w : revs) {
+        const bool last = w == revs[3];
+        table << modes_csv_row("amm,8,0,first,prescribed", w, 1, "flap 1", flap1(w), -0.1, 0.02, 17)
+              << modes_csv_row("amm,8,0,first,prescribed", w, 2, "BW edge 1", 3.0 - 0.05 * w, -0.1, 0.01, 17)
+              << modes_csv_row("amm,8,0,first,prescribed", w, 3, "FW edge 1", 3.0 + 0.05 * w, -0.1, 0.01, 17)
+              << modes_csv_row("amm,8,0,first,prescribed", w, 4, "flap 2", flap2(w), last ? 0.2 : -0.1,
+                               last ? -0.005 : 0.01, 17)
+              << modes_csv_row("amm,8,0,first,prescribed", w, 5, "flap 3", 40.0, -0.1, 0.01, 17);
+    }
+    // and at the highest rate a divergence: a real root that grows (0 Hz, damping ratio -1)
+    table << modes_csv_row("amm,8,0,first,prescribed", revs[3], 6, "overdamped 1", 0.0, 0.3, -1.0, 17);
+    table.close();
+    PlotArgs args;
+    args.kind = "campbell";
+    args.files = {file.string()};
+    args.prefix = (scratch.dir / "campbell").string();
+    args.spin_unit = "rpm";
+    args.blades = "3";
+    args.operating_range = "150:180";
+    const std::string script = plot_script(args);
+    const double omega_max = revs[3], rpm_max = omega_max * 60.0 / (2.0 * M_PI);  // 180 rpm
+
+    // Only the modes below the cutoff: 1.1 x 6P at the highest rate, 19.8 Hz; flap 3 (40 Hz) left out
+    std::vector<std::string> titles;
+    for (const DrawnLine& l : drawn_lines(script)) titles.push_back(l.title);
+    CHECK(titles == std::vector<std::string>{"flap 1", "BW edge 1", "FW edge 1", "flap 2"});
+    const std::size_t yrange = script.find("  set yrange [0:");
+    REQUIRE(yrange != std::string::npos);
+    CHECK(std::stod(script.substr(yrange + 16)) == Approx(1.1 * 6.0 * omega_max / (2.0 * M_PI)).epsilon(1e-12));
+    CHECK(script.find("flap 3") == std::string::npos);
+
+    // rpm: 2 pi rad/s is 60 rpm on the spin axis, in the lines' rows, the axis's range and label
+    const std::string printed = gnuplot_prints(scratch.dir, script, "print $mode1\nprint $zeta4");
+    const std::size_t gap = printed.find("\n\n");
+    const auto flap1_rows = printed_points(printed.substr(0, gap + 1));
+    REQUIRE(flap1_rows.size() == 4);
+    for (std::size_t i = 0; i < 4; ++i) {
+        CHECK(flap1_rows[i].first == Approx(60.0 * static_cast<double>(i)).epsilon(1e-9));
+        CHECK(flap1_rows[i].second == Approx(flap1(revs[i])).epsilon(1e-5));
+    }
+    const std::size_t xrange = script.find("  set xrange [0:");
+    REQUIRE(xrange != std::string::npos);
+    CHECK(std::stod(script.substr(xrange + 16)) == Approx(rpm_max).epsilon(1e-12));
+    CHECK(script.find("set xlabel 'hub spin rate Omega (rpm)'") != std::string::npos);
+
+    // The per-rev lines 1P to 6P (f = k rpm / 60 Hz), each named at its end, 3P and 6P heavier (3 blades)
+    for (int k = 1; k <= 6; ++k) {
+        INFO(k);
+        const std::string per_rev = "  " + (k == 1 ? std::string() : std::to_string(k) + "*") + "x/60 with lines lw ";
+        CHECK(script.find(per_rev + (k % 3 == 0 ? "2.5" : "1") + " ") != std::string::npos);
+        CHECK(count(script, "set label '" + std::to_string(k) + "P' at ") == 1);
+    }
+    CHECK(script.find("7*x/60") == std::string::npos);
+    CHECK(script.find("title '3P and its multiples (3 blades)'") != std::string::npos);
+    // 1P named at its end: 180 rpm, 3 Hz
+    const std::size_t label = script.find("set label '1P' at ");
+    REQUIRE(label != std::string::npos);
+    const auto one_p = printed_points(script.substr(label + 18, script.find(' ', label + 18) - label - 18));
+    REQUIRE(one_p.size() == 1);
+    CHECK(one_p[0].first == Approx(rpm_max).epsilon(1e-12));
+    CHECK(one_p[0].second == Approx(omega_max / (2.0 * M_PI)).epsilon(1e-12));
+    // flap 1 meets 1P where 1 + 0.1 omega = omega / 2 pi: marked in rpm
+    const double meets = 1.0 / (1.0 / (2.0 * M_PI) - 0.1);
+    bool marked = false;
+    for (const auto& [x, y] : inline_points(script, "$critical"))
+        marked = marked || (std::abs(x - meets * 60.0 / (2.0 * M_PI)) < 1e-9 && std::abs(y - meets / (2.0 * M_PI)) < 1e-9);
+    CHECK(marked);
+
+    // The damping panel below: its own margins, the damping ratios in %, the key of markers in its margin
+    const std::size_t lower = script.find("  set tmargin at screen 0.33\n");
+    REQUIRE(lower != std::string::npos);
+    CHECK(script.find("set ylabel 'damping ratio zeta (%)'", lower) != std::string::npos);
+    CHECK(script.find("plot $zeta1 using 1:2", lower) != std::string::npos);
+    const auto flap2_zeta = printed_points(printed.substr(gap + 2));
+    REQUIRE(flap2_zeta.size() == 4);
+    CHECK(flap2_zeta[0].second == Approx(1.0));    // 0.01
+    CHECK(flap2_zeta[3].second == Approx(-0.5));   // -0.005
+    CHECK(flap2_zeta[3].first == Approx(rpm_max));
+
+    // The unstable point: flap 2 at 180 rpm, a cross in both panels, and its label says so; the divergence a cross at
+    // 0 Hz, in the upper panel alone
+    const auto unstable = inline_points(script, "$unstable");
+    REQUIRE(unstable.size() == 2);
+    CHECK(unstable[0].first == Approx(rpm_max).epsilon(1e-12));
+    CHECK(unstable[0].second == Approx(flap2(omega_max)).epsilon(1e-12));
+    CHECK(unstable[1].first == Approx(rpm_max).epsilon(1e-12));
+    CHECK(unstable[1].second == 0.0);
+    CHECK(inline_points(script, "$unstable_zeta") == std::vector<std::pair<double, double>>{{unstable[0].first, -0.5}});
+    CHECK(script.find("$unstable using 1:2 with points pt 2 ") != std::string::npos);
+    CHECK(script.find("$unstable_zeta using 1:2 with points pt 2 ", lower) != std::string::npos);
+    CHECK(count(script, "set label 'flap 2 (unstable)' at graph 1") == 1);
+    CHECK(count(script, "set label 'flap 1' at graph 1") == 1);
+
+    // The operating range shaded across both panels, in the key
+    CHECK(script.find("set object 1 rect from 150, graph 0 to 180, graph 1 ") != std::string::npos);
+    CHECK(script.find("title 'operating range'", lower) != std::string::npos);
+
+    // Whirl: BW dashed, FW dotted, a blade's own mode solid; one edge mode's two whirls in one shade, green, the flap
+    // modes in blues
+    std::map<std::string, std::string> look, colour;
+    for (const DrawnLine& l : drawn_lines(script)) {
+        const std::size_t at = script.find("  plot " + l.block + " using") != std::string::npos
+                                   ? script.find("  plot " + l.block + " using")
+                                   : script.find("       " + l.block + " using");
+        look[l.title] = script.substr(at, script.find('\n', at) - at);
+        colour[l.title] = l.colour;
+    }
+    CHECK(look["BW edge 1"].find(" dt (12,6) ") != std::string::npos);
+    CHECK(look["FW edge 1"].find(" dt (2,4) ") != std::string::npos);
+    CHECK(look["flap 1"].find(" dt solid ") != std::string::npos);
+    CHECK(colour["BW edge 1"] == colour["FW edge 1"]);
+    CHECK(colour["flap 1"] != colour["flap 2"]);
+    const auto dominant = [](const std::string& hex) {
+        const unsigned rgb = std::stoul(hex.substr(1), nullptr, 16);
+        const unsigned r = rgb >> 16, g = rgb >> 8 & 0xff, b = rgb & 0xff;
+        return b > r && b > g ? 'b' : g > r && g > b ? 'g' : '?';
+    };
+    CHECK(dominant(colour["flap 1"]) == 'b');
+    CHECK(dominant(colour["flap 2"]) == 'b');
+    CHECK(dominant(colour["BW edge 1"]) == 'g');
+    CHECK(script.find("title 'backward whirl (BW)'") != std::string::npos);
+    CHECK(script.find("title 'forward whirl (FW)'") != std::string::npos);
+    // --kinds edge chooses both whirls of the edge mode
+    PlotArgs edge = args;
+    edge.kinds = "edge";
+    titles.clear();
+    for (const DrawnLine& l : drawn_lines(plot_script(edge))) titles.push_back(l.title);
+    CHECK(titles == std::vector<std::string>{"BW edge 1", "FW edge 1"});
+
+    // --max-frequency 4: only the lines with a point at or below 4 Hz (flap 2 starts at 5 Hz)
+    PlotArgs low = args;
+    low.max_hz = "4";
+    titles.clear();
+    for (const DrawnLine& l : drawn_lines(plot_script(low))) titles.push_back(l.title);
+    CHECK(titles == std::vector<std::string>{"flap 1", "BW edge 1", "FW edge 1"});
+
+    // a cutoff below every mode leaves nothing to draw: refused, naming the lowest
+    low.max_hz = "0.5";
+    CHECK_THROWS_WITH(plot_script(low), "--max-frequency: expected a frequency at or above the lowest mode drawn (" +
+                                            shortest(flap1(0.0)) + " Hz), got 0.5");
+
+    // rad/s, the default: the rows as the table has them
+    PlotArgs rad = args;
+    rad.spin_unit.clear();
+    rad.operating_range.clear();
+    const std::string rad_script = plot_script(rad);
+    CHECK(rad_script.find("set xlabel 'hub spin rate Omega (rad/s)'") != std::string::npos);
+    CHECK(inline_points(rad_script, "$unstable")[0].first == Approx(omega_max).epsilon(1e-12));
+    // a divergence alone: its cross above, nothing below
+    PlotArgs diverging = rad;
+    diverging.kinds = "edge";
+    const std::string diverging_script = plot_script(diverging);
+    CHECK(inline_points(diverging_script, "$unstable") ==
+          std::vector<std::pair<double, double>>{{inline_points(rad_script, "$unstable")[1]}});
+    CHECK(diverging_script.find("$unstable_zeta") == std::string::npos);
+    CHECK(diverging_script.find("title 'unstable'") != std::string::npos);
+    CHECK(rad_script.find("  3*x/(2*pi) with lines lw 2.5 ") != std::string::npos);
+
+    // Bad values name the option and what it takes
+    PlotArgs bad = args;
+    bad.spin_unit = "hz";
+    CHECK_THROWS_WITH(plot_script(bad), "--spin-unit: expected rpm or rad/s, got hz");
+    bad = args;
+    bad.operating_range = "180:150";
+    CHECK_THROWS_WITH(plot_script(bad), "--operating-range: expected LO:HI, two spin rates >= 0 (rpm, the "
+                                        "--spin-unit) with LO < HI, got 180:150");
+    bad.operating_range = "150";
+    CHECK_THROWS_WITH(plot_script(bad), Catch::StartsWith("--operating-range: expected LO:HI"));
+    bad = args;
+    bad.blades = "0";
+    CHECK_THROWS_WITH(plot_script(bad), "--blades: expected an integer from 1 to 1000, got 0");
+    PlotArgs tip;
+    tip.kind = "tip";
+    tip.files = {fixture("run_amm.csv")};
+    tip.prefix = args.prefix;
+    tip.spin_unit = "rpm";
+    CHECK_THROWS_WITH(plot_script(tip),
+                      "--spin-unit: expected no spin-unit for kind tip (only kind campbell draws them), got rpm");
+    // the figure draws
+    CHECK(draw_plot(args).empty());
+    CHECK(fs::file_size(args.prefix + ".png") > 0);
 }
 
 TEST_CASE("a long file name is cut in its middle in the legend and the title, so the axes keep their room", "[plot]")

@@ -410,10 +410,12 @@ def effective_scene(scene: Any, **keys: Any) -> str:
     return _core_call(_core.effective_scene, text, name, _overrides(keys))
 
 
-def plot_campbell(m: dict, **options: Any):
-    """A Campbell diagram of modes(...) with matplotlib: the tracked modes' frequencies (Hz) against the spin rate,
-    the excitation lines n x Omega and the critical speeds; returns the figure (hubbeam.plots.plot_campbell for the
-    options: kinds, harmonics, ax, label). Needs matplotlib (python3-matplotlib)."""
+def plot_campbell(m: Any, **options: Any):
+    """A Campbell diagram of modes(...) (or of a modes CSV's path) with matplotlib, as rotor engineers draw it: the
+    tracked modes' frequencies (Hz) against the spin rate in their families' shades, named at their ends, the
+    per-rev lines and the critical speeds, the damping ratios in a panel below with the unstable points marked;
+    returns the figure (hubbeam.plots.plot_campbell for the options: kinds, count, harmonics, spin_unit, blades,
+    operating_range, max_frequency, ax, label). Needs matplotlib (python3-matplotlib)."""
     from .plots import plot_campbell as draw
     return draw(m, **options)
 
