@@ -4,15 +4,16 @@
 # Run as cmake -DSRC=source-dir -P layers.cmake.
 cmake_policy(SET CMP0057 NEW)  # if(... IN_LIST ...)
 set(rooms text config on_demand models dynamics analysis simulation io)
-# Rooms on one floor may not include each other either: analysis and simulation both stand on dynamics.
+# Rooms on one floor may not include each other either (text and config). A run stands on the analysis, whose steady
+# spin and static equilibrium it may start from (initial.state); the analysis knows nothing of runs.
 set(floor_text 0)
 set(floor_config 0)
 set(floor_on_demand 1)
 set(floor_models 2)
 set(floor_dynamics 3)
 set(floor_analysis 4)
-set(floor_simulation 4)
-set(floor_io 5)
+set(floor_simulation 5)
+set(floor_io 6)
 set(problems "")
 # A public header stands in the room of the source that defines it (simulate.hpp in simulation/); the model
 # interface, which every room implements or uses, stands under them all, and the umbrella above them all.

@@ -463,7 +463,8 @@ TEST_CASE("a table accepts exactly the keys the key table gives it, [motion] tho
     CHECK(table_keys("motion", "table") == std::vector<std::string>{"kind", "theta0", "file"});
     CHECK(table_keys("motion", "torque-table") == std::vector<std::string>{"kind", "theta0", "file"});
     CHECK(scene_tables() == std::vector<std::string>{"beam", "hub", "support", "tip", "damping", "gravity", "motion",
-                                                     "control", "rotor", "discretization", "model", "solver", "output"});
+                                                     "control", "rotor", "discretization", "model", "solver", "output",
+                                                     "initial"});
 }
 
 TEST_CASE("printable() escapes what could move, recolour or reorder a terminal, in hubbeam.printable's forms",

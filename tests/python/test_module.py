@@ -55,6 +55,21 @@ class RunTest(unittest.TestCase):
                 self.assertTrue(np.array_equal(r.data, rows), f"{args}: largest difference {abs(r.data - rows).max()}")
                 self.assertIn(r.variant, p.stdout)
 
+    def test_initial_state_is_a_scene_key_like_any(self):
+        # cases/helicopter_blade.toml at rest under gravity along its spin axis: "static" starts it at the cantilever's
+        # sag -m g L^4/(8 EI_flap) (FEM holds the quartic's nodal values exactly), whichever way the key is named.
+        blade = os.path.join(SOURCE, "cases", "helicopter_blade.toml")
+        sag = -8.0 * 9.81 * 6.0 ** 4 / (8.0 * 1e5)
+        for keys in ({"state": "static"}, {"initial.state": "static"}):
+            r = hubbeam.run(blade, t_end=0.1, **keys)
+            self.assertAlmostEqual(r.tip_uz[0] / sag, 1.0, delta=1e-9)
+            self.assertIn("\ninitial     static equilibrium at theta = 0 rad (Newton, residual ", r.summary_text)
+        r = hubbeam.run(blade, t_end=0.1)
+        self.assertEqual(r.tip_uz[0], 0.0)
+        self.assertNotIn("\ninitial ", r.summary_text)
+        with self.assertRaisesRegex(ValueError, "state: expected one of \"rest\", \"static\", \"steady\""):
+            hubbeam.run(blade, state="moving")
+
     def test_a_dict_scene_is_the_file_scene(self):
         scene = {
             "beam": {"length": 8.0, "density": 2.7667e3, "area": 7.2968e-5, "second_moment": 8.2189e-9,

@@ -110,6 +110,15 @@ struct Rotor {
     /// blade 0 alone (each blade's model carries the hub terms it is given; the rotor sums them once).
     Parameters blade(const Parameters& p, int b) const;
 };
+/// Where a run starts (scene key initial.state, docs/scene.md): at rest (the beam straight and unloaded), at the
+/// static equilibrium of its elastic coordinates under the constant loads at the drive's initial angle and rate, or
+/// at the steady spin of that rate (refused where the scene has none: gravity in the plane of a spinning hub).
+enum class InitialState { rest, static_equilibrium, steady };
+/// Words "rest", "static", "steady" (scene key initial.state, option --initial).
+std::string to_string(InitialState);
+bool parse(std::string_view, InitialState&);
+template <>
+std::vector<std::string> words<InitialState>();
 
 struct Scene {
     std::string path;  // the file it came from, for messages
@@ -128,6 +137,9 @@ struct Scene {
     SolverOptions solver;
     OutputOptions output;
     Rotor rotor;
+    InitialState initial = InitialState::rest;  // initial.state
+    /// The hub's rate at t = 0 (rad/s): a prescribed rotation's; a torque-driven hub starts at rest.
+    double initial_theta_dot() const { return drive() == Drive::torque ? 0.0 : motion.at(0.0).theta_dot; }
 
     /// The control, or nullptr: what the integrator and the linearization take.
     const Control* controller() const { return control ? &*control : nullptr; }

@@ -36,8 +36,9 @@ SteadySpin steady_spin(const Model& model, double omega, double theta = 0.0);
 /// The static equilibrium of a gravity variant with the hub held at theta (rad; 0 is a horizontal beam, at rest):
 /// Newton on the elastic rows Q_e(q_e) = 0 with theta fixed, and for a free hub the torque that holds it
 /// (u.tau = -Q_theta there). Throws std::runtime_error if Newton does not converge (the beam buckles under its
-/// weight).
-SteadySpin held_equilibrium(const Model& model, double theta);
+/// weight). With theta_dot, the hub turning at that rate through theta for an instant (a run's start, initial.state
+/// "static"): its centrifugal loads too, an equilibrium of that instant only, the weight in the plane turning on.
+SteadySpin held_equilibrium(const Model& model, double theta, double theta_dot = 0.0);
 
 /// x' = A x + B v, y = C x + D v about a steady spin (or a held equilibrium under gravity), in deviations from
 /// it. States: theta, the axial and transverse coordinates, then their rates (theta_dot first). Input v: the hub

@@ -1,5 +1,5 @@
-// Simulation: one scene integrated from rest, rows handed to a sink at exact multiples of dt_out. The
-// library entry point under the command line.
+// Simulation: one scene integrated from its initial state (initial.state: rest, unless it says otherwise), rows
+// handed to a sink at exact multiples of dt_out. The library entry point under the command line.
 #pragma once
 
 #include <cstddef>
@@ -160,6 +160,7 @@ struct RunSummary {
     std::string stepper;      // the step type that ran
     std::string stepper_why;  // why, when it was chosen automatically (stiffness.hpp); else empty
     std::string newton;       // how gauss4 solved its Newton systems (dense, or a bordered band); empty for the others
+    std::string initial;      // how the start of initial.state was found (initial_state.hpp); empty at rest
     bool completed = false;
     std::string failure;  // why the run stopped early (empty if completed)
     double t_reached = 0.0;
@@ -211,11 +212,12 @@ class Simulation {
 public:
     /// Keeps its own copy of scene, which the caller may then change or let go. Chooses the model (make_model, which
     /// tells note about an on-demand compilation or a fallback); throws
-    /// std::invalid_argument if none can serve the scene's variant, CompileError if compiling it failed.
+    /// std::invalid_argument if none can serve the scene's variant or the scene has no initial state of its
+    /// initial.state (no steady spin, no equilibrium), CompileError if compiling it failed.
     explicit Simulation(const Scene& scene, const std::function<void(const std::string&)>& note = {});
     /// Runs scene on model, which other runs, on other threads too, may share: a run only reads its model and owns
-    /// its work arrays. Throws std::invalid_argument if model is null, serves a variant other than the scene's, or
-    /// was built at other parameters.
+    /// its work arrays. Throws std::invalid_argument if model is null, serves a variant other than the scene's, was
+    /// built at other parameters, or the scene has no initial state of its initial.state.
     Simulation(const Scene& scene, std::shared_ptr<const Model> model);
     ~Simulation();
     Simulation(const Simulation&) = delete;
@@ -226,11 +228,12 @@ public:
     /// than the one its stiffness calls for; empty otherwise.
     std::string faster_stepper_hint() const;
 
-    /// Integrates from rest; every row reaches sink before the next step is taken, so a failed run keeps all
-    /// rows up to the failure. Before each step to the next row it asks stop (if given), so an interrupted
-    /// run ends on a whole row. Does not throw for numerical failure: see RunSummary::completed. Then the run's
-    /// rows are checked (the invariant monitor; the error indicator, see check_error), which can make a run that
-    /// reached t_end untrustworthy, and a failure that a tighter tolerance avoids is said to be the tolerance's.
+    /// Integrates from the scene's initial state (initial.state); every row reaches sink before the next step is
+    /// taken, so a failed run keeps all rows up to the failure. Before each step to the next row it asks stop (if
+    /// given), so an interrupted run ends on a whole row. Does not throw for numerical failure: see
+    /// RunSummary::completed. Then the run's rows are checked (the invariant monitor; the error indicator, see
+    /// check_error), which can make a run that reached t_end untrustworthy, and a failure that a tighter tolerance
+    /// avoids is said to be the tolerance's.
     RunSummary run(const RowSink& sink, const StopRequest& stop = {});
 
     /// Also called for every row, before sink, with the model's coordinates q (nq of them) at the row's time:
@@ -246,11 +249,15 @@ private:
     class Run;  // one call of run(): simulation/run.hpp
     /// The scene's stepper, or the automatic choice and why; whether the error is checked.
     void choose_stepper();
+    /// initial_q_ and initial_how_ of the scene's initial.state, once for the pilot and every run.
+    void find_initial_state();
     /// The automatic choice at rtol, with the pilot run (made once, at the first call that needs one).
     StepperChoice automatic(double rtol) const;
     const Scene scene_;  // its own copy: a caller's scene may be a temporary, or change after
     std::shared_ptr<const Model> model_;
     StateObserver observer_;
+    std::vector<double> initial_q_;  // the model's coordinates at t = 0 (initial.state)
+    std::string initial_how_;        // how they were found (RunSummary::initial); empty at rest
     std::string stepper_, stepper_why_;  // the scene's, or the automatic choice and why
     // Worked out at the first question that needs them (the automatic stepper's, faster_stepper_hint's) and kept: a
     // memo, which is why const questions may fill it. A Simulation is one run's, never shared between threads.

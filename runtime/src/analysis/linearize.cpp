@@ -101,7 +101,7 @@ SteadySpin steady_spin(const Model& model, double omega, double theta)
     return s;
 }
 
-SteadySpin held_equilibrium(const Model& model, double theta)
+SteadySpin held_equilibrium(const Model& model, double theta, double theta_dot)
 {
     const VariantKey& key = model.key();
     const int n = model.nq(), e0 = model.coordinates().first_elastic(), ne = n - e0;
@@ -110,8 +110,14 @@ SteadySpin held_equilibrium(const Model& model, double theta)
     s.u.theta = theta;
     s.q.assign(static_cast<std::size_t>(n), 0.0);
     s.qd = s.q;
-    if (key.drive == Drive::torque) s.q[0] = theta;
-    // Newton on the elastic rows at rest: one step where they are linear in q_e (orders zero and first), a few
+    s.omega = theta_dot;
+    if (key.drive == Drive::torque) {
+        s.q[0] = theta;
+        s.qd[0] = theta_dot;
+    } else {
+        s.u.theta_dot = theta_dot;
+    }
+    // Newton on the elastic rows (their rates 0): one step where they are linear in q_e (orders zero and first), a few
     // where the weight meets full order's nonlinear terms. Converged when the residual is round-off against the
     // terms that make it up (the load and K q), which holds whatever K's condition, near buckling too.
     std::vector<double> Q(static_cast<std::size_t>(n));

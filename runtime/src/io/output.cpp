@@ -388,6 +388,7 @@ std::string format_summary(const RunSummary& r, const Scene& scene)
         << (scene.solver.stepping == Stepping::free ? "free steps (rows interpolated)" : "a step ends at every row")
         << "\n";
     if (!r.newton.empty()) out << "newton      " << r.newton << "\n";
+    if (!r.initial.empty()) out << "initial     " << r.initial << "\n";
     out << "time        0 to " << shortest(r.t_reached) << " s of " << shortest(scene.output.t_end) << " s, rows every "
         << shortest(scene.output.dt_out) << " s";
     if (!scene.output.file.empty()) out << " in " << scene.output.file;

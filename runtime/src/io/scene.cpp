@@ -498,6 +498,13 @@ void read_output(const Section& output, OutputOptions& out)
     }
 }
 
+/// [initial]: where the run starts; whether the scene has that state is validate()'s.
+void read_initial(const Section& initial, Scene& scene)
+{
+    initial.only();
+    scene.initial = initial.word<InitialState>("state", parse_enum<InitialState>).value_or(scene.initial);
+}
+
 }  // namespace
 
 Scene load_scene(const std::string& path, const Overrides& overrides)
@@ -530,6 +537,7 @@ Scene parse_scene(std::string_view text, const std::string& path, const Override
     read_model(Section(path, root, "model"), scene);
     read_solver(Section(path, root, "solver"), scene.solver);
     read_output(Section(path, root, "output"), scene.output);
+    read_initial(Section(path, root, "initial"), scene);
     if (profile) fit_profile(path, *profile, scene.key(), scene.parameters);
     validate(scene);
     return scene;

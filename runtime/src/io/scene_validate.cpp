@@ -1,6 +1,7 @@
 // validate(): the ranges of a Scene's values and the checks that join keys, each failure naming its key.
 #include <algorithm>
 #include <cmath>
+#include <hubbeam/linearize.hpp>
 #include <hubbeam/scene.hpp>
 
 #include "dynamics/stepper_names.hpp"
@@ -266,6 +267,27 @@ void check_rotor(const Scene& s)
              "\"" + s.output.sensitivities.front() + "\"");
 }
 
+/// initial.state: a steady spin only where the scene has one at its initial rate, and no start but rest under
+/// sensitivities, whose equations start from zero (an equilibrium's own derivatives by the parameters are not zero).
+void check_initial(const Scene& s)
+{
+    if (s.initial == InitialState::rest) return;
+    const char* key = "initial.state";
+    const std::string word = "\"" + to_string(s.initial) + "\"";
+    if (!s.output.sensitivities.empty())
+        throw SceneError::with_detail(s.path, key,
+                                      word + " with output.sensitivities: the sensitivities start from rest; use "
+                                             "\"rest\" or no sensitivities");
+    const double rate = s.initial_theta_dot();
+    if (s.initial == InitialState::steady && !unsteady_spin(s.key(), s.parameters.packed(), rate).empty())
+        throw SceneError::with_detail(
+            s.path, key,
+            word + " at the initial spin " + shortest(rate) +
+                " rad/s under gravity in the plane of rotation: no steady state (the weight turns with the beam, the "
+                "motion is periodic); use \"static\" (the equilibrium at the initial angle and rate, which the "
+                "periodic motion leaves) or \"rest\"");
+}
+
 }  // namespace
 
 void validate(const Scene& s)
@@ -278,6 +300,7 @@ void validate(const Scene& s)
     check_discretization(s);
     check_solver(s);
     check_output(s);
+    check_initial(s);
 }
 
 }  // namespace hubbeam

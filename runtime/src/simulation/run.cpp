@@ -6,15 +6,18 @@
 
 #include <hubbeam/simulate.hpp>
 #include "dynamics/stiffness.hpp"
+#include "models/model_operations.hpp"
 #include "simulation/run_rows.hpp"
 
 namespace hubbeam {
 
-/// The state at rest: the free hub at its initial angle (q[0], the first state: kept_coordinates keeps it first).
-std::vector<double> initial_state(const FirstOrderSystem& system, const Model& model, const Scene& scene)
+std::vector<double> initial_state(const FirstOrderSystem& system, const Model& model, Axial axial,
+                                  const std::vector<double>& q)
 {
     std::vector<double> y(static_cast<std::size_t>(system.size()), 0.0);
-    if (model.key().drive == Drive::torque) y[0] = scene.motion.initial_theta();
+    // The positions are the kept coordinates in q's order (quasi-static A follows from them, as in every step).
+    const std::vector<int> kept = kept_coordinates(model.key(), axial);
+    for (std::size_t i = 0; i < kept.size(); ++i) y[i] = q[static_cast<std::size_t>(kept[i])];
     return y;
 }
 
@@ -24,7 +27,7 @@ Simulation::Run::Run(const Simulation& simulation)
       model_(*simulation.model_),
       owned_system_(system_of(model_, scene_)),
       system_(*owned_system_),
-      y_(initial_state(system_, model_, scene_)),
+      y_(initial_state(system_, model_, scene_.axial, simulation.initial_q_)),
       stepper_(make_stepper(system_, sim_.stepper_, 0.0, y_.data(), scene_.solver.h0, scene_.solver.atol,
                             scene_.solver.rtol)),
       make_row_(model_, scene_.motion, system_, scene_.controller()),

@@ -23,8 +23,10 @@ namespace hubbeam {
 /// " at t = T s": where a message's event happened.
 std::string at_time(double t);
 
-/// The state at rest: the free hub at its initial angle (q[0], the first state: kept_coordinates keeps it first).
-std::vector<double> initial_state(const FirstOrderSystem& system, const Model& model, const Scene& scene);
+/// The state at t = 0 of the model's coordinates q (nq, initial_coordinates: where initial.state starts): the kept
+/// coordinates, the free hub's angle first; the rates 0 (a prescribed hub's rate is the drive's).
+std::vector<double> initial_state(const FirstOrderSystem& system, const Model& model, Axial axial,
+                                  const std::vector<double>& q);
 
 /// One run of Simulation::run: the integration's state, with one member function per job (setup, the two stepping
 /// loops, rows to the sink, the diagnosis of a stop, the checks and the summary).
@@ -86,6 +88,7 @@ private:
     RunSummary summary_;
     double jacobi0_ = 0.0;
     double u_min_ = INFINITY, u_max_ = -INFINITY;  // U's range since t_steady (the drift's reference under gravity)
+    double potential0_ = 0.0;                      // U at t = 0: a start at an equilibrium holds it
     std::string model_failure_;                    // set when a row broke a model limit
     RunErrorCheck check_;                          // the error indicator; its columns are the ones a row writes
     std::vector<double> values_;                   // the last row's values (append_row_values)

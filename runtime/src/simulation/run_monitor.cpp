@@ -27,6 +27,7 @@ void Simulation::Run::start_summary()
     summary_.algebra = system_.linear_algebra();
     summary_.stepper = sim_.stepper_;
     summary_.stepper_why = sim_.stepper_why_;
+    summary_.initial = sim_.initial_how_;
     // The invariant monitor starts after the drive's last breakpoint, from where its Jacobi integral is constant; with
     // the hub's work a state, E + dissipated - work is constant from the start; with damping the Jacobi integral
     // plus the dissipated energy is (docs/model.md section 11.4). Gravity under a prescribed rotation leaves nothing
@@ -52,6 +53,10 @@ void Simulation::Run::start_summary()
     summary_.invariant_reference = summary_.energy_balance               ? "the largest energy in it"
                                    : potential_reads_angle(model_.key()) ? "the range of U since"
                                                                          : "the vibration energy";
+    // A run started at its equilibrium (initial.state) may hardly move: U's range is then round-off, and the energy
+    // the equilibrium holds, |U| at the start, is the scale a drift is measured against.
+    if (scene_.initial != InitialState::rest && !summary_.energy_balance)
+        summary_.invariant_reference += " or |U| at the start";
 }
 
 /// The invariant monitor (docs/model.md section 7): once the drive is steady (after its last breakpoint) the Jacobi
@@ -78,7 +83,10 @@ void Simulation::Run::monitor(const Row& r)
         u_max_ = std::max(u_max_, r.potential);
         summary_.vibration_energy =
             std::max(summary_.vibration_energy, potential_reads_angle(model_.key()) ? u_max_ - u_min_ : r.potential);
+        if (scene_.initial != InitialState::rest)
+            summary_.vibration_energy = std::max(summary_.vibration_energy, std::abs(potential0_));
     }
+    if (r.t == 0.0) potential0_ = r.potential;
     check_.record(r, values_);
 }
 

@@ -14,6 +14,7 @@
 #include "dynamics/integrate.hpp"
 #include "dynamics/stepper.hpp"
 #include "dynamics/stiffness.hpp"
+#include "simulation/initial_state.hpp"
 #include "simulation/run.hpp"
 #include "simulation/run_rows.hpp"
 
@@ -21,14 +22,14 @@ namespace hubbeam {
 
 namespace {
 
-/// gauss4 from rest over plan's window at the scene's tolerances, the drive's breakpoints stepped to as a run does;
-/// past plan's budget it stops once gauss4 has lost (pilot_lost with the costs of the pilot so far). Deterministic, as
-/// the choice must be.
-Pilot pilot_run(const Scene& scene, const Model& model, PilotPlan plan,
+/// gauss4 from the run's initial coordinates q0 over plan's window at the scene's tolerances, the drive's breakpoints
+/// stepped to as a run does; past plan's budget it stops once gauss4 has lost (pilot_lost with the costs of the pilot
+/// so far). Deterministic, as the choice must be.
+Pilot pilot_run(const Scene& scene, const Model& model, const std::vector<double>& q0, PilotPlan plan,
                 const std::function<StepperCosts(const Pilot&)>& costs)
 {
     FirstOrderSystem system(model, scene.motion, scene.axial, scene.controller(), &scene.parameters);
-    std::vector<double> y = initial_state(system, model, scene);
+    std::vector<double> y = initial_state(system, model, scene.axial, q0);
     const std::unique_ptr<Stepper> stepper =
         make_stepper(system, gauss_stepper, 0.0, y.data(), scene.solver.h0, scene.solver.atol, scene.solver.rtol);
     Pilot pilot{.t = 0.0, .steps = 0, .rtol = scene.solver.rtol};
@@ -74,6 +75,7 @@ int auxiliary_count(const Scene& scene)
 Simulation::Simulation(const Scene& scene, const std::function<void(const std::string&)>& note)
     : scene_(scene), model_(make_scene_model(scene, note))
 {
+    find_initial_state();
     choose_stepper();
 }
 
@@ -88,7 +90,19 @@ Simulation::Simulation(const Scene& scene, std::shared_ptr<const Model> model) :
     if (!model_->parameters().empty() && model_->parameters() != scene.parameters.packed())
         throw std::invalid_argument("the model of variant " + variant +
                                     " was built at other physical parameters than the scene's");
+    find_initial_state();
     choose_stepper();
+}
+
+void Simulation::find_initial_state()
+{
+    try {
+        InitialCoordinates start = initial_coordinates(*model_, scene_);
+        initial_q_ = std::move(start.q);
+        initial_how_ = std::move(start.description);
+    } catch (const std::runtime_error& e) {  // no equilibrium (a beam that buckles under its weight): the scene's fault
+        throw std::invalid_argument("initial.state \"" + to_string(scene_.initial) + "\": " + e.what());
+    }
 }
 
 void Simulation::choose_stepper()
@@ -116,7 +130,7 @@ StepperChoice Simulation::automatic(double rtol) const
         const auto costs = [&](const Pilot& p) {
             return predicted_costs(*model_, scene_.axial, scene_.solver.rtol, t_end, auxiliary, &p, rates_.get());
         };
-        pilot_ = std::make_unique<Pilot>(pilot_run(scene_, *model_, pilot_plan(rule, t_end), costs));
+        pilot_ = std::make_unique<Pilot>(pilot_run(scene_, *model_, initial_q_, pilot_plan(rule, t_end), costs));
     }
     pilot_decided_ = true;  // needs_pilot's eigenvalues once, not at every check's re-run
     return automatic_stepper(*model_, scene_.axial, rtol, t_end, auxiliary,
