@@ -16,7 +16,7 @@ std::vector<double> initial_state(const FirstOrderSystem& system, const Model& m
 {
     std::vector<double> y(static_cast<std::size_t>(system.size()), 0.0);
     // The positions are the kept coordinates in q's order (quasi-static A follows from them, as in every step).
-    const std::vector<int> kept = kept_coordinates(model.key(), axial);
+    const std::vector<int> kept = kept_coordinates(model.coordinates(), axial);
     for (std::size_t i = 0; i < kept.size(); ++i) y[i] = q[static_cast<std::size_t>(kept[i])];
     return y;
 }
