@@ -46,15 +46,27 @@ double held_angle(const Scene& scene)
     return scene.motion.initial_theta();
 }
 
-/// Refuses, before anything is computed, a spin rate about which the scene has no steady state (unsteady_spin).
-void check_steady(const Scene& scene, const std::vector<double>& omegas)
+/// Refuses, before anything is computed, a spin rate about which the scene has no steady state (unsteady_spin):
+/// linearize's always; with periodic, modes', which takes the periodic motion's Floquet modes there, only where that
+/// analysis cannot take the scene (a controlled hub, quasi-static axial coordinates).
+void check_steady(const Scene& scene, const std::vector<double>& omegas, bool periodic = false)
 {
-    for (const double omega : omegas)
-        if (!unsteady_spin(scene.key(), scene.parameters.packed(), omega).empty())
+    for (const double omega : omegas) {
+        if (unsteady_spin(scene.key(), scene.parameters.packed(), omega).empty()) continue;
+        const bool quasi_static = scene.axial == Axial::quasi_static && scene.variant.nx > 0;
+        if (periodic && !scene.control && !quasi_static) continue;
+        if (periodic)
             throw ModesOptionError(
-                "--omega: with gravity in the plane of rotation only 0 (the hub held; at a spin rate the motion is "
-                "periodic, not steady), got " +
-                shortest(omega));
+                "--omega: with gravity in the plane of rotation only 0 (the hub held) " +
+                std::string(scene.control ? "under [control] (the closed loop's periodic modes are not computed)"
+                                          : "with model.axial = \"quasi-static\" (the Floquet analysis of the "
+                                            "periodic motion needs dynamic axial coordinates)") +
+                ", got " + shortest(omega));
+        throw ModesOptionError(
+            "--omega: with gravity in the plane of rotation only 0 (the hub held; at a spin rate the motion is "
+            "periodic, not steady), got " +
+            shortest(omega));
+    }
 }
 
 /// Every (method, Ny, Nz, Nt) of the request must be a variant of the scene, checked before anything is computed.
@@ -136,7 +148,7 @@ ModesOptions parse_modes_options(const ModesArgs& args, const Scene& scene)
             o.omegas.push_back(std::abs(scene.motion.omega0));
     } else {
         o.omegas = parse_spin_rates("--omega", args.omega);
-        check_steady(scene, o.omegas);
+        check_steady(scene, o.omegas, true);
     }
     o.methods = args.methods.empty() ? std::vector<Method>{scene.variant.method}
                                      : parse_method_list<ModesOptionError>("--methods", args.methods);
@@ -262,6 +274,24 @@ ModesReport::ModesReport(const Scene& scene, const ModesOptions& o, std::ostream
 void ModesReport::heading() const
 {
     if (o_.quiet) return;
+    // Spin rates without a steady state (weight in the plane of rotation): their modes are the periodic motion's.
+    std::vector<double> periodic;
+    for (const double omega : o_.omegas)
+        if (!unsteady_spin(scene_.key(), scene_.parameters.packed(), omega).empty()) periodic.push_back(omega);
+    if (!periodic.empty()) {
+        const auto period = [](double omega) {
+            char text[40];
+            std::snprintf(text, sizeof text, "%.6g", 2.0 * M_PI / omega);
+            return std::string(text);
+        };
+        out_ << "analysis    Floquet over one revolution "
+             << (periodic.size() == 1 ? "(period " + period(periodic[0]) + " s at " + shortest(periodic[0]) + " rad/s)"
+                                      : "(period 2 pi/Omega, " + period(periodic.back()) + " to " + period(periodic[0]) +
+                                            " s, at the " + std::to_string(periodic.size()) + " rates > 0)")
+             << ": the weight turns with the plane of rotation, the motion is periodic\n"
+             << "            frequency Im(ln mu)/T + k Omega, k the harmonic that dominates the mode; a mode that "
+                "decays by more than about 1e8 in a revolution is not resolved, nor listed\n";
+    }
     out_ << "method  Ny  Nx" << (counts_ ? "  Nz  Nt" : "") << "  order  Omega rad/s  mode  kind        tracked              rad/s          Hz  "
             "dimensionless  growth 1/s"
          << (damped_ ? "  undamped rad/s     zeta" : "") << "\n";

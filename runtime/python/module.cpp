@@ -447,9 +447,11 @@ ModesBlock modes_of(const Scene& scene, const std::vector<double>& omegas, const
         try {
             return modes_block(*model, key, scene, omegas, harmonics, check);
         } catch (const std::runtime_error&) {
-            // Name the rate that has no steady state (ValueError) if that is what failed.
+            // Name the rate that has no steady state (ValueError) if that is what failed; a rate with no steady state
+            // under the weight in the plane has its periodic motion's Floquet modes instead, whose failure is its own.
             for (const double w : omegas)
-                at_spin(w, [&] { return steady_spin(*model, w, scene.motion.initial_theta()); });
+                if (unsteady_spin(key, scene.parameters.packed(), w).empty())
+                    at_spin(w, [&] { return steady_spin(*model, w, scene.motion.initial_theta()); });
             throw;
         }
     } catch (const Stopped& stopped) {

@@ -170,8 +170,8 @@ TEST_CASE("the library refuses a spin about which weight in the plane of rotatio
           "[out_of_plane][modes]")
 {
     // The wind turbine's blade: its weight in a vertical plane of rotation turns with it, so a spin at a rate is
-    // periodic (every caller of the library, Python's hubbeam.modes too, meets the refusal, not the command line
-    // alone); held (Omega = 0) it has its static equilibrium.
+    // periodic (every caller of steady_spin meets the refusal, not the command line alone; the modes there are the
+    // periodic motion's Floquet modes, test_floquet.cpp); held (Omega = 0) it has its static equilibrium.
     const Scene s = load_scene(std::string(HUBBEAM_SOURCE_DIR) + "/cases/wind_turbine_blade.toml");
     const auto model = make_model(s.key(), s.parameters, ModelSource::assembled);
     CHECK_THROWS_WITH(steady_spin(*model, 3.0), Catch::Contains("not steady"));

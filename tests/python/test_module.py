@@ -521,6 +521,27 @@ class ModesTest(unittest.TestCase):
         for omega, zeta in zip(m["undamped_rad_s"], m["damping_ratio"]):
             self.assertAlmostEqual(zeta, alpha / (2 * omega) + beta * omega / 2, places=9)
 
+    def test_a_spin_under_its_weight_gives_the_command_lines_floquet_modes(self):
+        # The wind turbine's blade spinning under its weight in a vertical plane has no steady state: hubbeam.modes
+        # takes the periodic motion's Floquet modes (docs/model.md section 10.1), those hubbeam modes writes; gravity
+        # is a small perturbation of this blade, its first flap and edge modes within 1 % of the weightless blade's.
+        blade = os.path.join(SOURCE, "cases", "wind_turbine_blade.toml")
+        with tempfile.TemporaryDirectory() as d:
+            out = os.path.join(d, "modes.csv")
+            p = cli("modes", blade, "--omega", "1.2", "--harmonics", "none", "-o", out)
+            self.assertEqual(p.returncode, 0, p.stderr)
+            self.assertTrue(p.stdout.startswith("analysis    Floquet over one revolution"), p.stdout)
+            with open(out, newline="") as f:
+                rows = list(csv.DictReader(f))
+        m = hubbeam.modes(blade, 1.2, harmonics=None)
+        self.assertEqual(list(m["label"]), [r["label"] for r in rows])
+        np.testing.assert_array_equal(m["rad_s"], [float(r["rad_s"]) for r in rows])
+        np.testing.assert_array_equal(m["damping_ratio"], [float(r["damping_ratio"]) for r in rows])
+        weightless = hubbeam.modes(blade, 1.2, harmonics=None, **{"gravity.g": 0.0})
+        for kind in ("flap", "edge"):
+            ratio = m["rad_s"][m["kind"] == kind][0] / weightless["rad_s"][weightless["kind"] == kind][0]
+            self.assertAlmostEqual(ratio, 1.0, delta=0.01, msg=kind)
+
     def test_bad_spin_rates_raise_valueerror(self):
         torque = os.path.join(SOURCE, "cases", "torque_tau10.toml")
         for call in (lambda: hubbeam.modes(SPINUP, None), lambda: hubbeam.modes(SPINUP, "3"),

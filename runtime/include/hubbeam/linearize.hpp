@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <complex>
 #include <functional>
 #include <string>
 #include <vector>
@@ -144,6 +145,78 @@ std::vector<CriticalSpeed> critical_speeds(const Model& model, const std::vector
                                            const std::vector<int>& harmonics, Axial axial = Axial::dynamic,
                                            double theta = 0.0, const Control* control = nullptr,
                                            const std::function<void()>& check = {});
+
+/// The periodic steady motion of a spin at omega > 0 (docs/model.md section 10.1): the hub turns at the constant rate
+/// omega, theta = omega t (a prescribed drive's rate; a free hub is held at that rate by whatever torque it takes,
+/// its angle no degree of freedom), and the elastic coordinates repeat with the period T = 2 pi / omega. Under weight
+/// in the plane of rotation (unsteady_spin) it is the response to the once-per-revolution weight; otherwise it is the
+/// steady state, constant. Found by harmonic balance: the equations of motion at the 2H + 1 instants
+/// t_j = j T / (2H + 1), the rates and accelerations those of the samples' trigonometric interpolant, solved harmonic
+/// by harmonic with the period's average coefficients (Newton with all the samples' where that converges slowly),
+/// started from the steady state without the weight, with H doubled (from 6, up to 96) until the highest harmonics are
+/// round-off of the motion.
+struct PeriodicOrbit {
+    double omega = 0.0, period = 0.0;
+    /// The coordinates that move, indices into q: the elastic ones.
+    std::vector<int> coordinates;
+    /// The Fourier coefficients of q over coordinates: column k (k = 0 .. H) is c_k in
+    /// q(t) = c_0 + 2 Re sum_k c_k exp(i k omega t) (c_0 real).
+    Eigen::MatrixXcd coefficients;
+    /// The model's size and whether its hub angle is q[0] (torque drive: q[0] = omega t, qd[0] = omega).
+    int nq = 0;
+    bool torque = false;
+    /// The harmonic balance's steps at the last H.
+    int newton_steps = 0;
+    /// q and qd (nq entries each) and the drive at time t (theta = omega t), and qdd (nq) where given.
+    void state(double t, std::vector<double>& q, std::vector<double>& qd, HubInput& u,
+               std::vector<double>* qdd = nullptr) const;
+};
+/// The periodic steady motion at omega. Throws std::invalid_argument for omega <= 0, std::runtime_error where Newton
+/// does not converge or 96 harmonics do not resolve the motion.
+PeriodicOrbit periodic_orbit(const Model& model, double omega);
+
+/// One Floquet mode of the linearization about a periodic motion: its multiplier mu (an eigenvalue of the monodromy
+/// matrix Phi(T)), its exponent ln(mu) / T on the principal branch (imaginary part in (-omega/2, omega/2]), and the
+/// harmonic k that dominates its periodic eigenvector p(t) = exp(-exponent t) Phi(t) v: the largest summed |DFT|^2
+/// over the displacement coordinates (unweighted) of p sampled at the integration's steps over one period. mode is
+/// the mode as natural_modes gives one: frequency rad_s = Im(exponent) + k omega, growth = Re(exponent), its kind
+/// and shape those of the rates' k-th harmonic.
+struct FloquetMode {
+    std::complex<double> multiplier, exponent;
+    int harmonic = 0;
+    NaturalMode mode;
+};
+/// floquet's result: the orbit, the monodromy matrix over the state (q, qd) of orbit.coordinates, all its eigenvalues,
+/// the modes resolved, the integration's steps over the period, and how many of the eigenvalues no mode stands for
+/// (a mode that oscillates stands for two, its own and its conjugate's).
+struct FloquetAnalysis {
+    PeriodicOrbit orbit;
+    Eigen::MatrixXd monodromy;
+    Eigen::VectorXcd multipliers;
+    std::vector<FloquetMode> modes;
+    int steps = 0;
+    int left_out = 0;
+};
+/// The Floquet analysis of the linearization about the periodic motion at omega > 0 (docs/model.md section 10.1):
+/// the variational equations x' = J(t) x of the first-order system over the orbit's coordinates and their rates (J
+/// the model's exact Jacobian where it has one) integrated from the identity over one period by the fourth-order
+/// commutator-free Magnus integrator, exp(h (a2 J1 + a1 J2)) exp(h (a1 J1 + a2 J2)) per step (J1, J2 at the step's
+/// Gauss points; exact for a constant J, so that stiff, strongly damped modes decay as they should), in the average
+/// system's undamped modal coordinates scaled by their frequencies (where J is well scaled); on N and 2N steps, N
+/// doubled until the exponents of every multiplier of size 1e-6 or more agree between the two to 1e-9 of |lambda| (or
+/// of omega), and at least the harmonics of the fastest mode one revolution resolves plus 8, so that the 2N samples
+/// read its harmonic unaliased (within a budget of steps: beyond it, a mode whose shape is most like an average mode
+/// faster than the samples resolve is left out). Reported: the modes whose multipliers are resolved (|mu| >= 1e-10
+/// and |mu| T |lambda| >= 1e-6: the round-off of Phi(T) moves the exponent by 1e-9 of |lambda| at most; the others
+/// decay too fast in one revolution) and whose exponents agree between N and 2N, each conjugate pair once (frequency
+/// > 0; a real multiplier's mode, frequency |Im(exponent) + k omega|, once), sorted as natural_modes sorts. With
+/// gravity along the spin axis or none the coefficients are constant, Phi(T) = exp(A T), and the modes are
+/// natural_modes' with the same frequencies. Throws std::invalid_argument for omega <= 0 or quasi-static axial
+/// coordinates, std::runtime_error where the orbit is not found or the exponents do not converge within the budget.
+FloquetAnalysis floquet(const Model& model, double omega, Axial axial = Axial::dynamic);
+/// floquet's modes alone: what campbell and hubbeam modes give at a spin rate that has no steady state
+/// (unsteady_spin).
+std::vector<NaturalMode> floquet_modes(const Model& model, double omega, Axial axial = Axial::dynamic);
 
 /// The CSV header of the modes table (hubbeam modes writes it, hubbeam plot campbell reads it by column name).
 const char* modes_header();

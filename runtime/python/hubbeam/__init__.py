@@ -560,9 +560,11 @@ def modes(scene: Any, omega: Any = 0.0, harmonics: Any = (1, 2, 3), **keys: Any)
     """Every natural mode of the scene's variant linearized about a steady spin at each rate of omega (rad/s):
     equal-length arrays omega, mode, kind, rad_s, hz, dimensionless, growth, undamped_rad_s, damping_ratio (zero
     without damping), label (the tracked mode, "bending 1", ...) and mac (to its shape at the rate before, NaN
-    where it begins), and the variant's name; the closed loop's with [control]. Under "critical", the critical
-    speeds, where a tracked mode meets the excitation omega = n Omega for n in harmonics: arrays label, harmonic,
-    omega, rad_s and hz; harmonics=None (or "none") searches none, and they are empty."""
+    where it begins), and the variant's name; the closed loop's with [control]. Under gravity in the plane of
+    rotation a rate > 0 has no steady state: its modes are the Floquet modes of the periodic motion (hubbeam modes'
+    too, docs/model.md section 10.1), those one revolution resolves. Under "critical", the critical speeds, where a
+    tracked mode meets the excitation omega = n Omega for n in harmonics: arrays label, harmonic, omega, rad_s and
+    hz; harmonics=None (or "none") searches none, and they are empty."""
     text, name = _source(scene)
     out = _core_call(_core.modes, text, name, _overrides(keys),
                      _rates(omega, "spin rates >= 0 (rad/s): a number or a list"), _harmonics(harmonics))

@@ -537,6 +537,9 @@ namespace {
 /// The modes about the steady spin at omega, as campbell takes them.
 std::vector<NaturalMode> modes_at(const Model& model, double omega, Axial axial, double theta, const Control* control)
 {
+    // Under weight in the plane of rotation a spin has no steady state: its modes are the periodic motion's (Floquet).
+    if (control == nullptr && !unsteady_spin(model.key(), model.parameters(), omega).empty())
+        return floquet_modes(model, omega, axial);
     const SteadySpin s = steady_spin(model, omega, theta);
     return control ? closed_loop_modes(model, s, *control) : natural_modes(model, s, axial);
 }
@@ -824,12 +827,13 @@ std::vector<CriticalSpeed> critical_speeds(const Model& model, const std::vector
                 // The mode's frequency minus the excitation's at omega, the mode there being the line's: the mode
                 // nearest the eigenvalue interpolated between the bracket's ends (mode_near, one factorization),
                 // taken when its MAC with the line's mode at a is above 1/2 (then no other mode's is as large); else,
-                // and under control, the mode of largest MAC among all the modes there.
+                // under control, and at a periodic spin (Floquet's modes), the mode of largest MAC among all the modes
+                // there.
                 const auto gap = [&](double omega) {
                     if (check) check();
                     const double t = hi > lo ? (omega - lo) / (hi - lo) : 0.5;
                     std::optional<NaturalMode> near;
-                    if (control == nullptr)
+                    if (control == nullptr && unsteady_spin(model.key(), model.parameters(), omega).empty())
                         near = ModesNear(model, omega, axial, theta)
                                    .line_mode(l_lo + t * (l_hi - l_lo), t < 0.5 ? *shape_lo : *shape_hi, a.mode.shape);
                     if (!near) {
@@ -880,6 +884,13 @@ std::vector<CriticalSpeed> critical_speeds(const Model& model, const std::vector
 double frequency_unit(const Parameters& p)
 {
     return std::sqrt(p.E * p.I / (p.rho * p.S * std::pow(p.L, 4)));
+}
+
+void classify_mode(const Model& model, const Eigen::MatrixXd& M, const Eigen::MatrixXd& U, const std::vector<int>& R,
+                   const Eigen::VectorXcd& rates, bool overdamped, NaturalMode& mode)
+{
+    mode.kind = overdamped ? overdamped_kind : mode_kind(dominant_field(model, M, R, rates), model.key());
+    mode.shape = weighted_shape(U, rates);
 }
 
 }  // namespace hubbeam
