@@ -288,7 +288,8 @@ void ModesReport::heading() const
              << (periodic.size() == 1 ? "(period " + period(periodic[0]) + " s at " + shortest(periodic[0]) + " rad/s)"
                                       : "(period 2 pi/Omega, " + period(periodic.back()) + " to " + period(periodic[0]) +
                                             " s, at the " + std::to_string(periodic.size()) + " rates > 0)")
-             << ": the weight turns with the plane of rotation, the motion is periodic\n"
+             << (scene_.variant.extras.hub ? ": the support is fixed and the blade turns, the motion is periodic\n"
+                                           : ": the weight turns with the plane of rotation, the motion is periodic\n")
              << "            frequency Im(ln mu)/T + k Omega, k the harmonic that dominates the mode; a mode that "
                 "decays by more than about 1e8 in a revolution is not resolved, nor listed\n";
     }
@@ -462,7 +463,7 @@ public:
         key.ny = o_.ny.front();
         key.nz = o_.nz.front();
         key.nt = o_.nt.front();
-        const std::unique_ptr<Model> model = make_model(key, scene_.parameters, scene_.source);
+        const std::unique_ptr<Model> model = make_scene_model(scene_, key);
         shapes_ = elastodyn_mode_shapes(*model, scene_.parameters, o_.omegas.front(), scene_.axial,
                                         held_angle(scene_));
         variant_ = key.name();
@@ -677,7 +678,7 @@ void run_linearize(const Scene& scene, double omega, const std::string& prefix, 
     check_steady(scene, {omega});
     const LinearizeOutputs outputs = open_linearize_outputs(files, prefix);
     const VariantKey key = scene.key();
-    const std::unique_ptr<Model> model = make_model(key, scene.parameters, scene.source);
+    const std::unique_ptr<Model> model = make_scene_model(scene, key);
     const SteadySpin steady = steady_spin(*model, omega, held_angle(scene));
     const StateSpace open = state_space(*model, steady);
     const StateSpace ss = scene.control ? closed_loop(open, *scene.control) : open;

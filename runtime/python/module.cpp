@@ -440,7 +440,7 @@ ModesBlock modes_of(const Scene& scene, const std::vector<double>& omegas, const
         const WithoutGil release;
         const VariantKey key = scene.key();
         const std::unique_ptr<Model> model =
-            guarded(scene, [&] { return make_model(key, scene.parameters, scene.source); });
+            guarded(scene, [&] { return make_scene_model(scene, key); });
         const auto check = [&interrupts] {
             if (const char* why = interrupts.reason()) throw Stopped{why};
         };
@@ -519,7 +519,7 @@ py::array_t<double> matrix(const Eigen::MatrixXd& m)
 std::unique_ptr<Model> model_without_gil(const Scene& scene)
 {
     const WithoutGil release;
-    return guarded(scene, [&] { return make_model(scene.key(), scene.parameters, scene.source); });
+    return guarded(scene, [&] { return make_scene_model(scene); });
 }
 
 /// The state-space matrices and their names about the steady spin omega; a controlled hub's closed loop and open

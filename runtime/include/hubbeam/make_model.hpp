@@ -24,6 +24,8 @@ std::unique_ptr<Model> make_model(const VariantKey& key, const Parameters& p,
 /// The model a scene runs: its variant's (make_model), or for a rotor of several blades ([rotor] blades > 1) one
 /// model of the variant per blade, each at its blade's parameters and azimuth, joined through the hub (rotor_model.hpp).
 std::unique_ptr<Model> make_scene_model(const Scene& scene, const ModelNote& note = {});
+/// The same with another discretization of the scene's beam (a convergence study's key), the rest the scene's.
+std::unique_ptr<Model> make_scene_model(const Scene& scene, const VariantKey& key, const ModelNote& note = {});
 
 /// Blade b's tip (b 0-based) at coordinates q of a scene's model: the model's tip for a single blade.
 Tip blade_tip(const Model& model, const double* q, int b);

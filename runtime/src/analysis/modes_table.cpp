@@ -35,7 +35,7 @@ void modes_table(const Scene& scene, const ModesRequest& request, const std::fun
                     key.ny = ny;
                     key.nz = nz;
                     key.nt = nt;
-                    const std::unique_ptr<Model> model = make_model(key, scene.parameters, scene.source);
+                    const std::unique_ptr<Model> model = make_scene_model(scene, key);
                     done(modes_block(*model, key, scene, request.omegas, request.harmonics));
                 }
 }

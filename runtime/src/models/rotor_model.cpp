@@ -206,7 +206,11 @@ Tip RotorModel::blade_tip(const double* q, int b) const
 
 std::unique_ptr<Model> make_scene_model(const Scene& scene, const ModelNote& note)
 {
-    const VariantKey key = scene.key();
+    return make_scene_model(scene, scene.key(), note);
+}
+
+std::unique_ptr<Model> make_scene_model(const Scene& scene, const VariantKey& key, const ModelNote& note)
+{
     const Rotor& r = scene.rotor;
     if (r.blades <= 1) return make_model(key, scene.parameters, scene.source, note);
     std::vector<std::unique_ptr<Model>> blades;
