@@ -5,6 +5,8 @@
 #include <catch2/catch.hpp>
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <string>
 #include <vector>
 
 #include <hubbeam/simulate.hpp>
@@ -96,6 +98,20 @@ inline JacobiDrift jacobi_drift(const std::vector<Row>& rows, double t_steady)
         d.vibration = std::max(d.vibration, r.potential);
     }
     return d;
+}
+
+/// Every row of a run of scene, by column name (the CSV's names: a rotor's blade columns, the hub's columns).
+inline std::map<std::string, std::vector<double>> run_columns(const Scene& scene)
+{
+    Simulation sim(scene);
+    const ColumnSet set = optional_columns_of(scene);
+    const std::vector<std::string> names = row_column_names(set);
+    std::map<std::string, std::vector<double>> out;
+    sim.run([&](const Row& r) {
+        std::size_t c = 0;
+        for_each_value(r, set, [&](double v) { out[names[c++]].push_back(v); });
+    });
+    return out;
 }
 
 }  // namespace hubbeam::test

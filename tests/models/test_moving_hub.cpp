@@ -14,7 +14,10 @@
 
 #include "gauss_legendre.hpp"
 
+#include "runs.hpp"
+
 using namespace hubbeam;
+using hubbeam::test::run_columns;
 
 namespace {
 
@@ -57,18 +60,6 @@ t_end = 2.0
 dt_out = 0.01
 )";
 
-std::map<std::string, std::vector<double>> run_columns(const Scene& scene)
-{
-    Simulation sim(scene);
-    const ColumnSet set = optional_columns_of(scene);
-    const std::vector<std::string> names = row_column_names(set);
-    std::map<std::string, std::vector<double>> out;
-    sim.run([&](const Row& r) {
-        std::size_t c = 0;
-        for_each_value(r, set, [&](double v) { out[names[c++]].push_back(v); });
-    });
-    return out;
-}
 
 }  // namespace
 

@@ -14,7 +14,10 @@
 #include <string>
 #include <vector>
 
+#include "runs.hpp"
+
 using namespace hubbeam;
+using hubbeam::test::run_columns;
 
 namespace {
 
@@ -68,18 +71,6 @@ Scene scene_with(const Overrides& o, bool torque = false)
     return parse_scene(text, "rotor_test.toml", o);
 }
 
-/// Every row's values by column name.
-std::map<std::string, std::vector<double>> run_columns(const Scene& scene)
-{
-    Simulation sim(scene);
-    const std::vector<std::string> names = row_column_names(optional_columns_of(scene));
-    std::map<std::string, std::vector<double>> out;
-    sim.run([&](const Row& r) {
-        std::size_t c = 0;
-        for_each_value(r, optional_columns_of(scene), [&](double v) { out[names[c++]].push_back(v); });
-    });
-    return out;
-}
 
 double max_difference(const std::vector<double>& a, const std::vector<double>& b)
 {

@@ -148,28 +148,27 @@ void RotorModel::mass(const HubInput& u, const double* q, double* M) const
     }
 }
 
-void RotorModel::forces(const HubInput& u, const double* q, const double* qd, double* Q) const
+void RotorModel::summed(const HubInput& u, const double* q, const double* qd, double* out,
+                        void (Model::*vector)(const HubInput&, const double*, const double*, double*) const) const
 {
     std::vector<double> lq(static_cast<std::size_t>(local_)), lqd(lq.size()), f(lq.size());
-    std::fill_n(Q, nq(), 0.0);
+    std::fill_n(out, nq(), 0.0);
     for (int b = 0; b < blades(); ++b) {
         gather(q, b, lq.data(), true);
         gather(qd, b, lqd.data(), false);
-        blade(b).forces(blade_input(u, b), lq.data(), lqd.data(), f.data());
-        scatter_add(f.data(), b, Q);
+        (blade(b).*vector)(blade_input(u, b), lq.data(), lqd.data(), f.data());
+        scatter_add(f.data(), b, out);
     }
+}
+
+void RotorModel::forces(const HubInput& u, const double* q, const double* qd, double* Q) const
+{
+    summed(u, q, qd, Q, &Model::forces);
 }
 
 void RotorModel::forces_theta(const HubInput& u, const double* q, const double* qd, double* dQdtheta) const
 {
-    std::vector<double> lq(static_cast<std::size_t>(local_)), lqd(lq.size()), f(lq.size());
-    std::fill_n(dQdtheta, nq(), 0.0);
-    for (int b = 0; b < blades(); ++b) {
-        gather(q, b, lq.data(), true);
-        gather(qd, b, lqd.data(), false);
-        blade(b).forces_theta(blade_input(u, b), lq.data(), lqd.data(), f.data());
-        scatter_add(f.data(), b, dQdtheta);
-    }
+    summed(u, q, qd, dQdtheta, &Model::forces_theta);
 }
 
 Energy RotorModel::energy(const HubInput& u, const double* q, const double* qd) const

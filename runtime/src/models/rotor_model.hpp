@@ -47,6 +47,9 @@ public:
 
 private:
     class Jacobian;
+    /// out = the blades' vectors (forces, dQ/dtheta) summed into the rotor's, each at its blade's state.
+    void summed(const HubInput& u, const double* q, const double* qd, double* out,
+                void (Model::*vector)(const HubInput&, const double*, const double*, double*) const) const;
     std::vector<std::unique_ptr<Model>> blades_;
     std::vector<double> azimuths_;
     int hub_;       // the hub's coordinates, first in every blade's q and in the rotor's: theta (under a torque), x_h, y_h
