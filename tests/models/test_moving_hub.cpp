@@ -193,3 +193,75 @@ TEST_CASE("a moving hub's scene keys are checked", "[moving_hub]")
         CHECK(std::string(e.what()).find("support") != std::string::npos);
     }
 }
+
+TEST_CASE("a rotor on a moving hub: its exact Jacobian equals central differences of its forces and mass", "[moving_hub]")
+{
+    // Three blades out of the plane on a support, at a random state: dQ/dq, dQ/dqd and (dM/dq) v of the rotor (each
+    // blade's generated derivatives, scattered) against fourth-order differences of the rotor's own Q and M.
+    const Scene s = parse_scene(stiff_scene, "hub.toml",
+                                {{"rotor.blades", "3"},
+                                 {"rotor.pitch_offsets", "0.1, -0.2, 0.3"},
+                                 {"beam.youngs_modulus", "1e10"},
+                                 {"discretization.method", "fem"},
+                                 {"discretization.ny", "2"},
+                                 {"discretization.nz", "2"},
+                                 {"discretization.nx", "2"},
+                                 {"support.damping_x", "30"},
+                                 {"gravity.g", "9.81"}});
+    Simulation sim(s);
+    const Model& model = sim.model();
+    REQUIRE(model.jacobian() != nullptr);
+    const int n = model.nq();
+    std::vector<double> q(static_cast<std::size_t>(n)), qd(q.size()), v(q.size());
+    for (int i = 0; i < n; ++i) {
+        q[static_cast<std::size_t>(i)] = 0.01 * std::sin(1.7 * i + 0.3);
+        qd[static_cast<std::size_t>(i)] = 0.2 * std::cos(2.3 * i + 0.1);
+        v[static_cast<std::size_t>(i)] = std::sin(0.9 * i + 1.1);
+    }
+    q[0] = 0.7;
+    qd[0] = 2.0;
+    HubInput u;
+    u.tau = 50.0;
+    const auto nn = static_cast<std::size_t>(n) * static_cast<std::size_t>(n);
+    std::vector<double> dq(nn), dqd(nn), du(static_cast<std::size_t>(n) * drive_value_count), dMv(nn);
+    model.jacobian()->force_derivatives(u, q.data(), qd.data(), dq.data(), dqd.data(), du.data());
+    model.jacobian()->mass_q_product(u, q.data(), v.data(), dMv.data());
+    const auto forces = [&](const std::vector<double>& x, const std::vector<double>& xd) {
+        std::vector<double> Q(static_cast<std::size_t>(n));
+        model.forces(u, x.data(), xd.data(), Q.data());
+        return Q;
+    };
+    const auto mass_v = [&](const std::vector<double>& x) {
+        std::vector<double> M(nn), Mv(static_cast<std::size_t>(n), 0.0);
+        model.mass(u, x.data(), M.data());
+        for (int i = 0; i < n; ++i)
+            for (int j = 0; j < n; ++j)
+                Mv[static_cast<std::size_t>(i)] += M[static_cast<std::size_t>(i * n + j)] * v[static_cast<std::size_t>(j)];
+        return Mv;
+    };
+    const double h = 1e-4;
+    double worst = 0.0, scale = 0.0;
+    for (int k = 0; k < n; ++k) {
+        const auto moved = [&](std::vector<double> x, double step) {
+            x[static_cast<std::size_t>(k)] += step;
+            return x;
+        };
+        const auto d4 = [&](const auto& f) {  // (8 (f(+h) - f(-h)) - (f(+2h) - f(-2h))) / 12h
+            const auto a = f(h), b = f(-h), c = f(2 * h), d = f(-2 * h);
+            std::vector<double> r(a.size());
+            for (std::size_t i = 0; i < a.size(); ++i) r[i] = (8 * (a[i] - b[i]) - (c[i] - d[i])) / (12 * h);
+            return r;
+        };
+        const auto by_q = d4([&](double e) { return forces(moved(q, e), qd); });
+        const auto by_qd = d4([&](double e) { return forces(q, moved(qd, e)); });
+        const auto mass_by_q = d4([&](double e) { return mass_v(moved(q, e)); });
+        for (int i = 0; i < n; ++i) {
+            const auto at = static_cast<std::size_t>(i * n + k);
+            worst = std::max({worst, std::abs(dq[at] - by_q[static_cast<std::size_t>(i)]),
+                              std::abs(dqd[at] - by_qd[static_cast<std::size_t>(i)]),
+                              std::abs(dMv[at] - mass_by_q[static_cast<std::size_t>(i)])});
+            scale = std::max({scale, std::abs(dq[at]), std::abs(dqd[at]), std::abs(dMv[at])});
+        }
+    }
+    CHECK(worst < 1e-7 * scale);
+}
