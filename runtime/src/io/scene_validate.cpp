@@ -241,18 +241,14 @@ void check_rotor(const Scene& s)
             fail(s.path, "rotor.tip_masses", expected("rotor.tip_masses"),
                  shortest(r.tip_masses[b]) + " for blade " + std::to_string(b + 1));
     if (s.variant.extras.hub) {
-        for (const char* key : {"hub.mass", "support.stiffness_x", "support.stiffness_y", "support.damping_x",
-                                "support.damping_y"}) {
-            const std::string leaf = std::string(key).substr(std::string(key).find('.') + 1);
-            const Param p = leaf == "mass"          ? Param::m_hub
-                            : leaf == "stiffness_x" ? Param::k_x
-                            : leaf == "stiffness_y" ? Param::k_y
-                            : leaf == "damping_x"   ? Param::c_x
-                                                    : Param::c_y;
-            Parameters copy = s.parameters;
-            const double v = value(copy, p);
+        const Parameters& p = s.parameters;
+        const std::pair<const char*, double> values[] = {{"hub.mass", p.m_hub},
+                                                         {"support.stiffness_x", p.k_x},
+                                                         {"support.stiffness_y", p.k_y},
+                                                         {"support.damping_x", p.c_x},
+                                                         {"support.damping_y", p.c_y}};
+        for (const auto& [key, v] : values)
             if (!(v >= 0.0) || !std::isfinite(v)) fail(s.path, key, expected(key), shortest(v));
-        }
         if (s.drive() != Drive::torque)
             fail(s.path, "support",
                  "a hub angle that is a coordinate with a [support] (motion.kind \"torque\" or \"torque-table\", or a "
