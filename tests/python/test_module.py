@@ -70,6 +70,25 @@ class RunTest(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "state: expected one of \"rest\", \"static\", \"steady\""):
             hubbeam.run(blade, state="moving")
 
+    def test_a_rotor_has_each_blades_columns_and_the_hubs(self):
+        # cases/three_blade_rotor.toml: three blades on a support. The module's rows are the command line's, bit for
+        # bit, with each blade's tip columns by number and the hub's translation and support force.
+        rotor = os.path.join(SOURCE, "cases", "three_blade_rotor.toml")
+        with tempfile.TemporaryDirectory() as d:
+            out = os.path.join(d, "rotor.csv")
+            p = cli("run", rotor, "--t-end", "2", "-o", out)
+            self.assertEqual(p.returncode, 0, p.stderr)
+            header, rows = read_csv(out)
+        r = hubbeam.run(rotor, t_end=2)
+        self.assertEqual(list(r.columns), header)
+        self.assertTrue(np.array_equal(r.data, rows))
+        for name in ("tip_uy_1", "tip_uy_2", "tip_uy_3", "tip_uz_1", "tip_uz_3", "hub_x", "hub_y", "hub_fx", "hub_fy"):
+            self.assertIn(name, r.columns)
+        self.assertNotIn("tip_uy", r.columns)
+        # The blades differ: blade 2 carries the tip mass.
+        uy = {b: r.data[:, list(r.columns).index(f"tip_uy_{b}")] for b in (1, 2)}
+        self.assertGreater(abs(uy[1] - uy[2]).max(), 1e-4)
+
     def test_a_dict_scene_is_the_file_scene(self):
         scene = {
             "beam": {"length": 8.0, "density": 2.7667e3, "area": 7.2968e-5, "second_moment": 8.2189e-9,
