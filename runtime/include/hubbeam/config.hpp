@@ -162,14 +162,16 @@ struct Scene {
         VariantKey k = variant;
         k.drive = drive();
         // A sensitivity to a term's value needs the term, even at zero (where it reproduces the scene).
-        // A rotor's blades run one variant: a term is carried when any blade's values use it.
+        // A rotor's blades run one variant: a term is carried when any blade's values use it. Each blade's values
+        // packed once (Rotor::blade copies the parameters, a profile's table with them).
+        std::vector<std::vector<double>> blades;
+        for (int b = 0; b < rotor.blades; ++b)
+            blades.push_back((rotor.blades > 1 ? rotor.blade(parameters, b) : parameters).packed());
         for (const TermInfo& t : terms()) {
             if (!t.selected_by_values) continue;
             bool used = false;
-            for (int b = 0; b < rotor.blades; ++b) {
-                const std::vector<double> p = (rotor.blades > 1 ? rotor.blade(parameters, b) : parameters).packed();
+            for (const std::vector<double>& p : blades)
                 for (Param q : t.params) used = used || p[index(q)] != 0.0 || wants({param_names[index(q)]});
-            }
             t.set(k.extras, used);
         }
         return k;
