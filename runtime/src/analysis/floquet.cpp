@@ -251,11 +251,13 @@ int balance(const Model& model, double omega, bool torque, const std::vector<int
     Eigen::MatrixXd residual;
     double terms = equations.residuals(Z, residual, &K, &M, &C);
     // Converged where the residuals are round-off of their terms, or the steps stopped shrinking at round-off of
-    // the motion.
+    // the motion. A motion that is nothing (a balanced rotor's hub at rest, a straight blade) has residuals and
+    // steps of round-off alone: they are measured against the beam's length.
+    const double length = model.parameters()[index(Param::L)];
     const auto converged = [&](double moved, double previous) {
         const double motion = Z.cwiseAbs().maxCoeff();
         noise = moved;
-        return residual.cwiseAbs().maxCoeff() <= 1e-13 * terms || moved <= 1e-15 * motion ||
+        return residual.cwiseAbs().maxCoeff() <= 1e-13 * terms || moved <= 1e-15 * std::max(motion, length) ||
                (moved <= 1e-8 * motion && moved >= 0.5 * previous);
     };
     // The average system's matrix at each harmonic, factored once.
