@@ -56,6 +56,10 @@ PolyEquations lagrange(const Poly& T, const Poly& U, const PolyCoordinates& c)
         Q -= c.dissipation.diff(c.qd[i]);
         for (std::size_t j = 0; j < n; ++j) Q -= c.d_dq(p, j).times(c.qd[j]);
         for (const auto& [u, u_dot] : c.driven) Q -= p.diff(u).times(u_dot);
+        if (c.angle_rate >= 0) {  // d/dt sin = cos theta_dot, d/dt cos = -sin theta_dot
+            Q -= p.diff(c.angle_sin).times(c.angle_cos).times(c.angle_rate);
+            Q += p.diff(c.angle_cos).times(c.angle_sin).times(c.angle_rate);
+        }
         e.Q[i] = std::move(Q);
     }
     e.T2 = T.of_degree(c.qd, 2);

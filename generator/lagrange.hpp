@@ -43,6 +43,9 @@ struct PolyCoordinates {
     /// Where q_i's sine and cosine are variables of their own (a torque variant's theta under gravity): q index,
     /// sin and cos variables; -1 if none. Derivatives by q_i then follow the chain rule through them.
     int angle = -1, angle_sin = -1, angle_cos = -1;
+    /// Where the angle is the drive's (a prescribed theta, no coordinate) but sin and cos are variables: theta_dot's
+    /// variable, through which d/dt of the momenta reaches them; -1 otherwise.
+    int angle_rate = -1;
 
     /// dP/dq_i, through sin and cos of the angle coordinate.
     Poly d_dq(const Poly& P, std::size_t i) const;

@@ -268,7 +268,8 @@ JacobianPieces jacobian_pieces(const PolyEquations& eq, const Variables& v, cons
     std::vector<int> not_in_M = v.qd;
     for (int d : {v.tau, v.theta_dot, v.theta_ddot})
         if (d >= 0) not_in_M.push_back(d);
-    if (c.angle < 0)
+    // A prescribed angle's sine and cosine in M (a moving hub's) are the runtime's: it adds dM/dtheta qdd to df/dt.
+    if (c.angle < 0 && c.angle_rate < 0)
         for (int d : {v.sin_theta, v.cos_theta})
             if (d >= 0) not_in_M.push_back(d);
     for (const Poly& Mij : eq.M)
@@ -394,10 +395,12 @@ Derivation derive(const VariantKey& key, const Symbols& s, const Signature& sig,
         c.force[0] = reader(s.tau);
     else
         c.driven.emplace_back(v.theta_dot, v.theta_ddot);
-    if (torque && kernels_read_angle(key)) {
-        c.angle = 0;
+    if (kernels_read_angle(key)) {
+        c.angle = torque ? 0 : -1;
         c.angle_sin = v.sin_theta;
         c.angle_cos = v.cos_theta;
+        // A prescribed angle moves with time: where T holds its sine and cosine (a moving hub), so do the momenta.
+        if (!torque) c.angle_rate = v.theta_dot;
     }
     const Energies en = derive_energies(key, s, reader, without_point_terms);
     c.dissipation = en.D;
@@ -513,7 +516,7 @@ std::string mass_pattern_with_points(const Derivation& d, int nq, const PointCod
 {
     // An entry that holds the angle's sine or cosine varies with the coordinate theta (a moving hub's couplings).
     std::vector<int> varying = d.v.q;
-    if (d.c.angle >= 0) varying.insert(varying.end(), {d.v.sin_theta, d.v.cos_theta});
+    if (d.c.angle_sin >= 0) varying.insert(varying.end(), {d.v.sin_theta, d.v.cos_theta});
     std::string pattern = mass_pattern(d.eq.M, varying);
     if (points != nullptr)
         for (int k : points->mass_entries) {

@@ -147,9 +147,9 @@ bool kernels_read_angle(const VariantKey& key)
     return carries_a_term_that(key, reads_hub_angle | kinetic_reads_angle);
 }
 
-bool angle_dependent_potential(const VariantKey& key)
+bool reads_driven_angle(const VariantKey& key)
 {
-    return key.drive == Drive::prescribed && potential_reads_angle(key);
+    return key.drive == Drive::prescribed && kernels_read_angle(key);
 }
 
 bool shaped_section(const VariantKey& key)

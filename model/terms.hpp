@@ -75,9 +75,10 @@ bool dissipates(const VariantKey& key);
 bool potential_reads_angle(const VariantKey& key);
 /// Whether the kernels take sin theta and cos theta: U reads the angle (potential_reads_angle) or T does (a moving hub).
 bool kernels_read_angle(const VariantKey& key);
-/// Whether U depends on the prescribed angle, an input of the kernels (potential_reads_angle under a prescribed
-/// drive): dQ/dtheta theta_dot enters dQ/dt, and no energy is constant while the hub turns.
-bool angle_dependent_potential(const VariantKey& key);
+/// Whether the prescribed angle is an input of the kernels (kernels_read_angle under a prescribed drive: U's weight
+/// in the plane, a moving hub's T): dQ/dtheta theta_dot (and dM/dtheta theta_dot) enter df/dt, and no energy is
+/// constant while the hub turns.
+bool reads_driven_angle(const VariantKey& key);
 /// Whether a carried term shapes the section (m(x), EI(x), ES(x) vary along the span): the generator's point terms
 /// for order full know a uniform section only.
 bool shaped_section(const VariantKey& key);

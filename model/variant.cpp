@@ -273,10 +273,6 @@ std::string VariantKey::dof_problem() const
             return "BSIM needs " + name + " = 0 or " + name + " >= 3 (n_x + 2 with n_x >= 1), got " + std::to_string(n);
     // A profile's chord angles are its pre-twist (docs/model.md 12.4).
     if (extras.profile() && extras.twist) return "a profile's pre-twist is its twist column, not beam.twist";
-    // Its kernels take theta's sine and cosine as functions of the coordinate theta; a prescribed angle's would enter
-    // the mass matrix as a time-varying input, which the prescribed kernels do not take.
-    if (extras.hub && drive != Drive::torque)
-        return "a moving hub ([support]) needs the hub angle as a coordinate: a torque drive or a [control]";
     return {};
 }
 

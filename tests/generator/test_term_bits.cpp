@@ -91,7 +91,7 @@ TEST_CASE("each term's registry bits say what its energies add: D, an angle in U
             const bool kinetic_angle = d.en.T.has(d.sin_theta) || d.en.T.has(d.cos_theta);
             CHECK(((t.energies & kinetic_reads_angle) != 0) == kinetic_angle);
             CHECK(kernels_read_angle(key) == (angle || kinetic_angle));
-            CHECK(angle_dependent_potential(key) == (angle && drive == Drive::prescribed));
+            CHECK(reads_driven_angle(key) == ((angle || kinetic_angle) && drive == Drive::prescribed));
             CHECK(shaped_section(key) == ((t.energies & shapes_section) != 0));
             if ((t.energies & shapes_section) == 0 && blade > 0) {
                 CHECK(((t.energies & adds_T) != 0) == differs(d.en.T, b.T));

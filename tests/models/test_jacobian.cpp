@@ -81,6 +81,15 @@ void rate_and_time_reference(FirstOrderSystem& sys, const Model& model, const Mo
     model.mass(u, y.data(), M.data());
     dfdt.head(n).setZero();
     dfdt.tail(n) = M.partialPivLu().solve(dQdt);
+    // A moving hub's M turns with the prescribed angle too: d/dt (M^-1 Q) by fourth-order central differences of the
+    // right-hand side in t (M and Q are smooth in t through the drive; the step's truncation 1e-12 of their scale).
+    if (model.key().extras.hub && model.key().drive == Drive::prescribed) {
+        const double h = 1e-3;
+        std::vector<Eigen::VectorXd> f(4, Eigen::VectorXd(m));
+        const double at[] = {t - 2.0 * h, t - h, t + h, t + 2.0 * h};
+        for (int k = 0; k < 4; ++k) REQUIRE(sys.rhs(at[k], y.data(), f[static_cast<std::size_t>(k)].data()) == GSL_SUCCESS);
+        dfdt = (8.0 * (f[2] - f[1]) - (f[3] - f[0])) / (12.0 * h);
+    }
 }
 
 /// The four nq x nq blocks of a row-major 2nq x 2nq Jacobian, as (row block, column block).
@@ -106,6 +115,10 @@ TEST_CASE("generated Jacobian equals central differences of the right-hand side"
     for (const char* extra : {"amm_nx0_ny3_torque_first_tip_gravity_damped_width", "bim_nx2_ny3_prescribed_first_tip_gravity_damped_depth",
                               "fem_nx2_ny4_torque_full_tip_gravity"})
         names.emplace_back(extra);
+    // and a moving hub under a prescribed drive, where M itself turns with the drive's angle (dM/dtheta qdd in dfdt)
+    for (const char* hub : {"fem_nx2_ny4_prescribed_first_tip_gravity_damped_hub",
+                            "amm_nx0_ny3_nz3_nt2_prescribed_first_pitched_coned_hub"})
+        names.emplace_back(hub);
     // and out of the plane (docs/model.md section 12): flap and twist fields with every term, under both drives
     for (const char* blade : {"fem_nx2_ny4_nz4_nt2_torque_first_tip_gravity_damped_pitched_twisted_coned",
                               "amm_nx0_ny3_nz3_nt2_prescribed_first_tip_gravity_damped_pitched_coned",

@@ -74,7 +74,7 @@ TEST_CASE("dissipates and the angle in U answer as the assembled model's forces 
             const Eigen::VectorXd Q0 = forces(*model, {}, q, q), Q1 = forces(*model, turned, q_turned, q);
             const bool reads_angle = (Q1 - Q0).norm() > 1e-12 * (Q0.norm() + Q1.norm());
             CHECK(potential_reads_angle(key) == reads_angle);
-            CHECK(angle_dependent_potential(key) == (reads_angle && drive == Drive::prescribed));
+            CHECK(reads_driven_angle(key) == (reads_angle && drive == Drive::prescribed));
         }
     }
 }

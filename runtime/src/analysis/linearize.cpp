@@ -227,8 +227,9 @@ StateSpace state_space(const Model& model, const SteadySpin& s)
             torque ? Au(i, static_cast<int>(DriveValue::tau)) : Au(i, static_cast<int>(DriveValue::theta_ddot));
     }
     if (!torque) ss.B(m, 0) = 1.0;  // theta_ddot = v
-    if (angle_dependent_potential(key)) {
-        // A prescribed hub's angle is an input of the weight's terms: its column is M^-1 dQ/dtheta.
+    if (reads_driven_angle(key)) {
+        // A prescribed hub's angle is an input of the weight's and a moving hub's terms: its column is
+        // M^-1 dQ/dtheta (dM/dtheta qdd is nothing at the equilibrium, qdd = 0).
         std::vector<double> dtheta(static_cast<std::size_t>(n));
         model.forces_theta(s.u, s.q.data(), s.qd.data(), dtheta.data());
         const Eigen::VectorXd column = llt.solve(Eigen::Map<const Eigen::VectorXd>(dtheta.data(), n));

@@ -402,9 +402,15 @@ int FirstOrderSystem::exact_jacobian(const ExactJacobian& exact, double t, const
     const Eigen::Map<const Eigen::VectorXd> dudt(du.data(), static_cast<Eigen::Index>(du.size()));
     Eigen::VectorXd& lower_t = w.lower_t;
     lower_t.noalias() = w.dQdu * dudt;
-    if (angle_dependent_potential(model_.key())) {
-        w.dQdtheta.resize(n_);  // the angle is an input too: dQ/dtheta theta_dot
+    if (reads_driven_angle(model_.key())) {
+        w.dQdtheta.resize(n_);  // the angle is an input too: (dQ/dtheta - dM/dtheta qdd) theta_dot
         model_.forces_theta(u, q, qd, w.dQdtheta.data());
+        if (model_.key().extras.hub) {  // M turns with a moving hub's angle (allocates: a rare variant's Jacobian)
+            Eigen::VectorXd qdd(n_);
+            model_.forces(u, q, qd, qdd.data());
+            w.solver->solve(qdd.data());
+            w.dQdtheta -= mass_theta_derivative(model_, u, q) * qdd;
+        }
         lower_t += u.theta_dot * w.dQdtheta;
     }
     w.solver->solve(lower_t.data());

@@ -249,11 +249,6 @@ void check_rotor(const Scene& s)
                                                          {"support.damping_y", p.c_y}};
         for (const auto& [key, v] : values)
             if (!(v >= 0.0) || !std::isfinite(v)) fail(s.path, key, expected(key), shortest(v));
-        if (s.drive() != Drive::torque)
-            fail(s.path, "support",
-                 "a hub angle that is a coordinate with a [support] (motion.kind \"torque\" or \"torque-table\", or a "
-                 "[control])",
-                 "a prescribed hub angle (motion.kind \"" + kind_word(s.motion.kind) + "\")");
     }
     if (!r.tip_masses.empty() && s.parameters.m_tip != 0.0)
         fail(s.path, "rotor.tip_masses", "no tip.mass beside it (each blade's tip mass replaces it): remove one",

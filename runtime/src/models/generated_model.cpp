@@ -182,8 +182,9 @@ public:
     {
         std::fill_n(dQdtheta, nq(), 0.0);
         if (!reads_angle_ || torque_) return;
-        // Q is affine in (sin theta, cos theta) (only U holds them, linearly: terms.hpp): dQ/dtheta = cos dQ/dsin - sin
-        // dQ/dcos is Q at (cos theta, -sin theta) less Q at (0, 0).
+        // Q is affine in (sin theta, cos theta) (U's weight and a moving hub's T hold them linearly, and the prescribed
+        // angle's d/dt turns one into the other): dQ/dtheta = cos dQ/dsin - sin dQ/dcos is Q at (cos theta, -sin theta)
+        // less Q at (0, 0).
         std::array<double, kernel_input_count> k = inputs(u, q);
         const double s = k[index(AngleValue::sin_theta)], c = k[index(AngleValue::cos_theta)];
         std::vector<double> base(static_cast<std::size_t>(nq()));

@@ -65,6 +65,16 @@ Eigen::MatrixXd mass_at(const Model& model, const HubInput& u, const std::vector
     return M;
 }
 
+Eigen::MatrixXd mass_theta_derivative(const Model& model, const HubInput& u, const double* q)
+{
+    const std::vector<double> at(q, q + model.nq());
+    HubInput turned = u;
+    const auto mass_turned = [&](double by) {
+        turned.theta = u.theta + by;
+        return mass_at(model, turned, at);
+    };
+    return mass_turned(0.5 * M_PI) - 0.5 * (mass_at(model, u, at) + mass_turned(M_PI));
+}
 
 ForceJacobians force_jacobians(const Model& model, const HubInput& u, const std::vector<double>& q,
                                const std::vector<double>& qd)

@@ -13,6 +13,10 @@ namespace hubbeam {
 /// M(q), both triangles, as an Eigen matrix.
 Eigen::MatrixXd mass_at(const Model& model, const HubInput& u, const std::vector<double>& q);
 
+/// dM/dtheta at a prescribed angle u.theta where M holds its sine and cosine (a moving hub's, affinely):
+/// M(theta + pi/2) - (M(theta) + M(theta + pi)) / 2.
+Eigen::MatrixXd mass_theta_derivative(const Model& model, const HubInput& u, const double* q);
+
 /// dQ/dq (nq x nq), dQ/dqd (nq x nq) and dQ/du (nq x 3, u indexed by DriveValue) at (u, q, qd): the model's
 /// derivative kernels when it has them, else central differences of Q.
 struct ForceJacobians {

@@ -37,10 +37,12 @@ void Simulation::Run::start_summary()
     summary_.energy_balance = system_.auxiliary().count() > 0 || scene_.control.has_value();
     if (system_.auxiliary().work) summary_.t_steady = 0.0;
     const bool turning = scene_.motion.kind != Motion::Kind::held;
-    if (angle_dependent_potential(model_.key()) && turning)
-        summary_.monitor_off =
-            "gravity under a prescribed rotation: U_g follows the prescribed angle, no energy is "
-            "constant";
+    if (reads_driven_angle(model_.key()) && turning)
+        summary_.monitor_off = model_.key().extras.hub
+                                   ? "a moving hub under a prescribed rotation: T follows the prescribed angle, no "
+                                     "energy is constant"
+                                   : "gravity under a prescribed rotation: U_g follows the prescribed angle, no energy "
+                                     "is constant";
     // A drive that changes up to the run's end (a table to t_end, a spin-up longer than the run) leaves no row after
     // which the Jacobi integral is constant: a drift of 0 J over a single row would check nothing.
     const double t_last = times_(times_.last());
