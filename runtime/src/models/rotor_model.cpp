@@ -91,21 +91,26 @@ RotorModel::RotorModel(std::vector<std::unique_ptr<Model>> blades, std::vector<d
     }
     const int n = nq();
     pattern_.assign(static_cast<std::size_t>(n) * static_cast<std::size_t>(n), '0');
+    blade_varying_.resize(blades_.size());
     for (int k = 0; k < this->blades(); ++k) {
         const std::string local = blade(k).mass_pattern();
         for (int i = 0; i < local_; ++i)
             for (int j = 0; j < local_; ++j) {
-                char& c = pattern_[static_cast<std::size_t>(global_index(k, i) * n + global_index(k, j))];
+                const int at = global_index(k, i) * n + global_index(k, j);
+                char& c = pattern_[static_cast<std::size_t>(at)];
                 const char l = local[static_cast<std::size_t>(i * local_ + j)];
                 if (rank(l) > rank(c)) c = l;
+                if (l == 'v') blade_varying_[static_cast<std::size_t>(k)].emplace_back(i * local_ + j, at);
             }
     }
+    for (int at = 0; at < n * n; ++at)
+        if (pattern_[static_cast<std::size_t>(at)] == 'v') varying_.push_back(at);
+    // An entry that varies for one blade and is constant for another would lose the constant part in mass_varying:
+    // the blades are one variant, so their patterns agree.
+    for (int k = 0; k < this->blades(); ++k)
+        if (blade(k).mass_pattern() != blade(0).mass_pattern())
+            throw std::invalid_argument("RotorModel: blades whose mass patterns differ");
     if (exact) jacobian_ = std::make_unique<Jacobian>(*this);
-}
-
-int RotorModel::global_index(int b, int i) const
-{
-    return i < hub_ ? i : i + b * (local_ - hub_);
 }
 
 HubInput RotorModel::blade_input(const HubInput& u, int b) const
@@ -148,10 +153,28 @@ void RotorModel::mass(const HubInput& u, const double* q, double* M) const
     }
 }
 
+void RotorModel::mass_varying(const HubInput& u, const double* q, double* M) const
+{
+    // Per thread: a model is shared by the runs of several threads, and this runs at every right-hand side.
+    thread_local std::vector<double> lq, m;
+    lq.resize(static_cast<std::size_t>(local_));
+    m.resize(static_cast<std::size_t>(local_) * static_cast<std::size_t>(local_));
+    for (int at : varying_) M[at] = 0.0;
+    for (int b = 0; b < blades(); ++b) {
+        gather(q, b, lq.data(), true);
+        blade(b).mass_varying(blade_input(u, b), lq.data(), m.data());
+        for (const auto& [local, global] : blade_varying_[static_cast<std::size_t>(b)])
+            M[global] += m[static_cast<std::size_t>(local)];
+    }
+}
+
 void RotorModel::summed(const HubInput& u, const double* q, const double* qd, double* out,
                         void (Model::*vector)(const HubInput&, const double*, const double*, double*) const) const
 {
-    std::vector<double> lq(static_cast<std::size_t>(local_)), lqd(lq.size()), f(lq.size());
+    thread_local std::vector<double> lq, lqd, f;  // as mass_varying's
+    lq.resize(static_cast<std::size_t>(local_));
+    lqd.resize(lq.size());
+    f.resize(lq.size());
     std::fill_n(out, nq(), 0.0);
     for (int b = 0; b < blades(); ++b) {
         gather(q, b, lq.data(), true);

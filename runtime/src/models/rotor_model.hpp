@@ -27,6 +27,9 @@ public:
     bool mass_is_constant() const override { return blades_.front()->mass_is_constant(); }
     std::string mass_pattern() const override { return pattern_; }
     void mass(const HubInput& u, const double* q, double* M) const override;
+    /// Each blade's varying entries (its own kernel's), summed where blades share them (the hub's): the solvers call
+    /// this at every right-hand side, where the whole matrix would cost a scatter of nq^2 entries.
+    void mass_varying(const HubInput& u, const double* q, double* M) const override;
     void forces(const HubInput& u, const double* q, const double* qd, double* Q) const override;
     Energy energy(const HubInput& u, const double* q, const double* qd) const override;
     double momentum(const HubInput& u, const double* q, const double* qd) const override;
@@ -43,7 +46,7 @@ public:
     /// Adds blade b's local nl x nl matrix (row-major) into the rotor's nq x nq one.
     void scatter_add_matrix(const double* local, int b, double* global) const;
     /// The rotor's index of blade b's local coordinate i.
-    int global_index(int b, int i) const;
+    int global_index(int b, int i) const { return i < hub_ ? i : i + b * (local_ - hub_); }
 
 private:
     class Jacobian;
@@ -56,6 +59,10 @@ private:
     bool torque_;   // theta is q[0]
     int local_;  // a blade's nq
     std::string pattern_;
+    /// The rotor's varying entries of M (row-major indices), and for each blade the pairs (its local entry, the
+    /// rotor's entry) of its own varying ones.
+    std::vector<int> varying_;
+    std::vector<std::vector<std::pair<int, int>>> blade_varying_;
     std::unique_ptr<ExactJacobian> jacobian_;
 };
 
