@@ -6,6 +6,8 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <hubbeam/fields.hpp>
+#include <hubbeam/linearize.hpp>
+#include <hubbeam/make_model.hpp>
 #include <hubbeam/scene.hpp>
 #include <hubbeam/simulate.hpp>
 #include <map>
@@ -91,6 +93,29 @@ TEST_CASE("a stiff rotor on a soft support swings at sqrt(k / total mass) under 
     CHECK(worst < 0.01 * amplitude);
     // Nothing pushes the hub sideways.
     for (double x : rows["hub_x"]) CHECK(std::abs(x) < 1e-3 * amplitude);
+}
+
+TEST_CASE("a stiff rotor of two or three blades spinning on an anisotropic support: Floquet gives the rigid rotor's "
+          "sqrt(k_x / M) and sqrt(k_y / M)", "[moving_hub][floquet]")
+{
+    // A balanced rotor whose blades are 20 times stiffer than the support moves on it as one rigid body of the total
+    // mass, whatever it spins at: its hub modes at sqrt(k / M) along each axis. The linearization is periodic (the
+    // blades turn over the fixed support), so these come from the Floquet analysis; for three blades the periodic
+    // motion is the hub at rest, which the harmonic balance must find as such.
+    const int blades = GENERATE(2, 3);
+    const Scene s = parse_scene(stiff_scene, "hub.toml",
+                                {{"rotor.blades", std::to_string(blades)},
+                                 {"support.stiffness_y", "3e4"},
+                                 {"beam.youngs_modulus", "1e12"}});
+    const std::unique_ptr<Model> model = make_scene_model(s);
+    const double M = 56.0 + blades * 1600.0 * 0.005 * 6.0;
+    const std::vector<NaturalMode> modes = floquet_modes(*model, 3.0);
+    REQUIRE(modes.size() >= 2);
+    INFO(blades << " blades: " << modes[0].rad_s << ", " << modes[1].rad_s << " rad/s");
+    CHECK(std::abs(modes[0].rad_s / std::sqrt(2e4 / M) - 1.0) < 1e-3);
+    CHECK(std::abs(modes[1].rad_s / std::sqrt(3e4 / M) - 1.0) < 1e-3);
+    // Conservative (the support's damping 0): neither grows nor decays beyond round-off of the exponents.
+    for (int k : {0, 1}) CHECK(std::abs(modes[static_cast<std::size_t>(k)].growth) < 1e-8 * modes[static_cast<std::size_t>(k)].rad_s);
 }
 
 TEST_CASE("a blade spun on a free-floating hub keeps the centre of mass still", "[moving_hub]")
