@@ -303,6 +303,14 @@ void ModesReport::add(const ModesBlock& block)
     variants_.push_back(block.key.name());
     add_modes(block);
     add_critical(block);
+    for (const UnstableRange& r : unstable_ranges(block)) {
+        std::string labels;
+        for (const std::string& l : r.labels) labels += (labels.empty() ? "" : ", ") + l;
+        warnings_ += "unstable: " + block.key.name() + ": " + labels + " grow" + (r.labels.size() == 1 ? "s" : "") +
+                     (r.from == r.to ? " at Omega = " + shortest(r.from)
+                                     : " from Omega = " + shortest(r.from) + " to " + shortest(r.to)) +
+                     " rad/s (the band's edges lie within a step of the rates outside it)\n";
+    }
     if (const SpinMode* least = least_certain(block.modes))
         warnings_ += "note: " + block.key.name() + ": " + least->label +
                      " continues at Omega = " + shortest(least->omega) + " rad/s with a MAC of only " +

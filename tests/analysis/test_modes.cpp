@@ -18,6 +18,7 @@
 #include <hubbeam/motion.hpp>
 #include <hubbeam/scene.hpp>
 #include "dynamics/integrate.hpp"
+#include "analysis/modes_table.hpp"
 #include "modes.hpp"
 
 using namespace hubbeam;
@@ -434,4 +435,34 @@ TEST_CASE("a blade's state space also puts out tip_uz and tip_phi, the tip's val
         INFO(ss.outputs[static_cast<std::size_t>(row)]);
         CHECK((ss.C.row(row) - expected).norm() < 1e-12 * expected.norm());
     }
+}
+
+TEST_CASE("a table's unstable ranges are the runs of rates where a mode grows beyond round-off", "[modes]")
+{
+    // Rates 1 .. 6: mode a grows at 2 and 3, mode b at 3 and at 6; at 4 a growth of round-off (1e-12 of the
+    // frequency) and at 5 a decaying mode count for nothing.
+    ModesBlock block;
+    const auto row = [&](double omega, const char* label, double growth) {
+        SpinMode m;
+        m.omega = omega;
+        m.label = label;
+        m.mode.growth = growth;
+        m.mode.rad_s = 10.0;
+        m.mode.undamped_rad_s = std::hypot(10.0, growth);
+        block.modes.push_back(m);
+    };
+    row(1, "a", 0.0), row(1, "b", -0.1);
+    row(2, "a", 0.3), row(2, "b", -0.1);
+    row(3, "a", 0.2), row(3, "b", 0.01);
+    row(4, "a", 1e-11), row(4, "b", 0.0);
+    row(5, "a", -0.2), row(5, "b", -0.1);
+    row(6, "a", 0.0), row(6, "b", 0.5);
+    const std::vector<UnstableRange> r = unstable_ranges(block);
+    REQUIRE(r.size() == 2);
+    CHECK(r[0].from == 2.0);
+    CHECK(r[0].to == 3.0);
+    CHECK(r[0].labels == std::vector<std::string>{"a", "b"});
+    CHECK(r[1].from == 6.0);
+    CHECK(r[1].to == 6.0);
+    CHECK(r[1].labels == std::vector<std::string>{"b"});
 }

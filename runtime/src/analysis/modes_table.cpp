@@ -1,6 +1,7 @@
 // The modes table's one assembly (modes_table.hpp): hubbeam modes writes and prints it, hubbeam.modes converts it.
 #include "analysis/modes_table.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <initializer_list>
 #include <memory>
@@ -141,6 +142,31 @@ const char* critical_header()
 }
 
 std::string modes_line(const ModesBlock& block, const SpinMode& row) { return line_of(modes_columns(), block, row); }
+
+std::vector<UnstableRange> unstable_ranges(const ModesBlock& block)
+{
+    std::vector<UnstableRange> out;
+    bool open = false;  // the last rate seen had a growing mode: its range is out.back()
+    for (std::size_t i = 0; i < block.modes.size();) {
+        const double omega = block.modes[i].omega;
+        std::vector<std::string> growing;
+        for (; i < block.modes.size() && block.modes[i].omega == omega; ++i) {
+            const NaturalMode& m = block.modes[i].mode;
+            if (m.growth > 1e-8 * std::max(m.undamped_rad_s, 1e-300)) growing.push_back(block.modes[i].label);
+        }
+        if (growing.empty()) {
+            open = false;
+            continue;
+        }
+        if (!open) out.push_back({omega, omega, {}});
+        open = true;
+        UnstableRange& r = out.back();
+        r.to = omega;
+        for (std::string& label : growing)
+            if (std::find(r.labels.begin(), r.labels.end(), label) == r.labels.end()) r.labels.push_back(std::move(label));
+    }
+    return out;
+}
 
 std::string critical_line(const ModesBlock& block, const CriticalSpeed& row)
 {

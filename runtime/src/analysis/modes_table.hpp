@@ -73,4 +73,14 @@ std::string modes_line(const ModesBlock& block, const SpinMode& row);
 /// A critical speed's line of the critical speeds CSV (no newline).
 std::string critical_line(const ModesBlock& block, const CriticalSpeed& row);
 
+/// A run of consecutive spin rates of a table at each of which some mode grows: from the first such rate to the last
+/// (the band's edges lie within a step of the rates outside them), and the labels of the lines that grow there.
+struct UnstableRange {
+    double from = 0.0, to = 0.0;
+    std::vector<std::string> labels;
+};
+/// The block's unstable ranges, by increasing spin: a mode grows where its growth rate exceeds 1e-8 of its undamped
+/// frequency (the round-off of a marginal one, which a conservative model reports as 0, stays below it).
+std::vector<UnstableRange> unstable_ranges(const ModesBlock& block);
+
 }  // namespace hubbeam
