@@ -180,6 +180,7 @@ BeamMatrices assemble_matrices(const VariantKey& key, const Parameters& p)
     b.cb = cb;
     b.sb = key.extras.cone ? std::sin(p.precone) : 0.0;
     hub_moments(b, profile, key.extras.cone, m, L, a, cb, section);
+    b.mass = m * L * w_s.sum();
     b.S_x = (X.transpose() * w_arm).transpose();
     b.S_y = (Y.transpose() * w_arm).transpose();
     b.M1 = m * L * weighted_gram(X, w_s);
@@ -399,12 +400,9 @@ std::unique_ptr<Model> make_assembled_model(const VariantKey& key, const Paramet
 {
     if (key.order == Order::full)
         throw std::invalid_argument("full order has no hand-assembled form; it needs a generated variant");
-    if (key.extras.hub)
-        throw std::invalid_argument("a moving hub ([support]) has no hand-assembled form yet; it needs a generated "
-                                    "variant");
     // Out of the plane, section 12.3's forms: the precone's projections and the coupled bending have no place in
-    // section 5.2's blocks.
-    if (key.out_of_plane()) {
+    // section 5.2's blocks; nor has a moving hub's translation, in the plane or out of it.
+    if (key.out_of_plane() || key.extras.hub) {
         return make_quadratic_form_model(key, p);
     }
     return std::make_unique<AssembledModel>(key, p);

@@ -32,6 +32,7 @@ struct BeamMatrices {
 
     // Section 11: the weight's integrals and the shape functions at the tip.
     double S_ob = 0.0;            // int m R dx, the beam's first moment about o
+    double mass = 0.0;            // int m dx (a moving hub carries it)
     Eigen::RowVectorXd P_x;       // 1 x Nx, int m Phi_x dx
     Eigen::RowVectorXd P_y;       // 1 x Ny, int m Phi_y dx
     Eigen::RowVectorXd Phi_x_L;   // 1 x Nx, Phi_x(L)

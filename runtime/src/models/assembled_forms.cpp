@@ -1,7 +1,10 @@
 // The hand-assembled model of docs/model.md section 12.3: Lagrange's equations of T, U and D written as quadratic forms
 // in the elastic coordinates (quadratic_forms.hpp), in torque form q = (theta, q_e) or prescribed form q = q_e. The
 // assembled path's model for a beam that leaves the plane.
+#include <array>
 #include <cmath>
+#include <memory>
+#include <utility>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -25,29 +28,66 @@ using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eig
 class QuadraticFormModel final : public Model {
 public:
     QuadraticFormModel(const VariantKey& key, const Parameters& p)
-        : Model(key, p), e_(coordinates().first_elastic()), ne_(nq() - e_)
+        : Model(key, p), e_(coordinates().first_beam()), ne_(nq() - e_)
     {
         const BeamMatrices c = assemble_matrices(key, p);
         f_ = quadratic_forms(key, c, model_matrices({key, p, c}));
         tip_ = {c.Phi_x_L, c.Phi_y_L, c.o.Phi_z_L, c.o.Phi_t_L, c.H_L, c.o.H_z_L};
+        if (key.extras.hub) {
+            hub_ = std::make_unique<HubForms>();
+            hub_->x = coordinates().first(FieldKind::hub_x);
+            hub_->mass = p.m_hub + c.mass + (key.extras.tip ? p.m_tip : 0.0);
+            hub_->P = f_.V_i.o;
+            hub_->c_i = f_.V_i.w;
+            hub_->c_j = f_.V_j.w;
+            hub_->k = {p.k_x, p.k_y};
+            hub_->c = {p.c_x, p.c_y};
+        }
     }
 
     const char* source() const override { return "assembled"; }
-    bool mass_is_constant() const override { return key().drive == Drive::prescribed; }
+    bool mass_is_constant() const override { return key().drive == Drive::prescribed && !hub_; }
 
-    /// Zeros of M are exact (shape functions vanish outside their support, fields with no mass coupling).
-    std::string mass_pattern() const override { return assembled_mass_pattern(*this); }
+    /// Zeros of M are exact (shape functions vanish outside their support, fields with no mass coupling); a moving
+    /// hub's rows turn with the hub angle.
+    std::string mass_pattern() const override
+    {
+        std::string pattern = assembled_mass_pattern(*this);
+        if (hub_)
+            for (int i = 0; i < nq(); ++i)
+                for (int j : {hub_->x, hub_->x + 1}) {
+                    pattern[static_cast<std::size_t>(i * nq() + j)] = 'v';
+                    pattern[static_cast<std::size_t>(j * nq() + i)] = 'v';
+                }
+        return pattern;
+    }
 
-    void mass(const HubInput&, const double* q, double* M) const override
+    void mass(const HubInput& u, const double* q, double* M) const override
     {
         Eigen::Map<RowMajorMatrix> Mm(M, nq(), nq());
+        Mm.setZero();
         Mm.bottomRightCorner(ne_, ne_) = f_.M;
-        if (key().drive == Drive::prescribed) return;
         const VectorXd qe = elastic(q);
-        Mm(0, 0) = M11(qe);
-        const VectorXd h = coupling(qe);
-        Mm.col(0).tail(ne_) = h;
-        Mm.row(0).tail(ne_) = h.transpose();
+        if (key().drive == Drive::torque) {
+            Mm(0, 0) = M11(qe);
+            const VectorXd h = coupling(qe);
+            Mm.col(0).tail(ne_) = h;
+            Mm.row(0).tail(ne_) = h.transpose();
+        }
+        if (!hub_) return;
+        const double theta = angle(u, q), C = std::cos(theta), S = std::sin(theta);
+        const int x = hub_->x, y = x + 1;
+        Mm(x, x) = Mm(y, y) = hub_->mass;
+        const VectorXd rx = C * hub_->c_i - S * hub_->c_j, ry = S * hub_->c_i + C * hub_->c_j;
+        Mm.row(x).tail(ne_) = rx.transpose();
+        Mm.col(x).tail(ne_) = rx;
+        Mm.row(y).tail(ne_) = ry.transpose();
+        Mm.col(y).tail(ne_) = ry;
+        if (key().drive == Drive::torque) {
+            const auto [mx, my] = hub_angle_coupling(C, S, qe);
+            Mm(x, 0) = Mm(0, x) = mx;
+            Mm(y, 0) = Mm(0, y) = my;
+        }
     }
 
     void forces(const HubInput& u, const double* q, const double* qd, double* Q) const override
@@ -68,16 +108,29 @@ public:
         }
         if (f_.damped) Qe -= f_.Dm * qde;
         Eigen::Map<VectorXd>(Q + e_, ne_) = Qe;
+        if (!hub_) return;
+        const int x = hub_->x, y = x + 1;
+        const double theta = angle(u, q);
+        const auto [fx, fy] = hub_turning_forces(std::cos(theta), std::sin(theta), u, q, qd);
+        Q[x] = fx - hub_->k[0] * q[x] - hub_->c[0] * qd[x];
+        Q[y] = fy - hub_->k[1] * q[y] - hub_->c[1] * qd[y] - f_.g * hub_->mass;
     }
 
-    /// dQ/dtheta of the prescribed form: only U_g's in-plane part turns with theta.
-    void forces_theta(const HubInput& u, const double* q, const double*, double* dQdtheta) const override
+    /// dQ/dtheta of the prescribed form: U_g's in-plane part and a moving hub's forces turn with theta.
+    void forces_theta(const HubInput& u, const double* q, const double* qd, double* dQdtheta) const override
     {
         Eigen::Map<VectorXd> d(dQdtheta, nq());
         d.setZero();
-        if (f_.g == 0.0 || key().drive == Drive::torque) return;
+        if (key().drive == Drive::torque) return;
         const VectorXd qe = elastic(q);
-        d.tail(ne_) = -f_.g * std::cos(u.theta) * f_.V_i.gradient(qe) + f_.g * std::sin(u.theta) * f_.V_j.gradient(qe);
+        if (f_.g != 0.0)
+            d.tail(ne_) = -f_.g * std::cos(u.theta) * f_.V_i.gradient(qe) + f_.g * std::sin(u.theta) * f_.V_j.gradient(qe);
+        if (!hub_) return;
+        // The hub's turning forces are linear in (cos theta, sin theta): their derivative is their value at
+        // (-sin theta, cos theta).
+        const auto [fx, fy] = hub_turning_forces(-std::sin(u.theta), std::cos(u.theta), u, q, qd);
+        d[hub_->x] = fx;
+        d[hub_->x + 1] = fy;
     }
 
     Energy energy(const HubInput& u, const double* q, const double* qd) const override
@@ -98,6 +151,7 @@ public:
             e.U +=
                 f_.g * (std::sin(theta) * f_.V_i.at(qe) + std::cos(theta) * f_.V_j.at(qe)) + f_.g_axis * f_.V_k.at(qe);
         }
+        if (hub_) add_hub_energy(u, q, qd, e);
         return e;
     }
 
@@ -105,12 +159,82 @@ public:
     {
         const double w = key().drive == Drive::torque ? qd[0] : u.theta_dot;
         const VectorXd qe = elastic(q), qde = elastic(qd);
-        return M11(qe) * w + coupling(qe).dot(qde);  // dT/dtheta_dot
+        double h = M11(qe) * w + coupling(qe).dot(qde);  // dT/dtheta_dot
+        if (hub_) {
+            const auto [v_i, v_j] = hub_velocity(angle(u, q), qd);
+            h += -v_i * hub_->c_j.dot(qe) + v_j * (hub_->P + hub_->c_i.dot(qe));
+        }
+        return h;
     }
 
     Tip tip(const double* q) const override;
 
 private:
+    /// A moving hub (docs/model.md section 13.1) on the forms: the translating mass (hub, beam and tip body), and
+    /// the rotor's first moments along the blade's axes, int m p_i dx = P + c_i^T q_e and int m p_j dx = c_j^T q_e
+    /// to first order (the weights' V_i, V_j, tip included). With the hub's velocity in the blade's frame
+    /// v_i = C x_dot + S y_dot, v_j = -S x_dot + C y_dot (C, S: cos and sin theta) and w = theta_dot, order first's
+    /// kinetic energy gains 1/2 M_t (x_dot^2 + y_dot^2) + v_i a + v_j b, a = c_i^T qd_e - w c_j^T q_e,
+    /// b = c_j^T qd_e + w (P + c_i^T q_e).
+    struct HubForms {
+        int x = 0;  // x_h's index in q; y_h follows
+        double mass = 0.0, P = 0.0;
+        VectorXd c_i, c_j;
+        std::array<double, 2> k{}, c{};
+    };
+
+    double angle(const HubInput& u, const double* q) const { return key().drive == Drive::torque ? q[0] : u.theta; }
+    /// (v_i, v_j): the hub's velocity in the blade's frame.
+    std::pair<double, double> hub_velocity(double theta, const double* qd) const
+    {
+        const double C = std::cos(theta), S = std::sin(theta), xd = qd[hub_->x], yd = qd[hub_->x + 1];
+        return {C * xd + S * yd, -S * xd + C * yd};
+    }
+    /// M's entries of (x_h, theta) and (y_h, theta): d2T / dx_dot dtheta_dot and d2T / dy_dot dtheta_dot.
+    std::pair<double, double> hub_angle_coupling(double C, double S, const VectorXd& qe) const
+    {
+        const double along = hub_->P + hub_->c_i.dot(qe), across = hub_->c_j.dot(qe);
+        return {-C * across - S * along, -S * across + C * along};
+    }
+    /// The hub rows' forces that turn with the hub (linear in C and S): from d/dt of the momenta p_x = M_t x_dot +
+    /// C a - S b and p_y = M_t y_dot + S a + C b, less the accelerations' terms of M; under a prescribed drive its
+    /// known theta_ddot's term too. (The beam's and the hub angle's rows gain nothing beyond M's couplings: their
+    /// rate terms cancel.)
+    std::pair<double, double> hub_turning_forces(double C, double S, const HubInput& u, const double* q,
+                                                 const double* qd) const
+    {
+        const bool torque = key().drive == Drive::torque;
+        const double w = torque ? qd[0] : u.theta_dot;
+        const VectorXd qe = elastic(q), qde = elastic(qd);
+        const double ci_qd = hub_->c_i.dot(qde), cj_qd = hub_->c_j.dot(qde);
+        const double a = ci_qd - w * hub_->c_j.dot(qe), b = cj_qd + w * (hub_->P + hub_->c_i.dot(qe));
+        double fx = w * (C * cj_qd + S * ci_qd) + w * (S * a + C * b);
+        double fy = w * (S * cj_qd - C * ci_qd) - w * (C * a - S * b);
+        if (!torque) {
+            const auto [mx, my] = hub_angle_coupling(C, S, qe);
+            fx -= u.theta_ddot * mx;
+            fy -= u.theta_ddot * my;
+        }
+        return {fx, fy};
+    }
+    /// The hub's part of T (by degree in the rates under a prescribed drive) and of U.
+    void add_hub_energy(const HubInput& u, const double* q, const double* qd, Energy& e) const
+    {
+        const bool torque = key().drive == Drive::torque;
+        const double w = torque ? qd[0] : u.theta_dot;
+        const VectorXd qe = elastic(q), qde = elastic(qd);
+        const auto [v_i, v_j] = hub_velocity(angle(u, q), qd);
+        const double xd = qd[hub_->x], yd = qd[hub_->x + 1];
+        const double quadratic = 0.5 * hub_->mass * (xd * xd + yd * yd) + v_i * hub_->c_i.dot(qde) + v_j * hub_->c_j.dot(qde);
+        const double linear = w * (-v_i * hub_->c_j.dot(qe) + v_j * (hub_->P + hub_->c_i.dot(qe)));
+        if (torque)
+            e.T2 += quadratic + linear;
+        else
+            e.T2 += quadratic, e.T1 += linear;
+        const double x = q[hub_->x], y = q[hub_->x + 1];
+        e.U += 0.5 * (hub_->k[0] * x * x + hub_->k[1] * y * y) + f_.g * hub_->mass * y;
+    }
+
     /// The shape functions at the tip and H(L), H_z(L): u = Phi(L) q, u_x = u_x1 - 1/2 (B^T H B + Z^T H_z Z).
     struct TipRows {
         Eigen::RowVectorXd x, y, z, t;
@@ -126,9 +250,10 @@ private:
     /// Whether U holds a weight (gravity in the plane or along the axis).
     bool weighed() const { return f_.g != 0.0 || f_.g_axis != 0.0; }
 
-    int e_, ne_;  // where q_e begins in q, and its size
+    int e_, ne_;  // where q_e begins in q (after the hub's coordinates), and its size
     QuadraticForms f_;
     TipRows tip_;
+    std::unique_ptr<HubForms> hub_;  // null without a moving hub
 };
 
 Tip QuadraticFormModel::tip(const double* q) const

@@ -21,7 +21,7 @@ struct Fields {
 Fields fields_of(const VariantKey& key)
 {
     const CoordinateLayout l = coordinate_layout(key);
-    const int e = l.first_elastic();
+    const int e = l.first_beam();  // after the hub's coordinates (its angle, a moving hub's x_h, y_h)
     const auto start = [&](FieldKind k) {
         const CoordinateField* f = l.find(k);
         return f ? f->first - e : 0;
