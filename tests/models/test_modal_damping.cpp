@@ -215,7 +215,7 @@ TEST_CASE("a free vibration started in a named mode decays by exp(-2 pi n zeta /
             const double amplitude = phi.dot(M * q), decay = std::exp(-2 * std::numbers::pi * cycle * zeta /
                                                                       std::sqrt(1 - zeta * zeta));
             INFO("bending mode " << m + 1 << " at " << w << " rad/s, cycle " << cycle);
-            CHECK(amplitude == Approx(decay).epsilon(1e-7));
+            CHECK(amplitude == Approx(decay).epsilon(1e-10));  // 2e-13 at rk8pd, rtol 1e-12
         }
     }
 }
