@@ -57,11 +57,6 @@ int import_scene(const std::string& input, const std::string& output)
         std::cerr << e.what() << "\n";
         return exit_bad_input;
     }
-    // One line, whatever the number of ratios: the scene's comment lists them.
-    if (std::any_of(blade.damping.begin(), blade.damping.end(), [](const InputSetting& d) { return d.value != 0.0; }))
-        std::cerr << "hubbeam: warning: " << blade.damping_file
-                  << ": its structural damping (BldFlDmp, BldEdDmp) is not modelled yet; " << printable(output, 400)
-                  << " is undamped\n";
     std::cout << "scene       " << output << " (one blade of " << printable(input, 400) << ", " << blade.format
               << ")\n";
     return exit_ok;

@@ -248,7 +248,7 @@ private:
 };
 
 ModesReport::ModesReport(const Scene& scene, const ModesOptions& o, std::ostream& out)
-    : scene_(scene), o_(o), out_(out), damped_(dissipates(scene.key()) || scene.control),
+    : scene_(scene), o_(o), out_(out), damped_(scene.damped() || scene.control),
       counts_(o.nz.size() > 1 || o.nt.size() > 1)
 {
     try {

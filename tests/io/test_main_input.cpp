@@ -134,7 +134,8 @@ TEST_CASE("a BModes tip mass and a nonzero precone and pitch reach the scene in 
     CHECK(scene.parameters.J_tip == 10.0);
 }
 
-TEST_CASE("the NREL 5 MW ElastoDyn files become a scene with their values, and their damping as a comment", "[import]")
+TEST_CASE("the NREL 5 MW ElastoDyn files become a scene with their values, their damping as modal ratios",
+          "[import][modal_damping]")
 {
     const std::string main = data("5MW_Land_DLL_WTurb/NRELOffshrBsline5MW_Onshore_ElastoDyn.dat");
     const std::string text = text_of(main);
@@ -165,9 +166,17 @@ TEST_CASE("the NREL 5 MW ElastoDyn files become a scene with their values, and t
     CHECK(b.damping[0].value == value_before(blade_text, "BldFlDmp(1)"));
     CHECK(b.damping[2].name == "BldEdDmp(1)");
     CHECK(b.damping[2].value == value_before(blade_text, "BldEdDmp(1)"));
-    CHECK(toml.find("not modelled yet: this scene is undamped") != std::string::npos);
-    CHECK(toml.find("#   BldEdDmp(1) = 0.477465 % of critical (line 7)") != std::string::npos);
-    CHECK(toml.find("[damping]") == std::string::npos);
+    // Percent of critical as fractions: the blade's first two flap modes and its first edge mode (docs/import.md).
+    const ModalDamping& d = scene.modal_damping;
+    REQUIRE(d.flap.size() == 2);
+    REQUIRE(d.edge.size() == 1);
+    CHECK(d.flap[0] == Approx(value_before(blade_text, "BldFlDmp(1)") / 100).epsilon(1e-15));
+    CHECK(d.flap[1] == Approx(value_before(blade_text, "BldFlDmp(2)") / 100).epsilon(1e-15));
+    CHECK(d.edge[0] == Approx(value_before(blade_text, "BldEdDmp(1)") / 100).epsilon(1e-15));
+    CHECK(scene.parameters.alpha == 0.0);
+    CHECK(scene.parameters.beta == 0.0);
+    CHECK(toml.find("not modelled") == std::string::npos);
+    CHECK(toml.find("BldEdDmp(1) = 0.477465 % (NRELOffshrBsline5MW_Blade.dat:7)") != std::string::npos);
 }
 
 TEST_CASE("ElastoDyn's Gravity becomes a commented [gravity], a tip mass a [tip]", "[import]")

@@ -511,6 +511,22 @@ class TorqueLawTest(unittest.TestCase):
         self.assertIs(caught.exception, raised)
 
 
+class ModalDampingTest(unittest.TestCase):
+    """[damping] flap_ratios, edge_ratios (docs/model.md section 11.5) reach Python's modes and runs as the command
+    line's: the named modes have the ratios given, the others none, and a run counts the energy they dissipate."""
+
+    def test_named_modes_have_their_ratios_and_a_run_its_dissipated_energy(self):
+        # An array key from Python is its numbers separated by commas, as rotor.pitch_offsets (docs/scene.md).
+        m = hubbeam.modes(SPINUP, 0.0, nx=0, ny=4, method="fem", edge_ratios="0.02, 0.05")
+        self.assertEqual(list(m["kind"]), ["bending"] * 4)
+        np.testing.assert_allclose(m["damping_ratio"], [0.02, 0.05, 0.0, 0.0], rtol=0, atol=1e-10)
+        r = hubbeam.run(SPINUP, t_end=1.0, nx=0, ny=4, method="fem", edge_ratios="0.02, 0.05")
+        self.assertIn("dissipated", r.columns)
+        self.assertGreater(r["dissipated"][-1], 0.0)
+        with self.assertRaisesRegex(ValueError, "^edge_ratios: expected an array of numbers >= 0"):
+            hubbeam.modes(SPINUP, 0.0, nx=0, ny=4, method="fem", edge_ratios="0.02, -0.05")
+
+
 class VersionTest(unittest.TestCase):
     def test_the_version_is_the_projects(self):
         import re

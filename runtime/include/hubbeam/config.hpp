@@ -110,6 +110,23 @@ struct Rotor {
     /// blade 0 alone (each blade's model carries the hub terms it is given; the rotor sums them once).
     Parameters blade(const Parameters& p, int b) const;
 };
+/// The damping of a blade's own modes at rest (docs/model.md section 11.5; ElastoDyn's BldFlDmp, BldEdDmp): fractions of
+/// critical of its first flapwise-dominated modes and of its first edgewise-dominated ones (a planar blade's in-plane
+/// bending modes), in order of frequency; the other modes undamped. Empty: none.
+struct ModalDamping {
+    std::vector<double> flap, edge;
+    /// Whether any ratio is given (what the count of the blade's modes is checked against).
+    bool given() const { return !flap.empty() || !edge.empty(); }
+    /// Whether any ratio damps: ratios of 0 leave the scene as it is without them.
+    bool damps() const
+    {
+        for (const std::vector<double>* v : {&flap, &edge})
+            for (double z : *v)
+                if (z != 0.0) return true;
+        return false;
+    }
+};
+
 /// Where a run starts (scene key initial.state, docs/scene.md): at rest (the beam straight and unloaded), at the
 /// static equilibrium of its elastic coordinates under the constant loads at the drive's initial angle and rate, or
 /// at the steady spin of that rate (refused where the scene has none: gravity in the plane of a spinning hub).
@@ -137,10 +154,13 @@ struct Scene {
     SolverOptions solver;
     OutputOptions output;
     Rotor rotor;
+    ModalDamping modal_damping;  // [damping] flap_ratios, edge_ratios: each blade's
     InitialState initial = InitialState::rest;  // initial.state
     /// The hub's rate at t = 0 (rad/s): a prescribed rotation's; a torque-driven hub starts at rest.
     double initial_theta_dot() const { return drive() == Drive::torque ? 0.0 : motion.at(0.0).theta_dot; }
 
+    /// Whether its model dissipates: its variant's damping or support (dissipates, terms.hpp) or modal damping.
+    bool damped() const { return dissipates(key()) || modal_damping.damps(); }
     /// The control, or nullptr: what the integrator and the linearization take.
     const Control* controller() const { return control ? &*control : nullptr; }
     /// The hub's drive: torque under a control (its motion is a reference), else the one the motion implies.

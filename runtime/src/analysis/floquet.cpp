@@ -5,6 +5,7 @@
 #include <hubbeam/linearize.hpp>
 
 #include "analysis/modal_coordinates.hpp"
+#include "models/modal_damping.hpp"
 #include "models/model_operations.hpp"
 #include "terms.hpp"
 #include "text/shortest.hpp"
@@ -718,7 +719,7 @@ FloquetAnalysis floquet(const Model& model, double omega, Axial axial)
         out.steps = 2 * steps;
         out.monodromy = system.original_matrix(phi.back());
         out.multipliers = multipliers;
-        const bool damped = dissipates(model.key());
+        const bool damped = dissipates(model);
         int accounted = 0;
         for (std::size_t i = 0; i < now.size(); ++i) {
             if (!agrees[i]) continue;
@@ -743,7 +744,7 @@ FloquetAnalysis floquet(const Model& model, double omega, Axial axial)
         break;
     }
     // As natural_modes sorts: by frequency, divergent modes (rad_s 0) first; with damping by undamped frequency.
-    const bool damped = dissipates(model.key());
+    const bool damped = dissipates(model);
     const auto frequency = [damped](const NaturalMode& m) {
         return !damped || (m.rad_s == 0.0 && m.growth > 0.0) ? m.rad_s : m.undamped_rad_s;
     };

@@ -3,6 +3,8 @@
 #include <hubbeam/linearize.hpp>
 
 #include "analysis/modal_coordinates.hpp"
+#include "models/mode_kinds.hpp"
+#include "models/modal_damping.hpp"
 #include "models/model_operations.hpp"
 #include "terms.hpp"
 #include "text/csv_columns.hpp"
@@ -289,77 +291,6 @@ Eigen::MatrixXd linearized_system(const Model& model, const SteadySpin& s, const
     return X;
 }
 
-/// The kinetic energy of a mode's rates, v^H M v, split by the fields of q (model.coordinates().fields, in their
-/// order); coordinates[i] is the index in q of rates[i], and cross terms between fields are left out.
-std::vector<double> energy_by_field(const Model& model, const Eigen::MatrixXd& M, const std::vector<int>& coordinates,
-                                    const Eigen::VectorXcd& rates)
-{
-    const CoordinateLayout& layout = model.coordinates();
-    // Each coordinate's field looked up once, not once per pair (a tenth of a Campbell table's time at Ny = 64).
-    std::vector<std::size_t> field(coordinates.size());
-    for (std::size_t i = 0; i < coordinates.size(); ++i)
-        field[i] = static_cast<std::size_t>(&layout.field_of(coordinates[i]) - layout.fields.data());
-    std::vector<double> energy(layout.fields.size(), 0.0);
-    for (std::size_t i = 0; i < coordinates.size(); ++i) {
-        const std::complex<double> ri = rates(static_cast<Eigen::Index>(i));
-        for (std::size_t j = 0; j < coordinates.size(); ++j) {
-            if (field[i] != field[j]) continue;
-            const std::complex<double> rj = rates(static_cast<Eigen::Index>(j));
-            // Re(conj(ri) M rj), written out: std::complex's product checks for NaN at every call.
-            energy[field[i]] += M(coordinates[i], coordinates[j]) * (ri.real() * rj.real() + ri.imag() * rj.imag());
-        }
-    }
-    return energy;
-}
-
-/// The kind of a real, decaying eigenvalue (a mode that does not oscillate: frequency 0, zeta 1), whatever field
-/// holds its energy: it has no place on a Campbell diagram and meets no excitation line, and its kind says so
-/// rather than pass it for the next bending, edge or flap mode.
-constexpr const char* overdamped_kind = "overdamped";
-
-/// A mode's kind (the modes CSV's column) when most of its kinetic energy is in a field of this kind: a planar
-/// beam's in-plane modes are "bending", a beam that leaves the plane (VariantKey::out_of_plane: flap or twist
-/// coordinates, a pitch, a pre-twist or a precone) has "edge" (lead-lag) and "flap" modes.
-const char* mode_kind(FieldKind kind, const VariantKey& key)
-{
-    switch (kind) {
-        case FieldKind::hub_angle:
-            return "hub";
-        case FieldKind::hub_x:
-            return "hub x";
-        case FieldKind::hub_y:
-            return "hub y";
-        case FieldKind::axial:
-            return "axial";
-        case FieldKind::flap:
-            return "flap";
-        case FieldKind::twist:
-            return "twist";
-        case FieldKind::inplane:
-            break;
-    }
-    return key.out_of_plane() ? "edge" : "bending";
-}
-
-/// The elastic field that holds the largest part of the kinetic energy of a mode with these rates (of the
-/// coordinates R); the in-plane field where the rates hold none.
-FieldKind dominant_field(const Model& model, const Eigen::MatrixXd& M, const std::vector<int>& R,
-                         const Eigen::VectorXcd& rates)
-{
-    const std::vector<double> e = energy_by_field(model, M, R, rates);
-    FieldKind dominant = FieldKind::inplane;
-    double largest = -1.0;
-    for (std::size_t f = 0; f < e.size(); ++f) {
-        const FieldKind kind = model.coordinates().fields[f].kind;
-        // Ties (a planar mode with no axial energy) go to the in-plane field, as before the axial one.
-        if (kind != FieldKind::hub_angle && (e[f] > largest || (e[f] == largest && kind == FieldKind::inplane))) {
-            largest = e[f];
-            dominant = kind;
-        }
-    }
-    return dominant;
-}
-
 /// NaturalMode::shape of a mode with these rates: U rates with U the upper Cholesky factor of M over the same
 /// coordinates (mass_factor: M = U^T U), scaled to unit length.
 Eigen::VectorXcd weighted_shape(const Eigen::MatrixXd& U, const Eigen::VectorXcd& rates)
@@ -375,45 +306,11 @@ Eigen::VectorXcd weighted_shape(const Eigen::MatrixXd& U, const Eigen::VectorXcd
     return length > 0.0 ? Eigen::VectorXcd(w / length) : w;
 }
 
-/// Within each set of repeated eigenvalues (a uniform blade at rest: flap and lead-lag modes of one frequency), the
-/// eigen solver's vectors are any basis of the eigenspace; turns them into the basis that splits the in-plane field's
-/// kinetic energy from the rest, so that each mode is a pure flap or lead-lag mode and keeps its kind.
-void separate_repeated(const Model& model, const Eigen::MatrixXd& M, const std::vector<int>& R,
-                       const Eigen::VectorXcd& lambda, Eigen::MatrixXcd& rates)
-{
-    const CoordinateLayout& layout = model.coordinates();
-    const auto n = static_cast<Eigen::Index>(R.size());
-    Eigen::MatrixXd inplane = Eigen::MatrixXd::Zero(n, n);  // M over R, the in-plane field's block only
-    for (Eigen::Index i = 0; i < n; ++i)
-        for (Eigen::Index j = 0; j < n; ++j)
-            if (layout.field_of(R[static_cast<std::size_t>(i)]).kind == FieldKind::inplane &&
-                layout.field_of(R[static_cast<std::size_t>(j)]).kind == FieldKind::inplane)
-                inplane(i, j) = M(R[static_cast<std::size_t>(i)], R[static_cast<std::size_t>(j)]);
-    std::vector<bool> done(static_cast<std::size_t>(lambda.size()), false);
-    for (Eigen::Index k = 0; k < lambda.size(); ++k) {
-        if (done[static_cast<std::size_t>(k)]) continue;
-        std::vector<Eigen::Index> group;
-        for (Eigen::Index j = k; j < lambda.size(); ++j)
-            // Repeated to 1e-6: the eigen solver resolves a repeated pair to about 1e-9 of its value (BIM, Ny 12).
-            if (std::abs(lambda[j] - lambda[k]) <= 1e-6 * std::abs(lambda[k])) {
-                group.push_back(j);
-                done[static_cast<std::size_t>(j)] = true;
-            }
-        if (group.size() < 2) continue;
-        Eigen::MatrixXcd V(n, static_cast<Eigen::Index>(group.size()));
-        for (std::size_t g = 0; g < group.size(); ++g) V.col(static_cast<Eigen::Index>(g)) = rates.col(group[g]);
-        const Eigen::MatrixXcd E = V.adjoint() * inplane * V;
-        const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXcd> split(E);
-        const Eigen::MatrixXcd turned = V * split.eigenvectors();
-        for (std::size_t g = 0; g < group.size(); ++g) rates.col(group[g]) = turned.col(static_cast<Eigen::Index>(g));
-    }
-}
-
 }  // namespace
 
 std::vector<NaturalMode> natural_modes(const Model& model, const SteadySpin& s, Axial axial)
 {
-    const bool damped = dissipates(model.key());
+    const bool damped = dissipates(model);
     const Eigen::MatrixXd M = mass_at(model, s.u, s.q);
     // The coordinates that keep their inertia: all, or with quasi-static axial coordinates all but A. A then
     // follows its own rows with A_dot = A_ddot = 0 (docs/model.md section 9), and the other rows drop A's rates;

@@ -4,6 +4,7 @@
 
 #include "dynamics/acceleration.hpp"
 #include "dynamics/mass_solver.hpp"
+#include "models/modal_damping.hpp"
 #include "models/model_operations.hpp"
 #include "terms.hpp"
 
@@ -153,11 +154,12 @@ struct FirstOrderSystem::Work {
     Eigen::RowVectorXd dtau_v;
 };
 
-Auxiliary Auxiliary::of(const VariantKey& key, const Control* control, const Parameters* parameters, bool integral)
+Auxiliary Auxiliary::of(const VariantKey& key, bool damped, const Control* control, const Parameters* parameters,
+                         bool integral)
 {
     Auxiliary a;
     a.integral = control != nullptr && !control->law && (control->ki != 0.0 || integral);
-    a.dissipated = dissipates(key) && parameters != nullptr;
+    a.dissipated = damped && parameters != nullptr;
     a.work = key.drive == Drive::torque && (control != nullptr || a.dissipated);
     return a;
 }
@@ -170,7 +172,7 @@ FirstOrderSystem::FirstOrderSystem(const Model& model, const Motion& motion, Axi
     if (control_ != nullptr && key.drive != Drive::torque)
         throw std::invalid_argument("a controlled hub needs a torque variant, not " + key.name());
     kept_ = kept_coordinates(model.coordinates(), axial_);
-    aux_ = Auxiliary::of(key, control_, parameters, integral);
+    aux_ = Auxiliary::of(key, dissipates(model), control_, parameters, integral);
     const int k = static_cast<int>(kept_.size());
     int next = 2 * k;
     if (aux_.integral) integral_ = next++;

@@ -49,10 +49,11 @@ class RightHandSide;
 struct Auxiliary {
     bool integral = false, dissipated = false, work = false;
     int count() const { return int{integral} + int{dissipated} + int{work}; }
-    /// Those a run of key needs, controlled by control (or nullptr), with the parameters whose damping it accounts
-    /// for (nullptr: the system keeps no energy account, as for the tests of its kernels alone); with integral, the
-    /// angle error's integral even at ki = 0 (where the sensitivity to ki is the integral's).
-    static Auxiliary of(const VariantKey& key, const Control* control, const Parameters* parameters,
+    /// Those a run of key needs, damped or not (dissipates of the model, Scene::damped), controlled by control (or
+    /// nullptr), with the parameters whose damping it accounts for (nullptr: the system keeps no energy account, as
+    /// for the tests of its kernels alone); with integral, the angle error's integral even at ki = 0 (where the
+    /// sensitivity to ki is the integral's).
+    static Auxiliary of(const VariantKey& key, bool damped, const Control* control, const Parameters* parameters,
                         bool integral = false);
 };
 

@@ -28,8 +28,8 @@
 //   ROTOR-TEETER, DRIVETRAIN, FURLING, TOWER, OUTPUT and its channel lists) hold numerics, switches, other bodies and
 //   outputs: ignored whole. The blades must be alike (blade k's pitch, precone, tip mass and file those of blade 1):
 //   hubbeam takes one blade.
-// - The blade file's BldFlDmp(1), BldFlDmp(2), BldEdDmp(1) are structural damping hubbeam does not model yet: the
-//   scene states them in a comment and stays undamped (the command warns). FlStTunr(1), FlStTunr(2) tune ElastoDyn's
+// - The blade file's BldFlDmp(1), BldFlDmp(2), BldEdDmp(1) (percent of critical) become [damping] flap_ratios and
+//   edge_ratios (fractions): the modal damping of the blade's own modes. FlStTunr(1), FlStTunr(2) tune ElastoDyn's
 //   own modal stiffnesses: refused unless 1. Its mode-shape polynomials are ElastoDyn's discretization: not read.
 // - Gravity (FAST v8's ElastoDyn) is written as a commented [gravity]: a rotor turns in a vertical plane, and hubbeam
 //   modes about a steady spin are taken without gravity (a blade spinning under its weight moves periodically).
@@ -44,6 +44,7 @@
 #include <fstream>
 #include <hubbeam/scene.hpp>
 #include <map>
+#include <tuple>
 #include <numbers>
 #include <optional>
 #include <sstream>
@@ -521,6 +522,28 @@ std::string key_line(const std::string& key, const std::string& value, const std
     return line + "\n";
 }
 
+/// [damping]'s modal ratios from the blade file's BldFlDmp(1), BldFlDmp(2) and BldEdDmp(1) (percent of critical
+/// over 100: docs/model.md section 11.5), each array as far as its settings run from (1); empty without them.
+std::string damping_table(const ImportedBlade& b)
+{
+    const std::string file = printable(std::filesystem::path(b.damping_file).filename().string(), 80);
+    std::string out;
+    for (const auto& [key, name, count] : {std::tuple{"flap_ratios", "BldFlDmp", 2}, {"edge_ratios", "BldEdDmp", 1}}) {
+        std::string values, from;
+        for (int k = 1; k <= count; ++k) {
+            const std::string setting = std::string(name) + "(" + std::to_string(k) + ")";
+            const auto d = std::find_if(b.damping.begin(), b.damping.end(),
+                                        [&](const InputSetting& x) { return x.name == setting; });
+            if (d == b.damping.end()) break;
+            values += (values.empty() ? "" : ", ") + toml_number(d->value / 100.0);
+            from += (from.empty() ? "" : ", ") + setting + " = " + printable(d->text, 40) + " %";
+            from += " (" + file + ":" + std::to_string(d->line) + ")";
+        }
+        if (!values.empty()) out += key_line(key, "[" + values + "]", "of critical: " + from);
+    }
+    return out.empty() ? out : "\n[damping]\n" + out;
+}
+
 /// The blade file's name as the scene gives it: relative to the scene's folder when it can be, else absolute.
 std::string name_from_scene(const std::string& blade_file, const std::string& scene_path)
 {
@@ -591,12 +614,6 @@ std::string imported_scene_toml(const ImportedBlade& b, const std::string& scene
     if (omega > 0.0)  // a range up to twice the speed, in steps that resolve a blade's first modes
         s += "# (or --omega 0:" + toml_number(std::ceil(2.0 * omega * 10.0) / 10.0) + ":0.1 for a Campbell diagram).\n";
     s += "# Every value below names the setting it came from.\n";
-    if (!b.damping.empty()) {
-        s += "#\n# Structural damping in " + b.damping_file + ", not modelled yet: this scene is undamped.\n";
-        for (const InputSetting& d : b.damping)
-            s += "#   " + d.name + " = " + printable(d.text, 40) + " % of critical (line " + std::to_string(d.line) +
-                 ")\n";
-    }
 
     s += "\n[beam]\n";
     const double length = b.tip_radius.value - b.hub_radius.value;
@@ -618,6 +635,8 @@ std::string imported_scene_toml(const ImportedBlade& b, const std::string& scene
             s += key_line("inertia", toml_number(b.tip_inertia.value),
                           "kg m^2, lag: " + origin(b, b.tip_inertia, "kg m^2"));
     }
+
+    s += damping_table(b);
 
     if (b.has_gravity) {
         s += "\n# " + origin(b, b.gravity, "m/s^2") + ": the rotor turns in a vertical plane. hubbeam modes takes\n";

@@ -33,7 +33,7 @@ struct ImportedBlade {
     bool has_gravity = false;
     InputSetting gravity;  // m/s^2 (ElastoDyn up to FAST v8: Gravity)
     /// The blade file's structural damping ratios (ElastoDyn's BldFlDmp(1), BldFlDmp(2), BldEdDmp(1), percent of
-    /// critical), which hubbeam does not model: the scene states them in a comment, and is undamped.
+    /// critical): the scene's [damping] flap_ratios and edge_ratios.
     std::string damping_file;
     std::vector<InputSetting> damping;
 };

@@ -429,6 +429,14 @@ void read_hub(const Section& hub, const Scene& scene, Parameters& p)
         p.J_oh = hub.number("inertia", p.J_oh);
 }
 
+/// [damping]'s arrays: the modal damping of docs/model.md section 11.5 (its keys checked by read_extras); their
+/// ranges are validate()'s, the count of the blade's modes make_scene_model's.
+void read_modal_damping(const Section& damping, ModalDamping& d)
+{
+    d.flap = damping.numbers("flap_ratios").value_or(d.flap);
+    d.edge = damping.numbers("edge_ratios").value_or(d.edge);
+}
+
 /// [rotor]: docs/model.md section 13; its arrays' lengths and ranges are validate()'s.
 void read_rotor(const Section& rotor, Rotor& r)
 {
@@ -526,6 +534,7 @@ Scene parse_scene(std::string_view text, const std::string& path, const Override
     scene.tables = named_files(root, path);
     if (profile) scene.blade_stations = profile->resample;
     read_extras(root, path, scene.parameters);
+    read_modal_damping(Section(path, root, "damping"), scene.modal_damping);
     // [support] makes the hub translate (docs/model.md section 13), at any stiffness: 0 is a free-floating hub.
     scene.variant.extras.hub = !Section(path, root, "support").absent();
     read_gravity_direction(Section(path, root, "gravity"), scene.parameters);

@@ -140,6 +140,11 @@ std::optional<SceneValue> parameter_value(const Scene& s, const SceneKey& k)
     // A moving hub's keys only where there is one: every other scene prints as it always has.
     if ((k.table() == "support" || name == "hub.mass") && !s.variant.extras.hub) return std::nullopt;
     if (name == "hub.mass") return number(k, p.m_hub);
+    // The modal ratios only where given: every other scene prints as it always has.
+    if (name == "damping.flap_ratios" || name == "damping.edge_ratios") {
+        const std::vector<double>& v = k.leaf() == "flap_ratios" ? s.modal_damping.flap : s.modal_damping.edge;
+        return v.empty() ? std::nullopt : std::optional(numbers(k, v));
+    }
     for (const TermInfo& t : terms())
         for (const TermSceneKey& tk : t.scene_keys)
             if (name == std::string(tk.table) + "." + tk.key) {

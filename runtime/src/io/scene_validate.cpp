@@ -108,6 +108,20 @@ void check_out_of_plane(const Scene& s)
     }
 }
 
+/// [damping]'s modal ratios (docs/model.md section 11.5): each >= 0, and no sensitivities beside them (their
+/// derivatives would need the modes' own); the count of the blade's modes is make_scene_model's, which has them.
+void check_modal_damping(const Scene& s)
+{
+    const ModalDamping& d = s.modal_damping;
+    for (const auto& [ratios, key] : {std::pair{&d.flap, "damping.flap_ratios"}, {&d.edge, "damping.edge_ratios"}})
+        for (std::size_t k = 0; k < ratios->size(); ++k)
+            if (!((*ratios)[k] >= 0.0) || !std::isfinite((*ratios)[k]))
+                fail(s.path, key, expected(key), shortest((*ratios)[k]) + " for mode " + std::to_string(k + 1));
+    if (d.given() && !s.output.sensitivities.empty())
+        fail(s.path, "output.sensitivities", "none beside damping.flap_ratios or damping.edge_ratios",
+             "\"" + s.output.sensitivities.front() + "\"");
+}
+
 /// The beam's, hub's and extra terms' parameters (docs/model.md sections 1 and 11).
 void check_parameters(const Scene& s)
 {
@@ -127,6 +141,7 @@ void check_parameters(const Scene& s)
         if (!(v >= 0.0) || !std::isfinite(v)) fail(s.path, key, expected(key), shortest(v));
     check_finite(s, p.g, "gravity.g");
     check_out_of_plane(s);
+    check_modal_damping(s);
 }
 
 /// The motion's values for its kind, its start angle and the control that follows it.

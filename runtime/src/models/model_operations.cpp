@@ -1,7 +1,9 @@
 // What is computed from a model alone, below the dynamics that integrate it and the analyses that linearize it:
-// the force Jacobians (exact kernels or central differences), M as a matrix, the Rayleigh damping matrix and the
+// the force Jacobians (exact kernels or central differences), M as a matrix, the damping matrix and the
 // tip-deflection row.
 #include "models/model_operations.hpp"
+
+#include "models/modal_damping.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -122,6 +124,7 @@ Eigen::MatrixXd damping_matrix(const Model& model, const Parameters& parameters)
             if (f.kind == FieldKind::hub_x) C(f.first, f.first) = parameters.c_x;
             if (f.kind == FieldKind::hub_y) C(f.first, f.first) = parameters.c_y;
         }
+    if (const Eigen::MatrixXd modal = added_damping(model); modal.size() > 0) C += modal;
     return C;
 }
 

@@ -28,9 +28,10 @@ ForceJacobians force_jacobians(const Model& model, const HubInput& u, const std:
 Eigen::MatrixXd force_q_jacobian(const Model& model, const HubInput& u, const std::vector<double>& q,
                                  const std::vector<double>& qd);
 
-/// The Rayleigh damping matrix alpha M_ee + beta K_e of the model's elastic coordinates (nq x nq; the hub angle's
+/// The damping matrix: Rayleigh's alpha M_ee + beta K_e of the model's elastic coordinates (nq x nq; the hub angle's
 /// row and column, not damped, zero), with M_ee and K_e those of the undeformed beam at rest (docs/model.md section
-/// 11.4): the dissipated energy's rate qd^T C qd, independent of the generated damping forces.
+/// 11.4), a moving hub's support and the modal damping (section 11.5, added_damping): the dissipated energy's rate
+/// qd^T C qd, independent of the generated damping forces.
 Eigen::MatrixXd damping_matrix(const Model& model, const Parameters& parameters);
 
 /// d value(L) / dq_c for each of the coordinates c (indices into q), at q, value a tip displacement linear in the

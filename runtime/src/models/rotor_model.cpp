@@ -7,6 +7,8 @@
 
 #include <hubbeam/make_model.hpp>
 
+#include "models/modal_damping.hpp"
+
 namespace hubbeam {
 
 namespace {
@@ -234,11 +236,13 @@ std::unique_ptr<Model> make_scene_model(const Scene& scene, const ModelNote& not
 std::unique_ptr<Model> make_scene_model(const Scene& scene, const VariantKey& key, const ModelNote& note)
 {
     const Rotor& r = scene.rotor;
-    if (r.blades <= 1) return make_model(key, scene.parameters, scene.source, note);
+    if (r.blades <= 1)
+        return with_modal_damping(make_model(key, scene.parameters, scene.source, note), scene, scene.parameters);
     std::vector<std::unique_ptr<Model>> blades;
     std::vector<double> azimuths;
     for (int b = 0; b < r.blades; ++b) {
-        blades.push_back(make_model(key, r.blade(scene.parameters, b), scene.source, b == 0 ? note : ModelNote{}));
+        const Parameters p = r.blade(scene.parameters, b);
+        blades.push_back(with_modal_damping(make_model(key, p, scene.source, b == 0 ? note : ModelNote{}), scene, p));
         azimuths.push_back(r.azimuth(b));
     }
     const std::string origin = blades.front()->origin();

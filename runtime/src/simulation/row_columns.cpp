@@ -16,8 +16,8 @@ ColumnSet optional_columns_of(const Scene& scene)
 {
     const Control* control = scene.controller();
     const VariantKey key = scene.key();
-    const Auxiliary aux = Auxiliary::of(key, control, &scene.parameters, scene.wants({"ki"}));
-    const bool torque = key.drive == Drive::torque && (control != nullptr || dissipates(key));
+    const Auxiliary aux = Auxiliary::of(key, scene.damped(), control, &scene.parameters, scene.wants({"ki"}));
+    const bool torque = key.drive == Drive::torque && (control != nullptr || scene.damped());
     const bool hub = key.extras.hub;
     const bool has[] = {key.nz > 0,   key.nt > 0,     torque,   control != nullptr && !control->law,
                         aux.integral, aux.dissipated, aux.work, hub,

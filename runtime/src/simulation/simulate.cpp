@@ -67,7 +67,8 @@ Pilot pilot_run(const Scene& scene, const Model& model, const std::vector<double
 /// The auxiliary states a run of scene carries (FirstOrderSystem::Auxiliary).
 int auxiliary_count(const Scene& scene)
 {
-    return Auxiliary::of(scene.key(), scene.controller(), &scene.parameters, scene.wants({"ki"})).count();
+    return Auxiliary::of(scene.key(), scene.damped(), scene.controller(), &scene.parameters, scene.wants({"ki"}))
+        .count();
 }
 
 }  // namespace
