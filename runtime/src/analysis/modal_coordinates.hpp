@@ -3,6 +3,8 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <functional>
+#include <string>
 #include <vector>
 
 #include <hubbeam/config.hpp>
@@ -21,5 +23,48 @@ std::vector<int> modal_coordinates(const Model& model, const SteadySpin& s, Axia
 /// U the upper Cholesky factor of M over R. The Floquet modes (floquet.cpp) are classified by the same rule.
 void classify_mode(const Model& model, const Eigen::MatrixXd& M, const Eigen::MatrixXd& U, const std::vector<int>& R,
                    const Eigen::VectorXcd& rates, bool overdamped, NaturalMode& mode);
+
+/// Whether the variant's weight turns with the beam (in the plane of rotation): then only the held hub is steady.
+/// Along the spin axis it does not (section 12): the steady spin holds the sag, found on every elastic row.
+bool weight_turns_with_spin(const VariantKey& key, const std::vector<double>& p);
+
+/// Linearized equations M x'' = Qq x + Qqd x' in deviations, each matrix over q's layout (nq x nq): a steady spin's
+/// (natural_modes), or the multi-blade coordinates' (multiblade.cpp, laid out as q with component j of the blades'
+/// coordinates where blade j + 1's are).
+struct LinearEquations {
+    Eigen::MatrixXd M, Qq, Qqd;
+};
+
+/// How eigen_modes names the modes of a system: separate, if given, turns the vectors (rates over R, columns) of
+/// each set of repeated eigenvalues into a basis of modes that each have one kind; kind names a mode that is not
+/// overdamped by its rates over R and its frequency.
+struct ModeNaming {
+    std::function<void(const Eigen::VectorXcd& lambda, Eigen::MatrixXcd& rates)> separate;
+    std::function<std::string(const Eigen::VectorXcd& rates, double rad_s)> kind;
+};
+
+/// The modes of e over the coordinates R (indices into q; a free hub's angle, cyclic, first of them), unsorted:
+/// natural_modes' rules for what is a mode (a free hub's conserved momentum dropped, conjugates once, a divergent or
+/// overdamped real eigenvalue, growth round-off without damping), its shape U rates (M over R = U^T U).
+std::vector<NaturalMode> eigen_modes(const Model& model, const LinearEquations& e, const std::vector<int>& R,
+                                     const ModeNaming& naming);
+/// natural_modes' order: by frequency, divergent modes first; with damping by undamped frequency.
+void sort_modes(std::vector<NaturalMode>& modes, bool damped);
+
+/// The kinetic energy of a mode's rates, v^H M v, split by the fields of q (model.coordinates().fields, in their
+/// order); coordinates[i] is the index in q of rates[i], and cross terms between fields are left out.
+std::vector<double> energy_by_field(const Model& model, const Eigen::MatrixXd& M, const std::vector<int>& coordinates,
+                                    const Eigen::VectorXcd& rates);
+/// A mode's kind (the modes CSV's column) when most of its kinetic energy is in a field of this kind: a planar
+/// beam's in-plane modes are "bending", a beam that leaves the plane (VariantKey::out_of_plane: flap or twist
+/// coordinates, a pitch, a pre-twist or a precone) has "edge" (lead-lag) and "flap" modes.
+const char* mode_kind(FieldKind kind, const VariantKey& key);
+/// The kind of a real, decaying eigenvalue (a mode that does not oscillate: frequency 0, zeta 1), whatever field
+/// holds its energy: it has no place on a Campbell diagram and meets no excitation line, and its kind says so
+/// rather than pass it for the next bending, edge or flap mode.
+constexpr const char* overdamped_kind = "overdamped";
+/// NaturalMode::shape of a mode with these rates: U rates with U the upper Cholesky factor of M over the same
+/// coordinates (mass_factor: M = U^T U), scaled to unit length.
+Eigen::VectorXcd weighted_shape(const Eigen::MatrixXd& U, const Eigen::VectorXcd& rates);
 
 }  // namespace hubbeam
