@@ -148,12 +148,9 @@ Frame parse_frame(const std::string& text, const Scene& scene)
     Frame frame = Frame::fixed;
     if (text.empty()) return frame;
     if (!parse(text, frame)) bad("--frame", "fixed or rotating", text);
-    if (frame == Frame::fixed && !multiblade(scene, frame))
-        throw ModesOptionError("--frame fixed: " + (scene.control ? std::string("the scene's [control] may feed back "
-                                                                                "blade 1's tip, which no multi-blade "
-                                                                                "coordinate holds")
-                                                                  : multiblade_refusal(scene)) +
-                               "; --frame rotating gives each blade's modes in its own frame");
+    if (frame == Frame::fixed)
+        if (const std::string why = fixed_frame_refusal(scene); !why.empty())
+            throw ModesOptionError("--frame fixed: " + why);
     return frame;
 }
 

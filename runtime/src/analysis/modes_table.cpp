@@ -17,6 +17,15 @@ std::string multiblade_refusal(const Scene& scene)
     return multiblade_refusal(scene.key(), blades);
 }
 
+std::string fixed_frame_refusal(const Scene& scene)
+{
+    if (scene.control)
+        return "the scene's [control] may feed back blade 1's tip, which no multi-blade coordinate holds; the frame "
+               "rotating gives each blade's modes in its own frame";
+    const std::string why = multiblade_refusal(scene);
+    return why.empty() ? why : why + "; the frame rotating gives each blade's modes in its own frame";
+}
+
 bool multiblade(const Scene& scene, Frame frame)
 {
     return frame == Frame::fixed && !scene.control && multiblade_refusal(scene).empty();

@@ -29,6 +29,9 @@ struct ModesRequest {
 /// multiblade_refusal for the scene's blades (Rotor::blade's parameters of each): why its modes and linear model have
 /// no multi-blade form, or empty.
 std::string multiblade_refusal(const Scene& scene);
+/// Why the fixed frame, asked for by name, does not fit the scene, or empty: multiblade_refusal's reason, or the
+/// [control] that may feed back blade 1's tip (the command line's --frame fixed, hubbeam.modes' frame="fixed").
+std::string fixed_frame_refusal(const Scene& scene);
 /// Whether the scene's modes and linear model are in multi-blade coordinates in frame: Frame::fixed, no [control]
 /// (a controller may feed back blade 1's tip), and multiblade_refusal empty.
 bool multiblade(const Scene& scene, Frame frame);

@@ -36,8 +36,7 @@ std::string multiblade_refusal(const VariantKey& key, const std::vector<std::vec
 {
     const auto n = blades.size();
     if (n < 3)
-        return "multi-blade coordinates need 3 blades or more (rotor.blades), got " + std::to_string(n) +
-               ": with fewer the rotor is not symmetric about its axis and its equations stay periodic";
+        return "multi-blade coordinates need 3 blades or more (rotor.blades), got " + std::to_string(n);
     // The hub's inertia, mass and support ride with blade 1's parameters alone (Rotor::blade): not the blade's own.
     const Param hub[] = {Param::J_oh, Param::m_hub, Param::k_x, Param::k_y, Param::c_x, Param::c_y};
     for (std::size_t b = 1; b < n; ++b)
