@@ -19,6 +19,8 @@
 #include <hubbeam/make_model.hpp>
 #include <hubbeam/scene.hpp>
 
+#include "runs.hpp"
+
 using namespace hubbeam;
 
 namespace {
@@ -345,4 +347,34 @@ TEST_CASE("multi-blade coordinates refuse a rotor they do not fit, naming why", 
     const SteadySpin s = steady_spin(*even, 5.0);
     CHECK(s.q[1] == 0.0);
     CHECK(s.q[2] == 0.0);
+}
+
+namespace {
+
+/// The hub's largest excursion sqrt(x_h^2 + y_h^2) over the rows with from <= t <= to.
+double hub_excursion(std::map<std::string, std::vector<double>>& rows, double from, double to)
+{
+    double largest = 0.0;
+    for (std::size_t i = 0; i < rows["t"].size(); ++i)
+        if (rows["t"][i] >= from && rows["t"][i] <= to)
+            largest = std::max(largest, std::hypot(rows["hub_x"][i], rows["hub_y"][i]));
+    return largest;
+}
+
+}  // namespace
+
+TEST_CASE("cases/ground_resonance.toml whirls up in the band and its damped twin stays bounded", "[multiblade]")
+{
+    // The runs (the integrator, an independent path from the modes): spun up by the torque to 11.2 rad/s, the rotor
+    // enters the band at t = 30 s (about 9.6 rad/s).
+    auto free = hubbeam::test::run_columns(load_scene(std::string(HUBBEAM_SOURCE_DIR) + "/cases/ground_resonance.toml"));
+    const double before = hub_excursion(free, 22.0, 28.0), after = hub_excursion(free, 38.0, 40.0);
+    INFO("hub whirl " << before << " m before the band, " << after << " m at its middle");
+    CHECK(after > 20.0 * before);
+    auto damped = hubbeam::test::run_columns(
+        load_scene(std::string(HUBBEAM_SOURCE_DIR) + "/cases/ground_resonance_damped.toml"));
+    // The imbalance's own whirl, m_t (a + L) / M = 0.01 x 6.3 / 244 = 0.26 mm well above the support's frequency.
+    const double forced = 0.01 * 6.3 / (100.0 + 3 * 48.0 + 0.01);
+    CHECK(hub_excursion(damped, 30.0, 40.0) == Approx(forced).epsilon(0.35));
+    CHECK(hub_excursion(damped, 38.0, 40.0) <= hub_excursion(damped, 22.0, 28.0));
 }
