@@ -410,7 +410,7 @@ void separate_repeated(const Model& model, const Eigen::MatrixXd& M, const std::
 std::vector<NaturalMode> eigen_modes(const Model& model, const LinearEquations& e, const std::vector<int>& R,
                                      const ModeNaming& naming)
 {
-    const bool damped = dissipates(model.key());
+    const bool damped = dissipates(model.key()) && naming.damped;
     const Eigen::LLT<Eigen::MatrixXd> llt = mass_factor(submatrix(e.M, R, R));
     const Eigen::EigenSolver<Eigen::MatrixXd> eig(linearized_system(e, llt, R, cyclic_angle(model, R)));
     if (eig.info() != Eigen::Success)

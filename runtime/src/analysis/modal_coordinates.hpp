@@ -41,6 +41,8 @@ struct LinearEquations {
 struct ModeNaming {
     std::function<void(const Eigen::VectorXcd& lambda, Eigen::MatrixXcd& rates)> separate;
     std::function<std::string(const Eigen::VectorXcd& rates, double rad_s)> kind;
+    /// Whether the equations dissipate: as the variant (dissipates), or less (a support whose dampers are 0).
+    bool damped = true;
 };
 
 /// The modes of e over the coordinates R (indices into q; a free hub's angle, cyclic, first of them), unsorted:

@@ -392,6 +392,11 @@ std::vector<NaturalMode> multiblade_modes(const Model& model, const SteadySpin& 
     require_multiblade(model);
     const LinearEquations e = multiblade_equations(model, steady);
     const std::vector<int> R = modal_coordinates(model, steady, axial);
+    // A support without dampers and blades without Rayleigh damping dissipate nothing, though the variant of a moving
+    // hub carries the support's dissipation: the eigen solver's real parts are then round-off.
+    const std::vector<double>& p = model.parameters();
+    const bool damped = dissipates(model.key()) && (model.key().extras.damping || p[index(Param::c_x)] != 0.0 ||
+                                                    p[index(Param::c_y)] != 0.0 || !model.key().extras.hub);
     std::vector<NaturalMode> modes;
     // One eigenproblem per harmonic: the transformed equations couple none of them (theta moves with the collective
     // component alone, the hub's translation with the first cyclic pair alone), so their vectors are never mixed.
@@ -402,6 +407,7 @@ std::vector<NaturalMode> multiblade_modes(const Model& model, const SteadySpin& 
                 Mg(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = e.M(g.R[i], g.R[j]);
         const Eigen::MatrixXcd H = labelling_form(model, g, Mg);
         ModeNaming naming;
+        naming.damped = damped;
         naming.separate = [&](const Eigen::VectorXcd& lambda, Eigen::MatrixXcd& rates) {
             separate(H, Mg, lambda, rates);
         };
@@ -418,7 +424,7 @@ std::vector<NaturalMode> multiblade_modes(const Model& model, const SteadySpin& 
             modes.push_back(std::move(mode));
         }
     }
-    sort_modes(modes, dissipates(model.key()));
+    sort_modes(modes, damped);
     return modes;
 }
 
