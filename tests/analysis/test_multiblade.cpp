@@ -157,6 +157,24 @@ TEST_CASE("on a hub that does not translate each blade mode whirls at omega +- O
     }
 }
 
+TEST_CASE("at rest a cyclic pair's two modes are its two whirls, which a slow spin splits", "[multiblade]")
+{
+    // At Omega = 0 each cyclic pair is one repeated eigenvalue: the modes are taken as its forward and backward
+    // whirls, so that each is the mode the slightest spin gives (MAC 1 to it), its label kept.
+    const auto model = make_scene_model(blade_with({{"rotor.blades", "3"}}));
+    const std::vector<SpinMode> rows = campbell(*model, {0.0, 0.01});
+    int whirls = 0;
+    for (const SpinMode& r : rows) {
+        if (r.omega == 0.0 || r.mode.kind.find("W ") != 1) continue;
+        INFO(r.label << " at 0.01 rad/s: " << r.mode.kind << ", MAC " << r.mac);
+        CHECK(r.mac > 0.999);
+        CHECK(r.label.rfind(r.mode.kind + " ", 0) == 0);
+        ++whirls;
+    }
+    const auto blade = make_scene_model(blade_with({}));
+    CHECK(whirls == 2 * static_cast<int>(natural_modes(*blade, steady_spin(*blade, 0.01)).size()));
+}
+
 TEST_CASE("a free hub's angle moves with the collective modes alone", "[multiblade]")
 {
     // Under a torque, N blades turn the hub as one blade with 1/N of its inertia (docs/model.md section 13): the
