@@ -685,7 +685,8 @@ void print_linearization(std::ostream& out, const Scene& scene, const Model& mod
         << (coleman ? "frame       fixed: multi-blade coordinates of the " + std::to_string(scene.rotor.blades) +
                           " blades (_coll collective, _cosN and _sinN cyclic, _diff differential) and the hub's own\n"
                     : std::string())
-        << "outputs     " << (coleman ? joined(ss.outputs) + " (m, rad)" : std::string("tip_uy (m), theta (rad)")) << "\n"
+        << "outputs     " << (coleman ? joined(ss.outputs) + " (m, rad)" : std::string("tip_uy (m), theta (rad)"))
+        << "\n"
         << "matrices    " << prefix << "-{A,B,C,D}.csv (x' = A x + B v, y = C x + D v, deviations from the "
         << (steady.held ? "equilibrium" : "steady spin") << (scene.control ? "; the closed loop" : "") << ")\n"
         << "numpy       " << prefix << ".npz (A, B, C, D, states, inputs, outputs)\n"

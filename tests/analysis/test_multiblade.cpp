@@ -5,19 +5,18 @@
 // the periodic rotating-frame system (floquet(), which integrates it over a revolution) modulo i Omega; the
 // transformed matrix is the same at every azimuth; and ground resonance (Coleman and Feingold 1958) appears where
 // the backward lead-lag whirl meets the support's frequency, and goes with damping on both sides only.
-#include <catch2/catch.hpp>
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <complex>
-#include <memory>
-#include <string>
-#include <vector>
-
 #include <hubbeam/linearize.hpp>
 #include <hubbeam/make_model.hpp>
 #include <hubbeam/scene.hpp>
+#include <memory>
+#include <string>
+#include <vector>
 
 #include "runs.hpp"
 
@@ -187,8 +186,7 @@ TEST_CASE("a free hub's angle moves with the collective modes alone", "[multibla
     const std::vector<NaturalMode> one = natural_modes(*shared, steady_spin(*shared, omega));
     const std::vector<NaturalMode> clamped = natural_modes(*held, steady_spin(*held, omega));
     std::vector<double> collective, whirls;
-    for (const NaturalMode& m : fixed)
-        (m.kind.rfind("collective ", 0) == 0 ? collective : whirls).push_back(m.rad_s);
+    for (const NaturalMode& m : fixed) (m.kind.rfind("collective ", 0) == 0 ? collective : whirls).push_back(m.rad_s);
     REQUIRE(collective.size() == one.size());
     for (std::size_t k = 0; k < one.size(); ++k) CHECK(collective[k] == Approx(one[k].rad_s).epsilon(1e-9));
     REQUIRE(whirls.size() == 3 * clamped.size());
@@ -202,7 +200,8 @@ TEST_CASE("the multi-blade state matrix is the same at every azimuth", "[multibl
 {
     // On an anisotropic, damped support, out of the plane under a torque: the periodic rotating-frame matrices
     // transform to one matrix (Bir 2008), the transform's derivative terms included.
-    const Scene s = ground_with({{"support.stiffness_y", "4500"}, {"support.damping_x", "80"}, {"support.damping_y", "40"}});
+    const Scene s =
+        ground_with({{"support.stiffness_y", "4500"}, {"support.damping_x", "80"}, {"support.damping_y", "40"}});
     const auto model = make_scene_model(s);
     const double omega = 7.0;
     const SteadySpin steady = steady_spin(*model, omega);
@@ -230,7 +229,8 @@ TEST_CASE("the multi-blade state matrix is the same at every azimuth", "[multibl
 TEST_CASE("on an anisotropic moving hub the multi-blade eigenvalues are the Floquet exponents modulo i Omega",
           "[multiblade][floquet]")
 {
-    const Scene s = ground_with({{"support.stiffness_y", "4500"}, {"support.damping_x", "80"}, {"support.damping_y", "40"}});
+    const Scene s =
+        ground_with({{"support.stiffness_y", "4500"}, {"support.damping_x", "80"}, {"support.damping_y", "40"}});
     const auto model = make_scene_model(s);
     const double omega = 7.0;
     // Floquet holds the hub at its rate (docs/model.md section 10.1): so do these modes (held: theta is no
@@ -304,9 +304,10 @@ dt_out = 0.1
 
 }  // namespace
 
-TEST_CASE("ground resonance: a band of spin where the backward lead-lag whirl meets the support, removed by damping "
-          "on both sides only",
-          "[multiblade]")
+TEST_CASE(
+    "ground resonance: a band of spin where the backward lead-lag whirl meets the support, removed by damping "
+    "on both sides only",
+    "[multiblade]")
 {
     // Coleman and Feingold (1958): three blades soft in-plane (edge 5.0 rad/s at rest, 7.0 at 10 rad/s) on an
     // undamped isotropic support of 3000 N/m under 100 kg of hub and 144 kg of blades (3.51 rad/s, the rotor rigid).
@@ -314,8 +315,10 @@ TEST_CASE("ground resonance: a band of spin where the backward lead-lag whirl me
     const double centre = coalescence(3000.0, 100.0 + 3 * 1600.0 * 0.005 * 6.0);
     double first = HUGE_VAL, last = -HUGE_VAL;
     for (double omega = 6.0; omega <= 16.0; omega += 0.25)
-        if (worst_growth(*rotor, omega) > 1e-6) first = std::min(first, omega), last = std::max(last, omega);
-        else CHECK(worst_growth(*rotor, omega) == 0.0);  // conservative outside: round-off read as none
+        if (worst_growth(*rotor, omega) > 1e-6)
+            first = std::min(first, omega), last = std::max(last, omega);
+        else
+            CHECK(worst_growth(*rotor, omega) == 0.0);  // conservative outside: round-off read as none
     INFO("unstable from " << first << " to " << last << " rad/s, the whirl meets the support at " << centre);
     REQUIRE(first < centre);
     REQUIRE(last > centre);
@@ -325,7 +328,8 @@ TEST_CASE("ground resonance: a band of spin where the backward lead-lag whirl me
 
     // Damping on one side alone leaves it unstable at the coalescence, and beyond the undamped band too: the support's
     // with undamped blades, the blades' (damping in the rotating frame) on an undamped support.
-    const auto support_only = make_scene_model(ground_with({{"support.damping_x", "342"}, {"support.damping_y", "342"}}));
+    const auto support_only =
+        make_scene_model(ground_with({{"support.damping_x", "342"}, {"support.damping_y", "342"}}));
     const auto blades_only = make_scene_model(ground_with({{"damping.stiffness_proportional", "0.08"}}));
     for (const Model* model : {support_only.get(), blades_only.get()}) {
         CHECK(worst_growth(*model, centre) > 0.01);
@@ -333,9 +337,8 @@ TEST_CASE("ground resonance: a band of spin where the backward lead-lag whirl me
     }
     // Both, each large enough (support zeta about 0.2, the blades' about 0.17 at their edge frequency): stable at every
     // rate.
-    const auto both = make_scene_model(ground_with({{"support.damping_x", "342"},
-                                                    {"support.damping_y", "342"},
-                                                    {"damping.stiffness_proportional", "0.05"}}));
+    const auto both = make_scene_model(ground_with(
+        {{"support.damping_x", "342"}, {"support.damping_y", "342"}, {"damping.stiffness_proportional", "0.05"}}));
     for (double omega = 0.0; omega <= 20.0; omega += 0.5) {
         INFO("Omega " << omega);
         CHECK(worst_growth(*both, omega) < 0.0);
@@ -385,12 +388,13 @@ TEST_CASE("cases/ground_resonance.toml whirls up in the band and its damped twin
 {
     // The runs (the integrator, an independent path from the modes): spun up by the torque to 11.2 rad/s, the rotor
     // enters the band at t = 30 s (about 9.6 rad/s).
-    auto free = hubbeam::test::run_columns(load_scene(std::string(HUBBEAM_SOURCE_DIR) + "/cases/ground_resonance.toml"));
+    auto free =
+        hubbeam::test::run_columns(load_scene(std::string(HUBBEAM_SOURCE_DIR) + "/cases/ground_resonance.toml"));
     const double before = hub_excursion(free, 22.0, 28.0), after = hub_excursion(free, 38.0, 40.0);
     INFO("hub whirl " << before << " m before the band, " << after << " m at its middle");
     CHECK(after > 20.0 * before);
-    auto damped = hubbeam::test::run_columns(
-        load_scene(std::string(HUBBEAM_SOURCE_DIR) + "/cases/ground_resonance_damped.toml"));
+    auto damped =
+        hubbeam::test::run_columns(load_scene(std::string(HUBBEAM_SOURCE_DIR) + "/cases/ground_resonance_damped.toml"));
     // The imbalance's own whirl, m_t (a + L) / M = 0.01 x 6.3 / 244 = 0.26 mm well above the support's frequency.
     const double forced = 0.01 * 6.3 / (100.0 + 3 * 48.0 + 0.01);
     CHECK(hub_excursion(damped, 30.0, 40.0) == Approx(forced).epsilon(0.35));

@@ -123,8 +123,8 @@ struct SpinMode {
 /// natural_modes about the steady spin at each rate of omegas, rate by rate (hubbeam modes, hubbeam.modes); theta
 /// is the held angle of a gravity variant (steady_spin); with a control, the closed loop's modes (closed_loop_modes);
 /// in the fixed frame, a rotor's multiblade_modes where they apply (no control). Rows in the order of omegas, each
-/// rate's by frequency. The modes are tracked from rate to rate in increasing omega: the modes of neighbouring rates are paired so that the sum of their MACs is largest (the assignment
-/// problem), and each pair continues a line. A mode left unpaired (the count changes where a mode turns overdamped
+/// rate's by frequency. The modes are tracked from rate to rate in increasing omega: the modes of neighbouring rates
+/// are paired so that the sum of their MACs is largest (the assignment problem), and each pair continues a line. A mode left unpaired (the count changes where a mode turns overdamped
 /// or divergent) begins a line of its own. A line follows its shape: through a crossing, and through a veering that
 /// the rates step over, it keeps its label while the frequency order changes; through a veering the rates resolve,
 /// it follows its continuous branch, and its kind shows the exchange of shapes. check, if given, is called before

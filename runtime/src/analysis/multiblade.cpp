@@ -1,21 +1,20 @@
 // The multi-blade (Coleman) coordinates of a rotor of identical blades (docs/model.md section 13.2): the transform,
 // the constant state-space model it gives about a steady spin, and that model's modes named by harmonic and whirl.
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <complex>
 #include <hubbeam/linearize.hpp>
 #include <hubbeam/make_model.hpp>
+#include <iterator>
+#include <map>
+#include <numbers>
+#include <stdexcept>
 
 #include "analysis/modal_coordinates.hpp"
 #include "models/model_operations.hpp"
 #include "models/rotor_model.hpp"
 #include "terms.hpp"
-
-#include <Eigen/Eigenvalues>
-#include <algorithm>
-#include <complex>
-#include <iterator>
-#include <cmath>
-#include <map>
-#include <numbers>
-#include <stdexcept>
 
 namespace hubbeam {
 
@@ -26,24 +25,25 @@ std::string to_string(Frame frame)
 
 bool parse(std::string_view word, Frame& frame)
 {
-    if (word == "fixed") frame = Frame::fixed;
-    else if (word == "rotating") frame = Frame::rotating;
-    else return false;
+    if (word == "fixed")
+        frame = Frame::fixed;
+    else if (word == "rotating")
+        frame = Frame::rotating;
+    else
+        return false;
     return true;
 }
 
 std::string multiblade_refusal(const VariantKey& key, const std::vector<std::vector<double>>& blades)
 {
     const auto n = blades.size();
-    if (n < 3)
-        return "multi-blade coordinates need 3 blades or more (rotor.blades), got " + std::to_string(n);
+    if (n < 3) return "multi-blade coordinates need 3 blades or more (rotor.blades), got " + std::to_string(n);
     // The hub's inertia, mass and support ride with blade 1's parameters alone (Rotor::blade): not the blade's own.
     const Param hub[] = {Param::J_oh, Param::m_hub, Param::k_x, Param::k_y, Param::c_x, Param::c_y};
     for (std::size_t b = 1; b < n; ++b)
         for (std::size_t i = 0; i < blades[b].size(); ++i)
-            if (blades[b][i] != blades[0][i] && std::find_if(std::begin(hub), std::end(hub), [i](Param p) {
-                                                    return index(p) == i;
-                                                }) == std::end(hub))
+            if (blades[b][i] != blades[0][i] &&
+                std::find_if(std::begin(hub), std::end(hub), [i](Param p) { return index(p) == i; }) == std::end(hub))
                 return "multi-blade coordinates need identical blades, and blade " + std::to_string(b + 1) +
                        " differs from blade 1 (rotor.pitch_offsets, rotor.tip_masses): the equations stay periodic";
     if (weight_turns_with_spin(key, blades[0]))
@@ -174,7 +174,8 @@ std::vector<std::string> state_names(const Model& model)
     std::vector<std::string> names{"theta"};
     for (int c = model.coordinates().first_elastic(); c < model.nq(); ++c) {
         const CoordinateField& f = model.coordinates().field_of(c);
-        names.push_back(c < r.h ? f.name(0) : f.symbol + std::to_string(c - f.first + 1) + "_" + r.suffix(r.component(c)));
+        names.push_back(c < r.h ? f.name(0)
+                                : f.symbol + std::to_string(c - f.first + 1) + "_" + r.suffix(r.component(c)));
     }
     const std::size_t positions = names.size();
     for (std::size_t i = 0; i < positions; ++i) names.push_back(names[i] + "_dot");
@@ -256,9 +257,9 @@ namespace {
 struct Harmonic {
     int n = 0;
     bool cyclic = false;
-    std::vector<int> R;                        // indices into q, in R's order
-    std::vector<std::pair<int, int>> pairs;    // positions in R of a cyclic pair's cos and sin coordinates
-    std::pair<int, int> hub{-1, -1};           // positions in R of x_h and y_h
+    std::vector<int> R;                      // indices into q, in R's order
+    std::vector<std::pair<int, int>> pairs;  // positions in R of a cyclic pair's cos and sin coordinates
+    std::pair<int, int> hub{-1, -1};         // positions in R of x_h and y_h
 };
 
 std::vector<Harmonic> harmonics(const Model& model, const std::vector<int>& R)
@@ -277,15 +278,13 @@ std::vector<Harmonic> harmonics(const Model& model, const std::vector<int>& R)
     }
     std::vector<Harmonic> out;
     for (auto& [first, g] : by) {
-        const auto at = [&g](int c) {
-            return static_cast<int>(std::find(g.R.begin(), g.R.end(), c) - g.R.begin());
-        };
+        const auto at = [&g](int c) { return static_cast<int>(std::find(g.R.begin(), g.R.end(), c) - g.R.begin()); };
         for (std::size_t k = 0; k < g.R.size(); ++k) {
             const int c = g.R[k];
             const FieldKind kind = model.coordinates().field_of(c).kind;
-            if (kind == FieldKind::hub_x) g.hub = {static_cast<int>(k), at(model.coordinates().first(FieldKind::hub_y))};
-            if (g.cyclic && c >= r.h && r.component(c) == first)
-                g.pairs.emplace_back(static_cast<int>(k), at(c + r.e));
+            if (kind == FieldKind::hub_x)
+                g.hub = {static_cast<int>(k), at(model.coordinates().first(FieldKind::hub_y))};
+            if (g.cyclic && c >= r.h && r.component(c) == first) g.pairs.emplace_back(static_cast<int>(k), at(c + r.e));
         }
         out.push_back(std::move(g));
     }
@@ -317,7 +316,8 @@ Eigen::MatrixXcd labelling_form(const Model& model, const Harmonic& g, const Mat
     };
     for (Eigen::Index i = 0; i < r; ++i)
         for (Eigen::Index j = 0; j < r; ++j)
-            if (weight(static_cast<int>(i)) == weight(static_cast<int>(j))) H(i, j) = weight(static_cast<int>(i)) * M(i, j);
+            if (weight(static_cast<int>(i)) == weight(static_cast<int>(j)))
+                H(i, j) = weight(static_cast<int>(i)) * M(i, j);
     std::vector<std::pair<int, int>> pairs = g.pairs;
     if (g.hub.first >= 0) pairs.push_back(g.hub);
     const std::complex<double> half_i(0.0, 0.5);
