@@ -105,6 +105,11 @@ Command add_modes_command(CLI::App& app)
                      "(BldFl1Sh, BldFl2Sh, BldEdgSh: polynomials x^2..x^6 fitted to flap 1, flap 2, edge 1) to FILE; "
                      "one variant, nz > 0")
         ->type_name("FILE");
+    modes_cmd
+        ->add_option("--frame", o->args.frame,
+                     "A rotor of 3 or more identical blades: fixed (multi-blade coordinates: collective, FW and BW "
+                     "whirls, differential; the default where they apply) or rotating (each blade in its own frame)")
+        ->type_name("FRAME");
     modes_cmd->add_flag("-q,--quiet", o->args.quiet,
                         "Print only how many modes were written, not the table (the CSV has every mode)");
     add_linear_overrides(*modes_cmd, o->overrides, false);
@@ -121,7 +126,7 @@ Command add_modes_command(CLI::App& app)
 Command add_linearize_command(CLI::App& app)
 {
     struct Options {
-        std::string scene, omega, prefix;
+        std::string scene, omega, prefix, frame;
         LinearOverrides overrides;
     };
     auto o = std::make_shared<Options>();
@@ -135,6 +140,11 @@ Command add_linearize_command(CLI::App& app)
                      "numpy); with [control] also PREFIX-open-*.csv and PREFIX-open.npz (the open loop)")
         ->type_name("PREFIX")
         ->required();
+    linearize_cmd
+        ->add_option("--frame", o->frame,
+                     "A rotor of 3 or more identical blades: fixed (multi-blade coordinates, the default where they "
+                     "apply) or rotating (each blade's coordinates in its own frame)")
+        ->type_name("FRAME");
     add_linear_overrides(*linearize_cmd, o->overrides, true);
     linearize_cmd->footer("docs/cli.md. Exit code 2 for a bad option value.");
     return {linearize_cmd, [o] {
@@ -142,7 +152,7 @@ Command add_linearize_command(CLI::App& app)
                     const std::vector<double> omega = parse_spin_rates("--omega", o->omega);
                     if (omega.size() != 1)
                         throw ModesOptionError("--omega: expected one spin rate >= 0, got " + o->omega);
-                    run_linearize(scene, omega[0], o->prefix, std::cout);
+                    run_linearize(scene, omega[0], o->prefix, std::cout, parse_frame(o->frame, scene));
                 });
             }};
 }

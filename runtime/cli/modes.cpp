@@ -49,10 +49,10 @@ double held_angle(const Scene& scene)
 /// Refuses, before anything is computed, a spin rate about which the scene has no steady state (unsteady_spin):
 /// linearize's always; with periodic, modes', which takes the periodic motion's Floquet modes there, only where that
 /// analysis cannot take the scene (a controlled hub, quasi-static axial coordinates).
-void check_steady(const Scene& scene, const std::vector<double>& omegas, bool periodic = false)
+void check_steady(const Scene& scene, const std::vector<double>& omegas, Frame frame, bool periodic = false)
 {
     for (const double omega : omegas) {
-        if (unsteady_spin(scene.key(), scene.parameters.packed(), omega).empty()) continue;
+        if (unsteady_spin(scene.key(), scene.parameters.packed(), omega).empty() || multiblade(scene, frame)) continue;
         const bool quasi_static = scene.axial == Axial::quasi_static && scene.variant.nx > 0;
         if (periodic && !scene.control && !quasi_static) continue;
         if (periodic)
@@ -62,6 +62,10 @@ void check_steady(const Scene& scene, const std::vector<double>& omegas, bool pe
                                           : "with model.axial = \"quasi-static\" (the Floquet analysis of the "
                                             "periodic motion needs dynamic axial coordinates)") +
                 ", got " + shortest(omega));
+        if (scene.variant.extras.hub)
+            throw ModesOptionError("--omega: " + unsteady_spin(scene.key(), scene.parameters.packed(), omega) +
+                                   (frame == Frame::rotating ? "" : " (" + multiblade_refusal(scene) + ")") +
+                                   ", got " + shortest(omega));
         throw ModesOptionError(
             "--omega: with gravity in the plane of rotation only 0 (the hub held; at a spin rate the motion is "
             "periodic, not steady), got " +
@@ -139,16 +143,28 @@ std::vector<double> parse_spin_rates(const std::string& option, const std::strin
     return rates;
 }
 
+Frame parse_frame(const std::string& text, const Scene& scene)
+{
+    Frame frame = Frame::fixed;
+    if (text.empty()) return frame;
+    if (!parse(text, frame)) bad("--frame", "fixed or rotating", text);
+    if (frame == Frame::fixed)
+        if (const std::string why = fixed_frame_refusal(scene); !why.empty())
+            throw ModesOptionError("--frame fixed: " + why);
+    return frame;
+}
+
 ModesOptions parse_modes_options(const ModesArgs& args, const Scene& scene)
 {
     ModesOptions o;
+    o.frame = parse_frame(args.frame, scene);
     if (args.omega.empty()) {
         o.omegas = {0.0};
         if (scene.motion.kind == Motion::Kind::spin_up && scene.motion.omega0 != 0.0 && scene.parameters.g == 0.0)
             o.omegas.push_back(std::abs(scene.motion.omega0));
     } else {
         o.omegas = parse_spin_rates("--omega", args.omega);
-        check_steady(scene, o.omegas, true);
+        check_steady(scene, o.omegas, o.frame, true);
     }
     o.methods = args.methods.empty() ? std::vector<Method>{scene.variant.method}
                                      : parse_method_list<ModesOptionError>("--methods", args.methods);
@@ -238,6 +254,7 @@ private:
     std::ostream& out_;
     bool damped_;  // damping adds the undamped frequency |lambda| and the damping ratio to the printed table
     bool counts_;  // several Nz or Nt asked for: the printed lines name them, to tell the variants apart
+    bool multiblade_;  // a rotor in multi-blade coordinates: its kinds and labels are longer
     std::unique_ptr<CsvWriter> csv_, critical_csv_;
     std::unique_ptr<MetadataFile> csv_metadata_, critical_metadata_;  // opened with their CSVs, before the modes
     long rows_ = 0, crossings_ = 0;
@@ -249,7 +266,7 @@ private:
 
 ModesReport::ModesReport(const Scene& scene, const ModesOptions& o, std::ostream& out)
     : scene_(scene), o_(o), out_(out), damped_(scene.damped() || scene.control),
-      counts_(o.nz.size() > 1 || o.nt.size() > 1)
+      counts_(o.nz.size() > 1 || o.nt.size() > 1), multiblade_(multiblade(scene, o.frame))
 {
     try {
         if (!o.output.empty()) {
@@ -277,7 +294,13 @@ void ModesReport::heading() const
     // Spin rates without a steady state (weight in the plane of rotation): their modes are the periodic motion's.
     std::vector<double> periodic;
     for (const double omega : o_.omegas)
-        if (!unsteady_spin(scene_.key(), scene_.parameters.packed(), omega).empty()) periodic.push_back(omega);
+        if (!unsteady_spin(scene_.key(), scene_.parameters.packed(), omega).empty() && !multiblade_)
+            periodic.push_back(omega);
+    if (multiblade_)
+        out_ << "frame       fixed: multi-blade coordinates of the " << scene_.rotor.blades
+             << " blades (collective, cyclic pairs as forward and backward whirls FW and BW"
+             << (scene_.rotor.blades % 2 == 0 ? ", differential" : "")
+             << "), the hub's own; --frame rotating gives each blade's modes in its own frame\n";
     if (!periodic.empty()) {
         const auto period = [](double omega) {
             char text[40];
@@ -293,8 +316,10 @@ void ModesReport::heading() const
              << "            frequency Im(ln mu)/T + k Omega, k the harmonic that dominates the mode; a mode that "
                 "decays by more than about 1e8 in a revolution is not resolved, nor listed\n";
     }
-    out_ << "method  Ny  Nx" << (counts_ ? "  Nz  Nt" : "") << "  order  Omega rad/s  mode  kind        tracked              rad/s          Hz  "
-            "dimensionless  growth 1/s"
+    out_ << "method  Ny  Nx" << (counts_ ? "  Nz  Nt" : "") << "  order  Omega rad/s  mode  "
+         << (multiblade_ ? "kind               tracked                     rad/s"
+                         : "kind        tracked              rad/s")
+         << "          Hz  dimensionless  growth 1/s"
          << (damped_ ? "  undamped rad/s     zeta" : "") << "\n";
 }
 
@@ -350,9 +375,11 @@ void ModesReport::print_mode(const ModesBlock& block, const SpinMode& r) const
     const NaturalMode& mode = r.mode;
     char line[400];
     out_ << counts(key);
-    std::snprintf(line, sizeof line, "  %-5s %12.4g  %4d  %-10s  %-13s %11.6g %11.6g %14.6g  %10.3g",
-                  to_string(key.order).c_str(), r.omega, r.number, mode.kind.c_str(), r.label.c_str(), mode.rad_s,
-                  mode.rad_s / (2.0 * M_PI), mode.rad_s / block.unit, mode.growth);
+    // A rotor's multi-blade kinds ("differential flap", "collective edge 12") are wider than a blade's.
+    const int kind_width = multiblade_ ? 17 : 10, label_width = multiblade_ ? 20 : 13;
+    std::snprintf(line, sizeof line, "  %-5s %12.4g  %4d  %-*s  %-*s %11.6g %11.6g %14.6g  %10.3g",
+                  to_string(key.order).c_str(), r.omega, r.number, kind_width, mode.kind.c_str(), label_width,
+                  r.label.c_str(), mode.rad_s, mode.rad_s / (2.0 * M_PI), mode.rad_s / block.unit, mode.growth);
     out_ << line;
     if (damped_) {
         std::snprintf(line, sizeof line, "  %14.6g %8.4g", mode.undamped_rad_s, mode.damping_ratio);
@@ -629,7 +656,7 @@ void write_state_spaces(const std::vector<std::unique_ptr<OutputFile>>& written,
 /// linearize's metadata beside its files: the scene, the spin, the model's source and the system's names.
 void write_linearize_metadata(MetadataFile& metadata, const Scene& scene, const LinearizeFiles& files,
                               double omega, const SteadySpin& steady, const Model& model, const StateSpace& ss,
-                              std::chrono::steady_clock::time_point start)
+                              std::chrono::steady_clock::time_point start, bool coleman)
 {
     std::vector<std::string> names;
     for (const NamedPath& f : files.outputs) names.push_back(std::filesystem::path(f.path).filename().string());
@@ -640,14 +667,16 @@ void write_linearize_metadata(MetadataFile& metadata, const Scene& scene, const 
         .text("source", model.source())
         .texts("states", ss.states)
         .texts("inputs", ss.inputs)
-        .texts("outputs", ss.outputs)
-        .number("wall_seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        .texts("outputs", ss.outputs);
+    if (coleman) m.text("frame", "fixed: multi-blade coordinates");
+    m.number("wall_seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     if (const std::string why = metadata.write(m.str() + "\n"); !why.empty()) throw std::runtime_error(why);
 }
 
 /// What linearize reports: the variant, the steady state, the system's sizes and names, and where its files are.
 void print_linearization(std::ostream& out, const Scene& scene, const Model& model, const SteadySpin& steady,
-                         double omega, const StateSpace& ss, const std::string& prefix, const std::string& metadata)
+                         double omega, const StateSpace& ss, const std::string& prefix, const std::string& metadata,
+                         bool coleman)
 {
     const VariantKey key = scene.key();
     out << "variant     " << key.name() << " (" << model.source() << ")\n";
@@ -661,7 +690,11 @@ void print_linearization(std::ostream& out, const Scene& scene, const Model& mod
         out << ", axial stretch at the tip " << shortest(model.tip(steady.q.data()).ux1) << " m";
     out << "\nstates      " << ss.states.size() << " (" << joined(ss.states) << ")\n"
         << "input       " << ss.inputs[0] << (key.drive == Drive::torque ? " (N m)" : " (rad/s^2)") << "\n"
-        << "outputs     tip_uy (m), theta (rad)\n"
+        << (coleman ? "frame       fixed: multi-blade coordinates of the " + std::to_string(scene.rotor.blades) +
+                          " blades (_coll collective, _cosN and _sinN cyclic, _diff differential) and the hub's own\n"
+                    : std::string())
+        << "outputs     " << (coleman ? joined(ss.outputs) + " (m, rad)" : std::string("tip_uy (m), theta (rad)"))
+        << "\n"
         << "matrices    " << prefix << "-{A,B,C,D}.csv (x' = A x + B v, y = C x + D v, deviations from the "
         << (steady.held ? "equilibrium" : "steady spin") << (scene.control ? "; the closed loop" : "") << ")\n"
         << "numpy       " << prefix << ".npz (A, B, C, D, states, inputs, outputs)\n"
@@ -673,7 +706,7 @@ void print_linearization(std::ostream& out, const Scene& scene, const Model& mod
 
 }  // namespace
 
-void run_linearize(const Scene& scene, double omega, const std::string& prefix, std::ostream& out)
+void run_linearize(const Scene& scene, double omega, const std::string& prefix, std::ostream& out, Frame frame)
 {
     const LinearizeFiles files = linearize_files(scene, prefix);
     const std::string metadata = metadata_path(prefix);
@@ -683,18 +716,19 @@ void run_linearize(const Scene& scene, double omega, const std::string& prefix, 
         return all;
     }());  // before anything is computed
     const auto start = std::chrono::steady_clock::now();
-    check_steady(scene, {omega});
+    check_steady(scene, {omega}, frame);
     const LinearizeOutputs outputs = open_linearize_outputs(files, prefix);
     const VariantKey key = scene.key();
     const std::unique_ptr<Model> model = make_scene_model(scene, key);
     const SteadySpin steady = steady_spin(*model, omega, held_angle(scene));
-    const StateSpace open = state_space(*model, steady);
+    const bool coleman = multiblade(scene, frame);
+    const StateSpace open = coleman ? multiblade_state_space(*model, steady) : state_space(*model, steady);
     const StateSpace ss = scene.control ? closed_loop(open, *scene.control) : open;
     std::vector<const StateSpace*> systems = {&ss};
     if (scene.control) systems.push_back(&open);
     write_state_spaces(outputs.files, files, systems);
-    write_linearize_metadata(*outputs.metadata, scene, files, omega, steady, *model, ss, start);
-    print_linearization(out, scene, *model, steady, omega, ss, prefix, metadata);
+    write_linearize_metadata(*outputs.metadata, scene, files, omega, steady, *model, ss, start, coleman);
+    print_linearization(out, scene, *model, steady, omega, ss, prefix, metadata, coleman);
 }
 
 }  // namespace hubbeam

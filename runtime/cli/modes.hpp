@@ -34,6 +34,7 @@ struct ModesArgs {
     std::string critical;             // CSV of the critical speeds; empty: none (they are printed)
     std::string elastodyn;            // ElastoDyn's BLADE MODE SHAPES section; empty: none
     bool quiet = false;   // the table to the CSV only, and one summary line printed
+    std::string frame;    // "fixed" or "rotating"; empty: fixed where multi-blade coordinates apply
 };
 
 /// The table asked for (omegas, methods, ny, nz, nt, harmonics), and what of it is printed and written where.
@@ -56,8 +57,14 @@ ModesOptions parse_modes_options(const ModesArgs& args, const Scene& scene);
 /// Throws std::runtime_error if a file or the figure cannot be written.
 void run_modes(const Scene& scene, const ModesOptions& options, std::ostream& out);
 
+/// --frame as typed for scene: empty is Frame::fixed (multi-blade coordinates where they apply, the blades' frames
+/// elsewhere); "fixed" given for a scene where they do not apply is refused with multiblade_refusal's reason (or
+/// [control]'s). Throws ModesOptionError.
+Frame parse_frame(const std::string& text, const Scene& scene);
+
 /// hubbeam linearize: A, B, C and D about the steady spin omega written to PREFIX-A.csv ... PREFIX-D.csv, each
-/// with its row and column names; a summary to out.
-void run_linearize(const Scene& scene, double omega, const std::string& prefix, std::ostream& out);
+/// with its row and column names; a summary to out. A rotor in multi-blade coordinates where they apply in frame.
+void run_linearize(const Scene& scene, double omega, const std::string& prefix, std::ostream& out,
+                   Frame frame = Frame::fixed);
 
 }  // namespace hubbeam

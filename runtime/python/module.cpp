@@ -430,8 +430,20 @@ py::dict run(const std::string& text, const std::string& name, const Keywords& k
 
 /// The block of the scene's variant (hubbeam modes' own assembly), computed without the GIL and stopped between
 /// spin rates when interrupts say so.
+/// frame= as hubbeam.modes and hubbeam.linearize take it: "" (fixed where multi-blade coordinates apply), "fixed"
+/// (ValueError where they do not, naming why) or "rotating".
+Frame frame_of(const Scene& scene, const std::string& text)
+{
+    Frame frame = Frame::fixed;
+    if (!text.empty() && !parse(text, frame))
+        throw py::value_error("frame: expected \"fixed\" or \"rotating\", got " + printable(text));
+    if (!text.empty() && frame == Frame::fixed)
+        if (const std::string why = fixed_frame_refusal(scene); !why.empty()) throw py::value_error("frame: " + why);
+    return frame;
+}
+
 ModesBlock modes_of(const Scene& scene, const std::vector<double>& omegas, const std::vector<int>& harmonics,
-                    Interrupts& interrupts)
+                    Interrupts& interrupts, Frame frame)
 {
     struct Stopped {
         const char* why;
@@ -445,12 +457,12 @@ ModesBlock modes_of(const Scene& scene, const std::vector<double>& omegas, const
             if (const char* why = interrupts.reason()) throw Stopped{why};
         };
         try {
-            return modes_block(*model, key, scene, omegas, harmonics, check);
+            return modes_block(*model, key, scene, omegas, harmonics, check, frame);
         } catch (const std::runtime_error&) {
             // Name the rate that has no steady state (ValueError) if that is what failed; a rate with no steady state
             // under the weight in the plane has its periodic motion's Floquet modes instead, whose failure is its own.
             for (const double w : omegas)
-                if (unsteady_spin(key, scene.parameters.packed(), w).empty())
+                if (unsteady_spin(key, scene.parameters.packed(), w).empty() || multiblade(scene, frame))
                     at_spin(w, [&] { return steady_spin(*model, w, scene.motion.initial_theta()); });
             throw;
         }
@@ -490,11 +502,12 @@ void add_columns(py::dict& out, const std::vector<TableColumn<Row>>& columns, co
 
 /// Every mode of the scene's variant at each spin rate: columns of equal length, and the critical speeds'.
 py::dict modes(const std::string& text, const std::string& name, const Keywords& keywords,
-               const std::vector<double>& omegas, const std::vector<int>& harmonics, bool cancellable)
+               const std::vector<double>& omegas, const std::vector<int>& harmonics, bool cancellable,
+               const std::string& frame)
 {
     Interrupts interrupts(cancellable);
     const Scene scene = scene_of(text, name, keywords);
-    const ModesBlock block = modes_of(scene, omegas, harmonics, interrupts);
+    const ModesBlock block = modes_of(scene, omegas, harmonics, interrupts, frame_of(scene, frame));
     py::dict out;
     out["variant"] = block.key.name();
     out["scene_file"] = scene.path;
@@ -524,13 +537,20 @@ std::unique_ptr<Model> model_without_gil(const Scene& scene)
 
 /// The state-space matrices and their names about the steady spin omega; a controlled hub's closed loop and open
 /// loop (hubbeam.linearize).
-py::dict linearize(const std::string& text, const std::string& name, const Keywords& keywords, double omega)
+py::dict linearize(const std::string& text, const std::string& name, const Keywords& keywords, double omega,
+                   const std::string& frame)
 {
     const Scene scene = scene_of(text, name, keywords);
     const VariantKey key = scene.key();
+    const bool coleman = multiblade(scene, frame_of(scene, frame));
     const std::unique_ptr<Model> model = model_without_gil(scene);
-    const StateSpace open =
-        at_spin(omega, [&] { return state_space(*model, steady_spin(*model, omega, scene.motion.initial_theta())); });
+    const StateSpace open = at_spin(omega, [&] {
+        // A balanced rotor on a moving hub spins steadily, but its blades' frames see periodic equations.
+        if (const std::string why = unsteady_spin(key, scene.parameters.packed(), omega); !coleman && !why.empty())
+            throw std::invalid_argument(why);
+        const SteadySpin steady = steady_spin(*model, omega, scene.motion.initial_theta());
+        return coleman ? multiblade_state_space(*model, steady) : state_space(*model, steady);
+    });
     // A controlled hub: the closed loop (input: a torque added to the controller's), and under "open" the hub
     // without its controller (input tau), as `hubbeam linearize` writes PREFIX-* and PREFIX-open-*.
     const auto system = [](const StateSpace& ss) {
@@ -660,9 +680,10 @@ PYBIND11_MODULE(_core, m)
         "interrupt_runs", [] { exiting = true; },
         "Stops every run and modes computation of this process, now and later, with KeyboardInterrupt");
     m.def("modes", &modes, "Every mode of a scene's variant at each spin rate", py::arg("text"), py::arg("name"),
-          py::arg("overrides"), py::arg("omegas"), py::arg("harmonics"), py::arg("cancellable") = false);
+          py::arg("overrides"), py::arg("omegas"), py::arg("harmonics"), py::arg("cancellable") = false,
+          py::arg("frame") = "");
     m.def("linearize", &linearize, "State-space matrices about a steady spin", py::arg("text"), py::arg("name"),
-          py::arg("overrides"), py::arg("omega"));
+          py::arg("overrides"), py::arg("omega"), py::arg("frame") = "");
     m.def("elastodyn_mode_shapes", &elastodyn_shapes, "A blade's mode shapes and their ElastoDyn polynomials",
           py::arg("text"), py::arg("name"), py::arg("overrides"), py::arg("omega"));
     m.def(

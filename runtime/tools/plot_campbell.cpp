@@ -31,8 +31,9 @@ namespace {
 constexpr double rpm_per_rad_s = 60.0 / (2.0 * M_PI);
 
 /// The words a mode's kind or label may begin with to name its whirl (a rotor of several blades: backward,
-/// forward, collective); a mode of one blade names none.
-constexpr const char* whirl_words[] = {"BW", "FW", "collective"};
+/// forward, collective, differential; "BW2", "FW2", ... of a higher cyclic pair are BW and FW); a mode of one blade
+/// names none.
+constexpr const char* whirl_words[] = {"BW", "FW", "collective", "differential"};
 
 /// A mode's kind or label read word by word: its whirl (one of whirl_words, or empty), its family (the kind:
 /// "flap", "edge", ...) and its number (the label's last word; 0 where there is none).
@@ -52,9 +53,15 @@ ModeName mode_name(const std::string& text)
     }
     ModeName n;
     std::size_t first = 0;
+    const auto higher_pair = [](const std::string& w) {
+        return w.size() > 2 && (w.rfind("BW", 0) == 0 || w.rfind("FW", 0) == 0) &&
+               w.find_first_not_of("0123456789", 2) == std::string::npos;
+    };
     if (!words.empty() &&
         std::find(std::begin(whirl_words), std::end(whirl_words), words.front()) != std::end(whirl_words))
         n.whirl = words[first++];
+    else if (!words.empty() && higher_pair(words.front()))
+        n.whirl = words[first++].substr(0, 2);
     if (first < words.size()) n.family = words[first];
     if (words.size() > first + 1) parse_int(words.back(), 0, 1000000, n.number);
     return n;

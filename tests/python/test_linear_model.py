@@ -81,3 +81,37 @@ class StepResponse(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+class MultiBlade(unittest.TestCase):
+    """A rotor of 3 identical blades in multi-blade coordinates (docs/model.md section 13.2): the module's model is the
+    command line's, bit for bit; frame= takes the blades' frames or refuses, naming why."""
+    BALANCED = os.path.join(SOURCE, "cases", "ground_resonance_balanced.toml")
+    UNEVEN = os.path.join(SOURCE, "cases", "ground_resonance.toml")
+
+    def test_linearize_as_the_command_line(self):
+        with tempfile.TemporaryDirectory() as d:
+            prefix = os.path.join(d, "rotor")
+            done = subprocess.run([HUBBEAM, "linearize", self.BALANCED, "--omega", "10", "-o", prefix],
+                                  capture_output=True, text=True)
+            self.assertEqual(done.returncode, 0, done.stderr)
+            m = np.load(prefix + ".npz")
+            lin = hubbeam.linearize(self.BALANCED, 10.0)
+            for name in "ABCD":
+                np.testing.assert_array_equal(lin[name], m[name])
+            self.assertEqual(lin["states"], list(m["states"]))
+            self.assertIn("B1_cos1", lin["states"])
+            self.assertEqual(lin["outputs"][:4], ["tip_uy_coll", "tip_uy_cos1", "tip_uy_sin1", "theta"])
+
+    def test_frames(self):
+        fixed = hubbeam.modes(self.BALANCED, [11.0], harmonics=None)
+        self.assertIn("FW hub", set(fixed["kind"]))
+        self.assertGreater(fixed["growth"].max(), 0.4)  # ground resonance
+        rotating = hubbeam.modes(self.BALANCED, [0.0], harmonics=None, frame="rotating")
+        self.assertFalse(any(k.startswith(("FW", "BW", "collective")) for k in rotating["kind"]))
+        with self.assertRaisesRegex(ValueError, "^frame: multi-blade coordinates need identical blades, and blade 2"):
+            hubbeam.modes(self.UNEVEN, [0.0], frame="fixed")
+        with self.assertRaisesRegex(ValueError, "^frame: expected"):
+            hubbeam.modes(self.BALANCED, [0.0], frame="inertial")
+        with self.assertRaisesRegex(ValueError, "periodic"):
+            hubbeam.linearize(self.BALANCED, 10.0, frame="rotating")

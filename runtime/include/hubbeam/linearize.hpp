@@ -7,6 +7,7 @@
 #include <complex>
 #include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <hubbeam/config.hpp>
@@ -14,6 +15,14 @@
 #include <hubbeam/motion.hpp>
 
 namespace hubbeam {
+
+/// The frame a rotor's modes and linear model are given in (docs/model.md section 13.2): fixed, in multi-blade
+/// coordinates where they apply (multiblade_refusal empty; elsewhere the blades' own frames), or rotating, each
+/// blade's coordinates in its own frame.
+enum class Frame { fixed, rotating };
+/// Words "fixed", "rotating" (option --frame, hubbeam.modes' frame).
+std::string to_string(Frame frame);
+bool parse(std::string_view word, Frame& frame);
 
 /// The steady spin at omega (rad/s): the beam straight, the axial coordinates at their centrifugal stretch
 /// (Newton on Q_A = 0), the hub turning at omega (prescribed: the drive's rate; free hub: theta_dot, no torque).
@@ -112,17 +121,17 @@ struct SpinMode {
     double mac = 0.0;
 };
 /// natural_modes about the steady spin at each rate of omegas, rate by rate (hubbeam modes, hubbeam.modes); theta
-/// is the held angle of a gravity variant (steady_spin); with a control, the closed loop's modes (closed_loop_modes).
-/// Rows in the order of omegas, each rate's by frequency. The modes are tracked from rate to rate in increasing
-/// omega: the modes of neighbouring rates are paired so that the sum of their MACs is largest (the assignment
-/// problem), and each pair continues a line. A mode left unpaired (the count changes where a mode turns overdamped
+/// is the held angle of a gravity variant (steady_spin); with a control, the closed loop's modes (closed_loop_modes);
+/// in the fixed frame, a rotor's multiblade_modes where they apply (no control). Rows in the order of omegas, each
+/// rate's by frequency. The modes are tracked from rate to rate in increasing omega: the modes of neighbouring rates
+/// are paired so that the sum of their MACs is largest (the assignment problem), and each pair continues a line. A mode left unpaired (the count changes where a mode turns overdamped
 /// or divergent) begins a line of its own. A line follows its shape: through a crossing, and through a veering that
 /// the rates step over, it keeps its label while the frequency order changes; through a veering the rates resolve,
 /// it follows its continuous branch, and its kind shows the exchange of shapes. check, if given, is called before
 /// each rate's modes are computed and may throw to stop (the Python module's Ctrl-C).
 std::vector<SpinMode> campbell(const Model& model, const std::vector<double>& omegas, Axial axial = Axial::dynamic,
                                double theta = 0.0, const Control* control = nullptr,
-                               const std::function<void()>& check = {});
+                               const std::function<void()>& check = {}, Frame frame = Frame::fixed);
 
 /// Where a tracked mode meets an excitation line omega_mode = n Omega (a critical speed): the spin rate and the
 /// mode's frequency there (rad/s, = n omega).
@@ -144,7 +153,7 @@ struct CriticalSpeed {
 std::vector<CriticalSpeed> critical_speeds(const Model& model, const std::vector<SpinMode>& rows,
                                            const std::vector<int>& harmonics, Axial axial = Axial::dynamic,
                                            double theta = 0.0, const Control* control = nullptr,
-                                           const std::function<void()>& check = {});
+                                           const std::function<void()>& check = {}, Frame frame = Frame::fixed);
 
 /// The periodic steady motion of a spin at omega > 0 (docs/model.md section 10.1): the hub turns at the constant rate
 /// omega, theta = omega t (a prescribed drive's rate; a free hub is held at that rate by whatever torque it takes,
@@ -217,6 +226,34 @@ FloquetAnalysis floquet(const Model& model, double omega, Axial axial = Axial::d
 /// floquet's modes alone: what campbell and hubbeam modes give at a spin rate that has no steady state
 /// (unsteady_spin).
 std::vector<NaturalMode> floquet_modes(const Model& model, double omega, Axial axial = Axial::dynamic);
+
+/// Why the linearization about a steady spin of a rotor of these blades (each blade's Parameters::packed, in order)
+/// has no constant multi-blade form, or empty when it has: N >= 3 identical blades (the same parameters, pitch
+/// offset and tip mass included), without weight in the plane of rotation (it turns with each blade).
+std::string multiblade_refusal(const VariantKey& key, const std::vector<std::vector<double>>& blades);
+/// The same rule for a model: a rotor's blades' parameters, a single blade's own.
+std::string multiblade_refusal(const Model& model);
+
+/// The multi-blade (Coleman) state-space model about the steady spin of a rotor whose multiblade_refusal is empty
+/// (docs/model.md section 13.2; Bir 2008): the rotating-frame state_space at the rotor's azimuth psi (theta, or
+/// the prescribed angle, = azimuth; steady's own azimuth is replaced) transformed to x = T(psi) z, each blade
+/// coordinate q_b = q_coll + sum_n (q_cosn cos n psi_b + q_sinn sin n psi_b) + q_diff (-1)^(b-1):
+/// A_z = T^-1 (A T - dT/dt), B_z = T^-1 B, constant in psi. The hub's coordinates (theta, x_h, y_h) stay as they
+/// are. States: theta, x_h, y_h, then each blade field's coordinates per component, named "B1_coll", "B1_cos1",
+/// "B1_sin1", ..., "B1_diff" (N even), then their rates (_dot). Outputs: the components of each tip value
+/// (tip_uy_coll, tip_uy_cos1, ...), theta after tip_uy's, then tip_uz's and tip_phi's where the blades have them.
+/// Throws std::invalid_argument when multiblade_refusal is not empty.
+StateSpace multiblade_state_space(const Model& model, const SteadySpin& steady, double azimuth = 0.0);
+
+/// The modes of multiblade_state_space's system (hubbeam modes' fixed frame), by natural_modes' rules and order, one
+/// eigenproblem per harmonic (collective with theta; cyclic n = 1 with x_h, y_h; each cyclic n >= 2; differential:
+/// the transformed system couples no two of them). Kinds: "collective K", "differential K", "BW K" and "FW K" for
+/// the cyclic n = 1 pair ("BW2 K", "FW2 K" for n = 2, ...), K the blade field's kind (edge, flap, bending, axial,
+/// twist), FW where the mode whirls with the spin faster than n Omega (a rotating-frame frequency omega_r appears at
+/// omega_r + n Omega), else BW (|omega_r - n Omega|, also when n Omega > omega_r); a mode whose energy is mostly the
+/// hub's: "FW hub" or "BW hub" where its whirl is nearly circular (either sense's amplitude more than three times
+/// the other's), else "hub x" or "hub y". Throws std::invalid_argument when multiblade_refusal is not empty.
+std::vector<NaturalMode> multiblade_modes(const Model& model, const SteadySpin& steady, Axial axial = Axial::dynamic);
 
 /// The CSV header of the modes table (hubbeam modes writes it, hubbeam plot campbell reads it by column name).
 const char* modes_header();

@@ -556,7 +556,7 @@ def _sensitivities(names: Any) -> list[str]:
                      f"{printable(repr(names), 120)}")
 
 
-def modes(scene: Any, omega: Any = 0.0, harmonics: Any = (1, 2, 3), **keys: Any) -> dict[str, Any]:
+def modes(scene: Any, omega: Any = 0.0, harmonics: Any = (1, 2, 3), frame: Any = None, **keys: Any) -> dict[str, Any]:
     """Every natural mode of the scene's variant linearized about a steady spin at each rate of omega (rad/s):
     equal-length arrays omega, mode, kind, rad_s, hz, dimensionless, growth, undamped_rad_s, damping_ratio (zero
     without damping), label (the tracked mode, "bending 1", ...) and mac (to its shape at the rate before, NaN
@@ -564,11 +564,25 @@ def modes(scene: Any, omega: Any = 0.0, harmonics: Any = (1, 2, 3), **keys: Any)
     rotation a rate > 0 has no steady state: its modes are the Floquet modes of the periodic motion (hubbeam modes'
     too, docs/model.md section 10.1), those one revolution resolves. Under "critical", the critical speeds, where a
     tracked mode meets the excitation omega = n Omega for n in harmonics: arrays label, harmonic, omega, rad_s and
-    hz; harmonics=None (or "none") searches none, and they are empty."""
+    hz; harmonics=None (or "none") searches none, and they are empty. A rotor of 3 or more identical blades has its
+    modes in multi-blade coordinates (frame "fixed", the default where they apply: kinds "collective flap", "BW edge",
+    "FW edge", "differential flap", "hub x", ...; docs/model.md section 13.2), or each blade's in its own frame with
+    frame="rotating"; frame="fixed" where they do not apply is a ValueError naming why."""
     text, name = _source(scene)
     out = _core_call(_core.modes, text, name, _overrides(keys),
-                     _rates(omega, "spin rates >= 0 (rad/s): a number or a list"), _harmonics(harmonics))
+                     _rates(omega, "spin rates >= 0 (rad/s): a number or a list"), _harmonics(harmonics), False,
+                     _frame(frame))
     return _modes_arrays(out)
+
+
+def _frame(frame: Any) -> str:
+    """frame= as the core takes it: "" for None (fixed where multi-blade coordinates apply), "fixed" or "rotating";
+    ValueError naming what it got otherwise."""
+    if frame is None:
+        return ""
+    if not isinstance(frame, str) or frame not in ("fixed", "rotating"):
+        raise ValueError(f"frame: expected \"fixed\", \"rotating\" or None, got {printable(repr(frame), 120)}")
+    return frame
 
 
 def _harmonics(harmonics: Any) -> list[int]:
@@ -592,14 +606,16 @@ def _modes_arrays(out: dict[str, Any]) -> dict[str, Any]:
     return out
 
 
-def linearize(scene: Any, omega: float, **keys: Any) -> dict[str, Any]:
+def linearize(scene: Any, omega: float, frame: Any = None, **keys: Any) -> dict[str, Any]:
     """x' = A x + B v, y = C x + D v about the steady spin omega (rad/s): A, B, C, D as arrays and the names of
     the states, inputs and outputs (docs/python.md "Modes and linearized models"); with [control] the closed loop,
-    and the open loop under "open"."""
+    and the open loop under "open". A rotor of 3 or more identical blades in multi-blade coordinates (states
+    "B1_coll", "B1_cos1", ...) unless frame="rotating", as modes takes frame."""
     text, name = _source(scene)
     if np.ndim(omega) != 0:
         raise ValueError(f"omega: expected a spin rate >= 0 (rad/s), got {printable(repr(omega), 120)}")
-    return _core_call(_core.linearize, text, name, _overrides(keys), _rates(omega, "a spin rate >= 0 (rad/s)")[0])
+    return _core_call(_core.linearize, text, name, _overrides(keys), _rates(omega, "a spin rate >= 0 (rad/s)")[0],
+                      _frame(frame))
 
 
 def elastodyn_mode_shapes(scene: Any, omega: float = 0.0, **keys: Any) -> dict[str, Any]:

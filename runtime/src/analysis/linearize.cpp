@@ -25,16 +25,10 @@
 
 namespace hubbeam {
 
-namespace {
-
-/// Whether the variant's weight turns with the beam (in the plane of rotation): then only the held hub is steady.
-/// Along the spin axis it does not (section 12): the steady spin holds the sag, found on every elastic row.
 bool weight_turns_with_spin(const VariantKey& key, const std::vector<double>& p)
 {
     return potential_reads_angle(key) && (p.empty() || p[index(Param::g)] != 0.0 || !key.out_of_plane());
 }
-
-}  // namespace
 
 std::vector<int> modal_coordinates(const Model& model, const SteadySpin& s, Axial axial)
 {
@@ -58,7 +52,11 @@ SteadySpin steady_spin(const Model& model, double omega, double theta)
 {
     const VariantKey& key = model.key();
     const std::vector<double>& p = model.parameters();
-    if (const std::string why = unsteady_spin(key, p, omega); !why.empty()) throw std::invalid_argument(why);
+    // A rotor of identical blades on a moving hub has a steady spin, the hub at rest: the blades' pulls cancel. Its
+    // linearization is periodic in the blades' frames and constant in the multi-blade coordinates.
+    const bool balanced_hub = key.extras.hub && multiblade_refusal(model).empty();
+    if (const std::string why = unsteady_spin(key, p, omega); !why.empty() && !balanced_hub)
+        throw std::invalid_argument(why);
     if (potential_reads_angle(key) && (omega == 0.0 || weight_turns_with_spin(key, p)))
         return held_equilibrium(model, theta);
     // Newton on the axial rows with the bending fields straight (the straight beam is an equilibrium by symmetry);
@@ -66,8 +64,10 @@ SteadySpin steady_spin(const Model& model, double omega, double theta)
     // The rows solved: every elastic one out of the plane, else every axial field's (each blade's, on a rotor).
     const int n = model.nq();
     std::vector<int> rows;
+    // A balanced hub's translation stays 0 (by symmetry; a support without stiffness would make its rows singular).
     for (const CoordinateField& f : model.coordinates().fields)
-        if (f.kind != FieldKind::hub_angle && (key.out_of_plane() || f.kind == FieldKind::axial))
+        if (f.kind != FieldKind::hub_angle && (key.out_of_plane() || f.kind == FieldKind::axial) &&
+            (f.basis || omega == 0.0 || !balanced_hub))
             for (int i = f.first; i < f.end(); ++i) rows.push_back(i);
     const int na = static_cast<int>(rows.size());
     const Eigen::VectorXi at = Eigen::Map<const Eigen::VectorXi>(rows.data(), na);
@@ -271,18 +271,17 @@ Eigen::LLT<Eigen::MatrixXd> mass_factor(const Eigen::MatrixXd& M)
     return llt;
 }
 
-/// The linearized equations about the steady spin s as a first-order system x' = X x over the kept coordinates
-/// R: the positions of R but a free hub's angle (cyclic), then all rates of R (a free hub's rate couples to the
-/// beam's): X = [[select, 0], [M^-1 Qq(:, positions), M^-1 Qqd]]. llt is the Cholesky factorization of the mass
-/// matrix at s over R (mass_factor). Damping is in Qqd: X's eigenproblem is the damped (quadratic) one in
+/// The linearized equations M x'' = Qq x + Qqd x' over the kept coordinates R as a first-order system x' = X x: the
+/// positions of R but a free hub's angle (cyclic, first of R when first is 1), then all rates of R (a free hub's
+/// rate couples to the beam's): X = [[select, 0], [M^-1 Qq(:, positions), M^-1 Qqd]]. llt is the Cholesky
+/// factorization of M over R (mass_factor). Damping is in Qqd: X's eigenproblem is the damped (quadratic) one in
 /// first-order form.
-Eigen::MatrixXd linearized_system(const Model& model, const SteadySpin& s, const Eigen::LLT<Eigen::MatrixXd>& llt,
-                                  const std::vector<int>& R)
+Eigen::MatrixXd linearized_system(const LinearEquations& e, const Eigen::LLT<Eigen::MatrixXd>& llt,
+                                  const std::vector<int>& R, Eigen::Index first)
 {
-    const ForceJacobians J = force_jacobians(model, s.u, s.q, s.qd);
-    const Eigen::MatrixXd Qq = submatrix(J.q, R, R), Qqd = submatrix(J.qd, R, R);
+    const Eigen::MatrixXd Qq = submatrix(e.Qq, R, R), Qqd = submatrix(e.Qqd, R, R);
     const auto r = static_cast<Eigen::Index>(R.size());
-    const Eigen::Index first = cyclic_angle(model, R), p = r - first;
+    const Eigen::Index p = r - first;
     const Eigen::MatrixXd Aq = llt.solve(Qq), Aqd = llt.solve(Qqd);
     Eigen::MatrixXd X = Eigen::MatrixXd::Zero(p + r, p + r);
     for (Eigen::Index i = 0; i < p; ++i) X(i, p + first + i) = 1.0;
@@ -290,6 +289,8 @@ Eigen::MatrixXd linearized_system(const Model& model, const SteadySpin& s, const
     X.bottomRightCorner(r, r) = Aqd;
     return X;
 }
+
+}  // namespace
 
 /// NaturalMode::shape of a mode with these rates: U rates with U the upper Cholesky factor of M over the same
 /// coordinates (mass_factor: M = U^T U), scaled to unit length.
@@ -306,20 +307,13 @@ Eigen::VectorXcd weighted_shape(const Eigen::MatrixXd& U, const Eigen::VectorXcd
     return length > 0.0 ? Eigen::VectorXcd(w / length) : w;
 }
 
-}  // namespace
 
-std::vector<NaturalMode> natural_modes(const Model& model, const SteadySpin& s, Axial axial)
+std::vector<NaturalMode> eigen_modes(const Model& model, const LinearEquations& e, const std::vector<int>& R,
+                                     const ModeNaming& naming)
 {
-    const bool damped = dissipates(model);
-    const Eigen::MatrixXd M = mass_at(model, s.u, s.q);
-    // The coordinates that keep their inertia: all, or with quasi-static axial coordinates all but A. A then
-    // follows its own rows with A_dot = A_ddot = 0 (docs/model.md section 9), and the other rows drop A's rates;
-    // they do not depend on A itself at the straight beam (Q_B is odd in B, Q_theta holds A only with rates), so
-    // A's deviation drops out of them and the condensed equations are R's rows and columns alone. A held hub's
-    // angle is not among them.
-    const std::vector<int> R = modal_coordinates(model, s, axial);
-    const Eigen::LLT<Eigen::MatrixXd> llt = mass_factor(submatrix(M, R, R));
-    const Eigen::EigenSolver<Eigen::MatrixXd> eig(linearized_system(model, s, llt, R));
+    const bool damped = dissipates(model) && naming.damped;
+    const Eigen::LLT<Eigen::MatrixXd> llt = mass_factor(submatrix(e.M, R, R));
+    const Eigen::EigenSolver<Eigen::MatrixXd> eig(linearized_system(e, llt, R, cyclic_angle(model, R)));
     if (eig.info() != Eigen::Success)
         throw std::runtime_error("the eigenvalues of the linearized equations did not converge");
     const Eigen::VectorXcd lambda = eig.eigenvalues();
@@ -332,7 +326,7 @@ std::vector<NaturalMode> natural_modes(const Model& model, const SteadySpin& s, 
     Eigen::Index momentum = -1;
     if (cyclic_angle(model, R) == 1) lambda.cwiseAbs().minCoeff(&momentum);
     Eigen::MatrixXcd rates_of = vectors.bottomRows(vectors.rows() - first_rate).topRows(r);
-    if (model.key().out_of_plane()) separate_repeated(model, M, R, lambda, rates_of);
+    if (naming.separate) naming.separate(lambda, rates_of);
     std::vector<NaturalMode> modes;
     for (Eigen::Index k = 0; k < lambda.size(); ++k) {
         const std::complex<double> l = lambda[k];
@@ -346,12 +340,15 @@ std::vector<NaturalMode> natural_modes(const Model& model, const SteadySpin& s, 
         // is the eigen solver's round-off, not damping.
         const double growth = !damped && std::abs(l.real()) <= 1e-6 * scale ? 0.0 : l.real();
         const Eigen::VectorXcd rates = rates_of.col(k);
-        const double magnitude = std::hypot(growth, oscillating ? l.imag() : 0.0);
-        const char* kind =
-            overdamped ? overdamped_kind : mode_kind(dominant_field(model, M, R, rates), model.key());
-        modes.push_back({oscillating ? l.imag() : 0.0, growth, kind, magnitude,
-                         magnitude > 0.0 ? -growth / magnitude : 0.0, weighted_shape(U, rates)});
+        const double magnitude = std::hypot(growth, oscillating ? l.imag() : 0.0), rad_s = oscillating ? l.imag() : 0.0;
+        modes.push_back({rad_s, growth, overdamped ? std::string(overdamped_kind) : naming.kind(rates, rad_s),
+                         magnitude, magnitude > 0.0 ? -growth / magnitude : 0.0, weighted_shape(U, rates)});
     }
+    return modes;
+}
+
+void sort_modes(std::vector<NaturalMode>& modes, bool damped)
+{
     // By frequency, divergent modes (rad_s 0) first; with damping by undamped frequency, so that an overdamped
     // mode keeps its place among the others.
     const auto frequency = [damped](const NaturalMode& m) {
@@ -360,6 +357,28 @@ std::vector<NaturalMode> natural_modes(const Model& model, const SteadySpin& s, 
     std::sort(modes.begin(), modes.end(), [&](const NaturalMode& a, const NaturalMode& b) {
         return frequency(a) != frequency(b) ? frequency(a) < frequency(b) : a.growth > b.growth;
     });
+}
+
+std::vector<NaturalMode> natural_modes(const Model& model, const SteadySpin& s, Axial axial)
+{
+    // The coordinates that keep their inertia: all, or with quasi-static axial coordinates all but A. A then
+    // follows its own rows with A_dot = A_ddot = 0 (docs/model.md section 9), and the other rows drop A's rates;
+    // they do not depend on A itself at the straight beam (Q_B is odd in B, Q_theta holds A only with rates), so
+    // A's deviation drops out of them and the condensed equations are R's rows and columns alone. A held hub's
+    // angle is not among them.
+    const std::vector<int> R = modal_coordinates(model, s, axial);
+    const ForceJacobians J = force_jacobians(model, s.u, s.q, s.qd);
+    const LinearEquations e{mass_at(model, s.u, s.q), J.q, J.qd};
+    ModeNaming naming;
+    if (model.key().out_of_plane())
+        naming.separate = [&](const Eigen::VectorXcd& lambda, Eigen::MatrixXcd& rates) {
+            separate_repeated(model, e.M, R, lambda, rates);
+        };
+    naming.kind = [&](const Eigen::VectorXcd& rates, double) {
+        return std::string(mode_kind(dominant_field(model, e.M, R, rates), model.key()));
+    };
+    std::vector<NaturalMode> modes = eigen_modes(model, e, R, naming);
+    sort_modes(modes, dissipates(model.key()));
     return modes;
 }
 
@@ -432,9 +451,17 @@ double mac(const NaturalMode& a, const NaturalMode& b)
 
 namespace {
 
-/// The modes about the steady spin at omega, as campbell takes them.
-std::vector<NaturalMode> modes_at(const Model& model, double omega, Axial axial, double theta, const Control* control)
+/// Whether the modes of model in frame are multiblade_modes (no control: a controller may feed back blade 1's tip).
+bool multiblade(const Model& model, const Control* control, Frame frame)
 {
+    return frame == Frame::fixed && control == nullptr && multiblade_refusal(model).empty();
+}
+
+/// The modes about the steady spin at omega, as campbell takes them.
+std::vector<NaturalMode> modes_at(const Model& model, double omega, Axial axial, double theta, const Control* control,
+                                  Frame frame)
+{
+    if (multiblade(model, control, frame)) return multiblade_modes(model, steady_spin(model, omega, theta), axial);
     // Under weight in the plane of rotation a spin has no steady state: its modes are the periodic motion's (Floquet).
     if (control == nullptr && !unsteady_spin(model.key(), model.parameters(), omega).empty())
         return floquet_modes(model, omega, axial);
@@ -642,14 +669,14 @@ std::vector<int> best_assignment(const Eigen::MatrixXd& score)
 }
 
 std::vector<SpinMode> campbell(const Model& model, const std::vector<double>& omegas, Axial axial, double theta,
-                               const Control* control, const std::function<void()>& check)
+                               const Control* control, const std::function<void()>& check, Frame frame)
 {
     std::vector<std::vector<SpinMode>> at_rate;  // per rate of omegas, its modes by frequency
     for (const double omega : omegas) {
         if (check) check();
         std::vector<SpinMode>& rate = at_rate.emplace_back();
         int number = 0;
-        for (NaturalMode& mode : modes_at(model, omega, axial, theta, control))
+        for (NaturalMode& mode : modes_at(model, omega, axial, theta, control, frame))
             rate.push_back({omega, ++number, std::move(mode), "", std::numeric_limits<double>::quiet_NaN()});
     }
     // Tracked in increasing omega: each rate's modes paired with the previous rate's by their MACs; a mode left
@@ -687,7 +714,7 @@ std::vector<SpinMode> campbell(const Model& model, const std::vector<double>& om
 
 std::vector<CriticalSpeed> critical_speeds(const Model& model, const std::vector<SpinMode>& rows,
                                            const std::vector<int>& harmonics, Axial axial, double theta,
-                                           const Control* control, const std::function<void()>& check)
+                                           const Control* control, const std::function<void()>& check, Frame frame)
 {
     // Each line's rows in increasing omega.
     std::map<std::string, std::vector<const SpinMode*>> lines;
@@ -731,12 +758,13 @@ std::vector<CriticalSpeed> critical_speeds(const Model& model, const std::vector
                     if (check) check();
                     const double t = hi > lo ? (omega - lo) / (hi - lo) : 0.5;
                     std::optional<NaturalMode> near;
-                    if (control == nullptr && unsteady_spin(model.key(), model.parameters(), omega).empty())
+                    if (control == nullptr && unsteady_spin(model.key(), model.parameters(), omega).empty() &&
+                        !multiblade(model, control, frame))
                         near = ModesNear(model, omega, axial, theta)
                                    .line_mode(l_lo + t * (l_hi - l_lo), t < 0.5 ? *shape_lo : *shape_hi, a.mode.shape);
                     if (!near) {
                         double best = -1.0;
-                        for (NaturalMode& m : modes_at(model, omega, axial, theta, control))
+                        for (NaturalMode& m : modes_at(model, omega, axial, theta, control, frame))
                             if (const double x = mac(a.mode, m); x > best) best = x, near = std::move(m);
                     }
                     tried.push_back(std::move(*near));

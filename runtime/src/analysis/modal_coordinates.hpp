@@ -3,11 +3,15 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <functional>
+#include <string>
 #include <vector>
 
 #include <hubbeam/config.hpp>
 #include <hubbeam/linearize.hpp>
 #include <hubbeam/model.hpp>
+
+#include "models/mode_kinds.hpp"
 
 namespace hubbeam {
 
@@ -21,5 +25,38 @@ std::vector<int> modal_coordinates(const Model& model, const SteadySpin& s, Axia
 /// U the upper Cholesky factor of M over R. The Floquet modes (floquet.cpp) are classified by the same rule.
 void classify_mode(const Model& model, const Eigen::MatrixXd& M, const Eigen::MatrixXd& U, const std::vector<int>& R,
                    const Eigen::VectorXcd& rates, bool overdamped, NaturalMode& mode);
+
+/// Whether the variant's weight turns with the beam (in the plane of rotation): then only the held hub is steady.
+/// Along the spin axis it does not (section 12): the steady spin holds the sag, found on every elastic row.
+bool weight_turns_with_spin(const VariantKey& key, const std::vector<double>& p);
+
+/// Linearized equations M x'' = Qq x + Qqd x' in deviations, each matrix over q's layout (nq x nq): a steady spin's
+/// (natural_modes), or the multi-blade coordinates' (multiblade.cpp, laid out as q with component j of the blades'
+/// coordinates where blade j + 1's are).
+struct LinearEquations {
+    Eigen::MatrixXd M, Qq, Qqd;
+};
+
+/// How eigen_modes names the modes of a system: separate, if given, turns the vectors (rates over R, columns) of
+/// each set of repeated eigenvalues into a basis of modes that each have one kind; kind names a mode that is not
+/// overdamped by its rates over R and its frequency.
+struct ModeNaming {
+    std::function<void(const Eigen::VectorXcd& lambda, Eigen::MatrixXcd& rates)> separate;
+    std::function<std::string(const Eigen::VectorXcd& rates, double rad_s)> kind;
+    /// Whether the equations dissipate: as the variant (dissipates), or less (a support whose dampers are 0).
+    bool damped = true;
+};
+
+/// The modes of e over the coordinates R (indices into q; a free hub's angle, cyclic, first of them), unsorted:
+/// natural_modes' rules for what is a mode (a free hub's conserved momentum dropped, conjugates once, a divergent or
+/// overdamped real eigenvalue, growth round-off without damping), its shape U rates (M over R = U^T U).
+std::vector<NaturalMode> eigen_modes(const Model& model, const LinearEquations& e, const std::vector<int>& R,
+                                     const ModeNaming& naming);
+/// natural_modes' order: by frequency, divergent modes first; with damping by undamped frequency.
+void sort_modes(std::vector<NaturalMode>& modes, bool damped);
+
+/// NaturalMode::shape of a mode with these rates: U rates with U the upper Cholesky factor of M over the same
+/// coordinates (mass_factor: M = U^T U), scaled to unit length.
+Eigen::VectorXcd weighted_shape(const Eigen::MatrixXd& U, const Eigen::VectorXcd& rates);
 
 }  // namespace hubbeam

@@ -11,14 +11,36 @@
 
 namespace hubbeam {
 
+std::string multiblade_refusal(const Scene& scene)
+{
+    std::vector<std::vector<double>> blades;
+    for (int b = 0; b < scene.rotor.blades; ++b) blades.push_back(scene.rotor.blade(scene.parameters, b).packed());
+    return multiblade_refusal(scene.key(), blades);
+}
+
+std::string fixed_frame_refusal(const Scene& scene)
+{
+    if (scene.control)
+        return "the scene's [control] may feed back blade 1's tip, which no multi-blade coordinate holds; the frame "
+               "rotating gives each blade's modes in its own frame";
+    const std::string why = multiblade_refusal(scene);
+    return why.empty() ? why : why + "; the frame rotating gives each blade's modes in its own frame";
+}
+
+bool multiblade(const Scene& scene, Frame frame)
+{
+    return frame == Frame::fixed && !scene.control && multiblade_refusal(scene).empty();
+}
+
 ModesBlock modes_block(const Model& model, const VariantKey& key, const Scene& scene,
                        const std::vector<double>& omegas, const std::vector<int>& harmonics,
-                       const std::function<void()>& check)
+                       const std::function<void()>& check, Frame frame)
 {
     ModesBlock block{key, frequency_unit(scene.parameters), {}, {}};
     const double theta = scene.motion.initial_theta();  // the held angle of a gravity variant
-    block.modes = campbell(model, omegas, scene.axial, theta, scene.controller(), check);
-    block.critical = critical_speeds(model, block.modes, harmonics, scene.axial, theta, scene.controller(), check);
+    block.modes = campbell(model, omegas, scene.axial, theta, scene.controller(), check, frame);
+    block.critical =
+        critical_speeds(model, block.modes, harmonics, scene.axial, theta, scene.controller(), check, frame);
     return block;
 }
 
@@ -37,7 +59,7 @@ void modes_table(const Scene& scene, const ModesRequest& request, const std::fun
                     key.nz = nz;
                     key.nt = nt;
                     const std::unique_ptr<Model> model = make_scene_model(scene, key);
-                    done(modes_block(*model, key, scene, request.omegas, request.harmonics));
+                    done(modes_block(*model, key, scene, request.omegas, request.harmonics, {}, request.frame));
                 }
 }
 

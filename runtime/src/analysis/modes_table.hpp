@@ -22,7 +22,19 @@ struct ModesRequest {
     std::vector<Method> methods;
     std::vector<int> ny, nz, nt;
     std::vector<int> harmonics;
+    /// A rotor's frame (multi-blade coordinates where they apply, with Frame::fixed).
+    Frame frame = Frame::fixed;
 };
+
+/// multiblade_refusal for the scene's blades (Rotor::blade's parameters of each): why its modes and linear model have
+/// no multi-blade form, or empty.
+std::string multiblade_refusal(const Scene& scene);
+/// Why the fixed frame, asked for by name, does not fit the scene, or empty: multiblade_refusal's reason, or the
+/// [control] that may feed back blade 1's tip (the command line's --frame fixed, hubbeam.modes' frame="fixed").
+std::string fixed_frame_refusal(const Scene& scene);
+/// Whether the scene's modes and linear model are in multi-blade coordinates in frame: Frame::fixed, no [control]
+/// (a controller may feed back blade 1's tip), and multiblade_refusal empty.
+bool multiblade(const Scene& scene, Frame frame);
 
 /// One variant's part of the table: campbell's rows (rate by rate, each rate's by frequency) and the critical
 /// speeds of its tracked modes; unit is the scene's frequency_unit, by which the dimensionless column divides.
@@ -34,11 +46,11 @@ struct ModesBlock {
 };
 
 /// The block of the variant key, whose model is given: about the steady spin at each rate, under gravity about the
-/// hub held at the scene's angle at t = 0, with [control] the closed loop's modes. check as campbell's. Throws what
-/// campbell and critical_speeds throw.
+/// hub held at the scene's angle at t = 0, with [control] the closed loop's modes; a rotor's in frame. check as
+/// campbell's. Throws what campbell and critical_speeds throw.
 ModesBlock modes_block(const Model& model, const VariantKey& key, const Scene& scene,
                        const std::vector<double>& omegas, const std::vector<int>& harmonics,
-                       const std::function<void()>& check = {});
+                       const std::function<void()>& check = {}, Frame frame = Frame::fixed);
 
 /// The table: each variant's block in turn, its model made and dropped, handed to done as soon as it is complete
 /// (hubbeam modes prints a variant's lines before the next variant is computed) and kept by none here: a block of
