@@ -392,7 +392,11 @@ TEST_CASE("blade profile: a BModes or ElastoDyn file is read as the blade's tabl
     f.write("axial.toml", axial);
     refused((f.path / "axial.toml").string(), "beam.blade_file", "an axial stiffness (EA) for discretization.nx > 0");
     refused(scene("bmodes_blade.dat", "", ""), "beam.blade_file", "describes a blade that leaves the plane");
-    refused(scene("bmodes_cg_offset.dat", "", "nz = 2\n"), "beam.blade_file", "bmodes_cg_offset.dat:");
+    // A centre of mass off the axis is run-time data of the variant with offsets (docs/model.md section 12.5).
+    const Scene offset = load_scene(scene("bmodes_cg_offset.dat", "", "nz = 2\n"));
+    CHECK(offset.variant.extras.offsets);
+    CHECK(offset.parameters.offsets == std::vector<double>{0.0, 0.0, 0.032, 0.0});
+    CHECK_FALSE(load_scene(scene("bmodes_blade.dat", "", "nz = 2\n")).variant.extras.offsets);
     refused(scene("bmodes_blade.dat", "blade_stations = 1\n", "nz = 2\n"), "beam.blade_stations",
             "expected 0 (the file's own stations) or an integer from 2 to 10000");
     refused(scene("bmodes_blade.dat", "profile = \"blade.csv\"\n", "nz = 2\n"), "beam.blade_file",

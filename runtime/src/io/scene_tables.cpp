@@ -317,18 +317,35 @@ std::vector<double> blade_values(const BladeTable& b, double L)
     return values;
 }
 
+/// count equally spaced stations from 0 to 1.
+std::vector<double> equally_spaced(int count)
+{
+    std::vector<double> x;
+    for (int k = 0; k < count; ++k) x.push_back(k + 1 == count ? 1.0 : static_cast<double>(k) / (count - 1));
+    return x;
+}
+
 /// The table (stations x, values as blade_values) linear between its stations, taken at count equally spaced ones,
 /// which replace x and values.
 void resample_table(std::vector<double>& x, std::vector<double>& values, int count)
 {
     const std::vector<double> from = x;
-    x.clear();
-    for (int k = 0; k < count; ++k) x.push_back(k + 1 == count ? 1.0 : static_cast<double>(k) / (count - 1));
+    x = equally_spaced(count);
     std::vector<double> resampled;
     for (double xk : x)
         for (std::size_t j = 0; j < max_profile_value_count; ++j)
             resampled.push_back(linear_between(from, values, j, xk));
     values = std::move(resampled);
+}
+
+/// Blade file b's section offsets at its stations (section_offset_count each), empty where the file has none or all
+/// are 0 (the variant without offsets then runs, as before them); taken at the stations `to` where they differ.
+std::vector<double> blade_offsets(const BladeTable& b, const std::vector<double>& to)
+{
+    if (std::all_of(b.cg_offset.begin(), b.cg_offset.end(), [](double v) { return v == 0.0; })) return {};
+    std::vector<double> offsets;
+    for (double xk : to) offsets.push_back(linear_between(b.x_over_L, b.cg_offset, 0, xk));
+    return offsets;
 }
 
 }  // namespace
@@ -355,6 +372,8 @@ ProfileTable scene_io::read_blade(const std::string& scene_path, const std::stri
     ProfileTable read{"beam.blade_file", file, {"EI_flap", "twist"}, !b.EA.empty(), resample};
     if (!b.GJ.empty()) read.blade_columns.push_back("GJ");
     if (!b.mass_moment_flap.empty()) read.blade_columns.insert(read.blade_columns.end(), {"j_c", "j_n"});
+    const std::vector<double> offsets = blade_offsets(b, resample > 0 ? equally_spaced(resample) : b.x_over_L);
+    if (!offsets.empty()) read.blade_columns.push_back("cg_offset");
     const std::size_t n = b.x_over_L.size();
     if (n < 2 || b.x_over_L.front() != 0.0 || b.x_over_L.back() != 1.0)
         bad("expected stations from x/L = 0 at the root to 1 at the tip, got " + std::to_string(n) + " from " +
@@ -369,7 +388,9 @@ ProfileTable scene_io::read_blade(const std::string& scene_path, const std::stri
         if (!(x[k] > x[k - 1]))
             bad("the stations must increase strictly, got x/L = " + shortest(x[k]) + " after " + shortest(x[k - 1]));
     extras.tabulated = true;
+    extras.offsets = !offsets.empty();
     p.stations = std::move(x);
+    p.offsets = offsets;
     set_profile(std::move(values), p);
     return read;
 }
