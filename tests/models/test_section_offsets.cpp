@@ -1,7 +1,7 @@
 // A blade's section offsets (docs/model.md section 12.5) against oracles that share nothing with the generator: the
 // offset centre of mass's kinetic energy by quadrature of the exact motion of a rigid section (turned by the
 // pre-twist, pitch and twist, carried by the bent axis), and the coupled flap and torsion frequencies of a uniform
-// cantilever whose centre of mass lies off its axis, from their closed-form frequency equation (Dunwoody's 6 x 6
+// cantilever whose centre of mass lies off its axis, from their closed-form frequency equation (the 6 x 6
 // determinant of the exponential solutions; Banerjee 1989). Generated models, compiled on demand where not built in.
 #include <Eigen/Dense>
 #include <algorithm>
