@@ -229,7 +229,8 @@ ProfileTable scene_io::read_profile(const std::string& scene_path, const std::st
         {"GJ", "torsional stiffness, N m^2", true},
         {"twist", "the chord's angle added to beam.pitch, rad", true},
         {"j_c", "mass moment of inertia per length about the chord, kg m", true},
-        {"j_n", "mass moment of inertia per length about the chord's normal, kg m", true}};
+        {"j_n", "mass moment of inertia per length about the chord's normal, kg m", true},
+        {"cg_offset", "the centre of mass's offset along the chord, towards the trailing edge, m", true}};
     const NumericTable table =
         read_numeric_table(scene_path, "beam.profile", file, max_profile_bytes, "a profile table", want);
     ProfileTable read{"beam.profile", file, {}};
@@ -239,9 +240,9 @@ ProfileTable scene_io::read_profile(const std::string& scene_path, const std::st
     if (table.header_columns != 4 + read.blade_columns.size())
         bad(table.header_line,
             "expected the columns x/L, m, EI, ES and, for a blade, any of EI_flap, GJ, twist, j_c, "
-            "j_n in its header, got " +
+            "j_n, cg_offset in its header, got " +
                 std::to_string(table.header_columns - 4 - read.blade_columns.size()) + " other columns");
-    std::vector<double> x, values;
+    std::vector<double> x, values, offsets;
     for (std::size_t r = 0; r < table.rows.size(); ++r) {
         const std::vector<double>& v = table.rows[r];
         const long line = table.lines[r];
@@ -249,7 +250,7 @@ ProfileTable scene_io::read_profile(const std::string& scene_path, const std::st
             bad(line, "more than " + std::to_string(max_profile_stations) + " stations");
         for (std::size_t c = 1; c < want.size(); ++c) {
             const std::string& col = want[c].name;
-            if (std::isnan(v[c])) continue;
+            if (std::isnan(v[c]) || col == "cg_offset") continue;  // an offset may take any finite value
             if (col == "twist") {
                 if (!(std::abs(v[c]) <= max_section_angle))
                     bad(line, "expected twist from -2 pi to 2 pi (rad: one turn either way)");
@@ -270,9 +271,13 @@ ProfileTable scene_io::read_profile(const std::string& scene_path, const std::st
         const auto given = [&](std::size_t c, double otherwise) { return std::isnan(v[c]) ? otherwise : v[c]; };
         values.insert(values.end(),
                       {v[1], v[2], v[3], given(4, v[2]), given(5, 0.0), given(6, 0.0), given(7, 0.0), given(8, 0.0)});
+        offsets.push_back(given(9, 0.0));
     }
     if (x.size() < 2) bad(0, "expected at least 2 stations, got " + std::to_string(x.size()));
     if (x.back() != 1.0) bad(0, "the last station must be x/L = 1, got " + shortest(x.back()));
+    // Offsets all 0 run the variant without them (docs/model.md section 12.5).
+    if (std::any_of(offsets.begin(), offsets.end(), [](double d) { return d != 0.0; })) p.offsets = std::move(offsets);
+    extras.offsets = !p.offsets.empty();
     extras.tabulated = true;
     p.stations = std::move(x);
     set_profile(std::move(values), p);
