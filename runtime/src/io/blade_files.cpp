@@ -38,7 +38,7 @@
 //   stiffnesses finite and > 0 (after the adjustment factors, themselves > 0); mass moments of inertia >= 0 (files
 //   give 0 where rotary inertia is neglected); twist from -360 to 360 deg (ElastoDyn asks for -180 to 180 deg, which
 //   hubbeam needs not; one turn is max_section_angle, and a larger value names no other section); BModes' cg_offst
-//   finite (docs/model.md section 12.5, positive towards the trailing edge as BModes' guide has it), the other
+//   finite (docs/model.md section 12.5, positive towards the trailing edge), the other
 //   offsets, pre-curve, pre-sweep and Alpha exactly 0; at least two stations (ElastoDyn takes one, a uniform blade,
 //   which stations at 0 and 1 cannot be). Numbers as Fortran writes them: 1.5D+03, +2., .5.
 // - Both formats' twist keeps its sign (pyBModes copies ElastoDyn's StrcTwst into BModes' str_tw unchanged).
