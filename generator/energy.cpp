@@ -93,6 +93,7 @@ public:
         for (const symbol& absent : {f.ux1, f.ux1_dot, f.ux1_x, f.ux1_x_dot, f.uz, f.uz_dot, f.uz_x, f.uz_xx,
                                      f.uz_xx_dot, f.phi, f.phi_dot, f.phi_x, f.phi_x_dot})
             fields_[absent];
+        if (f.offsets) fields_[f.offsets->uz_x_dot];
     }
 
     /// int_0^L density dx.
@@ -160,6 +161,7 @@ private:
             add(f.uz_x, s.Z[j] * inv_L, {K::flap, j, 0, 1});
             add(f.uz_xx, s.Z[j] * pow(inv_L, 2), {K::flap, j, 0, 2});
             add(f.uz_xx_dot, s.Z_dot[j] * pow(inv_L, 2), {K::flap, j, 0, 2});
+            if (f.offsets) add(f.offsets->uz_x_dot, s.Z_dot[j] * inv_L, {K::flap, j, 0, 1});
             for (int k = 0; k < nz; ++k) {
                 add(f.ux2, -s.Z[j] * s.Z[k] * inv_L / 2, {K::flap_coupling, j, k, 0});
                 add(f.ux2_dot, -s.Z[j] * s.Z_dot[k] * inv_L, {K::flap_coupling, j, k, 0});
@@ -227,6 +229,9 @@ private:
         distribution(f.EI_sin_x, D::EI_sin);
         distribution(f.j_cos_x, D::j_cos);
         distribution(f.j_sin_x, D::j_sin);
+        if (!key.extras.offsets) return;
+        distribution(f.offsets->mass_offset_cos_x, D::mass_offset_cos);
+        distribution(f.offsets->mass_offset_sin_x, D::mass_offset_sin);
     }
 
     Poly evaluate(const ex& density, bool tip)
@@ -527,7 +532,9 @@ Energies energies(const VariantKey& key, const Symbols& s, const PolyReader& rea
     if (const std::string why = key.dof_problem(); !why.empty()) throw std::invalid_argument(key.name() + ": " + why);
     const Extras& x = key.extras;
     ShapeIntegrals integrals(key.axial_basis(), key.transverse_basis(), key.flap_basis(), key.twist_basis());
-    const FieldSymbols f;
+    FieldSymbols fields;
+    if (x.offsets) fields.offsets = std::make_shared<const FieldSymbols::Offsets>();
+    const FieldSymbols& f = fields;
     DensityIntegrator integrate(s, f, key, integrals, read, found);
     // The distributions along the span: the root's values, or a section term's (a taper, a profile).
     const std::vector<const TermInfo*> carried = carried_terms(x);

@@ -47,6 +47,7 @@ void tip_energies(const TermContext& c, Energies& e);
 void gravity_energies(const TermContext& c, Energies& e);
 void damping_energies(const TermContext& c, Energies& e);
 void hub_energies(const TermContext& c, Energies& e);
+void offsets_energies(const TermContext& c, Energies& e);
 BeamSection taper_section(const VariantKey& key, const Symbols& s, const FieldSymbols& f);
 BeamSection profile_section(const VariantKey& key, const Symbols& s, const FieldSymbols& f);
 

@@ -80,6 +80,17 @@ std::vector<TermInfo> make_terms()
          [](std::string_view part, Extras& e) { return part == "profile" && (e.tabulated = true); },
          [](const Extras&) { return std::string("tabulated_profile"); },
          never},
+        // Chosen by the table's words (a blade's offsets column), as the profile is.
+        {"section offsets (section 12.5)",
+         adds_T,
+         {},
+         {},
+         false,
+         [](const Extras& e) { return e.offsets; },
+         [](const Extras&) { return std::string("offsets"); },
+         [](std::string_view part, Extras& e) { return part == "offsets" && (e.offsets = true); },
+         [](const Extras&) { return std::string("section_offsets"); },
+         never},
         switched<&Extras::pitch, pitched_word, pitched_summary>("pitch (section 12)", adds_U | adds_T, {P::pitch}),
         switched<&Extras::twist, twisted_word, twisted_summary>("pre-twist (section 12)", adds_U | adds_T, {P::twist}),
         // The precone tilts the axis: its own module moves the beam's points (T); the tilted weight is gravity's U.

@@ -57,8 +57,8 @@ struct TermInfo {
     void (*set)(Extras&, bool);
 };
 
-/// Every term, in the order of the variant's name suffixes: tip, gravity, damped, width|depth, profile, pitched,
-/// twisted, coned, hub.
+/// Every term, in the order of the variant's name suffixes: tip, gravity, damped, width|depth, profile, offsets,
+/// pitched, twisted, coned, hub.
 const std::vector<TermInfo>& terms();
 
 /// The terms a variant carries, in registry order.

@@ -273,6 +273,14 @@ std::string VariantKey::dof_problem() const
             return "BSIM needs " + name + " = 0 or " + name + " >= 3 (n_x + 2 with n_x >= 1), got " + std::to_string(n);
     // A profile's chord angles are its pre-twist (docs/model.md 12.4).
     if (extras.profile() && extras.twist) return "a profile's pre-twist is its twist column, not beam.twist";
+    // Section offsets are a blade table's columns, in its kinetic energy to second order (docs/model.md 12.5).
+    if (extras.offsets && !(extras.profile() && out_of_plane()))
+        return "section offsets need a blade's table (beam.blade_file) and a beam that leaves the plane";
+    if (extras.offsets && order == Order::full)
+        return "section offsets are modelled to second order in the deformation: order first or zero, not full";
+    // The offset centre of mass's weight and the moving hub's velocity against the chord are not modelled.
+    if (extras.offsets && (extras.gravity || extras.hub))
+        return "section offsets do not combine with gravity or a moving hub ([support])";
     return {};
 }
 

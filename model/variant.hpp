@@ -41,13 +41,17 @@ struct Extras {
     // (Parameters::stations, Parameters::profile) that reach the kernels as the integrals of the section data times
     // the basis (Variant::section_integrals).
     bool tabulated = false;
+    // A tabulated blade's section offsets (docs/model.md section 12.5): the centre of mass off the reference axis along
+    // the chord. Only that the table has offsets is structure; their values are run-time data (Parameters::offsets).
+    bool offsets = false;
     // A hub that translates in the plane of rotation on a support (docs/model.md section 13): coordinates x_h, y_h.
     bool hub = false;
 
     bool profile() const { return tabulated; }
     bool any() const
     {
-        return tip || gravity || damping || taper != Taper::uniform || profile() || pitch || twist || cone || hub;
+        return tip || gravity || damping || taper != Taper::uniform || profile() || offsets || pitch || twist || cone ||
+               hub;
     }
     bool operator==(const Extras&) const = default;
 };
@@ -58,7 +62,7 @@ std::string stations_problem(const std::vector<double>& x);
 /// The grammar of a variant's name, as VariantKey::parse reads it (its messages and hubbeam-gen --help say it).
 inline constexpr const char* variant_name_grammar =
     "METHOD_nxN_nyN[_nzN][_ntN]_DRIVE_ORDER[_open][_tip][_gravity][_damped][_width|_depth][_profile]"
-    "[_pitched][_twisted][_coned][_hub]";
+    "[_offsets][_pitched][_twisted][_coned][_hub]";
 
 struct VariantKey {
     Method method = Method::amm;
@@ -76,7 +80,7 @@ struct VariantKey {
     /// e.g. "bim_nx4_ny4_torque_first", "bsim_nx0_ny4_prescribed_first_open", "amm_nx0_ny4_torque_first_tip_gravity",
     /// "fem_nx0_ny8_nz8_nt2_torque_first_pitched": a C identifier; nz and nt only where nonzero; the extras follow in
     /// the order tip, gravity, damped, width|depth, profile,
-    /// pitched, twisted, coned.
+    /// offsets, pitched, twisted, coned, hub.
     std::string name() const;
     /// Inverse of name(); throws std::invalid_argument.
     static VariantKey parse(std::string_view name);

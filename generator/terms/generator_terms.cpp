@@ -9,12 +9,14 @@ using namespace GiNaC;
 
 const GeneratorTerm& generator_part(const TermInfo& t)
 {
-    // In the order of terms(): tip, gravity, damping, taper, profile, pitch, twist, precone. These three have no
-    // energy of their own: they turn the section's principal axes (bending_density, section_rotation) and the beam's
-    // axis (velocity_squared, position) inside the beam's T and U and the other terms' (energy.cpp).
+    // In the order of terms(): tip, gravity, damping, taper, profile, offsets, pitch, twist, precone, hub. Pitch,
+    // twist and precone have no energy of their own: they turn the section's principal axes (bending_density,
+    // section_rotation) and the beam's axis (velocity_squared, position) inside the beam's T and U and the other
+    // terms' (energy.cpp).
     static const std::vector<GeneratorTerm> table = {
-        {nullptr, tip_energies},    {nullptr, gravity_energies}, {nullptr, damping_energies}, {taper_section, nullptr},
-        {profile_section, nullptr}, {nullptr, nullptr},          {nullptr, nullptr},          {nullptr, nullptr},
+        {nullptr, tip_energies},     {nullptr, gravity_energies}, {nullptr, damping_energies},
+        {taper_section, nullptr},    {profile_section, nullptr},  {nullptr, offsets_energies},
+        {nullptr, nullptr},          {nullptr, nullptr},          {nullptr, nullptr},
         {nullptr, hub_energies}};
     if (table.size() != terms().size()) throw std::logic_error("generator_part: not one entry per registered term");
     return table.at(static_cast<std::size_t>(&t - terms().data()));

@@ -14,10 +14,27 @@ using namespace hubbeam::gen;
 
 namespace {
 
-/// Extras carrying the term t alone.
-Extras alone(const TermInfo& t)
+/// What a term needs carried beside it: a blade table's offsets ride on its profile.
+Extras companions(const TermInfo& t)
 {
     Extras e;
+    e.offsets = true;
+    Extras base;
+    if (t.carried(e)) base.tabulated = true;
+    return base;
+}
+
+/// Extras carrying the term t alone, with its companions.
+Extras alone(const TermInfo& t)
+{
+    Extras e = companions(t);
+    if (e.tabulated) {
+        e.offsets = true;
+        std::vector<const TermInfo*> want = carried_terms(companions(t));
+        want.push_back(&t);
+        REQUIRE(carried_terms(e) == want);
+        return e;
+    }
     t.set(e, true);
     if (!t.carried(e)) {  // a term chosen by the scene's words: the taper's or the profile's
         e.taper = Taper::width;
@@ -75,7 +92,7 @@ TEST_CASE("each term's registry bits say what its energies add: D, an angle in U
             const Derived d = derived(key, s);
             // The same variant without the term, over the same symbols: what the term adds is the difference.
             VariantKey bare = key;
-            bare.extras = {};
+            bare.extras = companions(t);
             const Energies b = derive_energies(bare, s, PolyReader(d.parameters, d.variables));
             const auto differs = [&](const Poly& with, const Poly& without) {
                 return !(to_ex(with, d.parameters, d.variables) - to_ex(without, d.parameters, d.variables))
@@ -92,7 +109,7 @@ TEST_CASE("each term's registry bits say what its energies add: D, an angle in U
             CHECK(((t.energies & kinetic_reads_angle) != 0) == kinetic_angle);
             CHECK(kernels_read_angle(key) == (angle || kinetic_angle));
             CHECK(reads_driven_angle(key) == ((angle || kinetic_angle) && drive == Drive::prescribed));
-            CHECK(shaped_section(key) == ((t.energies & shapes_section) != 0));
+            CHECK(shaped_section(key) == ((t.energies & shapes_section) != 0 || shaped_section(bare)));
             if ((t.energies & shapes_section) == 0 && blade > 0) {
                 CHECK(((t.energies & adds_T) != 0) == differs(d.en.T, b.T));
                 CHECK(((t.energies & adds_U) != 0) == differs(d.en.U, b.U));

@@ -329,7 +329,7 @@ TEST_CASE("a missing or malformed blade file is refused naming its file and line
     CHECK(no_blade.line == 86);
     CHECK(no_blade.setting == "BldFile(1)");
     CHECK_THAT(no_blade.what(), Catch::Contains("ed.dat:86: BldFile(1): expected a file that exists"));
-    // CertTest's own section file has centre-of-mass offsets, which hubbeam refuses at their line and column.
+    // CertTest's own section file has shear-centre offsets, which hubbeam refuses at their line and column.
     const std::string certtest = folder.write(
         "certtest.bmi", with_line(text_of(data("bmodes/Test01_nonunif_blade.bmi")), 8, "1.0       romg_mult:"));
     std::filesystem::copy_file(data("bmodes/blade_sec_props.dat"), folder.path / "blade_sec_props.dat");
@@ -338,7 +338,7 @@ TEST_CASE("a missing or malformed blade file is refused naming its file and line
         FAIL("a section file with offsets was accepted");
     } catch (const BladeFileError& e) {
         CHECK(e.line == 8);
-        CHECK(e.column == "cg_offst");
+        CHECK(e.column == "sc_offst");
     }
     // A file of neither format.
     const std::string neither = folder.write("neither.dat", "just some text\n");

@@ -174,8 +174,8 @@ TEST_CASE("blade profile: a held blade's flap sag under gravity along the axis i
     // The fields CSV's flapwise moment EI_flap(x) u_z'' is the weight's moment -M(x) (statics), with EI_flap the
     // table's where it varies (x/L = 0.25, 0.5, 0.75).
     {
-        VariantKey key{.method = Method::bim, .nx = 0, .ny = 2, .nz = 12, .drive = Drive::prescribed,
-                       .extras = {.gravity = true}};
+        VariantKey key{
+            .method = Method::bim, .nx = 0, .ny = 2, .nz = 12, .drive = Drive::prescribed, .extras = {.gravity = true}};
         key = with_table(key);
         const auto model = make_model(key, p, ModelSource::generated);
         const std::vector<double> q = held_equilibrium(*model, 0.0).q;
@@ -299,6 +299,26 @@ TEST_CASE("blade profile: a scene reads the blade's columns, each absent one at 
     CHECK(load_scene(f.scene()).parameters.profile == std::vector<double>{3, 900, 1e6, 1, 100, 1e6});
 }
 
+TEST_CASE("blade profile: a cg_offset column makes the variant with section offsets, and only where one is not 0",
+          "[profile][scene][section_offsets]")
+{
+    const Folder f;
+    f.write("blade.csv", "x/L, m, EI, ES, cg_offset\n0, 3, 900, 1e6, 0.05\n1, 1, 100, 1e6, -0.02\n");
+    f.write("blade.toml", blade_scene("profile = \"blade.csv\"\n", "nz = 2\n"));
+    const Scene s = load_scene(f.scene());
+    CHECK(s.key().name() == "fem_nx0_ny2_nz2_prescribed_first_profile_offsets");
+    CHECK(s.parameters.offsets == std::vector<double>{0.05, -0.02});
+    f.write("blade.csv", "x/L, m, EI, ES, cg_offset\n0, 3, 900, 1e6, 0\n1, 1, 100, 1e6, 0\n");
+    CHECK(load_scene(f.scene()).key().name() == "fem_nx0_ny2_nz2_prescribed_first_profile");
+    // In the plane a chord has no offset to carry; order full and gravity are not modelled with one.
+    const std::string offset = "x/L, m, EI, ES, cg_offset\n0, 3, 900, 1e6, 0.05\n1, 1, 100, 1e6, 0\n";
+    CHECK_THAT(error_of(f, offset, "profile = \"blade.csv\"\n", ""),
+               Catch::Contains("column cg_offset describes a blade that leaves the plane"));
+    f.write("blade.csv", offset);
+    f.write("blade.toml", blade_scene("profile = \"blade.csv\"\n", "nz = 2\n") + "[model]\norder = \"full\"\n");
+    CHECK_THROWS_WITH(load_scene(f.scene()), Catch::Contains("order first or zero, not full"));
+}
+
 TEST_CASE("blade profile: a table without what the blade needs is refused, naming the column", "[profile][scene]")
 {
     const Folder f;
@@ -322,7 +342,8 @@ TEST_CASE("blade profile: a table without what the blade needs is refused, namin
     has(error_of(f, "x/L, m, EI, ES, twist\n0, 1, 1, 1, nan\n1, 1, 1, 1, 0\n", "profile = \"blade.csv\"\n", "nz = 2\n"),
         csv + ":2: expected a finite number in column twist (the chord's angle added to beam.pitch, rad)");
     // An angle of more than a turn names no other section, and 1e308 only loses the digits of its cosine.
-    has(error_of(f, "x/L, m, EI, ES, twist\n0, 1, 1, 1, 0\n1, 1, 1, 1, -1e308\n", "profile = \"blade.csv\"\n", "nz = 2\n"),
+    has(error_of(f, "x/L, m, EI, ES, twist\n0, 1, 1, 1, 0\n1, 1, 1, 1, -1e308\n", "profile = \"blade.csv\"\n",
+                 "nz = 2\n"),
         csv + ":3: expected twist from -2 pi to 2 pi (rad: one turn either way)");
     // The uniform section's keys do not go with a table: its columns give them.
     for (const char* key :
@@ -392,7 +413,11 @@ TEST_CASE("blade profile: a BModes or ElastoDyn file is read as the blade's tabl
     f.write("axial.toml", axial);
     refused((f.path / "axial.toml").string(), "beam.blade_file", "an axial stiffness (EA) for discretization.nx > 0");
     refused(scene("bmodes_blade.dat", "", ""), "beam.blade_file", "describes a blade that leaves the plane");
-    refused(scene("bmodes_cg_offset.dat", "", "nz = 2\n"), "beam.blade_file", "bmodes_cg_offset.dat:");
+    // A centre of mass off the axis is run-time data of the variant with offsets (docs/model.md section 12.5).
+    const Scene offset = load_scene(scene("bmodes_cg_offset.dat", "", "nz = 2\n"));
+    CHECK(offset.variant.extras.offsets);
+    CHECK(offset.parameters.offsets == std::vector<double>{0.0, 0.0, 0.032, 0.0});
+    CHECK_FALSE(load_scene(scene("bmodes_blade.dat", "", "nz = 2\n")).variant.extras.offsets);
     refused(scene("bmodes_blade.dat", "blade_stations = 1\n", "nz = 2\n"), "beam.blade_stations",
             "expected 0 (the file's own stations) or an integer from 2 to 10000");
     refused(scene("bmodes_blade.dat", "profile = \"blade.csv\"\n", "nz = 2\n"), "beam.blade_file",

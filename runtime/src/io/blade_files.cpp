@@ -37,9 +37,10 @@
 // - Values: stations from 0 to 1, strictly increasing (hubbeam's profile table's rule, and ElastoDyn's); mass and
 //   stiffnesses finite and > 0 (after the adjustment factors, themselves > 0); mass moments of inertia >= 0 (files
 //   give 0 where rotary inertia is neglected); twist from -360 to 360 deg (ElastoDyn asks for -180 to 180 deg, which
-//   hubbeam needs not; one turn is max_section_angle, and a larger value names no other section); offsets, pre-curve,
-//   pre-sweep and Alpha exactly 0; at least two stations (ElastoDyn takes one, a uniform blade, which stations at 0 and
-//   1 cannot be). Numbers as Fortran writes them: 1.5D+03, +2., .5.
+//   hubbeam needs not; one turn is max_section_angle, and a larger value names no other section); BModes' cg_offst
+//   finite (docs/model.md section 12.5, positive towards the trailing edge), the other
+//   offsets, pre-curve, pre-sweep and Alpha exactly 0; at least two stations (ElastoDyn takes one, a uniform blade,
+//   which stations at 0 and 1 cannot be). Numbers as Fortran writes them: 1.5D+03, +2., .5.
 // - Both formats' twist keeps its sign (pyBModes copies ElastoDyn's StrcTwst into BModes' str_tw unchanged).
 #include "io/blade_files.hpp"
 
@@ -216,7 +217,7 @@ bool has_words(std::string_view line, std::string_view words)
 /// What a column's values must be: a station, an angle of at most one turn either way (twist, degrees), > 0 (mass,
 /// stiffness), >= 0 (mass moments of inertia), 0 (what hubbeam does not model), or any number (what no structural
 /// property depends on: a pitch axis).
-enum class Rule { station, angle, positive, non_negative, zero, unused };
+enum class Rule { station, angle, positive, non_negative, zero, unused, length };
 
 /// A column of a format's table: its name there, what it holds (with its unit, for messages), its rule and, for
 /// zero, why hubbeam refuses another value.
@@ -227,7 +228,8 @@ struct Column {
     const char* why = "";
 };
 
-constexpr const char* no_cg_offset = "hubbeam models no offset of the centre of mass from the reference axis";
+constexpr const char* no_cg_offset =
+    "hubbeam reads the centre of mass's offset along the chord from a BModes file's cg_offst only";
 constexpr const char* straight_axis = "hubbeam's blade has a straight reference axis";
 
 /// BModes' 13 columns, in the order BModes reads them (BModes.f90).
@@ -242,7 +244,7 @@ constexpr std::array<Column, 13> bmodes_columns = {{
     {"edge_stff", "edge bending stiffness, N m^2", Rule::positive},
     {"tor_stff", "torsional stiffness, N m^2", Rule::positive},
     {"axial_stff", "axial stiffness, N", Rule::positive},
-    {"cg_offst", "centre-of-mass offset, m", Rule::zero, no_cg_offset},
+    {"cg_offst", "centre-of-mass offset, m", Rule::length},
     {"sc_offst", "shear-centre offset, m", Rule::zero,
      "hubbeam models no offset of the shear centre from the reference axis"},
     {"tc_offst", "tension-centre offset, m", Rule::zero,
@@ -343,6 +345,8 @@ void check_value(const BladeText& t, const Column& col, const std::vector<double
             break;
         case Rule::unused:
             break;
+        case Rule::length:  // any number: fortran_number has refused the non-finite
+            break;
         case Rule::angle:
             // One turn either way (max_section_angle), in the file's degrees.
             if (!(std::abs(x) <= 360.0)) bad(std::string("a value from -360 to 360 (") + col.meaning + ", one turn)");
@@ -425,6 +429,7 @@ BladeTable bmodes_table(const BladeText& t, const Rows& rows)
     b.EI_edge = v[7];
     b.GJ = v[8];
     b.EA = v[9];
+    b.cg_offset = v[10];
     for (std::size_t s = 0; s < rows.lines.size(); ++s) {
         b.twist.push_back(v[1][s] * degree);
         // flp_iner, edge_iner are about the inertia axes, at tw_iner; about the structural axes, at str_tw, BModes

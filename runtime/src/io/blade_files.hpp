@@ -23,6 +23,8 @@ struct BladeTable {
     std::vector<double> twist;             // rad: structural pre-twist, with the file's sign (both formats share it)
     std::vector<double> mass_moment_flap;  // kg m: mass moment of inertia per length about the chord (optional)
     std::vector<double> mass_moment_edge;  // kg m: the same about the chord's normal (optional)
+    std::vector<double> cg_offset;         // m: the centre of mass off the reference axis along the chord, towards
+                                           // the trailing edge (optional)
     std::string source;                    // the format read: bmodes_source or elastodyn_source
 };
 

@@ -229,7 +229,8 @@ ProfileTable scene_io::read_profile(const std::string& scene_path, const std::st
         {"GJ", "torsional stiffness, N m^2", true},
         {"twist", "the chord's angle added to beam.pitch, rad", true},
         {"j_c", "mass moment of inertia per length about the chord, kg m", true},
-        {"j_n", "mass moment of inertia per length about the chord's normal, kg m", true}};
+        {"j_n", "mass moment of inertia per length about the chord's normal, kg m", true},
+        {"cg_offset", "the centre of mass's offset along the chord, towards the trailing edge, m", true}};
     const NumericTable table =
         read_numeric_table(scene_path, "beam.profile", file, max_profile_bytes, "a profile table", want);
     ProfileTable read{"beam.profile", file, {}};
@@ -239,9 +240,9 @@ ProfileTable scene_io::read_profile(const std::string& scene_path, const std::st
     if (table.header_columns != 4 + read.blade_columns.size())
         bad(table.header_line,
             "expected the columns x/L, m, EI, ES and, for a blade, any of EI_flap, GJ, twist, j_c, "
-            "j_n in its header, got " +
+            "j_n, cg_offset in its header, got " +
                 std::to_string(table.header_columns - 4 - read.blade_columns.size()) + " other columns");
-    std::vector<double> x, values;
+    std::vector<double> x, values, offsets;
     for (std::size_t r = 0; r < table.rows.size(); ++r) {
         const std::vector<double>& v = table.rows[r];
         const long line = table.lines[r];
@@ -249,7 +250,7 @@ ProfileTable scene_io::read_profile(const std::string& scene_path, const std::st
             bad(line, "more than " + std::to_string(max_profile_stations) + " stations");
         for (std::size_t c = 1; c < want.size(); ++c) {
             const std::string& col = want[c].name;
-            if (std::isnan(v[c])) continue;
+            if (std::isnan(v[c]) || col == "cg_offset") continue;  // an offset may take any finite value
             if (col == "twist") {
                 if (!(std::abs(v[c]) <= max_section_angle))
                     bad(line, "expected twist from -2 pi to 2 pi (rad: one turn either way)");
@@ -270,9 +271,13 @@ ProfileTable scene_io::read_profile(const std::string& scene_path, const std::st
         const auto given = [&](std::size_t c, double otherwise) { return std::isnan(v[c]) ? otherwise : v[c]; };
         values.insert(values.end(),
                       {v[1], v[2], v[3], given(4, v[2]), given(5, 0.0), given(6, 0.0), given(7, 0.0), given(8, 0.0)});
+        offsets.push_back(given(9, 0.0));
     }
     if (x.size() < 2) bad(0, "expected at least 2 stations, got " + std::to_string(x.size()));
     if (x.back() != 1.0) bad(0, "the last station must be x/L = 1, got " + shortest(x.back()));
+    // Offsets all 0 run the variant without them (docs/model.md section 12.5).
+    if (std::any_of(offsets.begin(), offsets.end(), [](double d) { return d != 0.0; })) p.offsets = std::move(offsets);
+    extras.offsets = !p.offsets.empty();
     extras.tabulated = true;
     p.stations = std::move(x);
     set_profile(std::move(values), p);
@@ -317,18 +322,35 @@ std::vector<double> blade_values(const BladeTable& b, double L)
     return values;
 }
 
+/// count equally spaced stations from 0 to 1.
+std::vector<double> equally_spaced(int count)
+{
+    std::vector<double> x;
+    for (int k = 0; k < count; ++k) x.push_back(k + 1 == count ? 1.0 : static_cast<double>(k) / (count - 1));
+    return x;
+}
+
 /// The table (stations x, values as blade_values) linear between its stations, taken at count equally spaced ones,
 /// which replace x and values.
 void resample_table(std::vector<double>& x, std::vector<double>& values, int count)
 {
     const std::vector<double> from = x;
-    x.clear();
-    for (int k = 0; k < count; ++k) x.push_back(k + 1 == count ? 1.0 : static_cast<double>(k) / (count - 1));
+    x = equally_spaced(count);
     std::vector<double> resampled;
     for (double xk : x)
         for (std::size_t j = 0; j < max_profile_value_count; ++j)
             resampled.push_back(linear_between(from, values, j, xk));
     values = std::move(resampled);
+}
+
+/// Blade file b's section offsets at its stations (section_offset_count each), empty where the file has none or all
+/// are 0 (the variant without offsets then runs, as before them); taken at the stations `to` where they differ.
+std::vector<double> blade_offsets(const BladeTable& b, const std::vector<double>& to)
+{
+    if (std::all_of(b.cg_offset.begin(), b.cg_offset.end(), [](double v) { return v == 0.0; })) return {};
+    std::vector<double> offsets;
+    for (double xk : to) offsets.push_back(linear_between(b.x_over_L, b.cg_offset, 0, xk));
+    return offsets;
 }
 
 }  // namespace
@@ -355,6 +377,8 @@ ProfileTable scene_io::read_blade(const std::string& scene_path, const std::stri
     ProfileTable read{"beam.blade_file", file, {"EI_flap", "twist"}, !b.EA.empty(), resample};
     if (!b.GJ.empty()) read.blade_columns.push_back("GJ");
     if (!b.mass_moment_flap.empty()) read.blade_columns.insert(read.blade_columns.end(), {"j_c", "j_n"});
+    const std::vector<double> offsets = blade_offsets(b, resample > 0 ? equally_spaced(resample) : b.x_over_L);
+    if (!offsets.empty()) read.blade_columns.push_back("cg_offset");
     const std::size_t n = b.x_over_L.size();
     if (n < 2 || b.x_over_L.front() != 0.0 || b.x_over_L.back() != 1.0)
         bad("expected stations from x/L = 0 at the root to 1 at the tip, got " + std::to_string(n) + " from " +
@@ -369,7 +393,9 @@ ProfileTable scene_io::read_blade(const std::string& scene_path, const std::stri
         if (!(x[k] > x[k - 1]))
             bad("the stations must increase strictly, got x/L = " + shortest(x[k]) + " after " + shortest(x[k - 1]));
     extras.tabulated = true;
+    extras.offsets = !offsets.empty();
     p.stations = std::move(x);
+    p.offsets = offsets;
     set_profile(std::move(values), p);
     return read;
 }

@@ -22,7 +22,12 @@ std::unique_ptr<Model> make_model(const VariantKey& key, const Parameters& p, Mo
             throw std::invalid_argument("the parameters hold " + std::to_string(p.profile.size()) +
                                         " profile values at " + std::to_string(p.stations.size()) +
                                         " stations, the variant " + key.name() + " needs " + std::to_string(values));
-    } else if (!p.stations.empty() || !p.profile.empty()) {
+        const std::size_t offsets = key.extras.offsets ? section_offset_count * p.stations.size() : 0;
+        if (p.offsets.size() != offsets)
+            throw std::invalid_argument("the parameters hold " + std::to_string(p.offsets.size()) +
+                                        " section offsets at " + std::to_string(p.stations.size()) +
+                                        " stations, the variant " + key.name() + " needs " + std::to_string(offsets));
+    } else if (!p.stations.empty() || !p.profile.empty() || !p.offsets.empty()) {
         throw std::invalid_argument("the parameters hold a profile, the variant " + key.name() + " has none");
     }
     if (source == ModelSource::assembled) return make_assembled_model(key, p);

@@ -1,0 +1,66 @@
+// A blade's section offsets (docs/model.md section 12.5): the centre of mass off the reference axis along the chord.
+// A rigid section's kinetic energy about the reference point is m |v|^2 + 2 m d v . c_dot + (its rotation): the beam's
+// T holds the first and section_rotation the last (mass moments about the reference axis); this term adds the middle,
+// the reference point's velocity against the chord's, to second order in the deformation.
+#include <array>
+
+#include "generator_terms.hpp"
+
+namespace hubbeam::gen {
+
+using namespace GiNaC;
+
+namespace {
+
+/// The chord's unit vector towards the leading edge, in the hub frame (i, j, k) and in field symbols, times the mass's
+/// first moment m d: the section turned by beta + phi about e1, then carried by the smallest rotation that takes e1
+/// to the bent axis (1, u_y', u_z'), to second order in phi and the slopes. m d cos beta and m d sin beta are the
+/// section distributions C and S, in which the vector is linear.
+std::array<ex, 3> chord(const FieldSymbols& f, const Cone& cone)
+{
+    const ex C = f.offsets->mass_offset_cos_x, S = f.offsets->mass_offset_sin_x;
+    const ex cos_psi = C * (1 - pow(f.phi, 2) / 2) - S * f.phi, sin_psi = S * (1 - pow(f.phi, 2) / 2) + C * f.phi;
+    const ex sigma = f.uy_x * cos_psi + f.uz_x * sin_psi;
+    const ex c1 = -sigma, c2 = cos_psi - f.uy_x * sigma / 2, c3 = sin_psi - f.uz_x * sigma / 2;
+    // e1 = cos i + sin k, e2 = j, e3 = -sin i + cos k.
+    return {c1 * cone.cos - c3 * cone.sin, c2, c1 * cone.sin + c3 * cone.cos};
+}
+
+/// The terms of e of degree at most 2 in the deformation: u_x1, u_y, u_z, phi, the slopes and their rates first
+/// order, u_x2 and its rate second (docs/model.md section 3).
+ex second_order(const ex& e, const FieldSymbols& f)
+{
+    const symbol eps("eps");
+    lst first = {f.ux1,     f.uy,     f.uz,     f.phi,     f.uy_x,     f.uz_x,
+                 f.ux1_dot, f.uy_dot, f.uz_dot, f.phi_dot, f.uy_x_dot, f.offsets->uz_x_dot};
+    exmap scaled;
+    for (const ex& x : first) scaled[x] = eps * x;
+    scaled[f.ux2] = pow(eps, 2) * f.ux2;
+    scaled[f.ux2_dot] = pow(eps, 2) * f.ux2_dot;
+    const ex expanded = e.subs(scaled).expand();
+    ex kept = 0;
+    for (int k = 0; k <= 2; ++k) kept += expanded.coeff(eps, k);
+    return kept;
+}
+
+}  // namespace
+
+void offsets_energies(const TermContext& c, Energies& e)
+{
+    const FieldSymbols& f = c.f;
+    const ex w = c.s.theta_dot;
+    const Cone cone = cone_of(c.key, c.s);
+    const Position p = position(c.key.order, f, cone);
+    const std::array<ex, 3> d = chord(f, cone);
+    // The chord's rate in the hub frame: it turns with phi and the slopes.
+    std::array<ex, 3> d_dot;
+    for (std::size_t n = 0; n < 3; ++n)
+        d_dot[n] =
+            d[n].diff(f.phi) * f.phi_dot + d[n].diff(f.uy_x) * f.uy_x_dot + d[n].diff(f.uz_x) * f.offsets->uz_x_dot;
+    // Inertial velocities in hub components: the frame turns with w about k.
+    const ex v_i = p.i_dot - w * p.j, v_j = p.j_dot + w * p.i, v_k = p.k_dot;
+    const ex d_i = d_dot[0] - w * d[1], d_j = d_dot[1] + w * d[0], d_k = d_dot[2];
+    e.T += c.integrate(second_order(v_i * d_i + v_j * d_j + v_k * d_k, f));
+}
+
+}  // namespace hubbeam::gen
