@@ -310,11 +310,13 @@ TEST_CASE("a rotor's root forces balance its hub on a moving support: sum of the
         force.push_back(scale);
     }
     INFO("residual " << residual[0] << " then " << residual[1] << ", forces " << force[0]);
-    CHECK(residual[0] < 1e-2 * force[0]);
-    CHECK(residual[1] < 0.3 * residual[0]);  // second order: a quarter per halving
+    CHECK(residual[0] < 1e-3 * force[0]);
+    // Second order and nothing of the first: a quarter per halving (a first-order error, such as a Coriolis term's
+    // 1 N against the 3.7 N of the second order's here, moves the ratio towards 2).
+    CHECK(residual[0] / residual[1] == Approx(4.0).epsilon(0.05));
 }
 
-TEST_CASE("a rotor's fields CSV has every blade's lines, each with its blade's number; one blade's has no blade column",
+TEST_CASE("a rotor's fields CSV has every blade's lines, each with its blade's number, and one blade's no blade column",
           "[root_loads]")
 {
     // Three blades whose in-plane coordinates differ (blade b's scaled by b): each blade's u_y along the span is its
@@ -355,4 +357,32 @@ TEST_CASE("a rotor's fields CSV has every blade's lines, each with its blade's n
     alone.state(0.0, q1.data());
     REQUIRE(alone.finish());
     CHECK(test::read_csv(single).names[1] == "x");
+}
+
+TEST_CASE("root loads of a flexible blade spun up balance the rate of the run's angular momentum", "[root_loads]")
+{
+    // The hub turns the blade by the opposite of the blade's moment about the axis, root_edge_moment + a
+    // root_shear_edge, so d(momentum)/dt = J_oh theta_ddot - (root_edge_moment + a root_shear_edge): the momentum
+    // column is the model's dT/dtheta_dot, differenced here over the rows (central, dt_out 1 ms), and the blade rings
+    // at its first frequency (63 rad/s), whose elastic accelerations are in the loads. To the order first keeps
+    // and the differences' h^2: 1e-4 of the largest moment (2.7e-5 measured).
+    Scene s = blade({{"discretization.nx", "0"}}, "[motion]\nkind = \"spin-up\"\nomega0 = 3.0\nduration = 0.5\n");
+    s.output.t_end = 1.0;
+    s.output.dt_out = 1e-3;
+    const auto c = run_columns(s);
+    const Parameters& p = s.parameters;
+    const std::vector<double>&t = c.at("t"), &H = c.at("momentum"), &w = c.at("theta_dot");
+    const std::vector<double>&M = c.at("root_edge_moment"), &F = c.at("root_shear_edge");
+    double worst = 0.0, largest = 0.0, ringing = 0.0;
+    for (std::size_t i = 1; i + 1 < t.size(); ++i) {
+        const double dH = (H[i + 1] - H[i - 1]) / (t[i + 1] - t[i - 1]);
+        const double dw = (w[i + 1] - w[i - 1]) / (t[i + 1] - t[i - 1]);
+        const double blade = M[i] + p.a * F[i];
+        worst = std::max(worst, std::abs(dH - (p.J_oh * dw - blade)));
+        largest = std::max(largest, std::abs(blade));
+        if (t[i] > 0.5) ringing = std::max(ringing, std::abs(blade));  // the drive is steady: what is left rings
+    }
+    INFO("worst " << worst << " of " << largest << ", ringing " << ringing);
+    CHECK(ringing > 1e-2 * largest);
+    CHECK(worst < 1e-4 * largest);
 }
