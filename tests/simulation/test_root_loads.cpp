@@ -1,4 +1,4 @@
-// A blade's root loads by force summation (docs/model.md section 13.6) against closed forms of a rigid or stiff blade
+// A blade's root loads by force summation (docs/model.md section 13.2) against closed forms of a rigid or stiff blade
 // (steady spin, the weight held horizontal or along the spin axis, a spin-up), against the curvature's moment as the
 // mesh refines, blade by blade against single blades at their azimuths, and against the hub's momentum balance on a
 // moving support (the model's own equation for x_h, y_h: no code of the force summation in it).

@@ -1,4 +1,4 @@
-// Root loads by force summation (docs/model.md section 13.6): d'Alembert's inertial forces and the weight on the
+// Root loads by force summation (docs/model.md section 13.2): d'Alembert's inertial forces and the weight on the
 // blade, summed with their moments about the root, the blade's accelerations from the model's own qdd.
 #include "models/root_loads.hpp"
 

@@ -1,4 +1,4 @@
-// A blade's root loads by force summation (docs/model.md section 13.6): the resultant and moment about the root of
+// A blade's root loads by force summation (docs/model.md section 13.2): the resultant and moment about the root of
 // the inertial and gravity forces on the blade, from q, qd, qdd, the drive and the blade's parameters.
 #pragma once
 
@@ -8,7 +8,6 @@
 
 #include <hubbeam/fields.hpp>
 #include <hubbeam/model.hpp>
-#include <hubbeam/simulate.hpp>
 
 namespace hubbeam {
 
@@ -20,8 +19,8 @@ struct RootLoads {
     double edge_moment = 0.0, flap_moment = 0.0, shear_edge = 0.0, shear_flap = 0.0, axial_force = 0.0;
 };
 
-/// RootLoads' members in the order of root_load_columns (simulate.hpp), which names them.
-inline constexpr std::array<double RootLoads::*, root_load_width> root_load_members = {
+/// RootLoads' members in the order of root_load_columns (simulate.hpp, which names them; run_rows.cpp checks the count).
+inline constexpr std::array<double RootLoads::*, 5> root_load_members = {
     &RootLoads::edge_moment, &RootLoads::flap_moment, &RootLoads::shear_edge, &RootLoads::shear_flap,
     &RootLoads::axial_force};
 

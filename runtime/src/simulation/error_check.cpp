@@ -59,7 +59,6 @@ std::vector<double> rerun(const Scene& scene, const Model& model, double t0, std
                           const std::vector<double>& times, CheckTolerance tol, const std::string& stepper_name,
                           const ColumnSet& set)
 {
-    const Control* control = scene.controller();
     const std::unique_ptr<FirstOrderSystem> system = system_of(model, scene);
     const std::unique_ptr<Stepper> stepper =
         make_stepper(*system, stepper_name, t0, y.data(), scene.solver.h0, tol.atol, tol.rtol);

@@ -17,6 +17,8 @@
 
 namespace hubbeam {
 
+static_assert(root_load_members.size() == root_load_width, "a root load's member for each of its columns");
+
 /// The drive's breakpoints inside (0, t_last), in order.
 std::vector<double> breaks_before(const Motion& motion, double t_last)
 {
