@@ -84,7 +84,7 @@ inline constexpr long max_output_rows = 100'000'000;
 inline constexpr std::array<const char*, 4> gain_names = {"kp", "kd", "ki", "k_tip"};
 
 /// Which loads a run's rows carry beside the tip's (scene key output.loads): none, or each blade's root loads by force
-/// summation (docs/model.md section 13.6: root_edge_moment, ...).
+/// summation (docs/model.md section 13.2: root_edge_moment, ...).
 enum class OutputLoads { none, root };
 std::string to_string(OutputLoads);
 bool parse(std::string_view, OutputLoads&);

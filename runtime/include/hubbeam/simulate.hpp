@@ -88,7 +88,7 @@ inline constexpr std::size_t optional_width = std::size(optional_columns);
 static_assert(sizeof(Row) == (row_width + optional_width) * sizeof(double) + 3 * sizeof(const double*));
 static_assert(sizeof(RowExtras) == optional_width * sizeof(double));
 
-/// A blade's root loads (scene key output.loads = "root"; docs/model.md section 13.6): the load the blade exerts on
+/// A blade's root loads (scene key output.loads = "root"; docs/model.md section 13.2): the load the blade exerts on
 /// the hub at x = 0 by force summation, in the blade's root frame; a rotor's carry the blade's number ("_2").
 struct LoadColumn {
     const char* name;
