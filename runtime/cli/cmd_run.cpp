@@ -233,7 +233,7 @@ std::unique_ptr<Simulation> prepare(const RunPlan& plan, bool durable, std::uniq
     if (plan.fields_file.empty()) return simulation;
     try {
         recorder = std::make_unique<FieldRecorder>(scene.key(), scene.parameters, plan.fields.first, plan.fields.second,
-                                                   plan.fields_file);
+                                                   plan.fields_file, scene.rotor);
     } catch (const std::exception& e) {
         csv->discard();  // refused before any row: the old output stays as it was
         std::cerr << e.what() << "\n";

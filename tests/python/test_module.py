@@ -89,6 +89,24 @@ class RunTest(unittest.TestCase):
         uy = {b: r.data[:, list(r.columns).index(f"tip_uy_{b}")] for b in (1, 2)}
         self.assertGreater(abs(uy[1] - uy[2]).max(), 1e-4)
 
+    def test_root_loads_equal_the_command_lines_bit_for_bit(self):
+        # cases/three_blade_rotor.toml with each blade's root loads asked for (--loads root, loads="root"): the same
+        # columns and values, bit for bit; not asked for, none of them.
+        rotor = os.path.join(SOURCE, "cases", "three_blade_rotor.toml")
+        with tempfile.TemporaryDirectory() as d:
+            out = os.path.join(d, "rotor.csv")
+            p = cli("run", rotor, "--t-end", "1", "--loads", "root", "-o", out)
+            self.assertEqual(p.returncode, 0, p.stderr)
+            header, rows = read_csv(out)
+        r = hubbeam.run(rotor, t_end=1, loads="root")
+        self.assertEqual(list(r.columns), header)
+        self.assertTrue(np.array_equal(r.data, rows))
+        for b in (1, 2, 3):
+            for name in ("root_edge_moment", "root_flap_moment", "root_shear_edge", "root_shear_flap",
+                         "root_axial_force"):
+                self.assertIn(f"{name}_{b}", r.columns)
+        self.assertFalse(any(c.startswith("root_") for c in hubbeam.run(rotor, t_end=0.1).columns))
+
     def test_a_dict_scene_is_the_file_scene(self):
         scene = {
             "beam": {"length": 8.0, "density": 2.7667e3, "area": 7.2968e-5, "second_moment": 8.2189e-9,

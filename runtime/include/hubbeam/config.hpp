@@ -83,6 +83,14 @@ inline constexpr long max_output_rows = 100'000'000;
 /// The control gains a sensitivity can be taken by (beside the physical parameters, Param): [control]'s keys.
 inline constexpr std::array<const char*, 4> gain_names = {"kp", "kd", "ki", "k_tip"};
 
+/// Which loads a run's rows carry beside the tip's (scene key output.loads): none, or each blade's root loads by force
+/// summation (docs/model.md section 13.3: root_edge_moment, ...).
+enum class OutputLoads { none, root };
+std::string to_string(OutputLoads);
+bool parse(std::string_view, OutputLoads&);
+template <>
+std::vector<std::string> words<OutputLoads>();
+
 struct OutputOptions {
     double t_end = 30.0;   // s
     double dt_out = 0.01;  // s; rows fall on exact multiples of dt_out
@@ -91,6 +99,7 @@ struct OutputOptions {
     /// Parameters whose derivatives the run integrates and writes (docs/sensitivities.md): symbols of Param
     /// (interface.hpp) and the control gains kp, kd, ki, k_tip; empty: none.
     std::vector<std::string> sensitivities;
+    OutputLoads loads = OutputLoads::none;
 };
 
 /// The most blades a rotor may have ([rotor] blades): rotors in the field have 1 to 8; the bound keeps a mistyped

@@ -29,6 +29,9 @@ struct Row {
     /// A rotor's blades 2 .. N: each blade's tip columns (ColumnSet::blade_columns), valid while the sink runs; else
     /// null.
     const double* blades = nullptr;
+    /// Each blade's root loads (ColumnSet::loads: root_load_columns, blade by blade), valid while the sink runs; else
+    /// null.
+    const double* loads = nullptr;
 };
 
 /// One column of the output: its name in the CSV header and the Python module, its unit, what it holds.
@@ -82,8 +85,24 @@ inline constexpr OptionalColumn optional_columns[] = {
 };
 inline constexpr std::size_t optional_width = std::size(optional_columns);
 // Every member of Row has its column (a member added to Row and not here fails to compile).
-static_assert(sizeof(Row) == (row_width + optional_width) * sizeof(double) + 2 * sizeof(const double*));
+static_assert(sizeof(Row) == (row_width + optional_width) * sizeof(double) + 3 * sizeof(const double*));
 static_assert(sizeof(RowExtras) == optional_width * sizeof(double));
+
+/// A blade's root loads (scene key output.loads = "root"; docs/model.md section 13.2): the load the blade exerts on
+/// the hub at x = 0 by force summation, in the blade's root frame; a rotor's carry the blade's number ("_2").
+struct LoadColumn {
+    const char* name;
+    const char* unit;
+    const char* meaning;
+};
+inline constexpr LoadColumn root_load_columns[] = {
+    {"root_edge_moment", "N m", "edgewise bending moment, about the flap axis e3 (EI u_y''(0) at rest)"},
+    {"root_flap_moment", "N m", "flapwise bending moment, about -e2 (EI_flap u_z''(0) at rest)"},
+    {"root_shear_edge", "N", "shear force along e2, in the plane of rotation towards the direction of travel"},
+    {"root_shear_flap", "N", "shear force along e3, the spin axis turned by the precone"},
+    {"root_axial_force", "N", "axial force along e1, positive in tension"},
+};
+inline constexpr std::size_t root_load_width = std::size(root_load_columns);
 
 /// Which optional columns a run's rows carry: bit i for optional_columns[i].
 struct ColumnSet {
@@ -93,14 +112,18 @@ struct ColumnSet {
     /// A rotor's blades (docs/model.md section 13): with more than one, the tip columns carry the blade's number
     /// ("tip_uy_1"), and blades 2 .. N's follow the optional ones, read from Row::blades.
     int blades = 1;
+    /// Each blade's root loads (root_load_columns, blade by blade) after the blades' tip columns, read from Row::loads.
+    bool loads = false;
     bool has(std::size_t i) const { return (bits >> i & 1u) != 0; }
     /// The tip columns of one blade: tip_uy, tip_ux1, tip_ux and the optional tip_uz, tip_phi the run has.
     std::size_t blade_columns() const { return 3 + (has(0) ? 1 : 0) + (has(1) ? 1 : 0); }
+    /// The root loads' columns: root_load_width for each blade, or none.
+    std::size_t load_columns() const { return loads ? root_load_width * static_cast<std::size_t>(blades) : 0; }
     std::size_t count() const
     {
         std::size_t n = 0;
         for (std::size_t i = 0; i < optional_width; ++i) n += has(i) ? 1 : 0;
-        return n + static_cast<std::size_t>(blades - 1) * blade_columns() + derived.size();
+        return n + static_cast<std::size_t>(blades - 1) * blade_columns() + load_columns() + derived.size();
     }
 };
 /// Calls value(x) for each value of row a CSV line or the Python module's array holds, in column order: row_columns',
@@ -113,6 +136,7 @@ void for_each_value(const Row& row, const ColumnSet& set, Value value)
         if (set.has(i)) value(row.extras.*optional_columns[i].member);
     const std::size_t blade_values = static_cast<std::size_t>(set.blades - 1) * set.blade_columns();
     for (std::size_t i = 0; i < blade_values; ++i) value(row.blades[i]);
+    for (std::size_t i = 0; i < set.load_columns(); ++i) value(row.loads[i]);
     for (std::size_t i = 0; i < set.derived.size(); ++i) value(row.derived[i]);
 }
 /// The outputs a sensitivity run differentiates, in column order: what a reader of the rows plots (the energies

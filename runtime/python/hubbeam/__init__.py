@@ -14,6 +14,7 @@ import json
 import math
 import stat
 import os
+import re
 import sys
 import threading
 import unicodedata
@@ -104,7 +105,14 @@ class RunStopped(RuntimeError):
 UNITS = {"t": "s", "theta": "rad", "theta_dot": "rad/s", "tip_uy": "m", "tip_ux1": "m", "tip_ux": "m",
          "tip_uz": "m", "tip_phi": "rad",
          "kinetic": "J", "potential": "J", "momentum": "kg m^2/s", "jacobi": "J",
-         "tau": "N m", "theta_ref": "rad", "controller_integral": "rad s", "dissipated": "J", "work": "J"}
+         "tau": "N m", "theta_ref": "rad", "controller_integral": "rad s", "dissipated": "J", "work": "J",
+         "root_edge_moment": "N m", "root_flap_moment": "N m", "root_shear_edge": "N", "root_shear_flap": "N",
+         "root_axial_force": "N"}
+
+
+def unit_of(column: str) -> str:
+    """A column's unit: UNITS', a rotor's blade column (tip_uy_2, root_edge_moment_3) its blade's quantity's."""
+    return UNITS.get(column, UNITS.get(re.sub(r"_[0-9]+$", "", column), ""))
 
 
 class Result:
@@ -148,7 +156,7 @@ class Result:
                               "this environment; the rows are in .data and the columns as attributes without it") \
                 from None
         df = pd.DataFrame(self.data, columns=list(self.columns))
-        df.attrs["units"] = {c: UNITS.get(c, "") for c in self.columns}
+        df.attrs["units"] = {c: unit_of(c) for c in self.columns}
         df.attrs["summary"] = dict(self.summary)
         return df
 

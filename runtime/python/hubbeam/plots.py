@@ -124,13 +124,13 @@ def plot_result(result, what: Any = "tip", *, ax: Any = None, label: str | None 
     tip_uz and tip_phi for a blade), "axial", "hub" (theta, theta_dot, tau), "energies", a column's name or a list
     of them. ax: an Axes (or one per panel) to draw into, to compare runs in one figure; label: the legend's name
     of this run (default: the scene's name and the variant)."""
-    from . import UNITS
+    from . import unit_of
 
     plt = pyplot()
     names = _columns(result, what)
     groups: dict[str, list[str]] = {}
     for c in names:
-        groups.setdefault(UNITS.get(c, ""), []).append(c)
+        groups.setdefault(unit_of(c), []).append(c)
     if ax is None:
         fig, axes = _subplots(plt, len(groups), 1, sharex=True, squeeze=False,
                               figsize=(7.5, 2.2 + 2.0 * len(groups)), layout="constrained")

@@ -13,6 +13,7 @@ const WordTable<ErrorCheck, 3> error_check_words = {
     {ErrorCheck::on, "on"}, {ErrorCheck::off, "off"}, {ErrorCheck::full, "full"}};
 const WordTable<SensitivityErrorControl, 2> sensitivity_control_words = {
     {SensitivityErrorControl::on, "on"}, {SensitivityErrorControl::off, "off"}};
+const WordTable<OutputLoads, 2> loads_words = {{OutputLoads::none, "none"}, {OutputLoads::root, "root"}};
 const WordTable<InitialState, 3> initial_words = {
     {InitialState::rest, "rest"}, {InitialState::static_equilibrium, "static"}, {InitialState::steady, "steady"}};
 
@@ -33,6 +34,9 @@ template <> std::vector<std::string> words<ErrorCheck>() { return all_words(erro
 std::string to_string(SensitivityErrorControl v) { return word_of(v, sensitivity_control_words); }
 bool parse(std::string_view w, SensitivityErrorControl& v) { return parse_word(w, sensitivity_control_words, v); }
 template <> std::vector<std::string> words<SensitivityErrorControl>() { return all_words(sensitivity_control_words); }
+std::string to_string(OutputLoads v) { return word_of(v, loads_words); }
+bool parse(std::string_view w, OutputLoads& v) { return parse_word(w, loads_words, v); }
+template <> std::vector<std::string> words<OutputLoads>() { return all_words(loads_words); }
 std::string to_string(InitialState v) { return word_of(v, initial_words); }
 bool parse(std::string_view w, InitialState& v) { return parse_word(w, initial_words, v); }
 template <> std::vector<std::string> words<InitialState>() { return all_words(initial_words); }

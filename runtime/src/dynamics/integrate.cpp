@@ -233,6 +233,15 @@ int FirstOrderSystem::rhs(double t, const double* y, double* dydt)
     return extended_rhs(t, y, dydt);
 }
 
+void FirstOrderSystem::full_acceleration(double t, const double* y, double* qdd)
+{
+    const std::size_t k = kept_.size();
+    std::vector<double> dydt(static_cast<std::size_t>(state_size()));
+    const bool ok = FirstOrderSystem::rhs(t, y, dydt.data()) == GSL_SUCCESS;
+    std::fill_n(qdd, model_.nq(), ok ? 0.0 : std::numeric_limits<double>::quiet_NaN());
+    for (std::size_t j = 0; ok && j < k; ++j) qdd[kept_[j]] = dydt[k + j];
+}
+
 HubState FirstOrderSystem::hub_state(const double* y) const
 {
     const auto k = static_cast<Eigen::Index>(kept_.size());

@@ -109,6 +109,9 @@ public:
     void full_state(double t, const double* y, double* q, double* qd);
     /// GSL status: GSL_SUCCESS, or GSL_EBADFUNC when M is not positive definite or the result is not finite.
     virtual int rhs(double t, const double* y, double* dydt);
+    /// The model's full qdd (nq) at the state y at time t, from this class's rhs: quasi-static axial coordinates'
+    /// are 0, as full_state's rates; NaN everywhere when the rhs fails.
+    void full_acceleration(double t, const double* y, double* qdd);
     /// Jacobian for the implicit steppers (row-major, as GSL wants): dfdy (size x size) and dfdt (size) from the
     /// model's exact derivatives when it has them (with the control's dtau/dy through dQ/dtau), else
     /// finite_difference_jacobian.

@@ -25,7 +25,8 @@ constexpr std::size_t buffer_size = std::size_t{1} << 16;
 // The longest number is max_shortest_chars (-1.7976931348623157e+308): one per column, the commas between them
 // and the newline, and the scratch write_shortest may leave past the last number.
 constexpr std::size_t max_line =
-    (row_width + optional_width + max_derived_columns) * (max_shortest_chars + 1) + shortest_room;
+    (row_width + optional_width + max_derived_columns + max_blades * (5 + root_load_width)) * (max_shortest_chars + 1) +
+    shortest_room;
 // Buffered rows reach the file at the latest this long after the previous chunk: a long run's progress is
 // visible, and at most this much wall time of rows is lost if the process is killed outright.
 constexpr auto flush_interval = std::chrono::milliseconds(100);

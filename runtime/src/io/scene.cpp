@@ -504,6 +504,7 @@ void read_output(const Section& output, OutputOptions& out)
         if (!trimmed(*names).empty())  // "" asks for none
             for (const std::string& item : split_list(*names)) out.sensitivities.emplace_back(trimmed(item));
     }
+    out.loads = output.word<OutputLoads>("loads", parse_enum<OutputLoads>).value_or(out.loads);
 }
 
 /// [initial]: where the run starts; whether the scene has that state is validate()'s.

@@ -153,6 +153,7 @@ std::vector<SceneKey> make_scene_keys()
         {"output.sensitivities", "--sensitivities", K::text,
          "parameter symbols separated by commas, each once: L, rho, S, I, E, a, J_oh, m_tip, J_tip, g, alpha, beta, "
          "tip_ratio, I_flap, G, J_t, pitch, twist, precone, g_axis, kp, kd, ki, k_tip"},
+        {"output.loads", "--loads", K::word, one_of(words<OutputLoads>())},
         {"initial.state", "--initial", K::word, one_of(words<InitialState>())},
     };
 }

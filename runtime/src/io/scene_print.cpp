@@ -181,6 +181,7 @@ std::optional<SceneValue> run_value(const Scene& s, const SceneKey& k)
     if (name == "output.dt_out") return number(k, o.dt_out);
     if (name == "output.file") return o.file.empty() ? std::nullopt : std::optional(text(k, o.file));
     if (name == "output.sensitivities") return text(k, joined_names(o.sensitivities));
+    if (name == "output.loads") return text(k, to_string(o.loads));
     if (name == "initial.state") return text(k, to_string(s.initial));
     throw std::logic_error("effective_scene: no value for " + name);
 }

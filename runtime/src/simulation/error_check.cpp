@@ -59,11 +59,10 @@ std::vector<double> rerun(const Scene& scene, const Model& model, double t0, std
                           const std::vector<double>& times, CheckTolerance tol, const std::string& stepper_name,
                           const ColumnSet& set)
 {
-    const Control* control = scene.controller();
     const std::unique_ptr<FirstOrderSystem> system = system_of(model, scene);
     const std::unique_ptr<Stepper> stepper =
         make_stepper(*system, stepper_name, t0, y.data(), scene.solver.h0, tol.atol, tol.rtol);
-    RowMaker make_row(model, scene.motion, *system, control);
+    RowMaker make_row(model, scene, *system);
     const std::vector<double> breaks = times.empty() ? std::vector<double>{} : breaks_before(scene.motion, times.back());
     auto next = std::upper_bound(breaks.begin(), breaks.end(), t0 * (1.0 + same_instant));
     const double critical = critical_spin(model);
@@ -122,7 +121,7 @@ public:
                   const std::string& stepper, const CheckedColumns& columns)
         : scene_(scene), system_(system_of(model, scene)), y_(std::move(y0)),
           stepper_(make_stepper(*system_, stepper, 0.0, y_.data(), scene.solver.h0, tol.atol, tol.rtol)),
-          make_row_(model, scene.motion, *system_, scene.controller()),
+          make_row_(model, scene, *system_),
           breaks_(breaks_before(scene.motion, INFINITY)), critical_(critical_spin(model)), columns_(columns),
           worst_(columns.names.size(), 0.0), when_(worst_.size(), 0.0)
     {

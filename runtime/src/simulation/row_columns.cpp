@@ -28,6 +28,7 @@ ColumnSet optional_columns_of(const Scene& scene)
         if (has[i]) set.bits |= 1u << i;
     set.derived = sensitivity_columns(scene.output.sensitivities, key);
     set.blades = scene.rotor.blades;
+    set.loads = scene.output.loads == OutputLoads::root;
     return set;
 }
 
@@ -63,6 +64,9 @@ std::vector<std::string> row_column_names(const ColumnSet& set)
         for (const char* tip : {"tip_uy", "tip_ux1", "tip_ux", "tip_uz", "tip_phi"})
             if ((std::string(tip) != "tip_uz" || set.has(0)) && (std::string(tip) != "tip_phi" || set.has(1)))
                 names.push_back(blade(tip, b));
+    for (int b = 1; set.loads && b <= set.blades; ++b)
+        for (const LoadColumn& c : root_load_columns)
+            names.push_back(set.blades > 1 ? std::string(c.name) + "_" + std::to_string(b) : std::string(c.name));
     names.insert(names.end(), set.derived.begin(), set.derived.end());
     return names;
 }

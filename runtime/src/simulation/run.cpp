@@ -30,7 +30,7 @@ Simulation::Run::Run(const Simulation& simulation)
       y_(initial_state(system_, model_, scene_.axial, simulation.initial_q_)),
       stepper_(make_stepper(system_, sim_.stepper_, 0.0, y_.data(), scene_.solver.h0, scene_.solver.atol,
                             scene_.solver.rtol)),
-      make_row_(model_, scene_.motion, system_, scene_.controller()),
+      make_row_(model_, scene_, system_),
       times_(scene_.output),
       breaks_(breaks_before(scene_.motion, times_(times_.last()))),
       critical_(critical_spin(model_)),

@@ -17,6 +17,8 @@
 
 namespace hubbeam {
 
+static_assert(root_load_members.size() == root_load_width, "a root load's member for each of its columns");
+
 /// The drive's breakpoints inside (0, t_last), in order.
 std::vector<double> breaks_before(const Motion& motion, double t_last)
 {
@@ -34,19 +36,25 @@ std::unique_ptr<FirstOrderSystem> system_of(const Model& model, const Scene& sce
     return std::make_unique<FirstOrderSystem>(model, scene.motion, scene.axial, scene.controller(), &scene.parameters);
 }
 
-RowMaker::RowMaker(const Model& model, const Motion& motion, FirstOrderSystem& system, const Control* control)
+RowMaker::RowMaker(const Model& model, const Scene& scene, FirstOrderSystem& system)
     : model_(model),
-      motion_(motion),
+      motion_(scene.motion),
       system_(system),
-      control_(control),
+      control_(scene.controller()),
       sensitivities_(dynamic_cast<SensitivitySystem*>(&system)),
       q_(static_cast<std::size_t>(model.nq())),
       qd_(q_),
       derived_(sensitivities_ != nullptr
                    ? static_cast<std::size_t>(sensitivities_->count()) * sensitivity_outputs_of(model.key()).size()
                    : 0),
-      extended_(control != nullptr || system.auxiliary().count() > 0)
+      extended_(control_ != nullptr || system.auxiliary().count() > 0)
 {
+    if (scene.output.loads == OutputLoads::root) {
+        // One blade's variant serves every blade, each at its own parameters (pitch increment, tip mass).
+        const VariantKey key = scene.key();
+        for (int b = 0; b < scene.rotor.blades; ++b) loads_.emplace_back(key, scene.rotor.blade(scene.parameters, b));
+        qdd_.resize(q_.size());
+    }
 }
 
 Row RowMaker::operator()(double t, const double* y)
@@ -103,6 +111,14 @@ Row RowMaker::operator()(double t, const double* y)
             if (model_.key().nt > 0) blades_.push_back(tb.phi);
         }
         r.blades = blades_.data();
+    }
+    if (!loads_.empty()) {
+        // The accelerations the run's own equations give at this state: what the blade's inertial forces are made of.
+        system_.full_acceleration(t, y, qdd_.data());
+        load_values_.clear();
+        for (const RootLoads& l : blade_root_loads(model_, loads_, u, q, qd, qdd_.data()))
+            for (double RootLoads::*member : root_load_members) load_values_.push_back(l.*member);
+        r.loads = load_values_.data();
     }
     return r;
 }

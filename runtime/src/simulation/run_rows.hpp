@@ -10,6 +10,7 @@
 #include <hubbeam/config.hpp>
 #include <hubbeam/simulate.hpp>
 #include "dynamics/integrate.hpp"
+#include "models/root_loads.hpp"
 
 namespace hubbeam {
 
@@ -30,11 +31,13 @@ std::vector<double> breaks_before(const Motion& motion, double t_last);
 std::string model_limit(const Row& r, double critical, double L);
 
 /// Rows from states: the hub's angle and rate (prescribed, or coordinates under torque), the tip, the energies, the
-/// optional columns of a scene that has them (the torque, the reference, the auxiliary states) and a sensitivity
-/// system's derivative columns. The run's rows and the error indicator's re-runs both come from here.
+/// optional columns of a scene that has them (the torque, the reference, the auxiliary states), each blade's root
+/// loads where the scene asks for them and a sensitivity system's derivative columns. The run's rows and the error
+/// indicator's re-runs both come from here.
 class RowMaker {
 public:
-    RowMaker(const Model& model, const Motion& motion, FirstOrderSystem& system, const Control* control);
+    /// Rows of scene's run of model by system (its motion, controller and output.loads).
+    RowMaker(const Model& model, const Scene& scene, FirstOrderSystem& system);
     /// The row of state y at t (its derivative columns valid until the next call); q() is then its full coordinates.
     Row operator()(double t, const double* y);
     const double* q() const { return q_.data(); }
@@ -47,6 +50,8 @@ private:
     SensitivitySystem* sensitivities_;  // null without sensitivities
     std::vector<double> q_, qd_, derived_, blades_;
     bool extended_;
+    std::vector<BladeLoads> loads_;    // each blade's, where the scene asks for its root loads; else empty
+    std::vector<double> qdd_, load_values_;
 };
 
 }  // namespace hubbeam

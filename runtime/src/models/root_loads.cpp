@@ -1,0 +1,253 @@
+// Root loads by force summation (docs/model.md section 13.3): d'Alembert's inertial forces and the weight on the
+// blade, summed with their moments about the root, the blade's accelerations from the model's own qdd.
+#include "models/root_loads.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <hubbeam/fields.hpp>
+#include "models/rotor_model.hpp"
+#include "profile.hpp"
+
+namespace hubbeam {
+
+namespace {
+
+/// A field's coordinates' first index in q, -1 when the variant has none.
+int first_of(const CoordinateLayout& c, FieldKind kind)
+{
+    const CoordinateField* f = c.find(kind);
+    return f != nullptr && f->count > 0 ? f->first : -1;
+}
+
+/// sum_i row[i] c[i]; 0 without coordinates.
+double dot(const std::vector<double>& row, const double* c)
+{
+    double s = 0.0;
+    if (c != nullptr)
+        for (std::size_t i = 0; i < row.size(); ++i) s += row[i] * c[i];
+    return s;
+}
+
+/// The cuts of [0, 1] on which every integrand is one smooth piece: every basis's intervals (AMM: panels narrow
+/// enough for its highest mode), a profile's stations, and panels on which a pre-twist turns by at most 1 rad.
+std::vector<double> cuts_of(const VariantKey& key, const Parameters& p)
+{
+    std::vector<double> cuts(p.stations.begin(), p.stations.end());
+    cuts.insert(cuts.end(), {0.0, 1.0});
+    const FieldBasis bases[] = {key.axial_basis(), key.transverse_basis(), key.flap_basis(), key.twist_basis()};
+    int sizes = 0;
+    for (const FieldBasis& b : bases) {
+        sizes = std::max(sizes, b.size());
+        for (int k = 1; b.polynomial() && b.size() > 0 && k < b.intervals(); ++k)
+            cuts.push_back(static_cast<double>(k) / b.intervals());
+    }
+    const int panels = std::max(key.method == Method::amm ? transcendental_panels(sizes) : 1,
+                                1 + static_cast<int>(std::ceil(2.0 * std::abs(p.twist))));
+    for (int k = 1; k < panels; ++k) cuts.push_back(static_cast<double>(k) / panels);
+    std::sort(cuts.begin(), cuts.end());
+    cuts.erase(std::unique(cuts.begin(), cuts.end(), [](double u, double v) { return v - u < 1e-14; }), cuts.end());
+    cuts.back() = 1.0;
+    return cuts;
+}
+
+/// Gauss points per panel: the moment's integrand m d x a is of degree 4 D - 1 in the pieces' degree D (the
+/// foreshortening in both the arm and the acceleration), 2 D points integrate it exactly; AMM's to round-off.
+int points_of(const VariantKey& key)
+{
+    if (key.method == Method::amm) return transcendental_points;
+    int degree = 1;
+    for (const FieldBasis& b : {key.axial_basis(), key.transverse_basis(), key.flap_basis(), key.twist_basis()})
+        if (b.size() > 0) degree = std::max(degree, b.degree());
+    return 2 * degree + 2;
+}
+
+/// The values (deriv 0) or slopes d/dx (deriv 1) of a basis at xi, as a row.
+std::vector<double> row_of(const FieldBasis& b, double xi, int deriv, double L)
+{
+    std::vector<double> r(static_cast<std::size_t>(b.size()));
+    for (int i = 0; i < b.size(); ++i) {
+        const Jet<double> j = b.at(i, xi);
+        r[static_cast<std::size_t>(i)] = deriv == 0 ? j.v : j.d1 / L;
+    }
+    return r;
+}
+
+}  // namespace
+
+BladeLoads::Node BladeLoads::node_at(const BeamFields& section, double xi, double weight) const
+{
+    Node n;
+    n.x = xi * p_.L;
+    n.weight = weight;
+    const auto table = [&](ProfileValue v, double uniform) {
+        return p_.stations.empty() ? uniform : profile_value(p_.stations, p_.profile, v, xi);
+    };
+    n.m = table(ProfileValue::m, p_.rho * p_.S * section.area_ratio(n.x));
+    if (key_.nt > 0) {  // the section's rotary inertia (docs/model.md section 12): only with the twist's coordinates
+        n.j_c = table(ProfileValue::j_c, p_.rho * p_.I_flap * section.flap_moment_ratio(n.x));
+        n.j_n = table(ProfileValue::j_n, p_.rho * p_.I * section.moment_ratio(n.x));
+        n.beta = p_.pitch + table(ProfileValue::twist, p_.twist * xi);
+    }
+    n.axial = row_of(key_.axial_basis(), xi, 0, p_.L);
+    n.inplane = row_of(key_.transverse_basis(), xi, 0, p_.L);
+    n.flap = row_of(key_.flap_basis(), xi, 0, p_.L);
+    n.twist = row_of(key_.twist_basis(), xi, 0, p_.L);
+    n.inplane_slope = row_of(key_.transverse_basis(), xi, 1, p_.L);
+    n.flap_slope = row_of(key_.flap_basis(), xi, 1, p_.L);
+    return n;
+}
+
+BladeLoads::BladeLoads(const VariantKey& key, const Parameters& p)
+    : key_(key), p_(p), torque_(key.drive == Drive::torque), foreshortened_(key.order != Order::zero)
+{
+    const CoordinateLayout c = coordinate_layout(key);
+    hub_x_ = first_of(c, FieldKind::hub_x);
+    hub_y_ = first_of(c, FieldKind::hub_y);
+    axial_ = first_of(c, FieldKind::axial);
+    inplane_ = first_of(c, FieldKind::inplane);
+    flap_ = first_of(c, FieldKind::flap);
+    twist_ = first_of(c, FieldKind::twist);
+    const std::vector<double> cuts = cuts_of(key, p);
+    const QuadratureRule g = gauss_legendre(points_of(key));
+    const FieldBasis inplane = key.transverse_basis(), flap = key.flap_basis();
+    const BeamFields section(key, p);  // a taper's ratios
+    for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+        const double lo = cuts[k], width = cuts[k + 1] - lo;
+        const std::size_t panel_first = nodes_.size();
+        for (std::size_t j = 0; j < g.nodes.size(); ++j) {
+            Node n = node_at(section, lo + width * g.nodes[j], p.L * width * g.weights[j]);
+            n.panel_first = panel_first;
+            // [lo, xi] by the same rule: the foreshortening's integrand is one polynomial piece there.
+            const double part = width * g.nodes[j];
+            for (std::size_t s = 0; s < g.nodes.size(); ++s) {
+                const double xi = lo + part * g.nodes[s];
+                n.inner_weights.push_back(p.L * part * g.weights[s]);
+                n.inner_inplane.push_back(row_of(inplane, xi, 1, p.L));
+                n.inner_flap.push_back(row_of(flap, xi, 1, p.L));
+            }
+            nodes_.push_back(std::move(n));
+        }
+    }
+    tip_ = node_at(section, 1.0, 0.0);
+    tip_.panel_first = nodes_.size();
+}
+
+void BladeLoads::section_inertia(const Node& n, double dx, double w, double dw, const double* phi, double cb, double sb,
+                                 double* M)
+{
+    // The section's angular momentum per length h (docs/model.md section 12: angular velocity theta_dot k + phi_dot e1,
+    // principal axes along the chord turned by psi = beta + phi) in (e1, e2, e3), and the rates of its components.
+    const double psi = n.beta + phi[0], s2 = std::sin(2.0 * psi), c2 = std::cos(2.0 * psi);
+    const double sp = std::sin(psi), cp = std::cos(psi), jp = n.j_c + n.j_n, jd = n.j_c - n.j_n;
+    const double h1 = jp * (phi[1] + w * sb), h2 = 0.5 * w * cb * jd * s2, h3 = w * cb * (n.j_c * sp * sp + n.j_n * cp * cp);
+    const double r1 = jp * (phi[2] + dw * sb), r2 = 0.5 * cb * jd * (dw * s2 + 2.0 * w * phi[1] * c2),
+                 r3 = cb * (dw * (n.j_c * sp * sp + n.j_n * cp * cp) + w * phi[1] * jd * s2);
+    // dh/dt in the frame turning at theta_dot k = theta_dot (sb e1 + cb e3): the rates plus theta_dot k x h.
+    const double D1 = r1 - w * cb * h2, D2 = r2 + w * (cb * h1 - sb * h3), D3 = r3 + w * sb * h2;
+    // The blade on the hub takes -dh/dt, in (i_b, j_b, k).
+    M[0] -= dx * (cb * D1 - sb * D3);
+    M[1] -= dx * D2;
+    M[2] -= dx * (sb * D1 + cb * D3);
+}
+
+RootLoads BladeLoads::operator()(const HubInput& u, const double* q, const double* qd, const double* qdd) const
+{
+    // The drive at the blade's azimuth, and the hub's acceleration in the blade's frame (i_b, j_b, k).
+    const double psi = torque_ ? q[0] : u.theta, w = torque_ ? qd[0] : u.theta_dot, dw = torque_ ? qdd[0] : u.theta_ddot;
+    const double cp = std::cos(psi), sp = std::sin(psi);
+    const double hx = hub_x_ >= 0 ? qdd[hub_x_] : 0.0, hy = hub_y_ >= 0 ? qdd[hub_y_] : 0.0;
+    const double hub_i = hx * cp + hy * sp, hub_j = -hx * sp + hy * cp;
+    // Gravity along -J (in the plane) or -k (the spin axis), in the blade's frame.
+    const double g_i = -p_.g * sp, g_j = -p_.g * cp, g_k = -p_.g_axis;
+    const double cb = std::cos(p_.precone), sb = std::sin(p_.precone);
+    const auto at = [](const double* v, int first) { return first >= 0 ? v + first : nullptr; };
+    const double* state[] = {q, qd, qdd};
+
+    // The foreshortening's integrand and its first two time derivatives at every outer node, summed panel by panel:
+    // g0 = u_y'^2 + u_z'^2, g1 = d/dt g0 / 2, g2 = d2/dt2 g0 / 2.
+    const auto integrands = [&](const std::vector<double>& y_row, const std::vector<double>& z_row) {
+        double s[3], r[3];
+        for (int d = 0; d < 3; ++d) s[d] = dot(y_row, at(state[d], inplane_)), r[d] = dot(z_row, at(state[d], flap_));
+        return std::array<double, 3>{s[0] * s[0] + r[0] * r[0], s[0] * s[1] + r[0] * r[1],
+                                     s[1] * s[1] + s[0] * s[2] + r[1] * r[1] + r[0] * r[2]};
+    };
+    std::vector<std::array<double, 3>> before(nodes_.size() + 1, {0.0, 0.0, 0.0});  // sums over the nodes before
+    for (std::size_t n = 0; n < nodes_.size(); ++n) {
+        const std::array<double, 3> gn = integrands(nodes_[n].inplane_slope, nodes_[n].flap_slope);
+        for (int d = 0; d < 3; ++d) before[n + 1][static_cast<std::size_t>(d)] = before[n][d] + nodes_[n].weight * gn[d];
+    }
+
+    double F[3] = {0.0, 0.0, 0.0}, M[3] = {0.0, 0.0, 0.0};  // blade on hub, in (i_b, j_b, k)
+    const auto add = [&](const Node& n, double mass) {
+        // u_x2 and its rates: -1/2 int g0, -int g1, -int g2 from the root to x.
+        std::array<double, 3> ux2 = {0.0, 0.0, 0.0};
+        if (foreshortened_) {
+            std::array<double, 3> sum = before[n.panel_first];
+            for (std::size_t s = 0; s < n.inner_weights.size(); ++s) {
+                const std::array<double, 3> gs = integrands(n.inner_inplane[s], n.inner_flap[s]);
+                for (std::size_t d = 0; d < 3; ++d) sum[d] += n.inner_weights[s] * gs[d];
+            }
+            ux2 = {-0.5 * sum[0], -sum[1], -sum[2]};
+        }
+        // The point's offset from the root, d = (x + u_x) e1 + u_y e2 + u_z e3, and its rates, in (i_b, j_b, k).
+        double di[3], dj[3], dk[3];
+        for (std::size_t d = 0; d < 3; ++d) {
+            const double ux = (d == 0 ? n.x : 0.0) + dot(n.axial, at(state[d], axial_)) + ux2[d];
+            const double uz = dot(n.flap, at(state[d], flap_));
+            di[d] = ux * cb - uz * sb;
+            dj[d] = dot(n.inplane, at(state[d], inplane_));
+            dk[d] = ux * sb + uz * cb;
+        }
+        // The absolute acceleration in the turning frame: the hub's, relative, Coriolis, Euler and centripetal.
+        const double pi = p_.a + di[0];
+        const double a_i = hub_i + di[2] - 2.0 * w * dj[1] - dw * dj[0] - w * w * pi;
+        const double a_j = hub_j + dj[2] + 2.0 * w * di[1] + dw * pi - w * w * dj[0];
+        const double a_k = dk[2];
+        const double f[3] = {mass * (g_i - a_i), mass * (g_j - a_j), mass * (g_k - a_k)};
+        const double r[3] = {di[0], dj[0], dk[0]};
+        for (int c = 0; c < 3; ++c) F[c] += f[c];
+        M[0] += r[1] * f[2] - r[2] * f[1];
+        M[1] += r[2] * f[0] - r[0] * f[2];
+        M[2] += r[0] * f[1] - r[1] * f[0];
+        if (key_.nt > 0) {
+            const double phi[3] = {dot(n.twist, at(q, twist_)), dot(n.twist, at(qd, twist_)),
+                                   dot(n.twist, at(qdd, twist_))};
+            section_inertia(n, n.weight, w, dw, phi, cb, sb, M);
+        }
+    };
+    for (const Node& n : nodes_) add(n, n.m * n.weight);
+    add(tip_, p_.m_tip);
+    // The tip body's rotary inertia J_t about k, turning with theta and the in-plane slope.
+    const double slope_rate2 = dot(tip_.inplane_slope, at(qdd, inplane_));
+    M[2] -= p_.J_tip * (dw + slope_rate2);
+
+    // In the root frame: e1 = cb i + sb k, e2 = j, e3 = -sb i + cb k.
+    RootLoads out;
+    out.axial_force = cb * F[0] + sb * F[2];
+    out.shear_edge = F[1];
+    out.shear_flap = -sb * F[0] + cb * F[2];
+    out.edge_moment = -sb * M[0] + cb * M[2];
+    out.flap_moment = -M[1];
+    return out;
+}
+
+std::vector<RootLoads> blade_root_loads(const Model& model, const std::vector<BladeLoads>& blades, const HubInput& u,
+                                        const double* q, const double* qd, const double* qdd)
+{
+    const auto* rotor = dynamic_cast<const RotorModel*>(&model);
+    if (rotor == nullptr) return {blades.at(0)(u, q, qd, qdd)};
+    const std::size_t local = static_cast<std::size_t>(rotor->blade(0).nq());
+    std::vector<double> lq(local), lqd(local), lqdd(local);
+    std::vector<RootLoads> out;
+    for (int b = 0; b < rotor->blades(); ++b) {
+        rotor->gather(q, b, lq.data(), true);
+        rotor->gather(qd, b, lqd.data(), false);
+        rotor->gather(qdd, b, lqdd.data(), false);
+        out.push_back(blades.at(static_cast<std::size_t>(b))(rotor->blade_input(u, b), lq.data(), lqd.data(), lqdd.data()));
+    }
+    return out;
+}
+
+}  // namespace hubbeam
