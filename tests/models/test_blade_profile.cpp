@@ -418,6 +418,13 @@ TEST_CASE("blade profile: a BModes or ElastoDyn file is read as the blade's tabl
     CHECK(offset.variant.extras.offsets);
     CHECK(offset.parameters.offsets == std::vector<double>{0.0, 0.0, 0.032, 0.0});
     CHECK_FALSE(load_scene(scene("bmodes_blade.dat", "", "nz = 2\n")).variant.extras.offsets);
+    // The root loads' force summation puts each section's mass on the axis: refused beside an offset one.
+    try {
+        load_scene(scene("bmodes_cg_offset.dat", "", "nz = 2\n"), {{"output.loads", "root"}});
+        FAIL("root loads beside a centre-of-mass offset were accepted");
+    } catch (const SceneError& e) {
+        CHECK(e.key == "output.loads");
+    }
     refused(scene("bmodes_blade.dat", "blade_stations = 1\n", "nz = 2\n"), "beam.blade_stations",
             "expected 0 (the file's own stations) or an integer from 2 to 10000");
     refused(scene("bmodes_blade.dat", "profile = \"blade.csv\"\n", "nz = 2\n"), "beam.blade_file",

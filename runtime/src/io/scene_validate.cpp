@@ -271,6 +271,10 @@ void check_rotor(const Scene& s)
     if (r.blades > 1 && !s.output.sensitivities.empty())
         fail(s.path, "output.sensitivities", "none for a rotor of several blades (rotor.blades > 1)",
              "\"" + s.output.sensitivities.front() + "\"");
+    // The force summation places each section's mass on its reference axis: an offset centre of mass would move it.
+    if (s.output.loads == OutputLoads::root && s.variant.extras.offsets)
+        fail(s.path, "output.loads", "\"none\" for a blade whose sections' centre of mass is offset (cg_offst)",
+             "\"root\"");
 }
 
 /// initial.state: a steady spin only where the scene has one at its initial rate, and no start but rest under
