@@ -65,6 +65,14 @@ t_end = 2.0
 dt_out = 0.01
 )";
 
+/// stiff_scene with its torque drive's [motion] lines replaced by motion's (a prescribed drive).
+std::string stiff_scene_with(const std::string& motion)
+{
+    std::string text = stiff_scene;
+    const std::string torque = "kind = \"torque\"\ntau0 = 0.0\nduration = 1.0";
+    return text.replace(text.find(torque), torque.size(), motion);
+}
+
 
 }  // namespace
 
@@ -75,10 +83,7 @@ TEST_CASE("a stiff rotor on a soft support swings at sqrt(k / total mass) under 
     // weights' moments cancelling about the axis (three blades at 120 degrees).
     // The hub turning freely (its inertia large) or held (a parked rotor: the angle prescribed).
     const bool held = GENERATE(false, true);
-    std::string text = stiff_scene;
-    if (held)
-        text.replace(text.find("kind = \"torque\""),
-                     std::string("kind = \"torque\"\ntau0 = 0.0\nduration = 1.0").size(), "kind = \"held\"\nangle = 0.0");
+    const std::string text = held ? stiff_scene_with("kind = \"held\"\nangle = 0.0") : std::string(stiff_scene);
     const Scene s =
         parse_scene(text, "hub.toml", {{"rotor.blades", "3"}, {"rotor.tip_masses", "2, 2, 2"}, {"gravity.g", "9.81"}});
     INFO(s.key().name());
@@ -178,11 +183,8 @@ TEST_CASE("a flexible blade on a free-floating hub keeps the linear momentum of 
     // Under either drive: a torque, or a prescribed spin-up, whose drive is a couple on the hub as well (its sine and
     // cosine then inputs of the kinetic energy, turned with time).
     const bool torque = GENERATE(true, false);
-    std::string text = stiff_scene;
-    if (!torque)
-        text.replace(text.find("kind = \"torque\""),
-                     std::string("kind = \"torque\"\ntau0 = 0.0\nduration = 1.0").size(),
-                     "kind = \"spin-up\"\nomega0 = 3.0\nduration = 1.5");
+    const std::string text =
+        torque ? std::string(stiff_scene) : stiff_scene_with("kind = \"spin-up\"\nomega0 = 3.0\nduration = 1.5");
     // The order-first kinetic energy does not depend on x_h, y_h: p_x, p_y are conserved, and with the blade's points
     // at (a + x + u_x1, u_y) in its frame to first order, p = d/dt [M x_h + R(theta) int m (a + x + u_x1, u_y) dx]
     // exactly. So from rest that sum stays at its start: the hub's translation, the blade's turn, its stretch and its
