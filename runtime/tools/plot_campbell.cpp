@@ -87,6 +87,9 @@ struct CampbellLine {
     std::string name;                  // its end label: the label ("bending 2"), or "bending mode 2"
     ModeName family;                   // its whirl, family and number: its colour and dash pattern
     std::vector<CampbellPoint> points;
+    bool chosen = true;                // of a kind asked for (else drawn only where it is unstable)
+    /// Whether some point of the line is unstable.
+    bool grows() const { return std::any_of(points.begin(), points.end(), [](const CampbellPoint& p) { return p.unstable(); }); }
 };
 
 /// The modes CSV columns that name a variant, and how the key introduces each.
@@ -98,7 +101,8 @@ constexpr std::size_t variant_size = std::size(variant_columns);
 /// names one of choice's kinds (after its whirl, if any: "BW edge 1" is an edge mode; its rows of every kind:
 /// through a veering its shape may turn axial), or in a file without the label column (an older hubbeam's) the rows
 /// of one of those kinds of each frequency rank; then of each variant the `modes` lowest (by their frequency at
-/// their lowest rate). A row of frequency 0 (an overdamped mode: it does not oscillate) is no point of any line,
+/// their lowest rate). A line that is unstable at some rate is drawn whatever its kind and rank (a rotor's hub whirl in
+/// a ground-resonance band): no choice of kinds hides an instability. A row of frequency 0 (an overdamped mode: it does not oscillate) is no point of any line,
 /// whether or not the table lists it; the rates of those that grow (a divergence: a real root in the right
 /// half-plane) go to `divergent`. Throws PlotInputError for a file without such rows.
 std::vector<CampbellLine> campbell_lines(const std::vector<std::string>& files, const Kind& kind,
@@ -121,7 +125,6 @@ std::vector<CampbellLine> campbell_lines(const std::vector<std::string>& files, 
             const bool tracked = r.has("label");
             const std::string& label = tracked ? r["label"] : r["kind"];
             ModeName family = mode_name(label);
-            if (!chosen(family.family)) return;
             if (!tracked) family.number = static_cast<int>(r.number("mode"));
             CampbellLine l{file,
                            {r["method"], r["ny"], r["nx"], r.has("nz") ? r["nz"] : "", r.has("nt") ? r["nt"] : "",
@@ -131,28 +134,30 @@ std::vector<CampbellLine> campbell_lines(const std::vector<std::string>& files, 
                            tracked ? "" : label,
                            tracked ? label : label + " mode " + r["mode"],
                            family,
-                           {}};
+                           {},
+                           chosen(family.family)};
             auto same = std::find_if(
                 lines.begin() + static_cast<std::ptrdiff_t>(before), lines.end(),
                 [&](const CampbellLine& o) { return o.variant == l.variant && o.mode == l.mode && o.kind == l.kind; });
             if (same == lines.end()) same = lines.insert(lines.end(), l);
             same->points.push_back({r.number("omega"), r.number("hz"), r.number("damping_ratio"), r.number("growth")});
         });
-        if (lines.size() == before)
+        if (std::none_of(lines.begin() + static_cast<std::ptrdiff_t>(before), lines.end(),
+                         [](const CampbellLine& l) { return l.chosen; }))
             throw PlotInputError(printable(files[file], 400) + ": expected rows of kind " + joined(choice.kinds, "'") +
                                  " with a frequency above 0 (the modes the Campbell diagram draws, --kinds), got none");
     }
     for (CampbellLine& l : lines) std::stable_sort(l.points.begin(), l.points.end());
-    // Of each file's variant, the lines ranked by their frequency at their lowest rate.
+    // Of each file's variant, the chosen lines ranked by their frequency at their lowest rate; the unstable ones all.
     std::vector<bool> keep(lines.size(), true);
     for (std::size_t i = 0; i < lines.size(); ++i) {
         int lower = 0;
         for (std::size_t j = 0; j < lines.size(); ++j)
-            if (j != i && lines[j].file == lines[i].file && lines[j].variant == lines[i].variant &&
+            if (j != i && lines[j].chosen && lines[j].file == lines[i].file && lines[j].variant == lines[i].variant &&
                 (lines[j].points.front().hz < lines[i].points.front().hz ||
                  (lines[j].points.front().hz == lines[i].points.front().hz && j < i)))
                 ++lower;
-        keep[i] = choice.modes == 0 || lower < choice.modes;
+        keep[i] = lines[i].grows() || (lines[i].chosen && (choice.modes == 0 || lower < choice.modes));
     }
     std::vector<CampbellLine> kept;
     for (std::size_t i = 0; i < lines.size(); ++i)

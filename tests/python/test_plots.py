@@ -141,6 +141,41 @@ class Campbell(unittest.TestCase):
         self.assertEqual(labels[:3], ["bending 1", "bending 2", "5P"])
 
 
+class CampbellOfARotorInGroundResonance(unittest.TestCase):
+    """A rotor on a soft support (cases/ground_resonance_balanced.toml) through its ground-resonance band: the mode that
+    grows there is the hub's whirl, not of the kinds drawn by default; it is drawn all the same, by Python and by the
+    command line alike, so that no choice of kinds hides an instability."""
+
+    HUBBEAM = os.environ.get("HUBBEAM", "")
+    SCENE = os.path.join(SOURCE, "cases", "ground_resonance_balanced.toml")
+
+    @classmethod
+    def setUpClass(cls):
+        # From 0.5 rad/s, so that the line that grows in the band is tracked from rest as the hub's whirl, above the
+        # four lowest of its kind that the diagram draws by default.
+        cls.m = hubbeam.modes(cls.SCENE, np.arange(0.5, 20.1, 0.5))
+        cls.growing = set(cls.m["label"][(cls.m["growth"] > 0) & (cls.m["hz"] > 0)])
+
+    def test_python_draws_every_growing_line(self):
+        self.assertTrue(self.growing, "the band holds an unstable mode (else this test shows nothing)")
+        fig = hubbeam.plot_campbell(self.m)
+        drawn = {line.get_label() for line in fig.axes[0].get_lines()}
+        self.assertLessEqual(self.growing, drawn)
+
+    def test_the_command_line_draws_every_growing_line(self):
+        with tempfile.TemporaryDirectory() as d:
+            table = os.path.join(d, "modes.csv")
+            subprocess.run([self.HUBBEAM, "modes", self.SCENE, "--omega", "0.5:20:0.5", "-o", table], check=True,
+                           capture_output=True)
+            done = subprocess.run([self.HUBBEAM, "plot", "campbell", table, "-o", os.path.join(d, "c")],
+                                  capture_output=True, text=True)
+            self.assertEqual(done.returncode, 0, done.stderr)
+            with open(os.path.join(d, "c.gp")) as f:
+                script = f.read()
+        for label in self.growing:
+            self.assertIn(f"{label} (unstable)", script)
+
+
 class CampbellOfADampedBlade(unittest.TestCase):
     """A damped blade's modes (cases/helicopter_blade.toml): overdamped modes have frequency 0, which the diagram
     never draws nor lets meet an excitation line; a tabulated blade's long variant name; the lines told apart."""

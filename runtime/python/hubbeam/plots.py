@@ -330,6 +330,10 @@ def plot_campbell(m: Any, *, kinds: Sequence[str] | str = CAMPBELL_KINDS, count:
     for line, k in dict.fromkeys(zip(labels[keep], family[keep])):  # first appearance: the lowest of each kind first
         per_kind.setdefault(k, []).append(line)
     drawn = [line for lines in per_kind.values() for line in lines[:count]]
+    # A line unstable at some rate is drawn whatever its kind and rank: no choice of kinds hides an instability.
+    unstable = oscillates & ((growth > 0) | (zeta < 0))
+    drawn += [line for line in dict.fromkeys(labels[unstable]) if line not in drawn]
+    keep = oscillates & (keep | np.isin(labels, drawn))
     # The cutoff: given, or a little above the highest per-rev line at the highest rate.
     omega_max = float(omega[keep].max()) if keep.any() else 0.0
     lowest = min(drawn, key=lambda line: hz[keep & (labels == line)][0], default=None)
