@@ -173,6 +173,7 @@ CampbellChoice campbell_choice(const PlotArgs& args)
     CampbellChoice c;
     if (!args.kinds.empty()) {
         c.kinds.clear();
+        c.kinds_given = true;
         for (const std::string& k : split_list(args.kinds)) {
             if (std::find(mode_kinds().begin(), mode_kinds().end(), k) == mode_kinds().end() ||
                 std::find(c.kinds.begin(), c.kinds.end(), k) != c.kinds.end())

@@ -101,8 +101,8 @@ constexpr std::size_t variant_size = std::size(variant_columns);
 /// names one of choice's kinds (after its whirl, if any: "BW edge 1" is an edge mode; its rows of every kind:
 /// through a veering its shape may turn axial), or in a file without the label column (an older hubbeam's) the rows
 /// of one of those kinds of each frequency rank; then of each variant the `modes` lowest (by their frequency at
-/// their lowest rate). A line that is unstable at some rate is drawn whatever its kind and rank (a rotor's hub whirl in
-/// a ground-resonance band): no choice of kinds hides an instability. A row of frequency 0 (an overdamped mode: it does not oscillate) is no point of any line,
+/// their lowest rate). A line that is unstable at some rate is drawn whatever its rank, and whatever its kind unless
+/// --kinds leaves it out (a rotor's hub whirl in a ground-resonance band): the default kinds hide no instability. A row of frequency 0 (an overdamped mode: it does not oscillate) is no point of any line,
 /// whether or not the table lists it; the rates of those that grow (a divergence: a real root in the right
 /// half-plane) go to `divergent`. Throws PlotInputError for a file without such rows.
 std::vector<CampbellLine> campbell_lines(const std::vector<std::string>& files, const Kind& kind,
@@ -157,7 +157,8 @@ std::vector<CampbellLine> campbell_lines(const std::vector<std::string>& files, 
                 (lines[j].points.front().hz < lines[i].points.front().hz ||
                  (lines[j].points.front().hz == lines[i].points.front().hz && j < i)))
                 ++lower;
-        keep[i] = lines[i].grows() || (lines[i].chosen && (choice.modes == 0 || lower < choice.modes));
+        const bool asked = lines[i].chosen || !choice.kinds_given;
+        keep[i] = asked && (lines[i].grows() || (lines[i].chosen && (choice.modes == 0 || lower < choice.modes)));
     }
     std::vector<CampbellLine> kept;
     for (std::size_t i = 0; i < lines.size(); ++i)

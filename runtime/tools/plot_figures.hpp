@@ -132,6 +132,7 @@ inline constexpr int default_per_rev = 6;
 /// --operating-range).
 struct CampbellChoice {
     std::vector<std::string> kinds = {"bending", "edge", "flap"};  // a planar beam's, or a blade's out of the plane
+    bool kinds_given = false;     // --kinds chose them: a line of another kind is not drawn even where it grows
     int modes = 0;                // the lowest this many lines of each variant; 0: all
     double max_hz = HUGE_VAL;     // the frequency axis ends here, and lines wholly above it are left out; HUGE_VAL:
                                   // campbell_cutoff's

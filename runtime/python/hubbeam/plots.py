@@ -330,8 +330,11 @@ def plot_campbell(m: Any, *, kinds: Sequence[str] | str = CAMPBELL_KINDS, count:
     for line, k in dict.fromkeys(zip(labels[keep], family[keep])):  # first appearance: the lowest of each kind first
         per_kind.setdefault(k, []).append(line)
     drawn = [line for lines in per_kind.values() for line in lines[:count]]
-    # A line unstable at some rate is drawn whatever its kind and rank: no choice of kinds hides an instability.
+    # A line unstable at some rate is drawn whatever its rank, and whatever its kind unless kinds= leaves it out: the
+    # default kinds hide no instability.
     unstable = oscillates & ((growth > 0) | (zeta < 0))
+    if kinds is not CAMPBELL_KINDS:
+        unstable &= keep
     drawn += [line for line in dict.fromkeys(labels[unstable]) if line not in drawn]
     keep = oscillates & (keep | np.isin(labels, drawn))
     # The cutoff: given, or a little above the highest per-rev line at the highest rate.
