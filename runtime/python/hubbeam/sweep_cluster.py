@@ -190,6 +190,7 @@ def _ignore_dask_configuration() -> None:
     emptied for any later refresh, before a scheduler, worker or client reads it."""
     import shutil
     import tempfile
+    import warnings
 
     for name in [n for n in os.environ if n.startswith("DASK_")]:
         del os.environ[name]
@@ -198,7 +199,12 @@ def _ignore_dask_configuration() -> None:
         home = os.environ.get("HOME")
         os.environ.update(HOME=empty, DASK_ROOT_CONFIG=empty)
         try:
-            import dask.config  # noqa: F401
+            # dask.config reads every DASK_* value through ast.literal_eval, ours too: a folder name whose random
+            # part begins with a digit and a letter ("...-config-8k...") made Python print "SyntaxWarning: invalid
+            # decimal literal" on stderr.
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", SyntaxWarning)
+                import dask.config  # noqa: F401
         finally:
             del os.environ["DASK_ROOT_CONFIG"]
             if home is None:
