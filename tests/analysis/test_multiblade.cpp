@@ -19,49 +19,16 @@
 #include <vector>
 
 #include "runs.hpp"
+#include "soft_blade.hpp"
 
 using namespace hubbeam;
 
 namespace {
 
-/// A soft helicopter-like blade (flap, edge, pitched so that they couple), no gravity, spun up by a prescribed drive
-/// or free under a torque.
-const char* blade_scene = R"(
-[beam]
-length = 6.0
-density = 1600.0
-area = 0.005
-second_moment = 4e-5
-second_moment_flap = 1e-5
-youngs_modulus = 1e10
-shear_modulus = 4e9
-torsion_constant = 2e-6
-pitch = 0.1
-
-[hub]
-radius = 0.3
-inertia = 40.0
-
-MOTION
-[discretization]
-method = "fem"
-ny = 4
-nx = 0
-nz = 4
-nt = 2
-
-[output]
-t_end = 1.0
-dt_out = 0.05
-)";
-
+/// The soft blade (soft_blade.hpp), no gravity, with overrides, spun up by a prescribed drive or free under a torque.
 Scene blade_with(const Overrides& o, bool torque = false)
 {
-    std::string text = blade_scene;
-    const std::string motion = torque ? "[motion]\nkind = \"torque\"\ntau0 = 0.0\nduration = 0.5\n"
-                                      : "[motion]\nkind = \"spin-up\"\nomega0 = 6.0\nduration = 2.0\n";
-    text.replace(text.find("MOTION"), 6, motion);
-    return parse_scene(text, "multiblade_test.toml", o);
+    return parse_scene(test::soft_blade_scene(torque), "multiblade_test.toml", o);
 }
 
 /// A rotor soft in-plane (its first edge frequency 5.1 rad/s at rest) on a soft support, planar blades.

@@ -15,60 +15,20 @@
 #include <vector>
 
 #include "runs.hpp"
+#include "soft_blade.hpp"
 
 using namespace hubbeam;
 using hubbeam::test::run_columns;
 
 namespace {
 
-/// A soft helicopter-like blade in the plane of rotation under gravity (so that a blade's azimuth matters), flap and
-/// twist fields, a short run.
-const char* blade_scene = R"(
-[beam]
-length = 6.0
-density = 1600.0
-area = 0.005
-second_moment = 4e-5
-second_moment_flap = 1e-5
-youngs_modulus = 1e10
-shear_modulus = 4e9
-torsion_constant = 2e-6
-pitch = 0.1
-
-[hub]
-radius = 0.3
-inertia = 40.0
-
-[gravity]
-g = 9.81
-
-MOTION
-[discretization]
-method = "fem"
-ny = 4
-nx = 0
-nz = 4
-nt = 2
-
-[solver]
-stepper = "rk8pd"
-rtol = 1e-11
-atol = 1e-13
-error_check = "off"
-
-[output]
-t_end = 1.0
-dt_out = 0.05
-)";
-
-/// The scene with overrides, its [motion] a spin-up to 6 rad/s in 2 s or a torque pulse (motion.tau0 to set).
+/// The soft blade (soft_blade.hpp) in the plane of rotation under gravity (so that a blade's azimuth matters), with
+/// overrides, its [motion] a spin-up to 6 rad/s in 2 s or a torque pulse (motion.tau0 to set).
 Scene scene_with(const Overrides& o, bool torque = false)
 {
-    std::string text = blade_scene;
-    const std::string motion = torque ? "[motion]\nkind = \"torque\"\ntau0 = 0.0\nduration = 0.5\n"
-                                      : "[motion]\nkind = \"spin-up\"\nomega0 = 6.0\nduration = 2.0\n";
-    text.replace(text.find("MOTION"), 6, motion);
-    return parse_scene(text, "rotor_test.toml", o);
+    const std::string extra = "\n[gravity]\ng = 9.81\n\n[solver]\nstepper = \"rk8pd\"\nrtol = 1e-11\natol = 1e-13\n"
+                              "error_check = \"off\"\n";
+    return parse_scene(test::soft_blade_scene(torque, extra), "rotor_test.toml", o);
 }
 
 
