@@ -69,6 +69,30 @@ foreach(f IN LISTS public)
     endif()
   endforeach()
 endforeach()
+# The front ends use the public API only (docs/architecture.md "The public API"): the command line, the Python module
+# and the tools' headers, which the command line includes, name the library by <hubbeam/...> alone; a quoted include
+# is a file of their own folder or the tools' (a header beside them) or a model header (installed with the public
+# ones). Only the benchmarks' and the stress test's sources reach private headers: the internals they measure.
+file(GLOB front_ends ${SRC}/runtime/cli/*.cpp ${SRC}/runtime/cli/*.hpp ${SRC}/runtime/python/*.cpp
+     ${SRC}/runtime/tools/*.hpp)
+file(GLOB tools_sources ${SRC}/runtime/tools/*.cpp)
+foreach(f IN LISTS tools_sources)
+  get_filename_component(name ${f} NAME_WE)
+  if(NOT name MATCHES "^(bench|bench_runs|kernel_bench|stress)$")
+    list(APPEND front_ends ${f})
+  endif()
+endforeach()
+foreach(f IN LISTS front_ends)
+  get_filename_component(dir ${f} DIRECTORY)
+  file(STRINGS ${f} includes REGEX "^#include \"")
+  foreach(line IN LISTS includes)
+    string(REGEX REPLACE "^#include \"([^\"]+)\".*" "\\1" target "${line}")
+    if(target MATCHES "/" OR NOT (EXISTS ${dir}/${target} OR EXISTS ${SRC}/runtime/tools/${target}
+                                  OR EXISTS ${SRC}/model/${target}))
+      list(APPEND problems "${f}: ${line}: a front end includes a private header of the library")
+    endif()
+  endforeach()
+endforeach()
 # The scene reader compiles without the stepper libraries: no file of io/scene* includes GSL, or a private header that
 # does, directly or through one private header of its own.
 file(GLOB_RECURSE private_headers ${SRC}/runtime/src/*.hpp)

@@ -6,11 +6,11 @@
 #include <string>
 #include <vector>
 
+#include <hubbeam/output_file.hpp>
 #include <unistd.h>
 
 #include "bench.hpp"
 #include "command.hpp"
-#include "io/output_file.hpp"
 #include "plot.hpp"
 
 namespace hubbeam::cli {

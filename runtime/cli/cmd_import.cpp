@@ -1,16 +1,16 @@
 // hubbeam import: a BModes .bmi or an ElastoDyn main input file (and the blade file it names) into a scene file a
-// user reads and edits (io/main_input.hpp); written as every output is (output_file.hpp).
+// user reads and edits (main_input.hpp); written as every output is (output_file.hpp).
 #include <algorithm>
 #include <filesystem>
+#include <hubbeam/blade_files.hpp>
+#include <hubbeam/main_input.hpp>
+#include <hubbeam/output_file.hpp>
+#include <hubbeam/printable.hpp>
 #include <iostream>
 #include <memory>
 #include <string>
 
 #include "command.hpp"
-#include "io/blade_files.hpp"
-#include "io/main_input.hpp"
-#include "io/output_file.hpp"
-#include "text/printable.hpp"
 
 namespace hubbeam::cli {
 

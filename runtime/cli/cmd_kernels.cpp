@@ -1,9 +1,9 @@
 // hubbeam kernels: nanoseconds per right-hand side and Jacobian, generated kernels against the assembled path.
+#include <hubbeam/output_file.hpp>
 #include <iostream>
 #include <memory>
 
 #include "command.hpp"
-#include "io/output_file.hpp"
 #include "kernel_bench.hpp"
 
 namespace hubbeam::cli {

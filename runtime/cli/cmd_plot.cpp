@@ -1,9 +1,9 @@
 // hubbeam plot: figures from run, modes and field CSVs with gnuplot.
+#include <hubbeam/output_file.hpp>
 #include <iostream>
 #include <memory>
 
 #include "command.hpp"
-#include "io/output_file.hpp"
 #include "plot.hpp"
 
 namespace hubbeam::cli {

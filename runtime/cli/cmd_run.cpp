@@ -6,7 +6,14 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <hubbeam/field_recorder.hpp>
 #include <hubbeam/fields.hpp>
+#include <hubbeam/metadata.hpp>
+#include <hubbeam/output.hpp>
+#include <hubbeam/output_file.hpp>
+#include <hubbeam/printable.hpp>
+#include <hubbeam/scene_print.hpp>
+#include <hubbeam/shortest.hpp>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -14,14 +21,7 @@
 #include <vector>
 
 #include "command.hpp"
-#include "io/field_recorder.hpp"
-#include "io/metadata.hpp"
-#include "io/output.hpp"
-#include "io/output_file.hpp"
-#include "io/scene_print.hpp"
 #include "modes.hpp"
-#include "text/printable.hpp"
-#include "text/shortest.hpp"
 
 namespace hubbeam::cli {
 

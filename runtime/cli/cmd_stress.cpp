@@ -1,10 +1,10 @@
 // hubbeam stress: the stability stress suite (high spin, many DOFs, long runs, extreme beams).
+#include <hubbeam/output_file.hpp>
 #include <iostream>
 #include <memory>
 #include <vector>
 
 #include "command.hpp"
-#include "io/output_file.hpp"
 #include "stress.hpp"
 
 namespace hubbeam::cli {

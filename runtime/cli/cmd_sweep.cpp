@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
+#include <hubbeam/install_layout.hpp>
 #include <unistd.h>
 
 #include "command.hpp"
-#include "on_demand/install_layout.hpp"
 
 namespace hubbeam::cli {
 

@@ -1,10 +1,9 @@
 // hubbeam variants: the variants built in and cached, and how any other variant runs.
+#include <hubbeam/on_demand.hpp>
 #include <iostream>
 #include <string>
 
 #include "command.hpp"
-#include "models/generated_model.hpp"
-#include "on_demand/on_demand.hpp"
 
 namespace hubbeam::cli {
 

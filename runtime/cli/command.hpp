@@ -11,8 +11,8 @@
 
 #include <hubbeam/scene.hpp>
 #include <hubbeam/simulate.hpp>
-#include "on_demand/on_demand.hpp"
-#include "text/option_lists.hpp"
+#include <hubbeam/on_demand.hpp>
+#include <hubbeam/option_lists.hpp>
 
 namespace hubbeam::cli {
 

@@ -18,13 +18,13 @@
 #include <algorithm>
 #include <array>
 #include <exception>
+#include <hubbeam/printable.hpp>
 #include <iostream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "command.hpp"
-#include "text/printable.hpp"
 
 #ifndef HUBBEAM_VERSION
 #define HUBBEAM_VERSION "dev"

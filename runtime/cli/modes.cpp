@@ -8,25 +8,25 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <hubbeam/csv_columns.hpp>
 #include <hubbeam/linearize.hpp>
 #include <hubbeam/make_model.hpp>
+#include <hubbeam/metadata.hpp>
 #include <hubbeam/mode_shapes.hpp>
+#include <hubbeam/npz.hpp>
+#include <hubbeam/option_lists.hpp>
+#include <hubbeam/output.hpp>
+#include <hubbeam/output_file.hpp>
+#include <hubbeam/printable.hpp>
+#include <hubbeam/shortest.hpp>
 #include <map>
 #include <memory>
 #include <ostream>
 #include <span>
 #include <utility>
 
-#include "io/metadata.hpp"
-#include "io/npz.hpp"
-#include "io/output.hpp"
-#include "io/output_file.hpp"
 #include "plot.hpp"
 #include "terms.hpp"
-#include "text/csv_columns.hpp"
-#include "text/option_lists.hpp"
-#include "text/printable.hpp"
-#include "text/shortest.hpp"
 
 namespace hubbeam {
 

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include <hubbeam/scene.hpp>
-#include "analysis/modes_table.hpp"
-#include "text/option_lists.hpp"
+#include <hubbeam/modes_table.hpp>
+#include <hubbeam/option_lists.hpp>
 
 namespace hubbeam {
 

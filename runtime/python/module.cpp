@@ -26,14 +26,14 @@
 #include <variant>
 #include <vector>
 
-#include "analysis/modes_table.hpp"
-#include "io/metadata.hpp"
-#include "io/output.hpp"
-#include "io/output_file.hpp"
-#include "io/scene_print.hpp"
-#include "on_demand/on_demand.hpp"
-#include "text/printable.hpp"
-#include "text/shortest.hpp"
+#include <hubbeam/modes_table.hpp>
+#include <hubbeam/metadata.hpp>
+#include <hubbeam/output.hpp>
+#include <hubbeam/output_file.hpp>
+#include <hubbeam/scene_print.hpp>
+#include <hubbeam/on_demand.hpp>
+#include <hubbeam/printable.hpp>
+#include <hubbeam/shortest.hpp>
 
 namespace py = pybind11;
 using namespace hubbeam;

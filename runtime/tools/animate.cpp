@@ -11,15 +11,15 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <hubbeam/csv_columns.hpp>
+#include <hubbeam/output_file.hpp>
+#include <hubbeam/printable.hpp>
+#include <hubbeam/shortest.hpp>
 #include <iterator>
 #include <memory>
 #include <sstream>
 
-#include "io/output_file.hpp"
 #include "plot.hpp"
-#include "text/csv_columns.hpp"
-#include "text/printable.hpp"
-#include "text/shortest.hpp"
 
 namespace hubbeam {
 

@@ -4,18 +4,18 @@
 
 #include <algorithm>
 #include <chrono>
+#include <hubbeam/csv_columns.hpp>
+#include <hubbeam/option_lists.hpp>
+#include <hubbeam/output.hpp>
+#include <hubbeam/output_file.hpp>
+#include <hubbeam/shortest.hpp>
 #include <ostream>
 
 #include "bench_parts.hpp"
 #include "dynamics/integrate.hpp"
 #include "dynamics/stiffness.hpp"
-#include "io/output.hpp"
-#include "io/output_file.hpp"
 #include "oscillation.hpp"
 #include "plot.hpp"
-#include "text/csv_columns.hpp"
-#include "text/option_lists.hpp"
-#include "text/shortest.hpp"
 
 namespace hubbeam {
 

@@ -11,8 +11,8 @@
 
 #include <hubbeam/scene.hpp>
 #include <hubbeam/simulate.hpp>
-#include "io/output_file.hpp"
-#include "text/option_lists.hpp"
+#include <hubbeam/output_file.hpp>
+#include <hubbeam/option_lists.hpp>
 
 namespace hubbeam {
 

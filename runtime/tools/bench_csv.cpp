@@ -3,8 +3,8 @@
 
 #include <cstdio>
 
-#include "io/output.hpp"
-#include "text/shortest.hpp"
+#include <hubbeam/output.hpp>
+#include <hubbeam/shortest.hpp>
 
 namespace hubbeam {
 

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <ostream>
 
-#include "text/shortest.hpp"
+#include <hubbeam/shortest.hpp>
 
 namespace hubbeam {
 

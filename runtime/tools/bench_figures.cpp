@@ -6,13 +6,13 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <hubbeam/csv_columns.hpp>
+#include <hubbeam/output_file.hpp>
+#include <hubbeam/shortest.hpp>
 #include <map>
 #include <ostream>
 
-#include "io/output_file.hpp"
 #include "plot.hpp"
-#include "text/csv_columns.hpp"
-#include "text/shortest.hpp"
 
 namespace hubbeam {
 

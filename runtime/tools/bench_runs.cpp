@@ -3,15 +3,15 @@
 #include "bench_parts.hpp"
 
 #include <algorithm>
+#include <hubbeam/make_model.hpp>
+#include <hubbeam/output.hpp>
+#include <hubbeam/shortest.hpp>
 #include <optional>
 #include <ostream>
 #include <stdexcept>
 
-#include <hubbeam/make_model.hpp>
 #include "dynamics/integrate.hpp"
 #include "dynamics/stiffness.hpp"
-#include "io/output.hpp"
-#include "text/shortest.hpp"
 
 namespace hubbeam {
 

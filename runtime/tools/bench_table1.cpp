@@ -5,12 +5,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <hubbeam/shortest.hpp>
 #include <iterator>
 #include <ostream>
 #include <stdexcept>
 
 #include "oscillation.hpp"
-#include "text/shortest.hpp"
 
 namespace hubbeam {
 

@@ -13,8 +13,8 @@
 
 #include <unistd.h>
 
-#include "io/output_file.hpp"
-#include "text/printable.hpp"
+#include <hubbeam/output_file.hpp>
+#include <hubbeam/printable.hpp>
 
 namespace hubbeam {
 

@@ -8,7 +8,7 @@
 #include <string_view>
 #include <vector>
 
-#include "text/option_lists.hpp"
+#include <hubbeam/option_lists.hpp>
 
 namespace hubbeam {
 

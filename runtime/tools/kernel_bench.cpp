@@ -8,16 +8,16 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <hubbeam/make_model.hpp>
+#include <hubbeam/motion.hpp>
+#include <hubbeam/option_lists.hpp>
+#include <hubbeam/output.hpp>
 #include <memory>
 #include <ostream>
 #include <sstream>
 #include <string_view>
 
-#include <hubbeam/make_model.hpp>
-#include <hubbeam/motion.hpp>
 #include "dynamics/integrate.hpp"
-#include "io/output.hpp"
-#include "text/option_lists.hpp"
 
 namespace hubbeam {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "text/option_lists.hpp"
+#include <hubbeam/option_lists.hpp>
 
 #include "variant.hpp"
 

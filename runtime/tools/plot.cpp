@@ -5,13 +5,13 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <hubbeam/option_lists.hpp>
+#include <hubbeam/output_file.hpp>
+#include <hubbeam/printable.hpp>
 #include <string>
 #include <string_view>
 
-#include "io/output_file.hpp"
 #include "plot_figures.hpp"
-#include "text/option_lists.hpp"
-#include "text/printable.hpp"
 
 namespace hubbeam {
 

@@ -6,14 +6,14 @@
 #include <charconv>
 #include <cstring>
 #include <fstream>
-
+#include <hubbeam/field_recorder.hpp>
 #include <hubbeam/linearize.hpp>
+#include <hubbeam/option_lists.hpp>
+#include <hubbeam/output_file.hpp>
+#include <hubbeam/printable.hpp>
 #include <hubbeam/simulate.hpp>
+
 #include "gnuplot.hpp"
-#include "io/field_recorder.hpp"
-#include "io/output_file.hpp"
-#include "text/option_lists.hpp"
-#include "text/printable.hpp"
 
 namespace hubbeam::plotting {
 

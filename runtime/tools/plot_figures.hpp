@@ -10,7 +10,7 @@
 #include <string_view>
 #include <vector>
 
-#include "text/csv_columns.hpp"
+#include <hubbeam/csv_columns.hpp>
 
 namespace hubbeam::plotting {
 

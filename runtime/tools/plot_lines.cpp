@@ -5,13 +5,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <hubbeam/option_lists.hpp>
+#include <hubbeam/printable.hpp>
+#include <hubbeam/shortest.hpp>
 #include <iterator>
 #include <utility>
 
 #include "gnuplot.hpp"
-#include "text/option_lists.hpp"
-#include "text/printable.hpp"
-#include "text/shortest.hpp"
 
 namespace hubbeam::plotting {
 

@@ -4,14 +4,14 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <hubbeam/make_model.hpp>
+#include <hubbeam/output.hpp>
+#include <hubbeam/scene.hpp>
+#include <hubbeam/shortest.hpp>
 #include <ostream>
 #include <sstream>
 
-#include <hubbeam/make_model.hpp>
-#include <hubbeam/scene.hpp>
 #include "dynamics/stiffness.hpp"
-#include "io/output.hpp"
-#include "text/shortest.hpp"
 
 namespace hubbeam {
 

@@ -4,21 +4,21 @@
 // matrices against central differences of the nonlinear equations.
 #include <unistd.h>
 
-#include <catch2/catch.hpp>
 #include <Eigen/Dense>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
+#include <hubbeam/linearize.hpp>
+#include <hubbeam/make_model.hpp>
+#include <hubbeam/modes_table.hpp>
+#include <hubbeam/motion.hpp>
+#include <hubbeam/scene.hpp>
 #include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include <hubbeam/linearize.hpp>
-#include <hubbeam/make_model.hpp>
-#include <hubbeam/motion.hpp>
-#include <hubbeam/scene.hpp>
 #include "dynamics/integrate.hpp"
-#include "analysis/modes_table.hpp"
 #include "modes.hpp"
 
 using namespace hubbeam;

@@ -14,7 +14,7 @@
 #include <hubbeam/linearize.hpp>
 #include <hubbeam/make_model.hpp>
 #include <hubbeam/scene.hpp>
-#include "analysis/modes_table.hpp"
+#include <hubbeam/modes_table.hpp>
 
 using namespace hubbeam;
 

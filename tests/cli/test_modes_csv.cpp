@@ -13,6 +13,10 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <hubbeam/csv_columns.hpp>
+#include <hubbeam/modes_table.hpp>
+#include <hubbeam/scene.hpp>
+#include <hubbeam/shortest.hpp>
 #include <iterator>
 #include <map>
 #include <set>
@@ -21,12 +25,8 @@
 #include <utility>
 #include <vector>
 
-#include <hubbeam/scene.hpp>
-#include "analysis/modes_table.hpp"
 #include "modes.hpp"
 #include "temp_folder.hpp"
-#include "text/csv_columns.hpp"
-#include "text/shortest.hpp"
 
 using namespace hubbeam;
 

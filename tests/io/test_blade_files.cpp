@@ -1,4 +1,4 @@
-// The blade-property readers (io/blade_files.hpp): the samples in tests/data/blades read to values worked out by hand,
+// The blade-property readers (hubbeam/blade_files.hpp): the samples in tests/data/blades read to values worked out by hand,
 // the format recognised from the content, editors' encodings read alike, and every refusal one line naming the file,
 // the line, the column and the station, never what the file holds.
 #include <sys/stat.h>
@@ -7,13 +7,13 @@
 #include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <hubbeam/blade_files.hpp>
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "io/blade_files.hpp"
 #include "temp_folder.hpp"
 
 using namespace hubbeam;

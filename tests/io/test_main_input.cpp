@@ -1,18 +1,18 @@
-// hubbeam import's library side (io/main_input.hpp): BModes' CertTest blade and the NREL 5 MW ElastoDyn files become
+// hubbeam import's library side (hubbeam/main_input.hpp): BModes' CertTest blade and the NREL 5 MW ElastoDyn files become
 // scenes whose values are the files' (each read here from the file's text by its own search, not the importer's),
 // that load; every refusal is one line naming the file, the line and the setting.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <hubbeam/blade_files.hpp>
+#include <hubbeam/main_input.hpp>
 #include <hubbeam/scene.hpp>
 #include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include "io/blade_files.hpp"
-#include "io/main_input.hpp"
 #include "temp_folder.hpp"
 
 using namespace hubbeam;

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "io/npz.hpp"
+#include <hubbeam/npz.hpp>
 
 using namespace hubbeam;
 

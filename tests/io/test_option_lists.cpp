@@ -1,13 +1,13 @@
-// The readers of comma-separated option values (runtime/src/text/option_lists.hpp) shared by run --fields-at,
+// The readers of comma-separated option values (runtime/include/hubbeam/option_lists.hpp) shared by run --fields-at,
 // modes, linearize and the benchmarks: numbers in any decimal form, methods, and DOF counts up to what a variant takes.
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <hubbeam/option_lists.hpp>
 #include <string>
 #include <vector>
 
 #include "modes.hpp"
-#include "text/option_lists.hpp"
 
 using namespace hubbeam;
 

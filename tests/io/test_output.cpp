@@ -28,9 +28,9 @@
 
 #include <hubbeam/scene.hpp>
 #include <hubbeam/simulate.hpp>
-#include "io/output.hpp"
-#include "io/output_file.hpp"
-#include "text/shortest.hpp"
+#include <hubbeam/output.hpp>
+#include <hubbeam/output_file.hpp>
+#include <hubbeam/shortest.hpp>
 
 using namespace hubbeam;
 namespace fs = std::filesystem;

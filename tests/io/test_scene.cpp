@@ -2,19 +2,19 @@
 // input stops in load_scene() with one line naming the file, the key and what was expected.
 #include <unistd.h>
 
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
+#include <hubbeam/output.hpp>
+#include <hubbeam/printable.hpp>
+#include <hubbeam/scene.hpp>
+#include <hubbeam/scene_print.hpp>
 #include <map>
 #include <string>
 #include <vector>
 
-#include <hubbeam/scene.hpp>
-#include "io/output.hpp"
-#include "io/scene_print.hpp"
 #include "temp_folder.hpp"
-#include "text/printable.hpp"
 
 using namespace hubbeam;
 

@@ -3,13 +3,13 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <hubbeam/blade_files.hpp>
+#include <hubbeam/output_file.hpp>
+#include <hubbeam/scene.hpp>
 #include <map>
 #include <string>
 #include <vector>
 
-#include <hubbeam/scene.hpp>
-#include "io/blade_files.hpp"
-#include "io/output_file.hpp"
 #include "io/scene_io.hpp"
 
 using namespace hubbeam;

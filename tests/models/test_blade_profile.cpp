@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <hubbeam/field_recorder.hpp>
 #include <hubbeam/linearize.hpp>
 #include <hubbeam/make_model.hpp>
 #include <hubbeam/scene.hpp>
@@ -14,7 +15,6 @@
 
 #include "csv_file.hpp"
 #include "gauss_legendre.hpp"
-#include "io/field_recorder.hpp"
 #include "model_values.hpp"
 #include "random_state.hpp"
 #include "temp_folder.hpp"

@@ -3,13 +3,13 @@
 #include <catch2/catch.hpp>
 #include <cstdlib>
 #include <filesystem>
+#include <hubbeam/on_demand.hpp>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "generated_abi.h"
 #include "models/generated_model.hpp"
-#include "on_demand/on_demand.hpp"
 #include "random_state.hpp"
 
 using namespace hubbeam;

@@ -5,17 +5,17 @@
 #include <Eigen/Dense>
 #include <filesystem>
 #include <fstream>
+#include <hubbeam/field_recorder.hpp>
+#include <hubbeam/fields.hpp>
+#include <hubbeam/make_model.hpp>
+#include <hubbeam/simulate.hpp>
 #include <map>
 #include <random>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include <hubbeam/fields.hpp>
-#include <hubbeam/make_model.hpp>
-#include <hubbeam/simulate.hpp>
 #include "csv_file.hpp"
-#include "io/field_recorder.hpp"
 #include "models/generated_model.hpp"
 #include "random_state.hpp"
 #include "runs.hpp"

@@ -1,20 +1,20 @@
-// On-demand variants (runtime/src/on_demand/on_demand.hpp): compiled once into the cache, reused, safe when two
+// On-demand variants (runtime/include/hubbeam/on_demand.hpp): compiled once into the cache, reused, safe when two
 // compilations race, and equal to the hand-assembled equations.
 #include <catch2/catch.hpp>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
-#include <iterator>
 #include <filesystem>
+#include <fstream>
 #include <future>
+#include <hubbeam/make_model.hpp>
+#include <hubbeam/model.hpp>
+#include <hubbeam/on_demand.hpp>
+#include <iterator>
 #include <random>
 #include <string>
 
-#include <hubbeam/make_model.hpp>
-#include <hubbeam/model.hpp>
 #include "generated_abi.h"
 #include "models/generated_model.hpp"
-#include "on_demand/on_demand.hpp"
 #include "random_state.hpp"
 
 using namespace hubbeam;

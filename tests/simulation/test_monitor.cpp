@@ -5,12 +5,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <hubbeam/output.hpp>
+#include <hubbeam/scene.hpp>
+#include <hubbeam/simulate.hpp>
 #include <string>
 #include <vector>
 
-#include <hubbeam/scene.hpp>
-#include <hubbeam/simulate.hpp>
-#include "io/output.hpp"
 #include "runs.hpp"
 
 using namespace hubbeam;

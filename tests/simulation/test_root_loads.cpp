@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <Eigen/Dense>
+#include <hubbeam/field_recorder.hpp>
 #include <hubbeam/fields.hpp>
 #include <hubbeam/linearize.hpp>
 #include <hubbeam/make_model.hpp>
@@ -17,7 +18,6 @@
 #include <hubbeam/simulate.hpp>
 
 #include "csv_file.hpp"
-#include "io/field_recorder.hpp"
 #include "models/root_loads.hpp"
 #include "runs.hpp"
 #include "temp_folder.hpp"

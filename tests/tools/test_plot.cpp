@@ -8,6 +8,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <hubbeam/output_file.hpp>
+#include <hubbeam/printable.hpp>
+#include <hubbeam/shortest.hpp>
 #include <hubbeam/simulate.hpp>
 #include <map>
 #include <set>
@@ -15,10 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "io/output_file.hpp"
 #include "plot.hpp"
-#include "text/printable.hpp"
-#include "text/shortest.hpp"
 
 using namespace hubbeam;
 namespace fs = std::filesystem;

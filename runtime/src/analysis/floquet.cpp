@@ -3,12 +3,12 @@
 // the monodromy matrix by a commutator-free Magnus integrator, the Floquet exponents and the harmonic that fixes each
 // frequency.
 #include <hubbeam/linearize.hpp>
+#include <hubbeam/shortest.hpp>
 
 #include "analysis/modal_coordinates.hpp"
 #include "models/modal_damping.hpp"
 #include "models/model_operations.hpp"
 #include "terms.hpp"
-#include "text/shortest.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <unsupported/Eigen/FFT>

@@ -1,5 +1,6 @@
 // The linearized hub-beam about a steady spin: force Jacobians, the steady stretch, the state-space matrices and
 // the natural modes (docs/model.md section 10).
+#include <hubbeam/csv_columns.hpp>
 #include <hubbeam/linearize.hpp>
 
 #include "analysis/modal_coordinates.hpp"
@@ -7,7 +8,6 @@
 #include "models/modal_damping.hpp"
 #include "models/model_operations.hpp"
 #include "terms.hpp"
-#include "text/csv_columns.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>

@@ -4,13 +4,13 @@
 
 #include <cmath>
 #include <complex>
-#include <stdexcept>
-
 #include <hubbeam/fields.hpp>
 #include <hubbeam/linearize.hpp>
+#include <hubbeam/shortest.hpp>
+#include <stdexcept>
+
 #include "analysis/modal_coordinates.hpp"
 #include "models/model_operations.hpp"
-#include "text/shortest.hpp"
 
 namespace hubbeam {
 

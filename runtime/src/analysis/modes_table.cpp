@@ -1,5 +1,5 @@
 // The modes table's one assembly (modes_table.hpp): hubbeam modes writes and prints it, hubbeam.modes converts it.
-#include "analysis/modes_table.hpp"
+#include <hubbeam/modes_table.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <memory>
 
 #include <hubbeam/make_model.hpp>
-#include "text/shortest.hpp"
+#include <hubbeam/shortest.hpp>
 
 namespace hubbeam {
 

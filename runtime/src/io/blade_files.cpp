@@ -42,7 +42,7 @@
 //   offsets, pre-curve, pre-sweep and Alpha exactly 0; at least two stations (ElastoDyn takes one, a uniform blade,
 //   which stations at 0 and 1 cannot be). Numbers as Fortran writes them: 1.5D+03, +2., .5.
 // - Both formats' twist keeps its sign (pyBModes copies ElastoDyn's StrcTwst into BModes' str_tw unchanged).
-#include "io/blade_files.hpp"
+#include <hubbeam/blade_files.hpp>
 
 #include <algorithm>
 #include <array>
@@ -57,7 +57,7 @@
 #include <string_view>
 #include <utility>
 
-#include "text/printable.hpp"
+#include <hubbeam/printable.hpp>
 
 namespace hubbeam {
 

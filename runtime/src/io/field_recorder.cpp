@@ -1,12 +1,12 @@
 // FieldRecorder: BeamFields' values at a row's state, written through the one writer (CsvWriter).
-#include "io/field_recorder.hpp"
+#include <hubbeam/field_recorder.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <hubbeam/output.hpp>
+#include <hubbeam/shortest.hpp>
 
-#include "io/output.hpp"
 #include "profile.hpp"
-#include "text/shortest.hpp"
 
 namespace hubbeam {
 

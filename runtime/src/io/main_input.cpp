@@ -33,7 +33,7 @@
 //   own modal stiffnesses: refused unless 1. Its mode-shape polynomials are ElastoDyn's discretization: not read.
 // - Gravity (FAST v8's ElastoDyn) is written as a commented [gravity]: a rotor turns in a vertical plane, and hubbeam
 //   modes about a steady spin are taken without gravity (a blade spinning under its weight moves periodically).
-#include "io/main_input.hpp"
+#include <hubbeam/main_input.hpp>
 
 #include <algorithm>
 #include <array>
@@ -42,17 +42,17 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <hubbeam/blade_files.hpp>
+#include <hubbeam/printable.hpp>
 #include <hubbeam/scene.hpp>
+#include <hubbeam/scene_print.hpp>
 #include <map>
-#include <tuple>
 #include <numbers>
 #include <optional>
 #include <sstream>
 #include <string_view>
+#include <tuple>
 
-#include "io/blade_files.hpp"
-#include "io/scene_print.hpp"
-#include "text/printable.hpp"
 #include "variant.hpp"
 
 namespace hubbeam {

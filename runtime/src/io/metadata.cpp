@@ -1,19 +1,19 @@
 // The metadata beside an output (metadata.hpp): a hand-written JSON writer (the library links no JSON library, and
 // the object is flat but for the scene), the effective scene, the tables' hashes and the summary's fields.
-#include "io/metadata.hpp"
+#include <hubbeam/metadata.hpp>
 
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <hubbeam/on_demand.hpp>
+#include <hubbeam/output.hpp>
+#include <hubbeam/output_file.hpp>
 #include <hubbeam/scene.hpp>
+#include <hubbeam/scene_print.hpp>
+#include <hubbeam/shortest.hpp>
 
-#include "io/output.hpp"
-#include "io/output_file.hpp"
 #include "io/scene_io.hpp"
-#include "io/scene_print.hpp"
-#include "on_demand/on_demand.hpp"
 #include "on_demand/sha256.hpp"
-#include "text/shortest.hpp"
 
 namespace hubbeam {
 

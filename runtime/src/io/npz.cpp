@@ -1,5 +1,5 @@
 // NumPy's .npy and .npz formats (npz.hpp).
-#include "io/npz.hpp"
+#include <hubbeam/npz.hpp>
 
 #include <algorithm>
 #include <bit>

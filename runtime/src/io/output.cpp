@@ -1,5 +1,5 @@
 // CSV rows (buffered, written through an OutputFile: a temporary file renamed into place) and the run summary.
-#include "io/output.hpp"
+#include <hubbeam/output.hpp>
 
 #include <bit>
 #include <cerrno>
@@ -10,10 +10,10 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "io/metadata.hpp"
-#include "io/npz.hpp"
-#include "text/printable.hpp"
-#include "text/shortest.hpp"
+#include <hubbeam/metadata.hpp>
+#include <hubbeam/npz.hpp>
+#include <hubbeam/printable.hpp>
+#include <hubbeam/shortest.hpp>
 
 namespace hubbeam {
 

@@ -1,5 +1,5 @@
 // OutputFile and the checks of a command's outputs: file identity, file type, the lock against a second writer.
-#include "io/output_file.hpp"
+#include <hubbeam/output_file.hpp>
 
 #include <algorithm>
 #include <cerrno>
@@ -16,7 +16,7 @@
 
 #include <hubbeam/config.hpp>
 #include <hubbeam/scene.hpp>  // printable
-#include "text/printable.hpp"
+#include <hubbeam/printable.hpp>
 
 namespace hubbeam {
 

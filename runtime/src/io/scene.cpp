@@ -7,14 +7,14 @@
 #include <charconv>
 #include <climits>
 #include <cmath>
+#include <hubbeam/option_lists.hpp>
+#include <hubbeam/printable.hpp>
 #include <hubbeam/scene.hpp>
+#include <hubbeam/shortest.hpp>
 #include <optional>
 #include <string_view>
 
 #include "io/scene_io.hpp"
-#include "text/option_lists.hpp"
-#include "text/printable.hpp"
-#include "text/shortest.hpp"
 
 namespace hubbeam {
 

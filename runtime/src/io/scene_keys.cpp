@@ -1,11 +1,11 @@
 // The scene key table, the one definition of the keys (name, option, what each holds), and its lookups.
 #include <algorithm>
+#include <hubbeam/blade_files.hpp>
+#include <hubbeam/option_lists.hpp>
 #include <hubbeam/scene.hpp>
 
 #include "dynamics/stepper_names.hpp"
-#include "io/blade_files.hpp"
 #include "io/scene_io.hpp"
-#include "text/option_lists.hpp"
 
 namespace hubbeam {
 

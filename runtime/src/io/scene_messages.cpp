@@ -1,10 +1,10 @@
 // Scene problems as messages: SceneError's wording, the helpers that throw it, and a problem against the
 // command-line option that set its key.
+#include <hubbeam/printable.hpp>
 #include <hubbeam/scene.hpp>
+#include <hubbeam/shortest.hpp>
 
 #include "io/scene_io.hpp"
-#include "text/printable.hpp"
-#include "text/shortest.hpp"
 
 namespace hubbeam {
 

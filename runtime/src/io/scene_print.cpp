@@ -1,18 +1,18 @@
 // The effective scene of a loaded Scene (scene_print.hpp): each key's value read back from the Scene that parsing
 // filled, so that what is printed is what runs, not what the file said.
-#include "io/scene_print.hpp"
+#include <hubbeam/scene_print.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <hubbeam/printable.hpp>
 #include <hubbeam/scene.hpp>
+#include <hubbeam/shortest.hpp>
 #include <optional>
 #include <stdexcept>
 
 #include "io/scene_io.hpp"
-#include "text/printable.hpp"
-#include "text/shortest.hpp"
 
 namespace hubbeam {
 

@@ -8,17 +8,17 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <hubbeam/blade_files.hpp>
+#include <hubbeam/csv_columns.hpp>
+#include <hubbeam/output_file.hpp>
+#include <hubbeam/printable.hpp>
 #include <hubbeam/scene.hpp>
+#include <hubbeam/shortest.hpp>
 #include <limits>
 #include <optional>
 
-#include "io/blade_files.hpp"
-#include "io/output_file.hpp"
 #include "io/scene_io.hpp"
 #include "profile.hpp"
-#include "text/csv_columns.hpp"
-#include "text/printable.hpp"
-#include "text/shortest.hpp"
 
 namespace hubbeam {
 

@@ -2,12 +2,12 @@
 #include <algorithm>
 #include <cmath>
 #include <hubbeam/linearize.hpp>
+#include <hubbeam/printable.hpp>
 #include <hubbeam/scene.hpp>
+#include <hubbeam/shortest.hpp>
 
 #include "dynamics/stepper_names.hpp"
 #include "io/scene_io.hpp"
-#include "text/printable.hpp"
-#include "text/shortest.hpp"
 
 namespace hubbeam {
 

@@ -2,11 +2,11 @@
 #include <chrono>
 #include <cstdio>
 #include <hubbeam/make_model.hpp>
+#include <hubbeam/on_demand.hpp>
 #include <stdexcept>
 
 #include "models/assembled.hpp"
 #include "models/generated_model.hpp"
-#include "on_demand/on_demand.hpp"
 
 namespace hubbeam {
 

@@ -1,6 +1,6 @@
 // Locating companions from the code's own file: no absolute path of the build tree is compiled in, so that
 // `cmake --install` followed by removing the build tree leaves every command working.
-#include "on_demand/install_layout.hpp"
+#include <hubbeam/install_layout.hpp>
 
 #include <sstream>
 #include <system_error>

@@ -2,7 +2,7 @@
 // own process group, each into a private work folder inside the cache; the finished object is recorded with its
 // SHA-256 in a manifest beside it, and no object is opened with dlopen before its file matches that record. Objects
 // stay loaded for the life of the process. docs/security.md, "The on-demand cache", states the rules.
-#include "on_demand/on_demand.hpp"
+#include <hubbeam/on_demand.hpp>
 
 #include <algorithm>
 #include <atomic>
@@ -21,6 +21,7 @@
 
 #include <dlfcn.h>
 #include <fcntl.h>
+#include <hubbeam/install_layout.hpp>
 #include <pwd.h>
 #include <sys/file.h>
 #include <sys/prctl.h>
@@ -29,7 +30,6 @@
 #include <unistd.h>
 
 #include "generated_abi.h"
-#include "on_demand/install_layout.hpp"
 #include "on_demand/sha256.hpp"
 #include "on_demand/variant_rows.hpp"
 

@@ -2,6 +2,7 @@
 // (built in or on demand) makes of a row before calling any of its kernels.
 #pragma once
 
+#include <hubbeam/on_demand.hpp>
 #include <string>
 #include <vector>
 
@@ -20,8 +21,5 @@ std::string row_problem(const generated::Variant& v, const VariantKey& key);
 
 /// The variant of key generated into this build, or nullptr; throws std::logic_error if its row is refused.
 const generated::Variant* built_in_variant(const VariantKey& key);
-
-/// The names of the variants generated into this build, in registry order.
-std::vector<std::string> generated_variant_names();
 
 }  // namespace hubbeam

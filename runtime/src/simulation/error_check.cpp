@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <hubbeam/shortest.hpp>
 #include <utility>
 
 
@@ -13,7 +14,6 @@
 #include "simulation/column_check.hpp"
 #include "simulation/run_rows.hpp"
 #include "simulation/sensitivity.hpp"
-#include "text/shortest.hpp"
 
 namespace hubbeam {
 

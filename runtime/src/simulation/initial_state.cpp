@@ -8,7 +8,7 @@
 #include <hubbeam/linearize.hpp>
 #include <stdexcept>
 
-#include "text/shortest.hpp"
+#include <hubbeam/shortest.hpp>
 
 namespace hubbeam {
 

@@ -6,14 +6,14 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <hubbeam/shortest.hpp>
+#include <hubbeam/simulate.hpp>
 #include <string>
 #include <vector>
 
-#include <hubbeam/simulate.hpp>
 #include "simulation/error_check.hpp"
 #include "simulation/run_rows.hpp"
 #include "terms.hpp"
-#include "text/shortest.hpp"
 
 namespace hubbeam {
 

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <hubbeam/shortest.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -12,7 +13,6 @@
 #include "dynamics/stiffness.hpp"
 #include "models/model_operations.hpp"
 #include "simulation/run_rows.hpp"
-#include "text/shortest.hpp"
 
 namespace hubbeam {
 

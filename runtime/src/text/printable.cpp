@@ -1,6 +1,6 @@
 // printable (printable.hpp): user text escaped, as the Python module's hubbeam.printable does, so that a
 // message quoting it cannot drive the terminal; and unsafe_character, which finds what printable would escape.
-#include "text/printable.hpp"
+#include <hubbeam/printable.hpp>
 
 #include <cstdio>
 #include <utility>

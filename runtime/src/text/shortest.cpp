@@ -8,7 +8,7 @@
 // (1.2345e-05, 1e+15), exponents with a sign and at least two digits. Values this code does not meet in a run's
 // rows (zero aside, subnormals, |v| >= 2^53, inf and nan) are handed to std::to_chars itself: libstdc++ writes an
 // integer of 2^53 or more in the plain form with all its exact digits (123456789012345683968), not the shortest.
-#include "text/shortest.hpp"
+#include <hubbeam/shortest.hpp>
 
 #include <array>
 #include <bit>

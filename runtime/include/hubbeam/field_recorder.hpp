@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "text/csv_columns.hpp"
+#include <hubbeam/csv_columns.hpp>
 
 namespace hubbeam {
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <string_view>
 
-#include "io/output_file.hpp"
+#include <hubbeam/output_file.hpp>
 
 namespace hubbeam {
 

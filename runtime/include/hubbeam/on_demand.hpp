@@ -55,6 +55,9 @@ const generated::Variant* compile_variant(const VariantKey& key,
 const generated::Variant* compile_variant_in(const VariantKey& key, const std::filesystem::path& dir,
                                              const std::vector<std::string>& generator_options);
 
+/// The names of the variants generated into this build, in registry order.
+std::vector<std::string> generated_variant_names();
+
 /// The variants in this version's cache, sorted.
 std::vector<std::string> cached_variant_names();
 
