@@ -75,6 +75,30 @@ TEST_CASE("a prescribed rotor's blade b is the single blade at its azimuth, pitc
     CHECK(max_difference(rows["tip_uz_1"], rows["tip_uz_3"]) > 1e-3 * peak(rows["tip_uz_1"]));
 }
 
+TEST_CASE("a planar rotor's blade b is the single planar blade at its azimuth, column by column", "[rotor]")
+{
+    // In the plane (no flap or twist fields, no pitch) each blade has three tip columns, not five.
+    const Overrides planar = {{"discretization.nz", "0"}, {"discretization.nt", "0"}, {"beam.pitch", "0"}};
+    Overrides with_blades = planar;
+    with_blades.push_back({"rotor.blades", "3"});
+    with_blades.push_back({"rotor.tip_masses", "1.5, 0, 4"});
+    auto rows = run_columns(scene_with(with_blades));
+    REQUIRE(rows.count("tip_uz_2") == 0);
+    const double pi = std::acos(-1.0);
+    const double tip_masses[] = {1.5, 0.0, 4.0};
+    for (int b = 0; b < 3; ++b) {
+        Overrides one = planar;
+        one.push_back({"motion.theta0", std::to_string(2.0 * pi * b / 3.0)});
+        one.push_back({"tip.mass", std::to_string(tip_masses[b])});
+        auto alone = run_columns(scene_with(one));
+        for (const char* c : {"tip_uy", "tip_ux1", "tip_ux"}) {
+            const std::string mine = std::string(c) + "_" + std::to_string(b + 1);
+            INFO("blade " << b + 1 << " column " << c);
+            CHECK(max_difference(rows[mine], alone[c]) <= 1e-6 * peak(alone[c]) + 1e-12);
+        }
+    }
+}
+
 TEST_CASE("a rotor of N identical blades under a torque turns the hub as one blade with 1/N of its inertia and torque",
           "[rotor]")
 {

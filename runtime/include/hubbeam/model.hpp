@@ -27,6 +27,25 @@ struct Tip {
     double uy = 0.0, ux1 = 0.0, ux = 0.0, uz = 0.0, phi = 0.0;
 };
 
+/// A tip value by its column's name, in the one order every output lists them (a row's tip columns, a rotor's
+/// blades 2 .. N, the sensitivities' outputs); fields is the coordinate count a variant needs for it (nz for u_z,
+/// nt for phi), null where every variant has it.
+struct TipValue {
+    const char* name;
+    double Tip::*member;
+    int VariantKey::*fields;
+};
+inline constexpr TipValue tip_values[] = {{"tip_uy", &Tip::uy, nullptr},
+                                          {"tip_ux1", &Tip::ux1, nullptr},
+                                          {"tip_ux", &Tip::ux, nullptr},
+                                          {"tip_uz", &Tip::uz, &VariantKey::nz},
+                                          {"tip_phi", &Tip::phi, &VariantKey::nt}};
+/// Whether key's variant has the tip value v (its field's coordinates).
+inline bool has_tip_value(const VariantKey& key, const TipValue& v)
+{
+    return v.fields == nullptr || key.*v.fields > 0;
+}
+
 /// Q = F m: F (nq x K, free of the state) fixed for the run, m the K monomials of the state Q is a sum of. What
 /// lets the integrator fold a constant M^-1 into F once (docs/architecture.md, "From scene to rows").
 class TermForces {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <hubbeam/config.hpp>
+#include <hubbeam/model.hpp>
 
 namespace hubbeam {
 
@@ -115,8 +116,8 @@ struct ColumnSet {
     /// Each blade's root loads (root_load_columns, blade by blade) after the blades' tip columns, read from Row::loads.
     bool loads = false;
     bool has(std::size_t i) const { return (bits >> i & 1u) != 0; }
-    /// The tip columns of one blade: tip_uy, tip_ux1, tip_ux and the optional tip_uz, tip_phi the run has.
-    std::size_t blade_columns() const { return 3 + (has(0) ? 1 : 0) + (has(1) ? 1 : 0); }
+    /// The tip columns of one blade: those of tip_values (model.hpp) the rows have.
+    std::size_t blade_columns() const;
     /// The root loads' columns: root_load_width for each blade, or none.
     std::size_t load_columns() const { return loads ? root_load_width * static_cast<std::size_t>(blades) : 0; }
     std::size_t count() const
@@ -139,17 +140,15 @@ void for_each_value(const Row& row, const ColumnSet& set, Value value)
     for (std::size_t i = 0; i < set.load_columns(); ++i) value(row.loads[i]);
     for (std::size_t i = 0; i < set.derived.size(); ++i) value(row.derived[i]);
 }
-/// The outputs a sensitivity run differentiates, in column order: what a reader of the rows plots (the energies
-/// follow from these).
-inline constexpr const char* sensitivity_outputs[] = {"theta", "theta_dot", "tip_uy", "tip_ux1", "tip_ux"};
-/// A blade's outputs after them, where the variant has the field (docs/model.md section 12).
-inline constexpr const char* blade_sensitivity_outputs[] = {"tip_uz", "tip_phi"};
-/// The outputs a sensitivity run of key's variant differentiates: sensitivity_outputs, then tip_uz where nz > 0 and
-/// tip_phi where nt > 0.
+/// The outputs a sensitivity run differentiates, in column order: the hub's, then the tip's (tip_values, where the
+/// variant has them): what a reader of the rows plots (the energies follow from these).
+inline constexpr const char* sensitivity_outputs[] = {"theta", "theta_dot"};
+/// The outputs a sensitivity run of key's variant differentiates: sensitivity_outputs, then each of tip_values the
+/// variant has (tip_uz where nz > 0, tip_phi where nt > 0).
 std::vector<std::string> sensitivity_outputs_of(const VariantKey& key);
 /// The most derivative columns a row can carry: every output by every parameter and gain.
 inline constexpr std::size_t max_derived_columns =
-    (param_count + gain_names.size()) * (std::size(sensitivity_outputs) + std::size(blade_sensitivity_outputs));
+    (param_count + gain_names.size()) * (std::size(sensitivity_outputs) + std::size(tip_values));
 /// "d_OUTPUT/d_PARAM" for each parameter (in the order given), each output of key's variant within it.
 std::vector<std::string> sensitivity_columns(const std::vector<std::string>& parameters, const VariantKey& key);
 /// The optional columns of a scene's rows (none for the paper's scenes).

@@ -4,13 +4,40 @@
 
 #include <iterator>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <hubbeam/config.hpp>
+#include <hubbeam/model.hpp>
 #include "dynamics/integrate.hpp"
 #include "terms.hpp"
 
 namespace hubbeam {
+
+namespace {
+
+/// Whether set's rows carry the column name: a column of row_columns always, an optional one where set has it.
+bool has_column(const ColumnSet& set, std::string_view name)
+{
+    for (std::size_t i = 0; i < optional_width; ++i)
+        if (name == optional_columns[i].name) return set.has(i);
+    return true;
+}
+
+constexpr bool same(const char* a, const char* b) { return std::string_view(a) == b; }
+// The row's tip columns are tip_values in its order: blade 1's where the rows have them, the other blades' after.
+static_assert(same(row_columns[3].name, tip_values[0].name) && same(row_columns[4].name, tip_values[1].name) &&
+              same(row_columns[5].name, tip_values[2].name) && same(optional_columns[0].name, tip_values[3].name) &&
+              same(optional_columns[1].name, tip_values[4].name));
+
+}  // namespace
+
+std::size_t ColumnSet::blade_columns() const
+{
+    std::size_t n = 0;
+    for (const TipValue& v : tip_values) n += has_column(*this, v.name) ? 1 : 0;
+    return n;
+}
 
 ColumnSet optional_columns_of(const Scene& scene)
 {
@@ -19,9 +46,17 @@ ColumnSet optional_columns_of(const Scene& scene)
     const Auxiliary aux = Auxiliary::of(key, scene.damped(), control, &scene.parameters, scene.wants({"ki"}));
     const bool torque = key.drive == Drive::torque && (control != nullptr || scene.damped());
     const bool hub = key.extras.hub;
-    const bool has[] = {key.nz > 0,   key.nt > 0,     torque,   control != nullptr && !control->law,
-                        aux.integral, aux.dissipated, aux.work, hub,
-                        hub,          hub,            hub};
+    const bool has[] = {has_tip_value(key, tip_values[3]),
+                        has_tip_value(key, tip_values[4]),
+                        torque,
+                        control != nullptr && !control->law,
+                        aux.integral,
+                        aux.dissipated,
+                        aux.work,
+                        hub,
+                        hub,
+                        hub,
+                        hub};
     static_assert(std::size(has) == optional_width);
     ColumnSet set;
     for (std::size_t i = 0; i < optional_width; ++i)
@@ -35,8 +70,8 @@ ColumnSet optional_columns_of(const Scene& scene)
 std::vector<std::string> sensitivity_outputs_of(const VariantKey& key)
 {
     std::vector<std::string> outputs(std::begin(sensitivity_outputs), std::end(sensitivity_outputs));
-    if (key.nz > 0) outputs.emplace_back(blade_sensitivity_outputs[0]);
-    if (key.nt > 0) outputs.emplace_back(blade_sensitivity_outputs[1]);
+    for (const TipValue& v : tip_values)
+        if (has_tip_value(key, v)) outputs.emplace_back(v.name);
     return outputs;
 }
 
@@ -61,9 +96,8 @@ std::vector<std::string> row_column_names(const ColumnSet& set)
     for (std::size_t i = 0; i < optional_width; ++i)
         if (set.has(i)) names.push_back(blade(optional_columns[i].name, 1));
     for (int b = 2; b <= set.blades; ++b)
-        for (const char* tip : {"tip_uy", "tip_ux1", "tip_ux", "tip_uz", "tip_phi"})
-            if ((std::string(tip) != "tip_uz" || set.has(0)) && (std::string(tip) != "tip_phi" || set.has(1)))
-                names.push_back(blade(tip, b));
+        for (const TipValue& v : tip_values)
+            if (has_column(set, v.name)) names.push_back(blade(v.name, b));
     for (int b = 1; set.loads && b <= set.blades; ++b)
         for (const LoadColumn& c : root_load_columns)
             names.push_back(set.blades > 1 ? std::string(c.name) + "_" + std::to_string(b) : std::string(c.name));

@@ -102,13 +102,12 @@ Row RowMaker::operator()(double t, const double* y)
         r.derived = derived_.data();
     }
     if (const int blades = blade_count(model_); blades > 1) {
-        // Blades 2 .. N's tip columns, in ColumnSet::blade_columns' order.
+        // Blades 2 .. N's tip columns, in tip_values' order (row_column_names').
         blades_.clear();
         for (int b = 1; b < blades; ++b) {
             const Tip tb = blade_tip(model_, q, b);
-            blades_.insert(blades_.end(), {tb.uy, tb.ux1, tb.ux});
-            if (model_.key().nz > 0) blades_.push_back(tb.uz);
-            if (model_.key().nt > 0) blades_.push_back(tb.phi);
+            for (const TipValue& v : tip_values)
+                if (has_tip_value(model_.key(), v)) blades_.push_back(tb.*v.member);
         }
         r.blades = blades_.data();
     }

@@ -317,10 +317,12 @@ int SensitivitySystem::jacobian(double t, const double* y, double* dfdy, double*
 
 namespace {
 
-/// A tip's displacements in the order of the outputs: u_y, u_x1, u_x, u_z, phi.
-std::array<double, 5> tip_values(const Tip& t)
+/// A tip's displacements in tip_values' order.
+std::array<double, std::size(tip_values)> values_of(const Tip& t)
 {
-    return {t.uy, t.ux1, t.ux, t.uz, t.phi};
+    std::array<double, std::size(tip_values)> v{};
+    for (std::size_t k = 0; k < v.size(); ++k) v[k] = t.*tip_values[k].member;
+    return v;
 }
 
 }  // namespace
@@ -342,29 +344,26 @@ void SensitivitySystem::outputs(double t, const double* y, double* out)
         // keeps its round-off at that of the tip itself.
         double big = 0.0;
         for (int i = 0; i < nq; ++i) big = std::max(big, std::abs(sigma[i]));
-        std::array<double, 5> d{};  // the tip's, in tip_values' order
+        std::array<double, std::size(tip_values)> d{};  // the tip's, in tip_values' order
         if (big > 0.0) {
             for (int i = 0; i < nq; ++i) {
                 plus[static_cast<std::size_t>(i)] = y[i] + sigma[i] / big;
                 minus[static_cast<std::size_t>(i)] = y[i] - sigma[i] / big;
             }
-            const auto a = tip_values(model_.tip(plus.data())), b = tip_values(model_.tip(minus.data()));
+            const auto a = values_of(model_.tip(plus.data())), b = values_of(model_.tip(minus.data()));
             for (std::size_t k = 0; k < d.size(); ++k) d[k] = (a[k] - b[k]) / 2.0 * big / p.scale;
         }
         if (!p.gain) {  // the tip's own dependence on the parameter (a slope coordinate's scale)
             const ParameterDerivatives* pd = model_.parameter_derivatives();
-            const auto a = tip_values(pd ? pd->tip_p(p.param, y) : p.up->tip(y));
-            const auto b = tip_values(pd ? Tip{} : p.down->tip(y));
+            const auto a = values_of(pd ? pd->tip_p(p.param, y) : p.up->tip(y));
+            const auto b = values_of(pd ? Tip{} : p.down->tip(y));
             const double step = pd ? 1.0 : 2.0 * p.h;
             for (std::size_t k = 0; k < d.size(); ++k) d[k] += (a[k] - b[k]) / step;
         }
-        o[2] = d[0];
-        o[3] = d[1];
-        o[4] = d[2];
-        // A blade's, in sensitivity_outputs_of's order.
+        // In sensitivity_outputs_of's order: the tip's values the variant has.
         int next = static_cast<int>(std::size(sensitivity_outputs));
-        if (model_.key().nz > 0) o[next++] = d[3];
-        if (model_.key().nt > 0) o[next++] = d[4];
+        for (std::size_t k = 0; k < d.size(); ++k)
+            if (has_tip_value(model_.key(), tip_values[k])) o[next++] = d[k];
     }
 }
 
