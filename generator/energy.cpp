@@ -232,6 +232,8 @@ private:
         if (!key.extras.offsets) return;
         distribution(f.offsets->mass_offset_cos_x, D::mass_offset_cos);
         distribution(f.offsets->mass_offset_sin_x, D::mass_offset_sin);
+        distribution(f.offsets->tension_offset_cos_x, D::tension_offset_cos);
+        distribution(f.offsets->tension_offset_sin_x, D::tension_offset_sin);
     }
 
     Poly evaluate(const ex& density, bool tip)

@@ -104,12 +104,14 @@ struct FieldSymbols {
         j_cos_x{"j_cos_x"}, j_sin_x{"j_sin_x"};
     // A uniform blade's pre-twist: cos 2 twist xi and sin 2 twist xi (section distributions).
     GiNaC::symbol cos_2twist_x{"cos_2twist_x"}, sin_2twist_x{"sin_2twist_x"};
-    /// A blade's section offsets (docs/model.md section 12.5): the flapwise slope's rate and the mass's first moment
-    /// along the chord times cos and sin of the chord's angle (section distributions). Made only for a variant with
-    /// offsets, so that the others' symbols and emitted code stay as they were.
+    /// A blade's section offsets (docs/model.md sections 12.5 and 12.6): the flapwise slope's rate, the mass's first
+    /// moment along the chord and the axial stiffness times the tension centre's offset, each times cos and sin of the
+    /// chord's angle (section distributions). Made only for a variant with offsets, so that the others' symbols and
+    /// emitted code stay as they were.
     struct Offsets {
         GiNaC::symbol uz_x_dot{"u_z_x_dot"}, mass_offset_cos_x{"mass_offset_cos_x"},
-            mass_offset_sin_x{"mass_offset_sin_x"};
+            mass_offset_sin_x{"mass_offset_sin_x"}, tension_offset_cos_x{"tension_offset_cos_x"},
+            tension_offset_sin_x{"tension_offset_sin_x"};
     };
     std::shared_ptr<const Offsets> offsets;
 };

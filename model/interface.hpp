@@ -58,9 +58,9 @@ constexpr std::size_t profile_value_count(bool out_of_plane)
 /// linear between the table's stations: mass per length, EI, ES; out of the plane EI_flap, GJ, the polar mass moment
 /// j_c + j_n, and the deviators (EI - EI_flap)/2 and (j_n - j_c)/2 times cos and sin of twice the chord's angle. Then
 /// a uniform blade's linear pre-twist (Param::twist, docs/model.md section 12): cos 2 twist xi and sin 2 twist xi.
-/// Then a blade's section offsets (docs/model.md section 12.5): the mass per length times the centre of mass's offset
-/// towards the leading edge, times cos and sin of the chord's angle (pitch and tabulated twist), linear between
-/// stations.
+/// Then a blade's section offsets (docs/model.md sections 12.5 and 12.6): the mass per length times the centre of mass's
+/// offset towards the leading edge, times cos and sin of the chord's angle (pitch and tabulated twist), linear between
+/// stations; and the axial stiffness times the tension centre's offset likewise.
 enum class SectionDistribution : int {
     m,
     EI,
@@ -75,23 +75,26 @@ enum class SectionDistribution : int {
     cos_2twist,
     sin_2twist,
     mass_offset_cos,
-    mass_offset_sin
+    mass_offset_sin,
+    tension_offset_cos,
+    tension_offset_sin
 };
-inline constexpr std::size_t section_distribution_count = 14;
+inline constexpr std::size_t section_distribution_count = 16;
 inline constexpr std::array<const char*, section_distribution_count> section_distribution_names = {
     "m", "EI", "ES", "EI_flap", "GJ", "j_p", "EI_cos", "EI_sin", "j_cos", "j_sin", "cos_2twist", "sin_2twist",
-    "mass_offset_cos", "mass_offset_sin"};
+    "mass_offset_cos", "mass_offset_sin", "tension_offset_cos", "tension_offset_sin"};
 /// Whether a distribution is a table's (linear between its stations), not the pre-twist's.
 constexpr bool tabulated(SectionDistribution d)
 {
     return d != SectionDistribution::cos_2twist && d != SectionDistribution::sin_2twist;
 }
 
-/// A blade's section offsets at each station (docs/model.md section 12.5), along the chord from the reference axis,
-/// positive towards the trailing edge (m): the centre of mass's (BModes' cg_offst).
-enum class SectionOffset : std::size_t { mass };
-inline constexpr std::size_t section_offset_count = 1;
-inline constexpr std::array<const char*, section_offset_count> section_offset_names = {"cg_offset"};
+/// A blade's section offsets at each station (docs/model.md sections 12.5 and 12.6), along the chord from the reference
+/// axis, positive towards the trailing edge (m): the centre of mass's (BModes' cg_offst) and the tension centre's
+/// (BModes' tc_offst).
+enum class SectionOffset : std::size_t { mass, tension };
+inline constexpr std::size_t section_offset_count = 2;
+inline constexpr std::array<const char*, section_offset_count> section_offset_names = {"cg_offset", "tc_offset"};
 
 /// A profile variant's kernels read its section integrals after the parameters: p[param_count + n] is
 /// Variant::section_integrals[n] of the run's table (runtime/src/models/section_integrals.hpp computes them).

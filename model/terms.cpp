@@ -80,9 +80,10 @@ std::vector<TermInfo> make_terms()
          [](std::string_view part, Extras& e) { return part == "profile" && (e.tabulated = true); },
          [](const Extras&) { return std::string("tabulated_profile"); },
          never},
-        // Chosen by the table's words (a blade's offsets column), as the profile is.
-        {"section offsets (section 12.5)",
-         adds_T,
+        // Chosen by the table's words (a blade's offsets columns), as the profile is: the centre of mass's T, the
+        // tension centre's U (which vanishes with nx = 0).
+        {"section offsets (sections 12.5 and 12.6)",
+         adds_T | adds_U,
          {},
          {},
          false,

@@ -1,7 +1,10 @@
-// A blade's section offsets (docs/model.md section 12.5): the centre of mass off the reference axis along the chord.
-// A rigid section's kinetic energy about the reference point is m |v|^2 + 2 m d v . c_dot + (its rotation): the beam's
-// T holds the first and section_rotation the last (mass moments about the reference axis); this term adds the middle,
-// the reference point's velocity against the chord's, to second order in the deformation.
+// A blade's section offsets (docs/model.md sections 12.5 and 12.6): the centre of mass and the tension centre off the
+// reference axis along the chord. A rigid section's kinetic energy about the reference point is m |v|^2 + 2 m d v .
+// c_dot + (its rotation): the beam's T holds the first and section_rotation the last (mass moments about the reference
+// axis); this term adds the middle, the reference point's velocity against the chord's, to second order in the
+// deformation. The axial strain at the tension centre, u_x1' - d_A kappa_c, squared under EA: the beam's U holds EA
+// u_x1'^2 and the table's bending stiffnesses (about the reference axis) EA d_A^2 kappa_c^2; this term adds the
+// cross term.
 #include <array>
 
 #include "generator_terms.hpp"
@@ -61,6 +64,10 @@ void offsets_energies(const TermContext& c, Energies& e)
     const ex v_i = p.i_dot - w * p.j, v_j = p.j_dot + w * p.i, v_k = p.k_dot;
     const ex d_i = d_dot[0] - w * d[1], d_j = d_dot[1] + w * d[0], d_k = d_dot[2];
     e.T += c.integrate(second_order(v_i * d_i + v_j * d_j + v_k * d_k, f));
+    // -EA d_A u_x1' kappa_c, kappa_c = cos psi u_y'' + sin psi u_z'' at the undeformed chord's angle psi = pitch + beta
+    // (the twist phi's share is of third order); 0 with nx = 0, which the scene refuses with a tension centre's offset.
+    const ex At = f.offsets->tension_offset_cos_x, As = f.offsets->tension_offset_sin_x;
+    e.U += c.integrate(-f.ux1_x * (At * f.uy_xx + As * f.uz_xx));
 }
 
 }  // namespace hubbeam::gen

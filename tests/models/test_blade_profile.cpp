@@ -307,7 +307,7 @@ TEST_CASE("blade profile: a cg_offset column makes the variant with section offs
     f.write("blade.toml", blade_scene("profile = \"blade.csv\"\n", "nz = 2\n"));
     const Scene s = load_scene(f.scene());
     CHECK(s.key().name() == "fem_nx0_ny2_nz2_prescribed_first_profile_offsets");
-    CHECK(s.parameters.offsets == std::vector<double>{0.05, -0.02});
+    CHECK(s.parameters.offsets == std::vector<double>{0.05, 0.0, -0.02, 0.0});  // cg_offset, tc_offset by station
     f.write("blade.csv", "x/L, m, EI, ES, cg_offset\n0, 3, 900, 1e6, 0\n1, 1, 100, 1e6, 0\n");
     CHECK(load_scene(f.scene()).key().name() == "fem_nx0_ny2_nz2_prescribed_first_profile");
     // In the plane a chord has no offset to carry; order full and gravity are not modelled with one.
@@ -317,6 +317,27 @@ TEST_CASE("blade profile: a cg_offset column makes the variant with section offs
     f.write("blade.csv", offset);
     f.write("blade.toml", blade_scene("profile = \"blade.csv\"\n", "nz = 2\n") + "[model]\norder = \"full\"\n");
     CHECK_THROWS_WITH(load_scene(f.scene()), Catch::Contains("order first or zero, not full"));
+}
+
+TEST_CASE("blade profile: a tc_offset column makes the variant with section offsets, and needs an axial field",
+          "[profile][scene][section_offsets]")
+{
+    const Folder f;
+    f.write("blade.csv", "x/L, m, EI, ES, tc_offset\n0, 3, 900, 1e6, 0.01\n1, 1, 100, 1e6, -0.02\n");
+    std::string scene = blade_scene("profile = \"blade.csv\"\n", "nz = 2\n");
+    scene.replace(scene.find("nx = 0"), 6, "nx = 2");
+    f.write("blade.toml", scene);
+    const Scene s = load_scene(f.scene());
+    CHECK(s.key().name() == "fem_nx2_ny2_nz2_prescribed_first_profile_offsets");
+    CHECK(s.parameters.offsets == std::vector<double>{0.0, 0.01, 0.0, -0.02});
+    // With nx = 0 the offset would leave the bending stiffness about the reference axis: refused, naming the column.
+    f.write("blade.toml", blade_scene("profile = \"blade.csv\"\n", "nz = 2\n"));
+    CHECK_THROWS_WITH(load_scene(f.scene()),
+                      Catch::Contains("blade.csv") && Catch::Contains("column tc_offset") &&
+                          Catch::Contains("expected discretization.nx > 0"));
+    // A column of zeros is no offset: nx = 0 runs the variant without offsets.
+    f.write("blade.csv", "x/L, m, EI, ES, tc_offset\n0, 3, 900, 1e6, 0\n1, 1, 100, 1e6, 0\n");
+    CHECK(load_scene(f.scene()).key().name() == "fem_nx0_ny2_nz2_prescribed_first_profile");
 }
 
 TEST_CASE("blade profile: a table without what the blade needs is refused, naming the column", "[profile][scene]")
@@ -416,7 +437,7 @@ TEST_CASE("blade profile: a BModes or ElastoDyn file is read as the blade's tabl
     // A centre of mass off the axis is run-time data of the variant with offsets (docs/model.md section 12.5).
     const Scene offset = load_scene(scene("bmodes_cg_offset.dat", "", "nz = 2\n"));
     CHECK(offset.variant.extras.offsets);
-    CHECK(offset.parameters.offsets == std::vector<double>{0.0, 0.0, 0.032, 0.0});
+    CHECK(offset.parameters.offsets == std::vector<double>{0.0, 0.0, 0.0, 0.0, 0.032, 0.0, 0.0, 0.0});
     CHECK_FALSE(load_scene(scene("bmodes_blade.dat", "", "nz = 2\n")).variant.extras.offsets);
     // The root loads' force summation puts each section's mass on the axis: refused beside an offset one.
     try {

@@ -25,6 +25,7 @@ struct BladeTable {
     std::vector<double> mass_moment_edge;  // kg m: the same about the chord's normal (optional)
     std::vector<double> cg_offset;         // m: the centre of mass off the reference axis along the chord, towards
                                            // the trailing edge (optional)
+    std::vector<double> tc_offset;         // m: the tension centre off the reference axis likewise (optional)
     std::string source;                    // the format read: bmodes_source or elastodyn_source
 };
 

@@ -38,8 +38,8 @@
 //   stiffnesses finite and > 0 (after the adjustment factors, themselves > 0); mass moments of inertia >= 0 (files
 //   give 0 where rotary inertia is neglected); twist from -360 to 360 deg (ElastoDyn asks for -180 to 180 deg, which
 //   hubbeam needs not; one turn is max_section_angle, and a larger value names no other section); BModes' cg_offst
-//   finite (docs/model.md section 12.5, positive towards the trailing edge), the other
-//   offsets, pre-curve, pre-sweep and Alpha exactly 0; at least two stations (ElastoDyn takes one, a uniform blade,
+//   and tc_offst finite (docs/model.md sections 12.5 and 12.6, positive towards the trailing edge), its sc_offst
+//   finite and not used (12.6), ElastoDyn's offsets, pre-curve, pre-sweep and Alpha exactly 0; at least two stations (ElastoDyn takes one, a uniform blade,
 //   which stations at 0 and 1 cannot be). Numbers as Fortran writes them: 1.5D+03, +2., .5.
 // - Both formats' twist keeps its sign (pyBModes copies ElastoDyn's StrcTwst into BModes' str_tw unchanged).
 #include <hubbeam/blade_files.hpp>
@@ -245,10 +245,10 @@ constexpr std::array<Column, 13> bmodes_columns = {{
     {"tor_stff", "torsional stiffness, N m^2", Rule::positive},
     {"axial_stff", "axial stiffness, N", Rule::positive},
     {"cg_offst", "centre-of-mass offset, m", Rule::length},
-    {"sc_offst", "shear-centre offset, m", Rule::zero,
-     "hubbeam models no offset of the shear centre from the reference axis"},
-    {"tc_offst", "tension-centre offset, m", Rule::zero,
-     "hubbeam models no offset of the tension centre from the reference axis"},
+    // The shear centre's offset enters Euler-Bernoulli bending with St Venant torsion only at the warping's order
+    // (docs/model.md 12.6): read, checked finite, not used.
+    {"sc_offst", "shear-centre offset, m", Rule::unused},
+    {"tc_offst", "tension-centre offset, m", Rule::length},
 }};
 
 /// The columns an ElastoDyn blade table may have (ElastoDyn_IO.f90; FAST v7's in api_change.rst); the first five
@@ -430,6 +430,7 @@ BladeTable bmodes_table(const BladeText& t, const Rows& rows)
     b.GJ = v[8];
     b.EA = v[9];
     b.cg_offset = v[10];
+    b.tc_offset = v[12];  // from the reference axis, as the energies take it, not BModes' tc_offst - sc_offst (12.6)
     for (std::size_t s = 0; s < rows.lines.size(); ++s) {
         b.twist.push_back(v[1][s] * degree);
         // flp_iner, edge_iner are about the inertia axes, at tw_iner; about the structural axes, at str_tw, BModes

@@ -654,7 +654,12 @@ std::string imported_scene_toml(const ImportedBlade& b, const std::string& scene
     s += "\n[discretization]\n";
     s += key_line("method", "\"fem\"", "finite elements along the span");
     s += key_line("ny", "8", "edgewise (in the plane of rotation)");
-    s += key_line("nx", "0", "no axial coordinates: their modes are far above the blade's");
+    // A tension centre off the axis couples the stretch to bending: the axis must stretch (docs/model.md 12.6).
+    const bool tension = std::any_of(table.tc_offset.begin(), table.tc_offset.end(), [](double d) { return d != 0.0; });
+    if (tension)
+        s += key_line("nx", "8", "axial: the tension centre's offset (tc_offst) couples the stretch to bending");
+    else
+        s += key_line("nx", "0", "no axial coordinates: their modes are far above the blade's");
     s += key_line("nz", "8", "flapwise");
     s += key_line("nt", twist_field ? "2" : "0",
                   twist_field ? "twist" : "no twist: the section file gives no torsional stiffness or mass moments");

@@ -230,7 +230,8 @@ ProfileTable scene_io::read_profile(const std::string& scene_path, const std::st
         {"twist", "the chord's angle added to beam.pitch, rad", true},
         {"j_c", "mass moment of inertia per length about the chord, kg m", true},
         {"j_n", "mass moment of inertia per length about the chord's normal, kg m", true},
-        {"cg_offset", "the centre of mass's offset along the chord, towards the trailing edge, m", true}};
+        {"cg_offset", "the centre of mass's offset along the chord, towards the trailing edge, m", true},
+        {"tc_offset", "the tension centre's offset along the chord, towards the trailing edge, m", true}};
     const NumericTable table =
         read_numeric_table(scene_path, "beam.profile", file, max_profile_bytes, "a profile table", want);
     ProfileTable read{"beam.profile", file, {}};
@@ -240,7 +241,7 @@ ProfileTable scene_io::read_profile(const std::string& scene_path, const std::st
     if (table.header_columns != 4 + read.blade_columns.size())
         bad(table.header_line,
             "expected the columns x/L, m, EI, ES and, for a blade, any of EI_flap, GJ, twist, j_c, "
-            "j_n, cg_offset in its header, got " +
+            "j_n, cg_offset, tc_offset in its header, got " +
                 std::to_string(table.header_columns - 4 - read.blade_columns.size()) + " other columns");
     std::vector<double> x, values, offsets;
     for (std::size_t r = 0; r < table.rows.size(); ++r) {
@@ -250,7 +251,7 @@ ProfileTable scene_io::read_profile(const std::string& scene_path, const std::st
             bad(line, "more than " + std::to_string(max_profile_stations) + " stations");
         for (std::size_t c = 1; c < want.size(); ++c) {
             const std::string& col = want[c].name;
-            if (std::isnan(v[c]) || col == "cg_offset") continue;  // an offset may take any finite value
+            if (std::isnan(v[c]) || col == "cg_offset" || col == "tc_offset") continue;  // any finite offset
             if (col == "twist") {
                 if (!(std::abs(v[c]) <= max_section_angle))
                     bad(line, "expected twist from -2 pi to 2 pi (rad: one turn either way)");
@@ -271,7 +272,7 @@ ProfileTable scene_io::read_profile(const std::string& scene_path, const std::st
         const auto given = [&](std::size_t c, double otherwise) { return std::isnan(v[c]) ? otherwise : v[c]; };
         values.insert(values.end(),
                       {v[1], v[2], v[3], given(4, v[2]), given(5, 0.0), given(6, 0.0), given(7, 0.0), given(8, 0.0)});
-        offsets.push_back(given(9, 0.0));
+        offsets.insert(offsets.end(), {given(9, 0.0), given(10, 0.0)});  // in the order of SectionOffset
     }
     if (x.size() < 2) bad(0, "expected at least 2 stations, got " + std::to_string(x.size()));
     if (x.back() != 1.0) bad(0, "the last station must be x/L = 1, got " + shortest(x.back()));
@@ -343,13 +344,23 @@ void resample_table(std::vector<double>& x, std::vector<double>& values, int cou
     values = std::move(resampled);
 }
 
-/// Blade file b's section offsets at its stations (section_offset_count each), empty where the file has none or all
-/// are 0 (the variant without offsets then runs, as before them); taken at the stations `to` where they differ.
+/// Whether a column of offsets is absent or all 0.
+bool all_zero(const std::vector<double>& column)
+{
+    return std::all_of(column.begin(), column.end(), [](double v) { return v == 0.0; });
+}
+
+/// Blade file b's section offsets at its stations (section_offset_count each, in the order of SectionOffset), empty
+/// where the file has none or all are 0 (the variant without offsets then runs, as before them); taken at the stations
+/// `to` where they differ.
 std::vector<double> blade_offsets(const BladeTable& b, const std::vector<double>& to)
 {
-    if (std::all_of(b.cg_offset.begin(), b.cg_offset.end(), [](double v) { return v == 0.0; })) return {};
+    if (all_zero(b.cg_offset) && all_zero(b.tc_offset)) return {};
+    const auto at = [&](const std::vector<double>& column, double xk) {
+        return column.empty() ? 0.0 : linear_between(b.x_over_L, column, 0, xk);
+    };
     std::vector<double> offsets;
-    for (double xk : to) offsets.push_back(linear_between(b.x_over_L, b.cg_offset, 0, xk));
+    for (double xk : to) offsets.insert(offsets.end(), {at(b.cg_offset, xk), at(b.tc_offset, xk)});
     return offsets;
 }
 
@@ -378,7 +389,8 @@ ProfileTable scene_io::read_blade(const std::string& scene_path, const std::stri
     if (!b.GJ.empty()) read.blade_columns.push_back("GJ");
     if (!b.mass_moment_flap.empty()) read.blade_columns.insert(read.blade_columns.end(), {"j_c", "j_n"});
     const std::vector<double> offsets = blade_offsets(b, resample > 0 ? equally_spaced(resample) : b.x_over_L);
-    if (!offsets.empty()) read.blade_columns.push_back("cg_offset");
+    if (!all_zero(b.cg_offset)) read.blade_columns.push_back("cg_offset");
+    if (!all_zero(b.tc_offset)) read.blade_columns.push_back("tc_offset");
     const std::size_t n = b.x_over_L.size();
     if (n < 2 || b.x_over_L.front() != 0.0 || b.x_over_L.back() != 1.0)
         bad("expected stations from x/L = 0 at the root to 1 at the tip, got " + std::to_string(n) + " from " +
@@ -412,6 +424,14 @@ void scene_io::fit_profile(const std::string& scene_path, const ProfileTable& ta
     const std::size_t n = max_profile_value_count, stations = p.profile.size() / n;
     if (!table.axial && key.nx > 0)
         bad("an axial stiffness (EA) for discretization.nx > 0: the file gives none; set nx = 0");
+    // With nx = 0 the axis cannot stretch and the tension centre's offset would leave the bending stiffness about the
+    // reference axis, not about the tension centre (docs/model.md 12.6): refused rather than silently stiffer.
+    bool tension = false;
+    for (std::size_t k = static_cast<std::size_t>(SectionOffset::tension); k < p.offsets.size(); k += section_offset_count)
+        tension = tension || p.offsets[k] != 0.0;
+    if (key.nx == 0 && tension)
+        bad("column tc_offset (the tension centre's offset) is not 0: expected discretization.nx > 0, an axial field "
+            "that stretches (with nx = 0 the offset would be ignored and the blade bend too stiffly)");
     if (!key.out_of_plane()) {
         if (!table.blade_columns.empty())
             bad("column " + table.blade_columns.front() +

@@ -200,7 +200,7 @@ std::vector<double> section_distribution(const VariantKey& key, const Parameters
     if (w < max_profile_value_count && d > SectionDistribution::ES)
         throw std::invalid_argument("section integrals: a planar profile has no distribution " +
                                     std::string(section_distribution_names[static_cast<std::size_t>(d)]));
-    const bool offset = d == SectionDistribution::mass_offset_cos || d == SectionDistribution::mass_offset_sin;
+    const bool offset = d >= SectionDistribution::mass_offset_cos;
     if (offset && p.offsets.size() != n * section_offset_count)
         throw std::invalid_argument("section integrals: the variant " + key.name() + " reads " +
                                     std::to_string(section_offset_count) + " section offsets per station, the " +
@@ -212,9 +212,10 @@ std::vector<double> section_distribution(const VariantKey& key, const Parameters
         // The mass's first moment about the reference axis, towards the leading edge (the offset is towards the
         // trailing edge), along the chord turned by the station's angle and the pitch, which the variant reads here
         // rather than in its coefficients: cos and sin of the angle itself, not of twice it (docs/model.md 12.5).
-        const auto moment = [&](bool sine) {
-            const std::size_t at = section_offset_count * k + static_cast<std::size_t>(SectionOffset::mass);
-            const double first = -v(ProfileValue::m) * p.offsets[at];
+        // The tension centre's offset weighs the axial stiffness alike (docs/model.md 12.6).
+        const auto moment = [&](SectionOffset which, ProfileValue weight, bool sine) {
+            const std::size_t at = section_offset_count * k + static_cast<std::size_t>(which);
+            const double first = -v(weight) * p.offsets[at];
             const double angle = (key.extras.pitch ? p.pitch : 0.0) + v(ProfileValue::twist);
             return first * (sine ? std::sin(angle) : std::cos(angle));
         };
@@ -235,8 +236,10 @@ std::vector<double> section_distribution(const VariantKey& key, const Parameters
             case D::EI_sin: out[k] = turned((v(ProfileValue::EI) - v(ProfileValue::EI_flap)) / 2.0, true); break;
             case D::j_cos: out[k] = turned((v(ProfileValue::j_n) - v(ProfileValue::j_c)) / 2.0, false); break;
             case D::j_sin: out[k] = turned((v(ProfileValue::j_n) - v(ProfileValue::j_c)) / 2.0, true); break;
-            case D::mass_offset_cos: out[k] = moment(false); break;
-            case D::mass_offset_sin: out[k] = moment(true); break;
+            case D::mass_offset_cos: out[k] = moment(SectionOffset::mass, ProfileValue::m, false); break;
+            case D::mass_offset_sin: out[k] = moment(SectionOffset::mass, ProfileValue::m, true); break;
+            case D::tension_offset_cos: out[k] = moment(SectionOffset::tension, ProfileValue::ES, false); break;
+            case D::tension_offset_sin: out[k] = moment(SectionOffset::tension, ProfileValue::ES, true); break;
             default: break;
         }
     }
