@@ -194,6 +194,8 @@ TEST_CASE("the tip body's kinetic energy is the rigid body's carried by the tip 
     none.m_tip = none.J_tip = none.J_tip_flap = none.J_tip_twist = none.tip_offset = 0.0;
     const auto body = make_model(key, p, ModelSource::generated);
     const auto bare = make_model(key, none, ModelSource::generated);
+    // The hand-assembled path has no form for it, and says so rather than dropping it.
+    CHECK_THROWS_WITH(make_model(key, p, ModelSource::assembled), Catch::Contains("no hand-assembled form"));
     const TipBodyOracle oracle(key, p);
     const int nq = key.nq();
     for (int trial = 0; trial < 3; ++trial) {
