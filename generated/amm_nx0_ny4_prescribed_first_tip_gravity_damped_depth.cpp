@@ -3,7 +3,7 @@
 //   cmake --build build --target regenerate
 // Variant: method=amm Nx=0 Ny=4 order=first drive=prescribed tip_body gravity rayleigh_damping taper=depth
 // q = (B1..B4), qd = d/dt q; u = (tau, theta_dot, theta_ddot, sin_theta, cos_theta), of which this variant reads theta_dot, theta_ddot, sin_theta, cos_theta;
-// p = (L, rho, S, I, E, a, J_oh, m_tip, J_tip, g, alpha, beta, tip_ratio, I_flap, G, J_t, pitch, twist, precone, g_axis, m_hub, k_x, k_y, c_x, c_y) in SI units. Slope coordinates (FEM, BSIM) are d/dxi = L d/dx.
+// p = (L, rho, S, I, E, a, J_oh, m_tip, J_tip, g, alpha, beta, tip_ratio, I_flap, G, J_t, pitch, twist, precone, g_axis, m_hub, k_x, k_y, c_x, c_y, J_tip_flap, J_tip_twist, tip_offset) in SI units. Slope coordinates (FEM, BSIM) are d/dxi = L d/dx.
 // Derived symbolically from T and U (docs/model.md sections 2-3) by Lagrange's equations of the second kind.
 // For implicit integrators, derivatives of the same M and Q: forces_q = dQ/dq, forces_qd = dQ/dqd, forces_u =
 // dQ/du; M is constant, so there is no mass_q_product.
@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[25])->(c[97]) p = (L, rho, S, I, E, a, J_oh, m_tip, J_tip, g, alpha, beta, tip_ratio, I_flap, G, J_t, pitch, twist, precone, g_axis, m_hub, k_x, k_y, c_x, c_y); once per parameter set */
+/* coefficients:(p[28])->(c[97]) p = (L, rho, S, I, E, a, J_oh, m_tip, J_tip, g, alpha, beta, tip_ratio, I_flap, G, J_t, pitch, twist, precone, g_axis, m_hub, k_x, k_y, c_x, c_y, J_tip_flap, J_tip_twist, tip_offset); once per parameter set */
 HUBBEAM_ONCE_KERNEL void amm_nx0_ny4_prescribed_first_tip_gravity_damped_depth_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -127,7 +127,7 @@ HUBBEAM_ONCE_KERNEL void amm_nx0_ny4_prescribed_first_tip_gravity_damped_depth_c
     c[96] = 285.80369767061296*a*m_tip/(L) + 277.80369767061296*m_tip + 30.807433493399728*m*a + 72.11077665782084*m*a*tip_ratio + 15.552542139087686*L*m + 54.55823451873315*L*m*tip_ratio;
 }
 
-/* coefficients_p:(p[25])->(dcdp[25*97]) out[k*97 + i] = dc_i/dp_k, by the chain rule on the coefficients above; nonzero entries only */
+/* coefficients_p:(p[28])->(dcdp[28*97]) out[k*97 + i] = dc_i/dp_k, by the chain rule on the coefficients above; nonzero entries only */
 HUBBEAM_ONCE_KERNEL void amm_nx0_ny4_prescribed_first_tip_gravity_damped_depth_coefficients_p(const double* p, double* out)
 {
     const double L = p[0];

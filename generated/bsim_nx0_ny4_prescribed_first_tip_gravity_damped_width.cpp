@@ -3,7 +3,7 @@
 //   cmake --build build --target regenerate
 // Variant: method=bsim Nx=0 Ny=4 order=first drive=prescribed spline_basis=paper tip_body gravity rayleigh_damping taper=width
 // q = (B1..B4), qd = d/dt q; u = (tau, theta_dot, theta_ddot, sin_theta, cos_theta), of which this variant reads theta_dot, theta_ddot, sin_theta, cos_theta;
-// p = (L, rho, S, I, E, a, J_oh, m_tip, J_tip, g, alpha, beta, tip_ratio, I_flap, G, J_t, pitch, twist, precone, g_axis, m_hub, k_x, k_y, c_x, c_y) in SI units. End slope coordinates (BSIM) are per knot interval, h d/dx, h = L/n.
+// p = (L, rho, S, I, E, a, J_oh, m_tip, J_tip, g, alpha, beta, tip_ratio, I_flap, G, J_t, pitch, twist, precone, g_axis, m_hub, k_x, k_y, c_x, c_y, J_tip_flap, J_tip_twist, tip_offset) in SI units. End slope coordinates (BSIM) are per knot interval, h d/dx, h = L/n.
 // Derived symbolically from T and U (docs/model.md sections 2-3) by Lagrange's equations of the second kind.
 // For implicit integrators, derivatives of the same M and Q: forces_q = dQ/dq, forces_qd = dQ/dqd, forces_u =
 // dQ/du; M is constant, so there is no mass_q_product.
@@ -14,7 +14,7 @@ namespace hubbeam::generated {
 
 namespace {
 
-/* coefficients:(p[25])->(c[96]) p = (L, rho, S, I, E, a, J_oh, m_tip, J_tip, g, alpha, beta, tip_ratio, I_flap, G, J_t, pitch, twist, precone, g_axis, m_hub, k_x, k_y, c_x, c_y); once per parameter set */
+/* coefficients:(p[28])->(c[96]) p = (L, rho, S, I, E, a, J_oh, m_tip, J_tip, g, alpha, beta, tip_ratio, I_flap, G, J_t, pitch, twist, precone, g_axis, m_hub, k_x, k_y, c_x, c_y, J_tip_flap, J_tip_twist, tip_offset); once per parameter set */
 HUBBEAM_ONCE_KERNEL void bsim_nx0_ny4_prescribed_first_tip_gravity_damped_width_coefficients(const double* p, double* c)
 {
     const double L = p[0];
@@ -126,7 +126,7 @@ HUBBEAM_ONCE_KERNEL void bsim_nx0_ny4_prescribed_first_tip_gravity_damped_width_
     c[95] = a*m_tip/(L) + m_tip + 0.012698412698412698*m*a + 0.0873015873015873*m*a*tip_ratio + 0.007054673721340388*L*m + 0.0638447971781305*L*m*tip_ratio;
 }
 
-/* coefficients_p:(p[25])->(dcdp[25*96]) out[k*96 + i] = dc_i/dp_k, by the chain rule on the coefficients above; nonzero entries only */
+/* coefficients_p:(p[28])->(dcdp[28*96]) out[k*96 + i] = dc_i/dp_k, by the chain rule on the coefficients above; nonzero entries only */
 HUBBEAM_ONCE_KERNEL void bsim_nx0_ny4_prescribed_first_tip_gravity_damped_width_coefficients_p(const double* p, double* out)
 {
     const double L = p[0];

@@ -372,6 +372,7 @@ Symbols::Symbols(const VariantKey& key)
         if (f.basis) rates(f.kind) = numbered(f.symbol, f.count, "_dot");
     if (key.out_of_plane()) o = std::make_shared<const OutOfPlane>();
     if (key.extras.hub) h = std::make_shared<const MovingHub>();
+    if (key.extras.tip_body) b = std::make_shared<const TipBody>();
     for (const CoordinateField& f : layout.fields) {
         if (f.kind == FieldKind::hub_angle) {
             q.push_back(theta);
@@ -410,6 +411,7 @@ std::vector<symbol> Symbols::parameters() const
         p.insert(p.end(), {o->EI_flap, o->GJ, o->j_n, o->j_c, o->cos_2pitch, o->sin_2pitch, o->twist, o->cos_cone,
                            o->sin_cone, o->g_axis});
     if (h) p.insert(p.end(), {h->m, h->k_x, h->k_y, h->c_x, h->c_y});
+    if (b) p.insert(p.end(), {b->J_flap, b->J_twist, b->offset, b->cos_pitch, b->sin_pitch});
     p.insert(p.end(), section.begin(), section.end());
     return p;
 }
@@ -535,7 +537,7 @@ Energies energies(const VariantKey& key, const Symbols& s, const PolyReader& rea
     const Extras& x = key.extras;
     ShapeIntegrals integrals(key.axial_basis(), key.transverse_basis(), key.flap_basis(), key.twist_basis());
     FieldSymbols fields;
-    if (x.offsets) fields.offsets = std::make_shared<const FieldSymbols::Offsets>();
+    if (x.offsets || x.tip_body) fields.offsets = std::make_shared<const FieldSymbols::Offsets>();
     const FieldSymbols& f = fields;
     DensityIntegrator integrate(s, f, key, integrals, read, found);
     // The distributions along the span: the root's values, or a section term's (a taper, a profile).

@@ -58,6 +58,13 @@ struct Symbols {
         GiNaC::symbol m{"m_hub"}, k_x{"k_x"}, k_y{"k_y"}, c_x{"c_x"}, c_y{"c_y"};
     };
     std::shared_ptr<const MovingHub> h;
+    /// The tip body's flap and torsion inertias, its offset along the chord (docs/model.md section 11.1) and cos and sin
+    /// of the pitch that turns its axes, created after h and only for a variant that carries them (Extras::tip_body).
+    struct TipBody {
+        GiNaC::symbol J_flap{"J_tip_flap"}, J_twist{"J_tip_twist"}, offset{"tip_offset"}, cos_pitch{"cos_pitch"},
+            sin_pitch{"sin_pitch"};
+    };
+    std::shared_ptr<const TipBody> b;
     /// A profile variant's run-time section integrals (generated_abi.h's SectionIntegral), in the order of their index
     /// n, and their symbols s_n, which the coefficients kernel reads at p[param_count + n]; empty without a profile.
     /// Found by a first pass over the energies (the integrals a variant needs are those its energies meet).
@@ -106,7 +113,8 @@ struct FieldSymbols {
     GiNaC::symbol cos_2twist_x{"cos_2twist_x"}, sin_2twist_x{"sin_2twist_x"};
     /// A blade's section offsets (docs/model.md sections 12.5 and 12.6): the flapwise slope's rate, the mass's first
     /// moment along the chord and the axial stiffness times the tension centre's offset, each times cos and sin of the
-    /// chord's angle (section distributions). Made only for a variant with offsets, so that the others' symbols and
+    /// chord's angle (section distributions). Made only for a variant with offsets or a tip body in the blade's axes
+    /// (which reads the slope's rate), so that the others' symbols and
     /// emitted code stay as they were.
     struct Offsets {
         GiNaC::symbol uz_x_dot{"u_z_x_dot"}, mass_offset_cos_x{"mass_offset_cos_x"},

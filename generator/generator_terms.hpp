@@ -6,6 +6,7 @@
 
 #include <ginac/ginac.h>
 
+#include <array>
 #include <functional>
 
 #include "energy.hpp"
@@ -42,12 +43,25 @@ BeamSection uniform_section(const VariantKey& key, const Symbols& s, const Field
 BeamSection turned_section(const VariantKey& key, const Symbols& s, const FieldSymbols& f, BeamSection b,
                            const GiNaC::ex& EI_flap, const GiNaC::ex& GJ, const GiNaC::ex& j_c, const GiNaC::ex& j_n);
 
+/// A unit vector of the section's plane, (0, C, S) in (e1, e2, e3) before the deformation (C, S: the cosine and sine
+/// of its angle from e2 towards e3, or these times a factor, in which the vector is linear), in the hub frame (i, j, k)
+/// and in field symbols: turned by phi about e1, then carried by the smallest rotation that takes e1 to the bent axis
+/// (1, u_y', u_z'), to second order in phi and the slopes (docs/model.md section 12.5; generator/terms/offsets.cpp).
+std::array<GiNaC::ex, 3> chord(const FieldSymbols& f, const Cone& cone, const GiNaC::ex& C, const GiNaC::ex& S);
+/// The terms of e of degree at most 2 in the deformation: u_x1, u_y, u_z, phi, the slopes and their rates first
+/// order, u_x2 and its rate second (docs/model.md section 3). f.offsets holds the flapwise slope's rate.
+GiNaC::ex second_order(const GiNaC::ex& e, const FieldSymbols& f);
+
 // One per term (generator/terms/NAME.cpp).
 void tip_energies(const TermContext& c, Energies& e);
 void gravity_energies(const TermContext& c, Energies& e);
 void damping_energies(const TermContext& c, Energies& e);
 void hub_energies(const TermContext& c, Energies& e);
 void offsets_energies(const TermContext& c, Energies& e);
+void tip_body_energies(const TermContext& c, Energies& e);
+/// The chord's unit vector at the tip in the blade's axes (turned by the pitch, phi and the slopes; tip.cpp): the
+/// direction of a tip body's centre of mass from the beam's end, towards the leading edge.
+std::array<GiNaC::ex, 3> tip_body_chord(const TermContext& c);
 BeamSection taper_section(const VariantKey& key, const Symbols& s, const FieldSymbols& f);
 BeamSection profile_section(const VariantKey& key, const Symbols& s, const FieldSymbols& f);
 

@@ -65,7 +65,8 @@ void add_options(CLI::App& app, Arguments& a)
                        "Rayleigh damping; _width|_depth: a linear taper; _profile: a tabulated profile "
                        "(its stations and values are run-time data); _offsets: a blade table's centre-of-mass offsets; "
                        "_pitched, _twisted, _coned: the section's pitch and "
-                       "pre-twist, the precone; the suffixes in this order; "
+                       "pre-twist, the precone; _hub: a moving hub; _tipbody: the tip body's flap and torsion "
+                       "inertias and offset in the blade's axes; the suffixes in this order; "
                        "e.g. bim_nx4_ny4_torque_first, amm_nx0_ny4_torque_first_tip_gravity, "
                        "fem_nx0_ny8_nz8_nt2_torque_first_pitched")
         ->required()

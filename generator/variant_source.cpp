@@ -320,6 +320,14 @@ std::vector<Input> parameter_inputs(const Symbols& s, const VariantKey& key)
                                      {h.c_x, read(Param::c_x)},
                                      {h.c_y, read(Param::c_y)}});
     }
+    if (s.b) {
+        const Symbols::TipBody& b = *s.b;
+        inputs.insert(inputs.end(), {{b.J_flap, read(Param::J_tip_flap)},
+                                     {b.J_twist, read(Param::J_tip_twist)},
+                                     {b.offset, read(Param::tip_offset)},
+                                     {b.cos_pitch, "std::cos(" + read(Param::pitch) + ")"},
+                                     {b.sin_pitch, "std::sin(" + read(Param::pitch) + ")"}});
+    }
     for (std::size_t n = 0; n < s.section.size(); ++n) inputs.push_back({s.section[n], read_section(n)});
     return inputs;
 }

@@ -13,7 +13,9 @@ namespace hubbeam {
 /// The paper's seven come first; the rest (tip body, gravity, Rayleigh damping, taper; docs/model.md section 11)
 /// are read only by the variants that carry those terms, so the paper's variants read p[0..6] only. The out-of-plane
 /// model's (docs/model.md section 12) follow: the flapwise second moment, the shear modulus and torsion constant, the
-/// pitch and pre-twist (tip minus root) of the section, the precone, and gravity's weight along the spin axis.
+/// pitch and pre-twist (tip minus root) of the section, the precone, and gravity's weight along the spin axis. Then a
+/// moving hub's (docs/model.md section 13), and last the tip body's in the blade's axes at the tip (docs/model.md section
+/// 11.1): its flap and torsion inertias about its centre of mass and that centre's offset along the chord.
 enum class Param : std::size_t {
     L,
     rho,
@@ -39,9 +41,12 @@ enum class Param : std::size_t {
     k_x,
     k_y,
     c_x,
-    c_y
+    c_y,
+    J_tip_flap,
+    J_tip_twist,
+    tip_offset
 };
-inline constexpr std::size_t param_count = 25;
+inline constexpr std::size_t param_count = 28;
 /// A tabulated profile's values at each station (docs/model.md sections 11.2 and 12.4): a planar beam's m, EI, ES;
 /// a blade's also its flapwise and torsional stiffness, the chord's angle (pre-twist, added to the pitch) and the mass
 /// moments per length about the chord and its normal.
@@ -105,7 +110,7 @@ inline constexpr std::size_t paper_param_count = 7;
 inline constexpr std::array<const char*, param_count> param_names = {
     "L",     "rho",  "S",         "I",      "E", "a",   "J_oh",  "m_tip", "J_tip",   "g",
     "alpha", "beta", "tip_ratio", "I_flap", "G", "J_t", "pitch", "twist", "precone", "g_axis",
-    "m_hub", "k_x",  "k_y",       "c_x",    "c_y"};
+    "m_hub", "k_x",  "k_y",       "c_x",    "c_y", "J_tip_flap", "J_tip_twist", "tip_offset"};
 
 /// The parameters of the out-of-plane fields (docs/model.md section 12), owned by no term: the flapwise field reads
 /// I_flap, the twist field all three.
@@ -142,11 +147,15 @@ constexpr std::size_t index(AngleValue u)
 /// flapwise second moment (m^4; the scene's default is I), shear modulus (Pa), torsion constant (m^4), pitch, pre-twist
 /// and precone (rad), and gravity along -k (m/s^2; g is along -j of the inertial plane). Then a moving hub's (docs/model.md
 /// section 13): its translating mass (kg), the support's stiffness (N/m) and damping (N s/m) along the inertial x and y.
+/// Then the tip body's (docs/model.md section 11.1): its mass moments about its centre of mass about the chord (flap)
+/// and the span axis (torsion), kg m^2, and that centre's offset along the chord from the beam's end, positive towards
+/// the trailing edge (m); J_tip is its moment about the chord's normal (lag).
 struct Parameters {
     double L = 8.0, rho = 2.7667e3, S = 7.2968e-5, I = 8.2189e-9, E = 6.8952e10, a = 0.0, J_oh = 30.0;
     double m_tip = 0.0, J_tip = 0.0, g = 0.0, alpha = 0.0, beta = 0.0, tip_ratio = 1.0;
     double I_flap = 8.2189e-9, G = 0.0, J_t = 0.0, pitch = 0.0, twist = 0.0, precone = 0.0, g_axis = 0.0;
     double m_hub = 0.0, k_x = 0.0, k_y = 0.0, c_x = 0.0, c_y = 0.0;
+    double J_tip_flap = 0.0, J_tip_twist = 0.0, tip_offset = 0.0;
     /// A tabulated profile's stations x/L (from 0 to 1, increasing; empty without a profile) and its values there:
     /// mass per length (kg/m), EI (N m^2), ES (N) and, for a beam that leaves the plane, EI_flap, GJ (N m^2), the
     /// chord's angle (rad), j_c and j_n (kg m), indexed by station then ProfileValue.
@@ -185,6 +194,9 @@ struct Parameters {
         p[index(Param::k_y)] = k_y;
         p[index(Param::c_x)] = c_x;
         p[index(Param::c_y)] = c_y;
+        p[index(Param::J_tip_flap)] = J_tip_flap;
+        p[index(Param::J_tip_twist)] = J_tip_twist;
+        p[index(Param::tip_offset)] = tip_offset;
         return p;
     }
 };
@@ -195,7 +207,8 @@ inline double& value(Parameters& p, Param k)
     double* const members[] = {&p.L,     &p.rho,   &p.S,     &p.I,     &p.E,       &p.a,         &p.J_oh,
                                &p.m_tip, &p.J_tip, &p.g,     &p.alpha, &p.beta,    &p.tip_ratio, &p.I_flap,
                                &p.G,     &p.J_t,   &p.pitch, &p.twist, &p.precone, &p.g_axis,
-                               &p.m_hub, &p.k_x,   &p.k_y,   &p.c_x,   &p.c_y};
+                               &p.m_hub, &p.k_x,   &p.k_y,   &p.c_x,   &p.c_y,     &p.J_tip_flap, &p.J_tip_twist,
+                               &p.tip_offset};
     static_assert(sizeof members / sizeof members[0] == param_count);
     return *members[index(k)];
 }

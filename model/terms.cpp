@@ -28,6 +28,7 @@ constexpr char damped_word[] = "damped", damped_summary[] = "rayleigh_damping";
 constexpr char pitched_word[] = "pitched", pitched_summary[] = "pitch";
 constexpr char twisted_word[] = "twisted", twisted_summary[] = "pre_twist";
 constexpr char coned_word[] = "coned", coned_summary[] = "precone";
+constexpr char tip_body_word[] = "tipbody", tip_body_summary[] = "tip_body_axes";
 
 /// A term selected by its values and carried where the flag `member` of Extras is set, named by the suffix `word`
 /// and by `summary` on the banner.
@@ -112,6 +113,13 @@ std::vector<TermInfo> make_terms()
          [](std::string_view part, Extras& e) { return part == "hub" && (e.hub = true); },
          [](const Extras&) { return std::string("moving_hub"); },
          never},
+        // The tip body's own axes (its flap and torsion inertias, its offset): the tip term's m_tip and J_tip, read by
+        // this term's energies in the section's axes, stay the tip term's parameters and keys.
+        switched<&Extras::tip_body, tip_body_word, tip_body_summary>(
+            "tip body in the blade's axes (section 11.1)", adds_T, {P::J_tip_flap, P::J_tip_twist, P::tip_offset},
+            {{"tip", "inertia_flap", P::J_tip_flap},
+             {"tip", "inertia_twist", P::J_tip_twist},
+             {"tip", "offset", P::tip_offset}}),
     };
 }
 

@@ -58,7 +58,7 @@ struct TermInfo {
 };
 
 /// Every term, in the order of the variant's name suffixes: tip, gravity, damped, width|depth, profile, offsets,
-/// pitched, twisted, coned, hub.
+/// pitched, twisted, coned, hub, tipbody.
 const std::vector<TermInfo>& terms();
 
 /// The terms a variant carries, in registry order.

@@ -281,6 +281,20 @@ std::string VariantKey::dof_problem() const
     // The offset centre of mass's weight and the moving hub's velocity against the chord are not modelled.
     if (extras.offsets && (extras.gravity || extras.hub))
         return "section offsets do not combine with gravity or a moving hub ([support])";
+    return tip_body_problem();
+}
+
+std::string VariantKey::tip_body_problem() const
+{
+    // The tip body in the blade's axes (docs/model.md section 11.1) turns with the flap slope and the twist.
+    if (!extras.tip_body) return {};
+    if (!out_of_plane())
+        return "the tip body's flap and torsion inertias and offset need a beam that leaves the plane (nz or nt > 0, "
+               "a pitch, pre-twist or precone)";
+    if (order == Order::full)
+        return "the tip body in the blade's axes is modelled to second order in the deformation: order first or zero, "
+               "not full";
+    if (extras.hub) return "the tip body in the blade's axes does not combine with a moving hub ([support])";
     return {};
 }
 

@@ -46,12 +46,16 @@ struct Extras {
     bool offsets = false;
     // A hub that translates in the plane of rotation on a support (docs/model.md section 13): coordinates x_h, y_h.
     bool hub = false;
+    // The tip body as a rigid body carried by the tip section (docs/model.md section 11.1): its flap and torsion
+    // inertias and its centre of mass's offset along the chord, with J_tip about the chord's normal. A tip body
+    // without them keeps the tip term's own form (m_tip, J_tip turning with the in-plane slope).
+    bool tip_body = false;
 
     bool profile() const { return tabulated; }
     bool any() const
     {
         return tip || gravity || damping || taper != Taper::uniform || profile() || offsets || pitch || twist || cone ||
-               hub;
+               hub || tip_body;
     }
     bool operator==(const Extras&) const = default;
 };
@@ -62,7 +66,7 @@ std::string stations_problem(const std::vector<double>& x);
 /// The grammar of a variant's name, as VariantKey::parse reads it (its messages and hubbeam-gen --help say it).
 inline constexpr const char* variant_name_grammar =
     "METHOD_nxN_nyN[_nzN][_ntN]_DRIVE_ORDER[_open][_tip][_gravity][_damped][_width|_depth][_profile]"
-    "[_offsets][_pitched][_twisted][_coned][_hub]";
+    "[_offsets][_pitched][_twisted][_coned][_hub][_tipbody]";
 
 struct VariantKey {
     Method method = Method::amm;
@@ -80,13 +84,15 @@ struct VariantKey {
     /// e.g. "bim_nx4_ny4_torque_first", "bsim_nx0_ny4_prescribed_first_open", "amm_nx0_ny4_torque_first_tip_gravity",
     /// "fem_nx0_ny8_nz8_nt2_torque_first_pitched": a C identifier; nz and nt only where nonzero; the extras follow in
     /// the order tip, gravity, damped, width|depth, profile,
-    /// offsets, pitched, twisted, coned, hub.
+    /// offsets, pitched, twisted, coned, hub, tipbody.
     std::string name() const;
     /// Inverse of name(); throws std::invalid_argument.
     static VariantKey parse(std::string_view name);
 
     /// Empty if the method can take these DOF counts, else why not (e.g. "FEM needs an even ny").
     std::string dof_problem() const;
+    /// Why the variant cannot carry the tip body in the blade's axes (empty if it can or does not carry it).
+    std::string tip_body_problem() const;
 
     FieldBasis axial_basis() const { return {method, Field::axial, nx, SplineBasis::open}; }
     FieldBasis transverse_basis() const { return {method, Field::transverse, ny, spline}; }

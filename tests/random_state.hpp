@@ -79,6 +79,10 @@ inline Parameters with_every_term()
     p.k_y = 4.7e3;
     p.c_x = 15.0;
     p.c_y = 22.0;
+    // The tip body's in the blade's axes (read by variants that carry it only).
+    p.J_tip_flap = 0.02;
+    p.J_tip_twist = 0.03;
+    p.tip_offset = 0.04;
     return p;
 }
 

@@ -9,7 +9,7 @@ using namespace GiNaC;
 
 const GeneratorTerm& generator_part(const TermInfo& t)
 {
-    // In the order of terms(): tip, gravity, damping, taper, profile, offsets, pitch, twist, precone, hub. Pitch,
+    // In the order of terms(): tip, gravity, damping, taper, profile, offsets, pitch, twist, precone, hub, tip body. Pitch,
     // twist and precone have no energy of their own: they turn the section's principal axes (bending_density,
     // section_rotation) and the beam's axis (velocity_squared, position) inside the beam's T and U and the other
     // terms' (energy.cpp).
@@ -17,7 +17,7 @@ const GeneratorTerm& generator_part(const TermInfo& t)
         {nullptr, tip_energies},     {nullptr, gravity_energies}, {nullptr, damping_energies},
         {taper_section, nullptr},    {profile_section, nullptr},  {nullptr, offsets_energies},
         {nullptr, nullptr},          {nullptr, nullptr},          {nullptr, nullptr},
-        {nullptr, hub_energies}};
+        {nullptr, hub_energies},     {nullptr, tip_body_energies}};
     if (table.size() != terms().size()) throw std::logic_error("generator_part: not one entry per registered term");
     return table.at(static_cast<std::size_t>(&t - terms().data()));
 }

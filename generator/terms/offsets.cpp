@@ -13,15 +13,8 @@ namespace hubbeam::gen {
 
 using namespace GiNaC;
 
-namespace {
-
-/// The chord's unit vector towards the leading edge, in the hub frame (i, j, k) and in field symbols, times the mass's
-/// first moment m d: the section turned by beta + phi about e1, then carried by the smallest rotation that takes e1
-/// to the bent axis (1, u_y', u_z'), to second order in phi and the slopes. m d cos beta and m d sin beta are the
-/// section distributions C and S, in which the vector is linear.
-std::array<ex, 3> chord(const FieldSymbols& f, const Cone& cone)
+std::array<ex, 3> chord(const FieldSymbols& f, const Cone& cone, const ex& C, const ex& S)
 {
-    const ex C = f.offsets->mass_offset_cos_x, S = f.offsets->mass_offset_sin_x;
     const ex cos_psi = C * (1 - pow(f.phi, 2) / 2) - S * f.phi, sin_psi = S * (1 - pow(f.phi, 2) / 2) + C * f.phi;
     const ex sigma = f.uy_x * cos_psi + f.uz_x * sin_psi;
     const ex c1 = -sigma, c2 = cos_psi - f.uy_x * sigma / 2, c3 = sin_psi - f.uz_x * sigma / 2;
@@ -29,8 +22,6 @@ std::array<ex, 3> chord(const FieldSymbols& f, const Cone& cone)
     return {c1 * cone.cos - c3 * cone.sin, c2, c1 * cone.sin + c3 * cone.cos};
 }
 
-/// The terms of e of degree at most 2 in the deformation: u_x1, u_y, u_z, phi, the slopes and their rates first
-/// order, u_x2 and its rate second (docs/model.md section 3).
 ex second_order(const ex& e, const FieldSymbols& f)
 {
     const symbol eps("eps");
@@ -46,15 +37,13 @@ ex second_order(const ex& e, const FieldSymbols& f)
     return kept;
 }
 
-}  // namespace
-
 void offsets_energies(const TermContext& c, Energies& e)
 {
     const FieldSymbols& f = c.f;
     const ex w = c.s.theta_dot;
     const Cone cone = cone_of(c.key, c.s);
     const Position p = position(c.key.order, f, cone);
-    const std::array<ex, 3> d = chord(f, cone);
+    const std::array<ex, 3> d = chord(f, cone, f.offsets->mass_offset_cos_x, f.offsets->mass_offset_sin_x);
     // The chord's rate in the hub frame: it turns with phi and the slopes.
     std::array<ex, 3> d_dot;
     for (std::size_t n = 0; n < 3; ++n)

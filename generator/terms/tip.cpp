@@ -1,5 +1,6 @@
 // The tip body's kinetic energy (docs/model.md section 11.1): m_tip at x = L moving with the beam's end, J_tip turning
-// with the hub and the slope there. Its weight and damping are added by gravity.cpp and damping.cpp.
+// with the hub and the slope there; or, with its flap and torsion inertias or its offset (tip_body), a rigid body
+// carried by the tip section in the blade's axes. Its weight and damping are added by gravity.cpp and damping.cpp.
 #include "generator_terms.hpp"
 
 namespace hubbeam::gen {
@@ -9,7 +10,62 @@ using namespace GiNaC;
 void tip_energies(const TermContext& c, Energies& e)
 {
     const Symbols& s = c.s;
-    e.T += c.at_tip(s.m_tip * c.v2 / 2 + s.J_tip * pow(s.theta_dot + c.f.uy_x_dot, 2) / 2);
+    e.T += c.at_tip(s.m_tip * c.v2 / 2);
+    // With its own axes the body's rotation is tip_body_energies' (J_tip about the chord's normal there).
+    if (!c.key.extras.tip_body) e.T += c.at_tip(s.J_tip * pow(s.theta_dot + c.f.uy_x_dot, 2) / 2);
+}
+
+namespace {
+
+/// The rate in the inertial frame, in hub components, of a vector a carried by the section (a function of phi and
+/// the slopes): its rate in the hub frame plus the frame's turn w k x a.
+std::array<ex, 3> inertial_rate(const std::array<ex, 3>& a, const FieldSymbols& f, const ex& w)
+{
+    std::array<ex, 3> rate;
+    for (std::size_t n = 0; n < 3; ++n)
+        rate[n] = a[n].diff(f.phi) * f.phi_dot + a[n].diff(f.uy_x) * f.uy_x_dot + a[n].diff(f.uz_x) * f.offsets->uz_x_dot;
+    return {rate[0] - w * a[1], rate[1] + w * a[0], rate[2]};
+}
+
+ex dot(const std::array<ex, 3>& a, const std::array<ex, 3>& b)
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+}  // namespace
+
+std::array<ex, 3> tip_body_chord(const TermContext& c)
+{
+    const Symbols::TipBody& b = *c.s.b;
+    return chord(c.f, cone_of(c.key, c.s), b.cos_pitch, b.sin_pitch);
+}
+
+void tip_body_energies(const TermContext& c, Energies& e)
+{
+    const Symbols& s = c.s;
+    const Symbols::TipBody& b = *s.b;
+    const FieldSymbols& f = c.f;
+    const ex w = s.theta_dot;
+    // The body's axes at the tip: the chord (towards the leading edge), its normal (the chord turned a quarter turn
+    // further from e2 towards e3) and the bent axis's tangent, their cross product.
+    const std::array<ex, 3> chord_ = tip_body_chord(c);
+    const std::array<ex, 3> normal = chord(f, cone_of(c.key, s), -b.sin_pitch, b.cos_pitch);
+    const std::array<ex, 3> tangent = {chord_[1] * normal[2] - chord_[2] * normal[1],
+                                       chord_[2] * normal[0] - chord_[0] * normal[2],
+                                       chord_[0] * normal[1] - chord_[1] * normal[0]};
+    // 1/2 omega . J omega with J = J_t t t^T + J_c c c^T + J_n n n^T is 1/2 sum_a P_a |a_dot|^2 with the body's second
+    // moments of mass P_t = (J_c + J_n - J_t)/2, ... (|a_dot|^2 = |omega|^2 - (omega . a)^2); the centre of mass at
+    // d c adds m d^2 to P_c and m d V . c_dot to T (docs/model.md section 11.1).
+    const ex J_n = s.J_tip, J_c = b.J_flap, J_t = b.J_twist, d = -b.offset;
+    const ex P_t = (J_c + J_n - J_t) / 2, P_c = (J_t + J_n - J_c) / 2 + s.m_tip * pow(d, 2),
+             P_n = (J_t + J_c - J_n) / 2;
+    const std::array<ex, 3> t_dot = inertial_rate(tangent, f, w), c_dot = inertial_rate(chord_, f, w),
+                            n_dot = inertial_rate(normal, f, w);
+    const Position p = position(c.key.order, f, cone_of(c.key, s));
+    const std::array<ex, 3> V = {p.i_dot - w * p.j, p.j_dot + w * p.i, p.k_dot};
+    const ex T = (P_t * dot(t_dot, t_dot) + P_c * dot(c_dot, c_dot) + P_n * dot(n_dot, n_dot)) / 2 +
+                 s.m_tip * d * dot(V, c_dot);
+    e.T += c.at_tip(second_order(T, f));
 }
 
 }  // namespace hubbeam::gen

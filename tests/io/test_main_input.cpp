@@ -245,10 +245,9 @@ TEST_CASE("every setting hubbeam does not model is refused naming the file, the 
         {"bmodes/Test01_nonunif_blade.bmi", 0, "", 8, "romg_mult", "expected 1"},
         {bmi.input, 6, "2         beam_type   1: blade, 2: tower (-)", 6, "beam_type", "not a tower"},
         {bmi.input, 13, "2         hub_conn:   hub-to-blade connection", 13, "hub_conn", "cantilevered"},
-        {bmi.input, 20, "0.05      cm_loc      tip-mass c.m. offset", 20, "cm_loc", "centre of mass"},
-        {bmi.input, 22, "1.75      iyy_tip     blade flap inertia", 22, "iyy_tip", "not modelled"},
-        {bmi.input, 23, "2.5       izz_tip     torsion inertia", 23, "izz_tip", "not modelled"},
-        {bmi.input, 24, "0.1       ixy_tip     cross product", 24, "ixy_tip", "not modelled"},
+        {bmi.input, 22, "-1.75     iyy_tip     blade flap inertia", 22, "iyy_tip", ">= 0"},
+        {bmi.input, 24, "0.1       ixy_tip     cross product", 24, "ixy_tip", "principal axes"},
+        {bmi.input, 25, "0.1       izx_tip     cross product", 25, "izx_tip", "principal axes"},
         {bmi.input, 29, "2         id_mat:     material_type", 29, "id_mat", "isotropic"},
         {bmi.input, 33, "1.1       sec_mass_mult:   mass density multiplier (-)", 33, "sec_mass_mult", "multiplier"},
         {bmi.input, 38, "0.9       tor_stff_mult:   torsion stiffness multiplier (-)", 38, "tor_stff_mult",
@@ -391,5 +390,30 @@ TEST_CASE("a BModes v3 file, with rot_rpm and a cm_axial line, reads alike, and 
         folder.write("v3_offset.bmi", with_line(text, 21, "0.2       cm_axial    tip-mass c.m. axial offset")));
     CHECK(e.line == 21);
     CHECK(e.setting == "cm_axial");
-    CHECK_THAT(e.what(), Catch::Contains("centre of mass on the blade's end"));
+    CHECK_THAT(e.what(), Catch::Contains("tip section's plane"));
+}
+
+TEST_CASE("BModes' CertTest 02 tip body becomes [tip]'s mass, lag, flap and torsion inertias and offset", "[import]")
+{
+    // tests/data/import/bmodes/Test02_blade_with_tip_mass.bmi is BModes' own, with its section file pointed at the
+    // copy without shear and tension centre offsets (hubbeam refuses those).
+    TempFolder folder("import");
+    std::filesystem::copy_file(data("bmodes/blade_sec_props_no_offsets.dat"),
+                               folder.path / "blade_sec_props_no_offsets.dat");
+    const std::string text = text_of(data("bmodes/Test02_blade_with_tip_mass.bmi"));
+    REQUIRE(lines_of(text).at(30).find("sec_props_file") != std::string::npos);
+    std::string toml;
+    const Scene scene = imported(
+        folder.write("test02.bmi", with_line(text, 31, "'blade_sec_props_no_offsets.dat' sec_props_file")), folder,
+        &toml);
+    const Parameters& p = scene.parameters;
+    CHECK(p.m_tip == value_before(text, "tip_mass"));
+    CHECK(p.J_tip == value_before(text, "ixx_tip"));  // lag: about the chord's normal
+    CHECK(p.J_tip_flap == value_before(text, "iyy_tip"));
+    CHECK(p.J_tip_twist == value_before(text, "izz_tip"));
+    CHECK(p.tip_offset == value_before(text, "cm_loc"));  // towards the trailing edge, as cg_offst
+    CHECK(p.tip_offset == 0.05);
+    CHECK(scene.key().extras.tip_body);
+    CHECK(toml.find("offset = 0.05") != std::string::npos);
+    CHECK(toml.find("cm_loc = 0.05 m (test02.bmi:20)") != std::string::npos);
 }

@@ -323,6 +323,19 @@ TEST_CASE("bad scene input throws SceneError naming the file and the key", "[sce
     {
         names(edited("t_end = 30.0", "t_end = 1.0\ndt_out = 2.0"), "output.dt_out", "<= output.t_end");
     }
+    SECTION("a tip body's flap inertia, torsion inertia or offset on a beam in its plane")
+    {
+        for (const std::string key : {"inertia_flap", "inertia_twist", "offset"})
+            names(edited("[motion]", "[tip]\nmass = 1.0\n" + key + " = 0.5\n\n[motion]"), "tip." + key,
+                  "a beam that leaves the plane");
+    }
+    SECTION("a tip body in the blade's axes at order full, and a negative inertia")
+    {
+        std::string full = edited("[motion]", "[tip]\noffset = 0.1\n\n[model]\norder = \"full\"\n\n[motion]");
+        full.replace(full.find("nx = 0\n"), 7, "nx = 0\nnz = 2\n");
+        names(full, "tip.offset", "order first or zero");
+        names(edited("[motion]", "[tip]\ninertia_twist = -1.0\n\n[motion]"), "tip.inertia_twist", ">= 0");
+    }
     SECTION("unknown model order")
     {
         names(good_scene + "[model]\norder = \"second\"\n", "model.order", "\"first\"");

@@ -30,6 +30,9 @@ struct ImportedBlade {
     InputSetting pitch;        // deg
     InputSetting tip_mass;     // kg
     InputSetting tip_inertia;  // kg m^2, the tip body's lag inertia (BModes' ixx_tip; ElastoDyn has none: 0)
+    // The tip body's flap and torsion inertias (kg m^2) and its centre of mass's offset along the tip chord (m,
+    // positive towards the trailing edge): BModes' iyy_tip, izz_tip, cm_loc; ElastoDyn has none (line 0).
+    InputSetting tip_inertia_flap, tip_inertia_twist, tip_offset;
     bool has_gravity = false;
     InputSetting gravity;  // m/s^2 (ElastoDyn up to FAST v8: Gravity)
     /// The blade file's structural damping ratios (ElastoDyn's BldFlDmp(1), BldFlDmp(2), BldEdDmp(1), percent of

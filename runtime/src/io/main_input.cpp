@@ -18,8 +18,8 @@
 // - BModes is read by position, as BModes reads it, and each value's label (the word after it) must be the setting
 //   BModes reads there: a file in another order would otherwise be read wrong without a word. Every setting up to
 //   the multipliers is read and either becomes a scene key, is refused unless it has the value hubbeam's model
-//   implies (beam_type 1, hub_conn 1, id_mat 1, every multiplier 1, the tip mass's offsets and its inertias other
-//   than the lag inertia 0), or says how BModes prints (Echo, modepr, TabDelim, mid_node_tw). The element grid
+//   implies (beam_type 1, hub_conn 1, id_mat 1, every multiplier 1, the tip mass's axial offset and its products of
+//   inertia 0), or says how BModes prints (Echo, modepr, TabDelim, mid_node_tw). The element grid
 //   (nselt, el_loc) is BModes' discretization, which hubbeam's own replaces, and the tower's wires and platform are
 //   no blade's: neither is read.
 // - ElastoDyn is read by name within the sections that hold a blade's structure, its mounting and its spin; in
@@ -266,22 +266,25 @@ ImportedBlade parse_bmodes(const InputText& t)
     c.skip("the tip mass properties line");
     b.tip_mass = c.number_var({"tip_mass"}, "blade-tip mass, kg");
     if (!(b.tip_mass.value >= 0.0)) fail(t, b.tip_mass.line, "tip_mass", "a value >= 0 (the tip mass, kg)");
-    constexpr const char* no_offset = "hubbeam's tip body has its centre of mass on the blade's end";
-    require(t, c.number_var({"cm_loc"}, "tip-mass c.m. offset from the blade axis, m"), 0, no_offset);
+    // cm_loc keeps the sign of the section file's cg_offst (towards the trailing edge; BModes turns both alike).
+    b.tip_offset = c.number_var({"cm_loc"}, "tip-mass c.m. offset from the blade axis along the tip chord, m");
     long line = 0;
     const std::vector<std::string> ahead = c.peek(line);
     if (ahead.size() >= 2 && (same_name(ahead[1], "cm_axial") || same_name(ahead[1], "cm_axial:")))  // BModes v3
-        require(t, c.number_var({"cm_axial"}, "tip-mass c.m. offset along the blade axis, m"), 0, no_offset);
+        require(t, c.number_var({"cm_axial"}, "tip-mass c.m. offset along the blade axis, m"), 0,
+                "hubbeam's tip body has its centre of mass in the tip section's plane (tip.offset is cm_loc)");
+    // BModes' wind-turbine blade axes: ixx_tip about the flap normal (lag), iyy_tip about the chord (flap), izz_tip
+    // about the span axis (torsion); BModes.f90 re-maps them to its own x, y, z, as these keys name them.
     b.tip_inertia = c.number_var({"ixx_tip"}, "blade lag mass moment of inertia of the tip mass, kg m^2");
-    if (!(b.tip_inertia.value >= 0.0)) fail(t, b.tip_inertia.line, "ixx_tip", "a value >= 0 (kg m^2)");
-    constexpr const char* lag_only =
-        "hubbeam's tip body turns with the blade's in-plane slope alone (tip.inertia is ixx_tip); its flap and "
-        "torsion inertias and products of inertia are not modelled";
-    require(t, c.number_var({"iyy_tip"}, "blade flap mass moment of inertia of the tip mass, kg m^2"), 0, lag_only);
-    require(t, c.number_var({"izz_tip"}, "torsion mass moment of inertia of the tip mass, kg m^2"), 0, lag_only);
-    require(t, c.number_var({"ixy_tip"}, "cross product of inertia of the tip mass, kg m^2"), 0, lag_only);
-    require(t, c.number_var({"izx_tip"}, "cross product of inertia of the tip mass, kg m^2"), 0, lag_only);
-    require(t, c.number_var({"iyz_tip"}, "cross product of inertia of the tip mass, kg m^2"), 0, lag_only);
+    b.tip_inertia_flap = c.number_var({"iyy_tip"}, "blade flap mass moment of inertia of the tip mass, kg m^2");
+    b.tip_inertia_twist = c.number_var({"izz_tip"}, "torsion mass moment of inertia of the tip mass, kg m^2");
+    for (const InputSetting* i : {&b.tip_inertia, &b.tip_inertia_flap, &b.tip_inertia_twist})
+        if (!(i->value >= 0.0)) fail(t, i->line, i->name, "a value >= 0 (kg m^2)");
+    constexpr const char* principal =
+        "hubbeam's tip body has its principal axes along the tip section's (the chord, its normal, the span axis)";
+    require(t, c.number_var({"ixy_tip"}, "cross product of inertia of the tip mass, kg m^2"), 0, principal);
+    require(t, c.number_var({"izx_tip"}, "cross product of inertia of the tip mass, kg m^2"), 0, principal);
+    require(t, c.number_var({"iyz_tip"}, "cross product of inertia of the tip mass, kg m^2"), 0, principal);
     c.skip("a blank line");
     c.skip("the distributed-property identifiers line");
     require(t, c.number_var({"id_mat"}, "material type"), 1, "an isotropic material (BModes' only one)");
@@ -477,6 +480,7 @@ ImportedBlade parse_elastodyn(const InputText& t)
     b.tip_mass = need("TipMass(1)", "MASS AND INERTIA");
     if (!(b.tip_mass.value >= 0.0)) fail(t, b.tip_mass.line, "TipMass(1)", "a value >= 0 (the tip mass, kg)");
     b.tip_inertia = {"", 0, "0", 0.0};
+    b.tip_inertia_flap = b.tip_inertia_twist = b.tip_offset = b.tip_inertia;
     b.blade_file_setting = need("BldFile(1)", "BLADE");
     b.blade_file = resolved(t.path, b.blade_file_setting.text);
     check_named_file(t, b.blade_file_setting, b.blade_file);
@@ -520,6 +524,25 @@ std::string key_line(const std::string& key, const std::string& value, const std
         line +=
             std::string(std::max<std::size_t>(1, 32 - std::min<std::size_t>(line.size(), 31)), ' ') + "# " + comment;
     return line + "\n";
+}
+
+/// [tip] from the tip mass and its inertias and offset (each key only where the file gives it and it is not 0, but
+/// the mass and lag inertia as before); empty without a tip body.
+std::string tip_table(const ImportedBlade& b)
+{
+    const bool body = b.tip_mass.value > 0.0 || b.tip_inertia.value > 0.0 || b.tip_inertia_flap.value > 0.0 ||
+                      b.tip_inertia_twist.value > 0.0 || b.tip_offset.value != 0.0;
+    if (!body) return {};
+    std::string s = "\n[tip]\n";
+    s += key_line("mass", toml_number(b.tip_mass.value), "kg: " + origin(b, b.tip_mass, "kg"));
+    if (b.tip_inertia.line > 0)
+        s += key_line("inertia", toml_number(b.tip_inertia.value), "kg m^2, lag: " + origin(b, b.tip_inertia, "kg m^2"));
+    for (const auto& [key, v, what] : {std::tuple{"inertia_flap", &b.tip_inertia_flap, "kg m^2, flap: "},
+                                       {"inertia_twist", &b.tip_inertia_twist, "kg m^2, torsion: "},
+                                       {"offset", &b.tip_offset, "m, along the chord towards the trailing edge: "}})
+        if (v->line > 0 && v->value != 0.0)
+            s += key_line(key, toml_number(v->value), what + origin(b, *v, key[0] == 'o' ? "m" : "kg m^2"));
+    return s;
 }
 
 /// [damping]'s modal ratios from the blade file's BldFlDmp(1), BldFlDmp(2) and BldEdDmp(1) (percent of critical
@@ -628,13 +651,7 @@ std::string imported_scene_toml(const ImportedBlade& b, const std::string& scene
     s += "\n[hub]\n";
     s += key_line("radius", toml_number(b.hub_radius.value), "m: " + origin(b, b.hub_radius, "m"));
 
-    if (b.tip_mass.value > 0.0 || b.tip_inertia.value > 0.0) {
-        s += "\n[tip]\n";
-        s += key_line("mass", toml_number(b.tip_mass.value), "kg: " + origin(b, b.tip_mass, "kg"));
-        if (b.tip_inertia.line > 0)
-            s += key_line("inertia", toml_number(b.tip_inertia.value),
-                          "kg m^2, lag: " + origin(b, b.tip_inertia, "kg m^2"));
-    }
+    s += tip_table(b);
 
     s += damping_table(b);
 
@@ -673,7 +690,8 @@ std::string imported_scene_toml(const ImportedBlade& b, const std::string& scene
     const Origins origins = {{"beam.length", &b.tip_radius},   {"beam.pitch", &b.pitch},
                              {"beam.precone", &b.precone},     {"hub.radius", &b.hub_radius},
                              {"tip.mass", &b.tip_mass},        {"tip.inertia", &b.tip_inertia},
-                             {"motion.omega0", &b.rotor_speed}};
+                             {"tip.inertia_flap", &b.tip_inertia_flap}, {"tip.inertia_twist", &b.tip_inertia_twist},
+                             {"tip.offset", &b.tip_offset},    {"motion.omega0", &b.rotor_speed}};
     try {
         (void)parse_scene(s, scene_path);
     } catch (const SceneError& e) {

@@ -93,6 +93,13 @@ std::vector<SceneKey> make_scene_keys()
         {"support.damping_y", nullptr, K::number, "a number >= 0 (c_y, N s/m)"},
         {"tip.mass", nullptr, K::number, "a number >= 0 (m_tip, kg)"},
         {"tip.inertia", nullptr, K::number, "a number >= 0 (J_tip, kg m^2)"},
+        {"tip.inertia_flap", nullptr, K::number,
+         "a number >= 0 (J_tip_flap, kg m^2: about the chord through the body's centre of mass; out of the plane)"},
+        {"tip.inertia_twist", nullptr, K::number,
+         "a number >= 0 (J_tip_twist, kg m^2: about the span axis through the body's centre of mass; out of the plane)"},
+        {"tip.offset", nullptr, K::number,
+         "a finite number (tip_offset, m: the body's centre of mass along the chord from the beam's end, positive "
+         "towards the trailing edge; out of the plane)"},
         {"damping.mass_proportional", nullptr, K::number, "a number >= 0 (alpha, 1/s)"},
         {"damping.stiffness_proportional", nullptr, K::number, "a number >= 0 (beta, s)"},
         {"damping.flap_ratios", nullptr, K::numbers,

@@ -108,6 +108,23 @@ void check_out_of_plane(const Scene& s)
     }
 }
 
+/// The tip body's flap and torsion inertias and its offset (docs/model.md section 11.1): values, and a variant that
+/// can carry them, the key named being the first one given.
+void check_tip_body(const Scene& s)
+{
+    const Parameters& p = s.parameters;
+    for (const auto& [v, key] : {std::pair{p.J_tip_flap, "tip.inertia_flap"}, {p.J_tip_twist, "tip.inertia_twist"}})
+        if (!(v >= 0.0) || !std::isfinite(v)) fail(s.path, key, expected(key), shortest(v));
+    check_finite(s, p.tip_offset, "tip.offset");
+    const std::string problem = s.key().tip_body_problem();
+    if (problem.empty()) return;
+    for (const auto& [v, key] :
+         {std::pair{p.J_tip_flap, "tip.inertia_flap"}, {p.J_tip_twist, "tip.inertia_twist"}, {p.tip_offset, "tip.offset"}})
+        if (v != 0.0) throw SceneError::with_detail(s.path, key, problem);
+    // Carried at 0: a sensitivity to one of them.
+    throw SceneError::with_detail(s.path, "output.sensitivities", problem);
+}
+
 /// [damping]'s modal ratios (docs/model.md section 11.5): each >= 0, and no sensitivities beside them (their
 /// derivatives would need the modes' own); the count of the blade's modes is make_scene_model's, which has them.
 void check_modal_damping(const Scene& s)
@@ -141,6 +158,7 @@ void check_parameters(const Scene& s)
         if (!(v >= 0.0) || !std::isfinite(v)) fail(s.path, key, expected(key), shortest(v));
     check_finite(s, p.g, "gravity.g");
     check_out_of_plane(s);
+    check_tip_body(s);
     check_modal_damping(s);
 }
 
@@ -274,6 +292,12 @@ void check_rotor(const Scene& s)
     // The force summation places each section's mass on its reference axis: an offset centre of mass would move it.
     if (s.output.loads == OutputLoads::root && s.variant.extras.offsets)
         fail(s.path, "output.loads", "\"none\" for a blade whose sections' centre of mass is offset (cg_offst)",
+             "\"root\"");
+    // It takes the tip body as a point mass with J_tip about k, not as the rigid body in the blade's axes.
+    if (s.output.loads == OutputLoads::root && s.key().extras.tip_body)
+        fail(s.path, "output.loads",
+             "\"none\" for a tip body with tip.inertia_flap, tip.inertia_twist or tip.offset (the force summation "
+             "has no such body)",
              "\"root\"");
 }
 

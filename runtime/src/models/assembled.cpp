@@ -402,6 +402,10 @@ std::unique_ptr<Model> make_assembled_model(const VariantKey& key, const Paramet
         throw std::invalid_argument("full order has no hand-assembled form; it needs a generated variant");
     if (key.extras.offsets)
         throw std::invalid_argument("section offsets have no hand-assembled form yet; they need a generated variant");
+    if (key.extras.tip_body)
+        throw std::invalid_argument(
+            "the tip body in the blade's axes (tip.inertia_flap, tip.inertia_twist, tip.offset) has no hand-assembled "
+            "form; it needs a generated variant");
     // Out of the plane, section 12.3's forms: the precone's projections and the coupled bending have no place in
     // section 5.2's blocks; nor has a moving hub's translation, in the plane or out of it.
     if (key.out_of_plane() || key.extras.hub) {

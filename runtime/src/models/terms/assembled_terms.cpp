@@ -12,8 +12,9 @@ AssembledTerm assembled_part(const TermInfo& t)
     // section offsets, which have no assembled form yet (make_assembled_model refuses them), pitch, pre-twist and
     // precone (inside the beam's quadrature too: the chord's angle and the axis's tilt, out_of_plane_matrices.cpp and
     // assemble_matrices), and the moving hub, whose coordinates have no place in these matrices (the quadratic forms'
-    // model adds it: assembled_forms.cpp).
-    static const std::array<AssembledTerm, 10> table = {add_tip, add_gravity, add_damping, nullptr, nullptr,
+    // model adds it: assembled_forms.cpp), and the tip body in the blade's axes, which has no assembled form
+    // (make_assembled_model refuses it).
+    static const std::array<AssembledTerm, 11> table = {add_tip, add_gravity, add_damping, nullptr, nullptr, nullptr,
                                                         nullptr, nullptr,     nullptr,     nullptr, nullptr};
     if (table.size() != terms().size()) throw std::logic_error("assembled_part: not one entry per registered term");
     return table.at(static_cast<std::size_t>(&t - terms().data()));
