@@ -1,9 +1,11 @@
 // Oracles several test files share, written for the tests alone: Q of Lagrange's equations by differences of a
-// model's own energies, and the roots of the tip-mass cantilever's frequency equation.
+// model's own energies, the roots of the tip-mass cantilever's frequency equation, and the roots of any frequency
+// equation by a scan and bisection.
 #pragma once
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <functional>
 #include <vector>
 
 #include <hubbeam/model.hpp>
@@ -65,6 +67,32 @@ inline std::vector<double> tip_mass_roots(double mu, int count)
             ((f(lo) < 0.0) == (f(mid) < 0.0) ? lo : hi) = mid;
         }
         roots.push_back(0.5 * (lo + hi));
+    }
+    return roots;
+}
+
+/// The roots of f in (first, last]: each sign change between `steps` equal intervals from first, bisected until the
+/// bracket is within `relative` of its upper end (at most 200 halvings).
+inline std::vector<double> bracketed_roots(const std::function<double(double)>& f, double first, double last,
+                                           int steps, double relative)
+{
+    std::vector<double> roots;
+    double w0 = first, f0 = f(w0);
+    for (int n = 1; n <= steps; ++n) {
+        const double w1 = first + (last - first) * n / steps, f1 = f(w1);
+        if ((f0 < 0.0) != (f1 < 0.0)) {
+            double lo = w0, hi = w1, flo = f0;
+            for (int it = 0; it < 200 && hi - lo > relative * hi; ++it) {
+                const double mid = 0.5 * (lo + hi), fm = f(mid);
+                if ((fm < 0.0) == (flo < 0.0)) {
+                    lo = mid, flo = fm;
+                } else {
+                    hi = mid;
+                }
+            }
+            roots.push_back(0.5 * (lo + hi));
+        }
+        w0 = w1, f0 = f1;
     }
     return roots;
 }

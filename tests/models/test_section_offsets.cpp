@@ -16,6 +16,7 @@
 #include "basis/basis.hpp"
 #include "basis/quadrature.hpp"
 #include "coordinates.hpp"
+#include "shared_oracles.hpp"
 
 using namespace hubbeam;
 
@@ -269,26 +270,7 @@ std::vector<double> coupled_frequencies(double EI, double GJ, double m, double j
         }
         return bc.determinant();
     };
-    std::vector<double> roots;
-    const int steps = 4000;
-    double w0 = 0.5, d0 = determinant(w0);
-    for (int n = 1; n <= steps; ++n) {
-        const double w1 = 0.5 + (most - 0.5) * n / steps, d1 = determinant(w1);
-        if ((d0 < 0.0) != (d1 < 0.0)) {
-            double lo = w0, hi = w1, dlo = d0;
-            for (int it = 0; it < 200 && hi - lo > 1e-14 * hi; ++it) {
-                const double mid = 0.5 * (lo + hi), dm = determinant(mid);
-                if ((dm < 0.0) == (dlo < 0.0)) {
-                    lo = mid, dlo = dm;
-                } else {
-                    hi = mid;
-                }
-            }
-            roots.push_back(0.5 * (lo + hi));
-        }
-        w0 = w1, d0 = d1;
-    }
-    return roots;
+    return test::bracketed_roots(determinant, 0.5, most, 4000, 1e-14);
 }
 
 }  // namespace
@@ -449,26 +431,7 @@ std::vector<double> extension_bending_frequencies(double EA, double EI, double m
         }
         return bc.determinant();
     };
-    std::vector<double> roots;
-    const int steps = 4000;
-    double w0 = 0.5, d0 = determinant(w0);
-    for (int n = 1; n <= steps; ++n) {
-        const double w1 = 0.5 + (most - 0.5) * n / steps, d1 = determinant(w1);
-        if ((d0 < 0.0) != (d1 < 0.0)) {
-            double lo = w0, hi = w1, dlo = d0;
-            for (int it = 0; it < 200 && hi - lo > 1e-14 * hi; ++it) {
-                const double mid = 0.5 * (lo + hi), dm = determinant(mid);
-                if ((dm < 0.0) == (dlo < 0.0)) {
-                    lo = mid, dlo = dm;
-                } else {
-                    hi = mid;
-                }
-            }
-            roots.push_back(0.5 * (lo + hi));
-        }
-        w0 = w1, d0 = d1;
-    }
-    return roots;
+    return test::bracketed_roots(determinant, 0.5, most, 4000, 1e-14);
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include "basis/basis.hpp"
 #include "basis/quadrature.hpp"
 #include "coordinates.hpp"
+#include "shared_oracles.hpp"
 
 using namespace hubbeam;
 
@@ -136,25 +137,7 @@ Parameters unit_blade()
 /// The roots below `most` of f by a scan of `steps` intervals and bisection.
 std::vector<double> roots(const std::function<double(double)>& f, double most, int steps = 4000)
 {
-    std::vector<double> found;
-    double w0 = 1e-3, f0 = f(w0);
-    for (int n = 1; n <= steps; ++n) {
-        const double w1 = 1e-3 + (most - 1e-3) * n / steps, f1 = f(w1);
-        if ((f0 < 0.0) != (f1 < 0.0) && std::abs(f0 - f1) < 1e3 * (std::abs(f0) + std::abs(f1))) {
-            double lo = w0, hi = w1, flo = f0;
-            for (int it = 0; it < 200 && hi - lo > 1e-15 * hi; ++it) {
-                const double mid = 0.5 * (lo + hi), fm = f(mid);
-                if ((fm < 0.0) == (flo < 0.0)) {
-                    lo = mid, flo = fm;
-                } else {
-                    hi = mid;
-                }
-            }
-            found.push_back(0.5 * (lo + hi));
-        }
-        w0 = w1, f0 = f1;
-    }
-    return found;
+    return test::bracketed_roots(f, 1e-3, most, steps, 1e-15);
 }
 
 /// The natural frequencies (rad/s) of one kind at rest, lowest first.
