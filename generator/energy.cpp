@@ -234,6 +234,9 @@ private:
         distribution(f.offsets->mass_offset_sin_x, D::mass_offset_sin);
         distribution(f.offsets->tension_offset_cos_x, D::tension_offset_cos);
         distribution(f.offsets->tension_offset_sin_x, D::tension_offset_sin);
+        distribution(f.offsets->mass_offset2_x, D::mass_offset2);
+        distribution(f.offsets->mass_offset2_cos_x, D::mass_offset2_cos);
+        distribution(f.offsets->mass_offset2_sin_x, D::mass_offset2_sin);
     }
 
     Poly evaluate(const ex& density, bool tip)

@@ -113,13 +113,15 @@ struct FieldSymbols {
     GiNaC::symbol cos_2twist_x{"cos_2twist_x"}, sin_2twist_x{"sin_2twist_x"};
     /// A blade's section offsets (docs/model.md sections 12.5 and 12.6): the flapwise slope's rate, the mass's first
     /// moment along the chord and the axial stiffness times the tension centre's offset, each times cos and sin of the
-    /// chord's angle (section distributions). Made only for a variant with offsets or a tip body in the blade's axes
+    /// chord's angle, and the mass times the offset squared, alone and times cos and sin of twice the angle (section
+    /// distributions). Made only for a variant with offsets or a tip body in the blade's axes
     /// (which reads the slope's rate), so that the others' symbols and
     /// emitted code stay as they were.
     struct Offsets {
         GiNaC::symbol uz_x_dot{"u_z_x_dot"}, mass_offset_cos_x{"mass_offset_cos_x"},
             mass_offset_sin_x{"mass_offset_sin_x"}, tension_offset_cos_x{"tension_offset_cos_x"},
-            tension_offset_sin_x{"tension_offset_sin_x"};
+            tension_offset_sin_x{"tension_offset_sin_x"}, mass_offset2_x{"mass_offset2_x"},
+            mass_offset2_cos_x{"mass_offset2_cos_x"}, mass_offset2_sin_x{"mass_offset2_sin_x"};
     };
     std::shared_ptr<const Offsets> offsets;
 };

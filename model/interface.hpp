@@ -65,7 +65,9 @@ constexpr std::size_t profile_value_count(bool out_of_plane)
 /// a uniform blade's linear pre-twist (Param::twist, docs/model.md section 12): cos 2 twist xi and sin 2 twist xi.
 /// Then a blade's section offsets (docs/model.md sections 12.5 and 12.6): the mass per length times the centre of mass's
 /// offset towards the leading edge, times cos and sin of the chord's angle (pitch and tabulated twist), linear between
-/// stations; and the axial stiffness times the tension centre's offset likewise.
+/// stations; the axial stiffness times the tension centre's offset likewise; and the mass per length times the square
+/// of the centre of mass's offset, alone and times cos and sin of twice the chord's angle (the offset mass's rotary
+/// inertia as the bent axis turns the chord).
 enum class SectionDistribution : int {
     m,
     EI,
@@ -82,12 +84,16 @@ enum class SectionDistribution : int {
     mass_offset_cos,
     mass_offset_sin,
     tension_offset_cos,
-    tension_offset_sin
+    tension_offset_sin,
+    mass_offset2,
+    mass_offset2_cos,
+    mass_offset2_sin
 };
-inline constexpr std::size_t section_distribution_count = 16;
+inline constexpr std::size_t section_distribution_count = 19;
 inline constexpr std::array<const char*, section_distribution_count> section_distribution_names = {
     "m", "EI", "ES", "EI_flap", "GJ", "j_p", "EI_cos", "EI_sin", "j_cos", "j_sin", "cos_2twist", "sin_2twist",
-    "mass_offset_cos", "mass_offset_sin", "tension_offset_cos", "tension_offset_sin"};
+    "mass_offset_cos", "mass_offset_sin", "tension_offset_cos", "tension_offset_sin", "mass_offset2",
+    "mass_offset2_cos", "mass_offset2_sin"};
 /// Whether a distribution is a table's (linear between its stations), not the pre-twist's.
 constexpr bool tabulated(SectionDistribution d)
 {

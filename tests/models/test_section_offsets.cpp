@@ -9,6 +9,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <complex>
+#include <tuple>
 #include <hubbeam/linearize.hpp>
 #include <hubbeam/make_model.hpp>
 #include <vector>
@@ -43,12 +44,14 @@ Parameters blade(const std::vector<Station>& table, double L)
     return p;
 }
 
-/// The offset centre of mass's share of T, 1/2 int m (|r_g_dot|^2 - |r_dot|^2 - |omega x d|^2) dx = int m V . D_dot dx:
-/// V the reference point's inertial velocity, D the vector from it to the centre of mass (the section's mass moments
-/// about the reference axis hold the rest). Each section is rigid: its chord, at the angle pitch + beta(x) + phi from
-/// e2 towards e3 (beta and the mass's moment m d linear between stations as the components m d cos beta, m d sin beta
-/// at the stations), is carried by the rotation that takes e1 to the bent axis (1, u_y', u_z') by the shortest way.
-/// Rates by a complex step along qd.
+/// The offset centre of mass's share of T, 1/2 int m (|r_g_dot|^2 - |r_dot|^2 - |omega_a x d|^2) dx = int m V . D_dot
+/// dx + 1/2 int m (|D_dot|^2 - |D_a_dot|^2) dx: V the reference point's inertial velocity, D the vector from it to the
+/// centre of mass, D_a the same turned by the twist and the spin alone (the section's mass moments about the
+/// reference axis hold the rotation omega_a and nothing of the slopes', so that r_g moves exactly). Each section is
+/// rigid: its chord, at the angle pitch + beta(x) + phi from e2 towards e3 (beta and the mass's moment m d linear
+/// between stations as the components m d cos beta, m d sin beta at the stations; m d^2 times the chord's
+/// direction's square likewise), is carried by the rotation that takes e1 to the bent axis (1, u_y', u_z') by the
+/// shortest way. Rates by a complex step along qd.
 class OffsetOracle {
 public:
     OffsetOracle(const VariantKey& key, const Parameters& p) : key_(key), p_(p) {}
@@ -66,8 +69,8 @@ public:
         const QuadratureRule rule = composite_gauss_legendre(cuts, 12);
         double sum = 0.0;
         for (std::size_t n = 0; n < rule.nodes.size(); ++n) {
-            const auto [V, D] = motion(qc, rule.nodes[n], cuts, h, w);
-            sum += rule.weights[n] * (V[0] * D[0] + V[1] * D[1] + V[2] * D[2]);
+            const auto [V, D, rotation] = motion(qc, rule.nodes[n], cuts, h, w);
+            sum += rule.weights[n] * (V[0] * D[0] + V[1] * D[1] + V[2] * D[2] + rotation);
         }
         return p_.L * sum;
     }
@@ -91,28 +94,39 @@ private:
         return layout.count(k) > 0 ? layout.first(k) : 0;
     }
 
-    /// m d cos and m d sin of the chord's angle (pitch + tabulated twist), d towards the leading edge, linear between
-    /// stations.
-    std::array<double, 2> moment(double xi) const
+    /// A station's share of the section at xi: the hat function's weight, the mass per length, the offset d towards
+    /// the leading edge (the table's is towards the trailing edge) and the chord's angle (pitch + tabulated twist).
+    struct Share {
+        double weight, m, d, angle;
+    };
+    std::array<Share, 2> shares(double xi) const
     {
         const std::vector<double>& x = p_.stations;
         std::size_t k = 0;
         while (k + 2 < x.size() && xi > x[k + 1]) ++k;
         const double t = (xi - x[k]) / (x[k + 1] - x[k]);
+        std::array<Share, 2> out;
+        for (std::size_t s : {k, k + 1})
+            out[s - k] = {s == k ? 1.0 - t : t, p_.profile[8 * s], -p_.offsets[2 * s], p_.pitch + p_.profile[8 * s + 5]};
+        return out;
+    }
+
+    /// m d cos and m d sin of the chord's angle, linear between stations.
+    std::array<double, 2> moment(double xi) const
+    {
         std::array<double, 2> out{0.0, 0.0};
-        for (std::size_t s : {k, k + 1}) {
-            const double weight = s == k ? 1.0 - t : t, m = p_.profile[8 * s], angle = p_.pitch + p_.profile[8 * s + 5];
-            const double d = -p_.offsets[2 * s];  // the offset is towards the trailing edge
-            out[0] += weight * m * d * std::cos(angle);
-            out[1] += weight * m * d * std::sin(angle);
+        for (const Share& s : shares(xi)) {
+            out[0] += s.weight * s.m * s.d * std::cos(s.angle);
+            out[1] += s.weight * s.m * s.d * std::sin(s.angle);
         }
         return out;
     }
 
-    /// The reference point's inertial velocity V and D_dot, in the hub frame, at xi.
-    std::pair<std::array<double, 3>, std::array<double, 3>> motion(const std::vector<C>& q, double xi,
-                                                                   const std::vector<double>& cuts, double h,
-                                                                   double w) const
+    /// The reference point's inertial velocity V and D_dot, in the hub frame, at xi, and the offset mass's rotation
+    /// 1/2 m (|D_dot|^2 - |D_a_dot|^2).
+    std::tuple<std::array<double, 3>, std::array<double, 3>, double> motion(const std::vector<C>& q, double xi,
+                                                                            const std::vector<double>& cuts, double h,
+                                                                            double w) const
     {
         const auto ux1 = field(key_.axial_basis(), q, first(FieldKind::axial), xi);
         const auto uy = field(key_.transverse_basis(), q, first(FieldKind::inplane), xi);
@@ -132,26 +146,39 @@ private:
         const double cb = std::cos(p_.precone), sb = std::sin(p_.precone);
         const C along = p_.L * xi + ux1[0] + ux2;
         const std::array<C, 3> pos = {p_.a + along * cb - uz[0] * sb, uy[0], along * sb + uz[0] * cb};
-        // The chord's moment turned by phi about e1, then by the shortest rotation from e1 to the bent axis t.
-        const auto [mc, ms] = moment(xi);
-        const std::array<C, 3> d0 = {0.0, mc * std::cos(phi[0]) - ms * std::sin(phi[0]),
-                                     ms * std::cos(phi[0]) + mc * std::sin(phi[0])};
+        // A vector of the section's plane, (0, c, s) in the blade's axes, turned by phi about e1, then (bent) by the
+        // shortest rotation from e1 to the bent axis t, in the hub frame.
         const C norm = std::sqrt(1.0 + uy[1] * uy[1] + uz[1] * uz[1]);
         const std::array<C, 3> t = {1.0 / norm, uy[1] / norm, uz[1] / norm};
         const std::array<C, 3> k = {0.0, -t[2], t[1]};  // e1 x t
         const auto cross = [](const std::array<C, 3>& a, const std::array<C, 3>& b) {
             return std::array<C, 3>{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
         };
-        const std::array<C, 3> kd = cross(k, d0), kkd = cross(k, kd);
-        std::array<C, 3> d;
-        for (int n = 0; n < 3; ++n) d[n] = d0[n] + kd[n] + kkd[n] / (1.0 + t[0]);
-        const std::array<C, 3> dh = {d[0] * cb - d[2] * sb, d[1], d[0] * sb + d[2] * cb};
-        // Values and rates (the complex step along qd); the hub frame turns at w about k.
-        std::array<double, 3> V, D;
+        const auto turned = [&](double c, double s, bool bent) {
+            const std::array<C, 3> d0 = {0.0, c * std::cos(phi[0]) - s * std::sin(phi[0]),
+                                         s * std::cos(phi[0]) + c * std::sin(phi[0])};
+            std::array<C, 3> d = d0;
+            if (bent) {
+                const std::array<C, 3> kd = cross(k, d0), kkd = cross(k, kd);
+                for (int n = 0; n < 3; ++n) d[n] = d0[n] + kd[n] + kkd[n] / (1.0 + t[0]);
+            }
+            return std::array<C, 3>{d[0] * cb - d[2] * sb, d[1], d[0] * sb + d[2] * cb};
+        };
+        // Inertial rates (the complex step along qd); the hub frame turns at w about k.
         const auto rate = [h](const C& c) { return c.imag() / h; };
-        V = {rate(pos[0]) - w * pos[1].real(), rate(pos[1]) + w * pos[0].real(), rate(pos[2])};
-        D = {rate(dh[0]) - w * dh[1].real(), rate(dh[1]) + w * dh[0].real(), rate(dh[2])};
-        return {V, D};
+        const auto inertial = [&](const std::array<C, 3>& r) {
+            return std::array<double, 3>{rate(r[0]) - w * r[1].real(), rate(r[1]) + w * r[0].real(), rate(r[2])};
+        };
+        const auto [mc, ms] = moment(xi);
+        const std::array<double, 3> V = inertial(pos), D = inertial(turned(mc, ms, true));
+        double rotation = 0.0;
+        for (const Share& s : shares(xi)) {
+            const auto square = [](const std::array<double, 3>& r) { return r[0] * r[0] + r[1] * r[1] + r[2] * r[2]; };
+            const double c = std::cos(s.angle), sn = std::sin(s.angle);
+            rotation += s.weight * s.m * s.d * s.d / 2.0 *
+                        (square(inertial(turned(c, sn, true))) - square(inertial(turned(c, sn, false))));
+        }
+        return {V, D, rotation};
     }
 
     VariantKey key_;
@@ -219,6 +246,33 @@ TEST_CASE("section offsets: the offset centre of mass's kinetic energy is the ri
             CHECK(std::abs(o[order]) > 1e-3);  // each order present, so that a dropped term shows
             CHECK(g[order] == Approx(o[order]).epsilon(1e-7));
         }
+    }
+}
+
+TEST_CASE("section offsets: the mass matrix of a physical section stays positive definite with axial coordinates",
+          "[section_offsets]")
+{
+    // An offset as long as a quarter of an element, the section's polar moment about the reference axis above m d^2 (a
+    // physical section's): the centre of mass's kinetic energy 1/2 m |V + d C_dot|^2 and the rotation about it are
+    // each >= 0, so M is positive definite for every state. Without the offset mass's turn with the slopes the axial
+    // rate's coupling to them, -m d u_x1_dot sigma_dot, stands alone and makes M indefinite.
+    VariantKey key{.method = Method::fem, .nx = 2, .ny = 4, .order = Order::first, .drive = Drive::torque};
+    key.nz = 4, key.nt = 2;
+    key.extras.tabulated = key.extras.offsets = key.extras.pitch = key.extras.cone = true;
+    Parameters p = blade({{0.0, 1.0, 50.0, 1e4, 80.0, 30.0, 0.2, 0.05, 0.40, 0.6},
+                          {1.0, 1.0, 50.0, 1e4, 80.0, 30.0, -0.1, 0.05, 0.40, -0.6}},
+                         1.0);
+    p.a = 0.2, p.pitch = 0.3, p.precone = 0.05;
+    const auto model = make_model(key, p, ModelSource::generated);
+    const int nq = key.nq();
+    for (double scale : {0.0, 0.05}) {
+        std::vector<double> q(static_cast<std::size_t>(nq));
+        for (int k = 0; k < nq; ++k) q[static_cast<std::size_t>(k)] = scale * std::sin(1.3 * k + 0.2);
+        Eigen::MatrixXd M(nq, nq);
+        model->mass(HubInput{}, q.data(), M.data());
+        const Eigen::VectorXd lambda = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(M).eigenvalues();
+        INFO("state scale " << scale << ": M's eigenvalues from " << lambda.minCoeff() << " to " << lambda.maxCoeff());
+        CHECK(lambda.minCoeff() > 0.0);
     }
 }
 

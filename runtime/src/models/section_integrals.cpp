@@ -219,6 +219,14 @@ std::vector<double> section_distribution(const VariantKey& key, const Parameters
             const double angle = (key.extras.pitch ? p.pitch : 0.0) + v(ProfileValue::twist);
             return first * (sine ? std::sin(angle) : std::cos(angle));
         };
+        // The offset mass's second moment, m d^2, alone and turned by twice the chord's angle with the pitch: the
+        // square of the chord's direction carries the second harmonics of the angle (docs/model.md 12.5).
+        const auto second_moment = [&](int harmonic) {
+            const double d = p.offsets[section_offset_count * k + static_cast<std::size_t>(SectionOffset::mass)];
+            const double angle = 2.0 * ((key.extras.pitch ? p.pitch : 0.0) + v(ProfileValue::twist));
+            const double md2 = v(ProfileValue::m) * d * d;
+            return harmonic == 0 ? md2 : harmonic == 1 ? md2 * std::cos(angle) : md2 * std::sin(angle);
+        };
         // The deviators turned by twice the chord's tabulated angle (docs/model.md section 12.4).
         const auto turned = [&](double deviator, bool sine) {
             const double angle = 2.0 * v(ProfileValue::twist);
@@ -240,6 +248,9 @@ std::vector<double> section_distribution(const VariantKey& key, const Parameters
             case D::mass_offset_sin: out[k] = moment(SectionOffset::mass, ProfileValue::m, true); break;
             case D::tension_offset_cos: out[k] = moment(SectionOffset::tension, ProfileValue::ES, false); break;
             case D::tension_offset_sin: out[k] = moment(SectionOffset::tension, ProfileValue::ES, true); break;
+            case D::mass_offset2: out[k] = second_moment(0); break;
+            case D::mass_offset2_cos: out[k] = second_moment(1); break;
+            case D::mass_offset2_sin: out[k] = second_moment(2); break;
             default: break;
         }
     }
