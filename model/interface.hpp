@@ -48,13 +48,14 @@ enum class Param : std::size_t {
 };
 inline constexpr std::size_t param_count = 28;
 /// A tabulated profile's values at each station (docs/model.md sections 11.2 and 12.4): a planar beam's m, EI, ES;
-/// a blade's also its flapwise and torsional stiffness, the chord's angle (pre-twist, added to the pitch) and the mass
-/// moments per length about the chord and its normal.
-enum class ProfileValue : std::size_t { m, EI, ES, EI_flap, GJ, twist, j_c, j_n };
-inline constexpr std::size_t max_profile_value_count = 8;
+/// a blade's also its flapwise and torsional stiffness, the chord's angle (pre-twist, added to the pitch), the mass
+/// moments per length about the section's principal inertia axes (j_c about the one nearer the chord, j_n about its
+/// normal) and the angle of those axes (the chord's angle where a table gives none).
+enum class ProfileValue : std::size_t { m, EI, ES, EI_flap, GJ, twist, j_c, j_n, inertia_twist };
+inline constexpr std::size_t max_profile_value_count = 9;
 inline constexpr std::array<const char*, max_profile_value_count> profile_value_names = {
-    "m", "EI", "ES", "EI_flap", "GJ", "twist", "j_c", "j_n"};
-/// The values per station of a variant's profile: the first 3 in the plane, all 8 for a beam that leaves it.
+    "m", "EI", "ES", "EI_flap", "GJ", "twist", "j_c", "j_n", "inertia_twist"};
+/// The values per station of a variant's profile: the first 3 in the plane, all 9 for a beam that leaves it.
 constexpr std::size_t profile_value_count(bool out_of_plane)
 {
     return out_of_plane ? max_profile_value_count : 3;

@@ -133,12 +133,19 @@ TEST_CASE("a blade file's flap and edge mass moments are the section's about the
     // BModes' flp_iner and ElastoDyn's FlpIner are the mass moment about the chord (flap: the section turning about
     // it), edg_iner and EdgIner about its normal. A uniform blade with the flap one 1/4 and the edge one 1 resists
     // turning from the plane of rotation: its twist frequencies rise by Omega^2 (1 - 1/4)/(1 + 1/4) exactly (the
-    // facts' test above), and would fall by as much were the two read the wrong way round.
+    // facts' test above), and would fall by as much were the two read the wrong way round. BModes gives them about
+    // the principal inertia axes at tw_iner: the same section written with those axes turned a right angle from the
+    // chord (tw_iner 90 deg, the two moments exchanged) is the same blade.
     const TempFolder folder("inertia-columns");
     const std::string bmodes =
         "uniform blade\n2 n_secs\n\nsec_loc str_tw tw_iner mass_den flp_iner edge_iner flp_stff edge_stff tor_stff "
         "axial_stff cg_offst sc_offst tc_offst\n(-) (deg) (deg) (kg/m) (kg-m) (kg-m) (Nm^2) (Nm^2) (Nm^2) (N) (m) (m) "
         "(m)\n0 0 0 1 0.25 1 1 4 0.5 1e4 0 0 0\n1 0 0 1 0.25 1 1 4 0.5 1e4 0 0 0\n";
+    std::string turned = bmodes;
+    for (const char* row : {"0 0 0 1 0.25 1 ", "1 0 0 1 0.25 1 "}) {
+        const std::size_t at = turned.find(row);
+        turned.replace(at, 15, std::string(1, row[0]) + " 0 90 1 1 0.25 ");
+    }
     const std::string elastodyn =
         "---\n--- FAST INDIVIDUAL BLADE FILE ---\nuniform blade\n--- BLADE PARAMETERS ---\n2 NBlInpSt - stations\n"
         "F CalcBMode - x\n1 BldFlDmp(1) - x\n1 BldFlDmp(2) - x\n1 BldEdDmp(1) - x\n--- BLADE ADJUSTMENT FACTORS ---\n"
@@ -148,7 +155,8 @@ TEST_CASE("a blade file's flap and edge mass moments are the section's about the
         "FlpcgOf EdgcgOf FlpEAOf EdgEAOf\n(-) (-) (deg) (kg/m) (Nm^2) (Nm^2) (Nm^2) (N) (-) (kg m) (kg m) (m) (m) (m) (m) "
         "(m) (m)\n0 0.25 0 1 1 4 0.5 1e4 0 0.25 1 0 0 0 0 0 0\n1 0.25 0 1 1 4 0.5 1e4 0 0.25 1 0 0 0 0 0 0\n"
         "--- BLADE MODE SHAPES ---\n";
-    for (const auto& [name, text] : {std::pair{"bmodes.dat", bmodes}, {"elastodyn.dat", elastodyn}}) {
+    for (const auto& [name, text] :
+         {std::pair{"bmodes.dat", bmodes}, {"bmodes_axes.dat", turned}, {"elastodyn.dat", elastodyn}}) {
         folder.write(name, text);
         const std::string scene = folder.write(
             "blade.toml", "[beam]\nlength = 1.0\nblade_file = \"" + std::string(name) +

@@ -156,13 +156,11 @@ TEST_CASE("a BModes file reads to the values worked out by hand", "[blade_files]
     CHECK(b.EA == std::vector<double>{6e9, 4e9, 2e9, 1e9});
     // str_tw 90, 30, -45, 0 deg.
     check_near(b.twist, {pi / 2, pi / 6, -pi / 4, 0.0});
-    // flp_iner, edge_iner are about the inertia axes (tw_iner): where tw_iner = str_tw they stand as written. At
-    // station 2 those axes are 30 deg from the structural ones, and with cos 60 deg = 1/2 BModes' turn gives
-    // 2 * 3/4 + 10 * 1/4 = 4 kg m about the chord and 10 * 3/4 + 2 * 1/4 = 8 kg m about its normal.
-    CHECK(b.mass_moment_flap[0] == 2.0);
-    CHECK(b.mass_moment_edge[0] == 10.0);
-    check_near(b.mass_moment_flap, {2.0, 4.0, 1.0, 0.5});
-    check_near(b.mass_moment_edge, {10.0, 8.0, 5.0, 2.5});
+    // flp_iner, edge_iner are about the principal inertia axes, at tw_iner 90, 0, -45, 0 deg: as written, with their
+    // angle (at station 2 the axes are 30 deg from the chord, which BModes turns to the chord without the product).
+    CHECK(b.mass_moment_flap == std::vector<double>{2.0, 2.0, 1.0, 0.5});
+    CHECK(b.mass_moment_edge == std::vector<double>{10.0, 10.0, 5.0, 2.5});
+    check_near(b.inertia_twist, {pi / 2, 0.0, -pi / 4, 0.0});
     CHECK(b.cg_offset == std::vector<double>{0.0, 0.0, 0.0, 0.0});
     // cg_offst as written (docs/model.md section 12.5: positive towards the trailing edge, as BModes has it).
     CHECK(read_bmodes_sections(sample("bmodes_cg_offset.dat")).cg_offset == std::vector<double>{0.0, 0.0, 0.032, 0.0});
@@ -324,8 +322,6 @@ TEST_CASE("what hubbeam does not model is refused in one line naming the file, t
         {"elastodyn_fast7_offsets.dat", 0, 0, "", &read_elastodyn_blade, 20, "EdgcgOf", 2,
          ":20: column EdgcgOf, station 2: expected 0 (edgewise centre-of-mass offset, m)"},
         // The good samples with one field changed.
-        {"bmodes_blade.dat", 7, 2, "-20.0", &read_bmodes_sections, 7, "tw_iner", 2,
-         ":7: column tw_iner, station 2: expected tw_iner within 45 deg of str_tw"},
         {"elastodyn_fast7.dat", 21, 8, "0.1", &read_elastodyn_blade, 21, "Alpha", 3,
          ":21: column Alpha, station 3: expected 0 (flap-twist coupling coefficient): hubbeam models no coupling of "
          "bending and twist"},

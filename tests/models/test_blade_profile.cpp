@@ -42,7 +42,7 @@ Parameters tabulated(Parameters p, const std::vector<double>& x, Twist twist_at)
     p.profile.clear();
     for (double xk : x)
         p.profile.insert(p.profile.end(), {p.rho * p.S, p.E * p.I, p.E * p.S, p.E * p.I_flap, p.G * p.J_t, twist_at(xk),
-                                           p.rho * p.I_flap, p.rho * p.I});
+                                           p.rho * p.I_flap, p.rho * p.I, twist_at(xk)});
     return p;
 }
 
@@ -133,7 +133,7 @@ TEST_CASE("blade profile: a held blade's flap sag under gravity along the axis i
     p.stations = x;
     p.profile.clear();
     for (std::size_t k = 0; k < x.size(); ++k)
-        p.profile.insert(p.profile.end(), {m[k], 4.0 * EI_flap[k], 1e6, EI_flap[k], 0.0, 0.0, 0.0, 0.0});
+        p.profile.insert(p.profile.end(), {m[k], 4.0 * EI_flap[k], 1e6, EI_flap[k], 0.0, 0.0, 0.0, 0.0, 0.0});
     const auto linear = [&](const std::vector<double>& v, double s) {
         const double xi = s / p.L;
         const std::size_t k = xi > x[1] ? 1 : 0;
@@ -287,13 +287,19 @@ TEST_CASE("blade profile: a scene reads the blade's columns, each absent one at 
     f.write("blade.toml", blade_scene("profile = \"blade.csv\"\npitch = 0.1\n"));
     const Scene s = load_scene(f.scene());
     CHECK(s.key().name() == "fem_nx0_ny2_nz2_nt2_prescribed_first_profile_pitched");
-    CHECK(s.parameters.profile ==
-          std::vector<double>{3, 900, 1e6, 300, 50, 0.2, 0.01, 0.04, 1, 100, 1e6, 40, 20, -0.1, 0.002, 0.01});
+    // The inertia axes along the chord where no inertia_twist is given.
+    CHECK(s.parameters.profile == std::vector<double>{3,   900, 1e6, 300, 50, 0.2,  0.01,  0.04, 0.2,
+                                                      1,   100, 1e6, 40,  20, -0.1, 0.002, 0.01, -0.1});
+    f.write("blade.csv", "x/L, m, EI, ES, EI_flap, GJ, twist, j_c, j_n, inertia_twist\n0, 3, 900, 1e6, 300, 50, 0.2, "
+                         "0.01, 0.04, 0.5\n1, 1, 100, 1e6, 40, 20, -0.1, 0.002, 0.01, -0.7\n");
+    const std::vector<double> axes = load_scene(f.scene()).parameters.profile;
+    CHECK(axes[static_cast<std::size_t>(ProfileValue::inertia_twist)] == 0.5);
+    CHECK(axes[max_profile_value_count + static_cast<std::size_t>(ProfileValue::inertia_twist)] == -0.7);
     // Without a twist field the torsional columns may be left out: EI_flap defaults to EI, the rest to 0.
     f.write("blade.csv", "x/L, m, EI, ES\n0, 3, 900, 1e6\n1, 1, 100, 1e6\n");
     f.write("blade.toml", blade_scene("profile = \"blade.csv\"\n", "nz = 2\n"));
     CHECK(load_scene(f.scene()).parameters.profile ==
-          std::vector<double>{3, 900, 1e6, 900, 0, 0, 0, 0, 1, 100, 1e6, 100, 0, 0, 0, 0});
+          std::vector<double>{3, 900, 1e6, 900, 0, 0, 0, 0, 0, 1, 100, 1e6, 100, 0, 0, 0, 0, 0});
     // A planar scene keeps the planar values.
     f.write("blade.toml", blade_scene("profile = \"blade.csv\"\n", ""));
     CHECK(load_scene(f.scene()).parameters.profile == std::vector<double>{3, 900, 1e6, 1, 100, 1e6});
@@ -403,18 +409,23 @@ TEST_CASE("blade profile: a BModes or ElastoDyn file is read as the blade's tabl
     CHECK(s.key().name() == "fem_nx0_ny2_nz2_nt2_prescribed_first_profile");
     CHECK(s.parameters.stations == std::vector<double>{0.0, 0.25, 0.5, 1.0});
     const std::vector<double>& v = s.parameters.profile;
-    REQUIRE(v.size() == 4 * 8);
+    const std::size_t n = max_profile_value_count;
+    REQUIRE(v.size() == 4 * n);
     for (std::size_t j = 0; j < 6; ++j)
-        CHECK(v[8 + j] == Approx(std::vector<double>{300, 6e9, 4e9, 2e9, 5e8, 30 * deg}[j]));
-    CHECK(v[8 + 6] > 0.0);  // the mass moments, turned to the structural axes by the reader (tests/io)
+        CHECK(v[n + j] == Approx(std::vector<double>{300, 6e9, 4e9, 2e9, 5e8, 30 * deg}[j]));
+    // The mass moments about the principal inertia axes, and those axes' angle (tw_iner 0 deg there).
+    CHECK(v[n + 6] == 2.0);
+    CHECK(v[n + 7] == 10.0);
+    CHECK(v[n + 8] == 0.0);
+    CHECK(v[8] == Approx(90 * deg));
     // Resampled at 5 stations: 0.75 lies halfway between the file's 0.5 and 1.
     const Scene r = load_scene(scene("bmodes_blade.dat", "blade_stations = 5\n", "nz = 2\nnt = 2\n"));
     CHECK(r.key().name() == "fem_nx0_ny2_nz2_nt2_prescribed_first_profile");
     CHECK(r.parameters.stations == std::vector<double>{0.0, 0.25, 0.5, 0.75, 1.0});
     const std::vector<double>& w = r.parameters.profile;
-    for (std::size_t j = 0; j < 8; ++j) {
-        CHECK(w[8 + j] == Approx(v[8 + j]));                        // the file's own station 0.25
-        CHECK(w[24 + j] == Approx(0.5 * (v[16 + j] + v[24 + j])));  // 0.75
+    for (std::size_t j = 0; j < n; ++j) {
+        CHECK(w[n + j] == Approx(v[n + j]).margin(1e-15));                             // the file's own station 0.25
+        CHECK(w[3 * n + j] == Approx(0.5 * (v[2 * n + j] + v[3 * n + j])).margin(1e-15));  // 0.75
     }
     const auto refused = [&](const std::string& path, const std::string& key, const std::string& part) {
         try {
@@ -427,7 +438,7 @@ TEST_CASE("blade profile: a BModes or ElastoDyn file is read as the blade's tabl
         }
     };
     // OpenFAST's ElastoDyn has no EA, GJ or mass moments: a blade of flap and lead-lag only.
-    CHECK(load_scene(scene("elastodyn_openfast5.dat", "", "nz = 2\n")).parameters.profile.size() == 3 * 8);
+    CHECK(load_scene(scene("elastodyn_openfast5.dat", "", "nz = 2\n")).parameters.profile.size() == 3 * n);
     refused(scene("elastodyn_openfast5.dat", "", "nz = 2\nnt = 2\n"), "beam.blade_file", "expected a column GJ");
     std::string axial = blade_scene("blade_file = \"" + blades + "elastodyn_openfast5.dat\"\n", "nz = 2\n");
     axial.replace(axial.find("nx = 0"), 6, "nx = 2");

@@ -107,8 +107,9 @@ std::vector<Case> cases()
     blade.twist = false;
     blade.tabulated = true;
     const auto untwisted = set([](Parameters& p) {
-        for (std::size_t k = static_cast<std::size_t>(ProfileValue::twist); k < p.profile.size(); k += 8)
-            p.profile[k] = 0.0;
+        for (std::size_t k = 0; k < p.profile.size(); k += max_profile_value_count)
+            for (ProfileValue angle : {ProfileValue::twist, ProfileValue::inertia_twist})
+                p.profile[k + static_cast<std::size_t>(angle)] = 0.0;
     });
     for (Method method : {Method::amm, Method::fem, Method::bim, Method::bsim}) {
         const bool bsim = method == Method::bsim;

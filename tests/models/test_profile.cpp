@@ -384,8 +384,8 @@ TEST_CASE("profile: bad tables and scenes are refused naming the scene, the key,
     has(error_of(f, "x/L, m, EI\n0, 1, 1\n1, 1, 1\n"), csv + ":1: expected a column ES in its header");
     has(error_of(f, "x/L, m, EI, ES, Q\n0, 1, 1, 1, 1\n1, 1, 1, 1, 1\n"),
         csv +
-            ":1: expected the columns x/L, m, EI, ES and, for a blade, any of EI_flap, GJ, twist, j_c, j_n, cg_offset, "
-            "tc_offset in its header, got 1 other columns");
+            ":1: expected the columns x/L, m, EI, ES and, for a blade, any of EI_flap, GJ, twist, j_c, j_n, "
+            "inertia_twist, cg_offset, tc_offset in its header, got 1 other columns");
     // Comment and blank lines before the header: the message names the header's own line.
     has(error_of(f, "# blade\n\n# x/L from root to tip\nx/L, m, EI, ES, Q\n0, 1, 1, 1, 1\n1, 1, 1, 1, 1\n"),
         csv + ":4: expected the columns x/L, m, EI, ES and");

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <map>
 #include <tuple>
 #include <random>
@@ -32,7 +33,7 @@ Parameters blade_table()
     for (double x : stations)
         p.profile.insert(p.profile.end(), {0.4 - 0.2 * x + 0.1 * x * x, 900.0 - 500.0 * x, 7e6 * (1.0 - 0.4 * x),
                                            300.0 + 200.0 * x * (1.0 - x), 50.0 - 20.0 * x, 0.8 - 2.1 * x,
-                                           0.01 + 0.02 * x, 0.04 - 0.01 * x});
+                                           0.01 + 0.02 * x, 0.04 - 0.01 * x, 0.3 - 1.9 * x});
     // The centre of mass's (m d as large as m) and the tension centre's, in the order of SectionOffset.
     for (double x : stations) p.offsets.insert(p.offsets.end(), {2.0 - x, 0.1 + 0.3 * x});
     return p;
@@ -48,12 +49,15 @@ long double distribution(const Parameters& p, int d, long double xi)
     while (k + 2 < p.stations.size() && xi > p.stations[k + 1]) ++k;
     const long double t = (xi - p.stations[k]) / (p.stations[k + 1] - p.stations[k]);
     const auto at = [&](std::size_t s) {
-        const double* v = &p.profile[8 * s];  // m, EI, ES, EI_flap, GJ, twist, j_c, j_n
+        const double* v = &p.profile[9 * s];  // m, EI, ES, EI_flap, GJ, twist, j_c, j_n, inertia_twist
         const long double c = std::cos(2.0L * v[5]), sn = std::sin(2.0L * v[5]);
+        const long double ci = std::cos(2.0L * v[8]), si = std::sin(2.0L * v[8]);  // the inertia axes'
         // The mass's first moment towards the leading edge (the offset is towards the trailing edge), along the chord.
         const long double moment = -v[0] * p.offsets[2 * s];
         // The axial stiffness's first moment about the reference axis at the tension centre, likewise.
         const long double tension = -v[2] * p.offsets[2 * s + 1];
+        // The mass's second moment about the reference axis.
+        const long double second = v[0] * p.offsets[2 * s] * p.offsets[2 * s];
         const long double values[] = {v[0],
                                       v[1],
                                       v[2],
@@ -62,14 +66,18 @@ long double distribution(const Parameters& p, int d, long double xi)
                                       v[6] + v[7],
                                       (v[1] - v[3]) / 2 * c,
                                       (v[1] - v[3]) / 2 * sn,
-                                      (v[7] - v[6]) / 2 * c,
-                                      (v[7] - v[6]) / 2 * sn,
+                                      (v[7] - v[6]) / 2 * ci,
+                                      (v[7] - v[6]) / 2 * si,
                                       0.0L,
                                       0.0L,
                                       moment * std::cos(static_cast<long double>(v[5])),
                                       moment * std::sin(static_cast<long double>(v[5])),
                                       tension * std::cos(static_cast<long double>(v[5])),
-                                      tension * std::sin(static_cast<long double>(v[5]))};
+                                      tension * std::sin(static_cast<long double>(v[5])),
+                                      second,
+                                      second * c,
+                                      second * sn};
+        static_assert(std::size(values) == section_distribution_count);
         return values[d];
     };
     return (1 - t) * at(k) + t * at(k + 1);

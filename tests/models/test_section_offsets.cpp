@@ -38,7 +38,7 @@ Parameters blade(const std::vector<Station>& table, double L)
     p.rho = table[0].m, p.S = 1.0, p.E = table[0].ES, p.I = table[0].EI / p.E, p.I_flap = table[0].EI_flap / p.E;
     for (const Station& s : table) {
         p.stations.push_back(s.x);
-        p.profile.insert(p.profile.end(), {s.m, s.EI, s.ES, s.EI_flap, s.GJ, s.twist, s.j_c, s.j_n});
+        p.profile.insert(p.profile.end(), {s.m, s.EI, s.ES, s.EI_flap, s.GJ, s.twist, s.j_c, s.j_n, s.twist});
         p.offsets.insert(p.offsets.end(), {s.cg, s.tc});  // in the order of SectionOffset
     }
     return p;
@@ -107,7 +107,8 @@ private:
         const double t = (xi - x[k]) / (x[k + 1] - x[k]);
         std::array<Share, 2> out;
         for (std::size_t s : {k, k + 1})
-            out[s - k] = {s == k ? 1.0 - t : t, p_.profile[8 * s], -p_.offsets[2 * s], p_.pitch + p_.profile[8 * s + 5]};
+            out[s - k] = {s == k ? 1.0 - t : t, p_.profile[9 * s], -p_.offsets[2 * s],
+                          p_.pitch + p_.profile[9 * s + 5]};
         return out;
     }
 
@@ -393,8 +394,8 @@ double tension_energy(const VariantKey& key, const Parameters& p, const std::vec
         const double t = (xi - p.stations[k]) / (p.stations[k + 1] - p.stations[k]);
         double c = 0.0, s = 0.0;
         for (std::size_t at : {k, k + 1}) {
-            const double weight = at == k ? 1.0 - t : t, EA = p.profile[8 * at + 2];
-            const double angle = p.pitch + p.profile[8 * at + 5], d = -p.offsets[2 * at + 1];
+            const double weight = at == k ? 1.0 - t : t, EA = p.profile[9 * at + 2];
+            const double angle = p.pitch + p.profile[9 * at + 5], d = -p.offsets[2 * at + 1];
             c += weight * EA * d * std::cos(angle);
             s += weight * EA * d * std::sin(angle);
         }

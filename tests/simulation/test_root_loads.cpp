@@ -3,6 +3,7 @@
 // mesh refines, blade by blade against single blades at their azimuths, and against the hub's momentum balance on a
 // moving support (the model's own equation for x_h, y_h: no code of the force summation in it).
 #include <algorithm>
+#include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
@@ -385,4 +386,46 @@ TEST_CASE("root loads of a flexible blade spun up balance the rate of the run's 
     INFO("worst " << worst << " of " << largest << ", ringing " << ringing);
     CHECK(ringing > 1e-2 * largest);
     CHECK(worst < 1e-4 * largest);
+}
+
+TEST_CASE("root loads turn a blade's mass moments by their principal axes' angle, not by the chord's",
+          "[root_loads][profile]")
+{
+    // With equal flap and edge stiffness the chord's angle turns nothing of the energies: a table with its principal
+    // inertia axes at beta_i and its chord at beta is the table with both at beta_i, state for state, so are their
+    // root loads. A pitched, spinning, twisting blade, whose section inertia drives the flap and edge moments.
+    VariantKey key{.method = Method::fem, .nx = 0, .ny = 4, .order = Order::first, .drive = Drive::torque};
+    key.nz = 4, key.nt = 2;
+    key.extras.tabulated = key.extras.pitch = true;
+    const auto table = [](std::array<double, 2> chord, std::array<double, 2> axes) {
+        Parameters p;
+        p.L = 2.0, p.a = 0.3, p.pitch = 0.25, p.J_oh = 4.0;
+        p.stations = {0.0, 1.0};
+        for (std::size_t k = 0; k < 2; ++k)
+            p.profile.insert(p.profile.end(), {2.0, 500.0, 1e6, 500.0, 80.0, chord[k], 0.05, 0.3, axes[k]});
+        p.rho = 2.0, p.S = 1.0, p.E = 1e6, p.I = p.I_flap = 5e-4;
+        return p;
+    };
+    const Parameters turned = table({0.3, -0.2}, {0.9, 0.4}), along = table({0.9, 0.4}, {0.9, 0.4});
+    const Parameters chord = table({0.3, -0.2}, {0.3, -0.2});  // the inertia along the chord: another blade
+    const int nq = key.nq();
+    std::vector<double> q(static_cast<std::size_t>(nq)), qd(q.size());
+    for (int k = 0; k < nq; ++k) {
+        q[static_cast<std::size_t>(k)] = 0.02 * std::sin(1.3 * k + 0.5);
+        qd[static_cast<std::size_t>(k)] = 0.4 * std::cos(0.7 * k);
+    }
+    qd[0] = 6.0;
+    const auto loads = [&](const Parameters& p) {
+        const auto model = make_model(key, p, ModelSource::assembled);
+        const std::vector<double> qdd = accelerations(*model, HubInput{}, q, qd);
+        return blade_root_loads(*model, {BladeLoads(key, p)}, HubInput{}, q.data(), qd.data(), qdd.data()).at(0);
+    };
+    const RootLoads a = loads(turned), b = loads(along), c = loads(chord);
+    for (double RootLoads::*member : root_load_members) {
+        const double scale = std::max(std::abs(b.*member), 1.0);
+        INFO("turned " << a.*member << ", along " << b.*member << ", with the chord " << c.*member);
+        CHECK(std::abs(a.*member - b.*member) < 1e-10 * scale);
+    }
+    CHECK(std::abs(a.flap_moment - c.flap_moment) > 1e-3 * std::abs(b.flap_moment));
+    CHECK(std::abs(a.edge_moment - c.edge_moment) > 1e-3 * std::abs(b.edge_moment));
 }

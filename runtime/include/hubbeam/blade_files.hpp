@@ -11,8 +11,8 @@
 namespace hubbeam {
 
 /// A blade's section properties at its stations, in SI units with the twist in radians, as a file gave them (its
-/// adjustment factors applied, its inertia axes turned into the structural ones). All vectors have one entry per
-/// station; an optional one is empty when the file's format has no such column.
+/// adjustment factors applied, its mass moments about their principal axes at their own angle). All vectors have one
+/// entry per station; an optional one is empty when the file's format has no such column.
 struct BladeTable {
     std::vector<double> x_over_L;          // station: 0 at the root to 1 at the tip, strictly increasing
     std::vector<double> mass_per_length;   // kg/m
@@ -21,8 +21,10 @@ struct BladeTable {
     std::vector<double> GJ;                // N m^2: torsional stiffness (optional)
     std::vector<double> EA;                // N: axial stiffness (optional)
     std::vector<double> twist;             // rad: structural pre-twist, with the file's sign (both formats share it)
-    std::vector<double> mass_moment_flap;  // kg m: mass moment of inertia per length about the chord (optional)
-    std::vector<double> mass_moment_edge;  // kg m: the same about the chord's normal (optional)
+    std::vector<double> mass_moment_flap;  // kg m: mass moment of inertia per length about the principal inertia
+                                           // axis nearer the chord (the chord where inertia_twist is empty; optional)
+    std::vector<double> mass_moment_edge;  // kg m: the same about the other principal axis (optional)
+    std::vector<double> inertia_twist;     // rad: the principal inertia axes' angle (optional: the twist's)
     std::vector<double> cg_offset;         // m: the centre of mass off the reference axis along the chord, towards
                                            // the trailing edge (optional)
     std::vector<double> tc_offset;         // m: the tension centre off the reference axis likewise (optional)

@@ -3,9 +3,8 @@
 //
 // The formats as their own programs read them, checked against these public files:
 //   BModes   old-NWTC/BModes src/bmodes/BModes.f90 (reading the section properties: ReadCom for the title, ReadVar for
-//            n_secs, ReadCom for the blank, titles and units lines, then n_secs list-directed rows of 13 values; the
-//            turn of flp_iner, edge_iner from the inertia axes at tw_iner to the structural axes at str_tw; n_secs >=
-//            2); the samples old-NWTC/BModes CertTest/blade_sec_props.dat and CertTest/tower_sec_props.dat;
+//            n_secs, ReadCom for the blank, titles and units lines, then n_secs list-directed rows of 13 values;
+//            flp_iner, edge_iner about the inertia axes at tw_iner; n_secs >= 2); the samples old-NWTC/BModes CertTest/blade_sec_props.dat and CertTest/tower_sec_props.dat;
 //            SMI-Lab-Inha/pyBModes src/pybmodes/io/sec_props.py (which calls the first column span_loc).
 //   ElastoDyn OpenFAST/openfast modules/elastodyn/src/ElastoDyn_IO.f90 (ReadBladeFile: the table's columns found by
 //            name, case-insensitively; StrcTwst in degrees; BMassDen, FlpStff, EdgStff times AdjBlMs, AdjFlSt, AdjEdSt;
@@ -22,9 +21,10 @@
 //   wrong without a word. Line 3 is skipped whatever it holds, as BModes skips it; blank lines among the rows are
 //   skipped and each row is one line; what follows the n_secs rows is ignored (BModes' samples end with notes), but
 //   for one more row, which means n_secs is wrong.
-// - BModes gives flp_iner and edge_iner about the principal inertia axes (at tw_iner); they are turned to the
-//   structural axes (at str_tw, the axes of the stiffnesses and of BladeTable::twist) as BModes turns them, without
-//   the product of inertia, as BModes drops it. A turn beyond 45 degrees, which BModes reports as an error, is refused.
+// - BModes gives flp_iner and edge_iner about the principal inertia axes (at tw_iner); they are kept so, with the
+//   axes' angle (BladeTable::inertia_twist), and the energies turn the inertia by that angle, the stiffnesses by
+//   str_tw. BModes turns them to the structural axes instead, dropping the product of inertia, and refuses a turn
+//   beyond 45 degrees; hubbeam needs neither (docs/model.md 12.4).
 // - ElastoDyn's table is read by its column names, so FAST v7's 17 columns, FAST v8 to OpenFAST v4's 6 and OpenFAST
 //   v5's 5 read alike; a name hubbeam does not know is refused rather than its column dropped. NBlInpSt and the
 //   adjustment factors are found by name between BLADE PARAMETERS and DISTRIBUTED BLADE PROPERTIES (FAST v7 has one
@@ -431,18 +431,12 @@ BladeTable bmodes_table(const BladeText& t, const Rows& rows)
     b.EA = v[9];
     b.cg_offset = v[10];
     b.tc_offset = v[12];  // from the reference axis, as the energies take it, not BModes' tc_offst - sc_offst (12.6)
+    // flp_iner and edge_iner are about the principal inertia axes, at tw_iner: kept so, with their angle.
+    b.mass_moment_flap = v[4];
+    b.mass_moment_edge = v[5];
     for (std::size_t s = 0; s < rows.lines.size(); ++s) {
         b.twist.push_back(v[1][s] * degree);
-        // flp_iner, edge_iner are about the inertia axes, at tw_iner; about the structural axes, at str_tw, BModes
-        // takes avg -/+ half_difference cos 2(str_tw - tw_iner), written here so that no turn gives them unchanged.
-        const double turn = v[1][s] - v[2][s];  // deg
-        if (std::abs(turn) > 45.0)
-            fail(t, rows.lines[s], "tw_iner", static_cast<long>(s) + 1,
-                 "tw_iner within 45 deg of str_tw (BModes' own limit for turning the inertia axes to the structural "
-                 "ones)");
-        const double c = std::cos(2.0 * turn * degree), flap = v[4][s], edge = v[5][s];
-        b.mass_moment_flap.push_back(flap * 0.5 * (1.0 + c) + edge * 0.5 * (1.0 - c));
-        b.mass_moment_edge.push_back(edge * 0.5 * (1.0 + c) + flap * 0.5 * (1.0 - c));
+        b.inertia_twist.push_back(v[2][s] * degree);
     }
     return b;
 }

@@ -67,7 +67,7 @@ std::vector<SceneKey> make_scene_keys()
         {"beam.profile", nullptr, K::file,
          "a CSV file name relative to the scene's folder, with the columns x/L, m, EI, ES (m kg/m, EI N m^2, ES N) "
          "and, "
-         "for a blade, any of EI_flap, GJ, twist, j_c, j_n, cg_offset, tc_offset; empty: none",
+         "for a blade, any of EI_flap, GJ, twist, j_c, j_n, inertia_twist, cg_offset, tc_offset; empty: none",
          {},
          scene_io::max_profile_bytes},
         {"beam.blade_file", nullptr, K::file,

@@ -228,8 +228,9 @@ ProfileTable scene_io::read_profile(const std::string& scene_path, const std::st
         {"EI_flap", "flapwise bending stiffness, N m^2", true},
         {"GJ", "torsional stiffness, N m^2", true},
         {"twist", "the chord's angle added to beam.pitch, rad", true},
-        {"j_c", "mass moment of inertia per length about the chord, kg m", true},
-        {"j_n", "mass moment of inertia per length about the chord's normal, kg m", true},
+        {"j_c", "mass moment of inertia per length about the chord (or the principal axis nearer it), kg m", true},
+        {"j_n", "mass moment of inertia per length about the chord's normal (or the other principal axis), kg m", true},
+        {"inertia_twist", "the principal inertia axes' angle added to beam.pitch, rad (default: twist)", true},
         {"cg_offset", "the centre of mass's offset along the chord, towards the trailing edge, m", true},
         {"tc_offset", "the tension centre's offset along the chord, towards the trailing edge, m", true}};
     const NumericTable table =
@@ -241,7 +242,7 @@ ProfileTable scene_io::read_profile(const std::string& scene_path, const std::st
     if (table.header_columns != 4 + read.blade_columns.size())
         bad(table.header_line,
             "expected the columns x/L, m, EI, ES and, for a blade, any of EI_flap, GJ, twist, j_c, "
-            "j_n, cg_offset, tc_offset in its header, got " +
+            "j_n, inertia_twist, cg_offset, tc_offset in its header, got " +
                 std::to_string(table.header_columns - 4 - read.blade_columns.size()) + " other columns");
     std::vector<double> x, values, offsets;
     for (std::size_t r = 0; r < table.rows.size(); ++r) {
@@ -252,9 +253,9 @@ ProfileTable scene_io::read_profile(const std::string& scene_path, const std::st
         for (std::size_t c = 1; c < want.size(); ++c) {
             const std::string& col = want[c].name;
             if (std::isnan(v[c]) || col == "cg_offset" || col == "tc_offset") continue;  // any finite offset
-            if (col == "twist") {
+            if (col == "twist" || col == "inertia_twist") {
                 if (!(std::abs(v[c]) <= max_section_angle))
-                    bad(line, "expected twist from -2 pi to 2 pi (rad: one turn either way)");
+                    bad(line, "expected " + col + " from -2 pi to 2 pi (rad: one turn either way)");
                 continue;
             }
             // The torsional values may be 0 (a blade without a twist field); fit_profile asks for more with one.
@@ -268,11 +269,12 @@ ProfileTable scene_io::read_profile(const std::string& scene_path, const std::st
                 "the stations must increase strictly, got x/L = " + shortest(v[0]) + " after " + shortest(x.back()));
         if (v[0] > 1.0) bad(line, "expected x/L <= 1, got " + shortest(v[0]));
         x.push_back(v[0]);
-        // Absent blade columns: EI_flap = EI, GJ, twist, j_c and j_n 0 (fit_profile asks for what the variant needs).
+        // Absent blade columns: EI_flap = EI, GJ, twist, j_c and j_n 0, the inertia axes along the chord (fit_profile
+        // asks for what the variant needs).
         const auto given = [&](std::size_t c, double otherwise) { return std::isnan(v[c]) ? otherwise : v[c]; };
-        values.insert(values.end(),
-                      {v[1], v[2], v[3], given(4, v[2]), given(5, 0.0), given(6, 0.0), given(7, 0.0), given(8, 0.0)});
-        offsets.insert(offsets.end(), {given(9, 0.0), given(10, 0.0)});  // in the order of SectionOffset
+        values.insert(values.end(), {v[1], v[2], v[3], given(4, v[2]), given(5, 0.0), given(6, 0.0), given(7, 0.0),
+                                     given(8, 0.0), given(9, given(6, 0.0))});
+        offsets.insert(offsets.end(), {given(10, 0.0), given(11, 0.0)});  // in the order of SectionOffset
     }
     if (x.size() < 2) bad(0, "expected at least 2 stations, got " + std::to_string(x.size()));
     if (x.back() != 1.0) bad(0, "the last station must be x/L = 1, got " + shortest(x.back()));
@@ -309,6 +311,8 @@ double blade_value(const BladeTable& b, std::size_t k, ProfileValue v, double L)
             return optional(b.mass_moment_flap);
         case ProfileValue::j_n:
             return optional(b.mass_moment_edge);
+        case ProfileValue::inertia_twist:
+            return b.inertia_twist.empty() ? b.twist[k] : b.inertia_twist[k];
     }
     return 0.0;
 }

@@ -97,12 +97,14 @@ struct BladeAtNodes {
     double first_moment = 0.0;
 };
 
-/// The section's values of chord angle beta at one place, in the order of BladeAtNodes' first nine arrays.
-std::array<double, 9> turned(double m, double EI_e, double EI_f, double GJ, double j_c, double j_n, double beta)
+/// The section's values at one place, its chord at the angle beta and its principal inertia axes at beta_inertia, in
+/// the order of BladeAtNodes' first nine arrays.
+std::array<double, 9> turned(double m, double EI_e, double EI_f, double GJ, double j_c, double j_n, double beta,
+                             double beta_inertia)
 {
-    const double c = std::cos(beta), s = std::sin(beta);
-    return {m,         EI_e * c * c + EI_f * s * s, EI_e * s * s + EI_f * c * c, (EI_e - EI_f) * s * c,        GJ,
-            j_c + j_n, j_c * s * s + j_n * c * c,   (j_c - j_n) * s * c,         (j_c - j_n) * (c * c - s * s)};
+    const double c = std::cos(beta), s = std::sin(beta), ci = std::cos(beta_inertia), si = std::sin(beta_inertia);
+    return {m,         EI_e * c * c + EI_f * s * s,   EI_e * s * s + EI_f * c * c, (EI_e - EI_f) * s * c, GJ,
+            j_c + j_n, j_c * si * si + j_n * ci * ci, (j_c - j_n) * si * ci,       (j_c - j_n) * (ci * ci - si * si)};
 }
 
 /// A uniform section turned by pitch + twist xi at each node, or a profile's: its stations' sections turned by pitch +
@@ -131,7 +133,7 @@ BladeAtNodes blade_at_nodes(const VariantKey& key, const Parameters& p, const st
             const double s = 1.0 + r1 * xi(r), cube = s * s * s;
             const double i_e = taper == Taper::depth ? cube : s, i_f = taper == Taper::width ? cube : s;
             store(r, turned(m * s, p.E * p.I * i_e, p.E * p.I_flap * i_f, p.G * p.J_t * i_f, p.rho * p.I_flap * i_f,
-                            p.rho * p.I * i_e, pitch + twist * xi(r)));
+                            p.rho * p.I * i_e, pitch + twist * xi(r), pitch + twist * xi(r)));
         }
         b.above = m * ((1.0 - xi) + 0.5 * r1 * (1.0 - xi * xi));
         b.above_x = m * (0.5 * (1.0 - xi * xi) + r1 * (1.0 - xi * xi * xi) / 3.0);
@@ -145,7 +147,8 @@ BladeAtNodes blade_at_nodes(const VariantKey& key, const Parameters& p, const st
         const auto v = [&](ProfileValue j) { return p.profile[w * k + static_cast<std::size_t>(j)]; };
         const std::array<double, 9> row =
             turned(v(ProfileValue::m), v(ProfileValue::EI), v(ProfileValue::EI_flap), v(ProfileValue::GJ),
-                   v(ProfileValue::j_c), v(ProfileValue::j_n), pitch + v(ProfileValue::twist));
+                   v(ProfileValue::j_c), v(ProfileValue::j_n), pitch + v(ProfileValue::twist),
+                   pitch + v(ProfileValue::inertia_twist));
         at_station.insert(at_station.end(), row.begin(), row.end());
     }
     const MassTail tail0(stations, p.profile, 0), tail1(stations, p.profile, 1);

@@ -88,7 +88,7 @@ BladeLoads::Node BladeLoads::node_at(const BeamFields& section, double xi, doubl
     if (key_.nt > 0) {  // the section's rotary inertia (docs/model.md section 12): only with the twist's coordinates
         n.j_c = table(ProfileValue::j_c, p_.rho * p_.I_flap * section.flap_moment_ratio(n.x));
         n.j_n = table(ProfileValue::j_n, p_.rho * p_.I * section.moment_ratio(n.x));
-        n.beta = p_.pitch + table(ProfileValue::twist, p_.twist * xi);
+        n.beta = p_.pitch + table(ProfileValue::inertia_twist, p_.twist * xi);  // the principal inertia axes'
     }
     n.axial = row_of(key_.axial_basis(), xi, 0, p_.L);
     n.inplane = row_of(key_.transverse_basis(), xi, 0, p_.L);
