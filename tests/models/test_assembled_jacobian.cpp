@@ -78,9 +78,10 @@ std::vector<VariantKey> variants()
     blade.tabulated = true;
     keys.push_back(key_of(Method::fem, 2, 4, 2, Drive::torque, Order::first, blade));
     keys.push_back(key_of(Method::bsim, 3, 4, 3, Drive::torque, Order::first, blade));
-    for (const char* hub : {"fem_nx2_ny4_torque_first_hub", "bsim_nx3_ny4_prescribed_first_tip_gravity_damped_depth_hub",
-                            "amm_nx0_ny3_nz3_nt2_torque_first_tip_gravity_damped_pitched_twisted_coned_hub",
-                            "fem_nx2_ny4_nz4_nt2_prescribed_first_tip_gravity_damped_pitched_coned_hub"})
+    for (const char* hub :
+         {"fem_nx2_ny4_torque_first_hub", "bsim_nx3_ny4_prescribed_first_tip_gravity_damped_depth_hub",
+          "amm_nx0_ny3_nz3_nt2_torque_first_tip_gravity_damped_pitched_twisted_coned_hub",
+          "fem_nx2_ny4_nz4_nt2_prescribed_first_tip_gravity_damped_pitched_coned_hub"})
         keys.push_back(VariantKey::parse(hub));
     return keys;
 }
@@ -115,13 +116,19 @@ Derivatives differences_of(const Model& model, const test::State& s, const Vecto
                   MatrixXd(n, n)};
     for (int k = 0; k < n; ++k) {
         const double h = layout.field_of(k).kind == FieldKind::hub_angle ? 1e-3 : 1.0;
-        d.q.col(k) = column(forces, [k](test::State& m, double by) { m.q[k] += by; }, h);
-        d.qd.col(k) = column(forces, [k](test::State& m, double by) { m.qd[k] += by; }, 1.0);
-        d.Mv.col(k) = column(mass_times_v, [k](test::State& m, double by) { m.q[k] += by; }, h);
+        d.q.col(k) = column(
+            forces, [k](test::State& m, double by) { m.q[k] += by; }, h);
+        d.qd.col(k) = column(
+            forces, [k](test::State& m, double by) { m.qd[k] += by; }, 1.0);
+        d.Mv.col(k) = column(
+            mass_times_v, [k](test::State& m, double by) { m.q[k] += by; }, h);
     }
-    d.u.col(0) = column(forces, [](test::State& m, double by) { m.u.tau += by; }, 1.0);
-    d.u.col(1) = column(forces, [](test::State& m, double by) { m.u.theta_dot += by; }, 1.0);
-    d.u.col(2) = column(forces, [](test::State& m, double by) { m.u.theta_ddot += by; }, 1.0);
+    d.u.col(0) = column(
+        forces, [](test::State& m, double by) { m.u.tau += by; }, 1.0);
+    d.u.col(1) = column(
+        forces, [](test::State& m, double by) { m.u.theta_dot += by; }, 1.0);
+    d.u.col(2) = column(
+        forces, [](test::State& m, double by) { m.u.theta_ddot += by; }, 1.0);
     return d;
 }
 
@@ -188,17 +195,20 @@ TEST_CASE("a real blade's linearization: the assembled exact Jacobian gives the 
 {
     // OpenFAST's NREL 5-MW blade file, all 49 stations, AMM Ny = Nz = 20 (docs/performance.md, "A real blade's Campbell
     // table"), about its steady coning at rated spin (12.1 rpm) under either drive: the state matrices of the two
-    // sources row by row, and the natural modes they give, all 40 of them (0.68 to 640 Hz). The modes agree only as
-    // far as the first-order eigenproblem resolves them: its round-off is about eps |A| absolute (|A| ~ the highest
-    // frequency squared), 1e-11 of the lowest here; at FEM Ny = Nz = 32, whose highest mode is ten times stiffer,
-    // the two sources' modes differ by as much as 8e-8, each source as far from a symmetric solve of its own K and M.
+    // sources row by row (measured 5e-14 and 2e-13), and the natural modes they give, all 40 of them (0.68 to 640 Hz;
+    // measured 1.2e-10). The modes agree only as far as the first-order eigenproblem resolves them, to about eps times
+    // its largest entries (the highest frequency squared) absolutely: at FEM Ny = Nz = 32, ten times stiffer, the two
+    // sources' modes differ by as much as 8e-8, each as far from a symmetric solve of its own K and M.
     const TempFolder folder("assembled_jacobian_blade");
     const double rated = 12.1 * 2.0 * 3.14159265358979323846 / 60.0;
-    for (const char* motion : {"kind = \"spin-up\"\nomega0 = 1.267\nduration = 10.0\n", "kind = \"torque\"\ntau0 = 1e5\nduration = 10.0\n"}) {
+    for (const char* motion : {"kind = \"spin-up\"\nomega0 = 1.267\nduration = 10.0\n",
+                               "kind = \"torque\"\ntau0 = 1e5\nduration = 10.0\n"}) {
         const std::string scene = folder.write(
             "blade.toml", "[beam]\nlength = 61.5\nblade_file = \"" + std::string(HUBBEAM_SOURCE_DIR) +
                               "/tests/data/import/5MW_Baseline/NRELOffshrBsline5MW_Blade.dat\"\n[hub]\nradius = 1.5\n"
-                              "inertia = 1e5\n[motion]\n" + motion + "[discretization]\nmethod = \"amm\"\nnx = 0\n"
+                              "inertia = 1e5\n[motion]\n" +
+                              motion +
+                              "[discretization]\nmethod = \"amm\"\nnx = 0\n"
                               "ny = 20\nnz = 20\n[output]\nt_end = 1.0\n");
         const Scene s = load_scene(scene);
         SECTION(s.key().name())
