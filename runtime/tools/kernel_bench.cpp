@@ -309,8 +309,8 @@ std::vector<KernelBenchRow> run_kernel_bench(const KernelBenchOptions& options, 
     out << "ns per call: median of " << options.samples << " samples of ~" << sample_seconds * 1e3
         << " ms each, (min-max) over the samples.\n"
            "rhs = FirstOrderSystem::rhs (M factored once when it is constant, as in a run); jac = "
-           "FirstOrderSystem::jacobian\n(generated: the exact derivative kernels; assembled: central differences, "
-           "4 nq + 2 right-hand sides).\n\n";
+           "FirstOrderSystem::jacobian\n(generated: the exact derivative kernels; assembled: the exact derivatives of its "
+           "blocks).\n\n";
     print_header(out);
 
     std::vector<KernelBenchRow> rows;

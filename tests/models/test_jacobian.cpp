@@ -5,7 +5,9 @@
 
 #include <Eigen/Dense>
 #include <gsl/gsl_errno.h>
+#include <memory>
 #include <random>
+#include <utility>
 
 #include <hubbeam/make_model.hpp>
 #include "dynamics/integrate.hpp"
@@ -161,10 +163,39 @@ TEST_CASE("generated Jacobian equals central differences of the right-hand side"
     }
 }
 
+namespace {
+
+/// A model's equations without its derivatives (Model::jacobian() null): what a model of a test, or of a user, may be.
+class WithoutDerivatives final : public Model {
+public:
+    explicit WithoutDerivatives(std::unique_ptr<Model> inner) : Model(inner->key()), inner_(std::move(inner)) {}
+    const char* source() const override { return inner_->source(); }
+    bool mass_is_constant() const override { return inner_->mass_is_constant(); }
+    void mass(const HubInput& u, const double* q, double* M) const override { inner_->mass(u, q, M); }
+    void forces(const HubInput& u, const double* q, const double* qd, double* Q) const override
+    {
+        inner_->forces(u, q, qd, Q);
+    }
+    Energy energy(const HubInput& u, const double* q, const double* qd) const override
+    {
+        return inner_->energy(u, q, qd);
+    }
+    double momentum(const HubInput& u, const double* q, const double* qd) const override
+    {
+        return inner_->momentum(u, q, qd);
+    }
+    Tip tip(const double* q) const override { return inner_->tip(q); }
+
+private:
+    std::unique_ptr<Model> inner_;
+};
+
+}  // namespace
+
 TEST_CASE("a model without derivatives gets the finite-difference Jacobian", "[jacobian]")
 {
     const VariantKey key = VariantKey::parse("bim_nx4_ny4_torque_first");
-    const auto model = make_model(key, Parameters{}, ModelSource::assembled);
+    const auto model = std::make_unique<WithoutDerivatives>(make_model(key, Parameters{}, ModelSource::assembled));
     REQUIRE(model->jacobian() == nullptr);
     const Motion motion = motion_for(key.drive);
     FirstOrderSystem sys(*model, motion);

@@ -148,7 +148,9 @@ public:
     /// The tip's displacements at coordinates q.
     virtual Tip tip(const double* q) const = 0;
 
-    /// The exact derivatives of M and Q (generated kernels), or nullptr: the integrator then differences Q.
+    /// The exact derivatives of M and Q (the generated kernels, or the assembled blocks' derivatives), or nullptr for
+    /// a model without them (a test's stand-in): the implicit steppers then difference Q; linearization and
+    /// quasi-static axial coordinates refuse it.
     virtual const ExactJacobian* jacobian() const { return nullptr; }
     /// The exact derivatives of M, Q and the tip with respect to the physical parameters (generated kernels), or
     /// nullptr: a caller then differences models built at perturbed parameters.

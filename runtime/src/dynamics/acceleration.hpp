@@ -172,7 +172,7 @@ private:
 /// Quasi-static axial coordinates (docs/model.md section 9): y holds only theta (torque) and B with their rates; A
 /// solves the axial rows of Lagrange's equations with A_dot = A_ddot = 0 (and the hub acceleration's axial term
 /// dropped) at every evaluation, and the remaining rows are M_rr qdd_r = Q_r. Throws std::invalid_argument without
-/// axial coordinates.
+/// axial coordinates or without the model's exact derivatives (its Newton's Jacobian).
 class QuasiStaticAxial final : public RightHandSide {
 public:
     explicit QuasiStaticAxial(const Model& model);

@@ -208,8 +208,9 @@ namespace {
 
 /// docs/model.md sections 5 and 11's M and Q from constant matrices: section 5's beam matrices with the tip body
 /// added (its translation to S_x, S_y, M1, M2, M3, G, its rotation to J_o, S_y and the B-rate mass M2r), the weight's
-/// W_o, W_x, W_y, W_H and the damping matrices. Order zero drops G and W_H (no foreshortening).
-class AssembledModel final : public Model {
+/// W_o, W_x, W_y, W_H and the damping matrices. Order zero drops G and W_H (no foreshortening). Its exact Jacobian is
+/// the derivative of each block of Q and M, written from the same matrices (never from the generator's kernels).
+class AssembledModel final : public Model, ExactJacobian {
 public:
     AssembledModel(const VariantKey& key, const Parameters& p)
         : Model(key, p),
@@ -320,6 +321,64 @@ public:
         dB += gs * m_.W_y.transpose();
     }
 
+    const ExactJacobian* jacobian() const override { return this; }
+
+    /// The derivatives of eqs. 54 to 56 (with 57's theta_ddot terms, the weight and the damping) block by block.
+    void force_derivatives(const HubInput& u, const double* q, const double* qd, double* dQdq, double* dQdqd,
+                           double* dQdu) const override
+    {
+        const int n = nq();
+        Eigen::Map<RowMajorMatrix> Jq(dQdq, n, n), Jqd(dQdqd, n, n), Ju(dQdu, n, drive_value_count);
+        Jq.setZero();
+        Jqd.setZero();
+        Ju.setZero();
+        const bool torque = key().drive == Drive::torque;
+        const double theta_dot = torque ? qd[0] : u.theta_dot, w2 = theta_dot * theta_dot, w = 2.0 * theta_dot;
+        const ConstVector A(q + a_, nx_), B(q + b_, ny_), A_dot(qd + a_, nx_), B_dot(qd + b_, ny_);
+        // dQ_A/dA, dQ_B/dB and the Coriolis couplings dQ_A/dB_dot = 2 theta_dot M3, dQ_B/dA_dot = -2 theta_dot M3^T.
+        Jq.block(a_, a_, nx_, nx_) = w2 * m_.M1 - K1_;
+        Jq.block(b_, b_, ny_, ny_) = w2 * M2_G_ - K2_;
+        Jqd.block(a_, b_, nx_, ny_) = w * m_.M3;
+        Jqd.block(b_, a_, ny_, nx_) = -w * m_.M3.transpose();
+        // dQ_A/dtheta_dot and dQ_B/dtheta_dot: a column of dQ/dqd under torque, of dQ/du under a prescribed drive.
+        auto by_rate = torque ? Jqd.col(0) : Ju.col(drive_column(DriveValue::theta_dot));
+        by_rate.segment(a_, nx_) = w * (S_x_T_ + m_.M1 * A) + 2.0 * (m_.M3 * B_dot);
+        by_rate.segment(b_, ny_) = w * (M2_G_ * B) - 2.0 * (m_.M3.transpose() * A_dot);
+        if (torque) {
+            hub_row_derivatives(theta_dot, A, B, A_dot, B_dot, Jq, Jqd);
+            Ju(0, drive_column(DriveValue::tau)) = 1.0;
+        } else {
+            // Eq. 57's theta_ddot M3 B in Q_A and -theta_ddot (S_y^T + M3^T A) in Q_B.
+            Jq.block(a_, b_, nx_, ny_) += u.theta_ddot * m_.M3;
+            Jq.block(b_, a_, ny_, nx_) -= u.theta_ddot * m_.M3.transpose();
+            auto by_acceleration = Ju.col(drive_column(DriveValue::theta_ddot));
+            by_acceleration.segment(a_, nx_) = m_.M3 * B;
+            by_acceleration.segment(b_, ny_) = -(S_y_T_ + m_.M3.transpose() * A);
+        }
+        if (m_.g != 0.0) weight_derivatives(torque ? q[0] : u.theta, torque, A, B, Jq);
+        if (m_.damped) {
+            Jqd.block(a_, a_, nx_, nx_) -= m_.D_A;
+            Jqd.block(b_, b_, ny_, ny_) -= m_.D_B;
+        }
+    }
+
+    /// dM/dq v under torque, where M11, M12 = -(M3 B)^T and M13 = S_y + A^T M3 (eqs. 49 to 51) hold A and B; zero
+    /// under a prescribed drive.
+    void mass_q_product(const HubInput&, const double* q, const double* v, double* dMv) const override
+    {
+        const int n = nq();
+        Eigen::Map<RowMajorMatrix> D(dMv, n, n);
+        D.setZero();
+        if (key().drive != Drive::torque) return;
+        const ConstVector A(q + a_, nx_), B(q + b_, ny_), v_A(v + a_, nx_), v_B(v + b_, ny_);
+        // Row 0: v_0 dM11/dq + v_A dM12/dq + v_B dM13/dq (dM11/dA = 2 (S_x + A^T M1), dM11/dB = 2 B^T (M2 - G)).
+        D.row(0).segment(a_, nx_) = (2.0 * v[0] * (S_x_T_ + m_.M1 * A) + m_.M3 * v_B).transpose();
+        D.row(0).segment(b_, ny_) = (2.0 * v[0] * (M2_G_ * B) - m_.M3.transpose() * v_A).transpose();
+        // Rows A and B: their column 0, M21 = -M3 B and M31 = S_y^T + M3^T A, times v_0.
+        D.block(a_, b_, nx_, ny_) = -v[0] * m_.M3;
+        D.block(b_, a_, ny_, nx_) = v[0] * m_.M3.transpose();
+    }
+
     Energy energy(const HubInput& u, const double* q, const double* qd) const override
     {
         const bool torque = key().drive == Drive::torque;
@@ -357,6 +416,36 @@ public:
     }
 
 private:
+    using Block = Eigen::Map<RowMajorMatrix>;
+
+    /// The hub row's derivatives (eq. 54): Q_theta = tau - 2 theta_dot (S_x A_dot + A^T M1 A_dot + B^T (M2 - G) B_dot).
+    void hub_row_derivatives(double theta_dot, const ConstVector& A, const ConstVector& B, const ConstVector& A_dot,
+                             const ConstVector& B_dot, Block& Jq, Block& Jqd) const
+    {
+        const double w = 2.0 * theta_dot;
+        const VectorXd M1_A_dot = m_.M1 * A_dot, M2_G_B_dot = M2_G_ * B_dot;
+        Jq.row(0).segment(a_, nx_) = -w * M1_A_dot.transpose();
+        Jq.row(0).segment(b_, ny_) = -w * M2_G_B_dot.transpose();
+        Jqd(0, 0) = -2.0 * (m_.S_x.dot(A_dot) + A.dot(M1_A_dot) + B.dot(M2_G_B_dot));
+        Jqd.row(0).segment(a_, nx_) = -w * (S_x_T_ + m_.M1 * A).transpose();
+        Jqd.row(0).segment(b_, ny_) = -w * (M2_G_ * B).transpose();
+    }
+
+    /// The weight's share of dQ/dq (section 11.3): -d2U_g/dq2, with the hub angle among q under torque.
+    void weight_derivatives(double theta, bool torque, const ConstVector& A, const ConstVector& B, Block& Jq) const
+    {
+        const double gs = m_.g * std::sin(theta), gc = m_.g * std::cos(theta);
+        Jq.block(b_, b_, ny_, ny_) += gs * m_.W_H;
+        if (!torque) return;
+        // dQ_A/dtheta, dQ_B/dtheta and, U_g's Hessian being symmetric, dQ_theta/dA, dQ_theta/dB the same.
+        const VectorXd by_A = -gc * m_.W_x.transpose(), by_B = gc * (m_.W_H * B) + gs * m_.W_y.transpose();
+        Jq.col(0).segment(a_, nx_) = by_A;
+        Jq.col(0).segment(b_, ny_) = by_B;
+        Jq.row(0).segment(a_, nx_) += by_A.transpose();
+        Jq.row(0).segment(b_, ny_) += by_B.transpose();
+        Jq(0, 0) = gs * (m_.W_o + m_.W_x.dot(A) - 0.5 * B.dot(m_.W_H * B)) + gc * m_.W_y.dot(B);
+    }
+
     /// M11 = J_o + 2 S_x A + A^T M1 A + B^T (M2 - G) B, J_o = J_oh + J_ob (+ the tip's m_tip (a+L)^2 + J_tip).
     double M11(const ConstVector& A, const ConstVector& B) const
     {

@@ -43,6 +43,12 @@ struct BeamMatrices {
     OutOfPlaneMatrices o;  // section 12.3's flapwise and twist matrices; empty for a planar variant
 };
 
+/// A drive value's column in dQ/du (ExactJacobian::force_derivatives).
+inline Eigen::Index drive_column(DriveValue v)
+{
+    return static_cast<Eigen::Index>(index(v));
+}
+
 /// docs/model.md section 5's coefficient matrices of a variant (order and drive do not matter); symmetric ones are
 /// exactly symmetric. Throws std::invalid_argument if the variant's DOF counts are invalid for its method.
 BeamMatrices assemble_matrices(const VariantKey& key, const Parameters& p);

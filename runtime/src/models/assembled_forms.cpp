@@ -25,7 +25,8 @@ using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eig
 ///   M = [[M11, h^T], [h, M]] (torque) or M (prescribed)
 ///   Q_theta = tau - 2 w (b + K_w q_e)^T qd_e - dU_g/dtheta
 ///   Q_e = w^2 (b + K_w q_e) + 2 w N qd_e - K q_e - dU_g/dq_e - Dm qd_e (- theta_ddot h, prescribed)
-class QuadraticFormModel final : public Model {
+/// and their exact derivatives, each a form's matrix or its product with the state (never the generator's kernels).
+class QuadraticFormModel final : public Model, ExactJacobian {
 public:
     QuadraticFormModel(const VariantKey& key, const Parameters& p)
         : Model(key, p), e_(coordinates().first_beam()), ne_(nq() - e_)
@@ -133,6 +134,58 @@ public:
         d[hub_->x + 1] = fy;
     }
 
+    const ExactJacobian* jacobian() const override { return this; }
+
+    /// The derivatives of Q's forms above, term by term; a moving hub's rows by hub_derivatives.
+    void force_derivatives(const HubInput& u, const double* q, const double* qd, double* dQdq, double* dQdqd,
+                           double* dQdu) const override
+    {
+        const int n = nq();
+        Block Jq(dQdq, n, n), Jqd(dQdqd, n, n), Ju(dQdu, n, drive_value_count);
+        Jq.setZero();
+        Jqd.setZero();
+        Ju.setZero();
+        const bool torque = key().drive == Drive::torque;
+        const double w = torque ? qd[0] : u.theta_dot;
+        const VectorXd qe = elastic(q), qde = elastic(qd);
+        const VectorXd spin = f_.b + f_.K_w * qe;
+        auto Jq_e = Jq.bottomRightCorner(ne_, ne_), Jqd_e = Jqd.bottomRightCorner(ne_, ne_);
+        Jq_e = w * w * f_.K_w - f_.K;
+        Jqd_e = 2.0 * w * f_.N;
+        if (f_.damped) Jqd_e -= f_.Dm;
+        // dQ_e/dw: a column of dQ/dqd under torque, of dQ/du under a prescribed drive.
+        auto by_rate = torque ? Jqd.col(0) : Ju.col(drive_column(DriveValue::theta_dot));
+        by_rate.tail(ne_) = 2.0 * w * spin + 2.0 * (f_.N * qde);
+        if (torque) {
+            // Q_theta = tau - 2 w spin^T qd_e, spin = b + K_w q_e.
+            Jq.row(0).tail(ne_) = -2.0 * w * (f_.K_w * qde).transpose();
+            Jqd.row(0).tail(ne_) = -2.0 * w * spin.transpose();
+            Jqd(0, 0) = -2.0 * spin.dot(qde);
+            Ju(0, drive_column(DriveValue::tau)) = 1.0;
+        } else {
+            // -theta_ddot h, h = s + N^T q_e.
+            Jq_e -= u.theta_ddot * f_.N.transpose();
+            Ju.col(drive_column(DriveValue::theta_ddot)).tail(ne_) = -coupling(qe);
+        }
+        if (weighed()) weight_derivatives(angle(u, q), qe, Jq);
+        if (hub_) hub_derivatives(u, q, qd, Jq, Jqd, Ju);
+    }
+
+    /// dM/dq v: under torque M11 = J + 2 b^T q_e + q_e^T K_w q_e and h = s + N^T q_e hold q_e, and a moving hub's
+    /// couplings the hub angle; zero under a prescribed drive (M turns with the drive's angle, not with q).
+    void mass_q_product(const HubInput&, const double* q, const double* v, double* dMv) const override
+    {
+        const int n = nq();
+        Block D(dMv, n, n);
+        D.setZero();
+        if (key().drive != Drive::torque) return;
+        const VectorXd qe = elastic(q), ve = elastic(v);
+        // Row 0: v_0 dM11/dq_e + v_e^T dh/dq_e (dh_i/dq_e,k = N_ki); rows e: column 0's h times v_0.
+        D.row(0).tail(ne_) = (2.0 * v[0] * (f_.b + f_.K_w * qe) + f_.N * ve).transpose();
+        D.bottomRightCorner(ne_, ne_) = v[0] * f_.N.transpose();
+        if (hub_) hub_mass_q_product(q, v, D);
+    }
+
     Energy energy(const HubInput& u, const double* q, const double* qd) const override
     {
         const bool torque = key().drive == Drive::torque;
@@ -182,6 +235,77 @@ private:
         VectorXd c_i, c_j;
         std::array<double, 2> k{}, c{};
     };
+
+    using Block = Eigen::Map<RowMajorMatrix>;
+
+    /// The weight's share of dQ/dq: -d2U_g/dq2, with the hub angle among q under torque.
+    void weight_derivatives(double theta, const VectorXd& qe, Block& Jq) const
+    {
+        const double gs = f_.g * std::sin(theta), gc = f_.g * std::cos(theta);
+        Jq.bottomRightCorner(ne_, ne_) += gs * f_.V_i.H + gc * f_.V_j.H + f_.g_axis * f_.V_k.H;
+        if (key().drive != Drive::torque) return;
+        // dQ_e/dtheta and, U_g's Hessian being symmetric, dQ_theta/dq_e: V_k does not turn with theta.
+        const VectorXd by_angle = -gc * f_.V_i.gradient(qe) + gs * f_.V_j.gradient(qe);
+        Jq.col(0).tail(ne_) = by_angle;
+        Jq.row(0).tail(ne_) += by_angle.transpose();
+        Jq(0, 0) = gs * f_.V_i.at(qe) + gc * f_.V_j.at(qe);
+    }
+
+    /// The hub rows' derivatives. Their forces are (f_x, f_y) = (C F_1 + S F_2, S F_1 - C F_2) - the support's, with
+    /// F_1 = 2 w c_j^T qd_e + w^2 (P + c_i^T q_e) + a c_j^T q_e and F_2 = 2 w c_i^T qd_e - w^2 c_j^T q_e +
+    /// a (P + c_i^T q_e) in the blade's axes (a: a prescribed drive's theta_ddot, hub_turning_forces' M terms).
+    void hub_derivatives(const HubInput& u, const double* q, const double* qd, Block& Jq, Block& Jqd, Block& Ju) const
+    {
+        const bool torque = key().drive == Drive::torque;
+        const double w = torque ? qd[0] : u.theta_dot, a = torque ? 0.0 : u.theta_ddot;
+        const VectorXd qe = elastic(q), qde = elastic(qd);
+        const VectorXd &c_i = hub_->c_i, &c_j = hub_->c_j;
+        const double along = hub_->P + c_i.dot(qe), across = c_j.dot(qe);
+        // F_1's and F_2's derivatives by q_e, qd_e and w.
+        const VectorXd F1_q = w * w * c_i + a * c_j, F2_q = -w * w * c_j + a * c_i;
+        const VectorXd F1_qd = 2.0 * w * c_j, F2_qd = 2.0 * w * c_i;
+        const double F1_w = 2.0 * c_j.dot(qde) + 2.0 * w * along, F2_w = 2.0 * c_i.dot(qde) - 2.0 * w * across;
+        const double theta = angle(u, q), C = std::cos(theta), S = std::sin(theta);
+        // Each row's weights of F_1 and F_2 (x: C and S, y: S and -C), and its support.
+        const std::array<std::pair<double, double>, 2> turn = {{{C, S}, {S, -C}}};
+        for (int r = 0; r < 2; ++r) {
+            const int i = hub_->x + r;
+            const auto [c1, c2] = turn[static_cast<std::size_t>(r)];
+            Jq.row(i).tail(ne_) = (c1 * F1_q + c2 * F2_q).transpose();
+            Jqd.row(i).tail(ne_) = (c1 * F1_qd + c2 * F2_qd).transpose();
+            (torque ? Jqd(i, 0) : Ju(i, drive_column(DriveValue::theta_dot))) = c1 * F1_w + c2 * F2_w;
+            if (!torque) Ju(i, drive_column(DriveValue::theta_ddot)) = c1 * across + c2 * along;
+            Jq(i, i) = -hub_->k[static_cast<std::size_t>(r)];
+            Jqd(i, i) = -hub_->c[static_cast<std::size_t>(r)];
+        }
+        if (!torque) return;
+        // By the hub angle: the forces are linear in (C, S), so their derivative is their value at (-S, C).
+        const auto [fx, fy] = hub_turning_forces(-S, C, u, q, qd);
+        Jq(hub_->x, 0) = fx;
+        Jq(hub_->x + 1, 0) = fy;
+    }
+
+    /// A moving hub's part of dM/dq v under torque: its couplings to the hub angle (m_x, m_y of hub_angle_coupling)
+    /// hold q_e and theta, and to the beam (r_x = C c_i - S c_j, r_y = S c_i + C c_j) theta.
+    void hub_mass_q_product(const double* q, const double* v, Block& D) const
+    {
+        const VectorXd qe = elastic(q), ve = elastic(v);
+        const VectorXd &c_i = hub_->c_i, &c_j = hub_->c_j;
+        const double C = std::cos(q[0]), S = std::sin(q[0]), along = hub_->P + c_i.dot(qe), across = c_j.dot(qe);
+        const int x = hub_->x, y = x + 1;
+        // m_x = -C c_j^T q_e - S (P + c_i^T q_e), m_y = -S c_j^T q_e + C (P + c_i^T q_e): by q_e and by theta.
+        const VectorXd mx_q = -C * c_j - S * c_i, my_q = -S * c_j + C * c_i;
+        const double mx_theta = S * across - C * along, my_theta = -C * across - S * along;
+        // r_x and r_y by theta.
+        const VectorXd rx_theta = -S * c_i - C * c_j, ry_theta = C * c_i - S * c_j;
+        D(0, 0) = v[x] * mx_theta + v[y] * my_theta;
+        D.row(0).tail(ne_) += (v[x] * mx_q + v[y] * my_q).transpose();
+        D(x, 0) = v[0] * mx_theta + rx_theta.dot(ve);
+        D(y, 0) = v[0] * my_theta + ry_theta.dot(ve);
+        D.row(x).tail(ne_) = v[0] * mx_q.transpose();
+        D.row(y).tail(ne_) = v[0] * my_q.transpose();
+        D.col(0).tail(ne_) += v[x] * rx_theta + v[y] * ry_theta;
+    }
 
     double angle(const HubInput& u, const double* q) const { return key().drive == Drive::torque ? q[0] : u.theta; }
     /// (v_i, v_j): the hub's velocity in the blade's frame.

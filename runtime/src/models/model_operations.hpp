@@ -17,14 +17,14 @@ Eigen::MatrixXd mass_at(const Model& model, const HubInput& u, const std::vector
 /// M(theta + pi/2) - (M(theta) + M(theta + pi)) / 2.
 Eigen::MatrixXd mass_theta_derivative(const Model& model, const HubInput& u, const double* q);
 
-/// dQ/dq (nq x nq), dQ/dqd (nq x nq) and dQ/du (nq x 3, u indexed by DriveValue) at (u, q, qd): the model's
-/// derivative kernels when it has them, else central differences of Q.
+/// dQ/dq (nq x nq), dQ/dqd (nq x nq) and dQ/du (nq x 3, u indexed by DriveValue) at (u, q, qd): the model's exact
+/// derivatives (Model::jacobian). Throws std::logic_error for a model without them.
 struct ForceJacobians {
     Eigen::MatrixXd q, qd, u;
 };
 ForceJacobians force_jacobians(const Model& model, const HubInput& u, const std::vector<double>& q,
                                const std::vector<double>& qd);
-/// dQ/dq alone, the same way (without differences in the rates and the drive where there are no kernels).
+/// dQ/dq alone, the same way.
 Eigen::MatrixXd force_q_jacobian(const Model& model, const HubInput& u, const std::vector<double>& q,
                                  const std::vector<double>& qd);
 
