@@ -213,17 +213,18 @@ std::vector<double> section_distribution(const VariantKey& key, const Parameters
         // trailing edge), along the chord turned by the station's angle and the pitch, which the variant reads here
         // rather than in its coefficients: cos and sin of the angle itself, not of twice it (docs/model.md 12.5).
         // The tension centre's offset weighs the axial stiffness alike (docs/model.md 12.6).
+        const auto chord_angle = [&] { return (key.extras.pitch ? p.pitch : 0.0) + v(ProfileValue::twist); };
         const auto moment = [&](SectionOffset which, ProfileValue weight, bool sine) {
             const std::size_t at = section_offset_count * k + static_cast<std::size_t>(which);
             const double first = -v(weight) * p.offsets[at];
-            const double angle = (key.extras.pitch ? p.pitch : 0.0) + v(ProfileValue::twist);
+            const double angle = chord_angle();
             return first * (sine ? std::sin(angle) : std::cos(angle));
         };
         // The offset mass's second moment, m d^2, alone and turned by twice the chord's angle with the pitch: the
         // square of the chord's direction carries the second harmonics of the angle (docs/model.md 12.5).
         const auto second_moment = [&](int harmonic) {
             const double d = p.offsets[section_offset_count * k + static_cast<std::size_t>(SectionOffset::mass)];
-            const double angle = 2.0 * ((key.extras.pitch ? p.pitch : 0.0) + v(ProfileValue::twist));
+            const double angle = 2.0 * chord_angle();
             const double md2 = v(ProfileValue::m) * d * d;
             return harmonic == 0 ? md2 : harmonic == 1 ? md2 * std::cos(angle) : md2 * std::sin(angle);
         };
