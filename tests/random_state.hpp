@@ -101,4 +101,20 @@ inline double relative_error(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b)
     return (a - b).lpNorm<Eigen::Infinity>() / std::max(b.lpNorm<Eigen::Infinity>(), 1e-300);
 }
 
+/// A variant of Ny = 4 by its method, counts, drive, order, terms and spline: the generated-against-assembled tests'
+/// variants, spelled alike so that they share one cache of compiled variants.
+inline VariantKey key_of(Method method, int nx, int nz, int nt, Drive drive, Order order, Extras extras,
+                         SplineBasis spline = SplineBasis::paper)
+{
+    return {.method = method,
+            .nx = nx,
+            .ny = 4,
+            .nz = nz,
+            .nt = nt,
+            .order = order,
+            .drive = drive,
+            .spline = spline,
+            .extras = extras};
+}
+
 }  // namespace hubbeam::test

@@ -44,19 +44,7 @@ double relative(const MatrixXd& a, const MatrixXd& b)
     return b.lpNorm<Eigen::Infinity>() == 0.0 ? a.lpNorm<Eigen::Infinity>() : test::relative_error(a, b);
 }
 
-VariantKey key_of(Method method, int nx, int nz, int nt, Drive drive, Order order, Extras extras,
-                  SplineBasis spline = SplineBasis::paper)
-{
-    return {.method = method,
-            .nx = nx,
-            .ny = 4,
-            .nz = nz,
-            .nt = nt,
-            .order = order,
-            .drive = drive,
-            .spline = spline,
-            .extras = extras};
-}
+using test::key_of;
 
 /// Every built-in variant (in the plane: the four methods, both drives, orders zero and first, a tip body, gravity,
 /// damping, either taper, a profile), then out of the plane every method with every term under both drives and both

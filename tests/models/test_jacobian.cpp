@@ -11,6 +11,7 @@
 
 #include <hubbeam/make_model.hpp>
 #include "dynamics/integrate.hpp"
+#include "forwarding_model.hpp"
 #include "models/generated_model.hpp"
 #include "random_state.hpp"
 
@@ -166,28 +167,9 @@ TEST_CASE("generated Jacobian equals central differences of the right-hand side"
 namespace {
 
 /// A model's equations without its derivatives (Model::jacobian() null): what a model of a test, or of a user, may be.
-class WithoutDerivatives final : public Model {
+class WithoutDerivatives final : public test::ForwardingModel {
 public:
-    explicit WithoutDerivatives(std::unique_ptr<Model> inner) : Model(inner->key()), inner_(std::move(inner)) {}
-    const char* source() const override { return inner_->source(); }
-    bool mass_is_constant() const override { return inner_->mass_is_constant(); }
-    void mass(const HubInput& u, const double* q, double* M) const override { inner_->mass(u, q, M); }
-    void forces(const HubInput& u, const double* q, const double* qd, double* Q) const override
-    {
-        inner_->forces(u, q, qd, Q);
-    }
-    Energy energy(const HubInput& u, const double* q, const double* qd) const override
-    {
-        return inner_->energy(u, q, qd);
-    }
-    double momentum(const HubInput& u, const double* q, const double* qd) const override
-    {
-        return inner_->momentum(u, q, qd);
-    }
-    Tip tip(const double* q) const override { return inner_->tip(q); }
-
-private:
-    std::unique_ptr<Model> inner_;
+    using ForwardingModel::ForwardingModel;
 };
 
 }  // namespace

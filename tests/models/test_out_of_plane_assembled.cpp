@@ -53,19 +53,7 @@ struct Case {
     std::vector<Switch> switches;
 };
 
-VariantKey key_of(Method method, int nx, int nz, int nt, Drive drive, Order order, Extras extras,
-                  SplineBasis spline = SplineBasis::paper)
-{
-    return {.method = method,
-            .nx = nx,
-            .ny = 4,
-            .nz = nz,
-            .nt = nt,
-            .order = order,
-            .drive = drive,
-            .spline = spline,
-            .extras = extras};
-}
+using test::key_of;
 
 /// Every term switched on, for every method under both drives and both orders (16), then each term alone (8), then a
 /// taper of either kind with every term (2), then a blade's profile with every term for each method and alone (5):

@@ -200,6 +200,16 @@ std::vector<double> scaled(const std::vector<double>& base, const std::vector<do
     return v;
 }
 
+/// FEM with every field (two elements), a table with offsets, pitch and precone, under a torque: one compiled variant
+/// for the energy's and the mass matrix's tests.
+VariantKey every_field()
+{
+    VariantKey key{.method = Method::fem, .nx = 2, .ny = 4, .order = Order::first, .drive = Drive::torque};
+    key.nz = 4, key.nt = 2;
+    key.extras.tabulated = key.extras.offsets = key.extras.pitch = key.extras.cone = true;
+    return key;
+}
+
 }  // namespace
 
 TEST_CASE("section offsets: the offset centre of mass's kinetic energy is the rigid section's, to second order",
@@ -209,9 +219,7 @@ TEST_CASE("section offsets: the offset centre of mass's kinetic energy is the ri
     // generated T's share of the offsets (T at the offsets less T with them 0) against the oracle's exact one, term by
     // term in the deformation's scale e: the generated one is a polynomial of degree 2 in e, whose coefficients the
     // oracle's Taylor coefficients must be.
-    VariantKey key{.method = Method::fem, .nx = 2, .ny = 4, .order = Order::first, .drive = Drive::torque};
-    key.nz = 4, key.nt = 2;
-    key.extras.tabulated = key.extras.offsets = key.extras.pitch = key.extras.cone = true;
+    const VariantKey key = every_field();
     Parameters p = blade({{0.0, 3.0, 900.0, 7e6, 300.0, 80.0, 0.3, 0.02, 0.10, 0.05},
                           {0.4, 2.0, 600.0, 5e6, 200.0, 50.0, 0.1, 0.01, 0.07, -0.02},
                           {1.0, 1.0, 200.0, 2e6, 90.0, 20.0, -0.2, 0.01, 0.03, 0.08}},
@@ -253,13 +261,11 @@ TEST_CASE("section offsets: the offset centre of mass's kinetic energy is the ri
 TEST_CASE("section offsets: the mass matrix of a physical section stays positive definite with axial coordinates",
           "[section_offsets]")
 {
-    // An offset as long as a quarter of an element, the section's polar moment about the reference axis above m d^2 (a
+    // An offset longer than an element (0.6 m, elements of 0.5 m), the section's polar moment about the reference axis above m d^2 (a
     // physical section's): the centre of mass's kinetic energy 1/2 m |V + d C_dot|^2 and the rotation about it are
     // each >= 0, so M is positive definite for every state. Without the offset mass's turn with the slopes the axial
     // rate's coupling to them, -m d u_x1_dot sigma_dot, stands alone and makes M indefinite.
-    VariantKey key{.method = Method::fem, .nx = 2, .ny = 4, .order = Order::first, .drive = Drive::torque};
-    key.nz = 4, key.nt = 2;
-    key.extras.tabulated = key.extras.offsets = key.extras.pitch = key.extras.cone = true;
+    const VariantKey key = every_field();
     Parameters p = blade({{0.0, 1.0, 50.0, 1e4, 80.0, 30.0, 0.2, 0.05, 0.40, 0.6},
                           {1.0, 1.0, 50.0, 1e4, 80.0, 30.0, -0.1, 0.05, 0.40, -0.6}},
                          1.0);

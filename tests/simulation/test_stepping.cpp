@@ -18,6 +18,7 @@
 #include <hubbeam/scene.hpp>
 #include "dynamics/acceleration.hpp"
 #include "dynamics/integrate.hpp"
+#include "forwarding_model.hpp"
 #include "models/generated_model.hpp"
 #include "random_state.hpp"
 #include "runs.hpp"
@@ -158,46 +159,30 @@ VariantKey key_of(Method method, int nx, int ny, Drive drive) { return {.method 
 /// A model that reports some of its hub couplings as varying although they are constant: varying and constant
 /// couplings at once, which no generated variant has. Like a generated model, it writes only the entries its
 /// pattern marks varying where asked for those.
-class SomeCouplingsVary final : public Model {
+class SomeCouplingsVary final : public test::ForwardingModel {
 public:
     SomeCouplingsVary(std::unique_ptr<Model> inner, std::vector<int> varying)
-        : Model(inner->key()), inner_(std::move(inner)), varying_(std::move(varying))
+        : ForwardingModel(std::move(inner)), varying_(std::move(varying))
     {
     }
-    const char* source() const override { return inner_->source(); }
     bool mass_is_constant() const override { return false; }
     std::string mass_pattern() const override
     {
-        std::string p = inner_->mass_pattern();
+        std::string p = inner().mass_pattern();
         for (const int j : varying_) p[static_cast<std::size_t>(j)] = p[static_cast<std::size_t>(j * nq())] = 'v';
         return p;
     }
-    void mass(const HubInput& u, const double* q, double* M) const override { inner_->mass(u, q, M); }
     void mass_varying(const HubInput& u, const double* q, double* M) const override
     {
         std::vector<double> all(static_cast<std::size_t>(nq() * nq()));
-        inner_->mass(u, q, all.data());
+        inner().mass(u, q, all.data());
         const std::string p = mass_pattern();
         for (std::size_t e = 0; e < all.size(); ++e)
             if (p[e] == 'v') M[e] = all[e];
     }
-    const TermForces* term_forces() const override { return inner_->term_forces(); }
-    void forces(const HubInput& u, const double* q, const double* qd, double* Q) const override
-    {
-        inner_->forces(u, q, qd, Q);
-    }
-    Energy energy(const HubInput& u, const double* q, const double* qd) const override
-    {
-        return inner_->energy(u, q, qd);
-    }
-    double momentum(const HubInput& u, const double* q, const double* qd) const override
-    {
-        return inner_->momentum(u, q, qd);
-    }
-    Tip tip(const double* q) const override { return inner_->tip(q); }
+    const TermForces* term_forces() const override { return inner().term_forces(); }
 
 private:
-    std::unique_ptr<Model> inner_;
     std::vector<int> varying_;
 };
 
