@@ -141,21 +141,22 @@ public:
         return 0.5 * L * sum;
     }
 
-    /// M = d2T/dqd2: second central differences, exact since T is quadratic in the rates.
+    /// M = d2T/dqd2: second central differences, exact since T is quadratic in the rates; each pair once, the
+    /// differences being symmetric in i and j (the generated M is checked whole against it).
     Eigen::MatrixXd mass(const Eigen::VectorXd& q, const HubInput& u) const
     {
         const int n = key_.nq();
         Eigen::MatrixXd M(n, n);
         const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
         for (int i = 0; i < n; ++i)
-            for (int j = 0; j < n; ++j) {
+            for (int j = i; j < n; ++j) {
                 const auto T = [&](double si, double sj) {
                     Eigen::VectorXd v = zero;
                     v[i] += si;
                     v[j] += sj;
                     return kinetic<double>(q.data(), v.data(), u.theta_dot);
                 };
-                M(i, j) = (T(1, 1) - T(1, -1) - T(-1, 1) + T(-1, -1)) / 4.0;
+                M(i, j) = M(j, i) = (T(1, 1) - T(1, -1) - T(-1, 1) + T(-1, -1)) / 4.0;
             }
         return M;
     }

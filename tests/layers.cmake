@@ -3,11 +3,12 @@
 # includes only public headers, the model's headers and system headers: never a private header, never GSL.
 # Run as cmake -DSRC=source-dir -P layers.cmake.
 cmake_policy(SET CMP0057 NEW)  # if(... IN_LIST ...)
-set(rooms text config on_demand models dynamics analysis simulation io)
-# Rooms on one floor may not include each other either (text and config). A run stands on the analysis, whose steady
-# spin and static equilibrium it may start from (initial.state); the analysis knows nothing of runs.
+set(rooms text config linalg on_demand models dynamics analysis simulation io)
+# Rooms on one floor may not include each other either (text, config and linalg). A run stands on the analysis, whose
+# steady spin and static equilibrium it may start from (initial.state); the analysis knows nothing of runs.
 set(floor_text 0)
 set(floor_config 0)
+set(floor_linalg 0)
 set(floor_on_demand 1)
 set(floor_models 2)
 set(floor_dynamics 3)

@@ -18,23 +18,25 @@ namespace hubbeam::cli {
 namespace {
 
 /// Declares the `bench` options; all are taken as text and checked by parse_bench_options.
-void add_bench_options(CLI::App& sub, std::string& scene, BenchArgs& a)
+void add_bench_options(Subcommand& sub, std::string& scene, BenchArgs& a)
 {
-    sub.add_option("scene", scene, "Scene file: the grid varies its discretization and solver")->required();
-    sub.add_option("--methods", a.methods, "Methods, comma-separated (default " + a.methods + ")")->type_name("LIST");
-    sub.add_option("--ny", a.ny, "Ny values, comma-separated (default " + a.ny + ")")->type_name("LIST");
-    sub.add_option("--nx", a.nx, "Nx values, comma-separated (default: the scene's)")->type_name("LIST");
-    sub.add_option("--steppers", a.steppers, "Steppers, comma-separated (default " + a.steppers + ")")->type_name("LIST");
-    sub.add_option("--rtols", a.rtols, "Relative tolerances, comma-separated; atol = rtol/100 (default " + a.rtols + ")")
-        ->type_name("LIST");
+    sub.add_option("scene", scene, "Scene file: the grid varies its discretization and solver").required();
+    sub.add_option("--methods", a.methods, "Methods, comma-separated (default " + a.methods + ")").type_name("LIST");
+    sub.add_option("--ny", a.ny, "Ny values, comma-separated (default " + a.ny + ")").type_name("LIST");
+    sub.add_option("--nx", a.nx, "Nx values, comma-separated (default: the scene's)").type_name("LIST");
+    sub.add_option("--steppers", a.steppers, "Steppers, comma-separated (default " + a.steppers + ")")
+        .type_name("LIST");
+    sub.add_option("--rtols", a.rtols,
+                   "Relative tolerances, comma-separated; atol = rtol/100 (default " + a.rtols + ")")
+        .type_name("LIST");
     sub.add_option("--repeats", a.repeats, "Timed runs per point, median reported (default " + a.repeats + ")")
-        ->type_name("N");
-    sub.add_option("--ref-ny", a.ref_ny, "Ny of the converged reference (default " + a.ref_ny + ")")->type_name("N");
+        .type_name("N");
+    sub.add_option("--ref-ny", a.ref_ny, "Ny of the converged reference (default " + a.ref_ny + ")").type_name("N");
     sub.add_option("--ref-method", a.ref_method, "Method of the converged reference (default " + a.ref_method + ")")
-        ->type_name("M");
-    sub.add_option("-o,--output", a.output, "CSV of the rows (default bench.csv)")->type_name("FILE");
+        .type_name("M");
+    sub.add_option("-o,--output", a.output, "CSV of the rows (default bench.csv)").type_name("FILE");
     sub.add_option("--plot", a.plot, "Also draw PREFIX-work and PREFIX-dofs (PNG and SVG) with gnuplot")
-        ->type_name("PREFIX");
+        .type_name("PREFIX");
     sub.add_flag("--yes", a.yes, "Run a grid estimated at over an hour");
     sub.add_flag("--table1", a.table1,
                  "Instead of a grid: the paper's Table 1 (four methods at Ny = 4) beside the paper's values");
@@ -83,12 +85,14 @@ Command add_bench_command(CLI::App& app)
         BenchArgs args;
     };
     auto o = std::make_shared<Options>();
-    CLI::App* bench_cmd = app.add_subcommand(
-        "bench", "Work against precision: time and error of a grid of methods, DOF counts, steppers and tolerances");
-    bench_cmd->footer("Writes a CSV (columns in docs/cli.md); exit code 2 for a bad option value or a grid "
-                      "estimated at over an hour without --yes, 130/143 when interrupted (finished rows kept).");
-    add_bench_options(*bench_cmd, o->scene, o->args);
-    return {bench_cmd, [o] { return bench(o->scene, o->args); }};
+    Subcommand bench_cmd(
+        app, "bench",
+        "Work against precision: time and error of a grid of methods, DOF counts, steppers and tolerances");
+    bench_cmd.footer(
+        "Writes a CSV (columns in docs/cli.md); exit code 2 for a bad option value or a grid "
+        "estimated at over an hour without --yes, 130/143 when interrupted (finished rows kept).");
+    add_bench_options(bench_cmd, o->scene, o->args);
+    return {bench_cmd.app(), [o] { return bench(o->scene, o->args); }};
 }
 
 }  // namespace hubbeam::cli

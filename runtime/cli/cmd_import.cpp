@@ -70,18 +70,18 @@ Command add_import_command(CLI::App& app)
         std::string input, output;
     };
     auto o = std::make_shared<Options>();
-    CLI::App* cmd = app.add_subcommand(
-        "import", "Turn a BModes .bmi or an ElastoDyn main input file (and its blade file) into a scene file");
-    cmd->add_option("input", o->input, "BModes main input file (.bmi) or ElastoDyn main input file")
-        ->required()
-        ->type_name("FILE");
-    cmd->add_option("-o,--output", o->output, "The scene to write (ending in .toml)")->required()->type_name("SCENE");
-    cmd->footer(
+    Subcommand cmd(app, "import",
+                   "Turn a BModes .bmi or an ElastoDyn main input file (and its blade file) into a scene file");
+    cmd.add_option("input", o->input, "BModes main input file (.bmi) or ElastoDyn main input file")
+        .required()
+        .type_name("FILE");
+    cmd.add_option("-o,--output", o->output, "The scene to write (ending in .toml)").required().type_name("SCENE");
+    cmd.footer(
         "Reads the settings that make one blade (docs/import.md) and refuses, in one line naming the file, "
         "line and setting, one that hubbeam does not model (exit 2, nothing written). The scene is written "
         "to DIR/.NAME.tmp-PID and renamed over SCENE; the input, its blade file, a link, a FIFO or a "
         "read-only file are refused as SCENE.");
-    return {cmd, [o] { return import_scene(o->input, o->output); }};
+    return {cmd.app(), [o] { return import_scene(o->input, o->output); }};
 }
 
 }  // namespace hubbeam::cli

@@ -26,7 +26,7 @@ struct LinearOverrides {
     }
 };
 
-void add_linear_overrides(CLI::App& sub, LinearOverrides& o, bool single_variant)
+void add_linear_overrides(Subcommand& sub, LinearOverrides& o, bool single_variant)
 {
     o.keys = {"discretization.nx", "model.order", "model.source"};
     if (single_variant)
@@ -65,58 +65,62 @@ Command add_modes_command(CLI::App& app)
         LinearOverrides overrides;
     };
     auto o = std::make_shared<Options>();
-    CLI::App* modes_cmd = app.add_subcommand(
-        "modes", "Natural frequencies about a steady spin, per method, Ny and spin rate (a Campbell table)");
-    modes_cmd->add_option("scene", o->scene, "Scene file (TOML)")->required()->type_name("SCENE.toml");
-    modes_cmd->add_option("--omega", o->args.omega,
-                          "Spin rates (rad/s): a comma-separated list, items may be ranges FIRST:LAST:STEP "
-                          "(default: 0 and the scene's steady rate)")->type_name("LIST");
-    modes_cmd->add_option("--methods", o->args.methods, "Methods, comma-separated (default: the scene's)")->type_name("LIST");
-    modes_cmd->add_option("--ny", o->args.ny, "Ny values, comma-separated (default: the scene's)")->type_name("LIST");
+    Subcommand modes_cmd(app, "modes",
+                         "Natural frequencies about a steady spin, per method, Ny and spin rate (a Campbell table)");
+    modes_cmd.add_option("scene", o->scene, "Scene file (TOML)").required().type_name("SCENE.toml");
     modes_cmd
-        ->add_option("--nz", o->args.nz,
-                     "Nz values (flapwise coordinates: a blade's edge and flap modes), comma-separated (default: the "
-                     "scene's)")
-        ->type_name("LIST");
+        .add_option("--omega", o->args.omega,
+                    "Spin rates (rad/s): a comma-separated list, items may be ranges FIRST:LAST:STEP "
+                    "(default: 0 and the scene's steady rate)")
+        .type_name("LIST");
+    modes_cmd.add_option("--methods", o->args.methods, "Methods, comma-separated (default: the scene's)")
+        .type_name("LIST");
+    modes_cmd.add_option("--ny", o->args.ny, "Ny values, comma-separated (default: the scene's)").type_name("LIST");
     modes_cmd
-        ->add_option("--nt", o->args.nt, "Nt values (twist coordinates: twist modes), comma-separated (default: the "
-                                         "scene's)")
-        ->type_name("LIST");
+        .add_option("--nz", o->args.nz,
+                    "Nz values (flapwise coordinates: a blade's edge and flap modes), comma-separated (default: the "
+                    "scene's)")
+        .type_name("LIST");
     modes_cmd
-        ->add_option("--count", o->args.count,
-                     "Modes printed per kind (bending or edge and flap, twist, axial, hub, overdamped) and spin rate, "
-                     "the lowest first (default 4; the CSV has all)")
-        ->type_name("N");
-    modes_cmd->add_option("-o,--output", o->args.output, "Also write every mode as CSV to FILE (default: no file)")
-        ->type_name("FILE");
+        .add_option("--nt", o->args.nt,
+                    "Nt values (twist coordinates: twist modes), comma-separated (default: the "
+                    "scene's)")
+        .type_name("LIST");
     modes_cmd
-        ->add_option("--plot", o->args.plot, "Also draw the Campbell diagram PREFIX.png and PREFIX.svg (needs -o)")
-        ->type_name("PREFIX");
+        .add_option("--count", o->args.count,
+                    "Modes printed per kind (bending or edge and flap, twist, axial, hub, overdamped) and spin rate, "
+                    "the lowest first (default 4; the CSV has all)")
+        .type_name("N");
+    modes_cmd.add_option("-o,--output", o->args.output, "Also write every mode as CSV to FILE (default: no file)")
+        .type_name("FILE");
+    modes_cmd.add_option("--plot", o->args.plot, "Also draw the Campbell diagram PREFIX.png and PREFIX.svg (needs -o)")
+        .type_name("PREFIX");
     modes_cmd
-        ->add_option("--harmonics", o->args.harmonics,
-                     "Excitation lines omega = n Omega whose crossings with the modes are printed as critical speeds "
-                     "(default 1,2,3; none: no critical speed searched)")
-        ->type_name("LIST");
-    modes_cmd->add_option("--critical", o->args.critical, "Also write the critical speeds as CSV to FILE")
-        ->type_name("FILE");
+        .add_option("--harmonics", o->args.harmonics,
+                    "Excitation lines omega = n Omega whose crossings with the modes are printed as critical speeds "
+                    "(default 1,2,3; none: no critical speed searched)")
+        .type_name("LIST");
+    modes_cmd.add_option("--critical", o->args.critical, "Also write the critical speeds as CSV to FILE")
+        .type_name("FILE");
     modes_cmd
-        ->add_option("--elastodyn", o->args.elastodyn,
-                     "Also write the blade's mode shapes at the first --omega as ElastoDyn's BLADE MODE SHAPES section "
-                     "(BldFl1Sh, BldFl2Sh, BldEdgSh: polynomials x^2..x^6 fitted to flap 1, flap 2, edge 1) to FILE; "
-                     "one variant, nz > 0")
-        ->type_name("FILE");
+        .add_option("--elastodyn", o->args.elastodyn,
+                    "Also write the blade's mode shapes at the first --omega as ElastoDyn's BLADE MODE SHAPES section "
+                    "(BldFl1Sh, BldFl2Sh, BldEdgSh: polynomials x^2..x^6 fitted to flap 1, flap 2, edge 1) to FILE; "
+                    "one variant, nz > 0")
+        .type_name("FILE");
     modes_cmd
-        ->add_option("--frame", o->args.frame,
-                     "A rotor of 3 or more identical blades: fixed (multi-blade coordinates: collective, FW and BW "
-                     "whirls, differential; the default where they apply) or rotating (each blade in its own frame)")
-        ->type_name("FRAME");
-    modes_cmd->add_flag("-q,--quiet", o->args.quiet,
-                        "Print only how many modes were written, not the table (the CSV has every mode)");
-    add_linear_overrides(*modes_cmd, o->overrides, false);
-    modes_cmd->footer("Prints the table; writes a file only when asked (-o, --critical, --plot, --elastodyn). docs/cli.md. "
-                      "Exit code 2 for a bad option value or an output that is the scene, another output, not a "
-                      "regular file, or being written by another hubbeam.");
-    return {modes_cmd, [o] {
+        .add_option("--frame", o->args.frame,
+                    "A rotor of 3 or more identical blades: fixed (multi-blade coordinates: collective, FW and BW "
+                    "whirls, differential; the default where they apply) or rotating (each blade in its own frame)")
+        .type_name("FRAME");
+    modes_cmd.add_flag("-q,--quiet", o->args.quiet,
+                       "Print only how many modes were written, not the table (the CSV has every mode)");
+    add_linear_overrides(modes_cmd, o->overrides, false);
+    modes_cmd.footer(
+        "Prints the table; writes a file only when asked (-o, --critical, --plot, --elastodyn). docs/cli.md. "
+        "Exit code 2 for a bad option value or an output that is the scene, another output, not a "
+        "regular file, or being written by another hubbeam.");
+    return {modes_cmd.app(), [o] {
                 return linear_command(o->scene, o->overrides, [&](const Scene& scene) {
                     run_modes(scene, parse_modes_options(o->args, scene), std::cout);
                 });
@@ -130,24 +134,24 @@ Command add_linearize_command(CLI::App& app)
         LinearOverrides overrides;
     };
     auto o = std::make_shared<Options>();
-    CLI::App* linearize_cmd = app.add_subcommand(
-        "linearize", "State-space matrices A, B, C, D about a steady spin (input hub torque or acceleration)");
-    linearize_cmd->add_option("scene", o->scene, "Scene file (TOML)")->required()->type_name("SCENE.toml");
-    linearize_cmd->add_option("--omega", o->omega, "Steady spin rate (rad/s), >= 0")->required()->type_name("W");
+    Subcommand linearize_cmd(app, "linearize",
+                             "State-space matrices A, B, C, D about a steady spin (input hub torque or acceleration)");
+    linearize_cmd.add_option("scene", o->scene, "Scene file (TOML)").required().type_name("SCENE.toml");
+    linearize_cmd.add_option("--omega", o->omega, "Steady spin rate (rad/s), >= 0").required().type_name("W");
     linearize_cmd
-        ->add_option("-o,--output", o->prefix,
-                     "Writes PREFIX-A.csv, PREFIX-B.csv, PREFIX-C.csv, PREFIX-D.csv and PREFIX.npz (all four for "
-                     "numpy); with [control] also PREFIX-open-*.csv and PREFIX-open.npz (the open loop)")
-        ->type_name("PREFIX")
-        ->required();
+        .add_option("-o,--output", o->prefix,
+                    "Writes PREFIX-A.csv, PREFIX-B.csv, PREFIX-C.csv, PREFIX-D.csv and PREFIX.npz (all four for "
+                    "numpy); with [control] also PREFIX-open-*.csv and PREFIX-open.npz (the open loop)")
+        .type_name("PREFIX")
+        .required();
     linearize_cmd
-        ->add_option("--frame", o->frame,
-                     "A rotor of 3 or more identical blades: fixed (multi-blade coordinates, the default where they "
-                     "apply) or rotating (each blade's coordinates in its own frame)")
-        ->type_name("FRAME");
-    add_linear_overrides(*linearize_cmd, o->overrides, true);
-    linearize_cmd->footer("docs/cli.md. Exit code 2 for a bad option value.");
-    return {linearize_cmd, [o] {
+        .add_option("--frame", o->frame,
+                    "A rotor of 3 or more identical blades: fixed (multi-blade coordinates, the default where they "
+                    "apply) or rotating (each blade's coordinates in its own frame)")
+        .type_name("FRAME");
+    add_linear_overrides(linearize_cmd, o->overrides, true);
+    linearize_cmd.footer("docs/cli.md. Exit code 2 for a bad option value.");
+    return {linearize_cmd.app(), [o] {
                 return linear_command(o->scene, o->overrides, [&](const Scene& scene) {
                     const std::vector<double> omega = parse_spin_rates("--omega", o->omega);
                     if (omega.size() != 1)

@@ -32,7 +32,7 @@ struct RunOptions {
     std::string scene;
     std::vector<std::string> values = std::vector<std::string>(scene_keys().size());
     // Each key's option (null for a key without one): asked whether it was given, without a search by name.
-    std::vector<const CLI::Option*> given = std::vector<const CLI::Option*>(scene_keys().size());
+    std::vector<Option> given = std::vector<Option>(scene_keys().size());
     std::string fields_at, fields_points = "81", fields_file;  // the fields along the beam (not scene keys)
     // Not a scene key: whether the output must survive a power loss depends on the machine and the job, not on
     // what is simulated (the same scene runs on a laptop and in a batch queue).
@@ -41,21 +41,21 @@ struct RunOptions {
 };
 
 /// Declares the `run` options on sub from the scene key table; the help text of each is its documentation.
-void add_run_options(CLI::App& sub, RunOptions& o)
+void add_run_options(Subcommand& sub, RunOptions& o)
 {
-    sub.add_option("scene", o.scene, "Scene file (TOML; format in docs/scene.md, examples in cases/)")->required();
+    sub.add_option("scene", o.scene, "Scene file (TOML; format in docs/scene.md, examples in cases/)").required();
     const std::vector<SceneKey>& keys = scene_keys();
     for (std::size_t i = 0; i < keys.size(); ++i)
         if (keys[i].option) o.given[i] = add_key_option(sub, keys[i], o.values[i]);
     sub.add_option("--fields-at", o.fields_at,
                    "Also write the fields along the beam (u_y, u_x, slope, curvature, bending moment, axial force) at "
                    "these times (s, comma-separated; the first row at or after each)")
-        ->type_name("LIST");
+        .type_name("LIST");
     sub.add_option("--fields-points", o.fields_points,
                    "Equally spaced points along the beam for --fields-at (default 81)")
-        ->type_name("N");
+        .type_name("N");
     sub.add_option("--fields", o.fields_file, "CSV of the fields (default: the output's name with -fields.csv)")
-        ->type_name("FILE");
+        .type_name("FILE");
     sub.add_flag("--durable", o.durable,
                  "Sync the output to the disk before it replaces the old one, so that it survives a power loss (off: "
                  "the output still appears whole or not at all, but the last seconds of a run may be lost with the "
@@ -94,7 +94,7 @@ Overrides given_overrides(const RunOptions& o)
     Overrides overrides;
     const std::vector<SceneKey>& keys = scene_keys();
     for (std::size_t i = 0; i < keys.size(); ++i)
-        if (o.given[i] != nullptr && o.given[i]->count() > 0) overrides.emplace_back(keys[i].name, o.values[i]);
+        if (o.given[i].given()) overrides.emplace_back(keys[i].name, o.values[i]);
     return overrides;
 }
 
@@ -311,8 +311,8 @@ int run(const RunOptions& o)
 Command add_run_command(CLI::App& app)
 {
     auto options = std::make_shared<RunOptions>();
-    CLI::App* run_cmd = app.add_subcommand("run", "Simulate a scene file and write its response as CSV");
-    run_cmd->footer(
+    Subcommand run_cmd(app, "run", "Simulate a scene file and write its response as CSV");
+    run_cmd.footer(
         "Options override the scene's keys. The CSV goes to -o FILE, else to the scene's output.file, else to "
         "NAME.csv in the current folder (NAME.toml's name); a FILE ending in .npy gets the rows as a NumPy array "
         "(float64, rows x columns) and the column names in FILE's name with .columns.txt; FILE must end in .csv or "
@@ -322,8 +322,8 @@ Command add_run_command(CLI::App& app)
         " The output is written to "
         "DIR/.NAME.tmp-PID and renamed over FILE when the run ends; FILE.hubbeam.json beside it says where it came "
         "from (version, variant, effective scene, stepper, summary).");
-    add_run_options(*run_cmd, *options);
-    return {run_cmd, [options] { return run(*options); }};
+    add_run_options(run_cmd, *options);
+    return {run_cmd.app(), [options] { return run(*options); }};
 }
 
 }  // namespace hubbeam::cli

@@ -34,14 +34,13 @@ int stress(const StressOptions& options)
 
 Command add_stress_command(CLI::App& app)
 {
-        auto options = std::make_shared<StressOptions>();
-    CLI::App* stress_cmd = app.add_subcommand(
-        "stress", "Stability stress suite: high spin, many DOFs, long runs, extreme beams");
-    stress_cmd->add_flag("--long", options->long_runs, "1000 s runs and every method's largest DOF count");
-    stress_cmd->add_flag("--quick", options->quick, "Spin rates up to 20 rad/s only (what the tests run)");
-    stress_cmd->add_option("-o,--output", options->output, "Also write the table as CSV")->type_name("FILE");
-    stress_cmd->footer("Exit code 0 when every case did what it must, 1 otherwise.");
-    return {stress_cmd, [options] { return stress(*options); }};
+    auto options = std::make_shared<StressOptions>();
+    Subcommand stress_cmd(app, "stress", "Stability stress suite: high spin, many DOFs, long runs, extreme beams");
+    stress_cmd.add_flag("--long", options->long_runs, "1000 s runs and every method's largest DOF count");
+    stress_cmd.add_flag("--quick", options->quick, "Spin rates up to 20 rad/s only (what the tests run)");
+    stress_cmd.add_option("-o,--output", options->output, "Also write the table as CSV").type_name("FILE");
+    stress_cmd.footer("Exit code 0 when every case did what it must, 1 otherwise.");
+    return {stress_cmd.app(), [options] { return stress(*options); }};
 }
 
 }  // namespace hubbeam::cli

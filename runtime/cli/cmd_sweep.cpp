@@ -49,12 +49,11 @@ int sweep(const std::vector<std::string>& args)
 
 Command add_sweep_command(CLI::App& app)
 {
-    CLI::App* sweep_cmd = app.add_subcommand(
-        "sweep", "Parameter sweep on Dask: SWEEP.toml [-o FILE] [--scheduler tls://HOST:PORT --tls-ca-file CA "
-                 "--tls-cert CERT --tls-key KEY] [--workers N] [--dashboard] [--no-resume] (docs/python.md)");
-    sweep_cmd->prefix_command();  // every argument goes to the sweep (hubbeam sweep --help describes them)
-    sweep_cmd->set_help_flag();
-    return {sweep_cmd, [sweep_cmd] { return sweep(sweep_cmd->remaining()); }};
+    Subcommand sweep_cmd(app, "sweep",
+                         "Parameter sweep on Dask: SWEEP.toml [-o FILE] [--scheduler tls://HOST:PORT --tls-ca-file CA "
+                         "--tls-cert CERT --tls-key KEY] [--workers N] [--dashboard] [--no-resume] (docs/python.md)");
+    sweep_cmd.pass_arguments_through();  // hubbeam sweep --help describes them
+    return {sweep_cmd.app(), [sweep_cmd] { return sweep(sweep_cmd.remaining()); }};
 }
 
 }  // namespace hubbeam::cli

@@ -28,9 +28,8 @@ int list_variants()
 
 Command add_variants_command(CLI::App& app)
 {
-    CLI::App* cmd =
-        app.add_subcommand("variants", "List the variants built in and cached, and how any other variant runs");
-    return {cmd, [] { return list_variants(); }};
+    Subcommand cmd(app, "variants", "List the variants built in and cached, and how any other variant runs");
+    return {cmd.app(), [] { return list_variants(); }};
 }
 
 }  // namespace hubbeam::cli

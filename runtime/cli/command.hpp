@@ -2,17 +2,25 @@
 // (one file per command: cmd_run.cpp, cmd_modes.cpp, ...; main.cpp declares them all and runs the one given).
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <csignal>
 #include <functional>
 #include <iostream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <hubbeam/scene.hpp>
 #include <hubbeam/simulate.hpp>
 #include <hubbeam/on_demand.hpp>
 #include <hubbeam/option_lists.hpp>
+
+// CLI11's app and option, declared only: the commands' files reach them through Subcommand and Option below, so that
+// CLI11's header, whose inline functions took each file that included it about 7 s to compile, is compiled in
+// command.cpp and main.cpp alone (docs/performance.md, "Set-up").
+namespace CLI {
+class App;
+class Option;
+}  // namespace CLI
 
 namespace hubbeam::cli {
 
@@ -45,8 +53,47 @@ StopRequest signal_stop();
 /// standard error: exit 1 if the work succeeded.
 int with_standard_output(const std::function<int()>& work);
 
+/// One option of a command, as its file declares it (CLI11's Option; a default one stands for none).
+class Option {
+public:
+    Option() = default;
+    explicit Option(CLI::Option* option) : option_(option) {}
+    /// The command refuses to run without it.
+    Option& required();
+    /// Its value's placeholder in --help (FILE, LIST, N).
+    Option& type_name(const std::string& name);
+    /// The command refuses it together with other.
+    Option& excludes(const Option& other);
+    /// Whether the command line gave it (after parsing).
+    bool given() const;
+
+private:
+    CLI::Option* option_ = nullptr;
+};
+
+/// A command on the app: its options, flags and help text (CLI11's subcommand).
+class Subcommand {
+public:
+    Subcommand(CLI::App& app, const std::string& name, const std::string& description);
+    /// An option (a positional one if name has no leading dash) whose text goes to value, or to values one by one.
+    Option add_option(const std::string& name, std::string& value, const std::string& help);
+    Option add_option(const std::string& name, std::vector<std::string>& values, const std::string& help);
+    /// A flag that sets value.
+    Option add_flag(const std::string& name, bool& value, const std::string& help);
+    /// The text at the end of the command's --help.
+    void footer(const std::string& text);
+    /// Every argument after the command's name goes to the command as it is (remaining()), --help among them.
+    void pass_arguments_through();
+    /// The arguments the command did not take (after parsing).
+    std::vector<std::string> remaining() const;
+    CLI::App* app() const { return sub_; }
+
+private:
+    CLI::App* sub_;
+};
+
 /// Declares key's option on sub, its help text from the key table (with note after it), setting value; returns it.
-CLI::Option* add_key_option(CLI::App& sub, const SceneKey& key, std::string& value, const std::string& note = "");
+Option add_key_option(Subcommand& sub, const SceneKey& key, std::string& value, const std::string& note = "");
 
 /// Runs a command's work; its refusals become one line and exit 2: a bad option value, a scene that no model can
 /// serve (named by scene_path), an on-demand variant that failed to compile.

@@ -15,6 +15,7 @@
 // Every file is written through OutputFile (output_file.hpp); outputs are checked against the command's inputs and
 // each other before anything is computed. run writes NAME.csv into the current folder unless -o; modes writes a CSV
 // only with -o. Exit codes: command.hpp's exit_codes_help.
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <array>
 #include <exception>

@@ -6,11 +6,11 @@
 #include <hubbeam/shortest.hpp>
 
 #include "analysis/modal_coordinates.hpp"
+#include "linalg/eigen_solvers.hpp"
 #include "models/modal_damping.hpp"
 #include "models/model_operations.hpp"
 #include "terms.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <unsupported/Eigen/FFT>
 #include <unsupported/Eigen/MatrixFunctions>
 
@@ -343,10 +343,10 @@ public:
             B += Bj / 16.0;
         }
         const Eigen::MatrixXd K = -mass_ * A;
-        const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> modes(0.5 * (K + K.transpose()), mass_);
-        if (modes.info() != Eigen::Success) throw std::runtime_error("the modes of the average system did not converge");
-        P_ = modes.eigenvectors();
-        const Eigen::VectorXd w2 = modes.eigenvalues().cwiseAbs();
+        const SymmetricPairs modes = symmetric_pairs(0.5 * (K + K.transpose()), mass_);
+        if (!modes.converged) throw std::runtime_error("the modes of the average system did not converge");
+        P_ = modes.vectors;
+        const Eigen::VectorXd w2 = modes.values.cwiseAbs();
         const double floor = std::max({orbit.omega, 1e-6 * std::sqrt(w2.maxCoeff()), 1e-300});
         w_ = w2.cwiseSqrt().cwiseMax(floor);
         S_ = P_.transpose() * mass_;
@@ -515,10 +515,10 @@ int dominant_harmonic(const Variational& system, const std::vector<Eigen::Matrix
 std::vector<Candidate> candidates(const Variational& system, const std::vector<Eigen::MatrixXd>& phi, double omega,
                                   double period, Eigen::VectorXcd& multipliers)
 {
-    const Eigen::EigenSolver<Eigen::MatrixXd> eig(phi.back());
-    if (eig.info() != Eigen::Success) throw std::runtime_error("the eigenvalues of the monodromy matrix did not converge");
-    multipliers = eig.eigenvalues();
-    const Eigen::MatrixXcd vectors = eig.eigenvectors();
+    EigenPairs eig = eigen_pairs(phi.back());
+    if (!eig.converged) throw std::runtime_error("the eigenvalues of the monodromy matrix did not converge");
+    multipliers = eig.values;
+    const Eigen::MatrixXcd vectors = std::move(eig.vectors);
     std::vector<Candidate> out;
     for (Eigen::Index k = 0; k < multipliers.size(); ++k) {
         const cd mu = multipliers[k];
@@ -640,9 +640,9 @@ FloquetAnalysis floquet(const Model& model, double omega, Axial axial)
     // The average system's modes: how fast the modes that one revolution resolves turn, so that the steps sample
     // them; and where a budget of steps cannot, which modes are beyond the band the steps sample (their harmonics
     // are aliased there: such a mode is known by its shape, the average mode it resembles most).
-    const Eigen::EigenSolver<Eigen::MatrixXd> average(system.average());
-    if (average.info() != Eigen::Success) throw std::runtime_error("the eigenvalues of the average system did not converge");
-    const Eigen::VectorXcd average_lambda = average.eigenvalues();
+    const EigenPairs average = eigen_pairs(system.average());
+    if (!average.converged) throw std::runtime_error("the eigenvalues of the average system did not converge");
+    const Eigen::VectorXcd& average_lambda = average.values;
     double fastest = 0.0;
     for (Eigen::Index k = 0; k < average_lambda.size(); ++k)
         if (std::exp(average_lambda[k].real() * period) >= smallest_multiplier)
@@ -661,7 +661,7 @@ FloquetAnalysis floquet(const Model& model, double omega, Axial axial)
         return Eigen::VectorXcd(w / std::max(w.norm(), 1e-300));
     };
     std::vector<Eigen::VectorXcd> average_shapes;
-    const Eigen::MatrixXcd average_vectors = system.original(average.eigenvectors());
+    const Eigen::MatrixXcd average_vectors = system.original(average.vectors);
     for (Eigen::Index k = 0; k < average_lambda.size(); ++k) average_shapes.push_back(shape(average_vectors.col(k).tail(r)));
     // The coarser count's exponents (of every multiplier of size smallest_multiplier or more, both of each conjugate
     // pair).
@@ -671,8 +671,7 @@ FloquetAnalysis floquet(const Model& model, double omega, Axial axial)
             if (std::abs(mu) >= smallest_multiplier) out.push_back(std::log(mu) / period);
         return out;
     };
-    std::vector<cd> coarse =
-        exponents(Eigen::EigenSolver<Eigen::MatrixXd>(system.transition(steps, false).back(), false).eigenvalues());
+    std::vector<cd> coarse = exponents(eigen_pairs(system.transition(steps, false).back(), false).values);
     for (;;) {
         const std::vector<Eigen::MatrixXd> phi = system.transition(2 * steps, true);
         Eigen::VectorXcd multipliers;

@@ -4,12 +4,12 @@
 #include <hubbeam/linearize.hpp>
 
 #include "analysis/modal_coordinates.hpp"
+#include "linalg/eigen_solvers.hpp"
 #include "models/mode_kinds.hpp"
 #include "models/modal_damping.hpp"
 #include "models/model_operations.hpp"
 #include "terms.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <array>
 #include <complex>
@@ -313,11 +313,10 @@ std::vector<NaturalMode> eigen_modes(const Model& model, const LinearEquations& 
 {
     const bool damped = dissipates(model) && naming.damped;
     const Eigen::LLT<Eigen::MatrixXd> llt = mass_factor(submatrix(e.M, R, R));
-    const Eigen::EigenSolver<Eigen::MatrixXd> eig(linearized_system(e, llt, R, cyclic_angle(model, R)));
-    if (eig.info() != Eigen::Success)
-        throw std::runtime_error("the eigenvalues of the linearized equations did not converge");
-    const Eigen::VectorXcd lambda = eig.eigenvalues();
-    const Eigen::MatrixXcd vectors = eig.eigenvectors();
+    EigenPairs eig = eigen_pairs(linearized_system(e, llt, R, cyclic_angle(model, R)));
+    if (!eig.converged) throw std::runtime_error("the eigenvalues of the linearized equations did not converge");
+    const Eigen::VectorXcd lambda = std::move(eig.values);
+    const Eigen::MatrixXcd vectors = std::move(eig.vectors);
     const Eigen::MatrixXd U = llt.matrixU();
     const auto r = static_cast<Eigen::Index>(R.size());
     const Eigen::Index first_rate = r - cyclic_angle(model, R);  // the rates follow the positions
@@ -415,20 +414,20 @@ StateSpace closed_loop(const StateSpace& open, const Control& control)
 std::vector<NaturalMode> closed_loop_modes(const Model& model, const SteadySpin& s, const Control& control)
 {
     const StateSpace cl = closed_loop(state_space(model, s), control);
-    const Eigen::EigenSolver<Eigen::MatrixXd> eig(cl.A);
-    if (eig.info() != Eigen::Success) throw std::runtime_error("the eigenvalues of the closed loop did not converge");
+    const EigenPairs eig = eigen_pairs(cl.A);
+    if (!eig.converged) throw std::runtime_error("the eigenvalues of the closed loop did not converge");
     const Eigen::MatrixXd M = mass_at(model, s.u, s.q);
     const Eigen::MatrixXd U = mass_factor(M).matrixU();
     const Eigen::Index m = M.rows();  // the state holds theta and the flexible coordinates, as q does under torque
     std::vector<int> all(static_cast<std::size_t>(m));
     std::iota(all.begin(), all.end(), 0);
     std::vector<NaturalMode> modes;
-    for (Eigen::Index k = 0; k < eig.eigenvalues().size(); ++k) {
-        const std::complex<double> l = eig.eigenvalues()[k];
+    for (Eigen::Index k = 0; k < eig.values.size(); ++k) {
+        const std::complex<double> l = eig.values[k];
         const double magnitude = std::abs(l), scale = std::max(1.0, magnitude);
         if (l.imag() < -1e-9 * scale || magnitude <= 1e-9) continue;  // a conjugate, or a neutral direction
         // The kind whose coordinates hold most of the mode's kinetic energy (the state's rates are q's, all of them).
-        const Eigen::VectorXcd rates = eig.eigenvectors().col(k).segment(m, m);
+        const Eigen::VectorXcd rates = eig.vectors.col(k).segment(m, m);
         const std::vector<double> energy = energy_by_field(model, M, all, rates);
         const auto most = std::max_element(energy.begin(), energy.end()) - energy.begin();
         const bool oscillating = l.imag() > 1e-9 * scale;

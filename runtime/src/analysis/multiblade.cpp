@@ -1,6 +1,5 @@
 // The multi-blade (Coleman) coordinates of a rotor of identical blades (docs/model.md section 13.2): the transform,
 // the constant state-space model it gives about a steady spin, and that model's modes named by harmonic and whirl.
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -12,6 +11,7 @@
 #include <stdexcept>
 
 #include "analysis/modal_coordinates.hpp"
+#include "linalg/eigen_solvers.hpp"
 #include "models/model_operations.hpp"
 #include "models/rotor_model.hpp"
 #include "terms.hpp"
@@ -347,8 +347,7 @@ void separate(const Eigen::MatrixXcd& H, const Matrix& M, const Eigen::VectorXcd
         Eigen::MatrixXcd V(rates.rows(), static_cast<Eigen::Index>(group.size()));
         for (std::size_t g = 0; g < group.size(); ++g) V.col(static_cast<Eigen::Index>(g)) = rates.col(group[g]);
         const Eigen::MatrixXcd E = V.adjoint() * H * V, G = V.adjoint() * M.cast<std::complex<double>>() * V;
-        const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXcd> split(E, G);
-        const Eigen::MatrixXcd turned = V * split.eigenvectors();
+        const Eigen::MatrixXcd turned = V * hermitian_pairs(E, G).vectors;
         for (std::size_t g = 0; g < group.size(); ++g) rates.col(group[g]) = turned.col(static_cast<Eigen::Index>(g));
     }
 }

@@ -2,7 +2,6 @@
 #include "dynamics/stiffness.hpp"
 
 #include <Eigen/Dense>
-#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -10,6 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "linalg/eigen_solvers.hpp"
 #include "models/model_operations.hpp"
 
 namespace hubbeam {
@@ -42,10 +42,9 @@ Eigen::VectorXd squared_frequencies(const Model& model, Axial axial)
     const std::vector<int> kept = kept_coordinates(model.coordinates(), axial);
     const Eigen::MatrixXd K = stiffness(model, HubInput{}, zero, zero)(kept, kept);
     const Eigen::MatrixXd M = mass_at_rest(model)(kept, kept);
-    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(0.5 * (K + K.transpose()), M,
-                                                                           Eigen::EigenvaluesOnly);
-    if (solver.info() != Eigen::Success) return {};
-    return solver.eigenvalues();
+    const SymmetricPairs solver = symmetric_pairs(0.5 * (K + K.transpose()), M, false);
+    if (!solver.converged) return {};
+    return solver.values;
 }
 
 /// The highest frequency of squared frequencies w2 (squared_frequencies): infinite where M is not positive definite.
@@ -92,9 +91,9 @@ double highest_rate(const Model& model, Axial axial, double omega)
     A.topRightCorner(m, m).setIdentity();
     A.bottomLeftCorner(m, m) = solve.solve(Kq);
     A.bottomRightCorner(m, m) = solve.solve(Kqd);
-    const Eigen::EigenSolver<Eigen::MatrixXd> eig(A, false);
-    if (eig.info() != Eigen::Success) return INFINITY;
-    return std::max(omega, eig.eigenvalues().cwiseAbs().maxCoeff());
+    const EigenPairs eig = eigen_pairs(A, false);
+    if (!eig.converged) return INFINITY;
+    return std::max(omega, eig.values.cwiseAbs().maxCoeff());
 }
 
 }  // namespace
@@ -142,8 +141,8 @@ double critical_spin(const Model& model)
     // that a term whose forces at rest depended on the rate otherwise would fail its tests here.
     const Eigen::MatrixXd D = spinning_stiffness(model, 1.0) - K0;
     const double scale = std::max(K0.cwiseAbs().maxCoeff(), Khi.cwiseAbs().maxCoeff());
-    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(D, K0, Eigen::EigenvaluesOnly);
-    const double mu = solver.info() == Eigen::Success ? solver.eigenvalues().minCoeff() : 0.0;
+    const SymmetricPairs solver = symmetric_pairs(D, K0, false);
+    const double mu = solver.converged ? solver.values.minCoeff() : 0.0;
     if ((K0 + hi * hi * D - Khi).cwiseAbs().maxCoeff() > 1e-9 * scale || !(mu < 0.0))
         throw std::logic_error(model.key().name() + ": the stiffness at rest is not quadratic in the hub's rate");
     return std::min(hi, std::sqrt(-1.0 / mu));
@@ -283,8 +282,8 @@ StepperChoice automatic_stepper(const Model& model, Axial axial, double rtol, do
 
 double mass_condition(const Model& model)
 {
-    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(mass_at_rest(model), Eigen::EigenvaluesOnly);
-    const double lo = eig.eigenvalues().minCoeff(), hi = eig.eigenvalues().maxCoeff();
+    const SymmetricPairs eig = symmetric_pairs(mass_at_rest(model), false);
+    const double lo = eig.values.minCoeff(), hi = eig.values.maxCoeff();
     return lo > 0.0 ? hi / lo : INFINITY;
 }
 
