@@ -3,9 +3,9 @@
 // c_dot + (its rotation): the beam's T holds the first and section_rotation the last (mass moments about the reference
 // axis, the bending slopes' share of the rotation left out); this term adds the middle, the reference point's velocity
 // against the chord's, to second order in the deformation, and the offset mass's share of the rotation that the slopes
-// turn, so that the centre of mass moves as a point should. The axial strain at the tension centre, u_x1' - d_A kappa_c, squared under EA: the beam's U holds EA
-// u_x1'^2 and the table's bending stiffnesses (about the reference axis) EA d_A^2 kappa_c^2; this term adds the
-// cross term.
+// turn, so that the centre of mass moves as a point should. The axial strain at the tension centre, u_x1' - d_A
+// kappa_c, squared under EA: the beam's U holds EA u_x1'^2 and the table's bending stiffnesses (about the reference
+// axis) EA d_A^2 kappa_c^2; this term adds the cross term.
 #include <array>
 
 #include "generator_terms.hpp"
@@ -75,7 +75,8 @@ void offsets_energies(const TermContext& c, Energies& e)
     const ex w = c.s.theta_dot;
     const Cone cone = cone_of(c.key, c.s);
     const Position p = position(c.key.order, f, cone);
-    const std::array<ex, 3> d = chord_rate(f, w, chord(f, cone, f.offsets->mass_offset_cos_x, f.offsets->mass_offset_sin_x));
+    const std::array<ex, 3> d =
+        chord_rate(f, w, chord(f, cone, f.offsets->mass_offset_cos_x, f.offsets->mass_offset_sin_x));
     // The reference point's inertial velocity in hub components.
     const ex v_i = p.i_dot - w * p.j, v_j = p.j_dot + w * p.i, v_k = p.k_dot;
     e.T += c.integrate(second_order(v_i * d[0] + v_j * d[1] + v_k * d[2], f));

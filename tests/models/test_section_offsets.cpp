@@ -261,10 +261,10 @@ TEST_CASE("section offsets: the offset centre of mass's kinetic energy is the ri
 TEST_CASE("section offsets: the mass matrix of a physical section stays positive definite with axial coordinates",
           "[section_offsets]")
 {
-    // An offset longer than an element (0.6 m, elements of 0.5 m), the section's polar moment about the reference axis above m d^2 (a
-    // physical section's): the centre of mass's kinetic energy 1/2 m |V + d C_dot|^2 and the rotation about it are
-    // each >= 0, so M is positive definite for every state. Without the offset mass's turn with the slopes the axial
-    // rate's coupling to them, -m d u_x1_dot sigma_dot, stands alone and makes M indefinite.
+    // An offset longer than an element (0.6 m, elements of 0.5 m), the section's polar moment about the reference
+    // axis above m d^2 (a physical section's): the centre of mass's kinetic energy 1/2 m |V + d C_dot|^2 and the
+    // rotation about it are each >= 0, so M is positive definite for every state. Without the offset mass's turn with
+    // the slopes the axial rate's coupling to them, -m d u_x1_dot sigma_dot, stands alone and makes M indefinite.
     const VariantKey key = every_field();
     Parameters p = blade({{0.0, 1.0, 50.0, 1e4, 80.0, 30.0, 0.2, 0.05, 0.40, 0.6},
                           {1.0, 1.0, 50.0, 1e4, 80.0, 30.0, -0.1, 0.05, 0.40, -0.6}},

@@ -4,7 +4,8 @@
 // The formats as their own programs read them, checked against these public files:
 //   BModes   old-NWTC/BModes src/bmodes/BModes.f90 (reading the section properties: ReadCom for the title, ReadVar for
 //            n_secs, ReadCom for the blank, titles and units lines, then n_secs list-directed rows of 13 values;
-//            flp_iner, edge_iner about the inertia axes at tw_iner; n_secs >= 2); the samples old-NWTC/BModes CertTest/blade_sec_props.dat and CertTest/tower_sec_props.dat;
+//            flp_iner, edge_iner about the inertia axes at tw_iner; n_secs >= 2); the samples old-NWTC/BModes
+//            CertTest/blade_sec_props.dat and CertTest/tower_sec_props.dat;
 //            SMI-Lab-Inha/pyBModes src/pybmodes/io/sec_props.py (which calls the first column span_loc).
 //   ElastoDyn OpenFAST/openfast modules/elastodyn/src/ElastoDyn_IO.f90 (ReadBladeFile: the table's columns found by
 //            name, case-insensitively; StrcTwst in degrees; BMassDen, FlpStff, EdgStff times AdjBlMs, AdjFlSt, AdjEdSt;

@@ -234,8 +234,9 @@ std::vector<double> section_distribution(const VariantKey& key, const Parameters
             const double angle = 2.0 * v(axes);
             return deviator * (sine ? std::sin(angle) : std::cos(angle));
         };
-        const double stiffness = (v(ProfileValue::EI) - v(ProfileValue::EI_flap)) / 2.0;
-        const double inertia = (v(ProfileValue::j_n) - v(ProfileValue::j_c)) / 2.0;
+        // Read only for a blade's distributions: a planar profile holds 3 values a station.
+        const auto stiffness = [&] { return (v(ProfileValue::EI) - v(ProfileValue::EI_flap)) / 2.0; };
+        const auto inertia = [&] { return (v(ProfileValue::j_n) - v(ProfileValue::j_c)) / 2.0; };
         using D = SectionDistribution;
         switch (d) {
             case D::m: out[k] = v(ProfileValue::m); break;
@@ -244,10 +245,10 @@ std::vector<double> section_distribution(const VariantKey& key, const Parameters
             case D::EI_flap: out[k] = v(ProfileValue::EI_flap); break;
             case D::GJ: out[k] = v(ProfileValue::GJ); break;
             case D::j_p: out[k] = v(ProfileValue::j_c) + v(ProfileValue::j_n); break;
-            case D::EI_cos: out[k] = turned(stiffness, ProfileValue::twist, false); break;
-            case D::EI_sin: out[k] = turned(stiffness, ProfileValue::twist, true); break;
-            case D::j_cos: out[k] = turned(inertia, ProfileValue::inertia_twist, false); break;
-            case D::j_sin: out[k] = turned(inertia, ProfileValue::inertia_twist, true); break;
+            case D::EI_cos: out[k] = turned(stiffness(), ProfileValue::twist, false); break;
+            case D::EI_sin: out[k] = turned(stiffness(), ProfileValue::twist, true); break;
+            case D::j_cos: out[k] = turned(inertia(), ProfileValue::inertia_twist, false); break;
+            case D::j_sin: out[k] = turned(inertia(), ProfileValue::inertia_twist, true); break;
             case D::mass_offset_cos: out[k] = moment(SectionOffset::mass, ProfileValue::m, false); break;
             case D::mass_offset_sin: out[k] = moment(SectionOffset::mass, ProfileValue::m, true); break;
             case D::tension_offset_cos: out[k] = moment(SectionOffset::tension, ProfileValue::ES, false); break;
