@@ -1,12 +1,10 @@
-// The command line's shared parts: the stop signals, the commands' options through CLI11 and those declared from the
-// scene key table.
+// The command line's shared parts: the stop signals and the options declared from the scene key table.
 #include "command.hpp"
 
 #include <poll.h>
 #include <signal.h>
 #include <unistd.h>
 
-#include <CLI/CLI.hpp>
 #include <cstdio>
 
 namespace hubbeam::cli {
@@ -88,65 +86,6 @@ void catch_stop_signals()
 StopRequest signal_stop()
 {
     return []() -> const char* { return stop_signal_number != 0 ? interrupted : nullptr; };
-}
-
-Option& Option::required()
-{
-    option_->required();
-    return *this;
-}
-
-Option& Option::type_name(const std::string& name)
-{
-    option_->type_name(name);
-    return *this;
-}
-
-Option& Option::excludes(const Option& other)
-{
-    option_->excludes(other.option_);
-    return *this;
-}
-
-bool Option::given() const
-{
-    return option_ != nullptr && option_->count() > 0;
-}
-
-Subcommand::Subcommand(CLI::App& app, const std::string& name, const std::string& description)
-    : sub_(app.add_subcommand(name, description))
-{
-}
-
-Option Subcommand::add_option(const std::string& name, std::string& value, const std::string& help)
-{
-    return Option(sub_->add_option(name, value, help));
-}
-
-Option Subcommand::add_option(const std::string& name, std::vector<std::string>& values, const std::string& help)
-{
-    return Option(sub_->add_option(name, values, help));
-}
-
-Option Subcommand::add_flag(const std::string& name, bool& value, const std::string& help)
-{
-    return Option(sub_->add_flag(name, value, help));
-}
-
-void Subcommand::footer(const std::string& text)
-{
-    sub_->footer(text);
-}
-
-void Subcommand::pass_arguments_through()
-{
-    sub_->prefix_command();
-    sub_->set_help_flag();
-}
-
-std::vector<std::string> Subcommand::remaining() const
-{
-    return sub_->remaining();
 }
 
 Option add_key_option(Subcommand& sub, const SceneKey& key, std::string& value, const std::string& note)

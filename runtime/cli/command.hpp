@@ -1,5 +1,5 @@
 // The command line's shared parts: exit codes, the stop signals, one-line refusals, and the entry of each command
-// (one file per command: cmd_run.cpp, cmd_modes.cpp, ...; main.cpp declares them all and runs the one given).
+// (one file per command: cmd_run.cpp, cmd_modes.cpp, ...; app.cpp adds them to the app and runs the one given).
 #pragma once
 
 #include <csignal>
@@ -15,8 +15,8 @@
 #include <hubbeam/option_lists.hpp>
 
 // CLI11's app and option, declared only: the commands' files reach them through Subcommand and Option below, so that
-// CLI11's header, whose inline functions took each file that included it about 7 s to compile, is compiled in
-// command.cpp and main.cpp alone (docs/performance.md, "Set-up").
+// CLI11's header, whose inline functions took each file that included it about 7 s to compile, is compiled in app.cpp
+// alone (docs/performance.md, "Set-up").
 namespace CLI {
 class App;
 class Option;
@@ -128,5 +128,9 @@ Command add_sweep_command(CLI::App& app);
 Command add_kernels_command(CLI::App& app);
 Command add_plot_command(CLI::App& app);
 Command add_import_command(CLI::App& app);
+
+/// The command line: adds the command argv names to the app (all of them for --help, --version or a word that names
+/// none), parses argv and runs the command; its exit code. version: what --version prints.
+int run_command_line(int argc, char** argv, const std::string& version);
 
 }  // namespace hubbeam::cli

@@ -22,6 +22,8 @@
 #include <hubbeam/linearize.hpp>
 #include <hubbeam/make_model.hpp>
 
+#include "eigen_oracles.hpp"
+
 using namespace hubbeam;
 
 namespace {
@@ -101,11 +103,12 @@ std::vector<OracleMode> oracle_modes(const Model& model, double omega)
     const Eigen::MatrixXd L = llt.matrixL();
     const Eigen::MatrixXd Linv = L.triangularView<Eigen::Lower>().solve(Eigen::MatrixXd::Identity(2 * n, 2 * n));
     const Eigen::MatrixXd S = -Linv * H * Linv.transpose();
-    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXcd> eig(std::complex<double>(0, -1) * S.cast<std::complex<double>>());
+    const test::HermitianEigen eig =
+        test::hermitian_eigen(std::complex<double>(0, -1) * S.cast<std::complex<double>>());
     std::vector<OracleMode> modes;
     for (Eigen::Index k = 0; k < 2 * n; ++k) {
-        if (eig.eigenvalues()[k] <= 0.0) continue;  // each frequency's negative twin
-        const Eigen::VectorXcd x = Linv.transpose().cast<std::complex<double>>() * eig.eigenvectors().col(k);
+        if (eig.values[k] <= 0.0) continue;  // each frequency's negative twin
+        const Eigen::VectorXcd x = Linv.transpose().cast<std::complex<double>>() * eig.vectors.col(k);
         const Eigen::VectorXcd rates = x.tail(n);
         double axial = 0.0, total = 0.0;
         for (int i = 0; i < n; ++i)
@@ -115,7 +118,7 @@ std::vector<OracleMode> oracle_modes(const Model& model, double omega)
                 if (ai && aj) axial += e;
                 if (ai == aj) total += e;
             }
-        modes.push_back({eig.eigenvalues()[k], axial / total});
+        modes.push_back({eig.values[k], axial / total});
     }
     std::sort(modes.begin(), modes.end(), [](const OracleMode& a, const OracleMode& b) { return a.rad_s < b.rad_s; });
     REQUIRE(modes.size() == static_cast<std::size_t>(n));

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "dynamics/integrate.hpp"
+#include "eigen_oracles.hpp"
 #include "modes.hpp"
 
 using namespace hubbeam;
@@ -284,7 +285,7 @@ TEST_CASE("the condensed modes are the eigenvalues of the quasi-static run's own
         const double t = 100.0;
         REQUIRE(system.finite_difference_jacobian(t, y.data(), dfdy.data(), dfdt.data()) == 0);
         const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> J(dfdy.data(), size, size);
-        const Eigen::VectorXcd lambda = Eigen::EigenSolver<Eigen::MatrixXd>(J).eigenvalues();
+        const Eigen::VectorXcd lambda = test::general_eigen(J).values;
         std::vector<double> reference;
         for (Eigen::Index k = 0; k < lambda.size(); ++k)
             if (lambda[k].imag() > 1e-6) reference.push_back(lambda[k].imag());

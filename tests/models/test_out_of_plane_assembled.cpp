@@ -5,7 +5,6 @@
 // term and all together; the assembled forces against the assembled energies; the forms against section 5.2's block
 // form on planar variants; and the assembled path against closed forms and published frequencies.
 #include <Eigen/Dense>
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -16,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "eigen_oracles.hpp"
 #include "model_values.hpp"
 #include "models/assembled.hpp"
 #include "random_state.hpp"
@@ -285,8 +285,7 @@ FieldBlock spinning(const Model& model, double Omega, FieldKind kind)
 /// The block's natural frequencies, lowest first.
 VectorXd frequencies(const FieldBlock& b)
 {
-    Eigen::GeneralizedSelfAdjointEigenSolver<MatrixXd> es(b.K, b.M, Eigen::EigenvaluesOnly);
-    return es.eigenvalues().cwiseSqrt();
+    return test::generalized_eigen(b.K, b.M, false).values.cwiseSqrt();
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include "analysis/modal_coordinates.hpp"
 #include "linalg/eigen_solvers.hpp"
+#include "linalg/factorizations.hpp"
 #include "models/mode_kinds.hpp"
 #include "models/modal_damping.hpp"
 #include "models/model_operations.hpp"

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "analysis/modal_coordinates.hpp"
+#include "linalg/factorizations.hpp"
 #include "models/model_operations.hpp"
 
 namespace hubbeam {

@@ -13,6 +13,7 @@
 
 #include "dynamics/integrate.hpp"
 #include "dynamics/mass_solver.hpp"
+#include "linalg/factorizations.hpp"
 
 namespace hubbeam {
 

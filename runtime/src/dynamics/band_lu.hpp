@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include "linalg/factorizations.hpp"
+
 namespace hubbeam {
 
 class BorderedBandLU {

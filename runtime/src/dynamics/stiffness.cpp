@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "linalg/eigen_solvers.hpp"
+#include "linalg/factorizations.hpp"
 #include "models/model_operations.hpp"
 
 namespace hubbeam {

@@ -10,6 +10,7 @@
 
 #include <hubbeam/make_model.hpp>
 #include <hubbeam/simulate.hpp>
+#include "linalg/factorizations.hpp"
 #include "models/model_operations.hpp"
 
 namespace hubbeam {
