@@ -25,7 +25,7 @@ inline double linear_between(const std::vector<double>& stations, const std::vec
     return (1.0 - t) * values[w * k + j] + t * values[w * (k + 1) + j];
 }
 
-/// Value j (ProfileValue) of a profile at xi, planar (3 values per station) or a blade's (8).
+/// Value j (ProfileValue) of a profile at xi, planar (3 values per station) or a blade's (max_profile_value_count).
 inline double profile_value(const std::vector<double>& stations, const std::vector<double>& values, ProfileValue j,
                             double xi)
 {

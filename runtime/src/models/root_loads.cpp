@@ -8,6 +8,7 @@
 
 #include <hubbeam/fields.hpp>
 #include "models/rotor_model.hpp"
+#include "models/section_integrals.hpp"
 #include "profile.hpp"
 
 namespace hubbeam {
@@ -81,14 +82,26 @@ BladeLoads::Node BladeLoads::node_at(const BeamFields& section, double xi, doubl
     Node n;
     n.x = xi * p_.L;
     n.weight = weight;
-    const auto table = [&](ProfileValue v, double uniform) {
-        return p_.stations.empty() ? uniform : profile_value(p_.stations, p_.profile, v, xi);
-    };
-    n.m = table(ProfileValue::m, p_.rho * p_.S * section.area_ratio(n.x));
+    n.m = p_.stations.empty() ? p_.rho * p_.S * section.area_ratio(n.x)
+                              : profile_value(p_.stations, p_.profile, ProfileValue::m, xi);
     if (key_.nt > 0) {  // the section's rotary inertia (docs/model.md section 12): only with the twist's coordinates
-        n.j_c = table(ProfileValue::j_c, p_.rho * p_.I_flap * section.flap_moment_ratio(n.x));
-        n.j_n = table(ProfileValue::j_n, p_.rho * p_.I * section.moment_ratio(n.x));
-        n.beta = p_.pitch + table(ProfileValue::inertia_twist, p_.twist * xi);  // the principal inertia axes'
+        // The deviator's components linear between stations, as the model's distributions are (docs/model.md 12.4),
+        // not its angle: then the loads and the equations of motion see one section.
+        double cos_i = 0.0, sin_i = 0.0;
+        if (inertia_.empty()) {
+            const double j_c = p_.rho * p_.I_flap * section.flap_moment_ratio(n.x);
+            const double j_n = p_.rho * p_.I * section.moment_ratio(n.x);
+            n.j_p = j_c + j_n;
+            cos_i = (j_n - j_c) / 2.0 * std::cos(2.0 * p_.twist * xi);
+            sin_i = (j_n - j_c) / 2.0 * std::sin(2.0 * p_.twist * xi);
+        } else {
+            n.j_p = linear_between(p_.stations, inertia_, 0, xi);
+            cos_i = linear_between(p_.stations, inertia_, 1, xi);
+            sin_i = linear_between(p_.stations, inertia_, 2, xi);
+        }
+        const double c = std::cos(2.0 * p_.pitch), s = std::sin(2.0 * p_.pitch);
+        n.j_cos = cos_i * c - sin_i * s;
+        n.j_sin = sin_i * c + cos_i * s;
     }
     n.axial = row_of(key_.axial_basis(), xi, 0, p_.L);
     n.inplane = row_of(key_.transverse_basis(), xi, 0, p_.L);
@@ -113,6 +126,14 @@ BladeLoads::BladeLoads(const VariantKey& key, const Parameters& p)
     const QuadratureRule g = gauss_legendre(points_of(key));
     const FieldBasis inplane = key.transverse_basis(), flap = key.flap_basis();
     const BeamFields section(key, p);  // a taper's ratios
+    if (key.nt > 0 && !p.stations.empty()) {
+        using D = SectionDistribution;
+        const std::vector<double> j_p = section_distribution(key, p, D::j_p);
+        const std::vector<double> j_cos = section_distribution(key, p, D::j_cos);
+        const std::vector<double> j_sin = section_distribution(key, p, D::j_sin);
+        for (std::size_t k = 0; k < p.stations.size(); ++k)
+            inertia_.insert(inertia_.end(), {j_p[k], j_cos[k], j_sin[k]});
+    }
     for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
         const double lo = cuts[k], width = cuts[k + 1] - lo;
         const std::size_t panel_first = nodes_.size();
@@ -139,11 +160,13 @@ void BladeLoads::section_inertia(const Node& n, double dx, double w, double dw, 
 {
     // The section's angular momentum per length h (docs/model.md section 12: angular velocity theta_dot k + phi_dot e1,
     // principal axes along the chord turned by psi = beta + phi) in (e1, e2, e3), and the rates of its components.
-    const double psi = n.beta + phi[0], s2 = std::sin(2.0 * psi), c2 = std::cos(2.0 * psi);
-    const double sp = std::sin(psi), cp = std::cos(psi), jp = n.j_c + n.j_n, jd = n.j_c - n.j_n;
-    const double h1 = jp * (phi[1] + w * sb), h2 = 0.5 * w * cb * jd * s2, h3 = w * cb * (n.j_c * sp * sp + n.j_n * cp * cp);
-    const double r1 = jp * (phi[2] + dw * sb), r2 = 0.5 * cb * jd * (dw * s2 + 2.0 * w * phi[1] * c2),
-                 r3 = cb * (dw * (n.j_c * sp * sp + n.j_n * cp * cp) + w * phi[1] * jd * s2);
+    // The deviator at psi = beta + phi, from its value at beta turned by 2 phi: dev cos 2 psi and dev sin 2 psi, with
+    // dev = (j_n - j_c) / 2, so that j_c sin^2 psi + j_n cos^2 psi = j_p / 2 + re and (j_c - j_n) sin 2 psi = -2 im.
+    const double c2 = std::cos(2.0 * phi[0]), s2 = std::sin(2.0 * phi[0]);
+    const double re = n.j_cos * c2 - n.j_sin * s2, im = n.j_sin * c2 + n.j_cos * s2, jp = n.j_p;
+    const double h1 = jp * (phi[1] + w * sb), h2 = -w * cb * im, h3 = w * cb * (jp / 2.0 + re);
+    const double r1 = jp * (phi[2] + dw * sb), r2 = -cb * (dw * im + 2.0 * w * phi[1] * re),
+                 r3 = cb * (dw * (jp / 2.0 + re) - 2.0 * w * phi[1] * im);
     // dh/dt in the frame turning at theta_dot k = theta_dot (sb e1 + cb e3): the rates plus theta_dot k x h.
     const double D1 = r1 - w * cb * h2, D2 = r2 + w * (cb * h1 - sb * h3), D3 = r3 + w * sb * h2;
     // The blade on the hub takes -dh/dt, in (i_b, j_b, k).

@@ -39,7 +39,10 @@ private:
     /// The kinematics of one node along the span: the shape functions' rows, the section's data there.
     struct Node {
         double x, weight;            // m; weight in m (0 for the tip's node)
-        double m, j_c, j_n, beta;    // kg/m, kg m, kg m, rad
+        double m;                    // kg/m
+        // The mass moments per length (kg m): their sum j_c + j_n and their deviator (j_n - j_c) / 2 turned by twice
+        // the principal inertia axes' angle with the pitch, cos and sin, as the section integrals take them.
+        double j_p, j_cos, j_sin;
         std::vector<double> axial, inplane, flap, twist;  // values
         std::vector<double> inplane_slope, flap_slope;    // d/dx
         // The foreshortening's integral from 0 to x: over the panels before this node's (their outer nodes) and over
@@ -57,6 +60,7 @@ private:
 
     VariantKey key_;
     Parameters p_;
+    std::vector<double> inertia_;  // a profile's j_p, j_cos, j_sin at each station (without the pitch); else empty
     int hub_x_ = -1, hub_y_ = -1, axial_ = -1, inplane_ = -1, flap_ = -1, twist_ = -1;
     bool torque_, foreshortened_;
     std::vector<Node> nodes_;  // the rule's, by increasing x
