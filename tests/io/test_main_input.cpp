@@ -242,7 +242,7 @@ TEST_CASE("every setting hubbeam does not model is refused naming the file, the 
     };
     const Case bmi = {"bmodes/Test01_hubbeam.bmi", 0, "", 0, "", ""};
     const std::vector<Case> cases = {
-        {"bmodes/Test01_nonunif_blade.bmi", 0, "", 8, "romg_mult", "expected 1"},
+        {bmi.input, 8, "-1.0      romg_mult:  rotor speed muliplicative factor (-)", 8, "romg_mult", ">= 0"},
         {bmi.input, 6, "2         beam_type   1: blade, 2: tower (-)", 6, "beam_type", "not a tower"},
         {bmi.input, 13, "2         hub_conn:   hub-to-blade connection", 13, "hub_conn", "cantilevered"},
         {bmi.input, 22, "-1.75     iyy_tip     blade flap inertia", 22, "iyy_tip", ">= 0"},
@@ -356,11 +356,15 @@ TEST_CASE("a missing or malformed blade file is refused naming its file and line
     CHECK(no_blade.line == 86);
     CHECK(no_blade.setting == "BldFile(1)");
     CHECK_THAT(no_blade.what(), Catch::Contains("ed.dat:86: BldFile(1): expected a file that exists"));
-    // CertTest's own section file, with its shear-centre offsets (read, not used: docs/model.md section 12.6).
-    const std::string certtest = folder.write(
-        "certtest.bmi", with_line(text_of(data("bmodes/Test01_nonunif_blade.bmi")), 8, "1.0       romg_mult:"));
+    // CertTest's own section file, with its shear-centre offsets (read, not used: docs/model.md section 12.6), and its
+    // romg_mult 2 of BModes v1, which divides the stiffnesses by its square and multiplies the frequencies by it: the
+    // blade at twice romg.
+    const std::string certtest = folder.write("certtest.bmi", text_of(data("bmodes/Test01_nonunif_blade.bmi")));
     std::filesystem::copy_file(data("bmodes/blade_sec_props.dat"), folder.path / "blade_sec_props.dat");
-    CHECK_NOTHROW(imported_scene_toml(read_main_input(certtest), (folder.path / "out.toml").string()));
+    std::string certtest_toml;
+    const Scene certtest_scene = imported(certtest, folder, &certtest_toml);
+    CHECK(certtest_scene.motion.omega0 == Approx(2.0 * 60.0 * pi / 30).epsilon(1e-15));
+    CHECK_THAT(certtest_toml, Catch::Contains("romg = 60.0 rpm (certtest.bmi:7) times romg_mult = 2.0 (certtest.bmi:8)"));
     // A file of neither format.
     const std::string neither = folder.write("neither.dat", "just some text\n");
     CHECK_THROWS_AS(read_main_input(neither), MainInputError);
@@ -385,6 +389,11 @@ TEST_CASE("a BModes v3 file, with rot_rpm and a cm_axial line, reads alike, and 
     const Scene scene = imported(folder.write("v3.bmi", text), folder);
     CHECK(scene.motion.omega0 == Approx(60.0 * pi / 30).epsilon(1e-15));
     CHECK(scene.parameters.J_tip == 0.0);
+    // BModes v3 spins the blade at rot_rpm times rpm_mult (BModes.f90: rot_rpm = rot_rpm*rpm_mult).
+    const Scene faster = imported(
+        folder.write("v3_mult.bmi", with_line(text, 8, "1.5       rpm_mult:   rotor speed multiplicative factor (-)")),
+        folder);
+    CHECK(faster.motion.omega0 == Approx(90.0 * pi / 30).epsilon(1e-15));
 
     const MainInputError e = refusal_of(
         folder.write("v3_offset.bmi", with_line(text, 21, "0.2       cm_axial    tip-mass c.m. axial offset")));

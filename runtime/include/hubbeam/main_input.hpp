@@ -24,6 +24,10 @@ struct ImportedBlade {
     std::string blade_file;  // the section file it names, resolved against the main file's folder
     InputSetting blade_file_setting;
     InputSetting rotor_speed;  // rpm
+    // BModes' romg_mult (v3: rpm_mult): the blade spins at rotor_speed times it (v3 multiplies the speed; v1 divides
+    // the stiffnesses by its square and multiplies the frequencies by it, which is the same blade at that speed). 1,
+    // line 0, for ElastoDyn.
+    InputSetting rotor_speed_factor{"", 0, "1", 1.0};
     InputSetting tip_radius;   // m, from the axis (BModes' radius, ElastoDyn's TipRad)
     InputSetting hub_radius;   // m (hub_rad, HubRad)
     InputSetting precone;      // deg

@@ -246,10 +246,10 @@ ImportedBlade parse_bmodes(const InputText& t)
     const InputSetting beam_type = c.number_var({"beam_type"}, "1: blade, 2: tower");
     require(t, beam_type, 1, "a blade (hubbeam models a rotating blade, not a tower)");
     b.rotor_speed = c.number_var({"romg", "rot_rpm"}, "rotor speed, rpm");
-    const InputSetting romg_mult = c.number_var({"romg_mult", "rpm_mult"}, "rotor speed multiplicative factor");
-    require(t, romg_mult, 1,
-            "hubbeam spins the blade at romg itself (BModes divides the stiffnesses by romg_mult^2; hubbeam has no "
-            "such factor)");
+    b.rotor_speed_factor = c.number_var({"romg_mult", "rpm_mult"}, "rotor speed multiplicative factor");
+    if (!(b.rotor_speed_factor.value >= 0.0))
+        fail(t, b.rotor_speed_factor.line, b.rotor_speed_factor.name,
+             "a value >= 0 (the blade spins at romg times it)");
     b.tip_radius = c.number_var({"radius"}, "rotor tip radius along the coned blade axis, m");
     b.hub_radius = c.number_var({"hub_rad", "rroot"}, "hub radius along the coned blade axis, m");
     if (!(b.hub_radius.value >= 0.0)) fail(t, b.hub_radius.line, "hub_rad", "a value >= 0 (the hub radius, m)");
@@ -624,14 +624,18 @@ std::string imported_scene_toml(const ImportedBlade& b, const std::string& scene
         return true;
     }();
     const std::string input = printable(std::filesystem::path(b.file).filename().string(), 200);
-    const double omega = b.rotor_speed.value * rpm;
+    // The speed BModes analyses: romg times romg_mult (the field's ImportedBlade::rotor_speed_factor).
+    const double speed = b.rotor_speed.value * b.rotor_speed_factor.value, omega = speed * rpm;
+    const std::string speed_origin =
+        origin(b, b.rotor_speed, "rpm") +
+        (b.rotor_speed_factor.line > 0 ? " times " + origin(b, b.rotor_speed_factor, "") : std::string());
     const std::string radius_names = bmodes ? "radius - hub_rad" : "TipRad - HubRad";
 
     std::string s;
     s += "# One blade of the rotor in " + input + " (" + b.format + "), written by hubbeam import:\n";
     s += "# clamped to the hub, spun up from rest to the file's rotor speed, its section from the file it names.\n";
     s += "#\n";
-    s += "# Its natural modes about the steady spin of " + toml_number(b.rotor_speed.value) + " rpm (" +
+    s += "# Its natural modes about the steady spin of " + toml_number(speed) + " rpm (" +
          toml_number(omega) + " rad/s):\n";
     s += "#   hubbeam modes " + quoted_string(scene_path) + " --omega " + toml_number(omega) + "\n";
     if (omega > 0.0)  // a range up to twice the speed, in steps that resolve a blade's first modes
@@ -665,7 +669,7 @@ std::string imported_scene_toml(const ImportedBlade& b, const std::string& scene
 
     s += "\n[motion]\n";
     s += key_line("kind", "\"spin-up\"", "from rest to omega0 (hubbeam run); modes take the steady spin");
-    s += key_line("omega0", toml_number(omega), "rad/s: " + origin(b, b.rotor_speed, "rpm"));
+    s += key_line("omega0", toml_number(omega), "rad/s: " + speed_origin);
     s += key_line("duration", "20.0", "s to reach omega0");
 
     s += "\n[discretization]\n";
