@@ -6,7 +6,9 @@
 #include <filesystem>
 #include <fstream>
 #include <hubbeam/blade_files.hpp>
+#include <hubbeam/linearize.hpp>
 #include <hubbeam/main_input.hpp>
+#include <hubbeam/make_model.hpp>
 #include <hubbeam/scene.hpp>
 #include <numbers>
 #include <sstream>
@@ -249,10 +251,11 @@ TEST_CASE("every setting hubbeam does not model is refused naming the file, the 
         {bmi.input, 24, "0.1       ixy_tip     cross product", 24, "ixy_tip", "principal axes"},
         {bmi.input, 25, "0.1       izx_tip     cross product", 25, "izx_tip", "principal axes"},
         {bmi.input, 29, "2         id_mat:     material_type", 29, "id_mat", "isotropic"},
-        {bmi.input, 33, "1.1       sec_mass_mult:   mass density multiplier (-)", 33, "sec_mass_mult", "multiplier"},
-        {bmi.input, 38, "0.9       tor_stff_mult:   torsion stiffness multiplier (-)", 38, "tor_stff_mult",
-         "expected 1"},
-        {bmi.input, 42, "0.0       tc_offst_mult:   tension center multiplier (-)", 42, "tc_offst_mult", "expected 1"},
+        {bmi.input, 33, "-1.1      sec_mass_mult:   mass density multiplier (-)", 33, "sec_mass_mult",
+         "blade_scale.mass"},
+        {bmi.input, 38, "0         tor_stff_mult:   torsion stiffness multiplier (-)", 38, "tor_stff_mult", "> 0"},
+        {bmi.input, 42, "fast      tc_offst_mult:   tension center multiplier (-)", 42, "tc_offst_mult",
+         "a finite number"},
         {bmi.input, 7, "fast      romg:       rotor speed (rpm)", 7, "romg", "a finite number"},
         {bmi.input, 9, "35.0      hub_rad:    swapped", 9, "radius", "by position"},
         {bmi.input, 9, "1.0       radius:     shorter than the hub", 9, "radius", "above hub_rad"},
@@ -425,4 +428,44 @@ TEST_CASE("BModes' CertTest 02 tip body becomes [tip]'s mass, lag, flap and tors
     CHECK(scene.key().extras.tip_body);
     CHECK(toml.find("offset = 0.05") != std::string::npos);
     CHECK(toml.find("cm_loc = 0.05 m (test02.bmi:20)") != std::string::npos);
+}
+
+TEST_CASE("BModes' property multipliers become [blade_scale], each naming its line, and scale the blade as BModes does",
+          "[import]")
+{
+    // The mass and both mass moments four times the section file's, its stiffnesses as they are: at rest every
+    // natural frequency is half the unscaled blade's (K q = omega^2 M q with M four times larger), bending and twist
+    // alike. sc_offst_mult is read and not used.
+    TempFolder folder("import");
+    std::filesystem::copy_file(data("bmodes/blade_sec_props_no_offsets.dat"),
+                               folder.path / "blade_sec_props_no_offsets.dat");
+    const std::string text = text_of(data("bmodes/Test01_hubbeam.bmi"));
+    std::string heavy = with_line(text, 33, "4.0       sec_mass_mult:   mass density multiplier (-)");
+    heavy = with_line(heavy, 34, "4.0       flp_iner_mult:   blade flap inertia multiplier (-)");
+    heavy = with_line(heavy, 35, "4.0       lag_iner_mult:   blade lag inertia multiplier (-)");
+    heavy = with_line(heavy, 41, "7.0       sc_offst_mult:   shear center multiplier (-)");
+    std::string toml;
+    const Scene plain = imported(folder.write("plain.bmi", text), folder);
+    const Scene scaled = imported(folder.write("heavy.bmi", heavy), folder, &toml);
+    CHECK_THAT(toml, Catch::Contains("[blade_scale]"));
+    CHECK_THAT(toml, Catch::Contains("# sec_mass_mult = 4.0 (heavy.bmi:33)"));
+    CHECK_THAT(toml, Catch::Contains("# lag_iner_mult = 4.0 (heavy.bmi:35)"));
+    CHECK(toml.find("sc_offst_mult") == std::string::npos);
+    CHECK(scaled.blade_scale.mass == 4.0);
+    CHECK(scaled.blade_scale.inertia_flap == 4.0);
+    CHECK(scaled.blade_scale.inertia_edge == 4.0);
+    CHECK(scaled.blade_scale.stiffness_flap == 1.0);
+    const auto rates = [](const Scene& s) {
+        const auto model = make_model(s.key(), s.parameters, ModelSource::assembled);
+        std::vector<double> out;
+        for (const NaturalMode& m : natural_modes(*model, steady_spin(*model, 0.0))) out.push_back(m.rad_s);
+        return out;
+    };
+    const std::vector<double> a = rates(plain), b = rates(scaled);
+    REQUIRE(a.size() == b.size());
+    REQUIRE(a.size() >= 6);
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        INFO("mode " << i << ": " << a[i] << " and " << b[i] << " rad/s");
+        CHECK(std::abs(b[i] - a[i] / 2.0) < 1e-9 * a[i]);
+    }
 }

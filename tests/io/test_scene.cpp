@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "io/scene_io.hpp"
 #include "temp_folder.hpp"
 
 using namespace hubbeam;
@@ -475,9 +476,13 @@ TEST_CASE("a table accepts exactly the keys the key table gives it, [motion] tho
     CHECK(table_keys("motion", "step") == std::vector<std::string>{"kind", "angle"});
     CHECK(table_keys("motion", "table") == std::vector<std::string>{"kind", "theta0", "file"});
     CHECK(table_keys("motion", "torque-table") == std::vector<std::string>{"kind", "theta0", "file"});
-    CHECK(scene_tables() == std::vector<std::string>{"beam", "hub", "support", "tip", "damping", "gravity", "motion",
-                                                     "control", "rotor", "discretization", "model", "solver", "output",
-                                                     "initial"});
+    CHECK(scene_tables() == std::vector<std::string>{"beam", "blade_scale", "hub", "support", "tip", "damping",
+                                                     "gravity", "motion", "control", "rotor", "discretization",
+                                                     "model", "solver", "output", "initial"});
+    // [blade_scale]'s keys are the factors the reader and the printer iterate, in their order.
+    std::vector<std::string> factors;
+    for (const scene_io::BladeScaleField& f : scene_io::blade_scale_fields) factors.push_back(f.key);
+    CHECK(table_keys("blade_scale") == factors);
 }
 
 TEST_CASE("printable() escapes what could move, recolour or reorder a terminal, in hubbeam.printable's forms",
@@ -777,4 +782,79 @@ TEST_CASE("a run's summary says how the hub moves: held, from which table, from 
     // The paper's scenes say what they always said.
     CHECK(first_line(load_scene(case_path("torque_tau1.toml"))) ==
           "scene       " + case_path("torque_tau1.toml") + " (hub torque tau0 = 1 N m for T_t = 10 s)");
+}
+
+TEST_CASE("[blade_scale] multiplies the blade file's columns, each its own, as BModes' property multipliers do",
+          "[scene][blade_files]")
+{
+    // A BModes section file whose columns all differ from 0 and from each other; each factor of 1.5 alone must scale
+    // its column of the scene's profile (docs/model.md 12.4's values: m, EI edge, ES, EI_flap, GJ, j_c, j_n) or
+    // offsets, and nothing else.
+    const TempFolder folder("blade-scale");
+    folder.write("blade.dat",
+                 "blade\n2 n_secs\n\nsec_loc str_tw tw_iner mass_den flp_iner edge_iner flp_stff edge_stff tor_stff "
+                 "axial_stff cg_offst sc_offst tc_offst\n(-) (deg) (deg) (kg/m) (kg-m) (kg-m) (Nm^2) (Nm^2) (Nm^2) (N) "
+                 "(m) (m) (m)\n0 5 5 10 2 3 400 900 100 1e6 0.1 0.05 0.02\n1 4 4 8 1.5 2.5 300 700 80 8e5 0.08 0.04 "
+                 "0.01\n");
+    const auto scene = [&](const std::string& scale) {
+        const std::string text = "[beam]\nlength = 10\nblade_file = \"blade.dat\"\n" + scale +
+                                 "[motion]\nkind = \"spin-up\"\nomega0 = 1\nduration = 1\n[discretization]\n"
+                                 "method = \"fem\"\nny = 4\nnx = 4\nnz = 4\nnt = 2\n[output]\nt_end = 1\n";
+        return parse_scene(text, (folder.path / "s.toml").string());
+    };
+    const Scene plain = scene("");
+    using V = ProfileValue;
+    const std::vector<std::pair<std::string, int>> columns = {
+        {"mass", static_cast<int>(V::m)},
+        {"inertia_flap", static_cast<int>(V::j_c)},
+        {"inertia_edge", static_cast<int>(V::j_n)},
+        {"stiffness_flap", static_cast<int>(V::EI_flap)},
+        {"stiffness_edge", static_cast<int>(V::EI)},
+        {"stiffness_torsion", static_cast<int>(V::GJ)},
+        {"stiffness_axial", static_cast<int>(V::ES)},
+        {"cg_offset", -1 - static_cast<int>(SectionOffset::mass)},
+        {"tc_offset", -1 - static_cast<int>(SectionOffset::tension)}};
+    const std::size_t w = max_profile_value_count;
+    for (const auto& [key, column] : columns) {
+        INFO(key);
+        const Scene scaled = scene("[blade_scale]\n" + key + " = 1.5\n");
+        REQUIRE(scaled.parameters.profile.size() == plain.parameters.profile.size());
+        for (std::size_t i = 0; i < plain.parameters.profile.size(); ++i) {
+            const double ratio = static_cast<int>(i % w) == column ? 1.5 : 1.0;
+            CHECK(scaled.parameters.profile[i] == plain.parameters.profile[i] * ratio);
+        }
+        REQUIRE(scaled.parameters.offsets.size() == plain.parameters.offsets.size());
+        for (std::size_t i = 0; i < plain.parameters.offsets.size(); ++i) {
+            const int which = static_cast<int>(i % section_offset_count);
+            CHECK(scaled.parameters.offsets[i] == plain.parameters.offsets[i] * (-1 - which == column ? 1.5 : 1.0));
+        }
+        // The effective scene names every factor, 1 where the file leaves one out.
+        const std::string printed = effective_scene_toml(scaled);
+        CHECK(printed.find("\n" + key + " = 1.5\n") != std::string::npos);
+        CHECK(printed.find("[blade_scale]\nmass = " + std::string(key == "mass" ? "1.5" : "1") + "\n") !=
+              std::string::npos);
+    }
+    // Out of range, or with no blade file to scale, a factor is refused naming its key.
+    const auto refused = [&](const std::string& text, const std::string& key) {
+        try {
+            (void)parse_scene(text, (folder.path / "s.toml").string());
+            FAIL(key << " was accepted");
+        } catch (const SceneError& e) {
+            CHECK(e.key == key);
+        }
+    };
+    const std::string uniform = "[beam]\nlength = 8\ndensity = 1\narea = 1\nsecond_moment = 1\nyoungs_modulus = 1\n"
+                                "[motion]\nkind = \"spin-up\"\nomega0 = 1\nduration = 1\n[discretization]\n"
+                                "method = \"amm\"\nny = 4\nnx = 0\n[output]\nt_end = 1\n";
+    refused(uniform + "[blade_scale]\nmass = 2\n", "blade_scale.mass");
+    const Scene unscaled = parse_scene(uniform + "[blade_scale]\nmass = 1\n", (folder.path / "s.toml").string());
+    CHECK(effective_scene_toml(unscaled).find("blade_scale") == std::string::npos);  // no blade file to scale
+    for (const char* bad : {"mass = 0", "stiffness_flap = -1", "inertia_edge = -0.5", "cg_offset = inf"}) {
+        const std::string line = bad;
+        refused("[blade_scale]\n" + line + "\n[beam]\nlength = 10\nblade_file = \"blade.dat\"\n[motion]\n"
+                "kind = \"spin-up\"\nomega0 = 1\nduration = 1\n[discretization]\nmethod = \"fem\"\nny = 4\n"
+                "nx = 4\nnz = 4\nnt = 2\n[output]\nt_end = 1\n",
+                "blade_scale." + line.substr(0, line.find(' ')));
+    }
+    CHECK_NOTHROW(scene("[blade_scale]\ninertia_edge = 0\ncg_offset = -2\n"));
 }

@@ -146,6 +146,14 @@ bool parse(std::string_view, InitialState&);
 template <>
 std::vector<std::string> words<InitialState>();
 
+/// Factors on a blade file's columns (scene table [blade_scale], docs/scene.md): BModes' property multipliers, as a
+/// main input file gives them; blade_files.hpp's blade_scale_fields names each and its column. 1 each leaves the file
+/// as it is.
+struct BladeScale {
+    double mass = 1.0, inertia_flap = 1.0, inertia_edge = 1.0, stiffness_flap = 1.0, stiffness_edge = 1.0,
+           stiffness_torsion = 1.0, stiffness_axial = 1.0, cg_offset = 1.0, tc_offset = 1.0;
+};
+
 struct Scene {
     std::string path;  // the file it came from, for messages
     /// The other files it was read from, each with its key: {"beam.profile", FILE}, {"beam.blade_file", FILE},
@@ -154,6 +162,7 @@ struct Scene {
     std::vector<std::pair<std::string, std::string>> tables;
     /// beam.blade_stations: the stations a blade file was resampled at, 0 for its own (docs/scene.md).
     int blade_stations = 0;
+    BladeScale blade_scale;  // [blade_scale]: factors on beam.blade_file's columns
     Parameters parameters;
     Motion motion;
     std::optional<Control> control;  // [control]: motion is then the reference of a torque-driven hub

@@ -37,6 +37,9 @@ struct ImportedBlade {
     // The tip body's flap and torsion inertias (kg m^2) and its centre of mass's offset along the tip chord (m,
     // positive towards the trailing edge): BModes' iyy_tip, izz_tip, cm_loc; ElastoDyn has none (line 0).
     InputSetting tip_inertia_flap, tip_inertia_twist, tip_offset;
+    // BModes' property multipliers (sec_mass_mult ... tc_offst_mult, sc_offst_mult aside), in the order of
+    // blade_scale_fields: the scene's [blade_scale]. Empty for ElastoDyn, whose blade file applies its own.
+    std::vector<InputSetting> blade_scale;
     bool has_gravity = false;
     InputSetting gravity;  // m/s^2 (ElastoDyn up to FAST v8: Gravity)
     /// The blade file's structural damping ratios (ElastoDyn's BldFlDmp(1), BldFlDmp(2), BldEdDmp(1), percent of

@@ -21,9 +21,9 @@ struct SceneValue {
 
 /// Every key of scene_keys() that applies to the scene, in the key table's order, with the value the scene runs
 /// with: a default where the file left the key out, the motion's keys for its kind only, [control] only with a
-/// controller, [beam]'s section keys only without a profile (its table gives them). A table's file is its absolute
-/// path, so that the printed scene reads the same table from any folder. A scene driven by a torque law given as code
-/// (Python) has no [control] to print: the law is no key.
+/// controller, [beam]'s section keys only without a profile (its table gives them), [blade_scale] only with a blade
+/// file (it scales its columns). A table's file is its absolute path, so that the printed scene reads the same table
+/// from any folder. A scene driven by a torque law given as code (Python) has no [control] to print: the law is no key.
 std::vector<SceneValue> effective_scene(const Scene& scene);
 
 /// effective_scene as a scene file: one [table] per table, one `key = value` line per key, numbers in their

@@ -53,6 +53,7 @@
 #include <string_view>
 #include <tuple>
 
+#include "io/scene_io.hpp"
 #include "variant.hpp"
 
 namespace hubbeam {
@@ -293,14 +294,16 @@ ImportedBlade parse_bmodes(const InputText& t)
     check_named_file(t, b.blade_file_setting, b.blade_file);
     c.skip("a blank line");
     c.skip("the property scaling factors line");
-    // hubbeam has no scene key for any of them: a value other than 1 would change the blade without the scene saying.
+    // The scene's [blade_scale], in the order of blade_scale_fields; the shear centre's offset is read and not used
+    // (docs/model.md 12.6), and so is its multiplier.
     constexpr std::array<const char*, 10> multipliers = {
         "sec_mass_mult", "flp_iner_mult",   "lag_iner_mult", "flp_stff_mult", "edge_stff_mult",
         "tor_stff_mult", "axial_stff_mult", "cg_offst_mult", "sc_offst_mult", "tc_offst_mult"};
-    for (const char* m : multipliers)
-        require(t, c.number_var({m}, "a property multiplier"), 1,
-                "hubbeam reads the section file's values as they are (it has no multiplier); scale the section file "
-                "instead");
+    for (const char* m : multipliers) {
+        InputSetting s = c.number_var({m}, "a property multiplier");
+        if (std::string_view(m) != "sc_offst_mult") b.blade_scale.push_back(std::move(s));
+    }
+    static_assert(multipliers.size() == scene_io::blade_scale_fields.size() + 1);
     return b;
 }
 
@@ -528,6 +531,17 @@ std::string key_line(const std::string& key, const std::string& value, const std
 
 /// [tip] from the tip mass and its inertias and offset (each key only where the file gives it and it is not 0, but
 /// the mass and lag inertia as before); empty without a tip body.
+/// The [blade_scale] table of BModes' property multipliers other than 1, each naming its line; empty if none.
+std::string blade_scale_table(const ImportedBlade& b)
+{
+    std::string s;
+    for (std::size_t k = 0; k < b.blade_scale.size(); ++k)
+        if (b.blade_scale[k].value != 1.0)
+            s += key_line(scene_io::blade_scale_fields[k].key, toml_number(b.blade_scale[k].value),
+                          origin(b, b.blade_scale[k], ""));
+    return s.empty() ? s : "\n[blade_scale]                   # factors on the section file's columns\n" + s;
+}
+
 std::string tip_table(const ImportedBlade& b)
 {
     const bool body = b.tip_mass.value > 0.0 || b.tip_inertia.value > 0.0 || b.tip_inertia_flap.value > 0.0 ||
@@ -617,7 +631,11 @@ std::string imported_scene_toml(const ImportedBlade& b, const std::string& scene
 {
     const bool bmodes = b.format == main_input_bmodes;
     // The section file first: a refusal of it names its own line and column (blade_files.cpp).
-    const BladeTable table = read_blade_file(b.blade_file);
+    BladeTable table = read_blade_file(b.blade_file);
+    BladeScale scale;  // the multipliers, as the scene's [blade_scale] will apply them
+    for (std::size_t k = 0; k < b.blade_scale.size(); ++k)
+        scale.*scene_io::blade_scale_fields[k].factor = b.blade_scale[k].value;
+    scene_io::scale_columns(table, scale);
     const bool twist_field = !table.GJ.empty() && !table.mass_moment_flap.empty() && [&] {
         for (std::size_t k = 0; k < table.x_over_L.size(); ++k)
             if (!(table.mass_moment_flap[k] + table.mass_moment_edge[k] > 0.0)) return false;
@@ -657,6 +675,8 @@ std::string imported_scene_toml(const ImportedBlade& b, const std::string& scene
 
     s += tip_table(b);
 
+    s += blade_scale_table(b);
+
     s += damping_table(b);
 
     if (b.has_gravity) {
@@ -691,11 +711,13 @@ std::string imported_scene_toml(const ImportedBlade& b, const std::string& scene
 
     // Checked by hubbeam's own reader, as `hubbeam run` will read it: a value out of the scene's range is refused
     // here, against the input's line, before anything is written.
-    const Origins origins = {{"beam.length", &b.tip_radius},   {"beam.pitch", &b.pitch},
-                             {"beam.precone", &b.precone},     {"hub.radius", &b.hub_radius},
-                             {"tip.mass", &b.tip_mass},        {"tip.inertia", &b.tip_inertia},
-                             {"tip.inertia_flap", &b.tip_inertia_flap}, {"tip.inertia_twist", &b.tip_inertia_twist},
-                             {"tip.offset", &b.tip_offset},    {"motion.omega0", &b.rotor_speed}};
+    Origins origins = {{"beam.length", &b.tip_radius},   {"beam.pitch", &b.pitch},
+                       {"beam.precone", &b.precone},     {"hub.radius", &b.hub_radius},
+                       {"tip.mass", &b.tip_mass},        {"tip.inertia", &b.tip_inertia},
+                       {"tip.inertia_flap", &b.tip_inertia_flap}, {"tip.inertia_twist", &b.tip_inertia_twist},
+                       {"tip.offset", &b.tip_offset},    {"motion.omega0", &b.rotor_speed}};
+    for (std::size_t k = 0; k < b.blade_scale.size(); ++k)
+        origins[std::string("blade_scale.") + scene_io::blade_scale_fields[k].key] = &b.blade_scale[k];
     try {
         (void)parse_scene(s, scene_path);
     } catch (const SceneError& e) {

@@ -59,6 +59,7 @@ public:
     }
 
     std::string path(std::string_view key) const { return name_ + "." + std::string(key); }
+    const std::string& file() const { return file_; }
     const toml::node* get(std::string_view key) const { return table_ ? table_->get(key) : nullptr; }
     bool absent() const { return table_ == nullptr; }
 
@@ -305,10 +306,35 @@ void read_gravity_direction(const Section& gravity, Parameters& p)
     p.g = 0.0;
 }
 
+/// [blade_scale]: factors on beam.blade_file's columns (docs/scene.md), each in its key's range (a mass or a stiffness
+/// > 0, a mass moment >= 0, an offset's any finite number); one other than 1 is refused without a blade file, where it
+/// would scale nothing.
+BladeScale read_blade_scale(const Section& s, const Section& beam)
+{
+    BladeScale scale;
+    if (s.absent()) return scale;
+    s.only();
+    const auto blade = beam.string("blade_file");
+    for (const BladeScaleField& f : blade_scale_fields) {
+        const std::optional<double> v = s.number(f.key);
+        if (!v) continue;
+        const std::string_view key = f.key;
+        const bool offset = key.ends_with("offset"), moment = key.starts_with("inertia");
+        if (!std::isfinite(*v) || (!offset && *v < 0.0) || (!offset && !moment && *v == 0.0))
+            s.refuse(f.key, shortest(*v));
+        if (*v != 1.0 && (!blade || blade->empty()))
+            throw SceneError::with_detail(s.file(), s.path(f.key),
+                                          "not used without beam.blade_file (it scales the file's column): remove it");
+        scale.*f.factor = *v;
+    }
+    return scale;
+}
+
 /// [beam]: docs/model.md section 1, the taper of section 11 (a taper kind without a ratio is refused: the default
 /// ratio 1 would make it uniform without a word) and the tabulated profile of section 11.2 (the section's keys and
 /// a taper with it are refused: the table gives the beam's distributions). Returns the profile table, if any.
-std::optional<ProfileTable> read_beam(const Section& beam, const std::string& scene_path, Parameters& p, Extras& extras)
+std::optional<ProfileTable> read_beam(const Section& beam, const std::string& scene_path, const BladeScale& scale,
+                                      Parameters& p, Extras& extras)
 {
     beam.only();
     p.L = beam.required_number("length");
@@ -331,7 +357,7 @@ std::optional<ProfileTable> read_beam(const Section& beam, const std::string& sc
                     scene_path, beam.path(key),
                     std::string("not used with ") + by + " (its table gives the section along the span): remove it");
         if (tabulated) return read_profile(scene_path, *profile, p, extras);
-        return read_blade(scene_path, *blade, resample, p, extras);
+        return read_blade(scene_path, *blade, resample, scale, p, extras);
     }
     p.rho = beam.required_number("density");
     p.S = beam.required_number("area");
@@ -530,8 +556,9 @@ Scene parse_scene(std::string_view text, const std::string& path, const Override
 
     Scene scene;
     scene.path = path;
+    scene.blade_scale = read_blade_scale(Section(path, root, "blade_scale"), Section(path, root, "beam"));
     const std::optional<ProfileTable> profile =
-        read_beam(Section(path, root, "beam"), path, scene.parameters, scene.variant.extras);
+        read_beam(Section(path, root, "beam"), path, scene.blade_scale, scene.parameters, scene.variant.extras);
     scene.tables = named_files(root, path);
     if (profile) scene.blade_stations = profile->resample;
     read_extras(root, path, scene.parameters);

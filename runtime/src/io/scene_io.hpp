@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstddef>
+#include <hubbeam/blade_files.hpp>
 #include <hubbeam/scene.hpp>
 #include <memory>
 #include <string>
@@ -12,6 +13,34 @@
 #include <vector>
 
 namespace hubbeam::scene_io {
+
+/// One factor of BladeScale: its key in [blade_scale], its member, the BladeTable column it multiplies.
+struct BladeScaleField {
+    const char* key;
+    double BladeScale::*factor;
+    std::vector<double> BladeTable::*column;
+};
+
+/// Every factor, in the order of [blade_scale]'s keys in scene_keys.cpp and of BModes' multipliers (sc_offst_mult
+/// aside).
+inline constexpr std::array<BladeScaleField, 9> blade_scale_fields = {{
+    {"mass", &BladeScale::mass, &BladeTable::mass_per_length},
+    {"inertia_flap", &BladeScale::inertia_flap, &BladeTable::mass_moment_flap},
+    {"inertia_edge", &BladeScale::inertia_edge, &BladeTable::mass_moment_edge},
+    {"stiffness_flap", &BladeScale::stiffness_flap, &BladeTable::EI_flap},
+    {"stiffness_edge", &BladeScale::stiffness_edge, &BladeTable::EI_edge},
+    {"stiffness_torsion", &BladeScale::stiffness_torsion, &BladeTable::GJ},
+    {"stiffness_axial", &BladeScale::stiffness_axial, &BladeTable::EA},
+    {"cg_offset", &BladeScale::cg_offset, &BladeTable::cg_offset},
+    {"tc_offset", &BladeScale::tc_offset, &BladeTable::tc_offset},
+}};
+
+/// table's columns, each times its factor in scale (a column the file lacks stays empty).
+inline void scale_columns(BladeTable& table, const BladeScale& scale)
+{
+    for (const BladeScaleField& f : blade_scale_fields)
+        for (double& v : table.*f.column) v *= scale.*f.factor;
+}
 
 /// The "got" of a required key that is absent.
 inline constexpr const char* missing = "nothing (the key is missing)";
@@ -64,8 +93,10 @@ struct ProfileTable {
 /// beam.profile's table into the variant's stations and p.profile (every value per station; fit_profile keeps what
 /// the variant reads).
 ProfileTable read_profile(const std::string& scene_path, const std::string& name, Parameters& p, Extras& extras);
-/// beam.blade_file's BModes or ElastoDyn file as a profile (its stations, or `resample` equally spaced ones if > 0).
-ProfileTable read_blade(const std::string& scene_path, const std::string& name, int resample, Parameters& p,
+/// beam.blade_file's BModes or ElastoDyn file as a profile (its stations, or `resample` equally spaced ones if > 0),
+/// its columns times scale's factors.
+ProfileTable read_blade(const std::string& scene_path, const std::string& name, int resample,
+                        const BladeScale& scale, Parameters& p,
                         Extras& extras);
 /// p.profile as the scene's variant reads it, once the discretization and the beam's angles are known.
 void fit_profile(const std::string& scene_path, const ProfileTable& table, const VariantKey& key, Parameters& p);

@@ -100,6 +100,15 @@ std::optional<SceneValue> beam_value(const Scene& s, const SceneKey& k)
     throw std::logic_error("effective_scene: no value for " + std::string(k.name));
 }
 
+/// [blade_scale]: only with a blade file, whose columns it scales.
+std::optional<SceneValue> blade_scale_value(const Scene& s, const SceneKey& k)
+{
+    if (table_file(s, "beam.blade_file").empty()) return std::nullopt;
+    for (const scene_io::BladeScaleField& f : scene_io::blade_scale_fields)
+        if (k.leaf() == f.key) return number(k, s.blade_scale.*f.factor);
+    throw std::logic_error("effective_scene: no value for " + std::string(k.name));
+}
+
 std::optional<SceneValue> motion_value(const Scene& s, const SceneKey& k)
 {
     const Motion& m = s.motion;
@@ -195,6 +204,7 @@ std::vector<SceneValue> effective_scene(const Scene& scene)
         const std::string table = k.table();
         const std::optional<SceneValue> v =
             table == "beam"                                                                  ? beam_value(scene, k)
+            : table == "blade_scale"                                                         ? blade_scale_value(scene, k)
             : table == "motion"                                                              ? motion_value(scene, k)
             : table == "control"                                                             ? control_value(scene, k)
             : table == "rotor"                                                               ? rotor_value(scene, k)

@@ -374,8 +374,8 @@ std::vector<double> blade_offsets(const BladeTable& b, const std::vector<double>
 /// a blade's profile, each of its columns where the profile has one; a file without EA gives a stand-in ES (fit_profile
 /// asks for nx = 0). resample > 0: the table linear between its stations, taken at resample equally spaced ones (a
 /// coarser table, a user's choice).
-ProfileTable scene_io::read_blade(const std::string& scene_path, const std::string& name, int resample, Parameters& p,
-                                  Extras& extras)
+ProfileTable scene_io::read_blade(const std::string& scene_path, const std::string& name, int resample,
+                                  const BladeScale& scale, Parameters& p, Extras& extras)
 {
     const std::string file = table_path(scene_path, name);  // as scene_files names it: what writers leave alone
     const auto bad = [&](const std::string& what) {
@@ -389,6 +389,7 @@ ProfileTable scene_io::read_blade(const std::string& scene_path, const std::stri
     } catch (const BladeFileError& e) {
         throw SceneError::with_detail(scene_path, "beam.blade_file", e.what());
     }
+    scale_columns(b, scale);  // [blade_scale], before any check of the values: the scene runs the scaled blade
     ProfileTable read{"beam.blade_file", file, {"EI_flap", "twist"}, !b.EA.empty(), resample};
     if (!b.GJ.empty()) read.blade_columns.push_back("GJ");
     if (!b.mass_moment_flap.empty()) read.blade_columns.insert(read.blade_columns.end(), {"j_c", "j_n"});
