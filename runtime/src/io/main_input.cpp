@@ -529,8 +529,6 @@ std::string key_line(const std::string& key, const std::string& value, const std
     return line + "\n";
 }
 
-/// [tip] from the tip mass and its inertias and offset (each key only where the file gives it and it is not 0, but
-/// the mass and lag inertia as before); empty without a tip body.
 /// The [blade_scale] table of BModes' property multipliers other than 1, each naming its line; empty if none.
 std::string blade_scale_table(const ImportedBlade& b)
 {
@@ -542,6 +540,8 @@ std::string blade_scale_table(const ImportedBlade& b)
     return s.empty() ? s : "\n[blade_scale]                   # factors on the section file's columns\n" + s;
 }
 
+/// [tip] from the tip mass and its inertias and offset (each key only where the file gives it and it is not 0, but
+/// the mass and lag inertia as before); empty without a tip body.
 std::string tip_table(const ImportedBlade& b)
 {
     const bool body = b.tip_mass.value > 0.0 || b.tip_inertia.value > 0.0 || b.tip_inertia_flap.value > 0.0 ||
