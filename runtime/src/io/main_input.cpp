@@ -694,15 +694,17 @@ std::string imported_scene_toml(const ImportedBlade& b, const std::string& scene
 
     s += "\n[discretization]\n";
     s += key_line("method", "\"fem\"", "finite elements along the span");
-    s += key_line("ny", "8", "edgewise (in the plane of rotation)");
+    // 16 elements each way: the first bending and twist modes within a fraction of a percent of a converged mesh
+    // (docs/import.md), for a few seconds of modes; twist's linear elements need as many as bending's.
+    s += key_line("ny", "16", "edgewise (in the plane of rotation)");
     // A tension centre off the axis couples the stretch to bending: the axis must stretch (docs/model.md 12.6).
     const bool tension = std::any_of(table.tc_offset.begin(), table.tc_offset.end(), [](double d) { return d != 0.0; });
     if (tension)
-        s += key_line("nx", "8", "axial: the tension centre's offset (tc_offst) couples the stretch to bending");
+        s += key_line("nx", "16", "axial: the tension centre's offset (tc_offst) couples the stretch to bending");
     else
         s += key_line("nx", "0", "no axial coordinates: their modes are far above the blade's");
-    s += key_line("nz", "8", "flapwise");
-    s += key_line("nt", twist_field ? "2" : "0",
+    s += key_line("nz", "16", "flapwise");
+    s += key_line("nt", twist_field ? "16" : "0",
                   twist_field ? "twist" : "no twist: the section file gives no torsional stiffness or mass moments");
 
     s += "\n[output]\n";
