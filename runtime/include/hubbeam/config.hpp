@@ -147,8 +147,8 @@ template <>
 std::vector<std::string> words<InitialState>();
 
 /// Factors on a blade file's columns (scene table [blade_scale], docs/scene.md): BModes' property multipliers, as a
-/// main input file gives them; blade_files.hpp's blade_scale_fields names each and its column. 1 each leaves the file
-/// as it is.
+/// main input file gives them; io/scene_io.hpp's blade_scale_fields names each and its column. 1 each leaves the
+/// file as it is.
 struct BladeScale {
     double mass = 1.0, inertia_flap = 1.0, inertia_edge = 1.0, stiffness_flap = 1.0, stiffness_edge = 1.0,
            stiffness_torsion = 1.0, stiffness_axial = 1.0, cg_offset = 1.0, tc_offset = 1.0;

@@ -96,8 +96,7 @@ ProfileTable read_profile(const std::string& scene_path, const std::string& name
 /// beam.blade_file's BModes or ElastoDyn file as a profile (its stations, or `resample` equally spaced ones if > 0),
 /// its columns times scale's factors.
 ProfileTable read_blade(const std::string& scene_path, const std::string& name, int resample,
-                        const BladeScale& scale, Parameters& p,
-                        Extras& extras);
+                        const BladeScale& scale, Parameters& p, Extras& extras);
 /// p.profile as the scene's variant reads it, once the discretization and the beam's angles are known.
 void fit_profile(const std::string& scene_path, const ProfileTable& table, const VariantKey& key, Parameters& p);
 /// The table of motion.file (resolved already by table_path): columns t and `column`.

@@ -87,21 +87,17 @@ BladeLoads::Node BladeLoads::node_at(const BeamFields& section, double xi, doubl
     if (key_.nt > 0) {  // the section's rotary inertia (docs/model.md section 12): only with the twist's coordinates
         // The deviator's components linear between stations, as the model's distributions are (docs/model.md 12.4),
         // not its angle: then the loads and the equations of motion see one section.
-        double cos_i = 0.0, sin_i = 0.0;
+        std::complex<double> inertia_axes;  // the deviator turned by the inertia axes' angle, without the pitch
         if (inertia_.empty()) {
             const double j_c = p_.rho * p_.I_flap * section.flap_moment_ratio(n.x);
             const double j_n = p_.rho * p_.I * section.moment_ratio(n.x);
             n.j_p = j_c + j_n;
-            cos_i = (j_n - j_c) / 2.0 * std::cos(2.0 * p_.twist * xi);
-            sin_i = (j_n - j_c) / 2.0 * std::sin(2.0 * p_.twist * xi);
+            inertia_axes = (j_n - j_c) / 2.0 * std::polar(1.0, 2.0 * p_.twist * xi);  // polar's length must be >= 0
         } else {
             n.j_p = linear_between(p_.stations, inertia_, 0, xi);
-            cos_i = linear_between(p_.stations, inertia_, 1, xi);
-            sin_i = linear_between(p_.stations, inertia_, 2, xi);
+            inertia_axes = {linear_between(p_.stations, inertia_, 1, xi), linear_between(p_.stations, inertia_, 2, xi)};
         }
-        const double c = std::cos(2.0 * p_.pitch), s = std::sin(2.0 * p_.pitch);
-        n.j_cos = cos_i * c - sin_i * s;
-        n.j_sin = sin_i * c + cos_i * s;
+        n.j_dev = inertia_axes * std::polar(1.0, 2.0 * p_.pitch);
     }
     n.axial = row_of(key_.axial_basis(), xi, 0, p_.L);
     n.inplane = row_of(key_.transverse_basis(), xi, 0, p_.L);
@@ -160,10 +156,10 @@ void BladeLoads::section_inertia(const Node& n, double dx, double w, double dw, 
 {
     // The section's angular momentum per length h (docs/model.md section 12: angular velocity theta_dot k + phi_dot e1,
     // principal axes along the chord turned by psi = beta + phi) in (e1, e2, e3), and the rates of its components.
-    // The deviator at psi = beta + phi, from its value at beta turned by 2 phi: dev cos 2 psi and dev sin 2 psi, with
-    // dev = (j_n - j_c) / 2, so that j_c sin^2 psi + j_n cos^2 psi = j_p / 2 + re and (j_c - j_n) sin 2 psi = -2 im.
-    const double c2 = std::cos(2.0 * phi[0]), s2 = std::sin(2.0 * phi[0]);
-    const double re = n.j_cos * c2 - n.j_sin * s2, im = n.j_sin * c2 + n.j_cos * s2, jp = n.j_p;
+    // The deviator at psi = beta + phi, its value at beta turned by 2 phi: dev e^(2 i psi), with dev = (j_n - j_c) / 2,
+    // so that j_c sin^2 psi + j_n cos^2 psi = j_p / 2 + re and (j_c - j_n) sin 2 psi = -2 im.
+    const std::complex<double> deviator = n.j_dev * std::polar(1.0, 2.0 * phi[0]);
+    const double re = deviator.real(), im = deviator.imag(), jp = n.j_p;
     const double h1 = jp * (phi[1] + w * sb), h2 = -w * cb * im, h3 = w * cb * (jp / 2.0 + re);
     const double r1 = jp * (phi[2] + dw * sb), r2 = -cb * (dw * im + 2.0 * w * phi[1] * re),
                  r3 = cb * (dw * (jp / 2.0 + re) - 2.0 * w * phi[1] * im);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <complex>
 #include <cstddef>
 #include <vector>
 
@@ -41,8 +42,10 @@ private:
         double x, weight;            // m; weight in m (0 for the tip's node)
         double m;                    // kg/m
         // The mass moments per length (kg m): their sum j_c + j_n and their deviator (j_n - j_c) / 2 turned by twice
-        // the principal inertia axes' angle with the pitch, cos and sin, as the section integrals take them.
-        double j_p, j_cos, j_sin;
+        // the principal inertia axes' angle with the pitch, (j_n - j_c) / 2 e^(2 i beta), as the section integrals take
+        // its components.
+        double j_p;
+        std::complex<double> j_dev;
         std::vector<double> axial, inplane, flap, twist;  // values
         std::vector<double> inplane_slope, flap_slope;    // d/dx
         // The foreshortening's integral from 0 to x: over the panels before this node's (their outer nodes) and over
