@@ -1,6 +1,7 @@
 // The registry of physics terms (terms.hpp): one entry per term of docs/model.md section 11.
 #include "terms.hpp"
 
+#include <cmath>
 #include <stdexcept>
 
 namespace hubbeam {
@@ -50,17 +51,21 @@ TermInfo switched(const char* name, unsigned energies, std::vector<Param> params
 std::vector<TermInfo> make_terms()
 {
     using P = Param;
+    using R = KeyRange;
     const auto never = [](Extras&, bool) {};
     return {
         // The tip body's weight and damping are gravity's and damping's terms (generator/terms/tip.cpp): a tip body
         // alone adds to T only.
         switched<&Extras::tip, tip_word, tip_summary>("tip body (section 11.1)", adds_T, {P::m_tip, P::J_tip},
-                                                      {{"tip", "mass", P::m_tip}, {"tip", "inertia", P::J_tip}}),
+                                                      {{"tip", "mass", P::m_tip, R::nonnegative, "m_tip, kg"},
+                                                       {"tip", "inertia", P::J_tip, R::nonnegative, "J_tip, kg m^2"}}),
         switched<&Extras::gravity, gravity_word, gravity_word>("gravity (section 11.3)", adds_U | reads_hub_angle,
-                                                               {P::g, P::g_axis}, {{"gravity", "g", P::g}}),
+                                                               {P::g, P::g_axis},
+                                                               {{"gravity", "g", P::g, R::finite, "g, m/s^2"}}),
         switched<&Extras::damping, damped_word, damped_summary>(
             "Rayleigh damping (section 11.4)", adds_D, {P::alpha, P::beta},
-            {{"damping", "mass_proportional", P::alpha}, {"damping", "stiffness_proportional", P::beta}}),
+            {{"damping", "mass_proportional", P::alpha, R::nonnegative, "alpha, 1/s"},
+             {"damping", "stiffness_proportional", P::beta, R::nonnegative, "beta, s"}}),
         {"taper (section 11)",
          shapes_section,
          {P::tip_ratio},
@@ -103,10 +108,10 @@ std::vector<TermInfo> make_terms()
         {"moving hub (section 13)",
          adds_T | adds_U | adds_D | kinetic_reads_angle,
          {P::m_hub, P::k_x, P::k_y, P::c_x, P::c_y},
-         {{"support", "stiffness_x", P::k_x},
-          {"support", "stiffness_y", P::k_y},
-          {"support", "damping_x", P::c_x},
-          {"support", "damping_y", P::c_y}},
+         {{"support", "stiffness_x", P::k_x, R::nonnegative, "k_x, N/m"},
+          {"support", "stiffness_y", P::k_y, R::nonnegative, "k_y, N/m"},
+          {"support", "damping_x", P::c_x, R::nonnegative, "c_x, N s/m"},
+          {"support", "damping_y", P::c_y, R::nonnegative, "c_y, N s/m"}},
          false,
          [](const Extras& e) { return e.hub; },
          [](const Extras&) { return std::string("hub"); },
@@ -117,13 +122,41 @@ std::vector<TermInfo> make_terms()
         // this term's energies in the section's axes, stay the tip term's parameters and keys.
         switched<&Extras::tip_body, tip_body_word, tip_body_summary>(
             "tip body in the blade's axes (section 11.1)", adds_T, {P::J_tip_flap, P::J_tip_twist, P::tip_offset},
-            {{"tip", "inertia_flap", P::J_tip_flap},
-             {"tip", "inertia_twist", P::J_tip_twist},
-             {"tip", "offset", P::tip_offset}}),
+            {{"tip", "inertia_flap", P::J_tip_flap, R::nonnegative,
+              "J_tip_flap, kg m^2: about the chord through the body's centre of mass; out of the plane"},
+             {"tip", "inertia_twist", P::J_tip_twist, R::nonnegative,
+              "J_tip_twist, kg m^2: about the span axis through the body's centre of mass; out of the plane"},
+             {"tip", "offset", P::tip_offset, R::finite,
+              "tip_offset, m: the body's centre of mass along the chord from the beam's end, positive towards the "
+              "trailing edge; out of the plane"}}),
     };
 }
 
 }  // namespace
+
+bool in_range(KeyRange r, double v)
+{
+    switch (r) {
+        case KeyRange::finite:
+            return std::isfinite(v);
+        case KeyRange::nonnegative:
+            return v >= 0.0 && std::isfinite(v);
+        case KeyRange::positive:
+            return v > 0.0 && std::isfinite(v);
+    }
+    return false;
+}
+
+std::string TermSceneKey::name() const
+{
+    return std::string(table) + "." + key;
+}
+
+std::string TermSceneKey::expected() const
+{
+    static constexpr const char* words[] = {"a finite number", "a number >= 0", "a number > 0"};
+    return std::string(words[static_cast<int>(range)]) + " (" + detail + ")";
+}
 
 const std::vector<TermInfo>& terms()
 {

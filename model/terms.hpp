@@ -29,11 +29,25 @@ enum TermEnergy : unsigned {
     kinetic_reads_angle = 32u
 };
 
-/// A scene key that sets one of a term's parameters: [table] key = value.
+/// The numbers a scene key accepts: any finite number, a finite one >= 0, or a finite one > 0.
+enum class KeyRange { finite, nonnegative, positive };
+/// Whether v is in range r.
+bool in_range(KeyRange r, double v);
+
+/// A scene key that sets one of a term's parameters: [table] key = value, with what it accepts: the range, which the
+/// scene's validation checks, and the symbol and unit its message gives ("m_tip, kg"). The key table's row and every
+/// refusal of the key read it from here.
 struct TermSceneKey {
     const char* table;
     const char* key;
     Param param;
+    KeyRange range;
+    const char* detail;
+
+    /// "tip.mass".
+    std::string name() const;
+    /// What the key takes, as the key table and its refusals say it: "a number >= 0 (m_tip, kg)".
+    std::string expected() const;
 };
 
 /// One physics term of a variant.

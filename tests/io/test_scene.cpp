@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "io/scene_io.hpp"
+#include "terms.hpp"
 #include "temp_folder.hpp"
 
 using namespace hubbeam;
@@ -371,6 +372,43 @@ TEST_CASE("solver.error_check takes on, off and full, from the file and as an ov
     const std::string message = error_of(dir, good_scene + "\n[solver]\nerror_check = \"whole\"\n");
     CHECK(message.find("solver.error_check: expected one of \"on\", \"off\", \"full\", got ") != std::string::npos);
     CHECK(message.find("\"whole\"") != std::string::npos);
+}
+
+TEST_CASE("each term's own key refuses a value outside its range, naming the key and what it takes", "[scene][terms]")
+{
+    // The ranges docs/scene.md gives these keys, written here apart from the registry that the reader checks.
+    const std::map<std::string, std::vector<std::string>> refused = {
+        {"tip.mass", {"-1", "nan"}},
+        {"tip.inertia", {"-1e-9"}},
+        {"tip.inertia_flap", {"-1"}},
+        {"tip.inertia_twist", {"-1"}},
+        {"tip.offset", {"inf", "-inf"}},
+        {"gravity.g", {"nan", "inf"}},
+        {"damping.mass_proportional", {"-0.5"}},
+        {"damping.stiffness_proportional", {"-1e-3"}},
+        {"support.stiffness_x", {"-1"}},
+        {"support.stiffness_y", {"-1"}},
+        {"support.damping_x", {"-1"}},
+        {"support.damping_y", {"inf"}}};
+    std::size_t seen = 0;
+    for (const TermInfo& t : terms())
+        for (const TermSceneKey& k : t.scene_keys) {
+            const std::string name = k.name();
+            REQUIRE(refused.count(name) == 1);
+            ++seen;
+            CHECK(scene_key(name).expected == k.expected());
+            for (const std::string& value : refused.at(name)) {
+                INFO(name << " = " << value);
+                try {
+                    (void)load_scene(case_path("spinup_omega4.toml"), {{name, value}});
+                    FAIL("accepted");
+                } catch (const SceneError& e) {
+                    CHECK(e.key == name);
+                    CHECK(e.expected == k.expected());
+                }
+            }
+        }
+    CHECK(seen == refused.size());
 }
 
 TEST_CASE("validate() re-checks a scene changed after loading", "[scene]")

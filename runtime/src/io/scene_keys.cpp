@@ -1,11 +1,13 @@
 // The scene key table, the one definition of the keys (name, option, what each holds), and its lookups.
 #include <algorithm>
+#include <deque>
 #include <hubbeam/blade_files.hpp>
 #include <hubbeam/option_lists.hpp>
 #include <hubbeam/scene.hpp>
 
 #include "dynamics/stepper_names.hpp"
 #include "io/scene_io.hpp"
+#include "terms.hpp"
 
 namespace hubbeam {
 
@@ -56,7 +58,7 @@ std::vector<std::string> stepper_words()
 std::vector<SceneKey> make_scene_keys()
 {
     using K = SceneKey::Kind;
-    return {
+    std::vector<SceneKey> keys = {
         {"beam.length", nullptr, K::number, "a number > 0 (L, m)"},
         {"beam.density", nullptr, K::number, "a number > 0 (rho, kg/m^3)"},
         {"beam.area", nullptr, K::number, "a number > 0 (S, m^2)"},
@@ -105,26 +107,27 @@ std::vector<SceneKey> make_scene_keys()
         {"hub.radius", nullptr, K::number, "a number >= 0 (a, m)"},
         {"hub.inertia", nullptr, K::number, "a number > 0 (J_oh, kg m^2)"},
         {"hub.mass", nullptr, K::number, "a number >= 0 (m_hub, kg: the hub's translating mass, blades excluded)"},
-        {"support.stiffness_x", nullptr, K::number, "a number >= 0 (k_x, N/m)"},
-        {"support.stiffness_y", nullptr, K::number, "a number >= 0 (k_y, N/m)"},
-        {"support.damping_x", nullptr, K::number, "a number >= 0 (c_x, N s/m)"},
-        {"support.damping_y", nullptr, K::number, "a number >= 0 (c_y, N s/m)"},
-        {"tip.mass", nullptr, K::number, "a number >= 0 (m_tip, kg)"},
-        {"tip.inertia", nullptr, K::number, "a number >= 0 (J_tip, kg m^2)"},
-        {"tip.inertia_flap", nullptr, K::number,
-         "a number >= 0 (J_tip_flap, kg m^2: about the chord through the body's centre of mass; out of the plane)"},
-        {"tip.inertia_twist", nullptr, K::number,
-         "a number >= 0 (J_tip_twist, kg m^2: about the span axis through the body's centre of mass; out of the plane)"},
-        {"tip.offset", nullptr, K::number,
-         "a finite number (tip_offset, m: the body's centre of mass along the chord from the beam's end, positive "
-         "towards the trailing edge; out of the plane)"},
-        {"damping.mass_proportional", nullptr, K::number, "a number >= 0 (alpha, 1/s)"},
-        {"damping.stiffness_proportional", nullptr, K::number, "a number >= 0 (beta, s)"},
+    };
+    // A term's own keys, each as its registry row (model/terms.cpp) says it, in their tables' places. Their dotted
+    // names live as long as the table (never destroyed, as the registry).
+    static std::deque<std::string>& names = *new std::deque<std::string>;
+    const auto term_keys = [&keys](const char* table) {
+        for (const TermInfo& t : terms())
+            for (const TermSceneKey& k : t.scene_keys)
+                if (std::string_view(k.table) == table)
+                    keys.push_back({names.emplace_back(k.name()).c_str(), nullptr, K::number, k.expected()});
+    };
+    term_keys("support");
+    term_keys("tip");
+    term_keys("damping");
+    keys.insert(keys.end(), {
         {"damping.flap_ratios", nullptr, K::numbers,
          "an array of numbers >= 0 (fractions of critical of the blade's first flapwise modes at rest)"},
         {"damping.edge_ratios", nullptr, K::numbers,
          "an array of numbers >= 0 (fractions of critical of the blade's first edgewise modes at rest)"},
-        {"gravity.g", nullptr, K::number, "a finite number (g, m/s^2)"},
+    });
+    term_keys("gravity");
+    keys.insert(keys.end(), {
         {"gravity.direction", nullptr, K::word,
          "one of \"plane\" (along -j of a vertical plane of rotation) or \"axis\" (along -k, the spin axis vertical)"},
         {"motion.kind", nullptr, K::word, one_of(motion_kinds())},
@@ -180,7 +183,8 @@ std::vector<SceneKey> make_scene_keys()
          "tip_ratio, I_flap, G, J_t, pitch, twist, precone, g_axis, kp, kd, ki, k_tip"},
         {"output.loads", "--loads", K::word, one_of(words<OutputLoads>())},
         {"initial.state", "--initial", K::word, one_of(words<InitialState>())},
-    };
+    });
+    return keys;
 }
 
 }  // namespace

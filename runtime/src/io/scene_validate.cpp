@@ -108,14 +108,21 @@ void check_out_of_plane(const Scene& s)
     }
 }
 
-/// The tip body's flap and torsion inertias and its offset (docs/model.md section 11.1): values, and a variant that
-/// can carry them, the key named being the first one given.
+/// Every term's own keys (model/terms.cpp), each against the range its registry row gives.
+void check_term_keys(const Scene& s)
+{
+    Parameters p = s.parameters;
+    for (const TermInfo& t : terms())
+        for (const TermSceneKey& k : t.scene_keys)
+            if (const double v = value(p, k.param); !in_range(k.range, v))
+                fail(s.path, k.name(), k.expected(), shortest(v));
+}
+
+/// The tip body's flap and torsion inertias and its offset (docs/model.md section 11.1): a variant that can carry
+/// them, the key named being the first one given.
 void check_tip_body(const Scene& s)
 {
     const Parameters& p = s.parameters;
-    for (const auto& [v, key] : {std::pair{p.J_tip_flap, "tip.inertia_flap"}, {p.J_tip_twist, "tip.inertia_twist"}})
-        if (!(v >= 0.0) || !std::isfinite(v)) fail(s.path, key, expected(key), shortest(v));
-    check_finite(s, p.tip_offset, "tip.offset");
     const std::string problem = s.key().tip_body_problem();
     if (problem.empty()) return;
     for (const auto& [v, key] :
@@ -151,12 +158,7 @@ void check_parameters(const Scene& s)
     if (!(p.a >= 0.0) || !std::isfinite(p.a)) fail(s.path, "hub.radius", expected("hub.radius"), shortest(p.a));
     check_positive(s, p.J_oh, "hub.inertia");
     if (s.variant.extras.taper != Taper::uniform) check_positive(s, p.tip_ratio, "beam.tip_ratio");
-    for (const auto& [v, key] : {std::pair{p.m_tip, "tip.mass"},
-                                 {p.J_tip, "tip.inertia"},
-                                 {p.alpha, "damping.mass_proportional"},
-                                 {p.beta, "damping.stiffness_proportional"}})
-        if (!(v >= 0.0) || !std::isfinite(v)) fail(s.path, key, expected(key), shortest(v));
-    check_finite(s, p.g, "gravity.g");
+    check_term_keys(s);
     check_out_of_plane(s);
     check_tip_body(s);
     check_modal_damping(s);
@@ -273,16 +275,8 @@ void check_rotor(const Scene& s)
         if (!(r.tip_masses[b] >= 0.0) || !std::isfinite(r.tip_masses[b]))
             fail(s.path, "rotor.tip_masses", expected("rotor.tip_masses"),
                  shortest(r.tip_masses[b]) + " for blade " + std::to_string(b + 1));
-    if (s.variant.extras.hub) {
-        const Parameters& p = s.parameters;
-        const std::pair<const char*, double> values[] = {{"hub.mass", p.m_hub},
-                                                         {"support.stiffness_x", p.k_x},
-                                                         {"support.stiffness_y", p.k_y},
-                                                         {"support.damping_x", p.c_x},
-                                                         {"support.damping_y", p.c_y}};
-        for (const auto& [key, v] : values)
-            if (!(v >= 0.0) || !std::isfinite(v)) fail(s.path, key, expected(key), shortest(v));
-    }
+    if (const double m = s.parameters.m_hub; !(m >= 0.0) || !std::isfinite(m))
+        fail(s.path, "hub.mass", expected("hub.mass"), shortest(m));
     if (!r.tip_masses.empty() && s.parameters.m_tip != 0.0)
         fail(s.path, "rotor.tip_masses", "no tip.mass beside it (each blade's tip mass replaces it): remove one",
              "both");
