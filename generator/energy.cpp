@@ -375,7 +375,8 @@ Symbols::Symbols(const VariantKey& key)
         if (f.basis) rates(f.kind) = numbered(f.symbol, f.count, "_dot");
     if (key.out_of_plane()) o = std::make_shared<const OutOfPlane>();
     if (key.extras.hub) h = std::make_shared<const MovingHub>();
-    if (key.extras.tip_body) b = std::make_shared<const TipBody>();
+    for (const TermInfo* t : carried_terms(key.extras))
+        for (const TermInput& i : generator_part(*t).inputs) inputs.emplace_back(i, symbol(i.symbol));
     for (const CoordinateField& f : layout.fields) {
         if (f.kind == FieldKind::hub_angle) {
             q.push_back(theta);
@@ -413,10 +414,16 @@ std::vector<symbol> Symbols::parameters() const
     if (o)
         p.insert(p.end(), {o->EI_flap, o->GJ, o->j_n, o->j_c, o->cos_2pitch, o->sin_2pitch, o->twist, o->cos_cone,
                            o->sin_cone, o->g_axis});
-    if (h) p.insert(p.end(), {h->m, h->k_x, h->k_y, h->c_x, h->c_y});
-    if (b) p.insert(p.end(), {b->J_flap, b->J_twist, b->offset, b->cos_pitch, b->sin_pitch});
+    for (const auto& [i, x] : inputs) p.push_back(x);
     p.insert(p.end(), section.begin(), section.end());
     return p;
+}
+
+const symbol& Symbols::input(std::string_view name) const
+{
+    for (const auto& [i, x] : inputs)
+        if (name == i.symbol) return x;
+    throw std::logic_error("energy: no carried term has the input " + std::string(name));
 }
 
 std::vector<symbol>& Symbols::coordinates(FieldKind kind)

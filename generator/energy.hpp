@@ -6,10 +6,12 @@
 
 #include <map>
 #include <memory>
+#include <string_view>
 #include <vector>
 
 #include "coordinates.hpp"
 #include "integrals.hpp"
+#include "interface.hpp"
 #include "poly.hpp"
 #include "variant.hpp"
 
@@ -21,6 +23,15 @@ struct SectionKey {
     int distribution = 0, power = 0;
     std::vector<Factor> factors;
     auto operator<=>(const SectionKey&) const = default;
+};
+
+/// A run-time input of a term's energies (generator_terms.hpp): its symbol's name, as docs/model.md and the emitted
+/// code say it, and the parameter the coefficients kernel makes it from once, as the value itself or its cosine or sine.
+struct TermInput {
+    enum class Of { value, cos, sin };
+    const char* symbol;
+    Param param;
+    Of of = Of::value;
 };
 
 /// Every symbol a variant's equations can contain, named as in docs/model.md and in the emitted code.
@@ -51,20 +62,15 @@ struct Symbols {
     /// Created last and only for a variant that leaves the plane (VariantKey::out_of_plane): GiNaC orders terms by
     /// the symbols' serial numbers, so a planar variant's symbols and emitted code stay as they were.
     std::shared_ptr<const OutOfPlane> o;
-    /// A moving hub's coordinates, rates and parameters (docs/model.md section 13), created after o and only for a
-    /// variant that carries it (Extras::hub), for the same reason.
+    /// A moving hub's coordinates and rates (docs/model.md section 13), created after o and only for a variant that
+    /// carries it (Extras::hub), for the same reason.
     struct MovingHub {
         GiNaC::symbol x{"x_h"}, y{"y_h"}, x_dot{"x_h_dot"}, y_dot{"y_h_dot"};
-        GiNaC::symbol m{"m_hub"}, k_x{"k_x"}, k_y{"k_y"}, c_x{"c_x"}, c_y{"c_y"};
     };
     std::shared_ptr<const MovingHub> h;
-    /// The tip body's flap and torsion inertias, its offset along the chord (docs/model.md section 11.1) and cos and sin
-    /// of the pitch that turns its axes, created after h and only for a variant that carries them (Extras::tip_body).
-    struct TipBody {
-        GiNaC::symbol J_flap{"J_tip_flap"}, J_twist{"J_tip_twist"}, offset{"tip_offset"}, cos_pitch{"cos_pitch"},
-            sin_pitch{"sin_pitch"};
-    };
-    std::shared_ptr<const TipBody> b;
+    /// The inputs of the terms the variant carries (GeneratorTerm::inputs), created after h, term by term in registry
+    /// order, for the same reason; input(name) finds one.
+    std::vector<std::pair<TermInput, GiNaC::symbol>> inputs;
     /// A profile variant's run-time section integrals (generated_abi.h's SectionIntegral), in the order of their index
     /// n, and their symbols s_n, which the coefficients kernel reads at p[param_count + n]; empty without a profile.
     /// Found by a first pass over the energies (the integrals a variant needs are those its energies meet).
@@ -73,6 +79,9 @@ struct Symbols {
     std::map<SectionKey, std::size_t> section_index;
 
     explicit Symbols(const VariantKey& key);
+
+    /// The symbol of a carried term's input; throws std::logic_error for a name no carried term has.
+    const GiNaC::symbol& input(std::string_view name) const;
 
     /// Every parameter symbol the energies can hold: the beam's, the terms', the out-of-plane model's (where it has
     /// one) and the section integrals' (a profile's).

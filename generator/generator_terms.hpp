@@ -8,6 +8,7 @@
 
 #include <array>
 #include <functional>
+#include <vector>
 
 #include "energy.hpp"
 #include "terms.hpp"
@@ -25,15 +26,21 @@ struct TermContext {
     std::function<Poly(const GiNaC::ex&)> integrate, at_tip;
 };
 
-/// A term of the generator: section replaces the beam's distributions (a section term), energies adds to T, U, D.
-/// Either may be null.
+/// A term of the generator: section replaces the beam's distributions (a section term), energies adds to T, U, D
+/// (either may be null); inputs are the symbols its energies read from p (Symbols::input), each made once by the
+/// coefficients kernel.
 struct GeneratorTerm {
-    BeamSection (*section)(const VariantKey&, const Symbols&, const FieldSymbols&);
-    void (*energies)(const TermContext&, Energies&);
+    BeamSection (*section)(const VariantKey&, const Symbols&, const FieldSymbols&) = nullptr;
+    void (*energies)(const TermContext&, Energies&) = nullptr;
+    std::vector<TermInput> inputs = {};
 };
 
-/// The generator's part of a registered term (model/terms.hpp).
+/// The generator's part of a registered term (model/terms.hpp); an empty one for a term with none of its own.
 const GeneratorTerm& generator_part(const TermInfo& t);
+
+// Each defined in its own file, generator/terms/NAME.cpp.
+extern const GeneratorTerm tip_term, gravity_term, damping_term, taper_term, profile_term, offsets_term, hub_term,
+    tip_body_term;
 
 /// The uniform beam's section: m, ES, EI and, out of the plane, E I_flap, G J_t, rho I and rho I_flap turned by the
 /// pitch and pre-twist.
@@ -52,17 +59,8 @@ std::array<GiNaC::ex, 3> chord(const FieldSymbols& f, const Cone& cone, const Gi
 /// order, u_x2 and its rate second (docs/model.md section 3). f.offsets holds the flapwise slope's rate.
 GiNaC::ex second_order(const GiNaC::ex& e, const FieldSymbols& f);
 
-// One per term (generator/terms/NAME.cpp).
-void tip_energies(const TermContext& c, Energies& e);
-void gravity_energies(const TermContext& c, Energies& e);
-void damping_energies(const TermContext& c, Energies& e);
-void hub_energies(const TermContext& c, Energies& e);
-void offsets_energies(const TermContext& c, Energies& e);
-void tip_body_energies(const TermContext& c, Energies& e);
 /// The chord's unit vector at the tip in the blade's axes (turned by the pitch, phi and the slopes; tip.cpp): the
 /// direction of a tip body's centre of mass from the beam's end, towards the leading edge.
 std::array<GiNaC::ex, 3> tip_body_chord(const TermContext& c);
-BeamSection taper_section(const VariantKey& key, const Symbols& s, const FieldSymbols& f);
-BeamSection profile_section(const VariantKey& key, const Symbols& s, const FieldSymbols& f);
 
 }  // namespace hubbeam::gen

@@ -312,21 +312,10 @@ std::vector<Input> parameter_inputs(const Symbols& s, const VariantKey& key)
                                      {o.sin_cone, "std::sin(" + read(Param::precone) + ")"},
                                      {o.g_axis, read(Param::g_axis)}});
     }
-    if (s.h) {
-        const Symbols::MovingHub& h = *s.h;
-        inputs.insert(inputs.end(), {{h.m, read(Param::m_hub)},
-                                     {h.k_x, read(Param::k_x)},
-                                     {h.k_y, read(Param::k_y)},
-                                     {h.c_x, read(Param::c_x)},
-                                     {h.c_y, read(Param::c_y)}});
-    }
-    if (s.b) {
-        const Symbols::TipBody& b = *s.b;
-        inputs.insert(inputs.end(), {{b.J_flap, read(Param::J_tip_flap)},
-                                     {b.J_twist, read(Param::J_tip_twist)},
-                                     {b.offset, read(Param::tip_offset)},
-                                     {b.cos_pitch, "std::cos(" + read(Param::pitch) + ")"},
-                                     {b.sin_pitch, "std::sin(" + read(Param::pitch) + ")"}});
+    for (const auto& [i, x] : s.inputs) {
+        static constexpr const char* around[][2] = {{"", ""}, {"std::cos(", ")"}, {"std::sin(", ")"}};
+        const auto& [open, close] = around[static_cast<int>(i.of)];
+        inputs.push_back({x, open + read(i.param) + close});
     }
     for (std::size_t n = 0; n < s.section.size(); ++n) inputs.push_back({s.section[n], read_section(n)});
     return inputs;

@@ -5,6 +5,8 @@ namespace hubbeam::gen {
 
 using namespace GiNaC;
 
+namespace {
+
 void damping_energies(const TermContext& c, Energies& e)
 {
     const Symbols& s = c.s;
@@ -22,5 +24,9 @@ void damping_energies(const TermContext& c, Energies& e)
     e.D += c.integrate((s.alpha * mass + s.beta * stiffness) / 2);
     if (c.key.extras.tip) e.D += c.at_tip(s.alpha * (s.m_tip * rates2 + s.J_tip * pow(f.uy_x_dot, 2)) / 2);
 }
+
+}  // namespace
+
+const GeneratorTerm damping_term = {.energies = damping_energies};
 
 }  // namespace hubbeam::gen

@@ -1,6 +1,7 @@
 // The generator's terms lined up with the registry (model/terms.hpp): the one place a term's generator part is named.
 #include "generator_terms.hpp"
 
+#include <array>
 #include <stdexcept>
 
 namespace hubbeam::gen {
@@ -13,13 +14,13 @@ const GeneratorTerm& generator_part(const TermInfo& t)
     // twist and precone have no energy of their own: they turn the section's principal axes (bending_density,
     // section_rotation) and the beam's axis (velocity_squared, position) inside the beam's T and U and the other
     // terms' (energy.cpp).
-    static const std::vector<GeneratorTerm> table = {
-        {nullptr, tip_energies},     {nullptr, gravity_energies}, {nullptr, damping_energies},
-        {taper_section, nullptr},    {profile_section, nullptr},  {nullptr, offsets_energies},
-        {nullptr, nullptr},          {nullptr, nullptr},          {nullptr, nullptr},
-        {nullptr, hub_energies},     {nullptr, tip_body_energies}};
+    static const std::array<const GeneratorTerm*, 11> table = {
+        &tip_term,    &gravity_term, &damping_term, &taper_term, &profile_term, &offsets_term,
+        nullptr,      nullptr,       nullptr,       &hub_term,   &tip_body_term};
+    static const GeneratorTerm none;
     if (table.size() != terms().size()) throw std::logic_error("generator_part: not one entry per registered term");
-    return table.at(static_cast<std::size_t>(&t - terms().data()));
+    const GeneratorTerm* part = table.at(static_cast<std::size_t>(&t - terms().data()));
+    return part ? *part : none;
 }
 
 BeamSection turned_section(const VariantKey& key, const Symbols& s, const FieldSymbols& f, BeamSection b,

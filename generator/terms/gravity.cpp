@@ -7,6 +7,8 @@ namespace hubbeam::gen {
 
 using namespace GiNaC;
 
+namespace {
+
 void gravity_energies(const TermContext& c, Energies& e)
 {
     const Symbols& s = c.s;
@@ -22,8 +24,12 @@ void gravity_energies(const TermContext& c, Energies& e)
     // A tip body's centre of mass off the beam's end, at d c (docs/model.md section 11.1).
     if (c.key.extras.tip_body) {
         const std::array<ex, 3> chord = tip_body_chord(c);
-        e.U += c.at_tip(second_order(-s.m_tip * s.b->offset * height(chord[0], chord[1], chord[2]), c.f));
+        e.U += c.at_tip(second_order(-s.m_tip * s.input("tip_offset") * height(chord[0], chord[1], chord[2]), c.f));
     }
 }
+
+}  // namespace
+
+const GeneratorTerm gravity_term = {.energies = gravity_energies};
 
 }  // namespace hubbeam::gen

@@ -7,6 +7,8 @@ namespace hubbeam::gen {
 
 using namespace GiNaC;
 
+namespace {
+
 void hub_energies(const TermContext& c, Energies& e)
 {
     const Symbols& s = c.s;
@@ -31,19 +33,31 @@ void hub_energies(const TermContext& c, Energies& e)
         cross = cross.coeff(eps, 1) + cross.coeff(eps, 2);
     }
     const ex v2 = pow(h.x_dot, 2) + pow(h.y_dot, 2);
+    const ex m_hub = s.input("m_hub"), k_x = s.input("k_x"), k_y = s.input("k_y"), c_x = s.input("c_x"),
+             c_y = s.input("c_y");
     e.T += c.integrate(c.beam.mass * (cross + v2 / 2));
     if (c.key.extras.tip) e.T += c.at_tip(s.m_tip * (cross + v2 / 2));
     const auto read = [&](const ex& x) { return c.at_tip(x); };
-    e.T += read(h.m * v2 / 2);
-    e.U += read((h.k_x * pow(h.x, 2) + h.k_y * pow(h.y, 2)) / 2);
-    e.D += read((h.c_x * pow(h.x_dot, 2) + h.c_y * pow(h.y_dot, 2)) / 2);
+    e.T += read(m_hub * v2 / 2);
+    e.U += read((k_x * pow(h.x, 2) + k_y * pow(h.y, 2)) / 2);
+    e.D += read((c_x * pow(h.x_dot, 2) + c_y * pow(h.y_dot, 2)) / 2);
     // Gravity along -j of the inertial plane lifts the whole rotor with y_h: the hub's mass here, the beam's and the
     // tip body's weight too (their points sit at y_h + their height in the plane).
     if (c.key.extras.gravity) {
-        e.U += read(s.g * h.m * h.y);
+        e.U += read(s.g * m_hub * h.y);
         e.U += c.integrate(s.g * c.beam.mass * h.y);
         if (c.key.extras.tip) e.U += c.at_tip(s.g * s.m_tip * h.y);
     }
 }
+
+}  // namespace
+
+// Its parameters: the translating mass, the support's stiffness and damping.
+const GeneratorTerm hub_term = {.energies = hub_energies,
+                                .inputs = {{"m_hub", Param::m_hub},
+                                           {"k_x", Param::k_x},
+                                           {"k_y", Param::k_y},
+                                           {"c_x", Param::c_x},
+                                           {"c_y", Param::c_y}}};
 
 }  // namespace hubbeam::gen

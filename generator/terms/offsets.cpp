@@ -69,6 +69,8 @@ ex offset_rotation(const FieldSymbols& f, const Cone& cone, const ex& w)
            4;
 }
 
+namespace {
+
 void offsets_energies(const TermContext& c, Energies& e)
 {
     const FieldSymbols& f = c.f;
@@ -88,5 +90,9 @@ void offsets_energies(const TermContext& c, Energies& e)
     const ex At = f.offsets->tension_offset_cos_x, As = f.offsets->tension_offset_sin_x;
     e.U += c.integrate(-f.ux1_x * (At * f.uy_xx + As * f.uz_xx));
 }
+
+}  // namespace
+
+const GeneratorTerm offsets_term = {.energies = offsets_energies};
 
 }  // namespace hubbeam::gen

@@ -8,6 +8,8 @@ namespace hubbeam::gen {
 
 using namespace GiNaC;
 
+namespace {
+
 BeamSection profile_section(const VariantKey& key, const Symbols& s, const FieldSymbols& f)
 {
     BeamSection b{f.m_x, f.ES_x, f.EI_x};
@@ -20,5 +22,9 @@ BeamSection profile_section(const VariantKey& key, const Symbols& s, const Field
     std::tie(b.inertia_cos, b.inertia_sin) = turned_by_pitch(key, s, f.j_cos_x, f.j_sin_x);
     return b;
 }
+
+}  // namespace
+
+const GeneratorTerm profile_term = {.section = profile_section};
 
 }  // namespace hubbeam::gen

@@ -5,6 +5,8 @@ namespace hubbeam::gen {
 
 using namespace GiNaC;
 
+namespace {
+
 BeamSection taper_section(const VariantKey& key, const Symbols& s, const FieldSymbols& f)
 {
     const Extras& x = key.extras;
@@ -21,5 +23,9 @@ BeamSection taper_section(const VariantKey& key, const Symbols& s, const FieldSy
     const ex flap = x.taper == Taper::depth ? area : pow(area, 3);
     return turned_section(key, s, f, planar, o.EI_flap * flap, o.GJ * flap, o.j_c * flap, o.j_n * moment);
 }
+
+}  // namespace
+
+const GeneratorTerm taper_term = {.section = taper_section};
 
 }  // namespace hubbeam::gen

@@ -7,6 +7,8 @@ namespace hubbeam::gen {
 
 using namespace GiNaC;
 
+namespace {
+
 void tip_energies(const TermContext& c, Energies& e)
 {
     const Symbols& s = c.s;
@@ -14,8 +16,6 @@ void tip_energies(const TermContext& c, Energies& e)
     // With its own axes the body's rotation is tip_body_energies' (J_tip about the chord's normal there).
     if (!c.key.extras.tip_body) e.T += c.at_tip(s.J_tip * pow(s.theta_dot + c.f.uy_x_dot, 2) / 2);
 }
-
-namespace {
 
 /// The rate in the inertial frame, in hub components, of a vector a carried by the section (a function of phi and
 /// the slopes): its rate in the hub frame plus the frame's turn w k x a.
@@ -36,27 +36,27 @@ ex dot(const std::array<ex, 3>& a, const std::array<ex, 3>& b)
 
 std::array<ex, 3> tip_body_chord(const TermContext& c)
 {
-    const Symbols::TipBody& b = *c.s.b;
-    return chord(c.f, cone_of(c.key, c.s), b.cos_pitch, b.sin_pitch);
+    return chord(c.f, cone_of(c.key, c.s), c.s.input("cos_pitch"), c.s.input("sin_pitch"));
 }
+
+namespace {
 
 void tip_body_energies(const TermContext& c, Energies& e)
 {
     const Symbols& s = c.s;
-    const Symbols::TipBody& b = *s.b;
     const FieldSymbols& f = c.f;
     const ex w = s.theta_dot;
     // The body's axes at the tip: the chord (towards the leading edge), its normal (the chord turned a quarter turn
     // further from e2 towards e3) and the bent axis's tangent, their cross product.
     const std::array<ex, 3> chord_ = tip_body_chord(c);
-    const std::array<ex, 3> normal = chord(f, cone_of(c.key, s), -b.sin_pitch, b.cos_pitch);
+    const std::array<ex, 3> normal = chord(f, cone_of(c.key, s), -s.input("sin_pitch"), s.input("cos_pitch"));
     const std::array<ex, 3> tangent = {chord_[1] * normal[2] - chord_[2] * normal[1],
                                        chord_[2] * normal[0] - chord_[0] * normal[2],
                                        chord_[0] * normal[1] - chord_[1] * normal[0]};
     // 1/2 omega . J omega with J = J_t t t^T + J_c c c^T + J_n n n^T is 1/2 sum_a P_a |a_dot|^2 with the body's second
     // moments of mass P_t = (J_c + J_n - J_t)/2, ... (|a_dot|^2 = |omega|^2 - (omega . a)^2); the centre of mass at
     // d c adds m d^2 to P_c and m d V . c_dot to T (docs/model.md section 11.1).
-    const ex J_n = s.J_tip, J_c = b.J_flap, J_t = b.J_twist, d = -b.offset;
+    const ex J_n = s.J_tip, J_c = s.input("J_tip_flap"), J_t = s.input("J_tip_twist"), d = -s.input("tip_offset");
     const ex P_t = (J_c + J_n - J_t) / 2, P_c = (J_t + J_n - J_c) / 2 + s.m_tip * pow(d, 2),
              P_n = (J_t + J_c - J_n) / 2;
     const std::array<ex, 3> t_dot = inertial_rate(tangent, f, w), c_dot = inertial_rate(chord_, f, w),
@@ -67,5 +67,17 @@ void tip_body_energies(const TermContext& c, Energies& e)
                  s.m_tip * d * dot(V, c_dot);
     e.T += c.at_tip(second_order(T, f));
 }
+
+}  // namespace
+
+const GeneratorTerm tip_term = {.energies = tip_energies};
+
+// Its flap and torsion inertias, its offset along the chord, and the pitch that turns its axes.
+const GeneratorTerm tip_body_term = {.energies = tip_body_energies,
+                                     .inputs = {{"J_tip_flap", Param::J_tip_flap},
+                                                {"J_tip_twist", Param::J_tip_twist},
+                                                {"tip_offset", Param::tip_offset},
+                                                {"cos_pitch", Param::pitch, TermInput::Of::cos},
+                                                {"sin_pitch", Param::pitch, TermInput::Of::sin}}};
 
 }  // namespace hubbeam::gen
