@@ -59,8 +59,8 @@ std::array<GiNaC::ex, 3> chord(const FieldSymbols& f, const Cone& cone, const Gi
 /// order, u_x2 and its rate second (docs/model.md section 3). f.offsets holds the flapwise slope's rate.
 GiNaC::ex second_order(const GiNaC::ex& e, const FieldSymbols& f);
 
-/// The chord's unit vector at the tip in the blade's axes (turned by the pitch, phi and the slopes; tip.cpp): the
-/// direction of a tip body's centre of mass from the beam's end, towards the leading edge.
-std::array<GiNaC::ex, 3> tip_body_chord(const TermContext& c);
+/// A tip body's centre of mass from the beam's end in hub components, carried by the tip section (turned by the pitch,
+/// phi and the slopes; tip.cpp): what its weight reads (gravity.cpp), so that where the body sits is tip.cpp's alone.
+std::array<GiNaC::ex, 3> tip_body_centre(const TermContext& c);
 
 }  // namespace hubbeam::gen

@@ -21,10 +21,10 @@ void gravity_energies(const TermContext& c, Energies& e)
     const ex weight = height(p.i, p.j, p.k);
     e.U += c.integrate(c.beam.mass * weight);
     if (c.key.extras.tip) e.U += c.at_tip(s.m_tip * weight);
-    // A tip body's centre of mass off the beam's end, at d c (docs/model.md section 11.1).
+    // A tip body's centre of mass off the beam's end (docs/model.md section 11.1).
     if (c.key.extras.tip_body) {
-        const std::array<ex, 3> chord = tip_body_chord(c);
-        e.U += c.at_tip(second_order(-s.m_tip * s.input("tip_offset") * height(chord[0], chord[1], chord[2]), c.f));
+        const std::array<ex, 3> r = tip_body_centre(c);
+        e.U += c.at_tip(second_order(s.m_tip * height(r[0], r[1], r[2]), c.f));
     }
 }
 

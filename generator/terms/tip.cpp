@@ -34,9 +34,12 @@ ex dot(const std::array<ex, 3>& a, const std::array<ex, 3>& b)
 
 }  // namespace
 
-std::array<ex, 3> tip_body_chord(const TermContext& c)
+std::array<ex, 3> tip_body_centre(const TermContext& c)
 {
-    return chord(c.f, cone_of(c.key, c.s), c.s.input("cos_pitch"), c.s.input("sin_pitch"));
+    // tip_offset is positive towards the trailing edge, the chord's unit vector towards the leading edge.
+    const ex d = -c.s.input("tip_offset");
+    const std::array<ex, 3> chord_ = chord(c.f, cone_of(c.key, c.s), c.s.input("cos_pitch"), c.s.input("sin_pitch"));
+    return {d * chord_[0], d * chord_[1], d * chord_[2]};
 }
 
 namespace {
@@ -48,23 +51,23 @@ void tip_body_energies(const TermContext& c, Energies& e)
     const ex w = s.theta_dot;
     // The body's axes at the tip: the chord (towards the leading edge), its normal (the chord turned a quarter turn
     // further from e2 towards e3) and the bent axis's tangent, their cross product.
-    const std::array<ex, 3> chord_ = tip_body_chord(c);
+    const std::array<ex, 3> chord_ = chord(f, cone_of(c.key, s), s.input("cos_pitch"), s.input("sin_pitch"));
     const std::array<ex, 3> normal = chord(f, cone_of(c.key, s), -s.input("sin_pitch"), s.input("cos_pitch"));
     const std::array<ex, 3> tangent = {chord_[1] * normal[2] - chord_[2] * normal[1],
                                        chord_[2] * normal[0] - chord_[0] * normal[2],
                                        chord_[0] * normal[1] - chord_[1] * normal[0]};
-    // 1/2 omega . J omega with J = J_t t t^T + J_c c c^T + J_n n n^T is 1/2 sum_a P_a |a_dot|^2 with the body's second
-    // moments of mass P_t = (J_c + J_n - J_t)/2, ... (|a_dot|^2 = |omega|^2 - (omega . a)^2); the centre of mass at
-    // d c adds m d^2 to P_c and m d V . c_dot to T (docs/model.md section 11.1).
-    const ex J_n = s.J_tip, J_c = s.input("J_tip_flap"), J_t = s.input("J_tip_twist"), d = -s.input("tip_offset");
-    const ex P_t = (J_c + J_n - J_t) / 2, P_c = (J_t + J_n - J_c) / 2 + s.m_tip * pow(d, 2),
-             P_n = (J_t + J_c - J_n) / 2;
+    // About its centre of mass, 1/2 omega . J omega with J = J_t t t^T + J_c c c^T + J_n n n^T is 1/2 sum_a P_a
+    // |a_dot|^2 with the body's second moments of mass P_t = (J_c + J_n - J_t)/2, ... (|a_dot|^2 = |omega|^2 -
+    // (omega . a)^2); the centre of mass at r from the beam's end (tip_body_centre) adds m V . r_dot + m |r_dot|^2 / 2
+    // to the beam's end's m |V|^2 / 2 (docs/model.md section 11.1).
+    const ex J_n = s.J_tip, J_c = s.input("J_tip_flap"), J_t = s.input("J_tip_twist");
+    const ex P_t = (J_c + J_n - J_t) / 2, P_c = (J_t + J_n - J_c) / 2, P_n = (J_t + J_c - J_n) / 2;
     const std::array<ex, 3> t_dot = inertial_rate(tangent, f, w), c_dot = inertial_rate(chord_, f, w),
-                            n_dot = inertial_rate(normal, f, w);
+                            n_dot = inertial_rate(normal, f, w), r_dot = inertial_rate(tip_body_centre(c), f, w);
     const Position p = position(c.key.order, f, cone_of(c.key, s));
     const std::array<ex, 3> V = {p.i_dot - w * p.j, p.j_dot + w * p.i, p.k_dot};
     const ex T = (P_t * dot(t_dot, t_dot) + P_c * dot(c_dot, c_dot) + P_n * dot(n_dot, n_dot)) / 2 +
-                 s.m_tip * d * dot(V, c_dot);
+                 s.m_tip * (dot(V, r_dot) + dot(r_dot, r_dot) / 2);
     e.T += c.at_tip(second_order(T, f));
 }
 

@@ -111,7 +111,9 @@ std::vector<SceneKey> make_scene_keys()
     // A term's own keys, each as its registry row (model/terms.cpp) says it, in their tables' places. Their dotted
     // names live as long as the table (never destroyed, as the registry).
     static std::deque<std::string>& names = *new std::deque<std::string>;
-    const auto term_keys = [&keys](const char* table) {
+    std::vector<std::string_view> placed;
+    const auto term_keys = [&keys, &placed](std::string_view table) {
+        placed.push_back(table);
         for (const TermInfo& t : terms())
             for (const TermSceneKey& k : t.scene_keys)
                 if (std::string_view(k.table) == table)
@@ -184,6 +186,11 @@ std::vector<SceneKey> make_scene_keys()
         {"output.loads", "--loads", K::word, one_of(words<OutputLoads>())},
         {"initial.state", "--initial", K::word, one_of(words<InitialState>())},
     });
+    // A term's table that has no place above follows the rest.
+    for (const TermInfo& t : terms())
+        if (!t.scene_keys.empty() &&
+            std::find(placed.begin(), placed.end(), std::string_view(t.scene_keys.front().table)) == placed.end())
+            term_keys(t.scene_keys.front().table);
     return keys;
 }
 
