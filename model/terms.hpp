@@ -1,7 +1,7 @@
 // The physics terms beyond the paper's beam (docs/model.md section 11), registered in one table: each term's name
 // suffix, summary words, the parameters it owns, its scene keys and which of T, U, D it adds to. The variant's name,
 // the generated banner, the scene reader and the choice of a scene's variant read this table; the generator's
-// energies (generator/terms/) and the assembled twins (runtime/src/models/terms/) are one file per term.
+// energies (generator/terms/) and the assembled twins (runtime/src/models/assembled/terms/) are one file per term.
 #pragma once
 
 #include <string>

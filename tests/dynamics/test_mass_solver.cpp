@@ -13,7 +13,7 @@
 #include <hubbeam/make_model.hpp>
 #include "dynamics/integrate.hpp"
 #include "dynamics/mass_solver.hpp"
-#include "models/assembled.hpp"
+#include "models/assembled/assembled.hpp"
 #include "models/generated_model.hpp"
 #include "random_state.hpp"
 

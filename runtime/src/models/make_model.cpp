@@ -5,7 +5,7 @@
 #include <hubbeam/on_demand.hpp>
 #include <stdexcept>
 
-#include "models/assembled.hpp"
+#include "models/assembled/assembled.hpp"
 #include "models/generated_model.hpp"
 
 namespace hubbeam {

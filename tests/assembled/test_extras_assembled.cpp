@@ -1,6 +1,6 @@
 // The terms beyond the paper's beam (docs/model.md section 11: tip body, taper, gravity, Rayleigh damping) on two
 // independent paths: the generated kernels (symbolic energies and dissipation function, exact integrals) against the
-// hand-assembled matrices (runtime/src/models/assembled.cpp: quadrature with the profile as a weight, point values at
+// hand-assembled matrices (runtime/src/models/assembled/assembled.cpp: quadrature with the profile as a weight, point values at
 // the tip) at random states, term by term; and the assembled forces against the assembled energies (Lagrange's
 // equations by exact differences) and against the damping matrices that section 11 states.
 #include <catch2/catch.hpp>

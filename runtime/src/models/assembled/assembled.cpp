@@ -2,7 +2,7 @@
 // inside them), a tip body as point values of the shape functions at x = L, then M(q) and Q(q, qd) of Lagrange's
 // equations for orders first and zero, with gravity and Rayleigh damping, in torque form q = (theta, A, B) or
 // prescribed form q = (A, B). A beam that leaves the plane runs on section 12.3's forms (assembled_forms.cpp).
-#include "models/assembled.hpp"
+#include "models/assembled/assembled.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "models/assembled_terms.hpp"
+#include "models/assembled/assembled_terms.hpp"
 #include "profile.hpp"
 
 namespace hubbeam {
@@ -221,7 +221,7 @@ public:
           ny_(coordinates().count(FieldKind::inplane))
     {
         const BeamMatrices c = assemble_matrices(key, p);
-        // The beam with the terms the variant carries (runtime/src/models/terms/); a term it does not carry
+        // The beam with the terms the variant carries (runtime/src/models/assembled/terms/); a term it does not carry
         // contributes nothing, whatever its parameter says (as in the generator).
         m_ = model_matrices({key, p, c});
         M2_G_ = key.order == Order::zero ? m_.M2 : MatrixXd(m_.M2 - m_.G);

@@ -1,4 +1,4 @@
-// The hand-assembled path (runtime/src/models/assembled.*, runtime/src/models/fields.cpp) against independent computations and the
+// The hand-assembled path (runtime/src/models/assembled/assembled.*, runtime/src/models/fields.cpp) against independent computations and the
 // physics of docs/model.md section 7: coefficient matrices, cantilever frequencies, the mass matrix, steady spin,
 // energy and Lagrange consistency of the forces, and the beam fields under static tip loads.
 #include <catch2/catch.hpp>
@@ -13,7 +13,7 @@
 
 #include <hubbeam/fields.hpp>
 #include "eigen_oracles.hpp"
-#include "models/assembled.hpp"
+#include "models/assembled/assembled.hpp"
 #include "shared_oracles.hpp"
 
 using namespace hubbeam;

@@ -1,7 +1,7 @@
 // docs/model.md section 12.3's integrals of the flapwise and twist fields by Gauss-Legendre quadrature: the chord's
 // angle enters through cos 2 beta(x) and sin 2 beta(x) evaluated at the nodes, on a rule fine enough that the
 // pre-twist's cosines integrate to round-off as the shape functions' products do exactly.
-#include "models/out_of_plane_matrices.hpp"
+#include "models/assembled/out_of_plane_matrices.hpp"
 
 #include <algorithm>
 #include <array>

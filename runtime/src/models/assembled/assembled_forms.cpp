@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "models/assembled.hpp"
-#include "models/quadratic_forms.hpp"
+#include "models/assembled/assembled.hpp"
+#include "models/assembled/quadratic_forms.hpp"
 
 namespace hubbeam {
 

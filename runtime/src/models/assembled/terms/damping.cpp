@@ -1,6 +1,6 @@
 // Rayleigh damping's assembled twin (docs/model.md section 11.4): -dD/dqd = -(alpha M_ee + beta K_e) qd_e with
 // M_ee = blockdiag(M1, M2r) of the beam with its tip body (added before: the registry puts the tip first).
-#include "models/assembled_terms.hpp"
+#include "models/assembled/assembled_terms.hpp"
 
 namespace hubbeam {
 

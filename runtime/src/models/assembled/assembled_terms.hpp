@@ -1,12 +1,12 @@
 // The assembled path's part of each physics term (model/terms.hpp): what it adds to the constant matrices of
 // docs/model.md sections 5 and 11 from which the assembled model forms M and Q. One file per term,
-// runtime/src/models/terms/NAME.cpp; the table in terms/assembled_terms.cpp lines them up with the registry. The
+// runtime/src/models/assembled/terms/NAME.cpp; the table in terms/assembled_terms.cpp lines them up with the registry. The
 // section terms (taper, profile) act inside the beam's quadrature (assemble_matrices) and add nothing here.
 #pragma once
 
 #include <Eigen/Dense>
 
-#include "models/assembled.hpp"
+#include "models/assembled/assembled.hpp"
 #include "terms.hpp"
 
 namespace hubbeam {
@@ -50,7 +50,7 @@ AssembledTerm assembled_part(const TermInfo& t);
 /// The beam's matrices with every term the variant carries added, in registry order.
 ModelMatrices model_matrices(const AssemblyContext& a);
 
-// One per term (runtime/src/models/terms/NAME.cpp).
+// One per term (runtime/src/models/assembled/terms/NAME.cpp).
 void add_tip(const AssemblyContext& a, ModelMatrices& m);
 /// The tip body's part of section 12.3's matrices (nothing for a planar variant, whose flap field is empty).
 void add_tip_out_of_plane(const AssemblyContext& a, ModelMatrices& m);

@@ -1,4 +1,4 @@
-// The hand-assembled model's exact Jacobian (runtime/src/models/assembled.cpp, assembled_forms.cpp: the derivatives of
+// The hand-assembled model's exact Jacobian (runtime/src/models/assembled/assembled.cpp, assembled_forms.cpp: the derivatives of
 // docs/model.md sections 5.2 and 12.3's blocks, written by hand) on two independent paths: against the generated
 // derivative kernels (the generator's symbolic differentiation) at random states, and against fourth-order central
 // differences of the assembled forces and mass. Then what it is for: the modes of a stiff real blade by either source.

@@ -4,7 +4,7 @@
 
 #include <Eigen/Dense>
 
-#include "models/assembled_terms.hpp"
+#include "models/assembled/assembled_terms.hpp"
 
 namespace hubbeam {
 

@@ -1,5 +1,5 @@
 // The assembled twins lined up with the registry (model/terms.hpp): the one place a term's assembled part is named.
-#include "models/assembled_terms.hpp"
+#include "models/assembled/assembled_terms.hpp"
 
 #include <array>
 #include <stdexcept>

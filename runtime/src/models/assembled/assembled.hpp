@@ -7,7 +7,7 @@
 #include <hubbeam/model.hpp>
 #include <memory>
 
-#include "models/out_of_plane_matrices.hpp"
+#include "models/assembled/out_of_plane_matrices.hpp"
 
 namespace hubbeam {
 

@@ -2,7 +2,7 @@
 // position in the hub frame is p = (R + e + cb u_x2, u_y, x sb + sb u_x1 + cb u_z + sb u_x2), R = a + x cb, where
 // e = cb u_x1 - sb u_z is its radial displacement: in the plane of rotation e plays the part of the planar model's
 // u_x1, so section 5.2's matrices carry over with the radial shape (cb Phi_x, -sb Phi_z) in place of Phi_x.
-#include "models/quadratic_forms.hpp"
+#include "models/assembled/quadratic_forms.hpp"
 
 namespace hubbeam {
 

@@ -1,7 +1,7 @@
 // The tip body's assembled twin (docs/model.md sections 11.1 and 12.3): m_tip and J_tip at x = L, as point values of
 // the shape functions there added to section 5.2's matrices and to the flapwise field's, and its weight to section
 // 11.3's.
-#include "models/assembled_terms.hpp"
+#include "models/assembled/assembled_terms.hpp"
 
 namespace hubbeam {
 

@@ -1,7 +1,7 @@
 // The beam out of the plane (docs/model.md section 12: flapwise and twist fields, pitch, pre-twist, precone, and the
 // tip body, gravity along both axes and damping with them) on two independent paths: the generated kernels (symbolic
 // energies, exact integrals, the pre-twist and a table as section integrals) against the hand-assembled forms of section 12.3
-// (runtime/src/models/quadratic_forms.cpp: quadrature with the chord's angle at the nodes) at random states, term by
+// (runtime/src/models/assembled/quadratic_forms.cpp: quadrature with the chord's angle at the nodes) at random states, term by
 // term and all together; the assembled forces against the assembled energies; the forms against section 5.2's block
 // form on planar variants; and the assembled path against closed forms and published frequencies.
 #include <Eigen/Dense>
@@ -17,7 +17,7 @@
 
 #include "eigen_oracles.hpp"
 #include "model_values.hpp"
-#include "models/assembled.hpp"
+#include "models/assembled/assembled.hpp"
 #include "random_state.hpp"
 #include "shared_oracles.hpp"
 
