@@ -9,6 +9,7 @@
 #include <cmath>
 #include <complex>
 #include <functional>
+#include <hubbeam/field_recorder.hpp>
 #include <hubbeam/linearize.hpp>
 #include <hubbeam/make_model.hpp>
 #include <vector>
@@ -16,7 +17,9 @@
 #include "basis/basis.hpp"
 #include "basis/quadrature.hpp"
 #include "coordinates.hpp"
+#include "csv_file.hpp"
 #include "shared_oracles.hpp"
+#include "temp_folder.hpp"
 
 using namespace hubbeam;
 
@@ -289,4 +292,41 @@ TEST_CASE("a tip mass off the axis twists a held blade by m g offset L / GJ unde
     const double sag = -p.m_tip * p.g_axis * std::pow(p.L, 3) / (3.0 * p.E * p.I_flap);
     CHECK(tip.phi == Approx(twist).epsilon(1e-6));
     CHECK(tip.uz == Approx(sag - p.rho * p.S * p.g_axis / (8.0 * p.E * p.I_flap)).epsilon(1e-6));
+}
+
+TEST_CASE("blade fields: u_z, phi, the torque and the shortening along a blade that an offset tip mass bends and twists",
+          "[tip_body][fields]")
+{
+    // The statics of the test above, along the span and through the fields CSV: a tip load P = -m g_axis bends the
+    // blade to u_z = P x^2 (3 L - x) / (6 EI_flap) (the beam's own weight made negligible), the torque T = m g_axis
+    // offset twists it to phi = T x / GJ with GJ phi' = T, and the flapwise slope shortens it by u_x = -1/2 int_0^x
+    // u_z'^2 = -1/2 (P / 2 EI_flap)^2 (4 L^2 x^3 / 3 - L x^4 + x^5 / 5). Ny, Nz and Nt differ, so that each field is
+    // read by its own basis; Hermite cubics hold the cubic u_z, linear elements the linear phi.
+    Parameters p = unit_blade();
+    p.rho = 1e-9, p.m_tip = 0.3, p.tip_offset = 0.2, p.g_axis = 1e-4;
+    VariantKey key = blade_key(Method::fem, 4, 2);
+    key.extras.gravity = true;
+    const auto model = make_model(key, p, ModelSource::generated);
+    const std::vector<double> q = held_equilibrium(*model, 0.0).q;
+    const TempFolder folder("tip-body-fields");
+    const std::string path = (folder.path / "fields.csv").string();
+    FieldRecorder recorder(key, p, {0.0}, 11, path);
+    recorder.state(0.0, q.data());
+    REQUIRE(recorder.finish());
+    const test::Csv csv = test::read_csv(path);
+    const double L = p.L, EI = p.E * p.I_flap, GJ = p.G * p.J_t, P = -p.m_tip * p.g_axis;
+    const double T = p.m_tip * p.g_axis * p.tip_offset, w_tip = P * L * L * L / (3.0 * EI);
+    int checked = 0;
+    for (const std::vector<double>& row : csv.rows) {
+        const double x = row[csv.column("x")];
+        const double shortening = -0.5 * (P / (2.0 * EI)) * (P / (2.0 * EI)) *
+                                  (4.0 * L * L * x * x * x / 3.0 - L * x * x * x * x + x * x * x * x * x / 5.0);
+        INFO("x = " << x);
+        CHECK(row[csv.column("uz")] == Approx(P * x * x * (3.0 * L - x) / (6.0 * EI)).margin(1e-6 * std::abs(w_tip)));
+        CHECK(row[csv.column("phi")] == Approx(T * x / GJ).epsilon(1e-6).margin(1e-12));
+        CHECK(row[csv.column("torque")] == Approx(T).epsilon(1e-6));
+        CHECK(row[csv.column("ux")] == Approx(shortening).margin(1e-6 * 0.1 * w_tip * w_tip));
+        ++checked;
+    }
+    CHECK(checked >= 11);
 }

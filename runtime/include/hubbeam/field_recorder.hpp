@@ -4,7 +4,6 @@
 #include <hubbeam/config.hpp>
 #include <hubbeam/fields.hpp>
 #include <memory>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -67,8 +66,6 @@ private:
     CoordinateLayout coordinates_;
     BeamFields fields_;
     bool out_of_plane_, foreshortened_;
-    // A blade's: the flapwise field's basis as its transverse one, the twist field's as its axial one.
-    std::optional<BeamFields> flap_;
     std::vector<double> stations_;  // a profile's, x/L
     Parameters p_;
     int blades_;

@@ -11,7 +11,8 @@
 namespace hubbeam {
 
 /// Field outputs of one variant. A and B point at the axial and transverse coordinates (A may be null when
-/// nx = 0); x is in metres, 0 <= x <= L (std::out_of_range otherwise).
+/// nx = 0); x is in metres, 0 <= x <= L (std::out_of_range otherwise). Every beam field (axial, in-plane, flapwise,
+/// twist) is read alike by field() and foreshortening(kind, ...); the named ones are the planar beam's.
 class BeamFields {
 public:
     /// The shape functions of key's variant, their tip values and H(L), for parameters p.
@@ -19,6 +20,13 @@ public:
 
     /// Tip displacements at coordinates A, B; order zero, the linear model, has no foreshortening: u_x = u_x1.
     Tip tip(const double* A, const double* B) const;
+
+    /// The beam field of kind k (FieldKind::axial, inplane, flap or twist: u_x1, u_y, u_z or phi) at x from its
+    /// coordinates c (null: a field without coordinates, 0), or its first or second derivative by x (derivative 1, 2).
+    double field(FieldKind k, const double* c, double x, int derivative = 0) const;
+    /// What a transverse field's slope (kind inplane: u_y; flap: u_z) shortens the beam by at each of the sorted
+    /// abscissae xs, -1/2 int_0^x u'^2, by Gauss quadrature exact on the polynomial pieces (round-off for AMM).
+    std::vector<double> foreshortening(FieldKind k, const double* c, const std::vector<double>& xs) const;
 
     /// Transverse deflection u_y(x) = Phi_y(x) B.
     double uy(const double* B, double x) const;
@@ -30,8 +38,7 @@ public:
     /// Slope u_y'(x) and curvature u_y''(x).
     double slope(const double* B, double x) const;
     double curvature(const double* B, double x) const;
-    /// The foreshortening u_x2(x) = -1/2 int_0^x u_y'^2 at each of the sorted abscissae xs, by Gauss quadrature
-    /// exact on the polynomial pieces (converged to round-off for AMM).
+    /// The foreshortening u_x2(x) = -1/2 int_0^x u_y'^2 at each of the sorted abscissae xs (the in-plane field's).
     std::vector<double> foreshortening(const double* B, const std::vector<double>& xs) const;
     /// The axial displacement u_x(x) = u_x1(x) + u_x2(x) at each of the sorted abscissae xs; u_x1(x) alone for
     /// order zero, the linear model (docs/model.md section 3).
@@ -57,8 +64,10 @@ public:
 
 private:
     double xi_of(double x) const;
+    /// The basis of the field of kind k.
+    const FieldBasis& basis(FieldKind k) const;
 
-    FieldBasis axial_, transverse_;
+    FieldBasis axial_, transverse_, flap_, twist_;
     bool foreshortened_;  // u_x includes u_x2: every order but zero
     double L_, EI_, ES_;
     Taper taper_;

@@ -52,11 +52,7 @@ namespace {
 std::vector<double> span_shape(const Model& model, const Parameters& p, FieldKind kind,
                                const Eigen::VectorXcd& dq, const std::vector<double>& xi)
 {
-    // The fields of a key whose transverse basis is the field's own: the flapwise field takes the in-plane field's
-    // basis with Nz functions (VariantKey::flap_basis), so BeamFields of a key with Ny = Nz gives u_z as u_y.
-    VariantKey key = model.key();
-    if (kind == FieldKind::flap) key.ny = key.nz;
-    const BeamFields fields(key, p);
+    const BeamFields fields(model.key(), p);
     const CoordinateField& field = *model.coordinates().find(kind);
     std::vector<double> re(static_cast<std::size_t>(field.count)), im(re.size());
     for (int k = 0; k < field.count; ++k) {
@@ -64,7 +60,7 @@ std::vector<double> span_shape(const Model& model, const Parameters& p, FieldKin
         im[static_cast<std::size_t>(k)] = dq(field.first + k).imag();
     }
     const auto at = [&](double x) {
-        return std::complex<double>(fields.uy(re.data(), x * p.L), fields.uy(im.data(), x * p.L));
+        return std::complex<double>(fields.field(kind, re.data(), x * p.L), fields.field(kind, im.data(), x * p.L));
     };
     const std::complex<double> tip = at(1.0);
     if (std::abs(tip) == 0.0) throw std::runtime_error("a mode shape with no deflection at the tip");

@@ -10,19 +10,6 @@
 
 namespace hubbeam {
 
-namespace {
-
-/// A key whose transverse basis is key's flapwise one and whose axial basis is its twist one: BeamFields of it
-/// gives u_z and phi as it gives u_y and u_x1.
-VariantKey flap_and_twist(VariantKey key)
-{
-    key.ny = key.nz;
-    key.nx = key.nt;
-    return key;
-}
-
-}  // namespace
-
 FieldRecorder::FieldRecorder(const VariantKey& key, const Parameters& p, std::vector<double> times, int points,
                              const std::string& path, const Rotor& rotor)
     : coordinates_(coordinate_layout(key, rotor.blades)),
@@ -35,7 +22,6 @@ FieldRecorder::FieldRecorder(const VariantKey& key, const Parameters& p, std::ve
       times_(std::move(times))
 {
     for (int b = 0; b < blades_; ++b) pitches_.push_back(rotor.blade(p, b).pitch);
-    if (out_of_plane_) flap_.emplace(flap_and_twist(key), p);
     std::sort(times_.begin(), times_.end());
     for (int i = 0; i < points; ++i) xs_.push_back(p.L * i / (points - 1));
     // Both sides of each piece boundary, 1e-9 L apart: the moment's jump at FEM's nodes shows as a step.
@@ -68,7 +54,7 @@ void FieldRecorder::write_blade(double t, const double* q, int blade)
     std::vector<double> ux = fields_.ux(A, B, xs_);
     const CoordinateField* flap = coordinates_.find(FieldKind::flap, blade);
     if (flap != nullptr && foreshortened_) {  // both slopes shorten the beam (not in order zero, the linear model)
-        const std::vector<double> shortening = flap_->foreshortening(q + flap->first, xs_);
+        const std::vector<double> shortening = fields_.foreshortening(FieldKind::flap, q + flap->first, xs_);
         for (std::size_t i = 0; i < xs_.size(); ++i) ux[i] += shortening[i];
     }
     for (std::size_t i = 0; i < xs_.size(); ++i) {
@@ -95,7 +81,9 @@ FieldRecorder::BladeValues FieldRecorder::blade_at(const double* q, int blade, d
 {
     const CoordinateField* flap = coordinates_.find(FieldKind::flap, blade);
     const CoordinateField* twist = coordinates_.find(FieldKind::twist, blade);
-    const double z2 = flap != nullptr ? flap_->curvature(q + flap->first, x) : 0.0;
+    const double* Z = flap != nullptr ? q + flap->first : nullptr;
+    const double* P = twist != nullptr ? q + twist->first : nullptr;
+    const double z2 = fields_.field(FieldKind::flap, Z, x, 2);
     // The section at x: uniform, or a profile's columns each linear between stations (docs/model.md section 12.4).
     const double xi = x / p_.L;
     // A taper's edgewise and flapwise ratios (docs/model.md section 12).
@@ -109,11 +97,9 @@ FieldRecorder::BladeValues FieldRecorder::blade_at(const double* q, int blade, d
     BladeValues b;
     b.edge_moment = EI_edge * (std::cos(beta) * y2 + std::sin(beta) * z2);   // EI_edge kappa_c
     b.flap_moment = EI_flap * (-std::sin(beta) * y2 + std::cos(beta) * z2);  // EI_flap kappa_n
-    if (flap != nullptr) b.uz = flap_->uy(q + flap->first, x);
-    if (twist != nullptr) {
-        b.phi = flap_->ux1(q + twist->first, x);
-        b.torque = section(ProfileValue::GJ, p_.G * p_.J_t * i_f) * flap_->ux1_slope(q + twist->first, x);
-    }
+    b.uz = fields_.field(FieldKind::flap, Z, x);
+    b.phi = fields_.field(FieldKind::twist, P, x);
+    b.torque = section(ProfileValue::GJ, p_.G * p_.J_t * i_f) * fields_.field(FieldKind::twist, P, x, 1);
     return b;
 }
 

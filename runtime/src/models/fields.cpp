@@ -11,7 +11,8 @@
 namespace hubbeam {
 
 BeamFields::BeamFields(const VariantKey& key, const Parameters& p)
-    : axial_(key.axial_basis()), transverse_(key.transverse_basis()), foreshortened_(key.order != Order::zero), L_(p.L),
+    : axial_(key.axial_basis()), transverse_(key.transverse_basis()), flap_(key.flap_basis()),
+      twist_(key.twist_basis()), foreshortened_(key.order != Order::zero), L_(p.L),
       EI_(p.E * p.I), ES_(p.E * p.S), taper_(key.extras.taper), tip_ratio_(p.tip_ratio),
       stations_(p.stations), profile_(p.profile),
       Phi_x_L_(axial_.size()), Phi_y_L_(transverse_.size()), H_L_(Eigen::MatrixXd::Zero(transverse_.size(), transverse_.size()))
@@ -65,6 +66,28 @@ double combination(const FieldBasis& basis, const double* c, double xi, int deri
 
 }  // namespace
 
+const FieldBasis& BeamFields::basis(FieldKind k) const
+{
+    switch (k) {
+        case FieldKind::axial:
+            return axial_;
+        case FieldKind::inplane:
+            return transverse_;
+        case FieldKind::flap:
+            return flap_;
+        case FieldKind::twist:
+            return twist_;
+        default:
+            throw std::invalid_argument("BeamFields: the hub's coordinates are not a field along the beam");
+    }
+}
+
+double BeamFields::field(FieldKind k, const double* c, double x, int derivative) const
+{
+    // d/dx = (1/L) d/dxi.
+    return combination(basis(k), c, xi_of(x), derivative) / (derivative == 0 ? 1.0 : derivative == 1 ? L_ : L_ * L_);
+}
+
 double BeamFields::uy(const double* B, double x) const { return combination(transverse_, B, xi_of(x), 0); }
 
 double BeamFields::ux1(const double* A, double x) const { return combination(axial_, A, xi_of(x), 0); }
@@ -112,28 +135,34 @@ std::vector<double> BeamFields::piece_boundaries() const
 
 std::vector<double> BeamFields::foreshortening(const double* B, const std::vector<double>& xs) const
 {
+    return foreshortening(FieldKind::inplane, B, xs);
+}
+
+std::vector<double> BeamFields::foreshortening(FieldKind kind, const double* c, const std::vector<double>& xs) const
+{
+    const FieldBasis& field = basis(kind);
     // Cuts at the pieces' boundaries and at the abscissae, so that every panel is one smooth piece; a rule that
     // integrates the squared slope exactly (polynomials) or to round-off (AMM's panels, as for H(L)).
     std::vector<double> cuts{0.0, 1.0};
-    const bool polynomial = transverse_.polynomial();
-    const int panels = polynomial ? transverse_.intervals() : transcendental_panels(transverse_.size());
+    const bool polynomial = field.polynomial();
+    const int panels = polynomial ? field.intervals() : transcendental_panels(field.size());
     for (int k = 1; k < panels; ++k) cuts.push_back(static_cast<double>(k) / panels);
     for (double x : xs) cuts.push_back(xi_of(x));
     std::sort(cuts.begin(), cuts.end());
     cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
-    const QuadratureRule g = gauss_legendre(polynomial ? transverse_.degree() + 1 : transcendental_points);
+    const QuadratureRule g = gauss_legendre(polynomial ? field.degree() + 1 : transcendental_points);
     std::vector<double> out;
-    double integral = 0.0;  // int_0^cut (du_y/dxi)^2 dxi
+    double integral = 0.0;  // int_0^cut (du/dxi)^2 dxi
     std::size_t next = 0;
-    for (std::size_t c = 0; c < cuts.size(); ++c) {
-        if (c > 0) {
-            const double lo = cuts[c - 1], width = cuts[c] - cuts[c - 1];
+    for (std::size_t n = 0; n < cuts.size(); ++n) {
+        if (n > 0) {
+            const double lo = cuts[n - 1], width = cuts[n] - cuts[n - 1];
             for (std::size_t j = 0; j < g.nodes.size(); ++j) {
-                const double d = combination(transverse_, B, lo + width * g.nodes[j], 1);
+                const double d = combination(field, c, lo + width * g.nodes[j], 1);
                 integral += width * g.weights[j] * d * d;
             }
         }
-        for (; next < xs.size() && xi_of(xs[next]) <= cuts[c]; ++next) out.push_back(-0.5 * integral / L_);
+        for (; next < xs.size() && xi_of(xs[next]) <= cuts[n]; ++next) out.push_back(-0.5 * integral / L_);
     }
     return out;
 }
