@@ -205,6 +205,11 @@ bool reads_driven_angle(const VariantKey& key)
     return key.drive == Drive::prescribed && kernels_read_angle(key);
 }
 
+bool mass_reads_angle(const VariantKey& key)
+{
+    return carries_a_term_that(key, kinetic_reads_angle);
+}
+
 bool shaped_section(const VariantKey& key)
 {
     return carries_a_term_that(key, shapes_section);

@@ -93,6 +93,9 @@ bool kernels_read_angle(const VariantKey& key);
 /// in the plane, a moving hub's T): dQ/dtheta theta_dot (and dM/dtheta theta_dot) enter df/dt, and no energy is
 /// constant while the hub turns.
 bool reads_driven_angle(const VariantKey& key);
+/// Whether T reads the hub angle (a carried term's does: a moving hub's velocity in the blade's frame): M holds sin
+/// theta and cos theta, so M turns with the angle, and no spin at a constant rate is steady in the blade's frame.
+bool mass_reads_angle(const VariantKey& key);
 /// Whether a carried term shapes the section (m(x), EI(x), ES(x) vary along the span): the generator's point terms
 /// for order full know a uniform section only.
 bool shaped_section(const VariantKey& key);

@@ -41,7 +41,7 @@ std::vector<int> modal_coordinates(const Model& model, const SteadySpin& s, Axia
 std::string unsteady_spin(const VariantKey& key, const std::vector<double>& p, double omega)
 {
     // A hub that translates sees the blade at an azimuth that turns: about a spin its equations are periodic.
-    if (omega != 0.0 && key.extras.hub)
+    if (omega != 0.0 && mass_reads_angle(key))
         return "with a moving hub ([support]) a spin at a constant rate is not steady in the blade's frame (the "
                "support is fixed, the blade turns: the linear equations are periodic); linearize at rest, Omega = 0";
     if (omega == 0.0 || !weight_turns_with_spin(key, p)) return {};

@@ -416,7 +416,7 @@ int FirstOrderSystem::exact_jacobian(const ExactJacobian& exact, double t, const
     if (reads_driven_angle(model_.key())) {
         w.dQdtheta.resize(n_);  // the angle is an input too: (dQ/dtheta - dM/dtheta qdd) theta_dot
         model_.forces_theta(u, q, qd, w.dQdtheta.data());
-        if (model_.key().extras.hub) {  // M turns with a moving hub's angle (allocates: a rare variant's Jacobian)
+        if (mass_reads_angle(model_.key())) {  // M turns with the angle (allocates: a rare variant's Jacobian)
             Eigen::VectorXd qdd(n_);
             model_.forces(u, q, qd, qdd.data());
             w.solver->solve(qdd.data());

@@ -218,7 +218,7 @@ private:
     }
     std::array<double, kernel_input_count> mass_inputs(const HubInput& u, const double* q) const
     {
-        if (key().extras.hub) return inputs(u, q);
+        if (mass_reads_angle(key())) return inputs(u, q);
         return {u.tau, u.theta_dot, u.theta_ddot, 0.0, 0.0};
     }
 

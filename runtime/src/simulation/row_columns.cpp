@@ -45,7 +45,7 @@ ColumnSet optional_columns_of(const Scene& scene)
     const VariantKey key = scene.key();
     const Auxiliary aux = Auxiliary::of(key, scene.damped(), control, &scene.parameters, scene.wants({"ki"}));
     const bool torque = key.drive == Drive::torque && (control != nullptr || scene.damped());
-    const bool hub = key.extras.hub;
+    const bool hub = coordinate_layout(key).find(FieldKind::hub_x) != nullptr;  // a moving hub's x_h, y_h
     const bool has[] = {has_tip_value(key, tip_values[3]),
                         has_tip_value(key, tip_values[4]),
                         torque,

@@ -38,7 +38,7 @@ void Simulation::Run::start_summary()
     if (system_.auxiliary().work) summary_.t_steady = 0.0;
     const bool turning = scene_.motion.kind != Motion::Kind::held;
     if (reads_driven_angle(model_.key()) && turning)
-        summary_.monitor_off = model_.key().extras.hub
+        summary_.monitor_off = mass_reads_angle(model_.key())
                                    ? "a moving hub under a prescribed rotation: T follows the prescribed angle, no "
                                      "energy is constant"
                                    : "gravity under a prescribed rotation: U_g follows the prescribed angle, no energy "
