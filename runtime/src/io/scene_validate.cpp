@@ -122,12 +122,15 @@ void check_term_keys(const Scene& s)
 /// them, the key named being the first one given.
 void check_tip_body(const Scene& s)
 {
-    const Parameters& p = s.parameters;
     const std::string problem = s.key().tip_body_problem();
     if (problem.empty()) return;
-    for (const auto& [v, key] :
-         {std::pair{p.J_tip_flap, "tip.inertia_flap"}, {p.J_tip_twist, "tip.inertia_twist"}, {p.tip_offset, "tip.offset"}})
-        if (v != 0.0) throw SceneError::with_detail(s.path, key, problem);
+    // Its keys are the registry's (model/terms.cpp): those of the term that a variant with the tip body alone carries.
+    Parameters p = s.parameters;
+    Extras tip_body;
+    tip_body.tip_body = true;
+    for (const TermInfo* t : carried_terms(tip_body))
+        for (const TermSceneKey& k : t->scene_keys)
+            if (value(p, k.param) != 0.0) throw SceneError::with_detail(s.path, k.name(), problem);
     // Carried at 0: a sensitivity to one of them.
     throw SceneError::with_detail(s.path, "output.sensitivities", problem);
 }
