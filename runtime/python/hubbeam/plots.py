@@ -269,15 +269,9 @@ def _crossings(omega, hz, n: int):
     return w, n * w / (2 * np.pi)
 
 
-def plot_campbell(m: Any, *, kinds: Sequence[str] | str = CAMPBELL_KINDS, count: int = 4,
-                  harmonics: Sequence[int] | None = None, spin_unit: str = "rad/s", blades: int | None = None,
-                  operating_range: Sequence[float] | None = None, max_frequency: float | None = None,
-                  ax: Any = None, label: str | None = None):
-    """A Campbell diagram of hubbeam.modes(...) (or of a modes CSV of one variant, by its path), as
-    `hubbeam plot campbell` draws it: above, each tracked mode's frequency (Hz) against the spin rate, in its
-    family's shade and its whirl's dashes, named at its line's end; the per-rev lines kP named at theirs and the
-    critical speeds where the modes meet them; below, the damping ratios (%), unstable points marked in both panels;
-    the operating range shaded. Returns the figure (docs/python.md, "Figures")."""
+def _campbell_arguments(m: Any, spin_unit: str, blades: Any, operating_range: Any, max_frequency: Any):
+    """plot_campbell's arguments checked, each refusal naming its argument: the modes as a dict (read from a CSV's
+    path), the blade count (0 where not given) and the operating range (lo, hi), or None."""
     from . import printable
 
     if isinstance(m, (str, os.PathLike)):
@@ -291,6 +285,7 @@ def plot_campbell(m: Any, *, kinds: Sequence[str] | str = CAMPBELL_KINDS, count:
         raise ValueError(f"spin_unit: expected 'rad/s' or 'rpm', got {printable(repr(spin_unit), 80)}")
     if blades is not None and (isinstance(blades, bool) or not isinstance(blades, (int, np.integer)) or blades < 1):
         raise ValueError(f"blades: expected an integer >= 1, got {printable(repr(blades), 80)}")
+    span = None
     if operating_range is not None:
         try:
             lo, hi = (float(v) for v in operating_range)
@@ -299,89 +294,110 @@ def plot_campbell(m: Any, *, kinds: Sequence[str] | str = CAMPBELL_KINDS, count:
         if not (0 <= lo < hi < math.inf):
             raise ValueError(f"operating_range: expected (lo, hi), two spin rates >= 0 in the spin_unit "
                              f"({spin_unit}) with lo < hi, got {printable(repr(operating_range), 80)}")
+        span = (lo, hi)
     if max_frequency is not None and not (isinstance(max_frequency, (int, float, np.number))
                                           and 0 < max_frequency < math.inf):
         raise ValueError(f"max_frequency: expected a frequency > 0 (Hz), got {printable(repr(max_frequency), 80)}")
-    blades = int(blades or 0)
-    if harmonics is None:
-        harmonics = list(range(1, max(DEFAULT_PER_REV, blades) + 1))
-    harmonics = [int(n) for n in harmonics]
-    plt = pyplot()
+    return m, int(blades or 0), span
+
+
+def _campbell_axes(plt, ax: Any):
+    """The figure, the frequencies' axes and the damping ratios' below them (None where ax is one Axes)."""
     if ax is None:
         fig, (ax, axz) = _subplots(plt, 2, 1, sharex=True, figsize=(9.0, 6.5), layout="constrained",
                                    gridspec_kw={"height_ratios": (2.6, 1.0)})
-    else:
-        axes = list(np.atleast_1d(ax))
-        if len(axes) not in (1, 2):
-            raise ValueError(f"ax: expected an Axes (the frequencies alone) or two (and the damping ratios below), "
-                             f"got {len(axes)}")
-        ax, axz = axes[0], (axes[1] if len(axes) == 2 else None)
-        fig = ax.figure
-    scale = 60 / (2 * np.pi) if spin_unit == "rpm" else 1.0
+        return fig, ax, axz
+    axes = list(np.atleast_1d(ax))
+    if len(axes) not in (1, 2):
+        raise ValueError(f"ax: expected an Axes (the frequencies alone) or two (and the damping ratios below), "
+                         f"got {len(axes)}")
+    return axes[0].figure, axes[0], (axes[1] if len(axes) == 2 else None)
 
-    omega, hz, labels, kind = (np.asarray(m[k]) for k in ("omega", "hz", "label", "kind"))
-    n = len(omega)
-    zeta = np.asarray(m["damping_ratio"], dtype=float) if "damping_ratio" in m else np.zeros(n)
-    growth = np.asarray(m["growth"], dtype=float) if "growth" in m else np.zeros(n)
-    family = np.array([mode_name(k)[1] for k in kind]) if n else np.array([], dtype=str)
-    oscillates = hz > 0  # an overdamped mode's frequency is 0 (NaN compares False too)
-    keep = oscillates & (np.ones(n, bool) if kinds == "all" else np.isin(family, list(kinds)))
-    per_kind: dict[str, list[str]] = {}
-    for line, k in dict.fromkeys(zip(labels[keep], family[keep])):  # first appearance: the lowest of each kind first
-        per_kind.setdefault(k, []).append(line)
-    drawn = [line for lines in per_kind.values() for line in lines[:count]]
-    # A line unstable at some rate is drawn whatever its rank, and whatever its kind unless kinds= leaves it out: the
-    # default kinds hide no instability.
-    unstable = oscillates & ((growth > 0) | (zeta < 0))
-    if kinds is not CAMPBELL_KINDS:
-        unstable &= keep
-    drawn += [line for line in dict.fromkeys(labels[unstable]) if line not in drawn]
-    keep = oscillates & (keep | np.isin(labels, drawn))
-    # The cutoff: given, or a little above the highest per-rev line at the highest rate.
-    omega_max = float(omega[keep].max()) if keep.any() else 0.0
-    lowest = min(drawn, key=lambda line: hz[keep & (labels == line)][0], default=None)
-    lowest_top = float(hz[keep & (labels == lowest)].max()) if lowest is not None else 0.0
-    top = float(max_frequency) if max_frequency is not None else \
-        campbell_cutoff(max(harmonics, default=0), omega_max, lowest_top)
-    drawn = [line for line in drawn if (hz[keep & (labels == line)] <= top).any()]
-    if not drawn and keep.any():  # a cutoff given below every mode (the default keeps the lowest)
-        raise ValueError(f"max_frequency: expected a frequency at or above the lowest mode drawn "
-                         f"({float(hz[keep].min()):g} Hz), got {printable(repr(max_frequency), 80)}")
-    keep &= np.isin(labels, drawn)
-    if not math.isfinite(top):
-        top = 1.05 * float(hz[keep].max()) if keep.any() else 1.0
 
+class _CampbellLines:
+    """The modes' columns and which lines a Campbell diagram draws: the `count` lowest of each kind asked for, every
+    line unstable at some rate, those that reach below the frequency cutoff `top`."""
+
+    def __init__(self, m: Mapping, kinds: Sequence[str] | str, count: int, harmonics: list[int],
+                 max_frequency: float | None):
+        from . import printable
+
+        self.omega, self.hz, self.labels, kind = (np.asarray(m[k]) for k in ("omega", "hz", "label", "kind"))
+        n = len(self.omega)
+        self.zeta = np.asarray(m["damping_ratio"], dtype=float) if "damping_ratio" in m else np.zeros(n)
+        self.growth = np.asarray(m["growth"], dtype=float) if "growth" in m else np.zeros(n)
+        family = np.array([mode_name(k)[1] for k in kind]) if n else np.array([], dtype=str)
+        self.oscillates = self.hz > 0  # an overdamped mode's frequency is 0 (NaN compares False too)
+        # A divergence: a real root that grows, at 0 Hz; any kind.
+        self.divergent = ~self.oscillates & (self.growth > 0)
+        keep = self.oscillates & (np.ones(n, bool) if kinds == "all" else np.isin(family, list(kinds)))
+        per_kind: dict[str, list[str]] = {}
+        for line, k in dict.fromkeys(zip(self.labels[keep], family[keep])):  # first appearance: the lowest first
+            per_kind.setdefault(k, []).append(line)
+        drawn = [line for lines in per_kind.values() for line in lines[:count]]
+        # A line unstable at some rate is drawn whatever its rank, and whatever its kind unless kinds= leaves it out:
+        # the default kinds hide no instability.
+        unstable = self.oscillates & ((self.growth > 0) | (self.zeta < 0))
+        if kinds is not CAMPBELL_KINDS:
+            unstable &= keep
+        drawn += [line for line in dict.fromkeys(self.labels[unstable]) if line not in drawn]
+        keep = self.oscillates & (keep | np.isin(self.labels, drawn))
+        # The cutoff: given, or a little above the highest per-rev line at the highest rate.
+        self.omega_max = float(self.omega[keep].max()) if keep.any() else 0.0
+        lowest = min(drawn, key=lambda line: self.hz[keep & (self.labels == line)][0], default=None)
+        lowest_top = float(self.hz[keep & (self.labels == lowest)].max()) if lowest is not None else 0.0
+        top = float(max_frequency) if max_frequency is not None else \
+            campbell_cutoff(max(harmonics, default=0), self.omega_max, lowest_top)
+        self.drawn = [line for line in drawn if (self.hz[keep & (self.labels == line)] <= top).any()]
+        if not self.drawn and keep.any():  # a cutoff given below every mode (the default keeps the lowest)
+            raise ValueError(f"max_frequency: expected a frequency at or above the lowest mode drawn "
+                             f"({float(self.hz[keep].min()):g} Hz), got {printable(repr(max_frequency), 80)}")
+        self.keep = keep & np.isin(self.labels, self.drawn)
+        self.top = top if math.isfinite(top) else (1.05 * float(self.hz[self.keep].max()) if self.keep.any() else 1.0)
+
+    def line(self, label: str):
+        """One drawn line's rates, frequencies, damping ratios and growth rates, by increasing rate."""
+        pick = self.keep & (self.labels == label)
+        order = np.argsort(self.omega[pick], kind="stable")
+        return (self.omega[pick][order], self.hz[pick][order], self.zeta[pick][order], self.growth[pick][order])
+
+
+def _draw_campbell_modes(ax: Any, axz: Any, lines: _CampbellLines, scale: float) -> list:
+    """Each drawn line in its family's shade and its whirl's dashes, in both panels, its unstable points crossed;
+    a divergence crossed at 0 Hz. Returns each line's (name, colour, last frequency) for its label at the end."""
     ends = []
-    for line in drawn:
-        pick = keep & (labels == line)
-        order = np.argsort(omega[pick], kind="stable")
-        w, f, z, g = omega[pick][order], hz[pick][order], zeta[pick][order], growth[pick][order]
-        whirl, fam, number = mode_name(line)
+    for label in lines.drawn:
+        w, f, z, g = lines.line(label)
+        whirl, fam, number = mode_name(label)
         colour = family_colour(fam, number)
         style = dict(color=colour, linestyle=WHIRL_STYLES[whirl], linewidth=1.8, marker=".", markersize=4)
-        ax.plot(w * scale, f, label=line, **style)
+        ax.plot(w * scale, f, label=label, **style)
         unstable = (z < 0) | (g > 0)
         if axz is not None:
-            axz.plot(w * scale, 100 * z, label=line, **style)
+            axz.plot(w * scale, 100 * z, label=label, **style)
         if unstable.any():
             ax.plot(w[unstable] * scale, f[unstable], linestyle="none", marker="x", markersize=9, markeredgewidth=2,
                     color=UNSTABLE_COLOUR, label="unstable")
             if axz is not None:
                 axz.plot(w[unstable] * scale, 100 * z[unstable], linestyle="none", marker="x", markersize=9,
                          markeredgewidth=2, color=UNSTABLE_COLOUR, label="unstable")
-        ends.append((line + (" (unstable)" if unstable.any() else ""), colour, f[-1]))
-
-    # A divergence (a real root that grows, at 0 Hz; any kind) is an instability too: a cross at 0 Hz, above only (its
-    # damping ratio, -1, would squash the lower panel).
-    divergent = ~oscillates & (growth > 0)
+        ends.append((label + (" (unstable)" if unstable.any() else ""), colour, f[-1]))
+    # A divergence is an instability too: a cross at 0 Hz, above only (its damping ratio, -1, would squash the lower
+    # panel).
+    divergent = lines.divergent
     if divergent.any():
-        ax.plot(omega[divergent] * scale, np.zeros(int(divergent.sum())), linestyle="none", marker="x", markersize=9,
-                markeredgewidth=2, color=UNSTABLE_COLOUR, label="unstable", clip_on=False)
+        ax.plot(lines.omega[divergent] * scale, np.zeros(int(divergent.sum())), linestyle="none", marker="x",
+                markersize=9, markeredgewidth=2, color=UNSTABLE_COLOUR, label="unstable", clip_on=False)
+    return ends
 
-    # The per-rev lines and their crossings with the modes (refined ones from hubbeam.modes where it searched that
-    # harmonic, else where the straight segments between rates cross them), each line named at its end.
-    w_lo = float(omega[keep].min()) if keep.any() else 0.0
-    w = np.array([w_lo, omega_max if omega_max > w_lo else w_lo + 1.0])
+
+def _draw_per_rev(ax: Any, m: Mapping, lines: _CampbellLines, harmonics: list[int], blades: int, scale: float):
+    """The per-rev lines and their crossings with the modes (refined ones from hubbeam.modes where it searched that
+    harmonic, else where the straight segments between rates cross them), each line named at its end. Returns the
+    spin range drawn and whether a crossing was."""
+    top, drawn = lines.top, lines.drawn
+    w_lo = float(lines.omega[lines.keep].min()) if lines.keep.any() else 0.0
+    w = np.array([w_lo, lines.omega_max if lines.omega_max > w_lo else w_lo + 1.0])
     crit = m.get("critical") or {}
     searched = set(int(k) for k in crit.get("harmonic", ()))
     cw, chz = [], []
@@ -400,27 +416,69 @@ def plot_campbell(m: Any, *, kinds: Sequence[str] | str = CAMPBELL_KINDS, count:
         ax.annotate(f"{k}P", (x_end * scale, y_end), xytext=(-3, -11 if f_end > top else 3),
                     textcoords="offset points", ha="right", fontsize="small", color="0.25")
         if k not in searched:
-            for line in drawn:
-                pick = keep & (labels == line)
-                order = np.argsort(omega[pick], kind="stable")
-                xw, xf = _crossings(omega[pick][order], hz[pick][order], k)
+            for label in drawn:
+                omega, hz, _, _ = lines.line(label)
+                xw, xf = _crossings(omega, hz, k)
                 cw += list(xw[xf <= top])
                 chz += list(xf[xf <= top])
     if cw:
         ax.plot(np.array(cw) * scale, chz, linestyle="none", marker="o", markersize=6, color=CRITICAL_COLOUR,
                 label="critical speeds", zorder=3)
+    return w, bool(cw)
 
+
+def _campbell_key(holder: Any, lines: _CampbellLines, ends: list, crossings: bool, blades: int,
+                  operating_range: Any) -> None:
+    """The key of what is not named at a line's end: critical speeds, instabilities, the blades' per-rev lines, the
+    whirls' dashes, the operating range."""
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
+    key = []
+    if crossings:
+        key.append(Line2D([], [], linestyle="none", marker="o", color=CRITICAL_COLOUR, label="critical speeds"))
+    if lines.divergent.any() or any(text.endswith(" (unstable)") for text, _, _ in ends):
+        key.append(Line2D([], [], linestyle="none", marker="x", markersize=9, markeredgewidth=2,
+                          color=UNSTABLE_COLOUR, label="unstable"))
+    if blades > 1:
+        key.append(Line2D([], [], color=PER_REV_BLADES_COLOUR, linewidth=2.4,
+                          label=f"{blades}P and its multiples ({blades} blades)"))
+    for whirl, text in (("BW", "backward whirl (BW)"), ("FW", "forward whirl (FW)")):
+        if any(mode_name(line)[0] == whirl for line in lines.drawn):
+            key.append(Line2D([], [], color="0.25", linestyle=WHIRL_STYLES[whirl], label=text))
+    if operating_range is not None:
+        key.append(Patch(color=RANGE_COLOUR, label="operating range"))
+    if key:
+        holder.legend(handles=key, fontsize="small", loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
+
+
+def plot_campbell(m: Any, *, kinds: Sequence[str] | str = CAMPBELL_KINDS, count: int = 4,
+                  harmonics: Sequence[int] | None = None, spin_unit: str = "rad/s", blades: int | None = None,
+                  operating_range: Sequence[float] | None = None, max_frequency: float | None = None,
+                  ax: Any = None, label: str | None = None):
+    """A Campbell diagram of hubbeam.modes(...) (or of a modes CSV of one variant, by its path), as
+    `hubbeam plot campbell` draws it: above, each tracked mode's frequency (Hz) against the spin rate, in its
+    family's shade and its whirl's dashes, named at its line's end; the per-rev lines kP named at theirs and the
+    critical speeds where the modes meet them; below, the damping ratios (%), unstable points marked in both panels;
+    the operating range shaded. Returns the figure (docs/python.md, "Figures")."""
+    m, blades, span = _campbell_arguments(m, spin_unit, blades, operating_range, max_frequency)
+    harmonics = [int(n) for n in (range(1, max(DEFAULT_PER_REV, blades) + 1) if harmonics is None else harmonics)]
+    plt = pyplot()
+    fig, ax, axz = _campbell_axes(plt, ax)
+    scale = 60 / (2 * np.pi) if spin_unit == "rpm" else 1.0
+    lines = _CampbellLines(m, kinds, count, harmonics, max_frequency)
+    ends = _draw_campbell_modes(ax, axz, lines, scale)
+    w, crossings = _draw_per_rev(ax, m, lines, harmonics, blades, scale)
     # Each mode named at its line's end, right of the axes, the labels moved apart a line of text.
-    for (text, colour, _), y in zip(ends, spread_labels([e[2] for e in ends], 0.045 * top, top)):
+    for (text, colour, _), y in zip(ends, spread_labels([e[2] for e in ends], 0.045 * lines.top, lines.top)):
         ax.annotate(short_name(text), (1.0, y), xycoords=("axes fraction", "data"), xytext=(4, 0),
                     textcoords="offset points", va="center", color=colour, fontsize="small", annotation_clip=False)
-
     unit = "rpm" if spin_unit == "rpm" else "rad/s"
     panels = [ax] if axz is None else [ax, axz]
-    if operating_range is not None:
+    if span is not None:
         for a in panels:
-            a.axvspan(lo, hi, color=RANGE_COLOUR, zorder=0, label="operating range")
-    ax.set_ylim(0.0, top)
+            a.axvspan(span[0], span[1], color=RANGE_COLOUR, zorder=0, label="operating range")
+    ax.set_ylim(0.0, lines.top)
     ax.set_xlim(w[0] * scale, w[1] * scale)
     ax.set_ylabel("frequency (Hz)")
     for a in panels:
@@ -428,29 +486,9 @@ def plot_campbell(m: Any, *, kinds: Sequence[str] | str = CAMPBELL_KINDS, count:
     panels[-1].set_xlabel(f"spin rate Omega ({unit})")
     name = label if label is not None else f"{scene_name(m.get('scene_file', ''))}, {short_name(str(m.get('variant', '')))}"
     ax.set_title(name, fontsize="medium")
-    # The key of what is not named at a line's end, in the lower panel, whose right edge labels nothing.
-    from matplotlib.lines import Line2D
-    from matplotlib.patches import Patch
-
-    key = []
-    if cw:
-        key.append(Line2D([], [], linestyle="none", marker="o", color=CRITICAL_COLOUR, label="critical speeds"))
-    if divergent.any() or any(text.endswith(" (unstable)") for text, _, _ in ends):
-        key.append(Line2D([], [], linestyle="none", marker="x", markersize=9, markeredgewidth=2,
-                          color=UNSTABLE_COLOUR, label="unstable"))
-    if blades > 1:
-        key.append(Line2D([], [], color=PER_REV_BLADES_COLOUR, linewidth=2.4,
-                          label=f"{blades}P and its multiples ({blades} blades)"))
-    for whirl, text in (("BW", "backward whirl (BW)"), ("FW", "forward whirl (FW)")):
-        if any(mode_name(line)[0] == whirl for line in drawn):
-            key.append(Line2D([], [], color="0.25", linestyle=WHIRL_STYLES[whirl], label=text))
-    if operating_range is not None:
-        key.append(Patch(color=RANGE_COLOUR, label="operating range"))
     if axz is not None:
         axz.axhline(0.0, color="black", linewidth=0.8)
         axz.set_ylabel("damping ratio (%)")
-    if key:
-        holder = axz if axz is not None else ax
-        holder.legend(handles=key, fontsize="small", loc="upper left", bbox_to_anchor=(1.01, 1.0),
-                      borderaxespad=0.0)
+    # In the lower panel, whose right edge labels nothing.
+    _campbell_key(axz if axz is not None else ax, lines, ends, crossings, blades, span)
     return fig
