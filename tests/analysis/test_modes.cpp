@@ -175,6 +175,17 @@ TEST_CASE("order zero loses its first mode to divergence above the first bending
     CHECK(below[0].growth == 0.0);
     CHECK(above[0].rad_s == 0.0);
     CHECK(above[0].growth > 0.0);
+    // Order zero's stiffness at a spin is K - Omega^2 M (no stiffening): above the second frequency two modes diverge,
+    // each at sqrt(Omega^2 - omega_k^2), the faster first (divergent modes lead, by growth).
+    const double spin = 1.2 * std::pow(cantilever_root(2), 2) * frequency_unit(p);
+    const std::vector<NaturalMode> two = natural_modes(*model, steady_spin(*model, spin));
+    for (int k = 1; k <= 2; ++k) {
+        const double omega_k = std::pow(cantilever_root(k), 2) * frequency_unit(p);
+        INFO("mode " << k);
+        CHECK(two[static_cast<std::size_t>(k - 1)].rad_s == 0.0);
+        const double growth = std::sqrt(spin * spin - omega_k * omega_k);
+        CHECK(two[static_cast<std::size_t>(k - 1)].growth == Approx(growth).epsilon(1e-8));
+    }
 }
 
 TEST_CASE("the state-space matrices are the derivatives of the nonlinear equations", "[modes]")

@@ -621,6 +621,100 @@ PeriodicOrbit periodic_orbit(const Model& model, double omega)
     return orbit;
 }
 
+namespace {
+
+/// The most steps of the finer count, 2N steps times the state's size cubed being the cost of their matrix
+/// exponentials: 2048 steps of 68 states, and 256 whatever the size.
+int most_steps(Eigen::Index r)
+{
+    const double size = static_cast<double>(2 * r);
+    int most = 256;
+    while (most < max_steps && 2.0 * most * size * size * size <= 2048.0 * 68.0 * 68.0 * 68.0) most *= 2;
+    return most;
+}
+
+/// The average system's modes: how fast the modes that one revolution resolves turn (fastest), so that the steps
+/// sample them; and where a budget of steps cannot, which modes are beyond the band the steps sample (their harmonics
+/// are aliased there: such a mode is known by its shape, the average mode it resembles most).
+struct AverageModes {
+    Eigen::VectorXcd lambda;
+    std::vector<Eigen::VectorXcd> shapes;  // weighted by the mass at t = 0, of unit length
+    double fastest = 0.0;
+};
+
+/// A mode's shape from its rates: U rates of unit length.
+Eigen::VectorXcd unit_shape(const Eigen::MatrixXd& U, const Eigen::VectorXcd& rates)
+{
+    const Eigen::VectorXcd w = U.triangularView<Eigen::Upper>() * rates;
+    return w / std::max(w.norm(), 1e-300);
+}
+
+AverageModes average_modes(const Variational& system, const Eigen::MatrixXd& U, double period, Eigen::Index r)
+{
+    const EigenPairs average = eigen_pairs(system.average());
+    if (!average.converged) throw std::runtime_error("the eigenvalues of the average system did not converge");
+    AverageModes a{average.values, {}, 0.0};
+    for (Eigen::Index k = 0; k < a.lambda.size(); ++k)
+        if (std::exp(a.lambda[k].real() * period) >= smallest_multiplier)
+            a.fastest = std::max(a.fastest, std::abs(a.lambda[k].imag()));
+    const Eigen::MatrixXcd vectors = system.original(average.vectors);
+    for (Eigen::Index k = 0; k < a.lambda.size(); ++k) a.shapes.push_back(unit_shape(U, vectors.col(k).tail(r)));
+    return a;
+}
+
+/// The exponents of every multiplier of size smallest_multiplier or more (both of each conjugate pair).
+std::vector<cd> exponents(const Eigen::VectorXcd& multipliers, double period)
+{
+    std::vector<cd> out;
+    for (const cd mu : multipliers)
+        if (std::abs(mu) >= smallest_multiplier) out.push_back(std::log(mu) / period);
+    return out;
+}
+
+/// Which candidates lie in the band the steps sample: all, unless the fastest average mode turns faster than band;
+/// then each candidate is paired with the average mode its shape resembles most (the assignment of largest summed
+/// MAC), and left out where that mode turns faster than the band.
+std::vector<char> in_band(const std::vector<Candidate>& now, const AverageModes& average, const Eigen::MatrixXd& U,
+                          Eigen::Index r, double band)
+{
+    std::vector<char> in(now.size(), 1);
+    if (average.fastest <= band) return in;
+    Eigen::MatrixXd score(static_cast<Eigen::Index>(now.size()), average.lambda.size());
+    for (std::size_t i = 0; i < now.size(); ++i) {
+        const Eigen::VectorXcd a = unit_shape(U, now[i].vector.tail(r));
+        for (Eigen::Index k = 0; k < average.lambda.size(); ++k)
+            score(static_cast<Eigen::Index>(i), k) = std::norm(a.dot(average.shapes[static_cast<std::size_t>(k)]));
+    }
+    const std::vector<int> paired = best_assignment(score);
+    for (std::size_t i = 0; i < now.size(); ++i)
+        in[i] = paired[i] >= 0 && std::abs(average.lambda[paired[i]].imag()) <= band;
+    return in;
+}
+
+/// Each in-band exponent of the finer count against the coarser count's nearest, modulo i omega (the harmonics are
+/// the finer count's: the coarser's samples need not resolve them); resolved is false where one that matters (a
+/// multiplier of resolved_multiplier or more) does not agree.
+std::vector<char> agreeing(const std::vector<Candidate>& now, const std::vector<char>& in, const std::vector<cd>& coarse,
+                           double omega, bool& resolved)
+{
+    std::vector<char> agrees(now.size(), 0);
+    resolved = true;
+    for (std::size_t i = 0; i < now.size(); ++i) {
+        if (!in[i]) continue;
+        const cd l = eigenvalue_of(now[i]);
+        double nearest = HUGE_VAL;
+        for (const cd exponent : coarse) {
+            const cd d = exponent - now[i].exponent;
+            nearest = std::min(nearest, std::abs(cd(d.real(), d.imag() - omega * std::round(d.imag() / omega))));
+        }
+        agrees[i] = nearest <= exponent_agreement * std::max(std::abs(l), omega);
+        if (!agrees[i] && std::abs(now[i].multiplier) >= resolved_multiplier) resolved = false;
+    }
+    return agrees;
+}
+
+}  // namespace
+
 FloquetAnalysis floquet(const Model& model, double omega, Axial axial)
 {
     if (axial == Axial::quasi_static && model.coordinates().count(FieldKind::axial) > 0)
@@ -638,88 +732,34 @@ FloquetAnalysis floquet(const Model& model, double omega, Axial axial)
     orbit.state(0.0, q0, qd0, u0);
     const Eigen::MatrixXd M = mass_at(model, u0, q0);
     const Eigen::MatrixXd U = system.mass().llt().matrixU();
-    // The average system's modes: how fast the modes that one revolution resolves turn, so that the steps sample
-    // them; and where a budget of steps cannot, which modes are beyond the band the steps sample (their harmonics
-    // are aliased there: such a mode is known by its shape, the average mode it resembles most).
-    const EigenPairs average = eigen_pairs(system.average());
-    if (!average.converged) throw std::runtime_error("the eigenvalues of the average system did not converge");
-    const Eigen::VectorXcd& average_lambda = average.values;
-    double fastest = 0.0;
-    for (Eigen::Index k = 0; k < average_lambda.size(); ++k)
-        if (std::exp(average_lambda[k].real() * period) >= smallest_multiplier)
-            fastest = std::max(fastest, std::abs(average_lambda[k].imag()));
+    const AverageModes average = average_modes(system, U, period, r);
     // The step counts N and 2N, the harmonics read from the finer's 2N samples: N at least the harmonics of the
-    // fastest such mode and a margin of 8 for the spread of its periodic eigenvector's harmonics, a multiple of 8 and
-    // at least 32, within a budget (2N steps times the state's size cubed, the cost of their matrix exponentials:
-    // 2048 steps of 68 states, and 256 whatever the size).
-    const double size = static_cast<double>(2 * r);
-    int most = 256;  // the most steps of the finer count
-    while (most < max_steps && 2.0 * most * size * size * size <= 2048.0 * 68.0 * 68.0 * 68.0) most *= 2;
+    // fastest resolved mode and a margin of 8 for the spread of its periodic eigenvector's harmonics, a multiple of 8
+    // and at least 32, within the budget.
+    const int most = most_steps(r);
     const auto band = [omega](int steps) { return (steps - 8) * omega; };  // the frequencies 2N samples resolve
-    int steps = std::clamp(8 * static_cast<int>(std::ceil(std::min(fastest / omega + 8.0, 1e6) / 8.0)), 32, most / 2);
-    const auto shape = [&U](const Eigen::VectorXcd& rates) {
-        const Eigen::VectorXcd w = U.triangularView<Eigen::Upper>() * rates;
-        return Eigen::VectorXcd(w / std::max(w.norm(), 1e-300));
-    };
-    std::vector<Eigen::VectorXcd> average_shapes;
-    const Eigen::MatrixXcd average_vectors = system.original(average.vectors);
-    for (Eigen::Index k = 0; k < average_lambda.size(); ++k) average_shapes.push_back(shape(average_vectors.col(k).tail(r)));
-    // The coarser count's exponents (of every multiplier of size smallest_multiplier or more, both of each conjugate
-    // pair).
-    const auto exponents = [period](const Eigen::VectorXcd& multipliers) {
-        std::vector<cd> out;
-        for (const cd mu : multipliers)
-            if (std::abs(mu) >= smallest_multiplier) out.push_back(std::log(mu) / period);
-        return out;
-    };
-    std::vector<cd> coarse = exponents(eigen_pairs(system.transition(steps, false).back(), false).values);
+    int steps =
+        std::clamp(8 * static_cast<int>(std::ceil(std::min(average.fastest / omega + 8.0, 1e6) / 8.0)), 32, most / 2);
+    std::vector<cd> coarse = exponents(eigen_pairs(system.transition(steps, false).back(), false).values, period);
+    const bool damped = dissipates(model);
     for (;;) {
         const std::vector<Eigen::MatrixXd> phi = system.transition(2 * steps, true);
         Eigen::VectorXcd multipliers;
         std::vector<Candidate> now = candidates(system, phi, omega, period, multipliers);
-        // Beyond the band of N steps (the budget's limit): each candidate paired with the average mode its shape
-        // resembles most (the assignment of largest summed MAC), and left out where that mode turns faster than the
-        // band.
-        std::vector<char> in_band(now.size(), 1);
-        if (fastest > band(steps)) {
-            Eigen::MatrixXd score(static_cast<Eigen::Index>(now.size()), average_lambda.size());
-            for (std::size_t i = 0; i < now.size(); ++i) {
-                const Eigen::VectorXcd a = shape(now[i].vector.tail(r));
-                for (Eigen::Index k = 0; k < average_lambda.size(); ++k)
-                    score(static_cast<Eigen::Index>(i), k) = std::norm(a.dot(average_shapes[static_cast<std::size_t>(k)]));
-            }
-            const std::vector<int> paired = best_assignment(score);
-            for (std::size_t i = 0; i < now.size(); ++i)
-                in_band[i] = paired[i] >= 0 && std::abs(average_lambda[paired[i]].imag()) <= band(steps);
-        }
-        // Each exponent of the finer count against the coarser count's nearest, modulo i omega (the harmonics are
-        // the finer count's: the coarser's samples need not resolve them).
-        std::vector<char> agrees(now.size(), 0);
         bool resolved = true;
-        for (std::size_t i = 0; i < now.size(); ++i) {
-            if (!in_band[i]) continue;
-            const cd l = eigenvalue_of(now[i]);
-            double nearest = HUGE_VAL;
-            for (const cd exponent : coarse) {
-                const cd d = exponent - now[i].exponent;
-                nearest = std::min(nearest, std::abs(cd(d.real(), d.imag() - omega * std::round(d.imag() / omega))));
-            }
-            agrees[i] = nearest <= exponent_agreement * std::max(std::abs(l), omega);
-            if (!agrees[i] && std::abs(now[i].multiplier) >= resolved_multiplier) resolved = false;
-        }
+        const std::vector<char> agrees = agreeing(now, in_band(now, average, U, r, band(steps)), coarse, omega, resolved);
         if (!resolved) {
             if (4 * steps > most)
                 throw std::runtime_error("the Floquet exponents at Omega = " + shortest(omega) +
                                          " rad/s did not converge by " + std::to_string(2 * steps) +
                                          " steps a revolution");
             steps *= 2;
-            coarse = exponents(multipliers);
+            coarse = exponents(multipliers, period);
             continue;
         }
         out.steps = 2 * steps;
         out.monodromy = system.original_matrix(phi.back());
         out.multipliers = multipliers;
-        const bool damped = dissipates(model);
         int accounted = 0;
         for (std::size_t i = 0; i < now.size(); ++i) {
             if (!agrees[i]) continue;
@@ -728,29 +768,17 @@ FloquetAnalysis floquet(const Model& model, double omega, Axial axial)
             f.multiplier = c.multiplier;
             f.exponent = c.exponent;
             f.harmonic = c.harmonic;
-            const double scale = std::max(1.0, std::abs(eigenvalue_of(c)));
-            // Without damping the equations are conservative: a real part below 1e-6 of |lambda| is round-off.
-            const double growth = !damped && std::abs(c.exponent.real()) <= 1e-6 * scale ? 0.0 : c.exponent.real();
-            const double magnitude = std::hypot(growth, c.rad_s);
-            f.mode.rad_s = c.rad_s;
-            f.mode.growth = growth;
-            f.mode.undamped_rad_s = magnitude;
-            f.mode.damping_ratio = magnitude > 0.0 ? -growth / magnitude : 0.0;
-            classify_mode(model, M, U, orbit.coordinates, c.rates, damped && c.rad_s == 0.0 && growth < 0.0, f.mode);
+            set_rates(f.mode, c.rad_s, c.exponent.real(), std::abs(eigenvalue_of(c)), damped);
+            classify_mode(model, M, U, orbit.coordinates, c.rates, damped && c.rad_s == 0.0 && f.mode.growth < 0.0,
+                          f.mode);
             accounted += c.multiplier.imag() == 0.0 ? 1 : 2;
             out.modes.push_back(std::move(f));
         }
         out.left_out = static_cast<int>(multipliers.size()) - accounted;
         break;
     }
-    // As natural_modes sorts: by frequency, divergent modes (rad_s 0) first; with damping by undamped frequency.
-    const bool damped = dissipates(model);
-    const auto frequency = [damped](const NaturalMode& m) {
-        return !damped || (m.rad_s == 0.0 && m.growth > 0.0) ? m.rad_s : m.undamped_rad_s;
-    };
-    std::stable_sort(out.modes.begin(), out.modes.end(), [&](const FloquetMode& a, const FloquetMode& b) {
-        return frequency(a.mode) != frequency(b.mode) ? frequency(a.mode) < frequency(b.mode)
-                                                      : a.mode.growth > b.mode.growth;
+    std::stable_sort(out.modes.begin(), out.modes.end(), [damped](const FloquetMode& a, const FloquetMode& b) {
+        return mode_before(a.mode, b.mode, damped);
     });
     return out;
 }

@@ -336,27 +336,38 @@ std::vector<NaturalMode> eigen_modes(const Model& model, const LinearEquations& 
         const bool divergent = real && l.real() > 0.0, overdamped = damped && real && l.real() < 0.0;
         if (!oscillating && !divergent && !overdamped)
             continue;  // the conjugate, or the stable twin of a divergent pair
-        // Without damping the equations are conservative (gyroscopic at most): a real part below 1e-6 of |lambda|
-        // is the eigen solver's round-off, not damping.
-        const double growth = !damped && std::abs(l.real()) <= 1e-6 * scale ? 0.0 : l.real();
         const Eigen::VectorXcd rates = rates_of.col(k);
-        const double magnitude = std::hypot(growth, oscillating ? l.imag() : 0.0), rad_s = oscillating ? l.imag() : 0.0;
-        modes.push_back({rad_s, growth, overdamped ? std::string(overdamped_kind) : naming.kind(rates, rad_s),
-                         magnitude, magnitude > 0.0 ? -growth / magnitude : 0.0, weighted_shape(U, rates)});
+        NaturalMode mode;
+        set_rates(mode, oscillating ? l.imag() : 0.0, l.real(), std::abs(l), damped);
+        mode.kind = overdamped ? std::string(overdamped_kind) : naming.kind(rates, mode.rad_s);
+        mode.shape = weighted_shape(U, rates);
+        modes.push_back(std::move(mode));
     }
     return modes;
 }
 
-void sort_modes(std::vector<NaturalMode>& modes, bool damped)
+void set_rates(NaturalMode& mode, double rad_s, double real, double modulus, bool damped)
 {
-    // By frequency, divergent modes (rad_s 0) first; with damping by undamped frequency, so that an overdamped
-    // mode keeps its place among the others.
+    const double growth = !damped && std::abs(real) <= 1e-6 * std::max(1.0, modulus) ? 0.0 : real;
+    const double magnitude = std::hypot(growth, rad_s);
+    mode.rad_s = rad_s;
+    mode.growth = growth;
+    mode.undamped_rad_s = magnitude;
+    mode.damping_ratio = magnitude > 0.0 ? -growth / magnitude : 0.0;
+}
+
+bool mode_before(const NaturalMode& a, const NaturalMode& b, bool damped)
+{
     const auto frequency = [damped](const NaturalMode& m) {
         return !damped || (m.rad_s == 0.0 && m.growth > 0.0) ? m.rad_s : m.undamped_rad_s;
     };
-    std::sort(modes.begin(), modes.end(), [&](const NaturalMode& a, const NaturalMode& b) {
-        return frequency(a) != frequency(b) ? frequency(a) < frequency(b) : a.growth > b.growth;
-    });
+    return frequency(a) != frequency(b) ? frequency(a) < frequency(b) : a.growth > b.growth;
+}
+
+void sort_modes(std::vector<NaturalMode>& modes, bool damped)
+{
+    std::sort(modes.begin(), modes.end(),
+              [damped](const NaturalMode& a, const NaturalMode& b) { return mode_before(a, b, damped); });
 }
 
 std::vector<NaturalMode> natural_modes(const Model& model, const SteadySpin& s, Axial axial)

@@ -52,8 +52,14 @@ struct ModeNaming {
 /// overdamped real eigenvalue, growth round-off without damping), its shape U rates (M over R = U^T U).
 std::vector<NaturalMode> eigen_modes(const Model& model, const LinearEquations& e, const std::vector<int>& R,
                                      const ModeNaming& naming);
-/// natural_modes' order: by frequency, divergent modes first; with damping by undamped frequency.
+/// natural_modes' order: by frequency, divergent modes (rad_s 0) first; with damping by undamped frequency, so that an
+/// overdamped mode keeps its place among the others. The Floquet modes are ordered alike.
+bool mode_before(const NaturalMode& a, const NaturalMode& b, bool damped);
 void sort_modes(std::vector<NaturalMode>& modes, bool damped);
+/// A mode's frequency rad_s, growth, undamped frequency and damping ratio from its eigenvalue (or Floquet exponent):
+/// its imaginary part rad_s (0 for a real one), its real part and its modulus. Without damping the equations are
+/// conservative (gyroscopic at most): a real part below 1e-6 of the modulus (at least 1) is round-off, not damping.
+void set_rates(NaturalMode& mode, double rad_s, double real, double modulus, bool damped);
 
 /// NaturalMode::shape of a mode with these rates: U rates with U the upper Cholesky factor of M over the same
 /// coordinates (mass_factor: M = U^T U), scaled to unit length.
