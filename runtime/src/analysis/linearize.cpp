@@ -723,6 +723,101 @@ std::vector<SpinMode> campbell(const Model& model, const std::vector<double>& om
     return rows;
 }
 
+namespace {
+
+/// How critical_speeds finds a line's modes at a rate it tries: the model, and what modes_at takes.
+struct CrossingSearch {
+    const Model& model;
+    Axial axial;
+    double theta;
+    const Control* control;
+    const std::function<void()>& check;
+    Frame frame;
+
+    /// The rate in [a.omega, b.omega] where the line of modes a, b (consecutive rates) meets n Omega, if it does;
+    /// first: a is the line's first rate (a meeting at a belongs to the interval before it otherwise).
+    std::optional<double> operator()(const SpinMode& a, const SpinMode& b, int n, bool first) const;
+};
+
+std::optional<double> CrossingSearch::operator()(const SpinMode& a, const SpinMode& b, int n, bool first) const
+{
+    // A line that passes to a mode of another shape between a and b (their MAC 1/2 or less: a cluster
+    // of nearly equal eigenvalues, the slow roots of overdamped modes about -1/beta) follows no one mode
+    // there: its change of sign is between two modes, not a crossing of one.
+    if (!(b.mac > followed_mac)) return std::nullopt;
+    // Nearly critically damped at both rates: the damped frequency of so nearly defective a pair is fixed
+    // by the eigenvalues only to about the square root of round-off of |lambda| (1e-5 of it), and lies
+    // in a cluster of the overdamped modes' roots, so no crossing with it can be refined; nor does a
+    // mode so damped resonate.
+    if (a.mode.damping_ratio > nearly_critical && b.mode.damping_ratio > nearly_critical) return std::nullopt;
+    double lo = a.omega, hi = b.omega;
+    double g_lo = a.mode.rad_s - n * lo, g_hi = b.mode.rad_s - n * hi;
+    // A mode of frequency 0 (overdamped or divergent) meets no excitation line: it lies below every
+    // line n Omega > 0, and at rest, where the line is 0 as well, it is below too, not on it (a
+    // critical speed is where a mode that oscillates has the line's frequency). Its gap at rest is 0 by
+    // the formula: that end counts as below, with no value, and the bracket is halved until it has one.
+    const bool below_at_rest = a.mode.rad_s == 0.0 && g_lo == 0.0;
+    if (g_lo == 0.0 && !below_at_rest && !first) return std::nullopt;  // met at a, the previous interval's end
+    const double sign_lo = below_at_rest ? -1.0 : g_lo;
+    if (!(sign_lo * g_hi <= 0.0) || (sign_lo == 0.0 && g_hi == 0.0)) return std::nullopt;
+    // The line's eigenvalue and shape at the bracket's ends: the next rate's is predicted between them.
+    std::complex<double> l_lo = eigenvalue(a.mode), l_hi = eigenvalue(b.mode);
+    const Eigen::VectorXcd *shape_lo = &a.mode.shape, *shape_hi = &b.mode.shape;
+    std::deque<NaturalMode> tried;  // the modes found inside the bracket (the ends' shapes point here)
+    // The mode's frequency minus the excitation's at omega, the mode there being the line's: the mode
+    // nearest the eigenvalue interpolated between the bracket's ends (mode_near, one factorization),
+    // taken when its MAC with the line's mode at a is above 1/2 (then no other mode's is as large); else,
+    // under control, and at a periodic spin (Floquet's modes), the mode of largest MAC among all the modes
+    // there.
+    const auto gap = [&](double omega) {
+        if (check) check();
+        const double t = hi > lo ? (omega - lo) / (hi - lo) : 0.5;
+        std::optional<NaturalMode> near;
+        if (control == nullptr && unsteady_spin(model.key(), model.parameters(), omega).empty() &&
+            !multiblade(model, control, frame))
+            near = ModesNear(model, omega, axial, theta)
+                       .line_mode(l_lo + t * (l_hi - l_lo), t < 0.5 ? *shape_lo : *shape_hi, a.mode.shape);
+        if (!near) {
+            double best = -1.0;
+            for (NaturalMode& m : modes_at(model, omega, axial, theta, control, frame))
+                if (const double x = mac(a.mode, m); x > best) best = x, near = std::move(m);
+        }
+        tried.push_back(std::move(*near));
+        return tried.back().rad_s - n * omega;
+    };
+    // Regula falsi with Illinois' halving of the stale end's value: superlinear, and never leaves the
+    // bracket.
+    double omega = g_lo == 0.0 && !below_at_rest ? lo : hi;
+    bool halving = below_at_rest && g_hi != 0.0;  // the low end has no value yet
+    int stale = 0;
+    for (int iteration = 0; iteration < 100 && (g_lo != 0.0 || halving) && g_hi != 0.0; ++iteration) {
+        omega = halving ? 0.5 * (lo + hi) : (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
+        if (hi - lo <= 1e-10 * std::max(1.0, std::abs(omega))) break;
+        const double g = gap(omega);
+        if (std::abs(g) <= 1e-13 * std::max(1.0, n * omega)) {  // the eigenvalues' round-off
+            halving = false;
+            break;
+        }
+        const NaturalMode& found = tried.back();
+        if ((g < 0.0) != (g_hi < 0.0)) {  // on the low end's side (the ends' signs differ)
+            lo = omega, g_lo = g, l_lo = eigenvalue(found), shape_lo = &found.shape;
+            halving = false;
+            if (stale == -1) g_hi /= 2.0;
+            stale = -1;
+        } else {
+            hi = omega, g_hi = g, l_hi = eigenvalue(found), shape_hi = &found.shape;
+            if (stale == 1) g_lo /= 2.0;
+            stale = 1;
+        }
+    }
+    // Halved onto rest with the mode above the line at every rate tried: it leaves rest above the
+    // line, and never meets it in this interval.
+    if (halving) return std::nullopt;
+    return omega;
+}
+
+}  // namespace
+
 std::vector<CriticalSpeed> critical_speeds(const Model& model, const std::vector<SpinMode>& rows,
                                            const std::vector<int>& harmonics, Axial axial, double theta,
                                            const Control* control, const std::function<void()>& check, Frame frame)
@@ -730,87 +825,15 @@ std::vector<CriticalSpeed> critical_speeds(const Model& model, const std::vector
     // Each line's rows in increasing omega.
     std::map<std::string, std::vector<const SpinMode*>> lines;
     for (const SpinMode& r : rows) lines[r.label].push_back(&r);
+    const CrossingSearch crossing{model, axial, theta, control, check, frame};
     std::vector<CriticalSpeed> speeds;
     for (auto& [label, line] : lines) {
         std::stable_sort(line.begin(), line.end(),
                          [](const SpinMode* a, const SpinMode* b) { return a->omega < b->omega; });
         for (const int n : harmonics)
-            for (std::size_t i = 0; i + 1 < line.size(); ++i) {
-                const SpinMode &a = *line[i], &b = *line[i + 1];
-                // A line that passes to a mode of another shape between a and b (their MAC 1/2 or less: a cluster
-                // of nearly equal eigenvalues, the slow roots of overdamped modes about -1/beta) follows no one mode
-                // there: its change of sign is between two modes, not a crossing of one.
-                if (!(b.mac > followed_mac)) continue;
-                // Nearly critically damped at both rates: the damped frequency of so nearly defective a pair is fixed
-                // by the eigenvalues only to about the square root of round-off of |lambda| (1e-5 of it), and lies
-                // in a cluster of the overdamped modes' roots, so no crossing with it can be refined; nor does a
-                // mode so damped resonate.
-                if (a.mode.damping_ratio > nearly_critical && b.mode.damping_ratio > nearly_critical) continue;
-                double lo = a.omega, hi = b.omega;
-                double g_lo = a.mode.rad_s - n * lo, g_hi = b.mode.rad_s - n * hi;
-                // A mode of frequency 0 (overdamped or divergent) meets no excitation line: it lies below every
-                // line n Omega > 0, and at rest, where the line is 0 as well, it is below too, not on it (a
-                // critical speed is where a mode that oscillates has the line's frequency). Its gap at rest is 0 by
-                // the formula: that end counts as below, with no value, and the bracket is halved until it has one.
-                const bool below_at_rest = a.mode.rad_s == 0.0 && g_lo == 0.0;
-                if (g_lo == 0.0 && !below_at_rest && i > 0) continue;  // met at a, the previous interval's end
-                const double sign_lo = below_at_rest ? -1.0 : g_lo;
-                if (!(sign_lo * g_hi <= 0.0) || (sign_lo == 0.0 && g_hi == 0.0)) continue;
-                // The line's eigenvalue and shape at the bracket's ends: the next rate's is predicted between them.
-                std::complex<double> l_lo = eigenvalue(a.mode), l_hi = eigenvalue(b.mode);
-                const Eigen::VectorXcd *shape_lo = &a.mode.shape, *shape_hi = &b.mode.shape;
-                std::deque<NaturalMode> tried;  // the modes found inside the bracket (the ends' shapes point here)
-                // The mode's frequency minus the excitation's at omega, the mode there being the line's: the mode
-                // nearest the eigenvalue interpolated between the bracket's ends (mode_near, one factorization),
-                // taken when its MAC with the line's mode at a is above 1/2 (then no other mode's is as large); else,
-                // under control, and at a periodic spin (Floquet's modes), the mode of largest MAC among all the modes
-                // there.
-                const auto gap = [&](double omega) {
-                    if (check) check();
-                    const double t = hi > lo ? (omega - lo) / (hi - lo) : 0.5;
-                    std::optional<NaturalMode> near;
-                    if (control == nullptr && unsteady_spin(model.key(), model.parameters(), omega).empty() &&
-                        !multiblade(model, control, frame))
-                        near = ModesNear(model, omega, axial, theta)
-                                   .line_mode(l_lo + t * (l_hi - l_lo), t < 0.5 ? *shape_lo : *shape_hi, a.mode.shape);
-                    if (!near) {
-                        double best = -1.0;
-                        for (NaturalMode& m : modes_at(model, omega, axial, theta, control, frame))
-                            if (const double x = mac(a.mode, m); x > best) best = x, near = std::move(m);
-                    }
-                    tried.push_back(std::move(*near));
-                    return tried.back().rad_s - n * omega;
-                };
-                // Regula falsi with Illinois' halving of the stale end's value: superlinear, and never leaves the
-                // bracket.
-                double omega = g_lo == 0.0 && !below_at_rest ? lo : hi;
-                bool halving = below_at_rest && g_hi != 0.0;  // the low end has no value yet
-                int stale = 0;
-                for (int iteration = 0; iteration < 100 && (g_lo != 0.0 || halving) && g_hi != 0.0; ++iteration) {
-                    omega = halving ? 0.5 * (lo + hi) : (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
-                    if (hi - lo <= 1e-10 * std::max(1.0, std::abs(omega))) break;
-                    const double g = gap(omega);
-                    if (std::abs(g) <= 1e-13 * std::max(1.0, n * omega)) {  // the eigenvalues' round-off
-                        halving = false;
-                        break;
-                    }
-                    const NaturalMode& found = tried.back();
-                    if ((g < 0.0) != (g_hi < 0.0)) {  // on the low end's side (the ends' signs differ)
-                        lo = omega, g_lo = g, l_lo = eigenvalue(found), shape_lo = &found.shape;
-                        halving = false;
-                        if (stale == -1) g_hi /= 2.0;
-                        stale = -1;
-                    } else {
-                        hi = omega, g_hi = g, l_hi = eigenvalue(found), shape_hi = &found.shape;
-                        if (stale == 1) g_lo /= 2.0;
-                        stale = 1;
-                    }
-                }
-                // Halved onto rest with the mode above the line at every rate tried: it leaves rest above the
-                // line, and never meets it in this interval.
-                if (halving) continue;
-                speeds.push_back({label, n, omega, n * omega});
-            }
+            for (std::size_t i = 0; i + 1 < line.size(); ++i)
+                if (const std::optional<double> omega = crossing(*line[i], *line[i + 1], n, i == 0))
+                    speeds.push_back({label, n, *omega, n * *omega});
     }
     std::sort(speeds.begin(), speeds.end(), [](const CriticalSpeed& x, const CriticalSpeed& y) {
         return std::tie(x.omega, x.harmonic, x.label) < std::tie(y.omega, y.harmonic, y.label);
