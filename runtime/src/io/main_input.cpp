@@ -627,28 +627,12 @@ ImportedBlade read_main_input(const std::string& path)
          "CONFIGURATION section)");
 }
 
-std::string imported_scene_toml(const ImportedBlade& b, const std::string& scene_path)
-{
-    const bool bmodes = b.format == main_input_bmodes;
-    // The section file first: a refusal of it names its own line and column (blade_files.cpp).
-    BladeTable table = read_blade_file(b.blade_file);
-    BladeScale scale;  // the multipliers, as the scene's [blade_scale] will apply them
-    for (std::size_t k = 0; k < b.blade_scale.size(); ++k)
-        scale.*scene_io::blade_scale_fields[k].factor = b.blade_scale[k].value;
-    scene_io::scale_columns(table, scale);
-    const bool twist_field = !table.GJ.empty() && !table.mass_moment_flap.empty() && [&] {
-        for (std::size_t k = 0; k < table.x_over_L.size(); ++k)
-            if (!(table.mass_moment_flap[k] + table.mass_moment_edge[k] > 0.0)) return false;
-        return true;
-    }();
-    const std::string input = printable(std::filesystem::path(b.file).filename().string(), 200);
-    // The speed BModes analyses: romg times romg_mult (the field's ImportedBlade::rotor_speed_factor).
-    const double speed = b.rotor_speed.value * b.rotor_speed_factor.value, omega = speed * rpm;
-    const std::string speed_origin =
-        origin(b, b.rotor_speed, "rpm") +
-        (b.rotor_speed_factor.line > 0 ? " times " + origin(b, b.rotor_speed_factor, "") : std::string());
-    const std::string radius_names = bmodes ? "radius - hub_rad" : "TipRad - HubRad";
+namespace {
 
+/// The scene's opening comment: where the blade comes from, and how to take its modes.
+std::string scene_intro(const ImportedBlade& b, const std::string& scene_path, double speed, double omega)
+{
+    const std::string input = printable(std::filesystem::path(b.file).filename().string(), 200);
     std::string s;
     s += "# One blade of the rotor in " + input + " (" + b.format + "), written by hubbeam import:\n";
     s += "# clamped to the hub, spun up from rest to the file's rotor speed, its section from the file it names.\n";
@@ -659,40 +643,19 @@ std::string imported_scene_toml(const ImportedBlade& b, const std::string& scene
     if (omega > 0.0)  // a range up to twice the speed, in steps that resolve a blade's first modes
         s += "# (or --omega 0:" + toml_number(std::ceil(2.0 * omega * 10.0) / 10.0) + ":0.1 for a Campbell diagram).\n";
     s += "# Every value below names the setting it came from.\n";
+    return s;
+}
 
-    s += "\n[beam]\n";
-    const double length = b.tip_radius.value - b.hub_radius.value;
-    s += key_line("length", toml_number(length),
-                  "m: " + radius_names + " (lines " + std::to_string(b.tip_radius.line) + ", " +
-                      std::to_string(b.hub_radius.line) + ")");
-    s += key_line("blade_file", quoted_string(name_from_scene(b.blade_file, scene_path)),
-                  origin(b, b.blade_file_setting, ""));
-    s += key_line("pitch", toml_number(b.pitch.value * degree), "rad: " + origin(b, b.pitch, "deg"));
-    s += key_line("precone", toml_number(b.precone.value * degree), "rad: " + origin(b, b.precone, "deg"));
-
-    s += "\n[hub]\n";
-    s += key_line("radius", toml_number(b.hub_radius.value), "m: " + origin(b, b.hub_radius, "m"));
-
-    s += tip_table(b);
-
-    s += blade_scale_table(b);
-
-    s += damping_table(b);
-
-    if (b.has_gravity) {
-        s += "\n# " + origin(b, b.gravity, "m/s^2") + ": the rotor turns in a vertical plane. hubbeam modes takes\n";
-        s +=
-            "# the modes about a steady spin without gravity (under its weight a spinning blade moves periodically);\n";
-        s += "# for hubbeam run, uncomment:\n";
-        s += "# [gravity]\n# g = " + toml_number(b.gravity.value) + "\n";
-    }
-
-    s += "\n[motion]\n";
-    s += key_line("kind", "\"spin-up\"", "from rest to omega0 (hubbeam run); modes take the steady spin");
-    s += key_line("omega0", toml_number(omega), "rad/s: " + speed_origin);
-    s += key_line("duration", "20.0", "s to reach omega0");
-
-    s += "\n[discretization]\n";
+/// [discretization]: FEM, 16 elements each way, axial coordinates where a tension centre's offset needs them, twist
+/// where the section file gives its stiffness and mass moments.
+std::string discretization_table(const BladeTable& table)
+{
+    const bool twist_field = !table.GJ.empty() && !table.mass_moment_flap.empty() && [&] {
+        for (std::size_t k = 0; k < table.x_over_L.size(); ++k)
+            if (!(table.mass_moment_flap[k] + table.mass_moment_edge[k] > 0.0)) return false;
+        return true;
+    }();
+    std::string s = "\n[discretization]\n";
     s += key_line("method", "\"fem\"", "finite elements along the span");
     // 16 elements each way: the first bending and twist modes within a fraction of a percent of a converged mesh
     // (docs/import.md), for a few seconds of modes; twist's linear elements need as many as bending's.
@@ -706,13 +669,13 @@ std::string imported_scene_toml(const ImportedBlade& b, const std::string& scene
     s += key_line("nz", "16", "flapwise");
     s += key_line("nt", twist_field ? "16" : "0",
                   twist_field ? "twist" : "no twist: the section file gives no torsional stiffness or mass moments");
+    return s;
+}
 
-    s += "\n[output]\n";
-    s += key_line("t_end", "40.0", "s (hubbeam run)");
-    s += key_line("dt_out", "0.05", "s");
-
-    // Checked by hubbeam's own reader, as `hubbeam run` will read it: a value out of the scene's range is refused
-    // here, against the input's line, before anything is written.
+/// s checked by hubbeam's own reader, as `hubbeam run` will read it: a value out of the scene's range is refused
+/// here, against the input's line, before anything is written.
+void check_scene(const ImportedBlade& b, const std::string& s, const std::string& scene_path)
+{
     Origins origins = {{"beam.length", &b.tip_radius},   {"beam.pitch", &b.pitch},
                        {"beam.precone", &b.precone},     {"hub.radius", &b.hub_radius},
                        {"tip.mass", &b.tip_mass},        {"tip.inertia", &b.tip_inertia},
@@ -728,6 +691,57 @@ std::string imported_scene_toml(const ImportedBlade& b, const std::string& scene
         throw MainInputError(printable(b.file, 400), it->second->line, printable(it->second->name, 60),
                              "a value whose " + e.key + " hubbeam accepts: " + e.problem());
     }
+}
+
+}  // namespace
+
+std::string imported_scene_toml(const ImportedBlade& b, const std::string& scene_path)
+{
+    const bool bmodes = b.format == main_input_bmodes;
+    // The section file first: a refusal of it names its own line and column (blade_files.cpp).
+    BladeTable table = read_blade_file(b.blade_file);
+    BladeScale scale;  // the multipliers, as the scene's [blade_scale] will apply them
+    for (std::size_t k = 0; k < b.blade_scale.size(); ++k)
+        scale.*scene_io::blade_scale_fields[k].factor = b.blade_scale[k].value;
+    scene_io::scale_columns(table, scale);
+    // The speed BModes analyses: romg times romg_mult (the field's ImportedBlade::rotor_speed_factor).
+    const double speed = b.rotor_speed.value * b.rotor_speed_factor.value, omega = speed * rpm;
+    const std::string speed_origin =
+        origin(b, b.rotor_speed, "rpm") +
+        (b.rotor_speed_factor.line > 0 ? " times " + origin(b, b.rotor_speed_factor, "") : std::string());
+    const std::string radius_names = bmodes ? "radius - hub_rad" : "TipRad - HubRad";
+
+    std::string s = scene_intro(b, scene_path, speed, omega);
+    s += "\n[beam]\n";
+    const double length = b.tip_radius.value - b.hub_radius.value;
+    s += key_line("length", toml_number(length),
+                  "m: " + radius_names + " (lines " + std::to_string(b.tip_radius.line) + ", " +
+                      std::to_string(b.hub_radius.line) + ")");
+    s += key_line("blade_file", quoted_string(name_from_scene(b.blade_file, scene_path)),
+                  origin(b, b.blade_file_setting, ""));
+    s += key_line("pitch", toml_number(b.pitch.value * degree), "rad: " + origin(b, b.pitch, "deg"));
+    s += key_line("precone", toml_number(b.precone.value * degree), "rad: " + origin(b, b.precone, "deg"));
+    s += "\n[hub]\n";
+    s += key_line("radius", toml_number(b.hub_radius.value), "m: " + origin(b, b.hub_radius, "m"));
+    s += tip_table(b);
+    s += blade_scale_table(b);
+    s += damping_table(b);
+    if (b.has_gravity) {
+        s += "\n# " + origin(b, b.gravity, "m/s^2") + ": the rotor turns in a vertical plane. hubbeam modes takes\n";
+        s +=
+            "# the modes about a steady spin without gravity (under its weight a spinning blade moves periodically);\n";
+        s += "# for hubbeam run, uncomment:\n";
+        s += "# [gravity]\n# g = " + toml_number(b.gravity.value) + "\n";
+    }
+    s += "\n[motion]\n";
+    s += key_line("kind", "\"spin-up\"", "from rest to omega0 (hubbeam run); modes take the steady spin");
+    s += key_line("omega0", toml_number(omega), "rad/s: " + speed_origin);
+    s += key_line("duration", "20.0", "s to reach omega0");
+    s += discretization_table(table);
+    s += "\n[output]\n";
+    s += key_line("t_end", "40.0", "s (hubbeam run)");
+    s += key_line("dt_out", "0.05", "s");
+    check_scene(b, s, scene_path);
     return s;
 }
 
