@@ -262,10 +262,12 @@ std::vector<double> section_distribution(const VariantKey& key, const Parameters
     return out;
 }
 
-std::vector<double> section_integrals(const VariantKey& key, const SectionIntegral* list, int count,
-                                      const Parameters& p)
+namespace {
+
+/// Which kinds of distribution the list integrates: a table's (linear between stations), the pre-twist's (cos and sin
+/// of 2 twist xi). Throws std::invalid_argument for an entry no variant writes.
+std::pair<bool, bool> kinds_of(const SectionIntegral* list, int count)
 {
-    if (count == 0) return {};
     bool table = false, twist = false;
     for (int n = 0; n < count; ++n) {
         const int d = list[n].distribution;
@@ -276,6 +278,60 @@ std::vector<double> section_integrals(const VariantKey& key, const SectionIntegr
                                         " factors");
         (tabulated(static_cast<SectionDistribution>(d)) ? table : twist) = true;
     }
+    return {table, twist};
+}
+
+/// The rule's points per interval and the slope products' interpolation points. Polynomial bases: enough points for
+/// the integrands' highest degree (the distribution is linear there), so that the rule is exact; AMM: the points that
+/// converge its modes on a panel.
+std::pair<int, int> rule_points(const Bases& b, const SectionIntegral* list, int count, bool twist)
+{
+    if (!b.polynomial()) return {transcendental_points, transcendental_points};
+    int highest = 0, slopes = 0;
+    for (int n = 0; n < count; ++n) {
+        const SectionIntegral& s = list[n];
+        int d = 1 + s.power;
+        for (int f = 0; f < s.count; ++f) {
+            d += degree(b, s.factors[f]);
+            if (is_coupling(s.factors[f])) slopes = std::max(slopes, 2 * b.of(s.factors[f].kind).degree() - 2);
+        }
+        highest = std::max(highest, d);
+    }
+    // 2 points - 1 >= highest; the coupling's points interpolate phi_i' phi_j' of degree `slopes` exactly.
+    return {highest / 2 + 1 + (twist ? 8 : 0), slopes + 1};
+}
+
+/// Distribution `which` at the rule's nodes: a table's linear on each interval, which lies between two stations; the
+/// pre-twist's cos or sin of 2 twist xi.
+std::vector<double> at_nodes(const VariantKey& key, const Parameters& p, SectionDistribution which,
+                             const std::vector<double>& nodes, const std::vector<double>& stations)
+{
+    std::vector<double> out(nodes.size());
+    if (!tabulated(which)) {
+        for (std::size_t q = 0; q < out.size(); ++q) {
+            const double angle = 2.0 * p.twist * nodes[q];
+            out[q] = which == SectionDistribution::cos_2twist ? std::cos(angle) : std::sin(angle);
+        }
+        return out;
+    }
+    const std::vector<double> v = section_distribution(key, p, which);
+    std::size_t k = 0;
+    for (std::size_t q = 0; q < out.size(); ++q) {
+        const double x = nodes[q];
+        while (k + 2 < stations.size() && x > stations[k + 1]) ++k;
+        const double t = (x - stations[k]) / (stations[k + 1] - stations[k]);
+        out[q] = (1.0 - t) * v[k] + t * v[k + 1];
+    }
+    return out;
+}
+
+}  // namespace
+
+std::vector<double> section_integrals(const VariantKey& key, const SectionIntegral* list, int count,
+                                      const Parameters& p)
+{
+    if (count == 0) return {};
+    const auto [table, twist] = kinds_of(list, count);
     if (const std::string why = stations_problem(p.stations); table && !why.empty())
         throw std::invalid_argument("section integrals: " + why);
     const Bases b(key);
@@ -284,50 +340,16 @@ std::vector<double> section_integrals(const VariantKey& key, const SectionIntegr
     // part needs, what the rule misses of them is below 1e-20 of the integrand (Gauss's remainder for h omega <= 1).
     const int twist_panels = twist ? std::max(1, static_cast<int>(std::ceil(2.0 * std::abs(p.twist)))) : 1;
     const std::vector<double> cuts = cuts_of(b, stations, twist_panels);
-    // Polynomial bases: enough points per interval for the integrands' highest degree (the distribution is linear
-    // there), so that the rule is exact; AMM: the points that converge its modes on a panel.
-    int points = transcendental_points, coupling_points = transcendental_points;
-    if (b.polynomial()) {
-        int highest = 0, slopes = 0;
-        for (int n = 0; n < count; ++n) {
-            const SectionIntegral& s = list[n];
-            int d = 1 + s.power;
-            for (int f = 0; f < s.count; ++f) {
-                d += degree(b, s.factors[f]);
-                if (is_coupling(s.factors[f])) slopes = std::max(slopes, 2 * b.of(s.factors[f].kind).degree() - 2);
-            }
-            highest = std::max(highest, d);
-        }
-        points = highest / 2 + 1 + (twist ? 8 : 0);  // 2 points - 1 >= highest
-        coupling_points = slopes + 1;                 // interpolates phi_i' phi_j' of degree `slopes` exactly
-    }
+    const auto [points, coupling_points] = rule_points(b, list, count, twist);
     const QuadratureRule rule = composite_gauss_legendre(cuts, points);
     FactorColumns columns(b, cuts, rule.nodes, points, coupling_points);
-    // Each distribution at the nodes: linear on each interval, which lies between two stations.
-    std::map<int, std::vector<double>> at_nodes;
+    // Each distribution at the nodes, and the weights times xi^power, once each.
+    std::map<int, std::vector<double>> distributions, weighted;
     const auto distribution = [&](int d) -> const std::vector<double>& {
-        if (auto it = at_nodes.find(d); it != at_nodes.end()) return it->second;
-        std::vector<double> out(rule.nodes.size());
+        if (auto it = distributions.find(d); it != distributions.end()) return it->second;
         const auto which = static_cast<SectionDistribution>(d);
-        if (!tabulated(which)) {
-            for (std::size_t q = 0; q < out.size(); ++q) {
-                const double angle = 2.0 * p.twist * rule.nodes[q];
-                out[q] = which == SectionDistribution::cos_2twist ? std::cos(angle) : std::sin(angle);
-            }
-            return at_nodes.emplace(d, std::move(out)).first->second;
-        }
-        const std::vector<double> v = section_distribution(key, p, which);
-        std::size_t k = 0;
-        for (std::size_t q = 0; q < out.size(); ++q) {
-            const double x = rule.nodes[q];
-            while (k + 2 < stations.size() && x > stations[k + 1]) ++k;
-            const double t = (x - stations[k]) / (stations[k + 1] - stations[k]);
-            out[q] = (1.0 - t) * v[k] + t * v[k + 1];
-        }
-        return at_nodes.emplace(d, std::move(out)).first->second;
+        return distributions.emplace(d, at_nodes(key, p, which, rule.nodes, stations)).first->second;
     };
-    // The weights times xi^power, once per power.
-    std::map<int, std::vector<double>> weighted;
     const auto weights = [&](int power) -> const std::vector<double>& {
         if (auto it = weighted.find(power); it != weighted.end()) return it->second;
         std::vector<double> w(rule.nodes.size());
