@@ -171,6 +171,46 @@ void BladeLoads::section_inertia(const Node& n, double dx, double w, double dw, 
     M[2] -= dx * (sb * D1 + cb * D3);
 }
 
+namespace {
+
+/// The first coordinate of a field in v, or null where the variant has no such field.
+const double* at(const double* v, int first)
+{
+    return first >= 0 ? v + first : nullptr;
+}
+
+}  // namespace
+
+std::array<double, 3> BladeLoads::slope_products(const std::vector<double>& y_row, const std::vector<double>& z_row,
+                                                 const double* const state[3]) const
+{
+    double s[3], r[3];
+    for (int d = 0; d < 3; ++d) s[d] = dot(y_row, at(state[d], inplane_)), r[d] = dot(z_row, at(state[d], flap_));
+    return {s[0] * s[0] + r[0] * r[0], s[0] * s[1] + r[0] * r[1], s[1] * s[1] + s[0] * s[2] + r[1] * r[1] + r[0] * r[2]};
+}
+
+std::vector<std::array<double, 3>> BladeLoads::shortening_sums(const double* const state[3]) const
+{
+    std::vector<std::array<double, 3>> before(nodes_.size() + 1, {0.0, 0.0, 0.0});
+    for (std::size_t n = 0; n < nodes_.size(); ++n) {
+        const std::array<double, 3> gn = slope_products(nodes_[n].inplane_slope, nodes_[n].flap_slope, state);
+        for (int d = 0; d < 3; ++d) before[n + 1][static_cast<std::size_t>(d)] = before[n][d] + nodes_[n].weight * gn[d];
+    }
+    return before;
+}
+
+std::array<double, 3> BladeLoads::shortening(const Node& n, const std::vector<std::array<double, 3>>& before,
+                                             const double* const state[3]) const
+{
+    if (!foreshortened_) return {0.0, 0.0, 0.0};
+    std::array<double, 3> sum = before[n.panel_first];
+    for (std::size_t s = 0; s < n.inner_weights.size(); ++s) {
+        const std::array<double, 3> gs = slope_products(n.inner_inplane[s], n.inner_flap[s], state);
+        for (std::size_t d = 0; d < 3; ++d) sum[d] += n.inner_weights[s] * gs[d];
+    }
+    return {-0.5 * sum[0], -sum[1], -sum[2]};
+}
+
 RootLoads BladeLoads::operator()(const HubInput& u, const double* q, const double* qd, const double* qdd) const
 {
     // The drive at the blade's azimuth, and the hub's acceleration in the blade's frame (i_b, j_b, k).
@@ -181,35 +221,12 @@ RootLoads BladeLoads::operator()(const HubInput& u, const double* q, const doubl
     // Gravity along -J (in the plane) or -k (the spin axis), in the blade's frame.
     const double g_i = -p_.g * sp, g_j = -p_.g * cp, g_k = -p_.g_axis;
     const double cb = std::cos(p_.precone), sb = std::sin(p_.precone);
-    const auto at = [](const double* v, int first) { return first >= 0 ? v + first : nullptr; };
     const double* state[] = {q, qd, qdd};
-
-    // The foreshortening's integrand and its first two time derivatives at every outer node, summed panel by panel:
-    // g0 = u_y'^2 + u_z'^2, g1 = d/dt g0 / 2, g2 = d2/dt2 g0 / 2.
-    const auto integrands = [&](const std::vector<double>& y_row, const std::vector<double>& z_row) {
-        double s[3], r[3];
-        for (int d = 0; d < 3; ++d) s[d] = dot(y_row, at(state[d], inplane_)), r[d] = dot(z_row, at(state[d], flap_));
-        return std::array<double, 3>{s[0] * s[0] + r[0] * r[0], s[0] * s[1] + r[0] * r[1],
-                                     s[1] * s[1] + s[0] * s[2] + r[1] * r[1] + r[0] * r[2]};
-    };
-    std::vector<std::array<double, 3>> before(nodes_.size() + 1, {0.0, 0.0, 0.0});  // sums over the nodes before
-    for (std::size_t n = 0; n < nodes_.size(); ++n) {
-        const std::array<double, 3> gn = integrands(nodes_[n].inplane_slope, nodes_[n].flap_slope);
-        for (int d = 0; d < 3; ++d) before[n + 1][static_cast<std::size_t>(d)] = before[n][d] + nodes_[n].weight * gn[d];
-    }
+    const std::vector<std::array<double, 3>> before = shortening_sums(state);
 
     double F[3] = {0.0, 0.0, 0.0}, M[3] = {0.0, 0.0, 0.0};  // blade on hub, in (i_b, j_b, k)
     const auto add = [&](const Node& n, double mass) {
-        // u_x2 and its rates: -1/2 int g0, -int g1, -int g2 from the root to x.
-        std::array<double, 3> ux2 = {0.0, 0.0, 0.0};
-        if (foreshortened_) {
-            std::array<double, 3> sum = before[n.panel_first];
-            for (std::size_t s = 0; s < n.inner_weights.size(); ++s) {
-                const std::array<double, 3> gs = integrands(n.inner_inplane[s], n.inner_flap[s]);
-                for (std::size_t d = 0; d < 3; ++d) sum[d] += n.inner_weights[s] * gs[d];
-            }
-            ux2 = {-0.5 * sum[0], -sum[1], -sum[2]};
-        }
+        const std::array<double, 3> ux2 = shortening(n, before, state);
         // The point's offset from the root, d = (x + u_x) e1 + u_y e2 + u_z e3, and its rates, in (i_b, j_b, k).
         double di[3], dj[3], dk[3];
         for (std::size_t d = 0; d < 3; ++d) {

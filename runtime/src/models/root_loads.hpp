@@ -54,6 +54,15 @@ private:
         std::vector<double> inner_weights;
         std::vector<std::vector<double>> inner_inplane, inner_flap;
     };
+    /// The foreshortening's integrand and its first two time derivatives at a node's slope rows, state = (q, qd, qdd):
+    /// g0 = u_y'^2 + u_z'^2, g1 = d/dt g0 / 2, g2 = d2/dt2 g0 / 2.
+    std::array<double, 3> slope_products(const std::vector<double>& y_row, const std::vector<double>& z_row,
+                                         const double* const state[3]) const;
+    /// g0, g1, g2 summed with the rule's weights over the outer nodes before each node (entry n: nodes 0..n-1).
+    std::vector<std::array<double, 3>> shortening_sums(const double* const state[3]) const;
+    /// u_x2 at node n and its rates: -1/2 int g0, -int g1, -int g2 from the root to x (0 for order zero).
+    std::array<double, 3> shortening(const Node& n, const std::vector<std::array<double, 3>>& before,
+                                     const double* const state[3]) const;
     /// The node at xi with quadrature weight (m); section: a taper's ratios.
     Node node_at(const BeamFields& section, double xi, double weight) const;
     /// Adds -dh/dt dx, the section's rotary inertia over dx at node n, to M (i_b, j_b, k) at hub rate w and acceleration
