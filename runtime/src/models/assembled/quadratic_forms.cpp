@@ -11,95 +11,104 @@ namespace {
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 
-/// Where each elastic field's coordinates begin in q_e, and how many (0 for an absent field).
-struct Fields {
-    int A = 0, B = 0, Z = 0, P = 0;
-    int nx = 0, ny = 0, nz = 0, nt = 0, n = 0;
+/// The blocks of a form over q_e by the coordinates' fields (coordinate_layout, counted from the first coordinate
+/// after the hub's): f(M, A, B) is M's block of the axial rows and in-plane columns, f(v, B) v's in-plane segment;
+/// a field the variant lacks has an empty block.
+class FieldBlocks {
+public:
+    explicit FieldBlocks(const VariantKey& key) : layout_(coordinate_layout(key)), beam_(layout_.first_beam()) {}
+
+    int size() const { return layout_.size() - beam_; }
+    int count(FieldKind k) const { return layout_.count(k); }
+    auto operator()(MatrixXd& m, FieldKind rows, FieldKind columns) const
+    {
+        return m.block(first(rows), first(columns), count(rows), count(columns));
+    }
+    auto operator()(VectorXd& v, FieldKind rows) const { return v.segment(first(rows), count(rows)); }
+
+private:
+    int first(FieldKind k) const
+    {
+        const CoordinateField* f = layout_.find(k);
+        return f ? f->first - beam_ : 0;
+    }
+
+    CoordinateLayout layout_;
+    int beam_;  // after the hub's coordinates (its angle, a moving hub's x_h, y_h)
 };
 
-/// The elastic fields of key's layout, counted from the first coordinate after the hub angle.
-Fields fields_of(const VariantKey& key)
-{
-    const CoordinateLayout l = coordinate_layout(key);
-    const int e = l.first_beam();  // after the hub's coordinates (its angle, a moving hub's x_h, y_h)
-    const auto start = [&](FieldKind k) {
-        const CoordinateField* f = l.find(k);
-        return f ? f->first - e : 0;
-    };
-    return {start(FieldKind::axial),  start(FieldKind::inplane), start(FieldKind::flap),
-            start(FieldKind::twist),  l.count(FieldKind::axial), l.count(FieldKind::inplane),
-            l.count(FieldKind::flap), l.count(FieldKind::twist), l.size() - e};
-}
+// The fields by the letters of docs/model.md section 12.3.
+constexpr FieldKind A = FieldKind::axial, B = FieldKind::inplane, Z = FieldKind::flap, P = FieldKind::twist;
 
 /// T's forms. |r_dot|^2 to second order in the deformation: u_x1_dot^2 + u_y_dot^2 + u_z_dot^2 (the precone turns the
 /// axial and flapwise rates, not the sum of their squares), 2 w (R u_y_dot + e u_y_dot - u_y e_dot), and
 /// w^2 (R^2 + 2 R e + e^2 + 2 R cb u_x2 + u_y^2); with a twist field, the section's T_sec.
-void add_kinetic(const Fields& f, const VariantKey& key, const BeamMatrices& c, const ModelMatrices& m,
+void add_kinetic(const FieldBlocks& f, const VariantKey& key, const BeamMatrices& c, const ModelMatrices& m,
                  QuadraticForms& q)
 {
     const OutOfPlaneMatrices& o = m.o;
     const double cb = c.cb, sb = c.sb;
     const bool first = key.order != Order::zero;  // order zero has no u_x2, so no geometric stiffness
-    q.M.block(f.A, f.A, f.nx, f.nx) = m.M1;
-    q.M.block(f.B, f.B, f.ny, f.ny) = m.M2r;
-    q.s.segment(f.B, f.ny) = m.S_y.transpose();
-    q.N.block(f.A, f.B, f.nx, f.ny) = cb * m.M3;
+    f(q.M, A, A) = m.M1;
+    f(q.M, B, B) = m.M2r;
+    f(q.s, B) = m.S_y.transpose();
+    f(q.N, A, B) = cb * m.M3;
     q.J = m.J_o;
-    q.b.segment(f.A, f.nx) = cb * m.S_x.transpose();
-    q.K_w.block(f.A, f.A, f.nx, f.nx) = cb * cb * m.M1;
-    q.K_w.block(f.B, f.B, f.ny, f.ny) = first ? MatrixXd(m.M2 - cb * m.G) : m.M2;
-    if (f.nz > 0) {
-        q.M.block(f.Z, f.Z, f.nz, f.nz) = o.M_z;
-        q.N.block(f.Z, f.B, f.nz, f.ny) = -sb * o.M_zy;
-        q.b.segment(f.Z, f.nz) = -sb * o.S_z.transpose();
-        q.K_w.block(f.A, f.Z, f.nx, f.nz) = -cb * sb * o.M_xz;
-        q.K_w.block(f.Z, f.A, f.nz, f.nx) = -cb * sb * o.M_xz.transpose();
-        q.K_w.block(f.Z, f.Z, f.nz, f.nz) = first ? MatrixXd(sb * sb * o.M_z - cb * o.G_z) : MatrixXd(sb * sb * o.M_z);
+    f(q.b, A) = cb * m.S_x.transpose();
+    f(q.K_w, A, A) = cb * cb * m.M1;
+    f(q.K_w, B, B) = first ? MatrixXd(m.M2 - cb * m.G) : m.M2;
+    if (f.count(Z) > 0) {
+        f(q.M, Z, Z) = o.M_z;
+        f(q.N, Z, B) = -sb * o.M_zy;
+        f(q.b, Z) = -sb * o.S_z.transpose();
+        f(q.K_w, A, Z) = -cb * sb * o.M_xz;
+        f(q.K_w, Z, A) = -cb * sb * o.M_xz.transpose();
+        f(q.K_w, Z, Z) = first ? MatrixXd(sb * sb * o.M_z - cb * o.G_z) : MatrixXd(sb * sb * o.M_z);
     }
     // int m (e u_y_dot - u_y e_dot) = q^T N qd with N skew: its lower blocks are minus the upper ones' transposes.
     q.N = (q.N - q.N.transpose()).eval();
-    if (f.nt > 0) {
+    if (f.count(P) > 0) {
         // T_sec = 1/2 j_p (phi_dot + w sb)^2 + 1/2 w^2 cb^2 (the moment about k at phi = 0 + (j_c - j_n)(S2 phi +
         // C2 phi^2)): the rotary mass, a drive of the twist by the spin's component along the axis, the propeller
         // moment's load and stiffness.
-        q.M.block(f.P, f.P, f.nt, f.nt) = o.M_t;
-        q.s.segment(f.P, f.nt) = sb * o.S_t.transpose();
+        f(q.M, P, P) = o.M_t;
+        f(q.s, P) = sb * o.S_t.transpose();
         q.J += sb * sb * o.J_p + cb * cb * o.J_n;
-        q.b.segment(f.P, f.nt) = cb * cb * o.F_t.transpose();
-        q.K_w.block(f.P, f.P, f.nt, f.nt) = cb * cb * o.K_p;
+        f(q.b, P) = cb * cb * o.F_t.transpose();
+        f(q.K_w, P, P) = cb * cb * o.K_p;
     }
 }
 
 /// U's forms: the strain energy (bending about the turned chord couples u_y and u_z) and the weight along each axis.
-void add_potential(const Fields& f, const VariantKey& key, const BeamMatrices& c, const ModelMatrices& m,
+void add_potential(const FieldBlocks& f, const VariantKey& key, const BeamMatrices& c, const ModelMatrices& m,
                    QuadraticForms& q)
 {
     const OutOfPlaneMatrices& o = m.o;
     const double cb = c.cb, sb = c.sb;
-    q.K.block(f.A, f.A, f.nx, f.nx) = c.K1;
-    q.K.block(f.B, f.B, f.ny, f.ny) = c.K2;
+    f(q.K, A, A) = c.K1;
+    f(q.K, B, B) = c.K2;
     q.g = m.g;
     q.g_axis = m.g_axis;
     // p_i = R + cb u_x1 - sb u_z + cb u_x2, p_j = u_y, p_k = x sb + sb u_x1 + cb u_z + sb u_x2, with
     // int m u_x2 dx = -1/2 (B^T C B + Z^T C_z Z) (W_H = C with the tip's H(L); zero at order zero, as is u_x2).
     q.V_i.o = m.W_o;
-    q.V_i.w.segment(f.A, f.nx) = cb * m.W_x.transpose();
-    q.V_i.H.block(f.B, f.B, f.ny, f.ny) = cb * m.W_H;
-    q.V_j.w.segment(f.B, f.ny) = m.W_y.transpose();
+    f(q.V_i.w, A) = cb * m.W_x.transpose();
+    f(q.V_i.H, B, B) = cb * m.W_H;
+    f(q.V_j.w, B) = m.W_y.transpose();
     q.V_k.o = sb * m.o.X_ob;
-    q.V_k.w.segment(f.A, f.nx) = sb * m.W_x.transpose();
-    q.V_k.H.block(f.B, f.B, f.ny, f.ny) = sb * m.W_H;
-    if (f.nz > 0) {
-        q.K.block(f.B, f.Z, f.ny, f.nz) = o.K_yz;
-        q.K.block(f.Z, f.B, f.nz, f.ny) = o.K_yz.transpose();
-        q.K.block(f.Z, f.Z, f.nz, f.nz) = o.K_zz;
-        const MatrixXd C_z = key.order == Order::zero ? MatrixXd::Zero(f.nz, f.nz) : o.C_z;
-        q.V_i.w.segment(f.Z, f.nz) = -sb * o.P_z.transpose();
-        q.V_i.H.block(f.Z, f.Z, f.nz, f.nz) = cb * C_z;
-        q.V_k.w.segment(f.Z, f.nz) = cb * o.P_z.transpose();
-        q.V_k.H.block(f.Z, f.Z, f.nz, f.nz) = sb * C_z;
+    f(q.V_k.w, A) = sb * m.W_x.transpose();
+    f(q.V_k.H, B, B) = sb * m.W_H;
+    if (f.count(Z) > 0) {
+        f(q.K, B, Z) = o.K_yz;
+        f(q.K, Z, B) = o.K_yz.transpose();
+        f(q.K, Z, Z) = o.K_zz;
+        const MatrixXd C_z = key.order == Order::zero ? MatrixXd::Zero(f.count(Z), f.count(Z)) : o.C_z;
+        f(q.V_i.w, Z) = -sb * o.P_z.transpose();
+        f(q.V_i.H, Z, Z) = cb * C_z;
+        f(q.V_k.w, Z) = cb * o.P_z.transpose();
+        f(q.V_k.H, Z, Z) = sb * C_z;
     }
-    if (f.nt > 0) q.K.block(f.P, f.P, f.nt, f.nt) = o.K_t;
+    if (f.count(P) > 0) f(q.K, P, P) = o.K_t;
 }
 
 /// An axis's weight of n coordinates, all zero.
@@ -112,8 +121,8 @@ AxisWeight no_weight(int n)
 
 QuadraticForms quadratic_forms(const VariantKey& key, const BeamMatrices& c, const ModelMatrices& m)
 {
-    const Fields f = fields_of(key);
-    const int n = f.n;
+    const FieldBlocks f(key);
+    const int n = f.size();
     QuadraticForms q;
     q.M = q.N = q.K_w = q.K = MatrixXd::Zero(n, n);
     q.s = q.b = VectorXd::Zero(n);
