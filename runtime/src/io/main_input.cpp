@@ -233,12 +233,10 @@ void require(const InputText& t, const InputSetting& s, double wanted, const std
     }
 }
 
-ImportedBlade parse_bmodes(const InputText& t)
+/// A .bmi's general parameters: the rotor's speed and its factor, the radii, precone and pitch; a blade clamped to
+/// the hub, and what only BModes' output reads.
+void read_bmodes_general(BmiCursor& c, const InputText& t, ImportedBlade& b)
 {
-    BmiCursor c(t);
-    ImportedBlade b;
-    b.format = main_input_bmodes;
-    b.file = t.path;
     c.skip("the header line");
     c.skip("the title line");
     c.skip("a blank line");
@@ -263,6 +261,11 @@ ImportedBlade parse_bmodes(const InputText& t)
     c.var({"modepr"}, "number of modes printed");  // output only
     c.var({"TabDelim"}, "output format");
     c.var({"mid_node_tw"}, "mid-node twist output");
+}
+
+/// A .bmi's tip mass: its mass, its centre of mass's offset along the tip chord, its principal inertias.
+void read_bmodes_tip(BmiCursor& c, const InputText& t, ImportedBlade& b)
+{
     c.skip("a blank line");
     c.skip("the tip mass properties line");
     b.tip_mass = c.number_var({"tip_mass"}, "blade-tip mass, kg");
@@ -286,6 +289,11 @@ ImportedBlade parse_bmodes(const InputText& t)
     require(t, c.number_var({"ixy_tip"}, "cross product of inertia of the tip mass, kg m^2"), 0, principal);
     require(t, c.number_var({"izx_tip"}, "cross product of inertia of the tip mass, kg m^2"), 0, principal);
     require(t, c.number_var({"iyz_tip"}, "cross product of inertia of the tip mass, kg m^2"), 0, principal);
+}
+
+/// A .bmi's distributed properties: the section file it names and its property multipliers.
+void read_bmodes_properties(BmiCursor& c, const InputText& t, ImportedBlade& b)
+{
     c.skip("a blank line");
     c.skip("the distributed-property identifiers line");
     require(t, c.number_var({"id_mat"}, "material type"), 1, "an isotropic material (BModes' only one)");
@@ -304,6 +312,17 @@ ImportedBlade parse_bmodes(const InputText& t)
         if (std::string_view(m) != "sc_offst_mult") b.blade_scale.push_back(std::move(s));
     }
     static_assert(multipliers.size() == scene_io::blade_scale_fields.size() + 1);
+}
+
+ImportedBlade parse_bmodes(const InputText& t)
+{
+    BmiCursor c(t);
+    ImportedBlade b;
+    b.format = main_input_bmodes;
+    b.file = t.path;
+    read_bmodes_general(c, t, b);
+    read_bmodes_tip(c, t, b);
+    read_bmodes_properties(c, t, b);
     return b;
 }
 
@@ -428,13 +447,12 @@ void read_blade_parameters(const std::string& path, ImportedBlade& b)
     }
 }
 
-ImportedBlade parse_elastodyn(const InputText& t)
+/// Every setting of an ElastoDyn file's sections that hold a blade's structure, by full name ("PreCone(2)"): each
+/// one hubbeam knows, a number (or the blade file's name), 0 where hubbeam models it so; any other is refused.
+std::map<std::string, InputSetting> elastodyn_settings(const InputText& t)
 {
-    ImportedBlade b;
-    b.format = main_input_elastodyn;
-    b.file = t.path;
     const auto& sections = elastodyn_sections();
-    std::map<std::string, InputSetting> read;  // by full name, "PreCone(2)"
+    std::map<std::string, InputSetting> read;
     std::string section;
     for (std::size_t k = 0; k < t.lines.size(); ++k) {
         const long line = static_cast<long>(k) + 1;
@@ -462,6 +480,15 @@ ImportedBlade parse_elastodyn(const InputText& t)
         if (setting->use == Use::zero && s.value != 0.0) fail(t, line, f[1], std::string("0: ") + setting->why);
         read[f[1]] = s;
     }
+    return read;
+}
+
+ImportedBlade parse_elastodyn(const InputText& t)
+{
+    ImportedBlade b;
+    b.format = main_input_elastodyn;
+    b.file = t.path;
+    const std::map<std::string, InputSetting> read = elastodyn_settings(t);
     const auto need = [&](const std::string& name, const char* section_name) -> const InputSetting& {
         const auto it = read.find(name);
         if (it == read.end())
