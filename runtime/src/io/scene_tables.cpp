@@ -205,6 +205,26 @@ void set_profile(std::vector<double> values, Parameters& p)
     p.I_flap = p.profile[static_cast<std::size_t>(ProfileValue::EI_flap)] / p.E;
 }
 
+/// Why a profile row's values v (in the order of want, x/L first) are out of their ranges, or empty: the twist
+/// angles within a turn either way, the torsional values >= 0 (a blade without a twist field may give 0; fit_profile
+/// asks for more with one), every other > 0; any finite offset; an absent optional column (NaN) is not checked.
+std::string profile_row_problem(const std::vector<WantedColumn>& want, const std::vector<double>& v)
+{
+    for (std::size_t c = 1; c < want.size(); ++c) {
+        const std::string& col = want[c].name;
+        if (std::isnan(v[c]) || col == "cg_offset" || col == "tc_offset") continue;
+        if (col == "twist" || col == "inertia_twist") {
+            if (!(std::abs(v[c]) <= max_section_angle))
+                return "expected " + col + " from -2 pi to 2 pi (rad: one turn either way)";
+            continue;
+        }
+        const bool zero_allowed = col == "GJ" || col == "j_c" || col == "j_n";
+        if (zero_allowed ? !(v[c] >= 0.0) : !(v[c] > 0.0))
+            return "expected " + col + (zero_allowed ? " >= 0" : " > 0") + ", got " + shortest(v[c]);
+    }
+    return {};
+}
+
 }  // namespace
 
 /// beam.profile's table (docs/model.md sections 11.2 and 12.4): stations x/L from 0 to 1, strictly increasing, and
@@ -250,19 +270,7 @@ ProfileTable scene_io::read_profile(const std::string& scene_path, const std::st
         const long line = table.lines[r];
         if (x.size() == max_profile_stations)
             bad(line, "more than " + std::to_string(max_profile_stations) + " stations");
-        for (std::size_t c = 1; c < want.size(); ++c) {
-            const std::string& col = want[c].name;
-            if (std::isnan(v[c]) || col == "cg_offset" || col == "tc_offset") continue;  // any finite offset
-            if (col == "twist" || col == "inertia_twist") {
-                if (!(std::abs(v[c]) <= max_section_angle))
-                    bad(line, "expected " + col + " from -2 pi to 2 pi (rad: one turn either way)");
-                continue;
-            }
-            // The torsional values may be 0 (a blade without a twist field); fit_profile asks for more with one.
-            const bool zero_allowed = col == "GJ" || col == "j_c" || col == "j_n";
-            if (zero_allowed ? !(v[c] >= 0.0) : !(v[c] > 0.0))
-                bad(line, "expected " + col + (zero_allowed ? " >= 0" : " > 0") + ", got " + shortest(v[c]));
-        }
+        if (const std::string why = profile_row_problem(want, v); !why.empty()) bad(line, why);
         if (x.empty() && v[0] != 0.0) bad(line, "the first station must be x/L = 0, got " + shortest(v[0]));
         if (!x.empty() && !(v[0] > x.back()))
             bad(line,
