@@ -75,7 +75,8 @@ std::vector<TermInfo> make_terms()
          [](const Extras& e) { return to_string(e.taper); },
          read_taper_suffix,
          [](const Extras& e) { return "taper=" + to_string(e.taper); },
-         never},
+         never,
+         "beam.taper \"width\" or \"depth\""},
         {"tabulated profile (section 11.2)",
          shapes_section,
          {},
@@ -85,7 +86,8 @@ std::vector<TermInfo> make_terms()
          [](const Extras&) { return std::string("profile"); },
          [](std::string_view part, Extras& e) { return part == "profile" && (e.tabulated = true); },
          [](const Extras&) { return std::string("tabulated_profile"); },
-         never},
+         never,
+         "beam.profile or beam.blade_file"},
         // Chosen by the table's words (a blade's offsets columns), as the profile is: the centre of mass's T, the
         // tension centre's U (which vanishes with nx = 0).
         {"section offsets (sections 12.5 and 12.6)",
@@ -97,7 +99,8 @@ std::vector<TermInfo> make_terms()
          [](const Extras&) { return std::string("offsets"); },
          [](std::string_view part, Extras& e) { return part == "offsets" && (e.offsets = true); },
          [](const Extras&) { return std::string("section_offsets"); },
-         never},
+         never,
+         "a table's cg_offset or tc_offset column"},
         switched<&Extras::pitch, pitched_word, pitched_summary>("pitch (section 12)", adds_U | adds_T, {P::pitch}),
         switched<&Extras::twist, twisted_word, twisted_summary>("pre-twist (section 12)", adds_U | adds_T, {P::twist}),
         // The precone tilts the axis: its own module moves the beam's points (T); the tilted weight is gravity's U.
@@ -117,7 +120,8 @@ std::vector<TermInfo> make_terms()
          [](const Extras&) { return std::string("hub"); },
          [](std::string_view part, Extras& e) { return part == "hub" && (e.hub = true); },
          [](const Extras&) { return std::string("moving_hub"); },
-         never},
+         never,
+         "a [support] table (the hub translates only on a support)"},
         // The tip body's own axes (its flap and torsion inertias, its offset): the tip term's m_tip and J_tip, read by
         // this term's energies in the section's axes, stay the tip term's parameters and keys.
         switched<&Extras::tip_body, tip_body_word, tip_body_summary>(

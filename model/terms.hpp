@@ -69,6 +69,9 @@ struct TermInfo {
     std::string (*summary)(const Extras&);
     /// Sets whether e carries the term (a term selected by values; a no-op for the others).
     void (*set)(Extras&, bool);
+    /// A term chosen by the scene's words: what chooses it ("a [support] table"). A sensitivity to one of its
+    /// parameters is refused where the scene does not carry it: its derivative there would be a column of zeros.
+    const char* chosen_by = nullptr;
 };
 
 /// Every term, in the order of the variant's name suffixes: tip, gravity, damped, width|depth, profile, offsets,

@@ -183,6 +183,27 @@ TEST_CASE("a profile refuses sensitivities to rho, S, I and E, which its table r
           2);
 }
 
+TEST_CASE("a sensitivity to a parameter of a term the scene does not carry is refused, not a column of zeros",
+          "[scene][sensitivities]")
+{
+    // Without a [support] the hub does not translate and its mass and support are in no equation; without a taper
+    // the tip ratio is in none: their derivatives would be zeros that say nothing.
+    const std::vector<std::pair<std::string, std::string>> refused = {
+        {"m_hub", "a [support] table"}, {"k_x", "a [support] table"}, {"c_y", "a [support] table"},
+        {"tip_ratio", "beam.taper \"width\" or \"depth\""}};
+    for (const auto& [p, chosen_by] : refused) {
+        const std::string message = error_of(cases + "spinup_omega4.toml", {{"output.sensitivities", "E," + p}});
+        INFO(message);
+        CHECK(message.find("output.sensitivities: expected " + p + " only with " + chosen_by) != std::string::npos);
+    }
+    // Where the scene carries the term, they are derivatives like any other.
+    CHECK(load_scene(cases + "ground_resonance.toml", {{"rotor.blades", "1"}, {"rotor.tip_masses", "0"},
+                                                       {"output.sensitivities", "m_hub,k_x"}})
+              .output.sensitivities.size() == 2);
+    const Scene tapered = load_scene(cases + "tapered_blade.toml", {{"output.sensitivities", "tip_ratio"}});
+    CHECK(tapered.output.sensitivities.size() == 1);
+}
+
 TEST_CASE("hub angles beyond max_hub_angle are refused, naming the key, the value and the bound", "[scene]")
 {
     const Folder f;

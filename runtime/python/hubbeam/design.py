@@ -21,6 +21,8 @@ PARAMETER_KEYS = {
     "E": "beam.youngs_modulus", "a": "hub.radius", "J_oh": "hub.inertia", "m_tip": "tip.mass",
     "J_tip": "tip.inertia", "g": "gravity.g", "alpha": "damping.mass_proportional",
     "beta": "damping.stiffness_proportional", "tip_ratio": "beam.tip_ratio",
+    "m_hub": "hub.mass", "k_x": "support.stiffness_x", "k_y": "support.stiffness_y", "c_x": "support.damping_x",
+    "c_y": "support.damping_y",
     "kp": "control.kp", "kd": "control.kd", "ki": "control.ki", "k_tip": "control.k_tip",
 }
 

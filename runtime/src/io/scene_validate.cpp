@@ -30,8 +30,11 @@ void check_sensitivities(const Scene& s)
             fail(s.path, key, expected(key), "\"" + name + "\" twice");
         seen.push_back(name);
         if (gain && !s.control) fail(s.path, key, "a control gain only with a [control] table", "\"" + name + "\"");
-        if (name == "tip_ratio" && s.variant.extras.taper == Taper::uniform)
-            fail(s.path, key, "tip_ratio only with beam.taper \"width\" or \"depth\"", "\"tip_ratio\"");
+        // A parameter of a term the scene's words choose (taper, moving hub) only where the scene carries it.
+        for (const TermInfo& t : terms())
+            if (!t.selected_by_values && !t.carried(s.variant.extras) &&
+                std::any_of(t.params.begin(), t.params.end(), [&](Param q) { return param_names[index(q)] == name; }))
+                fail(s.path, key, name + " only with " + t.chosen_by, "\"" + name + "\"");
         // A profile's table replaces E, rho, S, I and the blade's section (read_profile sets some from its root for
         // reports only): their derivatives would be columns of zeros.
         static const std::vector<std::string> tabulated = {"E", "rho", "S", "I", "I_flap", "G", "J_t", "twist"};
