@@ -1,8 +1,8 @@
 // The equations of motion of any order-full variant by a route that shares nothing with the generator's
 // expansion: T and U by quadrature of the beam's position r = R(theta) (a + x + u_x, u_y) along the beam, with
-// the foreshortening u_x2(x) = -1/2 int_0^x (u_y')^2 as a nested quadrature, and Lagrange's equations by
-// numerical differentiation that is exact to round-off (central differences in the rates, in which T is
-// quadratic; complex steps in the coordinates). A blade's flapwise field and precone (docs/model.md section 12) are
+// the foreshortening u_x2(x) = -1/2 int_0^x (u_y')^2 as a nested quadrature (the inner rule's sums of slope
+// products kept for each outer node), and Lagrange's equations by numerical differentiation that is exact to
+// round-off (central differences in the rates, in which T is quadratic; complex steps in the coordinates). A blade's flapwise field and precone (docs/model.md section 12) are
 // taken too: r = R(theta) (a + (x + u_x) cb - u_z sb, u_y, (x + u_x) sb + u_z cb), u_z' in u_x2 beside u_y'; a twist
 // field, a pitch or a pre-twist (whose terms no order changes) are not.
 #pragma once
@@ -55,11 +55,8 @@ public:
             // Inner rule on [0, xi] for int (u_y')^2: (u_y')^2 has degree 2 (degree - 1).
             const QuadratureRule inner = t.polynomial() ? pieces_rule(0.0, n.xi, t.degree() + 1)
                                                         : scaled(transcendental_rule(std::max(key.ny, key.nz)), n.xi);
-            for (std::size_t k = 0; k < inner.nodes.size(); ++k) {
-                n.inner_weight.push_back(inner.weights[k]);
-                for (int j = 0; j < key.ny; ++j) n.inner_slope.push_back(transverse_.at(j, inner.nodes[k]).d1);
-                for (int j = 0; j < key.nz; ++j) n.inner_flap_slope.push_back(flap_.at(j, inner.nodes[k]).d1);
-            }
+            n.inner = inner_products(transverse_, inner);
+            n.inner_flap = inner_products(flap_, inner);
             nodes_.push_back(std::move(n));
         }
     }
@@ -94,22 +91,11 @@ public:
                 uy += B[j] * n.tr[j];
                 uy_dot += B_dot[j] * n.tr[j];
             }
-            // u_x2 = -1/2 int_0^x (du_y/dx)^2 dx' = -1/(2L) int_0^xi (du_y/dxi)^2 dxi', and its time derivative.
-            S ux2 = 0.0, ux2_dot = 0.0;
-            for (std::size_t k = 0; k < n.inner_weight.size(); ++k) {
-                S slope = 0.0, slope_dot = 0.0;
-                for (int j = 0; j < key_.ny; ++j) {
-                    slope += B[j] * n.inner_slope[k * key_.ny + j];
-                    slope_dot += B_dot[j] * n.inner_slope[k * key_.ny + j];
-                }
-                S flap = 0.0, flap_dot = 0.0;
-                for (int j = 0; j < key_.nz; ++j) {
-                    flap += Z[j] * n.inner_flap_slope[k * key_.nz + j];
-                    flap_dot += Z_dot[j] * n.inner_flap_slope[k * key_.nz + j];
-                }
-                ux2 -= n.inner_weight[k] * (slope * slope + flap * flap) / (2.0 * L);
-                ux2_dot -= n.inner_weight[k] * (slope * slope_dot + flap * flap_dot) / L;
-            }
+            // u_x2 = -1/2 int_0^x (du_y/dx)^2 dx' = -1/(2L) int_0^xi (du_y/dxi)^2 dxi', and its time derivative: the
+            // inner rule's sum of w_k (sum_j B_j phi_j'(xi_k))^2 with the square multiplied out, sum_ij B_i B_j
+            // (sum_k w_k phi_i'(xi_k) phi_j'(xi_k)), whose inner sums do not depend on the state.
+            const S ux2 = -(quadratic(n.inner, B, B, key_.ny) + quadratic(n.inner_flap, Z, Z, key_.nz)) / (2.0 * L);
+            const S ux2_dot = -(quadratic(n.inner, B, B_dot, key_.ny) + quadratic(n.inner_flap, Z, Z_dot, key_.nz)) / L;
             // r = R(theta) p with p = (a + (x + u_x) cb - u_z sb, u_y, (x + u_x) sb + u_z cb); r_dot = w R'(theta) p +
             // R(theta) p_dot, and the component along the axis p_z_dot.
             const S along = L * n.xi + ux1 + ux2, along_dot = ux1_dot + ux2_dot;
@@ -200,9 +186,37 @@ private:
     struct Node {
         double xi, weight;
         std::vector<double> ax, ax_d1, tr, tr_d2, fl, fl_d2;
-        std::vector<double> inner_weight, inner_slope;  // slope of function j at inner node k: [k * ny + j]
-        std::vector<double> inner_flap_slope;           // the flapwise field's: [k * nz + j]
+        // sum_k w_k phi_i'(xi_k) phi_j'(xi_k) over the inner rule on [0, xi]: [i * ny + j]; the flapwise field's.
+        std::vector<double> inner, inner_flap;
     };
+
+    /// The inner rule's sums of w_k phi_i'(xi_k) phi_j'(xi_k) for the functions of f, row by row.
+    static std::vector<double> inner_products(const FieldBasis& f, const QuadratureRule& inner)
+    {
+        const int n = f.size();
+        std::vector<double> slopes, out(static_cast<std::size_t>(n * n), 0.0);
+        for (const double x : inner.nodes)
+            for (int j = 0; j < n; ++j) slopes.push_back(f.at(j, x).d1);
+        for (std::size_t k = 0; k < inner.nodes.size(); ++k)
+            for (int i = 0; i < n; ++i)
+                for (int j = 0; j < n; ++j)
+                    out[static_cast<std::size_t>(i * n + j)] +=
+                        inner.weights[k] * slopes[k * n + static_cast<std::size_t>(i)] * slopes[k * n + static_cast<std::size_t>(j)];
+        return out;
+    }
+
+    /// sum_ij a_i H_ij b_j.
+    template <class S>
+    static S quadratic(const std::vector<double>& H, const S* a, const S* b, int n)
+    {
+        S sum = 0.0;
+        for (int i = 0; i < n; ++i) {
+            S row = 0.0;
+            for (int j = 0; j < n; ++j) row += H[static_cast<std::size_t>(i * n + j)] * b[j];
+            sum += a[i] * row;
+        }
+        return sum;
+    }
 
     /// Gauss with `points` nodes on each piece of [lo, hi] between the bases' interval ends.
     QuadratureRule pieces_rule(double lo, double hi, int points) const

@@ -9,6 +9,7 @@
 #include <iterator>
 #include <map>
 #include <tuple>
+#include <utility>
 #include <random>
 #include <vector>
 
@@ -96,41 +97,75 @@ std::vector<long double> pieces()
     return cuts;
 }
 
-/// int_lo^hi f by 30-point Gauss-Legendre on each oracle piece inside [lo, hi].
-template <class F>
-long double integral(long double lo, long double hi, const F& f)
+/// A node of the oracle's rule on [0, 1]: 30 Gauss-Legendre points on each piece, x its place, w its weight.
+struct Node {
+    long double x, w;
+    std::size_t piece;
+};
+
+/// Appends the rule's nodes on [a, b] (a piece or a part of one).
+void add_nodes(long double a, long double b, std::size_t piece, std::vector<Node>& out)
 {
     static const test::GaussRule g = test::gauss_legendre(30);  // on [-1, 1]
-    static const std::vector<long double> cuts = pieces();
-    long double sum = 0.0L;
-    for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
-        const long double a = std::max(lo, cuts[k]), b = std::min(hi, cuts[k + 1]);
-        if (b <= a) continue;
-        for (std::size_t j = 0; j < g.x.size(); ++j) sum += (b - a) / 2 * g.w[j] * f((a + b) / 2 + (b - a) / 2 * g.x[j]);
-    }
-    return sum;
+    for (std::size_t j = 0; j < g.x.size(); ++j) out.push_back({(a + b) / 2 + (b - a) / 2 * g.x[j], (b - a) / 2 * g.w[j], piece});
 }
 
-/// A factor at xi, from the variant's bases: phi^(deriv), or H_ij(xi) = int_0^xi phi_i' phi_j'.
-long double factor(const VariantKey& key, const SectionFactor& f, long double xi)
+/// Every node of the rule, piece by piece from 0 to 1: every integral below sums at these nodes in this order.
+const std::vector<Node>& nodes()
 {
+    static const std::vector<Node> all = [] {
+        const std::vector<long double> cuts = pieces();
+        std::vector<Node> out;
+        for (std::size_t k = 0; k + 1 < cuts.size(); ++k) add_nodes(cuts[k], cuts[k + 1], k, out);
+        return out;
+    }();
+    return all;
+}
+
+/// int_0^xi f for xi at every node (H_ij's running integral): the whole pieces below the node's piece summed once,
+/// then its piece cut at the node, by the same rule; the same terms in the same order as summing from 0 for each xi.
+template <class F>
+std::vector<long double> running_integral(const F& f)
+{
+    const std::vector<long double> cuts = pieces();
+    std::vector<long double> whole(cuts.size(), 0.0L);  // whole[k]: over the pieces before cut k
+    long double sum = 0.0L;
+    for (const Node& n : nodes()) whole[n.piece + 1] = sum += n.w * f(n.x);
+    std::vector<long double> out;
+    for (const Node& n : nodes()) {
+        std::vector<Node> part;
+        add_nodes(cuts[n.piece], n.x, n.piece, part);
+        long double sum = whole[n.piece];
+        for (const Node& m : part) sum += m.w * f(m.x);
+        out.push_back(sum);
+    }
+    return out;
+}
+
+/// A factor at every node, from the variant's bases: phi^(deriv), or H_ij(xi) = int_0^xi phi_i' phi_j'. Computed once
+/// per basis and factor: the oracle meets the same nodes for every integral.
+const std::vector<long double>& factor(const VariantKey& key, const SectionFactor& f)
+{
+    static std::map<std::tuple<int, int, int, int, int, int>, std::vector<long double>> known;
     const bool coupling = f.kind == generated::coupling_factor || f.kind == generated::flap_coupling_factor;
     const FieldBasis b = f.kind == generated::axial_factor ? key.axial_basis()
                          : f.kind == generated::twist_factor ? key.twist_basis()
                          : f.kind == generated::flap_factor || f.kind == generated::flap_coupling_factor
                              ? key.flap_basis()
                              : key.transverse_basis();
-    if (coupling) {  // computed once per node: the oracle meets the same nodes for every integral
-        static std::map<std::tuple<int, int, int, int, int, long double>, long double> known;
-        const auto k = std::make_tuple(static_cast<int>(key.method), b.size(), f.kind, f.i, f.j, xi);
-        if (auto it = known.find(k); it != known.end()) return it->second;
-        return known[k] = integral(0.0L, xi, [&](long double x) {
-                   return static_cast<long double>(b.at(f.i, static_cast<double>(x)).d1) *
-                          b.at(f.j, static_cast<double>(x)).d1;
-               });
-    }
-    const Jet<double> j = b.at(f.i, static_cast<double>(xi));
-    return f.deriv == 0 ? j.v : f.deriv == 1 ? j.d1 : j.d2;
+    const auto k = std::make_tuple(static_cast<int>(key.method), b.size(), f.kind, f.i, f.j, f.deriv);
+    if (auto it = known.find(k); it != known.end()) return it->second;
+    std::vector<long double>& out = known[k];
+    if (coupling)
+        out = running_integral([&](long double x) {
+            return static_cast<long double>(b.at(f.i, static_cast<double>(x)).d1) * b.at(f.j, static_cast<double>(x)).d1;
+        });
+    else
+        for (const Node& n : nodes()) {
+            const Jet<double> j = b.at(f.i, static_cast<double>(n.x));
+            out.push_back(f.deriv == 0 ? j.v : f.deriv == 1 ? j.d1 : j.d2);
+        }
+    return out;
 }
 
 /// Integrals of every distribution (or the tables' alone) and power 0 to 2 times products of each kind of factor the
@@ -169,6 +204,13 @@ TEST_CASE("section integrals: exact for the polynomial bases and converged for A
           "[profile][section_integrals]")
 {
     const Parameters p = blade_table();
+    // Each distribution at every node of the rule, once for every section.
+    static const std::vector<std::vector<long double>> distributions = [&p] {
+        std::vector<std::vector<long double>> out(section_distribution_count);
+        for (std::size_t d = 0; d < out.size(); ++d)
+            for (const Node& node : nodes()) out[d].push_back(distribution(p, static_cast<int>(d), node.x));
+        return out;
+    }();
     // With the pre-twist's distributions the rule takes more points: the tables' alone must be exact with fewer.
     // Ny = Nz = 10 for the local bases as well: their first functions' H_ij is constant beyond their support.
     const std::pair<Method, int> bases[] = {{Method::amm, 4}, {Method::fem, 4}, {Method::bim, 4},
@@ -183,15 +225,18 @@ TEST_CASE("section integrals: exact for the polynomial bases and converged for A
             REQUIRE(got.size() == list.size());
             for (std::size_t n = 0; n < list.size(); ++n) {
                 const SectionIntegral& s = list[n];
-                const auto integrand = [&](long double xi) {
-                    long double v = std::pow(xi, s.power) * distribution(p, s.distribution, xi);
-                    for (int f = 0; f < s.count; ++f) v *= factor(key, s.factors[f], xi);
-                    return v;
-                };
-                const long double want = integral(0.0L, 1.0L, integrand);
+                const std::vector<long double>* factors[generated::max_section_factors] = {};
+                for (int f = 0; f < s.count; ++f) factors[f] = &factor(key, s.factors[f]);
                 // Against the integral of |integrand|: round-off is relative to the terms summed, not to a sum that
                 // cancels.
-                const long double size = integral(0.0L, 1.0L, [&](long double xi) { return std::abs(integrand(xi)); });
+                long double want = 0.0L, size = 0.0L;
+                for (std::size_t i = 0; i < nodes().size(); ++i) {
+                    const Node& node = nodes()[i];
+                    long double v = std::pow(node.x, s.power) * distributions[static_cast<std::size_t>(s.distribution)][i];
+                    for (int f = 0; f < s.count; ++f) v *= (*factors[f])[i];
+                    want += node.w * v;
+                    size += node.w * std::abs(v);
+                }
                 INFO("integral " << n << ": distribution " << s.distribution << ", power " << s.power << ", "
                                  << s.count << " factors: " << got[n] << " against " << static_cast<double>(want));
                 INFO("off by " << std::abs(got[n] - static_cast<double>(want)) / static_cast<double>(size) << " of "
