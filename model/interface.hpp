@@ -219,6 +219,11 @@ inline double& value(Parameters& p, Param k)
     static_assert(sizeof members / sizeof members[0] == param_count);
     return *members[index(k)];
 }
+/// The value of parameter k in p.
+inline double value(const Parameters& p, Param k)
+{
+    return value(const_cast<Parameters&>(p), k);
+}
 
 /// The drive at one instant. theta is the prescribed angle, read only by a prescribed variant with gravity (a
 /// torque variant's angle is its coordinate q[0]).

@@ -156,10 +156,7 @@ std::optional<SceneValue> parameter_value(const Scene& s, const SceneKey& k)
     }
     for (const TermInfo& t : terms())
         for (const TermSceneKey& tk : t.scene_keys)
-            if (name == std::string(tk.table) + "." + tk.key) {
-                Parameters copy = p;
-                return number(k, value(copy, tk.param));
-            }
+            if (name == tk.name()) return number(k, value(p, tk.param));
     throw std::logic_error("effective_scene: no value for " + name);
 }
 

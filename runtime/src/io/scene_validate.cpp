@@ -114,10 +114,9 @@ void check_out_of_plane(const Scene& s)
 /// Every term's own keys (model/terms.cpp), each against the range its registry row gives.
 void check_term_keys(const Scene& s)
 {
-    Parameters p = s.parameters;
     for (const TermInfo& t : terms())
         for (const TermSceneKey& k : t.scene_keys)
-            if (const double v = value(p, k.param); !in_range(k.range, v))
+            if (const double v = value(s.parameters, k.param); !in_range(k.range, v))
                 fail(s.path, k.name(), k.expected(), shortest(v));
 }
 
@@ -128,12 +127,11 @@ void check_tip_body(const Scene& s)
     const std::string problem = s.key().tip_body_problem();
     if (problem.empty()) return;
     // Its keys are the registry's (model/terms.cpp): those of the term that a variant with the tip body alone carries.
-    Parameters p = s.parameters;
     Extras tip_body;
     tip_body.tip_body = true;
     for (const TermInfo* t : carried_terms(tip_body))
         for (const TermSceneKey& k : t->scene_keys)
-            if (value(p, k.param) != 0.0) throw SceneError::with_detail(s.path, k.name(), problem);
+            if (value(s.parameters, k.param) != 0.0) throw SceneError::with_detail(s.path, k.name(), problem);
     // Carried at 0: a sensitivity to one of them.
     throw SceneError::with_detail(s.path, "output.sensitivities", problem);
 }
