@@ -34,12 +34,37 @@ ex dot(const std::array<ex, 3>& a, const std::array<ex, 3>& b)
 
 }  // namespace
 
+namespace {
+
+/// The tip body's axes at the tip, in hub components: the chord (towards the leading edge), its normal (the chord
+/// turned a quarter turn further from e2 towards e3) and the bent axis's tangent, their cross product.
+struct TipAxes {
+    std::array<ex, 3> chord, normal, tangent;
+};
+
+TipAxes tip_axes(const TermContext& c)
+{
+    const Cone cone = cone_of(c.key, c.s);
+    const ex C = c.s.input("cos_pitch"), S = c.s.input("sin_pitch");
+    TipAxes a{chord(c.f, cone, C, S), chord(c.f, cone, -S, C), {}};
+    const std::array<ex, 3>& c_ = a.chord, &n = a.normal;
+    a.tangent = {c_[1] * n[2] - c_[2] * n[1], c_[2] * n[0] - c_[0] * n[2], c_[0] * n[1] - c_[1] * n[0]};
+    return a;
+}
+
+/// The centre of mass from the beam's end on the body's axes: tip_offset is positive towards the trailing edge, the
+/// chord towards the leading edge.
+std::array<ex, 3> centre_on(const TermContext& c, const TipAxes& a)
+{
+    const ex d = -c.s.input("tip_offset");
+    return {d * a.chord[0], d * a.chord[1], d * a.chord[2]};
+}
+
+}  // namespace
+
 std::array<ex, 3> tip_body_centre(const TermContext& c)
 {
-    // tip_offset is positive towards the trailing edge, the chord's unit vector towards the leading edge.
-    const ex d = -c.s.input("tip_offset");
-    const std::array<ex, 3> chord_ = chord(c.f, cone_of(c.key, c.s), c.s.input("cos_pitch"), c.s.input("sin_pitch"));
-    return {d * chord_[0], d * chord_[1], d * chord_[2]};
+    return centre_on(c, tip_axes(c));
 }
 
 namespace {
@@ -49,21 +74,15 @@ void tip_body_energies(const TermContext& c, Energies& e)
     const Symbols& s = c.s;
     const FieldSymbols& f = c.f;
     const ex w = s.theta_dot;
-    // The body's axes at the tip: the chord (towards the leading edge), its normal (the chord turned a quarter turn
-    // further from e2 towards e3) and the bent axis's tangent, their cross product.
-    const std::array<ex, 3> chord_ = chord(f, cone_of(c.key, s), s.input("cos_pitch"), s.input("sin_pitch"));
-    const std::array<ex, 3> normal = chord(f, cone_of(c.key, s), -s.input("sin_pitch"), s.input("cos_pitch"));
-    const std::array<ex, 3> tangent = {chord_[1] * normal[2] - chord_[2] * normal[1],
-                                       chord_[2] * normal[0] - chord_[0] * normal[2],
-                                       chord_[0] * normal[1] - chord_[1] * normal[0]};
+    const TipAxes axes = tip_axes(c);
     // About its centre of mass, 1/2 omega . J omega with J = J_t t t^T + J_c c c^T + J_n n n^T is 1/2 sum_a P_a
     // |a_dot|^2 with the body's second moments of mass P_t = (J_c + J_n - J_t)/2, ... (|a_dot|^2 = |omega|^2 -
     // (omega . a)^2); the centre of mass at r from the beam's end (tip_body_centre) adds m V . r_dot + m |r_dot|^2 / 2
     // to the beam's end's m |V|^2 / 2 (docs/model.md section 11.1).
     const ex J_n = s.J_tip, J_c = s.input("J_tip_flap"), J_t = s.input("J_tip_twist");
     const ex P_t = (J_c + J_n - J_t) / 2, P_c = (J_t + J_n - J_c) / 2, P_n = (J_t + J_c - J_n) / 2;
-    const std::array<ex, 3> t_dot = inertial_rate(tangent, f, w), c_dot = inertial_rate(chord_, f, w),
-                            n_dot = inertial_rate(normal, f, w), r_dot = inertial_rate(tip_body_centre(c), f, w);
+    const std::array<ex, 3> t_dot = inertial_rate(axes.tangent, f, w), c_dot = inertial_rate(axes.chord, f, w),
+                            n_dot = inertial_rate(axes.normal, f, w), r_dot = inertial_rate(centre_on(c, axes), f, w);
     const Position p = position(c.key.order, f, cone_of(c.key, s));
     const std::array<ex, 3> V = {p.i_dot - w * p.j, p.j_dot + w * p.i, p.k_dot};
     const ex T = (P_t * dot(t_dot, t_dot) + P_c * dot(c_dot, c_dot) + P_n * dot(n_dot, n_dot)) / 2 +
