@@ -702,7 +702,7 @@ PYBIND11_MODULE(_core, m)
           py::arg("overrides"));
     m.def("scene_keys", &keys, "Every scene key (dotted name), what it takes, its kind and a file's byte limit");
     m.def(
-        "generator_version", [] { return variant_cache_dir().filename().string(); },
+        "generator_version", [] { return generator_version(); },
         "The generator's version: on-demand variants are cached under it");
     m.attr("__version__") = HUBBEAM_VERSION;
 }

@@ -10,6 +10,7 @@
 #include <hubbeam/model.hpp>
 #include <hubbeam/on_demand.hpp>
 #include <iterator>
+#include <optional>
 #include <random>
 #include <string>
 
@@ -104,4 +105,78 @@ TEST_CASE("a table row of another interface version or variant is refused before
                                                         std::to_string(generated::abi_version - 1)));
     CHECK_THAT(row_problem(*built_in, VariantKey::parse("amm_nx4_ny4_torque_first")),
                Catch::Contains("does not hold variant amm_nx4_ny4_torque_first"));
+}
+
+/// Sets an environment variable for one scope and puts back what it was.
+class ScopedEnv {
+public:
+    ScopedEnv(const char* name, const char* value) : name_(name)
+    {
+        if (const char* old = std::getenv(name)) old_ = old;
+        ::setenv(name, value, 1);
+    }
+    ~ScopedEnv()
+    {
+        if (old_)
+            ::setenv(name_, old_->c_str(), 1);
+        else
+            ::unsetenv(name_);
+    }
+    ScopedEnv(const ScopedEnv&) = delete;
+    ScopedEnv& operator=(const ScopedEnv&) = delete;
+
+private:
+    const char* name_;
+    std::optional<std::string> old_;
+};
+
+TEST_CASE("HUBBEAM_CXXFLAGS reach the compiler, key a cache folder of their own, and a word that is no option is "
+          "refused",
+          "[on_demand]")
+{
+    const fs::path root = fs::temp_directory_path() / ("hubbeam-test-flags-" + std::to_string(::getpid()));
+    fs::remove_all(root);
+    const ScopedEnv cache("HUBBEAM_CACHE_DIR", root.c_str());
+    const VariantKey key = VariantKey::parse("amm_nx1_ny2_torque_first");  // not built in
+    Parameters p;
+    p.a = 0.35;
+    fs::path plain;
+    {
+        const ScopedEnv none("HUBBEAM_CXXFLAGS", "");
+        plain = variant_cache_dir();
+        CHECK(on_demand_flags().empty());
+    }
+    CHECK(plain == root / generator_version());
+
+    SECTION("other options, another folder; the same options, the same folder")
+    {
+        const ScopedEnv flags("HUBBEAM_CXXFLAGS", " -O1  -DHUBBEAM_TEST ");
+        CHECK(on_demand_flags() == "-O1 -DHUBBEAM_TEST");
+        const fs::path dir = variant_cache_dir();
+        CHECK(dir.parent_path() == root);
+        CHECK(dir.filename().string().rfind(generator_version() + "-flags-", 0) == 0);
+        const ScopedEnv again("HUBBEAM_CXXFLAGS", "-O1 -DHUBBEAM_TEST");
+        CHECK(variant_cache_dir() == dir);
+        const ScopedEnv other("HUBBEAM_CXXFLAGS", "-O2 -DHUBBEAM_TEST");
+        CHECK(variant_cache_dir() != dir);
+    }
+    SECTION("the compiler sees them: an option it does not know fails the compile, naming it")
+    {
+        const ScopedEnv flags("HUBBEAM_CXXFLAGS", "-fno-such-option-for-hubbeam");
+        CHECK_THROWS_WITH(make_model(key, p, ModelSource::generated),
+                          Catch::Contains("compiling " + key.name() + " failed") &&
+                              Catch::Contains("-fno-such-option-for-hubbeam"));
+        CHECK_FALSE(fs::exists(variant_cache_dir() / (key.name() + ".so")));
+    }
+    SECTION("a bare word, or an option that moves or changes the output, is refused before anything is compiled")
+    {
+        for (const char* bad : {"-O1 extra.cpp", "-o x.so", "-ox.so", "-c", "-E", "-S", "-"}) {
+            INFO(bad);
+            const ScopedEnv flags("HUBBEAM_CXXFLAGS", bad);
+            CHECK_THROWS_AS(variant_cache_dir(), CompileError);
+            CHECK_THROWS_WITH(make_model(key, p, ModelSource::generated),
+                              Catch::Contains("HUBBEAM_CXXFLAGS: expected compiler options"));
+        }
+    }
+    fs::remove_all(root);
 }

@@ -25,7 +25,7 @@ struct CompileError : std::runtime_error {
 
 /// The cache of this generator version: $HUBBEAM_CACHE_DIR, else $XDG_CACHE_HOME/hubbeam, else
 /// ~/.cache/hubbeam, then a folder named after the generator's version (a hash of its sources), so that a
-/// changed generator never loads objects made by an older one. Throws CompileError when none of the three is set
+/// changed generator never loads objects made by an older one, and after the options of $HUBBEAM_CXXFLAGS if any. Throws CompileError when none of the three is set
 /// (never a shared temporary folder: docs/security.md).
 std::filesystem::path variant_cache_dir();
 /// The folder that holds every version's cache (what to remove to clear it); throws as variant_cache_dir().
@@ -37,6 +37,9 @@ std::string generator_version();
 std::string on_demand_problem();
 /// The compiler command used: $CXX, else the compiler this build was made with, else c++.
 std::string on_demand_compiler();
+/// The options $HUBBEAM_CXXFLAGS adds to every on-demand compile, or empty; throws CompileError for a word that is
+/// not an option the cache can take.
+std::string on_demand_flags();
 
 /// The variant from the cache, loaded once its file matches the checksum recorded when it was compiled; nullptr if
 /// it is not cached or does not match. Throws CompileError for a cache folder or object another user could have

@@ -76,6 +76,19 @@ std::vector<std::string> split_words(const std::string& s)
     return words;
 }
 
+/// The options a user adds to every on-demand compile ($HUBBEAM_CXXFLAGS), after hubbeam's own so that an -O or
+/// -march of theirs wins. Each word must be an option, its value joined to it (-march=native, -DNAME=1): a bare word
+/// would be compiled in as a second source, and -o, -c, -E, -S would leave no object where the cache expects one.
+std::vector<std::string> user_compile_flags()
+{
+    std::vector<std::string> words = split_words(env("HUBBEAM_CXXFLAGS"));
+    for (const std::string& w : words)
+        if (w.size() < 2 || w[0] != '-' || w == "-c" || w == "-E" || w == "-S" || w.rfind("-o", 0) == 0)
+            throw CompileError("HUBBEAM_CXXFLAGS: expected compiler options other than -o, -c, -E, -S, each with "
+                               "its value joined to it (for example -O1 or -march=native), got '" + w + "'");
+    return words;
+}
+
 /// The compiler command as words; the first is resolved to a file, empty if it is not found.
 std::vector<std::string> compiler_command()
 {
@@ -529,6 +542,8 @@ fs::path build_object(const VariantKey& key, const fs::path& work, const std::ve
     run_step("generating " + name, gen, work, limit, where);
     std::vector<std::string> cc = compiler_command();
     cc.insert(cc.end(), compile_flags.begin(), compile_flags.end());
+    const std::vector<std::string> user = user_compile_flags();
+    cc.insert(cc.end(), user.begin(), user.end());
     const fs::path object = work / (name + ".so");
     cc.insert(cc.end(), {(work / (name + ".cpp")).string(), "-o", object.string()});
     run_step("compiling " + name, cc, work, limit, where);
@@ -592,7 +607,22 @@ fs::path variant_cache_root()
     refuse("no folder for the variant cache: set HUBBEAM_CACHE_DIR (or HOME) to a folder of your own");
 }
 
-fs::path variant_cache_dir() { return variant_cache_root() / generator_version(); }
+std::string on_demand_flags()
+{
+    std::string s;
+    for (const std::string& w : user_compile_flags()) s += (s.empty() ? "" : " ") + w;
+    return s;
+}
+
+fs::path variant_cache_dir()
+{
+    // Objects compiled with other options (another -O, -march=native) are other objects: a folder of their own.
+    const std::string options = on_demand_flags();
+    if (options.empty()) return variant_cache_root() / generator_version();
+    Sha256 h;
+    h.add(options);
+    return variant_cache_root() / (generator_version() + "-flags-" + h.hex().substr(0, 16));
+}
 
 std::string generator_version() { return HUBBEAM_GENERATOR_VERSION; }
 
