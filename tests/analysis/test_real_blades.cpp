@@ -2,10 +2,12 @@
 // stations with no resampling, converged: OpenFAST's NREL 5-MW blade file of its regression tests (49 stations) against
 // the frequencies the NREL 5-MW definition (Jonkman et al. 2009, NREL/TP-500-38060, Table 9-1) reports, and the IEA
 // 15-MW reference turbine's ElastoDyn blade file (50 stations, a PitchAxis column) against Gaertner et al. 2020,
-// Table 2.1.
+// Table 2.1; BModes' CertTest 01 blade, imported from its main input file, against BModes itself.
+#include <algorithm>
 #include <catch2/catch.hpp>
-
+#include <cmath>
 #include <hubbeam/linearize.hpp>
+#include <hubbeam/main_input.hpp>
 #include <hubbeam/make_model.hpp>
 #include <hubbeam/scene.hpp>
 #include <string>
@@ -94,4 +96,80 @@ TEST_CASE("the IEA 15-MW ElastoDyn blade file runs unchanged and has the definit
     INFO("flap " << fine[0] << " Hz, edge " << fine[1] << " Hz");
     CHECK(std::abs(fine[0] - 0.555) < 1e-3);
     CHECK(std::abs(fine[1] - 0.642) < 1e-3);
+}
+
+namespace {
+
+/// One mode of BModes' list: its family as BModes' mode shape shows it, its frequency (Hz) on 128 and 256 equal
+/// elements.
+struct BModesMode {
+    const char* family;
+    double n128, n256;
+};
+
+/// The first 20 modes BModes v3.00.00 (NREL's public source, commit c8a0b485, gfortran 12 at -O3, its eigen-solver's
+/// work array NMAX raised from 1000 to 3000 for 128 and 256 elements, its frequency printed to 17 digits) finds for
+/// tests/data/import/bmodes/Test01_hubbeam.bmi (CertTest 01's blade, every section offset 0) on equal elements, but
+/// its axial mode (40.42 Hz), which a model without axial coordinates does not have: at 60 rpm, then at rest.
+const BModesMode bmodes_60rpm[] = {
+    {"flap 1", 1.7798623, 1.77954582},  {"edge 1", 2.00410375, 2.00305976},  {"flap 2", 4.36703369, 4.36633173},
+    {"edge 2", 6.66578379, 6.66302817},  {"flap 3", 8.77520383, 8.77353074},  {"twist 1", 9.06414676, 9.06233443},
+    {"edge 3", 14.9659353, 14.9607157},  {"flap 4", 15.6846979, 15.6814789},  {"twist 2", 16.1198967, 16.1175695},
+    {"flap 5", 23.6392015, 23.6356074},  {"twist 3", 24.3987921, 24.3940264}, {"edge 4", 27.6747203, 27.6645578},
+    {"flap 6", 34.2159959, 34.2127735},  {"twist 4", 34.2360597, 34.2339153}, {"twist 5", 42.1745508, 42.1729013},
+    {"edge 5", 43.9949034, 43.9840464},  {"flap 7", 47.1743951, 47.1741024},  {"twist 6", 50.5766182, 50.5756243},
+    {"twist 7", 59.1367977, 59.1355899}};
+const BModesMode bmodes_rest[] = {
+    {"flap 1", 1.23221223, 1.23207792}, {"edge 1", 1.87265205, 1.87174877}, {"flap 2", 3.68203513, 3.68149154},
+    {"edge 2", 6.36083309, 6.35811259}, {"flap 3", 8.07153843, 8.0699534},  {"twist 1", 9.01480106, 9.01298053},
+    {"edge 3", 14.5420062, 14.5373931}, {"flap 4", 15.0906363, 15.0869499}, {"twist 2", 16.0923538, 16.0900234},
+    {"flap 5", 22.9443173, 22.9407723}, {"twist 3", 24.3809659, 24.3761969}, {"edge 4", 27.3227675, 27.3125499},
+    {"flap 6", 33.5110545, 33.5078299}, {"twist 4", 34.2233048, 34.2211602}, {"twist 5", 42.164298, 42.162648},
+    {"edge 5", 43.6259019, 43.6150981}, {"flap 7", 46.4852292, 46.4848891}, {"twist 6", 50.568296, 50.5673026},
+    {"twist 7", 59.1299436, 59.12874}};
+
+/// The frequencies (Hz, ascending) of the imported CertTest 01 blade without offsets, FEM Ny = Nz = Nt = n, Nx = 0,
+/// at spin omega (rad/s).
+std::vector<double> certtest01_modes(const TempFolder& folder, int n, double omega)
+{
+    const std::string bmi = std::string(HUBBEAM_SOURCE_DIR) + "/tests/data/import/bmodes/Test01_hubbeam.bmi";
+    const std::string scene = (folder.path / "certtest01.toml").string();
+    folder.write("certtest01.toml", imported_scene_toml(read_main_input(bmi), scene));
+    const std::string count = std::to_string(n);
+    const Scene s = load_scene(scene, {{"discretization.nx", "0"},
+                                       {"discretization.ny", count},
+                                       {"discretization.nz", count},
+                                       {"discretization.nt", count}});
+    const auto model = make_model(s.key(), s.parameters, ModelSource::assembled);
+    std::vector<double> hz;
+    for (const NaturalMode& m : natural_modes(*model, steady_spin(*model, omega)))
+        hz.push_back(m.rad_s / (2.0 * 3.14159265358979323846));
+    std::sort(hz.begin(), hz.end());
+    return hz;
+}
+
+}  // namespace
+
+TEST_CASE("BModes' CertTest 01 blade without offsets: every mode BModes prints, within both codes' convergence",
+          "[validation][blade_files][bmodes]")
+{
+    const TempFolder folder("certtest01");
+    for (const double rpm : {60.0, 0.0}) {
+        const double omega = rpm * 2.0 * 3.14159265358979323846 / 60.0;
+        const std::vector<double> coarse = certtest01_modes(folder, 32, omega);
+        const std::vector<double> fine = certtest01_modes(folder, 64, omega);
+        const auto& reference = rpm > 0 ? bmodes_60rpm : bmodes_rest;
+        REQUIRE(fine.size() >= std::size(reference));
+        for (std::size_t i = 0; i < std::size(reference); ++i) {
+            const BModesMode& b = reference[i];
+            // Each code's error bounded by its last refinement's change: hubbeam's elements converge as h^2 from
+            // Ny = 32 to 64 (the change is three times the finer mesh's error), BModes' from 128 to 256 elements
+            // non-monotonically (each element takes its section at its midpoint, and the blade's mass and stiffness
+            // fall 6.5-fold within 2 % of the span), its last change the size of its error.
+            const double tolerance = std::abs(coarse[i] - fine[i]) + std::abs(b.n128 - b.n256);
+            INFO(rpm << " rpm, " << b.family << ": hubbeam " << coarse[i] << " Hz at 32, " << fine[i]
+                     << " at 64; BModes " << b.n128 << " at 128, " << b.n256 << " at 256; tolerance " << tolerance);
+            CHECK(std::abs(fine[i] - b.n256) <= tolerance);
+        }
+    }
 }
