@@ -319,14 +319,19 @@ struct LinearEigen {
     Eigen::Index momentum = -1;
 };
 
-/// Whether the equations over R are conservative and free of gyroscopic terms: no rate enters a force (Qqd over R is
-/// zero, as with no damping, no axial coordinates and no precone), the stiffness is symmetric to round-off, and no
-/// free hub's angle is among R.
-bool symmetric_system(const Eigen::MatrixXd& Qq, const Eigen::MatrixXd& Qqd, Eigen::Index cyclic)
+/// How the linearized equations over R are solved: as the symmetric K x = omega^2 M x where no rate enters a force
+/// (Qqd over R is zero: no damping, no Coriolis coupling), as a Hermitian problem where the rates enter by Coriolis
+/// terms alone (Qqd skew to round-off, the equations undamped), else in first-order form. Both special forms need a
+/// stiffness symmetric to round-off and no free hub's angle among R.
+enum class LinearForm { first_order, symmetric, gyroscopic };
+
+LinearForm linear_form(const Eigen::MatrixXd& Qq, const Eigen::MatrixXd& Qqd, Eigen::Index cyclic, bool damped)
 {
-    if (cyclic != 0 || !Qqd.isZero(0.0)) return false;
-    const double scale = Qq.cwiseAbs().maxCoeff();
-    return (Qq - Qq.transpose()).cwiseAbs().maxCoeff() <= 1e-12 * scale;
+    if (cyclic != 0 || (Qq - Qq.transpose()).cwiseAbs().maxCoeff() > 1e-12 * Qq.cwiseAbs().maxCoeff())
+        return LinearForm::first_order;
+    if (Qqd.isZero(0.0)) return LinearForm::symmetric;
+    const bool skew = (Qqd + Qqd.transpose()).cwiseAbs().maxCoeff() <= 1e-12 * Qqd.cwiseAbs().maxCoeff();
+    return skew && !damped ? LinearForm::gyroscopic : LinearForm::first_order;
 }
 
 /// The modes of K x = omega^2 M x, K = -Qq symmetrized, M = U^T U, as a symmetric eigenproblem. Where K is positive
@@ -358,6 +363,32 @@ LinearEigen symmetric_eigen(const Eigen::MatrixXd& Qq, const Eigen::MatrixXd& M,
     return out;
 }
 
+/// The modes of M x'' + G x' + K x = 0 with G = -Qqd skew (Coriolis) and K = -Qq positive definite: in first-order
+/// form B z' = A z, B = [[K, 0], [0, M]] positive definite and A = [[0, K], [-K, -G]] skew, so that -i A z = omega B z
+/// is a Hermitian pencil with real omega (in pairs +-omega). Its matrix L_B^-1 (-i A) L_B^-H has entries of the size of
+/// the frequencies, not of their squares as the first-order form's: each omega errs by eps omega_max, not
+/// eps omega_max^2. Returns nothing where K is not positive definite (a divergent or neutral mode).
+std::optional<LinearEigen> gyroscopic_eigen(const Eigen::MatrixXd& Qq, const Eigen::MatrixXd& Qqd,
+                                            const Eigen::MatrixXd& M)
+{
+    const Eigen::Index n = M.rows();
+    const Eigen::MatrixXd K = -0.5 * (Qq + Qq.transpose()), G = -0.5 * (Qqd - Qqd.transpose());
+    if (Eigen::LLT<Eigen::MatrixXd>(K).info() != Eigen::Success) return std::nullopt;
+    const std::complex<double> i(0.0, 1.0);
+    Eigen::MatrixXcd H = Eigen::MatrixXcd::Zero(2 * n, 2 * n), B = Eigen::MatrixXcd::Zero(2 * n, 2 * n);
+    H.topRightCorner(n, n) = -i * K;
+    H.bottomLeftCorner(n, n) = i * K;
+    H.bottomRightCorner(n, n) = i * G;
+    B.topLeftCorner(n, n) = K;
+    B.bottomRightCorner(n, n) = M;
+    HermitianPairs eig = hermitian_pairs(H, B);
+    if (!eig.converged) return std::nullopt;
+    LinearEigen out;
+    out.lambda = i * eig.values.cast<std::complex<double>>();
+    out.rates = eig.vectors.bottomRows(n);
+    return out;
+}
+
 /// The first-order form's eigenvalues and rates (linearized_system), for any linearized equations.
 LinearEigen first_order_eigen(const Model& model, const LinearEquations& e, const Eigen::LLT<Eigen::MatrixXd>& llt,
                               const std::vector<int>& R)
@@ -385,9 +416,13 @@ std::vector<NaturalMode> eigen_modes(const Model& model, const LinearEquations& 
     const Eigen::MatrixXd M = submatrix(e.M, R, R), Qq = submatrix(e.Qq, R, R);
     const Eigen::LLT<Eigen::MatrixXd> llt = mass_factor(M);
     const Eigen::MatrixXd U = llt.matrixU();
-    LinearEigen eig = symmetric_system(Qq, submatrix(e.Qqd, R, R), cyclic_angle(model, R))
-                          ? symmetric_eigen(Qq, M, U)
-                          : first_order_eigen(model, e, llt, R);
+    const Eigen::MatrixXd Qqd = submatrix(e.Qqd, R, R);
+    const LinearForm form = linear_form(Qq, Qqd, cyclic_angle(model, R), damped);
+    std::optional<LinearEigen> gyroscopic;
+    if (form == LinearForm::gyroscopic) gyroscopic = gyroscopic_eigen(Qq, Qqd, M);
+    LinearEigen eig = form == LinearForm::symmetric ? symmetric_eigen(Qq, M, U)
+                      : gyroscopic                  ? std::move(*gyroscopic)
+                                                    : first_order_eigen(model, e, llt, R);
     const Eigen::VectorXcd& lambda = eig.lambda;
     const Eigen::Index momentum = eig.momentum;
     Eigen::MatrixXcd& rates_of = eig.rates;
