@@ -275,11 +275,12 @@ int MassSolved::accelerations(const HubInput& u, const double* q, const double* 
 }
 
 QuasiStaticAxial::QuasiStaticAxial(const Model& model)
-    : RightHandSide(model), q_(static_cast<std::size_t>(n_), 0.0), qd_(q_), A_(Eigen::VectorXd::Zero(model.coordinates().count(FieldKind::axial))),
-      Q_(n_), dQdq_(n_, n_), dQdqd_(n_, n_), dQdu_(n_, static_cast<Eigen::Index>(drive_value_count))
+    : RightHandSide(model), q_(static_cast<std::size_t>(n_), 0.0), qd_(q_),
+      A_(Eigen::VectorXd::Zero(model.coordinates().count(FieldKind::axial))), Q_(n_), dQdq_(n_, n_), dQdqd_(n_, n_),
+      dQdu_(n_, static_cast<Eigen::Index>(drive_value_count))
 {
-    const VariantKey& key = model.key();
-    if (model.coordinates().count(FieldKind::axial) == 0) throw std::invalid_argument("quasi-static axial coordinates need axial coordinates (nx > 0)");
+    if (model.coordinates().count(FieldKind::axial) == 0)
+        throw std::invalid_argument("quasi-static axial coordinates need axial coordinates (nx > 0)");
     if (model.jacobian() == nullptr)  // every model of the library has them: a test's stand-in may not
         throw std::invalid_argument("quasi-static axial coordinates need the model's exact derivatives");
     kept_ = kept_coordinates(model.coordinates(), Axial::quasi_static);

@@ -418,8 +418,8 @@ void check_bmodes_titles(const BladeText& t, LineCursor& lines)
                      ")");
 }
 
-/// BModes' table into a BladeTable: twist in radians, the mass moments of inertia turned to the structural axes.
-BladeTable bmodes_table(const BladeText& t, const Rows& rows)
+/// BModes' table into a BladeTable: twist in radians, the mass moments of inertia about their own axes at tw_iner.
+BladeTable bmodes_table(const Rows& rows)
 {
     const std::vector<std::vector<double>>& v = rows.by_column;
     BladeTable b;
@@ -460,7 +460,7 @@ BladeTable parse_bmodes(const BladeText& t)
     for (const Column& c : bmodes_columns) columns.push_back(&c);
     const Rows rows = read_rows(t, next, columns, n, "n_secs");
     validate(t, columns, rows);
-    return bmodes_table(t, rows);
+    return bmodes_table(rows);
 }
 
 /// What an ElastoDyn blade file's parameters give the table: its row count and adjustment factors.
