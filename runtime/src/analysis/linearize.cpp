@@ -334,16 +334,15 @@ LinearForm linear_form(const Eigen::MatrixXd& Qq, const Eigen::MatrixXd& Qqd, Ei
     return skew && !damped ? LinearForm::gyroscopic : LinearForm::first_order;
 }
 
-/// The modes of K x = omega^2 M x, K = -Qq symmetrized, M = U^T U, as a symmetric eigenproblem. Where K is positive
+/// The modes of K x = omega^2 M x, K symmetric, M = U^T U, as a symmetric eigenproblem. Where K is positive
 /// definite (K = L L^T), its inverse form M x = omega^-2 K x, the symmetric L^-1 M L^-T: its eigenvalues err by eps
 /// times the largest, 1 / omega_1^2, so that the low modes keep every digit and a mode k loses
 /// (omega_k / omega_1)^2 eps. (The first-order form's err by eps omega_max^2 absolutely, in omega: 8e-8 of a blade's
 /// first modes at FEM 32; the direct U^-T K U^-1, by eps omega_max^2 in omega^2.) Otherwise (a divergent mode, or a
 /// neutral one) the direct form. lambda is the first-order form's eigenvalue, i omega or, for omega^2 < 0, the
 /// divergent sqrt(-omega^2); the rates are the vectors' positions (their phase is arbitrary).
-LinearEigen symmetric_eigen(const Eigen::MatrixXd& Qq, const Eigen::MatrixXd& M, const Eigen::MatrixXd& U)
+LinearEigen symmetric_eigen(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M, const Eigen::MatrixXd& U)
 {
-    const Eigen::MatrixXd K = -0.5 * (Qq + Qq.transpose());
     const Eigen::LLT<Eigen::MatrixXd> stiffness(K);
     const bool inverse = stiffness.info() == Eigen::Success;
     const Eigen::MatrixXd L = inverse ? Eigen::MatrixXd(stiffness.matrixL()) : Eigen::MatrixXd(U.transpose());
@@ -363,16 +362,16 @@ LinearEigen symmetric_eigen(const Eigen::MatrixXd& Qq, const Eigen::MatrixXd& M,
     return out;
 }
 
-/// The modes of M x'' + G x' + K x = 0 with G = -Qqd skew (Coriolis) and K = -Qq positive definite: in first-order
+/// The modes of M x'' + G x' + K x = 0 with G = -Qqd skew (Coriolis) and K symmetric positive definite: in first-order
 /// form B z' = A z, B = [[K, 0], [0, M]] positive definite and A = [[0, K], [-K, -G]] skew, so that -i A z = omega B z
 /// is a Hermitian pencil with real omega (in pairs +-omega). Its matrix L_B^-1 (-i A) L_B^-H has entries of the size of
 /// the frequencies, not of their squares as the first-order form's: each omega errs by eps omega_max, not
 /// eps omega_max^2. Returns nothing where K is not positive definite (a divergent or neutral mode).
-std::optional<LinearEigen> gyroscopic_eigen(const Eigen::MatrixXd& Qq, const Eigen::MatrixXd& Qqd,
+std::optional<LinearEigen> gyroscopic_eigen(const Eigen::MatrixXd& K, const Eigen::MatrixXd& Qqd,
                                             const Eigen::MatrixXd& M)
 {
     const Eigen::Index n = M.rows();
-    const Eigen::MatrixXd K = -0.5 * (Qq + Qq.transpose()), G = -0.5 * (Qqd - Qqd.transpose());
+    const Eigen::MatrixXd G = -0.5 * (Qqd - Qqd.transpose());
     if (Eigen::LLT<Eigen::MatrixXd>(K).info() != Eigen::Success) return std::nullopt;
     const std::complex<double> i(0.0, 1.0);
     Eigen::MatrixXcd H = Eigen::MatrixXcd::Zero(2 * n, 2 * n), B = Eigen::MatrixXcd::Zero(2 * n, 2 * n);
@@ -418,9 +417,10 @@ std::vector<NaturalMode> eigen_modes(const Model& model, const LinearEquations& 
     const Eigen::MatrixXd U = llt.matrixU();
     const Eigen::MatrixXd Qqd = submatrix(e.Qqd, R, R);
     const LinearForm form = linear_form(Qq, Qqd, cyclic_angle(model, R), damped);
+    const Eigen::MatrixXd K = -0.5 * (Qq + Qq.transpose());  // symmetric to round-off where a special form is taken
     std::optional<LinearEigen> gyroscopic;
-    if (form == LinearForm::gyroscopic) gyroscopic = gyroscopic_eigen(Qq, Qqd, M);
-    LinearEigen eig = form == LinearForm::symmetric ? symmetric_eigen(Qq, M, U)
+    if (form == LinearForm::gyroscopic) gyroscopic = gyroscopic_eigen(K, Qqd, M);
+    LinearEigen eig = form == LinearForm::symmetric ? symmetric_eigen(K, M, U)
                       : gyroscopic                  ? std::move(*gyroscopic)
                                                     : first_order_eigen(model, e, llt, R);
     const Eigen::VectorXcd& lambda = eig.lambda;
