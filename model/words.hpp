@@ -43,11 +43,11 @@ std::vector<std::string> all_words(const WordTable<E, N>& table)
     return words;
 }
 
-/// "a, b, c" (each word between quote marks, if given).
-inline std::string joined(const std::vector<std::string>& words, const char* quote = "")
+/// "a, b, c" (each word between quote marks, if given; another separator, e.g. " " for a command's words).
+inline std::string joined(const std::vector<std::string>& words, const char* quote = "", const char* separator = ", ")
 {
     std::string s;
-    for (std::size_t i = 0; i < words.size(); ++i) s += (i ? ", " : "") + std::string(quote) + words[i] + quote;
+    for (std::size_t i = 0; i < words.size(); ++i) s += (i ? separator : "") + std::string(quote) + words[i] + quote;
     return s;
 }
 

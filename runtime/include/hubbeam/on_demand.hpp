@@ -25,8 +25,8 @@ struct CompileError : std::runtime_error {
 
 /// The cache of this generator version: $HUBBEAM_CACHE_DIR, else $XDG_CACHE_HOME/hubbeam, else
 /// ~/.cache/hubbeam, then a folder named after the generator's version (a hash of its sources), so that a
-/// changed generator never loads objects made by an older one, and after the options of $HUBBEAM_CXXFLAGS if any. Throws CompileError when none of the three is set
-/// (never a shared temporary folder: docs/security.md).
+/// changed generator never loads objects made by an older one, and after the options of $HUBBEAM_CXXFLAGS if any.
+/// Throws CompileError when none of the three is set (never a shared temporary folder: docs/security.md).
 std::filesystem::path variant_cache_dir();
 /// The folder that holds every version's cache (what to remove to clear it); throws as variant_cache_dir().
 std::filesystem::path variant_cache_root();

@@ -32,6 +32,7 @@
 #include "generated_abi.h"
 #include "on_demand/sha256.hpp"
 #include "on_demand/variant_rows.hpp"
+#include "words.hpp"
 
 extern char** environ;
 
@@ -607,12 +608,7 @@ fs::path variant_cache_root()
     refuse("no folder for the variant cache: set HUBBEAM_CACHE_DIR (or HOME) to a folder of your own");
 }
 
-std::string on_demand_flags()
-{
-    std::string s;
-    for (const std::string& w : user_compile_flags()) s += (s.empty() ? "" : " ") + w;
-    return s;
-}
+std::string on_demand_flags() { return joined(user_compile_flags(), "", " "); }
 
 fs::path variant_cache_dir()
 {
@@ -626,12 +622,7 @@ fs::path variant_cache_dir()
 
 std::string generator_version() { return HUBBEAM_GENERATOR_VERSION; }
 
-std::string on_demand_compiler()
-{
-    std::string s;
-    for (const std::string& w : compiler_command()) s += (s.empty() ? "" : " ") + w;
-    return s;
-}
+std::string on_demand_compiler() { return joined(compiler_command(), "", " "); }
 
 std::string on_demand_problem()
 {
