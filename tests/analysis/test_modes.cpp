@@ -13,9 +13,11 @@
 #include <hubbeam/modes_table.hpp>
 #include <hubbeam/motion.hpp>
 #include <hubbeam/scene.hpp>
+#include <memory>
 #include <numbers>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "dynamics/integrate.hpp"
@@ -30,6 +32,20 @@ VariantKey key_of(Method method, int nx, int ny, Drive drive = Drive::prescribed
 {
     return {.method = method, .nx = nx, .ny = ny, .order = order, .drive = drive, .extras = {}};
 }
+
+/// The natural modes of one variant from both sources, generated and assembled, at a steady spin.
+struct BothSources {
+    std::unique_ptr<Model> generated, assembled;
+    BothSources(const VariantKey& key, const Parameters& p)
+        : generated(make_model(key, p, ModelSource::generated)), assembled(make_model(key, p, ModelSource::assembled))
+    {
+    }
+    std::pair<std::vector<NaturalMode>, std::vector<NaturalMode>> modes(double omega) const
+    {
+        return {natural_modes(*generated, steady_spin(*generated, omega)),
+                natural_modes(*assembled, steady_spin(*assembled, omega))};
+    }
+};
 
 /// The bending frequencies of the linearized model about a steady spin, dimensionless (omega / sqrt(EI/(m L^4))).
 std::vector<double> bending(const Model& model, const Parameters& p, double omega)
@@ -138,15 +154,11 @@ TEST_CASE("a conservative beam's modes keep their own digits: generated and asse
     // Without damping, axial coordinates or a free hub the linearized equations are K x = omega^2 M x, solved as a
     // symmetric problem in its inverse form: its low modes err by about eps times K's conditioning, its high ones by
     // eps (omega_k / omega_1)^2 at most. The first-order form erred by eps omega_max^2 / omega_k, absolutely in
-    // omega: FEM Ny = 32's first modes, whose highest is 3,900 to 4,400 times the first, to 1e-8. The two sources' M and K
-    // agree to round-off of their entries, so their modes must agree to the solve's round-off.
-    const Parameters p;
-    const VariantKey key = key_of(Method::fem, 0, 32);
-    const auto generated = make_model(key, p, ModelSource::generated);
-    const auto assembled = make_model(key, p, ModelSource::assembled);
+    // omega: FEM Ny = 32's first modes, whose highest is 3,900 to 4,400 times the first, to 1e-8. The two sources' M
+    // and K agree to round-off of their entries, so their modes must agree to the solve's round-off.
+    const BothSources sources(key_of(Method::fem, 0, 32), Parameters{});
     for (const double omega : {0.0, 3.0}) {
-        const std::vector<NaturalMode> g = natural_modes(*generated, steady_spin(*generated, omega));
-        const std::vector<NaturalMode> a = natural_modes(*assembled, steady_spin(*assembled, omega));
+        const auto [g, a] = sources.modes(omega);
         REQUIRE(g.size() == 32);
         REQUIRE(a.size() == g.size());
         CHECK(a.back().rad_s > 3000.0 * a.front().rad_s);  // wide enough for the first-order form's round-off to show
@@ -167,14 +179,10 @@ TEST_CASE("a gyroscopic beam's modes keep their digits too: with axial coordinat
     // The axial coordinates enter the rates by Coriolis terms alone: a Hermitian pencil whose frequencies err by eps
     // times the highest (the axial modes, 7,000 to 10,000 rad/s), where the first-order form's erred by eps times its
     // square: 1e-9 to 3e-9 of the first bending mode, 2.9 rad/s, for the four methods at Ny = Nx = 4.
-    const Parameters p;
     for (const Method method : {Method::amm, Method::fem, Method::bim, Method::bsim}) {
-        const VariantKey key = key_of(method, 4, 4);
-        const auto generated = make_model(key, p, ModelSource::generated);
-        const auto assembled = make_model(key, p, ModelSource::assembled);
+        const BothSources sources(key_of(method, 4, 4), Parameters{});
         for (const double omega : {0.0, 4.0, 10.0}) {
-            const std::vector<NaturalMode> g = natural_modes(*generated, steady_spin(*generated, omega));
-            const std::vector<NaturalMode> a = natural_modes(*assembled, steady_spin(*assembled, omega));
+            const auto [g, a] = sources.modes(omega);
             REQUIRE(g.size() == 8);
             REQUIRE(a.size() == g.size());
             for (std::size_t k = 0; k < a.size(); ++k) {
