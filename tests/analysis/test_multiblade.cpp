@@ -4,7 +4,8 @@
 // differential mode; on an anisotropic moving hub, the transformed system's eigenvalues are the Floquet exponents of
 // the periodic rotating-frame system (floquet(), which integrates it over a revolution) modulo i Omega; the
 // transformed matrix is the same at every azimuth; and ground resonance (Coleman and Feingold 1958) appears where
-// the backward lead-lag whirl meets the support's frequency, and goes with damping on both sides only.
+// the backward lead-lag whirl meets the support's frequency, and goes with damping on both sides only; with one mode
+// per blade, the roots of their characteristic equation, written out here.
 #include <Eigen/Dense>
 #include <algorithm>
 #include <catch2/catch.hpp>
@@ -309,6 +310,200 @@ TEST_CASE(
     for (double omega = 0.0; omega <= 20.0; omega += 0.5) {
         INFO("Omega " << omega);
         CHECK(worst_growth(*both, omega) < 0.0);
+    }
+}
+
+namespace {
+
+/// The ground-resonance rotor with one assumed mode per blade, spun at a prescribed rate: Coleman and Feingold's
+/// equivalent blade (a modal mass, first moment and rotating frequency) is this blade's own, exactly.
+const char* one_mode_scene = R"(
+[beam]
+length = 6.0
+density = 1600.0
+area = 0.005
+second_moment = 2.1e-6
+youngs_modulus = 1e10
+[hub]
+radius = 0.3
+mass = 100.0
+[support]
+stiffness_x = 3000.0
+stiffness_y = 3000.0
+[rotor]
+blades = 3
+[motion]
+kind = "spin-up"
+omega0 = 10.0
+duration = 1.0
+[discretization]
+method = "amm"
+ny = 1
+nx = 0
+[model]
+source = "assembled"
+[output]
+t_end = 1.0
+dt_out = 0.1
+)";
+
+/// Coleman and Feingold's characteristic equation, written out for one assumed mode phi per blade (docs/validation.md,
+/// "Ground resonance in closed form"): with the hub's complex position z = x_h + i y_h, the cyclic pair's w = eta_c +
+/// i eta_s, the modal mass M = int m phi^2, first moment S = int m phi and rotating frequency omega(Omega),
+///   (M_T s^2 + c s + k) (M (s - i Omega)^2 + c_eta (s - i Omega) + M omega^2) - N/2 S^2 s^4 = 0,
+/// M_T the hub's mass and the blades', c_eta = alpha M + beta K the blade's Rayleigh damping. Shares no code with
+/// hubbeam: the mode by its textbook formula, the integrals by Simpson's rule.
+struct ColemanRotor {
+    double L = 6.0, m = 1600.0 * 0.005, EI = 1e10 * 2.1e-6, a = 0.3, k = 3000.0;
+    double M_T = 100.0 + 3 * 1600.0 * 0.005 * 6.0;
+    int N = 3;
+    double M = 0.0, S = 0.0, K = 0.0, K_G = 0.0;  // K_G: the centrifugal stiffness over Omega^2
+
+    ColemanRotor()
+    {
+        // The first root of 1 + cos b cosh b = 0, and the clamped-free mode's shape and derivatives.
+        double b = 1.875;
+        for (int i = 0; i < 50; ++i)
+            b -= (1.0 + std::cos(b) * std::cosh(b)) / (std::cosh(b) * -std::sin(b) + std::cos(b) * std::sinh(b));
+        const double g = -(std::cos(b) + std::cosh(b)) / (std::sin(b) + std::sinh(b)), B = b / L;
+        const auto phi = [&](double x, int d) {
+            const double z = B * x, f = std::pow(B, d);
+            switch (d) {
+            case 0: return std::cos(z) - std::cosh(z) + g * (std::sin(z) - std::sinh(z));
+            case 1: return f * (-std::sin(z) - std::sinh(z) + g * (std::cos(z) - std::cosh(z)));
+            default: return f * (-std::cos(z) - std::cosh(z) - g * (std::sin(z) + std::sinh(z)));
+            }
+        };
+        const int n = 20000;  // Simpson's rule: its error h^4 L f''''/180 is 1e-14 of these integrals
+        const double h = L / n;
+        for (int i = 0; i <= n; ++i) {
+            const double x = i * h, w = h / 3.0 * (i == 0 || i == n ? 1.0 : i % 2 ? 4.0 : 2.0);
+            const double tension = m * (a * (L - x) + 0.5 * (L * L - x * x));  // over Omega^2
+            M += w * m * phi(x, 0) * phi(x, 0);
+            S += w * m * phi(x, 0);
+            K += w * EI * phi(x, 2) * phi(x, 2);
+            K_G += w * tension * phi(x, 1) * phi(x, 1);
+        }
+    }
+    /// The blade's rotating frequency squared at the spin Omega.
+    double omega2(double Omega) const { return (K + Omega * Omega * (K_G - M)) / M; }
+    /// The four roots of the characteristic equation (the other four are their conjugates).
+    std::vector<std::complex<double>> roots(double Omega, double c = 0.0, double alpha = 0.0, double beta = 0.0) const
+    {
+        using C = std::complex<double>;
+        const C iO(0.0, Omega);
+        const double c_eta = alpha * M + beta * K;
+        const C a2 = M_T, a1 = c, a0 = k;  // the support
+        const C b2 = M, b1 = c_eta - 2.0 * iO * M, b0 = M * iO * iO - c_eta * iO + M * omega2(Omega);  // the blades
+        const C p[5] = {a0 * b0, a1 * b0 + a0 * b1, a2 * b0 + a1 * b1 + a0 * b2, a2 * b1 + a1 * b2,
+                        a2 * b2 - 0.5 * N * S * S};
+        Eigen::Matrix4cd companion = Eigen::Matrix4cd::Zero();
+        for (int i = 0; i < 4; ++i) companion(i, 3) = -p[i] / p[4];
+        for (int i = 1; i < 4; ++i) companion(i, i - 1) = 1.0;
+        const Eigen::Vector4cd r = Eigen::ComplexEigenSolver<Eigen::Matrix4cd>(companion, false).eigenvalues();
+        return {r.begin(), r.end()};
+    }
+    /// The largest growth over |lambda| among the roots (the rotor's whirls; its collective modes decay or are
+    /// neutral).
+    double worst_growth(double Omega, double c = 0.0, double beta = 0.0) const
+    {
+        double worst = -HUGE_VAL;
+        for (const std::complex<double> r : roots(Omega, c, 0.0, beta)) worst = std::max(worst, r.real() / std::abs(r));
+        return worst;
+    }
+};
+
+Scene one_mode_rotor(const Overrides& o = {})
+{
+    return parse_scene(one_mode_scene, "one_mode_rotor.toml", o);
+}
+
+}  // namespace
+
+TEST_CASE("a one-mode rotor's fixed-frame modes are the roots of Coleman and Feingold's characteristic equation",
+          "[multiblade][ground_resonance]")
+{
+    const ColemanRotor closed;
+    const double alpha = 0.3, beta = 0.05, c = 342.0;
+    const auto undamped = make_scene_model(one_mode_rotor());
+    const auto damped = make_scene_model(
+        one_mode_rotor({{"support.damping_x", "342"}, {"support.damping_y", "342"},
+                        {"damping.mass_proportional", "0.3"}, {"damping.stiffness_proportional", "0.05"}}));
+    for (const bool with_damping : {false, true})
+        for (const double Omega : {0.0, 2.0, 5.0, 9.6, 10.7, 12.4, 16.0}) {
+            const Model& model = with_damping ? *damped : *undamped;
+            const std::vector<NaturalMode> modes = multiblade_modes(model, steady_spin(model, Omega));
+            REQUIRE(modes.size() == 5);  // the collective mode, the hub's two whirls, the cyclic pair's two
+            std::vector<std::complex<double>> expected;
+            for (const std::complex<double> r : closed.roots(Omega, with_damping ? c : 0.0, with_damping ? alpha : 0.0,
+                                                             with_damping ? beta : 0.0))
+                expected.emplace_back(r.real(), std::abs(r.imag()));
+            // The collective mode: the blade alone, M s^2 + c_eta s + M omega^2 = 0.
+            const double decay = with_damping ? 0.5 * (alpha + beta * closed.K / closed.M) : 0.0;
+            expected.emplace_back(-decay, std::sqrt(closed.omega2(Omega) - decay * decay));
+            std::vector<bool> used(modes.size(), false);
+            for (const std::complex<double> e : expected) {
+                INFO((with_damping ? "damped" : "undamped") << " at " << Omega << " rad/s: root " << e);
+                std::size_t nearest = modes.size();
+                for (std::size_t j = 0; j < modes.size(); ++j)
+                    if (!used[j] && (nearest == modes.size() ||
+                                     std::abs(eigenvalue(modes[j]) - e) < std::abs(eigenvalue(modes[nearest]) - e)))
+                        nearest = j;
+                REQUIRE(nearest < modes.size());
+                used[nearest] = true;
+                INFO("hubbeam's " << modes[nearest].kind << ": " << eigenvalue(modes[nearest]));
+                CHECK(std::abs(eigenvalue(modes[nearest]) - e) <= 1e-12 * std::abs(e));
+            }
+        }
+}
+
+TEST_CASE("a one-mode rotor's ground-resonance band and the damping that removes it, from the closed form",
+          "[multiblade][ground_resonance]")
+{
+    const ColemanRotor closed;
+    // The band's edges: where the undamped characteristic equation's roots leave the imaginary axis, by bisection on
+    // the closed form.
+    const auto unstable = [&](double Omega) { return closed.worst_growth(Omega) > 1e-9; };
+    REQUIRE(unstable(10.7));
+    const auto edge = [&](double stable, double inside) {
+        while (std::abs(inside - stable) > 1e-12)
+            (unstable(0.5 * (stable + inside)) ? inside : stable) = 0.5 * (stable + inside);
+        return stable;
+    };
+    const double lower = edge(6.0, 10.7), upper = edge(16.0, 10.7);
+    INFO("the closed form's band: " << lower << " to " << upper << " rad/s");
+    const auto undamped = make_scene_model(one_mode_rotor());
+    for (const double d : {-1e-4, 1e-4}) {
+        CHECK((worst_growth(*undamped, lower + d) > 0.0) == (d > 0.0));
+        CHECK((worst_growth(*undamped, upper - d) > 0.0) == (d > 0.0));
+    }
+    // The blades' damping that makes the rotor stable at every spin on a support of 342 N s/m (Deutsch's criterion,
+    // exactly): the least beta for which no root grows between 0 and 20 rad/s, by bisection on the closed form.
+    const double c = 342.0;
+    const auto worst_over_spin = [&](double beta, double* at = nullptr) {
+        double worst = -HUGE_VAL;
+        for (double Omega = 0.0; Omega <= 20.0; Omega += 0.01) {
+            const double g = closed.worst_growth(Omega, c, beta);
+            if (g > worst) worst = g, at ? *at = Omega : 0.0;
+        }
+        return worst;
+    };
+    double lo = 0.0, hi = 0.2;
+    REQUIRE(worst_over_spin(lo) > 0.0);
+    REQUIRE(worst_over_spin(hi) < 0.0);
+    while (hi - lo > 1e-6 * hi) (worst_over_spin(0.5 * (lo + hi)) > 0.0 ? lo : hi) = 0.5 * (lo + hi);
+    double critical = 0.0;
+    worst_over_spin(hi, &critical);
+    INFO("stable at every spin from beta = " << hi << ", the last to go at " << critical << " rad/s");
+    const auto with_beta = [&](double b) {
+        return make_scene_model(one_mode_rotor({{"support.damping_x", "342"}, {"support.damping_y", "342"},
+                                                {"damping.stiffness_proportional", std::to_string(b)}}));
+    };
+    const auto below = with_beta(0.98 * hi), above = with_beta(1.02 * hi);
+    CHECK(worst_growth(*below, critical) > 0.0);
+    for (double Omega = critical - 1.0; Omega <= critical + 1.0; Omega += 0.05) {
+        INFO("Omega " << Omega);
+        CHECK(worst_growth(*above, Omega) < 0.0);
     }
 }
 
