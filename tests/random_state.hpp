@@ -32,11 +32,11 @@ inline State random_state(const VariantKey& key, std::mt19937& rng)
     return s;
 }
 
-/// p with a table where key has a profile (and p none), at p's stations or else at x/L = 0, 0.3, 0.55, 1 (irregular, none
-/// at a piece boundary of FEM's or BSIM's Ny = 4 bases): the section of p's rho, S, I, E at
-/// the root, falling to half at the tip and with a bump between, so that no value is the uniform beam's. A blade's
-/// (out of the plane) also has a flapwise stiffness that falls otherwise, a torsional stiffness, a chord angle that
-/// turns one way and back (0.6 rad at the root, -0.3 at the tip) and unequal mass moments.
+/// p with a table where key has a profile (and p none), at p's stations or else at x/L = 0, 0.3, 0.55, 1 (irregular,
+/// none at a piece boundary of FEM's or BSIM's Ny = 4 bases): the section of p's rho, S, I, E at the root, falling to
+/// half at the tip and with a bump between, so that no value is the uniform beam's. A blade's (out of the plane) also
+/// has a flapwise stiffness that falls otherwise, a torsional stiffness, a chord angle that turns one way and back (0.6
+/// rad at the root, -0.3 at the tip) and unequal mass moments; with offsets, those too.
 inline Parameters with_profile(const VariantKey& key, Parameters p)
 {
     if (!key.extras.profile() || !p.profile.empty()) return p;
@@ -50,6 +50,10 @@ inline Parameters with_profile(const VariantKey& key, Parameters p)
                               0.6 - 1.7 * x + 0.8 * x * x, p.rho * p.I_flap * s, p.rho * p.I * s * (1.2 - 0.3 * x),
                               0.9 - 1.2 * x});  // the inertia axes off the chord, by -0.3 to 0.4 rad
     }
+    // A blade's section offsets: the centre of mass 0.06 m behind the axis at the root and 0.04 m before it at the tip,
+    // the tension centre from 0.03 m before it to 0.05 m behind (each changes sign on the span).
+    if (key.extras.offsets)
+        for (double x : p.stations) p.offsets.insert(p.offsets.end(), {0.06 - 0.1 * x, -0.03 + 0.08 * x * x});
     return p;
 }
 
@@ -82,7 +86,7 @@ inline Parameters with_every_term()
     p.c_y = 22.0;
     // The tip body's in the blade's axes (read by variants that carry it only).
     p.J_tip_flap = 0.02;
-    p.J_tip_twist = 0.03;
+    p.J_tip_twist = 0.045;  // its axes' second moments all nonzero: P_n = (J_tip_twist + J_tip_flap - J_tip) / 2
     p.tip_offset = 0.04;
     return p;
 }

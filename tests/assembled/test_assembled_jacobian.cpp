@@ -48,8 +48,9 @@ using test::key_of;
 
 /// Every built-in variant (in the plane: the four methods, both drives, orders zero and first, a tip body, gravity,
 /// damping, either taper, a profile), then out of the plane every method with every term under both drives and both
-/// orders, a profile's tabulated chord angles, and a moving hub in and out of the plane: the variants that
-/// test_out_of_plane_assembled.cpp and test_moving_hub.cpp compile too, so that one cache serves all three.
+/// orders, a profile's tabulated chord angles, a blade's section offsets, the tip body, and a moving hub in and out of
+/// the plane: the variants that test_out_of_plane_assembled.cpp and test_moving_hub.cpp compile too, so that one cache
+/// serves all three.
 std::vector<VariantKey> variants()
 {
     std::vector<VariantKey> keys;
@@ -66,6 +67,14 @@ std::vector<VariantKey> variants()
     blade.tabulated = true;
     keys.push_back(key_of(Method::fem, 2, 4, 2, Drive::torque, Order::first, blade));
     keys.push_back(key_of(Method::bsim, 3, 4, 3, Drive::torque, Order::first, blade));
+    // A blade's section offsets, as test_out_of_plane_assembled.cpp compiles them.
+    const Extras offsets{.tip = true, .damping = true, .pitch = true, .tabulated = true, .offsets = true};
+    keys.push_back(key_of(Method::fem, 2, 4, 2, Drive::torque, Order::first, offsets));
+    keys.push_back(key_of(Method::bim, 2, 4, 2, Drive::prescribed, Order::zero, {.tabulated = true, .offsets = true}));
+    // The tip body in the blade's axes, likewise.
+    keys.push_back(
+        key_of(Method::fem, 2, 4, 2, Drive::torque, Order::first,
+               {.tip = true, .gravity = true, .damping = true, .pitch = true, .twist = true, .tip_body = true}));
     for (const char* hub :
          {"fem_nx2_ny4_torque_first_hub", "bsim_nx3_ny4_prescribed_first_tip_gravity_damped_depth_hub",
           "amm_nx0_ny3_nz3_nt2_torque_first_tip_gravity_damped_pitched_twisted_coned_hub",

@@ -1,9 +1,10 @@
-// The beam out of the plane (docs/model.md section 12: flapwise and twist fields, pitch, pre-twist, precone, and the
-// tip body, gravity along both axes and damping with them) on two independent paths: the generated kernels (symbolic
-// energies, exact integrals, the pre-twist and a table as section integrals) against the hand-assembled forms of section 12.3
-// (runtime/src/models/assembled/quadratic_forms.cpp: quadrature with the chord's angle at the nodes) at random states, term by
-// term and all together; the assembled forces against the assembled energies; the forms against section 5.2's block
-// form on planar variants; and the assembled path against closed forms and published frequencies.
+// The beam out of the plane (docs/model.md section 12: flapwise and twist fields, pitch, pre-twist, precone, section
+// offsets, and the tip body, gravity along both axes and damping with them) on two independent paths: the generated
+// kernels (symbolic energies, exact integrals, the pre-twist and a table as section integrals) against the
+// hand-assembled forms of section 12.3 (runtime/src/models/assembled/quadratic_forms.cpp: quadrature with the chord's
+// angle at the nodes) at random states, term by term and all together; the assembled forces against the assembled
+// energies; the forms against section 5.2's block form on planar variants; and the assembled path against closed forms
+// and published frequencies.
 #include <Eigen/Dense>
 #include <algorithm>
 #include <catch2/catch.hpp>
@@ -56,9 +57,10 @@ struct Case {
 using test::key_of;
 
 /// Every term switched on, for every method under both drives and both orders (16), then each term alone (8), then a
-/// taper of either kind with every term (2), then a blade's profile with every term for each method and alone (5):
-/// 31 variants, each compiled once into the test's cache. nx = 0 and nx > 0, nz = 2 and 4, nt = 0, 2 and 3 (BSIM's
-/// least), BSIM in both constructions.
+/// taper of either kind with every term (2), then a blade's profile with every term for each method and alone (5), then
+/// a blade's section offsets (3), then the tip body in the blade's axes (3): 37 variants, each compiled once into the
+/// test's cache. nx = 0 and nx > 0, nz = 2 and
+/// 4, nt = 0, 2 and 3 (BSIM's least), BSIM in both constructions.
 std::vector<Case> cases()
 {
     const Extras all{.tip = true, .gravity = true, .damping = true, .pitch = true, .twist = true, .cone = true};
@@ -115,6 +117,28 @@ std::vector<Case> cases()
         {key_of(Method::bsim, 0, 4, 3, Drive::prescribed, Order::zero, depth), {{"the depth taper", untapered}}});
     c.push_back({key_of(Method::fem, 0, 2, 2, Drive::prescribed, Order::zero, Extras{.tabulated = true}),
                  {{"the tabulated chord angles", untwisted}}});
+    // A blade's section offsets (sections 12.5 and 12.6, no precone): every field under a torque with the tip body and
+    // damping, every field at order zero under a prescribed spin, and a global basis without axial coordinates.
+    const auto centred = set([](Parameters& p) { std::fill(p.offsets.begin(), p.offsets.end(), 0.0); });
+    const Extras offsets{.tip = true, .damping = true, .pitch = true, .tabulated = true, .offsets = true};
+    c.push_back({key_of(Method::fem, 2, 4, 2, Drive::torque, Order::first, offsets), {{"the offsets", centred}}});
+    c.push_back(
+        {key_of(Method::bim, 2, 4, 2, Drive::prescribed, Order::zero, Extras{.tabulated = true, .offsets = true}),
+         {{"the offsets", centred}}});
+    c.push_back(
+        {key_of(Method::amm, 0, 4, 2, Drive::prescribed, Order::first, Extras{.tabulated = true, .offsets = true}),
+         {{"the offsets", centred}}});
+    // The tip body in the blade's axes (section 11.1, no precone): with every other term but the precone under a
+    // torque, with a table's offsets at order zero, and on a global basis without axial coordinates.
+    const auto point_mass = set([](Parameters& p) { p.J_tip_flap = p.J_tip_twist = p.tip_offset = 0.0; });
+    const Extras body{.tip = true, .gravity = true, .damping = true, .pitch = true, .twist = true, .tip_body = true};
+    c.push_back({key_of(Method::fem, 2, 4, 2, Drive::torque, Order::first, body), {{"the tip body", point_mass}}});
+    c.push_back(
+        {key_of(Method::bsim, 3, 4, 3, Drive::prescribed, Order::zero,
+                {.tip = true, .pitch = true, .tabulated = true, .offsets = true, .tip_body = true}, SplineBasis::open),
+         {{"the tip body", point_mass}}});
+    c.push_back({key_of(Method::amm, 0, 4, 2, Drive::prescribed, Order::first, {.tip = true, .tip_body = true}),
+                 {{"the tip body", point_mass}}});
     return c;
 }
 

@@ -489,15 +489,14 @@ std::unique_ptr<Model> make_assembled_model(const VariantKey& key, const Paramet
 {
     if (key.order == Order::full)
         throw std::invalid_argument("full order has no hand-assembled form; it needs a generated variant");
-    if (key.extras.offsets)
-        throw std::invalid_argument("section offsets have no hand-assembled form yet; they need a generated variant");
-    if (key.extras.tip_body)
+    if ((key.extras.offsets || key.extras.tip_body) && key.extras.cone)
         throw std::invalid_argument(
-            "the tip body in the blade's axes (tip.inertia_flap, tip.inertia_twist, tip.offset) has no hand-assembled "
-            "form; it needs a generated variant");
+            "section offsets and the tip body in the blade's axes (tip.inertia_flap, "
+            "tip.inertia_twist, tip.offset) have no hand-assembled form with a precone; they "
+            "need a generated variant");
     // Out of the plane, section 12.3's forms: the precone's projections and the coupled bending have no place in
-    // section 5.2's blocks; nor has a moving hub's translation, in the plane or out of it.
-    if (key.out_of_plane() || key.extras.hub) {
+    // section 5.2's blocks; nor have a moving hub's translation and a blade's section offsets, in the plane or out.
+    if (key.out_of_plane() || key.extras.hub || key.extras.offsets) {
         return make_quadratic_form_model(key, p);
     }
     return std::make_unique<AssembledModel>(key, p);

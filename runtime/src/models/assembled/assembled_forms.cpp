@@ -20,10 +20,10 @@ using Eigen::MatrixXd;
 using Eigen::VectorXd;
 using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-/// Section 12.3's equations from the forms: with w = theta_dot, h = s + N^T q_e (the rates' coupling to the hub) and
-/// M11 = J + 2 b^T q_e + q_e^T K_w q_e,
+/// Section 12.3's equations from the forms: with w = theta_dot, h = s + (N^T + P) q_e (the rates' coupling to the hub)
+/// and M11 = J + 2 b^T q_e + q_e^T K_w q_e,
 ///   M = [[M11, h^T], [h, M]] (torque) or M (prescribed)
-///   Q_theta = tau - 2 w (b + K_w q_e)^T qd_e - dU_g/dtheta
+///   Q_theta = tau - 2 w (b + K_w q_e)^T qd_e - qd_e^T P qd_e - dU_g/dtheta
 ///   Q_e = w^2 (b + K_w q_e) + 2 w N qd_e - K q_e - dU_g/dq_e - Dm qd_e (- theta_ddot h, prescribed)
 /// and their exact derivatives, each a form's matrix or its product with the state (never the generator's kernels).
 class QuadraticFormModel final : public Model, ExactJacobian {
@@ -99,7 +99,7 @@ public:
         const VectorXd spin = f_.b + f_.K_w * qe;  // half of dM11/dq_e
         VectorXd Qe = w * w * spin + 2.0 * w * (f_.N * qde) - f_.K * qe;
         if (torque)
-            Q[0] = u.tau - 2.0 * w * spin.dot(qde);
+            Q[0] = u.tau - 2.0 * w * spin.dot(qde) - qde.dot(f_.P * qde);
         else
             Qe -= u.theta_ddot * coupling(qe);  // the known hub acceleration's share of d/dt dT/dqd_e
         if (weighed()) {
@@ -157,21 +157,21 @@ public:
         auto by_rate = torque ? Jqd.col(0) : Ju.col(drive_column(DriveValue::theta_dot));
         by_rate.tail(ne_) = 2.0 * w * spin + 2.0 * (f_.N * qde);
         if (torque) {
-            // Q_theta = tau - 2 w spin^T qd_e, spin = b + K_w q_e.
+            // Q_theta = tau - 2 w spin^T qd_e - qd_e^T P qd_e, spin = b + K_w q_e.
             Jq.row(0).tail(ne_) = -2.0 * w * (f_.K_w * qde).transpose();
-            Jqd.row(0).tail(ne_) = -2.0 * w * spin.transpose();
+            Jqd.row(0).tail(ne_) = -2.0 * (w * spin + f_.P * qde).transpose();
             Jqd(0, 0) = -2.0 * spin.dot(qde);
             Ju(0, drive_column(DriveValue::tau)) = 1.0;
         } else {
-            // -theta_ddot h, h = s + N^T q_e.
-            Jq_e -= u.theta_ddot * f_.N.transpose();
+            // -theta_ddot h, h = s + (N^T + P) q_e.
+            Jq_e -= u.theta_ddot * (f_.N.transpose() + f_.P);
             Ju.col(drive_column(DriveValue::theta_ddot)).tail(ne_) = -coupling(qe);
         }
         if (weighed()) weight_derivatives(angle(u, q), qe, Jq);
         if (hub_) hub_derivatives(u, q, qd, Jq, Jqd, Ju);
     }
 
-    /// dM/dq v: under torque M11 = J + 2 b^T q_e + q_e^T K_w q_e and h = s + N^T q_e hold q_e, and a moving hub's
+    /// dM/dq v: under torque M11 = J + 2 b^T q_e + q_e^T K_w q_e and h = s + (N^T + P) q_e hold q_e, and a moving hub's
     /// couplings the hub angle; zero under a prescribed drive (M turns with the drive's angle, not with q).
     void mass_q_product(const HubInput&, const double* q, const double* v, double* dMv) const override
     {
@@ -180,9 +180,9 @@ public:
         D.setZero();
         if (key().drive != Drive::torque) return;
         const VectorXd qe = elastic(q), ve = elastic(v);
-        // Row 0: v_0 dM11/dq_e + v_e^T dh/dq_e (dh_i/dq_e,k = N_ki); rows e: column 0's h times v_0.
-        D.row(0).tail(ne_) = (2.0 * v[0] * (f_.b + f_.K_w * qe) + f_.N * ve).transpose();
-        D.bottomRightCorner(ne_, ne_) = v[0] * f_.N.transpose();
+        // Row 0: v_0 dM11/dq_e + v_e^T dh/dq_e (dh_i/dq_e,k = N_ki + P_ik); rows e: column 0's h times v_0.
+        D.row(0).tail(ne_) = (2.0 * v[0] * (f_.b + f_.K_w * qe) + (f_.N + f_.P) * ve).transpose();
+        D.bottomRightCorner(ne_, ne_) = v[0] * (f_.N.transpose() + f_.P);
         if (hub_) hub_mass_q_product(q, v, D);
     }
 
@@ -191,8 +191,8 @@ public:
         const bool torque = key().drive == Drive::torque;
         const double w = torque ? qd[0] : u.theta_dot;
         const VectorXd qe = elastic(q), qde = elastic(qd);
-        const double flexible = 0.5 * qde.dot(f_.M * qde), gyroscopic = w * (f_.s.dot(qde) + qe.dot(f_.N * qde)),
-                     spin = 0.5 * w * w * M11(qe);
+        const double flexible = 0.5 * qde.dot(f_.M * qde),
+                     gyroscopic = w * (f_.s.dot(qde) + qe.dot((f_.N + f_.P) * qde)), spin = 0.5 * w * w * M11(qe);
         Energy e;
         if (torque)
             e.T2 = flexible + gyroscopic + spin;  // theta_dot is a rate too
@@ -369,8 +369,8 @@ private:
     VectorXd elastic(const double* v) const { return Eigen::Map<const VectorXd>(v + e_, ne_); }
     /// M11 = J + 2 b^T q_e + q_e^T K_w q_e: the hub's inertia with the beam as it stands.
     double M11(const VectorXd& qe) const { return f_.J + 2.0 * f_.b.dot(qe) + qe.dot(f_.K_w * qe); }
-    /// h = s + N^T q_e = d2T/dtheta_dot dqd_e: the hub row of M.
-    VectorXd coupling(const VectorXd& qe) const { return f_.s + f_.N.transpose() * qe; }
+    /// h = s + (N^T + P) q_e = d2T/dtheta_dot dqd_e: the hub row of M.
+    VectorXd coupling(const VectorXd& qe) const { return f_.s + f_.N.transpose() * qe + f_.P * qe; }
     /// Whether U holds a weight (gravity in the plane or along the axis).
     bool weighed() const { return f_.g != 0.0 || f_.g_axis != 0.0; }
 

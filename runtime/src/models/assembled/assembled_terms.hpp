@@ -5,8 +5,10 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <vector>
 
 #include "models/assembled/assembled.hpp"
+#include "models/assembled/forms.hpp"
 #include "terms.hpp"
 
 namespace hubbeam {
@@ -31,6 +33,9 @@ struct ModelMatrices {
     // stiffness of the elastic coordinates there.
     OutOfPlaneMatrices o;
     double g_axis = 0.0, alpha = 0.0, beta = 0.0;
+    // Section 12.3's forms of the terms placed there whole (a blade's section offsets, the tip body in the blade's
+    // axes), added after the beam's damping is formed.
+    std::vector<QuadraticForms> forms;
 };
 
 /// What a term's twin reads: the variant, its parameters and the beam's matrices.
@@ -56,5 +61,9 @@ void add_tip(const AssemblyContext& a, ModelMatrices& m);
 void add_tip_out_of_plane(const AssemblyContext& a, ModelMatrices& m);
 void add_gravity(const AssemblyContext& a, ModelMatrices& m);
 void add_damping(const AssemblyContext& a, ModelMatrices& m);
+void add_offsets(const AssemblyContext& a, ModelMatrices& m);
+/// Sections 12.5 and 12.6's terms of a blade's offsets o placed in q (the tip body's centre of mass uses them too).
+void add_offset_forms(const FieldBlocks& f, const VariantKey& key, const OffsetMatrices& o, QuadraticForms& q);
+void add_tip_body(const AssemblyContext& a, ModelMatrices& m);
 
 }  // namespace hubbeam

@@ -43,4 +43,45 @@ struct OutOfPlaneMatrices {
 /// (section 12.4).
 OutOfPlaneMatrices assemble_out_of_plane(const VariantKey& key, const Parameters& p);
 
+/// Sections 12.5 and 12.6's integrals of a blade's section offsets, without a precone (R = a + x), named by the
+/// fields they join (x axial, y in-plane, z flapwise, t twist; ' = d/dx). The table's distributions, each linear
+/// between stations from its values there: C = m d cos psi, S = m d sin psi (d = -cg_offset, psi = pitch + the
+/// station's chord angle), the tail C^(x) = int_x^L C dt, D = m d^2 with D2c = D cos 2 psi and D2s = D sin 2 psi,
+/// E_c = EA d_A cos psi and E_s = EA d_A sin psi (d_A = -tc_offset). Each matrix is one integral of the energies'
+/// terms; quadratic_forms.cpp places them.
+struct OffsetMatrices {
+    Eigen::MatrixXd C_zt;      // Nz x Nt, int C Phi_z^T Phi_t dx
+    Eigen::MatrixXd S_yt;      // Ny x Nt, int S Phi_y^T Phi_t dx
+    Eigen::MatrixXd C_xy1;     // Nx x Ny, int C Phi_x^T Phi_y' dx
+    Eigen::MatrixXd S_xz1;     // Nx x Nz, int S Phi_x^T Phi_z' dx
+    Eigen::MatrixXd S_xt;      // Nx x Nt, int S Phi_x^T Phi_t dx
+    Eigen::MatrixXd C_yy1;     // Ny x Ny, int C Phi_y^T Phi_y' dx
+    Eigen::MatrixXd S_yz1;     // Ny x Nz, int S Phi_y^T Phi_z' dx
+    Eigen::MatrixXd RC_tt;     // Nt x Nt, int R C Phi_t^T Phi_t dx
+    Eigen::MatrixXd RC_yy;     // Ny x Ny, int R C Phi_y'^T Phi_y' dx
+    Eigen::MatrixXd RS_yz;     // Ny x Nz, int R S Phi_y'^T Phi_z' dx
+    Eigen::MatrixXd RS_ty;     // Nt x Ny, int R S Phi_t^T Phi_y' dx
+    Eigen::MatrixXd RC_tz;     // Nt x Nz, int R C Phi_t^T Phi_z' dx
+    Eigen::MatrixXd Ct_yy;     // Ny x Ny, int C^ Phi_y'^T Phi_y' dx
+    Eigen::MatrixXd Ct_zz;     // Nz x Nz, int C^ Phi_z'^T Phi_z' dx
+    Eigen::MatrixXd Dcc_yy;    // Ny x Ny, int D cos^2 psi Phi_y'^T Phi_y' dx
+    Eigen::MatrixXd Dss_zz;    // Nz x Nz, int D sin^2 psi Phi_z'^T Phi_z' dx
+    Eigen::MatrixXd Dcs_yz;    // Ny x Nz, int D cos psi sin psi Phi_y'^T Phi_z' dx
+    Eigen::MatrixXd D_zt;      // Nz x Nt, int D Phi_z'^T Phi_t dx
+    Eigen::MatrixXd Dcs_ty;    // Nt x Ny, int D cos psi sin psi Phi_t^T Phi_y' dx
+    Eigen::MatrixXd D2c_tz;    // Nt x Nz, int D2c Phi_t^T Phi_z' dx
+    Eigen::MatrixXd E_xy;      // Nx x Ny, int E_c Phi_x'^T Phi_y'' dx
+    Eigen::MatrixXd E_xz;      // Nx x Nz, int E_s Phi_x'^T Phi_z'' dx
+    Eigen::RowVectorXd C_x;    // 1 x Nx, int C Phi_x dx
+    Eigen::RowVectorXd RS_t;   // 1 x Nt, int R S Phi_t dx
+    Eigen::RowVectorXd Dcc_y;  // 1 x Ny, int D cos^2 psi Phi_y' dx
+    Eigen::RowVectorXd Dcs_z;  // 1 x Nz, int D cos psi sin psi Phi_z' dx
+    Eigen::RowVectorXd C_y;    // 1 x Ny, int C Phi_y dx
+    Eigen::RowVectorXd RC_y1;  // 1 x Ny, int R C Phi_y' dx
+    Eigen::RowVectorXd RS_z1;  // 1 x Nz, int R S Phi_z' dx
+};
+
+/// Sections 12.5 and 12.6's integrals of a tabulated blade's offsets (Parameters::offsets), by the same quadrature.
+OffsetMatrices assemble_offsets(const VariantKey& key, const Parameters& p);
+
 }  // namespace hubbeam

@@ -11,34 +11,7 @@ namespace {
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 
-/// The blocks of a form over q_e by the coordinates' fields (coordinate_layout, counted from the first coordinate
-/// after the hub's): f(M, A, B) is M's block of the axial rows and in-plane columns, f(v, B) v's in-plane segment;
-/// a field the variant lacks has an empty block.
-class FieldBlocks {
-public:
-    explicit FieldBlocks(const VariantKey& key) : layout_(coordinate_layout(key)), beam_(layout_.first_beam()) {}
-
-    int size() const { return layout_.size() - beam_; }
-    int count(FieldKind k) const { return layout_.count(k); }
-    auto operator()(MatrixXd& m, FieldKind rows, FieldKind columns) const
-    {
-        return m.block(first(rows), first(columns), count(rows), count(columns));
-    }
-    auto operator()(VectorXd& v, FieldKind rows) const { return v.segment(first(rows), count(rows)); }
-
-private:
-    int first(FieldKind k) const
-    {
-        const CoordinateField* f = layout_.find(k);
-        return f ? f->first - beam_ : 0;
-    }
-
-    CoordinateLayout layout_;
-    int beam_;  // after the hub's coordinates (its angle, a moving hub's x_h, y_h)
-};
-
-// The fields by the letters of docs/model.md section 12.3.
-constexpr FieldKind A = FieldKind::axial, B = FieldKind::inplane, Z = FieldKind::flap, P = FieldKind::twist;
+using namespace fields;
 
 /// T's forms. |r_dot|^2 to second order in the deformation: u_x1_dot^2 + u_y_dot^2 + u_z_dot^2 (the precone turns the
 /// axial and flapwise rates, not the sum of their squares), 2 w (R u_y_dot + e u_y_dot - u_y e_dot), and
@@ -111,29 +84,46 @@ void add_potential(const FieldBlocks& f, const VariantKey& key, const BeamMatric
     if (f.count(P) > 0) f(q.K, P, P) = o.K_t;
 }
 
-/// An axis's weight of n coordinates, all zero.
-AxisWeight no_weight(int n)
-{
-    return {0.0, VectorXd::Zero(n), MatrixXd::Zero(n, n)};
-}
-
 }  // namespace
 
 QuadraticForms quadratic_forms(const VariantKey& key, const BeamMatrices& c, const ModelMatrices& m)
 {
     const FieldBlocks f(key);
     const int n = f.size();
-    QuadraticForms q;
-    q.M = q.N = q.K_w = q.K = MatrixXd::Zero(n, n);
-    q.s = q.b = VectorXd::Zero(n);
-    q.V_i = q.V_j = q.V_k = no_weight(n);
+    QuadraticForms q = zero_forms(n);
+    q.Dm.resize(0, 0);
     add_kinetic(f, key, c, m, q);
     add_potential(f, key, c, m, q);
     // D = 1/2 int (alpha (m |u_dot|^2 + j_p phi_dot^2) + beta (the strain energy's density in the rates)) dx with the
     // tip body's alpha m_tip |u_dot(L)|^2 + alpha J_tip u_y_dot'(L)^2: alpha times T's M, beta times U's K.
     q.damped = m.alpha != 0.0 || m.beta != 0.0;
     if (q.damped) q.Dm = m.alpha * q.M + m.beta * q.K;
+    // After Dm: Rayleigh damping weighs the section's mass and stiffness without the offsets' couplings and the tip
+    // body's rotation (11.4, 12.5, 11.1), which add their forms whole (their own share of Dm with them).
+    for (const QuadraticForms& term : m.forms) q.add(term);
     return q;
+}
+
+QuadraticForms zero_forms(int n)
+{
+    QuadraticForms q;
+    q.M = q.N = q.P = q.K_w = q.K = q.Dm = MatrixXd::Zero(n, n);
+    q.s = q.b = VectorXd::Zero(n);
+    q.V_i = q.V_j = q.V_k = {0.0, VectorXd::Zero(n), MatrixXd::Zero(n, n)};
+    return q;
+}
+
+void QuadraticForms::add(const QuadraticForms& t)
+{
+    M += t.M, N += t.N, P += t.P, K_w += t.K_w, K += t.K;
+    if (damped) Dm += t.Dm;
+    s += t.s, b += t.b;
+    J += t.J;
+    for (auto [v, w] : {std::pair{&V_i, &t.V_i}, {&V_j, &t.V_j}, {&V_k, &t.V_k}}) {
+        v->o += w->o;
+        v->w += w->w;
+        v->H += w->H;
+    }
 }
 
 }  // namespace hubbeam
