@@ -245,9 +245,8 @@ TEST_CASE("BModes' CertTest blade without offsets, and with CertTest 02's tip ma
     }
 }
 
-TEST_CASE(
-    "BModes' CertTest blades with every section offset and CertTest 02's tip body: every mode BModes prints, "
-    "within both codes' convergence",
+TEST_CASE("BModes' CertTest blades with their section offsets and tip body: every mode BModes prints, within both "
+          "codes' convergence",
     "[validation][blade_files][bmodes][section_offsets]")
 {
     // The offsets' couplings converge as h^2 in hubbeam's elements (and the twist's linear ones): its change from
