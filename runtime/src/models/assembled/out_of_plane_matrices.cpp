@@ -217,10 +217,60 @@ OutOfPlaneMatrices assemble_out_of_plane(const VariantKey& key, const Parameters
     return o;
 }
 
+OffsetMatrices offset_matrices(const VariantKey& key, const QuadratureRule& rule, double L, double a,
+                               const OffsetValues& v)
+{
+    const int nn = static_cast<int>(rule.nodes.size());
+    const ArrayXd xi = Eigen::Map<const ArrayXd>(rule.nodes.data(), nn);
+    const VectorXd w = Eigen::Map<const VectorXd>(rule.weights.data(), nn);
+    const AtNodes X = at_nodes(key.axial_basis(), rule), Y = at_nodes(key.transverse_basis(), rule),
+                  Z = at_nodes(key.flap_basis(), rule), T = at_nodes(key.twist_basis(), rule);
+    const auto at = [&](const std::vector<double>& f) { return ArrayXd(Eigen::Map<const ArrayXd>(f.data(), nn)); };
+    const ArrayXd C = at(v.C), S = at(v.S), D = at(v.D), D2c = at(v.D2c), Ec = at(v.Ec), Es = at(v.Es), Ct = at(v.Ct);
+    const ArrayXd R = a + L * xi;
+    // In xi: dx = L dxi and ' = (1/L) d/dxi, so that each integral's weight carries L to the power 1 - (its primes).
+    const auto weighed = [&](const ArrayXd& f, int primes) {
+        return VectorXd((w.array() * f).matrix() * std::pow(L, 1 - primes));
+    };
+    const ArrayXd Dcc = 0.5 * (D + D2c), Dss = 0.5 * (D - D2c), Dcs = 0.5 * at(v.D2s);
+    const auto row = [](const MatrixXd& P, const VectorXd& u) {
+        return Eigen::RowVectorXd((P.transpose() * u).transpose());
+    };
+    OffsetMatrices o;
+    o.C_zt = product(Z.v, weighed(C, 0), T.v);
+    o.S_yt = product(Y.v, weighed(S, 0), T.v);
+    o.C_xy1 = product(X.v, weighed(C, 1), Y.d1);
+    o.S_xz1 = product(X.v, weighed(S, 1), Z.d1);
+    o.S_xt = product(X.v, weighed(S, 0), T.v);
+    o.C_yy1 = product(Y.v, weighed(C, 1), Y.d1);
+    o.S_yz1 = product(Y.v, weighed(S, 1), Z.d1);
+    o.RC_tt = product(T.v, weighed(R * C, 0), T.v);
+    o.RC_yy = product(Y.d1, weighed(R * C, 2), Y.d1);
+    o.RS_yz = product(Y.d1, weighed(R * S, 2), Z.d1);
+    o.RS_ty = product(T.v, weighed(R * S, 1), Y.d1);
+    o.RC_tz = product(T.v, weighed(R * C, 1), Z.d1);
+    o.Ct_yy = product(Y.d1, weighed(Ct, 2), Y.d1);
+    o.Ct_zz = product(Z.d1, weighed(Ct, 2), Z.d1);
+    o.Dcc_yy = product(Y.d1, weighed(Dcc, 2), Y.d1);
+    o.Dss_zz = product(Z.d1, weighed(Dss, 2), Z.d1);
+    o.Dcs_yz = product(Y.d1, weighed(Dcs, 2), Z.d1);
+    o.D_zt = product(Z.d1, weighed(D, 1), T.v);
+    o.Dcs_ty = product(T.v, weighed(Dcs, 1), Y.d1);
+    o.D2c_tz = product(T.v, weighed(D2c, 1), Z.d1);
+    o.E_xy = product(X.d1, weighed(Ec, 3), Y.d2);
+    o.E_xz = product(X.d1, weighed(Es, 3), Z.d2);
+    o.C_x = row(X.v, weighed(C, 0));
+    o.RS_t = row(T.v, weighed(R * S, 0));
+    o.Dcc_y = row(Y.d1, weighed(Dcc, 1));
+    o.Dcs_z = row(Z.d1, weighed(Dcs, 1));
+    o.C_y = row(Y.v, weighed(C, 0));
+    o.RC_y1 = row(Y.d1, weighed(R * C, 1));
+    o.RS_z1 = row(Z.d1, weighed(R * S, 1));
+    return o;
+}
+
 OffsetMatrices assemble_offsets(const VariantKey& key, const Parameters& p)
 {
-    const FieldBasis axial = key.axial_basis(), inplane = key.transverse_basis(), flap = key.flap_basis(),
-                     twist = key.twist_basis();
     const std::vector<double>& stations = p.stations;
     const std::size_t n = stations.size(), width = p.profile.size() / n;
     if (n < 2 || p.offsets.size() != 2 * n)
@@ -240,60 +290,16 @@ OffsetMatrices assemble_offsets(const VariantKey& key, const Parameters& p)
                                              m * d * d * std::sin(2.0 * psi), EA * d_A * c, EA * d_A * s});
         tail_values.push_back(m * d * c);
     }
-    const QuadratureRule rule = section_rule({axial, inplane, flap, twist}, stations, 0.0);
-    const int nn = static_cast<int>(rule.nodes.size());
-    const ArrayXd xi = Eigen::Map<const ArrayXd>(rule.nodes.data(), nn);
-    const VectorXd w = Eigen::Map<const VectorXd>(rule.weights.data(), nn);
-    const AtNodes X = at_nodes(axial, rule), Y = at_nodes(inplane, rule), Z = at_nodes(flap, rule),
-                  T = at_nodes(twist, rule);
-    ArrayXd C(nn), S(nn), D(nn), D2c(nn), D2s(nn), Ec(nn), Es(nn), Ct(nn);
+    const QuadratureRule rule =
+        section_rule({key.axial_basis(), key.transverse_basis(), key.flap_basis(), key.twist_basis()}, stations, 0.0);
+    OffsetValues v;
+    std::vector<double>* values[] = {&v.C, &v.S, &v.D, &v.D2c, &v.D2s, &v.Ec, &v.Es};
     const MassTail tail(stations, tail_values, 0);  // int_xi^1 C dt: the table's first column is read as m
-    for (int r = 0; r < nn; ++r) {
-        ArrayXd* arrays[] = {&C, &S, &D, &D2c, &D2s, &Ec, &Es};
-        for (std::size_t j = 0; j < 7; ++j) (*arrays[j])(r) = linear_between(stations, at_station, j, xi(r));
-        Ct(r) = tail(xi(r));
+    for (const double xi : rule.nodes) {
+        for (std::size_t j = 0; j < 7; ++j) values[j]->push_back(linear_between(stations, at_station, j, xi));
+        v.Ct.push_back(p.L * tail(xi));  // C^(x) = L int_xi^1 C dt
     }
-    const double L = p.L;
-    const ArrayXd R = p.a + L * xi;
-    // In xi: dx = L dxi and ' = (1/L) d/dxi, so that each integral's weight carries L to the power 1 - (its primes).
-    const auto weighed = [&](const ArrayXd& f, int primes) {
-        return VectorXd((w.array() * f).matrix() * std::pow(L, 1 - primes));
-    };
-    const ArrayXd Dcc = 0.5 * (D + D2c), Dss = 0.5 * (D - D2c), Dcs = 0.5 * D2s;
-    const auto row = [](const MatrixXd& P, const VectorXd& v) {
-        return Eigen::RowVectorXd((P.transpose() * v).transpose());
-    };
-    OffsetMatrices o;
-    o.C_zt = product(Z.v, weighed(C, 0), T.v);
-    o.S_yt = product(Y.v, weighed(S, 0), T.v);
-    o.C_xy1 = product(X.v, weighed(C, 1), Y.d1);
-    o.S_xz1 = product(X.v, weighed(S, 1), Z.d1);
-    o.S_xt = product(X.v, weighed(S, 0), T.v);
-    o.C_yy1 = product(Y.v, weighed(C, 1), Y.d1);
-    o.S_yz1 = product(Y.v, weighed(S, 1), Z.d1);
-    o.RC_tt = product(T.v, weighed(R * C, 0), T.v);
-    o.RC_yy = product(Y.d1, weighed(R * C, 2), Y.d1);
-    o.RS_yz = product(Y.d1, weighed(R * S, 2), Z.d1);
-    o.RS_ty = product(T.v, weighed(R * S, 1), Y.d1);
-    o.RC_tz = product(T.v, weighed(R * C, 1), Z.d1);
-    o.Ct_yy = product(Y.d1, weighed(L * Ct, 2), Y.d1);  // C^(x) = L int_xi^1 C dt
-    o.Ct_zz = product(Z.d1, weighed(L * Ct, 2), Z.d1);
-    o.Dcc_yy = product(Y.d1, weighed(Dcc, 2), Y.d1);
-    o.Dss_zz = product(Z.d1, weighed(Dss, 2), Z.d1);
-    o.Dcs_yz = product(Y.d1, weighed(Dcs, 2), Z.d1);
-    o.D_zt = product(Z.d1, weighed(D, 1), T.v);
-    o.Dcs_ty = product(T.v, weighed(Dcs, 1), Y.d1);
-    o.D2c_tz = product(T.v, weighed(D2c, 1), Z.d1);
-    o.E_xy = product(X.d1, weighed(Ec, 3), Y.d2);
-    o.E_xz = product(X.d1, weighed(Es, 3), Z.d2);
-    o.C_x = row(X.v, weighed(C, 0));
-    o.RS_t = row(T.v, weighed(R * S, 0));
-    o.Dcc_y = row(Y.d1, weighed(Dcc, 1));
-    o.Dcs_z = row(Z.d1, weighed(Dcs, 1));
-    o.C_y = row(Y.v, weighed(C, 0));
-    o.RC_y1 = row(Y.d1, weighed(R * C, 1));
-    o.RS_z1 = row(Z.d1, weighed(R * S, 1));
-    return o;
+    return offset_matrices(key, rule, p.L, p.a, v);
 }
 
 }  // namespace hubbeam

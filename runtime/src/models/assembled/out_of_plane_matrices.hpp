@@ -7,6 +7,7 @@
 #include <Eigen/Dense>
 #include <hubbeam/model.hpp>
 #include <string>
+#include <vector>
 
 namespace hubbeam {
 
@@ -83,5 +84,15 @@ struct OffsetMatrices {
 
 /// Sections 12.5 and 12.6's integrals of a tabulated blade's offsets (Parameters::offsets), by the same quadrature.
 OffsetMatrices assemble_offsets(const VariantKey& key, const Parameters& p);
+
+/// OffsetMatrices' distributions at a rule's nodes: C, S, D, D2c, D2s, E_c, E_s, and the tail C^ (SI).
+struct OffsetValues {
+    std::vector<double> C, S, D, D2c, D2s, Ec, Es, Ct;
+};
+
+/// OffsetMatrices of the distributions v at rule's nodes (x/L), on a blade of length L at the radius a: each matrix the
+/// rule's sum of its integrand. A rule of one node at the tip, of weight 1/L, gives the integrands' values there.
+OffsetMatrices offset_matrices(const VariantKey& key, const QuadratureRule& rule, double L, double a,
+                               const OffsetValues& v);
 
 }  // namespace hubbeam

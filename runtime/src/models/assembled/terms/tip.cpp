@@ -132,10 +132,10 @@ void add_tip_body_forms(const FieldBlocks& f, const VariantKey& key, const TipBo
 void add_tip_body(const AssemblyContext& a, ModelMatrices& m)
 {
     const Parameters& p = a.p;
-    const double L = p.L, R = p.a + L, d = -p.tip_offset, md = p.m_tip * d;
+    const double L = p.L, d = -p.tip_offset, md = p.m_tip * d;
     const double c = std::cos(p.pitch), s = std::sin(p.pitch);
-    const AtTip X = at_tip(a.key.axial_basis(), L), Y = at_tip(a.key.transverse_basis(), L),
-                Z = at_tip(a.key.flap_basis(), L), T = at_tip(a.key.twist_basis(), L);
+    const AtTip Y = at_tip(a.key.transverse_basis(), L), Z = at_tip(a.key.flap_basis(), L),
+                T = at_tip(a.key.twist_basis(), L);
     TipBodyForms b;
     // The body's second moments of mass along its axes about the tip point: its inertias about its centre, J_tip
     // (lag, about the chord's normal), J_tip_flap (about the chord) and J_tip_twist (about the tangent), with m d^2
@@ -146,43 +146,13 @@ void add_tip_body(const AssemblyContext& a, ModelMatrices& m)
     b.md = md, b.cos_pitch = c, b.sin_pitch = s, b.J_tip = p.J_tip;
     b.y1 = Y.d1, b.z1 = Z.d1, b.t0 = T.v;
     // T_g at the tip point with C = m_tip d cos(pitch), S = m_tip d sin(pitch); T_r's bracket with the chord's P_c and
-    // its normal's P_n, whose angle is the chord's a quarter turn on (cos -> -sin, sin -> cos); no tension centre.
-    const double C = md * c, S = md * s;
-    const double Dcc = b.P_c * c * c + b.P_n * s * s, Dss = b.P_c * s * s + b.P_n * c * c,
-                 Dcs = (b.P_c - b.P_n) * c * s, D2c = (b.P_c - b.P_n) * (c * c - s * s), D = b.P_c + b.P_n;
-    const auto outer = [](const Eigen::RowVectorXd& u, const Eigen::RowVectorXd& v) {
-        return Eigen::MatrixXd(u.transpose() * v);
-    };
-    OffsetMatrices& o = b.point;
-    o.C_zt = C * outer(Z.v, T.v);
-    o.S_yt = S * outer(Y.v, T.v);
-    o.C_xy1 = C * outer(X.v, Y.d1);
-    o.S_xz1 = S * outer(X.v, Z.d1);
-    o.S_xt = S * outer(X.v, T.v);
-    o.C_yy1 = C * outer(Y.v, Y.d1);
-    o.S_yz1 = S * outer(Y.v, Z.d1);
-    o.RC_tt = R * C * outer(T.v, T.v);
-    o.RC_yy = R * C * outer(Y.d1, Y.d1);
-    o.RS_yz = R * S * outer(Y.d1, Z.d1);
-    o.RS_ty = R * S * outer(T.v, Y.d1);
-    o.RC_tz = R * C * outer(T.v, Z.d1);
-    o.Ct_yy = C * a.c.H_L;  // -w C u_x2_dot(L), u_x2(L) = -1/2 (B^T H(L) B + Z^T H_z(L) Z)
-    o.Ct_zz = C * a.c.o.H_z_L;
-    o.Dcc_yy = Dcc * outer(Y.d1, Y.d1);
-    o.Dss_zz = Dss * outer(Z.d1, Z.d1);
-    o.Dcs_yz = Dcs * outer(Y.d1, Z.d1);
-    o.D_zt = D * outer(Z.d1, T.v);
-    o.Dcs_ty = Dcs * outer(T.v, Y.d1);
-    o.D2c_tz = D2c * outer(T.v, Z.d1);
-    o.E_xy = Eigen::MatrixXd::Zero(X.v.size(), Y.v.size());
-    o.E_xz = Eigen::MatrixXd::Zero(X.v.size(), Z.v.size());
-    o.C_x = C * X.v;
-    o.RS_t = R * S * T.v;
-    o.Dcc_y = Dcc * Y.d1;
-    o.Dcs_z = Dcs * Z.d1;
-    o.C_y = C * Y.v;
-    o.RC_y1 = R * C * Y.d1;
-    o.RS_z1 = R * S * Z.d1;
+    // its normal's P_n, whose angle is the chord's a quarter turn on (cos -> -sin, sin -> cos); no tension centre. The
+    // integrands at x = L, by a rule of one node there; the tail of u_x2's term is the whole beam's, H(L) and H_z(L).
+    const double C = md * c, S = md * s, D = b.P_c - b.P_n;
+    const OffsetValues v{{C}, {S}, {b.P_c + b.P_n}, {D * (c * c - s * s)}, {2.0 * D * c * s}, {0.0}, {0.0}, {0.0}};
+    b.point = offset_matrices(a.key, QuadratureRule{{1.0}, {1.0 / L}}, L, p.a, v);
+    b.point.Ct_yy = C * a.c.H_L;
+    b.point.Ct_zz = C * a.c.o.H_z_L;
     const FieldBlocks f(a.key);
     QuadraticForms forms = zero_forms(f.size());
     add_tip_body_forms(f, a.key, b, m.alpha, forms);
