@@ -37,7 +37,7 @@ struct QuadraticForms {
     double g = 0.0, g_axis = 0.0;
     bool damped = false;
 
-    /// Adds a term's forms b (of the same coordinates) to these; b's empty matrices and weights add nothing.
+    /// Adds a term's forms b (of the same coordinates, from zero_forms) to these, b's damping only where these damp.
     void add(const QuadraticForms& b);
 };
 
@@ -55,6 +55,12 @@ public:
         return m.block(first(rows), first(columns), count(rows), count(columns));
     }
     auto operator()(Eigen::VectorXd& v, FieldKind rows) const { return v.segment(first(rows), count(rows)); }
+    /// Adds v to m's block (rows, columns) and its transpose to (columns, rows): one term of a symmetric form.
+    void add_both(Eigen::MatrixXd& m, FieldKind rows, FieldKind columns, const Eigen::MatrixXd& v) const
+    {
+        (*this)(m, rows, columns) += v;
+        (*this)(m, columns, rows) += v.transpose();
+    }
 
 private:
     int first(FieldKind k) const

@@ -9,10 +9,10 @@ namespace hubbeam {
 AssembledTerm assembled_part(const TermInfo& t)
 {
     // In the order of terms(): tip, gravity, damping, taper, profile (the last two inside assemble_matrices), the
-    // section offsets (placed by quadratic_forms.cpp, as are the fields out of the plane), pitch, pre-twist and
+    // section offsets (their own forms of section 12.3), pitch, pre-twist and
     // precone (inside the beam's quadrature too: the chord's angle and the axis's tilt, out_of_plane_matrices.cpp and
     // assemble_matrices), and the moving hub, whose coordinates have no place in these matrices (the quadratic forms'
-    // model adds it: assembled_forms.cpp), and the tip body in the blade's axes (placed by quadratic_forms.cpp too).
+    // model adds it: assembled_forms.cpp), and the tip body in the blade's axes (its own forms too, terms/tip.cpp).
     static const std::array<AssembledTerm, 11> table = {add_tip, add_gravity, add_damping, nullptr,
                                                         nullptr, add_offsets, nullptr,     nullptr,
                                                         nullptr, nullptr,     add_tip_body};

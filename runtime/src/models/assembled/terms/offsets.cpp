@@ -1,6 +1,6 @@
 // A blade's section offsets' assembled twin (docs/model.md sections 12.5 and 12.6): their integrals
 // (out_of_plane_matrices.cpp) placed in section 12.3's forms. Without a precone: make_assembled_model refuses one.
-#include <memory>
+#include <utility>
 
 #include "models/assembled/assembled_terms.hpp"
 
@@ -21,11 +21,7 @@ using namespace fields;
 /// rates' terms linear in w are w q^T X qd with X general: its skew part joins N, its symmetric part is P.
 void add_offset_forms(const FieldBlocks& f, const VariantKey& key, const OffsetMatrices& o, QuadraticForms& q)
 {
-    // Adds v to m's block (r, c) and its transpose to (c, r): a symmetric form's two halves of one term.
-    const auto both = [&](MatrixXd& m, FieldKind r, FieldKind c, const MatrixXd& v) {
-        f(m, r, c) += v;
-        f(m, c, r) += v.transpose();
-    };
+    const auto both = [&](MatrixXd& m, FieldKind r, FieldKind c, const MatrixXd& v) { f.add_both(m, r, c, v); };
     // M: T_g's couplings of the rates, and T_r's sigma_dot^2 = (v_dot' cos psi + z_dot' sin psi)^2.
     both(q.M, Z, P, o.C_zt);
     both(q.M, B, P, -o.S_yt);

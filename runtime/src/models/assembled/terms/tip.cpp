@@ -1,7 +1,8 @@
 // The tip body's assembled twin (docs/model.md sections 11.1 and 12.3): m_tip and J_tip at x = L, as point values of
 // the shape functions there added to section 5.2's matrices and to the flapwise field's, and its weight to section
-// 11.3's.
+// 11.3's; in the blade's axes (add_tip_body), its rotation and its centre of mass's offset as forms of section 12.3.
 #include <cmath>
+#include <utility>
 
 #include "models/assembled/assembled_terms.hpp"
 
@@ -81,8 +82,8 @@ struct TipBodyForms {
     Eigen::RowVectorXd y1, z1, t0;
 };
 
-/// Section 11.1's tip body in the blade's axes : T_g at the tip point and T_r's bracket for its chord
-/// and normal (place_offsets), their turn about the axis and by the spin, 1/2 P_c (w^2 cos^2 psi + phi_dot^2) + 1/2
+/// Section 11.1's tip body in the blade's axes: T_g at the tip point and T_r's bracket for its chord
+/// and normal (add_offset_forms), their turn about the axis and by the spin, 1/2 P_c (w^2 cos^2 psi + phi_dot^2) + 1/2
 /// P_n (w^2 sin^2 psi + phi_dot^2) with psi = pitch + phi(L), the tangent's 1/2 P_t (w^2 + 2 w u_y_dot' + u_y_dot'^2 +
 /// u_z_dot'^2 - w^2 u_z'^2), and the weight of its centre of mass's offset m_tip d c, c the chord to second order:
 /// (-sigma, cos psi - u_y' sigma / 2, sin psi - u_z' sigma / 2), sigma = u_y' cos psi + u_z' sin psi (all at x = L).
@@ -104,10 +105,7 @@ void add_tip_body_forms(const FieldBlocks& f, const VariantKey& key, const TipBo
     f(q.K_w, Z, Z) -= b.P_t * outer(b.z1, b.z1);
     // The weight: V_n = o + w^T q - 1/2 q^T H q per unit g, the offset's m_tip d c_n to second order in phi and the
     // slopes.
-    const auto both = [&](MatrixXd& m, FieldKind r, FieldKind k, const MatrixXd& v) {
-        f(m, r, k) += v;
-        f(m, k, r) += v.transpose();
-    };
+    const auto both = [&](MatrixXd& m, FieldKind r, FieldKind k, const MatrixXd& v) { f.add_both(m, r, k, v); };
     const double md = b.md;
     f(q.V_i.w, B) -= md * c * b.y1.transpose();
     f(q.V_i.w, Z) -= md * s * b.z1.transpose();
