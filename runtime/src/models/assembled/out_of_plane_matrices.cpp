@@ -163,11 +163,14 @@ BladeAtNodes blade_at_nodes(const VariantKey& key, const Parameters& p, const st
     return b;
 }
 
-/// Phi(1) of every function of a basis (1 x n).
-Eigen::RowVectorXd at_tip(const FieldBasis& basis)
+/// Phi(1) of every function of a basis (1 x n), or with slope, its xi-derivative there.
+Eigen::RowVectorXd at_tip(const FieldBasis& basis, bool slope = false)
 {
     Eigen::RowVectorXd r(basis.size());
-    for (int i = 0; i < basis.size(); ++i) r(i) = basis.at(i, 1.0).v;
+    for (int i = 0; i < basis.size(); ++i) {
+        const Jet<double> f = basis.at(i, 1.0);
+        r(i) = slope ? f.d1 : f.v;
+    }
     return r;
 }
 
@@ -212,6 +215,7 @@ OutOfPlaneMatrices assemble_out_of_plane(const VariantKey& key, const Parameters
     o.J_p = L * weighed(b.j_p).sum();
     o.J_n = L * weighed(b.j_k).sum();
     o.Phi_z_L = at_tip(flap);
+    o.Phi_z1_L = at_tip(flap, true) / L;
     o.H_z_L = gram(Z.d1, w) / L;
     o.Phi_t_L = at_tip(twist);
     return o;
@@ -279,7 +283,7 @@ OffsetMatrices assemble_offsets(const VariantKey& key, const Parameters& p)
     // The distributions at the stations (m d and EA d_A along the chord turned by the pitch and the station's angle),
     // from the table's own columns: cg_offset and tc_offset in that order, towards the trailing edge.
     const double pitch = key.extras.pitch ? p.pitch : 0.0;
-    std::vector<double> at_station, tail_values;
+    std::vector<double> at_station;
     for (std::size_t k = 0; k < n; ++k) {
         const double* row = p.profile.data() + width * k;
         const double m = row[static_cast<std::size_t>(ProfileValue::m)],
@@ -288,13 +292,12 @@ OffsetMatrices assemble_offsets(const VariantKey& key, const Parameters& p)
         const double d = -p.offsets[2 * k], d_A = -p.offsets[2 * k + 1], c = std::cos(psi), s = std::sin(psi);
         at_station.insert(at_station.end(), {m * d * c, m * d * s, m * d * d, m * d * d * std::cos(2.0 * psi),
                                              m * d * d * std::sin(2.0 * psi), EA * d_A * c, EA * d_A * s});
-        tail_values.push_back(m * d * c);
     }
     const QuadratureRule rule =
         section_rule({key.axial_basis(), key.transverse_basis(), key.flap_basis(), key.twist_basis()}, stations, 0.0);
     OffsetValues v;
     std::vector<double>* values[] = {&v.C, &v.S, &v.D, &v.D2c, &v.D2s, &v.Ec, &v.Es};
-    const MassTail tail(stations, tail_values, 0);  // int_xi^1 C dt: the table's first column is read as m
+    const MassTail tail(stations, at_station, 0);  // int_xi^1 C dt: C, the first column, is read as a table's m
     for (const double xi : rule.nodes) {
         for (std::size_t j = 0; j < 7; ++j) values[j]->push_back(linear_between(stations, at_station, j, xi));
         v.Ct.push_back(p.L * tail(xi));  // C^(x) = L int_xi^1 C dt

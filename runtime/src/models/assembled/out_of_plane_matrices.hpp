@@ -36,6 +36,7 @@ struct OutOfPlaneMatrices {
     double J_p = 0.0;            // int j_p dx
     double J_n = 0.0;            // int ((j_c + j_n)/2 + (j_n - j_c) C2/2) dx: the section's inertia about k at phi = 0
     Eigen::RowVectorXd Phi_z_L;  // 1 x Nz, Phi_z(L)
+    Eigen::RowVectorXd Phi_z1_L;  // 1 x Nz, Phi_z'(L) (1/m)
     Eigen::MatrixXd H_z_L;       // Nz x Nz, H_z(L) = int Phi_z'^T Phi_z' dx
     Eigen::RowVectorXd Phi_t_L;  // 1 x Nt, Phi_t(L)
 };

@@ -54,22 +54,6 @@ namespace {
 using Eigen::MatrixXd;
 using namespace fields;
 
-/// The values at the tip (x = L) of a basis's functions and of their first x-derivatives.
-struct AtTip {
-    Eigen::RowVectorXd v, d1;
-};
-
-AtTip at_tip(const FieldBasis& basis, double L)
-{
-    AtTip r{Eigen::RowVectorXd(basis.size()), Eigen::RowVectorXd(basis.size())};
-    for (int i = 0; i < basis.size(); ++i) {
-        const Jet<double> f = basis.at(i, 1.0);
-        r.v(i) = f.v;
-        r.d1(i) = f.d1 / L;
-    }
-    return r;
-}
-
 /// Section 11.1's tip body in the blade's axes, without a precone: its centre of mass's offset d = -tip_offset along
 /// the tip's chord (at the pitch, psi = pitch + phi(L)) is 12.5's T_g at the tip point (in `point`, each integral
 /// replaced by its integrand's value at x = L, m_tip d in place of m d, H(L) and H_z(L) the tail of u_x2), and its
@@ -132,8 +116,6 @@ void add_tip_body(const AssemblyContext& a, ModelMatrices& m)
     const Parameters& p = a.p;
     const double L = p.L, d = -p.tip_offset, md = p.m_tip * d;
     const double c = std::cos(p.pitch), s = std::sin(p.pitch);
-    const AtTip Y = at_tip(a.key.transverse_basis(), L), Z = at_tip(a.key.flap_basis(), L),
-                T = at_tip(a.key.twist_basis(), L);
     TipBodyForms b;
     // The body's second moments of mass along its axes about the tip point: its inertias about its centre, J_tip
     // (lag, about the chord's normal), J_tip_flap (about the chord) and J_tip_twist (about the tangent), with m d^2
@@ -142,7 +124,7 @@ void add_tip_body(const AssemblyContext& a, ModelMatrices& m)
     b.P_n = 0.5 * (p.J_tip_twist + p.J_tip_flap - p.J_tip);
     b.P_t = 0.5 * (p.J_tip_flap + p.J_tip - p.J_tip_twist);
     b.md = md, b.cos_pitch = c, b.sin_pitch = s, b.J_tip = p.J_tip;
-    b.y1 = Y.d1, b.z1 = Z.d1, b.t0 = T.v;
+    b.y1 = a.c.Phi_y1_L, b.z1 = a.c.o.Phi_z1_L, b.t0 = a.c.o.Phi_t_L;
     // T_g at the tip point with C = m_tip d cos(pitch), S = m_tip d sin(pitch); T_r's bracket with the chord's P_c and
     // its normal's P_n, whose angle is the chord's a quarter turn on (cos -> -sin, sin -> cos); no tension centre. The
     // integrands at x = L, by a rule of one node there; the tail of u_x2's term is the whole beam's, H(L) and H_z(L).
