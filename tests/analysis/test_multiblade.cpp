@@ -111,6 +111,22 @@ void check_whirls(int blades, double omega)
     }
 }
 
+/// The rotor's fixed-frame modes at the spin omega; held: the hub held at its rate (a prescribed spin, Coleman's).
+std::vector<NaturalMode> fixed_modes(const Model& model, double omega, bool held = false)
+{
+    SteadySpin steady = steady_spin(model, omega);
+    steady.held = held;
+    return multiblade_modes(model, steady);
+}
+
+/// The largest growth among fixed_modes, over the mode's |lambda| (round-off: 1e-11).
+double worst_growth(const Model& model, double omega, bool held = false)
+{
+    double worst = -HUGE_VAL;
+    for (const NaturalMode& m : fixed_modes(model, omega, held)) worst = std::max(worst, m.growth / m.undamped_rad_s);
+    return worst;
+}
+
 }  // namespace
 
 TEST_CASE("on a hub that does not translate each blade mode whirls at omega +- Omega in the fixed frame",
@@ -203,9 +219,7 @@ TEST_CASE("on an anisotropic moving hub the multi-blade eigenvalues are the Floq
     const double omega = 7.0;
     // Floquet holds the hub at its rate (docs/model.md section 10.1): so do these modes (held: theta is no
     // coordinate of them).
-    SteadySpin steady = steady_spin(*model, omega);
-    steady.held = true;
-    const std::vector<NaturalMode> fixed = multiblade_modes(*model, steady);
+    const std::vector<NaturalMode> fixed = fixed_modes(*model, omega, true);
     const FloquetAnalysis f = floquet(*model, omega);
     REQUIRE(f.modes.size() >= 8);
     for (const FloquetMode& m : f.modes) {
@@ -221,15 +235,6 @@ TEST_CASE("on an anisotropic moving hub the multi-blade eigenvalues are the Floq
 }
 
 namespace {
-
-/// The largest growth among the rotor's fixed-frame modes at omega, over the mode's |lambda| (round-off: 1e-11).
-double worst_growth(const Model& model, double omega)
-{
-    double worst = -HUGE_VAL;
-    for (const NaturalMode& m : multiblade_modes(model, steady_spin(model, omega)))
-        worst = std::max(worst, m.growth / m.undamped_rad_s);
-    return worst;
-}
 
 /// Where Omega - omega_lag(Omega) meets the support's frequency sqrt(k / (m_hub + N m L)) (the rotor rigid on it),
 /// omega_lag the single blade's first edge frequency on a hub that does not move (its own model), by bisection.
@@ -389,22 +394,6 @@ std::unique_ptr<Model> one_mode_rotor(Overrides o = {})
     return make_scene_model(ground_with(o));
 }
 
-/// The rotor's fixed-frame modes at the spin Omega, the hub held at its rate (a prescribed spin: Coleman's).
-std::vector<NaturalMode> held_modes(const Model& model, double Omega)
-{
-    SteadySpin steady = steady_spin(model, Omega);
-    steady.held = true;
-    return multiblade_modes(model, steady);
-}
-
-/// The largest growth over |lambda| among held_modes.
-double worst_held_growth(const Model& model, double Omega)
-{
-    double worst = -HUGE_VAL;
-    for (const NaturalMode& m : held_modes(model, Omega)) worst = std::max(worst, m.growth / m.undamped_rad_s);
-    return worst;
-}
-
 }  // namespace
 
 TEST_CASE("a one-mode rotor's fixed-frame modes are the roots of Coleman and Feingold's characteristic equation",
@@ -420,7 +409,7 @@ TEST_CASE("a one-mode rotor's fixed-frame modes are the roots of Coleman and Fei
     for (const bool with_damping : {false, true})
         for (const double Omega : {0.0, 2.0, 5.0, 9.6, 10.7, 12.4, 16.0}) {
             const Model& model = with_damping ? *damped : *undamped;
-            const std::vector<NaturalMode> modes = held_modes(model, Omega);
+            const std::vector<NaturalMode> modes = fixed_modes(model, Omega, true);
             REQUIRE(modes.size() == 5);  // the collective mode, the hub's two whirls, the cyclic pair's two
             std::vector<std::complex<double>> expected;
             for (const std::complex<double> r : closed.roots(Omega, with_damping ? c : 0.0, with_damping ? alpha : 0.0,
@@ -462,8 +451,8 @@ TEST_CASE("a one-mode rotor's ground-resonance band and the damping that removes
     INFO("the closed form's band: " << lower << " to " << upper << " rad/s");
     const auto undamped = one_mode_rotor();
     for (const double d : {-1e-4, 1e-4}) {
-        CHECK((worst_held_growth(*undamped, lower + d) > 0.0) == (d > 0.0));
-        CHECK((worst_held_growth(*undamped, upper - d) > 0.0) == (d > 0.0));
+        CHECK((worst_growth(*undamped, lower + d, true) > 0.0) == (d > 0.0));
+        CHECK((worst_growth(*undamped, upper - d, true) > 0.0) == (d > 0.0));
     }
     // The blades' damping that makes the rotor stable at every spin on a support of 342 N s/m (Deutsch's criterion,
     // exactly): the least beta for which no root grows between 0 and 20 rad/s, by bisection on the closed form.
@@ -489,10 +478,10 @@ TEST_CASE("a one-mode rotor's ground-resonance band and the damping that removes
                                {"damping.stiffness_proportional", std::to_string(b)}});
     };
     const auto below = with_beta(0.98 * hi), above = with_beta(1.02 * hi);
-    CHECK(worst_held_growth(*below, critical) > 0.0);
+    CHECK(worst_growth(*below, critical, true) > 0.0);
     for (double Omega = critical - 1.0; Omega <= critical + 1.0; Omega += 0.05) {
         INFO("Omega " << Omega);
-        CHECK(worst_held_growth(*above, Omega) < 0.0);
+        CHECK(worst_growth(*above, Omega, true) < 0.0);
     }
 }
 
